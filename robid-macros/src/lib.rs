@@ -1,0 +1,1 @@
+//! `robot_model!`: emits straight-line Rust for a robot description.

@@ -1,0 +1,8 @@
+#![doc = "robid runtime: the `no_std` scalar and model traits that generated models implement, and, with the `std` feature, the identification pipeline."]
+#![cfg_attr(not(feature = "std"), no_std)]
+
+mod model;
+mod real;
+
+pub use model::Model;
+pub use real::Real;

@@ -1,0 +1,100 @@
+//! The scalar trait that generated models are generic over.
+
+use core::fmt::Debug;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A real scalar for generated straight-line code: `f64` and `f32`.
+///
+/// Only what the emitted code needs: arithmetic, the trigonometric functions of
+/// joint angles, `sign` for Coulomb friction and `sqrt`. In `no_std` builds the
+/// functions come from `libm`, so the same code runs on a microcontroller.
+pub trait Real:
+    Copy
+    + Debug
+    + PartialEq
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// Zero.
+    const ZERO: Self;
+    /// One.
+    const ONE: Self;
+    /// Converts a literal from the generated code (rounded to the nearest value for `f32`).
+    fn from_f64(value: f64) -> Self;
+    /// Converts to `f64`.
+    fn to_f64(self) -> f64;
+    /// Sine.
+    fn sin(self) -> Self;
+    /// Cosine.
+    fn cos(self) -> Self;
+    /// Square root.
+    fn sqrt(self) -> Self;
+    /// Sign for Coulomb friction: -1, 0 or 1 (0 at exactly zero, unlike `f64::signum`).
+    fn sign(self) -> Self;
+}
+
+macro_rules! impl_real {
+    ($t:ty, $sin:path, $cos:path, $sqrt:path) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            #[inline(always)]
+            fn from_f64(value: f64) -> Self {
+                value as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                $sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                $cos(self)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                $sqrt(self)
+            }
+            #[inline(always)]
+            fn sign(self) -> Self {
+                if self > 0.0 {
+                    1.0
+                } else if self < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                }
+            }
+        }
+    };
+}
+
+impl_real!(f64, libm::sin, libm::cos, libm::sqrt);
+impl_real!(f32, libm::sinf, libm::cosf, libm::sqrtf);
+
+#[cfg(test)]
+mod tests {
+    use super::Real;
+
+    #[test]
+    fn sign_is_zero_at_zero() {
+        assert_eq!(Real::sign(0.0_f64), 0.0);
+        assert_eq!(Real::sign(-2.0_f32), -1.0);
+        assert_eq!(Real::sign(3.0_f64), 1.0);
+    }
+
+    #[test]
+    fn trig_matches_std() {
+        for x in [-3.0_f64, -0.5, 0.0, 1.2, 7.0] {
+            assert!((Real::sin(x) - x.sin()).abs() < 1e-15);
+            assert!((Real::cos(x) - x.cos()).abs() < 1e-15);
+        }
+    }
+}

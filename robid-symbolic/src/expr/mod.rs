@@ -1,0 +1,224 @@
+//! Expressions: a hash-consed DAG in one arena.
+//!
+//! Nodes live in a `Vec`, children before parents, and a memo maps each node to
+//! its `Id`, so equal subexpressions are one node (egg's `language.rs` without the
+//! union-find). The smart constructors in `build.rs` run the simplification
+//! passes of `simplify/` on every node they create; `intern` stores a node as is.
+
+mod build;
+mod diff;
+mod display;
+mod eval;
+mod num;
+mod parse;
+pub mod simplify;
+
+pub use eval::Values;
+pub use num::Num;
+pub use parse::ParseError;
+
+use std::collections::HashMap;
+
+/// Index of a node in an [`Arena`]. Children always have smaller ids than parents.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Id(u32);
+
+impl Id {
+    /// Position in the arena.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// A named symbol (joint variable, geometric length, parameter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Symbol(u32);
+
+impl Symbol {
+    /// Position in the arena's symbol table.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// One node of the DAG.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Node {
+    /// A number.
+    Num(Num),
+    /// The constant pi (DH angles are kept as exact multiples of it).
+    Pi,
+    /// A named symbol.
+    Sym(Symbol),
+    /// Sum of two or more terms, in canonical order.
+    Add(Box<[Id]>),
+    /// Product of two or more factors; a numeric coefficient comes first.
+    Mul(Box<[Id]>),
+    /// Integer power.
+    Pow(Id, i32),
+    /// Sine.
+    Sin(Id),
+    /// Cosine.
+    Cos(Id),
+    /// Sign: -1, 0 or 1.
+    Sign(Id),
+    /// Square root.
+    Sqrt(Id),
+}
+
+impl Node {
+    /// The children of this node.
+    pub fn children(&self) -> &[Id] {
+        match self {
+            Node::Num(_) | Node::Pi | Node::Sym(_) => &[],
+            Node::Add(terms) | Node::Mul(terms) => terms,
+            Node::Pow(x, _) | Node::Sin(x) | Node::Cos(x) | Node::Sign(x) | Node::Sqrt(x) => {
+                std::slice::from_ref(x)
+            }
+        }
+    }
+}
+
+/// The arena holding every expression of a derivation.
+#[derive(Debug, Default, Clone)]
+pub struct Arena {
+    nodes: Vec<Node>,
+    memo: HashMap<Node, Id>,
+    symbols: Vec<String>,
+    symbol_ids: HashMap<String, Symbol>,
+}
+
+impl Arena {
+    /// An empty arena.
+    pub fn new() -> Arena {
+        Arena::default()
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// True when no node was created yet.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// The node behind an id.
+    pub fn node(&self, id: Id) -> &Node {
+        &self.nodes[id.index()]
+    }
+
+    /// Stores a node as it is (no simplification) and returns its id.
+    pub fn intern(&mut self, node: Node) -> Id {
+        if let Some(&id) = self.memo.get(&node) {
+            return id;
+        }
+        debug_assert!(node.children().iter().all(|c| c.index() < self.nodes.len()));
+        let id = Id(u32::try_from(self.nodes.len()).expect("arena exceeds 2^32 nodes"));
+        self.nodes.push(node.clone());
+        self.memo.insert(node, id);
+        id
+    }
+
+    /// The id of a node if it already exists, without creating it.
+    pub fn lookup(&self, node: &Node) -> Option<Id> {
+        self.memo.get(node).copied()
+    }
+
+    /// The symbol with this name, created on first use.
+    pub fn symbol(&mut self, name: &str) -> Symbol {
+        if let Some(&s) = self.symbol_ids.get(name) {
+            return s;
+        }
+        let s = Symbol(self.symbols.len() as u32);
+        self.symbols.push(name.to_owned());
+        self.symbol_ids.insert(name.to_owned(), s);
+        s
+    }
+
+    /// The symbol with this name, if it exists.
+    pub fn find_symbol(&self, name: &str) -> Option<Symbol> {
+        self.symbol_ids.get(name).copied()
+    }
+
+    /// The name of a symbol.
+    pub fn symbol_name(&self, symbol: Symbol) -> &str {
+        &self.symbols[symbol.index()]
+    }
+
+    /// Number of symbols.
+    pub fn symbol_count(&self) -> usize {
+        self.symbols.len()
+    }
+
+    /// An expression for the symbol with this name.
+    pub fn var(&mut self, name: &str) -> Id {
+        let s = self.symbol(name);
+        self.intern(Node::Sym(s))
+    }
+
+    /// A numeric constant.
+    pub fn num(&mut self, value: Num) -> Id {
+        self.intern(Node::Num(value))
+    }
+
+    /// The integer `n`.
+    pub fn int(&mut self, n: i64) -> Id {
+        self.num(Num::int(n))
+    }
+
+    /// Zero.
+    pub fn zero(&mut self) -> Id {
+        self.int(0)
+    }
+
+    /// One.
+    pub fn one(&mut self) -> Id {
+        self.int(1)
+    }
+
+    /// The number behind an id, when it is a constant.
+    pub fn as_num(&self, id: Id) -> Option<Num> {
+        match self.node(id) {
+            Node::Num(n) => Some(*n),
+            _ => None,
+        }
+    }
+
+    /// True when the expression is the constant 0.
+    pub fn is_zero(&self, id: Id) -> bool {
+        self.as_num(id).is_some_and(Num::is_zero)
+    }
+
+    /// True when the expression is the constant 1.
+    pub fn is_one(&self, id: Id) -> bool {
+        self.as_num(id).is_some_and(Num::is_one)
+    }
+
+    /// Every node reachable from `roots`, as a mask indexed by node id.
+    pub fn reachable(&self, roots: &[Id]) -> Vec<bool> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack: Vec<Id> = roots.to_vec();
+        while let Some(id) = stack.pop() {
+            if !std::mem::replace(&mut seen[id.index()], true) {
+                stack.extend_from_slice(self.node(id).children());
+            }
+        }
+        seen
+    }
+
+    /// The symbols an expression depends on, in symbol order.
+    pub fn free_symbols(&self, roots: &[Id]) -> Vec<Symbol> {
+        let seen = self.reachable(roots);
+        let mut out: Vec<Symbol> = (0..self.nodes.len())
+            .filter(|&i| seen[i])
+            .filter_map(|i| match self.nodes[i] {
+                Node::Sym(s) => Some(s),
+                _ => None,
+            })
+            .collect();
+        out.sort();
+        out
+    }
+}

@@ -1,0 +1,277 @@
+//! Exact numbers: rationals while they fit, floats after that.
+
+use std::cmp::Ordering;
+use std::fmt;
+use std::hash::{Hash, Hasher};
+
+/// A numeric constant of an expression.
+///
+/// Rationals keep DH geometry exact (0.425 is 17/40, so `d^2 C^2 + d^2 S^2`
+/// cancels exactly); an operation whose result does not fit in `i128` falls
+/// back to a float, which is still correct to rounding.
+#[derive(Clone, Copy, Debug)]
+pub enum Num {
+    /// `numerator / denominator`, reduced, denominator > 0.
+    Rational(i128, i128),
+    /// A float that is not known exactly (never NaN).
+    Float(f64),
+}
+
+fn gcd(mut a: i128, mut b: i128) -> i128 {
+    a = a.abs();
+    b = b.abs();
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+impl Num {
+    /// Zero.
+    pub const ZERO: Num = Num::Rational(0, 1);
+    /// One.
+    pub const ONE: Num = Num::Rational(1, 1);
+    /// Minus one.
+    pub const MINUS_ONE: Num = Num::Rational(-1, 1);
+
+    /// The integer `n`.
+    pub fn int(n: i64) -> Num {
+        Num::Rational(n as i128, 1)
+    }
+
+    /// `numerator / denominator` reduced, or `None` when the denominator is 0.
+    pub fn ratio(numerator: i128, denominator: i128) -> Option<Num> {
+        if denominator == 0 {
+            return None;
+        }
+        let g = gcd(numerator, denominator).max(1);
+        let sign = if denominator < 0 { -1 } else { 1 };
+        Some(Num::Rational(sign * numerator / g, sign * denominator / g))
+    }
+
+    /// The exact value of a finite float whose shortest decimal form is short
+    /// (0.425 -> 17/40), else the float itself. `None` for NaN or infinity.
+    pub fn from_f64(value: f64) -> Option<Num> {
+        if !value.is_finite() {
+            return None;
+        }
+        if value == value.trunc() && value.abs() < 1e30 {
+            return Some(Num::Rational(value as i128, 1));
+        }
+        Some(Self::parse_decimal(&format!("{value:e}")).unwrap_or(Num::Float(value)))
+    }
+
+    /// Parses a decimal literal such as `-0.3922`, `12`, `1.5e-3` exactly.
+    pub fn parse_decimal(text: &str) -> Option<Num> {
+        let (mantissa, exponent) = match text.find(['e', 'E']) {
+            Some(i) => (&text[..i], text[i + 1..].parse::<i32>().ok()?),
+            None => (text, 0),
+        };
+        let (negative, digits) = match mantissa.strip_prefix('-') {
+            Some(rest) => (true, rest),
+            None => (false, mantissa.strip_prefix('+').unwrap_or(mantissa)),
+        };
+        let (int_part, frac_part) = digits.split_once('.').unwrap_or((digits, ""));
+        if int_part.is_empty() && frac_part.is_empty() {
+            return None;
+        }
+        if !int_part
+            .chars()
+            .chain(frac_part.chars())
+            .all(|c| c.is_ascii_digit())
+        {
+            return None;
+        }
+        let all: String = format!("{int_part}{frac_part}");
+        let mut numerator: i128 = all.parse().ok()?;
+        if negative {
+            numerator = -numerator;
+        }
+        let scale = exponent - frac_part.len() as i32;
+        let ten_pow = |k: u32| 10_i128.checked_pow(k);
+        if scale >= 0 {
+            Num::ratio(numerator.checked_mul(ten_pow(scale as u32)?)?, 1)
+        } else {
+            Num::ratio(numerator, ten_pow((-scale) as u32)?)
+        }
+    }
+
+    /// The value as a float.
+    pub fn to_f64(self) -> f64 {
+        match self {
+            Num::Rational(n, d) => n as f64 / d as f64,
+            Num::Float(x) => x,
+        }
+    }
+
+    /// True when exactly zero.
+    pub fn is_zero(self) -> bool {
+        matches!(self, Num::Rational(0, _)) || matches!(self, Num::Float(x) if x == 0.0)
+    }
+
+    /// True when exactly one.
+    pub fn is_one(self) -> bool {
+        matches!(self, Num::Rational(1, 1)) || matches!(self, Num::Float(x) if x == 1.0)
+    }
+
+    /// True when negative.
+    pub fn is_negative(self) -> bool {
+        self.to_f64() < 0.0
+    }
+
+    /// The integer value, when it is one.
+    pub fn as_integer(self) -> Option<i128> {
+        match self {
+            Num::Rational(n, 1) => Some(n),
+            _ => None,
+        }
+    }
+
+    fn float(x: f64) -> Num {
+        if x == x.trunc() && x.abs() < 1e15 {
+            Num::Rational(x as i128, 1)
+        } else {
+            Num::Float(x)
+        }
+    }
+
+    /// Sum.
+    pub fn add(self, other: Num) -> Num {
+        if let (Num::Rational(a, b), Num::Rational(c, d)) = (self, other) {
+            let exact = a
+                .checked_mul(d)
+                .zip(c.checked_mul(b))
+                .and_then(|(x, y)| x.checked_add(y))
+                .zip(b.checked_mul(d))
+                .and_then(|(n, m)| Num::ratio(n, m));
+            if let Some(sum) = exact {
+                return sum;
+            }
+        }
+        Num::float(self.to_f64() + other.to_f64())
+    }
+
+    /// Product.
+    pub fn mul(self, other: Num) -> Num {
+        if let (Num::Rational(a, b), Num::Rational(c, d)) = (self, other) {
+            // Cross-reduce first so products stay small.
+            let g1 = gcd(a, d).max(1);
+            let g2 = gcd(c, b).max(1);
+            let exact = (a / g1)
+                .checked_mul(c / g2)
+                .zip((b / g2).checked_mul(d / g1))
+                .and_then(|(n, m)| Num::ratio(n, m));
+            if let Some(product) = exact {
+                return product;
+            }
+        }
+        Num::float(self.to_f64() * other.to_f64())
+    }
+
+    /// Negation.
+    pub fn neg(self) -> Num {
+        match self {
+            Num::Rational(n, d) => Num::Rational(-n, d),
+            Num::Float(x) => Num::Float(-x),
+        }
+    }
+
+    /// Reciprocal, `None` for zero.
+    pub fn recip(self) -> Option<Num> {
+        match self {
+            Num::Rational(n, d) => Num::ratio(d, n),
+            Num::Float(x) if x != 0.0 => Some(Num::Float(1.0 / x)),
+            Num::Float(_) => None,
+        }
+    }
+
+    /// Integer power, `None` for 0 to a negative power.
+    pub fn powi(self, exponent: i32) -> Option<Num> {
+        let base = if exponent < 0 { self.recip()? } else { self };
+        let mut result = Num::ONE;
+        for _ in 0..exponent.unsigned_abs() {
+            result = result.mul(base);
+        }
+        Some(result)
+    }
+}
+
+impl PartialEq for Num {
+    fn eq(&self, other: &Num) -> bool {
+        match (self, other) {
+            (Num::Rational(a, b), Num::Rational(c, d)) => a == c && b == d,
+            (Num::Float(x), Num::Float(y)) => x.to_bits() == y.to_bits(),
+            _ => false,
+        }
+    }
+}
+
+impl Eq for Num {}
+
+impl Hash for Num {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        match self {
+            Num::Rational(n, d) => (0u8, n, d).hash(state),
+            Num::Float(x) => (1u8, x.to_bits()).hash(state),
+        }
+    }
+}
+
+impl PartialOrd for Num {
+    fn partial_cmp(&self, other: &Num) -> Option<Ordering> {
+        self.to_f64().partial_cmp(&other.to_f64())
+    }
+}
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Num::Rational(n, 1) => write!(f, "{n}"),
+            // Decimal form when the denominator is a product of 2s and 5s (a DH length).
+            Num::Rational(n, d) => {
+                let x = n as f64 / d as f64;
+                match Num::from_f64(x) {
+                    Some(back) if back == *self => write!(f, "{x}"),
+                    _ => write!(f, "{n}/{d}"),
+                }
+            }
+            Num::Float(x) => write!(f, "{x:?}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Num;
+
+    #[test]
+    fn decimals_are_exact() {
+        assert_eq!(Num::from_f64(0.425), Num::ratio(17, 40));
+        assert_eq!(Num::parse_decimal("-0.3922"), Num::ratio(-3922, 10000));
+        assert_eq!(Num::parse_decimal("1.5e-3"), Num::ratio(3, 2000));
+        assert_eq!(Num::from_f64(f64::NAN), None);
+    }
+
+    #[test]
+    fn arithmetic_stays_exact() {
+        let a = Num::from_f64(0.1).unwrap();
+        let b = Num::from_f64(0.2).unwrap();
+        assert_eq!(a.add(b), Num::from_f64(0.3).unwrap());
+        assert_eq!(a.mul(b), Num::ratio(1, 50).unwrap());
+        assert_eq!(Num::int(2).powi(-2), Num::ratio(1, 4));
+    }
+
+    #[test]
+    fn overflow_falls_back_to_float() {
+        let big = Num::Rational(i128::MAX / 3, 1);
+        let product = big.mul(big);
+        assert!(matches!(product, Num::Float(_)));
+        assert!((product.to_f64() / (big.to_f64() * big.to_f64()) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn display_prefers_decimals() {
+        assert_eq!(Num::from_f64(0.425).unwrap().to_string(), "0.425");
+        assert_eq!(Num::ratio(1, 3).unwrap().to_string(), "1/3");
+    }
+}
