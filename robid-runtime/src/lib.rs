@@ -6,3 +6,11 @@ mod real;
 
 pub use model::Model;
 pub use real::Real;
+
+#[cfg(feature = "std")]
+mod error;
+#[cfg(feature = "std")]
+pub mod signal;
+
+#[cfg(feature = "std")]
+pub use error::{Error, Result};

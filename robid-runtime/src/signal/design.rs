@@ -1,0 +1,283 @@
+//! Digital low-pass design as second-order sections, the way `scipy.signal` does it.
+//!
+//! Analog prototype (Butterworth or Chebyshev type I) -> frequency pre-warping ->
+//! bilinear transform -> sections. Sections are ordered as `scipy.signal.zpk2sos`
+//! orders them for a low-pass (poles farthest from the unit circle first, the gain in
+//! the first section, for odd orders the real pole first), so the coefficients can be
+//! compared with scipy's one to one.
+
+use nalgebra::Complex;
+
+use crate::error::{Error, Result};
+use crate::signal::Sos;
+
+type C = Complex<f64>;
+
+/// Butterworth low-pass of `order`, `cutoff` normalised to the Nyquist frequency (0 < cutoff < 1),
+/// as `scipy.signal.butter(order, cutoff, output="sos")`.
+pub fn butterworth(order: usize, cutoff: f64) -> Result<Sos> {
+    check(order, cutoff)?;
+    let n = order as f64;
+    // buttap: p = -exp(j pi m / (2N)), m = -N+1, -N+3, ..., N-1
+    let poles: Vec<C> = (0..order)
+        .map(|i| {
+            let m = -(n - 1.0) + 2.0 * i as f64;
+            -C::from_polar(1.0, core::f64::consts::PI * m / (2.0 * n))
+        })
+        .collect();
+    Ok(digital_lowpass(&poles, 1.0, cutoff))
+}
+
+/// Butterworth low-pass with the cutoff in Hz for data sampled at `sample_rate` Hz.
+pub fn butterworth_hz(order: usize, cutoff_hz: f64, sample_rate: f64) -> Result<Sos> {
+    butterworth(order, cutoff_hz / (0.5 * sample_rate))
+}
+
+/// Chebyshev type I low-pass with `ripple_db` pass-band ripple,
+/// as `scipy.signal.cheby1(order, ripple_db, cutoff, output="sos")`.
+pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
+    check(order, cutoff)?;
+    if !(ripple_db > 0.0 && ripple_db.is_finite()) {
+        return Err(Error::InvalidConfig {
+            key: "ripple".into(),
+            problem: format!("pass-band ripple {ripple_db} dB must be positive"),
+        });
+    }
+    let n = order as f64;
+    let eps = (10f64.powf(0.1 * ripple_db) - 1.0).sqrt();
+    let mu = (1.0 / eps).asinh() / n;
+    let poles: Vec<C> = (0..order)
+        .map(|i| {
+            let m = -(n - 1.0) + 2.0 * i as f64;
+            let theta = core::f64::consts::PI * m / (2.0 * n);
+            -C::new(mu, theta).sinh()
+        })
+        .collect();
+    let mut gain = poles.iter().fold(C::new(1.0, 0.0), |acc, p| acc * -p).re;
+    if order % 2 == 0 {
+        gain /= (1.0 + eps * eps).sqrt();
+    }
+    Ok(digital_lowpass(&poles, gain, cutoff))
+}
+
+fn check(order: usize, cutoff: f64) -> Result<()> {
+    if order == 0 || order > 20 {
+        return Err(Error::InvalidConfig {
+            key: "order".into(),
+            problem: format!("filter order {order} must be between 1 and 20"),
+        });
+    }
+    if !(cutoff > 0.0 && cutoff < 1.0) {
+        return Err(Error::InvalidConfig {
+            key: "cutoff".into(),
+            problem: format!(
+                "normalised cutoff {cutoff} must lie strictly between 0 and 1 (the Nyquist frequency); lower the cutoff or raise the sample rate"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Analog prototype poles (cutoff 1 rad/s, no zeros) -> digital low-pass sections.
+fn digital_lowpass(proto: &[C], proto_gain: f64, cutoff: f64) -> Sos {
+    let fs2 = 4.0; // 2 * fs with scipy's normalised fs = 2
+    let warped = fs2 * (core::f64::consts::PI * cutoff / 2.0).tan();
+    let n = proto.len();
+    let analog: Vec<C> = proto.iter().map(|p| p * warped).collect();
+    let k_analog = proto_gain * warped.powi(n as i32);
+    let digital: Vec<C> = analog.iter().map(|p| (fs2 + p) / (fs2 - p)).collect();
+    let denom = analog
+        .iter()
+        .fold(C::new(1.0, 0.0), |acc, p| acc * (fs2 - p));
+    let gain = k_analog * (C::new(1.0, 0.0) / denom).re;
+
+    let mut pairs: Vec<C> = digital.iter().copied().filter(|p| p.im > 1e-14).collect();
+    pairs.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
+    let real: Option<C> = (n % 2 == 1).then(|| {
+        *digital
+            .iter()
+            .min_by(|a, b| a.im.abs().total_cmp(&b.im.abs()))
+            .unwrap_or(&C::new(0.0, 0.0))
+    });
+    let mut sections = Vec::with_capacity(n.div_ceil(2));
+    if let Some(p) = real {
+        sections.push([1.0, 2.0, 1.0, 1.0, -p.re, 0.0]);
+    }
+    for (i, p) in pairs.iter().enumerate() {
+        let last = i + 1 == pairs.len();
+        let b = if real.is_some() && last {
+            [1.0, 1.0, 0.0]
+        } else {
+            [1.0, 2.0, 1.0]
+        };
+        sections.push([b[0], b[1], b[2], 1.0, -2.0 * p.re, p.norm_sqr()]);
+    }
+    if n == 1 {
+        // one real pole and one zero at -1
+        sections[0] = [1.0, 1.0, 0.0, 1.0, -real.map_or(0.0, |p| p.re), 0.0];
+    }
+    for c in &mut sections[0][..3] {
+        *c *= gain;
+    }
+    Sos::new(sections)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn assert_sos(sos: &Sos, expected: &[[f64; 6]]) {
+        assert_eq!(sos.sections().len(), expected.len());
+        for (s, e) in sos.sections().iter().zip(expected) {
+            for (a, b) in s.iter().zip(e) {
+                assert!((a - b).abs() <= 1e-12 * b.abs().max(1e-3), "{s:?} vs {e:?}");
+            }
+        }
+    }
+
+    // Reference numbers: scipy 1.17.1, scipy.signal.butter / cheby1 with output="sos".
+    #[test]
+    fn butterworth_order4_50hz_at_1khz_matches_scipy() {
+        let sos = butterworth_hz(4, 50.0, 1000.0).unwrap();
+        assert_sos(
+            &sos,
+            &[
+                [
+                    4.1659920440659937e-04,
+                    8.3319840881319873e-04,
+                    4.1659920440659937e-04,
+                    1.0,
+                    -1.4796742169311934,
+                    5.5582154328248889e-01,
+                ],
+                [
+                    1.0,
+                    2.0,
+                    1.0,
+                    1.0,
+                    -1.7009643319435257,
+                    7.8849973981529786e-01,
+                ],
+            ],
+        );
+    }
+
+    #[test]
+    fn butterworth_order4_low_cutoff_matches_scipy() {
+        let sos = butterworth(4, 0.01).unwrap();
+        assert_sos(
+            &sos,
+            &[
+                [
+                    5.8451424331444867e-08,
+                    1.1690284866288973e-07,
+                    5.8451424331444867e-08,
+                    1.0,
+                    -1.9426382305401135,
+                    9.4359727847036712e-01,
+                ],
+                [
+                    1.0,
+                    2.0,
+                    1.0,
+                    1.0,
+                    -1.9752696348518730,
+                    9.7624479235943984e-01,
+                ],
+            ],
+        );
+    }
+
+    #[test]
+    fn butterworth_odd_order_matches_scipy() {
+        let sos = butterworth(3, 0.1).unwrap();
+        assert_sos(
+            &sos,
+            &[
+                [
+                    0.00289819463372143,
+                    0.00579638926744286,
+                    0.00289819463372143,
+                    1.0,
+                    -0.726542528005361,
+                    0.0,
+                ],
+                [1.0, 1.0, 0.0, 1.0, -1.647552215703991, 0.7323389172728038],
+            ],
+        );
+    }
+
+    #[test]
+    fn chebyshev_decimation_filter_matches_scipy() {
+        let sos = chebyshev1(8, 0.05, 0.08).unwrap();
+        assert_sos(
+            &sos,
+            &[
+                [
+                    3.5863243209995223e-09,
+                    7.1726486419990447e-09,
+                    3.5863243209995223e-09,
+                    1.0,
+                    -1.8204968644767618,
+                    8.3085974037961374e-01,
+                ],
+                [
+                    1.0,
+                    2.0,
+                    1.0,
+                    1.0,
+                    -1.8289505620176847,
+                    8.5531737103877414e-01,
+                ],
+                [
+                    1.0,
+                    2.0,
+                    1.0,
+                    1.0,
+                    -1.8517334482627625,
+                    9.0151610557138129e-01,
+                ],
+                [
+                    1.0,
+                    2.0,
+                    1.0,
+                    1.0,
+                    -1.8965395961864169,
+                    9.6442455846429320e-01,
+                ],
+            ],
+        );
+        let odd = chebyshev1(3, 0.05, 0.3).unwrap();
+        assert_sos(
+            &odd,
+            &[
+                [
+                    0.09222689686087072,
+                    0.18445379372174145,
+                    0.09222689686087072,
+                    1.0,
+                    -0.26630456094563476,
+                    0.0,
+                ],
+                [1.0, 1.0, 0.0, 1.0, -0.4451433056793242, 0.4507583546673763],
+            ],
+        );
+    }
+
+    #[test]
+    fn unit_dc_gain() {
+        for order in 1..=9 {
+            let sos = butterworth(order, 0.2).unwrap();
+            assert!((sos.dc_gain() - 1.0).abs() < 1e-12, "order {order}");
+        }
+    }
+
+    #[test]
+    fn bad_design_inputs_are_errors() {
+        assert!(butterworth(0, 0.1).is_err());
+        assert!(butterworth(4, 1.0).is_err());
+        assert!(butterworth(4, f64::NAN).is_err());
+        assert!(butterworth_hz(4, 600.0, 1000.0).is_err());
+        assert!(chebyshev1(8, -1.0, 0.1).is_err());
+    }
+}

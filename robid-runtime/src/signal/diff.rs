@@ -1,0 +1,57 @@
+//! Central differences for velocities and accelerations.
+
+/// Derivative of a uniformly sampled signal by central differences
+/// (`(x[k+1] - x[k-1]) / 2 dt` inside, one-sided at both ends, as `numpy.gradient`).
+///
+/// Returns an empty vector for an empty input and zeros for a single sample.
+pub fn central_difference(x: &[f64], dt: f64) -> Vec<f64> {
+    let n = x.len();
+    let mut d = vec![0.0; n];
+    if n < 2 {
+        return d;
+    }
+    d[0] = (x[1] - x[0]) / dt;
+    d[n - 1] = (x[n - 1] - x[n - 2]) / dt;
+    let h = 0.5 / dt;
+    for k in 1..n - 1 {
+        d[k] = (x[k + 1] - x[k - 1]) * h;
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_on_a_parabola_inside() {
+        let dt = 0.01;
+        let x: Vec<f64> = (0..50)
+            .map(|k| 3.0 * (k as f64 * dt).powi(2) - (k as f64 * dt))
+            .collect();
+        let d = central_difference(&x, dt);
+        for (k, v) in d.iter().enumerate().take(49).skip(1) {
+            let t = k as f64 * dt;
+            assert!((v - (6.0 * t - 1.0)).abs() < 1e-9);
+        }
+        // one-sided at the ends: forward difference
+        assert!((d[0] - (x[1] - x[0]) / dt).abs() < 1e-12);
+    }
+
+    #[test]
+    fn sine_derivative() {
+        let dt = 1e-3;
+        let x: Vec<f64> = (0..2000).map(|k| (k as f64 * dt * 2.0).sin()).collect();
+        let d = central_difference(&x, dt);
+        let err = (1000..1010)
+            .map(|k| (d[k] - 2.0 * (k as f64 * dt * 2.0).cos()).abs())
+            .fold(0.0, f64::max);
+        assert!(err < 1e-5);
+    }
+
+    #[test]
+    fn degenerate_lengths() {
+        assert!(central_difference(&[], 0.1).is_empty());
+        assert_eq!(central_difference(&[1.0], 0.1), vec![0.0]);
+    }
+}

@@ -1,0 +1,14 @@
+//! Signal processing: zero-phase low-pass filters, differentiation, decimation and
+//! removal of samples near rest (DESIGN 6.3).
+
+mod decimate;
+mod design;
+mod diff;
+mod rest;
+mod sos;
+
+pub use decimate::{Decimator, split_factor};
+pub use design::{butterworth, butterworth_hz, chebyshev1};
+pub use diff::central_difference;
+pub use rest::moving_samples;
+pub use sos::Sos;
