@@ -8,6 +8,10 @@ pub use model::Model;
 pub use real::Real;
 
 #[cfg(feature = "std")]
+pub mod data;
+#[cfg(feature = "std")]
+pub mod drive;
+#[cfg(feature = "std")]
 mod error;
 #[cfg(feature = "std")]
 pub mod signal;

@@ -1,0 +1,23 @@
+//! Loading measured data (DESIGN 6.1): CSV files with a header (optionally gzip),
+//! a TOML config mapping columns and units, time stamps checked and resampled,
+//! several files joined, the drive chain applied.
+
+mod config;
+mod dataset;
+mod load;
+mod table;
+mod time;
+
+pub use config::{
+    AngleUnit, Columns, Config, Decimation, Derivative, Estimation, Lowpass, Method, PerJoint,
+    Processing, Signal, Source, Units,
+};
+pub use dataset::Dataset;
+pub use load::{load, load_config_files, load_from_config_file};
+pub use table::{Table, read_columns, read_columns_from};
+pub use time::{
+    IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,
+};
+
+#[cfg(test)]
+mod tests;

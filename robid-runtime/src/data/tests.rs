@@ -1,0 +1,194 @@
+//! Loading tests: joins, time handling, bad input, and the real TX40 log.
+
+use std::path::{Path, PathBuf};
+
+use super::*;
+use crate::error::Error;
+
+struct Dir(PathBuf);
+
+impl Dir {
+    fn new(tag: &str) -> Self {
+        let p = std::env::temp_dir().join(format!("robid-load-{tag}-{}", std::process::id()));
+        std::fs::create_dir_all(&p).unwrap();
+        Dir(p)
+    }
+    fn file(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.0.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+}
+
+impl Drop for Dir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn cfg(text: &str) -> Config {
+    Config::from_toml_str(text, Path::new("test.toml")).unwrap()
+}
+
+const TWO_FILES: &str = r#"
+sample_rate = 10.0
+[[source]]
+position = "q{}"
+[[source]]
+torque = "q{}"
+[units]
+angle = "deg"
+"#;
+
+#[test]
+fn joins_two_files_row_by_row() {
+    let d = Dir::new("join");
+    let a = d.file("pos.csv", "q1,q2\n0,180\n90,0\n");
+    let b = d.file("tau.csv", "q1,q2\n1,2\n3,4\n");
+    let data = load(&cfg(TWO_FILES), &[a, b], 2).unwrap();
+    assert!((data.q[1][0] - std::f64::consts::PI).abs() < 1e-12);
+    assert_eq!(data.tau[1], vec![2.0, 4.0]);
+    assert!((data.sample_time - 0.1).abs() < 1e-15);
+    assert!(data.warnings.is_empty());
+}
+
+#[test]
+fn row_count_mismatch_is_an_error() {
+    let d = Dir::new("rows");
+    let a = d.file("pos.csv", "q1,q2\n0,0\n1,1\n2,2\n");
+    let b = d.file("tau.csv", "q1,q2\n1,2\n3,4\n");
+    let e = load(&cfg(TWO_FILES), &[a, b], 2).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::RowCountMismatch {
+                first_rows: 3,
+                second_rows: 2,
+                ..
+            }
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn joint_count_mismatch_is_an_error() {
+    let d = Dir::new("dof");
+    let a = d.file("pos.csv", "q1,q2\n0,0\n1,1\n");
+    let text = TWO_FILES.replace("torque = \"q{}\"", "torque = [\"q1\"]");
+    let e = load(&cfg(&text), &[a.clone(), a], 2).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::JointCountMismatch {
+                expected: 2,
+                found: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn missing_sample_rate_and_roles_are_errors() {
+    let d = Dir::new("roles");
+    let a = d.file("x.csv", "q1,t1\n0,0\n1,1\n");
+    let e = load(
+        &cfg("[[source]]\nposition = \"q{}\"\ntorque = \"t{}\""),
+        &[a.clone()],
+        1,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("sample_rate"), "{e}");
+    let e = load(
+        &cfg("sample_rate = 1.0\n[[source]]\nposition = \"q{}\""),
+        &[a.clone()],
+        1,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("torque"), "{e}");
+    let e = load(
+        &cfg("sample_rate = 1.0\n[[source]]\nposition = \"q{}\"\ntorque = \"t{}\""),
+        &[a.clone(), a],
+        1,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("2 files"), "{e}");
+}
+
+const TIMED: &str = r#"
+time_column = "t"
+[[source]]
+position = "q{}"
+[[source]]
+torque = "tau{}"
+"#;
+
+#[test]
+fn irregular_time_is_resampled_with_a_warning() {
+    let d = Dir::new("irregular");
+    // q = 2 t sampled irregularly: resampling must stay on the line
+    let a = d.file("q.csv", "t,q1\n0,0\n0.1,0.2\n0.25,0.5\n0.3,0.6\n0.4,0.8\n");
+    let b = d.file("tau.csv", "t,tau1\n0,0\n0.2,2\n0.4,4\n");
+    let data = load(&cfg(TIMED), &[a, b], 1).unwrap();
+    assert!((data.sample_time - 0.1).abs() < 1e-12);
+    assert!(matches!(data.warnings[0], Warning::IrregularTime { .. }));
+    for k in 0..5 {
+        let t = 0.1 * k as f64;
+        assert!((data.q[0][k] - 2.0 * t).abs() < 1e-12);
+        assert!((data.tau[0][k] - 10.0 * t).abs() < 1e-12, "joined by time");
+    }
+}
+
+#[test]
+fn non_monotonic_time_names_the_line() {
+    let d = Dir::new("monotonic");
+    let a = d.file("q.csv", "t,q1\n0,0\n0.1,0.2\n0.1,0.5\n");
+    let e = load(&cfg(TIMED), &[a.clone(), a], 1).unwrap_err();
+    assert!(matches!(e, Error::NonMonotonicTime { line: 4, .. }), "{e}");
+}
+
+#[test]
+fn too_few_rows_is_an_error() {
+    let d = Dir::new("few");
+    let a = d.file("q.csv", "t,q1,tau1\n0,0,0\n");
+    let text = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"";
+    let e = load(&cfg(text), &[a], 1).unwrap_err();
+    assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
+}
+
+pub(crate) fn repo_data(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../data")
+        .join(rel)
+}
+
+/// The TX40 drive chain on the real log: joint-torque ranges as in the dataset README.
+#[test]
+fn tx40_joint_torque_ranges_match_the_readme() {
+    let config = Config::from_file(repo_data("staubli_tx40/identify.toml")).unwrap();
+    let data = load(&config, &[], 6).unwrap();
+    assert_eq!(data.samples(), 45000);
+    assert!((data.sample_time - 2e-4).abs() < 1e-15);
+    let expected = [
+        (-93.6, 93.2),
+        (-95.0, 71.4),
+        (-34.4, 28.7),
+        (-11.9, 10.3),
+        (-21.6, 21.8),
+        (-10.4, 12.7),
+    ];
+    for (j, (lo, hi)) in expected.iter().enumerate() {
+        let min = data.tau[j].iter().copied().fold(f64::INFINITY, f64::min);
+        let max = data.tau[j]
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            (min - lo).abs() < 0.06 && (max - hi).abs() < 0.06,
+            "joint {}: [{min}, {max}]",
+            j + 1
+        );
+    }
+}

@@ -1,0 +1,155 @@
+//! Time stamps: monotonicity, detection of irregular sampling, resampling onto a
+//! uniform grid and joining files by time (linear interpolation).
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use crate::error::{Error, Result};
+
+/// Something that was repaired while loading, and the caller should know about.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Warning {
+    /// Irregular time stamps were resampled onto a uniform grid.
+    IrregularTime {
+        /// The file.
+        path: PathBuf,
+        /// Smallest step found (s).
+        min_step: f64,
+        /// Largest step found (s).
+        max_step: f64,
+        /// Step of the uniform grid (s).
+        step: f64,
+    },
+    /// Files joined by time only overlap partly; samples outside the overlap were dropped.
+    PartialOverlap {
+        /// The file that was interpolated.
+        path: PathBuf,
+        /// Samples of the reference dropped.
+        dropped: usize,
+    },
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Warning::IrregularTime {
+                path,
+                min_step,
+                max_step,
+                step,
+            } => write!(
+                f,
+                "{}: irregular time steps ({:.6} s to {:.6} s); resampled onto a uniform grid of {:.6} s by linear interpolation",
+                path.display(),
+                min_step,
+                max_step,
+                step
+            ),
+            Warning::PartialOverlap { path, dropped } => write!(
+                f,
+                "{}: covers only part of the time range; {dropped} samples outside the overlap were dropped",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// Relative deviation of a step from the mean step above which sampling is irregular.
+pub const IRREGULAR_TOLERANCE: f64 = 0.01;
+
+/// Checks that `t` increases strictly; `lines` are the file lines of the samples.
+pub fn check_monotonic(t: &[f64], lines: &[u64], path: &Path) -> Result<()> {
+    for k in 1..t.len() {
+        if t[k] <= t[k - 1] {
+            return Err(Error::NonMonotonicTime {
+                path: path.to_path_buf(),
+                line: lines.get(k).copied().unwrap_or(0),
+                previous: t[k - 1],
+                value: t[k],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Mean step and, when some step differs from it by more than [`IRREGULAR_TOLERANCE`],
+/// the warning to issue. Needs at least 2 increasing samples.
+pub fn regularity(t: &[f64], path: &Path) -> (f64, Option<Warning>) {
+    let n = t.len();
+    let step = (t[n - 1] - t[0]) / (n - 1) as f64;
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for w in t.windows(2) {
+        let d = w[1] - w[0];
+        lo = lo.min(d);
+        hi = hi.max(d);
+    }
+    let irregular = (hi - step).max(step - lo) > IRREGULAR_TOLERANCE * step;
+    let warning = irregular.then(|| Warning::IrregularTime {
+        path: path.to_path_buf(),
+        min_step: lo,
+        max_step: hi,
+        step,
+    });
+    (step, warning)
+}
+
+/// Linear interpolation of the samples (`t`, `x`) at the increasing times `at`
+/// (clamped to the end values outside `t`).
+pub fn interpolate(t: &[f64], x: &[f64], at: &[f64]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(at.len());
+    let mut k = 0;
+    for &s in at {
+        while k + 2 < t.len() && t[k + 1] < s {
+            k += 1;
+        }
+        if s <= t[0] {
+            out.push(x[0]);
+        } else if s >= t[t.len() - 1] {
+            out.push(x[t.len() - 1]);
+        } else {
+            let w = (s - t[k]) / (t[k + 1] - t[k]);
+            out.push(x[k] + w * (x[k + 1] - x[k]));
+        }
+    }
+    out
+}
+
+/// A uniform grid from `start` with `step`, `n` samples.
+pub fn uniform_grid(start: f64, step: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|k| start + step * k as f64).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn detects_non_monotonic_time_with_line() {
+        let e = check_monotonic(&[0.0, 0.1, 0.1], &[2, 3, 4], Path::new("a.csv")).unwrap_err();
+        assert!(matches!(e, Error::NonMonotonicTime { line: 4, .. }), "{e}");
+        assert!(e.to_string().starts_with("a.csv:4"), "{e}");
+    }
+
+    #[test]
+    fn regular_and_irregular() {
+        let t: Vec<f64> = (0..100).map(|k| k as f64 * 0.005).collect();
+        assert!(regularity(&t, Path::new("x")).1.is_none());
+        let mut j = t.clone();
+        j[50] += 0.001;
+        let (step, w) = regularity(&j, Path::new("x"));
+        assert!((step - 0.005).abs() < 1e-12);
+        assert!(w.unwrap().to_string().contains("resampled"));
+    }
+
+    #[test]
+    fn interpolation_is_exact_on_lines() {
+        let t = [0.0, 0.1, 0.35, 0.4];
+        let x: Vec<f64> = t.iter().map(|v| 2.0 * v + 1.0).collect();
+        let at = [0.0, 0.05, 0.2, 0.4, 0.5];
+        let y = interpolate(&t, &x, &at);
+        for (a, v) in at.iter().zip(&y) {
+            assert!((v - (2.0 * a.min(0.4) + 1.0)).abs() < 1e-12);
+        }
+    }
+}

@@ -1,0 +1,282 @@
+//! Gear ratios, coupling matrices and torque constants: motor side -> joint side.
+//!
+//! Motor positions theta_m = R_q q and joint torques tau = R_tau K_r i, where K_r
+//! holds the torque constants (current -> motor torque). Both R default to
+//! `diag(gear_ratios)`; a coupled wrist gives full matrices, and R_q and R_tau may differ
+//! (Staubli TX40: R_q[6,5] = N6 but R_tau[5,6] = N6).
+
+use nalgebra::DMatrix;
+use serde::{Deserialize, Serialize};
+
+use crate::data::PerJoint;
+use crate::drive::RotorConfig;
+use crate::error::{Error, Result};
+
+/// Which side of the transmission a signal is measured on.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Side {
+    /// Link side (after the gear): no conversion.
+    #[default]
+    Joint,
+    /// Motor side (before the gear): converted with the ratios and couplings.
+    Motor,
+}
+
+/// The `[drive]` table of the config.
+///
+/// ```toml
+/// [drive]
+/// position_side = "motor"
+/// torque_side = "motor"
+/// gear_ratios = [32, 32, 45, -48, 45, 32]
+/// position_coupling = [[32,0,0,0,0,0], ..., [0,0,0,0,32,32]]   # R_q, row-major rows
+/// torque_coupling = [[...], ...]                                # R_tau
+/// torque_constants = [0.5, ...]    # K_r, current -> motor torque
+/// [drive.rotor]                    # see RotorConfig
+/// ```
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DriveConfig {
+    /// Side of the position (and velocity, acceleration) columns.
+    #[serde(default)]
+    pub position_side: Side,
+    /// Side of the torque columns.
+    #[serde(default)]
+    pub torque_side: Side,
+    /// Gear ratios with sign (motor angle / joint angle).
+    pub gear_ratios: Option<Vec<f64>>,
+    /// R_q with theta_m = R_q q (default diag(gear_ratios)).
+    pub position_coupling: Option<Vec<Vec<f64>>>,
+    /// R_tau with tau_joint = R_tau tau_motor (default diag(gear_ratios)).
+    pub torque_coupling: Option<Vec<Vec<f64>>>,
+    /// Torque constants K_r (current -> motor torque); default 1.
+    pub torque_constants: Option<PerJoint>,
+    /// Rotor-dynamics compensation with a motor-side encoder.
+    pub rotor: Option<RotorConfig>,
+}
+
+/// The linear maps of the drive chain, ready to apply.
+#[derive(Debug, Clone)]
+pub struct DriveChain {
+    /// q = position_inverse * theta_m (identity when positions are on the joint side).
+    position_inverse: DMatrix<f64>,
+    /// Inverse of R_q for motor encoders (always motor side).
+    motor_inverse: DMatrix<f64>,
+    /// tau = torque_map * (K_r i).
+    torque_map: DMatrix<f64>,
+    constants: Vec<f64>,
+    dof: usize,
+}
+
+impl DriveConfig {
+    /// Checks sizes and invertibility.
+    pub fn check(&self, dof: usize) -> Result<()> {
+        DriveChain::new(self, dof).map(|_| ())
+    }
+
+    fn ratio_matrix(
+        &self,
+        given: &Option<Vec<Vec<f64>>>,
+        key: &str,
+        dof: usize,
+    ) -> Result<Option<DMatrix<f64>>> {
+        if let Some(rows) = given {
+            if rows.len() != dof {
+                return Err(Error::JointCountMismatch {
+                    context: format!("config `drive.{key}` rows"),
+                    expected: dof,
+                    found: rows.len(),
+                });
+            }
+            let mut m = DMatrix::zeros(dof, dof);
+            for (i, r) in rows.iter().enumerate() {
+                if r.len() != dof {
+                    return Err(Error::JointCountMismatch {
+                        context: format!("config `drive.{key}` row {}", i + 1),
+                        expected: dof,
+                        found: r.len(),
+                    });
+                }
+                for (j, v) in r.iter().enumerate() {
+                    m[(i, j)] = *v;
+                }
+            }
+            return Ok(Some(m));
+        }
+        match &self.gear_ratios {
+            Some(n) if n.len() != dof => Err(Error::JointCountMismatch {
+                context: "config `drive.gear_ratios`".into(),
+                expected: dof,
+                found: n.len(),
+            }),
+            Some(n) => Ok(Some(DMatrix::from_diagonal(
+                &nalgebra::DVector::from_column_slice(n),
+            ))),
+            None => Ok(None),
+        }
+    }
+}
+
+impl DriveChain {
+    /// Builds the maps for `dof` joints.
+    pub fn new(cfg: &DriveConfig, dof: usize) -> Result<Self> {
+        let rq = cfg.ratio_matrix(&cfg.position_coupling, "position_coupling", dof)?;
+        let rt = cfg.ratio_matrix(&cfg.torque_coupling, "torque_coupling", dof)?;
+        let needs = |side: Side, m: &Option<DMatrix<f64>>, key: &str| -> Result<()> {
+            if side == Side::Motor && m.is_none() {
+                return Err(Error::InvalidConfig {
+                    key: key.into(),
+                    problem: "motor-side signals need `drive.gear_ratios` or a coupling matrix"
+                        .into(),
+                });
+            }
+            Ok(())
+        };
+        needs(cfg.position_side, &rq, "drive.position_side")?;
+        needs(cfg.torque_side, &rt, "drive.torque_side")?;
+        let eye = DMatrix::identity(dof, dof);
+        let motor_inverse = match &rq {
+            Some(m) => m.clone().try_inverse().ok_or_else(|| Error::Singular {
+                what: "drive position coupling R_q".into(),
+                hint: "every joint needs a non-zero gear ratio and the coupling must be invertible",
+            })?,
+            None => eye.clone(),
+        };
+        let position_inverse = if cfg.position_side == Side::Motor {
+            motor_inverse.clone()
+        } else {
+            eye.clone()
+        };
+        let torque_map = match (cfg.torque_side, rt) {
+            (Side::Motor, Some(m)) => m,
+            _ => eye,
+        };
+        let constants = match &cfg.torque_constants {
+            Some(k) => k.values(dof, "drive.torque_constants")?,
+            None => vec![1.0; dof],
+        };
+        if let Some(r) = &cfg.rotor {
+            r.check(dof)?;
+        }
+        Ok(Self {
+            position_inverse,
+            motor_inverse,
+            torque_map,
+            constants,
+            dof,
+        })
+    }
+
+    /// Joint positions (or velocities, accelerations) from the measured ones, per joint.
+    pub fn joint_positions(&self, measured: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        apply(&self.position_inverse, measured, None)
+    }
+
+    /// Motor encoder positions reflected to the link side: R_q^-1 theta_m.
+    pub fn reflected_motor_positions(&self, motor: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        apply(&self.motor_inverse, motor, None)
+    }
+
+    /// Joint torques from the measured torques or currents: R_tau K_r i.
+    pub fn joint_torques(&self, measured: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        apply(&self.torque_map, measured, Some(&self.constants))
+    }
+
+    /// Number of joints.
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+}
+
+/// out_i = sum_j m_ij * scale_j * x_j, skipping zero entries (diagonal maps stay cheap).
+fn apply(m: &DMatrix<f64>, x: &[Vec<f64>], scale: Option<&[f64]>) -> Vec<Vec<f64>> {
+    let n = x.first().map_or(0, Vec::len);
+    (0..m.nrows())
+        .map(|i| {
+            let mut out = vec![0.0; n];
+            for (j, xj) in x.iter().enumerate() {
+                let c = m[(i, j)] * scale.map_or(1.0, |s| s[j]);
+                if c != 0.0 {
+                    for (o, v) in out.iter_mut().zip(xj) {
+                        *o += c * v;
+                    }
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tx40() -> DriveConfig {
+        let n = [32.0, 32.0, 45.0, -48.0, 45.0, 32.0];
+        let mut rq: Vec<Vec<f64>> = (0..6)
+            .map(|i| (0..6).map(|j| if i == j { n[i] } else { 0.0 }).collect())
+            .collect();
+        let mut rt = rq.clone();
+        rq[5][4] = 32.0;
+        rt[4][5] = 32.0;
+        DriveConfig {
+            position_side: Side::Motor,
+            torque_side: Side::Motor,
+            gear_ratios: Some(n.to_vec()),
+            position_coupling: Some(rq),
+            torque_coupling: Some(rt),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn tx40_wrist_coupling() {
+        let chain = DriveChain::new(&tx40(), 6).unwrap();
+        let theta: Vec<Vec<f64>> = [32.0, 64.0, 45.0, -96.0, 90.0, 320.0]
+            .iter()
+            .map(|v| vec![*v])
+            .collect();
+        let q = chain.joint_positions(&theta);
+        // q_i = theta_i / N_i for i <= 5, q6 = theta6 / N6 - q5
+        let expect = [1.0, 2.0, 1.0, 2.0, 2.0, 8.0];
+        for (a, e) in q.iter().zip(expect) {
+            assert!((a[0] - e).abs() < 1e-12);
+        }
+        let tm: Vec<Vec<f64>> = [1.0, 1.0, 1.0, 1.0, 1.0, 2.0]
+            .iter()
+            .map(|v| vec![*v])
+            .collect();
+        let tau = chain.joint_torques(&tm);
+        // tau_5 = N5 tm5 + N6 tm6 = 45 + 64
+        let expect = [32.0, 32.0, 45.0, -48.0, 109.0, 64.0];
+        for (a, e) in tau.iter().zip(expect) {
+            assert!((a[0] - e).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn bad_drive_configs_are_errors() {
+        let mut c = tx40();
+        c.gear_ratios = Some(vec![1.0; 5]);
+        c.position_coupling = None;
+        assert!(matches!(
+            DriveChain::new(&c, 6),
+            Err(Error::JointCountMismatch { .. })
+        ));
+        let mut c = tx40();
+        c.position_coupling = Some(vec![vec![0.0; 6]; 6]);
+        assert!(matches!(
+            DriveChain::new(&c, 6),
+            Err(Error::Singular { .. })
+        ));
+        let c = DriveConfig {
+            position_side: Side::Motor,
+            ..Default::default()
+        };
+        assert!(matches!(
+            DriveChain::new(&c, 6),
+            Err(Error::InvalidConfig { .. })
+        ));
+    }
+}

@@ -1,0 +1,198 @@
+//! Extra regressor columns for drive terms that are not in the symbolic model.
+//!
+//! An extra column has a name (its parameter) and a list of terms; each term puts
+//! `coefficient * f(sum of the listed joints' signal)` into one row of the regressor.
+//! With `signal` = `q`, `qd`, `qdd` the function is the identity, with `sign_qd` it is
+//! the sign, and `constant` puts the coefficient itself. The Staubli TX40 coupled wrist:
+//!
+//! ```toml
+//! [[extra_column]]
+//! name = "Iam6"
+//! terms = [{ row = 5, signal = "qdd", joints = [6] }, { row = 6, signal = "qdd", joints = [5] }]
+//! [[extra_column]]
+//! name = "fvm6"
+//! terms = [{ row = 5, signal = "qd", joints = [6] }, { row = 6, signal = "qd", joints = [5] }]
+//! [[extra_column]]
+//! name = "fsm6"
+//! terms = [{ row = 5, signal = "sign_qd", joints = [5, 6] }, { row = 6, signal = "sign_qd", joints = [5, 6] }]
+//! ```
+//! Rows and joints are numbered from 1.
+
+use serde::{Deserialize, Serialize};
+
+use crate::Real;
+use crate::error::{Error, Result};
+
+/// The signal a term is built from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TermSignal {
+    /// Sum of joint positions.
+    Q,
+    /// Sum of joint velocities.
+    Qd,
+    /// Sum of joint accelerations.
+    Qdd,
+    /// Sign of the sum of joint velocities (Coulomb friction).
+    SignQd,
+    /// The constant 1 (an offset).
+    Constant,
+}
+
+/// One entry of an extra column.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtraTerm {
+    /// Regressor row (joint equation), from 1.
+    pub row: usize,
+    /// Signal.
+    pub signal: TermSignal,
+    /// Joints summed, from 1 (empty for `constant`).
+    #[serde(default)]
+    pub joints: Vec<usize>,
+    /// Multiplier.
+    #[serde(default = "one")]
+    pub coefficient: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A named regressor column appended to the model's base regressor.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtraColumn {
+    /// Parameter name.
+    pub name: String,
+    /// Terms.
+    pub terms: Vec<ExtraTerm>,
+}
+
+impl ExtraColumn {
+    /// Checks row and joint numbers against `dof`.
+    pub fn check(&self, dof: usize) -> Result<()> {
+        let bad = |what: &str, v: usize| Error::InvalidConfig {
+            key: format!("extra_column `{}`", self.name),
+            problem: format!(
+                "{what} {v} is outside 1..={dof}; rows and joints are numbered from 1"
+            ),
+        };
+        if self.terms.is_empty() {
+            return Err(Error::InvalidConfig {
+                key: format!("extra_column `{}`", self.name),
+                problem: "has no terms; add terms = [{ row = .., signal = .., joints = [..] }]"
+                    .into(),
+            });
+        }
+        for t in &self.terms {
+            if t.row == 0 || t.row > dof {
+                return Err(bad("row", t.row));
+            }
+            if let Some(&j) = t.joints.iter().find(|&&j| j == 0 || j > dof) {
+                return Err(bad("joint", j));
+            }
+            if t.signal != TermSignal::Constant && t.joints.is_empty() {
+                return Err(Error::InvalidConfig {
+                    key: format!("extra_column `{}`", self.name),
+                    problem: "a q, qd, qdd or sign_qd term needs `joints = [..]`".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes this column's entries for one sample into `out` (one per row, `dof` long,
+    /// zeroed first).
+    pub fn fill(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        out.iter_mut().for_each(|v| *v = 0.0);
+        for t in &self.terms {
+            let sum = |x: &[f64]| t.joints.iter().map(|&j| x[j - 1]).sum::<f64>();
+            let v = match t.signal {
+                TermSignal::Q => sum(q),
+                TermSignal::Qd => sum(qd),
+                TermSignal::Qdd => sum(qdd),
+                TermSignal::SignQd => Real::sign(sum(qd)),
+                TermSignal::Constant => 1.0,
+            };
+            out[t.row - 1] += t.coefficient * v;
+        }
+    }
+
+    /// The three coupled-wrist drive columns of a wrist whose joint `b` motor drives
+    /// through joint `a` (Staubli TX40: a = 5, b = 6): `Iam{b}`, `fvm{b}`, `fsm{b}`.
+    pub fn coupled_wrist(a: usize, b: usize) -> Vec<ExtraColumn> {
+        let cross = |name: &str, signal| ExtraColumn {
+            name: format!("{name}{b}"),
+            terms: vec![
+                ExtraTerm {
+                    row: a,
+                    signal,
+                    joints: vec![b],
+                    coefficient: 1.0,
+                },
+                ExtraTerm {
+                    row: b,
+                    signal,
+                    joints: vec![a],
+                    coefficient: 1.0,
+                },
+            ],
+        };
+        let sign = ExtraColumn {
+            name: format!("fsm{b}"),
+            terms: [a, b]
+                .iter()
+                .map(|&row| ExtraTerm {
+                    row,
+                    signal: TermSignal::SignQd,
+                    joints: vec![a, b],
+                    coefficient: 1.0,
+                })
+                .collect(),
+        };
+        vec![
+            cross("Iam", TermSignal::Qdd),
+            cross("fvm", TermSignal::Qd),
+            sign,
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coupled_wrist_entries() {
+        let cols = ExtraColumn::coupled_wrist(5, 6);
+        let q = [0.0; 6];
+        let qd = [0.0, 0.0, 0.0, 0.0, 0.5, -2.0];
+        let qdd = [0.0, 0.0, 0.0, 0.0, 3.0, 7.0];
+        let mut out = [0.0; 6];
+        cols[0].fill(&q, &qd, &qdd, &mut out);
+        assert_eq!(out, [0.0, 0.0, 0.0, 0.0, 7.0, 3.0]);
+        cols[1].fill(&q, &qd, &qdd, &mut out);
+        assert_eq!(out, [0.0, 0.0, 0.0, 0.0, -2.0, 0.5]);
+        cols[2].fill(&q, &qd, &qdd, &mut out);
+        assert_eq!(out, [0.0, 0.0, 0.0, 0.0, -1.0, -1.0]);
+        assert_eq!(cols[2].name, "fsm6");
+    }
+
+    #[test]
+    fn parses_from_toml_and_checks_rows() {
+        let text = r#"
+name = "off2"
+terms = [{ row = 2, signal = "constant", coefficient = 2.0 }]
+"#;
+        let c: ExtraColumn = toml::from_str(text).unwrap();
+        c.check(2).unwrap();
+        let mut out = [9.0; 2];
+        c.fill(&[0.0; 2], &[0.0; 2], &[0.0; 2], &mut out);
+        assert_eq!(out, [0.0, 2.0]);
+        assert!(c.check(1).is_err());
+        let bad: ExtraColumn =
+            toml::from_str("name = \"x\"\nterms = [{ row = 1, signal = \"qd\" }]").unwrap();
+        assert!(bad.check(2).is_err());
+    }
+}
