@@ -3,7 +3,11 @@
 //! Expressions ([`expr`]), robot descriptions ([`robot`]), kinematics and dynamics
 //! ([`dynamics`]). Data flows one way: description -> derivation -> program.
 
+pub mod dynamics;
 pub mod expr;
+pub mod robot;
 pub mod sample;
 
+pub use dynamics::{Derivation, Regressor};
 pub use expr::{Arena, Id, Node, Num, Symbol, Values};
+pub use robot::{Convention, DescriptionError, Drive, Joint, JointKind, Robot};

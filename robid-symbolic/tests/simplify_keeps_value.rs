@@ -58,7 +58,7 @@ fn tree(a: &mut Arena, rng: &mut Rng, depth: u32, flavour: Flavour) -> Id {
         }
         (Flavour::Trig, 0..=3) => {
             let sum = a.intern(Node::Add(vec![x, y].into()));
-            if choice % 2 == 0 {
+            if choice.is_multiple_of(2) {
                 a.intern(Node::Sin(sum))
             } else {
                 a.intern(Node::Cos(sum))

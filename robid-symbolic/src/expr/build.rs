@@ -11,7 +11,7 @@ impl Arena {
             Node::Add(t) => Some(t),
             _ => None,
         });
-        let (constant, rest) = fold::split_constants(self, &flat, Num::ZERO, Num::add);
+        let (constant, rest) = fold::split_constants(self, &flat, Num::ZERO, std::ops::Add::add);
         let mut collected = collect::like_terms(self, &rest);
         pythagoras::sin2_plus_cos2(self, &mut collected);
         let mut out: Vec<Id> = collected
@@ -58,7 +58,7 @@ impl Arena {
             Node::Mul(f) => Some(f),
             _ => None,
         });
-        let (coefficient, rest) = fold::split_constants(self, &flat, Num::ONE, Num::mul);
+        let (coefficient, rest) = fold::split_constants(self, &flat, Num::ONE, std::ops::Mul::mul);
         if coefficient.is_zero() {
             return self.zero();
         }
@@ -71,11 +71,11 @@ impl Arena {
             return out[0];
         }
         // c * (a + b) = c*a + c*b: a scaled sum is distributed so like terms meet.
-        if out.len() == 1 {
-            if let Node::Add(terms) = self.node(out[0]).clone() {
-                let scaled: Vec<Id> = terms.iter().map(|&t| self.scale(coefficient, t)).collect();
-                return self.add(&scaled);
-            }
+        if let [single] = out[..]
+            && let Node::Add(terms) = self.node(single).clone()
+        {
+            let scaled: Vec<Id> = terms.iter().map(|&t| self.scale(coefficient, t)).collect();
+            return self.add(&scaled);
         }
         if !coefficient.is_one() {
             out.insert(0, self.num(coefficient));

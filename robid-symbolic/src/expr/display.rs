@@ -82,10 +82,11 @@ impl Arena {
     fn write_negated(&self, out: &mut String, t: Id) {
         match self.node(t) {
             Node::Num(c) => {
-                let _ = write!(out, "{}", c.neg());
+                let _ = write!(out, "{}", -*c);
             }
             Node::Mul(f) => {
-                let c = self.as_num(f[0]).expect("negative coefficient").neg();
+                let c = self.as_num(f[0]).expect("negative coefficient");
+                let c = -c;
                 if c.is_one() {
                     self.write_factors(out, &f[1..]);
                 } else {

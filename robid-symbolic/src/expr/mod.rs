@@ -109,6 +109,17 @@ impl Arena {
         &self.nodes[id.index()]
     }
 
+    /// The node at a position (ids are positions; see [`Arena::reachable`]).
+    pub fn node_at(&self, index: usize) -> &Node {
+        &self.nodes[index]
+    }
+
+    /// The id of the node at a position.
+    pub fn id_at(&self, index: usize) -> Id {
+        assert!(index < self.nodes.len(), "no node at {index}");
+        Id(index as u32)
+    }
+
     /// Stores a node as it is (no simplification) and returns its id.
     pub fn intern(&mut self, node: Node) -> Id {
         if let Some(&id) = self.memo.get(&node) {

@@ -135,8 +135,7 @@ impl Num {
         }
     }
 
-    /// Sum.
-    pub fn add(self, other: Num) -> Num {
+    fn sum(self, other: Num) -> Num {
         if let (Num::Rational(a, b), Num::Rational(c, d)) = (self, other) {
             let exact = a
                 .checked_mul(d)
@@ -151,8 +150,7 @@ impl Num {
         Num::float(self.to_f64() + other.to_f64())
     }
 
-    /// Product.
-    pub fn mul(self, other: Num) -> Num {
+    fn product(self, other: Num) -> Num {
         if let (Num::Rational(a, b), Num::Rational(c, d)) = (self, other) {
             // Cross-reduce first so products stay small.
             let g1 = gcd(a, d).max(1);
@@ -168,8 +166,7 @@ impl Num {
         Num::float(self.to_f64() * other.to_f64())
     }
 
-    /// Negation.
-    pub fn neg(self) -> Num {
+    fn negated(self) -> Num {
         match self {
             Num::Rational(n, d) => Num::Rational(-n, d),
             Num::Float(x) => Num::Float(-x),
@@ -190,9 +187,30 @@ impl Num {
         let base = if exponent < 0 { self.recip()? } else { self };
         let mut result = Num::ONE;
         for _ in 0..exponent.unsigned_abs() {
-            result = result.mul(base);
+            result = result * base;
         }
         Some(result)
+    }
+}
+
+impl std::ops::Add for Num {
+    type Output = Num;
+    fn add(self, other: Num) -> Num {
+        self.sum(other)
+    }
+}
+
+impl std::ops::Mul for Num {
+    type Output = Num;
+    fn mul(self, other: Num) -> Num {
+        self.product(other)
+    }
+}
+
+impl std::ops::Neg for Num {
+    type Output = Num;
+    fn neg(self) -> Num {
+        self.negated()
     }
 }
 
@@ -256,15 +274,15 @@ mod tests {
     fn arithmetic_stays_exact() {
         let a = Num::from_f64(0.1).unwrap();
         let b = Num::from_f64(0.2).unwrap();
-        assert_eq!(a.add(b), Num::from_f64(0.3).unwrap());
-        assert_eq!(a.mul(b), Num::ratio(1, 50).unwrap());
+        assert_eq!(a + b, Num::from_f64(0.3).unwrap());
+        assert_eq!(a * b, Num::ratio(1, 50).unwrap());
         assert_eq!(Num::int(2).powi(-2), Num::ratio(1, 4));
     }
 
     #[test]
     fn overflow_falls_back_to_float() {
         let big = Num::Rational(i128::MAX / 3, 1);
-        let product = big.mul(big);
+        let product = big * big;
         assert!(matches!(product, Num::Float(_)));
         assert!((product.to_f64() / (big.to_f64() * big.to_f64()) - 1.0).abs() < 1e-12);
     }

@@ -28,7 +28,7 @@ pub(crate) fn like_terms(arena: &mut Arena, terms: &[Id]) -> Vec<(Num, Option<Id
     for &t in terms {
         let (c, m) = arena.split_term(t);
         match index.get(&m) {
-            Some(&i) => out[i].0 = out[i].0.add(c),
+            Some(&i) => out[i].0 = out[i].0 + c,
             None => {
                 index.insert(m, out.len());
                 out.push((c, m));

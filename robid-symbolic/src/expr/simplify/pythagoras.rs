@@ -21,7 +21,7 @@ pub(crate) fn sin2_plus_cos2(arena: &mut Arena, terms: &mut Vec<(Num, Option<Id>
                 terms[i].0 = Num::ZERO;
                 terms[j].0 = Num::ZERO;
                 match terms.iter().position(|&(_, n)| n == rest) {
-                    Some(k) => terms[k].0 = terms[k].0.add(c),
+                    Some(k) => terms[k].0 = terms[k].0 + c,
                     None => terms.push((c, rest)),
                 }
                 terms.retain(|(d, _)| !d.is_zero());

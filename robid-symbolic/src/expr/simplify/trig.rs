@@ -32,7 +32,7 @@ fn pi_multiple(arena: &Arena, x: Id) -> Option<Num> {
 
 /// `c` as a whole number of quarter turns (c = k/2), reduced mod 4.
 fn quarter_turns(c: Num) -> Option<i128> {
-    let twice = c.mul(Num::int(2)).as_integer()?;
+    let twice = (c * Num::int(2)).as_integer()?;
     Some(twice.rem_euclid(4))
 }
 
@@ -96,7 +96,7 @@ fn build(arena: &mut Arena, fun: Fun, x: Id) -> Id {
         Node::Mul(factors) => {
             if let Some(c) = arena.as_num(factors[0]).filter(|c| c.is_negative()) {
                 let mut positive = factors.to_vec();
-                positive[0] = arena.num(c.neg());
+                positive[0] = arena.num(-c);
                 let y = arena.mul(&positive);
                 let value = build(arena, fun, y);
                 return if fun == Fun::Sin {
