@@ -14,6 +14,8 @@ pub mod drive;
 #[cfg(feature = "std")]
 mod error;
 #[cfg(feature = "std")]
+pub mod estimate;
+#[cfg(feature = "std")]
 pub mod signal;
 
 #[cfg(feature = "std")]

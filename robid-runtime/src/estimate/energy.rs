@@ -1,0 +1,191 @@
+//! The energy (power balance) identification model.
+//!
+//! Over a window [t_a, t_b]: H(t_b) - H(t_a) + integral of the dissipated power
+//! = integral of tau . qd dt, where H = h(q, qd) . beta (kinetic plus potential energy,
+//! linear in the parameters) and the dissipated power d(q, qd) . beta holds the friction
+//! terms (Fv_j qd_j^2, Fc_j |qd_j|, Fo_j qd_j). No accelerations are needed.
+//! Integrals use the trapezoidal rule on the samples.
+//!
+//! ## Reference
+//! M. Gautier, "Dynamic identification of robots with power model", ICRA 1997.
+
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::estimate::{Estimate, Observation, ols};
+
+/// The energy regressor: writes h(q, qd) (one entry per parameter) into the last argument.
+pub trait EnergyRegressor: Fn(&[f64], &[f64], &mut [f64]) + Sync {}
+impl<F: Fn(&[f64], &[f64], &mut [f64]) + Sync> EnergyRegressor for F {}
+
+/// Builds the energy observation: one equation per window of `window` samples.
+/// `q`, `qd`, `tau` are per joint; `h` is the energy regressor, `dissipation` the
+/// dissipated-power regressor (see [`friction_power`]).
+pub fn energy_observation(
+    q: &[Vec<f64>],
+    qd: &[Vec<f64>],
+    tau: &[Vec<f64>],
+    dt: f64,
+    window: usize,
+    names: Vec<String>,
+    h: &impl EnergyRegressor,
+    dissipation: &impl EnergyRegressor,
+) -> Result<Observation> {
+    let dof = q.len();
+    let n = q.first().map_or(0, Vec::len);
+    let p = names.len();
+    if window == 0 || n < window + 1 || qd.len() != dof || tau.len() != dof {
+        return Err(Error::TooFewSamples {
+            context: "energy model".into(),
+            found: n,
+            required: window.max(1) + 1,
+            hint: "use a window shorter than the record and one signal per joint",
+        });
+    }
+    let sample = |k: usize, x: &[Vec<f64>]| x.iter().map(|v| v[k]).collect::<Vec<f64>>();
+    let power = |k: usize| (0..dof).map(|j| tau[j][k] * qd[j][k]).sum::<f64>();
+    let windows = (n - 1) / window;
+    let rows: Vec<(Vec<f64>, f64)> = (0..windows)
+        .into_par_iter()
+        .map(|i| {
+            let (a, b) = (i * window, (i + 1) * window);
+            let mut ha = vec![0.0; p];
+            let mut hb = vec![0.0; p];
+            h(&sample(a, q), &sample(a, qd), &mut ha);
+            h(&sample(b, q), &sample(b, qd), &mut hb);
+            let mut row: Vec<f64> = hb.iter().zip(&ha).map(|(x, y)| x - y).collect();
+            let mut d = vec![0.0; p];
+            let mut y = 0.0;
+            for k in a..=b {
+                let wgt = if k == a || k == b { 0.5 * dt } else { dt };
+                dissipation(&sample(k, q), &sample(k, qd), &mut d);
+                for (r, v) in row.iter_mut().zip(&d) {
+                    *r += wgt * v;
+                }
+                y += wgt * power(k);
+            }
+            (row, y)
+        })
+        .collect();
+    let w = DMatrix::from_fn(windows, p, |r, c| rows[r].0[c]);
+    let y = DVector::from_iterator(windows, rows.iter().map(|r| r.1));
+    Observation::single(w, y, names)
+}
+
+/// The energy model solved by least squares.
+pub fn energy(obs: &Observation, tolerance: f64) -> Result<Estimate> {
+    let mut e = ols(obs, tolerance)?;
+    e.method = crate::estimate::Estimator::Energy;
+    Ok(e)
+}
+
+/// Dissipated-power regressor from parameter names: `Fv{j}` -> qd_j^2,
+/// `Fc{j}` -> |qd_j|, `Fo{j}` -> qd_j (joints from 1); other parameters -> 0.
+pub fn friction_power(names: &[String]) -> impl EnergyRegressor + use<> {
+    let terms: Vec<(usize, u8, usize)> = names
+        .iter()
+        .enumerate()
+        .filter_map(|(i, n)| {
+            let kind = match n.get(..2)? {
+                "Fv" => b'v',
+                "Fc" => b'c',
+                "Fo" => b'o',
+                _ => return None,
+            };
+            let j: usize = n[2..].parse().ok()?;
+            (j >= 1).then_some((i, kind, j - 1))
+        })
+        .collect();
+    move |_q: &[f64], qd: &[f64], out: &mut [f64]| {
+        out.iter_mut().for_each(|v| *v = 0.0);
+        for &(i, kind, j) in &terms {
+            let v = qd.get(j).copied().unwrap_or(0.0);
+            out[i] = match kind {
+                b'v' => v * v,
+                b'c' => v.abs(),
+                _ => v,
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pendulum with viscous friction: H = 1/2 I qd^2 + m g l (1 - cos q).
+    #[test]
+    fn pendulum_energy_recovers_inertia_gravity_and_friction() {
+        let (inertia, mgl, fv) = (0.8, 3.0, 0.2);
+        let dt = 1e-4;
+        let n = 200_000;
+        let (mut q, mut qd) = (vec![0.0; n], vec![0.0; n]);
+        let mut tau = vec![0.0; n];
+        let (mut x, mut v) = (0.3f64, 0.0f64);
+        for k in 0..n {
+            let t = k as f64 * dt;
+            let u = 2.0 * (1.3 * t).sin() + 1.5 * (3.1 * t).cos();
+            q[k] = x;
+            qd[k] = v;
+            tau[k] = u;
+            let acc = (u - mgl * x.sin() - fv * v) / inertia;
+            // semi-implicit Euler at a fine step, the data are the states
+            v += acc * dt;
+            x += v * dt;
+        }
+        let names: Vec<String> = vec!["ZZ1".into(), "MGL".into(), "Fv1".into()];
+        let h = |q: &[f64], qd: &[f64], out: &mut [f64]| {
+            out[0] = 0.5 * qd[0] * qd[0];
+            out[1] = 1.0 - q[0].cos();
+            out[2] = 0.0;
+        };
+        let obs = energy_observation(
+            &[q],
+            &[qd],
+            &[tau],
+            dt,
+            500,
+            names.clone(),
+            &h,
+            &friction_power(&names),
+        )
+        .unwrap();
+        let e = energy(&obs, 1e-10).unwrap();
+        assert!(
+            (e.values[0] - inertia).abs() < 0.01 * inertia,
+            "{:?}",
+            e.values
+        );
+        assert!((e.values[1] - mgl).abs() < 0.01 * mgl, "{:?}", e.values);
+        assert!((e.values[2] - fv).abs() < 0.02, "{:?}", e.values);
+    }
+
+    #[test]
+    fn friction_power_terms() {
+        let names: Vec<String> = ["XX1", "Fv2", "Fc1", "Fo2"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        let d = friction_power(&names);
+        let mut out = [9.0; 4];
+        d(&[0.0, 0.0], &[-2.0, 3.0], &mut out);
+        assert_eq!(out, [0.0, 9.0, 2.0, 3.0]);
+    }
+
+    #[test]
+    fn too_short_record_is_an_error() {
+        let h = |_: &[f64], _: &[f64], _: &mut [f64]| {};
+        let e = energy_observation(
+            &[vec![0.0; 5]],
+            &[vec![0.0; 5]],
+            &[vec![0.0; 5]],
+            0.1,
+            10,
+            vec!["a".into()],
+            &h,
+            &h,
+        );
+        assert!(matches!(e, Err(Error::TooFewSamples { .. })));
+    }
+}

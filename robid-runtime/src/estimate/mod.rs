@@ -1,0 +1,16 @@
+//! Estimators (DESIGN 6.4): OLS, WLS (Gautier's per-joint weights), recursive least
+//! squares with forgetting factor, and the energy model. Least squares always goes
+//! through QR and an SVD of R with a relative rank threshold, never the normal equations.
+
+mod energy;
+mod least_squares;
+mod lstsq;
+mod observation;
+mod result;
+mod rls;
+
+pub use energy::{EnergyRegressor, energy, energy_observation, friction_power};
+pub use least_squares::{check_names, ols, wls};
+pub use observation::Observation;
+pub use result::{Estimate, Estimator};
+pub use rls::{Rls, rls};

@@ -1,0 +1,100 @@
+//! The stacked linear system y = W beta that the estimators solve.
+
+use std::ops::Range;
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::error::{Error, Result};
+
+/// Observation matrix W, measurement vector y, and how the rows are organised.
+///
+/// Rows are stacked joint-major: all equations of joint 1, then joint 2, ...
+/// (`joint_rows[j]` is joint j's block); `sample_of_row` gives each row's (decimated)
+/// sample index so that recursive estimators can run in time order.
+#[derive(Debug, Clone)]
+pub struct Observation {
+    /// W (rows x parameters).
+    pub w: DMatrix<f64>,
+    /// y (rows).
+    pub y: DVector<f64>,
+    /// Row block of each joint (or of each equation group).
+    pub joint_rows: Vec<Range<usize>>,
+    /// Sample index of each row.
+    pub sample_of_row: Vec<usize>,
+    /// Parameter (column) names.
+    pub names: Vec<String>,
+}
+
+impl Observation {
+    /// Builds and checks an observation: sizes consistent, values finite.
+    pub fn new(
+        w: DMatrix<f64>,
+        y: DVector<f64>,
+        joint_rows: Vec<Range<usize>>,
+        sample_of_row: Vec<usize>,
+        names: Vec<String>,
+    ) -> Result<Self> {
+        let dim = |what: &str, expected: usize, found: usize| Error::DimensionMismatch {
+            what: what.into(),
+            expected,
+            found,
+        };
+        if y.len() != w.nrows() {
+            return Err(dim("measurement vector y", w.nrows(), y.len()));
+        }
+        if names.len() != w.ncols() {
+            return Err(dim("parameter names", w.ncols(), names.len()));
+        }
+        if sample_of_row.len() != w.nrows() {
+            return Err(dim("sample index of rows", w.nrows(), sample_of_row.len()));
+        }
+        let covered: usize = joint_rows.iter().map(|r| r.len()).sum();
+        if covered != w.nrows() || joint_rows.iter().any(|r| r.end > w.nrows()) {
+            return Err(dim("rows covered by the joint blocks", w.nrows(), covered));
+        }
+        if w.iter().chain(y.iter()).any(|v| !v.is_finite()) {
+            return Err(Error::Singular {
+                what: "observation matrix (NaN or infinite entries)".into(),
+                hint: "check the data and the model for non-finite values",
+            });
+        }
+        Ok(Self {
+            w,
+            y,
+            joint_rows,
+            sample_of_row,
+            names,
+        })
+    }
+
+    /// A single-block observation (e.g. one equation per row with no joint structure).
+    pub fn single(w: DMatrix<f64>, y: DVector<f64>, names: Vec<String>) -> Result<Self> {
+        let n = w.nrows();
+        Self::new(w, y, vec![0..n], (0..n).collect(), names)
+    }
+
+    /// Number of equations.
+    pub fn rows(&self) -> usize {
+        self.w.nrows()
+    }
+
+    /// Number of parameters.
+    pub fn cols(&self) -> usize {
+        self.w.ncols()
+    }
+
+    /// RMS of y - W beta in each joint block.
+    pub fn residual_rms(&self, beta: &DVector<f64>) -> Vec<f64> {
+        let r = &self.y - &self.w * beta;
+        self.joint_rows
+            .iter()
+            .map(|b| {
+                if b.is_empty() {
+                    0.0
+                } else {
+                    (r.rows(b.start, b.len()).norm_squared() / b.len() as f64).sqrt()
+                }
+            })
+            .collect()
+    }
+}

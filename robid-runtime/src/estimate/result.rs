@@ -1,0 +1,114 @@
+//! The result every estimator returns.
+
+use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
+
+use crate::estimate::Observation;
+
+/// Which estimator produced a result.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Estimator {
+    /// Ordinary least squares.
+    Ols,
+    /// Weighted least squares (Gautier).
+    Wls,
+    /// Recursive least squares.
+    Rls,
+    /// Energy (power balance) model.
+    Energy,
+}
+
+impl Estimator {
+    /// Lower-case name, as in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Estimator::Ols => "ols",
+            Estimator::Wls => "wls",
+            Estimator::Rls => "rls",
+            Estimator::Energy => "energy",
+        }
+    }
+}
+
+/// Identified parameters with their uncertainty.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Estimate {
+    /// The estimator.
+    pub method: Estimator,
+    /// Parameter names.
+    pub names: Vec<String>,
+    /// Values.
+    pub values: Vec<f64>,
+    /// Standard deviations sqrt(diag(sigma^2 (W'W)^-1)) of the solved (possibly weighted) system.
+    pub std: Vec<f64>,
+    /// 100 * std / |value| (infinite for a zero value).
+    pub rel_std_percent: Vec<f64>,
+    /// sigma^2 = ||y - W beta||^2 / (rows - cols) of the solved system.
+    pub sigma2: f64,
+    /// Condition number of the solved W.
+    pub condition_number: f64,
+    /// RMS of the unweighted residual per joint block.
+    pub residual_rms: Vec<f64>,
+    /// Equations used.
+    pub rows: usize,
+    /// Per-joint weights 1/sigma_j (WLS only).
+    pub weights: Option<Vec<f64>>,
+}
+
+impl Estimate {
+    /// Value of the parameter called `name`.
+    pub fn value(&self, name: &str) -> Option<f64> {
+        self.names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| self.values[i])
+    }
+
+    /// The values as a vector.
+    pub fn beta(&self) -> DVector<f64> {
+        DVector::from_column_slice(&self.values)
+    }
+}
+
+/// Assembles statistics: `solved` is the system actually solved (weighted for WLS),
+/// `original` the unweighted one for the residual RMS per joint.
+pub(crate) fn assemble(
+    method: Estimator,
+    solved: &Observation,
+    original: &Observation,
+    beta: DVector<f64>,
+    inverse_gram: &DMatrix<f64>,
+    condition_number: f64,
+) -> Estimate {
+    let (m, n) = (solved.rows(), solved.cols());
+    let r = &solved.y - &solved.w * &beta;
+    let dof = m.saturating_sub(n).max(1);
+    let sigma2 = r.norm_squared() / dof as f64;
+    let std: Vec<f64> = (0..n)
+        .map(|i| (sigma2 * inverse_gram[(i, i)].max(0.0)).sqrt())
+        .collect();
+    let rel = std
+        .iter()
+        .zip(beta.iter())
+        .map(|(s, v)| {
+            if *v == 0.0 {
+                f64::INFINITY
+            } else {
+                100.0 * s / v.abs()
+            }
+        })
+        .collect();
+    Estimate {
+        method,
+        names: original.names.clone(),
+        residual_rms: original.residual_rms(&beta),
+        values: beta.iter().copied().collect(),
+        std,
+        rel_std_percent: rel,
+        sigma2,
+        condition_number,
+        rows: m,
+        weights: None,
+    }
+}

@@ -1,0 +1,156 @@
+//! Recursive least squares with a forgetting factor 0 < lambda <= 1.
+//!
+//! For each equation (phi, y): L = P phi / (lambda + phi' P phi),
+//! beta += L (y - phi' beta), P = (I - L phi') P / lambda.
+//!
+//! ## Reference
+//! A. Y. Zomaya, "Modelling and simulation of robot manipulators: a parallel processing
+//! approach", 1992 (Table 1: RLS with forgetting factor); L. Ljung, "System
+//! Identification", 1999.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::error::{Error, Result};
+use crate::estimate::lstsq::{singular_values, solve};
+use crate::estimate::result::assemble;
+use crate::estimate::{Estimate, Estimator, Observation};
+
+/// Recursive least-squares state.
+#[derive(Debug, Clone)]
+pub struct Rls {
+    beta: DVector<f64>,
+    p: DMatrix<f64>,
+    lambda: f64,
+    ph: DVector<f64>,
+}
+
+impl Rls {
+    /// `n` parameters starting at zero with P = p0 I.
+    pub fn new(n: usize, lambda: f64, p0: f64) -> Result<Self> {
+        if !(lambda > 0.0 && lambda <= 1.0) {
+            return Err(Error::InvalidConfig {
+                key: "estimation.forgetting".into(),
+                problem: format!("{lambda} must satisfy 0 < lambda <= 1"),
+            });
+        }
+        if !(p0 > 0.0 && p0.is_finite()) {
+            return Err(Error::InvalidConfig {
+                key: "rls initial covariance".into(),
+                problem: format!("{p0} must be positive"),
+            });
+        }
+        Ok(Self {
+            beta: DVector::zeros(n),
+            p: DMatrix::identity(n, n) * p0,
+            lambda,
+            ph: DVector::zeros(n),
+        })
+    }
+
+    /// One equation y = phi' beta.
+    pub fn update(&mut self, phi: &[f64], y: f64) {
+        let phi = DVector::from_column_slice(phi);
+        self.p.mul_to(&phi, &mut self.ph);
+        let denom = self.lambda + phi.dot(&self.ph);
+        let gain = &self.ph / denom;
+        let err = y - phi.dot(&self.beta);
+        self.beta.axpy(err, &gain, 1.0);
+        // P = (P - L (P phi)') / lambda, kept symmetric
+        self.p.ger(-1.0, &gain, &self.ph, 1.0);
+        self.p /= self.lambda;
+        self.p = (&self.p + self.p.transpose()) * 0.5;
+    }
+
+    /// Current estimate.
+    pub fn beta(&self) -> &DVector<f64> {
+        &self.beta
+    }
+
+    /// Current P (an estimate of (W'W)^-1 for lambda = 1).
+    pub fn covariance(&self) -> &DMatrix<f64> {
+        &self.p
+    }
+}
+
+/// Runs RLS over the equations in sample order (joints interleaved) and returns the final
+/// estimate with statistics; standard deviations use sigma^2 P. Rank-deficient data is an
+/// error, as for [`crate::estimate::ols`].
+pub fn rls(obs: &Observation, lambda: f64, tolerance: f64) -> Result<Estimate> {
+    // the batch solution only checks the rank and scales P0
+    solve(&obs.w, &obs.y, &obs.names, tolerance)?;
+    let scale = obs.w.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
+    let mut state = Rls::new(obs.cols(), lambda, 1e8 / (scale * scale))?;
+    let mut order: Vec<usize> = (0..obs.rows()).collect();
+    order.sort_by_key(|&r| obs.sample_of_row[r]);
+    let mut phi = vec![0.0; obs.cols()];
+    for r in order {
+        for (c, v) in phi.iter_mut().enumerate() {
+            *v = obs.w[(r, c)];
+        }
+        state.update(&phi, obs.y[r]);
+    }
+    let s = singular_values(&obs.w);
+    let cond = s[0] / s[s.len() - 1];
+    Ok(assemble(
+        Estimator::Rls,
+        obs,
+        obs,
+        state.beta.clone(),
+        &state.p,
+        cond,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::ols;
+
+    fn line(n: usize, slope: impl Fn(usize) -> f64) -> Observation {
+        let mut w = DMatrix::zeros(n, 2);
+        let mut y = DVector::zeros(n);
+        for k in 0..n {
+            let x = (k as f64 * 0.37).sin();
+            w[(k, 0)] = x;
+            w[(k, 1)] = 1.0;
+            y[k] = slope(k) * x + 0.5 + 1e-3 * (k as f64 * 1.7).cos();
+        }
+        Observation::single(w, y, vec!["slope".into(), "offset".into()]).unwrap()
+    }
+
+    #[test]
+    fn lambda_one_matches_ols() {
+        let obs = line(300, |_| 2.0);
+        let r = rls(&obs, 1.0, 1e-10).unwrap();
+        let o = ols(&obs, 1e-10).unwrap();
+        for i in 0..2 {
+            assert!(
+                (r.values[i] - o.values[i]).abs() < 1e-6,
+                "{:?} vs {:?}",
+                r.values,
+                o.values
+            );
+            assert!((r.std[i] - o.std[i]).abs() < 1e-3 * o.std[i]);
+        }
+    }
+
+    #[test]
+    fn forgetting_tracks_a_change() {
+        let obs = line(600, |k| if k < 300 { 2.0 } else { 3.0 });
+        let tracked = rls(&obs, 0.95, 1e-10).unwrap();
+        let averaged = rls(&obs, 1.0, 1e-10).unwrap();
+        assert!(
+            (tracked.values[0] - 3.0).abs() < 0.01,
+            "{:?}",
+            tracked.values
+        );
+        assert!((averaged.values[0] - 2.5).abs() < 0.1);
+    }
+
+    #[test]
+    fn bad_lambda_is_an_error() {
+        assert!(Rls::new(2, 0.0, 1.0).is_err());
+        assert!(Rls::new(2, 1.1, 1.0).is_err());
+        assert!(Rls::new(2, 1.0, -1.0).is_err());
+    }
+}
