@@ -5,6 +5,7 @@
 
 pub mod dynamics;
 pub mod expr;
+pub mod regroup;
 pub mod robot;
 pub mod sample;
 

@@ -1,7 +1,7 @@
 //! The inertial and drive parameters of each link as expressions, and their
 //! move from the user's link frames into modified-DH frames.
 
-use super::vector::{self, Vec3};
+use super::vector::{self, Mat3, Vec3};
 use crate::expr::{Arena, Id};
 use crate::robot::{DriveTerm, ParameterKind, Robot};
 
@@ -91,20 +91,26 @@ pub fn parameter_symbols(arena: &mut Arena, robot: &Robot) -> Vec<Id> {
 }
 
 /// Parameters expressed in a frame F from parameters in a frame F' with
-/// F -> F' = Tx(a) Rx(alpha): with R = Rx(alpha), t = (a, 0, 0), u = R MS',
-/// MS = u + M t and J = R J' R' + (2 t.u + M t.t) I - u t' - t u' - M t t'
-/// (the parallel-axis theorem for a moved origin).
+/// F -> F' = Tx(a) Rx(alpha) (the user's standard-DH link frame seen from the
+/// modified-DH one).
 pub fn to_parent_frame(arena: &mut Arena, l: LinkParameters, alpha: Id, a: Id) -> LinkParameters {
     let (s, c) = (arena.sin(alpha), arena.cos(alpha));
     let one = arena.one();
     let zero = arena.zero();
     let ns = arena.neg(s);
     let r = [[one, zero, zero], [zero, c, ns], [zero, s, c]];
+    transfer(arena, l, &r, [a, zero, zero])
+}
+
+/// Inertial parameters of a body given in a frame F' (origin t, orientation R
+/// in a frame F), expressed in F: with u = R MS', MS = u + M t and
+/// J = R J' R' + (2 t.u + M t.t) I - u t' - t u' - M t t' (the parallel-axis
+/// theorem for a moved origin). Drive terms are carried over unchanged.
+pub fn transfer(arena: &mut Arena, l: LinkParameters, r: &Mat3, t: Vec3) -> LinkParameters {
     let j = vector::symmetric(&l.inertia);
-    let rj = vector::mat_mul(arena, &r, &j);
-    let rjrt = vector::mat_mul(arena, &rj, &vector::transpose(&r));
-    let u = vector::mat_vec(arena, &r, l.first_moment);
-    let t = [a, zero, zero];
+    let rj = vector::mat_mul(arena, r, &j);
+    let rjrt = vector::mat_mul(arena, &rj, &vector::transpose(r));
+    let u = vector::mat_vec(arena, r, l.first_moment);
     let m = l.mass;
     let mt = vector::scale(arena, m, t);
     let first_moment = vector::add(arena, u, mt);

@@ -1,0 +1,363 @@
+//! Gautier-Khalil regrouping: the minimal set of base parameters.
+//!
+//! 1. The link parameters are moved into modified-DH frames (expressions in
+//!    the user's standard parameters) and the closed-form rules (`rules.rs`)
+//!    group them symbolically from the last joint down.
+//! 2. The regressor column of each remaining parameter is sampled at random
+//!    states (`rank.rs`): zero columns have no effect; a column dependent on
+//!    earlier ones is folded into them with exact coefficients (`exact.rs`),
+//!    e.g. Ia1 into ZZR1 or the extra groupings of parallel axes.
+//!
+//! The result is minimal: its size equals the numeric rank of the regressor.
+
+mod exact;
+mod rank;
+mod rules;
+
+use crate::dynamics::{Derivation, LinkParameters, newton_euler};
+use crate::expr::{Arena, Id, Num};
+use crate::robot::Parameter;
+use crate::sample::Rng;
+use rank::Status;
+
+/// One base parameter.
+#[derive(Clone, Debug)]
+pub struct BaseParameter {
+    /// Name in the literature's style: the parameter it is built on, with `R`
+    /// when something was grouped into it (`ZZR1`, `XY2`, `MXR2`).
+    pub name: String,
+    /// Its expression in the standard parameters (and geometric symbols).
+    pub expression: Id,
+    /// Its terms: (standard-parameter index, coefficient), nonzero only.
+    pub terms: Vec<(usize, Id)>,
+}
+
+/// The base parameters of a robot and everything derived with them.
+#[derive(Clone, Debug)]
+pub struct BaseParameters {
+    /// The standard parameters (columns of K).
+    pub standard: Vec<Parameter>,
+    /// The base parameters (rows of K).
+    pub base: Vec<BaseParameter>,
+    /// Base regressor: `columns[b][joint]`, so tau = sum_b columns[b] * base_b.
+    pub columns: Vec<Vec<Id>>,
+    /// Standard parameters with no effect at all (indices into `standard`).
+    pub unidentifiable: Vec<usize>,
+}
+
+impl BaseParameters {
+    /// The map K (base = K standard) as coefficient expressions, row-major.
+    pub fn k_matrix(&self, arena: &mut Arena) -> Vec<Vec<Id>> {
+        let zero = arena.zero();
+        self.base
+            .iter()
+            .map(|b| {
+                let mut row = vec![zero; self.standard.len()];
+                for &(s, c) in &b.terms {
+                    row[s] = c;
+                }
+                row
+            })
+            .collect()
+    }
+}
+
+/// Why the regrouping failed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum RegroupError {
+    /// A numeric dependency has no exact form (rational, or polynomial of
+    /// degree two in the geometric symbols).
+    #[error(
+        "the dependency of `{parameter}` on `{on}` has no exact coefficient; give the lengths involved numeric values"
+    )]
+    NotExpressible {
+        /// The dependent parameter.
+        parameter: String,
+        /// The parameter it depends on.
+        on: String,
+    },
+}
+
+/// A parameter that survived the rules: where it lives and its expression.
+struct Candidate {
+    link: usize,
+    slot: usize,
+    expression: Id,
+    column: Vec<Id>,
+}
+
+const SLOT_NAMES: [&str; 14] = [
+    "XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M", "Ia", "Fv", "Fc", "Fo",
+];
+
+impl Derivation {
+    /// Derives the base parameters (DESIGN.md 4.3).
+    pub fn base_parameters(&mut self) -> Result<BaseParameters, RegroupError> {
+        let user = self.parameter_symbols();
+        let mut links = self.link_parameters(&user);
+        let rows = self.robot.frame_rows();
+        let eliminated = rules::apply(&mut self.arena, &rows, &mut links);
+        let candidates = self.candidates(&links, &eliminated);
+        let geometry: Vec<Id> = self
+            .robot
+            .symbols
+            .iter()
+            .map(|(s, _)| self.arena.var(s))
+            .collect();
+        let mut rng = Rng::new(0x5EED);
+        let first_geometry: Vec<f64> = geometry.iter().map(|_| rng.uniform(0.2, 1.0)).collect();
+        let columns: Vec<&[Id]> = candidates.iter().map(|c| c.column.as_slice()).collect();
+        let sampled = self.sample(&columns, &geometry, &first_geometry, &mut rng);
+        let status = rank::analyse(&sampled);
+        let kept: Vec<usize> = (0..candidates.len())
+            .filter(|&i| matches!(status[i], Status::Kept(_)))
+            .collect();
+
+        // Fold each dependency into the kept parameters, with exact coefficients.
+        let mut expressions: Vec<Id> = kept.iter().map(|&i| candidates[i].expression).collect();
+        for (i, s) in status.iter().enumerate() {
+            let Status::Dependent(numeric) = s else {
+                continue;
+            };
+            let exact =
+                self.exact_coefficients(i, numeric, &kept, &candidates, &geometry, &mut rng)?;
+            for (k, c) in exact {
+                let t = self.arena.mul2(c, candidates[i].expression);
+                expressions[k] = self.arena.add2(expressions[k], t);
+            }
+        }
+
+        let standard = self.robot.standard_parameters();
+        let mut base = Vec::with_capacity(kept.len());
+        for (&i, &expression) in kept.iter().zip(&expressions) {
+            let c = &candidates[i];
+            let plain = format!("{}{}", SLOT_NAMES[c.slot], c.link + 1);
+            let plain_id = self.arena.var(&plain);
+            let name = if expression == plain_id {
+                plain
+            } else {
+                format!("{}R{}", SLOT_NAMES[c.slot], c.link + 1)
+            };
+            let terms = user
+                .iter()
+                .enumerate()
+                .filter_map(|(s, &sym)| {
+                    let symbol = self.arena.find_symbol(&standard[s].name)?;
+                    let _ = sym;
+                    let coefficient = self.arena.diff(expression, symbol);
+                    (!self.arena.is_zero(coefficient)).then_some((s, coefficient))
+                })
+                .collect();
+            base.push(BaseParameter {
+                name,
+                expression,
+                terms,
+            });
+        }
+        let unidentifiable = (0..standard.len())
+            .filter(|&s| base.iter().all(|b| b.terms.iter().all(|&(t, _)| t != s)))
+            .collect();
+        let columns = kept.iter().map(|&i| candidates[i].column.clone()).collect();
+        Ok(BaseParameters {
+            standard,
+            base,
+            columns,
+            unidentifiable,
+        })
+    }
+
+    /// Every slot the rules left, with its regressor column (modified frames).
+    fn candidates(
+        &mut self,
+        links: &[LinkParameters],
+        eliminated: &[rules::Eliminated],
+    ) -> Vec<Candidate> {
+        let n = links.len();
+        let mut out = Vec::new();
+        for j in 0..n {
+            let drive = self.robot.joints[j].drive;
+            let enabled = [drive.ia, drive.fv, drive.fc, drive.fo];
+            let slots = rules::slots(&links[j]);
+            for slot in 0..14 {
+                if eliminated[j][slot]
+                    || (slot >= 10 && !enabled[slot - 10])
+                    || self.arena.is_zero(slots[slot])
+                {
+                    continue;
+                }
+                let mut params: Vec<LinkParameters> = (0..n)
+                    .map(|_| LinkParameters::zero(&mut self.arena))
+                    .collect();
+                params[j] = rules::unit(&mut self.arena, slot);
+                let column = newton_euler::inverse_dynamics(
+                    &mut self.arena,
+                    &self.kinematics,
+                    &self.inputs.qd,
+                    &self.inputs.qdd,
+                    &params,
+                );
+                out.push(Candidate {
+                    link: j,
+                    slot,
+                    expression: slots[slot],
+                    column,
+                });
+            }
+        }
+        out
+    }
+
+    /// The columns evaluated at random states for one geometry sample,
+    /// each as a vector of `states * dof` values.
+    fn sample(
+        &mut self,
+        columns: &[&[Id]],
+        geometry: &[Id],
+        values: &[f64],
+        rng: &mut Rng,
+    ) -> Vec<Vec<f64>> {
+        let n = self.robot.dof();
+        let states = (3 * columns.len() / n.max(1) + 12).max(20);
+        let entries: Vec<Id> = columns.iter().flat_map(|c| c.iter().copied()).collect();
+        let mut out = vec![Vec::with_capacity(states * n); columns.len()];
+        let names: Vec<String> = (1..=n)
+            .flat_map(|j| [format!("q{j}"), format!("qd{j}"), format!("qdd{j}")])
+            .collect();
+        for _ in 0..states {
+            let mut pairs: Vec<(&str, f64)> = names
+                .iter()
+                .enumerate()
+                .map(|(k, s)| {
+                    let v = match k % 3 {
+                        0 => rng.uniform(-3.0, 3.0),
+                        // Velocities away from zero so sign(qd) is defined.
+                        1 => rng.uniform(0.2, 2.0) * if rng.below(2) == 0 { -1.0 } else { 1.0 },
+                        _ => rng.uniform(-3.0, 3.0),
+                    };
+                    (s.as_str(), v)
+                })
+                .collect();
+            let geometry_names: Vec<String> =
+                geometry.iter().map(|&g| self.arena.display(g)).collect();
+            pairs.extend(
+                geometry_names
+                    .iter()
+                    .map(|s| s.as_str())
+                    .zip(values.iter().copied()),
+            );
+            let v = self.arena.values(&pairs);
+            let result = self
+                .arena
+                .eval(&entries, &v)
+                .expect("every symbol of a regressor column is bound");
+            for (c, column) in out.iter_mut().enumerate() {
+                column.extend_from_slice(&result[c * n..(c + 1) * n]);
+            }
+        }
+        out
+    }
+
+    /// Exact coefficients of dependent candidate `i` on the kept candidates.
+    fn exact_coefficients(
+        &mut self,
+        i: usize,
+        numeric: &[(usize, f64)],
+        kept: &[usize],
+        candidates: &[Candidate],
+        geometry: &[Id],
+        rng: &mut Rng,
+    ) -> Result<Vec<(usize, Id)>, RegroupError> {
+        let name = |c: &Candidate| format!("{}{}", SLOT_NAMES[c.slot], c.link + 1);
+        let all_constant = numeric
+            .iter()
+            .all(|&(_, c)| exact::rationalize(c).is_some());
+        if geometry.is_empty()
+            || all_constant
+                && self.same_at_other_geometry(i, numeric, kept, candidates, geometry, rng)
+        {
+            return Ok(numeric
+                .iter()
+                .map(|&(k, c)| {
+                    let value = exact::rationalize(c).unwrap_or(Num::Float(c));
+                    (k, self.arena.num(value))
+                })
+                .collect());
+        }
+        // Coefficients vary with the lengths: fit a polynomial in them.
+        let count = exact::monomials(geometry.len()).len() + 4;
+        let samples: Vec<Vec<f64>> = (0..count)
+            .map(|_| geometry.iter().map(|_| rng.uniform(0.2, 1.0)).collect())
+            .collect();
+        let mut per_sample: Vec<Vec<f64>> = Vec::with_capacity(count);
+        for g in &samples {
+            per_sample.push(self.coefficients_at(i, kept, candidates, geometry, g, rng));
+        }
+        let mut out = Vec::new();
+        for k in 0..kept.len() {
+            let values: Vec<f64> = per_sample.iter().map(|c| c[k]).collect();
+            if values.iter().all(|v| v.abs() < 1e-10) {
+                continue;
+            }
+            let c = exact::fit_polynomial(&mut self.arena, geometry, &samples, &values)
+                .ok_or_else(|| RegroupError::NotExpressible {
+                    parameter: name(&candidates[i]),
+                    on: name(&candidates[kept[k]]),
+                })?;
+            out.push((k, c));
+        }
+        Ok(out)
+    }
+
+    fn same_at_other_geometry(
+        &mut self,
+        i: usize,
+        numeric: &[(usize, f64)],
+        kept: &[usize],
+        candidates: &[Candidate],
+        geometry: &[Id],
+        rng: &mut Rng,
+    ) -> bool {
+        let g: Vec<f64> = geometry.iter().map(|_| rng.uniform(0.2, 1.0)).collect();
+        let other = self.coefficients_at(i, kept, candidates, geometry, &g, rng);
+        let mut expected = vec![0.0; kept.len()];
+        for &(k, c) in numeric {
+            expected[k] = c;
+        }
+        other
+            .iter()
+            .zip(&expected)
+            .all(|(a, b)| (a - b).abs() <= 1e-8 * b.abs().max(1.0))
+    }
+
+    fn coefficients_at(
+        &mut self,
+        i: usize,
+        kept: &[usize],
+        candidates: &[Candidate],
+        geometry: &[Id],
+        values: &[f64],
+        rng: &mut Rng,
+    ) -> Vec<f64> {
+        let mut columns: Vec<&[Id]> = kept
+            .iter()
+            .map(|&k| candidates[k].column.as_slice())
+            .collect();
+        columns.push(candidates[i].column.as_slice());
+        let sampled = self.sample(&columns, geometry, values, rng);
+        let (dependent, kept_columns) =
+            sampled.split_last().expect("at least the dependent column");
+        let refs: Vec<&Vec<f64>> = kept_columns.iter().collect();
+        rank::coefficients(&refs, dependent)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::robot::INERTIAL_NAMES;
+
+    #[test]
+    fn slot_names_extend_the_inertial_names() {
+        assert_eq!(&super::SLOT_NAMES[..10], &INERTIAL_NAMES);
+    }
+}
