@@ -12,3 +12,5 @@ pub mod sample;
 pub use dynamics::{Derivation, Regressor};
 pub use expr::{Arena, Id, Node, Num, Symbol, Values};
 pub use robot::{Convention, DescriptionError, Drive, Joint, JointKind, Robot};
+pub mod program;
+pub mod emit;

@@ -1,0 +1,263 @@
+//! The programs of one robot (DESIGN.md 4.5, 5): standard and base regressors,
+//! inverse dynamics with base parameters as a customised Newton-Euler, mass
+//! matrix, gravity and Coriolis vectors, and the standard -> base map.
+//!
+//! Every base parameter is built on one link parameter slot in modified-DH
+//! frames (its name says which: `MXR2` is MX of link 2), and its base
+//! regressor column is the Newton-Euler torque with that slot at 1. So the
+//! customised Newton-Euler, run with each base parameter in its slot and every
+//! other slot at zero, equals Y_b * beta exactly, with the constant zeros
+//! folded away. Should a name not map to a slot, that parameter's part falls
+//! back to its column times the parameter.
+
+use super::{Group, Program, ProgramError};
+use crate::dynamics::{Derivation, JointInputs, Kinematics, LinkParameters, newton_euler};
+use crate::expr::{Arena, Id};
+use crate::regroup::{BaseParameters, RegroupError};
+use crate::robot::{INERTIAL_NAMES, Robot};
+
+/// A base parameter as the generated code describes it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BaseParameter {
+    /// Name (`ZZR1`, `XY2`).
+    pub name: String,
+    /// Its expression in the standard parameters, as text.
+    pub expression: String,
+}
+
+/// Every program of a robot, with the names the generated code needs.
+#[derive(Clone, Debug)]
+pub struct RobotPrograms {
+    /// The robot.
+    pub robot: Robot,
+    /// Names of the standard parameters, in column order.
+    pub standard: Vec<String>,
+    /// The base parameters.
+    pub base: Vec<BaseParameter>,
+    /// Geometric symbols (inputs of every program, group `geometry`) and default values.
+    pub geometry: Vec<(String, Option<f64>)>,
+    /// `(q, qd, qdd) -> out`: Y, `dof x standard` row-major.
+    pub standard_regressor: Program,
+    /// `(q, qd, qdd) -> out`: Y_b, `dof x base` row-major.
+    pub base_regressor: Program,
+    /// `(q, qd, qdd, base) -> tau`.
+    pub inverse_dynamics: Program,
+    /// `(q, base) -> out`: M(q), `dof x dof` row-major.
+    pub mass_matrix: Program,
+    /// `(q, base) -> tau`: g(q).
+    pub gravity: Program,
+    /// `(q, qd, base) -> tau`: c(q, qd).
+    pub coriolis: Program,
+    /// `standard -> base`.
+    pub base_from_standard: Program,
+}
+
+/// A robot's models could not be derived.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DeriveError {
+    /// The regrouping failed.
+    #[error(transparent)]
+    Regroup(#[from] RegroupError),
+    /// A program could not be built.
+    #[error(transparent)]
+    Program(#[from] ProgramError),
+}
+
+/// The link and slot (0..14: XX..M, Ia, Fv, Fc, Fo) a base parameter is built on.
+pub fn slot_of(name: &str) -> Option<(usize, usize)> {
+    let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
+    let link: usize = digits.parse().ok()?;
+    let stem = &name[..name.len() - digits.len()];
+    let stem = stem.strip_suffix('R').unwrap_or(stem);
+    let slot = INERTIAL_NAMES
+        .iter()
+        .chain(&["Ia", "Fv", "Fc", "Fo"])
+        .position(|s| *s == stem)?;
+    (link >= 1).then_some((link - 1, slot))
+}
+
+fn set_slot(l: &mut LinkParameters, slot: usize, value: Id) {
+    match slot {
+        0..=5 => l.inertia[slot] = value,
+        6..=8 => l.first_moment[slot - 6] = value,
+        9 => l.mass = value,
+        10 => l.ia = value,
+        11 => l.fv = value,
+        12 => l.fc = value,
+        _ => l.fo = value,
+    }
+}
+
+/// Group of symbols `prefix1..prefixn`.
+fn joint_group(name: &str, n: usize) -> Group {
+    Group::new(name, (1..=n).map(|j| format!("{name}{j}")).collect())
+}
+
+struct Context {
+    d: Derivation,
+    base: BaseParameters,
+    beta: Vec<Id>,
+    geometry: Option<Group>,
+}
+
+impl Context {
+    fn inputs(&self, groups: &[&str]) -> Vec<Group> {
+        let n = self.d.robot.dof();
+        let mut out: Vec<Group> = groups
+            .iter()
+            .map(|&g| match g {
+                "base" => Group::new(
+                    "base",
+                    self.base.base.iter().map(|b| b.name.clone()).collect(),
+                ),
+                "standard" => Group::new(
+                    "standard",
+                    self.base.standard.iter().map(|p| p.name.clone()).collect(),
+                ),
+                other => joint_group(other, n),
+            })
+            .collect();
+        out.extend(self.geometry.clone());
+        out
+    }
+
+    /// Torques of the customised Newton-Euler for the given kinematics and
+    /// joint velocity / acceleration inputs; `friction` keeps Fv, Fc, Fo.
+    fn newton_euler(&mut self, inputs: &JointInputs, friction: bool) -> Vec<Id> {
+        let arena = &mut self.d.arena;
+        let kin = Kinematics::new(arena, &self.d.robot, inputs);
+        let n = self.d.robot.dof();
+        let mut links: Vec<LinkParameters> = (0..n).map(|_| LinkParameters::zero(arena)).collect();
+        let mut fallback = Vec::new();
+        for (k, b) in self.base.base.iter().enumerate() {
+            match slot_of(&b.name) {
+                Some((_, slot)) if slot >= 11 && !friction => {}
+                Some((link, slot)) if link < n => set_slot(&mut links[link], slot, self.beta[k]),
+                _ => fallback.push(k),
+            }
+        }
+        let mut tau = newton_euler::inverse_dynamics(arena, &kin, &inputs.qd, &inputs.qdd, &links);
+        // A parameter without a slot: its Y_b column times the parameter (only
+        // valid for the symbolic inputs the columns were derived with).
+        for k in fallback {
+            for (j, t) in tau.iter_mut().enumerate() {
+                let term = arena.mul2(self.base.columns[k][j], self.beta[k]);
+                *t = arena.add2(*t, term);
+            }
+        }
+        tau
+    }
+
+    fn constant_inputs(&mut self, qd: bool, qdd: Option<usize>, gravity: bool) -> JointInputs {
+        let a = &mut self.d.arena;
+        let zero = a.zero();
+        let one = a.one();
+        let sym = &self.d.inputs;
+        let n = sym.q.len();
+        JointInputs {
+            q: sym.q.clone(),
+            qd: if qd { sym.qd.clone() } else { vec![zero; n] },
+            qdd: (0..n)
+                .map(|j| if qdd == Some(j) { one } else { zero })
+                .collect(),
+            gravity: if gravity { sym.gravity } else { [zero; 3] },
+        }
+    }
+}
+
+fn row_major(columns: &[Vec<Id>], n: usize) -> Vec<Id> {
+    (0..n)
+        .flat_map(|j| columns.iter().map(move |c| c[j]))
+        .collect()
+}
+
+fn element_names(prefix: &str, count: usize) -> Vec<String> {
+    (0..count).map(|i| format!("{prefix}{i}")).collect()
+}
+
+impl RobotPrograms {
+    /// Derives the base parameters and every program of `robot`.
+    pub fn derive(robot: &Robot) -> Result<RobotPrograms, DeriveError> {
+        let mut d = Derivation::new(robot);
+        let base = d.base_parameters()?;
+        let n = robot.dof();
+        let beta: Vec<Id> = base.base.iter().map(|b| d.arena.var(&b.name)).collect();
+        let geometry = (!robot.symbols.is_empty()).then(|| {
+            Group::new(
+                "geometry",
+                robot.symbols.iter().map(|(s, _)| s.clone()).collect(),
+            )
+        });
+        let mut cx = Context {
+            d,
+            base,
+            beta,
+            geometry,
+        };
+        let standard_columns = cx.d.regressor().columns;
+        let p = standard_columns.len();
+        let b = cx.base.base.len();
+        let build = |cx: &Context, inputs: &[&str], name: &str, ids: Vec<Id>| {
+            let group = Group::new(name, element_names(name, ids.len()));
+            Program::build(&cx.d.arena, cx.inputs(inputs), vec![(group, ids)])
+        };
+        let standard_regressor = build(
+            &cx,
+            &["q", "qd", "qdd"],
+            "out",
+            row_major(&standard_columns, n),
+        )?;
+        let base_regressor = build(
+            &cx,
+            &["q", "qd", "qdd"],
+            "out",
+            row_major(&cx.base.columns, n),
+        )?;
+        let symbolic = cx.d.inputs.clone();
+        let tau = cx.newton_euler(&symbolic, true);
+        let inverse_dynamics = build(&cx, &["q", "qd", "qdd", "base"], "tau", tau)?;
+        let mut m = vec![cx.d.arena.zero(); n * n];
+        for k in 0..n {
+            let inputs = cx.constant_inputs(false, Some(k), false);
+            let column = cx.newton_euler(&inputs, false);
+            for i in k..n {
+                m[i * n + k] = column[i];
+                m[k * n + i] = column[i];
+            }
+        }
+        let mass_matrix = build(&cx, &["q", "base"], "out", m)?;
+        let inputs = cx.constant_inputs(false, None, true);
+        let g = cx.newton_euler(&inputs, false);
+        let gravity = build(&cx, &["q", "base"], "tau", g)?;
+        let inputs = cx.constant_inputs(true, None, false);
+        let c = cx.newton_euler(&inputs, false);
+        let coriolis = build(&cx, &["q", "qd", "base"], "tau", c)?;
+        let expressions: Vec<Id> = cx.base.base.iter().map(|b| b.expression).collect();
+        let base_from_standard = build(&cx, &["standard"], "base", expressions)?;
+        debug_assert_eq!(base_regressor.outputs[0].values.len(), n * b);
+        debug_assert_eq!(standard_regressor.outputs[0].values.len(), n * p);
+        let arena: &Arena = &cx.d.arena;
+        Ok(RobotPrograms {
+            robot: robot.clone(),
+            standard: cx.base.standard.iter().map(|p| p.name.clone()).collect(),
+            base: cx
+                .base
+                .base
+                .iter()
+                .map(|b| BaseParameter {
+                    name: b.name.clone(),
+                    expression: arena.display(b.expression),
+                })
+                .collect(),
+            geometry: robot.symbols.clone(),
+            standard_regressor,
+            base_regressor,
+            inverse_dynamics,
+            mass_matrix,
+            gravity,
+            coriolis,
+            base_from_standard,
+        })
+    }
+}
