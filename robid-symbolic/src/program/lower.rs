@@ -46,6 +46,9 @@ struct Lowering<'a> {
     instrs: Vec<Instr>,
     memo: HashMap<Instr, Value>,
     lowered: Vec<Option<Signed>>,
+    /// For a product with a coefficient of magnitude c != 1: c and the rest.
+    scaled: Vec<Option<(f64, Signed)>>,
+    sums: SumIndex,
 }
 
 impl Program {
@@ -73,6 +76,8 @@ impl Program {
             instrs: Vec::new(),
             memo: HashMap::new(),
             lowered: vec![None; arena.len()],
+            scaled: vec![None; arena.len()],
+            sums: SumIndex::default(),
         };
         let roots: Vec<Id> = outputs.iter().flat_map(|(_, ids)| ids.clone()).collect();
         let needed = arena.reachable(&roots);
@@ -169,10 +174,14 @@ impl Lowering<'_> {
                 }
             }
             Node::Add(terms) => {
-                let terms: Vec<Signed> = terms.iter().map(|&t| self.get(t)).collect();
-                self.sum(&terms)
+                let terms = terms.clone();
+                self.sum_node(&terms)
             }
-            Node::Mul(factors) => self.product(factors),
+            Node::Mul(factors) => {
+                let (value, scaled) = self.product(factors);
+                self.scaled[id.index()] = scaled;
+                value
+            }
             Node::Pow(x, n) => {
                 let x = self.get(*x);
                 self.power(x, *n)
@@ -197,6 +206,61 @@ impl Lowering<'_> {
         })
     }
 
+    /// A sum node: terms with the same coefficient magnitude c share one
+    /// multiplication, c * (x + y) (the arena distributes constants over
+    /// sums, so this also recovers sums computed elsewhere).
+    fn sum_node(&mut self, terms: &[Id]) -> Signed {
+        let mut groups: Vec<(f64, Vec<Signed>)> = Vec::new();
+        let mut plain: Vec<Signed> = Vec::new();
+        for &t in terms {
+            match self.scaled[t.index()] {
+                Some((c, unit)) => match groups.iter_mut().find(|(g, _)| *g == c) {
+                    Some((_, members)) => members.push(unit),
+                    None => groups.push((c, vec![unit])),
+                },
+                None => plain.push(self.get(t)),
+            }
+        }
+        for (c, members) in groups {
+            if let [single] = members[..] {
+                let constant = self.constant(c);
+                let value = self.emit(Instr::Mul(single.value, constant));
+                plain.push(Signed::plus(value).flip(single.negative));
+            } else {
+                let inner = self.sum_reusing(members);
+                let constant = self.constant(c);
+                let value = self.emit(Instr::Mul(inner.value, constant));
+                plain.push(Signed::plus(value).flip(inner.negative));
+            }
+        }
+        self.sum_reusing(plain)
+    }
+
+    /// A sum that reuses earlier sums of a subset of its terms (the arena
+    /// flattens `f + R f'` into one long sum; the part already computed for
+    /// `f'` is taken as it is instead of being added up again).
+    fn sum_reusing(&mut self, terms: Vec<Signed>) -> Signed {
+        let mut remaining: HashMap<Value, bool> =
+            terms.iter().map(|t| (t.value, t.negative)).collect();
+        let mut parts: Vec<Signed> = Vec::new();
+        while remaining.len() >= 2 {
+            let Some((k, flip)) = self.sums.largest_subset(&remaining) else {
+                break;
+            };
+            for (v, _) in &self.sums.terms[k] {
+                remaining.remove(v);
+            }
+            parts.push(self.sums.value[k].flip(flip));
+        }
+        // Keep the original term order for what is left (deterministic output).
+        parts.extend(terms.iter().filter(|t| remaining.contains_key(&t.value)));
+        let result = self.sum(&parts);
+        if terms.len() >= 2 {
+            self.sums.insert(&terms, result);
+        }
+        result
+    }
+
     /// Pairwise sum; a negative operand turns an addition into a subtraction.
     fn sum(&mut self, terms: &[Signed]) -> Signed {
         match terms {
@@ -218,8 +282,10 @@ impl Lowering<'_> {
         }
     }
 
-    /// Product: symbolic factors left to right, then the coefficient's magnitude.
-    fn product(&mut self, factors: &[Id]) -> Signed {
+    /// Product: symbolic factors left to right, then the coefficient's
+    /// magnitude; also returns (magnitude, the product without it) when the
+    /// magnitude is not 1.
+    fn product(&mut self, factors: &[Id]) -> (Signed, Option<(f64, Signed)>) {
         let (coefficient, rest) = match self.arena.as_num(factors[0]) {
             Some(c) => (c.to_f64(), &factors[1..]),
             None => (1.0, factors),
@@ -235,15 +301,22 @@ impl Lowering<'_> {
             });
         }
         let magnitude = coefficient.abs();
-        let value = match acc {
-            None => self.constant(magnitude),
-            Some(a) if magnitude == 1.0 => a,
+        match acc {
+            None => (
+                Signed {
+                    value: self.constant(magnitude),
+                    negative,
+                },
+                None,
+            ),
+            Some(a) if magnitude == 1.0 => (Signed { value: a, negative }, None),
             Some(a) => {
                 let c = self.constant(magnitude);
-                self.emit(Instr::Mul(a, c))
+                let value = self.emit(Instr::Mul(a, c));
+                let unit = Signed { value: a, negative };
+                (Signed { value, negative }, Some((magnitude, unit)))
             }
-        };
-        Signed { value, negative }
+        }
     }
 
     /// `x^n` by repeated squaring; a negative power divides 1 by it.
@@ -270,5 +343,54 @@ impl Lowering<'_> {
             value = self.emit(Instr::Div(one, value));
         }
         Signed { value, negative }
+    }
+}
+
+/// Sums already computed, indexed by their terms.
+#[derive(Default)]
+struct SumIndex {
+    terms: Vec<Vec<(Value, bool)>>,
+    value: Vec<Signed>,
+    by_term: HashMap<Value, Vec<usize>>,
+}
+
+impl SumIndex {
+    fn insert(&mut self, terms: &[Signed], value: Signed) {
+        let k = self.terms.len();
+        self.terms
+            .push(terms.iter().map(|t| (t.value, t.negative)).collect());
+        self.value.push(value);
+        for t in terms {
+            self.by_term.entry(t.value).or_default().push(k);
+        }
+    }
+
+    /// The largest earlier sum whose terms all occur in `remaining`, with the
+    /// same signs (`false`) or all opposite signs (`true`).
+    fn largest_subset(&self, remaining: &HashMap<Value, bool>) -> Option<(usize, bool)> {
+        let mut best: Option<(usize, bool)> = None;
+        let mut best_len = 1;
+        let mut seen = std::collections::HashSet::new();
+        for v in remaining.keys() {
+            for &k in self.by_term.get(v).into_iter().flatten() {
+                let terms = &self.terms[k];
+                if terms.len() <= best_len || terms.len() > remaining.len() || !seen.insert(k) {
+                    continue;
+                }
+                let (first, first_sign) = terms[0];
+                let Some(&sign) = remaining.get(&first) else {
+                    continue;
+                };
+                let flip = sign != first_sign;
+                if terms
+                    .iter()
+                    .all(|(t, s)| remaining.get(t).is_some_and(|&r| (r != *s) == flip))
+                {
+                    best = Some((k, flip));
+                    best_len = terms.len();
+                }
+            }
+        }
+        best
     }
 }

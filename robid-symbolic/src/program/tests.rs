@@ -63,3 +63,11 @@ fn ur5e_programs_counts() {
         );
     }
 }
+
+#[test]
+#[ignore]
+fn print_ur5e_inverse_dynamics() {
+    let robot = Robot::from_toml(UR5E, "ur5e.toml").unwrap();
+    let p = super::RobotPrograms::derive(&robot).unwrap();
+    eprintln!("{}", p.inverse_dynamics);
+}
