@@ -16,7 +16,11 @@ mod error;
 #[cfg(feature = "std")]
 pub mod estimate;
 #[cfg(feature = "std")]
+pub mod pipeline;
+#[cfg(feature = "std")]
 pub mod signal;
+#[cfg(feature = "std")]
+pub mod validate;
 
 #[cfg(feature = "std")]
 pub use error::{Error, Result};

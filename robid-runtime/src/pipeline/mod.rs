@@ -1,0 +1,13 @@
+//! The identification pipeline: data set -> prepared signals -> observation matrix ->
+//! estimate -> fit (DESIGN 6). Regressor rows and filtering run in parallel (rayon).
+
+mod identify;
+mod observe;
+mod prepare;
+
+pub use identify::{Identification, estimate, identify, observation, validate};
+pub use observe::{decimator, observe};
+pub use prepare::{Prepared, prepare};
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,177 @@
+//! The stacked observation matrix: regressor rows at every sample (in parallel), extra
+//! drive columns, parallel low-pass + decimation of every column and of the torque,
+//! removal of equations near rest, joint-major stacking.
+
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+use crate::Model;
+use crate::data::{Config, Decimation};
+use crate::error::{Error, Result};
+use crate::estimate::{Observation, check_names};
+use crate::pipeline::Prepared;
+use crate::signal::{Decimator, moving_samples};
+
+/// Samples per parallel work item when evaluating the regressor.
+const BLOCK: usize = 512;
+/// Channels filtered together by one task.
+const GROUP: usize = 32;
+
+/// Channel layout of one sample row: `[Y_b (dof x p, row-major) | extra (e x dof) | tau | qd]`.
+struct Layout {
+    dof: usize,
+    p: usize,
+    e: usize,
+}
+
+impl Layout {
+    fn stride(&self) -> usize {
+        self.dof * (self.p + self.e + 2)
+    }
+    fn column(&self, j: usize, c: usize) -> usize {
+        if c < self.p {
+            j * self.p + c
+        } else {
+            self.dof * self.p + (c - self.p) * self.dof + j
+        }
+    }
+    fn tau(&self, j: usize) -> usize {
+        self.dof * (self.p + self.e) + j
+    }
+    fn qd(&self, j: usize) -> usize {
+        self.dof * (self.p + self.e + 1) + j
+    }
+}
+
+/// The decimation configured in `[processing]`.
+pub fn decimator(config: &Config) -> Result<Decimator> {
+    match &config.processing.decimation {
+        Decimation::Total(t) => Decimator::with_total(*t),
+        Decimation::Stages(s) => Decimator::new(s),
+    }
+}
+
+/// Builds W and y from prepared signals: `model`'s base regressor plus the config's
+/// extra columns, filtered and decimated, with rest samples removed per joint.
+pub fn observe(
+    model: &(dyn Model + Sync),
+    signals: &Prepared,
+    config: &Config,
+) -> Result<Observation> {
+    let dof = model.dof();
+    if signals.q.len() != dof {
+        return Err(Error::JointCountMismatch {
+            context: "data".into(),
+            expected: dof,
+            found: signals.q.len(),
+        });
+    }
+    let extra = &config.extra_columns;
+    for c in extra {
+        c.check(dof)?;
+    }
+    let lay = Layout {
+        dof,
+        p: model.base_parameter_count(),
+        e: extra.len(),
+    };
+    let mut names: Vec<String> = (0..lay.p)
+        .map(|i| model.base_parameter_name(i).to_string())
+        .collect();
+    names.extend(extra.iter().map(|c| c.name.clone()));
+    check_names(&names)?;
+    let n = signals.samples();
+    let stride = lay.stride();
+    let mut rows = vec![0.0; n * stride];
+
+    // regressor rows in parallel blocks of samples; each block reports its non-zero channels
+    let active = rows
+        .par_chunks_mut(stride * BLOCK)
+        .enumerate()
+        .map(|(b, chunk)| {
+            let (mut q, mut qd, mut qdd) = (vec![0.0; dof], vec![0.0; dof], vec![0.0; dof]);
+            let mut col = vec![0.0; dof];
+            let mut nonzero = vec![false; stride];
+            for (i, row) in chunk.chunks_exact_mut(stride).enumerate() {
+                let k = b * BLOCK + i;
+                for j in 0..dof {
+                    q[j] = signals.q[j][k];
+                    qd[j] = signals.qd[j][k];
+                    qdd[j] = signals.qdd[j][k];
+                }
+                model.base_regressor(&q, &qd, &qdd, &mut row[..dof * lay.p]);
+                for (c, x) in extra.iter().enumerate() {
+                    x.fill(&q, &qd, &qdd, &mut col);
+                    let start = lay.column(0, lay.p + c);
+                    row[start..start + dof].copy_from_slice(&col);
+                }
+                for j in 0..dof {
+                    row[lay.tau(j)] = signals.tau[j][k];
+                    row[lay.qd(j)] = qd[j];
+                }
+                for (z, v) in nonzero.iter_mut().zip(row.iter()) {
+                    *z |= *v != 0.0;
+                }
+            }
+            nonzero
+        })
+        .reduce(
+            || vec![false; stride],
+            |a, b| a.iter().zip(&b).map(|(x, y)| *x || *y).collect(),
+        );
+    let channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
+
+    let dec = decimator(config)?;
+    let m = dec.output_len(n);
+    let groups: Vec<Vec<f64>> = channels
+        .par_chunks(GROUP)
+        .map(|g| dec.apply_block(&rows, stride, g))
+        .collect::<Result<_>>()?;
+    drop(rows);
+    // position of each channel: (group, index in group), or None for an all-zero channel
+    let mut place = vec![None; stride];
+    for (i, &c) in channels.iter().enumerate() {
+        place[c] = Some((i / GROUP, i % GROUP));
+    }
+    let value = |k: usize, ch: usize| match place[ch] {
+        Some((g, i)) => {
+            let width = groups[g].len() / m.max(1);
+            groups[g][k * width + i]
+        }
+        None => 0.0,
+    };
+
+    let qd_dec: Vec<Vec<f64>> = (0..dof)
+        .map(|j| (0..m).map(|k| value(k, lay.qd(j))).collect())
+        .collect();
+    let keep: Vec<Vec<usize>> = match &config.processing.rest_velocity {
+        Some(t) => moving_samples(&qd_dec, &t.values(dof, "processing.rest_velocity")?),
+        None => vec![(0..m).collect(); dof],
+    };
+    let total: usize = keep.iter().map(Vec::len).sum();
+    let cols = lay.p + lay.e;
+    let mut w = DMatrix::zeros(total, cols);
+    let mut y = DVector::zeros(total);
+    let mut joint_rows = Vec::with_capacity(dof);
+    let mut sample_of_row = Vec::with_capacity(total);
+    let mut start = 0;
+    for (j, ks) in keep.iter().enumerate() {
+        for (r, &k) in ks.iter().enumerate() {
+            y[start + r] = value(k, lay.tau(j));
+            sample_of_row.push(k);
+        }
+        for c in 0..cols {
+            let ch = lay.column(j, c);
+            if place[ch].is_none() {
+                continue;
+            }
+            let mut col = w.column_mut(c);
+            for (r, &k) in ks.iter().enumerate() {
+                col[start + r] = value(k, ch);
+            }
+        }
+        joint_rows.push(start..start + ks.len());
+        start += ks.len();
+    }
+    Observation::new(w, y, joint_rows, sample_of_row, names)
+}

@@ -1,0 +1,123 @@
+//! Signal preparation: sample range, zero-phase low-pass, velocities and accelerations,
+//! rotor-dynamics compensation, trimming.
+
+use rayon::prelude::*;
+
+use crate::data::{Config, Dataset, Derivative, Signal};
+use crate::error::{Error, Result};
+use crate::signal::{Sos, butterworth_hz, central_difference};
+
+/// Joint signals ready for the regressor, one vector per joint, all the same length.
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    /// Positions.
+    pub q: Vec<Vec<f64>>,
+    /// Velocities.
+    pub qd: Vec<Vec<f64>>,
+    /// Accelerations.
+    pub qdd: Vec<Vec<f64>>,
+    /// Joint torques (rotor-compensated when configured).
+    pub tau: Vec<Vec<f64>>,
+    /// Sample time (s).
+    pub sample_time: f64,
+}
+
+impl Prepared {
+    /// Number of samples.
+    pub fn samples(&self) -> usize {
+        self.q.first().map_or(0, Vec::len)
+    }
+}
+
+fn filter_all(sos: Option<&Sos>, x: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
+    match sos {
+        Some(s) => x.par_iter().map(|v| s.filtfilt(v)).collect(),
+        None => Ok(x.to_vec()),
+    }
+}
+
+fn differentiate(x: &[Vec<f64>], dt: f64) -> Vec<Vec<f64>> {
+    x.par_iter().map(|v| central_difference(v, dt)).collect()
+}
+
+/// Applies the `[processing]` options (range, low-pass, derivatives, trim) and the
+/// rotor compensation of `[drive.rotor]` to a data set.
+pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
+    let p = &config.processing;
+    let sliced;
+    let data = match p.range {
+        Some([a, b]) => {
+            sliced = data.slice(a, b)?;
+            &sliced
+        }
+        None => data,
+    };
+    let dt = data.sample_time;
+    let sos = match &p.lowpass {
+        Some(lp) => Some(
+            butterworth_hz(lp.order, lp.cutoff, 1.0 / dt).map_err(|e| match e {
+                Error::InvalidConfig { problem, .. } => Error::InvalidConfig {
+                    key: "processing.lowpass".into(),
+                    problem,
+                },
+                e => e,
+            })?,
+        ),
+        None => None,
+    };
+    let on = |s: Signal| {
+        sos.as_ref()
+            .filter(|_| p.lowpass.as_ref().is_some_and(|lp| lp.signals.contains(&s)))
+    };
+    let q = filter_all(on(Signal::Q), &data.q)?;
+    let qd = match (p.velocity, &data.qd) {
+        (Derivative::Auto | Derivative::Data, Some(v)) => filter_all(on(Signal::Qd), v)?,
+        (Derivative::Data, None) => return Err(missing("processing.velocity", "velocity")),
+        _ => differentiate(&q, dt),
+    };
+    let qdd = match (p.acceleration, &data.qdd) {
+        (Derivative::Auto | Derivative::Data, Some(a)) => filter_all(on(Signal::Qdd), a)?,
+        (Derivative::Data, None) => return Err(missing("processing.acceleration", "acceleration")),
+        _ => differentiate(&qd, dt),
+    };
+    let mut tau = filter_all(on(Signal::Tau), &data.tau)?;
+    if let Some(rotor) = &config.drive.rotor {
+        let motor = data
+            .motor
+            .as_ref()
+            .ok_or_else(|| missing("drive.rotor", "motor_position"))?;
+        let theta = filter_all(on(Signal::Q), motor)?;
+        let thetad = differentiate(&theta, dt);
+        let thetadd = differentiate(&thetad, dt);
+        rotor.compensate(&mut tau, &thetad, &thetadd)?;
+    }
+    let n = data.samples();
+    let t = p.trim;
+    if n <= 2 * t + 1 {
+        return Err(Error::TooFewSamples {
+            context: format!("{} after trimming {t} samples at each end", data.name),
+            found: n.saturating_sub(2 * t),
+            required: 2,
+            hint: "reduce processing.trim or use a longer record",
+        });
+    }
+    let cut = |v: Vec<Vec<f64>>| -> Vec<Vec<f64>> {
+        v.into_iter().map(|x| x[t..n - t].to_vec()).collect()
+    };
+    Ok(Prepared {
+        q: cut(q),
+        qd: cut(qd),
+        qdd: cut(qdd),
+        tau: cut(tau),
+        sample_time: dt,
+    })
+}
+
+fn missing(key: &str, role: &str) -> Error {
+    Error::InvalidConfig {
+        key: key.into(),
+        problem: format!(
+            "the data has no `{role}` columns; add them to a [[source]] or let robid differentiate (\"auto\")"
+        ),
+    }
+}

@@ -1,0 +1,209 @@
+//! A synthetic 6-joint model for tests and benches: a regressor with the structure of a
+//! serial arm (row j depends on links k >= j, trigonometric terms computed once per
+//! sample, inertia, Coriolis-like, gravity-like, drive and friction columns), not a real
+//! robot. Included by the pipeline tests and by `benches/pipeline.rs`.
+
+#![allow(dead_code)]
+
+use super::Model;
+
+/// Joints.
+pub(crate) const DOF: usize = 6;
+/// Per-link columns: 4 rigid-body-like, Ia, Fv, Fc, Fo.
+const PER_LINK: usize = 8;
+
+/// The synthetic model.
+#[derive(Debug)]
+pub(crate) struct Synthetic {
+    names: Vec<String>,
+}
+
+impl Default for Synthetic {
+    fn default() -> Self {
+        let mut names = Vec::new();
+        for k in 1..=DOF {
+            for n in ["A", "B", "G", "C"] {
+                names.push(format!("{n}{k}"));
+            }
+            for n in ["Ia", "Fv", "Fc", "Fo"] {
+                names.push(format!("{n}{k}"));
+            }
+        }
+        Self { names }
+    }
+}
+
+fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+impl Synthetic {
+    fn regressor(q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        let p = DOF * PER_LINK;
+        out[..DOF * p].iter_mut().for_each(|v| *v = 0.0);
+        let mut s = [0.0; DOF];
+        let mut c = [0.0; DOF];
+        for i in 0..DOF {
+            (s[i], c[i]) = q[i].sin_cos();
+        }
+        for k in 0..DOF {
+            let base = k * PER_LINK;
+            for j in 0..=k {
+                let row = &mut out[j * p..(j + 1) * p];
+                row[base] = (c[j] * c[k] - s[j] * s[k]) * qdd[k] + s[k] * qd[j] * qd[k];
+                row[base + 1] = (s[j] * c[k] - c[j] * s[k]) * qdd[j] + c[k] * qd[k] * qd[k];
+                row[base + 2] = c[k] * s[j] + c[j];
+                row[base + 3] = s[k] * c[j] * (qdd[j] + qdd[k]) + c[j] * qd[k];
+            }
+            let row = &mut out[k * p..(k + 1) * p];
+            row[base + 4] = qdd[k];
+            row[base + 5] = qd[k];
+            row[base + 6] = sign(qd[k]);
+            row[base + 7] = 1.0;
+        }
+    }
+
+    fn torque(q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
+        let p = DOF * PER_LINK;
+        let mut y = vec![0.0; DOF * p];
+        Self::regressor(q, qd, qdd, &mut y);
+        for (j, t) in tau.iter_mut().enumerate().take(DOF) {
+            *t = y[j * p..(j + 1) * p]
+                .iter()
+                .zip(base)
+                .map(|(a, b)| a * b)
+                .sum();
+        }
+    }
+}
+
+impl Model for Synthetic {
+    fn name(&self) -> &str {
+        "synthetic6"
+    }
+    fn dof(&self) -> usize {
+        DOF
+    }
+    fn standard_parameter_count(&self) -> usize {
+        self.names.len()
+    }
+    fn standard_parameter_name(&self, index: usize) -> &str {
+        &self.names[index]
+    }
+    fn base_parameter_count(&self) -> usize {
+        self.names.len()
+    }
+    fn base_parameter_name(&self, index: usize) -> &str {
+        &self.names[index]
+    }
+    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        Self::regressor(q, qd, qdd, out);
+    }
+    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        Self::regressor(q, qd, qdd, out);
+    }
+    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
+        Self::torque(q, qd, qdd, base, tau);
+    }
+    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
+        let zero = [0.0; DOF];
+        let mut g = [0.0; DOF];
+        Self::torque(q, &zero, &zero, base, &mut g);
+        for i in 0..DOF {
+            let mut e = [0.0; DOF];
+            e[i] = 1.0;
+            let mut t = [0.0; DOF];
+            Self::torque(q, &zero, &e, base, &mut t);
+            for r in 0..DOF {
+                out[r * DOF + i] = t[r] - g[r];
+            }
+        }
+    }
+    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
+        Self::torque(q, &[0.0; DOF], &[0.0; DOF], base, out);
+    }
+    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
+        let mut g = [0.0; DOF];
+        Self::torque(q, &[0.0; DOF], &[0.0; DOF], base, &mut g);
+        Self::torque(q, qd, &[0.0; DOF], base, out);
+        for (o, g) in out.iter_mut().zip(g) {
+            *o -= g;
+        }
+    }
+    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
+        base.copy_from_slice(standard);
+    }
+}
+
+/// True parameter values used with the synthetic model.
+pub(crate) fn true_parameters() -> Vec<f64> {
+    (0..DOF * PER_LINK)
+        .map(|i| 0.5 + ((i * 37 % 11) as f64) * 0.3 * if i % 3 == 0 { -1.0 } else { 1.0 })
+        .collect()
+}
+
+/// An exciting trajectory (sums of sines) with analytic derivatives at time `t`.
+pub(crate) fn trajectory(t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
+    for j in 0..DOF {
+        let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+        for h in 1..=3 {
+            let w = 0.7 * (h as f64) * (1.0 + 0.13 * j as f64);
+            let amp = 0.6 / h as f64;
+            let ph = 0.9 * j as f64 + h as f64;
+            a += amp * (w * t + ph).sin();
+            b += amp * w * (w * t + ph).cos();
+            c -= amp * w * w * (w * t + ph).sin();
+        }
+        q[j] = a;
+        qd[j] = b;
+        qdd[j] = c;
+    }
+}
+
+/// CSV text `t,q1..q6,tau1..tau6` of `n` samples at `rate` Hz with torques from the true
+/// parameters plus deterministic pseudo-noise of amplitude `noise`.
+pub(crate) fn csv(n: usize, rate: f64, noise: f64) -> String {
+    let model = Synthetic::default();
+    let beta = true_parameters();
+    let mut out = String::from("t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n");
+    let (mut q, mut qd, mut qdd, mut tau) = ([0.0; DOF], [0.0; DOF], [0.0; DOF], [0.0; DOF]);
+    let mut seed = 7u64;
+    for k in 0..n {
+        let t = k as f64 / rate;
+        trajectory(t, &mut q, &mut qd, &mut qdd);
+        model.inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau);
+        out.push_str(&format!("{t}"));
+        for v in q {
+            out.push_str(&format!(",{v}"));
+        }
+        for v in tau {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let r = ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
+            out.push_str(&format!(",{}", v + noise * r));
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// The config matching [`csv`].
+pub(crate) const CONFIG: &str = r#"
+dof = 6
+time_column = "t"
+[[source]]
+position = "q{}"
+torque = "tau{}"
+[processing]
+lowpass = { cutoff = 20.0, order = 4, signals = ["q"] }
+trim = 200   # filter start-up transients at the ends are amplified by differentiation
+decimation = 10
+rest_velocity = 0.02
+"#;

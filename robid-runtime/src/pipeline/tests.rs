@@ -1,0 +1,209 @@
+//! Pipeline tests on the synthetic model with known parameters.
+
+use std::path::Path;
+
+use crate::Model;
+use crate::data::{Config, Dataset, load};
+use crate::drive::ExtraColumn;
+use crate::error::Error;
+use crate::pipeline::{identify, validate};
+
+#[path = "synthetic.rs"]
+mod synthetic;
+use synthetic::{CONFIG, DOF, Synthetic, csv, trajectory, true_parameters};
+
+fn config(extra: &str) -> Config {
+    Config::from_toml_str(&format!("{CONFIG}{extra}"), Path::new("synthetic.toml")).unwrap()
+}
+
+fn dataset(n: usize, rate: f64, noise: f64) -> Dataset {
+    let dir = std::env::temp_dir().join(format!(
+        "robid-pipe-{}-{n}-{}",
+        std::process::id(),
+        noise.to_bits()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("run.csv");
+    std::fs::write(&file, csv(n, rate, noise)).unwrap();
+    let data = load(&config(""), &[file], DOF).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    data
+}
+
+#[test]
+fn csv_to_parameters_recovers_the_truth() {
+    let data = dataset(20_000, 1000.0, 0.0);
+    let id = identify(&Synthetic::default(), &data, &config("")).unwrap();
+    let truth = true_parameters();
+    for (i, (v, t)) in id.estimate.values.iter().zip(&truth).enumerate() {
+        assert!(
+            (v - t).abs() < 2e-3 * t.abs().max(1.0),
+            "{}: {v} vs {t}",
+            id.estimate.names[i]
+        );
+    }
+    assert!(id.fit.relative_error < 1e-3, "{:?}", id.fit);
+    assert!(id.estimate.condition_number > 1.0 && id.estimate.condition_number.is_finite());
+}
+
+#[test]
+fn wls_is_no_worse_than_ols_with_unequal_noise() {
+    let data = dataset(20_000, 1000.0, 0.5);
+    let ols = identify(&Synthetic::default(), &data, &config("")).unwrap();
+    let mut cfg = config("");
+    cfg.estimation.method = crate::data::Method::Wls;
+    let wls = identify(&Synthetic::default(), &data, &cfg).unwrap();
+    let truth = true_parameters();
+    let within = |e: &crate::estimate::Estimate| {
+        e.values
+            .iter()
+            .zip(&e.std)
+            .zip(&truth)
+            .filter(|((v, s), t)| (*v - *t).abs() <= 3.0 * *s + 1e-9)
+            .count()
+    };
+    assert!(
+        within(&wls.estimate) as f64 >= 0.9 * truth.len() as f64,
+        "{}",
+        within(&wls.estimate)
+    );
+    assert!(wls.fit.relative_error <= ols.fit.relative_error * 1.05);
+}
+
+#[test]
+fn validation_on_other_data_predicts_well() {
+    let data = dataset(12_000, 1000.0, 0.0);
+    let train = data.slice(0, 8000).unwrap();
+    let test = data.slice(8000, 12_000).unwrap();
+    let model = Synthetic::default();
+    let id = identify(&model, &train, &config("")).unwrap();
+    let pred = validate(&model, &test, &config(""), &id.estimate.values).unwrap();
+    assert!(pred.fit().relative_error < 5e-3, "{:?}", pred.fit());
+    assert!(matches!(
+        validate(&model, &test, &config(""), &[1.0]),
+        Err(Error::DimensionMismatch { .. })
+    ));
+}
+
+/// A joint that never moves leaves its drive and link terms unexcited.
+#[test]
+fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
+    let n = 6000;
+    let (mut q, mut qd, mut qdd) = ([0.0; DOF], [0.0; DOF], [0.0; DOF]);
+    let mut qs = vec![vec![0.0; n]; DOF];
+    let mut taus = vec![vec![0.0; n]; DOF];
+    let model = Synthetic::default();
+    let beta = true_parameters();
+    for k in 0..n {
+        trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
+        q[5] = 0.3;
+        qd[5] = 0.0;
+        qdd[5] = 0.0;
+        let mut tau = [0.0; DOF];
+        model.inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau);
+        for j in 0..DOF {
+            qs[j][k] = q[j];
+            taus[j][k] = tau[j];
+        }
+    }
+    let data = Dataset::new("still6", 1e-3, qs, taus).unwrap();
+    let mut cfg = config("");
+    cfg.processing.rest_velocity = None;
+    match identify(&model, &data, &cfg) {
+        Err(Error::RankDeficient {
+            unexcited,
+            rank,
+            columns,
+        }) => {
+            assert!(rank < columns);
+            assert!(unexcited.iter().any(|n| n == "Ia6"), "{unexcited:?}");
+            assert!(unexcited.iter().any(|n| n == "Fv6"), "{unexcited:?}");
+        }
+        other => panic!("expected rank deficiency, got {other:?}"),
+    }
+}
+
+#[test]
+fn extra_coupled_wrist_columns_are_identified() {
+    // torque with TX40-style coupled-wrist terms added on joints 5 and 6
+    let (iam, fvm, fsm) = (0.02, 0.6, 1.9);
+    let n = 20_000;
+    let model = Synthetic::default();
+    let beta = true_parameters();
+    let (mut q, mut qd, mut qdd) = ([0.0; DOF], [0.0; DOF], [0.0; DOF]);
+    let mut qs = vec![vec![0.0; n]; DOF];
+    let mut taus = vec![vec![0.0; n]; DOF];
+    for k in 0..n {
+        trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
+        let mut tau = [0.0; DOF];
+        model.inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau);
+        let s = crate::Real::sign(qd[4] + qd[5]);
+        tau[4] += iam * qdd[5] + fvm * qd[5] + fsm * s;
+        tau[5] += iam * qdd[4] + fvm * qd[4] + fsm * s;
+        for j in 0..DOF {
+            qs[j][k] = q[j];
+            taus[j][k] = tau[j];
+        }
+    }
+    let data = Dataset::new("wrist", 1e-3, qs, taus).unwrap();
+    let mut cfg = config("");
+    cfg.extra_columns = ExtraColumn::coupled_wrist(5, 6);
+    let id = identify(&model, &data, &cfg).unwrap();
+    let e = &id.estimate;
+    assert_eq!(e.names.len(), model.base_parameter_count() + 3);
+    assert!(
+        (e.value("Iam6").unwrap() - iam).abs() < 2e-3,
+        "{:?}",
+        e.value("Iam6")
+    );
+    assert!(
+        (e.value("fvm6").unwrap() - fvm).abs() < 2e-2,
+        "{:?}",
+        e.value("fvm6")
+    );
+    assert!(
+        (e.value("fsm6").unwrap() - fsm).abs() < 5e-2,
+        "{:?}",
+        e.value("fsm6")
+    );
+}
+
+#[test]
+fn bad_inputs_for_the_pipeline() {
+    let model = Synthetic::default();
+    let data = Dataset::new(
+        "five",
+        1e-3,
+        vec![vec![0.0; 100]; 5],
+        vec![vec![0.0; 100]; 5],
+    )
+    .unwrap();
+    assert!(matches!(
+        identify(&model, &data, &config("")),
+        Err(Error::JointCountMismatch {
+            expected: 6,
+            found: 5,
+            ..
+        })
+    ));
+    let short = Dataset::new(
+        "short",
+        1e-3,
+        vec![vec![0.0; 30]; 6],
+        vec![vec![0.0; 30]; 6],
+    )
+    .unwrap();
+    assert!(matches!(
+        identify(&model, &short, &config("")),
+        Err(Error::TooFewSamples { .. })
+    ));
+    let data = dataset(3000, 1000.0, 0.0);
+    let dup =
+        "[[extra_column]]\nname = \"Fv1\"\nterms = [{ row = 1, signal = \"qd\", joints = [1] }]\n";
+    assert!(matches!(
+        identify(&model, &data, &config(dup)),
+        Err(Error::InvalidConfig { .. })
+    ));
+    let dof = model.dof();
+    assert_eq!(dof, 6);
+}

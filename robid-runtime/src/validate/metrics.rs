@@ -1,0 +1,79 @@
+//! Torque-prediction metrics (DESIGN 6.5).
+
+use serde::{Deserialize, Serialize};
+
+/// How well predicted torques match measured ones.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Fit {
+    /// ||tau - tauhat|| / ||tau|| over all joints and samples.
+    pub relative_error: f64,
+    /// sqrt(mean (tau_j - tauhat_j)^2) per joint.
+    pub rms_per_joint: Vec<f64>,
+    /// Sum over joints of mean((tau_j - tauhat_j)^2) / mean(|tau_j|) (Madsen's NMSE,
+    /// normalised per joint by the mean torque magnitude rather than per sample, which
+    /// would divide by torques that cross zero).
+    pub nmse: f64,
+}
+
+/// Computes the metrics from per-joint measured and predicted torques (same lengths).
+/// Joints with no samples contribute nothing.
+pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
+    let (mut err2, mut norm2, mut nmse) = (0.0, 0.0, 0.0);
+    let mut rms = Vec::with_capacity(measured.len());
+    for (m, p) in measured.iter().zip(predicted) {
+        let n = m.len().min(p.len());
+        if n == 0 {
+            rms.push(0.0);
+            continue;
+        }
+        let e2: f64 = m.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum();
+        let mean_abs = m.iter().map(|a| a.abs()).sum::<f64>() / n as f64;
+        err2 += e2;
+        norm2 += m.iter().map(|a| a * a).sum::<f64>();
+        rms.push((e2 / n as f64).sqrt());
+        if mean_abs > 0.0 {
+            nmse += e2 / n as f64 / mean_abs;
+        }
+    }
+    let relative_error = if norm2 > 0.0 {
+        (err2 / norm2).sqrt()
+    } else {
+        f64::INFINITY
+    };
+    Fit {
+        relative_error,
+        rms_per_joint: rms,
+        nmse,
+    }
+}
+
+/// Relative improvement of a metric in percent: 100 (reference - new) / reference
+/// (positive when `new` is better, as in Madsen et al. 2020, Table 5).
+pub fn relative_improvement(reference: f64, new: f64) -> f64 {
+    100.0 * (reference - new) / reference
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn known_values() {
+        let m = vec![vec![1.0, -1.0, 2.0, -2.0], vec![0.5, 0.5]];
+        let p = vec![vec![1.0, -1.0, 2.0, -1.0], vec![0.5, 0.0]];
+        let f = fit(&m, &p);
+        // errors: joint 1 one error of 1, joint 2 one error of 0.5
+        assert!((f.relative_error - (1.25f64 / 10.5).sqrt()).abs() < 1e-12);
+        assert!((f.rms_per_joint[0] - 0.5).abs() < 1e-12);
+        assert!((f.rms_per_joint[1] - (0.125f64).sqrt()).abs() < 1e-12);
+        // nmse = (1/4)/1.5 + (0.25/2)/0.5
+        assert!((f.nmse - (0.25 / 1.5 + 0.125 / 0.5)).abs() < 1e-12);
+        assert_eq!(fit(&m, &m).relative_error, 0.0);
+    }
+
+    #[test]
+    fn improvement() {
+        assert!((relative_improvement(506.8, 94.5) - 81.35).abs() < 0.01);
+        assert!(relative_improvement(1.0, 2.0) < 0.0);
+    }
+}
