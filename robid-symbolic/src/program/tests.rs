@@ -71,3 +71,10 @@ fn print_ur5e_inverse_dynamics() {
     let p = super::RobotPrograms::derive(&robot).unwrap();
     eprintln!("{}", p.inverse_dynamics);
 }
+
+#[test]
+#[ignore]
+fn print_ur5e_emitted() {
+    let robot = Robot::from_toml(UR5E, "ur5e.toml").unwrap();
+    eprintln!("{}", crate::emit::emit_robot(&robot).unwrap());
+}

@@ -1,0 +1,182 @@
+//! One program as a generic straight-line function.
+
+use super::names::{ident, value_ident};
+use crate::program::{Instr, Program, Value};
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+/// The name of the input group holding geometric symbols; it is read from
+/// `self` instead of being an argument.
+pub(crate) const GEOMETRY: &str = "geometry";
+
+/// `pub fn name<T: Real>(&self, q: &[T; 6], ...) -> [T; N]` computing `program`
+/// (one output group), with `doc` as the first lines of its doc comment.
+pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream {
+    let name = ident(name);
+    let mut args = Vec::new();
+    let mut bindings = Vec::new();
+    let mut doc_lines: Vec<String> = doc.lines().map(|l| format!(" {l}")).collect();
+    doc_lines.push(String::new());
+    for (g, group) in program.inputs.iter().enumerate() {
+        let used = program.uses_input_group(g);
+        if group.name == GEOMETRY {
+            for (k, e) in group.elements.iter().enumerate() {
+                let reads = program.instrs.iter().any(|i| {
+                    i.operands()
+                        .into_iter()
+                        .any(|v| v == input_value(program, g, k))
+                });
+                if reads {
+                    let id = value_ident(e);
+                    bindings.push(quote! { let #id = T::from_f64(self.#id); });
+                }
+            }
+            continue;
+        }
+        let arg = ident(&group.name);
+        let len = Literal::usize_unsuffixed(group.len());
+        let arg_name = if used { quote!(#arg) } else { quote!(_) };
+        args.push(quote! { #arg_name: &[T; #len] });
+        doc_lines.push(format!(
+            " - `{}`: {}",
+            group.name,
+            describe(&group.elements)
+        ));
+        if used {
+            let names = (0..group.len()).map(|k| {
+                let v = input_value(program, g, k);
+                if reads_value(program, v) {
+                    let id = value_ident(&group.elements[k]);
+                    quote!(#id)
+                } else {
+                    quote!(_)
+                }
+            });
+            bindings.push(quote! { let [#(#names),*] = *#arg; });
+        }
+    }
+    let output = &program.outputs[0];
+    let out_len = Literal::usize_unsuffixed(output.values.len());
+    doc_lines.push(String::new());
+    doc_lines.push(format!(" Operations: {}.", program.operations()));
+    let constants = program.constants.iter().enumerate().filter_map(|(i, &c)| {
+        let used = program
+            .instrs
+            .iter()
+            .any(|ins| ins.operands().contains(&Value::Const(i as u32)));
+        used.then(|| {
+            let id = format_ident!("c{}", i);
+            let lit = Literal::f64_unsuffixed(c);
+            quote! { let #id = T::from_f64(#lit); }
+        })
+    });
+    let lets = program.instrs.iter().enumerate().map(|(i, instr)| {
+        let id = format_ident!("t{}", i);
+        let rhs = instr_tokens(program, instr);
+        quote! { let #id = #rhs; }
+    });
+    let results = output.values.iter().map(|&v| result_tokens(program, v));
+    quote! {
+        #(#[doc = #doc_lines])*
+        #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+        pub fn #name<T: ::robid_runtime::Real>(&self, #(#args),*) -> [T; #out_len] {
+            #(#bindings)*
+            #(#constants)*
+            #(#lets)*
+            [#(#results),*]
+        }
+    }
+}
+
+fn describe(elements: &[String]) -> String {
+    match elements {
+        [] => String::new(),
+        [one] => one.clone(),
+        [first, .., last] if elements.len() > 4 => format!("{first} .. {last}"),
+        _ => elements.join(", "),
+    }
+}
+
+fn input_value(program: &Program, group: usize, k: usize) -> Value {
+    let offset: usize = program.inputs[..group].iter().map(|g| g.len()).sum();
+    Value::Input((offset + k) as u32)
+}
+
+fn reads_value(program: &Program, v: Value) -> bool {
+    program.instrs.iter().any(|i| i.operands().contains(&v))
+        || program.outputs.iter().any(|o| o.values.contains(&v))
+}
+
+fn value_tokens(program: &Program, v: Value) -> TokenStream {
+    match v {
+        Value::Temp(t) => {
+            let id = format_ident!("t{}", t);
+            quote!(#id)
+        }
+        Value::Input(i) => {
+            let id = value_ident(program.input_name(i));
+            quote!(#id)
+        }
+        Value::Const(c) => {
+            let id = format_ident!("c{}", c);
+            quote!(#id)
+        }
+    }
+}
+
+/// An output element: constants are written out (`T::ZERO` for the many zeros).
+fn result_tokens(program: &Program, v: Value) -> TokenStream {
+    match v {
+        Value::Const(c) => match program.constants[c as usize] {
+            0.0 => quote!(T::ZERO),
+            1.0 => quote!(T::ONE),
+            x => {
+                let lit = Literal::f64_unsuffixed(x);
+                quote!(T::from_f64(#lit))
+            }
+        },
+        other => value_tokens(program, other),
+    }
+}
+
+fn instr_tokens(program: &Program, instr: &Instr) -> TokenStream {
+    let v = |x: Value| value_tokens(program, x);
+    match *instr {
+        Instr::Add(a, b) => {
+            let (a, b) = (v(a), v(b));
+            quote!(#a + #b)
+        }
+        Instr::Sub(a, b) => {
+            let (a, b) = (v(a), v(b));
+            quote!(#a - #b)
+        }
+        Instr::Mul(a, b) => {
+            let (a, b) = (v(a), v(b));
+            quote!(#a * #b)
+        }
+        Instr::Div(a, b) => {
+            let (a, b) = (v(a), v(b));
+            quote!(#a / #b)
+        }
+        Instr::Neg(a) => {
+            let a = v(a);
+            quote!(-#a)
+        }
+        Instr::Sin(a) => {
+            let a = v(a);
+            quote!(#a.sin())
+        }
+        Instr::Cos(a) => {
+            let a = v(a);
+            quote!(#a.cos())
+        }
+        Instr::Sign(a) => {
+            let a = v(a);
+            quote!(#a.sign())
+        }
+        Instr::Sqrt(a) => {
+            let a = v(a);
+            quote!(#a.sqrt())
+        }
+    }
+}

@@ -1,0 +1,50 @@
+//! Identifiers in emitted code.
+
+use proc_macro2::{Ident, Span};
+
+/// The type name of a robot: `ur5e` -> `Ur5e`, `puma560` -> `Puma560`, `my_arm` -> `MyArm`.
+pub fn type_name(robot_name: &str) -> String {
+    robot_name
+        .split('_')
+        .filter(|p| !p.is_empty())
+        .map(|p| {
+            let mut c = p.chars();
+            match c.next() {
+                Some(first) => first.to_ascii_uppercase().to_string() + c.as_str(),
+                None => String::new(),
+            }
+        })
+        .collect()
+}
+
+/// An identifier for a symbol name, prefixed with `s_` when it could clash
+/// with a temporary (`t3`), a constant (`c3`) or a keyword.
+pub(crate) fn value_ident(name: &str) -> Ident {
+    let numbered = |p: char| {
+        name.strip_prefix(p)
+            .is_some_and(|r| !r.is_empty() && r.chars().all(|c| c.is_ascii_digit()))
+    };
+    let clash = numbered('t') || numbered('c') || syn::parse_str::<Ident>(name).is_err();
+    if clash {
+        Ident::new(&format!("s_{name}"), Span::call_site())
+    } else {
+        Ident::new(name, Span::call_site())
+    }
+}
+
+/// A plain identifier.
+pub(crate) fn ident(name: &str) -> Ident {
+    Ident::new(name, Span::call_site())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn type_names() {
+        assert_eq!(super::type_name("ur5e"), "Ur5e");
+        assert_eq!(super::type_name("my_arm"), "MyArm");
+        assert_eq!(super::value_ident("t3").to_string(), "s_t3");
+        assert_eq!(super::value_ident("type").to_string(), "s_type");
+        assert_eq!(super::value_ident("L3").to_string(), "L3");
+    }
+}

@@ -1,0 +1,140 @@
+//! The type emitted for a robot: constants and one function per program.
+
+use super::function::function_tokens;
+use super::model::model_impl;
+use super::names::{ident, type_name, value_ident};
+use crate::program::RobotPrograms;
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+/// The type (named after the robot) with its constants, functions and `Model` impl.
+pub fn robot_tokens(p: &RobotPrograms) -> TokenStream {
+    let robot = &p.robot;
+    let ty = ident(&type_name(&robot.name));
+    let n = robot.dof();
+    let dof = Literal::usize_unsuffixed(n);
+    let ns = Literal::usize_unsuffixed(p.standard.len());
+    let nb = Literal::usize_unsuffixed(p.base.len());
+    let name = &robot.name;
+    let standard = &p.standard;
+    let base_names = p.base.iter().map(|b| &b.name);
+    let base_expressions = p.base.iter().map(|b| &b.expression);
+    let type_doc = format!(
+        " Dynamic model of `{name}`: {n} joints, {} DH, {} standard and {} base parameters.",
+        robot.convention.as_str(),
+        p.standard.len(),
+        p.base.len()
+    );
+    let (fields, derive) = if p.geometry.is_empty() {
+        (
+            quote!(;),
+            quote!(#[derive(Clone, Copy, Debug, Default, PartialEq)]),
+        )
+    } else {
+        let f = p.geometry.iter().map(|(s, v)| {
+            let id = value_ident(s);
+            let doc = match v {
+                Some(x) => format!(" Geometric symbol `{s}` (description value: {x})."),
+                None => format!(" Geometric symbol `{s}`."),
+            };
+            quote! { #[doc = #doc] pub #id: f64, }
+        });
+        (
+            quote!({ #(#f)* }),
+            quote!(#[derive(Clone, Copy, Debug, PartialEq)]),
+        )
+    };
+    let default_impl = default_impl(p, &ty);
+    let jd = |what: &str| format!("{what}\n\n`q`, `qd`, `qdd` have one entry per joint.");
+    let f = [
+        function_tokens(
+            "standard_regressor",
+            &jd(&format!(
+                "Standard regressor Y(q, qd, qdd), `{n} x {}` row-major: tau = Y * standard.",
+                p.standard.len()
+            )),
+            &p.standard_regressor,
+        ),
+        function_tokens(
+            "base_regressor",
+            &jd(&format!(
+                "Base regressor Y_b(q, qd, qdd), `{n} x {}` row-major: tau = Y_b * base.",
+                p.base.len()
+            )),
+            &p.base_regressor,
+        ),
+        function_tokens(
+            "inverse_dynamics",
+            &jd(
+                "Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.",
+            ),
+            &p.inverse_dynamics,
+        ),
+        function_tokens(
+            "mass_matrix",
+            &format!(
+                "Joint-space inertia matrix M(q), `{n} x {n}` row-major, rotor inertias included."
+            ),
+            &p.mass_matrix,
+        ),
+        function_tokens("gravity", "Gravity torques g(q).", &p.gravity),
+        function_tokens(
+            "coriolis",
+            "Coriolis and centripetal torques c(q, qd) (no gravity, no friction).",
+            &p.coriolis,
+        ),
+        function_tokens(
+            "base_parameters",
+            "Base parameters from standard parameters (base = K * standard).",
+            &p.base_from_standard,
+        ),
+    ];
+    let model = model_impl(&ty);
+    quote! {
+        #[doc = #type_doc]
+        #derive
+        pub struct #ty #fields
+
+        #default_impl
+
+        impl #ty {
+            /// Name of the robot, as in its description.
+            pub const NAME: &'static str = #name;
+            /// Number of joints.
+            pub const DOF: usize = #dof;
+            /// Number of standard parameters.
+            pub const STANDARD_PARAMETERS: usize = #ns;
+            /// Number of base parameters.
+            pub const BASE_PARAMETERS: usize = #nb;
+            /// Names of the standard parameters, in order.
+            pub const STANDARD_PARAMETER_NAMES: [&'static str; #ns] = [#(#standard),*];
+            /// Names of the base parameters, in order.
+            pub const BASE_PARAMETER_NAMES: [&'static str; #nb] = [#(#base_names),*];
+            /// Each base parameter as an expression in the standard parameters.
+            pub const BASE_PARAMETER_EXPRESSIONS: [&'static str; #nb] = [#(#base_expressions),*];
+
+            #(#f)*
+        }
+
+        #model
+    }
+}
+
+/// `Default` with the description's values of the geometric symbols, when it gives them all.
+fn default_impl(p: &RobotPrograms, ty: &proc_macro2::Ident) -> TokenStream {
+    if p.geometry.is_empty() || p.geometry.iter().any(|(_, v)| v.is_none()) {
+        return quote!();
+    }
+    let f = p.geometry.iter().map(|(s, v)| {
+        let id = value_ident(s);
+        let lit = Literal::f64_unsuffixed(v.expect("checked"));
+        quote!(#id: #lit)
+    });
+    quote! {
+        impl ::core::default::Default for #ty {
+            fn default() -> Self {
+                Self { #(#f),* }
+            }
+        }
+    }
+}
