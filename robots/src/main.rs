@@ -1,1 +1,7 @@
-fn main() {}
+//! `robid`: robot dynamic model identification from the command line.
+
+mod cli;
+
+fn main() -> std::process::ExitCode {
+    cli::run()
+}

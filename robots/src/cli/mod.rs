@@ -1,0 +1,43 @@
+//! The subcommands of `robid` (DESIGN.md 10). Each file holds one subcommand;
+//! they read descriptions and data, call the library crates and print.
+
+mod demo;
+mod model;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// robid: closed-form robot dynamics, base parameters and identification.
+#[derive(Debug, Parser)]
+#[command(name = "robid", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Standard and base parameters of a robot, their expressions and operation counts.
+    Model(model::Args),
+    /// The main job on a built-in default robot (no arguments needed).
+    Demo,
+}
+
+/// Parses the command line, runs the subcommand and reports errors on stderr.
+pub(crate) fn run() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Model(args) => model::run(&args),
+        Command::Demo => demo::run(),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Any error a subcommand reports: a message that says what and how to fix it.
+pub(crate) type Error = Box<dyn std::error::Error>;

@@ -1,0 +1,204 @@
+//! `robid model ROBOT.toml [--json]`: the robot, its standard and base
+//! parameters with expressions, the unidentifiable parameters and the
+//! operation counts of the derived programs.
+
+use super::Error;
+use robid_symbolic::program::Operations;
+use robid_symbolic::program::RobotPrograms;
+use robid_symbolic::{Derivation, Robot};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// Arguments of `robid model`.
+#[derive(Debug, clap::Args)]
+pub(crate) struct Args {
+    /// Robot description file (TOML).
+    robot: PathBuf,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct Term {
+    parameter: String,
+    coefficient: serde_json::Value,
+}
+
+#[derive(Serialize)]
+struct Base {
+    name: String,
+    expression: String,
+    terms: Vec<Term>,
+}
+
+#[derive(Serialize)]
+struct Counts {
+    mul: usize,
+    add: usize,
+    neg: usize,
+    sin: usize,
+    cos: usize,
+    sign: usize,
+}
+
+impl From<Operations> for Counts {
+    fn from(o: Operations) -> Counts {
+        Counts {
+            mul: o.mul,
+            add: o.add,
+            neg: o.neg,
+            sin: o.sin,
+            cos: o.cos,
+            sign: o.sign,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct Report {
+    name: String,
+    dof: usize,
+    convention: &'static str,
+    standard_parameters: Vec<String>,
+    base_parameters: Vec<Base>,
+    unidentifiable: Vec<String>,
+    operations: serde_json::Map<String, serde_json::Value>,
+}
+
+/// Derives the model and prints it.
+pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    let robot = Robot::from_file(&args.robot)?;
+    print!("{}", render(&robot, args.json)?);
+    Ok(())
+}
+
+/// The model of `robot` as text or JSON.
+pub(crate) fn render(robot: &Robot, json: bool) -> Result<String, Error> {
+    let report = derive(robot)?;
+    Ok(if json {
+        serde_json::to_string_pretty(&report)? + "\n"
+    } else {
+        text(robot, &report)
+    })
+}
+
+fn derive(robot: &Robot) -> Result<Report, Error> {
+    let mut d = Derivation::new(robot);
+    let b = d.base_parameters()?;
+    let base_parameters = b
+        .base
+        .iter()
+        .map(|p| Base {
+            name: p.name.clone(),
+            expression: d.arena.display(p.expression),
+            terms: p
+                .terms
+                .iter()
+                .map(|&(s, c)| Term {
+                    parameter: b.standard[s].name.clone(),
+                    coefficient: match d.arena.as_num(c) {
+                        Some(n) => serde_json::json!(n.to_f64()),
+                        None => serde_json::json!(d.arena.display(c)),
+                    },
+                })
+                .collect(),
+        })
+        .collect();
+    let programs = RobotPrograms::derive(robot)?;
+    let mut operations = serde_json::Map::new();
+    for (name, program) in [
+        ("inverse_dynamics", &programs.inverse_dynamics),
+        ("base_regressor", &programs.base_regressor),
+        ("standard_regressor", &programs.standard_regressor),
+        ("mass_matrix", &programs.mass_matrix),
+        ("gravity", &programs.gravity),
+        ("coriolis", &programs.coriolis),
+    ] {
+        operations.insert(
+            name.to_owned(),
+            serde_json::to_value(Counts::from(program.operations()))?,
+        );
+    }
+    Ok(Report {
+        name: robot.name.clone(),
+        dof: robot.dof(),
+        convention: robot.convention.as_str(),
+        standard_parameters: b.standard.iter().map(|p| p.name.clone()).collect(),
+        base_parameters,
+        unidentifiable: b
+            .unidentifiable
+            .iter()
+            .map(|&s| b.standard[s].name.clone())
+            .collect(),
+        operations,
+    })
+}
+
+fn text(robot: &Robot, r: &Report) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let _ = writeln!(out, "robot {} ({} DOF, {} DH)", r.name, r.dof, r.convention);
+    let _ = writeln!(
+        out,
+        "\n  j  type       alpha        a            d            theta"
+    );
+    for (j, joint) in robot.joints.iter().enumerate() {
+        let kind = match joint.kind {
+            robid_symbolic::JointKind::Revolute => "revolute",
+            robid_symbolic::JointKind::Prismatic => "prismatic",
+        };
+        let _ = writeln!(
+            out,
+            "  {:<2} {:<10} {:<12} {:<12} {:<12} {}",
+            j + 1,
+            kind,
+            joint.alpha.as_str(),
+            joint.a.as_str(),
+            joint.d.as_str(),
+            joint.theta.as_str()
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\nstandard parameters ({}):",
+        r.standard_parameters.len()
+    );
+    for chunk in r.standard_parameters.chunks(14) {
+        let _ = writeln!(out, "  {}", chunk.join(" "));
+    }
+    let _ = writeln!(out, "\nbase parameters ({}):", r.base_parameters.len());
+    let width = r
+        .base_parameters
+        .iter()
+        .map(|b| b.name.len())
+        .max()
+        .unwrap_or(0);
+    for b in &r.base_parameters {
+        let _ = writeln!(out, "  {:<width$} = {}", b.name, b.expression);
+    }
+    let _ = writeln!(
+        out,
+        "\nunidentifiable (no effect on any torque, {}):",
+        r.unidentifiable.len()
+    );
+    for chunk in r.unidentifiable.chunks(14) {
+        let _ = writeln!(out, "  {}", chunk.join(" "));
+    }
+    let _ = writeln!(out, "\noperation counts:");
+    for (name, counts) in &r.operations {
+        let c = |k: &str| counts.get(k).and_then(|v| v.as_u64()).unwrap_or(0);
+        let _ = writeln!(
+            out,
+            "  {:<20} {:>5} mul {:>5} add {:>4} neg {:>3} sin {:>3} cos {:>3} sign",
+            name,
+            c("mul"),
+            c("add"),
+            c("neg"),
+            c("sin"),
+            c("cos"),
+            c("sign")
+        );
+    }
+    out
+}
