@@ -1,0 +1,417 @@
+//! Turns the parsed input into a validated `Robot`, collecting every problem
+//! with the span of the item it is about (serde_derive's `Ctxt` pattern: one
+//! function per rule, all errors reported together).
+
+use crate::input::{Input, Item};
+use proc_macro2::Span;
+use robid_symbolic::robot::Geometry;
+use robid_symbolic::{Convention, Drive, Joint, JointKind, Robot};
+use std::path::PathBuf;
+use syn::spanned::Spanned;
+use syn::{Expr, ExprLit, Lit, LitStr, UnOp};
+
+const KEYS: [&str; 7] = [
+    "file",
+    "name",
+    "convention",
+    "gravity",
+    "drive",
+    "symbols",
+    "joints",
+];
+
+/// A checked input: the robot and the file to track, if it came from one.
+pub(crate) struct Checked {
+    pub(crate) robot: Robot,
+    pub(crate) tracked: Option<PathBuf>,
+}
+
+/// The problems found, and the robot name for the placeholder type if known.
+pub(crate) struct Failed {
+    pub(crate) errors: Vec<syn::Error>,
+    pub(crate) name: Option<String>,
+}
+
+#[derive(Default)]
+struct Ctxt {
+    errors: Vec<syn::Error>,
+}
+
+impl Ctxt {
+    fn error(&mut self, span: Span, message: impl std::fmt::Display) {
+        self.errors.push(syn::Error::new(span, message));
+    }
+}
+
+/// Checks the input and builds the robot.
+pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
+    let mut cx = Ctxt::default();
+    let mut found: Vec<&Item> = Vec::new();
+    for item in &input.items {
+        let key = item.key.to_string();
+        if !KEYS.contains(&key.as_str()) {
+            cx.error(
+                item.key.span(),
+                format!(
+                    "unknown key `{key}`; expected one of {}",
+                    KEYS.map(|k| format!("`{k}`")).join(", ")
+                ),
+            );
+        } else if found.iter().any(|f| f.key == item.key) {
+            cx.error(item.key.span(), format!("`{key}` is given twice"));
+        } else {
+            found.push(item);
+        }
+    }
+    let get = |k: &str| lookup(&found, k);
+    let name = get("name").and_then(|i| string(&mut cx, &i.value, "the robot name"));
+    let drive = get("drive").map(|i| drive(&mut cx, &i.value));
+    let result = match get("file") {
+        Some(file) => {
+            for k in ["convention", "gravity", "symbols", "joints"] {
+                if let Some(i) = get(k) {
+                    cx.error(
+                        i.key.span(),
+                        format!("`{k}` cannot be combined with `file`; write it in the file"),
+                    );
+                }
+            }
+            from_file(&mut cx, &file.value)
+        }
+        None => inline(&mut cx, &found, name.as_ref()),
+    };
+    let stub_name = name
+        .as_ref()
+        .map(|n| n.value())
+        .or_else(|| result.as_ref().map(|(r, _)| r.name.clone()))
+        .or_else(|| {
+            let file = get("file").and_then(|i| literal(&i.value))?;
+            let path = PathBuf::from(file.value());
+            Some(path.file_stem()?.to_string_lossy().into_owned())
+        });
+    match result {
+        Some((mut robot, tracked)) if cx.errors.is_empty() => {
+            if let Some(n) = name {
+                robot.name = n.value();
+            }
+            if let Some(Some(d)) = drive {
+                robot = robot.with_drive(d);
+            }
+            Ok(Checked { robot, tracked })
+        }
+        _ => Err(Failed {
+            errors: cx.errors,
+            name: stub_name,
+        }),
+    }
+}
+
+fn literal(e: &Expr) -> Option<&LitStr> {
+    match e {
+        Expr::Lit(ExprLit {
+            lit: Lit::Str(s), ..
+        }) => Some(s),
+        _ => None,
+    }
+}
+
+fn string(cx: &mut Ctxt, e: &Expr, what: &str) -> Option<LitStr> {
+    let s = literal(e).cloned();
+    if s.is_none() {
+        cx.error(e.span(), format!("expected a string for {what}"));
+    }
+    s
+}
+
+fn from_file(cx: &mut Ctxt, e: &Expr) -> Option<(Robot, Option<PathBuf>)> {
+    let lit = string(cx, e, "the description file")?;
+    let relative = lit.value();
+    let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
+    let path = PathBuf::from(dir).join(&relative);
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(err) => {
+            cx.error(
+                lit.span(),
+                format!(
+                    "cannot read `{relative}`: {err}; the path is relative to the directory of the crate's Cargo.toml"
+                ),
+            );
+            return None;
+        }
+    };
+    match Robot::from_toml(&text, &relative) {
+        Ok(robot) => Some((robot, Some(path))),
+        Err(err) => {
+            cx.error(lit.span(), err);
+            None
+        }
+    }
+}
+
+fn lookup<'a>(found: &[&'a Item], key: &str) -> Option<&'a Item> {
+    found.iter().find(|i| i.key == key).copied()
+}
+
+fn inline(
+    cx: &mut Ctxt,
+    found: &[&Item],
+    name: Option<&LitStr>,
+) -> Option<(Robot, Option<PathBuf>)> {
+    let get = |k: &str| lookup(found, k);
+    let span = Span::call_site();
+    if name.is_none() && get("name").is_none() {
+        cx.error(span, "missing `name = \"...\"` (or `file = \"...\"`)");
+    }
+    let convention = match get("convention") {
+        None => {
+            cx.error(
+                span,
+                "missing `convention = \"modified\"` or `convention = \"standard\"`",
+            );
+            None
+        }
+        Some(i) => convention(cx, &i.value),
+    };
+    let gravity = get("gravity").map(|i| gravity(cx, &i.value));
+    let joints = match get("joints") {
+        None => {
+            cx.error(
+                span,
+                "missing `joints = [revolute(alpha, a, d, theta), ...]`",
+            );
+            None
+        }
+        Some(i) => joints(cx, &i.value),
+    };
+    let symbols = get("symbols").map(|i| symbols(cx, &i.value));
+    let (name, convention, joints) = (name?, convention?, joints?);
+    let gravity = match gravity {
+        Some(g) => Some(g?),
+        None => None,
+    };
+    let mut robot = match Robot::new(&name.value(), convention, gravity, joints) {
+        Ok(r) => r,
+        Err(err) => {
+            cx.error(span, err);
+            return None;
+        }
+    };
+    for (symbol, value, span) in symbols.into_iter().flatten() {
+        match robot.symbols.iter_mut().find(|(s, _)| *s == symbol) {
+            Some(slot) => slot.1 = Some(value),
+            None => cx.error(
+                span,
+                format!("symbol `{symbol}` is not used by any DH value or gravity"),
+            ),
+        }
+    }
+    Some((robot, None))
+}
+
+fn convention(cx: &mut Ctxt, e: &Expr) -> Option<Convention> {
+    let s = string(cx, e, "the convention")?;
+    match s.value().as_str() {
+        "modified" => Some(Convention::Modified),
+        "standard" => Some(Convention::Standard),
+        other => {
+            cx.error(
+                s.span(),
+                format!(
+                    "unknown DH convention `{other}`; write \"modified\" (Craig/Khalil) or \"standard\" (classic)"
+                ),
+            );
+            None
+        }
+    }
+}
+
+fn array<'a>(cx: &mut Ctxt, e: &'a Expr, what: &str) -> Option<Vec<&'a Expr>> {
+    match e {
+        Expr::Array(a) => Some(a.elems.iter().collect()),
+        _ => {
+            cx.error(e.span(), format!("expected a list `[...]` of {what}"));
+            None
+        }
+    }
+}
+
+fn gravity(cx: &mut Ctxt, e: &Expr) -> Option<[Geometry; 3]> {
+    let values = array(cx, e, "three values")?;
+    if values.len() != 3 {
+        cx.error(
+            e.span(),
+            format!(
+                "gravity has {} values; give three in the base frame, e.g. `[0, 0, -9.81]`",
+                values.len()
+            ),
+        );
+        return None;
+    }
+    let g: Vec<Option<Geometry>> = values.iter().map(|v| value(cx, v)).collect();
+    Some([g[0].clone()?, g[1].clone()?, g[2].clone()?])
+}
+
+fn drive(cx: &mut Ctxt, e: &Expr) -> Option<Drive> {
+    let mut d = Drive::NONE;
+    for term in array(cx, e, "drive terms `Ia`, `Fv`, `Fc`, `Fo`")? {
+        let name = match term {
+            Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+            _ => None,
+        };
+        match name.as_deref() {
+            Some("Ia") => d.ia = true,
+            Some("Fv") => d.fv = true,
+            Some("Fc") => d.fc = true,
+            Some("Fo") => d.fo = true,
+            _ => cx.error(
+                term.span(),
+                "unknown drive term; write `Ia` (rotor inertia), `Fv` (viscous), `Fc` (Coulomb) or `Fo` (offset)",
+            ),
+        }
+    }
+    Some(d)
+}
+
+fn symbols(cx: &mut Ctxt, e: &Expr) -> Vec<(String, f64, Span)> {
+    let mut out = Vec::new();
+    for s in array(cx, e, "`NAME = value` pairs").unwrap_or_default() {
+        let pair = match s {
+            Expr::Assign(a) => match (&*a.left, number(&a.right)) {
+                (Expr::Path(p), Some(Ok(x))) if p.path.get_ident().is_some() => {
+                    Some((p.path.get_ident().map(|i| i.to_string()), x))
+                }
+                _ => None,
+            },
+            _ => None,
+        };
+        match pair {
+            Some((Some(name), x)) if x.is_finite() => out.push((name, x, s.span())),
+            _ => cx.error(
+                s.span(),
+                "expected `NAME = number` with a finite number, e.g. `L3 = 0.425`",
+            ),
+        }
+    }
+    out
+}
+
+fn joints(cx: &mut Ctxt, e: &Expr) -> Option<Vec<Joint>> {
+    let rows = array(cx, e, "joints `revolute(alpha, a, d, theta)`")?;
+    if rows.is_empty() {
+        cx.error(
+            e.span(),
+            "the robot has no joints; add one entry per DH row",
+        );
+        return None;
+    }
+    let joints: Vec<Option<Joint>> = rows.into_iter().map(|r| joint(cx, r)).collect();
+    joints.into_iter().collect()
+}
+
+fn joint(cx: &mut Ctxt, e: &Expr) -> Option<Joint> {
+    let Expr::Call(call) = e else {
+        cx.error(
+            e.span(),
+            "expected a joint `revolute(alpha, a, d, theta)` or `prismatic(alpha, a, d, theta)`",
+        );
+        return None;
+    };
+    let kind = match &*call.func {
+        Expr::Path(p) if p.path.is_ident("revolute") => Some(JointKind::Revolute),
+        Expr::Path(p) if p.path.is_ident("prismatic") => Some(JointKind::Prismatic),
+        other => {
+            cx.error(
+                other.span(),
+                "unknown joint type; write `revolute(...)` or `prismatic(...)`",
+            );
+            None
+        }
+    };
+    if call.args.len() != 4 {
+        cx.error(
+            e.span(),
+            format!(
+                "a joint has 4 DH values (alpha, a, d, theta), found {}",
+                call.args.len()
+            ),
+        );
+        return None;
+    }
+    let v: Vec<Option<Geometry>> = call.args.iter().map(|a| value(cx, a)).collect();
+    let [alpha, a, d, theta] = [v[0].clone()?, v[1].clone()?, v[2].clone()?, v[3].clone()?];
+    Some(Joint {
+        kind: kind?,
+        alpha,
+        a,
+        d,
+        theta,
+        ..Joint::revolute("0", 0.0, 0.0, "0")
+    })
+}
+
+/// A number literal (possibly negated); `None` when `e` is not one.
+fn number(e: &Expr) -> Option<syn::Result<f64>> {
+    match e {
+        Expr::Lit(ExprLit {
+            lit: Lit::Float(f), ..
+        }) => Some(f.base10_parse::<f64>()),
+        Expr::Lit(ExprLit {
+            lit: Lit::Int(i), ..
+        }) => Some(i.base10_parse::<f64>()),
+        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => number(&u.expr).map(|r| r.map(|x| -x)),
+        _ => None,
+    }
+}
+
+/// A DH or gravity value: a finite number or a string expression.
+fn value(cx: &mut Ctxt, e: &Expr) -> Option<Geometry> {
+    if let Some(x) = number(e) {
+        return match x {
+            Ok(x) if x.is_finite() => Some(Geometry::number(x)),
+            Ok(x) => {
+                cx.error(e.span(), format!("`{x}` is not a finite number"));
+                None
+            }
+            Err(err) => {
+                cx.errors.push(err);
+                None
+            }
+        };
+    }
+    if let Some(s) = literal(e) {
+        let g = Geometry::text(&s.value());
+        // Validate on its own, so the error points at this value.
+        let probe = Joint {
+            alpha: g.clone(),
+            ..Joint::revolute("0", 0.0, 0.0, "0")
+        };
+        return match Robot::new("probe", Convention::Modified, None, vec![probe]) {
+            Ok(_) => Some(g),
+            Err(robid_symbolic::DescriptionError::Invalid { message, help, .. }) => {
+                let message = message.trim_start_matches("joint 1 `alpha` ");
+                cx.error(s.span(), format!("{message}; {help}"));
+                None
+            }
+            Err(other) => {
+                cx.error(s.span(), other);
+                None
+            }
+        };
+    }
+    let path = match e {
+        Expr::Path(p) => p.path.segments.last().map(|s| s.ident.to_string()),
+        _ => None,
+    };
+    match path.as_deref() {
+        Some("NAN" | "INFINITY" | "NEG_INFINITY") => cx.error(
+            e.span(),
+            "not a finite number; DH values and gravity must be finite numbers, exact angles such as \"pi/2\" or symbols such as \"L3\"",
+        ),
+        _ => cx.error(
+            e.span(),
+            "expected a number or a string such as \"pi/2\" or \"-L3\"",
+        ),
+    }
+    None
+}

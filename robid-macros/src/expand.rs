@@ -1,0 +1,55 @@
+//! From the checked input to tokens: the emitted model (robid-symbolic does
+//! the work), the `include_str!` that makes Cargo track a description file,
+//! or the errors plus a placeholder type.
+
+use crate::check::{Failed, check};
+use crate::input::Input;
+use proc_macro2::{Span, TokenStream};
+use quote::quote;
+use robid_symbolic::emit::{robot_tokens, stub_tokens};
+use robid_symbolic::program::RobotPrograms;
+
+/// Expands the macro; never panics.
+pub(crate) fn expand(input: Input) -> TokenStream {
+    let checked = match check(&input) {
+        Ok(c) => c,
+        Err(failed) => return failure(failed),
+    };
+    let programs = match RobotPrograms::derive(&checked.robot) {
+        Ok(p) => p,
+        Err(err) => {
+            return failure(Failed {
+                errors: vec![syn::Error::new(Span::call_site(), err)],
+                name: Some(checked.robot.name.clone()),
+            });
+        }
+    };
+    let model = robot_tokens(&programs);
+    let track = checked.tracked.map(|path| {
+        let path = path.to_string_lossy().into_owned();
+        quote! { const _: &str = ::core::include_str!(#path); }
+    });
+    quote! {
+        #track
+        #model
+    }
+}
+
+fn failure(failed: Failed) -> TokenStream {
+    let errors = failed.errors.into_iter().reduce(|mut a, b| {
+        a.combine(b);
+        a
+    });
+    let errors = errors.map(syn::Error::into_compile_error);
+    let stub = failed
+        .name
+        .filter(|n| {
+            n.starts_with(|c: char| c.is_ascii_alphabetic())
+                && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        })
+        .map(|n| stub_tokens(&n));
+    quote! {
+        #errors
+        #stub
+    }
+}
