@@ -89,7 +89,12 @@ impl Chain {
         let pairs: Vec<(&str, f64)> = robot
             .symbols
             .iter()
-            .map(|(n, v)| (n.as_str(), v.unwrap_or_else(|| panic!("symbol {n} has no value"))))
+            .map(|(n, v)| {
+                (
+                    n.as_str(),
+                    v.unwrap_or_else(|| panic!("symbol {n} has no value")),
+                )
+            })
             .collect();
         let values = arena.values(&pairs);
         let mut number = |g: &robid_symbolic::robot::Geometry| {

@@ -1,0 +1,90 @@
+//! The Newton-Euler regressor times random parameters equals the closed-form Lagrange-Euler
+//! model M(q) qdd + c(q, qd) + g(q) + friction, with all drive terms, for every reference robot.
+
+use robid_symbolic::sample::Rng;
+use robid_symbolic::{Derivation, Drive};
+use tests::reference::by_name;
+use tests::state::{bind, close, random_parameters, random_state, regressor_times};
+
+/// Torques are O(1..100) N m for parameters in [-1, 1]; see ne_equals_le.rs for the floor.
+const RELATIVE: f64 = 1e-9;
+
+fn check(name: &str) {
+    let robot = by_name(name).robot(Drive::ALL);
+    let n = robot.dof();
+    let mut d = Derivation::new(&robot);
+    let ne = d.regressor();
+    let symbols = d.parameter_symbols();
+    let model = d.lagrange(&symbols);
+    let mut roots = ne.entries();
+    let count = roots.len();
+    roots.extend(model.mass_matrix.iter().flatten());
+    roots.extend(&model.coriolis);
+    roots.extend(&model.gravity);
+    roots.extend(&model.friction);
+    roots.extend(&model.torques);
+    let mut rng = Rng::new(0x5eed_0003);
+    for s in 0..50 {
+        let parameters = random_parameters(ne.parameters.len(), &mut rng);
+        let state = random_state(&robot, &mut rng);
+        let values = bind(&mut d.arena, &robot, &state, Some(&parameters));
+        let v = d.arena.eval(&roots, &values).unwrap();
+        let tau = regressor_times(&v[..count], n, &parameters);
+        let rest = &v[count..];
+        let (m, rest) = rest.split_at(n * n);
+        let (c, rest) = rest.split_at(n);
+        let (g, rest) = rest.split_at(n);
+        let (f, torques) = rest.split_at(n);
+        for i in 0..n {
+            let m_qdd: f64 = (0..n).map(|k| m[i * n + k] * state.qdd[k]).sum();
+            let model_tau = m_qdd + c[i] + g[i] + f[i];
+            assert!(
+                close(tau[i], model_tau, RELATIVE, 1.0),
+                "{name} sample {s}: joint {}: Y p = {} but M qdd + c + g + f = {model_tau}",
+                i + 1,
+                tau[i]
+            );
+            assert!(
+                close(torques[i], model_tau, RELATIVE, 1.0),
+                "{name} sample {s}: joint {}: LE torques {} vs their parts {model_tau}",
+                i + 1,
+                torques[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn ur5e() {
+    check("ur5e");
+}
+
+#[test]
+fn puma560() {
+    check("puma560");
+}
+
+#[test]
+fn rx90() {
+    check("rx90");
+}
+
+#[test]
+fn tx40() {
+    check("tx40");
+}
+
+#[test]
+fn lwr4() {
+    check("lwr4");
+}
+
+#[test]
+fn panda() {
+    check("panda");
+}
+
+#[test]
+fn stanford() {
+    check("stanford");
+}
