@@ -170,6 +170,12 @@ pub enum Error {
         /// What to change.
         hint: &'static str,
     },
+    /// No physically consistent parameter set satisfies the bounds (or the solver failed).
+    #[error("no feasible link parameters: {reason}")]
+    NoFeasibleParameters {
+        /// What excluded every solution and what to change.
+        reason: String,
+    },
 }
 
 /// The crate's result type.

@@ -16,6 +16,8 @@ mod error;
 #[cfg(feature = "std")]
 pub mod estimate;
 #[cfg(feature = "std")]
+pub mod feasible;
+#[cfg(feature = "std")]
 pub mod pipeline;
 #[cfg(feature = "std")]
 pub mod signal;

@@ -1,0 +1,219 @@
+//! User bounds on each link's mass, centre of mass and inertia, and on the total
+//! mass (Gaz et al. 2016, Tables I and III), read from TOML:
+//!
+//! ```toml
+//! total_mass = [15.0, 17.0]           # optional
+//! margin = 1e-6                       # optional: pseudo-inertia >= margin * I
+//!
+//! [default]                           # every link without its own table
+//! mass = [0.0, 10.0]                  # kg
+//! com = [[-0.5, 0.5], [-0.5, 0.5], [-0.5, 0.5]]   # box in the link frame, m
+//! inertia = [0.0, 1.0]                # principal moments about the centre of mass, kg m^2
+//!
+//! [links.3]                           # link 3 (1-based); missing keys come from [default]
+//! mass = [2.0, 4.0]
+//! ```
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+
+use crate::{Error, Result};
+
+/// Bounds of one link.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkBounds {
+    /// Mass range, kg.
+    pub mass: [f64; 2],
+    /// Centre-of-mass box in the link frame, per axis, m.
+    pub com: [[f64; 2]; 3],
+    /// Range of the principal moments of inertia about the centre of mass, kg m^2.
+    pub inertia: [f64; 2],
+}
+
+impl Default for LinkBounds {
+    /// Wide bounds for an arm of ordinary size: 0..50 kg, a 2 m box, moments up to 5 kg m^2.
+    fn default() -> LinkBounds {
+        LinkBounds {
+            mass: [0.0, 50.0],
+            com: [[-1.0, 1.0]; 3],
+            inertia: [0.0, 5.0],
+        }
+    }
+}
+
+impl LinkBounds {
+    /// The centre of the bounds: mid mass, mid box, and an isotropic inertia at mid range.
+    /// This is the stated value of everything the base parameters do not determine.
+    pub fn centre(&self) -> ([f64; 3], f64, f64) {
+        let mid = |r: [f64; 2]| 0.5 * (r[0] + r[1]);
+        (self.com.map(mid), mid(self.mass), mid(self.inertia))
+    }
+}
+
+/// Bounds of every link plus the total mass and the consistency margin.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bounds {
+    /// Per link (0-based).
+    pub links: Vec<LinkBounds>,
+    /// Total mass range, kg.
+    pub total_mass: Option<[f64; 2]>,
+    /// Every pseudo-inertia must be at least `margin` times the identity.
+    pub margin: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLink {
+    mass: Option<[f64; 2]>,
+    com: Option<[[f64; 2]; 3]>,
+    inertia: Option<[f64; 2]>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Raw {
+    total_mass: Option<[f64; 2]>,
+    margin: Option<f64>,
+    default: Option<RawLink>,
+    #[serde(default)]
+    links: BTreeMap<String, RawLink>,
+}
+
+/// Default pseudo-inertia margin.
+pub const DEFAULT_MARGIN: f64 = 1e-6;
+
+impl Bounds {
+    /// The default bounds ([`LinkBounds::default`]) for `links` links, no total-mass range.
+    pub fn wide(links: usize) -> Bounds {
+        Bounds {
+            links: vec![LinkBounds::default(); links],
+            total_mass: None,
+            margin: DEFAULT_MARGIN,
+        }
+    }
+
+    /// Reads bounds for a robot with `links` links; `path` names the file in errors.
+    pub fn from_toml(text: &str, path: &str, links: usize) -> Result<Bounds> {
+        let raw: Raw = toml::from_str(text).map_err(|e| Error::ConfigSyntax {
+            path: path.into(),
+            reason: e.to_string(),
+        })?;
+        let base = merge(LinkBounds::default(), raw.default.as_ref());
+        let mut out = vec![base; links];
+        for (key, link) in &raw.links {
+            let j: usize = key
+                .parse()
+                .ok()
+                .filter(|j| (1..=links).contains(j))
+                .ok_or_else(|| Error::InvalidConfig {
+                    key: format!("links.{key}"),
+                    problem: format!("not a link number; write 1 to {links}"),
+                })?;
+            out[j - 1] = merge(base, Some(link));
+        }
+        let bounds = Bounds {
+            links: out,
+            total_mass: raw.total_mass,
+            margin: raw.margin.unwrap_or(DEFAULT_MARGIN),
+        };
+        bounds.validate()?;
+        Ok(bounds)
+    }
+
+    /// Checks every range (finite, ordered, masses and moments non-negative) and that the
+    /// total-mass range meets the sum of the link mass ranges.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |key: String, problem: &str| Error::InvalidConfig {
+            key,
+            problem: problem.to_owned(),
+        };
+        if !(self.margin.is_finite() && self.margin >= 0.0) {
+            return Err(bad(
+                "margin".into(),
+                "must be a finite number >= 0, e.g. 1e-6",
+            ));
+        }
+        let check = |key: String, r: [f64; 2], non_negative: bool| -> Result<()> {
+            if !(r[0].is_finite() && r[1].is_finite()) {
+                return Err(bad(
+                    key,
+                    "holds NaN or an infinite value; write finite numbers",
+                ));
+            }
+            if r[0] > r[1] {
+                return Err(bad(
+                    key,
+                    "lower bound above the upper bound; write [low, high]",
+                ));
+            }
+            if non_negative && r[0] < 0.0 {
+                return Err(bad(key, "must not be negative"));
+            }
+            Ok(())
+        };
+        for (j, l) in self.links.iter().enumerate() {
+            check(format!("links.{}.mass", j + 1), l.mass, true)?;
+            check(format!("links.{}.inertia", j + 1), l.inertia, true)?;
+            for (a, r) in l.com.iter().enumerate() {
+                check(format!("links.{}.com[{a}]", j + 1), *r, false)?;
+            }
+            if l.mass[1] <= 0.0 {
+                return Err(bad(
+                    format!("links.{}.mass", j + 1),
+                    "the upper bound must be positive (a link has mass)",
+                ));
+            }
+        }
+        if let Some(t) = self.total_mass {
+            check("total_mass".into(), t, true)?;
+            let lo: f64 = self.links.iter().map(|l| l.mass[0]).sum();
+            let hi: f64 = self.links.iter().map(|l| l.mass[1]).sum();
+            if t[1] < lo || t[0] > hi {
+                return Err(Error::NoFeasibleParameters {
+                    reason: format!(
+                        "the total mass range [{}, {}] kg does not meet the sum of the link mass ranges [{lo}, {hi}] kg; widen one of them",
+                        t[0], t[1]
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+fn merge(base: LinkBounds, raw: Option<&RawLink>) -> LinkBounds {
+    let Some(raw) = raw else { return base };
+    LinkBounds {
+        mass: raw.mass.unwrap_or(base.mass),
+        com: raw.com.unwrap_or(base.com),
+        inertia: raw.inertia.unwrap_or(base.inertia),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_defaults_and_overrides() {
+        let text = "total_mass = [1, 20]\n[default]\nmass = [0, 5]\n[links.2]\nmass = [1, 2]\n";
+        let b = Bounds::from_toml(text, "b.toml", 3).unwrap();
+        assert_eq!(b.links[0].mass, [0.0, 5.0]);
+        assert_eq!(b.links[1].mass, [1.0, 2.0]);
+        assert_eq!(b.total_mass, Some([1.0, 20.0]));
+    }
+
+    #[test]
+    fn rejects_bad_ranges() {
+        assert!(Bounds::from_toml("[links.4]\nmass = [0, 1]\n", "b", 3).is_err());
+        assert!(Bounds::from_toml("[default]\nmass = [2, 1]\n", "b", 3).is_err());
+        assert!(Bounds::from_toml("[default]\nmass = [0, nan]\n", "b", 3).is_err());
+        let e = Bounds::from_toml(
+            "total_mass = [100, 200]\n[default]\nmass = [0, 1]\n",
+            "b",
+            3,
+        );
+        assert!(matches!(e, Err(Error::NoFeasibleParameters { .. })));
+    }
+}

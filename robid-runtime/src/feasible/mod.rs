@@ -1,0 +1,45 @@
+//! Physically feasible link parameters from identified base parameters (DESIGN.md 7).
+//!
+//! Identification gives base parameters beta = K p (K from the regrouping, p the standard
+//! parameters) with a covariance. Simulators and Newton-Euler controllers need a complete
+//! p: per link a mass m, a centre of mass c and an inertia I_c about it, physically
+//! consistent. Two methods find one that reproduces beta:
+//!
+//! - [`solve_sdp`]: the convex formulation. p enters linearly and consistency is the
+//!   linear matrix inequality "pseudo-inertia P = [[0.5 tr(J) I - J, h], [h', m]] is positive
+//!   (semi)definite" (Wensing, Kim, Slotine, "Linear matrix inequalities for physically
+//!   consistent inertial parameter identification", IEEE RA-L 3(1), 2017), so
+//!   min ||L^-1 (K p - beta)|| under it and linear bounds is a semidefinite program with a
+//!   global optimum (solved with Clarabel). [`consistent_least_squares`] applies the same
+//!   constraints directly to the least-squares fit on data.
+//! - [`solve_anneal`]: the method of Gaz, Flacco, De Luca ("Extracting feasible robot
+//!   parameters from dynamic coefficients using nonlinear optimization methods", ICRA 2016):
+//!   simulated annealing with random restarts, each followed by Nelder-Mead, over bounded
+//!   masses, centres of mass and inertias, with a total-mass range.
+//!
+//! Bounds come from TOML ([`Bounds`]); the result ([`Solution`]) is written as TOML or as
+//! URDF `<inertial>` elements ([`to_toml`], [`to_urdf`]).
+
+use openblas_src as _;
+
+mod bounds;
+mod centre;
+mod inertial;
+mod layout;
+mod output;
+mod problem;
+mod sdp;
+mod search;
+mod solution;
+
+pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds};
+pub use centre::centre;
+pub use inertial::{
+    LinkInertial, inertia_at_origin, pseudo_inertia, pseudo_inertia_min_eigenvalue,
+};
+pub use layout::{Drive, DriveKind, INERTIAL, Layout};
+pub use output::{to_toml, to_urdf};
+pub use problem::Problem;
+pub use sdp::{Prior, SdpOptions, consistent_least_squares, solve_sdp};
+pub use search::{AnnealOptions, solve_anneal};
+pub use solution::{Method, Solution};

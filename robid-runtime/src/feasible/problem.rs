@@ -1,0 +1,200 @@
+//! The extraction problem: the linear map K (base = K standard), the parameter
+//! layout, and the identified base parameters with their uncertainty.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::layout::Layout;
+use crate::{Error, Model, Result};
+
+/// Identified base parameters to reproduce, and the map from standard parameters.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    /// Standard parameter names (columns of K).
+    pub standard_names: Vec<String>,
+    /// Base parameter names (rows of K).
+    pub base_names: Vec<String>,
+    /// K, `base x standard`: base = K * standard.
+    pub k: DMatrix<f64>,
+    /// Where each link's parameters and each drive term are.
+    pub layout: Layout,
+    /// Identified base values beta.
+    pub target: DVector<f64>,
+    /// Standard deviations of beta (square roots of the covariance diagonal).
+    pub std: DVector<f64>,
+    /// Whitening L^-1 (covariance = L L'): z = L^-1 (K p - beta) has unit covariance.
+    pub whitening: DMatrix<f64>,
+}
+
+impl Problem {
+    /// A problem from names and K; the target starts at zero with unit deviations.
+    pub fn new(
+        standard_names: Vec<String>,
+        base_names: Vec<String>,
+        k: DMatrix<f64>,
+    ) -> Result<Problem> {
+        if k.nrows() != base_names.len() {
+            return Err(dims(
+                "rows of K (base parameters)",
+                base_names.len(),
+                k.nrows(),
+            ));
+        }
+        if k.ncols() != standard_names.len() {
+            return Err(dims(
+                "columns of K (standard parameters)",
+                standard_names.len(),
+                k.ncols(),
+            ));
+        }
+        if let Some(i) = k.iter().position(|v| !v.is_finite()) {
+            return Err(Error::InvalidConfig {
+                key: format!("K[{}][{}]", i % k.nrows(), i / k.nrows()),
+                problem: "is NaN or infinite; give the geometric symbols finite values".to_owned(),
+            });
+        }
+        let layout = Layout::from_names(&standard_names)?;
+        let nb = base_names.len();
+        Ok(Problem {
+            standard_names,
+            base_names,
+            k,
+            layout,
+            target: DVector::zeros(nb),
+            std: DVector::from_element(nb, 1.0),
+            whitening: DMatrix::identity(nb, nb),
+        })
+    }
+
+    /// The problem of a model: K is read column by column from `base_from_standard`.
+    pub fn from_model(model: &dyn Model) -> Result<Problem> {
+        let ns = model.standard_parameter_count();
+        let nb = model.base_parameter_count();
+        let mut k = DMatrix::zeros(nb, ns);
+        let mut unit = vec![0.0; ns];
+        let mut column = vec![0.0; nb];
+        for s in 0..ns {
+            unit[s] = 1.0;
+            model.base_from_standard(&unit, &mut column);
+            unit[s] = 0.0;
+            k.set_column(s, &DVector::from_column_slice(&column));
+        }
+        let standard = (0..ns)
+            .map(|i| model.standard_parameter_name(i).to_owned())
+            .collect();
+        let base = (0..nb)
+            .map(|i| model.base_parameter_name(i).to_owned())
+            .collect();
+        Problem::new(standard, base, k)
+    }
+
+    /// Sets the identified values and their standard deviations, matched by name
+    /// (`names` may be in any order but must hold every base parameter once).
+    pub fn with_identified(self, names: &[String], values: &[f64], std: &[f64]) -> Result<Problem> {
+        if names.len() != values.len() || names.len() != std.len() {
+            return Err(dims(
+                "identified values and deviations",
+                names.len(),
+                values.len().min(std.len()),
+            ));
+        }
+        let mut v = Vec::with_capacity(self.base_names.len());
+        let mut s = Vec::with_capacity(self.base_names.len());
+        for b in &self.base_names {
+            let i = names.iter().position(|n| n == b).ok_or_else(|| Error::InvalidConfig {
+                key: b.clone(),
+                problem: "base parameter missing from the identified result; identify with the same robot description".to_owned(),
+            })?;
+            v.push(values[i]);
+            s.push(std[i]);
+        }
+        if names.len() != self.base_names.len() {
+            let extra = names.iter().find(|n| !self.base_names.contains(n));
+            return Err(Error::InvalidConfig {
+                key: extra.cloned().unwrap_or_default(),
+                problem: format!(
+                    "the identified result has {} parameters, the model {} base parameters; identify with the same robot description",
+                    names.len(),
+                    self.base_names.len()
+                ),
+            });
+        }
+        self.with_target(&v, &s)
+    }
+
+    /// Sets the identified values and their standard deviations, in base order.
+    pub fn with_target(self, values: &[f64], std: &[f64]) -> Result<Problem> {
+        let nb = self.base_names.len();
+        let mut cov = DMatrix::zeros(nb, nb);
+        if std.len() != nb {
+            return Err(dims("standard deviations", nb, std.len()));
+        }
+        for (i, &s) in std.iter().enumerate() {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(Error::InvalidConfig {
+                    key: format!("{}.std", self.base_names[i]),
+                    problem: format!("is {s}; a standard deviation must be finite and positive"),
+                });
+            }
+            cov[(i, i)] = s * s;
+        }
+        self.with_covariance(values, &cov)
+    }
+
+    /// Sets the identified values and their full covariance (symmetric positive definite).
+    pub fn with_covariance(mut self, values: &[f64], covariance: &DMatrix<f64>) -> Result<Problem> {
+        let nb = self.base_names.len();
+        if values.len() != nb {
+            return Err(dims("identified base values", nb, values.len()));
+        }
+        if covariance.shape() != (nb, nb) {
+            return Err(dims("covariance entries", nb * nb, covariance.len()));
+        }
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(Error::InvalidConfig {
+                key: self.base_names[i].clone(),
+                problem: "identified value is NaN or infinite".to_owned(),
+            });
+        }
+        let singular = || Error::Singular {
+            what: "the covariance of the identified base parameters".to_owned(),
+            hint: "every base parameter needs a positive, finite variance",
+        };
+        if covariance.iter().any(|v| !v.is_finite()) {
+            return Err(singular());
+        }
+        let chol = covariance.clone().cholesky().ok_or_else(singular)?;
+        let l = chol.l();
+        let whitening = l
+            .solve_lower_triangular(&DMatrix::identity(nb, nb))
+            .ok_or_else(singular)?;
+        self.std = covariance.diagonal().map(f64::sqrt);
+        self.target = DVector::from_column_slice(values);
+        self.whitening = whitening;
+        Ok(self)
+    }
+
+    /// Base parameters K p of a standard vector.
+    pub fn base_of(&self, standard: &[f64]) -> DVector<f64> {
+        &self.k * DVector::from_column_slice(standard)
+    }
+
+    /// The whitened misfit z = L^-1 (K p - beta).
+    pub fn normalized_residual(&self, standard: &[f64]) -> DVector<f64> {
+        &self.whitening * (self.base_of(standard) - &self.target)
+    }
+
+    /// Indices of the standard parameters with no effect on any base parameter.
+    pub fn no_effect(&self) -> Vec<usize> {
+        (0..self.k.ncols())
+            .filter(|&s| self.k.column(s).iter().all(|v| v.abs() < 1e-12))
+            .collect()
+    }
+}
+
+fn dims(what: &str, expected: usize, found: usize) -> Error {
+    Error::DimensionMismatch {
+        what: what.to_owned(),
+        expected,
+        found,
+    }
+}

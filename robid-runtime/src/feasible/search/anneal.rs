@@ -1,0 +1,97 @@
+//! Bounded simulated annealing (Kirkpatrick, Gelatt, Vecchi 1983): a random walk over
+//! the box that accepts uphill moves with probability exp(-df / T) while T cools
+//! geometrically; one coordinate moves per step, by a Gaussian step that shrinks with T,
+//! reflected back into the box.
+
+use super::rng::Rng;
+
+/// Settings of one annealing run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct AnnealSettings {
+    /// Number of steps.
+    pub(crate) iterations: usize,
+    /// Final temperature as a fraction of the initial one.
+    pub(crate) final_ratio: f64,
+}
+
+/// Minimises `f` over the box [lo, hi] from `x0`; returns the best point and value seen.
+pub(crate) fn anneal(
+    f: &dyn Fn(&[f64]) -> f64,
+    lo: &[f64],
+    hi: &[f64],
+    x0: &[f64],
+    settings: AnnealSettings,
+    rng: &mut Rng,
+) -> (Vec<f64>, f64) {
+    let n = x0.len();
+    let mut x = x0.to_vec();
+    let mut fx = f(&x);
+    let (mut best, mut fbest) = (x.clone(), fx);
+    if n == 0 || settings.iterations == 0 {
+        return (best, fbest);
+    }
+    let t0 = 0.1 * fx.abs() + 1e-12;
+    let alpha = settings.final_ratio.powf(1.0 / settings.iterations as f64);
+    let mut t = t0;
+    for _ in 0..settings.iterations {
+        let i = rng.index(n);
+        let width = hi[i] - lo[i];
+        let step = width * 0.3 * (t / t0).sqrt().max(1e-4);
+        let old = x[i];
+        x[i] = reflect(old + step * rng.normal(), lo[i], hi[i]);
+        let fnew = f(&x);
+        if fnew <= fx || rng.unit() < (-(fnew - fx) / t).exp() {
+            fx = fnew;
+            if fx < fbest {
+                fbest = fx;
+                best.clone_from(&x);
+            }
+        } else {
+            x[i] = old;
+        }
+        t *= alpha;
+    }
+    (best, fbest)
+}
+
+/// Reflects `v` into [lo, hi].
+pub(crate) fn reflect(v: f64, lo: f64, hi: f64) -> f64 {
+    let w = hi - lo;
+    if w <= 0.0 {
+        return lo;
+    }
+    let mut u = (v - lo).rem_euclid(2.0 * w);
+    if u > w {
+        u = 2.0 * w - u;
+    }
+    lo + u
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_the_global_minimum_of_a_multimodal_function() {
+        // Rastrigin in 2-D on [-5, 5]^2: many local minima, global at 0.
+        let f = |x: &[f64]| {
+            x.iter()
+                .map(|v| v * v - 10.0 * (std::f64::consts::TAU * v).cos() + 10.0)
+                .sum::<f64>()
+        };
+        let mut rng = Rng::new(7);
+        let s = AnnealSettings {
+            iterations: 20000,
+            final_ratio: 1e-6,
+        };
+        let (x, fx) = anneal(&f, &[-5.0; 2], &[5.0; 2], &[4.0, -4.0], s, &mut rng);
+        assert!(fx < 1e-2, "f = {fx} at {x:?}");
+    }
+
+    #[test]
+    fn reflection_stays_inside() {
+        assert_eq!(reflect(1.5, 0.0, 1.0), 0.5);
+        assert_eq!(reflect(-0.25, 0.0, 1.0), 0.25);
+        assert!((0.0..=1.0).contains(&reflect(7.3, 0.0, 1.0)));
+    }
+}

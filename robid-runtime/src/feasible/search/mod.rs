@@ -1,0 +1,294 @@
+//! The global search of Gaz et al.: C. Gaz, F. Flacco, A. De Luca, "Extracting feasible
+//! robot parameters from dynamic coefficients using nonlinear optimization methods",
+//! IEEE ICRA 2016.
+//!
+//! Minimise f(x) = ||L^-1 (K p(x) - beta)||^2 + penalty(x) over a box of link
+//! variables x (masses, centres of mass, inertias, parametrised so every point is
+//! physically consistent, see `parametrise`), by simulated annealing from random
+//! starting points ("random restarts"), each followed by a Nelder-Mead local search; the
+//! best result wins. The penalty (Gaz et al.'s delta term) holds the total mass in its range
+//! and the principal moments in theirs. Variables with no effect on f are fixed at the
+//! stated don't-care values (centre of the bounds) and left out of the search. Drive terms
+//! (Ia, Fv, Fc, Fo) enter linearly and are solved for at every evaluation (least squares
+//! in the drive columns, then Ia, Fv, Fc clamped at zero).
+
+mod anneal;
+mod nelder_mead;
+mod parametrise;
+mod rng;
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+use super::bounds::Bounds;
+use super::problem::Problem;
+use super::solution::{Method, Solution};
+use crate::{Error, Result};
+use anneal::{AnnealSettings, reflect};
+use parametrise::{PER_LINK, link_box, link_centre, link_of};
+use rng::Rng;
+
+/// Settings of the global search.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AnnealOptions {
+    /// Random restarts (each: annealing, then Nelder-Mead), run in parallel.
+    pub restarts: usize,
+    /// Annealing steps per restart.
+    pub iterations: usize,
+    /// Nelder-Mead evaluations per restart.
+    pub local_evaluations: usize,
+    /// Seed of the random generator (results are reproducible).
+    pub seed: u64,
+    /// Stop starting new restarts once chi^2 falls below this (default: 1e-3 per base parameter).
+    pub target_chi2: Option<f64>,
+    /// Weight of the bound penalty (Gaz et al.'s delta).
+    pub penalty: f64,
+}
+
+impl Default for AnnealOptions {
+    fn default() -> AnnealOptions {
+        AnnealOptions {
+            restarts: 16,
+            iterations: 40_000,
+            local_evaluations: 40_000,
+            seed: 1,
+            target_chi2: None,
+            penalty: 1e4,
+        }
+    }
+}
+
+/// The objective over the free variables.
+struct Objective<'a> {
+    problem: &'a Problem,
+    bounds: &'a Bounds,
+    /// Whitened K restricted to the inertial columns' link layout.
+    a: DMatrix<f64>,
+    b: DVector<f64>,
+    /// Pseudo-inverse of the whitened drive columns (drives x base), if any.
+    drive_pinv: Option<DMatrix<f64>>,
+    /// Full variable vector with the fixed (don't-care) values.
+    fixed: Vec<f64>,
+    /// Which full variables are searched.
+    free: Vec<usize>,
+    penalty: f64,
+}
+
+impl Objective<'_> {
+    fn full(&self, y: &[f64]) -> Vec<f64> {
+        let mut x = self.fixed.clone();
+        for (&i, &v) in self.free.iter().zip(y) {
+            x[i] = v;
+        }
+        x
+    }
+
+    /// Standard parameters of a full variable vector, drive terms solved for.
+    fn standard(&self, x: &[f64]) -> Vec<f64> {
+        let layout = &self.problem.layout;
+        let mut p = vec![0.0; layout.len()];
+        for (j, idx) in layout.links.iter().enumerate() {
+            let s = link_of(&x[j * PER_LINK..(j + 1) * PER_LINK]).to_standard();
+            for (&i, v) in idx.iter().zip(s) {
+                p[i] = v;
+            }
+        }
+        if let Some(pinv) = &self.drive_pinv {
+            let r = &self.a * DVector::from_column_slice(&p) - &self.b;
+            let d = -(pinv * r);
+            for (k, drive) in layout.drives.iter().enumerate() {
+                p[drive.index] = if drive.kind.non_negative() {
+                    d[k].max(0.0)
+                } else {
+                    d[k]
+                };
+            }
+        }
+        p
+    }
+
+    fn value(&self, y: &[f64]) -> f64 {
+        let x = self.full(y);
+        let p = self.standard(&x);
+        let r = &self.a * DVector::from_column_slice(&p) - &self.b;
+        r.norm_squared() + self.penalty * self.violation(&x)
+    }
+
+    /// Squared relative violation of the total-mass range and the principal-moment ranges.
+    fn violation(&self, x: &[f64]) -> f64 {
+        let mut v = 0.0;
+        let out = |value: f64, r: [f64; 2], scale: f64| {
+            let e = (r[0] - value).max(value - r[1]).max(0.0) / scale;
+            e * e
+        };
+        if let Some(t) = self.bounds.total_mass {
+            let total: f64 = (0..self.bounds.links.len()).map(|j| x[j * PER_LINK]).sum();
+            v += out(total, t, t[1].max(1e-9));
+        }
+        for (j, b) in self.bounds.links.iter().enumerate() {
+            let d = &x[j * PER_LINK + 4..j * PER_LINK + 7];
+            for m in [d[1] + d[2], d[0] + d[2], d[0] + d[1]] {
+                v += out(m, b.inertia, b.inertia[1].max(1e-9));
+            }
+        }
+        v
+    }
+}
+
+/// Feasible link parameters by the global search of Gaz et al. (see the module docs).
+pub fn solve_anneal(
+    problem: &Problem,
+    bounds: &Bounds,
+    options: &AnnealOptions,
+) -> Result<Solution> {
+    let start = Instant::now();
+    let layout = &problem.layout;
+    let nl = layout.links.len();
+    if bounds.links.len() != nl {
+        return Err(Error::DimensionMismatch {
+            what: "links in the bounds".to_owned(),
+            expected: nl,
+            found: bounds.links.len(),
+        });
+    }
+    if options.restarts == 0 {
+        return Err(Error::InvalidConfig {
+            key: "restarts".to_owned(),
+            problem: "must be at least 1".to_owned(),
+        });
+    }
+    let a = &problem.whitening * &problem.k;
+    let b = &problem.whitening * &problem.target;
+    let drive_pinv = (!layout.drives.is_empty()).then(|| {
+        let cols: Vec<DVector<f64>> = layout
+            .drives
+            .iter()
+            .map(|d| a.column(d.index).into_owned())
+            .collect();
+        let ad = DMatrix::from_columns(&cols);
+        ad.pseudo_inverse(1e-10)
+            .unwrap_or_else(|_| DMatrix::zeros(cols.len(), a.nrows()))
+    });
+    let mut lo = Vec::with_capacity(nl * PER_LINK);
+    let mut hi = Vec::with_capacity(nl * PER_LINK);
+    let mut fixed = Vec::with_capacity(nl * PER_LINK);
+    for lb in &bounds.links {
+        let (l, h) = link_box(lb, bounds.margin);
+        lo.extend(l);
+        hi.extend(h);
+        fixed.extend(link_centre(lb));
+    }
+    let mut objective = Objective {
+        problem,
+        bounds,
+        a,
+        b,
+        drive_pinv,
+        fixed,
+        free: (0..nl * PER_LINK).collect(),
+        penalty: options.penalty,
+    };
+    objective.free = effective_variables(&objective, &lo, &hi, options.seed);
+    let lo: Vec<f64> = objective.free.iter().map(|&i| lo[i]).collect();
+    let hi: Vec<f64> = objective.free.iter().map(|&i| hi[i]).collect();
+    let target = options
+        .target_chi2
+        .unwrap_or(1e-3 * problem.base_names.len() as f64);
+    let done = AtomicBool::new(false);
+    let settings = AnnealSettings {
+        iterations: options.iterations,
+        final_ratio: 1e-9,
+    };
+
+    let runs: Vec<(Vec<f64>, f64)> = (0..options.restarts)
+        .into_par_iter()
+        .filter_map(|k| {
+            if done.load(Ordering::Relaxed) {
+                return None;
+            }
+            let mut rng = Rng::new(options.seed.wrapping_mul(1_000_003).wrapping_add(k as u64));
+            let x0: Vec<f64> = lo
+                .iter()
+                .zip(&hi)
+                .map(|(l, h)| rng.uniform(*l, *h))
+                .collect();
+            let f = |y: &[f64]| objective.value(y);
+            let (xa, _) = anneal::anneal(&f, &lo, &hi, &x0, settings, &mut rng);
+            // Nelder-Mead on the box: evaluate at the reflected point.
+            let g = |y: &[f64]| {
+                let z: Vec<f64> = y
+                    .iter()
+                    .enumerate()
+                    .map(|(i, v)| reflect(*v, lo[i], hi[i]))
+                    .collect();
+                objective.value(&z)
+            };
+            let step: Vec<f64> = lo.iter().zip(&hi).map(|(l, h)| 0.05 * (h - l)).collect();
+            let (xn, _) =
+                nelder_mead::nelder_mead(&g, &xa, &step, options.local_evaluations, 1e-15);
+            let xn: Vec<f64> = xn
+                .iter()
+                .enumerate()
+                .map(|(i, v)| reflect(*v, lo[i], hi[i]))
+                .collect();
+            let fx = objective.value(&xn);
+            if fx <= target {
+                done.store(true, Ordering::Relaxed);
+            }
+            Some((xn, fx))
+        })
+        .collect();
+    let (best, _) = runs
+        .into_iter()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .ok_or_else(|| Error::NoFeasibleParameters {
+            reason: "the search ran no restart".to_owned(),
+        })?;
+    let p = objective.standard(&objective.full(&best));
+    Ok(Solution::assemble(
+        problem,
+        bounds,
+        Method::Anneal,
+        p,
+        start.elapsed(),
+    ))
+}
+
+/// The variables that change the objective somewhere in the box (checked by finite
+/// differences at random points); the others keep their don't-care values.
+fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: u64) -> Vec<usize> {
+    let n = lo.len();
+    let mut rng = Rng::new(seed ^ 0xD0C4_2E);
+    let mut effective = vec![false; n];
+    let saved_penalty = 0.0;
+    for _ in 0..4 {
+        let x: Vec<f64> = (0..n).map(|i| rng.uniform(lo[i], hi[i])).collect();
+        let base = residual(objective, &x, saved_penalty);
+        for i in 0..n {
+            if effective[i] {
+                continue;
+            }
+            let mut y = x.clone();
+            let h = 1e-4 * (hi[i] - lo[i]).max(1e-12);
+            y[i] = if y[i] + h <= hi[i] {
+                y[i] + h
+            } else {
+                y[i] - h
+            };
+            let r = residual(objective, &y, saved_penalty);
+            let change = (&r - &base).norm();
+            if change > 1e-9 * (1.0 + base.norm()) {
+                effective[i] = true;
+            }
+        }
+    }
+    (0..n).filter(|&i| effective[i]).collect()
+}
+
+fn residual(objective: &Objective<'_>, x: &[f64], _penalty: f64) -> DVector<f64> {
+    let p = objective.standard(x);
+    &objective.a * DVector::from_column_slice(&p) - &objective.b
+}

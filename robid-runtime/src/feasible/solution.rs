@@ -1,0 +1,148 @@
+//! What a feasible-parameter extraction returns, and the checks applied to it.
+
+use std::time::Duration;
+
+use serde::Serialize;
+
+use super::bounds::Bounds;
+use super::inertial::{LinkInertial, pseudo_inertia_min_eigenvalue};
+use super::problem::Problem;
+
+/// How the parameters were found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Semidefinite program (pseudo-inertia LMIs), global optimum.
+    Sdp,
+    /// Simulated annealing with random restarts and Nelder-Mead (Gaz et al.).
+    Anneal,
+}
+
+impl Method {
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Sdp => "sdp",
+            Method::Anneal => "anneal",
+        }
+    }
+}
+
+/// A complete, physically consistent set of link parameters.
+#[derive(Debug, Clone, Serialize)]
+pub struct Solution {
+    /// The method.
+    pub method: Method,
+    /// Standard parameter names.
+    pub names: Vec<String>,
+    /// Standard parameter values (about each frame origin).
+    pub standard: Vec<f64>,
+    /// Per link: mass, centre of mass, inertia about the centre of mass (`None` for a link
+    /// whose mass came out zero, possible only with a zero margin and lower mass bound).
+    pub links: Vec<Option<LinkInertial>>,
+    /// Base parameters K p reproduced by `standard`.
+    pub base: Vec<f64>,
+    /// Whitened misfit z = L^-1 (K p - beta) per base parameter (|z| <= 1: within one std).
+    pub normalized_residual: Vec<f64>,
+    /// Sum of z^2.
+    pub chi2: f64,
+    /// Smallest eigenvalue of each link's pseudo-inertia.
+    pub min_eigenvalues: Vec<f64>,
+    /// Standard parameters with no effect on the base parameters: their values are the
+    /// stated don't-care values (centre of the bounds, or the prior).
+    pub dont_care: Vec<String>,
+    /// Bounds that the result does not meet (the SDP cannot impose the upper bound on the
+    /// principal moments about the centre of mass, which is not convex).
+    pub violations: Vec<String>,
+    /// Wall-clock time of the solve.
+    pub seconds: f64,
+}
+
+impl Solution {
+    /// Assembles the result and its checks.
+    pub(crate) fn assemble(
+        problem: &Problem,
+        bounds: &Bounds,
+        method: Method,
+        standard: Vec<f64>,
+        elapsed: Duration,
+    ) -> Solution {
+        let layout = &problem.layout;
+        let z = problem.normalized_residual(&standard);
+        let mut links = Vec::new();
+        let mut min_eigenvalues = Vec::new();
+        let mut violations = Vec::new();
+        let tol = 1e-6;
+        for (j, b) in bounds.links.iter().enumerate() {
+            let p = layout.link_values(j, &standard);
+            min_eigenvalues.push(pseudo_inertia_min_eigenvalue(&p));
+            let link = LinkInertial::from_standard(&p);
+            if let Some(l) = &link {
+                let out = |v: f64, r: [f64; 2]| {
+                    v < r[0] - tol * (1.0 + r[0].abs()) || v > r[1] + tol * (1.0 + r[1].abs())
+                };
+                if out(l.mass, b.mass) {
+                    violations.push(format!(
+                        "link {}: mass {} outside {:?}",
+                        j + 1,
+                        l.mass,
+                        b.mass
+                    ));
+                }
+                for a in 0..3 {
+                    if out(l.com[a], b.com[a]) {
+                        violations.push(format!(
+                            "link {}: com[{a}] {} outside {:?}",
+                            j + 1,
+                            l.com[a],
+                            b.com[a]
+                        ));
+                    }
+                }
+                for (a, m) in l.principal_moments().iter().enumerate() {
+                    if out(*m, b.inertia) {
+                        violations.push(format!(
+                            "link {}: principal moment {a} {m} outside {:?}",
+                            j + 1,
+                            b.inertia
+                        ));
+                    }
+                }
+            }
+            links.push(link);
+        }
+        if let Some(t) = bounds.total_mass {
+            let total: f64 = (0..layout.links.len())
+                .map(|j| standard[layout.links[j][9]])
+                .sum();
+            if total < t[0] - tol || total > t[1] + tol {
+                violations.push(format!("total mass {total} outside {t:?}"));
+            }
+        }
+        let dont_care = problem
+            .no_effect()
+            .into_iter()
+            .map(|s| problem.standard_names[s].clone())
+            .collect();
+        Solution {
+            method,
+            names: problem.standard_names.clone(),
+            base: problem.base_of(&standard).iter().copied().collect(),
+            chi2: z.norm_squared(),
+            normalized_residual: z.iter().copied().collect(),
+            standard,
+            links,
+            min_eigenvalues,
+            dont_care,
+            violations,
+            seconds: elapsed.as_secs_f64(),
+        }
+    }
+
+    /// Largest |z|: at most 1 means every base parameter is reproduced within one std.
+    pub fn max_normalized_residual(&self) -> f64 {
+        self.normalized_residual
+            .iter()
+            .fold(0.0, |a, z| a.max(z.abs()))
+    }
+}
