@@ -8,17 +8,21 @@
 //! for standard DH, z_j through O_j for modified DH). Link j's parameters are about the origin
 //! O_j of its own frame, as the user gives them.
 //!
-//! Forward pass (base frame, gravity as a base acceleration of -g), for link j with joint axis
-//! u through p and parent origin O_(j-1):
-//!   w_j = w_(j-1) + qd u (revolute),  wd_j = wd_(j-1) + qdd u + w_(j-1) x qd u,
+//! ```text
+//! Forward pass (base frame, gravity as a base acceleration of -g), for link j with joint
+//! axis u through p and parent origin O_(j-1):
+//!   w_j  = w_(j-1) + qd u (revolute),   wd_j = wd_(j-1) + qdd u + w_(j-1) x qd u,
 //!   a(O_j) = a(O_(j-1)) + wd_(j-1) x r + w_(j-1) x (w_(j-1) x r) + a_rel + 2 w_(j-1) x v_rel,
-//!   r = O_j - O_(j-1); revolute: v_rel = qd u x (O_j - p), a_rel = qdd u x (O_j - p)
-//!   + qd u x v_rel; prismatic: v_rel = qd u, a_rel = qdd u.
+//!   r = O_j - O_(j-1);
+//!   revolute:  v_rel = qd u x (O_j - p),  a_rel = qdd u x (O_j - p) + qd u x v_rel;
+//!   prismatic: v_rel = qd u,              a_rel = qdd u.
 //! Link wrench about O_j, with MS and J rotated into the base frame:
-//!   F = M a + wd x MS + w x (w x MS),  N = J wd + w x (J w) + MS x a.
-//! Backward pass: f_j = F_j + f_(j+1), n_j = N_j + n_(j+1) + (O_(j+1) - O_j) x f_(j+1);
-//! tau_j = u . (n_j + (O_j - p) x f_j) (revolute) or u . f_j (prismatic), plus
-//! Ia qdd + Fv qd + Fc sign(qd) + Fo.
+//!   F = M a + wd x MS + w x (w x MS),   N = J wd + w x (J w) + MS x a.
+//! Backward pass:
+//!   f_j = F_j + f_(j+1),   n_j = N_j + n_(j+1) + (O_(j+1) - O_j) x f_(j+1),
+//!   tau_j = u . (n_j + (O_j - p) x f_j) (revolute) or u . f_j (prismatic),
+//!           plus Ia qdd + Fv qd + Fc sign(qd) + Fo.
+//! ```
 
 use robid_symbolic::robot::{DriveTerm, ParameterKind};
 use robid_symbolic::{Arena, Convention, JointKind, Robot};

@@ -63,11 +63,14 @@ pub fn bind(arena: &mut Arena, robot: &Robot, state: &State, parameters: Option<
     arena.values(&pairs)
 }
 
+/// One sine term (amplitude, angular frequency, phase).
+pub type Sine = (f64, f64, f64);
+
 /// A smooth joint trajectory: per joint, q(t) = c + sum_k a_k sin(w_k t + phi_k).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Trajectory {
     /// Per joint: offset c and terms (a_k, w_k, phi_k).
-    pub joints: Vec<(f64, Vec<(f64, f64, f64)>)>,
+    pub joints: Vec<(f64, Vec<Sine>)>,
 }
 
 impl Trajectory {
