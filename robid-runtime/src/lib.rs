@@ -16,11 +16,15 @@ mod error;
 #[cfg(feature = "std")]
 pub mod estimate;
 #[cfg(feature = "std")]
+pub mod excite;
+#[cfg(feature = "std")]
 pub mod feasible;
 #[cfg(feature = "std")]
 pub mod pipeline;
 #[cfg(feature = "std")]
 pub mod signal;
+#[cfg(feature = "std")]
+pub mod simulate;
 #[cfg(feature = "std")]
 pub mod validate;
 

@@ -1,0 +1,324 @@
+//! Optimisation of a Fourier trajectory (Swevers et al. 1997) for a design criterion under
+//! position, velocity, acceleration and (optionally) torque limits.
+//!
+//! Limits hold by construction rather than as penalties: the decision variables of a joint
+//! are its free coefficients (shape), an amplitude variable z_a and, unless the start is
+//! fixed, an offset variable z_o. The start q0 = c + r sin(z_o) lies inside the position
+//! range (the sin-substitution of Milella); the shape is evaluated on a fine grid and scaled
+//! by (1 + sin z_a) / 2 times the largest factor that keeps the position range, |qd| and
+//! |qdd| within `safety` times each limit. Torque limits (with reference parameters) are a
+//! penalty. Random restarts from a seed run in parallel, each a Nelder-Mead minimisation;
+//! the best is polished by one more run.
+
+use std::f64::consts::FRAC_PI_2;
+
+use rayon::prelude::*;
+
+use crate::Model;
+use crate::error::{Error, Result};
+use crate::excite::progress::Progress;
+use crate::excite::{
+    Criterion, Fourier, Information, JointLimits, JointSeries, NelderMead, check_limits,
+};
+use crate::simulate::Rng;
+
+/// Settings of a Fourier design.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FourierDesign {
+    /// Harmonics per joint (at least 2).
+    pub harmonics: usize,
+    /// Base frequency (Hz).
+    pub base_frequency: f64,
+    /// Samples per period at which the criterion is evaluated.
+    pub points: usize,
+    /// The criterion minimised.
+    pub criterion: Criterion,
+    /// Random starts.
+    pub restarts: usize,
+    /// Function evaluations per start.
+    pub evaluations: usize,
+    /// Seed of the random starts.
+    pub seed: u64,
+    /// Fraction of every limit the design may use (0 < safety <= 1).
+    pub safety: f64,
+    /// Fixed start position; `None` lets the optimiser choose it.
+    pub start: Option<Vec<f64>>,
+    /// Show a progress bar on a terminal.
+    pub progress: bool,
+}
+
+impl Default for FourierDesign {
+    fn default() -> Self {
+        Self {
+            harmonics: 5,
+            base_frequency: 0.1,
+            points: 100,
+            criterion: Criterion::Condition,
+            restarts: 8,
+            evaluations: 3000,
+            seed: 1,
+            safety: 0.98,
+            start: None,
+            progress: false,
+        }
+    }
+}
+
+/// The result of a design.
+#[derive(Debug, Clone)]
+pub struct FourierResult {
+    /// The trajectory.
+    pub fourier: Fourier,
+    /// The criterion's value on the design grid.
+    pub cost: f64,
+    /// Function evaluations used.
+    pub evaluations: usize,
+}
+
+/// Turns decision variables into a Fourier trajectory within the limits.
+struct Decoder<'a> {
+    design: &'a FourierDesign,
+    limits: &'a [JointLimits],
+    /// sin and cos of harmonic l at each fine-grid phase.
+    table: Vec<(f64, f64)>,
+    fine: usize,
+}
+
+impl Decoder<'_> {
+    fn per_joint(&self) -> usize {
+        2 * (self.design.harmonics - 1) + 1 + usize::from(self.design.start.is_none())
+    }
+
+    fn decode(&self, x: &[f64]) -> Fourier {
+        let d = self.design;
+        let m = self.per_joint();
+        let w = std::f64::consts::TAU * d.base_frequency;
+        let joints = self
+            .limits
+            .iter()
+            .enumerate()
+            .map(|(j, l)| {
+                let v = &x[j * m..(j + 1) * m];
+                let free = &v[..2 * (d.harmonics - 1)];
+                let mut s = JointSeries::from_free(0.0, free);
+                let [lo, hi] = l.position;
+                let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo) * d.safety);
+                s.q0 = match &d.start {
+                    Some(q0) => q0[j],
+                    None => mid + half * v[m - 1].sin(),
+                };
+                let (mut gmax, mut gmin, mut vmax, mut amax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+                for k in 0..self.fine {
+                    let (mut g, mut gd, mut gdd) = (0.0, 0.0, 0.0);
+                    for (i, (a, b)) in s.a.iter().zip(&s.b).enumerate() {
+                        let (sn, cs) = self.table[i * self.fine + k];
+                        let wl = w * (i + 1) as f64;
+                        g += a / wl * sn - b / wl * (cs - 1.0);
+                        gd += a * cs + b * sn;
+                        gdd += wl * (-a * sn + b * cs);
+                    }
+                    gmax = gmax.max(g);
+                    gmin = gmin.min(g);
+                    vmax = vmax.max(gd.abs());
+                    amax = amax.max(gdd.abs());
+                }
+                let (room_hi, room_lo) = (mid + half - s.q0, s.q0 - (mid - half));
+                let mut smax = f64::INFINITY;
+                for (limit, peak) in [
+                    (d.safety * l.velocity, vmax),
+                    (d.safety * l.acceleration, amax),
+                    (room_hi.max(0.0), gmax),
+                    (room_lo.max(0.0), -gmin),
+                ] {
+                    if peak > 0.0 {
+                        smax = smax.min(limit / peak);
+                    }
+                }
+                if !smax.is_finite() {
+                    smax = 0.0;
+                }
+                s.scale(smax * 0.5 * (1.0 + v[2 * (d.harmonics - 1)].sin()));
+                s
+            })
+            .collect();
+        Fourier {
+            base_frequency: d.base_frequency,
+            joints,
+        }
+    }
+}
+
+impl FourierDesign {
+    /// Checks the settings for a model of `dof` joints.
+    pub fn check(&self, dof: usize) -> Result<()> {
+        let bad = |key: &str, problem: String| Error::InvalidConfig {
+            key: key.into(),
+            problem,
+        };
+        if self.harmonics < 2 {
+            return Err(bad(
+                "harmonics",
+                format!("{} must be at least 2", self.harmonics),
+            ));
+        }
+        if !(self.base_frequency > 0.0 && self.base_frequency.is_finite()) {
+            return Err(bad(
+                "base_frequency",
+                format!("{} Hz must be positive", self.base_frequency),
+            ));
+        }
+        if !(self.safety > 0.0 && self.safety <= 1.0) {
+            return Err(bad("safety", format!("{} must lie in (0, 1]", self.safety)));
+        }
+        if self.restarts == 0 || self.evaluations == 0 {
+            return Err(bad(
+                "restarts",
+                "restarts and evaluations must be at least 1".into(),
+            ));
+        }
+        if let Some(q0) = &self.start {
+            if q0.len() != dof {
+                return Err(Error::JointCountMismatch {
+                    context: "start position".into(),
+                    expected: dof,
+                    found: q0.len(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Designs a trajectory for `model` within `limits`; `torque` = reference base
+    /// parameters enables the torque limits.
+    pub fn optimize<M: Model + Sync + ?Sized>(
+        &self,
+        model: &M,
+        limits: &[JointLimits],
+        torque: Option<&[f64]>,
+    ) -> Result<FourierResult> {
+        let n = model.dof();
+        self.check(n)?;
+        check_limits(limits, n)?;
+        if let Some(q0) = &self.start {
+            for (j, (q, l)) in q0.iter().zip(limits).enumerate() {
+                if !(l.position[0] < *q && *q < l.position[1]) {
+                    return Err(Error::InvalidConfig {
+                        key: format!("start position of joint {}", j + 1),
+                        problem: format!("{q} is outside the limits {:?}", l.position),
+                    });
+                }
+            }
+        }
+        if let Some(b) = torque {
+            if b.len() != model.base_parameter_count() {
+                return Err(Error::DimensionMismatch {
+                    what: "reference base parameters".into(),
+                    expected: model.base_parameter_count(),
+                    found: b.len(),
+                });
+            }
+        }
+        let fine = 64 * self.harmonics;
+        let table = (1..=self.harmonics)
+            .flat_map(|l| {
+                (0..fine)
+                    .map(move |k| (std::f64::consts::TAU * (l * k) as f64 / fine as f64).sin_cos())
+            })
+            .collect();
+        let decoder = Decoder {
+            design: self,
+            limits,
+            table,
+            fine,
+        };
+        let cost = |x: &[f64]| self.cost(model, limits, torque, &decoder.decode(x));
+        let m = decoder.per_joint();
+        let progress = Progress::new(
+            self.progress,
+            (self.restarts + 1) * self.evaluations,
+            "fourier design",
+        );
+        let nm = NelderMead {
+            max_evaluations: self.evaluations,
+            tolerance: 1e-10,
+            step: 0.4,
+        };
+        let root = Rng::new(self.seed);
+        let runs: Vec<_> = (0..self.restarts)
+            .into_par_iter()
+            .map(|r| {
+                let mut rng = root.fork(r as u64);
+                let x0: Vec<f64> = (0..n * m)
+                    .map(|i| match i % m {
+                        k if k < 2 * (self.harmonics - 1) => {
+                            rng.normal() / (1 + k % (self.harmonics - 1)) as f64
+                        }
+                        k if k == 2 * (self.harmonics - 1) => FRAC_PI_2 + 0.1 * rng.normal(),
+                        _ => rng.range(-1.0, 1.0),
+                    })
+                    .collect();
+                let r = nm.minimize(&x0, |x| {
+                    progress.tick();
+                    cost(x)
+                });
+                r
+            })
+            .collect();
+        let best = runs
+            .iter()
+            .min_by(|a, b| a.value.total_cmp(&b.value))
+            .ok_or_else(|| Error::InvalidConfig {
+                key: "restarts".into(),
+                problem: "no start was run".into(),
+            })?;
+        let polished = nm.minimize(&best.x, |x| {
+            progress.tick();
+            cost(x)
+        });
+        progress.finish();
+        let evaluations = runs.iter().map(|r| r.evaluations).sum::<usize>() + polished.evaluations;
+        let x = if polished.value <= best.value {
+            &polished.x
+        } else {
+            &best.x
+        };
+        Ok(FourierResult {
+            fourier: decoder.decode(x),
+            cost: polished.value.min(best.value),
+            evaluations,
+        })
+    }
+
+    /// The criterion on the design grid, plus a torque-limit penalty.
+    fn cost<M: Model + ?Sized>(
+        &self,
+        model: &M,
+        limits: &[JointLimits],
+        torque: Option<&[f64]>,
+        fourier: &Fourier,
+    ) -> f64 {
+        let n = model.dof();
+        let mut info = Information::new(model);
+        let (mut q, mut qd, mut qdd, mut tau) =
+            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut peak = vec![0.0f64; n];
+        let period = fourier.period();
+        for k in 0..self.points {
+            let t = period * k as f64 / self.points as f64;
+            fourier.state(t, &mut q, &mut qd, &mut qdd);
+            info.add(model, &q, &qd, &qdd);
+            if let Some(base) = torque {
+                model.inverse_dynamics(&q, &qd, &qdd, base, &mut tau);
+                for j in 0..n {
+                    peak[j] = peak[j].max(tau[j].abs());
+                }
+            }
+        }
+        let penalty: f64 = limits
+            .iter()
+            .zip(&peak)
+            .filter_map(|(l, p)| l.torque.map(|t| (p / (self.safety * t) - 1.0).max(0.0)))
+            .sum();
+        info.cost(self.criterion) + 1e3 * penalty
+    }
+}

@@ -1,0 +1,167 @@
+//! Nelder-Mead simplex minimisation with the dimension-adaptive coefficients of Gao and Han,
+//! which keep the method effective in tens of dimensions.
+//!
+//! ## Reference
+//! J. A. Nelder, R. Mead, "A simplex method for function minimization", Computer Journal 7,
+//! 1965; F. Gao, L. Han, "Implementing the Nelder-Mead simplex algorithm with adaptive
+//! parameters", Computational Optimization and Applications 51, 2012.
+
+/// Settings of a minimisation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NelderMead {
+    /// Largest number of function evaluations.
+    pub max_evaluations: usize,
+    /// Stop when the simplex's function values differ by less than this.
+    pub tolerance: f64,
+    /// Edge length of the initial simplex (along each coordinate).
+    pub step: f64,
+}
+
+impl Default for NelderMead {
+    fn default() -> Self {
+        Self {
+            max_evaluations: 2000,
+            tolerance: 1e-9,
+            step: 0.3,
+        }
+    }
+}
+
+/// The best point found and its value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Minimum {
+    /// The point.
+    pub x: Vec<f64>,
+    /// f(x).
+    pub value: f64,
+    /// Evaluations used.
+    pub evaluations: usize,
+}
+
+impl NelderMead {
+    /// Minimises `f` from `x0`. Non-finite values count as +infinity.
+    pub fn minimize(&self, x0: &[f64], mut f: impl FnMut(&[f64]) -> f64) -> Minimum {
+        let n = x0.len();
+        let mut evals = 0;
+        let mut eval = |x: &[f64]| {
+            evals += 1;
+            let v = f(x);
+            if v.is_finite() { v } else { f64::INFINITY }
+        };
+        if n == 0 {
+            let value = eval(x0);
+            return Minimum {
+                x: Vec::new(),
+                value,
+                evaluations: 1,
+            };
+        }
+        let nf = n as f64;
+        let (alpha, beta, gamma, delta) = (1.0, 1.0 + 2.0 / nf, 0.75 - 0.5 / nf, 1.0 - 1.0 / nf);
+        let mut simplex: Vec<(Vec<f64>, f64)> = Vec::with_capacity(n + 1);
+        simplex.push((x0.to_vec(), eval(x0)));
+        for i in 0..n {
+            let mut x = x0.to_vec();
+            x[i] += self.step;
+            let v = eval(&x);
+            simplex.push((x, v));
+        }
+        let mut used = n + 1;
+        let along = |c: &[f64], w: &[f64], t: f64| -> Vec<f64> {
+            c.iter().zip(w).map(|(c, w)| c + t * (c - w)).collect()
+        };
+        while used < self.max_evaluations {
+            simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+            let (best, worst) = (simplex[0].1, simplex[n].1);
+            if (worst - best).abs() <= self.tolerance * (1.0 + best.abs()) && worst.is_finite() {
+                break;
+            }
+            let mut c = vec![0.0; n];
+            for (x, _) in &simplex[..n] {
+                for (ci, xi) in c.iter_mut().zip(x) {
+                    *ci += xi / nf;
+                }
+            }
+            let w = simplex[n].0.clone();
+            let xr = along(&c, &w, alpha);
+            let fr = eval(&xr);
+            used += 1;
+            if fr < best {
+                let xe = along(&c, &w, alpha * beta);
+                let fe = eval(&xe);
+                used += 1;
+                simplex[n] = if fe < fr { (xe, fe) } else { (xr, fr) };
+            } else if fr < simplex[n - 1].1 {
+                simplex[n] = (xr, fr);
+            } else {
+                let (xc, fc) = if fr < worst {
+                    let x = along(&c, &w, alpha * gamma);
+                    let v = eval(&x);
+                    (x, v)
+                } else {
+                    let x = along(&c, &w, -gamma);
+                    let v = eval(&x);
+                    (x, v)
+                };
+                used += 1;
+                if fc < fr.min(worst) {
+                    simplex[n] = (xc, fc);
+                } else {
+                    let x0 = simplex[0].0.clone();
+                    for (x, v) in simplex.iter_mut().skip(1) {
+                        for (xi, bi) in x.iter_mut().zip(&x0) {
+                            *xi = bi + delta * (*xi - bi);
+                        }
+                        *v = eval(x);
+                    }
+                    used += n;
+                }
+            }
+        }
+        simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let (x, value) = simplex.swap_remove(0);
+        Minimum {
+            x,
+            value,
+            evaluations: used,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_the_minimum_of_rosenbrock_and_a_quadratic() {
+        let nm = NelderMead {
+            max_evaluations: 5000,
+            tolerance: 1e-14,
+            step: 0.5,
+        };
+        let r = nm.minimize(&[-1.2, 1.0], |x| {
+            (1.0 - x[0]).powi(2) + 100.0 * (x[1] - x[0] * x[0]).powi(2)
+        });
+        assert!(
+            (r.x[0] - 1.0).abs() < 1e-3 && (r.x[1] - 1.0).abs() < 1e-3,
+            "{r:?}"
+        );
+        let q = nm.minimize(&[1.0; 10], |x| {
+            x.iter()
+                .enumerate()
+                .map(|(i, v)| (i + 1) as f64 * (v - 0.5).powi(2))
+                .sum()
+        });
+        assert!(q.value < 1e-6, "{q:?}");
+        assert!(q.evaluations <= 5000 + 11);
+        // infinite values are avoided
+        let c = nm.minimize(&[0.5], |x| {
+            if x[0] < 0.0 {
+                f64::NAN
+            } else {
+                (x[0] - 0.1).powi(2)
+            }
+        });
+        assert!((c.x[0] - 0.1).abs() < 1e-4);
+    }
+}

@@ -1,0 +1,175 @@
+//! Joint trajectories and simulated records, with their CSV form.
+//!
+//! A trajectory file has the header `t,q1..qn,qd1..qdn,qdd1..qddn`; a simulated record
+//! adds `tau1..taun`. Signals are stored per joint: `q[j][k]` is joint j at sample k.
+
+use std::io::Write;
+use std::path::Path;
+
+use crate::data::read_columns;
+use crate::error::{Error, Result};
+
+/// Positions, velocities and accelerations on a time grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Trajectory {
+    /// Time stamps (s), increasing.
+    pub t: Vec<f64>,
+    /// Positions per joint.
+    pub q: Vec<Vec<f64>>,
+    /// Velocities per joint.
+    pub qd: Vec<Vec<f64>>,
+    /// Accelerations per joint.
+    pub qdd: Vec<Vec<f64>>,
+}
+
+/// A simulated (or measured) record: the trajectory followed and the joint torques.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    /// What the joints did (as measured: with noise and quantization when simulated so).
+    pub trajectory: Trajectory,
+    /// Joint torques per joint.
+    pub tau: Vec<Vec<f64>>,
+}
+
+/// Header names `prefix1..prefixn`.
+fn names(prefix: &str, n: usize) -> impl Iterator<Item = String> + '_ {
+    (1..=n).map(move |j| format!("{prefix}{j}"))
+}
+
+impl Trajectory {
+    /// An all-zero trajectory of `dof` joints on the time stamps `t`.
+    pub fn zeros(dof: usize, t: Vec<f64>) -> Self {
+        let n = t.len();
+        Self {
+            t,
+            q: vec![vec![0.0; n]; dof],
+            qd: vec![vec![0.0; n]; dof],
+            qdd: vec![vec![0.0; n]; dof],
+        }
+    }
+
+    /// Number of joints.
+    pub fn dof(&self) -> usize {
+        self.q.len()
+    }
+
+    /// Number of samples.
+    pub fn samples(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Writes joint states of sample `k` into the three slices.
+    pub fn state(&self, k: usize, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
+        for j in 0..self.dof() {
+            q[j] = self.q[j][k];
+            qd[j] = self.qd[j][k];
+            qdd[j] = self.qdd[j][k];
+        }
+    }
+
+    /// The CSV header `t,q1..,qd1..,qdd1..`.
+    pub fn header(dof: usize) -> Vec<String> {
+        std::iter::once("t".to_string())
+            .chain(names("q", dof))
+            .chain(names("qd", dof))
+            .chain(names("qdd", dof))
+            .collect()
+    }
+
+    /// Reads a trajectory CSV of `dof` joints (header `t,q1..,qd1..,qdd1..`, any column order,
+    /// extra columns ignored); time must increase and there must be at least 2 samples.
+    pub fn read_csv(path: &Path, dof: usize) -> Result<Self> {
+        let table = read_columns(path, &Self::header(dof))?;
+        let mut cols = table.columns.into_iter();
+        let t = cols.next().unwrap_or_default();
+        if t.len() < 2 {
+            return Err(Error::TooFewSamples {
+                context: path.display().to_string(),
+                found: t.len(),
+                required: 2,
+                hint: "a trajectory needs at least two time stamps",
+            });
+        }
+        crate::data::check_monotonic(&t, &table.lines, path)?;
+        let mut take = || (0..dof).map(|_| cols.next().unwrap_or_default()).collect();
+        let (q, qd, qdd) = (take(), take(), take());
+        Ok(Self { t, q, qd, qdd })
+    }
+
+    /// Writes the trajectory as CSV.
+    pub fn write_csv(&self, path: &Path) -> Result<()> {
+        write_rows(path, Self::header(self.dof()), self.samples(), |k, row| {
+            self.push_row(k, row)
+        })
+    }
+
+    fn push_row(&self, k: usize, row: &mut Vec<f64>) {
+        row.push(self.t[k]);
+        for block in [&self.q, &self.qd, &self.qdd] {
+            row.extend(block.iter().map(|v| v[k]));
+        }
+    }
+}
+
+impl Record {
+    /// The CSV header `t,q1..,qd1..,qdd1..,tau1..`.
+    pub fn header(dof: usize) -> Vec<String> {
+        let mut h = Trajectory::header(dof);
+        h.extend(names("tau", dof));
+        h
+    }
+
+    /// Writes the record as CSV.
+    pub fn write_csv(&self, path: &Path) -> Result<()> {
+        let n = self.trajectory.dof();
+        write_rows(
+            path,
+            Self::header(n),
+            self.trajectory.samples(),
+            |k, row| {
+                self.trajectory.push_row(k, row);
+                row.extend(self.tau.iter().map(|v| v[k]));
+            },
+        )
+    }
+
+    /// The record as a data set for the identification pipeline (uniform sample time
+    /// taken from the first two time stamps; velocities and accelerations included).
+    pub fn dataset(&self, name: &str) -> Result<crate::data::Dataset> {
+        let tr = &self.trajectory;
+        let dt = tr.t.get(1).copied().unwrap_or(0.0) - tr.t.first().copied().unwrap_or(0.0);
+        crate::data::Dataset::new(name, dt, tr.q.clone(), self.tau.clone())?
+            .with_velocities(tr.qd.clone())?
+            .with_accelerations(tr.qdd.clone())
+    }
+}
+
+fn write_rows(
+    path: &Path,
+    header: Vec<String>,
+    rows: usize,
+    mut fill: impl FnMut(usize, &mut Vec<f64>),
+) -> Result<()> {
+    let err = |reason: String| Error::Write {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let file = std::fs::File::create(path).map_err(|e| err(e.to_string()))?;
+    let mut w = std::io::BufWriter::new(file);
+    writeln!(w, "{}", header.join(",")).map_err(|e| err(e.to_string()))?;
+    let mut row = Vec::with_capacity(header.len());
+    let mut line = String::new();
+    for k in 0..rows {
+        row.clear();
+        fill(k, &mut row);
+        line.clear();
+        for (i, x) in row.iter().enumerate() {
+            if i > 0 {
+                line.push(',');
+            }
+            line.push_str(&format!("{x:.9e}"));
+        }
+        writeln!(w, "{line}").map_err(|e| err(e.to_string()))?;
+    }
+    w.flush().map_err(|e| err(e.to_string()))
+}
