@@ -90,6 +90,23 @@ fn check(seed: u64, flavour: Flavour) {
         ("y", rng.uniform(-2.0, 2.0)),
         ("q", rng.uniform(-3.0, 3.0)),
     ]);
+    // sin/cos of a huge argument amplify rounding (cos(1e12) changes with the
+    // last bit of its argument): such trees say nothing about the passes.
+    let seen = a.reachable(&[raw]);
+    let trig_args: Vec<Id> = (0..seen.len())
+        .filter(|&i| seen[i])
+        .filter_map(|i| match a.node_at(i) {
+            Node::Sin(x) | Node::Cos(x) => Some(*x),
+            _ => None,
+        })
+        .collect();
+    if a.eval(&trig_args, &values)
+        .unwrap()
+        .iter()
+        .any(|v| v.abs() > 1e3)
+    {
+        return;
+    }
     let before = a.eval(&[raw], &values).unwrap()[0];
     let simple = a.simplify(raw);
     let after = a.eval(&[simple], &values).unwrap()[0];

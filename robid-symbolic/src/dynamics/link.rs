@@ -3,7 +3,7 @@
 
 use super::vector::{self, Mat3, Vec3};
 use crate::expr::{Arena, Id};
-use crate::robot::{DriveTerm, ParameterKind, Robot};
+use crate::robot::{DriveTerm, Parameter, ParameterKind, Robot};
 
 /// Parameters of one link (about the frame origin, in the link frame) and its joint's drive.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,19 +38,46 @@ impl LinkParameters {
             fo: z,
         }
     }
+
+    /// True when the ten inertial parameters are the constant 0.
+    pub fn is_zero_inertial(&self, arena: &Arena) -> bool {
+        self.inertia
+            .iter()
+            .chain(&self.first_moment)
+            .chain([&self.mass])
+            .all(|&x| arena.is_zero(x))
+    }
+}
+
+/// The constant transform from each modified-DH link frame to the user's
+/// link frame, as (alpha, a) expressions; `None` where they coincide.
+pub fn user_frames(arena: &mut Arena, robot: &Robot) -> Vec<Option<(Id, Id)>> {
+    robot
+        .frame_rows()
+        .iter()
+        .map(|row| {
+            let alpha = row.user_alpha.to_expr(arena);
+            let a = row.user_a.to_expr(arena);
+            (!(arena.is_zero(alpha) && arena.is_zero(a))).then_some((alpha, a))
+        })
+        .collect()
 }
 
 /// Parameters of every link in modified-DH frames, given the value of each
-/// standard parameter (in the order of `Robot::standard_parameters`, in the
-/// user's frames). Disabled drive terms are zero.
-pub fn link_parameters(arena: &mut Arena, robot: &Robot, values: &[Id]) -> Vec<LinkParameters> {
-    let parameters = robot.standard_parameters();
+/// standard parameter (`parameters` as from `Robot::standard_parameters`, in the
+/// user's frames; `frames` from [`user_frames`]). Disabled drive terms are zero.
+pub fn link_parameters(
+    arena: &mut Arena,
+    parameters: &[Parameter],
+    frames: &[Option<(Id, Id)>],
+    values: &[Id],
+) -> Vec<LinkParameters> {
     assert_eq!(
         values.len(),
         parameters.len(),
         "one value per standard parameter"
     );
-    let mut links: Vec<LinkParameters> = (0..robot.dof())
+    let mut links: Vec<LinkParameters> = (0..frames.len())
         .map(|_| LinkParameters::zero(arena))
         .collect();
     for (p, &v) in parameters.iter().zip(values) {
@@ -65,28 +92,13 @@ pub fn link_parameters(arena: &mut Arena, robot: &Robot, values: &[Id]) -> Vec<L
             ParameterKind::Drive(DriveTerm::Fo) => l.fo = v,
         }
     }
-    let rows = robot.frame_rows();
     links
         .into_iter()
-        .zip(&rows)
-        .map(|(l, row)| {
-            let alpha = row.user_alpha.to_expr(arena);
-            let a = row.user_a.to_expr(arena);
-            if arena.is_zero(alpha) && arena.is_zero(a) {
-                l
-            } else {
-                to_parent_frame(arena, l, alpha, a)
-            }
+        .zip(frames)
+        .map(|(l, frame)| match *frame {
+            Some((alpha, a)) if !l.is_zero_inertial(arena) => to_parent_frame(arena, l, alpha, a),
+            _ => l,
         })
-        .collect()
-}
-
-/// The symbols of every standard parameter (`XX1`, ...), in order.
-pub fn parameter_symbols(arena: &mut Arena, robot: &Robot) -> Vec<Id> {
-    robot
-        .standard_parameters()
-        .iter()
-        .map(|p| arena.var(&p.name))
         .collect()
 }
 

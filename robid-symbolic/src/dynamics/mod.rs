@@ -44,6 +44,10 @@ pub struct Derivation {
     pub inputs: JointInputs,
     /// Kinematics for those inputs.
     pub kinematics: Kinematics,
+    /// The standard parameters, in column order.
+    parameters: Vec<Parameter>,
+    /// Modified-DH to user link frames (standard DH only).
+    frames: Vec<Option<(Id, Id)>>,
 }
 
 impl Derivation {
@@ -52,22 +56,34 @@ impl Derivation {
         let mut arena = Arena::new();
         let inputs = JointInputs::symbols(&mut arena, robot);
         let kinematics = Kinematics::new(&mut arena, robot, &inputs);
+        let frames = link::user_frames(&mut arena, robot);
+        let parameters = robot.standard_parameters();
         Derivation {
             arena,
             robot: robot.clone(),
             inputs,
             kinematics,
+            parameters,
+            frames,
         }
     }
 
     /// Link parameters (modified-DH frames) from standard-parameter values.
     pub fn link_parameters(&mut self, values: &[Id]) -> Vec<LinkParameters> {
-        link::link_parameters(&mut self.arena, &self.robot, values)
+        link::link_parameters(&mut self.arena, &self.parameters, &self.frames, values)
     }
 
     /// The standard parameters as symbols (`XX1`, ...).
     pub fn parameter_symbols(&mut self) -> Vec<Id> {
-        link::parameter_symbols(&mut self.arena, &self.robot)
+        self.parameters
+            .iter()
+            .map(|p| self.arena.var(&p.name))
+            .collect()
+    }
+
+    /// The standard parameters, in column order.
+    pub fn standard_parameters(&self) -> &[Parameter] {
+        &self.parameters
     }
 
     /// Newton-Euler torques for the given standard-parameter values.
@@ -128,7 +144,7 @@ impl Derivation {
         &mut self,
         mut torques: impl FnMut(&mut Derivation, &[Id]) -> Vec<Id>,
     ) -> Regressor {
-        let parameters = self.robot.standard_parameters();
+        let parameters = self.parameters.clone();
         let zero = self.arena.zero();
         let one = self.arena.one();
         let columns = (0..parameters.len())

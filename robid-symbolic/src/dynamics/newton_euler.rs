@@ -44,10 +44,18 @@ pub fn inverse_dynamics(
     let mut tau = vec![arena.zero(); n];
     let mut f = vector::zero(arena);
     let mut m = vector::zero(arena);
+    let zero = arena.zero();
+    let is_zero = |v: &Vec3| v.iter().all(|&x| x == zero);
     for j in (0..n).rev() {
-        let (force, moment) = link_wrench(arena, kin, j, &params[j]);
+        // A link without inertial parameters (a regressor column of another
+        // link) adds no wrench: skip building zeros.
+        let (force, moment) = if params[j].is_zero_inertial(arena) {
+            ([zero; 3], [zero; 3])
+        } else {
+            link_wrench(arena, kin, j, &params[j])
+        };
         // Add the child's wrench, moved into frame j.
-        if j + 1 < n {
+        if j + 1 < n && !(is_zero(&f) && is_zero(&m)) {
             let r = &kin.rotation[j + 1];
             let rf = vector::mat_vec(arena, r, f);
             let rm = vector::mat_vec(arena, r, m);

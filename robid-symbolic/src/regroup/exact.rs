@@ -8,18 +8,20 @@ use crate::expr::{Arena, Id, Num};
 /// The exact number closest to `x` among short decimals and small fractions,
 /// when one is within rounding of it.
 pub(crate) fn rationalize(x: f64) -> Option<Num> {
-    let tolerance = 1e-9 * x.abs().max(1.0);
-    for digits in 0..=10 {
-        let scale = 10f64.powi(digits);
-        let r = (x * scale).round() / scale;
-        if (r - x).abs() <= tolerance {
-            return Num::parse_decimal(&format!("{r:.*}", digits as usize));
-        }
-    }
-    for denominator in 2..=720_i128 {
+    // Small fractions first (1/3 must not become 0.333333333), then short decimals.
+    let tolerance = 1e-10 * x.abs().max(1.0);
+    for denominator in 1..=720_i128 {
         let numerator = (x * denominator as f64).round();
         if (numerator / denominator as f64 - x).abs() <= tolerance {
             return Num::ratio(numerator as i128, denominator);
+        }
+    }
+    for digits in 1..=10 {
+        let scale = 10f64.powi(digits);
+        let r = (x * scale).round() / scale;
+        // Far closer than the decimal's own step: pi is not 3.1415926536.
+        if (r - x).abs() <= tolerance.min(1e-3 / scale) {
+            return Num::parse_decimal(&format!("{r:.*}", digits as usize));
         }
     }
     None

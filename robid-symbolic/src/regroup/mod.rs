@@ -15,7 +15,7 @@ mod rank;
 mod rules;
 
 use crate::dynamics::{Derivation, LinkParameters, newton_euler};
-use crate::expr::{Arena, Id, Num};
+use crate::expr::{Arena, Id, Node, Num};
 use crate::robot::Parameter;
 use crate::sample::Rng;
 use rank::Status;
@@ -139,12 +139,19 @@ impl Derivation {
             } else {
                 format!("{}R{}", SLOT_NAMES[c.slot], c.link + 1)
             };
+            // The expression is linear in the standard parameters: each
+            // coefficient is a derivative, taken only for the symbols it holds.
+            let present = self.arena.free_symbols(&[expression]);
             let terms = user
                 .iter()
                 .enumerate()
-                .filter_map(|(s, &sym)| {
-                    let symbol = self.arena.find_symbol(&standard[s].name)?;
-                    let _ = sym;
+                .filter_map(|(s, &parameter)| {
+                    let &Node::Sym(symbol) = self.arena.node(parameter) else {
+                        return None;
+                    };
+                    if !present.contains(&symbol) {
+                        return None;
+                    }
                     let coefficient = self.arena.diff(expression, symbol);
                     (!self.arena.is_zero(coefficient)).then_some((s, coefficient))
                 })
