@@ -22,6 +22,8 @@ pub mod feasible;
 #[cfg(feature = "std")]
 pub mod pipeline;
 #[cfg(feature = "std")]
+pub mod report;
+#[cfg(feature = "std")]
 pub mod signal;
 #[cfg(feature = "std")]
 pub mod simulate;

@@ -338,41 +338,41 @@ impl Config {
 
     /// Checks value ranges that serde cannot; `dof` is the model's joint count.
     pub fn check(&self, dof: usize) -> Result<()> {
-        if let Some(n) = self.dof {
-            if n != dof {
-                return Err(Error::JointCountMismatch {
-                    context: "config `dof`".into(),
-                    expected: dof,
-                    found: n,
-                });
-            }
+        if let Some(n) = self.dof
+            && n != dof
+        {
+            return Err(Error::JointCountMismatch {
+                context: "config `dof`".into(),
+                expected: dof,
+                found: n,
+            });
         }
-        if let Some(fs) = self.sample_rate {
-            if !(fs > 0.0 && fs.is_finite()) {
-                return Err(invalid("sample_rate", format!("{fs} Hz must be positive")));
-            }
+        if let Some(fs) = self.sample_rate
+            && !(fs > 0.0 && fs.is_finite())
+        {
+            return Err(invalid("sample_rate", format!("{fs} Hz must be positive")));
         }
         if !(self.time_scale > 0.0 && self.time_scale.is_finite()) {
             return Err(invalid("time_scale", "must be positive".into()));
         }
-        if let Some(lp) = &self.processing.lowpass {
-            if !(lp.cutoff > 0.0 && lp.cutoff.is_finite()) {
-                return Err(invalid(
-                    "processing.lowpass.cutoff",
-                    format!("{} Hz must be positive", lp.cutoff),
-                ));
-            }
+        if let Some(lp) = &self.processing.lowpass
+            && !(lp.cutoff > 0.0 && lp.cutoff.is_finite())
+        {
+            return Err(invalid(
+                "processing.lowpass.cutoff",
+                format!("{} Hz must be positive", lp.cutoff),
+            ));
         }
         if let Some(r) = &self.processing.rest_velocity {
             r.values(dof, "processing.rest_velocity")?;
         }
-        if let Some([a, b]) = self.processing.range {
-            if a >= b {
-                return Err(invalid(
-                    "processing.range",
-                    format!("[{a}, {b}] is empty; write [start, end] with start < end"),
-                ));
-            }
+        if let Some([a, b]) = self.processing.range
+            && a >= b
+        {
+            return Err(invalid(
+                "processing.range",
+                format!("[{a}, {b}] is empty; write [start, end] with start < end"),
+            ));
         }
         let e = &self.estimation;
         if !(e.forgetting > 0.0 && e.forgetting <= 1.0) {

@@ -40,12 +40,12 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
     for (src, path) in config.sources.iter().zip(&paths) {
         let mut names = Vec::new();
         let mut spans = Vec::new();
-        for role in 0..ROLES.len() {
+        for (role, role_name) in ROLES.iter().enumerate() {
             if let Some(cols) = role_columns(src, role) {
                 let n = cols.names(dof);
                 if n.len() != dof {
                     return Err(Error::JointCountMismatch {
-                        context: format!("{}: `{}` columns {:?}", path.display(), ROLES[role], n),
+                        context: format!("{}: `{}` columns {:?}", path.display(), role_name, n),
                         expected: dof,
                         found: n.len(),
                     });

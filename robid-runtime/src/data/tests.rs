@@ -96,14 +96,14 @@ fn missing_sample_rate_and_roles_are_errors() {
     let a = d.file("x.csv", "q1,t1\n0,0\n1,1\n");
     let e = load(
         &cfg("[[source]]\nposition = \"q{}\"\ntorque = \"t{}\""),
-        &[a.clone()],
+        std::slice::from_ref(&a),
         1,
     )
     .unwrap_err();
     assert!(e.to_string().contains("sample_rate"), "{e}");
     let e = load(
         &cfg("sample_rate = 1.0\n[[source]]\nposition = \"q{}\""),
-        &[a.clone()],
+        std::slice::from_ref(&a),
         1,
     )
     .unwrap_err();

@@ -14,24 +14,24 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation, ols};
+use crate::pipeline::Prepared;
 
 /// The energy regressor: writes h(q, qd) (one entry per parameter) into the last argument.
 pub trait EnergyRegressor: Fn(&[f64], &[f64], &mut [f64]) + Sync {}
 impl<F: Fn(&[f64], &[f64], &mut [f64]) + Sync> EnergyRegressor for F {}
 
 /// Builds the energy observation: one equation per window of `window` samples.
-/// `q`, `qd`, `tau` are per joint; `h` is the energy regressor, `dissipation` the
-/// dissipated-power regressor (see [`friction_power`]).
+/// `signals` are prepared joint signals (positions, velocities, torques; accelerations
+/// are not used), e.g. from [`crate::pipeline::prepare`]; `h` is the energy regressor,
+/// `dissipation` the dissipated-power regressor (see [`friction_power`]).
 pub fn energy_observation(
-    q: &[Vec<f64>],
-    qd: &[Vec<f64>],
-    tau: &[Vec<f64>],
-    dt: f64,
+    signals: &Prepared,
     window: usize,
     names: Vec<String>,
     h: &impl EnergyRegressor,
     dissipation: &impl EnergyRegressor,
 ) -> Result<Observation> {
+    let (q, qd, tau, dt) = (&signals.q, &signals.qd, &signals.tau, signals.sample_time);
     let dof = q.len();
     let n = q.first().map_or(0, Vec::len);
     let p = names.len();
@@ -140,17 +140,15 @@ mod tests {
             out[1] = 1.0 - q[0].cos();
             out[2] = 0.0;
         };
-        let obs = energy_observation(
-            &[q],
-            &[qd],
-            &[tau],
-            dt,
-            500,
-            names.clone(),
-            &h,
-            &friction_power(&names),
-        )
-        .unwrap();
+        let signals = Prepared {
+            q: vec![q],
+            qd: vec![qd],
+            qdd: vec![vec![0.0; n]],
+            tau: vec![tau],
+            sample_time: dt,
+        };
+        let obs =
+            energy_observation(&signals, 500, names.clone(), &h, &friction_power(&names)).unwrap();
         let e = energy(&obs, 1e-10).unwrap();
         assert!(
             (e.values[0] - inertia).abs() < 0.01 * inertia,
@@ -176,16 +174,14 @@ mod tests {
     #[test]
     fn too_short_record_is_an_error() {
         let h = |_: &[f64], _: &[f64], _: &mut [f64]| {};
-        let e = energy_observation(
-            &[vec![0.0; 5]],
-            &[vec![0.0; 5]],
-            &[vec![0.0; 5]],
-            0.1,
-            10,
-            vec!["a".into()],
-            &h,
-            &h,
-        );
+        let short = Prepared {
+            q: vec![vec![0.0; 5]],
+            qd: vec![vec![0.0; 5]],
+            qdd: vec![vec![0.0; 5]],
+            tau: vec![vec![0.0; 5]],
+            sample_time: 0.1,
+        };
+        let e = energy_observation(&short, 10, vec!["a".into()], &h, &h);
         assert!(matches!(e, Err(Error::TooFewSamples { .. })));
     }
 }

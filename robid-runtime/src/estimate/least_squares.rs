@@ -82,6 +82,7 @@ pub fn check_names(names: &[String]) -> Result<()> {
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
     use nalgebra::DMatrix;

@@ -50,7 +50,7 @@ pub(crate) fn solve(
     let smax = s.max();
     let smin = s.min();
     let cut = tolerance * smax;
-    let null: Vec<usize> = (0..n).filter(|&k| !(s[k] > cut)).collect();
+    let null: Vec<usize> = (0..n).filter(|&k| s[k] <= cut || s[k].is_nan()).collect();
     if smax == 0.0 || !null.is_empty() {
         return Err(Error::RankDeficient {
             rank: n - null.len(),

@@ -70,7 +70,13 @@ impl Observation {
     /// A single-block observation (e.g. one equation per row with no joint structure).
     pub fn single(w: DMatrix<f64>, y: DVector<f64>, names: Vec<String>) -> Result<Self> {
         let n = w.nrows();
-        Self::new(w, y, vec![0..n], (0..n).collect(), names)
+        Self::new(
+            w,
+            y,
+            std::iter::once(0..n).collect(),
+            (0..n).collect(),
+            names,
+        )
     }
 
     /// Number of equations.

@@ -16,6 +16,27 @@ use crate::signal::{Decimator, moving_samples};
 const BLOCK: usize = 512;
 /// Channels filtered together by one task.
 const GROUP: usize = 32;
+/// Samples at which all-zero regressor channels are probed (then verified on all samples).
+const PROBES: usize = 33;
+
+/// Per-thread buffers for one sample.
+struct Scratch {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    col: Vec<f64>,
+}
+
+impl Scratch {
+    fn new(dof: usize) -> Self {
+        Self {
+            q: vec![0.0; dof],
+            qd: vec![0.0; dof],
+            qdd: vec![0.0; dof],
+            col: vec![0.0; dof],
+        }
+    }
+}
 
 /// Channel layout of one sample row: `[Y_b (dof x p, row-major) | extra (e x dof) | tau | qd]`.
 struct Layout {
@@ -82,50 +103,74 @@ pub fn observe(
     check_names(&names)?;
     let n = signals.samples();
     let stride = lay.stride();
-    let mut rows = vec![0.0; n * stride];
-
-    // regressor rows in parallel blocks of samples; each block reports its non-zero channels
-    let active = rows
-        .par_chunks_mut(stride * BLOCK)
-        .enumerate()
-        .map(|(b, chunk)| {
-            let (mut q, mut qd, mut qdd) = (vec![0.0; dof], vec![0.0; dof], vec![0.0; dof]);
-            let mut col = vec![0.0; dof];
-            let mut nonzero = vec![false; stride];
-            for (i, row) in chunk.chunks_exact_mut(stride).enumerate() {
-                let k = b * BLOCK + i;
-                for j in 0..dof {
-                    q[j] = signals.q[j][k];
-                    qd[j] = signals.qd[j][k];
-                    qdd[j] = signals.qdd[j][k];
+    let row_at = |k: usize, st: &mut Scratch, row: &mut [f64]| {
+        for j in 0..dof {
+            st.q[j] = signals.q[j][k];
+            st.qd[j] = signals.qd[j][k];
+            st.qdd[j] = signals.qdd[j][k];
+        }
+        model.base_regressor(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p]);
+        for (c, x) in extra.iter().enumerate() {
+            x.fill(&st.q, &st.qd, &st.qdd, &mut st.col);
+            let start = lay.column(0, lay.p + c);
+            row[start..start + dof].copy_from_slice(&st.col);
+        }
+        for j in 0..dof {
+            row[lay.tau(j)] = signals.tau[j][k];
+            row[lay.qd(j)] = st.qd[j];
+        }
+    };
+    // channels that are not identically zero, probed at a few samples; verified below
+    let mut st = Scratch::new(dof);
+    let mut probe = vec![0.0; stride];
+    let mut active = vec![false; stride];
+    for i in 0..PROBES {
+        row_at(i * n.saturating_sub(1) / (PROBES - 1), &mut st, &mut probe);
+        for (a, v) in active.iter_mut().zip(&probe) {
+            *a |= *v != 0.0;
+        }
+    }
+    for j in 0..dof {
+        active[lay.tau(j)] = true;
+        active[lay.qd(j)] = true;
+    }
+    let mut channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
+    let mut rows = Vec::new();
+    for attempt in 0..2 {
+        if attempt == 1 {
+            channels = (0..stride).collect();
+        }
+        let a = channels.len();
+        rows = vec![0.0; n * a];
+        let missed = rows
+            .par_chunks_mut(a * BLOCK)
+            .enumerate()
+            .map(|(b, chunk)| {
+                let mut st = Scratch::new(dof);
+                let mut full = vec![0.0; stride];
+                let mut missed = false;
+                for (i, out) in chunk.chunks_exact_mut(a).enumerate() {
+                    row_at(b * BLOCK + i, &mut st, &mut full);
+                    for (o, &c) in out.iter_mut().zip(&channels) {
+                        *o = full[c];
+                    }
+                    missed |= full.iter().zip(&active).any(|(v, a)| !a && *v != 0.0);
                 }
-                model.base_regressor(&q, &qd, &qdd, &mut row[..dof * lay.p]);
-                for (c, x) in extra.iter().enumerate() {
-                    x.fill(&q, &qd, &qdd, &mut col);
-                    let start = lay.column(0, lay.p + c);
-                    row[start..start + dof].copy_from_slice(&col);
-                }
-                for j in 0..dof {
-                    row[lay.tau(j)] = signals.tau[j][k];
-                    row[lay.qd(j)] = qd[j];
-                }
-                for (z, v) in nonzero.iter_mut().zip(row.iter()) {
-                    *z |= *v != 0.0;
-                }
-            }
-            nonzero
-        })
-        .reduce(
-            || vec![false; stride],
-            |a, b| a.iter().zip(&b).map(|(x, y)| *x || *y).collect(),
-        );
-    let channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
+                missed
+            })
+            .reduce(|| false, |x, y| x || y);
+        if !missed || attempt == 1 {
+            break;
+        }
+    }
+    let a = channels.len();
 
     let dec = decimator(config)?;
     let m = dec.output_len(n);
-    let groups: Vec<Vec<f64>> = channels
+    let local: Vec<usize> = (0..a).collect();
+    let groups: Vec<Vec<f64>> = local
         .par_chunks(GROUP)
-        .map(|g| dec.apply_block(&rows, stride, g))
+        .map(|g| dec.apply_block(&rows, a, g))
         .collect::<Result<_>>()?;
     drop(rows);
     // position of each channel: (group, index in group), or None for an all-zero channel

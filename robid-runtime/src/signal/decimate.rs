@@ -74,21 +74,48 @@ impl Decimator {
         channels: &[usize],
     ) -> Result<Vec<f64>> {
         let g = channels.len();
-        let mut block: Vec<f64> = source
-            .chunks_exact(stride)
-            .flat_map(|row| channels.iter().map(move |&c| row[c]))
-            .collect();
+        let gather = |pad: usize| {
+            let n = source.len() / stride.max(1);
+            let mut ext = Vec::with_capacity((n + 2 * pad) * g);
+            ext.resize(pad * g, 0.0);
+            ext.extend(
+                source
+                    .chunks_exact(stride)
+                    .flat_map(|row| channels.iter().map(move |&c| row[c])),
+            );
+            ext.resize((n + 2 * pad) * g, 0.0);
+            ext
+        };
+        let mut block: Option<Vec<f64>> = None;
         for (q, sos) in &self.stages {
             let Some(sos) = sos else { continue };
-            sos.filtfilt_channels(&mut block, g)?;
-            block = block
-                .chunks_exact(g)
-                .step_by(*q)
-                .flatten()
-                .copied()
-                .collect();
+            let pad = sos.pad_length();
+            let mut ext = match block.take() {
+                None => gather(pad),
+                Some(b) => {
+                    let mut ext = Vec::with_capacity(b.len() + 2 * pad * g);
+                    ext.resize(pad * g, 0.0);
+                    ext.extend_from_slice(&b);
+                    ext.resize(b.len() + 2 * pad * g, 0.0);
+                    ext
+                }
+            };
+            if g == 0 {
+                block = Some(Vec::new());
+                continue;
+            }
+            sos.filtfilt_extended(&mut ext, g)?;
+            let n = ext.len() / g - 2 * pad;
+            block = Some(
+                ext[pad * g..(pad + n) * g]
+                    .chunks_exact(g)
+                    .step_by(*q)
+                    .flatten()
+                    .copied()
+                    .collect(),
+            );
         }
-        Ok(block)
+        Ok(block.unwrap_or_else(|| gather(0)))
     }
 
     /// Decimates many signals in parallel; signals that are identically zero are
@@ -118,7 +145,7 @@ pub fn split_factor(total: usize) -> Result<Vec<usize>> {
     let mut rest = total;
     let mut out = Vec::new();
     while rest > 1 {
-        let Some(f) = (2..=10).rev().find(|f| rest % f == 0) else {
+        let Some(f) = (2..=10).rev().find(|f| rest.is_multiple_of(*f)) else {
             return Err(Error::InvalidConfig {
                 key: "processing.decimation".into(),
                 problem: format!(

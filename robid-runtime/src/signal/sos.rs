@@ -139,6 +139,16 @@ impl Sos {
             return Ok(());
         }
         let n = block.len() / g;
+        let pad = self.check_length(n)?;
+        let mut ext = vec![0.0; (n + 2 * pad) * g];
+        ext[pad * g..(pad + n) * g].copy_from_slice(block);
+        self.filtfilt_extended(&mut ext, g)?;
+        block.copy_from_slice(&ext[pad * g..(pad + n) * g]);
+        Ok(())
+    }
+
+    /// Checks that `n` samples are enough and returns the pad length.
+    pub(crate) fn check_length(&self, n: usize) -> Result<usize> {
         let pad = self.pad_length();
         if n <= pad {
             return Err(Error::TooFewSamples {
@@ -148,24 +158,32 @@ impl Sos {
                 hint: "use a longer record, less trimming or a lower decimation factor",
             });
         }
-        let rows = n + 2 * pad;
-        let mut ext = vec![0.0; rows * g];
+        Ok(pad)
+    }
+
+    /// Zero-phase filtering of `g` channels held in `ext` (row-major) with
+    /// [`Sos::pad_length`] free rows before and after the data rows: the pads are
+    /// filled with the odd extension, then filtered forward and backward in place.
+    pub(crate) fn filtfilt_extended(&self, ext: &mut [f64], g: usize) -> Result<()> {
+        let pad = self.pad_length();
+        let rows = ext.len() / g;
+        let n = rows.saturating_sub(2 * pad);
+        self.check_length(n)?;
         for i in 0..pad {
-            let (dst, src) = (
-                &mut ext[i * g..(i + 1) * g],
-                &block[(pad - i) * g..(pad - i + 1) * g],
-            );
-            for ((d, s), f) in dst.iter_mut().zip(src).zip(&block[..g]) {
+            // front: 2 x[0] - x[pad - i]; back: 2 x[n-1] - x[n-2-i]
+            let (head, tail) = ext.split_at_mut(pad * g);
+            let first = &tail[..g];
+            let src = &tail[(pad - i) * g..(pad - i + 1) * g];
+            for ((d, s), f) in head[i * g..(i + 1) * g].iter_mut().zip(src).zip(first) {
                 *d = 2.0 * f - s;
             }
-            let last = &block[(n - 1) * g..n * g];
-            let src = &block[(n - 2 - i) * g..(n - 1 - i) * g];
-            let dst = &mut ext[(pad + n + i) * g..(pad + n + i + 1) * g];
-            for ((d, s), l) in dst.iter_mut().zip(src).zip(last) {
+            let (body, back) = ext.split_at_mut((pad + n) * g);
+            let last = &body[(pad + n - 1) * g..];
+            let src = &body[(pad + n - 2 - i) * g..(pad + n - 1 - i) * g];
+            for ((d, s), l) in back[i * g..(i + 1) * g].iter_mut().zip(src).zip(last) {
                 *d = 2.0 * l - s;
             }
         }
-        ext[pad * g..(pad + n) * g].copy_from_slice(block);
         let zi = self.steady_state();
         let ns = self.sections.len();
         let mut z0 = vec![0.0; ns * g];
@@ -200,7 +218,6 @@ impl Sos {
         for row in ext.chunks_exact_mut(g).rev() {
             step(&mut z0, &mut z1, row);
         }
-        block.copy_from_slice(&ext[pad * g..(pad + n) * g]);
         Ok(())
     }
 }

@@ -1,0 +1,10 @@
+//! Reports (DESIGN 6.6): JSON for machines, a text table for people, SVG plots of
+//! measured vs predicted torque per joint.
+
+mod json;
+mod plot;
+mod table;
+
+pub use json::{FitEntry, ParameterEntry, Report, ValidationEntry};
+pub use plot::plot_torques;
+pub use table::text_table;
