@@ -1,0 +1,56 @@
+//! Speed of the compiled UR5e model (DESIGN.md 8), with a baseline measured in
+//! the same run: 6 x (sin + cos) through libm, the floor of any model that
+//! evaluates the joint angles' trigonometry.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use robots::Ur5e;
+use std::hint::black_box;
+
+fn state() -> ([f64; 6], [f64; 6], [f64; 6], [f64; 36]) {
+    let q = [0.3, -1.2, 0.8, 0.4, -0.7, 1.9];
+    let qd = [0.5, -0.3, 0.9, -1.1, 0.2, 0.7];
+    let qdd = [1.5, -0.4, 0.2, 0.8, -1.3, 0.6];
+    let mut base = [0.0; 36];
+    for (i, b) in base.iter_mut().enumerate() {
+        *b = 0.1 + 0.05 * i as f64;
+    }
+    (q, qd, qdd, base)
+}
+
+fn ur5e(c: &mut Criterion) {
+    let (q, qd, qdd, base) = state();
+    let model = Ur5e;
+    c.bench_function("baseline 6 x (sin + cos) libm", |b| {
+        b.iter(|| {
+            let q = black_box(&q);
+            let mut acc = [0.0; 12];
+            for j in 0..6 {
+                acc[2 * j] = libm::sin(q[j]);
+                acc[2 * j + 1] = libm::cos(q[j]);
+            }
+            acc
+        })
+    });
+    c.bench_function("ur5e inverse_dynamics", |b| {
+        b.iter(|| {
+            model.inverse_dynamics(
+                black_box(&q),
+                black_box(&qd),
+                black_box(&qdd),
+                black_box(&base),
+            )
+        })
+    });
+    c.bench_function("ur5e base_regressor", |b| {
+        b.iter(|| model.base_regressor(black_box(&q), black_box(&qd), black_box(&qdd)))
+    });
+    c.bench_function("ur5e mass_matrix", |b| {
+        b.iter(|| model.mass_matrix(black_box(&q), black_box(&base)))
+    });
+    c.bench_function("ur5e gravity", |b| {
+        b.iter(|| model.gravity(black_box(&q), black_box(&base)))
+    });
+}
+
+criterion_group!(benches, ur5e);
+criterion_main!(benches);

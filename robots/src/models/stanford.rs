@@ -1,0 +1,3 @@
+//! `Stanford`: the model compiled from `descriptions/stanford.toml` (its code is in `generated/stanford.rs`).
+
+robid_macros::robot_model!(file = "descriptions/stanford.toml");
