@@ -9,6 +9,8 @@ mod tx40;
 mod ur5e;
 
 #[cfg(test)]
+mod consistency;
+#[cfg(test)]
 mod generated;
 
 pub use lwr4::Lwr4;

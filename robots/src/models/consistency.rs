@@ -1,0 +1,235 @@
+//! The compiled models against the interpreter and the symbolic derivation,
+//! at random states, for every reference robot:
+//! emitted code == interpreted program == `Arena::eval` of the regressor;
+//! inverse dynamics == Y_b * base; M, g and c agree with the inverse dynamics;
+//! `f32` within `f32` tolerance.
+
+use super::{Lwr4, Panda, Puma560, Rx90, Stanford, Tx40, Ur5e};
+use robid_runtime::Model;
+use robid_symbolic::Robot;
+use robid_symbolic::program::RobotPrograms;
+use robid_symbolic::sample::Rng;
+
+fn close(a: &[f64], b: &[f64], tol: f64, what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}: lengths");
+    let scale = b.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        assert!((x - y).abs() <= tol * scale, "{what}[{i}]: {x} vs {y}");
+    }
+}
+
+fn with_geometry<'a>(mut inputs: Vec<&'a [f64]>, geometry: &'a [f64]) -> Vec<&'a [f64]> {
+    if !geometry.is_empty() {
+        inputs.push(geometry);
+    }
+    inputs
+}
+
+fn random(rng: &mut Rng, n: usize, range: f64) -> Vec<f64> {
+    (0..n).map(|_| rng.uniform(-range, range)).collect()
+}
+
+/// Checks one compiled model against its description.
+fn check(name: &str, model: &dyn Model) {
+    let path = format!("{}/descriptions/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let robot = Robot::from_file(std::path::Path::new(&path)).unwrap();
+    let programs = RobotPrograms::derive(&robot).unwrap();
+    let geometry: Vec<f64> = robot.symbols.iter().map(|(_, v)| v.unwrap()).collect();
+    let n = model.dof();
+    let (ns, nb) = (
+        model.standard_parameter_count(),
+        model.base_parameter_count(),
+    );
+    let mut rng = Rng::new(42);
+    for _ in 0..10 {
+        let (q, qd, qdd) = (
+            random(&mut rng, n, 3.0),
+            random(&mut rng, n, 2.0),
+            random(&mut rng, n, 4.0),
+        );
+        let standard = random(&mut rng, ns, 1.0);
+        let mut base = vec![0.0; nb];
+        model.base_from_standard(&standard, &mut base);
+        // base parameters: compiled == interpreted
+        let interp = programs
+            .base_from_standard
+            .eval(&with_geometry(vec![&standard], &geometry))
+            .unwrap();
+        close(&base, &interp[0], 1e-12, "base_from_standard");
+
+        // regressors: compiled == interpreted; Y * standard == Y_b * base
+        let mut y = vec![0.0; n * ns];
+        model.standard_regressor(&q, &qd, &qdd, &mut y);
+        let interp = programs
+            .standard_regressor
+            .eval(&with_geometry(vec![&q, &qd, &qdd], &geometry))
+            .unwrap();
+        close(&y, &interp[0], 1e-12, "standard_regressor");
+        let mut yb = vec![0.0; n * nb];
+        model.base_regressor(&q, &qd, &qdd, &mut yb);
+        let interp = programs
+            .base_regressor
+            .eval(&with_geometry(vec![&q, &qd, &qdd], &geometry))
+            .unwrap();
+        close(&yb, &interp[0], 1e-12, "base_regressor");
+        let product = |m: &[f64], p: &[f64]| -> Vec<f64> {
+            (0..n)
+                .map(|j| (0..p.len()).map(|k| m[j * p.len() + k] * p[k]).sum())
+                .collect()
+        };
+        let tau_standard = product(&y, &standard);
+        let tau_base = product(&yb, &base);
+        close(&tau_base, &tau_standard, 1e-9, "Y_b base vs Y standard");
+
+        // inverse dynamics == Y_b * base, and == interpreter
+        let mut tau = vec![0.0; n];
+        model.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau);
+        close(&tau, &tau_base, 1e-9, "inverse_dynamics vs Y_b base");
+        let interp = programs
+            .inverse_dynamics
+            .eval(&with_geometry(vec![&q, &qd, &qdd, &base], &geometry))
+            .unwrap();
+        close(&tau, &interp[0], 1e-12, "inverse_dynamics interpreted");
+
+        // M qdd + c + g + friction == tau
+        let mut m = vec![0.0; n * n];
+        model.mass_matrix(&q, &base, &mut m);
+        let mut g = vec![0.0; n];
+        model.gravity(&q, &base, &mut g);
+        let mut c = vec![0.0; n];
+        model.coriolis(&q, &qd, &base, &mut c);
+        let zero = vec![0.0; n];
+        let mut friction = vec![0.0; n];
+        let mut tau_v = vec![0.0; n];
+        model.inverse_dynamics(&q, &qd, &zero, &base, &mut tau_v);
+        for j in 0..n {
+            friction[j] = tau_v[j] - c[j] - g[j];
+        }
+        for j in 0..n {
+            for k in 0..n {
+                assert!(
+                    (m[j * n + k] - m[k * n + j]).abs() <= 1e-12 * (1.0 + m[j * n + k].abs()),
+                    "M symmetric"
+                );
+            }
+            let mq: f64 = (0..n).map(|k| m[j * n + k] * qdd[k]).sum();
+            let sum = mq + c[j] + g[j] + friction[j];
+            assert!(
+                (sum - tau[j]).abs() <= 1e-9 * (1.0 + tau[j].abs()),
+                "{name}: M qdd + c + g != tau at {j}"
+            );
+        }
+        let mut g_id = vec![0.0; n];
+        model.inverse_dynamics(&q, &zero, &zero, &base, &mut g_id);
+        // With qd = 0 only gravity and the offsets Fo remain; rigid models have no Fo.
+        close(&g, &g_id, 1e-9, "gravity vs inverse dynamics at rest");
+    }
+}
+
+/// The symbolic regressor evaluated by the arena equals the compiled one (UR5e).
+#[test]
+fn ur5e_regressor_equals_symbolic_evaluation() {
+    let path = format!("{}/descriptions/ur5e.toml", env!("CARGO_MANIFEST_DIR"));
+    let robot = Robot::from_file(std::path::Path::new(&path)).unwrap();
+    let mut d = robid_symbolic::Derivation::new(&robot);
+    let entries = d.regressor().entries();
+    let mut rng = Rng::new(3);
+    for _ in 0..5 {
+        let (q, qd, qdd) = (
+            random(&mut rng, 6, 3.0),
+            random(&mut rng, 6, 2.0),
+            random(&mut rng, 6, 4.0),
+        );
+        let names: Vec<String> = ["q", "qd", "qdd"]
+            .iter()
+            .flat_map(|g| (1..=6).map(move |j| format!("{g}{j}")))
+            .collect();
+        let pairs: Vec<(&str, f64)> = names
+            .iter()
+            .enumerate()
+            .map(|(k, s)| (s.as_str(), [&q, &qd, &qdd][k / 6][k % 6]))
+            .collect();
+        let values = d.arena.values(&pairs);
+        let columns = d.arena.eval(&entries, &values).unwrap();
+        let y = Ur5e.standard_regressor(
+            &q.clone().try_into().unwrap(),
+            &qd.clone().try_into().unwrap(),
+            &qdd.clone().try_into().unwrap(),
+        );
+        // entries are column-major (parameter, joint); the compiled one is row-major.
+        for p in 0..60 {
+            for j in 0..6 {
+                let (a, b) = (columns[p * 6 + j], y[j * 60 + p]);
+                assert!(
+                    (a - b).abs() <= 1e-12 * (1.0 + a.abs()),
+                    "Y[{j}][{p}]: {a} vs {b}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn ur5e_f32_within_f32_tolerance() {
+    let mut rng = Rng::new(9);
+    for _ in 0..20 {
+        let q: [f64; 6] = random(&mut rng, 6, 3.0).try_into().unwrap();
+        let qd: [f64; 6] = random(&mut rng, 6, 2.0).try_into().unwrap();
+        let qdd: [f64; 6] = random(&mut rng, 6, 4.0).try_into().unwrap();
+        let standard: [f64; 60] = random(&mut rng, 60, 1.0).try_into().unwrap();
+        let base = Ur5e.base_parameters(&standard);
+        let tau = Ur5e.inverse_dynamics(&q, &qd, &qdd, &base);
+        let f = |x: &[f64]| -> Vec<f32> { x.iter().map(|&v| v as f32).collect() };
+        let tau32 = Ur5e.inverse_dynamics(
+            &f(&q).try_into().unwrap(),
+            &f(&qd).try_into().unwrap(),
+            &f(&qdd).try_into().unwrap(),
+            &f(&base).try_into().unwrap(),
+        );
+        let scale = tau.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+        for j in 0..6 {
+            let err = (tau32[j] as f64 - tau[j]).abs();
+            assert!(
+                err <= 1e-4 * scale,
+                "joint {j}: f32 {} vs f64 {}",
+                tau32[j],
+                tau[j]
+            );
+        }
+    }
+}
+
+#[test]
+fn ur5e() {
+    check("ur5e", &Ur5e);
+}
+
+#[test]
+fn puma560() {
+    check("puma560", &Puma560::default());
+}
+
+#[test]
+fn rx90() {
+    check("rx90", &Rx90::default());
+}
+
+#[test]
+fn tx40() {
+    check("tx40", &Tx40::default());
+}
+
+#[test]
+fn lwr4() {
+    check("lwr4", &Lwr4::default());
+}
+
+#[test]
+fn panda() {
+    check("panda", &Panda::default());
+}
+
+#[test]
+fn stanford() {
+    check("stanford", &Stanford::default());
+}
