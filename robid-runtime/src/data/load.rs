@@ -57,7 +57,7 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
         if let Some(t) = &config.time_column {
             names.push(t.clone());
         }
-        let table = read_columns(path, &names)?;
+        let mut table = read_columns(path, &names)?;
         if table.rows() < 2 {
             return Err(Error::TooFewSamples {
                 context: path.display().to_string(),
@@ -66,7 +66,7 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
                 hint: "the file needs a header and data rows",
             });
         }
-        let mut columns = table.columns.clone();
+        let mut columns = std::mem::take(&mut table.columns);
         if config.time_column.is_some() {
             let mut t = columns.pop().unwrap_or_default();
             t.iter_mut().for_each(|v| *v *= config.time_scale);

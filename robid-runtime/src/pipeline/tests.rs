@@ -207,3 +207,35 @@ fn bad_inputs_for_the_pipeline() {
     let dof = model.dof();
     assert_eq!(dof, 6);
 }
+
+/// Madsen's rotor compensation: measured motor torque = tau_J + B thetaddot + Fv thetadot;
+/// with the motor encoder and known B, F_v the link-side parameters come out unchanged.
+#[test]
+fn rotor_compensation_removes_rotor_inertia_and_friction() {
+    let n = 12_000;
+    let (b, fv) = (0.7, 0.3);
+    let model = Synthetic::default();
+    let beta = true_parameters();
+    let (mut q, mut qd, mut qdd) = ([0.0; DOF], [0.0; DOF], [0.0; DOF]);
+    let mut qs = vec![vec![0.0; n]; DOF];
+    let mut taus = vec![vec![0.0; n]; DOF];
+    for k in 0..n {
+        trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
+        let mut tau = [0.0; DOF];
+        model.inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau);
+        for j in 0..DOF {
+            qs[j][k] = q[j];
+            taus[j][k] = tau[j] + b * qdd[j] + fv * qd[j];
+        }
+    }
+    let data = Dataset::new("rotor", 1e-3, qs.clone(), taus)
+        .unwrap()
+        .with_motor_positions(qs)
+        .unwrap();
+    let extra = "[drive.rotor]\ninertia = 0.7\nviscous = 0.3\n";
+    let id = identify(&model, &data, &config(extra)).unwrap();
+    let ia1 = id.estimate.value("Ia1").unwrap();
+    assert!((ia1 - beta[4]).abs() < 5e-3, "Ia1 {ia1} vs {}", beta[4]);
+    let plain = identify(&model, &data, &config("")).unwrap();
+    assert!((plain.estimate.value("Ia1").unwrap() - beta[4] - b).abs() < 5e-3);
+}
