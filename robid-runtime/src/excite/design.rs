@@ -218,19 +218,7 @@ impl FourierDesign {
                 });
             }
         }
-        let fine = 64 * self.harmonics;
-        let table = (1..=self.harmonics)
-            .flat_map(|l| {
-                (0..fine)
-                    .map(move |k| (std::f64::consts::TAU * (l * k) as f64 / fine as f64).sin_cos())
-            })
-            .collect();
-        let decoder = Decoder {
-            design: self,
-            limits,
-            table,
-            fine,
-        };
+        let decoder = self.decoder(limits);
         let cost = |x: &[f64]| self.cost(model, limits, torque, &decoder.decode(x));
         let m = decoder.per_joint();
         let progress = Progress::new(
@@ -247,21 +235,11 @@ impl FourierDesign {
         let runs: Vec<_> = (0..self.restarts)
             .into_par_iter()
             .map(|r| {
-                let mut rng = root.fork(r as u64);
-                let x0: Vec<f64> = (0..n * m)
-                    .map(|i| match i % m {
-                        k if k < 2 * (self.harmonics - 1) => {
-                            rng.normal() / (1 + k % (self.harmonics - 1)) as f64
-                        }
-                        k if k == 2 * (self.harmonics - 1) => FRAC_PI_2 + 0.1 * rng.normal(),
-                        _ => rng.range(-1.0, 1.0),
-                    })
-                    .collect();
-                let r = nm.minimize(&x0, |x| {
+                let x0 = self.start_point(&mut root.fork(r as u64), n * m, m);
+                nm.minimize(&x0, |x| {
                     progress.tick();
                     cost(x)
-                });
-                r
+                })
             })
             .collect();
         let best = runs
@@ -287,6 +265,47 @@ impl FourierDesign {
             cost: polished.value.min(best.value),
             evaluations,
         })
+    }
+
+    /// A random start of the optimisation (free coefficients ~ N(0, 1/l), full amplitude,
+    /// random offset) for `len` variables, `m` per joint.
+    fn start_point(&self, rng: &mut Rng, len: usize, m: usize) -> Vec<f64> {
+        let h = self.harmonics - 1;
+        (0..len)
+            .map(|i| match i % m {
+                k if k < 2 * h => rng.normal() / (2 + k % h) as f64,
+                k if k == 2 * h => FRAC_PI_2 + 0.1 * rng.normal(),
+                _ => rng.range(-1.0, 1.0),
+            })
+            .collect()
+    }
+
+    /// A random, non-optimised trajectory of the same family and within the same limits
+    /// (the first start of [`FourierDesign::optimize`] with this seed): the baseline a
+    /// design is compared with.
+    pub fn random(&self, limits: &[JointLimits]) -> Result<Fourier> {
+        self.check(limits.len())?;
+        check_limits(limits, limits.len())?;
+        let decoder = self.decoder(limits);
+        let m = decoder.per_joint();
+        let x = self.start_point(&mut Rng::new(self.seed).fork(0), limits.len() * m, m);
+        Ok(decoder.decode(&x))
+    }
+
+    fn decoder<'a>(&'a self, limits: &'a [JointLimits]) -> Decoder<'a> {
+        let fine = 64 * self.harmonics;
+        let table = (1..=self.harmonics)
+            .flat_map(|l| {
+                (0..fine)
+                    .map(move |k| (std::f64::consts::TAU * (l * k) as f64 / fine as f64).sin_cos())
+            })
+            .collect();
+        Decoder {
+            design: self,
+            limits,
+            table,
+            fine,
+        }
     }
 
     /// The criterion on the design grid, plus a torque-limit penalty.

@@ -4,6 +4,7 @@
 //! and acceleration points, 7th-order polynomial interpolation with continuous jerk, and the
 //! regressor extended over intervals around the points).
 
+mod assess;
 mod criterion;
 mod design;
 mod fourier;
@@ -11,6 +12,7 @@ mod limits;
 mod nelder_mead;
 mod progress;
 
+pub use assess::{Assessment, assess};
 pub use criterion::{Criterion, Information};
 pub use design::{FourierDesign, FourierResult};
 pub use fourier::{Fourier, JointSeries};

@@ -1,12 +1,14 @@
 //! Closed-loop simulation along a reference trajectory (DESIGN 6.7).
 //!
-//! At every sample of the reference the controller computes
-//! tau = tau_ff + Kp (q_ref - q_meas) + Kd (qd_ref - qd_meas), with the computed-torque
-//! feed-forward tau_ff = ID(q_ref, qd_ref, qdd_ref) of the true model (optional), and
-//! per-joint gains Kp = wn^2 M_jj(q_ref(0)), Kd = 2 zeta wn M_jj(q_ref(0)). The torque
-//! is held over the sample interval while the plant M(q) qdd = tau - h(q, qd) is
-//! integrated with `substeps` fixed RK4 steps. Measurements: positions quantized to the
-//! encoder resolution plus Gaussian noise; torques plus Gaussian noise; velocities and
+//! The controller computes tau = tau_ff + Kp (q_ref - q_meas) + Kd (qd_ref - qd), with the
+//! computed-torque feed-forward tau_ff = ID(q_ref, qd_ref, qdd_ref) of the true model
+//! (optional) and per-joint gains Kp = wn^2 M_jj(q_ref(0)), Kd = 2 zeta wn M_jj(q_ref(0)).
+//! The plant M(q) qdd = tau - h(q, qd) (see [`ForwardDynamics`]) is integrated with
+//! `substeps` fixed linearly implicit steps per reference interval, the controller running
+//! at every step on the linearly interpolated reference. At each reference sample the
+//! state, the applied torque and qdd = M^-1 (tau - h) are recorded, so the true record
+//! satisfies the model exactly. Measurements: positions quantized to the encoder
+//! resolution plus Gaussian noise; torques plus Gaussian noise; velocities and
 //! accelerations are the true ones (plus optional Gaussian noise).
 
 use crate::Model;
@@ -51,7 +53,7 @@ pub struct Simulation {
     pub damping: f64,
     /// Add the computed-torque feed-forward of the true model.
     pub feedforward: bool,
-    /// RK4 steps per reference sample interval.
+    /// Integration (and control) steps per reference sample interval.
     pub substeps: usize,
     /// Measurement noise.
     pub noise: Noise,
@@ -65,7 +67,7 @@ impl Default for Simulation {
             bandwidth: 10.0,
             damping: 1.0,
             feedforward: true,
-            substeps: 4,
+            substeps: 10,
             noise: Noise::default(),
             seed: 1,
         }
@@ -151,51 +153,65 @@ impl Simulation {
         let samples = reference.samples();
         let mut fd = ForwardDynamics::new(model, base)?;
         let mut rng = Rng::new(self.seed);
-        let (mut qr, mut qdr, mut qddr) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        reference.state(0, &mut qr, &mut qdr, &mut qddr);
+        let mut r0 = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        let mut r1 = r0.clone();
+        let [q0, qd0, qdd0] = &mut r0;
+        reference.state(0, q0, qd0, qdd0);
         let mut m = vec![0.0; n * n];
-        model.mass_matrix(&qr, base, &mut m);
+        model.mass_matrix(&r0[0], base, &mut m);
         let wn = std::f64::consts::TAU * self.bandwidth;
         let kp: Vec<f64> = (0..n).map(|j| wn * wn * m[j * n + j]).collect();
         let kd: Vec<f64> = (0..n)
             .map(|j| 2.0 * self.damping * wn * m[j * n + j])
             .collect();
-        let (mut q, mut qd) = (qr.clone(), qdr.clone());
+        let (mut q, mut qd) = (r0[0].clone(), r0[1].clone());
         let mut truth = Record {
             trajectory: Trajectory::zeros(n, reference.t.clone()),
             tau: vec![vec![0.0; samples]; n],
         };
         let mut measured = truth.clone();
         let (mut tau, mut qdd) = (vec![0.0; n], vec![0.0; n]);
+        let mut r = r0.clone();
         let sigma_tau = |j: usize| self.noise.torque[j.min(self.noise.torque.len() - 1)];
-        for k in 0..samples {
-            reference.state(k, &mut qr, &mut qdr, &mut qddr);
-            let q_meas: Vec<f64> = (0..n)
-                .map(|j| self.measure_position(q[j], &mut rng))
-                .collect();
+        let control = |r: &[Vec<f64>; 3], q: &[f64], qd: &[f64], rng: &mut Rng, tau: &mut [f64]| {
             if self.feedforward {
-                model.inverse_dynamics(&qr, &qdr, &qddr, base, &mut tau);
+                model.inverse_dynamics(&r[0], &r[1], &r[2], base, tau);
             } else {
                 tau.iter_mut().for_each(|t| *t = 0.0);
             }
             for j in 0..n {
-                tau[j] += kp[j] * (qr[j] - q_meas[j]) + kd[j] * (qdr[j] - qd[j]);
+                let e = r[0][j] - self.measure_position(q[j], rng);
+                tau[j] += kp[j] * e + kd[j] * (r[1][j] - qd[j]);
             }
+        };
+        for k in 0..samples {
+            let [a, b, c] = &mut r0;
+            reference.state(k, a, b, c);
+            control(&r0, &q, &qd, &mut rng, &mut tau);
             fd.accelerations(&q, &qd, &tau, &mut qdd)?;
             for j in 0..n {
                 let tr = &mut truth.trajectory;
                 (tr.q[j][k], tr.qd[j][k], tr.qdd[j][k]) = (q[j], qd[j], qdd[j]);
                 truth.tau[j][k] = tau[j];
                 let me = &mut measured.trajectory;
-                me.q[j][k] = q_meas[j];
+                me.q[j][k] = self.measure_position(q[j], &mut rng);
                 me.qd[j][k] = qd[j] + self.noise.velocity * rng.normal();
                 me.qdd[j][k] = qdd[j] + self.noise.acceleration * rng.normal();
                 measured.tau[j][k] = tau[j] + sigma_tau(j) * rng.normal();
             }
             if k + 1 < samples {
+                let [a, b, c] = &mut r1;
+                reference.state(k + 1, a, b, c);
                 let h = (reference.t[k + 1] - reference.t[k]) / self.substeps as f64;
-                for _ in 0..self.substeps {
-                    rk4(&mut fd, &mut q, &mut qd, &tau, h)?;
+                for i in 0..self.substeps {
+                    let s = i as f64 / self.substeps as f64;
+                    for (x, (x0, x1)) in r.iter_mut().zip(r0.iter().zip(&r1)) {
+                        for j in 0..n {
+                            x[j] = x0[j] + s * (x1[j] - x0[j]);
+                        }
+                    }
+                    control(&r, &q, &qd, &mut rng, &mut tau);
+                    step(&mut fd, &mut q, &mut qd, &tau, &kd, h)?;
                 }
             }
         }
@@ -209,31 +225,47 @@ impl Simulation {
     }
 }
 
-/// One classical Runge-Kutta step of (q, qd)' = (qd, qdd(q, qd, tau)) with tau held.
-fn rk4<M: Model + ?Sized>(
+/// One linearly implicit (Rosenbrock-Euler) step, stable for the stiff damping of viscous
+/// friction and the PD loop on light links: with D = dh/dqd (by one-sided differences away
+/// from zero velocity, so Coulomb signs do not flip) and the controller's Kd,
+/// (M + h (D + Kd)) dqd = h (tau - h(q, qd)); qd += dqd; q += h qd (semi-implicit).
+fn step<M: Model + ?Sized>(
     fd: &mut ForwardDynamics<'_, M>,
     q: &mut [f64],
     qd: &mut [f64],
     tau: &[f64],
+    kd: &[f64],
     h: f64,
 ) -> Result<()> {
     let n = q.len();
-    let mut a = [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]];
-    let mut v = [qd.to_vec(), vec![0.0; n], vec![0.0; n], vec![0.0; n]];
-    let (mut qs, mut vs) = (vec![0.0; n], vec![0.0; n]);
-    fd.accelerations(q, qd, tau, &mut a[0])?;
-    for (stage, c) in [(1, 0.5), (2, 0.5), (3, 1.0)] {
-        for j in 0..n {
-            qs[j] = q[j] + c * h * v[stage - 1][j];
-            vs[j] = qd[j] + c * h * a[stage - 1][j];
+    let model = fd.model();
+    let base = fd.base();
+    let zero = vec![0.0; n];
+    let mut m = vec![0.0; n * n];
+    model.mass_matrix(q, base, &mut m);
+    let mut h0 = vec![0.0; n];
+    model.inverse_dynamics(q, qd, &zero, base, &mut h0);
+    let mut a = nalgebra::DMatrix::from_row_slice(n, n, &m);
+    let mut shifted = qd.to_vec();
+    let mut h1 = vec![0.0; n];
+    for k in 0..n {
+        let eps = 1e-6 * (1.0 + qd[k].abs()) * if qd[k] < 0.0 { -1.0 } else { 1.0 };
+        shifted[k] = qd[k] + eps;
+        model.inverse_dynamics(q, &shifted, &zero, base, &mut h1);
+        shifted[k] = qd[k];
+        for i in 0..n {
+            a[(i, k)] += h * (h1[i] - h0[i]) / eps;
         }
-        v[stage].copy_from_slice(&vs);
-        let (_, rest) = a.split_at_mut(stage);
-        fd.accelerations(&qs, &vs, tau, &mut rest[0])?;
+        a[(k, k)] += h * kd[k];
     }
+    let rhs = nalgebra::DVector::from_iterator(n, (0..n).map(|j| h * (tau[j] - h0[j])));
+    let dv = a.lu().solve(&rhs).ok_or_else(|| Error::Singular {
+        what: format!("implicit step matrix of {} at q = {q:?}", model.name()),
+        hint: "the parameters are not physically consistent; use a feasible parameter set",
+    })?;
     for j in 0..n {
-        q[j] += h / 6.0 * (v[0][j] + 2.0 * v[1][j] + 2.0 * v[2][j] + v[3][j]);
-        qd[j] += h / 6.0 * (a[0][j] + 2.0 * a[1][j] + 2.0 * a[2][j] + a[3][j]);
+        qd[j] += dv[j];
+        q[j] += h * qd[j];
     }
     Ok(())
 }

@@ -1,0 +1,183 @@
+//! Shared by the simulation and excitation tests: a reference robot's model with chosen drive
+//! terms, run by robid-symbolic's program interpreter behind `robid_runtime::Model` (the
+//! compiled `robots::*` models carry only the drive terms of their description files), and
+//! its reference base parameters with chosen drive values.
+
+#![allow(dead_code)]
+
+use robid_runtime::Model;
+use robid_runtime::excite::JointLimits;
+use robid_symbolic::program::{Program, RobotPrograms};
+use robid_symbolic::{Drive, Robot};
+use tests::reference::by_name;
+
+/// A derived robot run by the interpreter.
+#[derive(Debug)]
+pub struct Interpreted {
+    /// The programs.
+    pub programs: RobotPrograms,
+    geometry: Vec<f64>,
+}
+
+impl Interpreted {
+    /// Derives `robot` (geometric symbols at their description values).
+    pub fn new(robot: &Robot) -> Self {
+        let programs = RobotPrograms::derive(robot).expect("derivation");
+        let geometry = programs
+            .geometry
+            .iter()
+            .map(|(s, v)| v.unwrap_or_else(|| panic!("symbol {s} has no value")))
+            .collect();
+        Self { programs, geometry }
+    }
+
+    fn run(&self, p: &Program, inputs: &[&[f64]], out: &mut [f64]) {
+        let mut all: Vec<&[f64]> = inputs.to_vec();
+        if !self.geometry.is_empty() {
+            all.push(&self.geometry);
+        }
+        let mut temps = Vec::new();
+        p.run(&all, &mut [out], &mut temps)
+            .expect("program lengths");
+    }
+}
+
+impl Model for Interpreted {
+    fn name(&self) -> &str {
+        &self.programs.robot.name
+    }
+    fn dof(&self) -> usize {
+        self.programs.robot.dof()
+    }
+    fn standard_parameter_count(&self) -> usize {
+        self.programs.standard.len()
+    }
+    fn standard_parameter_name(&self, index: usize) -> &str {
+        &self.programs.standard[index]
+    }
+    fn base_parameter_count(&self) -> usize {
+        self.programs.base.len()
+    }
+    fn base_parameter_name(&self, index: usize) -> &str {
+        &self.programs.base[index].name
+    }
+    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.base_regressor, &[q, qd, qdd], out);
+    }
+    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.standard_regressor, &[q, qd, qdd], out);
+    }
+    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
+        self.run(&self.programs.inverse_dynamics, &[q, qd, qdd, base], tau);
+    }
+    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.mass_matrix, &[q, base], out);
+    }
+    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.gravity, &[q, base], out);
+    }
+    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.coriolis, &[q, qd, base], out);
+    }
+    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
+        self.run(&self.programs.base_from_standard, &[standard], base);
+    }
+}
+
+/// The reference robot `name` with `drive` terms, its reference base parameters (drive values
+/// from `drive_value(prefix, joint)`, e.g. Fv, Fc) and its joint limits.
+pub fn reference(
+    name: &str,
+    drive: Drive,
+    drive_value: impl Fn(&str, usize) -> f64,
+) -> (Interpreted, Vec<f64>, Vec<JointLimits>) {
+    let r = by_name(name);
+    let robot = r.robot(drive);
+    let model = Interpreted::new(&robot);
+    let table = r.parameter_table();
+    let standard: Vec<f64> = model
+        .programs
+        .standard
+        .iter()
+        .map(|n| {
+            if let Some((_, v)) = table.iter().find(|(k, _)| k == n) {
+                return *v;
+            }
+            let digits = n.trim_start_matches(|c: char| !c.is_ascii_digit());
+            let joint: usize = digits.parse().unwrap_or(0);
+            drive_value(&n[..n.len() - digits.len()], joint)
+        })
+        .collect();
+    let mut base = vec![0.0; model.base_parameter_count()];
+    model.base_from_standard(&standard, &mut base);
+    let limits = robot
+        .joints
+        .iter()
+        .map(|j| JointLimits {
+            position: j.limits.position.expect("position limits"),
+            velocity: j.limits.velocity.expect("velocity limit"),
+            acceleration: j.limits.acceleration.expect("acceleration limit"),
+            torque: j.limits.torque,
+        })
+        .collect();
+    (model, base, limits)
+}
+
+/// Identification on simulated data and prediction of another simulated run.
+#[derive(Debug)]
+pub struct Outcome {
+    /// Identified base parameters.
+    pub values: Vec<f64>,
+    /// ||beta_hat - beta|| / ||beta||.
+    pub parameter_error: f64,
+    /// Relative torque error on the validation run with the identified parameters.
+    pub validation_error: f64,
+    /// The same with the true parameters: the noise floor.
+    pub noise_floor: f64,
+}
+
+/// Simulates `train` and `valid` with `noise` (different seeds), identifies by OLS from the
+/// first (velocities and accelerations as recorded) and predicts the second.
+pub fn identify_and_validate(
+    model: &Interpreted,
+    truth: &[f64],
+    train: &robid_runtime::simulate::Trajectory,
+    valid: &robid_runtime::simulate::Trajectory,
+    noise: &robid_runtime::simulate::Noise,
+) -> Outcome {
+    use robid_runtime::data::{Config, Derivative};
+    use robid_runtime::pipeline::{identify, validate};
+    use robid_runtime::simulate::Simulation;
+    let sim = |tr, seed| {
+        Simulation {
+            noise: noise.clone(),
+            seed,
+            ..Simulation::default()
+        }
+        .run(model, truth, tr)
+        .expect("simulation")
+        .measured
+        .dataset("sim")
+        .expect("data set")
+    };
+    let mut config = Config::default();
+    config.processing.velocity = Derivative::Data;
+    config.processing.acceleration = Derivative::Data;
+    let id = identify(model, &sim(train, 11), &config).expect("identification");
+    let vdata = sim(valid, 12);
+    let error = |beta: &[f64]| {
+        validate(model, &vdata, &config, beta)
+            .expect("validation")
+            .fit()
+            .relative_error
+    };
+    let values = id.estimate.values.clone();
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let diff: Vec<f64> = values.iter().zip(truth).map(|(a, b)| a - b).collect();
+    Outcome {
+        parameter_error: norm(&diff) / norm(truth),
+        validation_error: error(&values),
+        noise_floor: error(truth),
+        values,
+    }
+}
