@@ -65,6 +65,20 @@ impl Problem {
         })
     }
 
+    /// A problem from names and K given row by row (`rows[b][s]`).
+    pub fn from_rows(
+        standard_names: Vec<String>,
+        base_names: Vec<String>,
+        rows: &[Vec<f64>],
+    ) -> Result<Problem> {
+        let ns = standard_names.len();
+        if let Some(r) = rows.iter().find(|r| r.len() != ns) {
+            return Err(dims("entries of a row of K", ns, r.len()));
+        }
+        let k = DMatrix::from_fn(rows.len(), ns, |b, s| rows[b][s]);
+        Problem::new(standard_names, base_names, k)
+    }
+
     /// The problem of a model: K is read column by column from `base_from_standard`.
     pub fn from_model(model: &dyn Model) -> Result<Problem> {
         let ns = model.standard_parameter_count();

@@ -161,6 +161,7 @@ fn solve(
     b: &DVector<f64>,
     options: &SdpOptions,
 ) -> Result<Vec<f64>> {
+    bounds.validate()?;
     let layout = &problem.layout;
     let ns = problem.standard_names.len();
     if bounds.links.len() != layout.links.len() {

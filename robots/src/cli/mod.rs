@@ -2,6 +2,7 @@
 //! they read descriptions and data, call the library crates and print.
 
 mod demo;
+mod feasible;
 mod model;
 
 use clap::{Parser, Subcommand};
@@ -21,6 +22,8 @@ enum Command {
     Model(model::Args),
     /// The main job on a built-in default robot (no arguments needed).
     Demo,
+    /// Physically consistent link parameters from identified base parameters (TOML or URDF).
+    Feasible(feasible::Args),
 }
 
 /// Parses the command line, runs the subcommand and reports errors on stderr.
@@ -29,6 +32,7 @@ pub(crate) fn run() -> ExitCode {
     let result = match cli.command {
         Command::Model(args) => model::run(&args),
         Command::Demo => demo::run(),
+        Command::Feasible(args) => feasible::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -10,9 +10,11 @@
 //! and the principal moments in theirs. Variables with no effect on f are fixed at the
 //! stated don't-care values (centre of the bounds) and left out of the search. Drive terms
 //! (Ia, Fv, Fc, Fo) enter linearly and are solved for at every evaluation (least squares
-//! in the drive columns, then Ia, Fv, Fc clamped at zero).
+//! in the drive columns, then Ia, Fv, Fc clamped at zero). Each Nelder-Mead result is
+//! polished by a bounded Levenberg-Marquardt (the objective is a sum of squares).
 
 mod anneal;
+mod levenberg;
 mod nelder_mead;
 mod parametrise;
 mod rng;
@@ -46,17 +48,20 @@ pub struct AnnealOptions {
     pub target_chi2: Option<f64>,
     /// Weight of the bound penalty (Gaz et al.'s delta).
     pub penalty: f64,
+    /// Levenberg-Marquardt steps that polish each Nelder-Mead result (0: none).
+    pub polish_iterations: usize,
 }
 
 impl Default for AnnealOptions {
     fn default() -> AnnealOptions {
         AnnealOptions {
-            restarts: 16,
-            iterations: 40_000,
-            local_evaluations: 40_000,
+            restarts: 8,
+            iterations: 20_000,
+            local_evaluations: 20_000,
             seed: 1,
             target_chi2: None,
-            penalty: 1e4,
+            penalty: 1e10,
+            polish_iterations: 200,
         }
     }
 }
@@ -111,27 +116,35 @@ impl Objective<'_> {
     }
 
     fn value(&self, y: &[f64]) -> f64 {
+        self.residual(y).norm_squared()
+    }
+
+    /// The whitened misfit followed by the weighted relative bound violations.
+    fn residual(&self, y: &[f64]) -> DVector<f64> {
         let x = self.full(y);
         let p = self.standard(&x);
         let r = &self.a * DVector::from_column_slice(&p) - &self.b;
-        r.norm_squared() + self.penalty * self.violation(&x)
+        let v = self.violations(&x);
+        let w = self.penalty.sqrt();
+        DVector::from_iterator(
+            r.len() + v.len(),
+            r.iter().copied().chain(v.iter().map(|e| w * e)),
+        )
     }
 
-    /// Squared relative violation of the total-mass range and the principal-moment ranges.
-    fn violation(&self, x: &[f64]) -> f64 {
-        let mut v = 0.0;
-        let out = |value: f64, r: [f64; 2], scale: f64| {
-            let e = (r[0] - value).max(value - r[1]).max(0.0) / scale;
-            e * e
-        };
+    /// Relative violations of the total-mass range and the principal-moment ranges.
+    fn violations(&self, x: &[f64]) -> Vec<f64> {
+        let mut v = Vec::new();
+        let out =
+            |value: f64, r: [f64; 2], scale: f64| (r[0] - value).max(value - r[1]).max(0.0) / scale;
         if let Some(t) = self.bounds.total_mass {
             let total: f64 = (0..self.bounds.links.len()).map(|j| x[j * PER_LINK]).sum();
-            v += out(total, t, t[1].max(1e-9));
+            v.push(out(total, t, t[1].max(1e-9)));
         }
         for (j, b) in self.bounds.links.iter().enumerate() {
             let d = &x[j * PER_LINK + 4..j * PER_LINK + 7];
             for m in [d[1] + d[2], d[0] + d[2], d[0] + d[1]] {
-                v += out(m, b.inertia, b.inertia[1].max(1e-9));
+                v.push(out(m, b.inertia, b.inertia[1].max(1e-9)));
             }
         }
         v
@@ -145,6 +158,7 @@ pub fn solve_anneal(
     options: &AnnealOptions,
 ) -> Result<Solution> {
     let start = Instant::now();
+    bounds.validate()?;
     let layout = &problem.layout;
     let nl = layout.links.len();
     if bounds.links.len() != nl {
@@ -234,6 +248,8 @@ pub fn solve_anneal(
                 .enumerate()
                 .map(|(i, v)| reflect(*v, lo[i], hi[i]))
                 .collect();
+            let r = |y: &[f64]| objective.residual(y);
+            let xn = levenberg::polish(&r, &lo, &hi, &xn, options.polish_iterations);
             let fx = objective.value(&xn);
             if fx <= target {
                 done.store(true, Ordering::Relaxed);
@@ -263,10 +279,9 @@ fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: 
     let n = lo.len();
     let mut rng = Rng::new(seed ^ 0xD0C4_2E);
     let mut effective = vec![false; n];
-    let saved_penalty = 0.0;
     for _ in 0..4 {
         let x: Vec<f64> = (0..n).map(|i| rng.uniform(lo[i], hi[i])).collect();
-        let base = residual(objective, &x, saved_penalty);
+        let base = misfit(objective, &x);
         for i in 0..n {
             if effective[i] {
                 continue;
@@ -278,7 +293,7 @@ fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: 
             } else {
                 y[i] - h
             };
-            let r = residual(objective, &y, saved_penalty);
+            let r = misfit(objective, &y);
             let change = (&r - &base).norm();
             if change > 1e-9 * (1.0 + base.norm()) {
                 effective[i] = true;
@@ -288,7 +303,8 @@ fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: 
     (0..n).filter(|&i| effective[i]).collect()
 }
 
-fn residual(objective: &Objective<'_>, x: &[f64], _penalty: f64) -> DVector<f64> {
+/// The misfit of a full variable vector, bounds ignored.
+fn misfit(objective: &Objective<'_>, x: &[f64]) -> DVector<f64> {
     let p = objective.standard(x);
     &objective.a * DVector::from_column_slice(&p) - &objective.b
 }

@@ -1,0 +1,79 @@
+//! A bounded Levenberg-Marquardt polish (Marquardt 1963) of a least-squares residual:
+//! forward-difference Jacobian, damped Gauss-Newton steps clipped to the box. Used after
+//! Nelder-Mead, whose progress in tens of dimensions is slow near the optimum.
+
+use nalgebra::{DMatrix, DVector};
+
+/// Minimises ||r(x)||^2 over [lo, hi] from `x0` for at most `iterations` steps.
+pub(crate) fn polish(
+    r: &dyn Fn(&[f64]) -> DVector<f64>,
+    lo: &[f64],
+    hi: &[f64],
+    x0: &[f64],
+    iterations: usize,
+) -> Vec<f64> {
+    let n = x0.len();
+    let mut x = x0.to_vec();
+    let mut rx = r(&x);
+    let mut fx = rx.norm_squared();
+    let mut mu = 1e-3;
+    for _ in 0..iterations {
+        let mut j = DMatrix::zeros(rx.len(), n);
+        for i in 0..n {
+            let h = 1e-7 * (hi[i] - lo[i]).max(1e-12);
+            let mut y = x.clone();
+            let step = if y[i] + h <= hi[i] { h } else { -h };
+            y[i] += step;
+            j.set_column(i, &((r(&y) - &rx) / step));
+        }
+        let jt = j.transpose();
+        let g = &jt * &rx;
+        let h = &jt * &j;
+        let mut improved = false;
+        for _ in 0..8 {
+            let mut damped = h.clone();
+            for i in 0..n {
+                damped[(i, i)] += mu * (h[(i, i)] + 1e-12);
+            }
+            let Some(delta) = damped.cholesky().map(|c| c.solve(&(-&g))) else {
+                mu *= 10.0;
+                continue;
+            };
+            let y: Vec<f64> = (0..n)
+                .map(|i| (x[i] + delta[i]).clamp(lo[i], hi[i]))
+                .collect();
+            let ry = r(&y);
+            let fy = ry.norm_squared();
+            if fy < fx {
+                x = y;
+                rx = ry;
+                let gain = fx - fy;
+                fx = fy;
+                mu = (mu * 0.3).max(1e-12);
+                improved = gain > 1e-15 * (1.0 + fx);
+                break;
+            }
+            mu *= 10.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solves_a_bounded_nonlinear_least_squares_problem() {
+        // r = (x0^2 - 4, x0 x1 - 2): solution (2, 1) inside the box.
+        let r = |x: &[f64]| DVector::from_vec(vec![x[0] * x[0] - 4.0, x[0] * x[1] - 2.0]);
+        let x = polish(&r, &[0.0, 0.0], &[5.0, 5.0], &[1.0, 3.0], 100);
+        assert!(
+            (x[0] - 2.0).abs() < 1e-8 && (x[1] - 1.0).abs() < 1e-8,
+            "{x:?}"
+        );
+    }
+}
