@@ -2,8 +2,10 @@
 //! they read descriptions and data, call the library crates and print.
 
 mod demo;
+mod excite;
 mod feasible;
 mod model;
+mod simulate;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -22,6 +24,10 @@ enum Command {
     Model(model::Args),
     /// The main job on a built-in default robot (no arguments needed).
     Demo,
+    /// An exciting trajectory optimised within the joint limits.
+    Excite(excite::Args),
+    /// Closed-loop simulation of a trajectory with noise, producing data with known truth.
+    Simulate(simulate::Args),
     /// Physically consistent link parameters from identified base parameters (TOML or URDF).
     Feasible(feasible::Args),
 }
@@ -32,6 +38,8 @@ pub(crate) fn run() -> ExitCode {
     let result = match cli.command {
         Command::Model(args) => model::run(&args),
         Command::Demo => demo::run(),
+        Command::Excite(args) => excite::run(&args),
+        Command::Simulate(args) => simulate::run(&args),
         Command::Feasible(args) => feasible::run(&args),
     };
     match result {

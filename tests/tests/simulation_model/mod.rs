@@ -130,6 +130,9 @@ pub struct Outcome {
     pub values: Vec<f64>,
     /// ||beta_hat - beta|| / ||beta||.
     pub parameter_error: f64,
+    /// ||W (beta_hat - beta)|| / ||W beta|| on the validation run: how far the identified
+    /// parameters are from the truth where it matters, free of the measurement noise.
+    pub model_error: f64,
     /// Relative torque error on the validation run with the identified parameters.
     pub validation_error: f64,
     /// The same with the true parameters: the noise floor.
@@ -145,7 +148,7 @@ pub fn identify_and_validate(
     valid: &robid_runtime::simulate::Trajectory,
     noise: &robid_runtime::simulate::Noise,
 ) -> Outcome {
-    use robid_runtime::data::{Config, Derivative};
+    use robid_runtime::data::Config;
     use robid_runtime::pipeline::{identify, validate};
     use robid_runtime::simulate::Simulation;
     let sim = |tr, seed| {
@@ -160,9 +163,11 @@ pub fn identify_and_validate(
         .dataset("sim")
         .expect("data set")
     };
-    let mut config = Config::default();
-    config.processing.velocity = Derivative::Data;
-    config.processing.acceleration = Derivative::Data;
+    let config = Config::from_toml_str(
+        "[processing]\nvelocity = \"data\"\nacceleration = \"data\"\n",
+        std::path::Path::new("simulated.toml"),
+    )
+    .expect("config");
     let id = identify(model, &sim(train, 11), &config).expect("identification");
     let vdata = sim(valid, 12);
     let error = |beta: &[f64]| {
@@ -172,10 +177,19 @@ pub fn identify_and_validate(
             .relative_error
     };
     let values = id.estimate.values.clone();
+    let predict = |beta: &[f64]| -> Vec<f64> {
+        validate(model, &vdata, &config, beta)
+            .expect("validation")
+            .predicted
+            .concat()
+    };
+    let (p_hat, p_true) = (predict(&values), predict(truth));
+    let d: Vec<f64> = p_hat.iter().zip(&p_true).map(|(a, b)| a - b).collect();
     let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     let diff: Vec<f64> = values.iter().zip(truth).map(|(a, b)| a - b).collect();
     Outcome {
         parameter_error: norm(&diff) / norm(truth),
+        model_error: norm(&d) / norm(&p_true),
         validation_error: error(&values),
         noise_floor: error(truth),
         values,

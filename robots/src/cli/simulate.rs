@@ -1,0 +1,262 @@
+//! `robid simulate ROBOT.toml --parameters PARAMS.toml --trajectory TRAJ.csv -o DATA.csv`:
+//! closed-loop simulation with noise (robid_runtime::simulate), writing
+//! `t,q1..,qd1..,qdd1..,tau1..`. Also holds what `excite` shares: the interpreted model of
+//! a description and the parameter file reader.
+
+use std::path::{Path, PathBuf};
+
+use robid_runtime::Model;
+use robid_runtime::simulate::{Noise, Simulation, Trajectory};
+use robid_symbolic::program::{Program, RobotPrograms};
+use robid_symbolic::{Drive, Robot};
+
+use super::Error;
+
+/// Arguments of `robid simulate`.
+#[derive(Debug, clap::Args)]
+pub(crate) struct Args {
+    /// Robot description (TOML).
+    robot: PathBuf,
+    /// Parameter file with a `[standard]` (missing names are 0) or a `[base]` table.
+    #[arg(long)]
+    parameters: PathBuf,
+    /// Reference trajectory (CSV with header t,q1..,qd1..,qdd1..).
+    #[arg(long)]
+    trajectory: PathBuf,
+    /// Drive terms added to every joint, e.g. `Fv,Fc` (default: the description's).
+    #[arg(long, value_delimiter = ',')]
+    drive: Vec<String>,
+    /// Torque noise standard deviation (N m): one value, or one per joint separated by commas.
+    #[arg(long, value_delimiter = ',', default_value = "0")]
+    torque_noise: Vec<f64>,
+    /// Position noise standard deviation (rad).
+    #[arg(long, default_value_t = 0.0)]
+    position_noise: f64,
+    /// Encoder resolution (rad per count); 0 for none.
+    #[arg(long, default_value_t = 0.0)]
+    quantization: f64,
+    /// PD loop bandwidth (Hz).
+    #[arg(long, default_value_t = 10.0)]
+    bandwidth: f64,
+    /// Seed of the noise.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Output CSV.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Runs the subcommand.
+pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    let model = Interpreted::load(&args.robot, &args.drive)?;
+    let base = read_parameters(&args.parameters, &model)?;
+    let reference = Trajectory::read_csv(&args.trajectory, model.dof())?;
+    let sim = Simulation {
+        bandwidth: args.bandwidth,
+        seed: args.seed,
+        noise: Noise {
+            torque: args.torque_noise.clone(),
+            position: args.position_noise,
+            quantization: args.quantization,
+            ..Noise::default()
+        },
+        ..Simulation::default()
+    };
+    let out = sim.run(&model, &base, &reference)?;
+    out.measured.write_csv(&args.output)?;
+    println!(
+        "{}: {} samples simulated, written to {}",
+        model.name(),
+        reference.samples(),
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// The drive terms named on the command line (`Ia`, `Fv`, `Fc`, `Fo`).
+pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {
+    if names.is_empty() {
+        return Ok(None);
+    }
+    let mut d = Drive::NONE;
+    for n in names {
+        match n.trim() {
+            "Ia" => d.ia = true,
+            "Fv" => d.fv = true,
+            "Fc" => d.fc = true,
+            "Fo" => d.fo = true,
+            other => {
+                return Err(
+                    format!("--drive: unknown term `{other}`; use Ia, Fv, Fc or Fo").into(),
+                );
+            }
+        }
+    }
+    Ok(Some(d))
+}
+
+/// A description's derived programs run by the interpreter, as a `Model`.
+#[derive(Debug)]
+pub(crate) struct Interpreted {
+    pub(crate) programs: RobotPrograms,
+    geometry: Vec<f64>,
+}
+
+impl Interpreted {
+    /// Reads and derives a description, with the drive terms named by `drive` when given.
+    pub(crate) fn load(path: &Path, drive: &[String]) -> Result<Self, Error> {
+        let mut robot = Robot::from_file(path)?;
+        if let Some(d) = parse_drive(drive)? {
+            robot = robot.with_drive(d);
+        }
+        let programs = RobotPrograms::derive(&robot)?;
+        let geometry = programs
+            .geometry
+            .iter()
+            .map(|(s, v)| {
+                v.ok_or_else(|| {
+                    format!("{}: symbol `{s}` has no value; give it one", path.display())
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Self { programs, geometry })
+    }
+
+    fn run(&self, p: &Program, inputs: &[&[f64]], out: &mut [f64]) {
+        let mut all: Vec<&[f64]> = inputs.to_vec();
+        if !self.geometry.is_empty() {
+            all.push(&self.geometry);
+        }
+        // lengths are fixed by the programs' own groups
+        let _ = p.run(&all, &mut [out], &mut Vec::new());
+    }
+}
+
+impl Model for Interpreted {
+    fn name(&self) -> &str {
+        &self.programs.robot.name
+    }
+    fn dof(&self) -> usize {
+        self.programs.robot.dof()
+    }
+    fn standard_parameter_count(&self) -> usize {
+        self.programs.standard.len()
+    }
+    fn standard_parameter_name(&self, index: usize) -> &str {
+        &self.programs.standard[index]
+    }
+    fn base_parameter_count(&self) -> usize {
+        self.programs.base.len()
+    }
+    fn base_parameter_name(&self, index: usize) -> &str {
+        &self.programs.base[index].name
+    }
+    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.base_regressor, &[q, qd, qdd], out);
+    }
+    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.standard_regressor, &[q, qd, qdd], out);
+    }
+    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
+        self.run(&self.programs.inverse_dynamics, &[q, qd, qdd, base], tau);
+    }
+    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.mass_matrix, &[q, base], out);
+    }
+    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.gravity, &[q, base], out);
+    }
+    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
+        self.run(&self.programs.coriolis, &[q, qd, base], out);
+    }
+    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
+        self.run(&self.programs.base_from_standard, &[standard], base);
+    }
+}
+
+/// Reads base parameters from a file with a `[standard]` table (name = value, missing = 0)
+/// or a `[base]` table (every base parameter required).
+pub(crate) fn read_parameters(path: &Path, model: &Interpreted) -> Result<Vec<f64>, Error> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+    let (mut standard, mut base) = (Vec::new(), Vec::new());
+    let mut table = "";
+    for (i, raw) in text.lines().enumerate() {
+        let line = raw.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        if line.starts_with('[') {
+            table = match line {
+                "[standard]" => "standard",
+                "[base]" => "base",
+                _ => "",
+            };
+            continue;
+        }
+        if table.is_empty() {
+            continue;
+        }
+        let at = || format!("{}:{}", path.display(), i + 1);
+        let (name, value) = line
+            .split_once('=')
+            .ok_or_else(|| format!("{}: expected `NAME = number`", at()))?;
+        let value: f64 = value
+            .trim()
+            .parse()
+            .map_err(|_| format!("{}: `{}` is not a number", at(), value.trim()))?;
+        if !value.is_finite() {
+            return Err(format!("{}: {value} is not finite", at()).into());
+        }
+        let entry = (name.trim().to_string(), value);
+        if table == "standard" {
+            standard.push(entry)
+        } else {
+            base.push(entry)
+        }
+    }
+    let p = &model.programs;
+    if !base.is_empty() {
+        return p
+            .base
+            .iter()
+            .map(|b| {
+                base.iter()
+                    .find(|(n, _)| *n == b.name)
+                    .map(|(_, v)| *v)
+                    .ok_or_else(|| {
+                        format!(
+                            "{}: [base] has no `{}`; list every base parameter",
+                            path.display(),
+                            b.name
+                        )
+                        .into()
+                    })
+            })
+            .collect();
+    }
+    if standard.is_empty() {
+        return Err(format!("{}: no [standard] or [base] table", path.display()).into());
+    }
+    if let Some((n, _)) = standard.iter().find(|(n, _)| !p.standard.contains(n)) {
+        return Err(format!(
+            "{}: `{n}` is not a standard parameter of {} (enable its drive term with --drive?)",
+            path.display(),
+            p.robot.name
+        )
+        .into());
+    }
+    let values: Vec<f64> = p
+        .standard
+        .iter()
+        .map(|n| {
+            standard
+                .iter()
+                .find(|(k, _)| k == n)
+                .map_or(0.0, |(_, v)| *v)
+        })
+        .collect();
+    let mut out = vec![0.0; model.base_parameter_count()];
+    model.base_from_standard(&values, &mut out);
+    Ok(out)
+}
