@@ -57,7 +57,7 @@ impl LinkInertial {
     /// (the centre of mass is then undefined).
     pub fn from_standard(p: &[f64; 10]) -> Option<LinkInertial> {
         let m = p[9];
-        if !(m > 0.0) {
+        if m.is_nan() || m <= 0.0 {
             return None;
         }
         let c = Vector3::new(p[6], p[7], p[8]) / m;

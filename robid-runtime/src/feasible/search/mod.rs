@@ -277,7 +277,7 @@ pub fn solve_anneal(
 /// differences at random points); the others keep their don't-care values.
 fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: u64) -> Vec<usize> {
     let n = lo.len();
-    let mut rng = Rng::new(seed ^ 0xD0C4_2E);
+    let mut rng = Rng::new(seed ^ 0x00D0_C42E);
     let mut effective = vec![false; n];
     for _ in 0..4 {
         let x: Vec<f64> = (0..n).map(|i| rng.uniform(lo[i], hi[i])).collect();
