@@ -252,7 +252,8 @@ pub struct Processing {
     pub decimation: Decimation,
     /// Equations of joint j are dropped where |qd_j| is below this (rad/s).
     pub rest_velocity: Option<PerJoint>,
-    /// Sample range used, `[start, end)`, applied before filtering.
+    /// Sample range used, `[start, end)`, cut after filtering and differentiation (so a
+    /// split of one record has no filter transients at its ends), before `trim`.
     pub range: Option<[usize; 2]>,
 }
 

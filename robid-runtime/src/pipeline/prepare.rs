@@ -44,14 +44,6 @@ fn differentiate(x: &[Vec<f64>], dt: f64) -> Vec<Vec<f64>> {
 /// rotor compensation of `[drive.rotor]` to a data set.
 pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
     let p = &config.processing;
-    let sliced;
-    let data = match p.range {
-        Some([a, b]) => {
-            sliced = data.slice(a, b)?;
-            &sliced
-        }
-        None => data,
-    };
     let dt = data.sample_time;
     let sos = match &p.lowpass {
         Some(lp) => Some(
@@ -91,7 +83,21 @@ pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
         let thetadd = differentiate(&thetad, dt);
         rotor.compensate(&mut tau, &thetad, &thetadd)?;
     }
-    let n = data.samples();
+    // the range is cut after filtering and differentiation, so that its ends are free of
+    // filter start-up transients (a split of one record into training and test data)
+    let (lo, hi) = match p.range {
+        Some([a, b]) if a < b && a < data.samples() => (a, b.min(data.samples())),
+        Some([a, b]) => {
+            return Err(Error::TooFewSamples {
+                context: format!("{} rows {a}..{b}", data.name),
+                found: 0,
+                required: 1,
+                hint: "choose processing.range inside the data",
+            });
+        }
+        None => (0, data.samples()),
+    };
+    let n = hi - lo;
     let t = p.trim;
     if n <= 2 * t + 1 {
         return Err(Error::TooFewSamples {
@@ -102,7 +108,7 @@ pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
         });
     }
     let cut = |v: Vec<Vec<f64>>| -> Vec<Vec<f64>> {
-        v.into_iter().map(|x| x[t..n - t].to_vec()).collect()
+        v.into_iter().map(|x| x[lo + t..hi - t].to_vec()).collect()
     };
     Ok(Prepared {
         q: cut(q),
