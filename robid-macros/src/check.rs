@@ -127,14 +127,24 @@ fn from_file(cx: &mut Ctxt, e: &Expr) -> Option<(Robot, Option<PathBuf>)> {
     let lit = string(cx, e, "the description file")?;
     let relative = lit.value();
     let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
-    let path = PathBuf::from(dir).join(&relative);
+    let mut path = PathBuf::from(dir).join(&relative);
+    // Not there: relative to the invoking source file (e.g. under trybuild,
+    // whose crates have another manifest directory).
+    if !path.exists()
+        && let Some(beside) = proc_macro::Span::call_site()
+            .local_file()
+            .and_then(|f| Some(f.parent()?.join(&relative)))
+        && beside.exists()
+    {
+        path = beside;
+    }
     let text = match std::fs::read_to_string(&path) {
         Ok(t) => t,
         Err(err) => {
             cx.error(
                 lit.span(),
                 format!(
-                    "cannot read `{relative}`: {err}; the path is relative to the directory of the crate's Cargo.toml"
+                    "cannot read `{relative}`: {err}; the path is relative to the directory of the crate's Cargo.toml (or of the file invoking the macro)"
                 ),
             );
             return None;

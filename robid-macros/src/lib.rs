@@ -13,7 +13,8 @@
 //! robid_macros::robot_model!(file = "descriptions/panda.toml", name = "panda_drive", drive = [Ia, Fv, Fc, Fo]);
 //! ```
 //!
-//! The path is relative to the directory of the calling crate's `Cargo.toml`;
+//! The path is relative to the directory of the calling crate's `Cargo.toml`
+//! (or, if not found there, to the directory of the file invoking the macro);
 //! the file is tracked, so Cargo rebuilds when it changes. The format is the
 //! one of the command-line tool (see `robid_symbolic::robot`).
 //!
@@ -48,6 +49,8 @@
 //! Mistakes in the input are compile errors pointing at the offending item
 //! (all of them at once); the type is then still defined, as a placeholder, so
 //! that its uses do not add errors of their own.
+
+extern crate proc_macro;
 
 mod check;
 mod expand;

@@ -1,0 +1,3 @@
+robid_macros::robot_model!(file = "descriptions/malformed.toml");
+
+fn main() {}
