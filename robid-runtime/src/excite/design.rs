@@ -176,14 +176,12 @@ impl FourierDesign {
                 "restarts and evaluations must be at least 1".into(),
             ));
         }
-        if let Some(q0) = &self.start {
-            if q0.len() != dof {
-                return Err(Error::JointCountMismatch {
-                    context: "start position".into(),
-                    expected: dof,
-                    found: q0.len(),
-                });
-            }
+        if let Some(q0) = self.start.as_ref().filter(|q0| q0.len() != dof) {
+            return Err(Error::JointCountMismatch {
+                context: "start position".into(),
+                expected: dof,
+                found: q0.len(),
+            });
         }
         Ok(())
     }
@@ -209,14 +207,12 @@ impl FourierDesign {
                 }
             }
         }
-        if let Some(b) = torque {
-            if b.len() != model.base_parameter_count() {
-                return Err(Error::DimensionMismatch {
-                    what: "reference base parameters".into(),
-                    expected: model.base_parameter_count(),
-                    found: b.len(),
-                });
-            }
+        if let Some(b) = torque.filter(|b| b.len() != model.base_parameter_count()) {
+            return Err(Error::DimensionMismatch {
+                what: "reference base parameters".into(),
+                expected: model.base_parameter_count(),
+                found: b.len(),
+            });
         }
         let decoder = self.decoder(limits);
         let cost = |x: &[f64]| self.cost(model, limits, torque, &decoder.decode(x));

@@ -39,10 +39,8 @@ impl JointLimits {
                 return Err(bad(what, format!("{x} must be positive and finite")));
             }
         }
-        if let Some(t) = self.torque {
-            if !(t > 0.0 && t.is_finite()) {
-                return Err(bad("torque", format!("{t} must be positive and finite")));
-            }
+        if let Some(t) = self.torque.filter(|t| !(*t > 0.0 && t.is_finite())) {
+            return Err(bad("torque", format!("{t} must be positive and finite")));
         }
         Ok(())
     }

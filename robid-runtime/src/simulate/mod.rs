@@ -66,8 +66,8 @@ mod run_tests {
         for k in (10..r.samples()).step_by(37) {
             let s = |v: &Vec<Vec<f64>>| [v[0][k], v[1][k]];
             p.inverse_dynamics(&s(&tr.q), &s(&tr.qd), &s(&tr.qdd), &base, &mut tau);
-            for j in 0..2 {
-                assert!((tau[j] - out.truth.tau[j][k]).abs() < 1e-9);
+            for (t, truth) in tau.iter().zip(&out.truth.tau) {
+                assert!((t - truth[k]).abs() < 1e-9);
             }
         }
         // without noise the measurement is the truth; the run is reproducible
