@@ -176,6 +176,14 @@ pub enum Error {
         /// What excluded every solution and what to change.
         reason: String,
     },
+    /// A method that this build does not include.
+    #[error("{what} is not in this build: {fix}")]
+    Unavailable {
+        /// The method.
+        what: String,
+        /// How to get it.
+        fix: String,
+    },
 }
 
 /// The crate's result type.

@@ -60,6 +60,7 @@ fn bounds_that_exclude_every_solution_are_reported() {
     ));
 }
 
+#[cfg(feature = "sdp")]
 #[test]
 fn inconsistent_identified_values_are_projected_onto_consistent_ones() {
     // A negative identified mass: the SDP returns the nearest consistent set (mass >= margin).
@@ -67,4 +68,15 @@ fn inconsistent_identified_values_are_projected_onto_consistent_ones() {
     let s = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()).unwrap();
     assert!(s.min_eigenvalues[0] > 0.0);
     assert!(s.standard[9] > 0.0);
+}
+
+/// Without the `sdp` feature the method says how to get it instead of failing silently.
+#[cfg(not(feature = "sdp"))]
+#[test]
+fn sdp_without_the_feature_says_how_to_enable_it() {
+    let p = problem().with_target(&[0.1, 1.0], &[0.01, 0.01]).unwrap();
+    match solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()) {
+        Err(e @ Error::Unavailable { .. }) => assert!(e.to_string().contains("--features sdp")),
+        other => panic!("expected Error::Unavailable, got {other:?}"),
+    }
 }

@@ -5,8 +5,7 @@
 
 use nalgebra::DMatrix;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, LinkBounds, LinkInertial, Problem, SdpOptions, Solution, solve_anneal,
-    solve_sdp,
+    AnnealOptions, Bounds, LinkBounds, LinkInertial, Problem, Solution, solve_anneal,
 };
 use robid_symbolic::regroup::BaseParameters;
 use robid_symbolic::sample::Rng;
@@ -184,6 +183,10 @@ fn check(
     );
 }
 
+#[cfg(feature = "sdp")]
+use robid_runtime::feasible::{SdpOptions, solve_sdp};
+
+#[cfg(feature = "sdp")]
 #[test]
 fn sdp_ur5e() {
     let mut c = case("ur5e");
@@ -192,6 +195,7 @@ fn sdp_ur5e() {
     check(&mut c, &s, "sdp ur5e", false, true);
 }
 
+#[cfg(feature = "sdp")]
 #[test]
 fn sdp_panda() {
     let mut c = case("panda");
@@ -200,6 +204,7 @@ fn sdp_panda() {
     check(&mut c, &s, "sdp panda", false, true);
 }
 
+#[cfg(feature = "sdp")]
 #[test]
 fn sdp_tx40_wide_default_bounds() {
     let mut c = case("tx40");

@@ -24,6 +24,7 @@ pub fn centre(layout: &Layout, bounds: &Bounds) -> Vec<f64> {
 }
 
 /// A typical magnitude of each standard parameter under the bounds.
+#[cfg(feature = "sdp")]
 pub(super) fn scales(layout: &Layout, bounds: &Bounds) -> Vec<f64> {
     let mut s = vec![1.0; layout.len()];
     for (j, idx) in layout.links.iter().enumerate() {

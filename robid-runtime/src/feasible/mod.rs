@@ -20,6 +20,7 @@
 //! Bounds come from TOML ([`Bounds`]); the result ([`Solution`]) is written as TOML or as
 //! URDF `<inertial>` elements ([`to_toml`], [`to_urdf`]).
 
+#[cfg(feature = "sdp")]
 use openblas_src as _;
 
 mod bounds;
@@ -28,6 +29,8 @@ mod inertial;
 mod layout;
 mod output;
 mod problem;
+#[cfg(feature = "sdp")]
+mod conic;
 mod sdp;
 mod search;
 mod solution;

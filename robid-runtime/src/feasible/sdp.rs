@@ -13,19 +13,23 @@
 //! (L L' the covariance of beta); on data, A = R K and b = Q' y from the thin QR of the
 //! base observation matrix, which is physically consistent least squares.
 
+//!
+//! Clarabel's semidefinite cones need BLAS/LAPACK (OpenBLAS), which a machine
+//! with only the Rust toolchain does not have, so the solver is behind the
+//! `sdp` feature (`.ci/install-deps.sh` installs the system libraries); without
+//! it these functions return [`Error::Unavailable`] saying how to enable it.
+
 use std::time::Instant;
 
-use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
-};
 use nalgebra::{DMatrix, DVector};
 
 use super::bounds::Bounds;
-use super::centre::{centre, scales};
 use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::{Error, Result};
+
+#[cfg(feature = "sdp")]
+use super::conic::solve;
 
 /// A prior (e.g. CAD values) the fit is pulled towards.
 #[derive(Debug, Clone, PartialEq)]
@@ -125,177 +129,18 @@ pub fn consistent_least_squares(
     ))
 }
 
-/// Rows of `A x + s = b, s in K`, with the cones in order.
-struct Conic {
-    i: Vec<usize>,
-    j: Vec<usize>,
-    v: Vec<f64>,
-    b: Vec<f64>,
-    cones: Vec<SupportedConeT<f64>>,
-}
-
-impl Conic {
-    fn row(&mut self, entries: &[(usize, f64)], b: f64) {
-        let r = self.b.len();
-        for &(j, v) in entries {
-            if v != 0.0 {
-                self.i.push(r);
-                self.j.push(j);
-                self.v.push(v);
-            }
-        }
-        self.b.push(b);
-    }
-
-    /// `lhs . x >= rhs`, as s = lhs . x - rhs >= 0.
-    fn at_least(&mut self, lhs: &[(usize, f64)], rhs: f64) {
-        let neg: Vec<(usize, f64)> = lhs.iter().map(|&(j, v)| (j, -v)).collect();
-        self.row(&neg, -rhs);
-    }
-}
-
+/// Without the `sdp` feature there is no conic solver to call.
+#[cfg(not(feature = "sdp"))]
 fn solve(
-    problem: &Problem,
+    _problem: &Problem,
     bounds: &Bounds,
-    a: &DMatrix<f64>,
-    b: &DVector<f64>,
-    options: &SdpOptions,
+    _a: &DMatrix<f64>,
+    _b: &DVector<f64>,
+    _options: &SdpOptions,
 ) -> Result<Vec<f64>> {
     bounds.validate()?;
-    let layout = &problem.layout;
-    let ns = problem.standard_names.len();
-    if bounds.links.len() != layout.links.len() {
-        return Err(Error::DimensionMismatch {
-            what: "links in the bounds".to_owned(),
-            expected: layout.links.len(),
-            found: bounds.links.len(),
-        });
-    }
-    let t = ns; // epigraph variable of the norm
-    let mut c = Conic {
-        i: vec![],
-        j: vec![],
-        v: vec![],
-        b: vec![],
-        cones: vec![],
-    };
-
-    // Second-order cone: (t, A p - b, pull rows).
-    let (p0, weight) = match &options.prior {
-        Some(prior) => {
-            if prior.standard.len() != ns {
-                return Err(Error::DimensionMismatch {
-                    what: "prior standard parameters".to_owned(),
-                    expected: ns,
-                    found: prior.standard.len(),
-                });
-            }
-            if prior.standard.iter().any(|v| !v.is_finite())
-                || !(prior.weight.is_finite() && prior.weight >= 0.0)
-            {
-                return Err(Error::InvalidConfig {
-                    key: "prior".to_owned(),
-                    problem: "holds NaN, an infinite value or a negative weight".to_owned(),
-                });
-            }
-            (prior.standard.clone(), prior.weight)
-        }
-        None => (centre(layout, bounds), options.regularization),
-    };
-    let scale = scales(layout, bounds);
-    c.row(&[(t, -1.0)], 0.0);
-    for r in 0..a.nrows() {
-        let entries: Vec<(usize, f64)> = (0..ns).map(|s| (s, -a[(r, s)])).collect();
-        c.row(&entries, -b[r]);
-    }
-    let sw = weight.sqrt();
-    if sw > 0.0 {
-        for s in 0..ns {
-            c.row(&[(s, -sw / scale[s])], -sw * p0[s] / scale[s]);
-        }
-    }
-    let soc = c.b.len();
-    c.cones.push(SupportedConeT::SecondOrderConeT(soc));
-
-    // Linear bounds.
-    let before = c.b.len();
-    let mut masses = Vec::new();
-    for (j, idx) in layout.links.iter().enumerate() {
-        let lb = &bounds.links[j];
-        let m = idx[9];
-        masses.push((m, 1.0));
-        c.at_least(&[(m, 1.0)], lb.mass[0]);
-        c.at_least(&[(m, -1.0)], -lb.mass[1]);
-        for ax in 0..3 {
-            let h = idx[6 + ax];
-            c.at_least(&[(h, 1.0), (m, -lb.com[ax][0])], 0.0);
-            c.at_least(&[(h, -1.0), (m, lb.com[ax][1])], 0.0);
-        }
-    }
-    if let Some(tm) = bounds.total_mass {
-        c.at_least(&masses, tm[0]);
-        let neg: Vec<(usize, f64)> = masses.iter().map(|&(m, _)| (m, -1.0)).collect();
-        c.at_least(&neg, -tm[1]);
-    }
-    for d in &layout.drives {
-        if d.kind.non_negative() {
-            c.at_least(&[(d.index, 1.0)], 0.0);
-        }
-    }
-    let linear = c.b.len() - before;
-    if linear > 0 {
-        c.cones.push(SupportedConeT::NonnegativeConeT(linear));
-    }
-
-    // Pseudo-inertia LMIs, upper triangle column by column, off-diagonals times sqrt(2).
-    let r2 = std::f64::consts::SQRT_2;
-    for idx in &layout.links {
-        let [xx, xy, xz, yy, yz, zz, mx, my, mz, m] = *idx;
-        let entries: [(Vec<(usize, f64)>, bool); 10] = [
-            (vec![(xx, -0.5), (yy, 0.5), (zz, 0.5)], true),
-            (vec![(xy, -r2)], false),
-            (vec![(xx, 0.5), (yy, -0.5), (zz, 0.5)], true),
-            (vec![(xz, -r2)], false),
-            (vec![(yz, -r2)], false),
-            (vec![(xx, 0.5), (yy, 0.5), (zz, -0.5)], true),
-            (vec![(mx, r2)], false),
-            (vec![(my, r2)], false),
-            (vec![(mz, r2)], false),
-            (vec![(m, 1.0)], true),
-        ];
-        for (coef, diagonal) in entries {
-            let neg: Vec<(usize, f64)> = coef.iter().map(|&(j, v)| (j, -v)).collect();
-            c.row(&neg, if diagonal { -bounds.margin } else { 0.0 });
-        }
-        c.cones.push(SupportedConeT::PSDTriangleConeT(4));
-    }
-
-    let n = ns + 1;
-    let a_mat = CscMatrix::new_from_triplets(c.b.len(), n, c.i, c.j, c.v);
-    let p_mat = CscMatrix::<f64>::zeros((n, n));
-    let mut q = vec![0.0; n];
-    q[t] = 1.0;
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .max_iter(400)
-        .build()
-        .map_err(|e| Error::NoFeasibleParameters {
-            reason: format!("solver settings: {e}"),
-        })?;
-    let mut solver =
-        DefaultSolver::new(&p_mat, &q, &a_mat, &c.b, &c.cones, settings).map_err(|e| {
-            Error::NoFeasibleParameters {
-                reason: format!("solver setup: {e:?}"),
-            }
-        })?;
-    solver.solve();
-    match solver.solution.status {
-        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(solver.solution.x[..ns].to_vec()),
-        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Err(Error::NoFeasibleParameters {
-            reason: "the bounds and the physical-consistency constraints exclude every solution; widen the mass or centre-of-mass bounds, the total-mass range, or lower the margin".to_owned(),
-        }),
-        other => Err(Error::NoFeasibleParameters {
-            reason: format!("the conic solver stopped with status {other:?}; check the bounds' scale (kg, m, kg m^2)"),
-        }),
-    }
+    Err(Error::Unavailable {
+        what: "the semidefinite (sdp) method".to_owned(),
+        fix: "install OpenBLAS (`bash .ci/install-deps.sh`) and build with `--features sdp`, or use `--method anneal`".to_owned(),
+    })
 }
