@@ -50,8 +50,6 @@
 //! (all of them at once); the type is then still defined, as a placeholder, so
 //! that its uses do not add errors of their own.
 
-extern crate proc_macro;
-
 mod check;
 mod expand;
 mod input;
