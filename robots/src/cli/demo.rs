@@ -1,17 +1,237 @@
-//! `robid demo`: the main job on a built-in default robot, with no arguments.
-//!
-//! For now: the UR5e's complete model (parameters, base parameters, operation
-//! counts). The identification pipeline will extend it to a full run.
+//! `robid demo`: the main job with no arguments. Identifies the Staubli TX40 from its real
+//! 5 kHz log (FIGAROH's example data, built into the binary) with FIGAROH's processing:
+//! train on rows 0-24750, predict the held-out rows 29250-45000, compare the whole-run
+//! estimate with FIGAROH's published base parameters, and write the report (JSON and SVG
+//! plots of measured vs predicted torque per joint) into `./robid-demo/`.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use flate2::read::MultiGzDecoder;
+use robid_runtime::data::{Config, Dataset, read_columns_from};
+use robid_runtime::drive::DriveChain;
+use robid_runtime::estimate::{Estimate, Observation};
+use robid_runtime::pipeline::{estimate, identify, observe, prepare};
+use robid_runtime::report::{Report, plot_torques, text_table};
+use robid_runtime::validate::Prediction;
+use robid_symbolic::Robot;
+use robots::interpreted::{Chosen, model_for};
 
 use super::Error;
-use robid_symbolic::Robot;
 
-/// The default robot's description, built in.
-const UR5E: &str = include_str!("../../descriptions/ur5e.toml");
+/// The TX40 description with drive terms, the identification config and the log.
+const ROBOT: &str = include_str!("../../configs/tx40_robot.toml");
+const CONFIG: &str = include_str!("../../configs/tx40.toml");
+const POSITIONS: &[u8] = include_bytes!("../../../data/staubli_tx40/data/pos_read_data.csv.gz");
+const TORQUES: &[u8] = include_bytes!("../../../data/staubli_tx40/data/curr_data.csv.gz");
+/// FIGAROH's base parameters for this log: `expression, OLS value, rel. std %, WLS, rel. std %`.
+const FIGAROH: &str = include_str!("../../../data/staubli_tx40/reference/TX40_bp_5.csv");
+/// Where the report goes.
+const OUTPUT: &str = "robid-demo";
+/// Training rows and held-out rows of the log (the README's temporal split).
+const TRAIN: (usize, usize) = (0, 24750);
+const HELD_OUT: (usize, usize) = (29250, 45000);
+/// Rows of the 4500-row gap used on each side to filter and differentiate the positions.
+const MARGIN: usize = 1000;
 
 /// Runs the demo.
 pub(crate) fn run() -> Result<(), Error> {
-    let robot = Robot::from_toml(UR5E, "robots/descriptions/ur5e.toml")?;
-    print!("{}", super::model::render(&robot, false)?);
+    let start = Instant::now();
+    let robot = Robot::from_toml(ROBOT, "robots/configs/tx40_robot.toml")?;
+    let chosen = model_for(&robot, ROBOT)?;
+    let config = Config::from_toml_str(CONFIG, Path::new("robots/configs/tx40.toml"))?;
+    let data = load(&config)?;
+    println!(
+        "Staubli TX40, real log: {} samples at {:.0} Hz, {} base parameters + {} drive-coupling terms",
+        data.samples(),
+        1.0 / data.sample_time,
+        chosen.base.len(),
+        config.extra_columns.len()
+    );
+
+    // temporal split: train, then predict the held-out rows
+    let train = rows(&chosen, &config, &data, TRAIN)?;
+    let held_out = rows(&chosen, &config, &data, HELD_OUT)?;
+    let est = estimate(&train, &config)?;
+    let dt = data.sample_time * robid_runtime::pipeline::decimator(&config)?.factor() as f64;
+    let fit = Prediction::new(&train, &est.values, dt);
+    let valid = Prediction::new(&held_out, &est.values, dt);
+    let report = Report::new("tx40", &est, &fit.fit(), |n| chosen.expression(n))
+        .with_validation("held-out rows 29250-45000", &valid.fit());
+    println!("\nTrained on rows {}-{}:", TRAIN.0, TRAIN.1);
+    print!("{}", text_table(&report));
+
+    // the whole run, as FIGAROH identified it
+    let whole = identify(chosen.model.as_ref(), &data, &config)?;
+    let comparison = compare(&chosen, &whole.estimate);
+    println!(
+        "\nWhole run (as FIGAROH): {} equations, cond {:.0}, relative error {:.2} %",
+        whole.estimate.rows,
+        whole.estimate.condition_number,
+        100.0 * whole.fit.relative_error
+    );
+    print!("{comparison}");
+
+    let dir = Path::new(OUTPUT);
+    std::fs::create_dir_all(dir).map_err(|e| format!("{OUTPUT}: cannot create: {e}"))?;
+    report.write_json(&dir.join("report.json"))?;
+    let whole_report = Report::from_identification(&whole, |n| chosen.expression(n));
+    whole_report.write_json(&dir.join("whole_run.json"))?;
+    std::fs::write(dir.join("figaroh_comparison.txt"), &comparison)
+        .map_err(|e| format!("{OUTPUT}/figaroh_comparison.txt: cannot write: {e}"))?;
+    plot_torques(&fit, dir, "train")?;
+    plot_torques(&valid, dir, "heldout")?;
+    let shown = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+    println!(
+        "\nReport in {}: report.json (split), whole_run.json, figaroh_comparison.txt, \
+         train_joint1..6.svg, heldout_joint1..6.svg ({:.2} s)",
+        shown.display(),
+        start.elapsed().as_secs_f64()
+    );
     Ok(())
+}
+
+/// The built-in log, joined and converted to the joint side as `load` does for files.
+fn load(config: &Config) -> Result<Dataset, Error> {
+    let dof = 6;
+    let read = |bytes: &'static [u8], file: &str, names: Vec<String>| {
+        read_columns_from(MultiGzDecoder::new(bytes), Path::new(file), &names).map(|t| t.columns)
+    };
+    let columns = |i: usize, position: bool| -> Result<Vec<String>, Error> {
+        let s = config.sources.get(i).ok_or("config: missing [[source]]")?;
+        let c = if position { &s.position } else { &s.torque };
+        Ok(c.as_ref().ok_or("config: missing columns")?.names(dof))
+    };
+    let q = read(POSITIONS, "pos_read_data.csv.gz", columns(0, true)?)?;
+    let tau = read(TORQUES, "curr_data.csv.gz", columns(1, false)?)?;
+    let chain = DriveChain::new(&config.drive, dof)?;
+    let rate = config.sample_rate.ok_or("config: no sample_rate")?;
+    Ok(Dataset::new(
+        "staubli_tx40",
+        1.0 / rate,
+        chain.joint_positions(&q),
+        chain.joint_torques(&tau),
+    )?)
+}
+
+/// The observation of rows `a..b`: positions filtered and differentiated with `MARGIN`
+/// rows on each side (inside the gap between the two parts; their torques are not used),
+/// so that the filter transients of a cut during motion stay out of the equations.
+fn rows(
+    chosen: &Chosen,
+    config: &Config,
+    data: &Dataset,
+    (a, b): (usize, usize),
+) -> Result<Observation, Error> {
+    let lo = a.saturating_sub(MARGIN);
+    let part = data.slice(lo, b + MARGIN)?;
+    let mut p = prepare(&part, config)?;
+    let trim = config.processing.trim;
+    let (s, e) = (
+        (a - lo).saturating_sub(trim),
+        (b - lo).saturating_sub(trim).min(p.samples()),
+    );
+    for v in [&mut p.q, &mut p.qd, &mut p.qdd, &mut p.tau] {
+        for x in v.iter_mut() {
+            *x = x[s..e].to_vec();
+        }
+    }
+    Ok(observe(chosen.model.as_ref(), &p, config)?)
+}
+
+/// A linear combination of standard parameters: name -> coefficient.
+type Combination = BTreeMap<String, f64>;
+
+/// Parses `a + 0.5*b - c`, with names passed through `rename`.
+fn parse(text: &str, rename: impl Fn(&str) -> String) -> Option<Combination> {
+    let mut out = Combination::new();
+    for term in text.replace(" - ", " + -").split(" + ") {
+        let term = term.trim();
+        let (sign, term) = match term.strip_prefix('-') {
+            Some(t) => (-1.0, t.trim()),
+            None => (1.0, term),
+        };
+        let (coef, name) = match term.split_once('*') {
+            Some((c, n)) => (c.trim().parse::<f64>().ok()?, n.trim()),
+            None => (1.0, term),
+        };
+        *out.entry(rename(name)).or_insert(0.0) += sign * coef;
+    }
+    Some(out)
+}
+
+/// FIGAROH's names in ours: Izz1 -> ZZ1, mx2 -> MX2, m3 -> M3, fs1 -> Fc1, off1 -> Fo1.
+fn figaroh_name(name: &str) -> String {
+    let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
+    let stem = &name[..name.len() - digits.len()];
+    let ours = match stem {
+        "Ixx" | "Iyy" | "Izz" | "Ixy" | "Ixz" | "Iyz" => stem[1..].to_uppercase(),
+        "mx" | "my" | "mz" | "m" => stem.to_uppercase(),
+        "fv" => "Fv".into(),
+        "fs" => "Fc".into(),
+        "off" => "Fo".into(),
+        _ => return name.to_string(),
+    };
+    format!("{ours}{digits}")
+}
+
+fn same(a: &Combination, b: &Combination) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|((n, x), (m, y))| n == m && (x - y).abs() <= 1e-4 * x.abs().max(1.0))
+}
+
+/// Our estimate next to FIGAROH's OLS values, matched by expression.
+fn compare(chosen: &Chosen, e: &Estimate) -> String {
+    let ours: Vec<Option<Combination>> = e
+        .names
+        .iter()
+        .map(|n| match chosen.expression(n) {
+            Some(x) => parse(&x, str::to_string),
+            None => Some(Combination::from([(n.clone(), 1.0)])),
+        })
+        .collect();
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<7} {:>11} {:>9} {:>11} {:>8}  FIGAROH expression",
+        "ours", "value", "rel.std%", "FIGAROH", "diff %"
+    );
+    for line in FIGAROH.lines().filter(|l| !l.trim().is_empty()) {
+        let f: Vec<&str> = line.split(',').collect();
+        let (Some(c), Some(v)) = (
+            parse(f[0], figaroh_name),
+            f.get(1).and_then(|v| v.parse::<f64>().ok()),
+        ) else {
+            continue;
+        };
+        match ours
+            .iter()
+            .position(|o| o.as_ref().is_some_and(|o| same(o, &c)))
+        {
+            Some(i) => {
+                let _ = writeln!(
+                    s,
+                    "{:<7} {:>11.5} {:>9.1} {:>11.5} {:>8.1}  {}",
+                    e.names[i],
+                    e.values[i],
+                    e.rel_std_percent[i],
+                    v,
+                    100.0 * (e.values[i] - v) / v.abs(),
+                    f[0]
+                );
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    "{:<7} {:>11} {:>9} {v:>11.5} {:>8}  {}",
+                    "-", "-", "-", "-", f[0]
+                );
+            }
+        }
+    }
+    s
 }

@@ -4,8 +4,10 @@
 mod demo;
 mod excite;
 mod feasible;
+mod identify;
 mod model;
 mod simulate;
+mod torques;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -22,8 +24,12 @@ struct Cli {
 enum Command {
     /// Standard and base parameters of a robot, their expressions and operation counts.
     Model(model::Args),
-    /// The main job on a built-in default robot (no arguments needed).
+    /// The main job: identifies the Staubli TX40 from its built-in real log and writes a report.
     Demo,
+    /// Base parameters with their uncertainty from measured data, fit and validation.
+    Identify(identify::Args),
+    /// Inverse dynamics row by row from a parameter file and a state file.
+    Torques(torques::Args),
     /// An exciting trajectory optimised within the joint limits.
     Excite(excite::Args),
     /// Closed-loop simulation of a trajectory with noise, producing data with known truth.
@@ -38,6 +44,8 @@ pub(crate) fn run() -> ExitCode {
     let result = match cli.command {
         Command::Model(args) => model::run(&args),
         Command::Demo => demo::run(),
+        Command::Identify(args) => identify::run(&args),
+        Command::Torques(args) => torques::run(&args),
         Command::Excite(args) => excite::run(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Feasible(args) => feasible::run(&args),
