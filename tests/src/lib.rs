@@ -7,3 +7,39 @@
 pub mod reference;
 pub mod rnea;
 pub mod state;
+
+/// Defines one `#[test]` per reference robot, each calling `$check("name")`,
+/// so a failure names the robot.
+#[macro_export]
+macro_rules! per_robot {
+    ($check:ident) => {
+        #[test]
+        fn ur5e() {
+            $check("ur5e");
+        }
+        #[test]
+        fn puma560() {
+            $check("puma560");
+        }
+        #[test]
+        fn rx90() {
+            $check("rx90");
+        }
+        #[test]
+        fn tx40() {
+            $check("tx40");
+        }
+        #[test]
+        fn lwr4() {
+            $check("lwr4");
+        }
+        #[test]
+        fn panda() {
+            $check("panda");
+        }
+        #[test]
+        fn stanford() {
+            $check("stanford");
+        }
+    };
+}

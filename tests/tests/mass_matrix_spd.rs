@@ -51,40 +51,8 @@ fn check(name: &str) {
     }
 }
 
-#[test]
-fn ur5e() {
-    check("ur5e");
-}
-
-#[test]
-fn puma560() {
-    check("puma560");
-}
-
-#[test]
-fn rx90() {
-    check("rx90");
-}
-
-#[test]
-fn tx40() {
-    check("tx40");
-}
-
-#[test]
-fn lwr4() {
-    check("lwr4");
-}
-
-#[test]
-fn panda() {
-    check("panda");
-}
-
-#[test]
-fn stanford() {
-    check("stanford");
-}
+// One test per reference robot, each running `check(name)`.
+tests::per_robot!(check);
 
 /// The check can fail: with every parameter negated, M(q) is negative definite.
 #[test]
