@@ -206,7 +206,7 @@ fn ur5e() {
 
 #[test]
 fn puma560() {
-    check("puma560", &Puma560::default());
+    check("puma560", &Puma560);
 }
 
 #[test]
@@ -216,20 +216,20 @@ fn rx90() {
 
 #[test]
 fn tx40() {
-    check("tx40", &Tx40::default());
+    check("tx40", &Tx40);
 }
 
 #[test]
 fn lwr4() {
-    check("lwr4", &Lwr4::default());
+    check("lwr4", &Lwr4);
 }
 
 #[test]
 fn panda() {
-    check("panda", &Panda::default());
+    check("panda", &Panda);
 }
 
 #[test]
 fn stanford() {
-    check("stanford", &Stanford::default());
+    check("stanford", &Stanford);
 }

@@ -28,6 +28,7 @@ pub const REFERENCE_ROBOTS: [&str; 7] = [
 
 /// The compiled model of a reference robot, by name (geometric symbols at
 /// their description values).
+#[allow(clippy::default_constructed_unit_structs)] // the robots with symbols are not unit structs
 pub fn reference_model(name: &str) -> Option<Box<dyn robid_runtime::Model>> {
     Some(match name {
         "ur5e" => Box::new(Ur5e::default()),
