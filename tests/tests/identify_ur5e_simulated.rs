@@ -91,7 +91,7 @@ fn normalised_error(e: &Estimate, truth: &[f64], std: &[f64]) -> f64 {
 
 #[test]
 fn true_base_parameters_lie_within_three_standard_deviations_and_wls_is_no_worse() {
-    let model = Ur5e::default();
+    let model = Ur5e;
     let truth = truth(&model);
     let train = simulate(&model, &truth, 5);
     let held_out = simulate(&model, &truth, 6);
