@@ -1,0 +1,154 @@
+//! Bad input on the identification path (DESIGN.md 9), end to end from files through
+//! `load` and `identify` with the compiled UR5e: clear errors naming the file, line or
+//! column and the parameters not excited; never a panic.
+
+use std::path::PathBuf;
+
+use robid_runtime::Error;
+use robid_runtime::data::{Config, load};
+use robid_runtime::pipeline::identify;
+use robots::Ur5e;
+
+const CONFIG: &str = r#"
+time_column = "t"
+[[source]]
+position = "q{}"
+velocity = "qd{}"
+acceleration = "qdd{}"
+torque = "tau{}"
+"#;
+
+fn dir() -> PathBuf {
+    let d = std::env::temp_dir().join(format!("robid-identify-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A CSV with `rows` samples of a smooth motion of `joints` joints (only joint 1 moves
+/// when `only_first`); `edit` may change the text before it is written.
+fn csv(
+    name: &str,
+    rows: usize,
+    joints: usize,
+    only_first: bool,
+    edit: impl Fn(String) -> String,
+) -> PathBuf {
+    let mut h = vec!["t".to_string()];
+    for p in ["q", "qd", "qdd", "tau"] {
+        h.extend((1..=joints).map(|j| format!("{p}{j}")));
+    }
+    let mut s = h.join(",") + "\n";
+    for k in 0..rows {
+        let t = k as f64 * 0.01;
+        let mut row = vec![format!("{t}")];
+        for p in 0..4 {
+            for j in 0..joints {
+                let w = 0.7 + 0.37 * j as f64;
+                let a = if only_first && j > 0 { 0.0 } else { 1.0 };
+                let v = match p {
+                    0 => a * (w * t).sin(),
+                    1 => a * w * (w * t).cos(),
+                    2 => -a * w * w * (w * t).sin(),
+                    _ => (1.3 * w * t).cos() + 0.1 * j as f64,
+                };
+                row.push(format!("{v}"));
+            }
+        }
+        s += &(row.join(",") + "\n");
+    }
+    let path = dir().join(name);
+    std::fs::write(&path, edit(s)).unwrap();
+    path
+}
+
+fn run(file: PathBuf, config: &str) -> Result<(), Error> {
+    let config = Config::from_toml_str(config, &dir().join("cfg.toml"))?;
+    let data = load(&config, &[file], 6)?;
+    identify(&Ur5e, &data, &config).map(|_| ())
+}
+
+#[test]
+fn wrong_joint_count_in_data() {
+    let e = run(csv("five.csv", 400, 5, false, |s| s), CONFIG).unwrap_err();
+    assert!(
+        matches!(e, Error::MissingColumn { ref column, .. } if column == "q6"),
+        "{e}"
+    );
+    let e = run(
+        csv("six.csv", 400, 6, false, |s| s),
+        &format!("dof = 5\n{CONFIG}"),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::JointCountMismatch {
+                expected: 6,
+                found: 5,
+                ..
+            }
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn nan_in_csv_names_the_line_and_column() {
+    let f = csv("nan.csv", 400, 6, false, |s| {
+        let mut lines: Vec<String> = s.lines().map(str::to_string).collect();
+        let mut fields: Vec<&str> = lines[10].split(',').collect();
+        fields[3] = "NaN";
+        lines[10] = fields.join(",");
+        lines.join("\n")
+    });
+    let e = run(f, CONFIG).unwrap_err();
+    let text = e.to_string();
+    assert!(matches!(e, Error::NotFinite { line: 11, .. }), "{text}");
+    assert!(text.contains("nan.csv") && text.contains("q3"), "{text}");
+}
+
+#[test]
+fn missing_column_lists_the_header() {
+    let f = csv("missing.csv", 400, 6, false, |s| {
+        s.replacen("tau4", "torque4", 1)
+    });
+    let e = run(f, CONFIG).unwrap_err();
+    assert!(
+        matches!(e, Error::MissingColumn { ref column, .. } if column == "tau4"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("torque4"), "{e}");
+}
+
+#[test]
+fn non_monotonic_time() {
+    let f = csv("time.csv", 400, 6, false, |s| {
+        let mut lines: Vec<String> = s.lines().map(str::to_string).collect();
+        lines.swap(20, 21);
+        lines.join("\n")
+    });
+    let e = run(f, CONFIG).unwrap_err();
+    assert!(matches!(e, Error::NonMonotonicTime { .. }), "{e}");
+}
+
+#[test]
+fn too_few_samples() {
+    let e = run(csv("short.csv", 1, 6, false, |s| s), CONFIG).unwrap_err();
+    assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
+    let trimmed = format!("{CONFIG}[processing]\ntrim = 30\n");
+    let e = run(csv("short2.csv", 50, 6, false, |s| s), &trimmed).unwrap_err();
+    assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
+}
+
+#[test]
+fn rank_deficient_data_names_the_parameters_not_excited() {
+    let e = run(csv("still.csv", 600, 6, true, |s| s), CONFIG).unwrap_err();
+    match &e {
+        Error::RankDeficient { unexcited, .. } => {
+            assert!(!unexcited.is_empty());
+            assert!(unexcited.iter().any(|n| !n.ends_with('1')), "{e}");
+        }
+        _ => panic!("expected rank deficiency, got {e}"),
+    }
+    println!("{e}");
+}
