@@ -34,6 +34,7 @@ pub struct Information {
     /// Samples added.
     pub samples: usize,
     y: Vec<f64>,
+    weights: Option<Vec<f64>>,
 }
 
 impl Information {
@@ -44,12 +45,26 @@ impl Information {
             gram: DMatrix::zeros(p, p),
             samples: 0,
             y: vec![0.0; model.dof() * p],
+            weights: None,
         }
+    }
+
+    /// Scales the rows of joint j by `weights[j]` (e.g. 1 / the joint's torque noise sigma,
+    /// so that W'W is the information weighted least squares sees).
+    pub fn with_weights(mut self, weights: &[f64]) -> Self {
+        self.weights = Some(weights.to_vec());
+        self
     }
 
     /// Adds the rows Y_b(q, qd, qdd).
     pub fn add<M: Model + ?Sized>(&mut self, model: &M, q: &[f64], qd: &[f64], qdd: &[f64]) {
         model.base_regressor(q, qd, qdd, &mut self.y);
+        if let Some(w) = &self.weights {
+            let p = self.gram.ncols();
+            for (row, w) in self.y.chunks_mut(p).zip(w) {
+                row.iter_mut().for_each(|y| *y *= w);
+            }
+        }
         add_rows(&mut self.gram, &self.y, model.dof());
         self.samples += 1;
     }

@@ -33,6 +33,9 @@ pub struct FourierDesign {
     pub points: usize,
     /// The criterion minimised.
     pub criterion: Criterion,
+    /// Per-joint weights of the regressor rows (e.g. 1 / expected noise sigma, what weighted
+    /// least squares sees); `None` = unweighted.
+    pub weights: Option<Vec<f64>>,
     /// Random starts.
     pub restarts: usize,
     /// Function evaluations per start.
@@ -54,6 +57,7 @@ impl Default for FourierDesign {
             base_frequency: 0.1,
             points: 100,
             criterion: Criterion::Condition,
+            weights: None,
             restarts: 8,
             evaluations: 3000,
             seed: 1,
@@ -176,11 +180,21 @@ impl FourierDesign {
                 "restarts and evaluations must be at least 1".into(),
             ));
         }
-        if let Some(q0) = self.start.as_ref().filter(|q0| q0.len() != dof) {
-            return Err(Error::JointCountMismatch {
-                context: "start position".into(),
-                expected: dof,
-                found: q0.len(),
+        for (what, v) in [("start position", &self.start), ("weights", &self.weights)] {
+            if let Some(v) = v.as_ref().filter(|v| v.len() != dof) {
+                return Err(Error::JointCountMismatch {
+                    context: what.into(),
+                    expected: dof,
+                    found: v.len(),
+                });
+            }
+        }
+        if let Some(w) = &self.weights
+            && w.iter().any(|w| !(*w > 0.0 && w.is_finite()))
+        {
+            return Err(Error::InvalidConfig {
+                key: "weights".into(),
+                problem: format!("{w:?} must be positive and finite"),
             });
         }
         Ok(())
@@ -197,16 +211,7 @@ impl FourierDesign {
         let n = model.dof();
         self.check(n)?;
         check_limits(limits, n)?;
-        if let Some(q0) = &self.start {
-            for (j, (q, l)) in q0.iter().zip(limits).enumerate() {
-                if !(l.position[0] < *q && *q < l.position[1]) {
-                    return Err(Error::InvalidConfig {
-                        key: format!("start position of joint {}", j + 1),
-                        problem: format!("{q} is outside the limits {:?}", l.position),
-                    });
-                }
-            }
-        }
+        check_start(self.start.as_deref(), limits)?;
         if let Some(b) = torque.filter(|b| b.len() != model.base_parameter_count()) {
             return Err(Error::DimensionMismatch {
                 what: "reference base parameters".into(),
@@ -314,6 +319,9 @@ impl FourierDesign {
     ) -> f64 {
         let n = model.dof();
         let mut info = Information::new(model);
+        if let Some(w) = &self.weights {
+            info = info.with_weights(w);
+        }
         let (mut q, mut qd, mut qdd, mut tau) =
             (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut peak = vec![0.0f64; n];
@@ -336,4 +344,20 @@ impl FourierDesign {
             .sum();
         info.cost(self.criterion) + 1e3 * penalty
     }
+}
+
+/// Checks that a fixed start position lies strictly inside the position limits.
+pub(crate) fn check_start(start: Option<&[f64]>, limits: &[JointLimits]) -> Result<()> {
+    for (j, (q, l)) in start.unwrap_or_default().iter().zip(limits).enumerate() {
+        if !(l.position[0] < *q && *q < l.position[1]) {
+            return Err(Error::InvalidConfig {
+                key: format!("start position of joint {}", j + 1),
+                problem: format!(
+                    "{q} is outside the limits {:?}; choose a start inside them",
+                    l.position
+                ),
+            });
+        }
+    }
+    Ok(())
 }

@@ -10,6 +10,9 @@ mod design;
 mod fourier;
 mod limits;
 mod nelder_mead;
+mod point_design;
+mod points;
+mod polynomial;
 mod progress;
 
 pub use assess::{Assessment, assess};
@@ -18,3 +21,6 @@ pub use design::{FourierDesign, FourierResult};
 pub use fourier::{Fourier, JointSeries};
 pub use limits::{JointLimits, Margin, check_limits, margins};
 pub use nelder_mead::{Minimum, NelderMead};
+pub use point_design::{PointDesign, PointResult};
+pub use points::Points;
+pub use polynomial::{Knot, Septic};
