@@ -1,7 +1,9 @@
 //! The subcommands of `robid` (DESIGN.md 10). Each file holds one subcommand;
 //! they read descriptions and data, call the library crates and print.
 
+mod bench;
 mod demo;
+mod emit;
 mod excite;
 mod feasible;
 mod identify;
@@ -30,12 +32,16 @@ enum Command {
     Identify(identify::Args),
     /// Inverse dynamics row by row from a parameter file and a state file.
     Torques(torques::Args),
+    /// The generated Rust module of a robot, pretty-printed.
+    Emit(emit::Args),
+    /// Median nanoseconds per call of the compiled reference models.
+    Bench(bench::Args),
     /// An exciting trajectory optimised within the joint limits.
     Excite(excite::Args),
-    /// Closed-loop simulation of a trajectory with noise, producing data with known truth.
-    Simulate(simulate::Args),
     /// Physically consistent link parameters from identified base parameters (TOML or URDF).
     Feasible(feasible::Args),
+    /// Closed-loop simulation of a trajectory with noise, producing data with known truth.
+    Simulate(simulate::Args),
 }
 
 /// Parses the command line, runs the subcommand and reports errors on stderr.
@@ -46,9 +52,11 @@ pub(crate) fn run() -> ExitCode {
         Command::Demo => demo::run(),
         Command::Identify(args) => identify::run(&args),
         Command::Torques(args) => torques::run(&args),
+        Command::Emit(args) => emit::run(&args),
+        Command::Bench(args) => bench::run(&args),
         Command::Excite(args) => excite::run(&args),
-        Command::Simulate(args) => simulate::run(&args),
         Command::Feasible(args) => feasible::run(&args),
+        Command::Simulate(args) => simulate::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
