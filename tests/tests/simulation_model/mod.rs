@@ -139,14 +139,17 @@ pub struct Outcome {
     pub noise_floor: f64,
 }
 
-/// Simulates `train` and `valid` with `noise` (different seeds), identifies by OLS from the
-/// first (velocities and accelerations as recorded) and predicts the second.
+/// Simulates `train` and `valid` with `noise` (seeds `seed` and `seed + 1`), identifies by
+/// `method` ("ols" or "wls") from the first (velocities and accelerations as recorded) and
+/// predicts the second.
 pub fn identify_and_validate(
     model: &Interpreted,
     truth: &[f64],
     train: &robid_runtime::simulate::Trajectory,
     valid: &robid_runtime::simulate::Trajectory,
     noise: &robid_runtime::simulate::Noise,
+    method: &str,
+    seed: u64,
 ) -> Outcome {
     use robid_runtime::data::Config;
     use robid_runtime::pipeline::{identify, validate};
@@ -164,12 +167,14 @@ pub fn identify_and_validate(
         .expect("data set")
     };
     let config = Config::from_toml_str(
-        "[processing]\nvelocity = \"data\"\nacceleration = \"data\"\n",
+        &format!(
+            "[processing]\nvelocity = \"data\"\nacceleration = \"data\"\n[estimation]\nmethod = \"{method}\"\n"
+        ),
         std::path::Path::new("simulated.toml"),
     )
     .expect("config");
-    let id = identify(model, &sim(train, 11), &config).expect("identification");
-    let vdata = sim(valid, 12);
+    let id = identify(model, &sim(train, seed), &config).expect("identification");
+    let vdata = sim(valid, seed + 1);
     let error = |beta: &[f64]| {
         validate(model, &vdata, &config, beta)
             .expect("validation")
@@ -194,4 +199,51 @@ pub fn identify_and_validate(
         noise_floor: error(truth),
         values,
     }
+}
+
+/// The mean of [`identify_and_validate`] over `seeds` noise seeds: (parameter error, model
+/// error, validation error, noise floor).
+pub fn mean_outcome(
+    model: &Interpreted,
+    truth: &[f64],
+    train: &robid_runtime::simulate::Trajectory,
+    valid: &robid_runtime::simulate::Trajectory,
+    noise: &robid_runtime::simulate::Noise,
+    method: &str,
+    seeds: u64,
+) -> [f64; 4] {
+    let mut sum = [0.0; 4];
+    for s in 0..seeds {
+        let o = identify_and_validate(model, truth, train, valid, noise, method, 11 + 2 * s);
+        for (a, b) in sum.iter_mut().zip([
+            o.parameter_error,
+            o.model_error,
+            o.validation_error,
+            o.noise_floor,
+        ]) {
+            *a += b / seeds as f64;
+        }
+    }
+    sum
+}
+
+/// The expected relative parameter error of weighted least squares on `trajectory` with
+/// torque noise `sigma` per joint: sqrt(trace((W' S^-1 W)^-1)) / ||beta||, S = diag(sigma^2)
+/// (what a design does for the estimate, free of any one noise draw).
+pub fn expected_error(
+    model: &Interpreted,
+    truth: &[f64],
+    trajectory: &robid_runtime::simulate::Trajectory,
+    sigma: &[f64],
+) -> f64 {
+    let weights: Vec<f64> = sigma.iter().map(|s| 1.0 / s).collect();
+    let mut info = robid_runtime::excite::Information::new(model).with_weights(&weights);
+    info.add_trajectory(model, trajectory, 1);
+    let g = info.gram.clone().lower_triangle() + info.gram.clone().lower_triangle().transpose()
+        - nalgebra::DMatrix::from_diagonal(&info.gram.diagonal());
+    let inverse = g
+        .try_inverse()
+        .expect("the trajectory excites every base parameter");
+    let norm = truth.iter().map(|x| x * x).sum::<f64>().sqrt();
+    inverse.trace().sqrt() / norm
 }
