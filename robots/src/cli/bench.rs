@@ -109,14 +109,14 @@ macro_rules! time_robot {
 /// Times the compiled models and prints the figures.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let names = robots::REFERENCE_ROBOTS;
-    if let Some(r) = &args.robot {
-        if !names.contains(&r.as_str()) {
-            return Err(format!(
-                "no compiled robot `{r}`; choose one of: {}",
-                names.join(", ")
-            )
-            .into());
-        }
+    if let Some(r) = &args.robot
+        && !names.contains(&r.as_str())
+    {
+        return Err(format!(
+            "no compiled robot `{r}`; choose one of: {}",
+            names.join(", ")
+        )
+        .into());
     }
     let wanted = |n: &str| args.robot.as_deref().is_none_or(|r| r == n);
     let base = baseline();

@@ -103,7 +103,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         )
         .into());
     }
-    if args.validate.len() % per_set != 0 {
+    if !args.validate.len().is_multiple_of(per_set) {
         return Err(format!(
             "--validate: {} files given; give them in groups of {per_set} (one per [[source]])",
             args.validate.len()
