@@ -42,8 +42,8 @@ use serde::{Deserialize, Serialize};
 use crate::drive::{DriveConfig, ExtraColumn};
 use crate::error::{Error, Result};
 
-/// The whole config file.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+/// The whole config file. `Config::default()` equals the config of an empty file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Config {
     /// Number of joints (checked against the model and the columns).
@@ -76,6 +76,25 @@ pub struct Config {
     /// Folder that relative `file` paths are resolved against (the config file's folder).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
+}
+
+impl Default for Config {
+    /// The same values as an empty config file (serde's defaults): `time_scale = 1`.
+    fn default() -> Self {
+        Self {
+            dof: None,
+            sample_rate: None,
+            time_column: None,
+            time_scale: one(),
+            sources: Vec::new(),
+            units: Units::default(),
+            drive: DriveConfig::default(),
+            extra_columns: Vec::new(),
+            processing: Processing::default(),
+            estimation: Estimation::default(),
+            base_dir: None,
+        }
+    }
 }
 
 /// One data file and the roles of its columns.
@@ -437,6 +456,18 @@ method = "wls"
         assert_eq!(cfg.processing.decimation, Decimation::Stages(vec![2, 2]));
         assert_eq!(cfg.estimation.method, Method::Wls);
         assert_eq!(cfg.resolve(Path::new("a.csv")), PathBuf::from("/x/a.csv"));
+    }
+
+    #[test]
+    fn default_equals_an_empty_file() {
+        let empty = Config::from_toml_str("", Path::new("empty.toml")).unwrap();
+        let default = Config::default();
+        assert_eq!(default.time_scale, 1.0);
+        assert_eq!(
+            serde_json::to_string(&default).unwrap(),
+            serde_json::to_string(&empty).unwrap()
+        );
+        default.check(6).unwrap();
     }
 
     #[test]

@@ -1,10 +1,54 @@
 //! Least squares by QR then SVD of R, never by normal equations.
 //!
-//! W = Q R (Householder), R = U S V'. The singular values of R are those of W, so the
-//! rank is decided with a relative threshold on them, the condition number is
-//! s_max / s_min, beta = V S^-1 U' Q'y, and (W'W)^-1 = V S^-2 V'.
+//! [W y] = Q R_a (Householder), with R_a = [[R, z], [0, rho]]: z = Q'y (first n entries).
+//! R = U S V'. The singular values of R are those of W, so the rank is decided with a
+//! relative threshold on them, the condition number is s_max / s_min,
+//! beta = V S^-1 U' z, and (W'W)^-1 = V S^-2 V'.
+//!
+//! The QR runs on blocks of rows in parallel (tall-skinny QR): each block's R, then the
+//! R factors stacked and factorised again. It is the same R (up to row signs) as one QR
+//! of the whole matrix, stays in cache, and never copies W whole.
 
 use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+/// Rows per block of the tall-skinny QR.
+const BLOCK: usize = 1024;
+
+/// The upper-triangular factor of `a` (at least `a.ncols()` rows, padded with zeros).
+fn r_factor(a: DMatrix<f64>) -> DMatrix<f64> {
+    let (m, n) = a.shape();
+    let a = if m < n {
+        a.resize_vertically(n, 0.0)
+    } else {
+        a
+    };
+    a.qr().r()
+}
+
+/// R of the tall matrix [W y] ((cols + 1) x (cols + 1), upper triangular), by blocks.
+fn augmented_r(w: &DMatrix<f64>, y: &DVector<f64>) -> DMatrix<f64> {
+    let (m, n) = w.shape();
+    let blocks = m.div_ceil(BLOCK).max(1);
+    (0..blocks)
+        .into_par_iter()
+        .map(|b| {
+            let (lo, hi) = (b * BLOCK, ((b + 1) * BLOCK).min(m));
+            let mut a = DMatrix::zeros(hi - lo, n + 1);
+            a.view_mut((0, 0), (hi - lo, n))
+                .copy_from(&w.view((lo, 0), (hi - lo, n)));
+            a.view_mut((0, n), (hi - lo, 1))
+                .copy_from(&y.rows(lo, hi - lo));
+            r_factor(a)
+        })
+        .reduce_with(|a, b| {
+            let mut s = DMatrix::zeros(a.nrows() + b.nrows(), n + 1);
+            s.view_mut((0, 0), a.shape()).copy_from(&a);
+            s.view_mut((a.nrows(), 0), b.shape()).copy_from(&b);
+            r_factor(s)
+        })
+        .unwrap_or_else(|| DMatrix::zeros(n + 1, n + 1))
+}
 
 use crate::error::{Error, Result};
 
@@ -34,11 +78,9 @@ pub(crate) fn solve(
             hint: "use more data, less decimation, or fewer parameters",
         });
     }
-    let qr = w.clone().qr();
-    let r = qr.r();
-    let mut qty = y.clone();
-    qr.q_tr_mul(&mut qty);
-    let qty = qty.rows(0, n).into_owned();
+    let ra = augmented_r(w, y);
+    let r = ra.view((0, 0), (n, n)).into_owned();
+    let qty = ra.view((0, n), (n, 1)).into_owned();
     let svd = r.svd(true, true);
     let (Some(u), Some(vt)) = (svd.u.as_ref(), svd.v_t.as_ref()) else {
         return Err(Error::Singular {
@@ -76,8 +118,11 @@ pub(crate) fn solve(
 
 /// Singular values of W (via QR), largest first.
 pub(crate) fn singular_values(w: &DMatrix<f64>) -> Vec<f64> {
-    let r = if w.nrows() > w.ncols() {
-        w.clone().qr().r()
+    let n = w.ncols();
+    let r = if w.nrows() > n {
+        augmented_r(w, &DVector::zeros(w.nrows()))
+            .view((0, 0), (n, n))
+            .into_owned()
     } else {
         w.clone()
     };
@@ -142,6 +187,30 @@ mod tests {
         match solve(&w, &y, &names(2), 1e-10) {
             Err(Error::RankDeficient { unexcited, .. }) => assert_eq!(unexcited.len(), 2),
             other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn blocked_qr_equals_one_qr_on_a_tall_system() {
+        let m = 3 * BLOCK + 17;
+        let w = DMatrix::from_fn(m, 4, |i, j| ((i * (j + 3)) as f64 * 0.37).sin() + j as f64);
+        let beta = DVector::from_vec(vec![1.0, -2.0, 0.5, 3.0]);
+        let noise = DVector::from_fn(m, |i, _| 1e-3 * ((i * 7919) as f64).cos());
+        let y = &w * &beta + noise;
+        let s = solve(&w, &y, &names(4), 1e-12).unwrap();
+        let reference = w.clone().svd(true, true).solve(&y, 1e-14).unwrap();
+        assert!(
+            (&s.beta - &reference).norm() < 1e-10,
+            "{} vs {reference}",
+            s.beta
+        );
+        let g = (w.transpose() * &w).try_inverse().unwrap();
+        assert!((g - &s.inverse_gram).norm() < 1e-10);
+        let sv = singular_values(&w);
+        let mut reference: Vec<f64> = w.singular_values().iter().copied().collect();
+        reference.sort_by(|a, b| b.total_cmp(a));
+        for (a, b) in sv.iter().zip(&reference) {
+            assert!((a - b).abs() < 1e-9 * b);
         }
     }
 

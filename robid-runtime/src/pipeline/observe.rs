@@ -167,29 +167,40 @@ pub fn observe(
     }
     let a = channels.len();
 
+    // decimated channels: row-major groups (`width` channels per row, one row per
+    // decimated sample); without decimation the regressor rows are used as they are
     let dec = decimator(config)?;
-    let m = dec.output_len(n);
-    let local: Vec<usize> = (0..a).collect();
-    let groups: Vec<Vec<f64>> = local
-        .par_chunks(GROUP)
-        .map(|g| dec.apply_block(&rows, a, g))
-        .collect::<Result<_>>()?;
-    drop(rows);
-    // position of each channel: (group, index in group), or None for an all-zero channel
-    let mut place = vec![None; stride];
+    let (groups, width, m) = if dec.factor() == 1 {
+        (vec![rows], a, n)
+    } else {
+        let local: Vec<usize> = (0..a).collect();
+        let groups: Vec<Vec<f64>> = local
+            .par_chunks(GROUP)
+            .map(|g| dec.apply_block(&rows, a, g))
+            .collect::<Result<_>>()?;
+        drop(rows);
+        (groups, GROUP, dec.output_len(n))
+    };
+    // where each channel is: (group, index in group, group width); None = all zero
+    let mut place: Vec<Option<(usize, usize, usize)>> = vec![None; stride];
     for (i, &c) in channels.iter().enumerate() {
-        place[c] = Some((i / GROUP, i % GROUP));
+        let (g, k) = (i / width, i % width);
+        let w = if dec.factor() == 1 {
+            a
+        } else {
+            GROUP.min(a - g * GROUP)
+        };
+        place[c] = Some((g, k, w));
     }
-    let value = |k: usize, ch: usize| match place[ch] {
-        Some((g, i)) => {
-            let width = groups[g].len() / m.max(1);
-            groups[g][k * width + i]
-        }
-        None => 0.0,
+    let series = |ch: usize| -> Option<(&[f64], usize, usize)> {
+        place[ch].map(|(g, k, w)| (groups[g].as_slice(), k, w))
     };
 
     let qd_dec: Vec<Vec<f64>> = (0..dof)
-        .map(|j| (0..m).map(|k| value(k, lay.qd(j))).collect())
+        .map(|j| match series(lay.qd(j)) {
+            Some((v, k, w)) => v.iter().skip(k).step_by(w).take(m).copied().collect(),
+            None => vec![0.0; m],
+        })
         .collect();
     let keep: Vec<Vec<usize>> = match &config.processing.rest_velocity {
         Some(t) => moving_samples(&qd_dec, &t.values(dof, "processing.rest_velocity")?),
@@ -202,20 +213,22 @@ pub fn observe(
     let mut joint_rows = Vec::with_capacity(dof);
     let mut sample_of_row = Vec::with_capacity(total);
     let mut start = 0;
+    let wdata = w.as_mut_slice();
     for (j, ks) in keep.iter().enumerate() {
+        // (column, source, index, width) of the non-zero channels of joint j's rows
+        let sources: Vec<(usize, &[f64], usize, usize)> = (0..cols)
+            .filter_map(|c| series(lay.column(j, c)).map(|(v, k, wd)| (c, v, k, wd)))
+            .collect();
+        let tau = series(lay.tau(j));
         for (r, &k) in ks.iter().enumerate() {
-            y[start + r] = value(k, lay.tau(j));
+            let row = start + r;
+            if let Some((v, i, wd)) = tau {
+                y[row] = v[k * wd + i];
+            }
+            for &(c, v, i, wd) in &sources {
+                wdata[c * total + row] = v[k * wd + i];
+            }
             sample_of_row.push(k);
-        }
-        for c in 0..cols {
-            let ch = lay.column(j, c);
-            if place[ch].is_none() {
-                continue;
-            }
-            let mut col = w.column_mut(c);
-            for (r, &k) in ks.iter().enumerate() {
-                col[start + r] = value(k, ch);
-            }
         }
         joint_rows.push(start..start + ks.len());
         start += ks.len();
