@@ -1,13 +1,17 @@
-//! `robid excite ROBOT.toml [options] -o TRAJ.csv`: an exciting trajectory (finite Fourier
-//! series, Swevers et al. 1997) optimised for the condition number (or D-optimality) of the
-//! stacked base regressor within the description's joint limits; prints the condition number
-//! and the margin to every limit. The trajectory has the header `t,q1..,qd1..,qdd1..`.
+//! `robid excite ROBOT.toml [options] -o TRAJ.csv`: an exciting trajectory optimised for the
+//! condition number (or D-optimality) of the stacked base regressor within the description's
+//! joint limits, either a finite Fourier series (`--method fourier`, Swevers et al. 1997) or
+//! optimal points joined by 7th-order polynomials (`--method points`, Milella et al.); it
+//! starts and ends at rest at `--start` (default: the middle of the position limits). Prints
+//! the condition number and the margin to every limit. The trajectory has the header
+//! `t,q1..,qd1..,qdd1..`.
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use robid_runtime::Model;
-use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, assess};
+use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, assess};
+use robid_runtime::simulate::Trajectory;
 
 use super::Error;
 use super::simulate::{Interpreted, read_parameters};
@@ -17,7 +21,8 @@ use super::simulate::{Interpreted, read_parameters};
 pub(crate) struct Args {
     /// Robot description (TOML) with joint limits.
     robot: PathBuf,
-    /// Design method (the finite Fourier series of Swevers et al.).
+    /// Design method: `fourier` (finite Fourier series, Swevers et al.) or `points` (optimal
+    /// position, velocity and acceleration points with 7th-order polynomials, Milella et al.).
     #[arg(long, value_enum, default_value_t = Method::Fourier)]
     method: Method,
     /// Duration (s): a whole number of periods 1 / base frequency.
@@ -29,24 +34,38 @@ pub(crate) struct Args {
     /// Seed of the random starts.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Start (and end) position `q1,..,qn`, at rest (default: the middle of the position limits).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    start: Vec<f64>,
+    /// Expected torque noise per joint `s1,..,sn`: weights the regressor rows by 1 / s (what
+    /// weighted least squares sees). Default: unweighted.
+    #[arg(long, value_delimiter = ',')]
+    sigma: Vec<f64>,
     /// Drive terms in the regressor, e.g. `Fv,Fc` (default: the description's).
     #[arg(long, value_delimiter = ',')]
     drive: Vec<String>,
-    /// Harmonics per joint.
+    /// Intervals between optimised points (`--method points`).
+    #[arg(long, default_value_t = 12)]
+    intervals: usize,
+    /// Sweeps over the points per start (`--method points`).
+    #[arg(long, default_value_t = 4)]
+    sweeps: usize,
+    /// Harmonics per joint (`--method fourier`).
     #[arg(long, default_value_t = 5)]
     harmonics: usize,
-    /// Base frequency (Hz).
+    /// Base frequency (Hz, `--method fourier`).
     #[arg(long, default_value_t = 0.1)]
     base_frequency: f64,
     /// Criterion: `cond` (condition number) or `d` (D-optimality).
     #[arg(long, value_enum, default_value_t = CriterionArg::Cond)]
     criterion: CriterionArg,
-    /// Random starts.
-    #[arg(long, default_value_t = 8)]
-    restarts: usize,
-    /// Function evaluations per start.
-    #[arg(long, default_value_t = 3000)]
-    evaluations: usize,
+    /// Random starts (default: 8 for `fourier`, 4 for `points`).
+    #[arg(long)]
+    restarts: Option<usize>,
+    /// Function evaluations per start (`fourier`; default 3000) or per point and sweep
+    /// (`points`; default 120).
+    #[arg(long)]
+    evaluations: Option<usize>,
     /// Reference parameters (`[standard]` or `[base]`): enables the torque limits.
     #[arg(long)]
     parameters: Option<PathBuf>,
@@ -59,6 +78,8 @@ pub(crate) struct Args {
 enum Method {
     /// Finite Fourier series.
     Fourier,
+    /// Optimal points joined by 7th-order polynomials.
+    Points,
 }
 
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
@@ -99,33 +120,89 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Some(p) => Some(read_parameters(p, &model)?),
         None => None,
     };
-    let periods = args.duration * args.base_frequency;
-    if (periods - periods.round()).abs() > 1e-9 || periods.round() < 1.0 {
+    let n = limits.len();
+    let start_pose = if args.start.is_empty() {
+        limits
+            .iter()
+            .map(|l| 0.5 * (l.position[0] + l.position[1]))
+            .collect()
+    } else if args.start.len() != n {
         return Err(format!(
-            "--duration {} s is not a whole number of periods of {} s; choose a multiple of 1 / --base-frequency so the trajectory ends at rest",
-            args.duration,
-            1.0 / args.base_frequency
+            "--start has {} values but {} has {n} joints; give q1,..,q{n}",
+            args.start.len(),
+            args.robot.display()
         )
         .into());
-    }
-    let Method::Fourier = args.method;
-    let design = FourierDesign {
-        harmonics: args.harmonics,
-        base_frequency: args.base_frequency,
-        criterion: match args.criterion {
-            CriterionArg::Cond => Criterion::Condition,
-            CriterionArg::D => Criterion::DOptimal,
-        },
-        restarts: args.restarts,
-        evaluations: args.evaluations,
-        seed: args.seed,
-        progress: true,
-        ..FourierDesign::default()
+    } else {
+        args.start.clone()
+    };
+    let weights = match args.sigma.len() {
+        0 => None,
+        k if k == n => Some(args.sigma.iter().map(|s| 1.0 / s).collect()),
+        k => {
+            return Err(format!(
+                "--sigma has {k} values but {} has {n} joints; give s1,..,s{n}",
+                args.robot.display()
+            )
+            .into());
+        }
+    };
+    let criterion = match args.criterion {
+        CriterionArg::Cond => Criterion::Condition,
+        CriterionArg::D => Criterion::DOptimal,
     };
     let start = Instant::now();
-    let result = design.optimize(&model, &limits, reference.as_deref())?;
+    let (trajectory, evaluations): (Trajectory, usize) = match args.method {
+        Method::Fourier => {
+            let periods = args.duration * args.base_frequency;
+            if (periods - periods.round()).abs() > 1e-9 || periods.round() < 1.0 {
+                return Err(format!(
+                    "--duration {} s is not a whole number of periods of {} s; choose a multiple of 1 / --base-frequency so the trajectory ends at rest",
+                    args.duration,
+                    1.0 / args.base_frequency
+                )
+                .into());
+            }
+            let design = FourierDesign {
+                harmonics: args.harmonics,
+                base_frequency: args.base_frequency,
+                criterion,
+                weights,
+                restarts: args.restarts.unwrap_or(8),
+                evaluations: args.evaluations.unwrap_or(3000),
+                seed: args.seed,
+                start: Some(start_pose),
+                progress: true,
+                ..FourierDesign::default()
+            };
+            let result = design.optimize(&model, &limits, reference.as_deref())?;
+            (
+                result.fourier.sample(args.duration, args.rate)?,
+                result.evaluations,
+            )
+        }
+        Method::Points => {
+            if reference.is_some() {
+                return Err("--parameters (torque limits) is only supported with --method fourier; the point design keeps position, velocity and acceleration limits".into());
+            }
+            let design = PointDesign {
+                duration: args.duration,
+                intervals: args.intervals,
+                criterion,
+                weights,
+                restarts: args.restarts.unwrap_or(4),
+                sweeps: args.sweeps,
+                evaluations: args.evaluations.unwrap_or(120),
+                seed: args.seed,
+                start: Some(start_pose),
+                progress: true,
+                ..PointDesign::default()
+            };
+            let result = design.optimize(&model, &limits)?;
+            (result.points.sample(args.rate)?, result.evaluations)
+        }
+    };
     let elapsed = start.elapsed();
-    let trajectory = result.fourier.sample(args.duration, args.rate)?;
     trajectory.write_csv(&args.output)?;
     let a = assess(&model, &trajectory, &limits, reference.as_deref(), 1);
     println!(
@@ -141,7 +218,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         a.condition_number,
         a.samples,
         elapsed.as_secs_f64(),
-        result.evaluations
+        evaluations
     );
     println!("margins to the limits (limit - peak; position: distance to each end):");
     println!("joint  pos_low  pos_high  velocity  acceleration  torque");

@@ -11,17 +11,19 @@ use robid_symbolic::program::{Program, RobotPrograms};
 use robid_symbolic::{Drive, Robot};
 use tests::reference::by_name;
 
+pub(crate) mod excitation;
+
 /// A derived robot run by the interpreter.
 #[derive(Debug)]
-pub struct Interpreted {
+pub(crate) struct Interpreted {
     /// The programs.
-    pub programs: RobotPrograms,
+    pub(crate) programs: RobotPrograms,
     geometry: Vec<f64>,
 }
 
 impl Interpreted {
     /// Derives `robot` (geometric symbols at their description values).
-    pub fn new(robot: &Robot) -> Self {
+    pub(crate) fn new(robot: &Robot) -> Self {
         let programs = RobotPrograms::derive(robot).expect("derivation");
         let geometry = programs
             .geometry
@@ -86,7 +88,7 @@ impl Model for Interpreted {
 
 /// The reference robot `name` with `drive` terms, its reference base parameters (drive values
 /// from `drive_value(prefix, joint)`, e.g. Fv, Fc) and its joint limits.
-pub fn reference(
+pub(crate) fn reference(
     name: &str,
     drive: Drive,
     drive_value: impl Fn(&str, usize) -> f64,
@@ -125,24 +127,24 @@ pub fn reference(
 
 /// Identification on simulated data and prediction of another simulated run.
 #[derive(Debug)]
-pub struct Outcome {
+pub(crate) struct Outcome {
     /// Identified base parameters.
-    pub values: Vec<f64>,
+    pub(crate) values: Vec<f64>,
     /// ||beta_hat - beta|| / ||beta||.
-    pub parameter_error: f64,
+    pub(crate) parameter_error: f64,
     /// ||W (beta_hat - beta)|| / ||W beta|| on the validation run: how far the identified
     /// parameters are from the truth where it matters, free of the measurement noise.
-    pub model_error: f64,
+    pub(crate) model_error: f64,
     /// Relative torque error on the validation run with the identified parameters.
-    pub validation_error: f64,
+    pub(crate) validation_error: f64,
     /// The same with the true parameters: the noise floor.
-    pub noise_floor: f64,
+    pub(crate) noise_floor: f64,
 }
 
 /// Simulates `train` and `valid` with `noise` (seeds `seed` and `seed + 1`), identifies by
 /// `method` ("ols" or "wls") from the first (velocities and accelerations as recorded) and
 /// predicts the second.
-pub fn identify_and_validate(
+pub(crate) fn identify_and_validate(
     model: &Interpreted,
     truth: &[f64],
     train: &robid_runtime::simulate::Trajectory,
@@ -203,7 +205,7 @@ pub fn identify_and_validate(
 
 /// The mean of [`identify_and_validate`] over `seeds` noise seeds: (parameter error, model
 /// error, validation error, noise floor).
-pub fn mean_outcome(
+pub(crate) fn mean_outcome(
     model: &Interpreted,
     truth: &[f64],
     train: &robid_runtime::simulate::Trajectory,
@@ -230,7 +232,7 @@ pub fn mean_outcome(
 /// The expected relative parameter error of weighted least squares on `trajectory` with
 /// torque noise `sigma` per joint: sqrt(trace((W' S^-1 W)^-1)) / ||beta||, S = diag(sigma^2)
 /// (what a design does for the estimate, free of any one noise draw).
-pub fn expected_error(
+pub(crate) fn expected_error(
     model: &Interpreted,
     truth: &[f64],
     trajectory: &robid_runtime::simulate::Trajectory,
