@@ -54,6 +54,10 @@ pub struct Layout {
     pub links: Vec<[usize; 10]>,
     /// The drive terms.
     pub drives: Vec<Drive>,
+    /// Free terms of any sign outside the rigid-body and drive model, such as the extra
+    /// columns of an identification config (e.g. a coupled wrist's `Iam6`): each is its own
+    /// base parameter, see [`Problem::with_extra_columns`](super::Problem::with_extra_columns).
+    pub extra: Vec<usize>,
 }
 
 impl Layout {
@@ -105,12 +109,16 @@ impl Layout {
                 Ok(out)
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(Layout { links, drives })
+        Ok(Layout {
+            links,
+            drives,
+            extra: Vec::new(),
+        })
     }
 
     /// Number of standard parameters described.
     pub fn len(&self) -> usize {
-        10 * self.links.len() + self.drives.len()
+        10 * self.links.len() + self.drives.len() + self.extra.len()
     }
 
     /// Whether there are no parameters at all.

@@ -25,12 +25,12 @@ use openblas_src as _;
 
 mod bounds;
 mod centre;
+#[cfg(feature = "sdp")]
+mod conic;
 mod inertial;
 mod layout;
 mod output;
 mod problem;
-#[cfg(feature = "sdp")]
-mod conic;
 mod sdp;
 mod search;
 mod solution;

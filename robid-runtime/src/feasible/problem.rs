@@ -101,6 +101,39 @@ impl Problem {
         Problem::new(standard, base, k)
     }
 
+    /// Adds free terms that are identified alongside the base parameters but are not part of
+    /// the model (the extra columns of an identification config, e.g. a coupled wrist's
+    /// `Iam6`, `fvm6`). Each becomes both a standard and a base parameter with K = 1 there
+    /// and zero elsewhere, of any sign and under no physical constraint. Call this before
+    /// setting the target; a name that is already a parameter is an error.
+    pub fn with_extra_columns(mut self, names: &[String]) -> Result<Problem> {
+        for (i, n) in names.iter().enumerate() {
+            if self.standard_names.contains(n)
+                || self.base_names.contains(n)
+                || names[..i].contains(n)
+            {
+                return Err(Error::InvalidConfig {
+                    key: n.clone(),
+                    problem: "an extra column with the name of a parameter already present; rename the extra column".to_owned(),
+                });
+            }
+        }
+        let (nb, ns, ne) = (self.k.nrows(), self.k.ncols(), names.len());
+        let mut k = DMatrix::zeros(nb + ne, ns + ne);
+        k.view_mut((0, 0), (nb, ns)).copy_from(&self.k);
+        for e in 0..ne {
+            k[(nb + e, ns + e)] = 1.0;
+            self.layout.extra.push(ns + e);
+        }
+        self.k = k;
+        self.standard_names.extend(names.iter().cloned());
+        self.base_names.extend(names.iter().cloned());
+        self.target = DVector::zeros(nb + ne);
+        self.std = DVector::from_element(nb + ne, 1.0);
+        self.whitening = DMatrix::identity(nb + ne, nb + ne);
+        Ok(self)
+    }
+
     /// Sets the identified values and their standard deviations, matched by name
     /// (`names` may be in any order but must hold every base parameter once).
     pub fn with_identified(self, names: &[String], values: &[f64], std: &[f64]) -> Result<Problem> {

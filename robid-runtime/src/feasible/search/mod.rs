@@ -9,8 +9,8 @@
 //! best result wins. The penalty (Gaz et al.'s delta term) holds the total mass in its range
 //! and the principal moments in theirs. Variables with no effect on f are fixed at the
 //! stated don't-care values (centre of the bounds) and left out of the search. Drive terms
-//! (Ia, Fv, Fc, Fo) enter linearly and are solved for at every evaluation (least squares
-//! in the drive columns, then Ia, Fv, Fc clamped at zero). Each Nelder-Mead result is
+//! (Ia, Fv, Fc, Fo) and extra columns enter linearly and are solved for at every evaluation
+//! (least squares in their columns, then Ia, Fv, Fc clamped at zero). Each Nelder-Mead result is
 //! polished by a bounded Levenberg-Marquardt (the objective is a sum of squares).
 
 mod anneal;
@@ -73,7 +73,10 @@ struct Objective<'a> {
     /// Whitened K restricted to the inertial columns' link layout.
     a: DMatrix<f64>,
     b: DVector<f64>,
-    /// Pseudo-inverse of the whitened drive columns (drives x base), if any.
+    /// The linearly solved columns (drive terms, then extra columns): index in the standard
+    /// vector and whether the value must be non-negative.
+    linear: Vec<(usize, bool)>,
+    /// Pseudo-inverse of the whitened linear columns (linear x base), if any.
     drive_pinv: Option<DMatrix<f64>>,
     /// Full variable vector with the fixed (don't-care) values.
     fixed: Vec<f64>,
@@ -104,12 +107,8 @@ impl Objective<'_> {
         if let Some(pinv) = &self.drive_pinv {
             let r = &self.a * DVector::from_column_slice(&p) - &self.b;
             let d = -(pinv * r);
-            for (k, drive) in layout.drives.iter().enumerate() {
-                p[drive.index] = if drive.kind.non_negative() {
-                    d[k].max(0.0)
-                } else {
-                    d[k]
-                };
+            for (k, &(index, non_negative)) in self.linear.iter().enumerate() {
+                p[index] = if non_negative { d[k].max(0.0) } else { d[k] };
             }
         }
         p
@@ -176,11 +175,16 @@ pub fn solve_anneal(
     }
     let a = &problem.whitening * &problem.k;
     let b = &problem.whitening * &problem.target;
-    let drive_pinv = (!layout.drives.is_empty()).then(|| {
-        let cols: Vec<DVector<f64>> = layout
-            .drives
+    let linear: Vec<(usize, bool)> = layout
+        .drives
+        .iter()
+        .map(|d| (d.index, d.kind.non_negative()))
+        .chain(layout.extra.iter().map(|&i| (i, false)))
+        .collect();
+    let drive_pinv = (!linear.is_empty()).then(|| {
+        let cols: Vec<DVector<f64>> = linear
             .iter()
-            .map(|d| a.column(d.index).into_owned())
+            .map(|&(i, _)| a.column(i).into_owned())
             .collect();
         let ad = DMatrix::from_columns(&cols);
         ad.pseudo_inverse(1e-10)
@@ -200,6 +204,7 @@ pub fn solve_anneal(
         bounds,
         a,
         b,
+        linear,
         drive_pinv,
         fixed,
         free: (0..nl * PER_LINK).collect(),
