@@ -33,12 +33,18 @@ pub trait Real:
     fn cos(self) -> Self;
     /// Square root.
     fn sqrt(self) -> Self;
+    /// Sine and cosine of the same angle, `(sin, cos)`; implementations may
+    /// share the work (one argument reduction).
+    #[inline(always)]
+    fn sin_cos(self) -> (Self, Self) {
+        (self.sin(), self.cos())
+    }
     /// Sign for Coulomb friction: -1, 0 or 1 (0 at exactly zero, unlike `f64::signum`).
     fn sign(self) -> Self;
 }
 
 macro_rules! impl_real {
-    ($t:ty, $sin:path, $cos:path, $sqrt:path) => {
+    ($t:ty, $sin:path, $cos:path, $sincos:path, $sqrt:path) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -63,6 +69,10 @@ macro_rules! impl_real {
                 $sqrt(self)
             }
             #[inline(always)]
+            fn sin_cos(self) -> (Self, Self) {
+                $sincos(self)
+            }
+            #[inline(always)]
             fn sign(self) -> Self {
                 if self > 0.0 {
                     1.0
@@ -76,8 +86,8 @@ macro_rules! impl_real {
     };
 }
 
-impl_real!(f64, libm::sin, libm::cos, libm::sqrt);
-impl_real!(f32, libm::sinf, libm::cosf, libm::sqrtf);
+impl_real!(f64, libm::sin, libm::cos, libm::sincos, libm::sqrt);
+impl_real!(f32, libm::sinf, libm::cosf, libm::sincosf, libm::sqrtf);
 
 #[cfg(test)]
 mod tests {
@@ -95,6 +105,10 @@ mod tests {
         for x in [-3.0_f64, -0.5, 0.0, 1.2, 7.0] {
             assert!((Real::sin(x) - x.sin()).abs() < 1e-15);
             assert!((Real::cos(x) - x.cos()).abs() < 1e-15);
+            let (s, c) = Real::sin_cos(x);
+            assert!((s - x.sin()).abs() < 1e-15 && (c - x.cos()).abs() < 1e-15);
+            let (s, c) = Real::sin_cos(x as f32);
+            assert!((s - (x as f32).sin()).abs() < 1e-6 && (c - (x as f32).cos()).abs() < 1e-6);
         }
     }
 }

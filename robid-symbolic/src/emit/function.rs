@@ -70,10 +70,38 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream 
             quote! { let #id = T::from_f64(#lit); }
         })
     });
-    let lets = program.instrs.iter().enumerate().map(|(i, instr)| {
+    // sin(x) and cos(x) of the same x are computed together, where the first
+    // of the two is.
+    let mut pair_of: Vec<Option<usize>> = vec![None; program.instrs.len()];
+    for (i, instr) in program.instrs.iter().enumerate() {
+        if let Instr::Sin(x) = *instr
+            && let Some(k) = program
+                .instrs
+                .iter()
+                .position(|other| *other == Instr::Cos(x))
+        {
+            pair_of[i] = Some(k);
+            pair_of[k] = Some(i);
+        }
+    }
+    let lets = program.instrs.iter().enumerate().filter_map(|(i, instr)| {
         let id = format_ident!("t{}", i);
-        let rhs = instr_tokens(program, instr);
-        quote! { let #id = #rhs; }
+        match (pair_of[i], instr) {
+            (Some(k), _) if k < i => None,
+            (Some(k), Instr::Sin(x) | Instr::Cos(x)) => {
+                let (s, c) = if matches!(instr, Instr::Sin(_)) {
+                    (id, format_ident!("t{}", k))
+                } else {
+                    (format_ident!("t{}", k), id)
+                };
+                let x = value_tokens(program, *x);
+                Some(quote! { let (#s, #c) = #x.sin_cos(); })
+            }
+            _ => {
+                let rhs = instr_tokens(program, instr);
+                Some(quote! { let #id = #rhs; })
+            }
+        }
     });
     let results = output.values.iter().map(|&v| result_tokens(program, v));
     quote! {

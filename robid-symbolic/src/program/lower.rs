@@ -17,9 +17,11 @@ use std::collections::HashMap;
 
 /// A value and whether the node's value is its negation.
 #[derive(Clone, Copy, Debug)]
-struct Signed {
-    value: Value,
-    negative: bool,
+pub(super) struct Signed {
+    /// The value.
+    pub(super) value: Value,
+    /// True when the node is minus the value.
+    pub(super) negative: bool,
 }
 
 impl Signed {
@@ -38,7 +40,7 @@ impl Signed {
     }
 }
 
-struct Lowering<'a> {
+pub(super) struct Lowering<'a> {
     arena: &'a Arena,
     inputs: HashMap<&'a str, u32>,
     constants: Vec<f64>,
@@ -60,30 +62,11 @@ impl Program {
         inputs: Vec<Group>,
         outputs: Vec<(Group, Vec<Id>)>,
     ) -> Result<Program, ProgramError> {
-        let names: Vec<String> = inputs
-            .iter()
-            .flat_map(|g| g.elements.iter().cloned())
-            .collect();
-        let mut l = Lowering {
-            arena,
-            inputs: names
-                .iter()
-                .enumerate()
-                .map(|(i, n)| (n.as_str(), i as u32))
-                .collect(),
-            constants: Vec::new(),
-            constant_index: HashMap::new(),
-            instrs: Vec::new(),
-            memo: HashMap::new(),
-            lowered: vec![None; arena.len()],
-            scaled: vec![None; arena.len()],
-            sums: SumIndex::default(),
-        };
+        let mut l = Lowering::new(arena, &inputs);
         let roots: Vec<Id> = outputs.iter().flat_map(|(_, ids)| ids.clone()).collect();
         let needed = arena.reachable(&roots);
         for index in (0..needed.len()).filter(|&i| needed[i]) {
-            let s = l.node(arena.id_at(index))?;
-            l.lowered[index] = Some(s);
+            l.lower_at(index)?;
         }
         let outputs = outputs
             .into_iter()
@@ -95,25 +78,80 @@ impl Program {
                         l.materialize(s)
                     })
                     .collect();
-                Output { group, values }
+                (group, values)
             })
             .collect();
-        let program = Program {
-            inputs,
-            constants: l.constants,
-            instrs: l.instrs,
-            outputs,
-        };
-        Ok(dce::remove_dead_code(program))
+        Ok(l.finish(inputs.clone(), outputs))
     }
 }
 
-impl Lowering<'_> {
+impl<'a> Lowering<'a> {
+    /// An empty lowering of expressions of `arena` with the given inputs.
+    pub(super) fn new(arena: &'a Arena, inputs: &'a [Group]) -> Lowering<'a> {
+        Lowering {
+            arena,
+            inputs: inputs
+                .iter()
+                .flat_map(|g| g.elements.iter())
+                .enumerate()
+                .map(|(i, n)| (n.as_str(), i as u32))
+                .collect(),
+            constants: Vec::new(),
+            constant_index: HashMap::new(),
+            instrs: Vec::new(),
+            memo: HashMap::new(),
+            lowered: vec![None; arena.len()],
+            scaled: vec![None; arena.len()],
+            sums: SumIndex::default(),
+        }
+    }
+
+    /// The program with these outputs, dead code removed.
+    pub(super) fn finish(self, inputs: Vec<Group>, outputs: Vec<(Group, Vec<Value>)>) -> Program {
+        let program = Program {
+            inputs,
+            constants: self.constants,
+            instrs: self.instrs,
+            outputs: outputs
+                .into_iter()
+                .map(|(group, values)| Output { group, values })
+                .collect(),
+        };
+        dce::remove_dead_code(program)
+    }
+
+    /// Lowers node `index` (its children must be lowered).
+    fn lower_at(&mut self, index: usize) -> Result<Signed, ProgramError> {
+        if let Some(s) = self.lowered[index] {
+            return Ok(s);
+        }
+        let s = self.node(self.arena.id_at(index))?;
+        self.lowered[index] = Some(s);
+        Ok(s)
+    }
+
+    /// Lowers `id` and whatever it needs that is not lowered yet.
+    pub(super) fn lower(&mut self, id: Id) -> Result<Signed, ProgramError> {
+        if let Some(s) = self.lowered[id.index()] {
+            return Ok(s);
+        }
+        let arena = self.arena;
+        for &child in arena.node(id).children() {
+            self.lower(child)?;
+        }
+        self.lower_at(id.index())
+    }
+
     fn get(&self, id: Id) -> Signed {
         self.lowered[id.index()].expect("children are lowered before parents")
     }
 
-    fn constant(&mut self, x: f64) -> Value {
+    /// The value of constant `i`.
+    pub(super) fn constant_value(&self, i: u32) -> f64 {
+        self.constants[i as usize]
+    }
+
+    pub(super) fn constant(&mut self, x: f64) -> Value {
         let bits = x.to_bits();
         if let Some(&i) = self.constant_index.get(&bits) {
             return Value::Const(i);
@@ -125,7 +163,7 @@ impl Lowering<'_> {
     }
 
     /// Appends an instruction unless the same one exists (commutative operands sorted).
-    fn emit(&mut self, instr: Instr) -> Value {
+    pub(super) fn emit(&mut self, instr: Instr) -> Value {
         let instr = match instr {
             Instr::Add(a, b) if b < a => Instr::Add(b, a),
             Instr::Mul(a, b) if b < a => Instr::Mul(b, a),
@@ -141,7 +179,7 @@ impl Lowering<'_> {
     }
 
     /// The value itself, paying for a negation if it is negative.
-    fn materialize(&mut self, s: Signed) -> Value {
+    pub(super) fn materialize(&mut self, s: Signed) -> Value {
         if !s.negative {
             return s.value;
         }
@@ -262,7 +300,7 @@ impl Lowering<'_> {
     }
 
     /// Pairwise sum; a negative operand turns an addition into a subtraction.
-    fn sum(&mut self, terms: &[Signed]) -> Signed {
+    pub(super) fn sum(&mut self, terms: &[Signed]) -> Signed {
         match terms {
             [] => Signed::plus(self.constant(0.0)),
             [one] => *one,

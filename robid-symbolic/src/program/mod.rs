@@ -16,6 +16,7 @@
 //! [`Arena`]: crate::expr::Arena
 
 mod count;
+mod customised;
 mod dce;
 mod interpret;
 mod lower;

@@ -10,8 +10,10 @@
 //! folded away. Should a name not map to a slot, that parameter's part falls
 //! back to its column times the parameter.
 
-use super::{Group, Program, ProgramError};
-use crate::dynamics::{Derivation, JointInputs, Kinematics, LinkParameters, newton_euler};
+use super::customised::{RunInputs, frame_exprs};
+use super::lower::Lowering;
+use super::{Group, Program, ProgramError, Value};
+use crate::dynamics::{Derivation, JointInputs, LinkParameters};
 use crate::expr::{Arena, Id};
 use crate::regroup::{BaseParameters, RegroupError};
 use crate::robot::{INERTIAL_NAMES, Robot};
@@ -122,11 +124,11 @@ impl Context {
         out
     }
 
-    /// Torques of the customised Newton-Euler for the given kinematics and
-    /// joint velocity / acceleration inputs; `friction` keeps Fv, Fc, Fo.
-    fn newton_euler(&mut self, inputs: &JointInputs, friction: bool) -> Vec<Id> {
+    /// The link parameters with every base parameter in its slot (drive
+    /// terms Fv, Fc, Fo only with `friction`), and the base parameters that
+    /// have no slot.
+    fn slots(&mut self, friction: bool) -> (Vec<LinkParameters>, Vec<usize>) {
         let arena = &mut self.d.arena;
-        let kin = Kinematics::new(arena, &self.d.robot, inputs);
         let n = self.d.robot.dof();
         let mut links: Vec<LinkParameters> = (0..n).map(|_| LinkParameters::zero(arena)).collect();
         let mut fallback = Vec::new();
@@ -137,16 +139,50 @@ impl Context {
                 _ => fallback.push(k),
             }
         }
-        let mut tau = newton_euler::inverse_dynamics(arena, &kin, &inputs.qd, &inputs.qdd, &links);
-        // A parameter without a slot: its Y_b column times the parameter (only
-        // valid for the symbolic inputs the columns were derived with).
-        for k in fallback {
-            for (j, t) in tau.iter_mut().enumerate() {
-                let term = arena.mul2(self.base.columns[k][j], self.beta[k]);
-                *t = arena.add2(*t, term);
+        (links, fallback)
+    }
+
+    /// A program running the customised Newton-Euler algorithm once per
+    /// entry of `runs` (straight into program values, see `customised.rs`);
+    /// `assemble` turns the torques of every run into the output elements.
+    fn newton_euler_program(
+        &mut self,
+        groups: &[&str],
+        name: &str,
+        runs: &[JointInputs],
+        friction: bool,
+        assemble: impl Fn(&[Vec<Value>]) -> Vec<Value>,
+    ) -> Result<Program, ProgramError> {
+        let (links, fallback) = self.slots(friction);
+        let q = self.d.inputs.q.clone();
+        let frames = frame_exprs(&mut self.d.arena, &self.d.robot, &q);
+        let inputs = self.inputs(groups);
+        let mut l = Lowering::new(&self.d.arena, &inputs);
+        let mut torques = Vec::with_capacity(runs.len());
+        for run in runs {
+            let run_inputs = RunInputs {
+                qd: &run.qd,
+                qdd: &run.qdd,
+                gravity: run.gravity,
+            };
+            let tau = l.newton_euler(&frames, &run_inputs, &links)?;
+            let mut values = Vec::with_capacity(tau.len());
+            for (j, t) in tau.into_iter().enumerate() {
+                // A parameter without a slot: its Y_b column times the
+                // parameter (only valid for the symbolic inputs the columns
+                // were derived with).
+                let products: Vec<(Id, Id)> = fallback
+                    .iter()
+                    .map(|&k| (self.base.columns[k][j], self.beta[k]))
+                    .collect();
+                let t = l.add_products(t, &products)?;
+                values.push(l.output(t));
             }
+            torques.push(values);
         }
-        tau
+        let values = assemble(&torques);
+        let group = Group::new(name, element_names(name, values.len()));
+        Ok(l.finish(inputs.clone(), vec![(group, values)]))
     }
 
     fn constant_inputs(&mut self, qd: bool, qdd: Option<usize>, gravity: bool) -> JointInputs {
@@ -215,24 +251,30 @@ impl RobotPrograms {
             row_major(&cx.base.columns, n),
         )?;
         let symbolic = cx.d.inputs.clone();
-        let tau = cx.newton_euler(&symbolic, true);
-        let inverse_dynamics = build(&cx, &["q", "qd", "qdd", "base"], "tau", tau)?;
-        let mut m = vec![cx.d.arena.zero(); n * n];
-        for k in 0..n {
-            let inputs = cx.constant_inputs(false, Some(k), false);
-            let column = cx.newton_euler(&inputs, false);
-            for i in k..n {
-                m[i * n + k] = column[i];
-                m[k * n + i] = column[i];
-            }
-        }
-        let mass_matrix = build(&cx, &["q", "base"], "out", m)?;
-        let inputs = cx.constant_inputs(false, None, true);
-        let g = cx.newton_euler(&inputs, false);
-        let gravity = build(&cx, &["q", "base"], "tau", g)?;
-        let inputs = cx.constant_inputs(true, None, false);
-        let c = cx.newton_euler(&inputs, false);
-        let coriolis = build(&cx, &["q", "qd", "base"], "tau", c)?;
+        let single = |t: &[Vec<Value>]| t[0].clone();
+        let inverse_dynamics = cx.newton_euler_program(
+            &["q", "qd", "qdd", "base"],
+            "tau",
+            std::slice::from_ref(&symbolic),
+            true,
+            single,
+        )?;
+        let columns: Vec<JointInputs> = (0..n)
+            .map(|k| cx.constant_inputs(false, Some(k), false))
+            .collect();
+        let mass_matrix = cx.newton_euler_program(&["q", "base"], "out", &columns, false, |t| {
+            (0..n * n)
+                .map(|e| {
+                    let (i, k) = (e / n, e % n);
+                    if i >= k { t[k][i] } else { t[i][k] }
+                })
+                .collect()
+        })?;
+        let inputs = [cx.constant_inputs(false, None, true)];
+        let gravity = cx.newton_euler_program(&["q", "base"], "tau", &inputs, false, single)?;
+        let inputs = [cx.constant_inputs(true, None, false)];
+        let coriolis =
+            cx.newton_euler_program(&["q", "qd", "base"], "tau", &inputs, false, single)?;
         let expressions: Vec<Id> = cx.base.base.iter().map(|b| b.expression).collect();
         let base_from_standard = build(&cx, &["standard"], "base", expressions)?;
         debug_assert_eq!(base_regressor.outputs[0].values.len(), n * b);

@@ -1,0 +1,457 @@
+//! The customised Newton-Euler algorithm written straight into a program
+//! (Khalil and Kleinfinger; Khalil and Dombre 9.5.3): the recursion is run on
+//! program values instead of expressions, and every operation whose operands
+//! are known folds away (0, +-1, a constant times a constant), so only the
+//! nonzero components of each vector are computed and a rotation by a DH
+//! angle alpha in {0, +-pi/2} costs nothing. Each intermediate quantity gets a
+//! temporary of its own, so nothing is expanded.
+//!
+//! The forward recursion uses Khalil's U_j = skew(wd_j) + skew(w_j)^2, shared
+//! by the link's force F_j = M_j vd_j + U_j MS_j and by the next link's
+//! acceleration vd_(j+1) = R' (vd_j + U_j P_(j+1)).
+//!
+//! A value is an [`E`]: a numeric coefficient times a program value (or a
+//! plain number). Coefficients are carried lazily, so `a x + a y` costs one
+//! multiplication by `a`, and signs cost nothing until an output needs one.
+
+use super::lower::{Lowering, Signed};
+use super::{Instr, ProgramError, Value};
+use crate::dynamics::LinkParameters;
+use crate::expr::{Arena, Id};
+use crate::robot::{JointKind, Robot};
+
+/// `c * v`, or the number `c` when `v` is `None`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct E {
+    c: f64,
+    v: Option<Value>,
+}
+
+type V3 = [E; 3];
+
+const ZERO: E = E { c: 0.0, v: None };
+
+fn number(c: f64) -> E {
+    E { c, v: None }
+}
+
+fn neg(a: E) -> E {
+    E { c: -a.c, v: a.v }
+}
+
+/// One modified-DH frame as expressions: sin and cos of alpha and theta, a, d.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct FrameExprs {
+    kind: JointKind,
+    sa: Id,
+    ca: Id,
+    st: Id,
+    ct: Id,
+    a: Id,
+    d: Id,
+}
+
+/// The frame expressions of `robot` for joint positions `q`.
+pub(super) fn frame_exprs(arena: &mut Arena, robot: &Robot, q: &[Id]) -> Vec<FrameExprs> {
+    robot
+        .frame_rows()
+        .iter()
+        .enumerate()
+        .map(|(j, row)| {
+            let alpha = row.alpha.to_expr(arena);
+            let a = row.a.to_expr(arena);
+            let mut theta = row.theta.to_expr(arena);
+            let mut d = row.d.to_expr(arena);
+            match row.kind {
+                JointKind::Revolute => theta = arena.add2(theta, q[j]),
+                JointKind::Prismatic => d = arena.add2(d, q[j]),
+            }
+            FrameExprs {
+                kind: row.kind,
+                sa: arena.sin(alpha),
+                ca: arena.cos(alpha),
+                st: arena.sin(theta),
+                ct: arena.cos(theta),
+                a,
+                d,
+            }
+        })
+        .collect()
+}
+
+/// A frame as program values.
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    kind: JointKind,
+    sa: E,
+    ca: E,
+    st: E,
+    ct: E,
+    /// P_(j-1, j) = [a, -sa d, ca d].
+    p: V3,
+}
+
+/// Link parameters as program values.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    inertia: [E; 6],
+    ms: V3,
+    m: E,
+    ia: E,
+    fv: E,
+    fc: E,
+    fo: E,
+}
+
+/// Joint inputs of one run: velocities, accelerations, gravity (expressions).
+pub(super) struct RunInputs<'a> {
+    /// Joint velocities.
+    pub qd: &'a [Id],
+    /// Joint accelerations.
+    pub qdd: &'a [Id],
+    /// Gravity in the base frame.
+    pub gravity: [Id; 3],
+}
+
+impl Lowering<'_> {
+    /// The expression `id` as a value.
+    pub(super) fn e(&mut self, id: Id) -> Result<E, ProgramError> {
+        let s = self.lower(id)?;
+        Ok(self.e_of(s))
+    }
+
+    fn e_of(&self, s: Signed) -> E {
+        let sign = if s.negative { -1.0 } else { 1.0 };
+        match s.value {
+            Value::Const(i) => number(sign * self.constant_value(i)),
+            v => E {
+                c: sign,
+                v: Some(v),
+            },
+        }
+    }
+
+    /// The value with its coefficient's magnitude applied; the sign is left.
+    fn signed(&mut self, e: E) -> Signed {
+        let negative = e.c < 0.0;
+        let m = e.c.abs();
+        let value = match e.v {
+            None => self.constant(m),
+            Some(v) if m == 1.0 => v,
+            Some(v) => {
+                let c = self.constant(m);
+                self.emit(Instr::Mul(v, c))
+            }
+        };
+        Signed { value, negative }
+    }
+
+    /// The value as an output: a negation is paid for here.
+    pub(super) fn output(&mut self, e: E) -> Value {
+        let s = self.signed(e);
+        self.materialize(s)
+    }
+
+    fn mul(&mut self, a: E, b: E) -> E {
+        if a.c == 0.0 || b.c == 0.0 {
+            return ZERO;
+        }
+        let v = match (a.v, b.v) {
+            (None, x) | (x, None) => x,
+            (Some(x), Some(y)) => Some(self.emit(Instr::Mul(x, y))),
+        };
+        E { c: a.c * b.c, v }
+    }
+
+    /// Sum: numbers folded, equal values merged, and the terms with the same
+    /// coefficient magnitude added first and multiplied once.
+    fn add(&mut self, terms: &[E]) -> E {
+        let mut k = 0.0;
+        let mut items: Vec<(Value, f64)> = Vec::new();
+        for t in terms {
+            if t.c == 0.0 {
+                continue;
+            }
+            match t.v {
+                None => k += t.c,
+                Some(v) => match items.iter_mut().find(|x| x.0 == v) {
+                    Some(x) => x.1 += t.c,
+                    None => items.push((v, t.c)),
+                },
+            }
+        }
+        let mut groups: Vec<(f64, Vec<Signed>)> = Vec::new();
+        for (v, c) in items.into_iter().filter(|x| x.1 != 0.0) {
+            let s = Signed {
+                value: v,
+                negative: c < 0.0,
+            };
+            match groups.iter_mut().find(|g| g.0 == c.abs()) {
+                Some(g) => g.1.push(s),
+                None => groups.push((c.abs(), vec![s])),
+            }
+        }
+        let mut parts: Vec<E> = groups
+            .into_iter()
+            .map(|(m, members)| {
+                let s = self.sum(&members);
+                E {
+                    c: if s.negative { -m } else { m },
+                    v: Some(s.value),
+                }
+            })
+            .collect();
+        match (parts.len(), k == 0.0) {
+            (0, _) => return number(k),
+            (1, true) => return parts[0],
+            _ => {}
+        }
+        if k != 0.0 {
+            parts.push(number(k));
+        }
+        let signed: Vec<Signed> = parts.into_iter().map(|p| self.signed(p)).collect();
+        let s = self.sum(&signed);
+        self.e_of(s)
+    }
+
+    fn add3(&mut self, vectors: &[V3]) -> V3 {
+        [0, 1, 2].map(|i| {
+            let terms: Vec<E> = vectors.iter().map(|v| v[i]).collect();
+            self.add(&terms)
+        })
+    }
+
+    fn cross(&mut self, a: V3, b: V3) -> V3 {
+        [(1, 2), (2, 0), (0, 1)].map(|(i, j)| {
+            let p = self.mul(a[i], b[j]);
+            let q = self.mul(a[j], b[i]);
+            self.add(&[p, neg(q)])
+        })
+    }
+
+    fn mat_vec(&mut self, m: &[[E; 3]; 3], v: V3) -> V3 {
+        [0, 1, 2].map(|i| {
+            let terms: Vec<E> = (0..3).map(|k| self.mul(m[i][k], v[k])).collect();
+            self.add(&terms)
+        })
+    }
+
+    /// R v for R = Rx(alpha) Rz(theta).
+    fn rotate(&mut self, f: &Frame, v: V3) -> V3 {
+        let a = self.mul(f.ct, v[0]);
+        let b = self.mul(f.st, v[1]);
+        let c = self.mul(f.st, v[0]);
+        let d = self.mul(f.ct, v[1]);
+        let u = [self.add(&[a, neg(b)]), self.add(&[c, d]), v[2]];
+        let a = self.mul(f.ca, u[1]);
+        let b = self.mul(f.sa, u[2]);
+        let c = self.mul(f.sa, u[1]);
+        let d = self.mul(f.ca, u[2]);
+        [u[0], self.add(&[a, neg(b)]), self.add(&[c, d])]
+    }
+
+    /// R' v for R = Rx(alpha) Rz(theta).
+    fn rotate_back(&mut self, f: &Frame, v: V3) -> V3 {
+        let a = self.mul(f.ca, v[1]);
+        let b = self.mul(f.sa, v[2]);
+        let c = self.mul(f.sa, v[1]);
+        let d = self.mul(f.ca, v[2]);
+        let u = [v[0], self.add(&[a, b]), self.add(&[d, neg(c)])];
+        let a = self.mul(f.ct, u[0]);
+        let b = self.mul(f.st, u[1]);
+        let c = self.mul(f.st, u[0]);
+        let d = self.mul(f.ct, u[1]);
+        [self.add(&[a, b]), self.add(&[d, neg(c)]), u[2]]
+    }
+
+    /// U = skew(wd) + skew(w)^2.
+    fn u_matrix(&mut self, w: V3, wd: V3) -> [[E; 3]; 3] {
+        let sq = [0, 1, 2].map(|i| self.mul(w[i], w[i]));
+        let mut u = [[ZERO; 3]; 3];
+        for i in 0..3 {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            u[i][i] = self.add(&[neg(sq[j]), neg(sq[k])]);
+            // skew(w)^2 (i, j) = w_i w_j; skew(wd) (i, j) = -wd_k, (j, i) = wd_k
+            let wij = self.mul(w[i], w[j]);
+            u[i][j] = self.add(&[wij, neg(wd[k])]);
+            u[j][i] = self.add(&[wij, wd[k]]);
+        }
+        u
+    }
+
+    /// J wd + w x (J w), written with the entries of U (which hold the
+    /// products w_i w_j already): with J = [XX XY XZ; XY YY YZ; XZ YZ ZZ],
+    /// N_x = XX wdx - XY U20 + XZ U10 + YZ (U11 - U22) + (ZZ - YY) wy wz, and
+    /// the other two by the cyclic permutation x -> y -> z.
+    fn euler(&mut self, inertia: &[E; 6], w: V3, wd: V3, u: &[[E; 3]; 3]) -> V3 {
+        let [xx, xy, xz, yy, yz, zz] = *inertia;
+        // j[a][b]: the inertia entry (a, b).
+        let j = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
+        [0, 1, 2].map(|a| {
+            let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+            // N_a = J_aa wd_a - J_ab U_ca + J_ac U_ba + J_bc (U_bb - U_cc) + (J_cc - J_bb) w_b w_c
+            let diagonal = self.mul(j[a][a], wd[a]);
+            let t1 = self.mul(j[a][b], u[c][a]);
+            let t2 = self.mul(j[a][c], u[b][a]);
+            let squares = self.add(&[u[b][b], neg(u[c][c])]);
+            let t3 = self.mul(j[b][c], squares);
+            let difference = self.add(&[j[c][c], neg(j[b][b])]);
+            let wbwc = self.mul(w[b], w[c]);
+            let t4 = self.mul(difference, wbwc);
+            self.add(&[diagonal, neg(t1), t2, t3, t4])
+        })
+    }
+
+    fn frame(&mut self, f: &FrameExprs) -> Result<Frame, ProgramError> {
+        let (sa, ca, d) = (self.e(f.sa)?, self.e(f.ca)?, self.e(f.d)?);
+        let py = self.mul(sa, d);
+        Ok(Frame {
+            kind: f.kind,
+            sa,
+            ca,
+            st: self.e(f.st)?,
+            ct: self.e(f.ct)?,
+            p: [self.e(f.a)?, neg(py), self.mul(ca, d)],
+        })
+    }
+
+    fn link(&mut self, l: &LinkParameters) -> Result<Link, ProgramError> {
+        let mut inertia = [ZERO; 6];
+        for (x, &id) in inertia.iter_mut().zip(&l.inertia) {
+            *x = self.e(id)?;
+        }
+        let mut ms = [ZERO; 3];
+        for (x, &id) in ms.iter_mut().zip(&l.first_moment) {
+            *x = self.e(id)?;
+        }
+        Ok(Link {
+            inertia,
+            ms,
+            m: self.e(l.mass)?,
+            ia: self.e(l.ia)?,
+            fv: self.e(l.fv)?,
+            fc: self.e(l.fc)?,
+            fo: self.e(l.fo)?,
+        })
+    }
+
+    fn sign_of(&mut self, x: E) -> E {
+        match x.v {
+            _ if x.c == 0.0 => ZERO,
+            None => number(x.c.signum()),
+            Some(v) => E {
+                c: x.c.signum(),
+                v: Some(self.emit(Instr::Sign(v))),
+            },
+        }
+    }
+
+    /// Joint torques of the customised Newton-Euler algorithm.
+    pub(super) fn newton_euler(
+        &mut self,
+        frames: &[FrameExprs],
+        inputs: &RunInputs<'_>,
+        links: &[LinkParameters],
+    ) -> Result<Vec<E>, ProgramError> {
+        let n = frames.len();
+        let frames: Vec<Frame> = frames
+            .iter()
+            .map(|f| self.frame(f))
+            .collect::<Result<_, _>>()?;
+        let links: Vec<Link> = links
+            .iter()
+            .map(|l| self.link(l))
+            .collect::<Result<_, _>>()?;
+        let mut qd = Vec::with_capacity(n);
+        let mut qdd = Vec::with_capacity(n);
+        for j in 0..n {
+            qd.push(self.e(inputs.qd[j])?);
+            qdd.push(self.e(inputs.qdd[j])?);
+        }
+        let mut g = [ZERO; 3];
+        for (x, &id) in g.iter_mut().zip(&inputs.gravity) {
+            *x = neg(self.e(id)?);
+        }
+        // Forward: w, wd, vd and U of every link.
+        let (mut w, mut wd, mut vd) = ([ZERO; 3], [ZERO; 3], g);
+        let mut u = [[ZERO; 3]; 3];
+        let mut kin = Vec::with_capacity(n);
+        for (j, f) in frames.iter().enumerate() {
+            let up = self.mat_vec(&u, f.p);
+            let vd_parent = self.add3(&[vd, up]);
+            let vd_in = self.rotate_back(f, vd_parent);
+            let w_in = self.rotate_back(f, w);
+            let wd_in = self.rotate_back(f, wd);
+            let wy_qd = self.mul(w_in[1], qd[j]);
+            let wx_qd = self.mul(w_in[0], qd[j]);
+            match f.kind {
+                JointKind::Revolute => {
+                    w = [w_in[0], w_in[1], self.add(&[w_in[2], qd[j]])];
+                    wd = [
+                        self.add(&[wd_in[0], wy_qd]),
+                        self.add(&[wd_in[1], neg(wx_qd)]),
+                        self.add(&[wd_in[2], qdd[j]]),
+                    ];
+                    vd = vd_in;
+                }
+                JointKind::Prismatic => {
+                    w = w_in;
+                    wd = wd_in;
+                    vd = [
+                        self.add(&[vd_in[0], wy_qd, wy_qd]),
+                        self.add(&[vd_in[1], neg(wx_qd), neg(wx_qd)]),
+                        self.add(&[vd_in[2], qdd[j]]),
+                    ];
+                }
+            }
+            u = self.u_matrix(w, wd);
+            kin.push((w, wd, vd, u));
+        }
+        // Backward: wrenches and torques.
+        let mut tau = vec![ZERO; n];
+        let mut f_next: V3 = [ZERO; 3];
+        let mut n_next: V3 = [ZERO; 3];
+        for j in (0..n).rev() {
+            let (w, wd, vd, u) = kin[j];
+            let l = &links[j];
+            let m_vd = vd.map(|x| self.mul(l.m, x));
+            let u_ms = self.mat_vec(&u, l.ms);
+            let force = self.add3(&[m_vd, u_ms]);
+            let euler = self.euler(&l.inertia, w, wd, &u);
+            let ms_x_vd = self.cross(l.ms, vd);
+            let moment = self.add3(&[euler, ms_x_vd]);
+            let (f, m) = if j + 1 < n {
+                let next = &frames[j + 1];
+                let rf = self.rotate(next, f_next);
+                let rm = self.rotate(next, n_next);
+                let p_x_rf = self.cross(next.p, rf);
+                (self.add3(&[force, rf]), self.add3(&[moment, rm, p_x_rf]))
+            } else {
+                (force, moment)
+            };
+            let axis = match frames[j].kind {
+                JointKind::Revolute => m[2],
+                JointKind::Prismatic => f[2],
+            };
+            let ia = self.mul(l.ia, qdd[j]);
+            let fv = self.mul(l.fv, qd[j]);
+            let s = self.sign_of(qd[j]);
+            let fc = self.mul(l.fc, s);
+            tau[j] = self.add(&[axis, ia, fv, fc, l.fo]);
+            f_next = f;
+            n_next = m;
+        }
+        Ok(tau)
+    }
+
+    /// `a + sum b_k c_k` for expressions b_k, c_k (the fallback of a base
+    /// parameter without a link slot).
+    pub(super) fn add_products(&mut self, a: E, products: &[(Id, Id)]) -> Result<E, ProgramError> {
+        let mut terms = vec![a];
+        for &(b, c) in products {
+            let (b, c) = (self.e(b)?, self.e(c)?);
+            terms.push(self.mul(b, c));
+        }
+        Ok(self.add(&terms))
+    }
+}
