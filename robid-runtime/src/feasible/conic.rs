@@ -44,12 +44,37 @@ impl Conic {
 }
 
 /// Solves the conic program for `min ||a p - b||` under the constraints of `bounds`.
+///
+/// The pull towards the prior or the centre of the bounds is far too weak to move the
+/// parameters with no effect on the fit away from wherever the interior-point method ends
+/// (it is below the solver's tolerance), so they are settled by a second program: every
+/// parameter with an effect is held at the first solution (the fit is unchanged) and the
+/// others minimise their distance to the prior or centre under the same constraints.
 pub(super) fn solve(
     problem: &Problem,
     bounds: &Bounds,
     a: &DMatrix<f64>,
     b: &DVector<f64>,
     options: &SdpOptions,
+) -> Result<Vec<f64>> {
+    let p = solve_stage(problem, bounds, a, b, options, None)?;
+    let no_effect = problem.no_effect();
+    if no_effect.is_empty() {
+        return Ok(p);
+    }
+    // A failure here (numerical) keeps the first solution, which is feasible.
+    Ok(solve_stage(problem, bounds, a, b, options, Some((&p, &no_effect))).unwrap_or(p))
+}
+
+/// One conic program. With `settle = Some((p, free))`, every parameter outside `free` is
+/// fixed at `p` and the objective is the pull alone (weight 1).
+fn solve_stage(
+    problem: &Problem,
+    bounds: &Bounds,
+    a: &DMatrix<f64>,
+    b: &DVector<f64>,
+    options: &SdpOptions,
+    settle: Option<(&[f64], &[usize])>,
 ) -> Result<Vec<f64>> {
     bounds.validate()?;
     let layout = &problem.layout;
@@ -94,18 +119,36 @@ pub(super) fn solve(
     };
     let scale = scales(layout, bounds);
     c.row(&[(t, -1.0)], 0.0);
-    for r in 0..a.nrows() {
-        let entries: Vec<(usize, f64)> = (0..ns).map(|s| (s, -a[(r, s)])).collect();
-        c.row(&entries, -b[r]);
-    }
-    let sw = weight.sqrt();
-    if sw > 0.0 {
-        for s in 0..ns {
-            c.row(&[(s, -sw / scale[s])], -sw * p0[s] / scale[s]);
+    if let Some((fixed, free)) = settle {
+        for &s in free {
+            c.row(&[(s, -1.0 / scale[s])], -p0[s] / scale[s]);
         }
+        let soc = c.b.len();
+        c.cones.push(SupportedConeT::SecondOrderConeT(soc));
+        let before = c.b.len();
+        for (s, v) in fixed.iter().enumerate() {
+            if !free.contains(&s) {
+                c.row(&[(s, 1.0)], *v);
+            }
+        }
+        let zero = c.b.len() - before;
+        if zero > 0 {
+            c.cones.push(SupportedConeT::ZeroConeT(zero));
+        }
+    } else {
+        for r in 0..a.nrows() {
+            let entries: Vec<(usize, f64)> = (0..ns).map(|s| (s, -a[(r, s)])).collect();
+            c.row(&entries, -b[r]);
+        }
+        let sw = weight.sqrt();
+        if sw > 0.0 {
+            for s in 0..ns {
+                c.row(&[(s, -sw / scale[s])], -sw * p0[s] / scale[s]);
+            }
+        }
+        let soc = c.b.len();
+        c.cones.push(SupportedConeT::SecondOrderConeT(soc));
     }
-    let soc = c.b.len();
-    c.cones.push(SupportedConeT::SecondOrderConeT(soc));
 
     // Linear bounds.
     let before = c.b.len();

@@ -1,7 +1,9 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
 //! [--method sdp|anneal] -o OUT`: physically consistent link parameters that reproduce
 //! identified base parameters (DESIGN.md 7, 10). Writes OUT as TOML, or as URDF
-//! `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
+//! `<inertial>` elements when OUT ends in `.urdf` or `.xml`. Identified parameters with an
+//! empty expression that are not base parameters of the description (the extra columns of
+//! an identification config) are kept as free terms.
 
 use std::path::{Path, PathBuf};
 
@@ -40,6 +42,8 @@ struct Identified {
 #[derive(Deserialize)]
 struct IdentifiedParameter {
     name: String,
+    #[serde(default)]
+    expression: String,
     value: f64,
     std: f64,
 }
@@ -56,6 +60,15 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let identified: Identified = serde_json::from_str(&json)
         .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;
     let problem = problem(&robot)?;
+    // Extra columns of the identification config (no expression, not a base parameter,
+    // e.g. a coupled wrist's `Iam6`) are kept as free terms.
+    let extra: Vec<String> = identified
+        .parameters
+        .iter()
+        .filter(|p| p.expression.is_empty() && !problem.base_names.contains(&p.name))
+        .map(|p| p.name.clone())
+        .collect();
+    let problem = problem.with_extra_columns(&extra)?;
     let names: Vec<String> = identified
         .parameters
         .iter()

@@ -1,0 +1,161 @@
+//! `robid feasible` end to end (DESIGN.md 10) on the TX40's identification JSON
+//! (`tests/fixtures/tx40_identified.json`, written by `robid identify
+//! configs/tx40_robot.toml --config configs/tx40.toml --data ... --json`, 61 parameters
+//! including the coupled-wrist extra columns `Iam6 fvm6 fsm6`) with loose bounds
+//! (`tests/fixtures/tx40_bounds.toml`).
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn robid(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_robid"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("robid runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A fresh output path under the target directory.
+fn out(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_feasible");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    let _ = std::fs::remove_file(&path);
+    path
+}
+
+/// Runs `robid feasible` on the fixture; returns chi^2 from the summary line.
+fn feasible(method: &str, output: &PathBuf) -> f64 {
+    let o = robid(&[
+        "feasible",
+        "configs/tx40_robot.toml",
+        "--identified",
+        "tests/fixtures/tx40_identified.json",
+        "--bounds",
+        "tests/fixtures/tx40_bounds.toml",
+        "--method",
+        method,
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let chi2: f64 = err
+        .split("chi^2 ")
+        .nth(1)
+        .and_then(|r| r.split(',').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no chi^2 in the summary: {err}"));
+    eprintln!("{err}");
+    chi2
+}
+
+/// The TOML output: every standard parameter (extra columns included), six links, each
+/// with a positive mass and a positive definite pseudo-inertia, total mass in its range.
+fn check_toml(path: &PathBuf) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let v: toml::Value = toml::from_str(&text).expect("the output is TOML");
+    let standard = v["standard"].as_table().unwrap();
+    for name in [
+        "XX1", "ZZ6", "M6", "Ia1", "Fv6", "Fo3", "Iam6", "fvm6", "fsm6",
+    ] {
+        assert!(standard.contains_key(name), "{name} missing");
+    }
+    assert_eq!(standard.len(), 6 * 14 + 3);
+    let links = v["links"].as_array().unwrap();
+    assert_eq!(links.len(), 6);
+    let mut total = 0.0;
+    for l in links {
+        let m = l["mass"].as_float().unwrap();
+        assert!(m > 0.0, "{l:?}");
+        assert!(
+            l["pseudo_inertia_min_eigenvalue"].as_float().unwrap() > 0.0,
+            "{l:?}"
+        );
+        total += m;
+    }
+    assert!(
+        (13.5 - 1e-6..=27.0 + 1e-6).contains(&total),
+        "total {total}"
+    );
+}
+
+/// The URDF output: six `<inertial>` elements with positive masses.
+fn check_urdf(path: &PathBuf) {
+    let text = std::fs::read_to_string(path).unwrap();
+    assert_eq!(text.matches("<inertial>").count(), 6);
+    assert_eq!(text.matches("</inertial>").count(), 6);
+    let masses: Vec<f64> = text
+        .split("<mass value=\"")
+        .skip(1)
+        .map(|r| r.split('"').next().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(masses.len(), 6);
+    assert!(masses.iter().all(|m| *m > 0.0), "{masses:?}");
+}
+
+#[test]
+fn feasible_anneal_writes_consistent_toml_and_urdf_that_fit_the_identified_parameters() {
+    let toml_path = out("anneal.toml");
+    let chi2 = feasible("anneal", &toml_path);
+    // statistically acceptable: at most the number of base parameters (its expectation)
+    assert!(chi2 <= 61.0, "chi^2 {chi2}");
+    check_toml(&toml_path);
+    let urdf_path = out("anneal.urdf");
+    feasible("anneal", &urdf_path);
+    check_urdf(&urdf_path);
+}
+
+#[test]
+fn feasible_rejects_an_unknown_method_and_a_foreign_result() {
+    let path = out("bad.toml");
+    let path = path.to_str().unwrap();
+    let o = robid(&[
+        "feasible",
+        "configs/tx40_robot.toml",
+        "--identified",
+        "tests/fixtures/tx40_identified.json",
+        "--method",
+        "genetic",
+        "-o",
+        path,
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--method genetic"), "{}", stderr(&o));
+    // The TX40 result against the UR5e description: base parameters missing.
+    let o = robid(&[
+        "feasible",
+        "descriptions/ur5e.toml",
+        "--identified",
+        "tests/fixtures/tx40_identified.json",
+        "--method",
+        "anneal",
+        "-o",
+        path,
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("identify with the same robot description"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// The SDP's global optimum fits at least as well as the search (whose feasible set is
+/// smaller: it also bounds the principal moments).
+#[cfg(feature = "sdp")]
+#[test]
+fn feasible_sdp_writes_toml_and_urdf_and_fits_at_least_as_well_as_anneal() {
+    let toml_path = out("sdp.toml");
+    let sdp = feasible("sdp", &toml_path);
+    check_toml(&toml_path);
+    let urdf_path = out("sdp.urdf");
+    feasible("sdp", &urdf_path);
+    check_urdf(&urdf_path);
+    let anneal = feasible("anneal", &out("anneal_for_sdp.toml"));
+    assert!(sdp <= anneal * (1.0 + 1e-6), "sdp {sdp}, anneal {anneal}");
+}
