@@ -4,7 +4,7 @@
 //! including the coupled-wrist extra columns `Iam6 fvm6 fsm6`) with loose bounds
 //! (`tests/fixtures/tx40_bounds.toml`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn robid(args: &[&str]) -> Output {
@@ -29,7 +29,7 @@ fn out(name: &str) -> PathBuf {
 }
 
 /// Runs `robid feasible` on the fixture; returns chi^2 from the summary line.
-fn feasible(method: &str, output: &PathBuf) -> f64 {
+fn feasible(method: &str, output: &Path) -> f64 {
     let o = robid(&[
         "feasible",
         "configs/tx40_robot.toml",
@@ -56,7 +56,7 @@ fn feasible(method: &str, output: &PathBuf) -> f64 {
 
 /// The TOML output: every standard parameter (extra columns included), six links, each
 /// with a positive mass and a positive definite pseudo-inertia, total mass in its range.
-fn check_toml(path: &PathBuf) {
+fn check_toml(path: &Path) {
     let text = std::fs::read_to_string(path).unwrap();
     let v: toml::Value = toml::from_str(&text).expect("the output is TOML");
     let standard = v["standard"].as_table().unwrap();
@@ -85,7 +85,7 @@ fn check_toml(path: &PathBuf) {
 }
 
 /// The URDF output: six `<inertial>` elements with positive masses.
-fn check_urdf(path: &PathBuf) {
+fn check_urdf(path: &Path) {
     let text = std::fs::read_to_string(path).unwrap();
     assert_eq!(text.matches("<inertial>").count(), 6);
     assert_eq!(text.matches("</inertial>").count(), 6);
