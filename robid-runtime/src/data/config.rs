@@ -30,9 +30,10 @@
 //! range = [0, 24750]             # optional sample range used (end exclusive)
 //!
 //! [estimation]
-//! method = "wls"                 # "ols", "wls" or "rls"
+//! method = "wls"                 # "ols", "wls", "rls" or "energy"
 //! rank_tolerance = 1e-10         # singular values below this times the largest are zero
 //! forgetting = 1.0               # RLS forgetting factor, 0 < lambda <= 1
+//! energy_window = 0.05           # s, one energy-model equation per window
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -287,6 +288,9 @@ pub enum Method {
     Wls,
     /// Recursive least squares with forgetting factor.
     Rls,
+    /// The energy (power balance) model: one equation per window of
+    /// `estimation.energy_window` seconds, no accelerations needed.
+    Energy,
 }
 
 /// Estimator options.
@@ -302,6 +306,9 @@ pub struct Estimation {
     /// RLS forgetting factor.
     #[serde(default = "one")]
     pub forgetting: f64,
+    /// Window of the energy model (s): one equation per window.
+    #[serde(default = "default_energy_window")]
+    pub energy_window: f64,
 }
 
 impl Default for Estimation {
@@ -310,6 +317,7 @@ impl Default for Estimation {
             method: Method::Ols,
             rank_tolerance: default_tolerance(),
             forgetting: 1.0,
+            energy_window: default_energy_window(),
         }
     }
 }
@@ -319,6 +327,9 @@ fn one() -> f64 {
 }
 fn four() -> usize {
     4
+}
+fn default_energy_window() -> f64 {
+    0.05
 }
 fn default_tolerance() -> f64 {
     1e-10
@@ -399,6 +410,12 @@ impl Config {
             return Err(invalid(
                 "estimation.forgetting",
                 format!("{} must satisfy 0 < lambda <= 1", e.forgetting),
+            ));
+        }
+        if !(e.energy_window > 0.0 && e.energy_window.is_finite()) {
+            return Err(invalid(
+                "estimation.energy_window",
+                format!("{} s must be positive", e.energy_window),
             ));
         }
         if !(e.rank_tolerance > 0.0 && e.rank_tolerance < 1.0) {

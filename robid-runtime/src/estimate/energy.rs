@@ -12,6 +12,7 @@
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
+use crate::Model;
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation, ols};
 use crate::pipeline::Prepared;
@@ -64,6 +65,120 @@ pub fn energy_observation(
                     *r += wgt * v;
                 }
                 y += wgt * power(k);
+            }
+            (row, y)
+        })
+        .collect();
+    let w = DMatrix::from_fn(windows, p, |r, c| rows[r].0[c]);
+    let y = DVector::from_iterator(windows, rows.iter().map(|r| r.1));
+    Observation::single(w, y, names)
+}
+
+/// The energy observation of a [`Model`] in its base parameters, one equation per window
+/// of `window` samples of the prepared signals (accelerations are not used):
+///
+/// T(t_b) - T(t_a) + integral of g(q).qd dt + friction integrals = integral of tau.qd dt,
+///
+/// with everything linear in the base parameters and taken from the base regressor, the
+/// only thing the [`Model`] trait offers per parameter: M(q) qd = Y_b(q, 0, qd) - Y_b(q, 0, 0)
+/// gives the kinetic energy T = 1/2 qd' M(q) qd (rotor inertias included), and
+/// Y_b(q, 0, 0) gives the gravity torques, so that U(t_b) - U(t_a) = integral of g(q).qd dt
+/// (and the offsets Fo_j, constant torques, integrate to Fo_j (q_j(t_b) - q_j(t_a))). The
+/// base parameters named `Fv{j}` and `Fc{j}` dissipate Fv_j qd_j^2 and Fc_j |qd_j| (see
+/// [`friction_power`]). Integrals use the trapezoidal rule.
+pub fn model_energy_observation(
+    model: &(dyn Model + Sync),
+    signals: &Prepared,
+    window: usize,
+) -> Result<Observation> {
+    let dof = model.dof();
+    let p = model.base_parameter_count();
+    let names: Vec<String> = (0..p)
+        .map(|i| model.base_parameter_name(i).to_string())
+        .collect();
+    if signals.q.len() != dof {
+        return Err(Error::JointCountMismatch {
+            context: "energy model: data".into(),
+            expected: dof,
+            found: signals.q.len(),
+        });
+    }
+    let friction = friction_power(&names);
+    // columns whose power is the friction term (Fv, Fc; Fo is in the potential part)
+    let mut probe = vec![0.0; p];
+    friction(&vec![0.0; dof], &vec![1.0; dof], &mut probe);
+    let dissipative: Vec<bool> = names
+        .iter()
+        .zip(&probe)
+        .map(|(n, v)| *v != 0.0 && !n.starts_with("Fo"))
+        .collect();
+    let zeros = vec![0.0; dof];
+    // per sample: the kinetic energy per parameter (window ends only) and the power
+    // g(q).qd + friction per parameter, both from at most two regressor calls
+    let energy_at = |q: &[f64], qd: &[f64], y0: &mut [f64], y1: &mut [f64], out: &mut [f64]| {
+        model.base_regressor(q, &zeros, &zeros, y0);
+        model.base_regressor(q, &zeros, qd, y1);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = 0.5
+                * (0..dof)
+                    .map(|j| qd[j] * (y1[j * p + i] - y0[j * p + i]))
+                    .sum::<f64>();
+        }
+    };
+    let power_at = |q: &[f64], qd: &[f64], y0: &mut [f64], d: &mut [f64], out: &mut [f64]| {
+        model.base_regressor(q, &zeros, &zeros, y0);
+        friction(q, qd, d);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = if dissipative[i] {
+                d[i]
+            } else {
+                (0..dof).map(|j| qd[j] * y0[j * p + i]).sum::<f64>()
+            };
+        }
+    };
+    let n = signals.samples();
+    if window == 0 || n < window + 1 || signals.qd.len() != dof || signals.tau.len() != dof {
+        return Err(Error::TooFewSamples {
+            context: "energy model".into(),
+            found: n,
+            required: window.max(1) + 1,
+            hint: "use a window shorter than the record (estimation.energy_window)",
+        });
+    }
+    let dt = signals.sample_time;
+    let windows = (n - 1) / window;
+    let rows: Vec<(Vec<f64>, f64)> = (0..windows)
+        .into_par_iter()
+        .map(|w| {
+            let (a, b) = (w * window, (w + 1) * window);
+            let (mut q, mut qd) = (vec![0.0; dof], vec![0.0; dof]);
+            let mut y0 = vec![0.0; dof * p];
+            let mut y1 = vec![0.0; dof * p];
+            let mut d = vec![0.0; p];
+            let mut cur = vec![0.0; p];
+            let mut row = vec![0.0; p];
+            let mut y = 0.0;
+            let load = |k: usize, q: &mut [f64], qd: &mut [f64]| {
+                for j in 0..dof {
+                    q[j] = signals.q[j][k];
+                    qd[j] = signals.qd[j][k];
+                }
+            };
+            for (k, sign) in [(a, -1.0), (b, 1.0)] {
+                load(k, &mut q, &mut qd);
+                energy_at(&q, &qd, &mut y0, &mut y1, &mut cur);
+                for (r, v) in row.iter_mut().zip(&cur) {
+                    *r += sign * v;
+                }
+            }
+            for k in a..=b {
+                let wgt = if k == a || k == b { 0.5 * dt } else { dt };
+                load(k, &mut q, &mut qd);
+                power_at(&q, &qd, &mut y0, &mut d, &mut cur);
+                for (r, v) in row.iter_mut().zip(&cur) {
+                    *r += wgt * v;
+                }
+                y += wgt * (0..dof).map(|j| signals.tau[j][k] * qd[j]).sum::<f64>();
             }
             (row, y)
         })

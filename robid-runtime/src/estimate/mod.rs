@@ -9,7 +9,9 @@ mod observation;
 mod result;
 mod rls;
 
-pub use energy::{EnergyRegressor, energy, energy_observation, friction_power};
+pub use energy::{
+    EnergyRegressor, energy, energy_observation, friction_power, model_energy_observation,
+};
 pub use least_squares::{check_names, ols, wls};
 pub use observation::Observation;
 pub use result::{Estimate, Estimator};

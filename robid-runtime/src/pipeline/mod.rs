@@ -5,7 +5,9 @@ mod identify;
 mod observe;
 mod prepare;
 
-pub use identify::{Identification, estimate, identify, observation, validate};
+pub use identify::{
+    Identification, energy_observation_of, estimate, identify, observation, validate,
+};
 pub use observe::{decimator, observe};
 pub use prepare::{Prepared, prepare};
 

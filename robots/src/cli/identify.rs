@@ -131,13 +131,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             MethodArg::Ols => Method::Ols,
             MethodArg::Wls => Method::Wls,
             MethodArg::Rls => Method::Rls,
-            MethodArg::Energy => {
-                return Err(
-                    "--method energy: the energy model needs an energy regressor, which the \
-                            compiled and interpreted models do not provide yet; use ols, wls or rls"
-                        .into(),
-                );
-            }
+            MethodArg::Energy => Method::Energy,
         };
     }
     let per_set = config.sources.len().max(1);
