@@ -148,15 +148,15 @@ fn energy_model_statistics_are_honest_with_noise() {
     );
     let mut inside = 0;
     let mut undetermined = Vec::new();
-    for i in 0..truth.len() {
-        let z = (e.values[i] - truth[i]) / e.std[i];
+    for (i, t) in truth.iter().enumerate() {
+        let z = (e.values[i] - t) / e.std[i];
         inside += usize::from(z.abs() <= 3.0);
-        if e.std[i] > e.values[i].abs().max(truth[i].abs()) {
+        if e.std[i] > e.values[i].abs().max(t.abs()) {
             undetermined.push(e.names[i].clone());
         }
         println!(
             "{:6} {:>10.5} +- {:<9.5} truth {:>10.5} ({z:+.2} std)",
-            e.names[i], e.values[i], e.std[i], truth[i]
+            e.names[i], e.values[i], e.std[i], t
         );
     }
     println!(

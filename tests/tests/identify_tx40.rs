@@ -17,7 +17,7 @@ use std::path::PathBuf;
 
 use robid_runtime::data::{Config, Dataset, load_config_files};
 use robid_runtime::estimate::Observation;
-use robid_runtime::pipeline::{Identification, estimate, identify, observe, prepare};
+use robid_runtime::pipeline::{Identification, estimate, identify, observation};
 use robid_runtime::validate::Prediction;
 use robots::interpreted::{Chosen, model_for};
 
@@ -173,26 +173,14 @@ fn tx40_reproduces_figaroh() {
     check("offset", &stem("off"), &|_, i| 3.0 * e.std[i]);
 }
 
-/// The observation of rows `a..b` of the log: the positions are filtered and differentiated
-/// on `a - MARGIN .. b + MARGIN` (inside the 4500-row gap between the two parts) and the
-/// margin is cut before the regressor, so that the filter transients of a cut made during
-/// motion stay out of the equations; the torques of the margin are never used.
+/// The observation of rows `a..b` of the log, cut before processing: `prepare` pads the
+/// low-pass with one settling time of odd extension and trims as much at the cut ends,
+/// so that a cut made during motion leaves no filter transient in the equations.
 fn rows(t: &Tx40, a: usize, b: usize) -> Observation {
-    const MARGIN: usize = 1000;
-    let lo = a.saturating_sub(MARGIN);
-    let data = t.data.slice(lo, b + MARGIN).unwrap();
-    let mut p = prepare(&data, &t.config).unwrap();
-    let trim = t.config.processing.trim;
-    let (s, e) = (
-        (a - lo).saturating_sub(trim),
-        (b - lo - trim).min(p.samples()),
-    );
-    for v in [&mut p.q, &mut p.qd, &mut p.qdd, &mut p.tau] {
-        for x in v.iter_mut() {
-            *x = x[s..e].to_vec();
-        }
-    }
-    observe(t.chosen.model.as_ref(), &p, &t.config).unwrap()
+    let data = t.data.slice(a, b).unwrap();
+    observation(t.chosen.model.as_ref(), &data, &t.config)
+        .unwrap()
+        .0
 }
 
 #[test]

@@ -95,12 +95,7 @@ fn true_base_parameters_lie_within_three_standard_deviations_and_wls_is_no_worse
     let truth = truth(&model);
     let train = simulate(&model, &truth, 5);
     let held_out = simulate(&model, &truth, 6);
-    // `Config::default()` leaves `time_scale` at 0, which `check` rejects (serde's default
-    // is 1): set it as a config file would.
-    let mut config = Config {
-        time_scale: 1.0,
-        ..Config::default()
-    };
+    let mut config = Config::default();
     config.processing.velocity = Derivative::Data;
     config.processing.acceleration = Derivative::Data;
     let run = |method| {

@@ -1,5 +1,12 @@
 //! Signal preparation: sample range, zero-phase low-pass, velocities and accelerations,
 //! rotor-dynamics compensation, trimming.
+//!
+//! Edges: a log may start or end during motion. The low-pass pads each signal with an
+//! odd extension as long as the filter's settling time (not scipy's few samples), so the
+//! start-up transient dies out in the padding; what is left near an edge (the extension
+//! bends the signal's curvature, which two differentiations amplify) is removed by an
+//! automatic trim of one settling time at each real end of the record, on top of
+//! `processing.trim`.
 
 use rayon::prelude::*;
 
@@ -29,10 +36,26 @@ impl Prepared {
     }
 }
 
-fn filter_all(sos: Option<&Sos>, x: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
+/// Share of the impulse response's absolute sum left after the padding's length.
+const PADDING_TOLERANCE: f64 = 1e-4;
+/// Share of the impulse response's absolute sum left after the automatic trim (the main
+/// lobe of the response: where the bent curvature of the extension still shows in qdd).
+const SETTLING_TOLERANCE: f64 = 1e-1;
+
+fn filter_all(sos: Option<&Sos>, pad: usize, x: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
     match sos {
-        Some(s) => x.par_iter().map(|v| s.filtfilt(v)).collect(),
+        Some(s) => x.par_iter().map(|v| s.filtfilt_padded(v, pad)).collect(),
         None => Ok(x.to_vec()),
+    }
+}
+
+/// Samples dropped automatically at each real end of a record: one settling time of the
+/// low-pass (0 without one).
+pub fn automatic_trim(config: &Config, sample_time: f64) -> Result<usize> {
+    match &config.processing.lowpass {
+        Some(lp) => Ok(butterworth_hz(lp.order, lp.cutoff, 1.0 / sample_time)?
+            .settling_samples(SETTLING_TOLERANCE, 1 << 20)),
+        None => Ok(0),
     }
 }
 
@@ -57,28 +80,35 @@ pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
         ),
         None => None,
     };
+    let (pad, settle) = match &sos {
+        Some(s) => (
+            s.settling_samples(PADDING_TOLERANCE, 1 << 20),
+            s.settling_samples(SETTLING_TOLERANCE, 1 << 20),
+        ),
+        None => (0, 0),
+    };
     let on = |s: Signal| {
         sos.as_ref()
             .filter(|_| p.lowpass.as_ref().is_some_and(|lp| lp.signals.contains(&s)))
     };
-    let q = filter_all(on(Signal::Q), &data.q)?;
+    let q = filter_all(on(Signal::Q), pad, &data.q)?;
     let qd = match (p.velocity, &data.qd) {
-        (Derivative::Auto | Derivative::Data, Some(v)) => filter_all(on(Signal::Qd), v)?,
+        (Derivative::Auto | Derivative::Data, Some(v)) => filter_all(on(Signal::Qd), pad, v)?,
         (Derivative::Data, None) => return Err(missing("processing.velocity", "velocity")),
         _ => differentiate(&q, dt),
     };
     let qdd = match (p.acceleration, &data.qdd) {
-        (Derivative::Auto | Derivative::Data, Some(a)) => filter_all(on(Signal::Qdd), a)?,
+        (Derivative::Auto | Derivative::Data, Some(a)) => filter_all(on(Signal::Qdd), pad, a)?,
         (Derivative::Data, None) => return Err(missing("processing.acceleration", "acceleration")),
         _ => differentiate(&qd, dt),
     };
-    let mut tau = filter_all(on(Signal::Tau), &data.tau)?;
+    let mut tau = filter_all(on(Signal::Tau), pad, &data.tau)?;
     if let Some(rotor) = &config.drive.rotor {
         let motor = data
             .motor
             .as_ref()
             .ok_or_else(|| missing("drive.rotor", "motor_position"))?;
-        let theta = filter_all(on(Signal::Q), motor)?;
+        let theta = filter_all(on(Signal::Q), pad, motor)?;
         let thetad = differentiate(&theta, dt);
         let thetadd = differentiate(&thetad, dt);
         rotor.compensate(&mut tau, &thetad, &thetadd)?;
@@ -97,18 +127,25 @@ pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
         }
         None => (0, data.samples()),
     };
-    let n = hi - lo;
+    // processing.trim inside the range, and at least one settling time from the record's
+    // real ends (where the filter saw no data)
     let t = p.trim;
-    if n <= 2 * t + 1 {
+    let total = data.samples();
+    let start = (lo + t).max(settle);
+    let end = hi.saturating_sub(t).min(total.saturating_sub(settle));
+    if end <= start + 1 {
         return Err(Error::TooFewSamples {
-            context: format!("{} after trimming {t} samples at each end", data.name),
-            found: n.saturating_sub(2 * t),
+            context: format!(
+                "{} after trimming {t} samples at each end ({settle} at the record's ends for the low-pass to settle)",
+                data.name
+            ),
+            found: end.saturating_sub(start),
             required: 2,
-            hint: "reduce processing.trim or use a longer record",
+            hint: "reduce processing.trim, raise the low-pass cutoff or use a longer record",
         });
     }
     let cut = |v: Vec<Vec<f64>>| -> Vec<Vec<f64>> {
-        v.into_iter().map(|x| x[lo + t..hi - t].to_vec()).collect()
+        v.into_iter().map(|x| x[start..end].to_vec()).collect()
     };
     Ok(Prepared {
         q: cut(q),

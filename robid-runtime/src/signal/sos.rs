@@ -47,6 +47,41 @@ impl Sos {
         3 * (2 * self.sections.len() + 1 - zb.min(za))
     }
 
+    /// Settling time in samples: the length after which the impulse response of the
+    /// cascade (one pass) keeps less than `tolerance` of its absolute sum (at most
+    /// `limit` samples are examined).
+    pub fn settling_samples(&self, tolerance: f64, limit: usize) -> usize {
+        let mut h = vec![0.0; limit.max(1)];
+        h[0] = 1.0;
+        let mut zi = vec![[0.0; 2]; self.sections.len()];
+        self.filter_in_place(&mut h, &mut zi);
+        let total: f64 = h.iter().map(|v| v.abs()).sum();
+        let mut tail = 0.0;
+        for (k, v) in h.iter().enumerate().rev() {
+            tail += v.abs();
+            if tail > tolerance * total {
+                return k + 1;
+            }
+        }
+        0
+    }
+
+    /// Zero-phase filtering with an odd extension of `pad` samples at each end (at most
+    /// `x.len() - 1`) instead of scipy's short default: with `pad` at least the
+    /// [`Sos::settling_samples`], the start-up transient dies out inside the extension,
+    /// so a record cut during motion is filtered nearly as if it went on.
+    pub fn filtfilt_padded(&self, x: &[f64], pad: usize) -> Result<Vec<f64>> {
+        let n = x.len();
+        let pad = pad.max(self.pad_length()).min(n.saturating_sub(1));
+        self.check_length(n)?;
+        let mut ext = Vec::with_capacity(n + 2 * pad);
+        ext.extend((1..=pad).rev().map(|i| 2.0 * x[0] - x[i]));
+        ext.extend_from_slice(x);
+        ext.extend((1..=pad).map(|i| 2.0 * x[n - 1] - x[n - 1 - i]));
+        let y = self.filtfilt(&ext)?;
+        Ok(y[pad..pad + n].to_vec())
+    }
+
     /// Steady-state section states for a unit constant input (scipy's `sosfilt_zi`).
     pub fn steady_state(&self) -> Vec<[f64; 2]> {
         let mut scale = 1.0;
@@ -272,6 +307,33 @@ mod tests {
             sos.filtfilt_channels(&mut vec![0.0; 3 * sos.pad_length()], 3)
                 .is_err()
         );
+    }
+
+    #[test]
+    fn settling_and_long_padding() {
+        // 4th-order 25 Hz low-pass at 5 kHz: the impulse response lasts ~ 2 / 25 Hz
+        let sos = crate::signal::butterworth_hz(4, 25.0, 5000.0).unwrap();
+        let k = sos.settling_samples(1e-3, 100_000);
+        assert!((200..800).contains(&k), "{k}");
+        // a ramp-and-sine cut mid-motion: long odd padding keeps the edges right
+        let x: Vec<f64> = (0..3000)
+            .map(|i| {
+                let t = i as f64 / 5000.0;
+                0.7 * t + 0.3 * (2.0 * t + 0.4).sin()
+            })
+            .collect();
+        let short = sos.filtfilt(&x).unwrap();
+        let long = sos.filtfilt_padded(&x, k).unwrap();
+        let err = |y: &[f64]| (0..50).map(|i| (y[i] - x[i]).abs()).fold(0.0, f64::max);
+        assert!(err(&long) < 1e-5, "{}", err(&long));
+        assert!(
+            err(&long) < 0.1 * err(&short),
+            "{} vs {}",
+            err(&long),
+            err(&short)
+        );
+        // in the middle both are the plain filter
+        assert!((long[1500] - short[1500]).abs() < 1e-9);
     }
 
     #[test]

@@ -13,7 +13,7 @@ use flate2::read::MultiGzDecoder;
 use robid_runtime::data::{Config, Dataset, read_columns_from};
 use robid_runtime::drive::DriveChain;
 use robid_runtime::estimate::{Estimate, Observation};
-use robid_runtime::pipeline::{estimate, identify, observe, prepare};
+use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::report::{Report, plot_torques, text_table};
 use robid_runtime::validate::Prediction;
 use robid_symbolic::Robot;
@@ -33,8 +33,6 @@ const OUTPUT: &str = "robid-demo";
 /// Training rows and held-out rows of the log (the README's temporal split).
 const TRAIN: (usize, usize) = (0, 24750);
 const HELD_OUT: (usize, usize) = (29250, 45000);
-/// Rows of the 4500-row gap used on each side to filter and differentiate the positions.
-const MARGIN: usize = 1000;
 
 /// Runs the demo.
 pub(crate) fn run() -> Result<(), Error> {
@@ -116,29 +114,16 @@ fn load(config: &Config) -> Result<Dataset, Error> {
     )?)
 }
 
-/// The observation of rows `a..b`: positions filtered and differentiated with `MARGIN`
-/// rows on each side (inside the gap between the two parts; their torques are not used),
-/// so that the filter transients of a cut during motion stay out of the equations.
+/// The observation of rows `a..b`, cut before processing: `prepare` pads the low-pass
+/// with one settling time of odd extension and trims the cut ends automatically, so a
+/// cut made during motion leaves no filter transient in the equations.
 fn rows(
     chosen: &Chosen,
     config: &Config,
     data: &Dataset,
     (a, b): (usize, usize),
 ) -> Result<Observation, Error> {
-    let lo = a.saturating_sub(MARGIN);
-    let part = data.slice(lo, b + MARGIN)?;
-    let mut p = prepare(&part, config)?;
-    let trim = config.processing.trim;
-    let (s, e) = (
-        (a - lo).saturating_sub(trim),
-        (b - lo).saturating_sub(trim).min(p.samples()),
-    );
-    for v in [&mut p.q, &mut p.qd, &mut p.qdd, &mut p.tau] {
-        for x in v.iter_mut() {
-            *x = x[s..e].to_vec();
-        }
-    }
-    Ok(observe(chosen.model.as_ref(), &p, config)?)
+    Ok(observation(chosen.model.as_ref(), &data.slice(a, b)?, config)?.0)
 }
 
 /// A linear combination of standard parameters: name -> coefficient.
