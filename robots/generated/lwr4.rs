@@ -2392,7 +2392,7 @@ impl Lwr4 {
     /// - `qd`: qd1 .. qd7
     /// - `qdd`: qdd1 .. qdd7
     ///
-    /// Operations: 759 mul, 461 add, 45 neg, 6 sin, 6 cos.
+    /// Operations: 682 mul, 486 add, 37 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -2405,1454 +2405,1306 @@ impl Lwr4 {
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.4);
-        let c2 = T::from_f64(0.8);
-        let c3 = T::from_f64(0.39);
-        let c4 = T::from_f64(0.078);
-        let c5 = T::from_f64(2.0);
+        let c2 = T::from_f64(0.39);
+        let c3 = T::from_f64(0.078);
         let (t0, t1) = q2.sin_cos();
-        let t2 = t1 * qd1;
-        let t3 = t0 * qdd1;
-        let t4 = t1 * qdd1;
-        let t5 = t0 * c0;
-        let t6 = t1 * c0;
-        let t7 = qd1 * qd2;
-        let t8 = t1 * t7;
-        let t9 = t0 * t7;
-        let t10 = t3 + t8;
-        let (t11, t12) = q3.sin_cos();
-        let t13 = t0 * qd1;
-        let t14 = t12 * t13;
-        let t15 = t11 * qd2;
-        let t16 = t14 - t15;
-        let t17 = t11 * t13;
-        let t18 = t12 * qd2;
-        let t19 = t17 + t18;
-        let t20 = t10 * t12;
-        let t21 = t11 * qdd2;
-        let t22 = t10 * t11;
-        let t23 = t12 * qdd2;
-        let t24 = qd1 * qd1;
-        let t25 = t0 * t1;
-        let t26 = t24 * t25;
-        let t27 = qd2 * qd2;
-        let t28 = t0 * t0;
-        let t29 = t24 * t28;
-        let t30 = t3 * c1;
-        let t31 = t26 - qdd2;
-        let t32 = t31 * c1;
-        let t33 = t5 + t32;
-        let t34 = t27 + t29;
-        let t35 = t34 * c1;
-        let t36 = t6 - t35;
-        let t37 = t8 * c2;
-        let t38 = t30 + t37;
-        let t39 = t12 * t33;
-        let t40 = t11 * t38;
-        let t41 = t39 - t40;
-        let t42 = t11 * t33;
-        let t43 = t12 * t38;
-        let t44 = t42 + t43;
-        let t45 = t19 * qd3;
-        let t46 = t16 * qd3;
-        let t47 = t2 + qd3;
-        let t48 = t21 + t45;
-        let t49 = t20 - t48;
-        let t50 = t4 - t9;
-        let t51 = t50 + qdd3;
-        let (t52, t53) = q4.sin_cos();
-        let t54 = t16 * t53;
-        let t55 = t47 * t52;
-        let t56 = t54 - t55;
-        let t57 = t16 * t52;
-        let t58 = t47 * t53;
-        let t59 = t57 + t58;
-        let t60 = t49 * t53;
-        let t61 = t51 * t52;
-        let t62 = t49 * t52;
-        let t63 = t51 * t53;
-        let t64 = t41 * t53;
-        let t65 = t36 * t52;
-        let t66 = t41 * t52;
-        let t67 = t36 * t53;
+        let (t2, t3) = q3.sin_cos();
+        let (t4, t5) = q4.sin_cos();
+        let (t6, t7) = q5.sin_cos();
+        let (t8, t9) = q6.sin_cos();
+        let (t10, t11) = q7.sin_cos();
+        let t12 = t0 * qd1;
+        let t13 = t1 * qd1;
+        let t14 = t0 * qdd1;
+        let t15 = t1 * qdd1;
+        let t16 = t13 * qd2;
+        let t17 = t12 * qd2;
+        let t18 = t14 + t16;
+        let t19 = t15 - t17;
+        let t20 = t12 * t12;
+        let t21 = t13 * t13;
+        let t22 = qd2 * qd2;
+        let t23 = t21 + t22;
+        let t24 = t12 * t13;
+        let t25 = t24 - qdd2;
+        let t26 = t24 + qdd2;
+        let t27 = t20 + t22;
+        let t28 = t16 - t18;
+        let t29 = t16 + t18;
+        let t30 = t20 + t21;
+        let t31 = t17 - t19;
+        let t32 = t17 + t19;
+        let t33 = t0 * c0;
+        let t34 = t25 * c1;
+        let t35 = t33 + t34;
+        let t36 = t1 * c0;
+        let t37 = t27 * c1;
+        let t38 = t36 - t37;
+        let t39 = t3 * t35;
+        let t40 = t2 * t29;
+        let t41 = t2 * t35;
+        let t42 = t3 * t29;
+        let t43 = t40 * c1;
+        let t44 = t39 - t43;
+        let t45 = t42 * c1;
+        let t46 = t41 + t45;
+        let t47 = t3 * t12;
+        let t48 = t2 * qd2;
+        let t49 = t2 * t12;
+        let t50 = t3 * qd2;
+        let t51 = t47 - t48;
+        let t52 = t49 + t50;
+        let t53 = t3 * t18;
+        let t54 = t2 * qdd2;
+        let t55 = t2 * t18;
+        let t56 = t3 * qdd2;
+        let t57 = t53 - t54;
+        let t58 = t55 + t56;
+        let t59 = t52 * qd3;
+        let t60 = t51 * qd3;
+        let t61 = t13 + qd3;
+        let t62 = t57 - t59;
+        let t63 = t58 + t60;
+        let t64 = t19 + qdd3;
+        let t65 = t51 * t51;
+        let t66 = t52 * t52;
+        let t67 = t61 * t61;
         let t68 = t66 + t67;
-        let t69 = t59 * qd4;
-        let t70 = t56 * qd4;
-        let t71 = qd4 - t19;
-        let t72 = t61 + t69;
-        let t73 = t60 - t72;
-        let t74 = qdd4 - t22;
-        let t75 = t23 + t46;
-        let t76 = t74 - t75;
-        let (t77, t78) = q5.sin_cos();
-        let t79 = t56 * t78;
-        let t80 = t71 * t77;
-        let t81 = t79 + t80;
-        let t82 = t56 * t77;
-        let t83 = t71 * t78;
-        let t84 = t83 - t82;
-        let t85 = t73 * t78;
-        let t86 = t76 * t77;
-        let t87 = t73 * t77;
-        let t88 = t76 * t78;
-        let t89 = t71 * c3;
-        let t90 = t56 * c3;
-        let t91 = t59 * t90;
-        let t92 = t71 * t89;
-        let t93 = t56 * t90;
-        let t94 = t59 * t89;
-        let t95 = t76 * c3;
-        let t96 = t64 - t65;
-        let t97 = t91 + t95;
-        let t98 = t96 + t97;
-        let t99 = t92 + t93;
-        let t100 = t99 - t68;
-        let t101 = t73 * c3;
-        let t102 = t94 - t101;
-        let t103 = t102 - t44;
-        let t104 = t78 * t98;
-        let t105 = t77 * t103;
-        let t106 = t104 + t105;
-        let t107 = t77 * t98;
-        let t108 = t78 * t103;
-        let t109 = t108 - t107;
-        let t110 = t84 * qd5;
-        let t111 = t81 * qd5;
-        let t112 = t59 + qd5;
-        let t113 = t86 + t110;
-        let t114 = t85 + t113;
-        let t115 = t62 + qdd5;
-        let t116 = t63 + t70;
-        let t117 = t115 + t116;
-        let (t118, t119) = q6.sin_cos();
-        let t120 = t81 * t119;
-        let t121 = t112 * t118;
-        let t122 = t120 + t121;
-        let t123 = t81 * t118;
-        let t124 = t112 * t119;
-        let t125 = t124 - t123;
-        let t126 = t114 * t119;
-        let t127 = t117 * t118;
-        let t128 = t114 * t118;
-        let t129 = t117 * t119;
-        let t130 = t106 * t119;
-        let t131 = t100 * t118;
-        let t132 = t130 - t131;
-        let t133 = t106 * t118;
-        let t134 = t100 * t119;
-        let t135 = t133 + t134;
-        let t136 = t125 * qd6;
-        let t137 = t122 * qd6;
-        let t138 = qd6 - t84;
-        let t139 = t127 + t136;
-        let t140 = t126 + t139;
-        let t141 = t87 + qdd6;
-        let t142 = t111 - t88;
-        let t143 = t141 + t142;
-        let (t144, t145) = q7.sin_cos();
-        let t146 = t122 * t145;
-        let t147 = t138 * t144;
-        let t148 = t146 - t147;
-        let t149 = t122 * t144;
-        let t150 = t138 * t145;
-        let t151 = t149 + t150;
-        let t152 = t140 * t145;
-        let t153 = t143 * t144;
-        let t154 = t140 * t144;
-        let t155 = t143 * t145;
-        let t156 = t138 * c4;
-        let t157 = t122 * c4;
-        let t158 = t125 * t157;
-        let t159 = t138 * t156;
-        let t160 = t122 * t157;
-        let t161 = t125 * t156;
-        let t162 = t143 * c4;
-        let t163 = t158 - t162;
-        let t164 = t132 + t163;
-        let t165 = t159 + t160;
-        let t166 = t135 + t165;
-        let t167 = t140 * c4;
-        let t168 = t161 + t167;
-        let t169 = t168 - t109;
-        let t170 = t144 * t169;
-        let t171 = t144 * t164;
-        let t172 = t145 * t169;
-        let t173 = t171 + t172;
-        let t174 = t151 * qd7;
-        let t175 = t148 * qd7;
-        let t176 = t125 + qd7;
-        let t177 = t153 + t174;
-        let t178 = t152 - t177;
-        let t179 = qdd7 - t128;
-        let t180 = t129 - t137;
-        let t181 = t179 + t180;
-        let t182 = t0 * t10;
-        let t183 = t1 * t9;
-        let t184 = t182 + t183;
-        let t185 = t1 * t1;
-        let t186 = t24 * t185;
-        let t187 = t29 - t186;
-        let t188 = t9 * c5;
-        let t189 = t4 - t188;
-        let t190 = t8 * c5;
-        let t191 = t3 + t190;
-        let t192 = t0 * t189;
-        let t193 = t1 * t191;
-        let t194 = t192 + t193;
-        let t195 = t27 - t29;
-        let t196 = t26 + qdd2;
-        let t197 = t0 * t196;
-        let t198 = t1 * t195;
-        let t199 = t197 + t198;
-        let t200 = t186 - t27;
-        let t201 = t0 * t200;
-        let t202 = t1 * t31;
-        let t203 = t201 - t202;
-        let t204 = t16 * t47;
-        let t205 = t16 * t19;
-        let t206 = t12 * t49;
-        let t207 = t11 * t16;
-        let t208 = t47 * t207;
-        let t209 = t206 - t208;
-        let t210 = t11 * t49;
-        let t211 = t12 * t16;
-        let t212 = t47 * t211;
-        let t213 = t210 + t212;
-        let t214 = t0 * t209;
-        let t215 = t1 * t16;
-        let t216 = t19 * t215;
-        let t217 = t214 + t216;
-        let t218 = t19 * t47;
-        let t219 = t16 * t16;
-        let t220 = t19 * t19;
-        let t221 = t219 - t220;
-        let t222 = t22 + t23;
-        let t223 = t46 + t204;
-        let t224 = t222 + t223;
-        let t225 = t49 - t218;
-        let t226 = t12 * t224;
-        let t227 = t11 * t225;
-        let t228 = t226 + t227;
-        let t229 = t11 * t224;
-        let t230 = t12 * t225;
-        let t231 = t229 - t230;
-        let t232 = t0 * t228;
-        let t233 = t1 * t221;
-        let t234 = t233 - t232;
-        let t235 = t47 * t47;
-        let t236 = t235 - t219;
-        let t237 = t51 - t205;
-        let t238 = t49 + t218;
-        let t239 = t12 * t237;
-        let t240 = t11 * t236;
-        let t241 = t239 - t240;
-        let t242 = t11 * t237;
-        let t243 = t12 * t236;
-        let t244 = t242 + t243;
-        let t245 = t0 * t241;
-        let t246 = t1 * t238;
-        let t247 = t245 + t246;
-        let t248 = t220 - t235;
-        let t249 = t51 + t205;
-        let t250 = t204 - t46;
-        let t251 = t250 - t222;
-        let t252 = t12 * t248;
-        let t253 = t11 * t249;
-        let t254 = t252 - t253;
-        let t255 = t11 * t248;
-        let t256 = t12 * t249;
-        let t257 = t255 + t256;
-        let t258 = t0 * t254;
-        let t259 = t1 * t251;
-        let t260 = t258 + t259;
-        let t261 = t12 * t19;
-        let t262 = t47 * t261;
-        let t263 = t208 - t262;
-        let t264 = t11 * t19;
-        let t265 = t47 * t264;
-        let t266 = t212 + t265;
-        let t267 = t0 * t263;
-        let t268 = t1 * t51;
-        let t269 = t267 + t268;
-        let t270 = t220 + t235;
-        let t271 = t11 * t36;
-        let t272 = t12 * t36;
-        let t273 = t11 * t270;
-        let t274 = t12 * t270;
-        let t275 = t273 - t239;
-        let t276 = t275 * c1;
-        let t277 = t271 + t276;
-        let t278 = t242 + t274;
-        let t279 = t278 * c1;
-        let t280 = t272 + t279;
-        let t281 = t0 * t277;
-        let t282 = t1 * t44;
-        let t283 = t281 - t282;
-        let t284 = t219 + t235;
-        let t285 = t12 * t284;
-        let t286 = t11 * t284;
-        let t287 = t253 + t285;
-        let t288 = t287 * c1;
-        let t289 = t272 + t288;
-        let t290 = t256 - t286;
-        let t291 = t290 * c1;
-        let t292 = t291 - t271;
-        let t293 = t0 * t289;
-        let t294 = t1 * t41;
-        let t295 = t293 - t294;
-        let t296 = t56 * t71;
-        let t297 = t56 * t59;
-        let t298 = t53 * t73;
-        let t299 = t52 * t56;
-        let t300 = t71 * t299;
-        let t301 = t298 - t300;
-        let t302 = t52 * t73;
-        let t303 = t53 * t56;
-        let t304 = t71 * t303;
-        let t305 = t302 + t304;
-        let t306 = t12 * t301;
-        let t307 = t11 * t56;
-        let t308 = t59 * t307;
-        let t309 = t306 - t308;
-        let t310 = t11 * t301;
-        let t311 = t12 * t56;
-        let t312 = t59 * t311;
-        let t313 = t310 + t312;
-        let t314 = t0 * t309;
-        let t315 = t1 * t305;
-        let t316 = t314 - t315;
-        let t317 = t59 * t71;
-        let t318 = t56 * t56;
-        let t319 = t59 * t59;
-        let t320 = t318 - t319;
-        let t321 = t62 + t63;
-        let t322 = t70 + t296;
-        let t323 = t321 + t322;
-        let t324 = t73 - t317;
-        let t325 = t53 * t323;
-        let t326 = t52 * t324;
+        let t69 = t51 * t52;
+        let t70 = t64 + t69;
+        let t71 = t64 - t69;
+        let t72 = t65 + t67;
+        let t73 = t52 * t61;
+        let t74 = t62 + t73;
+        let t75 = t62 - t73;
+        let t76 = t65 + t66;
+        let t77 = t51 * t61;
+        let t78 = t63 + t77;
+        let t79 = t77 - t63;
+        let t80 = t5 * t44;
+        let t81 = t4 * t38;
+        let t82 = t4 * t44;
+        let t83 = t5 * t38;
+        let t84 = t80 - t81;
+        let t85 = t82 + t83;
+        let t86 = t5 * t51;
+        let t87 = t4 * t61;
+        let t88 = t4 * t51;
+        let t89 = t5 * t61;
+        let t90 = t86 - t87;
+        let t91 = t88 + t89;
+        let t92 = t5 * t62;
+        let t93 = t4 * t64;
+        let t94 = t4 * t62;
+        let t95 = t5 * t64;
+        let t96 = t92 - t93;
+        let t97 = t94 + t95;
+        let t98 = t91 * qd4;
+        let t99 = t90 * qd4;
+        let t100 = qd4 - t52;
+        let t101 = t96 - t98;
+        let t102 = t97 + t99;
+        let t103 = qdd4 - t63;
+        let t104 = t90 * t90;
+        let t105 = t91 * t91;
+        let t106 = t100 * t100;
+        let t107 = t105 + t106;
+        let t108 = t90 * t91;
+        let t109 = t103 + t108;
+        let t110 = t103 - t108;
+        let t111 = t104 + t106;
+        let t112 = t91 * t100;
+        let t113 = t101 + t112;
+        let t114 = t101 - t112;
+        let t115 = t104 + t105;
+        let t116 = t90 * t100;
+        let t117 = t102 + t116;
+        let t118 = t116 - t102;
+        let t119 = t109 * c2;
+        let t120 = t84 + t119;
+        let t121 = t111 * c2;
+        let t122 = t121 - t85;
+        let t123 = t114 * c2;
+        let t124 = t46 + t123;
+        let t125 = t7 * t120;
+        let t126 = t6 * t124;
+        let t127 = t6 * t120;
+        let t128 = t7 * t124;
+        let t129 = t125 - t126;
+        let t130 = t127 + t128;
+        let t131 = t7 * t90;
+        let t132 = t6 * t100;
+        let t133 = t6 * t90;
+        let t134 = t7 * t100;
+        let t135 = t131 + t132;
+        let t136 = t134 - t133;
+        let t137 = t7 * t101;
+        let t138 = t6 * t103;
+        let t139 = t6 * t101;
+        let t140 = t7 * t103;
+        let t141 = t137 + t138;
+        let t142 = t140 - t139;
+        let t143 = t136 * qd5;
+        let t144 = t135 * qd5;
+        let t145 = t91 + qd5;
+        let t146 = t141 + t143;
+        let t147 = t142 - t144;
+        let t148 = t102 + qdd5;
+        let t149 = t135 * t135;
+        let t150 = t136 * t136;
+        let t151 = t145 * t145;
+        let t152 = t150 + t151;
+        let t153 = t135 * t136;
+        let t154 = t153 - t148;
+        let t155 = t148 + t153;
+        let t156 = t149 + t151;
+        let t157 = t136 * t145;
+        let t158 = t157 - t146;
+        let t159 = t146 + t157;
+        let t160 = t149 + t150;
+        let t161 = t135 * t145;
+        let t162 = t161 - t147;
+        let t163 = t147 + t161;
+        let t164 = t9 * t129;
+        let t165 = t8 * t122;
+        let t166 = t8 * t129;
+        let t167 = t9 * t122;
+        let t168 = t164 - t165;
+        let t169 = t166 + t167;
+        let t170 = t9 * t135;
+        let t171 = t8 * t145;
+        let t172 = t8 * t135;
+        let t173 = t9 * t145;
+        let t174 = t170 + t171;
+        let t175 = t173 - t172;
+        let t176 = t9 * t146;
+        let t177 = t8 * t148;
+        let t178 = t8 * t146;
+        let t179 = t9 * t148;
+        let t180 = t176 + t177;
+        let t181 = t179 - t178;
+        let t182 = t175 * qd6;
+        let t183 = t174 * qd6;
+        let t184 = qd6 - t136;
+        let t185 = t180 + t182;
+        let t186 = t181 - t183;
+        let t187 = qdd6 - t147;
+        let t188 = t174 * t174;
+        let t189 = t175 * t175;
+        let t190 = t184 * t184;
+        let t191 = t189 + t190;
+        let t192 = t174 * t175;
+        let t193 = t192 - t187;
+        let t194 = t187 + t192;
+        let t195 = t188 + t190;
+        let t196 = t175 * t184;
+        let t197 = t196 - t185;
+        let t198 = t185 + t196;
+        let t199 = t188 + t189;
+        let t200 = t174 * t184;
+        let t201 = t200 - t186;
+        let t202 = t186 + t200;
+        let t203 = t193 * c3;
+        let t204 = t168 + t203;
+        let t205 = t195 * c3;
+        let t206 = t169 + t205;
+        let t207 = t198 * c3;
+        let t208 = t130 + t207;
+        let t209 = t11 * t204;
+        let t210 = t10 * t208;
+        let t211 = t10 * t204;
+        let t212 = t11 * t208;
+        let t213 = t209 - t210;
+        let t214 = t211 + t212;
+        let t215 = t11 * t174;
+        let t216 = t10 * t184;
+        let t217 = t10 * t174;
+        let t218 = t11 * t184;
+        let t219 = t215 - t216;
+        let t220 = t217 + t218;
+        let t221 = t11 * t185;
+        let t222 = t10 * t187;
+        let t223 = t10 * t185;
+        let t224 = t11 * t187;
+        let t225 = t221 - t222;
+        let t226 = t223 + t224;
+        let t227 = t220 * qd7;
+        let t228 = t219 * qd7;
+        let t229 = t175 + qd7;
+        let t230 = t225 - t227;
+        let t231 = t226 + t228;
+        let t232 = t186 + qdd7;
+        let t233 = t219 * t219;
+        let t234 = t220 * t220;
+        let t235 = t229 * t229;
+        let t236 = t234 + t235;
+        let t237 = t219 * t220;
+        let t238 = t232 + t237;
+        let t239 = t232 - t237;
+        let t240 = t233 + t235;
+        let t241 = t220 * t229;
+        let t242 = t230 + t241;
+        let t243 = t230 - t241;
+        let t244 = t233 + t234;
+        let t245 = t219 * t229;
+        let t246 = t231 + t245;
+        let t247 = t245 - t231;
+        let t248 = t0 * t3;
+        let t249 = t0 * t2;
+        let t250 = t5 * t248;
+        let t251 = t1 * t4;
+        let t252 = t4 * t248;
+        let t253 = t1 * t5;
+        let t254 = t250 - t251;
+        let t255 = t252 + t253;
+        let t256 = t2 * t5;
+        let t257 = t2 * t4;
+        let t258 = t7 * t254;
+        let t259 = t6 * t249;
+        let t260 = t6 * t254;
+        let t261 = t7 * t249;
+        let t262 = t258 - t259;
+        let t263 = t260 + t261;
+        let t264 = t7 * t256;
+        let t265 = t3 * t6;
+        let t266 = t6 * t256;
+        let t267 = t3 * t7;
+        let t268 = t264 + t265;
+        let t269 = t266 - t267;
+        let t270 = t4 * t7;
+        let t271 = t4 * t6;
+        let t272 = t9 * t262;
+        let t273 = t8 * t255;
+        let t274 = t8 * t262;
+        let t275 = t9 * t255;
+        let t276 = t272 + t273;
+        let t277 = t275 - t274;
+        let t278 = t9 * t268;
+        let t279 = t8 * t257;
+        let t280 = t8 * t268;
+        let t281 = t9 * t257;
+        let t282 = t278 + t279;
+        let t283 = t280 - t281;
+        let t284 = t9 * t270;
+        let t285 = t5 * t8;
+        let t286 = t8 * t270;
+        let t287 = t5 * t9;
+        let t288 = t285 - t284;
+        let t289 = t286 + t287;
+        let t290 = t6 * t9;
+        let t291 = t6 * t8;
+        let t292 = t11 * t276;
+        let t293 = t10 * t263;
+        let t294 = t10 * t276;
+        let t295 = t11 * t263;
+        let t296 = t292 - t293;
+        let t297 = t294 + t295;
+        let t298 = t11 * t282;
+        let t299 = t10 * t269;
+        let t300 = t10 * t282;
+        let t301 = t11 * t269;
+        let t302 = t299 - t298;
+        let t303 = t300 + t301;
+        let t304 = t11 * t288;
+        let t305 = t10 * t271;
+        let t306 = t10 * t288;
+        let t307 = t11 * t271;
+        let t308 = t304 + t305;
+        let t309 = t307 - t306;
+        let t310 = t11 * t290;
+        let t311 = t7 * t10;
+        let t312 = t10 * t290;
+        let t313 = t7 * t11;
+        let t314 = t310 + t311;
+        let t315 = t313 - t312;
+        let t316 = t8 * t11;
+        let t317 = t8 * t10;
+        let t318 = t5 * t249;
+        let t319 = t4 * t249;
+        let t320 = t3 * t5;
+        let t321 = t3 * t4;
+        let t322 = t318 * c1;
+        let t323 = t249 * c2;
+        let t324 = t322 + t323;
+        let t325 = t248 * c1;
+        let t326 = t254 * c2;
         let t327 = t325 + t326;
-        let t328 = t52 * t323;
-        let t329 = t53 * t324;
-        let t330 = t328 - t329;
-        let t331 = t12 * t327;
-        let t332 = t11 * t320;
-        let t333 = t331 + t332;
-        let t334 = t11 * t327;
-        let t335 = t12 * t320;
-        let t336 = t334 - t335;
-        let t337 = t0 * t333;
-        let t338 = t1 * t330;
-        let t339 = t338 - t337;
-        let t340 = t71 * t71;
-        let t341 = t340 - t318;
-        let t342 = t76 - t297;
-        let t343 = t73 + t317;
-        let t344 = t53 * t342;
-        let t345 = t52 * t341;
-        let t346 = t344 - t345;
-        let t347 = t52 * t342;
-        let t348 = t53 * t341;
-        let t349 = t347 + t348;
-        let t350 = t12 * t346;
-        let t351 = t11 * t343;
-        let t352 = t350 - t351;
-        let t353 = t11 * t346;
-        let t354 = t12 * t343;
-        let t355 = t353 + t354;
-        let t356 = t0 * t352;
-        let t357 = t1 * t349;
-        let t358 = t356 - t357;
-        let t359 = t319 - t340;
-        let t360 = t76 + t297;
-        let t361 = t296 - t70;
-        let t362 = t361 - t321;
-        let t363 = t53 * t359;
-        let t364 = t52 * t360;
-        let t365 = t363 - t364;
-        let t366 = t52 * t359;
-        let t367 = t53 * t360;
-        let t368 = t366 + t367;
-        let t369 = t12 * t365;
-        let t370 = t11 * t362;
-        let t371 = t369 - t370;
-        let t372 = t11 * t365;
-        let t373 = t12 * t362;
-        let t374 = t372 + t373;
-        let t375 = t0 * t371;
-        let t376 = t1 * t368;
-        let t377 = t375 - t376;
-        let t378 = t53 * t59;
-        let t379 = t71 * t378;
-        let t380 = t300 - t379;
-        let t381 = t52 * t59;
-        let t382 = t71 * t381;
-        let t383 = t304 + t382;
-        let t384 = t12 * t380;
-        let t385 = t11 * t76;
-        let t386 = t384 - t385;
-        let t387 = t11 * t380;
-        let t388 = t12 * t76;
-        let t389 = t387 + t388;
-        let t390 = t0 * t386;
-        let t391 = t1 * t383;
-        let t392 = t390 + t391;
-        let t393 = t319 + t340;
-        let t394 = t53 * t393;
-        let t395 = t347 + t394;
-        let t396 = t44 * t53;
-        let t397 = t12 * t52;
-        let t398 = t44 * t397;
-        let t399 = t11 * t68;
-        let t400 = t11 * t52;
-        let t401 = t44 * t400;
-        let t402 = t12 * t68;
-        let t403 = t11 * t395;
-        let t404 = t12 * t323;
-        let t405 = t12 * t395;
-        let t406 = t11 * t323;
-        let t407 = t403 - t404;
-        let t408 = t407 * c1;
-        let t409 = t399 + t408;
-        let t410 = t409 - t398;
-        let t411 = t405 + t406;
-        let t412 = t411 * c1;
-        let t413 = t402 + t412;
-        let t414 = t401 + t413;
-        let t415 = t0 * t410;
-        let t416 = t1 * t53;
-        let t417 = t44 * t416;
-        let t418 = t415 - t417;
-        let t419 = t318 + t340;
-        let t420 = t65 - t64;
-        let t421 = t52 * t419;
-        let t422 = t421 - t367;
-        let t423 = t44 * t52;
-        let t424 = t12 * t44;
-        let t425 = t53 * t424;
-        let t426 = t11 * t420;
-        let t427 = t11 * t44;
-        let t428 = t53 * t427;
-        let t429 = t12 * t420;
-        let t430 = t11 * t422;
-        let t431 = t12 * t324;
-        let t432 = t12 * t422;
-        let t433 = t11 * t324;
-        let t434 = t430 + t431;
-        let t435 = t434 * c1;
-        let t436 = t426 + t435;
-        let t437 = t425 + t436;
-        let t438 = t433 - t432;
-        let t439 = t438 * c1;
-        let t440 = t439 - t429;
-        let t441 = t428 + t440;
-        let t442 = t0 * t437;
-        let t443 = t52 * t282;
-        let t444 = t443 - t442;
-        let t445 = t81 * t112;
-        let t446 = t81 * t84;
-        let t447 = t78 * t114;
-        let t448 = t77 * t81;
-        let t449 = t112 * t448;
-        let t450 = t447 - t449;
-        let t451 = t77 * t114;
-        let t452 = t78 * t81;
-        let t453 = t112 * t452;
-        let t454 = t451 + t453;
-        let t455 = t53 * t450;
-        let t456 = t52 * t81;
-        let t457 = t84 * t456;
-        let t458 = t455 - t457;
-        let t459 = t52 * t450;
-        let t460 = t53 * t81;
-        let t461 = t84 * t460;
-        let t462 = t459 + t461;
-        let t463 = t12 * t458;
-        let t464 = t11 * t454;
-        let t465 = t463 - t464;
-        let t466 = t11 * t458;
-        let t467 = t12 * t454;
-        let t468 = t466 + t467;
-        let t469 = t0 * t465;
-        let t470 = t1 * t462;
-        let t471 = t469 - t470;
-        let t472 = t84 * t112;
-        let t473 = t81 * t81;
-        let t474 = t84 * t84;
-        let t475 = t473 - t474;
-        let t476 = t88 - t87;
-        let t477 = t111 + t445;
-        let t478 = t476 - t477;
-        let t479 = t114 + t472;
-        let t480 = t78 * t478;
-        let t481 = t77 * t479;
-        let t482 = t480 - t481;
-        let t483 = t77 * t478;
-        let t484 = t78 * t479;
-        let t485 = t483 + t484;
-        let t486 = t53 * t482;
-        let t487 = t52 * t475;
-        let t488 = t486 + t487;
-        let t489 = t52 * t482;
-        let t490 = t53 * t475;
-        let t491 = t490 - t489;
-        let t492 = t12 * t488;
-        let t493 = t11 * t485;
-        let t494 = t492 - t493;
-        let t495 = t11 * t488;
-        let t496 = t12 * t485;
-        let t497 = t495 + t496;
-        let t498 = t0 * t494;
-        let t499 = t1 * t491;
-        let t500 = t498 + t499;
-        let t501 = t112 * t112;
-        let t502 = t501 - t473;
-        let t503 = t117 + t446;
-        let t504 = t114 - t472;
-        let t505 = t78 * t503;
-        let t506 = t77 * t502;
-        let t507 = t505 - t506;
-        let t508 = t77 * t503;
-        let t509 = t78 * t502;
-        let t510 = t508 + t509;
-        let t511 = t53 * t507;
-        let t512 = t52 * t504;
-        let t513 = t511 + t512;
-        let t514 = t52 * t507;
-        let t515 = t53 * t504;
-        let t516 = t515 - t514;
-        let t517 = t12 * t513;
-        let t518 = t11 * t510;
-        let t519 = t517 - t518;
-        let t520 = t11 * t513;
-        let t521 = t12 * t510;
-        let t522 = t520 + t521;
-        let t523 = t0 * t519;
-        let t524 = t1 * t516;
-        let t525 = t523 + t524;
-        let t526 = t474 - t501;
-        let t527 = t117 - t446;
-        let t528 = t445 - t111;
-        let t529 = t476 + t528;
-        let t530 = t78 * t526;
-        let t531 = t77 * t527;
-        let t532 = t530 - t531;
-        let t533 = t77 * t526;
-        let t534 = t78 * t527;
-        let t535 = t533 + t534;
-        let t536 = t53 * t532;
-        let t537 = t52 * t529;
-        let t538 = t536 + t537;
-        let t539 = t52 * t532;
-        let t540 = t53 * t529;
-        let t541 = t540 - t539;
-        let t542 = t12 * t538;
-        let t543 = t11 * t535;
-        let t544 = t542 - t543;
-        let t545 = t11 * t538;
-        let t546 = t12 * t535;
-        let t547 = t545 + t546;
-        let t548 = t0 * t544;
-        let t549 = t1 * t541;
-        let t550 = t548 + t549;
-        let t551 = t78 * t84;
-        let t552 = t112 * t551;
-        let t553 = t449 + t552;
-        let t554 = t77 * t84;
-        let t555 = t112 * t554;
-        let t556 = t555 - t453;
-        let t557 = t53 * t553;
-        let t558 = t52 * t117;
-        let t559 = t557 + t558;
-        let t560 = t52 * t553;
-        let t561 = t53 * t117;
-        let t562 = t561 - t560;
-        let t563 = t12 * t559;
-        let t564 = t11 * t556;
-        let t565 = t563 - t564;
-        let t566 = t11 * t559;
-        let t567 = t12 * t556;
-        let t568 = t566 + t567;
-        let t569 = t0 * t565;
-        let t570 = t1 * t562;
-        let t571 = t569 + t570;
-        let t572 = t474 + t501;
-        let t573 = t78 * t572;
-        let t574 = t508 + t573;
-        let t575 = t77 * t572;
-        let t576 = t505 - t575;
-        let t577 = t77 * t100;
-        let t578 = t78 * t100;
-        let t579 = t576 * c3;
-        let t580 = t577 + t579;
-        let t581 = t574 * c3;
-        let t582 = t578 - t581;
-        let t583 = t53 * t574;
-        let t584 = t52 * t478;
-        let t585 = t583 + t584;
-        let t586 = t53 * t580;
-        let t587 = t52 * t109;
-        let t588 = t587 - t586;
-        let t589 = t52 * t580;
-        let t590 = t53 * t109;
-        let t591 = t589 + t590;
-        let t592 = t12 * t588;
-        let t593 = t11 * t582;
-        let t594 = t11 * t588;
-        let t595 = t12 * t582;
-        let t596 = t11 * t585;
-        let t597 = t12 * t576;
-        let t598 = t12 * t585;
-        let t599 = t11 * t576;
-        let t600 = t596 - t597;
-        let t601 = t600 * c1;
-        let t602 = t601 - t593;
-        let t603 = t592 + t602;
-        let t604 = t598 + t599;
-        let t605 = t604 * c1;
-        let t606 = t605 - t595;
-        let t607 = t606 - t594;
-        let t608 = t0 * t603;
-        let t609 = t1 * t591;
-        let t610 = t608 + t609;
-        let t611 = t473 + t501;
-        let t612 = t77 * t611;
-        let t613 = t612 - t534;
-        let t614 = t78 * t611;
-        let t615 = t531 + t614;
-        let t616 = t615 * c3;
-        let t617 = t616 - t578;
-        let t618 = t613 * c3;
-        let t619 = t618 - t577;
-        let t620 = t53 * t613;
-        let t621 = t52 * t479;
-        let t622 = t620 + t621;
-        let t623 = t53 * t617;
-        let t624 = t52 * t106;
-        let t625 = t623 - t624;
-        let t626 = t52 * t617;
-        let t627 = t53 * t106;
-        let t628 = t626 + t627;
-        let t629 = t12 * t625;
-        let t630 = t11 * t619;
-        let t631 = t11 * t625;
-        let t632 = t12 * t619;
-        let t633 = t11 * t622;
-        let t634 = t12 * t615;
-        let t635 = t12 * t622;
-        let t636 = t11 * t615;
-        let t637 = t634 - t633;
-        let t638 = t637 * c1;
-        let t639 = t638 - t630;
-        let t640 = t629 + t639;
-        let t641 = t635 + t636;
-        let t642 = t641 * c1;
-        let t643 = t632 + t642;
-        let t644 = t631 + t643;
-        let t645 = t0 * t640;
-        let t646 = t1 * t628;
-        let t647 = t645 - t646;
-        let t648 = t122 * t138;
-        let t649 = t122 * t125;
-        let t650 = t119 * t140;
-        let t651 = t118 * t122;
-        let t652 = t138 * t651;
-        let t653 = t650 - t652;
-        let t654 = t118 * t140;
-        let t655 = t119 * t122;
-        let t656 = t138 * t655;
-        let t657 = t654 + t656;
-        let t658 = t78 * t653;
-        let t659 = t77 * t122;
-        let t660 = t125 * t659;
-        let t661 = t658 - t660;
-        let t662 = t77 * t653;
-        let t663 = t78 * t122;
-        let t664 = t125 * t663;
-        let t665 = t662 + t664;
-        let t666 = t53 * t661;
-        let t667 = t52 * t657;
-        let t668 = t666 + t667;
-        let t669 = t52 * t661;
-        let t670 = t53 * t657;
-        let t671 = t670 - t669;
-        let t672 = t12 * t668;
-        let t673 = t11 * t665;
-        let t674 = t672 - t673;
-        let t675 = t11 * t668;
-        let t676 = t12 * t665;
-        let t677 = t675 + t676;
-        let t678 = t0 * t674;
-        let t679 = t1 * t671;
-        let t680 = t678 + t679;
-        let t681 = t125 * t138;
-        let t682 = t122 * t122;
-        let t683 = t125 * t125;
-        let t684 = t682 - t683;
-        let t685 = t129 - t128;
-        let t686 = t137 + t648;
-        let t687 = t685 - t686;
-        let t688 = t140 + t681;
-        let t689 = t119 * t687;
-        let t690 = t118 * t688;
-        let t691 = t689 - t690;
-        let t692 = t118 * t687;
-        let t693 = t119 * t688;
-        let t694 = t692 + t693;
-        let t695 = t78 * t691;
-        let t696 = t77 * t684;
-        let t697 = t695 + t696;
-        let t698 = t77 * t691;
-        let t699 = t78 * t684;
-        let t700 = t698 - t699;
-        let t701 = t53 * t697;
-        let t702 = t52 * t694;
-        let t703 = t701 + t702;
-        let t704 = t52 * t697;
-        let t705 = t53 * t694;
-        let t706 = t705 - t704;
-        let t707 = t12 * t703;
-        let t708 = t11 * t700;
-        let t709 = t707 - t708;
-        let t710 = t11 * t703;
-        let t711 = t12 * t700;
-        let t712 = t710 + t711;
-        let t713 = t0 * t709;
-        let t714 = t1 * t706;
-        let t715 = t713 + t714;
-        let t716 = t138 * t138;
-        let t717 = t716 - t682;
-        let t718 = t143 + t649;
-        let t719 = t140 - t681;
-        let t720 = t119 * t718;
-        let t721 = t118 * t717;
-        let t722 = t720 - t721;
-        let t723 = t118 * t718;
-        let t724 = t119 * t717;
-        let t725 = t723 + t724;
-        let t726 = t78 * t722;
-        let t727 = t77 * t719;
-        let t728 = t726 + t727;
-        let t729 = t77 * t722;
-        let t730 = t78 * t719;
-        let t731 = t729 - t730;
-        let t732 = t53 * t728;
-        let t733 = t52 * t725;
-        let t734 = t732 + t733;
-        let t735 = t52 * t728;
-        let t736 = t53 * t725;
-        let t737 = t736 - t735;
-        let t738 = t12 * t734;
-        let t739 = t11 * t731;
-        let t740 = t738 - t739;
-        let t741 = t11 * t734;
-        let t742 = t12 * t731;
-        let t743 = t741 + t742;
-        let t744 = t0 * t740;
-        let t745 = t1 * t737;
-        let t746 = t744 + t745;
-        let t747 = t683 - t716;
-        let t748 = t143 - t649;
-        let t749 = t648 - t137;
-        let t750 = t685 + t749;
-        let t751 = t119 * t747;
-        let t752 = t118 * t748;
-        let t753 = t751 - t752;
-        let t754 = t118 * t747;
-        let t755 = t119 * t748;
-        let t756 = t754 + t755;
-        let t757 = t78 * t753;
-        let t758 = t77 * t750;
-        let t759 = t757 + t758;
-        let t760 = t77 * t753;
-        let t761 = t78 * t750;
-        let t762 = t760 - t761;
-        let t763 = t53 * t759;
-        let t764 = t52 * t756;
-        let t765 = t763 + t764;
-        let t766 = t52 * t759;
-        let t767 = t53 * t756;
-        let t768 = t767 - t766;
-        let t769 = t12 * t765;
-        let t770 = t11 * t762;
-        let t771 = t769 - t770;
-        let t772 = t11 * t765;
-        let t773 = t12 * t762;
-        let t774 = t772 + t773;
-        let t775 = t0 * t771;
-        let t776 = t1 * t768;
-        let t777 = t775 + t776;
-        let t778 = t119 * t125;
-        let t779 = t138 * t778;
-        let t780 = t652 + t779;
-        let t781 = t118 * t125;
-        let t782 = t138 * t781;
-        let t783 = t782 - t656;
-        let t784 = t78 * t780;
-        let t785 = t77 * t143;
-        let t786 = t784 + t785;
-        let t787 = t77 * t780;
-        let t788 = t78 * t143;
-        let t789 = t787 - t788;
-        let t790 = t53 * t786;
-        let t791 = t52 * t783;
-        let t792 = t790 + t791;
-        let t793 = t52 * t786;
-        let t794 = t53 * t783;
+        let t328 = t7 * t324;
+        let t329 = t6 * t327;
+        let t330 = t6 * t324;
+        let t331 = t7 * t327;
+        let t332 = t328 + t329;
+        let t333 = t330 - t331;
+        let t334 = t320 * c1;
+        let t335 = t3 * c2;
+        let t336 = t334 + t335;
+        let t337 = t2 * c1;
+        let t338 = t256 * c2;
+        let t339 = t337 + t338;
+        let t340 = t7 * t336;
+        let t341 = t6 * t339;
+        let t342 = t6 * t336;
+        let t343 = t7 * t339;
+        let t344 = t341 - t340;
+        let t345 = t342 + t343;
+        let t346 = t9 * t332;
+        let t347 = t8 * t319;
+        let t348 = t8 * t332;
+        let t349 = t9 * t319;
+        let t350 = t347 * c1;
+        let t351 = t346 + t350;
+        let t352 = t349 * c1;
+        let t353 = t348 - t352;
+        let t354 = t9 * t344;
+        let t355 = t8 * t321;
+        let t356 = t8 * t344;
+        let t357 = t9 * t321;
+        let t358 = t355 * c1;
+        let t359 = t354 - t358;
+        let t360 = t357 * c1;
+        let t361 = t356 + t360;
+        let t362 = t9 * t271;
+        let t363 = t8 * t271;
+        let t364 = t7 * t9;
+        let t365 = t7 * t8;
+        let t366 = t263 * c3;
+        let t367 = t351 + t366;
+        let t368 = t276 * c3;
+        let t369 = t368 - t333;
+        let t370 = t11 * t367;
+        let t371 = t10 * t369;
+        let t372 = t10 * t367;
+        let t373 = t11 * t369;
+        let t374 = t370 + t371;
+        let t375 = t372 - t373;
+        let t376 = t269 * c3;
+        let t377 = t359 + t376;
+        let t378 = t282 * c3;
+        let t379 = t345 + t378;
+        let t380 = t11 * t377;
+        let t381 = t10 * t379;
+        let t382 = t10 * t377;
+        let t383 = t11 * t379;
+        let t384 = t380 + t381;
+        let t385 = t383 - t382;
+        let t386 = t362 * c2;
+        let t387 = t271 * c3;
+        let t388 = t386 + t387;
+        let t389 = t270 * c2;
+        let t390 = t288 * c3;
+        let t391 = t390 - t389;
+        let t392 = t11 * t388;
+        let t393 = t10 * t391;
+        let t394 = t10 * t388;
+        let t395 = t11 * t391;
+        let t396 = t392 - t393;
+        let t397 = t394 + t395;
+        let t398 = t364 * c2;
+        let t399 = t7 * c3;
+        let t400 = t398 + t399;
+        let t401 = t6 * c2;
+        let t402 = t290 * c3;
+        let t403 = t401 + t402;
+        let t404 = t11 * t400;
+        let t405 = t10 * t403;
+        let t406 = t10 * t400;
+        let t407 = t11 * t403;
+        let t408 = t404 - t405;
+        let t409 = t406 + t407;
+        let t410 = t30 - t27;
+        let t411 = t23 - t30;
+        let t412 = t27 - t23;
+        let t413 = t0 * t18;
+        let t414 = t1 * t17;
+        let t415 = t413 + t414;
+        let t416 = -t24;
+        let t417 = t0 * t31;
+        let t418 = t1 * t29;
+        let t419 = t418 - t417;
+        let t420 = t0 * t26;
+        let t421 = t1 * t411;
+        let t422 = t420 + t421;
+        let t423 = -t28;
+        let t424 = t0 * t410;
+        let t425 = t1 * t25;
+        let t426 = t424 - t425;
+        let t427 = t0 * t16;
+        let t428 = t427 - t414;
+        let t429 = -t33;
+        let t430 = t76 - t72;
+        let t431 = t68 - t76;
+        let t432 = t72 - t68;
+        let t433 = t62 * t248;
+        let t434 = t77 * t249;
+        let t435 = t1 * t69;
+        let t436 = t435 - t434;
+        let t437 = t433 + t436;
+        let t438 = t2 * t62;
+        let t439 = t3 * t77;
+        let t440 = t438 + t439;
+        let t441 = -t440;
+        let t442 = t78 * t248;
+        let t443 = t75 * t249;
+        let t444 = t1 * t432;
+        let t445 = t444 - t443;
+        let t446 = t445 - t442;
+        let t447 = t2 * t78;
+        let t448 = t3 * t75;
+        let t449 = t447 - t448;
+        let t450 = t71 * t248;
+        let t451 = t249 * t431;
+        let t452 = t1 * t74;
+        let t453 = t452 - t451;
+        let t454 = t450 + t453;
+        let t455 = t2 * t71;
+        let t456 = t3 * t431;
+        let t457 = t455 + t456;
+        let t458 = -t457;
+        let t459 = t248 * t430;
+        let t460 = t70 * t249;
+        let t461 = t1 * t79;
+        let t462 = t461 - t460;
+        let t463 = t459 + t462;
+        let t464 = t2 * t430;
+        let t465 = t3 * t70;
+        let t466 = t464 + t465;
+        let t467 = -t466;
+        let t468 = t73 * t248;
+        let t469 = t1 * t64;
+        let t470 = t434 + t469;
+        let t471 = t470 - t468;
+        let t472 = t2 * t73;
+        let t473 = t439 + t472;
+        let t474 = t68 * t249;
+        let t475 = t38 * t249;
+        let t476 = t1 * t46;
+        let t477 = t474 - t450;
+        let t478 = t475 - t476;
+        let t479 = t477 * c1;
+        let t480 = t478 + t479;
+        let t481 = t3 * t68;
+        let t482 = t3 * t38;
+        let t483 = t455 + t481;
+        let t484 = t483 * c1;
+        let t485 = t482 + t484;
+        let t486 = -t46;
+        let t487 = t38 * t248;
+        let t488 = t72 * t248;
+        let t489 = t1 * t44;
+        let t490 = t487 - t489;
+        let t491 = t460 + t488;
+        let t492 = t491 * c1;
+        let t493 = t490 + t492;
+        let t494 = t2 * t38;
+        let t495 = t2 * t72;
+        let t496 = t465 - t495;
+        let t497 = t496 * c1;
+        let t498 = t497 - t494;
+        let t499 = -t44;
+        let t500 = t115 - t111;
+        let t501 = t107 - t115;
+        let t502 = t111 - t107;
+        let t503 = t101 * t254;
+        let t504 = t116 * t255;
+        let t505 = t108 * t249;
+        let t506 = t504 + t505;
+        let t507 = t503 - t506;
+        let t508 = t101 * t256;
+        let t509 = t116 * t257;
+        let t510 = t3 * t108;
+        let t511 = t509 - t510;
+        let t512 = t511 - t508;
+        let t513 = t4 * t101;
+        let t514 = t5 * t116;
+        let t515 = t513 + t514;
+        let t516 = -t515;
+        let t517 = t117 * t254;
+        let t518 = t114 * t255;
+        let t519 = t249 * t502;
+        let t520 = t518 + t519;
+        let t521 = t517 + t520;
+        let t522 = t117 * t256;
+        let t523 = t114 * t257;
+        let t524 = t3 * t502;
+        let t525 = t523 - t524;
+        let t526 = t522 + t525;
+        let t527 = t4 * t117;
+        let t528 = t5 * t114;
+        let t529 = t527 - t528;
+        let t530 = -t521;
+        let t531 = t110 * t254;
+        let t532 = t255 * t501;
+        let t533 = t113 * t249;
+        let t534 = t532 + t533;
+        let t535 = t531 - t534;
+        let t536 = t110 * t256;
+        let t537 = t257 * t501;
+        let t538 = t3 * t113;
+        let t539 = t537 - t538;
+        let t540 = t539 - t536;
+        let t541 = t4 * t110;
+        let t542 = t5 * t501;
+        let t543 = t541 + t542;
+        let t544 = -t543;
+        let t545 = t254 * t500;
+        let t546 = t109 * t255;
+        let t547 = t118 * t249;
+        let t548 = t546 + t547;
+        let t549 = t545 - t548;
+        let t550 = t256 * t500;
+        let t551 = t109 * t257;
+        let t552 = t3 * t118;
+        let t553 = t551 - t552;
+        let t554 = t553 - t550;
+        let t555 = t4 * t500;
+        let t556 = t5 * t109;
+        let t557 = t555 + t556;
+        let t558 = -t557;
+        let t559 = t112 * t254;
+        let t560 = t103 * t249;
+        let t561 = t504 - t560;
+        let t562 = t561 - t559;
+        let t563 = t112 * t256;
+        let t564 = t3 * t103;
+        let t565 = t509 + t564;
+        let t566 = t563 - t565;
+        let t567 = t4 * t112;
+        let t568 = t514 + t567;
+        let t569 = t107 * t318;
+        let t570 = t46 * t255;
+        let t571 = t110 * t319;
+        let t572 = t85 * t249;
+        let t573 = t117 * t248;
+        let t574 = t571 - t573;
+        let t575 = t569 + t574;
+        let t576 = t572 - t570;
+        let t577 = t575 * c1;
+        let t578 = t576 + t577;
+        let t579 = t107 * t320;
+        let t580 = t46 * t257;
+        let t581 = t110 * t321;
+        let t582 = t3 * t85;
+        let t583 = t2 * t117;
+        let t584 = t581 + t583;
+        let t585 = t579 + t584;
+        let t586 = t580 + t582;
+        let t587 = t585 * c1;
+        let t588 = t586 + t587;
+        let t589 = t5 * t46;
+        let t590 = -t589;
+        let t591 = -t85;
+        let t592 = t46 * t254;
+        let t593 = t109 * t318;
+        let t594 = t111 * t319;
+        let t595 = t84 * t249;
+        let t596 = t114 * t248;
+        let t597 = t595 - t592;
+        let t598 = t594 + t596;
+        let t599 = t593 - t598;
+        let t600 = t599 * c1;
+        let t601 = t597 + t600;
+        let t602 = t46 * t256;
+        let t603 = t109 * t320;
+        let t604 = t111 * t321;
+        let t605 = t3 * t84;
+        let t606 = t2 * t114;
+        let t607 = t602 + t605;
+        let t608 = t606 - t604;
+        let t609 = t603 + t608;
+        let t610 = t609 * c1;
+        let t611 = t607 + t610;
+        let t612 = t4 * t46;
+        let t613 = -t84;
+        let t614 = t160 - t156;
+        let t615 = t152 - t160;
+        let t616 = t156 - t152;
+        let t617 = t146 * t262;
+        let t618 = t161 * t263;
+        let t619 = t153 * t255;
+        let t620 = t618 + t619;
+        let t621 = t617 - t620;
+        let t622 = t146 * t268;
+        let t623 = t161 * t269;
+        let t624 = t153 * t257;
+        let t625 = t623 + t624;
+        let t626 = t625 - t622;
+        let t627 = t146 * t270;
+        let t628 = t161 * t271;
+        let t629 = t5 * t153;
+        let t630 = t628 - t629;
+        let t631 = t630 - t627;
+        let t632 = t6 * t146;
+        let t633 = t7 * t161;
+        let t634 = t632 + t633;
+        let t635 = -t153;
+        let t636 = t162 * t262;
+        let t637 = t159 * t263;
+        let t638 = t255 * t616;
+        let t639 = t638 - t637;
+        let t640 = t639 - t636;
+        let t641 = t162 * t268;
+        let t642 = t159 * t269;
+        let t643 = t257 * t616;
+        let t644 = t642 - t643;
+        let t645 = t641 + t644;
+        let t646 = t162 * t270;
+        let t647 = t159 * t271;
+        let t648 = t5 * t616;
+        let t649 = t647 + t648;
+        let t650 = t646 + t649;
+        let t651 = t6 * t162;
+        let t652 = t7 * t159;
+        let t653 = t652 - t651;
+        let t654 = t155 * t262;
+        let t655 = t263 * t615;
+        let t656 = t158 * t255;
+        let t657 = t655 + t656;
+        let t658 = t654 - t657;
+        let t659 = t155 * t268;
+        let t660 = t269 * t615;
+        let t661 = t158 * t257;
+        let t662 = t660 + t661;
+        let t663 = t662 - t659;
+        let t664 = t155 * t270;
+        let t665 = t271 * t615;
+        let t666 = t5 * t158;
+        let t667 = t665 - t666;
+        let t668 = t667 - t664;
+        let t669 = t6 * t155;
+        let t670 = t7 * t615;
+        let t671 = t669 + t670;
+        let t672 = -t158;
+        let t673 = t262 * t614;
+        let t674 = t154 * t263;
+        let t675 = t163 * t255;
+        let t676 = t674 + t675;
+        let t677 = t673 + t676;
+        let t678 = t268 * t614;
+        let t679 = t154 * t269;
+        let t680 = t163 * t257;
+        let t681 = t679 + t680;
+        let t682 = t678 + t681;
+        let t683 = t270 * t614;
+        let t684 = t154 * t271;
+        let t685 = t5 * t163;
+        let t686 = t685 - t684;
+        let t687 = t686 - t683;
+        let t688 = t6 * t614;
+        let t689 = t7 * t154;
+        let t690 = t688 - t689;
+        let t691 = -t682;
+        let t692 = t157 * t262;
+        let t693 = t148 * t255;
+        let t694 = t618 + t693;
+        let t695 = t692 + t694;
+        let t696 = t157 * t268;
+        let t697 = t148 * t257;
+        let t698 = t623 + t697;
+        let t699 = t696 + t698;
+        let t700 = t157 * t270;
+        let t701 = t5 * t148;
+        let t702 = t701 - t628;
+        let t703 = t702 - t700;
+        let t704 = t6 * t157;
+        let t705 = t704 - t633;
+        let t706 = -t699;
+        let t707 = t152 * t332;
+        let t708 = t122 * t263;
+        let t709 = t155 * t333;
+        let t710 = t130 * t255;
+        let t711 = t162 * t319;
+        let t712 = t707 - t708;
+        let t713 = t709 - t710;
+        let t714 = t712 + t713;
+        let t715 = t711 * c1;
+        let t716 = t714 - t715;
+        let t717 = t152 * t344;
+        let t718 = t122 * t269;
+        let t719 = t155 * t345;
+        let t720 = t130 * t257;
+        let t721 = t162 * t321;
+        let t722 = t718 - t717;
+        let t723 = t719 + t720;
+        let t724 = t722 + t723;
+        let t725 = t721 * c1;
+        let t726 = t724 - t725;
+        let t727 = t152 * t271;
+        let t728 = t122 * t271;
+        let t729 = t5 * t130;
+        let t730 = t664 - t727;
+        let t731 = t728 - t729;
+        let t732 = t730 * c2;
+        let t733 = t731 + t732;
+        let t734 = t7 * t152;
+        let t735 = t7 * t122;
+        let t736 = t669 + t734;
+        let t737 = t736 * c2;
+        let t738 = t735 - t737;
+        let t739 = -t130;
+        let t740 = t122 * t262;
+        let t741 = t154 * t332;
+        let t742 = t156 * t333;
+        let t743 = t129 * t255;
+        let t744 = t159 * t319;
+        let t745 = t740 + t741;
+        let t746 = t742 + t743;
+        let t747 = t745 + t746;
+        let t748 = t744 * c1;
+        let t749 = t747 + t748;
+        let t750 = t122 * t268;
+        let t751 = t154 * t344;
+        let t752 = t156 * t345;
+        let t753 = t129 * t257;
+        let t754 = t159 * t321;
+        let t755 = t750 + t751;
+        let t756 = t753 - t752;
+        let t757 = t755 + t756;
+        let t758 = t754 * c1;
+        let t759 = t757 - t758;
+        let t760 = t122 * t270;
+        let t761 = t156 * t270;
+        let t762 = t5 * t129;
+        let t763 = t760 - t762;
+        let t764 = t684 - t761;
+        let t765 = t764 * c2;
+        let t766 = t763 + t765;
+        let t767 = t6 * t122;
+        let t768 = t6 * t156;
+        let t769 = t689 + t768;
+        let t770 = t769 * c2;
+        let t771 = t770 - t767;
+        let t772 = -t749;
+        let t773 = -t129;
+        let t774 = t199 - t195;
+        let t775 = t191 - t199;
+        let t776 = t195 - t191;
+        let t777 = t185 * t276;
+        let t778 = t200 * t277;
+        let t779 = t192 * t263;
+        let t780 = t778 - t779;
+        let t781 = t777 + t780;
+        let t782 = t185 * t282;
+        let t783 = t200 * t283;
+        let t784 = t192 * t269;
+        let t785 = t783 + t784;
+        let t786 = t785 - t782;
+        let t787 = t185 * t288;
+        let t788 = t200 * t289;
+        let t789 = t192 * t271;
+        let t790 = t788 + t789;
+        let t791 = t787 + t790;
+        let t792 = t185 * t290;
+        let t793 = t200 * t291;
+        let t794 = t7 * t192;
         let t795 = t794 - t793;
-        let t796 = t12 * t792;
-        let t797 = t11 * t789;
-        let t798 = t796 - t797;
-        let t799 = t11 * t792;
-        let t800 = t12 * t789;
-        let t801 = t799 + t800;
-        let t802 = t0 * t798;
-        let t803 = t1 * t795;
+        let t796 = t792 + t795;
+        let t797 = t8 * t185;
+        let t798 = t9 * t200;
+        let t799 = t797 + t798;
+        let t800 = -t192;
+        let t801 = t201 * t276;
+        let t802 = t198 * t277;
+        let t803 = t263 * t776;
         let t804 = t802 + t803;
-        let t805 = t683 + t716;
-        let t806 = t119 * t805;
-        let t807 = t723 + t806;
-        let t808 = t109 * t119;
-        let t809 = t78 * t807;
-        let t810 = t77 * t687;
-        let t811 = t809 + t810;
-        let t812 = t118 * t805;
-        let t813 = t812 - t720;
-        let t814 = t77 * t807;
-        let t815 = t78 * t687;
-        let t816 = t815 - t814;
-        let t817 = t78 * t109;
-        let t818 = t118 * t817;
-        let t819 = t77 * t135;
-        let t820 = t77 * t109;
-        let t821 = t118 * t820;
-        let t822 = t78 * t135;
-        let t823 = t816 * c3;
-        let t824 = t819 + t823;
-        let t825 = t818 + t824;
-        let t826 = t811 * c3;
-        let t827 = t822 - t826;
-        let t828 = t827 - t821;
-        let t829 = t53 * t811;
-        let t830 = t52 * t813;
-        let t831 = t829 + t830;
-        let t832 = t53 * t825;
-        let t833 = t119 * t587;
-        let t834 = t833 - t832;
-        let t835 = t52 * t825;
-        let t836 = t119 * t590;
-        let t837 = t835 + t836;
-        let t838 = t12 * t834;
-        let t839 = t11 * t828;
-        let t840 = t11 * t834;
-        let t841 = t12 * t828;
-        let t842 = t11 * t831;
-        let t843 = t12 * t816;
-        let t844 = t12 * t831;
-        let t845 = t11 * t816;
-        let t846 = t842 - t843;
-        let t847 = t846 * c1;
-        let t848 = t847 - t839;
-        let t849 = t838 + t848;
-        let t850 = t844 + t845;
-        let t851 = t850 * c1;
-        let t852 = t851 - t841;
-        let t853 = t852 - t840;
-        let t854 = t0 * t849;
-        let t855 = t1 * t837;
-        let t856 = t854 + t855;
-        let t857 = t682 + t716;
-        let t858 = t118 * t857;
-        let t859 = t858 - t755;
-        let t860 = t109 * t118;
-        let t861 = t78 * t859;
-        let t862 = t77 * t688;
-        let t863 = t861 + t862;
-        let t864 = t119 * t857;
-        let t865 = t752 + t864;
-        let t866 = t77 * t859;
-        let t867 = t78 * t688;
-        let t868 = t866 - t867;
-        let t869 = t78 * t119;
-        let t870 = t109 * t869;
-        let t871 = t77 * t132;
-        let t872 = t77 * t119;
-        let t873 = t109 * t872;
-        let t874 = t78 * t132;
-        let t875 = t868 * c3;
-        let t876 = t871 + t875;
-        let t877 = t870 + t876;
-        let t878 = t863 * c3;
-        let t879 = t874 + t878;
-        let t880 = t879 - t873;
-        let t881 = t53 * t863;
-        let t882 = t52 * t865;
-        let t883 = t881 - t882;
-        let t884 = t53 * t877;
-        let t885 = t52 * t118;
-        let t886 = t109 * t885;
-        let t887 = t884 + t886;
-        let t888 = t52 * t877;
-        let t889 = t53 * t118;
-        let t890 = t109 * t889;
-        let t891 = t888 - t890;
-        let t892 = t12 * t887;
-        let t893 = t11 * t880;
-        let t894 = t11 * t887;
-        let t895 = t12 * t880;
-        let t896 = t11 * t883;
-        let t897 = t12 * t868;
-        let t898 = t12 * t883;
-        let t899 = t11 * t868;
-        let t900 = t896 + t897;
-        let t901 = t900 * c1;
-        let t902 = t893 + t901;
-        let t903 = t892 + t902;
-        let t904 = t899 - t898;
-        let t905 = t904 * c1;
-        let t906 = t905 - t895;
-        let t907 = t894 + t906;
-        let t908 = t0 * t903;
-        let t909 = t1 * t891;
-        let t910 = t909 - t908;
-        let t911 = t148 * t176;
-        let t912 = t148 * t151;
-        let t913 = t145 * t178;
-        let t914 = t144 * t148;
-        let t915 = t176 * t914;
-        let t916 = t913 - t915;
-        let t917 = t144 * t178;
-        let t918 = t145 * t148;
-        let t919 = t176 * t918;
-        let t920 = t917 + t919;
-        let t921 = t119 * t916;
-        let t922 = t118 * t148;
-        let t923 = t151 * t922;
-        let t924 = t921 - t923;
-        let t925 = t118 * t916;
-        let t926 = t119 * t148;
-        let t927 = t151 * t926;
-        let t928 = t925 + t927;
-        let t929 = t78 * t924;
-        let t930 = t77 * t920;
-        let t931 = t929 - t930;
-        let t932 = t77 * t924;
-        let t933 = t78 * t920;
-        let t934 = t932 + t933;
-        let t935 = t53 * t931;
-        let t936 = t52 * t928;
-        let t937 = t935 + t936;
-        let t938 = t52 * t931;
-        let t939 = t53 * t928;
-        let t940 = t939 - t938;
-        let t941 = t12 * t937;
-        let t942 = t11 * t934;
-        let t943 = t941 - t942;
-        let t944 = t11 * t937;
-        let t945 = t12 * t934;
-        let t946 = t944 + t945;
-        let t947 = t0 * t943;
-        let t948 = t1 * t940;
-        let t949 = t947 + t948;
-        let t950 = t151 * t176;
-        let t951 = t148 * t148;
-        let t952 = t151 * t151;
-        let t953 = t951 - t952;
-        let t954 = t154 + t155;
-        let t955 = t175 + t911;
-        let t956 = t954 + t955;
-        let t957 = t178 - t950;
-        let t958 = t145 * t956;
-        let t959 = t144 * t957;
-        let t960 = t958 + t959;
-        let t961 = t144 * t956;
-        let t962 = t145 * t957;
-        let t963 = t961 - t962;
-        let t964 = t119 * t960;
-        let t965 = t118 * t953;
-        let t966 = t964 + t965;
-        let t967 = t118 * t960;
-        let t968 = t119 * t953;
-        let t969 = t968 - t967;
-        let t970 = t78 * t966;
-        let t971 = t77 * t963;
-        let t972 = t971 - t970;
-        let t973 = t77 * t966;
-        let t974 = t78 * t963;
-        let t975 = t973 + t974;
-        let t976 = t53 * t972;
-        let t977 = t52 * t969;
-        let t978 = t976 + t977;
-        let t979 = t52 * t972;
-        let t980 = t53 * t969;
-        let t981 = t980 - t979;
-        let t982 = t12 * t978;
-        let t983 = t11 * t975;
+        let t805 = t804 - t801;
+        let t806 = t201 * t282;
+        let t807 = t198 * t283;
+        let t808 = t269 * t776;
+        let t809 = t807 - t808;
+        let t810 = t806 + t809;
+        let t811 = t201 * t288;
+        let t812 = t198 * t289;
+        let t813 = t271 * t776;
+        let t814 = t812 - t813;
+        let t815 = t814 - t811;
+        let t816 = t201 * t290;
+        let t817 = t198 * t291;
+        let t818 = t7 * t776;
+        let t819 = t817 + t818;
+        let t820 = t816 + t819;
+        let t821 = t8 * t201;
+        let t822 = t9 * t198;
+        let t823 = t822 - t821;
+        let t824 = -t820;
+        let t825 = t194 * t276;
+        let t826 = t277 * t775;
+        let t827 = t197 * t263;
+        let t828 = t826 - t827;
+        let t829 = t825 + t828;
+        let t830 = t194 * t282;
+        let t831 = t283 * t775;
+        let t832 = t197 * t269;
+        let t833 = t831 + t832;
+        let t834 = t833 - t830;
+        let t835 = t194 * t288;
+        let t836 = t289 * t775;
+        let t837 = t197 * t271;
+        let t838 = t836 + t837;
+        let t839 = t835 + t838;
+        let t840 = t194 * t290;
+        let t841 = t291 * t775;
+        let t842 = t7 * t197;
+        let t843 = t842 - t841;
+        let t844 = t840 + t843;
+        let t845 = t8 * t194;
+        let t846 = t9 * t775;
+        let t847 = t845 + t846;
+        let t848 = -t197;
+        let t849 = t276 * t774;
+        let t850 = t193 * t277;
+        let t851 = t202 * t263;
+        let t852 = t851 - t850;
+        let t853 = t849 + t852;
+        let t854 = t282 * t774;
+        let t855 = t193 * t283;
+        let t856 = t202 * t269;
+        let t857 = t855 + t856;
+        let t858 = t854 + t857;
+        let t859 = t288 * t774;
+        let t860 = t193 * t289;
+        let t861 = t202 * t271;
+        let t862 = t860 + t861;
+        let t863 = t859 - t862;
+        let t864 = t290 * t774;
+        let t865 = t193 * t291;
+        let t866 = t7 * t202;
+        let t867 = t865 - t866;
+        let t868 = t864 + t867;
+        let t869 = t8 * t774;
+        let t870 = t9 * t193;
+        let t871 = t869 - t870;
+        let t872 = -t858;
+        let t873 = t196 * t276;
+        let t874 = t187 * t263;
+        let t875 = t874 - t778;
+        let t876 = t873 + t875;
+        let t877 = t196 * t282;
+        let t878 = t187 * t269;
+        let t879 = t783 + t878;
+        let t880 = t877 + t879;
+        let t881 = t196 * t288;
+        let t882 = t187 * t271;
+        let t883 = t788 + t882;
+        let t884 = t881 - t883;
+        let t885 = t196 * t290;
+        let t886 = t7 * t187;
+        let t887 = t793 - t886;
+        let t888 = t885 + t887;
+        let t889 = t8 * t196;
+        let t890 = t889 - t798;
+        let t891 = -t880;
+        let t892 = t191 * t351;
+        let t893 = t130 * t277;
+        let t894 = t194 * t353;
+        let t895 = t169 * t263;
+        let t896 = t201 * t333;
+        let t897 = t892 - t893;
+        let t898 = t895 + t896;
+        let t899 = t894 - t898;
+        let t900 = t897 + t899;
+        let t901 = t191 * t359;
+        let t902 = t130 * t283;
+        let t903 = t194 * t361;
+        let t904 = t169 * t269;
+        let t905 = t201 * t345;
+        let t906 = t901 + t902;
+        let t907 = t904 - t905;
+        let t908 = t907 - t903;
+        let t909 = t908 - t906;
+        let t910 = t191 * t362;
+        let t911 = t130 * t289;
+        let t912 = t194 * t363;
+        let t913 = t169 * t271;
+        let t914 = t201 * t270;
+        let t915 = t912 + t914;
+        let t916 = t910 + t915;
+        let t917 = t913 - t911;
+        let t918 = t916 * c2;
+        let t919 = t917 - t918;
+        let t920 = t191 * t364;
+        let t921 = t130 * t291;
+        let t922 = t194 * t365;
+        let t923 = t7 * t169;
+        let t924 = t6 * t201;
+        let t925 = t924 - t922;
+        let t926 = t925 - t920;
+        let t927 = t921 + t923;
+        let t928 = t926 * c2;
+        let t929 = t927 + t928;
+        let t930 = t9 * t130;
+        let t931 = -t930;
+        let t932 = -t169;
+        let t933 = t130 * t276;
+        let t934 = t193 * t351;
+        let t935 = t195 * t353;
+        let t936 = t168 * t263;
+        let t937 = t198 * t333;
+        let t938 = t933 - t934;
+        let t939 = t936 + t937;
+        let t940 = t935 + t939;
+        let t941 = t938 - t940;
+        let t942 = t130 * t282;
+        let t943 = t193 * t359;
+        let t944 = t195 * t361;
+        let t945 = t168 * t269;
+        let t946 = t198 * t345;
+        let t947 = t943 - t942;
+        let t948 = t945 - t946;
+        let t949 = t944 + t948;
+        let t950 = t947 + t949;
+        let t951 = t130 * t288;
+        let t952 = t193 * t362;
+        let t953 = t195 * t363;
+        let t954 = t168 * t271;
+        let t955 = t198 * t270;
+        let t956 = t951 + t954;
+        let t957 = t953 - t955;
+        let t958 = t952 + t957;
+        let t959 = t958 * c2;
+        let t960 = t956 + t959;
+        let t961 = t130 * t290;
+        let t962 = t193 * t364;
+        let t963 = t195 * t365;
+        let t964 = t7 * t168;
+        let t965 = t6 * t198;
+        let t966 = t961 + t964;
+        let t967 = t963 + t965;
+        let t968 = t962 + t967;
+        let t969 = t968 * c2;
+        let t970 = t966 + t969;
+        let t971 = t8 * t130;
+        let t972 = -t168;
+        let t973 = t244 - t240;
+        let t974 = t236 - t244;
+        let t975 = t240 - t236;
+        let t976 = t230 * t296;
+        let t977 = t245 * t297;
+        let t978 = t237 * t277;
+        let t979 = t978 - t977;
+        let t980 = t976 + t979;
+        let t981 = t230 * t302;
+        let t982 = t245 * t303;
+        let t983 = t237 * t283;
         let t984 = t982 + t983;
-        let t985 = t11 * t978;
-        let t986 = t12 * t975;
-        let t987 = t986 - t985;
-        let t988 = t0 * t984;
-        let t989 = t1 * t981;
-        let t990 = t988 + t989;
-        let t991 = t176 * t176;
-        let t992 = t991 - t951;
-        let t993 = t181 - t912;
-        let t994 = t178 + t950;
-        let t995 = t145 * t993;
-        let t996 = t144 * t992;
-        let t997 = t995 - t996;
-        let t998 = t144 * t993;
-        let t999 = t145 * t992;
-        let t1000 = t998 + t999;
-        let t1001 = t119 * t997;
-        let t1002 = t118 * t994;
-        let t1003 = t1001 - t1002;
-        let t1004 = t118 * t997;
-        let t1005 = t119 * t994;
-        let t1006 = t1004 + t1005;
-        let t1007 = t78 * t1003;
-        let t1008 = t77 * t1000;
-        let t1009 = t1007 - t1008;
-        let t1010 = t77 * t1003;
-        let t1011 = t78 * t1000;
-        let t1012 = t1010 + t1011;
-        let t1013 = t53 * t1009;
-        let t1014 = t52 * t1006;
-        let t1015 = t1013 + t1014;
-        let t1016 = t52 * t1009;
-        let t1017 = t53 * t1006;
-        let t1018 = t1017 - t1016;
-        let t1019 = t12 * t1015;
-        let t1020 = t11 * t1012;
-        let t1021 = t1019 - t1020;
-        let t1022 = t11 * t1015;
-        let t1023 = t12 * t1012;
-        let t1024 = t1022 + t1023;
-        let t1025 = t0 * t1021;
-        let t1026 = t1 * t1018;
-        let t1027 = t1025 + t1026;
-        let t1028 = t952 - t991;
-        let t1029 = t181 + t912;
-        let t1030 = t911 - t175;
-        let t1031 = t1030 - t954;
-        let t1032 = t145 * t1028;
-        let t1033 = t144 * t1029;
-        let t1034 = t1032 - t1033;
-        let t1035 = t144 * t1028;
-        let t1036 = t145 * t1029;
-        let t1037 = t1035 + t1036;
-        let t1038 = t119 * t1034;
-        let t1039 = t118 * t1031;
-        let t1040 = t1038 - t1039;
-        let t1041 = t118 * t1034;
-        let t1042 = t119 * t1031;
-        let t1043 = t1041 + t1042;
-        let t1044 = t78 * t1040;
-        let t1045 = t77 * t1037;
-        let t1046 = t1044 - t1045;
-        let t1047 = t77 * t1040;
-        let t1048 = t78 * t1037;
-        let t1049 = t1047 + t1048;
-        let t1050 = t53 * t1046;
-        let t1051 = t52 * t1043;
-        let t1052 = t1050 + t1051;
-        let t1053 = t52 * t1046;
-        let t1054 = t53 * t1043;
-        let t1055 = t1054 - t1053;
-        let t1056 = t12 * t1052;
-        let t1057 = t11 * t1049;
-        let t1058 = t1056 - t1057;
-        let t1059 = t11 * t1052;
-        let t1060 = t12 * t1049;
-        let t1061 = t1059 + t1060;
-        let t1062 = t0 * t1058;
-        let t1063 = t1 * t1055;
-        let t1064 = t1062 + t1063;
-        let t1065 = t145 * t151;
-        let t1066 = t176 * t1065;
-        let t1067 = t915 - t1066;
-        let t1068 = t144 * t151;
-        let t1069 = t176 * t1068;
-        let t1070 = t919 + t1069;
-        let t1071 = t119 * t1067;
-        let t1072 = t118 * t181;
-        let t1073 = t1071 - t1072;
-        let t1074 = t118 * t1067;
-        let t1075 = t119 * t181;
-        let t1076 = t1074 + t1075;
-        let t1077 = t78 * t1073;
-        let t1078 = t77 * t1070;
-        let t1079 = t1077 + t1078;
-        let t1080 = t77 * t1073;
-        let t1081 = t78 * t1070;
-        let t1082 = t1080 - t1081;
-        let t1083 = t53 * t1079;
-        let t1084 = t52 * t1076;
-        let t1085 = t1083 + t1084;
-        let t1086 = t52 * t1079;
-        let t1087 = t53 * t1076;
-        let t1088 = t1087 - t1086;
-        let t1089 = t12 * t1085;
-        let t1090 = t11 * t1082;
-        let t1091 = t1089 - t1090;
-        let t1092 = t11 * t1085;
-        let t1093 = t12 * t1082;
-        let t1094 = t1092 + t1093;
-        let t1095 = t0 * t1091;
-        let t1096 = t1 * t1088;
-        let t1097 = t1095 + t1096;
-        let t1098 = t952 + t991;
-        let t1099 = t145 * t1098;
-        let t1100 = t998 + t1099;
-        let t1101 = t144 * t1098;
-        let t1102 = t144 * t166;
-        let t1103 = t145 * t166;
-        let t1104 = t1101 - t995;
-        let t1105 = t1104 * c4;
-        let t1106 = t1105 - t1102;
-        let t1107 = t1100 * c4;
-        let t1108 = t1107 - t1103;
-        let t1109 = t119 * t1100;
-        let t1110 = t118 * t956;
-        let t1111 = t1109 + t1110;
-        let t1112 = t119 * t1106;
-        let t1113 = t118 * t173;
-        let t1114 = t1112 + t1113;
-        let t1115 = t118 * t1106;
-        let t1116 = t119 * t173;
-        let t1117 = t1115 - t1116;
-        let t1118 = t78 * t1111;
-        let t1119 = t77 * t1104;
-        let t1120 = t1119 - t1118;
-        let t1121 = t118 * t1100;
-        let t1122 = t119 * t956;
-        let t1123 = t1121 - t1122;
-        let t1124 = t77 * t1111;
-        let t1125 = t78 * t1104;
-        let t1126 = t1124 + t1125;
-        let t1127 = t78 * t1114;
-        let t1128 = t77 * t1108;
-        let t1129 = t77 * t1114;
-        let t1130 = t78 * t1108;
-        let t1131 = t1126 * c3;
-        let t1132 = t1128 + t1131;
-        let t1133 = t1127 + t1132;
-        let t1134 = t1120 * c3;
-        let t1135 = t1134 - t1130;
-        let t1136 = t1129 + t1135;
-        let t1137 = t53 * t1120;
-        let t1138 = t52 * t1123;
+        let t985 = t981 + t984;
+        let t986 = t230 * t308;
+        let t987 = t245 * t309;
+        let t988 = t237 * t289;
+        let t989 = t987 + t988;
+        let t990 = t986 + t989;
+        let t991 = t230 * t314;
+        let t992 = t245 * t315;
+        let t993 = t237 * t291;
+        let t994 = t992 - t993;
+        let t995 = t991 + t994;
+        let t996 = t230 * t316;
+        let t997 = t245 * t317;
+        let t998 = t9 * t237;
+        let t999 = t998 - t997;
+        let t1000 = t996 + t999;
+        let t1001 = t10 * t230;
+        let t1002 = t11 * t245;
+        let t1003 = t1001 + t1002;
+        let t1004 = -t1003;
+        let t1005 = t246 * t296;
+        let t1006 = t243 * t297;
+        let t1007 = t277 * t975;
+        let t1008 = t1007 - t1006;
+        let t1009 = t1008 - t1005;
+        let t1010 = t246 * t302;
+        let t1011 = t243 * t303;
+        let t1012 = t283 * t975;
+        let t1013 = t1011 + t1012;
+        let t1014 = t1013 - t1010;
+        let t1015 = t246 * t308;
+        let t1016 = t243 * t309;
+        let t1017 = t289 * t975;
+        let t1018 = t1016 + t1017;
+        let t1019 = t1018 - t1015;
+        let t1020 = t246 * t314;
+        let t1021 = t243 * t315;
+        let t1022 = t291 * t975;
+        let t1023 = t1021 - t1022;
+        let t1024 = t1023 - t1020;
+        let t1025 = t246 * t316;
+        let t1026 = t243 * t317;
+        let t1027 = t9 * t975;
+        let t1028 = t1027 - t1026;
+        let t1029 = t1028 - t1025;
+        let t1030 = t10 * t246;
+        let t1031 = t11 * t243;
+        let t1032 = t1030 - t1031;
+        let t1033 = t239 * t296;
+        let t1034 = t297 * t974;
+        let t1035 = t242 * t277;
+        let t1036 = t1035 - t1034;
+        let t1037 = t1033 + t1036;
+        let t1038 = t239 * t302;
+        let t1039 = t303 * t974;
+        let t1040 = t242 * t283;
+        let t1041 = t1039 + t1040;
+        let t1042 = t1038 + t1041;
+        let t1043 = t239 * t308;
+        let t1044 = t309 * t974;
+        let t1045 = t242 * t289;
+        let t1046 = t1044 + t1045;
+        let t1047 = t1043 + t1046;
+        let t1048 = t239 * t314;
+        let t1049 = t315 * t974;
+        let t1050 = t242 * t291;
+        let t1051 = t1049 - t1050;
+        let t1052 = t1048 + t1051;
+        let t1053 = t239 * t316;
+        let t1054 = t317 * t974;
+        let t1055 = t9 * t242;
+        let t1056 = t1055 - t1054;
+        let t1057 = t1053 + t1056;
+        let t1058 = t10 * t239;
+        let t1059 = t11 * t974;
+        let t1060 = t1058 + t1059;
+        let t1061 = -t1060;
+        let t1062 = t296 * t973;
+        let t1063 = t238 * t297;
+        let t1064 = t247 * t277;
+        let t1065 = t1064 - t1063;
+        let t1066 = t1062 + t1065;
+        let t1067 = t302 * t973;
+        let t1068 = t238 * t303;
+        let t1069 = t247 * t283;
+        let t1070 = t1068 + t1069;
+        let t1071 = t1067 + t1070;
+        let t1072 = t308 * t973;
+        let t1073 = t238 * t309;
+        let t1074 = t247 * t289;
+        let t1075 = t1073 + t1074;
+        let t1076 = t1072 + t1075;
+        let t1077 = t314 * t973;
+        let t1078 = t238 * t315;
+        let t1079 = t247 * t291;
+        let t1080 = t1078 - t1079;
+        let t1081 = t1077 + t1080;
+        let t1082 = t316 * t973;
+        let t1083 = t238 * t317;
+        let t1084 = t9 * t247;
+        let t1085 = t1084 - t1083;
+        let t1086 = t1082 + t1085;
+        let t1087 = t10 * t973;
+        let t1088 = t11 * t238;
+        let t1089 = t1087 + t1088;
+        let t1090 = -t1089;
+        let t1091 = t241 * t296;
+        let t1092 = t232 * t277;
+        let t1093 = t977 + t1092;
+        let t1094 = t1093 - t1091;
+        let t1095 = t241 * t302;
+        let t1096 = t232 * t283;
+        let t1097 = t1096 - t982;
+        let t1098 = t1097 - t1095;
+        let t1099 = t241 * t308;
+        let t1100 = t232 * t289;
+        let t1101 = t1100 - t987;
+        let t1102 = t1101 - t1099;
+        let t1103 = t241 * t314;
+        let t1104 = t232 * t291;
+        let t1105 = t992 + t1104;
+        let t1106 = t1103 + t1105;
+        let t1107 = t241 * t316;
+        let t1108 = t9 * t232;
+        let t1109 = t997 + t1108;
+        let t1110 = t1109 - t1107;
+        let t1111 = t10 * t241;
+        let t1112 = t1002 + t1111;
+        let t1113 = -t1106;
+        let t1114 = t236 * t374;
+        let t1115 = t206 * t297;
+        let t1116 = t239 * t375;
+        let t1117 = t214 * t277;
+        let t1118 = t246 * t353;
+        let t1119 = t1114 - t1115;
+        let t1120 = t1118 - t1117;
+        let t1121 = t1116 + t1120;
+        let t1122 = t1119 + t1121;
+        let t1123 = t236 * t384;
+        let t1124 = t206 * t303;
+        let t1125 = t239 * t385;
+        let t1126 = t214 * t283;
+        let t1127 = t246 * t361;
+        let t1128 = t1124 - t1123;
+        let t1129 = t1126 + t1127;
+        let t1130 = t1125 - t1129;
+        let t1131 = t1128 + t1130;
+        let t1132 = t236 * t396;
+        let t1133 = t206 * t309;
+        let t1134 = t239 * t397;
+        let t1135 = t214 * t289;
+        let t1136 = t246 * t363;
+        let t1137 = t1133 - t1132;
+        let t1138 = t1134 + t1135;
         let t1139 = t1137 - t1138;
-        let t1140 = t53 * t1133;
-        let t1141 = t52 * t1117;
-        let t1142 = t1140 + t1141;
-        let t1143 = t52 * t1133;
-        let t1144 = t53 * t1117;
-        let t1145 = t1144 - t1143;
-        let t1146 = t12 * t1142;
-        let t1147 = t11 * t1136;
-        let t1148 = t11 * t1142;
-        let t1149 = t12 * t1136;
-        let t1150 = t11 * t1139;
-        let t1151 = t12 * t1126;
-        let t1152 = t12 * t1139;
-        let t1153 = t11 * t1126;
-        let t1154 = t1151 - t1150;
-        let t1155 = t1154 * c1;
-        let t1156 = t1155 - t1147;
-        let t1157 = t1146 + t1156;
-        let t1158 = t1152 + t1153;
-        let t1159 = t1158 * c1;
-        let t1160 = t1149 + t1159;
-        let t1161 = t1148 + t1160;
-        let t1162 = t0 * t1157;
-        let t1163 = t1 * t1145;
-        let t1164 = t1162 + t1163;
-        let t1165 = t951 + t991;
-        let t1166 = t145 * t164;
-        let t1167 = t170 - t1166;
-        let t1168 = t144 * t1165;
-        let t1169 = t1168 - t1036;
-        let t1170 = t145 * t1165;
-        let t1171 = t1033 + t1170;
-        let t1172 = t1171 * c4;
-        let t1173 = t1172 - t1103;
-        let t1174 = t1169 * c4;
-        let t1175 = t1102 - t1174;
-        let t1176 = t119 * t1169;
-        let t1177 = t118 * t957;
-        let t1178 = t1176 - t1177;
-        let t1179 = t119 * t1173;
-        let t1180 = t118 * t1167;
-        let t1181 = t1179 - t1180;
-        let t1182 = t118 * t1173;
-        let t1183 = t119 * t1167;
-        let t1184 = t1182 + t1183;
-        let t1185 = t78 * t1178;
-        let t1186 = t77 * t1171;
-        let t1187 = t1185 + t1186;
-        let t1188 = t118 * t1169;
-        let t1189 = t119 * t957;
-        let t1190 = t1188 + t1189;
-        let t1191 = t77 * t1178;
-        let t1192 = t78 * t1171;
-        let t1193 = t1191 - t1192;
-        let t1194 = t78 * t1181;
-        let t1195 = t77 * t1175;
-        let t1196 = t77 * t1181;
-        let t1197 = t78 * t1175;
-        let t1198 = t1193 * c3;
-        let t1199 = t1195 - t1198;
-        let t1200 = t1194 + t1199;
-        let t1201 = t1187 * c3;
-        let t1202 = t1201 - t1197;
-        let t1203 = t1196 + t1202;
-        let t1204 = t53 * t1187;
-        let t1205 = t52 * t1190;
-        let t1206 = t1204 + t1205;
-        let t1207 = t53 * t1200;
-        let t1208 = t52 * t1184;
-        let t1209 = t1207 + t1208;
-        let t1210 = t52 * t1200;
-        let t1211 = t53 * t1184;
-        let t1212 = t1211 - t1210;
-        let t1213 = t12 * t1209;
-        let t1214 = t11 * t1203;
-        let t1215 = t11 * t1209;
-        let t1216 = t12 * t1203;
-        let t1217 = t11 * t1206;
-        let t1218 = t12 * t1193;
-        let t1219 = t12 * t1206;
-        let t1220 = t11 * t1193;
-        let t1221 = t1217 + t1218;
-        let t1222 = t1221 * c1;
-        let t1223 = t1214 + t1222;
-        let t1224 = t1213 - t1223;
-        let t1225 = t1220 - t1219;
-        let t1226 = t1225 * c1;
-        let t1227 = t1226 - t1216;
-        let t1228 = t1227 - t1215;
-        let t1229 = t0 * t1224;
-        let t1230 = t1 * t1212;
-        let t1231 = t1229 + t1230;
-        let t1232 = -t26;
-        let t1233 = -t5;
-        let t1234 = -t213;
-        let t1235 = -t244;
-        let t1236 = -t257;
-        let t1237 = -t313;
-        let t1238 = -t355;
-        let t1239 = -t374;
-        let t1240 = -t389;
-        let t1241 = -t468;
-        let t1242 = -t497;
-        let t1243 = -t522;
-        let t1244 = -t547;
-        let t1245 = -t568;
-        let t1246 = -t644;
-        let t1247 = -t677;
-        let t1248 = -t712;
-        let t1249 = -t743;
-        let t1250 = -t774;
-        let t1251 = -t801;
-        let t1252 = -t946;
-        let t1253 = -t1024;
-        let t1254 = -t1061;
-        let t1255 = -t1094;
-        let t1256 = -t1161;
-        let t1257 = -t44;
-        let t1258 = -t41;
-        let t1259 = -t305;
-        let t1260 = -t349;
-        let t1261 = -t368;
-        let t1262 = -t396;
-        let t1263 = -t462;
-        let t1264 = -t628;
-        let t1265 = -t68;
-        let t1266 = -t975;
-        let t1267 = -t446;
-        let t1268 = -t106;
-        let t1269 = -t860;
-        let t1270 = -t649;
-        let t1271 = -t135;
-        let t1272 = -t132;
-        let t1273 = -t920;
-        let t1274 = -t1000;
-        let t1275 = -t1037;
-        let t1276 = -t173;
+        let t1140 = t1136 * c2;
+        let t1141 = t1139 - t1140;
+        let t1142 = t236 * t408;
+        let t1143 = t206 * t315;
+        let t1144 = t239 * t409;
+        let t1145 = t214 * t291;
+        let t1146 = t246 * t365;
+        let t1147 = t1143 - t1142;
+        let t1148 = t1145 - t1144;
+        let t1149 = t1147 + t1148;
+        let t1150 = t1146 * c2;
+        let t1151 = t1149 - t1150;
+        let t1152 = t236 * t317;
+        let t1153 = t206 * t317;
+        let t1154 = t9 * t214;
+        let t1155 = t1152 - t1053;
+        let t1156 = t1153 + t1154;
+        let t1157 = t1155 * c3;
+        let t1158 = t1157 - t1156;
+        let t1159 = t11 * t236;
+        let t1160 = t11 * t206;
+        let t1161 = t1058 + t1159;
+        let t1162 = t1161 * c3;
+        let t1163 = t1162 - t1160;
+        let t1164 = -t214;
+        let t1165 = t206 * t296;
+        let t1166 = t238 * t374;
+        let t1167 = t240 * t375;
+        let t1168 = t213 * t277;
+        let t1169 = t243 * t353;
+        let t1170 = t1166 - t1165;
+        let t1171 = t1169 - t1168;
+        let t1172 = t1171 - t1167;
+        let t1173 = t1170 + t1172;
+        let t1174 = t206 * t302;
+        let t1175 = t238 * t384;
+        let t1176 = t240 * t385;
+        let t1177 = t213 * t283;
+        let t1178 = t243 * t361;
+        let t1179 = t1174 + t1175;
+        let t1180 = t1177 + t1178;
+        let t1181 = t1176 + t1180;
+        let t1182 = t1179 + t1181;
+        let t1183 = t206 * t308;
+        let t1184 = t238 * t396;
+        let t1185 = t240 * t397;
+        let t1186 = t213 * t289;
+        let t1187 = t243 * t363;
+        let t1188 = t1183 + t1184;
+        let t1189 = t1185 - t1186;
+        let t1190 = t1189 - t1188;
+        let t1191 = t1187 * c2;
+        let t1192 = t1190 - t1191;
+        let t1193 = t206 * t314;
+        let t1194 = t238 * t408;
+        let t1195 = t240 * t409;
+        let t1196 = t213 * t291;
+        let t1197 = t243 * t365;
+        let t1198 = t1193 + t1194;
+        let t1199 = t1195 + t1196;
+        let t1200 = t1199 - t1198;
+        let t1201 = t1197 * c2;
+        let t1202 = t1200 - t1201;
+        let t1203 = t206 * t316;
+        let t1204 = t240 * t316;
+        let t1205 = t9 * t213;
+        let t1206 = t1203 + t1205;
+        let t1207 = t1083 + t1204;
+        let t1208 = t1207 * c3;
+        let t1209 = t1208 - t1206;
+        let t1210 = t10 * t206;
+        let t1211 = t10 * t240;
+        let t1212 = t1088 - t1211;
+        let t1213 = t1212 * c3;
+        let t1214 = t1210 + t1213;
+        let t1215 = -t1182;
+        let t1216 = -t213;
         [
             qdd1,
-            t184,
-            t194,
-            t199,
-            t203,
+            t415,
+            t419,
+            t422,
+            t426,
+            t428,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            t217,
-            t234,
-            t247,
-            t260,
-            t269,
-            t283,
-            t295,
-            t316,
-            t339,
-            t358,
-            t377,
-            t392,
-            t418,
-            t444,
-            t471,
-            t500,
-            t525,
-            t550,
-            t571,
-            t610,
-            t647,
-            t680,
-            t715,
-            t746,
-            t777,
-            t804,
-            t856,
-            t910,
-            t949,
-            t990,
-            t1027,
-            t1064,
-            t1097,
-            t1164,
-            t1231,
-            T::ZERO,
-            t1232,
-            t187,
-            t3,
-            t4,
-            qdd2,
-            t6,
-            t1233,
-            t1234,
-            t231,
-            t1235,
-            t1236,
-            t266,
-            t280,
-            t292,
-            t1237,
-            t336,
-            t1238,
-            t1239,
-            t1240,
-            t414,
-            t441,
-            t1241,
-            t1242,
-            t1243,
-            t1244,
-            t1245,
-            t607,
-            t1246,
-            t1247,
-            t1248,
-            t1249,
-            t1250,
-            t1251,
-            t853,
-            t907,
-            t1252,
-            t987,
-            t1253,
-            t1254,
-            t1255,
-            t1256,
-            t1228,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t205,
-            t221,
-            t238,
-            t251,
-            t51,
-            t1257,
-            t1258,
-            t1259,
-            t330,
-            t1260,
-            t1261,
-            t383,
-            t1262,
-            t423,
-            t1263,
-            t491,
-            t516,
-            t541,
-            t562,
-            t591,
-            t1264,
-            t671,
-            t706,
-            t737,
-            t768,
-            t795,
-            t837,
-            t891,
-            t940,
-            t981,
-            t1018,
-            t1055,
-            t1088,
-            t1145,
-            t1212,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t297,
-            t320,
-            t343,
-            t362,
-            t76,
-            t1265,
-            t420,
+            t437,
+            t446,
             t454,
-            t485,
-            t510,
+            t463,
+            t471,
+            t480,
+            t493,
+            t507,
+            t530,
             t535,
-            t556,
-            t582,
-            t619,
-            t665,
-            t700,
-            t731,
-            t762,
-            t789,
-            t828,
-            t880,
-            t934,
-            t1266,
-            t1012,
-            t1049,
-            t1082,
-            t1136,
-            t1203,
+            t549,
+            t562,
+            t578,
+            t601,
+            t621,
+            t640,
+            t658,
+            t677,
+            t695,
+            t716,
+            t772,
+            t781,
+            t805,
+            t829,
+            t853,
+            t876,
+            t900,
+            t941,
+            t980,
+            t1009,
+            t1037,
+            t1066,
+            t1094,
+            t1122,
+            t1173,
+            T::ZERO,
+            t416,
+            t412,
+            t423,
+            t32,
+            qdd2,
+            t36,
+            t429,
+            t441,
+            t449,
+            t458,
+            t467,
+            t473,
+            t485,
+            t498,
+            t512,
+            t526,
+            t540,
+            t554,
+            t566,
+            t588,
+            t611,
+            t626,
+            t645,
+            t663,
+            t691,
+            t706,
+            t726,
+            t759,
+            t786,
+            t810,
+            t834,
+            t872,
+            t891,
+            t909,
+            t950,
+            t985,
+            t1014,
+            t1042,
+            t1071,
+            t1098,
+            t1131,
+            t1215,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3861,41 +3713,41 @@ impl Lwr4 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1267,
-            t475,
-            t504,
+            t69,
+            t432,
+            t74,
+            t79,
+            t64,
+            t486,
+            t499,
+            t516,
             t529,
-            t117,
-            t109,
-            t1268,
-            t657,
-            t694,
-            t725,
-            t756,
-            t783,
-            t808,
-            t1269,
-            t928,
-            t969,
-            t1006,
-            t1043,
+            t544,
+            t558,
+            t568,
+            t590,
+            t612,
+            t631,
+            t650,
+            t668,
+            t687,
+            t703,
+            t733,
+            t766,
+            t791,
+            t815,
+            t839,
+            t863,
+            t884,
+            t919,
+            t960,
+            t990,
+            t1019,
+            t1047,
             t1076,
-            t1117,
-            t1184,
+            t1102,
+            t1141,
+            t1192,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3911,6 +3763,34 @@ impl Lwr4 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
+            t108,
+            t502,
+            t113,
+            t118,
+            t103,
+            t591,
+            t613,
+            t634,
+            t653,
+            t671,
+            t690,
+            t705,
+            t738,
+            t771,
+            t796,
+            t824,
+            t844,
+            t868,
+            t888,
+            t929,
+            t970,
+            t995,
+            t1024,
+            t1052,
+            t1081,
+            t1113,
+            t1151,
+            t1202,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3925,20 +3805,6 @@ impl Lwr4 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t1270,
-            t684,
-            t719,
-            t750,
-            t143,
-            t1271,
-            t1272,
-            t1273,
-            t963,
-            t1274,
-            t1275,
-            t1070,
-            t1108,
-            t1175,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3947,6 +3813,27 @@ impl Lwr4 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
+            t635,
+            t616,
+            t672,
+            t163,
+            t148,
+            t739,
+            t773,
+            t799,
+            t823,
+            t847,
+            t871,
+            t890,
+            t931,
+            t971,
+            t1000,
+            t1029,
+            t1057,
+            t1086,
+            t1110,
+            t1158,
+            t1209,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3975,13 +3862,64 @@ impl Lwr4 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t912,
-            t953,
-            t994,
-            t1031,
-            t181,
-            t1276,
-            t1167,
+            T::ZERO,
+            t800,
+            t776,
+            t848,
+            t202,
+            t187,
+            t932,
+            t972,
+            t1004,
+            t1032,
+            t1061,
+            t1090,
+            t1112,
+            t1163,
+            t1214,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t237,
+            t975,
+            t242,
+            t247,
+            t232,
+            t1164,
+            t1216,
         ]
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.

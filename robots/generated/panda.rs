@@ -2598,7 +2598,7 @@ impl Panda {
     /// - `qd`: qd1 .. qd7
     /// - `qdd`: qdd1 .. qdd7
     ///
-    /// Operations: 810 mul, 518 add, 28 neg, 6 sin, 6 cos.
+    /// Operations: 693 mul, 507 add, 30 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -2611,1590 +2611,1332 @@ impl Panda {
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.316);
-        let c2 = T::from_f64(0.632);
-        let c3 = T::from_f64(0.0825);
-        let c4 = T::from_f64(0.384);
-        let c5 = T::from_f64(0.088);
-        let c6 = T::from_f64(2.0);
+        let c2 = T::from_f64(0.0825);
+        let c3 = T::from_f64(0.384);
+        let c4 = T::from_f64(0.088);
         let (t0, t1) = q2.sin_cos();
-        let t2 = t1 * qd1;
-        let t3 = t0 * qdd1;
-        let t4 = t1 * qdd1;
-        let t5 = t0 * c0;
-        let t6 = t1 * c0;
-        let t7 = qd1 * qd2;
-        let t8 = t1 * t7;
-        let t9 = t0 * t7;
-        let t10 = t3 + t8;
-        let (t11, t12) = q3.sin_cos();
-        let t13 = t0 * qd1;
-        let t14 = t12 * t13;
-        let t15 = t11 * qd2;
-        let t16 = t15 - t14;
-        let t17 = t11 * t13;
-        let t18 = t12 * qd2;
-        let t19 = t17 + t18;
-        let t20 = t10 * t12;
-        let t21 = t11 * qdd2;
-        let t22 = t10 * t11;
-        let t23 = t12 * qdd2;
-        let t24 = qd1 * qd1;
-        let t25 = t0 * t1;
-        let t26 = t24 * t25;
-        let t27 = qd2 * qd2;
-        let t28 = t0 * t0;
-        let t29 = t24 * t28;
-        let t30 = t3 * c1;
-        let t31 = qdd2 - t26;
-        let t32 = t31 * c1;
-        let t33 = t32 - t5;
-        let t34 = t27 + t29;
-        let t35 = t34 * c1;
-        let t36 = t35 - t6;
-        let t37 = t8 * c2;
-        let t38 = t30 + t37;
-        let t39 = t12 * t33;
-        let t40 = t11 * t38;
-        let t41 = t39 + t40;
-        let t42 = t11 * t33;
-        let t43 = t12 * t38;
-        let t44 = t43 - t42;
-        let t45 = t19 * qd3;
-        let t46 = t16 * qd3;
-        let t47 = t2 + qd3;
-        let t48 = t21 + t45;
-        let t49 = t48 - t20;
-        let t50 = t4 - t9;
-        let t51 = t50 + qdd3;
-        let (t52, t53) = q4.sin_cos();
-        let t54 = t16 * t53;
-        let t55 = t47 * t52;
-        let t56 = t54 + t55;
-        let t57 = t16 * t52;
-        let t58 = t47 * t53;
-        let t59 = t58 - t57;
-        let t60 = t49 * t53;
-        let t61 = t51 * t52;
-        let t62 = t49 * t52;
-        let t63 = t51 * t53;
-        let t64 = t47 * c3;
-        let t65 = t19 * c3;
-        let t66 = t19 * t65;
-        let t67 = t47 * t64;
-        let t68 = t16 * t65;
-        let t69 = t16 * t64;
-        let t70 = t66 + t67;
-        let t71 = t41 - t70;
-        let t72 = t51 * c3;
-        let t73 = t68 + t72;
-        let t74 = t44 + t73;
-        let t75 = t46 - t23;
-        let t76 = t75 - t22;
-        let t77 = t76 * c3;
-        let t78 = t69 + t77;
-        let t79 = t78 - t36;
-        let t80 = t53 * t71;
-        let t81 = t52 * t79;
-        let t82 = t52 * t71;
-        let t83 = t53 * t79;
-        let t84 = t83 - t82;
-        let t85 = t59 * qd4;
-        let t86 = t56 * qd4;
-        let t87 = qd4 - t19;
-        let t88 = t61 + t85;
-        let t89 = t60 + t88;
-        let t90 = t76 + qdd4;
-        let (t91, t92) = q5.sin_cos();
-        let t93 = t56 * t92;
-        let t94 = t87 * t91;
-        let t95 = t93 - t94;
-        let t96 = t56 * t91;
-        let t97 = t87 * t92;
-        let t98 = t96 + t97;
-        let t99 = t89 * t92;
-        let t100 = t90 * t91;
-        let t101 = t89 * t91;
-        let t102 = t90 * t92;
-        let t103 = t87 * c4;
-        let t104 = t87 * c3;
-        let t105 = t56 * c4;
-        let t106 = t59 * c3;
-        let t107 = t105 + t106;
-        let t108 = t59 * t107;
-        let t109 = t87 * t104;
-        let t110 = t87 * t103;
-        let t111 = t56 * t107;
-        let t112 = t56 * t104;
-        let t113 = t59 * t103;
-        let t114 = t90 * c4;
-        let t115 = t80 + t81;
-        let t116 = t109 - t114;
-        let t117 = t108 + t116;
-        let t118 = t115 + t117;
-        let t119 = t90 * c3;
-        let t120 = t84 - t110;
-        let t121 = t111 + t119;
-        let t122 = t120 - t121;
-        let t123 = t51 + t62;
-        let t124 = t63 - t86;
-        let t125 = t124 - t123;
-        let t126 = t125 * c3;
-        let t127 = t89 * c4;
-        let t128 = t68 + t112;
-        let t129 = t44 + t128;
-        let t130 = t126 + t127;
-        let t131 = t113 + t130;
-        let t132 = t131 - t129;
-        let t133 = t92 * t118;
-        let t134 = t91 * t132;
-        let t135 = t133 - t134;
-        let t136 = t91 * t118;
-        let t137 = t92 * t132;
-        let t138 = t136 + t137;
-        let t139 = t98 * qd5;
-        let t140 = t95 * qd5;
-        let t141 = t59 + qd5;
-        let t142 = t100 + t139;
-        let t143 = t99 - t142;
-        let t144 = qdd5 - t62;
-        let t145 = t124 + t144;
-        let (t146, t147) = q6.sin_cos();
-        let t148 = t95 * t147;
-        let t149 = t141 * t146;
-        let t150 = t148 + t149;
-        let t151 = t95 * t146;
-        let t152 = t141 * t147;
-        let t153 = t152 - t151;
-        let t154 = t143 * t147;
-        let t155 = t145 * t146;
-        let t156 = t143 * t146;
-        let t157 = t145 * t147;
-        let t158 = t135 * t147;
-        let t159 = t122 * t146;
-        let t160 = t158 + t159;
-        let t161 = t135 * t146;
-        let t162 = t122 * t147;
-        let t163 = t162 - t161;
-        let t164 = t153 * qd6;
-        let t165 = t150 * qd6;
-        let t166 = t98 + qd6;
-        let t167 = t155 + t164;
-        let t168 = t154 + t167;
-        let t169 = t101 + qdd6;
-        let t170 = t102 + t140;
-        let t171 = t169 + t170;
-        let (t172, t173) = q7.sin_cos();
-        let t174 = t150 * t173;
-        let t175 = t166 * t172;
-        let t176 = t174 + t175;
-        let t177 = t150 * t172;
-        let t178 = t166 * t173;
-        let t179 = t178 - t177;
-        let t180 = t168 * t173;
-        let t181 = t171 * t172;
-        let t182 = t168 * t172;
-        let t183 = t171 * t173;
-        let t184 = t166 * c5;
-        let t185 = t153 * c5;
-        let t186 = t153 * t185;
-        let t187 = t166 * t184;
-        let t188 = t150 * t185;
-        let t189 = t150 * t184;
-        let t190 = t186 + t187;
-        let t191 = t160 - t190;
-        let t192 = t171 * c5;
-        let t193 = t188 + t192;
-        let t194 = t163 + t193;
-        let t195 = t165 - t157;
-        let t196 = t156 + t195;
-        let t197 = t196 * c5;
-        let t198 = t189 + t197;
-        let t199 = t138 + t198;
-        let t200 = t173 * t191;
-        let t201 = t172 * t199;
-        let t202 = t172 * t191;
-        let t203 = t173 * t199;
-        let t204 = t203 - t202;
-        let t205 = t179 * qd7;
-        let t206 = t176 * qd7;
-        let t207 = qd7 - t153;
-        let t208 = t181 + t205;
-        let t209 = t180 + t208;
-        let t210 = t196 + qdd7;
-        let t211 = t0 * t10;
-        let t212 = t1 * t9;
-        let t213 = t211 + t212;
-        let t214 = t1 * t1;
-        let t215 = t24 * t214;
-        let t216 = t29 - t215;
-        let t217 = t9 * c6;
-        let t218 = t217 - t4;
-        let t219 = t8 * c6;
-        let t220 = t3 + t219;
-        let t221 = t0 * t218;
-        let t222 = t1 * t220;
-        let t223 = t222 - t221;
-        let t224 = t27 - t29;
-        let t225 = t26 + qdd2;
-        let t226 = t0 * t225;
-        let t227 = t1 * t224;
-        let t228 = t226 + t227;
-        let t229 = t215 - t27;
-        let t230 = t0 * t229;
-        let t231 = t1 * t31;
-        let t232 = t230 + t231;
-        let t233 = t16 * t47;
-        let t234 = t16 * t19;
-        let t235 = t12 * t49;
-        let t236 = t11 * t16;
-        let t237 = t47 * t236;
-        let t238 = t235 - t237;
-        let t239 = t11 * t49;
-        let t240 = t12 * t16;
-        let t241 = t47 * t240;
-        let t242 = t239 + t241;
-        let t243 = t0 * t238;
-        let t244 = t1 * t16;
-        let t245 = t19 * t244;
-        let t246 = t243 + t245;
-        let t247 = t19 * t47;
-        let t248 = t16 * t16;
-        let t249 = t19 * t19;
-        let t250 = t248 - t249;
-        let t251 = t76 + t233;
-        let t252 = t49 + t247;
-        let t253 = t12 * t251;
-        let t254 = t11 * t252;
-        let t255 = t253 + t254;
-        let t256 = t11 * t251;
-        let t257 = t12 * t252;
-        let t258 = t257 - t256;
-        let t259 = t0 * t255;
-        let t260 = t1 * t250;
-        let t261 = t259 + t260;
-        let t262 = t47 * t47;
-        let t263 = t262 - t248;
-        let t264 = t51 + t234;
-        let t265 = t49 - t247;
-        let t266 = t12 * t264;
-        let t267 = t11 * t263;
-        let t268 = t266 - t267;
-        let t269 = t11 * t264;
-        let t270 = t12 * t263;
-        let t271 = t269 + t270;
-        let t272 = t0 * t268;
-        let t273 = t1 * t265;
-        let t274 = t273 - t272;
-        let t275 = t249 - t262;
-        let t276 = t51 - t234;
-        let t277 = t233 - t76;
-        let t278 = t12 * t275;
-        let t279 = t11 * t276;
-        let t280 = t278 - t279;
-        let t281 = t11 * t275;
-        let t282 = t12 * t276;
-        let t283 = t281 + t282;
-        let t284 = t0 * t280;
-        let t285 = t1 * t277;
-        let t286 = t285 - t284;
-        let t287 = t12 * t19;
-        let t288 = t47 * t287;
-        let t289 = t237 + t288;
-        let t290 = t11 * t19;
-        let t291 = t47 * t290;
-        let t292 = t291 - t241;
-        let t293 = t0 * t289;
-        let t294 = t1 * t51;
-        let t295 = t294 - t293;
-        let t296 = t249 + t262;
-        let t297 = t11 * t36;
-        let t298 = t12 * t36;
-        let t299 = t11 * t296;
-        let t300 = t12 * t296;
-        let t301 = t299 - t266;
-        let t302 = t301 * c1;
-        let t303 = t302 - t297;
-        let t304 = t269 + t300;
-        let t305 = t304 * c1;
-        let t306 = t298 - t305;
-        let t307 = t0 * t303;
-        let t308 = t1 * t44;
-        let t309 = t308 - t307;
-        let t310 = t248 + t262;
-        let t311 = t12 * t310;
-        let t312 = t11 * t310;
-        let t313 = t279 + t311;
-        let t314 = t313 * c1;
-        let t315 = t314 - t298;
-        let t316 = t312 - t282;
-        let t317 = t316 * c1;
-        let t318 = t317 - t297;
-        let t319 = t0 * t315;
-        let t320 = t1 * t41;
-        let t321 = t319 + t320;
-        let t322 = t56 * t87;
-        let t323 = t56 * t59;
-        let t324 = t53 * t89;
-        let t325 = t52 * t56;
-        let t326 = t87 * t325;
-        let t327 = t324 - t326;
-        let t328 = t52 * t89;
-        let t329 = t53 * t56;
-        let t330 = t87 * t329;
-        let t331 = t328 + t330;
-        let t332 = t12 * t327;
-        let t333 = t11 * t56;
-        let t334 = t59 * t333;
-        let t335 = t332 - t334;
-        let t336 = t11 * t327;
-        let t337 = t12 * t56;
-        let t338 = t59 * t337;
-        let t339 = t336 + t338;
-        let t340 = t0 * t335;
-        let t341 = t1 * t331;
-        let t342 = t341 - t340;
-        let t343 = t59 * t87;
-        let t344 = t56 * t56;
-        let t345 = t59 * t59;
-        let t346 = t344 - t345;
-        let t347 = t63 - t62;
-        let t348 = t86 + t322;
-        let t349 = t347 - t348;
-        let t350 = t89 + t343;
-        let t351 = t53 * t349;
-        let t352 = t52 * t350;
-        let t353 = t351 - t352;
-        let t354 = t52 * t349;
-        let t355 = t53 * t350;
-        let t356 = t354 + t355;
-        let t357 = t12 * t353;
-        let t358 = t11 * t346;
-        let t359 = t357 + t358;
-        let t360 = t11 * t353;
-        let t361 = t12 * t346;
-        let t362 = t360 - t361;
-        let t363 = t0 * t359;
-        let t364 = t1 * t356;
-        let t365 = t364 - t363;
-        let t366 = t87 * t87;
-        let t367 = t366 - t344;
-        let t368 = t90 + t323;
-        let t369 = t89 - t343;
-        let t370 = t53 * t368;
-        let t371 = t52 * t367;
-        let t372 = t370 - t371;
-        let t373 = t52 * t368;
-        let t374 = t53 * t367;
-        let t375 = t373 + t374;
-        let t376 = t12 * t372;
-        let t377 = t11 * t369;
-        let t378 = t376 + t377;
-        let t379 = t11 * t372;
-        let t380 = t12 * t369;
-        let t381 = t379 - t380;
-        let t382 = t0 * t378;
-        let t383 = t1 * t375;
-        let t384 = t383 - t382;
-        let t385 = t345 - t366;
-        let t386 = t90 - t323;
-        let t387 = t322 - t86;
-        let t388 = t347 + t387;
-        let t389 = t53 * t385;
-        let t390 = t52 * t386;
-        let t391 = t389 - t390;
-        let t392 = t52 * t385;
-        let t393 = t53 * t386;
-        let t394 = t392 + t393;
-        let t395 = t12 * t391;
-        let t396 = t11 * t388;
-        let t397 = t395 + t396;
-        let t398 = t11 * t391;
-        let t399 = t12 * t388;
-        let t400 = t398 - t399;
-        let t401 = t0 * t397;
-        let t402 = t1 * t394;
-        let t403 = t402 - t401;
-        let t404 = t53 * t59;
-        let t405 = t87 * t404;
-        let t406 = t326 + t405;
-        let t407 = t52 * t59;
-        let t408 = t87 * t407;
-        let t409 = t408 - t330;
-        let t410 = t12 * t406;
-        let t411 = t11 * t90;
-        let t412 = t410 + t411;
-        let t413 = t11 * t406;
-        let t414 = t12 * t90;
-        let t415 = t413 - t414;
-        let t416 = t0 * t412;
-        let t417 = t1 * t409;
-        let t418 = t417 - t416;
-        let t419 = t345 + t366;
-        let t420 = t53 * t419;
-        let t421 = t373 + t420;
-        let t422 = t53 * t74;
-        let t423 = t52 * t419;
-        let t424 = t423 - t370;
-        let t425 = t424 * c3;
-        let t426 = t425 - t84;
-        let t427 = t349 * c3;
-        let t428 = t422 + t427;
-        let t429 = t12 * t52;
-        let t430 = t74 * t429;
-        let t431 = t11 * t426;
-        let t432 = t11 * t52;
-        let t433 = t74 * t432;
-        let t434 = t12 * t426;
-        let t435 = t11 * t421;
-        let t436 = t12 * t349;
-        let t437 = t12 * t421;
-        let t438 = t11 * t349;
-        let t439 = t435 - t436;
-        let t440 = t439 * c1;
-        let t441 = t440 - t431;
-        let t442 = t441 - t430;
-        let t443 = t437 + t438;
-        let t444 = t443 * c1;
-        let t445 = t434 - t444;
-        let t446 = t445 - t433;
-        let t447 = t0 * t442;
-        let t448 = t1 * t428;
-        let t449 = t448 - t447;
-        let t450 = t344 + t366;
-        let t451 = t52 * t450;
-        let t452 = t451 - t393;
-        let t453 = t52 * t74;
-        let t454 = t53 * t450;
-        let t455 = t390 + t454;
-        let t456 = t455 * c3;
-        let t457 = t115 + t456;
-        let t458 = t350 * c3;
-        let t459 = t453 + t458;
-        let t460 = t12 * t53;
-        let t461 = t74 * t460;
-        let t462 = t11 * t457;
-        let t463 = t11 * t53;
-        let t464 = t74 * t463;
-        let t465 = t12 * t457;
-        let t466 = t11 * t452;
-        let t467 = t12 * t350;
-        let t468 = t12 * t452;
-        let t469 = t11 * t350;
-        let t470 = t467 - t466;
-        let t471 = t470 * c1;
-        let t472 = t471 - t462;
-        let t473 = t472 - t461;
-        let t474 = t468 + t469;
-        let t475 = t474 * c1;
-        let t476 = t465 + t475;
-        let t477 = t476 - t464;
-        let t478 = t0 * t473;
-        let t479 = t1 * t459;
+        let (t2, t3) = q3.sin_cos();
+        let (t4, t5) = q4.sin_cos();
+        let (t6, t7) = q5.sin_cos();
+        let (t8, t9) = q6.sin_cos();
+        let (t10, t11) = q7.sin_cos();
+        let t12 = t0 * qd1;
+        let t13 = t1 * qd1;
+        let t14 = t0 * qdd1;
+        let t15 = t1 * qdd1;
+        let t16 = t13 * qd2;
+        let t17 = t12 * qd2;
+        let t18 = t14 + t16;
+        let t19 = t17 - t15;
+        let t20 = t12 * t12;
+        let t21 = t13 * t13;
+        let t22 = qd2 * qd2;
+        let t23 = t21 + t22;
+        let t24 = t12 * t13;
+        let t25 = t24 - qdd2;
+        let t26 = t24 + qdd2;
+        let t27 = t20 + t22;
+        let t28 = t18 - t16;
+        let t29 = t16 + t18;
+        let t30 = t20 + t21;
+        let t31 = t17 + t19;
+        let t32 = t19 - t17;
+        let t33 = t0 * c0;
+        let t34 = t25 * c1;
+        let t35 = t33 + t34;
+        let t36 = t1 * c0;
+        let t37 = t27 * c1;
+        let t38 = t37 - t36;
+        let t39 = t3 * t35;
+        let t40 = t2 * t29;
+        let t41 = t2 * t35;
+        let t42 = t3 * t29;
+        let t43 = t40 * c1;
+        let t44 = t43 - t39;
+        let t45 = t42 * c1;
+        let t46 = t41 + t45;
+        let t47 = t3 * t12;
+        let t48 = t2 * qd2;
+        let t49 = t2 * t12;
+        let t50 = t3 * qd2;
+        let t51 = t48 - t47;
+        let t52 = t49 + t50;
+        let t53 = t3 * t18;
+        let t54 = t2 * qdd2;
+        let t55 = t2 * t18;
+        let t56 = t3 * qdd2;
+        let t57 = t54 - t53;
+        let t58 = t55 + t56;
+        let t59 = t52 * qd3;
+        let t60 = t51 * qd3;
+        let t61 = t13 + qd3;
+        let t62 = t57 + t59;
+        let t63 = t58 - t60;
+        let t64 = qdd3 - t19;
+        let t65 = t51 * t51;
+        let t66 = t52 * t52;
+        let t67 = t61 * t61;
+        let t68 = t66 + t67;
+        let t69 = t51 * t52;
+        let t70 = t69 - t64;
+        let t71 = t64 + t69;
+        let t72 = t65 + t67;
+        let t73 = t52 * t61;
+        let t74 = t73 - t62;
+        let t75 = t62 + t73;
+        let t76 = t65 + t66;
+        let t77 = t51 * t61;
+        let t78 = t77 - t63;
+        let t79 = t63 + t77;
+        let t80 = t68 * c2;
+        let t81 = t44 - t80;
+        let t82 = t71 * c2;
+        let t83 = t46 + t82;
+        let t84 = t78 * c2;
+        let t85 = t84 - t38;
+        let t86 = t5 * t81;
+        let t87 = t4 * t85;
+        let t88 = t4 * t81;
+        let t89 = t5 * t85;
+        let t90 = t86 + t87;
+        let t91 = t89 - t88;
+        let t92 = t5 * t51;
+        let t93 = t4 * t61;
+        let t94 = t4 * t51;
+        let t95 = t5 * t61;
+        let t96 = t92 + t93;
+        let t97 = t95 - t94;
+        let t98 = t5 * t62;
+        let t99 = t4 * t64;
+        let t100 = t4 * t62;
+        let t101 = t5 * t64;
+        let t102 = t98 + t99;
+        let t103 = t101 - t100;
+        let t104 = t97 * qd4;
+        let t105 = t96 * qd4;
+        let t106 = qd4 - t52;
+        let t107 = t102 + t104;
+        let t108 = t103 - t105;
+        let t109 = qdd4 - t63;
+        let t110 = t96 * t96;
+        let t111 = t97 * t97;
+        let t112 = t106 * t106;
+        let t113 = t111 + t112;
+        let t114 = t96 * t97;
+        let t115 = t114 - t109;
+        let t116 = t109 + t114;
+        let t117 = t110 + t112;
+        let t118 = t97 * t106;
+        let t119 = t118 - t107;
+        let t120 = t107 + t118;
+        let t121 = t110 + t111;
+        let t122 = t96 * t106;
+        let t123 = t122 - t108;
+        let t124 = t108 + t122;
+        let t125 = t113 * c2;
+        let t126 = t115 * c3;
+        let t127 = t125 + t126;
+        let t128 = t116 * c2;
+        let t129 = t117 * c3;
+        let t130 = t128 + t129;
+        let t131 = t123 * c2;
+        let t132 = t120 * c3;
+        let t133 = t132 - t131;
+        let t134 = t90 + t127;
+        let t135 = t91 - t130;
+        let t136 = t133 - t83;
+        let t137 = t7 * t134;
+        let t138 = t6 * t136;
+        let t139 = t6 * t134;
+        let t140 = t7 * t136;
+        let t141 = t137 - t138;
+        let t142 = t139 + t140;
+        let t143 = t7 * t96;
+        let t144 = t6 * t106;
+        let t145 = t6 * t96;
+        let t146 = t7 * t106;
+        let t147 = t143 - t144;
+        let t148 = t145 + t146;
+        let t149 = t7 * t107;
+        let t150 = t6 * t109;
+        let t151 = t6 * t107;
+        let t152 = t7 * t109;
+        let t153 = t149 - t150;
+        let t154 = t151 + t152;
+        let t155 = t148 * qd5;
+        let t156 = t147 * qd5;
+        let t157 = t97 + qd5;
+        let t158 = t153 - t155;
+        let t159 = t154 + t156;
+        let t160 = t108 + qdd5;
+        let t161 = t147 * t147;
+        let t162 = t148 * t148;
+        let t163 = t157 * t157;
+        let t164 = t162 + t163;
+        let t165 = t147 * t148;
+        let t166 = t160 + t165;
+        let t167 = t160 - t165;
+        let t168 = t161 + t163;
+        let t169 = t148 * t157;
+        let t170 = t158 + t169;
+        let t171 = t158 - t169;
+        let t172 = t161 + t162;
+        let t173 = t147 * t157;
+        let t174 = t159 + t173;
+        let t175 = t173 - t159;
+        let t176 = t9 * t141;
+        let t177 = t8 * t135;
+        let t178 = t8 * t141;
+        let t179 = t9 * t135;
+        let t180 = t176 + t177;
+        let t181 = t179 - t178;
+        let t182 = t9 * t147;
+        let t183 = t8 * t157;
+        let t184 = t8 * t147;
+        let t185 = t9 * t157;
+        let t186 = t182 + t183;
+        let t187 = t185 - t184;
+        let t188 = t9 * t158;
+        let t189 = t8 * t160;
+        let t190 = t8 * t158;
+        let t191 = t9 * t160;
+        let t192 = t188 + t189;
+        let t193 = t191 - t190;
+        let t194 = t187 * qd6;
+        let t195 = t186 * qd6;
+        let t196 = t148 + qd6;
+        let t197 = t192 + t194;
+        let t198 = t193 - t195;
+        let t199 = t159 + qdd6;
+        let t200 = t186 * t186;
+        let t201 = t187 * t187;
+        let t202 = t196 * t196;
+        let t203 = t201 + t202;
+        let t204 = t186 * t187;
+        let t205 = t204 - t199;
+        let t206 = t199 + t204;
+        let t207 = t200 + t202;
+        let t208 = t187 * t196;
+        let t209 = t208 - t197;
+        let t210 = t197 + t208;
+        let t211 = t200 + t201;
+        let t212 = t186 * t196;
+        let t213 = t212 - t198;
+        let t214 = t198 + t212;
+        let t215 = t203 * c4;
+        let t216 = t180 - t215;
+        let t217 = t206 * c4;
+        let t218 = t181 + t217;
+        let t219 = t213 * c4;
+        let t220 = t142 + t219;
+        let t221 = t11 * t216;
+        let t222 = t10 * t220;
+        let t223 = t10 * t216;
+        let t224 = t11 * t220;
+        let t225 = t221 + t222;
+        let t226 = t224 - t223;
+        let t227 = t11 * t186;
+        let t228 = t10 * t196;
+        let t229 = t10 * t186;
+        let t230 = t11 * t196;
+        let t231 = t227 + t228;
+        let t232 = t230 - t229;
+        let t233 = t11 * t197;
+        let t234 = t10 * t199;
+        let t235 = t10 * t197;
+        let t236 = t11 * t199;
+        let t237 = t233 + t234;
+        let t238 = t236 - t235;
+        let t239 = t232 * qd7;
+        let t240 = t231 * qd7;
+        let t241 = qd7 - t187;
+        let t242 = t237 + t239;
+        let t243 = t238 - t240;
+        let t244 = qdd7 - t198;
+        let t245 = t231 * t231;
+        let t246 = t232 * t232;
+        let t247 = t241 * t241;
+        let t248 = t246 + t247;
+        let t249 = t231 * t232;
+        let t250 = t249 - t244;
+        let t251 = t244 + t249;
+        let t252 = t245 + t247;
+        let t253 = t232 * t241;
+        let t254 = t253 - t242;
+        let t255 = t242 + t253;
+        let t256 = t245 + t246;
+        let t257 = t231 * t241;
+        let t258 = t257 - t243;
+        let t259 = t243 + t257;
+        let t260 = t0 * t3;
+        let t261 = t0 * t2;
+        let t262 = t5 * t260;
+        let t263 = t1 * t4;
+        let t264 = t4 * t260;
+        let t265 = t1 * t5;
+        let t266 = t263 - t262;
+        let t267 = t264 + t265;
+        let t268 = t2 * t5;
+        let t269 = t2 * t4;
+        let t270 = t7 * t266;
+        let t271 = t6 * t261;
+        let t272 = t6 * t266;
+        let t273 = t7 * t261;
+        let t274 = t270 + t271;
+        let t275 = t273 - t272;
+        let t276 = t7 * t268;
+        let t277 = t3 * t6;
+        let t278 = t6 * t268;
+        let t279 = t3 * t7;
+        let t280 = t276 + t277;
+        let t281 = t279 - t278;
+        let t282 = t4 * t7;
+        let t283 = t4 * t6;
+        let t284 = t9 * t274;
+        let t285 = t8 * t267;
+        let t286 = t8 * t274;
+        let t287 = t9 * t267;
+        let t288 = t284 + t285;
+        let t289 = t287 - t286;
+        let t290 = t9 * t280;
+        let t291 = t8 * t269;
+        let t292 = t8 * t280;
+        let t293 = t9 * t269;
+        let t294 = t290 - t291;
+        let t295 = t292 + t293;
+        let t296 = t9 * t282;
+        let t297 = t5 * t8;
+        let t298 = t8 * t282;
+        let t299 = t5 * t9;
+        let t300 = t296 + t297;
+        let t301 = t299 - t298;
+        let t302 = t6 * t9;
+        let t303 = t6 * t8;
+        let t304 = t11 * t288;
+        let t305 = t10 * t275;
+        let t306 = t10 * t288;
+        let t307 = t11 * t275;
+        let t308 = t304 - t305;
+        let t309 = t306 + t307;
+        let t310 = t11 * t294;
+        let t311 = t10 * t281;
+        let t312 = t10 * t294;
+        let t313 = t11 * t281;
+        let t314 = t310 - t311;
+        let t315 = t312 + t313;
+        let t316 = t11 * t300;
+        let t317 = t10 * t283;
+        let t318 = t10 * t300;
+        let t319 = t11 * t283;
+        let t320 = t316 + t317;
+        let t321 = t319 - t318;
+        let t322 = t11 * t302;
+        let t323 = t7 * t10;
+        let t324 = t10 * t302;
+        let t325 = t7 * t11;
+        let t326 = t323 - t322;
+        let t327 = t324 + t325;
+        let t328 = t8 * t11;
+        let t329 = t8 * t10;
+        let t330 = t260 * c1;
+        let t331 = t1 * c2;
+        let t332 = t330 + t331;
+        let t333 = t5 * t261;
+        let t334 = t4 * t261;
+        let t335 = t333 * c1;
+        let t336 = t334 * c2;
+        let t337 = t335 - t336;
+        let t338 = t333 * c2;
+        let t339 = t334 * c1;
+        let t340 = t338 + t339;
+        let t341 = t3 * t5;
+        let t342 = t3 * t4;
+        let t343 = t341 * c1;
+        let t344 = t342 * c2;
+        let t345 = t343 - t344;
+        let t346 = t341 * c2;
+        let t347 = t342 * c1;
+        let t348 = t346 + t347;
+        let t349 = t266 * c3;
+        let t350 = t267 * c2;
+        let t351 = t349 + t350;
+        let t352 = t261 * c3;
+        let t353 = t337 + t352;
+        let t354 = t261 * c2;
+        let t355 = t354 - t340;
+        let t356 = t351 - t332;
+        let t357 = t7 * t353;
+        let t358 = t6 * t356;
+        let t359 = t6 * t353;
+        let t360 = t7 * t356;
+        let t361 = t357 - t358;
+        let t362 = t359 + t360;
+        let t363 = t268 * c3;
+        let t364 = t269 * c2;
+        let t365 = t363 - t364;
+        let t366 = t3 * c3;
+        let t367 = t345 + t366;
+        let t368 = t3 * c2;
+        let t369 = t368 - t348;
+        let t370 = t2 * c1;
+        let t371 = t365 + t370;
+        let t372 = t7 * t367;
+        let t373 = t6 * t371;
+        let t374 = t6 * t367;
+        let t375 = t7 * t371;
+        let t376 = t372 - t373;
+        let t377 = t374 + t375;
+        let t378 = t4 * c3;
+        let t379 = t5 * c2;
+        let t380 = t378 + t379;
+        let t381 = t380 - c2;
+        let t382 = t6 * t381;
+        let t383 = t7 * t381;
+        let t384 = t9 * t361;
+        let t385 = t8 * t355;
+        let t386 = t8 * t361;
+        let t387 = t9 * t355;
+        let t388 = t384 + t385;
+        let t389 = t387 - t386;
+        let t390 = t9 * t376;
+        let t391 = t8 * t369;
+        let t392 = t8 * t376;
+        let t393 = t9 * t369;
+        let t394 = t390 + t391;
+        let t395 = t393 - t392;
+        let t396 = t9 * t382;
+        let t397 = t8 * t382;
+        let t398 = t7 * t9;
+        let t399 = t7 * t8;
+        let t400 = t398 * c3;
+        let t401 = t8 * c2;
+        let t402 = t400 + t401;
+        let t403 = t9 * c2;
+        let t404 = t399 * c3;
+        let t405 = t404 - t403;
+        let t406 = t275 * c4;
+        let t407 = t389 - t406;
+        let t408 = t289 * c4;
+        let t409 = t362 - t408;
+        let t410 = t11 * t388;
+        let t411 = t10 * t409;
+        let t412 = t10 * t388;
+        let t413 = t11 * t409;
+        let t414 = t410 + t411;
+        let t415 = t413 - t412;
+        let t416 = t281 * c4;
+        let t417 = t395 - t416;
+        let t418 = t295 * c4;
+        let t419 = t377 + t418;
+        let t420 = t11 * t394;
+        let t421 = t10 * t419;
+        let t422 = t10 * t394;
+        let t423 = t11 * t419;
+        let t424 = t420 + t421;
+        let t425 = t423 - t422;
+        let t426 = t283 * c4;
+        let t427 = t397 + t426;
+        let t428 = t301 * c4;
+        let t429 = t383 - t428;
+        let t430 = t11 * t396;
+        let t431 = t10 * t429;
+        let t432 = t10 * t396;
+        let t433 = t11 * t429;
+        let t434 = t431 - t430;
+        let t435 = t432 + t433;
+        let t436 = t7 * c4;
+        let t437 = t405 + t436;
+        let t438 = t6 * c3;
+        let t439 = t303 * c4;
+        let t440 = t438 + t439;
+        let t441 = t11 * t402;
+        let t442 = t10 * t440;
+        let t443 = t10 * t402;
+        let t444 = t11 * t440;
+        let t445 = t441 + t442;
+        let t446 = t443 - t444;
+        let t447 = t9 * t10;
+        let t448 = t9 * t11;
+        let t449 = t30 - t27;
+        let t450 = t23 - t30;
+        let t451 = t27 - t23;
+        let t452 = t0 * t18;
+        let t453 = t1 * t17;
+        let t454 = t452 + t453;
+        let t455 = -t24;
+        let t456 = t0 * t31;
+        let t457 = t1 * t29;
+        let t458 = t457 - t456;
+        let t459 = t0 * t26;
+        let t460 = t1 * t450;
+        let t461 = t459 + t460;
+        let t462 = -t461;
+        let t463 = -t28;
+        let t464 = t0 * t449;
+        let t465 = t1 * t25;
+        let t466 = t465 - t464;
+        let t467 = t0 * t16;
+        let t468 = t467 - t453;
+        let t469 = -t36;
+        let t470 = t76 - t72;
+        let t471 = t68 - t76;
+        let t472 = t72 - t68;
+        let t473 = t62 * t260;
+        let t474 = t77 * t261;
+        let t475 = t1 * t69;
+        let t476 = t474 - t475;
+        let t477 = t476 - t473;
+        let t478 = t2 * t62;
+        let t479 = t3 * t77;
         let t480 = t478 + t479;
-        let t481 = t95 * t141;
-        let t482 = t95 * t98;
-        let t483 = t92 * t143;
-        let t484 = t91 * t95;
-        let t485 = t141 * t484;
-        let t486 = t483 - t485;
-        let t487 = t91 * t143;
-        let t488 = t92 * t95;
-        let t489 = t141 * t488;
-        let t490 = t487 + t489;
-        let t491 = t53 * t486;
-        let t492 = t52 * t95;
-        let t493 = t98 * t492;
-        let t494 = t491 - t493;
-        let t495 = t52 * t486;
-        let t496 = t53 * t95;
-        let t497 = t98 * t496;
-        let t498 = t495 + t497;
-        let t499 = t12 * t494;
-        let t500 = t11 * t490;
-        let t501 = t499 - t500;
-        let t502 = t11 * t494;
-        let t503 = t12 * t490;
-        let t504 = t502 + t503;
-        let t505 = t0 * t501;
-        let t506 = t1 * t498;
-        let t507 = t506 - t505;
-        let t508 = t98 * t141;
-        let t509 = t95 * t95;
-        let t510 = t98 * t98;
-        let t511 = t509 - t510;
-        let t512 = t101 + t102;
-        let t513 = t140 + t481;
-        let t514 = t512 + t513;
-        let t515 = t143 - t508;
-        let t516 = t92 * t514;
-        let t517 = t91 * t515;
-        let t518 = t516 + t517;
-        let t519 = t91 * t514;
-        let t520 = t92 * t515;
-        let t521 = t519 - t520;
-        let t522 = t53 * t518;
-        let t523 = t52 * t511;
-        let t524 = t522 + t523;
-        let t525 = t52 * t518;
-        let t526 = t53 * t511;
-        let t527 = t526 - t525;
-        let t528 = t12 * t524;
-        let t529 = t11 * t521;
-        let t530 = t529 - t528;
-        let t531 = t11 * t524;
-        let t532 = t12 * t521;
-        let t533 = t531 + t532;
-        let t534 = t0 * t530;
-        let t535 = t1 * t527;
-        let t536 = t535 - t534;
-        let t537 = t141 * t141;
-        let t538 = t537 - t509;
-        let t539 = t145 - t482;
-        let t540 = t143 + t508;
-        let t541 = t92 * t539;
-        let t542 = t91 * t538;
-        let t543 = t541 - t542;
-        let t544 = t91 * t539;
-        let t545 = t92 * t538;
-        let t546 = t544 + t545;
-        let t547 = t53 * t543;
-        let t548 = t52 * t540;
-        let t549 = t547 - t548;
-        let t550 = t52 * t543;
-        let t551 = t53 * t540;
-        let t552 = t550 + t551;
-        let t553 = t12 * t549;
-        let t554 = t11 * t546;
-        let t555 = t553 - t554;
-        let t556 = t11 * t549;
-        let t557 = t12 * t546;
-        let t558 = t556 + t557;
-        let t559 = t0 * t555;
-        let t560 = t1 * t552;
-        let t561 = t560 - t559;
-        let t562 = t510 - t537;
-        let t563 = t145 + t482;
-        let t564 = t481 - t140;
-        let t565 = t564 - t512;
-        let t566 = t92 * t562;
-        let t567 = t91 * t563;
-        let t568 = t566 - t567;
-        let t569 = t91 * t562;
-        let t570 = t92 * t563;
-        let t571 = t569 + t570;
-        let t572 = t53 * t568;
-        let t573 = t52 * t565;
-        let t574 = t572 - t573;
-        let t575 = t52 * t568;
-        let t576 = t53 * t565;
-        let t577 = t575 + t576;
-        let t578 = t12 * t574;
-        let t579 = t11 * t571;
-        let t580 = t578 - t579;
-        let t581 = t11 * t574;
-        let t582 = t12 * t571;
-        let t583 = t581 + t582;
-        let t584 = t0 * t580;
-        let t585 = t1 * t577;
-        let t586 = t585 - t584;
-        let t587 = t92 * t98;
-        let t588 = t141 * t587;
-        let t589 = t485 - t588;
-        let t590 = t91 * t98;
-        let t591 = t141 * t590;
-        let t592 = t489 + t591;
-        let t593 = t53 * t589;
-        let t594 = t52 * t145;
+        let t481 = -t69;
+        let t482 = t78 * t260;
+        let t483 = t75 * t261;
+        let t484 = t1 * t472;
+        let t485 = t483 + t484;
+        let t486 = t482 + t485;
+        let t487 = t2 * t78;
+        let t488 = t3 * t75;
+        let t489 = t488 - t487;
+        let t490 = t71 * t260;
+        let t491 = t261 * t471;
+        let t492 = t1 * t74;
+        let t493 = t491 - t492;
+        let t494 = t493 - t490;
+        let t495 = t2 * t71;
+        let t496 = t3 * t471;
+        let t497 = t495 + t496;
+        let t498 = -t74;
+        let t499 = t260 * t470;
+        let t500 = t70 * t261;
+        let t501 = t1 * t79;
+        let t502 = t501 - t500;
+        let t503 = t502 - t499;
+        let t504 = t2 * t470;
+        let t505 = t3 * t70;
+        let t506 = t504 - t505;
+        let t507 = t73 * t260;
+        let t508 = t1 * t64;
+        let t509 = t508 - t474;
+        let t510 = t509 - t507;
+        let t511 = t2 * t73;
+        let t512 = t511 - t479;
+        let t513 = t68 * t261;
+        let t514 = t38 * t261;
+        let t515 = t1 * t46;
+        let t516 = t490 - t513;
+        let t517 = t514 + t515;
+        let t518 = t516 * c1;
+        let t519 = t517 + t518;
+        let t520 = t3 * t68;
+        let t521 = t3 * t38;
+        let t522 = t495 + t520;
+        let t523 = t522 * c1;
+        let t524 = t521 - t523;
+        let t525 = t38 * t260;
+        let t526 = t72 * t260;
+        let t527 = t1 * t44;
+        let t528 = t525 - t527;
+        let t529 = t500 - t526;
+        let t530 = t529 * c1;
+        let t531 = t528 + t530;
+        let t532 = t2 * t38;
+        let t533 = t2 * t72;
+        let t534 = t505 + t533;
+        let t535 = t534 * c1;
+        let t536 = t535 - t532;
+        let t537 = -t44;
+        let t538 = t121 - t117;
+        let t539 = t113 - t121;
+        let t540 = t117 - t113;
+        let t541 = t107 * t266;
+        let t542 = t122 * t267;
+        let t543 = t114 * t261;
+        let t544 = t542 + t543;
+        let t545 = t541 + t544;
+        let t546 = t107 * t268;
+        let t547 = t122 * t269;
+        let t548 = t3 * t114;
+        let t549 = t548 - t547;
+        let t550 = t546 + t549;
+        let t551 = t4 * t107;
+        let t552 = t5 * t122;
+        let t553 = t551 + t552;
+        let t554 = -t114;
+        let t555 = t123 * t266;
+        let t556 = t120 * t267;
+        let t557 = t261 * t540;
+        let t558 = t556 - t557;
+        let t559 = t558 - t555;
+        let t560 = t123 * t268;
+        let t561 = t120 * t269;
+        let t562 = t3 * t540;
+        let t563 = t561 + t562;
+        let t564 = t560 + t563;
+        let t565 = t4 * t123;
+        let t566 = t5 * t120;
+        let t567 = t566 - t565;
+        let t568 = -t564;
+        let t569 = t116 * t266;
+        let t570 = t267 * t539;
+        let t571 = t119 * t261;
+        let t572 = t570 + t571;
+        let t573 = t569 + t572;
+        let t574 = t116 * t268;
+        let t575 = t269 * t539;
+        let t576 = t3 * t119;
+        let t577 = t576 - t575;
+        let t578 = t574 + t577;
+        let t579 = t4 * t116;
+        let t580 = t5 * t539;
+        let t581 = t579 + t580;
+        let t582 = -t119;
+        let t583 = t266 * t538;
+        let t584 = t115 * t267;
+        let t585 = t124 * t261;
+        let t586 = t584 + t585;
+        let t587 = t583 - t586;
+        let t588 = t268 * t538;
+        let t589 = t115 * t269;
+        let t590 = t3 * t124;
+        let t591 = t589 - t590;
+        let t592 = t588 + t591;
+        let t593 = t4 * t538;
+        let t594 = t5 * t115;
         let t595 = t593 - t594;
-        let t596 = t52 * t589;
-        let t597 = t53 * t145;
-        let t598 = t596 + t597;
-        let t599 = t12 * t595;
-        let t600 = t11 * t592;
-        let t601 = t599 + t600;
-        let t602 = t11 * t595;
-        let t603 = t12 * t592;
-        let t604 = t602 - t603;
-        let t605 = t0 * t601;
-        let t606 = t1 * t598;
-        let t607 = t606 - t605;
-        let t608 = t510 + t537;
-        let t609 = t92 * t608;
-        let t610 = t544 + t609;
-        let t611 = t91 * t608;
-        let t612 = t91 * t122;
-        let t613 = t92 * t122;
-        let t614 = t611 - t541;
-        let t615 = t614 * c4;
-        let t616 = t612 + t615;
-        let t617 = t614 * c3;
-        let t618 = t617 - t138;
-        let t619 = t514 * c3;
-        let t620 = t610 * c4;
-        let t621 = t620 - t619;
-        let t622 = t613 + t621;
-        let t623 = t53 * t610;
-        let t624 = t52 * t514;
-        let t625 = t623 + t624;
-        let t626 = t53 * t616;
-        let t627 = t52 * t618;
-        let t628 = t626 - t627;
-        let t629 = t52 * t616;
-        let t630 = t53 * t618;
-        let t631 = t52 * t610;
-        let t632 = t53 * t514;
-        let t633 = t631 - t632;
-        let t634 = t514 + t633;
-        let t635 = t634 * c3;
-        let t636 = t635 - t620;
-        let t637 = t636 - t613;
-        let t638 = t630 - t617;
-        let t639 = t629 + t638;
-        let t640 = t12 * t628;
-        let t641 = t11 * t637;
-        let t642 = t11 * t628;
-        let t643 = t12 * t637;
-        let t644 = t11 * t625;
-        let t645 = t12 * t614;
-        let t646 = t12 * t625;
-        let t647 = t11 * t614;
-        let t648 = t644 + t645;
-        let t649 = t648 * c1;
-        let t650 = t649 - t641;
-        let t651 = t640 + t650;
-        let t652 = t647 - t646;
-        let t653 = t652 * c1;
-        let t654 = t643 + t653;
-        let t655 = t642 + t654;
-        let t656 = t0 * t651;
-        let t657 = t1 * t639;
-        let t658 = t657 - t656;
-        let t659 = t509 + t537;
-        let t660 = t91 * t659;
-        let t661 = t660 - t570;
-        let t662 = t92 * t659;
-        let t663 = t567 + t662;
-        let t664 = t663 * c4;
-        let t665 = t613 + t664;
-        let t666 = t663 * c3;
-        let t667 = t666 - t135;
-        let t668 = t515 * c3;
-        let t669 = t661 * c4;
-        let t670 = t668 + t669;
-        let t671 = t612 + t670;
-        let t672 = t53 * t661;
-        let t673 = t52 * t515;
-        let t674 = t672 - t673;
-        let t675 = t53 * t665;
-        let t676 = t52 * t667;
-        let t677 = t675 - t676;
-        let t678 = t52 * t665;
-        let t679 = t53 * t667;
-        let t680 = t52 * t661;
-        let t681 = t53 * t515;
-        let t682 = t680 + t681;
-        let t683 = t515 - t682;
-        let t684 = t683 * c3;
-        let t685 = t669 + t684;
-        let t686 = t612 + t685;
-        let t687 = t679 - t666;
-        let t688 = t678 + t687;
-        let t689 = t12 * t677;
-        let t690 = t11 * t686;
-        let t691 = t11 * t677;
-        let t692 = t12 * t686;
-        let t693 = t11 * t674;
-        let t694 = t12 * t663;
-        let t695 = t12 * t674;
-        let t696 = t11 * t663;
-        let t697 = t694 - t693;
-        let t698 = t697 * c1;
-        let t699 = t698 - t690;
-        let t700 = t689 + t699;
-        let t701 = t695 + t696;
-        let t702 = t701 * c1;
-        let t703 = t692 + t702;
-        let t704 = t691 + t703;
-        let t705 = t0 * t700;
-        let t706 = t1 * t688;
-        let t707 = t706 - t705;
-        let t708 = t150 * t166;
-        let t709 = t150 * t153;
-        let t710 = t147 * t168;
-        let t711 = t146 * t150;
-        let t712 = t166 * t711;
-        let t713 = t710 - t712;
-        let t714 = t146 * t168;
-        let t715 = t147 * t150;
-        let t716 = t166 * t715;
-        let t717 = t714 + t716;
-        let t718 = t92 * t713;
-        let t719 = t91 * t150;
-        let t720 = t153 * t719;
-        let t721 = t718 - t720;
-        let t722 = t91 * t713;
-        let t723 = t92 * t150;
-        let t724 = t153 * t723;
-        let t725 = t722 + t724;
-        let t726 = t53 * t721;
-        let t727 = t52 * t717;
-        let t728 = t726 - t727;
-        let t729 = t52 * t721;
-        let t730 = t53 * t717;
-        let t731 = t729 + t730;
-        let t732 = t12 * t728;
-        let t733 = t11 * t725;
-        let t734 = t732 - t733;
-        let t735 = t11 * t728;
-        let t736 = t12 * t725;
-        let t737 = t735 + t736;
-        let t738 = t0 * t734;
-        let t739 = t1 * t731;
-        let t740 = t739 - t738;
-        let t741 = t153 * t166;
-        let t742 = t150 * t150;
-        let t743 = t153 * t153;
-        let t744 = t742 - t743;
-        let t745 = t196 + t708;
-        let t746 = t168 + t741;
-        let t747 = t147 * t745;
-        let t748 = t146 * t746;
-        let t749 = t747 + t748;
-        let t750 = t146 * t745;
-        let t751 = t147 * t746;
-        let t752 = t751 - t750;
-        let t753 = t92 * t749;
-        let t754 = t91 * t744;
-        let t755 = t754 - t753;
-        let t756 = t91 * t749;
-        let t757 = t92 * t744;
-        let t758 = t756 + t757;
-        let t759 = t53 * t755;
-        let t760 = t52 * t752;
-        let t761 = t759 - t760;
-        let t762 = t52 * t755;
-        let t763 = t53 * t752;
-        let t764 = t762 + t763;
-        let t765 = t12 * t761;
-        let t766 = t11 * t758;
-        let t767 = t765 + t766;
-        let t768 = t11 * t761;
-        let t769 = t12 * t758;
-        let t770 = t768 - t769;
-        let t771 = t0 * t767;
-        let t772 = t1 * t764;
-        let t773 = t772 - t771;
-        let t774 = t166 * t166;
-        let t775 = t774 - t742;
-        let t776 = t171 + t709;
-        let t777 = t168 - t741;
-        let t778 = t147 * t776;
-        let t779 = t146 * t775;
-        let t780 = t778 - t779;
-        let t781 = t146 * t776;
-        let t782 = t147 * t775;
-        let t783 = t781 + t782;
-        let t784 = t92 * t780;
-        let t785 = t91 * t777;
-        let t786 = t784 + t785;
-        let t787 = t91 * t780;
-        let t788 = t92 * t777;
-        let t789 = t788 - t787;
-        let t790 = t53 * t786;
-        let t791 = t52 * t783;
-        let t792 = t790 - t791;
-        let t793 = t52 * t786;
-        let t794 = t53 * t783;
-        let t795 = t793 + t794;
-        let t796 = t12 * t792;
-        let t797 = t11 * t789;
-        let t798 = t796 + t797;
-        let t799 = t11 * t792;
-        let t800 = t12 * t789;
-        let t801 = t799 - t800;
-        let t802 = t0 * t798;
-        let t803 = t1 * t795;
-        let t804 = t803 - t802;
-        let t805 = t743 - t774;
-        let t806 = t171 - t709;
-        let t807 = t708 - t196;
-        let t808 = t147 * t805;
-        let t809 = t146 * t806;
-        let t810 = t808 - t809;
-        let t811 = t146 * t805;
-        let t812 = t147 * t806;
-        let t813 = t811 + t812;
-        let t814 = t92 * t810;
-        let t815 = t91 * t807;
+        let t596 = t118 * t266;
+        let t597 = t109 * t261;
+        let t598 = t542 + t597;
+        let t599 = t596 - t598;
+        let t600 = t118 * t268;
+        let t601 = t3 * t109;
+        let t602 = t547 - t601;
+        let t603 = t600 + t602;
+        let t604 = t4 * t118;
+        let t605 = t604 - t552;
+        let t606 = t113 * t337;
+        let t607 = t83 * t267;
+        let t608 = t116 * t340;
+        let t609 = t91 * t261;
+        let t610 = t123 * t332;
+        let t611 = t607 - t606;
+        let t612 = t609 + t610;
+        let t613 = t608 + t612;
+        let t614 = t611 - t613;
+        let t615 = t113 * t345;
+        let t616 = t83 * t269;
+        let t617 = t116 * t348;
+        let t618 = t3 * t91;
+        let t619 = t2 * t123;
+        let t620 = t615 + t616;
+        let t621 = t617 + t618;
+        let t622 = t620 + t621;
+        let t623 = t619 * c1;
+        let t624 = t623 - t622;
+        let t625 = t5 * t83;
+        let t626 = t625 - t131;
+        let t627 = t83 * t266;
+        let t628 = t115 * t337;
+        let t629 = t117 * t340;
+        let t630 = t90 * t261;
+        let t631 = t120 * t332;
+        let t632 = t628 - t627;
+        let t633 = t630 - t631;
+        let t634 = t629 + t633;
+        let t635 = t632 + t634;
+        let t636 = t83 * t268;
+        let t637 = t115 * t345;
+        let t638 = t117 * t348;
+        let t639 = t3 * t90;
+        let t640 = t2 * t120;
+        let t641 = t637 - t636;
+        let t642 = t638 + t639;
+        let t643 = t641 + t642;
+        let t644 = t640 * c1;
+        let t645 = t643 + t644;
+        let t646 = t4 * t83;
+        let t647 = t120 * c2;
+        let t648 = t646 + t647;
+        let t649 = -t648;
+        let t650 = -t90;
+        let t651 = t172 - t168;
+        let t652 = t164 - t172;
+        let t653 = t168 - t164;
+        let t654 = t158 * t274;
+        let t655 = t173 * t275;
+        let t656 = t165 * t267;
+        let t657 = t655 + t656;
+        let t658 = t654 + t657;
+        let t659 = t158 * t280;
+        let t660 = t173 * t281;
+        let t661 = t165 * t269;
+        let t662 = t660 - t661;
+        let t663 = t659 + t662;
+        let t664 = t158 * t282;
+        let t665 = t173 * t283;
+        let t666 = t5 * t165;
+        let t667 = t666 - t665;
+        let t668 = t664 + t667;
+        let t669 = t6 * t158;
+        let t670 = t7 * t173;
+        let t671 = t669 + t670;
+        let t672 = -t671;
+        let t673 = t174 * t274;
+        let t674 = t171 * t275;
+        let t675 = t267 * t653;
+        let t676 = t674 + t675;
+        let t677 = t676 - t673;
+        let t678 = t174 * t280;
+        let t679 = t171 * t281;
+        let t680 = t269 * t653;
+        let t681 = t679 - t680;
+        let t682 = t681 - t678;
+        let t683 = t174 * t282;
+        let t684 = t171 * t283;
+        let t685 = t5 * t653;
+        let t686 = t685 - t684;
+        let t687 = t686 - t683;
+        let t688 = t6 * t174;
+        let t689 = t7 * t171;
+        let t690 = t688 - t689;
+        let t691 = t167 * t274;
+        let t692 = t275 * t652;
+        let t693 = t170 * t267;
+        let t694 = t692 + t693;
+        let t695 = t691 + t694;
+        let t696 = t167 * t280;
+        let t697 = t281 * t652;
+        let t698 = t170 * t269;
+        let t699 = t697 - t698;
+        let t700 = t696 + t699;
+        let t701 = t167 * t282;
+        let t702 = t283 * t652;
+        let t703 = t5 * t170;
+        let t704 = t703 - t702;
+        let t705 = t701 + t704;
+        let t706 = t6 * t167;
+        let t707 = t7 * t652;
+        let t708 = t706 + t707;
+        let t709 = -t708;
+        let t710 = t274 * t651;
+        let t711 = t166 * t275;
+        let t712 = t175 * t267;
+        let t713 = t711 + t712;
+        let t714 = t710 + t713;
+        let t715 = t280 * t651;
+        let t716 = t166 * t281;
+        let t717 = t175 * t269;
+        let t718 = t716 - t717;
+        let t719 = t715 + t718;
+        let t720 = t282 * t651;
+        let t721 = t166 * t283;
+        let t722 = t5 * t175;
+        let t723 = t722 - t721;
+        let t724 = t720 + t723;
+        let t725 = t6 * t651;
+        let t726 = t7 * t166;
+        let t727 = t725 + t726;
+        let t728 = -t727;
+        let t729 = t169 * t274;
+        let t730 = t160 * t267;
+        let t731 = t730 - t655;
+        let t732 = t731 - t729;
+        let t733 = t169 * t280;
+        let t734 = t160 * t269;
+        let t735 = t660 + t734;
+        let t736 = t733 + t735;
+        let t737 = t169 * t282;
+        let t738 = t5 * t160;
+        let t739 = t665 + t738;
+        let t740 = t739 - t737;
+        let t741 = t6 * t169;
+        let t742 = t670 + t741;
+        let t743 = -t736;
+        let t744 = t164 * t361;
+        let t745 = t135 * t275;
+        let t746 = t167 * t362;
+        let t747 = t142 * t267;
+        let t748 = t174 * t355;
+        let t749 = t744 + t745;
+        let t750 = t748 - t747;
+        let t751 = t750 - t746;
+        let t752 = t751 - t749;
+        let t753 = t164 * t376;
+        let t754 = t135 * t281;
+        let t755 = t167 * t377;
+        let t756 = t142 * t269;
+        let t757 = t174 * t369;
+        let t758 = t753 + t754;
+        let t759 = t756 + t757;
+        let t760 = t759 - t755;
+        let t761 = t760 - t758;
+        let t762 = t164 * t382;
+        let t763 = t135 * t283;
+        let t764 = t167 * t383;
+        let t765 = t5 * t142;
+        let t766 = t762 + t763;
+        let t767 = t764 + t765;
+        let t768 = t766 - t767;
+        let t769 = t7 * t164;
+        let t770 = t7 * t135;
+        let t771 = t706 + t769;
+        let t772 = t771 * c3;
+        let t773 = t174 * c2;
+        let t774 = t770 - t773;
+        let t775 = t772 + t774;
+        let t776 = -t142;
+        let t777 = t135 * t274;
+        let t778 = t166 * t361;
+        let t779 = t168 * t362;
+        let t780 = t141 * t267;
+        let t781 = t171 * t355;
+        let t782 = t777 - t778;
+        let t783 = t781 - t780;
+        let t784 = t779 + t783;
+        let t785 = t782 + t784;
+        let t786 = t135 * t280;
+        let t787 = t166 * t376;
+        let t788 = t168 * t377;
+        let t789 = t141 * t269;
+        let t790 = t171 * t369;
+        let t791 = t786 - t787;
+        let t792 = t789 + t790;
+        let t793 = t788 + t792;
+        let t794 = t791 + t793;
+        let t795 = t135 * t282;
+        let t796 = t166 * t382;
+        let t797 = t168 * t383;
+        let t798 = t5 * t141;
+        let t799 = t795 + t796;
+        let t800 = t797 - t798;
+        let t801 = t799 + t800;
+        let t802 = t6 * t135;
+        let t803 = t6 * t168;
+        let t804 = t726 - t803;
+        let t805 = t804 * c3;
+        let t806 = t171 * c2;
+        let t807 = t805 - t806;
+        let t808 = t807 - t802;
+        let t809 = -t141;
+        let t810 = t211 - t207;
+        let t811 = t203 - t211;
+        let t812 = t207 - t203;
+        let t813 = t197 * t288;
+        let t814 = t212 * t289;
+        let t815 = t204 * t275;
         let t816 = t814 + t815;
-        let t817 = t91 * t810;
-        let t818 = t92 * t807;
-        let t819 = t818 - t817;
-        let t820 = t53 * t816;
-        let t821 = t52 * t813;
-        let t822 = t820 - t821;
-        let t823 = t52 * t816;
-        let t824 = t53 * t813;
-        let t825 = t823 + t824;
-        let t826 = t12 * t822;
-        let t827 = t11 * t819;
-        let t828 = t826 + t827;
-        let t829 = t11 * t822;
-        let t830 = t12 * t819;
+        let t817 = t813 + t816;
+        let t818 = t197 * t294;
+        let t819 = t212 * t295;
+        let t820 = t204 * t281;
+        let t821 = t820 - t819;
+        let t822 = t818 + t821;
+        let t823 = t197 * t300;
+        let t824 = t212 * t301;
+        let t825 = t204 * t283;
+        let t826 = t824 - t825;
+        let t827 = t823 + t826;
+        let t828 = t197 * t302;
+        let t829 = t212 * t303;
+        let t830 = t7 * t204;
         let t831 = t829 - t830;
-        let t832 = t0 * t828;
-        let t833 = t1 * t825;
-        let t834 = t833 - t832;
-        let t835 = t147 * t153;
-        let t836 = t166 * t835;
-        let t837 = t712 + t836;
-        let t838 = t146 * t153;
-        let t839 = t166 * t838;
-        let t840 = t839 - t716;
-        let t841 = t92 * t837;
-        let t842 = t91 * t171;
-        let t843 = t841 + t842;
-        let t844 = t91 * t837;
-        let t845 = t92 * t171;
-        let t846 = t845 - t844;
-        let t847 = t53 * t843;
-        let t848 = t52 * t840;
-        let t849 = t847 - t848;
-        let t850 = t52 * t843;
-        let t851 = t53 * t840;
-        let t852 = t850 + t851;
-        let t853 = t12 * t849;
-        let t854 = t11 * t846;
+        let t832 = t831 - t828;
+        let t833 = t8 * t197;
+        let t834 = t9 * t212;
+        let t835 = t833 + t834;
+        let t836 = -t204;
+        let t837 = t213 * t288;
+        let t838 = t210 * t289;
+        let t839 = t275 * t812;
+        let t840 = t838 - t839;
+        let t841 = t840 - t837;
+        let t842 = t213 * t294;
+        let t843 = t210 * t295;
+        let t844 = t281 * t812;
+        let t845 = t843 + t844;
+        let t846 = t842 + t845;
+        let t847 = t213 * t300;
+        let t848 = t210 * t301;
+        let t849 = t283 * t812;
+        let t850 = t848 + t849;
+        let t851 = t850 - t847;
+        let t852 = t213 * t302;
+        let t853 = t210 * t303;
+        let t854 = t7 * t812;
         let t855 = t853 + t854;
-        let t856 = t11 * t849;
-        let t857 = t12 * t846;
-        let t858 = t856 - t857;
-        let t859 = t0 * t855;
-        let t860 = t1 * t852;
-        let t861 = t860 - t859;
-        let t862 = t743 + t774;
-        let t863 = t147 * t862;
-        let t864 = t781 + t863;
-        let t865 = t146 * t862;
-        let t866 = t778 - t865;
-        let t867 = t138 * t147;
-        let t868 = t92 * t864;
-        let t869 = t91 * t745;
-        let t870 = t869 - t868;
-        let t871 = t91 * t864;
-        let t872 = t92 * t745;
-        let t873 = t92 * t138;
-        let t874 = t146 * t873;
-        let t875 = t91 * t163;
-        let t876 = t91 * t138;
-        let t877 = t146 * t876;
-        let t878 = t92 * t163;
-        let t879 = t871 + t872;
-        let t880 = t879 * c4;
-        let t881 = t875 + t880;
-        let t882 = t874 + t881;
-        let t883 = t879 * c3;
-        let t884 = t883 - t867;
-        let t885 = t866 * c3;
-        let t886 = t870 * c4;
-        let t887 = t878 - t877;
-        let t888 = t885 + t886;
-        let t889 = t887 - t888;
-        let t890 = t53 * t870;
-        let t891 = t52 * t866;
-        let t892 = t890 - t891;
-        let t893 = t53 * t882;
-        let t894 = t52 * t884;
-        let t895 = t893 - t894;
-        let t896 = t52 * t882;
-        let t897 = t53 * t884;
-        let t898 = t52 * t870;
-        let t899 = t53 * t866;
-        let t900 = t898 + t899;
-        let t901 = t866 - t900;
-        let t902 = t901 * c3;
-        let t903 = t877 - t878;
-        let t904 = t886 + t902;
-        let t905 = t903 + t904;
-        let t906 = t897 - t883;
-        let t907 = t896 + t906;
-        let t908 = t12 * t895;
-        let t909 = t11 * t905;
-        let t910 = t11 * t895;
-        let t911 = t12 * t905;
-        let t912 = t11 * t892;
-        let t913 = t12 * t879;
-        let t914 = t12 * t892;
-        let t915 = t11 * t879;
-        let t916 = t913 - t912;
-        let t917 = t916 * c1;
-        let t918 = t917 - t909;
-        let t919 = t908 + t918;
-        let t920 = t914 + t915;
-        let t921 = t920 * c1;
-        let t922 = t911 + t921;
-        let t923 = t910 + t922;
-        let t924 = t0 * t919;
-        let t925 = t1 * t907;
-        let t926 = t925 - t924;
-        let t927 = t742 + t774;
-        let t928 = t146 * t927;
-        let t929 = t928 - t812;
-        let t930 = t147 * t927;
-        let t931 = t809 + t930;
-        let t932 = t138 * t146;
-        let t933 = t92 * t929;
-        let t934 = t91 * t746;
-        let t935 = t933 + t934;
-        let t936 = t91 * t929;
-        let t937 = t92 * t746;
-        let t938 = t92 * t147;
-        let t939 = t138 * t938;
-        let t940 = t91 * t160;
-        let t941 = t91 * t147;
-        let t942 = t138 * t941;
-        let t943 = t92 * t160;
-        let t944 = t937 - t936;
-        let t945 = t944 * c4;
-        let t946 = t945 - t940;
-        let t947 = t939 + t946;
-        let t948 = t944 * c3;
-        let t949 = t932 + t948;
-        let t950 = t931 * c3;
-        let t951 = t935 * c4;
-        let t952 = t942 + t943;
-        let t953 = t950 - t951;
-        let t954 = t953 - t952;
-        let t955 = t53 * t935;
-        let t956 = t52 * t931;
-        let t957 = t955 + t956;
-        let t958 = t53 * t947;
-        let t959 = t52 * t949;
-        let t960 = t958 - t959;
-        let t961 = t52 * t947;
-        let t962 = t53 * t949;
-        let t963 = t52 * t935;
-        let t964 = t53 * t931;
-        let t965 = t964 - t963;
-        let t966 = t965 - t931;
-        let t967 = t966 * c3;
-        let t968 = t951 + t967;
-        let t969 = t952 + t968;
-        let t970 = t962 - t948;
-        let t971 = t961 + t970;
-        let t972 = t12 * t960;
-        let t973 = t11 * t969;
-        let t974 = t11 * t960;
-        let t975 = t12 * t969;
-        let t976 = t11 * t957;
-        let t977 = t12 * t944;
-        let t978 = t12 * t957;
-        let t979 = t11 * t944;
-        let t980 = t977 - t976;
-        let t981 = t980 * c1;
-        let t982 = t981 - t973;
-        let t983 = t972 + t982;
-        let t984 = t978 + t979;
-        let t985 = t984 * c1;
-        let t986 = t975 + t985;
-        let t987 = t974 + t986;
-        let t988 = t0 * t983;
-        let t989 = t1 * t971;
-        let t990 = t989 - t988;
-        let t991 = t176 * t207;
-        let t992 = t176 * t179;
-        let t993 = t173 * t209;
-        let t994 = t172 * t176;
-        let t995 = t207 * t994;
-        let t996 = t993 - t995;
-        let t997 = t172 * t209;
-        let t998 = t173 * t176;
-        let t999 = t207 * t998;
-        let t1000 = t997 + t999;
-        let t1001 = t147 * t996;
-        let t1002 = t146 * t176;
-        let t1003 = t179 * t1002;
-        let t1004 = t1001 - t1003;
-        let t1005 = t146 * t996;
-        let t1006 = t147 * t176;
-        let t1007 = t179 * t1006;
-        let t1008 = t1005 + t1007;
-        let t1009 = t92 * t1004;
-        let t1010 = t91 * t1000;
-        let t1011 = t1009 + t1010;
-        let t1012 = t91 * t1004;
-        let t1013 = t92 * t1000;
-        let t1014 = t1013 - t1012;
-        let t1015 = t53 * t1011;
-        let t1016 = t52 * t1008;
-        let t1017 = t1015 - t1016;
-        let t1018 = t52 * t1011;
-        let t1019 = t53 * t1008;
-        let t1020 = t1018 + t1019;
-        let t1021 = t12 * t1017;
-        let t1022 = t11 * t1014;
-        let t1023 = t1021 + t1022;
-        let t1024 = t11 * t1017;
-        let t1025 = t12 * t1014;
-        let t1026 = t1024 - t1025;
-        let t1027 = t0 * t1023;
-        let t1028 = t1 * t1020;
-        let t1029 = t1028 - t1027;
-        let t1030 = t179 * t207;
-        let t1031 = t176 * t176;
-        let t1032 = t179 * t179;
-        let t1033 = t1031 - t1032;
-        let t1034 = t183 - t182;
-        let t1035 = t206 + t991;
-        let t1036 = t1034 - t1035;
-        let t1037 = t209 + t1030;
-        let t1038 = t173 * t1036;
-        let t1039 = t172 * t1037;
-        let t1040 = t1038 - t1039;
-        let t1041 = t172 * t1036;
-        let t1042 = t173 * t1037;
-        let t1043 = t1041 + t1042;
-        let t1044 = t147 * t1040;
-        let t1045 = t146 * t1033;
-        let t1046 = t1044 + t1045;
-        let t1047 = t146 * t1040;
-        let t1048 = t147 * t1033;
-        let t1049 = t1047 - t1048;
-        let t1050 = t92 * t1046;
-        let t1051 = t91 * t1043;
-        let t1052 = t1050 + t1051;
-        let t1053 = t91 * t1046;
-        let t1054 = t92 * t1043;
-        let t1055 = t1054 - t1053;
-        let t1056 = t53 * t1052;
-        let t1057 = t52 * t1049;
-        let t1058 = t1056 - t1057;
-        let t1059 = t52 * t1052;
-        let t1060 = t53 * t1049;
-        let t1061 = t1059 + t1060;
-        let t1062 = t12 * t1058;
-        let t1063 = t11 * t1055;
-        let t1064 = t1062 + t1063;
-        let t1065 = t11 * t1058;
-        let t1066 = t12 * t1055;
-        let t1067 = t1065 - t1066;
-        let t1068 = t0 * t1064;
-        let t1069 = t1 * t1061;
+        let t856 = t852 + t855;
+        let t857 = t8 * t213;
+        let t858 = t9 * t210;
+        let t859 = t858 - t857;
+        let t860 = -t846;
+        let t861 = t206 * t288;
+        let t862 = t289 * t811;
+        let t863 = t209 * t275;
+        let t864 = t862 + t863;
+        let t865 = t861 + t864;
+        let t866 = t206 * t294;
+        let t867 = t295 * t811;
+        let t868 = t209 * t281;
+        let t869 = t868 - t867;
+        let t870 = t866 + t869;
+        let t871 = t206 * t300;
+        let t872 = t301 * t811;
+        let t873 = t209 * t283;
+        let t874 = t872 - t873;
+        let t875 = t871 + t874;
+        let t876 = t206 * t302;
+        let t877 = t303 * t811;
+        let t878 = t7 * t209;
+        let t879 = t877 - t878;
+        let t880 = t879 - t876;
+        let t881 = t8 * t206;
+        let t882 = t9 * t811;
+        let t883 = t881 + t882;
+        let t884 = -t209;
+        let t885 = t288 * t810;
+        let t886 = t205 * t289;
+        let t887 = t214 * t275;
+        let t888 = t886 + t887;
+        let t889 = t885 - t888;
+        let t890 = t294 * t810;
+        let t891 = t205 * t295;
+        let t892 = t214 * t281;
+        let t893 = t891 - t892;
+        let t894 = t890 + t893;
+        let t895 = t300 * t810;
+        let t896 = t205 * t301;
+        let t897 = t214 * t283;
+        let t898 = t897 - t896;
+        let t899 = t895 + t898;
+        let t900 = t302 * t810;
+        let t901 = t205 * t303;
+        let t902 = t7 * t214;
+        let t903 = t902 - t901;
+        let t904 = t903 - t900;
+        let t905 = t8 * t810;
+        let t906 = t9 * t205;
+        let t907 = t905 - t906;
+        let t908 = t208 * t288;
+        let t909 = t199 * t275;
+        let t910 = t814 + t909;
+        let t911 = t908 - t910;
+        let t912 = t208 * t294;
+        let t913 = t199 * t281;
+        let t914 = t819 - t913;
+        let t915 = t912 + t914;
+        let t916 = t208 * t300;
+        let t917 = t199 * t283;
+        let t918 = t917 - t824;
+        let t919 = t916 + t918;
+        let t920 = t208 * t302;
+        let t921 = t7 * t199;
+        let t922 = t921 - t829;
+        let t923 = t922 - t920;
+        let t924 = t8 * t208;
+        let t925 = t924 - t834;
+        let t926 = t203 * t388;
+        let t927 = t142 * t289;
+        let t928 = t206 * t389;
+        let t929 = t181 * t275;
+        let t930 = t213 * t362;
+        let t931 = t926 + t927;
+        let t932 = t930 - t929;
+        let t933 = t928 + t932;
+        let t934 = t933 - t931;
+        let t935 = t203 * t394;
+        let t936 = t142 * t295;
+        let t937 = t206 * t395;
+        let t938 = t181 * t281;
+        let t939 = t213 * t377;
+        let t940 = t936 - t935;
+        let t941 = t939 - t938;
+        let t942 = t937 + t941;
+        let t943 = t940 + t942;
+        let t944 = t203 * t396;
+        let t945 = t142 * t301;
+        let t946 = t206 * t397;
+        let t947 = t181 * t283;
+        let t948 = t213 * t383;
+        let t949 = t944 - t945;
+        let t950 = t947 + t948;
+        let t951 = t946 + t950;
+        let t952 = t949 + t951;
+        let t953 = t203 * t402;
+        let t954 = t142 * t303;
+        let t955 = t206 * t405;
+        let t956 = t7 * t181;
+        let t957 = t6 * t213;
+        let t958 = t953 - t954;
+        let t959 = t955 + t956;
+        let t960 = t958 + t959;
+        let t961 = t957 * c3;
+        let t962 = t960 - t961;
+        let t963 = t9 * t142;
+        let t964 = -t963;
+        let t965 = t142 * t288;
+        let t966 = t205 * t388;
+        let t967 = t207 * t389;
+        let t968 = t180 * t275;
+        let t969 = t210 * t362;
+        let t970 = t965 + t966;
+        let t971 = t968 + t969;
+        let t972 = t971 - t967;
+        let t973 = t970 + t972;
+        let t974 = t142 * t294;
+        let t975 = t205 * t394;
+        let t976 = t207 * t395;
+        let t977 = t180 * t281;
+        let t978 = t210 * t377;
+        let t979 = t974 + t975;
+        let t980 = t977 + t978;
+        let t981 = t980 - t976;
+        let t982 = t979 + t981;
+        let t983 = t142 * t300;
+        let t984 = t205 * t396;
+        let t985 = t207 * t397;
+        let t986 = t180 * t283;
+        let t987 = t210 * t383;
+        let t988 = t983 - t984;
+        let t989 = t987 - t986;
+        let t990 = t989 - t985;
+        let t991 = t988 + t990;
+        let t992 = t142 * t302;
+        let t993 = t205 * t402;
+        let t994 = t207 * t405;
+        let t995 = t7 * t180;
+        let t996 = t6 * t210;
+        let t997 = t992 + t993;
+        let t998 = t994 + t995;
+        let t999 = t997 + t998;
+        let t1000 = t996 * c3;
+        let t1001 = t999 + t1000;
+        let t1002 = t8 * t142;
+        let t1003 = -t1001;
+        let t1004 = -t180;
+        let t1005 = t256 - t252;
+        let t1006 = t248 - t256;
+        let t1007 = t252 - t248;
+        let t1008 = t242 * t308;
+        let t1009 = t257 * t309;
+        let t1010 = t249 * t289;
+        let t1011 = t1010 - t1009;
+        let t1012 = t1008 + t1011;
+        let t1013 = t242 * t314;
+        let t1014 = t257 * t315;
+        let t1015 = t249 * t295;
+        let t1016 = t1014 + t1015;
+        let t1017 = t1013 - t1016;
+        let t1018 = t242 * t320;
+        let t1019 = t257 * t321;
+        let t1020 = t249 * t301;
+        let t1021 = t1019 + t1020;
+        let t1022 = t1018 + t1021;
+        let t1023 = t242 * t326;
+        let t1024 = t257 * t327;
+        let t1025 = t249 * t303;
+        let t1026 = t1024 + t1025;
+        let t1027 = t1023 + t1026;
+        let t1028 = t242 * t328;
+        let t1029 = t257 * t329;
+        let t1030 = t9 * t249;
+        let t1031 = t1030 - t1029;
+        let t1032 = t1028 + t1031;
+        let t1033 = t10 * t242;
+        let t1034 = t11 * t257;
+        let t1035 = t1033 + t1034;
+        let t1036 = -t249;
+        let t1037 = t258 * t308;
+        let t1038 = t255 * t309;
+        let t1039 = t289 * t1007;
+        let t1040 = t1038 + t1039;
+        let t1041 = t1037 + t1040;
+        let t1042 = t258 * t314;
+        let t1043 = t255 * t315;
+        let t1044 = t295 * t1007;
+        let t1045 = t1044 - t1043;
+        let t1046 = t1045 - t1042;
+        let t1047 = t258 * t320;
+        let t1048 = t255 * t321;
+        let t1049 = t301 * t1007;
+        let t1050 = t1048 - t1049;
+        let t1051 = t1050 - t1047;
+        let t1052 = t258 * t326;
+        let t1053 = t255 * t327;
+        let t1054 = t303 * t1007;
+        let t1055 = t1053 - t1054;
+        let t1056 = t1055 - t1052;
+        let t1057 = t258 * t328;
+        let t1058 = t255 * t329;
+        let t1059 = t9 * t1007;
+        let t1060 = t1058 + t1059;
+        let t1061 = t1057 + t1060;
+        let t1062 = t10 * t258;
+        let t1063 = t11 * t255;
+        let t1064 = t1063 - t1062;
+        let t1065 = -t1041;
+        let t1066 = -t1061;
+        let t1067 = t251 * t308;
+        let t1068 = t309 * t1006;
+        let t1069 = t254 * t289;
         let t1070 = t1069 - t1068;
-        let t1071 = t207 * t207;
-        let t1072 = t1071 - t1031;
-        let t1073 = t210 + t992;
-        let t1074 = t209 - t1030;
-        let t1075 = t173 * t1073;
-        let t1076 = t172 * t1072;
-        let t1077 = t1075 - t1076;
-        let t1078 = t172 * t1073;
-        let t1079 = t173 * t1072;
+        let t1071 = t1067 + t1070;
+        let t1072 = t251 * t314;
+        let t1073 = t315 * t1006;
+        let t1074 = t254 * t295;
+        let t1075 = t1073 + t1074;
+        let t1076 = t1072 - t1075;
+        let t1077 = t251 * t320;
+        let t1078 = t321 * t1006;
+        let t1079 = t254 * t301;
         let t1080 = t1078 + t1079;
-        let t1081 = t147 * t1077;
-        let t1082 = t146 * t1074;
-        let t1083 = t1081 + t1082;
-        let t1084 = t146 * t1077;
-        let t1085 = t147 * t1074;
-        let t1086 = t1084 - t1085;
-        let t1087 = t92 * t1083;
-        let t1088 = t91 * t1080;
-        let t1089 = t1087 + t1088;
-        let t1090 = t91 * t1083;
-        let t1091 = t92 * t1080;
-        let t1092 = t1091 - t1090;
-        let t1093 = t53 * t1089;
-        let t1094 = t52 * t1086;
-        let t1095 = t1093 - t1094;
-        let t1096 = t52 * t1089;
-        let t1097 = t53 * t1086;
-        let t1098 = t1096 + t1097;
-        let t1099 = t12 * t1095;
-        let t1100 = t11 * t1092;
-        let t1101 = t1099 + t1100;
-        let t1102 = t11 * t1095;
-        let t1103 = t12 * t1092;
-        let t1104 = t1102 - t1103;
-        let t1105 = t0 * t1101;
-        let t1106 = t1 * t1098;
-        let t1107 = t1106 - t1105;
-        let t1108 = t1032 - t1071;
-        let t1109 = t210 - t992;
-        let t1110 = t991 - t206;
-        let t1111 = t1034 + t1110;
-        let t1112 = t173 * t1108;
-        let t1113 = t172 * t1109;
-        let t1114 = t1112 - t1113;
-        let t1115 = t172 * t1108;
-        let t1116 = t173 * t1109;
-        let t1117 = t1115 + t1116;
-        let t1118 = t147 * t1114;
-        let t1119 = t146 * t1111;
-        let t1120 = t1118 + t1119;
-        let t1121 = t146 * t1114;
-        let t1122 = t147 * t1111;
+        let t1081 = t1077 + t1080;
+        let t1082 = t251 * t326;
+        let t1083 = t327 * t1006;
+        let t1084 = t254 * t303;
+        let t1085 = t1083 + t1084;
+        let t1086 = t1082 + t1085;
+        let t1087 = t251 * t328;
+        let t1088 = t329 * t1006;
+        let t1089 = t9 * t254;
+        let t1090 = t1089 - t1088;
+        let t1091 = t1087 + t1090;
+        let t1092 = t10 * t251;
+        let t1093 = t11 * t1006;
+        let t1094 = t1092 + t1093;
+        let t1095 = -t254;
+        let t1096 = t308 * t1005;
+        let t1097 = t250 * t309;
+        let t1098 = t259 * t289;
+        let t1099 = t1097 - t1098;
+        let t1100 = t1096 + t1099;
+        let t1101 = t314 * t1005;
+        let t1102 = t250 * t315;
+        let t1103 = t259 * t295;
+        let t1104 = t1102 + t1103;
+        let t1105 = t1101 + t1104;
+        let t1106 = t320 * t1005;
+        let t1107 = t250 * t321;
+        let t1108 = t259 * t301;
+        let t1109 = t1107 + t1108;
+        let t1110 = t1106 - t1109;
+        let t1111 = t326 * t1005;
+        let t1112 = t250 * t327;
+        let t1113 = t259 * t303;
+        let t1114 = t1112 + t1113;
+        let t1115 = t1111 - t1114;
+        let t1116 = t328 * t1005;
+        let t1117 = t250 * t329;
+        let t1118 = t9 * t259;
+        let t1119 = t1117 - t1118;
+        let t1120 = t1116 + t1119;
+        let t1121 = t10 * t1005;
+        let t1122 = t11 * t250;
         let t1123 = t1121 - t1122;
-        let t1124 = t92 * t1120;
-        let t1125 = t91 * t1117;
-        let t1126 = t1124 + t1125;
-        let t1127 = t91 * t1120;
-        let t1128 = t92 * t1117;
-        let t1129 = t1128 - t1127;
-        let t1130 = t53 * t1126;
-        let t1131 = t52 * t1123;
-        let t1132 = t1130 - t1131;
-        let t1133 = t52 * t1126;
-        let t1134 = t53 * t1123;
-        let t1135 = t1133 + t1134;
-        let t1136 = t12 * t1132;
-        let t1137 = t11 * t1129;
-        let t1138 = t1136 + t1137;
-        let t1139 = t11 * t1132;
-        let t1140 = t12 * t1129;
-        let t1141 = t1139 - t1140;
-        let t1142 = t0 * t1138;
-        let t1143 = t1 * t1135;
-        let t1144 = t1143 - t1142;
-        let t1145 = t173 * t179;
-        let t1146 = t207 * t1145;
-        let t1147 = t995 + t1146;
-        let t1148 = t172 * t179;
-        let t1149 = t207 * t1148;
-        let t1150 = t1149 - t999;
-        let t1151 = t147 * t1147;
-        let t1152 = t146 * t210;
-        let t1153 = t1151 + t1152;
-        let t1154 = t146 * t1147;
-        let t1155 = t147 * t210;
-        let t1156 = t1154 - t1155;
-        let t1157 = t92 * t1153;
-        let t1158 = t91 * t1150;
-        let t1159 = t1157 + t1158;
-        let t1160 = t91 * t1153;
-        let t1161 = t92 * t1150;
-        let t1162 = t1161 - t1160;
-        let t1163 = t53 * t1159;
-        let t1164 = t52 * t1156;
-        let t1165 = t1163 - t1164;
-        let t1166 = t52 * t1159;
-        let t1167 = t53 * t1156;
-        let t1168 = t1166 + t1167;
-        let t1169 = t12 * t1165;
-        let t1170 = t11 * t1162;
-        let t1171 = t1169 + t1170;
-        let t1172 = t11 * t1165;
-        let t1173 = t12 * t1162;
-        let t1174 = t1172 - t1173;
-        let t1175 = t0 * t1171;
-        let t1176 = t1 * t1168;
-        let t1177 = t1176 - t1175;
-        let t1178 = t1032 + t1071;
-        let t1179 = t173 * t1178;
-        let t1180 = t1078 + t1179;
-        let t1181 = t173 * t194;
-        let t1182 = t172 * t1178;
-        let t1183 = t1182 - t1075;
-        let t1184 = t1183 * c5;
-        let t1185 = t1184 - t204;
-        let t1186 = t1036 * c5;
-        let t1187 = t1181 + t1186;
-        let t1188 = t147 * t1180;
-        let t1189 = t146 * t1036;
-        let t1190 = t1188 + t1189;
-        let t1191 = t146 * t1180;
-        let t1192 = t147 * t1036;
-        let t1193 = t1192 - t1191;
-        let t1194 = t147 * t172;
-        let t1195 = t194 * t1194;
-        let t1196 = t146 * t1185;
-        let t1197 = t1195 + t1196;
-        let t1198 = t146 * t172;
-        let t1199 = t194 * t1198;
-        let t1200 = t147 * t1185;
-        let t1201 = t1200 - t1199;
-        let t1202 = t92 * t1190;
-        let t1203 = t91 * t1183;
-        let t1204 = t1202 + t1203;
-        let t1205 = t91 * t1190;
-        let t1206 = t92 * t1183;
-        let t1207 = t92 * t1197;
-        let t1208 = t91 * t1187;
-        let t1209 = t91 * t1197;
-        let t1210 = t92 * t1187;
-        let t1211 = t1205 - t1206;
-        let t1212 = t1211 * c4;
-        let t1213 = t1208 + t1212;
-        let t1214 = t1213 - t1207;
-        let t1215 = t1211 * c3;
-        let t1216 = t1201 + t1215;
-        let t1217 = t1193 * c3;
-        let t1218 = t1204 * c4;
-        let t1219 = t1209 + t1210;
-        let t1220 = t1218 - t1217;
-        let t1221 = t1219 + t1220;
-        let t1222 = t53 * t1204;
-        let t1223 = t52 * t1193;
-        let t1224 = t1222 + t1223;
-        let t1225 = t53 * t1214;
-        let t1226 = t52 * t1216;
-        let t1227 = t1225 - t1226;
-        let t1228 = t52 * t1214;
-        let t1229 = t53 * t1216;
-        let t1230 = t52 * t1204;
-        let t1231 = t53 * t1193;
-        let t1232 = t1230 - t1231;
-        let t1233 = t1193 + t1232;
-        let t1234 = t1233 * c3;
-        let t1235 = t1234 - t1218;
-        let t1236 = t1235 - t1219;
-        let t1237 = t1229 - t1215;
-        let t1238 = t1228 + t1237;
-        let t1239 = t12 * t1227;
-        let t1240 = t11 * t1236;
-        let t1241 = t11 * t1227;
-        let t1242 = t12 * t1236;
-        let t1243 = t11 * t1224;
-        let t1244 = t12 * t1211;
-        let t1245 = t12 * t1224;
-        let t1246 = t11 * t1211;
-        let t1247 = t1243 + t1244;
-        let t1248 = t1247 * c1;
-        let t1249 = t1248 - t1240;
-        let t1250 = t1239 + t1249;
-        let t1251 = t1246 - t1245;
-        let t1252 = t1251 * c1;
-        let t1253 = t1242 + t1252;
-        let t1254 = t1241 + t1253;
-        let t1255 = t0 * t1250;
-        let t1256 = t1 * t1238;
-        let t1257 = t1256 - t1255;
-        let t1258 = t1031 + t1071;
-        let t1259 = t200 + t201;
-        let t1260 = t172 * t1258;
-        let t1261 = t1260 - t1116;
-        let t1262 = t172 * t194;
-        let t1263 = t173 * t1258;
-        let t1264 = t1113 + t1263;
-        let t1265 = t1264 * c5;
-        let t1266 = t1259 + t1265;
-        let t1267 = t1037 * c5;
-        let t1268 = t1262 + t1267;
-        let t1269 = t147 * t1261;
-        let t1270 = t146 * t1037;
-        let t1271 = t1269 + t1270;
-        let t1272 = t146 * t1261;
-        let t1273 = t147 * t1037;
-        let t1274 = t1272 - t1273;
-        let t1275 = t147 * t173;
-        let t1276 = t194 * t1275;
-        let t1277 = t146 * t1266;
-        let t1278 = t1276 + t1277;
-        let t1279 = t146 * t173;
-        let t1280 = t194 * t1279;
-        let t1281 = t147 * t1266;
-        let t1282 = t1281 - t1280;
-        let t1283 = t92 * t1271;
-        let t1284 = t91 * t1264;
-        let t1285 = t1283 - t1284;
-        let t1286 = t91 * t1271;
-        let t1287 = t92 * t1264;
-        let t1288 = t92 * t1278;
-        let t1289 = t91 * t1268;
-        let t1290 = t91 * t1278;
-        let t1291 = t92 * t1268;
-        let t1292 = t1286 + t1287;
-        let t1293 = t1292 * c4;
-        let t1294 = t1289 + t1293;
-        let t1295 = t1288 + t1294;
-        let t1296 = t1292 * c3;
-        let t1297 = t1282 - t1296;
-        let t1298 = t1274 * c3;
-        let t1299 = t1285 * c4;
-        let t1300 = t1290 - t1291;
-        let t1301 = t1298 + t1299;
-        let t1302 = t1300 - t1301;
-        let t1303 = t53 * t1285;
-        let t1304 = t52 * t1274;
-        let t1305 = t1303 - t1304;
-        let t1306 = t53 * t1295;
-        let t1307 = t52 * t1297;
-        let t1308 = t1306 + t1307;
-        let t1309 = t52 * t1295;
-        let t1310 = t53 * t1297;
-        let t1311 = t52 * t1285;
-        let t1312 = t53 * t1274;
-        let t1313 = t1311 + t1312;
-        let t1314 = t1274 - t1313;
-        let t1315 = t1314 * c3;
-        let t1316 = t1291 - t1290;
-        let t1317 = t1299 + t1315;
-        let t1318 = t1316 + t1317;
-        let t1319 = t1296 + t1310;
-        let t1320 = t1319 - t1309;
-        let t1321 = t12 * t1308;
-        let t1322 = t11 * t1318;
-        let t1323 = t11 * t1308;
-        let t1324 = t12 * t1318;
-        let t1325 = t11 * t1305;
-        let t1326 = t12 * t1292;
-        let t1327 = t12 * t1305;
-        let t1328 = t11 * t1292;
-        let t1329 = t1325 + t1326;
-        let t1330 = t1329 * c1;
-        let t1331 = t1322 + t1330;
-        let t1332 = t1321 + t1331;
-        let t1333 = t1327 - t1328;
-        let t1334 = t1333 * c1;
-        let t1335 = t1324 + t1334;
-        let t1336 = t1335 - t1323;
-        let t1337 = t0 * t1332;
-        let t1338 = t1 * t1320;
-        let t1339 = t1337 + t1338;
-        let t1340 = -t228;
-        let t1341 = -t232;
-        let t1342 = -t246;
-        let t1343 = -t321;
-        let t1344 = -t480;
-        let t1345 = -t26;
-        let t1346 = -t3;
-        let t1347 = -t4;
-        let t1348 = -t6;
-        let t1349 = -t533;
-        let t1350 = -t234;
-        let t1351 = -t41;
-        let t1352 = -t459;
-        let t1353 = -t323;
-        let t1354 = -t115;
-        let t1355 = -t490;
-        let t1356 = -t546;
-        let t1357 = -t571;
-        let t1358 = -t671;
-        let t1359 = -t725;
-        let t1360 = -t138;
-        let t1361 = -t135;
-        let t1362 = -t867;
-        let t1363 = -t709;
-        let t1364 = -t160;
-        let t1365 = -t1268;
-        let t1366 = -t992;
-        let t1367 = -t1259;
+        let t1124 = t253 * t308;
+        let t1125 = t244 * t289;
+        let t1126 = t1009 - t1125;
+        let t1127 = t1124 + t1126;
+        let t1128 = t253 * t314;
+        let t1129 = t244 * t295;
+        let t1130 = t1014 + t1129;
+        let t1131 = t1128 + t1130;
+        let t1132 = t253 * t320;
+        let t1133 = t244 * t301;
+        let t1134 = t1019 + t1133;
+        let t1135 = t1132 - t1134;
+        let t1136 = t253 * t326;
+        let t1137 = t244 * t303;
+        let t1138 = t1024 + t1137;
+        let t1139 = t1136 - t1138;
+        let t1140 = t253 * t328;
+        let t1141 = t9 * t244;
+        let t1142 = t1029 - t1141;
+        let t1143 = t1140 + t1142;
+        let t1144 = t10 * t253;
+        let t1145 = t1144 - t1034;
+        let t1146 = t248 * t414;
+        let t1147 = t218 * t309;
+        let t1148 = t251 * t415;
+        let t1149 = t226 * t289;
+        let t1150 = t258 * t407;
+        let t1151 = t1146 + t1147;
+        let t1152 = t1149 + t1150;
+        let t1153 = t1148 - t1152;
+        let t1154 = t1153 - t1151;
+        let t1155 = t248 * t424;
+        let t1156 = t218 * t315;
+        let t1157 = t251 * t425;
+        let t1158 = t226 * t295;
+        let t1159 = t258 * t417;
+        let t1160 = t1155 + t1156;
+        let t1161 = t1158 - t1159;
+        let t1162 = t1157 + t1161;
+        let t1163 = t1162 - t1160;
+        let t1164 = t248 * t434;
+        let t1165 = t218 * t321;
+        let t1166 = t251 * t435;
+        let t1167 = t226 * t301;
+        let t1168 = t258 * t427;
+        let t1169 = t1165 - t1164;
+        let t1170 = t1167 + t1168;
+        let t1171 = t1166 - t1170;
+        let t1172 = t1169 + t1171;
+        let t1173 = t248 * t445;
+        let t1174 = t218 * t327;
+        let t1175 = t251 * t446;
+        let t1176 = t226 * t303;
+        let t1177 = t258 * t437;
+        let t1178 = t1173 + t1174;
+        let t1179 = t1176 + t1177;
+        let t1180 = t1175 - t1179;
+        let t1181 = t1178 + t1180;
+        let t1182 = t248 * t447;
+        let t1183 = t218 * t329;
+        let t1184 = t251 * t448;
+        let t1185 = t9 * t226;
+        let t1186 = t1182 - t1184;
+        let t1187 = t1183 + t1185;
+        let t1188 = t1186 * c4;
+        let t1189 = t1188 - t1187;
+        let t1190 = t11 * t218;
+        let t1191 = t258 * c4;
+        let t1192 = t1190 - t1191;
+        let t1193 = t218 * t308;
+        let t1194 = t250 * t414;
+        let t1195 = t252 * t415;
+        let t1196 = t225 * t289;
+        let t1197 = t255 * t407;
+        let t1198 = t1194 - t1193;
+        let t1199 = t1196 - t1197;
+        let t1200 = t1199 - t1195;
+        let t1201 = t1198 + t1200;
+        let t1202 = t218 * t314;
+        let t1203 = t250 * t424;
+        let t1204 = t252 * t425;
+        let t1205 = t225 * t295;
+        let t1206 = t255 * t417;
+        let t1207 = t1203 - t1202;
+        let t1208 = t1205 + t1206;
+        let t1209 = t1204 + t1208;
+        let t1210 = t1207 - t1209;
+        let t1211 = t218 * t320;
+        let t1212 = t250 * t434;
+        let t1213 = t252 * t435;
+        let t1214 = t225 * t301;
+        let t1215 = t255 * t427;
+        let t1216 = t1212 - t1211;
+        let t1217 = t1214 - t1215;
+        let t1218 = t1217 - t1213;
+        let t1219 = t1216 + t1218;
+        let t1220 = t218 * t326;
+        let t1221 = t250 * t445;
+        let t1222 = t252 * t446;
+        let t1223 = t225 * t303;
+        let t1224 = t255 * t437;
+        let t1225 = t1220 + t1221;
+        let t1226 = t1223 - t1224;
+        let t1227 = t1226 - t1222;
+        let t1228 = t1227 - t1225;
+        let t1229 = t218 * t328;
+        let t1230 = t250 * t447;
+        let t1231 = t252 * t448;
+        let t1232 = t9 * t225;
+        let t1233 = t1232 - t1229;
+        let t1234 = t1231 - t1230;
+        let t1235 = t1234 * c4;
+        let t1236 = t1233 + t1235;
+        let t1237 = t10 * t218;
+        let t1238 = t255 * c4;
+        let t1239 = t1237 + t1238;
+        let t1240 = -t1239;
+        let t1241 = -t225;
         [
             qdd1,
-            t213,
-            t223,
-            t1340,
-            t1341,
+            t454,
+            t458,
+            t462,
+            t466,
+            t468,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            t1342,
-            t261,
-            t274,
-            t286,
-            t295,
-            t309,
-            t1343,
-            t342,
-            t365,
-            t384,
-            t403,
-            t418,
-            t449,
-            t1344,
-            t507,
-            t536,
-            t561,
-            t586,
-            t607,
-            t658,
-            t707,
-            t740,
-            t773,
-            t804,
-            t834,
-            t861,
-            t926,
-            t990,
-            t1029,
-            t1070,
-            t1107,
-            t1144,
-            t1177,
-            t1257,
-            t1339,
-            T::ZERO,
-            t1345,
-            t216,
-            t1346,
-            t1347,
-            qdd2,
-            t1348,
-            t5,
-            t242,
-            t258,
-            t271,
-            t283,
-            t292,
-            t306,
-            t318,
-            t339,
-            t362,
-            t381,
-            t400,
-            t415,
-            t446,
             t477,
-            t504,
-            t1349,
-            t558,
-            t583,
-            t604,
-            t655,
-            t704,
-            t737,
-            t770,
-            t801,
-            t831,
-            t858,
-            t923,
-            t987,
-            t1026,
-            t1067,
-            t1104,
-            t1141,
-            t1174,
-            t1254,
-            t1336,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1350,
-            t250,
-            t265,
-            t277,
-            t51,
-            t44,
-            t1351,
-            t331,
-            t356,
-            t375,
-            t394,
-            t409,
-            t428,
-            t1352,
-            t498,
-            t527,
-            t552,
-            t577,
-            t598,
-            t639,
-            t688,
-            t731,
-            t764,
-            t795,
-            t825,
-            t852,
-            t907,
-            t971,
-            t1020,
-            t1061,
-            t1098,
-            t1135,
-            t1168,
-            t1238,
-            t1320,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1353,
-            t346,
-            t369,
-            t388,
-            t90,
-            t84,
-            t1354,
-            t1355,
-            t521,
-            t1356,
-            t1357,
-            t592,
-            t622,
-            t1358,
-            t1359,
-            t758,
-            t789,
-            t819,
-            t846,
-            t889,
-            t954,
-            t1014,
-            t1055,
-            t1092,
-            t1129,
-            t1162,
-            t1221,
-            t1302,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t482,
-            t511,
-            t540,
-            t565,
-            t145,
-            t1360,
-            t1361,
-            t717,
+            t486,
+            t494,
+            t503,
+            t510,
+            t519,
+            t531,
+            t545,
+            t559,
+            t573,
+            t587,
+            t599,
+            t614,
+            t635,
+            t658,
+            t677,
+            t695,
+            t714,
+            t732,
             t752,
-            t783,
-            t813,
-            t840,
-            t1362,
-            t932,
-            t1008,
-            t1049,
-            t1086,
-            t1123,
-            t1156,
+            t785,
+            t817,
+            t841,
+            t865,
+            t889,
+            t911,
+            t934,
+            t973,
+            t1012,
+            t1065,
+            t1071,
+            t1100,
+            t1127,
+            t1154,
             t1201,
-            t1282,
             T::ZERO,
+            t455,
+            t451,
+            t463,
+            t32,
+            qdd2,
+            t469,
+            t33,
+            t480,
+            t489,
+            t497,
+            t506,
+            t512,
+            t524,
+            t536,
+            t550,
+            t568,
+            t578,
+            t592,
+            t603,
+            t624,
+            t645,
+            t663,
+            t682,
+            t700,
+            t719,
+            t743,
+            t761,
+            t794,
+            t822,
+            t860,
+            t870,
+            t894,
+            t915,
+            t943,
+            t982,
+            t1017,
+            t1046,
+            t1076,
+            t1105,
+            t1131,
+            t1163,
+            t1210,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -4203,6 +3945,41 @@ impl Panda {
             T::ZERO,
             T::ZERO,
             T::ZERO,
+            t481,
+            t472,
+            t498,
+            t79,
+            t64,
+            t46,
+            t537,
+            t553,
+            t567,
+            t581,
+            t595,
+            t605,
+            t626,
+            t649,
+            t668,
+            t687,
+            t705,
+            t724,
+            t740,
+            t768,
+            t801,
+            t827,
+            t851,
+            t875,
+            t899,
+            t919,
+            t952,
+            t991,
+            t1022,
+            t1051,
+            t1081,
+            t1110,
+            t1135,
+            t1172,
+            t1219,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -4218,25 +3995,39 @@ impl Panda {
             T::ZERO,
             T::ZERO,
             T::ZERO,
+            t554,
+            t540,
+            t582,
+            t124,
+            t109,
+            t91,
+            t650,
+            t672,
+            t690,
+            t709,
+            t728,
+            t742,
+            t775,
+            t808,
+            t832,
+            t856,
+            t880,
+            t904,
+            t923,
+            t962,
+            t1003,
+            t1027,
+            t1056,
+            t1086,
+            t1115,
+            t1139,
+            t1181,
+            t1228,
             T::ZERO,
             T::ZERO,
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t1363,
-            t744,
-            t777,
-            t807,
-            t171,
-            t163,
-            t1364,
-            t1000,
-            t1043,
-            t1080,
-            t1117,
-            t1150,
-            t1187,
-            t1365,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -4254,6 +4045,27 @@ impl Panda {
             T::ZERO,
             T::ZERO,
             T::ZERO,
+            t165,
+            t653,
+            t170,
+            t175,
+            t160,
+            t776,
+            t809,
+            t835,
+            t859,
+            t883,
+            t907,
+            t925,
+            t964,
+            t1002,
+            t1032,
+            t1066,
+            t1091,
+            t1120,
+            t1143,
+            t1189,
+            t1236,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -4273,13 +4085,73 @@ impl Panda {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t1366,
-            t1033,
-            t1074,
-            t1111,
-            t210,
-            t204,
-            t1367,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t836,
+            t812,
+            t884,
+            t214,
+            t199,
+            t181,
+            t1004,
+            t1035,
+            t1064,
+            t1094,
+            t1123,
+            t1145,
+            t1192,
+            t1240,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t1036,
+            t1007,
+            t1095,
+            t259,
+            t244,
+            t226,
+            t1241,
         ]
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.

@@ -2025,7 +2025,7 @@ impl Puma560 {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 581 mul, 385 add, 24 neg, 5 sin, 5 cos.
+    /// Operations: 402 mul, 304 add, 22 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -2036,1187 +2036,924 @@ impl Puma560 {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
-        let c0 = T::from_f64(9.81);
-        let c1 = T::from_f64(0.4318);
-        let c2 = T::from_f64(0.15005);
+        let c0 = T::from_f64(0.4318);
+        let c1 = T::from_f64(0.15005);
+        let c2 = T::from_f64(9.81);
         let c3 = T::from_f64(0.0203);
-        let c4 = T::from_f64(2.0);
         let (t0, t1) = q2.sin_cos();
-        let t2 = t0 * qdd1;
-        let t3 = t1 * qdd1;
-        let t4 = t0 * c0;
-        let t5 = t1 * c0;
-        let t6 = qd1 * qd2;
-        let t7 = t1 * t6;
-        let t8 = t0 * t6;
-        let t9 = t2 + t7;
-        let t10 = t3 - t8;
-        let (t11, t12) = q3.sin_cos();
-        let t13 = t0 * qd1;
-        let t14 = t12 * t13;
-        let t15 = t1 * qd1;
-        let t16 = t11 * t15;
-        let t17 = t14 + t16;
-        let t18 = t11 * t13;
-        let t19 = t12 * t15;
-        let t20 = t19 - t18;
-        let t21 = t9 * t12;
+        let (t2, t3) = q3.sin_cos();
+        let (t4, t5) = q4.sin_cos();
+        let (t6, t7) = q5.sin_cos();
+        let (t8, t9) = q6.sin_cos();
+        let t10 = t0 * qd1;
+        let t11 = t1 * qd1;
+        let t12 = t0 * qdd1;
+        let t13 = t1 * qdd1;
+        let t14 = t11 * qd2;
+        let t15 = t10 * qd2;
+        let t16 = t12 + t14;
+        let t17 = t13 - t15;
+        let t18 = t10 * t10;
+        let t19 = t11 * t11;
+        let t20 = qd2 * qd2;
+        let t21 = t19 + t20;
         let t22 = t10 * t11;
-        let t23 = t9 * t11;
-        let t24 = t10 * t12;
-        let t25 = qd2 * c1;
-        let t26 = t13 * c2;
-        let t27 = t25 - t26;
-        let t28 = qd1 * qd1;
-        let t29 = t1 * t1;
-        let t30 = t28 * t29;
-        let t31 = t30 * c1;
-        let t32 = t27 * qd2;
-        let t33 = t0 * t1;
-        let t34 = t28 * t33;
-        let t35 = t13 * t27;
-        let t36 = t30 * c2;
-        let t37 = t2 * c2;
-        let t38 = t10 * c2;
-        let t39 = t4 - t32;
-        let t40 = t38 - t31;
-        let t41 = t39 + t40;
-        let t42 = t34 + qdd2;
-        let t43 = t42 * c1;
-        let t44 = t43 - t37;
-        let t45 = t5 + t44;
-        let t46 = t10 * c1;
-        let t47 = t36 + t46;
-        let t48 = t35 - t47;
-        let t49 = t12 * t41;
-        let t50 = t11 * t45;
-        let t51 = t11 * t41;
-        let t52 = t12 * t45;
-        let t53 = t52 - t51;
-        let t54 = t20 * qd3;
-        let t55 = t17 * qd3;
-        let t56 = qd2 + qd3;
-        let t57 = t22 + t54;
-        let t58 = t21 + t57;
-        let t59 = qdd2 + qdd3;
-        let (t60, t61) = q4.sin_cos();
-        let t62 = t17 * t61;
-        let t63 = t56 * t60;
-        let t64 = t62 - t63;
-        let t65 = t17 * t60;
-        let t66 = t56 * t61;
-        let t67 = t65 + t66;
-        let t68 = t58 * t61;
-        let t69 = t59 * t60;
-        let t70 = t58 * t60;
-        let t71 = t59 * t61;
-        let t72 = t56 * c1;
-        let t73 = t56 * c3;
-        let t74 = t17 * c1;
-        let t75 = t20 * c3;
-        let t76 = t74 - t75;
-        let t77 = t20 * t76;
-        let t78 = t56 * t73;
-        let t79 = t56 * t72;
-        let t80 = t17 * t76;
-        let t81 = t17 * t73;
-        let t82 = t20 * t72;
-        let t83 = t59 * c1;
-        let t84 = t49 + t50;
-        let t85 = t78 + t83;
-        let t86 = t77 - t85;
-        let t87 = t84 + t86;
-        let t88 = t59 * c3;
-        let t89 = t53 - t79;
-        let t90 = t88 - t80;
+        let t23 = t22 - qdd2;
+        let t24 = t22 + qdd2;
+        let t25 = t18 + t20;
+        let t26 = t14 - t16;
+        let t27 = t14 + t16;
+        let t28 = t18 + t19;
+        let t29 = t15 - t17;
+        let t30 = t15 + t17;
+        let t31 = t21 * c0;
+        let t32 = t30 * c1;
+        let t33 = t32 - t31;
+        let t34 = t24 * c0;
+        let t35 = t26 * c1;
+        let t36 = t34 + t35;
+        let t37 = t29 * c0;
+        let t38 = t28 * c1;
+        let t39 = t37 - t38;
+        let t40 = t0 * c2;
+        let t41 = t33 + t40;
+        let t42 = t1 * c2;
+        let t43 = t36 + t42;
+        let t44 = t3 * t41;
+        let t45 = t2 * t43;
+        let t46 = t2 * t41;
+        let t47 = t3 * t43;
+        let t48 = t44 + t45;
+        let t49 = t47 - t46;
+        let t50 = t3 * t10;
+        let t51 = t2 * t11;
+        let t52 = t2 * t10;
+        let t53 = t3 * t11;
+        let t54 = t50 + t51;
+        let t55 = t53 - t52;
+        let t56 = t3 * t16;
+        let t57 = t2 * t17;
+        let t58 = t2 * t16;
+        let t59 = t3 * t17;
+        let t60 = t56 + t57;
+        let t61 = t59 - t58;
+        let t62 = t55 * qd3;
+        let t63 = t54 * qd3;
+        let t64 = qd2 + qd3;
+        let t65 = t60 + t62;
+        let t66 = t61 - t63;
+        let t67 = qdd2 + qdd3;
+        let t68 = t54 * t54;
+        let t69 = t55 * t55;
+        let t70 = t64 * t64;
+        let t71 = t69 + t70;
+        let t72 = t54 * t55;
+        let t73 = t72 - t67;
+        let t74 = t67 + t72;
+        let t75 = t68 + t70;
+        let t76 = t55 * t64;
+        let t77 = t76 - t65;
+        let t78 = t65 + t76;
+        let t79 = t68 + t69;
+        let t80 = t54 * t64;
+        let t81 = t80 - t66;
+        let t82 = t66 + t80;
+        let t83 = t71 * c3;
+        let t84 = t73 * c0;
+        let t85 = t84 - t83;
+        let t86 = t74 * c3;
+        let t87 = t75 * c0;
+        let t88 = t86 - t87;
+        let t89 = t81 * c3;
+        let t90 = t78 * c0;
         let t91 = t89 + t90;
-        let t92 = t58 - t10;
-        let t93 = t92 * c1;
-        let t94 = t55 - t24;
-        let t95 = t23 + t94;
-        let t96 = t95 * c3;
-        let t97 = t81 + t82;
-        let t98 = t35 + t97;
-        let t99 = t93 + t96;
-        let t100 = t99 - t36;
-        let t101 = t98 + t100;
-        let t102 = t61 * t87;
-        let t103 = t60 * t101;
-        let t104 = t102 - t103;
-        let t105 = t60 * t87;
-        let t106 = t61 * t101;
-        let t107 = t105 + t106;
-        let t108 = t67 * qd4;
-        let t109 = t64 * qd4;
-        let t110 = t20 + qd4;
-        let t111 = t69 + t108;
-        let t112 = t68 - t111;
-        let t113 = qdd4 - t95;
-        let (t114, t115) = q5.sin_cos();
-        let t116 = t64 * t115;
-        let t117 = t110 * t114;
-        let t118 = t116 + t117;
-        let t119 = t64 * t114;
-        let t120 = t110 * t115;
-        let t121 = t120 - t119;
-        let t122 = t112 * t115;
-        let t123 = t113 * t114;
-        let t124 = t112 * t114;
-        let t125 = t113 * t115;
-        let t126 = t104 * t115;
-        let t127 = t91 * t114;
-        let t128 = t126 + t127;
-        let t129 = t104 * t114;
-        let t130 = t91 * t115;
-        let t131 = t130 - t129;
-        let t132 = t121 * qd5;
-        let t133 = t118 * qd5;
-        let t134 = t67 + qd5;
-        let t135 = t123 + t132;
-        let t136 = t122 + t135;
-        let t137 = t70 + qdd5;
-        let t138 = t71 + t109;
-        let t139 = t137 + t138;
-        let (t140, t141) = q6.sin_cos();
-        let t142 = t118 * t141;
-        let t143 = t134 * t140;
-        let t144 = t142 - t143;
-        let t145 = t118 * t140;
-        let t146 = t134 * t141;
-        let t147 = t145 + t146;
-        let t148 = t136 * t141;
-        let t149 = t139 * t140;
-        let t150 = t136 * t140;
-        let t151 = t139 * t141;
-        let t152 = t107 * t140;
-        let t153 = t128 * t140;
-        let t154 = t107 * t141;
-        let t155 = t153 + t154;
-        let t156 = t147 * qd6;
-        let t157 = t144 * qd6;
-        let t158 = t121 + qd6;
-        let t159 = t149 + t156;
-        let t160 = t148 - t159;
-        let t161 = qdd6 - t124;
-        let t162 = t125 - t133;
-        let t163 = t161 + t162;
-        let t164 = t0 * t0;
-        let t165 = t0 * t9;
-        let t166 = t1 * t8;
-        let t167 = t165 + t166;
-        let t168 = t28 * t164;
-        let t169 = t168 - t30;
-        let t170 = t8 * c4;
-        let t171 = t3 - t170;
-        let t172 = t7 * c4;
-        let t173 = t2 + t172;
-        let t174 = t0 * t171;
-        let t175 = t1 * t173;
-        let t176 = t174 + t175;
-        let t177 = qd2 * qd2;
-        let t178 = t177 - t168;
-        let t179 = t0 * t42;
-        let t180 = t1 * t178;
-        let t181 = t179 + t180;
-        let t182 = t30 - t177;
-        let t183 = qdd2 - t34;
-        let t184 = t0 * t182;
-        let t185 = t1 * t183;
-        let t186 = t184 + t185;
-        let t187 = t17 * t56;
-        let t188 = t17 * t20;
-        let t189 = t12 * t58;
-        let t190 = t11 * t17;
-        let t191 = t56 * t190;
-        let t192 = t189 - t191;
-        let t193 = t11 * t58;
-        let t194 = t12 * t17;
-        let t195 = t56 * t194;
-        let t196 = t193 + t195;
-        let t197 = t0 * t192;
-        let t198 = t1 * t196;
-        let t199 = t197 + t198;
-        let t200 = t20 * t56;
-        let t201 = t17 * t17;
-        let t202 = t20 * t20;
-        let t203 = t201 - t202;
-        let t204 = t95 + t187;
-        let t205 = t58 + t200;
-        let t206 = t12 * t204;
-        let t207 = t11 * t205;
-        let t208 = t206 + t207;
-        let t209 = t11 * t204;
-        let t210 = t12 * t205;
-        let t211 = t210 - t209;
-        let t212 = t0 * t208;
-        let t213 = t1 * t211;
-        let t214 = t213 - t212;
-        let t215 = t56 * t56;
-        let t216 = t215 - t201;
-        let t217 = t59 + t188;
-        let t218 = t58 - t200;
-        let t219 = t12 * t217;
-        let t220 = t11 * t216;
-        let t221 = t219 - t220;
-        let t222 = t11 * t217;
-        let t223 = t12 * t216;
-        let t224 = t222 + t223;
-        let t225 = t0 * t221;
-        let t226 = t1 * t224;
-        let t227 = t225 + t226;
-        let t228 = t202 - t215;
-        let t229 = t59 - t188;
-        let t230 = t187 - t95;
-        let t231 = t12 * t228;
-        let t232 = t11 * t229;
-        let t233 = t231 - t232;
-        let t234 = t11 * t228;
-        let t235 = t12 * t229;
-        let t236 = t234 + t235;
-        let t237 = t0 * t233;
-        let t238 = t1 * t236;
-        let t239 = t237 + t238;
-        let t240 = t12 * t20;
-        let t241 = t56 * t240;
-        let t242 = t191 + t241;
-        let t243 = t11 * t20;
-        let t244 = t56 * t243;
-        let t245 = t244 - t195;
-        let t246 = t0 * t242;
-        let t247 = t1 * t245;
-        let t248 = t246 + t247;
-        let t249 = t202 + t215;
-        let t250 = t11 * t48;
-        let t251 = t12 * t48;
-        let t252 = t11 * t249;
-        let t253 = t12 * t249;
-        let t254 = t252 - t219;
-        let t255 = t254 * c2;
-        let t256 = t250 + t255;
-        let t257 = t222 + t253;
-        let t258 = t257 * c2;
-        let t259 = t204 * c1;
-        let t260 = t258 + t259;
-        let t261 = t251 + t260;
-        let t262 = t254 * c1;
-        let t263 = t53 - t262;
-        let t264 = t0 * t256;
-        let t265 = t1 * t261;
-        let t266 = t264 - t265;
-        let t267 = t201 + t215;
-        let t268 = t12 * t267;
-        let t269 = t11 * t267;
-        let t270 = t232 + t268;
-        let t271 = t270 * c2;
-        let t272 = t251 + t271;
-        let t273 = t269 - t235;
-        let t274 = t273 * c2;
-        let t275 = t205 * c1;
-        let t276 = t274 - t275;
-        let t277 = t250 + t276;
-        let t278 = t270 * c1;
-        let t279 = t84 + t278;
-        let t280 = t0 * t272;
-        let t281 = t1 * t277;
+        let t92 = t48 + t85;
+        let t93 = t49 + t88;
+        let t94 = t39 + t91;
+        let t95 = t5 * t92;
+        let t96 = t4 * t94;
+        let t97 = t4 * t92;
+        let t98 = t5 * t94;
+        let t99 = t95 - t96;
+        let t100 = t97 + t98;
+        let t101 = t5 * t54;
+        let t102 = t4 * t64;
+        let t103 = t4 * t54;
+        let t104 = t5 * t64;
+        let t105 = t101 - t102;
+        let t106 = t103 + t104;
+        let t107 = t5 * t65;
+        let t108 = t4 * t67;
+        let t109 = t4 * t65;
+        let t110 = t5 * t67;
+        let t111 = t107 - t108;
+        let t112 = t109 + t110;
+        let t113 = t106 * qd4;
+        let t114 = t105 * qd4;
+        let t115 = t55 + qd4;
+        let t116 = t111 - t113;
+        let t117 = t112 + t114;
+        let t118 = t66 + qdd4;
+        let t119 = t105 * t105;
+        let t120 = t106 * t106;
+        let t121 = t115 * t115;
+        let t122 = t120 + t121;
+        let t123 = t105 * t106;
+        let t124 = t118 + t123;
+        let t125 = t118 - t123;
+        let t126 = t119 + t121;
+        let t127 = t106 * t115;
+        let t128 = t116 + t127;
+        let t129 = t116 - t127;
+        let t130 = t119 + t120;
+        let t131 = t105 * t115;
+        let t132 = t117 + t131;
+        let t133 = t131 - t117;
+        let t134 = t7 * t99;
+        let t135 = t6 * t93;
+        let t136 = t6 * t99;
+        let t137 = t7 * t93;
+        let t138 = t134 + t135;
+        let t139 = t137 - t136;
+        let t140 = t7 * t105;
+        let t141 = t6 * t115;
+        let t142 = t6 * t105;
+        let t143 = t7 * t115;
+        let t144 = t140 + t141;
+        let t145 = t143 - t142;
+        let t146 = t7 * t116;
+        let t147 = t6 * t118;
+        let t148 = t6 * t116;
+        let t149 = t7 * t118;
+        let t150 = t146 + t147;
+        let t151 = t149 - t148;
+        let t152 = t145 * qd5;
+        let t153 = t144 * qd5;
+        let t154 = t106 + qd5;
+        let t155 = t150 + t152;
+        let t156 = t151 - t153;
+        let t157 = t117 + qdd5;
+        let t158 = t144 * t144;
+        let t159 = t145 * t145;
+        let t160 = t154 * t154;
+        let t161 = t159 + t160;
+        let t162 = t144 * t145;
+        let t163 = t162 - t157;
+        let t164 = t157 + t162;
+        let t165 = t158 + t160;
+        let t166 = t145 * t154;
+        let t167 = t166 - t155;
+        let t168 = t155 + t166;
+        let t169 = t158 + t159;
+        let t170 = t144 * t154;
+        let t171 = t170 - t156;
+        let t172 = t156 + t170;
+        let t173 = t9 * t138;
+        let t174 = t8 * t100;
+        let t175 = t8 * t138;
+        let t176 = t9 * t100;
+        let t177 = t173 - t174;
+        let t178 = t175 + t176;
+        let t179 = t9 * t144;
+        let t180 = t8 * t154;
+        let t181 = t8 * t144;
+        let t182 = t9 * t154;
+        let t183 = t179 - t180;
+        let t184 = t181 + t182;
+        let t185 = t9 * t155;
+        let t186 = t8 * t157;
+        let t187 = t8 * t155;
+        let t188 = t9 * t157;
+        let t189 = t185 - t186;
+        let t190 = t187 + t188;
+        let t191 = t184 * qd6;
+        let t192 = t183 * qd6;
+        let t193 = t145 + qd6;
+        let t194 = t189 - t191;
+        let t195 = t190 + t192;
+        let t196 = t156 + qdd6;
+        let t197 = t183 * t183;
+        let t198 = t184 * t184;
+        let t199 = t193 * t193;
+        let t200 = t198 + t199;
+        let t201 = t183 * t184;
+        let t202 = t196 + t201;
+        let t203 = t196 - t201;
+        let t204 = t197 + t199;
+        let t205 = t184 * t193;
+        let t206 = t194 + t205;
+        let t207 = t194 - t205;
+        let t208 = t197 + t198;
+        let t209 = t183 * t193;
+        let t210 = t195 + t209;
+        let t211 = t209 - t195;
+        let t212 = t0 * t3;
+        let t213 = t1 * t2;
+        let t214 = t0 * t2;
+        let t215 = t1 * t3;
+        let t216 = t212 + t213;
+        let t217 = t215 - t214;
+        let t218 = t5 * t216;
+        let t219 = t4 * t216;
+        let t220 = t7 * t218;
+        let t221 = t6 * t217;
+        let t222 = t6 * t218;
+        let t223 = t7 * t217;
+        let t224 = t220 + t221;
+        let t225 = t223 - t222;
+        let t226 = t4 * t7;
+        let t227 = t4 * t6;
+        let t228 = t9 * t224;
+        let t229 = t8 * t219;
+        let t230 = t8 * t224;
+        let t231 = t9 * t219;
+        let t232 = t228 - t229;
+        let t233 = t230 + t231;
+        let t234 = t9 * t226;
+        let t235 = t5 * t8;
+        let t236 = t8 * t226;
+        let t237 = t5 * t9;
+        let t238 = t234 + t235;
+        let t239 = t236 - t237;
+        let t240 = t6 * t9;
+        let t241 = t6 * t8;
+        let t242 = t216 * c0;
+        let t243 = t217 * c3;
+        let t244 = t242 - t243;
+        let t245 = t1 * c0;
+        let t246 = t244 - t245;
+        let t247 = t5 * t217;
+        let t248 = t4 * t246;
+        let t249 = t4 * t217;
+        let t250 = t5 * t246;
+        let t251 = t247 * c1;
+        let t252 = t251 - t248;
+        let t253 = t249 * c1;
+        let t254 = t250 + t253;
+        let t255 = t2 * c0;
+        let t256 = t255 - c0;
+        let t257 = t3 * c0;
+        let t258 = t257 + c3;
+        let t259 = t5 * t256;
+        let t260 = t4 * t256;
+        let t261 = t7 * t252;
+        let t262 = t6 * t216;
+        let t263 = t6 * t252;
+        let t264 = t7 * t216;
+        let t265 = t262 * c1;
+        let t266 = t261 - t265;
+        let t267 = t264 * c1;
+        let t268 = t263 + t267;
+        let t269 = t7 * t259;
+        let t270 = t6 * t258;
+        let t271 = t6 * t259;
+        let t272 = t7 * t258;
+        let t273 = t269 + t270;
+        let t274 = t272 - t271;
+        let t275 = t5 * t7;
+        let t276 = t5 * t6;
+        let t277 = t275 * c0;
+        let t278 = t6 * c3;
+        let t279 = t278 - t277;
+        let t280 = t7 * c3;
+        let t281 = t276 * c0;
         let t282 = t280 + t281;
-        let t283 = t64 * t110;
-        let t284 = t64 * t67;
-        let t285 = t61 * t112;
-        let t286 = t60 * t64;
-        let t287 = t110 * t286;
-        let t288 = t285 - t287;
-        let t289 = t60 * t112;
-        let t290 = t61 * t64;
-        let t291 = t110 * t290;
-        let t292 = t289 + t291;
-        let t293 = t12 * t288;
-        let t294 = t11 * t64;
-        let t295 = t67 * t294;
-        let t296 = t293 - t295;
-        let t297 = t11 * t288;
-        let t298 = t12 * t64;
-        let t299 = t67 * t298;
-        let t300 = t297 + t299;
-        let t301 = t0 * t296;
-        let t302 = t1 * t300;
-        let t303 = t301 + t302;
-        let t304 = t67 * t110;
-        let t305 = t64 * t64;
-        let t306 = t67 * t67;
-        let t307 = t305 - t306;
-        let t308 = t70 + t71;
-        let t309 = t109 + t283;
-        let t310 = t308 + t309;
-        let t311 = t112 - t304;
-        let t312 = t61 * t310;
-        let t313 = t60 * t311;
-        let t314 = t312 + t313;
-        let t315 = t60 * t310;
-        let t316 = t61 * t311;
-        let t317 = t315 - t316;
-        let t318 = t12 * t314;
-        let t319 = t11 * t307;
-        let t320 = t318 + t319;
-        let t321 = t11 * t314;
-        let t322 = t12 * t307;
-        let t323 = t322 - t321;
-        let t324 = t0 * t320;
-        let t325 = t1 * t323;
-        let t326 = t325 - t324;
-        let t327 = t110 * t110;
-        let t328 = t327 - t305;
-        let t329 = t113 - t284;
-        let t330 = t112 + t304;
-        let t331 = t61 * t329;
-        let t332 = t60 * t328;
-        let t333 = t331 - t332;
-        let t334 = t60 * t329;
-        let t335 = t61 * t328;
-        let t336 = t334 + t335;
-        let t337 = t12 * t333;
-        let t338 = t11 * t330;
+        let t283 = t9 * t266;
+        let t284 = t8 * t254;
+        let t285 = t8 * t266;
+        let t286 = t9 * t254;
+        let t287 = t283 - t284;
+        let t288 = t285 + t286;
+        let t289 = t9 * t273;
+        let t290 = t8 * t260;
+        let t291 = t8 * t273;
+        let t292 = t9 * t260;
+        let t293 = t289 - t290;
+        let t294 = t291 + t292;
+        let t295 = t9 * t279;
+        let t296 = t4 * t8;
+        let t297 = t8 * t279;
+        let t298 = t4 * t9;
+        let t299 = t296 * c0;
+        let t300 = t295 + t299;
+        let t301 = t298 * c0;
+        let t302 = t301 - t297;
+        let t303 = t28 - t25;
+        let t304 = t21 - t28;
+        let t305 = t25 - t21;
+        let t306 = t0 * t16;
+        let t307 = t1 * t15;
+        let t308 = t306 + t307;
+        let t309 = -t22;
+        let t310 = t0 * t29;
+        let t311 = t1 * t27;
+        let t312 = t311 - t310;
+        let t313 = t0 * t24;
+        let t314 = t1 * t304;
+        let t315 = t313 + t314;
+        let t316 = -t26;
+        let t317 = t0 * t303;
+        let t318 = t1 * t23;
+        let t319 = t317 - t318;
+        let t320 = t0 * t14;
+        let t321 = t320 - t307;
+        let t322 = -t40;
+        let t323 = t79 - t75;
+        let t324 = t71 - t79;
+        let t325 = t75 - t71;
+        let t326 = t65 * t216;
+        let t327 = t80 * t217;
+        let t328 = t326 + t327;
+        let t329 = -t72;
+        let t330 = t81 * t216;
+        let t331 = t78 * t217;
+        let t332 = t331 - t330;
+        let t333 = t74 * t216;
+        let t334 = t217 * t324;
+        let t335 = t333 + t334;
+        let t336 = -t77;
+        let t337 = t216 * t323;
+        let t338 = t73 * t217;
         let t339 = t337 - t338;
-        let t340 = t11 * t333;
-        let t341 = t12 * t330;
-        let t342 = t340 + t341;
-        let t343 = t0 * t339;
-        let t344 = t1 * t342;
-        let t345 = t343 + t344;
-        let t346 = t306 - t327;
-        let t347 = t113 + t284;
-        let t348 = t283 - t109;
-        let t349 = t348 - t308;
-        let t350 = t61 * t346;
-        let t351 = t60 * t347;
-        let t352 = t350 - t351;
-        let t353 = t60 * t346;
-        let t354 = t61 * t347;
-        let t355 = t353 + t354;
-        let t356 = t12 * t352;
-        let t357 = t11 * t349;
-        let t358 = t356 - t357;
-        let t359 = t11 * t352;
-        let t360 = t12 * t349;
-        let t361 = t359 + t360;
-        let t362 = t0 * t358;
-        let t363 = t1 * t361;
-        let t364 = t362 + t363;
-        let t365 = t61 * t67;
-        let t366 = t110 * t365;
-        let t367 = t287 - t366;
-        let t368 = t60 * t67;
-        let t369 = t110 * t368;
-        let t370 = t291 + t369;
-        let t371 = t12 * t367;
-        let t372 = t11 * t113;
-        let t373 = t371 - t372;
-        let t374 = t11 * t367;
-        let t375 = t12 * t113;
-        let t376 = t374 + t375;
-        let t377 = t0 * t373;
-        let t378 = t1 * t376;
-        let t379 = t377 + t378;
-        let t380 = t306 + t327;
-        let t381 = t61 * t380;
-        let t382 = t334 + t381;
-        let t383 = t60 * t91;
-        let t384 = t61 * t91;
-        let t385 = t60 * t380;
-        let t386 = t385 - t331;
-        let t387 = t386 * c1;
-        let t388 = t383 + t387;
-        let t389 = t386 * c3;
-        let t390 = t107 + t389;
-        let t391 = t310 * c3;
-        let t392 = t382 * c1;
-        let t393 = t391 + t392;
-        let t394 = t384 + t393;
-        let t395 = t12 * t388;
-        let t396 = t11 * t390;
-        let t397 = t11 * t388;
-        let t398 = t12 * t390;
-        let t399 = t11 * t382;
-        let t400 = t12 * t310;
-        let t401 = t12 * t382;
-        let t402 = t11 * t310;
-        let t403 = t399 - t400;
-        let t404 = t403 * c2;
-        let t405 = t396 + t404;
-        let t406 = t395 + t405;
-        let t407 = t401 + t402;
-        let t408 = t407 * c2;
-        let t409 = t397 - t398;
-        let t410 = t387 + t408;
-        let t411 = t409 - t410;
-        let t412 = t382 - t403;
-        let t413 = t412 * c1;
-        let t414 = t391 + t413;
-        let t415 = t384 + t414;
-        let t416 = t0 * t406;
-        let t417 = t1 * t411;
-        let t418 = t416 + t417;
-        let t419 = t305 + t327;
-        let t420 = t60 * t419;
-        let t421 = t420 - t354;
-        let t422 = t61 * t419;
-        let t423 = t351 + t422;
-        let t424 = t423 * c1;
-        let t425 = t384 + t424;
-        let t426 = t423 * c3;
-        let t427 = t104 + t426;
-        let t428 = t311 * c3;
-        let t429 = t421 * c1;
-        let t430 = t428 - t429;
-        let t431 = t430 - t383;
-        let t432 = t12 * t425;
-        let t433 = t11 * t427;
-        let t434 = t11 * t425;
-        let t435 = t12 * t427;
-        let t436 = t11 * t421;
-        let t437 = t12 * t311;
-        let t438 = t12 * t421;
-        let t439 = t11 * t311;
-        let t440 = t436 + t437;
-        let t441 = t440 * c2;
-        let t442 = t433 - t441;
-        let t443 = t432 + t442;
-        let t444 = t438 - t439;
-        let t445 = t444 * c2;
-        let t446 = t434 - t435;
-        let t447 = t445 - t424;
-        let t448 = t446 + t447;
-        let t449 = t440 - t421;
-        let t450 = t449 * c1;
-        let t451 = t428 + t450;
-        let t452 = t451 - t383;
-        let t453 = t0 * t443;
-        let t454 = t1 * t448;
-        let t455 = t453 + t454;
-        let t456 = t118 * t134;
-        let t457 = t118 * t121;
-        let t458 = t115 * t136;
-        let t459 = t114 * t118;
-        let t460 = t134 * t459;
-        let t461 = t458 - t460;
-        let t462 = t114 * t136;
-        let t463 = t115 * t118;
-        let t464 = t134 * t463;
-        let t465 = t462 + t464;
-        let t466 = t61 * t461;
-        let t467 = t60 * t118;
-        let t468 = t121 * t467;
-        let t469 = t466 - t468;
-        let t470 = t60 * t461;
-        let t471 = t61 * t118;
-        let t472 = t121 * t471;
-        let t473 = t470 + t472;
-        let t474 = t12 * t469;
-        let t475 = t11 * t465;
-        let t476 = t474 - t475;
-        let t477 = t11 * t469;
-        let t478 = t12 * t465;
-        let t479 = t477 + t478;
-        let t480 = t0 * t476;
-        let t481 = t1 * t479;
+        let t340 = t76 * t216;
+        let t341 = t340 - t327;
+        let t342 = t71 * t217;
+        let t343 = t39 * t217;
+        let t344 = t1 * t81;
+        let t345 = t333 + t342;
+        let t346 = t345 * c1;
+        let t347 = t344 * c0;
+        let t348 = t343 + t347;
+        let t349 = t346 + t348;
+        let t350 = t2 * t71;
+        let t351 = t3 * t74;
+        let t352 = t351 - t350;
+        let t353 = t352 * c0;
+        let t354 = t49 + t353;
+        let t355 = -t349;
+        let t356 = t39 * t216;
+        let t357 = t75 * t216;
+        let t358 = t1 * t78;
+        let t359 = t338 + t357;
+        let t360 = t359 * c1;
+        let t361 = t358 * c0;
+        let t362 = t360 - t361;
+        let t363 = t356 + t362;
+        let t364 = t2 * t73;
+        let t365 = t3 * t75;
+        let t366 = t364 - t365;
+        let t367 = t366 * c0;
+        let t368 = t367 - t48;
+        let t369 = -t48;
+        let t370 = t130 - t126;
+        let t371 = t122 - t130;
+        let t372 = t126 - t122;
+        let t373 = t116 * t218;
+        let t374 = t131 * t219;
+        let t375 = t123 * t217;
+        let t376 = t375 - t374;
+        let t377 = t373 + t376;
+        let t378 = t4 * t116;
+        let t379 = t5 * t131;
+        let t380 = t378 + t379;
+        let t381 = -t380;
+        let t382 = t132 * t218;
+        let t383 = t129 * t219;
+        let t384 = t217 * t372;
+        let t385 = t384 - t383;
+        let t386 = t385 - t382;
+        let t387 = t4 * t132;
+        let t388 = t5 * t129;
+        let t389 = t387 - t388;
+        let t390 = t125 * t218;
+        let t391 = t219 * t371;
+        let t392 = t128 * t217;
+        let t393 = t392 - t391;
+        let t394 = t390 + t393;
+        let t395 = t4 * t125;
+        let t396 = t5 * t371;
+        let t397 = t395 + t396;
+        let t398 = -t397;
+        let t399 = t218 * t370;
+        let t400 = t124 * t219;
+        let t401 = t133 * t217;
+        let t402 = t401 - t400;
+        let t403 = t399 + t402;
+        let t404 = t4 * t370;
+        let t405 = t5 * t124;
+        let t406 = t404 + t405;
+        let t407 = -t406;
+        let t408 = t127 * t218;
+        let t409 = t118 * t217;
+        let t410 = t374 + t409;
+        let t411 = t410 - t408;
+        let t412 = t4 * t127;
+        let t413 = t379 + t412;
+        let t414 = t122 * t252;
+        let t415 = t93 * t219;
+        let t416 = t125 * t254;
+        let t417 = t100 * t217;
+        let t418 = t132 * t216;
+        let t419 = t415 - t414;
+        let t420 = t416 + t417;
+        let t421 = t419 - t420;
+        let t422 = t418 * c1;
+        let t423 = t421 - t422;
+        let t424 = t122 * t259;
+        let t425 = t5 * t93;
+        let t426 = t125 * t260;
+        let t427 = t132 * t258;
+        let t428 = t425 - t424;
+        let t429 = t427 - t426;
+        let t430 = t428 + t429;
+        let t431 = t5 * t122;
+        let t432 = t395 + t431;
+        let t433 = t432 * c0;
+        let t434 = t132 * c3;
+        let t435 = t425 + t434;
+        let t436 = t433 + t435;
+        let t437 = -t100;
+        let t438 = t93 * t218;
+        let t439 = t124 * t252;
+        let t440 = t126 * t254;
+        let t441 = t99 * t217;
+        let t442 = t129 * t216;
+        let t443 = t438 - t439;
+        let t444 = t440 - t441;
+        let t445 = t443 + t444;
+        let t446 = t442 * c1;
+        let t447 = t445 - t446;
+        let t448 = t4 * t93;
+        let t449 = t124 * t259;
+        let t450 = t126 * t260;
+        let t451 = t129 * t258;
+        let t452 = t448 + t449;
+        let t453 = t450 + t451;
+        let t454 = t453 - t452;
+        let t455 = t4 * t126;
+        let t456 = t405 - t455;
+        let t457 = t456 * c0;
+        let t458 = t129 * c3;
+        let t459 = t457 + t458;
+        let t460 = t459 - t448;
+        let t461 = -t99;
+        let t462 = t169 - t165;
+        let t463 = t161 - t169;
+        let t464 = t165 - t161;
+        let t465 = t155 * t224;
+        let t466 = t170 * t225;
+        let t467 = t162 * t219;
+        let t468 = t466 - t467;
+        let t469 = t465 + t468;
+        let t470 = t155 * t226;
+        let t471 = t170 * t227;
+        let t472 = t5 * t162;
+        let t473 = t471 - t472;
+        let t474 = t473 - t470;
+        let t475 = t6 * t155;
+        let t476 = t7 * t170;
+        let t477 = t475 + t476;
+        let t478 = -t162;
+        let t479 = t171 * t224;
+        let t480 = t168 * t225;
+        let t481 = t219 * t464;
         let t482 = t480 + t481;
-        let t483 = t121 * t134;
-        let t484 = t118 * t118;
-        let t485 = t121 * t121;
-        let t486 = t484 - t485;
-        let t487 = t125 - t124;
-        let t488 = t133 + t456;
-        let t489 = t487 - t488;
-        let t490 = t136 + t483;
-        let t491 = t115 * t489;
-        let t492 = t114 * t490;
-        let t493 = t491 - t492;
-        let t494 = t114 * t489;
-        let t495 = t115 * t490;
-        let t496 = t494 + t495;
-        let t497 = t61 * t493;
-        let t498 = t60 * t486;
-        let t499 = t497 + t498;
-        let t500 = t60 * t493;
-        let t501 = t61 * t486;
-        let t502 = t501 - t500;
-        let t503 = t12 * t499;
-        let t504 = t11 * t496;
-        let t505 = t503 - t504;
-        let t506 = t11 * t499;
-        let t507 = t12 * t496;
-        let t508 = t506 + t507;
-        let t509 = t0 * t505;
-        let t510 = t1 * t508;
-        let t511 = t509 + t510;
-        let t512 = t134 * t134;
-        let t513 = t512 - t484;
-        let t514 = t139 + t457;
-        let t515 = t136 - t483;
-        let t516 = t115 * t514;
-        let t517 = t114 * t513;
+        let t483 = t482 - t479;
+        let t484 = t171 * t226;
+        let t485 = t168 * t227;
+        let t486 = t5 * t464;
+        let t487 = t485 + t486;
+        let t488 = t484 + t487;
+        let t489 = t6 * t171;
+        let t490 = t7 * t168;
+        let t491 = t490 - t489;
+        let t492 = t164 * t224;
+        let t493 = t225 * t463;
+        let t494 = t167 * t219;
+        let t495 = t493 - t494;
+        let t496 = t492 + t495;
+        let t497 = t164 * t226;
+        let t498 = t227 * t463;
+        let t499 = t5 * t167;
+        let t500 = t498 - t499;
+        let t501 = t500 - t497;
+        let t502 = t6 * t164;
+        let t503 = t7 * t463;
+        let t504 = t502 + t503;
+        let t505 = -t167;
+        let t506 = t224 * t462;
+        let t507 = t163 * t225;
+        let t508 = t172 * t219;
+        let t509 = t508 - t507;
+        let t510 = t506 + t509;
+        let t511 = t226 * t462;
+        let t512 = t163 * t227;
+        let t513 = t5 * t172;
+        let t514 = t513 - t512;
+        let t515 = t514 - t511;
+        let t516 = t6 * t462;
+        let t517 = t7 * t163;
         let t518 = t516 - t517;
-        let t519 = t114 * t514;
-        let t520 = t115 * t513;
-        let t521 = t519 + t520;
-        let t522 = t61 * t518;
-        let t523 = t60 * t515;
-        let t524 = t522 + t523;
-        let t525 = t60 * t518;
-        let t526 = t61 * t515;
-        let t527 = t526 - t525;
-        let t528 = t12 * t524;
-        let t529 = t11 * t521;
-        let t530 = t528 - t529;
-        let t531 = t11 * t524;
-        let t532 = t12 * t521;
-        let t533 = t531 + t532;
-        let t534 = t0 * t530;
-        let t535 = t1 * t533;
-        let t536 = t534 + t535;
-        let t537 = t485 - t512;
-        let t538 = t139 - t457;
-        let t539 = t456 - t133;
-        let t540 = t487 + t539;
-        let t541 = t115 * t537;
-        let t542 = t114 * t538;
-        let t543 = t541 - t542;
-        let t544 = t114 * t537;
-        let t545 = t115 * t538;
-        let t546 = t544 + t545;
-        let t547 = t61 * t543;
-        let t548 = t60 * t540;
-        let t549 = t547 + t548;
-        let t550 = t60 * t543;
-        let t551 = t61 * t540;
+        let t519 = t166 * t224;
+        let t520 = t157 * t219;
+        let t521 = t520 - t466;
+        let t522 = t519 + t521;
+        let t523 = t166 * t226;
+        let t524 = t5 * t157;
+        let t525 = t524 - t471;
+        let t526 = t525 - t523;
+        let t527 = t6 * t166;
+        let t528 = t527 - t476;
+        let t529 = t161 * t266;
+        let t530 = t100 * t225;
+        let t531 = t164 * t268;
+        let t532 = t139 * t219;
+        let t533 = t171 * t254;
+        let t534 = t529 + t530;
+        let t535 = t532 + t533;
+        let t536 = t535 - t531;
+        let t537 = t536 - t534;
+        let t538 = t161 * t273;
+        let t539 = t100 * t227;
+        let t540 = t164 * t274;
+        let t541 = t5 * t139;
+        let t542 = t171 * t260;
+        let t543 = t538 + t539;
+        let t544 = t541 + t542;
+        let t545 = t540 + t544;
+        let t546 = t545 - t543;
+        let t547 = t161 * t279;
+        let t548 = t164 * t282;
+        let t549 = t4 * t171;
+        let t550 = t539 + t547;
+        let t551 = t541 + t548;
         let t552 = t551 - t550;
-        let t553 = t12 * t549;
-        let t554 = t11 * t546;
-        let t555 = t553 - t554;
-        let t556 = t11 * t549;
-        let t557 = t12 * t546;
-        let t558 = t556 + t557;
-        let t559 = t0 * t555;
-        let t560 = t1 * t558;
-        let t561 = t559 + t560;
-        let t562 = t115 * t121;
-        let t563 = t134 * t562;
-        let t564 = t460 + t563;
-        let t565 = t114 * t121;
-        let t566 = t134 * t565;
-        let t567 = t566 - t464;
-        let t568 = t61 * t564;
-        let t569 = t60 * t139;
-        let t570 = t568 + t569;
-        let t571 = t60 * t564;
-        let t572 = t61 * t139;
-        let t573 = t572 - t571;
-        let t574 = t12 * t570;
-        let t575 = t11 * t567;
-        let t576 = t574 - t575;
-        let t577 = t11 * t570;
-        let t578 = t12 * t567;
-        let t579 = t577 + t578;
-        let t580 = t0 * t576;
-        let t581 = t1 * t579;
-        let t582 = t580 + t581;
-        let t583 = t485 + t512;
-        let t584 = t115 * t583;
-        let t585 = t519 + t584;
-        let t586 = t114 * t583;
-        let t587 = t516 - t586;
-        let t588 = t107 * t115;
-        let t589 = t61 * t585;
-        let t590 = t60 * t489;
-        let t591 = t589 + t590;
-        let t592 = t61 * t107;
-        let t593 = t114 * t592;
-        let t594 = t60 * t131;
-        let t595 = t60 * t107;
-        let t596 = t114 * t595;
-        let t597 = t61 * t131;
-        let t598 = t60 * t585;
-        let t599 = t61 * t489;
-        let t600 = t598 - t599;
-        let t601 = t600 * c1;
-        let t602 = t594 + t601;
-        let t603 = t593 + t602;
-        let t604 = t600 * c3;
-        let t605 = t588 + t604;
-        let t606 = t587 * c3;
-        let t607 = t591 * c1;
-        let t608 = t597 - t596;
-        let t609 = t606 + t607;
-        let t610 = t608 + t609;
-        let t611 = t12 * t603;
-        let t612 = t11 * t605;
-        let t613 = t11 * t603;
-        let t614 = t12 * t605;
-        let t615 = t11 * t591;
-        let t616 = t12 * t587;
-        let t617 = t12 * t591;
-        let t618 = t11 * t587;
-        let t619 = t615 - t616;
-        let t620 = t619 * c2;
-        let t621 = t612 + t620;
-        let t622 = t611 + t621;
-        let t623 = t617 + t618;
-        let t624 = t623 * c2;
-        let t625 = t613 - t614;
-        let t626 = t601 + t624;
-        let t627 = t625 - t626;
-        let t628 = t591 - t619;
-        let t629 = t628 * c1;
-        let t630 = t606 + t629;
-        let t631 = t608 + t630;
-        let t632 = t0 * t622;
-        let t633 = t1 * t627;
-        let t634 = t632 + t633;
-        let t635 = t484 + t512;
-        let t636 = t114 * t635;
-        let t637 = t636 - t545;
-        let t638 = t115 * t635;
-        let t639 = t542 + t638;
-        let t640 = t107 * t114;
-        let t641 = t61 * t637;
-        let t642 = t60 * t490;
-        let t643 = t641 + t642;
-        let t644 = t61 * t115;
-        let t645 = t107 * t644;
-        let t646 = t60 * t128;
-        let t647 = t60 * t115;
-        let t648 = t107 * t647;
-        let t649 = t61 * t128;
-        let t650 = t60 * t637;
-        let t651 = t61 * t490;
-        let t652 = t651 - t650;
-        let t653 = t652 * c1;
-        let t654 = t653 - t646;
-        let t655 = t645 + t654;
-        let t656 = t652 * c3;
-        let t657 = t640 - t656;
-        let t658 = t639 * c3;
-        let t659 = t643 * c1;
-        let t660 = t648 + t649;
-        let t661 = t658 + t659;
-        let t662 = t660 + t661;
-        let t663 = t12 * t655;
-        let t664 = t11 * t657;
-        let t665 = t11 * t655;
-        let t666 = t12 * t657;
-        let t667 = t11 * t643;
-        let t668 = t12 * t639;
-        let t669 = t12 * t643;
-        let t670 = t11 * t639;
-        let t671 = t668 - t667;
-        let t672 = t671 * c2;
-        let t673 = t672 - t664;
-        let t674 = t663 + t673;
-        let t675 = t669 + t670;
-        let t676 = t675 * c2;
-        let t677 = t665 + t666;
-        let t678 = t676 - t653;
-        let t679 = t677 + t678;
-        let t680 = t643 + t671;
-        let t681 = t680 * c1;
-        let t682 = t658 + t681;
-        let t683 = t660 + t682;
-        let t684 = t0 * t674;
-        let t685 = t1 * t679;
-        let t686 = t684 + t685;
-        let t687 = t144 * t158;
-        let t688 = t144 * t147;
-        let t689 = t141 * t160;
-        let t690 = t140 * t144;
-        let t691 = t158 * t690;
-        let t692 = t689 - t691;
-        let t693 = t140 * t160;
-        let t694 = t141 * t144;
-        let t695 = t158 * t694;
-        let t696 = t693 + t695;
-        let t697 = t115 * t692;
-        let t698 = t114 * t144;
-        let t699 = t147 * t698;
-        let t700 = t697 - t699;
-        let t701 = t114 * t692;
-        let t702 = t115 * t144;
-        let t703 = t147 * t702;
-        let t704 = t701 + t703;
-        let t705 = t61 * t700;
-        let t706 = t60 * t696;
-        let t707 = t705 - t706;
-        let t708 = t60 * t700;
-        let t709 = t61 * t696;
-        let t710 = t708 + t709;
-        let t711 = t12 * t707;
-        let t712 = t11 * t704;
-        let t713 = t711 - t712;
-        let t714 = t11 * t707;
-        let t715 = t12 * t704;
-        let t716 = t714 + t715;
-        let t717 = t0 * t713;
-        let t718 = t1 * t716;
-        let t719 = t717 + t718;
-        let t720 = t147 * t158;
-        let t721 = t144 * t144;
-        let t722 = t147 * t147;
-        let t723 = t721 - t722;
-        let t724 = t150 + t151;
-        let t725 = t157 + t687;
-        let t726 = t724 + t725;
-        let t727 = t160 - t720;
-        let t728 = t141 * t726;
-        let t729 = t140 * t727;
-        let t730 = t728 + t729;
-        let t731 = t140 * t726;
-        let t732 = t141 * t727;
-        let t733 = t731 - t732;
-        let t734 = t115 * t730;
-        let t735 = t114 * t723;
-        let t736 = t734 + t735;
-        let t737 = t114 * t730;
-        let t738 = t115 * t723;
-        let t739 = t738 - t737;
-        let t740 = t61 * t736;
-        let t741 = t60 * t733;
-        let t742 = t741 - t740;
-        let t743 = t60 * t736;
-        let t744 = t61 * t733;
-        let t745 = t743 + t744;
-        let t746 = t12 * t742;
-        let t747 = t11 * t739;
-        let t748 = t746 - t747;
-        let t749 = t11 * t742;
-        let t750 = t12 * t739;
-        let t751 = t749 + t750;
-        let t752 = t0 * t748;
-        let t753 = t1 * t751;
-        let t754 = t752 + t753;
-        let t755 = t158 * t158;
-        let t756 = t755 - t721;
-        let t757 = t163 - t688;
-        let t758 = t160 + t720;
-        let t759 = t141 * t757;
-        let t760 = t140 * t756;
-        let t761 = t759 - t760;
-        let t762 = t140 * t757;
-        let t763 = t141 * t756;
-        let t764 = t762 + t763;
-        let t765 = t115 * t761;
-        let t766 = t114 * t758;
-        let t767 = t765 - t766;
-        let t768 = t114 * t761;
-        let t769 = t115 * t758;
-        let t770 = t768 + t769;
-        let t771 = t61 * t767;
-        let t772 = t60 * t764;
-        let t773 = t771 - t772;
-        let t774 = t60 * t767;
-        let t775 = t61 * t764;
-        let t776 = t774 + t775;
-        let t777 = t12 * t773;
-        let t778 = t11 * t770;
-        let t779 = t777 - t778;
-        let t780 = t11 * t773;
-        let t781 = t12 * t770;
-        let t782 = t780 + t781;
-        let t783 = t0 * t779;
-        let t784 = t1 * t782;
-        let t785 = t783 + t784;
-        let t786 = t722 - t755;
-        let t787 = t163 + t688;
-        let t788 = t687 - t157;
-        let t789 = t788 - t724;
-        let t790 = t141 * t786;
-        let t791 = t140 * t787;
-        let t792 = t790 - t791;
-        let t793 = t140 * t786;
-        let t794 = t141 * t787;
-        let t795 = t793 + t794;
-        let t796 = t115 * t792;
-        let t797 = t114 * t789;
-        let t798 = t796 - t797;
-        let t799 = t114 * t792;
-        let t800 = t115 * t789;
-        let t801 = t799 + t800;
-        let t802 = t61 * t798;
-        let t803 = t60 * t795;
-        let t804 = t802 - t803;
-        let t805 = t60 * t798;
-        let t806 = t61 * t795;
-        let t807 = t805 + t806;
-        let t808 = t12 * t804;
-        let t809 = t11 * t801;
-        let t810 = t808 - t809;
-        let t811 = t11 * t804;
-        let t812 = t12 * t801;
-        let t813 = t811 + t812;
-        let t814 = t0 * t810;
-        let t815 = t1 * t813;
-        let t816 = t814 + t815;
-        let t817 = t141 * t147;
-        let t818 = t158 * t817;
-        let t819 = t691 - t818;
-        let t820 = t140 * t147;
-        let t821 = t158 * t820;
-        let t822 = t695 + t821;
-        let t823 = t115 * t819;
-        let t824 = t114 * t163;
-        let t825 = t823 - t824;
-        let t826 = t114 * t819;
-        let t827 = t115 * t163;
-        let t828 = t826 + t827;
-        let t829 = t61 * t825;
-        let t830 = t60 * t822;
-        let t831 = t829 + t830;
-        let t832 = t60 * t825;
-        let t833 = t61 * t822;
-        let t834 = t833 - t832;
-        let t835 = t12 * t831;
-        let t836 = t11 * t828;
-        let t837 = t835 - t836;
-        let t838 = t11 * t831;
-        let t839 = t12 * t828;
-        let t840 = t838 + t839;
-        let t841 = t0 * t837;
-        let t842 = t1 * t840;
-        let t843 = t841 + t842;
-        let t844 = t722 + t755;
-        let t845 = t141 * t844;
-        let t846 = t762 + t845;
-        let t847 = t140 * t844;
-        let t848 = t131 * t141;
-        let t849 = t115 * t846;
-        let t850 = t114 * t726;
-        let t851 = t849 + t850;
-        let t852 = t759 - t847;
-        let t853 = t114 * t846;
-        let t854 = t115 * t726;
-        let t855 = t854 - t853;
-        let t856 = t115 * t140;
-        let t857 = t131 * t856;
-        let t858 = t114 * t155;
-        let t859 = t857 + t858;
-        let t860 = t114 * t140;
-        let t861 = t131 * t860;
-        let t862 = t115 * t155;
-        let t863 = t861 - t862;
-        let t864 = t61 * t851;
-        let t865 = t60 * t852;
-        let t866 = t864 + t865;
-        let t867 = t61 * t859;
-        let t868 = t60 * t141;
-        let t869 = t131 * t868;
-        let t870 = t60 * t859;
-        let t871 = t61 * t141;
-        let t872 = t131 * t871;
-        let t873 = t60 * t851;
-        let t874 = t61 * t852;
-        let t875 = t873 - t874;
-        let t876 = t875 * c1;
-        let t877 = t869 + t876;
-        let t878 = t867 + t877;
-        let t879 = t875 * c3;
-        let t880 = t863 - t879;
-        let t881 = t855 * c3;
-        let t882 = t866 * c1;
-        let t883 = t872 - t870;
-        let t884 = t881 + t882;
-        let t885 = t883 + t884;
-        let t886 = t12 * t878;
-        let t887 = t11 * t880;
-        let t888 = t11 * t878;
-        let t889 = t12 * t880;
-        let t890 = t11 * t866;
-        let t891 = t12 * t855;
-        let t892 = t12 * t866;
-        let t893 = t11 * t855;
-        let t894 = t890 - t891;
-        let t895 = t894 * c2;
-        let t896 = t895 - t887;
-        let t897 = t886 + t896;
-        let t898 = t892 + t893;
-        let t899 = t898 * c2;
-        let t900 = t888 + t889;
-        let t901 = t876 + t899;
-        let t902 = t900 - t901;
-        let t903 = t866 - t894;
-        let t904 = t903 * c1;
-        let t905 = t881 + t904;
-        let t906 = t883 + t905;
-        let t907 = t0 * t897;
-        let t908 = t1 * t902;
-        let t909 = t907 + t908;
-        let t910 = t721 + t755;
-        let t911 = t128 * t141;
-        let t912 = t152 - t911;
-        let t913 = t140 * t910;
-        let t914 = t913 - t794;
-        let t915 = t141 * t910;
-        let t916 = t131 * t140;
-        let t917 = t115 * t914;
-        let t918 = t114 * t727;
-        let t919 = t917 - t918;
-        let t920 = t791 + t915;
-        let t921 = t114 * t914;
-        let t922 = t115 * t727;
-        let t923 = t921 + t922;
-        let t924 = t115 * t131;
-        let t925 = t141 * t924;
-        let t926 = t114 * t912;
-        let t927 = t925 - t926;
-        let t928 = t114 * t131;
-        let t929 = t141 * t928;
-        let t930 = t115 * t912;
-        let t931 = t929 + t930;
-        let t932 = t61 * t919;
-        let t933 = t60 * t920;
-        let t934 = t932 + t933;
-        let t935 = t61 * t927;
-        let t936 = t140 * t594;
-        let t937 = t60 * t927;
-        let t938 = t140 * t597;
-        let t939 = t60 * t919;
-        let t940 = t61 * t920;
-        let t941 = t940 - t939;
-        let t942 = t941 * c1;
-        let t943 = t942 - t936;
-        let t944 = t935 + t943;
-        let t945 = t941 * c3;
-        let t946 = t931 - t945;
-        let t947 = t923 * c3;
-        let t948 = t934 * c1;
-        let t949 = t937 + t938;
-        let t950 = t947 - t948;
-        let t951 = t950 - t949;
-        let t952 = t12 * t944;
-        let t953 = t11 * t946;
-        let t954 = t11 * t944;
-        let t955 = t12 * t946;
-        let t956 = t11 * t934;
-        let t957 = t12 * t923;
-        let t958 = t12 * t934;
-        let t959 = t11 * t923;
-        let t960 = t956 + t957;
-        let t961 = t960 * c2;
-        let t962 = t953 + t961;
-        let t963 = t952 - t962;
-        let t964 = t958 - t959;
-        let t965 = t964 * c2;
-        let t966 = t954 + t955;
-        let t967 = t965 - t942;
-        let t968 = t966 + t967;
-        let t969 = t960 - t934;
-        let t970 = t969 * c1;
-        let t971 = t947 + t970;
-        let t972 = t971 - t949;
-        let t973 = t0 * t963;
-        let t974 = t1 * t968;
-        let t975 = t973 + t974;
-        let t976 = -t34;
-        let t977 = -t4;
-        let t978 = -t188;
-        let t979 = -t279;
-        let t980 = -t292;
-        let t981 = -t336;
-        let t982 = -t355;
-        let t983 = -t473;
-        let t984 = -t683;
-        let t985 = -t710;
-        let t986 = -t776;
-        let t987 = -t807;
-        let t988 = -t84;
-        let t989 = -t662;
-        let t990 = -t107;
-        let t991 = -t104;
-        let t992 = -t588;
-        let t993 = -t457;
-        let t994 = -t128;
-        let t995 = -t696;
-        let t996 = -t764;
-        let t997 = -t795;
-        let t998 = -t916;
-        let t999 = -t155;
+        let t553 = t549 * c0;
+        let t554 = t552 - t553;
+        let t555 = t7 * t100;
+        let t556 = -t555;
+        let t557 = t100 * t224;
+        let t558 = t163 * t266;
+        let t559 = t165 * t268;
+        let t560 = t138 * t219;
+        let t561 = t168 * t254;
+        let t562 = t557 + t558;
+        let t563 = t561 - t560;
+        let t564 = t559 + t563;
+        let t565 = t562 + t564;
+        let t566 = t100 * t226;
+        let t567 = t163 * t273;
+        let t568 = t165 * t274;
+        let t569 = t5 * t138;
+        let t570 = t168 * t260;
+        let t571 = t567 - t566;
+        let t572 = t570 - t569;
+        let t573 = t572 - t568;
+        let t574 = t571 + t573;
+        let t575 = t163 * t279;
+        let t576 = t165 * t282;
+        let t577 = t4 * t168;
+        let t578 = t575 - t566;
+        let t579 = t569 + t576;
+        let t580 = t578 - t579;
+        let t581 = t577 * c0;
+        let t582 = t580 - t581;
+        let t583 = t6 * t100;
+        let t584 = -t138;
+        let t585 = t208 - t204;
+        let t586 = t200 - t208;
+        let t587 = t204 - t200;
+        let t588 = t194 * t232;
+        let t589 = t209 * t233;
+        let t590 = t201 * t225;
+        let t591 = t590 - t589;
+        let t592 = t588 + t591;
+        let t593 = t194 * t238;
+        let t594 = t209 * t239;
+        let t595 = t201 * t227;
+        let t596 = t594 + t595;
+        let t597 = t596 - t593;
+        let t598 = t194 * t240;
+        let t599 = t209 * t241;
+        let t600 = t7 * t201;
+        let t601 = t600 - t599;
+        let t602 = t598 + t601;
+        let t603 = t8 * t194;
+        let t604 = t9 * t209;
+        let t605 = t603 + t604;
+        let t606 = -t605;
+        let t607 = t210 * t232;
+        let t608 = t207 * t233;
+        let t609 = t225 * t587;
+        let t610 = t609 - t608;
+        let t611 = t610 - t607;
+        let t612 = t210 * t238;
+        let t613 = t207 * t239;
+        let t614 = t227 * t587;
+        let t615 = t613 + t614;
+        let t616 = t612 + t615;
+        let t617 = t210 * t240;
+        let t618 = t207 * t241;
+        let t619 = t7 * t587;
+        let t620 = t619 - t618;
+        let t621 = t620 - t617;
+        let t622 = t8 * t210;
+        let t623 = t9 * t207;
+        let t624 = t622 - t623;
+        let t625 = t203 * t232;
+        let t626 = t233 * t586;
+        let t627 = t206 * t225;
+        let t628 = t627 - t626;
+        let t629 = t625 + t628;
+        let t630 = t203 * t238;
+        let t631 = t239 * t586;
+        let t632 = t206 * t227;
+        let t633 = t631 + t632;
+        let t634 = t633 - t630;
+        let t635 = t203 * t240;
+        let t636 = t241 * t586;
+        let t637 = t7 * t206;
+        let t638 = t637 - t636;
+        let t639 = t635 + t638;
+        let t640 = t8 * t203;
+        let t641 = t9 * t586;
+        let t642 = t640 + t641;
+        let t643 = -t642;
+        let t644 = t232 * t585;
+        let t645 = t202 * t233;
+        let t646 = t211 * t225;
+        let t647 = t646 - t645;
+        let t648 = t644 + t647;
+        let t649 = t238 * t585;
+        let t650 = t202 * t239;
+        let t651 = t211 * t227;
+        let t652 = t650 + t651;
+        let t653 = t652 - t649;
+        let t654 = t240 * t585;
+        let t655 = t202 * t241;
+        let t656 = t7 * t211;
+        let t657 = t656 - t655;
+        let t658 = t654 + t657;
+        let t659 = t8 * t585;
+        let t660 = t9 * t202;
+        let t661 = t659 + t660;
+        let t662 = -t661;
+        let t663 = t205 * t232;
+        let t664 = t196 * t225;
+        let t665 = t589 + t664;
+        let t666 = t665 - t663;
+        let t667 = t205 * t238;
+        let t668 = t196 * t227;
+        let t669 = t668 - t594;
+        let t670 = t667 + t669;
+        let t671 = t205 * t240;
+        let t672 = t7 * t196;
+        let t673 = t599 + t672;
+        let t674 = t673 - t671;
+        let t675 = t8 * t205;
+        let t676 = t604 + t675;
+        let t677 = t200 * t287;
+        let t678 = t139 * t233;
+        let t679 = t203 * t288;
+        let t680 = t178 * t225;
+        let t681 = t210 * t268;
+        let t682 = t678 - t677;
+        let t683 = t680 + t681;
+        let t684 = t679 + t683;
+        let t685 = t682 - t684;
+        let t686 = t200 * t293;
+        let t687 = t139 * t239;
+        let t688 = t203 * t294;
+        let t689 = t178 * t227;
+        let t690 = t210 * t274;
+        let t691 = t686 + t687;
+        let t692 = t690 - t689;
+        let t693 = t692 - t688;
+        let t694 = t693 - t691;
+        let t695 = t200 * t300;
+        let t696 = t203 * t302;
+        let t697 = t210 * t282;
+        let t698 = t687 + t695;
+        let t699 = t697 - t689;
+        let t700 = t696 + t699;
+        let t701 = t700 - t698;
+        let t702 = t139 * t241;
+        let t703 = t7 * t178;
+        let t704 = t702 - t703;
+        let t705 = t9 * t139;
+        let t706 = -t178;
+        let t707 = t139 * t232;
+        let t708 = t202 * t287;
+        let t709 = t204 * t288;
+        let t710 = t177 * t225;
+        let t711 = t207 * t268;
+        let t712 = t707 - t708;
+        let t713 = t710 + t711;
+        let t714 = t709 - t713;
+        let t715 = t712 + t714;
+        let t716 = t139 * t238;
+        let t717 = t202 * t293;
+        let t718 = t204 * t294;
+        let t719 = t177 * t227;
+        let t720 = t207 * t274;
+        let t721 = t716 + t717;
+        let t722 = t720 - t719;
+        let t723 = t718 + t722;
+        let t724 = t723 - t721;
+        let t725 = t202 * t300;
+        let t726 = t204 * t302;
+        let t727 = t207 * t282;
+        let t728 = t716 + t725;
+        let t729 = t727 - t719;
+        let t730 = t729 - t726;
+        let t731 = t730 - t728;
+        let t732 = t139 * t240;
+        let t733 = t7 * t177;
+        let t734 = t732 - t733;
+        let t735 = t8 * t139;
+        let t736 = -t735;
+        let t737 = -t177;
         [
             qdd1,
-            t167,
-            t176,
-            t181,
-            t186,
+            t308,
+            t312,
+            t315,
+            t319,
+            t321,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            t199,
-            t214,
-            t227,
-            t239,
-            t248,
-            t266,
-            t282,
-            t303,
-            t326,
-            t345,
-            t364,
-            t379,
-            t418,
-            t455,
-            t482,
-            t511,
-            t536,
-            t561,
-            t582,
-            t634,
-            t686,
-            t719,
-            t754,
-            t785,
-            t816,
-            t843,
-            t909,
-            t975,
-            T::ZERO,
-            t976,
-            t169,
-            t2,
-            t3,
-            qdd2,
-            t5,
-            t977,
-            t978,
-            t203,
-            t218,
-            t230,
-            t59,
-            t263,
-            t979,
-            t980,
-            t317,
-            t981,
-            t982,
-            t370,
-            t415,
-            t452,
-            t983,
-            t502,
-            t527,
-            t552,
-            t573,
-            t631,
-            t984,
-            t985,
-            t745,
-            t986,
-            t987,
-            t834,
-            t906,
-            t972,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t978,
-            t203,
-            t218,
-            t230,
-            t59,
-            t53,
-            t988,
-            t980,
-            t317,
-            t981,
-            t982,
-            t370,
+            t328,
+            t332,
+            t335,
+            t339,
+            t341,
+            t355,
+            t363,
+            t377,
+            t386,
             t394,
-            t431,
-            t983,
-            t502,
-            t527,
-            t552,
-            t573,
-            t610,
-            t989,
-            t985,
-            t745,
-            t986,
-            t987,
-            t834,
-            t885,
-            t951,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t284,
-            t307,
-            t330,
-            t349,
-            t113,
-            t990,
-            t991,
-            t465,
+            t403,
+            t411,
+            t423,
+            t447,
+            t469,
+            t483,
             t496,
-            t521,
-            t546,
-            t567,
-            t992,
-            t640,
-            t704,
-            t739,
-            t770,
-            t801,
-            t828,
-            t863,
-            t931,
+            t510,
+            t522,
+            t537,
+            t565,
+            t592,
+            t611,
+            t629,
+            t648,
+            t666,
+            t685,
+            t715,
             T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t993,
-            t486,
+            t309,
+            t305,
+            t316,
+            t30,
+            qdd2,
+            t42,
+            t322,
+            t329,
+            t325,
+            t336,
+            t82,
+            t67,
+            t354,
+            t368,
+            t381,
+            t389,
+            t398,
+            t407,
+            t413,
+            t430,
+            t454,
+            t474,
+            t488,
+            t501,
             t515,
-            t540,
+            t526,
+            t546,
+            t574,
+            t597,
+            t616,
+            t634,
+            t653,
+            t670,
+            t694,
+            t724,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t329,
+            t325,
+            t336,
+            t82,
+            t67,
+            t49,
+            t369,
+            t381,
+            t389,
+            t398,
+            t407,
+            t413,
+            t436,
+            t460,
+            t474,
+            t488,
+            t501,
+            t515,
+            t526,
+            t554,
+            t582,
+            t597,
+            t616,
+            t634,
+            t653,
+            t670,
+            t701,
+            t731,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t123,
+            t372,
+            t128,
+            t133,
+            t118,
+            t437,
+            t461,
+            t477,
+            t491,
+            t504,
+            t518,
+            t528,
+            t556,
+            t583,
+            t602,
+            t621,
+            t639,
+            t658,
+            t674,
+            t704,
+            t734,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t478,
+            t464,
+            t505,
+            t172,
+            t157,
             t139,
-            t131,
-            t994,
-            t995,
-            t733,
-            t996,
-            t997,
-            t822,
-            t848,
-            t998,
+            t584,
+            t606,
+            t624,
+            t643,
+            t662,
+            t676,
+            t705,
+            t736,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3246,13 +2983,13 @@ impl Puma560 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t688,
-            t723,
-            t758,
-            t789,
-            t163,
-            t999,
-            t912,
+            t201,
+            t587,
+            t206,
+            t211,
+            t196,
+            t706,
+            t737,
         ]
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.

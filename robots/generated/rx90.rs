@@ -1706,7 +1706,7 @@ impl Rx90 {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 539 mul, 330 add, 25 neg, 5 sin, 5 cos.
+    /// Operations: 367 mul, 282 add, 23 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -1720,1051 +1720,792 @@ impl Rx90 {
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(9.81);
-        let c1 = T::from_f64(2.0);
         let (t0, t1) = q2.sin_cos();
-        let t2 = t0 * qdd1;
-        let t3 = t1 * qdd1;
-        let t4 = t0 * c0;
-        let t5 = t1 * c0;
-        let t6 = qd1 * qd2;
-        let t7 = t1 * t6;
-        let t8 = t0 * t6;
-        let t9 = t2 + t7;
-        let t10 = t3 - t8;
-        let (t11, t12) = q3.sin_cos();
-        let t13 = t0 * qd1;
-        let t14 = t12 * t13;
-        let t15 = t1 * qd1;
-        let t16 = t11 * t15;
-        let t17 = t14 + t16;
-        let t18 = t11 * t13;
-        let t19 = t12 * t15;
-        let t20 = t19 - t18;
-        let t21 = t9 * t12;
+        let (t2, t3) = q3.sin_cos();
+        let (t4, t5) = q4.sin_cos();
+        let (t6, t7) = q5.sin_cos();
+        let (t8, t9) = q6.sin_cos();
+        let t10 = t0 * qd1;
+        let t11 = t1 * qd1;
+        let t12 = t0 * qdd1;
+        let t13 = t1 * qdd1;
+        let t14 = t11 * qd2;
+        let t15 = t10 * qd2;
+        let t16 = t12 + t14;
+        let t17 = t13 - t15;
+        let t18 = t10 * t10;
+        let t19 = t11 * t11;
+        let t20 = qd2 * qd2;
+        let t21 = t19 + t20;
         let t22 = t10 * t11;
-        let t23 = t9 * t11;
-        let t24 = t10 * t12;
-        let t25 = qd1 * qd1;
-        let t26 = t1 * t1;
-        let t27 = t25 * D3;
-        let t28 = t26 * t27;
-        let t29 = qd2 * qd2;
-        let t30 = t29 * D3;
-        let t31 = t0 * t1;
-        let t32 = t31 * D3;
-        let t33 = t25 * t32;
-        let t34 = t8 * D3;
-        let t35 = qdd2 * D3;
-        let t36 = t10 * D3;
-        let t37 = t4 - t30;
-        let t38 = t37 - t28;
-        let t39 = t5 + t35;
-        let t40 = t33 + t39;
-        let t41 = t34 - t36;
-        let t42 = t12 * t38;
-        let t43 = t11 * t40;
-        let t44 = t11 * t38;
-        let t45 = t12 * t40;
-        let t46 = t45 - t44;
-        let t47 = t20 * qd3;
-        let t48 = t17 * qd3;
-        let t49 = qd2 + qd3;
-        let t50 = t22 + t47;
-        let t51 = t21 + t50;
-        let t52 = qdd2 + qdd3;
-        let (t53, t54) = q4.sin_cos();
-        let t55 = t17 * t54;
-        let t56 = t49 * t53;
-        let t57 = t55 - t56;
-        let t58 = t17 * t53;
-        let t59 = t49 * t54;
-        let t60 = t58 + t59;
-        let t61 = t51 * t54;
-        let t62 = t52 * t53;
-        let t63 = t51 * t53;
-        let t64 = t52 * t54;
-        let t65 = t17 * t20;
-        let t66 = t65 * RL4;
-        let t67 = t49 * t49;
-        let t68 = t67 * RL4;
-        let t69 = t17 * t17;
-        let t70 = t69 * RL4;
-        let t71 = t20 * t49;
-        let t72 = t71 * RL4;
-        let t73 = t52 * RL4;
-        let t74 = t51 * RL4;
-        let t75 = t42 + t43;
-        let t76 = t66 - t73;
-        let t77 = t75 + t76;
-        let t78 = t68 + t70;
-        let t79 = t46 - t78;
-        let t80 = t72 + t74;
-        let t81 = t41 + t80;
-        let t82 = t54 * t77;
-        let t83 = t53 * t81;
-        let t84 = t82 - t83;
-        let t85 = t53 * t77;
-        let t86 = t54 * t81;
-        let t87 = t85 + t86;
-        let t88 = t60 * qd4;
-        let t89 = t57 * qd4;
-        let t90 = t20 + qd4;
-        let t91 = t62 + t88;
-        let t92 = t61 - t91;
-        let t93 = qdd4 - t23;
-        let t94 = t24 - t48;
-        let t95 = t93 + t94;
-        let (t96, t97) = q5.sin_cos();
-        let t98 = t57 * t97;
-        let t99 = t90 * t96;
-        let t100 = t98 + t99;
-        let t101 = t57 * t96;
-        let t102 = t90 * t97;
-        let t103 = t102 - t101;
-        let t104 = t92 * t97;
-        let t105 = t95 * t96;
-        let t106 = t92 * t96;
-        let t107 = t95 * t97;
-        let t108 = t84 * t97;
-        let t109 = t79 * t96;
+        let t23 = t22 - qdd2;
+        let t24 = t22 + qdd2;
+        let t25 = t18 + t20;
+        let t26 = t14 - t16;
+        let t27 = t14 + t16;
+        let t28 = t18 + t19;
+        let t29 = t15 - t17;
+        let t30 = t15 + t17;
+        let t31 = t21 * D3;
+        let t32 = t24 * D3;
+        let t33 = t29 * D3;
+        let t34 = t0 * c0;
+        let t35 = t34 - t31;
+        let t36 = t1 * c0;
+        let t37 = t32 + t36;
+        let t38 = t3 * t35;
+        let t39 = t2 * t37;
+        let t40 = t2 * t35;
+        let t41 = t3 * t37;
+        let t42 = t38 + t39;
+        let t43 = t41 - t40;
+        let t44 = t3 * t10;
+        let t45 = t2 * t11;
+        let t46 = t2 * t10;
+        let t47 = t3 * t11;
+        let t48 = t44 + t45;
+        let t49 = t47 - t46;
+        let t50 = t3 * t16;
+        let t51 = t2 * t17;
+        let t52 = t2 * t16;
+        let t53 = t3 * t17;
+        let t54 = t50 + t51;
+        let t55 = t53 - t52;
+        let t56 = t49 * qd3;
+        let t57 = t48 * qd3;
+        let t58 = qd2 + qd3;
+        let t59 = t54 + t56;
+        let t60 = t55 - t57;
+        let t61 = qdd2 + qdd3;
+        let t62 = t48 * t48;
+        let t63 = t49 * t49;
+        let t64 = t58 * t58;
+        let t65 = t63 + t64;
+        let t66 = t48 * t49;
+        let t67 = t66 - t61;
+        let t68 = t61 + t66;
+        let t69 = t62 + t64;
+        let t70 = t49 * t58;
+        let t71 = t70 - t59;
+        let t72 = t59 + t70;
+        let t73 = t62 + t63;
+        let t74 = t48 * t58;
+        let t75 = t74 - t60;
+        let t76 = t60 + t74;
+        let t77 = t67 * RL4;
+        let t78 = t69 * RL4;
+        let t79 = t72 * RL4;
+        let t80 = t42 + t77;
+        let t81 = t43 - t78;
+        let t82 = t33 + t79;
+        let t83 = t5 * t80;
+        let t84 = t4 * t82;
+        let t85 = t4 * t80;
+        let t86 = t5 * t82;
+        let t87 = t83 - t84;
+        let t88 = t85 + t86;
+        let t89 = t5 * t48;
+        let t90 = t4 * t58;
+        let t91 = t4 * t48;
+        let t92 = t5 * t58;
+        let t93 = t89 - t90;
+        let t94 = t91 + t92;
+        let t95 = t5 * t59;
+        let t96 = t4 * t61;
+        let t97 = t4 * t59;
+        let t98 = t5 * t61;
+        let t99 = t95 - t96;
+        let t100 = t97 + t98;
+        let t101 = t94 * qd4;
+        let t102 = t93 * qd4;
+        let t103 = t49 + qd4;
+        let t104 = t99 - t101;
+        let t105 = t100 + t102;
+        let t106 = t60 + qdd4;
+        let t107 = t93 * t93;
+        let t108 = t94 * t94;
+        let t109 = t103 * t103;
         let t110 = t108 + t109;
-        let t111 = t84 * t96;
-        let t112 = t79 * t97;
-        let t113 = t112 - t111;
-        let t114 = t103 * qd5;
-        let t115 = t100 * qd5;
-        let t116 = t60 + qd5;
-        let t117 = t105 + t114;
-        let t118 = t104 + t117;
-        let t119 = t63 + qdd5;
-        let t120 = t64 + t89;
-        let t121 = t119 + t120;
-        let (t122, t123) = q6.sin_cos();
-        let t124 = t100 * t123;
-        let t125 = t116 * t122;
-        let t126 = t124 - t125;
-        let t127 = t100 * t122;
-        let t128 = t116 * t123;
-        let t129 = t127 + t128;
-        let t130 = t118 * t123;
-        let t131 = t121 * t122;
-        let t132 = t118 * t122;
-        let t133 = t121 * t123;
-        let t134 = t87 * t122;
-        let t135 = t110 * t122;
-        let t136 = t87 * t123;
-        let t137 = t135 + t136;
-        let t138 = t129 * qd6;
-        let t139 = t126 * qd6;
-        let t140 = t103 + qd6;
-        let t141 = t131 + t138;
-        let t142 = t130 - t141;
-        let t143 = qdd6 - t106;
-        let t144 = t107 - t115;
-        let t145 = t143 + t144;
-        let t146 = t25 * t31;
-        let t147 = t0 * t0;
-        let t148 = t0 * t9;
-        let t149 = t1 * t8;
-        let t150 = t148 + t149;
-        let t151 = t25 * t147;
-        let t152 = t25 * t26;
-        let t153 = t151 - t152;
-        let t154 = t8 * c1;
-        let t155 = t3 - t154;
-        let t156 = t7 * c1;
-        let t157 = t2 + t156;
-        let t158 = t0 * t155;
-        let t159 = t1 * t157;
-        let t160 = t158 + t159;
-        let t161 = t29 - t151;
-        let t162 = t146 + qdd2;
-        let t163 = t0 * t162;
-        let t164 = t1 * t161;
-        let t165 = t163 + t164;
-        let t166 = t152 - t29;
-        let t167 = qdd2 - t146;
-        let t168 = t0 * t166;
-        let t169 = t1 * t167;
-        let t170 = t168 + t169;
-        let t171 = t17 * t49;
-        let t172 = t12 * t51;
-        let t173 = t11 * t17;
-        let t174 = t49 * t173;
-        let t175 = t172 - t174;
-        let t176 = t11 * t51;
-        let t177 = t12 * t17;
-        let t178 = t49 * t177;
-        let t179 = t176 + t178;
-        let t180 = t0 * t175;
-        let t181 = t1 * t179;
-        let t182 = t180 + t181;
-        let t183 = t20 * t20;
-        let t184 = t69 - t183;
-        let t185 = t24 - t23;
-        let t186 = t48 + t171;
-        let t187 = t185 - t186;
-        let t188 = t51 + t71;
-        let t189 = t12 * t187;
-        let t190 = t11 * t188;
-        let t191 = t189 - t190;
-        let t192 = t11 * t187;
-        let t193 = t12 * t188;
-        let t194 = t192 + t193;
-        let t195 = t0 * t191;
-        let t196 = t1 * t194;
-        let t197 = t195 + t196;
-        let t198 = t67 - t69;
-        let t199 = t52 + t65;
-        let t200 = t51 - t71;
-        let t201 = t12 * t199;
-        let t202 = t11 * t198;
-        let t203 = t201 - t202;
-        let t204 = t11 * t199;
-        let t205 = t12 * t198;
-        let t206 = t204 + t205;
-        let t207 = t0 * t203;
-        let t208 = t1 * t206;
-        let t209 = t207 + t208;
-        let t210 = t183 - t67;
-        let t211 = t52 - t65;
-        let t212 = t171 - t48;
-        let t213 = t185 + t212;
-        let t214 = t12 * t210;
-        let t215 = t11 * t211;
-        let t216 = t214 - t215;
-        let t217 = t11 * t210;
-        let t218 = t12 * t211;
-        let t219 = t217 + t218;
-        let t220 = t0 * t216;
-        let t221 = t1 * t219;
-        let t222 = t220 + t221;
-        let t223 = t12 * t20;
-        let t224 = t49 * t223;
-        let t225 = t174 + t224;
-        let t226 = t11 * t20;
-        let t227 = t49 * t226;
-        let t228 = t227 - t178;
-        let t229 = t0 * t225;
-        let t230 = t1 * t228;
-        let t231 = t229 + t230;
-        let t232 = t67 + t183;
-        let t233 = t11 * t232;
-        let t234 = t201 - t233;
-        let t235 = t12 * t41;
-        let t236 = t187 * D3;
-        let t237 = t234 * D3;
-        let t238 = t236 - t235;
-        let t239 = t46 + t237;
-        let t240 = t0 * t11;
-        let t241 = t41 * t240;
-        let t242 = t1 * t238;
-        let t243 = t241 + t242;
-        let t244 = t67 + t69;
-        let t245 = t12 * t244;
-        let t246 = t215 + t245;
-        let t247 = t11 * t41;
-        let t248 = t188 * D3;
-        let t249 = t246 * D3;
-        let t250 = t247 - t248;
-        let t251 = t75 + t249;
-        let t252 = t0 * t12;
-        let t253 = t41 * t252;
-        let t254 = t1 * t250;
-        let t255 = t253 + t254;
-        let t256 = t57 * t90;
-        let t257 = t57 * t60;
-        let t258 = t54 * t92;
-        let t259 = t53 * t57;
-        let t260 = t90 * t259;
-        let t261 = t258 - t260;
-        let t262 = t53 * t92;
-        let t263 = t54 * t57;
-        let t264 = t90 * t263;
-        let t265 = t262 + t264;
-        let t266 = t12 * t261;
-        let t267 = t11 * t57;
-        let t268 = t60 * t267;
-        let t269 = t266 - t268;
-        let t270 = t11 * t261;
-        let t271 = t12 * t57;
-        let t272 = t60 * t271;
-        let t273 = t270 + t272;
-        let t274 = t0 * t269;
-        let t275 = t1 * t273;
-        let t276 = t274 + t275;
-        let t277 = t60 * t90;
-        let t278 = t57 * t57;
-        let t279 = t60 * t60;
-        let t280 = t278 - t279;
-        let t281 = t63 + t64;
-        let t282 = t89 + t256;
-        let t283 = t281 + t282;
-        let t284 = t92 - t277;
-        let t285 = t54 * t283;
-        let t286 = t53 * t284;
-        let t287 = t285 + t286;
-        let t288 = t53 * t283;
-        let t289 = t54 * t284;
-        let t290 = t288 - t289;
-        let t291 = t12 * t287;
-        let t292 = t11 * t280;
-        let t293 = t291 + t292;
-        let t294 = t11 * t287;
-        let t295 = t12 * t280;
-        let t296 = t295 - t294;
-        let t297 = t0 * t293;
-        let t298 = t1 * t296;
+        let t111 = t93 * t94;
+        let t112 = t106 + t111;
+        let t113 = t106 - t111;
+        let t114 = t107 + t109;
+        let t115 = t94 * t103;
+        let t116 = t104 + t115;
+        let t117 = t104 - t115;
+        let t118 = t107 + t108;
+        let t119 = t93 * t103;
+        let t120 = t105 + t119;
+        let t121 = t119 - t105;
+        let t122 = t7 * t87;
+        let t123 = t6 * t81;
+        let t124 = t6 * t87;
+        let t125 = t7 * t81;
+        let t126 = t122 + t123;
+        let t127 = t125 - t124;
+        let t128 = t7 * t93;
+        let t129 = t6 * t103;
+        let t130 = t6 * t93;
+        let t131 = t7 * t103;
+        let t132 = t128 + t129;
+        let t133 = t131 - t130;
+        let t134 = t7 * t104;
+        let t135 = t6 * t106;
+        let t136 = t6 * t104;
+        let t137 = t7 * t106;
+        let t138 = t134 + t135;
+        let t139 = t137 - t136;
+        let t140 = t133 * qd5;
+        let t141 = t132 * qd5;
+        let t142 = t94 + qd5;
+        let t143 = t138 + t140;
+        let t144 = t139 - t141;
+        let t145 = t105 + qdd5;
+        let t146 = t132 * t132;
+        let t147 = t133 * t133;
+        let t148 = t142 * t142;
+        let t149 = t147 + t148;
+        let t150 = t132 * t133;
+        let t151 = t150 - t145;
+        let t152 = t145 + t150;
+        let t153 = t146 + t148;
+        let t154 = t133 * t142;
+        let t155 = t154 - t143;
+        let t156 = t143 + t154;
+        let t157 = t146 + t147;
+        let t158 = t132 * t142;
+        let t159 = t158 - t144;
+        let t160 = t144 + t158;
+        let t161 = t9 * t126;
+        let t162 = t8 * t88;
+        let t163 = t8 * t126;
+        let t164 = t9 * t88;
+        let t165 = t161 - t162;
+        let t166 = t163 + t164;
+        let t167 = t9 * t132;
+        let t168 = t8 * t142;
+        let t169 = t8 * t132;
+        let t170 = t9 * t142;
+        let t171 = t167 - t168;
+        let t172 = t169 + t170;
+        let t173 = t9 * t143;
+        let t174 = t8 * t145;
+        let t175 = t8 * t143;
+        let t176 = t9 * t145;
+        let t177 = t173 - t174;
+        let t178 = t175 + t176;
+        let t179 = t172 * qd6;
+        let t180 = t171 * qd6;
+        let t181 = t133 + qd6;
+        let t182 = t177 - t179;
+        let t183 = t178 + t180;
+        let t184 = t144 + qdd6;
+        let t185 = t171 * t171;
+        let t186 = t172 * t172;
+        let t187 = t181 * t181;
+        let t188 = t186 + t187;
+        let t189 = t171 * t172;
+        let t190 = t184 + t189;
+        let t191 = t184 - t189;
+        let t192 = t185 + t187;
+        let t193 = t172 * t181;
+        let t194 = t182 + t193;
+        let t195 = t182 - t193;
+        let t196 = t185 + t186;
+        let t197 = t171 * t181;
+        let t198 = t183 + t197;
+        let t199 = t197 - t183;
+        let t200 = t0 * t3;
+        let t201 = t1 * t2;
+        let t202 = t0 * t2;
+        let t203 = t1 * t3;
+        let t204 = t200 + t201;
+        let t205 = t203 - t202;
+        let t206 = t5 * t204;
+        let t207 = t4 * t204;
+        let t208 = t7 * t206;
+        let t209 = t6 * t205;
+        let t210 = t6 * t206;
+        let t211 = t7 * t205;
+        let t212 = t208 + t209;
+        let t213 = t211 - t210;
+        let t214 = t4 * t7;
+        let t215 = t4 * t6;
+        let t216 = t9 * t212;
+        let t217 = t8 * t207;
+        let t218 = t8 * t212;
+        let t219 = t9 * t207;
+        let t220 = t216 - t217;
+        let t221 = t218 + t219;
+        let t222 = t9 * t214;
+        let t223 = t5 * t8;
+        let t224 = t8 * t214;
+        let t225 = t5 * t9;
+        let t226 = t222 + t223;
+        let t227 = t224 - t225;
+        let t228 = t6 * t9;
+        let t229 = t6 * t8;
+        let t230 = t1 * D3;
+        let t231 = t2 * D3;
+        let t232 = t3 * D3;
+        let t233 = t204 * RL4;
+        let t234 = t233 - t230;
+        let t235 = t4 * t234;
+        let t236 = t5 * t234;
+        let t237 = t231 - RL4;
+        let t238 = t5 * t237;
+        let t239 = t4 * t237;
+        let t240 = t5 * RL4;
+        let t241 = t4 * RL4;
+        let t242 = t7 * t235;
+        let t243 = t6 * t235;
+        let t244 = t7 * t238;
+        let t245 = t6 * t232;
+        let t246 = t6 * t238;
+        let t247 = t7 * t232;
+        let t248 = t244 + t245;
+        let t249 = t247 - t246;
+        let t250 = t7 * t240;
+        let t251 = t6 * t240;
+        let t252 = t9 * t242;
+        let t253 = t8 * t236;
+        let t254 = t8 * t242;
+        let t255 = t9 * t236;
+        let t256 = t252 + t253;
+        let t257 = t254 - t255;
+        let t258 = t9 * t248;
+        let t259 = t8 * t239;
+        let t260 = t8 * t248;
+        let t261 = t9 * t239;
+        let t262 = t258 - t259;
+        let t263 = t260 + t261;
+        let t264 = t9 * t250;
+        let t265 = t8 * t241;
+        let t266 = t8 * t250;
+        let t267 = t9 * t241;
+        let t268 = t265 - t264;
+        let t269 = t266 + t267;
+        let t270 = t28 - t25;
+        let t271 = t21 - t28;
+        let t272 = t25 - t21;
+        let t273 = t0 * t16;
+        let t274 = t1 * t15;
+        let t275 = t273 + t274;
+        let t276 = -t22;
+        let t277 = t0 * t29;
+        let t278 = t1 * t27;
+        let t279 = t278 - t277;
+        let t280 = t0 * t24;
+        let t281 = t1 * t271;
+        let t282 = t280 + t281;
+        let t283 = -t26;
+        let t284 = t0 * t270;
+        let t285 = t1 * t23;
+        let t286 = t284 - t285;
+        let t287 = t0 * t14;
+        let t288 = t287 - t274;
+        let t289 = -t34;
+        let t290 = t73 - t69;
+        let t291 = t65 - t73;
+        let t292 = t69 - t65;
+        let t293 = t59 * t204;
+        let t294 = t74 * t205;
+        let t295 = t293 + t294;
+        let t296 = -t66;
+        let t297 = t75 * t204;
+        let t298 = t72 * t205;
         let t299 = t298 - t297;
-        let t300 = t90 * t90;
-        let t301 = t300 - t278;
-        let t302 = t95 - t257;
-        let t303 = t92 + t277;
-        let t304 = t54 * t302;
-        let t305 = t53 * t301;
+        let t300 = t68 * t204;
+        let t301 = t205 * t291;
+        let t302 = t300 + t301;
+        let t303 = -t71;
+        let t304 = t204 * t290;
+        let t305 = t67 * t205;
         let t306 = t304 - t305;
-        let t307 = t53 * t302;
-        let t308 = t54 * t301;
-        let t309 = t307 + t308;
-        let t310 = t12 * t306;
-        let t311 = t11 * t303;
-        let t312 = t310 - t311;
-        let t313 = t11 * t306;
-        let t314 = t12 * t303;
-        let t315 = t313 + t314;
-        let t316 = t0 * t312;
-        let t317 = t1 * t315;
-        let t318 = t316 + t317;
-        let t319 = t279 - t300;
-        let t320 = t95 + t257;
-        let t321 = t256 - t89;
-        let t322 = t321 - t281;
-        let t323 = t54 * t319;
-        let t324 = t53 * t320;
-        let t325 = t323 - t324;
-        let t326 = t53 * t319;
-        let t327 = t54 * t320;
-        let t328 = t326 + t327;
-        let t329 = t12 * t325;
-        let t330 = t11 * t322;
-        let t331 = t329 - t330;
-        let t332 = t11 * t325;
-        let t333 = t12 * t322;
-        let t334 = t332 + t333;
-        let t335 = t0 * t331;
-        let t336 = t1 * t334;
-        let t337 = t335 + t336;
-        let t338 = t54 * t60;
-        let t339 = t90 * t338;
-        let t340 = t260 - t339;
-        let t341 = t53 * t60;
-        let t342 = t90 * t341;
-        let t343 = t264 + t342;
-        let t344 = t12 * t340;
-        let t345 = t11 * t95;
-        let t346 = t344 - t345;
-        let t347 = t11 * t340;
-        let t348 = t12 * t95;
-        let t349 = t347 + t348;
-        let t350 = t0 * t346;
-        let t351 = t1 * t349;
+        let t307 = t70 * t204;
+        let t308 = t307 - t294;
+        let t309 = t33 * t205;
+        let t310 = t75 * t230;
+        let t311 = t309 + t310;
+        let t312 = t65 * t231;
+        let t313 = t68 * t232;
+        let t314 = t43 + t313;
+        let t315 = t314 - t312;
+        let t316 = -t311;
+        let t317 = t33 * t204;
+        let t318 = t72 * t230;
+        let t319 = t317 - t318;
+        let t320 = t67 * t231;
+        let t321 = t69 * t232;
+        let t322 = t42 + t321;
+        let t323 = t320 - t322;
+        let t324 = -t42;
+        let t325 = t118 - t114;
+        let t326 = t110 - t118;
+        let t327 = t114 - t110;
+        let t328 = t104 * t206;
+        let t329 = t119 * t207;
+        let t330 = t111 * t205;
+        let t331 = t330 - t329;
+        let t332 = t328 + t331;
+        let t333 = t4 * t104;
+        let t334 = t5 * t119;
+        let t335 = t333 + t334;
+        let t336 = -t335;
+        let t337 = t120 * t206;
+        let t338 = t117 * t207;
+        let t339 = t205 * t327;
+        let t340 = t339 - t338;
+        let t341 = t340 - t337;
+        let t342 = t4 * t120;
+        let t343 = t5 * t117;
+        let t344 = t342 - t343;
+        let t345 = t113 * t206;
+        let t346 = t207 * t326;
+        let t347 = t116 * t205;
+        let t348 = t347 - t346;
+        let t349 = t345 + t348;
+        let t350 = t4 * t113;
+        let t351 = t5 * t326;
         let t352 = t350 + t351;
-        let t353 = t279 + t300;
-        let t354 = t54 * t353;
-        let t355 = t307 + t354;
-        let t356 = t53 * t353;
-        let t357 = t356 - t304;
-        let t358 = t53 * t79;
-        let t359 = t54 * t79;
-        let t360 = t357 * RL4;
-        let t361 = t355 * RL4;
-        let t362 = t358 + t360;
-        let t363 = t359 + t361;
-        let t364 = t11 * t355;
-        let t365 = t12 * t283;
-        let t366 = t365 - t364;
-        let t367 = t12 * t362;
-        let t368 = t11 * t87;
-        let t369 = t367 + t368;
-        let t370 = t11 * t362;
-        let t371 = t12 * t87;
-        let t372 = t357 * D3;
-        let t373 = t366 * D3;
+        let t353 = -t352;
+        let t354 = t206 * t325;
+        let t355 = t112 * t207;
+        let t356 = t121 * t205;
+        let t357 = t356 - t355;
+        let t358 = t354 + t357;
+        let t359 = t4 * t325;
+        let t360 = t5 * t112;
+        let t361 = t359 + t360;
+        let t362 = -t361;
+        let t363 = t115 * t206;
+        let t364 = t106 * t205;
+        let t365 = t329 + t364;
+        let t366 = t365 - t363;
+        let t367 = t4 * t115;
+        let t368 = t334 + t367;
+        let t369 = t110 * t235;
+        let t370 = t81 * t207;
+        let t371 = t113 * t236;
+        let t372 = t88 * t205;
+        let t373 = t369 + t370;
         let t374 = t371 + t372;
-        let t375 = t370 - t374;
-        let t376 = t363 + t373;
-        let t377 = t0 * t369;
-        let t378 = t1 * t375;
-        let t379 = t377 + t378;
-        let t380 = t278 + t300;
-        let t381 = t53 * t380;
-        let t382 = t381 - t327;
-        let t383 = t54 * t380;
-        let t384 = t324 + t383;
-        let t385 = t384 * RL4;
-        let t386 = t382 * RL4;
-        let t387 = t359 + t385;
-        let t388 = t358 + t386;
-        let t389 = t11 * t382;
-        let t390 = t12 * t284;
-        let t391 = t389 + t390;
-        let t392 = t12 * t387;
-        let t393 = t11 * t84;
+        let t375 = t373 - t374;
+        let t376 = t110 * t238;
+        let t377 = t5 * t81;
+        let t378 = t113 * t239;
+        let t379 = t120 * t232;
+        let t380 = t377 - t376;
+        let t381 = t379 - t378;
+        let t382 = t380 + t381;
+        let t383 = t110 * t240;
+        let t384 = t113 * t241;
+        let t385 = t377 + t384;
+        let t386 = t383 + t385;
+        let t387 = -t88;
+        let t388 = t81 * t206;
+        let t389 = t112 * t235;
+        let t390 = t114 * t236;
+        let t391 = t87 * t205;
+        let t392 = t388 + t389;
+        let t393 = t390 - t391;
         let t394 = t392 + t393;
-        let t395 = t11 * t387;
-        let t396 = t12 * t84;
-        let t397 = t384 * D3;
-        let t398 = t391 * D3;
-        let t399 = t396 + t397;
-        let t400 = t395 - t399;
-        let t401 = t398 - t388;
-        let t402 = t0 * t394;
-        let t403 = t1 * t400;
-        let t404 = t402 + t403;
-        let t405 = t100 * t116;
-        let t406 = t100 * t103;
-        let t407 = t97 * t118;
-        let t408 = t96 * t100;
-        let t409 = t116 * t408;
-        let t410 = t407 - t409;
-        let t411 = t96 * t118;
-        let t412 = t97 * t100;
-        let t413 = t116 * t412;
-        let t414 = t411 + t413;
-        let t415 = t54 * t410;
-        let t416 = t53 * t100;
-        let t417 = t103 * t416;
-        let t418 = t415 - t417;
-        let t419 = t53 * t410;
-        let t420 = t54 * t100;
-        let t421 = t103 * t420;
-        let t422 = t419 + t421;
-        let t423 = t12 * t418;
-        let t424 = t11 * t414;
-        let t425 = t423 - t424;
-        let t426 = t11 * t418;
-        let t427 = t12 * t414;
-        let t428 = t426 + t427;
-        let t429 = t0 * t425;
-        let t430 = t1 * t428;
-        let t431 = t429 + t430;
-        let t432 = t103 * t116;
-        let t433 = t100 * t100;
-        let t434 = t103 * t103;
-        let t435 = t433 - t434;
-        let t436 = t107 - t106;
-        let t437 = t115 + t405;
-        let t438 = t436 - t437;
-        let t439 = t118 + t432;
-        let t440 = t97 * t438;
-        let t441 = t96 * t439;
-        let t442 = t440 - t441;
-        let t443 = t96 * t438;
-        let t444 = t97 * t439;
-        let t445 = t443 + t444;
-        let t446 = t54 * t442;
-        let t447 = t53 * t435;
-        let t448 = t446 + t447;
-        let t449 = t53 * t442;
-        let t450 = t54 * t435;
-        let t451 = t450 - t449;
-        let t452 = t12 * t448;
-        let t453 = t11 * t445;
-        let t454 = t452 - t453;
-        let t455 = t11 * t448;
-        let t456 = t12 * t445;
-        let t457 = t455 + t456;
-        let t458 = t0 * t454;
-        let t459 = t1 * t457;
-        let t460 = t458 + t459;
-        let t461 = t116 * t116;
-        let t462 = t461 - t433;
-        let t463 = t121 + t406;
-        let t464 = t118 - t432;
-        let t465 = t97 * t463;
-        let t466 = t96 * t462;
-        let t467 = t465 - t466;
-        let t468 = t96 * t463;
-        let t469 = t97 * t462;
-        let t470 = t468 + t469;
-        let t471 = t54 * t467;
-        let t472 = t53 * t464;
-        let t473 = t471 + t472;
-        let t474 = t53 * t467;
-        let t475 = t54 * t464;
-        let t476 = t475 - t474;
-        let t477 = t12 * t473;
-        let t478 = t11 * t470;
-        let t479 = t477 - t478;
-        let t480 = t11 * t473;
-        let t481 = t12 * t470;
-        let t482 = t480 + t481;
-        let t483 = t0 * t479;
-        let t484 = t1 * t482;
-        let t485 = t483 + t484;
-        let t486 = t434 - t461;
-        let t487 = t121 - t406;
-        let t488 = t405 - t115;
-        let t489 = t436 + t488;
-        let t490 = t97 * t486;
-        let t491 = t96 * t487;
-        let t492 = t490 - t491;
-        let t493 = t96 * t486;
-        let t494 = t97 * t487;
-        let t495 = t493 + t494;
-        let t496 = t54 * t492;
-        let t497 = t53 * t489;
-        let t498 = t496 + t497;
-        let t499 = t53 * t492;
-        let t500 = t54 * t489;
-        let t501 = t500 - t499;
-        let t502 = t12 * t498;
-        let t503 = t11 * t495;
-        let t504 = t502 - t503;
-        let t505 = t11 * t498;
-        let t506 = t12 * t495;
-        let t507 = t505 + t506;
-        let t508 = t0 * t504;
-        let t509 = t1 * t507;
-        let t510 = t508 + t509;
-        let t511 = t97 * t103;
-        let t512 = t116 * t511;
-        let t513 = t409 + t512;
-        let t514 = t96 * t103;
-        let t515 = t116 * t514;
-        let t516 = t515 - t413;
-        let t517 = t54 * t513;
-        let t518 = t53 * t121;
-        let t519 = t517 + t518;
-        let t520 = t53 * t513;
-        let t521 = t54 * t121;
-        let t522 = t521 - t520;
-        let t523 = t12 * t519;
-        let t524 = t11 * t516;
-        let t525 = t523 - t524;
-        let t526 = t11 * t519;
-        let t527 = t12 * t516;
-        let t528 = t526 + t527;
-        let t529 = t0 * t525;
-        let t530 = t1 * t528;
-        let t531 = t529 + t530;
-        let t532 = t434 + t461;
-        let t533 = t97 * t532;
-        let t534 = t468 + t533;
-        let t535 = t96 * t532;
-        let t536 = t465 - t535;
-        let t537 = t87 * t97;
-        let t538 = t54 * t534;
-        let t539 = t53 * t438;
+        let t395 = t4 * t81;
+        let t396 = t112 * t238;
+        let t397 = t114 * t239;
+        let t398 = t117 * t232;
+        let t399 = t395 + t396;
+        let t400 = t397 + t398;
+        let t401 = t400 - t399;
+        let t402 = t112 * t240;
+        let t403 = t114 * t241;
+        let t404 = t402 - t403;
+        let t405 = t404 - t395;
+        let t406 = -t87;
+        let t407 = t157 - t153;
+        let t408 = t149 - t157;
+        let t409 = t153 - t149;
+        let t410 = t143 * t212;
+        let t411 = t158 * t213;
+        let t412 = t150 * t207;
+        let t413 = t411 - t412;
+        let t414 = t410 + t413;
+        let t415 = t143 * t214;
+        let t416 = t158 * t215;
+        let t417 = t5 * t150;
+        let t418 = t416 - t417;
+        let t419 = t418 - t415;
+        let t420 = t6 * t143;
+        let t421 = t7 * t158;
+        let t422 = t420 + t421;
+        let t423 = -t150;
+        let t424 = t159 * t212;
+        let t425 = t156 * t213;
+        let t426 = t207 * t409;
+        let t427 = t425 + t426;
+        let t428 = t427 - t424;
+        let t429 = t159 * t214;
+        let t430 = t156 * t215;
+        let t431 = t5 * t409;
+        let t432 = t430 + t431;
+        let t433 = t429 + t432;
+        let t434 = t6 * t159;
+        let t435 = t7 * t156;
+        let t436 = t435 - t434;
+        let t437 = t152 * t212;
+        let t438 = t213 * t408;
+        let t439 = t155 * t207;
+        let t440 = t438 - t439;
+        let t441 = t437 + t440;
+        let t442 = t152 * t214;
+        let t443 = t215 * t408;
+        let t444 = t5 * t155;
+        let t445 = t443 - t444;
+        let t446 = t445 - t442;
+        let t447 = t6 * t152;
+        let t448 = t7 * t408;
+        let t449 = t447 + t448;
+        let t450 = -t155;
+        let t451 = t212 * t407;
+        let t452 = t151 * t213;
+        let t453 = t160 * t207;
+        let t454 = t453 - t452;
+        let t455 = t451 + t454;
+        let t456 = t214 * t407;
+        let t457 = t151 * t215;
+        let t458 = t5 * t160;
+        let t459 = t458 - t457;
+        let t460 = t459 - t456;
+        let t461 = t6 * t407;
+        let t462 = t7 * t151;
+        let t463 = t461 - t462;
+        let t464 = t154 * t212;
+        let t465 = t145 * t207;
+        let t466 = t465 - t411;
+        let t467 = t464 + t466;
+        let t468 = t154 * t214;
+        let t469 = t5 * t145;
+        let t470 = t469 - t416;
+        let t471 = t470 - t468;
+        let t472 = t6 * t154;
+        let t473 = t472 - t421;
+        let t474 = t149 * t242;
+        let t475 = t88 * t213;
+        let t476 = t152 * t243;
+        let t477 = t127 * t207;
+        let t478 = t159 * t236;
+        let t479 = t474 - t475;
+        let t480 = t477 + t478;
+        let t481 = t476 + t480;
+        let t482 = t479 + t481;
+        let t483 = t149 * t248;
+        let t484 = t88 * t215;
+        let t485 = t152 * t249;
+        let t486 = t5 * t127;
+        let t487 = t159 * t239;
+        let t488 = t483 + t484;
+        let t489 = t486 + t487;
+        let t490 = t485 + t489;
+        let t491 = t490 - t488;
+        let t492 = t149 * t250;
+        let t493 = t152 * t251;
+        let t494 = t159 * t241;
+        let t495 = t492 - t484;
+        let t496 = t486 - t494;
+        let t497 = t493 + t496;
+        let t498 = t495 + t497;
+        let t499 = t7 * t88;
+        let t500 = -t499;
+        let t501 = t88 * t212;
+        let t502 = t151 * t242;
+        let t503 = t153 * t243;
+        let t504 = t126 * t207;
+        let t505 = t156 * t236;
+        let t506 = t501 - t502;
+        let t507 = t505 - t504;
+        let t508 = t507 - t503;
+        let t509 = t506 + t508;
+        let t510 = t88 * t214;
+        let t511 = t151 * t248;
+        let t512 = t153 * t249;
+        let t513 = t5 * t126;
+        let t514 = t156 * t239;
+        let t515 = t511 - t510;
+        let t516 = t514 - t513;
+        let t517 = t516 - t512;
+        let t518 = t515 + t517;
+        let t519 = t151 * t250;
+        let t520 = t153 * t251;
+        let t521 = t156 * t241;
+        let t522 = t510 + t519;
+        let t523 = t513 + t521;
+        let t524 = t520 + t523;
+        let t525 = t522 + t524;
+        let t526 = t6 * t88;
+        let t527 = -t525;
+        let t528 = -t126;
+        let t529 = t196 - t192;
+        let t530 = t188 - t196;
+        let t531 = t192 - t188;
+        let t532 = t182 * t220;
+        let t533 = t197 * t221;
+        let t534 = t189 * t213;
+        let t535 = t534 - t533;
+        let t536 = t532 + t535;
+        let t537 = t182 * t226;
+        let t538 = t197 * t227;
+        let t539 = t189 * t215;
         let t540 = t538 + t539;
-        let t541 = t53 * t534;
-        let t542 = t54 * t438;
-        let t543 = t541 - t542;
-        let t544 = t54 * t87;
-        let t545 = t96 * t544;
-        let t546 = t53 * t113;
-        let t547 = t53 * t87;
-        let t548 = t96 * t547;
-        let t549 = t54 * t113;
-        let t550 = t543 * RL4;
-        let t551 = t540 * RL4;
-        let t552 = t546 + t550;
-        let t553 = t545 + t552;
-        let t554 = t549 + t551;
-        let t555 = t554 - t548;
-        let t556 = t11 * t540;
-        let t557 = t12 * t536;
-        let t558 = t557 - t556;
-        let t559 = t12 * t553;
-        let t560 = t97 * t368;
-        let t561 = t559 + t560;
-        let t562 = t11 * t553;
-        let t563 = t97 * t371;
-        let t564 = t543 * D3;
-        let t565 = t558 * D3;
-        let t566 = t563 + t564;
-        let t567 = t562 - t566;
-        let t568 = t555 + t565;
-        let t569 = t0 * t561;
-        let t570 = t1 * t567;
-        let t571 = t569 + t570;
-        let t572 = t433 + t461;
-        let t573 = t96 * t572;
-        let t574 = t573 - t494;
-        let t575 = t97 * t572;
-        let t576 = t491 + t575;
-        let t577 = t87 * t96;
-        let t578 = t54 * t574;
-        let t579 = t53 * t439;
-        let t580 = t578 + t579;
-        let t581 = t53 * t574;
-        let t582 = t54 * t439;
-        let t583 = t582 - t581;
-        let t584 = t54 * t97;
-        let t585 = t87 * t584;
-        let t586 = t53 * t110;
-        let t587 = t53 * t97;
-        let t588 = t87 * t587;
-        let t589 = t54 * t110;
-        let t590 = t583 * RL4;
-        let t591 = t580 * RL4;
-        let t592 = t590 - t586;
-        let t593 = t585 + t592;
-        let t594 = t589 + t591;
-        let t595 = t588 + t594;
-        let t596 = t11 * t580;
-        let t597 = t12 * t576;
-        let t598 = t596 - t597;
-        let t599 = t12 * t593;
-        let t600 = t11 * t96;
-        let t601 = t87 * t600;
-        let t602 = t599 - t601;
-        let t603 = t11 * t593;
-        let t604 = t12 * t96;
-        let t605 = t87 * t604;
-        let t606 = t583 * D3;
-        let t607 = t598 * D3;
-        let t608 = t605 - t606;
-        let t609 = t603 + t608;
-        let t610 = t607 - t595;
-        let t611 = t0 * t602;
-        let t612 = t1 * t609;
-        let t613 = t611 + t612;
-        let t614 = t126 * t140;
-        let t615 = t126 * t129;
-        let t616 = t123 * t142;
-        let t617 = t122 * t126;
-        let t618 = t140 * t617;
-        let t619 = t616 - t618;
-        let t620 = t122 * t142;
-        let t621 = t123 * t126;
-        let t622 = t140 * t621;
-        let t623 = t620 + t622;
-        let t624 = t97 * t619;
-        let t625 = t96 * t126;
-        let t626 = t129 * t625;
-        let t627 = t624 - t626;
-        let t628 = t96 * t619;
-        let t629 = t97 * t126;
-        let t630 = t129 * t629;
-        let t631 = t628 + t630;
-        let t632 = t54 * t627;
-        let t633 = t53 * t623;
-        let t634 = t632 - t633;
-        let t635 = t53 * t627;
-        let t636 = t54 * t623;
-        let t637 = t635 + t636;
-        let t638 = t12 * t634;
-        let t639 = t11 * t631;
-        let t640 = t638 - t639;
-        let t641 = t11 * t634;
-        let t642 = t12 * t631;
-        let t643 = t641 + t642;
-        let t644 = t0 * t640;
-        let t645 = t1 * t643;
-        let t646 = t644 + t645;
-        let t647 = t129 * t140;
-        let t648 = t126 * t126;
-        let t649 = t129 * t129;
-        let t650 = t648 - t649;
-        let t651 = t132 + t133;
-        let t652 = t139 + t614;
-        let t653 = t651 + t652;
-        let t654 = t142 - t647;
-        let t655 = t123 * t653;
-        let t656 = t122 * t654;
-        let t657 = t655 + t656;
-        let t658 = t122 * t653;
-        let t659 = t123 * t654;
-        let t660 = t658 - t659;
-        let t661 = t97 * t657;
-        let t662 = t96 * t650;
-        let t663 = t661 + t662;
-        let t664 = t96 * t657;
-        let t665 = t97 * t650;
-        let t666 = t665 - t664;
-        let t667 = t54 * t663;
-        let t668 = t53 * t660;
-        let t669 = t668 - t667;
-        let t670 = t53 * t663;
-        let t671 = t54 * t660;
-        let t672 = t670 + t671;
-        let t673 = t12 * t669;
-        let t674 = t11 * t666;
-        let t675 = t673 - t674;
-        let t676 = t11 * t669;
-        let t677 = t12 * t666;
-        let t678 = t676 + t677;
-        let t679 = t0 * t675;
-        let t680 = t1 * t678;
-        let t681 = t679 + t680;
-        let t682 = t140 * t140;
-        let t683 = t682 - t648;
-        let t684 = t145 - t615;
-        let t685 = t142 + t647;
-        let t686 = t123 * t684;
-        let t687 = t122 * t683;
-        let t688 = t686 - t687;
-        let t689 = t122 * t684;
-        let t690 = t123 * t683;
-        let t691 = t689 + t690;
-        let t692 = t97 * t688;
-        let t693 = t96 * t685;
-        let t694 = t692 - t693;
-        let t695 = t96 * t688;
-        let t696 = t97 * t685;
-        let t697 = t695 + t696;
-        let t698 = t54 * t694;
-        let t699 = t53 * t691;
-        let t700 = t698 - t699;
-        let t701 = t53 * t694;
-        let t702 = t54 * t691;
-        let t703 = t701 + t702;
-        let t704 = t12 * t700;
-        let t705 = t11 * t697;
-        let t706 = t704 - t705;
-        let t707 = t11 * t700;
-        let t708 = t12 * t697;
-        let t709 = t707 + t708;
-        let t710 = t0 * t706;
-        let t711 = t1 * t709;
-        let t712 = t710 + t711;
-        let t713 = t649 - t682;
-        let t714 = t145 + t615;
-        let t715 = t614 - t139;
-        let t716 = t715 - t651;
-        let t717 = t123 * t713;
-        let t718 = t122 * t714;
-        let t719 = t717 - t718;
-        let t720 = t122 * t713;
-        let t721 = t123 * t714;
-        let t722 = t720 + t721;
-        let t723 = t97 * t719;
-        let t724 = t96 * t716;
-        let t725 = t723 - t724;
-        let t726 = t96 * t719;
-        let t727 = t97 * t716;
-        let t728 = t726 + t727;
-        let t729 = t54 * t725;
-        let t730 = t53 * t722;
-        let t731 = t729 - t730;
-        let t732 = t53 * t725;
-        let t733 = t54 * t722;
-        let t734 = t732 + t733;
-        let t735 = t12 * t731;
-        let t736 = t11 * t728;
-        let t737 = t735 - t736;
-        let t738 = t11 * t731;
-        let t739 = t12 * t728;
-        let t740 = t738 + t739;
-        let t741 = t0 * t737;
-        let t742 = t1 * t740;
-        let t743 = t741 + t742;
-        let t744 = t123 * t129;
-        let t745 = t140 * t744;
-        let t746 = t618 - t745;
-        let t747 = t122 * t129;
-        let t748 = t140 * t747;
-        let t749 = t622 + t748;
-        let t750 = t97 * t746;
-        let t751 = t96 * t145;
-        let t752 = t750 - t751;
-        let t753 = t96 * t746;
-        let t754 = t97 * t145;
-        let t755 = t753 + t754;
-        let t756 = t54 * t752;
-        let t757 = t53 * t749;
-        let t758 = t756 + t757;
-        let t759 = t53 * t752;
-        let t760 = t54 * t749;
-        let t761 = t760 - t759;
-        let t762 = t12 * t758;
-        let t763 = t11 * t755;
-        let t764 = t762 - t763;
-        let t765 = t11 * t758;
-        let t766 = t12 * t755;
-        let t767 = t765 + t766;
-        let t768 = t0 * t764;
-        let t769 = t1 * t767;
-        let t770 = t768 + t769;
-        let t771 = t649 + t682;
-        let t772 = t123 * t771;
-        let t773 = t689 + t772;
-        let t774 = t122 * t771;
-        let t775 = t113 * t123;
-        let t776 = t97 * t773;
-        let t777 = t96 * t653;
-        let t778 = t776 + t777;
-        let t779 = t686 - t774;
-        let t780 = t96 * t773;
-        let t781 = t97 * t653;
-        let t782 = t781 - t780;
-        let t783 = t97 * t122;
-        let t784 = t113 * t783;
-        let t785 = t96 * t137;
-        let t786 = t784 + t785;
-        let t787 = t96 * t122;
-        let t788 = t113 * t787;
-        let t789 = t97 * t137;
-        let t790 = t788 - t789;
-        let t791 = t54 * t778;
-        let t792 = t53 * t779;
-        let t793 = t791 + t792;
-        let t794 = t53 * t778;
-        let t795 = t54 * t779;
-        let t796 = t794 - t795;
-        let t797 = t54 * t786;
-        let t798 = t53 * t123;
-        let t799 = t113 * t798;
-        let t800 = t53 * t786;
-        let t801 = t54 * t123;
-        let t802 = t113 * t801;
-        let t803 = t796 * RL4;
-        let t804 = t793 * RL4;
-        let t805 = t799 + t803;
-        let t806 = t797 + t805;
-        let t807 = t802 + t804;
-        let t808 = t807 - t800;
-        let t809 = t11 * t793;
-        let t810 = t12 * t782;
-        let t811 = t810 - t809;
-        let t812 = t12 * t806;
-        let t813 = t11 * t790;
-        let t814 = t812 - t813;
-        let t815 = t11 * t806;
-        let t816 = t12 * t790;
-        let t817 = t796 * D3;
-        let t818 = t811 * D3;
-        let t819 = t816 - t817;
-        let t820 = t815 + t819;
-        let t821 = t808 + t818;
-        let t822 = t0 * t814;
-        let t823 = t1 * t820;
-        let t824 = t822 + t823;
-        let t825 = t648 + t682;
-        let t826 = t110 * t123;
-        let t827 = t134 - t826;
-        let t828 = t122 * t825;
-        let t829 = t828 - t721;
-        let t830 = t123 * t825;
-        let t831 = t113 * t122;
-        let t832 = t97 * t829;
-        let t833 = t96 * t654;
-        let t834 = t832 - t833;
-        let t835 = t718 + t830;
-        let t836 = t96 * t829;
-        let t837 = t97 * t654;
-        let t838 = t836 + t837;
-        let t839 = t97 * t113;
-        let t840 = t123 * t839;
-        let t841 = t96 * t827;
-        let t842 = t840 - t841;
-        let t843 = t96 * t113;
-        let t844 = t123 * t843;
-        let t845 = t97 * t827;
-        let t846 = t844 + t845;
-        let t847 = t54 * t834;
-        let t848 = t53 * t835;
-        let t849 = t847 + t848;
-        let t850 = t53 * t834;
-        let t851 = t54 * t835;
-        let t852 = t851 - t850;
-        let t853 = t54 * t842;
-        let t854 = t122 * t546;
-        let t855 = t53 * t842;
-        let t856 = t122 * t549;
-        let t857 = t852 * RL4;
-        let t858 = t849 * RL4;
-        let t859 = t857 - t854;
-        let t860 = t853 + t859;
-        let t861 = t856 + t858;
-        let t862 = t855 + t861;
-        let t863 = t11 * t849;
-        let t864 = t12 * t838;
-        let t865 = t863 + t864;
-        let t866 = t12 * t860;
-        let t867 = t11 * t846;
-        let t868 = t866 - t867;
-        let t869 = t11 * t860;
-        let t870 = t12 * t846;
-        let t871 = t852 * D3;
-        let t872 = t865 * D3;
-        let t873 = t870 - t871;
-        let t874 = t869 + t873;
-        let t875 = t872 - t862;
-        let t876 = t0 * t868;
-        let t877 = t1 * t874;
-        let t878 = t876 + t877;
-        let t879 = -t146;
-        let t880 = -t4;
-        let t881 = -t65;
-        let t882 = -t251;
-        let t883 = -t265;
-        let t884 = -t309;
-        let t885 = -t328;
-        let t886 = -t422;
-        let t887 = -t637;
-        let t888 = -t703;
-        let t889 = -t734;
-        let t890 = -t75;
-        let t891 = -t388;
-        let t892 = -t595;
-        let t893 = -t862;
-        let t894 = -t87;
-        let t895 = -t84;
-        let t896 = -t537;
-        let t897 = -t406;
-        let t898 = -t110;
-        let t899 = -t623;
-        let t900 = -t691;
-        let t901 = -t722;
-        let t902 = -t831;
-        let t903 = -t137;
+        let t541 = t540 - t537;
+        let t542 = t182 * t228;
+        let t543 = t197 * t229;
+        let t544 = t7 * t189;
+        let t545 = t544 - t543;
+        let t546 = t542 + t545;
+        let t547 = t8 * t182;
+        let t548 = t9 * t197;
+        let t549 = t547 + t548;
+        let t550 = -t549;
+        let t551 = t198 * t220;
+        let t552 = t195 * t221;
+        let t553 = t213 * t531;
+        let t554 = t553 - t552;
+        let t555 = t554 - t551;
+        let t556 = t198 * t226;
+        let t557 = t195 * t227;
+        let t558 = t215 * t531;
+        let t559 = t557 + t558;
+        let t560 = t556 + t559;
+        let t561 = t198 * t228;
+        let t562 = t195 * t229;
+        let t563 = t7 * t531;
+        let t564 = t563 - t562;
+        let t565 = t564 - t561;
+        let t566 = t8 * t198;
+        let t567 = t9 * t195;
+        let t568 = t566 - t567;
+        let t569 = t191 * t220;
+        let t570 = t221 * t530;
+        let t571 = t194 * t213;
+        let t572 = t571 - t570;
+        let t573 = t569 + t572;
+        let t574 = t191 * t226;
+        let t575 = t227 * t530;
+        let t576 = t194 * t215;
+        let t577 = t575 + t576;
+        let t578 = t577 - t574;
+        let t579 = t191 * t228;
+        let t580 = t229 * t530;
+        let t581 = t7 * t194;
+        let t582 = t581 - t580;
+        let t583 = t579 + t582;
+        let t584 = t8 * t191;
+        let t585 = t9 * t530;
+        let t586 = t584 + t585;
+        let t587 = -t586;
+        let t588 = t220 * t529;
+        let t589 = t190 * t221;
+        let t590 = t199 * t213;
+        let t591 = t590 - t589;
+        let t592 = t588 + t591;
+        let t593 = t226 * t529;
+        let t594 = t190 * t227;
+        let t595 = t199 * t215;
+        let t596 = t594 + t595;
+        let t597 = t596 - t593;
+        let t598 = t228 * t529;
+        let t599 = t190 * t229;
+        let t600 = t7 * t199;
+        let t601 = t600 - t599;
+        let t602 = t598 + t601;
+        let t603 = t8 * t529;
+        let t604 = t9 * t190;
+        let t605 = t603 + t604;
+        let t606 = -t605;
+        let t607 = t193 * t220;
+        let t608 = t184 * t213;
+        let t609 = t533 + t608;
+        let t610 = t609 - t607;
+        let t611 = t193 * t226;
+        let t612 = t184 * t215;
+        let t613 = t612 - t538;
+        let t614 = t611 + t613;
+        let t615 = t193 * t228;
+        let t616 = t7 * t184;
+        let t617 = t543 + t616;
+        let t618 = t617 - t615;
+        let t619 = t8 * t193;
+        let t620 = t548 + t619;
+        let t621 = t188 * t256;
+        let t622 = t127 * t221;
+        let t623 = t191 * t257;
+        let t624 = t166 * t213;
+        let t625 = t198 * t243;
+        let t626 = t621 + t622;
+        let t627 = t625 - t624;
+        let t628 = t623 + t627;
+        let t629 = t626 + t628;
+        let t630 = t188 * t262;
+        let t631 = t127 * t227;
+        let t632 = t191 * t263;
+        let t633 = t166 * t215;
+        let t634 = t198 * t249;
+        let t635 = t630 + t631;
+        let t636 = t634 - t633;
+        let t637 = t636 - t632;
+        let t638 = t637 - t635;
+        let t639 = t188 * t268;
+        let t640 = t191 * t269;
+        let t641 = t198 * t251;
+        let t642 = t631 + t639;
+        let t643 = t641 - t633;
+        let t644 = t640 + t643;
+        let t645 = t644 - t642;
+        let t646 = t127 * t229;
+        let t647 = t7 * t166;
+        let t648 = t646 - t647;
+        let t649 = t9 * t127;
+        let t650 = -t166;
+        let t651 = t127 * t220;
+        let t652 = t190 * t256;
+        let t653 = t192 * t257;
+        let t654 = t165 * t213;
+        let t655 = t195 * t243;
+        let t656 = t651 + t652;
+        let t657 = t655 - t654;
+        let t658 = t657 - t653;
+        let t659 = t656 + t658;
+        let t660 = t127 * t226;
+        let t661 = t190 * t262;
+        let t662 = t192 * t263;
+        let t663 = t165 * t215;
+        let t664 = t195 * t249;
+        let t665 = t660 + t661;
+        let t666 = t664 - t663;
+        let t667 = t662 + t666;
+        let t668 = t667 - t665;
+        let t669 = t190 * t268;
+        let t670 = t192 * t269;
+        let t671 = t195 * t251;
+        let t672 = t660 + t669;
+        let t673 = t671 - t663;
+        let t674 = t673 - t670;
+        let t675 = t674 - t672;
+        let t676 = t127 * t228;
+        let t677 = t7 * t165;
+        let t678 = t676 - t677;
+        let t679 = t8 * t127;
+        let t680 = -t679;
+        let t681 = -t165;
         [
             qdd1,
-            t150,
-            t160,
-            t165,
-            t170,
+            t275,
+            t279,
+            t282,
+            t286,
+            t288,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            t182,
-            t197,
-            t209,
-            t222,
-            t231,
-            t243,
-            t255,
-            t276,
+            t295,
             t299,
-            t318,
-            t337,
-            t352,
-            t379,
-            t404,
-            t431,
-            t460,
-            t485,
-            t510,
-            t531,
-            t571,
-            t613,
-            t646,
-            t681,
-            t712,
-            t743,
-            t770,
-            t824,
-            t878,
-            T::ZERO,
-            t879,
-            t153,
-            t2,
-            t3,
-            qdd2,
-            t5,
-            t880,
-            t881,
-            t184,
-            t200,
-            t213,
-            t52,
-            t239,
-            t882,
-            t883,
-            t290,
-            t884,
-            t885,
-            t343,
-            t376,
-            t401,
-            t886,
-            t451,
-            t476,
-            t501,
-            t522,
-            t568,
-            t610,
-            t887,
-            t672,
-            t888,
-            t889,
-            t761,
-            t821,
-            t875,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t881,
-            t184,
-            t200,
-            t213,
-            t52,
-            t46,
-            t890,
-            t883,
-            t290,
-            t884,
-            t885,
-            t343,
-            t363,
-            t891,
-            t886,
-            t451,
-            t476,
-            t501,
-            t522,
-            t555,
-            t892,
-            t887,
-            t672,
-            t888,
-            t889,
-            t761,
-            t808,
-            t893,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t257,
-            t280,
-            t303,
-            t322,
-            t95,
-            t894,
-            t895,
+            t302,
+            t306,
+            t308,
+            t316,
+            t319,
+            t332,
+            t341,
+            t349,
+            t358,
+            t366,
+            t375,
+            t394,
             t414,
-            t445,
-            t470,
-            t495,
-            t516,
-            t896,
-            t577,
-            t631,
-            t666,
-            t697,
-            t728,
-            t755,
-            t790,
-            t846,
+            t428,
+            t441,
+            t455,
+            t467,
+            t482,
+            t509,
+            t536,
+            t555,
+            t573,
+            t592,
+            t610,
+            t629,
+            t659,
+            T::ZERO,
+            t276,
+            t272,
+            t283,
+            t30,
+            qdd2,
+            t36,
+            t289,
+            t296,
+            t292,
+            t303,
+            t76,
+            t61,
+            t315,
+            t323,
+            t336,
+            t344,
+            t353,
+            t362,
+            t368,
+            t382,
+            t401,
+            t419,
+            t433,
+            t446,
+            t460,
+            t471,
+            t491,
+            t518,
+            t541,
+            t560,
+            t578,
+            t597,
+            t614,
+            t638,
+            t668,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t296,
+            t292,
+            t303,
+            t76,
+            t61,
+            t43,
+            t324,
+            t336,
+            t344,
+            t353,
+            t362,
+            t368,
+            t386,
+            t405,
+            t419,
+            t433,
+            t446,
+            t460,
+            t471,
+            t498,
+            t527,
+            t541,
+            t560,
+            t578,
+            t597,
+            t614,
+            t645,
+            t675,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -2780,27 +2521,27 @@ impl Rx90 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t897,
-            t435,
-            t464,
-            t489,
+            t111,
+            t327,
+            t116,
             t121,
-            t113,
-            t898,
-            t899,
-            t660,
-            t900,
-            t901,
-            t749,
-            t775,
-            t902,
+            t106,
+            t387,
+            t406,
+            t422,
+            t436,
+            t449,
+            t463,
+            t473,
+            t500,
+            t526,
+            t546,
+            t565,
+            t583,
+            t602,
+            t618,
+            t648,
+            t678,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -2823,20 +2564,56 @@ impl Rx90 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t615,
-            t650,
-            t685,
-            t716,
+            t423,
+            t409,
+            t450,
+            t160,
             t145,
-            t903,
-            t827,
+            t127,
+            t528,
+            t550,
+            t568,
+            t587,
+            t606,
+            t620,
+            t649,
+            t680,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t189,
+            t531,
+            t194,
+            t199,
+            t184,
+            t650,
+            t681,
         ]
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.

@@ -328,7 +328,7 @@ impl Stanford {
     /// - `qd`: qd1, qd2, qd3
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
-    /// Operations: 67 mul, 42 add, 9 neg, 1 sin, 1 cos.
+    /// Operations: 58 mul, 47 add, 7 neg, 1 sin, 1 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -343,149 +343,143 @@ impl Stanford {
         let c1 = T::from_f64(9.81);
         let c2 = T::from_f64(2.0);
         let (t0, t1) = q2.sin_cos();
-        let t2 = t0 * qdd1;
+        let t2 = qd1 * qd1;
         let t3 = t1 * qdd1;
-        let t4 = qd1 * qd1;
-        let t5 = t4 * c0;
-        let t6 = qdd1 * c0;
-        let t7 = t3 * c0;
-        let t8 = t0 * c1;
-        let t9 = t2 * c0;
-        let t10 = t1 * c1;
-        let t11 = t9 - t10;
-        let t12 = qd1 * qd2;
-        let t13 = t1 * t12;
-        let t14 = t2 + t13;
-        let t15 = t0 * q3;
-        let t16 = t1 * t15;
-        let t17 = t4 * t16;
-        let t18 = qd2 * qd2;
-        let t19 = t18 * q3;
-        let t20 = t0 * t0;
-        let t21 = t4 * q3;
-        let t22 = t20 * t21;
-        let t23 = q3 * qd1;
-        let t24 = t23 * qd2;
-        let t25 = t1 * t24;
-        let t26 = q3 * qdd2;
-        let t27 = t14 * q3;
-        let t28 = qd2 * qd3;
-        let t29 = t28 * c2;
-        let t30 = qd1 * qd3;
-        let t31 = t0 * t30;
-        let t32 = t31 * c2;
-        let t33 = t26 - t17;
-        let t34 = t29 - t8;
-        let t35 = t34 - t7;
-        let t36 = t33 + t35;
-        let t37 = t25 + t27;
-        let t38 = t32 - t5;
-        let t39 = t37 + t38;
-        let t40 = qdd3 - t11;
-        let t41 = t19 + t22;
-        let t42 = t40 - t41;
-        let t43 = t0 * t1;
-        let t44 = t4 * t43;
-        let t45 = t0 * t14;
-        let t46 = t0 * t12;
-        let t47 = t1 * t46;
-        let t48 = t45 + t47;
-        let t49 = t4 * t20;
-        let t50 = t1 * t1;
-        let t51 = t4 * t50;
-        let t52 = t49 - t51;
-        let t53 = t46 * c2;
-        let t54 = t53 - t3;
-        let t55 = t13 * c2;
-        let t56 = t2 + t55;
-        let t57 = t0 * t54;
-        let t58 = t1 * t56;
-        let t59 = t58 - t57;
-        let t60 = t18 - t49;
-        let t61 = t44 + qdd2;
-        let t62 = t0 * t61;
-        let t63 = t1 * t60;
-        let t64 = t62 + t63;
-        let t65 = t51 - t18;
-        let t66 = qdd2 - t44;
-        let t67 = t0 * t65;
-        let t68 = t1 * t66;
-        let t69 = t67 + t68;
-        let t70 = t18 + t51;
-        let t71 = t1 * t4;
-        let t72 = t1 * t70;
-        let t73 = t62 + t72;
-        let t74 = t73 - t71;
-        let t75 = t74 * c0;
-        let t76 = t18 + t49;
-        let t77 = t7 + t8;
-        let t78 = t0 * t4;
-        let t79 = t0 * t76;
-        let t80 = t68 - t79;
-        let t81 = t78 + t80;
-        let t82 = t81 * c0;
-        let t83 = t70 * q3;
-        let t84 = t42 + t83;
-        let t85 = t15 * t54;
-        let t86 = t1 * t39;
-        let t87 = t73 * c0;
-        let t88 = t86 + t87;
-        let t89 = t88 - t85;
-        let t90 = q3 * qdd1;
-        let t91 = t1 * t90;
-        let t92 = t21 + t42;
-        let t93 = t0 * t92;
-        let t94 = t1 * t36;
-        let t95 = t6 - t94;
-        let t96 = t95 - t93;
-        let t97 = t56 * q3;
-        let t98 = t66 * q3;
-        let t99 = t39 + t97;
-        let t100 = t36 + t98;
-        let t101 = t0 * t99;
-        let t102 = t79 - t68;
-        let t103 = t102 * c0;
-        let t104 = t101 + t103;
-        let t105 = t36 * q3;
-        let t106 = t15 * t39;
-        let t107 = t0 * t42;
-        let t108 = t94 + t107;
-        let t109 = t108 * c0;
-        let t110 = t106 - t109;
-        let t111 = -t64;
-        let t112 = -t69;
-        let t113 = -t44;
-        let t114 = -t2;
-        let t115 = -t3;
-        let t116 = -t84;
-        let t117 = -t91;
-        let t118 = -t61;
-        let t119 = -t76;
+        let t4 = t0 * qdd1;
+        let t5 = t3 * c0;
+        let t6 = t0 * c1;
+        let t7 = t5 + t6;
+        let t8 = t1 * c1;
+        let t9 = t4 * c0;
+        let t10 = t9 - t8;
+        let t11 = t0 * qd1;
+        let t12 = t1 * qd1;
+        let t13 = t12 * qd2;
+        let t14 = t11 * qd2;
+        let t15 = t4 + t13;
+        let t16 = t14 - t3;
+        let t17 = t11 * t11;
+        let t18 = t12 * t12;
+        let t19 = qd2 * qd2;
+        let t20 = t18 + t19;
+        let t21 = t11 * t12;
+        let t22 = t21 - qdd2;
+        let t23 = t21 + qdd2;
+        let t24 = t17 + t19;
+        let t25 = t15 - t13;
+        let t26 = t13 + t15;
+        let t27 = t17 + t18;
+        let t28 = t14 + t16;
+        let t29 = t16 - t14;
+        let t30 = t22 * q3;
+        let t31 = t24 * q3;
+        let t32 = t26 * q3;
+        let t33 = t7 + t30;
+        let t34 = t10 + t31;
+        let t35 = t2 * c0;
+        let t36 = t32 - t35;
+        let t37 = qd2 * qd3;
+        let t38 = t11 * qd3;
+        let t39 = t37 * c2;
+        let t40 = t39 - t33;
+        let t41 = t38 * c2;
+        let t42 = t36 + t41;
+        let t43 = qdd3 - t34;
+        let t44 = t13 - t15;
+        let t45 = qdd2 - t21;
+        let t46 = t0 * q3;
+        let t47 = t27 - t24;
+        let t48 = t20 - t27;
+        let t49 = t24 - t20;
+        let t50 = t0 * t15;
+        let t51 = t1 * t14;
+        let t52 = t50 + t51;
+        let t53 = -t21;
+        let t54 = t0 * t28;
+        let t55 = t1 * t26;
+        let t56 = t55 - t54;
+        let t57 = t0 * t23;
+        let t58 = t1 * t48;
+        let t59 = t57 + t58;
+        let t60 = -t59;
+        let t61 = -t25;
+        let t62 = t0 * t47;
+        let t63 = t1 * t22;
+        let t64 = t63 - t62;
+        let t65 = t0 * t13;
+        let t66 = t65 - t51;
+        let t67 = t1 * t20;
+        let t68 = t1 * t2;
+        let t69 = t57 - t68;
+        let t70 = t67 + t69;
+        let t71 = t70 * c0;
+        let t72 = t0 * t2;
+        let t73 = t0 * t24;
+        let t74 = t63 + t73;
+        let t75 = t72 - t74;
+        let t76 = t75 * c0;
+        let t77 = t28 * t46;
+        let t78 = t1 * t42;
+        let t79 = t57 + t67;
+        let t80 = t78 - t77;
+        let t81 = t79 * c0;
+        let t82 = t80 + t81;
+        let t83 = t20 * q3;
+        let t84 = t43 + t83;
+        let t85 = -t84;
+        let t86 = -t23;
+        let t87 = t0 * t43;
+        let t88 = t1 * t29;
+        let t89 = t27 * t46;
+        let t90 = t1 * t40;
+        let t91 = t0 * t44;
+        let t92 = t89 + t90;
+        let t93 = t87 + t92;
+        let t94 = t88 + t91;
+        let t95 = t94 * c0;
+        let t96 = t93 + t95;
+        let t97 = t29 * q3;
+        let t98 = -t96;
+        let t99 = t0 * t42;
+        let t100 = t1 * t45;
+        let t101 = t26 * t46;
+        let t102 = t99 + t101;
+        let t103 = t73 - t100;
+        let t104 = t103 * c0;
+        let t105 = t102 + t104;
+        let t106 = t45 * q3;
+        let t107 = t40 + t106;
+        let t108 = -t24;
+        let t109 = t42 * t46;
+        let t110 = t87 + t90;
+        let t111 = t110 * c0;
+        let t112 = t109 - t111;
+        let t113 = t40 * q3;
         [
             qdd1,
-            t48,
-            t59,
-            t111,
+            t52,
+            t56,
+            t60,
+            t64,
+            t66,
+            t71,
+            t76,
+            t82,
+            t98,
+            t105,
             t112,
             T::ZERO,
-            t75,
-            t82,
-            t89,
-            t96,
-            t104,
-            t110,
-            T::ZERO,
-            t113,
-            t52,
-            t114,
-            t115,
+            t53,
+            t49,
+            t61,
+            t29,
             qdd2,
-            t11,
-            t77,
-            t116,
-            t117,
-            t100,
-            t105,
+            t10,
+            t7,
+            t85,
+            t97,
+            t107,
+            t113,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -494,10 +488,10 @@ impl Stanford {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t118,
-            t114,
-            t119,
-            t42,
+            t86,
+            t44,
+            t108,
+            t43,
         ]
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.

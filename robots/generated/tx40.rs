@@ -1836,7 +1836,7 @@ impl Tx40 {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 565 mul, 370 add, 28 neg, 5 sin, 5 cos.
+    /// Operations: 395 mul, 295 add, 25 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -1847,1159 +1847,910 @@ impl Tx40 {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
-        let c0 = T::from_f64(9.81);
-        let c1 = T::from_f64(0.225);
-        let c2 = T::from_f64(0.035);
-        let c3 = T::from_f64(2.0);
+        let c0 = T::from_f64(0.225);
+        let c1 = T::from_f64(0.035);
+        let c2 = T::from_f64(9.81);
         let (t1, t0) = q2.sin_cos();
-        let t2 = t0 * qdd1;
-        let t3 = t1 * qdd1;
-        let t4 = t0 * c0;
-        let t5 = t1 * c0;
-        let t6 = qd1 * qd2;
-        let t7 = t1 * t6;
-        let t8 = t0 * t6;
-        let t9 = t2 - t7;
-        let t10 = t3 + t8;
-        let (t12, t11) = q3.sin_cos();
-        let t13 = t0 * qd1;
-        let t14 = t12 * t13;
-        let t15 = t1 * qd1;
-        let t16 = t11 * t15;
-        let t17 = t14 + t16;
-        let t18 = t11 * t13;
-        let t19 = t12 * t15;
-        let t20 = t19 - t18;
-        let t21 = t9 * t12;
+        let (t3, t2) = q3.sin_cos();
+        let (t4, t5) = q4.sin_cos();
+        let (t6, t7) = q5.sin_cos();
+        let (t8, t9) = q6.sin_cos();
+        let t10 = t0 * qd1;
+        let t11 = t1 * qd1;
+        let t12 = t0 * qdd1;
+        let t13 = t1 * qdd1;
+        let t14 = t11 * qd2;
+        let t15 = t10 * qd2;
+        let t16 = t12 - t14;
+        let t17 = t13 + t15;
+        let t18 = t10 * t10;
+        let t19 = t11 * t11;
+        let t20 = qd2 * qd2;
+        let t21 = t19 + t20;
         let t22 = t10 * t11;
-        let t23 = t9 * t11;
-        let t24 = t10 * t12;
-        let t25 = qd2 * c1;
-        let t26 = t13 * c2;
-        let t27 = t25 - t26;
-        let t28 = qd1 * qd1;
-        let t29 = t1 * t1;
-        let t30 = t28 * t29;
-        let t31 = t30 * c1;
-        let t32 = t27 * qd2;
-        let t33 = t0 * t1;
-        let t34 = t28 * t33;
-        let t35 = t13 * t27;
-        let t36 = t30 * c2;
-        let t37 = t2 * c2;
-        let t38 = t10 * c2;
-        let t39 = t4 - t32;
-        let t40 = t31 + t38;
-        let t41 = t39 - t40;
-        let t42 = qdd2 - t34;
-        let t43 = t42 * c1;
-        let t44 = t43 - t37;
-        let t45 = t44 - t5;
-        let t46 = t10 * c1;
-        let t47 = t46 - t36;
-        let t48 = t35 + t47;
-        let t49 = t12 * t41;
-        let t50 = t11 * t45;
-        let t51 = t11 * t41;
-        let t52 = t12 * t45;
-        let t53 = t51 + t52;
-        let t54 = t20 * qd3;
-        let t55 = t17 * qd3;
-        let t56 = qd2 + qd3;
-        let t57 = t54 - t22;
-        let t58 = t57 - t21;
-        let t59 = qdd2 + qdd3;
-        let (t60, t61) = q4.sin_cos();
-        let t62 = t17 * t61;
-        let t63 = t56 * t60;
-        let t64 = t63 - t62;
-        let t65 = t17 * t60;
-        let t66 = t56 * t61;
-        let t67 = t65 + t66;
-        let t68 = t58 * t61;
-        let t69 = t59 * t60;
-        let t70 = t58 * t60;
-        let t71 = t59 * t61;
-        let t72 = t56 * c1;
-        let t73 = t17 * c1;
-        let t74 = t20 * t73;
-        let t75 = t56 * t72;
-        let t76 = t17 * t73;
-        let t77 = t20 * t72;
-        let t78 = t59 * c1;
-        let t79 = t50 - t49;
-        let t80 = t74 + t78;
-        let t81 = t79 + t80;
-        let t82 = t75 + t76;
-        let t83 = t82 - t53;
-        let t84 = t10 - t58;
-        let t85 = t84 * c1;
-        let t86 = t35 - t77;
-        let t87 = t85 - t36;
-        let t88 = t86 + t87;
-        let t89 = t61 * t81;
-        let t90 = t60 * t88;
-        let t91 = t89 + t90;
-        let t92 = t60 * t81;
-        let t93 = t61 * t88;
-        let t94 = t93 - t92;
-        let t95 = t67 * qd4;
-        let t96 = t64 * qd4;
-        let t97 = qd4 - t20;
-        let t98 = t69 + t95;
-        let t99 = t68 + t98;
-        let t100 = t23 + qdd4;
-        let t101 = t24 + t55;
-        let t102 = t100 - t101;
-        let (t103, t104) = q5.sin_cos();
-        let t105 = t64 * t104;
-        let t106 = t97 * t103;
-        let t107 = t105 - t106;
-        let t108 = t64 * t103;
-        let t109 = t97 * t104;
-        let t110 = t108 + t109;
-        let t111 = t99 * t104;
-        let t112 = t102 * t103;
-        let t113 = t99 * t103;
-        let t114 = t102 * t104;
-        let t115 = t91 * t104;
-        let t116 = t83 * t103;
-        let t117 = t115 + t116;
-        let t118 = t91 * t103;
-        let t119 = t83 * t104;
-        let t120 = t119 - t118;
-        let t121 = t110 * qd5;
-        let t122 = t107 * qd5;
-        let t123 = t67 + qd5;
-        let t124 = t112 + t121;
-        let t125 = t111 - t124;
-        let t126 = qdd5 - t70;
-        let t127 = t71 - t96;
-        let t128 = t126 + t127;
-        let (t129, t130) = q6.sin_cos();
-        let t131 = t107 * t130;
-        let t132 = t123 * t129;
-        let t133 = t131 + t132;
-        let t134 = t107 * t129;
-        let t135 = t123 * t130;
-        let t136 = t134 - t135;
-        let t137 = t125 * t130;
-        let t138 = t128 * t129;
-        let t139 = t125 * t129;
-        let t140 = t128 * t130;
-        let t141 = t117 * t130;
-        let t142 = t94 * t129;
-        let t143 = t141 + t142;
-        let t144 = t117 * t129;
-        let t145 = t94 * t130;
-        let t146 = t144 - t145;
-        let t147 = t136 * qd6;
-        let t148 = t133 * qd6;
-        let t149 = t110 + qd6;
-        let t150 = t147 - t138;
-        let t151 = t150 - t137;
-        let t152 = t113 + qdd6;
-        let t153 = t114 + t122;
-        let t154 = t152 + t153;
-        let t155 = t0 * t0;
-        let t156 = t0 * t9;
-        let t157 = t1 * t8;
-        let t158 = t156 - t157;
-        let t159 = t28 * t155;
-        let t160 = t159 - t30;
-        let t161 = t8 * c3;
-        let t162 = t3 + t161;
-        let t163 = t7 * c3;
-        let t164 = t2 - t163;
-        let t165 = t0 * t162;
-        let t166 = t1 * t164;
-        let t167 = t165 + t166;
-        let t168 = qd2 * qd2;
-        let t169 = t168 - t159;
-        let t170 = t0 * t42;
-        let t171 = t1 * t169;
-        let t172 = t170 - t171;
-        let t173 = t30 - t168;
-        let t174 = t34 + qdd2;
-        let t175 = t0 * t173;
-        let t176 = t1 * t174;
-        let t177 = t175 - t176;
-        let t178 = t17 * t56;
-        let t179 = t17 * t20;
-        let t180 = t12 * t58;
-        let t181 = t11 * t17;
-        let t182 = t56 * t181;
-        let t183 = t182 - t180;
-        let t184 = t11 * t58;
-        let t185 = t12 * t17;
-        let t186 = t56 * t185;
-        let t187 = t184 + t186;
-        let t188 = t0 * t183;
-        let t189 = t1 * t187;
-        let t190 = t188 - t189;
-        let t191 = t20 * t56;
-        let t192 = t17 * t17;
-        let t193 = t20 * t20;
-        let t194 = t192 - t193;
-        let t195 = t24 - t23;
-        let t196 = t55 + t178;
-        let t197 = t195 + t196;
-        let t198 = t58 + t191;
-        let t199 = t12 * t197;
-        let t200 = t11 * t198;
-        let t201 = t199 + t200;
-        let t202 = t11 * t197;
-        let t203 = t12 * t198;
-        let t204 = t202 - t203;
-        let t205 = t0 * t201;
-        let t206 = t1 * t204;
-        let t207 = t205 + t206;
-        let t208 = t56 * t56;
-        let t209 = t208 - t192;
-        let t210 = t59 - t179;
-        let t211 = t58 - t191;
-        let t212 = t12 * t210;
-        let t213 = t11 * t209;
-        let t214 = t212 + t213;
-        let t215 = t11 * t210;
-        let t216 = t12 * t209;
-        let t217 = t215 - t216;
-        let t218 = t0 * t214;
-        let t219 = t1 * t217;
-        let t220 = t218 + t219;
-        let t221 = t193 - t208;
-        let t222 = t59 + t179;
-        let t223 = t55 - t178;
-        let t224 = t195 + t223;
-        let t225 = t12 * t221;
-        let t226 = t11 * t222;
-        let t227 = t225 + t226;
-        let t228 = t11 * t221;
-        let t229 = t12 * t222;
-        let t230 = t228 - t229;
-        let t231 = t0 * t227;
-        let t232 = t1 * t230;
-        let t233 = t231 + t232;
-        let t234 = t12 * t20;
-        let t235 = t56 * t234;
-        let t236 = t182 + t235;
-        let t237 = t11 * t20;
-        let t238 = t56 * t237;
-        let t239 = t238 - t186;
-        let t240 = t0 * t236;
-        let t241 = t1 * t239;
-        let t242 = t240 + t241;
-        let t243 = t193 + t208;
-        let t244 = t11 * t48;
-        let t245 = t12 * t48;
-        let t246 = t11 * t243;
-        let t247 = t12 * t243;
-        let t248 = t212 + t246;
-        let t249 = t248 * c2;
-        let t250 = t244 + t249;
-        let t251 = t247 - t215;
-        let t252 = t251 * c2;
-        let t253 = t197 * c1;
-        let t254 = t252 + t253;
-        let t255 = t245 + t254;
-        let t256 = t248 * c1;
-        let t257 = t53 + t256;
-        let t258 = t0 * t250;
-        let t259 = t1 * t255;
-        let t260 = t258 - t259;
-        let t261 = t192 + t208;
-        let t262 = t49 - t50;
-        let t263 = t12 * t261;
-        let t264 = t11 * t261;
-        let t265 = t226 - t263;
-        let t266 = t265 * c2;
-        let t267 = t266 - t245;
-        let t268 = t198 * c1;
-        let t269 = t229 + t264;
-        let t270 = t269 * c2;
-        let t271 = t270 - t268;
-        let t272 = t244 + t271;
-        let t273 = t265 * c1;
-        let t274 = t262 - t273;
-        let t275 = t0 * t267;
-        let t276 = t1 * t272;
-        let t277 = t275 - t276;
-        let t278 = t64 * t97;
-        let t279 = t64 * t67;
-        let t280 = t61 * t99;
-        let t281 = t60 * t64;
-        let t282 = t97 * t281;
-        let t283 = t280 - t282;
-        let t284 = t60 * t99;
-        let t285 = t61 * t64;
-        let t286 = t97 * t285;
-        let t287 = t284 + t286;
-        let t288 = t12 * t283;
-        let t289 = t11 * t64;
-        let t290 = t67 * t289;
-        let t291 = t288 + t290;
-        let t292 = t11 * t283;
-        let t293 = t12 * t64;
-        let t294 = t67 * t293;
-        let t295 = t292 - t294;
-        let t296 = t0 * t291;
-        let t297 = t1 * t295;
-        let t298 = t296 + t297;
-        let t299 = t67 * t97;
-        let t300 = t64 * t64;
-        let t301 = t67 * t67;
+        let t23 = t22 + qdd2;
+        let t24 = qdd2 - t22;
+        let t25 = t18 + t20;
+        let t26 = t14 + t16;
+        let t27 = t16 - t14;
+        let t28 = t18 + t19;
+        let t29 = t15 + t17;
+        let t30 = t15 - t17;
+        let t31 = t21 * c0;
+        let t32 = t30 * c1;
+        let t33 = t32 - t31;
+        let t34 = t24 * c0;
+        let t35 = t26 * c1;
+        let t36 = t34 - t35;
+        let t37 = t29 * c0;
+        let t38 = t28 * c1;
+        let t39 = t37 - t38;
+        let t40 = t0 * c2;
+        let t41 = t33 + t40;
+        let t42 = t1 * c2;
+        let t43 = t36 - t42;
+        let t44 = t3 * t41;
+        let t45 = t2 * t43;
+        let t46 = t2 * t41;
+        let t47 = t3 * t43;
+        let t48 = t45 - t44;
+        let t49 = t46 + t47;
+        let t50 = t3 * t10;
+        let t51 = t2 * t11;
+        let t52 = t2 * t10;
+        let t53 = t3 * t11;
+        let t54 = t50 + t51;
+        let t55 = t53 - t52;
+        let t56 = t3 * t16;
+        let t57 = t2 * t17;
+        let t58 = t2 * t16;
+        let t59 = t3 * t17;
+        let t60 = t56 + t57;
+        let t61 = t59 - t58;
+        let t62 = t55 * qd3;
+        let t63 = t54 * qd3;
+        let t64 = qd2 + qd3;
+        let t65 = t62 - t60;
+        let t66 = t61 + t63;
+        let t67 = qdd2 + qdd3;
+        let t68 = t54 * t54;
+        let t69 = t55 * t55;
+        let t70 = t64 * t64;
+        let t71 = t69 + t70;
+        let t72 = t54 * t55;
+        let t73 = t67 + t72;
+        let t74 = t67 - t72;
+        let t75 = t68 + t70;
+        let t76 = t55 * t64;
+        let t77 = t76 - t65;
+        let t78 = t65 + t76;
+        let t79 = t68 + t69;
+        let t80 = t54 * t64;
+        let t81 = t66 + t80;
+        let t82 = t66 - t80;
+        let t83 = t73 * c0;
+        let t84 = t48 + t83;
+        let t85 = t75 * c0;
+        let t86 = t85 - t49;
+        let t87 = t78 * c0;
+        let t88 = t39 - t87;
+        let t89 = t5 * t84;
+        let t90 = t4 * t88;
+        let t91 = t4 * t84;
+        let t92 = t5 * t88;
+        let t93 = t89 + t90;
+        let t94 = t92 - t91;
+        let t95 = t5 * t54;
+        let t96 = t4 * t64;
+        let t97 = t4 * t54;
+        let t98 = t5 * t64;
+        let t99 = t96 - t95;
+        let t100 = t97 + t98;
+        let t101 = t5 * t65;
+        let t102 = t4 * t67;
+        let t103 = t4 * t65;
+        let t104 = t5 * t67;
+        let t105 = t101 + t102;
+        let t106 = t104 - t103;
+        let t107 = t100 * qd4;
+        let t108 = t99 * qd4;
+        let t109 = qd4 - t55;
+        let t110 = t105 + t107;
+        let t111 = t106 - t108;
+        let t112 = qdd4 - t66;
+        let t113 = t99 * t99;
+        let t114 = t100 * t100;
+        let t115 = t109 * t109;
+        let t116 = t114 + t115;
+        let t117 = t99 * t100;
+        let t118 = t117 - t112;
+        let t119 = t112 + t117;
+        let t120 = t113 + t115;
+        let t121 = t100 * t109;
+        let t122 = t121 - t110;
+        let t123 = t110 + t121;
+        let t124 = t113 + t114;
+        let t125 = t99 * t109;
+        let t126 = t125 - t111;
+        let t127 = t111 + t125;
+        let t128 = t7 * t93;
+        let t129 = t6 * t86;
+        let t130 = t6 * t93;
+        let t131 = t7 * t86;
+        let t132 = t128 + t129;
+        let t133 = t131 - t130;
+        let t134 = t7 * t99;
+        let t135 = t6 * t109;
+        let t136 = t6 * t99;
+        let t137 = t7 * t109;
+        let t138 = t134 - t135;
+        let t139 = t136 + t137;
+        let t140 = t7 * t110;
+        let t141 = t6 * t112;
+        let t142 = t6 * t110;
+        let t143 = t7 * t112;
+        let t144 = t140 - t141;
+        let t145 = t142 + t143;
+        let t146 = t139 * qd5;
+        let t147 = t138 * qd5;
+        let t148 = t100 + qd5;
+        let t149 = t144 - t146;
+        let t150 = t145 + t147;
+        let t151 = t111 + qdd5;
+        let t152 = t138 * t138;
+        let t153 = t139 * t139;
+        let t154 = t148 * t148;
+        let t155 = t153 + t154;
+        let t156 = t138 * t139;
+        let t157 = t151 + t156;
+        let t158 = t151 - t156;
+        let t159 = t152 + t154;
+        let t160 = t139 * t148;
+        let t161 = t149 + t160;
+        let t162 = t149 - t160;
+        let t163 = t152 + t153;
+        let t164 = t138 * t148;
+        let t165 = t150 + t164;
+        let t166 = t164 - t150;
+        let t167 = t9 * t132;
+        let t168 = t8 * t94;
+        let t169 = t8 * t132;
+        let t170 = t9 * t94;
+        let t171 = t167 + t168;
+        let t172 = t169 - t170;
+        let t173 = t9 * t138;
+        let t174 = t8 * t148;
+        let t175 = t8 * t138;
+        let t176 = t9 * t148;
+        let t177 = t173 + t174;
+        let t178 = t175 - t176;
+        let t179 = t9 * t149;
+        let t180 = t8 * t151;
+        let t181 = t8 * t149;
+        let t182 = t9 * t151;
+        let t183 = t179 + t180;
+        let t184 = t181 - t182;
+        let t185 = t178 * qd6;
+        let t186 = t177 * qd6;
+        let t187 = t139 + qd6;
+        let t188 = t185 - t183;
+        let t189 = t184 + t186;
+        let t190 = t150 + qdd6;
+        let t191 = t177 * t177;
+        let t192 = t178 * t178;
+        let t193 = t187 * t187;
+        let t194 = t192 + t193;
+        let t195 = t177 * t178;
+        let t196 = t190 + t195;
+        let t197 = t190 - t195;
+        let t198 = t191 + t193;
+        let t199 = t178 * t187;
+        let t200 = t199 - t188;
+        let t201 = t188 + t199;
+        let t202 = t191 + t192;
+        let t203 = t177 * t187;
+        let t204 = t189 + t203;
+        let t205 = t189 - t203;
+        let t206 = t0 * t3;
+        let t207 = t1 * t2;
+        let t208 = t0 * t2;
+        let t209 = t1 * t3;
+        let t210 = t206 + t207;
+        let t211 = t209 - t208;
+        let t212 = t5 * t210;
+        let t213 = t4 * t210;
+        let t214 = t7 * t212;
+        let t215 = t6 * t211;
+        let t216 = t6 * t212;
+        let t217 = t7 * t211;
+        let t218 = t215 - t214;
+        let t219 = t216 + t217;
+        let t220 = t4 * t7;
+        let t221 = t4 * t6;
+        let t222 = t9 * t218;
+        let t223 = t8 * t213;
+        let t224 = t8 * t218;
+        let t225 = t9 * t213;
+        let t226 = t222 + t223;
+        let t227 = t224 - t225;
+        let t228 = t9 * t220;
+        let t229 = t5 * t8;
+        let t230 = t8 * t220;
+        let t231 = t5 * t9;
+        let t232 = t228 + t229;
+        let t233 = t230 - t231;
+        let t234 = t6 * t9;
+        let t235 = t6 * t8;
+        let t236 = t1 + t210;
+        let t237 = t5 * t211;
+        let t238 = t4 * t236;
+        let t239 = t4 * t211;
+        let t240 = t5 * t236;
+        let t241 = t237 * c1;
+        let t242 = t238 * c0;
+        let t243 = t241 + t242;
+        let t244 = t240 * c0;
+        let t245 = t239 * c1;
+        let t246 = t244 - t245;
+        let t247 = t2 * c0;
+        let t248 = t247 + c0;
+        let t249 = t5 * t248;
+        let t250 = t4 * t248;
+        let t251 = t7 * t243;
+        let t252 = t6 * t210;
+        let t253 = t6 * t243;
+        let t254 = t7 * t210;
+        let t255 = t252 * c1;
+        let t256 = t251 + t255;
+        let t257 = t254 * c1;
+        let t258 = t257 - t253;
+        let t259 = t7 * t249;
+        let t260 = t3 * t6;
+        let t261 = t6 * t249;
+        let t262 = t3 * t7;
+        let t263 = t260 * c0;
+        let t264 = t259 - t263;
+        let t265 = t262 * c0;
+        let t266 = t261 + t265;
+        let t267 = t5 * t7;
+        let t268 = t5 * t6;
+        let t269 = t9 * t256;
+        let t270 = t8 * t246;
+        let t271 = t8 * t256;
+        let t272 = t9 * t246;
+        let t273 = t269 + t270;
+        let t274 = t271 - t272;
+        let t275 = t9 * t264;
+        let t276 = t8 * t250;
+        let t277 = t8 * t264;
+        let t278 = t9 * t250;
+        let t279 = t276 - t275;
+        let t280 = t277 + t278;
+        let t281 = t9 * t267;
+        let t282 = t4 * t8;
+        let t283 = t8 * t267;
+        let t284 = t4 * t9;
+        let t285 = t282 - t281;
+        let t286 = t283 + t284;
+        let t287 = t28 - t25;
+        let t288 = t21 - t28;
+        let t289 = t25 - t21;
+        let t290 = t0 * t16;
+        let t291 = t1 * t15;
+        let t292 = t290 - t291;
+        let t293 = t0 * t29;
+        let t294 = t1 * t27;
+        let t295 = t293 + t294;
+        let t296 = -t295;
+        let t297 = t0 * t24;
+        let t298 = t1 * t288;
+        let t299 = t297 - t298;
+        let t300 = t0 * t287;
+        let t301 = t1 * t23;
         let t302 = t300 - t301;
-        let t303 = t71 - t70;
-        let t304 = t96 + t278;
-        let t305 = t303 - t304;
-        let t306 = t99 + t299;
-        let t307 = t61 * t305;
-        let t308 = t60 * t306;
-        let t309 = t307 - t308;
-        let t310 = t60 * t305;
-        let t311 = t61 * t306;
+        let t303 = t0 * t14;
+        let t304 = t291 - t303;
+        let t305 = -t42;
+        let t306 = -t40;
+        let t307 = t79 - t75;
+        let t308 = t71 - t79;
+        let t309 = t75 - t71;
+        let t310 = t65 * t210;
+        let t311 = t80 * t211;
         let t312 = t310 + t311;
-        let t313 = t12 * t309;
-        let t314 = t11 * t302;
-        let t315 = t314 - t313;
-        let t316 = t11 * t309;
-        let t317 = t12 * t302;
-        let t318 = t316 + t317;
-        let t319 = t0 * t315;
-        let t320 = t1 * t318;
-        let t321 = t319 - t320;
-        let t322 = t97 * t97;
-        let t323 = t322 - t300;
-        let t324 = t102 + t279;
-        let t325 = t99 - t299;
-        let t326 = t61 * t324;
-        let t327 = t60 * t323;
-        let t328 = t326 - t327;
-        let t329 = t60 * t324;
-        let t330 = t61 * t323;
-        let t331 = t329 + t330;
-        let t332 = t12 * t328;
-        let t333 = t11 * t325;
-        let t334 = t333 - t332;
-        let t335 = t11 * t328;
-        let t336 = t12 * t325;
-        let t337 = t335 + t336;
-        let t338 = t0 * t334;
-        let t339 = t1 * t337;
-        let t340 = t338 - t339;
-        let t341 = t301 - t322;
-        let t342 = t102 - t279;
-        let t343 = t278 - t96;
-        let t344 = t303 + t343;
-        let t345 = t61 * t341;
-        let t346 = t60 * t342;
-        let t347 = t345 - t346;
-        let t348 = t60 * t341;
-        let t349 = t61 * t342;
-        let t350 = t348 + t349;
-        let t351 = t12 * t347;
-        let t352 = t11 * t344;
-        let t353 = t352 - t351;
-        let t354 = t11 * t347;
-        let t355 = t12 * t344;
-        let t356 = t354 + t355;
-        let t357 = t0 * t353;
-        let t358 = t1 * t356;
-        let t359 = t357 - t358;
-        let t360 = t61 * t67;
-        let t361 = t97 * t360;
-        let t362 = t282 + t361;
-        let t363 = t60 * t67;
-        let t364 = t97 * t363;
-        let t365 = t364 - t286;
-        let t366 = t12 * t362;
-        let t367 = t11 * t102;
-        let t368 = t367 - t366;
-        let t369 = t11 * t362;
-        let t370 = t12 * t102;
-        let t371 = t369 + t370;
-        let t372 = t0 * t368;
-        let t373 = t1 * t371;
-        let t374 = t372 - t373;
-        let t375 = t301 + t322;
-        let t376 = t61 * t375;
-        let t377 = t329 + t376;
-        let t378 = t60 * t83;
-        let t379 = t61 * t83;
-        let t380 = t60 * t375;
-        let t381 = t380 - t326;
-        let t382 = t381 * c1;
-        let t383 = t382 - t378;
-        let t384 = t377 * c1;
-        let t385 = t379 - t384;
-        let t386 = t12 * t383;
-        let t387 = t11 * t94;
-        let t388 = t11 * t383;
-        let t389 = t12 * t94;
-        let t390 = t11 * t377;
-        let t391 = t12 * t305;
-        let t392 = t12 * t377;
-        let t393 = t11 * t305;
-        let t394 = t390 + t391;
-        let t395 = t394 * c2;
-        let t396 = t387 + t395;
-        let t397 = t396 - t386;
-        let t398 = t392 - t393;
-        let t399 = t398 * c2;
-        let t400 = t388 + t389;
-        let t401 = t382 + t399;
-        let t402 = t400 + t401;
-        let t403 = t377 + t394;
-        let t404 = t403 * c1;
-        let t405 = t379 - t404;
-        let t406 = t0 * t397;
-        let t407 = t1 * t402;
-        let t408 = t406 - t407;
-        let t409 = t300 + t322;
-        let t410 = t60 * t409;
-        let t411 = t410 - t349;
-        let t412 = t61 * t409;
-        let t413 = t346 + t412;
-        let t414 = t413 * c1;
-        let t415 = t414 - t379;
-        let t416 = t411 * c1;
-        let t417 = t416 - t378;
-        let t418 = t12 * t415;
-        let t419 = t11 * t91;
-        let t420 = t11 * t415;
-        let t421 = t12 * t91;
-        let t422 = t11 * t411;
-        let t423 = t12 * t306;
-        let t424 = t12 * t411;
-        let t425 = t11 * t306;
-        let t426 = t422 + t423;
-        let t427 = t426 * c2;
-        let t428 = t419 + t427;
-        let t429 = t418 + t428;
-        let t430 = t425 - t424;
-        let t431 = t430 * c2;
-        let t432 = t420 - t421;
-        let t433 = t414 + t431;
-        let t434 = t432 + t433;
-        let t435 = t411 + t426;
-        let t436 = t435 * c1;
-        let t437 = t436 - t378;
-        let t438 = t0 * t429;
-        let t439 = t1 * t434;
-        let t440 = t438 + t439;
-        let t441 = t107 * t123;
-        let t442 = t107 * t110;
-        let t443 = t104 * t125;
-        let t444 = t103 * t107;
-        let t445 = t123 * t444;
-        let t446 = t443 - t445;
-        let t447 = t103 * t125;
-        let t448 = t104 * t107;
-        let t449 = t123 * t448;
-        let t450 = t447 + t449;
-        let t451 = t61 * t446;
-        let t452 = t60 * t107;
-        let t453 = t110 * t452;
-        let t454 = t451 - t453;
-        let t455 = t60 * t446;
-        let t456 = t61 * t107;
-        let t457 = t110 * t456;
-        let t458 = t455 + t457;
-        let t459 = t12 * t454;
-        let t460 = t11 * t450;
-        let t461 = t459 + t460;
-        let t462 = t11 * t454;
-        let t463 = t12 * t450;
-        let t464 = t462 - t463;
-        let t465 = t0 * t461;
-        let t466 = t1 * t464;
-        let t467 = t465 + t466;
-        let t468 = t110 * t123;
-        let t469 = t107 * t107;
-        let t470 = t110 * t110;
-        let t471 = t469 - t470;
-        let t472 = t113 + t114;
-        let t473 = t122 + t441;
-        let t474 = t472 + t473;
-        let t475 = t125 - t468;
-        let t476 = t104 * t474;
-        let t477 = t103 * t475;
+        let t313 = -t312;
+        let t314 = t81 * t210;
+        let t315 = t78 * t211;
+        let t316 = t315 - t314;
+        let t317 = t74 * t210;
+        let t318 = t211 * t308;
+        let t319 = t318 - t317;
+        let t320 = -t77;
+        let t321 = t210 * t307;
+        let t322 = t73 * t211;
+        let t323 = t322 - t321;
+        let t324 = t76 * t210;
+        let t325 = t311 - t324;
+        let t326 = t71 * t211;
+        let t327 = t39 * t211;
+        let t328 = t1 * t81;
+        let t329 = t317 - t326;
+        let t330 = t329 * c1;
+        let t331 = t328 * c0;
+        let t332 = t327 + t331;
+        let t333 = t330 - t332;
+        let t334 = t2 * t71;
+        let t335 = t3 * t74;
+        let t336 = t334 + t335;
+        let t337 = t336 * c0;
+        let t338 = t49 + t337;
+        let t339 = -t338;
+        let t340 = -t49;
+        let t341 = t39 * t210;
+        let t342 = t75 * t210;
+        let t343 = t1 * t78;
+        let t344 = t322 + t342;
+        let t345 = t344 * c1;
+        let t346 = t343 * c0;
+        let t347 = t346 - t345;
+        let t348 = t347 - t341;
+        let t349 = t2 * t73;
+        let t350 = t3 * t75;
+        let t351 = t350 - t349;
+        let t352 = t351 * c0;
+        let t353 = t352 - t48;
+        let t354 = -t48;
+        let t355 = t124 - t120;
+        let t356 = t116 - t124;
+        let t357 = t120 - t116;
+        let t358 = t110 * t212;
+        let t359 = t125 * t213;
+        let t360 = t117 * t211;
+        let t361 = t359 + t360;
+        let t362 = t361 - t358;
+        let t363 = t4 * t110;
+        let t364 = t5 * t125;
+        let t365 = t363 + t364;
+        let t366 = -t117;
+        let t367 = t126 * t212;
+        let t368 = t123 * t213;
+        let t369 = t211 * t357;
+        let t370 = t368 - t369;
+        let t371 = t367 + t370;
+        let t372 = t4 * t126;
+        let t373 = t5 * t123;
+        let t374 = t373 - t372;
+        let t375 = t119 * t212;
+        let t376 = t213 * t356;
+        let t377 = t122 * t211;
+        let t378 = t376 + t377;
+        let t379 = t378 - t375;
+        let t380 = t4 * t119;
+        let t381 = t5 * t356;
+        let t382 = t380 + t381;
+        let t383 = -t122;
+        let t384 = t212 * t355;
+        let t385 = t118 * t213;
+        let t386 = t127 * t211;
+        let t387 = t385 + t386;
+        let t388 = t384 + t387;
+        let t389 = t4 * t355;
+        let t390 = t5 * t118;
+        let t391 = t389 - t390;
+        let t392 = -t388;
+        let t393 = t121 * t212;
+        let t394 = t112 * t211;
+        let t395 = t359 + t394;
+        let t396 = t393 + t395;
+        let t397 = t4 * t121;
+        let t398 = t397 - t364;
+        let t399 = -t396;
+        let t400 = t116 * t243;
+        let t401 = t86 * t213;
+        let t402 = t119 * t246;
+        let t403 = t94 * t211;
+        let t404 = t126 * t210;
+        let t405 = t401 - t400;
+        let t406 = t402 - t403;
+        let t407 = t405 + t406;
+        let t408 = t404 * c1;
+        let t409 = t407 - t408;
+        let t410 = t116 * t249;
+        let t411 = t5 * t86;
+        let t412 = t119 * t250;
+        let t413 = t3 * t126;
+        let t414 = t411 - t412;
+        let t415 = t414 - t410;
+        let t416 = t413 * c0;
+        let t417 = t415 + t416;
+        let t418 = t5 * t116;
+        let t419 = t380 + t418;
+        let t420 = t419 * c0;
+        let t421 = t411 - t420;
+        let t422 = t86 * t212;
+        let t423 = t118 * t243;
+        let t424 = t120 * t246;
+        let t425 = t93 * t211;
+        let t426 = t123 * t210;
+        let t427 = t422 + t423;
+        let t428 = t425 - t424;
+        let t429 = t427 + t428;
+        let t430 = t426 * c1;
+        let t431 = t429 - t430;
+        let t432 = t4 * t86;
+        let t433 = t118 * t249;
+        let t434 = t120 * t250;
+        let t435 = t3 * t123;
+        let t436 = t433 + t434;
+        let t437 = t436 - t432;
+        let t438 = t435 * c0;
+        let t439 = t437 + t438;
+        let t440 = t4 * t120;
+        let t441 = t390 + t440;
+        let t442 = t441 * c0;
+        let t443 = t442 - t432;
+        let t444 = -t93;
+        let t445 = t163 - t159;
+        let t446 = t155 - t163;
+        let t447 = t159 - t155;
+        let t448 = t149 * t218;
+        let t449 = t164 * t219;
+        let t450 = t156 * t213;
+        let t451 = t449 + t450;
+        let t452 = t448 + t451;
+        let t453 = t149 * t220;
+        let t454 = t164 * t221;
+        let t455 = t5 * t156;
+        let t456 = t455 - t454;
+        let t457 = t453 + t456;
+        let t458 = t6 * t149;
+        let t459 = t7 * t164;
+        let t460 = t458 + t459;
+        let t461 = -t460;
+        let t462 = t165 * t218;
+        let t463 = t162 * t219;
+        let t464 = t213 * t447;
+        let t465 = t463 + t464;
+        let t466 = t465 - t462;
+        let t467 = t165 * t220;
+        let t468 = t162 * t221;
+        let t469 = t5 * t447;
+        let t470 = t469 - t468;
+        let t471 = t470 - t467;
+        let t472 = t6 * t165;
+        let t473 = t7 * t162;
+        let t474 = t472 - t473;
+        let t475 = t158 * t218;
+        let t476 = t219 * t446;
+        let t477 = t161 * t213;
         let t478 = t476 + t477;
-        let t479 = t103 * t474;
-        let t480 = t104 * t475;
-        let t481 = t479 - t480;
-        let t482 = t61 * t478;
-        let t483 = t60 * t471;
-        let t484 = t482 + t483;
-        let t485 = t60 * t478;
-        let t486 = t61 * t471;
-        let t487 = t486 - t485;
-        let t488 = t12 * t484;
-        let t489 = t11 * t481;
-        let t490 = t488 + t489;
-        let t491 = t11 * t484;
-        let t492 = t12 * t481;
-        let t493 = t492 - t491;
-        let t494 = t0 * t490;
-        let t495 = t1 * t493;
-        let t496 = t494 - t495;
-        let t497 = t123 * t123;
-        let t498 = t497 - t469;
-        let t499 = t128 - t442;
-        let t500 = t125 + t468;
-        let t501 = t104 * t499;
-        let t502 = t103 * t498;
-        let t503 = t501 - t502;
-        let t504 = t103 * t499;
-        let t505 = t104 * t498;
-        let t506 = t504 + t505;
-        let t507 = t61 * t503;
-        let t508 = t60 * t500;
-        let t509 = t507 - t508;
-        let t510 = t60 * t503;
-        let t511 = t61 * t500;
-        let t512 = t510 + t511;
-        let t513 = t12 * t509;
-        let t514 = t11 * t506;
-        let t515 = t513 + t514;
-        let t516 = t11 * t509;
-        let t517 = t12 * t506;
-        let t518 = t516 - t517;
-        let t519 = t0 * t515;
-        let t520 = t1 * t518;
-        let t521 = t519 + t520;
-        let t522 = t470 - t497;
-        let t523 = t128 + t442;
-        let t524 = t441 - t122;
-        let t525 = t524 - t472;
-        let t526 = t104 * t522;
-        let t527 = t103 * t523;
-        let t528 = t526 - t527;
-        let t529 = t103 * t522;
-        let t530 = t104 * t523;
-        let t531 = t529 + t530;
-        let t532 = t61 * t528;
-        let t533 = t60 * t525;
-        let t534 = t532 - t533;
-        let t535 = t60 * t528;
-        let t536 = t61 * t525;
-        let t537 = t535 + t536;
-        let t538 = t12 * t534;
-        let t539 = t11 * t531;
-        let t540 = t538 + t539;
-        let t541 = t11 * t534;
-        let t542 = t12 * t531;
-        let t543 = t541 - t542;
-        let t544 = t0 * t540;
-        let t545 = t1 * t543;
-        let t546 = t544 + t545;
-        let t547 = t104 * t110;
-        let t548 = t123 * t547;
-        let t549 = t445 - t548;
-        let t550 = t103 * t110;
-        let t551 = t123 * t550;
-        let t552 = t449 + t551;
-        let t553 = t61 * t549;
-        let t554 = t60 * t128;
-        let t555 = t553 - t554;
-        let t556 = t60 * t549;
-        let t557 = t61 * t128;
-        let t558 = t556 + t557;
-        let t559 = t12 * t555;
-        let t560 = t11 * t552;
-        let t561 = t560 - t559;
-        let t562 = t11 * t555;
-        let t563 = t12 * t552;
-        let t564 = t562 + t563;
-        let t565 = t0 * t561;
-        let t566 = t1 * t564;
-        let t567 = t565 - t566;
-        let t568 = t470 + t497;
-        let t569 = t104 * t568;
-        let t570 = t504 + t569;
-        let t571 = t103 * t568;
-        let t572 = t94 * t104;
-        let t573 = t61 * t570;
-        let t574 = t60 * t474;
+        let t479 = t475 + t478;
+        let t480 = t158 * t220;
+        let t481 = t221 * t446;
+        let t482 = t5 * t161;
+        let t483 = t482 - t481;
+        let t484 = t480 + t483;
+        let t485 = t6 * t158;
+        let t486 = t7 * t446;
+        let t487 = t485 + t486;
+        let t488 = -t487;
+        let t489 = t218 * t445;
+        let t490 = t157 * t219;
+        let t491 = t166 * t213;
+        let t492 = t490 + t491;
+        let t493 = t489 + t492;
+        let t494 = t220 * t445;
+        let t495 = t157 * t221;
+        let t496 = t5 * t166;
+        let t497 = t496 - t495;
+        let t498 = t494 + t497;
+        let t499 = t6 * t445;
+        let t500 = t7 * t157;
+        let t501 = t499 + t500;
+        let t502 = -t501;
+        let t503 = t160 * t218;
+        let t504 = t151 * t213;
+        let t505 = t504 - t449;
+        let t506 = t505 - t503;
+        let t507 = t160 * t220;
+        let t508 = t5 * t151;
+        let t509 = t454 + t508;
+        let t510 = t509 - t507;
+        let t511 = t6 * t160;
+        let t512 = t459 + t511;
+        let t513 = t155 * t256;
+        let t514 = t94 * t219;
+        let t515 = t158 * t258;
+        let t516 = t133 * t213;
+        let t517 = t165 * t246;
+        let t518 = t513 + t514;
+        let t519 = t516 + t517;
+        let t520 = t515 + t519;
+        let t521 = t520 - t518;
+        let t522 = t155 * t264;
+        let t523 = t94 * t221;
+        let t524 = t158 * t266;
+        let t525 = t5 * t133;
+        let t526 = t165 * t250;
+        let t527 = t523 - t522;
+        let t528 = t525 - t526;
+        let t529 = t528 - t524;
+        let t530 = t527 + t529;
+        let t531 = t155 * t267;
+        let t532 = t158 * t268;
+        let t533 = t4 * t165;
+        let t534 = t532 + t533;
+        let t535 = t531 + t534;
+        let t536 = t523 + t525;
+        let t537 = t535 * c0;
+        let t538 = t536 - t537;
+        let t539 = t7 * t94;
+        let t540 = t94 * t218;
+        let t541 = t157 * t256;
+        let t542 = t159 * t258;
+        let t543 = t132 * t213;
+        let t544 = t162 * t246;
+        let t545 = t540 - t541;
+        let t546 = t544 - t543;
+        let t547 = t546 - t542;
+        let t548 = t545 + t547;
+        let t549 = t94 * t220;
+        let t550 = t157 * t264;
+        let t551 = t159 * t266;
+        let t552 = t5 * t132;
+        let t553 = t162 * t250;
+        let t554 = t549 - t550;
+        let t555 = t552 + t553;
+        let t556 = t551 - t555;
+        let t557 = t554 + t556;
+        let t558 = t157 * t267;
+        let t559 = t159 * t268;
+        let t560 = t4 * t162;
+        let t561 = t549 - t552;
+        let t562 = t559 - t560;
+        let t563 = t562 - t558;
+        let t564 = t563 * c0;
+        let t565 = t561 + t564;
+        let t566 = t6 * t94;
+        let t567 = -t566;
+        let t568 = -t132;
+        let t569 = t202 - t198;
+        let t570 = t194 - t202;
+        let t571 = t198 - t194;
+        let t572 = t188 * t226;
+        let t573 = t203 * t227;
+        let t574 = t195 * t219;
         let t575 = t573 + t574;
-        let t576 = t501 - t571;
-        let t577 = t61 * t103;
-        let t578 = t94 * t577;
-        let t579 = t60 * t120;
-        let t580 = t60 * t103;
-        let t581 = t94 * t580;
-        let t582 = t61 * t120;
-        let t583 = t60 * t570;
-        let t584 = t61 * t474;
-        let t585 = t583 - t584;
-        let t586 = t585 * c1;
-        let t587 = t586 - t579;
-        let t588 = t578 + t587;
-        let t589 = t575 * c1;
-        let t590 = t582 - t589;
-        let t591 = t581 + t590;
-        let t592 = t12 * t588;
-        let t593 = t11 * t104;
-        let t594 = t94 * t593;
-        let t595 = t11 * t588;
-        let t596 = t12 * t104;
-        let t597 = t94 * t596;
-        let t598 = t11 * t575;
-        let t599 = t12 * t576;
-        let t600 = t12 * t575;
-        let t601 = t11 * t576;
-        let t602 = t598 + t599;
-        let t603 = t602 * c2;
-        let t604 = t594 + t603;
-        let t605 = t604 - t592;
-        let t606 = t600 - t601;
-        let t607 = t606 * c2;
-        let t608 = t595 + t597;
-        let t609 = t586 + t607;
-        let t610 = t608 + t609;
-        let t611 = t575 + t602;
-        let t612 = t611 * c1;
-        let t613 = t582 - t612;
-        let t614 = t581 + t613;
-        let t615 = t0 * t605;
-        let t616 = t1 * t610;
-        let t617 = t615 - t616;
-        let t618 = t469 + t497;
-        let t619 = t103 * t618;
-        let t620 = t619 - t530;
-        let t621 = t104 * t618;
-        let t622 = t94 * t103;
-        let t623 = t61 * t620;
-        let t624 = t60 * t475;
-        let t625 = t623 - t624;
-        let t626 = t527 + t621;
-        let t627 = t61 * t94;
-        let t628 = t104 * t627;
-        let t629 = t60 * t117;
-        let t630 = t60 * t94;
-        let t631 = t104 * t630;
-        let t632 = t61 * t117;
-        let t633 = t60 * t620;
-        let t634 = t61 * t475;
-        let t635 = t633 + t634;
-        let t636 = t635 * c1;
-        let t637 = t629 - t636;
-        let t638 = t628 + t637;
-        let t639 = t625 * c1;
-        let t640 = t639 - t632;
-        let t641 = t631 + t640;
-        let t642 = t12 * t638;
-        let t643 = t103 * t387;
-        let t644 = t11 * t638;
-        let t645 = t103 * t389;
-        let t646 = t11 * t625;
-        let t647 = t12 * t626;
-        let t648 = t12 * t625;
-        let t649 = t11 * t626;
-        let t650 = t646 + t647;
-        let t651 = t650 * c2;
-        let t652 = t643 + t651;
-        let t653 = t642 + t652;
-        let t654 = t649 - t648;
-        let t655 = t654 * c2;
-        let t656 = t644 - t645;
-        let t657 = t655 - t636;
-        let t658 = t656 + t657;
-        let t659 = t625 + t650;
-        let t660 = t659 * c1;
-        let t661 = t660 - t632;
-        let t662 = t631 + t661;
-        let t663 = t0 * t653;
-        let t664 = t1 * t658;
-        let t665 = t663 + t664;
-        let t666 = t133 * t149;
-        let t667 = t133 * t136;
-        let t668 = t130 * t151;
-        let t669 = t129 * t133;
-        let t670 = t149 * t669;
-        let t671 = t668 + t670;
-        let t672 = t129 * t151;
-        let t673 = t130 * t133;
-        let t674 = t149 * t673;
-        let t675 = t674 - t672;
-        let t676 = t104 * t671;
-        let t677 = t103 * t133;
-        let t678 = t136 * t677;
-        let t679 = t678 - t676;
-        let t680 = t103 * t671;
-        let t681 = t104 * t133;
-        let t682 = t136 * t681;
-        let t683 = t680 + t682;
-        let t684 = t61 * t679;
-        let t685 = t60 * t675;
-        let t686 = t684 - t685;
-        let t687 = t60 * t679;
-        let t688 = t61 * t675;
+        let t576 = t572 + t575;
+        let t577 = t188 * t232;
+        let t578 = t203 * t233;
+        let t579 = t195 * t221;
+        let t580 = t579 - t578;
+        let t581 = t580 - t577;
+        let t582 = t188 * t234;
+        let t583 = t203 * t235;
+        let t584 = t7 * t195;
+        let t585 = t583 + t584;
+        let t586 = t582 + t585;
+        let t587 = t8 * t188;
+        let t588 = t9 * t203;
+        let t589 = t588 - t587;
+        let t590 = -t576;
+        let t591 = t204 * t226;
+        let t592 = t201 * t227;
+        let t593 = t219 * t571;
+        let t594 = t592 - t593;
+        let t595 = t594 - t591;
+        let t596 = t204 * t232;
+        let t597 = t201 * t233;
+        let t598 = t221 * t571;
+        let t599 = t597 + t598;
+        let t600 = t599 - t596;
+        let t601 = t204 * t234;
+        let t602 = t201 * t235;
+        let t603 = t7 * t571;
+        let t604 = t603 - t602;
+        let t605 = t601 + t604;
+        let t606 = t8 * t204;
+        let t607 = t9 * t201;
+        let t608 = t606 + t607;
+        let t609 = -t608;
+        let t610 = t197 * t226;
+        let t611 = t227 * t570;
+        let t612 = t200 * t219;
+        let t613 = t611 + t612;
+        let t614 = t613 - t610;
+        let t615 = t197 * t232;
+        let t616 = t233 * t570;
+        let t617 = t200 * t221;
+        let t618 = t616 - t617;
+        let t619 = t618 - t615;
+        let t620 = t197 * t234;
+        let t621 = t235 * t570;
+        let t622 = t7 * t200;
+        let t623 = t621 + t622;
+        let t624 = t620 - t623;
+        let t625 = t8 * t197;
+        let t626 = t9 * t570;
+        let t627 = t625 + t626;
+        let t628 = -t627;
+        let t629 = -t200;
+        let t630 = t226 * t569;
+        let t631 = t196 * t227;
+        let t632 = t205 * t219;
+        let t633 = t631 - t632;
+        let t634 = t633 - t630;
+        let t635 = t232 * t569;
+        let t636 = t196 * t233;
+        let t637 = t205 * t221;
+        let t638 = t636 + t637;
+        let t639 = t638 - t635;
+        let t640 = t234 * t569;
+        let t641 = t196 * t235;
+        let t642 = t7 * t205;
+        let t643 = t642 - t641;
+        let t644 = t640 + t643;
+        let t645 = t8 * t569;
+        let t646 = t9 * t196;
+        let t647 = t645 + t646;
+        let t648 = -t647;
+        let t649 = t199 * t226;
+        let t650 = t190 * t219;
+        let t651 = t573 - t650;
+        let t652 = t651 - t649;
+        let t653 = t199 * t232;
+        let t654 = t190 * t221;
+        let t655 = t578 + t654;
+        let t656 = t655 - t653;
+        let t657 = t199 * t234;
+        let t658 = t7 * t190;
+        let t659 = t658 - t583;
+        let t660 = t657 + t659;
+        let t661 = t8 * t199;
+        let t662 = t588 + t661;
+        let t663 = -t662;
+        let t664 = t194 * t273;
+        let t665 = t133 * t227;
+        let t666 = t197 * t274;
+        let t667 = t172 * t219;
+        let t668 = t204 * t258;
+        let t669 = t664 + t665;
+        let t670 = t668 - t667;
+        let t671 = t666 + t670;
+        let t672 = t669 + t671;
+        let t673 = t194 * t279;
+        let t674 = t133 * t233;
+        let t675 = t197 * t280;
+        let t676 = t172 * t221;
+        let t677 = t204 * t266;
+        let t678 = t674 - t673;
+        let t679 = t676 - t677;
+        let t680 = t675 + t679;
+        let t681 = t678 + t680;
+        let t682 = t194 * t285;
+        let t683 = t197 * t286;
+        let t684 = t204 * t268;
+        let t685 = t683 - t684;
+        let t686 = t685 - t682;
+        let t687 = t674 + t676;
+        let t688 = t686 * c0;
         let t689 = t687 + t688;
-        let t690 = t12 * t686;
-        let t691 = t11 * t683;
+        let t690 = t133 * t235;
+        let t691 = t7 * t172;
         let t692 = t691 - t690;
-        let t693 = t11 * t686;
-        let t694 = t12 * t683;
-        let t695 = t693 + t694;
-        let t696 = t0 * t692;
-        let t697 = t1 * t695;
-        let t698 = t696 - t697;
-        let t699 = t136 * t149;
-        let t700 = t133 * t133;
-        let t701 = t136 * t136;
-        let t702 = t700 - t701;
-        let t703 = t139 - t140;
-        let t704 = t148 + t666;
-        let t705 = t703 + t704;
-        let t706 = t151 + t699;
-        let t707 = t130 * t705;
-        let t708 = t129 * t706;
-        let t709 = t708 - t707;
-        let t710 = t129 * t705;
-        let t711 = t130 * t706;
-        let t712 = t710 + t711;
-        let t713 = t104 * t709;
-        let t714 = t103 * t702;
-        let t715 = t713 + t714;
-        let t716 = t103 * t709;
-        let t717 = t104 * t702;
-        let t718 = t717 - t716;
-        let t719 = t61 * t715;
-        let t720 = t60 * t712;
-        let t721 = t719 + t720;
-        let t722 = t60 * t715;
-        let t723 = t61 * t712;
-        let t724 = t722 - t723;
-        let t725 = t12 * t721;
-        let t726 = t11 * t718;
-        let t727 = t726 - t725;
-        let t728 = t11 * t721;
-        let t729 = t12 * t718;
-        let t730 = t728 + t729;
-        let t731 = t0 * t727;
-        let t732 = t1 * t730;
-        let t733 = t731 - t732;
-        let t734 = t149 * t149;
-        let t735 = t734 - t700;
-        let t736 = t154 - t667;
-        let t737 = t151 - t699;
-        let t738 = t130 * t736;
-        let t739 = t129 * t735;
-        let t740 = t739 - t738;
-        let t741 = t129 * t736;
-        let t742 = t130 * t735;
-        let t743 = t741 + t742;
-        let t744 = t104 * t740;
-        let t745 = t103 * t737;
-        let t746 = t744 + t745;
-        let t747 = t103 * t740;
-        let t748 = t104 * t737;
-        let t749 = t748 - t747;
-        let t750 = t61 * t746;
-        let t751 = t60 * t743;
-        let t752 = t750 + t751;
-        let t753 = t60 * t746;
-        let t754 = t61 * t743;
-        let t755 = t753 - t754;
-        let t756 = t12 * t752;
-        let t757 = t11 * t749;
-        let t758 = t757 - t756;
-        let t759 = t11 * t752;
-        let t760 = t12 * t749;
-        let t761 = t759 + t760;
-        let t762 = t0 * t758;
-        let t763 = t1 * t761;
-        let t764 = t762 - t763;
-        let t765 = t701 - t734;
-        let t766 = t154 + t667;
-        let t767 = t148 - t666;
-        let t768 = t703 + t767;
-        let t769 = t130 * t765;
-        let t770 = t129 * t766;
-        let t771 = t770 - t769;
-        let t772 = t129 * t765;
-        let t773 = t130 * t766;
-        let t774 = t772 + t773;
-        let t775 = t104 * t771;
-        let t776 = t103 * t768;
-        let t777 = t775 + t776;
-        let t778 = t103 * t771;
-        let t779 = t104 * t768;
-        let t780 = t779 - t778;
-        let t781 = t61 * t777;
-        let t782 = t60 * t774;
-        let t783 = t781 + t782;
-        let t784 = t60 * t777;
-        let t785 = t61 * t774;
-        let t786 = t784 - t785;
-        let t787 = t12 * t783;
-        let t788 = t11 * t780;
-        let t789 = t788 - t787;
-        let t790 = t11 * t783;
-        let t791 = t12 * t780;
-        let t792 = t790 + t791;
-        let t793 = t0 * t789;
-        let t794 = t1 * t792;
-        let t795 = t793 - t794;
-        let t796 = t130 * t136;
-        let t797 = t149 * t796;
-        let t798 = t670 - t797;
-        let t799 = t129 * t136;
-        let t800 = t149 * t799;
-        let t801 = t674 + t800;
-        let t802 = t104 * t798;
-        let t803 = t103 * t154;
-        let t804 = t802 + t803;
-        let t805 = t103 * t798;
-        let t806 = t104 * t154;
-        let t807 = t806 - t805;
-        let t808 = t61 * t804;
-        let t809 = t60 * t801;
-        let t810 = t808 + t809;
-        let t811 = t60 * t804;
-        let t812 = t61 * t801;
-        let t813 = t811 - t812;
-        let t814 = t12 * t810;
-        let t815 = t11 * t807;
-        let t816 = t815 - t814;
-        let t817 = t11 * t810;
-        let t818 = t12 * t807;
-        let t819 = t817 + t818;
-        let t820 = t0 * t816;
-        let t821 = t1 * t819;
-        let t822 = t820 - t821;
-        let t823 = t701 + t734;
-        let t824 = t130 * t823;
-        let t825 = t741 + t824;
-        let t826 = t129 * t823;
-        let t827 = t826 - t738;
-        let t828 = t120 * t130;
-        let t829 = t104 * t825;
-        let t830 = t103 * t705;
-        let t831 = t829 - t830;
-        let t832 = t103 * t825;
-        let t833 = t104 * t705;
-        let t834 = t104 * t120;
-        let t835 = t129 * t834;
-        let t836 = t103 * t146;
-        let t837 = t835 + t836;
-        let t838 = t103 * t120;
-        let t839 = t129 * t838;
-        let t840 = t104 * t146;
-        let t841 = t840 - t839;
-        let t842 = t61 * t831;
-        let t843 = t60 * t827;
-        let t844 = t842 - t843;
-        let t845 = t832 + t833;
-        let t846 = t61 * t837;
-        let t847 = t130 * t579;
-        let t848 = t60 * t837;
-        let t849 = t130 * t582;
-        let t850 = t60 * t831;
-        let t851 = t61 * t827;
-        let t852 = t850 + t851;
-        let t853 = t852 * c1;
-        let t854 = t847 - t853;
-        let t855 = t846 + t854;
-        let t856 = t844 * c1;
-        let t857 = t856 - t849;
-        let t858 = t848 + t857;
-        let t859 = t12 * t855;
-        let t860 = t11 * t841;
-        let t861 = t11 * t855;
-        let t862 = t12 * t841;
-        let t863 = t11 * t844;
-        let t864 = t12 * t845;
-        let t865 = t12 * t844;
-        let t866 = t11 * t845;
-        let t867 = t864 - t863;
-        let t868 = t867 * c2;
-        let t869 = t860 + t868;
-        let t870 = t869 - t859;
-        let t871 = t865 + t866;
-        let t872 = t871 * c2;
-        let t873 = t861 + t862;
-        let t874 = t853 + t872;
-        let t875 = t873 - t874;
-        let t876 = t844 - t867;
-        let t877 = t876 * c1;
-        let t878 = t877 - t849;
-        let t879 = t848 + t878;
-        let t880 = t0 * t870;
-        let t881 = t1 * t875;
-        let t882 = t880 - t881;
-        let t883 = t700 + t734;
-        let t884 = t129 * t883;
-        let t885 = t773 - t884;
-        let t886 = t130 * t883;
-        let t887 = t770 + t886;
-        let t888 = t120 * t129;
-        let t889 = t104 * t885;
-        let t890 = t103 * t706;
-        let t891 = t889 + t890;
-        let t892 = t103 * t885;
-        let t893 = t104 * t706;
-        let t894 = t104 * t130;
-        let t895 = t120 * t894;
-        let t896 = t103 * t143;
-        let t897 = t895 + t896;
-        let t898 = t103 * t130;
-        let t899 = t120 * t898;
-        let t900 = t104 * t143;
-        let t901 = t900 - t899;
-        let t902 = t61 * t891;
-        let t903 = t60 * t887;
-        let t904 = t902 - t903;
-        let t905 = t892 - t893;
-        let t906 = t61 * t897;
-        let t907 = t60 * t129;
-        let t908 = t120 * t907;
-        let t909 = t60 * t897;
-        let t910 = t61 * t129;
-        let t911 = t120 * t910;
-        let t912 = t60 * t891;
-        let t913 = t61 * t887;
-        let t914 = t912 + t913;
-        let t915 = t914 * c1;
-        let t916 = t908 + t915;
-        let t917 = t906 - t916;
-        let t918 = t904 * c1;
-        let t919 = t911 + t918;
-        let t920 = t909 + t919;
-        let t921 = t12 * t917;
-        let t922 = t11 * t901;
-        let t923 = t11 * t917;
-        let t924 = t12 * t901;
-        let t925 = t11 * t904;
-        let t926 = t12 * t905;
-        let t927 = t12 * t904;
-        let t928 = t11 * t905;
-        let t929 = t926 - t925;
-        let t930 = t929 * c2;
-        let t931 = t922 + t930;
-        let t932 = t931 - t921;
-        let t933 = t927 + t928;
-        let t934 = t933 * c2;
-        let t935 = t923 + t924;
-        let t936 = t915 + t934;
-        let t937 = t935 - t936;
-        let t938 = t904 - t929;
-        let t939 = t938 * c1;
-        let t940 = t911 + t939;
-        let t941 = t909 + t940;
-        let t942 = t0 * t932;
-        let t943 = t1 * t937;
-        let t944 = t942 - t943;
-        let t945 = -t167;
-        let t946 = -t207;
-        let t947 = -t220;
-        let t948 = -t233;
-        let t949 = -t242;
-        let t950 = -t298;
-        let t951 = -t440;
-        let t952 = -t467;
-        let t953 = -t521;
-        let t954 = -t546;
-        let t955 = -t665;
-        let t956 = -t3;
-        let t957 = -t5;
-        let t958 = -t4;
-        let t959 = -t257;
-        let t960 = -t53;
-        let t961 = -t279;
-        let t962 = -t91;
-        let t963 = -t450;
-        let t964 = -t506;
-        let t965 = -t531;
-        let t966 = -t622;
-        let t967 = -t117;
-        let t968 = -t712;
-        let t969 = -t743;
-        let t970 = -t774;
-        let t971 = -t801;
-        let t972 = -t828;
+        let t693 = t9 * t133;
+        let t694 = -t693;
+        let t695 = t133 * t226;
+        let t696 = t196 * t273;
+        let t697 = t198 * t274;
+        let t698 = t171 * t219;
+        let t699 = t201 * t258;
+        let t700 = t695 + t696;
+        let t701 = t698 + t699;
+        let t702 = t697 + t701;
+        let t703 = t700 - t702;
+        let t704 = t133 * t232;
+        let t705 = t196 * t279;
+        let t706 = t198 * t280;
+        let t707 = t171 * t221;
+        let t708 = t201 * t266;
+        let t709 = t704 - t705;
+        let t710 = t707 + t708;
+        let t711 = t710 - t706;
+        let t712 = t709 + t711;
+        let t713 = t196 * t285;
+        let t714 = t198 * t286;
+        let t715 = t201 * t268;
+        let t716 = t704 + t707;
+        let t717 = t715 - t714;
+        let t718 = t717 - t713;
+        let t719 = t718 * c0;
+        let t720 = t716 + t719;
+        let t721 = t133 * t234;
+        let t722 = t7 * t171;
+        let t723 = t722 - t721;
+        let t724 = t8 * t133;
         [
             qdd1,
-            t158,
-            t945,
-            t172,
-            t177,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t190,
-            t946,
-            t947,
-            t948,
-            t949,
-            t260,
-            t277,
-            t950,
-            t321,
-            t340,
-            t359,
-            t374,
-            t408,
-            t951,
-            t952,
-            t496,
-            t953,
-            t954,
-            t567,
-            t617,
-            t955,
-            t698,
-            t733,
-            t764,
-            t795,
-            t822,
-            t882,
-            t944,
-            T::ZERO,
-            t34,
-            t160,
-            t2,
-            t956,
-            qdd2,
-            t957,
-            t958,
-            t179,
-            t194,
-            t211,
-            t224,
-            t59,
-            t959,
-            t274,
-            t287,
-            t312,
-            t331,
-            t350,
-            t365,
-            t405,
-            t437,
-            t458,
-            t487,
-            t512,
-            t537,
-            t558,
-            t614,
-            t662,
-            t689,
-            t724,
-            t755,
-            t786,
-            t813,
-            t879,
-            t941,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t179,
-            t194,
-            t211,
-            t224,
-            t59,
-            t960,
-            t262,
-            t287,
-            t312,
-            t331,
-            t350,
-            t365,
-            t385,
-            t417,
-            t458,
-            t487,
-            t512,
-            t537,
-            t558,
-            t591,
-            t641,
-            t689,
-            t724,
-            t755,
-            t786,
-            t813,
-            t858,
-            t920,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t961,
+            t292,
+            t296,
+            t299,
             t302,
+            t304,
+            T::ZERO,
+            T::ZERO,
+            t313,
+            t316,
+            t319,
+            t323,
             t325,
-            t344,
-            t102,
-            t94,
-            t962,
-            t963,
-            t481,
-            t964,
-            t965,
-            t552,
-            t572,
-            t966,
-            t683,
-            t718,
-            t749,
-            t780,
-            t807,
-            t841,
-            t901,
+            t333,
+            t348,
+            t362,
+            t371,
+            t379,
+            t392,
+            t399,
+            t409,
+            t431,
+            t452,
+            t466,
+            t479,
+            t493,
+            t506,
+            t521,
+            t548,
+            t590,
+            t595,
+            t614,
+            t634,
+            t652,
+            t672,
+            t703,
             T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t442,
+            t22,
+            t289,
+            t26,
+            t30,
+            qdd2,
+            t305,
+            t306,
+            t72,
+            t309,
+            t320,
+            t82,
+            t67,
+            t339,
+            t353,
+            t365,
+            t374,
+            t382,
+            t391,
+            t398,
+            t417,
+            t439,
+            t457,
             t471,
-            t500,
-            t525,
-            t128,
-            t120,
-            t967,
-            t675,
-            t968,
-            t969,
-            t970,
-            t971,
-            t972,
-            t888,
+            t484,
+            t498,
+            t510,
+            t530,
+            t557,
+            t581,
+            t600,
+            t619,
+            t639,
+            t656,
+            t681,
+            t712,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t72,
+            t309,
+            t320,
+            t82,
+            t67,
+            t340,
+            t354,
+            t365,
+            t374,
+            t382,
+            t391,
+            t398,
+            t421,
+            t443,
+            t457,
+            t471,
+            t484,
+            t498,
+            t510,
+            t538,
+            t565,
+            t581,
+            t600,
+            t619,
+            t639,
+            t656,
+            t689,
+            t720,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t366,
+            t357,
+            t383,
+            t127,
+            t112,
+            t94,
+            t444,
+            t461,
+            t474,
+            t488,
+            t502,
+            t512,
+            t539,
+            t567,
+            t586,
+            t605,
+            t624,
+            t644,
+            t660,
+            t692,
+            t723,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t156,
+            t447,
+            t161,
+            t166,
+            t151,
+            t133,
+            t568,
+            t589,
+            t609,
+            t628,
+            t648,
+            t663,
+            t694,
+            t724,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3029,13 +2780,13 @@ impl Tx40 {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t667,
-            t702,
-            t737,
-            t768,
-            t154,
-            t146,
-            t143,
+            t195,
+            t571,
+            t629,
+            t205,
+            t190,
+            t172,
+            t171,
         ]
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.

@@ -1865,7 +1865,7 @@ impl Ur5e {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 569 mul, 367 add, 13 neg, 5 sin, 5 cos.
+    /// Operations: 356 mul, 278 add, 24 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -1878,1075 +1878,746 @@ impl Ur5e {
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.425);
-        let c2 = T::from_f64(0.85);
+        let c2 = T::from_f64(0.3922);
         let c3 = T::from_f64(0.1333);
-        let c4 = T::from_f64(0.3922);
-        let c5 = T::from_f64(0.0997);
-        let c6 = T::from_f64(0.0996);
-        let c7 = T::from_f64(2.0);
+        let c4 = T::from_f64(0.0997);
+        let c5 = T::from_f64(0.0996);
         let (t0, t1) = q2.sin_cos();
-        let t2 = t0 * qdd1;
-        let t3 = t1 * qdd1;
-        let t4 = t0 * c0;
-        let t5 = t1 * c0;
-        let t6 = qd1 * qd2;
-        let t7 = t1 * t6;
-        let t8 = t0 * t6;
-        let t9 = t2 + t7;
-        let t10 = t3 - t8;
-        let (t11, t12) = q3.sin_cos();
-        let t13 = t0 * qd1;
-        let t14 = t12 * t13;
-        let t15 = t1 * qd1;
-        let t16 = t11 * t15;
-        let t17 = t14 + t16;
-        let t18 = t11 * t13;
-        let t19 = t12 * t15;
-        let t20 = t19 - t18;
-        let t21 = t9 * t12;
+        let (t2, t3) = q3.sin_cos();
+        let (t4, t5) = q4.sin_cos();
+        let (t6, t7) = q5.sin_cos();
+        let (t8, t9) = q6.sin_cos();
+        let t10 = t0 * qd1;
+        let t11 = t1 * qd1;
+        let t12 = t0 * qdd1;
+        let t13 = t1 * qdd1;
+        let t14 = t11 * qd2;
+        let t15 = t10 * qd2;
+        let t16 = t12 + t14;
+        let t17 = t13 - t15;
+        let t18 = t10 * t10;
+        let t19 = t11 * t11;
+        let t20 = qd2 * qd2;
+        let t21 = t19 + t20;
         let t22 = t10 * t11;
-        let t23 = t9 * t11;
-        let t24 = t10 * t12;
-        let t25 = qd1 * qd1;
-        let t26 = t1 * t1;
-        let t27 = t25 * t26;
-        let t28 = qd2 * qd2;
-        let t29 = t0 * t1;
-        let t30 = t25 * t29;
-        let t31 = t3 * c1;
-        let t32 = t27 + t28;
-        let t33 = t32 * c1;
-        let t34 = t4 + t33;
-        let t35 = t30 + qdd2;
-        let t36 = t35 * c1;
-        let t37 = t5 - t36;
-        let t38 = t8 * c2;
-        let t39 = t31 - t38;
-        let t40 = t12 * t34;
-        let t41 = t11 * t37;
-        let t42 = t11 * t34;
-        let t43 = t12 * t37;
-        let t44 = t43 - t42;
-        let t45 = t20 * qd3;
-        let t46 = t17 * qd3;
-        let t47 = qd2 + qd3;
-        let t48 = t22 + t45;
-        let t49 = t21 + t48;
-        let t50 = t24 - t46;
-        let t51 = t50 - t23;
-        let t52 = qdd2 + qdd3;
-        let (t53, t54) = q4.sin_cos();
-        let t55 = t17 * t54;
-        let t56 = t20 * t53;
-        let t57 = t55 + t56;
-        let t58 = t17 * t53;
-        let t59 = t20 * t54;
-        let t60 = t59 - t58;
-        let t61 = t49 * t54;
-        let t62 = t51 * t53;
-        let t63 = t49 * t53;
-        let t64 = t51 * t54;
-        let t65 = t20 * c3;
-        let t66 = t47 * c4;
-        let t67 = t17 * c3;
-        let t68 = t66 + t67;
-        let t69 = t20 * c4;
-        let t70 = t20 * t69;
-        let t71 = t47 * t68;
-        let t72 = t47 * t65;
-        let t73 = t17 * t69;
-        let t74 = t17 * t68;
-        let t75 = t20 * t65;
-        let t76 = t51 * c3;
-        let t77 = t40 + t41;
-        let t78 = t71 + t76;
-        let t79 = t70 + t78;
-        let t80 = t77 + t79;
-        let t81 = t52 * c4;
-        let t82 = t49 * c3;
-        let t83 = t44 + t72;
-        let t84 = t81 + t82;
-        let t85 = t73 + t84;
-        let t86 = t83 - t85;
-        let t87 = t51 * c4;
-        let t88 = t39 - t74;
-        let t89 = t87 - t75;
-        let t90 = t88 + t89;
-        let t91 = t54 * t80;
-        let t92 = t53 * t86;
-        let t93 = t53 * t80;
-        let t94 = t54 * t86;
-        let t95 = t94 - t93;
-        let t96 = t60 * qd4;
-        let t97 = t57 * qd4;
-        let t98 = t47 + qd4;
-        let t99 = t62 + t96;
-        let t100 = t61 + t99;
-        let t101 = t52 + qdd4;
-        let (t102, t103) = q5.sin_cos();
-        let t104 = t57 * t103;
-        let t105 = t98 * t102;
-        let t106 = t104 + t105;
-        let t107 = t57 * t102;
-        let t108 = t98 * t103;
-        let t109 = t108 - t107;
-        let t110 = t100 * t103;
-        let t111 = t101 * t102;
-        let t112 = t100 * t102;
-        let t113 = t101 * t103;
-        let t114 = t98 * c5;
-        let t115 = t57 * c5;
-        let t116 = t60 * t115;
-        let t117 = t98 * t114;
-        let t118 = t57 * t115;
-        let t119 = t60 * t114;
-        let t120 = t101 * c5;
-        let t121 = t91 + t92;
-        let t122 = t120 - t116;
-        let t123 = t121 + t122;
-        let t124 = t117 + t118;
-        let t125 = t95 + t124;
-        let t126 = t100 * c5;
-        let t127 = t119 + t126;
-        let t128 = t90 - t127;
-        let t129 = t103 * t123;
-        let t130 = t102 * t128;
-        let t131 = t129 + t130;
-        let t132 = t102 * t123;
-        let t133 = t103 * t128;
-        let t134 = t133 - t132;
-        let t135 = t109 * qd5;
-        let t136 = t106 * qd5;
-        let t137 = qd5 - t60;
-        let t138 = t111 + t135;
-        let t139 = t110 + t138;
-        let t140 = t63 + qdd5;
-        let t141 = t97 - t64;
-        let t142 = t140 + t141;
-        let (t143, t144) = q6.sin_cos();
-        let t145 = t106 * t144;
-        let t146 = t137 * t143;
-        let t147 = t145 - t146;
-        let t148 = t106 * t143;
-        let t149 = t137 * t144;
-        let t150 = t148 + t149;
-        let t151 = t139 * t144;
-        let t152 = t142 * t143;
-        let t153 = t139 * t143;
-        let t154 = t142 * t144;
-        let t155 = t137 * c6;
-        let t156 = t106 * c6;
-        let t157 = t109 * t156;
-        let t158 = t137 * t155;
-        let t159 = t106 * t156;
-        let t160 = t109 * t155;
-        let t161 = t142 * c6;
-        let t162 = t157 - t161;
-        let t163 = t131 + t162;
-        let t164 = t158 + t159;
-        let t165 = t134 - t164;
-        let t166 = t139 * c6;
-        let t167 = t160 + t166;
-        let t168 = t167 - t125;
-        let t169 = t143 * t168;
-        let t170 = t143 * t163;
-        let t171 = t144 * t168;
-        let t172 = t170 + t171;
-        let t173 = t150 * qd6;
-        let t174 = t147 * qd6;
-        let t175 = t109 + qd6;
-        let t176 = t152 + t173;
-        let t177 = t151 - t176;
-        let t178 = qdd6 - t112;
-        let t179 = t113 - t136;
-        let t180 = t178 + t179;
-        let t181 = t0 * t0;
-        let t182 = t0 * t9;
-        let t183 = t1 * t8;
-        let t184 = t182 + t183;
-        let t185 = t25 * t181;
-        let t186 = t185 - t27;
-        let t187 = t8 * c7;
-        let t188 = t3 - t187;
-        let t189 = t7 * c7;
-        let t190 = t2 + t189;
-        let t191 = t0 * t188;
-        let t192 = t1 * t190;
-        let t193 = t191 + t192;
-        let t194 = t28 - t185;
-        let t195 = t0 * t35;
-        let t196 = t1 * t194;
-        let t197 = t195 + t196;
-        let t198 = t27 - t28;
-        let t199 = qdd2 - t30;
-        let t200 = t0 * t198;
-        let t201 = t1 * t199;
-        let t202 = t200 + t201;
-        let t203 = t17 * t47;
-        let t204 = t17 * t20;
-        let t205 = t12 * t49;
-        let t206 = t11 * t17;
-        let t207 = t47 * t206;
-        let t208 = t205 - t207;
-        let t209 = t11 * t49;
-        let t210 = t12 * t17;
-        let t211 = t47 * t210;
-        let t212 = t209 + t211;
-        let t213 = t0 * t208;
-        let t214 = t1 * t212;
-        let t215 = t213 + t214;
-        let t216 = t20 * t47;
-        let t217 = t17 * t17;
-        let t218 = t20 * t20;
-        let t219 = t217 - t218;
-        let t220 = t51 - t203;
-        let t221 = t49 + t216;
-        let t222 = t12 * t220;
-        let t223 = t11 * t221;
-        let t224 = t222 - t223;
-        let t225 = t11 * t220;
-        let t226 = t12 * t221;
-        let t227 = t225 + t226;
-        let t228 = t0 * t224;
-        let t229 = t1 * t227;
-        let t230 = t228 + t229;
-        let t231 = t47 * t47;
-        let t232 = t231 - t217;
-        let t233 = t52 + t204;
-        let t234 = t49 - t216;
-        let t235 = t12 * t233;
-        let t236 = t11 * t232;
-        let t237 = t235 - t236;
-        let t238 = t11 * t233;
-        let t239 = t12 * t232;
-        let t240 = t238 + t239;
-        let t241 = t0 * t237;
-        let t242 = t1 * t240;
-        let t243 = t241 + t242;
-        let t244 = t218 - t231;
-        let t245 = t52 - t204;
-        let t246 = t51 + t203;
-        let t247 = t12 * t244;
-        let t248 = t11 * t245;
-        let t249 = t247 - t248;
-        let t250 = t11 * t244;
-        let t251 = t12 * t245;
-        let t252 = t250 + t251;
-        let t253 = t0 * t249;
-        let t254 = t1 * t252;
-        let t255 = t253 + t254;
-        let t256 = t12 * t20;
-        let t257 = t47 * t256;
-        let t258 = t207 + t257;
-        let t259 = t11 * t20;
-        let t260 = t47 * t259;
-        let t261 = t260 - t211;
-        let t262 = t0 * t258;
-        let t263 = t1 * t261;
-        let t264 = t262 + t263;
-        let t265 = t218 + t231;
-        let t266 = t12 * t39;
-        let t267 = t11 * t265;
-        let t268 = t220 * c1;
-        let t269 = t266 + t268;
-        let t270 = t267 - t235;
-        let t271 = t270 * c1;
-        let t272 = t44 + t271;
-        let t273 = t0 * t11;
-        let t274 = t39 * t273;
-        let t275 = t1 * t269;
-        let t276 = t274 - t275;
-        let t277 = t217 + t231;
-        let t278 = t11 * t39;
-        let t279 = t12 * t277;
-        let t280 = t221 * c1;
-        let t281 = t278 + t280;
-        let t282 = t248 + t279;
-        let t283 = t282 * c1;
-        let t284 = t283 - t77;
-        let t285 = t0 * t12;
-        let t286 = t39 * t285;
-        let t287 = t1 * t281;
-        let t288 = t286 + t287;
-        let t289 = t57 * t98;
-        let t290 = t57 * t60;
-        let t291 = t54 * t100;
-        let t292 = t53 * t57;
-        let t293 = t98 * t292;
-        let t294 = t291 - t293;
-        let t295 = t53 * t100;
-        let t296 = t54 * t57;
-        let t297 = t98 * t296;
-        let t298 = t295 + t297;
-        let t299 = t12 * t294;
-        let t300 = t11 * t298;
+        let t23 = t22 - qdd2;
+        let t24 = t22 + qdd2;
+        let t25 = t18 + t20;
+        let t26 = t14 - t16;
+        let t27 = t14 + t16;
+        let t28 = t18 + t19;
+        let t29 = t15 - t17;
+        let t30 = t15 + t17;
+        let t31 = t0 * c0;
+        let t32 = t21 * c1;
+        let t33 = t31 + t32;
+        let t34 = t1 * c0;
+        let t35 = t24 * c1;
+        let t36 = t34 - t35;
+        let t37 = t3 * t33;
+        let t38 = t2 * t36;
+        let t39 = t2 * t33;
+        let t40 = t3 * t36;
+        let t41 = t37 + t38;
+        let t42 = t40 - t39;
+        let t43 = t3 * t10;
+        let t44 = t2 * t11;
+        let t45 = t2 * t10;
+        let t46 = t3 * t11;
+        let t47 = t43 + t44;
+        let t48 = t46 - t45;
+        let t49 = t3 * t16;
+        let t50 = t2 * t17;
+        let t51 = t2 * t16;
+        let t52 = t3 * t17;
+        let t53 = t49 + t50;
+        let t54 = t52 - t51;
+        let t55 = t48 * qd3;
+        let t56 = t47 * qd3;
+        let t57 = qd2 + qd3;
+        let t58 = t53 + t55;
+        let t59 = t54 - t56;
+        let t60 = qdd2 + qdd3;
+        let t61 = t47 * t47;
+        let t62 = t48 * t48;
+        let t63 = t57 * t57;
+        let t64 = t62 + t63;
+        let t65 = t47 * t48;
+        let t66 = t65 - t60;
+        let t67 = t60 + t65;
+        let t68 = t61 + t63;
+        let t69 = t48 * t57;
+        let t70 = t69 - t58;
+        let t71 = t58 + t69;
+        let t72 = t61 + t62;
+        let t73 = t47 * t57;
+        let t74 = t73 - t59;
+        let t75 = t59 + t73;
+        let t76 = t64 * c2;
+        let t77 = t75 * c3;
+        let t78 = t76 + t77;
+        let t79 = t67 * c2;
+        let t80 = t70 * c3;
+        let t81 = t80 - t79;
+        let t82 = t74 * c2;
+        let t83 = t72 * c3;
+        let t84 = t82 + t83;
+        let t85 = t41 + t78;
+        let t86 = t42 + t81;
+        let t87 = t29 * c1;
+        let t88 = t84 + t87;
+        let t89 = t5 * t85;
+        let t90 = t4 * t86;
+        let t91 = t4 * t85;
+        let t92 = t5 * t86;
+        let t93 = t89 + t90;
+        let t94 = t92 - t91;
+        let t95 = t5 * t47;
+        let t96 = t4 * t48;
+        let t97 = t4 * t47;
+        let t98 = t5 * t48;
+        let t99 = t95 + t96;
+        let t100 = t98 - t97;
+        let t101 = t5 * t58;
+        let t102 = t4 * t59;
+        let t103 = t4 * t58;
+        let t104 = t5 * t59;
+        let t105 = t101 + t102;
+        let t106 = t104 - t103;
+        let t107 = t100 * qd4;
+        let t108 = t99 * qd4;
+        let t109 = t57 + qd4;
+        let t110 = t105 + t107;
+        let t111 = t106 - t108;
+        let t112 = t60 + qdd4;
+        let t113 = t99 * t99;
+        let t114 = t100 * t100;
+        let t115 = t109 * t109;
+        let t116 = t114 + t115;
+        let t117 = t99 * t100;
+        let t118 = t117 - t112;
+        let t119 = t112 + t117;
+        let t120 = t113 + t115;
+        let t121 = t100 * t109;
+        let t122 = t121 - t110;
+        let t123 = t110 + t121;
+        let t124 = t113 + t114;
+        let t125 = t99 * t109;
+        let t126 = t125 - t111;
+        let t127 = t111 + t125;
+        let t128 = t118 * c4;
+        let t129 = t93 - t128;
+        let t130 = t120 * c4;
+        let t131 = t94 + t130;
+        let t132 = t123 * c4;
+        let t133 = t88 + t132;
+        let t134 = t7 * t129;
+        let t135 = t6 * t133;
+        let t136 = t6 * t129;
+        let t137 = t7 * t133;
+        let t138 = t134 - t135;
+        let t139 = t136 + t137;
+        let t140 = t7 * t99;
+        let t141 = t6 * t109;
+        let t142 = t6 * t99;
+        let t143 = t7 * t109;
+        let t144 = t140 + t141;
+        let t145 = t143 - t142;
+        let t146 = t7 * t110;
+        let t147 = t6 * t112;
+        let t148 = t6 * t110;
+        let t149 = t7 * t112;
+        let t150 = t146 + t147;
+        let t151 = t149 - t148;
+        let t152 = t145 * qd5;
+        let t153 = t144 * qd5;
+        let t154 = qd5 - t100;
+        let t155 = t150 + t152;
+        let t156 = t151 - t153;
+        let t157 = qdd5 - t111;
+        let t158 = t144 * t144;
+        let t159 = t145 * t145;
+        let t160 = t154 * t154;
+        let t161 = t159 + t160;
+        let t162 = t144 * t145;
+        let t163 = t162 - t157;
+        let t164 = t157 + t162;
+        let t165 = t158 + t160;
+        let t166 = t145 * t154;
+        let t167 = t166 - t155;
+        let t168 = t155 + t166;
+        let t169 = t158 + t159;
+        let t170 = t144 * t154;
+        let t171 = t170 - t156;
+        let t172 = t156 + t170;
+        let t173 = t163 * c5;
+        let t174 = t138 + t173;
+        let t175 = t165 * c5;
+        let t176 = t139 + t175;
+        let t177 = t168 * c5;
+        let t178 = t177 - t131;
+        let t179 = t9 * t174;
+        let t180 = t8 * t178;
+        let t181 = t8 * t174;
+        let t182 = t9 * t178;
+        let t183 = t179 - t180;
+        let t184 = t181 + t182;
+        let t185 = t9 * t144;
+        let t186 = t8 * t154;
+        let t187 = t8 * t144;
+        let t188 = t9 * t154;
+        let t189 = t185 - t186;
+        let t190 = t187 + t188;
+        let t191 = t9 * t155;
+        let t192 = t8 * t157;
+        let t193 = t8 * t155;
+        let t194 = t9 * t157;
+        let t195 = t191 - t192;
+        let t196 = t193 + t194;
+        let t197 = t190 * qd6;
+        let t198 = t189 * qd6;
+        let t199 = t145 + qd6;
+        let t200 = t195 - t197;
+        let t201 = t196 + t198;
+        let t202 = t156 + qdd6;
+        let t203 = t189 * t189;
+        let t204 = t190 * t190;
+        let t205 = t199 * t199;
+        let t206 = t204 + t205;
+        let t207 = t189 * t190;
+        let t208 = t202 + t207;
+        let t209 = t202 - t207;
+        let t210 = t203 + t205;
+        let t211 = t190 * t199;
+        let t212 = t200 + t211;
+        let t213 = t200 - t211;
+        let t214 = t203 + t204;
+        let t215 = t189 * t199;
+        let t216 = t201 + t215;
+        let t217 = t215 - t201;
+        let t218 = t0 * t3;
+        let t219 = t1 * t2;
+        let t220 = t0 * t2;
+        let t221 = t1 * t3;
+        let t222 = t218 + t219;
+        let t223 = t221 - t220;
+        let t224 = t5 * t222;
+        let t225 = t4 * t223;
+        let t226 = t4 * t222;
+        let t227 = t5 * t223;
+        let t228 = t224 + t225;
+        let t229 = t227 - t226;
+        let t230 = t7 * t228;
+        let t231 = t6 * t228;
+        let t232 = t9 * t230;
+        let t233 = t8 * t229;
+        let t234 = t8 * t230;
+        let t235 = t9 * t229;
+        let t236 = t232 + t233;
+        let t237 = t235 - t234;
+        let t238 = t6 * t9;
+        let t239 = t6 * t8;
+        let t240 = t1 * c1;
+        let t241 = t223 * c2;
+        let t242 = t240 + t241;
+        let t243 = t3 * c1;
+        let t244 = t243 + c2;
+        let t245 = t2 * t5;
+        let t246 = t4 * t244;
+        let t247 = t2 * t4;
+        let t248 = t5 * t244;
+        let t249 = t245 * c1;
+        let t250 = t246 + t249;
+        let t251 = t247 * c1;
+        let t252 = t251 - t248;
+        let t253 = t228 * c4;
+        let t254 = t242 - t253;
+        let t255 = t7 * t229;
+        let t256 = t6 * t254;
+        let t257 = t6 * t229;
+        let t258 = t7 * t254;
+        let t259 = t255 * c3;
+        let t260 = t256 + t259;
+        let t261 = t257 * c3;
+        let t262 = t258 - t261;
+        let t263 = c4 - t250;
+        let t264 = t7 * t263;
+        let t265 = t6 * t263;
+        let t266 = t4 * c2;
+        let t267 = c4 - t266;
+        let t268 = t7 * t267;
+        let t269 = t6 * t267;
+        let t270 = t229 * c5;
+        let t271 = t260 + t270;
+        let t272 = t228 * c3;
+        let t273 = t230 * c5;
+        let t274 = t272 + t273;
+        let t275 = t9 * t271;
+        let t276 = t8 * t274;
+        let t277 = t8 * t271;
+        let t278 = t9 * t274;
+        let t279 = t275 - t276;
+        let t280 = t277 + t278;
+        let t281 = t6 * c5;
+        let t282 = t281 - t252;
+        let t283 = t9 * t264;
+        let t284 = t8 * t282;
+        let t285 = t8 * t264;
+        let t286 = t9 * t282;
+        let t287 = t283 - t284;
+        let t288 = t285 + t286;
+        let t289 = t5 * c2;
+        let t290 = t281 + t289;
+        let t291 = t9 * t268;
+        let t292 = t8 * t290;
+        let t293 = t8 * t268;
+        let t294 = t9 * t290;
+        let t295 = t291 - t292;
+        let t296 = t293 + t294;
+        let t297 = t7 * t9;
+        let t298 = t7 * t8;
+        let t299 = t297 * c4;
+        let t300 = t239 * c5;
         let t301 = t299 - t300;
-        let t302 = t11 * t294;
-        let t303 = t12 * t298;
+        let t302 = t238 * c5;
+        let t303 = t298 * c4;
         let t304 = t302 + t303;
-        let t305 = t0 * t301;
-        let t306 = t1 * t304;
-        let t307 = t305 + t306;
-        let t308 = t60 * t98;
-        let t309 = t57 * t57;
-        let t310 = t60 * t60;
-        let t311 = t309 - t310;
-        let t312 = t64 - t63;
-        let t313 = t97 + t289;
-        let t314 = t312 - t313;
-        let t315 = t100 + t308;
-        let t316 = t54 * t314;
-        let t317 = t53 * t315;
-        let t318 = t316 - t317;
-        let t319 = t53 * t314;
-        let t320 = t54 * t315;
-        let t321 = t319 + t320;
-        let t322 = t12 * t318;
-        let t323 = t11 * t321;
-        let t324 = t322 - t323;
-        let t325 = t11 * t318;
-        let t326 = t12 * t321;
-        let t327 = t325 + t326;
-        let t328 = t0 * t324;
-        let t329 = t1 * t327;
+        let t305 = t28 - t25;
+        let t306 = t21 - t28;
+        let t307 = t25 - t21;
+        let t308 = t0 * t16;
+        let t309 = t1 * t15;
+        let t310 = t308 + t309;
+        let t311 = -t22;
+        let t312 = t0 * t29;
+        let t313 = t1 * t27;
+        let t314 = t313 - t312;
+        let t315 = t0 * t24;
+        let t316 = t1 * t306;
+        let t317 = t315 + t316;
+        let t318 = -t26;
+        let t319 = t0 * t305;
+        let t320 = t1 * t23;
+        let t321 = t319 - t320;
+        let t322 = t0 * t14;
+        let t323 = t322 - t309;
+        let t324 = -t31;
+        let t325 = t72 - t68;
+        let t326 = t64 - t72;
+        let t327 = t68 - t64;
+        let t328 = t58 * t222;
+        let t329 = t73 * t223;
         let t330 = t328 + t329;
-        let t331 = t98 * t98;
-        let t332 = t331 - t309;
-        let t333 = t101 + t290;
-        let t334 = t100 - t308;
-        let t335 = t54 * t333;
-        let t336 = t53 * t332;
-        let t337 = t335 - t336;
-        let t338 = t53 * t333;
-        let t339 = t54 * t332;
-        let t340 = t338 + t339;
-        let t341 = t12 * t337;
-        let t342 = t11 * t340;
-        let t343 = t341 - t342;
-        let t344 = t11 * t337;
-        let t345 = t12 * t340;
+        let t331 = -t65;
+        let t332 = t74 * t222;
+        let t333 = t71 * t223;
+        let t334 = t333 - t332;
+        let t335 = t67 * t222;
+        let t336 = t223 * t326;
+        let t337 = t335 + t336;
+        let t338 = -t70;
+        let t339 = t222 * t325;
+        let t340 = t66 * t223;
+        let t341 = t339 - t340;
+        let t342 = t69 * t222;
+        let t343 = t342 - t329;
+        let t344 = t29 * t223;
+        let t345 = t1 * t74;
         let t346 = t344 + t345;
-        let t347 = t0 * t343;
-        let t348 = t1 * t346;
-        let t349 = t347 + t348;
-        let t350 = t310 - t331;
-        let t351 = t101 - t290;
-        let t352 = t289 - t97;
-        let t353 = t312 + t352;
-        let t354 = t54 * t350;
-        let t355 = t53 * t351;
-        let t356 = t354 - t355;
-        let t357 = t53 * t350;
-        let t358 = t54 * t351;
-        let t359 = t357 + t358;
-        let t360 = t12 * t356;
-        let t361 = t11 * t359;
-        let t362 = t360 - t361;
-        let t363 = t11 * t356;
-        let t364 = t12 * t359;
-        let t365 = t363 + t364;
-        let t366 = t0 * t362;
-        let t367 = t1 * t365;
+        let t347 = t2 * t64;
+        let t348 = t3 * t67;
+        let t349 = t347 - t348;
+        let t350 = t349 * c1;
+        let t351 = t42 + t350;
+        let t352 = t346 * c1;
+        let t353 = t29 * t222;
+        let t354 = t1 * t71;
+        let t355 = t354 - t353;
+        let t356 = t2 * t66;
+        let t357 = t3 * t68;
+        let t358 = t357 - t356;
+        let t359 = t358 * c1;
+        let t360 = t359 - t41;
+        let t361 = t355 * c1;
+        let t362 = -t41;
+        let t363 = t124 - t120;
+        let t364 = t116 - t124;
+        let t365 = t120 - t116;
+        let t366 = t110 * t228;
+        let t367 = t125 * t229;
         let t368 = t366 + t367;
-        let t369 = t54 * t60;
-        let t370 = t98 * t369;
-        let t371 = t293 + t370;
-        let t372 = t53 * t60;
-        let t373 = t98 * t372;
-        let t374 = t373 - t297;
-        let t375 = t12 * t371;
-        let t376 = t11 * t374;
-        let t377 = t375 - t376;
-        let t378 = t11 * t371;
-        let t379 = t12 * t374;
-        let t380 = t378 + t379;
-        let t381 = t0 * t377;
-        let t382 = t1 * t380;
-        let t383 = t381 + t382;
-        let t384 = t310 + t331;
-        let t385 = t54 * t384;
-        let t386 = t338 + t385;
-        let t387 = t53 * t384;
-        let t388 = t335 - t387;
-        let t389 = t53 * t90;
-        let t390 = t54 * t90;
-        let t391 = t388 * c3;
-        let t392 = t389 - t391;
-        let t393 = t386 * c3;
-        let t394 = t314 * c4;
-        let t395 = t393 + t394;
-        let t396 = t390 + t395;
-        let t397 = t388 * c4;
-        let t398 = t95 - t397;
-        let t399 = t12 * t392;
-        let t400 = t11 * t396;
-        let t401 = t399 + t400;
-        let t402 = t11 * t392;
-        let t403 = t12 * t396;
-        let t404 = t11 * t386;
-        let t405 = t12 * t388;
-        let t406 = t314 * c1;
-        let t407 = t403 + t406;
-        let t408 = t402 - t407;
-        let t409 = t404 - t405;
-        let t410 = t409 * c1;
-        let t411 = t398 + t410;
-        let t412 = t0 * t401;
-        let t413 = t1 * t408;
-        let t414 = t412 + t413;
-        let t415 = t309 + t331;
-        let t416 = t53 * t415;
-        let t417 = t416 - t358;
-        let t418 = t54 * t415;
-        let t419 = t355 + t418;
-        let t420 = t419 * c3;
-        let t421 = t390 + t420;
-        let t422 = t417 * c3;
-        let t423 = t315 * c4;
-        let t424 = t422 + t423;
-        let t425 = t389 + t424;
-        let t426 = t419 * c4;
-        let t427 = t426 - t121;
-        let t428 = t12 * t421;
-        let t429 = t11 * t425;
-        let t430 = t428 - t429;
-        let t431 = t11 * t421;
-        let t432 = t12 * t425;
-        let t433 = t11 * t417;
-        let t434 = t12 * t419;
-        let t435 = t315 * c1;
-        let t436 = t432 + t435;
-        let t437 = t431 + t436;
-        let t438 = t434 - t433;
-        let t439 = t438 * c1;
-        let t440 = t427 + t439;
-        let t441 = t0 * t430;
-        let t442 = t1 * t437;
-        let t443 = t441 + t442;
-        let t444 = t106 * t137;
-        let t445 = t106 * t109;
-        let t446 = t103 * t139;
-        let t447 = t102 * t106;
-        let t448 = t137 * t447;
-        let t449 = t446 - t448;
-        let t450 = t102 * t139;
-        let t451 = t103 * t106;
-        let t452 = t137 * t451;
-        let t453 = t450 + t452;
-        let t454 = t54 * t449;
-        let t455 = t53 * t106;
-        let t456 = t109 * t455;
-        let t457 = t454 - t456;
-        let t458 = t53 * t449;
-        let t459 = t54 * t106;
-        let t460 = t109 * t459;
-        let t461 = t458 + t460;
-        let t462 = t12 * t457;
-        let t463 = t11 * t461;
-        let t464 = t462 - t463;
-        let t465 = t11 * t457;
-        let t466 = t12 * t461;
-        let t467 = t465 + t466;
-        let t468 = t0 * t464;
-        let t469 = t1 * t467;
-        let t470 = t468 + t469;
-        let t471 = t109 * t137;
-        let t472 = t106 * t106;
-        let t473 = t109 * t109;
-        let t474 = t472 - t473;
-        let t475 = t113 - t112;
-        let t476 = t136 + t444;
-        let t477 = t475 - t476;
-        let t478 = t139 + t471;
-        let t479 = t103 * t477;
-        let t480 = t102 * t478;
-        let t481 = t479 - t480;
-        let t482 = t102 * t477;
-        let t483 = t103 * t478;
-        let t484 = t482 + t483;
-        let t485 = t54 * t481;
-        let t486 = t53 * t474;
-        let t487 = t485 + t486;
-        let t488 = t53 * t481;
-        let t489 = t54 * t474;
-        let t490 = t488 - t489;
-        let t491 = t12 * t487;
-        let t492 = t11 * t490;
-        let t493 = t491 - t492;
-        let t494 = t11 * t487;
-        let t495 = t12 * t490;
+        let t369 = -t117;
+        let t370 = t126 * t228;
+        let t371 = t123 * t229;
+        let t372 = t371 - t370;
+        let t373 = t119 * t228;
+        let t374 = t229 * t364;
+        let t375 = t373 + t374;
+        let t376 = -t122;
+        let t377 = t228 * t363;
+        let t378 = t118 * t229;
+        let t379 = t377 - t378;
+        let t380 = t121 * t228;
+        let t381 = t380 - t367;
+        let t382 = t116 * t229;
+        let t383 = t88 * t229;
+        let t384 = t126 * t242;
+        let t385 = t373 + t382;
+        let t386 = t383 + t384;
+        let t387 = t385 * c3;
+        let t388 = t386 - t387;
+        let t389 = t116 * t250;
+        let t390 = t119 * t252;
+        let t391 = t94 + t390;
+        let t392 = t389 + t391;
+        let t393 = t4 * t116;
+        let t394 = t5 * t119;
+        let t395 = t393 - t394;
+        let t396 = t395 * c2;
+        let t397 = t94 + t396;
+        let t398 = t88 * t228;
+        let t399 = t120 * t228;
+        let t400 = t123 * t242;
+        let t401 = t400 - t398;
+        let t402 = t378 + t399;
+        let t403 = t402 * c3;
+        let t404 = t401 + t403;
+        let t405 = t118 * t250;
+        let t406 = t120 * t252;
+        let t407 = t93 + t406;
+        let t408 = t405 + t407;
+        let t409 = t4 * t118;
+        let t410 = t5 * t120;
+        let t411 = t410 - t409;
+        let t412 = t411 * c2;
+        let t413 = t412 - t93;
+        let t414 = -t408;
+        let t415 = -t93;
+        let t416 = t169 - t165;
+        let t417 = t161 - t169;
+        let t418 = t165 - t161;
+        let t419 = t155 * t230;
+        let t420 = t170 * t231;
+        let t421 = t162 * t229;
+        let t422 = t421 - t420;
+        let t423 = t419 + t422;
+        let t424 = t6 * t155;
+        let t425 = t7 * t170;
+        let t426 = t424 + t425;
+        let t427 = -t162;
+        let t428 = t171 * t230;
+        let t429 = t168 * t231;
+        let t430 = t229 * t418;
+        let t431 = t429 + t430;
+        let t432 = t428 + t431;
+        let t433 = t6 * t171;
+        let t434 = t7 * t168;
+        let t435 = t434 - t433;
+        let t436 = -t432;
+        let t437 = t164 * t230;
+        let t438 = t231 * t417;
+        let t439 = t167 * t229;
+        let t440 = t439 - t438;
+        let t441 = t437 + t440;
+        let t442 = t6 * t164;
+        let t443 = t7 * t417;
+        let t444 = t442 + t443;
+        let t445 = -t167;
+        let t446 = t230 * t416;
+        let t447 = t163 * t231;
+        let t448 = t172 * t229;
+        let t449 = t447 - t448;
+        let t450 = t446 + t449;
+        let t451 = t6 * t416;
+        let t452 = t7 * t163;
+        let t453 = t451 - t452;
+        let t454 = t166 * t230;
+        let t455 = t157 * t229;
+        let t456 = t420 - t455;
+        let t457 = t454 + t456;
+        let t458 = t6 * t166;
+        let t459 = t458 - t425;
+        let t460 = t161 * t260;
+        let t461 = t131 * t231;
+        let t462 = t164 * t262;
+        let t463 = t139 * t229;
+        let t464 = t171 * t228;
+        let t465 = t460 + t461;
+        let t466 = t462 + t463;
+        let t467 = t466 - t465;
+        let t468 = t464 * c3;
+        let t469 = t467 + t468;
+        let t470 = t161 * t264;
+        let t471 = t7 * t131;
+        let t472 = t164 * t265;
+        let t473 = t171 * t252;
+        let t474 = t471 - t470;
+        let t475 = t472 + t473;
+        let t476 = t474 - t475;
+        let t477 = t161 * t268;
+        let t478 = t164 * t269;
+        let t479 = t5 * t171;
+        let t480 = t471 - t478;
+        let t481 = t480 - t477;
+        let t482 = t479 * c2;
+        let t483 = t481 + t482;
+        let t484 = t7 * t161;
+        let t485 = t442 + t484;
+        let t486 = t485 * c4;
+        let t487 = t471 - t486;
+        let t488 = -t139;
+        let t489 = t131 * t230;
+        let t490 = t163 * t260;
+        let t491 = t165 * t262;
+        let t492 = t138 * t229;
+        let t493 = t168 * t228;
+        let t494 = t490 - t489;
+        let t495 = t492 - t491;
         let t496 = t494 + t495;
-        let t497 = t0 * t493;
-        let t498 = t1 * t496;
-        let t499 = t497 + t498;
-        let t500 = t137 * t137;
-        let t501 = t500 - t472;
-        let t502 = t142 + t445;
-        let t503 = t139 - t471;
-        let t504 = t103 * t502;
-        let t505 = t102 * t501;
-        let t506 = t504 - t505;
-        let t507 = t102 * t502;
-        let t508 = t103 * t501;
-        let t509 = t507 + t508;
-        let t510 = t54 * t506;
-        let t511 = t53 * t503;
+        let t497 = t493 * c3;
+        let t498 = t496 + t497;
+        let t499 = t6 * t131;
+        let t500 = t163 * t264;
+        let t501 = t165 * t265;
+        let t502 = t168 * t252;
+        let t503 = t500 - t499;
+        let t504 = t501 - t502;
+        let t505 = t503 + t504;
+        let t506 = t163 * t268;
+        let t507 = t165 * t269;
+        let t508 = t5 * t168;
+        let t509 = t506 + t507;
+        let t510 = t509 - t499;
+        let t511 = t508 * c2;
         let t512 = t510 + t511;
-        let t513 = t53 * t506;
-        let t514 = t54 * t503;
-        let t515 = t513 - t514;
-        let t516 = t12 * t512;
-        let t517 = t11 * t515;
-        let t518 = t516 - t517;
-        let t519 = t11 * t512;
-        let t520 = t12 * t515;
-        let t521 = t519 + t520;
-        let t522 = t0 * t518;
-        let t523 = t1 * t521;
-        let t524 = t522 + t523;
-        let t525 = t473 - t500;
-        let t526 = t142 - t445;
-        let t527 = t444 - t136;
-        let t528 = t475 + t527;
-        let t529 = t103 * t525;
-        let t530 = t102 * t526;
-        let t531 = t529 - t530;
-        let t532 = t102 * t525;
-        let t533 = t103 * t526;
-        let t534 = t532 + t533;
-        let t535 = t54 * t531;
-        let t536 = t53 * t528;
-        let t537 = t535 + t536;
-        let t538 = t53 * t531;
-        let t539 = t54 * t528;
-        let t540 = t538 - t539;
-        let t541 = t12 * t537;
-        let t542 = t11 * t540;
-        let t543 = t541 - t542;
-        let t544 = t11 * t537;
-        let t545 = t12 * t540;
-        let t546 = t544 + t545;
-        let t547 = t0 * t543;
-        let t548 = t1 * t546;
-        let t549 = t547 + t548;
-        let t550 = t103 * t109;
-        let t551 = t137 * t550;
-        let t552 = t448 + t551;
-        let t553 = t102 * t109;
-        let t554 = t137 * t553;
-        let t555 = t554 - t452;
-        let t556 = t54 * t552;
-        let t557 = t53 * t142;
-        let t558 = t556 + t557;
-        let t559 = t53 * t552;
-        let t560 = t54 * t142;
-        let t561 = t559 - t560;
-        let t562 = t12 * t558;
-        let t563 = t11 * t561;
-        let t564 = t562 - t563;
-        let t565 = t11 * t558;
-        let t566 = t12 * t561;
-        let t567 = t565 + t566;
-        let t568 = t0 * t564;
-        let t569 = t1 * t567;
-        let t570 = t568 + t569;
-        let t571 = t473 + t500;
-        let t572 = t103 * t571;
-        let t573 = t507 + t572;
-        let t574 = t102 * t125;
-        let t575 = t103 * t125;
-        let t576 = t102 * t571;
-        let t577 = t576 - t504;
-        let t578 = t577 * c5;
-        let t579 = t578 - t574;
-        let t580 = t573 * c5;
-        let t581 = t575 - t580;
-        let t582 = t54 * t573;
-        let t583 = t53 * t477;
-        let t584 = t582 + t583;
-        let t585 = t53 * t573;
-        let t586 = t54 * t477;
-        let t587 = t586 - t585;
-        let t588 = t54 * t579;
-        let t589 = t53 * t134;
-        let t590 = t53 * t579;
-        let t591 = t54 * t134;
-        let t592 = t587 * c3;
-        let t593 = t589 - t592;
-        let t594 = t588 + t593;
-        let t595 = t584 * c3;
-        let t596 = t577 * c4;
-        let t597 = t590 - t591;
-        let t598 = t595 + t596;
-        let t599 = t597 - t598;
-        let t600 = t587 * c4;
-        let t601 = t581 - t600;
-        let t602 = t12 * t594;
-        let t603 = t11 * t599;
-        let t604 = t602 - t603;
-        let t605 = t11 * t594;
-        let t606 = t12 * t599;
-        let t607 = t11 * t584;
-        let t608 = t12 * t587;
-        let t609 = t577 * c1;
-        let t610 = t606 - t609;
-        let t611 = t605 + t610;
-        let t612 = t607 - t608;
-        let t613 = t612 * c1;
-        let t614 = t601 + t613;
-        let t615 = t0 * t604;
-        let t616 = t1 * t611;
+        let t513 = t6 * t165;
+        let t514 = t452 + t513;
+        let t515 = t514 * c4;
+        let t516 = t515 - t499;
+        let t517 = -t138;
+        let t518 = t214 - t210;
+        let t519 = t206 - t214;
+        let t520 = t210 - t206;
+        let t521 = t200 * t236;
+        let t522 = t215 * t237;
+        let t523 = t207 * t231;
+        let t524 = t522 - t523;
+        let t525 = t521 + t524;
+        let t526 = t200 * t238;
+        let t527 = t215 * t239;
+        let t528 = t7 * t207;
+        let t529 = t528 - t527;
+        let t530 = t526 + t529;
+        let t531 = t8 * t200;
+        let t532 = t9 * t215;
+        let t533 = t531 + t532;
+        let t534 = -t533;
+        let t535 = t216 * t236;
+        let t536 = t213 * t237;
+        let t537 = t231 * t520;
+        let t538 = t536 - t537;
+        let t539 = t538 - t535;
+        let t540 = t216 * t238;
+        let t541 = t213 * t239;
+        let t542 = t7 * t520;
+        let t543 = t542 - t541;
+        let t544 = t543 - t540;
+        let t545 = t8 * t216;
+        let t546 = t9 * t213;
+        let t547 = t545 - t546;
+        let t548 = t209 * t236;
+        let t549 = t237 * t519;
+        let t550 = t212 * t231;
+        let t551 = t549 - t550;
+        let t552 = t548 + t551;
+        let t553 = t209 * t238;
+        let t554 = t239 * t519;
+        let t555 = t7 * t212;
+        let t556 = t555 - t554;
+        let t557 = t553 + t556;
+        let t558 = t8 * t209;
+        let t559 = t9 * t519;
+        let t560 = t558 + t559;
+        let t561 = -t560;
+        let t562 = t236 * t518;
+        let t563 = t208 * t237;
+        let t564 = t217 * t231;
+        let t565 = t563 - t564;
+        let t566 = t562 + t565;
+        let t567 = t238 * t518;
+        let t568 = t208 * t239;
+        let t569 = t7 * t217;
+        let t570 = t569 - t568;
+        let t571 = t567 + t570;
+        let t572 = t8 * t518;
+        let t573 = t9 * t208;
+        let t574 = t572 + t573;
+        let t575 = -t574;
+        let t576 = t211 * t236;
+        let t577 = t202 * t231;
+        let t578 = t522 + t577;
+        let t579 = t576 + t578;
+        let t580 = t211 * t238;
+        let t581 = t7 * t202;
+        let t582 = t527 + t581;
+        let t583 = t582 - t580;
+        let t584 = t8 * t211;
+        let t585 = t532 + t584;
+        let t586 = -t579;
+        let t587 = t206 * t279;
+        let t588 = t176 * t237;
+        let t589 = t209 * t280;
+        let t590 = t184 * t231;
+        let t591 = t216 * t262;
+        let t592 = t588 - t587;
+        let t593 = t590 + t591;
+        let t594 = t593 - t589;
+        let t595 = t592 + t594;
+        let t596 = t206 * t287;
+        let t597 = t176 * t239;
+        let t598 = t209 * t288;
+        let t599 = t7 * t184;
+        let t600 = t216 * t265;
+        let t601 = t596 + t597;
+        let t602 = t599 + t600;
+        let t603 = t598 + t602;
+        let t604 = t601 + t603;
+        let t605 = t206 * t295;
+        let t606 = t209 * t296;
+        let t607 = t216 * t269;
+        let t608 = t597 + t605;
+        let t609 = t599 + t607;
+        let t610 = t606 + t609;
+        let t611 = t608 + t610;
+        let t612 = t206 * t301;
+        let t613 = t209 * t304;
+        let t614 = t6 * t216;
+        let t615 = t597 + t612;
+        let t616 = t599 + t613;
         let t617 = t615 + t616;
-        let t618 = t472 + t500;
-        let t619 = t102 * t618;
-        let t620 = t619 - t533;
-        let t621 = t103 * t618;
-        let t622 = t530 + t621;
+        let t618 = t614 * c4;
+        let t619 = t617 + t618;
+        let t620 = t9 * t206;
+        let t621 = t9 * t176;
+        let t622 = t558 + t620;
         let t623 = t622 * c5;
-        let t624 = t623 - t575;
-        let t625 = t620 * c5;
-        let t626 = t625 - t574;
-        let t627 = t54 * t620;
-        let t628 = t53 * t478;
-        let t629 = t627 + t628;
-        let t630 = t53 * t620;
-        let t631 = t54 * t478;
-        let t632 = t630 - t631;
-        let t633 = t54 * t624;
-        let t634 = t53 * t131;
-        let t635 = t53 * t624;
-        let t636 = t54 * t131;
-        let t637 = t632 * c3;
-        let t638 = t634 + t637;
-        let t639 = t633 - t638;
-        let t640 = t629 * c3;
-        let t641 = t622 * c4;
-        let t642 = t635 + t636;
-        let t643 = t640 - t641;
-        let t644 = t642 + t643;
-        let t645 = t632 * c4;
-        let t646 = t626 - t645;
-        let t647 = t12 * t639;
-        let t648 = t11 * t644;
-        let t649 = t647 - t648;
-        let t650 = t11 * t639;
-        let t651 = t12 * t644;
-        let t652 = t11 * t629;
-        let t653 = t12 * t632;
-        let t654 = t622 * c1;
-        let t655 = t651 - t654;
-        let t656 = t650 + t655;
-        let t657 = t652 + t653;
-        let t658 = t657 * c1;
-        let t659 = t646 - t658;
-        let t660 = t0 * t649;
-        let t661 = t1 * t656;
-        let t662 = t660 + t661;
-        let t663 = t147 * t175;
-        let t664 = t147 * t150;
-        let t665 = t144 * t177;
-        let t666 = t143 * t147;
-        let t667 = t175 * t666;
-        let t668 = t665 - t667;
-        let t669 = t143 * t177;
-        let t670 = t144 * t147;
-        let t671 = t175 * t670;
-        let t672 = t669 + t671;
-        let t673 = t103 * t668;
-        let t674 = t102 * t147;
-        let t675 = t150 * t674;
-        let t676 = t673 - t675;
-        let t677 = t102 * t668;
-        let t678 = t103 * t147;
-        let t679 = t150 * t678;
-        let t680 = t677 + t679;
-        let t681 = t54 * t676;
-        let t682 = t53 * t672;
-        let t683 = t681 - t682;
-        let t684 = t53 * t676;
-        let t685 = t54 * t672;
-        let t686 = t684 + t685;
-        let t687 = t12 * t683;
-        let t688 = t11 * t686;
-        let t689 = t687 - t688;
-        let t690 = t11 * t683;
-        let t691 = t12 * t686;
-        let t692 = t690 + t691;
-        let t693 = t0 * t689;
-        let t694 = t1 * t692;
-        let t695 = t693 + t694;
-        let t696 = t150 * t175;
-        let t697 = t147 * t147;
-        let t698 = t150 * t150;
-        let t699 = t697 - t698;
-        let t700 = t153 + t154;
-        let t701 = t174 + t663;
-        let t702 = t700 + t701;
-        let t703 = t177 - t696;
-        let t704 = t144 * t702;
-        let t705 = t143 * t703;
-        let t706 = t704 + t705;
-        let t707 = t143 * t702;
-        let t708 = t144 * t703;
-        let t709 = t707 - t708;
-        let t710 = t103 * t706;
-        let t711 = t102 * t699;
-        let t712 = t710 + t711;
-        let t713 = t102 * t706;
-        let t714 = t103 * t699;
-        let t715 = t714 - t713;
-        let t716 = t54 * t712;
-        let t717 = t53 * t709;
-        let t718 = t717 - t716;
-        let t719 = t53 * t712;
-        let t720 = t54 * t709;
-        let t721 = t719 + t720;
-        let t722 = t12 * t718;
-        let t723 = t11 * t721;
-        let t724 = t722 + t723;
-        let t725 = t11 * t718;
-        let t726 = t12 * t721;
-        let t727 = t725 - t726;
-        let t728 = t0 * t724;
-        let t729 = t1 * t727;
-        let t730 = t728 + t729;
-        let t731 = t175 * t175;
-        let t732 = t731 - t697;
-        let t733 = t180 - t664;
-        let t734 = t177 + t696;
-        let t735 = t144 * t733;
-        let t736 = t143 * t732;
-        let t737 = t735 - t736;
-        let t738 = t143 * t733;
-        let t739 = t144 * t732;
-        let t740 = t738 + t739;
-        let t741 = t103 * t737;
-        let t742 = t102 * t734;
-        let t743 = t741 - t742;
-        let t744 = t102 * t737;
-        let t745 = t103 * t734;
-        let t746 = t744 + t745;
-        let t747 = t54 * t743;
-        let t748 = t53 * t740;
-        let t749 = t747 - t748;
-        let t750 = t53 * t743;
-        let t751 = t54 * t740;
-        let t752 = t750 + t751;
-        let t753 = t12 * t749;
-        let t754 = t11 * t752;
-        let t755 = t753 - t754;
-        let t756 = t11 * t749;
-        let t757 = t12 * t752;
-        let t758 = t756 + t757;
-        let t759 = t0 * t755;
-        let t760 = t1 * t758;
-        let t761 = t759 + t760;
-        let t762 = t698 - t731;
-        let t763 = t180 + t664;
-        let t764 = t663 - t174;
-        let t765 = t764 - t700;
-        let t766 = t144 * t762;
-        let t767 = t143 * t763;
-        let t768 = t766 - t767;
-        let t769 = t143 * t762;
-        let t770 = t144 * t763;
-        let t771 = t769 + t770;
-        let t772 = t103 * t768;
-        let t773 = t102 * t765;
-        let t774 = t772 - t773;
-        let t775 = t102 * t768;
-        let t776 = t103 * t765;
-        let t777 = t775 + t776;
-        let t778 = t54 * t774;
-        let t779 = t53 * t771;
-        let t780 = t778 - t779;
-        let t781 = t53 * t774;
-        let t782 = t54 * t771;
-        let t783 = t781 + t782;
-        let t784 = t12 * t780;
-        let t785 = t11 * t783;
-        let t786 = t784 - t785;
-        let t787 = t11 * t780;
-        let t788 = t12 * t783;
-        let t789 = t787 + t788;
-        let t790 = t0 * t786;
-        let t791 = t1 * t789;
-        let t792 = t790 + t791;
-        let t793 = t144 * t150;
-        let t794 = t175 * t793;
-        let t795 = t667 - t794;
-        let t796 = t143 * t150;
-        let t797 = t175 * t796;
-        let t798 = t671 + t797;
-        let t799 = t103 * t795;
-        let t800 = t102 * t180;
-        let t801 = t799 - t800;
-        let t802 = t102 * t795;
-        let t803 = t103 * t180;
-        let t804 = t802 + t803;
-        let t805 = t54 * t801;
-        let t806 = t53 * t798;
-        let t807 = t805 + t806;
-        let t808 = t53 * t801;
-        let t809 = t54 * t798;
-        let t810 = t808 - t809;
-        let t811 = t12 * t807;
-        let t812 = t11 * t810;
-        let t813 = t811 - t812;
-        let t814 = t11 * t807;
-        let t815 = t12 * t810;
-        let t816 = t814 + t815;
-        let t817 = t0 * t813;
-        let t818 = t1 * t816;
-        let t819 = t817 + t818;
-        let t820 = t698 + t731;
-        let t821 = t144 * t820;
-        let t822 = t738 + t821;
-        let t823 = t143 * t820;
-        let t824 = t143 * t165;
-        let t825 = t144 * t165;
-        let t826 = t823 - t735;
-        let t827 = t826 * c6;
-        let t828 = t824 + t827;
-        let t829 = t822 * c6;
-        let t830 = t825 + t829;
-        let t831 = t103 * t822;
-        let t832 = t102 * t702;
-        let t833 = t831 + t832;
-        let t834 = t103 * t828;
-        let t835 = t102 * t172;
-        let t836 = t102 * t828;
-        let t837 = t103 * t172;
-        let t838 = t102 * t822;
-        let t839 = t103 * t702;
-        let t840 = t838 - t839;
-        let t841 = t840 * c5;
-        let t842 = t835 + t841;
-        let t843 = t834 + t842;
-        let t844 = t833 * c5;
-        let t845 = t837 + t844;
-        let t846 = t836 - t845;
-        let t847 = t54 * t833;
-        let t848 = t53 * t826;
-        let t849 = t848 - t847;
-        let t850 = t53 * t833;
-        let t851 = t54 * t826;
-        let t852 = t850 + t851;
-        let t853 = t54 * t843;
-        let t854 = t53 * t830;
-        let t855 = t53 * t843;
-        let t856 = t54 * t830;
-        let t857 = t852 * c3;
-        let t858 = t854 + t857;
-        let t859 = t853 + t858;
-        let t860 = t849 * c3;
-        let t861 = t840 * c4;
-        let t862 = t855 - t856;
-        let t863 = t860 - t861;
-        let t864 = t862 + t863;
-        let t865 = t852 * c4;
-        let t866 = t846 + t865;
-        let t867 = t12 * t859;
-        let t868 = t11 * t864;
-        let t869 = t867 - t868;
-        let t870 = t11 * t859;
-        let t871 = t12 * t864;
-        let t872 = t11 * t849;
-        let t873 = t12 * t852;
-        let t874 = t840 * c1;
-        let t875 = t871 - t874;
-        let t876 = t870 + t875;
-        let t877 = t873 - t872;
-        let t878 = t877 * c1;
-        let t879 = t866 + t878;
-        let t880 = t0 * t869;
-        let t881 = t1 * t876;
-        let t882 = t880 + t881;
-        let t883 = t697 + t731;
-        let t884 = t144 * t163;
-        let t885 = t169 - t884;
-        let t886 = t143 * t883;
-        let t887 = t886 - t770;
-        let t888 = t144 * t883;
-        let t889 = t767 + t888;
-        let t890 = t889 * c6;
-        let t891 = t825 + t890;
-        let t892 = t887 * c6;
-        let t893 = t824 + t892;
-        let t894 = t103 * t887;
-        let t895 = t102 * t703;
-        let t896 = t894 - t895;
-        let t897 = t103 * t891;
-        let t898 = t102 * t885;
-        let t899 = t102 * t891;
-        let t900 = t103 * t885;
-        let t901 = t102 * t887;
-        let t902 = t103 * t703;
-        let t903 = t901 + t902;
-        let t904 = t903 * c5;
-        let t905 = t898 + t904;
-        let t906 = t897 - t905;
-        let t907 = t896 * c5;
-        let t908 = t900 + t907;
-        let t909 = t899 + t908;
-        let t910 = t54 * t896;
-        let t911 = t53 * t889;
-        let t912 = t910 + t911;
-        let t913 = t53 * t896;
-        let t914 = t54 * t889;
-        let t915 = t913 - t914;
-        let t916 = t54 * t906;
-        let t917 = t53 * t893;
-        let t918 = t53 * t906;
-        let t919 = t54 * t893;
-        let t920 = t915 * c3;
-        let t921 = t917 + t920;
-        let t922 = t916 - t921;
-        let t923 = t912 * c3;
-        let t924 = t903 * c4;
-        let t925 = t918 + t919;
-        let t926 = t923 + t924;
-        let t927 = t925 + t926;
-        let t928 = t915 * c4;
-        let t929 = t909 - t928;
-        let t930 = t12 * t922;
-        let t931 = t11 * t927;
-        let t932 = t930 - t931;
-        let t933 = t11 * t922;
-        let t934 = t12 * t927;
-        let t935 = t11 * t912;
-        let t936 = t12 * t915;
-        let t937 = t903 * c1;
-        let t938 = t934 + t937;
-        let t939 = t933 + t938;
-        let t940 = t935 + t936;
-        let t941 = t940 * c1;
-        let t942 = t929 - t941;
-        let t943 = t0 * t932;
-        let t944 = t1 * t939;
-        let t945 = t943 + t944;
-        let t946 = -t30;
-        let t947 = -t4;
-        let t948 = -t204;
-        let t949 = -t290;
-        let t950 = -t77;
-        let t951 = -t121;
-        let t952 = -t445;
-        let t953 = -t131;
-        let t954 = -t672;
-        let t955 = -t740;
-        let t956 = -t771;
-        let t957 = -t893;
-        let t958 = -t172;
+        let t624 = t623 - t621;
+        let t625 = -t604;
+        let t626 = -t611;
+        let t627 = -t619;
+        let t628 = -t184;
+        let t629 = t176 * t236;
+        let t630 = t208 * t279;
+        let t631 = t210 * t280;
+        let t632 = t183 * t231;
+        let t633 = t213 * t262;
+        let t634 = t629 + t630;
+        let t635 = t632 + t633;
+        let t636 = t631 + t635;
+        let t637 = t636 - t634;
+        let t638 = t176 * t238;
+        let t639 = t208 * t287;
+        let t640 = t210 * t288;
+        let t641 = t7 * t183;
+        let t642 = t213 * t265;
+        let t643 = t638 + t639;
+        let t644 = t641 + t642;
+        let t645 = t640 - t644;
+        let t646 = t645 - t643;
+        let t647 = t208 * t295;
+        let t648 = t210 * t296;
+        let t649 = t213 * t269;
+        let t650 = t638 + t647;
+        let t651 = t641 + t649;
+        let t652 = t648 - t651;
+        let t653 = t652 - t650;
+        let t654 = t208 * t301;
+        let t655 = t210 * t304;
+        let t656 = t6 * t213;
+        let t657 = t638 + t654;
+        let t658 = t655 - t641;
+        let t659 = t658 - t657;
+        let t660 = t656 * c4;
+        let t661 = t659 - t660;
+        let t662 = t8 * t176;
+        let t663 = t8 * t210;
+        let t664 = t573 - t663;
+        let t665 = t664 * c5;
+        let t666 = t662 + t665;
+        let t667 = -t183;
         [
             qdd1,
-            t184,
-            t193,
-            t197,
-            t202,
+            t310,
+            t314,
+            t317,
+            t321,
+            t323,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            t215,
-            t230,
-            t243,
-            t255,
-            t264,
-            t276,
-            t288,
-            t307,
             t330,
-            t349,
+            t334,
+            t337,
+            t341,
+            t343,
+            t352,
+            t361,
             t368,
-            t383,
-            t414,
-            t443,
-            t470,
-            t499,
-            t524,
-            t549,
-            t570,
-            t617,
-            t662,
-            t695,
-            t730,
-            t761,
-            t792,
-            t819,
-            t882,
-            t945,
+            t372,
+            t375,
+            t379,
+            t381,
+            t388,
+            t404,
+            t423,
+            t436,
+            t441,
+            t450,
+            t457,
+            t469,
+            t498,
+            t525,
+            t539,
+            t552,
+            t566,
+            t586,
+            t595,
+            t637,
             T::ZERO,
-            t946,
-            t186,
-            t2,
-            t3,
+            t311,
+            t307,
+            t318,
+            t30,
             qdd2,
-            t5,
-            t947,
-            t948,
-            t219,
-            t234,
-            t246,
-            t52,
-            t272,
-            t284,
-            t949,
-            t311,
-            t334,
-            t353,
-            t101,
-            t411,
-            t440,
+            t34,
+            t324,
+            t331,
+            t327,
+            t338,
+            t75,
+            t60,
+            t351,
+            t360,
+            t369,
+            t365,
+            t376,
+            t127,
+            t112,
+            t392,
+            t414,
+            t426,
+            t435,
+            t444,
             t453,
-            t484,
-            t509,
-            t534,
-            t555,
-            t614,
-            t659,
-            t680,
-            t715,
-            t746,
-            t777,
-            t804,
-            t879,
-            t942,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t948,
-            t219,
-            t234,
-            t246,
-            t52,
-            t44,
-            t950,
-            t949,
-            t311,
-            t334,
-            t353,
-            t101,
-            t398,
-            t427,
-            t453,
-            t484,
-            t509,
-            t534,
-            t555,
-            t601,
+            t459,
+            t476,
+            t505,
+            t530,
+            t544,
+            t557,
+            t571,
+            t583,
+            t625,
             t646,
-            t680,
-            t715,
-            t746,
-            t777,
-            t804,
-            t866,
-            t929,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -2955,34 +2626,70 @@ impl Ur5e {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t949,
-            t311,
-            t334,
-            t353,
-            t101,
-            t95,
-            t951,
+            t331,
+            t327,
+            t338,
+            t75,
+            t60,
+            t42,
+            t362,
+            t369,
+            t365,
+            t376,
+            t127,
+            t112,
+            t397,
+            t413,
+            t426,
+            t435,
+            t444,
             t453,
-            t484,
-            t509,
-            t534,
-            t555,
-            t581,
+            t459,
+            t483,
+            t512,
+            t530,
+            t544,
+            t557,
+            t571,
+            t583,
             t626,
-            t680,
-            t715,
-            t746,
-            t777,
-            t804,
-            t846,
-            t909,
+            t653,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            T::ZERO,
+            t369,
+            t365,
+            t376,
+            t127,
+            t112,
+            t94,
+            t415,
+            t426,
+            t435,
+            t444,
+            t453,
+            t459,
+            t487,
+            t516,
+            t530,
+            t544,
+            t557,
+            t571,
+            t583,
+            t627,
+            t661,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3005,20 +2712,20 @@ impl Ur5e {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t952,
-            t474,
-            t503,
-            t528,
-            t142,
-            t134,
-            t953,
-            t954,
-            t709,
-            t955,
-            t956,
-            t798,
-            t830,
-            t957,
+            t427,
+            t418,
+            t445,
+            t172,
+            t157,
+            t488,
+            t517,
+            t534,
+            t547,
+            t561,
+            t575,
+            t585,
+            t624,
+            t666,
             T::ZERO,
             T::ZERO,
             T::ZERO,
@@ -3048,13 +2755,13 @@ impl Ur5e {
             T::ZERO,
             T::ZERO,
             T::ZERO,
-            t664,
-            t699,
-            t734,
-            t765,
-            t180,
-            t958,
-            t885,
+            t207,
+            t520,
+            t212,
+            t217,
+            t202,
+            t628,
+            t667,
         ]
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.

@@ -185,6 +185,59 @@ impl Context {
         Ok(l.finish(inputs.clone(), vec![(group, values)]))
     }
 
+    /// Y_b written straight into a program (`customised.rs`): one forward
+    /// recursion for all columns; column k is the wrench of link j with base
+    /// parameter k's slot at 1 (a few entries of w, wd, vd and U), projected
+    /// on the axis of every joint i <= j expressed in frame j (torque
+    /// z_i . n + (z_i x P_(i, j)) . f), so no column is transformed back
+    /// link by link; the drive terms add to joint j alone. A parameter
+    /// without a slot takes its arena column.
+    fn base_regressor_program(&mut self) -> Result<Program, ProgramError> {
+        let n = self.d.robot.dof();
+        let one = self.d.arena.one();
+        let zero_links: Vec<LinkParameters> = (0..n)
+            .map(|_| LinkParameters::zero(&mut self.d.arena))
+            .collect();
+        let q = self.d.inputs.q.clone();
+        let frames = frame_exprs(&mut self.d.arena, &self.d.robot, &q);
+        let inputs = self.inputs(&["q", "qd", "qdd"]);
+        let mut l = Lowering::new(&self.d.arena, &inputs);
+        let sym = &self.d.inputs;
+        let run_inputs = RunInputs {
+            qd: &sym.qd,
+            qdd: &sym.qdd,
+            gravity: sym.gravity,
+        };
+        let kinematics = l.forward(&frames, &run_inputs)?;
+        let axes = l.axes(&kinematics);
+        let arms = l.arms(&kinematics, &axes);
+        let mut columns: Vec<Vec<Value>> = Vec::with_capacity(self.base.base.len());
+        for (k, b) in self.base.base.iter().enumerate() {
+            let column = match slot_of(&b.name) {
+                Some((link, slot)) if link < n => {
+                    let mut params = zero_links[link];
+                    set_slot(&mut params, slot, one);
+                    let tau = l.link_column(&kinematics, &axes, &arms, link, &params)?;
+                    tau.into_iter().map(|t| l.output(t)).collect()
+                }
+                _ => {
+                    let mut values = Vec::with_capacity(n);
+                    for j in 0..n {
+                        let e = l.e(self.base.columns[k][j])?;
+                        values.push(l.output(e));
+                    }
+                    values
+                }
+            };
+            columns.push(column);
+        }
+        let values: Vec<Value> = (0..n)
+            .flat_map(|j| columns.iter().map(move |c| c[j]))
+            .collect();
+        let group = Group::new("out", element_names("out", values.len()));
+        Ok(l.finish(inputs.clone(), vec![(group, values)]))
+    }
+
     fn constant_inputs(&mut self, qd: bool, qdd: Option<usize>, gravity: bool) -> JointInputs {
         let a = &mut self.d.arena;
         let zero = a.zero();
@@ -244,12 +297,7 @@ impl RobotPrograms {
             "out",
             row_major(&standard_columns, n),
         )?;
-        let base_regressor = build(
-            &cx,
-            &["q", "qd", "qdd"],
-            "out",
-            row_major(&cx.base.columns, n),
-        )?;
+        let base_regressor = cx.base_regressor_program()?;
         let symbolic = cx.d.inputs.clone();
         let single = |t: &[Vec<Value>]| t[0].clone();
         let inverse_dynamics = cx.newton_euler_program(
