@@ -1,7 +1,6 @@
 //! Reading selected columns of a CSV file (with header, optionally gzip-compressed).
 
-use std::fs::File;
-use std::io::{BufReader, Read};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use flate2::read::MultiGzDecoder;
@@ -33,18 +32,15 @@ pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
         path: path.to_path_buf(),
         source,
     };
-    let mut file = File::open(path).map_err(io)?;
-    let mut magic = [0u8; 2];
-    let n = file.read(&mut magic).map_err(io)?;
-    let file = File::open(path).map_err(io)?;
-    if n == 2 && magic == [0x1f, 0x8b] {
-        read_columns_from(
-            BufReader::with_capacity(1 << 16, MultiGzDecoder::new(file)),
-            path,
-            names,
-        )
+    let bytes = std::fs::read(path).map_err(io)?;
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        let mut text = Vec::with_capacity(4 * bytes.len());
+        MultiGzDecoder::new(bytes.as_slice())
+            .read_to_end(&mut text)
+            .map_err(io)?;
+        read_columns_bytes(&text, path, names)
     } else {
-        read_columns_from(BufReader::with_capacity(1 << 16, file), path, names)
+        read_columns_bytes(&bytes, path, names)
     }
 }
 
@@ -59,10 +55,15 @@ pub fn read_columns_from(mut reader: impl Read, path: &Path, names: &[String]) -
         path: path.to_path_buf(),
         source,
     })?;
+    read_columns_bytes(&text, path, names)
+}
+
+/// [`read_columns_from`] on text in memory.
+fn read_columns_bytes(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
     if text.contains(&b'"') {
-        read_with_csv(text.as_slice(), path, names)
+        read_with_csv(text, path, names)
     } else {
-        fast::read(&text, path, names)
+        fast::read(text, path, names)
     }
 }
 
@@ -320,7 +321,16 @@ mod fast {
                 continue;
             }
             let mut count = 0;
-            for (i, field) in line.split(|&b| b == b',').enumerate() {
+            let mut from = 0;
+            for end in line
+                .iter()
+                .enumerate()
+                .filter_map(|(i, &b)| (b == b',').then_some(i))
+                .chain(std::iter::once(line.len()))
+            {
+                let field = &line[from..end];
+                from = end + 1;
+                let i = count;
                 count += 1;
                 let Some(&Some(k)) = want.get(i) else {
                     continue;
@@ -459,8 +469,10 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("robid-table-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let p = dir.join("x.csv.gz");
-        let mut enc =
-            flate2::write::GzEncoder::new(File::create(&p).unwrap(), flate2::Compression::fast());
+        let mut enc = flate2::write::GzEncoder::new(
+            std::fs::File::create(&p).unwrap(),
+            flate2::Compression::fast(),
+        );
         enc.write_all(b"t,q\n0,1\n1,2\n").unwrap();
         enc.finish().unwrap();
         let t = read_columns(&p, &names(&["q"])).unwrap();
