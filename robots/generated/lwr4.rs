@@ -202,12 +202,16 @@ impl Lwr4 {
         let c3 = T::from_f64(0.39);
         let c4 = T::from_f64(0.078);
         let c5 = T::from_f64(2.0);
+        let mut out = [T::ZERO; 490];
+        out[3] = qdd1;
+        out[83] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let t2 = t1 * qd1;
         let t3 = t0 * qdd1;
         let t4 = t1 * qdd1;
         let t5 = t0 * c0;
         let t6 = t1 * c0;
+        out[86] = t6;
         let t7 = qd1 * qd2;
         let t8 = t1 * t7;
         let t9 = t0 * t7;
@@ -228,6 +232,7 @@ impl Lwr4 {
         let t25 = qd1 * qd1;
         let t26 = t0 * t1;
         let t27 = t25 * t26;
+        out[85] = t27;
         let t28 = qd2 * qd2;
         let t29 = t0 * t0;
         let t30 = t25 * t29;
@@ -254,6 +259,7 @@ impl Lwr4 {
         let t51 = t24 + t47;
         let t52 = t23 + t51;
         let t53 = t11 + qdd3;
+        out[163] = t53;
         let (t54, t55) = q4.sin_cos();
         let t56 = t17 * t55;
         let t57 = t48 * t54;
@@ -268,6 +274,7 @@ impl Lwr4 {
         let t66 = t42 * t55;
         let t67 = t37 * t54;
         let t68 = t66 - t67;
+        out[248] = t68;
         let t69 = t42 * t54;
         let t70 = t37 * t55;
         let t71 = t69 + t70;
@@ -279,6 +286,7 @@ impl Lwr4 {
         let t77 = t65 + t73;
         let t78 = t64 + t77;
         let t79 = qdd4 - t52;
+        out[243] = t79;
         let (t80, t81) = q5.sin_cos();
         let t82 = t58 * t81;
         let t83 = t74 * t80;
@@ -307,9 +315,11 @@ impl Lwr4 {
         let t106 = t81 * t100;
         let t107 = t80 * t105;
         let t108 = t106 + t107;
+        out[328] = t108;
         let t109 = t80 * t100;
         let t110 = t81 * t105;
         let t111 = t110 - t109;
+        out[326] = t111;
         let t112 = t87 * qd5;
         let t113 = t84 * qd5;
         let t114 = t61 + qd5;
@@ -318,6 +328,7 @@ impl Lwr4 {
         let t117 = t91 - t113;
         let t118 = t117 - t90;
         let t119 = t78 + qdd5;
+        out[323] = t119;
         let (t120, t121) = q6.sin_cos();
         let t122 = t84 * t121;
         let t123 = t114 * t120;
@@ -343,6 +354,7 @@ impl Lwr4 {
         let t143 = t131 - t139;
         let t144 = t143 - t130;
         let t145 = qdd6 - t118;
+        out[403] = t145;
         let (t146, t147) = q7.sin_cos();
         let t148 = t124 * t147;
         let t149 = t140 * t146;
@@ -382,12 +394,15 @@ impl Lwr4 {
         let t183 = t157 + t179;
         let t184 = t156 + t183;
         let t185 = t144 + qdd7;
+        out[485] = t185;
         let t186 = t0 * t10;
         let t187 = t1 * t9;
         let t188 = t186 + t187;
+        out[10] = t188;
         let t189 = t1 * t1;
         let t190 = t25 * t189;
         let t191 = t30 - t190;
+        out[82] = t191;
         let t192 = t9 * c5;
         let t193 = t4 - t192;
         let t194 = t8 * c5;
@@ -395,8 +410,10 @@ impl Lwr4 {
         let t196 = t0 * t193;
         let t197 = t1 * t195;
         let t198 = t196 + t197;
+        out[12] = t198;
         let t199 = t1 * t32;
         let t200 = t17 * t20;
+        out[160] = t200;
         let t201 = t13 * t50;
         let t202 = t12 * t17;
         let t203 = t48 * t202;
@@ -409,11 +426,13 @@ impl Lwr4 {
         let t210 = t1 * t17;
         let t211 = t20 * t210;
         let t212 = t209 + t211;
+        out[20] = t212;
         let t213 = t17 * t48;
         let t214 = t20 * t48;
         let t215 = t17 * t17;
         let t216 = t20 * t20;
         let t217 = t215 - t216;
+        out[162] = t217;
         let t218 = t52 + t213;
         let t219 = t50 - t214;
         let t220 = t13 * t218;
@@ -422,9 +441,11 @@ impl Lwr4 {
         let t223 = t12 * t218;
         let t224 = t13 * t219;
         let t225 = t223 - t224;
+        out[92] = t225;
         let t226 = t0 * t222;
         let t227 = t1 * t217;
         let t228 = t227 - t226;
+        out[22] = t228;
         let t229 = t48 * t48;
         let t230 = t13 * t20;
         let t231 = t48 * t230;
@@ -432,9 +453,11 @@ impl Lwr4 {
         let t233 = t12 * t20;
         let t234 = t48 * t233;
         let t235 = t207 + t234;
+        out[93] = t235;
         let t236 = t0 * t232;
         let t237 = t1 * t53;
         let t238 = t236 + t237;
+        out[23] = t238;
         let t239 = t216 + t229;
         let t240 = t53 - t200;
         let t241 = t12 * t37;
@@ -449,9 +472,11 @@ impl Lwr4 {
         let t250 = t245 + t246;
         let t251 = t250 * c1;
         let t252 = t242 + t251;
+        out[96] = t252;
         let t253 = t0 * t249;
         let t254 = t1 * t45;
         let t255 = t253 - t254;
+        out[26] = t255;
         let t256 = t215 + t229;
         let t257 = t53 + t200;
         let t258 = t12 * t257;
@@ -464,11 +489,14 @@ impl Lwr4 {
         let t265 = t260 - t261;
         let t266 = t265 * c1;
         let t267 = t266 - t241;
+        out[98] = t267;
         let t268 = t0 * t264;
         let t269 = t1 * t42;
         let t270 = t268 - t269;
+        out[28] = t270;
         let t271 = t58 * t74;
         let t272 = t58 * t61;
+        out[240] = t272;
         let t273 = t55 * t76;
         let t274 = t54 * t58;
         let t275 = t74 * t274;
@@ -488,6 +516,7 @@ impl Lwr4 {
         let t289 = t0 * t284;
         let t290 = t1 * t280;
         let t291 = t289 - t290;
+        out[30] = t291;
         let t292 = t61 * t74;
         let t293 = t58 * t58;
         let t294 = t61 * t61;
@@ -495,6 +524,7 @@ impl Lwr4 {
         let t296 = t295 - t293;
         let t297 = t79 - t272;
         let t298 = t76 + t292;
+        out[241] = t298;
         let t299 = t55 * t297;
         let t300 = t54 * t296;
         let t301 = t299 - t300;
@@ -510,12 +540,14 @@ impl Lwr4 {
         let t311 = t0 * t307;
         let t312 = t1 * t304;
         let t313 = t311 - t312;
+        out[31] = t313;
         let t314 = t55 * t61;
         let t315 = t74 * t314;
         let t316 = t275 - t315;
         let t317 = t54 * t61;
         let t318 = t74 * t317;
         let t319 = t279 + t318;
+        out[173] = t319;
         let t320 = t13 * t316;
         let t321 = t12 * t79;
         let t322 = t320 - t321;
@@ -525,6 +557,7 @@ impl Lwr4 {
         let t326 = t0 * t322;
         let t327 = t1 * t319;
         let t328 = t326 + t327;
+        out[33] = t328;
         let t329 = t294 + t295;
         let t330 = t78 + t271;
         let t331 = t55 * t329;
@@ -549,11 +582,14 @@ impl Lwr4 {
         let t350 = t349 * c1;
         let t351 = t340 + t350;
         let t352 = t339 + t351;
+        out[106] = t352;
         let t353 = t0 * t348;
         let t354 = t1 * t55;
         let t355 = t45 * t354;
         let t356 = t353 - t355;
+        out[36] = t356;
         let t357 = t84 * t87;
+        out[325] = t357;
         let t358 = t81 * t116;
         let t359 = t80 * t84;
         let t360 = t114 * t359;
@@ -562,6 +598,7 @@ impl Lwr4 {
         let t363 = t81 * t84;
         let t364 = t114 * t363;
         let t365 = t362 + t364;
+        out[250] = t365;
         let t366 = t55 * t361;
         let t367 = t54 * t84;
         let t368 = t87 * t367;
@@ -579,6 +616,7 @@ impl Lwr4 {
         let t380 = t0 * t376;
         let t381 = t1 * t373;
         let t382 = t380 - t381;
+        out[40] = t382;
         let t383 = t84 * t114;
         let t384 = t87 * t114;
         let t385 = t84 * t84;
@@ -589,18 +627,21 @@ impl Lwr4 {
         let t390 = t389 - t385;
         let t391 = t119 + t357;
         let t392 = t116 - t384;
+        out[321] = t392;
         let t393 = t81 * t391;
         let t394 = t80 * t390;
         let t395 = t393 - t394;
         let t396 = t80 * t391;
         let t397 = t81 * t390;
         let t398 = t396 + t397;
+        out[251] = t398;
         let t399 = t55 * t395;
         let t400 = t54 * t392;
         let t401 = t399 + t400;
         let t402 = t54 * t395;
         let t403 = t55 * t392;
         let t404 = t403 - t402;
+        out[181] = t404;
         let t405 = t13 * t401;
         let t406 = t12 * t398;
         let t407 = t405 - t406;
@@ -610,18 +651,21 @@ impl Lwr4 {
         let t411 = t0 * t407;
         let t412 = t1 * t404;
         let t413 = t411 + t412;
+        out[41] = t413;
         let t414 = t81 * t87;
         let t415 = t114 * t414;
         let t416 = t360 + t415;
         let t417 = t80 * t87;
         let t418 = t114 * t417;
         let t419 = t418 - t364;
+        out[253] = t419;
         let t420 = t55 * t416;
         let t421 = t54 * t119;
         let t422 = t420 + t421;
         let t423 = t54 * t416;
         let t424 = t55 * t119;
         let t425 = t424 - t423;
+        out[183] = t425;
         let t426 = t13 * t422;
         let t427 = t12 * t419;
         let t428 = t426 - t427;
@@ -631,6 +675,7 @@ impl Lwr4 {
         let t432 = t0 * t428;
         let t433 = t1 * t425;
         let t434 = t432 + t433;
+        out[43] = t434;
         let t435 = t386 + t389;
         let t436 = t81 * t435;
         let t437 = t396 + t436;
@@ -642,6 +687,7 @@ impl Lwr4 {
         let t443 = t440 + t442;
         let t444 = t437 * c3;
         let t445 = t441 - t444;
+        out[256] = t445;
         let t446 = t55 * t437;
         let t447 = t54 * t387;
         let t448 = t446 + t447;
@@ -651,6 +697,7 @@ impl Lwr4 {
         let t452 = t54 * t443;
         let t453 = t55 * t111;
         let t454 = t452 + t453;
+        out[186] = t454;
         let t455 = t13 * t451;
         let t456 = t12 * t445;
         let t457 = t12 * t451;
@@ -667,10 +714,13 @@ impl Lwr4 {
         let t468 = t467 * c1;
         let t469 = t468 - t458;
         let t470 = t469 - t457;
+        out[116] = t470;
         let t471 = t0 * t466;
         let t472 = t1 * t454;
         let t473 = t471 + t472;
+        out[46] = t473;
         let t474 = t124 * t127;
+        out[405] = t474;
         let t475 = t121 * t142;
         let t476 = t120 * t124;
         let t477 = t140 * t476;
@@ -679,6 +729,7 @@ impl Lwr4 {
         let t480 = t121 * t124;
         let t481 = t140 * t480;
         let t482 = t479 + t481;
+        out[330] = t482;
         let t483 = t81 * t478;
         let t484 = t80 * t124;
         let t485 = t127 * t484;
@@ -687,12 +738,14 @@ impl Lwr4 {
         let t488 = t81 * t124;
         let t489 = t127 * t488;
         let t490 = t487 + t489;
+        out[260] = t490;
         let t491 = t55 * t486;
         let t492 = t54 * t482;
         let t493 = t491 + t492;
         let t494 = t54 * t486;
         let t495 = t55 * t482;
         let t496 = t495 - t494;
+        out[190] = t496;
         let t497 = t13 * t493;
         let t498 = t12 * t490;
         let t499 = t497 - t498;
@@ -702,11 +755,13 @@ impl Lwr4 {
         let t503 = t0 * t499;
         let t504 = t1 * t496;
         let t505 = t503 + t504;
+        out[50] = t505;
         let t506 = t124 * t140;
         let t507 = t127 * t140;
         let t508 = t124 * t124;
         let t509 = t127 * t127;
         let t510 = t508 - t509;
+        out[402] = t510;
         let t511 = t144 - t506;
         let t512 = t142 + t507;
         let t513 = t121 * t511;
@@ -715,18 +770,21 @@ impl Lwr4 {
         let t516 = t120 * t511;
         let t517 = t121 * t512;
         let t518 = t516 + t517;
+        out[332] = t518;
         let t519 = t81 * t515;
         let t520 = t80 * t510;
         let t521 = t519 + t520;
         let t522 = t80 * t515;
         let t523 = t81 * t510;
         let t524 = t522 - t523;
+        out[262] = t524;
         let t525 = t55 * t521;
         let t526 = t54 * t518;
         let t527 = t525 + t526;
         let t528 = t54 * t521;
         let t529 = t55 * t518;
         let t530 = t529 - t528;
+        out[192] = t530;
         let t531 = t13 * t527;
         let t532 = t12 * t524;
         let t533 = t531 - t532;
@@ -736,6 +794,7 @@ impl Lwr4 {
         let t537 = t0 * t533;
         let t538 = t1 * t530;
         let t539 = t537 + t538;
+        out[52] = t539;
         let t540 = t140 * t140;
         let t541 = t144 + t506;
         let t542 = t121 * t127;
@@ -744,18 +803,21 @@ impl Lwr4 {
         let t545 = t120 * t127;
         let t546 = t140 * t545;
         let t547 = t546 - t481;
+        out[333] = t547;
         let t548 = t81 * t544;
         let t549 = t80 * t145;
         let t550 = t548 + t549;
         let t551 = t80 * t544;
         let t552 = t81 * t145;
         let t553 = t551 - t552;
+        out[263] = t553;
         let t554 = t55 * t550;
         let t555 = t54 * t547;
         let t556 = t554 + t555;
         let t557 = t54 * t550;
         let t558 = t55 * t547;
         let t559 = t558 - t557;
+        out[193] = t559;
         let t560 = t13 * t556;
         let t561 = t12 * t553;
         let t562 = t560 - t561;
@@ -765,12 +827,14 @@ impl Lwr4 {
         let t566 = t0 * t562;
         let t567 = t1 * t559;
         let t568 = t566 + t567;
+        out[53] = t568;
         let t569 = t509 + t540;
         let t570 = t145 + t474;
         let t571 = t121 * t569;
         let t572 = t120 * t570;
         let t573 = t571 + t572;
         let t574 = t111 * t121;
+        out[336] = t574;
         let t575 = t81 * t573;
         let t576 = t80 * t511;
         let t577 = t575 + t576;
@@ -792,6 +856,7 @@ impl Lwr4 {
         let t593 = t577 * c3;
         let t594 = t589 - t593;
         let t595 = t594 - t588;
+        out[266] = t595;
         let t596 = t55 * t577;
         let t597 = t54 * t580;
         let t598 = t596 + t597;
@@ -801,6 +866,7 @@ impl Lwr4 {
         let t602 = t54 * t592;
         let t603 = t121 * t453;
         let t604 = t602 + t603;
+        out[196] = t604;
         let t605 = t13 * t601;
         let t606 = t12 * t595;
         let t607 = t12 * t601;
@@ -817,9 +883,11 @@ impl Lwr4 {
         let t618 = t617 * c1;
         let t619 = t618 - t608;
         let t620 = t619 - t607;
+        out[126] = t620;
         let t621 = t0 * t616;
         let t622 = t1 * t604;
         let t623 = t621 + t622;
+        out[56] = t623;
         let t624 = t508 + t540;
         let t625 = t474 - t145;
         let t626 = t121 * t625;
@@ -847,6 +915,7 @@ impl Lwr4 {
         let t648 = t632 * c3;
         let t649 = t644 + t648;
         let t650 = t649 - t643;
+        out[268] = t650;
         let t651 = t55 * t632;
         let t652 = t54 * t635;
         let t653 = t651 - t652;
@@ -858,6 +927,7 @@ impl Lwr4 {
         let t659 = t55 * t120;
         let t660 = t111 * t659;
         let t661 = t658 - t660;
+        out[198] = t661;
         let t662 = t13 * t657;
         let t663 = t12 * t650;
         let t664 = t12 * t657;
@@ -874,11 +944,14 @@ impl Lwr4 {
         let t675 = t674 * c1;
         let t676 = t675 - t665;
         let t677 = t664 + t676;
+        out[128] = t677;
         let t678 = t0 * t673;
         let t679 = t1 * t661;
         let t680 = t679 - t678;
+        out[58] = t680;
         let t681 = t150 * t180;
         let t682 = t150 * t153;
+        out[480] = t682;
         let t683 = t147 * t182;
         let t684 = t146 * t150;
         let t685 = t180 * t684;
@@ -895,18 +968,21 @@ impl Lwr4 {
         let t696 = t121 * t150;
         let t697 = t153 * t696;
         let t698 = t695 + t697;
+        out[340] = t698;
         let t699 = t81 * t694;
         let t700 = t80 * t690;
         let t701 = t699 - t700;
         let t702 = t80 * t694;
         let t703 = t81 * t690;
         let t704 = t702 + t703;
+        out[270] = t704;
         let t705 = t55 * t701;
         let t706 = t54 * t698;
         let t707 = t705 + t706;
         let t708 = t54 * t701;
         let t709 = t55 * t698;
         let t710 = t709 - t708;
+        out[200] = t710;
         let t711 = t13 * t707;
         let t712 = t12 * t704;
         let t713 = t711 - t712;
@@ -916,10 +992,12 @@ impl Lwr4 {
         let t717 = t0 * t713;
         let t718 = t1 * t710;
         let t719 = t717 + t718;
+        out[60] = t719;
         let t720 = t153 * t180;
         let t721 = t150 * t150;
         let t722 = t153 * t153;
         let t723 = t721 - t722;
+        out[481] = t723;
         let t724 = t184 + t681;
         let t725 = t182 - t720;
         let t726 = t147 * t724;
@@ -928,12 +1006,14 @@ impl Lwr4 {
         let t729 = t146 * t724;
         let t730 = t147 * t725;
         let t731 = t729 - t730;
+        out[411] = t731;
         let t732 = t121 * t728;
         let t733 = t120 * t723;
         let t734 = t732 + t733;
         let t735 = t120 * t728;
         let t736 = t121 * t723;
         let t737 = t736 - t735;
+        out[341] = t737;
         let t738 = t81 * t734;
         let t739 = t80 * t731;
         let t740 = t739 - t738;
@@ -946,19 +1026,23 @@ impl Lwr4 {
         let t747 = t54 * t740;
         let t748 = t55 * t737;
         let t749 = t748 - t747;
+        out[201] = t749;
         let t750 = t13 * t746;
         let t751 = t12 * t743;
         let t752 = t750 + t751;
         let t753 = t12 * t746;
         let t754 = t13 * t743;
         let t755 = t754 - t753;
+        out[131] = t755;
         let t756 = t0 * t752;
         let t757 = t1 * t749;
         let t758 = t756 + t757;
+        out[61] = t758;
         let t759 = t180 * t180;
         let t760 = t759 - t721;
         let t761 = t185 - t682;
         let t762 = t182 + t720;
+        out[482] = t762;
         let t763 = t147 * t761;
         let t764 = t146 * t760;
         let t765 = t763 - t764;
@@ -971,18 +1055,21 @@ impl Lwr4 {
         let t772 = t120 * t765;
         let t773 = t121 * t762;
         let t774 = t772 + t773;
+        out[342] = t774;
         let t775 = t81 * t771;
         let t776 = t80 * t768;
         let t777 = t775 - t776;
         let t778 = t80 * t771;
         let t779 = t81 * t768;
         let t780 = t778 + t779;
+        out[272] = t780;
         let t781 = t55 * t777;
         let t782 = t54 * t774;
         let t783 = t781 + t782;
         let t784 = t54 * t777;
         let t785 = t55 * t774;
         let t786 = t785 - t784;
+        out[202] = t786;
         let t787 = t13 * t783;
         let t788 = t12 * t780;
         let t789 = t787 - t788;
@@ -992,9 +1079,11 @@ impl Lwr4 {
         let t793 = t0 * t789;
         let t794 = t1 * t786;
         let t795 = t793 + t794;
+        out[62] = t795;
         let t796 = t722 - t759;
         let t797 = t185 + t682;
         let t798 = t681 - t184;
+        out[484] = t798;
         let t799 = t147 * t796;
         let t800 = t146 * t797;
         let t801 = t799 - t800;
@@ -1007,18 +1096,21 @@ impl Lwr4 {
         let t808 = t120 * t801;
         let t809 = t121 * t798;
         let t810 = t808 + t809;
+        out[344] = t810;
         let t811 = t81 * t807;
         let t812 = t80 * t804;
         let t813 = t811 - t812;
         let t814 = t80 * t807;
         let t815 = t81 * t804;
         let t816 = t814 + t815;
+        out[274] = t816;
         let t817 = t55 * t813;
         let t818 = t54 * t810;
         let t819 = t817 + t818;
         let t820 = t54 * t813;
         let t821 = t55 * t810;
         let t822 = t821 - t820;
+        out[204] = t822;
         let t823 = t13 * t819;
         let t824 = t12 * t816;
         let t825 = t823 - t824;
@@ -1028,30 +1120,35 @@ impl Lwr4 {
         let t829 = t0 * t825;
         let t830 = t1 * t822;
         let t831 = t829 + t830;
+        out[64] = t831;
         let t832 = t147 * t153;
         let t833 = t180 * t832;
         let t834 = t685 - t833;
         let t835 = t146 * t153;
         let t836 = t180 * t835;
         let t837 = t689 + t836;
+        out[415] = t837;
         let t838 = t121 * t834;
         let t839 = t120 * t185;
         let t840 = t838 - t839;
         let t841 = t120 * t834;
         let t842 = t121 * t185;
         let t843 = t841 + t842;
+        out[345] = t843;
         let t844 = t81 * t840;
         let t845 = t80 * t837;
         let t846 = t844 + t845;
         let t847 = t80 * t840;
         let t848 = t81 * t837;
         let t849 = t847 - t848;
+        out[275] = t849;
         let t850 = t55 * t846;
         let t851 = t54 * t843;
         let t852 = t850 + t851;
         let t853 = t54 * t846;
         let t854 = t55 * t843;
         let t855 = t854 - t853;
+        out[205] = t855;
         let t856 = t13 * t852;
         let t857 = t12 * t849;
         let t858 = t856 - t857;
@@ -1061,6 +1158,7 @@ impl Lwr4 {
         let t862 = t0 * t858;
         let t863 = t1 * t855;
         let t864 = t862 + t863;
+        out[65] = t864;
         let t865 = t722 + t759;
         let t866 = t147 * t865;
         let t867 = t766 + t866;
@@ -1072,6 +1170,7 @@ impl Lwr4 {
         let t873 = t872 - t869;
         let t874 = t867 * c4;
         let t875 = t874 - t870;
+        out[416] = t875;
         let t876 = t121 * t867;
         let t877 = t120 * t724;
         let t878 = t876 + t877;
@@ -1081,6 +1180,7 @@ impl Lwr4 {
         let t882 = t120 * t873;
         let t883 = t121 * t177;
         let t884 = t882 - t883;
+        out[346] = t884;
         let t885 = t81 * t878;
         let t886 = t80 * t871;
         let t887 = t886 - t885;
@@ -1100,6 +1200,7 @@ impl Lwr4 {
         let t901 = t887 * c3;
         let t902 = t901 - t897;
         let t903 = t896 + t902;
+        out[276] = t903;
         let t904 = t55 * t887;
         let t905 = t54 * t890;
         let t906 = t904 - t905;
@@ -1109,6 +1210,7 @@ impl Lwr4 {
         let t910 = t54 * t900;
         let t911 = t55 * t884;
         let t912 = t911 - t910;
+        out[206] = t912;
         let t913 = t13 * t909;
         let t914 = t12 * t903;
         let t915 = t12 * t909;
@@ -1128,6 +1230,7 @@ impl Lwr4 {
         let t929 = t0 * t924;
         let t930 = t1 * t912;
         let t931 = t929 + t930;
+        out[66] = t931;
         let t932 = t721 + t759;
         let t933 = t146 * t932;
         let t934 = t933 - t803;
@@ -1137,6 +1240,7 @@ impl Lwr4 {
         let t938 = t937 - t870;
         let t939 = t934 * c4;
         let t940 = t869 - t939;
+        out[417] = t940;
         let t941 = t121 * t934;
         let t942 = t120 * t725;
         let t943 = t941 - t942;
@@ -1146,6 +1250,7 @@ impl Lwr4 {
         let t947 = t120 * t938;
         let t948 = t121 * t174;
         let t949 = t947 - t948;
+        out[347] = t949;
         let t950 = t81 * t943;
         let t951 = t80 * t936;
         let t952 = t950 + t951;
@@ -1165,6 +1270,7 @@ impl Lwr4 {
         let t966 = t952 * c3;
         let t967 = t966 - t962;
         let t968 = t961 + t967;
+        out[277] = t968;
         let t969 = t55 * t952;
         let t970 = t54 * t955;
         let t971 = t969 + t970;
@@ -1174,6 +1280,7 @@ impl Lwr4 {
         let t975 = t54 * t965;
         let t976 = t55 * t949;
         let t977 = t976 - t975;
+        out[207] = t977;
         let t978 = t13 * t974;
         let t979 = t12 * t968;
         let t980 = t12 * t974;
@@ -1190,43 +1297,54 @@ impl Lwr4 {
         let t991 = t990 * c1;
         let t992 = t991 - t981;
         let t993 = t992 - t980;
+        out[137] = t993;
         let t994 = t0 * t989;
         let t995 = t1 * t977;
         let t996 = t994 + t995;
+        out[67] = t996;
         let t997 = t30 - t28;
         let t998 = t27 + qdd2;
         let t999 = t0 * t998;
         let t1000 = t1 * t997;
         let t1001 = t1000 - t999;
+        out[11] = t1001;
         let t1002 = t28 - t190;
         let t1003 = t0 * t1002;
         let t1004 = t199 + t1003;
+        out[14] = t1004;
         let t1005 = t1 * t11;
         let t1006 = t1005 - t187;
+        out[15] = t1006;
         let t1007 = t215 - t229;
         let t1008 = t50 + t214;
         let t1009 = t12 * t1007;
         let t1010 = t244 + t1009;
         let t1011 = t13 * t1007;
         let t1012 = t246 - t1011;
+        out[91] = t1012;
         let t1013 = t0 * t1010;
         let t1014 = t1 * t1008;
         let t1015 = t1013 + t1014;
         let t1016 = t229 - t216;
         let t1017 = t52 - t213;
+        out[164] = t1017;
         let t1018 = t13 * t1016;
         let t1019 = t258 + t1018;
         let t1020 = t12 * t1016;
         let t1021 = t260 - t1020;
+        out[94] = t1021;
         let t1022 = t0 * t1019;
         let t1023 = t1 * t1017;
         let t1024 = t1022 + t1023;
+        out[24] = t1024;
         let t1025 = t12 * t52;
         let t1026 = t231 + t1025;
         let t1027 = t13 * t52;
         let t1028 = t1027 - t234;
+        out[95] = t1028;
         let t1029 = t0 * t1026;
         let t1030 = t1029 - t211;
+        out[25] = t1030;
         let t1031 = t13 * t45;
         let t1032 = t12 * t42;
         let t1033 = t12 * t45;
@@ -1243,13 +1361,17 @@ impl Lwr4 {
         let t1044 = t1043 * c1;
         let t1045 = t1034 + t1044;
         let t1046 = t1033 + t1045;
+        out[97] = t1046;
         let t1047 = t0 * t1042;
+        out[27] = t1047;
         let t1048 = t1031 - t1032;
         let t1049 = t1048 * c1;
         let t1050 = t1033 + t1034;
         let t1051 = t1050 * c1;
         let t1052 = t0 * t1049;
+        out[29] = t1052;
         let t1053 = t294 - t293;
+        out[242] = t1053;
         let t1054 = t292 - t76;
         let t1055 = t55 * t330;
         let t1056 = t54 * t1054;
@@ -1266,15 +1388,18 @@ impl Lwr4 {
         let t1067 = t0 * t1063;
         let t1068 = t1 * t1060;
         let t1069 = t1067 - t1068;
+        out[32] = t1069;
         let t1070 = t295 - t294;
         let t1071 = t79 + t272;
         let t1072 = t78 - t271;
+        out[244] = t1072;
         let t1073 = t55 * t1070;
         let t1074 = t54 * t1071;
         let t1075 = t1073 + t1074;
         let t1076 = t54 * t1070;
         let t1077 = t55 * t1071;
         let t1078 = t1077 - t1076;
+        out[174] = t1078;
         let t1079 = t13 * t1075;
         let t1080 = t12 * t1072;
         let t1081 = t1079 - t1080;
@@ -1284,17 +1409,21 @@ impl Lwr4 {
         let t1085 = t0 * t1081;
         let t1086 = t1 * t1078;
         let t1087 = t1085 + t1086;
+        out[34] = t1087;
         let t1088 = t54 * t78;
         let t1089 = t315 + t1088;
         let t1090 = t55 * t78;
         let t1091 = t1090 - t318;
+        out[175] = t1091;
         let t1092 = t13 * t1089;
         let t1093 = t283 + t1092;
         let t1094 = t12 * t1089;
         let t1095 = t287 - t1094;
+        out[105] = t1095;
         let t1096 = t0 * t1093;
         let t1097 = t1 * t1091;
         let t1098 = t1096 + t1097;
+        out[35] = t1098;
         let t1099 = t293 + t294;
         let t1100 = t55 * t1072;
         let t1101 = t54 * t298;
@@ -1320,6 +1449,7 @@ impl Lwr4 {
         let t1121 = t0 * t1117;
         let t1122 = t1 * t1108;
         let t1123 = t1121 - t1122;
+        out[37] = t1123;
         let t1124 = t293 + t295;
         let t1125 = t54 * t1124;
         let t1126 = t1077 - t1125;
@@ -1341,10 +1471,12 @@ impl Lwr4 {
         let t1142 = t1141 * c1;
         let t1143 = t1142 - t1132;
         let t1144 = t1143 - t1131;
+        out[108] = t1144;
         let t1145 = t0 * t1140;
         let t1146 = t1 * t54;
         let t1147 = t45 * t1146;
         let t1148 = t1145 - t1147;
+        out[38] = t1148;
         let t1149 = t12 * t1108;
         let t1150 = t1031 - t1149;
         let t1151 = t1150 * c1;
@@ -1352,7 +1484,9 @@ impl Lwr4 {
         let t1153 = t1033 + t1152;
         let t1154 = t1153 * c1;
         let t1155 = t0 * t1151;
+        out[39] = t1155;
         let t1156 = t386 - t385;
+        out[322] = t1156;
         let t1157 = t81 * t387;
         let t1158 = t80 * t388;
         let t1159 = t1158 - t1157;
@@ -1365,15 +1499,18 @@ impl Lwr4 {
         let t1166 = t54 * t1159;
         let t1167 = t55 * t1156;
         let t1168 = t1167 - t1166;
+        out[182] = t1168;
         let t1169 = t13 * t1165;
         let t1170 = t12 * t1162;
         let t1171 = t1169 + t1170;
         let t1172 = t12 * t1165;
         let t1173 = t13 * t1162;
         let t1174 = t1173 - t1172;
+        out[112] = t1174;
         let t1175 = t0 * t1171;
         let t1176 = t1 * t1168;
         let t1177 = t1175 + t1176;
+        out[42] = t1177;
         let t1178 = t389 - t386;
         let t1179 = t357 - t119;
         let t1180 = t118 + t383;
@@ -1383,6 +1520,7 @@ impl Lwr4 {
         let t1184 = t80 * t1178;
         let t1185 = t81 * t1179;
         let t1186 = t1184 + t1185;
+        out[254] = t1186;
         let t1187 = t55 * t1183;
         let t1188 = t54 * t1180;
         let t1189 = t1187 - t1188;
@@ -1398,14 +1536,17 @@ impl Lwr4 {
         let t1199 = t0 * t1195;
         let t1200 = t1 * t1192;
         let t1201 = t1199 - t1200;
+        out[44] = t1201;
         let t1202 = t80 * t118;
         let t1203 = t415 + t1202;
         let t1204 = t81 * t118;
         let t1205 = t1204 - t418;
+        out[255] = t1205;
         let t1206 = t55 * t1203;
         let t1207 = t368 - t1206;
         let t1208 = t54 * t1203;
         let t1209 = t372 + t1208;
+        out[185] = t1209;
         let t1210 = t13 * t1207;
         let t1211 = t12 * t1205;
         let t1212 = t1210 - t1211;
@@ -1415,6 +1556,7 @@ impl Lwr4 {
         let t1216 = t0 * t1212;
         let t1217 = t1 * t1209;
         let t1218 = t1216 + t1217;
+        out[45] = t1218;
         let t1219 = t81 * t1180;
         let t1220 = t80 * t392;
         let t1221 = t1219 + t1220;
@@ -1430,10 +1572,12 @@ impl Lwr4 {
         let t1231 = t1221 * c3;
         let t1232 = t1227 + t1231;
         let t1233 = t1232 - t587;
+        out[257] = t1233;
         let t1234 = t55 * t1221;
         let t1235 = t54 * t1222;
         let t1236 = t1234 - t1235;
         let t1237 = t54 * t1230;
+        out[187] = t1237;
         let t1238 = t1127 * t1230;
         let t1239 = t12 * t1233;
         let t1240 = t1130 * t1230;
@@ -1450,9 +1594,11 @@ impl Lwr4 {
         let t1251 = t1250 * c1;
         let t1252 = t1251 - t1241;
         let t1253 = t1240 + t1252;
+        out[117] = t1253;
         let t1254 = t0 * t1249;
         let t1255 = t1146 * t1230;
         let t1256 = t1255 - t1254;
+        out[47] = t1256;
         let t1257 = t385 + t389;
         let t1258 = t80 * t1257;
         let t1259 = t1185 + t1258;
@@ -1462,6 +1608,7 @@ impl Lwr4 {
         let t1263 = t441 - t1262;
         let t1264 = t1259 * c3;
         let t1265 = t440 - t1264;
+        out[258] = t1265;
         let t1266 = t55 * t1259;
         let t1267 = t54 * t388;
         let t1268 = t1266 + t1267;
@@ -1471,6 +1618,7 @@ impl Lwr4 {
         let t1272 = t54 * t1263;
         let t1273 = t55 * t108;
         let t1274 = t1273 - t1272;
+        out[188] = t1274;
         let t1275 = t13 * t1271;
         let t1276 = t12 * t1265;
         let t1277 = t12 * t1271;
@@ -1487,17 +1635,21 @@ impl Lwr4 {
         let t1288 = t1287 * c1;
         let t1289 = t1288 - t1278;
         let t1290 = t1289 - t1277;
+        out[118] = t1290;
         let t1291 = t0 * t1286;
         let t1292 = t1 * t1274;
         let t1293 = t1291 + t1292;
+        out[48] = t1293;
         let t1294 = t1227 - t587;
         let t1295 = t584 + t1226;
         let t1296 = t1295 * c3;
         let t1297 = t1294 * c3;
+        out[259] = t1297;
         let t1298 = t55 * t1294;
         let t1299 = t54 * t102;
         let t1300 = t1298 - t1299;
         let t1301 = t54 * t1296;
+        out[189] = t1301;
         let t1302 = t1127 * t1296;
         let t1303 = t12 * t1297;
         let t1304 = t1130 * t1296;
@@ -1514,15 +1666,19 @@ impl Lwr4 {
         let t1315 = t1314 * c1;
         let t1316 = t1315 - t1305;
         let t1317 = t1304 + t1316;
+        out[119] = t1317;
         let t1318 = t0 * t1313;
         let t1319 = t1146 * t1296;
         let t1320 = t1319 - t1318;
+        out[49] = t1320;
         let t1321 = t508 - t540;
         let t1322 = t507 - t142;
+        out[401] = t1322;
         let t1323 = t120 * t1321;
         let t1324 = t579 + t1323;
         let t1325 = t121 * t1321;
         let t1326 = t1325 - t572;
+        out[331] = t1326;
         let t1327 = t81 * t1324;
         let t1328 = t80 * t1322;
         let t1329 = t1328 - t1327;
@@ -1535,32 +1691,38 @@ impl Lwr4 {
         let t1336 = t54 * t1329;
         let t1337 = t55 * t1326;
         let t1338 = t1337 - t1336;
+        out[191] = t1338;
         let t1339 = t13 * t1335;
         let t1340 = t12 * t1332;
         let t1341 = t1339 + t1340;
         let t1342 = t12 * t1335;
         let t1343 = t13 * t1332;
         let t1344 = t1343 - t1342;
+        out[121] = t1344;
         let t1345 = t0 * t1341;
         let t1346 = t1 * t1338;
         let t1347 = t1345 + t1346;
+        out[51] = t1347;
         let t1348 = t540 - t509;
         let t1349 = t121 * t1348;
         let t1350 = t1349 - t633;
         let t1351 = t120 * t1348;
         let t1352 = t626 + t1351;
+        out[334] = t1352;
         let t1353 = t81 * t1350;
         let t1354 = t80 * t541;
         let t1355 = t1353 - t1354;
         let t1356 = t80 * t1350;
         let t1357 = t81 * t541;
         let t1358 = t1356 + t1357;
+        out[264] = t1358;
         let t1359 = t55 * t1355;
         let t1360 = t54 * t1352;
         let t1361 = t1359 + t1360;
         let t1362 = t54 * t1355;
         let t1363 = t55 * t1352;
         let t1364 = t1363 - t1362;
+        out[194] = t1364;
         let t1365 = t13 * t1361;
         let t1366 = t12 * t1358;
         let t1367 = t1365 - t1366;
@@ -1570,10 +1732,12 @@ impl Lwr4 {
         let t1371 = t0 * t1367;
         let t1372 = t1 * t1364;
         let t1373 = t1371 + t1372;
+        out[54] = t1373;
         let t1374 = t120 * t144;
         let t1375 = t543 + t1374;
         let t1376 = t121 * t144;
         let t1377 = t1376 - t546;
+        out[335] = t1377;
         let t1378 = t81 * t1375;
         let t1379 = t485 - t1378;
         let t1380 = t80 * t1375;
@@ -1584,15 +1748,18 @@ impl Lwr4 {
         let t1385 = t54 * t1379;
         let t1386 = t55 * t1377;
         let t1387 = t1386 - t1385;
+        out[195] = t1387;
         let t1388 = t13 * t1384;
         let t1389 = t12 * t1381;
         let t1390 = t1388 + t1389;
         let t1391 = t12 * t1384;
         let t1392 = t13 * t1381;
         let t1393 = t1392 - t1391;
+        out[125] = t1393;
         let t1394 = t0 * t1390;
         let t1395 = t1 * t1387;
         let t1396 = t1394 + t1395;
+        out[55] = t1396;
         let t1397 = t121 * t541;
         let t1398 = t120 * t1322;
         let t1399 = t1398 - t1397;
@@ -1618,6 +1785,7 @@ impl Lwr4 {
         let t1419 = t1416 - t1418;
         let t1420 = t1409 * c3;
         let t1421 = t1417 + t1420;
+        out[267] = t1421;
         let t1422 = t55 * t1409;
         let t1423 = t54 * t1412;
         let t1424 = t1422 - t1423;
@@ -1643,19 +1811,23 @@ impl Lwr4 {
         let t1444 = t1443 * c1;
         let t1445 = t1444 - t1434;
         let t1446 = t1445 - t1433;
+        out[127] = t1446;
         let t1447 = t0 * t1442;
         let t1448 = t1 * t1430;
         let t1449 = t1447 - t1448;
+        out[57] = t1449;
         let t1450 = t81 * t1406;
         let t1451 = t1450 - t587;
         let t1452 = t80 * t1406;
         let t1453 = t584 + t1452;
         let t1454 = t1453 * c3;
         let t1455 = t1451 * c3;
+        out[269] = t1455;
         let t1456 = t55 * t1451;
         let t1457 = t54 * t1403;
         let t1458 = t1456 + t1457;
         let t1459 = t54 * t1454;
+        out[199] = t1459;
         let t1460 = t1127 * t1454;
         let t1461 = t12 * t1455;
         let t1462 = t1130 * t1454;
@@ -1672,29 +1844,35 @@ impl Lwr4 {
         let t1473 = t1472 * c1;
         let t1474 = t1473 - t1463;
         let t1475 = t1462 + t1474;
+        out[129] = t1475;
         let t1476 = t0 * t1471;
         let t1477 = t1146 * t1454;
         let t1478 = t1477 - t1476;
+        out[59] = t1478;
         let t1479 = t146 * t184;
         let t1480 = t833 + t1479;
         let t1481 = t147 * t184;
         let t1482 = t1481 - t836;
+        out[413] = t1482;
         let t1483 = t121 * t1480;
         let t1484 = t693 + t1483;
         let t1485 = t120 * t1480;
         let t1486 = t1485 - t697;
+        out[343] = t1486;
         let t1487 = t81 * t1484;
         let t1488 = t80 * t1482;
         let t1489 = t1487 + t1488;
         let t1490 = t80 * t1484;
         let t1491 = t81 * t1482;
         let t1492 = t1490 - t1491;
+        out[273] = t1492;
         let t1493 = t55 * t1489;
         let t1494 = t54 * t1486;
         let t1495 = t1493 + t1494;
         let t1496 = t54 * t1489;
         let t1497 = t55 * t1486;
         let t1498 = t1497 - t1496;
+        out[203] = t1498;
         let t1499 = t13 * t1495;
         let t1500 = t12 * t1492;
         let t1501 = t1499 - t1500;
@@ -1704,6 +1882,7 @@ impl Lwr4 {
         let t1505 = t0 * t1501;
         let t1506 = t1 * t1498;
         let t1507 = t1505 + t1506;
+        out[63] = t1507;
         let t1508 = t721 + t722;
         let t1509 = t147 * t798;
         let t1510 = t146 * t762;
@@ -1725,6 +1904,7 @@ impl Lwr4 {
         let t1526 = t120 * t1508;
         let t1527 = t1525 + t1526;
         let t1528 = t120 * t1521;
+        out[348] = t1528;
         let t1529 = t81 * t1527;
         let t1530 = t80 * t1518;
         let t1531 = t1529 + t1530;
@@ -1744,6 +1924,7 @@ impl Lwr4 {
         let t1545 = t1531 * c3;
         let t1546 = t1541 + t1545;
         let t1547 = t1540 + t1546;
+        out[278] = t1547;
         let t1548 = t55 * t1531;
         let t1549 = t54 * t1534;
         let t1550 = t1548 - t1549;
@@ -1753,6 +1934,7 @@ impl Lwr4 {
         let t1554 = t54 * t1544;
         let t1555 = t659 * t1521;
         let t1556 = t1555 - t1554;
+        out[208] = t1556;
         let t1557 = t13 * t1553;
         let t1558 = t12 * t1547;
         let t1559 = t12 * t1553;
@@ -1769,9 +1951,11 @@ impl Lwr4 {
         let t1570 = t1569 * c1;
         let t1571 = t1570 - t1560;
         let t1572 = t1571 - t1559;
+        out[138] = t1572;
         let t1573 = t0 * t1568;
         let t1574 = t1 * t1556;
         let t1575 = t1573 + t1574;
+        out[68] = t1575;
         let t1576 = t1516 + t1517;
         let t1577 = t1514 - t1515;
         let t1578 = t1577 * c4;
@@ -1780,6 +1964,7 @@ impl Lwr4 {
         let t1581 = t120 * t168;
         let t1582 = t1580 + t1581;
         let t1583 = t120 * t1578;
+        out[349] = t1583;
         let t1584 = t81 * t1582;
         let t1585 = t80 * t1577;
         let t1586 = t1584 + t1585;
@@ -1799,6 +1984,7 @@ impl Lwr4 {
         let t1600 = t1586 * c3;
         let t1601 = t1596 + t1600;
         let t1602 = t1595 + t1601;
+        out[279] = t1602;
         let t1603 = t55 * t1586;
         let t1604 = t54 * t1589;
         let t1605 = t1603 - t1604;
@@ -1808,6 +1994,7 @@ impl Lwr4 {
         let t1609 = t54 * t1599;
         let t1610 = t659 * t1578;
         let t1611 = t1610 - t1609;
+        out[209] = t1611;
         let t1612 = t13 * t1608;
         let t1613 = t12 * t1602;
         let t1614 = t12 * t1608;
@@ -1824,565 +2011,140 @@ impl Lwr4 {
         let t1625 = t1624 * c1;
         let t1626 = t1625 - t1615;
         let t1627 = t1626 - t1614;
+        out[139] = t1627;
         let t1628 = t0 * t1623;
         let t1629 = t1 * t1611;
         let t1630 = t1628 + t1629;
+        out[69] = t1630;
         let t1631 = -t1015;
+        out[21] = t1631;
         let t1632 = -t27;
+        out[80] = t1632;
         let t1633 = -t3;
+        out[81] = t1633;
         let t1634 = -t4;
+        out[84] = t1634;
         let t1635 = -t5;
+        out[88] = t1635;
         let t1636 = -t208;
+        out[90] = t1636;
         let t1637 = -t1051;
+        out[99] = t1637;
         let t1638 = -t288;
+        out[100] = t1638;
         let t1639 = -t310;
+        out[101] = t1639;
         let t1640 = -t1066;
+        out[102] = t1640;
         let t1641 = -t325;
+        out[103] = t1641;
         let t1642 = -t1084;
+        out[104] = t1642;
         let t1643 = -t1120;
+        out[107] = t1643;
         let t1644 = -t1154;
+        out[109] = t1644;
         let t1645 = -t379;
+        out[110] = t1645;
         let t1646 = -t410;
+        out[111] = t1646;
         let t1647 = -t431;
+        out[113] = t1647;
         let t1648 = -t1198;
+        out[114] = t1648;
         let t1649 = -t1215;
+        out[115] = t1649;
         let t1650 = -t502;
+        out[120] = t1650;
         let t1651 = -t536;
+        out[122] = t1651;
         let t1652 = -t565;
+        out[123] = t1652;
         let t1653 = -t1370;
+        out[124] = t1653;
         let t1654 = -t716;
+        out[130] = t1654;
         let t1655 = -t792;
+        out[132] = t1655;
         let t1656 = -t1504;
+        out[133] = t1656;
         let t1657 = -t828;
+        out[134] = t1657;
         let t1658 = -t861;
+        out[135] = t1658;
         let t1659 = -t928;
+        out[136] = t1659;
         let t1660 = -t1008;
+        out[161] = t1660;
         let t1661 = -t200;
+        out[165] = t1661;
         let t1662 = -t45;
+        out[166] = t1662;
         let t1663 = -t42;
+        out[168] = t1663;
         let t1664 = -t280;
+        out[170] = t1664;
         let t1665 = -t304;
+        out[171] = t1665;
         let t1666 = -t1060;
+        out[172] = t1666;
         let t1667 = -t334;
+        out[176] = t1667;
         let t1668 = -t1108;
+        out[177] = t1668;
         let t1669 = -t333;
+        out[178] = t1669;
         let t1670 = -t373;
+        out[180] = t1670;
         let t1671 = -t1192;
+        out[184] = t1671;
         let t1672 = -t1430;
+        out[197] = t1672;
         let t1673 = -t272;
+        out[245] = t1673;
         let t1674 = -t71;
+        out[246] = t1674;
         let t1675 = -t1162;
+        out[252] = t1675;
         let t1676 = -t1332;
+        out[261] = t1676;
         let t1677 = -t1381;
+        out[265] = t1677;
         let t1678 = -t743;
+        out[271] = t1678;
         let t1679 = -t357;
+        out[320] = t1679;
         let t1680 = -t1180;
+        out[324] = t1680;
         let t1681 = -t1406;
+        out[337] = t1681;
         let t1682 = -t629;
+        out[338] = t1682;
         let t1683 = -t474;
+        out[400] = t1683;
         let t1684 = -t541;
+        out[404] = t1684;
         let t1685 = -t137;
+        out[406] = t1685;
         let t1686 = -t134;
+        out[408] = t1686;
         let t1687 = -t690;
+        out[410] = t1687;
         let t1688 = -t768;
+        out[412] = t1688;
         let t1689 = -t804;
+        out[414] = t1689;
         let t1690 = -t1524;
+        out[418] = t1690;
         let t1691 = -t1579;
+        out[419] = t1691;
         let t1692 = -t682;
+        out[483] = t1692;
         let t1693 = -t177;
+        out[486] = t1693;
         let t1694 = -t174;
-        [
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            qdd1,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t188,
-            t1001,
-            t198,
-            T::ZERO,
-            t1004,
-            t1006,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t212,
-            t1631,
-            t228,
-            t238,
-            t1024,
-            t1030,
-            t255,
-            t1047,
-            t270,
-            t1052,
-            t291,
-            t313,
-            t1069,
-            t328,
-            t1087,
-            t1098,
-            t356,
-            t1123,
-            t1148,
-            t1155,
-            t382,
-            t413,
-            t1177,
-            t434,
-            t1201,
-            t1218,
-            t473,
-            t1256,
-            t1293,
-            t1320,
-            t505,
-            t1347,
-            t539,
-            t568,
-            t1373,
-            t1396,
-            t623,
-            t1449,
-            t680,
-            t1478,
-            t719,
-            t758,
-            t795,
-            t1507,
-            t831,
-            t864,
-            t931,
-            t996,
-            t1575,
-            t1630,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1632,
-            t1633,
-            t191,
-            qdd2,
-            t1634,
-            t27,
-            t6,
-            T::ZERO,
-            t1635,
-            T::ZERO,
-            t1636,
-            t1012,
-            t225,
-            t235,
-            t1021,
-            t1028,
-            t252,
-            t1046,
-            t267,
-            t1637,
-            t1638,
-            t1639,
-            t1640,
-            t1641,
-            t1642,
-            t1095,
-            t352,
-            t1643,
-            t1144,
-            t1644,
-            t1645,
-            t1646,
-            t1174,
-            t1647,
-            t1648,
-            t1649,
-            t470,
-            t1253,
-            t1290,
-            t1317,
-            t1650,
-            t1344,
-            t1651,
-            t1652,
-            t1653,
-            t1393,
-            t620,
-            t1446,
-            t677,
-            t1475,
-            t1654,
-            t755,
-            t1655,
-            t1656,
-            t1657,
-            t1658,
-            t1659,
-            t993,
-            t1572,
-            t1627,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t200,
-            t1660,
-            t217,
-            t53,
-            t1017,
-            t1661,
-            t1662,
-            T::ZERO,
-            t1663,
-            T::ZERO,
-            t1664,
-            t1665,
-            t1666,
-            t319,
-            t1078,
-            t1091,
-            t1667,
-            t1668,
-            t1669,
-            T::ZERO,
-            t1670,
-            t404,
-            t1168,
-            t425,
-            t1671,
-            t1209,
-            t454,
-            t1237,
-            t1274,
-            t1301,
-            t496,
-            t1338,
-            t530,
-            t559,
-            t1364,
-            t1387,
-            t604,
-            t1672,
-            t661,
-            t1459,
-            t710,
-            t749,
-            t786,
-            t1498,
-            t822,
-            t855,
-            t912,
-            t977,
-            t1556,
-            t1611,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t272,
-            t298,
-            t1053,
-            t79,
-            t1072,
-            t1673,
-            t1674,
-            T::ZERO,
-            t68,
-            T::ZERO,
-            t365,
-            t398,
-            t1675,
-            t419,
-            t1186,
-            t1205,
-            t445,
-            t1233,
-            t1265,
-            t1297,
-            t490,
-            t1676,
-            t524,
-            t553,
-            t1358,
-            t1677,
-            t595,
-            t1421,
-            t650,
-            t1455,
-            t704,
-            t1678,
-            t780,
-            t1492,
-            t816,
-            t849,
-            t903,
-            t968,
-            t1547,
-            t1602,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1679,
-            t392,
-            t1156,
-            t119,
-            t1680,
-            t357,
-            t111,
-            T::ZERO,
-            t108,
-            T::ZERO,
-            t482,
-            t1326,
-            t518,
-            t547,
-            t1352,
-            t1377,
-            t574,
-            t1681,
-            t1682,
-            T::ZERO,
-            t698,
-            t737,
-            t774,
-            t1486,
-            t810,
-            t843,
-            t884,
-            t949,
-            t1528,
-            t1583,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1683,
-            t1322,
-            t510,
-            t145,
-            t1684,
-            t474,
-            t1685,
-            T::ZERO,
-            t1686,
-            T::ZERO,
-            t1687,
-            t731,
-            t1688,
-            t1482,
-            t1689,
-            t837,
-            t875,
-            t940,
-            t1690,
-            t1691,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t682,
-            t723,
-            t762,
-            t1692,
-            t798,
-            t185,
-            t1693,
-            t1694,
-            T::ZERO,
-            T::ZERO,
-        ]
+        out[487] = t1694;
+        out
     }
     /// Base regressor Y_b(q, qd, qdd), `7 x 43` row-major: tau = Y_b * base.
     ///
@@ -2392,7 +2154,7 @@ impl Lwr4 {
     /// - `qd`: qd1 .. qd7
     /// - `qdd`: qdd1 .. qdd7
     ///
-    /// Operations: 682 mul, 486 add, 37 neg, 6 sin, 6 cos.
+    /// Operations: 683 mul, 486 add, 36 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -2407,6 +2169,10 @@ impl Lwr4 {
         let c1 = T::from_f64(0.4);
         let c2 = T::from_f64(0.39);
         let c3 = T::from_f64(0.078);
+        let c4 = T::from_f64(-9.81);
+        let mut out = [T::ZERO; 301];
+        out[0] = qdd1;
+        out[48] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -2434,10 +2200,12 @@ impl Lwr4 {
         let t30 = t20 + t21;
         let t31 = t17 - t19;
         let t32 = t17 + t19;
+        out[47] = t32;
         let t33 = t0 * c0;
         let t34 = t25 * c1;
         let t35 = t33 + t34;
         let t36 = t1 * c0;
+        out[49] = t36;
         let t37 = t27 * c1;
         let t38 = t36 - t37;
         let t39 = t3 * t35;
@@ -2466,21 +2234,25 @@ impl Lwr4 {
         let t62 = t57 - t59;
         let t63 = t58 + t60;
         let t64 = t19 + qdd3;
+        out[98] = t64;
         let t65 = t51 * t51;
         let t66 = t52 * t52;
         let t67 = t61 * t61;
         let t68 = t66 + t67;
         let t69 = t51 * t52;
+        out[94] = t69;
         let t70 = t64 + t69;
         let t71 = t64 - t69;
         let t72 = t65 + t67;
         let t73 = t52 * t61;
         let t74 = t62 + t73;
+        out[96] = t74;
         let t75 = t62 - t73;
         let t76 = t65 + t66;
         let t77 = t51 * t61;
         let t78 = t63 + t77;
         let t79 = t77 - t63;
+        out[97] = t79;
         let t80 = t5 * t44;
         let t81 = t4 * t38;
         let t82 = t4 * t44;
@@ -2505,21 +2277,25 @@ impl Lwr4 {
         let t101 = t96 - t98;
         let t102 = t97 + t99;
         let t103 = qdd4 - t63;
+        out[148] = t103;
         let t104 = t90 * t90;
         let t105 = t91 * t91;
         let t106 = t100 * t100;
         let t107 = t105 + t106;
         let t108 = t90 * t91;
+        out[144] = t108;
         let t109 = t103 + t108;
         let t110 = t103 - t108;
         let t111 = t104 + t106;
         let t112 = t91 * t100;
         let t113 = t101 + t112;
+        out[146] = t113;
         let t114 = t101 - t112;
         let t115 = t104 + t105;
         let t116 = t90 * t100;
         let t117 = t102 + t116;
         let t118 = t116 - t102;
+        out[147] = t118;
         let t119 = t109 * c2;
         let t120 = t84 + t119;
         let t121 = t111 * c2;
@@ -2550,6 +2326,7 @@ impl Lwr4 {
         let t146 = t141 + t143;
         let t147 = t142 - t144;
         let t148 = t102 + qdd5;
+        out[198] = t148;
         let t149 = t135 * t135;
         let t150 = t136 * t136;
         let t151 = t145 * t145;
@@ -2565,6 +2342,7 @@ impl Lwr4 {
         let t161 = t135 * t145;
         let t162 = t161 - t147;
         let t163 = t147 + t161;
+        out[197] = t163;
         let t164 = t9 * t129;
         let t165 = t8 * t122;
         let t166 = t8 * t129;
@@ -2589,6 +2367,7 @@ impl Lwr4 {
         let t185 = t180 + t182;
         let t186 = t181 - t183;
         let t187 = qdd6 - t147;
+        out[248] = t187;
         let t188 = t174 * t174;
         let t189 = t175 * t175;
         let t190 = t184 * t184;
@@ -2604,6 +2383,7 @@ impl Lwr4 {
         let t200 = t174 * t184;
         let t201 = t200 - t186;
         let t202 = t186 + t200;
+        out[247] = t202;
         let t203 = t193 * c3;
         let t204 = t168 + t203;
         let t205 = t195 * c3;
@@ -2634,21 +2414,25 @@ impl Lwr4 {
         let t230 = t225 - t227;
         let t231 = t226 + t228;
         let t232 = t186 + qdd7;
+        out[298] = t232;
         let t233 = t219 * t219;
         let t234 = t220 * t220;
         let t235 = t229 * t229;
         let t236 = t234 + t235;
         let t237 = t219 * t220;
+        out[294] = t237;
         let t238 = t232 + t237;
         let t239 = t232 - t237;
         let t240 = t233 + t235;
         let t241 = t220 * t229;
         let t242 = t230 + t241;
+        out[296] = t242;
         let t243 = t230 - t241;
         let t244 = t233 + t234;
         let t245 = t219 * t229;
         let t246 = t231 + t245;
         let t247 = t245 - t231;
+        out[297] = t247;
         let t248 = t0 * t3;
         let t249 = t0 * t2;
         let t250 = t5 * t248;
@@ -2814,67 +2598,87 @@ impl Lwr4 {
         let t410 = t30 - t27;
         let t411 = t23 - t30;
         let t412 = t27 - t23;
+        out[45] = t412;
         let t413 = t0 * t18;
         let t414 = t1 * t17;
         let t415 = t413 + t414;
+        out[1] = t415;
         let t416 = -t24;
+        out[44] = t416;
         let t417 = t0 * t31;
         let t418 = t1 * t29;
         let t419 = t418 - t417;
+        out[2] = t419;
         let t420 = t0 * t26;
         let t421 = t1 * t411;
         let t422 = t420 + t421;
+        out[3] = t422;
         let t423 = -t28;
+        out[46] = t423;
         let t424 = t0 * t410;
         let t425 = t1 * t25;
         let t426 = t424 - t425;
+        out[4] = t426;
         let t427 = t0 * t16;
         let t428 = t427 - t414;
-        let t429 = -t33;
+        out[5] = t428;
+        let t429 = t0 * c4;
+        out[50] = t429;
         let t430 = t76 - t72;
         let t431 = t68 - t76;
         let t432 = t72 - t68;
+        out[95] = t432;
         let t433 = t62 * t248;
         let t434 = t77 * t249;
         let t435 = t1 * t69;
         let t436 = t435 - t434;
         let t437 = t433 + t436;
+        out[8] = t437;
         let t438 = t2 * t62;
         let t439 = t3 * t77;
         let t440 = t438 + t439;
         let t441 = -t440;
+        out[51] = t441;
         let t442 = t78 * t248;
         let t443 = t75 * t249;
         let t444 = t1 * t432;
         let t445 = t444 - t443;
         let t446 = t445 - t442;
+        out[9] = t446;
         let t447 = t2 * t78;
         let t448 = t3 * t75;
         let t449 = t447 - t448;
+        out[52] = t449;
         let t450 = t71 * t248;
         let t451 = t249 * t431;
         let t452 = t1 * t74;
         let t453 = t452 - t451;
         let t454 = t450 + t453;
+        out[10] = t454;
         let t455 = t2 * t71;
         let t456 = t3 * t431;
         let t457 = t455 + t456;
         let t458 = -t457;
+        out[53] = t458;
         let t459 = t248 * t430;
         let t460 = t70 * t249;
         let t461 = t1 * t79;
         let t462 = t461 - t460;
         let t463 = t459 + t462;
+        out[11] = t463;
         let t464 = t2 * t430;
         let t465 = t3 * t70;
         let t466 = t464 + t465;
         let t467 = -t466;
+        out[54] = t467;
         let t468 = t73 * t248;
         let t469 = t1 * t64;
         let t470 = t434 + t469;
         let t471 = t470 - t468;
+        out[12] = t471;
         let t472 = t2 * t73;
         let t473 = t439 + t472;
+        out[55] = t473;
         let t474 = t68 * t249;
         let t475 = t38 * t249;
         let t476 = t1 * t46;
@@ -2882,12 +2686,15 @@ impl Lwr4 {
         let t478 = t475 - t476;
         let t479 = t477 * c1;
         let t480 = t478 + t479;
+        out[13] = t480;
         let t481 = t3 * t68;
         let t482 = t3 * t38;
         let t483 = t455 + t481;
         let t484 = t483 * c1;
         let t485 = t482 + t484;
+        out[56] = t485;
         let t486 = -t46;
+        out[99] = t486;
         let t487 = t38 * t248;
         let t488 = t72 * t248;
         let t489 = t1 * t44;
@@ -2895,29 +2702,36 @@ impl Lwr4 {
         let t491 = t460 + t488;
         let t492 = t491 * c1;
         let t493 = t490 + t492;
+        out[14] = t493;
         let t494 = t2 * t38;
         let t495 = t2 * t72;
         let t496 = t465 - t495;
         let t497 = t496 * c1;
         let t498 = t497 - t494;
+        out[57] = t498;
         let t499 = -t44;
+        out[100] = t499;
         let t500 = t115 - t111;
         let t501 = t107 - t115;
         let t502 = t111 - t107;
+        out[145] = t502;
         let t503 = t101 * t254;
         let t504 = t116 * t255;
         let t505 = t108 * t249;
         let t506 = t504 + t505;
         let t507 = t503 - t506;
+        out[15] = t507;
         let t508 = t101 * t256;
         let t509 = t116 * t257;
         let t510 = t3 * t108;
         let t511 = t509 - t510;
         let t512 = t511 - t508;
+        out[58] = t512;
         let t513 = t4 * t101;
         let t514 = t5 * t116;
         let t515 = t513 + t514;
         let t516 = -t515;
+        out[101] = t516;
         let t517 = t117 * t254;
         let t518 = t114 * t255;
         let t519 = t249 * t502;
@@ -2928,48 +2742,60 @@ impl Lwr4 {
         let t524 = t3 * t502;
         let t525 = t523 - t524;
         let t526 = t522 + t525;
+        out[59] = t526;
         let t527 = t4 * t117;
         let t528 = t5 * t114;
         let t529 = t527 - t528;
+        out[102] = t529;
         let t530 = -t521;
+        out[16] = t530;
         let t531 = t110 * t254;
         let t532 = t255 * t501;
         let t533 = t113 * t249;
         let t534 = t532 + t533;
         let t535 = t531 - t534;
+        out[17] = t535;
         let t536 = t110 * t256;
         let t537 = t257 * t501;
         let t538 = t3 * t113;
         let t539 = t537 - t538;
         let t540 = t539 - t536;
+        out[60] = t540;
         let t541 = t4 * t110;
         let t542 = t5 * t501;
         let t543 = t541 + t542;
         let t544 = -t543;
+        out[103] = t544;
         let t545 = t254 * t500;
         let t546 = t109 * t255;
         let t547 = t118 * t249;
         let t548 = t546 + t547;
         let t549 = t545 - t548;
+        out[18] = t549;
         let t550 = t256 * t500;
         let t551 = t109 * t257;
         let t552 = t3 * t118;
         let t553 = t551 - t552;
         let t554 = t553 - t550;
+        out[61] = t554;
         let t555 = t4 * t500;
         let t556 = t5 * t109;
         let t557 = t555 + t556;
         let t558 = -t557;
+        out[104] = t558;
         let t559 = t112 * t254;
         let t560 = t103 * t249;
         let t561 = t504 - t560;
         let t562 = t561 - t559;
+        out[19] = t562;
         let t563 = t112 * t256;
         let t564 = t3 * t103;
         let t565 = t509 + t564;
         let t566 = t563 - t565;
+        out[62] = t566;
         let t567 = t4 * t112;
         let t568 = t514 + t567;
+        out[105] = t568;
         let t569 = t107 * t318;
         let t570 = t46 * t255;
         let t571 = t110 * t319;
@@ -2980,6 +2806,7 @@ impl Lwr4 {
         let t576 = t572 - t570;
         let t577 = t575 * c1;
         let t578 = t576 + t577;
+        out[20] = t578;
         let t579 = t107 * t320;
         let t580 = t46 * t257;
         let t581 = t110 * t321;
@@ -2990,9 +2817,12 @@ impl Lwr4 {
         let t586 = t580 + t582;
         let t587 = t585 * c1;
         let t588 = t586 + t587;
+        out[63] = t588;
         let t589 = t5 * t46;
         let t590 = -t589;
+        out[106] = t590;
         let t591 = -t85;
+        out[149] = t591;
         let t592 = t46 * t254;
         let t593 = t109 * t318;
         let t594 = t111 * t319;
@@ -3003,6 +2833,7 @@ impl Lwr4 {
         let t599 = t593 - t598;
         let t600 = t599 * c1;
         let t601 = t597 + t600;
+        out[21] = t601;
         let t602 = t46 * t256;
         let t603 = t109 * t320;
         let t604 = t111 * t321;
@@ -3013,72 +2844,91 @@ impl Lwr4 {
         let t609 = t603 + t608;
         let t610 = t609 * c1;
         let t611 = t607 + t610;
+        out[64] = t611;
         let t612 = t4 * t46;
+        out[107] = t612;
         let t613 = -t84;
+        out[150] = t613;
         let t614 = t160 - t156;
         let t615 = t152 - t160;
         let t616 = t156 - t152;
+        out[195] = t616;
         let t617 = t146 * t262;
         let t618 = t161 * t263;
         let t619 = t153 * t255;
         let t620 = t618 + t619;
         let t621 = t617 - t620;
+        out[22] = t621;
         let t622 = t146 * t268;
         let t623 = t161 * t269;
         let t624 = t153 * t257;
         let t625 = t623 + t624;
         let t626 = t625 - t622;
+        out[65] = t626;
         let t627 = t146 * t270;
         let t628 = t161 * t271;
         let t629 = t5 * t153;
         let t630 = t628 - t629;
         let t631 = t630 - t627;
+        out[108] = t631;
         let t632 = t6 * t146;
         let t633 = t7 * t161;
         let t634 = t632 + t633;
+        out[151] = t634;
         let t635 = -t153;
+        out[194] = t635;
         let t636 = t162 * t262;
         let t637 = t159 * t263;
         let t638 = t255 * t616;
         let t639 = t638 - t637;
         let t640 = t639 - t636;
+        out[23] = t640;
         let t641 = t162 * t268;
         let t642 = t159 * t269;
         let t643 = t257 * t616;
         let t644 = t642 - t643;
         let t645 = t641 + t644;
+        out[66] = t645;
         let t646 = t162 * t270;
         let t647 = t159 * t271;
         let t648 = t5 * t616;
         let t649 = t647 + t648;
         let t650 = t646 + t649;
+        out[109] = t650;
         let t651 = t6 * t162;
         let t652 = t7 * t159;
         let t653 = t652 - t651;
+        out[152] = t653;
         let t654 = t155 * t262;
         let t655 = t263 * t615;
         let t656 = t158 * t255;
         let t657 = t655 + t656;
         let t658 = t654 - t657;
+        out[24] = t658;
         let t659 = t155 * t268;
         let t660 = t269 * t615;
         let t661 = t158 * t257;
         let t662 = t660 + t661;
         let t663 = t662 - t659;
+        out[67] = t663;
         let t664 = t155 * t270;
         let t665 = t271 * t615;
         let t666 = t5 * t158;
         let t667 = t665 - t666;
         let t668 = t667 - t664;
+        out[110] = t668;
         let t669 = t6 * t155;
         let t670 = t7 * t615;
         let t671 = t669 + t670;
+        out[153] = t671;
         let t672 = -t158;
+        out[196] = t672;
         let t673 = t262 * t614;
         let t674 = t154 * t263;
         let t675 = t163 * t255;
         let t676 = t674 + t675;
         let t677 = t673 + t676;
+        out[25] = t677;
         let t678 = t268 * t614;
         let t679 = t154 * t269;
         let t680 = t163 * t257;
@@ -3089,14 +2939,18 @@ impl Lwr4 {
         let t685 = t5 * t163;
         let t686 = t685 - t684;
         let t687 = t686 - t683;
+        out[111] = t687;
         let t688 = t6 * t614;
         let t689 = t7 * t154;
         let t690 = t688 - t689;
+        out[154] = t690;
         let t691 = -t682;
+        out[68] = t691;
         let t692 = t157 * t262;
         let t693 = t148 * t255;
         let t694 = t618 + t693;
         let t695 = t692 + t694;
+        out[26] = t695;
         let t696 = t157 * t268;
         let t697 = t148 * t257;
         let t698 = t623 + t697;
@@ -3105,9 +2959,12 @@ impl Lwr4 {
         let t701 = t5 * t148;
         let t702 = t701 - t628;
         let t703 = t702 - t700;
+        out[112] = t703;
         let t704 = t6 * t157;
         let t705 = t704 - t633;
+        out[155] = t705;
         let t706 = -t699;
+        out[69] = t706;
         let t707 = t152 * t332;
         let t708 = t122 * t263;
         let t709 = t155 * t333;
@@ -3118,6 +2975,7 @@ impl Lwr4 {
         let t714 = t712 + t713;
         let t715 = t711 * c1;
         let t716 = t714 - t715;
+        out[27] = t716;
         let t717 = t152 * t344;
         let t718 = t122 * t269;
         let t719 = t155 * t345;
@@ -3128,6 +2986,7 @@ impl Lwr4 {
         let t724 = t722 + t723;
         let t725 = t721 * c1;
         let t726 = t724 - t725;
+        out[70] = t726;
         let t727 = t152 * t271;
         let t728 = t122 * t271;
         let t729 = t5 * t130;
@@ -3135,12 +2994,15 @@ impl Lwr4 {
         let t731 = t728 - t729;
         let t732 = t730 * c2;
         let t733 = t731 + t732;
+        out[113] = t733;
         let t734 = t7 * t152;
         let t735 = t7 * t122;
         let t736 = t669 + t734;
         let t737 = t736 * c2;
         let t738 = t735 - t737;
+        out[156] = t738;
         let t739 = -t130;
+        out[199] = t739;
         let t740 = t122 * t262;
         let t741 = t154 * t332;
         let t742 = t156 * t333;
@@ -3161,6 +3023,7 @@ impl Lwr4 {
         let t757 = t755 + t756;
         let t758 = t754 * c1;
         let t759 = t757 - t758;
+        out[71] = t759;
         let t760 = t122 * t270;
         let t761 = t156 * t270;
         let t762 = t5 * t129;
@@ -3168,55 +3031,69 @@ impl Lwr4 {
         let t764 = t684 - t761;
         let t765 = t764 * c2;
         let t766 = t763 + t765;
+        out[114] = t766;
         let t767 = t6 * t122;
         let t768 = t6 * t156;
         let t769 = t689 + t768;
         let t770 = t769 * c2;
         let t771 = t770 - t767;
+        out[157] = t771;
         let t772 = -t749;
+        out[28] = t772;
         let t773 = -t129;
+        out[200] = t773;
         let t774 = t199 - t195;
         let t775 = t191 - t199;
         let t776 = t195 - t191;
+        out[245] = t776;
         let t777 = t185 * t276;
         let t778 = t200 * t277;
         let t779 = t192 * t263;
         let t780 = t778 - t779;
         let t781 = t777 + t780;
+        out[29] = t781;
         let t782 = t185 * t282;
         let t783 = t200 * t283;
         let t784 = t192 * t269;
         let t785 = t783 + t784;
         let t786 = t785 - t782;
+        out[72] = t786;
         let t787 = t185 * t288;
         let t788 = t200 * t289;
         let t789 = t192 * t271;
         let t790 = t788 + t789;
         let t791 = t787 + t790;
+        out[115] = t791;
         let t792 = t185 * t290;
         let t793 = t200 * t291;
         let t794 = t7 * t192;
         let t795 = t794 - t793;
         let t796 = t792 + t795;
+        out[158] = t796;
         let t797 = t8 * t185;
         let t798 = t9 * t200;
         let t799 = t797 + t798;
+        out[201] = t799;
         let t800 = -t192;
+        out[244] = t800;
         let t801 = t201 * t276;
         let t802 = t198 * t277;
         let t803 = t263 * t776;
         let t804 = t802 + t803;
         let t805 = t804 - t801;
+        out[30] = t805;
         let t806 = t201 * t282;
         let t807 = t198 * t283;
         let t808 = t269 * t776;
         let t809 = t807 - t808;
         let t810 = t806 + t809;
+        out[73] = t810;
         let t811 = t201 * t288;
         let t812 = t198 * t289;
         let t813 = t271 * t776;
         let t814 = t812 - t813;
         let t815 = t814 - t811;
+        out[116] = t815;
         let t816 = t201 * t290;
         let t817 = t198 * t291;
         let t818 = t7 * t776;
@@ -3225,36 +3102,45 @@ impl Lwr4 {
         let t821 = t8 * t201;
         let t822 = t9 * t198;
         let t823 = t822 - t821;
+        out[202] = t823;
         let t824 = -t820;
+        out[159] = t824;
         let t825 = t194 * t276;
         let t826 = t277 * t775;
         let t827 = t197 * t263;
         let t828 = t826 - t827;
         let t829 = t825 + t828;
+        out[31] = t829;
         let t830 = t194 * t282;
         let t831 = t283 * t775;
         let t832 = t197 * t269;
         let t833 = t831 + t832;
         let t834 = t833 - t830;
+        out[74] = t834;
         let t835 = t194 * t288;
         let t836 = t289 * t775;
         let t837 = t197 * t271;
         let t838 = t836 + t837;
         let t839 = t835 + t838;
+        out[117] = t839;
         let t840 = t194 * t290;
         let t841 = t291 * t775;
         let t842 = t7 * t197;
         let t843 = t842 - t841;
         let t844 = t840 + t843;
+        out[160] = t844;
         let t845 = t8 * t194;
         let t846 = t9 * t775;
         let t847 = t845 + t846;
+        out[203] = t847;
         let t848 = -t197;
+        out[246] = t848;
         let t849 = t276 * t774;
         let t850 = t193 * t277;
         let t851 = t202 * t263;
         let t852 = t851 - t850;
         let t853 = t849 + t852;
+        out[32] = t853;
         let t854 = t282 * t774;
         let t855 = t193 * t283;
         let t856 = t202 * t269;
@@ -3265,19 +3151,24 @@ impl Lwr4 {
         let t861 = t202 * t271;
         let t862 = t860 + t861;
         let t863 = t859 - t862;
+        out[118] = t863;
         let t864 = t290 * t774;
         let t865 = t193 * t291;
         let t866 = t7 * t202;
         let t867 = t865 - t866;
         let t868 = t864 + t867;
+        out[161] = t868;
         let t869 = t8 * t774;
         let t870 = t9 * t193;
         let t871 = t869 - t870;
+        out[204] = t871;
         let t872 = -t858;
+        out[75] = t872;
         let t873 = t196 * t276;
         let t874 = t187 * t263;
         let t875 = t874 - t778;
         let t876 = t873 + t875;
+        out[33] = t876;
         let t877 = t196 * t282;
         let t878 = t187 * t269;
         let t879 = t783 + t878;
@@ -3286,13 +3177,17 @@ impl Lwr4 {
         let t882 = t187 * t271;
         let t883 = t788 + t882;
         let t884 = t881 - t883;
+        out[119] = t884;
         let t885 = t196 * t290;
         let t886 = t7 * t187;
         let t887 = t793 - t886;
         let t888 = t885 + t887;
+        out[162] = t888;
         let t889 = t8 * t196;
         let t890 = t889 - t798;
+        out[205] = t890;
         let t891 = -t880;
+        out[76] = t891;
         let t892 = t191 * t351;
         let t893 = t130 * t277;
         let t894 = t194 * t353;
@@ -3302,6 +3197,7 @@ impl Lwr4 {
         let t898 = t895 + t896;
         let t899 = t894 - t898;
         let t900 = t897 + t899;
+        out[34] = t900;
         let t901 = t191 * t359;
         let t902 = t130 * t283;
         let t903 = t194 * t361;
@@ -3311,6 +3207,7 @@ impl Lwr4 {
         let t907 = t904 - t905;
         let t908 = t907 - t903;
         let t909 = t908 - t906;
+        out[77] = t909;
         let t910 = t191 * t362;
         let t911 = t130 * t289;
         let t912 = t194 * t363;
@@ -3321,6 +3218,7 @@ impl Lwr4 {
         let t917 = t913 - t911;
         let t918 = t916 * c2;
         let t919 = t917 - t918;
+        out[120] = t919;
         let t920 = t191 * t364;
         let t921 = t130 * t291;
         let t922 = t194 * t365;
@@ -3331,9 +3229,12 @@ impl Lwr4 {
         let t927 = t921 + t923;
         let t928 = t926 * c2;
         let t929 = t927 + t928;
+        out[163] = t929;
         let t930 = t9 * t130;
         let t931 = -t930;
+        out[206] = t931;
         let t932 = -t169;
+        out[249] = t932;
         let t933 = t130 * t276;
         let t934 = t193 * t351;
         let t935 = t195 * t353;
@@ -3343,6 +3244,7 @@ impl Lwr4 {
         let t939 = t936 + t937;
         let t940 = t935 + t939;
         let t941 = t938 - t940;
+        out[35] = t941;
         let t942 = t130 * t282;
         let t943 = t193 * t359;
         let t944 = t195 * t361;
@@ -3352,6 +3254,7 @@ impl Lwr4 {
         let t948 = t945 - t946;
         let t949 = t944 + t948;
         let t950 = t947 + t949;
+        out[78] = t950;
         let t951 = t130 * t288;
         let t952 = t193 * t362;
         let t953 = t195 * t363;
@@ -3362,6 +3265,7 @@ impl Lwr4 {
         let t958 = t952 + t957;
         let t959 = t958 * c2;
         let t960 = t956 + t959;
+        out[121] = t960;
         let t961 = t130 * t290;
         let t962 = t193 * t364;
         let t963 = t195 * t365;
@@ -3372,138 +3276,169 @@ impl Lwr4 {
         let t968 = t962 + t967;
         let t969 = t968 * c2;
         let t970 = t966 + t969;
+        out[164] = t970;
         let t971 = t8 * t130;
+        out[207] = t971;
         let t972 = -t168;
+        out[250] = t972;
         let t973 = t244 - t240;
         let t974 = t236 - t244;
         let t975 = t240 - t236;
+        out[295] = t975;
         let t976 = t230 * t296;
         let t977 = t245 * t297;
         let t978 = t237 * t277;
         let t979 = t978 - t977;
         let t980 = t976 + t979;
+        out[36] = t980;
         let t981 = t230 * t302;
         let t982 = t245 * t303;
         let t983 = t237 * t283;
         let t984 = t982 + t983;
         let t985 = t981 + t984;
+        out[79] = t985;
         let t986 = t230 * t308;
         let t987 = t245 * t309;
         let t988 = t237 * t289;
         let t989 = t987 + t988;
         let t990 = t986 + t989;
+        out[122] = t990;
         let t991 = t230 * t314;
         let t992 = t245 * t315;
         let t993 = t237 * t291;
         let t994 = t992 - t993;
         let t995 = t991 + t994;
+        out[165] = t995;
         let t996 = t230 * t316;
         let t997 = t245 * t317;
         let t998 = t9 * t237;
         let t999 = t998 - t997;
         let t1000 = t996 + t999;
+        out[208] = t1000;
         let t1001 = t10 * t230;
         let t1002 = t11 * t245;
         let t1003 = t1001 + t1002;
         let t1004 = -t1003;
+        out[251] = t1004;
         let t1005 = t246 * t296;
         let t1006 = t243 * t297;
         let t1007 = t277 * t975;
         let t1008 = t1007 - t1006;
         let t1009 = t1008 - t1005;
+        out[37] = t1009;
         let t1010 = t246 * t302;
         let t1011 = t243 * t303;
         let t1012 = t283 * t975;
         let t1013 = t1011 + t1012;
         let t1014 = t1013 - t1010;
+        out[80] = t1014;
         let t1015 = t246 * t308;
         let t1016 = t243 * t309;
         let t1017 = t289 * t975;
         let t1018 = t1016 + t1017;
         let t1019 = t1018 - t1015;
+        out[123] = t1019;
         let t1020 = t246 * t314;
         let t1021 = t243 * t315;
         let t1022 = t291 * t975;
         let t1023 = t1021 - t1022;
         let t1024 = t1023 - t1020;
+        out[166] = t1024;
         let t1025 = t246 * t316;
         let t1026 = t243 * t317;
         let t1027 = t9 * t975;
         let t1028 = t1027 - t1026;
         let t1029 = t1028 - t1025;
+        out[209] = t1029;
         let t1030 = t10 * t246;
         let t1031 = t11 * t243;
         let t1032 = t1030 - t1031;
+        out[252] = t1032;
         let t1033 = t239 * t296;
         let t1034 = t297 * t974;
         let t1035 = t242 * t277;
         let t1036 = t1035 - t1034;
         let t1037 = t1033 + t1036;
+        out[38] = t1037;
         let t1038 = t239 * t302;
         let t1039 = t303 * t974;
         let t1040 = t242 * t283;
         let t1041 = t1039 + t1040;
         let t1042 = t1038 + t1041;
+        out[81] = t1042;
         let t1043 = t239 * t308;
         let t1044 = t309 * t974;
         let t1045 = t242 * t289;
         let t1046 = t1044 + t1045;
         let t1047 = t1043 + t1046;
+        out[124] = t1047;
         let t1048 = t239 * t314;
         let t1049 = t315 * t974;
         let t1050 = t242 * t291;
         let t1051 = t1049 - t1050;
         let t1052 = t1048 + t1051;
+        out[167] = t1052;
         let t1053 = t239 * t316;
         let t1054 = t317 * t974;
         let t1055 = t9 * t242;
         let t1056 = t1055 - t1054;
         let t1057 = t1053 + t1056;
+        out[210] = t1057;
         let t1058 = t10 * t239;
         let t1059 = t11 * t974;
         let t1060 = t1058 + t1059;
         let t1061 = -t1060;
+        out[253] = t1061;
         let t1062 = t296 * t973;
         let t1063 = t238 * t297;
         let t1064 = t247 * t277;
         let t1065 = t1064 - t1063;
         let t1066 = t1062 + t1065;
+        out[39] = t1066;
         let t1067 = t302 * t973;
         let t1068 = t238 * t303;
         let t1069 = t247 * t283;
         let t1070 = t1068 + t1069;
         let t1071 = t1067 + t1070;
+        out[82] = t1071;
         let t1072 = t308 * t973;
         let t1073 = t238 * t309;
         let t1074 = t247 * t289;
         let t1075 = t1073 + t1074;
         let t1076 = t1072 + t1075;
+        out[125] = t1076;
         let t1077 = t314 * t973;
         let t1078 = t238 * t315;
         let t1079 = t247 * t291;
         let t1080 = t1078 - t1079;
         let t1081 = t1077 + t1080;
+        out[168] = t1081;
         let t1082 = t316 * t973;
         let t1083 = t238 * t317;
         let t1084 = t9 * t247;
         let t1085 = t1084 - t1083;
         let t1086 = t1082 + t1085;
+        out[211] = t1086;
         let t1087 = t10 * t973;
         let t1088 = t11 * t238;
         let t1089 = t1087 + t1088;
         let t1090 = -t1089;
+        out[254] = t1090;
         let t1091 = t241 * t296;
         let t1092 = t232 * t277;
         let t1093 = t977 + t1092;
         let t1094 = t1093 - t1091;
+        out[40] = t1094;
         let t1095 = t241 * t302;
         let t1096 = t232 * t283;
         let t1097 = t1096 - t982;
         let t1098 = t1097 - t1095;
+        out[83] = t1098;
         let t1099 = t241 * t308;
         let t1100 = t232 * t289;
         let t1101 = t1100 - t987;
         let t1102 = t1101 - t1099;
+        out[126] = t1102;
         let t1103 = t241 * t314;
         let t1104 = t232 * t291;
         let t1105 = t992 + t1104;
@@ -3512,9 +3447,12 @@ impl Lwr4 {
         let t1108 = t9 * t232;
         let t1109 = t997 + t1108;
         let t1110 = t1109 - t1107;
+        out[212] = t1110;
         let t1111 = t10 * t241;
         let t1112 = t1002 + t1111;
+        out[255] = t1112;
         let t1113 = -t1106;
+        out[169] = t1113;
         let t1114 = t236 * t374;
         let t1115 = t206 * t297;
         let t1116 = t239 * t375;
@@ -3524,6 +3462,7 @@ impl Lwr4 {
         let t1120 = t1118 - t1117;
         let t1121 = t1116 + t1120;
         let t1122 = t1119 + t1121;
+        out[41] = t1122;
         let t1123 = t236 * t384;
         let t1124 = t206 * t303;
         let t1125 = t239 * t385;
@@ -3533,6 +3472,7 @@ impl Lwr4 {
         let t1129 = t1126 + t1127;
         let t1130 = t1125 - t1129;
         let t1131 = t1128 + t1130;
+        out[84] = t1131;
         let t1132 = t236 * t396;
         let t1133 = t206 * t309;
         let t1134 = t239 * t397;
@@ -3543,6 +3483,7 @@ impl Lwr4 {
         let t1139 = t1137 - t1138;
         let t1140 = t1136 * c2;
         let t1141 = t1139 - t1140;
+        out[127] = t1141;
         let t1142 = t236 * t408;
         let t1143 = t206 * t315;
         let t1144 = t239 * t409;
@@ -3553,6 +3494,7 @@ impl Lwr4 {
         let t1149 = t1147 + t1148;
         let t1150 = t1146 * c2;
         let t1151 = t1149 - t1150;
+        out[170] = t1151;
         let t1152 = t236 * t317;
         let t1153 = t206 * t317;
         let t1154 = t9 * t214;
@@ -3560,12 +3502,15 @@ impl Lwr4 {
         let t1156 = t1153 + t1154;
         let t1157 = t1155 * c3;
         let t1158 = t1157 - t1156;
+        out[213] = t1158;
         let t1159 = t11 * t236;
         let t1160 = t11 * t206;
         let t1161 = t1058 + t1159;
         let t1162 = t1161 * c3;
         let t1163 = t1162 - t1160;
+        out[256] = t1163;
         let t1164 = -t214;
+        out[299] = t1164;
         let t1165 = t206 * t296;
         let t1166 = t238 * t374;
         let t1167 = t240 * t375;
@@ -3575,6 +3520,7 @@ impl Lwr4 {
         let t1171 = t1169 - t1168;
         let t1172 = t1171 - t1167;
         let t1173 = t1170 + t1172;
+        out[42] = t1173;
         let t1174 = t206 * t302;
         let t1175 = t238 * t384;
         let t1176 = t240 * t385;
@@ -3594,6 +3540,7 @@ impl Lwr4 {
         let t1190 = t1189 - t1188;
         let t1191 = t1187 * c2;
         let t1192 = t1190 - t1191;
+        out[128] = t1192;
         let t1193 = t206 * t314;
         let t1194 = t238 * t408;
         let t1195 = t240 * t409;
@@ -3604,6 +3551,7 @@ impl Lwr4 {
         let t1200 = t1199 - t1198;
         let t1201 = t1197 * c2;
         let t1202 = t1200 - t1201;
+        out[171] = t1202;
         let t1203 = t206 * t316;
         let t1204 = t240 * t316;
         let t1205 = t9 * t213;
@@ -3611,316 +3559,18 @@ impl Lwr4 {
         let t1207 = t1083 + t1204;
         let t1208 = t1207 * c3;
         let t1209 = t1208 - t1206;
+        out[214] = t1209;
         let t1210 = t10 * t206;
         let t1211 = t10 * t240;
         let t1212 = t1088 - t1211;
         let t1213 = t1212 * c3;
         let t1214 = t1210 + t1213;
+        out[257] = t1214;
         let t1215 = -t1182;
+        out[85] = t1215;
         let t1216 = -t213;
-        [
-            qdd1,
-            t415,
-            t419,
-            t422,
-            t426,
-            t428,
-            T::ZERO,
-            T::ZERO,
-            t437,
-            t446,
-            t454,
-            t463,
-            t471,
-            t480,
-            t493,
-            t507,
-            t530,
-            t535,
-            t549,
-            t562,
-            t578,
-            t601,
-            t621,
-            t640,
-            t658,
-            t677,
-            t695,
-            t716,
-            t772,
-            t781,
-            t805,
-            t829,
-            t853,
-            t876,
-            t900,
-            t941,
-            t980,
-            t1009,
-            t1037,
-            t1066,
-            t1094,
-            t1122,
-            t1173,
-            T::ZERO,
-            t416,
-            t412,
-            t423,
-            t32,
-            qdd2,
-            t36,
-            t429,
-            t441,
-            t449,
-            t458,
-            t467,
-            t473,
-            t485,
-            t498,
-            t512,
-            t526,
-            t540,
-            t554,
-            t566,
-            t588,
-            t611,
-            t626,
-            t645,
-            t663,
-            t691,
-            t706,
-            t726,
-            t759,
-            t786,
-            t810,
-            t834,
-            t872,
-            t891,
-            t909,
-            t950,
-            t985,
-            t1014,
-            t1042,
-            t1071,
-            t1098,
-            t1131,
-            t1215,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t69,
-            t432,
-            t74,
-            t79,
-            t64,
-            t486,
-            t499,
-            t516,
-            t529,
-            t544,
-            t558,
-            t568,
-            t590,
-            t612,
-            t631,
-            t650,
-            t668,
-            t687,
-            t703,
-            t733,
-            t766,
-            t791,
-            t815,
-            t839,
-            t863,
-            t884,
-            t919,
-            t960,
-            t990,
-            t1019,
-            t1047,
-            t1076,
-            t1102,
-            t1141,
-            t1192,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t108,
-            t502,
-            t113,
-            t118,
-            t103,
-            t591,
-            t613,
-            t634,
-            t653,
-            t671,
-            t690,
-            t705,
-            t738,
-            t771,
-            t796,
-            t824,
-            t844,
-            t868,
-            t888,
-            t929,
-            t970,
-            t995,
-            t1024,
-            t1052,
-            t1081,
-            t1113,
-            t1151,
-            t1202,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t635,
-            t616,
-            t672,
-            t163,
-            t148,
-            t739,
-            t773,
-            t799,
-            t823,
-            t847,
-            t871,
-            t890,
-            t931,
-            t971,
-            t1000,
-            t1029,
-            t1057,
-            t1086,
-            t1110,
-            t1158,
-            t1209,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t800,
-            t776,
-            t848,
-            t202,
-            t187,
-            t932,
-            t972,
-            t1004,
-            t1032,
-            t1061,
-            t1090,
-            t1112,
-            t1163,
-            t1214,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t237,
-            t975,
-            t242,
-            t247,
-            t232,
-            t1164,
-            t1216,
-        ]
+        out[300] = t1216;
+        out
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
@@ -4576,6 +4226,8 @@ impl Lwr4 {
         let c0 = T::from_f64(0.4);
         let c1 = T::from_f64(0.39);
         let c2 = T::from_f64(0.078);
+        let mut out = [T::ZERO; 49];
+        out[48] = ZZ7;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -4666,6 +4318,8 @@ impl Lwr4 {
         let t93 = t79 + t88;
         let t94 = t82 - t89;
         let t95 = t87 + t92;
+        out[6] = t95;
+        out[42] = t95;
         let t96 = t39 * MYR6;
         let t97 = t39 * MX6;
         let t98 = t53 * MX6;
@@ -4714,6 +4368,8 @@ impl Lwr4 {
         let t141 = t121 - t133;
         let t142 = t126 * c2;
         let t143 = t141 + t142;
+        out[5] = t143;
+        out[35] = t143;
         let t144 = t21 * MYR5;
         let t145 = t21 * MX5;
         let t146 = t39 * MX5;
@@ -4760,6 +4416,8 @@ impl Lwr4 {
         let t187 = t168 + t182;
         let t188 = t170 - t143;
         let t189 = t171 + t183;
+        out[4] = t189;
+        out[28] = t189;
         let t190 = t12 * MYR4;
         let t191 = t12 * MX4;
         let t192 = t21 * MX4;
@@ -4811,6 +4469,8 @@ impl Lwr4 {
         let t238 = t218 + t230;
         let t239 = t223 * c1;
         let t240 = t238 - t239;
+        out[3] = t240;
+        out[21] = t240;
         let t241 = t1 * MYR3;
         let t242 = t1 * MX3;
         let t243 = t13 * XXR3;
@@ -4845,6 +4505,8 @@ impl Lwr4 {
         let t272 = t247 + t268;
         let t273 = t240 + t250;
         let t274 = t260 - t269;
+        out[2] = t274;
+        out[14] = t274;
         let t275 = t0 * XXR2;
         let t276 = t1 * XYR2;
         let t277 = t275 + t276;
@@ -4871,10 +4533,13 @@ impl Lwr4 {
         let t298 = t281 - t293;
         let t299 = t286 * c0;
         let t300 = t298 - t299;
+        out[1] = t300;
+        out[7] = t300;
         let t301 = t0 * t296;
         let t302 = t1 * t297;
         let t303 = t301 + t302;
         let t304 = t303 + ZZR1;
+        out[0] = t304;
         let t305 = t3 * t5;
         let t306 = t3 * t4;
         let t307 = t2 * t5;
@@ -4953,6 +4618,8 @@ impl Lwr4 {
         let t380 = t366 - t375;
         let t381 = t369 + t376;
         let t382 = t374 + t379;
+        out[13] = t382;
+        out[43] = t382;
         let t383 = t326 * MYR6;
         let t384 = t326 * MX6;
         let t385 = t340 * MX6;
@@ -5001,6 +4668,8 @@ impl Lwr4 {
         let t428 = t408 - t420;
         let t429 = t413 * c2;
         let t430 = t428 + t429;
+        out[12] = t430;
+        out[36] = t430;
         let t431 = t308 * MYR5;
         let t432 = t308 * MX5;
         let t433 = t326 * MX5;
@@ -5047,6 +4716,8 @@ impl Lwr4 {
         let t474 = t455 + t469;
         let t475 = t457 - t430;
         let t476 = t458 + t470;
+        out[11] = t476;
+        out[29] = t476;
         let t477 = t3 * MYR4;
         let t478 = t3 * MX4;
         let t479 = t308 * MX4;
@@ -5098,6 +4769,8 @@ impl Lwr4 {
         let t525 = t505 + t517;
         let t526 = t510 * c1;
         let t527 = t525 + t526;
+        out[10] = t527;
+        out[22] = t527;
         let t528 = t2 * XXR3;
         let t529 = t3 * XYR3;
         let t530 = t528 + t529;
@@ -5122,6 +4795,8 @@ impl Lwr4 {
         let t549 = t547 - t530;
         let t550 = t527 - t531;
         let t551 = t539 - t548;
+        out[9] = t551;
+        out[15] = t551;
         let t552 = t3 * t542;
         let t553 = t2 * t520;
         let t554 = t552 - t553;
@@ -5131,6 +4806,7 @@ impl Lwr4 {
         let t558 = ZZR2 - t557;
         let t559 = t554 * c0;
         let t560 = t558 - t559;
+        out[8] = t560;
         let t561 = t4 * t6;
         let t562 = t4 * t7;
         let t563 = t9 * t561;
@@ -5187,6 +4863,8 @@ impl Lwr4 {
         let t614 = t608 * c1;
         let t615 = t601 + t614;
         let t616 = t606 - t611;
+        out[20] = t616;
+        out[44] = t616;
         let t617 = t561 * MYR6;
         let t618 = t561 * MX6;
         let t619 = t570 * MX6;
@@ -5238,6 +4916,8 @@ impl Lwr4 {
         let t665 = t645 - t657;
         let t666 = t650 * c2;
         let t667 = t665 + t666;
+        out[19] = t667;
+        out[37] = t667;
         let t668 = t5 * MYR5;
         let t669 = t5 * MX5;
         let t670 = t562 * XXR5;
@@ -5272,6 +4952,8 @@ impl Lwr4 {
         let t699 = t674 + t695;
         let t700 = t677 - t667;
         let t701 = t687 + t696;
+        out[18] = t701;
+        out[30] = t701;
         let t702 = t4 * XXR4;
         let t703 = t5 * XYR4;
         let t704 = t702 + t703;
@@ -5298,10 +4980,13 @@ impl Lwr4 {
         let t725 = t720 - t708;
         let t726 = t713 * c1;
         let t727 = t725 + t726;
+        out[17] = t727;
+        out[23] = t727;
         let t728 = t4 * t723;
         let t729 = t5 * t724;
         let t730 = t728 - t729;
         let t731 = ZZR3 - t730;
+        out[16] = t731;
         let t732 = t7 * t9;
         let t733 = t7 * t8;
         let t734 = t6 * t9;
@@ -5352,6 +5037,8 @@ impl Lwr4 {
         let t779 = t773 * c1;
         let t780 = t766 + t779;
         let t781 = t771 - t776;
+        out[27] = t781;
+        out[45] = t781;
         let t782 = t7 * MYR6;
         let t783 = t7 * MX6;
         let t784 = t735 * MX6;
@@ -5403,6 +5090,8 @@ impl Lwr4 {
         let t830 = t810 - t822;
         let t831 = t815 * c2;
         let t832 = t830 - t831;
+        out[26] = t832;
+        out[38] = t832;
         let t833 = t6 * XXR5;
         let t834 = t7 * XYR5;
         let t835 = t833 + t834;
@@ -5427,6 +5116,8 @@ impl Lwr4 {
         let t854 = t835 + t852;
         let t855 = t836 - t832;
         let t856 = t844 + t853;
+        out[25] = t856;
+        out[31] = t856;
         let t857 = t7 * t847;
         let t858 = t6 * t825;
         let t859 = t857 + t858;
@@ -5436,6 +5127,7 @@ impl Lwr4 {
         let t863 = t862 + ZZR4;
         let t864 = t859 * c1;
         let t865 = t863 + t864;
+        out[24] = t865;
         let t866 = t8 * t10;
         let t867 = t8 * t11;
         let t868 = t9 * MY7;
@@ -5458,6 +5150,8 @@ impl Lwr4 {
         let t885 = t884 - t883;
         let t886 = t885 * c2;
         let t887 = t882 + t886;
+        out[34] = t887;
+        out[46] = t887;
         let t888 = t8 * XXR6;
         let t889 = t9 * XYR6;
         let t890 = t888 + t889;
@@ -5484,10 +5178,13 @@ impl Lwr4 {
         let t911 = t894 - t906;
         let t912 = t899 * c2;
         let t913 = t911 + t912;
+        out[33] = t913;
+        out[39] = t913;
         let t914 = t8 * t909;
         let t915 = t9 * t910;
         let t916 = t914 + t915;
         let t917 = t916 + ZZR5;
+        out[32] = t917;
         let t918 = t10 * XXR7;
         let t919 = t11 * XY7;
         let t920 = t918 + t919;
@@ -5500,68 +5197,21 @@ impl Lwr4 {
         let t927 = t925 + t926;
         let t928 = t927 * c2;
         let t929 = t928 - t924;
+        out[41] = t929;
+        out[47] = t929;
         let t930 = t10 * t920;
         let t931 = t11 * t921;
         let t932 = t930 + t931;
         let t933 = t932 + ZZR6;
-        [
-            t304,
-            t300,
-            t274,
-            t240,
-            t189,
-            t143,
-            t95,
-            t300,
-            t560,
-            t551,
-            t527,
-            t476,
-            t430,
-            t382,
-            t274,
-            t551,
-            t731,
-            t727,
-            t701,
-            t667,
-            t616,
-            t240,
-            t527,
-            t727,
-            t865,
-            t856,
-            t832,
-            t781,
-            t189,
-            t476,
-            t701,
-            t856,
-            t917,
-            t913,
-            t887,
-            t143,
-            t430,
-            t667,
-            t832,
-            t913,
-            t933,
-            t929,
-            t95,
-            t382,
-            t616,
-            t781,
-            t887,
-            t929,
-            ZZ7,
-        ]
+        out[40] = t933;
+        out
     }
     /// Gravity torques g(q).
     ///
     /// - `q`: q1 .. q7
     /// - `base`: ZZR1 .. MY7
     ///
-    /// Operations: 69 mul, 38 add, 2 neg, 6 sin, 6 cos.
+    /// Operations: 69 mul, 38 add, 0 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
@@ -5573,6 +5223,7 @@ impl Lwr4 {
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MYR6, _, _, _, _, _, MX7, MY7,
         ] = *base;
         let c0 = T::from_f64(9.81);
+        let c1 = T::from_f64(-9.81);
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -5681,14 +5332,12 @@ impl Lwr4 {
         let t111 = t109 - t110;
         let t112 = t111 * c0;
         let t113 = t108 * c0;
-        let t114 = t98 * c0;
-        let t115 = -t114;
-        let t116 = t84 * c0;
-        let t117 = t70 * c0;
-        let t118 = t56 * c0;
-        let t119 = t42 * c0;
-        let t120 = -t119;
-        [t112, t113, t115, t116, t117, t118, t120]
+        let t114 = t98 * c1;
+        let t115 = t84 * c0;
+        let t116 = t70 * c0;
+        let t117 = t56 * c0;
+        let t118 = t42 * c1;
+        [t112, t113, t114, t115, t116, t117, t118]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
@@ -6312,22 +5961,46 @@ impl Lwr4 {
         let c6 = T::from_f64(0.8);
         let c7 = T::from_f64(0.16);
         let c8 = T::from_f64(0.4);
+        let mut out = [T::ZERO; 43];
+        out[2] = XZ2;
+        out[6] = MX2;
+        out[9] = XZ3;
+        out[13] = MX3;
+        out[17] = XY4;
+        out[20] = MX4;
+        out[24] = XY5;
+        out[27] = MX5;
+        out[30] = XZ6;
+        out[34] = MX6;
+        out[37] = XY7;
+        out[38] = XZ7;
+        out[39] = YZ7;
+        out[40] = ZZ7;
+        out[41] = MX7;
+        out[42] = MY7;
         let t0 = XX7 - YY7;
+        out[36] = t0;
         let t1 = M7 * c0;
         let t2 = MZ7 * c1;
         let t3 = M7 * c2;
         let t4 = YY6 + YY7;
         let t5 = t2 + t3;
         let t6 = t4 + t5;
+        out[33] = t6;
         let t7 = t1 + MZ7;
         let t8 = t7 + MZ6;
+        out[35] = t8;
         let t9 = XX6 + YY7;
         let t10 = t5 - ZZ6;
         let t11 = t9 + t10;
+        out[29] = t11;
         let t12 = YY5 + ZZ6;
+        out[26] = t12;
         let t13 = MY6 - MZ5;
+        out[28] = t13;
         let t14 = ZZ6 - ZZ5;
         let t15 = t14 + XX5;
+        out[22] = t15;
         let t16 = MY5 * c3;
         let t17 = M6 + M7;
         let t18 = t17 + M5;
@@ -6335,16 +6008,21 @@ impl Lwr4 {
         let t20 = YY4 + ZZ5;
         let t21 = t16 + t19;
         let t22 = t20 + t21;
+        out[19] = t22;
         let t23 = t18 * c5;
         let t24 = t23 + MY5;
         let t25 = t24 + MZ4;
         let t26 = XX4 + ZZ5;
         let t27 = t21 - ZZ4;
         let t28 = t26 + t27;
+        out[15] = t28;
         let t29 = YY3 + ZZ4;
+        out[12] = t29;
         let t30 = MZ3 + MY4;
+        out[14] = t30;
         let t31 = ZZ4 - ZZ3;
         let t32 = t31 + XX3;
+        out[8] = t32;
         let t33 = MY3 * c6;
         let t34 = M3 + M4;
         let t35 = t18 + t34;
@@ -6352,69 +6030,40 @@ impl Lwr4 {
         let t37 = YY2 + ZZ3;
         let t38 = t36 - t33;
         let t39 = t37 + t38;
+        out[5] = t39;
         let t40 = t35 * c8;
         let t41 = t40 - MY3;
         let t42 = t41 + MZ2;
+        out[7] = t42;
         let t43 = XX2 + ZZ3;
         let t44 = t38 - ZZ2;
         let t45 = t43 + t44;
+        out[1] = t45;
         let t46 = YY1 + ZZ2;
+        out[0] = t46;
         let t47 = -XY2;
+        out[3] = t47;
         let t48 = -YZ2;
+        out[4] = t48;
         let t49 = -XY3;
+        out[10] = t49;
         let t50 = -YZ3;
+        out[11] = t50;
         let t51 = -XZ4;
+        out[16] = t51;
         let t52 = -YZ4;
+        out[18] = t52;
         let t53 = -t25;
+        out[21] = t53;
         let t54 = -XZ5;
+        out[23] = t54;
         let t55 = -YZ5;
+        out[25] = t55;
         let t56 = -XY6;
+        out[31] = t56;
         let t57 = -YZ6;
-        [
-            t46,
-            t45,
-            XZ2,
-            t47,
-            t48,
-            t39,
-            MX2,
-            t42,
-            t32,
-            XZ3,
-            t49,
-            t50,
-            t29,
-            MX3,
-            t30,
-            t28,
-            t51,
-            XY4,
-            t52,
-            t22,
-            MX4,
-            t53,
-            t15,
-            t54,
-            XY5,
-            t55,
-            t12,
-            MX5,
-            t13,
-            t11,
-            XZ6,
-            t56,
-            t57,
-            t6,
-            MX6,
-            t8,
-            t0,
-            XY7,
-            XZ7,
-            YZ7,
-            ZZ7,
-            MX7,
-            MY7,
-        ]
+        out[32] = t57;
+        out
     }
 }
 impl ::robid_runtime::Model for Lwr4 {

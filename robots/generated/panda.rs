@@ -205,11 +205,15 @@ impl Panda {
         let c6 = T::from_f64(2.0);
         let c7 = T::from_f64(0.00680625);
         let c8 = T::from_f64(0.007744);
+        let mut out = [T::ZERO; 490];
+        out[5] = qdd1;
+        out[85] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let t2 = t1 * qd1;
         let t3 = t0 * qdd1;
         let t4 = t1 * qdd1;
         let t5 = t0 * c0;
+        out[87] = t5;
         let t6 = t1 * c0;
         let t7 = qd1 * qd2;
         let t8 = t1 * t7;
@@ -231,6 +235,7 @@ impl Panda {
         let t25 = qd1 * qd1;
         let t26 = t0 * t1;
         let t27 = t25 * t26;
+        out[83] = t27;
         let t28 = qd2 * qd2;
         let t29 = t0 * t0;
         let t30 = t25 * t29;
@@ -249,6 +254,7 @@ impl Panda {
         let t43 = t12 * t34;
         let t44 = t13 * t39;
         let t45 = t44 - t43;
+        out[166] = t45;
         let t46 = t20 * qd3;
         let t47 = t17 * qd3;
         let t48 = t2 + qd3;
@@ -257,6 +263,7 @@ impl Panda {
         let t51 = t24 - t47;
         let t52 = t23 + t51;
         let t53 = qdd3 - t11;
+        out[165] = t53;
         let (t54, t55) = q4.sin_cos();
         let t56 = t17 * t55;
         let t57 = t48 * t54;
@@ -288,6 +295,7 @@ impl Panda {
         let t83 = t54 * t73;
         let t84 = t55 * t79;
         let t85 = t84 - t83;
+        out[246] = t85;
         let t86 = t61 * qd4;
         let t87 = t58 * qd4;
         let t88 = qd4 - t20;
@@ -296,6 +304,7 @@ impl Panda {
         let t91 = t65 - t87;
         let t92 = t91 - t64;
         let t93 = qdd4 - t52;
+        out[245] = t93;
         let (t94, t95) = q5.sin_cos();
         let t96 = t58 * t95;
         let t97 = t88 * t94;
@@ -348,6 +357,7 @@ impl Panda {
         let t144 = t105 + t140;
         let t145 = t104 + t144;
         let t146 = t92 + qdd5;
+        out[325] = t146;
         let (t147, t148) = q6.sin_cos();
         let t149 = t98 * t148;
         let t150 = t141 * t147;
@@ -365,6 +375,7 @@ impl Panda {
         let t162 = t135 * t147;
         let t163 = t124 * t148;
         let t164 = t163 - t162;
+        out[406] = t164;
         let t165 = t154 * qd6;
         let t166 = t151 * qd6;
         let t167 = t101 + qd6;
@@ -373,6 +384,7 @@ impl Panda {
         let t170 = t158 - t166;
         let t171 = t170 - t157;
         let t172 = t145 + qdd6;
+        out[405] = t172;
         let (t173, t174) = q7.sin_cos();
         let t175 = t151 * t174;
         let t176 = t167 * t173;
@@ -404,6 +416,7 @@ impl Panda {
         let t202 = t173 * t192;
         let t203 = t174 * t198;
         let t204 = t203 - t202;
+        out[486] = t204;
         let t205 = t180 * qd7;
         let t206 = t177 * qd7;
         let t207 = qd7 - t154;
@@ -412,12 +425,15 @@ impl Panda {
         let t210 = t184 - t206;
         let t211 = t210 - t183;
         let t212 = qdd7 - t171;
+        out[485] = t212;
         let t213 = t0 * t10;
         let t214 = t1 * t9;
         let t215 = t213 + t214;
+        out[10] = t215;
         let t216 = t1 * t1;
         let t217 = t25 * t216;
         let t218 = t30 - t217;
+        out[81] = t218;
         let t219 = t9 * c6;
         let t220 = t219 - t4;
         let t221 = t8 * c6;
@@ -425,6 +441,7 @@ impl Panda {
         let t223 = t0 * t220;
         let t224 = t1 * t222;
         let t225 = t224 - t223;
+        out[11] = t225;
         let t226 = t28 - t30;
         let t227 = t27 + qdd2;
         let t228 = t0 * t227;
@@ -436,6 +453,7 @@ impl Panda {
         let t234 = t232 + t233;
         let t235 = t17 * t48;
         let t236 = t17 * t20;
+        out[163] = t236;
         let t237 = t13 * t50;
         let t238 = t12 * t17;
         let t239 = t48 * t238;
@@ -444,6 +462,7 @@ impl Panda {
         let t242 = t13 * t17;
         let t243 = t48 * t242;
         let t244 = t241 + t243;
+        out[90] = t244;
         let t245 = t0 * t240;
         let t246 = t1 * t17;
         let t247 = t20 * t246;
@@ -452,6 +471,7 @@ impl Panda {
         let t250 = t17 * t17;
         let t251 = t20 * t20;
         let t252 = t250 - t251;
+        out[161] = t252;
         let t253 = t52 - t235;
         let t254 = t50 + t249;
         let t255 = t13 * t253;
@@ -460,43 +480,53 @@ impl Panda {
         let t258 = t12 * t253;
         let t259 = t13 * t254;
         let t260 = t258 + t259;
+        out[91] = t260;
         let t261 = t0 * t257;
         let t262 = t1 * t252;
         let t263 = t262 - t261;
+        out[21] = t263;
         let t264 = t48 * t48;
         let t265 = t264 - t250;
         let t266 = t53 + t236;
         let t267 = t50 - t249;
+        out[162] = t267;
         let t268 = t13 * t266;
         let t269 = t12 * t265;
         let t270 = t268 - t269;
         let t271 = t12 * t266;
         let t272 = t13 * t265;
         let t273 = t271 + t272;
+        out[92] = t273;
         let t274 = t0 * t270;
         let t275 = t1 * t267;
         let t276 = t275 - t274;
+        out[22] = t276;
         let t277 = t251 - t264;
         let t278 = t53 - t236;
         let t279 = t52 + t235;
+        out[164] = t279;
         let t280 = t13 * t277;
         let t281 = t12 * t278;
         let t282 = t280 - t281;
         let t283 = t12 * t277;
         let t284 = t13 * t278;
         let t285 = t283 + t284;
+        out[94] = t285;
         let t286 = t0 * t282;
         let t287 = t1 * t279;
         let t288 = t287 - t286;
+        out[24] = t288;
         let t289 = t13 * t20;
         let t290 = t48 * t289;
         let t291 = t239 + t290;
         let t292 = t12 * t20;
         let t293 = t48 * t292;
         let t294 = t293 - t243;
+        out[95] = t294;
         let t295 = t0 * t291;
         let t296 = t1 * t53;
         let t297 = t296 - t295;
+        out[25] = t297;
         let t298 = t251 + t264;
         let t299 = t12 * t37;
         let t300 = t13 * t37;
@@ -508,9 +538,11 @@ impl Panda {
         let t306 = t271 + t302;
         let t307 = t306 * c1;
         let t308 = t300 - t307;
+        out[96] = t308;
         let t309 = t0 * t305;
         let t310 = t1 * t45;
         let t311 = t310 - t309;
+        out[26] = t311;
         let t312 = t250 + t264;
         let t313 = t13 * t312;
         let t314 = t12 * t312;
@@ -520,11 +552,13 @@ impl Panda {
         let t318 = t314 - t284;
         let t319 = t318 * c1;
         let t320 = t319 - t299;
+        out[97] = t320;
         let t321 = t0 * t317;
         let t322 = t1 * t42;
         let t323 = t321 + t322;
         let t324 = t58 * t88;
         let t325 = t58 * t61;
+        out[243] = t325;
         let t326 = t55 * t90;
         let t327 = t54 * t58;
         let t328 = t88 * t327;
@@ -533,6 +567,7 @@ impl Panda {
         let t331 = t55 * t58;
         let t332 = t88 * t331;
         let t333 = t330 + t332;
+        out[170] = t333;
         let t334 = t13 * t329;
         let t335 = t12 * t58;
         let t336 = t61 * t335;
@@ -541,13 +576,16 @@ impl Panda {
         let t339 = t13 * t58;
         let t340 = t61 * t339;
         let t341 = t338 + t340;
+        out[100] = t341;
         let t342 = t0 * t337;
         let t343 = t1 * t333;
         let t344 = t343 - t342;
+        out[30] = t344;
         let t345 = t61 * t88;
         let t346 = t58 * t58;
         let t347 = t61 * t61;
         let t348 = t346 - t347;
+        out[241] = t348;
         let t349 = t92 - t324;
         let t350 = t90 + t345;
         let t351 = t55 * t349;
@@ -556,67 +594,81 @@ impl Panda {
         let t354 = t54 * t349;
         let t355 = t55 * t350;
         let t356 = t354 + t355;
+        out[171] = t356;
         let t357 = t13 * t353;
         let t358 = t12 * t348;
         let t359 = t357 + t358;
         let t360 = t12 * t353;
         let t361 = t13 * t348;
         let t362 = t360 - t361;
+        out[101] = t362;
         let t363 = t0 * t359;
         let t364 = t1 * t356;
         let t365 = t364 - t363;
+        out[31] = t365;
         let t366 = t88 * t88;
         let t367 = t366 - t346;
         let t368 = t93 + t325;
         let t369 = t90 - t345;
+        out[242] = t369;
         let t370 = t55 * t368;
         let t371 = t54 * t367;
         let t372 = t370 - t371;
         let t373 = t54 * t368;
         let t374 = t55 * t367;
         let t375 = t373 + t374;
+        out[172] = t375;
         let t376 = t13 * t372;
         let t377 = t12 * t369;
         let t378 = t376 + t377;
         let t379 = t12 * t372;
         let t380 = t13 * t369;
         let t381 = t379 - t380;
+        out[102] = t381;
         let t382 = t0 * t378;
         let t383 = t1 * t375;
         let t384 = t383 - t382;
+        out[32] = t384;
         let t385 = t347 - t366;
         let t386 = t93 - t325;
         let t387 = t92 + t324;
+        out[244] = t387;
         let t388 = t55 * t385;
         let t389 = t54 * t386;
         let t390 = t388 - t389;
         let t391 = t54 * t385;
         let t392 = t55 * t386;
         let t393 = t391 + t392;
+        out[174] = t393;
         let t394 = t13 * t390;
         let t395 = t12 * t387;
         let t396 = t394 + t395;
         let t397 = t12 * t390;
         let t398 = t13 * t387;
         let t399 = t397 - t398;
+        out[104] = t399;
         let t400 = t0 * t396;
         let t401 = t1 * t393;
         let t402 = t401 - t400;
+        out[34] = t402;
         let t403 = t55 * t61;
         let t404 = t88 * t403;
         let t405 = t328 + t404;
         let t406 = t54 * t61;
         let t407 = t88 * t406;
         let t408 = t407 - t332;
+        out[175] = t408;
         let t409 = t13 * t405;
         let t410 = t12 * t93;
         let t411 = t409 + t410;
         let t412 = t12 * t405;
         let t413 = t13 * t93;
         let t414 = t412 - t413;
+        out[105] = t414;
         let t415 = t0 * t411;
         let t416 = t1 * t408;
         let t417 = t416 - t415;
+        out[35] = t417;
         let t418 = t347 + t366;
         let t419 = t55 * t418;
         let t420 = t373 + t419;
@@ -627,6 +679,7 @@ impl Panda {
         let t425 = t424 - t85;
         let t426 = t349 * c3;
         let t427 = t421 + t426;
+        out[176] = t427;
         let t428 = t13 * t54;
         let t429 = t76 * t428;
         let t430 = t12 * t425;
@@ -645,9 +698,11 @@ impl Panda {
         let t443 = t442 * c1;
         let t444 = t433 - t443;
         let t445 = t444 - t432;
+        out[106] = t445;
         let t446 = t0 * t441;
         let t447 = t1 * t427;
         let t448 = t447 - t446;
+        out[36] = t448;
         let t449 = t346 + t366;
         let t450 = t54 * t449;
         let t451 = t450 - t392;
@@ -676,11 +731,13 @@ impl Panda {
         let t474 = t473 * c1;
         let t475 = t464 + t474;
         let t476 = t475 - t463;
+        out[107] = t476;
         let t477 = t0 * t472;
         let t478 = t1 * t458;
         let t479 = t477 + t478;
         let t480 = t98 * t141;
         let t481 = t98 * t101;
+        out[320] = t481;
         let t482 = t95 * t143;
         let t483 = t94 * t98;
         let t484 = t141 * t483;
@@ -697,19 +754,23 @@ impl Panda {
         let t495 = t55 * t98;
         let t496 = t101 * t495;
         let t497 = t494 + t496;
+        out[180] = t497;
         let t498 = t13 * t493;
         let t499 = t12 * t489;
         let t500 = t498 - t499;
         let t501 = t12 * t493;
         let t502 = t13 * t489;
         let t503 = t501 + t502;
+        out[110] = t503;
         let t504 = t0 * t500;
         let t505 = t1 * t497;
         let t506 = t505 - t504;
+        out[40] = t506;
         let t507 = t101 * t141;
         let t508 = t98 * t98;
         let t509 = t101 * t101;
         let t510 = t508 - t509;
+        out[321] = t510;
         let t511 = t145 + t480;
         let t512 = t143 - t507;
         let t513 = t95 * t511;
@@ -718,12 +779,14 @@ impl Panda {
         let t516 = t94 * t511;
         let t517 = t95 * t512;
         let t518 = t516 - t517;
+        out[251] = t518;
         let t519 = t55 * t515;
         let t520 = t54 * t510;
         let t521 = t519 + t520;
         let t522 = t54 * t515;
         let t523 = t55 * t510;
         let t524 = t523 - t522;
+        out[181] = t524;
         let t525 = t13 * t521;
         let t526 = t12 * t518;
         let t527 = t526 - t525;
@@ -733,10 +796,12 @@ impl Panda {
         let t531 = t0 * t527;
         let t532 = t1 * t524;
         let t533 = t532 - t531;
+        out[41] = t533;
         let t534 = t141 * t141;
         let t535 = t534 - t508;
         let t536 = t146 - t481;
         let t537 = t143 + t507;
+        out[322] = t537;
         let t538 = t95 * t536;
         let t539 = t94 * t535;
         let t540 = t538 - t539;
@@ -749,18 +814,22 @@ impl Panda {
         let t547 = t54 * t540;
         let t548 = t55 * t537;
         let t549 = t547 + t548;
+        out[182] = t549;
         let t550 = t13 * t546;
         let t551 = t12 * t543;
         let t552 = t550 - t551;
         let t553 = t12 * t546;
         let t554 = t13 * t543;
         let t555 = t553 + t554;
+        out[112] = t555;
         let t556 = t0 * t552;
         let t557 = t1 * t549;
         let t558 = t557 - t556;
+        out[42] = t558;
         let t559 = t509 - t534;
         let t560 = t146 + t481;
         let t561 = t480 - t145;
+        out[324] = t561;
         let t562 = t95 * t559;
         let t563 = t94 * t560;
         let t564 = t562 - t563;
@@ -773,36 +842,43 @@ impl Panda {
         let t571 = t54 * t564;
         let t572 = t55 * t561;
         let t573 = t571 + t572;
+        out[184] = t573;
         let t574 = t13 * t570;
         let t575 = t12 * t567;
         let t576 = t574 - t575;
         let t577 = t12 * t570;
         let t578 = t13 * t567;
         let t579 = t577 + t578;
+        out[114] = t579;
         let t580 = t0 * t576;
         let t581 = t1 * t573;
         let t582 = t581 - t580;
+        out[44] = t582;
         let t583 = t95 * t101;
         let t584 = t141 * t583;
         let t585 = t484 - t584;
         let t586 = t94 * t101;
         let t587 = t141 * t586;
         let t588 = t488 + t587;
+        out[255] = t588;
         let t589 = t55 * t585;
         let t590 = t54 * t146;
         let t591 = t589 - t590;
         let t592 = t54 * t585;
         let t593 = t55 * t146;
         let t594 = t592 + t593;
+        out[185] = t594;
         let t595 = t13 * t591;
         let t596 = t12 * t588;
         let t597 = t595 + t596;
         let t598 = t12 * t591;
         let t599 = t13 * t588;
         let t600 = t598 - t599;
+        out[115] = t600;
         let t601 = t0 * t597;
         let t602 = t1 * t594;
         let t603 = t602 - t601;
+        out[45] = t603;
         let t604 = t509 + t534;
         let t605 = t95 * t604;
         let t606 = t541 + t605;
@@ -818,6 +894,7 @@ impl Panda {
         let t616 = t606 * c4;
         let t617 = t616 - t615;
         let t618 = t609 + t617;
+        out[256] = t618;
         let t619 = t55 * t606;
         let t620 = t54 * t511;
         let t621 = t619 + t620;
@@ -835,6 +912,7 @@ impl Panda {
         let t633 = t632 - t609;
         let t634 = t626 - t613;
         let t635 = t625 + t634;
+        out[186] = t635;
         let t636 = t13 * t624;
         let t637 = t12 * t633;
         let t638 = t12 * t624;
@@ -851,9 +929,11 @@ impl Panda {
         let t649 = t648 * c1;
         let t650 = t639 + t649;
         let t651 = t638 + t650;
+        out[116] = t651;
         let t652 = t0 * t647;
         let t653 = t1 * t635;
         let t654 = t653 - t652;
+        out[46] = t654;
         let t655 = t508 + t534;
         let t656 = t94 * t655;
         let t657 = t656 - t566;
@@ -884,6 +964,7 @@ impl Panda {
         let t682 = t608 + t681;
         let t683 = t675 - t662;
         let t684 = t674 + t683;
+        out[187] = t684;
         let t685 = t13 * t673;
         let t686 = t12 * t682;
         let t687 = t12 * t673;
@@ -900,11 +981,14 @@ impl Panda {
         let t698 = t697 * c1;
         let t699 = t688 + t698;
         let t700 = t687 + t699;
+        out[117] = t700;
         let t701 = t0 * t696;
         let t702 = t1 * t684;
         let t703 = t702 - t701;
+        out[47] = t703;
         let t704 = t151 * t167;
         let t705 = t151 * t154;
+        out[403] = t705;
         let t706 = t148 * t169;
         let t707 = t147 * t151;
         let t708 = t167 * t707;
@@ -913,6 +997,7 @@ impl Panda {
         let t711 = t148 * t151;
         let t712 = t167 * t711;
         let t713 = t710 + t712;
+        out[330] = t713;
         let t714 = t95 * t709;
         let t715 = t94 * t151;
         let t716 = t154 * t715;
@@ -927,19 +1012,23 @@ impl Panda {
         let t725 = t54 * t717;
         let t726 = t55 * t713;
         let t727 = t725 + t726;
+        out[190] = t727;
         let t728 = t13 * t724;
         let t729 = t12 * t721;
         let t730 = t728 - t729;
         let t731 = t12 * t724;
         let t732 = t13 * t721;
         let t733 = t731 + t732;
+        out[120] = t733;
         let t734 = t0 * t730;
         let t735 = t1 * t727;
         let t736 = t735 - t734;
+        out[50] = t736;
         let t737 = t154 * t167;
         let t738 = t151 * t151;
         let t739 = t154 * t154;
         let t740 = t738 - t739;
+        out[401] = t740;
         let t741 = t171 - t704;
         let t742 = t169 + t737;
         let t743 = t148 * t741;
@@ -948,115 +1037,137 @@ impl Panda {
         let t746 = t147 * t741;
         let t747 = t148 * t742;
         let t748 = t746 + t747;
+        out[331] = t748;
         let t749 = t95 * t745;
         let t750 = t94 * t740;
         let t751 = t749 + t750;
         let t752 = t94 * t745;
         let t753 = t95 * t740;
         let t754 = t753 - t752;
+        out[261] = t754;
         let t755 = t55 * t751;
         let t756 = t54 * t748;
         let t757 = t755 - t756;
         let t758 = t54 * t751;
         let t759 = t55 * t748;
         let t760 = t758 + t759;
+        out[191] = t760;
         let t761 = t13 * t757;
         let t762 = t12 * t754;
         let t763 = t761 + t762;
         let t764 = t12 * t757;
         let t765 = t13 * t754;
         let t766 = t764 - t765;
+        out[121] = t766;
         let t767 = t0 * t763;
         let t768 = t1 * t760;
         let t769 = t768 - t767;
+        out[51] = t769;
         let t770 = t167 * t167;
         let t771 = t770 - t738;
         let t772 = t172 + t705;
         let t773 = t169 - t737;
+        out[402] = t773;
         let t774 = t148 * t772;
         let t775 = t147 * t771;
         let t776 = t774 - t775;
         let t777 = t147 * t772;
         let t778 = t148 * t771;
         let t779 = t777 + t778;
+        out[332] = t779;
         let t780 = t95 * t776;
         let t781 = t94 * t773;
         let t782 = t780 + t781;
         let t783 = t94 * t776;
         let t784 = t95 * t773;
         let t785 = t784 - t783;
+        out[262] = t785;
         let t786 = t55 * t782;
         let t787 = t54 * t779;
         let t788 = t786 - t787;
         let t789 = t54 * t782;
         let t790 = t55 * t779;
         let t791 = t789 + t790;
+        out[192] = t791;
         let t792 = t13 * t788;
         let t793 = t12 * t785;
         let t794 = t792 + t793;
         let t795 = t12 * t788;
         let t796 = t13 * t785;
         let t797 = t795 - t796;
+        out[122] = t797;
         let t798 = t0 * t794;
         let t799 = t1 * t791;
         let t800 = t799 - t798;
+        out[52] = t800;
         let t801 = t739 - t770;
         let t802 = t172 - t705;
         let t803 = t171 + t704;
+        out[404] = t803;
         let t804 = t148 * t801;
         let t805 = t147 * t802;
         let t806 = t804 - t805;
         let t807 = t147 * t801;
         let t808 = t148 * t802;
         let t809 = t807 + t808;
+        out[334] = t809;
         let t810 = t95 * t806;
         let t811 = t94 * t803;
         let t812 = t810 + t811;
         let t813 = t94 * t806;
         let t814 = t95 * t803;
         let t815 = t814 - t813;
+        out[264] = t815;
         let t816 = t55 * t812;
         let t817 = t54 * t809;
         let t818 = t816 - t817;
         let t819 = t54 * t812;
         let t820 = t55 * t809;
         let t821 = t819 + t820;
+        out[194] = t821;
         let t822 = t13 * t818;
         let t823 = t12 * t815;
         let t824 = t822 + t823;
         let t825 = t12 * t818;
         let t826 = t13 * t815;
         let t827 = t825 - t826;
+        out[124] = t827;
         let t828 = t0 * t824;
         let t829 = t1 * t821;
         let t830 = t829 - t828;
+        out[54] = t830;
         let t831 = t148 * t154;
         let t832 = t167 * t831;
         let t833 = t708 + t832;
         let t834 = t147 * t154;
         let t835 = t167 * t834;
         let t836 = t835 - t712;
+        out[335] = t836;
         let t837 = t95 * t833;
         let t838 = t94 * t172;
         let t839 = t837 + t838;
         let t840 = t94 * t833;
         let t841 = t95 * t172;
         let t842 = t841 - t840;
+        out[265] = t842;
         let t843 = t55 * t839;
         let t844 = t54 * t836;
         let t845 = t843 - t844;
         let t846 = t54 * t839;
         let t847 = t55 * t836;
         let t848 = t846 + t847;
+        out[195] = t848;
         let t849 = t13 * t845;
         let t850 = t12 * t842;
         let t851 = t849 + t850;
         let t852 = t12 * t845;
         let t853 = t13 * t842;
         let t854 = t852 - t853;
+        out[125] = t854;
         let t855 = t0 * t851;
         let t856 = t1 * t848;
         let t857 = t856 - t855;
+        out[55] = t857;
         let t858 = t739 + t770;
         let t859 = t148 * t858;
         let t860 = t777 + t859;
@@ -1085,6 +1196,7 @@ impl Panda {
         let t883 = t874 - t873;
         let t884 = t882 - t881;
         let t885 = t883 + t884;
+        out[266] = t885;
         let t886 = t55 * t866;
         let t887 = t54 * t862;
         let t888 = t886 + t887;
@@ -1103,6 +1215,7 @@ impl Panda {
         let t901 = t899 + t900;
         let t902 = t893 - t879;
         let t903 = t892 + t902;
+        out[196] = t903;
         let t904 = t13 * t891;
         let t905 = t12 * t901;
         let t906 = t12 * t891;
@@ -1119,15 +1232,18 @@ impl Panda {
         let t917 = t916 * c1;
         let t918 = t907 + t917;
         let t919 = t906 + t918;
+        out[126] = t919;
         let t920 = t0 * t915;
         let t921 = t1 * t903;
         let t922 = t921 - t920;
+        out[56] = t922;
         let t923 = t738 + t770;
         let t924 = t147 * t923;
         let t925 = t924 - t808;
         let t926 = t148 * t923;
         let t927 = t805 + t926;
         let t928 = t138 * t147;
+        out[337] = t928;
         let t929 = t95 * t925;
         let t930 = t94 * t742;
         let t931 = t929 + t930;
@@ -1150,6 +1266,7 @@ impl Panda {
         let t948 = t938 + t939;
         let t949 = t946 - t947;
         let t950 = t949 - t948;
+        out[267] = t950;
         let t951 = t55 * t931;
         let t952 = t54 * t927;
         let t953 = t951 + t952;
@@ -1167,6 +1284,7 @@ impl Panda {
         let t965 = t948 + t964;
         let t966 = t958 - t944;
         let t967 = t957 + t966;
+        out[197] = t967;
         let t968 = t13 * t956;
         let t969 = t12 * t965;
         let t970 = t12 * t956;
@@ -1183,11 +1301,14 @@ impl Panda {
         let t981 = t980 * c1;
         let t982 = t971 + t981;
         let t983 = t970 + t982;
+        out[127] = t983;
         let t984 = t0 * t979;
         let t985 = t1 * t967;
         let t986 = t985 - t984;
+        out[57] = t986;
         let t987 = t177 * t207;
         let t988 = t177 * t180;
+        out[483] = t988;
         let t989 = t174 * t209;
         let t990 = t173 * t177;
         let t991 = t207 * t990;
@@ -1196,6 +1317,7 @@ impl Panda {
         let t994 = t174 * t177;
         let t995 = t207 * t994;
         let t996 = t993 + t995;
+        out[410] = t996;
         let t997 = t148 * t992;
         let t998 = t147 * t177;
         let t999 = t180 * t998;
@@ -1204,31 +1326,37 @@ impl Panda {
         let t1002 = t148 * t177;
         let t1003 = t180 * t1002;
         let t1004 = t1001 + t1003;
+        out[340] = t1004;
         let t1005 = t95 * t1000;
         let t1006 = t94 * t996;
         let t1007 = t1005 + t1006;
         let t1008 = t94 * t1000;
         let t1009 = t95 * t996;
         let t1010 = t1009 - t1008;
+        out[270] = t1010;
         let t1011 = t55 * t1007;
         let t1012 = t54 * t1004;
         let t1013 = t1011 - t1012;
         let t1014 = t54 * t1007;
         let t1015 = t55 * t1004;
         let t1016 = t1014 + t1015;
+        out[200] = t1016;
         let t1017 = t13 * t1013;
         let t1018 = t12 * t1010;
         let t1019 = t1017 + t1018;
         let t1020 = t12 * t1013;
         let t1021 = t13 * t1010;
         let t1022 = t1020 - t1021;
+        out[130] = t1022;
         let t1023 = t0 * t1019;
         let t1024 = t1 * t1016;
         let t1025 = t1024 - t1023;
+        out[60] = t1025;
         let t1026 = t180 * t207;
         let t1027 = t177 * t177;
         let t1028 = t180 * t180;
         let t1029 = t1027 - t1028;
+        out[481] = t1029;
         let t1030 = t211 - t987;
         let t1031 = t209 + t1026;
         let t1032 = t174 * t1030;
@@ -1237,139 +1365,165 @@ impl Panda {
         let t1035 = t173 * t1030;
         let t1036 = t174 * t1031;
         let t1037 = t1035 + t1036;
+        out[411] = t1037;
         let t1038 = t148 * t1034;
         let t1039 = t147 * t1029;
         let t1040 = t1038 + t1039;
         let t1041 = t147 * t1034;
         let t1042 = t148 * t1029;
         let t1043 = t1041 - t1042;
+        out[341] = t1043;
         let t1044 = t95 * t1040;
         let t1045 = t94 * t1037;
         let t1046 = t1044 + t1045;
         let t1047 = t94 * t1040;
         let t1048 = t95 * t1037;
         let t1049 = t1048 - t1047;
+        out[271] = t1049;
         let t1050 = t55 * t1046;
         let t1051 = t54 * t1043;
         let t1052 = t1050 - t1051;
         let t1053 = t54 * t1046;
         let t1054 = t55 * t1043;
         let t1055 = t1053 + t1054;
+        out[201] = t1055;
         let t1056 = t13 * t1052;
         let t1057 = t12 * t1049;
         let t1058 = t1056 + t1057;
         let t1059 = t12 * t1052;
         let t1060 = t13 * t1049;
         let t1061 = t1059 - t1060;
+        out[131] = t1061;
         let t1062 = t0 * t1058;
         let t1063 = t1 * t1055;
         let t1064 = t1063 - t1062;
+        out[61] = t1064;
         let t1065 = t207 * t207;
         let t1066 = t1065 - t1027;
         let t1067 = t212 + t988;
         let t1068 = t209 - t1026;
+        out[482] = t1068;
         let t1069 = t174 * t1067;
         let t1070 = t173 * t1066;
         let t1071 = t1069 - t1070;
         let t1072 = t173 * t1067;
         let t1073 = t174 * t1066;
         let t1074 = t1072 + t1073;
+        out[412] = t1074;
         let t1075 = t148 * t1071;
         let t1076 = t147 * t1068;
         let t1077 = t1075 + t1076;
         let t1078 = t147 * t1071;
         let t1079 = t148 * t1068;
         let t1080 = t1078 - t1079;
+        out[342] = t1080;
         let t1081 = t95 * t1077;
         let t1082 = t94 * t1074;
         let t1083 = t1081 + t1082;
         let t1084 = t94 * t1077;
         let t1085 = t95 * t1074;
         let t1086 = t1085 - t1084;
+        out[272] = t1086;
         let t1087 = t55 * t1083;
         let t1088 = t54 * t1080;
         let t1089 = t1087 - t1088;
         let t1090 = t54 * t1083;
         let t1091 = t55 * t1080;
         let t1092 = t1090 + t1091;
+        out[202] = t1092;
         let t1093 = t13 * t1089;
         let t1094 = t12 * t1086;
         let t1095 = t1093 + t1094;
         let t1096 = t12 * t1089;
         let t1097 = t13 * t1086;
         let t1098 = t1096 - t1097;
+        out[132] = t1098;
         let t1099 = t0 * t1095;
         let t1100 = t1 * t1092;
         let t1101 = t1100 - t1099;
+        out[62] = t1101;
         let t1102 = t1028 - t1065;
         let t1103 = t212 - t988;
         let t1104 = t211 + t987;
+        out[484] = t1104;
         let t1105 = t174 * t1102;
         let t1106 = t173 * t1103;
         let t1107 = t1105 - t1106;
         let t1108 = t173 * t1102;
         let t1109 = t174 * t1103;
         let t1110 = t1108 + t1109;
+        out[414] = t1110;
         let t1111 = t148 * t1107;
         let t1112 = t147 * t1104;
         let t1113 = t1111 + t1112;
         let t1114 = t147 * t1107;
         let t1115 = t148 * t1104;
         let t1116 = t1114 - t1115;
+        out[344] = t1116;
         let t1117 = t95 * t1113;
         let t1118 = t94 * t1110;
         let t1119 = t1117 + t1118;
         let t1120 = t94 * t1113;
         let t1121 = t95 * t1110;
         let t1122 = t1121 - t1120;
+        out[274] = t1122;
         let t1123 = t55 * t1119;
         let t1124 = t54 * t1116;
         let t1125 = t1123 - t1124;
         let t1126 = t54 * t1119;
         let t1127 = t55 * t1116;
         let t1128 = t1126 + t1127;
+        out[204] = t1128;
         let t1129 = t13 * t1125;
         let t1130 = t12 * t1122;
         let t1131 = t1129 + t1130;
         let t1132 = t12 * t1125;
         let t1133 = t13 * t1122;
         let t1134 = t1132 - t1133;
+        out[134] = t1134;
         let t1135 = t0 * t1131;
         let t1136 = t1 * t1128;
         let t1137 = t1136 - t1135;
+        out[64] = t1137;
         let t1138 = t174 * t180;
         let t1139 = t207 * t1138;
         let t1140 = t991 + t1139;
         let t1141 = t173 * t180;
         let t1142 = t207 * t1141;
         let t1143 = t1142 - t995;
+        out[415] = t1143;
         let t1144 = t148 * t1140;
         let t1145 = t147 * t212;
         let t1146 = t1144 + t1145;
         let t1147 = t147 * t1140;
         let t1148 = t148 * t212;
         let t1149 = t1147 - t1148;
+        out[345] = t1149;
         let t1150 = t95 * t1146;
         let t1151 = t94 * t1143;
         let t1152 = t1150 + t1151;
         let t1153 = t94 * t1146;
         let t1154 = t95 * t1143;
         let t1155 = t1154 - t1153;
+        out[275] = t1155;
         let t1156 = t55 * t1152;
         let t1157 = t54 * t1149;
         let t1158 = t1156 - t1157;
         let t1159 = t54 * t1152;
         let t1160 = t55 * t1149;
         let t1161 = t1159 + t1160;
+        out[205] = t1161;
         let t1162 = t13 * t1158;
         let t1163 = t12 * t1155;
         let t1164 = t1162 + t1163;
         let t1165 = t12 * t1158;
         let t1166 = t13 * t1155;
         let t1167 = t1165 - t1166;
+        out[135] = t1167;
         let t1168 = t0 * t1164;
         let t1169 = t1 * t1161;
         let t1170 = t1169 - t1168;
+        out[65] = t1170;
         let t1171 = t1028 + t1065;
         let t1172 = t174 * t1171;
         let t1173 = t1072 + t1172;
@@ -1380,6 +1534,7 @@ impl Panda {
         let t1178 = t1177 - t204;
         let t1179 = t1030 * c5;
         let t1180 = t1174 + t1179;
+        out[416] = t1180;
         let t1181 = t148 * t1173;
         let t1182 = t147 * t1030;
         let t1183 = t1181 + t1182;
@@ -1394,6 +1549,7 @@ impl Panda {
         let t1192 = t195 * t1191;
         let t1193 = t148 * t1178;
         let t1194 = t1193 - t1192;
+        out[346] = t1194;
         let t1195 = t95 * t1183;
         let t1196 = t94 * t1176;
         let t1197 = t1195 + t1196;
@@ -1414,6 +1570,7 @@ impl Panda {
         let t1212 = t1202 + t1203;
         let t1213 = t1211 - t1210;
         let t1214 = t1212 + t1213;
+        out[276] = t1214;
         let t1215 = t55 * t1197;
         let t1216 = t54 * t1186;
         let t1217 = t1215 + t1216;
@@ -1431,6 +1588,7 @@ impl Panda {
         let t1229 = t1228 - t1212;
         let t1230 = t1222 - t1208;
         let t1231 = t1221 + t1230;
+        out[206] = t1231;
         let t1232 = t13 * t1220;
         let t1233 = t12 * t1229;
         let t1234 = t12 * t1220;
@@ -1447,9 +1605,11 @@ impl Panda {
         let t1245 = t1244 * c1;
         let t1246 = t1235 + t1245;
         let t1247 = t1234 + t1246;
+        out[136] = t1247;
         let t1248 = t0 * t1243;
         let t1249 = t1 * t1231;
         let t1250 = t1249 - t1248;
+        out[66] = t1250;
         let t1251 = t1027 + t1065;
         let t1252 = t173 * t1251;
         let t1253 = t1252 - t1109;
@@ -1474,6 +1634,7 @@ impl Panda {
         let t1272 = t195 * t1271;
         let t1273 = t148 * t1258;
         let t1274 = t1273 - t1272;
+        out[347] = t1274;
         let t1275 = t95 * t1263;
         let t1276 = t94 * t1256;
         let t1277 = t1275 - t1276;
@@ -1494,6 +1655,7 @@ impl Panda {
         let t1292 = t1282 - t1283;
         let t1293 = t1290 + t1291;
         let t1294 = t1292 - t1293;
+        out[277] = t1294;
         let t1295 = t55 * t1277;
         let t1296 = t54 * t1266;
         let t1297 = t1295 - t1296;
@@ -1512,6 +1674,7 @@ impl Panda {
         let t1310 = t1308 + t1309;
         let t1311 = t1288 + t1302;
         let t1312 = t1311 - t1301;
+        out[207] = t1312;
         let t1313 = t13 * t1300;
         let t1314 = t12 * t1310;
         let t1315 = t12 * t1300;
@@ -1528,17 +1691,21 @@ impl Panda {
         let t1326 = t1325 * c1;
         let t1327 = t1316 + t1326;
         let t1328 = t1327 - t1315;
+        out[137] = t1328;
         let t1329 = t0 * t1324;
         let t1330 = t1 * t1312;
         let t1331 = t1329 + t1330;
+        out[67] = t1331;
         let t1332 = t1 * t11;
         let t1333 = t214 + t1332;
         let t1334 = t12 * t52;
         let t1335 = t290 + t1334;
         let t1336 = t13 * t52;
         let t1337 = t1336 - t293;
+        out[93] = t1337;
         let t1338 = t0 * t1335;
         let t1339 = t247 + t1338;
+        out[23] = t1339;
         let t1340 = t13 * t45;
         let t1341 = t12 * t42;
         let t1342 = t12 * t45;
@@ -1555,16 +1722,20 @@ impl Panda {
         let t1353 = t1352 * c1;
         let t1354 = t1343 + t1353;
         let t1355 = t1354 - t1342;
+        out[98] = t1355;
         let t1356 = t0 * t1351;
         let t1357 = t1340 + t1341;
         let t1358 = t1357 * c1;
         let t1359 = t1343 - t1342;
         let t1360 = t1359 * c1;
+        out[99] = t1360;
         let t1361 = t0 * t1358;
+        out[29] = t1361;
         let t1362 = t54 * t92;
         let t1363 = t404 + t1362;
         let t1364 = t55 * t92;
         let t1365 = t1364 - t407;
+        out[173] = t1365;
         let t1366 = t13 * t1363;
         let t1367 = t336 - t1366;
         let t1368 = t12 * t1363;
@@ -1572,6 +1743,7 @@ impl Panda {
         let t1370 = t0 * t1367;
         let t1371 = t1 * t1365;
         let t1372 = t1371 - t1370;
+        out[33] = t1372;
         let t1373 = t55 * t387;
         let t1374 = t54 * t369;
         let t1375 = t1373 + t1374;
@@ -1588,6 +1760,7 @@ impl Panda {
         let t1386 = t1376 * c3;
         let t1387 = t1381 + t1386;
         let t1388 = t1387 - t1380;
+        out[178] = t1388;
         let t1389 = t13 * t1379;
         let t1390 = t12 * t1385;
         let t1391 = t12 * t1379;
@@ -1604,15 +1777,18 @@ impl Panda {
         let t1402 = t1401 * c1;
         let t1403 = t1392 + t1402;
         let t1404 = t1403 - t1391;
+        out[108] = t1404;
         let t1405 = t0 * t1400;
         let t1406 = t1 * t1388;
         let t1407 = t1405 + t1406;
+        out[38] = t1407;
         let t1408 = t1381 - t1380;
         let t1409 = t1379 * c3;
         let t1410 = t45 + t70;
         let t1411 = t1410 * c3;
         let t1412 = t53 * c7;
         let t1413 = t1411 + t1412;
+        out[179] = t1413;
         let t1414 = t12 * t1409;
         let t1415 = t13 * t1409;
         let t1416 = t12 * t1408;
@@ -1625,26 +1801,32 @@ impl Panda {
         let t1423 = t1418 - t1419;
         let t1424 = t1423 * c1;
         let t1425 = t1424 - t1415;
+        out[109] = t1425;
         let t1426 = t0 * t1422;
         let t1427 = t1 * t1413;
         let t1428 = t1427 - t1426;
+        out[39] = t1428;
         let t1429 = t94 * t145;
         let t1430 = t584 + t1429;
         let t1431 = t95 * t145;
         let t1432 = t1431 - t587;
+        out[253] = t1432;
         let t1433 = t55 * t1430;
         let t1434 = t492 + t1433;
         let t1435 = t54 * t1430;
         let t1436 = t1435 - t496;
+        out[183] = t1436;
         let t1437 = t13 * t1434;
         let t1438 = t12 * t1432;
         let t1439 = t1437 + t1438;
         let t1440 = t12 * t1434;
         let t1441 = t13 * t1432;
         let t1442 = t1440 - t1441;
+        out[113] = t1442;
         let t1443 = t0 * t1439;
         let t1444 = t1 * t1436;
         let t1445 = t1444 - t1443;
+        out[43] = t1445;
         let t1446 = t508 + t509;
         let t1447 = t95 * t561;
         let t1448 = t94 * t537;
@@ -1663,6 +1845,7 @@ impl Panda {
         let t1461 = t872 + t1453;
         let t1462 = t1459 - t1460;
         let t1463 = t1462 - t1461;
+        out[258] = t1463;
         let t1464 = t55 * t1449;
         let t1465 = t54 * t1446;
         let t1466 = t1464 + t1465;
@@ -1680,6 +1863,7 @@ impl Panda {
         let t1478 = t1461 + t1477;
         let t1479 = t1471 - t1455;
         let t1480 = t1470 + t1479;
+        out[188] = t1480;
         let t1481 = t13 * t1469;
         let t1482 = t12 * t1478;
         let t1483 = t12 * t1469;
@@ -1696,9 +1880,11 @@ impl Panda {
         let t1494 = t1493 * c1;
         let t1495 = t1484 + t1494;
         let t1496 = t1483 + t1495;
+        out[118] = t1496;
         let t1497 = t0 * t1492;
         let t1498 = t1 * t1480;
         let t1499 = t1498 - t1497;
+        out[48] = t1499;
         let t1500 = t869 - t1452;
         let t1501 = t1500 * c4;
         let t1502 = t1500 * c3;
@@ -1709,6 +1895,7 @@ impl Panda {
         let t1507 = t1461 * c4;
         let t1508 = t1506 - t1507;
         let t1509 = t1503 + t1508;
+        out[259] = t1509;
         let t1510 = t55 * t1461;
         let t1511 = t54 * t124;
         let t1512 = t1510 - t1511;
@@ -1726,6 +1913,7 @@ impl Panda {
         let t1524 = t1507 - t1523;
         let t1525 = t1517 - t1502;
         let t1526 = t1516 + t1525;
+        out[189] = t1526;
         let t1527 = t13 * t1515;
         let t1528 = t12 * t1524;
         let t1529 = t12 * t1515;
@@ -1742,32 +1930,39 @@ impl Panda {
         let t1540 = t1539 * c1;
         let t1541 = t1530 + t1540;
         let t1542 = t1529 + t1541;
+        out[119] = t1542;
         let t1543 = t0 * t1538;
         let t1544 = t1 * t1526;
         let t1545 = t1544 - t1543;
+        out[49] = t1545;
         let t1546 = t147 * t171;
         let t1547 = t832 + t1546;
         let t1548 = t148 * t171;
         let t1549 = t1548 - t835;
+        out[333] = t1549;
         let t1550 = t95 * t1547;
         let t1551 = t716 - t1550;
         let t1552 = t94 * t1547;
         let t1553 = t720 + t1552;
+        out[263] = t1553;
         let t1554 = t55 * t1551;
         let t1555 = t54 * t1549;
         let t1556 = t1554 - t1555;
         let t1557 = t54 * t1551;
         let t1558 = t55 * t1549;
         let t1559 = t1557 + t1558;
+        out[193] = t1559;
         let t1560 = t13 * t1556;
         let t1561 = t12 * t1553;
         let t1562 = t1560 + t1561;
         let t1563 = t12 * t1556;
         let t1564 = t13 * t1553;
         let t1565 = t1563 - t1564;
+        out[123] = t1565;
         let t1566 = t0 * t1562;
         let t1567 = t1 * t1559;
         let t1568 = t1567 - t1566;
+        out[53] = t1568;
         let t1569 = t148 * t803;
         let t1570 = t147 * t773;
         let t1571 = t1569 + t1570;
@@ -1781,6 +1976,7 @@ impl Panda {
         let t1579 = t147 * t164;
         let t1580 = t148 * t161;
         let t1581 = t1580 - t1579;
+        out[338] = t1581;
         let t1582 = t95 * t1571;
         let t1583 = t94 * t1572;
         let t1584 = t1582 - t1583;
@@ -1797,6 +1993,7 @@ impl Panda {
         let t1595 = t1584 * c4;
         let t1596 = t1594 + t1595;
         let t1597 = t1588 - t1596;
+        out[268] = t1597;
         let t1598 = t55 * t1584;
         let t1599 = t54 * t1575;
         let t1600 = t1598 - t1599;
@@ -1814,6 +2011,7 @@ impl Panda {
         let t1612 = t1611 - t1588;
         let t1613 = t1592 + t1605;
         let t1614 = t1613 - t1604;
+        out[198] = t1614;
         let t1615 = t13 * t1603;
         let t1616 = t12 * t1612;
         let t1617 = t12 * t1603;
@@ -1830,9 +2028,11 @@ impl Panda {
         let t1628 = t1627 * c1;
         let t1629 = t1618 + t1628;
         let t1630 = t1629 - t1617;
+        out[128] = t1630;
         let t1631 = t0 * t1626;
         let t1632 = t1 * t1614;
         let t1633 = t1631 + t1632;
+        out[58] = t1633;
         let t1634 = t95 * t1581;
         let t1635 = t872 + t1634;
         let t1636 = t94 * t1581;
@@ -1858,6 +2058,7 @@ impl Panda {
         let t1656 = t1640 + t1655;
         let t1657 = t1650 - t1639;
         let t1658 = t1649 + t1657;
+        out[199] = t1658;
         let t1659 = t13 * t1648;
         let t1660 = t12 * t1656;
         let t1661 = t12 * t1648;
@@ -1874,13 +2075,16 @@ impl Panda {
         let t1672 = t1671 * c1;
         let t1673 = t1662 + t1672;
         let t1674 = t1661 + t1673;
+        out[129] = t1674;
         let t1675 = t0 * t1670;
         let t1676 = t1 * t1658;
         let t1677 = t1676 - t1675;
+        out[59] = t1677;
         let t1678 = t173 * t211;
         let t1679 = t1139 + t1678;
         let t1680 = t174 * t211;
         let t1681 = t1680 - t1142;
+        out[413] = t1681;
         let t1682 = t148 * t1679;
         let t1683 = t999 - t1682;
         let t1684 = t147 * t1679;
@@ -1891,21 +2095,25 @@ impl Panda {
         let t1689 = t94 * t1683;
         let t1690 = t95 * t1681;
         let t1691 = t1690 - t1689;
+        out[273] = t1691;
         let t1692 = t55 * t1688;
         let t1693 = t54 * t1685;
         let t1694 = t1692 + t1693;
         let t1695 = t54 * t1688;
         let t1696 = t55 * t1685;
         let t1697 = t1695 - t1696;
+        out[203] = t1697;
         let t1698 = t13 * t1694;
         let t1699 = t12 * t1691;
         let t1700 = t1698 + t1699;
         let t1701 = t12 * t1694;
         let t1702 = t13 * t1691;
         let t1703 = t1701 - t1702;
+        out[133] = t1703;
         let t1704 = t0 * t1700;
         let t1705 = t1 * t1697;
         let t1706 = t1705 - t1704;
+        out[63] = t1706;
         let t1707 = t174 * t1104;
         let t1708 = t173 * t1068;
         let t1709 = t1707 + t1708;
@@ -1922,6 +2130,7 @@ impl Panda {
         let t1720 = t1710 * c5;
         let t1721 = t1715 + t1720;
         let t1722 = t1721 - t1714;
+        out[418] = t1722;
         let t1723 = t148 * t1709;
         let t1724 = t147 * t1710;
         let t1725 = t1723 - t1724;
@@ -1934,6 +2143,7 @@ impl Panda {
         let t1732 = t147 * t1713;
         let t1733 = t148 * t1719;
         let t1734 = t1733 - t1732;
+        out[348] = t1734;
         let t1735 = t95 * t1725;
         let t1736 = t94 * t1718;
         let t1737 = t1735 - t1736;
@@ -1954,6 +2164,7 @@ impl Panda {
         let t1752 = t1742 + t1743;
         let t1753 = t1750 + t1751;
         let t1754 = t1752 - t1753;
+        out[278] = t1754;
         let t1755 = t55 * t1737;
         let t1756 = t54 * t1728;
         let t1757 = t1755 - t1756;
@@ -1971,6 +2182,7 @@ impl Panda {
         let t1769 = t1768 - t1752;
         let t1770 = t1748 + t1762;
         let t1771 = t1761 + t1770;
+        out[208] = t1771;
         let t1772 = t13 * t1760;
         let t1773 = t12 * t1769;
         let t1774 = t12 * t1760;
@@ -1987,15 +2199,18 @@ impl Panda {
         let t1785 = t1784 * c1;
         let t1786 = t1775 + t1785;
         let t1787 = t1774 + t1786;
+        out[138] = t1787;
         let t1788 = t0 * t1783;
         let t1789 = t1 * t1771;
         let t1790 = t1789 - t1788;
+        out[68] = t1790;
         let t1791 = t1715 - t1714;
         let t1792 = t1713 * c5;
         let t1793 = t164 + t189;
         let t1794 = t1793 * c5;
         let t1795 = t172 * c8;
         let t1796 = t1794 + t1795;
+        out[419] = t1796;
         let t1797 = t148 * t1791;
         let t1798 = t147 * t195;
         let t1799 = t1797 - t1798;
@@ -2025,6 +2240,7 @@ impl Panda {
         let t1823 = t1814 - t1813;
         let t1824 = t1821 + t1822;
         let t1825 = t1823 - t1824;
+        out[279] = t1825;
         let t1826 = t55 * t1806;
         let t1827 = t54 * t1802;
         let t1828 = t1826 - t1827;
@@ -2043,6 +2259,7 @@ impl Panda {
         let t1841 = t1839 + t1840;
         let t1842 = t1833 - t1819;
         let t1843 = t1832 + t1842;
+        out[209] = t1843;
         let t1844 = t13 * t1831;
         let t1845 = t12 * t1841;
         let t1846 = t12 * t1831;
@@ -2059,536 +2276,82 @@ impl Panda {
         let t1857 = t1856 * c1;
         let t1858 = t1847 + t1857;
         let t1859 = t1846 + t1858;
+        out[139] = t1859;
         let t1860 = t0 * t1855;
         let t1861 = t1 * t1843;
         let t1862 = t1861 - t1860;
+        out[69] = t1862;
         let t1863 = -t230;
+        out[12] = t1863;
         let t1864 = -t1333;
+        out[13] = t1864;
         let t1865 = -t234;
+        out[14] = t1865;
         let t1866 = -t248;
+        out[20] = t1866;
         let t1867 = -t323;
+        out[27] = t1867;
         let t1868 = -t1356;
+        out[28] = t1868;
         let t1869 = -t479;
+        out[37] = t1869;
         let t1870 = -t27;
+        out[80] = t1870;
         let t1871 = -t3;
+        out[82] = t1871;
         let t1872 = -t4;
+        out[84] = t1872;
         let t1873 = -t6;
+        out[86] = t1873;
         let t1874 = -t1369;
+        out[103] = t1874;
         let t1875 = -t530;
+        out[111] = t1875;
         let t1876 = -t236;
+        out[160] = t1876;
         let t1877 = -t42;
+        out[167] = t1877;
         let t1878 = -t458;
+        out[177] = t1878;
         let t1879 = -t325;
+        out[240] = t1879;
         let t1880 = -t82;
+        out[247] = t1880;
         let t1881 = -t489;
+        out[250] = t1881;
         let t1882 = -t543;
+        out[252] = t1882;
         let t1883 = -t567;
+        out[254] = t1883;
         let t1884 = -t667;
+        out[257] = t1884;
         let t1885 = -t721;
+        out[260] = t1885;
         let t1886 = -t1642;
+        out[269] = t1886;
         let t1887 = -t481;
+        out[323] = t1887;
         let t1888 = -t138;
+        out[326] = t1888;
         let t1889 = -t135;
+        out[327] = t1889;
         let t1890 = -t863;
+        out[336] = t1890;
         let t1891 = -t1685;
+        out[343] = t1891;
         let t1892 = -t1803;
+        out[349] = t1892;
         let t1893 = -t705;
+        out[400] = t1893;
         let t1894 = -t161;
+        out[407] = t1894;
         let t1895 = -t1260;
+        out[417] = t1895;
         let t1896 = -t988;
+        out[480] = t1896;
         let t1897 = -t201;
-        [
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            qdd1,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t215,
-            t225,
-            t1863,
-            t1864,
-            t1865,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1866,
-            t263,
-            t276,
-            t1339,
-            t288,
-            t297,
-            t311,
-            t1867,
-            t1868,
-            t1361,
-            t344,
-            t365,
-            t384,
-            t1372,
-            t402,
-            t417,
-            t448,
-            t1869,
-            t1407,
-            t1428,
-            t506,
-            t533,
-            t558,
-            t1445,
-            t582,
-            t603,
-            t654,
-            t703,
-            t1499,
-            t1545,
-            t736,
-            t769,
-            t800,
-            t1568,
-            t830,
-            t857,
-            t922,
-            t986,
-            t1633,
-            t1677,
-            t1025,
-            t1064,
-            t1101,
-            t1706,
-            t1137,
-            t1170,
-            t1250,
-            t1331,
-            t1790,
-            t1862,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1870,
-            t218,
-            t1871,
-            t27,
-            t1872,
-            qdd2,
-            t1873,
-            t5,
-            T::ZERO,
-            T::ZERO,
-            t244,
-            t260,
-            t273,
-            t1337,
-            t285,
-            t294,
-            t308,
-            t320,
-            t1355,
-            t1360,
-            t341,
-            t362,
-            t381,
-            t1874,
-            t399,
-            t414,
-            t445,
-            t476,
-            t1404,
-            t1425,
-            t503,
-            t1875,
-            t555,
-            t1442,
-            t579,
-            t600,
-            t651,
-            t700,
-            t1496,
-            t1542,
-            t733,
-            t766,
-            t797,
-            t1565,
-            t827,
-            t854,
-            t919,
-            t983,
-            t1630,
-            t1674,
-            t1022,
-            t1061,
-            t1098,
-            t1703,
-            t1134,
-            t1167,
-            t1247,
-            t1328,
-            t1787,
-            t1859,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1876,
-            t252,
-            t267,
-            t236,
-            t279,
-            t53,
-            t45,
-            t1877,
-            T::ZERO,
-            T::ZERO,
-            t333,
-            t356,
-            t375,
-            t1365,
-            t393,
-            t408,
-            t427,
-            t1878,
-            t1388,
-            t1413,
-            t497,
-            t524,
-            t549,
-            t1436,
-            t573,
-            t594,
-            t635,
-            t684,
-            t1480,
-            t1526,
-            t727,
-            t760,
-            t791,
-            t1559,
-            t821,
-            t848,
-            t903,
-            t967,
-            t1614,
-            t1658,
-            t1016,
-            t1055,
-            t1092,
-            t1697,
-            t1128,
-            t1161,
-            t1231,
-            t1312,
-            t1771,
-            t1843,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1879,
-            t348,
-            t369,
-            t325,
-            t387,
-            t93,
-            t85,
-            t1880,
-            T::ZERO,
-            T::ZERO,
-            t1881,
-            t518,
-            t1882,
-            t1432,
-            t1883,
-            t588,
-            t618,
-            t1884,
-            t1463,
-            t1509,
-            t1885,
-            t754,
-            t785,
-            t1553,
-            t815,
-            t842,
-            t885,
-            t950,
-            t1597,
-            t1886,
-            t1010,
-            t1049,
-            t1086,
-            t1691,
-            t1122,
-            t1155,
-            t1214,
-            t1294,
-            t1754,
-            t1825,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t481,
-            t510,
-            t537,
-            t1887,
-            t561,
-            t146,
-            t1888,
-            t1889,
-            T::ZERO,
-            T::ZERO,
-            t713,
-            t748,
-            t779,
-            t1549,
-            t809,
-            t836,
-            t1890,
-            t928,
-            t1581,
-            T::ZERO,
-            t1004,
-            t1043,
-            t1080,
-            t1891,
-            t1116,
-            t1149,
-            t1194,
-            t1274,
-            t1734,
-            t1892,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1893,
-            t740,
-            t773,
-            t705,
-            t803,
-            t172,
-            t164,
-            t1894,
-            T::ZERO,
-            T::ZERO,
-            t996,
-            t1037,
-            t1074,
-            t1681,
-            t1110,
-            t1143,
-            t1180,
-            t1895,
-            t1722,
-            t1796,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1896,
-            t1029,
-            t1068,
-            t988,
-            t1104,
-            t212,
-            t204,
-            t1897,
-            T::ZERO,
-            T::ZERO,
-        ]
+        out[487] = t1897;
+        out
     }
     /// Base regressor Y_b(q, qd, qdd), `7 x 43` row-major: tau = Y_b * base.
     ///
@@ -2598,7 +2361,7 @@ impl Panda {
     /// - `qd`: qd1 .. qd7
     /// - `qdd`: qdd1 .. qdd7
     ///
-    /// Operations: 693 mul, 507 add, 30 neg, 6 sin, 6 cos.
+    /// Operations: 694 mul, 507 add, 29 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -2614,6 +2377,10 @@ impl Panda {
         let c2 = T::from_f64(0.0825);
         let c3 = T::from_f64(0.384);
         let c4 = T::from_f64(0.088);
+        let c5 = T::from_f64(-9.81);
+        let mut out = [T::ZERO; 301];
+        out[0] = qdd1;
+        out[48] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -2641,7 +2408,9 @@ impl Panda {
         let t30 = t20 + t21;
         let t31 = t17 + t19;
         let t32 = t19 - t17;
+        out[47] = t32;
         let t33 = t0 * c0;
+        out[50] = t33;
         let t34 = t25 * c1;
         let t35 = t33 + t34;
         let t36 = t1 * c0;
@@ -2655,6 +2424,7 @@ impl Panda {
         let t44 = t43 - t39;
         let t45 = t42 * c1;
         let t46 = t41 + t45;
+        out[99] = t46;
         let t47 = t3 * t12;
         let t48 = t2 * qd2;
         let t49 = t2 * t12;
@@ -2673,6 +2443,7 @@ impl Panda {
         let t62 = t57 + t59;
         let t63 = t58 - t60;
         let t64 = qdd3 - t19;
+        out[98] = t64;
         let t65 = t51 * t51;
         let t66 = t52 * t52;
         let t67 = t61 * t61;
@@ -2688,6 +2459,7 @@ impl Panda {
         let t77 = t51 * t61;
         let t78 = t77 - t63;
         let t79 = t63 + t77;
+        out[97] = t79;
         let t80 = t68 * c2;
         let t81 = t44 - t80;
         let t82 = t71 * c2;
@@ -2700,6 +2472,7 @@ impl Panda {
         let t89 = t5 * t85;
         let t90 = t86 + t87;
         let t91 = t89 - t88;
+        out[149] = t91;
         let t92 = t5 * t51;
         let t93 = t4 * t61;
         let t94 = t4 * t51;
@@ -2718,6 +2491,7 @@ impl Panda {
         let t107 = t102 + t104;
         let t108 = t103 - t105;
         let t109 = qdd4 - t63;
+        out[148] = t109;
         let t110 = t96 * t96;
         let t111 = t97 * t97;
         let t112 = t106 * t106;
@@ -2733,6 +2507,7 @@ impl Panda {
         let t122 = t96 * t106;
         let t123 = t122 - t108;
         let t124 = t108 + t122;
+        out[147] = t124;
         let t125 = t113 * c2;
         let t126 = t115 * c3;
         let t127 = t125 + t126;
@@ -2769,27 +2544,32 @@ impl Panda {
         let t158 = t153 - t155;
         let t159 = t154 + t156;
         let t160 = t108 + qdd5;
+        out[198] = t160;
         let t161 = t147 * t147;
         let t162 = t148 * t148;
         let t163 = t157 * t157;
         let t164 = t162 + t163;
         let t165 = t147 * t148;
+        out[194] = t165;
         let t166 = t160 + t165;
         let t167 = t160 - t165;
         let t168 = t161 + t163;
         let t169 = t148 * t157;
         let t170 = t158 + t169;
+        out[196] = t170;
         let t171 = t158 - t169;
         let t172 = t161 + t162;
         let t173 = t147 * t157;
         let t174 = t159 + t173;
         let t175 = t173 - t159;
+        out[197] = t175;
         let t176 = t9 * t141;
         let t177 = t8 * t135;
         let t178 = t8 * t141;
         let t179 = t9 * t135;
         let t180 = t176 + t177;
         let t181 = t179 - t178;
+        out[249] = t181;
         let t182 = t9 * t147;
         let t183 = t8 * t157;
         let t184 = t8 * t147;
@@ -2808,6 +2588,7 @@ impl Panda {
         let t197 = t192 + t194;
         let t198 = t193 - t195;
         let t199 = t159 + qdd6;
+        out[248] = t199;
         let t200 = t186 * t186;
         let t201 = t187 * t187;
         let t202 = t196 * t196;
@@ -2823,6 +2604,7 @@ impl Panda {
         let t212 = t186 * t196;
         let t213 = t212 - t198;
         let t214 = t198 + t212;
+        out[247] = t214;
         let t215 = t203 * c4;
         let t216 = t180 - t215;
         let t217 = t206 * c4;
@@ -2835,6 +2617,7 @@ impl Panda {
         let t224 = t11 * t220;
         let t225 = t221 + t222;
         let t226 = t224 - t223;
+        out[299] = t226;
         let t227 = t11 * t186;
         let t228 = t10 * t196;
         let t229 = t10 * t186;
@@ -2853,6 +2636,7 @@ impl Panda {
         let t242 = t237 + t239;
         let t243 = t238 - t240;
         let t244 = qdd7 - t198;
+        out[298] = t244;
         let t245 = t231 * t231;
         let t246 = t232 * t232;
         let t247 = t241 * t241;
@@ -2868,6 +2652,7 @@ impl Panda {
         let t257 = t231 * t241;
         let t258 = t257 - t243;
         let t259 = t243 + t257;
+        out[297] = t259;
         let t260 = t0 * t3;
         let t261 = t0 * t2;
         let t262 = t5 * t260;
@@ -3060,67 +2845,89 @@ impl Panda {
         let t449 = t30 - t27;
         let t450 = t23 - t30;
         let t451 = t27 - t23;
+        out[45] = t451;
         let t452 = t0 * t18;
         let t453 = t1 * t17;
         let t454 = t452 + t453;
+        out[1] = t454;
         let t455 = -t24;
+        out[44] = t455;
         let t456 = t0 * t31;
         let t457 = t1 * t29;
         let t458 = t457 - t456;
+        out[2] = t458;
         let t459 = t0 * t26;
         let t460 = t1 * t450;
         let t461 = t459 + t460;
         let t462 = -t461;
+        out[3] = t462;
         let t463 = -t28;
+        out[46] = t463;
         let t464 = t0 * t449;
         let t465 = t1 * t25;
         let t466 = t465 - t464;
+        out[4] = t466;
         let t467 = t0 * t16;
         let t468 = t467 - t453;
-        let t469 = -t36;
+        out[5] = t468;
+        let t469 = t1 * c5;
+        out[49] = t469;
         let t470 = t76 - t72;
         let t471 = t68 - t76;
         let t472 = t72 - t68;
+        out[95] = t472;
         let t473 = t62 * t260;
         let t474 = t77 * t261;
         let t475 = t1 * t69;
         let t476 = t474 - t475;
         let t477 = t476 - t473;
+        out[8] = t477;
         let t478 = t2 * t62;
         let t479 = t3 * t77;
         let t480 = t478 + t479;
+        out[51] = t480;
         let t481 = -t69;
+        out[94] = t481;
         let t482 = t78 * t260;
         let t483 = t75 * t261;
         let t484 = t1 * t472;
         let t485 = t483 + t484;
         let t486 = t482 + t485;
+        out[9] = t486;
         let t487 = t2 * t78;
         let t488 = t3 * t75;
         let t489 = t488 - t487;
+        out[52] = t489;
         let t490 = t71 * t260;
         let t491 = t261 * t471;
         let t492 = t1 * t74;
         let t493 = t491 - t492;
         let t494 = t493 - t490;
+        out[10] = t494;
         let t495 = t2 * t71;
         let t496 = t3 * t471;
         let t497 = t495 + t496;
+        out[53] = t497;
         let t498 = -t74;
+        out[96] = t498;
         let t499 = t260 * t470;
         let t500 = t70 * t261;
         let t501 = t1 * t79;
         let t502 = t501 - t500;
         let t503 = t502 - t499;
+        out[11] = t503;
         let t504 = t2 * t470;
         let t505 = t3 * t70;
         let t506 = t504 - t505;
+        out[54] = t506;
         let t507 = t73 * t260;
         let t508 = t1 * t64;
         let t509 = t508 - t474;
         let t510 = t509 - t507;
+        out[12] = t510;
         let t511 = t2 * t73;
         let t512 = t511 - t479;
+        out[55] = t512;
         let t513 = t68 * t261;
         let t514 = t38 * t261;
         let t515 = t1 * t46;
@@ -3128,11 +2935,13 @@ impl Panda {
         let t517 = t514 + t515;
         let t518 = t516 * c1;
         let t519 = t517 + t518;
+        out[13] = t519;
         let t520 = t3 * t68;
         let t521 = t3 * t38;
         let t522 = t495 + t520;
         let t523 = t522 * c1;
         let t524 = t521 - t523;
+        out[56] = t524;
         let t525 = t38 * t260;
         let t526 = t72 * t260;
         let t527 = t1 * t44;
@@ -3140,34 +2949,43 @@ impl Panda {
         let t529 = t500 - t526;
         let t530 = t529 * c1;
         let t531 = t528 + t530;
+        out[14] = t531;
         let t532 = t2 * t38;
         let t533 = t2 * t72;
         let t534 = t505 + t533;
         let t535 = t534 * c1;
         let t536 = t535 - t532;
+        out[57] = t536;
         let t537 = -t44;
+        out[100] = t537;
         let t538 = t121 - t117;
         let t539 = t113 - t121;
         let t540 = t117 - t113;
+        out[145] = t540;
         let t541 = t107 * t266;
         let t542 = t122 * t267;
         let t543 = t114 * t261;
         let t544 = t542 + t543;
         let t545 = t541 + t544;
+        out[15] = t545;
         let t546 = t107 * t268;
         let t547 = t122 * t269;
         let t548 = t3 * t114;
         let t549 = t548 - t547;
         let t550 = t546 + t549;
+        out[58] = t550;
         let t551 = t4 * t107;
         let t552 = t5 * t122;
         let t553 = t551 + t552;
+        out[101] = t553;
         let t554 = -t114;
+        out[144] = t554;
         let t555 = t123 * t266;
         let t556 = t120 * t267;
         let t557 = t261 * t540;
         let t558 = t556 - t557;
         let t559 = t558 - t555;
+        out[16] = t559;
         let t560 = t123 * t268;
         let t561 = t120 * t269;
         let t562 = t3 * t540;
@@ -3176,44 +2994,56 @@ impl Panda {
         let t565 = t4 * t123;
         let t566 = t5 * t120;
         let t567 = t566 - t565;
+        out[102] = t567;
         let t568 = -t564;
+        out[59] = t568;
         let t569 = t116 * t266;
         let t570 = t267 * t539;
         let t571 = t119 * t261;
         let t572 = t570 + t571;
         let t573 = t569 + t572;
+        out[17] = t573;
         let t574 = t116 * t268;
         let t575 = t269 * t539;
         let t576 = t3 * t119;
         let t577 = t576 - t575;
         let t578 = t574 + t577;
+        out[60] = t578;
         let t579 = t4 * t116;
         let t580 = t5 * t539;
         let t581 = t579 + t580;
+        out[103] = t581;
         let t582 = -t119;
+        out[146] = t582;
         let t583 = t266 * t538;
         let t584 = t115 * t267;
         let t585 = t124 * t261;
         let t586 = t584 + t585;
         let t587 = t583 - t586;
+        out[18] = t587;
         let t588 = t268 * t538;
         let t589 = t115 * t269;
         let t590 = t3 * t124;
         let t591 = t589 - t590;
         let t592 = t588 + t591;
+        out[61] = t592;
         let t593 = t4 * t538;
         let t594 = t5 * t115;
         let t595 = t593 - t594;
+        out[104] = t595;
         let t596 = t118 * t266;
         let t597 = t109 * t261;
         let t598 = t542 + t597;
         let t599 = t596 - t598;
+        out[19] = t599;
         let t600 = t118 * t268;
         let t601 = t3 * t109;
         let t602 = t547 - t601;
         let t603 = t600 + t602;
+        out[62] = t603;
         let t604 = t4 * t118;
         let t605 = t604 - t552;
+        out[105] = t605;
         let t606 = t113 * t337;
         let t607 = t83 * t267;
         let t608 = t116 * t340;
@@ -3223,6 +3053,7 @@ impl Panda {
         let t612 = t609 + t610;
         let t613 = t608 + t612;
         let t614 = t611 - t613;
+        out[20] = t614;
         let t615 = t113 * t345;
         let t616 = t83 * t269;
         let t617 = t116 * t348;
@@ -3233,8 +3064,10 @@ impl Panda {
         let t622 = t620 + t621;
         let t623 = t619 * c1;
         let t624 = t623 - t622;
+        out[63] = t624;
         let t625 = t5 * t83;
         let t626 = t625 - t131;
+        out[106] = t626;
         let t627 = t83 * t266;
         let t628 = t115 * t337;
         let t629 = t117 * t340;
@@ -3244,6 +3077,7 @@ impl Panda {
         let t633 = t630 - t631;
         let t634 = t629 + t633;
         let t635 = t632 + t634;
+        out[21] = t635;
         let t636 = t83 * t268;
         let t637 = t115 * t345;
         let t638 = t117 * t348;
@@ -3254,93 +3088,114 @@ impl Panda {
         let t643 = t641 + t642;
         let t644 = t640 * c1;
         let t645 = t643 + t644;
+        out[64] = t645;
         let t646 = t4 * t83;
         let t647 = t120 * c2;
         let t648 = t646 + t647;
         let t649 = -t648;
+        out[107] = t649;
         let t650 = -t90;
+        out[150] = t650;
         let t651 = t172 - t168;
         let t652 = t164 - t172;
         let t653 = t168 - t164;
+        out[195] = t653;
         let t654 = t158 * t274;
         let t655 = t173 * t275;
         let t656 = t165 * t267;
         let t657 = t655 + t656;
         let t658 = t654 + t657;
+        out[22] = t658;
         let t659 = t158 * t280;
         let t660 = t173 * t281;
         let t661 = t165 * t269;
         let t662 = t660 - t661;
         let t663 = t659 + t662;
+        out[65] = t663;
         let t664 = t158 * t282;
         let t665 = t173 * t283;
         let t666 = t5 * t165;
         let t667 = t666 - t665;
         let t668 = t664 + t667;
+        out[108] = t668;
         let t669 = t6 * t158;
         let t670 = t7 * t173;
         let t671 = t669 + t670;
         let t672 = -t671;
+        out[151] = t672;
         let t673 = t174 * t274;
         let t674 = t171 * t275;
         let t675 = t267 * t653;
         let t676 = t674 + t675;
         let t677 = t676 - t673;
+        out[23] = t677;
         let t678 = t174 * t280;
         let t679 = t171 * t281;
         let t680 = t269 * t653;
         let t681 = t679 - t680;
         let t682 = t681 - t678;
+        out[66] = t682;
         let t683 = t174 * t282;
         let t684 = t171 * t283;
         let t685 = t5 * t653;
         let t686 = t685 - t684;
         let t687 = t686 - t683;
+        out[109] = t687;
         let t688 = t6 * t174;
         let t689 = t7 * t171;
         let t690 = t688 - t689;
+        out[152] = t690;
         let t691 = t167 * t274;
         let t692 = t275 * t652;
         let t693 = t170 * t267;
         let t694 = t692 + t693;
         let t695 = t691 + t694;
+        out[24] = t695;
         let t696 = t167 * t280;
         let t697 = t281 * t652;
         let t698 = t170 * t269;
         let t699 = t697 - t698;
         let t700 = t696 + t699;
+        out[67] = t700;
         let t701 = t167 * t282;
         let t702 = t283 * t652;
         let t703 = t5 * t170;
         let t704 = t703 - t702;
         let t705 = t701 + t704;
+        out[110] = t705;
         let t706 = t6 * t167;
         let t707 = t7 * t652;
         let t708 = t706 + t707;
         let t709 = -t708;
+        out[153] = t709;
         let t710 = t274 * t651;
         let t711 = t166 * t275;
         let t712 = t175 * t267;
         let t713 = t711 + t712;
         let t714 = t710 + t713;
+        out[25] = t714;
         let t715 = t280 * t651;
         let t716 = t166 * t281;
         let t717 = t175 * t269;
         let t718 = t716 - t717;
         let t719 = t715 + t718;
+        out[68] = t719;
         let t720 = t282 * t651;
         let t721 = t166 * t283;
         let t722 = t5 * t175;
         let t723 = t722 - t721;
         let t724 = t720 + t723;
+        out[111] = t724;
         let t725 = t6 * t651;
         let t726 = t7 * t166;
         let t727 = t725 + t726;
         let t728 = -t727;
+        out[154] = t728;
         let t729 = t169 * t274;
         let t730 = t160 * t267;
         let t731 = t730 - t655;
         let t732 = t731 - t729;
+        out[26] = t732;
         let t733 = t169 * t280;
         let t734 = t160 * t269;
         let t735 = t660 + t734;
@@ -3349,9 +3204,12 @@ impl Panda {
         let t738 = t5 * t160;
         let t739 = t665 + t738;
         let t740 = t739 - t737;
+        out[112] = t740;
         let t741 = t6 * t169;
         let t742 = t670 + t741;
+        out[155] = t742;
         let t743 = -t736;
+        out[69] = t743;
         let t744 = t164 * t361;
         let t745 = t135 * t275;
         let t746 = t167 * t362;
@@ -3361,6 +3219,7 @@ impl Panda {
         let t750 = t748 - t747;
         let t751 = t750 - t746;
         let t752 = t751 - t749;
+        out[27] = t752;
         let t753 = t164 * t376;
         let t754 = t135 * t281;
         let t755 = t167 * t377;
@@ -3370,6 +3229,7 @@ impl Panda {
         let t759 = t756 + t757;
         let t760 = t759 - t755;
         let t761 = t760 - t758;
+        out[70] = t761;
         let t762 = t164 * t382;
         let t763 = t135 * t283;
         let t764 = t167 * t383;
@@ -3377,6 +3237,7 @@ impl Panda {
         let t766 = t762 + t763;
         let t767 = t764 + t765;
         let t768 = t766 - t767;
+        out[113] = t768;
         let t769 = t7 * t164;
         let t770 = t7 * t135;
         let t771 = t706 + t769;
@@ -3384,7 +3245,9 @@ impl Panda {
         let t773 = t174 * c2;
         let t774 = t770 - t773;
         let t775 = t772 + t774;
+        out[156] = t775;
         let t776 = -t142;
+        out[199] = t776;
         let t777 = t135 * t274;
         let t778 = t166 * t361;
         let t779 = t168 * t362;
@@ -3394,6 +3257,7 @@ impl Panda {
         let t783 = t781 - t780;
         let t784 = t779 + t783;
         let t785 = t782 + t784;
+        out[28] = t785;
         let t786 = t135 * t280;
         let t787 = t166 * t376;
         let t788 = t168 * t377;
@@ -3403,6 +3267,7 @@ impl Panda {
         let t792 = t789 + t790;
         let t793 = t788 + t792;
         let t794 = t791 + t793;
+        out[71] = t794;
         let t795 = t135 * t282;
         let t796 = t166 * t382;
         let t797 = t168 * t383;
@@ -3410,6 +3275,7 @@ impl Panda {
         let t799 = t795 + t796;
         let t800 = t797 - t798;
         let t801 = t799 + t800;
+        out[114] = t801;
         let t802 = t6 * t135;
         let t803 = t6 * t168;
         let t804 = t726 - t803;
@@ -3417,39 +3283,49 @@ impl Panda {
         let t806 = t171 * c2;
         let t807 = t805 - t806;
         let t808 = t807 - t802;
+        out[157] = t808;
         let t809 = -t141;
+        out[200] = t809;
         let t810 = t211 - t207;
         let t811 = t203 - t211;
         let t812 = t207 - t203;
+        out[245] = t812;
         let t813 = t197 * t288;
         let t814 = t212 * t289;
         let t815 = t204 * t275;
         let t816 = t814 + t815;
         let t817 = t813 + t816;
+        out[29] = t817;
         let t818 = t197 * t294;
         let t819 = t212 * t295;
         let t820 = t204 * t281;
         let t821 = t820 - t819;
         let t822 = t818 + t821;
+        out[72] = t822;
         let t823 = t197 * t300;
         let t824 = t212 * t301;
         let t825 = t204 * t283;
         let t826 = t824 - t825;
         let t827 = t823 + t826;
+        out[115] = t827;
         let t828 = t197 * t302;
         let t829 = t212 * t303;
         let t830 = t7 * t204;
         let t831 = t829 - t830;
         let t832 = t831 - t828;
+        out[158] = t832;
         let t833 = t8 * t197;
         let t834 = t9 * t212;
         let t835 = t833 + t834;
+        out[201] = t835;
         let t836 = -t204;
+        out[244] = t836;
         let t837 = t213 * t288;
         let t838 = t210 * t289;
         let t839 = t275 * t812;
         let t840 = t838 - t839;
         let t841 = t840 - t837;
+        out[30] = t841;
         let t842 = t213 * t294;
         let t843 = t210 * t295;
         let t844 = t281 * t812;
@@ -3460,80 +3336,100 @@ impl Panda {
         let t849 = t283 * t812;
         let t850 = t848 + t849;
         let t851 = t850 - t847;
+        out[116] = t851;
         let t852 = t213 * t302;
         let t853 = t210 * t303;
         let t854 = t7 * t812;
         let t855 = t853 + t854;
         let t856 = t852 + t855;
+        out[159] = t856;
         let t857 = t8 * t213;
         let t858 = t9 * t210;
         let t859 = t858 - t857;
+        out[202] = t859;
         let t860 = -t846;
+        out[73] = t860;
         let t861 = t206 * t288;
         let t862 = t289 * t811;
         let t863 = t209 * t275;
         let t864 = t862 + t863;
         let t865 = t861 + t864;
+        out[31] = t865;
         let t866 = t206 * t294;
         let t867 = t295 * t811;
         let t868 = t209 * t281;
         let t869 = t868 - t867;
         let t870 = t866 + t869;
+        out[74] = t870;
         let t871 = t206 * t300;
         let t872 = t301 * t811;
         let t873 = t209 * t283;
         let t874 = t872 - t873;
         let t875 = t871 + t874;
+        out[117] = t875;
         let t876 = t206 * t302;
         let t877 = t303 * t811;
         let t878 = t7 * t209;
         let t879 = t877 - t878;
         let t880 = t879 - t876;
+        out[160] = t880;
         let t881 = t8 * t206;
         let t882 = t9 * t811;
         let t883 = t881 + t882;
+        out[203] = t883;
         let t884 = -t209;
+        out[246] = t884;
         let t885 = t288 * t810;
         let t886 = t205 * t289;
         let t887 = t214 * t275;
         let t888 = t886 + t887;
         let t889 = t885 - t888;
+        out[32] = t889;
         let t890 = t294 * t810;
         let t891 = t205 * t295;
         let t892 = t214 * t281;
         let t893 = t891 - t892;
         let t894 = t890 + t893;
+        out[75] = t894;
         let t895 = t300 * t810;
         let t896 = t205 * t301;
         let t897 = t214 * t283;
         let t898 = t897 - t896;
         let t899 = t895 + t898;
+        out[118] = t899;
         let t900 = t302 * t810;
         let t901 = t205 * t303;
         let t902 = t7 * t214;
         let t903 = t902 - t901;
         let t904 = t903 - t900;
+        out[161] = t904;
         let t905 = t8 * t810;
         let t906 = t9 * t205;
         let t907 = t905 - t906;
+        out[204] = t907;
         let t908 = t208 * t288;
         let t909 = t199 * t275;
         let t910 = t814 + t909;
         let t911 = t908 - t910;
+        out[33] = t911;
         let t912 = t208 * t294;
         let t913 = t199 * t281;
         let t914 = t819 - t913;
         let t915 = t912 + t914;
+        out[76] = t915;
         let t916 = t208 * t300;
         let t917 = t199 * t283;
         let t918 = t917 - t824;
         let t919 = t916 + t918;
+        out[119] = t919;
         let t920 = t208 * t302;
         let t921 = t7 * t199;
         let t922 = t921 - t829;
         let t923 = t922 - t920;
+        out[162] = t923;
         let t924 = t8 * t208;
         let t925 = t924 - t834;
+        out[205] = t925;
         let t926 = t203 * t388;
         let t927 = t142 * t289;
         let t928 = t206 * t389;
@@ -3543,6 +3439,7 @@ impl Panda {
         let t932 = t930 - t929;
         let t933 = t928 + t932;
         let t934 = t933 - t931;
+        out[34] = t934;
         let t935 = t203 * t394;
         let t936 = t142 * t295;
         let t937 = t206 * t395;
@@ -3552,6 +3449,7 @@ impl Panda {
         let t941 = t939 - t938;
         let t942 = t937 + t941;
         let t943 = t940 + t942;
+        out[77] = t943;
         let t944 = t203 * t396;
         let t945 = t142 * t301;
         let t946 = t206 * t397;
@@ -3561,6 +3459,7 @@ impl Panda {
         let t950 = t947 + t948;
         let t951 = t946 + t950;
         let t952 = t949 + t951;
+        out[120] = t952;
         let t953 = t203 * t402;
         let t954 = t142 * t303;
         let t955 = t206 * t405;
@@ -3571,8 +3470,10 @@ impl Panda {
         let t960 = t958 + t959;
         let t961 = t957 * c3;
         let t962 = t960 - t961;
+        out[163] = t962;
         let t963 = t9 * t142;
         let t964 = -t963;
+        out[206] = t964;
         let t965 = t142 * t288;
         let t966 = t205 * t388;
         let t967 = t207 * t389;
@@ -3582,6 +3483,7 @@ impl Panda {
         let t971 = t968 + t969;
         let t972 = t971 - t967;
         let t973 = t970 + t972;
+        out[35] = t973;
         let t974 = t142 * t294;
         let t975 = t205 * t394;
         let t976 = t207 * t395;
@@ -3591,6 +3493,7 @@ impl Panda {
         let t980 = t977 + t978;
         let t981 = t980 - t976;
         let t982 = t979 + t981;
+        out[78] = t982;
         let t983 = t142 * t300;
         let t984 = t205 * t396;
         let t985 = t207 * t397;
@@ -3600,6 +3503,7 @@ impl Panda {
         let t989 = t987 - t986;
         let t990 = t989 - t985;
         let t991 = t988 + t990;
+        out[121] = t991;
         let t992 = t142 * t302;
         let t993 = t205 * t402;
         let t994 = t207 * t405;
@@ -3611,40 +3515,51 @@ impl Panda {
         let t1000 = t996 * c3;
         let t1001 = t999 + t1000;
         let t1002 = t8 * t142;
+        out[207] = t1002;
         let t1003 = -t1001;
+        out[164] = t1003;
         let t1004 = -t180;
+        out[250] = t1004;
         let t1005 = t256 - t252;
         let t1006 = t248 - t256;
         let t1007 = t252 - t248;
+        out[295] = t1007;
         let t1008 = t242 * t308;
         let t1009 = t257 * t309;
         let t1010 = t249 * t289;
         let t1011 = t1010 - t1009;
         let t1012 = t1008 + t1011;
+        out[36] = t1012;
         let t1013 = t242 * t314;
         let t1014 = t257 * t315;
         let t1015 = t249 * t295;
         let t1016 = t1014 + t1015;
         let t1017 = t1013 - t1016;
+        out[79] = t1017;
         let t1018 = t242 * t320;
         let t1019 = t257 * t321;
         let t1020 = t249 * t301;
         let t1021 = t1019 + t1020;
         let t1022 = t1018 + t1021;
+        out[122] = t1022;
         let t1023 = t242 * t326;
         let t1024 = t257 * t327;
         let t1025 = t249 * t303;
         let t1026 = t1024 + t1025;
         let t1027 = t1023 + t1026;
+        out[165] = t1027;
         let t1028 = t242 * t328;
         let t1029 = t257 * t329;
         let t1030 = t9 * t249;
         let t1031 = t1030 - t1029;
         let t1032 = t1028 + t1031;
+        out[208] = t1032;
         let t1033 = t10 * t242;
         let t1034 = t11 * t257;
         let t1035 = t1033 + t1034;
+        out[251] = t1035;
         let t1036 = -t249;
+        out[294] = t1036;
         let t1037 = t258 * t308;
         let t1038 = t255 * t309;
         let t1039 = t289 * t1007;
@@ -3655,16 +3570,19 @@ impl Panda {
         let t1044 = t295 * t1007;
         let t1045 = t1044 - t1043;
         let t1046 = t1045 - t1042;
+        out[80] = t1046;
         let t1047 = t258 * t320;
         let t1048 = t255 * t321;
         let t1049 = t301 * t1007;
         let t1050 = t1048 - t1049;
         let t1051 = t1050 - t1047;
+        out[123] = t1051;
         let t1052 = t258 * t326;
         let t1053 = t255 * t327;
         let t1054 = t303 * t1007;
         let t1055 = t1053 - t1054;
         let t1056 = t1055 - t1052;
+        out[166] = t1056;
         let t1057 = t258 * t328;
         let t1058 = t255 * t329;
         let t1059 = t9 * t1007;
@@ -3673,87 +3591,109 @@ impl Panda {
         let t1062 = t10 * t258;
         let t1063 = t11 * t255;
         let t1064 = t1063 - t1062;
+        out[252] = t1064;
         let t1065 = -t1041;
+        out[37] = t1065;
         let t1066 = -t1061;
+        out[209] = t1066;
         let t1067 = t251 * t308;
         let t1068 = t309 * t1006;
         let t1069 = t254 * t289;
         let t1070 = t1069 - t1068;
         let t1071 = t1067 + t1070;
+        out[38] = t1071;
         let t1072 = t251 * t314;
         let t1073 = t315 * t1006;
         let t1074 = t254 * t295;
         let t1075 = t1073 + t1074;
         let t1076 = t1072 - t1075;
+        out[81] = t1076;
         let t1077 = t251 * t320;
         let t1078 = t321 * t1006;
         let t1079 = t254 * t301;
         let t1080 = t1078 + t1079;
         let t1081 = t1077 + t1080;
+        out[124] = t1081;
         let t1082 = t251 * t326;
         let t1083 = t327 * t1006;
         let t1084 = t254 * t303;
         let t1085 = t1083 + t1084;
         let t1086 = t1082 + t1085;
+        out[167] = t1086;
         let t1087 = t251 * t328;
         let t1088 = t329 * t1006;
         let t1089 = t9 * t254;
         let t1090 = t1089 - t1088;
         let t1091 = t1087 + t1090;
+        out[210] = t1091;
         let t1092 = t10 * t251;
         let t1093 = t11 * t1006;
         let t1094 = t1092 + t1093;
+        out[253] = t1094;
         let t1095 = -t254;
+        out[296] = t1095;
         let t1096 = t308 * t1005;
         let t1097 = t250 * t309;
         let t1098 = t259 * t289;
         let t1099 = t1097 - t1098;
         let t1100 = t1096 + t1099;
+        out[39] = t1100;
         let t1101 = t314 * t1005;
         let t1102 = t250 * t315;
         let t1103 = t259 * t295;
         let t1104 = t1102 + t1103;
         let t1105 = t1101 + t1104;
+        out[82] = t1105;
         let t1106 = t320 * t1005;
         let t1107 = t250 * t321;
         let t1108 = t259 * t301;
         let t1109 = t1107 + t1108;
         let t1110 = t1106 - t1109;
+        out[125] = t1110;
         let t1111 = t326 * t1005;
         let t1112 = t250 * t327;
         let t1113 = t259 * t303;
         let t1114 = t1112 + t1113;
         let t1115 = t1111 - t1114;
+        out[168] = t1115;
         let t1116 = t328 * t1005;
         let t1117 = t250 * t329;
         let t1118 = t9 * t259;
         let t1119 = t1117 - t1118;
         let t1120 = t1116 + t1119;
+        out[211] = t1120;
         let t1121 = t10 * t1005;
         let t1122 = t11 * t250;
         let t1123 = t1121 - t1122;
+        out[254] = t1123;
         let t1124 = t253 * t308;
         let t1125 = t244 * t289;
         let t1126 = t1009 - t1125;
         let t1127 = t1124 + t1126;
+        out[40] = t1127;
         let t1128 = t253 * t314;
         let t1129 = t244 * t295;
         let t1130 = t1014 + t1129;
         let t1131 = t1128 + t1130;
+        out[83] = t1131;
         let t1132 = t253 * t320;
         let t1133 = t244 * t301;
         let t1134 = t1019 + t1133;
         let t1135 = t1132 - t1134;
+        out[126] = t1135;
         let t1136 = t253 * t326;
         let t1137 = t244 * t303;
         let t1138 = t1024 + t1137;
         let t1139 = t1136 - t1138;
+        out[169] = t1139;
         let t1140 = t253 * t328;
         let t1141 = t9 * t244;
         let t1142 = t1029 - t1141;
         let t1143 = t1140 + t1142;
+        out[212] = t1143;
         let t1144 = t10 * t253;
         let t1145 = t1144 - t1034;
+        out[255] = t1145;
         let t1146 = t248 * t414;
         let t1147 = t218 * t309;
         let t1148 = t251 * t415;
@@ -3763,6 +3703,7 @@ impl Panda {
         let t1152 = t1149 + t1150;
         let t1153 = t1148 - t1152;
         let t1154 = t1153 - t1151;
+        out[41] = t1154;
         let t1155 = t248 * t424;
         let t1156 = t218 * t315;
         let t1157 = t251 * t425;
@@ -3772,6 +3713,7 @@ impl Panda {
         let t1161 = t1158 - t1159;
         let t1162 = t1157 + t1161;
         let t1163 = t1162 - t1160;
+        out[84] = t1163;
         let t1164 = t248 * t434;
         let t1165 = t218 * t321;
         let t1166 = t251 * t435;
@@ -3781,6 +3723,7 @@ impl Panda {
         let t1170 = t1167 + t1168;
         let t1171 = t1166 - t1170;
         let t1172 = t1169 + t1171;
+        out[127] = t1172;
         let t1173 = t248 * t445;
         let t1174 = t218 * t327;
         let t1175 = t251 * t446;
@@ -3790,6 +3733,7 @@ impl Panda {
         let t1179 = t1176 + t1177;
         let t1180 = t1175 - t1179;
         let t1181 = t1178 + t1180;
+        out[170] = t1181;
         let t1182 = t248 * t447;
         let t1183 = t218 * t329;
         let t1184 = t251 * t448;
@@ -3798,9 +3742,11 @@ impl Panda {
         let t1187 = t1183 + t1185;
         let t1188 = t1186 * c4;
         let t1189 = t1188 - t1187;
+        out[213] = t1189;
         let t1190 = t11 * t218;
         let t1191 = t258 * c4;
         let t1192 = t1190 - t1191;
+        out[256] = t1192;
         let t1193 = t218 * t308;
         let t1194 = t250 * t414;
         let t1195 = t252 * t415;
@@ -3810,6 +3756,7 @@ impl Panda {
         let t1199 = t1196 - t1197;
         let t1200 = t1199 - t1195;
         let t1201 = t1198 + t1200;
+        out[42] = t1201;
         let t1202 = t218 * t314;
         let t1203 = t250 * t424;
         let t1204 = t252 * t425;
@@ -3819,6 +3766,7 @@ impl Panda {
         let t1208 = t1205 + t1206;
         let t1209 = t1204 + t1208;
         let t1210 = t1207 - t1209;
+        out[85] = t1210;
         let t1211 = t218 * t320;
         let t1212 = t250 * t434;
         let t1213 = t252 * t435;
@@ -3828,6 +3776,7 @@ impl Panda {
         let t1217 = t1214 - t1215;
         let t1218 = t1217 - t1213;
         let t1219 = t1216 + t1218;
+        out[128] = t1219;
         let t1220 = t218 * t326;
         let t1221 = t250 * t445;
         let t1222 = t252 * t446;
@@ -3837,6 +3786,7 @@ impl Panda {
         let t1226 = t1223 - t1224;
         let t1227 = t1226 - t1222;
         let t1228 = t1227 - t1225;
+        out[171] = t1228;
         let t1229 = t218 * t328;
         let t1230 = t250 * t447;
         let t1231 = t252 * t448;
@@ -3845,314 +3795,15 @@ impl Panda {
         let t1234 = t1231 - t1230;
         let t1235 = t1234 * c4;
         let t1236 = t1233 + t1235;
+        out[214] = t1236;
         let t1237 = t10 * t218;
         let t1238 = t255 * c4;
         let t1239 = t1237 + t1238;
         let t1240 = -t1239;
+        out[257] = t1240;
         let t1241 = -t225;
-        [
-            qdd1,
-            t454,
-            t458,
-            t462,
-            t466,
-            t468,
-            T::ZERO,
-            T::ZERO,
-            t477,
-            t486,
-            t494,
-            t503,
-            t510,
-            t519,
-            t531,
-            t545,
-            t559,
-            t573,
-            t587,
-            t599,
-            t614,
-            t635,
-            t658,
-            t677,
-            t695,
-            t714,
-            t732,
-            t752,
-            t785,
-            t817,
-            t841,
-            t865,
-            t889,
-            t911,
-            t934,
-            t973,
-            t1012,
-            t1065,
-            t1071,
-            t1100,
-            t1127,
-            t1154,
-            t1201,
-            T::ZERO,
-            t455,
-            t451,
-            t463,
-            t32,
-            qdd2,
-            t469,
-            t33,
-            t480,
-            t489,
-            t497,
-            t506,
-            t512,
-            t524,
-            t536,
-            t550,
-            t568,
-            t578,
-            t592,
-            t603,
-            t624,
-            t645,
-            t663,
-            t682,
-            t700,
-            t719,
-            t743,
-            t761,
-            t794,
-            t822,
-            t860,
-            t870,
-            t894,
-            t915,
-            t943,
-            t982,
-            t1017,
-            t1046,
-            t1076,
-            t1105,
-            t1131,
-            t1163,
-            t1210,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t481,
-            t472,
-            t498,
-            t79,
-            t64,
-            t46,
-            t537,
-            t553,
-            t567,
-            t581,
-            t595,
-            t605,
-            t626,
-            t649,
-            t668,
-            t687,
-            t705,
-            t724,
-            t740,
-            t768,
-            t801,
-            t827,
-            t851,
-            t875,
-            t899,
-            t919,
-            t952,
-            t991,
-            t1022,
-            t1051,
-            t1081,
-            t1110,
-            t1135,
-            t1172,
-            t1219,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t554,
-            t540,
-            t582,
-            t124,
-            t109,
-            t91,
-            t650,
-            t672,
-            t690,
-            t709,
-            t728,
-            t742,
-            t775,
-            t808,
-            t832,
-            t856,
-            t880,
-            t904,
-            t923,
-            t962,
-            t1003,
-            t1027,
-            t1056,
-            t1086,
-            t1115,
-            t1139,
-            t1181,
-            t1228,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t165,
-            t653,
-            t170,
-            t175,
-            t160,
-            t776,
-            t809,
-            t835,
-            t859,
-            t883,
-            t907,
-            t925,
-            t964,
-            t1002,
-            t1032,
-            t1066,
-            t1091,
-            t1120,
-            t1143,
-            t1189,
-            t1236,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t836,
-            t812,
-            t884,
-            t214,
-            t199,
-            t181,
-            t1004,
-            t1035,
-            t1064,
-            t1094,
-            t1123,
-            t1145,
-            t1192,
-            t1240,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1036,
-            t1007,
-            t1095,
-            t259,
-            t244,
-            t226,
-            t1241,
-        ]
+        out[300] = t1241;
+        out
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
@@ -4833,6 +4484,8 @@ impl Panda {
         let c1 = T::from_f64(0.0825);
         let c2 = T::from_f64(0.384);
         let c3 = T::from_f64(0.088);
+        let mut out = [T::ZERO; 49];
+        out[48] = ZZ7;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -4932,6 +4585,8 @@ impl Panda {
         let t102 = t88 - t97;
         let t103 = t91 + t98;
         let t104 = t96 + t101;
+        out[6] = t104;
+        out[42] = t104;
         let t105 = t50 * MYR6;
         let t106 = t50 * MXR6;
         let t107 = t62 * MXR6;
@@ -4980,6 +4635,8 @@ impl Panda {
         let t150 = t130 + t142;
         let t151 = t83 * c3;
         let t152 = t150 - t151;
+        out[5] = t152;
+        out[35] = t152;
         let t153 = t30 * MYR5;
         let t154 = t30 * MX5;
         let t155 = t50 * MX5;
@@ -5024,6 +4681,8 @@ impl Panda {
         let t194 = t176 + t189;
         let t195 = t177 - t152;
         let t196 = t178 + t190;
+        out[4] = t196;
+        out[28] = t196;
         let t197 = t12 * MYR4;
         let t198 = t12 * MXR4;
         let t199 = t30 * MXR4;
@@ -5076,6 +4735,8 @@ impl Panda {
         let t246 = t244 - t245;
         let t247 = t234 + t237;
         let t248 = t222 - t247;
+        out[3] = t248;
+        out[21] = t248;
         let t249 = t1 * MYR3;
         let t250 = t1 * MXR3;
         let t251 = t13 * XXR3;
@@ -5117,6 +4778,8 @@ impl Panda {
         let t287 = t268 + t280;
         let t288 = t240 * c1;
         let t289 = t287 - t288;
+        out[2] = t289;
+        out[14] = t289;
         let t290 = t0 * XXR2;
         let t291 = t1 * XY2;
         let t292 = t290 + t291;
@@ -5143,10 +4806,13 @@ impl Panda {
         let t313 = t308 - t296;
         let t314 = t301 * c0;
         let t315 = t313 + t314;
+        out[1] = t315;
+        out[7] = t315;
         let t316 = t0 * t311;
         let t317 = t1 * t312;
         let t318 = t316 - t317;
         let t319 = ZZR1 - t318;
+        out[0] = t319;
         let t320 = t3 * t5;
         let t321 = t3 * t4;
         let t322 = t320 * c0;
@@ -5232,6 +4898,8 @@ impl Panda {
         let t402 = t388 - t397;
         let t403 = t391 + t398;
         let t404 = t396 + t401;
+        out[13] = t404;
+        out[43] = t404;
         let t405 = t350 * MYR6;
         let t406 = t350 * MXR6;
         let t407 = t362 * MXR6;
@@ -5280,6 +4948,8 @@ impl Panda {
         let t450 = t430 + t442;
         let t451 = t383 * c3;
         let t452 = t450 - t451;
+        out[12] = t452;
+        out[36] = t452;
         let t453 = t329 * MYR5;
         let t454 = t329 * MX5;
         let t455 = t350 * MX5;
@@ -5324,6 +4994,8 @@ impl Panda {
         let t494 = t476 + t489;
         let t495 = t477 - t452;
         let t496 = t478 + t490;
+        out[11] = t496;
+        out[29] = t496;
         let t497 = t3 * MYR4;
         let t498 = t3 * MXR4;
         let t499 = t329 * MXR4;
@@ -5378,6 +5050,8 @@ impl Panda {
         let t548 = t546 - t547;
         let t549 = t536 + t539;
         let t550 = t524 - t549;
+        out[10] = t550;
+        out[22] = t550;
         let t551 = t2 * XXR3;
         let t552 = t3 * XYR3;
         let t553 = t551 + t552;
@@ -5409,6 +5083,8 @@ impl Panda {
         let t579 = t562 + t574;
         let t580 = t542 * c1;
         let t581 = t579 - t580;
+        out[9] = t581;
+        out[15] = t581;
         let t582 = t3 * t567;
         let t583 = t2 * t542;
         let t584 = t582 + t583;
@@ -5418,6 +5094,7 @@ impl Panda {
         let t588 = t587 + ZZR2;
         let t589 = t584 * c0;
         let t590 = t588 + t589;
+        out[8] = t590;
         let t591 = t5 * c1;
         let t592 = t4 * c2;
         let t593 = t591 + t592;
@@ -5476,6 +5153,8 @@ impl Panda {
         let t646 = t632 - t641;
         let t647 = t635 + t642;
         let t648 = t640 + t645;
+        out[20] = t648;
+        out[44] = t648;
         let t649 = t598 * MYR6;
         let t650 = t598 * MXR6;
         let t651 = t606 * MXR6;
@@ -5524,6 +5203,8 @@ impl Panda {
         let t694 = t674 + t686;
         let t695 = t627 * c3;
         let t696 = t694 - t695;
+        out[19] = t696;
+        out[37] = t696;
         let t697 = t5 * MYR5;
         let t698 = t5 * MX5;
         let t699 = t598 * MX5;
@@ -5564,6 +5245,8 @@ impl Panda {
         let t734 = t706 + t729;
         let t735 = t709 - t696;
         let t736 = t718 + t730;
+        out[18] = t736;
+        out[30] = t736;
         let t737 = t5 * MXR4;
         let t738 = t4 * MYR4;
         let t739 = t738 - t737;
@@ -5602,12 +5285,15 @@ impl Panda {
         let t772 = t770 - t771;
         let t773 = t762 + t765;
         let t774 = t746 - t773;
+        out[17] = t774;
+        out[23] = t774;
         let t775 = t4 * t769;
         let t776 = t5 * t772;
         let t777 = t775 + t776;
         let t778 = t777 + ZZR3;
         let t779 = t766 * c1;
         let t780 = t778 - t779;
+        out[16] = t780;
         let t781 = t7 * t9;
         let t782 = t7 * t8;
         let t783 = t781 * c2;
@@ -5661,6 +5347,8 @@ impl Panda {
         let t831 = t817 - t826;
         let t832 = t820 + t827;
         let t833 = t825 + t830;
+        out[27] = t833;
+        out[45] = t833;
         let t834 = t7 * MYR6;
         let t835 = t7 * MXR6;
         let t836 = t790 * MXR6;
@@ -5711,6 +5399,8 @@ impl Panda {
         let t881 = t861 + t873;
         let t882 = t812 * c3;
         let t883 = t881 - t882;
+        out[26] = t883;
+        out[38] = t883;
         let t884 = t7 * MX5;
         let t885 = t6 * MYR5;
         let t886 = t884 - t885;
@@ -5746,6 +5436,8 @@ impl Panda {
         let t916 = t913 - t898;
         let t917 = t900 - t883;
         let t918 = t902 + t914;
+        out[25] = t918;
+        out[31] = t918;
         let t919 = t7 * t907;
         let t920 = t6 * t876;
         let t921 = t919 + t920;
@@ -5757,6 +5449,7 @@ impl Panda {
         let t927 = t925 + t926;
         let t928 = t924 + t927;
         let t929 = ZZR4 - t928;
+        out[24] = t929;
         let t930 = t9 * t10;
         let t931 = t9 * t11;
         let t932 = t8 * t11;
@@ -5784,6 +5477,8 @@ impl Panda {
         let t954 = t953 - t952;
         let t955 = t954 * c3;
         let t956 = t951 + t955;
+        out[34] = t956;
+        out[46] = t956;
         let t957 = t8 * XXR6;
         let t958 = t9 * XYR6;
         let t959 = t957 + t958;
@@ -5807,10 +5502,13 @@ impl Panda {
         let t977 = t963 + t972;
         let t978 = t938 * c3;
         let t979 = t977 - t978;
+        out[33] = t979;
+        out[39] = t979;
         let t980 = t8 * t973;
         let t981 = t9 * t976;
         let t982 = t980 + t981;
         let t983 = t982 + ZZR5;
+        out[32] = t983;
         let t984 = t11 * MX7;
         let t985 = t10 * MY7;
         let t986 = t985 - t984;
@@ -5821,6 +5519,8 @@ impl Panda {
         let t991 = t10 * XZ7;
         let t992 = t11 * YZ7;
         let t993 = t991 + t992;
+        out[41] = t993;
+        out[47] = t993;
         let t994 = MY7 * c3;
         let t995 = t989 - t994;
         let t996 = MX7 * c3;
@@ -5831,64 +5531,15 @@ impl Panda {
         let t1001 = t1000 + ZZR6;
         let t1002 = t986 * c3;
         let t1003 = t1001 - t1002;
-        [
-            t319,
-            t315,
-            t289,
-            t248,
-            t196,
-            t152,
-            t104,
-            t315,
-            t590,
-            t581,
-            t550,
-            t496,
-            t452,
-            t404,
-            t289,
-            t581,
-            t780,
-            t774,
-            t736,
-            t696,
-            t648,
-            t248,
-            t550,
-            t774,
-            t929,
-            t918,
-            t883,
-            t833,
-            t196,
-            t496,
-            t736,
-            t918,
-            t983,
-            t979,
-            t956,
-            t152,
-            t452,
-            t696,
-            t883,
-            t979,
-            t1003,
-            t993,
-            t104,
-            t404,
-            t648,
-            t833,
-            t956,
-            t993,
-            ZZ7,
-        ]
+        out[40] = t1003;
+        out
     }
     /// Gravity torques g(q).
     ///
     /// - `q`: q1 .. q7
     /// - `base`: ZZR1 .. MY7
     ///
-    /// Operations: 69 mul, 38 add, 2 neg, 6 sin, 6 cos.
+    /// Operations: 69 mul, 38 add, 0 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
@@ -5899,7 +5550,8 @@ impl Panda {
         let [_, _, _, _, _, _, MX2, MYR2, _, _, _, _, _, MXR3, MYR3, _, _, _, _, _, MXR4,
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MXR6, MYR6, _, _, _, _, _, MX7,
         MY7] = *base;
-        let c0 = T::from_f64(9.81);
+        let c0 = T::from_f64(-9.81);
+        let c1 = T::from_f64(9.81);
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -6007,15 +5659,13 @@ impl Panda {
         let t110 = t1 * t98;
         let t111 = t109 - t110;
         let t112 = t111 * c0;
-        let t113 = -t112;
-        let t114 = t108 * c0;
-        let t115 = t98 * c0;
-        let t116 = t84 * c0;
-        let t117 = t70 * c0;
-        let t118 = t56 * c0;
-        let t119 = t42 * c0;
-        let t120 = -t119;
-        [t113, t114, t115, t116, t117, t118, t120]
+        let t113 = t108 * c1;
+        let t114 = t98 * c1;
+        let t115 = t84 * c1;
+        let t116 = t70 * c1;
+        let t117 = t56 * c1;
+        let t118 = t42 * c0;
+        [t112, t113, t114, t115, t116, t117, t118]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
@@ -6667,23 +6317,53 @@ impl Panda {
         let c11 = T::from_f64(0.099856);
         let c12 = T::from_f64(0.10666225);
         let c13 = T::from_f64(0.316);
+        let mut out = [T::ZERO; 43];
+        out[2] = XY2;
+        out[3] = XZ2;
+        out[4] = YZ2;
+        out[6] = MX2;
+        out[10] = XZ3;
+        out[11] = YZ3;
+        out[17] = XZ4;
+        out[18] = YZ4;
+        out[23] = XY5;
+        out[24] = XZ5;
+        out[25] = YZ5;
+        out[27] = MX5;
+        out[31] = XZ6;
+        out[32] = YZ6;
+        out[37] = XY7;
+        out[38] = XZ7;
+        out[39] = YZ7;
+        out[40] = ZZ7;
+        out[41] = MX7;
+        out[42] = MY7;
         let t0 = XX7 - YY7;
+        out[36] = t0;
         let t1 = M7 * c0;
         let t2 = M7 * c1;
         let t3 = MZ7 * c0;
         let t4 = t3 + XY6;
+        out[30] = t4;
         let t5 = t2 + YY7;
         let t6 = t5 + ZZ6;
+        out[33] = t6;
         let t7 = t1 + MX6;
+        out[34] = t7;
         let t8 = MY6 - MZ7;
+        out[35] = t8;
         let t9 = XX6 + YY7;
         let t10 = t2 + YY6;
         let t11 = t9 - t10;
+        out[29] = t11;
         let t12 = t10 + ZZ5;
+        out[26] = t12;
         let t13 = MY5 - MZ6;
+        out[28] = t13;
         let t14 = XX5 + YY6;
         let t15 = t2 - YY5;
         let t16 = t14 + t15;
+        out[22] = t16;
         let t17 = MZ5 * c2;
         let t18 = MZ5 * c3;
         let t19 = M6 + M7;
@@ -6691,34 +6371,44 @@ impl Panda {
         let t21 = t20 * c4;
         let t22 = t18 + t21;
         let t23 = t22 + XY4;
+        out[16] = t23;
         let t24 = t20 * c5;
         let t25 = ZZ4 + YY5;
         let t26 = t17 + t24;
         let t27 = t25 + t26;
+        out[19] = t27;
         let t28 = t20 * c3;
         let t29 = MX4 - t28;
+        out[20] = t29;
         let t30 = t20 * c6;
         let t31 = t30 + MZ5;
         let t32 = t31 + MY4;
+        out[21] = t32;
         let t33 = t20 * c7;
         let t34 = XX4 + YY5;
         let t35 = t17 + t33;
         let t36 = t35 - YY4;
         let t37 = t34 + t36;
+        out[15] = t37;
         let t38 = M4 * c8;
         let t39 = MZ4 * c3;
         let t40 = t39 + XY3;
+        out[9] = t40;
         let t41 = t20 * c9;
         let t42 = ZZ3 + YY4;
         let t43 = t38 + t41;
         let t44 = t42 + t43;
+        out[12] = t44;
         let t45 = t20 + M4;
         let t46 = t45 * c3;
         let t47 = t46 + MX3;
+        out[13] = t47;
         let t48 = MY3 - MZ4;
+        out[14] = t48;
         let t49 = XX3 + YY4;
         let t50 = t38 + YY3;
         let t51 = t49 - t50;
+        out[8] = t51;
         let t52 = MZ3 * c10;
         let t53 = M3 * c11;
         let t54 = t45 * c12;
@@ -6726,59 +6416,19 @@ impl Panda {
         let t56 = t53 + t54;
         let t57 = t52 + t56;
         let t58 = t55 + t57;
+        out[5] = t58;
         let t59 = t45 + M3;
         let t60 = t59 * c13;
         let t61 = t60 + MZ3;
         let t62 = MY2 - t61;
+        out[7] = t62;
         let t63 = YY3 - YY2;
         let t64 = t63 + XX2;
         let t65 = t57 + t64;
+        out[1] = t65;
         let t66 = ZZ1 + YY2;
-        [
-            t66,
-            t65,
-            XY2,
-            XZ2,
-            YZ2,
-            t58,
-            MX2,
-            t62,
-            t51,
-            t40,
-            XZ3,
-            YZ3,
-            t44,
-            t47,
-            t48,
-            t37,
-            t23,
-            XZ4,
-            YZ4,
-            t27,
-            t29,
-            t32,
-            t16,
-            XY5,
-            XZ5,
-            YZ5,
-            t12,
-            MX5,
-            t13,
-            t11,
-            t4,
-            XZ6,
-            YZ6,
-            t6,
-            t7,
-            t8,
-            t0,
-            XY7,
-            XZ7,
-            YZ7,
-            ZZ7,
-            MX7,
-            MY7,
-        ]
+        out[0] = t66;
+        out
     }
 }
 impl ::robid_runtime::Model for Panda {

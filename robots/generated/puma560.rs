@@ -187,9 +187,14 @@ impl Puma560 {
         let c12 = T::from_f64(0.003046015);
         let c13 = T::from_f64(0.00876554);
         let c14 = T::from_f64(0.06479159);
+        let mut out = [T::ZERO; 360];
+        out[3] = qdd1;
+        out[75] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let t2 = t0 * qdd1;
+        out[72] = t2;
         let t3 = t1 * qdd1;
+        out[74] = t3;
         let t4 = t0 * c0;
         let t5 = t1 * c0;
         let t6 = qd1 * qd2;
@@ -220,6 +225,7 @@ impl Puma560 {
         let t32 = t27 * qd2;
         let t33 = t0 * t1;
         let t34 = t28 * t33;
+        out[73] = t34;
         let t35 = t13 * t27;
         let t36 = t30 * c2;
         let t37 = t2 * c2;
@@ -244,6 +250,8 @@ impl Puma560 {
         let t56 = t24 - t52;
         let t57 = t56 - t23;
         let t58 = qdd2 + qdd3;
+        out[83] = t58;
+        out[143] = t58;
         let (t59, t60) = q4.sin_cos();
         let t61 = t17 * t60;
         let t62 = t53 * t59;
@@ -287,6 +295,7 @@ impl Puma560 {
         let t100 = t60 * t86;
         let t101 = t59 * t99;
         let t102 = t100 - t101;
+        out[218] = t102;
         let t103 = t59 * t86;
         let t104 = t60 * t99;
         let t105 = t103 + t104;
@@ -298,6 +307,7 @@ impl Puma560 {
         let t111 = t70 + t107;
         let t112 = t69 + t111;
         let t113 = t57 + qdd4;
+        out[213] = t113;
         let (t114, t115) = q5.sin_cos();
         let t116 = t63 * t115;
         let t117 = t108 * t114;
@@ -315,6 +325,7 @@ impl Puma560 {
         let t129 = t102 * t114;
         let t130 = t91 * t115;
         let t131 = t130 - t129;
+        out[286] = t131;
         let t132 = t121 * qd5;
         let t133 = t118 * qd5;
         let t134 = t66 + qd5;
@@ -323,6 +334,7 @@ impl Puma560 {
         let t137 = t125 - t133;
         let t138 = t137 - t124;
         let t139 = t112 + qdd5;
+        out[283] = t139;
         let (t140, t141) = q6.sin_cos();
         let t142 = t118 * t141;
         let t143 = t134 * t140;
@@ -348,12 +360,15 @@ impl Puma560 {
         let t163 = t151 + t159;
         let t164 = t150 + t163;
         let t165 = t138 + qdd6;
+        out[355] = t165;
         let t166 = t0 * t0;
         let t167 = t0 * t9;
         let t168 = t1 * t8;
         let t169 = t167 + t168;
+        out[10] = t169;
         let t170 = t28 * t166;
         let t171 = t170 - t30;
+        out[71] = t171;
         let t172 = t8 * c4;
         let t173 = t3 - t172;
         let t174 = t7 * c4;
@@ -361,17 +376,22 @@ impl Puma560 {
         let t176 = t0 * t173;
         let t177 = t1 * t175;
         let t178 = t176 + t177;
+        out[11] = t178;
         let t179 = qd2 * qd2;
         let t180 = t179 - t170;
         let t181 = t0 * t43;
         let t182 = t1 * t180;
         let t183 = t181 + t182;
+        out[12] = t183;
         let t184 = t30 - t179;
         let t185 = qdd2 - t34;
         let t186 = t0 * t184;
         let t187 = t1 * t185;
         let t188 = t186 + t187;
+        out[14] = t188;
         let t189 = t17 * t20;
+        out[85] = t189;
+        out[145] = t189;
         let t190 = t12 * t55;
         let t191 = t11 * t17;
         let t192 = t53 * t191;
@@ -383,11 +403,14 @@ impl Puma560 {
         let t198 = t0 * t193;
         let t199 = t1 * t197;
         let t200 = t198 + t199;
+        out[20] = t200;
         let t201 = t17 * t53;
         let t202 = t20 * t53;
         let t203 = t17 * t17;
         let t204 = t20 * t20;
         let t205 = t203 - t204;
+        out[82] = t205;
+        out[142] = t205;
         let t206 = t57 - t201;
         let t207 = t55 + t202;
         let t208 = t12 * t206;
@@ -399,6 +422,7 @@ impl Puma560 {
         let t214 = t0 * t210;
         let t215 = t1 * t213;
         let t216 = t214 + t215;
+        out[22] = t216;
         let t217 = t53 * t53;
         let t218 = t57 + t201;
         let t219 = t12 * t20;
@@ -410,6 +434,7 @@ impl Puma560 {
         let t225 = t0 * t221;
         let t226 = t1 * t224;
         let t227 = t225 + t226;
+        out[23] = t227;
         let t228 = t204 + t217;
         let t229 = t58 + t189;
         let t230 = t11 * t228;
@@ -424,6 +449,7 @@ impl Puma560 {
         let t239 = t11 * t234;
         let t240 = t63 * t108;
         let t241 = t63 * t66;
+        out[210] = t241;
         let t242 = t60 * t110;
         let t243 = t59 * t63;
         let t244 = t108 * t243;
@@ -443,6 +469,7 @@ impl Puma560 {
         let t258 = t0 * t253;
         let t259 = t1 * t257;
         let t260 = t258 + t259;
+        out[30] = t260;
         let t261 = t66 * t108;
         let t262 = t63 * t63;
         let t263 = t66 * t66;
@@ -450,6 +477,7 @@ impl Puma560 {
         let t265 = t264 - t262;
         let t266 = t113 - t241;
         let t267 = t110 + t261;
+        out[211] = t267;
         let t268 = t60 * t266;
         let t269 = t59 * t265;
         let t270 = t268 - t269;
@@ -465,12 +493,15 @@ impl Puma560 {
         let t280 = t0 * t276;
         let t281 = t1 * t279;
         let t282 = t280 + t281;
+        out[31] = t282;
         let t283 = t60 * t66;
         let t284 = t108 * t283;
         let t285 = t244 - t284;
         let t286 = t59 * t66;
         let t287 = t108 * t286;
         let t288 = t248 + t287;
+        out[93] = t288;
+        out[153] = t288;
         let t289 = t12 * t285;
         let t290 = t11 * t113;
         let t291 = t289 - t290;
@@ -480,6 +511,7 @@ impl Puma560 {
         let t295 = t0 * t291;
         let t296 = t1 * t294;
         let t297 = t295 + t296;
+        out[33] = t297;
         let t298 = t263 + t264;
         let t299 = t112 + t240;
         let t300 = t60 * t298;
@@ -496,6 +528,7 @@ impl Puma560 {
         let t311 = t301 * c1;
         let t312 = t310 + t311;
         let t313 = t303 + t312;
+        out[156] = t313;
         let t314 = t12 * t307;
         let t315 = t11 * t309;
         let t316 = t11 * t307;
@@ -517,10 +550,13 @@ impl Puma560 {
         let t332 = t331 * c1;
         let t333 = t310 + t332;
         let t334 = t303 + t333;
+        out[96] = t334;
         let t335 = t0 * t325;
         let t336 = t1 * t330;
         let t337 = t335 + t336;
+        out[36] = t337;
         let t338 = t118 * t121;
+        out[285] = t338;
         let t339 = t115 * t136;
         let t340 = t114 * t118;
         let t341 = t134 * t340;
@@ -529,6 +565,7 @@ impl Puma560 {
         let t344 = t115 * t118;
         let t345 = t134 * t344;
         let t346 = t343 + t345;
+        out[220] = t346;
         let t347 = t60 * t342;
         let t348 = t59 * t118;
         let t349 = t121 * t348;
@@ -546,11 +583,13 @@ impl Puma560 {
         let t361 = t0 * t357;
         let t362 = t1 * t360;
         let t363 = t361 + t362;
+        out[40] = t363;
         let t364 = t118 * t134;
         let t365 = t121 * t134;
         let t366 = t118 * t118;
         let t367 = t121 * t121;
         let t368 = t366 - t367;
+        out[282] = t368;
         let t369 = t138 - t364;
         let t370 = t136 + t365;
         let t371 = t115 * t369;
@@ -559,12 +598,15 @@ impl Puma560 {
         let t374 = t114 * t369;
         let t375 = t115 * t370;
         let t376 = t374 + t375;
+        out[222] = t376;
         let t377 = t60 * t373;
         let t378 = t59 * t368;
         let t379 = t377 + t378;
         let t380 = t59 * t373;
         let t381 = t60 * t368;
         let t382 = t381 - t380;
+        out[102] = t382;
+        out[162] = t382;
         let t383 = t12 * t379;
         let t384 = t11 * t376;
         let t385 = t383 - t384;
@@ -574,6 +616,7 @@ impl Puma560 {
         let t389 = t0 * t385;
         let t390 = t1 * t388;
         let t391 = t389 + t390;
+        out[42] = t391;
         let t392 = t134 * t134;
         let t393 = t138 + t364;
         let t394 = t115 * t121;
@@ -582,12 +625,15 @@ impl Puma560 {
         let t397 = t114 * t121;
         let t398 = t134 * t397;
         let t399 = t398 - t345;
+        out[223] = t399;
         let t400 = t60 * t396;
         let t401 = t59 * t139;
         let t402 = t400 + t401;
         let t403 = t59 * t396;
         let t404 = t60 * t139;
         let t405 = t404 - t403;
+        out[103] = t405;
+        out[163] = t405;
         let t406 = t12 * t402;
         let t407 = t11 * t399;
         let t408 = t406 - t407;
@@ -597,6 +643,7 @@ impl Puma560 {
         let t412 = t0 * t408;
         let t413 = t1 * t411;
         let t414 = t412 + t413;
+        out[43] = t414;
         let t415 = t367 + t392;
         let t416 = t139 + t338;
         let t417 = t115 * t415;
@@ -628,6 +675,7 @@ impl Puma560 {
         let t443 = t432 - t431;
         let t444 = t441 + t442;
         let t445 = t443 + t444;
+        out[166] = t445;
         let t446 = t12 * t438;
         let t447 = t11 * t440;
         let t448 = t11 * t438;
@@ -649,9 +697,11 @@ impl Puma560 {
         let t464 = t463 * c1;
         let t465 = t441 + t464;
         let t466 = t443 + t465;
+        out[106] = t466;
         let t467 = t0 * t457;
         let t468 = t1 * t462;
         let t469 = t467 + t468;
+        out[46] = t469;
         let t470 = t366 + t392;
         let t471 = t338 - t139;
         let t472 = t115 * t471;
@@ -661,6 +711,7 @@ impl Puma560 {
         let t476 = t115 * t470;
         let t477 = t475 - t476;
         let t478 = t105 * t114;
+        out[228] = t478;
         let t479 = t60 * t474;
         let t480 = t59 * t370;
         let t481 = t479 + t480;
@@ -683,6 +734,7 @@ impl Puma560 {
         let t498 = t486 + t487;
         let t499 = t496 - t497;
         let t500 = t499 - t498;
+        out[168] = t500;
         let t501 = t12 * t493;
         let t502 = t11 * t495;
         let t503 = t11 * t493;
@@ -704,11 +756,14 @@ impl Puma560 {
         let t519 = t518 * c1;
         let t520 = t496 + t519;
         let t521 = t520 - t498;
+        out[108] = t521;
         let t522 = t0 * t512;
         let t523 = t1 * t517;
         let t524 = t522 + t523;
+        out[48] = t524;
         let t525 = t144 * t160;
         let t526 = t144 * t147;
+        out[350] = t526;
         let t527 = t141 * t162;
         let t528 = t140 * t144;
         let t529 = t160 * t528;
@@ -725,6 +780,7 @@ impl Puma560 {
         let t540 = t115 * t144;
         let t541 = t147 * t540;
         let t542 = t539 + t541;
+        out[230] = t542;
         let t543 = t60 * t538;
         let t544 = t59 * t534;
         let t545 = t543 - t544;
@@ -740,10 +796,12 @@ impl Puma560 {
         let t555 = t0 * t551;
         let t556 = t1 * t554;
         let t557 = t555 + t556;
+        out[50] = t557;
         let t558 = t147 * t160;
         let t559 = t144 * t144;
         let t560 = t147 * t147;
         let t561 = t559 - t560;
+        out[351] = t561;
         let t562 = t164 + t525;
         let t563 = t162 - t558;
         let t564 = t141 * t562;
@@ -752,18 +810,22 @@ impl Puma560 {
         let t567 = t140 * t562;
         let t568 = t141 * t563;
         let t569 = t567 - t568;
+        out[291] = t569;
         let t570 = t115 * t566;
         let t571 = t114 * t561;
         let t572 = t570 + t571;
         let t573 = t114 * t566;
         let t574 = t115 * t561;
         let t575 = t574 - t573;
+        out[231] = t575;
         let t576 = t60 * t572;
         let t577 = t59 * t569;
         let t578 = t577 - t576;
         let t579 = t59 * t572;
         let t580 = t60 * t569;
         let t581 = t579 + t580;
+        out[111] = t581;
+        out[171] = t581;
         let t582 = t12 * t578;
         let t583 = t11 * t575;
         let t584 = t582 - t583;
@@ -773,10 +835,12 @@ impl Puma560 {
         let t588 = t0 * t584;
         let t589 = t1 * t587;
         let t590 = t588 + t589;
+        out[51] = t590;
         let t591 = t160 * t160;
         let t592 = t591 - t559;
         let t593 = t165 - t526;
         let t594 = t162 + t558;
+        out[352] = t594;
         let t595 = t141 * t593;
         let t596 = t140 * t592;
         let t597 = t595 - t596;
@@ -789,6 +853,7 @@ impl Puma560 {
         let t604 = t114 * t597;
         let t605 = t115 * t594;
         let t606 = t604 + t605;
+        out[232] = t606;
         let t607 = t60 * t603;
         let t608 = t59 * t600;
         let t609 = t607 - t608;
@@ -804,9 +869,11 @@ impl Puma560 {
         let t619 = t0 * t615;
         let t620 = t1 * t618;
         let t621 = t619 + t620;
+        out[52] = t621;
         let t622 = t560 - t591;
         let t623 = t165 + t526;
         let t624 = t525 - t164;
+        out[354] = t624;
         let t625 = t141 * t622;
         let t626 = t140 * t623;
         let t627 = t625 - t626;
@@ -819,6 +886,7 @@ impl Puma560 {
         let t634 = t114 * t627;
         let t635 = t115 * t624;
         let t636 = t634 + t635;
+        out[234] = t636;
         let t637 = t60 * t633;
         let t638 = t59 * t630;
         let t639 = t637 - t638;
@@ -834,24 +902,29 @@ impl Puma560 {
         let t649 = t0 * t645;
         let t650 = t1 * t648;
         let t651 = t649 + t650;
+        out[54] = t651;
         let t652 = t141 * t147;
         let t653 = t160 * t652;
         let t654 = t529 - t653;
         let t655 = t140 * t147;
         let t656 = t160 * t655;
         let t657 = t533 + t656;
+        out[295] = t657;
         let t658 = t115 * t654;
         let t659 = t114 * t165;
         let t660 = t658 - t659;
         let t661 = t114 * t654;
         let t662 = t115 * t165;
         let t663 = t661 + t662;
+        out[235] = t663;
         let t664 = t60 * t660;
         let t665 = t59 * t657;
         let t666 = t664 + t665;
         let t667 = t59 * t660;
         let t668 = t60 * t657;
         let t669 = t668 - t667;
+        out[115] = t669;
+        out[175] = t669;
         let t670 = t12 * t666;
         let t671 = t11 * t663;
         let t672 = t670 - t671;
@@ -861,11 +934,13 @@ impl Puma560 {
         let t676 = t0 * t672;
         let t677 = t1 * t675;
         let t678 = t676 + t677;
+        out[55] = t678;
         let t679 = t560 + t591;
         let t680 = t141 * t679;
         let t681 = t598 + t680;
         let t682 = t140 * t679;
         let t683 = t131 * t141;
+        out[296] = t683;
         let t684 = t115 * t681;
         let t685 = t114 * t562;
         let t686 = t684 + t685;
@@ -881,6 +956,7 @@ impl Puma560 {
         let t696 = t131 * t695;
         let t697 = t115 * t157;
         let t698 = t696 - t697;
+        out[236] = t698;
         let t699 = t60 * t686;
         let t700 = t59 * t687;
         let t701 = t699 + t700;
@@ -903,6 +979,7 @@ impl Puma560 {
         let t718 = t707 - t705;
         let t719 = t716 + t717;
         let t720 = t718 + t719;
+        out[176] = t720;
         let t721 = t12 * t713;
         let t722 = t11 * t715;
         let t723 = t11 * t713;
@@ -924,9 +1001,11 @@ impl Puma560 {
         let t739 = t738 * c1;
         let t740 = t716 + t739;
         let t741 = t718 + t740;
+        out[116] = t741;
         let t742 = t0 * t732;
         let t743 = t1 * t737;
         let t744 = t742 + t743;
+        out[56] = t744;
         let t745 = t559 + t591;
         let t746 = t140 * t745;
         let t747 = t746 - t629;
@@ -947,6 +1026,7 @@ impl Puma560 {
         let t762 = t141 * t761;
         let t763 = t115 * t154;
         let t764 = t762 - t763;
+        out[237] = t764;
         let t765 = t60 * t752;
         let t766 = t59 * t753;
         let t767 = t765 + t766;
@@ -967,6 +1047,7 @@ impl Puma560 {
         let t782 = t770 + t771;
         let t783 = t780 - t781;
         let t784 = t783 - t782;
+        out[177] = t784;
         let t785 = t12 * t777;
         let t786 = t11 * t779;
         let t787 = t11 * t777;
@@ -988,11 +1069,14 @@ impl Puma560 {
         let t803 = t802 * c1;
         let t804 = t780 + t803;
         let t805 = t804 - t782;
+        out[117] = t805;
         let t806 = t0 * t796;
         let t807 = t1 * t801;
         let t808 = t806 + t807;
+        out[57] = t808;
         let t809 = t1 * t10;
         let t810 = t809 - t168;
+        out[13] = t810;
         let t811 = t3 * c5;
         let t812 = t7 * c5;
         let t813 = t8 * c5;
@@ -1000,7 +1084,9 @@ impl Puma560 {
         let t815 = t811 - t814;
         let t816 = t43 * c5;
         let t817 = t5 + t816;
+        out[76] = t817;
         let t818 = t1 * t815;
+        out[16] = t818;
         let t819 = t2 * c1;
         let t820 = t813 - t38;
         let t821 = t812 + t819;
@@ -1009,21 +1095,27 @@ impl Puma560 {
         let t824 = t0 * t820;
         let t825 = t1 * t821;
         let t826 = t824 - t825;
+        out[17] = t826;
         let t827 = t5 + t44;
         let t828 = t180 * c1;
         let t829 = t4 - t828;
         let t830 = t0 * t827;
         let t831 = t1 * t829;
         let t832 = t831 - t830;
+        out[18] = t832;
         let t833 = t3 * c7;
         let t834 = t1 * c8;
         let t835 = t8 * c9;
         let t836 = t833 - t835;
         let t837 = t43 * c7;
         let t838 = t834 + t837;
+        out[79] = t838;
         let t839 = t1 * t836;
+        out[19] = t839;
         let t840 = t203 - t217;
         let t841 = t202 - t55;
+        out[81] = t841;
+        out[141] = t841;
         let t842 = t11 * t840;
         let t843 = t231 + t842;
         let t844 = t12 * t840;
@@ -1031,6 +1123,7 @@ impl Puma560 {
         let t846 = t0 * t843;
         let t847 = t1 * t845;
         let t848 = t847 - t846;
+        out[21] = t848;
         let t849 = t217 - t204;
         let t850 = t12 * t849;
         let t851 = t850 - t236;
@@ -1039,6 +1132,7 @@ impl Puma560 {
         let t854 = t0 * t851;
         let t855 = t1 * t853;
         let t856 = t854 + t855;
+        out[24] = t856;
         let t857 = t11 * t57;
         let t858 = t220 + t857;
         let t859 = t12 * t57;
@@ -1046,6 +1140,7 @@ impl Puma560 {
         let t861 = t0 * t858;
         let t862 = t1 * t860;
         let t863 = t862 - t861;
+        out[25] = t863;
         let t864 = t20 * c10;
         let t865 = t53 * c10;
         let t866 = t20 * t865;
@@ -1062,6 +1157,7 @@ impl Puma560 {
         let t877 = t58 * c10;
         let t878 = t870 + t877;
         let t879 = t88 + t878;
+        out[146] = t879;
         let t880 = t12 * t868;
         let t881 = t11 * t876;
         let t882 = t11 * t868;
@@ -1078,9 +1174,11 @@ impl Puma560 {
         let t893 = t891 + t892;
         let t894 = t884 * c1;
         let t895 = t879 - t894;
+        out[86] = t895;
         let t896 = t0 * t887;
         let t897 = t1 * t893;
         let t898 = t896 + t897;
+        out[26] = t898;
         let t899 = t17 * c3;
         let t900 = t20 * t899;
         let t901 = t17 * t899;
@@ -1092,6 +1190,7 @@ impl Puma560 {
         let t907 = t905 - t906;
         let t908 = t55 * c3;
         let t909 = t908 - t902;
+        out[147] = t909;
         let t910 = t12 * t904;
         let t911 = t11 * t907;
         let t912 = t11 * t904;
@@ -1113,9 +1212,11 @@ impl Puma560 {
         let t928 = t926 + t927;
         let t929 = t918 * c1;
         let t930 = t909 - t929;
+        out[87] = t930;
         let t931 = t0 * t921;
         let t932 = t1 * t928;
         let t933 = t931 + t932;
+        out[27] = t933;
         let t934 = t53 * t899;
         let t935 = t53 * t73;
         let t936 = t20 * t73;
@@ -1126,6 +1227,7 @@ impl Puma560 {
         let t941 = t908 + t935;
         let t942 = t936 - t901;
         let t943 = t942 - t83;
+        out[148] = t943;
         let t944 = t12 * t940;
         let t945 = t11 * t941;
         let t946 = t11 * t940;
@@ -1142,9 +1244,11 @@ impl Puma560 {
         let t957 = t955 + t956;
         let t958 = t948 * c1;
         let t959 = t943 - t958;
+        out[88] = t959;
         let t960 = t0 * t951;
         let t961 = t1 * t957;
         let t962 = t960 + t961;
+        out[28] = t962;
         let t963 = t17 * t73;
         let t964 = t77 + t936;
         let t965 = t83 - t964;
@@ -1169,6 +1273,7 @@ impl Puma560 {
         let t984 = t88 * c3;
         let t985 = t983 + t984;
         let t986 = t974 + t985;
+        out[149] = t986;
         let t987 = t12 * t972;
         let t988 = t11 * t982;
         let t989 = t11 * t972;
@@ -1196,10 +1301,13 @@ impl Puma560 {
         let t1011 = t1007 + t1010;
         let t1012 = t996 * c1;
         let t1013 = t986 + t1012;
+        out[89] = t1013;
         let t1014 = t0 * t999;
         let t1015 = t1 * t1011;
         let t1016 = t1014 + t1015;
+        out[29] = t1016;
         let t1017 = t263 - t262;
+        out[212] = t1017;
         let t1018 = t261 - t110;
         let t1019 = t60 * t299;
         let t1020 = t59 * t1018;
@@ -1216,15 +1324,19 @@ impl Puma560 {
         let t1031 = t0 * t1027;
         let t1032 = t1 * t1030;
         let t1033 = t1031 + t1032;
+        out[32] = t1033;
         let t1034 = t264 - t263;
         let t1035 = t113 + t241;
         let t1036 = t112 - t240;
+        out[214] = t1036;
         let t1037 = t60 * t1034;
         let t1038 = t59 * t1035;
         let t1039 = t1037 + t1038;
         let t1040 = t59 * t1034;
         let t1041 = t60 * t1035;
         let t1042 = t1041 - t1040;
+        out[94] = t1042;
+        out[154] = t1042;
         let t1043 = t12 * t1039;
         let t1044 = t11 * t1036;
         let t1045 = t1043 - t1044;
@@ -1234,10 +1346,13 @@ impl Puma560 {
         let t1049 = t0 * t1045;
         let t1050 = t1 * t1048;
         let t1051 = t1049 + t1050;
+        out[34] = t1051;
         let t1052 = t59 * t112;
         let t1053 = t284 + t1052;
         let t1054 = t60 * t112;
         let t1055 = t1054 - t287;
+        out[95] = t1055;
+        out[155] = t1055;
         let t1056 = t12 * t1053;
         let t1057 = t252 + t1056;
         let t1058 = t11 * t1053;
@@ -1245,6 +1360,7 @@ impl Puma560 {
         let t1060 = t0 * t1057;
         let t1061 = t1 * t1059;
         let t1062 = t1060 + t1061;
+        out[35] = t1062;
         let t1063 = t262 + t263;
         let t1064 = t60 * t1036;
         let t1065 = t59 * t267;
@@ -1287,6 +1403,7 @@ impl Puma560 {
         let t1102 = t0 * t1092;
         let t1103 = t1 * t1097;
         let t1104 = t1102 + t1103;
+        out[37] = t1104;
         let t1105 = t262 + t264;
         let t1106 = t59 * t1105;
         let t1107 = t1041 - t1106;
@@ -1300,6 +1417,7 @@ impl Puma560 {
         let t1115 = t1107 * c1;
         let t1116 = t1114 - t1115;
         let t1117 = t302 + t1116;
+        out[158] = t1117;
         let t1118 = t12 * t1111;
         let t1119 = t11 * t1113;
         let t1120 = t11 * t1111;
@@ -1321,9 +1439,11 @@ impl Puma560 {
         let t1136 = t1135 * c1;
         let t1137 = t1114 + t1136;
         let t1138 = t302 + t1137;
+        out[98] = t1138;
         let t1139 = t0 * t1129;
         let t1140 = t1 * t1134;
         let t1141 = t1140 - t1139;
+        out[38] = t1141;
         let t1142 = t427 - t1067;
         let t1143 = t1142 * c1;
         let t1144 = t1142 * c3;
@@ -1333,6 +1453,7 @@ impl Puma560 {
         let t1148 = t1078 * c1;
         let t1149 = t1147 - t1148;
         let t1150 = t983 + t1149;
+        out[159] = t1150;
         let t1151 = t12 * t1143;
         let t1152 = t11 * t1144;
         let t1153 = t11 * t1143;
@@ -1354,21 +1475,27 @@ impl Puma560 {
         let t1169 = t1168 * c1;
         let t1170 = t1147 + t1169;
         let t1171 = t983 + t1170;
+        out[99] = t1171;
         let t1172 = t0 * t1162;
         let t1173 = t1 * t1167;
         let t1174 = t1172 + t1173;
+        out[39] = t1174;
         let t1175 = t366 - t392;
         let t1176 = t365 - t136;
+        out[281] = t1176;
         let t1177 = t114 * t1175;
         let t1178 = t421 + t1177;
         let t1179 = t115 * t1175;
         let t1180 = t1179 - t418;
+        out[221] = t1180;
         let t1181 = t60 * t1178;
         let t1182 = t59 * t1176;
         let t1183 = t1182 - t1181;
         let t1184 = t59 * t1178;
         let t1185 = t60 * t1176;
         let t1186 = t1184 + t1185;
+        out[101] = t1186;
+        out[161] = t1186;
         let t1187 = t12 * t1183;
         let t1188 = t11 * t1180;
         let t1189 = t1187 - t1188;
@@ -1378,11 +1505,13 @@ impl Puma560 {
         let t1193 = t0 * t1189;
         let t1194 = t1 * t1192;
         let t1195 = t1193 + t1194;
+        out[41] = t1195;
         let t1196 = t392 - t367;
         let t1197 = t115 * t1196;
         let t1198 = t1197 - t475;
         let t1199 = t114 * t1196;
         let t1200 = t472 + t1199;
+        out[224] = t1200;
         let t1201 = t60 * t1198;
         let t1202 = t59 * t393;
         let t1203 = t1201 - t1202;
@@ -1398,14 +1527,18 @@ impl Puma560 {
         let t1213 = t0 * t1209;
         let t1214 = t1 * t1212;
         let t1215 = t1213 + t1214;
+        out[44] = t1215;
         let t1216 = t114 * t138;
         let t1217 = t395 + t1216;
         let t1218 = t115 * t138;
         let t1219 = t1218 - t398;
+        out[225] = t1219;
         let t1220 = t60 * t1217;
         let t1221 = t349 - t1220;
         let t1222 = t59 * t1217;
         let t1223 = t353 + t1222;
+        out[105] = t1223;
+        out[165] = t1223;
         let t1224 = t12 * t1221;
         let t1225 = t11 * t1219;
         let t1226 = t1224 - t1225;
@@ -1415,6 +1548,7 @@ impl Puma560 {
         let t1230 = t0 * t1226;
         let t1231 = t1 * t1229;
         let t1232 = t1230 + t1231;
+        out[45] = t1232;
         let t1233 = t115 * t393;
         let t1234 = t114 * t1176;
         let t1235 = t1234 - t1233;
@@ -1426,6 +1560,7 @@ impl Puma560 {
         let t1241 = t757 + t1240;
         let t1242 = t115 * t128;
         let t1243 = t761 - t1242;
+        out[227] = t1243;
         let t1244 = t60 * t1235;
         let t1245 = t59 * t1236;
         let t1246 = t1244 + t1245;
@@ -1466,6 +1601,7 @@ impl Puma560 {
         let t1281 = t0 * t1271;
         let t1282 = t1 * t1276;
         let t1283 = t1281 + t1282;
+        out[47] = t1283;
         let t1284 = t60 * t1243;
         let t1285 = t430 - t1284;
         let t1286 = t59 * t1243;
@@ -1475,6 +1611,7 @@ impl Puma560 {
         let t1290 = t1285 * c1;
         let t1291 = t1241 * c3;
         let t1292 = t1291 - t1290;
+        out[169] = t1292;
         let t1293 = t12 * t1288;
         let t1294 = t11 * t1289;
         let t1295 = t11 * t1288;
@@ -1495,23 +1632,29 @@ impl Puma560 {
         let t1310 = t1301 - t1285;
         let t1311 = t1310 * c1;
         let t1312 = t1291 + t1311;
+        out[109] = t1312;
         let t1313 = t0 * t1304;
         let t1314 = t1 * t1309;
         let t1315 = t1313 + t1314;
+        out[49] = t1315;
         let t1316 = t140 * t164;
         let t1317 = t653 + t1316;
         let t1318 = t141 * t164;
         let t1319 = t1318 - t656;
+        out[293] = t1319;
         let t1320 = t115 * t1317;
         let t1321 = t537 + t1320;
         let t1322 = t114 * t1317;
         let t1323 = t1322 - t541;
+        out[233] = t1323;
         let t1324 = t60 * t1321;
         let t1325 = t59 * t1319;
         let t1326 = t1324 + t1325;
         let t1327 = t59 * t1321;
         let t1328 = t60 * t1319;
         let t1329 = t1328 - t1327;
+        out[113] = t1329;
+        out[173] = t1329;
         let t1330 = t12 * t1326;
         let t1331 = t11 * t1323;
         let t1332 = t1330 - t1331;
@@ -1521,6 +1664,7 @@ impl Puma560 {
         let t1336 = t0 * t1332;
         let t1337 = t1 * t1335;
         let t1338 = t1336 + t1337;
+        out[53] = t1338;
         let t1339 = t559 + t560;
         let t1340 = t141 * t624;
         let t1341 = t140 * t594;
@@ -1541,6 +1685,7 @@ impl Puma560 {
         let t1356 = t115 * t1339;
         let t1357 = t1355 - t1356;
         let t1358 = t114 * t1347;
+        out[238] = t1358;
         let t1359 = t60 * t1353;
         let t1360 = t59 * t1354;
         let t1361 = t1359 - t1360;
@@ -1561,6 +1706,7 @@ impl Puma560 {
         let t1376 = t1364 + t1365;
         let t1377 = t1374 - t1375;
         let t1378 = t1377 - t1376;
+        out[178] = t1378;
         let t1379 = t12 * t1371;
         let t1380 = t11 * t1373;
         let t1381 = t11 * t1371;
@@ -1582,9 +1728,11 @@ impl Puma560 {
         let t1397 = t1396 * c1;
         let t1398 = t1374 + t1397;
         let t1399 = t1398 - t1376;
+        out[118] = t1399;
         let t1400 = t0 * t1390;
         let t1401 = t1 * t1395;
         let t1402 = t1400 + t1401;
+        out[58] = t1402;
         let t1403 = t115 * t1350;
         let t1404 = t1403 - t761;
         let t1405 = t114 * t1350;
@@ -1600,6 +1748,7 @@ impl Puma560 {
         let t1415 = t1406 * c3;
         let t1416 = t1409 * c1;
         let t1417 = t1415 - t1416;
+        out[179] = t1417;
         let t1418 = t12 * t1413;
         let t1419 = t11 * t1414;
         let t1420 = t11 * t1413;
@@ -1620,402 +1769,84 @@ impl Puma560 {
         let t1435 = t1426 - t1409;
         let t1436 = t1435 * c1;
         let t1437 = t1415 + t1436;
+        out[119] = t1437;
         let t1438 = t0 * t1429;
         let t1439 = t1 * t1434;
         let t1440 = t1438 + t1439;
+        out[59] = t1440;
         let t1441 = -t34;
+        out[70] = t1441;
         let t1442 = -t823;
+        out[77] = t1442;
         let t1443 = -t819;
+        out[78] = t1443;
         let t1444 = -t189;
+        out[80] = t1444;
+        out[140] = t1444;
         let t1445 = -t218;
+        out[84] = t1445;
+        out[144] = t1445;
         let t1446 = -t249;
+        out[90] = t1446;
+        out[150] = t1446;
         let t1447 = -t273;
+        out[91] = t1447;
+        out[151] = t1447;
         let t1448 = -t1024;
+        out[92] = t1448;
+        out[152] = t1448;
         let t1449 = -t1101;
+        out[97] = t1449;
         let t1450 = -t354;
+        out[100] = t1450;
+        out[160] = t1450;
         let t1451 = -t1206;
+        out[104] = t1451;
+        out[164] = t1451;
         let t1452 = -t1280;
+        out[107] = t1452;
         let t1453 = -t548;
+        out[110] = t1453;
+        out[170] = t1453;
         let t1454 = -t612;
+        out[112] = t1454;
+        out[172] = t1454;
         let t1455 = -t642;
+        out[114] = t1455;
+        out[174] = t1455;
         let t1456 = -t1080;
+        out[157] = t1456;
         let t1457 = -t1259;
+        out[167] = t1457;
         let t1458 = -t241;
+        out[215] = t1458;
         let t1459 = -t105;
+        out[216] = t1459;
         let t1460 = -t423;
+        out[226] = t1460;
         let t1461 = -t338;
+        out[280] = t1461;
         let t1462 = -t393;
+        out[284] = t1462;
         let t1463 = -t128;
+        out[288] = t1463;
         let t1464 = -t534;
+        out[290] = t1464;
         let t1465 = -t600;
+        out[292] = t1465;
         let t1466 = -t630;
+        out[294] = t1466;
         let t1467 = -t749;
+        out[297] = t1467;
         let t1468 = -t1350;
+        out[298] = t1468;
         let t1469 = -t526;
+        out[353] = t1469;
         let t1470 = -t157;
+        out[356] = t1470;
         let t1471 = -t154;
-        [
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            qdd1,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t169,
-            t178,
-            t183,
-            t810,
-            t188,
-            T::ZERO,
-            t818,
-            t826,
-            t832,
-            t839,
-            t200,
-            t848,
-            t216,
-            t227,
-            t856,
-            t863,
-            t898,
-            t933,
-            t962,
-            t1016,
-            t260,
-            t282,
-            t1033,
-            t297,
-            t1051,
-            t1062,
-            t337,
-            t1104,
-            t1141,
-            t1174,
-            t363,
-            t1195,
-            t391,
-            t414,
-            t1215,
-            t1232,
-            t469,
-            t1283,
-            t524,
-            t1315,
-            t557,
-            t590,
-            t621,
-            t1338,
-            t651,
-            t678,
-            t744,
-            t808,
-            t1402,
-            t1440,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1441,
-            t171,
-            t2,
-            t34,
-            t3,
-            qdd2,
-            t817,
-            t1442,
-            t1443,
-            t838,
-            t1444,
-            t841,
-            t205,
-            t58,
-            t1445,
-            t189,
-            t895,
-            t930,
-            t959,
-            t1013,
-            t1446,
-            t1447,
-            t1448,
-            t288,
-            t1042,
-            t1055,
-            t334,
-            t1449,
-            t1138,
-            t1171,
-            t1450,
-            t1186,
-            t382,
-            t405,
-            t1451,
-            t1223,
-            t466,
-            t1452,
-            t521,
-            t1312,
-            t1453,
-            t581,
-            t1454,
-            t1329,
-            t1455,
-            t669,
-            t741,
-            t805,
-            t1399,
-            t1437,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1444,
-            t841,
-            t205,
-            t58,
-            t1445,
-            t189,
-            t879,
-            t909,
-            t943,
-            t986,
-            t1446,
-            t1447,
-            t1448,
-            t288,
-            t1042,
-            t1055,
-            t313,
-            t1456,
-            t1117,
-            t1150,
-            t1450,
-            t1186,
-            t382,
-            t405,
-            t1451,
-            t1223,
-            t445,
-            t1457,
-            t500,
-            t1292,
-            t1453,
-            t581,
-            t1454,
-            t1329,
-            t1455,
-            t669,
-            t720,
-            t784,
-            t1378,
-            t1417,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t241,
-            t267,
-            t1017,
-            t113,
-            t1036,
-            t1458,
-            t1459,
-            T::ZERO,
-            t102,
-            T::ZERO,
-            t346,
-            t1180,
-            t376,
-            t399,
-            t1200,
-            t1219,
-            t1460,
-            t1243,
-            t478,
-            T::ZERO,
-            t542,
-            t575,
-            t606,
-            t1323,
-            t636,
-            t663,
-            t698,
-            t764,
-            t1358,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1461,
-            t1176,
-            t368,
-            t139,
-            t1462,
-            t338,
-            t131,
-            T::ZERO,
-            t1463,
-            T::ZERO,
-            t1464,
-            t569,
-            t1465,
-            t1319,
-            t1466,
-            t657,
-            t683,
-            t1467,
-            t1468,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t526,
-            t561,
-            t594,
-            t1469,
-            t624,
-            t165,
-            t1470,
-            t1471,
-            T::ZERO,
-            T::ZERO,
-        ]
+        out[357] = t1471;
+        out
     }
     /// Base regressor Y_b(q, qd, qdd), `6 x 36` row-major: tau = Y_b * base.
     ///
@@ -2025,7 +1856,7 @@ impl Puma560 {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 402 mul, 304 add, 22 neg, 5 sin, 5 cos.
+    /// Operations: 403 mul, 304 add, 21 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -2040,6 +1871,10 @@ impl Puma560 {
         let c1 = T::from_f64(0.15005);
         let c2 = T::from_f64(9.81);
         let c3 = T::from_f64(0.0203);
+        let c4 = T::from_f64(-9.81);
+        let mut out = [T::ZERO; 216];
+        out[0] = qdd1;
+        out[41] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -2066,6 +1901,7 @@ impl Puma560 {
         let t28 = t18 + t19;
         let t29 = t15 - t17;
         let t30 = t15 + t17;
+        out[40] = t30;
         let t31 = t21 * c0;
         let t32 = t30 * c1;
         let t33 = t32 - t31;
@@ -2078,6 +1914,7 @@ impl Puma560 {
         let t40 = t0 * c2;
         let t41 = t33 + t40;
         let t42 = t1 * c2;
+        out[42] = t42;
         let t43 = t36 + t42;
         let t44 = t3 * t41;
         let t45 = t2 * t43;
@@ -2085,6 +1922,7 @@ impl Puma560 {
         let t47 = t3 * t43;
         let t48 = t44 + t45;
         let t49 = t47 - t46;
+        out[85] = t49;
         let t50 = t3 * t10;
         let t51 = t2 * t11;
         let t52 = t2 * t10;
@@ -2103,6 +1941,8 @@ impl Puma560 {
         let t65 = t60 + t62;
         let t66 = t61 - t63;
         let t67 = qdd2 + qdd3;
+        out[48] = t67;
+        out[84] = t67;
         let t68 = t54 * t54;
         let t69 = t55 * t55;
         let t70 = t64 * t64;
@@ -2118,6 +1958,8 @@ impl Puma560 {
         let t80 = t54 * t64;
         let t81 = t80 - t66;
         let t82 = t66 + t80;
+        out[47] = t82;
+        out[83] = t82;
         let t83 = t71 * c3;
         let t84 = t73 * c0;
         let t85 = t84 - t83;
@@ -2154,27 +1996,32 @@ impl Puma560 {
         let t116 = t111 - t113;
         let t117 = t112 + t114;
         let t118 = t66 + qdd4;
+        out[127] = t118;
         let t119 = t105 * t105;
         let t120 = t106 * t106;
         let t121 = t115 * t115;
         let t122 = t120 + t121;
         let t123 = t105 * t106;
+        out[123] = t123;
         let t124 = t118 + t123;
         let t125 = t118 - t123;
         let t126 = t119 + t121;
         let t127 = t106 * t115;
         let t128 = t116 + t127;
+        out[125] = t128;
         let t129 = t116 - t127;
         let t130 = t119 + t120;
         let t131 = t105 * t115;
         let t132 = t117 + t131;
         let t133 = t131 - t117;
+        out[126] = t133;
         let t134 = t7 * t99;
         let t135 = t6 * t93;
         let t136 = t6 * t99;
         let t137 = t7 * t93;
         let t138 = t134 + t135;
         let t139 = t137 - t136;
+        out[171] = t139;
         let t140 = t7 * t105;
         let t141 = t6 * t115;
         let t142 = t6 * t105;
@@ -2193,6 +2040,7 @@ impl Puma560 {
         let t155 = t150 + t152;
         let t156 = t151 - t153;
         let t157 = t117 + qdd5;
+        out[170] = t157;
         let t158 = t144 * t144;
         let t159 = t145 * t145;
         let t160 = t154 * t154;
@@ -2208,6 +2056,7 @@ impl Puma560 {
         let t170 = t144 * t154;
         let t171 = t170 - t156;
         let t172 = t156 + t170;
+        out[169] = t172;
         let t173 = t9 * t138;
         let t174 = t8 * t100;
         let t175 = t8 * t138;
@@ -2232,21 +2081,25 @@ impl Puma560 {
         let t194 = t189 - t191;
         let t195 = t190 + t192;
         let t196 = t156 + qdd6;
+        out[213] = t196;
         let t197 = t183 * t183;
         let t198 = t184 * t184;
         let t199 = t193 * t193;
         let t200 = t198 + t199;
         let t201 = t183 * t184;
+        out[209] = t201;
         let t202 = t196 + t201;
         let t203 = t196 - t201;
         let t204 = t197 + t199;
         let t205 = t184 * t193;
         let t206 = t194 + t205;
+        out[211] = t206;
         let t207 = t194 - t205;
         let t208 = t197 + t198;
         let t209 = t183 * t193;
         let t210 = t195 + t209;
         let t211 = t209 - t195;
+        out[212] = t211;
         let t212 = t0 * t3;
         let t213 = t1 * t2;
         let t214 = t0 * t2;
@@ -2341,42 +2194,62 @@ impl Puma560 {
         let t303 = t28 - t25;
         let t304 = t21 - t28;
         let t305 = t25 - t21;
+        out[38] = t305;
         let t306 = t0 * t16;
         let t307 = t1 * t15;
         let t308 = t306 + t307;
+        out[1] = t308;
         let t309 = -t22;
+        out[37] = t309;
         let t310 = t0 * t29;
         let t311 = t1 * t27;
         let t312 = t311 - t310;
+        out[2] = t312;
         let t313 = t0 * t24;
         let t314 = t1 * t304;
         let t315 = t313 + t314;
+        out[3] = t315;
         let t316 = -t26;
+        out[39] = t316;
         let t317 = t0 * t303;
         let t318 = t1 * t23;
         let t319 = t317 - t318;
+        out[4] = t319;
         let t320 = t0 * t14;
         let t321 = t320 - t307;
-        let t322 = -t40;
+        out[5] = t321;
+        let t322 = t0 * c4;
+        out[43] = t322;
         let t323 = t79 - t75;
         let t324 = t71 - t79;
         let t325 = t75 - t71;
+        out[45] = t325;
+        out[81] = t325;
         let t326 = t65 * t216;
         let t327 = t80 * t217;
         let t328 = t326 + t327;
+        out[8] = t328;
         let t329 = -t72;
+        out[44] = t329;
+        out[80] = t329;
         let t330 = t81 * t216;
         let t331 = t78 * t217;
         let t332 = t331 - t330;
+        out[9] = t332;
         let t333 = t74 * t216;
         let t334 = t217 * t324;
         let t335 = t333 + t334;
+        out[10] = t335;
         let t336 = -t77;
+        out[46] = t336;
+        out[82] = t336;
         let t337 = t216 * t323;
         let t338 = t73 * t217;
         let t339 = t337 - t338;
+        out[11] = t339;
         let t340 = t76 * t216;
         let t341 = t340 - t327;
+        out[12] = t341;
         let t342 = t71 * t217;
         let t343 = t39 * t217;
         let t344 = t1 * t81;
@@ -2390,7 +2263,9 @@ impl Puma560 {
         let t352 = t351 - t350;
         let t353 = t352 * c0;
         let t354 = t49 + t353;
+        out[49] = t354;
         let t355 = -t349;
+        out[13] = t355;
         let t356 = t39 * t216;
         let t357 = t75 * t216;
         let t358 = t1 * t78;
@@ -2399,56 +2274,75 @@ impl Puma560 {
         let t361 = t358 * c0;
         let t362 = t360 - t361;
         let t363 = t356 + t362;
+        out[14] = t363;
         let t364 = t2 * t73;
         let t365 = t3 * t75;
         let t366 = t364 - t365;
         let t367 = t366 * c0;
         let t368 = t367 - t48;
+        out[50] = t368;
         let t369 = -t48;
+        out[86] = t369;
         let t370 = t130 - t126;
         let t371 = t122 - t130;
         let t372 = t126 - t122;
+        out[124] = t372;
         let t373 = t116 * t218;
         let t374 = t131 * t219;
         let t375 = t123 * t217;
         let t376 = t375 - t374;
         let t377 = t373 + t376;
+        out[15] = t377;
         let t378 = t4 * t116;
         let t379 = t5 * t131;
         let t380 = t378 + t379;
         let t381 = -t380;
+        out[51] = t381;
+        out[87] = t381;
         let t382 = t132 * t218;
         let t383 = t129 * t219;
         let t384 = t217 * t372;
         let t385 = t384 - t383;
         let t386 = t385 - t382;
+        out[16] = t386;
         let t387 = t4 * t132;
         let t388 = t5 * t129;
         let t389 = t387 - t388;
+        out[52] = t389;
+        out[88] = t389;
         let t390 = t125 * t218;
         let t391 = t219 * t371;
         let t392 = t128 * t217;
         let t393 = t392 - t391;
         let t394 = t390 + t393;
+        out[17] = t394;
         let t395 = t4 * t125;
         let t396 = t5 * t371;
         let t397 = t395 + t396;
         let t398 = -t397;
+        out[53] = t398;
+        out[89] = t398;
         let t399 = t218 * t370;
         let t400 = t124 * t219;
         let t401 = t133 * t217;
         let t402 = t401 - t400;
         let t403 = t399 + t402;
+        out[18] = t403;
         let t404 = t4 * t370;
         let t405 = t5 * t124;
         let t406 = t404 + t405;
         let t407 = -t406;
+        out[54] = t407;
+        out[90] = t407;
         let t408 = t127 * t218;
         let t409 = t118 * t217;
         let t410 = t374 + t409;
         let t411 = t410 - t408;
+        out[19] = t411;
         let t412 = t4 * t127;
         let t413 = t379 + t412;
+        out[55] = t413;
+        out[91] = t413;
         let t414 = t122 * t252;
         let t415 = t93 * t219;
         let t416 = t125 * t254;
@@ -2459,6 +2353,7 @@ impl Puma560 {
         let t421 = t419 - t420;
         let t422 = t418 * c1;
         let t423 = t421 - t422;
+        out[20] = t423;
         let t424 = t122 * t259;
         let t425 = t5 * t93;
         let t426 = t125 * t260;
@@ -2466,13 +2361,16 @@ impl Puma560 {
         let t428 = t425 - t424;
         let t429 = t427 - t426;
         let t430 = t428 + t429;
+        out[56] = t430;
         let t431 = t5 * t122;
         let t432 = t395 + t431;
         let t433 = t432 * c0;
         let t434 = t132 * c3;
         let t435 = t425 + t434;
         let t436 = t433 + t435;
+        out[92] = t436;
         let t437 = -t100;
+        out[128] = t437;
         let t438 = t93 * t218;
         let t439 = t124 * t252;
         let t440 = t126 * t254;
@@ -2483,6 +2381,7 @@ impl Puma560 {
         let t445 = t443 + t444;
         let t446 = t442 * c1;
         let t447 = t445 - t446;
+        out[21] = t447;
         let t448 = t4 * t93;
         let t449 = t124 * t259;
         let t450 = t126 * t260;
@@ -2490,80 +2389,106 @@ impl Puma560 {
         let t452 = t448 + t449;
         let t453 = t450 + t451;
         let t454 = t453 - t452;
+        out[57] = t454;
         let t455 = t4 * t126;
         let t456 = t405 - t455;
         let t457 = t456 * c0;
         let t458 = t129 * c3;
         let t459 = t457 + t458;
         let t460 = t459 - t448;
+        out[93] = t460;
         let t461 = -t99;
+        out[129] = t461;
         let t462 = t169 - t165;
         let t463 = t161 - t169;
         let t464 = t165 - t161;
+        out[167] = t464;
         let t465 = t155 * t224;
         let t466 = t170 * t225;
         let t467 = t162 * t219;
         let t468 = t466 - t467;
         let t469 = t465 + t468;
+        out[22] = t469;
         let t470 = t155 * t226;
         let t471 = t170 * t227;
         let t472 = t5 * t162;
         let t473 = t471 - t472;
         let t474 = t473 - t470;
+        out[58] = t474;
+        out[94] = t474;
         let t475 = t6 * t155;
         let t476 = t7 * t170;
         let t477 = t475 + t476;
+        out[130] = t477;
         let t478 = -t162;
+        out[166] = t478;
         let t479 = t171 * t224;
         let t480 = t168 * t225;
         let t481 = t219 * t464;
         let t482 = t480 + t481;
         let t483 = t482 - t479;
+        out[23] = t483;
         let t484 = t171 * t226;
         let t485 = t168 * t227;
         let t486 = t5 * t464;
         let t487 = t485 + t486;
         let t488 = t484 + t487;
+        out[59] = t488;
+        out[95] = t488;
         let t489 = t6 * t171;
         let t490 = t7 * t168;
         let t491 = t490 - t489;
+        out[131] = t491;
         let t492 = t164 * t224;
         let t493 = t225 * t463;
         let t494 = t167 * t219;
         let t495 = t493 - t494;
         let t496 = t492 + t495;
+        out[24] = t496;
         let t497 = t164 * t226;
         let t498 = t227 * t463;
         let t499 = t5 * t167;
         let t500 = t498 - t499;
         let t501 = t500 - t497;
+        out[60] = t501;
+        out[96] = t501;
         let t502 = t6 * t164;
         let t503 = t7 * t463;
         let t504 = t502 + t503;
+        out[132] = t504;
         let t505 = -t167;
+        out[168] = t505;
         let t506 = t224 * t462;
         let t507 = t163 * t225;
         let t508 = t172 * t219;
         let t509 = t508 - t507;
         let t510 = t506 + t509;
+        out[25] = t510;
         let t511 = t226 * t462;
         let t512 = t163 * t227;
         let t513 = t5 * t172;
         let t514 = t513 - t512;
         let t515 = t514 - t511;
+        out[61] = t515;
+        out[97] = t515;
         let t516 = t6 * t462;
         let t517 = t7 * t163;
         let t518 = t516 - t517;
+        out[133] = t518;
         let t519 = t166 * t224;
         let t520 = t157 * t219;
         let t521 = t520 - t466;
         let t522 = t519 + t521;
+        out[26] = t522;
         let t523 = t166 * t226;
         let t524 = t5 * t157;
         let t525 = t524 - t471;
         let t526 = t525 - t523;
+        out[62] = t526;
+        out[98] = t526;
         let t527 = t6 * t166;
         let t528 = t527 - t476;
+        out[134] = t528;
         let t529 = t161 * t266;
         let t530 = t100 * t225;
         let t531 = t164 * t268;
@@ -2573,6 +2498,7 @@ impl Puma560 {
         let t535 = t532 + t533;
         let t536 = t535 - t531;
         let t537 = t536 - t534;
+        out[27] = t537;
         let t538 = t161 * t273;
         let t539 = t100 * t227;
         let t540 = t164 * t274;
@@ -2582,6 +2508,7 @@ impl Puma560 {
         let t544 = t541 + t542;
         let t545 = t540 + t544;
         let t546 = t545 - t543;
+        out[63] = t546;
         let t547 = t161 * t279;
         let t548 = t164 * t282;
         let t549 = t4 * t171;
@@ -2590,8 +2517,10 @@ impl Puma560 {
         let t552 = t551 - t550;
         let t553 = t549 * c0;
         let t554 = t552 - t553;
+        out[99] = t554;
         let t555 = t7 * t100;
         let t556 = -t555;
+        out[135] = t556;
         let t557 = t100 * t224;
         let t558 = t163 * t266;
         let t559 = t165 * t268;
@@ -2601,6 +2530,7 @@ impl Puma560 {
         let t563 = t561 - t560;
         let t564 = t559 + t563;
         let t565 = t562 + t564;
+        out[28] = t565;
         let t566 = t100 * t226;
         let t567 = t163 * t273;
         let t568 = t165 * t274;
@@ -2610,6 +2540,7 @@ impl Puma560 {
         let t572 = t570 - t569;
         let t573 = t572 - t568;
         let t574 = t571 + t573;
+        out[64] = t574;
         let t575 = t163 * t279;
         let t576 = t165 * t282;
         let t577 = t4 * t168;
@@ -2618,100 +2549,129 @@ impl Puma560 {
         let t580 = t578 - t579;
         let t581 = t577 * c0;
         let t582 = t580 - t581;
+        out[100] = t582;
         let t583 = t6 * t100;
+        out[136] = t583;
         let t584 = -t138;
+        out[172] = t584;
         let t585 = t208 - t204;
         let t586 = t200 - t208;
         let t587 = t204 - t200;
+        out[210] = t587;
         let t588 = t194 * t232;
         let t589 = t209 * t233;
         let t590 = t201 * t225;
         let t591 = t590 - t589;
         let t592 = t588 + t591;
+        out[29] = t592;
         let t593 = t194 * t238;
         let t594 = t209 * t239;
         let t595 = t201 * t227;
         let t596 = t594 + t595;
         let t597 = t596 - t593;
+        out[65] = t597;
+        out[101] = t597;
         let t598 = t194 * t240;
         let t599 = t209 * t241;
         let t600 = t7 * t201;
         let t601 = t600 - t599;
         let t602 = t598 + t601;
+        out[137] = t602;
         let t603 = t8 * t194;
         let t604 = t9 * t209;
         let t605 = t603 + t604;
         let t606 = -t605;
+        out[173] = t606;
         let t607 = t210 * t232;
         let t608 = t207 * t233;
         let t609 = t225 * t587;
         let t610 = t609 - t608;
         let t611 = t610 - t607;
+        out[30] = t611;
         let t612 = t210 * t238;
         let t613 = t207 * t239;
         let t614 = t227 * t587;
         let t615 = t613 + t614;
         let t616 = t612 + t615;
+        out[66] = t616;
+        out[102] = t616;
         let t617 = t210 * t240;
         let t618 = t207 * t241;
         let t619 = t7 * t587;
         let t620 = t619 - t618;
         let t621 = t620 - t617;
+        out[138] = t621;
         let t622 = t8 * t210;
         let t623 = t9 * t207;
         let t624 = t622 - t623;
+        out[174] = t624;
         let t625 = t203 * t232;
         let t626 = t233 * t586;
         let t627 = t206 * t225;
         let t628 = t627 - t626;
         let t629 = t625 + t628;
+        out[31] = t629;
         let t630 = t203 * t238;
         let t631 = t239 * t586;
         let t632 = t206 * t227;
         let t633 = t631 + t632;
         let t634 = t633 - t630;
+        out[67] = t634;
+        out[103] = t634;
         let t635 = t203 * t240;
         let t636 = t241 * t586;
         let t637 = t7 * t206;
         let t638 = t637 - t636;
         let t639 = t635 + t638;
+        out[139] = t639;
         let t640 = t8 * t203;
         let t641 = t9 * t586;
         let t642 = t640 + t641;
         let t643 = -t642;
+        out[175] = t643;
         let t644 = t232 * t585;
         let t645 = t202 * t233;
         let t646 = t211 * t225;
         let t647 = t646 - t645;
         let t648 = t644 + t647;
+        out[32] = t648;
         let t649 = t238 * t585;
         let t650 = t202 * t239;
         let t651 = t211 * t227;
         let t652 = t650 + t651;
         let t653 = t652 - t649;
+        out[68] = t653;
+        out[104] = t653;
         let t654 = t240 * t585;
         let t655 = t202 * t241;
         let t656 = t7 * t211;
         let t657 = t656 - t655;
         let t658 = t654 + t657;
+        out[140] = t658;
         let t659 = t8 * t585;
         let t660 = t9 * t202;
         let t661 = t659 + t660;
         let t662 = -t661;
+        out[176] = t662;
         let t663 = t205 * t232;
         let t664 = t196 * t225;
         let t665 = t589 + t664;
         let t666 = t665 - t663;
+        out[33] = t666;
         let t667 = t205 * t238;
         let t668 = t196 * t227;
         let t669 = t668 - t594;
         let t670 = t667 + t669;
+        out[69] = t670;
+        out[105] = t670;
         let t671 = t205 * t240;
         let t672 = t7 * t196;
         let t673 = t599 + t672;
         let t674 = t673 - t671;
+        out[141] = t674;
         let t675 = t8 * t205;
         let t676 = t604 + t675;
+        out[177] = t676;
         let t677 = t200 * t287;
         let t678 = t139 * t233;
         let t679 = t203 * t288;
@@ -2721,6 +2681,7 @@ impl Puma560 {
         let t683 = t680 + t681;
         let t684 = t679 + t683;
         let t685 = t682 - t684;
+        out[34] = t685;
         let t686 = t200 * t293;
         let t687 = t139 * t239;
         let t688 = t203 * t294;
@@ -2730,6 +2691,7 @@ impl Puma560 {
         let t692 = t690 - t689;
         let t693 = t692 - t688;
         let t694 = t693 - t691;
+        out[70] = t694;
         let t695 = t200 * t300;
         let t696 = t203 * t302;
         let t697 = t210 * t282;
@@ -2737,11 +2699,15 @@ impl Puma560 {
         let t699 = t697 - t689;
         let t700 = t696 + t699;
         let t701 = t700 - t698;
+        out[106] = t701;
         let t702 = t139 * t241;
         let t703 = t7 * t178;
         let t704 = t702 - t703;
+        out[142] = t704;
         let t705 = t9 * t139;
+        out[178] = t705;
         let t706 = -t178;
+        out[214] = t706;
         let t707 = t139 * t232;
         let t708 = t202 * t287;
         let t709 = t204 * t288;
@@ -2751,6 +2717,7 @@ impl Puma560 {
         let t713 = t710 + t711;
         let t714 = t709 - t713;
         let t715 = t712 + t714;
+        out[35] = t715;
         let t716 = t139 * t238;
         let t717 = t202 * t293;
         let t718 = t204 * t294;
@@ -2760,6 +2727,7 @@ impl Puma560 {
         let t722 = t720 - t719;
         let t723 = t718 + t722;
         let t724 = t723 - t721;
+        out[71] = t724;
         let t725 = t202 * t300;
         let t726 = t204 * t302;
         let t727 = t207 * t282;
@@ -2767,230 +2735,17 @@ impl Puma560 {
         let t729 = t727 - t719;
         let t730 = t729 - t726;
         let t731 = t730 - t728;
+        out[107] = t731;
         let t732 = t139 * t240;
         let t733 = t7 * t177;
         let t734 = t732 - t733;
+        out[143] = t734;
         let t735 = t8 * t139;
         let t736 = -t735;
+        out[179] = t736;
         let t737 = -t177;
-        [
-            qdd1,
-            t308,
-            t312,
-            t315,
-            t319,
-            t321,
-            T::ZERO,
-            T::ZERO,
-            t328,
-            t332,
-            t335,
-            t339,
-            t341,
-            t355,
-            t363,
-            t377,
-            t386,
-            t394,
-            t403,
-            t411,
-            t423,
-            t447,
-            t469,
-            t483,
-            t496,
-            t510,
-            t522,
-            t537,
-            t565,
-            t592,
-            t611,
-            t629,
-            t648,
-            t666,
-            t685,
-            t715,
-            T::ZERO,
-            t309,
-            t305,
-            t316,
-            t30,
-            qdd2,
-            t42,
-            t322,
-            t329,
-            t325,
-            t336,
-            t82,
-            t67,
-            t354,
-            t368,
-            t381,
-            t389,
-            t398,
-            t407,
-            t413,
-            t430,
-            t454,
-            t474,
-            t488,
-            t501,
-            t515,
-            t526,
-            t546,
-            t574,
-            t597,
-            t616,
-            t634,
-            t653,
-            t670,
-            t694,
-            t724,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t329,
-            t325,
-            t336,
-            t82,
-            t67,
-            t49,
-            t369,
-            t381,
-            t389,
-            t398,
-            t407,
-            t413,
-            t436,
-            t460,
-            t474,
-            t488,
-            t501,
-            t515,
-            t526,
-            t554,
-            t582,
-            t597,
-            t616,
-            t634,
-            t653,
-            t670,
-            t701,
-            t731,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t123,
-            t372,
-            t128,
-            t133,
-            t118,
-            t437,
-            t461,
-            t477,
-            t491,
-            t504,
-            t518,
-            t528,
-            t556,
-            t583,
-            t602,
-            t621,
-            t639,
-            t658,
-            t674,
-            t704,
-            t734,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t478,
-            t464,
-            t505,
-            t172,
-            t157,
-            t139,
-            t584,
-            t606,
-            t624,
-            t643,
-            t662,
-            t676,
-            t705,
-            t736,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t201,
-            t587,
-            t206,
-            t211,
-            t196,
-            t706,
-            t737,
-        ]
+        out[215] = t737;
+        out
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
@@ -3556,6 +3311,8 @@ impl Puma560 {
         let c0 = T::from_f64(0.0203);
         let c1 = T::from_f64(0.4318);
         let c2 = T::from_f64(0.15005);
+        let mut out = [T::ZERO; 36];
+        out[35] = ZZ6;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -3634,6 +3391,8 @@ impl Puma560 {
         let t80 = t66 - t75;
         let t81 = t69 + t76;
         let t82 = t74 - t79;
+        out[5] = t82;
+        out[30] = t82;
         let t83 = t30 * MYR5;
         let t84 = t30 * MX5;
         let t85 = t44 * MX5;
@@ -3678,6 +3437,8 @@ impl Puma560 {
         let t124 = t106 + t119;
         let t125 = t82 + t107;
         let t126 = t108 - t120;
+        out[4] = t126;
+        out[24] = t126;
         let t127 = t14 * MYR4;
         let t128 = t14 * MX4;
         let t129 = t30 * MX4;
@@ -3724,6 +3485,8 @@ impl Puma560 {
         let t170 = t151 + t165;
         let t171 = t153 - t126;
         let t172 = t154 + t166;
+        out[3] = t172;
+        out[18] = t172;
         let t173 = t14 * MXR3;
         let t174 = t15 * MYR3;
         let t175 = t174 - t173;
@@ -3769,6 +3532,8 @@ impl Puma560 {
         let t215 = t213 + t214;
         let t216 = t208 - t205;
         let t217 = t193 + t216;
+        out[2] = t217;
+        out[12] = t217;
         let t218 = t0 * XXR2;
         let t219 = t1 * XYR2;
         let t220 = t218 + t219;
@@ -3799,10 +3564,13 @@ impl Puma560 {
         let t245 = t217 + t224;
         let t246 = t230 * c1;
         let t247 = t245 + t246;
+        out[1] = t247;
+        out[6] = t247;
         let t248 = t0 * t242;
         let t249 = t1 * t244;
         let t250 = t248 + t249;
         let t251 = t250 + ZZR1;
+        out[0] = t251;
         let t252 = t2 * c1;
         let t253 = t252 - c1;
         let t254 = t3 * c1;
@@ -3855,6 +3623,8 @@ impl Puma560 {
         let t301 = t287 + t296;
         let t302 = t290 - t297;
         let t303 = t295 - t300;
+        out[11] = t303;
+        out[31] = t303;
         let t304 = t5 * MYR5;
         let t305 = t5 * MX5;
         let t306 = t265 * MX5;
@@ -3899,6 +3669,8 @@ impl Puma560 {
         let t345 = t327 + t340;
         let t346 = t303 + t328;
         let t347 = t329 - t341;
+        out[10] = t347;
+        out[25] = t347;
         let t348 = t5 * MX4;
         let t349 = t4 * MYR4;
         let t350 = t348 - t349;
@@ -3933,6 +3705,8 @@ impl Puma560 {
         let t379 = t363 + t376;
         let t380 = t347 + t364;
         let t381 = t377 - t365;
+        out[9] = t381;
+        out[19] = t381;
         let t382 = t3 * MXR3;
         let t383 = t2 * MYR3;
         let t384 = t382 - t383;
@@ -3951,12 +3725,15 @@ impl Puma560 {
         let t397 = t378 + MXR3;
         let t398 = t395 - t392;
         let t399 = t386 + t398;
+        out[8] = t399;
+        out[13] = t399;
         let t400 = t2 * t396;
         let t401 = t3 * t397;
         let t402 = t401 - t400;
         let t403 = t399 + ZZR2;
         let t404 = t402 * c1;
         let t405 = t403 + t404;
+        out[7] = t405;
         let t406 = t5 * t7;
         let t407 = t5 * t6;
         let t408 = t406 * c1;
@@ -3981,6 +3758,8 @@ impl Puma560 {
         let t427 = t287 + t422;
         let t428 = t290 - t423;
         let t429 = t295 + t426;
+        out[17] = t429;
+        out[32] = t429;
         let t430 = t4 * MYR5;
         let t431 = t4 * MX5;
         let t432 = t413 * MX5;
@@ -4000,6 +3779,8 @@ impl Puma560 {
         let t446 = t436 + t444;
         let t447 = t429 + t438;
         let t448 = t439 - t445;
+        out[16] = t448;
+        out[26] = t448;
         let t449 = t4 * MX4;
         let t450 = t5 * MYR4;
         let t451 = t449 + t450;
@@ -4018,11 +3799,14 @@ impl Puma560 {
         let t464 = t453 + t462;
         let t465 = t448 + t455;
         let t466 = t457 + t463;
+        out[15] = t466;
+        out[20] = t466;
         let t467 = t4 * t464;
         let t468 = t5 * t465;
         let t469 = t467 - t468;
         let t470 = t395 - t469;
         let t471 = t470 + ZZR3;
+        out[14] = t471;
         let t472 = t6 * t9;
         let t473 = t6 * t8;
         let t474 = t472 * XXR6;
@@ -4038,6 +3822,8 @@ impl Puma560 {
         let t484 = t473 * YZ6;
         let t485 = t483 - t484;
         let t486 = t482 + t485;
+        out[23] = t486;
+        out[33] = t486;
         let t487 = t6 * XXR5;
         let t488 = t7 * XYR5;
         let t489 = t487 + t488;
@@ -4054,10 +3840,13 @@ impl Puma560 {
         let t500 = t489 + t498;
         let t501 = t486 + t490;
         let t502 = t493 - t499;
+        out[22] = t502;
+        out[27] = t502;
         let t503 = t6 * t500;
         let t504 = t7 * t501;
         let t505 = t503 + t504;
         let t506 = t505 + ZZR4;
+        out[21] = t506;
         let t507 = t8 * XXR6;
         let t508 = t9 * XY6;
         let t509 = t507 + t508;
@@ -4069,52 +3858,18 @@ impl Puma560 {
         let t515 = t9 * t510;
         let t516 = t514 + t515;
         let t517 = t516 + ZZR5;
+        out[28] = t517;
         let t518 = -t513;
-        [
-            t251,
-            t247,
-            t217,
-            t172,
-            t126,
-            t82,
-            t247,
-            t405,
-            t399,
-            t381,
-            t347,
-            t303,
-            t217,
-            t399,
-            t471,
-            t466,
-            t448,
-            t429,
-            t172,
-            t381,
-            t466,
-            t506,
-            t502,
-            t486,
-            t126,
-            t347,
-            t448,
-            t502,
-            t517,
-            t518,
-            t82,
-            t303,
-            t429,
-            t486,
-            t518,
-            ZZ6,
-        ]
+        out[29] = t518;
+        out[34] = t518;
+        out
     }
     /// Gravity torques g(q).
     ///
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
     ///
-    /// Operations: 54 mul, 28 add, 1 neg, 5 sin, 5 cos.
+    /// Operations: 54 mul, 28 add, 0 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
@@ -4125,6 +3880,7 @@ impl Puma560 {
         let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MXR3, MYR3, _, _, _, _, _, MX4,
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
+        let c1 = T::from_f64(-9.81);
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -4211,9 +3967,8 @@ impl Puma560 {
         let t88 = t72 * c0;
         let t89 = t62 * c0;
         let t90 = t48 * c0;
-        let t91 = t34 * c0;
-        let t92 = -t91;
-        [t86, t87, t88, t89, t90, t92]
+        let t91 = t34 * c1;
+        [t86, t87, t88, t89, t90, t91]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
@@ -4742,23 +4497,45 @@ impl Puma560 {
         let c9 = T::from_f64(0.3001);
         let c10 = T::from_f64(0.06479159);
         let c11 = T::from_f64(0.2093783325);
+        let mut out = [T::ZERO; 36];
+        out[4] = YZ2;
+        out[7] = MY2;
+        out[17] = XY4;
+        out[20] = MX4;
+        out[23] = XZ5;
+        out[27] = MX5;
+        out[30] = XY6;
+        out[31] = XZ6;
+        out[32] = YZ6;
+        out[33] = ZZ6;
+        out[34] = MX6;
+        out[35] = MY6;
         let t0 = MX2 * c0;
         let t1 = M2 * c1;
         let t2 = MY2 * c2;
         let t3 = XY2 - t2;
+        out[2] = t3;
         let t4 = MX3 * c3;
         let t5 = M3 * c4;
         let t6 = MY3 * c5;
         let t7 = t6 - XY3;
+        out[10] = t7;
         let t8 = XX6 - YY6;
+        out[29] = t8;
         let t9 = YY5 + YY6;
+        out[26] = t9;
         let t10 = MZ5 + MZ6;
+        out[28] = t10;
         let t11 = YY6 - ZZ5;
         let t12 = t11 + XX5;
+        out[22] = t12;
         let t13 = YY4 + ZZ5;
+        out[19] = t13;
         let t14 = MY5 - MZ4;
+        out[21] = t14;
         let t15 = ZZ5 - ZZ4;
         let t16 = t15 + XX4;
+        out[15] = t16;
         let t17 = MY4 * c0;
         let t18 = MZ3 + MY4;
         let t19 = t18 * c5;
@@ -4767,17 +4544,21 @@ impl Puma560 {
         let t22 = t21 * c6;
         let t23 = t19 + t22;
         let t24 = XZ3 - t23;
+        out[9] = t24;
         let t25 = t21 * c7;
         let t26 = t4 + ZZ4;
         let t27 = t26 + YY3;
         let t28 = t17 + t25;
         let t29 = t5 + t28;
         let t30 = t27 + t29;
+        out[12] = t30;
         let t31 = t21 + M3;
         let t32 = t31 * c5;
         let t33 = t32 + MX3;
+        out[13] = t33;
         let t34 = t21 * c2;
         let t35 = t18 + t34;
+        out[14] = t35;
         let t36 = t21 * c8;
         let t37 = ZZ4 - ZZ3;
         let t38 = t37 + XX3;
@@ -4785,20 +4566,25 @@ impl Puma560 {
         let t40 = t36 - t4;
         let t41 = t39 + t40;
         let t42 = t38 + t41;
+        out[8] = t42;
         let t43 = MY3 * c9;
         let t44 = MY3 - MZ2;
         let t45 = t44 * c2;
         let t46 = t31 * c10;
         let t47 = t45 - t46;
         let t48 = t47 + XZ2;
+        out[3] = t48;
         let t49 = t31 + M2;
         let t50 = t49 * c1;
         let t51 = t0 + t50;
         let t52 = t51 + ZZ2;
+        out[5] = t52;
         let t53 = t49 * c2;
         let t54 = t53 + MX2;
+        out[6] = t54;
         let t55 = XX2 - YY2;
         let t56 = t55 - t51;
+        out[1] = t56;
         let t57 = t31 * c11;
         let t58 = YY1 + YY2;
         let t59 = t0 + ZZ3;
@@ -4807,49 +4593,18 @@ impl Puma560 {
         let t62 = t57 - t43;
         let t63 = t61 + t62;
         let t64 = t60 + t63;
+        out[0] = t64;
         let t65 = -YZ3;
+        out[11] = t65;
         let t66 = -XZ4;
+        out[16] = t66;
         let t67 = -YZ4;
+        out[18] = t67;
         let t68 = -XY5;
+        out[24] = t68;
         let t69 = -YZ5;
-        [
-            t64,
-            t56,
-            t3,
-            t48,
-            YZ2,
-            t52,
-            t54,
-            MY2,
-            t42,
-            t24,
-            t7,
-            t65,
-            t30,
-            t33,
-            t35,
-            t16,
-            t66,
-            XY4,
-            t67,
-            t13,
-            MX4,
-            t14,
-            t12,
-            XZ5,
-            t68,
-            t69,
-            t9,
-            MX5,
-            t10,
-            t8,
-            XY6,
-            XZ6,
-            YZ6,
-            ZZ6,
-            MX6,
-            MY6,
-        ]
+        out[25] = t69;
+        out
     }
 }
 impl ::robid_runtime::Model for Puma560 {

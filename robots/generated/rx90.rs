@@ -186,11 +186,17 @@ impl Rx90 {
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(2.0);
+        let mut out = [T::ZERO; 360];
+        out[5] = qdd1;
+        out[75] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let t2 = t0 * qdd1;
+        out[72] = t2;
         let t3 = t1 * qdd1;
+        out[74] = t3;
         let t4 = t0 * c0;
         let t5 = t1 * c0;
+        out[76] = t5;
         let t6 = qd1 * qd2;
         let t7 = t1 * t6;
         let t8 = t0 * t6;
@@ -232,6 +238,7 @@ impl Rx90 {
         let t45 = t11 * t38;
         let t46 = t12 * t40;
         let t47 = t46 - t45;
+        out[146] = t47;
         let t48 = t20 * qd3;
         let t49 = t17 * qd3;
         let t50 = qd2 + qd3;
@@ -240,6 +247,8 @@ impl Rx90 {
         let t53 = t24 - t49;
         let t54 = t53 - t23;
         let t55 = qdd2 + qdd3;
+        out[85] = t55;
+        out[145] = t55;
         let (t56, t57) = q4.sin_cos();
         let t58 = t17 * t57;
         let t59 = t50 * t56;
@@ -252,6 +261,8 @@ impl Rx90 {
         let t66 = t52 * t56;
         let t67 = t55 * t57;
         let t68 = t17 * t20;
+        out[83] = t68;
+        out[143] = t68;
         let t69 = t68 * RL4;
         let t70 = t50 * t50;
         let t71 = t70 * RL4;
@@ -281,6 +292,7 @@ impl Rx90 {
         let t95 = t67 + t91;
         let t96 = t66 + t95;
         let t97 = t54 + qdd4;
+        out[215] = t97;
         let (t98, t99) = q5.sin_cos();
         let t100 = t60 * t99;
         let t101 = t92 * t98;
@@ -298,6 +310,7 @@ impl Rx90 {
         let t113 = t86 * t98;
         let t114 = t81 * t99;
         let t115 = t114 - t113;
+        out[286] = t115;
         let t116 = t105 * qd5;
         let t117 = t102 * qd5;
         let t118 = t63 + qd5;
@@ -306,6 +319,7 @@ impl Rx90 {
         let t121 = t109 - t117;
         let t122 = t121 - t108;
         let t123 = t96 + qdd5;
+        out[285] = t123;
         let (t124, t125) = q6.sin_cos();
         let t126 = t102 * t125;
         let t127 = t118 * t124;
@@ -331,14 +345,18 @@ impl Rx90 {
         let t147 = t135 + t143;
         let t148 = t134 + t147;
         let t149 = t122 + qdd6;
+        out[355] = t149;
         let t150 = t25 * t31;
+        out[73] = t150;
         let t151 = t0 * t0;
         let t152 = t0 * t9;
         let t153 = t1 * t8;
         let t154 = t152 + t153;
+        out[10] = t154;
         let t155 = t25 * t151;
         let t156 = t25 * t26;
         let t157 = t155 - t156;
+        out[71] = t157;
         let t158 = t8 * c1;
         let t159 = t3 - t158;
         let t160 = t7 * c1;
@@ -346,16 +364,19 @@ impl Rx90 {
         let t162 = t0 * t159;
         let t163 = t1 * t161;
         let t164 = t162 + t163;
+        out[11] = t164;
         let t165 = t29 - t155;
         let t166 = t150 + qdd2;
         let t167 = t0 * t166;
         let t168 = t1 * t165;
         let t169 = t167 + t168;
+        out[12] = t169;
         let t170 = t156 - t29;
         let t171 = qdd2 - t150;
         let t172 = t0 * t170;
         let t173 = t1 * t171;
         let t174 = t172 + t173;
+        out[14] = t174;
         let t175 = t17 * t50;
         let t176 = t12 * t52;
         let t177 = t11 * t17;
@@ -368,8 +389,11 @@ impl Rx90 {
         let t184 = t0 * t179;
         let t185 = t1 * t183;
         let t186 = t184 + t185;
+        out[20] = t186;
         let t187 = t20 * t20;
         let t188 = t72 - t187;
+        out[81] = t188;
+        out[141] = t188;
         let t189 = t54 - t175;
         let t190 = t52 + t74;
         let t191 = t12 * t189;
@@ -381,9 +405,12 @@ impl Rx90 {
         let t197 = t0 * t193;
         let t198 = t1 * t196;
         let t199 = t197 + t198;
+        out[21] = t199;
         let t200 = t70 - t72;
         let t201 = t55 + t68;
         let t202 = t52 - t74;
+        out[82] = t202;
+        out[142] = t202;
         let t203 = t12 * t201;
         let t204 = t11 * t200;
         let t205 = t203 - t204;
@@ -393,9 +420,12 @@ impl Rx90 {
         let t209 = t0 * t205;
         let t210 = t1 * t208;
         let t211 = t209 + t210;
+        out[22] = t211;
         let t212 = t187 - t70;
         let t213 = t55 - t68;
         let t214 = t54 + t175;
+        out[84] = t214;
+        out[144] = t214;
         let t215 = t12 * t212;
         let t216 = t11 * t213;
         let t217 = t215 - t216;
@@ -405,6 +435,7 @@ impl Rx90 {
         let t221 = t0 * t217;
         let t222 = t1 * t220;
         let t223 = t221 + t222;
+        out[24] = t223;
         let t224 = t12 * t20;
         let t225 = t50 * t224;
         let t226 = t178 + t225;
@@ -414,6 +445,7 @@ impl Rx90 {
         let t230 = t0 * t226;
         let t231 = t1 * t229;
         let t232 = t230 + t231;
+        out[25] = t232;
         let t233 = t70 + t187;
         let t234 = t11 * t233;
         let t235 = t203 - t234;
@@ -422,10 +454,12 @@ impl Rx90 {
         let t238 = t235 * D3;
         let t239 = t237 - t236;
         let t240 = t47 + t238;
+        out[86] = t240;
         let t241 = t0 * t11;
         let t242 = t41 * t241;
         let t243 = t1 * t239;
         let t244 = t242 + t243;
+        out[26] = t244;
         let t245 = t70 + t72;
         let t246 = t12 * t245;
         let t247 = t216 + t246;
@@ -438,8 +472,10 @@ impl Rx90 {
         let t254 = t41 * t253;
         let t255 = t1 * t251;
         let t256 = t254 + t255;
+        out[27] = t256;
         let t257 = t60 * t92;
         let t258 = t60 * t63;
+        out[210] = t258;
         let t259 = t57 * t94;
         let t260 = t56 * t60;
         let t261 = t92 * t260;
@@ -459,10 +495,12 @@ impl Rx90 {
         let t275 = t0 * t270;
         let t276 = t1 * t274;
         let t277 = t275 + t276;
+        out[30] = t277;
         let t278 = t63 * t92;
         let t279 = t60 * t60;
         let t280 = t63 * t63;
         let t281 = t279 - t280;
+        out[211] = t281;
         let t282 = t96 + t257;
         let t283 = t94 - t278;
         let t284 = t57 * t282;
@@ -471,6 +509,8 @@ impl Rx90 {
         let t287 = t56 * t282;
         let t288 = t57 * t283;
         let t289 = t287 - t288;
+        out[91] = t289;
+        out[151] = t289;
         let t290 = t12 * t286;
         let t291 = t11 * t281;
         let t292 = t290 + t291;
@@ -480,10 +520,12 @@ impl Rx90 {
         let t296 = t0 * t292;
         let t297 = t1 * t295;
         let t298 = t297 - t296;
+        out[31] = t298;
         let t299 = t92 * t92;
         let t300 = t299 - t279;
         let t301 = t97 - t258;
         let t302 = t94 + t278;
+        out[212] = t302;
         let t303 = t57 * t301;
         let t304 = t56 * t300;
         let t305 = t303 - t304;
@@ -499,9 +541,11 @@ impl Rx90 {
         let t315 = t0 * t311;
         let t316 = t1 * t314;
         let t317 = t315 + t316;
+        out[32] = t317;
         let t318 = t280 - t299;
         let t319 = t97 + t258;
         let t320 = t257 - t96;
+        out[214] = t320;
         let t321 = t57 * t318;
         let t322 = t56 * t319;
         let t323 = t321 - t322;
@@ -517,12 +561,15 @@ impl Rx90 {
         let t333 = t0 * t329;
         let t334 = t1 * t332;
         let t335 = t333 + t334;
+        out[34] = t335;
         let t336 = t57 * t63;
         let t337 = t92 * t336;
         let t338 = t261 - t337;
         let t339 = t56 * t63;
         let t340 = t92 * t339;
         let t341 = t265 + t340;
+        out[95] = t341;
+        out[155] = t341;
         let t342 = t12 * t338;
         let t343 = t11 * t97;
         let t344 = t342 - t343;
@@ -532,6 +579,7 @@ impl Rx90 {
         let t348 = t0 * t344;
         let t349 = t1 * t347;
         let t350 = t348 + t349;
+        out[35] = t350;
         let t351 = t280 + t299;
         let t352 = t57 * t351;
         let t353 = t306 + t352;
@@ -543,6 +591,7 @@ impl Rx90 {
         let t359 = t353 * RL4;
         let t360 = t356 + t358;
         let t361 = t357 + t359;
+        out[156] = t361;
         let t362 = t11 * t353;
         let t363 = t12 * t282;
         let t364 = t363 - t362;
@@ -556,9 +605,11 @@ impl Rx90 {
         let t372 = t369 + t370;
         let t373 = t368 - t372;
         let t374 = t361 + t371;
+        out[96] = t374;
         let t375 = t0 * t367;
         let t376 = t1 * t373;
         let t377 = t375 + t376;
+        out[36] = t377;
         let t378 = t279 + t299;
         let t379 = t56 * t378;
         let t380 = t379 - t325;
@@ -581,11 +632,14 @@ impl Rx90 {
         let t397 = t394 + t395;
         let t398 = t393 - t397;
         let t399 = t396 - t386;
+        out[97] = t399;
         let t400 = t0 * t392;
         let t401 = t1 * t398;
         let t402 = t400 + t401;
+        out[37] = t402;
         let t403 = t102 * t118;
         let t404 = t102 * t105;
+        out[283] = t404;
         let t405 = t99 * t120;
         let t406 = t98 * t102;
         let t407 = t118 * t406;
@@ -594,6 +648,7 @@ impl Rx90 {
         let t410 = t99 * t102;
         let t411 = t118 * t410;
         let t412 = t409 + t411;
+        out[220] = t412;
         let t413 = t57 * t408;
         let t414 = t56 * t102;
         let t415 = t105 * t414;
@@ -611,10 +666,12 @@ impl Rx90 {
         let t427 = t0 * t423;
         let t428 = t1 * t426;
         let t429 = t427 + t428;
+        out[40] = t429;
         let t430 = t105 * t118;
         let t431 = t102 * t102;
         let t432 = t105 * t105;
         let t433 = t431 - t432;
+        out[281] = t433;
         let t434 = t122 - t403;
         let t435 = t120 + t430;
         let t436 = t99 * t434;
@@ -623,12 +680,15 @@ impl Rx90 {
         let t439 = t98 * t434;
         let t440 = t99 * t435;
         let t441 = t439 + t440;
+        out[221] = t441;
         let t442 = t57 * t438;
         let t443 = t56 * t433;
         let t444 = t442 + t443;
         let t445 = t56 * t438;
         let t446 = t57 * t433;
         let t447 = t446 - t445;
+        out[101] = t447;
+        out[161] = t447;
         let t448 = t12 * t444;
         let t449 = t11 * t441;
         let t450 = t448 - t449;
@@ -638,22 +698,27 @@ impl Rx90 {
         let t454 = t0 * t450;
         let t455 = t1 * t453;
         let t456 = t454 + t455;
+        out[41] = t456;
         let t457 = t118 * t118;
         let t458 = t457 - t431;
         let t459 = t123 + t404;
         let t460 = t120 - t430;
+        out[282] = t460;
         let t461 = t99 * t459;
         let t462 = t98 * t458;
         let t463 = t461 - t462;
         let t464 = t98 * t459;
         let t465 = t99 * t458;
         let t466 = t464 + t465;
+        out[222] = t466;
         let t467 = t57 * t463;
         let t468 = t56 * t460;
         let t469 = t467 + t468;
         let t470 = t56 * t463;
         let t471 = t57 * t460;
         let t472 = t471 - t470;
+        out[102] = t472;
+        out[162] = t472;
         let t473 = t12 * t469;
         let t474 = t11 * t466;
         let t475 = t473 - t474;
@@ -663,21 +728,26 @@ impl Rx90 {
         let t479 = t0 * t475;
         let t480 = t1 * t478;
         let t481 = t479 + t480;
+        out[42] = t481;
         let t482 = t432 - t457;
         let t483 = t123 - t404;
         let t484 = t122 + t403;
+        out[284] = t484;
         let t485 = t99 * t482;
         let t486 = t98 * t483;
         let t487 = t485 - t486;
         let t488 = t98 * t482;
         let t489 = t99 * t483;
         let t490 = t488 + t489;
+        out[224] = t490;
         let t491 = t57 * t487;
         let t492 = t56 * t484;
         let t493 = t491 + t492;
         let t494 = t56 * t487;
         let t495 = t57 * t484;
         let t496 = t495 - t494;
+        out[104] = t496;
+        out[164] = t496;
         let t497 = t12 * t493;
         let t498 = t11 * t490;
         let t499 = t497 - t498;
@@ -687,18 +757,22 @@ impl Rx90 {
         let t503 = t0 * t499;
         let t504 = t1 * t502;
         let t505 = t503 + t504;
+        out[44] = t505;
         let t506 = t99 * t105;
         let t507 = t118 * t506;
         let t508 = t407 + t507;
         let t509 = t98 * t105;
         let t510 = t118 * t509;
         let t511 = t510 - t411;
+        out[225] = t511;
         let t512 = t57 * t508;
         let t513 = t56 * t123;
         let t514 = t512 + t513;
         let t515 = t56 * t508;
         let t516 = t57 * t123;
         let t517 = t516 - t515;
+        out[105] = t517;
+        out[165] = t517;
         let t518 = t12 * t514;
         let t519 = t11 * t511;
         let t520 = t518 - t519;
@@ -708,6 +782,7 @@ impl Rx90 {
         let t524 = t0 * t520;
         let t525 = t1 * t523;
         let t526 = t524 + t525;
+        out[45] = t526;
         let t527 = t432 + t457;
         let t528 = t99 * t527;
         let t529 = t464 + t528;
@@ -732,6 +807,7 @@ impl Rx90 {
         let t548 = t540 + t547;
         let t549 = t544 + t546;
         let t550 = t549 - t543;
+        out[166] = t550;
         let t551 = t11 * t535;
         let t552 = t12 * t531;
         let t553 = t552 - t551;
@@ -745,15 +821,18 @@ impl Rx90 {
         let t561 = t558 + t559;
         let t562 = t557 - t561;
         let t563 = t550 + t560;
+        out[106] = t563;
         let t564 = t0 * t556;
         let t565 = t1 * t562;
         let t566 = t564 + t565;
+        out[46] = t566;
         let t567 = t431 + t457;
         let t568 = t98 * t567;
         let t569 = t568 - t489;
         let t570 = t99 * t567;
         let t571 = t486 + t570;
         let t572 = t89 * t98;
+        out[227] = t572;
         let t573 = t57 * t569;
         let t574 = t56 * t435;
         let t575 = t573 + t574;
@@ -787,11 +866,14 @@ impl Rx90 {
         let t603 = t600 - t601;
         let t604 = t598 + t603;
         let t605 = t602 - t590;
+        out[107] = t605;
         let t606 = t0 * t597;
         let t607 = t1 * t604;
         let t608 = t606 + t607;
+        out[47] = t608;
         let t609 = t128 * t144;
         let t610 = t128 * t131;
+        out[350] = t610;
         let t611 = t125 * t146;
         let t612 = t124 * t128;
         let t613 = t144 * t612;
@@ -808,6 +890,7 @@ impl Rx90 {
         let t624 = t99 * t128;
         let t625 = t131 * t624;
         let t626 = t623 + t625;
+        out[230] = t626;
         let t627 = t57 * t622;
         let t628 = t56 * t618;
         let t629 = t627 - t628;
@@ -823,10 +906,12 @@ impl Rx90 {
         let t639 = t0 * t635;
         let t640 = t1 * t638;
         let t641 = t639 + t640;
+        out[50] = t641;
         let t642 = t131 * t144;
         let t643 = t128 * t128;
         let t644 = t131 * t131;
         let t645 = t643 - t644;
+        out[351] = t645;
         let t646 = t148 + t609;
         let t647 = t146 - t642;
         let t648 = t125 * t646;
@@ -835,18 +920,22 @@ impl Rx90 {
         let t651 = t124 * t646;
         let t652 = t125 * t647;
         let t653 = t651 - t652;
+        out[291] = t653;
         let t654 = t99 * t650;
         let t655 = t98 * t645;
         let t656 = t654 + t655;
         let t657 = t98 * t650;
         let t658 = t99 * t645;
         let t659 = t658 - t657;
+        out[231] = t659;
         let t660 = t57 * t656;
         let t661 = t56 * t653;
         let t662 = t661 - t660;
         let t663 = t56 * t656;
         let t664 = t57 * t653;
         let t665 = t663 + t664;
+        out[111] = t665;
+        out[171] = t665;
         let t666 = t12 * t662;
         let t667 = t11 * t659;
         let t668 = t666 - t667;
@@ -856,10 +945,12 @@ impl Rx90 {
         let t672 = t0 * t668;
         let t673 = t1 * t671;
         let t674 = t672 + t673;
+        out[51] = t674;
         let t675 = t144 * t144;
         let t676 = t675 - t643;
         let t677 = t149 - t610;
         let t678 = t146 + t642;
+        out[352] = t678;
         let t679 = t125 * t677;
         let t680 = t124 * t676;
         let t681 = t679 - t680;
@@ -872,6 +963,7 @@ impl Rx90 {
         let t688 = t98 * t681;
         let t689 = t99 * t678;
         let t690 = t688 + t689;
+        out[232] = t690;
         let t691 = t57 * t687;
         let t692 = t56 * t684;
         let t693 = t691 - t692;
@@ -887,9 +979,11 @@ impl Rx90 {
         let t703 = t0 * t699;
         let t704 = t1 * t702;
         let t705 = t703 + t704;
+        out[52] = t705;
         let t706 = t644 - t675;
         let t707 = t149 + t610;
         let t708 = t609 - t148;
+        out[354] = t708;
         let t709 = t125 * t706;
         let t710 = t124 * t707;
         let t711 = t709 - t710;
@@ -902,6 +996,7 @@ impl Rx90 {
         let t718 = t98 * t711;
         let t719 = t99 * t708;
         let t720 = t718 + t719;
+        out[234] = t720;
         let t721 = t57 * t717;
         let t722 = t56 * t714;
         let t723 = t721 - t722;
@@ -917,24 +1012,29 @@ impl Rx90 {
         let t733 = t0 * t729;
         let t734 = t1 * t732;
         let t735 = t733 + t734;
+        out[54] = t735;
         let t736 = t125 * t131;
         let t737 = t144 * t736;
         let t738 = t613 - t737;
         let t739 = t124 * t131;
         let t740 = t144 * t739;
         let t741 = t617 + t740;
+        out[295] = t741;
         let t742 = t99 * t738;
         let t743 = t98 * t149;
         let t744 = t742 - t743;
         let t745 = t98 * t738;
         let t746 = t99 * t149;
         let t747 = t745 + t746;
+        out[235] = t747;
         let t748 = t57 * t744;
         let t749 = t56 * t741;
         let t750 = t748 + t749;
         let t751 = t56 * t744;
         let t752 = t57 * t741;
         let t753 = t752 - t751;
+        out[115] = t753;
+        out[175] = t753;
         let t754 = t12 * t750;
         let t755 = t11 * t747;
         let t756 = t754 - t755;
@@ -944,11 +1044,13 @@ impl Rx90 {
         let t760 = t0 * t756;
         let t761 = t1 * t759;
         let t762 = t760 + t761;
+        out[55] = t762;
         let t763 = t644 + t675;
         let t764 = t125 * t763;
         let t765 = t682 + t764;
         let t766 = t124 * t763;
         let t767 = t115 * t125;
+        out[296] = t767;
         let t768 = t99 * t765;
         let t769 = t98 * t646;
         let t770 = t768 + t769;
@@ -964,6 +1066,7 @@ impl Rx90 {
         let t780 = t115 * t779;
         let t781 = t99 * t141;
         let t782 = t780 - t781;
+        out[236] = t782;
         let t783 = t57 * t770;
         let t784 = t56 * t771;
         let t785 = t783 + t784;
@@ -982,6 +1085,7 @@ impl Rx90 {
         let t798 = t789 + t797;
         let t799 = t794 + t796;
         let t800 = t799 - t792;
+        out[176] = t800;
         let t801 = t11 * t785;
         let t802 = t12 * t774;
         let t803 = t802 - t801;
@@ -995,9 +1099,11 @@ impl Rx90 {
         let t811 = t808 - t809;
         let t812 = t807 + t811;
         let t813 = t800 + t810;
+        out[116] = t813;
         let t814 = t0 * t806;
         let t815 = t1 * t812;
         let t816 = t814 + t815;
+        out[56] = t816;
         let t817 = t643 + t675;
         let t818 = t124 * t817;
         let t819 = t818 - t713;
@@ -1018,6 +1124,7 @@ impl Rx90 {
         let t834 = t125 * t833;
         let t835 = t99 * t138;
         let t836 = t834 - t835;
+        out[237] = t836;
         let t837 = t57 * t824;
         let t838 = t56 * t825;
         let t839 = t837 + t838;
@@ -1047,11 +1154,14 @@ impl Rx90 {
         let t863 = t860 - t861;
         let t864 = t859 + t863;
         let t865 = t862 - t852;
+        out[117] = t865;
         let t866 = t0 * t858;
         let t867 = t1 * t864;
         let t868 = t866 + t867;
+        out[57] = t868;
         let t869 = t1 * t10;
         let t870 = t869 - t153;
+        out[13] = t870;
         let t871 = t11 * t54;
         let t872 = t225 + t871;
         let t873 = t12 * t54;
@@ -1059,6 +1169,7 @@ impl Rx90 {
         let t875 = t0 * t872;
         let t876 = t1 * t874;
         let t877 = t876 - t875;
+        out[23] = t877;
         let t878 = t72 + t187;
         let t879 = t11 * t214;
         let t880 = t12 * t202;
@@ -1070,18 +1181,23 @@ impl Rx90 {
         let t886 = t12 * t44;
         let t887 = t878 * D3;
         let t888 = t881 * D3;
+        out[88] = t888;
         let t889 = t886 + t887;
         let t890 = t889 - t885;
         let t891 = t0 * t884;
         let t892 = t1 * t890;
         let t893 = t892 - t891;
+        out[28] = t893;
         let t894 = t884 * D3;
+        out[89] = t894;
         let t895 = t1 * D3;
         let t896 = t41 * t895;
         let t897 = t56 * t96;
         let t898 = t337 + t897;
         let t899 = t57 * t96;
         let t900 = t899 - t340;
+        out[93] = t900;
+        out[153] = t900;
         let t901 = t12 * t898;
         let t902 = t269 + t901;
         let t903 = t11 * t898;
@@ -1089,6 +1205,7 @@ impl Rx90 {
         let t905 = t0 * t902;
         let t906 = t1 * t904;
         let t907 = t905 + t906;
+        out[33] = t907;
         let t908 = t279 + t280;
         let t909 = t57 * t320;
         let t910 = t56 * t302;
@@ -1112,9 +1229,11 @@ impl Rx90 {
         let t928 = t925 * D3;
         let t929 = t926 - t927;
         let t930 = t928 - t922;
+        out[98] = t930;
         let t931 = t253 * t920;
         let t932 = t1 * t929;
         let t933 = t931 + t932;
+        out[38] = t933;
         let t934 = t542 + t916;
         let t935 = t539 - t915;
         let t936 = t934 * RL4;
@@ -1127,18 +1246,23 @@ impl Rx90 {
         let t943 = t939 * D3;
         let t944 = t941 - t942;
         let t945 = t943 - t936;
+        out[99] = t945;
         let t946 = t253 * RL4;
         let t947 = t935 * t946;
         let t948 = t1 * t944;
         let t949 = t947 + t948;
+        out[39] = t949;
         let t950 = t98 * t122;
         let t951 = t507 + t950;
         let t952 = t99 * t122;
         let t953 = t952 - t510;
+        out[223] = t953;
         let t954 = t57 * t951;
         let t955 = t415 - t954;
         let t956 = t56 * t951;
         let t957 = t419 + t956;
+        out[103] = t957;
+        out[163] = t957;
         let t958 = t12 * t955;
         let t959 = t11 * t953;
         let t960 = t958 - t959;
@@ -1148,6 +1272,7 @@ impl Rx90 {
         let t964 = t0 * t960;
         let t965 = t1 * t963;
         let t966 = t964 + t965;
+        out[43] = t966;
         let t967 = t99 * t484;
         let t968 = t98 * t460;
         let t969 = t967 + t968;
@@ -1159,6 +1284,7 @@ impl Rx90 {
         let t975 = t829 + t974;
         let t976 = t99 * t112;
         let t977 = t976 - t833;
+        out[228] = t977;
         let t978 = t57 * t969;
         let t979 = t56 * t970;
         let t980 = t978 - t979;
@@ -1171,6 +1297,7 @@ impl Rx90 {
         let t987 = t980 * RL4;
         let t988 = t984 + t986;
         let t989 = t985 - t987;
+        out[168] = t989;
         let t990 = t11 * t980;
         let t991 = t12 * t973;
         let t992 = t990 + t991;
@@ -1184,9 +1311,11 @@ impl Rx90 {
         let t1000 = t997 + t998;
         let t1001 = t1000 - t996;
         let t1002 = t989 + t999;
+        out[108] = t1002;
         let t1003 = t0 * t995;
         let t1004 = t1 * t1001;
         let t1005 = t1004 - t1003;
+        out[48] = t1005;
         let t1006 = t57 * t977;
         let t1007 = t542 + t1006;
         let t1008 = t56 * t977;
@@ -1200,23 +1329,29 @@ impl Rx90 {
         let t1016 = t1013 * D3;
         let t1017 = t1014 - t1015;
         let t1018 = t1016 - t1010;
+        out[109] = t1018;
         let t1019 = t946 * t1009;
         let t1020 = t1 * t1017;
         let t1021 = t1019 + t1020;
+        out[49] = t1021;
         let t1022 = t124 * t148;
         let t1023 = t737 + t1022;
         let t1024 = t125 * t148;
         let t1025 = t1024 - t740;
+        out[293] = t1025;
         let t1026 = t99 * t1023;
         let t1027 = t621 + t1026;
         let t1028 = t98 * t1023;
         let t1029 = t1028 - t625;
+        out[233] = t1029;
         let t1030 = t57 * t1027;
         let t1031 = t56 * t1025;
         let t1032 = t1030 + t1031;
         let t1033 = t56 * t1027;
         let t1034 = t57 * t1025;
         let t1035 = t1034 - t1033;
+        out[113] = t1035;
+        out[173] = t1035;
         let t1036 = t12 * t1032;
         let t1037 = t11 * t1029;
         let t1038 = t1036 - t1037;
@@ -1226,6 +1361,7 @@ impl Rx90 {
         let t1042 = t0 * t1038;
         let t1043 = t1 * t1041;
         let t1044 = t1042 + t1043;
+        out[53] = t1044;
         let t1045 = t643 + t644;
         let t1046 = t125 * t708;
         let t1047 = t124 * t678;
@@ -1246,6 +1382,7 @@ impl Rx90 {
         let t1062 = t99 * t1045;
         let t1063 = t1061 - t1062;
         let t1064 = t98 * t1053;
+        out[238] = t1064;
         let t1065 = t57 * t1059;
         let t1066 = t56 * t1060;
         let t1067 = t1065 - t1066;
@@ -1275,9 +1412,11 @@ impl Rx90 {
         let t1091 = t1088 + t1089;
         let t1092 = t1087 + t1091;
         let t1093 = t1090 - t1080;
+        out[118] = t1093;
         let t1094 = t0 * t1086;
         let t1095 = t1 * t1092;
         let t1096 = t1094 + t1095;
+        out[58] = t1096;
         let t1097 = t99 * t1056;
         let t1098 = t1097 - t833;
         let t1099 = t98 * t1056;
@@ -1297,406 +1436,90 @@ impl Rx90 {
         let t1113 = t1110 * D3;
         let t1114 = t1111 - t1112;
         let t1115 = t1113 - t1107;
+        out[119] = t1115;
         let t1116 = t946 * t1106;
         let t1117 = t1 * t1114;
         let t1118 = t1116 + t1117;
+        out[59] = t1118;
         let t1119 = -t896;
+        out[29] = t1119;
         let t1120 = -t150;
+        out[70] = t1120;
         let t1121 = -t4;
+        out[77] = t1121;
         let t1122 = -t68;
+        out[80] = t1122;
+        out[140] = t1122;
         let t1123 = -t252;
+        out[87] = t1123;
         let t1124 = -t266;
+        out[90] = t1124;
+        out[150] = t1124;
         let t1125 = -t308;
+        out[92] = t1125;
+        out[152] = t1125;
         let t1126 = -t326;
+        out[94] = t1126;
+        out[154] = t1126;
         let t1127 = -t420;
+        out[100] = t1127;
+        out[160] = t1127;
         let t1128 = -t632;
+        out[110] = t1128;
+        out[170] = t1128;
         let t1129 = -t696;
+        out[112] = t1129;
+        out[172] = t1129;
         let t1130 = -t726;
+        out[114] = t1130;
+        out[174] = t1130;
         let t1131 = -t44;
+        out[147] = t1131;
         let t1132 = -t386;
+        out[157] = t1132;
         let t1133 = -t922;
+        out[158] = t1133;
         let t1134 = -t936;
+        out[159] = t1134;
         let t1135 = -t590;
+        out[167] = t1135;
         let t1136 = -t1010;
+        out[169] = t1136;
         let t1137 = -t852;
+        out[177] = t1137;
         let t1138 = -t1080;
+        out[178] = t1138;
         let t1139 = -t1107;
+        out[179] = t1139;
         let t1140 = -t258;
+        out[213] = t1140;
         let t1141 = -t89;
+        out[216] = t1141;
         let t1142 = -t86;
+        out[217] = t1142;
         let t1143 = -t532;
+        out[226] = t1143;
         let t1144 = -t404;
+        out[280] = t1144;
         let t1145 = -t112;
+        out[287] = t1145;
         let t1146 = -t618;
+        out[290] = t1146;
         let t1147 = -t684;
+        out[292] = t1147;
         let t1148 = -t714;
+        out[294] = t1148;
         let t1149 = -t821;
+        out[297] = t1149;
         let t1150 = -t1056;
+        out[298] = t1150;
         let t1151 = -t610;
+        out[353] = t1151;
         let t1152 = -t141;
+        out[356] = t1152;
         let t1153 = -t138;
-        [
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            qdd1,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t154,
-            t164,
-            t169,
-            t870,
-            t174,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t186,
-            t199,
-            t211,
-            t877,
-            t223,
-            t232,
-            t244,
-            t256,
-            t893,
-            t1119,
-            t277,
-            t298,
-            t317,
-            t907,
-            t335,
-            t350,
-            t377,
-            t402,
-            t933,
-            t949,
-            t429,
-            t456,
-            t481,
-            t966,
-            t505,
-            t526,
-            t566,
-            t608,
-            t1005,
-            t1021,
-            t641,
-            t674,
-            t705,
-            t1044,
-            t735,
-            t762,
-            t816,
-            t868,
-            t1096,
-            t1118,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1120,
-            t157,
-            t2,
-            t150,
-            t3,
-            qdd2,
-            t5,
-            t1121,
-            T::ZERO,
-            T::ZERO,
-            t1122,
-            t188,
-            t202,
-            t68,
-            t214,
-            t55,
-            t240,
-            t1123,
-            t888,
-            t894,
-            t1124,
-            t289,
-            t1125,
-            t900,
-            t1126,
-            t341,
-            t374,
-            t399,
-            t930,
-            t945,
-            t1127,
-            t447,
-            t472,
-            t957,
-            t496,
-            t517,
-            t563,
-            t605,
-            t1002,
-            t1018,
-            t1128,
-            t665,
-            t1129,
-            t1035,
-            t1130,
-            t753,
-            t813,
-            t865,
-            t1093,
-            t1115,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1122,
-            t188,
-            t202,
-            t68,
-            t214,
-            t55,
-            t47,
-            t1131,
-            T::ZERO,
-            T::ZERO,
-            t1124,
-            t289,
-            t1125,
-            t900,
-            t1126,
-            t341,
-            t361,
-            t1132,
-            t1133,
-            t1134,
-            t1127,
-            t447,
-            t472,
-            t957,
-            t496,
-            t517,
-            t550,
-            t1135,
-            t989,
-            t1136,
-            t1128,
-            t665,
-            t1129,
-            t1035,
-            t1130,
-            t753,
-            t800,
-            t1137,
-            t1138,
-            t1139,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t258,
-            t281,
-            t302,
-            t1140,
-            t320,
-            t97,
-            t1141,
-            t1142,
-            T::ZERO,
-            T::ZERO,
-            t412,
-            t441,
-            t466,
-            t953,
-            t490,
-            t511,
-            t1143,
-            t572,
-            t977,
-            T::ZERO,
-            t626,
-            t659,
-            t690,
-            t1029,
-            t720,
-            t747,
-            t782,
-            t836,
-            t1064,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1144,
-            t433,
-            t460,
-            t404,
-            t484,
-            t123,
-            t115,
-            t1145,
-            T::ZERO,
-            T::ZERO,
-            t1146,
-            t653,
-            t1147,
-            t1025,
-            t1148,
-            t741,
-            t767,
-            t1149,
-            t1150,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t610,
-            t645,
-            t678,
-            t1151,
-            t708,
-            t149,
-            t1152,
-            t1153,
-            T::ZERO,
-            T::ZERO,
-        ]
+        out[357] = t1153;
+        out
     }
     /// Base regressor Y_b(q, qd, qdd), `6 x 36` row-major: tau = Y_b * base.
     ///
@@ -1706,7 +1529,7 @@ impl Rx90 {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 367 mul, 282 add, 23 neg, 5 sin, 5 cos.
+    /// Operations: 368 mul, 282 add, 22 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -1720,6 +1543,10 @@ impl Rx90 {
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(9.81);
+        let c1 = T::from_f64(-9.81);
+        let mut out = [T::ZERO; 216];
+        out[0] = qdd1;
+        out[41] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -1746,12 +1573,14 @@ impl Rx90 {
         let t28 = t18 + t19;
         let t29 = t15 - t17;
         let t30 = t15 + t17;
+        out[40] = t30;
         let t31 = t21 * D3;
         let t32 = t24 * D3;
         let t33 = t29 * D3;
         let t34 = t0 * c0;
         let t35 = t34 - t31;
         let t36 = t1 * c0;
+        out[42] = t36;
         let t37 = t32 + t36;
         let t38 = t3 * t35;
         let t39 = t2 * t37;
@@ -1759,6 +1588,7 @@ impl Rx90 {
         let t41 = t3 * t37;
         let t42 = t38 + t39;
         let t43 = t41 - t40;
+        out[85] = t43;
         let t44 = t3 * t10;
         let t45 = t2 * t11;
         let t46 = t2 * t10;
@@ -1777,6 +1607,8 @@ impl Rx90 {
         let t59 = t54 + t56;
         let t60 = t55 - t57;
         let t61 = qdd2 + qdd3;
+        out[48] = t61;
+        out[84] = t61;
         let t62 = t48 * t48;
         let t63 = t49 * t49;
         let t64 = t58 * t58;
@@ -1792,6 +1624,8 @@ impl Rx90 {
         let t74 = t48 * t58;
         let t75 = t74 - t60;
         let t76 = t60 + t74;
+        out[47] = t76;
+        out[83] = t76;
         let t77 = t67 * RL4;
         let t78 = t69 * RL4;
         let t79 = t72 * RL4;
@@ -1822,27 +1656,32 @@ impl Rx90 {
         let t104 = t99 - t101;
         let t105 = t100 + t102;
         let t106 = t60 + qdd4;
+        out[127] = t106;
         let t107 = t93 * t93;
         let t108 = t94 * t94;
         let t109 = t103 * t103;
         let t110 = t108 + t109;
         let t111 = t93 * t94;
+        out[123] = t111;
         let t112 = t106 + t111;
         let t113 = t106 - t111;
         let t114 = t107 + t109;
         let t115 = t94 * t103;
         let t116 = t104 + t115;
+        out[125] = t116;
         let t117 = t104 - t115;
         let t118 = t107 + t108;
         let t119 = t93 * t103;
         let t120 = t105 + t119;
         let t121 = t119 - t105;
+        out[126] = t121;
         let t122 = t7 * t87;
         let t123 = t6 * t81;
         let t124 = t6 * t87;
         let t125 = t7 * t81;
         let t126 = t122 + t123;
         let t127 = t125 - t124;
+        out[171] = t127;
         let t128 = t7 * t93;
         let t129 = t6 * t103;
         let t130 = t6 * t93;
@@ -1861,6 +1700,7 @@ impl Rx90 {
         let t143 = t138 + t140;
         let t144 = t139 - t141;
         let t145 = t105 + qdd5;
+        out[170] = t145;
         let t146 = t132 * t132;
         let t147 = t133 * t133;
         let t148 = t142 * t142;
@@ -1876,6 +1716,7 @@ impl Rx90 {
         let t158 = t132 * t142;
         let t159 = t158 - t144;
         let t160 = t144 + t158;
+        out[169] = t160;
         let t161 = t9 * t126;
         let t162 = t8 * t88;
         let t163 = t8 * t126;
@@ -1900,21 +1741,25 @@ impl Rx90 {
         let t182 = t177 - t179;
         let t183 = t178 + t180;
         let t184 = t144 + qdd6;
+        out[213] = t184;
         let t185 = t171 * t171;
         let t186 = t172 * t172;
         let t187 = t181 * t181;
         let t188 = t186 + t187;
         let t189 = t171 * t172;
+        out[209] = t189;
         let t190 = t184 + t189;
         let t191 = t184 - t189;
         let t192 = t185 + t187;
         let t193 = t172 * t181;
         let t194 = t182 + t193;
+        out[211] = t194;
         let t195 = t182 - t193;
         let t196 = t185 + t186;
         let t197 = t171 * t181;
         let t198 = t183 + t197;
         let t199 = t197 - t183;
+        out[212] = t199;
         let t200 = t0 * t3;
         let t201 = t1 * t2;
         let t202 = t0 * t2;
@@ -1988,42 +1833,62 @@ impl Rx90 {
         let t270 = t28 - t25;
         let t271 = t21 - t28;
         let t272 = t25 - t21;
+        out[38] = t272;
         let t273 = t0 * t16;
         let t274 = t1 * t15;
         let t275 = t273 + t274;
+        out[1] = t275;
         let t276 = -t22;
+        out[37] = t276;
         let t277 = t0 * t29;
         let t278 = t1 * t27;
         let t279 = t278 - t277;
+        out[2] = t279;
         let t280 = t0 * t24;
         let t281 = t1 * t271;
         let t282 = t280 + t281;
+        out[3] = t282;
         let t283 = -t26;
+        out[39] = t283;
         let t284 = t0 * t270;
         let t285 = t1 * t23;
         let t286 = t284 - t285;
+        out[4] = t286;
         let t287 = t0 * t14;
         let t288 = t287 - t274;
-        let t289 = -t34;
+        out[5] = t288;
+        let t289 = t0 * c1;
+        out[43] = t289;
         let t290 = t73 - t69;
         let t291 = t65 - t73;
         let t292 = t69 - t65;
+        out[45] = t292;
+        out[81] = t292;
         let t293 = t59 * t204;
         let t294 = t74 * t205;
         let t295 = t293 + t294;
+        out[8] = t295;
         let t296 = -t66;
+        out[44] = t296;
+        out[80] = t296;
         let t297 = t75 * t204;
         let t298 = t72 * t205;
         let t299 = t298 - t297;
+        out[9] = t299;
         let t300 = t68 * t204;
         let t301 = t205 * t291;
         let t302 = t300 + t301;
+        out[10] = t302;
         let t303 = -t71;
+        out[46] = t303;
+        out[82] = t303;
         let t304 = t204 * t290;
         let t305 = t67 * t205;
         let t306 = t304 - t305;
+        out[11] = t306;
         let t307 = t70 * t204;
         let t308 = t307 - t294;
+        out[12] = t308;
         let t309 = t33 * t205;
         let t310 = t75 * t230;
         let t311 = t309 + t310;
@@ -2031,59 +1896,80 @@ impl Rx90 {
         let t313 = t68 * t232;
         let t314 = t43 + t313;
         let t315 = t314 - t312;
+        out[49] = t315;
         let t316 = -t311;
+        out[13] = t316;
         let t317 = t33 * t204;
         let t318 = t72 * t230;
         let t319 = t317 - t318;
+        out[14] = t319;
         let t320 = t67 * t231;
         let t321 = t69 * t232;
         let t322 = t42 + t321;
         let t323 = t320 - t322;
+        out[50] = t323;
         let t324 = -t42;
+        out[86] = t324;
         let t325 = t118 - t114;
         let t326 = t110 - t118;
         let t327 = t114 - t110;
+        out[124] = t327;
         let t328 = t104 * t206;
         let t329 = t119 * t207;
         let t330 = t111 * t205;
         let t331 = t330 - t329;
         let t332 = t328 + t331;
+        out[15] = t332;
         let t333 = t4 * t104;
         let t334 = t5 * t119;
         let t335 = t333 + t334;
         let t336 = -t335;
+        out[51] = t336;
+        out[87] = t336;
         let t337 = t120 * t206;
         let t338 = t117 * t207;
         let t339 = t205 * t327;
         let t340 = t339 - t338;
         let t341 = t340 - t337;
+        out[16] = t341;
         let t342 = t4 * t120;
         let t343 = t5 * t117;
         let t344 = t342 - t343;
+        out[52] = t344;
+        out[88] = t344;
         let t345 = t113 * t206;
         let t346 = t207 * t326;
         let t347 = t116 * t205;
         let t348 = t347 - t346;
         let t349 = t345 + t348;
+        out[17] = t349;
         let t350 = t4 * t113;
         let t351 = t5 * t326;
         let t352 = t350 + t351;
         let t353 = -t352;
+        out[53] = t353;
+        out[89] = t353;
         let t354 = t206 * t325;
         let t355 = t112 * t207;
         let t356 = t121 * t205;
         let t357 = t356 - t355;
         let t358 = t354 + t357;
+        out[18] = t358;
         let t359 = t4 * t325;
         let t360 = t5 * t112;
         let t361 = t359 + t360;
         let t362 = -t361;
+        out[54] = t362;
+        out[90] = t362;
         let t363 = t115 * t206;
         let t364 = t106 * t205;
         let t365 = t329 + t364;
         let t366 = t365 - t363;
+        out[19] = t366;
         let t367 = t4 * t115;
         let t368 = t334 + t367;
+        out[55] = t368;
+        out[91] = t368;
         let t369 = t110 * t235;
         let t370 = t81 * t207;
         let t371 = t113 * t236;
@@ -2091,6 +1977,7 @@ impl Rx90 {
         let t373 = t369 + t370;
         let t374 = t371 + t372;
         let t375 = t373 - t374;
+        out[20] = t375;
         let t376 = t110 * t238;
         let t377 = t5 * t81;
         let t378 = t113 * t239;
@@ -2098,11 +1985,14 @@ impl Rx90 {
         let t380 = t377 - t376;
         let t381 = t379 - t378;
         let t382 = t380 + t381;
+        out[56] = t382;
         let t383 = t110 * t240;
         let t384 = t113 * t241;
         let t385 = t377 + t384;
         let t386 = t383 + t385;
+        out[92] = t386;
         let t387 = -t88;
+        out[128] = t387;
         let t388 = t81 * t206;
         let t389 = t112 * t235;
         let t390 = t114 * t236;
@@ -2110,6 +2000,7 @@ impl Rx90 {
         let t392 = t388 + t389;
         let t393 = t390 - t391;
         let t394 = t392 + t393;
+        out[21] = t394;
         let t395 = t4 * t81;
         let t396 = t112 * t238;
         let t397 = t114 * t239;
@@ -2117,78 +2008,104 @@ impl Rx90 {
         let t399 = t395 + t396;
         let t400 = t397 + t398;
         let t401 = t400 - t399;
+        out[57] = t401;
         let t402 = t112 * t240;
         let t403 = t114 * t241;
         let t404 = t402 - t403;
         let t405 = t404 - t395;
+        out[93] = t405;
         let t406 = -t87;
+        out[129] = t406;
         let t407 = t157 - t153;
         let t408 = t149 - t157;
         let t409 = t153 - t149;
+        out[167] = t409;
         let t410 = t143 * t212;
         let t411 = t158 * t213;
         let t412 = t150 * t207;
         let t413 = t411 - t412;
         let t414 = t410 + t413;
+        out[22] = t414;
         let t415 = t143 * t214;
         let t416 = t158 * t215;
         let t417 = t5 * t150;
         let t418 = t416 - t417;
         let t419 = t418 - t415;
+        out[58] = t419;
+        out[94] = t419;
         let t420 = t6 * t143;
         let t421 = t7 * t158;
         let t422 = t420 + t421;
+        out[130] = t422;
         let t423 = -t150;
+        out[166] = t423;
         let t424 = t159 * t212;
         let t425 = t156 * t213;
         let t426 = t207 * t409;
         let t427 = t425 + t426;
         let t428 = t427 - t424;
+        out[23] = t428;
         let t429 = t159 * t214;
         let t430 = t156 * t215;
         let t431 = t5 * t409;
         let t432 = t430 + t431;
         let t433 = t429 + t432;
+        out[59] = t433;
+        out[95] = t433;
         let t434 = t6 * t159;
         let t435 = t7 * t156;
         let t436 = t435 - t434;
+        out[131] = t436;
         let t437 = t152 * t212;
         let t438 = t213 * t408;
         let t439 = t155 * t207;
         let t440 = t438 - t439;
         let t441 = t437 + t440;
+        out[24] = t441;
         let t442 = t152 * t214;
         let t443 = t215 * t408;
         let t444 = t5 * t155;
         let t445 = t443 - t444;
         let t446 = t445 - t442;
+        out[60] = t446;
+        out[96] = t446;
         let t447 = t6 * t152;
         let t448 = t7 * t408;
         let t449 = t447 + t448;
+        out[132] = t449;
         let t450 = -t155;
+        out[168] = t450;
         let t451 = t212 * t407;
         let t452 = t151 * t213;
         let t453 = t160 * t207;
         let t454 = t453 - t452;
         let t455 = t451 + t454;
+        out[25] = t455;
         let t456 = t214 * t407;
         let t457 = t151 * t215;
         let t458 = t5 * t160;
         let t459 = t458 - t457;
         let t460 = t459 - t456;
+        out[61] = t460;
+        out[97] = t460;
         let t461 = t6 * t407;
         let t462 = t7 * t151;
         let t463 = t461 - t462;
+        out[133] = t463;
         let t464 = t154 * t212;
         let t465 = t145 * t207;
         let t466 = t465 - t411;
         let t467 = t464 + t466;
+        out[26] = t467;
         let t468 = t154 * t214;
         let t469 = t5 * t145;
         let t470 = t469 - t416;
         let t471 = t470 - t468;
+        out[62] = t471;
+        out[98] = t471;
         let t472 = t6 * t154;
         let t473 = t472 - t421;
+        out[134] = t473;
         let t474 = t149 * t242;
         let t475 = t88 * t213;
         let t476 = t152 * t243;
@@ -2198,6 +2115,7 @@ impl Rx90 {
         let t480 = t477 + t478;
         let t481 = t476 + t480;
         let t482 = t479 + t481;
+        out[27] = t482;
         let t483 = t149 * t248;
         let t484 = t88 * t215;
         let t485 = t152 * t249;
@@ -2207,6 +2125,7 @@ impl Rx90 {
         let t489 = t486 + t487;
         let t490 = t485 + t489;
         let t491 = t490 - t488;
+        out[63] = t491;
         let t492 = t149 * t250;
         let t493 = t152 * t251;
         let t494 = t159 * t241;
@@ -2214,8 +2133,10 @@ impl Rx90 {
         let t496 = t486 - t494;
         let t497 = t493 + t496;
         let t498 = t495 + t497;
+        out[99] = t498;
         let t499 = t7 * t88;
         let t500 = -t499;
+        out[135] = t500;
         let t501 = t88 * t212;
         let t502 = t151 * t242;
         let t503 = t153 * t243;
@@ -2225,6 +2146,7 @@ impl Rx90 {
         let t507 = t505 - t504;
         let t508 = t507 - t503;
         let t509 = t506 + t508;
+        out[28] = t509;
         let t510 = t88 * t214;
         let t511 = t151 * t248;
         let t512 = t153 * t249;
@@ -2234,6 +2156,7 @@ impl Rx90 {
         let t516 = t514 - t513;
         let t517 = t516 - t512;
         let t518 = t515 + t517;
+        out[64] = t518;
         let t519 = t151 * t250;
         let t520 = t153 * t251;
         let t521 = t156 * t241;
@@ -2242,100 +2165,129 @@ impl Rx90 {
         let t524 = t520 + t523;
         let t525 = t522 + t524;
         let t526 = t6 * t88;
+        out[136] = t526;
         let t527 = -t525;
+        out[100] = t527;
         let t528 = -t126;
+        out[172] = t528;
         let t529 = t196 - t192;
         let t530 = t188 - t196;
         let t531 = t192 - t188;
+        out[210] = t531;
         let t532 = t182 * t220;
         let t533 = t197 * t221;
         let t534 = t189 * t213;
         let t535 = t534 - t533;
         let t536 = t532 + t535;
+        out[29] = t536;
         let t537 = t182 * t226;
         let t538 = t197 * t227;
         let t539 = t189 * t215;
         let t540 = t538 + t539;
         let t541 = t540 - t537;
+        out[65] = t541;
+        out[101] = t541;
         let t542 = t182 * t228;
         let t543 = t197 * t229;
         let t544 = t7 * t189;
         let t545 = t544 - t543;
         let t546 = t542 + t545;
+        out[137] = t546;
         let t547 = t8 * t182;
         let t548 = t9 * t197;
         let t549 = t547 + t548;
         let t550 = -t549;
+        out[173] = t550;
         let t551 = t198 * t220;
         let t552 = t195 * t221;
         let t553 = t213 * t531;
         let t554 = t553 - t552;
         let t555 = t554 - t551;
+        out[30] = t555;
         let t556 = t198 * t226;
         let t557 = t195 * t227;
         let t558 = t215 * t531;
         let t559 = t557 + t558;
         let t560 = t556 + t559;
+        out[66] = t560;
+        out[102] = t560;
         let t561 = t198 * t228;
         let t562 = t195 * t229;
         let t563 = t7 * t531;
         let t564 = t563 - t562;
         let t565 = t564 - t561;
+        out[138] = t565;
         let t566 = t8 * t198;
         let t567 = t9 * t195;
         let t568 = t566 - t567;
+        out[174] = t568;
         let t569 = t191 * t220;
         let t570 = t221 * t530;
         let t571 = t194 * t213;
         let t572 = t571 - t570;
         let t573 = t569 + t572;
+        out[31] = t573;
         let t574 = t191 * t226;
         let t575 = t227 * t530;
         let t576 = t194 * t215;
         let t577 = t575 + t576;
         let t578 = t577 - t574;
+        out[67] = t578;
+        out[103] = t578;
         let t579 = t191 * t228;
         let t580 = t229 * t530;
         let t581 = t7 * t194;
         let t582 = t581 - t580;
         let t583 = t579 + t582;
+        out[139] = t583;
         let t584 = t8 * t191;
         let t585 = t9 * t530;
         let t586 = t584 + t585;
         let t587 = -t586;
+        out[175] = t587;
         let t588 = t220 * t529;
         let t589 = t190 * t221;
         let t590 = t199 * t213;
         let t591 = t590 - t589;
         let t592 = t588 + t591;
+        out[32] = t592;
         let t593 = t226 * t529;
         let t594 = t190 * t227;
         let t595 = t199 * t215;
         let t596 = t594 + t595;
         let t597 = t596 - t593;
+        out[68] = t597;
+        out[104] = t597;
         let t598 = t228 * t529;
         let t599 = t190 * t229;
         let t600 = t7 * t199;
         let t601 = t600 - t599;
         let t602 = t598 + t601;
+        out[140] = t602;
         let t603 = t8 * t529;
         let t604 = t9 * t190;
         let t605 = t603 + t604;
         let t606 = -t605;
+        out[176] = t606;
         let t607 = t193 * t220;
         let t608 = t184 * t213;
         let t609 = t533 + t608;
         let t610 = t609 - t607;
+        out[33] = t610;
         let t611 = t193 * t226;
         let t612 = t184 * t215;
         let t613 = t612 - t538;
         let t614 = t611 + t613;
+        out[69] = t614;
+        out[105] = t614;
         let t615 = t193 * t228;
         let t616 = t7 * t184;
         let t617 = t543 + t616;
         let t618 = t617 - t615;
+        out[141] = t618;
         let t619 = t8 * t193;
         let t620 = t548 + t619;
+        out[177] = t620;
         let t621 = t188 * t256;
         let t622 = t127 * t221;
         let t623 = t191 * t257;
@@ -2345,6 +2297,7 @@ impl Rx90 {
         let t627 = t625 - t624;
         let t628 = t623 + t627;
         let t629 = t626 + t628;
+        out[34] = t629;
         let t630 = t188 * t262;
         let t631 = t127 * t227;
         let t632 = t191 * t263;
@@ -2354,6 +2307,7 @@ impl Rx90 {
         let t636 = t634 - t633;
         let t637 = t636 - t632;
         let t638 = t637 - t635;
+        out[70] = t638;
         let t639 = t188 * t268;
         let t640 = t191 * t269;
         let t641 = t198 * t251;
@@ -2361,11 +2315,15 @@ impl Rx90 {
         let t643 = t641 - t633;
         let t644 = t640 + t643;
         let t645 = t644 - t642;
+        out[106] = t645;
         let t646 = t127 * t229;
         let t647 = t7 * t166;
         let t648 = t646 - t647;
+        out[142] = t648;
         let t649 = t9 * t127;
+        out[178] = t649;
         let t650 = -t166;
+        out[214] = t650;
         let t651 = t127 * t220;
         let t652 = t190 * t256;
         let t653 = t192 * t257;
@@ -2375,6 +2333,7 @@ impl Rx90 {
         let t657 = t655 - t654;
         let t658 = t657 - t653;
         let t659 = t656 + t658;
+        out[35] = t659;
         let t660 = t127 * t226;
         let t661 = t190 * t262;
         let t662 = t192 * t263;
@@ -2384,6 +2343,7 @@ impl Rx90 {
         let t666 = t664 - t663;
         let t667 = t662 + t666;
         let t668 = t667 - t665;
+        out[71] = t668;
         let t669 = t190 * t268;
         let t670 = t192 * t269;
         let t671 = t195 * t251;
@@ -2391,230 +2351,17 @@ impl Rx90 {
         let t673 = t671 - t663;
         let t674 = t673 - t670;
         let t675 = t674 - t672;
+        out[107] = t675;
         let t676 = t127 * t228;
         let t677 = t7 * t165;
         let t678 = t676 - t677;
+        out[143] = t678;
         let t679 = t8 * t127;
         let t680 = -t679;
+        out[179] = t680;
         let t681 = -t165;
-        [
-            qdd1,
-            t275,
-            t279,
-            t282,
-            t286,
-            t288,
-            T::ZERO,
-            T::ZERO,
-            t295,
-            t299,
-            t302,
-            t306,
-            t308,
-            t316,
-            t319,
-            t332,
-            t341,
-            t349,
-            t358,
-            t366,
-            t375,
-            t394,
-            t414,
-            t428,
-            t441,
-            t455,
-            t467,
-            t482,
-            t509,
-            t536,
-            t555,
-            t573,
-            t592,
-            t610,
-            t629,
-            t659,
-            T::ZERO,
-            t276,
-            t272,
-            t283,
-            t30,
-            qdd2,
-            t36,
-            t289,
-            t296,
-            t292,
-            t303,
-            t76,
-            t61,
-            t315,
-            t323,
-            t336,
-            t344,
-            t353,
-            t362,
-            t368,
-            t382,
-            t401,
-            t419,
-            t433,
-            t446,
-            t460,
-            t471,
-            t491,
-            t518,
-            t541,
-            t560,
-            t578,
-            t597,
-            t614,
-            t638,
-            t668,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t296,
-            t292,
-            t303,
-            t76,
-            t61,
-            t43,
-            t324,
-            t336,
-            t344,
-            t353,
-            t362,
-            t368,
-            t386,
-            t405,
-            t419,
-            t433,
-            t446,
-            t460,
-            t471,
-            t498,
-            t527,
-            t541,
-            t560,
-            t578,
-            t597,
-            t614,
-            t645,
-            t675,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t111,
-            t327,
-            t116,
-            t121,
-            t106,
-            t387,
-            t406,
-            t422,
-            t436,
-            t449,
-            t463,
-            t473,
-            t500,
-            t526,
-            t546,
-            t565,
-            t583,
-            t602,
-            t618,
-            t648,
-            t678,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t423,
-            t409,
-            t450,
-            t160,
-            t145,
-            t127,
-            t528,
-            t550,
-            t568,
-            t587,
-            t606,
-            t620,
-            t649,
-            t680,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t189,
-            t531,
-            t194,
-            t199,
-            t184,
-            t650,
-            t681,
-        ]
+        out[215] = t681;
+        out
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
@@ -3155,6 +2902,8 @@ impl Rx90 {
         XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
+        let mut out = [T::ZERO; 36];
+        out[35] = ZZ6;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -3219,6 +2968,8 @@ impl Rx90 {
         let t66 = t52 + t61;
         let t67 = t55 - t62;
         let t68 = t60 + t65;
+        out[5] = t68;
+        out[30] = t68;
         let t69 = t22 * MYR5;
         let t70 = t22 * MX5;
         let t71 = t30 * MX5;
@@ -3263,6 +3014,8 @@ impl Rx90 {
         let t110 = t92 + t105;
         let t111 = t68 + t93;
         let t112 = t94 - t106;
+        out[4] = t112;
+        out[24] = t112;
         let t113 = t16 * MYR4;
         let t114 = t16 * MX4;
         let t115 = t22 * MX4;
@@ -3303,6 +3056,8 @@ impl Rx90 {
         let t150 = t122 + t145;
         let t151 = t125 - t112;
         let t152 = t134 + t146;
+        out[3] = t152;
+        out[18] = t152;
         let t153 = t16 * MX3;
         let t154 = t15 * MYR3;
         let t155 = t154 - t153;
@@ -3337,6 +3092,8 @@ impl Rx90 {
         let t184 = t152 + t166;
         let t185 = t180 - t178;
         let t186 = t162 + t185;
+        out[2] = t186;
+        out[12] = t186;
         let t187 = t0 * XXR2;
         let t188 = t1 * XY2;
         let t189 = t187 + t188;
@@ -3360,10 +3117,13 @@ impl Rx90 {
         let t207 = t190 + t206;
         let t208 = t186 + t204;
         let t209 = t193 + t208;
+        out[1] = t209;
+        out[6] = t209;
         let t210 = t0 * t205;
         let t211 = t1 * t207;
         let t212 = t210 + t211;
         let t213 = t212 + ZZR1;
+        out[0] = t213;
         let t214 = t2 * D3;
         let t215 = t3 * D3;
         let t216 = t214 - RL4;
@@ -3415,6 +3175,8 @@ impl Rx90 {
         let t262 = t248 + t257;
         let t263 = t251 - t258;
         let t264 = t256 - t261;
+        out[11] = t264;
+        out[31] = t264;
         let t265 = t5 * MYR5;
         let t266 = t5 * MX5;
         let t267 = t226 * MX5;
@@ -3459,6 +3221,8 @@ impl Rx90 {
         let t306 = t288 + t301;
         let t307 = t264 + t289;
         let t308 = t290 - t302;
+        out[10] = t308;
+        out[25] = t308;
         let t309 = t5 * MX4;
         let t310 = t4 * MYR4;
         let t311 = t309 - t310;
@@ -3493,6 +3257,8 @@ impl Rx90 {
         let t340 = t324 + t337;
         let t341 = t308 + t325;
         let t342 = t338 - t326;
+        out[9] = t342;
+        out[19] = t342;
         let t343 = t215 * MX3;
         let t344 = t214 * MYR3;
         let t345 = t343 - t344;
@@ -3508,12 +3274,15 @@ impl Rx90 {
         let t355 = t339 + MX3;
         let t356 = t353 - t352;
         let t357 = t346 + t356;
+        out[8] = t357;
+        out[13] = t357;
         let t358 = t2 * t354;
         let t359 = t3 * t355;
         let t360 = t359 - t358;
         let t361 = t360 * D3;
         let t362 = t357 + t361;
         let t363 = t362 + ZZR2;
+        out[7] = t363;
         let t364 = t5 * RL4;
         let t365 = t4 * RL4;
         let t366 = t7 * t364;
@@ -3532,6 +3301,8 @@ impl Rx90 {
         let t379 = t248 + t374;
         let t380 = t251 - t375;
         let t381 = t256 + t378;
+        out[17] = t381;
+        out[32] = t381;
         let t382 = t365 * MYR5;
         let t383 = t365 * MX5;
         let t384 = t367 * MX5;
@@ -3549,6 +3320,8 @@ impl Rx90 {
         let t396 = t387 + t394;
         let t397 = t381 + t388;
         let t398 = t389 - t395;
+        out[16] = t398;
+        out[26] = t398;
         let t399 = t365 * MX4;
         let t400 = t364 * MYR4;
         let t401 = t399 + t400;
@@ -3562,11 +3335,14 @@ impl Rx90 {
         let t409 = t407 - t314;
         let t410 = t315 + t398;
         let t411 = t402 + t408;
+        out[15] = t411;
+        out[20] = t411;
         let t412 = t4 * t409;
         let t413 = t5 * t410;
         let t414 = t412 - t413;
         let t415 = t353 - t414;
         let t416 = t415 + ZZR3;
+        out[14] = t416;
         let t417 = t6 * t9;
         let t418 = t6 * t8;
         let t419 = t417 * XXR6;
@@ -3582,6 +3358,8 @@ impl Rx90 {
         let t429 = t418 * YZ6;
         let t430 = t428 - t429;
         let t431 = t427 + t430;
+        out[23] = t431;
+        out[33] = t431;
         let t432 = t6 * XXR5;
         let t433 = t7 * XY5;
         let t434 = t432 + t433;
@@ -3598,10 +3376,13 @@ impl Rx90 {
         let t445 = t434 + t443;
         let t446 = t431 + t435;
         let t447 = t438 - t444;
+        out[22] = t447;
+        out[27] = t447;
         let t448 = t6 * t445;
         let t449 = t7 * t446;
         let t450 = t448 + t449;
         let t451 = t450 + ZZR4;
+        out[21] = t451;
         let t452 = t8 * XXR6;
         let t453 = t9 * XY6;
         let t454 = t452 + t453;
@@ -3613,52 +3394,18 @@ impl Rx90 {
         let t460 = t9 * t455;
         let t461 = t459 + t460;
         let t462 = t461 + ZZR5;
+        out[28] = t462;
         let t463 = -t458;
-        [
-            t213,
-            t209,
-            t186,
-            t152,
-            t112,
-            t68,
-            t209,
-            t363,
-            t357,
-            t342,
-            t308,
-            t264,
-            t186,
-            t357,
-            t416,
-            t411,
-            t398,
-            t381,
-            t152,
-            t342,
-            t411,
-            t451,
-            t447,
-            t431,
-            t112,
-            t308,
-            t398,
-            t447,
-            t462,
-            t463,
-            t68,
-            t264,
-            t381,
-            t431,
-            t463,
-            ZZ6,
-        ]
+        out[29] = t463;
+        out[34] = t463;
+        out
     }
     /// Gravity torques g(q).
     ///
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
     ///
-    /// Operations: 54 mul, 28 add, 1 neg, 5 sin, 5 cos.
+    /// Operations: 54 mul, 28 add, 0 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
@@ -3669,6 +3416,7 @@ impl Rx90 {
         let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MX3, MYR3, _, _, _, _, _, MX4,
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
+        let c1 = T::from_f64(-9.81);
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -3755,9 +3503,8 @@ impl Rx90 {
         let t88 = t72 * c0;
         let t89 = t62 * c0;
         let t90 = t48 * c0;
-        let t91 = t34 * c0;
-        let t92 = -t91;
-        [t86, t87, t88, t89, t90, t92]
+        let t91 = t34 * c1;
+        [t86, t87, t88, t89, t90, t91]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
@@ -4258,17 +4005,46 @@ impl Rx90 {
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(2.0);
+        let mut out = [T::ZERO; 36];
+        out[2] = XY2;
+        out[4] = YZ2;
+        out[7] = MY2;
+        out[9] = XY3;
+        out[10] = XZ3;
+        out[11] = YZ3;
+        out[13] = MX3;
+        out[16] = XY4;
+        out[17] = XZ4;
+        out[18] = YZ4;
+        out[20] = MX4;
+        out[23] = XY5;
+        out[24] = XZ5;
+        out[25] = YZ5;
+        out[27] = MX5;
+        out[30] = XY6;
+        out[31] = XZ6;
+        out[32] = YZ6;
+        out[33] = ZZ6;
+        out[34] = MX6;
+        out[35] = MY6;
         let t0 = XX6 - YY6;
+        out[29] = t0;
         let t1 = ZZ5 + YY6;
+        out[26] = t1;
         let t2 = MY5 + MZ6;
+        out[28] = t2;
         let t3 = YY6 - YY5;
         let t4 = t3 + XX5;
+        out[22] = t4;
         let t5 = ZZ4 + YY5;
+        out[19] = t5;
         let t6 = MY4 - MZ5;
+        out[21] = t6;
         let t7 = M5 + M6;
         let t8 = t7 + M4;
         let t9 = YY5 - YY4;
         let t10 = t9 + XX4;
+        out[15] = t10;
         let t11 = t8 * RL4;
         let t12 = RL4 * RL4;
         let t13 = MZ4 * RL4;
@@ -4277,63 +4053,34 @@ impl Rx90 {
         let t16 = ZZ3 + YY4;
         let t17 = t14 + t15;
         let t18 = t16 + t17;
+        out[12] = t18;
         let t19 = t11 + MZ4;
         let t20 = t19 + MY3;
+        out[14] = t20;
         let t21 = t8 + M3;
         let t22 = XX3 + YY4;
         let t23 = t14 - YY3;
         let t24 = t15 + t23;
         let t25 = t22 + t24;
+        out[8] = t25;
         let t26 = t21 * D3;
         let t27 = D3 * D3;
         let t28 = t21 * t27;
         let t29 = MZ3 * D3;
         let t30 = XZ2 - t29;
+        out[3] = t30;
         let t31 = t28 + ZZ2;
+        out[5] = t31;
         let t32 = t26 + MX2;
+        out[6] = t32;
         let t33 = t28 + YY2;
         let t34 = XX2 - t33;
+        out[1] = t34;
         let t35 = ZZ1 + YY2;
         let t36 = t28 + YY3;
         let t37 = t35 + t36;
-        [
-            t37,
-            t34,
-            XY2,
-            t30,
-            YZ2,
-            t31,
-            t32,
-            MY2,
-            t25,
-            XY3,
-            XZ3,
-            YZ3,
-            t18,
-            MX3,
-            t20,
-            t10,
-            XY4,
-            XZ4,
-            YZ4,
-            t5,
-            MX4,
-            t6,
-            t4,
-            XY5,
-            XZ5,
-            YZ5,
-            t1,
-            MX5,
-            t2,
-            t0,
-            XY6,
-            XZ6,
-            YZ6,
-            ZZ6,
-            MX6,
-            MY6,
-        ]
+        out[0] = t37;
+        out
     }
 }
 impl ::robid_runtime::Model for Rx90 {

@@ -97,18 +97,25 @@ impl Stanford {
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
         let c2 = T::from_f64(2.0);
+        let mut out = [T::ZERO; 90];
+        out[5] = qdd1;
+        out[45] = qdd2;
+        out[53] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let t2 = t0 * qdd1;
         let t3 = t1 * qdd1;
+        out[54] = t3;
         let t4 = qd1 * qd1;
         let t5 = t4 * c0;
         let t6 = qdd1 * c0;
         let t7 = t3 * c0;
         let t8 = t0 * c1;
         let t9 = t7 + t8;
+        out[47] = t9;
         let t10 = t2 * c0;
         let t11 = t1 * c1;
         let t12 = t10 - t11;
+        out[46] = t12;
         let t13 = qd1 * qd2;
         let t14 = t1 * t13;
         let t15 = t0 * t13;
@@ -141,15 +148,21 @@ impl Stanford {
         let t42 = qdd3 - t12;
         let t43 = t22 + t25;
         let t44 = t42 - t43;
+        out[89] = t44;
         let t45 = t0 * t1;
         let t46 = t4 * t45;
+        out[43] = t46;
+        out[55] = t46;
         let t47 = t0 * t16;
         let t48 = t1 * t15;
         let t49 = t47 + t48;
+        out[10] = t49;
+        out[20] = t49;
         let t50 = t4 * t23;
         let t51 = t1 * t1;
         let t52 = t4 * t51;
         let t53 = t50 - t52;
+        out[41] = t53;
         let t54 = t15 * c2;
         let t55 = t54 - t3;
         let t56 = t14 * c2;
@@ -157,6 +170,7 @@ impl Stanford {
         let t58 = t0 * t55;
         let t59 = t1 * t57;
         let t60 = t59 - t58;
+        out[11] = t60;
         let t61 = t21 - t50;
         let t62 = t46 + qdd2;
         let t63 = t0 * t62;
@@ -167,18 +181,21 @@ impl Stanford {
         let t68 = t0 * t66;
         let t69 = t1 * t67;
         let t70 = t68 + t69;
+        out[24] = t70;
         let t71 = t21 + t52;
         let t72 = t1 * t4;
         let t73 = t1 * t71;
         let t74 = t63 + t73;
         let t75 = t74 - t72;
         let t76 = t75 * c0;
+        out[16] = t76;
         let t77 = t21 + t50;
         let t78 = t0 * t4;
         let t79 = t0 * t77;
         let t80 = t69 - t79;
         let t81 = t78 + t80;
         let t82 = t81 * c0;
+        out[17] = t82;
         let t83 = t71 * q3;
         let t84 = t44 + t83;
         let t85 = t18 * t55;
@@ -186,6 +203,7 @@ impl Stanford {
         let t87 = t74 * c0;
         let t88 = t86 + t87;
         let t89 = t88 - t85;
+        out[26] = t89;
         let t90 = q3 * qdd1;
         let t91 = t1 * t90;
         let t92 = t24 + t44;
@@ -193,132 +211,65 @@ impl Stanford {
         let t94 = t1 * t38;
         let t95 = t6 - t94;
         let t96 = t95 - t93;
+        out[27] = t96;
         let t97 = t57 * q3;
         let t98 = t67 * q3;
         let t99 = t41 + t97;
         let t100 = t38 + t98;
+        out[58] = t100;
         let t101 = t0 * t99;
         let t102 = t79 - t69;
         let t103 = t102 * c0;
         let t104 = t101 + t103;
+        out[28] = t104;
         let t105 = t38 * q3;
+        out[59] = t105;
         let t106 = t18 * t41;
         let t107 = t0 * t44;
         let t108 = t94 + t107;
         let t109 = t108 * c0;
         let t110 = t106 - t109;
+        out[29] = t110;
         let t111 = t1 * t17;
         let t112 = t48 + t111;
         let t113 = t0 * t12;
         let t114 = t1 * t9;
         let t115 = t6 + t114;
         let t116 = t113 + t115;
+        out[18] = t116;
         let t117 = t113 + t114;
         let t118 = t117 * c0;
+        out[19] = t118;
         let t119 = -t65;
+        out[12] = t119;
+        out[21] = t119;
         let t120 = -t112;
+        out[13] = t120;
+        out[25] = t120;
         let t121 = -t70;
+        out[14] = t121;
         let t122 = -t60;
+        out[22] = t122;
         let t123 = -t46;
+        out[40] = t123;
+        out[50] = t123;
         let t124 = -t2;
+        out[42] = t124;
+        out[51] = t124;
+        out[87] = t124;
         let t125 = -t3;
+        out[44] = t125;
         let t126 = -t53;
+        out[52] = t126;
         let t127 = -t84;
+        out[56] = t127;
         let t128 = -t91;
+        out[57] = t128;
         let t129 = -t62;
+        out[86] = t129;
         let t130 = -t77;
-        [
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            qdd1,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t49,
-            t60,
-            t119,
-            t120,
-            t121,
-            T::ZERO,
-            t76,
-            t82,
-            t116,
-            t118,
-            t49,
-            t119,
-            t122,
-            T::ZERO,
-            t70,
-            t120,
-            t89,
-            t96,
-            t104,
-            t110,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t123,
-            t53,
-            t124,
-            t46,
-            t125,
-            qdd2,
-            t12,
-            t9,
-            T::ZERO,
-            T::ZERO,
-            t123,
-            t124,
-            t126,
-            qdd2,
-            t3,
-            t46,
-            t127,
-            t128,
-            t100,
-            t105,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t129,
-            t124,
-            t130,
-            t44,
-        ]
+        out[88] = t130;
+        out
     }
     /// Base regressor Y_b(q, qd, qdd), `3 x 12` row-major: tau = Y_b * base.
     ///
@@ -342,6 +293,9 @@ impl Stanford {
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
         let c2 = T::from_f64(2.0);
+        let mut out = [T::ZERO; 36];
+        out[0] = qdd1;
+        out[17] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let t2 = qd1 * qd1;
         let t3 = t1 * qdd1;
@@ -349,9 +303,11 @@ impl Stanford {
         let t5 = t3 * c0;
         let t6 = t0 * c1;
         let t7 = t5 + t6;
+        out[19] = t7;
         let t8 = t1 * c1;
         let t9 = t4 * c0;
         let t10 = t9 - t8;
+        out[18] = t10;
         let t11 = t0 * qd1;
         let t12 = t1 * qd1;
         let t13 = t12 * qd2;
@@ -371,6 +327,7 @@ impl Stanford {
         let t27 = t17 + t18;
         let t28 = t14 + t16;
         let t29 = t16 - t14;
+        out[16] = t29;
         let t30 = t22 * q3;
         let t31 = t24 * q3;
         let t32 = t26 * q3;
@@ -385,49 +342,64 @@ impl Stanford {
         let t41 = t38 * c2;
         let t42 = t36 + t41;
         let t43 = qdd3 - t34;
+        out[35] = t43;
         let t44 = t13 - t15;
+        out[33] = t44;
         let t45 = qdd2 - t21;
         let t46 = t0 * q3;
         let t47 = t27 - t24;
         let t48 = t20 - t27;
         let t49 = t24 - t20;
+        out[14] = t49;
         let t50 = t0 * t15;
         let t51 = t1 * t14;
         let t52 = t50 + t51;
+        out[1] = t52;
         let t53 = -t21;
+        out[13] = t53;
         let t54 = t0 * t28;
         let t55 = t1 * t26;
         let t56 = t55 - t54;
+        out[2] = t56;
         let t57 = t0 * t23;
         let t58 = t1 * t48;
         let t59 = t57 + t58;
         let t60 = -t59;
+        out[3] = t60;
         let t61 = -t25;
+        out[15] = t61;
         let t62 = t0 * t47;
         let t63 = t1 * t22;
         let t64 = t63 - t62;
+        out[4] = t64;
         let t65 = t0 * t13;
         let t66 = t65 - t51;
+        out[5] = t66;
         let t67 = t1 * t20;
         let t68 = t1 * t2;
         let t69 = t57 - t68;
         let t70 = t67 + t69;
         let t71 = t70 * c0;
+        out[6] = t71;
         let t72 = t0 * t2;
         let t73 = t0 * t24;
         let t74 = t63 + t73;
         let t75 = t72 - t74;
         let t76 = t75 * c0;
+        out[7] = t76;
         let t77 = t28 * t46;
         let t78 = t1 * t42;
         let t79 = t57 + t67;
         let t80 = t78 - t77;
         let t81 = t79 * c0;
         let t82 = t80 + t81;
+        out[8] = t82;
         let t83 = t20 * q3;
         let t84 = t43 + t83;
         let t85 = -t84;
+        out[20] = t85;
         let t86 = -t23;
+        out[32] = t86;
         let t87 = t0 * t43;
         let t88 = t1 * t29;
         let t89 = t27 * t46;
@@ -439,7 +411,9 @@ impl Stanford {
         let t95 = t94 * c0;
         let t96 = t93 + t95;
         let t97 = t29 * q3;
+        out[21] = t97;
         let t98 = -t96;
+        out[9] = t98;
         let t99 = t0 * t42;
         let t100 = t1 * t45;
         let t101 = t26 * t46;
@@ -447,52 +421,20 @@ impl Stanford {
         let t103 = t73 - t100;
         let t104 = t103 * c0;
         let t105 = t102 + t104;
+        out[10] = t105;
         let t106 = t45 * q3;
         let t107 = t40 + t106;
+        out[22] = t107;
         let t108 = -t24;
+        out[34] = t108;
         let t109 = t42 * t46;
         let t110 = t87 + t90;
         let t111 = t110 * c0;
         let t112 = t109 - t111;
+        out[11] = t112;
         let t113 = t40 * q3;
-        [
-            qdd1,
-            t52,
-            t56,
-            t60,
-            t64,
-            t66,
-            t71,
-            t76,
-            t82,
-            t98,
-            t105,
-            t112,
-            T::ZERO,
-            t53,
-            t49,
-            t61,
-            t29,
-            qdd2,
-            t10,
-            t7,
-            t85,
-            t97,
-            t107,
-            t113,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t86,
-            t44,
-            t108,
-            t43,
-        ]
+        out[23] = t113;
+        out
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///

@@ -178,8 +178,12 @@ impl Tx40 {
         let c3 = T::from_f64(2.0);
         let c4 = T::from_f64(0.007875);
         let c5 = T::from_f64(0.050625);
+        let mut out = [T::ZERO; 360];
+        out[5] = qdd1;
+        out[75] = qdd2;
         let (t1, t0) = q2.sin_cos();
         let t2 = t0 * qdd1;
+        out[72] = t2;
         let t3 = t1 * qdd1;
         let t4 = t0 * c0;
         let t5 = t1 * c0;
@@ -211,6 +215,7 @@ impl Tx40 {
         let t32 = t27 * qd2;
         let t33 = t0 * t1;
         let t34 = t28 * t33;
+        out[70] = t34;
         let t35 = t13 * t27;
         let t36 = t30 * c2;
         let t37 = t2 * c2;
@@ -239,6 +244,8 @@ impl Tx40 {
         let t60 = t24 + t56;
         let t61 = t60 - t23;
         let t62 = qdd2 + qdd3;
+        out[85] = t62;
+        out[145] = t62;
         let (t63, t64) = q4.sin_cos();
         let t65 = t17 * t64;
         let t66 = t57 * t63;
@@ -272,6 +279,7 @@ impl Tx40 {
         let t94 = t63 * t83;
         let t95 = t64 * t90;
         let t96 = t95 - t94;
+        out[216] = t96;
         let t97 = t70 * qd4;
         let t98 = t67 * qd4;
         let t99 = qd4 - t20;
@@ -280,6 +288,7 @@ impl Tx40 {
         let t102 = t74 - t98;
         let t103 = t102 - t73;
         let t104 = qdd4 - t61;
+        out[215] = t104;
         let (t105, t106) = q5.sin_cos();
         let t107 = t67 * t106;
         let t108 = t99 * t105;
@@ -297,6 +306,7 @@ impl Tx40 {
         let t120 = t93 * t105;
         let t121 = t85 * t106;
         let t122 = t121 - t120;
+        out[286] = t122;
         let t123 = t112 * qd5;
         let t124 = t109 * qd5;
         let t125 = t70 + qd5;
@@ -305,6 +315,7 @@ impl Tx40 {
         let t128 = t116 + t124;
         let t129 = t115 + t128;
         let t130 = t103 + qdd5;
+        out[285] = t130;
         let (t131, t132) = q6.sin_cos();
         let t133 = t109 * t132;
         let t134 = t125 * t131;
@@ -319,9 +330,11 @@ impl Tx40 {
         let t143 = t119 * t132;
         let t144 = t96 * t131;
         let t145 = t143 + t144;
+        out[357] = t145;
         let t146 = t119 * t131;
         let t147 = t96 * t132;
         let t148 = t146 - t147;
+        out[356] = t148;
         let t149 = t138 * qd6;
         let t150 = t135 * qd6;
         let t151 = t112 + qd6;
@@ -330,12 +343,15 @@ impl Tx40 {
         let t154 = t150 - t142;
         let t155 = t141 + t154;
         let t156 = t129 + qdd6;
+        out[355] = t156;
         let t157 = t0 * t0;
         let t158 = t0 * t9;
         let t159 = t1 * t8;
         let t160 = t158 - t159;
+        out[10] = t160;
         let t161 = t28 * t157;
         let t162 = t161 - t30;
+        out[71] = t162;
         let t163 = t8 * c3;
         let t164 = t3 + t163;
         let t165 = t7 * c3;
@@ -348,13 +364,17 @@ impl Tx40 {
         let t172 = t0 * t42;
         let t173 = t1 * t171;
         let t174 = t172 - t173;
+        out[12] = t174;
         let t175 = t30 - t170;
         let t176 = t34 + qdd2;
         let t177 = t0 * t175;
         let t178 = t1 * t176;
         let t179 = t177 - t178;
+        out[14] = t179;
         let t180 = t17 * t57;
         let t181 = t17 * t20;
+        out[80] = t181;
+        out[140] = t181;
         let t182 = t12 * t59;
         let t183 = t11 * t17;
         let t184 = t57 * t183;
@@ -366,10 +386,13 @@ impl Tx40 {
         let t190 = t0 * t185;
         let t191 = t1 * t189;
         let t192 = t190 - t191;
+        out[20] = t192;
         let t193 = t20 * t57;
         let t194 = t17 * t17;
         let t195 = t20 * t20;
         let t196 = t194 - t195;
+        out[81] = t196;
+        out[141] = t196;
         let t197 = t61 + t180;
         let t198 = t59 + t193;
         let t199 = t12 * t197;
@@ -385,6 +408,8 @@ impl Tx40 {
         let t209 = t208 - t194;
         let t210 = t62 - t181;
         let t211 = t59 - t193;
+        out[82] = t211;
+        out[142] = t211;
         let t212 = t12 * t210;
         let t213 = t11 * t209;
         let t214 = t212 + t213;
@@ -397,6 +422,8 @@ impl Tx40 {
         let t221 = t195 - t208;
         let t222 = t62 + t181;
         let t223 = t61 - t180;
+        out[84] = t223;
+        out[144] = t223;
         let t224 = t12 * t221;
         let t225 = t11 * t222;
         let t226 = t224 + t225;
@@ -433,6 +460,7 @@ impl Tx40 {
         let t257 = t0 * t249;
         let t258 = t1 * t254;
         let t259 = t257 - t258;
+        out[26] = t259;
         let t260 = t194 + t208;
         let t261 = t12 * t260;
         let t262 = t11 * t260;
@@ -449,8 +477,10 @@ impl Tx40 {
         let t273 = t0 * t265;
         let t274 = t1 * t270;
         let t275 = t273 - t274;
+        out[27] = t275;
         let t276 = t67 * t99;
         let t277 = t67 * t70;
+        out[213] = t277;
         let t278 = t64 * t101;
         let t279 = t63 * t67;
         let t280 = t99 * t279;
@@ -459,6 +489,8 @@ impl Tx40 {
         let t283 = t64 * t67;
         let t284 = t99 * t283;
         let t285 = t282 + t284;
+        out[90] = t285;
+        out[150] = t285;
         let t286 = t12 * t281;
         let t287 = t11 * t67;
         let t288 = t70 * t287;
@@ -474,6 +506,7 @@ impl Tx40 {
         let t298 = t67 * t67;
         let t299 = t70 * t70;
         let t300 = t298 - t299;
+        out[211] = t300;
         let t301 = t103 - t276;
         let t302 = t101 + t297;
         let t303 = t64 * t301;
@@ -482,6 +515,8 @@ impl Tx40 {
         let t306 = t63 * t301;
         let t307 = t64 * t302;
         let t308 = t306 + t307;
+        out[91] = t308;
+        out[151] = t308;
         let t309 = t12 * t305;
         let t310 = t11 * t300;
         let t311 = t310 - t309;
@@ -491,16 +526,20 @@ impl Tx40 {
         let t315 = t0 * t311;
         let t316 = t1 * t314;
         let t317 = t315 - t316;
+        out[31] = t317;
         let t318 = t99 * t99;
         let t319 = t318 - t298;
         let t320 = t104 + t277;
         let t321 = t101 - t297;
+        out[212] = t321;
         let t322 = t64 * t320;
         let t323 = t63 * t319;
         let t324 = t322 - t323;
         let t325 = t63 * t320;
         let t326 = t64 * t319;
         let t327 = t325 + t326;
+        out[92] = t327;
+        out[152] = t327;
         let t328 = t12 * t324;
         let t329 = t11 * t321;
         let t330 = t329 - t328;
@@ -510,15 +549,19 @@ impl Tx40 {
         let t334 = t0 * t330;
         let t335 = t1 * t333;
         let t336 = t334 - t335;
+        out[32] = t336;
         let t337 = t299 - t318;
         let t338 = t104 - t277;
         let t339 = t103 + t276;
+        out[214] = t339;
         let t340 = t64 * t337;
         let t341 = t63 * t338;
         let t342 = t340 - t341;
         let t343 = t63 * t337;
         let t344 = t64 * t338;
         let t345 = t343 + t344;
+        out[94] = t345;
+        out[154] = t345;
         let t346 = t12 * t342;
         let t347 = t11 * t339;
         let t348 = t347 - t346;
@@ -528,12 +571,15 @@ impl Tx40 {
         let t352 = t0 * t348;
         let t353 = t1 * t351;
         let t354 = t352 - t353;
+        out[34] = t354;
         let t355 = t64 * t70;
         let t356 = t99 * t355;
         let t357 = t280 + t356;
         let t358 = t63 * t70;
         let t359 = t99 * t358;
         let t360 = t359 - t284;
+        out[95] = t360;
+        out[155] = t360;
         let t361 = t12 * t357;
         let t362 = t11 * t104;
         let t363 = t362 - t361;
@@ -543,6 +589,7 @@ impl Tx40 {
         let t367 = t0 * t363;
         let t368 = t1 * t366;
         let t369 = t367 - t368;
+        out[35] = t369;
         let t370 = t299 + t318;
         let t371 = t64 * t370;
         let t372 = t325 + t371;
@@ -554,6 +601,7 @@ impl Tx40 {
         let t378 = t377 - t373;
         let t379 = t372 * c1;
         let t380 = t374 - t379;
+        out[156] = t380;
         let t381 = t12 * t378;
         let t382 = t11 * t96;
         let t383 = t11 * t378;
@@ -574,9 +622,11 @@ impl Tx40 {
         let t398 = t372 + t389;
         let t399 = t398 * c1;
         let t400 = t374 - t399;
+        out[96] = t400;
         let t401 = t0 * t392;
         let t402 = t1 * t397;
         let t403 = t401 - t402;
+        out[36] = t403;
         let t404 = t298 + t318;
         let t405 = t63 * t404;
         let t406 = t405 - t344;
@@ -586,6 +636,7 @@ impl Tx40 {
         let t410 = t409 - t374;
         let t411 = t406 * c1;
         let t412 = t411 - t373;
+        out[157] = t412;
         let t413 = t12 * t410;
         let t414 = t11 * t93;
         let t415 = t11 * t410;
@@ -606,11 +657,13 @@ impl Tx40 {
         let t430 = t406 + t421;
         let t431 = t430 * c1;
         let t432 = t431 - t373;
+        out[97] = t432;
         let t433 = t0 * t424;
         let t434 = t1 * t429;
         let t435 = t433 + t434;
         let t436 = t109 * t125;
         let t437 = t109 * t112;
+        out[280] = t437;
         let t438 = t106 * t127;
         let t439 = t105 * t109;
         let t440 = t125 * t439;
@@ -627,6 +680,8 @@ impl Tx40 {
         let t451 = t64 * t109;
         let t452 = t112 * t451;
         let t453 = t450 + t452;
+        out[100] = t453;
+        out[160] = t453;
         let t454 = t12 * t449;
         let t455 = t11 * t445;
         let t456 = t454 + t455;
@@ -640,6 +695,7 @@ impl Tx40 {
         let t464 = t109 * t109;
         let t465 = t112 * t112;
         let t466 = t464 - t465;
+        out[281] = t466;
         let t467 = t129 + t436;
         let t468 = t127 - t463;
         let t469 = t106 * t467;
@@ -648,12 +704,15 @@ impl Tx40 {
         let t472 = t105 * t467;
         let t473 = t106 * t468;
         let t474 = t472 - t473;
+        out[221] = t474;
         let t475 = t64 * t471;
         let t476 = t63 * t466;
         let t477 = t475 + t476;
         let t478 = t63 * t471;
         let t479 = t64 * t466;
         let t480 = t479 - t478;
+        out[101] = t480;
+        out[161] = t480;
         let t481 = t12 * t477;
         let t482 = t11 * t474;
         let t483 = t481 + t482;
@@ -663,10 +722,12 @@ impl Tx40 {
         let t487 = t0 * t483;
         let t488 = t1 * t486;
         let t489 = t487 - t488;
+        out[41] = t489;
         let t490 = t125 * t125;
         let t491 = t490 - t464;
         let t492 = t130 - t437;
         let t493 = t127 + t463;
+        out[282] = t493;
         let t494 = t106 * t492;
         let t495 = t105 * t491;
         let t496 = t494 - t495;
@@ -679,6 +740,8 @@ impl Tx40 {
         let t503 = t63 * t496;
         let t504 = t64 * t493;
         let t505 = t503 + t504;
+        out[102] = t505;
+        out[162] = t505;
         let t506 = t12 * t502;
         let t507 = t11 * t499;
         let t508 = t506 + t507;
@@ -691,6 +754,7 @@ impl Tx40 {
         let t515 = t465 - t490;
         let t516 = t130 + t437;
         let t517 = t436 - t129;
+        out[284] = t517;
         let t518 = t106 * t515;
         let t519 = t105 * t516;
         let t520 = t518 - t519;
@@ -703,6 +767,8 @@ impl Tx40 {
         let t527 = t63 * t520;
         let t528 = t64 * t517;
         let t529 = t527 + t528;
+        out[104] = t529;
+        out[164] = t529;
         let t530 = t12 * t526;
         let t531 = t11 * t523;
         let t532 = t530 + t531;
@@ -718,12 +784,15 @@ impl Tx40 {
         let t542 = t105 * t112;
         let t543 = t125 * t542;
         let t544 = t444 + t543;
+        out[225] = t544;
         let t545 = t64 * t541;
         let t546 = t63 * t130;
         let t547 = t545 - t546;
         let t548 = t63 * t541;
         let t549 = t64 * t130;
         let t550 = t548 + t549;
+        out[105] = t550;
+        out[165] = t550;
         let t551 = t12 * t547;
         let t552 = t11 * t544;
         let t553 = t552 - t551;
@@ -733,11 +802,13 @@ impl Tx40 {
         let t557 = t0 * t553;
         let t558 = t1 * t556;
         let t559 = t557 - t558;
+        out[45] = t559;
         let t560 = t465 + t490;
         let t561 = t106 * t560;
         let t562 = t497 + t561;
         let t563 = t105 * t560;
         let t564 = t96 * t106;
+        out[226] = t564;
         let t565 = t64 * t562;
         let t566 = t63 * t467;
         let t567 = t565 + t566;
@@ -757,6 +828,7 @@ impl Tx40 {
         let t581 = t567 * c1;
         let t582 = t574 - t581;
         let t583 = t573 + t582;
+        out[166] = t583;
         let t584 = t12 * t580;
         let t585 = t11 * t106;
         let t586 = t96 * t585;
@@ -780,9 +852,11 @@ impl Tx40 {
         let t604 = t603 * c1;
         let t605 = t574 - t604;
         let t606 = t573 + t605;
+        out[106] = t606;
         let t607 = t0 * t597;
         let t608 = t1 * t602;
         let t609 = t607 - t608;
+        out[46] = t609;
         let t610 = t464 + t490;
         let t611 = t105 * t610;
         let t612 = t611 - t522;
@@ -807,6 +881,7 @@ impl Tx40 {
         let t631 = t617 * c1;
         let t632 = t631 - t624;
         let t633 = t623 + t632;
+        out[167] = t633;
         let t634 = t12 * t630;
         let t635 = t105 * t382;
         let t636 = t11 * t630;
@@ -828,11 +903,13 @@ impl Tx40 {
         let t652 = t651 * c1;
         let t653 = t652 - t624;
         let t654 = t623 + t653;
+        out[107] = t654;
         let t655 = t0 * t645;
         let t656 = t1 * t650;
         let t657 = t655 + t656;
         let t658 = t135 * t151;
         let t659 = t135 * t138;
+        out[350] = t659;
         let t660 = t132 * t153;
         let t661 = t131 * t135;
         let t662 = t151 * t661;
@@ -841,6 +918,7 @@ impl Tx40 {
         let t665 = t132 * t135;
         let t666 = t151 * t665;
         let t667 = t666 - t664;
+        out[290] = t667;
         let t668 = t106 * t663;
         let t669 = t105 * t135;
         let t670 = t138 * t669;
@@ -849,12 +927,15 @@ impl Tx40 {
         let t673 = t106 * t135;
         let t674 = t138 * t673;
         let t675 = t672 + t674;
+        out[230] = t675;
         let t676 = t64 * t671;
         let t677 = t63 * t667;
         let t678 = t676 - t677;
         let t679 = t63 * t671;
         let t680 = t64 * t667;
         let t681 = t679 + t680;
+        out[110] = t681;
+        out[170] = t681;
         let t682 = t12 * t678;
         let t683 = t11 * t675;
         let t684 = t683 - t682;
@@ -864,10 +945,12 @@ impl Tx40 {
         let t688 = t0 * t684;
         let t689 = t1 * t687;
         let t690 = t688 - t689;
+        out[50] = t690;
         let t691 = t138 * t151;
         let t692 = t135 * t135;
         let t693 = t138 * t138;
         let t694 = t692 - t693;
+        out[351] = t694;
         let t695 = t155 + t658;
         let t696 = t153 + t691;
         let t697 = t132 * t695;
@@ -882,12 +965,15 @@ impl Tx40 {
         let t706 = t105 * t699;
         let t707 = t106 * t694;
         let t708 = t707 - t706;
+        out[231] = t708;
         let t709 = t64 * t705;
         let t710 = t63 * t702;
         let t711 = t709 + t710;
         let t712 = t63 * t705;
         let t713 = t64 * t702;
         let t714 = t712 - t713;
+        out[111] = t714;
+        out[171] = t714;
         let t715 = t12 * t711;
         let t716 = t11 * t708;
         let t717 = t716 - t715;
@@ -897,10 +983,12 @@ impl Tx40 {
         let t721 = t0 * t717;
         let t722 = t1 * t720;
         let t723 = t721 - t722;
+        out[51] = t723;
         let t724 = t151 * t151;
         let t725 = t724 - t692;
         let t726 = t156 - t659;
         let t727 = t153 - t691;
+        out[352] = t727;
         let t728 = t132 * t726;
         let t729 = t131 * t725;
         let t730 = t729 - t728;
@@ -913,12 +1001,15 @@ impl Tx40 {
         let t737 = t105 * t730;
         let t738 = t106 * t727;
         let t739 = t738 - t737;
+        out[232] = t739;
         let t740 = t64 * t736;
         let t741 = t63 * t733;
         let t742 = t740 + t741;
         let t743 = t63 * t736;
         let t744 = t64 * t733;
         let t745 = t743 - t744;
+        out[112] = t745;
+        out[172] = t745;
         let t746 = t12 * t742;
         let t747 = t11 * t739;
         let t748 = t747 - t746;
@@ -928,9 +1019,11 @@ impl Tx40 {
         let t752 = t0 * t748;
         let t753 = t1 * t751;
         let t754 = t752 - t753;
+        out[52] = t754;
         let t755 = t693 - t724;
         let t756 = t156 + t659;
         let t757 = t155 - t658;
+        out[354] = t757;
         let t758 = t132 * t755;
         let t759 = t131 * t756;
         let t760 = t759 - t758;
@@ -943,12 +1036,15 @@ impl Tx40 {
         let t767 = t105 * t760;
         let t768 = t106 * t757;
         let t769 = t768 - t767;
+        out[234] = t769;
         let t770 = t64 * t766;
         let t771 = t63 * t763;
         let t772 = t770 + t771;
         let t773 = t63 * t766;
         let t774 = t64 * t763;
         let t775 = t773 - t774;
+        out[114] = t775;
+        out[174] = t775;
         let t776 = t12 * t772;
         let t777 = t11 * t769;
         let t778 = t777 - t776;
@@ -958,6 +1054,7 @@ impl Tx40 {
         let t782 = t0 * t778;
         let t783 = t1 * t781;
         let t784 = t782 - t783;
+        out[54] = t784;
         let t785 = t132 * t138;
         let t786 = t151 * t785;
         let t787 = t662 - t786;
@@ -970,12 +1067,15 @@ impl Tx40 {
         let t794 = t105 * t787;
         let t795 = t106 * t156;
         let t796 = t795 - t794;
+        out[235] = t796;
         let t797 = t64 * t793;
         let t798 = t63 * t790;
         let t799 = t797 + t798;
         let t800 = t63 * t793;
         let t801 = t64 * t790;
         let t802 = t800 - t801;
+        out[115] = t802;
+        out[175] = t802;
         let t803 = t12 * t799;
         let t804 = t11 * t796;
         let t805 = t804 - t803;
@@ -985,6 +1085,7 @@ impl Tx40 {
         let t809 = t0 * t805;
         let t810 = t1 * t808;
         let t811 = t809 - t810;
+        out[55] = t811;
         let t812 = t693 + t724;
         let t813 = t132 * t812;
         let t814 = t731 + t813;
@@ -1004,6 +1105,7 @@ impl Tx40 {
         let t828 = t131 * t827;
         let t829 = t106 * t148;
         let t830 = t829 - t828;
+        out[236] = t830;
         let t831 = t64 * t820;
         let t832 = t63 * t816;
         let t833 = t831 - t832;
@@ -1021,6 +1123,7 @@ impl Tx40 {
         let t845 = t833 * c1;
         let t846 = t845 - t838;
         let t847 = t837 + t846;
+        out[176] = t847;
         let t848 = t12 * t844;
         let t849 = t11 * t830;
         let t850 = t11 * t844;
@@ -1042,15 +1145,18 @@ impl Tx40 {
         let t866 = t865 * c1;
         let t867 = t866 - t838;
         let t868 = t837 + t867;
+        out[116] = t868;
         let t869 = t0 * t859;
         let t870 = t1 * t864;
         let t871 = t869 - t870;
+        out[56] = t871;
         let t872 = t692 + t724;
         let t873 = t131 * t872;
         let t874 = t762 - t873;
         let t875 = t132 * t872;
         let t876 = t759 + t875;
         let t877 = t122 * t131;
+        out[297] = t877;
         let t878 = t106 * t874;
         let t879 = t105 * t696;
         let t880 = t878 + t879;
@@ -1064,6 +1170,7 @@ impl Tx40 {
         let t888 = t122 * t887;
         let t889 = t106 * t145;
         let t890 = t889 - t888;
+        out[237] = t890;
         let t891 = t64 * t880;
         let t892 = t63 * t876;
         let t893 = t891 - t892;
@@ -1083,6 +1190,7 @@ impl Tx40 {
         let t907 = t893 * c1;
         let t908 = t900 + t907;
         let t909 = t898 + t908;
+        out[177] = t909;
         let t910 = t12 * t906;
         let t911 = t11 * t890;
         let t912 = t11 * t906;
@@ -1104,11 +1212,14 @@ impl Tx40 {
         let t928 = t927 * c1;
         let t929 = t900 + t928;
         let t930 = t898 + t929;
+        out[117] = t930;
         let t931 = t0 * t921;
         let t932 = t1 * t926;
         let t933 = t931 - t932;
+        out[57] = t933;
         let t934 = t1 * t10;
         let t935 = t159 + t934;
+        out[13] = t935;
         let t936 = t11 * t61;
         let t937 = t234 - t936;
         let t938 = t12 * t61;
@@ -1116,6 +1227,7 @@ impl Tx40 {
         let t940 = t0 * t937;
         let t941 = t1 * t939;
         let t942 = t940 + t941;
+        out[23] = t942;
         let t943 = t12 * t54;
         let t944 = t11 * t51;
         let t945 = t11 * t54;
@@ -1126,6 +1238,7 @@ impl Tx40 {
         let t950 = t11 * t211;
         let t951 = t947 + t948;
         let t952 = t951 * c1;
+        out[88] = t952;
         let t953 = t951 * c2;
         let t954 = t944 + t953;
         let t955 = t943 + t954;
@@ -1149,6 +1262,7 @@ impl Tx40 {
         let t973 = t969 - t971;
         let t974 = t972 + t973;
         let t975 = t966 * c1;
+        out[89] = t975;
         let t976 = t0 * t967;
         let t977 = t1 * t974;
         let t978 = t976 + t977;
@@ -1156,6 +1270,8 @@ impl Tx40 {
         let t980 = t356 + t979;
         let t981 = t64 * t103;
         let t982 = t981 - t359;
+        out[93] = t982;
+        out[153] = t982;
         let t983 = t12 * t980;
         let t984 = t288 + t983;
         let t985 = t11 * t980;
@@ -1163,6 +1279,7 @@ impl Tx40 {
         let t987 = t0 * t984;
         let t988 = t1 * t986;
         let t989 = t987 - t988;
+        out[33] = t989;
         let t990 = t64 * t339;
         let t991 = t63 * t321;
         let t992 = t990 + t991;
@@ -1178,6 +1295,7 @@ impl Tx40 {
         let t1002 = t992 * c1;
         let t1003 = t995 + t1002;
         let t1004 = t1003 - t622;
+        out[158] = t1004;
         let t1005 = t12 * t1001;
         let t1006 = t11 * t1001;
         let t1007 = t11 * t992;
@@ -1195,13 +1313,16 @@ impl Tx40 {
         let t1019 = t1018 * c1;
         let t1020 = t995 + t1019;
         let t1021 = t1020 - t622;
+        out[98] = t1021;
         let t1022 = t0 * t1013;
         let t1023 = t1 * t1017;
         let t1024 = t1022 - t1023;
+        out[38] = t1024;
         let t1025 = t995 - t622;
         let t1026 = t619 + t994;
         let t1027 = t1026 * c1;
         let t1028 = t1025 * c1;
+        out[159] = t1028;
         let t1029 = t12 * t1027;
         let t1030 = t11 * t1027;
         let t1031 = t11 * t1025;
@@ -1217,17 +1338,22 @@ impl Tx40 {
         let t1041 = t1030 + t1040;
         let t1042 = t1025 - t1035;
         let t1043 = t1042 * c1;
+        out[99] = t1043;
         let t1044 = t0 * t1037;
         let t1045 = t1 * t1041;
         let t1046 = t1044 + t1045;
+        out[39] = t1046;
         let t1047 = t105 * t129;
         let t1048 = t540 + t1047;
         let t1049 = t106 * t129;
         let t1050 = t1049 - t543;
+        out[223] = t1050;
         let t1051 = t64 * t1048;
         let t1052 = t448 + t1051;
         let t1053 = t63 * t1048;
         let t1054 = t1053 - t452;
+        out[103] = t1054;
+        out[163] = t1054;
         let t1055 = t12 * t1052;
         let t1056 = t11 * t1050;
         let t1057 = t1056 - t1055;
@@ -1237,6 +1363,7 @@ impl Tx40 {
         let t1061 = t0 * t1057;
         let t1062 = t1 * t1060;
         let t1063 = t1061 - t1062;
+        out[43] = t1063;
         let t1064 = t464 + t465;
         let t1065 = t106 * t517;
         let t1066 = t105 * t493;
@@ -1247,6 +1374,7 @@ impl Tx40 {
         let t1071 = t823 + t1070;
         let t1072 = t106 * t119;
         let t1073 = t827 - t1072;
+        out[228] = t1073;
         let t1074 = t64 * t1067;
         let t1075 = t63 * t1064;
         let t1076 = t1074 + t1075;
@@ -1260,6 +1388,7 @@ impl Tx40 {
         let t1084 = t1083 - t1078;
         let t1085 = t1076 * c1;
         let t1086 = t1085 - t1079;
+        out[168] = t1086;
         let t1087 = t12 * t1084;
         let t1088 = t11 * t1073;
         let t1089 = t11 * t1084;
@@ -1280,9 +1409,11 @@ impl Tx40 {
         let t1104 = t1076 - t1095;
         let t1105 = t1104 * c1;
         let t1106 = t1105 - t1079;
+        out[108] = t1106;
         let t1107 = t0 * t1098;
         let t1108 = t1 * t1103;
         let t1109 = t1107 - t1108;
+        out[48] = t1109;
         let t1110 = t64 * t1073;
         let t1111 = t622 + t1110;
         let t1112 = t63 * t1073;
@@ -1307,10 +1438,12 @@ impl Tx40 {
         let t1131 = t0 * t1124;
         let t1132 = t1 * t1128;
         let t1133 = t1131 - t1132;
+        out[49] = t1133;
         let t1134 = t131 * t155;
         let t1135 = t786 + t1134;
         let t1136 = t132 * t155;
         let t1137 = t789 - t1136;
+        out[293] = t1137;
         let t1138 = t106 * t1135;
         let t1139 = t1138 - t670;
         let t1140 = t105 * t1135;
@@ -1321,6 +1454,8 @@ impl Tx40 {
         let t1145 = t63 * t1139;
         let t1146 = t64 * t1137;
         let t1147 = t1145 + t1146;
+        out[113] = t1147;
+        out[173] = t1147;
         let t1148 = t12 * t1144;
         let t1149 = t11 * t1141;
         let t1150 = t1148 + t1149;
@@ -1343,6 +1478,7 @@ impl Tx40 {
         let t1167 = t131 * t148;
         let t1168 = t132 * t145;
         let t1169 = t1167 + t1168;
+        out[298] = t1169;
         let t1170 = t106 * t1159;
         let t1171 = t105 * t1160;
         let t1172 = t1170 + t1171;
@@ -1368,6 +1504,7 @@ impl Tx40 {
         let t1192 = t1178 * c1;
         let t1193 = t1185 - t1192;
         let t1194 = t1184 + t1193;
+        out[178] = t1194;
         let t1195 = t12 * t1191;
         let t1196 = t11 * t105;
         let t1197 = t1166 * t1196;
@@ -1391,9 +1528,11 @@ impl Tx40 {
         let t1215 = t1214 * c1;
         let t1216 = t1185 - t1215;
         let t1217 = t1184 + t1216;
+        out[118] = t1217;
         let t1218 = t0 * t1208;
         let t1219 = t1 * t1213;
         let t1220 = t1218 - t1219;
+        out[58] = t1220;
         let t1221 = t106 * t1169;
         let t1222 = t1221 - t827;
         let t1223 = t105 * t1169;
@@ -1406,6 +1545,7 @@ impl Tx40 {
         let t1230 = t1229 - t1228;
         let t1231 = t1230 * c1;
         let t1232 = t1226 * c1;
+        out[179] = t1232;
         let t1233 = t12 * t1231;
         let t1234 = t11 * t1231;
         let t1235 = t11 * t1226;
@@ -1421,412 +1561,95 @@ impl Tx40 {
         let t1245 = t1234 + t1244;
         let t1246 = t1226 - t1239;
         let t1247 = t1246 * c1;
+        out[119] = t1247;
         let t1248 = t0 * t1241;
         let t1249 = t1 * t1245;
         let t1250 = t1248 - t1249;
+        out[59] = t1250;
         let t1251 = -t169;
+        out[11] = t1251;
         let t1252 = -t207;
+        out[21] = t1252;
         let t1253 = -t220;
+        out[22] = t1253;
         let t1254 = -t232;
+        out[24] = t1254;
         let t1255 = -t241;
+        out[25] = t1255;
         let t1256 = -t965;
+        out[28] = t1256;
         let t1257 = -t978;
+        out[29] = t1257;
         let t1258 = -t296;
+        out[30] = t1258;
         let t1259 = -t435;
+        out[37] = t1259;
         let t1260 = -t462;
+        out[40] = t1260;
         let t1261 = -t514;
+        out[42] = t1261;
         let t1262 = -t538;
+        out[44] = t1262;
         let t1263 = -t657;
+        out[47] = t1263;
         let t1264 = -t1156;
+        out[53] = t1264;
         let t1265 = -t34;
+        out[73] = t1265;
         let t1266 = -t3;
+        out[74] = t1266;
         let t1267 = -t5;
+        out[76] = t1267;
         let t1268 = -t4;
+        out[77] = t1268;
         let t1269 = -t181;
+        out[83] = t1269;
+        out[143] = t1269;
         let t1270 = -t256;
+        out[86] = t1270;
         let t1271 = -t272;
+        out[87] = t1271;
         let t1272 = -t1130;
+        out[109] = t1272;
         let t1273 = -t54;
+        out[146] = t1273;
         let t1274 = -t51;
+        out[147] = t1274;
         let t1275 = -t1115;
+        out[169] = t1275;
         let t1276 = -t277;
+        out[210] = t1276;
         let t1277 = -t93;
+        out[217] = t1277;
         let t1278 = -t445;
+        out[220] = t1278;
         let t1279 = -t499;
+        out[222] = t1279;
         let t1280 = -t523;
+        out[224] = t1280;
         let t1281 = -t614;
+        out[227] = t1281;
         let t1282 = -t1141;
+        out[233] = t1282;
         let t1283 = -t1175;
+        out[238] = t1283;
         let t1284 = -t437;
+        out[283] = t1284;
         let t1285 = -t119;
+        out[287] = t1285;
         let t1286 = -t702;
+        out[291] = t1286;
         let t1287 = -t733;
+        out[292] = t1287;
         let t1288 = -t763;
+        out[294] = t1288;
         let t1289 = -t790;
+        out[295] = t1289;
         let t1290 = -t817;
+        out[296] = t1290;
         let t1291 = -t659;
-        [
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            qdd1,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t160,
-            t1251,
-            t174,
-            t935,
-            t179,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t192,
-            t1252,
-            t1253,
-            t942,
-            t1254,
-            t1255,
-            t259,
-            t275,
-            t1256,
-            t1257,
-            t1258,
-            t317,
-            t336,
-            t989,
-            t354,
-            t369,
-            t403,
-            t1259,
-            t1024,
-            t1046,
-            t1260,
-            t489,
-            t1261,
-            t1063,
-            t1262,
-            t559,
-            t609,
-            t1263,
-            t1109,
-            t1133,
-            t690,
-            t723,
-            t754,
-            t1264,
-            t784,
-            t811,
-            t871,
-            t933,
-            t1220,
-            t1250,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t34,
-            t162,
-            t2,
-            t1265,
-            t1266,
-            qdd2,
-            t1267,
-            t1268,
-            T::ZERO,
-            T::ZERO,
-            t181,
-            t196,
-            t211,
-            t1269,
-            t223,
-            t62,
-            t1270,
-            t1271,
-            t952,
-            t975,
-            t285,
-            t308,
-            t327,
-            t982,
-            t345,
-            t360,
-            t400,
-            t432,
-            t1021,
-            t1043,
-            t453,
-            t480,
-            t505,
-            t1054,
-            t529,
-            t550,
-            t606,
-            t654,
-            t1106,
-            t1272,
-            t681,
-            t714,
-            t745,
-            t1147,
-            t775,
-            t802,
-            t868,
-            t930,
-            t1217,
-            t1247,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t181,
-            t196,
-            t211,
-            t1269,
-            t223,
-            t62,
-            t1273,
-            t1274,
-            T::ZERO,
-            T::ZERO,
-            t285,
-            t308,
-            t327,
-            t982,
-            t345,
-            t360,
-            t380,
-            t412,
-            t1004,
-            t1028,
-            t453,
-            t480,
-            t505,
-            t1054,
-            t529,
-            t550,
-            t583,
-            t633,
-            t1086,
-            t1275,
-            t681,
-            t714,
-            t745,
-            t1147,
-            t775,
-            t802,
-            t847,
-            t909,
-            t1194,
-            t1232,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1276,
-            t300,
-            t321,
-            t277,
-            t339,
-            t104,
-            t96,
-            t1277,
-            T::ZERO,
-            T::ZERO,
-            t1278,
-            t474,
-            t1279,
-            t1050,
-            t1280,
-            t544,
-            t564,
-            t1281,
-            t1073,
-            T::ZERO,
-            t675,
-            t708,
-            t739,
-            t1282,
-            t769,
-            t796,
-            t830,
-            t890,
-            t1283,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t437,
-            t466,
-            t493,
-            t1284,
-            t517,
-            t130,
-            t122,
-            t1285,
-            T::ZERO,
-            T::ZERO,
-            t667,
-            t1286,
-            t1287,
-            t1137,
-            t1288,
-            t1289,
-            t1290,
-            t877,
-            t1169,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t659,
-            t694,
-            t727,
-            t1291,
-            t757,
-            t156,
-            t148,
-            t145,
-            T::ZERO,
-            T::ZERO,
-        ]
+        out[353] = t1291;
+        out
     }
     /// Base regressor Y_b(q, qd, qdd), `6 x 36` row-major: tau = Y_b * base.
     ///
@@ -1836,7 +1659,7 @@ impl Tx40 {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 395 mul, 295 add, 25 neg, 5 sin, 5 cos.
+    /// Operations: 397 mul, 295 add, 23 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -1850,6 +1673,10 @@ impl Tx40 {
         let c0 = T::from_f64(0.225);
         let c1 = T::from_f64(0.035);
         let c2 = T::from_f64(9.81);
+        let c3 = T::from_f64(-9.81);
+        let mut out = [T::ZERO; 216];
+        out[0] = qdd1;
+        out[41] = qdd2;
         let (t1, t0) = q2.sin_cos();
         let (t3, t2) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -1868,14 +1695,17 @@ impl Tx40 {
         let t20 = qd2 * qd2;
         let t21 = t19 + t20;
         let t22 = t10 * t11;
+        out[37] = t22;
         let t23 = t22 + qdd2;
         let t24 = qdd2 - t22;
         let t25 = t18 + t20;
         let t26 = t14 + t16;
+        out[39] = t26;
         let t27 = t16 - t14;
         let t28 = t18 + t19;
         let t29 = t15 + t17;
         let t30 = t15 - t17;
+        out[40] = t30;
         let t31 = t21 * c0;
         let t32 = t30 * c1;
         let t33 = t32 - t31;
@@ -1913,11 +1743,15 @@ impl Tx40 {
         let t65 = t62 - t60;
         let t66 = t61 + t63;
         let t67 = qdd2 + qdd3;
+        out[48] = t67;
+        out[84] = t67;
         let t68 = t54 * t54;
         let t69 = t55 * t55;
         let t70 = t64 * t64;
         let t71 = t69 + t70;
         let t72 = t54 * t55;
+        out[44] = t72;
+        out[80] = t72;
         let t73 = t67 + t72;
         let t74 = t67 - t72;
         let t75 = t68 + t70;
@@ -1928,6 +1762,8 @@ impl Tx40 {
         let t80 = t54 * t64;
         let t81 = t66 + t80;
         let t82 = t66 - t80;
+        out[47] = t82;
+        out[83] = t82;
         let t83 = t73 * c0;
         let t84 = t48 + t83;
         let t85 = t75 * c0;
@@ -1940,6 +1776,7 @@ impl Tx40 {
         let t92 = t5 * t88;
         let t93 = t89 + t90;
         let t94 = t92 - t91;
+        out[128] = t94;
         let t95 = t5 * t54;
         let t96 = t4 * t64;
         let t97 = t4 * t54;
@@ -1958,6 +1795,7 @@ impl Tx40 {
         let t110 = t105 + t107;
         let t111 = t106 - t108;
         let t112 = qdd4 - t66;
+        out[127] = t112;
         let t113 = t99 * t99;
         let t114 = t100 * t100;
         let t115 = t109 * t109;
@@ -1973,12 +1811,14 @@ impl Tx40 {
         let t125 = t99 * t109;
         let t126 = t125 - t111;
         let t127 = t111 + t125;
+        out[126] = t127;
         let t128 = t7 * t93;
         let t129 = t6 * t86;
         let t130 = t6 * t93;
         let t131 = t7 * t86;
         let t132 = t128 + t129;
         let t133 = t131 - t130;
+        out[171] = t133;
         let t134 = t7 * t99;
         let t135 = t6 * t109;
         let t136 = t6 * t99;
@@ -1997,27 +1837,33 @@ impl Tx40 {
         let t149 = t144 - t146;
         let t150 = t145 + t147;
         let t151 = t111 + qdd5;
+        out[170] = t151;
         let t152 = t138 * t138;
         let t153 = t139 * t139;
         let t154 = t148 * t148;
         let t155 = t153 + t154;
         let t156 = t138 * t139;
+        out[166] = t156;
         let t157 = t151 + t156;
         let t158 = t151 - t156;
         let t159 = t152 + t154;
         let t160 = t139 * t148;
         let t161 = t149 + t160;
+        out[168] = t161;
         let t162 = t149 - t160;
         let t163 = t152 + t153;
         let t164 = t138 * t148;
         let t165 = t150 + t164;
         let t166 = t164 - t150;
+        out[169] = t166;
         let t167 = t9 * t132;
         let t168 = t8 * t94;
         let t169 = t8 * t132;
         let t170 = t9 * t94;
         let t171 = t167 + t168;
+        out[215] = t171;
         let t172 = t169 - t170;
+        out[214] = t172;
         let t173 = t9 * t138;
         let t174 = t8 * t148;
         let t175 = t8 * t138;
@@ -2036,11 +1882,13 @@ impl Tx40 {
         let t188 = t185 - t183;
         let t189 = t184 + t186;
         let t190 = t150 + qdd6;
+        out[213] = t190;
         let t191 = t177 * t177;
         let t192 = t178 * t178;
         let t193 = t187 * t187;
         let t194 = t192 + t193;
         let t195 = t177 * t178;
+        out[209] = t195;
         let t196 = t190 + t195;
         let t197 = t190 - t195;
         let t198 = t191 + t193;
@@ -2051,6 +1899,7 @@ impl Tx40 {
         let t203 = t177 * t187;
         let t204 = t189 + t203;
         let t205 = t189 - t203;
+        out[212] = t205;
         let t206 = t0 * t3;
         let t207 = t1 * t2;
         let t208 = t0 * t2;
@@ -2135,42 +1984,59 @@ impl Tx40 {
         let t287 = t28 - t25;
         let t288 = t21 - t28;
         let t289 = t25 - t21;
+        out[38] = t289;
         let t290 = t0 * t16;
         let t291 = t1 * t15;
         let t292 = t290 - t291;
+        out[1] = t292;
         let t293 = t0 * t29;
         let t294 = t1 * t27;
         let t295 = t293 + t294;
         let t296 = -t295;
+        out[2] = t296;
         let t297 = t0 * t24;
         let t298 = t1 * t288;
         let t299 = t297 - t298;
+        out[3] = t299;
         let t300 = t0 * t287;
         let t301 = t1 * t23;
         let t302 = t300 - t301;
+        out[4] = t302;
         let t303 = t0 * t14;
         let t304 = t291 - t303;
-        let t305 = -t42;
-        let t306 = -t40;
+        out[5] = t304;
+        let t305 = t1 * c3;
+        out[42] = t305;
+        let t306 = t0 * c3;
+        out[43] = t306;
         let t307 = t79 - t75;
         let t308 = t71 - t79;
         let t309 = t75 - t71;
+        out[45] = t309;
+        out[81] = t309;
         let t310 = t65 * t210;
         let t311 = t80 * t211;
         let t312 = t310 + t311;
         let t313 = -t312;
+        out[8] = t313;
         let t314 = t81 * t210;
         let t315 = t78 * t211;
         let t316 = t315 - t314;
+        out[9] = t316;
         let t317 = t74 * t210;
         let t318 = t211 * t308;
         let t319 = t318 - t317;
+        out[10] = t319;
         let t320 = -t77;
+        out[46] = t320;
+        out[82] = t320;
         let t321 = t210 * t307;
         let t322 = t73 * t211;
         let t323 = t322 - t321;
+        out[11] = t323;
         let t324 = t76 * t210;
         let t325 = t311 - t324;
+        out[12] = t325;
         let t326 = t71 * t211;
         let t327 = t39 * t211;
         let t328 = t1 * t81;
@@ -2179,13 +2045,16 @@ impl Tx40 {
         let t331 = t328 * c0;
         let t332 = t327 + t331;
         let t333 = t330 - t332;
+        out[13] = t333;
         let t334 = t2 * t71;
         let t335 = t3 * t74;
         let t336 = t334 + t335;
         let t337 = t336 * c0;
         let t338 = t49 + t337;
         let t339 = -t338;
+        out[49] = t339;
         let t340 = -t49;
+        out[85] = t340;
         let t341 = t39 * t210;
         let t342 = t75 * t210;
         let t343 = t1 * t78;
@@ -2194,41 +2063,56 @@ impl Tx40 {
         let t346 = t343 * c0;
         let t347 = t346 - t345;
         let t348 = t347 - t341;
+        out[14] = t348;
         let t349 = t2 * t73;
         let t350 = t3 * t75;
         let t351 = t350 - t349;
         let t352 = t351 * c0;
         let t353 = t352 - t48;
+        out[50] = t353;
         let t354 = -t48;
+        out[86] = t354;
         let t355 = t124 - t120;
         let t356 = t116 - t124;
         let t357 = t120 - t116;
+        out[124] = t357;
         let t358 = t110 * t212;
         let t359 = t125 * t213;
         let t360 = t117 * t211;
         let t361 = t359 + t360;
         let t362 = t361 - t358;
+        out[15] = t362;
         let t363 = t4 * t110;
         let t364 = t5 * t125;
         let t365 = t363 + t364;
+        out[51] = t365;
+        out[87] = t365;
         let t366 = -t117;
+        out[123] = t366;
         let t367 = t126 * t212;
         let t368 = t123 * t213;
         let t369 = t211 * t357;
         let t370 = t368 - t369;
         let t371 = t367 + t370;
+        out[16] = t371;
         let t372 = t4 * t126;
         let t373 = t5 * t123;
         let t374 = t373 - t372;
+        out[52] = t374;
+        out[88] = t374;
         let t375 = t119 * t212;
         let t376 = t213 * t356;
         let t377 = t122 * t211;
         let t378 = t376 + t377;
         let t379 = t378 - t375;
+        out[17] = t379;
         let t380 = t4 * t119;
         let t381 = t5 * t356;
         let t382 = t380 + t381;
+        out[53] = t382;
+        out[89] = t382;
         let t383 = -t122;
+        out[125] = t383;
         let t384 = t212 * t355;
         let t385 = t118 * t213;
         let t386 = t127 * t211;
@@ -2237,14 +2121,20 @@ impl Tx40 {
         let t389 = t4 * t355;
         let t390 = t5 * t118;
         let t391 = t389 - t390;
+        out[54] = t391;
+        out[90] = t391;
         let t392 = -t388;
+        out[18] = t392;
         let t393 = t121 * t212;
         let t394 = t112 * t211;
         let t395 = t359 + t394;
         let t396 = t393 + t395;
         let t397 = t4 * t121;
         let t398 = t397 - t364;
+        out[55] = t398;
+        out[91] = t398;
         let t399 = -t396;
+        out[19] = t399;
         let t400 = t116 * t243;
         let t401 = t86 * t213;
         let t402 = t119 * t246;
@@ -2255,6 +2145,7 @@ impl Tx40 {
         let t407 = t405 + t406;
         let t408 = t404 * c1;
         let t409 = t407 - t408;
+        out[20] = t409;
         let t410 = t116 * t249;
         let t411 = t5 * t86;
         let t412 = t119 * t250;
@@ -2263,10 +2154,12 @@ impl Tx40 {
         let t415 = t414 - t410;
         let t416 = t413 * c0;
         let t417 = t415 + t416;
+        out[56] = t417;
         let t418 = t5 * t116;
         let t419 = t380 + t418;
         let t420 = t419 * c0;
         let t421 = t411 - t420;
+        out[92] = t421;
         let t422 = t86 * t212;
         let t423 = t118 * t243;
         let t424 = t120 * t246;
@@ -2277,6 +2170,7 @@ impl Tx40 {
         let t429 = t427 + t428;
         let t430 = t426 * c1;
         let t431 = t429 - t430;
+        out[21] = t431;
         let t432 = t4 * t86;
         let t433 = t118 * t249;
         let t434 = t120 * t250;
@@ -2285,79 +2179,103 @@ impl Tx40 {
         let t437 = t436 - t432;
         let t438 = t435 * c0;
         let t439 = t437 + t438;
+        out[57] = t439;
         let t440 = t4 * t120;
         let t441 = t390 + t440;
         let t442 = t441 * c0;
         let t443 = t442 - t432;
+        out[93] = t443;
         let t444 = -t93;
+        out[129] = t444;
         let t445 = t163 - t159;
         let t446 = t155 - t163;
         let t447 = t159 - t155;
+        out[167] = t447;
         let t448 = t149 * t218;
         let t449 = t164 * t219;
         let t450 = t156 * t213;
         let t451 = t449 + t450;
         let t452 = t448 + t451;
+        out[22] = t452;
         let t453 = t149 * t220;
         let t454 = t164 * t221;
         let t455 = t5 * t156;
         let t456 = t455 - t454;
         let t457 = t453 + t456;
+        out[58] = t457;
+        out[94] = t457;
         let t458 = t6 * t149;
         let t459 = t7 * t164;
         let t460 = t458 + t459;
         let t461 = -t460;
+        out[130] = t461;
         let t462 = t165 * t218;
         let t463 = t162 * t219;
         let t464 = t213 * t447;
         let t465 = t463 + t464;
         let t466 = t465 - t462;
+        out[23] = t466;
         let t467 = t165 * t220;
         let t468 = t162 * t221;
         let t469 = t5 * t447;
         let t470 = t469 - t468;
         let t471 = t470 - t467;
+        out[59] = t471;
+        out[95] = t471;
         let t472 = t6 * t165;
         let t473 = t7 * t162;
         let t474 = t472 - t473;
+        out[131] = t474;
         let t475 = t158 * t218;
         let t476 = t219 * t446;
         let t477 = t161 * t213;
         let t478 = t476 + t477;
         let t479 = t475 + t478;
+        out[24] = t479;
         let t480 = t158 * t220;
         let t481 = t221 * t446;
         let t482 = t5 * t161;
         let t483 = t482 - t481;
         let t484 = t480 + t483;
+        out[60] = t484;
+        out[96] = t484;
         let t485 = t6 * t158;
         let t486 = t7 * t446;
         let t487 = t485 + t486;
         let t488 = -t487;
+        out[132] = t488;
         let t489 = t218 * t445;
         let t490 = t157 * t219;
         let t491 = t166 * t213;
         let t492 = t490 + t491;
         let t493 = t489 + t492;
+        out[25] = t493;
         let t494 = t220 * t445;
         let t495 = t157 * t221;
         let t496 = t5 * t166;
         let t497 = t496 - t495;
         let t498 = t494 + t497;
+        out[61] = t498;
+        out[97] = t498;
         let t499 = t6 * t445;
         let t500 = t7 * t157;
         let t501 = t499 + t500;
         let t502 = -t501;
+        out[133] = t502;
         let t503 = t160 * t218;
         let t504 = t151 * t213;
         let t505 = t504 - t449;
         let t506 = t505 - t503;
+        out[26] = t506;
         let t507 = t160 * t220;
         let t508 = t5 * t151;
         let t509 = t454 + t508;
         let t510 = t509 - t507;
+        out[62] = t510;
+        out[98] = t510;
         let t511 = t6 * t160;
         let t512 = t459 + t511;
+        out[134] = t512;
         let t513 = t155 * t256;
         let t514 = t94 * t219;
         let t515 = t158 * t258;
@@ -2367,6 +2285,7 @@ impl Tx40 {
         let t519 = t516 + t517;
         let t520 = t515 + t519;
         let t521 = t520 - t518;
+        out[27] = t521;
         let t522 = t155 * t264;
         let t523 = t94 * t221;
         let t524 = t158 * t266;
@@ -2376,6 +2295,7 @@ impl Tx40 {
         let t528 = t525 - t526;
         let t529 = t528 - t524;
         let t530 = t527 + t529;
+        out[63] = t530;
         let t531 = t155 * t267;
         let t532 = t158 * t268;
         let t533 = t4 * t165;
@@ -2384,7 +2304,9 @@ impl Tx40 {
         let t536 = t523 + t525;
         let t537 = t535 * c0;
         let t538 = t536 - t537;
+        out[99] = t538;
         let t539 = t7 * t94;
+        out[135] = t539;
         let t540 = t94 * t218;
         let t541 = t157 * t256;
         let t542 = t159 * t258;
@@ -2394,6 +2316,7 @@ impl Tx40 {
         let t546 = t544 - t543;
         let t547 = t546 - t542;
         let t548 = t545 + t547;
+        out[28] = t548;
         let t549 = t94 * t220;
         let t550 = t157 * t264;
         let t551 = t159 * t266;
@@ -2403,6 +2326,7 @@ impl Tx40 {
         let t555 = t552 + t553;
         let t556 = t551 - t555;
         let t557 = t554 + t556;
+        out[64] = t557;
         let t558 = t157 * t267;
         let t559 = t159 * t268;
         let t560 = t4 * t162;
@@ -2411,12 +2335,16 @@ impl Tx40 {
         let t563 = t562 - t558;
         let t564 = t563 * c0;
         let t565 = t561 + t564;
+        out[100] = t565;
         let t566 = t6 * t94;
         let t567 = -t566;
+        out[136] = t567;
         let t568 = -t132;
+        out[172] = t568;
         let t569 = t202 - t198;
         let t570 = t194 - t202;
         let t571 = t198 - t194;
+        out[210] = t571;
         let t572 = t188 * t226;
         let t573 = t203 * t227;
         let t574 = t195 * t219;
@@ -2427,88 +2355,114 @@ impl Tx40 {
         let t579 = t195 * t221;
         let t580 = t579 - t578;
         let t581 = t580 - t577;
+        out[65] = t581;
+        out[101] = t581;
         let t582 = t188 * t234;
         let t583 = t203 * t235;
         let t584 = t7 * t195;
         let t585 = t583 + t584;
         let t586 = t582 + t585;
+        out[137] = t586;
         let t587 = t8 * t188;
         let t588 = t9 * t203;
         let t589 = t588 - t587;
+        out[173] = t589;
         let t590 = -t576;
+        out[29] = t590;
         let t591 = t204 * t226;
         let t592 = t201 * t227;
         let t593 = t219 * t571;
         let t594 = t592 - t593;
         let t595 = t594 - t591;
+        out[30] = t595;
         let t596 = t204 * t232;
         let t597 = t201 * t233;
         let t598 = t221 * t571;
         let t599 = t597 + t598;
         let t600 = t599 - t596;
+        out[66] = t600;
+        out[102] = t600;
         let t601 = t204 * t234;
         let t602 = t201 * t235;
         let t603 = t7 * t571;
         let t604 = t603 - t602;
         let t605 = t601 + t604;
+        out[138] = t605;
         let t606 = t8 * t204;
         let t607 = t9 * t201;
         let t608 = t606 + t607;
         let t609 = -t608;
+        out[174] = t609;
         let t610 = t197 * t226;
         let t611 = t227 * t570;
         let t612 = t200 * t219;
         let t613 = t611 + t612;
         let t614 = t613 - t610;
+        out[31] = t614;
         let t615 = t197 * t232;
         let t616 = t233 * t570;
         let t617 = t200 * t221;
         let t618 = t616 - t617;
         let t619 = t618 - t615;
+        out[67] = t619;
+        out[103] = t619;
         let t620 = t197 * t234;
         let t621 = t235 * t570;
         let t622 = t7 * t200;
         let t623 = t621 + t622;
         let t624 = t620 - t623;
+        out[139] = t624;
         let t625 = t8 * t197;
         let t626 = t9 * t570;
         let t627 = t625 + t626;
         let t628 = -t627;
+        out[175] = t628;
         let t629 = -t200;
+        out[211] = t629;
         let t630 = t226 * t569;
         let t631 = t196 * t227;
         let t632 = t205 * t219;
         let t633 = t631 - t632;
         let t634 = t633 - t630;
+        out[32] = t634;
         let t635 = t232 * t569;
         let t636 = t196 * t233;
         let t637 = t205 * t221;
         let t638 = t636 + t637;
         let t639 = t638 - t635;
+        out[68] = t639;
+        out[104] = t639;
         let t640 = t234 * t569;
         let t641 = t196 * t235;
         let t642 = t7 * t205;
         let t643 = t642 - t641;
         let t644 = t640 + t643;
+        out[140] = t644;
         let t645 = t8 * t569;
         let t646 = t9 * t196;
         let t647 = t645 + t646;
         let t648 = -t647;
+        out[176] = t648;
         let t649 = t199 * t226;
         let t650 = t190 * t219;
         let t651 = t573 - t650;
         let t652 = t651 - t649;
+        out[33] = t652;
         let t653 = t199 * t232;
         let t654 = t190 * t221;
         let t655 = t578 + t654;
         let t656 = t655 - t653;
+        out[69] = t656;
+        out[105] = t656;
         let t657 = t199 * t234;
         let t658 = t7 * t190;
         let t659 = t658 - t583;
         let t660 = t657 + t659;
+        out[141] = t660;
         let t661 = t8 * t199;
         let t662 = t588 + t661;
         let t663 = -t662;
+        out[177] = t663;
         let t664 = t194 * t273;
         let t665 = t133 * t227;
         let t666 = t197 * t274;
@@ -2518,6 +2472,7 @@ impl Tx40 {
         let t670 = t668 - t667;
         let t671 = t666 + t670;
         let t672 = t669 + t671;
+        out[34] = t672;
         let t673 = t194 * t279;
         let t674 = t133 * t233;
         let t675 = t197 * t280;
@@ -2527,6 +2482,7 @@ impl Tx40 {
         let t679 = t676 - t677;
         let t680 = t675 + t679;
         let t681 = t678 + t680;
+        out[70] = t681;
         let t682 = t194 * t285;
         let t683 = t197 * t286;
         let t684 = t204 * t268;
@@ -2535,11 +2491,14 @@ impl Tx40 {
         let t687 = t674 + t676;
         let t688 = t686 * c0;
         let t689 = t687 + t688;
+        out[106] = t689;
         let t690 = t133 * t235;
         let t691 = t7 * t172;
         let t692 = t691 - t690;
+        out[142] = t692;
         let t693 = t9 * t133;
         let t694 = -t693;
+        out[178] = t694;
         let t695 = t133 * t226;
         let t696 = t196 * t273;
         let t697 = t198 * t274;
@@ -2549,6 +2508,7 @@ impl Tx40 {
         let t701 = t698 + t699;
         let t702 = t697 + t701;
         let t703 = t700 - t702;
+        out[35] = t703;
         let t704 = t133 * t232;
         let t705 = t196 * t279;
         let t706 = t198 * t280;
@@ -2558,6 +2518,7 @@ impl Tx40 {
         let t710 = t707 + t708;
         let t711 = t710 - t706;
         let t712 = t709 + t711;
+        out[71] = t712;
         let t713 = t196 * t285;
         let t714 = t198 * t286;
         let t715 = t201 * t268;
@@ -2566,228 +2527,14 @@ impl Tx40 {
         let t718 = t717 - t713;
         let t719 = t718 * c0;
         let t720 = t716 + t719;
+        out[107] = t720;
         let t721 = t133 * t234;
         let t722 = t7 * t171;
         let t723 = t722 - t721;
+        out[143] = t723;
         let t724 = t8 * t133;
-        [
-            qdd1,
-            t292,
-            t296,
-            t299,
-            t302,
-            t304,
-            T::ZERO,
-            T::ZERO,
-            t313,
-            t316,
-            t319,
-            t323,
-            t325,
-            t333,
-            t348,
-            t362,
-            t371,
-            t379,
-            t392,
-            t399,
-            t409,
-            t431,
-            t452,
-            t466,
-            t479,
-            t493,
-            t506,
-            t521,
-            t548,
-            t590,
-            t595,
-            t614,
-            t634,
-            t652,
-            t672,
-            t703,
-            T::ZERO,
-            t22,
-            t289,
-            t26,
-            t30,
-            qdd2,
-            t305,
-            t306,
-            t72,
-            t309,
-            t320,
-            t82,
-            t67,
-            t339,
-            t353,
-            t365,
-            t374,
-            t382,
-            t391,
-            t398,
-            t417,
-            t439,
-            t457,
-            t471,
-            t484,
-            t498,
-            t510,
-            t530,
-            t557,
-            t581,
-            t600,
-            t619,
-            t639,
-            t656,
-            t681,
-            t712,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t72,
-            t309,
-            t320,
-            t82,
-            t67,
-            t340,
-            t354,
-            t365,
-            t374,
-            t382,
-            t391,
-            t398,
-            t421,
-            t443,
-            t457,
-            t471,
-            t484,
-            t498,
-            t510,
-            t538,
-            t565,
-            t581,
-            t600,
-            t619,
-            t639,
-            t656,
-            t689,
-            t720,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t366,
-            t357,
-            t383,
-            t127,
-            t112,
-            t94,
-            t444,
-            t461,
-            t474,
-            t488,
-            t502,
-            t512,
-            t539,
-            t567,
-            t586,
-            t605,
-            t624,
-            t644,
-            t660,
-            t692,
-            t723,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t156,
-            t447,
-            t161,
-            t166,
-            t151,
-            t133,
-            t568,
-            t589,
-            t609,
-            t628,
-            t648,
-            t663,
-            t694,
-            t724,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t195,
-            t571,
-            t629,
-            t205,
-            t190,
-            t172,
-            t171,
-        ]
+        out[179] = t724;
+        out
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
@@ -3341,6 +3088,8 @@ impl Tx40 {
         XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let c0 = T::from_f64(0.035);
         let c1 = T::from_f64(0.225);
+        let mut out = [T::ZERO; 36];
+        out[35] = ZZ6;
         let (t1, t0) = q2.sin_cos();
         let (t3, t2) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -3417,6 +3166,8 @@ impl Tx40 {
         let t78 = t64 - t73;
         let t79 = t74 - t67;
         let t80 = t72 + t77;
+        out[5] = t80;
+        out[30] = t80;
         let t81 = t28 * MYR5;
         let t82 = t28 * MX5;
         let t83 = t42 * MX5;
@@ -3461,6 +3212,8 @@ impl Tx40 {
         let t122 = t104 + t117;
         let t123 = t105 - t80;
         let t124 = t106 - t118;
+        out[4] = t124;
+        out[24] = t124;
         let t125 = t14 * MYR4;
         let t126 = t14 * MX4;
         let t127 = t28 * MX4;
@@ -3507,6 +3260,8 @@ impl Tx40 {
         let t168 = t149 + t163;
         let t169 = t124 + t151;
         let t170 = t152 - t164;
+        out[3] = t170;
+        out[18] = t170;
         let t171 = t14 * MX3;
         let t172 = t15 * MYR3;
         let t173 = t171 + t172;
@@ -3548,6 +3303,8 @@ impl Tx40 {
         let t209 = t191 + t203;
         let t210 = t196 * c1;
         let t211 = t209 + t210;
+        out[2] = t211;
+        out[12] = t211;
         let t212 = t0 * XXR2;
         let t213 = t1 * XY2;
         let t214 = t212 - t213;
@@ -3578,10 +3335,13 @@ impl Tx40 {
         let t239 = t211 + t218;
         let t240 = t224 * c1;
         let t241 = t239 + t240;
+        out[1] = t241;
+        out[6] = t241;
         let t242 = t0 * t236;
         let t243 = t1 * t238;
         let t244 = t243 - t242;
         let t245 = ZZR1 - t244;
+        out[0] = t245;
         let t246 = t2 * c1;
         let t247 = t246 + c1;
         let t248 = t5 * t247;
@@ -3634,6 +3394,8 @@ impl Tx40 {
         let t295 = t281 + t290;
         let t296 = t284 - t291;
         let t297 = t289 + t294;
+        out[11] = t297;
+        out[31] = t297;
         let t298 = t5 * MYR5;
         let t299 = t5 * MX5;
         let t300 = t259 * MX5;
@@ -3678,6 +3440,8 @@ impl Tx40 {
         let t339 = t321 + t334;
         let t340 = t322 - t297;
         let t341 = t323 - t335;
+        out[10] = t341;
+        out[25] = t341;
         let t342 = t5 * MX4;
         let t343 = t4 * MYR4;
         let t344 = t343 - t342;
@@ -3714,6 +3478,8 @@ impl Tx40 {
         let t375 = t358 + t372;
         let t376 = t341 + t360;
         let t377 = t361 - t373;
+        out[9] = t377;
+        out[19] = t377;
         let t378 = t3 * MX3;
         let t379 = t2 * MYR3;
         let t380 = t378 + t379;
@@ -3730,12 +3496,15 @@ impl Tx40 {
         let t391 = t382 + t388;
         let t392 = t385 * c1;
         let t393 = t391 + t392;
+        out[8] = t393;
+        out[13] = t393;
         let t394 = t2 * t389;
         let t395 = t3 * t390;
         let t396 = t394 - t395;
         let t397 = t393 + ZZR2;
         let t398 = t396 * c1;
         let t399 = t397 + t398;
+        out[7] = t399;
         let t400 = t5 * t7;
         let t401 = t5 * t6;
         let t402 = t9 * t400;
@@ -3755,6 +3524,8 @@ impl Tx40 {
         let t416 = t284 - t415;
         let t417 = t412 * c1;
         let t418 = t289 + t417;
+        out[17] = t418;
+        out[32] = t418;
         let t419 = t4 * MYR5;
         let t420 = t4 * MX5;
         let t421 = t401 * MX5;
@@ -3775,6 +3546,8 @@ impl Tx40 {
         let t436 = t425 + t434;
         let t437 = t427 - t418;
         let t438 = t429 - t435;
+        out[16] = t438;
+        out[26] = t438;
         let t439 = t4 * MX4;
         let t440 = t5 * MYR4;
         let t441 = t439 + t440;
@@ -3789,11 +3562,14 @@ impl Tx40 {
         let t450 = t347 + t448;
         let t451 = t348 + t438;
         let t452 = t443 - t449;
+        out[15] = t452;
+        out[20] = t452;
         let t453 = t4 * t450;
         let t454 = t5 * t451;
         let t455 = t453 + t454;
         let t456 = t455 + ZZR3;
         let t457 = t392 + t456;
+        out[14] = t457;
         let t458 = t6 * t9;
         let t459 = t6 * t8;
         let t460 = t458 * XXR6;
@@ -3809,6 +3585,8 @@ impl Tx40 {
         let t470 = t459 * YZ6;
         let t471 = t469 - t470;
         let t472 = t468 + t471;
+        out[23] = t472;
+        out[33] = t472;
         let t473 = t6 * XXR5;
         let t474 = t7 * XY5;
         let t475 = t473 + t474;
@@ -3829,7 +3607,10 @@ impl Tx40 {
         let t490 = t7 * t487;
         let t491 = t489 - t490;
         let t492 = ZZR4 - t491;
+        out[21] = t492;
         let t493 = -t488;
+        out[22] = t493;
+        out[27] = t493;
         let t494 = t8 * XXR6;
         let t495 = t9 * XY6;
         let t496 = t494 + t495;
@@ -3841,52 +3622,18 @@ impl Tx40 {
         let t502 = t9 * t497;
         let t503 = t501 + t502;
         let t504 = t503 + ZZR5;
+        out[28] = t504;
         let t505 = -t500;
-        [
-            t245,
-            t241,
-            t211,
-            t170,
-            t124,
-            t80,
-            t241,
-            t399,
-            t393,
-            t377,
-            t341,
-            t297,
-            t211,
-            t393,
-            t457,
-            t452,
-            t438,
-            t418,
-            t170,
-            t377,
-            t452,
-            t492,
-            t493,
-            t472,
-            t124,
-            t341,
-            t438,
-            t493,
-            t504,
-            t505,
-            t80,
-            t297,
-            t418,
-            t472,
-            t505,
-            ZZ6,
-        ]
+        out[29] = t505;
+        out[34] = t505;
+        out
     }
     /// Gravity torques g(q).
     ///
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
     ///
-    /// Operations: 54 mul, 28 add, 1 neg, 5 sin, 5 cos.
+    /// Operations: 54 mul, 28 add, 0 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
@@ -3896,7 +3643,8 @@ impl Tx40 {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MX3, MYR3, _, _, _, _, _, MX4,
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
-        let c0 = T::from_f64(9.81);
+        let c0 = T::from_f64(-9.81);
+        let c1 = T::from_f64(9.81);
         let (t1, t0) = q2.sin_cos();
         let (t3, t2) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -3979,13 +3727,12 @@ impl Tx40 {
         let t84 = t1 * t81;
         let t85 = t84 - t83;
         let t86 = t85 * c0;
-        let t87 = -t86;
-        let t88 = t82 * c0;
-        let t89 = t72 * c0;
-        let t90 = t62 * c0;
-        let t91 = t48 * c0;
-        let t92 = t34 * c0;
-        [t87, t88, t89, t90, t91, t92]
+        let t87 = t82 * c1;
+        let t88 = t72 * c1;
+        let t89 = t62 * c1;
+        let t90 = t48 * c1;
+        let t91 = t34 * c1;
+        [t86, t87, t88, t89, t90, t91]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
@@ -4500,15 +4247,44 @@ impl Tx40 {
         let c3 = T::from_f64(0.07);
         let c4 = T::from_f64(0.007875);
         let c5 = T::from_f64(0.05185);
+        let mut out = [T::ZERO; 36];
+        out[2] = XY2;
+        out[4] = YZ2;
+        out[7] = MY2;
+        out[9] = XY3;
+        out[10] = XZ3;
+        out[11] = YZ3;
+        out[13] = MX3;
+        out[16] = XY4;
+        out[17] = XZ4;
+        out[18] = YZ4;
+        out[20] = MX4;
+        out[23] = XY5;
+        out[24] = XZ5;
+        out[25] = YZ5;
+        out[27] = MX5;
+        out[30] = XY6;
+        out[31] = XZ6;
+        out[32] = YZ6;
+        out[33] = ZZ6;
+        out[34] = MX6;
+        out[35] = MY6;
         let t0 = XX6 - YY6;
+        out[29] = t0;
         let t1 = ZZ5 + YY6;
+        out[26] = t1;
         let t2 = MY5 - MZ6;
+        out[28] = t2;
         let t3 = YY6 - YY5;
         let t4 = t3 + XX5;
+        out[22] = t4;
         let t5 = ZZ4 + YY5;
+        out[19] = t5;
         let t6 = MY4 + MZ5;
+        out[21] = t6;
         let t7 = YY5 - YY4;
         let t8 = t7 + XX4;
+        out[15] = t8;
         let t9 = MZ4 * c0;
         let t10 = M5 + M6;
         let t11 = t10 + M4;
@@ -4516,67 +4292,38 @@ impl Tx40 {
         let t13 = ZZ3 + YY4;
         let t14 = t9 + t12;
         let t15 = t13 + t14;
+        out[12] = t15;
         let t16 = t11 * c2;
         let t17 = t16 + MZ4;
         let t18 = MY3 - t17;
+        out[14] = t18;
         let t19 = XX3 + YY4;
         let t20 = t14 - YY3;
         let t21 = t19 + t20;
+        out[8] = t21;
         let t22 = MZ3 * c3;
         let t23 = MZ3 * c2;
         let t24 = t11 + M3;
         let t25 = t24 * c4;
         let t26 = t23 + t25;
         let t27 = XZ2 - t26;
+        out[3] = t27;
         let t28 = t24 * c1;
         let t29 = t28 + ZZ2;
+        out[5] = t29;
         let t30 = t24 * c2;
         let t31 = t30 + MX2;
+        out[6] = t31;
         let t32 = t28 + YY2;
         let t33 = XX2 - t32;
+        out[1] = t33;
         let t34 = t24 * c5;
         let t35 = ZZ1 + YY2;
         let t36 = t22 + t34;
         let t37 = t36 + YY3;
         let t38 = t35 + t37;
-        [
-            t38,
-            t33,
-            XY2,
-            t27,
-            YZ2,
-            t29,
-            t31,
-            MY2,
-            t21,
-            XY3,
-            XZ3,
-            YZ3,
-            t15,
-            MX3,
-            t18,
-            t8,
-            XY4,
-            XZ4,
-            YZ4,
-            t5,
-            MX4,
-            t6,
-            t4,
-            XY5,
-            XZ5,
-            YZ5,
-            t1,
-            MX5,
-            t2,
-            t0,
-            XY6,
-            XZ6,
-            YZ6,
-            ZZ6,
-            MX6,
-            MY6,
-        ]
+        out[0] = t38;
+        out
     }
 }
 impl ::robid_runtime::Model for Tx40 {

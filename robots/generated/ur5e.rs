@@ -185,11 +185,17 @@ impl Ur5e {
         let c10 = T::from_f64(0.166685);
         let c11 = T::from_f64(0.33337);
         let c12 = T::from_f64(0.15382084);
+        let mut out = [T::ZERO; 360];
+        out[5] = qdd1;
+        out[75] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let t2 = t0 * qdd1;
+        out[72] = t2;
         let t3 = t1 * qdd1;
+        out[74] = t3;
         let t4 = t0 * c0;
         let t5 = t1 * c0;
+        out[76] = t5;
         let t6 = qd1 * qd2;
         let t7 = t1 * t6;
         let t8 = t0 * t6;
@@ -214,6 +220,7 @@ impl Ur5e {
         let t28 = qd2 * qd2;
         let t29 = t0 * t1;
         let t30 = t25 * t29;
+        out[73] = t30;
         let t31 = t3 * c1;
         let t32 = t27 + t28;
         let t33 = t32 * c1;
@@ -229,6 +236,7 @@ impl Ur5e {
         let t43 = t11 * t34;
         let t44 = t12 * t37;
         let t45 = t44 - t43;
+        out[146] = t45;
         let t46 = t20 * qd3;
         let t47 = t17 * qd3;
         let t48 = qd2 + qd3;
@@ -237,6 +245,8 @@ impl Ur5e {
         let t51 = t24 - t47;
         let t52 = t51 - t23;
         let t53 = qdd2 + qdd3;
+        out[85] = t53;
+        out[145] = t53;
         let (t54, t55) = q4.sin_cos();
         let t56 = t17 * t55;
         let t57 = t20 * t54;
@@ -279,6 +289,7 @@ impl Ur5e {
         let t94 = t54 * t80;
         let t95 = t55 * t86;
         let t96 = t95 - t94;
+        out[216] = t96;
         let t97 = t61 * qd4;
         let t98 = t58 * qd4;
         let t99 = t48 + qd4;
@@ -287,6 +298,9 @@ impl Ur5e {
         let t102 = t65 - t98;
         let t103 = t102 - t64;
         let t104 = t53 + qdd4;
+        out[95] = t104;
+        out[155] = t104;
+        out[215] = t104;
         let (t105, t106) = q5.sin_cos();
         let t107 = t58 * t106;
         let t108 = t99 * t105;
@@ -318,6 +332,7 @@ impl Ur5e {
         let t134 = t105 * t125;
         let t135 = t106 * t130;
         let t136 = t135 - t134;
+        out[286] = t136;
         let t137 = t112 * qd5;
         let t138 = t109 * qd5;
         let t139 = qd5 - t61;
@@ -326,6 +341,7 @@ impl Ur5e {
         let t142 = t116 - t138;
         let t143 = t142 - t115;
         let t144 = qdd5 - t103;
+        out[285] = t144;
         let (t145, t146) = q6.sin_cos();
         let t147 = t109 * t146;
         let t148 = t139 * t145;
@@ -365,12 +381,15 @@ impl Ur5e {
         let t182 = t156 + t178;
         let t183 = t155 + t182;
         let t184 = t143 + qdd6;
+        out[355] = t184;
         let t185 = t0 * t0;
         let t186 = t0 * t9;
         let t187 = t1 * t8;
         let t188 = t186 + t187;
+        out[10] = t188;
         let t189 = t25 * t185;
         let t190 = t189 - t27;
+        out[71] = t190;
         let t191 = t8 * c7;
         let t192 = t3 - t191;
         let t193 = t7 * c7;
@@ -378,17 +397,22 @@ impl Ur5e {
         let t195 = t0 * t192;
         let t196 = t1 * t194;
         let t197 = t195 + t196;
+        out[11] = t197;
         let t198 = t28 - t189;
         let t199 = t0 * t35;
         let t200 = t1 * t198;
         let t201 = t199 + t200;
+        out[12] = t201;
         let t202 = t27 - t28;
         let t203 = qdd2 - t30;
         let t204 = t0 * t202;
         let t205 = t1 * t203;
         let t206 = t204 + t205;
+        out[14] = t206;
         let t207 = t17 * t48;
         let t208 = t17 * t20;
+        out[83] = t208;
+        out[143] = t208;
         let t209 = t12 * t50;
         let t210 = t11 * t17;
         let t211 = t48 * t210;
@@ -400,10 +424,13 @@ impl Ur5e {
         let t217 = t0 * t212;
         let t218 = t1 * t216;
         let t219 = t217 + t218;
+        out[20] = t219;
         let t220 = t20 * t48;
         let t221 = t17 * t17;
         let t222 = t20 * t20;
         let t223 = t221 - t222;
+        out[81] = t223;
+        out[141] = t223;
         let t224 = t52 - t207;
         let t225 = t50 + t220;
         let t226 = t12 * t224;
@@ -415,10 +442,13 @@ impl Ur5e {
         let t232 = t0 * t228;
         let t233 = t1 * t231;
         let t234 = t232 + t233;
+        out[21] = t234;
         let t235 = t48 * t48;
         let t236 = t235 - t221;
         let t237 = t53 + t208;
         let t238 = t50 - t220;
+        out[82] = t238;
+        out[142] = t238;
         let t239 = t12 * t237;
         let t240 = t11 * t236;
         let t241 = t239 - t240;
@@ -428,9 +458,12 @@ impl Ur5e {
         let t245 = t0 * t241;
         let t246 = t1 * t244;
         let t247 = t245 + t246;
+        out[22] = t247;
         let t248 = t222 - t235;
         let t249 = t53 - t208;
         let t250 = t52 + t207;
+        out[84] = t250;
+        out[144] = t250;
         let t251 = t12 * t248;
         let t252 = t11 * t249;
         let t253 = t251 - t252;
@@ -440,6 +473,7 @@ impl Ur5e {
         let t257 = t0 * t253;
         let t258 = t1 * t256;
         let t259 = t257 + t258;
+        out[24] = t259;
         let t260 = t12 * t20;
         let t261 = t48 * t260;
         let t262 = t211 + t261;
@@ -449,6 +483,7 @@ impl Ur5e {
         let t266 = t0 * t262;
         let t267 = t1 * t265;
         let t268 = t266 + t267;
+        out[25] = t268;
         let t269 = t222 + t235;
         let t270 = t12 * t39;
         let t271 = t11 * t269;
@@ -457,10 +492,12 @@ impl Ur5e {
         let t274 = t271 - t239;
         let t275 = t274 * c1;
         let t276 = t45 + t275;
+        out[86] = t276;
         let t277 = t0 * t11;
         let t278 = t39 * t277;
         let t279 = t1 * t273;
         let t280 = t278 - t279;
+        out[26] = t280;
         let t281 = t221 + t235;
         let t282 = t11 * t39;
         let t283 = t12 * t281;
@@ -469,12 +506,17 @@ impl Ur5e {
         let t286 = t252 + t283;
         let t287 = t286 * c1;
         let t288 = t287 - t42;
+        out[87] = t288;
         let t289 = t0 * t12;
         let t290 = t39 * t289;
         let t291 = t1 * t285;
         let t292 = t290 + t291;
+        out[27] = t292;
         let t293 = t58 * t99;
         let t294 = t58 * t61;
+        out[93] = t294;
+        out[153] = t294;
+        out[213] = t294;
         let t295 = t55 * t101;
         let t296 = t54 * t58;
         let t297 = t99 * t296;
@@ -492,10 +534,14 @@ impl Ur5e {
         let t309 = t0 * t305;
         let t310 = t1 * t308;
         let t311 = t309 + t310;
+        out[30] = t311;
         let t312 = t61 * t99;
         let t313 = t58 * t58;
         let t314 = t61 * t61;
         let t315 = t313 - t314;
+        out[91] = t315;
+        out[151] = t315;
+        out[211] = t315;
         let t316 = t103 - t293;
         let t317 = t101 + t312;
         let t318 = t55 * t316;
@@ -513,10 +559,14 @@ impl Ur5e {
         let t330 = t0 * t326;
         let t331 = t1 * t329;
         let t332 = t330 + t331;
+        out[31] = t332;
         let t333 = t99 * t99;
         let t334 = t333 - t313;
         let t335 = t104 + t294;
         let t336 = t101 - t312;
+        out[92] = t336;
+        out[152] = t336;
+        out[212] = t336;
         let t337 = t55 * t335;
         let t338 = t54 * t334;
         let t339 = t337 - t338;
@@ -532,9 +582,13 @@ impl Ur5e {
         let t349 = t0 * t345;
         let t350 = t1 * t348;
         let t351 = t349 + t350;
+        out[32] = t351;
         let t352 = t314 - t333;
         let t353 = t104 - t294;
         let t354 = t103 + t293;
+        out[94] = t354;
+        out[154] = t354;
+        out[214] = t354;
         let t355 = t55 * t352;
         let t356 = t54 * t353;
         let t357 = t355 - t356;
@@ -550,6 +604,7 @@ impl Ur5e {
         let t367 = t0 * t363;
         let t368 = t1 * t366;
         let t369 = t367 + t368;
+        out[34] = t369;
         let t370 = t55 * t61;
         let t371 = t99 * t370;
         let t372 = t297 + t371;
@@ -565,6 +620,7 @@ impl Ur5e {
         let t382 = t0 * t378;
         let t383 = t1 * t381;
         let t384 = t382 + t383;
+        out[35] = t384;
         let t385 = t314 + t333;
         let t386 = t55 * t385;
         let t387 = t340 + t386;
@@ -580,6 +636,7 @@ impl Ur5e {
         let t397 = t391 + t396;
         let t398 = t389 * c4;
         let t399 = t96 - t398;
+        out[156] = t399;
         let t400 = t12 * t393;
         let t401 = t11 * t397;
         let t402 = t400 + t401;
@@ -593,9 +650,11 @@ impl Ur5e {
         let t410 = t405 - t406;
         let t411 = t410 * c1;
         let t412 = t399 + t411;
+        out[96] = t412;
         let t413 = t0 * t402;
         let t414 = t1 * t409;
         let t415 = t413 + t414;
+        out[36] = t415;
         let t416 = t313 + t333;
         let t417 = t54 * t416;
         let t418 = t417 - t359;
@@ -609,6 +668,7 @@ impl Ur5e {
         let t426 = t390 + t425;
         let t427 = t420 * c4;
         let t428 = t427 - t93;
+        out[157] = t428;
         let t429 = t12 * t422;
         let t430 = t11 * t426;
         let t431 = t429 - t430;
@@ -622,11 +682,14 @@ impl Ur5e {
         let t439 = t435 - t434;
         let t440 = t439 * c1;
         let t441 = t428 + t440;
+        out[97] = t441;
         let t442 = t0 * t431;
         let t443 = t1 * t438;
         let t444 = t442 + t443;
+        out[37] = t444;
         let t445 = t109 * t139;
         let t446 = t109 * t112;
+        out[283] = t446;
         let t447 = t106 * t141;
         let t448 = t105 * t109;
         let t449 = t139 * t448;
@@ -635,6 +698,9 @@ impl Ur5e {
         let t452 = t106 * t109;
         let t453 = t139 * t452;
         let t454 = t451 + t453;
+        out[100] = t454;
+        out[160] = t454;
+        out[220] = t454;
         let t455 = t55 * t450;
         let t456 = t54 * t109;
         let t457 = t112 * t456;
@@ -652,10 +718,12 @@ impl Ur5e {
         let t469 = t0 * t465;
         let t470 = t1 * t468;
         let t471 = t469 + t470;
+        out[40] = t471;
         let t472 = t112 * t139;
         let t473 = t109 * t109;
         let t474 = t112 * t112;
         let t475 = t473 - t474;
+        out[281] = t475;
         let t476 = t143 - t445;
         let t477 = t141 + t472;
         let t478 = t106 * t476;
@@ -664,6 +732,9 @@ impl Ur5e {
         let t481 = t105 * t476;
         let t482 = t106 * t477;
         let t483 = t481 + t482;
+        out[101] = t483;
+        out[161] = t483;
+        out[221] = t483;
         let t484 = t55 * t480;
         let t485 = t54 * t475;
         let t486 = t484 + t485;
@@ -679,16 +750,21 @@ impl Ur5e {
         let t496 = t0 * t492;
         let t497 = t1 * t495;
         let t498 = t496 + t497;
+        out[41] = t498;
         let t499 = t139 * t139;
         let t500 = t499 - t473;
         let t501 = t144 + t446;
         let t502 = t141 - t472;
+        out[282] = t502;
         let t503 = t106 * t501;
         let t504 = t105 * t500;
         let t505 = t503 - t504;
         let t506 = t105 * t501;
         let t507 = t106 * t500;
         let t508 = t506 + t507;
+        out[102] = t508;
+        out[162] = t508;
+        out[222] = t508;
         let t509 = t55 * t505;
         let t510 = t54 * t502;
         let t511 = t509 + t510;
@@ -704,15 +780,20 @@ impl Ur5e {
         let t521 = t0 * t517;
         let t522 = t1 * t520;
         let t523 = t521 + t522;
+        out[42] = t523;
         let t524 = t474 - t499;
         let t525 = t144 - t446;
         let t526 = t143 + t445;
+        out[284] = t526;
         let t527 = t106 * t524;
         let t528 = t105 * t525;
         let t529 = t527 - t528;
         let t530 = t105 * t524;
         let t531 = t106 * t525;
         let t532 = t530 + t531;
+        out[104] = t532;
+        out[164] = t532;
+        out[224] = t532;
         let t533 = t55 * t529;
         let t534 = t54 * t526;
         let t535 = t533 + t534;
@@ -728,12 +809,16 @@ impl Ur5e {
         let t545 = t0 * t541;
         let t546 = t1 * t544;
         let t547 = t545 + t546;
+        out[44] = t547;
         let t548 = t106 * t112;
         let t549 = t139 * t548;
         let t550 = t449 + t549;
         let t551 = t105 * t112;
         let t552 = t139 * t551;
         let t553 = t552 - t453;
+        out[105] = t553;
+        out[165] = t553;
+        out[225] = t553;
         let t554 = t55 * t550;
         let t555 = t54 * t144;
         let t556 = t554 + t555;
@@ -749,6 +834,7 @@ impl Ur5e {
         let t566 = t0 * t562;
         let t567 = t1 * t565;
         let t568 = t566 + t567;
+        out[45] = t568;
         let t569 = t474 + t499;
         let t570 = t106 * t569;
         let t571 = t506 + t570;
@@ -760,6 +846,7 @@ impl Ur5e {
         let t577 = t576 - t572;
         let t578 = t571 * c5;
         let t579 = t573 - t578;
+        out[226] = t579;
         let t580 = t55 * t571;
         let t581 = t54 * t476;
         let t582 = t580 + t581;
@@ -780,6 +867,7 @@ impl Ur5e {
         let t597 = t595 - t596;
         let t598 = t585 * c4;
         let t599 = t579 - t598;
+        out[166] = t599;
         let t600 = t12 * t592;
         let t601 = t11 * t597;
         let t602 = t600 - t601;
@@ -793,9 +881,11 @@ impl Ur5e {
         let t610 = t605 - t606;
         let t611 = t610 * c1;
         let t612 = t599 + t611;
+        out[106] = t612;
         let t613 = t0 * t602;
         let t614 = t1 * t609;
         let t615 = t613 + t614;
+        out[46] = t615;
         let t616 = t473 + t499;
         let t617 = t105 * t616;
         let t618 = t617 - t531;
@@ -805,6 +895,7 @@ impl Ur5e {
         let t622 = t621 - t573;
         let t623 = t618 * c5;
         let t624 = t623 - t572;
+        out[227] = t624;
         let t625 = t55 * t618;
         let t626 = t54 * t477;
         let t627 = t625 + t626;
@@ -825,6 +916,7 @@ impl Ur5e {
         let t642 = t640 + t641;
         let t643 = t630 * c4;
         let t644 = t624 - t643;
+        out[167] = t644;
         let t645 = t12 * t637;
         let t646 = t11 * t642;
         let t647 = t645 - t646;
@@ -838,11 +930,14 @@ impl Ur5e {
         let t655 = t650 + t651;
         let t656 = t655 * c1;
         let t657 = t644 - t656;
+        out[107] = t657;
         let t658 = t0 * t647;
         let t659 = t1 * t654;
         let t660 = t658 + t659;
+        out[47] = t660;
         let t661 = t149 * t179;
         let t662 = t149 * t152;
+        out[350] = t662;
         let t663 = t146 * t181;
         let t664 = t145 * t149;
         let t665 = t179 * t664;
@@ -859,6 +954,9 @@ impl Ur5e {
         let t676 = t106 * t149;
         let t677 = t152 * t676;
         let t678 = t675 + t677;
+        out[110] = t678;
+        out[170] = t678;
+        out[230] = t678;
         let t679 = t55 * t674;
         let t680 = t54 * t670;
         let t681 = t679 - t680;
@@ -874,10 +972,12 @@ impl Ur5e {
         let t691 = t0 * t687;
         let t692 = t1 * t690;
         let t693 = t691 + t692;
+        out[50] = t693;
         let t694 = t152 * t179;
         let t695 = t149 * t149;
         let t696 = t152 * t152;
         let t697 = t695 - t696;
+        out[351] = t697;
         let t698 = t183 + t661;
         let t699 = t181 - t694;
         let t700 = t146 * t698;
@@ -886,12 +986,16 @@ impl Ur5e {
         let t703 = t145 * t698;
         let t704 = t146 * t699;
         let t705 = t703 - t704;
+        out[291] = t705;
         let t706 = t106 * t702;
         let t707 = t105 * t697;
         let t708 = t706 + t707;
         let t709 = t105 * t702;
         let t710 = t106 * t697;
         let t711 = t710 - t709;
+        out[111] = t711;
+        out[171] = t711;
+        out[231] = t711;
         let t712 = t55 * t708;
         let t713 = t54 * t705;
         let t714 = t713 - t712;
@@ -907,10 +1011,12 @@ impl Ur5e {
         let t724 = t0 * t720;
         let t725 = t1 * t723;
         let t726 = t724 + t725;
+        out[51] = t726;
         let t727 = t179 * t179;
         let t728 = t727 - t695;
         let t729 = t184 - t662;
         let t730 = t181 + t694;
+        out[352] = t730;
         let t731 = t146 * t729;
         let t732 = t145 * t728;
         let t733 = t731 - t732;
@@ -923,6 +1029,9 @@ impl Ur5e {
         let t740 = t105 * t733;
         let t741 = t106 * t730;
         let t742 = t740 + t741;
+        out[112] = t742;
+        out[172] = t742;
+        out[232] = t742;
         let t743 = t55 * t739;
         let t744 = t54 * t736;
         let t745 = t743 - t744;
@@ -938,9 +1047,11 @@ impl Ur5e {
         let t755 = t0 * t751;
         let t756 = t1 * t754;
         let t757 = t755 + t756;
+        out[52] = t757;
         let t758 = t696 - t727;
         let t759 = t184 + t662;
         let t760 = t661 - t183;
+        out[354] = t760;
         let t761 = t146 * t758;
         let t762 = t145 * t759;
         let t763 = t761 - t762;
@@ -953,6 +1064,9 @@ impl Ur5e {
         let t770 = t105 * t763;
         let t771 = t106 * t760;
         let t772 = t770 + t771;
+        out[114] = t772;
+        out[174] = t772;
+        out[234] = t772;
         let t773 = t55 * t769;
         let t774 = t54 * t766;
         let t775 = t773 - t774;
@@ -968,18 +1082,23 @@ impl Ur5e {
         let t785 = t0 * t781;
         let t786 = t1 * t784;
         let t787 = t785 + t786;
+        out[54] = t787;
         let t788 = t146 * t152;
         let t789 = t179 * t788;
         let t790 = t665 - t789;
         let t791 = t145 * t152;
         let t792 = t179 * t791;
         let t793 = t669 + t792;
+        out[295] = t793;
         let t794 = t106 * t790;
         let t795 = t105 * t184;
         let t796 = t794 - t795;
         let t797 = t105 * t790;
         let t798 = t106 * t184;
         let t799 = t797 + t798;
+        out[115] = t799;
+        out[175] = t799;
+        out[235] = t799;
         let t800 = t55 * t796;
         let t801 = t54 * t793;
         let t802 = t800 + t801;
@@ -995,6 +1114,7 @@ impl Ur5e {
         let t812 = t0 * t808;
         let t813 = t1 * t811;
         let t814 = t812 + t813;
+        out[55] = t814;
         let t815 = t696 + t727;
         let t816 = t146 * t815;
         let t817 = t734 + t816;
@@ -1006,6 +1126,7 @@ impl Ur5e {
         let t823 = t819 + t822;
         let t824 = t817 * c6;
         let t825 = t820 + t824;
+        out[296] = t825;
         let t826 = t106 * t817;
         let t827 = t105 * t698;
         let t828 = t826 + t827;
@@ -1022,6 +1143,7 @@ impl Ur5e {
         let t839 = t828 * c5;
         let t840 = t832 + t839;
         let t841 = t831 - t840;
+        out[236] = t841;
         let t842 = t55 * t828;
         let t843 = t54 * t821;
         let t844 = t843 - t842;
@@ -1042,6 +1164,7 @@ impl Ur5e {
         let t859 = t857 + t858;
         let t860 = t847 * c4;
         let t861 = t841 + t860;
+        out[176] = t861;
         let t862 = t12 * t854;
         let t863 = t11 * t859;
         let t864 = t862 - t863;
@@ -1055,9 +1178,11 @@ impl Ur5e {
         let t872 = t868 - t867;
         let t873 = t872 * c1;
         let t874 = t861 + t873;
+        out[116] = t874;
         let t875 = t0 * t864;
         let t876 = t1 * t871;
         let t877 = t875 + t876;
+        out[56] = t877;
         let t878 = t695 + t727;
         let t879 = t145 * t878;
         let t880 = t879 - t765;
@@ -1083,6 +1208,7 @@ impl Ur5e {
         let t900 = t889 * c5;
         let t901 = t900 - t893;
         let t902 = t892 + t901;
+        out[237] = t902;
         let t903 = t55 * t889;
         let t904 = t54 * t882;
         let t905 = t903 + t904;
@@ -1103,6 +1229,7 @@ impl Ur5e {
         let t920 = t918 + t919;
         let t921 = t908 * c4;
         let t922 = t902 - t921;
+        out[177] = t922;
         let t923 = t12 * t915;
         let t924 = t11 * t920;
         let t925 = t923 - t924;
@@ -1116,11 +1243,14 @@ impl Ur5e {
         let t933 = t928 + t929;
         let t934 = t933 * c1;
         let t935 = t922 - t934;
+        out[117] = t935;
         let t936 = t0 * t925;
         let t937 = t1 * t932;
         let t938 = t936 + t937;
+        out[57] = t938;
         let t939 = t1 * t10;
         let t940 = t939 - t187;
+        out[13] = t940;
         let t941 = t11 * t52;
         let t942 = t261 + t941;
         let t943 = t12 * t52;
@@ -1128,6 +1258,7 @@ impl Ur5e {
         let t945 = t0 * t942;
         let t946 = t1 * t944;
         let t947 = t946 - t945;
+        out[23] = t947;
         let t948 = t12 * t45;
         let t949 = t11 * t42;
         let t950 = t948 + t949;
@@ -1137,6 +1268,7 @@ impl Ur5e {
         let t954 = t12 * t238;
         let t955 = t954 - t953;
         let t956 = t955 * c1;
+        out[88] = t956;
         let t957 = t221 + t222;
         let t958 = t957 * c1;
         let t959 = t952 - t958;
@@ -1144,11 +1276,13 @@ impl Ur5e {
         let t961 = t0 * t950;
         let t962 = t1 * t960;
         let t963 = t962 - t961;
+        out[28] = t963;
         let t964 = t3 * c8;
         let t965 = t8 * c9;
         let t966 = t964 - t965;
         let t967 = t950 * c1;
         let t968 = t1 * t966;
+        out[29] = t968;
         let t969 = t54 * t103;
         let t970 = t371 + t969;
         let t971 = t55 * t103;
@@ -1162,6 +1296,7 @@ impl Ur5e {
         let t979 = t0 * t975;
         let t980 = t1 * t978;
         let t981 = t980 - t979;
+        out[33] = t981;
         let t982 = t55 * t354;
         let t983 = t54 * t336;
         let t984 = t982 + t983;
@@ -1198,6 +1333,7 @@ impl Ur5e {
         let t1015 = t0 * t1004;
         let t1016 = t1 * t1011;
         let t1017 = t1016 - t1015;
+        out[38] = t1017;
         let t1018 = t988 + t989;
         let t1019 = t1018 * c3;
         let t1020 = t3 * c10;
@@ -1230,10 +1366,14 @@ impl Ur5e {
         let t1047 = t0 * t1033;
         let t1048 = t1 * t1043;
         let t1049 = t1048 - t1047;
+        out[39] = t1049;
         let t1050 = t105 * t143;
         let t1051 = t549 + t1050;
         let t1052 = t106 * t143;
         let t1053 = t1052 - t552;
+        out[103] = t1053;
+        out[163] = t1053;
+        out[223] = t1053;
         let t1054 = t55 * t1051;
         let t1055 = t457 - t1054;
         let t1056 = t54 * t1051;
@@ -1247,6 +1387,7 @@ impl Ur5e {
         let t1064 = t0 * t1060;
         let t1065 = t1 * t1063;
         let t1066 = t1064 + t1065;
+        out[43] = t1066;
         let t1067 = t106 * t526;
         let t1068 = t105 * t502;
         let t1069 = t1067 + t1068;
@@ -1264,6 +1405,7 @@ impl Ur5e {
         let t1081 = t1069 * c5;
         let t1082 = t1074 + t1081;
         let t1083 = t1082 - t1073;
+        out[228] = t1083;
         let t1084 = t55 * t1069;
         let t1085 = t54 * t1070;
         let t1086 = t1084 - t1085;
@@ -1280,6 +1422,7 @@ impl Ur5e {
         let t1097 = t1091 + t1096;
         let t1098 = t1089 * c4;
         let t1099 = t1083 - t1098;
+        out[168] = t1099;
         let t1100 = t12 * t1093;
         let t1101 = t11 * t1097;
         let t1102 = t1100 - t1101;
@@ -1293,13 +1436,16 @@ impl Ur5e {
         let t1110 = t1105 + t1106;
         let t1111 = t1110 * c1;
         let t1112 = t1099 - t1111;
+        out[108] = t1112;
         let t1113 = t0 * t1102;
         let t1114 = t1 * t1109;
         let t1115 = t1113 + t1114;
+        out[48] = t1115;
         let t1116 = t1074 - t1073;
         let t1117 = t1071 + t1072;
         let t1118 = t1117 * c5;
         let t1119 = t1116 * c5;
+        out[229] = t1119;
         let t1120 = t55 * t1116;
         let t1121 = t54 * t127;
         let t1122 = t1120 - t1121;
@@ -1316,6 +1462,7 @@ impl Ur5e {
         let t1133 = t1132 - t1127;
         let t1134 = t1125 * c4;
         let t1135 = t1119 - t1134;
+        out[169] = t1135;
         let t1136 = t12 * t1129;
         let t1137 = t11 * t1133;
         let t1138 = t1136 + t1137;
@@ -1329,17 +1476,23 @@ impl Ur5e {
         let t1146 = t1141 + t1142;
         let t1147 = t1146 * c1;
         let t1148 = t1135 - t1147;
+        out[109] = t1148;
         let t1149 = t0 * t1138;
         let t1150 = t1 * t1145;
         let t1151 = t1150 - t1149;
+        out[49] = t1151;
         let t1152 = t145 * t183;
         let t1153 = t789 + t1152;
         let t1154 = t146 * t183;
         let t1155 = t1154 - t792;
+        out[293] = t1155;
         let t1156 = t106 * t1153;
         let t1157 = t673 + t1156;
         let t1158 = t105 * t1153;
         let t1159 = t1158 - t677;
+        out[113] = t1159;
+        out[173] = t1159;
+        out[233] = t1159;
         let t1160 = t55 * t1157;
         let t1161 = t54 * t1155;
         let t1162 = t1160 + t1161;
@@ -1355,6 +1508,7 @@ impl Ur5e {
         let t1172 = t0 * t1168;
         let t1173 = t1 * t1171;
         let t1174 = t1172 + t1173;
+        out[53] = t1174;
         let t1175 = t695 + t696;
         let t1176 = t146 * t760;
         let t1177 = t145 * t730;
@@ -1384,6 +1538,7 @@ impl Ur5e {
         let t1201 = t1195 + t1200;
         let t1202 = t1194 * c5;
         let t1203 = t1196 + t1202;
+        out[238] = t1203;
         let t1204 = t55 * t1194;
         let t1205 = t54 * t1185;
         let t1206 = t1204 + t1205;
@@ -1404,6 +1559,7 @@ impl Ur5e {
         let t1221 = t1219 + t1220;
         let t1222 = t1209 * c4;
         let t1223 = t1203 - t1222;
+        out[178] = t1223;
         let t1224 = t12 * t1216;
         let t1225 = t11 * t1221;
         let t1226 = t1224 - t1225;
@@ -1417,9 +1573,11 @@ impl Ur5e {
         let t1234 = t1229 + t1230;
         let t1235 = t1234 * c1;
         let t1236 = t1223 - t1235;
+        out[118] = t1236;
         let t1237 = t0 * t1226;
         let t1238 = t1 * t1233;
         let t1239 = t1237 + t1238;
+        out[58] = t1239;
         let t1240 = t1183 + t1184;
         let t1241 = t1181 - t1182;
         let t1242 = t1241 * c6;
@@ -1436,6 +1594,7 @@ impl Ur5e {
         let t1253 = t1247 - t1252;
         let t1254 = t1246 * c5;
         let t1255 = t1248 + t1254;
+        out[239] = t1255;
         let t1256 = t55 * t1246;
         let t1257 = t54 * t1241;
         let t1258 = t1256 + t1257;
@@ -1456,6 +1615,7 @@ impl Ur5e {
         let t1273 = t1271 + t1272;
         let t1274 = t1261 * c4;
         let t1275 = t1255 - t1274;
+        out[179] = t1275;
         let t1276 = t12 * t1268;
         let t1277 = t11 * t1273;
         let t1278 = t1276 - t1277;
@@ -1469,393 +1629,59 @@ impl Ur5e {
         let t1286 = t1281 + t1282;
         let t1287 = t1286 * c1;
         let t1288 = t1275 - t1287;
+        out[119] = t1288;
         let t1289 = t0 * t1278;
         let t1290 = t1 * t1285;
         let t1291 = t1289 + t1290;
+        out[59] = t1291;
         let t1292 = -t30;
+        out[70] = t1292;
         let t1293 = -t4;
+        out[77] = t1293;
         let t1294 = -t208;
+        out[80] = t1294;
+        out[140] = t1294;
         let t1295 = -t967;
+        out[89] = t1295;
         let t1296 = -t294;
+        out[90] = t1296;
+        out[150] = t1296;
+        out[210] = t1296;
         let t1297 = -t1014;
+        out[98] = t1297;
         let t1298 = -t1046;
+        out[99] = t1298;
         let t1299 = -t42;
+        out[147] = t1299;
         let t1300 = -t992;
+        out[158] = t1300;
         let t1301 = -t1030;
+        out[159] = t1301;
         let t1302 = -t93;
+        out[217] = t1302;
         let t1303 = -t446;
+        out[280] = t1303;
         let t1304 = -t133;
+        out[287] = t1304;
         let t1305 = -t670;
+        out[290] = t1305;
         let t1306 = -t736;
+        out[292] = t1306;
         let t1307 = -t766;
+        out[294] = t1307;
         let t1308 = -t886;
+        out[297] = t1308;
         let t1309 = -t1191;
+        out[298] = t1309;
         let t1310 = -t1243;
+        out[299] = t1310;
         let t1311 = -t662;
+        out[353] = t1311;
         let t1312 = -t176;
+        out[356] = t1312;
         let t1313 = -t173;
-        [
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            qdd1,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t188,
-            t197,
-            t201,
-            t940,
-            t206,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t219,
-            t234,
-            t247,
-            t947,
-            t259,
-            t268,
-            t280,
-            t292,
-            t963,
-            t968,
-            t311,
-            t332,
-            t351,
-            t981,
-            t369,
-            t384,
-            t415,
-            t444,
-            t1017,
-            t1049,
-            t471,
-            t498,
-            t523,
-            t1066,
-            t547,
-            t568,
-            t615,
-            t660,
-            t1115,
-            t1151,
-            t693,
-            t726,
-            t757,
-            t1174,
-            t787,
-            t814,
-            t877,
-            t938,
-            t1239,
-            t1291,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1292,
-            t190,
-            t2,
-            t30,
-            t3,
-            qdd2,
-            t5,
-            t1293,
-            T::ZERO,
-            T::ZERO,
-            t1294,
-            t223,
-            t238,
-            t208,
-            t250,
-            t53,
-            t276,
-            t288,
-            t956,
-            t1295,
-            t1296,
-            t315,
-            t336,
-            t294,
-            t354,
-            t104,
-            t412,
-            t441,
-            t1297,
-            t1298,
-            t454,
-            t483,
-            t508,
-            t1053,
-            t532,
-            t553,
-            t612,
-            t657,
-            t1112,
-            t1148,
-            t678,
-            t711,
-            t742,
-            t1159,
-            t772,
-            t799,
-            t874,
-            t935,
-            t1236,
-            t1288,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1294,
-            t223,
-            t238,
-            t208,
-            t250,
-            t53,
-            t45,
-            t1299,
-            T::ZERO,
-            T::ZERO,
-            t1296,
-            t315,
-            t336,
-            t294,
-            t354,
-            t104,
-            t399,
-            t428,
-            t1300,
-            t1301,
-            t454,
-            t483,
-            t508,
-            t1053,
-            t532,
-            t553,
-            t599,
-            t644,
-            t1099,
-            t1135,
-            t678,
-            t711,
-            t742,
-            t1159,
-            t772,
-            t799,
-            t861,
-            t922,
-            t1223,
-            t1275,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1296,
-            t315,
-            t336,
-            t294,
-            t354,
-            t104,
-            t96,
-            t1302,
-            T::ZERO,
-            T::ZERO,
-            t454,
-            t483,
-            t508,
-            t1053,
-            t532,
-            t553,
-            t579,
-            t624,
-            t1083,
-            t1119,
-            t678,
-            t711,
-            t742,
-            t1159,
-            t772,
-            t799,
-            t841,
-            t902,
-            t1203,
-            t1255,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t1303,
-            t475,
-            t502,
-            t446,
-            t526,
-            t144,
-            t136,
-            t1304,
-            T::ZERO,
-            T::ZERO,
-            t1305,
-            t705,
-            t1306,
-            t1155,
-            t1307,
-            t793,
-            t825,
-            t1308,
-            t1309,
-            t1310,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t662,
-            t697,
-            t730,
-            t1311,
-            t760,
-            t184,
-            t1312,
-            t1313,
-            T::ZERO,
-            T::ZERO,
-        ]
+        out[357] = t1313;
+        out
     }
     /// Base regressor Y_b(q, qd, qdd), `6 x 36` row-major: tau = Y_b * base.
     ///
@@ -1865,7 +1691,7 @@ impl Ur5e {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 356 mul, 278 add, 24 neg, 5 sin, 5 cos.
+    /// Operations: 357 mul, 278 add, 23 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -1882,6 +1708,10 @@ impl Ur5e {
         let c3 = T::from_f64(0.1333);
         let c4 = T::from_f64(0.0997);
         let c5 = T::from_f64(0.0996);
+        let c6 = T::from_f64(-9.81);
+        let mut out = [T::ZERO; 216];
+        out[0] = qdd1;
+        out[41] = qdd2;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -1908,10 +1738,12 @@ impl Ur5e {
         let t28 = t18 + t19;
         let t29 = t15 - t17;
         let t30 = t15 + t17;
+        out[40] = t30;
         let t31 = t0 * c0;
         let t32 = t21 * c1;
         let t33 = t31 + t32;
         let t34 = t1 * c0;
+        out[42] = t34;
         let t35 = t24 * c1;
         let t36 = t34 - t35;
         let t37 = t3 * t33;
@@ -1920,6 +1752,7 @@ impl Ur5e {
         let t40 = t3 * t36;
         let t41 = t37 + t38;
         let t42 = t40 - t39;
+        out[85] = t42;
         let t43 = t3 * t10;
         let t44 = t2 * t11;
         let t45 = t2 * t10;
@@ -1938,6 +1771,8 @@ impl Ur5e {
         let t58 = t53 + t55;
         let t59 = t54 - t56;
         let t60 = qdd2 + qdd3;
+        out[48] = t60;
+        out[84] = t60;
         let t61 = t47 * t47;
         let t62 = t48 * t48;
         let t63 = t57 * t57;
@@ -1953,6 +1788,8 @@ impl Ur5e {
         let t73 = t47 * t57;
         let t74 = t73 - t59;
         let t75 = t59 + t73;
+        out[47] = t75;
+        out[83] = t75;
         let t76 = t64 * c2;
         let t77 = t75 * c3;
         let t78 = t76 + t77;
@@ -1972,6 +1809,7 @@ impl Ur5e {
         let t92 = t5 * t86;
         let t93 = t89 + t90;
         let t94 = t92 - t91;
+        out[128] = t94;
         let t95 = t5 * t47;
         let t96 = t4 * t48;
         let t97 = t4 * t47;
@@ -1990,6 +1828,9 @@ impl Ur5e {
         let t110 = t105 + t107;
         let t111 = t106 - t108;
         let t112 = t60 + qdd4;
+        out[55] = t112;
+        out[91] = t112;
+        out[127] = t112;
         let t113 = t99 * t99;
         let t114 = t100 * t100;
         let t115 = t109 * t109;
@@ -2005,6 +1846,9 @@ impl Ur5e {
         let t125 = t99 * t109;
         let t126 = t125 - t111;
         let t127 = t111 + t125;
+        out[54] = t127;
+        out[90] = t127;
+        out[126] = t127;
         let t128 = t118 * c4;
         let t129 = t93 - t128;
         let t130 = t120 * c4;
@@ -2035,6 +1879,7 @@ impl Ur5e {
         let t155 = t150 + t152;
         let t156 = t151 - t153;
         let t157 = qdd5 - t111;
+        out[170] = t157;
         let t158 = t144 * t144;
         let t159 = t145 * t145;
         let t160 = t154 * t154;
@@ -2050,6 +1895,7 @@ impl Ur5e {
         let t170 = t144 * t154;
         let t171 = t170 - t156;
         let t172 = t156 + t170;
+        out[169] = t172;
         let t173 = t163 * c5;
         let t174 = t138 + t173;
         let t175 = t165 * c5;
@@ -2080,21 +1926,25 @@ impl Ur5e {
         let t200 = t195 - t197;
         let t201 = t196 + t198;
         let t202 = t156 + qdd6;
+        out[213] = t202;
         let t203 = t189 * t189;
         let t204 = t190 * t190;
         let t205 = t199 * t199;
         let t206 = t204 + t205;
         let t207 = t189 * t190;
+        out[209] = t207;
         let t208 = t202 + t207;
         let t209 = t202 - t207;
         let t210 = t203 + t205;
         let t211 = t190 * t199;
         let t212 = t200 + t211;
+        out[211] = t212;
         let t213 = t200 - t211;
         let t214 = t203 + t204;
         let t215 = t189 * t199;
         let t216 = t201 + t215;
         let t217 = t215 - t201;
+        out[212] = t217;
         let t218 = t0 * t3;
         let t219 = t1 * t2;
         let t220 = t0 * t2;
@@ -2185,42 +2035,62 @@ impl Ur5e {
         let t305 = t28 - t25;
         let t306 = t21 - t28;
         let t307 = t25 - t21;
+        out[38] = t307;
         let t308 = t0 * t16;
         let t309 = t1 * t15;
         let t310 = t308 + t309;
+        out[1] = t310;
         let t311 = -t22;
+        out[37] = t311;
         let t312 = t0 * t29;
         let t313 = t1 * t27;
         let t314 = t313 - t312;
+        out[2] = t314;
         let t315 = t0 * t24;
         let t316 = t1 * t306;
         let t317 = t315 + t316;
+        out[3] = t317;
         let t318 = -t26;
+        out[39] = t318;
         let t319 = t0 * t305;
         let t320 = t1 * t23;
         let t321 = t319 - t320;
+        out[4] = t321;
         let t322 = t0 * t14;
         let t323 = t322 - t309;
-        let t324 = -t31;
+        out[5] = t323;
+        let t324 = t0 * c6;
+        out[43] = t324;
         let t325 = t72 - t68;
         let t326 = t64 - t72;
         let t327 = t68 - t64;
+        out[45] = t327;
+        out[81] = t327;
         let t328 = t58 * t222;
         let t329 = t73 * t223;
         let t330 = t328 + t329;
+        out[8] = t330;
         let t331 = -t65;
+        out[44] = t331;
+        out[80] = t331;
         let t332 = t74 * t222;
         let t333 = t71 * t223;
         let t334 = t333 - t332;
+        out[9] = t334;
         let t335 = t67 * t222;
         let t336 = t223 * t326;
         let t337 = t335 + t336;
+        out[10] = t337;
         let t338 = -t70;
+        out[46] = t338;
+        out[82] = t338;
         let t339 = t222 * t325;
         let t340 = t66 * t223;
         let t341 = t339 - t340;
+        out[11] = t341;
         let t342 = t69 * t222;
         let t343 = t342 - t329;
+        out[12] = t343;
         let t344 = t29 * t223;
         let t345 = t1 * t74;
         let t346 = t344 + t345;
@@ -2229,7 +2099,9 @@ impl Ur5e {
         let t349 = t347 - t348;
         let t350 = t349 * c1;
         let t351 = t42 + t350;
+        out[49] = t351;
         let t352 = t346 * c1;
+        out[13] = t352;
         let t353 = t29 * t222;
         let t354 = t1 * t71;
         let t355 = t354 - t353;
@@ -2238,27 +2110,44 @@ impl Ur5e {
         let t358 = t357 - t356;
         let t359 = t358 * c1;
         let t360 = t359 - t41;
+        out[50] = t360;
         let t361 = t355 * c1;
+        out[14] = t361;
         let t362 = -t41;
+        out[86] = t362;
         let t363 = t124 - t120;
         let t364 = t116 - t124;
         let t365 = t120 - t116;
+        out[52] = t365;
+        out[88] = t365;
+        out[124] = t365;
         let t366 = t110 * t228;
         let t367 = t125 * t229;
         let t368 = t366 + t367;
+        out[15] = t368;
         let t369 = -t117;
+        out[51] = t369;
+        out[87] = t369;
+        out[123] = t369;
         let t370 = t126 * t228;
         let t371 = t123 * t229;
         let t372 = t371 - t370;
+        out[16] = t372;
         let t373 = t119 * t228;
         let t374 = t229 * t364;
         let t375 = t373 + t374;
+        out[17] = t375;
         let t376 = -t122;
+        out[53] = t376;
+        out[89] = t376;
+        out[125] = t376;
         let t377 = t228 * t363;
         let t378 = t118 * t229;
         let t379 = t377 - t378;
+        out[18] = t379;
         let t380 = t121 * t228;
         let t381 = t380 - t367;
+        out[19] = t381;
         let t382 = t116 * t229;
         let t383 = t88 * t229;
         let t384 = t126 * t242;
@@ -2266,15 +2155,18 @@ impl Ur5e {
         let t386 = t383 + t384;
         let t387 = t385 * c3;
         let t388 = t386 - t387;
+        out[20] = t388;
         let t389 = t116 * t250;
         let t390 = t119 * t252;
         let t391 = t94 + t390;
         let t392 = t389 + t391;
+        out[56] = t392;
         let t393 = t4 * t116;
         let t394 = t5 * t119;
         let t395 = t393 - t394;
         let t396 = t395 * c2;
         let t397 = t94 + t396;
+        out[92] = t397;
         let t398 = t88 * t228;
         let t399 = t120 * t228;
         let t400 = t123 * t242;
@@ -2282,6 +2174,7 @@ impl Ur5e {
         let t402 = t378 + t399;
         let t403 = t402 * c3;
         let t404 = t401 + t403;
+        out[21] = t404;
         let t405 = t118 * t250;
         let t406 = t120 * t252;
         let t407 = t93 + t406;
@@ -2291,20 +2184,29 @@ impl Ur5e {
         let t411 = t410 - t409;
         let t412 = t411 * c2;
         let t413 = t412 - t93;
+        out[93] = t413;
         let t414 = -t408;
+        out[57] = t414;
         let t415 = -t93;
+        out[129] = t415;
         let t416 = t169 - t165;
         let t417 = t161 - t169;
         let t418 = t165 - t161;
+        out[167] = t418;
         let t419 = t155 * t230;
         let t420 = t170 * t231;
         let t421 = t162 * t229;
         let t422 = t421 - t420;
         let t423 = t419 + t422;
+        out[22] = t423;
         let t424 = t6 * t155;
         let t425 = t7 * t170;
         let t426 = t424 + t425;
+        out[58] = t426;
+        out[94] = t426;
+        out[130] = t426;
         let t427 = -t162;
+        out[166] = t427;
         let t428 = t171 * t230;
         let t429 = t168 * t231;
         let t430 = t229 * t418;
@@ -2313,30 +2215,47 @@ impl Ur5e {
         let t433 = t6 * t171;
         let t434 = t7 * t168;
         let t435 = t434 - t433;
+        out[59] = t435;
+        out[95] = t435;
+        out[131] = t435;
         let t436 = -t432;
+        out[23] = t436;
         let t437 = t164 * t230;
         let t438 = t231 * t417;
         let t439 = t167 * t229;
         let t440 = t439 - t438;
         let t441 = t437 + t440;
+        out[24] = t441;
         let t442 = t6 * t164;
         let t443 = t7 * t417;
         let t444 = t442 + t443;
+        out[60] = t444;
+        out[96] = t444;
+        out[132] = t444;
         let t445 = -t167;
+        out[168] = t445;
         let t446 = t230 * t416;
         let t447 = t163 * t231;
         let t448 = t172 * t229;
         let t449 = t447 - t448;
         let t450 = t446 + t449;
+        out[25] = t450;
         let t451 = t6 * t416;
         let t452 = t7 * t163;
         let t453 = t451 - t452;
+        out[61] = t453;
+        out[97] = t453;
+        out[133] = t453;
         let t454 = t166 * t230;
         let t455 = t157 * t229;
         let t456 = t420 - t455;
         let t457 = t454 + t456;
+        out[26] = t457;
         let t458 = t6 * t166;
         let t459 = t458 - t425;
+        out[62] = t459;
+        out[98] = t459;
+        out[134] = t459;
         let t460 = t161 * t260;
         let t461 = t131 * t231;
         let t462 = t164 * t262;
@@ -2347,6 +2266,7 @@ impl Ur5e {
         let t467 = t466 - t465;
         let t468 = t464 * c3;
         let t469 = t467 + t468;
+        out[27] = t469;
         let t470 = t161 * t264;
         let t471 = t7 * t131;
         let t472 = t164 * t265;
@@ -2354,6 +2274,7 @@ impl Ur5e {
         let t474 = t471 - t470;
         let t475 = t472 + t473;
         let t476 = t474 - t475;
+        out[63] = t476;
         let t477 = t161 * t268;
         let t478 = t164 * t269;
         let t479 = t5 * t171;
@@ -2361,11 +2282,14 @@ impl Ur5e {
         let t481 = t480 - t477;
         let t482 = t479 * c2;
         let t483 = t481 + t482;
+        out[99] = t483;
         let t484 = t7 * t161;
         let t485 = t442 + t484;
         let t486 = t485 * c4;
         let t487 = t471 - t486;
+        out[135] = t487;
         let t488 = -t139;
+        out[171] = t488;
         let t489 = t131 * t230;
         let t490 = t163 * t260;
         let t491 = t165 * t262;
@@ -2376,6 +2300,7 @@ impl Ur5e {
         let t496 = t494 + t495;
         let t497 = t493 * c3;
         let t498 = t496 + t497;
+        out[28] = t498;
         let t499 = t6 * t131;
         let t500 = t163 * t264;
         let t501 = t165 * t265;
@@ -2383,6 +2308,7 @@ impl Ur5e {
         let t503 = t500 - t499;
         let t504 = t501 - t502;
         let t505 = t503 + t504;
+        out[64] = t505;
         let t506 = t163 * t268;
         let t507 = t165 * t269;
         let t508 = t5 * t168;
@@ -2390,69 +2316,93 @@ impl Ur5e {
         let t510 = t509 - t499;
         let t511 = t508 * c2;
         let t512 = t510 + t511;
+        out[100] = t512;
         let t513 = t6 * t165;
         let t514 = t452 + t513;
         let t515 = t514 * c4;
         let t516 = t515 - t499;
+        out[136] = t516;
         let t517 = -t138;
+        out[172] = t517;
         let t518 = t214 - t210;
         let t519 = t206 - t214;
         let t520 = t210 - t206;
+        out[210] = t520;
         let t521 = t200 * t236;
         let t522 = t215 * t237;
         let t523 = t207 * t231;
         let t524 = t522 - t523;
         let t525 = t521 + t524;
+        out[29] = t525;
         let t526 = t200 * t238;
         let t527 = t215 * t239;
         let t528 = t7 * t207;
         let t529 = t528 - t527;
         let t530 = t526 + t529;
+        out[65] = t530;
+        out[101] = t530;
+        out[137] = t530;
         let t531 = t8 * t200;
         let t532 = t9 * t215;
         let t533 = t531 + t532;
         let t534 = -t533;
+        out[173] = t534;
         let t535 = t216 * t236;
         let t536 = t213 * t237;
         let t537 = t231 * t520;
         let t538 = t536 - t537;
         let t539 = t538 - t535;
+        out[30] = t539;
         let t540 = t216 * t238;
         let t541 = t213 * t239;
         let t542 = t7 * t520;
         let t543 = t542 - t541;
         let t544 = t543 - t540;
+        out[66] = t544;
+        out[102] = t544;
+        out[138] = t544;
         let t545 = t8 * t216;
         let t546 = t9 * t213;
         let t547 = t545 - t546;
+        out[174] = t547;
         let t548 = t209 * t236;
         let t549 = t237 * t519;
         let t550 = t212 * t231;
         let t551 = t549 - t550;
         let t552 = t548 + t551;
+        out[31] = t552;
         let t553 = t209 * t238;
         let t554 = t239 * t519;
         let t555 = t7 * t212;
         let t556 = t555 - t554;
         let t557 = t553 + t556;
+        out[67] = t557;
+        out[103] = t557;
+        out[139] = t557;
         let t558 = t8 * t209;
         let t559 = t9 * t519;
         let t560 = t558 + t559;
         let t561 = -t560;
+        out[175] = t561;
         let t562 = t236 * t518;
         let t563 = t208 * t237;
         let t564 = t217 * t231;
         let t565 = t563 - t564;
         let t566 = t562 + t565;
+        out[32] = t566;
         let t567 = t238 * t518;
         let t568 = t208 * t239;
         let t569 = t7 * t217;
         let t570 = t569 - t568;
         let t571 = t567 + t570;
+        out[68] = t571;
+        out[104] = t571;
+        out[140] = t571;
         let t572 = t8 * t518;
         let t573 = t9 * t208;
         let t574 = t572 + t573;
         let t575 = -t574;
+        out[176] = t575;
         let t576 = t211 * t236;
         let t577 = t202 * t231;
         let t578 = t522 + t577;
@@ -2461,9 +2411,14 @@ impl Ur5e {
         let t581 = t7 * t202;
         let t582 = t527 + t581;
         let t583 = t582 - t580;
+        out[69] = t583;
+        out[105] = t583;
+        out[141] = t583;
         let t584 = t8 * t211;
         let t585 = t532 + t584;
+        out[177] = t585;
         let t586 = -t579;
+        out[33] = t586;
         let t587 = t206 * t279;
         let t588 = t176 * t237;
         let t589 = t209 * t280;
@@ -2473,6 +2428,7 @@ impl Ur5e {
         let t593 = t590 + t591;
         let t594 = t593 - t589;
         let t595 = t592 + t594;
+        out[34] = t595;
         let t596 = t206 * t287;
         let t597 = t176 * t239;
         let t598 = t209 * t288;
@@ -2502,10 +2458,15 @@ impl Ur5e {
         let t622 = t558 + t620;
         let t623 = t622 * c5;
         let t624 = t623 - t621;
+        out[178] = t624;
         let t625 = -t604;
+        out[70] = t625;
         let t626 = -t611;
+        out[106] = t626;
         let t627 = -t619;
+        out[142] = t627;
         let t628 = -t184;
+        out[214] = t628;
         let t629 = t176 * t236;
         let t630 = t208 * t279;
         let t631 = t210 * t280;
@@ -2515,6 +2476,7 @@ impl Ur5e {
         let t635 = t632 + t633;
         let t636 = t631 + t635;
         let t637 = t636 - t634;
+        out[35] = t637;
         let t638 = t176 * t238;
         let t639 = t208 * t287;
         let t640 = t210 * t288;
@@ -2524,6 +2486,7 @@ impl Ur5e {
         let t644 = t641 + t642;
         let t645 = t640 - t644;
         let t646 = t645 - t643;
+        out[71] = t646;
         let t647 = t208 * t295;
         let t648 = t210 * t296;
         let t649 = t213 * t269;
@@ -2531,6 +2494,7 @@ impl Ur5e {
         let t651 = t641 + t649;
         let t652 = t648 - t651;
         let t653 = t652 - t650;
+        out[107] = t653;
         let t654 = t208 * t301;
         let t655 = t210 * t304;
         let t656 = t6 * t213;
@@ -2539,230 +2503,16 @@ impl Ur5e {
         let t659 = t658 - t657;
         let t660 = t656 * c4;
         let t661 = t659 - t660;
+        out[143] = t661;
         let t662 = t8 * t176;
         let t663 = t8 * t210;
         let t664 = t573 - t663;
         let t665 = t664 * c5;
         let t666 = t662 + t665;
+        out[179] = t666;
         let t667 = -t183;
-        [
-            qdd1,
-            t310,
-            t314,
-            t317,
-            t321,
-            t323,
-            T::ZERO,
-            T::ZERO,
-            t330,
-            t334,
-            t337,
-            t341,
-            t343,
-            t352,
-            t361,
-            t368,
-            t372,
-            t375,
-            t379,
-            t381,
-            t388,
-            t404,
-            t423,
-            t436,
-            t441,
-            t450,
-            t457,
-            t469,
-            t498,
-            t525,
-            t539,
-            t552,
-            t566,
-            t586,
-            t595,
-            t637,
-            T::ZERO,
-            t311,
-            t307,
-            t318,
-            t30,
-            qdd2,
-            t34,
-            t324,
-            t331,
-            t327,
-            t338,
-            t75,
-            t60,
-            t351,
-            t360,
-            t369,
-            t365,
-            t376,
-            t127,
-            t112,
-            t392,
-            t414,
-            t426,
-            t435,
-            t444,
-            t453,
-            t459,
-            t476,
-            t505,
-            t530,
-            t544,
-            t557,
-            t571,
-            t583,
-            t625,
-            t646,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t331,
-            t327,
-            t338,
-            t75,
-            t60,
-            t42,
-            t362,
-            t369,
-            t365,
-            t376,
-            t127,
-            t112,
-            t397,
-            t413,
-            t426,
-            t435,
-            t444,
-            t453,
-            t459,
-            t483,
-            t512,
-            t530,
-            t544,
-            t557,
-            t571,
-            t583,
-            t626,
-            t653,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t369,
-            t365,
-            t376,
-            t127,
-            t112,
-            t94,
-            t415,
-            t426,
-            t435,
-            t444,
-            t453,
-            t459,
-            t487,
-            t516,
-            t530,
-            t544,
-            t557,
-            t571,
-            t583,
-            t627,
-            t661,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t427,
-            t418,
-            t445,
-            t172,
-            t157,
-            t488,
-            t517,
-            t534,
-            t547,
-            t561,
-            t575,
-            t585,
-            t624,
-            t666,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            T::ZERO,
-            t207,
-            t520,
-            t212,
-            t217,
-            t202,
-            t628,
-            t667,
-        ]
+        out[215] = t667;
+        out
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
@@ -3341,6 +3091,8 @@ impl Ur5e {
         let c2 = T::from_f64(0.0997);
         let c3 = T::from_f64(0.1333);
         let c4 = T::from_f64(0.0996);
+        let mut out = [T::ZERO; 36];
+        out[35] = ZZ6;
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -3416,6 +3168,8 @@ impl Ur5e {
         let t77 = t63 + t72;
         let t78 = t66 - t73;
         let t79 = t71 - t76;
+        out[5] = t79;
+        out[30] = t79;
         let t80 = t23 * MYR5;
         let t81 = t23 * MX5;
         let t82 = t36 * MX5;
@@ -3466,6 +3220,8 @@ impl Ur5e {
         let t127 = t107 - t119;
         let t128 = t112 * c4;
         let t129 = t127 - t128;
+        out[4] = t129;
+        out[24] = t129;
         let t130 = t23 * MX4;
         let t131 = t24 * MYR4;
         let t132 = t131 - t130;
@@ -3505,6 +3261,8 @@ impl Ur5e {
         let t166 = t148 + t160;
         let t167 = t153 * c2;
         let t168 = t166 + t167;
+        out[3] = t168;
+        out[18] = t168;
         let t169 = t15 * MXR3;
         let t170 = t14 * MY3;
         let t171 = t170 - t169;
@@ -3545,6 +3303,8 @@ impl Ur5e {
         let t206 = t168 + t178;
         let t207 = t190 * c1;
         let t208 = t206 - t207;
+        out[2] = t208;
+        out[12] = t208;
         let t209 = t0 * XXR2;
         let t210 = t1 * XY2;
         let t211 = t209 + t210;
@@ -3568,10 +3328,13 @@ impl Ur5e {
         let t229 = t208 + t215;
         let t230 = t218 * c0;
         let t231 = t229 - t230;
+        out[1] = t231;
+        out[6] = t231;
         let t232 = t0 * t225;
         let t233 = t1 * t228;
         let t234 = t232 + t233;
         let t235 = t234 + ZZR1;
+        out[0] = t235;
         let t236 = t3 * c0;
         let t237 = t236 + c1;
         let t238 = t2 * t5;
@@ -3621,6 +3384,8 @@ impl Ur5e {
         let t282 = t268 - t277;
         let t283 = t271 + t278;
         let t284 = t276 - t281;
+        out[11] = t284;
+        out[31] = t284;
         let t285 = t7 * MX5;
         let t286 = t6 * MYR5;
         let t287 = t286 - t285;
@@ -3659,6 +3424,8 @@ impl Ur5e {
         let t320 = t302 - t314;
         let t321 = t307 * c4;
         let t322 = t320 + t321;
+        out[10] = t322;
+        out[25] = t322;
         let t323 = t245 * MX4;
         let t324 = t243 * MYR4;
         let t325 = t323 + t324;
@@ -3674,6 +3441,8 @@ impl Ur5e {
         let t335 = t326 + t332;
         let t336 = t329 * c2;
         let t337 = t335 - t336;
+        out[9] = t337;
+        out[19] = t337;
         let t338 = t3 * MXR3;
         let t339 = t2 * MY3;
         let t340 = t339 - t338;
@@ -3690,12 +3459,15 @@ impl Ur5e {
         let t351 = t337 + t342;
         let t352 = t348 * c1;
         let t353 = t351 - t352;
+        out[8] = t353;
+        out[13] = t353;
         let t354 = t2 * t349;
         let t355 = t3 * t350;
         let t356 = t355 - t354;
         let t357 = t353 + ZZR2;
         let t358 = t356 * c0;
         let t359 = t357 - t358;
+        out[7] = t359;
         let t360 = t4 * c1;
         let t361 = c2 - t360;
         let t362 = t7 * t361;
@@ -3716,6 +3488,8 @@ impl Ur5e {
         let t377 = t268 - t372;
         let t378 = t271 + t373;
         let t379 = t276 - t376;
+        out[17] = t379;
+        out[32] = t379;
         let t380 = t5 * MYR5;
         let t381 = t5 * MX5;
         let t382 = t363 * MX5;
@@ -3737,6 +3511,8 @@ impl Ur5e {
         let t398 = t379 + t388;
         let t399 = t389 - t395;
         let t400 = t321 + t399;
+        out[16] = t400;
+        out[26] = t400;
         let t401 = t5 * MX4;
         let t402 = t4 * MYR4;
         let t403 = t402 - t401;
@@ -3747,8 +3523,11 @@ impl Ur5e {
         let t408 = t406 + t407;
         let t409 = t405 + t408;
         let t410 = t409 - t336;
+        out[15] = t410;
+        out[20] = t410;
         let t411 = t410 + ZZR3;
         let t412 = t411 - t352;
+        out[14] = t412;
         let t413 = t7 * t9;
         let t414 = t7 * t8;
         let t415 = t413 * c2;
@@ -3767,6 +3546,8 @@ impl Ur5e {
         let t428 = t422 * c2;
         let t429 = t271 + t428;
         let t430 = t276 - t425;
+        out[23] = t430;
+        out[33] = t430;
         let t431 = t6 * MX5;
         let t432 = t7 * MYR5;
         let t433 = t431 + t432;
@@ -3783,11 +3564,14 @@ impl Ur5e {
         let t444 = t291 + t430;
         let t445 = t435 - t441;
         let t446 = t321 + t445;
+        out[22] = t446;
+        out[27] = t446;
         let t447 = t6 * t443;
         let t448 = t7 * t444;
         let t449 = t447 + t448;
         let t450 = t449 + ZZR4;
         let t451 = t450 - t336;
+        out[21] = t451;
         let t452 = t8 * XXR6;
         let t453 = t9 * XY6;
         let t454 = t452 + t453;
@@ -3800,55 +3584,21 @@ impl Ur5e {
         let t461 = t459 + t460;
         let t462 = t461 * c4;
         let t463 = t462 - t458;
+        out[29] = t463;
+        out[34] = t463;
         let t464 = t8 * t454;
         let t465 = t9 * t455;
         let t466 = t464 + t465;
         let t467 = t466 + ZZR5;
-        [
-            t235,
-            t231,
-            t208,
-            t168,
-            t129,
-            t79,
-            t231,
-            t359,
-            t353,
-            t337,
-            t322,
-            t284,
-            t208,
-            t353,
-            t412,
-            t410,
-            t400,
-            t379,
-            t168,
-            t337,
-            t410,
-            t451,
-            t446,
-            t430,
-            t129,
-            t322,
-            t400,
-            t446,
-            t467,
-            t463,
-            t79,
-            t284,
-            t379,
-            t430,
-            t463,
-            ZZ6,
-        ]
+        out[28] = t467;
+        out
     }
     /// Gravity torques g(q).
     ///
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
     ///
-    /// Operations: 52 mul, 26 add, 1 neg, 5 sin, 5 cos.
+    /// Operations: 52 mul, 26 add, 0 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
@@ -3859,6 +3609,7 @@ impl Ur5e {
         let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MXR3, MY3, _, _, _, _, _, MX4,
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
+        let c1 = T::from_f64(-9.81);
         let (t0, t1) = q2.sin_cos();
         let (t2, t3) = q3.sin_cos();
         let (t4, t5) = q4.sin_cos();
@@ -3940,10 +3691,9 @@ impl Ur5e {
         let t83 = t78 * c0;
         let t84 = t68 * c0;
         let t85 = t58 * c0;
-        let t86 = t48 * c0;
-        let t87 = -t86;
-        let t88 = t34 * c0;
-        [t82, t83, t84, t85, t87, t88]
+        let t86 = t48 * c1;
+        let t87 = t34 * c0;
+        [t82, t83, t84, t85, t86, t87]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
@@ -4485,55 +4235,91 @@ impl Ur5e {
         let c11 = T::from_f64(0.425);
         let c12 = T::from_f64(0.0566525);
         let c13 = T::from_f64(0.35221473);
+        let mut out = [T::ZERO; 36];
+        out[2] = XY2;
+        out[4] = YZ2;
+        out[7] = MY2;
+        out[9] = XY3;
+        out[11] = YZ3;
+        out[14] = MY3;
+        out[16] = XY4;
+        out[17] = XZ4;
+        out[18] = YZ4;
+        out[20] = MX4;
+        out[23] = XY5;
+        out[24] = XZ5;
+        out[25] = YZ5;
+        out[27] = MX5;
+        out[30] = XY6;
+        out[31] = XZ6;
+        out[32] = YZ6;
+        out[33] = ZZ6;
+        out[34] = MX6;
+        out[35] = MY6;
         let t0 = XX6 - YY6;
+        out[29] = t0;
         let t1 = M6 * c0;
         let t2 = MZ6 * c1;
         let t3 = M6 * c2;
         let t4 = ZZ5 + YY6;
         let t5 = t2 + t3;
         let t6 = t4 + t5;
+        out[26] = t6;
         let t7 = t1 + MZ6;
         let t8 = t7 + MY5;
+        out[28] = t8;
         let t9 = XX5 + YY6;
         let t10 = t5 - YY5;
         let t11 = t9 + t10;
+        out[22] = t11;
         let t12 = MZ5 * c3;
         let t13 = M5 + M6;
         let t14 = t13 * c4;
         let t15 = ZZ4 + YY5;
         let t16 = t12 + t14;
         let t17 = t15 + t16;
+        out[19] = t17;
         let t18 = t13 * c5;
         let t19 = t18 + MZ5;
         let t20 = MY4 - t19;
+        out[21] = t20;
         let t21 = XX4 + YY5;
         let t22 = t16 - YY4;
         let t23 = t21 + t22;
+        out[15] = t23;
         let t24 = MZ4 * c6;
         let t25 = MZ4 * c7;
         let t26 = t13 + M4;
         let t27 = t26 * c8;
         let t28 = t25 + t27;
         let t29 = t28 + XZ3;
+        out[10] = t29;
         let t30 = t26 * c9;
         let t31 = t30 + ZZ3;
+        out[12] = t31;
         let t32 = t26 * c7;
         let t33 = MX3 - t32;
+        out[13] = t33;
         let t34 = t30 + YY3;
         let t35 = XX3 - t34;
+        out[8] = t35;
         let t36 = M3 * c10;
         let t37 = MZ3 + MZ4;
         let t38 = t37 * c11;
         let t39 = t26 * c12;
         let t40 = t38 + t39;
         let t41 = t40 + XZ2;
+        out[3] = t41;
         let t42 = t26 + M3;
         let t43 = t42 * c10;
         let t44 = t43 + ZZ2;
+        out[5] = t44;
         let t45 = t42 * c11;
         let t46 = MX2 - t45;
+        out[6] = t46;
         let t47 = t43 + YY2;
         let t48 = XX2 - t47;
+        out[1] = t48;
         let t49 = t26 * c13;
         let t50 = YY2 + YY3;
         let t51 = t50 + ZZ1;
@@ -4541,44 +4327,8 @@ impl Ur5e {
         let t53 = t36 + t49;
         let t54 = t52 + t53;
         let t55 = t51 + t54;
-        [
-            t55,
-            t48,
-            XY2,
-            t41,
-            YZ2,
-            t44,
-            t46,
-            MY2,
-            t35,
-            XY3,
-            t29,
-            YZ3,
-            t31,
-            t33,
-            MY3,
-            t23,
-            XY4,
-            XZ4,
-            YZ4,
-            t17,
-            MX4,
-            t20,
-            t11,
-            XY5,
-            XZ5,
-            YZ5,
-            t6,
-            MX5,
-            t8,
-            t0,
-            XY6,
-            XZ6,
-            YZ6,
-            ZZ6,
-            MX6,
-            MY6,
-        ]
+        out[0] = t55;
+        out
     }
 }
 impl ::robid_runtime::Model for Ur5e {

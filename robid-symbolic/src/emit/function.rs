@@ -84,6 +84,29 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream 
             pair_of[k] = Some(i);
         }
     }
+    // More outputs than registers (a matrix): each element is stored as soon
+    // as it is computed instead of staying live until the end (measured on
+    // the UR5e: base regressor and mass matrix about 2 ns faster each; the
+    // joint vectors are faster returned as one array expression).
+    let eager = output.values.len() > EAGER_STORES_ABOVE;
+    let mut stores_of: Vec<Vec<usize>> = vec![Vec::new(); program.instrs.len()];
+    let mut early = Vec::new();
+    for (k, &v) in output.values.iter().enumerate().filter(|_| eager) {
+        match v {
+            Value::Temp(i) => stores_of[i as usize].push(k),
+            Value::Const(c) if program.constants[c as usize] == 0.0 => {}
+            other => {
+                let rhs = result_tokens(program, other);
+                let k = Literal::usize_unsuffixed(k);
+                early.push(quote! { out[#k] = #rhs; });
+            }
+        }
+    }
+    let store = |i: usize| {
+        let id = format_ident!("t{}", i);
+        let ks = stores_of[i].iter().map(|&k| Literal::usize_unsuffixed(k));
+        quote! { #(out[#ks] = #id;)* }
+    };
     let lets = program.instrs.iter().enumerate().filter_map(|(i, instr)| {
         let id = format_ident!("t{}", i);
         match (pair_of[i], instr) {
@@ -95,23 +118,37 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream 
                     (format_ident!("t{}", k), id)
                 };
                 let x = value_tokens(program, *x);
-                Some(quote! { let (#s, #c) = #x.sin_cos(); })
+                let (si, sk) = (store(i), store(k));
+                Some(quote! { let (#s, #c) = #x.sin_cos(); #si #sk })
             }
             _ => {
                 let rhs = instr_tokens(program, instr);
-                Some(quote! { let #id = #rhs; })
+                let st = store(i);
+                Some(quote! { let #id = #rhs; #st })
             }
         }
     });
-    let results = output.values.iter().map(|&v| result_tokens(program, v));
+    let body = if eager {
+        quote! {
+            let mut out = [T::ZERO; #out_len];
+            #(#early)*
+            #(#lets)*
+            out
+        }
+    } else {
+        let results = output.values.iter().map(|&v| result_tokens(program, v));
+        quote! {
+            #(#lets)*
+            [#(#results),*]
+        }
+    };
     quote! {
         #(#[doc = #doc_lines])*
         #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
         pub fn #name<T: ::robid_runtime::Real>(&self, #(#args),*) -> [T; #out_len] {
             #(#bindings)*
             #(#constants)*
-            #(#lets)*
-            [#(#results),*]
+            #body
         }
     }
 }
@@ -151,6 +188,10 @@ fn value_tokens(program: &Program, v: Value) -> TokenStream {
         }
     }
 }
+
+/// Outputs up to this many are returned as one array expression at the end
+/// (they fit in the vector registers); more are stored as they are computed.
+const EAGER_STORES_ABOVE: usize = 16;
 
 /// An output element: constants are written out (`T::ZERO` for the many zeros).
 fn result_tokens(program: &Program, v: Value) -> TokenStream {

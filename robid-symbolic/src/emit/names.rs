@@ -18,13 +18,17 @@ pub fn type_name(robot_name: &str) -> String {
 }
 
 /// An identifier for a symbol name, prefixed with `s_` when it could clash
-/// with a temporary (`t3`), a constant (`c3`) or a keyword.
+/// with a temporary (`t3`), a constant (`c3`), the result array (`out`) or a
+/// keyword.
 pub(crate) fn value_ident(name: &str) -> Ident {
     let numbered = |p: char| {
         name.strip_prefix(p)
             .is_some_and(|r| !r.is_empty() && r.chars().all(|c| c.is_ascii_digit()))
     };
-    let clash = numbered('t') || numbered('c') || syn::parse_str::<Ident>(name).is_err();
+    let clash = numbered('t')
+        || numbered('c')
+        || name == "out"
+        || syn::parse_str::<Ident>(name).is_err();
     if clash {
         Ident::new(&format!("s_{name}"), Span::call_site())
     } else {
@@ -45,6 +49,7 @@ mod tests {
         assert_eq!(super::type_name("my_arm"), "MyArm");
         assert_eq!(super::value_ident("t3").to_string(), "s_t3");
         assert_eq!(super::value_ident("type").to_string(), "s_type");
+        assert_eq!(super::value_ident("out").to_string(), "s_out");
         assert_eq!(super::value_ident("L3").to_string(), "L3");
     }
 }

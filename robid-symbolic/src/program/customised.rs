@@ -157,6 +157,14 @@ impl Lowering<'_> {
 
     /// The value as an output: a negation is paid for here.
     pub(super) fn output(&mut self, e: E) -> Value {
+        if let Some(v) = e.v
+            && e.c < 0.0
+            && e.c != -1.0
+        {
+            // The sign goes into the coefficient.
+            let c = self.constant(e.c);
+            return self.emit(Instr::Mul(v, c));
+        }
         let s = self.signed(e);
         self.materialize(s)
     }
