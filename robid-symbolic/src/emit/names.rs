@@ -25,10 +25,8 @@ pub(crate) fn value_ident(name: &str) -> Ident {
         name.strip_prefix(p)
             .is_some_and(|r| !r.is_empty() && r.chars().all(|c| c.is_ascii_digit()))
     };
-    let clash = numbered('t')
-        || numbered('c')
-        || name == "out"
-        || syn::parse_str::<Ident>(name).is_err();
+    let clash =
+        numbered('t') || numbered('c') || name == "out" || syn::parse_str::<Ident>(name).is_err();
     if clash {
         Ident::new(&format!("s_{name}"), Span::call_site())
     } else {
