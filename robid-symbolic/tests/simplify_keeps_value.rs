@@ -109,8 +109,15 @@ fn check(seed: u64, flavour: Flavour) {
     }
     // Rounding error scales with the largest intermediate value, not the
     // result: x + 1e9 - 1e9 is exact symbolically but not in floating point.
-    let all: Vec<Id> = (0..seen.len()).filter(|&i| seen[i]).map(|i| a.id_at(i)).collect();
-    let largest = a.eval(&all, &values).unwrap().iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let all: Vec<Id> = (0..seen.len())
+        .filter(|&i| seen[i])
+        .map(|i| a.id_at(i))
+        .collect();
+    let largest = a
+        .eval(&all, &values)
+        .unwrap()
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
     let before = a.eval(&[raw], &values).unwrap()[0];
     let simple = a.simplify(raw);
     let after = a.eval(&[simple], &values).unwrap()[0];

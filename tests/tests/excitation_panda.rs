@@ -3,7 +3,9 @@
 //! Fc, Fo), 30 s at 100 Hz:
 //! - the Fourier design (Swevers) respects every limit and starts and ends at rest; its
 //!   condition number (columns unscaled, 2-norm) is reported and stays below 150;
-//! - the point design (Milella) lowers its criterion and respects every limit;
+//! - the point design (Milella) lowers its criterion, respects every limit and reaches a
+//!   condition number of at most 70 (the UR5e's bar; the reduced-budget Fourier design used
+//!   here for speed reaches about 72, the full `robid excite` budget about 60);
 //! - identification (WLS) on a noisy simulation of the Fourier design predicts another
 //!   trajectory within 10 % of the noise floor, and recovers the true base parameters better
 //!   than random, non-optimised trajectories of the same family and length (empirical
@@ -50,6 +52,7 @@ fn panda_fourier_design_validates_within_10_percent_of_the_noise_floor_and_beats
 }
 
 #[test]
-fn panda_point_design_lowers_its_criterion_within_every_limit() {
-    setup().check_point_design(2);
+fn panda_point_design_lowers_its_criterion_and_has_condition_at_most_70_within_every_limit() {
+    let cond = setup().check_point_design(2);
+    assert!(cond <= 70.0, "condition number {cond}");
 }
