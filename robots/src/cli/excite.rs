@@ -14,7 +14,7 @@ use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, 
 use robid_runtime::simulate::Trajectory;
 
 use super::Error;
-use super::simulate::{Interpreted, read_parameters};
+use super::simulate::{load_model, read_parameters};
 
 /// Arguments of `robid excite`.
 #[derive(Debug, clap::Args)]
@@ -92,9 +92,9 @@ enum CriterionArg {
 
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    let model = Interpreted::load(&args.robot, &args.drive)?;
+    let model = load_model(&args.robot, &args.drive)?;
     let limits = model
-        .programs
+        .programs()
         .robot
         .joints
         .iter()

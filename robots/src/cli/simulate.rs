@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::Model;
 use robid_runtime::simulate::{Noise, Simulation, Trajectory};
-use robid_symbolic::program::{Program, RobotPrograms};
 use robid_symbolic::{Drive, Robot};
+use robots::interpreted::Interpreted;
 
 use super::Error;
 
@@ -48,7 +48,7 @@ pub(crate) struct Args {
 
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    let model = Interpreted::load(&args.robot, &args.drive)?;
+    let model = load_model(&args.robot, &args.drive)?;
     let base = read_parameters(&args.parameters, &model)?;
     let reference = Trajectory::read_csv(&args.trajectory, model.dof())?;
     let sim = Simulation {
@@ -95,83 +95,14 @@ pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {
     Ok(Some(d))
 }
 
-/// A description's derived programs run by the interpreter, as a `Model`.
-#[derive(Debug)]
-pub(crate) struct Interpreted {
-    pub(crate) programs: RobotPrograms,
-    geometry: Vec<f64>,
-}
-
-impl Interpreted {
-    /// Reads and derives a description, with the drive terms named by `drive` when given.
-    pub(crate) fn load(path: &Path, drive: &[String]) -> Result<Self, Error> {
-        let mut robot = Robot::from_file(path)?;
-        if let Some(d) = parse_drive(drive)? {
-            robot = robot.with_drive(d);
-        }
-        let programs = RobotPrograms::derive(&robot)?;
-        let geometry = programs
-            .geometry
-            .iter()
-            .map(|(s, v)| {
-                v.ok_or_else(|| {
-                    format!("{}: symbol `{s}` has no value; give it one", path.display())
-                })
-            })
-            .collect::<Result<_, _>>()?;
-        Ok(Self { programs, geometry })
+/// Reads and derives a description, with the drive terms named by `drive` when
+/// given, as an interpreted `Model` (the one adapter, `robots::interpreted`).
+pub(crate) fn load_model(path: &Path, drive: &[String]) -> Result<Interpreted, Error> {
+    let mut robot = Robot::from_file(path)?;
+    if let Some(d) = parse_drive(drive)? {
+        robot = robot.with_drive(d);
     }
-
-    fn run(&self, p: &Program, inputs: &[&[f64]], out: &mut [f64]) {
-        let mut all: Vec<&[f64]> = inputs.to_vec();
-        if !self.geometry.is_empty() {
-            all.push(&self.geometry);
-        }
-        // lengths are fixed by the programs' own groups
-        let _ = p.run(&all, &mut [out], &mut Vec::new());
-    }
-}
-
-impl Model for Interpreted {
-    fn name(&self) -> &str {
-        &self.programs.robot.name
-    }
-    fn dof(&self) -> usize {
-        self.programs.robot.dof()
-    }
-    fn standard_parameter_count(&self) -> usize {
-        self.programs.standard.len()
-    }
-    fn standard_parameter_name(&self, index: usize) -> &str {
-        &self.programs.standard[index]
-    }
-    fn base_parameter_count(&self) -> usize {
-        self.programs.base.len()
-    }
-    fn base_parameter_name(&self, index: usize) -> &str {
-        &self.programs.base[index].name
-    }
-    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.base_regressor, &[q, qd, qdd], out);
-    }
-    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.standard_regressor, &[q, qd, qdd], out);
-    }
-    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
-        self.run(&self.programs.inverse_dynamics, &[q, qd, qdd, base], tau);
-    }
-    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.mass_matrix, &[q, base], out);
-    }
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.gravity, &[q, base], out);
-    }
-    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.coriolis, &[q, qd, base], out);
-    }
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
-        self.run(&self.programs.base_from_standard, &[standard], base);
-    }
+    Ok(Interpreted::new(&robot)?)
 }
 
 /// Reads base parameters from a file with a `[standard]` table (name = value, missing = 0)
@@ -215,7 +146,7 @@ pub(crate) fn read_parameters(path: &Path, model: &Interpreted) -> Result<Vec<f6
             base.push(entry)
         }
     }
-    let p = &model.programs;
+    let p = model.programs();
     if !base.is_empty() {
         return p
             .base
