@@ -7,84 +7,13 @@
 
 use robid_runtime::Model;
 use robid_runtime::excite::JointLimits;
-use robid_symbolic::program::{Program, RobotPrograms};
-use robid_symbolic::{Drive, Robot};
+use robid_symbolic::Drive;
 use tests::reference::by_name;
 
 pub(crate) mod excitation;
 
-/// A derived robot run by the interpreter.
-#[derive(Debug)]
-pub(crate) struct Interpreted {
-    /// The programs.
-    pub(crate) programs: RobotPrograms,
-    geometry: Vec<f64>,
-}
-
-impl Interpreted {
-    /// Derives `robot` (geometric symbols at their description values).
-    pub(crate) fn new(robot: &Robot) -> Self {
-        let programs = RobotPrograms::derive(robot).expect("derivation");
-        let geometry = programs
-            .geometry
-            .iter()
-            .map(|(s, v)| v.unwrap_or_else(|| panic!("symbol {s} has no value")))
-            .collect();
-        Self { programs, geometry }
-    }
-
-    fn run(&self, p: &Program, inputs: &[&[f64]], out: &mut [f64]) {
-        let mut all: Vec<&[f64]> = inputs.to_vec();
-        if !self.geometry.is_empty() {
-            all.push(&self.geometry);
-        }
-        let mut temps = Vec::new();
-        p.run(&all, &mut [out], &mut temps)
-            .expect("program lengths");
-    }
-}
-
-impl Model for Interpreted {
-    fn name(&self) -> &str {
-        &self.programs.robot.name
-    }
-    fn dof(&self) -> usize {
-        self.programs.robot.dof()
-    }
-    fn standard_parameter_count(&self) -> usize {
-        self.programs.standard.len()
-    }
-    fn standard_parameter_name(&self, index: usize) -> &str {
-        &self.programs.standard[index]
-    }
-    fn base_parameter_count(&self) -> usize {
-        self.programs.base.len()
-    }
-    fn base_parameter_name(&self, index: usize) -> &str {
-        &self.programs.base[index].name
-    }
-    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.base_regressor, &[q, qd, qdd], out);
-    }
-    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.standard_regressor, &[q, qd, qdd], out);
-    }
-    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
-        self.run(&self.programs.inverse_dynamics, &[q, qd, qdd, base], tau);
-    }
-    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.mass_matrix, &[q, base], out);
-    }
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.gravity, &[q, base], out);
-    }
-    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.coriolis, &[q, qd, base], out);
-    }
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
-        self.run(&self.programs.base_from_standard, &[standard], base);
-    }
-}
+/// The one interpreted-model adapter of the project.
+pub(crate) use robots::interpreted::Interpreted;
 
 /// The reference robot `name` with `drive` terms, its reference base parameters (drive values
 /// from `drive_value(prefix, joint)`, e.g. Fv, Fc) and its joint limits.
@@ -95,10 +24,10 @@ pub(crate) fn reference(
 ) -> (Interpreted, Vec<f64>, Vec<JointLimits>) {
     let r = by_name(name);
     let robot = r.robot(drive);
-    let model = Interpreted::new(&robot);
+    let model = Interpreted::new(&robot).expect("derivation");
     let table = r.parameter_table();
     let standard: Vec<f64> = model
-        .programs
+        .programs()
         .standard
         .iter()
         .map(|n| {
