@@ -100,3 +100,44 @@ fn a_missing_file_is_an_error_not_a_panic() {
     );
     assert!(!e.contains("panicked"), "{e}");
 }
+
+/// Parameter files (`torques`, `simulate`, `excite`, `feasible --prior`): each mistake is
+/// named with the file and the fix; a good file gives the torques of the reference robot.
+#[test]
+fn parameter_file_mistakes_are_named() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_parameters");
+    std::fs::create_dir_all(&dir).unwrap();
+    let states = dir.join("states.csv");
+    std::fs::write(
+        &states,
+        "q1,q2,q3,q4,q5,q6,qd1,qd2,qd3,qd4,qd5,qd6,qdd1,qdd2,qdd3,qdd4,qdd5,qdd6\n\
+         0,0.1,0.2,0.3,0.4,0.5,0,0,0,0,0,0,0,0,0,0,0,0\n",
+    )
+    .unwrap();
+    let torques = |text: &str| {
+        let params = dir.join("params.toml");
+        std::fs::write(&params, text).unwrap();
+        robid(&[
+            "torques",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            params.to_str().unwrap(),
+            "--states",
+            states.to_str().unwrap(),
+        ])
+    };
+    for (text, expected) in [
+        ("[standard]\nM9 = 1.0\n", "`M9`, which is not a standard parameter"),
+        ("[standard]\nM2 = \"heavy\"\n", "`M2` = \"heavy\" is not a finite number"),
+        ("[standard]\nM2 = 1.0\n[base]\nZZR1 = 1.0\n", "exactly one of the tables"),
+        ("[base]\nZZR1 = 1.0\n", "[base] has no `"),
+        ("[standard\n", "params.toml"),
+    ] {
+        let o = torques(text);
+        assert!(!o.status.success(), "{text}");
+        assert!(stderr(&o).contains(expected), "{text}: {}", stderr(&o));
+    }
+    let o = torques(&std::fs::read_to_string("parameters/ur5e.toml").unwrap());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).starts_with("tau1,"), "{}", stdout(&o));
+}

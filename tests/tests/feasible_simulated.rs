@@ -226,3 +226,36 @@ fn anneal_ur5e() {
     let s = solve_anneal(&c.problem, &b, &options).unwrap();
     check(&mut c, &s, "anneal ur5e", false, false);
 }
+
+/// A CAD-like prior (here the truth itself) settles what the base parameters leave free:
+/// the standard parameters land near the truth, while the fit to beta stays within its std.
+#[cfg(feature = "sdp")]
+#[test]
+fn sdp_panda_prior_settles_the_unidentifiable_directions() {
+    use robid_runtime::feasible::Prior;
+    let mut c = case("panda");
+    let b = bounds(&c);
+    let distance = |p: &[f64]| {
+        let d: f64 = p.iter().zip(&c.truth).map(|(x, t)| (x - t).powi(2)).sum();
+        d.sqrt() / c.truth.iter().map(|t| t * t).sum::<f64>().sqrt()
+    };
+    let plain = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+    let options = SdpOptions {
+        prior: Some(Prior {
+            standard: c.truth.iter().map(|&v| Some(v)).collect(),
+            weight: 1e-2,
+        }),
+        ..SdpOptions::default()
+    };
+    let pulled = solve_sdp(&c.problem, &b, &options).unwrap();
+    println!(
+        "panda: distance to the truth without prior {:.4}, with prior {:.4}; chi2 {:.3} / {:.3}",
+        distance(&plain.standard),
+        distance(&pulled.standard),
+        plain.chi2,
+        pulled.chi2
+    );
+    assert!(distance(&pulled.standard) < 0.1 * distance(&plain.standard));
+    check(&mut c, &pulled, "sdp panda with prior", false, false);
+    assert!(pulled.max_normalized_residual() <= 1.0);
+}

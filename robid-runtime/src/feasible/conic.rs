@@ -95,33 +95,45 @@ fn solve_stage(
         cones: vec![],
     };
 
-    // Second-order cone: (t, A p - b, pull rows).
-    let (p0, weight) = match &options.prior {
-        Some(prior) => {
-            if prior.standard.len() != ns {
-                return Err(Error::DimensionMismatch {
-                    what: "prior standard parameters".to_owned(),
-                    expected: ns,
-                    found: prior.standard.len(),
-                });
-            }
-            if prior.standard.iter().any(|v| !v.is_finite())
-                || !(prior.weight.is_finite() && prior.weight >= 0.0)
-            {
-                return Err(Error::InvalidConfig {
-                    key: "prior".to_owned(),
-                    problem: "holds NaN, an infinite value or a negative weight".to_owned(),
-                });
-            }
-            (prior.standard.clone(), prior.weight)
+    // Second-order cone: (t, A p - b, pull rows). Each parameter is pulled towards its
+    // prior value, or weakly towards the centre of its bounds.
+    let mut p0 = centre(layout, bounds);
+    let mut weight = vec![options.regularization; ns];
+    if let Some(prior) = &options.prior {
+        if prior.standard.len() != ns {
+            return Err(Error::DimensionMismatch {
+                what: "prior standard parameters".to_owned(),
+                expected: ns,
+                found: prior.standard.len(),
+            });
         }
-        None => (centre(layout, bounds), options.regularization),
-    };
+        if prior.standard.iter().flatten().any(|v| !v.is_finite())
+            || !(prior.weight.is_finite() && prior.weight >= 0.0)
+        {
+            return Err(Error::InvalidConfig {
+                key: "prior".to_owned(),
+                problem: "holds NaN, an infinite value or a negative weight".to_owned(),
+            });
+        }
+        for (s, v) in prior.standard.iter().enumerate() {
+            if let Some(v) = v {
+                p0[s] = *v;
+                weight[s] = prior.weight;
+            }
+        }
+    }
     let scale = scales(layout, bounds);
     c.row(&[(t, -1.0)], 0.0);
     if let Some((fixed, free)) = settle {
+        // Relative weights only: a parameter with a prior outweighs one without.
+        let top = weight
+            .iter()
+            .copied()
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
         for &s in free {
-            c.row(&[(s, -1.0 / scale[s])], -p0[s] / scale[s]);
+            let sw = (weight[s] / top).sqrt();
+            c.row(&[(s, -sw / scale[s])], -sw * p0[s] / scale[s]);
         }
         let soc = c.b.len();
         c.cones.push(SupportedConeT::SecondOrderConeT(soc));
@@ -140,11 +152,9 @@ fn solve_stage(
             let entries: Vec<(usize, f64)> = (0..ns).map(|s| (s, -a[(r, s)])).collect();
             c.row(&entries, -b[r]);
         }
-        let sw = weight.sqrt();
-        if sw > 0.0 {
-            for s in 0..ns {
-                c.row(&[(s, -sw / scale[s])], -sw * p0[s] / scale[s]);
-            }
+        for s in (0..ns).filter(|&s| weight[s] > 0.0) {
+            let sw = weight[s].sqrt();
+            c.row(&[(s, -sw / scale[s])], -sw * p0[s] / scale[s]);
         }
         let soc = c.b.len();
         c.cones.push(SupportedConeT::SecondOrderConeT(soc));

@@ -32,10 +32,14 @@ use crate::{Error, Result};
 use super::conic::solve;
 
 /// A prior (e.g. CAD values) the fit is pulled towards.
+///
+/// The data decide what they determine; the prior decides the rest (the directions the
+/// base parameters leave free) and, with a firm weight, competes with the data.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Prior {
-    /// Standard parameter values, in the problem's order.
-    pub standard: Vec<f64>,
+    /// Standard parameter values, in the problem's order; `None` where there is no prior
+    /// (that parameter is pulled weakly towards the centre of its bounds, as without a prior).
+    pub standard: Vec<Option<f64>>,
     /// Weight of the pull, relative to one unit of chi^2 per parameter scale (1 is firm).
     pub weight: f64,
 }

@@ -14,7 +14,8 @@ use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, 
 use robid_runtime::simulate::Trajectory;
 
 use super::Error;
-use super::simulate::{load_model, read_parameters};
+use super::parameters::base_parameters;
+use super::simulate::load_model;
 
 /// Arguments of `robid excite`.
 #[derive(Debug, clap::Args)]
@@ -117,7 +118,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         })
         .collect::<Result<Vec<_>, String>>()?;
     let reference = match &args.parameters {
-        Some(p) => Some(read_parameters(p, &model)?),
+        Some(p) => Some(base_parameters(p, &model)?),
         None => None,
     };
     let n = limits.len();

@@ -1,6 +1,6 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
-//! [--method sdp|anneal] -o OUT`: physically consistent link parameters that reproduce
-//! identified base parameters (DESIGN.md 7, 10). Writes OUT as TOML, or as URDF
+//! [--method sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
+//! consistent link parameters that reproduce identified base parameters (DESIGN.md 7, 10). Writes OUT as TOML, or as URDF
 //! `<inertial>` elements when OUT ends in `.urdf` or `.xml`. Identified parameters with an
 //! empty expression that are not base parameters of the description (the extra columns of
 //! an identification config) are kept as free terms.
@@ -8,12 +8,13 @@
 use std::path::{Path, PathBuf};
 
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Problem, SdpOptions, solve_anneal, solve_sdp, to_toml, to_urdf,
+    AnnealOptions, Bounds, Prior, Problem, SdpOptions, solve_anneal, solve_sdp, to_toml, to_urdf,
 };
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
 use super::Error;
+use super::parameters::standard_parameters;
 
 /// Arguments of `robid feasible`.
 #[derive(Debug, clap::Args)]
@@ -29,6 +30,15 @@ pub(crate) struct Args {
     /// `sdp` (convex, global optimum) or `anneal` (Gaz et al. global search).
     #[arg(long, default_value = "sdp")]
     method: String,
+    /// Prior standard parameters, e.g. CAD values (a parameter file with a `[standard]`
+    /// table; parameters it does not list have no prior). `--method sdp` only.
+    #[arg(long)]
+    prior: Option<PathBuf>,
+    /// Weight of the pull towards the prior: a deviation of one parameter scale (from the
+    /// bounds, e.g. the largest mass) costs this many chi^2 units. The default 1 settles
+    /// what the data barely determine and leaves what they determine; 100 overrides data.
+    #[arg(long, default_value_t = 1.0)]
+    prior_weight: f64,
     /// Output file: TOML, or URDF inertial elements for a `.urdf` / `.xml` name.
     #[arg(short, long)]
     output: PathBuf,
@@ -82,8 +92,34 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Some(path) => Bounds::from_toml(&read(path)?, &path.display().to_string(), links)?,
         None => Bounds::wide(links),
     };
+    let prior = match &args.prior {
+        Some(path) => Some(Prior {
+            standard: standard_parameters(path, &problem.standard_names)?,
+            weight: args.prior_weight,
+        }),
+        None => None,
+    };
+    if !(args.prior_weight.is_finite() && args.prior_weight >= 0.0) {
+        return Err(format!(
+            "--prior-weight {}: must be a finite number >= 0",
+            args.prior_weight
+        )
+        .into());
+    }
     let solution = match args.method.as_str() {
-        "sdp" => solve_sdp(&problem, &bounds, &SdpOptions::default())?,
+        "sdp" => solve_sdp(
+            &problem,
+            &bounds,
+            &SdpOptions {
+                prior,
+                ..SdpOptions::default()
+            },
+        )?,
+        "anneal" if prior.is_some() => {
+            return Err(
+                "--prior: only --method sdp uses a prior; drop --prior or use --method sdp".into(),
+            );
+        }
         "anneal" => solve_anneal(&problem, &bounds, &AnnealOptions::default())?,
         other => return Err(format!("--method {other}: unknown; use sdp or anneal").into()),
     };

@@ -8,6 +8,7 @@ mod excite;
 mod feasible;
 mod identify;
 mod model;
+mod parameters;
 mod simulate;
 mod torques;
 

@@ -49,7 +49,7 @@ pub(crate) struct Args {
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let model = load_model(&args.robot, &args.drive)?;
-    let base = read_parameters(&args.parameters, &model)?;
+    let base = super::parameters::base_parameters(&args.parameters, &model)?;
     let reference = Trajectory::read_csv(&args.trajectory, model.dof())?;
     let sim = Simulation {
         bandwidth: args.bandwidth,
@@ -103,91 +103,4 @@ pub(crate) fn load_model(path: &Path, drive: &[String]) -> Result<Interpreted, E
         robot = robot.with_drive(d);
     }
     Ok(Interpreted::new(&robot)?)
-}
-
-/// Reads base parameters from a file with a `[standard]` table (name = value, missing = 0)
-/// or a `[base]` table (every base parameter required).
-pub(crate) fn read_parameters(path: &Path, model: &Interpreted) -> Result<Vec<f64>, Error> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    let (mut standard, mut base) = (Vec::new(), Vec::new());
-    let mut table = "";
-    for (i, raw) in text.lines().enumerate() {
-        let line = raw.split('#').next().unwrap_or("").trim();
-        if line.is_empty() {
-            continue;
-        }
-        if line.starts_with('[') {
-            table = match line {
-                "[standard]" => "standard",
-                "[base]" => "base",
-                _ => "",
-            };
-            continue;
-        }
-        if table.is_empty() {
-            continue;
-        }
-        let at = || format!("{}:{}", path.display(), i + 1);
-        let (name, value) = line
-            .split_once('=')
-            .ok_or_else(|| format!("{}: expected `NAME = number`", at()))?;
-        let value: f64 = value
-            .trim()
-            .parse()
-            .map_err(|_| format!("{}: `{}` is not a number", at(), value.trim()))?;
-        if !value.is_finite() {
-            return Err(format!("{}: {value} is not finite", at()).into());
-        }
-        let entry = (name.trim().to_string(), value);
-        if table == "standard" {
-            standard.push(entry)
-        } else {
-            base.push(entry)
-        }
-    }
-    let p = model.programs();
-    if !base.is_empty() {
-        return p
-            .base
-            .iter()
-            .map(|b| {
-                base.iter()
-                    .find(|(n, _)| *n == b.name)
-                    .map(|(_, v)| *v)
-                    .ok_or_else(|| {
-                        format!(
-                            "{}: [base] has no `{}`; list every base parameter",
-                            path.display(),
-                            b.name
-                        )
-                        .into()
-                    })
-            })
-            .collect();
-    }
-    if standard.is_empty() {
-        return Err(format!("{}: no [standard] or [base] table", path.display()).into());
-    }
-    if let Some((n, _)) = standard.iter().find(|(n, _)| !p.standard.contains(n)) {
-        return Err(format!(
-            "{}: `{n}` is not a standard parameter of {} (enable its drive term with --drive?)",
-            path.display(),
-            p.robot.name
-        )
-        .into());
-    }
-    let values: Vec<f64> = p
-        .standard
-        .iter()
-        .map(|n| {
-            standard
-                .iter()
-                .find(|(k, _)| k == n)
-                .map_or(0.0, |(_, v)| *v)
-        })
-        .collect();
-    let mut out = vec![0.0; model.base_parameter_count()];
-    model.base_from_standard(&values, &mut out);
-    Ok(out)
 }
