@@ -127,9 +127,18 @@ fn parameter_file_mistakes_are_named() {
         ])
     };
     for (text, expected) in [
-        ("[standard]\nM9 = 1.0\n", "`M9`, which is not a standard parameter"),
-        ("[standard]\nM2 = \"heavy\"\n", "`M2` = \"heavy\" is not a finite number"),
-        ("[standard]\nM2 = 1.0\n[base]\nZZR1 = 1.0\n", "exactly one of the tables"),
+        (
+            "[standard]\nM9 = 1.0\n",
+            "`M9`, which is not a standard parameter",
+        ),
+        (
+            "[standard]\nM2 = \"heavy\"\n",
+            "`M2` = \"heavy\" is not a finite number",
+        ),
+        (
+            "[standard]\nM2 = 1.0\n[base]\nZZR1 = 1.0\n",
+            "exactly one of the tables",
+        ),
         ("[base]\nZZR1 = 1.0\n", "[base] has no `"),
         ("[standard\n", "params.toml"),
     ] {
