@@ -259,3 +259,28 @@ fn sdp_panda_prior_settles_the_unidentifiable_directions() {
     check(&mut c, &pulled, "sdp panda with prior", false, false);
     assert!(pulled.max_normalized_residual() <= 1.0);
 }
+
+/// Noise-free identified values (std at rounding level, as from a simulation without noise)
+/// still give a meaningful fit: the variances get a floor at the solver's precision.
+#[cfg(feature = "sdp")]
+#[test]
+fn sdp_noise_free_target_fits_to_solver_precision() {
+    let mut c = case("ur5e");
+    let exact = c.problem.base_of(&c.truth);
+    let std: Vec<f64> = exact.iter().map(|v| 1e-15 * v.abs().max(1e-3)).collect();
+    c.problem = c
+        .problem
+        .clone()
+        .with_target(exact.as_slice(), &std)
+        .unwrap();
+    c.beta = exact.as_slice().to_vec();
+    let b = bounds(&c);
+    let s = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+    println!(
+        "noise-free ur5e: chi2 {:.3e}, max |z| {:.3e}",
+        s.chi2,
+        s.max_normalized_residual()
+    );
+    assert!(s.chi2 <= c.beta.len() as f64, "chi2 {}", s.chi2);
+    check(&mut c, &s, "sdp ur5e noise-free", false, false);
+}

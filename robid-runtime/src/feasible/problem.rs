@@ -188,6 +188,10 @@ impl Problem {
     }
 
     /// Sets the identified values and their full covariance (symmetric positive definite).
+    ///
+    /// Each variance gets a floor at the solvers' precision, (1e-5 |beta_i| + 1e-8 max |beta|)^2:
+    /// values from noise-free data (std at rounding level) would otherwise make the whitened
+    /// problem too ill-conditioned to solve, and a misfit below that precision meaningless.
     pub fn with_covariance(mut self, values: &[f64], covariance: &DMatrix<f64>) -> Result<Problem> {
         let nb = self.base_names.len();
         if values.len() != nb {
@@ -208,6 +212,11 @@ impl Problem {
         };
         if covariance.iter().any(|v| !v.is_finite()) {
             return Err(singular());
+        }
+        let largest = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let mut covariance = covariance.clone();
+        for (i, v) in values.iter().enumerate() {
+            covariance[(i, i)] += (1e-5 * v.abs() + 1e-8 * largest).powi(2);
         }
         let chol = covariance.clone().cholesky().ok_or_else(singular)?;
         let l = chol.l();
