@@ -91,6 +91,16 @@ struct Frame {
     p: V3,
 }
 
+/// Angular motion about a single axis off z: w_xy = a e and
+/// wd_xy = b e + w_z (w_y, -w_x), for a 2-vector e. Then w_xy and wd_xy cost
+/// a rotation of e alone, and U_yz = -b e_x, U_xz = b e_y.
+#[derive(Clone, Copy, Debug)]
+struct Plane {
+    e: [E; 2],
+    a: E,
+    b: E,
+}
+
 /// Link parameters as program values.
 #[derive(Clone, Copy, Debug)]
 struct Link {
@@ -169,10 +179,27 @@ impl Lowering<'_> {
         self.materialize(s)
     }
 
+    /// `e` with its coefficient's magnitude applied if that product exists.
+    fn reuse(&self, e: E) -> E {
+        match e.v {
+            Some(v) if e.c.abs() != 1.0 && e.c != 0.0 => {
+                match self.existing_product(v, e.c.abs()) {
+                    Some(p) => E {
+                        c: e.c.signum(),
+                        v: Some(p),
+                    },
+                    None => e,
+                }
+            }
+            _ => e,
+        }
+    }
+
     fn mul(&mut self, a: E, b: E) -> E {
         if a.c == 0.0 || b.c == 0.0 {
             return ZERO;
         }
+        let (a, b) = (self.reuse(a), self.reuse(b));
         let v = match (a.v, b.v) {
             (None, x) | (x, None) => x,
             (Some(x), Some(y)) => Some(self.emit(Instr::Mul(x, y))),
@@ -310,7 +337,9 @@ impl Lowering<'_> {
             let diagonal = self.mul(j[a][a], wd[a]);
             let t1 = self.mul(j[a][b], u[c][a]);
             let t2 = self.mul(j[a][c], u[b][a]);
-            let squares = self.add(&[u[b][b], neg(u[c][c])]);
+            // U_bb - U_cc = w_b^2 - w_c^2, from the squares (U_bb may be dead).
+            let (sb, sc) = (self.mul(w[b], w[b]), self.mul(w[c], w[c]));
+            let squares = self.add(&[sb, neg(sc)]);
             let t3 = self.mul(j[b][c], squares);
             let difference = self.add(&[j[c][c], neg(j[b][b])]);
             let wbwc = self.mul(w[b], w[c]);
@@ -363,6 +392,31 @@ impl Lowering<'_> {
         }
     }
 
+    /// The planar form of link `f`'s w and wd, from its parent's (`plane`,
+    /// `w`, `wd`): it starts where a joint is perpendicular to a parent that
+    /// turns about its own z only (w_xy = W e, wd_xy = Wd e, e = z_(j-1)
+    /// in frame j) and carries on through joints with alpha in {0, pi}.
+    fn plane(&mut self, f: &Frame, plane: Option<Plane>, w: V3, wd: V3) -> Option<Plane> {
+        let zero = |x: E| x.c == 0.0;
+        if zero(f.ca) && [w[0], w[1], wd[0], wd[1]].into_iter().all(zero) {
+            let e = self.rotate_back(f, [ZERO, ZERO, number(1.0)]);
+            Some(Plane {
+                e: [e[0], e[1]],
+                a: w[2],
+                b: wd[2],
+            })
+        } else if zero(f.sa) {
+            let p = plane?;
+            let e = self.rotate_back(f, [p.e[0], p.e[1], ZERO]);
+            Some(Plane {
+                e: [e[0], e[1]],
+                ..p
+            })
+        } else {
+            None
+        }
+    }
+
     /// The forward recursion of the customised Newton-Euler algorithm.
     pub(super) fn forward(
         &mut self,
@@ -387,6 +441,7 @@ impl Lowering<'_> {
         // Forward: w, wd, vd and U of every link.
         let (mut w, mut wd, mut vd) = ([ZERO; 3], [ZERO; 3], g);
         let mut u = [[ZERO; 3]; 3];
+        let mut plane: Option<Plane> = None;
         let mut kin = Vec::with_capacity(n);
         for (j, f) in frames.iter().enumerate() {
             let up = self.mat_vec(&u, f.p);
@@ -394,29 +449,45 @@ impl Lowering<'_> {
             let vd_in = self.rotate_back(f, vd_parent);
             let w_in = self.rotate_back(f, w);
             let wd_in = self.rotate_back(f, wd);
+            plane = self.plane(f, plane, w, wd);
             let wy_qd = self.mul(w_in[1], qd[j]);
             let wx_qd = self.mul(w_in[0], qd[j]);
-            match f.kind {
-                JointKind::Revolute => {
-                    w = [w_in[0], w_in[1], self.add(&[w_in[2], qd[j]])];
-                    wd = [
-                        self.add(&[wd_in[0], wy_qd]),
-                        self.add(&[wd_in[1], neg(wx_qd)]),
-                        self.add(&[wd_in[2], qdd[j]]),
-                    ];
-                    vd = vd_in;
-                }
-                JointKind::Prismatic => {
-                    w = w_in;
-                    wd = wd_in;
-                    vd = [
-                        self.add(&[vd_in[0], wy_qd, wy_qd]),
-                        self.add(&[vd_in[1], neg(wx_qd), neg(wx_qd)]),
-                        self.add(&[vd_in[2], qdd[j]]),
-                    ];
-                }
+            let (w_z, wd_z) = match f.kind {
+                JointKind::Revolute => (self.add(&[w_in[2], qd[j]]), self.add(&[wd_in[2], qdd[j]])),
+                JointKind::Prismatic => (w_in[2], wd_in[2]),
+            };
+            if let Some(p) = plane {
+                // w_xy = a e, wd_xy = b e + w_z (w_y, -w_x).
+                w = [self.mul(p.a, p.e[0]), self.mul(p.a, p.e[1]), w_z];
+                let (be_x, be_y) = (self.mul(p.b, p.e[0]), self.mul(p.b, p.e[1]));
+                let (zy, zx) = (self.mul(w_z, w[1]), self.mul(w_z, w[0]));
+                wd = [self.add(&[be_x, zy]), self.add(&[be_y, neg(zx)]), wd_z];
+            } else if f.kind == JointKind::Revolute {
+                w = [w_in[0], w_in[1], w_z];
+                wd = [
+                    self.add(&[wd_in[0], wy_qd]),
+                    self.add(&[wd_in[1], neg(wx_qd)]),
+                    wd_z,
+                ];
+            } else {
+                w = w_in;
+                wd = wd_in;
             }
+            vd = match f.kind {
+                JointKind::Revolute => vd_in,
+                JointKind::Prismatic => [
+                    self.add(&[vd_in[0], wy_qd, wy_qd]),
+                    self.add(&[vd_in[1], neg(wx_qd), neg(wx_qd)]),
+                    self.add(&[vd_in[2], qdd[j]]),
+                ],
+            };
             u = self.u_matrix(w, wd);
+            if let Some(p) = plane {
+                // w_y w_z - wd_x and w_x w_z + wd_y, with the products cancelled.
+                let (be_x, be_y) = (self.mul(p.b, p.e[0]), self.mul(p.b, p.e[1]));
+                u[1][2] = neg(be_x);
+                u[0][2] = be_y;
+            }
             kin.push((w, wd, vd, u));
         }
         Ok(Kinematics {

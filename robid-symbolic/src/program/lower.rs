@@ -162,13 +162,17 @@ impl<'a> Lowering<'a> {
         Value::Const(i)
     }
 
+    /// The product `v * x` if it has been computed already.
+    pub(super) fn existing_product(&self, v: Value, x: f64) -> Option<Value> {
+        let &c = self.constant_index.get(&x.to_bits())?;
+        self.memo
+            .get(&sorted(Instr::Mul(v, Value::Const(c))))
+            .copied()
+    }
+
     /// Appends an instruction unless the same one exists (commutative operands sorted).
     pub(super) fn emit(&mut self, instr: Instr) -> Value {
-        let instr = match instr {
-            Instr::Add(a, b) if b < a => Instr::Add(b, a),
-            Instr::Mul(a, b) if b < a => Instr::Mul(b, a),
-            other => other,
-        };
+        let instr = sorted(instr);
         if let Some(&v) = self.memo.get(&instr) {
             return v;
         }
@@ -381,6 +385,15 @@ impl<'a> Lowering<'a> {
             value = self.emit(Instr::Div(one, value));
         }
         Signed { value, negative }
+    }
+}
+
+/// Commutative operands in order.
+fn sorted(instr: Instr) -> Instr {
+    match instr {
+        Instr::Add(a, b) if b < a => Instr::Add(b, a),
+        Instr::Mul(a, b) if b < a => Instr::Mul(b, a),
+        other => other,
     }
 }
 
