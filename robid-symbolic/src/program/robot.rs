@@ -143,7 +143,7 @@ impl Context {
     }
 
     /// A program running the customised Newton-Euler algorithm once per
-    /// entry of `runs` (straight into program values, see `customised.rs`);
+    /// entry of `runs` (straight into program values, see `customised/`);
     /// `assemble` turns the torques of every run into the output elements.
     fn newton_euler_program(
         &mut self,
@@ -185,7 +185,7 @@ impl Context {
         Ok(l.finish(inputs.clone(), vec![(group, values)]))
     }
 
-    /// Y_b written straight into a program (`customised.rs`): one forward
+    /// Y_b written straight into a program (`customised/columns.rs`): one forward
     /// recursion for all columns; column k is the wrench of link j with base
     /// parameter k's slot at 1 (a few entries of w, wd, vd and U), projected
     /// on the axis of every joint i <= j expressed in frame j (torque

@@ -1,0 +1,213 @@
+//! The backward recursion: link wrenches (Euler equation written with U),
+//! their transfer to the parent, and the torques; with the moments of the
+//! links after a perpendicular joint projected instead of rotated back, and
+//! the last link's moment taken about its parent's origin when that is on
+//! its axis.
+
+use super::super::ProgramError;
+use super::forward::{KinLink, Kinematics};
+use super::{E, Frame, FrameExprs, Link, Lowering, RunInputs, V3, ZERO, neg, number};
+use crate::dynamics::LinkParameters;
+use crate::robot::JointKind;
+
+/// Links `start..=end` whose moments' x, y components are projected on
+/// `axes[k - start]` (see [`Lowering::projection`]).
+struct Projection {
+    start: usize,
+    end: usize,
+    axes: Vec<V3>,
+}
+
+impl Lowering<'_> {
+    /// Joint torques of the customised Newton-Euler algorithm.
+    pub(in crate::program) fn newton_euler(
+        &mut self,
+        frames: &[FrameExprs],
+        inputs: &RunInputs<'_>,
+        links: &[LinkParameters],
+    ) -> Result<Vec<E>, ProgramError> {
+        let n = frames.len();
+        let links: Vec<Link> = links
+            .iter()
+            .map(|l| self.link(l))
+            .collect::<Result<_, _>>()?;
+        let Kinematics {
+            frames,
+            qd,
+            qdd,
+            kin,
+        } = self.forward(frames, inputs)?;
+        let projection = self.projection(&frames);
+        let shift = self.shift(&frames, &kin, &links);
+        let mut projected: Vec<E> = Vec::new();
+        // Backward: wrenches and torques.
+        let mut tau = vec![ZERO; n];
+        let mut f_next: V3 = [ZERO; 3];
+        let mut n_next: V3 = [ZERO; 3];
+        for j in (0..n).rev() {
+            let (w, wd, vd, u) = kin[j];
+            let l = &links[j];
+            let m_vd = vd.map(|x| self.mul(l.m, x));
+            let u_ms = self.mat_vec(&u, l.ms);
+            let force = self.add3(&[m_vd, u_ms]);
+            let (inertia, vd_moment) = match shift {
+                Some((d, vd_o)) if j + 1 == n => (self.shifted_inertia(l, d), vd_o),
+                _ => (l.inertia, vd),
+            };
+            // Of the moments of the projected links only e . n_xy is needed,
+            // and w_xy lies along e there.
+            let projected_link = projection
+                .as_ref()
+                .is_some_and(|pr| (pr.start..=pr.end).contains(&j));
+            let euler = self.euler(&inertia, w, wd, &u, !projected_link);
+            let ms_x_vd = self.cross(l.ms, vd_moment);
+            let moment = self.add3(&[euler, ms_x_vd]);
+            let (f, m) = if j + 1 < n {
+                let next = &frames[j + 1];
+                let rf = self.rotate(next, f_next);
+                let mut rm = self.rotate(next, n_next);
+                if let Some(pr) = &projection
+                    && pr.start < j + 1
+                    && j < pr.end
+                {
+                    let e = pr.axes[j + 1 - pr.start];
+                    projected.push(self.mul(e[0], n_next[0]));
+                    projected.push(self.mul(e[1], n_next[1]));
+                    (rm[0], rm[1]) = (ZERO, ZERO);
+                }
+                let p_x_rf = match shift {
+                    // The moment of the last link is about O_j already.
+                    Some(_) if j + 2 == n => [ZERO; 3],
+                    _ => self.cross(next.p, rf),
+                };
+                (self.add3(&[force, rf]), self.add3(&[moment, rm, p_x_rf]))
+            } else {
+                (force, moment)
+            };
+            let mut m = m;
+            if let Some(pr) = &projection
+                && j < pr.start
+            {
+                if j + 1 == pr.start {
+                    projected.push(m[2]);
+                    m[2] = self.add(&projected);
+                }
+                // Not needed below the perpendicular joint (n_z alone is).
+                (m[0], m[1]) = (ZERO, ZERO);
+            }
+            let axis = match frames[j].kind {
+                JointKind::Revolute => m[2],
+                JointKind::Prismatic => f[2],
+            };
+            let ia = self.mul(l.ia, qdd[j]);
+            let fv = self.mul(l.fv, qd[j]);
+            let s = self.sign_of(qd[j]);
+            let fc = self.mul(l.fc, s);
+            tau[j] = self.add(&[axis, ia, fv, fc, l.fo]);
+            f_next = f;
+            n_next = m;
+        }
+        Ok(tau)
+    }
+
+    /// J wd + w x (J w), written with the entries of U (which hold the
+    /// products w_i w_j already): with J = [XX XY XZ; XY YY YZ; XZ YZ ZZ],
+    /// N_x = XX wdx - XY U20 + XZ U10 + YZ (U11 - U22) + (ZZ - YY) wy wz, and
+    /// the other two by the cyclic permutation x -> y -> z. Without
+    /// `zz_xy`, N_x and N_y leave out ZZ's part, w_z ZZ (w_y, -w_x), for a
+    /// link whose N_xy is only projected on a direction along which w_xy lies.
+    pub(super) fn euler(
+        &mut self,
+        inertia: &[E; 6],
+        w: V3,
+        wd: V3,
+        u: &[[E; 3]; 3],
+        zz_xy: bool,
+    ) -> V3 {
+        let [xx, xy, xz, yy, yz, zz] = *inertia;
+        // j[a][b]: the inertia entry (a, b).
+        let j = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
+        [0, 1, 2].map(|a| {
+            let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+            // N_a = J_aa wd_a - J_ab U_ca + J_ac U_ba + J_bc (U_bb - U_cc) + (J_cc - J_bb) w_b w_c
+            let diagonal = self.mul(j[a][a], wd[a]);
+            let t1 = self.mul(j[a][b], u[c][a]);
+            let t2 = self.mul(j[a][c], u[b][a]);
+            // U_bb - U_cc = w_b^2 - w_c^2, from the squares (U_bb may be dead).
+            let (sb, sc) = (self.mul(w[b], w[b]), self.mul(w[c], w[c]));
+            let squares = self.add(&[sb, neg(sc)]);
+            let t3 = self.mul(j[b][c], squares);
+            let diagonal_of = |k: usize| {
+                if k == 2 && a < 2 && !zz_xy {
+                    ZERO
+                } else {
+                    j[k][k]
+                }
+            };
+            let difference = self.add(&[diagonal_of(c), neg(diagonal_of(b))]);
+            let wbwc = self.mul(w[b], w[c]);
+            let t4 = self.mul(difference, wbwc);
+            self.add(&[diagonal, neg(t1), t2, t3, t4])
+        })
+    }
+
+    /// Where joints 2..=p are parallel to joint 1 (so of the moments of
+    /// links 1..=p only n_z is needed), joint s = p + 1 perpendicular to
+    /// them and joints s+1..=m parallel to s, the x, y components of the
+    /// moments of links s..m reach the torques only through z_p, and
+    /// z_p . R_(k+1) n_(k+1) = e_(k+1) . n_(k+1) with e_k = z_p in frame k: so
+    /// they are projected on e_k instead of rotated back link by link.
+    fn projection(&mut self, frames: &[Frame]) -> Option<Projection> {
+        let zero = |x: E| x.c == 0.0;
+        let start = 1
+            + (1..frames.len())
+                .take_while(|&i| zero(frames[i].sa))
+                .count();
+        if start >= frames.len() || !zero(frames[start].ca) {
+            return None;
+        }
+        let end = start
+            + (start + 1..frames.len())
+                .take_while(|&i| zero(frames[i].sa))
+                .count();
+        if end == start {
+            return None;
+        }
+        let mut e = self.rotate_back(&frames[start], [ZERO, ZERO, number(1.0)]);
+        let mut axes = vec![e];
+        for f in &frames[start + 1..=end] {
+            e = self.rotate_back(f, e);
+            axes.push(e);
+        }
+        Some(Projection { start, end, axes })
+    }
+
+    /// The last link's moment taken about O_(n-1) instead of O_n when O_(n-1)
+    /// is on its axis (a_n = 0; r = O_(n-1) O_n = [0, 0, d] in frame n) and
+    /// it has neither mass nor MZ: n + r x F = J' wd + w x (J' w) + MS x vd_o
+    /// with J' = J - MS r' - r MS' (XZ - d MX, YZ - d MY) and vd_o the
+    /// acceleration of O_(n-1). The torque about z_n is the same, the
+    /// parent's P x R f drops out and vd_n is not needed. Returns d and vd_o.
+    fn shift(&mut self, frames: &[Frame], kin: &[KinLink], links: &[Link]) -> Option<(E, V3)> {
+        let zero = |x: E| x.c == 0.0;
+        let n = frames.len();
+        let (f, l) = (frames.last()?, links.last()?);
+        if n < 2 || f.kind != JointKind::Revolute || !zero(f.p[0]) || !zero(l.m) || !zero(l.ms[2]) {
+            return None;
+        }
+        // P = [0, -sa d, ca d]
+        let (a, b) = (self.mul(f.ca, f.p[2]), self.mul(f.sa, f.p[1]));
+        let d = self.add(&[a, neg(b)]);
+        let vd_o = self.rotate_back(f, kin[n - 2].2);
+        Some((d, vd_o))
+    }
+
+    fn shifted_inertia(&mut self, l: &Link, d: E) -> [E; 6] {
+        let mut j = l.inertia;
+        for (slot, ms) in [(2, l.ms[0]), (4, l.ms[1])] {
+            let t = self.mul(d, ms);
+            j[slot] = self.add(&[j[slot], neg(t)]);
+        }
+        j
+    }
+}

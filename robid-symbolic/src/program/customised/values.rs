@@ -1,0 +1,182 @@
+//! Arithmetic on lazy values [`E`]: products and sums fold numbers, merge
+//! equal values and share one multiplication per coefficient.
+
+use super::super::lower::Signed;
+use super::super::{Instr, ProgramError, Value};
+use super::{E, Lowering, V3, ZERO, neg, number};
+use crate::expr::Id;
+
+impl Lowering<'_> {
+    /// The expression `id` as a value.
+    pub(in crate::program) fn e(&mut self, id: Id) -> Result<E, ProgramError> {
+        let s = self.lower(id)?;
+        Ok(self.e_of(s))
+    }
+
+    pub(super) fn e_of(&self, s: Signed) -> E {
+        let sign = if s.negative { -1.0 } else { 1.0 };
+        match s.value {
+            Value::Const(i) => number(sign * self.constant_value(i)),
+            v => E {
+                c: sign,
+                v: Some(v),
+            },
+        }
+    }
+
+    /// The value with its coefficient's magnitude applied; the sign is left.
+    pub(super) fn signed(&mut self, e: E) -> Signed {
+        let negative = e.c < 0.0;
+        let m = e.c.abs();
+        let value = match e.v {
+            None => self.constant(m),
+            Some(v) if m == 1.0 => v,
+            Some(v) => {
+                let c = self.constant(m);
+                self.emit(Instr::Mul(v, c))
+            }
+        };
+        Signed { value, negative }
+    }
+
+    /// The value as an output: a negation is paid for here.
+    pub(in crate::program) fn output(&mut self, e: E) -> Value {
+        if let Some(v) = e.v
+            && e.c < 0.0
+            && e.c != -1.0
+        {
+            // The sign goes into the coefficient.
+            let c = self.constant(e.c);
+            return self.emit(Instr::Mul(v, c));
+        }
+        let s = self.signed(e);
+        self.materialize(s)
+    }
+
+    /// `e` with its coefficient's magnitude applied if that product exists.
+    pub(super) fn reuse(&self, e: E) -> E {
+        match e.v {
+            Some(v) if e.c.abs() != 1.0 && e.c != 0.0 => {
+                match self.existing_product(v, e.c.abs()) {
+                    Some(p) => E {
+                        c: e.c.signum(),
+                        v: Some(p),
+                    },
+                    None => e,
+                }
+            }
+            _ => e,
+        }
+    }
+
+    pub(super) fn mul(&mut self, a: E, b: E) -> E {
+        if a.c == 0.0 || b.c == 0.0 {
+            return ZERO;
+        }
+        let (a, b) = (self.reuse(a), self.reuse(b));
+        let v = match (a.v, b.v) {
+            (None, x) | (x, None) => x,
+            (Some(x), Some(y)) => Some(self.emit(Instr::Mul(x, y))),
+        };
+        E { c: a.c * b.c, v }
+    }
+
+    /// Sum: numbers folded, equal values merged, and the terms with the same
+    /// coefficient magnitude added first and multiplied once.
+    pub(super) fn add(&mut self, terms: &[E]) -> E {
+        let mut k = 0.0;
+        let mut items: Vec<(Value, f64)> = Vec::new();
+        for t in terms {
+            if t.c == 0.0 {
+                continue;
+            }
+            match t.v {
+                None => k += t.c,
+                Some(v) => match items.iter_mut().find(|x| x.0 == v) {
+                    Some(x) => x.1 += t.c,
+                    None => items.push((v, t.c)),
+                },
+            }
+        }
+        let mut groups: Vec<(f64, Vec<Signed>)> = Vec::new();
+        for (v, c) in items.into_iter().filter(|x| x.1 != 0.0) {
+            let s = Signed {
+                value: v,
+                negative: c < 0.0,
+            };
+            match groups.iter_mut().find(|g| g.0 == c.abs()) {
+                Some(g) => g.1.push(s),
+                None => groups.push((c.abs(), vec![s])),
+            }
+        }
+        let mut parts: Vec<E> = groups
+            .into_iter()
+            .map(|(m, members)| {
+                let s = self.sum(&members);
+                E {
+                    c: if s.negative { -m } else { m },
+                    v: Some(s.value),
+                }
+            })
+            .collect();
+        match (parts.len(), k == 0.0) {
+            (0, _) => return number(k),
+            (1, true) => return parts[0],
+            _ => {}
+        }
+        if k != 0.0 {
+            parts.push(number(k));
+        }
+        let signed: Vec<Signed> = parts.into_iter().map(|p| self.signed(p)).collect();
+        let s = self.sum(&signed);
+        self.e_of(s)
+    }
+
+    pub(super) fn add3(&mut self, vectors: &[V3]) -> V3 {
+        [0, 1, 2].map(|i| {
+            let terms: Vec<E> = vectors.iter().map(|v| v[i]).collect();
+            self.add(&terms)
+        })
+    }
+
+    pub(super) fn cross(&mut self, a: V3, b: V3) -> V3 {
+        [(1, 2), (2, 0), (0, 1)].map(|(i, j)| {
+            let p = self.mul(a[i], b[j]);
+            let q = self.mul(a[j], b[i]);
+            self.add(&[p, neg(q)])
+        })
+    }
+
+    pub(super) fn mat_vec(&mut self, m: &[[E; 3]; 3], v: V3) -> V3 {
+        [0, 1, 2].map(|i| {
+            let terms: Vec<E> = (0..3).map(|k| self.mul(m[i][k], v[k])).collect();
+            self.add(&terms)
+        })
+    }
+
+    pub(super) fn sign_of(&mut self, x: E) -> E {
+        match x.v {
+            _ if x.c == 0.0 => ZERO,
+            None => number(x.c.signum()),
+            Some(v) => E {
+                c: x.c.signum(),
+                v: Some(self.emit(Instr::Sign(v))),
+            },
+        }
+    }
+
+    /// `a + sum b_k c_k` for expressions b_k, c_k (the fallback of a base
+    /// parameter without a link slot).
+    pub(in crate::program) fn add_products(
+        &mut self,
+        a: E,
+        products: &[(Id, Id)],
+    ) -> Result<E, ProgramError> {
+        let mut terms = vec![a];
+        for &(b, c) in products {
+            let (b, c) = (self.e(b)?, self.e(c)?);
+            terms.push(self.mul(b, c));
+        }
+        Ok(self.add(&terms))
+    }
+}
