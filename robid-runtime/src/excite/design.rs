@@ -17,9 +17,8 @@ use rayon::prelude::*;
 use crate::Model;
 use crate::error::{Error, Result};
 use crate::excite::progress::Progress;
-use crate::excite::{
-    Criterion, Fourier, Information, JointLimits, JointSeries, NelderMead, check_limits,
-};
+use crate::excite::{Criterion, Fourier, Information, JointLimits, JointSeries, check_limits};
+use crate::nelder_mead::NelderMead;
 use crate::simulate::Rng;
 
 /// Settings of a Fourier design.
@@ -230,7 +229,8 @@ impl FourierDesign {
         let nm = NelderMead {
             max_evaluations: self.evaluations,
             tolerance: 1e-10,
-            step: 0.4,
+            absolute_tolerance: 1e-10,
+            step: vec![0.4],
         };
         let root = Rng::new(self.seed);
         let runs: Vec<_> = (0..self.restarts)

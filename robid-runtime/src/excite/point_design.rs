@@ -30,7 +30,8 @@ use crate::Model;
 use crate::error::{Error, Result};
 use crate::excite::polynomial::{Knot, Septic};
 use crate::excite::progress::Progress;
-use crate::excite::{Criterion, Information, JointLimits, NelderMead, Points, check_limits};
+use crate::excite::{Criterion, Information, JointLimits, Points, check_limits};
+use crate::nelder_mead::NelderMead;
 use crate::simulate::Rng;
 
 /// Settings of a point-based design.
@@ -172,7 +173,8 @@ impl PointDesign {
         let nm = NelderMead {
             max_evaluations: self.evaluations,
             tolerance: 1e-10,
-            step: 0.4,
+            absolute_tolerance: 1e-10,
+            step: vec![0.4],
         };
         let root = Rng::new(self.seed);
         let runs: Vec<_> = (0..self.restarts)

@@ -15,7 +15,6 @@
 
 mod anneal;
 mod levenberg;
-mod nelder_mead;
 mod parametrise;
 mod rng;
 
@@ -28,6 +27,7 @@ use rayon::prelude::*;
 use super::bounds::Bounds;
 use super::problem::Problem;
 use super::solution::{Method, Solution};
+use crate::nelder_mead::NelderMead;
 use crate::{Error, Result};
 use anneal::{AnnealSettings, reflect};
 use parametrise::{PER_LINK, link_box, link_centre, link_of};
@@ -221,6 +221,13 @@ pub fn solve_anneal(
         iterations: options.iterations,
         final_ratio: 1e-9,
     };
+    // runs until the values agree to 1e-15 relative (1e-30 absolute), in practice to the budget
+    let local = NelderMead {
+        max_evaluations: options.local_evaluations,
+        tolerance: 1e-15,
+        absolute_tolerance: 1e-30,
+        step: lo.iter().zip(&hi).map(|(l, h)| 0.05 * (h - l)).collect(),
+    };
 
     let runs: Vec<(Vec<f64>, f64)> = (0..options.restarts)
         .into_par_iter()
@@ -245,10 +252,9 @@ pub fn solve_anneal(
                     .collect();
                 objective.value(&z)
             };
-            let step: Vec<f64> = lo.iter().zip(&hi).map(|(l, h)| 0.05 * (h - l)).collect();
-            let (xn, _) =
-                nelder_mead::nelder_mead(&g, &xa, &step, options.local_evaluations, 1e-15);
-            let xn: Vec<f64> = xn
+            let xn: Vec<f64> = local
+                .minimize(&xa, g)
+                .x
                 .iter()
                 .enumerate()
                 .map(|(i, v)| reflect(*v, lo[i], hi[i]))

@@ -1,20 +1,32 @@
 //! Nelder-Mead simplex minimisation with the dimension-adaptive coefficients of Gao and Han,
-//! which keep the method effective in tens of dimensions.
+//! which keep the method effective in tens of dimensions. Used by the trajectory designs
+//! (`excite`) and the feasible-parameter search (`feasible`).
 //!
 //! ## Reference
 //! J. A. Nelder, R. Mead, "A simplex method for function minimization", Computer Journal 7,
 //! 1965; F. Gao, L. Han, "Implementing the Nelder-Mead simplex algorithm with adaptive
 //! parameters", Computational Optimization and Applications 51, 2012.
+//!
+//! ```
+//! # use robid_runtime::nelder_mead::NelderMead;
+//! let nm = NelderMead { step: vec![0.5, 0.7], ..NelderMead::default() };
+//! let m = nm.minimize(&[0.0, 0.0], |x| (x[0] - 1.0).powi(2) + (x[1] + 3.0).powi(2));
+//! assert!((m.x[0] - 1.0).abs() < 1e-3 && (m.x[1] + 3.0).abs() < 1e-3);
+//! ```
 
-/// Settings of a minimisation.
+/// Settings of a minimisation. It stops after `max_evaluations` evaluations or when the
+/// simplex's function values differ by at most `tolerance * |best| + absolute_tolerance`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NelderMead {
     /// Largest number of function evaluations.
     pub max_evaluations: usize,
-    /// Stop when the simplex's function values differ by less than this.
+    /// Relative part of the stopping tolerance.
     pub tolerance: f64,
-    /// Edge length of the initial simplex (along each coordinate).
-    pub step: f64,
+    /// Absolute part of the stopping tolerance.
+    pub absolute_tolerance: f64,
+    /// Edge lengths of the initial simplex along each coordinate: one value for every
+    /// coordinate, or one per coordinate.
+    pub step: Vec<f64>,
 }
 
 impl Default for NelderMead {
@@ -22,7 +34,8 @@ impl Default for NelderMead {
         Self {
             max_evaluations: 2000,
             tolerance: 1e-9,
-            step: 0.3,
+            absolute_tolerance: 1e-9,
+            step: vec![0.3],
         }
     }
 }
@@ -40,11 +53,17 @@ pub struct Minimum {
 
 impl NelderMead {
     /// Minimises `f` from `x0`. Non-finite values count as +infinity.
+    ///
+    /// # Panics
+    /// If `step` has neither one value nor one per coordinate of `x0`.
     pub fn minimize(&self, x0: &[f64], mut f: impl FnMut(&[f64]) -> f64) -> Minimum {
         let n = x0.len();
-        let mut evals = 0;
+        assert!(
+            self.step.len() == 1 || self.step.len() == n,
+            "NelderMead: {} steps for {n} coordinates",
+            self.step.len()
+        );
         let mut eval = |x: &[f64]| {
-            evals += 1;
             let v = f(x);
             if v.is_finite() { v } else { f64::INFINITY }
         };
@@ -62,7 +81,7 @@ impl NelderMead {
         simplex.push((x0.to_vec(), eval(x0)));
         for i in 0..n {
             let mut x = x0.to_vec();
-            x[i] += self.step;
+            x[i] += self.step[i.min(self.step.len() - 1)];
             let v = eval(&x);
             simplex.push((x, v));
         }
@@ -73,7 +92,8 @@ impl NelderMead {
         while used < self.max_evaluations {
             simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
             let (best, worst) = (simplex[0].1, simplex[n].1);
-            if (worst - best).abs() <= self.tolerance * (1.0 + best.abs()) && worst.is_finite() {
+            // false while worst is infinite (inf - finite, or inf - inf = NaN)
+            if worst - best <= self.tolerance * best.abs() + self.absolute_tolerance {
                 break;
             }
             let mut c = vec![0.0; n];
@@ -94,19 +114,15 @@ impl NelderMead {
             } else if fr < simplex[n - 1].1 {
                 simplex[n] = (xr, fr);
             } else {
-                let (xc, fc) = if fr < worst {
-                    let x = along(&c, &w, alpha * gamma);
-                    let v = eval(&x);
-                    (x, v)
-                } else {
-                    let x = along(&c, &w, -gamma);
-                    let v = eval(&x);
-                    (x, v)
-                };
+                // outside contraction if the reflection improved on the worst, else inside
+                let t = if fr < worst { alpha * gamma } else { -gamma };
+                let xc = along(&c, &w, t);
+                let fc = eval(&xc);
                 used += 1;
                 if fc < fr.min(worst) {
                     simplex[n] = (xc, fc);
                 } else {
+                    // shrink towards the best vertex
                     let x0 = simplex[0].0.clone();
                     for (x, v) in simplex.iter_mut().skip(1) {
                         for (xi, bi) in x.iter_mut().zip(&x0) {
@@ -132,16 +148,19 @@ impl NelderMead {
 mod tests {
     use super::*;
 
+    fn rosenbrock(x: &[f64]) -> f64 {
+        (1.0 - x[0]).powi(2) + 100.0 * (x[1] - x[0] * x[0]).powi(2)
+    }
+
     #[test]
     fn finds_the_minimum_of_rosenbrock_and_a_quadratic() {
         let nm = NelderMead {
             max_evaluations: 5000,
             tolerance: 1e-14,
-            step: 0.5,
+            absolute_tolerance: 1e-14,
+            step: vec![0.5],
         };
-        let r = nm.minimize(&[-1.2, 1.0], |x| {
-            (1.0 - x[0]).powi(2) + 100.0 * (x[1] - x[0] * x[0]).powi(2)
-        });
+        let r = nm.minimize(&[-1.2, 1.0], rosenbrock);
         assert!(
             (r.x[0] - 1.0).abs() < 1e-3 && (r.x[1] - 1.0).abs() < 1e-3,
             "{r:?}"
@@ -163,5 +182,55 @@ mod tests {
             }
         });
         assert!((c.x[0] - 0.1).abs() < 1e-4);
+    }
+
+    #[test]
+    fn per_coordinate_steps_and_a_relative_tolerance() {
+        let nm = NelderMead {
+            max_evaluations: 5000,
+            tolerance: 1e-14,
+            absolute_tolerance: 1e-28,
+            step: vec![0.1, 0.1],
+        };
+        let r = nm.minimize(&[-1.2, 1.0], rosenbrock);
+        assert!(r.value < 1e-8 && (r.x[0] - 1.0).abs() < 1e-3, "{r:?}");
+        let nm = NelderMead {
+            max_evaluations: 20_000,
+            tolerance: 1e-16,
+            absolute_tolerance: 1e-32,
+            step: vec![0.5; 10],
+        };
+        let q = nm.minimize(&[0.0; 10], |x| {
+            x.iter()
+                .enumerate()
+                .map(|(i, v)| (i as f64 + 1.0) * (v - 1.0).powi(2))
+                .sum::<f64>()
+        });
+        assert!(q.value < 1e-8, "{q:?}");
+        // the steps scale the simplex: a coordinate with a tiny scale converges too
+        let nm = NelderMead {
+            step: vec![1.0, 1e-6],
+            tolerance: 1e-14,
+            absolute_tolerance: 1e-14,
+            ..NelderMead::default()
+        };
+        let s = nm.minimize(&[0.3, 0.0], |x| {
+            let (u, v) = (x[0] - 2.0, 1e6 * x[1] - 1.0);
+            u * u + v * v + 0.5 * u * v
+        });
+        assert!(
+            (s.x[0] - 2.0).abs() < 1e-3 && (s.x[1] - 1e-6).abs() < 1e-9,
+            "{s:?}"
+        );
+    }
+
+    #[test]
+    #[should_panic(expected = "3 steps for 2 coordinates")]
+    fn a_step_per_coordinate_or_one_for_all() {
+        let nm = NelderMead {
+            step: vec![0.1; 3],
+            ..NelderMead::default()
+        };
+        nm.minimize(&[0.0, 0.0], rosenbrock);
     }
 }
