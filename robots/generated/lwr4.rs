@@ -3574,7 +3574,7 @@ impl Lwr4 {
     /// - `qdd`: qdd1 .. qdd7
     /// - `base`: ZZR1 .. MY7
     ///
-    /// Operations: 300 mul, 281 add, 0 neg, 6 sin, 6 cos.
+    /// Operations: 299 mul, 279 add, 0 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
@@ -4129,59 +4129,56 @@ impl Lwr4 {
         let t538 = t25 * XZR2;
         let t539 = t21 - t22;
         let t540 = t539 * YZR2;
-        let t541 = t16 * ZZR2;
-        let t542 = t536 - t537;
-        let t543 = t540 + t541;
-        let t544 = t538 + t543;
-        let t545 = t542 + t544;
-        let t546 = t24 * YZR2;
-        let t547 = t27 * XYR2;
-        let t548 = t22 - t20;
-        let t549 = t548 * XZR2;
-        let t550 = XXR2 - ZZR2;
-        let t551 = t17 * t550;
-        let t552 = t547 - t546;
-        let t553 = t549 + t551;
-        let t554 = t552 + t553;
-        let t555 = qdd2 * ZZR2;
-        let t556 = t14 * XZR2;
-        let t557 = t15 * YZR2;
-        let t558 = t20 - t21;
-        let t559 = t558 * XYR2;
-        let t560 = t23 * XXR2;
-        let t561 = t555 + t556;
-        let t562 = t559 - t560;
-        let t563 = t557 + t562;
-        let t564 = t561 + t563;
-        let t565 = t32 * MX2;
-        let t566 = t29 * MYR2;
-        let t567 = t565 - t566;
-        let t568 = t564 + t567;
-        let t569 = t3 * t531;
-        let t570 = t2 * t532;
-        let t571 = t2 * t531;
-        let t572 = t3 * t532;
-        let t573 = t569 - t570;
-        let t574 = t571 + t572;
-        let t575 = t3 * t533;
-        let t576 = t2 * t534;
-        let t577 = t2 * t533;
-        let t578 = t3 * t534;
-        let t579 = t575 - t576;
-        let t580 = t577 + t578;
-        let t581 = t545 + t579;
-        let t582 = t574 * c1;
-        let t583 = t581 - t582;
-        let t584 = t535 + t554;
-        let t585 = t568 - t580;
-        let t586 = t573 * c1;
-        let t587 = t585 - t586;
-        let t588 = qdd1 * ZZR1;
-        let t589 = t0 * t583;
-        let t590 = t1 * t584;
-        let t591 = t589 + t590;
-        let t592 = t588 + t591;
-        [t592, t587, t535, t478, t410, t346, t282]
+        let t541 = t536 - t537;
+        let t542 = t538 + t540;
+        let t543 = t541 + t542;
+        let t544 = t24 * YZR2;
+        let t545 = t27 * XYR2;
+        let t546 = t22 - t20;
+        let t547 = t546 * XZR2;
+        let t548 = t17 * XXR2;
+        let t549 = t545 - t544;
+        let t550 = t547 + t548;
+        let t551 = t549 + t550;
+        let t552 = qdd2 * ZZR2;
+        let t553 = t14 * XZR2;
+        let t554 = t15 * YZR2;
+        let t555 = t20 - t21;
+        let t556 = t555 * XYR2;
+        let t557 = t23 * XXR2;
+        let t558 = t552 + t553;
+        let t559 = t556 - t557;
+        let t560 = t554 + t559;
+        let t561 = t558 + t560;
+        let t562 = t32 * MX2;
+        let t563 = t29 * MYR2;
+        let t564 = t562 - t563;
+        let t565 = t561 + t564;
+        let t566 = t3 * t531;
+        let t567 = t2 * t532;
+        let t568 = t2 * t531;
+        let t569 = t3 * t532;
+        let t570 = t566 - t567;
+        let t571 = t568 + t569;
+        let t572 = t3 * t533;
+        let t573 = t2 * t534;
+        let t574 = t2 * t533;
+        let t575 = t3 * t534;
+        let t576 = t572 - t573;
+        let t577 = t574 + t575;
+        let t578 = t543 + t576;
+        let t579 = t571 * c1;
+        let t580 = t578 - t579;
+        let t581 = t535 + t551;
+        let t582 = t565 - t577;
+        let t583 = t570 * c1;
+        let t584 = t582 - t583;
+        let t585 = qdd1 * ZZR1;
+        let t586 = t0 * t580;
+        let t587 = t1 * t581;
+        let t588 = t586 + t587;
+        let t589 = t585 + t588;
+        [t589, t584, t535, t478, t410, t346, t282]
     }
     /// Joint-space inertia matrix M(q), `7 x 7` row-major, rotor inertias included.
     ///
@@ -5265,7 +5262,7 @@ impl Lwr4 {
     /// - `qd`: qd1 .. qd7
     /// - `base`: ZZR1 .. MY7
     ///
-    /// Operations: 292 mul, 260 add, 0 neg, 6 sin, 6 cos.
+    /// Operations: 291 mul, 258 add, 0 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
@@ -5275,10 +5272,9 @@ impl Lwr4 {
     ) -> [T; 7] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
-        let [_, XXR2, XYR2, XZR2, YZR2, ZZR2, _, _, XXR3, XYR3, XZR3, YZR3, ZZR3, MX3,
-        MYR3, XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5, MX5,
-        MYR5, XXR6, XYR6, XZR6, YZR6, ZZR6, MX6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7, MY7,
-        ] = *base;
+        let [_, XXR2, XYR2, XZR2, YZR2, _, _, _, XXR3, XYR3, XZR3, YZR3, ZZR3, MX3, MYR3,
+        XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5, MX5, MYR5,
+        XXR6, XYR6, XZR6, YZR6, ZZR6, MX6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7, MY7] = *base;
         let c0 = T::from_f64(0.4);
         let c1 = T::from_f64(0.8);
         let c2 = T::from_f64(0.39);
@@ -5800,49 +5796,46 @@ impl Lwr4 {
         let t519 = t19 * XZR2;
         let t520 = t17 - t18;
         let t521 = t520 * YZR2;
-        let t522 = t14 * ZZR2;
-        let t523 = t517 + t519;
-        let t524 = t521 + t522;
-        let t525 = t523 + t524;
-        let t526 = t518 * c4;
-        let t527 = t525 - t526;
-        let t528 = t19 * YZR2;
-        let t529 = t14 * XYR2;
-        let t530 = t18 - t16;
-        let t531 = t530 * XZR2;
-        let t532 = XXR2 - ZZR2;
-        let t533 = t15 * t532;
-        let t534 = t531 + t533;
-        let t535 = t534 - t528;
-        let t536 = t529 * c4;
-        let t537 = t535 + t536;
-        let t538 = t16 - t17;
-        let t539 = t538 * XYR2;
-        let t540 = t19 * XXR2;
-        let t541 = t539 - t540;
-        let t542 = t3 * t512;
-        let t543 = t2 * t513;
-        let t544 = t2 * t512;
-        let t545 = t3 * t513;
-        let t546 = t542 - t543;
-        let t547 = t544 + t545;
-        let t548 = t3 * t514;
-        let t549 = t2 * t515;
-        let t550 = t2 * t514;
-        let t551 = t3 * t515;
-        let t552 = t548 - t549;
-        let t553 = t550 + t551;
-        let t554 = t527 + t552;
-        let t555 = t547 * c0;
-        let t556 = t554 - t555;
-        let t557 = t516 + t537;
-        let t558 = t541 - t553;
-        let t559 = t546 * c0;
-        let t560 = t558 - t559;
-        let t561 = t0 * t556;
-        let t562 = t1 * t557;
-        let t563 = t561 + t562;
-        [t563, t560, t516, t457, t389, t325, t261]
+        let t522 = t519 + t521;
+        let t523 = t517 + t522;
+        let t524 = t518 * c4;
+        let t525 = t523 - t524;
+        let t526 = t19 * YZR2;
+        let t527 = t14 * XYR2;
+        let t528 = t18 - t16;
+        let t529 = t528 * XZR2;
+        let t530 = t15 * XXR2;
+        let t531 = t529 + t530;
+        let t532 = t531 - t526;
+        let t533 = t527 * c4;
+        let t534 = t532 + t533;
+        let t535 = t16 - t17;
+        let t536 = t535 * XYR2;
+        let t537 = t19 * XXR2;
+        let t538 = t536 - t537;
+        let t539 = t3 * t512;
+        let t540 = t2 * t513;
+        let t541 = t2 * t512;
+        let t542 = t3 * t513;
+        let t543 = t539 - t540;
+        let t544 = t541 + t542;
+        let t545 = t3 * t514;
+        let t546 = t2 * t515;
+        let t547 = t2 * t514;
+        let t548 = t3 * t515;
+        let t549 = t545 - t546;
+        let t550 = t547 + t548;
+        let t551 = t525 + t549;
+        let t552 = t544 * c0;
+        let t553 = t551 - t552;
+        let t554 = t516 + t534;
+        let t555 = t538 - t550;
+        let t556 = t543 * c0;
+        let t557 = t555 - t556;
+        let t558 = t0 * t553;
+        let t559 = t1 * t554;
+        let t560 = t558 + t559;
+        [t560, t557, t516, t457, t389, t325, t261]
     }
     /// Base parameters from standard parameters (base = K * standard).
     ///

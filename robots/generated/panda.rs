@@ -3804,7 +3804,7 @@ impl Panda {
     /// - `qdd`: qdd1 .. qdd7
     /// - `base`: ZZR1 .. MY7
     ///
-    /// Operations: 315 mul, 295 add, 0 neg, 6 sin, 6 cos.
+    /// Operations: 314 mul, 293 add, 0 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
@@ -4389,59 +4389,56 @@ impl Panda {
         let t567 = t25 * XZ2;
         let t568 = t21 - t22;
         let t569 = t568 * YZ2;
-        let t570 = t16 * ZZR2;
-        let t571 = t566 - t565;
-        let t572 = t569 - t570;
-        let t573 = t567 + t572;
-        let t574 = t571 + t573;
-        let t575 = t24 * YZ2;
-        let t576 = t27 * XY2;
-        let t577 = t22 - t20;
-        let t578 = t577 * XZ2;
-        let t579 = XXR2 - ZZR2;
-        let t580 = t17 * t579;
-        let t581 = t575 + t576;
-        let t582 = t578 - t580;
-        let t583 = t582 - t581;
-        let t584 = qdd2 * ZZR2;
-        let t585 = t14 * XZ2;
-        let t586 = t15 * YZ2;
-        let t587 = t20 - t21;
-        let t588 = t587 * XY2;
-        let t589 = t23 * XXR2;
-        let t590 = t584 - t585;
-        let t591 = t588 - t589;
-        let t592 = t591 - t586;
-        let t593 = t590 + t592;
-        let t594 = t32 * MX2;
-        let t595 = t29 * MYR2;
-        let t596 = t595 - t594;
-        let t597 = t593 + t596;
-        let t598 = t3 * t556;
-        let t599 = t2 * t557;
-        let t600 = t2 * t556;
-        let t601 = t3 * t557;
-        let t602 = t598 - t599;
-        let t603 = t600 + t601;
-        let t604 = t3 * t558;
-        let t605 = t2 * t561;
-        let t606 = t2 * t558;
-        let t607 = t3 * t561;
-        let t608 = t604 - t605;
-        let t609 = t606 + t607;
-        let t610 = t574 + t608;
-        let t611 = t603 * c1;
-        let t612 = t610 - t611;
-        let t613 = t583 - t564;
-        let t614 = t597 + t609;
-        let t615 = t602 * c1;
-        let t616 = t614 + t615;
-        let t617 = qdd1 * ZZR1;
-        let t618 = t0 * t612;
-        let t619 = t1 * t613;
-        let t620 = t618 + t619;
-        let t621 = t617 - t620;
-        [t621, t616, t564, t500, t428, t364, t296]
+        let t570 = t566 - t565;
+        let t571 = t567 + t569;
+        let t572 = t570 + t571;
+        let t573 = t24 * YZ2;
+        let t574 = t27 * XY2;
+        let t575 = t22 - t20;
+        let t576 = t575 * XZ2;
+        let t577 = t17 * XXR2;
+        let t578 = t573 + t574;
+        let t579 = t576 - t577;
+        let t580 = t579 - t578;
+        let t581 = qdd2 * ZZR2;
+        let t582 = t14 * XZ2;
+        let t583 = t15 * YZ2;
+        let t584 = t20 - t21;
+        let t585 = t584 * XY2;
+        let t586 = t23 * XXR2;
+        let t587 = t581 - t582;
+        let t588 = t585 - t586;
+        let t589 = t588 - t583;
+        let t590 = t587 + t589;
+        let t591 = t32 * MX2;
+        let t592 = t29 * MYR2;
+        let t593 = t592 - t591;
+        let t594 = t590 + t593;
+        let t595 = t3 * t556;
+        let t596 = t2 * t557;
+        let t597 = t2 * t556;
+        let t598 = t3 * t557;
+        let t599 = t595 - t596;
+        let t600 = t597 + t598;
+        let t601 = t3 * t558;
+        let t602 = t2 * t561;
+        let t603 = t2 * t558;
+        let t604 = t3 * t561;
+        let t605 = t601 - t602;
+        let t606 = t603 + t604;
+        let t607 = t572 + t605;
+        let t608 = t600 * c1;
+        let t609 = t607 - t608;
+        let t610 = t580 - t564;
+        let t611 = t594 + t606;
+        let t612 = t599 * c1;
+        let t613 = t611 + t612;
+        let t614 = qdd1 * ZZR1;
+        let t615 = t0 * t609;
+        let t616 = t1 * t610;
+        let t617 = t615 + t616;
+        let t618 = t614 - t617;
+        [t618, t613, t564, t500, t428, t364, t296]
     }
     /// Joint-space inertia matrix M(q), `7 x 7` row-major, rotor inertias included.
     ///
@@ -5649,7 +5646,7 @@ impl Panda {
     /// - `qd`: qd1 .. qd7
     /// - `base`: ZZR1 .. MY7
     ///
-    /// Operations: 304 mul, 274 add, 1 neg, 6 sin, 6 cos.
+    /// Operations: 303 mul, 272 add, 1 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
@@ -5659,7 +5656,7 @@ impl Panda {
     ) -> [T; 7] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
-        let [_, XXR2, XY2, XZ2, YZ2, ZZR2, _, _, XXR3, XYR3, XZ3, YZ3, ZZR3, MXR3, MYR3,
+        let [_, XXR2, XY2, XZ2, YZ2, _, _, _, XXR3, XYR3, XZ3, YZ3, ZZR3, MXR3, MYR3,
         XXR4, XYR4, XZ4, YZ4, ZZR4, MXR4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
         XXR6, XYR6, XZ6, YZ6, ZZR6, MXR6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7, MY7] = *base;
         let c0 = T::from_f64(0.316);
@@ -6210,50 +6207,47 @@ impl Panda {
         let t545 = t19 * XZ2;
         let t546 = t17 - t18;
         let t547 = t546 * YZ2;
-        let t548 = t14 * ZZR2;
-        let t549 = t545 - t543;
-        let t550 = t547 - t548;
+        let t548 = t545 + t547;
+        let t549 = t548 - t543;
+        let t550 = t544 * c5;
         let t551 = t549 + t550;
-        let t552 = t544 * c5;
-        let t553 = t551 + t552;
-        let t554 = t19 * YZ2;
-        let t555 = t14 * XY2;
-        let t556 = t18 - t16;
-        let t557 = t556 * XZ2;
-        let t558 = XXR2 - ZZR2;
-        let t559 = t15 * t558;
-        let t560 = t557 - t559;
-        let t561 = t560 - t554;
-        let t562 = t555 * c5;
-        let t563 = t561 - t562;
-        let t564 = t16 - t17;
-        let t565 = t564 * XY2;
-        let t566 = t19 * XXR2;
-        let t567 = t565 - t566;
-        let t568 = t3 * t534;
-        let t569 = t2 * t535;
-        let t570 = t2 * t534;
-        let t571 = t3 * t535;
-        let t572 = t568 - t569;
-        let t573 = t570 + t571;
-        let t574 = t3 * t536;
-        let t575 = t2 * t539;
-        let t576 = t2 * t536;
-        let t577 = t3 * t539;
-        let t578 = t574 - t575;
-        let t579 = t576 + t577;
-        let t580 = t553 + t578;
-        let t581 = t573 * c0;
-        let t582 = t580 - t581;
-        let t583 = t563 - t542;
-        let t584 = t567 + t579;
-        let t585 = t572 * c0;
+        let t552 = t19 * YZ2;
+        let t553 = t14 * XY2;
+        let t554 = t18 - t16;
+        let t555 = t554 * XZ2;
+        let t556 = t15 * XXR2;
+        let t557 = t555 - t556;
+        let t558 = t557 - t552;
+        let t559 = t553 * c5;
+        let t560 = t558 - t559;
+        let t561 = t16 - t17;
+        let t562 = t561 * XY2;
+        let t563 = t19 * XXR2;
+        let t564 = t562 - t563;
+        let t565 = t3 * t534;
+        let t566 = t2 * t535;
+        let t567 = t2 * t534;
+        let t568 = t3 * t535;
+        let t569 = t565 - t566;
+        let t570 = t567 + t568;
+        let t571 = t3 * t536;
+        let t572 = t2 * t539;
+        let t573 = t2 * t536;
+        let t574 = t3 * t539;
+        let t575 = t571 - t572;
+        let t576 = t573 + t574;
+        let t577 = t551 + t575;
+        let t578 = t570 * c0;
+        let t579 = t577 - t578;
+        let t580 = t560 - t542;
+        let t581 = t564 + t576;
+        let t582 = t569 * c0;
+        let t583 = t581 + t582;
+        let t584 = t0 * t579;
+        let t585 = t1 * t580;
         let t586 = t584 + t585;
-        let t587 = t0 * t582;
-        let t588 = t1 * t583;
-        let t589 = t587 + t588;
-        let t590 = -t589;
-        [t590, t586, t542, t478, t406, t342, t274]
+        let t587 = -t586;
+        [t587, t583, t542, t478, t406, t342, t274]
     }
     /// Base parameters from standard parameters (base = K * standard).
     ///

@@ -443,7 +443,7 @@ impl Stanford {
     /// - `qdd`: qdd1, qdd2, qdd3
     /// - `base`: ZZR1 .. M3
     ///
-    /// Operations: 71 mul, 64 add, 0 neg, 1 sin, 1 cos.
+    /// Operations: 70 mul, 62 add, 0 neg, 1 sin, 1 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
@@ -544,58 +544,55 @@ impl Stanford {
         let t83 = t23 * XZR2;
         let t84 = t18 - t19;
         let t85 = t84 * YZR2;
-        let t86 = t13 * ZZR2;
-        let t87 = t82 - t81;
-        let t88 = t85 - t86;
-        let t89 = t83 + t88;
-        let t90 = t87 + t89;
-        let t91 = t22 * YZR2;
-        let t92 = t25 * XYR2;
-        let t93 = t19 - t17;
-        let t94 = t93 * XZR2;
-        let t95 = XXR2 - ZZR2;
-        let t96 = t14 * t95;
-        let t97 = t91 + t92;
-        let t98 = t94 - t96;
-        let t99 = t98 - t97;
-        let t100 = qdd2 * ZZR2;
-        let t101 = t4 * XZR2;
-        let t102 = t3 * YZR2;
-        let t103 = t17 - t18;
-        let t104 = t103 * XYR2;
-        let t105 = t21 * XXR2;
-        let t106 = t100 - t101;
-        let t107 = t104 - t105;
-        let t108 = t107 - t102;
-        let t109 = t106 + t108;
-        let t110 = t34 * MY2;
-        let t111 = t34 * MX2;
-        let t112 = t10 * MX2;
-        let t113 = t7 * MY2;
-        let t114 = t112 + t113;
-        let t115 = t90 - t110;
-        let t116 = t99 + t111;
-        let t117 = t109 + t114;
-        let t118 = t64 * q3;
-        let t119 = t63 * q3;
-        let t120 = t63 + t77;
-        let t121 = t80 - t65;
-        let t122 = t68 - t118;
-        let t123 = t115 + t122;
-        let t124 = t116 - t74;
-        let t125 = t71 + t119;
-        let t126 = t117 + t125;
-        let t127 = qdd1 * ZZR1;
-        let t128 = t1 * t120;
-        let t129 = t0 * t121;
-        let t130 = t128 - t129;
-        let t131 = t0 * t123;
-        let t132 = t1 * t124;
-        let t133 = t131 + t132;
-        let t134 = t127 - t133;
-        let t135 = t130 * c0;
-        let t136 = t134 - t135;
-        [t136, t126, t65]
+        let t86 = t82 - t81;
+        let t87 = t83 + t85;
+        let t88 = t86 + t87;
+        let t89 = t22 * YZR2;
+        let t90 = t25 * XYR2;
+        let t91 = t19 - t17;
+        let t92 = t91 * XZR2;
+        let t93 = t14 * XXR2;
+        let t94 = t89 + t90;
+        let t95 = t92 - t93;
+        let t96 = t95 - t94;
+        let t97 = qdd2 * ZZR2;
+        let t98 = t4 * XZR2;
+        let t99 = t3 * YZR2;
+        let t100 = t17 - t18;
+        let t101 = t100 * XYR2;
+        let t102 = t21 * XXR2;
+        let t103 = t97 - t98;
+        let t104 = t101 - t102;
+        let t105 = t104 - t99;
+        let t106 = t103 + t105;
+        let t107 = t34 * MY2;
+        let t108 = t34 * MX2;
+        let t109 = t10 * MX2;
+        let t110 = t7 * MY2;
+        let t111 = t109 + t110;
+        let t112 = t88 - t107;
+        let t113 = t96 + t108;
+        let t114 = t106 + t111;
+        let t115 = t64 * q3;
+        let t116 = t63 * q3;
+        let t117 = t63 + t77;
+        let t118 = t80 - t65;
+        let t119 = t68 - t115;
+        let t120 = t112 + t119;
+        let t121 = t113 - t74;
+        let t122 = t71 + t116;
+        let t123 = t114 + t122;
+        let t124 = qdd1 * ZZR1;
+        let t125 = t1 * t117;
+        let t126 = t0 * t118;
+        let t127 = t125 - t126;
+        let t128 = t0 * t120;
+        let t129 = t1 * t121;
+        let t130 = t128 + t129;
+        let t131 = t124 - t130;
+        let t132 = t127 * c0;
+        let t133 = t131 - t132;
+        [t133, t123, t65]
     }
     /// Joint-space inertia matrix M(q), `3 x 3` row-major, rotor inertias included.
     ///
@@ -725,7 +722,7 @@ impl Stanford {
     /// - `qd`: qd1, qd2, qd3
     /// - `base`: ZZR1 .. M3
     ///
-    /// Operations: 61 mul, 42 add, 2 neg, 1 sin, 1 cos.
+    /// Operations: 60 mul, 40 add, 2 neg, 1 sin, 1 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
@@ -735,7 +732,7 @@ impl Stanford {
     ) -> [T; 3] {
         let [_, q2, q3] = *q;
         let [qd1, qd2, qd3] = *qd;
-        let [_, XXR2, XYR2, XZR2, YZR2, ZZR2, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
+        let [_, XXR2, XYR2, XZR2, YZR2, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(2.0);
         let (t0, t1) = q2.sin_cos();
@@ -801,50 +798,47 @@ impl Stanford {
         let t61 = t11 * XZR2;
         let t62 = t8 - t9;
         let t63 = t62 * YZR2;
-        let t64 = t5 * ZZR2;
-        let t65 = t61 - t59;
-        let t66 = t63 - t64;
+        let t64 = t61 + t63;
+        let t65 = t64 - t59;
+        let t66 = t60 * c1;
         let t67 = t65 + t66;
-        let t68 = t60 * c1;
-        let t69 = t67 + t68;
-        let t70 = t11 * YZR2;
-        let t71 = t5 * XYR2;
-        let t72 = t9 - t7;
-        let t73 = t72 * XZR2;
-        let t74 = XXR2 - ZZR2;
-        let t75 = t6 * t74;
-        let t76 = t73 - t75;
-        let t77 = t76 - t70;
-        let t78 = t71 * c1;
-        let t79 = t77 - t78;
-        let t80 = t7 - t8;
-        let t81 = t80 * XYR2;
-        let t82 = t11 * XXR2;
-        let t83 = t81 - t82;
-        let t84 = t17 * MY2;
-        let t85 = t17 * MX2;
-        let t86 = t69 - t84;
-        let t87 = t79 + t85;
-        let t88 = t42 * q3;
-        let t89 = t41 * q3;
-        let t90 = t41 + t55;
-        let t91 = t43 + t58;
-        let t92 = t46 + t88;
-        let t93 = t86 - t92;
-        let t94 = t87 - t52;
-        let t95 = t49 + t89;
-        let t96 = t83 + t95;
-        let t97 = t1 * t90;
-        let t98 = t0 * t91;
-        let t99 = t97 - t98;
-        let t100 = t0 * t93;
-        let t101 = t1 * t94;
-        let t102 = t100 + t101;
-        let t103 = t99 * c0;
-        let t104 = t102 + t103;
-        let t105 = -t104;
-        let t106 = -t43;
-        [t105, t96, t106]
+        let t68 = t11 * YZR2;
+        let t69 = t5 * XYR2;
+        let t70 = t9 - t7;
+        let t71 = t70 * XZR2;
+        let t72 = t6 * XXR2;
+        let t73 = t71 - t72;
+        let t74 = t73 - t68;
+        let t75 = t69 * c1;
+        let t76 = t74 - t75;
+        let t77 = t7 - t8;
+        let t78 = t77 * XYR2;
+        let t79 = t11 * XXR2;
+        let t80 = t78 - t79;
+        let t81 = t17 * MY2;
+        let t82 = t17 * MX2;
+        let t83 = t67 - t81;
+        let t84 = t76 + t82;
+        let t85 = t42 * q3;
+        let t86 = t41 * q3;
+        let t87 = t41 + t55;
+        let t88 = t43 + t58;
+        let t89 = t46 + t85;
+        let t90 = t83 - t89;
+        let t91 = t84 - t52;
+        let t92 = t49 + t86;
+        let t93 = t80 + t92;
+        let t94 = t1 * t87;
+        let t95 = t0 * t88;
+        let t96 = t94 - t95;
+        let t97 = t0 * t90;
+        let t98 = t1 * t91;
+        let t99 = t97 + t98;
+        let t100 = t96 * c0;
+        let t101 = t99 + t100;
+        let t102 = -t101;
+        let t103 = -t43;
+        [t102, t93, t103]
     }
     /// Base parameters from standard parameters (base = K * standard).
     ///

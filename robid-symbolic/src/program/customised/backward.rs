@@ -170,9 +170,6 @@ impl Lowering<'_> {
             + (start + 1..frames.len())
                 .take_while(|&i| zero(frames[i].sa))
                 .count();
-        if end == start {
-            return None;
-        }
         let mut e = self.rotate_back(&frames[start], [ZERO, ZERO, number(1.0)]);
         let mut axes = vec![e];
         for f in &frames[start + 1..=end] {
