@@ -26,6 +26,8 @@ pub mod pipeline;
 #[cfg(feature = "std")]
 pub mod report;
 #[cfg(feature = "std")]
+pub mod rng;
+#[cfg(feature = "std")]
 pub mod signal;
 #[cfg(feature = "std")]
 pub mod simulate;

@@ -19,7 +19,7 @@ use crate::error::{Error, Result};
 use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Fourier, Information, JointLimits, JointSeries, check_limits};
 use crate::nelder_mead::NelderMead;
-use crate::simulate::Rng;
+use crate::rng::Rng;
 
 /// Settings of a Fourier design.
 #[derive(Debug, Clone, PartialEq)]

@@ -32,7 +32,7 @@ use crate::excite::polynomial::{Knot, Septic};
 use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Information, JointLimits, Points, check_limits};
 use crate::nelder_mead::NelderMead;
-use crate::simulate::Rng;
+use crate::rng::Rng;
 
 /// Settings of a point-based design.
 #[derive(Debug, Clone, PartialEq)]

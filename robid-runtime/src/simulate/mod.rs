@@ -10,12 +10,10 @@
 //! ```
 
 mod forward;
-mod rng;
 mod run;
 mod trajectory;
 
 pub use forward::ForwardDynamics;
-pub use rng::Rng;
 pub use run::{Noise, Simulated, Simulation};
 pub use trajectory::{Record, Trajectory};
 

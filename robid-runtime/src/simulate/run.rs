@@ -13,7 +13,8 @@
 
 use crate::Model;
 use crate::error::{Error, Result};
-use crate::simulate::{ForwardDynamics, Record, Rng, Trajectory};
+use crate::rng::Rng;
+use crate::simulate::{ForwardDynamics, Record, Trajectory};
 
 /// Measurement noise and quantization.
 #[derive(Debug, Clone, PartialEq)]

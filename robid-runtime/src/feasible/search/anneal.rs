@@ -3,7 +3,7 @@
 //! geometrically; one coordinate moves per step, by a Gaussian step that shrinks with T,
 //! reflected back into the box.
 
-use super::rng::Rng;
+use crate::rng::Rng;
 
 /// Settings of one annealing run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,7 +40,7 @@ pub(crate) fn anneal(
         let old = x[i];
         x[i] = reflect(old + step * rng.normal(), lo[i], hi[i]);
         let fnew = f(&x);
-        if fnew <= fx || rng.unit() < (-(fnew - fx) / t).exp() {
+        if fnew <= fx || rng.uniform() < (-(fnew - fx) / t).exp() {
             fx = fnew;
             if fx < fbest {
                 fbest = fx;

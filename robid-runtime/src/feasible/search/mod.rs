@@ -16,7 +16,6 @@
 mod anneal;
 mod levenberg;
 mod parametrise;
-mod rng;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
@@ -28,10 +27,10 @@ use super::bounds::Bounds;
 use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::nelder_mead::NelderMead;
+use crate::rng::Rng;
 use crate::{Error, Result};
 use anneal::{AnnealSettings, reflect};
 use parametrise::{PER_LINK, link_box, link_centre, link_of};
-use rng::Rng;
 
 /// Settings of the global search.
 #[derive(Debug, Clone, PartialEq)]
@@ -236,11 +235,7 @@ pub fn solve_anneal(
                 return None;
             }
             let mut rng = Rng::new(options.seed.wrapping_mul(1_000_003).wrapping_add(k as u64));
-            let x0: Vec<f64> = lo
-                .iter()
-                .zip(&hi)
-                .map(|(l, h)| rng.uniform(*l, *h))
-                .collect();
+            let x0: Vec<f64> = lo.iter().zip(&hi).map(|(l, h)| rng.range(*l, *h)).collect();
             let f = |y: &[f64]| objective.value(y);
             let (xa, _) = anneal::anneal(&f, &lo, &hi, &x0, settings, &mut rng);
             // Nelder-Mead on the box: evaluate at the reflected point.
@@ -291,7 +286,7 @@ fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: 
     let mut rng = Rng::new(seed ^ 0x00D0_C42E);
     let mut effective = vec![false; n];
     for _ in 0..4 {
-        let x: Vec<f64> = (0..n).map(|i| rng.uniform(lo[i], hi[i])).collect();
+        let x: Vec<f64> = (0..n).map(|i| rng.range(lo[i], hi[i])).collect();
         let base = misfit(objective, &x);
         for i in 0..n {
             if effective[i] {

@@ -1,8 +1,9 @@
 //! A small seeded random-number generator (SplitMix64 with Box-Muller normals), so that
-//! simulations and trajectory designs are reproducible from one integer seed on every
-//! platform without a dependency.
+//! simulations, trajectory designs and the feasible-parameter search are reproducible from
+//! one integer seed on every platform without a dependency.
 
-/// Seeded generator: uniform and standard normal samples.
+/// Seeded generator: raw 64-bit values, uniform, standard normal and index samples, and
+/// independent streams. Equal seeds give equal sequences.
 #[derive(Debug, Clone)]
 pub struct Rng {
     state: u64,
@@ -10,7 +11,7 @@ pub struct Rng {
 }
 
 impl Rng {
-    /// A generator from a seed; equal seeds give equal sequences.
+    /// A generator from a seed.
     pub fn new(seed: u64) -> Self {
         Self {
             state: seed ^ 0x9e37_79b9_7f4a_7c15,
@@ -37,6 +38,15 @@ impl Rng {
         lo + (hi - lo) * self.uniform()
     }
 
+    /// Uniform index in 0..n.
+    ///
+    /// # Panics
+    /// If `n` is zero.
+    pub fn index(&mut self, n: usize) -> usize {
+        assert!(n > 0, "Rng::index: empty range");
+        ((self.uniform() * n as f64) as usize).min(n - 1)
+    }
+
     /// Standard normal (Box-Muller, both values used).
     pub fn normal(&mut self) -> f64 {
         if let Some(x) = self.spare.take() {
@@ -50,7 +60,7 @@ impl Rng {
         r * c
     }
 
-    /// A generator for stream `index` derived from this seed (independent restarts).
+    /// A generator for stream `index` derived from this one's state (independent restarts).
     pub fn fork(&self, index: u64) -> Self {
         let mut r = Rng::new(self.state ^ index.wrapping_mul(0xd1b5_4a32_d192_ed03));
         r.next_u64();
@@ -75,9 +85,24 @@ mod tests {
         assert!((var - 1.0).abs() < 0.05, "{var}");
         let u: Vec<f64> = (0..n).map(|_| a.uniform()).collect();
         assert!(u.iter().all(|x| (0.0..1.0).contains(x)));
+        assert!((0..1000).all(|_| (-2.0..3.0).contains(&a.range(-2.0, 3.0))));
         assert_ne!(
             Rng::new(7).fork(1).next_u64(),
             Rng::new(7).fork(2).next_u64()
         );
+    }
+
+    #[test]
+    fn indices_cover_the_range_evenly() {
+        let mut r = Rng::new(1);
+        let mut count = [0usize; 5];
+        for _ in 0..10_000 {
+            count[r.index(5)] += 1;
+        }
+        assert!(
+            count.iter().all(|&c| (1800..2200).contains(&c)),
+            "{count:?}"
+        );
+        assert_eq!(r.index(1), 0);
     }
 }
