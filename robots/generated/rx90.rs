@@ -1529,7 +1529,7 @@ impl Rx90 {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 361 mul, 268 add, 21 neg, 5 sin, 5 cos.
+    /// Operations: 362 mul, 268 add, 20 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -1543,6 +1543,7 @@ impl Rx90 {
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(9.81);
+        let c1 = T::from_f64(-9.81);
         let mut out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
@@ -1837,7 +1838,7 @@ impl Rx90 {
         let t266 = t0 * t14;
         let t267 = t266 - t254;
         out[5] = t267;
-        let t268 = -t30;
+        let t268 = t0 * c1;
         out[43] = t268;
         let t269 = t57 - t58;
         let t270 = t58 - t56;

@@ -279,7 +279,7 @@ impl Stanford {
     /// - `qd`: qd1, qd2, qd3
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
-    /// Operations: 57 mul, 45 add, 8 neg, 1 sin, 1 cos.
+    /// Operations: 58 mul, 46 add, 8 neg, 1 sin, 1 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -376,62 +376,64 @@ impl Stanford {
         let t66 = t65 - t50;
         out[5] = t66;
         let t67 = t1 * t20;
-        let t68 = t1 * t34;
-        let t69 = t56 + t67;
-        let t70 = t69 * c0;
-        let t71 = t70 - t68;
+        let t68 = t1 * t2;
+        let t69 = t56 - t68;
+        let t70 = t67 + t69;
+        let t71 = t70 * c0;
         out[6] = t71;
-        let t72 = t0 * t34;
+        let t72 = t0 * t2;
         let t73 = t0 * t24;
         let t74 = t62 + t73;
-        let t75 = t74 * c0;
-        let t76 = t72 - t75;
+        let t75 = t72 - t74;
+        let t76 = t75 * c0;
         out[7] = t76;
         let t77 = t27 * t45;
         let t78 = t1 * t41;
-        let t79 = t78 - t77;
-        let t80 = t70 + t79;
-        out[8] = t80;
-        let t81 = t20 * q3;
-        let t82 = t42 + t81;
-        let t83 = -t82;
-        out[20] = t83;
-        let t84 = -t23;
-        out[32] = t84;
-        let t85 = t0 * t42;
-        let t86 = t1 * t28;
-        let t87 = t26 * t45;
-        let t88 = t1 * t39;
-        let t89 = t0 * t43;
-        let t90 = t87 + t88;
-        let t91 = t85 + t90;
-        let t92 = t86 + t89;
-        let t93 = t92 * c0;
-        let t94 = t91 + t93;
-        let t95 = t28 * q3;
-        out[21] = t95;
-        let t96 = -t94;
-        out[9] = t96;
-        let t97 = t0 * t41;
-        let t98 = t1 * t44;
-        let t99 = t25 * t45;
-        let t100 = t97 + t99;
-        let t101 = t73 - t98;
-        let t102 = t101 * c0;
-        let t103 = t100 + t102;
-        out[10] = t103;
-        let t104 = t44 * q3;
-        let t105 = t39 + t104;
-        out[22] = t105;
-        let t106 = -t24;
-        out[34] = t106;
-        let t107 = t41 * t45;
-        let t108 = t85 + t88;
-        let t109 = t108 * c0;
-        let t110 = t107 - t109;
-        out[11] = t110;
-        let t111 = t39 * q3;
-        out[23] = t111;
+        let t79 = t56 + t67;
+        let t80 = t78 - t77;
+        let t81 = t79 * c0;
+        let t82 = t80 + t81;
+        out[8] = t82;
+        let t83 = t20 * q3;
+        let t84 = t42 + t83;
+        let t85 = -t84;
+        out[20] = t85;
+        let t86 = -t23;
+        out[32] = t86;
+        let t87 = t0 * t42;
+        let t88 = t1 * t28;
+        let t89 = t26 * t45;
+        let t90 = t1 * t39;
+        let t91 = t0 * t43;
+        let t92 = t89 + t90;
+        let t93 = t87 + t92;
+        let t94 = t88 + t91;
+        let t95 = t94 * c0;
+        let t96 = t93 + t95;
+        let t97 = t28 * q3;
+        out[21] = t97;
+        let t98 = -t96;
+        out[9] = t98;
+        let t99 = t0 * t41;
+        let t100 = t1 * t44;
+        let t101 = t25 * t45;
+        let t102 = t99 + t101;
+        let t103 = t73 - t100;
+        let t104 = t103 * c0;
+        let t105 = t102 + t104;
+        out[10] = t105;
+        let t106 = t44 * q3;
+        let t107 = t39 + t106;
+        out[22] = t107;
+        let t108 = -t24;
+        out[34] = t108;
+        let t109 = t41 * t45;
+        let t110 = t87 + t90;
+        let t111 = t110 * c0;
+        let t112 = t109 - t111;
+        out[11] = t112;
+        let t113 = t39 * q3;
+        out[23] = t113;
         out
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.

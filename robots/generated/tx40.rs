@@ -1659,7 +1659,7 @@ impl Tx40 {
     /// - `qd`: qd1 .. qd6
     /// - `qdd`: qdd1 .. qdd6
     ///
-    /// Operations: 389 mul, 282 add, 26 neg, 5 sin, 5 cos.
+    /// Operations: 391 mul, 282 add, 24 neg, 5 sin, 5 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
@@ -1673,6 +1673,7 @@ impl Tx40 {
         let c0 = T::from_f64(0.225);
         let c1 = T::from_f64(0.035);
         let c2 = T::from_f64(9.81);
+        let c3 = T::from_f64(-9.81);
         let mut out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
@@ -1986,9 +1987,9 @@ impl Tx40 {
         let t285 = t0 * t14;
         let t286 = t272 - t285;
         out[5] = t286;
-        let t287 = -t39;
+        let t287 = t1 * c3;
         out[42] = t287;
-        let t288 = -t37;
+        let t288 = t0 * c3;
         out[43] = t288;
         let t289 = t64 - t65;
         let t290 = t65 - t63;
@@ -2027,11 +2028,11 @@ impl Tx40 {
         let t314 = t309 + t313;
         let t315 = t312 - t314;
         out[13] = t315;
-        let t316 = t66 * t228;
+        let t316 = t2 * t66;
         let t317 = t3 * t69;
-        let t318 = t46 + t316;
-        let t319 = t317 * c0;
-        let t320 = t318 + t319;
+        let t318 = t316 + t317;
+        let t319 = t318 * c0;
+        let t320 = t46 + t319;
         let t321 = -t320;
         out[49] = t321;
         let t322 = -t46;
@@ -2045,11 +2046,11 @@ impl Tx40 {
         let t329 = t328 - t327;
         let t330 = t329 - t323;
         out[14] = t330;
-        let t331 = t68 * t228;
+        let t331 = t2 * t68;
         let t332 = t3 * t70;
-        let t333 = t45 + t331;
-        let t334 = t332 * c0;
-        let t335 = t334 - t333;
+        let t333 = t332 - t331;
+        let t334 = t333 * c0;
+        let t335 = t334 - t45;
         out[50] = t335;
         let t336 = -t45;
         out[86] = t336;
@@ -3434,9 +3435,9 @@ impl Tx40 {
         out[9] = t373;
         out[19] = t373;
         let t374 = t3 * MX3;
-        let t375 = t242 * MYR3;
-        let t376 = t374 * c1;
-        let t377 = t375 + t376;
+        let t375 = t2 * MYR3;
+        let t376 = t374 + t375;
+        let t377 = t376 * c1;
         let t378 = ZZR3 - t377;
         let t379 = t5 * t362;
         let t380 = t4 * t334;

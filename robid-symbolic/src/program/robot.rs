@@ -165,7 +165,10 @@ impl Context {
                 qdd: &run.qdd,
                 gravity: run.gravity,
             };
-            let tau = l.newton_euler(&frames, &run_inputs, &links)?;
+            // Reusing scaled accelerations saves a few multiplications but
+            // made the 7-run Panda mass matrix ~3 % slower (compiled code):
+            // single runs only.
+            let tau = l.newton_euler(&frames, &run_inputs, &links, runs.len() == 1)?;
             let mut values = Vec::with_capacity(tau.len());
             for (j, t) in tau.into_iter().enumerate() {
                 // A parameter without a slot: its Y_b column times the

@@ -19,12 +19,15 @@ struct Projection {
 }
 
 impl Lowering<'_> {
-    /// Joint torques of the customised Newton-Euler algorithm.
+    /// Joint torques of the customised Newton-Euler algorithm. With `reuse`,
+    /// an acceleration component a * x whose product is computed already (in
+    /// the next link's acceleration) enters MS x vd as that product.
     pub(in crate::program) fn newton_euler(
         &mut self,
         frames: &[FrameExprs],
         inputs: &RunInputs<'_>,
         links: &[LinkParameters],
+        reuse: bool,
     ) -> Result<Vec<E>, ProgramError> {
         let n = frames.len();
         let links: Vec<Link> = links
@@ -60,6 +63,10 @@ impl Lowering<'_> {
                 .as_ref()
                 .is_some_and(|pr| (pr.start..=pr.end).contains(&j));
             let euler = self.euler(&inertia, w, wd, &u, !projected_link);
+            let vd_moment = match reuse {
+                true => vd_moment.map(|x| self.reuse(x)),
+                false => vd_moment,
+            };
             let ms_x_vd = self.cross(l.ms, vd_moment);
             let moment = self.add3(&[euler, ms_x_vd]);
             let (f, m) = if j + 1 < n {

@@ -73,7 +73,6 @@ impl Lowering<'_> {
         if a.c == 0.0 || b.c == 0.0 {
             return ZERO;
         }
-        let (a, b) = (self.reuse(a), self.reuse(b));
         let v = match (a.v, b.v) {
             (None, x) | (x, None) => x,
             (Some(x), Some(y)) => Some(self.emit(Instr::Mul(x, y))),
