@@ -168,6 +168,7 @@ fn feasible_sdp_writes_toml_and_urdf_and_fits_at_least_as_well_as_anneal() {
 }
 
 /// The link masses of a TOML output.
+#[cfg(feature = "sdp")]
 fn masses(path: &Path) -> Vec<f64> {
     let v: toml::Value = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     v["links"]

@@ -20,7 +20,7 @@ use std::path::PathBuf;
 
 use robid_runtime::data::{Config, Dataset, load_config_files};
 use robid_runtime::estimate::Observation;
-use robid_runtime::pipeline::{Identification, estimate, identify, observation};
+use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::validate::Prediction;
 use robots::interpreted::{Chosen, model_for};
 
