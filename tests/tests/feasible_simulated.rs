@@ -213,21 +213,30 @@ fn sdp_tx40_wide_default_bounds() {
     check(&mut c, &s, "sdp tx40 (wide bounds)", true, true);
 }
 
+/// The search is stochastic; with its hops it should not depend on luck: three seeds must
+/// each give a statistically acceptable fit (measured: seeds 1-16 all reach chi^2 < 0.04,
+/// against about half of them above 36 without hops).
 #[test]
 fn anneal_ur5e() {
     let mut c = case("ur5e");
     let b = bounds(&c);
-    let options = AnnealOptions {
-        restarts: 8,
-        iterations: 20_000,
-        local_evaluations: 10_000,
-        // At this budget the outcome depends on the seed: about half of seeds 1-16 end with
-        // chi^2 above the 36 base parameters, with the current random stream and the one before.
-        seed: 2,
-        ..AnnealOptions::default()
-    };
-    let s = solve_anneal(&c.problem, &b, &options).unwrap();
-    check(&mut c, &s, "anneal ur5e", false, false);
+    for seed in 1..=3 {
+        let options = AnnealOptions {
+            restarts: 8,
+            iterations: 20_000,
+            local_evaluations: 10_000,
+            seed,
+            ..AnnealOptions::default()
+        };
+        let s = solve_anneal(&c.problem, &b, &options).unwrap();
+        check(
+            &mut c,
+            &s,
+            &format!("anneal ur5e, seed {seed}"),
+            false,
+            false,
+        );
+    }
 }
 
 /// A CAD-like prior (here the truth itself) settles what the base parameters leave free:

@@ -1,6 +1,7 @@
 //! A bounded Levenberg-Marquardt polish (Marquardt 1963) of a least-squares residual:
-//! forward-difference Jacobian, damped Gauss-Newton steps clipped to the box. Used after
-//! Nelder-Mead, whose progress in tens of dimensions is slow near the optimum.
+//! forward-difference Jacobian, damped Gauss-Newton steps in the variables that no bound
+//! holds (a variable at a bound the gradient pushes against stays there), clipped to the
+//! box. Used after Nelder-Mead, whose progress in tens of dimensions is slow near the optimum.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -29,16 +30,32 @@ pub(crate) fn polish(
         let jt = j.transpose();
         let g = &jt * &rx;
         let h = &jt * &j;
+        // Variables at a bound that the gradient pushes outwards stay there (active set);
+        // the step is solved in the others, so clamping does not bend it.
+        let span = |i: usize| 1e-12 * (hi[i] - lo[i]).max(1e-12);
+        let free: Vec<usize> = (0..n)
+            .filter(|&i| {
+                !((x[i] <= lo[i] + span(i) && g[i] > 0.0)
+                    || (x[i] >= hi[i] - span(i) && g[i] < 0.0))
+            })
+            .collect();
+        let m = free.len();
+        let hf = DMatrix::from_fn(m, m, |a, b| h[(free[a], free[b])]);
+        let gf = DVector::from_fn(m, |a, _| g[free[a]]);
         let mut improved = false;
         for _ in 0..8 {
-            let mut damped = h.clone();
-            for i in 0..n {
-                damped[(i, i)] += mu * (h[(i, i)] + 1e-12);
+            let mut damped = hf.clone();
+            for a in 0..m {
+                damped[(a, a)] += mu * (hf[(a, a)] + 1e-12);
             }
-            let Some(delta) = damped.cholesky().map(|c| c.solve(&(-&g))) else {
+            let Some(step) = damped.cholesky().map(|c| c.solve(&(-&gf))) else {
                 mu *= 10.0;
                 continue;
             };
+            let mut delta = DVector::zeros(n);
+            for (a, &i) in free.iter().enumerate() {
+                delta[i] = step[a];
+            }
             let y: Vec<f64> = (0..n)
                 .map(|i| (x[i] + delta[i]).clamp(lo[i], hi[i]))
                 .collect();

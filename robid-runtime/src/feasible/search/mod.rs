@@ -11,7 +11,13 @@
 //! stated don't-care values (centre of the bounds) and left out of the search. Drive terms
 //! (Ia, Fv, Fc, Fo) and extra columns enter linearly and are solved for at every evaluation
 //! (least squares in their columns, then Ia, Fv, Fc clamped at zero). Each Nelder-Mead result is
-//! polished by a bounded Levenberg-Marquardt (the objective is a sum of squares).
+//! polished by a bounded Levenberg-Marquardt (the objective is a sum of squares), then
+//! improved by "hops" (iterated local search, Lourenco, Martin, Stuetzle 2003): one link's
+//! variables are drawn afresh, the point polished again, and kept when better. The
+//! parametrisation has spurious local minima where a link sits in a corner of its box (second
+//! moments at their lower bound, centre of mass on a face); without hops about half the seeds
+//! ended there on the simulated UR5e (chi^2 40-170 against 36 base parameters), with 12 hops
+//! none of 16 did.
 
 mod anneal;
 mod levenberg;
@@ -49,6 +55,8 @@ pub struct AnnealOptions {
     pub penalty: f64,
     /// Levenberg-Marquardt steps that polish each Nelder-Mead result (0: none).
     pub polish_iterations: usize,
+    /// Hops per restart: one link (in turn) drawn afresh and polished, kept when better.
+    pub hops: usize,
 }
 
 impl Default for AnnealOptions {
@@ -61,6 +69,7 @@ impl Default for AnnealOptions {
             target_chi2: None,
             penalty: 1e10,
             polish_iterations: 200,
+            hops: 12,
         }
     }
 }
@@ -215,6 +224,8 @@ pub fn solve_anneal(
     let target = options
         .target_chi2
         .unwrap_or(1e-3 * problem.base_names.len() as f64);
+    let mut searched_links: Vec<usize> = objective.free.iter().map(|i| i / PER_LINK).collect();
+    searched_links.dedup();
     let done = AtomicBool::new(false);
     let settings = AnnealSettings {
         iterations: options.iterations,
@@ -255,8 +266,27 @@ pub fn solve_anneal(
                 .map(|(i, v)| reflect(*v, lo[i], hi[i]))
                 .collect();
             let r = |y: &[f64]| objective.residual(y);
-            let xn = levenberg::polish(&r, &lo, &hi, &xn, options.polish_iterations);
-            let fx = objective.value(&xn);
+            let mut xn = levenberg::polish(&r, &lo, &hi, &xn, options.polish_iterations);
+            let mut fx = objective.value(&xn);
+            for &link in searched_links.iter().cycle().take(options.hops) {
+                if fx <= target {
+                    break;
+                }
+                let mut y = xn.clone();
+                for (yi, (&full, (l, h))) in y
+                    .iter_mut()
+                    .zip(objective.free.iter().zip(lo.iter().zip(&hi)))
+                {
+                    if full / PER_LINK == link {
+                        *yi = rng.range(*l, *h);
+                    }
+                }
+                let y = levenberg::polish(&r, &lo, &hi, &y, options.polish_iterations);
+                let fy = objective.value(&y);
+                if fy < fx {
+                    (xn, fx) = (y, fy);
+                }
+            }
             if fx <= target {
                 done.store(true, Ordering::Relaxed);
             }
