@@ -150,3 +150,128 @@ fn parameter_file_mistakes_are_named() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).starts_with("tau1,"), "{}", stdout(&o));
 }
+
+/// `robid excite` with each method from a given start: a CSV of t, q, qd, qdd at the
+/// requested rate, at rest at the start at both ends, inside every limit of the description
+/// (checked on the samples, not only on the printed margins); a start of the wrong length or
+/// outside the limits is a named error. Small budgets: the designs' quality is tested in
+/// `tests/tests/excitation_*.rs`.
+#[test]
+fn excite_writes_a_trajectory_at_rest_at_the_start_within_the_limits() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_excite");
+    std::fs::create_dir_all(&dir).unwrap();
+    let description: toml::Value =
+        toml::from_str(&std::fs::read_to_string("descriptions/ur5e.toml").unwrap()).unwrap();
+    let limits: Vec<&toml::Value> = description["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| &j["limits"])
+        .collect();
+    let number = |v: &toml::Value| v.as_float().unwrap();
+    let start = [0.1, -1.2, 1.0, 0.0, 0.5, 0.0];
+    let start_arg = "0.1,-1.2,1,0,0.5,0";
+    for (method, budget) in [
+        (
+            "points",
+            ["--restarts", "1", "--evaluations", "20", "--sweeps", "1"],
+        ),
+        (
+            "fourier",
+            ["--restarts", "1", "--evaluations", "200", "--seed", "3"],
+        ),
+    ] {
+        let output = dir.join(format!("{method}.csv"));
+        let mut args = vec![
+            "excite",
+            "descriptions/ur5e.toml",
+            "--method",
+            method,
+            "--start",
+            start_arg,
+            "--duration",
+            "10",
+            "--rate",
+            "200",
+            "-o",
+            output.to_str().unwrap(),
+        ];
+        args.extend_from_slice(&budget);
+        let o = robid(&args);
+        assert!(o.status.success(), "{method}: {}", stderr(&o));
+        let report = stdout(&o);
+        let cond: f64 = report
+            .split("condition number ")
+            .nth(1)
+            .and_then(|r| r.split_whitespace().next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("{method}: no condition number in {report}"));
+        assert!(cond.is_finite() && cond >= 1.0, "{method}: cond {cond}");
+        let text = std::fs::read_to_string(&output).unwrap();
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        assert_eq!(header.len(), 19, "{method}: {header:?}");
+        assert_eq!(
+            (header[0], header[1], header[7], header[13]),
+            ("t", "q1", "qd1", "qdd1")
+        );
+        let rows: Vec<Vec<f64>> = lines
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(rows.len(), 10 * 200 + 1, "{method}");
+        assert!((rows.last().unwrap()[0] - 10.0).abs() < 1e-9, "{method}");
+        for end in [&rows[0], rows.last().unwrap()] {
+            for j in 0..6 {
+                assert!(
+                    (end[1 + j] - start[j]).abs() < 1e-9,
+                    "{method}: q{} {end:?}",
+                    j + 1
+                );
+                assert!(
+                    end[7 + j].abs() < 1e-9 && end[13 + j].abs() < 1e-9,
+                    "{method}: {end:?}"
+                );
+            }
+        }
+        for row in &rows {
+            for (j, l) in limits.iter().enumerate() {
+                let p = l["position"].as_array().unwrap();
+                let q = row[1 + j];
+                assert!(
+                    number(&p[0]) <= q && q <= number(&p[1]),
+                    "{method}: q{} = {q}",
+                    j + 1
+                );
+                assert!(
+                    row[7 + j].abs() <= number(&l["velocity"]),
+                    "{method}: qd{}",
+                    j + 1
+                );
+                assert!(
+                    row[13 + j].abs() <= number(&l["acceleration"]),
+                    "{method}: qdd{}",
+                    j + 1
+                );
+            }
+        }
+    }
+    for (start, expected) in [
+        (
+            "0.1,-1.2,1",
+            "--start has 3 values but descriptions/ur5e.toml has 6 joints",
+        ),
+        ("0.1,-1.2,1,0,0.5,9", "9 is outside the limits"),
+    ] {
+        let o = robid(&[
+            "excite",
+            "descriptions/ur5e.toml",
+            "--start",
+            start,
+            "-o",
+            dir.join("bad.csv").to_str().unwrap(),
+        ]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{start}: {e}");
+        assert!(e.contains(expected), "{start}: {e}");
+    }
+}
