@@ -16,6 +16,7 @@ use rayon::prelude::*;
 
 use crate::Model;
 use crate::error::{Error, Result};
+use crate::excite::limits::{TorquePenalty, check_reference};
 use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Fourier, Information, JointLimits, JointSeries, check_limits};
 use crate::nelder_mead::NelderMead;
@@ -211,13 +212,7 @@ impl FourierDesign {
         self.check(n)?;
         check_limits(limits, n)?;
         check_start(self.start.as_deref(), limits)?;
-        if let Some(b) = torque.filter(|b| b.len() != model.base_parameter_count()) {
-            return Err(Error::DimensionMismatch {
-                what: "reference base parameters".into(),
-                expected: model.base_parameter_count(),
-                found: b.len(),
-            });
-        }
+        check_reference(model, torque)?;
         let decoder = self.decoder(limits);
         let cost = |x: &[f64]| self.cost(model, limits, torque, &decoder.decode(x));
         let m = decoder.per_joint();
@@ -322,27 +317,18 @@ impl FourierDesign {
         if let Some(w) = &self.weights {
             info = info.with_weights(w);
         }
-        let (mut q, mut qd, mut qdd, mut tau) =
-            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let mut peak = vec![0.0f64; n];
+        let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut penalty = torque.map(|base| TorquePenalty::new(limits, self.safety, base));
         let period = fourier.period();
         for k in 0..self.points {
             let t = period * k as f64 / self.points as f64;
             fourier.state(t, &mut q, &mut qd, &mut qdd);
             info.add(model, &q, &qd, &qdd);
-            if let Some(base) = torque {
-                model.inverse_dynamics(&q, &qd, &qdd, base, &mut tau);
-                for j in 0..n {
-                    peak[j] = peak[j].max(tau[j].abs());
-                }
+            if let Some(penalty) = &mut penalty {
+                penalty.add(model, &q, &qd, &qdd);
             }
         }
-        let penalty: f64 = limits
-            .iter()
-            .zip(&peak)
-            .filter_map(|(l, p)| l.torque.map(|t| (p / (self.safety * t) - 1.0).max(0.0)))
-            .sum();
-        info.cost(self.criterion) + 1e3 * penalty
+        info.cost(self.criterion) + penalty.map_or(0.0, |p| p.value())
     }
 }
 

@@ -61,6 +61,78 @@ pub fn check_limits(limits: &[JointLimits], dof: usize) -> Result<()> {
         .try_for_each(|(j, l)| l.check(j + 1))
 }
 
+/// The torque-limit penalty that both designs add to their criterion (torques are the one
+/// limit not held by construction). Per joint, the excess of |tau| over `safety` times the
+/// limit, relative to it, is taken at its worst over the states added (what must end at zero)
+/// plus its mean (so that every state that exceeds, not only the worst, is pushed back: the
+/// point design improves one point at a time).
+pub(crate) struct TorquePenalty<'a> {
+    limits: &'a [JointLimits],
+    safety: f64,
+    base: &'a [f64],
+    worst: Vec<f64>,
+    total: Vec<f64>,
+    states: usize,
+    tau: Vec<f64>,
+}
+
+impl<'a> TorquePenalty<'a> {
+    /// Weight of the penalty: a 1 % excess costs as much as 10 units of the criterion.
+    const WEIGHT: f64 = 1e3;
+
+    /// For `limits` (one per joint) with reference base parameters `base`.
+    pub(crate) fn new(limits: &'a [JointLimits], safety: f64, base: &'a [f64]) -> Self {
+        let n = limits.len();
+        Self {
+            limits,
+            safety,
+            base,
+            worst: vec![0.0; n],
+            total: vec![0.0; n],
+            states: 0,
+            tau: vec![0.0; n],
+        }
+    }
+
+    /// Adds one state.
+    pub(crate) fn add<M: Model + ?Sized>(&mut self, model: &M, q: &[f64], qd: &[f64], qdd: &[f64]) {
+        model.inverse_dynamics(q, qd, qdd, self.base, &mut self.tau);
+        for (j, l) in self.limits.iter().enumerate() {
+            if let Some(t) = l.torque {
+                let excess = (self.tau[j].abs() / (self.safety * t) - 1.0).max(0.0);
+                self.worst[j] = self.worst[j].max(excess);
+                self.total[j] += excess;
+            }
+        }
+        self.states += 1;
+    }
+
+    /// The penalty: WEIGHT times the sum over joints of the worst and the mean excess (zero
+    /// within every limit).
+    pub(crate) fn value(&self) -> f64 {
+        let states = self.states.max(1) as f64;
+        let excess: f64 = self
+            .worst
+            .iter()
+            .zip(&self.total)
+            .map(|(w, t)| w + t / states)
+            .sum();
+        Self::WEIGHT * excess
+    }
+}
+
+/// Checks that reference base parameters (enabling the torque limits) fit the model.
+pub(crate) fn check_reference<M: Model + ?Sized>(model: &M, base: Option<&[f64]>) -> Result<()> {
+    match base.filter(|b| b.len() != model.base_parameter_count()) {
+        Some(b) => Err(Error::DimensionMismatch {
+            what: "reference base parameters".into(),
+            expected: model.base_parameter_count(),
+            found: b.len(),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// How far a trajectory stays from each limit of one joint (positive = inside).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Margin {

@@ -16,7 +16,9 @@
 //!
 //! The criterion is evaluated on the extended regressor (eq. 14): rows at every interior point
 //! and at `around` samples on each side of it, spread over `window` times the neighbouring
-//! interval widths. The minimisation is a Nelder-Mead over each point's 3 n variables in turn
+//! interval widths. With reference parameters, torques are checked on a grid of
+//! `torque_samples` per interval and their excess over `safety` times the limits penalised,
+//! as in the Fourier design (torques are the one limit not held by construction). The minimisation is a Nelder-Mead over each point's 3 n variables in turn
 //! (block coordinate descent: tens of variables per block instead of hundreds at once), for
 //! several sweeps, from random starts run in parallel.
 //!
@@ -28,6 +30,7 @@ use rayon::prelude::*;
 
 use crate::Model;
 use crate::error::{Error, Result};
+use crate::excite::limits::{TorquePenalty, check_reference};
 use crate::excite::polynomial::{Knot, Septic};
 use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Information, JointLimits, Points, check_limits};
@@ -47,6 +50,8 @@ pub struct PointDesign {
     pub window: f64,
     /// Fine-grid samples per interval on which the limits are enforced.
     pub fine: usize,
+    /// Samples per interval on which the torques are checked (with reference parameters).
+    pub torque_samples: usize,
     /// The criterion minimised.
     pub criterion: Criterion,
     /// Per-joint weights of the regressor rows (e.g. 1 / expected noise sigma, what weighted
@@ -76,6 +81,7 @@ impl Default for PointDesign {
             around: 3,
             window: 0.5,
             fine: 40,
+            torque_samples: 8,
             criterion: Criterion::Condition,
             weights: None,
             restarts: 4,
@@ -94,7 +100,8 @@ impl Default for PointDesign {
 pub struct PointResult {
     /// The trajectory.
     pub points: Points,
-    /// The criterion's value on the extended regressor.
+    /// The value minimised: the criterion on the extended regressor, plus the torque penalty
+    /// when reference parameters were given (zero within the torque limits).
     pub cost: f64,
     /// The criterion's value at the best random start (before optimisation).
     pub initial_cost: f64,
@@ -127,10 +134,17 @@ impl PointDesign {
         if !(self.safety > 0.0 && self.safety <= 1.0) {
             return Err(bad("safety", format!("{} must lie in (0, 1]", self.safety)));
         }
-        if self.restarts == 0 || self.sweeps == 0 || self.evaluations == 0 || self.fine < 2 {
+        if self.restarts == 0
+            || self.sweeps == 0
+            || self.evaluations == 0
+            || self.torque_samples == 0
+            || self.fine < 2
+        {
             return Err(bad(
                 "restarts",
-                "restarts, sweeps and evaluations must be at least 1, fine at least 2".into(),
+                "restarts, sweeps, evaluations and torque samples must be at least 1, fine at \
+                 least 2"
+                    .into(),
             ));
         }
         for (what, v) in [("start position", &self.start), ("weights", &self.weights)] {
@@ -150,19 +164,26 @@ impl PointDesign {
         Ok(())
     }
 
-    /// Designs a trajectory for `model` within `limits`.
+    /// Designs a trajectory for `model` within `limits`; `torque` = reference base
+    /// parameters enables the torque limits.
     pub fn optimize<M: Model + Sync + ?Sized>(
         &self,
         model: &M,
         limits: &[JointLimits],
+        torque: Option<&[f64]>,
     ) -> Result<PointResult> {
         let n = model.dof();
         self.check(n)?;
         check_limits(limits, n)?;
         crate::excite::design::check_start(self.start.as_deref(), limits)?;
+        check_reference(model, torque)?;
         let decoder = Decoder::new(self, limits);
         let m = decoder.per_joint();
-        let cost = |x: &[f64]| self.cost(model, &decoder.decode(x));
+        let cost = |x: &[f64]| {
+            let points = decoder.decode(x);
+            self.cost(model, &points)
+                + torque.map_or(0.0, |b| self.penalty(model, limits, b, &points))
+        };
         let interior = self.intervals - 1;
         let blocks = interior + usize::from(self.start.is_none());
         let progress = Progress::new(
@@ -277,6 +298,30 @@ impl PointDesign {
             info.add(model, &q, &qd, &qdd);
         }
         info.cost(self.criterion)
+    }
+
+    /// The torque-limit penalty of `points` with reference base parameters `base`.
+    fn penalty<M: Model + ?Sized>(
+        &self,
+        model: &M,
+        limits: &[JointLimits],
+        base: &[f64],
+        points: &Points,
+    ) -> f64 {
+        let n = model.dof();
+        let mut penalty = TorquePenalty::new(limits, self.safety, base);
+        let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let samples = self.intervals * self.torque_samples;
+        for k in 0..=samples {
+            points.state(
+                self.duration * k as f64 / samples as f64,
+                &mut q,
+                &mut qd,
+                &mut qdd,
+            );
+            penalty.add(model, &q, &qd, &qdd);
+        }
+        penalty.value()
     }
 }
 
@@ -433,7 +478,7 @@ mod tests {
             start: Some(vec![0.2, -0.1]),
             ..PointDesign::default()
         };
-        let r = design.optimize(&p, &limits()).unwrap();
+        let r = design.optimize(&p, &limits(), None).unwrap();
         assert!(
             r.cost < 0.9 * r.initial_cost,
             "{} vs {}",
@@ -452,6 +497,6 @@ mod tests {
             start: Some(vec![5.0, 0.0]),
             ..design.clone()
         };
-        assert!(bad.optimize(&p, &limits()).is_err());
+        assert!(bad.optimize(&p, &limits(), None).is_err());
     }
 }

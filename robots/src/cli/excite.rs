@@ -183,9 +183,6 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             )
         }
         Method::Points => {
-            if reference.is_some() {
-                return Err("--parameters (torque limits) is only supported with --method fourier; the point design keeps position, velocity and acceleration limits".into());
-            }
             let design = PointDesign {
                 duration: args.duration,
                 intervals: args.intervals,
@@ -199,7 +196,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 progress: true,
                 ..PointDesign::default()
             };
-            let result = design.optimize(&model, &limits)?;
+            let result = design.optimize(&model, &limits, reference.as_deref())?;
             (result.points.sample(args.rate)?, result.evaluations)
         }
     };
@@ -235,7 +232,30 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         );
     }
     if !a.within_limits() {
-        return Err("the sampled trajectory exceeds a limit (see the margins); lower the rate of change or the safety factor".into());
+        let exceeded: Vec<String> = a
+            .margins
+            .iter()
+            .enumerate()
+            .flat_map(|(j, m)| {
+                [
+                    ("position", m.position_low.min(m.position_high)),
+                    ("velocity", m.velocity),
+                    ("acceleration", m.acceleration),
+                    ("torque", m.torque.unwrap_or(0.0)),
+                ]
+                .into_iter()
+                .filter(|(_, margin)| *margin < 0.0)
+                .map(move |(what, margin)| format!("joint {} {what} by {:.3}", j + 1, -margin))
+            })
+            .collect();
+        return Err(format!(
+            "the sampled trajectory (written to {} for inspection) exceeds {}; torques are held \
+             by a penalty, not by construction: give the search more work (--sweeps, \
+             --evaluations, --restarts) or start from a pose with less load (--start)",
+            args.output.display(),
+            exceeded.join(", ")
+        )
+        .into());
     }
     Ok(())
 }

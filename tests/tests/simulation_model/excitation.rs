@@ -185,7 +185,7 @@ impl Setup {
         };
         let start = std::time::Instant::now();
         let r = design
-            .optimize(&self.model, &self.limits)
+            .optimize(&self.model, &self.limits, None)
             .expect("point design");
         let tr = r.points.sample(RATE).expect("sampling");
         let a = assess(&self.model, &tr, &self.limits, Some(&self.truth), 1);
