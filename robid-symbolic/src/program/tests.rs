@@ -73,53 +73,6 @@ fn ur5e_programs_counts() {
     assert!(p.coriolis.operations().flops() <= 418);
 }
 
-#[test]
-#[ignore]
-fn print_ur5e_inverse_dynamics() {
-    let robot = Robot::from_toml(UR5E, "ur5e.toml").unwrap();
-    let p = super::RobotPrograms::derive(&robot).unwrap();
-    eprintln!("{}", p.inverse_dynamics);
-}
-
-#[test]
-#[ignore]
-fn print_ur5e_emitted() {
-    let robot = Robot::from_toml(UR5E, "ur5e.toml").unwrap();
-    eprintln!("{}", crate::emit::emit_robot(&robot).unwrap());
-}
-
-#[test]
-#[ignore]
-fn derive_all_reference_robots() {
-    for name in [
-        "ur5e", "puma560", "rx90", "tx40", "lwr4", "panda", "stanford",
-    ] {
-        let path = format!(
-            "{}/../robots/descriptions/{name}.toml",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let robot = Robot::from_file(std::path::Path::new(&path)).unwrap();
-        for drive in [crate::Drive::NONE, crate::Drive::ALL] {
-            let r = robot.clone().with_drive(drive);
-            let t = std::time::Instant::now();
-            let p = super::RobotPrograms::derive(&r);
-            let el = t.elapsed();
-            match p {
-                Ok(p) => eprintln!(
-                    "{name} drive={} {:?}: base {} id {} yb {} m {}",
-                    drive.ia,
-                    el,
-                    p.base.len(),
-                    p.inverse_dynamics.operations().flops(),
-                    p.base_regressor.operations().flops(),
-                    p.mass_matrix.operations().flops()
-                ),
-                Err(e) => eprintln!("{name}: {e}"),
-            }
-        }
-    }
-}
-
 /// For every reference robot (rigid and with every drive term), at random
 /// states: the inverse dynamics with base parameters equals the standard
 /// regressor (lowered from the arena) times the standard parameters, and
