@@ -1,6 +1,6 @@
 //! Shared helpers of the workspace-level integration tests.
 //!
-//! - [`reference`]: the reference robots (descriptions and parameter sets, compiled in);
+//! - [`reference`](mod@reference): the reference robots (descriptions and parameter sets, compiled in);
 //! - [`rnea`]: an independent plain-`f64` recursive Newton-Euler, the numeric reference;
 //! - [`state`]: random states, smooth trajectories and symbol bindings for evaluation.
 

@@ -39,7 +39,7 @@ pub struct BaseParameters {
     pub standard: Vec<Parameter>,
     /// The base parameters (rows of K).
     pub base: Vec<BaseParameter>,
-    /// Base regressor: `columns[b][joint]`, so tau = sum_b columns[b] * base_b.
+    /// Base regressor: `columns[b][joint]`, so tau = sum over b of `columns[b]` times base parameter b.
     pub columns: Vec<Vec<Id>>,
     /// Standard parameters with no effect at all (indices into `standard`).
     pub unidentifiable: Vec<usize>,

@@ -15,7 +15,7 @@ use super::Error;
 pub(crate) struct Args {
     /// Robot description file (TOML).
     robot: PathBuf,
-    /// Parameter file with a [standard] or a [base] table.
+    /// Parameter file with a `[standard]` or a `[base]` table.
     #[arg(long)]
     parameters: PathBuf,
     /// States, header q1..qn,qd1..qdn,qdd1..qddn.
