@@ -274,4 +274,42 @@ fn excite_writes_a_trajectory_at_rest_at_the_start_within_the_limits() {
         assert_eq!(o.status.code(), Some(1), "{start}: {e}");
         assert!(e.contains(expected), "{start}: {e}");
     }
+    // A torque limit the tiny budget cannot meet (joints 1-3 at 40 N m): a named breach,
+    // the CSV kept for inspection.
+    let tight = dir.join("ur5e_tight.toml");
+    std::fs::write(
+        &tight,
+        std::fs::read_to_string("descriptions/ur5e.toml")
+            .unwrap()
+            .replace("torque = 150.0", "torque = 40.0"),
+    )
+    .unwrap();
+    let output = dir.join("tight.csv");
+    let o = robid(&[
+        "excite",
+        tight.to_str().unwrap(),
+        "--method",
+        "points",
+        "--start",
+        "0,-1.5,0,-1.5,0,0",
+        "--restarts",
+        "1",
+        "--evaluations",
+        "20",
+        "--sweeps",
+        "1",
+        "--duration",
+        "10",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("exceeds joint 2 torque by") && e.contains("--sweeps"),
+        "{e}"
+    );
+    assert!(output.exists());
 }

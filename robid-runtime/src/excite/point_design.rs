@@ -18,9 +18,10 @@
 //! and at `around` samples on each side of it, spread over `window` times the neighbouring
 //! interval widths. With reference parameters, torques are checked on a grid of
 //! `torque_samples` per interval and their excess over `safety` times the limits penalised,
-//! as in the Fourier design (torques are the one limit not held by construction). The minimisation is a Nelder-Mead over each point's 3 n variables in turn
-//! (block coordinate descent: tens of variables per block instead of hundreds at once), for
-//! several sweeps, from random starts run in parallel.
+//! as in the Fourier design (torques are the one limit not held by construction). The
+//! minimisation is a Nelder-Mead over each point's 3 n variables in turn (block coordinate
+//! descent: tens of variables per block instead of hundreds at once), for several sweeps,
+//! from random starts run in parallel.
 //!
 //! ## Reference
 //! P. P. Milella, A. Rizzo, F. Cupertino, "Identification of robot dynamic parameters with

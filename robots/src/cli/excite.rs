@@ -248,10 +248,15 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 .map(move |(what, margin)| format!("joint {} {what} by {:.3}", j + 1, -margin))
             })
             .collect();
+        let fix = if exceeded.iter().any(|e| e.contains("torque")) {
+            "torques are held by a penalty, not by construction: give the search more work \
+             (--sweeps, --evaluations, --restarts) or start from a pose with less load (--start)"
+        } else {
+            "the design holds these limits on its own grid: sample at a higher --rate or design \
+             with more margin"
+        };
         return Err(format!(
-            "the sampled trajectory (written to {} for inspection) exceeds {}; torques are held \
-             by a penalty, not by construction: give the search more work (--sweeps, \
-             --evaluations, --restarts) or start from a pose with less load (--start)",
+            "the sampled trajectory (written to {} for inspection) exceeds {}; {fix}",
             args.output.display(),
             exceeded.join(", ")
         )
