@@ -26,6 +26,14 @@ pub enum Error {
         /// What the writer reported.
         reason: String,
     },
+    /// An output would replace one of the run's inputs.
+    #[error("{output} is also an input of this run ({input}); write the output to another file")]
+    OutputIsInput {
+        /// The output path as given.
+        output: PathBuf,
+        /// The input it is the same file as.
+        input: PathBuf,
+    },
     /// The CSV structure is broken (e.g. a row with a different number of fields).
     #[error("{path}:{line}: malformed CSV: {reason}; every row needs as many fields as the header")]
     Csv {

@@ -22,6 +22,8 @@ pub mod feasible;
 #[cfg(feature = "std")]
 pub mod nelder_mead;
 #[cfg(feature = "std")]
+pub mod output;
+#[cfg(feature = "std")]
 pub mod pipeline;
 #[cfg(feature = "std")]
 pub mod report;

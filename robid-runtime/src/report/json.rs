@@ -5,7 +5,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::estimate::Estimate;
 use crate::pipeline::Identification;
 use crate::validate::Fit;
@@ -133,9 +133,6 @@ impl Report {
 
     /// Writes the JSON to a file.
     pub fn write_json(&self, path: &Path) -> Result<()> {
-        std::fs::write(path, self.to_json()).map_err(|e| Error::Write {
-            path: path.to_path_buf(),
-            reason: e.to_string(),
-        })
+        crate::output::write_bytes(path, self.to_json().as_bytes())
     }
 }

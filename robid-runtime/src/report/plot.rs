@@ -9,10 +9,7 @@ use crate::validate::Prediction;
 
 /// Writes one SVG per joint, `{prefix}_joint{j}.svg` in `dir`, and returns the paths.
 pub fn plot_torques(prediction: &Prediction, dir: &Path, prefix: &str) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::Write {
-        path: dir.to_path_buf(),
-        reason: e.to_string(),
-    })?;
+    crate::output::create_folder(dir)?;
     let mut paths = Vec::new();
     for (j, (m, p)) in prediction
         .measured
@@ -22,23 +19,25 @@ pub fn plot_torques(prediction: &Prediction, dir: &Path, prefix: &str) -> Result
     {
         let path = dir.join(format!("{prefix}_joint{}.svg", j + 1));
         let t = &prediction.time[j];
-        plot_one(&path, j + 1, t, m, p).map_err(|e| Error::Write {
+        let mut svg = String::new();
+        plot_one(&mut svg, j + 1, t, m, p).map_err(|e| Error::Write {
             path: path.clone(),
             reason: e.to_string(),
         })?;
+        crate::output::write_bytes(&path, svg.as_bytes())?;
         paths.push(path);
     }
     Ok(paths)
 }
 
 fn plot_one(
-    path: &Path,
+    svg: &mut String,
     joint: usize,
     t: &[f64],
     m: &[f64],
     p: &[f64],
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let root = SVGBackend::new(path, (900, 360)).into_drawing_area();
+    let root = SVGBackend::with_string(svg, (900, 360)).into_drawing_area();
     root.fill(&WHITE)?;
     let (t0, t1) = (
         t.first().copied().unwrap_or(0.0),

@@ -3,7 +3,6 @@
 //! A trajectory file has the header `t,q1..qn,qd1..qdn,qdd1..qddn`; a simulated record
 //! adds `tau1..taun`. Signals are stored per joint: `q[j][k]` is joint j at sample k.
 
-use std::io::Write;
 use std::path::Path;
 
 use crate::data::read_columns;
@@ -150,26 +149,22 @@ fn write_rows(
     rows: usize,
     mut fill: impl FnMut(usize, &mut Vec<f64>),
 ) -> Result<()> {
-    let err = |reason: String| Error::Write {
-        path: path.to_path_buf(),
-        reason,
-    };
-    let file = std::fs::File::create(path).map_err(|e| err(e.to_string()))?;
-    let mut w = std::io::BufWriter::new(file);
-    writeln!(w, "{}", header.join(",")).map_err(|e| err(e.to_string()))?;
-    let mut row = Vec::with_capacity(header.len());
-    let mut line = String::new();
-    for k in 0..rows {
-        row.clear();
-        fill(k, &mut row);
-        line.clear();
-        for (i, x) in row.iter().enumerate() {
-            if i > 0 {
-                line.push(',');
+    crate::output::write_atomically(path, |w| {
+        writeln!(w, "{}", header.join(","))?;
+        let mut row = Vec::with_capacity(header.len());
+        let mut line = String::new();
+        for k in 0..rows {
+            row.clear();
+            fill(k, &mut row);
+            line.clear();
+            for (i, x) in row.iter().enumerate() {
+                if i > 0 {
+                    line.push(',');
+                }
+                line.push_str(&format!("{x:.9e}"));
             }
-            line.push_str(&format!("{x:.9e}"));
+            writeln!(w, "{line}")?;
         }
-        writeln!(w, "{line}").map_err(|e| err(e.to_string()))?;
-    }
-    w.flush().map_err(|e| err(e.to_string()))
+        Ok(())
+    })
 }
