@@ -1,10 +1,10 @@
 #![doc = "robid runtime: the `no_std` scalar and model traits that generated models implement, and, with the `std` feature, the identification pipeline."]
 #![cfg_attr(not(feature = "std"), no_std)]
 
-mod model;
+pub mod model;
 mod real;
 
-pub use model::Model;
+pub use model::{LengthError, Model};
 pub use real::Real;
 
 #[cfg(feature = "std")]

@@ -2,14 +2,108 @@
 //!
 //! Implemented by the code `robot_model!` emits (compiled, fixed size) and by the
 //! interpreter of a derived program (any description file, at run time). All
-//! matrices are row-major slices; every output slice is overwritten completely.
+//! matrices are row-major slices.
+//!
+//! One contract for every implementation: a slice of the wrong length is a
+//! [`LengthError`] naming the argument, returned before any output is written; a
+//! method never panics and never writes a partial result.
+
+use core::fmt;
+
+/// A slice given to a [`Model`] method does not have the length the model needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LengthError {
+    /// The argument, as the method names it (`q`, `qd`, `qdd`, `base`, `standard`, `out`, `tau`).
+    pub argument: &'static str,
+    /// The length the model needs.
+    pub expected: usize,
+    /// The length given.
+    pub found: usize,
+}
+
+impl fmt::Display for LengthError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "`{}` has {} entries but the model needs {}; pass one entry per {}",
+            self.argument,
+            self.found,
+            self.expected,
+            match self.argument {
+                "q" | "qd" | "qdd" | "tau" => "joint",
+                "base" => "base parameter",
+                "standard" => "standard parameter",
+                _ => "output value",
+            }
+        )
+    }
+}
+
+impl core::error::Error for LengthError {}
+
+/// Checks that `slice` has `expected` entries.
+pub fn check_length(
+    argument: &'static str,
+    slice: &[f64],
+    expected: usize,
+) -> Result<(), LengthError> {
+    if slice.len() == expected {
+        Ok(())
+    } else {
+        Err(LengthError {
+            argument,
+            expected,
+            found: slice.len(),
+        })
+    }
+}
+
+/// `slice` as a fixed-size array (the inputs of generated code).
+pub fn fixed<'a, const N: usize>(
+    argument: &'static str,
+    slice: &'a [f64],
+) -> Result<&'a [f64; N], LengthError> {
+    slice.try_into().map_err(|_| LengthError {
+        argument,
+        expected: N,
+        found: slice.len(),
+    })
+}
+
+/// `slice` as a mutable fixed-size array (the outputs of generated code).
+pub fn fixed_mut<'a, const N: usize>(
+    argument: &'static str,
+    slice: &'a mut [f64],
+) -> Result<&'a mut [f64; N], LengthError> {
+    let found = slice.len();
+    slice.try_into().map_err(|_| LengthError {
+        argument,
+        expected: N,
+        found,
+    })
+}
 
 /// A robot's dynamic model in base parameters, as the runtime sees it.
 ///
-/// Conventions: `q`, `qd`, `qdd` have `dof()` entries; `base` has
-/// `base_parameter_count()` entries, in the order of `base_parameter_name`.
-/// Geometric symbols (lengths kept symbolic in the description) are part of the
-/// implementing value, set when it is constructed.
+/// Conventions: `q`, `qd`, `qdd` and `tau` have `dof()` entries; `base` has
+/// `base_parameter_count()` entries, in the order of `base_parameter_name`;
+/// `standard` has `standard_parameter_count()` entries. Geometric symbols (lengths
+/// kept symbolic in the description) are part of the implementing value, set when it
+/// is constructed.
+///
+/// Every computing method checks the length of every slice first: on a mismatch it
+/// returns the [`LengthError`] of the first wrong argument and leaves the output as
+/// it was; otherwise it overwrites the output completely.
+///
+/// ```
+/// use robid_runtime::model::{LengthError, Model};
+/// fn torques(m: &dyn Model, q: &[f64], base: &[f64]) -> Result<Vec<f64>, LengthError> {
+///     let zero = vec![0.0; m.dof()];
+///     let mut tau = vec![0.0; m.dof()];
+///     m.inverse_dynamics(q, &zero, &zero, base, &mut tau)?;
+///     Ok(tau)
+/// }
+/// ```
 pub trait Model {
     /// Name of the robot, as in its description.
     fn name(&self) -> &str;
@@ -17,26 +111,105 @@ pub trait Model {
     fn dof(&self) -> usize;
     /// Number of standard parameters (10 per link plus the enabled drive terms).
     fn standard_parameter_count(&self) -> usize;
-    /// Name of standard parameter `index` (e.g. `XX1`, `MZ3`, `Fv2`).
-    fn standard_parameter_name(&self, index: usize) -> &str;
+    /// Name of standard parameter `index` (e.g. `XX1`, `MZ3`, `Fv2`); `None` past the end.
+    fn standard_parameter_name(&self, index: usize) -> Option<&str>;
     /// Number of base parameters.
     fn base_parameter_count(&self) -> usize;
-    /// Name of base parameter `index` (e.g. `ZZR1`, `MXR2`).
-    fn base_parameter_name(&self, index: usize) -> &str;
+    /// Name of base parameter `index` (e.g. `ZZR1`, `MXR2`); `None` past the end.
+    fn base_parameter_name(&self, index: usize) -> Option<&str>;
 
     /// Base regressor Y_b(q, qd, qdd): `out` is `dof x base_parameter_count`, row-major,
     /// so that tau = Y_b * base.
-    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]);
+    fn base_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError>;
     /// Standard regressor Y(q, qd, qdd): `out` is `dof x standard_parameter_count`, row-major.
-    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]);
+    fn standard_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError>;
     /// Inverse dynamics with base parameters, friction and offsets included: `tau` has `dof` entries.
-    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]);
+    fn inverse_dynamics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        base: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), LengthError>;
     /// Joint-space inertia matrix M(q) (rotor inertias included): `out` is `dof x dof`, row-major.
-    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]);
+    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError>;
     /// Gravity torques g(q): `out` has `dof` entries.
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]);
+    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError>;
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction): `out` has `dof` entries.
-    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]);
+    fn coriolis(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        base: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError>;
     /// Maps standard parameters to base parameters (base = K * standard).
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]);
+    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) -> Result<(), LengthError>;
+}
+
+/// The base parameter names of `model`, in order.
+#[cfg(feature = "std")]
+pub fn base_parameter_names<M: Model + ?Sized>(model: &M) -> Vec<String> {
+    (0..model.base_parameter_count())
+        .filter_map(|i| model.base_parameter_name(i).map(str::to_owned))
+        .collect()
+}
+
+/// The standard parameter names of `model`, in order.
+#[cfg(feature = "std")]
+pub fn standard_parameter_names<M: Model + ?Sized>(model: &M) -> Vec<String> {
+    (0..model.standard_parameter_count())
+        .filter_map(|i| model.standard_parameter_name(i).map(str::to_owned))
+        .collect()
+}
+
+#[cfg(feature = "std")]
+impl From<LengthError> for crate::Error {
+    fn from(e: LengthError) -> Self {
+        crate::Error::DimensionMismatch {
+            what: format!("model argument `{}`", e.argument),
+            expected: e.expected,
+            found: e.found,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fixed_checks_the_length() {
+        let v = [1.0, 2.0, 3.0];
+        let a: &[f64; 3] = fixed("q", &v).unwrap();
+        assert_eq!(a, &v);
+        let e = fixed::<2>("qd", &v).unwrap_err();
+        assert_eq!(
+            e,
+            LengthError {
+                argument: "qd",
+                expected: 2,
+                found: 3
+            }
+        );
+        let mut out = [0.0; 2];
+        assert!(fixed_mut::<3>("out", &mut out).is_err());
+        *fixed_mut::<2>("out", &mut out).unwrap() = [4.0, 5.0];
+        assert_eq!(out, [4.0, 5.0]);
+        assert!(check_length("base", &v, 3).is_ok());
+        assert!(check_length("base", &v, 4).is_err());
+    }
 }

@@ -35,15 +35,16 @@ fn truth(model: &Ur5e) -> Vec<f64> {
     let standard_table = table["standard"].as_table().expect("[standard]");
     let standard: Vec<f64> = (0..model.standard_parameter_count())
         .map(|i| {
-            let name = model.standard_parameter_name(i);
             standard_table
-                .get(name)
+                .get(Ur5e::STANDARD_PARAMETER_NAMES[i])
                 .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
                 .unwrap_or(0.0)
         })
         .collect();
     let mut base = vec![0.0; model.base_parameter_count()];
-    model.base_from_standard(&standard, &mut base);
+    model
+        .base_from_standard(&standard, &mut base)
+        .expect("sizes from the model");
     base
 }
 

@@ -4161,44 +4161,50 @@ impl ::robid_runtime::Model for Ur5e {
     fn standard_parameter_count(&self) -> usize {
         Self::STANDARD_PARAMETERS
     }
-    fn standard_parameter_name(&self, index: usize) -> &str {
-        Self::STANDARD_PARAMETER_NAMES[index]
+    fn standard_parameter_name(&self, index: usize) -> ::core::option::Option<&str> {
+        Self::STANDARD_PARAMETER_NAMES.get(index).copied()
     }
     fn base_parameter_count(&self) -> usize {
         Self::BASE_PARAMETERS
     }
-    fn base_parameter_name(&self, index: usize) -> &str {
-        Self::BASE_PARAMETER_NAMES[index]
+    fn base_parameter_name(&self, index: usize) -> ::core::option::Option<&str> {
+        Self::BASE_PARAMETER_NAMES.get(index).copied()
     }
-    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        out.copy_from_slice(
-            &Ur5e::base_regressor::<
-                f64,
-            >(
-                self,
-                ::core::convert::TryInto::try_into(q)
-                    .expect("`q` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(qd)
-                    .expect("`qd` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(qdd)
-                    .expect("`qdd` has the length of the model (see the `Model` trait)"),
-            ),
+    fn base_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
+        let value = Ur5e::base_regressor::<
+            f64,
+        >(
+            self,
+            ::robid_runtime::model::fixed("q", q)?,
+            ::robid_runtime::model::fixed("qd", qd)?,
+            ::robid_runtime::model::fixed("qdd", qdd)?,
         );
+        *::robid_runtime::model::fixed_mut("out", out)? = value;
+        ::core::result::Result::Ok(())
     }
-    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        out.copy_from_slice(
-            &Ur5e::standard_regressor::<
-                f64,
-            >(
-                self,
-                ::core::convert::TryInto::try_into(q)
-                    .expect("`q` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(qd)
-                    .expect("`qd` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(qdd)
-                    .expect("`qdd` has the length of the model (see the `Model` trait)"),
-            ),
+    fn standard_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
+        let value = Ur5e::standard_regressor::<
+            f64,
+        >(
+            self,
+            ::robid_runtime::model::fixed("q", q)?,
+            ::robid_runtime::model::fixed("qd", qd)?,
+            ::robid_runtime::model::fixed("qdd", qdd)?,
         );
+        *::robid_runtime::model::fixed_mut("out", out)? = value;
+        ::core::result::Result::Ok(())
     }
     fn inverse_dynamics(
         &self,
@@ -4207,75 +4213,78 @@ impl ::robid_runtime::Model for Ur5e {
         qdd: &[f64],
         base: &[f64],
         tau: &mut [f64],
-    ) {
-        tau.copy_from_slice(
-            &Ur5e::inverse_dynamics::<
-                f64,
-            >(
-                self,
-                ::core::convert::TryInto::try_into(q)
-                    .expect("`q` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(qd)
-                    .expect("`qd` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(qdd)
-                    .expect("`qdd` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(base)
-                    .expect("`base` has the length of the model (see the `Model` trait)"),
-            ),
+    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
+        let value = Ur5e::inverse_dynamics::<
+            f64,
+        >(
+            self,
+            ::robid_runtime::model::fixed("q", q)?,
+            ::robid_runtime::model::fixed("qd", qd)?,
+            ::robid_runtime::model::fixed("qdd", qdd)?,
+            ::robid_runtime::model::fixed("base", base)?,
         );
+        *::robid_runtime::model::fixed_mut("tau", tau)? = value;
+        ::core::result::Result::Ok(())
     }
-    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        out.copy_from_slice(
-            &Ur5e::mass_matrix::<
-                f64,
-            >(
-                self,
-                ::core::convert::TryInto::try_into(q)
-                    .expect("`q` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(base)
-                    .expect("`base` has the length of the model (see the `Model` trait)"),
-            ),
+    fn mass_matrix(
+        &self,
+        q: &[f64],
+        base: &[f64],
+        out: &mut [f64],
+    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
+        let value = Ur5e::mass_matrix::<
+            f64,
+        >(
+            self,
+            ::robid_runtime::model::fixed("q", q)?,
+            ::robid_runtime::model::fixed("base", base)?,
         );
+        *::robid_runtime::model::fixed_mut("out", out)? = value;
+        ::core::result::Result::Ok(())
     }
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        out.copy_from_slice(
-            &Ur5e::gravity::<
-                f64,
-            >(
-                self,
-                ::core::convert::TryInto::try_into(q)
-                    .expect("`q` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(base)
-                    .expect("`base` has the length of the model (see the `Model` trait)"),
-            ),
+    fn gravity(
+        &self,
+        q: &[f64],
+        base: &[f64],
+        out: &mut [f64],
+    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
+        let value = Ur5e::gravity::<
+            f64,
+        >(
+            self,
+            ::robid_runtime::model::fixed("q", q)?,
+            ::robid_runtime::model::fixed("base", base)?,
         );
+        *::robid_runtime::model::fixed_mut("out", out)? = value;
+        ::core::result::Result::Ok(())
     }
-    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
-        out.copy_from_slice(
-            &Ur5e::coriolis::<
-                f64,
-            >(
-                self,
-                ::core::convert::TryInto::try_into(q)
-                    .expect("`q` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(qd)
-                    .expect("`qd` has the length of the model (see the `Model` trait)"),
-                ::core::convert::TryInto::try_into(base)
-                    .expect("`base` has the length of the model (see the `Model` trait)"),
-            ),
+    fn coriolis(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        base: &[f64],
+        out: &mut [f64],
+    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
+        let value = Ur5e::coriolis::<
+            f64,
+        >(
+            self,
+            ::robid_runtime::model::fixed("q", q)?,
+            ::robid_runtime::model::fixed("qd", qd)?,
+            ::robid_runtime::model::fixed("base", base)?,
         );
+        *::robid_runtime::model::fixed_mut("out", out)? = value;
+        ::core::result::Result::Ok(())
     }
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
-        base.copy_from_slice(
-            &Ur5e::base_parameters::<
-                f64,
-            >(
-                self,
-                ::core::convert::TryInto::try_into(standard)
-                    .expect(
-                        "`standard` has the length of the model (see the `Model` trait)",
-                    ),
-            ),
-        );
+    fn base_from_standard(
+        &self,
+        standard: &[f64],
+        base: &mut [f64],
+    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
+        let value = Ur5e::base_parameters::<
+            f64,
+        >(self, ::robid_runtime::model::fixed("standard", standard)?);
+        *::robid_runtime::model::fixed_mut("base", base)? = value;
+        ::core::result::Result::Ok(())
     }
 }

@@ -14,6 +14,7 @@
 use std::cell::RefCell;
 
 use robid_runtime::Model;
+use robid_runtime::model::{LengthError, check_length};
 use robid_symbolic::Robot;
 use robid_symbolic::program::{BaseParameter, DeriveError, Program, RobotPrograms};
 
@@ -85,17 +86,30 @@ impl Interpreted {
         &self.programs
     }
 
-    /// Runs `p`; on a length mismatch the output is filled with NaN, which the
-    /// pipeline reports as a non-finite observation instead of a wrong result.
-    fn run(&self, p: &Program, inputs: &[&[f64]], out: &mut [f64]) {
-        let mut all: Vec<&[f64]> = inputs.to_vec();
+    /// Runs `p` after checking every slice against the program's groups (the same
+    /// [`LengthError`] as the compiled models, and the output untouched on a mismatch).
+    fn run(
+        &self,
+        p: &Program,
+        inputs: &[(&'static str, &[f64])],
+        output: (&'static str, &mut [f64]),
+    ) -> Result<(), LengthError> {
+        for ((name, slice), group) in inputs.iter().zip(&p.inputs) {
+            check_length(name, slice, group.len())?;
+        }
+        let (name, out) = output;
+        check_length(name, out, p.outputs.iter().map(|o| o.values.len()).sum())?;
+        let mut all: Vec<&[f64]> = inputs.iter().map(|(_, s)| *s).collect();
         if !self.geometry.is_empty() {
             all.push(&self.geometry);
         }
-        let ok = TEMPS.with(|t| p.run(&all, &mut [&mut *out], &mut t.borrow_mut()).is_ok());
-        if !ok {
-            out.iter_mut().for_each(|v| *v = f64::NAN);
-        }
+        TEMPS
+            .with(|t| p.run(&all, &mut [out], &mut t.borrow_mut()))
+            .map_err(|_| LengthError {
+                argument: name,
+                expected: p.outputs.iter().map(|o| o.values.len()).sum(),
+                found: 0,
+            })
     }
 }
 
@@ -109,35 +123,68 @@ impl Model for Interpreted {
     fn standard_parameter_count(&self) -> usize {
         self.programs.standard.len()
     }
-    fn standard_parameter_name(&self, index: usize) -> &str {
-        &self.programs.standard[index]
+    fn standard_parameter_name(&self, index: usize) -> Option<&str> {
+        self.programs.standard.get(index).map(String::as_str)
     }
     fn base_parameter_count(&self) -> usize {
         self.programs.base.len()
     }
-    fn base_parameter_name(&self, index: usize) -> &str {
-        &self.programs.base[index].name
+    fn base_parameter_name(&self, index: usize) -> Option<&str> {
+        self.programs.base.get(index).map(|b| b.name.as_str())
     }
-    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.base_regressor, &[q, qd, qdd], out);
+    fn base_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        let p = &self.programs.base_regressor;
+        self.run(p, &[("q", q), ("qd", qd), ("qdd", qdd)], ("out", out))
     }
-    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.standard_regressor, &[q, qd, qdd], out);
+    fn standard_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        let p = &self.programs.standard_regressor;
+        self.run(p, &[("q", q), ("qd", qd), ("qdd", qdd)], ("out", out))
     }
-    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
-        self.run(&self.programs.inverse_dynamics, &[q, qd, qdd, base], tau);
+    fn inverse_dynamics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        base: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), LengthError> {
+        let p = &self.programs.inverse_dynamics;
+        let inputs = [("q", q), ("qd", qd), ("qdd", qdd), ("base", base)];
+        self.run(p, &inputs, ("tau", tau))
     }
-    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.mass_matrix, &[q, base], out);
+    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
+        let p = &self.programs.mass_matrix;
+        self.run(p, &[("q", q), ("base", base)], ("out", out))
     }
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.gravity, &[q, base], out);
+    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
+        let p = &self.programs.gravity;
+        self.run(p, &[("q", q), ("base", base)], ("out", out))
     }
-    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
-        self.run(&self.programs.coriolis, &[q, qd, base], out);
+    fn coriolis(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        base: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        let p = &self.programs.coriolis;
+        self.run(p, &[("q", q), ("qd", qd), ("base", base)], ("out", out))
     }
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
-        self.run(&self.programs.base_from_standard, &[standard], base);
+    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) -> Result<(), LengthError> {
+        let p = &self.programs.base_from_standard;
+        self.run(p, &[("standard", standard)], ("base", base))
     }
 }
 
@@ -236,14 +283,56 @@ mod tests {
         );
         let p = Model::base_parameter_count(&c);
         let (mut a, mut b) = (vec![0.0; 6 * p], vec![0.0; 6 * p]);
-        i.base_regressor(&q, &qd, &qdd, &mut a);
-        Model::base_regressor(&c, &q, &qd, &qdd, &mut b);
+        i.base_regressor(&q, &qd, &qdd, &mut a).unwrap();
+        Model::base_regressor(&c, &q, &qd, &qdd, &mut b).unwrap();
         for (x, y) in a.iter().zip(&b) {
             assert!((x - y).abs() < 1e-9 * (1.0 + y.abs()));
         }
-        let mut short = vec![0.0; 3];
-        i.gravity(&q[..2], &vec![0.0; p], &mut short);
-        assert!(short.iter().all(|v| v.is_nan()));
+    }
+
+    /// One contract for both kinds of model: the same `LengthError` for the same wrong
+    /// slice, and the output left as it was.
+    #[test]
+    fn a_wrong_length_is_the_same_error_for_compiled_and_interpreted() {
+        let text = include_str!("../descriptions/tx40.toml");
+        let robot = Robot::from_toml(text, "tx40.toml").unwrap();
+        let models: [Box<dyn Model>; 2] =
+            [Box::new(Interpreted::new(&robot).unwrap()), Box::new(Tx40)];
+        let p = models[1].base_parameter_count();
+        let ns = models[1].standard_parameter_count();
+        let (q, short, base) = ([0.3; 6], [0.3; 2], vec![0.5; p]);
+        let mut errors = Vec::new();
+        for m in &models {
+            let mut out = vec![7.0; 6];
+            let e = [
+                m.gravity(&short, &base, &mut out).unwrap_err(),
+                m.gravity(&q, &base[1..], &mut out).unwrap_err(),
+                m.gravity(&q, &base, &mut out[..5]).unwrap_err(),
+                m.inverse_dynamics(&q, &q, &short, &base, &mut out)
+                    .unwrap_err(),
+                m.coriolis(&q, &short, &base, &mut out).unwrap_err(),
+                m.mass_matrix(&q, &base, &mut out).unwrap_err(),
+                m.base_regressor(&q, &q, &q, &mut out).unwrap_err(),
+                m.standard_regressor(&q, &q, &short, &mut vec![0.0; 6 * ns])
+                    .unwrap_err(),
+                m.base_from_standard(&base, &mut vec![0.0; p]).unwrap_err(),
+            ];
+            assert!(out.iter().all(|&v| v == 7.0), "output written on error");
+            assert_eq!(m.base_parameter_name(p), None);
+            assert_eq!(m.standard_parameter_name(ns), None);
+            errors.push(e);
+        }
+        assert_eq!(errors[0], errors[1]);
+        assert_eq!(
+            errors[0][0],
+            LengthError {
+                argument: "q",
+                expected: 6,
+                found: 2
+            }
+        );
+        assert_eq!(errors[0][2].argument, "out");
+        assert_eq!(errors[0][8].argument, "standard");
     }
 
     #[test]

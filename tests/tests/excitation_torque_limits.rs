@@ -31,7 +31,7 @@ fn outcome(
     limits: &[JointLimits],
     tr: &Trajectory,
 ) -> (f64, bool) {
-    let a = assess(model, tr, limits, Some(truth), 1);
+    let a = assess(model, tr, limits, Some(truth), 1).unwrap();
     let peak = a.margins[1].peak_torque.expect("torques were computed");
     (peak, a.within_limits())
 }

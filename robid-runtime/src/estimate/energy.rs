@@ -12,6 +12,7 @@
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
+use crate::LengthError;
 use crate::Model;
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation, ols};
@@ -66,9 +67,9 @@ pub fn energy_observation(
                 }
                 y += wgt * power(k);
             }
-            (row, y)
+            Ok((row, y))
         })
-        .collect();
+        .collect::<std::result::Result<_, LengthError>>()?;
     let w = DMatrix::from_fn(windows, p, |r, c| rows[r].0[c]);
     let y = DVector::from_iterator(windows, rows.iter().map(|r| r.1));
     Observation::single(w, y, names)
@@ -93,9 +94,7 @@ pub fn model_energy_observation(
 ) -> Result<Observation> {
     let dof = model.dof();
     let p = model.base_parameter_count();
-    let names: Vec<String> = (0..p)
-        .map(|i| model.base_parameter_name(i).to_string())
-        .collect();
+    let names = crate::model::base_parameter_names(model);
     if signals.q.len() != dof {
         return Err(Error::JointCountMismatch {
             context: "energy model: data".into(),
@@ -116,17 +115,18 @@ pub fn model_energy_observation(
     // per sample: the kinetic energy per parameter (window ends only) and the power
     // g(q).qd + friction per parameter, both from at most two regressor calls
     let energy_at = |q: &[f64], qd: &[f64], y0: &mut [f64], y1: &mut [f64], out: &mut [f64]| {
-        model.base_regressor(q, &zeros, &zeros, y0);
-        model.base_regressor(q, &zeros, qd, y1);
+        model.base_regressor(q, &zeros, &zeros, y0)?;
+        model.base_regressor(q, &zeros, qd, y1)?;
         for (i, o) in out.iter_mut().enumerate() {
             *o = 0.5
                 * (0..dof)
                     .map(|j| qd[j] * (y1[j * p + i] - y0[j * p + i]))
                     .sum::<f64>();
         }
+        Ok::<(), LengthError>(())
     };
     let power_at = |q: &[f64], qd: &[f64], y0: &mut [f64], d: &mut [f64], out: &mut [f64]| {
-        model.base_regressor(q, &zeros, &zeros, y0);
+        model.base_regressor(q, &zeros, &zeros, y0)?;
         friction(q, qd, d);
         for (i, o) in out.iter_mut().enumerate() {
             *o = if dissipative[i] {
@@ -135,6 +135,7 @@ pub fn model_energy_observation(
                 (0..dof).map(|j| qd[j] * y0[j * p + i]).sum::<f64>()
             };
         }
+        Ok::<(), LengthError>(())
     };
     let n = signals.samples();
     if window == 0 || n < window + 1 || signals.qd.len() != dof || signals.tau.len() != dof {
@@ -166,7 +167,7 @@ pub fn model_energy_observation(
             };
             for (k, sign) in [(a, -1.0), (b, 1.0)] {
                 load(k, &mut q, &mut qd);
-                energy_at(&q, &qd, &mut y0, &mut y1, &mut cur);
+                energy_at(&q, &qd, &mut y0, &mut y1, &mut cur)?;
                 for (r, v) in row.iter_mut().zip(&cur) {
                     *r += sign * v;
                 }
@@ -174,15 +175,15 @@ pub fn model_energy_observation(
             for k in a..=b {
                 let wgt = if k == a || k == b { 0.5 * dt } else { dt };
                 load(k, &mut q, &mut qd);
-                power_at(&q, &qd, &mut y0, &mut d, &mut cur);
+                power_at(&q, &qd, &mut y0, &mut d, &mut cur)?;
                 for (r, v) in row.iter_mut().zip(&cur) {
                     *r += wgt * v;
                 }
                 y += wgt * (0..dof).map(|j| signals.tau[j][k] * qd[j]).sum::<f64>();
             }
-            (row, y)
+            Ok((row, y))
         })
-        .collect();
+        .collect::<std::result::Result<_, LengthError>>()?;
     let w = DMatrix::from_fn(windows, p, |r, c| rows[r].0[c]);
     let y = DVector::from_iterator(windows, rows.iter().map(|r| r.1));
     Observation::single(w, y, names)

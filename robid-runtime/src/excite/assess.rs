@@ -1,9 +1,9 @@
 //! What a designed trajectory achieves: the condition number of its stacked base regressor
 //! and its margin to every limit.
 
-use crate::Model;
 use crate::excite::{Information, JointLimits, Margin, margins};
 use crate::simulate::Trajectory;
+use crate::{LengthError, Model};
 
 /// The properties of a trajectory reported with a design.
 #[derive(Debug, Clone)]
@@ -31,12 +31,12 @@ pub fn assess<M: Model + ?Sized>(
     limits: &[JointLimits],
     torque: Option<&[f64]>,
     stride: usize,
-) -> Assessment {
+) -> Result<Assessment, LengthError> {
     let mut info = Information::new(model);
-    info.add_trajectory(model, trajectory, stride);
-    Assessment {
+    info.add_trajectory(model, trajectory, stride)?;
+    Ok(Assessment {
         condition_number: info.condition_number(),
         samples: info.samples,
-        margins: margins(trajectory, limits, torque.map(|b| (model, b))),
-    }
+        margins: margins(trajectory, limits, torque.map(|b| (model, b)))?,
+    })
 }

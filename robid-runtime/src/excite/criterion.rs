@@ -13,8 +13,8 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use crate::Model;
 use crate::simulate::Trajectory;
+use crate::{LengthError, Model};
 
 /// What a design minimises.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -57,8 +57,14 @@ impl Information {
     }
 
     /// Adds the rows Y_b(q, qd, qdd).
-    pub fn add<M: Model + ?Sized>(&mut self, model: &M, q: &[f64], qd: &[f64], qdd: &[f64]) {
-        model.base_regressor(q, qd, qdd, &mut self.y);
+    pub fn add<M: Model + ?Sized>(
+        &mut self,
+        model: &M,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> Result<(), LengthError> {
+        model.base_regressor(q, qd, qdd, &mut self.y)?;
         if let Some(w) = &self.weights {
             let p = self.gram.ncols();
             for (row, w) in self.y.chunks_mut(p).zip(w) {
@@ -67,6 +73,7 @@ impl Information {
         }
         add_rows(&mut self.gram, &self.y, model.dof());
         self.samples += 1;
+        Ok(())
     }
 
     /// Adds every `stride`-th sample of a trajectory.
@@ -75,13 +82,14 @@ impl Information {
         model: &M,
         trajectory: &Trajectory,
         stride: usize,
-    ) {
+    ) -> Result<(), LengthError> {
         let n = trajectory.dof();
         let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         for k in (0..trajectory.samples()).step_by(stride.max(1)) {
             trajectory.state(k, &mut q, &mut qd, &mut qdd);
-            self.add(model, &q, &qd, &qdd);
+            self.add(model, &q, &qd, &qdd)?;
         }
+        Ok(())
     }
 
     /// Singular values of W, largest first.

@@ -323,9 +323,15 @@ impl FourierDesign {
         for k in 0..self.points {
             let t = period * k as f64 / self.points as f64;
             fourier.state(t, &mut q, &mut qd, &mut qdd);
-            info.add(model, &q, &qd, &qdd);
-            if let Some(penalty) = &mut penalty {
-                penalty.add(model, &q, &qd, &qdd);
+            // The sizes were checked on entry: a model that still refuses a state makes
+            // this candidate infinitely bad rather than silently wrong.
+            if info.add(model, &q, &qd, &qdd).is_err() {
+                return f64::INFINITY;
+            }
+            if let Some(penalty) = &mut penalty
+                && penalty.add(model, &q, &qd, &qdd).is_err()
+            {
+                return f64::INFINITY;
             }
         }
         info.cost(self.criterion) + penalty.map_or(0.0, |p| p.value())

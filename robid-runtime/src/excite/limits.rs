@@ -1,8 +1,8 @@
 //! Joint limits and the margins a trajectory keeps to them.
 
-use crate::Model;
 use crate::error::{Error, Result};
 use crate::simulate::Trajectory;
+use crate::{LengthError, Model};
 
 /// The limits of one joint.
 #[derive(Debug, Clone, PartialEq)]
@@ -95,8 +95,14 @@ impl<'a> TorquePenalty<'a> {
     }
 
     /// Adds one state.
-    pub(crate) fn add<M: Model + ?Sized>(&mut self, model: &M, q: &[f64], qd: &[f64], qdd: &[f64]) {
-        model.inverse_dynamics(q, qd, qdd, self.base, &mut self.tau);
+    pub(crate) fn add<M: Model + ?Sized>(
+        &mut self,
+        model: &M,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> std::result::Result<(), LengthError> {
+        model.inverse_dynamics(q, qd, qdd, self.base, &mut self.tau)?;
         for (j, l) in self.limits.iter().enumerate() {
             if let Some(t) = l.torque {
                 let excess = (self.tau[j].abs() / (self.safety * t) - 1.0).max(0.0);
@@ -105,6 +111,7 @@ impl<'a> TorquePenalty<'a> {
             }
         }
         self.states += 1;
+        Ok(())
     }
 
     /// The penalty: WEIGHT times the sum over joints of the worst and the mean excess (zero
@@ -167,23 +174,24 @@ pub fn margins<M: Model + ?Sized>(
     trajectory: &Trajectory,
     limits: &[JointLimits],
     torques: Option<(&M, &[f64])>,
-) -> Vec<Margin> {
+) -> std::result::Result<Vec<Margin>, LengthError> {
     let n = trajectory.dof();
-    let peak = torques.map(|(model, base)| {
-        let mut peak = vec![0.0f64; n];
+    let mut peak = None;
+    if let Some((model, base)) = torques {
+        let mut p = vec![0.0f64; n];
         let (mut q, mut qd, mut qdd, mut tau) =
             (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         for k in 0..trajectory.samples() {
             trajectory.state(k, &mut q, &mut qd, &mut qdd);
-            model.inverse_dynamics(&q, &qd, &qdd, base, &mut tau);
+            model.inverse_dynamics(&q, &qd, &qdd, base, &mut tau)?;
             for j in 0..n {
-                peak[j] = peak[j].max(tau[j].abs());
+                p[j] = p[j].max(tau[j].abs());
             }
         }
-        peak
-    });
+        peak = Some(p);
+    }
     let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    (0..n)
+    Ok((0..n)
         .map(|j| {
             let l = &limits[j];
             let q = &trajectory.q[j];
@@ -199,5 +207,5 @@ pub fn margins<M: Model + ?Sized>(
                 peak_torque,
             }
         })
-        .collect()
+        .collect())
 }

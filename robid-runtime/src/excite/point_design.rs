@@ -296,7 +296,10 @@ impl PointDesign {
         let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         for t in self.criterion_times() {
             points.state(t, &mut q, &mut qd, &mut qdd);
-            info.add(model, &q, &qd, &qdd);
+            // Sizes are checked on entry; a model that still refuses makes the point infinitely bad.
+            if info.add(model, &q, &qd, &qdd).is_err() {
+                return f64::INFINITY;
+            }
         }
         info.cost(self.criterion)
     }
@@ -320,7 +323,9 @@ impl PointDesign {
                 &mut qd,
                 &mut qdd,
             );
-            penalty.add(model, &q, &qd, &qdd);
+            if penalty.add(model, &q, &qd, &qdd).is_err() {
+                return f64::INFINITY;
+            }
         }
         penalty.value()
     }
@@ -458,7 +463,7 @@ mod tests {
                 ..PointDesign::default()
             };
             let tr = design.random(&limits()).unwrap().sample(200.0).unwrap();
-            let m = margins::<Pendulum>(&tr, &limits(), None);
+            let m = margins::<Pendulum>(&tr, &limits(), None).unwrap();
             assert!(m.iter().all(|m| m.respected()), "seed {seed}: {m:?}");
             for j in 0..2 {
                 assert!(tr.qd[j][0] == 0.0 && tr.qdd[j][0] == 0.0);
@@ -490,6 +495,7 @@ mod tests {
         let tr = r.points.sample(200.0).unwrap();
         assert!(
             margins::<Pendulum>(&tr, &limits(), None)
+                .unwrap()
                 .iter()
                 .all(|m| m.respected())
         );

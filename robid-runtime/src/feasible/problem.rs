@@ -88,16 +88,12 @@ impl Problem {
         let mut column = vec![0.0; nb];
         for s in 0..ns {
             unit[s] = 1.0;
-            model.base_from_standard(&unit, &mut column);
+            model.base_from_standard(&unit, &mut column)?;
             unit[s] = 0.0;
             k.set_column(s, &DVector::from_column_slice(&column));
         }
-        let standard = (0..ns)
-            .map(|i| model.standard_parameter_name(i).to_owned())
-            .collect();
-        let base = (0..nb)
-            .map(|i| model.base_parameter_name(i).to_owned())
-            .collect();
+        let standard = crate::model::standard_parameter_names(model);
+        let base = crate::model::base_parameter_names(model);
         Problem::new(standard, base, k)
     }
 

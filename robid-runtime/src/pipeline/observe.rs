@@ -96,20 +96,21 @@ pub fn observe(
         p: model.base_parameter_count(),
         e: extra.len(),
     };
-    let mut names: Vec<String> = (0..lay.p)
-        .map(|i| model.base_parameter_name(i).to_string())
-        .collect();
+    let mut names = crate::model::base_parameter_names(model);
     names.extend(extra.iter().map(|c| c.name.clone()));
     check_names(&names)?;
     let n = signals.samples();
     let stride = lay.stride();
-    let row_at = |k: usize, st: &mut Scratch, row: &mut [f64]| {
+    let row_at = |k: usize,
+                  st: &mut Scratch,
+                  row: &mut [f64]|
+     -> std::result::Result<(), crate::LengthError> {
         for j in 0..dof {
             st.q[j] = signals.q[j][k];
             st.qd[j] = signals.qd[j][k];
             st.qdd[j] = signals.qdd[j][k];
         }
-        model.base_regressor(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p]);
+        model.base_regressor(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
         for (c, x) in extra.iter().enumerate() {
             x.fill(&st.q, &st.qd, &st.qdd, &mut st.col);
             let start = lay.column(0, lay.p + c);
@@ -119,13 +120,14 @@ pub fn observe(
             row[lay.tau(j)] = signals.tau[j][k];
             row[lay.qd(j)] = st.qd[j];
         }
+        Ok(())
     };
     // channels that are not identically zero, probed at a few samples; verified below
     let mut st = Scratch::new(dof);
     let mut probe = vec![0.0; stride];
     let mut active = vec![false; stride];
     for i in 0..PROBES {
-        row_at(i * n.saturating_sub(1) / (PROBES - 1), &mut st, &mut probe);
+        row_at(i * n.saturating_sub(1) / (PROBES - 1), &mut st, &mut probe)?;
         for (a, v) in active.iter_mut().zip(&probe) {
             *a |= *v != 0.0;
         }
@@ -151,7 +153,11 @@ pub fn observe(
                 let mut full = vec![0.0; stride];
                 let mut missed = false;
                 for (i, out) in chunk.chunks_exact_mut(a).enumerate() {
-                    row_at(b * BLOCK + i, &mut st, &mut full);
+                    // the probes above passed, so the sizes are right; a model that
+                    // still refuses leaves NaN, which the solver reports by row
+                    if row_at(b * BLOCK + i, &mut st, &mut full).is_err() {
+                        full.iter_mut().for_each(|v| *v = f64::NAN);
+                    }
                     for (o, &c) in out.iter_mut().zip(&channels) {
                         *o = full[c];
                     }

@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 use super::Model;
+use super::{LengthError, check_length};
 
 /// Joints.
 pub(crate) const DOF: usize = 6;
@@ -93,25 +94,57 @@ impl Model for Synthetic {
     fn standard_parameter_count(&self) -> usize {
         self.names.len()
     }
-    fn standard_parameter_name(&self, index: usize) -> &str {
-        &self.names[index]
+    fn standard_parameter_name(&self, index: usize) -> Option<&str> {
+        self.names.get(index).map(String::as_str)
     }
     fn base_parameter_count(&self) -> usize {
         self.names.len()
     }
-    fn base_parameter_name(&self, index: usize) -> &str {
-        &self.names[index]
+    fn base_parameter_name(&self, index: usize) -> Option<&str> {
+        self.names.get(index).map(String::as_str)
     }
-    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+    fn base_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_length("q", q, DOF)?;
+        check_length("qd", qd, DOF)?;
+        check_length("qdd", qdd, DOF)?;
         Self::regressor(q, qd, qdd, out);
+        Ok(())
     }
-    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+    fn standard_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_length("q", q, DOF)?;
+        check_length("qd", qd, DOF)?;
+        check_length("qdd", qdd, DOF)?;
         Self::regressor(q, qd, qdd, out);
+        Ok(())
     }
-    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
+    fn inverse_dynamics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        base: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_length("q", q, DOF)?;
+        check_length("qd", qd, DOF)?;
+        check_length("qdd", qdd, DOF)?;
         Self::torque(q, qd, qdd, base, tau);
+        Ok(())
     }
-    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
+    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
+        check_length("q", q, DOF)?;
         let zero = [0.0; DOF];
         let mut g = [0.0; DOF];
         Self::torque(q, &zero, &zero, base, &mut g);
@@ -124,20 +157,33 @@ impl Model for Synthetic {
                 out[r * DOF + i] = t[r] - g[r];
             }
         }
+        Ok(())
     }
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
+    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
+        check_length("q", q, DOF)?;
         Self::torque(q, &[0.0; DOF], &[0.0; DOF], base, out);
+        Ok(())
     }
-    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
+    fn coriolis(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        base: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_length("q", q, DOF)?;
+        check_length("qd", qd, DOF)?;
         let mut g = [0.0; DOF];
         Self::torque(q, &[0.0; DOF], &[0.0; DOF], base, &mut g);
         Self::torque(q, qd, &[0.0; DOF], base, out);
         for (o, g) in out.iter_mut().zip(g) {
             *o -= g;
         }
+        Ok(())
     }
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
+    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) -> Result<(), LengthError> {
         base.copy_from_slice(standard);
+        Ok(())
     }
 }
 
@@ -177,7 +223,9 @@ pub(crate) fn csv(n: usize, rate: f64, noise: f64) -> String {
     for k in 0..n {
         let t = k as f64 / rate;
         trajectory(t, &mut q, &mut qd, &mut qdd);
-        model.inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau);
+        model
+            .inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau)
+            .unwrap();
         out.push_str(&format!("{t}"));
         for v in q {
             out.push_str(&format!(",{v}"));

@@ -6,6 +6,8 @@ use crate::Model;
 use crate::data::{Config, Dataset, load};
 use crate::drive::ExtraColumn;
 use crate::error::Error;
+#[allow(unused_imports)]
+use crate::model::{LengthError, check_length};
 use crate::pipeline::{identify, validate};
 
 #[path = "synthetic.rs"]
@@ -100,7 +102,9 @@ fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
         qd[5] = 0.0;
         qdd[5] = 0.0;
         let mut tau = [0.0; DOF];
-        model.inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau);
+        model
+            .inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau)
+            .unwrap();
         for j in 0..DOF {
             qs[j][k] = q[j];
             taus[j][k] = tau[j];
@@ -136,7 +140,9 @@ fn extra_coupled_wrist_columns_are_identified() {
     for k in 0..n {
         trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
         let mut tau = [0.0; DOF];
-        model.inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau);
+        model
+            .inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau)
+            .unwrap();
         let s = crate::Real::sign(qd[4] + qd[5]);
         tau[4] += iam * qdd[5] + fvm * qd[5] + fsm * s;
         tau[5] += iam * qdd[4] + fvm * qd[4] + fsm * s;
@@ -222,7 +228,9 @@ fn rotor_compensation_removes_rotor_inertia_and_friction() {
     for k in 0..n {
         trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
         let mut tau = [0.0; DOF];
-        model.inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau);
+        model
+            .inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau)
+            .unwrap();
         for j in 0..DOF {
             qs[j][k] = q[j];
             taus[j][k] = tau[j] + b * qdd[j] + fv * qd[j];

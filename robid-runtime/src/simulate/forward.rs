@@ -60,9 +60,9 @@ impl<'a, M: Model + ?Sized> ForwardDynamics<'a, M> {
         qdd: &mut [f64],
     ) -> Result<()> {
         let n = self.model.dof();
-        self.model.mass_matrix(q, self.base, &mut self.m);
+        self.model.mass_matrix(q, self.base, &mut self.m)?;
         self.model
-            .inverse_dynamics(q, qd, &self.zero, self.base, &mut self.h);
+            .inverse_dynamics(q, qd, &self.zero, self.base, &mut self.h)?;
         let m = DMatrix::from_row_slice(n, n, &self.m);
         let rhs = DVector::from_iterator(n, (0..n).map(|j| tau[j] - self.h[j]));
         let chol = m.cholesky().ok_or_else(|| Error::Singular {
@@ -87,7 +87,7 @@ mod tests {
         let mut fd = ForwardDynamics::new(&p, &base).unwrap();
         let (q, qd, qdd) = ([0.3, -0.7], [0.5, 1.2], [2.0, -3.0]);
         let mut tau = [0.0; 2];
-        p.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau);
+        p.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau).unwrap();
         let mut back = [0.0; 2];
         fd.accelerations(&q, &qd, &tau, &mut back).unwrap();
         for j in 0..2 {

@@ -159,7 +159,7 @@ impl Simulation {
         let [q0, qd0, qdd0] = &mut r0;
         reference.state(0, q0, qd0, qdd0);
         let mut m = vec![0.0; n * n];
-        model.mass_matrix(&r0[0], base, &mut m);
+        model.mass_matrix(&r0[0], base, &mut m)?;
         let wn = std::f64::consts::TAU * self.bandwidth;
         let kp: Vec<f64> = (0..n).map(|j| wn * wn * m[j * n + j]).collect();
         let kd: Vec<f64> = (0..n)
@@ -176,7 +176,7 @@ impl Simulation {
         let sigma_tau = |j: usize| self.noise.torque[j.min(self.noise.torque.len() - 1)];
         let control = |r: &[Vec<f64>; 3], q: &[f64], qd: &[f64], rng: &mut Rng, tau: &mut [f64]| {
             if self.feedforward {
-                model.inverse_dynamics(&r[0], &r[1], &r[2], base, tau);
+                model.inverse_dynamics(&r[0], &r[1], &r[2], base, tau)?;
             } else {
                 tau.iter_mut().for_each(|t| *t = 0.0);
             }
@@ -184,11 +184,12 @@ impl Simulation {
                 let e = r[0][j] - self.measure_position(q[j], rng);
                 tau[j] += kp[j] * e + kd[j] * (r[1][j] - qd[j]);
             }
+            Ok::<(), crate::LengthError>(())
         };
         for k in 0..samples {
             let [a, b, c] = &mut r0;
             reference.state(k, a, b, c);
-            control(&r0, &q, &qd, &mut rng, &mut tau);
+            control(&r0, &q, &qd, &mut rng, &mut tau)?;
             fd.accelerations(&q, &qd, &tau, &mut qdd)?;
             for j in 0..n {
                 let tr = &mut truth.trajectory;
@@ -211,7 +212,7 @@ impl Simulation {
                             x[j] = x0[j] + s * (x1[j] - x0[j]);
                         }
                     }
-                    control(&r, &q, &qd, &mut rng, &mut tau);
+                    control(&r, &q, &qd, &mut rng, &mut tau)?;
                     step(&mut fd, &mut q, &mut qd, &tau, &kd, h)?;
                 }
             }
@@ -243,16 +244,16 @@ fn step<M: Model + ?Sized>(
     let base = fd.base();
     let zero = vec![0.0; n];
     let mut m = vec![0.0; n * n];
-    model.mass_matrix(q, base, &mut m);
+    model.mass_matrix(q, base, &mut m)?;
     let mut h0 = vec![0.0; n];
-    model.inverse_dynamics(q, qd, &zero, base, &mut h0);
+    model.inverse_dynamics(q, qd, &zero, base, &mut h0)?;
     let mut a = nalgebra::DMatrix::from_row_slice(n, n, &m);
     let mut shifted = qd.to_vec();
     let mut h1 = vec![0.0; n];
     for k in 0..n {
         let eps = 1e-6 * (1.0 + qd[k].abs()) * if qd[k] < 0.0 { -1.0 } else { 1.0 };
         shifted[k] = qd[k] + eps;
-        model.inverse_dynamics(q, &shifted, &zero, base, &mut h1);
+        model.inverse_dynamics(q, &shifted, &zero, base, &mut h1)?;
         shifted[k] = qd[k];
         for i in 0..n {
             a[(i, k)] += h * (h1[i] - h0[i]) / eps;

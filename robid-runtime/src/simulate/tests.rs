@@ -2,6 +2,7 @@
 //! exactly known model for the unit tests of `simulate` and `excite`.
 
 use crate::Model;
+use crate::model::{LengthError, check_length};
 
 /// Gravity (m/s^2).
 const G0: f64 = 9.81;
@@ -52,16 +53,25 @@ impl Model for Pendulum {
     fn standard_parameter_count(&self) -> usize {
         10
     }
-    fn standard_parameter_name(&self, index: usize) -> &str {
-        &self.names[index]
+    fn standard_parameter_name(&self, index: usize) -> Option<&str> {
+        self.names.get(index).map(String::as_str)
     }
     fn base_parameter_count(&self) -> usize {
         10
     }
-    fn base_parameter_name(&self, index: usize) -> &str {
-        &self.names[index]
+    fn base_parameter_name(&self, index: usize) -> Option<&str> {
+        self.names.get(index).map(String::as_str)
     }
-    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+    fn base_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_length("q", q, 2)?;
+        check_length("qd", qd, 2)?;
+        check_length("qdd", qdd, 2)?;
         let (s1, c1) = q[0].sin_cos();
         let (s2, c2) = q[1].sin_cos();
         let (s12, c12) = (q[0] + q[1]).sin_cos();
@@ -95,38 +105,74 @@ impl Model for Pendulum {
         ];
         out[..10].copy_from_slice(&row1);
         out[10..20].copy_from_slice(&row2);
+        Ok(())
     }
-    fn standard_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
-        self.base_regressor(q, qd, qdd, out);
+    fn standard_regressor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_length("q", q, 2)?;
+        check_length("qd", qd, 2)?;
+        check_length("qdd", qdd, 2)?;
+        self.base_regressor(q, qd, qdd, out)?;
+        Ok(())
     }
-    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64], base: &[f64], tau: &mut [f64]) {
+    fn inverse_dynamics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        base: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_length("q", q, 2)?;
+        check_length("qd", qd, 2)?;
+        check_length("qdd", qdd, 2)?;
         let mut y = [0.0; 20];
-        self.base_regressor(q, qd, qdd, &mut y);
+        self.base_regressor(q, qd, qdd, &mut y)?;
         for j in 0..2 {
             tau[j] = (0..10).map(|i| y[j * 10 + i] * base[i]).sum();
         }
+        Ok(())
     }
-    fn mass_matrix(&self, q: &[f64], p: &[f64], out: &mut [f64]) {
+    fn mass_matrix(&self, q: &[f64], p: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
+        check_length("q", q, 2)?;
         let (s2, c2) = q[1].sin_cos();
         let k = self.l1 * (p[2] * c2 - p[3] * s2);
         out[0] = p[0] + p[1] + 2.0 * k;
         out[1] = p[1] + k;
         out[2] = p[1] + k;
         out[3] = p[1];
+        Ok(())
     }
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) {
-        self.inverse_dynamics(q, &[0.0; 2], &[0.0; 2], &base_without_friction(base), out);
+    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
+        check_length("q", q, 2)?;
+        self.inverse_dynamics(q, &[0.0; 2], &[0.0; 2], &base_without_friction(base), out)?;
+        Ok(())
     }
-    fn coriolis(&self, q: &[f64], qd: &[f64], base: &[f64], out: &mut [f64]) {
+    fn coriolis(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        base: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_length("q", q, 2)?;
+        check_length("qd", qd, 2)?;
         let p = base_without_friction(base);
         let mut g = [0.0; 2];
-        self.gravity(q, base, &mut g);
-        self.inverse_dynamics(q, qd, &[0.0; 2], &p, out);
+        self.gravity(q, base, &mut g)?;
+        self.inverse_dynamics(q, qd, &[0.0; 2], &p, out)?;
         out[0] -= g[0];
         out[1] -= g[1];
+        Ok(())
     }
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) {
+    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) -> Result<(), LengthError> {
         base[..10].copy_from_slice(&standard[..10]);
+        Ok(())
     }
 }
 
@@ -142,14 +188,16 @@ fn mass_matrix_matches_the_regressor() {
     let base = p.base();
     let q = [0.4, -1.1];
     let mut m = [0.0; 4];
-    p.mass_matrix(&q, &base, &mut m);
+    p.mass_matrix(&q, &base, &mut m).unwrap();
     let mut g = [0.0; 2];
-    p.inverse_dynamics(&q, &[0.0; 2], &[0.0; 2], &base, &mut g);
+    p.inverse_dynamics(&q, &[0.0; 2], &[0.0; 2], &base, &mut g)
+        .unwrap();
     for k in 0..2 {
         let mut e = [0.0; 2];
         e[k] = 1.0;
         let mut t = [0.0; 2];
-        p.inverse_dynamics(&q, &[0.0; 2], &e, &base, &mut t);
+        p.inverse_dynamics(&q, &[0.0; 2], &e, &base, &mut t)
+            .unwrap();
         for i in 0..2 {
             assert!((t[i] - g[i] - m[i * 2 + k]).abs() < 1e-12);
         }

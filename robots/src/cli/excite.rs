@@ -202,7 +202,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     };
     let elapsed = start.elapsed();
     trajectory.write_csv(&args.output)?;
-    let a = assess(&model, &trajectory, &limits, reference.as_deref(), 1);
+    let a = assess(&model, &trajectory, &limits, reference.as_deref(), 1)?;
     println!(
         "{}: {} base parameters, {} s at {} Hz written to {}",
         model.name(),

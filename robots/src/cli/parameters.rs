@@ -78,21 +78,17 @@ fn values(
 pub(crate) fn base_parameters(path: &Path, model: &dyn Model) -> Result<Vec<f64>, Error> {
     match read(path)? {
         Table::Standard(t) => {
-            let names: Vec<String> = (0..model.standard_parameter_count())
-                .map(|i| model.standard_parameter_name(i).to_owned())
-                .collect();
+            let names = robid_runtime::model::standard_parameter_names(model);
             let standard: Vec<f64> = values(&t, &names, path, "standard")?
                 .into_iter()
                 .map(|v| v.unwrap_or(0.0))
                 .collect();
             let mut base = vec![0.0; model.base_parameter_count()];
-            model.base_from_standard(&standard, &mut base);
+            model.base_from_standard(&standard, &mut base)?;
             Ok(base)
         }
         Table::Base(t) => {
-            let names: Vec<String> = (0..model.base_parameter_count())
-                .map(|i| model.base_parameter_name(i).to_owned())
-                .collect();
+            let names = robid_runtime::model::base_parameter_names(model);
             values(&t, &names, path, "base")?
                 .into_iter()
                 .zip(&names)

@@ -47,7 +47,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             qd[j] = table.columns[n + j][k];
             qdd[j] = table.columns[2 * n + j][k];
         }
-        model.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau);
+        model.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau)?;
         let row: Vec<String> = tau.iter().map(|t| format!("{t:e}")).collect();
         let _ = writeln!(out, "{}", row.join(","));
     }

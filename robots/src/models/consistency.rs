@@ -49,7 +49,7 @@ fn check(name: &str, model: &dyn Model) {
         );
         let standard = random(&mut rng, ns, 1.0);
         let mut base = vec![0.0; nb];
-        model.base_from_standard(&standard, &mut base);
+        model.base_from_standard(&standard, &mut base).unwrap();
         // base parameters: compiled == interpreted
         let interp = programs
             .base_from_standard
@@ -59,14 +59,14 @@ fn check(name: &str, model: &dyn Model) {
 
         // regressors: compiled == interpreted; Y * standard == Y_b * base
         let mut y = vec![0.0; n * ns];
-        model.standard_regressor(&q, &qd, &qdd, &mut y);
+        model.standard_regressor(&q, &qd, &qdd, &mut y).unwrap();
         let interp = programs
             .standard_regressor
             .eval(&with_geometry(vec![&q, &qd, &qdd], &geometry))
             .unwrap();
         close(&y, &interp[0], 1e-12, "standard_regressor");
         let mut yb = vec![0.0; n * nb];
-        model.base_regressor(&q, &qd, &qdd, &mut yb);
+        model.base_regressor(&q, &qd, &qdd, &mut yb).unwrap();
         let interp = programs
             .base_regressor
             .eval(&with_geometry(vec![&q, &qd, &qdd], &geometry))
@@ -83,7 +83,9 @@ fn check(name: &str, model: &dyn Model) {
 
         // inverse dynamics == Y_b * base, and == interpreter
         let mut tau = vec![0.0; n];
-        model.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau);
+        model
+            .inverse_dynamics(&q, &qd, &qdd, &base, &mut tau)
+            .unwrap();
         close(&tau, &tau_base, 1e-9, "inverse_dynamics vs Y_b base");
         let interp = programs
             .inverse_dynamics
@@ -93,15 +95,17 @@ fn check(name: &str, model: &dyn Model) {
 
         // M qdd + c + g + friction == tau
         let mut m = vec![0.0; n * n];
-        model.mass_matrix(&q, &base, &mut m);
+        model.mass_matrix(&q, &base, &mut m).unwrap();
         let mut g = vec![0.0; n];
-        model.gravity(&q, &base, &mut g);
+        model.gravity(&q, &base, &mut g).unwrap();
         let mut c = vec![0.0; n];
-        model.coriolis(&q, &qd, &base, &mut c);
+        model.coriolis(&q, &qd, &base, &mut c).unwrap();
         let zero = vec![0.0; n];
         let mut friction = vec![0.0; n];
         let mut tau_v = vec![0.0; n];
-        model.inverse_dynamics(&q, &qd, &zero, &base, &mut tau_v);
+        model
+            .inverse_dynamics(&q, &qd, &zero, &base, &mut tau_v)
+            .unwrap();
         for j in 0..n {
             friction[j] = tau_v[j] - c[j] - g[j];
         }
@@ -120,7 +124,9 @@ fn check(name: &str, model: &dyn Model) {
             );
         }
         let mut g_id = vec![0.0; n];
-        model.inverse_dynamics(&q, &zero, &zero, &base, &mut g_id);
+        model
+            .inverse_dynamics(&q, &zero, &zero, &base, &mut g_id)
+            .unwrap();
         // With qd = 0 only gravity and the offsets Fo remain; rigid models have no Fo.
         close(&g, &g_id, 1e-9, "gravity vs inverse dynamics at rest");
     }

@@ -97,7 +97,8 @@ impl Setup {
             &self.limits,
             Some(&self.truth),
             1,
-        );
+        )
+        .unwrap();
         println!(
             "{} Fourier: cond {:.1} over {} samples",
             self.model.programs().robot.name,
@@ -156,7 +157,7 @@ impl Setup {
             .expect("random")
             .sample(DURATION, RATE)
             .expect("sampling");
-            let a = assess(&self.model, &random, &self.limits, None, 1);
+            let a = assess(&self.model, &random, &self.limits, None, 1).unwrap();
             assert!(a.within_limits());
             let (rnd, rnd_expected) = run(&random);
             println!(
@@ -188,7 +189,7 @@ impl Setup {
             .optimize(&self.model, &self.limits, None)
             .expect("point design");
         let tr = r.points.sample(RATE).expect("sampling");
-        let a = assess(&self.model, &tr, &self.limits, Some(&self.truth), 1);
+        let a = assess(&self.model, &tr, &self.limits, Some(&self.truth), 1).unwrap();
         println!(
             "{} points: extended-regressor cost {:.1} (from {:.1}), cond {:.1} over {} samples, {} evaluations in {:?}",
             self.model.programs().robot.name,

@@ -40,7 +40,7 @@ pub(crate) fn reference(
         })
         .collect();
     let mut base = vec![0.0; model.base_parameter_count()];
-    model.base_from_standard(&standard, &mut base);
+    model.base_from_standard(&standard, &mut base).unwrap();
     let limits = robot
         .joints
         .iter()
@@ -169,7 +169,7 @@ pub(crate) fn expected_error(
 ) -> f64 {
     let weights: Vec<f64> = sigma.iter().map(|s| 1.0 / s).collect();
     let mut info = robid_runtime::excite::Information::new(model).with_weights(&weights);
-    info.add_trajectory(model, trajectory, 1);
+    info.add_trajectory(model, trajectory, 1).unwrap();
     let g = info.gram.clone().lower_triangle() + info.gram.clone().lower_triangle().transpose()
         - nalgebra::DMatrix::from_diagonal(&info.gram.diagonal());
     let inverse = g
