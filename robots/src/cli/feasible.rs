@@ -4,17 +4,26 @@
 //! `<inertial>` elements when OUT ends in `.urdf` or `.xml`. Identified parameters with an
 //! empty expression that are not base parameters of the description (the extra columns of
 //! an identification config) are kept as free terms.
+//!
+//! RESULT.json is checked before use: every value finite and within +-[`VALUE_LIMIT`],
+//! every standard deviation finite, positive and at most [`VALUE_LIMIT`], each entry
+//! named in the error. The solution is checked before it is written (every value finite).
 
 use std::path::{Path, PathBuf};
 
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Prior, Problem, SdpOptions, solve_anneal, solve_sdp, to_toml, to_urdf,
+    AnnealOptions, Bounds, Prior, Problem, SdpOptions, Solution, solve_anneal, solve_sdp, to_toml,
+    to_urdf,
 };
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
-use super::Error;
+use super::flags::{closed, real};
 use super::parameters::standard_parameters;
+use super::{Error, files, out};
+
+/// The largest magnitude of an identified value or standard deviation in RESULT.json.
+pub(crate) const VALUE_LIMIT: f64 = 1e6;
 
 /// Arguments of `robid feasible`.
 #[derive(Debug, clap::Args)]
@@ -34,11 +43,12 @@ pub(crate) struct Args {
     /// table; parameters it does not list have no prior). `--method sdp` only.
     #[arg(long)]
     prior: Option<PathBuf>,
-    /// Weight of the pull towards the prior: a deviation of one parameter scale (from the
-    /// bounds, e.g. the largest mass) costs this many chi^2 units. The default 1 settles
-    /// what the data barely determine and leaves what they determine; 100 overrides data.
-    #[arg(long, default_value_t = 1.0)]
-    prior_weight: f64,
+    /// Weight in [0, 1e6] of the pull towards the prior (`--prior` only): a deviation of
+    /// one parameter scale (from the bounds, e.g. the largest mass) costs this many chi^2
+    /// units. The default 1 settles what the data barely determine and leaves what they
+    /// determine; 100 overrides data.
+    #[arg(long, value_parser = real(closed(0.0, 1e6, "")))]
+    prior_weight: Option<f64>,
     /// Output file: TOML, or URDF inertial elements for a `.urdf` / `.xml` name.
     #[arg(short, long)]
     output: PathBuf,
@@ -63,12 +73,94 @@ fn read(path: &Path) -> Result<String, Error> {
         .map_err(|e| format!("{}: cannot read: {e}", path.display()).into())
 }
 
+/// Refuses, before any work, an output that is an input, an unknown method and options
+/// of the other method.
+fn check(args: &Args) -> Result<(), Error> {
+    let mut inputs = vec![args.robot.as_path(), args.identified.as_path()];
+    inputs.extend(args.bounds.as_deref());
+    inputs.extend(args.prior.as_deref());
+    files::refuse(&inputs, &[&args.output])?;
+    match args.method.as_str() {
+        "sdp" => {}
+        "anneal" if args.prior.is_some() => {
+            return Err(
+                "--prior: only --method sdp uses a prior; drop --prior or use --method sdp".into(),
+            );
+        }
+        "anneal" => {}
+        other => return Err(format!("--method {other}: unknown; use sdp or anneal").into()),
+    }
+    if args.prior_weight.is_some() && args.prior.is_none() {
+        return Err(
+            "--prior-weight weighs the pull towards --prior; give --prior FILE or drop \
+                    --prior-weight"
+                .into(),
+        );
+    }
+    Ok(())
+}
+
+/// Refuses an identified entry whose value or standard deviation is not finite or out of
+/// range, naming the entry.
+fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
+    if identified.parameters.is_empty() {
+        return Err(format!(
+            "{}: `parameters` is empty; give the JSON report of `robid identify --json`",
+            path.display()
+        )
+        .into());
+    }
+    for (i, p) in identified.parameters.iter().enumerate() {
+        let problem = if !(p.value.abs() <= VALUE_LIMIT) {
+            Some(format!("value {:e} is outside +-{VALUE_LIMIT:e}", p.value))
+        } else if !(p.std > 0.0 && p.std <= VALUE_LIMIT) {
+            Some(format!(
+                "std {:e} is outside (0, {VALUE_LIMIT:e}]; a standard deviation is positive",
+                p.std
+            ))
+        } else {
+            None
+        };
+        if let Some(problem) = problem {
+            return Err(format!(
+                "{}: parameters[{i}] `{}`: {problem}; repair the entry or identify again",
+                path.display(),
+                p.name
+            )
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a solution with a value that is not a finite number.
+fn check_solution(solution: &Solution) -> Result<(), Error> {
+    let bad = solution
+        .names
+        .iter()
+        .zip(&solution.standard)
+        .find(|(_, x)| !x.is_finite())
+        .map(|(n, x)| format!("{n} = {x}"))
+        .or_else(|| (!solution.chi2.is_finite()).then(|| format!("chi^2 = {}", solution.chi2)));
+    match bad {
+        Some(what) => Err(format!(
+            "the {} solution has {what}, not a finite number; nothing was written: check the \
+             bounds and the identified values",
+            solution.method.name()
+        )
+        .into()),
+        None => Ok(()),
+    }
+}
+
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    check(args)?;
     let robot = Robot::from_toml(&read(&args.robot)?, &args.robot.display().to_string())?;
     let json = read(&args.identified)?;
     let identified: Identified = serde_json::from_str(&json)
         .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;
+    check_identified(&identified, &args.identified)?;
     let problem = problem(&robot)?;
     // Extra columns of the identification config (no expression, not a base parameter,
     // e.g. a coupled wrist's `Iam6`) are kept as free terms.
@@ -95,34 +187,23 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let prior = match &args.prior {
         Some(path) => Some(Prior {
             standard: standard_parameters(path, &problem.standard_names)?,
-            weight: args.prior_weight,
+            weight: args.prior_weight.unwrap_or(1.0),
         }),
         None => None,
     };
-    if !(args.prior_weight.is_finite() && args.prior_weight >= 0.0) {
-        return Err(format!(
-            "--prior-weight {}: must be a finite number >= 0",
-            args.prior_weight
-        )
-        .into());
-    }
-    let solution = match args.method.as_str() {
-        "sdp" => solve_sdp(
+    let solution = if args.method == "anneal" {
+        solve_anneal(&problem, &bounds, &AnnealOptions::default())?
+    } else {
+        solve_sdp(
             &problem,
             &bounds,
             &SdpOptions {
                 prior,
                 ..SdpOptions::default()
             },
-        )?,
-        "anneal" if prior.is_some() => {
-            return Err(
-                "--prior: only --method sdp uses a prior; drop --prior or use --method sdp".into(),
-            );
-        }
-        "anneal" => solve_anneal(&problem, &bounds, &AnnealOptions::default())?,
-        other => return Err(format!("--method {other}: unknown; use sdp or anneal").into()),
+        )?
     };
+    check_solution(&solution)?;
     let urdf = matches!(
         args.output.extension().and_then(|e| e.to_str()),
         Some("urdf" | "xml")
@@ -132,9 +213,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     } else {
         to_toml(&solution, &robot.name)
     };
-    std::fs::write(&args.output, text)
-        .map_err(|e| format!("{}: cannot write: {e}", args.output.display()))?;
-    eprintln!(
+    files::write(&args.output, &text)?;
+    out::warn(format_args!(
         "{}: chi^2 {:.3e}, max |z| {:.3}, smallest pseudo-inertia eigenvalue {:.3e}, {:.3} s{}",
         solution.method.name(),
         solution.chi2,
@@ -150,7 +230,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         } else {
             format!("; bounds not met: {}", solution.violations.join("; "))
         }
-    );
+    ));
     Ok(())
 }
 

@@ -2,6 +2,11 @@
 //! [--method ols|wls|rls|energy] [--json OUT.json] [--plot DIR]`: base parameters with
 //! their uncertainty from measured data, the fit, and predictions of other files
 //! (DESIGN.md 6 and 10). A table on stdout; JSON and SVG plots on request.
+//!
+//! The results are checked before anything is printed or written (every value finite),
+//! and the warnings of an ill-conditioned identification (condition number above
+//! [`CONDITION_WARNING`], a relative standard deviation above 100 %) go to stderr,
+//! naming the parameters.
 
 use std::path::{Path, PathBuf};
 
@@ -12,7 +17,11 @@ use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
 use robots::interpreted::{Chosen, model_for};
 
-use super::Error;
+use super::{Error, files, out};
+
+/// The condition number of the observation matrix above which `identify` warns that the
+/// data barely excite some directions of the parameters.
+pub(crate) const CONDITION_WARNING: f64 = 1e5;
 
 /// Arguments of `robid identify`.
 #[derive(Debug, clap::Args)]
@@ -35,7 +44,9 @@ pub(crate) struct Args {
     /// Write the JSON report to this file.
     #[arg(long)]
     json: Option<PathBuf>,
-    /// Write SVG plots of measured vs predicted torque per joint into this folder.
+    /// Write SVG plots of measured vs predicted torque per joint into this folder
+    /// (`fit_joint1.svg`.., `validation1_joint1.svg`..; existing files of these names are
+    /// replaced).
     #[arg(long)]
     plot: Option<PathBuf>,
 }
@@ -120,6 +131,14 @@ fn compiled_reference(text: &str) -> Option<Chosen> {
 
 /// Runs the identification and prints the table.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    let mut inputs: Vec<&Path> = vec![&args.robot];
+    inputs.extend(args.config.as_deref());
+    inputs.extend(args.data.iter().map(PathBuf::as_path));
+    inputs.extend(args.validate.iter().map(PathBuf::as_path));
+    let mut outputs: Vec<&Path> = Vec::new();
+    outputs.extend(args.json.as_deref());
+    outputs.extend(args.plot.as_deref());
+    files::refuse(&inputs, &outputs)?;
     let chosen = robot_model(&args.robot)?;
     let model = chosen.model.as_ref();
     let mut config = match &args.config {
@@ -149,34 +168,129 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         )
         .into());
     }
+    let prefixes: Vec<String> = std::iter::once("fit".to_string())
+        .chain((1..=args.validate.len() / per_set).map(|k| format!("validation{k}")))
+        .collect();
+    if let Some(dir) = &args.plot {
+        let plots = files::plot_files(dir, &prefixes, model.dof());
+        let plots: Vec<&Path> = plots.iter().map(PathBuf::as_path).collect();
+        files::refuse(&inputs, &plots)?;
+    }
     let data = load(&config, &args.data, model.dof())?;
     for w in &data.warnings {
-        eprintln!("warning: {w}");
+        out::warn(format_args!("warning: {w}"));
     }
     let id = identify(model, &data, &config)?;
     let mut report = Report::from_identification(&id, |n| chosen.expression(n));
-    let mut predictions = vec![("fit".to_string(), id.prediction.clone())];
-    for (k, files) in args.validate.chunks(per_set).enumerate() {
-        let d = load(&config, files, model.dof())?;
+    let mut predictions = vec![id.prediction.clone()];
+    for group in args.validate.chunks(per_set) {
+        let d = load(&config, group, model.dof())?;
         for w in &d.warnings {
-            eprintln!("warning: {w}");
+            out::warn(format_args!("warning: {w}"));
         }
         let p = validate(model, &d, &config, &id.estimate.values)?;
-        report = report.with_validation(&files[0].display().to_string(), &p.fit());
-        predictions.push((format!("validation{}", k + 1), p));
+        report = report.with_validation(&group[0].display().to_string(), &p.fit());
+        predictions.push(p);
     }
-    print!("{}", text_table(&report));
+    check_report(&report)?;
+    let mut stdout = out::Stdout::new();
+    stdout.write_str(&text_table(&report))?;
+    stdout.flush()?;
+    for w in warnings(&report) {
+        out::warn(format_args!("warning: {w}"));
+    }
     if let Some(path) = &args.json {
         report.write_json(path)?;
-        println!("JSON report: {}", path.display());
+        writeln!(stdout, "JSON report: {}", path.display())?;
     }
     if let Some(dir) = &args.plot {
-        for (prefix, p) in &predictions {
+        for (prefix, p) in prefixes.iter().zip(&predictions) {
             plot_torques(p, dir, prefix)?;
         }
-        println!("plots: {}/{{fit,validation*}}_joint*.svg", dir.display());
+        writeln!(
+            stdout,
+            "plots: {}/{{fit,validation*}}_joint*.svg",
+            dir.display()
+        )?;
+    }
+    stdout.flush()?;
+    Ok(())
+}
+
+/// Refuses a report with a value that is not a finite number (nothing is printed or
+/// written then), naming the value.
+fn check_report(report: &Report) -> Result<(), Error> {
+    let fix = "a sample far out of range in the data (check the columns for outliers) or \
+               data that do not excite this parameter";
+    if !report.condition_number.is_finite() {
+        return Err(format!(
+            "the condition number of the observation matrix is {}: {fix}",
+            report.condition_number
+        )
+        .into());
+    }
+    for p in &report.parameters {
+        if !(p.value.is_finite() && p.std.is_finite()) {
+            return Err(format!(
+                "the identified {} is {} +- {}, not a finite number: {fix}",
+                p.name, p.value, p.std
+            )
+            .into());
+        }
+    }
+    let fits = std::iter::once((
+        "the fit",
+        &report.fit.rms_per_joint,
+        report.fit.relative_error,
+        report.fit.nmse,
+    ))
+    .chain(
+        report
+            .validation
+            .iter()
+            .map(|v| (v.file.as_str(), &v.rms_per_joint, v.relative_error, v.nmse)),
+    );
+    for (what, rms, relative, nmse) in fits {
+        if !(relative.is_finite() && nmse.is_finite() && rms.iter().all(|x| x.is_finite())) {
+            return Err(
+                format!("the prediction errors of {what} are not finite numbers: {fix}").into(),
+            );
+        }
     }
     Ok(())
+}
+
+/// The warnings of an identification: a condition number above [`CONDITION_WARNING`] and
+/// every parameter with a relative standard deviation above 100 %.
+///
+/// The runtime's report is to carry these warnings itself (issue 11); until it does,
+/// they are derived here from the report's values.
+fn warnings(report: &Report) -> Vec<String> {
+    let mut out = Vec::new();
+    if report.condition_number > CONDITION_WARNING {
+        out.push(format!(
+            "condition number {:.3e} is above {CONDITION_WARNING:e}: the data barely excite \
+             some combinations of parameters; use a richer trajectory (robid excite)",
+            report.condition_number
+        ));
+    }
+    let poor: Vec<String> = report
+        .parameters
+        .iter()
+        .filter_map(|p| {
+            p.rel_std_percent
+                .filter(|r| *r > 100.0)
+                .map(|r| format!("{} ({r:.0} %)", p.name))
+        })
+        .collect();
+    if !poor.is_empty() {
+        out.push(format!(
+            "relative standard deviation above 100 % (the value is not determined by the \
+             data): {}",
+            poor.join(", ")
+        ));
+    }
+    out
 }
 
 #[cfg(test)]

@@ -6,10 +6,14 @@ mod demo;
 mod emit;
 mod excite;
 mod feasible;
+mod files;
+mod flags;
 mod identify;
 mod model;
+mod out;
 mod parameters;
 mod simulate;
+mod states;
 mod torques;
 
 use clap::{Parser, Subcommand};
@@ -45,9 +49,20 @@ enum Command {
     Simulate(simulate::Args),
 }
 
-/// Parses the command line, runs the subcommand and reports errors on stderr.
+/// Parses the command line, runs the subcommand and reports errors on stderr: status 0
+/// on success, 1 on an error (2 for a command line clap rejects), 141 when standard
+/// output was closed by its reader (see `out`).
 pub(crate) fn run() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = u8::try_from(e.exit_code()).unwrap_or(2);
+            return match e.print() {
+                Err(io) if !e.use_stderr() => out::stdout_failure(&io),
+                _ => ExitCode::from(code),
+            };
+        }
+    };
     let result = match cli.command {
         Command::Model(args) => model::run(&args),
         Command::Demo => demo::run(),
@@ -61,10 +76,7 @@ pub(crate) fn run() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
+        Err(e) => out::error(e.as_ref()),
     }
 }
 
