@@ -18,7 +18,7 @@ use robid_runtime::feasible::{
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
-use super::flags::{closed, real};
+use super::flags::{closed, real, short};
 use super::parameters::standard_parameters;
 use super::{Error, files, out};
 
@@ -112,11 +112,14 @@ fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
     }
     for (i, p) in identified.parameters.iter().enumerate() {
         let problem = if !(p.value.abs() <= VALUE_LIMIT) {
-            Some(format!("value {:e} is outside +-{VALUE_LIMIT:e}", p.value))
+            Some(format!(
+                "value {} is outside +-{VALUE_LIMIT:e}",
+                short(p.value)
+            ))
         } else if !(p.std > 0.0 && p.std <= VALUE_LIMIT) {
             Some(format!(
-                "std {:e} is outside (0, {VALUE_LIMIT:e}]; a standard deviation is positive",
-                p.std
+                "std {} is outside (0, {VALUE_LIMIT:e}]; a standard deviation is positive",
+                short(p.std)
             ))
         } else {
             None

@@ -33,8 +33,8 @@ impl fmt::Display for Range {
 }
 
 /// `x` as people write limits: `0`, `0.5`, `200`, `1e6`, `1e-9`.
-fn short(x: f64) -> String {
-    if x == 0.0 || (1e-3..1e5).contains(&x.abs()) {
+pub(crate) fn short(x: f64) -> String {
+    if x == 0.0 || (1e-3..1e4).contains(&x.abs()) {
         format!("{x}")
     } else {
         format!("{x:e}")
@@ -52,13 +52,14 @@ impl Range {
             .trim()
             .parse()
             .map_err(|_| format!("`{text}` is not a number; write a decimal number such as 0.5"))?;
+        let text = text.trim();
         if !x.is_finite() {
             return Err(format!(
-                "{x} is not a finite number; give a value in {self}"
+                "{text} is not a finite number; give a value in {self}"
             ));
         }
         if !self.contains(x) {
-            return Err(format!("{x} is outside {self}"));
+            return Err(format!("{text} is outside {self}"));
         }
         Ok(x)
     }
@@ -116,8 +117,9 @@ pub(crate) fn check_samples(duration: f64, rate: f64) -> Result<(), Error> {
         return Ok(());
     }
     Err(format!(
-        "--duration {duration} s at --rate {rate} Hz gives {samples:.3e} samples, more than the \
-         limit of {MAX_SAMPLES:e}; shorten --duration or lower --rate"
+        "--duration {duration} s at --rate {rate} Hz gives {} samples, more than the \
+         limit of {MAX_SAMPLES:e}; shorten --duration or lower --rate",
+        short(samples)
     )
     .into())
 }

@@ -296,6 +296,71 @@ fn warnings(report: &Report) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use robid_runtime::report::{FitEntry, ParameterEntry, ValidationEntry};
+
+    /// A report of three parameters with relative standard deviations 45 %, 150 % and
+    /// none (a value of zero), condition number `cond`.
+    fn report(cond: f64) -> Report {
+        let p = |name: &str, value: f64, std: f64, rel: Option<f64>| ParameterEntry {
+            name: name.into(),
+            expression: String::new(),
+            value,
+            std,
+            rel_std_percent: rel,
+        };
+        Report {
+            robot: "r".into(),
+            method: "ols".into(),
+            samples: 100,
+            condition_number: cond,
+            parameters: vec![
+                p("ZZR1", -2.2e6, 1.0e6, Some(45.0)),
+                p("MX2", 0.1, 0.15, Some(150.0)),
+                p("Fo1", 0.0, 0.1, None),
+            ],
+            fit: FitEntry {
+                relative_error: 0.1,
+                rms_per_joint: vec![0.1, 0.2],
+                nmse: 0.5,
+            },
+            validation: vec![ValidationEntry {
+                file: "run2.csv".into(),
+                relative_error: 0.2,
+                rms_per_joint: vec![0.1, 0.2],
+                nmse: 0.5,
+            }],
+        }
+    }
+
+    /// The issue's case: condition number 6.9e9 and ZZR1 = -2.2e6 +- 1.0e6 used to be
+    /// written without a warning.
+    #[test]
+    fn warnings_name_the_condition_number_and_the_undetermined_parameters() {
+        let w = warnings(&report(6.9e9));
+        assert_eq!(w.len(), 2, "{w:?}");
+        assert!(
+            w[0].contains("condition number 6.900e9 is above 1e5"),
+            "{w:?}"
+        );
+        assert!(w[1].ends_with(": MX2 (150 %)"), "{w:?}");
+        let w = warnings(&report(CONDITION_WARNING));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].contains("MX2"), "{w:?}");
+    }
+
+    #[test]
+    fn a_report_with_a_non_finite_value_is_refused_naming_it() {
+        assert!(check_report(&report(10.0)).is_ok());
+        let mut r = report(10.0);
+        r.parameters[1].value = f64::NAN;
+        let e = check_report(&r).unwrap_err().to_string();
+        assert!(e.contains("the identified MX2 is NaN"), "{e}");
+        let mut r = report(10.0);
+        r.validation[0].rms_per_joint[1] = f64::INFINITY;
+        let e = check_report(&r).unwrap_err().to_string();
+        assert!(e.contains("run2.csv"), "{e}");
+        assert!(check_report(&report(f64::INFINITY)).is_err());
+    }
 
     /// The shortcut gives what the derivation gives: same names, expressions and model.
     #[test]

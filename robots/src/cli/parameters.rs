@@ -180,15 +180,21 @@ fn number(v: &DeValue<'_>) -> Option<f64> {
 fn values(file: &File<'_>, names: &[String]) -> Result<Vec<Option<f64>>, Error> {
     for (key, entry) in &file.entries {
         if !names.contains(key) {
-            let hint = nearest(key, names)
-                .map(|n| format!("did you mean `{n}`? "))
-                .unwrap_or_default();
+            let drive =
+                split(key).is_some_and(|(stem, _)| ["Ia", "Fv", "Fc", "Fo"].contains(&stem));
+            let same_but_case = names.iter().any(|n| n.eq_ignore_ascii_case(key));
+            let hint = match nearest(key, names) {
+                Some(n) if same_but_case || !drive => format!("did you mean `{n}`?"),
+                _ if drive => format!(
+                    "`{key}` is a drive term, which this robot does not model: add it to the \
+                     description's `drive` key (or --drive where the subcommand has it)"
+                ),
+                _ => format!("they are: {}", names.join(", ")),
+            };
             return Err(file.at(
                 entry,
                 format!(
-                    "[{what}] has `{key}`, which is not a {what} parameter of this robot; \
-                     {hint}they are: {}; drive terms need the matching --drive or `drive` key",
-                    names.join(", "),
+                    "[{what}] has `{key}`, which is not a {what} parameter of this robot; {hint}",
                     what = file.kind
                 ),
             ));
@@ -200,7 +206,7 @@ fn values(file: &File<'_>, names: &[String]) -> Result<Vec<Option<f64>>, Error> 
         .collect())
 }
 
-/// The name of `names` closest to `key` (case first, then at most two edits).
+/// The name of `names` closest to `key`: the same but for case, or one edit away.
 fn nearest<'a>(key: &str, names: &'a [String]) -> Option<&'a str> {
     if let Some(n) = names.iter().find(|n| n.eq_ignore_ascii_case(key)) {
         return Some(n);
@@ -208,7 +214,7 @@ fn nearest<'a>(key: &str, names: &'a [String]) -> Option<&'a str> {
     names
         .iter()
         .map(|n| (edits(key, n), n))
-        .filter(|(d, _)| *d <= 2)
+        .filter(|(d, _)| *d <= 1)
         .min_by_key(|(d, _)| *d)
         .map(|(_, n)| n.as_str())
 }
@@ -422,6 +428,8 @@ mod tests {
         assert_eq!(nearest("m1", &names), Some("M1"));
         assert_eq!(nearest("ZZ3", &names), Some("ZZ2"));
         assert_eq!(nearest("Fv", &names), Some("Fv1"));
+        assert_eq!(nearest("Fc1", &names), Some("Fv1"));
+        assert_eq!(nearest("Ia1", &names), None);
         assert_eq!(nearest("inertia", &names), None);
         assert_eq!(edits("kitten", "sitting"), 3);
         assert_eq!(edits("", "ab"), 2);
