@@ -111,7 +111,7 @@ fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
         .into());
     }
     for (i, p) in identified.parameters.iter().enumerate() {
-        let problem = if !(p.value.abs() <= VALUE_LIMIT) {
+        let problem = if !p.value.is_finite() || p.value.abs() > VALUE_LIMIT {
             Some(format!(
                 "value {} is outside +-{VALUE_LIMIT:e}",
                 short(p.value)

@@ -30,7 +30,7 @@ pub(crate) fn check(table: &Table, names: &[String]) -> Result<(), Error> {
         if let Some((k, x)) = column
             .iter()
             .enumerate()
-            .find(|(_, x)| !(x.abs() <= STATE_LIMIT))
+            .find(|(_, x)| !x.is_finite() || x.abs() > STATE_LIMIT)
         {
             let line = table.lines.get(k).copied().unwrap_or(0);
             return Err(format!(
