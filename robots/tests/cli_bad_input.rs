@@ -531,3 +531,42 @@ fn identify_warns_on_stderr_about_poorly_determined_parameters() {
     assert_eq!(named, poor, "{line}");
     assert!(!e.contains("condition number"), "{e}");
 }
+
+/// Files that are not configs are not called "config": the identified JSON of another
+/// robot, a bounds file with a link the robot lacks, and `identify` without `--config`.
+#[test]
+fn inputs_are_named_by_their_kind_never_config() {
+    let dir = folder();
+    let out = dir.path().join("links.toml");
+    let bounds = write(dir.path(), "bounds.toml", "[links.9]\nmass = [1.0, 2.0]\n");
+    for (args, expected) in [
+        (
+            vec!["descriptions/ur5e.toml", "--method", "anneal"],
+            &["tx40_identified.json: `", "identify with the same robot description"][..],
+        ),
+        (
+            vec![
+                "configs/tx40_robot.toml",
+                "--method",
+                "anneal",
+                "--bounds",
+                bounds.to_str().unwrap(),
+            ],
+            &["bounds.toml: `links.9`: not a link number; write 1 to 6"],
+        ),
+    ] {
+        let mut all = vec![
+            "feasible",
+            "--identified",
+            "tests/fixtures/tx40_identified.json",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        all.extend(args);
+        let o = robid(&all);
+        fails_with(&o, expected);
+        assert!(!stderr(&o).contains("config"), "{}", stderr(&o));
+    }
+    let o = robid(&["identify", "descriptions/ur5e.toml", "--data", "a.csv", "b.csv"]);
+    fails_with(&o, &["--data: 2 files given; without --config, give one file"]);
+}

@@ -136,6 +136,20 @@ fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
     Ok(())
 }
 
+/// A runtime error about the content of `path` (the identified result or the bounds),
+/// named as that file: the runtime reports such keys as "config" keys.
+fn about(path: &Path, e: robid_runtime::Error) -> Error {
+    match e {
+        robid_runtime::Error::InvalidConfig { key, problem } => {
+            format!("{}: `{key}`: {problem}", path.display()).into()
+        }
+        robid_runtime::Error::ConfigSyntax { reason, .. } => {
+            format!("{}: {reason}", path.display()).into()
+        }
+        other => other.into(),
+    }
+}
+
 /// Refuses a solution with a value that is not a finite number.
 fn check_solution(solution: &Solution) -> Result<(), Error> {
     let bad = solution
@@ -173,7 +187,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .filter(|p| p.expression.is_empty() && !problem.base_names.contains(&p.name))
         .map(|p| p.name.clone())
         .collect();
-    let problem = problem.with_extra_columns(&extra)?;
+    let problem = problem
+        .with_extra_columns(&extra)
+        .map_err(|e| about(&args.identified, e))?;
     let names: Vec<String> = identified
         .parameters
         .iter()
@@ -181,10 +197,13 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .collect();
     let values: Vec<f64> = identified.parameters.iter().map(|p| p.value).collect();
     let std: Vec<f64> = identified.parameters.iter().map(|p| p.std).collect();
-    let problem = problem.with_identified(&names, &values, &std)?;
+    let problem = problem
+        .with_identified(&names, &values, &std)
+        .map_err(|e| about(&args.identified, e))?;
     let links = problem.layout.links.len();
     let bounds = match &args.bounds {
-        Some(path) => Bounds::from_toml(&read(path)?, &path.display().to_string(), links)?,
+        Some(path) => Bounds::from_toml(&read(path)?, &path.display().to_string(), links)
+            .map_err(|e| about(path, e))?,
         None => Bounds::wide(links),
     };
     let prior = match &args.prior {

@@ -155,15 +155,21 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     let per_set = config.sources.len().max(1);
     if args.data.len() != per_set {
-        return Err(format!(
-            "--data: {} files given, the config has {per_set} [[source]] tables; give one file per table",
-            args.data.len()
-        )
-        .into());
+        let fix = match &args.config {
+            Some(path) => format!(
+                "{} has {per_set} [[source]] tables; give one file per table",
+                path.display()
+            ),
+            None => "without --config, give one file with the columns \
+                     t,q1..,qd1..,qdd1..,tau1.. (or a --config with one [[source]] per file)"
+                .to_string(),
+        };
+        return Err(format!("--data: {} files given; {fix}", args.data.len()).into());
     }
     if !args.validate.len().is_multiple_of(per_set) {
         return Err(format!(
-            "--validate: {} files given; give them in groups of {per_set} (one per [[source]])",
+            "--validate: {} files given; give them in groups of {per_set}, one per [[source]] \
+             of --config",
             args.validate.len()
         )
         .into());
