@@ -542,7 +542,10 @@ fn inputs_are_named_by_their_kind_never_config() {
     for (args, expected) in [
         (
             vec!["descriptions/ur5e.toml", "--method", "anneal"],
-            &["tx40_identified.json: `", "identify with the same robot description"][..],
+            &[
+                "tx40_identified.json: `",
+                "identify with the same robot description",
+            ][..],
         ),
         (
             vec![
@@ -567,6 +570,15 @@ fn inputs_are_named_by_their_kind_never_config() {
         fails_with(&o, expected);
         assert!(!stderr(&o).contains("config"), "{}", stderr(&o));
     }
-    let o = robid(&["identify", "descriptions/ur5e.toml", "--data", "a.csv", "b.csv"]);
-    fails_with(&o, &["--data: 2 files given; without --config, give one file"]);
+    let o = robid(&[
+        "identify",
+        "descriptions/ur5e.toml",
+        "--data",
+        "a.csv",
+        "b.csv",
+    ]);
+    fails_with(
+        &o,
+        &["--data: 2 files given; without --config, give one file"],
+    );
 }

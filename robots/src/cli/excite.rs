@@ -358,3 +358,17 @@ fn check_trajectory(tr: &Trajectory) -> Result<(), Error> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_trajectory_with_a_non_finite_value_is_not_written() {
+        let mut tr = Trajectory::zeros(2, vec![0.0, 0.5, 1.0]);
+        assert!(check_trajectory(&tr).is_ok());
+        tr.qd[1][1] = f64::NAN;
+        let e = check_trajectory(&tr).unwrap_err().to_string();
+        assert!(e.contains("qd2 = NaN at t = 0.5 s"), "{e}");
+    }
+}

@@ -281,3 +281,38 @@ fn problem(robot: &Robot) -> Result<Problem, Error> {
     let names = base.base.iter().map(|b| b.name.clone()).collect();
     Ok(Problem::from_rows(standard, names, &k)?)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use robid_runtime::feasible::Method;
+
+    fn solution(standard: Vec<f64>, chi2: f64) -> Solution {
+        Solution {
+            method: Method::Anneal,
+            names: vec!["M1".into(), "MX1".into()],
+            standard,
+            links: Vec::new(),
+            base: Vec::new(),
+            normalized_residual: Vec::new(),
+            chi2,
+            min_eigenvalues: Vec::new(),
+            dont_care: Vec::new(),
+            violations: Vec::new(),
+            seconds: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_solution_with_a_non_finite_value_is_not_written() {
+        assert!(check_solution(&solution(vec![1.0, 0.2], 3.0)).is_ok());
+        let e = check_solution(&solution(vec![1.0, f64::NAN], 3.0))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("the anneal solution has MX1 = NaN"), "{e}");
+        let e = check_solution(&solution(vec![1.0, 0.2], f64::INFINITY))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("chi^2 = inf"), "{e}");
+    }
+}

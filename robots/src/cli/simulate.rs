@@ -207,3 +207,53 @@ pub(crate) fn load_model(path: &Path, drive: &[String]) -> Result<Interpreted, E
     }
     Ok(Interpreted::new(&robot)?)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A two-joint record at rest on the reference at t = 0, 0.1, 0.2.
+    fn record() -> (Record, Trajectory) {
+        let reference = Trajectory::zeros(2, vec![0.0, 0.1, 0.2]);
+        let record = Record {
+            trajectory: reference.clone(),
+            tau: vec![vec![0.0; 3]; 2],
+        };
+        (record, reference)
+    }
+
+    #[test]
+    fn a_record_on_the_reference_passes() {
+        let (mut r, reference) = record();
+        r.trajectory.q[1][2] = 0.9;
+        assert!(check_result(&r, &reference, 1.0).is_ok());
+    }
+
+    #[test]
+    fn a_diverged_record_is_refused_naming_the_value_and_the_time() {
+        let (mut r, reference) = record();
+        r.tau[1][2] = f64::INFINITY;
+        let e = check_result(&r, &reference, 1.0).unwrap_err().to_string();
+        assert!(e.contains("at t = 0.2 s, tau2 is inf"), "{e}");
+        let (mut r, reference) = record();
+        r.trajectory.q[0][1] = -1.5;
+        let e = check_result(&r, &reference, 1.0).unwrap_err().to_string();
+        assert!(e.contains("at t = 0.1 s, q1 is 1.500e0 away"), "{e}");
+        assert!(e.contains("lower --bandwidth"), "{e}");
+        assert!(check_result(&r, &reference, f64::INFINITY).is_ok());
+    }
+
+    #[test]
+    fn the_bandwidth_is_at_most_a_quarter_of_the_sample_rate() {
+        let reference = Trajectory::zeros(1, vec![0.0, 0.01, 0.02, 0.04]);
+        let path = Path::new("t.csv");
+        assert!(check_bandwidth(12.5, &reference, path).is_ok());
+        let e = check_bandwidth(13.0, &reference, path)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("--bandwidth 13 Hz") && e.contains("12.5000 Hz"),
+            "{e}"
+        );
+    }
+}
