@@ -453,7 +453,7 @@ fn states_out_of_range_are_named_by_line_and_column() {
 }
 
 /// The identified JSON of `feasible`: a value of 1e308 (it used to give "chi^2 = 0"), or a
-/// standard deviation of zero, is named by entry; nothing is written.
+/// standard deviation of zero, or a name given twice, is named by entry; nothing is written.
 #[test]
 fn identified_values_out_of_range_are_named() {
     let dir = folder();
@@ -483,6 +483,10 @@ fn identified_values_out_of_range_are_named() {
     json["parameters"][2]["std"] = serde_json::json!(0.0);
     let o = run(&json);
     fails_with(&o, &["parameters[2] `Fc1`: std 0 is outside (0, 1e6]"]);
+    json["parameters"][2]["std"] = serde_json::json!(0.1);
+    json["parameters"][7]["name"] = serde_json::json!("Fv1");
+    let o = run(&json);
+    fails_with(&o, &["parameters[7] `Fv1`: the name is also entry 1"]);
     json["parameters"] = serde_json::json!([]);
     let o = run(&json);
     fails_with(&o, &["`parameters` is empty"]);

@@ -124,6 +124,12 @@ fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
         } else {
             None
         };
+        let problem = problem.or_else(|| {
+            identified.parameters[..i]
+                .iter()
+                .position(|q| q.name == p.name)
+                .map(|first| format!("the name is also entry {first}; keep one of them"))
+        });
         if let Some(problem) = problem {
             return Err(format!(
                 "{}: parameters[{i}] `{}`: {problem}; repair the entry or identify again",
