@@ -586,3 +586,123 @@ fn inputs_are_named_by_their_kind_never_config() {
         &["--data: 2 files given; without --config, give one file"],
     );
 }
+
+/// The ranges that `--help` states are those the checks apply: for each flag, the help
+/// text and the refusal of a value outside it give the same range.
+#[test]
+fn help_states_the_ranges_that_are_checked() {
+    let dir = folder();
+    let help = |sub: &str| stdout(&robid(&[sub, "--help"]));
+    let (excite_help, simulate_help, feasible_help) =
+        (help("excite"), help("simulate"), help("feasible"));
+    for (text, sub, args, flag, range) in [
+        (&excite_help, "excite", "--rate=0", "--rate", "(0, 1e6] Hz"),
+        (
+            &excite_help,
+            "excite",
+            "--duration=0",
+            "--duration",
+            "(0, 1e6] s",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--sigma=0",
+            "--sigma",
+            "[1e-9, 1e6] N m",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--base-frequency=0",
+            "--base-frequency",
+            "(0, 100] Hz",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--intervals=1",
+            "--intervals",
+            "2 to 200",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--sweeps=0",
+            "--sweeps",
+            "1 to 1000",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--harmonics=51",
+            "--harmonics",
+            "2 to 50",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--restarts=0",
+            "--restarts",
+            "1 to 1000",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--evaluations=0",
+            "--evaluations",
+            "1 to 1e6",
+        ),
+        (
+            &simulate_help,
+            "simulate",
+            "--bandwidth=0",
+            "--bandwidth",
+            "(0, 1e4] Hz",
+        ),
+        (
+            &simulate_help,
+            "simulate",
+            "--torque-noise=-1",
+            "--torque-noise",
+            "[0, 1e6] N m",
+        ),
+        (
+            &simulate_help,
+            "simulate",
+            "--position-noise=-1",
+            "--position-noise",
+            "[0, 1] rad",
+        ),
+        (
+            &simulate_help,
+            "simulate",
+            "--quantization=-1",
+            "--quantization",
+            "[0, 1] rad",
+        ),
+        (
+            &feasible_help,
+            "feasible",
+            "--prior-weight=-1",
+            "--prior-weight",
+            "[0, 1e6]",
+        ),
+    ] {
+        assert!(text.contains(range), "{sub} --help lacks {range}");
+        let out = dir.path().join("out");
+        let o = robid(&[
+            sub,
+            "descriptions/ur5e.toml",
+            args,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        // counts are printed as `lo..=hi` in the refusal and `lo to hi` in the help
+        let checked = match range.split_once(" to ") {
+            Some((lo, hi)) => format!("{lo}..={}", hi.replace("1e6", "1000000")),
+            None => range.to_string(),
+        };
+        refused_flag(&o, flag, &format!("outside {checked}"));
+    }
+}

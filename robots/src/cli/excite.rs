@@ -55,7 +55,8 @@ pub(crate) struct Args {
     /// Sweeps over the points per start, 1 to 1000 (`--method points` only; default 4).
     #[arg(long, value_parser = count(1, 1000))]
     sweeps: Option<usize>,
-    /// Harmonics per joint, 2 to 50 (`--method fourier` only; default 5).
+    /// Harmonics per joint, 2 to 50 (`--method fourier` only; default 5); the highest,
+    /// harmonics x base frequency, must lie below --rate / 2.
     #[arg(long, value_parser = count(2, 50))]
     harmonics: Option<usize>,
     /// Base frequency in (0, 100] Hz (`--method fourier` only; default 0.1).

@@ -34,8 +34,14 @@ enum Command {
     /// The main job: identifies the Staubli TX40 from its built-in real log and writes a report.
     Demo,
     /// Base parameters with their uncertainty from measured data, fit and validation.
+    ///
+    /// Warns on stderr, naming them, when the condition number of the observation matrix
+    /// exceeds 1e5 or a parameter's relative standard deviation exceeds 100 %.
     Identify(identify::Args),
     /// Inverse dynamics row by row from a parameter file and a state file.
+    ///
+    /// Parameter values lie within +-1e6 (SI units) and states within +-1e6; a torque that
+    /// is not a finite number is an error naming its row.
     Torques(torques::Args),
     /// The generated Rust module of a robot, pretty-printed.
     Emit(emit::Args),
@@ -46,6 +52,9 @@ enum Command {
     /// Physically consistent link parameters from identified base parameters (TOML or URDF).
     Feasible(feasible::Args),
     /// Closed-loop simulation of a trajectory with noise, producing data with known truth.
+    ///
+    /// A run whose positions leave the trajectory by more than 1 rad (plus ten times the
+    /// position noise and quantization) is refused as diverged; nothing is written then.
     Simulate(simulate::Args),
 }
 
