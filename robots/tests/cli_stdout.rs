@@ -106,3 +106,33 @@ fn a_reader_that_stays_gets_everything() {
         .collect();
     assert_eq!(last.len(), 6);
 }
+
+/// `identify` writes its files before it prints: a reader that goes away early ends the
+/// program (141) but does not cost the JSON report.
+#[test]
+fn identify_writes_its_report_before_printing() {
+    let dir = folder();
+    let json = dir.path().join("result.json");
+    let mut child = command(&[
+        "identify",
+        "configs/tx40_robot.toml",
+        "--config",
+        "configs/tx40.toml",
+        "--data",
+        "../data/staubli_tx40/data/pos_read_data.csv.gz",
+        "../data/staubli_tx40/data/curr_data.csv.gz",
+        "--json",
+        json.to_str().unwrap(),
+    ])
+    .stdout(Stdio::piped())
+    .stderr(Stdio::piped())
+    .spawn()
+    .expect("robid starts");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("robid ends");
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(141), "{e}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["parameters"].as_array().unwrap().len(), 61);
+}

@@ -199,20 +199,24 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         predictions.push(p);
     }
     check_report(&report)?;
-    let mut stdout = out::Stdout::new();
-    stdout.write_str(&text_table(&report))?;
-    stdout.flush()?;
-    for w in warnings(&report) {
-        out::warn(format_args!("warning: {w}"));
-    }
+    // files first: a reader that closes standard output early does not cost them
     if let Some(path) = &args.json {
         report.write_json(path)?;
-        writeln!(stdout, "JSON report: {}", path.display())?;
     }
     if let Some(dir) = &args.plot {
         for (prefix, p) in prefixes.iter().zip(&predictions) {
             plot_torques(p, dir, prefix)?;
         }
+    }
+    for w in warnings(&report) {
+        out::warn(format_args!("warning: {w}"));
+    }
+    let mut stdout = out::Stdout::new();
+    stdout.write_str(&text_table(&report))?;
+    if let Some(path) = &args.json {
+        writeln!(stdout, "JSON report: {}", path.display())?;
+    }
+    if let Some(dir) = &args.plot {
         writeln!(
             stdout,
             "plots: {}/{{fit,validation*}}_joint*.svg",
