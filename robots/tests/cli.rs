@@ -1,24 +1,11 @@
 //! The `robid` binary end to end: forms scripts rely on (DESIGN.md 10) and
 //! bad input that must give a located error, never a panic.
 
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn robid(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_robid"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("robid runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{folder, robid, stderr, stdout};
 
 #[test]
 fn emit_prints_the_checked_in_code() {
@@ -73,9 +60,8 @@ fn model_json_has_the_documented_shape() {
 
 #[test]
 fn a_malformed_description_names_file_line_and_column() {
-    let dir = std::env::temp_dir().join(format!("robid-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("bad.toml");
+    let dir = folder();
+    let file = dir.path().join("bad.toml");
     std::fs::write(
         &file,
         "name = \"x\"\nconvention = \"sideways\"\n[[joints]]\nalpha = 0\n",
@@ -105,8 +91,8 @@ fn a_missing_file_is_an_error_not_a_panic() {
 /// named with the file and the fix; a good file gives the torques of the reference robot.
 #[test]
 fn parameter_file_mistakes_are_named() {
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_parameters");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = folder();
+    let dir = dir.path();
     let states = dir.join("states.csv");
     std::fs::write(
         &states,
@@ -158,8 +144,8 @@ fn parameter_file_mistakes_are_named() {
 /// `tests/tests/excitation_*.rs`.
 #[test]
 fn excite_writes_a_trajectory_at_rest_at_the_start_within_the_limits() {
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_excite");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = folder();
+    let dir = dir.path();
     let description: toml::Value =
         toml::from_str(&std::fs::read_to_string("descriptions/ur5e.toml").unwrap()).unwrap();
     let limits: Vec<&toml::Value> = description["joints"]
@@ -311,5 +297,6 @@ fn excite_writes_a_trajectory_at_rest_at_the_start_within_the_limits() {
         e.contains("exceeds joint 2 torque by") && e.contains("--sweeps"),
         "{e}"
     );
+    // (a fresh folder: the file is this run's, not one left by an earlier run)
     assert!(output.exists());
 }

@@ -4,28 +4,15 @@
 //! including the coupled-wrist extra columns `Iam6 fvm6 fsm6`) with loose bounds
 //! (`tests/fixtures/tx40_bounds.toml`).
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn robid(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_robid"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("robid runs")
-}
+use common::{folder, robid, stderr};
 
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// A fresh output path under the target directory.
-fn out(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_feasible");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
+/// A path in a test's fresh output folder.
+fn out(dir: &tempfile::TempDir, name: &str) -> PathBuf {
+    dir.path().join(name)
 }
 
 /// Runs `robid feasible` on the fixture; returns chi^2 from the summary line.
@@ -107,19 +94,21 @@ fn check_urdf(path: &Path) {
 
 #[test]
 fn feasible_anneal_writes_consistent_toml_and_urdf_that_fit_the_identified_parameters() {
-    let toml_path = out("anneal.toml");
+    let dir = folder();
+    let toml_path = out(&dir, "anneal.toml");
     let chi2 = feasible("anneal", &toml_path);
     // statistically acceptable: at most the number of base parameters (its expectation)
     assert!(chi2 <= 61.0, "chi^2 {chi2}");
     check_toml(&toml_path);
-    let urdf_path = out("anneal.urdf");
+    let urdf_path = out(&dir, "anneal.urdf");
     feasible("anneal", &urdf_path);
     check_urdf(&urdf_path);
 }
 
 #[test]
 fn feasible_rejects_an_unknown_method_and_a_foreign_result() {
-    let path = out("bad.toml");
+    let dir = folder();
+    let path = out(&dir, "bad.toml");
     let path = path.to_str().unwrap();
     let o = robid(&[
         "feasible",
@@ -157,13 +146,14 @@ fn feasible_rejects_an_unknown_method_and_a_foreign_result() {
 #[cfg(feature = "sdp")]
 #[test]
 fn feasible_sdp_writes_toml_and_urdf_and_fits_at_least_as_well_as_anneal() {
-    let toml_path = out("sdp.toml");
+    let dir = folder();
+    let toml_path = out(&dir, "sdp.toml");
     let sdp = feasible("sdp", &toml_path);
     check_toml(&toml_path);
-    let urdf_path = out("sdp.urdf");
+    let urdf_path = out(&dir, "sdp.urdf");
     feasible("sdp", &urdf_path);
     check_urdf(&urdf_path);
-    let anneal = feasible("anneal", &out("anneal_for_sdp.toml"));
+    let anneal = feasible("anneal", &out(&dir, "anneal_for_sdp.toml"));
     assert!(sdp <= anneal * (1.0 + 1e-6), "sdp {sdp}, anneal {anneal}");
 }
 
@@ -186,11 +176,12 @@ fn masses(path: &Path) -> Vec<f64> {
 #[cfg(feature = "sdp")]
 #[test]
 fn feasible_sdp_prior_pulls_the_free_directions_towards_cad() {
+    let dir = folder();
     let cad = [10.5, 3.6, 4.07, 3.62, 1.02, 0.2];
     let distance = |m: &[f64]| -> f64 { m.iter().zip(&cad).map(|(a, b)| (a - b).abs()).sum() };
-    let plain = out("sdp_plain.toml");
+    let plain = out(&dir, "sdp_plain.toml");
     feasible("sdp", &plain);
-    let pulled = out("sdp_prior.toml");
+    let pulled = out(&dir, "sdp_prior.toml");
     let chi2 = feasible_with("sdp", &pulled, &["--prior", "parameters/tx40.toml"]);
     check_toml(&pulled);
     let (d0, d1) = (distance(&masses(&plain)), distance(&masses(&pulled)));
@@ -201,7 +192,8 @@ fn feasible_sdp_prior_pulls_the_free_directions_towards_cad() {
 
 #[test]
 fn feasible_rejects_a_base_table_prior_and_a_prior_with_anneal() {
-    let path = out("bad_prior.toml");
+    let dir = folder();
+    let path = out(&dir, "bad_prior.toml");
     let run = |method: &str, prior: &str| {
         robid(&[
             "feasible",
@@ -223,7 +215,7 @@ fn feasible_rejects_a_base_table_prior_and_a_prior_with_anneal() {
         "{}",
         stderr(&o)
     );
-    let base = out("base_prior.toml");
+    let base = out(&dir, "base_prior.toml");
     std::fs::write(&base, "[base]\nZZR1 = 1.0\n").unwrap();
     let o = run("sdp", base.to_str().unwrap());
     assert!(!o.status.success());

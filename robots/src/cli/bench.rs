@@ -3,7 +3,7 @@
 //! same run (6 x (sin + cos) through libm) so figures compare across machines.
 //! The criterion benches in robots/benches measure the same functions.
 
-use super::Error;
+use super::{Error, out};
 use robid_runtime::Real;
 use serde::Serialize;
 use std::hint::black_box;
@@ -142,25 +142,36 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     if wanted("stanford") {
         timings.push(time_robot!("stanford", robots::Stanford, base));
     }
+    let mut stdout = out::Stdout::new();
     if args.json {
         for t in &timings {
-            println!("{}", serde_json::to_string(t)?);
+            writeln!(stdout, "{}", serde_json::to_string(t)?)?;
         }
+        stdout.flush()?;
         return Ok(());
     }
-    println!("median ns per call (baseline 6 x (sin + cos) via libm: {base:.1} ns)");
-    println!(
+    writeln!(
+        stdout,
+        "median ns per call (baseline 6 x (sin + cos) via libm: {base:.1} ns)"
+    )?;
+    writeln!(
+        stdout,
         "{:<10} {:>17} {:>15} {:>12} {:>9}",
         "robot", "inverse_dynamics", "base_regressor", "mass_matrix", "gravity"
-    );
+    )?;
     for t in &timings {
-        println!(
+        writeln!(
+            stdout,
             "{:<10} {:>17.1} {:>15.1} {:>12.1} {:>9.1}",
             t.robot, t.inverse_dynamics_ns, t.base_regressor_ns, t.mass_matrix_ns, t.gravity_ns
-        );
+        )?;
     }
     if cfg!(debug_assertions) {
-        println!("(dev build: run with --release for meaningful figures)");
+        writeln!(
+            stdout,
+            "(dev build: run with --release for meaningful figures)"
+        )?;
     }
+    stdout.flush()?;
     Ok(())
 }

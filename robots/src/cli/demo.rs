@@ -13,13 +13,14 @@ use flate2::read::MultiGzDecoder;
 use robid_runtime::data::{Config, Dataset, read_columns_from};
 use robid_runtime::drive::DriveChain;
 use robid_runtime::estimate::{Estimate, Observation};
+use robid_runtime::output::create_folder;
 use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::report::{Report, plot_torques, text_table};
 use robid_runtime::validate::Prediction;
 use robid_symbolic::Robot;
 use robots::interpreted::{Chosen, model_for};
 
-use super::Error;
+use super::{Error, files, out};
 
 /// The TX40 description with drive terms, the identification config and the log.
 const ROBOT: &str = include_str!("../../configs/tx40_robot.toml");
@@ -41,13 +42,16 @@ pub(crate) fn run() -> Result<(), Error> {
     let chosen = model_for(&robot, ROBOT)?;
     let config = Config::from_toml_str(CONFIG, Path::new("robots/configs/tx40.toml"))?;
     let data = load(&config)?;
-    println!(
+    let mut stdout = out::Stdout::new();
+    writeln!(
+        stdout,
         "Staubli TX40, real log: {} samples at {:.0} Hz, {} base parameters + {} drive-coupling terms",
         data.samples(),
         1.0 / data.sample_time,
         chosen.base.len(),
         config.extra_columns.len()
-    );
+    )?;
+    stdout.flush()?;
 
     // temporal split: train, then predict the held-out rows
     let train = rows(&chosen, &config, &data, TRAIN)?;
@@ -58,36 +62,40 @@ pub(crate) fn run() -> Result<(), Error> {
     let valid = Prediction::new(&held_out, &est.values, dt);
     let report = Report::new("tx40", &est, &fit.fit(), |n| chosen.expression(n))
         .with_validation("held-out rows 29250-45000", &valid.fit());
-    println!("\nTrained on rows {}-{}:", TRAIN.0, TRAIN.1);
-    print!("{}", text_table(&report));
+    writeln!(stdout, "\nTrained on rows {}-{}:", TRAIN.0, TRAIN.1)?;
+    stdout.write_str(&text_table(&report))?;
+    stdout.flush()?;
 
     // the whole run, as FIGAROH identified it
     let whole = identify(chosen.model.as_ref(), &data, &config)?;
     let comparison = compare(&chosen, &whole.estimate);
-    println!(
+    writeln!(
+        stdout,
         "\nWhole run (as FIGAROH): {} equations, cond {:.0}, relative error {:.2} %",
         whole.estimate.rows,
         whole.estimate.condition_number,
         100.0 * whole.fit.relative_error
-    );
-    print!("{comparison}");
+    )?;
+    stdout.write_str(&comparison)?;
+    stdout.flush()?;
 
     let dir = Path::new(OUTPUT);
-    std::fs::create_dir_all(dir).map_err(|e| format!("{OUTPUT}: cannot create: {e}"))?;
+    create_folder(dir)?;
     report.write_json(&dir.join("report.json"))?;
     let whole_report = Report::from_identification(&whole, |n| chosen.expression(n));
     whole_report.write_json(&dir.join("whole_run.json"))?;
-    std::fs::write(dir.join("figaroh_comparison.txt"), &comparison)
-        .map_err(|e| format!("{OUTPUT}/figaroh_comparison.txt: cannot write: {e}"))?;
+    files::write(&dir.join("figaroh_comparison.txt"), &comparison)?;
     plot_torques(&fit, dir, "train")?;
     plot_torques(&valid, dir, "heldout")?;
     let shown = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
-    println!(
+    writeln!(
+        stdout,
         "\nReport in {}: report.json (split), whole_run.json, figaroh_comparison.txt, \
          train_joint1..6.svg, heldout_joint1..6.svg ({:.2} s)",
         shown.display(),
         start.elapsed().as_secs_f64()
-    );
+    )?;
+    stdout.flush()?;
     Ok(())
 }
 

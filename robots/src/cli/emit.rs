@@ -2,7 +2,7 @@
 //! pretty-printed: the same text `robot_model!` compiles and that is checked
 //! into robots/generated/ for the reference robots.
 
-use super::Error;
+use super::{Error, files, out};
 use robid_symbolic::Robot;
 use robid_symbolic::emit::emit_robot;
 use std::path::PathBuf;
@@ -19,12 +19,14 @@ pub(crate) struct Args {
 
 /// Emits the module.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    if let Some(path) = &args.output {
+        files::refuse(&[&args.robot], &[path])?;
+    }
     let robot = Robot::from_file(&args.robot)?;
     let code = emit_robot(&robot)?;
     match &args.output {
-        Some(path) => std::fs::write(path, code)
-            .map_err(|e| format!("{}: cannot write the generated code: {e}", path.display()))?,
-        None => print!("{code}"),
+        Some(path) => files::write(path, &code)?,
+        None => out::print(&code)?,
     }
     Ok(())
 }

@@ -13,9 +13,10 @@ use robid_runtime::Model;
 use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, assess};
 use robid_runtime::simulate::Trajectory;
 
-use super::Error;
+use super::flags::{check_samples, closed, count, only_for, positive, real};
 use super::parameters::base_parameters;
 use super::simulate::load_model;
+use super::{Error, files, out};
 
 /// Arguments of `robid excite`.
 #[derive(Debug, clap::Args)]
@@ -26,46 +27,50 @@ pub(crate) struct Args {
     /// position, velocity and acceleration points with 7th-order polynomials, Milella et al.).
     #[arg(long, value_enum, default_value_t = Method::Fourier)]
     method: Method,
-    /// Duration (s): a whole number of periods 1 / base frequency.
-    #[arg(long, default_value_t = 30.0)]
+    /// Duration in (0, 1e6] s (`fourier`: a whole number of periods 1 / base frequency).
+    /// Duration x rate is at most 1e6 samples.
+    #[arg(long, default_value_t = 30.0, value_parser = real(positive(1e6, "s")))]
     duration: f64,
-    /// Sample rate of the output (Hz).
-    #[arg(long, default_value_t = 500.0)]
+    /// Sample rate of the output in (0, 1e6] Hz.
+    #[arg(long, default_value_t = 500.0, value_parser = real(positive(1e6, "Hz")))]
     rate: f64,
-    /// Seed of the random starts.
+    /// Seed of the random starts (0 to 2^64 - 1).
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Start (and end) position `q1,..,qn`, at rest (default: the middle of the position limits).
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    /// Start (and end) position `q1,..,qn`, at rest, inside the position limits (default:
+    /// the middle of the position limits).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true,
+          value_parser = real(closed(-1e6, 1e6, "rad")))]
     start: Vec<f64>,
-    /// Expected torque noise per joint `s1,..,sn`: weights the regressor rows by 1 / s (what
-    /// weighted least squares sees). Default: unweighted.
-    #[arg(long, value_delimiter = ',')]
+    /// Expected torque noise per joint `s1,..,sn`, each in [1e-9, 1e6] N m: weights the
+    /// regressor rows by 1 / s (what weighted least squares sees). Default: unweighted.
+    #[arg(long, value_delimiter = ',', value_parser = real(closed(1e-9, 1e6, "N m")))]
     sigma: Vec<f64>,
     /// Drive terms in the regressor, e.g. `Fv,Fc` (default: the description's).
     #[arg(long, value_delimiter = ',')]
     drive: Vec<String>,
-    /// Intervals between optimised points (`--method points`).
-    #[arg(long, default_value_t = 12)]
-    intervals: usize,
-    /// Sweeps over the points per start (`--method points`).
-    #[arg(long, default_value_t = 4)]
-    sweeps: usize,
-    /// Harmonics per joint (`--method fourier`).
-    #[arg(long, default_value_t = 5)]
-    harmonics: usize,
-    /// Base frequency (Hz, `--method fourier`).
-    #[arg(long, default_value_t = 0.1)]
-    base_frequency: f64,
+    /// Intervals between optimised points, 2 to 200 (`--method points` only; default 12).
+    #[arg(long, value_parser = count(2, 200))]
+    intervals: Option<usize>,
+    /// Sweeps over the points per start, 1 to 1000 (`--method points` only; default 4).
+    #[arg(long, value_parser = count(1, 1000))]
+    sweeps: Option<usize>,
+    /// Harmonics per joint, 2 to 50 (`--method fourier` only; default 5); the highest,
+    /// harmonics x base frequency, must lie below --rate / 2.
+    #[arg(long, value_parser = count(2, 50))]
+    harmonics: Option<usize>,
+    /// Base frequency in (0, 100] Hz (`--method fourier` only; default 0.1).
+    #[arg(long, value_parser = real(positive(100.0, "Hz")))]
+    base_frequency: Option<f64>,
     /// Criterion: `cond` (condition number) or `d` (D-optimality).
     #[arg(long, value_enum, default_value_t = CriterionArg::Cond)]
     criterion: CriterionArg,
-    /// Random starts (default: 8 for `fourier`, 4 for `points`).
-    #[arg(long)]
+    /// Random starts, 1 to 1000 (default: 8 for `fourier`, 4 for `points`).
+    #[arg(long, value_parser = count(1, 1000))]
     restarts: Option<usize>,
     /// Function evaluations per start (`fourier`; default 3000) or per point and sweep
-    /// (`points`; default 120).
-    #[arg(long)]
+    /// (`points`; default 120), 1 to 1e6.
+    #[arg(long, value_parser = count(1, 1_000_000))]
     evaluations: Option<usize>,
     /// Reference parameters (`[standard]` or `[base]`): enables the torque limits.
     #[arg(long)]
@@ -91,8 +96,52 @@ enum CriterionArg {
     D,
 }
 
+/// Refuses what cannot work before any work: an output that is an input, too many
+/// samples, the options of the other method, too fine a harmonic for the sample rate.
+fn check(args: &Args) -> Result<(), Error> {
+    let mut inputs = vec![args.robot.as_path()];
+    inputs.extend(args.parameters.as_deref());
+    files::refuse(&inputs, &[&args.output])?;
+    check_samples(args.duration, args.rate)?;
+    match args.method {
+        Method::Fourier => {
+            let (method, owner) = ("--method fourier", "--method points");
+            only_for(args.intervals.is_some(), "--intervals", owner, method)?;
+            only_for(args.sweeps.is_some(), "--sweeps", owner, method)?;
+            let highest = args.harmonics.unwrap_or(HARMONICS) as f64
+                * args.base_frequency.unwrap_or(BASE_FREQUENCY);
+            if 2.0 * highest >= args.rate {
+                return Err(format!(
+                    "--rate {} Hz is too low for the highest harmonic ({highest} Hz = --harmonics \
+                     x --base-frequency): sample at more than twice its frequency, or lower \
+                     --harmonics or --base-frequency",
+                    args.rate
+                )
+                .into());
+            }
+        }
+        Method::Points => {
+            let (method, owner) = ("--method points", "--method fourier");
+            only_for(args.harmonics.is_some(), "--harmonics", owner, method)?;
+            only_for(
+                args.base_frequency.is_some(),
+                "--base-frequency",
+                owner,
+                method,
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// Default harmonics per joint of `--method fourier`.
+const HARMONICS: usize = 5;
+/// Default base frequency (Hz) of `--method fourier`.
+const BASE_FREQUENCY: f64 = 0.1;
+
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    check(args)?;
     let model = load_model(&args.robot, &args.drive)?;
     let limits = model
         .programs()
@@ -135,6 +184,20 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         )
         .into());
     } else {
+        for (j, (q, l)) in args.start.iter().zip(&limits).enumerate() {
+            if !(l.position[0] < *q && *q < l.position[1]) {
+                return Err(format!(
+                    "--start: q{} = {q} is outside the limits ({}, {}) of joint {} in {}; \
+                     choose a start strictly inside them",
+                    j + 1,
+                    l.position[0],
+                    l.position[1],
+                    j + 1,
+                    args.robot.display()
+                )
+                .into());
+            }
+        }
         args.start.clone()
     };
     let weights = match args.sigma.len() {
@@ -155,18 +218,19 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let start = Instant::now();
     let (trajectory, evaluations): (Trajectory, usize) = match args.method {
         Method::Fourier => {
-            let periods = args.duration * args.base_frequency;
+            let base_frequency = args.base_frequency.unwrap_or(BASE_FREQUENCY);
+            let periods = args.duration * base_frequency;
             if (periods - periods.round()).abs() > 1e-9 || periods.round() < 1.0 {
                 return Err(format!(
                     "--duration {} s is not a whole number of periods of {} s; choose a multiple of 1 / --base-frequency so the trajectory ends at rest",
                     args.duration,
-                    1.0 / args.base_frequency
+                    1.0 / base_frequency
                 )
                 .into());
             }
             let design = FourierDesign {
-                harmonics: args.harmonics,
-                base_frequency: args.base_frequency,
+                harmonics: args.harmonics.unwrap_or(HARMONICS),
+                base_frequency,
                 criterion,
                 weights,
                 restarts: args.restarts.unwrap_or(8),
@@ -185,11 +249,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Method::Points => {
             let design = PointDesign {
                 duration: args.duration,
-                intervals: args.intervals,
+                intervals: args.intervals.unwrap_or(12),
                 criterion,
                 weights,
                 restarts: args.restarts.unwrap_or(4),
-                sweeps: args.sweeps,
+                sweeps: args.sweeps.unwrap_or(4),
                 evaluations: args.evaluations.unwrap_or(120),
                 seed: args.seed,
                 start: Some(start_pose),
@@ -201,36 +265,48 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
     };
     let elapsed = start.elapsed();
+    check_trajectory(&trajectory)?;
     trajectory.write_csv(&args.output)?;
     let a = assess(&model, &trajectory, &limits, reference.as_deref(), 1)?;
-    println!(
+    let mut stdout = out::Stdout::new();
+    writeln!(
+        stdout,
         "{}: {} base parameters, {} s at {} Hz written to {}",
         model.name(),
         model.base_parameter_count(),
         args.duration,
         args.rate,
         args.output.display()
-    );
-    println!(
+    )?;
+    writeln!(
+        stdout,
         "condition number {:.2} ({} samples stacked); optimised in {:.1} s ({} evaluations)",
         a.condition_number,
         a.samples,
         elapsed.as_secs_f64(),
         evaluations
-    );
-    println!("margins to the limits (limit - peak; position: distance to each end):");
-    println!("joint  pos_low  pos_high  velocity  acceleration  torque");
+    )?;
+    writeln!(
+        stdout,
+        "margins to the limits (limit - peak; position: distance to each end):"
+    )?;
+    writeln!(
+        stdout,
+        "joint  pos_low  pos_high  velocity  acceleration  torque"
+    )?;
     for (j, m) in a.margins.iter().enumerate() {
         let torque = m.torque.map_or("-".to_string(), |t| format!("{t:.2}"));
-        println!(
+        writeln!(
+            stdout,
             "{:5}  {:7.3}  {:8.3}  {:8.3}  {:12.3}  {torque}",
             j + 1,
             m.position_low,
             m.position_high,
             m.velocity,
             m.acceleration
-        );
+        )?;
     }
+    stdout.flush()?;
     if !a.within_limits() {
         let exceeded: Vec<String> = a
             .margins
@@ -263,4 +339,37 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .into());
     }
     Ok(())
+}
+
+/// Refuses a sampled trajectory with a value that is not finite.
+fn check_trajectory(tr: &Trajectory) -> Result<(), Error> {
+    for (name, block) in [("q", &tr.q), ("qd", &tr.qd), ("qdd", &tr.qdd)] {
+        for (j, signal) in block.iter().enumerate() {
+            if let Some(k) = signal.iter().position(|x| !x.is_finite()) {
+                return Err(format!(
+                    "the designed trajectory has {name}{} = {} at t = {} s; nothing was \
+                     written: design again with another --seed",
+                    j + 1,
+                    signal[k],
+                    tr.t.get(k).copied().unwrap_or(f64::NAN)
+                )
+                .into());
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_trajectory_with_a_non_finite_value_is_not_written() {
+        let mut tr = Trajectory::zeros(2, vec![0.0, 0.5, 1.0]);
+        assert!(check_trajectory(&tr).is_ok());
+        tr.qd[1][1] = f64::NAN;
+        let e = check_trajectory(&tr).unwrap_err().to_string();
+        assert!(e.contains("qd2 = NaN at t = 0.5 s"), "{e}");
+    }
 }

@@ -4,17 +4,26 @@
 //! `<inertial>` elements when OUT ends in `.urdf` or `.xml`. Identified parameters with an
 //! empty expression that are not base parameters of the description (the extra columns of
 //! an identification config) are kept as free terms.
+//!
+//! RESULT.json is checked before use: every value finite and within +-[`VALUE_LIMIT`],
+//! every standard deviation finite, positive and at most [`VALUE_LIMIT`], each entry
+//! named in the error. The solution is checked before it is written (every value finite).
 
 use std::path::{Path, PathBuf};
 
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Prior, Problem, SdpOptions, solve_anneal, solve_sdp, to_toml, to_urdf,
+    AnnealOptions, Bounds, Prior, Problem, SdpOptions, Solution, solve_anneal, solve_sdp, to_toml,
+    to_urdf,
 };
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
-use super::Error;
+use super::flags::{closed, real, short};
 use super::parameters::standard_parameters;
+use super::{Error, files, out};
+
+/// The largest magnitude of an identified value or standard deviation in RESULT.json.
+pub(crate) const VALUE_LIMIT: f64 = 1e6;
 
 /// Arguments of `robid feasible`.
 #[derive(Debug, clap::Args)]
@@ -34,11 +43,12 @@ pub(crate) struct Args {
     /// table; parameters it does not list have no prior). `--method sdp` only.
     #[arg(long)]
     prior: Option<PathBuf>,
-    /// Weight of the pull towards the prior: a deviation of one parameter scale (from the
-    /// bounds, e.g. the largest mass) costs this many chi^2 units. The default 1 settles
-    /// what the data barely determine and leaves what they determine; 100 overrides data.
-    #[arg(long, default_value_t = 1.0)]
-    prior_weight: f64,
+    /// Weight in [0, 1e6] of the pull towards the prior (`--prior` only): a deviation of
+    /// one parameter scale (from the bounds, e.g. the largest mass) costs this many chi^2
+    /// units. The default 1 settles what the data barely determine and leaves what they
+    /// determine; 100 overrides data.
+    #[arg(long, value_parser = real(closed(0.0, 1e6, "")))]
+    prior_weight: Option<f64>,
     /// Output file: TOML, or URDF inertial elements for a `.urdf` / `.xml` name.
     #[arg(short, long)]
     output: PathBuf,
@@ -63,12 +73,117 @@ fn read(path: &Path) -> Result<String, Error> {
         .map_err(|e| format!("{}: cannot read: {e}", path.display()).into())
 }
 
+/// Refuses, before any work, an output that is an input, an unknown method and options
+/// of the other method.
+fn check(args: &Args) -> Result<(), Error> {
+    let mut inputs = vec![args.robot.as_path(), args.identified.as_path()];
+    inputs.extend(args.bounds.as_deref());
+    inputs.extend(args.prior.as_deref());
+    files::refuse(&inputs, &[&args.output])?;
+    match args.method.as_str() {
+        "sdp" => {}
+        "anneal" if args.prior.is_some() => {
+            return Err(
+                "--prior: only --method sdp uses a prior; drop --prior or use --method sdp".into(),
+            );
+        }
+        "anneal" => {}
+        other => return Err(format!("--method {other}: unknown; use sdp or anneal").into()),
+    }
+    if args.prior_weight.is_some() && args.prior.is_none() {
+        return Err(
+            "--prior-weight weighs the pull towards --prior; give --prior FILE or drop \
+                    --prior-weight"
+                .into(),
+        );
+    }
+    Ok(())
+}
+
+/// Refuses an identified entry whose value or standard deviation is not finite or out of
+/// range, naming the entry.
+fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
+    if identified.parameters.is_empty() {
+        return Err(format!(
+            "{}: `parameters` is empty; give the JSON report of `robid identify --json`",
+            path.display()
+        )
+        .into());
+    }
+    for (i, p) in identified.parameters.iter().enumerate() {
+        let problem = if !p.value.is_finite() || p.value.abs() > VALUE_LIMIT {
+            Some(format!(
+                "value {} is outside +-{VALUE_LIMIT:e}",
+                short(p.value)
+            ))
+        } else if !(p.std > 0.0 && p.std <= VALUE_LIMIT) {
+            Some(format!(
+                "std {} is outside (0, {VALUE_LIMIT:e}]; a standard deviation is positive",
+                short(p.std)
+            ))
+        } else {
+            None
+        };
+        let problem = problem.or_else(|| {
+            identified.parameters[..i]
+                .iter()
+                .position(|q| q.name == p.name)
+                .map(|first| format!("the name is also entry {first}; keep one of them"))
+        });
+        if let Some(problem) = problem {
+            return Err(format!(
+                "{}: parameters[{i}] `{}`: {problem}; repair the entry or identify again",
+                path.display(),
+                p.name
+            )
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// A runtime error about the content of `path` (the identified result or the bounds),
+/// named as that file: the runtime reports such keys as "config" keys.
+fn about(path: &Path, e: robid_runtime::Error) -> Error {
+    match e {
+        robid_runtime::Error::InvalidConfig { key, problem } => {
+            format!("{}: `{key}`: {problem}", path.display()).into()
+        }
+        robid_runtime::Error::ConfigSyntax { reason, .. } => {
+            format!("{}: {reason}", path.display()).into()
+        }
+        other => other.into(),
+    }
+}
+
+/// Refuses a solution with a value that is not a finite number.
+fn check_solution(solution: &Solution) -> Result<(), Error> {
+    let bad = solution
+        .names
+        .iter()
+        .zip(&solution.standard)
+        .find(|(_, x)| !x.is_finite())
+        .map(|(n, x)| format!("{n} = {x}"))
+        .or_else(|| (!solution.chi2.is_finite()).then(|| format!("chi^2 = {}", solution.chi2)));
+    match bad {
+        Some(what) => Err(format!(
+            "the {} solution has {what}, not a finite number; nothing was written: check the \
+             bounds and the identified values",
+            solution.method.name()
+        )
+        .into()),
+        None => Ok(()),
+    }
+}
+
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    check(args)?;
     let robot = Robot::from_toml(&read(&args.robot)?, &args.robot.display().to_string())?;
     let json = read(&args.identified)?;
     let identified: Identified = serde_json::from_str(&json)
         .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;
+    check_identified(&identified, &args.identified)?;
     let problem = problem(&robot)?;
     // Extra columns of the identification config (no expression, not a base parameter,
     // e.g. a coupled wrist's `Iam6`) are kept as free terms.
@@ -78,7 +193,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .filter(|p| p.expression.is_empty() && !problem.base_names.contains(&p.name))
         .map(|p| p.name.clone())
         .collect();
-    let problem = problem.with_extra_columns(&extra)?;
+    let problem = problem
+        .with_extra_columns(&extra)
+        .map_err(|e| about(&args.identified, e))?;
     let names: Vec<String> = identified
         .parameters
         .iter()
@@ -86,43 +203,35 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .collect();
     let values: Vec<f64> = identified.parameters.iter().map(|p| p.value).collect();
     let std: Vec<f64> = identified.parameters.iter().map(|p| p.std).collect();
-    let problem = problem.with_identified(&names, &values, &std)?;
+    let problem = problem
+        .with_identified(&names, &values, &std)
+        .map_err(|e| about(&args.identified, e))?;
     let links = problem.layout.links.len();
     let bounds = match &args.bounds {
-        Some(path) => Bounds::from_toml(&read(path)?, &path.display().to_string(), links)?,
+        Some(path) => Bounds::from_toml(&read(path)?, &path.display().to_string(), links)
+            .map_err(|e| about(path, e))?,
         None => Bounds::wide(links),
     };
     let prior = match &args.prior {
         Some(path) => Some(Prior {
             standard: standard_parameters(path, &problem.standard_names)?,
-            weight: args.prior_weight,
+            weight: args.prior_weight.unwrap_or(1.0),
         }),
         None => None,
     };
-    if !(args.prior_weight.is_finite() && args.prior_weight >= 0.0) {
-        return Err(format!(
-            "--prior-weight {}: must be a finite number >= 0",
-            args.prior_weight
-        )
-        .into());
-    }
-    let solution = match args.method.as_str() {
-        "sdp" => solve_sdp(
+    let solution = if args.method == "anneal" {
+        solve_anneal(&problem, &bounds, &AnnealOptions::default())?
+    } else {
+        solve_sdp(
             &problem,
             &bounds,
             &SdpOptions {
                 prior,
                 ..SdpOptions::default()
             },
-        )?,
-        "anneal" if prior.is_some() => {
-            return Err(
-                "--prior: only --method sdp uses a prior; drop --prior or use --method sdp".into(),
-            );
-        }
-        "anneal" => solve_anneal(&problem, &bounds, &AnnealOptions::default())?,
-        other => return Err(format!("--method {other}: unknown; use sdp or anneal").into()),
+        )?
     };
+    check_solution(&solution)?;
     let urdf = matches!(
         args.output.extension().and_then(|e| e.to_str()),
         Some("urdf" | "xml")
@@ -132,9 +241,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     } else {
         to_toml(&solution, &robot.name)
     };
-    std::fs::write(&args.output, text)
-        .map_err(|e| format!("{}: cannot write: {e}", args.output.display()))?;
-    eprintln!(
+    files::write(&args.output, &text)?;
+    out::warn(format_args!(
         "{}: chi^2 {:.3e}, max |z| {:.3}, smallest pseudo-inertia eigenvalue {:.3e}, {:.3} s{}",
         solution.method.name(),
         solution.chi2,
@@ -150,7 +258,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         } else {
             format!("; bounds not met: {}", solution.violations.join("; "))
         }
-    );
+    ));
     Ok(())
 }
 
@@ -178,4 +286,39 @@ fn problem(robot: &Robot) -> Result<Problem, Error> {
     let standard = base.standard.iter().map(|p| p.name.clone()).collect();
     let names = base.base.iter().map(|b| b.name.clone()).collect();
     Ok(Problem::from_rows(standard, names, &k)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use robid_runtime::feasible::Method;
+
+    fn solution(standard: Vec<f64>, chi2: f64) -> Solution {
+        Solution {
+            method: Method::Anneal,
+            names: vec!["M1".into(), "MX1".into()],
+            standard,
+            links: Vec::new(),
+            base: Vec::new(),
+            normalized_residual: Vec::new(),
+            chi2,
+            min_eigenvalues: Vec::new(),
+            dont_care: Vec::new(),
+            violations: Vec::new(),
+            seconds: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_solution_with_a_non_finite_value_is_not_written() {
+        assert!(check_solution(&solution(vec![1.0, 0.2], 3.0)).is_ok());
+        let e = check_solution(&solution(vec![1.0, f64::NAN], 3.0))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("the anneal solution has MX1 = NaN"), "{e}");
+        let e = check_solution(&solution(vec![1.0, 0.2], f64::INFINITY))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("chi^2 = inf"), "{e}");
+    }
 }

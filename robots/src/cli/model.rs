@@ -2,7 +2,7 @@
 //! parameters with expressions, the unidentifiable parameters and the
 //! operation counts of the derived programs.
 
-use super::Error;
+use super::{Error, out};
 use robid_symbolic::program::Operations;
 use robid_symbolic::program::RobotPrograms;
 use robid_symbolic::{Derivation, Robot};
@@ -69,7 +69,7 @@ struct Report {
 /// Derives the model and prints it.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let robot = Robot::from_file(&args.robot)?;
-    print!("{}", render(&robot, args.json)?);
+    out::print(&render(&robot, args.json)?)?;
     Ok(())
 }
 
@@ -86,25 +86,36 @@ pub(crate) fn render(robot: &Robot, json: bool) -> Result<String, Error> {
 fn derive(robot: &Robot) -> Result<Report, Error> {
     let mut d = Derivation::new(robot);
     let b = d.base_parameters()?;
-    let base_parameters = b
-        .base
-        .iter()
-        .map(|p| Base {
+    let mut base_parameters = Vec::with_capacity(b.base.len());
+    for p in &b.base {
+        let mut terms = Vec::with_capacity(p.terms.len());
+        for &(s, c) in &p.terms {
+            let parameter = b.standard[s].name.clone();
+            let coefficient = match d.arena.as_num(c) {
+                Some(n) if !n.to_f64().is_finite() => {
+                    return Err(format!(
+                        "the coefficient of {parameter} in base parameter {} is {}: the \
+                         description's geometric values are beyond the range of f64 (about \
+                         1.8e308) in this product; use values in metres and radians",
+                        p.name,
+                        n.to_f64()
+                    )
+                    .into());
+                }
+                Some(n) => serde_json::json!(n.to_f64()),
+                None => serde_json::json!(d.arena.display(c)),
+            };
+            terms.push(Term {
+                parameter,
+                coefficient,
+            });
+        }
+        base_parameters.push(Base {
             name: p.name.clone(),
             expression: d.arena.display(p.expression),
-            terms: p
-                .terms
-                .iter()
-                .map(|&(s, c)| Term {
-                    parameter: b.standard[s].name.clone(),
-                    coefficient: match d.arena.as_num(c) {
-                        Some(n) => serde_json::json!(n.to_f64()),
-                        None => serde_json::json!(d.arena.display(c)),
-                    },
-                })
-                .collect(),
-        })
-        .collect();
+            terms,
+        });
+    }
     let programs = RobotPrograms::derive(robot)?;
     let mut operations = serde_json::Map::new();
     for (name, program) in [

@@ -2,43 +2,57 @@
 //! closed-loop simulation with noise (robid_runtime::simulate), writing
 //! `t,q1..,qd1..,qdd1..,tau1..`. Also holds what `excite` shares: the interpreted model of
 //! a description and the parameter file reader.
+//!
+//! The PD loop's `--bandwidth` is at most a quarter of the trajectory's sample rate
+//! (taken at its largest time step): the reference is known only at its samples, and
+//! beyond that the integration would diverge. The result is checked before it is
+//! written: every value finite and the simulated positions within [`TRACKING_LIMIT`]
+//! of the trajectory (plus ten times the position noise and quantization).
 
 use std::path::{Path, PathBuf};
 
 use robid_runtime::Model;
-use robid_runtime::simulate::{Noise, Simulation, Trajectory};
+use robid_runtime::simulate::{Noise, Record, Simulation, Trajectory};
 use robid_symbolic::{Drive, Robot};
 use robots::interpreted::Interpreted;
 
-use super::Error;
+use super::flags::{closed, positive, real};
+use super::{Error, files, out};
+
+/// How far (rad or m) the simulated positions may leave the reference before the run
+/// counts as diverged.
+pub(crate) const TRACKING_LIMIT: f64 = 1.0;
 
 /// Arguments of `robid simulate`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
     /// Robot description (TOML).
     robot: PathBuf,
-    /// Parameter file with a `[standard]` (missing names are 0) or a `[base]` table.
+    /// Parameter file with a `[standard]` (missing names are 0) or a `[base]` table
+    /// (values within +-1e6, see README "Parameter files").
     #[arg(long)]
     parameters: PathBuf,
-    /// Reference trajectory (CSV with header t,q1..,qd1..,qdd1..).
+    /// Reference trajectory (CSV with header t,q1..,qd1..,qdd1..; states within +-1e6).
     #[arg(long)]
     trajectory: PathBuf,
     /// Drive terms added to every joint, e.g. `Fv,Fc` (default: the description's).
     #[arg(long, value_delimiter = ',')]
     drive: Vec<String>,
-    /// Torque noise standard deviation (N m): one value, or one per joint separated by commas.
-    #[arg(long, value_delimiter = ',', default_value = "0")]
+    /// Torque noise standard deviation in [0, 1e6] N m: one value, or one per joint
+    /// separated by commas.
+    #[arg(long, value_delimiter = ',', default_value = "0",
+          value_parser = real(closed(0.0, 1e6, "N m")))]
     torque_noise: Vec<f64>,
-    /// Position noise standard deviation (rad).
-    #[arg(long, default_value_t = 0.0)]
+    /// Position noise standard deviation in [0, 1] rad (m for a prismatic joint).
+    #[arg(long, default_value_t = 0.0, value_parser = real(closed(0.0, 1.0, "rad")))]
     position_noise: f64,
-    /// Encoder resolution (rad per count); 0 for none.
-    #[arg(long, default_value_t = 0.0)]
+    /// Encoder resolution in [0, 1] rad per count; 0 for none.
+    #[arg(long, default_value_t = 0.0, value_parser = real(closed(0.0, 1.0, "rad")))]
     quantization: f64,
-    /// PD loop bandwidth (Hz).
-    #[arg(long, default_value_t = 10.0)]
+    /// PD loop bandwidth in (0, 1e4] Hz, at most a quarter of the trajectory's sample rate.
+    #[arg(long, default_value_t = 10.0, value_parser = real(positive(1e4, "Hz")))]
     bandwidth: f64,
-    /// Seed of the noise.
+    /// Seed of the noise (0 to 2^64 - 1).
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Output CSV.
@@ -48,9 +62,24 @@ pub(crate) struct Args {
 
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    files::refuse(
+        &[&args.robot, &args.parameters, &args.trajectory],
+        &[&args.output],
+    )?;
     let model = load_model(&args.robot, &args.drive)?;
+    let n = model.dof();
+    if args.torque_noise.len() != 1 && args.torque_noise.len() != n {
+        return Err(format!(
+            "--torque-noise has {} values but {} has {n} joints; give one value or s1,..,s{n}",
+            args.torque_noise.len(),
+            args.robot.display()
+        )
+        .into());
+    }
     let base = super::parameters::base_parameters(&args.parameters, &model)?;
-    let reference = Trajectory::read_csv(&args.trajectory, model.dof())?;
+    super::states::read(&args.trajectory, &Trajectory::header(n))?;
+    let reference = Trajectory::read_csv(&args.trajectory, n)?;
+    check_bandwidth(args.bandwidth, &reference, &args.trajectory)?;
     let sim = Simulation {
         bandwidth: args.bandwidth,
         seed: args.seed,
@@ -62,15 +91,89 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         },
         ..Simulation::default()
     };
-    let out = sim.run(&model, &base, &reference)?;
-    out.measured.write_csv(&args.output)?;
-    println!(
+    let result = sim.run(&model, &base, &reference)?;
+    let tolerance = TRACKING_LIMIT + 10.0 * (args.position_noise + args.quantization);
+    check_result(&result.truth, &reference, tolerance)?;
+    check_result(&result.measured, &reference, f64::INFINITY)?;
+    result.measured.write_csv(&args.output)?;
+    let mut stdout = out::Stdout::new();
+    writeln!(
+        stdout,
         "{}: {} samples simulated, written to {}",
         model.name(),
         reference.samples(),
         args.output.display()
-    );
+    )?;
+    stdout.flush()?;
     Ok(())
+}
+
+/// Refuses a bandwidth above a quarter of the trajectory's sample rate at its largest step.
+fn check_bandwidth(bandwidth: f64, reference: &Trajectory, path: &Path) -> Result<(), Error> {
+    let step = reference
+        .t
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(0.0, f64::max);
+    let limit = 0.25 / step;
+    // (a relative margin for time stamps such as 0.01 k, whose steps differ by rounding)
+    if bandwidth > limit * (1.0 + 1e-9) {
+        return Err(format!(
+            "--bandwidth {bandwidth} Hz is above a quarter of the sample rate of {} ({:.4} Hz at \
+             its largest time step {step:e} s), the fastest loop the reference can drive; lower \
+             --bandwidth to at most {limit:.4} Hz or resample the trajectory finer",
+            path.display(),
+            1.0 / step
+        )
+        .into());
+    }
+    Ok(())
+}
+
+/// Refuses a record with a non-finite value, or whose positions leave the reference by more
+/// than `tolerance` (a diverged simulation).
+fn check_result(record: &Record, reference: &Trajectory, tolerance: f64) -> Result<(), Error> {
+    let tr = &record.trajectory;
+    let blocks = [
+        ("q", &tr.q),
+        ("qd", &tr.qd),
+        ("qdd", &tr.qdd),
+        ("tau", &record.tau),
+    ];
+    for (name, block) in blocks {
+        for (j, signal) in block.iter().enumerate() {
+            if let Some(k) = signal.iter().position(|x| !x.is_finite()) {
+                return Err(diverged(
+                    &format!("{name}{} is {}", j + 1, signal[k]),
+                    reference.t.get(k).copied().unwrap_or(f64::NAN),
+                ));
+            }
+        }
+    }
+    for (j, (q, r)) in tr.q.iter().zip(&reference.q).enumerate() {
+        if let Some((k, e)) = q
+            .iter()
+            .zip(r)
+            .map(|(q, r)| (q - r).abs())
+            .enumerate()
+            .find(|(_, e)| *e > tolerance)
+        {
+            return Err(diverged(
+                &format!("q{} is {e:.3e} away from the reference", j + 1),
+                reference.t.get(k).copied().unwrap_or(f64::NAN),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn diverged(what: &str, t: f64) -> Error {
+    format!(
+        "the simulation diverged: at t = {t} s, {what}; lower --bandwidth, or check the \
+         parameters (a nearly singular mass matrix, a joint with almost no inertia, cannot be \
+         controlled)"
+    )
+    .into()
 }
 
 /// The drive terms named on the command line (`Ia`, `Fv`, `Fc`, `Fo`).
@@ -103,4 +206,54 @@ pub(crate) fn load_model(path: &Path, drive: &[String]) -> Result<Interpreted, E
         robot = robot.with_drive(d);
     }
     Ok(Interpreted::new(&robot)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A two-joint record at rest on the reference at t = 0, 0.1, 0.2.
+    fn record() -> (Record, Trajectory) {
+        let reference = Trajectory::zeros(2, vec![0.0, 0.1, 0.2]);
+        let record = Record {
+            trajectory: reference.clone(),
+            tau: vec![vec![0.0; 3]; 2],
+        };
+        (record, reference)
+    }
+
+    #[test]
+    fn a_record_on_the_reference_passes() {
+        let (mut r, reference) = record();
+        r.trajectory.q[1][2] = 0.9;
+        assert!(check_result(&r, &reference, 1.0).is_ok());
+    }
+
+    #[test]
+    fn a_diverged_record_is_refused_naming_the_value_and_the_time() {
+        let (mut r, reference) = record();
+        r.tau[1][2] = f64::INFINITY;
+        let e = check_result(&r, &reference, 1.0).unwrap_err().to_string();
+        assert!(e.contains("at t = 0.2 s, tau2 is inf"), "{e}");
+        let (mut r, reference) = record();
+        r.trajectory.q[0][1] = -1.5;
+        let e = check_result(&r, &reference, 1.0).unwrap_err().to_string();
+        assert!(e.contains("at t = 0.1 s, q1 is 1.500e0 away"), "{e}");
+        assert!(e.contains("lower --bandwidth"), "{e}");
+        assert!(check_result(&r, &reference, f64::INFINITY).is_ok());
+    }
+
+    #[test]
+    fn the_bandwidth_is_at_most_a_quarter_of_the_sample_rate() {
+        let reference = Trajectory::zeros(1, vec![0.0, 0.01, 0.02, 0.04]);
+        let path = Path::new("t.csv");
+        assert!(check_bandwidth(12.5, &reference, path).is_ok());
+        let e = check_bandwidth(13.0, &reference, path)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("--bandwidth 13 Hz") && e.contains("12.5000 Hz"),
+            "{e}"
+        );
+    }
 }

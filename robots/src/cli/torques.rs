@@ -1,21 +1,25 @@
 //! `robid torques ROBOT.toml --parameters PARAMS.toml --states STATES.csv [-o OUT.csv]`:
 //! inverse dynamics row by row (DESIGN.md 10). PARAMS.toml holds a `[standard]` table
 //! (name = value, missing names are 0) or a `[base]` table; STATES.csv has the columns
-//! `q1..qn,qd1..qdn,qdd1..qddn`; the output has `tau1..taun`.
+//! `q1..qn,qd1..qdn,qdd1..qddn`; the output has `tau1..taun`. A torque that is not a
+//! finite number (states or parameters too large for f64) is an error naming the row of
+//! STATES.csv; nothing is written then.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use robid_runtime::data::read_columns;
+use robid_runtime::Model;
+use robid_runtime::data::Table;
 
-use super::Error;
+use super::{Error, files, out};
 
 /// Arguments of `robid torques`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
     /// Robot description file (TOML).
     robot: PathBuf,
-    /// Parameter file with a `[standard]` or a `[base]` table.
+    /// Parameter file with a `[standard]` or a `[base]` table (values within +-1e6, see
+    /// README "Parameter files").
     #[arg(long)]
     parameters: PathBuf,
     /// States, header q1..qn,qd1..qdn,qdd1..qddn.
@@ -28,6 +32,9 @@ pub(crate) struct Args {
 
 /// Computes and writes the torques.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    if let Some(output) = &args.output {
+        files::refuse(&[&args.robot, &args.parameters, &args.states], &[output])?;
+    }
     let chosen = super::identify::robot_model(&args.robot)?;
     let model = chosen.model.as_ref();
     let n = model.dof();
@@ -36,26 +43,82 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))
         .collect();
-    let table = read_columns(&args.states, &names)?;
+    let table = super::states::read(&args.states, &names)?;
+    let text = torques(model, &base, &table)?;
+    match &args.output {
+        Some(p) => files::write(p, &text)?,
+        None => out::print(&text)?,
+    }
+    Ok(())
+}
+
+/// The torques of every row of `table` (columns `q1..qn,qd1..qdn,qdd1..qddn`) as CSV
+/// text with the header `tau1..taun`; a torque that is not finite is an error naming the
+/// row of the states file.
+fn torques(model: &dyn Model, base: &[f64], table: &Table) -> Result<String, Error> {
+    let n = model.dof();
     let header: Vec<String> = (1..=n).map(|j| format!("tau{j}")).collect();
-    let mut out = header.join(",") + "\n";
+    let mut text = header.join(",") + "\n";
     let (mut q, mut qd, mut qdd, mut tau) =
         (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    for k in 0..table.rows() {
+    for (k, line) in table.lines.iter().enumerate() {
         for j in 0..n {
             q[j] = table.columns[j][k];
             qd[j] = table.columns[n + j][k];
             qdd[j] = table.columns[2 * n + j][k];
         }
-        model.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau)?;
-        let row: Vec<String> = tau.iter().map(|t| format!("{t:e}")).collect();
-        let _ = writeln!(out, "{}", row.join(","));
-    }
-    match &args.output {
-        Some(p) => {
-            std::fs::write(p, out).map_err(|e| format!("{}: cannot write: {e}", p.display()))?
+        model.inverse_dynamics(&q, &qd, &qdd, base, &mut tau)?;
+        if let Some(j) = tau.iter().position(|t| !t.is_finite()) {
+            return Err(format!(
+                "{}:{line}: tau{} = {} from this row's states: the states or the parameters are \
+                 too large for f64 arithmetic; check this row and the parameter values",
+                table.path.display(),
+                j + 1,
+                tau[j],
+            )
+            .into());
         }
-        None => print!("{out}"),
+        let row: Vec<String> = tau.iter().map(|t| format!("{t:e}")).collect();
+        let _ = writeln!(text, "{}", row.join(","));
     }
-    Ok(())
+    Ok(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    /// Two rows of the UR5e from lines 2 and 7 of a states file.
+    fn table(qd: f64) -> Table {
+        let mut columns = vec![vec![0.1, 0.2]; 18];
+        columns[6] = vec![0.0, qd];
+        Table {
+            path: Path::new("states.csv").to_path_buf(),
+            columns,
+            lines: vec![2, 7],
+        }
+    }
+
+    #[test]
+    fn every_row_gives_a_line_of_finite_torques() {
+        let model = robots::Ur5e;
+        let base = vec![0.5; robots::Ur5e::BASE_PARAMETERS];
+        let text = torques(&model, &base, &table(1.0)).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "tau1,tau2,tau3,tau4,tau5,tau6");
+        assert_eq!(lines.len(), 3);
+    }
+
+    /// States and parameters that overflow f64 (1e300 each) give no output but the row.
+    #[test]
+    fn a_non_finite_torque_is_an_error_naming_the_row() {
+        let model = robots::Ur5e;
+        let base = vec![1e300; robots::Ur5e::BASE_PARAMETERS];
+        let e = torques(&model, &base, &table(1e300))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("states.csv:7: tau"), "{e}");
+        assert!(e.contains("too large for f64"), "{e}");
+    }
 }

@@ -1,0 +1,171 @@
+//! Checks of command-line values, as clap value parsers: a value outside its documented
+//! range is refused before any work, and clap names the flag in the message
+//! (`invalid value '0' for '--sigma <SIGMA>': 0 is outside [1e-9, 1e6] N m`).
+//!
+//! The ranges are in each flag's `--help` text and in README.md ("Using robid").
+
+use std::fmt;
+
+use super::Error;
+
+/// The most samples `robid excite` writes (`--duration` x `--rate`): a million rows of
+/// `t,q,qd,qdd` (e.g. 1000 s at 1 kHz), about 180 MB in memory for seven joints.
+pub(crate) const MAX_SAMPLES: f64 = 1e6;
+
+/// A range of real numbers `lo..=hi` (`lo` excluded when `open`), in `unit`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Range {
+    lo: f64,
+    hi: f64,
+    open: bool,
+    unit: &'static str,
+}
+
+impl fmt::Display for Range {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let open = if self.open { '(' } else { '[' };
+        write!(f, "{open}{}, {}]", short(self.lo), short(self.hi))?;
+        if !self.unit.is_empty() {
+            write!(f, " {}", self.unit)?;
+        }
+        Ok(())
+    }
+}
+
+/// `x` as people write limits: `0`, `0.5`, `200`, `1e6`, `1e-9`.
+pub(crate) fn short(x: f64) -> String {
+    if x == 0.0 || (1e-3..1e4).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+impl Range {
+    fn contains(&self, x: f64) -> bool {
+        (if self.open { x > self.lo } else { x >= self.lo }) && x <= self.hi
+    }
+
+    /// Parses one value.
+    fn parse(&self, text: &str) -> Result<f64, String> {
+        let x: f64 = text
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{text}` is not a number; write a decimal number such as 0.5"))?;
+        let text = text.trim();
+        if !x.is_finite() {
+            return Err(format!(
+                "{text} is not a finite number; give a value in {self}"
+            ));
+        }
+        if !self.contains(x) {
+            return Err(format!("{text} is outside {self}"));
+        }
+        Ok(x)
+    }
+}
+
+/// Real numbers in `[lo, hi]`, in `unit`.
+pub(crate) const fn closed(lo: f64, hi: f64, unit: &'static str) -> Range {
+    Range {
+        lo,
+        hi,
+        open: false,
+        unit,
+    }
+}
+
+/// Real numbers in `(0, hi]`, in `unit`.
+pub(crate) const fn positive(hi: f64, unit: &'static str) -> Range {
+    Range {
+        lo: 0.0,
+        hi,
+        open: true,
+        unit,
+    }
+}
+
+/// The clap value parser of `range`.
+pub(crate) fn real(
+    range: Range,
+) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
+    move |text| range.parse(text)
+}
+
+/// The clap value parser of whole numbers in `lo..=hi`.
+pub(crate) fn count(
+    lo: usize,
+    hi: usize,
+) -> impl Fn(&str) -> Result<usize, String> + Clone + Send + Sync + 'static {
+    move |text| {
+        let n: usize = text
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{text}` is not a whole number; give one in {lo}..={hi}"))?;
+        if !(lo..=hi).contains(&n) {
+            return Err(format!("{n} is outside {lo}..={hi}"));
+        }
+        Ok(n)
+    }
+}
+
+/// Refuses a sampling of `duration` s at `rate` Hz with more than [`MAX_SAMPLES`]
+/// samples, before anything is allocated.
+pub(crate) fn check_samples(duration: f64, rate: f64) -> Result<(), Error> {
+    let samples = duration * rate;
+    if samples.is_finite() && samples <= MAX_SAMPLES {
+        return Ok(());
+    }
+    Err(format!(
+        "--duration {duration} s at --rate {rate} Hz gives {} samples, more than the \
+         limit of {MAX_SAMPLES:e}; shorten --duration or lower --rate",
+        short(samples)
+    )
+    .into())
+}
+
+/// Refuses `flag` when it was given but belongs to another method than `method`.
+pub(crate) fn only_for(given: bool, flag: &str, owner: &str, method: &str) -> Result<(), Error> {
+    if given {
+        return Err(format!(
+            "{flag} is an option of {owner}, not of {method}; drop {flag} or use {owner}"
+        )
+        .into());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_refuse_what_lies_outside_and_say_why() {
+        let p = real(positive(1e6, "Hz"));
+        assert_eq!(p("500"), Ok(500.0));
+        assert_eq!(p("1e6"), Ok(1e6));
+        assert_eq!(p("0").unwrap_err(), "0 is outside (0, 1e6] Hz");
+        assert!(p("1e9").unwrap_err().contains("outside (0, 1e6] Hz"));
+        assert!(p("-1").unwrap_err().contains("outside"));
+        assert!(p("nan").unwrap_err().contains("not a finite number"));
+        assert!(p("inf").unwrap_err().contains("not a finite number"));
+        assert!(p("fast").unwrap_err().contains("`fast` is not a number"));
+        let c = real(closed(0.0, 1.0, "rad"));
+        assert_eq!(c("0"), Ok(0.0));
+        assert!(c("1.5").is_err());
+        let n = count(2, 50);
+        assert_eq!(n("2"), Ok(2));
+        assert!(n("1").unwrap_err().contains("outside 2..=50"));
+        assert!(n("51").is_err());
+        assert!(n("-3").unwrap_err().contains("not a whole number"));
+    }
+
+    #[test]
+    fn samples_are_checked_before_allocating() {
+        assert!(check_samples(1000.0, 1000.0).is_ok());
+        let e = check_samples(1e9, 500.0).unwrap_err().to_string();
+        assert!(e.contains("--duration") && e.contains("--rate"), "{e}");
+        assert!(check_samples(30.0, 1e9).is_err());
+        assert!(check_samples(1e6, 1e6).is_err());
+    }
+}

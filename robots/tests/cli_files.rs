@@ -1,0 +1,348 @@
+//! Files `robid` writes: an output that is the same file as an input is refused before
+//! any work (the same path, the path spelt with `./`, a hard link, a symbolic link), for
+//! every subcommand that writes; and a failed or killed write leaves an existing file
+//! exactly as it was (every output goes through a temporary file and a rename).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{asset, fails_with, folder, robid, robid_in, stderr, ur5e_states, write};
+
+/// The inputs of the cases, copied into a fresh folder.
+struct Inputs {
+    dir: tempfile::TempDir,
+}
+
+impl Inputs {
+    fn new() -> Self {
+        let dir = folder();
+        let copy = |from: &str, to: &str| {
+            std::fs::copy(asset(from), dir.path().join(to)).expect("input copied");
+        };
+        copy("descriptions/ur5e.toml", "robot.toml");
+        copy("parameters/ur5e.toml", "params.toml");
+        copy("configs/tx40_robot.toml", "tx40.toml");
+        copy("tests/fixtures/tx40_identified.json", "identified.json");
+        copy("tests/fixtures/tx40_bounds.toml", "bounds.toml");
+        copy("parameters/tx40.toml", "prior.toml");
+        ur5e_states(dir.path(), 20);
+        write(dir.path(), "data.csv", "t,q1\n0,0\n");
+        write(dir.path(), "validation.csv", "t,q1\n0,0\n");
+        write(dir.path(), "config.toml", "time_column = \"t\"\n");
+        Self { dir }
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        self.dir.path().join(name)
+    }
+
+    /// `template` with `{name}` replaced by the absolute path of input `name` and
+    /// `{out}` by `out`.
+    fn args(&self, template: &[&str], out: &str) -> Vec<String> {
+        template
+            .iter()
+            .map(
+                |a| match a.strip_prefix('{').and_then(|a| a.strip_suffix('}')) {
+                    Some("out") => out.to_string(),
+                    Some(name) => self.path(name).display().to_string(),
+                    None => a.to_string(),
+                },
+            )
+            .collect()
+    }
+}
+
+/// Every subcommand that writes a file, with each of its inputs as the victim.
+fn cases() -> Vec<(Vec<&'static str>, &'static str)> {
+    let torques = vec![
+        "torques",
+        "{robot.toml}",
+        "--parameters",
+        "{params.toml}",
+        "--states",
+        "{states.csv}",
+        "-o",
+        "{out}",
+    ];
+    let excite = vec![
+        "excite",
+        "{robot.toml}",
+        "--parameters",
+        "{params.toml}",
+        "-o",
+        "{out}",
+    ];
+    let simulate = vec![
+        "simulate",
+        "{robot.toml}",
+        "--parameters",
+        "{params.toml}",
+        "--trajectory",
+        "{states.csv}",
+        "-o",
+        "{out}",
+    ];
+    let identify = |output: &'static str| {
+        vec![
+            "identify",
+            "{robot.toml}",
+            "--config",
+            "{config.toml}",
+            "--data",
+            "{data.csv}",
+            "--validate",
+            "{validation.csv}",
+            output,
+            "{out}",
+        ]
+    };
+    let feasible = vec![
+        "feasible",
+        "{tx40.toml}",
+        "--identified",
+        "{identified.json}",
+        "--bounds",
+        "{bounds.toml}",
+        "--prior",
+        "{prior.toml}",
+        "-o",
+        "{out}",
+    ];
+    let mut cases = vec![(vec!["emit", "{robot.toml}", "-o", "{out}"], "robot.toml")];
+    for victim in ["robot.toml", "params.toml", "states.csv"] {
+        cases.push((torques.clone(), victim));
+        cases.push((simulate.clone(), victim));
+    }
+    for victim in ["robot.toml", "params.toml"] {
+        cases.push((excite.clone(), victim));
+    }
+    for victim in ["robot.toml", "config.toml", "data.csv", "validation.csv"] {
+        cases.push((identify("--json"), victim));
+        cases.push((identify("--plot"), victim));
+    }
+    for victim in ["tx40.toml", "identified.json", "bounds.toml", "prior.toml"] {
+        cases.push((feasible.clone(), victim));
+    }
+    cases
+}
+
+/// Runs `args` (from `dir`) and checks that it was refused naming the output as an input
+/// and that `victim` is byte for byte what it was.
+#[track_caller]
+fn refused(dir: &Path, args: &[String], victim: &Path) {
+    let before = std::fs::read(victim).unwrap();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = robid_in(dir, &args);
+    fails_with(&o, &["is also an input of this run"]);
+    assert!(
+        std::fs::read(victim).unwrap() == before,
+        "{args:?}: {} changed",
+        victim.display()
+    );
+}
+
+#[test]
+fn an_output_that_is_an_input_is_refused_by_every_writer() {
+    let inputs = Inputs::new();
+    let dir = inputs.dir.path();
+    for (template, victim) in cases() {
+        let target = inputs.path(victim);
+        // the same path as given for the input
+        refused(
+            dir,
+            &inputs.args(&template, &target.display().to_string()),
+            &target,
+        );
+        // another spelling of it: relative, with `./`
+        refused(
+            dir,
+            &inputs.args(&template, &format!("./{victim}")),
+            &target,
+        );
+        // a hard link: another name of the same file
+        let hard = dir.join(format!("hard-{victim}"));
+        std::fs::hard_link(&target, &hard).unwrap();
+        refused(
+            dir,
+            &inputs.args(&template, &hard.display().to_string()),
+            &target,
+        );
+        std::fs::remove_file(&hard).unwrap();
+        #[cfg(unix)]
+        {
+            let link = dir.join(format!("link-{victim}"));
+            std::os::unix::fs::symlink(&target, &link).unwrap();
+            refused(
+                dir,
+                &inputs.args(&template, &link.display().to_string()),
+                &target,
+            );
+            assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
+            std::fs::remove_file(&link).unwrap();
+        }
+    }
+}
+
+/// `--plot DIR`: the files that will be written in DIR count as outputs. An input named
+/// like one of them (`fit_joint2.svg`, `validation1_joint6.svg`) is refused before any
+/// data is read, and so is DIR when it is an input file itself.
+#[test]
+fn the_plot_files_count_as_outputs() {
+    let inputs = Inputs::new();
+    let dir = inputs.dir.path();
+    let plots = dir.join("plots");
+    std::fs::create_dir(&plots).unwrap();
+    for name in ["fit_joint2.svg", "validation1_joint6.svg"] {
+        let data = write(&plots, name, "t,q1\n0,0\n");
+        let args = inputs.args(
+            &[
+                "identify",
+                "{robot.toml}",
+                "--data",
+                &data.display().to_string(),
+                "--validate",
+                "{data.csv}",
+                "--plot",
+                "{out}",
+            ],
+            &plots.display().to_string(),
+        );
+        refused(dir, &args, &data);
+    }
+    let args = inputs.args(
+        &[
+            "identify",
+            "{robot.toml}",
+            "--data",
+            "{data.csv}",
+            "--plot",
+            "{out}",
+        ],
+        "./data.csv",
+    );
+    refused(dir, &args, &inputs.path("data.csv"));
+}
+
+/// The refusal comes before any other input is read: with a broken parameter file and
+/// the output on the states, the message is about the output.
+#[test]
+fn the_refusal_comes_before_any_work() {
+    let inputs = Inputs::new();
+    let dir = inputs.dir.path();
+    write(dir, "params.toml", "[standard\n");
+    for template in [
+        &[
+            "torques",
+            "{robot.toml}",
+            "--parameters",
+            "{params.toml}",
+            "--states",
+            "{states.csv}",
+            "-o",
+            "{out}",
+        ][..],
+        &[
+            "excite",
+            "{robot.toml}",
+            "--parameters",
+            "{params.toml}",
+            "-o",
+            "{out}",
+        ][..],
+    ] {
+        let victim = if template[0] == "torques" {
+            "states.csv"
+        } else {
+            "robot.toml"
+        };
+        let target = inputs.path(victim);
+        refused(
+            dir,
+            &inputs.args(template, &target.display().to_string()),
+            &target,
+        );
+    }
+}
+
+/// `robid torques` with a file size limit (`ulimit -f`) far below its output: killed by
+/// SIGXFSZ in the middle of writing, or (with the signal ignored) stopped by the write
+/// error, it leaves the previous output exactly as it was; with the error, also no
+/// temporary file. (The old writer left the first 512 bytes of the new output.)
+#[cfg(unix)]
+#[test]
+fn a_failed_or_killed_write_leaves_the_old_file_whole() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::Command;
+
+    let dir = folder();
+    let states = ur5e_states(dir.path(), 2000);
+    let output = write(dir.path(), "torques.csv", "the previous output\n");
+    let run = |ignore_signal: bool| {
+        let script = if ignore_signal {
+            "trap '' XFSZ; ulimit -f 1; exec \"$0\" \"$@\""
+        } else {
+            "ulimit -f 1; exec \"$0\" \"$@\""
+        };
+        Command::new("sh")
+            .arg("-c")
+            .arg(script)
+            .arg(env!("CARGO_BIN_EXE_robid"))
+            .args([
+                "torques",
+                &asset("descriptions/ur5e.toml"),
+                "--parameters",
+                &asset("parameters/ur5e.toml"),
+                "--states",
+                states.to_str().unwrap(),
+                "-o",
+                output.to_str().unwrap(),
+            ])
+            .output()
+            .expect("sh runs")
+    };
+    let temporary = || {
+        std::fs::read_dir(dir.path())
+            .unwrap()
+            .filter(|e| {
+                let name = e.as_ref().unwrap().file_name();
+                name.to_string_lossy().ends_with(".tmp")
+            })
+            .count()
+    };
+    let killed = run(false);
+    assert_eq!(killed.status.signal(), Some(25), "SIGXFSZ: {killed:?}");
+    assert_eq!(
+        std::fs::read_to_string(&output).unwrap(),
+        "the previous output\n"
+    );
+    // a killed program cannot clean up: its temporary file stays beside the target
+    let after_kill = temporary();
+    let failed = run(true);
+    fails_with(&failed, &["torques.csv: cannot write"]);
+    assert_eq!(
+        std::fs::read_to_string(&output).unwrap(),
+        "the previous output\n"
+    );
+    assert_eq!(
+        temporary(),
+        after_kill,
+        "the failed write removes its temporary file"
+    );
+    // Without the limit the output is replaced as a whole.
+    let o = robid(&[
+        "torques",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--states",
+        states.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(&output).unwrap().lines().count(),
+        2001
+    );
+}
