@@ -21,6 +21,7 @@ mod num;
 mod parse;
 pub mod simplify;
 
+pub(crate) use ast::Ast;
 pub use eval::Values;
 pub use num::Num;
 pub use parse::{MAX_EXPONENT, MAX_EXPRESSION_LEN, MAX_NESTING, ParseError};

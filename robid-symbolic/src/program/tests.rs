@@ -97,7 +97,7 @@ fn programs_agree_for_reference_robots() {
             let robot = robot.clone().with_drive(drive);
             let p = super::RobotPrograms::derive(&robot).unwrap();
             let n = robot.dof();
-            let geometry: Vec<f64> = robot.symbols.iter().map(|(_, v)| v.unwrap()).collect();
+            let geometry: Vec<f64> = robot.symbols().iter().map(|(_, v)| v.unwrap()).collect();
             let run = |prog: &Program, inputs: Vec<&[f64]>| {
                 let mut inputs = inputs.clone();
                 if !geometry.is_empty() {
