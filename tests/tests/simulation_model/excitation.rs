@@ -100,7 +100,7 @@ impl Setup {
         );
         println!(
             "{} Fourier: cond {:.1} over {} samples",
-            self.model.programs().robot.name,
+            self.model.programs().robot.name(),
             a.condition_number,
             a.samples
         );
@@ -191,7 +191,7 @@ impl Setup {
         let a = assess(&self.model, &tr, &self.limits, Some(&self.truth), 1);
         println!(
             "{} points: extended-regressor cost {:.1} (from {:.1}), cond {:.1} over {} samples, {} evaluations in {:?}",
-            self.model.programs().robot.name,
+            self.model.programs().robot.name(),
             r.cost,
             r.initial_cost,
             a.condition_number,
