@@ -22,9 +22,9 @@ pub(super) struct Parts {
     pub(super) joints: Vec<Joint>,
     /// Values given to symbols, in the order given.
     pub(super) values: Vec<(String, f64)>,
-    /// Some value could not be read (its symbols are unknown): a value given
-    /// to a symbol nothing uses is then not reported.
-    pub(super) incomplete: bool,
+    /// The words of values that could not be read (their symbols are
+    /// unknown): a value given to one of them is not reported as unused.
+    pub(super) unread_words: Vec<String>,
 }
 
 /// A DH value of a joint.
@@ -264,7 +264,7 @@ impl Parts {
                     "give a finite number",
                 );
             }
-            if !symbols.contains(s) && !self.incomplete {
+            if !symbols.contains(s) && !self.unread_words.contains(s) {
                 error(
                     Item::Symbol(s),
                     format!("symbol `{s}` has a value but no DH value or gravity uses it"),
@@ -286,7 +286,11 @@ impl Parts {
         }
         for (j, joint) in self.joints.iter().enumerate() {
             for (limit, message, help) in limit_problems(&joint.limits) {
-                error(Item::Limit(j, limit), message, &help);
+                error(
+                    Item::Limit(j, limit),
+                    format!("joint {} {message}", j + 1),
+                    &help,
+                );
             }
         }
         if !errors.is_empty() {
@@ -414,21 +418,16 @@ fn value_problem(
     }
     let values = arena.values(&pairs);
     let v = arena.eval(&[id], &values).ok()?.first().copied()?;
-    let at = if pairs.is_empty() {
-        String::new()
-    } else {
-        " at the [symbols] values".to_owned()
-    };
     if !v.is_finite() {
         return Some((
-            format!("{what} is {v}{at}"),
-            "give values that make it a finite number".to_owned(),
+            format!("{what} is {v} at the [symbols] values"),
+            "give the symbols values that make it a finite number".to_owned(),
         ));
     }
-    let is = if at.is_empty() {
-        what.clone()
+    let is = if pairs.is_empty() {
+        format!("{what} is")
     } else {
-        format!("{what} is {}{at}:", show(v))
+        format!("{what} is {} at the [symbols] values,", show(v))
     };
     match role {
         Role::Length if v.abs() > MAX_LENGTH => Some((
@@ -457,7 +456,7 @@ fn value_problem(
             (off < ANGLE_RESOLUTION).then(|| {
                 let exact = quarter_text(k);
                 (
-                    format!("{is} only {} rad from {exact}", show(off)),
+                    format!("{is} only {off:.1e} rad from {exact}"),
                     format!(
                         "write \"{exact}\" for the exact angle, or an angle at least {} rad from every multiple of pi/2",
                         show(ANGLE_RESOLUTION)
@@ -488,7 +487,7 @@ fn quarter_text(k: f64) -> String {
 fn quoted(g: &Geometry) -> String {
     match g {
         Geometry::Number(n) => show(n.value()),
-        Geometry::Expression(_) => format!("\"{}\"", g.as_str()),
+        Geometry::Expression(_) => format!("\"{}\"", super::geometry::excerpt(g.as_str())),
     }
 }
 

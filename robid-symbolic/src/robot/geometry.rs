@@ -58,14 +58,11 @@ impl Expression {
 /// A geometric value that cannot be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
+#[error("{}; {}", self.message(), self.help())]
 pub enum GeometryError {
     /// A number that is NaN or infinite.
-    #[error("`{0}` is not a finite number; DH values and gravity are finite numbers")]
     NotFinite(f64),
     /// Text that is not an expression, or beyond the expression reader's limits.
-    #[error(
-        "`{text}` is not an expression ({error}); write a number, an angle such as \"pi/2\", or a symbol such as \"L3\" or \"-d4\""
-    )]
     Parse {
         /// The text.
         text: String,
@@ -73,14 +70,8 @@ pub enum GeometryError {
         error: ParseError,
     },
     /// The expression calls a function.
-    #[error(
-        "`{0}` calls a function; geometric values are sums and products of numbers, pi and symbols"
-    )]
     Function(String),
     /// The expression uses a name robid gives to joint variables and parameters.
-    #[error(
-        "`{text}` uses `{name}`, a name robid gives to joint variables and parameters; rename the symbol, e.g. `L3` or `d_tool`"
-    )]
     Reserved {
         /// The text.
         text: String,
@@ -90,9 +81,48 @@ pub enum GeometryError {
 }
 
 impl GeometryError {
+    /// What is wrong (the first part of the error's text).
+    pub fn message(&self) -> String {
+        match self {
+            GeometryError::NotFinite(x) => format!("`{x}` is not a finite number"),
+            GeometryError::Parse { text, error } => {
+                format!("`{}` is not an expression: {error}", excerpt(text))
+            }
+            GeometryError::Function(text) => format!("`{}` calls a function", excerpt(text)),
+            GeometryError::Reserved { text, name } => format!(
+                "`{}` uses `{name}`, a name robid gives to joint variables and parameters",
+                excerpt(text)
+            ),
+        }
+    }
+
+    /// How to fix it (the second part of the error's text).
+    pub fn help(&self) -> &'static str {
+        match self {
+            GeometryError::NotFinite(_) => "DH values and gravity are finite numbers",
+            GeometryError::Parse {
+                error: ParseError::Syntax { .. } | ParseError::DivisionByZero { .. },
+                ..
+            } => {
+                "write a number, an angle such as \"pi/2\", or a symbol expression such as \"L3\" or \"-d4\""
+            }
+            GeometryError::Parse { .. } => {
+                "geometric values are short expressions in numbers, pi and symbols"
+            }
+            GeometryError::Function(_) => {
+                "geometric values are sums and products of numbers, pi and symbols"
+            }
+            GeometryError::Reserved { .. } => "rename the symbol, e.g. `L3` or `d_tool`",
+        }
+    }
+
     /// Byte offset of the problem in the text, when it is about one place of it.
     pub fn position(&self) -> Option<usize> {
         match self {
+            GeometryError::Parse {
+                error: ParseError::TooLong { .. },
+                ..
+            } => None,
             GeometryError::Parse { error, .. } => Some(error.position()),
             _ => None,
         }
@@ -208,6 +238,14 @@ impl Geometry {
 impl fmt::Display for Geometry {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.as_str())
+    }
+}
+
+/// At most the first 40 characters of `text`, for messages.
+pub(crate) fn excerpt(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        Some((end, _)) => format!("{}...", &text[..end]),
+        None => text.to_owned(),
     }
 }
 

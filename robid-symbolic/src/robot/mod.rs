@@ -191,7 +191,7 @@ impl Robot {
             gravity: gravity.unwrap_or_else(default_gravity),
             joints,
             values: Vec::new(),
-            incomplete: false,
+            unread_words: Vec::new(),
         };
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
@@ -308,7 +308,7 @@ impl Robot {
                 .into_iter()
                 .filter_map(|(s, v)| Some((s, v?)))
                 .collect(),
-            incomplete: false,
+            unread_words: Vec::new(),
         }
     }
 }

@@ -51,8 +51,9 @@ pub(super) struct Reader<'a> {
     place: &'a Place<'a>,
     errors: Vec<DescriptionError>,
     spans: Spans,
-    /// Some geometric value could not be read (so its symbols are unknown).
-    unreadable_values: bool,
+    /// The words of geometric values that could not be read (their symbols
+    /// are unknown).
+    unread_words: Vec<String>,
 }
 
 const ROBOT_KEYS: [&str; 6] = [
@@ -72,7 +73,7 @@ impl<'a> Reader<'a> {
             place,
             errors: Vec::new(),
             spans: Spans::default(),
-            unreadable_values: false,
+            unread_words: Vec::new(),
         }
     }
 
@@ -131,7 +132,7 @@ impl<'a> Reader<'a> {
             gravity: gravity.unwrap_or_else(super::default_gravity),
             joints,
             values: symbols,
-            incomplete: self.unreadable_values,
+            unread_words: std::mem::take(&mut self.unread_words),
         }
     }
 
@@ -410,7 +411,13 @@ impl<'a> Reader<'a> {
     /// A geometric value: a finite number or an expression in text.
     fn geometry(&mut self, v: &Value<'_>, what: &str) -> Option<Geometry> {
         let g = self.read_geometry(v, what);
-        self.unreadable_values |= g.is_none();
+        if g.is_none()
+            && let DeValue::String(text) = v.get_ref()
+        {
+            let words = text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'));
+            self.unread_words
+                .extend(words.filter(|w| !w.is_empty()).map(str::to_owned));
+        }
         g
     }
 
@@ -420,11 +427,7 @@ impl<'a> Reader<'a> {
                 Ok(g) => Some(g),
                 Err(e) => {
                     let span = inside(self.place.text, v.span(), text, e.position());
-                    self.error(
-                        span,
-                        format!("{what}: {e}"),
-                        "see the description format (robid_symbolic::robot::bounds for the limits)",
-                    );
+                    self.error(span, format!("{what}: {}", e.message()), e.help());
                     None
                 }
             };
