@@ -89,6 +89,10 @@ impl GeometryError {
                 format!("`{}` is not an expression: {error}", excerpt(text))
             }
             GeometryError::Function(text) => format!("`{}` calls a function", excerpt(text)),
+            GeometryError::Reserved { text, name } if not_finite_name(name) => format!(
+                "`{}` uses `{name}`, which reads as a number that is not finite",
+                excerpt(text)
+            ),
             GeometryError::Reserved { text, name } => format!(
                 "`{}` uses `{name}`, a name robid gives to joint variables and parameters",
                 excerpt(text)
@@ -147,7 +151,8 @@ impl Geometry {
     /// An expression in numbers, `pi` and symbol names, read now (within the
     /// limits of [`Arena::parse`]); fails on text that is not one, that calls a
     /// function or that uses a name robid gives to joint variables and
-    /// parameters (`q1`, `qd1`, `qdd1`, `XX1` .. `M1`, `Ia1`, `Fv1`, `Fc1`, `Fo1`).
+    /// parameters (`q1`, `qd1`, `qdd1`, `XX1` .. `M1`, `Ia1`, `Fv1`, `Fc1`,
+    /// `Fo1`) or that reads as a non-finite number (`inf`, `nan`).
     pub fn text(text: &str) -> Result<Geometry, GeometryError> {
         let text = text.trim();
         let parse_error = |error| GeometryError::Parse {
@@ -259,6 +264,16 @@ pub(crate) fn reserved(name: &str) -> bool {
         name.strip_prefix(p)
             .is_some_and(|rest| !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit()))
     }) || name == "pi"
+        || not_finite_name(name)
+}
+
+/// `inf`, `infinity` and `nan` in any case: as symbols they would read as
+/// non-finite numbers in every text robid writes.
+fn not_finite_name(name: &str) -> bool {
+    matches!(
+        name.to_ascii_lowercase().as_str(),
+        "inf" | "infinity" | "nan"
+    )
 }
 
 #[cfg(test)]
@@ -292,6 +307,11 @@ mod tests {
             Geometry::text("2^1024"),
             Err(GeometryError::Parse { .. })
         ));
+        for name in ["inf", "NaN", "Infinity"] {
+            let e = Geometry::text(&format!("pi/{name}")).unwrap_err();
+            assert!(e.to_string().contains("not finite"), "{e}");
+        }
+        assert!(Geometry::text("L_inf + nan2").is_ok());
     }
 
     #[test]
