@@ -5,6 +5,7 @@
 use crate::input::{Input, Item};
 use proc_macro2::Span;
 use robid_symbolic::robot::Geometry;
+use robid_symbolic::robot::bounds::MAX_DESCRIPTION_LEN;
 use robid_symbolic::{Convention, DescriptionError, Drive, Joint, JointKind, Robot};
 use std::path::PathBuf;
 use syn::spanned::Spanned;
@@ -195,6 +196,19 @@ fn from_file(cx: &mut Ctxt, e: &Expr) -> Option<(Robot, Option<PathBuf>)> {
         && beside.exists()
     {
         path = beside;
+    }
+    // Larger than a description may be: refused before reading it.
+    if let Ok(meta) = std::fs::metadata(&path)
+        && meta.len() > MAX_DESCRIPTION_LEN as u64
+    {
+        cx.error(
+            lit.span(),
+            format!(
+                "`{relative}` is {} bytes, more than the {MAX_DESCRIPTION_LEN} a description may have; check the path",
+                meta.len()
+            ),
+        );
+        return None;
     }
     let text = match std::fs::read_to_string(&path) {
         Ok(t) => t,

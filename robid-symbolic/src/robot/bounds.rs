@@ -31,27 +31,27 @@ pub const MAX_JOINTS: usize = 32;
 /// as polynomials of degree two in them, so the fit grows with their square).
 pub const MAX_SYMBOLS: usize = 16;
 
-/// Largest magnitude of a DH length `a` or `d` [m].
+/// Largest magnitude of a DH length `a` or `d` (m).
 pub const MAX_LENGTH: f64 = 1e3;
 
-/// Smallest magnitude of a DH length that is not zero [m] (1 µm): anything
+/// Smallest magnitude of a DH length that is not zero (m) (1 µm): anything
 /// shorter is a mistake (millimetres?) or is meant to be 0.
 pub const MIN_LENGTH: f64 = 1e-6;
 
-/// Largest magnitude of a DH angle `alpha` or `theta` [rad]: one turn. A
+/// Largest magnitude of a DH angle `alpha` or `theta` (rad): one turn. A
 /// larger angle is usually written in degrees.
 pub const MAX_ANGLE: f64 = 2.0 * std::f64::consts::PI;
 
-/// Smallest distance [rad] between a DH angle that is not exactly `k pi/2` and
+/// Smallest distance (rad) between a DH angle that is not exactly `k pi/2` and
 /// the nearest `k pi/2`. `1.5707963` is 2.7e-8 rad from `pi/2`: an
 /// approximation of a right angle that would make axes almost, not exactly,
 /// perpendicular (write `"pi/2"`).
 pub const ANGLE_RESOLUTION: f64 = 1e-5;
 
-/// Largest magnitude of a gravity component [m/s^2] (100 g).
+/// Largest magnitude of a gravity component (m/s^2) (100 g).
 pub const MAX_GRAVITY: f64 = 1e3;
 
-/// Smallest magnitude of a gravity component that is not zero [m/s^2]: a
+/// Smallest magnitude of a gravity component that is not zero (m/s^2): a
 /// tilt of 1e-4 rad under 9.81 m/s^2. Smaller components are not told apart
 /// from zero by the regrouping; write 0.
 pub const MIN_GRAVITY: f64 = 1e-3;
@@ -64,18 +64,18 @@ pub const SYMBOL_SAMPLES: [f64; 2] = [0.2, 1.0];
 /// [`SYMBOL_SAMPLES`] (the regrouping samples them there).
 pub const MAX_SAMPLED: f64 = 1e3;
 
-/// Largest magnitude of a position limit [rad or m].
+/// Largest magnitude of a position limit (rad or m).
 pub const MAX_POSITION: f64 = 1e3;
 
-/// Largest velocity limit [rad/s or m/s].
+/// Largest velocity limit (rad/s or m/s).
 pub const MAX_VELOCITY: f64 = 1e4;
 
-/// Largest acceleration limit [rad/s^2 or m/s^2].
+/// Largest acceleration limit (rad/s^2 or m/s^2).
 pub const MAX_ACCELERATION: f64 = 1e6;
 
-/// Largest torque or force limit [N m or N].
+/// Largest torque or force limit (N m or N).
 pub const MAX_TORQUE: f64 = 1e7;
 
-/// Largest description text read [bytes] (the reference descriptions are
+/// Largest description text read (bytes) (the reference descriptions are
 /// about 2 kB).
 pub const MAX_DESCRIPTION_LEN: usize = 1 << 20;

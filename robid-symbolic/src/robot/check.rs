@@ -396,7 +396,7 @@ fn value_problem(
     let id = g.to_expr(&mut arena);
     if !g.symbols().is_empty() {
         let bound = magnitude_bound(&arena, id, |_| SYMBOL_SAMPLES);
-        if !(bound <= MAX_SAMPLED) {
+        if bound.is_nan() || bound > MAX_SAMPLED {
             let [low, high] = SYMBOL_SAMPLES;
             return Some((
                 format!(

@@ -91,7 +91,7 @@ impl Locate for FileLocator<'_> {
 
 impl Robot {
     /// Reads a description file (at most
-    /// [`MAX_DESCRIPTION_LEN`](super::bounds::MAX_DESCRIPTION_LEN) bytes).
+    /// [`MAX_DESCRIPTION_LEN`] bytes).
     pub fn from_file(path: &std::path::Path) -> Result<Robot, DescriptionError> {
         let file = path.display().to_string();
         let read_error = |reason: String| DescriptionError::Read {

@@ -57,7 +57,7 @@ pub enum JointKind {
 /// Joint limits (all optional).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Limits {
-    /// Lower and upper position [rad or m].
+    /// Lower and upper position (rad or m).
     pub position: Option<[f64; 2]>,
     /// Maximum absolute velocity.
     pub velocity: Option<f64>,
@@ -103,13 +103,13 @@ impl Drive {
 pub struct Joint {
     /// Revolute or prismatic.
     pub kind: JointKind,
-    /// Twist alpha [rad].
+    /// Twist alpha (rad).
     pub alpha: Geometry,
-    /// Length a [m].
+    /// Length a (m).
     pub a: Geometry,
-    /// Offset d [m] (the joint variable's offset for a prismatic joint).
+    /// Offset d (m) (the joint variable's offset for a prismatic joint).
     pub d: Geometry,
-    /// Angle offset theta [rad] (the joint variable's offset for a revolute joint).
+    /// Angle offset theta (rad) (the joint variable's offset for a revolute joint).
     pub theta: Geometry,
     /// Limits.
     pub limits: Limits,
@@ -206,7 +206,7 @@ impl Robot {
         self.convention
     }
 
-    /// Gravity in the base frame [m/s^2].
+    /// Gravity in the base frame (m/s^2).
     pub fn gravity(&self) -> &[Geometry; 3] {
         &self.gravity
     }
@@ -263,7 +263,7 @@ impl Robot {
         Ok(self)
     }
 
-    /// The same robot with another gravity vector [m/s^2], checked as in a description.
+    /// The same robot with another gravity vector (m/s^2), checked as in a description.
     pub fn with_gravity(self, gravity: [f64; 3]) -> Result<Robot, DescriptionError> {
         let mut g = Vec::with_capacity(3);
         for (i, value) in gravity.into_iter().enumerate() {
