@@ -121,6 +121,7 @@ impl Robot {
     /// Parses a description from TOML text; `file` names it in errors. Every
     /// mistake is reported (in [`DescriptionError::Several`] when there are
     /// more than one), except that a TOML syntax error is reported alone.
+    /// Values are checked against the limits of [`bounds`](super::bounds).
     pub fn from_toml(text: &str, file: &str) -> Result<Robot, DescriptionError> {
         let place = Place { file, text };
         if text.len() > MAX_DESCRIPTION_LEN {
