@@ -227,6 +227,21 @@ fn sizes_are_limited() {
         "4:75",
         &["nest deeper than 64 levels"],
     );
+    // Many mistakes: the first 50 and a count of the others.
+    let bad = "[[joints]]\na = 1e9\nd = 1e9\n".repeat(30);
+    let all = errors(&format!("{HEAD}{bad}"));
+    assert_eq!(all.len(), 51, "{all:#?}");
+    assert!(
+        all[49].starts_with("arm.toml:77:5: joint 25 `d` = 1e9 is beyond"),
+        "{}",
+        all[49]
+    );
+    assert!(all[50].starts_with("arm.toml:79:5: "), "{}", all[50]);
+    assert!(
+        all[50].contains("more mistakes from here on are not shown"),
+        "{}",
+        all[50]
+    );
     let big = format!("{HEAD}# {}\n[[joints]]\n", "x".repeat(1 << 20));
     single(&big, "1:1", &["more than the 1048576"]);
 }
