@@ -116,6 +116,15 @@ pub(crate) fn run(config: &Config) -> Report {
             input.clone_from(&text);
         }
         report.cases += 1;
+        if case > 0 && case % 100_000 == 0 {
+            eprintln!(
+                "{case} cases, {} robots, {} derived, {} findings, {:.0} s",
+                report.robots,
+                report.derived,
+                report.findings.len(),
+                start.elapsed().as_secs_f64()
+            );
+        }
         let t = Instant::now();
         let read = std::panic::catch_unwind(|| Robot::from_toml(&text, "fuzz.toml"));
         let elapsed = t.elapsed();
