@@ -73,6 +73,8 @@ pub(crate) struct Report {
     pub(crate) derived: u64,
     /// Derivations that returned an error (not a finding).
     pub(crate) derive_errors: u64,
+    /// The first few of those errors, with their input.
+    pub(crate) derive_error_examples: Vec<String>,
     /// Robots emitted as Rust.
     pub(crate) emitted: u64,
     /// Problems, each with the case's input (shortened).
@@ -168,9 +170,14 @@ pub(crate) fn run(config: &Config) -> Report {
                 &mut report,
                 format!("deriving panicked: {}", message(&panic)),
             ),
-            Ok(Outcome::DeriveError) => {
+            Ok(Outcome::DeriveError(e)) => {
                 report.derived += 1;
                 report.derive_errors += 1;
+                if report.derive_error_examples.len() < 5 {
+                    report
+                        .derive_error_examples
+                        .push(format!("case {case}: {e}\n{}", shorten(&text)));
+                }
             }
             Ok(Outcome::Emitted) => {
                 report.derived += 1;
@@ -189,7 +196,7 @@ pub(crate) fn run(config: &Config) -> Report {
 }
 
 enum Outcome {
-    DeriveError,
+    DeriveError(String),
     Emitted,
     Finding(String),
 }
@@ -198,7 +205,7 @@ enum Outcome {
 fn derive_and_check(robot: &Robot) -> Outcome {
     let programs = match RobotPrograms::derive(robot) {
         Ok(p) => p,
-        Err(_) => return Outcome::DeriveError,
+        Err(e) => return Outcome::DeriveError(e.to_string()),
     };
     // Symbols cannot be named inf or nan: such a word is a number.
     for b in &programs.base {
@@ -561,6 +568,9 @@ fn main() {
     );
     for f in report.findings.iter().take(20) {
         println!("\n{f}");
+    }
+    for e in &report.derive_error_examples {
+        println!("\nderivation error (returned, not a finding): {e}");
     }
     if !report.findings.is_empty() {
         std::process::exit(1);
