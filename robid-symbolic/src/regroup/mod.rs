@@ -70,7 +70,7 @@ pub enum RegroupError {
     /// A numeric dependency has no exact form (rational, or polynomial of
     /// degree two in the geometric symbols).
     #[error(
-        "the dependency of `{parameter}` on `{on}` has no exact coefficient; give the lengths involved numeric values"
+        "the dependency of `{parameter}` on `{on}` has no exact coefficient (a polynomial of degree two at most in the geometric symbols); give the symbols involved numeric values, in particular a symbol used as an angle"
     )]
     NotExpressible {
         /// The dependent parameter.
