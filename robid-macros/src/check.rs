@@ -5,7 +5,8 @@
 use crate::input::{Input, Item};
 use proc_macro2::Span;
 use robid_symbolic::robot::Geometry;
-use robid_symbolic::{Convention, Drive, Joint, JointKind, Robot};
+use robid_symbolic::robot::bounds::MAX_DESCRIPTION_LEN;
+use robid_symbolic::{Convention, DescriptionError, Drive, Joint, JointKind, Robot};
 use std::path::PathBuf;
 use syn::spanned::Spanned;
 use syn::{Expr, ExprLit, Lit, LitStr, UnOp};
@@ -40,6 +41,55 @@ struct Ctxt {
 impl Ctxt {
     fn error(&mut self, span: Span, message: impl std::fmt::Display) {
         self.errors.push(syn::Error::new(span, message));
+    }
+
+    /// Every problem of a description error, each at the span `at` gives it.
+    fn description(&mut self, err: &DescriptionError, at: impl Fn(&DescriptionError) -> Span) {
+        for e in err.errors() {
+            let message = match e {
+                // The span says which argument: the message and the fix suffice.
+                DescriptionError::Argument { message, help, .. } => format!("{message}; {help}"),
+                other => other.to_string(),
+            };
+            self.error(at(e), message);
+        }
+    }
+}
+
+/// Where the parts of an inline description were written.
+struct Spans {
+    name: Span,
+    gravity: Option<[Span; 3]>,
+    /// alpha, a, d, theta of each joint.
+    joints: Vec<[Span; 4]>,
+}
+
+impl Spans {
+    /// The span of the argument an error of `Robot::new` names (`joints[2].a`,
+    /// `gravity[0]`, the robot name), else the call site.
+    fn of(&self, err: &DescriptionError) -> Span {
+        let DescriptionError::Argument { argument, .. } = err else {
+            return Span::call_site();
+        };
+        let argument = argument.trim_matches('`');
+        let index = |rest: &str| rest.split(']').next().and_then(|i| i.parse::<usize>().ok());
+        if argument == "the robot name" {
+            return self.name;
+        }
+        if let Some(rest) = argument.strip_prefix("gravity[") {
+            return index(rest)
+                .and_then(|i| self.gravity?.get(i).copied())
+                .unwrap_or_else(Span::call_site);
+        }
+        if let Some(rest) = argument.strip_prefix("joints[")
+            && let Some(j) = index(rest)
+            && let Some(spans) = self.joints.get(j)
+        {
+            let key = rest.split("].").nth(1).unwrap_or("");
+            let k = ["alpha", "a", "d", "theta"].iter().position(|k| *k == key);
+            return k.map_or(spans[0], |k| spans[k]);
+        }
+        Span::call_site()
     }
 }
 
@@ -83,7 +133,7 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
     let stub_name = name
         .as_ref()
         .map(|n| n.value())
-        .or_else(|| result.as_ref().map(|(r, _)| r.name.clone()))
+        .or_else(|| result.as_ref().map(|(r, _)| r.name().to_owned()))
         .or_else(|| {
             let file = get("file").and_then(|i| literal(&i.value))?;
             let path = PathBuf::from(file.value());
@@ -91,8 +141,17 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
         });
     match result {
         Some((mut robot, tracked)) if cx.errors.is_empty() => {
-            if let Some(n) = name {
-                robot.name = n.value();
+            if let Some(n) = &name {
+                match robot.with_name(&n.value()) {
+                    Ok(r) => robot = r,
+                    Err(err) => {
+                        cx.description(&err, |_| n.span());
+                        return Err(Failed {
+                            errors: cx.errors,
+                            name: None,
+                        });
+                    }
+                }
             }
             if let Some(Some(d)) = drive {
                 robot = robot.with_drive(d);
@@ -138,6 +197,19 @@ fn from_file(cx: &mut Ctxt, e: &Expr) -> Option<(Robot, Option<PathBuf>)> {
     {
         path = beside;
     }
+    // Larger than a description may be: refused before reading it.
+    if let Ok(meta) = std::fs::metadata(&path)
+        && meta.len() > MAX_DESCRIPTION_LEN as u64
+    {
+        cx.error(
+            lit.span(),
+            format!(
+                "`{relative}` is {} bytes, more than the {MAX_DESCRIPTION_LEN} a description may have; check the path",
+                meta.len()
+            ),
+        );
+        return None;
+    }
     let text = match std::fs::read_to_string(&path) {
         Ok(t) => t,
         Err(err) => {
@@ -150,10 +222,11 @@ fn from_file(cx: &mut Ctxt, e: &Expr) -> Option<(Robot, Option<PathBuf>)> {
             return None;
         }
     };
+    // Every mistake of the file, each at the path (the message says where in the file).
     match Robot::from_toml(&text, &relative) {
         Ok(robot) => Some((robot, Some(path))),
         Err(err) => {
-            cx.error(lit.span(), err);
+            cx.description(&err, |_| lit.span());
             None
         }
     }
@@ -184,6 +257,17 @@ fn inline(
         Some(i) => convention(cx, &i.value),
     };
     let gravity = get("gravity").map(|i| gravity(cx, &i.value));
+    let mut spans = Spans {
+        name: name.map_or(span, LitStr::span),
+        gravity: get("gravity").and_then(|i| match &i.value {
+            Expr::Array(a) if a.elems.len() == 3 => {
+                let s: Vec<Span> = a.elems.iter().map(Spanned::span).collect();
+                Some([s[0], s[1], s[2]])
+            }
+            _ => None,
+        }),
+        joints: Vec::new(),
+    };
     let joints = match get("joints") {
         None => {
             cx.error(
@@ -192,7 +276,7 @@ fn inline(
             );
             None
         }
-        Some(i) => joints(cx, &i.value),
+        Some(i) => joints(cx, &i.value, &mut spans.joints),
     };
     let symbols = get("symbols").map(|i| symbols(cx, &i.value));
     let (name, convention, joints) = (name?, convention?, joints?);
@@ -203,17 +287,14 @@ fn inline(
     let mut robot = match Robot::new(&name.value(), convention, gravity, joints) {
         Ok(r) => r,
         Err(err) => {
-            cx.error(span, err);
+            cx.description(&err, |e| spans.of(e));
             return None;
         }
     };
     for (symbol, value, span) in symbols.into_iter().flatten() {
-        match robot.symbols.iter_mut().find(|(s, _)| *s == symbol) {
-            Some(slot) => slot.1 = Some(value),
-            None => cx.error(
-                span,
-                format!("symbol `{symbol}` is not used by any DH value or gravity"),
-            ),
+        match robot.clone().with_symbol_value(&symbol, value) {
+            Ok(r) => robot = r,
+            Err(err) => cx.description(&err, |_| span),
         }
     }
     Some((robot, None))
@@ -306,7 +387,7 @@ fn symbols(cx: &mut Ctxt, e: &Expr) -> Vec<(String, f64, Span)> {
     out
 }
 
-fn joints(cx: &mut Ctxt, e: &Expr) -> Option<Vec<Joint>> {
+fn joints(cx: &mut Ctxt, e: &Expr, spans: &mut Vec<[Span; 4]>) -> Option<Vec<Joint>> {
     let rows = array(cx, e, "joints `revolute(alpha, a, d, theta)`")?;
     if rows.is_empty() {
         cx.error(
@@ -314,6 +395,15 @@ fn joints(cx: &mut Ctxt, e: &Expr) -> Option<Vec<Joint>> {
             "the robot has no joints; add one entry per DH row",
         );
         return None;
+    }
+    for r in &rows {
+        spans.push(match r {
+            Expr::Call(call) if call.args.len() == 4 => {
+                let s: Vec<Span> = call.args.iter().map(Spanned::span).collect();
+                [s[0], s[1], s[2], s[3]]
+            }
+            other => [other.span(); 4],
+        });
     }
     let joints: Vec<Option<Joint>> = rows.into_iter().map(|r| joint(cx, r)).collect();
     joints.into_iter().collect()
@@ -350,14 +440,7 @@ fn joint(cx: &mut Ctxt, e: &Expr) -> Option<Joint> {
     }
     let v: Vec<Option<Geometry>> = call.args.iter().map(|a| value(cx, a)).collect();
     let [alpha, a, d, theta] = [v[0].clone()?, v[1].clone()?, v[2].clone()?, v[3].clone()?];
-    Some(Joint {
-        kind: kind?,
-        alpha,
-        a,
-        d,
-        theta,
-        ..Joint::revolute("0", 0.0, 0.0, "0")
-    })
+    Some(Joint::new(kind?, alpha, a, d, theta))
 }
 
 /// A number literal (possibly negated); `None` when `e` is not one.
@@ -374,13 +457,14 @@ fn number(e: &Expr) -> Option<syn::Result<f64>> {
     }
 }
 
-/// A DH or gravity value: a finite number or a string expression.
+/// A DH or gravity value: a finite number or a string expression (its
+/// magnitude is checked with the robot, which knows its place).
 fn value(cx: &mut Ctxt, e: &Expr) -> Option<Geometry> {
     if let Some(x) = number(e) {
-        return match x {
-            Ok(x) if x.is_finite() => Some(Geometry::number(x)),
-            Ok(x) => {
-                cx.error(e.span(), format!("`{x}` is not a finite number"));
+        return match x.map(Geometry::number) {
+            Ok(Ok(g)) => Some(g),
+            Ok(Err(err)) => {
+                cx.error(e.span(), err);
                 None
             }
             Err(err) => {
@@ -390,21 +474,10 @@ fn value(cx: &mut Ctxt, e: &Expr) -> Option<Geometry> {
         };
     }
     if let Some(s) = literal(e) {
-        let g = Geometry::text(&s.value());
-        // Validate on its own, so the error points at this value.
-        let probe = Joint {
-            alpha: g.clone(),
-            ..Joint::revolute("0", 0.0, 0.0, "0")
-        };
-        return match Robot::new("probe", Convention::Modified, None, vec![probe]) {
-            Ok(_) => Some(g),
-            Err(robid_symbolic::DescriptionError::Invalid { message, help, .. }) => {
-                let message = message.trim_start_matches("joint 1 `alpha` ");
-                cx.error(s.span(), format!("{message}; {help}"));
-                None
-            }
-            Err(other) => {
-                cx.error(s.span(), other);
+        return match Geometry::text(&s.value()) {
+            Ok(g) => Some(g),
+            Err(err) => {
+                cx.error(s.span(), err);
                 None
             }
         };

@@ -15,16 +15,21 @@ pub(crate) fn expand(input: Input) -> TokenStream {
         Ok(c) => c,
         Err(failed) => return failure(failed),
     };
+    let name = checked.robot.name().to_owned();
+    let fail = |err: &dyn std::fmt::Display| {
+        failure(Failed {
+            errors: vec![syn::Error::new(Span::call_site(), err)],
+            name: Some(name.clone()),
+        })
+    };
     let programs = match RobotPrograms::derive(&checked.robot) {
         Ok(p) => p,
-        Err(err) => {
-            return failure(Failed {
-                errors: vec![syn::Error::new(Span::call_site(), err)],
-                name: Some(checked.robot.name.clone()),
-            });
-        }
+        Err(err) => return fail(&err),
     };
-    let model = robot_tokens(&programs);
+    let model = match robot_tokens(&programs) {
+        Ok(m) => m,
+        Err(err) => return fail(&err),
+    };
     let track = checked.tracked.map(|path| {
         let path = path.to_string_lossy().into_owned();
         quote! { const _: &str = ::core::include_str!(#path); }
@@ -41,13 +46,7 @@ fn failure(failed: Failed) -> TokenStream {
         a
     });
     let errors = errors.map(syn::Error::into_compile_error);
-    let stub = failed
-        .name
-        .filter(|n| {
-            n.starts_with(|c: char| c.is_ascii_alphabetic())
-                && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-        })
-        .map(|n| stub_tokens(&n));
+    let stub = failed.name.and_then(|n| stub_tokens(&n));
     quote! {
         #errors
         #stub

@@ -48,7 +48,12 @@
 //!
 //! Mistakes in the input are compile errors pointing at the offending item
 //! (all of them at once); the type is then still defined, as a placeholder, so
-//! that its uses do not add errors of their own.
+//! that its uses do not add errors of their own. For a file, each mistake is
+//! one error at the path, its message starting with the file, line and
+//! column (a TOML syntax error is reported alone). Values are checked against
+//! the limits documented in `robid_symbolic::robot::bounds` (lengths,
+//! angles, gravity, limits, sizes) and `robid_symbolic::expr` (expression
+//! length, nesting and exponents).
 
 mod check;
 mod expand;

@@ -39,7 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     println!(
         "{} ({} DOF, all drive terms), {profile} profile, best of {runs}:",
-        robot.name,
+        robot.name(),
         robot.dof()
     );
     println!("  kinematics               {:8.2} ms", best[0] * 1e3);

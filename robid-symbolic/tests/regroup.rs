@@ -52,7 +52,9 @@ fn lwr4_and_panda_have_43_48_62_69() {
 
 #[test]
 fn ur5e_with_tilted_gravity_has_38() {
-    let r = reference("ur5e").with_gravity([0.0, 4.905, -8.496]);
+    let r = reference("ur5e")
+        .with_gravity([0.0, 4.905, -8.496])
+        .unwrap();
     assert_eq!(count(&r), 38);
 }
 
@@ -86,7 +88,7 @@ fn check_identity_and_rank(robot: &Robot, seed: u64) {
     let b: BaseParameters = d.base_parameters().unwrap();
     let k = b.k_matrix(&mut d.arena);
     let mut rng = Rng::new(seed);
-    let extra_names: Vec<String> = robot.symbols.iter().map(|(s, _)| s.clone()).collect();
+    let extra_names: Vec<String> = robot.symbols().iter().map(|(s, _)| s.clone()).collect();
     let extra_values: Vec<f64> = extra_names.iter().map(|_| rng.uniform(0.2, 1.0)).collect();
     let extra: Vec<(&str, f64)> = extra_names
         .iter()
@@ -110,7 +112,7 @@ fn check_identity_and_rank(robot: &Robot, seed: u64) {
             assert!(
                 (full - base).abs() <= 1e-9 * (1.0 + full.abs()),
                 "{}: joint {j}: {full} vs {base}",
-                robot.name
+                robot.name()
             );
         }
         for j in 0..n {
@@ -124,7 +126,7 @@ fn check_identity_and_rank(robot: &Robot, seed: u64) {
     assert!(
         smallest > 1e-9 * largest,
         "{}: base columns are rank deficient ({smallest} / {largest})",
-        robot.name
+        robot.name()
     );
 }
 
@@ -188,7 +190,7 @@ fn symbolic_lengths_give_the_same_set_and_substitute_to_the_numeric_one() {
         .collect();
     let mut pairs: Vec<(&str, f64)> = standard.iter().map(|(n, v)| (n.as_str(), *v)).collect();
     let lengths: Vec<(String, f64)> = symbolic
-        .symbols
+        .symbols()
         .iter()
         .map(|(n, v)| (n.clone(), v.unwrap()))
         .collect();
@@ -218,7 +220,7 @@ fn symbolic_lengths_satisfy_the_identity() {
 /// a'_j = a_(j-1)): the same arm with other link frames.
 fn lwr4_as_modified() -> Robot {
     let standard = reference("lwr4");
-    let mut joints = standard.joints.clone();
+    let mut joints = standard.joints().to_vec();
     for j in (0..joints.len()).rev() {
         let (alpha, a) = if j == 0 {
             (
@@ -227,8 +229,8 @@ fn lwr4_as_modified() -> Robot {
             )
         } else {
             (
-                standard.joints[j - 1].alpha.clone(),
-                standard.joints[j - 1].a.clone(),
+                standard.joints()[j - 1].alpha.clone(),
+                standard.joints()[j - 1].a.clone(),
             )
         };
         joints[j].alpha = alpha;

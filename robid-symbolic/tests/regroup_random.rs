@@ -7,6 +7,7 @@ mod common;
 use common::random_state;
 use proptest::prelude::*;
 use robid_symbolic::robot::Geometry;
+use robid_symbolic::robot::bounds::MIN_GRAVITY;
 use robid_symbolic::sample::Rng;
 use robid_symbolic::{Convention, Derivation, Drive, Joint, JointKind, Robot};
 
@@ -28,10 +29,10 @@ fn random_robot(seed: u64) -> Robot {
                     (rng.uniform(-0.5, 0.5) * 1000.0).round() / 1000.0
                 }
             };
-            let mut j = Joint::revolute(&alpha, length(&mut rng), length(&mut rng), "0");
+            let mut j = Joint::revolute(&alpha, length(&mut rng), length(&mut rng), "0").unwrap();
             if rng.below(4) == 0 {
                 j.kind = JointKind::Prismatic;
-                j.theta = Geometry::text(["0", "pi/2", "-pi/2"][rng.below(3)]);
+                j.theta = Geometry::text(["0", "pi/2", "-pi/2"][rng.below(3)]).unwrap();
             }
             j.drive = [Drive::NONE, Drive::ALL][rng.below(2)];
             j
@@ -45,15 +46,18 @@ fn random_robot(seed: u64) -> Robot {
     let gravity = if rng.below(2) == 0 {
         [0.0, 0.0, -9.81]
     } else {
+        // A component closer to zero than robid accepts is zero.
         [
             rng.uniform(-5.0, 5.0),
             rng.uniform(-5.0, 5.0),
             rng.uniform(-9.0, -1.0),
         ]
+        .map(|g| if g.abs() < MIN_GRAVITY { 0.0 } else { g })
     };
     Robot::new("random", convention, None, joints)
         .unwrap()
         .with_gravity(gravity)
+        .unwrap()
 }
 
 fn check(seed: u64) {

@@ -60,7 +60,7 @@ impl Interpreted {
     /// Derives `robot`'s programs (geometric symbols at their description values).
     pub fn new(robot: &Robot) -> Result<Self, ModelError> {
         let programs = RobotPrograms::derive(robot).map_err(|source| ModelError::Derive {
-            robot: robot.name.clone(),
+            robot: robot.name().to_owned(),
             source,
         })?;
         Self::from_programs(programs)
@@ -73,7 +73,7 @@ impl Interpreted {
             .iter()
             .map(|(s, v)| {
                 v.ok_or_else(|| ModelError::UnboundSymbol {
-                    robot: programs.robot.name.clone(),
+                    robot: programs.robot.name().to_owned(),
                     symbol: s.clone(),
                 })
             })
@@ -115,7 +115,7 @@ impl Interpreted {
 
 impl Model for Interpreted {
     fn name(&self) -> &str {
-        &self.programs.robot.name
+        self.programs.robot.name()
     }
     fn dof(&self) -> usize {
         self.programs.robot.dof()
@@ -249,7 +249,7 @@ fn compiled(text: &str) -> Option<Box<dyn Model + Send + Sync>> {
 /// expressions) runs in both cases.
 pub fn model_for(robot: &Robot, text: &str) -> Result<Chosen, ModelError> {
     let programs = RobotPrograms::derive(robot).map_err(|source| ModelError::Derive {
-        robot: robot.name.clone(),
+        robot: robot.name().to_owned(),
         source,
     })?;
     let base = programs.base.clone();

@@ -91,7 +91,7 @@ impl Chain {
     pub fn from_robot(robot: &Robot) -> Chain {
         let mut arena = Arena::new();
         let pairs: Vec<(&str, f64)> = robot
-            .symbols
+            .symbols()
             .iter()
             .map(|(n, v)| {
                 (
@@ -106,7 +106,7 @@ impl Chain {
             arena.eval(&[id], &values).expect("bound symbols")[0]
         };
         let rows = robot
-            .joints
+            .joints()
             .iter()
             .map(|j| DhRow {
                 kind: j.kind,
@@ -116,9 +116,9 @@ impl Chain {
                 theta: number(&j.theta),
             })
             .collect();
-        let gravity = [0, 1, 2].map(|i| number(&robot.gravity[i]));
+        let gravity = [0, 1, 2].map(|i| number(&robot.gravity()[i]));
         Chain {
-            convention: robot.convention,
+            convention: robot.convention(),
             rows,
             gravity,
         }

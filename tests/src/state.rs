@@ -18,7 +18,7 @@ pub struct State {
 /// [0.1, 1] m for a prismatic joint), velocities in [-2, 2], accelerations in [-5, 5].
 pub fn random_state(robot: &Robot, rng: &mut Rng) -> State {
     let q = robot
-        .joints
+        .joints()
         .iter()
         .map(|j| {
             let [lo, hi] = j.limits.position.unwrap_or(match j.kind {
@@ -50,7 +50,7 @@ pub fn bind(arena: &mut Arena, robot: &Robot, state: &State, parameters: Option<
         owned.push((format!("qd{}", j + 1), state.qd[j]));
         owned.push((format!("qdd{}", j + 1), state.qdd[j]));
     }
-    for (name, value) in &robot.symbols {
+    for (name, value) in robot.symbols() {
         let v = value.unwrap_or_else(|| panic!("symbol {name} has no default value"));
         owned.push((name.clone(), v));
     }
@@ -78,7 +78,7 @@ impl Trajectory {
     /// position limits (or 0, or 0.5 m for a prismatic joint), amplitudes up to 0.3.
     pub fn random(robot: &Robot, rng: &mut Rng) -> Trajectory {
         let joints = robot
-            .joints
+            .joints()
             .iter()
             .map(|j| {
                 let centre = match (j.limits.position, j.kind) {

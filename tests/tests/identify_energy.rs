@@ -43,7 +43,7 @@ fn truth(model: &Ur5e) -> Vec<f64> {
 fn trajectory(seed: u64) -> Trajectory {
     let robot = by_name("ur5e").robot(Drive::NONE);
     let limits: Vec<JointLimits> = robot
-        .joints
+        .joints()
         .iter()
         .map(|j| JointLimits {
             position: j.limits.position.expect("position limits"),

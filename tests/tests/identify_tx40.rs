@@ -229,8 +229,12 @@ fn tx40_with_figaroh_bugs_emulated_reproduces_its_offsets_and_iam6() {
     use robid_runtime::pipeline::{observe, prepare};
     let t = setup();
     let text = std::fs::read_to_string(repo("robots/configs/tx40_robot.toml")).unwrap();
-    let mut robot = robid_symbolic::Robot::from_toml(&text, "tx40_robot.toml").unwrap();
-    robot.joints[5].drive.ia = false; // (a): its column is zero
+    let robot = robid_symbolic::Robot::from_toml(&text, "tx40_robot.toml").unwrap();
+    let drive = robid_symbolic::Drive {
+        ia: false, // (a): its column is zero
+        ..robot.joints()[5].drive
+    };
+    let robot = robot.with_joint_drive(5, drive).unwrap();
     let chosen = model_for(&robot, &text).unwrap();
     let model = chosen.model.as_ref();
     let mut p = prepare(&t.data, &t.config).unwrap();

@@ -19,9 +19,9 @@ fn descriptions_load_with_limits_on_every_joint() {
     for (r, (name, dof)) in ROBOTS.iter().zip(expected) {
         assert_eq!(r.name, name);
         let robot = r.robot(Drive::NONE);
-        assert_eq!(robot.name, name, "name inside {name}.toml");
+        assert_eq!(robot.name(), name, "name inside {name}.toml");
         assert_eq!(robot.dof(), dof, "{name}");
-        for (j, joint) in robot.joints.iter().enumerate() {
+        for (j, joint) in robot.joints().iter().enumerate() {
             let [lo, hi] = joint
                 .limits
                 .position
@@ -34,7 +34,7 @@ fn descriptions_load_with_limits_on_every_joint() {
 #[test]
 fn stanford_arm_covers_a_prismatic_joint() {
     let robot = tests::reference::by_name("stanford").robot(Drive::NONE);
-    let kinds: Vec<JointKind> = robot.joints.iter().map(|j| j.kind).collect();
+    let kinds: Vec<JointKind> = robot.joints().iter().map(|j| j.kind).collect();
     assert_eq!(
         kinds,
         [

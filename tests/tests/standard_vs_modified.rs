@@ -19,18 +19,18 @@ const RELATIVE: f64 = 1e-9;
 fn modified_equivalent(standard: &Robot) -> Robot {
     let mut text = format!(
         "name = \"{}_modified\"\nconvention = \"modified\"\ngravity = [{}, {}, {}]\n",
-        standard.name,
-        standard.gravity[0].as_str(),
-        standard.gravity[1].as_str(),
-        standard.gravity[2].as_str()
+        standard.name(),
+        standard.gravity()[0].as_str(),
+        standard.gravity()[1].as_str(),
+        standard.gravity()[2].as_str()
     );
-    for (j, joint) in standard.joints.iter().enumerate() {
+    for (j, joint) in standard.joints().iter().enumerate() {
         let (alpha, a) = if j == 0 {
             ("0", "0")
         } else {
             (
-                standard.joints[j - 1].alpha.as_str(),
-                standard.joints[j - 1].a.as_str(),
+                standard.joints()[j - 1].alpha.as_str(),
+                standard.joints()[j - 1].a.as_str(),
             )
         };
         let kind = match joint.kind {

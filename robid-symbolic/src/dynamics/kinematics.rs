@@ -32,7 +32,7 @@ impl JointInputs {
         let q = names("q", arena);
         let qd = names("qd", arena);
         let qdd = names("qdd", arena);
-        let gravity = [0, 1, 2].map(|i| robot.gravity[i].to_expr(arena));
+        let gravity = [0, 1, 2].map(|i| robot.gravity()[i].to_expr(arena));
         JointInputs {
             q,
             qd,

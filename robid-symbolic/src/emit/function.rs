@@ -1,6 +1,7 @@
 //! One program as a generic straight-line function.
 
-use super::names::{ident, value_ident};
+use super::EmitError;
+use super::names::{ident, value_ident, value_name};
 use crate::program::{Instr, Program, Value};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -10,9 +11,17 @@ use quote::{format_ident, quote};
 pub(crate) const GEOMETRY: &str = "geometry";
 
 /// `pub fn name<T: Real>(&self, q: &[T; 6], ...) -> [T; N]` computing `program`
-/// (one output group), with `doc` as the first lines of its doc comment.
-pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream {
-    let name = ident(name);
+/// (its first output group), with `doc` as the first lines of its doc comment.
+///
+/// Fails, instead of emitting code that does not compile, when a name is not
+/// an identifier, a constant is not finite or an operand reads a value that
+/// does not exist (possible only for programs built by hand).
+pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<TokenStream, EmitError> {
+    check(name, program)?;
+    let name = ident(name).ok_or_else(|| EmitError::Name {
+        what: "function".to_owned(),
+        name: name.to_owned(),
+    })?;
     let mut args = Vec::new();
     let mut bindings = Vec::new();
     let mut doc_lines: Vec<String> = doc.lines().map(|l| format!(" {l}")).collect();
@@ -33,7 +42,10 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream 
             }
             continue;
         }
-        let arg = ident(&group.name);
+        let arg = ident(&group.name).ok_or_else(|| EmitError::Name {
+            what: "input group".to_owned(),
+            name: group.name.clone(),
+        })?;
         let len = Literal::usize_unsuffixed(group.len());
         let arg_name = if used { quote!(#arg) } else { quote!(_) };
         args.push(quote! { #arg_name: &[T; #len] });
@@ -55,7 +67,12 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream 
             bindings.push(quote! { let [#(#names),*] = *#arg; });
         }
     }
-    let output = &program.outputs[0];
+    let Some(output) = program.outputs.first() else {
+        return Err(EmitError::Program {
+            function: name.to_string(),
+            problem: "it has no output".to_owned(),
+        });
+    };
     let out_len = Literal::usize_unsuffixed(output.values.len());
     doc_lines.push(String::new());
     doc_lines.push(format!(" Operations: {}.", program.operations()));
@@ -142,7 +159,7 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream 
             [#(#results),*]
         }
     };
-    quote! {
+    Ok(quote! {
         #(#[doc = #doc_lines])*
         #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
         pub fn #name<T: ::robid_runtime::Real>(&self, #(#args),*) -> [T; #out_len] {
@@ -150,7 +167,53 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> TokenStream 
             #(#constants)*
             #body
         }
+    })
+}
+
+/// The checks of [`function_tokens`].
+fn check(function: &str, program: &Program) -> Result<(), EmitError> {
+    for group in &program.inputs {
+        if let Some(e) = group.elements.iter().find(|e| !value_name(e)) {
+            return Err(EmitError::Name {
+                what: format!("element of input group `{}`", group.name),
+                name: e.clone(),
+            });
+        }
     }
+    if let Some((i, &c)) = program
+        .constants
+        .iter()
+        .enumerate()
+        .find(|(_, c)| !c.is_finite())
+    {
+        return Err(EmitError::NotFinite {
+            what: format!("constant c{i} of program `{function}`"),
+            value: c,
+        });
+    }
+    let inputs = program.input_len();
+    let valid = |v: Value, temps: usize| match v {
+        Value::Temp(t) => (t as usize) < temps,
+        Value::Input(i) => (i as usize) < inputs,
+        Value::Const(c) => (c as usize) < program.constants.len(),
+    };
+    let instrs = program.instrs.iter().enumerate();
+    let bad_instr = instrs
+        .clone()
+        .find(|(i, ins)| ins.operands().into_iter().any(|v| !valid(v, *i)));
+    let bad_output = program
+        .outputs
+        .iter()
+        .flat_map(|o| &o.values)
+        .find(|&&v| !valid(v, program.instrs.len()));
+    if bad_instr.is_some() || bad_output.is_some() {
+        return Err(EmitError::Program {
+            function: function.to_owned(),
+            problem: "an operand reads a temporary, input or constant that does not exist"
+                .to_owned(),
+        });
+    }
+    Ok(())
 }
 
 fn describe(elements: &[String]) -> String {

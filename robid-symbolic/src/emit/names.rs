@@ -19,7 +19,7 @@ pub fn type_name(robot_name: &str) -> String {
 
 /// An identifier for a symbol name, prefixed with `s_` when it could clash
 /// with a temporary (`t3`), a constant (`c3`), the result array (`out`) or a
-/// keyword.
+/// keyword. `name` is checked by [`value_name`] first.
 pub(crate) fn value_ident(name: &str) -> Ident {
     let numbered = |p: char| {
         name.strip_prefix(p)
@@ -34,9 +34,16 @@ pub(crate) fn value_ident(name: &str) -> Ident {
     }
 }
 
-/// A plain identifier.
-pub(crate) fn ident(name: &str) -> Ident {
-    Ident::new(name, Span::call_site())
+/// A plain identifier, when `name` is one (and not a keyword).
+pub(crate) fn ident(name: &str) -> Option<Ident> {
+    syn::parse_str::<Ident>(name)
+        .ok()
+        .map(|_| Ident::new(name, Span::call_site()))
+}
+
+/// True when [`value_ident`] makes an identifier of `name`.
+pub(crate) fn value_name(name: &str) -> bool {
+    !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 #[cfg(test)]
@@ -49,5 +56,7 @@ mod tests {
         assert_eq!(super::value_ident("type").to_string(), "s_type");
         assert_eq!(super::value_ident("out").to_string(), "s_out");
         assert_eq!(super::value_ident("L3").to_string(), "L3");
+        assert!(super::ident("self").is_none() && super::ident("a b").is_none());
+        assert!(super::value_name("L_3") && !super::value_name("a b") && !super::value_name(""));
     }
 }

@@ -1,30 +1,66 @@
 //! The type emitted for a robot: constants and one function per program.
 
+use super::EmitError;
 use super::function::function_tokens;
 use super::model::model_impl;
-use super::names::{ident, type_name, value_ident};
+use super::names::{ident, type_name, value_ident, value_name};
 use crate::program::RobotPrograms;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// The type (named after the robot) with its constants, functions and `Model` impl.
-pub fn robot_tokens(p: &RobotPrograms) -> TokenStream {
+/// The type (named after the robot) with its constants, functions and `Model`
+/// impl; its documentation lists the run-time inputs (geometric symbols
+/// without a value in the description, which are fields of the type).
+///
+/// Fails instead of producing code that does not compile (see
+/// [`function_tokens`]); a `RobotPrograms` from `RobotPrograms::derive` never fails.
+pub fn robot_tokens(p: &RobotPrograms) -> Result<TokenStream, EmitError> {
     let robot = &p.robot;
-    let ty = ident(&type_name(&robot.name));
+    let ty = ident(&type_name(robot.name())).ok_or_else(|| EmitError::Name {
+        what: "the robot's type name".to_owned(),
+        name: type_name(robot.name()),
+    })?;
+    for (s, v) in &p.geometry {
+        if !value_name(s) {
+            return Err(EmitError::Name {
+                what: "geometric symbol".to_owned(),
+                name: s.clone(),
+            });
+        }
+        if let Some(x) = v.filter(|x| !x.is_finite()) {
+            return Err(EmitError::NotFinite {
+                what: format!("the value of geometric symbol `{s}`"),
+                value: x,
+            });
+        }
+    }
     let n = robot.dof();
     let dof = Literal::usize_unsuffixed(n);
     let ns = Literal::usize_unsuffixed(p.standard.len());
     let nb = Literal::usize_unsuffixed(p.base.len());
-    let name = &robot.name;
+    let name = robot.name();
     let standard = &p.standard;
     let base_names = p.base.iter().map(|b| &b.name);
     let base_expressions = p.base.iter().map(|b| &b.expression);
-    let type_doc = format!(
+    let mut type_doc = vec![format!(
         " Dynamic model of `{name}`: {n} joints, {} DH, {} standard and {} base parameters.",
-        robot.convention.as_str(),
+        robot.convention().as_str(),
         p.standard.len(),
         p.base.len()
-    );
+    )];
+    let inputs: Vec<String> = p
+        .geometry
+        .iter()
+        .filter(|(_, v)| v.is_none())
+        .map(|(s, _)| format!("`{}`", value_ident(s)))
+        .collect();
+    if !inputs.is_empty() {
+        type_doc.push(String::new());
+        type_doc.push(format!(
+            " Run-time inputs: the geometric symbols without a value in the description, fields {}; set them when building the value.",
+            inputs.join(", ")
+        ));
+    }
     let (fields, derive) = if p.geometry.is_empty() {
         (
             quote!(;),
@@ -35,7 +71,9 @@ pub fn robot_tokens(p: &RobotPrograms) -> TokenStream {
             let id = value_ident(s);
             let doc = match v {
                 Some(x) => format!(" Geometric symbol `{s}` (description value: {x})."),
-                None => format!(" Geometric symbol `{s}`."),
+                None => format!(
+                    " Geometric symbol `{s}`: a run-time input (no value in the description)."
+                ),
             };
             quote! { #[doc = #doc] pub #id: f64, }
         });
@@ -46,7 +84,7 @@ pub fn robot_tokens(p: &RobotPrograms) -> TokenStream {
     };
     let default_impl = default_impl(p, &ty);
     let jd = |what: &str| format!("{what}\n\n`q`, `qd`, `qdd` have one entry per joint.");
-    let f = [
+    let f: [Result<TokenStream, EmitError>; 7] = [
         function_tokens(
             "standard_regressor",
             &jd(&format!(
@@ -89,9 +127,12 @@ pub fn robot_tokens(p: &RobotPrograms) -> TokenStream {
             &p.base_from_standard,
         ),
     ];
+    let f = f
+        .into_iter()
+        .collect::<Result<Vec<TokenStream>, EmitError>>()?;
     let model = model_impl(&ty);
-    quote! {
-        #[doc = #type_doc]
+    Ok(quote! {
+        #(#[doc = #type_doc])*
         #derive
         pub struct #ty #fields
 
@@ -117,17 +158,19 @@ pub fn robot_tokens(p: &RobotPrograms) -> TokenStream {
         }
 
         #model
-    }
+    })
 }
 
 /// `Default` with the description's values of the geometric symbols, when it gives them all.
 fn default_impl(p: &RobotPrograms, ty: &proc_macro2::Ident) -> TokenStream {
-    if p.geometry.is_empty() || p.geometry.iter().any(|(_, v)| v.is_none()) {
+    let values: Option<Vec<(&String, f64)>> =
+        p.geometry.iter().map(|(s, v)| Some((s, (*v)?))).collect();
+    let Some(values) = values.filter(|v| !v.is_empty()) else {
         return quote!();
-    }
-    let f = p.geometry.iter().map(|(s, v)| {
+    };
+    let f = values.into_iter().map(|(s, v)| {
         let id = value_ident(s);
-        let lit = Literal::f64_unsuffixed(v.expect("checked"));
+        let lit = Literal::f64_unsuffixed(v);
         quote!(#id: #lit)
     });
     quote! {

@@ -2,14 +2,20 @@
 //! error once instead of once per use of the missing type (as thiserror's
 //! `fallback.rs` does).
 
-use super::names::{ident, type_name};
-use proc_macro2::TokenStream;
+use super::names::type_name;
+use crate::robot::name_problem;
+use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
 /// A type named after `robot_name` with the constants and functions of a real
 /// model, accepting any sizes, whose bodies are unreachable (the crate does
-/// not compile anyway: the error is emitted next to it).
-pub fn stub_tokens(robot_name: &str) -> TokenStream {
+/// not compile anyway: the error is emitted next to it); `None` when the name
+/// cannot name a robot (then there is no type to stand in for).
+pub fn stub_tokens(robot_name: &str) -> Option<TokenStream> {
+    if name_problem(robot_name).is_some() {
+        return None;
+    }
+    let ident = |name: &str| Ident::new(name, Span::call_site());
     let ty = ident(&type_name(robot_name));
     let f = |name: &str, args: &[&str]| {
         let name = ident(name);
@@ -32,7 +38,7 @@ pub fn stub_tokens(robot_name: &str) -> TokenStream {
         f("coriolis", &["q", "qd", "base"]),
         f("base_parameters", &["standard"]),
     ];
-    quote! {
+    Some(quote! {
         /// Placeholder after an error in `robot_model!`.
         #[derive(Clone, Copy, Debug, Default, PartialEq)]
         pub struct #ty;
@@ -54,5 +60,5 @@ pub fn stub_tokens(robot_name: &str) -> TokenStream {
             }
             #(#fns)*
         }
-    }
+    })
 }

@@ -107,7 +107,11 @@ impl Arena {
                 Some(v) => self.num(v),
                 None => self.intern(Node::Pow(a, n)),
             },
-            Node::Pow(base, m) => self.pow(base, m * n),
+            // (x^m)^n = x^(m n); kept as it is when m n does not fit.
+            Node::Pow(base, m) => match m.checked_mul(n) {
+                Some(k) => self.pow(base, k),
+                None => self.intern(Node::Pow(a, n)),
+            },
             // (c x y)^n = c^n x^n y^n keeps products flat for collecting.
             Node::Mul(factors) => {
                 let powered: Vec<Id> = factors.iter().map(|&f| self.pow(f, n)).collect();

@@ -46,7 +46,13 @@ impl Arena {
                     self.add(&sum)
                 }
                 Node::Pow(x, n) => {
-                    let power = self.pow(x, n - 1);
+                    let power = match n.checked_sub(1) {
+                        Some(m) => self.pow(x, m),
+                        None => {
+                            let (p, inv) = (self.pow(x, n), self.pow(x, -1));
+                            self.mul2(p, inv)
+                        }
+                    };
                     let c = self.num(Num::int(n as i64));
                     self.mul(&[c, power, d[x.index()]])
                 }

@@ -4,7 +4,15 @@
 //! its `Id`, so equal subexpressions are one node (egg's `language.rs` without the
 //! union-find). The smart constructors in `build.rs` run the simplification
 //! passes of `simplify/` on every node they create; `intern` stores a node as is.
+//!
+//! Text is read by [`Arena::parse`] within documented limits
+//! ([`MAX_EXPRESSION_LEN`], [`MAX_NESTING`], [`MAX_EXPONENT`]). Every walk
+//! over the DAG (evaluation, differentiation, simplification, reachability) is
+//! a loop over node ids, not a recursion; the text form (`display.rs`)
+//! recurses once per level of the DAG, which user text cannot make deeper
+//! than the nesting limit allows.
 
+mod ast;
 mod build;
 mod diff;
 mod display;
@@ -13,9 +21,10 @@ mod num;
 mod parse;
 pub mod simplify;
 
+pub(crate) use ast::Ast;
 pub use eval::Values;
 pub use num::Num;
-pub use parse::ParseError;
+pub use parse::{MAX_EXPONENT, MAX_EXPRESSION_LEN, MAX_NESTING, ParseError};
 
 use std::collections::HashMap;
 

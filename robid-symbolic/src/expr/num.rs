@@ -17,9 +17,9 @@ pub enum Num {
     Float(f64),
 }
 
-fn gcd(mut a: i128, mut b: i128) -> i128 {
-    a = a.abs();
-    b = b.abs();
+/// Greatest common divisor of the magnitudes (`i128::MIN` included).
+fn gcd(a: i128, b: i128) -> u128 {
+    let (mut a, mut b) = (a.unsigned_abs(), b.unsigned_abs());
     while b != 0 {
         (a, b) = (b, a % b);
     }
@@ -39,14 +39,24 @@ impl Num {
         Num::Rational(n as i128, 1)
     }
 
-    /// `numerator / denominator` reduced, or `None` when the denominator is 0.
+    /// `numerator / denominator` reduced, or `None` when the denominator is 0
+    /// or the reduced form does not fit in `i128`.
     pub fn ratio(numerator: i128, denominator: i128) -> Option<Num> {
         if denominator == 0 {
             return None;
         }
+        // A gcd of 2^127 (both are i128::MIN) does not fit in i128 but divides both.
         let g = gcd(numerator, denominator).max(1);
-        let sign = if denominator < 0 { -1 } else { 1 };
-        Some(Num::Rational(sign * numerator / g, sign * denominator / g))
+        let reduce = |v: i128| match i128::try_from(g) {
+            Ok(g) => Some(v / g),
+            Err(_) => Some(if v < 0 { -1 } else { 1 }),
+        };
+        let (n, d) = (reduce(numerator)?, reduce(denominator)?);
+        if d < 0 {
+            Some(Num::Rational(n.checked_neg()?, d.checked_neg()?))
+        } else {
+            Some(Num::Rational(n, d))
+        }
     }
 
     /// The exact value of a finite float whose shortest decimal form is short
@@ -87,12 +97,12 @@ impl Num {
         if negative {
             numerator = -numerator;
         }
-        let scale = exponent - frac_part.len() as i32;
+        let scale = exponent.checked_sub(i32::try_from(frac_part.len()).ok()?)?;
         let ten_pow = |k: u32| 10_i128.checked_pow(k);
         if scale >= 0 {
-            Num::ratio(numerator.checked_mul(ten_pow(scale as u32)?)?, 1)
+            Num::ratio(numerator.checked_mul(ten_pow(scale.unsigned_abs())?)?, 1)
         } else {
-            Num::ratio(numerator, ten_pow((-scale) as u32)?)
+            Num::ratio(numerator, ten_pow(scale.unsigned_abs())?)
         }
     }
 
@@ -153,12 +163,12 @@ impl Num {
     fn product(self, other: Num) -> Num {
         if let (Num::Rational(a, b), Num::Rational(c, d)) = (self, other) {
             // Cross-reduce first so products stay small.
-            let g1 = gcd(a, d).max(1);
-            let g2 = gcd(c, b).max(1);
-            let exact = (a / g1)
-                .checked_mul(c / g2)
-                .zip((b / g2).checked_mul(d / g1))
-                .and_then(|(n, m)| Num::ratio(n, m));
+            let g1 = i128::try_from(gcd(a, d).max(1)).ok();
+            let g2 = i128::try_from(gcd(c, b).max(1)).ok();
+            let exact = g1.zip(g2).and_then(|(g1, g2)| {
+                let (n, m) = ((a / g1).checked_mul(c / g2)?, (b / g2).checked_mul(d / g1)?);
+                Num::ratio(n, m)
+            });
             if let Some(product) = exact {
                 return product;
             }
@@ -168,7 +178,10 @@ impl Num {
 
     fn negated(self) -> Num {
         match self {
-            Num::Rational(n, d) => Num::Rational(-n, d),
+            Num::Rational(n, d) => match n.checked_neg() {
+                Some(n) => Num::Rational(n, d),
+                None => Num::Float(-self.to_f64()),
+            },
             Num::Float(x) => Num::Float(-x),
         }
     }
@@ -184,14 +197,30 @@ impl Num {
 
     /// Integer power, `None` for 0 to a negative power.
     pub fn powi(self, exponent: i32) -> Option<Num> {
-        let base = if exponent < 0 { self.recip()? } else { self };
+        let mut base = if exponent < 0 { self.recip()? } else { self };
+        let mut k = exponent.unsigned_abs();
         let mut result = Num::ONE;
-        for _ in 0..exponent.unsigned_abs() {
-            result = result * base;
+        if k <= SMALL_POWER {
+            // One multiplication at a time, as the values have always been rounded.
+            for _ in 0..k {
+                result = result * base;
+            }
+            return Some(result);
+        }
+        // By squaring: any exponent in 32 steps.
+        while k > 0 {
+            if k & 1 == 1 {
+                result = result * base;
+            }
+            base = base * base;
+            k >>= 1;
         }
         Some(result)
     }
 }
+
+/// Powers up to this exponent are multiplied out one factor at a time.
+const SMALL_POWER: u32 = 64;
 
 impl std::ops::Add for Num {
     type Output = Num;
@@ -277,6 +306,34 @@ mod tests {
         assert_eq!(a + b, Num::from_f64(0.3).unwrap());
         assert_eq!(a * b, Num::ratio(1, 50).unwrap());
         assert_eq!(Num::int(2).powi(-2), Num::ratio(1, 4));
+    }
+
+    #[test]
+    fn extreme_rationals_do_not_overflow() {
+        let min = Num::Rational(i128::MIN, 1);
+        assert_eq!((-min).to_f64(), -(i128::MIN as f64));
+        assert!(Num::ratio(i128::MIN, -1).is_none());
+        assert_eq!(Num::ratio(i128::MIN, i128::MIN), Some(Num::ONE));
+        assert_eq!(
+            Num::ratio(i128::MIN, 2),
+            Some(Num::Rational(i128::MIN / 2, 1))
+        );
+        let product = Num::Rational(-(1 << 63), 1) * Num::Rational(1 << 64, 1);
+        assert_eq!(product.to_f64(), -(2f64.powi(127)));
+        assert_eq!(Num::parse_decimal("1.5e-2147483648"), None);
+        assert_eq!(Num::parse_decimal("1e-2147483648"), None);
+        assert_eq!(Num::parse_decimal("1e2147483647"), None);
+    }
+
+    #[test]
+    fn large_powers_are_fast_and_overflow_to_infinity() {
+        assert_eq!(Num::int(2).powi(100).map(Num::to_f64), Some(2f64.powi(100)));
+        assert_eq!(Num::int(2).powi(200).map(Num::to_f64), Some(2f64.powi(200)));
+        assert_eq!(Num::int(3).powi(4), Num::ratio(81, 1));
+        let huge = Num::int(2).powi(i32::MAX).unwrap();
+        assert_eq!(huge.to_f64(), f64::INFINITY);
+        let tiny = Num::int(2).powi(i32::MIN).unwrap();
+        assert_eq!(tiny.to_f64(), 0.0);
     }
 
     #[test]

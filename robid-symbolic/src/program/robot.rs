@@ -275,10 +275,10 @@ impl RobotPrograms {
         let base = d.base_parameters()?;
         let n = robot.dof();
         let beta: Vec<Id> = base.base.iter().map(|b| d.arena.var(&b.name)).collect();
-        let geometry = (!robot.symbols.is_empty()).then(|| {
+        let geometry = (!robot.symbols().is_empty()).then(|| {
             Group::new(
                 "geometry",
-                robot.symbols.iter().map(|(s, _)| s.clone()).collect(),
+                robot.symbols().iter().map(|(s, _)| s.clone()).collect(),
             )
         });
         let mut cx = Context {
@@ -343,7 +343,7 @@ impl RobotPrograms {
                     expression: arena.display(b.expression),
                 })
                 .collect(),
-            geometry: robot.symbols.clone(),
+            geometry: robot.symbols().to_vec(),
             standard_regressor,
             base_regressor,
             inverse_dynamics,

@@ -97,7 +97,7 @@ fn programs_agree_for_reference_robots() {
             let robot = robot.clone().with_drive(drive);
             let p = super::RobotPrograms::derive(&robot).unwrap();
             let n = robot.dof();
-            let geometry: Vec<f64> = robot.symbols.iter().map(|(_, v)| v.unwrap()).collect();
+            let geometry: Vec<f64> = robot.symbols().iter().map(|(_, v)| v.unwrap()).collect();
             let run = |prog: &Program, inputs: Vec<&[f64]>| {
                 let mut inputs = inputs.clone();
                 if !geometry.is_empty() {
@@ -140,6 +140,47 @@ fn programs_agree_for_reference_robots() {
                     );
                     close(mq, tau[j] - tau_v[j], &format!("{name}: M qdd"));
                 }
+            }
+        }
+    }
+}
+
+/// `Program::run` never panics on inputs or outputs of any count or length:
+/// it runs when every group has its length and returns a `LengthError`
+/// naming the first group that does not, otherwise (the rx90's programs also
+/// read a `geometry` group).
+#[test]
+fn run_checks_every_length_and_never_panics() {
+    let text = include_str!("../../../robots/descriptions/rx90.toml");
+    let robot = Robot::from_toml(text, "rx90.toml").unwrap();
+    let p = super::RobotPrograms::derive(&robot).unwrap();
+    let mut rng = Rng::new(11);
+    for program in [&p.inverse_dynamics, &p.mass_matrix, &p.base_from_standard] {
+        let inputs: Vec<usize> = program.inputs.iter().map(Group::len).collect();
+        let outputs: Vec<usize> = program.outputs.iter().map(|o| o.values.len()).collect();
+        let mut temps = Vec::new();
+        for case in 0..400 {
+            // Mostly the right shapes, each count or length off now and then.
+            let vary = |rng: &mut Rng, n: usize| match rng.below(6) {
+                0 => rng.below(2 * n + 2),
+                _ => n,
+            };
+            let input_count = vary(&mut rng, inputs.len());
+            let output_count = vary(&mut rng, outputs.len());
+            let xs: Vec<Vec<f64>> = (0..input_count)
+                .map(|g| vec![0.5; vary(&mut rng, inputs.get(g).copied().unwrap_or(3))])
+                .collect();
+            let mut ys: Vec<Vec<f64>> = (0..output_count)
+                .map(|g| vec![0.0; vary(&mut rng, outputs.get(g).copied().unwrap_or(3))])
+                .collect();
+            let x: Vec<&[f64]> = xs.iter().map(Vec::as_slice).collect();
+            let mut y: Vec<&mut [f64]> = ys.iter_mut().map(Vec::as_mut_slice).collect();
+            let right = x.iter().map(|s| s.len()).eq(inputs.iter().copied())
+                && y.iter().map(|s| s.len()).eq(outputs.iter().copied());
+            let result = program.run(&x, &mut y, &mut temps);
+            assert_eq!(result.is_ok(), right, "case {case}: {result:?}");
+            if right {
+                assert!(ys.iter().flatten().all(|v| v.is_finite()), "case {case}");
             }
         }
     }

@@ -55,7 +55,7 @@ pub(crate) fn fit_polynomial(
         basis[m].iter().map(|&i| samples[r][i]).product::<f64>()
     });
     let b = nalgebra::DVector::from_column_slice(values);
-    let x = a.clone().svd(true, true).solve(&b, 1e-12).ok()?;
+    let x = super::rank::svd(a.clone())?.solve(&b, 1e-12).ok()?;
     let fitted = &a * &x;
     let scale = values.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
     if (fitted - &b).amax() > 1e-8 * scale {

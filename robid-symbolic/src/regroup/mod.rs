@@ -17,6 +17,7 @@ mod rules;
 use crate::dynamics::{Derivation, LinkParameters, newton_euler};
 use crate::expr::{Arena, Id, Node, Num};
 use crate::robot::Parameter;
+use crate::robot::bounds::SYMBOL_SAMPLES;
 use crate::sample::Rng;
 use rank::Status;
 
@@ -69,7 +70,7 @@ pub enum RegroupError {
     /// A numeric dependency has no exact form (rational, or polynomial of
     /// degree two in the geometric symbols).
     #[error(
-        "the dependency of `{parameter}` on `{on}` has no exact coefficient; give the lengths involved numeric values"
+        "the dependency of `{parameter}` on `{on}` has no exact coefficient (a polynomial of degree two at most in the geometric symbols); give the symbols involved numeric values, in particular a symbol used as an angle"
     )]
     NotExpressible {
         /// The dependent parameter.
@@ -77,6 +78,11 @@ pub enum RegroupError {
         /// The parameter it depends on.
         on: String,
     },
+    /// The sampled regressor is not finite, or its factorisation did not converge.
+    #[error(
+        "the numeric rank analysis of the regressor failed ({0}); keep the description's values within robid's limits (robid_symbolic::robot::bounds)"
+    )]
+    Numeric(String),
 }
 
 /// A parameter that survived the rules: where it lives and its expression.
@@ -101,15 +107,20 @@ impl Derivation {
         let candidates = self.candidates(&links, &eliminated);
         let geometry: Vec<Id> = self
             .robot
-            .symbols
+            .symbols()
             .iter()
             .map(|(s, _)| self.arena.var(s))
             .collect();
         let mut rng = Rng::new(0x5EED);
-        let first_geometry: Vec<f64> = geometry.iter().map(|_| rng.uniform(0.2, 1.0)).collect();
+        let first_geometry: Vec<f64> = geometry
+            .iter()
+            .map(|_| rng.uniform(SYMBOL_SAMPLES[0], SYMBOL_SAMPLES[1]))
+            .collect();
         let columns: Vec<&[Id]> = candidates.iter().map(|c| c.column.as_slice()).collect();
         let sampled = self.sample(&columns, &geometry, &first_geometry, &mut rng);
-        let status = rank::analyse(&sampled);
+        let status = rank::analyse(&sampled).ok_or_else(|| {
+            RegroupError::Numeric("a sampled regressor value is not finite".to_owned())
+        })?;
         let kept: Vec<usize> = (0..candidates.len())
             .filter(|&i| matches!(status[i], Status::Kept(_)))
             .collect();
@@ -183,7 +194,7 @@ impl Derivation {
         let n = links.len();
         let mut out = Vec::new();
         for j in 0..n {
-            let drive = self.robot.joints[j].drive;
+            let drive = self.robot.joints()[j].drive;
             let enabled = [drive.ia, drive.fv, drive.fc, drive.fo];
             let slots = rules::slots(&links[j]);
             for slot in 0..14 {
@@ -281,7 +292,7 @@ impl Derivation {
             .all(|&(_, c)| exact::rationalize(c).is_some());
         if geometry.is_empty()
             || all_constant
-                && self.same_at_other_geometry(i, numeric, kept, candidates, geometry, rng)
+                && self.same_at_other_geometry(i, numeric, kept, candidates, geometry, rng)?
         {
             return Ok(numeric
                 .iter()
@@ -294,11 +305,16 @@ impl Derivation {
         // Coefficients vary with the lengths: fit a polynomial in them.
         let count = exact::monomials(geometry.len()).len() + 4;
         let samples: Vec<Vec<f64>> = (0..count)
-            .map(|_| geometry.iter().map(|_| rng.uniform(0.2, 1.0)).collect())
+            .map(|_| {
+                geometry
+                    .iter()
+                    .map(|_| rng.uniform(SYMBOL_SAMPLES[0], SYMBOL_SAMPLES[1]))
+                    .collect()
+            })
             .collect();
         let mut per_sample: Vec<Vec<f64>> = Vec::with_capacity(count);
         for g in &samples {
-            per_sample.push(self.coefficients_at(i, kept, candidates, geometry, g, rng));
+            per_sample.push(self.coefficients_at(i, kept, candidates, geometry, g, rng)?);
         }
         let mut out = Vec::new();
         for k in 0..kept.len() {
@@ -324,17 +340,20 @@ impl Derivation {
         candidates: &[Candidate],
         geometry: &[Id],
         rng: &mut Rng,
-    ) -> bool {
-        let g: Vec<f64> = geometry.iter().map(|_| rng.uniform(0.2, 1.0)).collect();
-        let other = self.coefficients_at(i, kept, candidates, geometry, &g, rng);
+    ) -> Result<bool, RegroupError> {
+        let g: Vec<f64> = geometry
+            .iter()
+            .map(|_| rng.uniform(SYMBOL_SAMPLES[0], SYMBOL_SAMPLES[1]))
+            .collect();
+        let other = self.coefficients_at(i, kept, candidates, geometry, &g, rng)?;
         let mut expected = vec![0.0; kept.len()];
         for &(k, c) in numeric {
             expected[k] = c;
         }
-        other
+        Ok(other
             .iter()
             .zip(&expected)
-            .all(|(a, b)| (a - b).abs() <= 1e-8 * b.abs().max(1.0))
+            .all(|(a, b)| (a - b).abs() <= 1e-8 * b.abs().max(1.0)))
     }
 
     fn coefficients_at(
@@ -345,7 +364,7 @@ impl Derivation {
         geometry: &[Id],
         values: &[f64],
         rng: &mut Rng,
-    ) -> Vec<f64> {
+    ) -> Result<Vec<f64>, RegroupError> {
         let mut columns: Vec<&[Id]> = kept
             .iter()
             .map(|&k| candidates[k].column.as_slice())
@@ -355,7 +374,9 @@ impl Derivation {
         let (dependent, kept_columns) =
             sampled.split_last().expect("at least the dependent column");
         let refs: Vec<&Vec<f64>> = kept_columns.iter().collect();
-        rank::coefficients(&refs, dependent)
+        rank::coefficients(&refs, dependent).ok_or_else(|| {
+            RegroupError::Numeric("a sampled regressor value is not finite".to_owned())
+        })
     }
 }
 

@@ -7,7 +7,20 @@
 //! to its norm is dependent, and its coefficients on the kept columns come
 //! from a least-squares solve (SVD) on the kept columns.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, SVD};
+
+/// Most iterations of an SVD: finite input converges in a few sweeps per
+/// singular value; the cap only guarantees an end.
+const SVD_ITERATIONS: usize = 10_000;
+
+/// The SVD of `a` as nalgebra's `svd(true, true)` computes it, or `None`
+/// when an entry is not finite or it does not converge within the cap.
+pub(crate) fn svd(a: DMatrix<f64>) -> Option<SVD<f64, nalgebra::Dyn, nalgebra::Dyn>> {
+    if a.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    a.try_svd(true, true, f64::EPSILON * 5.0, SVD_ITERATIONS)
+}
 
 /// What the analysis found for a column.
 #[derive(Clone, Debug, PartialEq)]
@@ -23,8 +36,12 @@ pub(crate) enum Status {
 /// Relative residual below which a column counts as dependent.
 const DEPENDENT: f64 = 1e-8;
 
-/// Classifies `columns` (each a sampled column of length m).
-pub(crate) fn analyse(columns: &[Vec<f64>]) -> Vec<Status> {
+/// Classifies `columns` (each a sampled column of length m); `None` when a
+/// value is not finite or the least-squares solve does not converge.
+pub(crate) fn analyse(columns: &[Vec<f64>]) -> Option<Vec<Status>> {
+    if columns.iter().flatten().any(|x| !x.is_finite()) {
+        return None;
+    }
     let m = columns.first().map_or(0, Vec::len);
     let scale = columns
         .iter()
@@ -60,7 +77,7 @@ pub(crate) fn analyse(columns: &[Vec<f64>]) -> Vec<Status> {
     // Coefficients of each dependent column on the kept ones.
     if status.iter().any(|s| matches!(s, Status::Dependent(_))) {
         let a = DMatrix::from_fn(m, kept.len(), |r, k| columns[kept[k]][r]);
-        let svd = a.svd(true, true);
+        let svd = svd(a)?;
         for (i, s) in status.iter_mut().enumerate() {
             if let Status::Dependent(coefficients) = s {
                 let b = DVector::from_column_slice(&columns[i]);
@@ -76,18 +93,24 @@ pub(crate) fn analyse(columns: &[Vec<f64>]) -> Vec<Status> {
             }
         }
     }
-    status
+    Some(status)
 }
 
-/// Coefficients of `column` on the given kept columns (least squares).
-pub(crate) fn coefficients(kept: &[&Vec<f64>], column: &[f64]) -> Vec<f64> {
+/// Coefficients of `column` on the given kept columns (least squares);
+/// `None` when a value is not finite or the solve does not converge.
+pub(crate) fn coefficients(kept: &[&Vec<f64>], column: &[f64]) -> Option<Vec<f64>> {
     let m = column.len();
     let a = DMatrix::from_fn(m, kept.len(), |r, k| kept[k][r]);
     let b = DVector::from_column_slice(column);
-    let svd = a.svd(true, true);
-    svd.solve(&b, 1e-12)
-        .map(|x| x.iter().copied().collect())
-        .unwrap_or_else(|_| vec![0.0; kept.len()])
+    if b.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    Some(
+        svd(a)?
+            .solve(&b, 1e-12)
+            .map(|x| x.iter().copied().collect())
+            .unwrap_or_else(|_| vec![0.0; kept.len()]),
+    )
 }
 
 fn norm(v: &[f64]) -> f64 {
@@ -104,7 +127,7 @@ mod tests {
         let b = vec![0.0, 1.0, 0.0, 1.0];
         let zero = vec![0.0; 4];
         let dep: Vec<f64> = a.iter().zip(&b).map(|(x, y)| 2.0 * x - 0.5 * y).collect();
-        let s = analyse(&[a, zero, b, dep]);
+        let s = analyse(&[a, zero, b, dep]).unwrap();
         assert_eq!(s[0], Status::Kept(0));
         assert_eq!(s[1], Status::Zero);
         assert_eq!(s[2], Status::Kept(1));
@@ -115,5 +138,15 @@ mod tests {
             }
             other => panic!("expected a dependency, got {other:?}"),
         }
+    }
+
+    #[test]
+    fn values_that_are_not_finite_are_refused() {
+        assert_eq!(analyse(&[vec![1.0, f64::NAN]]), None);
+        assert_eq!(analyse(&[vec![1.0, f64::INFINITY], vec![0.0, 1.0]]), None);
+        assert_eq!(
+            super::coefficients(&[&vec![1.0, 2.0]], &[f64::NAN, 1.0]),
+            None
+        );
     }
 }

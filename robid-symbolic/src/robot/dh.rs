@@ -33,7 +33,7 @@ pub struct FrameRow {
 impl Robot {
     /// The table in modified-DH form, whatever the user's convention.
     pub fn frame_rows(&self) -> Vec<FrameRow> {
-        let j = &self.joints;
+        let j = self.joints();
         (0..j.len())
             .map(|i| match self.convention {
                 Convention::Modified => FrameRow {

@@ -12,7 +12,7 @@ pub enum DescriptionError {
         /// The operating system's reason.
         reason: String,
     },
-    /// The text is not valid TOML or does not have the expected shape.
+    /// The text is not valid TOML.
     #[error("{file}:{line}:{column}: {message}")]
     Syntax {
         /// Path of the file (or `<inline>`).
@@ -24,14 +24,14 @@ pub enum DescriptionError {
         /// What is wrong and what is expected.
         message: String,
     },
-    /// A value has the right shape but is not acceptable.
+    /// A value in a file is missing, of the wrong type or not acceptable.
     #[error("{file}:{line}:{column}: {message}; {help}")]
     Invalid {
-        /// Path of the file (or `<inline>` / `<code>`).
+        /// Path of the file (or `<inline>`).
         file: String,
-        /// 1-based line (0 when built in code).
+        /// 1-based line.
         line: usize,
-        /// 1-based column (0 when built in code).
+        /// 1-based column.
         column: usize,
         /// What is wrong.
         message: String,
@@ -40,6 +40,19 @@ pub enum DescriptionError {
         /// Byte range in the text, when known (for compiler spans).
         span: Option<(usize, usize)>,
     },
+    /// A value given in code (not read from a file) is not acceptable.
+    #[error("{argument}: {message}; {help}")]
+    Argument {
+        /// The argument, e.g. `` `joints[2].a` `` or `the robot name`.
+        argument: String,
+        /// What is wrong.
+        message: String,
+        /// How to fix it.
+        help: String,
+    },
+    /// Several problems, in the order of the text: every one found at once.
+    #[error("{}", .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n"))]
+    Several(Vec<DescriptionError>),
 }
 
 impl DescriptionError {
@@ -48,6 +61,24 @@ impl DescriptionError {
         match self {
             DescriptionError::Invalid { span, .. } => *span,
             _ => None,
+        }
+    }
+
+    /// Each problem on its own (one for every variant but [`DescriptionError::Several`]).
+    pub fn errors(&self) -> Vec<&DescriptionError> {
+        match self {
+            DescriptionError::Several(all) => all.iter().flat_map(|e| e.errors()).collect(),
+            one => vec![one],
+        }
+    }
+
+    /// One error for a list of them: the error itself when there is one,
+    /// [`DescriptionError::Several`] otherwise.
+    pub(crate) fn from_errors(mut errors: Vec<DescriptionError>) -> DescriptionError {
+        if errors.len() == 1 {
+            errors.remove(0)
+        } else {
+            DescriptionError::Several(errors)
         }
     }
 }

@@ -1,141 +1,143 @@
-//! Reading a robot from TOML, with errors that name file, line and column.
+//! Reading a robot from TOML, reporting every mistake at once, each with its
+//! file, line and column.
 //!
 //! ```toml
-//! name = "ur5e"
+//! name = "ur5e"                  # names the generated type (Ur5e): an identifier, not a Rust keyword
 //! convention = "modified"        # or "standard"
-//! gravity = [0, 0, -9.81]        # optional, base frame
+//! gravity = [0, 0, -9.81]        # optional, base frame, m/s^2
 //! drive = ["Ia", "Fv", "Fc"]     # optional default drive terms of every joint
 //! [symbols]                      # optional values of geometric symbols
 //! L3 = 0.425
 //! [[joints]]
 //! type = "revolute"              # or "prismatic"; default revolute
-//! alpha = "pi/2"                 # a number, an exact angle, or a symbol expression
-//! a = "-L3"
+//! alpha = "pi/2"                 # a number, an exact angle, or a symbol expression (rad)
+//! a = "-L3"                      # lengths in metres
 //! d = 0.1625
 //! theta = 0                      # offset of the joint angle
 //! drive = ["Ia"]                 # optional, overrides the default
 //! limits = { position = [-6.28, 6.28], velocity = 3.14, acceleration = 10, torque = 150 }
 //! ```
+//!
+//! Every value is checked when the file is read, against the limits listed in
+//! [`bounds`](super::bounds): lengths 0 or 1e-6 to 1e3 m in magnitude, angles
+//! at most one turn and exactly `k pi/2` or at least 1e-5 rad from it,
+//! gravity components 0 or 1e-3 to 1e3 m/s^2, finite `[symbols]` values
+//! (each for a symbol some value uses), finite limits (position within
+//! ±1e3, velocity up to 1e4, acceleration up to 1e6, torque up to 1e7),
+//! 1 to 32 joints, at most 16 symbols, a file of at most 1 MiB, and
+//! expressions within the reader's limits (4096 bytes, 64 levels of
+//! parentheses, calls and signs, exponents within ±64).
+//!
+//! A TOML syntax error stops the reading (it is reported alone); every other
+//! mistake (unknown keys, wrong types, missing keys, values out of range,
+//! unused symbols) is reported together with the others.
 
-use super::{Convention, DescriptionError, Drive, Geometry, Joint, JointKind, Limits, Robot};
-use crate::expr::{Arena, Node};
-use serde::Deserialize;
-use serde::de::{self, Deserializer, Visitor};
-use std::collections::BTreeMap;
-use std::fmt;
+use super::bounds::MAX_DESCRIPTION_LEN;
+use super::check::{Item, Locate};
+use super::read::{Reader, Spans};
+use super::{DescriptionError, Robot};
+use std::io::Read;
 use std::ops::Range;
-use toml::Spanned;
+use toml::de::DeTable;
 
-/// A geometric value as written: a number or a text expression.
-#[derive(Debug, Clone)]
-enum RawValue {
-    Number(f64),
-    Text(String),
-}
+/// Most mistakes reported for one file; the rest are counted.
+const MAX_ERRORS: usize = 50;
 
-impl<'de> Deserialize<'de> for RawValue {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<RawValue, D::Error> {
-        struct V;
-        impl Visitor<'_> for V {
-            type Value = RawValue;
-            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str(
-                    "a number, an exact angle such as \"pi/2\", or a symbol name such as \"L3\"",
-                )
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<RawValue, E> {
-                Ok(RawValue::Number(v as f64))
-            }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<RawValue, E> {
-                Ok(RawValue::Number(v as f64))
-            }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<RawValue, E> {
-                Ok(RawValue::Number(v))
-            }
-            fn visit_str<E: de::Error>(self, v: &str) -> Result<RawValue, E> {
-                Ok(RawValue::Text(v.to_owned()))
-            }
-        }
-        deserializer.deserialize_any(V)
-    }
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawRobot {
-    name: Spanned<String>,
-    convention: Spanned<String>,
-    gravity: Option<Spanned<Vec<Spanned<RawValue>>>>,
-    drive: Option<Spanned<Vec<Spanned<String>>>>,
-    #[serde(default)]
-    symbols: BTreeMap<String, Spanned<f64>>,
-    joints: Vec<RawJoint>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawJoint {
-    #[serde(rename = "type")]
-    kind: Option<Spanned<String>>,
-    alpha: Option<Spanned<RawValue>>,
-    a: Option<Spanned<RawValue>>,
-    d: Option<Spanned<RawValue>>,
-    theta: Option<Spanned<RawValue>>,
-    drive: Option<Spanned<Vec<Spanned<String>>>>,
-    #[serde(default)]
-    limits: RawLimits,
-}
-
-#[derive(Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-struct RawLimits {
-    position: Option<Spanned<[f64; 2]>>,
-    velocity: Option<Spanned<f64>>,
-    acceleration: Option<Spanned<f64>>,
-    torque: Option<Spanned<f64>>,
-}
-
-/// Where a problem is: file name, the text (for line/column), and a span.
-struct Place<'a> {
-    file: &'a str,
-    text: &'a str,
+/// Where a problem is: file name, the text (for line/column).
+pub(super) struct Place<'a> {
+    pub(super) file: &'a str,
+    pub(super) text: &'a str,
 }
 
 impl Place<'_> {
     fn line_column(&self, offset: usize) -> (usize, usize) {
-        let before = &self.text[..offset.min(self.text.len())];
+        let mut offset = offset.min(self.text.len());
+        while !self.text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        let before = &self.text[..offset];
         let line = before.matches('\n').count() + 1;
         let column = before.chars().rev().take_while(|&c| c != '\n').count() + 1;
         (line, column)
     }
 
-    fn invalid(&self, span: Range<usize>, message: String, help: &str) -> DescriptionError {
+    /// An error about the text at `span`.
+    pub(super) fn invalid(
+        &self,
+        span: Range<usize>,
+        message: String,
+        help: impl Into<String>,
+    ) -> DescriptionError {
         let (line, column) = self.line_column(span.start);
         DescriptionError::Invalid {
             file: self.file.to_owned(),
             line,
             column,
             message,
-            help: help.to_owned(),
+            help: help.into(),
             span: Some((span.start, span.end)),
         }
     }
 }
 
+/// Errors of the checks, located through the spans the reader kept.
+struct FileLocator<'a> {
+    place: &'a Place<'a>,
+    spans: &'a Spans,
+}
+
+impl Locate for FileLocator<'_> {
+    fn error(&self, item: Item<'_>, message: String, help: String) -> DescriptionError {
+        self.place.invalid(self.spans.of(item), message, help)
+    }
+}
+
 impl Robot {
-    /// Reads a description file.
+    /// Reads a description file (at most
+    /// [`MAX_DESCRIPTION_LEN`] bytes).
     pub fn from_file(path: &std::path::Path) -> Result<Robot, DescriptionError> {
-        let text = std::fs::read_to_string(path).map_err(|e| DescriptionError::Read {
-            file: path.display().to_string(),
-            reason: e.to_string(),
+        let file = path.display().to_string();
+        let read_error = |reason: String| DescriptionError::Read {
+            file: file.clone(),
+            reason,
+        };
+        let handle = std::fs::File::open(path).map_err(|e| read_error(e.to_string()))?;
+        let mut bytes = Vec::new();
+        handle
+            .take(MAX_DESCRIPTION_LEN as u64 + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| read_error(e.to_string()))?;
+        if bytes.len() > MAX_DESCRIPTION_LEN {
+            return Err(read_error(format!(
+                "it is longer than {MAX_DESCRIPTION_LEN} bytes, the most a description may have; is it a description?"
+            )));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| {
+            read_error(format!(
+                "it is not UTF-8 text (invalid byte at offset {}); save it as UTF-8",
+                e.utf8_error().valid_up_to()
+            ))
         })?;
-        Robot::from_toml(&text, &path.display().to_string())
+        Robot::from_toml(&text, &file)
     }
 
-    /// Parses a description from TOML text; `file` names it in errors.
+    /// Parses a description from TOML text; `file` names it in errors. Every
+    /// mistake is reported (in [`DescriptionError::Several`] when there are
+    /// more than one), except that a TOML syntax error is reported alone.
+    /// Values are checked against the limits of [`bounds`](super::bounds).
     pub fn from_toml(text: &str, file: &str) -> Result<Robot, DescriptionError> {
         let place = Place { file, text };
-        let raw: RawRobot = toml::from_str(text).map_err(|e| {
+        if text.len() > MAX_DESCRIPTION_LEN {
+            return Err(place.invalid(
+                0..0,
+                format!(
+                    "the description is {} bytes long, more than the {MAX_DESCRIPTION_LEN} robid reads",
+                    text.len()
+                ),
+                "a description is a short DH table; check that this is the right file",
+            ));
+        }
+        let document = DeTable::parse(text).map_err(|e| {
             let (line, column) = e
                 .span()
                 .map(|s| place.line_column(s.start))
@@ -147,287 +149,28 @@ impl Robot {
                 message: e.message().trim().to_owned(),
             }
         })?;
-        let name = raw.name.get_ref();
-        if name.is_empty()
-            || !name.starts_with(|c: char| c.is_ascii_alphabetic())
-            || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-        {
-            return Err(place.invalid(
-                raw.name.span(),
-                format!("robot name `{name}` is not an identifier"),
-                "use letters, digits and `_`, starting with a letter (it names the generated type)",
+        let mut reader = Reader::new(&place);
+        let parts = reader.robot(document.get_ref());
+        let (mut errors, spans) = reader.finish();
+        let checked = parts.check(&FileLocator {
+            place: &place,
+            spans: &spans,
+        });
+        match checked {
+            Ok(robot) if errors.is_empty() => return Ok(robot),
+            Ok(_) => {}
+            Err(more) => errors.extend(more),
+        }
+        errors.sort_by_key(|e| e.span().map_or(0, |(start, _)| start));
+        if errors.len() > MAX_ERRORS {
+            let rest = errors.split_off(MAX_ERRORS);
+            let at = rest[0].span().map_or(0, |(start, _)| start);
+            errors.push(place.invalid(
+                at..at,
+                format!("{} more mistakes from here on are not shown", rest.len()),
+                "fix the ones above and read the file again",
             ));
         }
-        let convention = match raw.convention.get_ref().as_str() {
-            "modified" => Convention::Modified,
-            "standard" => Convention::Standard,
-            other => {
-                return Err(place.invalid(
-                    raw.convention.span(),
-                    format!("unknown DH convention `{other}`"),
-                    "write `convention = \"modified\"` (Craig/Khalil) or `convention = \"standard\"` (classic)",
-                ));
-            }
-        };
-        let default_drive = match &raw.drive {
-            Some(d) => drive(&place, d)?,
-            None => Drive::NONE,
-        };
-        let gravity = match &raw.gravity {
-            None => None,
-            Some(g) if g.get_ref().len() != 3 => {
-                return Err(place.invalid(
-                    g.span(),
-                    format!("gravity has {} values", g.get_ref().len()),
-                    "give three values in the base frame, e.g. `gravity = [0, 0, -9.81]`",
-                ));
-            }
-            Some(g) => {
-                let v: Result<Vec<Geometry>, _> =
-                    g.get_ref().iter().map(|x| geometry(&place, x)).collect();
-                let v = v?;
-                Some([v[0].clone(), v[1].clone(), v[2].clone()])
-            }
-        };
-        if raw.joints.is_empty() {
-            return Err(place.invalid(
-                0..0,
-                "the robot has no joints".into(),
-                "add one `[[joints]]` table per DH row",
-            ));
-        }
-        let mut joints = Vec::with_capacity(raw.joints.len());
-        let mut spans = Vec::new();
-        for rj in &raw.joints {
-            let kind = match rj.kind.as_ref().map(|k| (k.get_ref().as_str(), k.span())) {
-                None | Some(("revolute", _)) => JointKind::Revolute,
-                Some(("prismatic", _)) => JointKind::Prismatic,
-                Some((other, span)) => {
-                    return Err(place.invalid(
-                        span,
-                        format!("unknown joint type `{other}`"),
-                        "write `type = \"revolute\"` or `type = \"prismatic\"`",
-                    ));
-                }
-            };
-            let value = |v: &Option<Spanned<RawValue>>| match v {
-                Some(v) => geometry(&place, v).map(|g| (g, Some(v.span()))),
-                None => Ok((Geometry::zero(), None)),
-            };
-            let (alpha, sa) = value(&rj.alpha)?;
-            let (a, s_a) = value(&rj.a)?;
-            let (d, sd) = value(&rj.d)?;
-            let (theta, st) = value(&rj.theta)?;
-            spans.extend([sa, s_a, sd, st]);
-            let drive = match &rj.drive {
-                Some(d) => drive(&place, d)?,
-                None => default_drive,
-            };
-            joints.push(Joint {
-                kind,
-                alpha,
-                a,
-                d,
-                theta,
-                limits: limits(&place, &rj.limits)?,
-                drive,
-            });
-        }
-        let mut robot = Robot {
-            name: name.clone(),
-            convention,
-            gravity: gravity
-                .unwrap_or_else(|| [Geometry::zero(), Geometry::zero(), Geometry::number(-9.81)]),
-            joints,
-            symbols: Vec::new(),
-        };
-        let symbols = check_geometry(&robot, &spans).map_err(|e| relocate(&place, e))?;
-        for (name, value) in &raw.symbols {
-            if !value.get_ref().is_finite() {
-                return Err(place.invalid(
-                    value.span(),
-                    format!("symbol `{name}` is not finite"),
-                    "give a finite number",
-                ));
-            }
-        }
-        robot.symbols = symbols
-            .into_iter()
-            .map(|(s, _)| {
-                let v = raw.symbols.get(&s).map(|v| *v.get_ref());
-                (s, v)
-            })
-            .collect();
-        Ok(robot)
+        Err(DescriptionError::from_errors(errors))
     }
-}
-
-/// Turns an error with a span from `check_geometry` into one with line and column.
-fn relocate(place: &Place<'_>, e: DescriptionError) -> DescriptionError {
-    match e {
-        DescriptionError::Invalid {
-            message,
-            help,
-            span: Some((s, t)),
-            ..
-        } => place.invalid(s..t, message, &help),
-        other => other,
-    }
-}
-
-fn geometry(place: &Place<'_>, v: &Spanned<RawValue>) -> Result<Geometry, DescriptionError> {
-    match v.get_ref() {
-        RawValue::Number(x) if !x.is_finite() => Err(place.invalid(
-            v.span(),
-            format!("`{x}` is not a finite number"),
-            "DH values and gravity must be finite numbers, exact angles or symbols",
-        )),
-        RawValue::Number(x) => Ok(Geometry::number(*x)),
-        RawValue::Text(t) => Ok(Geometry::text(t)),
-    }
-}
-
-fn drive(
-    place: &Place<'_>,
-    names: &Spanned<Vec<Spanned<String>>>,
-) -> Result<Drive, DescriptionError> {
-    let mut d = Drive::NONE;
-    for n in names.get_ref() {
-        match n.get_ref().as_str() {
-            "Ia" => d.ia = true,
-            "Fv" => d.fv = true,
-            "Fc" => d.fc = true,
-            "Fo" => d.fo = true,
-            other => {
-                return Err(place.invalid(
-                    n.span(),
-                    format!("unknown drive term `{other}`"),
-                    "drive terms are \"Ia\" (rotor inertia), \"Fv\" (viscous), \"Fc\" (Coulomb), \"Fo\" (offset)",
-                ));
-            }
-        }
-    }
-    Ok(d)
-}
-
-fn limits(place: &Place<'_>, raw: &RawLimits) -> Result<Limits, DescriptionError> {
-    let positive = |v: &Option<Spanned<f64>>, what: &str| match v {
-        Some(x) if !(x.get_ref().is_finite() && *x.get_ref() > 0.0) => Err(place.invalid(
-            x.span(),
-            format!(
-                "{what} limit {} is not a positive finite number",
-                x.get_ref()
-            ),
-            "limits are maximum absolute values, e.g. `velocity = 3.14`",
-        )),
-        Some(x) => Ok(Some(*x.get_ref())),
-        None => Ok(None),
-    };
-    let position = match &raw.position {
-        Some(p) => {
-            let [lo, hi] = *p.get_ref();
-            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-                return Err(place.invalid(
-                    p.span(),
-                    format!(
-                        "position limits [{lo}, {hi}] are not an increasing pair of finite numbers"
-                    ),
-                    "write `position = [lower, upper]` with lower < upper",
-                ));
-            }
-            Some([lo, hi])
-        }
-        None => None,
-    };
-    Ok(Limits {
-        position,
-        velocity: positive(&raw.velocity, "velocity")?,
-        acceleration: positive(&raw.acceleration, "acceleration")?,
-        torque: positive(&raw.torque, "torque")?,
-    })
-}
-
-/// True for names the derivation uses itself (joint variables, parameters).
-fn reserved(name: &str) -> bool {
-    let prefixes = [
-        "qdd", "qd", "q", "XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M", "Ia", "Fv",
-        "Fc", "Fo",
-    ];
-    prefixes.iter().any(|p| {
-        name.strip_prefix(p)
-            .is_some_and(|rest| !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit()))
-    }) || name == "pi"
-}
-
-/// Checks that every geometric value is an expression in numbers, `pi` and
-/// free symbol names, and returns the symbols in order of first use.
-/// `spans[i]` is the span of value i (alpha, a, d, theta of each joint), if known.
-pub(super) fn check_geometry(
-    robot: &Robot,
-    spans: &[Option<Range<usize>>],
-) -> Result<Vec<(String, Option<f64>)>, DescriptionError> {
-    let mut arena = Arena::new();
-    let mut symbols: Vec<(String, Option<f64>)> = Vec::new();
-    let values = robot
-        .joints
-        .iter()
-        .enumerate()
-        .flat_map(|(j, joint)| {
-            [
-                ("alpha", &joint.alpha),
-                ("a", &joint.a),
-                ("d", &joint.d),
-                ("theta", &joint.theta),
-            ]
-            .into_iter()
-            .map(move |(what, g)| (format!("joint {} `{what}`", j + 1), g))
-        })
-        .chain(robot.gravity.iter().map(|g| ("gravity".to_owned(), g)));
-    for (i, (what, g)) in values.enumerate() {
-        let span = spans.get(i).cloned().flatten();
-        let fail = |message: String, help: &str| DescriptionError::Invalid {
-            file: "<code>".to_owned(),
-            line: 0,
-            column: 0,
-            message,
-            help: help.to_owned(),
-            span: span.as_ref().map(|s| (s.start, s.end)),
-        };
-        let e = arena.parse(g.as_str()).map_err(|err| {
-            fail(
-                format!("{what} `{}` is not an expression ({err})", g.as_str()),
-                "write a number, an angle such as \"pi/2\" or \"-pi/2\", or a symbol such as \"L3\" or \"-d4\"",
-            )
-        })?;
-        let seen = arena.reachable(&[e]);
-        for node in (0..seen.len())
-            .filter(|&k| seen[k])
-            .map(|k| arena.node_at(k))
-        {
-            match node {
-                Node::Sym(s) => {
-                    let name = arena.symbol_name(*s);
-                    if reserved(name) {
-                        return Err(fail(
-                            format!(
-                                "{what} uses `{name}`, a name robid gives to joint variables and parameters"
-                            ),
-                            "rename the symbol, e.g. `L3` or `d_tool`",
-                        ));
-                    }
-                    if !symbols.iter().any(|(n, _)| n == name) {
-                        symbols.push((name.to_owned(), None));
-                    }
-                }
-                Node::Sin(_) | Node::Cos(_) | Node::Sign(_) | Node::Sqrt(_) => {
-                    return Err(fail(
-                        format!("{what} `{}` calls a function", g.as_str()),
-                        "geometric values are sums and products of numbers, pi and symbols",
-                    ));
-                }
-                _ => {}
-            }
-        }
-    }
-    Ok(symbols)
 }

@@ -1,19 +1,30 @@
 //! Robot descriptions: a DH table with joint types, limits and drive terms.
 //!
-//! [`Robot`] is the validated description; `file.rs` reads it from TOML with
-//! errors that name the line and column; `parameters.rs` names the standard
-//! parameters; `dh.rs` turns either DH convention into modified-DH frames.
+//! [`Robot`] is the validated description: its fields are private and every
+//! way to build or change one checks it (`check.rs`), so a `Robot` in hand is
+//! always usable. [`Geometry`] is one DH value or gravity component, valid by
+//! construction (`geometry.rs`). `file.rs` reads a robot from TOML, reporting
+//! every mistake with its line and column; [`bounds`] holds the documented
+//! limits on values and sizes; `parameters.rs` names the standard parameters;
+//! `dh.rs` turns either DH convention into modified-DH frames.
 
+pub mod bounds;
+mod check;
 mod dh;
 mod error;
 mod file;
+mod geometry;
+mod interval;
 mod parameters;
+mod read;
 
 pub use dh::FrameRow;
 pub use error::DescriptionError;
+pub use geometry::{Expression, Geometry, GeometryError, Number};
 pub use parameters::{DriveTerm, INERTIAL_NAMES, Parameter, ParameterKind};
 
-use crate::expr::{Arena, Id, Num};
+pub(crate) use check::name_problem;
+use check::{Code, Parts};
 
 /// Denavit-Hartenberg convention of a table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,47 +54,10 @@ pub enum JointKind {
     Prismatic,
 }
 
-/// A geometric value: a number, an exact angle such as `pi/2`, or an expression
-/// in named symbols (`L3`, `-d4`), kept symbolic through every derivation.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Geometry(String);
-
-impl Geometry {
-    /// A number.
-    pub fn number(value: f64) -> Geometry {
-        match Num::from_f64(value) {
-            Some(n) => Geometry(n.to_string()),
-            None => Geometry(format!("{value:?}")),
-        }
-    }
-
-    /// An expression in text form (checked when the robot is validated).
-    pub fn text(text: &str) -> Geometry {
-        Geometry(text.trim().to_owned())
-    }
-
-    /// Zero.
-    pub fn zero() -> Geometry {
-        Geometry("0".to_owned())
-    }
-
-    /// The value as an expression in `arena`.
-    pub fn to_expr(&self, arena: &mut Arena) -> Id {
-        arena
-            .parse(&self.0)
-            .expect("geometry is validated when the robot is built")
-    }
-
-    /// The text form.
-    pub fn as_str(&self) -> &str {
-        &self.0
-    }
-}
-
 /// Joint limits (all optional).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Limits {
-    /// Lower and upper position [rad or m].
+    /// Lower and upper position (rad or m).
     pub position: Option<[f64; 2]>,
     /// Maximum absolute velocity.
     pub velocity: Option<f64>,
@@ -123,18 +97,19 @@ impl Drive {
     };
 }
 
-/// One row of the DH table and what belongs to its joint.
+/// One row of the DH table and what belongs to its joint: plain data, checked
+/// when a [`Robot`] is built from it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Joint {
     /// Revolute or prismatic.
     pub kind: JointKind,
-    /// Twist alpha.
+    /// Twist alpha (rad).
     pub alpha: Geometry,
-    /// Length a.
+    /// Length a (m).
     pub a: Geometry,
-    /// Offset d (the joint variable's offset for a prismatic joint).
+    /// Offset d (m) (the joint variable's offset for a prismatic joint).
     pub d: Geometry,
-    /// Angle offset theta (the joint variable's offset for a revolute joint).
+    /// Angle offset theta (rad) (the joint variable's offset for a revolute joint).
     pub theta: Geometry,
     /// Limits.
     pub limits: Limits,
@@ -143,62 +118,118 @@ pub struct Joint {
 }
 
 impl Joint {
-    /// A revolute joint with numeric DH values, no limits, no drive terms.
-    pub fn revolute(alpha: &str, a: f64, d: f64, theta: &str) -> Joint {
+    /// A joint with these DH values, no limits and no drive terms.
+    pub fn new(
+        kind: JointKind,
+        alpha: Geometry,
+        a: Geometry,
+        d: Geometry,
+        theta: Geometry,
+    ) -> Joint {
         Joint {
-            kind: JointKind::Revolute,
-            alpha: Geometry::text(alpha),
-            a: Geometry::number(a),
-            d: Geometry::number(d),
-            theta: Geometry::text(theta),
+            kind,
+            alpha,
+            a,
+            d,
+            theta,
             limits: Limits::default(),
             drive: Drive::NONE,
         }
     }
 
-    /// A prismatic joint with numeric DH values, no limits, no drive terms.
-    pub fn prismatic(alpha: &str, a: f64, d: f64, theta: &str) -> Joint {
-        Joint {
+    /// A revolute joint with numeric lengths, no limits and no drive terms;
+    /// the angles are text such as `"pi/2"` or `"0"` (see [`Geometry::text`]).
+    pub fn revolute(alpha: &str, a: f64, d: f64, theta: &str) -> Result<Joint, GeometryError> {
+        Ok(Joint::new(
+            JointKind::Revolute,
+            Geometry::text(alpha)?,
+            Geometry::number(a)?,
+            Geometry::number(d)?,
+            Geometry::text(theta)?,
+        ))
+    }
+
+    /// A prismatic joint with numeric lengths, no limits and no drive terms
+    /// (see [`Joint::revolute`]).
+    pub fn prismatic(alpha: &str, a: f64, d: f64, theta: &str) -> Result<Joint, GeometryError> {
+        Ok(Joint {
             kind: JointKind::Prismatic,
-            ..Joint::revolute(alpha, a, d, theta)
-        }
+            ..Joint::revolute(alpha, a, d, theta)?
+        })
     }
 }
 
 /// A validated robot description.
+///
+/// Built by [`Robot::new`], [`Robot::from_toml`] or [`Robot::from_file`], and
+/// changed only through the `with_*` methods, each of which checks the result:
+/// a name that is a Rust identifier and not a keyword (it names generated
+/// code), 1 to [`bounds::MAX_JOINTS`] joints, values whose magnitudes suit
+/// their place (see [`bounds`]), finite limits, and a value for a symbol
+/// only when some DH value or gravity uses it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Robot {
-    /// Name (lower case, used for generated type names).
-    pub name: String,
-    /// DH convention of the table.
-    pub convention: Convention,
-    /// Gravity in the base frame.
-    pub gravity: [Geometry; 3],
-    /// Joints, base to tip.
-    pub joints: Vec<Joint>,
-    /// Default values of the geometric symbols, in order of first use.
-    pub symbols: Vec<(String, Option<f64>)>,
+    name: String,
+    convention: Convention,
+    gravity: [Geometry; 3],
+    joints: Vec<Joint>,
+    symbols: Vec<(String, Option<f64>)>,
 }
 
 impl Robot {
-    /// Builds and validates a robot (gravity default [0, 0, -9.81] if `None`).
+    /// Builds and checks a robot (gravity `[0, 0, -9.81]` if `None`); the
+    /// errors name the argument (`joints[2].a`).
     pub fn new(
         name: &str,
         convention: Convention,
         gravity: Option<[Geometry; 3]>,
         joints: Vec<Joint>,
     ) -> Result<Robot, DescriptionError> {
-        let gravity = gravity
-            .unwrap_or_else(|| [Geometry::zero(), Geometry::zero(), Geometry::number(-9.81)]);
-        let mut robot = Robot {
+        let parts = Parts {
             name: name.to_owned(),
             convention,
-            gravity,
+            gravity: gravity.unwrap_or_else(default_gravity),
             joints,
-            symbols: Vec::new(),
+            values: Vec::new(),
+            unread_words: Vec::new(),
         };
-        robot.symbols = file::check_geometry(&robot, &[])?;
-        Ok(robot)
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
+    /// Name (used for generated type names: `ur5e` -> `Ur5e`).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// DH convention of the table.
+    pub fn convention(&self) -> Convention {
+        self.convention
+    }
+
+    /// Gravity in the base frame (m/s^2).
+    pub fn gravity(&self) -> &[Geometry; 3] {
+        &self.gravity
+    }
+
+    /// Joints, base to tip.
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+
+    /// The geometric symbols, in order of first use, with their values in the
+    /// description (`None`: a run-time input of the generated model).
+    pub fn symbols(&self) -> &[(String, Option<f64>)] {
+        &self.symbols
+    }
+
+    /// The geometric symbols without a value: run-time inputs of the models
+    /// (fields of the generated type).
+    pub fn run_time_symbols(&self) -> Vec<&str> {
+        self.symbols
+            .iter()
+            .filter(|(_, v)| v.is_none())
+            .map(|(s, _)| s.as_str())
+            .collect()
     }
 
     /// Number of joints.
@@ -214,9 +245,76 @@ impl Robot {
         self
     }
 
-    /// The same robot with another gravity vector (numbers).
-    pub fn with_gravity(mut self, gravity: [f64; 3]) -> Robot {
-        self.gravity = gravity.map(Geometry::number);
-        self
+    /// The same robot with the given drive terms on joint `joint` (0-based).
+    pub fn with_joint_drive(
+        mut self,
+        joint: usize,
+        drive: Drive,
+    ) -> Result<Robot, DescriptionError> {
+        let dof = self.dof();
+        let Some(j) = self.joints.get_mut(joint) else {
+            return Err(DescriptionError::Argument {
+                argument: "`joint` of `Robot::with_joint_drive`".to_owned(),
+                message: format!("joint index {joint} is out of range"),
+                help: format!("the robot has {dof} joints, indices 0 to {}", dof - 1),
+            });
+        };
+        j.drive = drive;
+        Ok(self)
     }
+
+    /// The same robot with another gravity vector (m/s^2), checked as in a description.
+    pub fn with_gravity(self, gravity: [f64; 3]) -> Result<Robot, DescriptionError> {
+        let mut g = Vec::with_capacity(3);
+        for (i, value) in gravity.into_iter().enumerate() {
+            g.push(
+                Geometry::number(value).map_err(|e| DescriptionError::Argument {
+                    argument: format!("`gravity[{i}]` of `Robot::with_gravity`"),
+                    message: e.to_string(),
+                    help: "give gravity in m/s^2, e.g. [0.0, 0.0, -9.81]".to_owned(),
+                })?,
+            );
+        }
+        let mut parts = self.into_parts();
+        parts.gravity = [g[0].clone(), g[1].clone(), g[2].clone()];
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
+    /// The same robot under another name (checked as in a description).
+    pub fn with_name(self, name: &str) -> Result<Robot, DescriptionError> {
+        let mut parts = self.into_parts();
+        parts.name = name.to_owned();
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
+    /// The same robot with a value for geometric symbol `symbol`, which some
+    /// DH value or gravity component must use (the error names the nearest
+    /// symbol that is used).
+    pub fn with_symbol_value(self, symbol: &str, value: f64) -> Result<Robot, DescriptionError> {
+        let mut parts = self.into_parts();
+        parts.values.retain(|(s, _)| s != symbol);
+        parts.values.push((symbol.to_owned(), value));
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
+    fn into_parts(self) -> Parts {
+        Parts {
+            name: self.name,
+            convention: self.convention,
+            gravity: self.gravity,
+            joints: self.joints,
+            values: self
+                .symbols
+                .into_iter()
+                .filter_map(|(s, v)| Some((s, v?)))
+                .collect(),
+            unread_words: Vec::new(),
+        }
+    }
+}
+
+/// `[0, 0, -9.81]`.
+pub(super) fn default_gravity() -> [Geometry; 3] {
+    let g = Geometry::number(-9.81).unwrap_or_else(|_| Geometry::zero());
+    [Geometry::zero(), Geometry::zero(), g]
 }

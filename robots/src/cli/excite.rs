@@ -146,7 +146,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let limits = model
         .programs()
         .robot
-        .joints
+        .joints()
         .iter()
         .enumerate()
         .map(|(j, joint)| {

@@ -237,9 +237,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Some("urdf" | "xml")
     );
     let text = if urdf {
-        to_urdf(&solution, &robot.name)
+        to_urdf(&solution, robot.name())
     } else {
-        to_toml(&solution, &robot.name)
+        to_toml(&solution, robot.name())
     };
     files::write(&args.output, &text)?;
     out::warn(format_args!(
@@ -267,7 +267,7 @@ fn problem(robot: &Robot) -> Result<Problem, Error> {
     let mut derivation = Derivation::new(robot);
     let base = derivation.base_parameters()?;
     let mut pairs = Vec::new();
-    for (name, value) in &robot.symbols {
+    for (name, value) in robot.symbols() {
         let v = value.ok_or_else(|| {
             format!("geometric symbol `{name}` has no value; give it one in the description")
         })?;

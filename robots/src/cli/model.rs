@@ -132,9 +132,9 @@ fn derive(robot: &Robot) -> Result<Report, Error> {
         );
     }
     Ok(Report {
-        name: robot.name.clone(),
+        name: robot.name().to_owned(),
         dof: robot.dof(),
-        convention: robot.convention.as_str(),
+        convention: robot.convention().as_str(),
         standard_parameters: b.standard.iter().map(|p| p.name.clone()).collect(),
         base_parameters,
         unidentifiable: b
@@ -154,7 +154,7 @@ fn text(robot: &Robot, r: &Report) -> String {
         out,
         "\n  j  type       alpha        a            d            theta"
     );
-    for (j, joint) in robot.joints.iter().enumerate() {
+    for (j, joint) in robot.joints().iter().enumerate() {
         let kind = match joint.kind {
             robid_symbolic::JointKind::Revolute => "revolute",
             robid_symbolic::JointKind::Prismatic => "prismatic",

@@ -34,7 +34,7 @@ fn check(name: &str, model: &dyn Model) {
     let path = format!("{}/descriptions/{name}.toml", env!("CARGO_MANIFEST_DIR"));
     let robot = Robot::from_file(std::path::Path::new(&path)).unwrap();
     let programs = RobotPrograms::derive(&robot).unwrap();
-    let geometry: Vec<f64> = robot.symbols.iter().map(|(_, v)| v.unwrap()).collect();
+    let geometry: Vec<f64> = robot.symbols().iter().map(|(_, v)| v.unwrap()).collect();
     let n = model.dof();
     let (ns, nb) = (
         model.standard_parameter_count(),

@@ -101,7 +101,7 @@ impl Setup {
         .unwrap();
         println!(
             "{} Fourier: cond {:.1} over {} samples",
-            self.model.programs().robot.name,
+            self.model.programs().robot.name(),
             a.condition_number,
             a.samples
         );
@@ -192,7 +192,7 @@ impl Setup {
         let a = assess(&self.model, &tr, &self.limits, Some(&self.truth), 1).unwrap();
         println!(
             "{} points: extended-regressor cost {:.1} (from {:.1}), cond {:.1} over {} samples, {} evaluations in {:?}",
-            self.model.programs().robot.name,
+            self.model.programs().robot.name(),
             r.cost,
             r.initial_cost,
             a.condition_number,

@@ -42,7 +42,7 @@ pub(crate) fn reference(
     let mut base = vec![0.0; model.base_parameter_count()];
     model.base_from_standard(&standard, &mut base).unwrap();
     let limits = robot
-        .joints
+        .joints()
         .iter()
         .map(|j| JointLimits {
             position: j.limits.position.expect("position limits"),

@@ -47,8 +47,12 @@ pub(crate) fn like_factors(arena: &mut Arena, factors: &[Id]) -> Vec<Id> {
             Node::Pow(b, e) => (*b, *e),
             _ => (f, 1),
         };
-        match index.get(&base) {
-            Some(&i) => grouped[i].1 += exponent,
+        // A sum of exponents that does not fit stays a separate factor.
+        let merged = index
+            .get(&base)
+            .and_then(|&i| Some((i, grouped[i].1.checked_add(exponent)?)));
+        match merged {
+            Some((i, sum)) => grouped[i].1 = sum,
             None => {
                 index.insert(base, grouped.len());
                 grouped.push((base, exponent));

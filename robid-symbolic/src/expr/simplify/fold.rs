@@ -28,7 +28,7 @@ pub(crate) fn exact_sqrt(c: Num) -> Option<Num> {
         Num::Rational(n, d) if n >= 0 => {
             let root = |v: i128| {
                 let r = (v as f64).sqrt().round() as i128;
-                (r * r == v).then_some(r)
+                (r.checked_mul(r) == Some(v)).then_some(r)
             };
             match (root(n), root(d)) {
                 (Some(a), Some(b)) => Num::ratio(a, b),

@@ -1,0 +1,81 @@
+//! The limits a robot description must stay within, checked when a
+//! [`Robot`](super::Robot) is built (from a file, with each error's line and
+//! column, or in code) and named in the errors.
+//!
+//! Magnitudes have physical ranges wide enough for any arm and narrow enough
+//! that the regrouping's numeric rank analysis (regressor columns sampled at
+//! random states, independence decided at a relative 1e-8) decides every
+//! dependency as it would for nominal values: the tests derive the reference
+//! robots with every length, and every gravity component, at each end of its
+//! range and find the base-parameter count of the nominal robot.
+//!
+//! | what | accepted |
+//! |---|---|
+//! | DH lengths `a`, `d` | 0, or [`MIN_LENGTH`] (1 µm) to [`MAX_LENGTH`] (1 km) in magnitude, in metres |
+//! | DH angles `alpha`, `theta` | at most [`MAX_ANGLE`] (one turn) in magnitude, in radians; exactly `k pi/2` (as `"pi/2"`, `0`) or at least [`ANGLE_RESOLUTION`] away from every such angle |
+//! | gravity components | 0, or [`MIN_GRAVITY`] to [`MAX_GRAVITY`] m/s^2 in magnitude |
+//! | a value with symbols | the above at the `[symbols]` values when all its symbols have one, and at most [`MAX_SAMPLED`] in magnitude for any symbol values in [`SYMBOL_SAMPLES`] |
+//! | `[symbols]` values | finite |
+//! | position limits | two finite values, lower < upper, at most [`MAX_POSITION`] in magnitude |
+//! | velocity, acceleration, torque limits | positive, at most [`MAX_VELOCITY`], [`MAX_ACCELERATION`], [`MAX_TORQUE`] |
+//! | joints | 1 to [`MAX_JOINTS`] |
+//! | geometric symbols | at most [`MAX_SYMBOLS`] |
+//! | a description file | at most [`MAX_DESCRIPTION_LEN`] bytes |
+//! | one expression | the limits of [`Arena::parse`](crate::expr::Arena::parse): [`MAX_EXPRESSION_LEN`](crate::expr::MAX_EXPRESSION_LEN) bytes, [`MAX_NESTING`](crate::expr::MAX_NESTING) levels, exponents within ±[`MAX_EXPONENT`](crate::expr::MAX_EXPONENT) |
+
+/// Most joints of a robot (a serial chain; deriving a 32-joint chain takes
+/// seconds, the cost grows faster than the square of the count).
+pub const MAX_JOINTS: usize = 32;
+
+/// Most geometric symbols of a robot (exact dependency coefficients are fitted
+/// as polynomials of degree two in them, so the fit grows with their square).
+pub const MAX_SYMBOLS: usize = 16;
+
+/// Largest magnitude of a DH length `a` or `d` (m).
+pub const MAX_LENGTH: f64 = 1e3;
+
+/// Smallest magnitude of a DH length that is not zero (m) (1 µm): anything
+/// shorter is a mistake (millimetres?) or is meant to be 0.
+pub const MIN_LENGTH: f64 = 1e-6;
+
+/// Largest magnitude of a DH angle `alpha` or `theta` (rad): one turn. A
+/// larger angle is usually written in degrees.
+pub const MAX_ANGLE: f64 = 2.0 * std::f64::consts::PI;
+
+/// Smallest distance (rad) between a DH angle that is not exactly `k pi/2` and
+/// the nearest `k pi/2`. `1.5707963` is 2.7e-8 rad from `pi/2`: an
+/// approximation of a right angle that would make axes almost, not exactly,
+/// perpendicular (write `"pi/2"`).
+pub const ANGLE_RESOLUTION: f64 = 1e-5;
+
+/// Largest magnitude of a gravity component (m/s^2) (100 g).
+pub const MAX_GRAVITY: f64 = 1e3;
+
+/// Smallest magnitude of a gravity component that is not zero (m/s^2): a
+/// tilt of 1e-4 rad under 9.81 m/s^2. Smaller components are not told apart
+/// from zero by the regrouping; write 0.
+pub const MIN_GRAVITY: f64 = 1e-3;
+
+/// The interval in which the regrouping samples geometric symbols (all of
+/// them, with or without a value), to find the base parameters.
+pub const SYMBOL_SAMPLES: [f64; 2] = [0.2, 1.0];
+
+/// Largest magnitude of a value with symbols, for symbols anywhere in
+/// [`SYMBOL_SAMPLES`] (the regrouping samples them there).
+pub const MAX_SAMPLED: f64 = 1e3;
+
+/// Largest magnitude of a position limit (rad or m).
+pub const MAX_POSITION: f64 = 1e3;
+
+/// Largest velocity limit (rad/s or m/s).
+pub const MAX_VELOCITY: f64 = 1e4;
+
+/// Largest acceleration limit (rad/s^2 or m/s^2).
+pub const MAX_ACCELERATION: f64 = 1e6;
+
+/// Largest torque or force limit (N m or N).
+pub const MAX_TORQUE: f64 = 1e7;
+
+/// Largest description text read (bytes) (the reference descriptions are
+/// about 2 kB).
+pub const MAX_DESCRIPTION_LEN: usize = 1 << 20;

@@ -1,0 +1,575 @@
+//! Checking a robot against the rules of [`bounds`](super::bounds) and the
+//! naming rules, collecting every problem, each located where the checked
+//! item was written: a file's line and column (`file.rs`) or the argument of
+//! a library call ([`Code`]).
+
+use super::bounds::{
+    ANGLE_RESOLUTION, MAX_ACCELERATION, MAX_ANGLE, MAX_GRAVITY, MAX_JOINTS, MAX_LENGTH,
+    MAX_POSITION, MAX_SAMPLED, MAX_SYMBOLS, MAX_TORQUE, MAX_VELOCITY, MIN_GRAVITY, MIN_LENGTH,
+    SYMBOL_SAMPLES,
+};
+use super::interval::magnitude_bound;
+use super::{Convention, DescriptionError, Geometry, Joint, Limits, Robot};
+use crate::emit::type_name;
+use crate::expr::Arena;
+use std::f64::consts::FRAC_PI_2;
+
+/// The parts of a robot before they are checked.
+pub(super) struct Parts {
+    pub(super) name: String,
+    pub(super) convention: Convention,
+    pub(super) gravity: [Geometry; 3],
+    pub(super) joints: Vec<Joint>,
+    /// Values given to symbols, in the order given.
+    pub(super) values: Vec<(String, f64)>,
+    /// The words of values that could not be read (their symbols are
+    /// unknown): a value given to one of them is not reported as unused.
+    pub(super) unread_words: Vec<String>,
+}
+
+/// A DH value of a joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Dh {
+    Alpha,
+    A,
+    D,
+    Theta,
+}
+
+impl Dh {
+    pub(super) const ALL: [Dh; 4] = [Dh::Alpha, Dh::A, Dh::D, Dh::Theta];
+
+    pub(super) fn key(self) -> &'static str {
+        match self {
+            Dh::Alpha => "alpha",
+            Dh::A => "a",
+            Dh::D => "d",
+            Dh::Theta => "theta",
+        }
+    }
+
+    fn of(self, joint: &Joint) -> &Geometry {
+        match self {
+            Dh::Alpha => &joint.alpha,
+            Dh::A => &joint.a,
+            Dh::D => &joint.d,
+            Dh::Theta => &joint.theta,
+        }
+    }
+}
+
+/// A joint limit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Limit {
+    Position,
+    Velocity,
+    Acceleration,
+    Torque,
+}
+
+impl Limit {
+    pub(super) const ALL: [Limit; 4] = [
+        Limit::Position,
+        Limit::Velocity,
+        Limit::Acceleration,
+        Limit::Torque,
+    ];
+
+    pub(super) fn key(self) -> &'static str {
+        match self {
+            Limit::Position => "position",
+            Limit::Velocity => "velocity",
+            Limit::Acceleration => "acceleration",
+            Limit::Torque => "torque",
+        }
+    }
+}
+
+/// What an error is about.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Item<'a> {
+    Name,
+    Joints,
+    /// A DH value of joint `j` (0-based).
+    Value(usize, Dh),
+    /// Gravity component `i`.
+    Gravity(usize),
+    Limit(usize, Limit),
+    /// The value given to a symbol.
+    Symbol(&'a str),
+}
+
+/// Makes an error located where `item` was written.
+pub(super) trait Locate {
+    fn error(&self, item: Item<'_>, message: String, help: String) -> DescriptionError;
+}
+
+/// Items given in code: errors name the argument.
+pub(super) struct Code;
+
+impl Locate for Code {
+    fn error(&self, item: Item<'_>, message: String, help: String) -> DescriptionError {
+        let argument = match item {
+            Item::Name => "the robot name".to_owned(),
+            Item::Joints => "`joints`".to_owned(),
+            Item::Value(j, dh) => format!("`joints[{j}].{}`", dh.key()),
+            Item::Gravity(i) => format!("`gravity[{i}]`"),
+            Item::Limit(j, l) => format!("`joints[{j}].limits.{}`", l.key()),
+            Item::Symbol(s) => format!("the value of symbol `{s}`"),
+        };
+        DescriptionError::Argument {
+            argument,
+            message,
+            help,
+        }
+    }
+}
+
+/// The Rust keywords of every edition (strict, reserved and weak); a robot
+/// name names generated code, so it cannot be one.
+const KEYWORDS: [&str; 55] = [
+    "Self",
+    "abstract",
+    "as",
+    "async",
+    "await",
+    "become",
+    "box",
+    "break",
+    "const",
+    "continue",
+    "crate",
+    "do",
+    "dyn",
+    "else",
+    "enum",
+    "extern",
+    "false",
+    "final",
+    "fn",
+    "for",
+    "gen",
+    "if",
+    "impl",
+    "in",
+    "let",
+    "loop",
+    "macro",
+    "macro_rules",
+    "match",
+    "mod",
+    "move",
+    "mut",
+    "override",
+    "priv",
+    "pub",
+    "raw",
+    "ref",
+    "return",
+    "safe",
+    "self",
+    "static",
+    "struct",
+    "super",
+    "trait",
+    "true",
+    "try",
+    "type",
+    "typeof",
+    "union",
+    "unsafe",
+    "unsized",
+    "use",
+    "virtual",
+    "where",
+    "while",
+];
+
+/// Why `name` cannot name a robot (message, help), if it cannot.
+pub(crate) fn name_problem(name: &str) -> Option<(String, String)> {
+    let help = "use letters, digits and `_`, starting with a letter: it names the generated type (`ur5e` -> `Ur5e`)";
+    if !name.starts_with(|c: char| c.is_ascii_alphabetic())
+        || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    {
+        return Some((
+            format!("robot name `{name}` is not an identifier"),
+            help.to_owned(),
+        ));
+    }
+    let ty = type_name(name);
+    if KEYWORDS.contains(&name) || KEYWORDS.contains(&ty.as_str()) {
+        return Some((
+            format!("robot name `{name}` is a Rust keyword or makes one (type `{ty}`)"),
+            "choose another name, e.g. `my_arm`: it names the generated type".to_owned(),
+        ));
+    }
+    None
+}
+
+/// What a geometric value is, for its range.
+#[derive(Clone, Copy, PartialEq)]
+enum Role {
+    Length,
+    Angle,
+    Gravity,
+}
+
+impl Parts {
+    /// The robot, or every problem found.
+    pub(super) fn check(self, locate: &dyn Locate) -> Result<Robot, Vec<DescriptionError>> {
+        let mut errors = Vec::new();
+        let mut error = |item: Item<'_>, message: String, help: &str| {
+            errors.push(locate.error(item, message, help.to_owned()));
+        };
+        if let Some((message, help)) = name_problem(&self.name) {
+            error(Item::Name, message, &help);
+        }
+        if self.joints.is_empty() {
+            error(
+                Item::Joints,
+                "the robot has no joints".to_owned(),
+                "add one joint (a `[[joints]]` table) per DH row",
+            );
+        } else if self.joints.len() > MAX_JOINTS {
+            error(
+                Item::Joints,
+                format!("the robot has {} joints", self.joints.len()),
+                &format!("robid derives serial chains of at most {MAX_JOINTS} joints"),
+            );
+        }
+        let values = self.values();
+        let mut symbols: Vec<String> = Vec::new();
+        for (item, g, _) in &values {
+            for s in g.symbols() {
+                if symbols.contains(s) {
+                    continue;
+                }
+                symbols.push(s.clone());
+                if symbols.len() == MAX_SYMBOLS + 1 {
+                    error(
+                        *item,
+                        format!("`{s}` is geometric symbol number {}", MAX_SYMBOLS + 1),
+                        &format!(
+                            "robid handles at most {MAX_SYMBOLS} symbols; give numbers for the others"
+                        ),
+                    );
+                }
+            }
+        }
+        for (s, v) in &self.values {
+            if !v.is_finite() {
+                error(
+                    Item::Symbol(s),
+                    format!("the value of symbol `{s}` is {v}"),
+                    "give a finite number",
+                );
+            }
+            if !symbols.contains(s) && !self.unread_words.contains(s) {
+                error(
+                    Item::Symbol(s),
+                    format!("symbol `{s}` has a value but no DH value or gravity uses it"),
+                    &unused_help(s, &symbols),
+                );
+            }
+        }
+        let given = |s: &str| {
+            self.values
+                .iter()
+                .find(|(n, _)| n == s)
+                .map(|&(_, v)| v)
+                .filter(|v| v.is_finite())
+        };
+        for (item, g, role) in &values {
+            if let Some((message, help)) = value_problem(*item, g, *role, &given) {
+                error(*item, message, &help);
+            }
+        }
+        for (j, joint) in self.joints.iter().enumerate() {
+            for (limit, message, help) in limit_problems(&joint.limits) {
+                error(
+                    Item::Limit(j, limit),
+                    format!("joint {} {message}", j + 1),
+                    &help,
+                );
+            }
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        let symbols = symbols
+            .into_iter()
+            .map(|s| {
+                let v = given(&s);
+                (s, v)
+            })
+            .collect();
+        Ok(Robot {
+            name: self.name,
+            convention: self.convention,
+            gravity: self.gravity,
+            joints: self.joints,
+            symbols,
+        })
+    }
+
+    /// Every geometric value with its item and role, joints first.
+    fn values(&self) -> Vec<(Item<'static>, Geometry, Role)> {
+        let mut out = Vec::with_capacity(4 * self.joints.len() + 3);
+        for (j, joint) in self.joints.iter().enumerate() {
+            for dh in Dh::ALL {
+                let role = match dh {
+                    Dh::Alpha | Dh::Theta => Role::Angle,
+                    Dh::A | Dh::D => Role::Length,
+                };
+                out.push((Item::Value(j, dh), dh.of(joint).clone(), role));
+            }
+        }
+        for (i, g) in self.gravity.iter().enumerate() {
+            out.push((Item::Gravity(i), g.clone(), Role::Gravity));
+        }
+        out
+    }
+}
+
+/// The help for a value given to a symbol nothing uses: the nearest used one.
+fn unused_help(symbol: &str, used: &[String]) -> String {
+    let nearest = used.iter().min_by_key(|u| {
+        (
+            distance(&u.to_lowercase(), &symbol.to_lowercase()),
+            distance(u, symbol),
+        )
+    });
+    match nearest {
+        Some(n) => format!(
+            "did you mean `{n}`? (names are case-sensitive) A symbol without a value becomes a run-time input of the model; remove the entry or use it in a DH value"
+        ),
+        None => "no DH value or gravity uses a symbol; remove the entry, or write the symbol where it belongs (e.g. `a = \"L2\"`)".to_owned(),
+    }
+}
+
+/// Levenshtein distance.
+pub(super) fn distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut previous = row[0];
+        row[0] = i + 1;
+        for (k, &cb) in b.iter().enumerate() {
+            let substitute = previous + usize::from(ca != cb);
+            previous = row[k + 1];
+            row[k + 1] = substitute.min(row[k] + 1).min(previous + 1);
+        }
+    }
+    row[b.len()]
+}
+
+/// What the item is, in messages.
+fn describe(item: Item<'_>) -> String {
+    match item {
+        Item::Value(j, dh) => format!("joint {} `{}`", j + 1, dh.key()),
+        Item::Gravity(i) => format!("gravity {}", ["x", "y", "z"][i.min(2)]),
+        Item::Limit(j, l) => format!("joint {} {} limit", j + 1, l.key()),
+        Item::Name => "the name".to_owned(),
+        Item::Joints => "the joints".to_owned(),
+        Item::Symbol(s) => format!("symbol `{s}`"),
+    }
+}
+
+/// A number for a message: plain when moderate, else in exponent form.
+pub(super) fn show(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// Why a geometric value does not suit its role (message, help), if it does not.
+fn value_problem(
+    item: Item<'_>,
+    g: &Geometry,
+    role: Role,
+    given: &dyn Fn(&str) -> Option<f64>,
+) -> Option<(String, String)> {
+    let what = format!("{} = {}", describe(item), quoted(g));
+    let mut arena = Arena::new();
+    let id = g.to_expr(&mut arena);
+    if !g.symbols().is_empty() {
+        let bound = magnitude_bound(&arena, id, |_| SYMBOL_SAMPLES);
+        if bound.is_nan() || bound > MAX_SAMPLED {
+            let [low, high] = SYMBOL_SAMPLES;
+            return Some((
+                format!(
+                    "{what} reaches {} in magnitude for symbol values between {low} and {high}, beyond {}",
+                    show(bound),
+                    show(MAX_SAMPLED)
+                ),
+                format!(
+                    "robid samples every geometric symbol between {low} and {high} to find the base parameters; write the value so that it stays within {} there (lengths in metres, no division by an expression that can be zero)",
+                    show(MAX_SAMPLED)
+                ),
+            ));
+        }
+    }
+    // The value where the description gives it.
+    let mut pairs = Vec::new();
+    for s in g.symbols() {
+        pairs.push((s.as_str(), given(s)?));
+    }
+    let values = arena.values(&pairs);
+    let v = arena.eval(&[id], &values).ok()?.first().copied()?;
+    if !v.is_finite() {
+        return Some((
+            format!("{what} is {v} at the [symbols] values"),
+            "give the symbols values that make it a finite number".to_owned(),
+        ));
+    }
+    let is = if pairs.is_empty() {
+        format!("{what} is")
+    } else {
+        format!("{what} is {} at the [symbols] values,", show(v))
+    };
+    match role {
+        Role::Length if v.abs() > MAX_LENGTH => Some((
+            format!("{is} beyond ±{} m", show(MAX_LENGTH)),
+            "DH lengths are in metres; robid accepts lengths up to 1 km".to_owned(),
+        )),
+        Role::Length if v != 0.0 && v.abs() < MIN_LENGTH => Some((
+            format!("{is} shorter than {} m but not zero", show(MIN_LENGTH)),
+            "DH lengths are in metres; write 0 for no length".to_owned(),
+        )),
+        Role::Gravity if v.abs() > MAX_GRAVITY => Some((
+            format!("{is} beyond ±{} m/s^2", show(MAX_GRAVITY)),
+            "gravity is in m/s^2, e.g. `gravity = [0, 0, -9.81]`".to_owned(),
+        )),
+        Role::Gravity if v != 0.0 && v.abs() < MIN_GRAVITY => Some((
+            format!("{is} smaller than {} m/s^2 but not zero", show(MIN_GRAVITY)),
+            "write 0: the regrouping cannot tell a component this small from zero".to_owned(),
+        )),
+        Role::Angle if v.abs() > MAX_ANGLE => Some((
+            format!("{is} more than a turn (2 pi rad)"),
+            "DH angles are in radians: write \"pi/2\" for 90 degrees".to_owned(),
+        )),
+        Role::Angle if pairs.is_empty() && g.quarter_turns().is_none() => {
+            let k = (v / FRAC_PI_2).round();
+            let off = (v - k * FRAC_PI_2).abs();
+            (off < ANGLE_RESOLUTION).then(|| {
+                let exact = quarter_text(k);
+                (
+                    format!("{is} only {off:.1e} rad from {exact}"),
+                    format!(
+                        "write \"{exact}\" for the exact angle, or an angle at least {} rad from every multiple of pi/2",
+                        show(ANGLE_RESOLUTION)
+                    ),
+                )
+            })
+        }
+        _ => None,
+    }
+}
+
+/// `k pi/2` as text.
+fn quarter_text(k: f64) -> String {
+    match k as i64 {
+        0 => "0".to_owned(),
+        k if k % 2 == 0 => match k / 2 {
+            1 => "pi".to_owned(),
+            -1 => "-pi".to_owned(),
+            h => format!("{h}*pi"),
+        },
+        1 => "pi/2".to_owned(),
+        -1 => "-pi/2".to_owned(),
+        k => format!("{k}*pi/2"),
+    }
+}
+
+/// The value as written, quoted when it is text.
+fn quoted(g: &Geometry) -> String {
+    match g {
+        Geometry::Number(n) => show(n.value()),
+        Geometry::Expression(_) => format!("\"{}\"", super::geometry::excerpt(g.as_str())),
+    }
+}
+
+/// Problems of one joint's limits.
+fn limit_problems(limits: &Limits) -> Vec<(Limit, String, String)> {
+    let mut out = Vec::new();
+    if let Some([lo, hi]) = limits.position {
+        let shown = format!("[{}, {}]", show(lo), show(hi));
+        if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+            out.push((
+                Limit::Position,
+                format!("position limits {shown} are not an increasing pair of finite numbers"),
+                "write `position = [lower, upper]` with lower < upper".to_owned(),
+            ));
+        } else if lo.abs().max(hi.abs()) > MAX_POSITION {
+            out.push((
+                Limit::Position,
+                format!("position limits {shown} go beyond ±{}", show(MAX_POSITION)),
+                "positions are in radians (revolute) or metres (prismatic)".to_owned(),
+            ));
+        }
+    }
+    for (limit, value, max, unit) in [
+        (
+            Limit::Velocity,
+            limits.velocity,
+            MAX_VELOCITY,
+            "rad/s or m/s",
+        ),
+        (
+            Limit::Acceleration,
+            limits.acceleration,
+            MAX_ACCELERATION,
+            "rad/s^2 or m/s^2",
+        ),
+        (Limit::Torque, limits.torque, MAX_TORQUE, "N m or N"),
+    ] {
+        let Some(x) = value else { continue };
+        if !(x.is_finite() && x > 0.0 && x <= max) {
+            out.push((
+                limit,
+                format!(
+                    "{} limit {} is not a positive number up to {}",
+                    limit.key(),
+                    show(x),
+                    show(max)
+                ),
+                format!(
+                    "limits are maximum absolute values in {unit}, e.g. `{} = 3.14`",
+                    limit.key()
+                ),
+            ));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{distance, name_problem, quarter_text, show};
+
+    #[test]
+    fn names_that_cannot_name_a_type() {
+        for bad in [
+            "self", "Self", "self_", "fn", "crate", "super", "type", "my arm", "", "1arm", "_x",
+            "arm-2", "é",
+        ] {
+            assert!(name_problem(bad).is_some(), "{bad}");
+        }
+        for good in ["ur5e", "my_arm", "Arm2", "selfie", "crate_arm"] {
+            assert!(name_problem(good).is_none(), "{good}");
+        }
+    }
+
+    #[test]
+    fn helpers() {
+        assert_eq!(distance("l2", "L2"), 1);
+        assert_eq!(distance("kitten", "sitting"), 3);
+        assert_eq!(quarter_text(1.0), "pi/2");
+        assert_eq!(quarter_text(-2.0), "-pi");
+        assert_eq!(quarter_text(3.0), "3*pi/2");
+        assert_eq!(show(1e200), "1e200");
+        assert_eq!(show(0.5), "0.5");
+    }
+}

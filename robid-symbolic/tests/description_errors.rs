@@ -1,0 +1,378 @@
+//! Bad descriptions are located errors, all reported at once; bad library
+//! calls are errors naming the argument; nothing panics.
+
+use robid_symbolic::emit::{EmitError, emit_programs, emit_robot};
+use robid_symbolic::program::RobotPrograms;
+use robid_symbolic::robot::{Geometry, GeometryError};
+use robid_symbolic::{Convention, DescriptionError, Joint, Robot};
+
+const HEAD: &str = "name = \"arm\"\nconvention = \"modified\"\n";
+
+/// Each problem of reading `text` as `file:line:column: message`.
+fn errors(text: &str) -> Vec<String> {
+    match Robot::from_toml(text, "arm.toml") {
+        Ok(_) => Vec::new(),
+        Err(e) => e.errors().iter().map(|e| e.to_string()).collect(),
+    }
+}
+
+/// The single error of `text`, which must start with `arm.toml:LINE:COLUMN:`
+/// and contain every part of `says`.
+fn single(text: &str, at: &str, says: &[&str]) {
+    let all = errors(text);
+    assert_eq!(all.len(), 1, "{text}\n{all:#?}");
+    let e = &all[0];
+    assert!(e.starts_with(&format!("arm.toml:{at}: ")), "{e}");
+    for part in says {
+        assert!(e.contains(part), "`{part}` not in {e}");
+    }
+}
+
+#[test]
+fn every_mistake_of_a_file_is_reported_in_order() {
+    let text = "name = \"my arm\"
+convention = \"modified\"
+gravity = [0, 0, -9810]
+colour = \"red\"
+
+[symbols]
+l2 = 0.4
+
+[[joints]]
+alpha = 90
+a = 0
+d = 1e200
+limits = { position = [1, 2, 3], velocity = -1 }
+
+[[joints]]
+alpha = \"pi/\"
+a = \"L2\"
+d = 1e-9
+theta = \"1.5707963\"
+
+[[joints]]
+a = \"2^1024\"
+d = nan
+tpye = \"revolute\"
+";
+    let all = errors(text);
+    let expected = [
+        ("1:8", "robot name `my arm` is not an identifier"),
+        ("3:18", "gravity z = -9810 is beyond ±1000 m/s^2"),
+        ("4:1", "unknown key `colour`"),
+        (
+            "7:1",
+            "symbol `l2` has a value but no DH value or gravity uses it; did you mean `L2`?",
+        ),
+        ("10:9", "joint 1 `alpha` = 90 is more than a turn"),
+        ("12:5", "joint 1 `d` = 1e200 is beyond ±1000 m"),
+        ("13:23", "joint 1 position limit has 3 values"),
+        (
+            "13:45",
+            "joint 1 velocity limit -1 is not a positive number",
+        ),
+        ("16:13", "joint 2 `alpha`: `pi/` is not an expression"),
+        (
+            "18:5",
+            "joint 2 `d` = 1e-9 is shorter than 1e-6 m but not zero",
+        ),
+        (
+            "19:9",
+            "joint 2 `theta` = \"1.5707963\" is only 2.7e-8 rad from pi/2",
+        ),
+        ("22:8", "the exponent 1024 is beyond ±64"),
+        ("23:5", "joint 3 `d` is NaN, not a finite number"),
+        ("24:1", "unknown key `tpye`; did you mean `type`?"),
+    ];
+    assert_eq!(all.len(), expected.len(), "{all:#?}");
+    for (e, (at, says)) in all.iter().zip(expected) {
+        assert!(
+            e.starts_with(&format!("arm.toml:{at}: ")),
+            "{e} (expected at {at})"
+        );
+        assert!(e.contains(says), "`{says}` not in {e}");
+    }
+}
+
+/// `position = [1, 2, 3]` silently dropped the third value; every array has
+/// its length checked, and every number read is checked.
+#[test]
+fn array_lengths_and_limits_are_checked() {
+    let joint = |limits: &str| format!("{HEAD}[[joints]]\nlimits = {limits}\n");
+    single(
+        &joint("{ position = [1, 2, 3] }"),
+        "4:23",
+        &["position limit has 3 values", "[lower, upper]"],
+    );
+    single(&joint("{ position = [1] }"), "4:23", &["has 1 values"]);
+    single(
+        &joint("{ position = [2, 1] }"),
+        "4:23",
+        &["not an increasing pair"],
+    );
+    single(
+        &joint("{ position = [-1e9, 1] }"),
+        "4:23",
+        &["beyond ±1000"],
+    );
+    single(&joint("{ position = [nan, 1] }"), "4:23", &["finite"]);
+    single(&joint("{ torque = inf }"), "4:21", &["torque limit inf"]);
+    single(&joint("{ acceleration = 1e300 }"), "4:27", &["up to 1e6"]);
+    single(&joint("{ velocity = \"fast\" }"), "4:23", &["is a string"]);
+    single(&joint("{ speed = 1 }"), "4:12", &["unknown key `speed`"]);
+    single(
+        &format!("{HEAD}gravity = [0, -9.81]\n[[joints]]\n"),
+        "3:11",
+        &["gravity has 2 values"],
+    );
+}
+
+#[test]
+fn magnitudes_that_broke_the_derivation_are_errors() {
+    let joint = |values: &str| format!("{HEAD}[[joints]]\n{values}\n");
+    // inf/NaN in base expressions, "base parameters (0)", NaN coefficients:
+    single(&joint("d = 1e308"), "4:5", &["beyond ±1000 m"]);
+    single(&joint("d = 1e200"), "4:5", &["beyond ±1000 m"]);
+    single(&joint("alpha = \"2^1024\""), "4:12", &["exponent 1024"]);
+    single(
+        &joint("alpha = \"2^64 * 2^64\""),
+        "4:9",
+        &["more than a turn"],
+    );
+    single(&joint("a = \"1e300*1e300\""), "4:17", &["out of the range"]);
+    single(&joint("a = -1e-7"), "4:5", &["shorter than 1e-6 m"]);
+    single(&joint("theta = \"pi/2 + 1e-7\""), "4:9", &["from pi/2"]);
+    single(&joint("theta = 3.1415926"), "4:9", &["from pi", "\"pi\""]);
+    single(&joint("alpha = 1e-9"), "4:9", &["from 0"]);
+    // A symbol's value is checked where it is used.
+    single(
+        &format!("{HEAD}[symbols]\nL = 5000\n[[joints]]\na = \"L\"\n"),
+        "6:5",
+        &["is 5000 at the [symbols] values, beyond ±1000 m"],
+    );
+    single(
+        &format!("{HEAD}[symbols]\nL = nan\n[[joints]]\na = \"L\"\n"),
+        "4:1",
+        &["value of symbol `L` is NaN"],
+    );
+    // Symbols are sampled between 0.2 and 1 by the regrouping.
+    single(
+        &joint("a = \"1e5*L\""),
+        "4:5",
+        &["reaches 100000", "between 0.2 and 1"],
+    );
+    single(&joint("a = \"1/(L1 - L2)\""), "4:5", &["reaches inf"]);
+    single(&joint("a = \"L^(-64)\""), "4:5", &["reaches"]);
+    // Gravity: units and tiny components.
+    single(
+        &format!("{HEAD}gravity = [1e-6, 0, -9.81]\n[[joints]]\n"),
+        "3:12",
+        &["gravity x = 1e-6 is smaller than 0.001 m/s^2 but not zero"],
+    );
+    // Accepted: the ends of every range.
+    let ok = format!(
+        "{HEAD}gravity = [1e-3, -1e3, 0]\n[symbols]\nL = 1e3\n[[joints]]\nalpha = \"2*pi\"\na = 1e-6\nd = \"L\"\ntheta = 1e-5\n\
+         limits = {{ position = [-1e3, 1e3], velocity = 1e4, acceleration = 1e6, torque = 1e7 }}\n"
+    );
+    assert_eq!(errors(&ok), Vec::<String>::new());
+}
+
+#[test]
+fn names_must_name_a_rust_type() {
+    for name in ["self", "Self", "fn", "crate", "super", "self_", "type"] {
+        single(
+            &format!("name = \"{name}\"\nconvention = \"modified\"\n[[joints]]\n"),
+            "1:8",
+            &["Rust keyword"],
+        );
+    }
+    for name in ["my arm", "1arm", "arm-2", ""] {
+        single(
+            &format!("name = \"{name}\"\nconvention = \"modified\"\n[[joints]]\n"),
+            "1:8",
+            &["not an identifier"],
+        );
+    }
+    single(
+        "convention = \"modified\"\n[[joints]]\n",
+        "1:1",
+        &["has no `name`"],
+    );
+}
+
+#[test]
+fn sizes_are_limited() {
+    let joints = "[[joints]]\na = 0.1\n".repeat(33);
+    single(
+        &format!("{HEAD}{joints}"),
+        "3:1",
+        &["33 joints", "at most 32"],
+    );
+    let sum: Vec<String> = (1..=17).map(|i| format!("L{i}")).collect();
+    single(
+        &format!("{HEAD}[[joints]]\na = \"({})/17\"\n", sum.join(" + ")),
+        "4:5",
+        &["symbol number 17", "at most 16"],
+    );
+    // The 40 kB alpha and the 40,000 minus signs that overflowed the stack.
+    let deep = format!("{}x{}", "(".repeat(20_000), ")".repeat(20_000));
+    single(
+        &format!("{HEAD}[[joints]]\nalpha = \"{deep}\"\n"),
+        "4:9",
+        &["40001 bytes long, more than the 4096"],
+    );
+    let minus = format!("{}x", "-".repeat(4000));
+    single(
+        &format!("{HEAD}[[joints]]\nalpha = \"{minus}\"\n"),
+        "4:75",
+        &["nest deeper than 64 levels"],
+    );
+    // Many mistakes: the first 50 and a count of the others.
+    let bad = "[[joints]]\na = 1e9\nd = 1e9\n".repeat(30);
+    let all = errors(&format!("{HEAD}{bad}"));
+    assert_eq!(all.len(), 51, "{all:#?}");
+    assert!(
+        all[49].starts_with("arm.toml:77:5: joint 25 `d` = 1e9 is beyond"),
+        "{}",
+        all[49]
+    );
+    assert!(all[50].starts_with("arm.toml:79:5: "), "{}", all[50]);
+    assert!(
+        all[50].contains("more mistakes from here on are not shown"),
+        "{}",
+        all[50]
+    );
+    let big = format!("{HEAD}# {}\n[[joints]]\n", "x".repeat(1 << 20));
+    single(&big, "1:1", &["more than the 1048576"]);
+}
+
+/// A value for a symbol no joint uses (the typo `l2` for `L2`) is an error
+/// naming the nearest used symbol; without it, `L2` would silently become a
+/// run-time input of the generated type, which lists its run-time inputs.
+#[test]
+fn unused_symbols_are_errors_and_run_time_inputs_are_documented() {
+    let text = format!("{HEAD}[symbols]\nl2 = 0.4\nL3 = 0.3\n[[joints]]\na = \"L2\"\nd = \"L3\"\n");
+    single(
+        &text,
+        "4:1",
+        &[
+            "symbol `l2` has a value but no DH value or gravity uses it",
+            "did you mean `L2`?",
+        ],
+    );
+    let fixed = text.replace("l2 = 0.4", "L2 = 0.4");
+    let robot = Robot::from_toml(&fixed, "arm.toml").unwrap();
+    assert!(robot.run_time_symbols().is_empty());
+    let without = text.replace("l2 = 0.4\n", "");
+    let robot = Robot::from_toml(&without, "arm.toml").unwrap();
+    assert_eq!(robot.run_time_symbols(), ["L2"]);
+    let code = emit_robot(&robot).unwrap();
+    assert!(
+        code.contains("/// Run-time inputs: the geometric symbols without a value in the description, fields `L2`;"),
+        "{code}"
+    );
+    assert!(code.contains("/// Geometric symbol `L2`: a run-time input"));
+    assert!(code.contains("/// Geometric symbol `L3` (description value: 0.3)."));
+    // No symbol used at all.
+    single(
+        &format!("{HEAD}[symbols]\nL = 1\n[[joints]]\n"),
+        "4:1",
+        &["no DH value or gravity uses a symbol"],
+    );
+}
+
+#[test]
+fn library_calls_are_checked_and_name_the_argument() {
+    assert!(matches!(
+        Geometry::text("pi/"),
+        Err(GeometryError::Parse { .. })
+    ));
+    assert!(matches!(
+        Geometry::number(f64::NAN),
+        Err(GeometryError::NotFinite(_))
+    ));
+    let joint = || Joint::revolute("0", 0.1, 0.0, "0").unwrap();
+    let robot = Robot::new("arm", Convention::Modified, None, vec![joint()]).unwrap();
+    let argument = |r: Result<Robot, DescriptionError>| match r {
+        Err(DescriptionError::Argument { argument, .. }) => argument,
+        other => panic!("expected an argument error, got {other:?}"),
+    };
+    assert_eq!(
+        argument(robot.clone().with_gravity([f64::NAN, 0.0, -9.81])),
+        "`gravity[0]` of `Robot::with_gravity`"
+    );
+    assert_eq!(
+        argument(robot.clone().with_gravity([0.0, 0.0, -9810.0])),
+        "`gravity[2]`"
+    );
+    assert_eq!(
+        argument(robot.clone().with_name("my arm")),
+        "the robot name"
+    );
+    assert_eq!(argument(robot.clone().with_name("self")), "the robot name");
+    assert_eq!(
+        argument(robot.clone().with_symbol_value("L2", 0.4)),
+        "the value of symbol `L2`"
+    );
+    assert!(
+        robot
+            .clone()
+            .with_joint_drive(1, robid_symbolic::Drive::ALL)
+            .is_err()
+    );
+    let mut far = joint();
+    far.d = Geometry::number(2e3).unwrap();
+    assert_eq!(
+        argument(Robot::new(
+            "arm",
+            Convention::Modified,
+            None,
+            vec![joint(), far]
+        )),
+        "`joints[1].d`"
+    );
+    let mut limited = joint();
+    limited.limits.velocity = Some(f64::INFINITY);
+    assert_eq!(
+        argument(Robot::new("arm", Convention::Modified, None, vec![limited])),
+        "`joints[0].limits.velocity`"
+    );
+    assert!(Robot::new("arm", Convention::Modified, None, Vec::new()).is_err());
+}
+
+/// `emit_programs` returns errors instead of panicking on programs that
+/// cannot become Rust (possible only when built or changed by hand).
+#[test]
+fn emission_fails_without_panicking() {
+    let text = format!("{HEAD}[[joints]]\na = 0.5\n[[joints]]\nalpha = \"pi/2\"\n");
+    let robot = Robot::from_toml(&text, "arm.toml").unwrap();
+    let programs = RobotPrograms::derive(&robot).unwrap();
+    assert!(emit_programs(&programs).is_ok());
+    let mut nan = programs.clone();
+    nan.gravity.constants.push(f64::NAN);
+    assert!(matches!(
+        emit_programs(&nan),
+        Err(EmitError::NotFinite { .. })
+    ));
+    let mut group = programs.clone();
+    group.mass_matrix.inputs[0].name = "not an ident".to_owned();
+    assert!(matches!(emit_programs(&group), Err(EmitError::Name { .. })));
+    let mut element = programs.clone();
+    element.coriolis.inputs[0].elements[0] = "q 1".to_owned();
+    assert!(matches!(
+        emit_programs(&element),
+        Err(EmitError::Name { .. })
+    ));
+    let mut operand = programs.clone();
+    operand.gravity.outputs[0].values[0] = robid_symbolic::program::Value::Temp(u32::MAX);
+    assert!(matches!(
+        emit_programs(&operand),
+        Err(EmitError::Program { .. })
+    ));
+    let mut empty = programs;
+    empty.gravity.outputs.clear();
+    assert!(matches!(
+        emit_programs(&empty),
+        Err(EmitError::Program { .. })
+    ));
+}
