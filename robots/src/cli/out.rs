@@ -2,7 +2,7 @@
 //! instead of panicking as `print!` does.
 //!
 //! Everything a subcommand prints goes through [`Stdout`] (`writeln!(out, ..)?`), whose
-//! failures are a [`StdoutError`]. [`exit_code`] turns them into the end of the program:
+//! failures are a [`StdoutError`]. [`stdout_failure`] turns them into the end of the program:
 //! a closed pipe (`robid torques .. | head -1`) ends it quietly with the conventional
 //! status 141 (128 + SIGPIPE), any other failure (a full disk) with a one-line message
 //! naming standard output and status 1. Messages for the user go to standard error
