@@ -20,6 +20,8 @@ pub mod excite;
 #[cfg(feature = "std")]
 pub mod feasible;
 #[cfg(feature = "std")]
+pub mod limits;
+#[cfg(feature = "std")]
 pub mod nelder_mead;
 #[cfg(feature = "std")]
 pub mod output;

@@ -38,10 +38,11 @@ pub fn butterworth_hz(order: usize, cutoff_hz: f64, sample_rate: f64) -> Result<
 pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
     check(order, cutoff)?;
     if !(ripple_db > 0.0 && ripple_db.is_finite()) {
-        return Err(Error::InvalidConfig {
-            key: "ripple".into(),
-            problem: format!("pass-band ripple {ripple_db} dB must be positive"),
-        });
+        return Err(Error::setting(
+            "chebyshev1",
+            "ripple_db",
+            format!("pass-band ripple {ripple_db} dB must be positive"),
+        ));
     }
     let n = order as f64;
     let eps = (10f64.powf(0.1 * ripple_db) - 1.0).sqrt();
@@ -62,18 +63,20 @@ pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
 
 fn check(order: usize, cutoff: f64) -> Result<()> {
     if order == 0 || order > 20 {
-        return Err(Error::InvalidConfig {
-            key: "order".into(),
-            problem: format!("filter order {order} must be between 1 and 20"),
-        });
+        return Err(Error::setting(
+            "butterworth",
+            "order",
+            format!("filter order {order} must be between 1 and 20"),
+        ));
     }
     if !(cutoff > 0.0 && cutoff < 1.0) {
-        return Err(Error::InvalidConfig {
-            key: "cutoff".into(),
-            problem: format!(
+        return Err(Error::setting(
+            "butterworth",
+            "cutoff",
+            format!(
                 "normalised cutoff {cutoff} must lie strictly between 0 and 1 (the Nyquist frequency); lower the cutoff or raise the sample rate"
             ),
-        });
+        ));
     }
     Ok(())
 }
