@@ -120,32 +120,39 @@ pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
         source,
     };
     let file = std::fs::File::open(path).map_err(io)?;
-    if let Ok(meta) = file.metadata() {
-        check_size(
-            || format!("{}: file size in bytes", path.display()),
-            meta.len() as f64,
-            MAX_FILE_BYTES as usize,
-            "split the file",
-        )?;
-    }
-    read_columns_from(file, path, names)
+    let size = file.metadata().map_or(0, |m| m.len());
+    check_size(
+        || format!("{}: file size in bytes", path.display()),
+        size as f64,
+        MAX_FILE_BYTES as usize,
+        "split the file",
+    )?;
+    let bytes = read_limited(file, path, false, size as usize)?;
+    decode(bytes, path, names)
 }
 
 /// Reads the columns `names` from any reader (gzip-compressed or not); `path` is used
 /// in messages.
 pub fn read_columns_from(reader: impl Read, path: &Path, names: &[String]) -> Result<Table> {
-    let bytes = read_limited(reader, path, false)?;
+    let bytes = read_limited(reader, path, false, 0)?;
+    decode(bytes, path, names)
+}
+
+/// Decompresses gzip (recognised by its magic number), then parses.
+fn decode(bytes: Vec<u8>, path: &Path, names: &[String]) -> Result<Table> {
     if bytes.starts_with(&[0x1f, 0x8b]) {
-        let text = read_limited(MultiGzDecoder::new(bytes.as_slice()), path, true)?;
+        let hint = bytes.len().saturating_mul(4);
+        let text = read_limited(MultiGzDecoder::new(bytes.as_slice()), path, true, hint)?;
         parse(&text, path, names)
     } else {
         parse(&bytes, path, names)
     }
 }
 
-/// Reads everything, at most [`MAX_FILE_BYTES`]; a decoding error is a corrupt file.
-fn read_limited(reader: impl Read, path: &Path, decoding: bool) -> Result<Vec<u8>> {
-    let mut out = Vec::new();
+/// Reads everything, at most [`MAX_FILE_BYTES`] (`hint`: the expected size, to allocate
+/// once); a decoding error is a corrupt file.
+fn read_limited(reader: impl Read, path: &Path, decoding: bool, hint: usize) -> Result<Vec<u8>> {
+    let mut out = Vec::with_capacity(hint.min(MAX_FILE_BYTES as usize) + 1);
     reader
         .take(MAX_FILE_BYTES + 1)
         .read_to_end(&mut out)
@@ -180,81 +187,162 @@ fn read_limited(reader: impl Read, path: &Path, decoding: bool) -> Result<Vec<u8
 /// Bytes per parallel block of an unquoted body.
 const CHUNK: usize = 1 << 20;
 
-fn builder() -> csv::ReaderBuilder {
-    let mut b = csv::ReaderBuilder::new();
-    b.has_headers(false)
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .flexible(true);
+/// The csv reader over text in memory: records as fields, with the line each ends on.
+/// It is `csv_core`, the state machine of the `csv` crate, with the crate's defaults (`,`
+/// separator, `"` quotes, `\n` or `\r\n` line ends) and `#` comment lines, driven over the
+/// slice directly (no buffer copy).
+struct Records<'a> {
+    core: csv_core::Reader,
+    input: &'a [u8],
+    consumed: usize,
+    out: Vec<u8>,
+    ends: Vec<usize>,
+    fields: usize,
+}
+
+impl<'a> Records<'a> {
+    fn new(input: &'a [u8]) -> Self {
+        Self {
+            core: csv_core::ReaderBuilder::new().comment(Some(b'#')).build(),
+            input,
+            consumed: 0,
+            out: vec![0; 4096],
+            ends: vec![0; 64],
+            fields: 0,
+        }
+    }
+
+    /// Reads the next record; returns the 1-based line (in `input`) it ends on.
+    fn next_record(&mut self) -> Option<u64> {
+        use csv_core::ReadRecordResult as R;
+        let (mut outlen, mut endlen) = (0, 0);
+        loop {
+            let (res, nin, nout, nend) = self.core.read_record(
+                &self.input[self.consumed..],
+                &mut self.out[outlen..],
+                &mut self.ends[endlen..],
+            );
+            self.consumed += nin;
+            outlen += nout;
+            endlen += nend;
+            match res {
+                // an empty input, passed on the next round, tells the reader it is the end
+                R::InputEmpty => {}
+                R::OutputFull => {
+                    let n = self.out.len();
+                    self.out.resize(2 * n, 0);
+                }
+                R::OutputEndsFull => {
+                    let n = self.ends.len();
+                    self.ends.resize(2 * n, 0);
+                }
+                R::Record => {
+                    self.fields = endlen;
+                    let consumed_newline =
+                        self.consumed > 0 && self.input[self.consumed - 1] == b'\n';
+                    return Some(self.core.line() - u64::from(consumed_newline));
+                }
+                R::End => return None,
+            }
+        }
+    }
+
+    /// Fields of the last record.
+    fn len(&self) -> usize {
+        self.fields
+    }
+
+    /// Field `i` of the last record (trimmed of ASCII whitespace).
+    fn field(&self, i: usize) -> &[u8] {
+        if i >= self.fields {
+            return &[];
+        }
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        trim(&self.out[start..self.ends[i]])
+    }
+
+    /// The last record's fields as text, when it is valid UTF-8 (one check per record).
+    fn text(&self) -> Option<&str> {
+        let end = if self.fields == 0 {
+            0
+        } else {
+            self.ends[self.fields - 1]
+        };
+        std::str::from_utf8(&self.out[..end]).ok()
+    }
+
+    /// Field `i` of [`Records::text`] (trimmed): a field lies between ASCII delimiters,
+    /// so its bounds are character boundaries of valid text.
+    fn field_str<'t>(&self, text: &'t str, i: usize) -> Option<&'t str> {
+        if i >= self.fields {
+            return Some("");
+        }
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        Some(
+            text.get(start..self.ends[i])?
+                .trim_matches(|c: char| c.is_ascii_whitespace()),
+        )
+    }
+
+    /// Line ends read so far.
+    fn newlines(&self) -> u64 {
+        self.core.line() - 1
+    }
+}
+
+/// ASCII whitespace trimmed from both ends (what every field gets).
+fn trim(mut b: &[u8]) -> &[u8] {
+    while let [first, rest @ ..] = b
+        && first.is_ascii_whitespace()
+    {
+        b = rest;
+    }
+    while let [rest @ .., last] = b
+        && last.is_ascii_whitespace()
+    {
+        b = rest;
+    }
     b
 }
 
-/// Line numbers of records: counts line ends incrementally from a cursor.
-struct Lines<'a> {
-    text: &'a [u8],
-    at: usize,
-    line: u64,
-}
-
-impl Lines<'_> {
-    /// The 1-based line of the record that ends (terminator excluded) before `end`.
-    fn of_record_ending(&mut self, end: usize) -> u64 {
-        let mut e = end.min(self.text.len());
-        while e > self.at && matches!(self.text[e - 1], b'\n' | b'\r') {
-            e -= 1;
-        }
-        if e > self.at {
-            self.line += self.text[self.at..e]
-                .iter()
-                .filter(|&&b| b == b'\n')
-                .count() as u64;
-            self.at = e;
-        }
-        self.line
-    }
+/// A number field (the standard library's parser: correctly rounded).
+fn number(b: &[u8]) -> Option<f64> {
+    std::str::from_utf8(b).ok()?.parse::<f64>().ok()
 }
 
 /// The parsed CSV text in memory.
 fn parse(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
     let text = text.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(text);
-    let mut rdr = builder().from_reader(text);
-    let mut record = csv::ByteRecord::new();
-    let has_header = rdr.read_byte_record(&mut record).map_err(|e| Error::Csv {
-        path: path.to_path_buf(),
-        line: 1,
-        reason: e.to_string(),
-    })?;
-    if !has_header {
+    let mut records = Records::new(text);
+    let Some(header_line) = records.next_record() else {
         return Err(Error::TooFewSamples {
             context: path.display().to_string(),
             found: 0,
             required: 2,
             hint: "the file is empty; it needs a header line and data rows",
         });
-    }
+    };
     check_size(
         || format!("{}: fields in the header", path.display()),
-        record.len() as f64,
+        records.len() as f64,
         MAX_COLUMNS,
         "keep only the columns needed in the file",
     )?;
-    let header: Vec<String> = record
-        .iter()
-        .map(|f| String::from_utf8_lossy(f).into_owned())
+    let header: Vec<String> = (0..records.len())
+        .map(|i| String::from_utf8_lossy(records.field(i)).into_owned())
         .collect();
-    let mut lines = Lines {
-        text,
-        at: 0,
-        line: 1,
-    };
-    let header_line = lines.of_record_ending(rdr.position().byte() as usize);
     let want = wanted(&header, names, path, text, header_line)?;
     // the body starts on the line after the header's
-    let body_start = text[lines.at..]
-        .iter()
-        .position(|&b| b == b'\n')
-        .map_or(text.len(), |i| lines.at + i + 1);
-    let body = &text[body_start..];
+    let after = records.consumed;
+    let body_start = if after > 0 && text.get(after - 1) == Some(&b'\n') {
+        after
+    } else {
+        text[after.min(text.len())..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(text.len(), |i| after + i + 1)
+    };
+    let body = &text[body_start.min(text.len())..];
     let cuts = if text.contains(&b'"') {
         vec![0, body.len()]
     } else {
@@ -272,7 +360,7 @@ fn parse(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
     let mut row_lines = Vec::with_capacity(total);
     // the 1-based line of the first line of each block
     let mut base = header_line + 1;
-    for (part, w) in parts.into_iter().zip(cuts.windows(2)) {
+    for part in parts {
         if let Some(e) = part.error {
             return Err(e.locate(path, names, base));
         }
@@ -280,7 +368,7 @@ fn parse(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
             c.extend(v);
         }
         row_lines.extend(part.lines.iter().map(|l| l + base));
-        base += body[w[0]..w[1]].iter().filter(|&&b| b == b'\n').count() as u64;
+        base += part.newlines;
     }
     check_size(
         || format!("{}: data rows", path.display()),
@@ -378,6 +466,8 @@ fn cuts(body: &[u8]) -> Vec<usize> {
 struct Part {
     columns: Vec<Vec<f64>>,
     lines: Vec<u64>,
+    /// Line ends in the block (when it was read to its end).
+    newlines: u64,
     error: Option<BlockError>,
 }
 
@@ -448,49 +538,34 @@ fn block(
             .map(|_| Vec::with_capacity(estimate))
             .collect(),
         lines: Vec::with_capacity(estimate),
+        newlines: 0,
         error: None,
     };
     if rows.load(Ordering::Relaxed) > MAX_ROWS {
         part.error = Some(BlockError::Rows);
         return part;
     }
-    let mut rdr = builder().from_reader(text);
-    let mut record = csv::ByteRecord::new();
-    let mut lines = Lines {
-        text,
-        at: 0,
-        line: 0,
-    };
-    loop {
-        match rdr.read_byte_record(&mut record) {
-            Ok(true) => {}
-            Ok(false) => break,
-            Err(e) => {
-                let end = e.position().map_or(text.len(), |p| p.byte() as usize);
-                part.error = Some(BlockError::Csv {
-                    line: lines.of_record_ending(end),
-                    reason: e.to_string(),
-                });
-                break;
-            }
-        }
-        let line = lines.of_record_ending(rdr.position().byte() as usize);
-        if record.len() != fields {
+    let mut records = Records::new(text);
+    while let Some(line) = records.next_record() {
+        // 0-based line within the block
+        let line = line - 1;
+        if records.len() != fields {
             part.error = Some(BlockError::Csv {
                 line,
                 reason: format!(
                     "found a row with {} fields, but the header has {fields} fields",
-                    record.len()
+                    records.len()
                 ),
             });
             break;
         }
+        let text = records.text();
         for (k, (&i, col)) in want.iter().zip(part.columns.iter_mut()).enumerate() {
-            let bytes = record.get(i).unwrap_or_default();
-            match std::str::from_utf8(bytes)
-                .ok()
-                .and_then(|s| s.parse::<f64>().ok())
-            {
+            let parsed = match text.and_then(|t| records.field_str(t, i)) {
+                Some(field) => field.parse::<f64>().ok(),
+                None => number(records.field(i)),
+            };
+            match parsed {
                 Some(v) if v.is_finite() => col.push(v),
                 Some(value) => {
                     part.error = Some(BlockError::NotFinite {
@@ -501,6 +576,7 @@ fn block(
                     return part;
                 }
                 None => {
+                    let bytes = records.field(i);
                     part.error = Some(BlockError::Value {
                         line,
                         want: k,
@@ -512,6 +588,7 @@ fn block(
         }
         part.lines.push(line);
     }
+    part.newlines = records.newlines();
     rows.fetch_add(part.lines.len(), Ordering::Relaxed);
     part
 }
