@@ -267,6 +267,20 @@ pub enum Error {
         /// The parameters that make up the unexcited directions, most affected first.
         unexcited: Vec<String>,
     },
+    /// One or a few equations dominate the column of a parameter the data do not otherwise
+    /// determine: an outlier in the data, not a poor trajectory.
+    #[error(
+        "{location}: an outlier: {:.1} % of column `{parameter}` comes from the equations around this row, which hides the rest of the record; repair or remove the row (check its velocities and accelerations)",
+        100.0 * share
+    )]
+    Outlier {
+        /// Where the largest equation comes from (file:line when known).
+        location: String,
+        /// The parameter whose column it dominates.
+        parameter: String,
+        /// The share of the column's squared norm held by the largest equations.
+        share: f64,
+    },
     /// The observation matrix (or the torque vector) holds NaN or an infinite value.
     #[error(
         "the observation matrix is {value} at {location}, joint {joint}, column `{parameter}`: the regressor overflowed there; check that row's positions, velocities and accelerations (and the extra column's definition)"

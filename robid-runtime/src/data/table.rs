@@ -1,6 +1,7 @@
 //! Reading selected columns of a CSV file (with header, optionally gzip-compressed).
 //!
-//! One reader, the `csv` crate, for every file: fields separated by `,`, optionally quoted
+//! One reader for every file, `csv_core` (the parser of the `csv` crate, driven over the
+//! text in memory): fields separated by `,`, optionally quoted
 //! with `"`, surrounding spaces trimmed, lines that start with `#` are comments, empty lines
 //! are skipped, `\n` or `\r\n` line ends, and a UTF-8 byte-order mark is ignored. A file
 //! without quote characters is cut at line ends into blocks that the same reader parses in

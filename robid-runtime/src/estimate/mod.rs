@@ -17,6 +17,9 @@ pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
 pub use observation::Observation;
 #[cfg(test)]
 pub(crate) use quality::assess;
-pub use quality::{CONDITION_WARNING, QualityWarning, REL_STD_WARNING};
+pub(crate) use quality::dominated_columns;
+pub use quality::{
+    CONDITION_WARNING, OUTLIER_ROWS, OUTLIER_SHARE, QualityWarning, REL_STD_WARNING,
+};
 pub use result::{Estimate, Estimator};
 pub use rls::{Rls, rls};

@@ -44,7 +44,24 @@ pub enum QualityWarning {
         /// The validation file (or data set).
         file: String,
     },
+    /// A parameter's column is dominated by a few equations (the largest
+    /// [`OUTLIER_ROWS`] hold more than [`OUTLIER_SHARE`] of its squared norm): an outlier
+    /// in the data, which the fit follows instead of the rest of the record.
+    Outlier {
+        /// The parameter.
+        parameter: String,
+        /// Where the largest equation comes from (file:line when known).
+        location: String,
+        /// The share of the column's squared norm held by those equations.
+        share: f64,
+    },
 }
+
+/// Number of equations whose share of a column is tested for an outlier.
+pub const OUTLIER_ROWS: usize = 3;
+/// Share of a column's squared norm above which its largest [`OUTLIER_ROWS`] equations
+/// are an outlier (checked when there are at least 100 equations).
+pub const OUTLIER_SHARE: f64 = 0.9;
 
 impl QualityWarning {
     /// A short machine-readable name (`ill_conditioned`, `uncertain`,
@@ -54,6 +71,7 @@ impl QualityWarning {
             QualityWarning::IllConditioned { .. } => "ill_conditioned",
             QualityWarning::Uncertain { .. } => "uncertain",
             QualityWarning::ValidationRepeatsEstimation { .. } => "validation_repeats_estimation",
+            QualityWarning::Outlier { .. } => "outlier",
         }
     }
 
@@ -61,6 +79,7 @@ impl QualityWarning {
     pub fn parameters(&self) -> Vec<String> {
         match self {
             QualityWarning::Uncertain { parameters, .. } => parameters.clone(),
+            QualityWarning::Outlier { parameter, .. } => vec![parameter.clone()],
             _ => Vec::new(),
         }
     }
@@ -99,6 +118,15 @@ impl fmt::Display for QualityWarning {
                     list.join(", ")
                 )
             }
+            QualityWarning::Outlier {
+                parameter,
+                location,
+                share,
+            } => write!(
+                f,
+                "column `{parameter}` is dominated by a few equations ({:.1} % of its squared norm, the largest from {location}): an outlier in the data; repair or remove that row (check its velocities and accelerations)",
+                100.0 * share
+            ),
             QualityWarning::ValidationRepeatsEstimation { file } => write!(
                 f,
                 "validation on {file} uses rows that were used for estimation: it repeats the fit \
@@ -106,6 +134,37 @@ impl fmt::Display for QualityWarning {
             ),
         }
     }
+}
+
+/// Columns of W dominated by a few equations: (column, row of the largest entry, share of
+/// the squared norm held by the largest [`OUTLIER_ROWS`] entries), for W with at least 100
+/// rows.
+pub(crate) fn dominated_columns(w: &nalgebra::DMatrix<f64>) -> Vec<(usize, usize, f64)> {
+    if w.nrows() < 100 {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for (j, col) in w.column_iter().enumerate() {
+        let big = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if !(big > 0.0 && big.is_finite()) {
+            continue;
+        }
+        let mut top = [(0.0f64, 0usize); OUTLIER_ROWS];
+        let mut total = 0.0;
+        for (i, v) in col.iter().enumerate() {
+            let x = (v / big) * (v / big);
+            total += x;
+            if x > top[OUTLIER_ROWS - 1].0 {
+                top[OUTLIER_ROWS - 1] = (x, i);
+                top.sort_by(|a, b| b.0.total_cmp(&a.0));
+            }
+        }
+        let share = top.iter().map(|t| t.0).sum::<f64>() / total;
+        if share > OUTLIER_SHARE {
+            out.push((j, top[0].1, share));
+        }
+    }
+    out
 }
 
 /// The warnings of an estimate with condition number `condition` and relative standard

@@ -9,7 +9,10 @@ use std::ops::Range;
 use crate::Model;
 use crate::data::{Config, Dataset, Method, Warning, check_joints};
 use crate::error::{Error, Result};
-use crate::estimate::{Estimate, Observation, energy, model_energy_observation, ols, rls, wls};
+use crate::estimate::{
+    Estimate, Observation, QualityWarning, dominated_columns, energy, model_energy_observation,
+    ols, rls, wls,
+};
 use crate::pipeline::prepare::{Rows, prepare_rows};
 use crate::pipeline::{Prepared, decimator, observe};
 use crate::validate::{Fit, Prediction, UsedRows};
@@ -145,7 +148,36 @@ pub fn identify(
         _ => estimate(obs, config),
     };
     let (obs, dt) = torque_observation(model, &prepared, config, data, &kept)?;
-    let estimate = estimate_of(&obs)?;
+    let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
+    // the data row of an equation
+    let location = |row: usize| {
+        let k = obs.sample_of_row.get(row).copied().unwrap_or(0);
+        data.location(kept.start + k * factor)
+    };
+    let dominated = dominated_columns(&obs.w);
+    let mut estimate = estimate_of(&obs).map_err(|e| match e {
+        Error::RankDeficient { ref unexcited, .. } => {
+            match dominated
+                .iter()
+                .find(|(c, _, _)| unexcited.contains(&obs.names[*c]))
+            {
+                Some(&(c, row, share)) => Error::Outlier {
+                    location: location(row),
+                    parameter: obs.names[c].clone(),
+                    share,
+                },
+                None => e,
+            }
+        }
+        e => e,
+    })?;
+    for &(c, row, share) in &dominated {
+        estimate.warnings.push(QualityWarning::Outlier {
+            parameter: obs.names[c].clone(),
+            location: location(row),
+            share,
+        });
+    }
     let used = UsedRows::of(data, kept);
     let mut prediction = Prediction::new(&obs, &estimate.values, dt);
     prediction.check(&format!("the estimation data ({used})"))?;

@@ -111,7 +111,19 @@ pub fn observe(
     let mut names: Vec<String> = (0..lay.p)
         .map(|i| model.base_parameter_name(i).to_string())
         .collect();
-    names.extend(extra.iter().map(|c| c.name.clone()));
+    for (i, c) in extra.iter().enumerate() {
+        if names.contains(&c.name) {
+            return Err(Error::setting(
+                "Config",
+                &format!("extra_column[{}].name", i + 1),
+                format!(
+                    "`{}` is already a parameter (of the model or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
+                    c.name
+                ),
+            ));
+        }
+        names.push(c.name.clone());
+    }
     check_names(&names)?;
     let n = signals.samples();
     let stride = lay.stride();
