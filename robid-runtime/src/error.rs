@@ -374,6 +374,16 @@ fn place(path: &std::path::Path, line: Option<usize>, column: Option<usize>) -> 
     }
 }
 
+/// A number for a message: plain while short, else in scientific notation (so that 1e308
+/// does not print as 309 digits).
+pub(crate) fn num(x: f64) -> String {
+    if x == 0.0 || (x.abs() >= 1e-4 && x.abs() < 1e15) || !x.is_finite() {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// A count for a message: exact while it is an integer of reasonable size.
 fn count(x: f64) -> String {
     if x.is_finite() && x.fract() == 0.0 && x.abs() < 1e15 {

@@ -138,19 +138,31 @@ pub(crate) fn trajectory_samples(
         return Err(crate::Error::setting(
             owner,
             "duration",
-            format!("{duration} s must be positive and finite"),
+            format!(
+                "{} s must be positive and finite",
+                crate::error::num(duration)
+            ),
         ));
     }
     if !(rate > 0.0 && rate <= MAX_SAMPLE_RATE) {
         return Err(crate::Error::setting(
             owner,
             "rate",
-            format!("{rate} Hz must lie in (0, {MAX_SAMPLE_RATE:e}] Hz"),
+            format!(
+                "{} Hz must lie in (0, {MAX_SAMPLE_RATE:e}] Hz",
+                crate::error::num(rate)
+            ),
         ));
     }
     let samples = (duration * rate).round() + 1.0;
     check_size(
-        || format!("trajectory samples ({duration} s at {rate} Hz)"),
+        || {
+            format!(
+                "trajectory samples ({} s at {} Hz)",
+                crate::error::num(duration),
+                crate::error::num(rate)
+            )
+        },
         samples,
         MAX_SAMPLES,
         "shorten the duration or lower the rate",

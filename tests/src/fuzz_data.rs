@@ -85,6 +85,11 @@ pub struct Motion {
 
 /// The motion (two sines per joint, different frequencies, within the UR5e's limits).
 pub fn motion(rows: usize) -> Motion {
+    motion_scaled(rows, [1.0; 6])
+}
+
+/// [`motion`] with joint j's excursion multiplied by `scale[j]` (the torques follow).
+pub fn motion_scaled(rows: usize, scale: [f64; 6]) -> Motion {
     let model = Ur5e;
     let base = ur5e_base();
     let n = 6;
@@ -95,7 +100,7 @@ pub fn motion(rows: usize) -> Motion {
     for (k, &time) in t.iter().enumerate() {
         for j in 0..n {
             let w = 0.9 + 0.23 * j as f64;
-            let (a, b) = (0.8, 0.35);
+            let (a, b) = (0.8 * scale[j], 0.35 * scale[j]);
             let (w2, p) = (2.7 * w, 0.4 * j as f64);
             q[j] = a * (w * time + p).sin() + b * (w2 * time).sin();
             qd[j] = a * w * (w * time + p).cos() + b * w2 * (w2 * time).cos();

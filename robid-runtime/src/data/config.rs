@@ -71,7 +71,7 @@ use serde::{Deserialize, Serialize};
 use crate::data::ColumnMapping;
 use crate::data::keys::KeyMap;
 use crate::drive::{DriveConfig, ExtraColumn};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::limits::{
     MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
 };
@@ -228,7 +228,10 @@ impl PerJoint {
             return Err(Error::setting(
                 "Config",
                 key,
-                format!("{x} is not a finite number of magnitude at most {MAX_FACTOR:e}"),
+                format!(
+                    "{} is not a finite number of magnitude at most {MAX_FACTOR:e}",
+                    num(*x)
+                ),
             ));
         }
         Ok(v)
@@ -529,7 +532,8 @@ impl Config {
             return bad(
                 "sample_rate",
                 format!(
-                    "{fs} Hz is outside (0, {MAX_SAMPLE_RATE:e}] Hz; write the rate the data were sampled at"
+                    "{} Hz is outside (0, {MAX_SAMPLE_RATE:e}] Hz; write the rate the data were sampled at",
+                    num(fs)
                 ),
             );
         }
@@ -538,7 +542,7 @@ impl Config {
                 "time_scale",
                 format!(
                     "{} is outside (0, {MAX_FACTOR:e}]; write the factor from the time column's unit to seconds (1e-3 for ms)",
-                    self.time_scale
+                    num(self.time_scale)
                 ),
             );
         }
@@ -571,7 +575,7 @@ impl Config {
             if !(lp.cutoff > 0.0 && lp.cutoff.is_finite()) {
                 return bad(
                     "processing.lowpass.cutoff",
-                    format!("{} Hz must be positive", lp.cutoff),
+                    format!("{} Hz must be positive", num(lp.cutoff)),
                 );
             }
             if !(1..=20).contains(&lp.order) {
@@ -615,7 +619,7 @@ impl Config {
             if let Some(x) = v.iter().find(|x| !(**x >= 0.0 && **x <= MAX_VELOCITY)) {
                 return bad(
                     "processing.rest_velocity",
-                    format!("{x} rad/s must lie in [0, {MAX_VELOCITY:e}]"),
+                    format!("{} rad/s must lie in [0, {MAX_VELOCITY:e}]", num(*x)),
                 );
             }
         }
@@ -638,19 +642,22 @@ impl Config {
         if !(e.forgetting > 0.0 && e.forgetting <= 1.0) {
             return bad(
                 "estimation.forgetting",
-                format!("{} must satisfy 0 < lambda <= 1", e.forgetting),
+                format!("{} must satisfy 0 < lambda <= 1", num(e.forgetting)),
             );
         }
         if !(e.energy_window > 0.0 && e.energy_window <= MAX_FACTOR) {
             return bad(
                 "estimation.energy_window",
-                format!("{} s must lie in (0, {MAX_FACTOR:e}] s", e.energy_window),
+                format!(
+                    "{} s must lie in (0, {MAX_FACTOR:e}] s",
+                    num(e.energy_window)
+                ),
             );
         }
         if !(e.rank_tolerance > 0.0 && e.rank_tolerance < 1.0) {
             return bad(
                 "estimation.rank_tolerance",
-                format!("{} must lie in (0, 1)", e.rank_tolerance),
+                format!("{} must lie in (0, 1)", num(e.rank_tolerance)),
             );
         }
         self.drive.check(dof)?;

@@ -203,6 +203,19 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         }
     };
 
+    if let Some(lp) = &config.processing.lowpass
+        && !(lp.cutoff < 0.5 / sample_time)
+    {
+        return Err(config.key_error(
+            "processing.lowpass.cutoff",
+            format!(
+                "{} Hz is not below the Nyquist frequency {} Hz of the data (sampled at {} Hz); lower the cutoff",
+                lp.cutoff,
+                0.5 / sample_time,
+                1.0 / sample_time
+            ),
+        ));
+    }
     let [q, qd, qdd, tau, motor] = blocks;
     let missing = |role: &str| {
         config.key_error(

@@ -107,7 +107,8 @@ impl DriveConfig {
                         return bad(
                             format!("{key}[{}][{}]", i + 1, j + 1),
                             format!(
-                                "{v} is not a finite number of magnitude at most {MAX_FACTOR:e}"
+                                "{} is not a finite number of magnitude at most {MAX_FACTOR:e}",
+                                crate::error::num(*v)
                             ),
                         );
                     }

@@ -120,7 +120,7 @@ impl ExtraColumn {
                     format!("{at}.coefficient"),
                     format!(
                         "{} is not a finite number of magnitude at most {MAX_FACTOR:e}",
-                        t.coefficient
+                        crate::error::num(t.coefficient)
                     ),
                 );
             }

@@ -15,7 +15,7 @@ use std::f64::consts::FRAC_PI_2;
 use rayon::prelude::*;
 
 use crate::Model;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::excite::limits::{TorquePenalty, check_reference};
 use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Fourier, Information, JointLimits, JointSeries, check_limits};
@@ -171,12 +171,12 @@ impl FourierDesign {
                 "base_frequency",
                 format!(
                     "{} Hz must lie in (0, {MAX_BASE_FREQUENCY}] Hz",
-                    self.base_frequency
+                    num(self.base_frequency)
                 ),
             );
         }
         if !(self.safety > 0.0 && self.safety <= 1.0) {
-            return bad("safety", format!("{} must lie in (0, 1]", self.safety));
+            return bad("safety", format!("{} must lie in (0, 1]", num(self.safety)));
         }
         check_count("FourierDesign", "points", self.points, 1, MAX_POINTS)?;
         check_count("FourierDesign", "restarts", self.restarts, 1, MAX_RESTARTS)?;
@@ -390,7 +390,7 @@ pub(crate) fn check_joint_vectors(
             format!(
                 "the weight of joint {} is {}; a weight is 1 / the joint's expected torque noise and must lie in (0, {MAX_WEIGHT:e}] (see excite::weights_from_sigma)",
                 j + 1,
-                weights.map_or(0.0, |w| w[j])
+                num(weights.map_or(0.0, |w| w[j]))
             ),
         ));
     }
@@ -414,8 +414,9 @@ pub fn weights_from_sigma(sigma: &[f64], owner: &str, key: &str) -> Result<Vec<f
                     owner,
                     key,
                     format!(
-                        "joint {} has {s}; give each joint's expected torque noise as a positive number (at least {:e} N m): a noise of zero would make its weight 1 / sigma infinite",
+                        "joint {} has {}; give each joint's expected torque noise as a positive number (at least {:e} N m): a noise of zero would make its weight 1 / sigma infinite",
                         j + 1,
+                        num(s),
                         1.0 / MAX_WEIGHT
                     ),
                 ))

@@ -1,7 +1,7 @@
 //! Joint limits and the margins a trajectory keeps to them.
 
 use crate::Model;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::limits::{MAX_ACCELERATION, MAX_PARAMETER, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
 use crate::simulate::Trajectory;
 
@@ -33,7 +33,11 @@ impl JointLimits {
         if !(lo.abs() <= MAX_POSITION && hi.abs() <= MAX_POSITION && lo < hi) {
             return bad(
                 "position",
-                format!("[{lo}, {hi}] must be finite within +-{MAX_POSITION:e}, with low < high"),
+                format!(
+                    "[{}, {}] must be finite within +-{MAX_POSITION:e}, with low < high",
+                    num(lo),
+                    num(hi)
+                ),
             );
         }
         for (what, x, limit) in [
@@ -42,7 +46,7 @@ impl JointLimits {
             ("torque", self.torque.unwrap_or(1.0), MAX_TORQUE),
         ] {
             if !(x > 0.0 && x <= limit) {
-                return bad(what, format!("{x} must lie in (0, {limit:e}]"));
+                return bad(what, format!("{} must lie in (0, {limit:e}]", num(x)));
             }
         }
         Ok(())
@@ -152,7 +156,7 @@ pub(crate) fn check_parameters<M: Model + ?Sized>(
             format!(
                 "base parameter `{}` is {}; parameter values must be finite with magnitude at most {MAX_PARAMETER:e}",
                 model.base_parameter_name(i),
-                base[i]
+                num(base[i])
             ),
         )),
         None => Ok(()),

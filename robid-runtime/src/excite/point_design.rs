@@ -122,7 +122,10 @@ impl PointDesign {
         if !(self.duration > 0.0 && self.duration <= MAX_SAMPLES as f64) {
             return bad(
                 "duration",
-                format!("{} s must lie in (0, {MAX_SAMPLES}] s", self.duration),
+                format!(
+                    "{} s must lie in (0, {MAX_SAMPLES}] s",
+                    crate::error::num(self.duration)
+                ),
             );
         }
         check_count(owner, "intervals", self.intervals, 2, MAX_POINTS)?;

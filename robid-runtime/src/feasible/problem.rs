@@ -57,7 +57,7 @@ impl Problem {
                     i / k.nrows(),
                     base_names[i % k.nrows()],
                     standard_names[i / k.nrows()],
-                    k[(i % k.nrows(), i / k.nrows())]
+                    crate::error::num(k[(i % k.nrows(), i / k.nrows())])
                 ),
             ));
         }
@@ -198,8 +198,9 @@ impl Problem {
                     "Problem::with_target",
                     "std",
                     format!(
-                        "the standard deviation of `{}` is {s}; it must be positive and at most {MAX_PARAMETER:e} (a zero deviation would claim an exact value)",
-                        self.base_names[i]
+                        "the standard deviation of `{}` is {}; it must be positive and at most {MAX_PARAMETER:e} (a zero deviation would claim an exact value)",
+                        self.base_names[i],
+                        crate::error::num(s)
                     ),
                 ));
             }
@@ -230,7 +231,8 @@ impl Problem {
                 "values",
                 format!(
                     "the identified value of `{}` is {}, beyond +-{MAX_PARAMETER:e}: not a physical parameter; check the identification (its condition number and relative deviations)",
-                    self.base_names[i], values[i]
+                    self.base_names[i],
+                    crate::error::num(values[i])
                 ),
             ));
         }

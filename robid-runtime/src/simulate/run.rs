@@ -24,7 +24,7 @@
 //! step.
 
 use crate::Model;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::excite::check_parameters;
 use crate::limits::{MAX_ACCELERATION, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
 
@@ -120,14 +120,14 @@ impl Simulation {
                 "bandwidth",
                 format!(
                     "{} Hz must lie in (0, {MAX_BANDWIDTH:e}] Hz",
-                    self.bandwidth
+                    num(self.bandwidth)
                 ),
             ));
         }
         if !(self.damping > 0.0 && self.damping <= 1e3) {
             return Err(invalid(
                 "damping",
-                format!("{} must lie in (0, 1000]", self.damping),
+                format!("{} must lie in (0, 1000]", num(self.damping)),
             ));
         }
         if !(1..=MAX_SUBSTEPS).contains(&self.substeps) {
@@ -158,7 +158,7 @@ impl Simulation {
             if !(x >= 0.0 && x <= limit) {
                 return Err(invalid(
                     key,
-                    format!("{x} must be zero or positive, at most {limit:e}"),
+                    format!("{} must be zero or positive, at most {limit:e}", num(x)),
                 ));
             }
         }
