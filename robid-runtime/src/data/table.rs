@@ -101,9 +101,9 @@ impl ColumnMapping {
             ColumnMapping::Header { expected } => {
                 format!("this file needs the header {expected}; rename its columns")
             }
-            ColumnMapping::Default => "without a config file the data need the header \
-                 t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun (as `robid simulate` writes it); rename \
-                 the columns or give an identification config file that maps yours"
+            ColumnMapping::Default => "the default column mapping needs the header \
+                 t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun (as `robid simulate` writes it); \
+                 rename the file's columns to these names"
                 .into(),
             ColumnMapping::Config { path, line, key } => match line {
                 Some(l) => format!("fix `{key}` at {}:{l} or the file's header", path.display()),
