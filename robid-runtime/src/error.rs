@@ -142,7 +142,7 @@ pub enum Error {
         /// The header's columns.
         available: Vec<String>,
         /// Where the column names came from (a config file, the default mapping, code).
-        mapping: ColumnMapping,
+        mapping: Box<ColumnMapping>,
     },
     /// Time stamps do not increase.
     #[error(

@@ -1,5 +1,7 @@
 #![doc = "robid runtime: the `no_std` scalar and model traits that generated models implement, and, with the `std` feature, the identification pipeline."]
 #![cfg_attr(not(feature = "std"), no_std)]
+// Range checks are written `!(lo < x && x <= hi)` so that NaN fails them too.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod model;
 mod real;

@@ -63,10 +63,10 @@ mod crate_reference {
                 standard = line == "[standard]";
                 continue;
             }
-            if let (true, Some((k, v))) = (standard, line.split_once('=')) {
-                if let Ok(v) = v.trim().parse::<f64>() {
-                    out.push((k.trim().to_string(), v));
-                }
+            if let (true, Some((k, v))) = (standard, line.split_once('='))
+                && let Ok(v) = v.trim().parse::<f64>()
+            {
+                out.push((k.trim().to_string(), v));
             }
         }
         out
@@ -325,7 +325,7 @@ fn mutate_csv_once(text: &str, rng: &mut Rng) -> String {
     let mut lines: Vec<String> = text.split('\n').map(str::to_string).collect();
     let n = lines.len().max(1);
     match rng.index(13) {
-        0 | 1 | 2 => {
+        0..=2 => {
             let spans = number_spans(text);
             if spans.is_empty() {
                 return text.to_string();

@@ -100,7 +100,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
                     path,
                     column,
                     available,
-                    mapping,
+                    mapping: Box::new(mapping),
                 }
             }
             e => e,

@@ -441,7 +441,7 @@ fn missing(header: &[String], name: &str, path: &Path, text: &[u8], header_line:
         path: path.to_path_buf(),
         column: name.to_string(),
         available: header.to_vec(),
-        mapping: ColumnMapping::Code,
+        mapping: Box::new(ColumnMapping::Code),
     }
 }
 

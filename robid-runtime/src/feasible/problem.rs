@@ -211,8 +211,8 @@ impl Problem {
 
     /// Sets the identified values and their full covariance (symmetric positive definite).
     ///
-    /// Each variance gets a floor at the solvers' precision, (1e-5 |beta_i| + 1e-8 max |beta|
-    /// + 1e-12)^2: values from noise-free data (std at rounding level) would otherwise make
+    /// Each variance gets a floor at the solvers' precision,
+    /// (1e-5 |beta_i| + 1e-8 max |beta| + 1e-12)^2: values from noise-free data (std at rounding level) would otherwise make
     /// the whitened problem too ill-conditioned to solve, and a misfit below that precision
     /// meaningless. Values must be finite with magnitude at most
     /// [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER) (a larger identified value is not a

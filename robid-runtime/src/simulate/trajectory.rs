@@ -93,9 +93,9 @@ impl Trajectory {
                 path,
                 column,
                 available,
-                mapping: ColumnMapping::Header {
+                mapping: Box::new(ColumnMapping::Header {
                     expected: "t,q1..qn,qd1..qdn,qdd1..qddn".into(),
-                },
+                }),
             },
             e => e,
         })?;
