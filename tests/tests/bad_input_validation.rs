@@ -15,8 +15,9 @@ use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, text_table};
 use robots::Ur5e;
 
-fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("robid-bad-val-{}", std::process::id()));
+/// A folder per test (the tests run in parallel).
+fn dir(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("robid-bad-val-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     d
 }
@@ -24,8 +25,8 @@ fn dir() -> PathBuf {
 const MAPPING: &str = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\nvelocity = \"qd{}\"\n\
                        acceleration = \"qdd{}\"\ntorque = \"tau{}\"\n";
 
-fn setup(processing: &str) -> (Config, PathBuf, PathBuf) {
-    let d = dir();
+fn setup(tag: &str, processing: &str) -> (Config, PathBuf, PathBuf) {
+    let d = dir(tag);
     let config = Config::from_toml_str(
         &format!("{MAPPING}[processing]\n{processing}"),
         &d.join("v.toml"),
@@ -40,7 +41,7 @@ fn setup(processing: &str) -> (Config, PathBuf, PathBuf) {
 
 #[test]
 fn the_estimation_range_does_not_apply_to_a_validation_file() {
-    let (config, run1, run2) = setup("range = [0, 300]\n");
+    let (config, run1, run2) = setup("plain", "range = [0, 300]\n");
     let data = load(&config, std::slice::from_ref(&run1), 6).unwrap();
     let id = identify(&Ur5e, &data, &config).unwrap();
     assert_eq!(id.used.samples, [0, 300]);
@@ -87,7 +88,10 @@ fn the_estimation_range_does_not_apply_to_a_validation_file() {
 
 #[test]
 fn a_validation_range_selects_the_validation_rows() {
-    let (config, run1, _) = setup("range = [0, 300]\nvalidation_range = [320, 500]\n");
+    let (config, run1, _) = setup(
+        "ranged",
+        "range = [0, 300]\nvalidation_range = [320, 500]\n",
+    );
     let data = load(&config, std::slice::from_ref(&run1), 6).unwrap();
     let id = identify(&Ur5e, &data, &config).unwrap();
     let p = validate(&Ur5e, &data, &config, &id.estimate.values).unwrap();
@@ -100,7 +104,7 @@ fn a_validation_range_selects_the_validation_rows() {
             .all(|w| w.kind != "validation_repeats_estimation")
     );
     // a validation range outside a file is named by its key
-    let (config, _, run2) = setup("validation_range = [600, 700]\n");
+    let (config, _, run2) = setup("outside", "validation_range = [600, 700]\n");
     let other = load(&config, &[run2], 6).unwrap();
     let e = validate(&Ur5e, &other, &config, &id.estimate.values).unwrap_err();
     assert!(

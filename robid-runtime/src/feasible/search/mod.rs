@@ -236,8 +236,10 @@ pub fn solve_anneal(
             .map(|&(i, _)| a.column(i).into_owned())
             .collect();
         let ad = DMatrix::from_columns(&cols);
-        ad.pseudo_inverse(1e-10)
-            .unwrap_or_else(|_| DMatrix::zeros(cols.len(), a.nrows()))
+        // a capped SVD: the iteration cannot loop whatever the matrix holds
+        ad.try_svd(true, true, f64::EPSILON, crate::limits::SVD_ITERATIONS)
+            .and_then(|s| s.pseudo_inverse(1e-10).ok())
+            .unwrap_or_else(|| DMatrix::zeros(cols.len(), a.nrows()))
     });
     let mut lo = Vec::with_capacity(nl * PER_LINK);
     let mut hi = Vec::with_capacity(nl * PER_LINK);
