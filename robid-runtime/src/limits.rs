@@ -17,7 +17,7 @@
 //! | acceleration | `|qdd| <=` [`MAX_ACCELERATION`] = 1e8 |
 //! | torque, force or current | `|tau| <=` [`MAX_TORQUE`] = 1e7 |
 //! | time (s, after `time_scale`) | `|t| <=` [`MAX_TIME`] = 1e10 s |
-//! | sample rate | 0 < rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
+//! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
 //! | parameter values and standard deviations given as input | `|x| <=` [`MAX_PARAMETER`] = 1e6 |
 //! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | `|x| <=` [`MAX_FACTOR`] = 1e6 |
 //!
@@ -50,6 +50,8 @@ pub const MAX_TORQUE: f64 = 1e7;
 pub const MAX_TIME: f64 = 1e10;
 /// Largest sample rate (Hz), given or derived from time stamps.
 pub const MAX_SAMPLE_RATE: f64 = 1e7;
+/// Smallest sample rate (Hz), given or derived from time stamps (one sample per 1000 s).
+pub const MIN_SAMPLE_RATE: f64 = 1e-3;
 /// Largest |factor| of a unit or drive-chain setting.
 pub const MAX_FACTOR: f64 = 1e6;
 /// Largest |value| and standard deviation of a base or standard parameter given as input
@@ -144,12 +146,12 @@ pub(crate) fn trajectory_samples(
             ),
         ));
     }
-    if !(rate > 0.0 && rate <= MAX_SAMPLE_RATE) {
+    if !(rate >= MIN_SAMPLE_RATE && rate <= MAX_SAMPLE_RATE) {
         return Err(crate::Error::setting(
             owner,
             "rate",
             format!(
-                "{} Hz must lie in (0, {MAX_SAMPLE_RATE:e}] Hz",
+                "{} Hz must lie in [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz",
                 crate::error::num(rate)
             ),
         ));

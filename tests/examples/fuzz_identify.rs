@@ -6,6 +6,7 @@
 //!
 //! ```sh
 //! cargo run --release -p tests --example fuzz_identify -- 100000 [SEED]
+//! cargo run --release -p tests --example fuzz_identify -- replay N SEED CASE   # one finding
 //! ```
 //!
 //! Prints the outcomes by kind and error variant, the slowest case, and every broken
@@ -24,8 +25,31 @@ use fuzz_data::{Plan, Progress, Tally, run};
 /// Seconds without progress after which a case counts as a hang.
 const HANG: u64 = 120;
 
+/// Runs one case of a run of `n` (thread seed `seed`) without catching its panic, printing
+/// what it did.
+fn replay(n: usize, seed: u64, case: usize) {
+    let plan = Plan {
+        configs: n / 2,
+        csvs: n / 2,
+        identifications: n / 2,
+        seed,
+        rows: 400,
+    };
+    let dir = std::env::temp_dir().join(format!("robid-fuzz-replay-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary folder");
+    let inputs = fuzz_data::Inputs::new(plan);
+    println!("case {case}: {}", inputs.kinds[case]);
+    println!("{:?}", inputs.case(case, &dir));
+    println!("files in {}", dir.display());
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().is_some_and(|a| a == "replay") {
+        let num = |i: usize| args.get(i).and_then(|a| a.parse().ok()).unwrap_or(0);
+        replay(num(1), num(2) as u64, num(3));
+        return;
+    }
     let n: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(1000);
     let seed: u64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(1);
     std::panic::set_hook(Box::new(|_| {}));

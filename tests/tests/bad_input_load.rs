@@ -85,6 +85,8 @@ fn config_numbers_are_checked_and_located() {
     for (text, key, line) in [
         (format!("sample_rate = 1e300\n{source}"), "sample_rate", 1),
         (format!("sample_rate = nan\n{source}"), "sample_rate", 1),
+        // found by the fuzzer: a subnormal rate made the sample time infinite
+        (format!("sample_rate = 1e-320\n{source}"), "sample_rate", 1),
         (format!("time_scale = inf\n{timed}"), "time_scale", 1),
         (
             format!("{timed}[units]\ntorque_scale = [1, 1, inf, 1, 1, 1]\n"),

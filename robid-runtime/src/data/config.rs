@@ -48,7 +48,7 @@
 //! | key | accepted |
 //! |---|---|
 //! | `dof` | the model's joint count |
-//! | `sample_rate` | 0 < rate <= 1e7 Hz |
+//! | `sample_rate` | 1e-3 Hz <= rate <= 1e7 Hz (also a rate derived from the time column) |
 //! | `time_scale` | 0 < scale <= 1e6 |
 //! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, non-zero, magnitude <= 1e6 |
 //! | `drive.position_coupling`, `drive.torque_coupling` | finite, magnitude <= 1e6, invertible |
@@ -74,6 +74,7 @@ use crate::drive::{DriveConfig, ExtraColumn};
 use crate::error::{Error, Result, num};
 use crate::limits::{
     MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
+    MIN_SAMPLE_RATE,
 };
 
 /// Where a [`Config`] came from: it decides how errors name its keys.
@@ -527,12 +528,12 @@ impl Config {
             );
         }
         if let Some(fs) = self.sample_rate
-            && !(fs > 0.0 && fs <= MAX_SAMPLE_RATE)
+            && !(fs >= MIN_SAMPLE_RATE && fs <= MAX_SAMPLE_RATE)
         {
             return bad(
                 "sample_rate",
                 format!(
-                    "{} Hz is outside (0, {MAX_SAMPLE_RATE:e}] Hz; write the rate the data were sampled at",
+                    "{} Hz is outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; write the rate the data were sampled at",
                     num(fs)
                 ),
             );

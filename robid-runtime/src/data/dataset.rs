@@ -61,12 +61,18 @@ impl Dataset {
         origin: Option<DataOrigin>,
     ) -> Result<Self> {
         let name = name.into();
-        if !(sample_time > 0.0 && 1.0 / sample_time <= crate::limits::MAX_SAMPLE_RATE) {
+        let rate = 1.0 / sample_time;
+        if !(sample_time > 0.0
+            && rate <= crate::limits::MAX_SAMPLE_RATE
+            && rate >= crate::limits::MIN_SAMPLE_RATE)
+        {
             return Err(Error::setting(
                 "Dataset::new",
                 "sample_time",
                 format!(
-                    "{name}: {sample_time} s is not positive or below 1 / {:e} Hz",
+                    "{name}: {} s gives a sample rate outside [{:e}, {:e}] Hz",
+                    crate::error::num(sample_time),
+                    crate::limits::MIN_SAMPLE_RATE,
                     crate::limits::MAX_SAMPLE_RATE
                 ),
             ));

@@ -12,7 +12,7 @@ use crate::data::time::{check_monotonic, interpolate, regularity, uniform_grid};
 use crate::data::{AngleUnit, Config, Dataset, Source, Table, Warning, read_columns};
 use crate::drive::DriveChain;
 use crate::error::{Error, Result};
-use crate::limits::{MAX_JOINTS, MAX_SAMPLE_RATE, Quantity, check_size};
+use crate::limits::{MAX_JOINTS, MAX_SAMPLE_RATE, MIN_SAMPLE_RATE, Quantity, check_size};
 
 /// The roles a column block can have, in the order of `Loaded::blocks`.
 const ROLES: [&str; 5] = [
@@ -167,11 +167,11 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let (sample_time, origin) = match (&reference, config.sample_rate) {
         (Some((t, path, lines)), _) => {
             let (step, warning) = regularity(t, path);
-            if !(step > 0.0 && 1.0 / step <= MAX_SAMPLE_RATE) {
+            if !(1.0 / step <= MAX_SAMPLE_RATE && 1.0 / step >= MIN_SAMPLE_RATE) {
                 return Err(config.key_error(
                     "time_scale",
                     format!(
-                        "the time stamps of {} are {step:e} s apart on average, a sample rate above {MAX_SAMPLE_RATE:e} Hz; if the time column is not in seconds, set time_scale (1e-3 for ms, 1e-9 for ns)",
+                        "the time stamps of {} are {step:e} s apart on average, a sample rate outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; if the time column is not in seconds, set time_scale (1e-3 for ms, 1e-9 for ns)",
                         path.display()
                     ),
                 ));
@@ -203,18 +203,22 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         }
     };
 
-    if let Some(lp) = &config.processing.lowpass
-        && !(lp.cutoff < 0.5 / sample_time)
-    {
-        return Err(config.key_error(
-            "processing.lowpass.cutoff",
-            format!(
-                "{} Hz is not below the Nyquist frequency {} Hz of the data (sampled at {} Hz); lower the cutoff",
-                lp.cutoff,
-                0.5 / sample_time,
-                1.0 / sample_time
-            ),
-        ));
+    if let Some(lp) = &config.processing.lowpass {
+        let nyquist = 0.5 / sample_time;
+        let min = crate::signal::MIN_CUTOFF * nyquist;
+        if !(lp.cutoff < nyquist && lp.cutoff >= min) {
+            return Err(config.key_error(
+                "processing.lowpass.cutoff",
+                format!(
+                    "{} Hz is outside [{}, {}) Hz for data sampled at {} Hz (below the Nyquist frequency, above {:e} of it so that the filter can be represented); choose a cutoff in that range",
+                    crate::error::num(lp.cutoff),
+                    crate::error::num(min),
+                    crate::error::num(nyquist),
+                    crate::error::num(1.0 / sample_time),
+                    crate::signal::MIN_CUTOFF
+                ),
+            ));
+        }
     }
     let [q, qd, qdd, tau, motor] = blocks;
     let missing = |role: &str| {

@@ -61,6 +61,9 @@ pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
     Ok(digital_lowpass(&poles, gain, cutoff))
 }
 
+/// Smallest cutoff, as a fraction of the Nyquist frequency, that a design accepts.
+pub const MIN_CUTOFF: f64 = 1e-5;
+
 fn check(order: usize, cutoff: f64) -> Result<()> {
     if order == 0 || order > 20 {
         return Err(Error::setting(
@@ -74,7 +77,18 @@ fn check(order: usize, cutoff: f64) -> Result<()> {
             "butterworth",
             "cutoff",
             format!(
-                "normalised cutoff {cutoff} must lie strictly between 0 and 1 (the Nyquist frequency); lower the cutoff or raise the sample rate"
+                "normalised cutoff {} must lie strictly between 0 and 1 (the Nyquist frequency); lower the cutoff or raise the sample rate",
+                crate::error::num(cutoff)
+            ),
+        ));
+    }
+    if cutoff < MIN_CUTOFF {
+        return Err(Error::setting(
+            "butterworth",
+            "cutoff",
+            format!(
+                "normalised cutoff {} is below {MIN_CUTOFF:e} of the Nyquist frequency, where the filter's poles are too close to 1 to be represented; raise the cutoff or decimate the data first",
+                crate::error::num(cutoff)
             ),
         ));
     }
@@ -94,13 +108,22 @@ fn digital_lowpass(proto: &[C], proto_gain: f64, cutoff: f64) -> Sos {
         .fold(C::new(1.0, 0.0), |acc, p| acc * (fs2 - p));
     let gain = k_analog * (C::new(1.0, 0.0) / denom).re;
 
-    let mut pairs: Vec<C> = digital.iter().copied().filter(|p| p.im > 1e-14).collect();
+    // one pole of each conjugate pair, chosen on the prototype (unit circle, well-separated
+    // imaginary parts), not on the digital pole, whose imaginary part vanishes as the
+    // cutoff does
+    let mut pairs: Vec<C> = proto
+        .iter()
+        .zip(&digital)
+        .filter(|(a, _)| a.im > 1e-9)
+        .map(|(_, d)| if d.im < 0.0 { d.conj() } else { *d })
+        .collect();
     pairs.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
     let real: Option<C> = (n % 2 == 1).then(|| {
-        *digital
+        proto
             .iter()
-            .min_by(|a, b| a.im.abs().total_cmp(&b.im.abs()))
-            .unwrap_or(&C::new(0.0, 0.0))
+            .zip(&digital)
+            .min_by(|a, b| a.0.im.abs().total_cmp(&b.0.im.abs()))
+            .map_or(C::new(0.0, 0.0), |(_, d)| *d)
     });
     let mut sections = Vec::with_capacity(n.div_ceil(2));
     if let Some(p) = real {
@@ -282,5 +305,17 @@ mod tests {
         assert!(butterworth(4, f64::NAN).is_err());
         assert!(butterworth_hz(4, 600.0, 1000.0).is_err());
         assert!(chebyshev1(8, -1.0, 0.1).is_err());
+        // a cutoff too small to represent is an error, not an empty filter (the fuzzer's
+        // `cutoff = 1e-12` once built no sections and indexed an empty list)
+        assert!(butterworth(4, 1e-12).is_err());
+        for order in 1..=8 {
+            let s = butterworth(order, 2.0 * MIN_CUTOFF).unwrap();
+            assert_eq!(s.sections().len(), order.div_ceil(2), "order {order}");
+            assert!(
+                (s.dc_gain() - 1.0).abs() < 1e-6,
+                "order {order}: {}",
+                s.dc_gain()
+            );
+        }
     }
 }
