@@ -146,7 +146,7 @@ pub(crate) fn trajectory_samples(
             ),
         ));
     }
-    if !(rate >= MIN_SAMPLE_RATE && rate <= MAX_SAMPLE_RATE) {
+    if !(MIN_SAMPLE_RATE..=MAX_SAMPLE_RATE).contains(&rate) {
         return Err(crate::Error::setting(
             owner,
             "rate",

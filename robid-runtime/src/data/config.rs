@@ -528,7 +528,7 @@ impl Config {
             );
         }
         if let Some(fs) = self.sample_rate
-            && !(fs >= MIN_SAMPLE_RATE && fs <= MAX_SAMPLE_RATE)
+            && !(MIN_SAMPLE_RATE..=MAX_SAMPLE_RATE).contains(&fs)
         {
             return bad(
                 "sample_rate",

@@ -63,8 +63,7 @@ impl Dataset {
         let name = name.into();
         let rate = 1.0 / sample_time;
         if !(sample_time > 0.0
-            && rate <= crate::limits::MAX_SAMPLE_RATE
-            && rate >= crate::limits::MIN_SAMPLE_RATE)
+            && (crate::limits::MIN_SAMPLE_RATE..=crate::limits::MAX_SAMPLE_RATE).contains(&rate))
         {
             return Err(Error::setting(
                 "Dataset::new",
