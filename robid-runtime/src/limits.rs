@@ -19,7 +19,7 @@
 //! | time (s, after `time_scale`) | `|t| <=` [`MAX_TIME`] = 1e10 s |
 //! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
 //! | parameter values and standard deviations given as input | `|x| <=` [`MAX_PARAMETER`] = 1e6 |
-//! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | `|x| <=` [`MAX_FACTOR`] = 1e6 |
+//! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | `|x| <=` [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants) also `|x| >=` [`MIN_FACTOR`] = 1e-12 |
 //!
 //! Sizes are checked before anything of that size is allocated:
 //!
@@ -54,6 +54,9 @@ pub const MAX_SAMPLE_RATE: f64 = 1e7;
 pub const MIN_SAMPLE_RATE: f64 = 1e-3;
 /// Largest |factor| of a unit or drive-chain setting.
 pub const MAX_FACTOR: f64 = 1e6;
+/// Smallest |factor| of a unit or drive-chain setting that scales a signal (`time_scale`,
+/// `torque_scale`, gear ratios, torque constants): a smaller one erases the signal.
+pub const MIN_FACTOR: f64 = 1e-12;
 /// Largest |value| and standard deviation of a base or standard parameter given as input
 /// (identified values for the feasible search, reference parameters of a simulation or a
 /// design): kg, kg m, kg m^2, N m s/rad, N m.

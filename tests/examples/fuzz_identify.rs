@@ -7,6 +7,7 @@
 //! ```sh
 //! cargo run --release -p tests --example fuzz_identify -- 100000 [SEED]
 //! cargo run --release -p tests --example fuzz_identify -- replay N SEED CASE   # one finding
+//! cargo run --release -p tests --example fuzz_identify -- find N SEED VARIANT   # its cases
 //! ```
 //!
 //! Prints the outcomes by kind and error variant, the slowest case, and every broken
@@ -43,8 +44,45 @@ fn replay(n: usize, seed: u64, case: usize) {
     println!("files in {}", dir.display());
 }
 
+/// Prints the first cases of a run of `n` (thread seed `seed`) that end with the error
+/// variant `variant` (e.g. `Outlier`), to replay them.
+fn find(n: usize, seed: u64, variant: &str) {
+    let plan = Plan {
+        configs: n / 2,
+        csvs: n / 2,
+        identifications: n / 2,
+        seed,
+        rows: 400,
+    };
+    let dir = std::env::temp_dir().join(format!("robid-fuzz-find-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary folder");
+    let inputs = fuzz_data::Inputs::new(plan);
+    let mut found = 0;
+    for case in 0..inputs.kinds.len() {
+        if let Ok(fuzz_data::Outcome::Error(v)) = inputs.case(case, &dir)
+            && v == variant
+        {
+            println!("case {case} ({})", inputs.kinds[case]);
+            found += 1;
+            if found == 5 {
+                break;
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().is_some_and(|a| a == "find") {
+        let num = |i: usize| args.get(i).and_then(|a| a.parse().ok()).unwrap_or(0);
+        find(
+            num(1),
+            num(2) as u64,
+            args.get(3).map_or("", String::as_str),
+        );
+        return;
+    }
     if args.first().is_some_and(|a| a == "replay") {
         let num = |i: usize| args.get(i).and_then(|a| a.parse().ok()).unwrap_or(0);
         replay(num(1), num(2) as u64, num(3));

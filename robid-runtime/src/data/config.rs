@@ -49,8 +49,8 @@
 //! |---|---|
 //! | `dof` | the model's joint count |
 //! | `sample_rate` | 1e-3 Hz <= rate <= 1e7 Hz (also a rate derived from the time column) |
-//! | `time_scale` | 0 < scale <= 1e6 |
-//! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, non-zero, magnitude <= 1e6 |
+//! | `time_scale` | 1e-12 <= scale <= 1e6 |
+//! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, magnitude 1e-12 to 1e6 |
 //! | `drive.position_coupling`, `drive.torque_coupling` | finite, magnitude <= 1e6, invertible |
 //! | `drive.rotor.*`, `extra_column[i].terms[k].coefficient` | finite, magnitude <= 1e6 |
 //! | `processing.lowpass.cutoff` | 0 < cutoff < the Nyquist frequency of the data |
@@ -74,7 +74,7 @@ use crate::drive::{DriveConfig, ExtraColumn};
 use crate::error::{Error, Result, num};
 use crate::limits::{
     MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
-    MIN_SAMPLE_RATE,
+    MIN_FACTOR, MIN_SAMPLE_RATE,
 };
 
 /// Where a [`Config`] came from: it decides how errors name its keys.
@@ -538,11 +538,11 @@ impl Config {
                 ),
             );
         }
-        if !(self.time_scale > 0.0 && self.time_scale <= MAX_FACTOR) {
+        if !(MIN_FACTOR..=MAX_FACTOR).contains(&self.time_scale) {
             return bad(
                 "time_scale",
                 format!(
-                    "{} is outside (0, {MAX_FACTOR:e}]; write the factor from the time column's unit to seconds (1e-3 for ms)",
+                    "{} is outside [{MIN_FACTOR:e}, {MAX_FACTOR:e}]; write the factor from the time column's unit to seconds (1e-3 for ms)",
                     num(self.time_scale)
                 ),
             );
@@ -678,15 +678,16 @@ impl Config {
     }
 }
 
-/// Checks that no value is zero (a factor that would erase a signal).
+/// Checks that no factor is too small to keep its signal: |x| >= [`MIN_FACTOR`].
 pub(crate) fn nonzero(values: Vec<f64>, key: &str) -> Result<Vec<f64>> {
-    match values.iter().position(|v| *v == 0.0) {
+    match values.iter().position(|v| !(v.abs() >= MIN_FACTOR)) {
         Some(j) => Err(Error::setting(
             "Config",
             key,
             format!(
-                "joint {} has 0, which would erase its signal; give a non-zero factor",
-                j + 1
+                "joint {} has {}, which would erase its signal; give a factor of magnitude {MIN_FACTOR:e} to {MAX_FACTOR:e}",
+                j + 1,
+                num(values[j])
             ),
         )),
         None => Ok(values),
