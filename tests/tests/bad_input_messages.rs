@@ -199,3 +199,27 @@ fn config_keys_are_named_by_file_line_and_settings_by_their_field() {
         "Config `processing.lowpass.cutoff`: 0 Hz must be positive"
     );
 }
+
+/// Found by the fuzzer: without a config file, time stamps in the wrong unit were reported
+/// as a `Config` key. They are named as a problem of the default mapping's time column.
+#[test]
+fn time_stamps_in_another_unit_under_the_default_mapping_name_the_time_column() {
+    let text: String = record()
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == 0 {
+                return format!("{l}\n");
+            }
+            let (t, rest) = l.split_once(',').unwrap();
+            format!("{},{rest}\n", t.parse::<f64>().unwrap() * 1e9)
+        })
+        .collect();
+    let e = load(&Config::default_mapping(), &[write("ns.csv", &text)], 6).unwrap_err();
+    let m = e.to_string();
+    assert!(
+        m.starts_with("default column mapping `time_scale`:")
+            && m.contains("the time column must be in seconds: convert it"),
+        "{m}"
+    );
+}

@@ -478,7 +478,8 @@ impl Config {
                     problem: problem.into(),
                 }
             }
-            _ => Error::setting("Config", key, problem),
+            ConfigOrigin::DefaultMapping => Error::setting("default column mapping", key, problem),
+            ConfigOrigin::Code => Error::setting("Config", key, problem),
         }
     }
 

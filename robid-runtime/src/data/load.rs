@@ -171,7 +171,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
                 return Err(config.key_error(
                     "time_scale",
                     format!(
-                        "the time stamps of {} are {step:e} s apart on average, a sample rate outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; if the time column is not in seconds, set time_scale (1e-3 for ms, 1e-9 for ns)",
+                        "the time stamps of {} are {step:e} s apart on average, a sample rate outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; the time column must be in seconds: convert it, or give its unit with time_scale (1e-3 for ms, 1e-9 for ns)",
                         path.display()
                     ),
                 ));
