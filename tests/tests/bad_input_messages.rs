@@ -187,7 +187,7 @@ fn config_keys_are_named_by_file_line_and_settings_by_their_field() {
         e.to_string()
             .starts_with("FourierDesign `harmonics`: 1 must lie between 2 and")
     );
-    let mut code = Config::default_mapping();
+    let mut code = Config::default();
     code.processing.lowpass = Some(Lowpass {
         cutoff: 0.0,
         order: 4,
