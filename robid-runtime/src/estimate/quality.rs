@@ -145,26 +145,37 @@ pub(crate) fn dominated_columns(w: &nalgebra::DMatrix<f64>) -> Vec<(usize, usize
     }
     let mut out = Vec::new();
     for (j, col) in w.column_iter().enumerate() {
-        let big = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if !(big > 0.0 && big.is_finite()) {
-            continue;
-        }
-        let mut top = [(0.0f64, 0usize); OUTLIER_ROWS];
-        let mut total = 0.0;
-        for (i, v) in col.iter().enumerate() {
-            let x = (v / big) * (v / big);
-            total += x;
-            if x > top[OUTLIER_ROWS - 1].0 {
-                top[OUTLIER_ROWS - 1] = (x, i);
-                top.sort_by(|a, b| b.0.total_cmp(&a.0));
+        // one pass on the squares; a column whose squares overflow is scaled first
+        let mut share = top_share(col.iter().copied(), 1.0);
+        if !share.1.is_finite() {
+            let big = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if !(big > 0.0 && big.is_finite()) {
+                continue;
             }
+            share = top_share(col.iter().copied(), 1.0 / big);
         }
-        let share = top.iter().map(|t| t.0).sum::<f64>() / total;
-        if share > OUTLIER_SHARE {
-            out.push((j, top[0].1, share));
+        let (row, fraction) = share;
+        if fraction > OUTLIER_SHARE {
+            out.push((j, row, fraction));
         }
     }
     out
+}
+
+/// The row of the largest |x| and the share of the squared norm held by the largest
+/// [`OUTLIER_ROWS`] entries of `x * scale` (NaN for a zero column).
+fn top_share(x: impl Iterator<Item = f64>, scale: f64) -> (usize, f64) {
+    let mut top = [(0.0f64, 0usize); OUTLIER_ROWS];
+    let mut total = 0.0;
+    for (i, v) in x.enumerate() {
+        let s = (v * scale) * (v * scale);
+        total += s;
+        if s > top[OUTLIER_ROWS - 1].0 {
+            top[OUTLIER_ROWS - 1] = (s, i);
+            top.sort_by(|a, b| b.0.total_cmp(&a.0));
+        }
+    }
+    (top[0].1, top.iter().map(|t| t.0).sum::<f64>() / total)
 }
 
 /// The warnings of an estimate with condition number `condition` and relative standard
@@ -197,6 +208,23 @@ pub(crate) fn assess(condition: f64, names: &[String], rel: &[f64]) -> Vec<Quali
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_column_held_by_a_few_rows_is_found_whatever_its_magnitude() {
+        let w = nalgebra::DMatrix::from_fn(200, 3, |i, j| match j {
+            0 => (i as f64 * 0.3).sin(),
+            1 if i == 57 => 1e3,
+            2 if i == 91 => 1e200,
+            _ => 1e-3 * (i as f64).cos(),
+        });
+        let d = dominated_columns(&w);
+        assert_eq!(d.len(), 2, "{d:?}");
+        assert_eq!((d[0].0, d[0].1), (1, 57));
+        assert_eq!((d[1].0, d[1].1), (2, 91));
+        assert!(d.iter().all(|x| x.2 > 0.99));
+        // too few rows to tell
+        assert!(dominated_columns(&w.rows(0, 99).into_owned()).is_empty());
+    }
 
     #[test]
     fn thresholds_decide_and_name_the_parameters() {

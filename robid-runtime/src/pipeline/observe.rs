@@ -186,12 +186,18 @@ pub fn observe(
                 for (i, out) in chunk.chunks_exact_mut(a).enumerate() {
                     let k = b * BLOCK + i;
                     row_at(k, &mut st, &mut full);
+                    // whether the row holds NaN or an infinity, in the copy loop
+                    let mut poison = false;
                     for (o, &c) in out.iter_mut().zip(&channels) {
                         *o = full[c];
+                        poison |= !full[c].is_finite();
                     }
                     let outside: f64 = inactive.iter().map(|&c| full[c].abs()).sum();
+                    // a non-finite inactive channel makes `outside` NaN: `missed` then
+                    // brings the second attempt with every channel
                     missed |= outside != 0.0;
-                    if first_bad.is_none()
+                    if poison
+                        && first_bad.is_none()
                         && let Some(c) = full.iter().position(|v| !v.is_finite())
                     {
                         first_bad = Some((k, c, full[c]));
