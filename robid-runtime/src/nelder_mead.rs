@@ -10,12 +10,15 @@
 //! ```
 //! # use robid_runtime::nelder_mead::NelderMead;
 //! let nm = NelderMead { step: vec![0.5, 0.7], ..NelderMead::default() };
-//! let m = nm.minimize(&[0.0, 0.0], |x| (x[0] - 1.0).powi(2) + (x[1] + 3.0).powi(2));
+//! let m = nm.minimize(&[0.0, 0.0], |x| (x[0] - 1.0).powi(2) + (x[1] + 3.0).powi(2)).unwrap();
 //! assert!((m.x[0] - 1.0).abs() < 1e-3 && (m.x[1] + 3.0).abs() < 1e-3);
 //! ```
 
-/// Settings of a minimisation. It stops after `max_evaluations` evaluations or when the
-/// simplex's function values differ by at most `tolerance * |best| + absolute_tolerance`.
+use crate::error::{Error, Result};
+
+/// Settings of a minimisation. It stops after `max_evaluations` evaluations (the cap of
+/// every loop: at most `max_evaluations + n` evaluations are made) or when the simplex's
+/// function values differ by at most `tolerance * |best| + absolute_tolerance`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NelderMead {
     /// Largest number of function evaluations.
@@ -54,26 +57,38 @@ pub struct Minimum {
 impl NelderMead {
     /// Minimises `f` from `x0`. Non-finite values count as +infinity.
     ///
-    /// # Panics
-    /// If `step` has neither one value nor one per coordinate of `x0`.
-    pub fn minimize(&self, x0: &[f64], mut f: impl FnMut(&[f64]) -> f64) -> Minimum {
+    /// `step` must hold one value or one per coordinate of `x0`, all finite, and `x0` must
+    /// be finite; otherwise an [`Error::InvalidConfig`] names the setting.
+    pub fn minimize(&self, x0: &[f64], mut f: impl FnMut(&[f64]) -> f64) -> Result<Minimum> {
         let n = x0.len();
-        assert!(
-            self.step.len() == 1 || self.step.len() == n,
-            "NelderMead: {} steps for {n} coordinates",
-            self.step.len()
-        );
+        if !(self.step.len() == 1 || self.step.len() == n) {
+            return Err(Error::setting(
+                "NelderMead",
+                "step",
+                format!(
+                    "{} steps for {n} coordinates; give one or one per coordinate",
+                    self.step.len()
+                ),
+            ));
+        }
+        if self.step.iter().chain(x0).any(|v| !v.is_finite()) {
+            return Err(Error::setting(
+                "NelderMead",
+                "step",
+                "the steps and the start must be finite",
+            ));
+        }
         let mut eval = |x: &[f64]| {
             let v = f(x);
             if v.is_finite() { v } else { f64::INFINITY }
         };
         if n == 0 {
             let value = eval(x0);
-            return Minimum {
+            return Ok(Minimum {
                 x: Vec::new(),
                 value,
                 evaluations: 1,
-            };
+            });
         }
         let nf = n as f64;
         let (alpha, beta, gamma, delta) = (1.0, 1.0 + 2.0 / nf, 0.75 - 0.5 / nf, 1.0 - 1.0 / nf);
@@ -136,11 +151,11 @@ impl NelderMead {
         }
         simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
         let (x, value) = simplex.swap_remove(0);
-        Minimum {
+        Ok(Minimum {
             x,
             value,
             evaluations: used,
-        }
+        })
     }
 }
 
@@ -160,27 +175,31 @@ mod tests {
             absolute_tolerance: 1e-14,
             step: vec![0.5],
         };
-        let r = nm.minimize(&[-1.2, 1.0], rosenbrock);
+        let r = nm.minimize(&[-1.2, 1.0], rosenbrock).unwrap();
         assert!(
             (r.x[0] - 1.0).abs() < 1e-3 && (r.x[1] - 1.0).abs() < 1e-3,
             "{r:?}"
         );
-        let q = nm.minimize(&[1.0; 10], |x| {
-            x.iter()
-                .enumerate()
-                .map(|(i, v)| (i + 1) as f64 * (v - 0.5).powi(2))
-                .sum()
-        });
+        let q = nm
+            .minimize(&[1.0; 10], |x| {
+                x.iter()
+                    .enumerate()
+                    .map(|(i, v)| (i + 1) as f64 * (v - 0.5).powi(2))
+                    .sum()
+            })
+            .unwrap();
         assert!(q.value < 1e-6, "{q:?}");
         assert!(q.evaluations <= 5000 + 11);
         // infinite values are avoided
-        let c = nm.minimize(&[0.5], |x| {
-            if x[0] < 0.0 {
-                f64::NAN
-            } else {
-                (x[0] - 0.1).powi(2)
-            }
-        });
+        let c = nm
+            .minimize(&[0.5], |x| {
+                if x[0] < 0.0 {
+                    f64::NAN
+                } else {
+                    (x[0] - 0.1).powi(2)
+                }
+            })
+            .unwrap();
         assert!((c.x[0] - 0.1).abs() < 1e-4);
     }
 
@@ -192,7 +211,7 @@ mod tests {
             absolute_tolerance: 1e-28,
             step: vec![0.1, 0.1],
         };
-        let r = nm.minimize(&[-1.2, 1.0], rosenbrock);
+        let r = nm.minimize(&[-1.2, 1.0], rosenbrock).unwrap();
         assert!(r.value < 1e-8 && (r.x[0] - 1.0).abs() < 1e-3, "{r:?}");
         let nm = NelderMead {
             max_evaluations: 20_000,
@@ -200,12 +219,14 @@ mod tests {
             absolute_tolerance: 1e-32,
             step: vec![0.5; 10],
         };
-        let q = nm.minimize(&[0.0; 10], |x| {
-            x.iter()
-                .enumerate()
-                .map(|(i, v)| (i as f64 + 1.0) * (v - 1.0).powi(2))
-                .sum::<f64>()
-        });
+        let q = nm
+            .minimize(&[0.0; 10], |x| {
+                x.iter()
+                    .enumerate()
+                    .map(|(i, v)| (i as f64 + 1.0) * (v - 1.0).powi(2))
+                    .sum::<f64>()
+            })
+            .unwrap();
         assert!(q.value < 1e-8, "{q:?}");
         // the steps scale the simplex: a coordinate with a tiny scale converges too
         let nm = NelderMead {
@@ -214,10 +235,12 @@ mod tests {
             absolute_tolerance: 1e-14,
             ..NelderMead::default()
         };
-        let s = nm.minimize(&[0.3, 0.0], |x| {
-            let (u, v) = (x[0] - 2.0, 1e6 * x[1] - 1.0);
-            u * u + v * v + 0.5 * u * v
-        });
+        let s = nm
+            .minimize(&[0.3, 0.0], |x| {
+                let (u, v) = (x[0] - 2.0, 1e6 * x[1] - 1.0);
+                u * u + v * v + 0.5 * u * v
+            })
+            .unwrap();
         assert!(
             (s.x[0] - 2.0).abs() < 1e-3 && (s.x[1] - 1e-6).abs() < 1e-9,
             "{s:?}"
@@ -225,12 +248,33 @@ mod tests {
     }
 
     #[test]
-    #[should_panic(expected = "3 steps for 2 coordinates")]
     fn a_step_per_coordinate_or_one_for_all() {
         let nm = NelderMead {
             step: vec![0.1; 3],
             ..NelderMead::default()
         };
-        nm.minimize(&[0.0, 0.0], rosenbrock);
+        let e = nm.minimize(&[0.0, 0.0], rosenbrock).unwrap_err();
+        assert!(e.to_string().contains("3 steps for 2 coordinates"), "{e}");
+        let nm = NelderMead::default();
+        assert!(nm.minimize(&[f64::NAN, 0.0], rosenbrock).is_err());
+    }
+
+    /// The evaluation cap holds whatever the function does (here: never converges).
+    #[test]
+    fn stops_at_the_evaluation_cap() {
+        let nm = NelderMead {
+            max_evaluations: 300,
+            tolerance: 0.0,
+            absolute_tolerance: 0.0,
+            ..NelderMead::default()
+        };
+        let mut calls = 0;
+        let m = nm
+            .minimize(&[0.0; 5], |x| {
+                calls += 1;
+                -x.iter().sum::<f64>()
+            })
+            .unwrap();
+        assert!(calls <= 300 + 5 + 1 && m.evaluations <= 300 + 5, "{calls}");
     }
 }

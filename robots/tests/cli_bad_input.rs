@@ -525,7 +525,9 @@ fn identify_warns_on_stderr_about_poorly_determined_parameters() {
     assert_eq!(poor.len(), 7, "{poor:?}");
     let line = e
         .lines()
-        .find(|l| l.starts_with("warning: relative standard deviation above 100 %"))
+        .find(|l| {
+            l.starts_with("warning: ") && l.contains("relative standard deviation above 100 %")
+        })
         .unwrap_or_else(|| panic!("no warning in: {e}"));
     let named = line.split(": ").last().unwrap();
     let named: Vec<&str> = named
@@ -559,7 +561,7 @@ fn inputs_are_named_by_their_kind_never_config() {
                 "--bounds",
                 bounds.to_str().unwrap(),
             ],
-            &["bounds.toml: `links.9`: not a link number; write 1 to 6"],
+            &["bounds.toml:1:8: `links.9`: not a link number; write 1 to 6"],
         ),
     ] {
         let mut all = vec![

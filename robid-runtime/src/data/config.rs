@@ -27,7 +27,8 @@
 //! trim = 20                      # samples dropped at each end after differentiation
 //! decimation = 100               # total factor (stages of <= 10) or a list [10, 10]
 //! rest_velocity = 0.05           # rad/s, number or one per joint
-//! range = [0, 24750]             # optional sample range used (end exclusive)
+//! range = [0, 24750]             # optional sample range used for estimation (end exclusive)
+//! validation_range = [0, 15750]  # optional sample range of each validation file (default: all)
 //!
 //! [estimation]
 //! method = "wls"                 # "ols", "wls", "rls" or "energy"
@@ -35,13 +36,64 @@
 //! forgetting = 1.0               # RLS forgetting factor, 0 < lambda <= 1
 //! energy_window = 0.05           # s, one energy-model equation per window
 //! ```
+//!
+//! Without a config file robid uses [`Config::default_mapping`]: the header
+//! `t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` (what `robid simulate` writes).
+//!
+//! Every number is checked when the config is checked ([`Config::check`], called by
+//! [`crate::data::load`] and the pipeline), and an error names the key at its
+//! file:line:column ([`Error::ConfigKey`]); a config built in code is named by its fields
+//! ([`Error::InvalidConfig`] with owner `Config`). Ranges (see [`crate::limits`]):
+//!
+//! | key | accepted |
+//! |---|---|
+//! | `dof` | the model's joint count |
+//! | `sample_rate` | 1e-3 Hz <= rate <= 1e7 Hz (also a rate derived from the time column) |
+//! | `time_scale` | 1e-12 <= scale <= 1e6 |
+//! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, magnitude 1e-12 to 1e6 |
+//! | `drive.position_coupling`, `drive.torque_coupling` | finite, magnitude <= 1e6, invertible |
+//! | `drive.rotor.*`, `extra_column[i].terms[k].coefficient` | finite, magnitude <= 1e6 |
+//! | `processing.lowpass.cutoff` | 0 < cutoff < the Nyquist frequency of the data |
+//! | `processing.lowpass.order` | 1 to 20 |
+//! | `processing.decimation` | factors >= 1, product <= 10,000 |
+//! | `processing.trim` | <= 50,000,000 |
+//! | `processing.rest_velocity` | 0 <= v <= 1e6 |
+//! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end |
+//! | `estimation.rank_tolerance` | 0 < tol < 1 |
+//! | `estimation.forgetting` | 0 < lambda <= 1 |
+//! | `estimation.energy_window` | 0 < window <= 1e6 s |
+//! | `extra_column` | at most 1,000 |
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use crate::data::ColumnMapping;
+use crate::data::keys::KeyMap;
 use crate::drive::{DriveConfig, ExtraColumn};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
+use crate::limits::{
+    MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
+    MIN_FACTOR, MIN_SAMPLE_RATE,
+};
+
+/// Where a [`Config`] came from: it decides how errors name its keys.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ConfigOrigin {
+    /// Built in code: keys are named as fields of `Config` ([`Error::InvalidConfig`]).
+    #[default]
+    Code,
+    /// [`Config::default_mapping`], used when no config file is given.
+    DefaultMapping,
+    /// Read from a file: keys are named by file:line:column ([`Error::ConfigKey`]).
+    File {
+        /// The file.
+        path: PathBuf,
+        /// Where each key is in it.
+        keys: KeyMap,
+    },
+}
 
 /// The whole config file. `Config::default()` equals the config of an empty file.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -77,6 +129,9 @@ pub struct Config {
     /// Folder that relative `file` paths are resolved against (the config file's folder).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
+    /// Where this config came from (file, default mapping or code).
+    #[serde(skip)]
+    pub origin: ConfigOrigin,
 }
 
 impl Default for Config {
@@ -94,6 +149,7 @@ impl Default for Config {
             processing: Processing::default(),
             estimation: Estimation::default(),
             base_dir: None,
+            origin: ConfigOrigin::Code,
         }
     }
 }
@@ -150,24 +206,34 @@ pub enum PerJoint {
 }
 
 impl PerJoint {
-    /// One value per joint; `key` names the config entry in the error.
+    /// One value per joint, each finite with magnitude at most
+    /// [`MAX_FACTOR`](crate::limits::MAX_FACTOR); `key` names the config entry in the error
+    /// (an [`Error::InvalidConfig`] of owner `Config`, which [`Config::locate`] places in
+    /// its file).
     pub fn values(&self, dof: usize, key: &str) -> Result<Vec<f64>> {
         let v = match self {
             PerJoint::All(x) => vec![*x; dof],
             PerJoint::Each(v) if v.len() == dof => v.clone(),
             PerJoint::Each(v) => {
-                return Err(Error::JointCountMismatch {
-                    context: format!("config `{key}`"),
-                    expected: dof,
-                    found: v.len(),
-                });
+                return Err(Error::setting(
+                    "Config",
+                    key,
+                    format!(
+                        "{} values for a model of {dof} joints; give one number for all joints or one per joint",
+                        v.len()
+                    ),
+                ));
             }
         };
-        if let Some(x) = v.iter().find(|x| !x.is_finite()) {
-            return Err(Error::InvalidConfig {
-                key: key.into(),
-                problem: format!("{x} is not a finite number"),
-            });
+        if let Some(x) = v.iter().find(|x| !(x.abs() <= MAX_FACTOR)) {
+            return Err(Error::setting(
+                "Config",
+                key,
+                format!(
+                    "{} is not a finite number of magnitude at most {MAX_FACTOR:e}",
+                    num(*x)
+                ),
+            ));
         }
         Ok(v)
     }
@@ -272,9 +338,14 @@ pub struct Processing {
     pub decimation: Decimation,
     /// Equations of joint j are dropped where |qd_j| is below this (rad/s).
     pub rest_velocity: Option<PerJoint>,
-    /// Sample range used, `[start, end)`, cut after filtering and differentiation (so a
-    /// split of one record has no filter transients at its ends), before `trim`.
+    /// Sample range used for estimation, `[start, end)`, cut after filtering and
+    /// differentiation (so a split of one record has no filter transients at its ends),
+    /// before `trim`. It does not apply to validation files.
     pub range: Option<[usize; 2]>,
+    /// Sample range of each validation file, `[start, end)`, cut like `range` (default:
+    /// the whole file). Validation files are processed on their own: `range` does not
+    /// apply to them.
+    pub validation_range: Option<[usize; 2]>,
 }
 
 /// Estimation method of the pipeline.
@@ -339,13 +410,18 @@ fn default_signals() -> Vec<Signal> {
 }
 
 impl Config {
-    /// Parses a config from TOML text; `base_dir` resolves relative file paths.
+    /// Parses a config from TOML text; `path` names it in errors and its folder resolves
+    /// relative file paths.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Self> {
         let mut cfg: Config = toml::from_str(text).map_err(|e| Error::ConfigSyntax {
             path: path.to_path_buf(),
             reason: e.to_string(),
         })?;
         cfg.base_dir = path.parent().map(Path::to_path_buf);
+        cfg.origin = ConfigOrigin::File {
+            path: path.to_path_buf(),
+            keys: KeyMap::parse(text),
+        };
         Ok(cfg)
     }
 
@@ -359,6 +435,27 @@ impl Config {
         Self::from_toml_str(&text, path)
     }
 
+    /// The mapping used when no config file is given: a time column `t` and one source
+    /// with the columns `q{}`, `qd{}`, `qdd{}` and `tau{}` (the header
+    /// `t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` that `robid simulate` writes). Errors
+    /// about its columns say so instead of pointing at a config file.
+    pub fn default_mapping() -> Self {
+        let template = |t: &str| Some(Columns::Template(t.into()));
+        Config {
+            time_column: Some("t".into()),
+            sources: vec![Source {
+                file: None,
+                position: template("q{}"),
+                velocity: template("qd{}"),
+                acceleration: template("qdd{}"),
+                torque: template("tau{}"),
+                motor_position: None,
+            }],
+            origin: ConfigOrigin::DefaultMapping,
+            ..Config::default()
+        }
+    }
+
     /// Resolves a path from the config against its folder.
     pub fn resolve(&self, file: &Path) -> PathBuf {
         match &self.base_dir {
@@ -367,75 +464,234 @@ impl Config {
         }
     }
 
-    /// Checks value ranges that serde cannot; `dof` is the model's joint count.
+    /// The error for the key `key` (a dotted path, arrays numbered from 1): located in the
+    /// file when the config was read from one, else named as a field of `Config`.
+    pub fn key_error(&self, key: &str, problem: impl Into<String>) -> Error {
+        match &self.origin {
+            ConfigOrigin::File { path, keys } => {
+                let at = keys.find(key);
+                Error::ConfigKey {
+                    path: path.clone(),
+                    line: at.map(|a| a.0),
+                    column: at.map(|a| a.1),
+                    key: key.to_string(),
+                    problem: problem.into(),
+                }
+            }
+            ConfigOrigin::DefaultMapping => Error::setting("default column mapping", key, problem),
+            ConfigOrigin::Code => Error::setting("Config", key, problem),
+        }
+    }
+
+    /// Places an error about a `Config` field (an [`Error::InvalidConfig`] of owner
+    /// `Config`) at its key in the config file; other errors pass unchanged.
+    pub fn locate(&self, e: Error) -> Error {
+        match e {
+            Error::InvalidConfig {
+                owner,
+                key,
+                problem,
+            } if owner == "Config" => self.key_error(&key, problem),
+            e => e,
+        }
+    }
+
+    /// Where the column names of the key `key` (e.g. `source[2].torque`, `time_column`)
+    /// came from: for errors about a column missing from a file.
+    pub fn mapping(&self, key: &str) -> ColumnMapping {
+        match &self.origin {
+            ConfigOrigin::Code => ColumnMapping::Code,
+            ConfigOrigin::DefaultMapping => ColumnMapping::Default,
+            ConfigOrigin::File { path, keys } => ColumnMapping::Config {
+                path: path.clone(),
+                line: keys.find(key).map(|a| a.0),
+                key: key.to_string(),
+            },
+        }
+    }
+
+    /// Checks value ranges that serde cannot (see the module documentation); `dof` is the
+    /// model's joint count. Errors name the key (file:line:column for a config file).
     pub fn check(&self, dof: usize) -> Result<()> {
+        self.check_fields(dof).map_err(|e| self.locate(e))
+    }
+
+    fn check_fields(&self, dof: usize) -> Result<()> {
+        let bad = |key: &str, problem: String| Err(Error::setting("Config", key, problem));
         if let Some(n) = self.dof
             && n != dof
         {
-            return Err(Error::JointCountMismatch {
-                context: "config `dof`".into(),
-                expected: dof,
-                found: n,
-            });
+            return bad(
+                "dof",
+                format!(
+                    "{n} joints, but the model has {dof}; write dof = {dof} or use the matching robot description"
+                ),
+            );
         }
         if let Some(fs) = self.sample_rate
-            && !(fs > 0.0 && fs.is_finite())
+            && !(MIN_SAMPLE_RATE..=MAX_SAMPLE_RATE).contains(&fs)
         {
-            return Err(invalid("sample_rate", format!("{fs} Hz must be positive")));
+            return bad(
+                "sample_rate",
+                format!(
+                    "{} Hz is outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; write the rate the data were sampled at",
+                    num(fs)
+                ),
+            );
         }
-        if !(self.time_scale > 0.0 && self.time_scale.is_finite()) {
-            return Err(invalid("time_scale", "must be positive".into()));
+        if !(MIN_FACTOR..=MAX_FACTOR).contains(&self.time_scale) {
+            return bad(
+                "time_scale",
+                format!(
+                    "{} is outside [{MIN_FACTOR:e}, {MAX_FACTOR:e}]; write the factor from the time column's unit to seconds (1e-3 for ms)",
+                    num(self.time_scale)
+                ),
+            );
         }
-        if let Some(lp) = &self.processing.lowpass
-            && !(lp.cutoff > 0.0 && lp.cutoff.is_finite())
-        {
-            return Err(invalid(
-                "processing.lowpass.cutoff",
-                format!("{} Hz must be positive", lp.cutoff),
-            ));
+        for (i, s) in self.sources.iter().enumerate() {
+            for (role, c) in [
+                ("position", &s.position),
+                ("velocity", &s.velocity),
+                ("acceleration", &s.acceleration),
+                ("torque", &s.torque),
+                ("motor_position", &s.motor_position),
+            ] {
+                if let Some(c) = c {
+                    let n = c.names(dof).len();
+                    if n != dof {
+                        return bad(
+                            &format!("source[{}].{role}", i + 1),
+                            format!(
+                                "{n} column names for a model of {dof} joints; list one per joint or write a template such as \"{role}{{}}\""
+                            ),
+                        );
+                    }
+                }
+            }
         }
-        if let Some(r) = &self.processing.rest_velocity {
-            r.values(dof, "processing.rest_velocity")?;
+        if let Some(s) = &self.units.torque_scale {
+            nonzero(s.values(dof, "units.torque_scale")?, "units.torque_scale")?;
         }
-        if let Some([a, b]) = self.processing.range
-            && a >= b
-        {
-            return Err(invalid(
-                "processing.range",
-                format!("[{a}, {b}] is empty; write [start, end] with start < end"),
-            ));
+        let p = &self.processing;
+        if let Some(lp) = &p.lowpass {
+            if !(lp.cutoff > 0.0 && lp.cutoff.is_finite()) {
+                return bad(
+                    "processing.lowpass.cutoff",
+                    format!("{} Hz must be positive", num(lp.cutoff)),
+                );
+            }
+            if !(1..=20).contains(&lp.order) {
+                return bad(
+                    "processing.lowpass.order",
+                    format!("{} is outside 1 to 20", lp.order),
+                );
+            }
+        }
+        if p.trim > MAX_ROWS {
+            return bad(
+                "processing.trim",
+                format!(
+                    "{} samples is more than the {MAX_ROWS} rows a file may have",
+                    p.trim
+                ),
+            );
+        }
+        let factors: Vec<usize> = match &p.decimation {
+            Decimation::Total(t) => vec![*t],
+            Decimation::Stages(s) => s.clone(),
+        };
+        let mut total = 1f64;
+        for f in &factors {
+            if *f == 0 {
+                return bad(
+                    "processing.decimation",
+                    "a decimation factor of 0 is meaningless; use 1 for none".into(),
+                );
+            }
+            total *= *f as f64;
+        }
+        if total > MAX_DECIMATION as f64 {
+            return bad(
+                "processing.decimation",
+                format!("a total factor of {total:e} is more than the limit of {MAX_DECIMATION}"),
+            );
+        }
+        if let Some(r) = &p.rest_velocity {
+            let v = r.values(dof, "processing.rest_velocity")?;
+            if let Some(x) = v.iter().find(|x| !(**x >= 0.0 && **x <= MAX_VELOCITY)) {
+                return bad(
+                    "processing.rest_velocity",
+                    format!("{} rad/s must lie in [0, {MAX_VELOCITY:e}]", num(*x)),
+                );
+            }
+        }
+        for (key, range) in [
+            ("processing.range", p.range),
+            ("processing.validation_range", p.validation_range),
+        ] {
+            if let Some([a, b]) = range
+                && a >= b
+            {
+                return bad(
+                    key,
+                    format!(
+                        "[{a}, {b}] is empty; write [start, end] with start < end (end excluded)"
+                    ),
+                );
+            }
         }
         let e = &self.estimation;
         if !(e.forgetting > 0.0 && e.forgetting <= 1.0) {
-            return Err(invalid(
+            return bad(
                 "estimation.forgetting",
-                format!("{} must satisfy 0 < lambda <= 1", e.forgetting),
-            ));
+                format!("{} must satisfy 0 < lambda <= 1", num(e.forgetting)),
+            );
         }
-        if !(e.energy_window > 0.0 && e.energy_window.is_finite()) {
-            return Err(invalid(
+        if !(e.energy_window > 0.0 && e.energy_window <= MAX_FACTOR) {
+            return bad(
                 "estimation.energy_window",
-                format!("{} s must be positive", e.energy_window),
-            ));
+                format!(
+                    "{} s must lie in (0, {MAX_FACTOR:e}] s",
+                    num(e.energy_window)
+                ),
+            );
         }
         if !(e.rank_tolerance > 0.0 && e.rank_tolerance < 1.0) {
-            return Err(invalid(
+            return bad(
                 "estimation.rank_tolerance",
-                format!("{} must lie in (0, 1)", e.rank_tolerance),
-            ));
+                format!("{} must lie in (0, 1)", num(e.rank_tolerance)),
+            );
         }
         self.drive.check(dof)?;
-        for c in &self.extra_columns {
-            c.check(dof)?;
+        if self.extra_columns.len() > MAX_EXTRA_COLUMNS {
+            return bad(
+                "extra_column",
+                format!(
+                    "{} extra columns is more than the limit of {MAX_EXTRA_COLUMNS}",
+                    self.extra_columns.len()
+                ),
+            );
+        }
+        for (i, c) in self.extra_columns.iter().enumerate() {
+            c.check_keyed(dof, &format!("extra_column[{}]", i + 1))?;
         }
         Ok(())
     }
 }
 
-fn invalid(key: &str, problem: String) -> Error {
-    Error::InvalidConfig {
-        key: key.into(),
-        problem,
+/// Checks that no factor is too small to keep its signal: |x| >= [`MIN_FACTOR`].
+pub(crate) fn nonzero(values: Vec<f64>, key: &str) -> Result<Vec<f64>> {
+    match values.iter().position(|v| !(v.abs() >= MIN_FACTOR)) {
+        Some(j) => Err(Error::setting(
+            "Config",
+            key,
+            format!(
+                "joint {} has {}, which would erase its signal; give a factor of magnitude {MIN_FACTOR:e} to {MAX_FACTOR:e}",
+                j + 1,
+                num(values[j])
+            ),
+        )),
+        None => Ok(values),
     }
 }
 
@@ -498,18 +754,39 @@ method = "wls"
     #[test]
     fn range_checks() {
         let cfg = Config::from_toml_str(EXAMPLE, Path::new("c.toml")).unwrap();
-        assert!(matches!(
-            cfg.check(3),
-            Err(Error::JointCountMismatch { .. })
-        ));
+        let e = cfg.check(3).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("c.toml:2:1: `dof`: 2 joints, but the model has 3"),
+            "{e}"
+        );
         let bad = EXAMPLE.replace("method = \"wls\"", "forgetting = 1.5");
         let cfg = Config::from_toml_str(&bad, Path::new("c.toml")).unwrap();
-        assert!(matches!(cfg.check(2), Err(Error::InvalidConfig { .. })));
+        let e = cfg.check(2).unwrap_err();
+        assert!(
+            matches!(&e, Error::ConfigKey { line: Some(15), key, .. } if key == "estimation.forgetting"),
+            "{e}"
+        );
         let bad = EXAMPLE.replace("rest_velocity = 0.1", "rest_velocity = [0.1]");
         let cfg = Config::from_toml_str(&bad, Path::new("c.toml")).unwrap();
-        assert!(matches!(
-            cfg.check(2),
-            Err(Error::JointCountMismatch { .. })
-        ));
+        let e = cfg.check(2).unwrap_err();
+        assert!(
+            e.to_string().starts_with(
+                "c.toml:13:1: `processing.rest_velocity`: 1 values for a model of 2 joints"
+            ),
+            "{e}"
+        );
+        // a config built in code is named by its fields, never as a file
+        let mut code = Config::default();
+        code.processing.lowpass = Some(Lowpass {
+            cutoff: -1.0,
+            order: 4,
+            signals: vec![Signal::Q],
+        });
+        let e = code.check(2).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "Config `processing.lowpass.cutoff`: -1 Hz must be positive"
+        );
     }
 }

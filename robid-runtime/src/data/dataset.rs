@@ -1,7 +1,21 @@
 //! A loaded, joint-side, uniformly sampled data set.
 
+use std::path::PathBuf;
+
 use crate::data::Warning;
 use crate::error::{Error, Result};
+use crate::limits::{MAX_JOINTS, Quantity, check_size};
+
+/// The file a data set was read from and the line of each sample, for messages and
+/// reports (when files were joined: the first file with a time column, or the first file).
+/// After resampling of irregular time stamps, sample k is given the line of row k.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct DataOrigin {
+    /// The file.
+    pub path: PathBuf,
+    /// 1-based file line of each sample.
+    pub lines: Vec<u64>,
+}
 
 /// Joint-side signals on a uniform time grid, one vector per joint.
 #[derive(Debug, Clone)]
@@ -22,68 +36,116 @@ pub struct Dataset {
     pub motor: Option<Vec<Vec<f64>>>,
     /// What was repaired while loading.
     pub warnings: Vec<super::Warning>,
+    /// The file and lines the samples come from (`None` for a data set built in code).
+    pub origin: Option<DataOrigin>,
 }
 
 impl Dataset {
-    /// A data set from positions and torques (per joint, equal lengths, finite values).
+    /// A data set from positions and torques (per joint, equal lengths, finite values
+    /// within the ranges of [`crate::limits`]).
     pub fn new(
         name: impl Into<String>,
         sample_time: f64,
         q: Vec<Vec<f64>>,
         tau: Vec<Vec<f64>>,
     ) -> Result<Self> {
+        Self::new_at(name, sample_time, q, tau, None)
+    }
+
+    /// [`Dataset::new`] with the file and lines of the samples.
+    pub fn new_at(
+        name: impl Into<String>,
+        sample_time: f64,
+        q: Vec<Vec<f64>>,
+        tau: Vec<Vec<f64>>,
+        origin: Option<DataOrigin>,
+    ) -> Result<Self> {
         let name = name.into();
-        if !(sample_time > 0.0 && sample_time.is_finite()) {
-            return Err(Error::InvalidConfig {
-                key: "sample_rate".into(),
-                problem: format!("{name}: sample time {sample_time} s must be positive"),
-            });
+        let rate = 1.0 / sample_time;
+        if !(sample_time > 0.0
+            && (crate::limits::MIN_SAMPLE_RATE..=crate::limits::MAX_SAMPLE_RATE).contains(&rate))
+        {
+            return Err(Error::setting(
+                "Dataset::new",
+                "sample_time",
+                format!(
+                    "{name}: {} s gives a sample rate outside [{:e}, {:e}] Hz",
+                    crate::error::num(sample_time),
+                    crate::limits::MIN_SAMPLE_RATE,
+                    crate::limits::MAX_SAMPLE_RATE
+                ),
+            ));
         }
-        check_block(
-            &name,
-            "torque",
-            &tau,
-            q.len(),
-            q.first().map_or(0, Vec::len),
+        check_size(
+            || format!("{name}: joints"),
+            q.len() as f64,
+            MAX_JOINTS,
+            "use a description with fewer joints",
         )?;
-        check_block(
-            &name,
-            "position",
-            &q,
-            q.len(),
-            q.first().map_or(0, Vec::len),
-        )?;
-        Ok(Self {
+        let n = q.first().map_or(0, Vec::len);
+        let mut data = Self {
             name,
             sample_time,
-            q,
+            q: Vec::new(),
             qd: None,
             qdd: None,
-            tau,
+            tau: Vec::new(),
             motor: None,
             warnings: Vec::<Warning>::new(),
-        })
+            origin,
+        };
+        let dof = q.len();
+        data.check_block("torque", Quantity::Torque, &tau, dof, n)?;
+        data.check_block("position", Quantity::Position, &q, dof, n)?;
+        data.q = q;
+        data.tau = tau;
+        Ok(data)
+    }
+
+    /// Where sample `k` is: `file:line` when the data came from a file, else the data
+    /// set's name and the sample (0-based).
+    pub fn location(&self, k: usize) -> String {
+        match self
+            .origin
+            .as_ref()
+            .and_then(|o| Some((o, *o.lines.get(k)?)))
+        {
+            Some((o, line)) => format!("{}:{line}", o.path.display()),
+            None => format!("data set `{}`, sample {k}", self.name),
+        }
     }
 
     /// Adds measured velocities.
     pub fn with_velocities(mut self, qd: Vec<Vec<f64>>) -> Result<Self> {
-        check_block(&self.name, "velocity", &qd, self.dof(), self.samples())?;
+        self.check_block(
+            "velocity",
+            Quantity::Velocity,
+            &qd,
+            self.dof(),
+            self.samples(),
+        )?;
         self.qd = Some(qd);
         Ok(self)
     }
 
     /// Adds measured accelerations.
     pub fn with_accelerations(mut self, qdd: Vec<Vec<f64>>) -> Result<Self> {
-        check_block(&self.name, "acceleration", &qdd, self.dof(), self.samples())?;
+        self.check_block(
+            "acceleration",
+            Quantity::Acceleration,
+            &qdd,
+            self.dof(),
+            self.samples(),
+        )?;
         self.qdd = Some(qdd);
         Ok(self)
     }
 
     /// Adds motor encoder positions (link side).
     pub fn with_motor_positions(mut self, motor: Vec<Vec<f64>>) -> Result<Self> {
-        check_block(
-            &self.name,
+        self.check_block(
             "motor position",
+            Quantity::Position,
             &motor,
             self.dof(),
             self.samples(),
@@ -123,36 +185,68 @@ impl Dataset {
             tau: cut(&self.tau),
             motor: self.motor.as_ref().map(cut),
             warnings: self.warnings.clone(),
+            origin: self.origin.as_ref().map(|o| DataOrigin {
+                path: o.path.clone(),
+                lines: o.lines.get(start..end).unwrap_or_default().to_vec(),
+            }),
         })
     }
 }
 
-fn check_block(name: &str, what: &str, x: &[Vec<f64>], dof: usize, n: usize) -> Result<()> {
-    if x.len() != dof {
-        return Err(Error::JointCountMismatch {
-            context: format!("{name}: {what} signals"),
-            expected: dof,
-            found: x.len(),
-        });
-    }
-    for (j, v) in x.iter().enumerate() {
-        if v.len() != n {
-            return Err(Error::DimensionMismatch {
-                what: format!("{name}: {what} of joint {}", j + 1),
-                expected: n,
-                found: v.len(),
+impl Dataset {
+    /// Checks a block of signals: `dof` joints of `n` samples, each value finite and within
+    /// the range of `quantity`; errors name the file line when known.
+    fn check_block(
+        &self,
+        what: &str,
+        quantity: Quantity,
+        x: &[Vec<f64>],
+        dof: usize,
+        n: usize,
+    ) -> Result<()> {
+        let name = &self.name;
+        if x.len() != dof {
+            return Err(Error::JointCountMismatch {
+                context: format!("{name}: {what} signals"),
+                expected: dof,
+                found: x.len(),
             });
         }
-        if let Some(k) = v.iter().position(|x| !x.is_finite()) {
-            return Err(Error::NotFinite {
-                path: name.into(),
-                line: k as u64,
-                column: format!("{what} {}", j + 1),
-                value: v[k],
-            });
+        for (j, v) in x.iter().enumerate() {
+            if v.len() != n {
+                return Err(Error::DimensionMismatch {
+                    what: format!("{name}: {what} of joint {}", j + 1),
+                    expected: n,
+                    found: v.len(),
+                });
+            }
+            if let Some(k) = quantity.first_outside(v) {
+                let what = format!("joint {} {what} (after units and drive chain)", j + 1);
+                return Err(if v[k].is_finite() {
+                    Error::OutOfRange {
+                        location: self.location(k),
+                        what,
+                        quantity: quantity.name(),
+                        value: v[k],
+                        limit: quantity.limit(),
+                    }
+                } else {
+                    let at = self
+                        .origin
+                        .as_ref()
+                        .and_then(|o| Some((o.path.clone(), *o.lines.get(k)?)));
+                    let (path, line) = at.unwrap_or_else(|| (name.into(), k as u64));
+                    Error::NotFinite {
+                        path,
+                        line,
+                        column: what,
+                        value: v[k],
+                    }
+                });
+            }
         }
+        Ok(())
     }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -176,6 +270,23 @@ mod tests {
             Err(Error::NotFinite { .. })
         ));
         assert!(Dataset::new("m", 0.0, vec![vec![0.0]], vec![vec![0.0]]).is_err());
+        let e = Dataset::new("m", 0.01, vec![vec![0.0, 2e6]], vec![vec![0.0; 2]]).unwrap_err();
+        assert!(
+            matches!(e, Error::OutOfRange { ref location, .. } if location == "data set `m`, sample 1"),
+            "{e}"
+        );
+        let e = Dataset::new_at(
+            "m",
+            0.01,
+            vec![vec![0.0; 2]],
+            vec![vec![0.0, 1e300]],
+            Some(DataOrigin {
+                path: "f.csv".into(),
+                lines: vec![2, 3],
+            }),
+        )
+        .unwrap_err();
+        assert!(e.to_string().starts_with("f.csv:3: joint 1 torque"), "{e}");
         let s = d.slice(1, 3).unwrap();
         assert_eq!(s.samples(), 2);
         assert!(d.slice(4, 2).is_err());

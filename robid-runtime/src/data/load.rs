@@ -1,11 +1,18 @@
 //! From config + files to a joint-side, uniformly sampled [`Dataset`].
+//!
+//! Every value read is checked at load time: finite ([`Error::NotFinite`]) and within the
+//! range of its quantity ([`crate::limits`], [`Error::OutOfRange`] naming file:line and
+//! column), both as read and after the units and the drive chain. Errors about the config
+//! name its keys at their file:line ([`Config::locate`]).
 
 use std::path::{Path, PathBuf};
 
+use crate::data::dataset::DataOrigin;
 use crate::data::time::{check_monotonic, interpolate, regularity, uniform_grid};
 use crate::data::{AngleUnit, Config, Dataset, Source, Table, Warning, read_columns};
 use crate::drive::DriveChain;
 use crate::error::{Error, Result};
+use crate::limits::{MAX_JOINTS, MAX_SAMPLE_RATE, MIN_SAMPLE_RATE, Quantity, check_size};
 
 /// The roles a column block can have, in the order of `Loaded::blocks`.
 const ROLES: [&str; 5] = [
@@ -14,6 +21,15 @@ const ROLES: [&str; 5] = [
     "acceleration",
     "torque",
     "motor_position",
+];
+
+/// The quantity of each role.
+const QUANTITIES: [Quantity; 5] = [
+    Quantity::Position,
+    Quantity::Velocity,
+    Quantity::Acceleration,
+    Quantity::Torque,
+    Quantity::Position,
 ];
 
 fn role_columns(s: &Source, role: usize) -> Option<&crate::data::Columns> {
@@ -30,26 +46,34 @@ fn role_columns(s: &Source, role: usize) -> Option<&crate::data::Columns> {
 /// Loads a data set for a `dof`-joint model. `files` pair with the config's
 /// `[[source]]` tables in order; when empty, the sources' own `file` entries are used.
 pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
+    load_checked(config, files, dof).map_err(|e| config.locate(e))
+}
+
+/// Checks the model's joint count against [`MAX_JOINTS`].
+pub(crate) fn check_joints(dof: usize) -> Result<()> {
+    check_size(
+        || "joints of the model".into(),
+        dof as f64,
+        MAX_JOINTS,
+        "use a description with fewer joints",
+    )
+}
+
+fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
+    check_joints(dof)?;
     config.check(dof)?;
     let paths = source_paths(config, files)?;
     let mut blocks: [Option<Vec<Vec<f64>>>; 5] = Default::default();
-    let mut reference: Option<(Vec<f64>, PathBuf)> = None;
-    let mut rows: Option<(usize, PathBuf)> = None;
+    let mut reference: Option<(Vec<f64>, PathBuf, Vec<u64>)> = None;
+    let mut rows: Option<(usize, PathBuf, Vec<u64>)> = None;
     let mut warnings = Vec::new();
 
-    for (src, path) in config.sources.iter().zip(&paths) {
+    for (index, (src, path)) in config.sources.iter().zip(&paths).enumerate() {
         let mut names = Vec::new();
         let mut spans = Vec::new();
-        for (role, role_name) in ROLES.iter().enumerate() {
+        for role in 0..ROLES.len() {
             if let Some(cols) = role_columns(src, role) {
                 let n = cols.names(dof);
-                if n.len() != dof {
-                    return Err(Error::JointCountMismatch {
-                        context: format!("{}: `{}` columns {:?}", path.display(), role_name, n),
-                        expected: dof,
-                        found: n.len(),
-                    });
-                }
                 spans.push((role, names.len()));
                 names.extend(n);
             }
@@ -57,7 +81,30 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
         if let Some(t) = &config.time_column {
             names.push(t.clone());
         }
-        let mut table = read_columns(path, &names)?;
+        let mut table = read_columns(path, &names).map_err(|e| match e {
+            Error::MissingColumn {
+                path,
+                column,
+                available,
+                ..
+            } => {
+                let key = spans
+                    .iter()
+                    .find(|(_, start)| names[*start..*start + dof].contains(&column))
+                    .map_or_else(
+                        || "time_column".to_string(),
+                        |(r, _)| format!("source[{}].{}", index + 1, ROLES[*r]),
+                    );
+                let mapping = config.mapping(&key);
+                Error::MissingColumn {
+                    path,
+                    column,
+                    available,
+                    mapping: Box::new(mapping),
+                }
+            }
+            e => e,
+        })?;
         if table.rows() < 2 {
             return Err(Error::TooFewSamples {
                 context: path.display().to_string(),
@@ -66,14 +113,26 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
                 hint: "the file needs a header and data rows",
             });
         }
+        for &(role, start) in &spans {
+            for (k, name) in names[start..start + dof].iter().enumerate() {
+                table.check_range(start + k, name, QUANTITIES[role])?;
+            }
+        }
         let mut columns = std::mem::take(&mut table.columns);
-        if config.time_column.is_some() {
+        if let Some(name) = &config.time_column {
             let mut t = columns.pop().unwrap_or_default();
             t.iter_mut().for_each(|v| *v *= config.time_scale);
+            let scaled = Table {
+                path: path.clone(),
+                columns: vec![t],
+                lines: table.lines.clone(),
+            };
+            scaled.check_range(0, name, Quantity::Time)?;
+            let t = scaled.columns.into_iter().next().unwrap_or_default();
             check_monotonic(&t, &table.lines, path)?;
             match &reference {
-                None => reference = Some((t, path.clone())),
-                Some((tref, _)) => {
+                None => reference = Some((t, path.clone(), table.lines.clone())),
+                Some((tref, _, _)) => {
                     columns = columns.iter().map(|x| interpolate(&t, x, tref)).collect();
                     let dropped = tref
                         .iter()
@@ -92,18 +151,31 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
         }
         for (role, start) in spans {
             if blocks[role].is_some() {
-                return Err(Error::InvalidConfig {
-                    key: format!("source.{}", ROLES[role]),
-                    problem: "given by more than one [[source]]; keep it in one".into(),
-                });
+                return Err(Error::setting(
+                    "Config",
+                    &format!("source[{}].{}", index + 1, ROLES[role]),
+                    format!(
+                        "`{}` columns are given by more than one [[source]]; keep them in one",
+                        ROLES[role]
+                    ),
+                ));
             }
             blocks[role] = Some(columns[start..start + dof].to_vec());
         }
     }
 
-    let sample_time = match (&reference, config.sample_rate) {
-        (Some((t, path)), _) => {
+    let (sample_time, origin) = match (&reference, config.sample_rate) {
+        (Some((t, path, lines)), _) => {
             let (step, warning) = regularity(t, path);
+            if !(1.0 / step <= MAX_SAMPLE_RATE && 1.0 / step >= MIN_SAMPLE_RATE) {
+                return Err(config.key_error(
+                    "time_scale",
+                    format!(
+                        "the time stamps of {} are {step:e} s apart on average, a sample rate outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; the time column must be in seconds: convert it, or give its unit with time_scale (1e-3 for ms, 1e-9 for ns)",
+                        path.display()
+                    ),
+                ));
+            }
             if let Some(w) = warning {
                 let grid = uniform_grid(t[0], step, t.len());
                 for b in blocks.iter_mut().flatten() {
@@ -111,21 +183,49 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
                 }
                 warnings.push(w);
             }
-            step
+            (
+                step,
+                DataOrigin {
+                    path: path.clone(),
+                    lines: lines.clone(),
+                },
+            )
         }
-        (None, Some(fs)) => 1.0 / fs,
+        (None, Some(fs)) => {
+            let (_, path, lines) = rows.clone().unwrap_or_default();
+            (1.0 / fs, DataOrigin { path, lines })
+        }
         (None, None) => {
-            return Err(Error::InvalidConfig {
-                key: "sample_rate".into(),
-                problem: "the data has no time column; set `sample_rate = ...` (Hz) or `time_column = \"...\"`".into(),
-            });
+            return Err(config.key_error(
+                "sample_rate",
+                "the data has no time column; set `sample_rate = ...` (Hz) or `time_column = \"...\"`",
+            ));
         }
     };
 
+    if let Some(lp) = &config.processing.lowpass {
+        let nyquist = 0.5 / sample_time;
+        let min = crate::signal::MIN_CUTOFF * nyquist;
+        if !(lp.cutoff < nyquist && lp.cutoff >= min) {
+            return Err(config.key_error(
+                "processing.lowpass.cutoff",
+                format!(
+                    "{} Hz is outside [{}, {}) Hz for data sampled at {} Hz (below the Nyquist frequency, above {:e} of it so that the filter can be represented); choose a cutoff in that range",
+                    crate::error::num(lp.cutoff),
+                    crate::error::num(min),
+                    crate::error::num(nyquist),
+                    crate::error::num(1.0 / sample_time),
+                    crate::signal::MIN_CUTOFF
+                ),
+            ));
+        }
+    }
     let [q, qd, qdd, tau, motor] = blocks;
-    let missing = |role: &str| Error::InvalidConfig {
-        key: format!("source.{role}"),
-        problem: format!("no [[source]] gives `{role}` columns; add e.g. {role} = \"{role}{{}}\""),
+    let missing = |role: &str| {
+        config.key_error(
+            "source",
+            format!("no [[source]] gives `{role}` columns; add e.g. {role} = \"{role}{{}}\""),
+        )
     };
     let (q, tau) = (
         q.ok_or_else(|| missing("position"))?,
@@ -149,11 +249,12 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
         .first()
         .and_then(|p| p.file_name())
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    let mut data = Dataset::new(
+    let mut data = Dataset::new_at(
         name,
         sample_time,
         chain.joint_positions(&angle(q)),
         chain.joint_torques(&tau),
+        Some(origin),
     )?;
     if let Some(v) = qd {
         data = data.with_velocities(chain.joint_positions(&angle(v)))?;
@@ -165,10 +266,10 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
         data = data.with_motor_positions(chain.reflected_motor_positions(&angle(m)))?;
     }
     if config.drive.rotor.is_some() && data.motor.is_none() {
-        return Err(Error::InvalidConfig {
-            key: "drive.rotor".into(),
-            problem: "rotor compensation needs motor encoder columns: add motor_position = [...] to a [[source]]".into(),
-        });
+        return Err(config.key_error(
+            "drive.rotor",
+            "rotor compensation needs motor encoder columns: add motor_position = [...] to a [[source]]",
+        ));
     }
     data.warnings = warnings;
     Ok(data)
@@ -176,22 +277,21 @@ pub fn load(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
 
 fn source_paths(config: &Config, files: &[PathBuf]) -> Result<Vec<PathBuf>> {
     if config.sources.is_empty() {
-        return Err(Error::InvalidConfig {
-            key: "source".into(),
-            problem: "no [[source]] table; add one per file with its position and torque columns"
-                .into(),
-        });
+        return Err(config.key_error(
+            "source",
+            "no [[source]] table; add one per file with its position and torque columns",
+        ));
     }
     if !files.is_empty() {
         if files.len() != config.sources.len() {
-            return Err(Error::InvalidConfig {
-                key: "source".into(),
-                problem: format!(
-                    "{} files given but the config has {} [[source]] tables; give one file per table",
+            return Err(config.key_error(
+                "source",
+                format!(
+                    "{} files given but there are {} [[source]] tables; give one file per table",
                     files.len(),
                     config.sources.len()
                 ),
-            });
+            ));
         }
         return Ok(files.to_vec());
     }
@@ -200,22 +300,20 @@ fn source_paths(config: &Config, files: &[PathBuf]) -> Result<Vec<PathBuf>> {
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            s.file
-                .as_deref()
-                .map(|f| config.resolve(f))
-                .ok_or_else(|| Error::InvalidConfig {
-                    key: format!("source[{}].file", i + 1),
-                    problem: "no file given; set `file = \"...\"` or pass the files explicitly"
-                        .into(),
-                })
+            s.file.as_deref().map(|f| config.resolve(f)).ok_or_else(|| {
+                config.key_error(
+                    &format!("source[{}].file", i + 1),
+                    "no file given; set `file = \"...\"` or pass the files explicitly",
+                )
+            })
         })
         .collect()
 }
 
-fn check_rows(rows: &mut Option<(usize, PathBuf)>, table: &Table) -> Result<()> {
+fn check_rows(rows: &mut Option<(usize, PathBuf, Vec<u64>)>, table: &Table) -> Result<()> {
     match rows {
-        None => *rows = Some((table.rows(), table.path.clone())),
-        Some((n, first)) if *n != table.rows() => {
+        None => *rows = Some((table.rows(), table.path.clone(), table.lines.clone())),
+        Some((n, first, _)) if *n != table.rows() => {
             return Err(Error::RowCountMismatch {
                 first: first.clone(),
                 first_rows: *n,

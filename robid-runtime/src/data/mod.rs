@@ -4,17 +4,21 @@
 
 mod config;
 mod dataset;
+mod keys;
 mod load;
 mod table;
 mod time;
 
+pub(crate) use config::nonzero;
 pub use config::{
-    AngleUnit, Columns, Config, Decimation, Derivative, Estimation, Lowpass, Method, PerJoint,
-    Processing, Signal, Source, Units,
+    AngleUnit, Columns, Config, ConfigOrigin, Decimation, Derivative, Estimation, Lowpass, Method,
+    PerJoint, Processing, Signal, Source, Units,
 };
-pub use dataset::Dataset;
+pub use dataset::{DataOrigin, Dataset};
+pub use keys::KeyMap;
+pub(crate) use load::check_joints;
 pub use load::{load, load_config_files, load_from_config_file};
-pub use table::{Table, read_columns, read_columns_from};
+pub use table::{ColumnMapping, Table, read_columns, read_columns_from};
 pub use time::{
     IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,
 };

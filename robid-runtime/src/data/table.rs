@@ -1,11 +1,28 @@
 //! Reading selected columns of a CSV file (with header, optionally gzip-compressed).
+//!
+//! One reader for every file, `csv_core` (the parser of the `csv` crate, driven over the
+//! text in memory): fields separated by `,`, optionally quoted
+//! with `"`, surrounding spaces trimmed, lines that start with `#` are comments, empty lines
+//! are skipped, `\n` or `\r\n` line ends, and a UTF-8 byte-order mark is ignored. A file
+//! without quote characters is cut at line ends into blocks that the same reader parses in
+//! parallel (a quoted field may hold a line end, so a file with quotes is read in one
+//! block); both give the same table and the same errors.
+//!
+//! Limits ([`crate::limits`]): the file (after decompression) at most
+//! [`MAX_FILE_BYTES`](crate::limits::MAX_FILE_BYTES), its header at most
+//! [`MAX_COLUMNS`](crate::limits::MAX_COLUMNS) fields, at most
+//! [`MAX_ROWS`](crate::limits::MAX_ROWS) data rows. Every value read must be a finite
+//! number; [`Table::check_range`] checks a column against the range of its quantity.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use flate2::read::MultiGzDecoder;
+use rayon::prelude::*;
 
 use crate::error::{Error, Result};
+use crate::limits::{MAX_COLUMNS, MAX_FILE_BYTES, MAX_ROWS, Quantity, check_size};
 
 /// Selected columns of one CSV file, with the file line of every row.
 #[derive(Debug, Clone)]
@@ -23,358 +40,558 @@ impl Table {
     pub fn rows(&self) -> usize {
         self.lines.len()
     }
+
+    /// Checks that column `index` (named `name` in messages) lies within the range of
+    /// `quantity` ([`Quantity::limit`]); the error names the file, line and column.
+    pub fn check_range(&self, index: usize, name: &str, quantity: Quantity) -> Result<()> {
+        let Some(column) = self.columns.get(index) else {
+            return Ok(());
+        };
+        match quantity.first_outside(column) {
+            None => Ok(()),
+            Some(k) => Err(Error::OutOfRange {
+                location: format!(
+                    "{}:{}",
+                    self.path.display(),
+                    self.lines.get(k).copied().unwrap_or(0)
+                ),
+                what: format!("column `{name}`"),
+                quantity: quantity.name(),
+                value: column[k],
+                limit: quantity.limit(),
+            }),
+        }
+    }
+}
+
+/// Where the column names of a read came from: it decides what an error about a missing
+/// column tells the user to fix.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum ColumnMapping {
+    /// Names passed in code.
+    #[default]
+    Code,
+    /// A fixed file format with this header (e.g. a trajectory file).
+    Header {
+        /// The header the format requires, e.g. `t,q1..qn,qd1..qdn,qdd1..qddn`.
+        expected: String,
+    },
+    /// robid's default mapping, used when no config file is given: the header
+    /// `t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` (what `robid simulate` writes).
+    Default,
+    /// A config file's `[[source]]` table.
+    Config {
+        /// The config file.
+        path: PathBuf,
+        /// 1-based line of the key that names the column, when known.
+        line: Option<usize>,
+        /// The key, e.g. `source[1].torque`.
+        key: String,
+    },
+}
+
+impl ColumnMapping {
+    /// What to do about a column that is not in the header.
+    pub fn fix(&self) -> String {
+        match self {
+            ColumnMapping::Code => {
+                "pass the names of the file's columns, or rename the file's columns".into()
+            }
+            ColumnMapping::Header { expected } => {
+                format!("this file needs the header {expected}; rename its columns")
+            }
+            ColumnMapping::Default => "the default column mapping needs the header \
+                 t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun (as `robid simulate` writes it); \
+                 rename the file's columns to these names"
+                .into(),
+            ColumnMapping::Config { path, line, key } => match line {
+                Some(l) => format!("fix `{key}` at {}:{l} or the file's header", path.display()),
+                None => format!("fix `{key}` in {} or the file's header", path.display()),
+            },
+        }
+    }
 }
 
 /// Reads the columns `names` from a CSV file. A file whose first bytes are the gzip
-/// magic number is decompressed. Lines starting with `#` are comments.
+/// magic number is decompressed. See the module documentation for the format.
 pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
     let io = |source| Error::Io {
         path: path.to_path_buf(),
         source,
     };
-    let bytes = std::fs::read(path).map_err(io)?;
+    let file = std::fs::File::open(path).map_err(io)?;
+    let size = file.metadata().map_or(0, |m| m.len());
+    check_size(
+        || format!("{}: file size in bytes", path.display()),
+        size as f64,
+        MAX_FILE_BYTES as usize,
+        "split the file",
+    )?;
+    let bytes = read_limited(file, path, false, size as usize)?;
+    decode(bytes, path, names)
+}
+
+/// Reads the columns `names` from any reader (gzip-compressed or not); `path` is used
+/// in messages.
+pub fn read_columns_from(reader: impl Read, path: &Path, names: &[String]) -> Result<Table> {
+    let bytes = read_limited(reader, path, false, 0)?;
+    decode(bytes, path, names)
+}
+
+/// Decompresses gzip (recognised by its magic number), then parses.
+fn decode(bytes: Vec<u8>, path: &Path, names: &[String]) -> Result<Table> {
     if bytes.starts_with(&[0x1f, 0x8b]) {
-        let mut text = Vec::with_capacity(4 * bytes.len());
-        MultiGzDecoder::new(bytes.as_slice())
-            .read_to_end(&mut text)
-            .map_err(io)?;
-        read_columns_bytes(&text, path, names)
+        let hint = bytes.len().saturating_mul(4);
+        let text = read_limited(MultiGzDecoder::new(bytes.as_slice()), path, true, hint)?;
+        parse(&text, path, names)
     } else {
-        read_columns_bytes(&bytes, path, names)
+        parse(&bytes, path, names)
     }
 }
 
-/// Reads the columns `names` from any reader; `path` is used in messages.
-///
-/// The text is read whole; a file without quote characters is split by a simple
-/// parallel scanner (lines cut at `\n`, fields at `,`, only the wanted fields parsed),
-/// any other file goes through the `csv` crate. Both give the same table and errors.
-pub fn read_columns_from(mut reader: impl Read, path: &Path, names: &[String]) -> Result<Table> {
-    let mut text = Vec::new();
-    reader.read_to_end(&mut text).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    read_columns_bytes(&text, path, names)
-}
-
-/// [`read_columns_from`] on text in memory.
-fn read_columns_bytes(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
-    if text.contains(&b'"') {
-        read_with_csv(text, path, names)
-    } else {
-        fast::read(text, path, names)
-    }
-}
-
-/// The general reader (quoted fields and all): the `csv` crate.
-fn read_with_csv(reader: impl Read, path: &Path, names: &[String]) -> Result<Table> {
-    let mut rdr = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(reader);
-    let csv_err = |e: csv::Error| match e.kind() {
-        csv::ErrorKind::Io(_) => Error::Csv {
-            path: path.to_path_buf(),
-            line: 0,
-            reason: e.to_string(),
-        },
-        _ => Error::Csv {
-            path: path.to_path_buf(),
-            line: e.position().map_or(0, |p| p.line()),
-            reason: e.to_string(),
-        },
-    };
-    let header: Vec<String> = rdr
-        .headers()
-        .map_err(csv_err)?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    let index = names
-        .iter()
-        .map(|name| {
-            header
-                .iter()
-                .position(|h| h == name)
-                .ok_or_else(|| Error::MissingColumn {
+/// Reads everything, at most [`MAX_FILE_BYTES`] (`hint`: the expected size, to allocate
+/// once); a decoding error is a corrupt file.
+fn read_limited(reader: impl Read, path: &Path, decoding: bool, hint: usize) -> Result<Vec<u8>> {
+    let mut out = Vec::with_capacity(hint.min(MAX_FILE_BYTES as usize) + 1);
+    reader
+        .take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut out)
+        .map_err(|source| {
+            if decoding {
+                Error::Corrupt {
                     path: path.to_path_buf(),
-                    column: name.clone(),
-                    available: header.clone(),
-                })
-        })
-        .collect::<Result<Vec<usize>>>()?;
-    let mut columns: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
-    let mut lines = Vec::new();
-    let mut record = csv::ByteRecord::new();
-    while rdr.read_byte_record(&mut record).map_err(csv_err)? {
-        let line = record.position().map_or(0, |p| p.line());
-        for ((col, &i), name) in columns.iter_mut().zip(&index).zip(names) {
-            let bytes = record.get(i).unwrap_or_default();
-            let value = std::str::from_utf8(bytes)
-                .ok()
-                .and_then(|s| s.parse::<f64>().ok());
-            match value {
-                Some(v) if v.is_finite() => col.push(v),
-                Some(v) => {
-                    return Err(Error::NotFinite {
-                        path: path.to_path_buf(),
-                        line,
-                        column: name.clone(),
-                        value: v,
-                    });
+                    reason: format!("gzip: {source}"),
                 }
-                None => {
-                    return Err(Error::NotANumber {
-                        path: path.to_path_buf(),
-                        line,
-                        column: name.clone(),
-                        text: String::from_utf8_lossy(bytes).into_owned(),
-                    });
+            } else {
+                Error::Io {
+                    path: path.to_path_buf(),
+                    source,
                 }
             }
+        })?;
+    check_size(
+        || {
+            format!(
+                "{}: {}size in bytes",
+                path.display(),
+                if decoding { "decompressed " } else { "" }
+            )
+        },
+        out.len() as f64,
+        MAX_FILE_BYTES as usize,
+        "split the file",
+    )?;
+    Ok(out)
+}
+
+/// Bytes per parallel block of an unquoted body.
+const CHUNK: usize = 1 << 20;
+
+/// The csv reader over text in memory: records as fields, with the line each ends on.
+/// It is `csv_core`, the state machine of the `csv` crate, with the crate's defaults (`,`
+/// separator, `"` quotes, `\n` or `\r\n` line ends) and `#` comment lines, driven over the
+/// slice directly (no buffer copy).
+struct Records<'a> {
+    core: csv_core::Reader,
+    input: &'a [u8],
+    consumed: usize,
+    out: Vec<u8>,
+    ends: Vec<usize>,
+    fields: usize,
+}
+
+impl<'a> Records<'a> {
+    fn new(input: &'a [u8]) -> Self {
+        Self {
+            core: csv_core::ReaderBuilder::new().comment(Some(b'#')).build(),
+            input,
+            consumed: 0,
+            out: vec![0; 4096],
+            ends: vec![0; 64],
+            fields: 0,
         }
-        lines.push(line);
     }
+
+    /// Reads the next record; returns the 1-based line (in `input`) it ends on.
+    fn next_record(&mut self) -> Option<u64> {
+        use csv_core::ReadRecordResult as R;
+        let (mut outlen, mut endlen) = (0, 0);
+        loop {
+            let (res, nin, nout, nend) = self.core.read_record(
+                &self.input[self.consumed..],
+                &mut self.out[outlen..],
+                &mut self.ends[endlen..],
+            );
+            self.consumed += nin;
+            outlen += nout;
+            endlen += nend;
+            match res {
+                // an empty input, passed on the next round, tells the reader it is the end
+                R::InputEmpty => {}
+                R::OutputFull => {
+                    let n = self.out.len();
+                    self.out.resize(2 * n, 0);
+                }
+                R::OutputEndsFull => {
+                    let n = self.ends.len();
+                    self.ends.resize(2 * n, 0);
+                }
+                R::Record => {
+                    self.fields = endlen;
+                    let consumed_newline =
+                        self.consumed > 0 && self.input[self.consumed - 1] == b'\n';
+                    return Some(self.core.line() - u64::from(consumed_newline));
+                }
+                R::End => return None,
+            }
+        }
+    }
+
+    /// Fields of the last record.
+    fn len(&self) -> usize {
+        self.fields
+    }
+
+    /// Field `i` of the last record (trimmed of ASCII whitespace).
+    fn field(&self, i: usize) -> &[u8] {
+        if i >= self.fields {
+            return &[];
+        }
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        trim(&self.out[start..self.ends[i]])
+    }
+
+    /// The last record's fields as text, when it is valid UTF-8 (one check per record).
+    fn text(&self) -> Option<&str> {
+        let end = if self.fields == 0 {
+            0
+        } else {
+            self.ends[self.fields - 1]
+        };
+        std::str::from_utf8(&self.out[..end]).ok()
+    }
+
+    /// Field `i` of [`Records::text`] (trimmed): a field lies between ASCII delimiters,
+    /// so its bounds are character boundaries of valid text.
+    fn field_str<'t>(&self, text: &'t str, i: usize) -> Option<&'t str> {
+        if i >= self.fields {
+            return Some("");
+        }
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        Some(
+            text.get(start..self.ends[i])?
+                .trim_matches(|c: char| c.is_ascii_whitespace()),
+        )
+    }
+
+    /// Line ends read so far.
+    fn newlines(&self) -> u64 {
+        self.core.line() - 1
+    }
+}
+
+/// ASCII whitespace trimmed from both ends (what every field gets).
+fn trim(mut b: &[u8]) -> &[u8] {
+    while let [first, rest @ ..] = b
+        && first.is_ascii_whitespace()
+    {
+        b = rest;
+    }
+    while let [rest @ .., last] = b
+        && last.is_ascii_whitespace()
+    {
+        b = rest;
+    }
+    b
+}
+
+/// A number field (the standard library's parser: correctly rounded).
+fn number(b: &[u8]) -> Option<f64> {
+    std::str::from_utf8(b).ok()?.parse::<f64>().ok()
+}
+
+/// The parsed CSV text in memory.
+fn parse(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
+    let text = text.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(text);
+    let mut records = Records::new(text);
+    let Some(header_line) = records.next_record() else {
+        return Err(Error::TooFewSamples {
+            context: path.display().to_string(),
+            found: 0,
+            required: 2,
+            hint: "the file is empty; it needs a header line and data rows",
+        });
+    };
+    check_size(
+        || format!("{}: fields in the header", path.display()),
+        records.len() as f64,
+        MAX_COLUMNS,
+        "keep only the columns needed in the file",
+    )?;
+    let header: Vec<String> = (0..records.len())
+        .map(|i| String::from_utf8_lossy(records.field(i)).into_owned())
+        .collect();
+    let want = wanted(&header, names, path, text, header_line)?;
+    // the body starts on the line after the header's
+    let after = records.consumed;
+    let body_start = if after > 0 && text.get(after - 1) == Some(&b'\n') {
+        after
+    } else {
+        text[after.min(text.len())..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(text.len(), |i| after + i + 1)
+    };
+    let body = &text[body_start.min(text.len())..];
+    let cuts = if text.contains(&b'"') {
+        vec![0, body.len()]
+    } else {
+        cuts(body)
+    };
+    let rows = AtomicUsize::new(0);
+    let parts: Vec<Part> = cuts
+        .par_windows(2)
+        .map(|w| block(body, w[0], w[1], &want, header.len(), &rows))
+        .collect();
+    let total: usize = parts.iter().map(|p| p.lines.len()).sum();
+    let mut columns: Vec<Vec<f64>> = (0..names.len())
+        .map(|_| Vec::with_capacity(total))
+        .collect();
+    let mut row_lines = Vec::with_capacity(total);
+    // the 1-based line of the first line of each block
+    let mut base = header_line + 1;
+    for part in parts {
+        if let Some(e) = part.error {
+            return Err(e.locate(path, names, base));
+        }
+        for (c, v) in columns.iter_mut().zip(part.columns) {
+            c.extend(v);
+        }
+        row_lines.extend(part.lines.iter().map(|l| l + base));
+        base += part.newlines;
+    }
+    check_size(
+        || format!("{}: data rows", path.display()),
+        total as f64,
+        MAX_ROWS,
+        "split the file",
+    )?;
     Ok(Table {
         path: path.to_path_buf(),
         columns,
-        lines,
+        lines: row_lines,
     })
 }
 
-/// The scanner for unquoted CSV text.
-mod fast {
-    use std::path::Path;
-
-    use rayon::prelude::*;
-
-    use super::Table;
-    use crate::error::{Error, Result};
-
-    /// Bytes per parallel chunk of the body.
-    const CHUNK: usize = 1 << 20;
-
-    fn trim(mut b: &[u8]) -> &[u8] {
-        while let [first, rest @ ..] = b
-            && first.is_ascii_whitespace()
-        {
-            b = rest;
-        }
-        while let [rest @ .., last] = b
-            && last.is_ascii_whitespace()
-        {
-            b = rest;
-        }
-        b
-    }
-
-    /// The next line of `text` from `at` (without `\n` and a trailing `\r`) and where the
-    /// one after it starts.
-    fn line_at(text: &[u8], at: usize) -> (&[u8], usize) {
-        let end = text[at..]
-            .iter()
-            .position(|&b| b == b'\n')
-            .map_or(text.len(), |i| at + i);
-        let mut line = &text[at..end];
-        if let [rest @ .., b'\r'] = line {
-            line = rest;
-        }
-        (line, end + 1)
-    }
-
-    /// What a chunk of data lines gave: columns, line numbers relative to the chunk's
-    /// first line, newlines in the chunk, and the first error (with a relative line).
-    struct Part {
-        columns: Vec<Vec<f64>>,
-        lines: Vec<u64>,
-        newlines: u64,
-        error: Option<Error>,
-    }
-
-    pub(super) fn read(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
-        // header: the first line that is neither empty nor a comment
-        let mut at = 0;
-        let mut line_no = 0u64;
-        let header: Vec<String> = loop {
-            if at >= text.len() {
-                break Vec::new();
-            }
-            let (line, next) = line_at(text, at);
-            line_no += 1;
-            at = next;
-            if line.is_empty() || line[0] == b'#' {
-                continue;
-            }
-            break line
-                .split(|&b| b == b',')
-                .map(|f| String::from_utf8_lossy(trim(f)).into_owned())
-                .collect();
-        };
-        let mut want: Vec<Option<usize>> = vec![None; header.len()];
-        for (k, name) in names.iter().enumerate() {
-            let i = header
-                .iter()
-                .position(|h| h == name)
-                .ok_or_else(|| Error::MissingColumn {
+/// Field index of every requested name; a missing, duplicated or badly separated header
+/// is an error.
+fn wanted(
+    header: &[String],
+    names: &[String],
+    path: &Path,
+    text: &[u8],
+    header_line: u64,
+) -> Result<Vec<usize>> {
+    names
+        .iter()
+        .map(|name| {
+            let mut at = header.iter().enumerate().filter(|(_, h)| *h == name);
+            match (at.next(), at.next()) {
+                (Some((i, _)), None) => Ok(i),
+                (Some((i, _)), Some((k, _))) => Err(Error::DuplicateColumn {
                     path: path.to_path_buf(),
                     column: name.clone(),
-                    available: header.clone(),
-                })?;
-            want[i] = Some(k);
-        }
-        // chunks of the body cut after a newline
-        let body = &text[at.min(text.len())..];
-        let mut cuts = vec![0];
-        while let Some(&last) = cuts.last() {
-            let target = last + CHUNK;
-            if target >= body.len() {
-                break;
+                    first: i + 1,
+                    second: k + 1,
+                }),
+                (None, _) => Err(missing(header, name, path, text, header_line)),
             }
-            match body[target..].iter().position(|&b| b == b'\n') {
-                Some(i) if target + i + 1 < body.len() => cuts.push(target + i + 1),
-                _ => break,
-            }
-        }
-        cuts.push(body.len());
-        let fields = header.len();
-        let parts: Vec<Part> = cuts
-            .par_windows(2)
-            .map(|w| chunk(&body[w[0]..w[1]], fields, &want, names.len()))
-            .collect();
-        let rows: usize = parts.iter().map(|p| p.lines.len()).sum();
-        let mut columns: Vec<Vec<f64>> =
-            (0..names.len()).map(|_| Vec::with_capacity(rows)).collect();
-        let mut lines = Vec::with_capacity(rows);
-        let mut offset = line_no;
-        for p in parts {
-            if let Some(e) = p.error {
-                return Err(locate(e, offset, path, names));
-            }
-            for (c, v) in columns.iter_mut().zip(p.columns) {
-                c.extend(v);
-            }
-            lines.extend(p.lines.iter().map(|l| l + offset));
-            offset += p.newlines;
-        }
-        Ok(Table {
-            path: path.to_path_buf(),
-            columns,
-            lines,
         })
-    }
+        .collect()
+}
 
-    /// Adds the chunk's line offset and the path to an error of [`chunk`].
-    fn locate(e: Error, offset: u64, path: &Path, names: &[String]) -> Error {
-        match e {
-            Error::Csv { line, reason, .. } => Error::Csv {
+/// The error for a name that is not in the header: a separator other than `,` when the
+/// header splits into the name with one, else a missing column.
+fn missing(header: &[String], name: &str, path: &Path, text: &[u8], header_line: u64) -> Error {
+    let line = text
+        .split(|&b| b == b'\n')
+        .nth(header_line.saturating_sub(1) as usize)
+        .map(|l| String::from_utf8_lossy(l).trim().to_string())
+        .unwrap_or_default();
+    for (sep, described) in [(';', "`;`"), ('\t', "tabs"), ('|', "`|`")] {
+        if line.contains(sep) && line.split(sep).any(|f| f.trim().trim_matches('"') == name) {
+            let shown: String = line.chars().take(60).collect();
+            return Error::UnsupportedSeparator {
                 path: path.to_path_buf(),
-                line: line + offset,
+                header: shown,
+                separator: described.into(),
+            };
+        }
+    }
+    if header.len() == 1 && line.split_whitespace().any(|f| f == name) {
+        let shown: String = line.chars().take(60).collect();
+        return Error::UnsupportedSeparator {
+            path: path.to_path_buf(),
+            header: shown,
+            separator: "spaces".into(),
+        };
+    }
+    Error::MissingColumn {
+        path: path.to_path_buf(),
+        column: name.to_string(),
+        available: header.to_vec(),
+        mapping: Box::new(ColumnMapping::Code),
+    }
+}
+
+/// Block boundaries of `body`: after a line end every [`CHUNK`] bytes.
+fn cuts(body: &[u8]) -> Vec<usize> {
+    let mut cuts = vec![0];
+    while let Some(&last) = cuts.last() {
+        let target = last + CHUNK;
+        if target >= body.len() {
+            break;
+        }
+        match body[target..].iter().position(|&b| b == b'\n') {
+            Some(i) if target + i + 1 < body.len() => cuts.push(target + i + 1),
+            _ => break,
+        }
+    }
+    cuts.push(body.len());
+    cuts
+}
+
+/// What a block gave: its columns, the lines of its rows relative to the block (the
+/// block's first line is 0), and its first error (lines relative too).
+struct Part {
+    columns: Vec<Vec<f64>>,
+    lines: Vec<u64>,
+    /// Line ends in the block (when it was read to its end).
+    newlines: u64,
+    error: Option<BlockError>,
+}
+
+/// An error inside a block, located relative to the block.
+enum BlockError {
+    Csv {
+        line: u64,
+        reason: String,
+    },
+    Value {
+        line: u64,
+        want: usize,
+        text: String,
+    },
+    NotFinite {
+        line: u64,
+        want: usize,
+        value: f64,
+    },
+    Rows,
+}
+
+impl BlockError {
+    fn locate(self, path: &Path, names: &[String], base: u64) -> Error {
+        let path = path.to_path_buf();
+        let name = |k: usize| names.get(k).cloned().unwrap_or_default();
+        match self {
+            BlockError::Csv { line, reason } => Error::Csv {
+                path,
+                line: line + base,
                 reason,
             },
-            Error::NotFinite {
-                line,
-                column,
-                value,
-                ..
-            } => Error::NotFinite {
-                path: path.to_path_buf(),
-                line: line + offset,
-                column: names
-                    .get(column.parse::<usize>().unwrap_or(0))
-                    .cloned()
-                    .unwrap_or(column),
-                value,
-            },
-            Error::NotANumber {
-                line, column, text, ..
-            } => Error::NotANumber {
-                path: path.to_path_buf(),
-                line: line + offset,
-                column: names
-                    .get(column.parse::<usize>().unwrap_or(0))
-                    .cloned()
-                    .unwrap_or(column),
+            BlockError::Value { line, want, text } => Error::NotANumber {
+                path,
+                line: line + base,
+                column: name(want),
                 text,
             },
-            e => e,
+            BlockError::NotFinite { line, want, value } => Error::NotFinite {
+                path,
+                line: line + base,
+                column: name(want),
+                value,
+            },
+            BlockError::Rows => Error::TooLarge {
+                what: format!("{}: data rows", path.display()),
+                found: (MAX_ROWS + 1) as f64,
+                limit: MAX_ROWS,
+                fix: "split the file".into(),
+            },
         }
     }
+}
 
-    /// Parses the data lines of `text` (whole lines). Errors carry the line relative to
-    /// the chunk (1 = its first line) and the wanted column's index as its name.
-    fn chunk(text: &[u8], fields: usize, want: &[Option<usize>], wanted: usize) -> Part {
-        let estimate = text.len() / (fields.max(1) * 8) + 1;
-        let mut part = Part {
-            columns: (0..wanted).map(|_| Vec::with_capacity(estimate)).collect(),
-            lines: Vec::with_capacity(estimate),
-            newlines: 0,
-            error: None,
-        };
-        let mut at = 0;
-        while at < text.len() {
-            let (line, next) = line_at(text, at);
-            part.newlines += 1;
-            at = next;
-            let rel = part.newlines;
-            if line.is_empty() || line[0] == b'#' {
-                continue;
-            }
-            let mut count = 0;
-            let mut from = 0;
-            for end in line
-                .iter()
-                .enumerate()
-                .filter_map(|(i, &b)| (b == b',').then_some(i))
-                .chain(std::iter::once(line.len()))
-            {
-                let field = &line[from..end];
-                from = end + 1;
-                let i = count;
-                count += 1;
-                let Some(&Some(k)) = want.get(i) else {
-                    continue;
-                };
-                let bytes = trim(field);
-                let value = std::str::from_utf8(bytes)
-                    .ok()
-                    .and_then(|s| s.parse::<f64>().ok());
-                match value {
-                    Some(v) if v.is_finite() => part.columns[k].push(v),
-                    Some(v) => {
-                        part.error = Some(Error::NotFinite {
-                            path: Default::default(),
-                            line: rel,
-                            column: k.to_string(),
-                            value: v,
-                        });
-                        return part;
-                    }
-                    None => {
-                        part.error = Some(Error::NotANumber {
-                            path: Default::default(),
-                            line: rel,
-                            column: k.to_string(),
-                            text: String::from_utf8_lossy(bytes).into_owned(),
-                        });
-                        return part;
-                    }
+/// Parses the records of `body[from..to]` (whole lines, or the whole body).
+fn block(
+    body: &[u8],
+    from: usize,
+    to: usize,
+    want: &[usize],
+    fields: usize,
+    rows: &AtomicUsize,
+) -> Part {
+    let text = &body[from..to];
+    let estimate = text.len() / (fields.max(1) * 8) + 1;
+    let mut part = Part {
+        columns: (0..want.len())
+            .map(|_| Vec::with_capacity(estimate))
+            .collect(),
+        lines: Vec::with_capacity(estimate),
+        newlines: 0,
+        error: None,
+    };
+    if rows.load(Ordering::Relaxed) > MAX_ROWS {
+        part.error = Some(BlockError::Rows);
+        return part;
+    }
+    let mut records = Records::new(text);
+    while let Some(line) = records.next_record() {
+        // 0-based line within the block
+        let line = line - 1;
+        if records.len() != fields {
+            part.error = Some(BlockError::Csv {
+                line,
+                reason: format!(
+                    "found a row with {} fields, but the header has {fields} fields",
+                    records.len()
+                ),
+            });
+            break;
+        }
+        let text = records.text();
+        for (k, (&i, col)) in want.iter().zip(part.columns.iter_mut()).enumerate() {
+            let parsed = match text.and_then(|t| records.field_str(t, i)) {
+                Some(field) => field.parse::<f64>().ok(),
+                None => number(records.field(i)),
+            };
+            match parsed {
+                Some(v) if v.is_finite() => col.push(v),
+                Some(value) => {
+                    part.error = Some(BlockError::NotFinite {
+                        line,
+                        want: k,
+                        value,
+                    });
+                    return part;
+                }
+                None => {
+                    let bytes = records.field(i);
+                    part.error = Some(BlockError::Value {
+                        line,
+                        want: k,
+                        text: String::from_utf8_lossy(bytes).chars().take(40).collect(),
+                    });
+                    return part;
                 }
             }
-            if count != fields {
-                part.error = Some(Error::Csv {
-                    path: Default::default(),
-                    line: rel,
-                    reason: format!(
-                        "found record with {count} fields, but the header has {fields} fields"
-                    ),
-                });
-                return part;
-            }
-            part.lines.push(rel);
         }
-        part
+        part.lines.push(line);
     }
+    part.newlines = records.newlines();
+    rows.fetch_add(part.lines.len(), Ordering::Relaxed);
+    part
 }
 
 #[cfg(test)]
@@ -396,8 +613,10 @@ mod tests {
         assert_eq!(t.lines, vec![3, 4]);
     }
 
+    /// The same text read in parallel blocks (no quotes) and in one block (a quote added in
+    /// a comment forces it) gives the same table, lines and errors.
     #[test]
-    fn the_scanner_and_the_csv_crate_agree() {
+    fn blocks_and_one_block_agree_on_values_lines_and_errors() {
         let mut text = String::from("# made by a test\n t , a,b\r\n");
         for k in 0..200_000 {
             if k % 5000 == 0 {
@@ -410,33 +629,88 @@ mod tests {
                 -(k as f64) / 7.0
             ));
         }
+        let quoted = format!("# \"quoted\"\n{text}");
         let cols = names(&["b", "t"]);
         let fast = read_columns_from(text.as_bytes(), Path::new("m.csv"), &cols).unwrap();
-        let slow = read_with_csv(text.as_bytes(), Path::new("m.csv"), &cols).unwrap();
+        let slow = read_columns_from(quoted.as_bytes(), Path::new("m.csv"), &cols).unwrap();
         assert!(fast.columns == slow.columns);
         assert_eq!(fast.rows(), 200_000);
         // the true 1-based lines: 2 header lines, then 2 extra lines every 5000 records
         let line_of = |k: u64| 3 + k + 2 * (k / 5000 + 1);
         assert!((0..200_000u64).all(|k| fast.lines[k as usize] == line_of(k)));
-        // an error far into the file (in a later parallel chunk) names its line and column
-        let bad = format!("{text}200000,x,1\n");
-        let e = read_columns_from(bad.as_bytes(), Path::new("m.csv"), &names(&["a"])).unwrap_err();
-        assert!(
-            matches!(&e, Error::NotANumber { line, column, .. } if *line == line_of(199_999) + 1 && column == "a"),
-            "{e}"
-        );
-        let ragged = format!("{text}200000,1\n");
-        let e = read_columns_from(ragged.as_bytes(), Path::new("m.csv"), &cols).unwrap_err();
-        assert!(
-            matches!(e, Error::Csv { line, .. } if line == line_of(199_999) + 1),
-            "{e}"
-        );
+        assert!((0..200_000usize).all(|k| slow.lines[k] == fast.lines[k] + 1));
+        // an error far into the file (in a later parallel block) names its line and column
+        for (t, shift) in [(&text, 0), (&quoted, 1)] {
+            let bad = format!("{t}200000,x,1\n");
+            let e =
+                read_columns_from(bad.as_bytes(), Path::new("m.csv"), &names(&["a"])).unwrap_err();
+            assert!(
+                matches!(&e, Error::NotANumber { line, column, .. } if *line == line_of(199_999) + 1 + shift && column == "a"),
+                "{e}"
+            );
+            let ragged = format!("{t}200000,1\n");
+            let e = read_columns_from(ragged.as_bytes(), Path::new("m.csv"), &cols).unwrap_err();
+            assert!(
+                matches!(e, Error::Csv { line, .. } if line == line_of(199_999) + 1 + shift),
+                "{e}"
+            );
+        }
+    }
+
+    /// A config that maps one column to two roles reads it twice, with or without quotes
+    /// (the two readers of the past disagreed here).
+    #[test]
+    fn one_column_read_twice_quoted_or_not() {
+        for text in ["a,b\n1,2\n3,4\n", "\"a\",b\n1,\"2\"\n3,4\n"] {
+            let t = read(text, &["a", "b", "a"]).unwrap();
+            assert_eq!(
+                t.columns,
+                vec![vec![1.0, 3.0], vec![2.0, 4.0], vec![1.0, 3.0]]
+            );
+            assert_eq!(t.lines, vec![2, 3]);
+        }
     }
 
     #[test]
-    fn quoted_fields_use_the_csv_crate() {
-        let t = read("\"a\",b\n\"1\",2\n", &["a", "b"]).unwrap();
-        assert_eq!(t.columns, vec![vec![1.0], vec![2.0]]);
+    fn bom_crlf_and_quotes_are_accepted() {
+        let plain = read("a,b\n1,2\n", &["a", "b"]).unwrap();
+        for text in [
+            "\u{feff}a,b\n1,2\n",
+            "a,b\r\n1,2\r\n",
+            "\u{feff}\"a\",\"b\"\r\n\"1\",2\r\n",
+        ] {
+            let t = read(text, &["a", "b"]).unwrap();
+            assert_eq!(t.columns, plain.columns, "{text:?}");
+            assert_eq!(t.lines, plain.lines, "{text:?}");
+        }
+    }
+
+    #[test]
+    fn duplicate_columns_name_both_positions() {
+        let e = read("t,q1,q2,q2\n0,1,2,3\n", &["q2"]).unwrap_err();
+        assert!(
+            matches!(&e, Error::DuplicateColumn { column, first: 3, second: 4, .. } if column == "q2"),
+            "{e}"
+        );
+        assert!(e.to_string().contains("fields 3 and 4"), "{e}");
+        // a duplicated column that is not read is harmless
+        assert!(read("t,x,x\n0,1,2\n", &["t"]).is_ok());
+    }
+
+    #[test]
+    fn other_separators_say_what_is_supported() {
+        for (text, sep) in [
+            ("t;q1\n0;1\n", "`;`"),
+            ("t\tq1\n0\t1\n", "tabs"),
+            ("t q1\n0 1\n", "spaces"),
+        ] {
+            let e = read(text, &["q1"]).unwrap_err();
+            assert!(
+                matches!(&e, Error::UnsupportedSeparator { separator, .. } if separator == sep),
+                "{e}"
+            );
+            assert!(e.to_string().contains("comma-separated"), "{e}");
+        }
     }
 
     #[test]
@@ -456,29 +730,56 @@ mod tests {
     }
 
     #[test]
-    fn text_and_ragged_rows_are_errors() {
+    fn out_of_range_values_name_line_and_column() {
+        let t = read("t,qdd1\n0,1\n1,1e200\n", &["t", "qdd1"]).unwrap();
+        let e = t
+            .check_range(1, "qdd1", Quantity::Acceleration)
+            .unwrap_err();
+        let text = e.to_string();
+        assert!(matches!(e, Error::OutOfRange { .. }), "{text}");
+        assert!(
+            text.starts_with("mem.csv:3: column `qdd1`") && text.contains("1e8"),
+            "{text}"
+        );
+        assert!(t.check_range(0, "t", Quantity::Time).is_ok());
+    }
+
+    #[test]
+    fn text_ragged_and_empty_are_errors() {
         let e = read("a,b\n1,x\n", &["b"]).unwrap_err();
         assert!(matches!(e, Error::NotANumber { line: 2, .. }), "{e}");
         let e = read("a,b\n1,2\n3\n", &["a"]).unwrap_err();
         assert!(matches!(e, Error::Csv { line: 3, .. }), "{e}");
+        let e = read("", &["a"]).unwrap_err();
+        assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
+        let e = read("# only a comment\n", &["a"]).unwrap_err();
+        assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
     }
 
     #[test]
-    fn gzip_files_and_missing_files() {
+    fn gzip_files_truncated_gzip_and_missing_files() {
         use std::io::Write;
-        let dir = std::env::temp_dir().join(format!("robid-table-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let p = dir.join("x.csv.gz");
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("x.csv.gz");
         let mut enc = flate2::write::GzEncoder::new(
             std::fs::File::create(&p).unwrap(),
             flate2::Compression::fast(),
         );
-        enc.write_all(b"t,q\n0,1\n1,2\n").unwrap();
+        let mut text = String::from("t,q\n");
+        for k in 0..2000 {
+            text.push_str(&format!("{k},{}\n", k as f64 * 0.5));
+        }
+        enc.write_all(text.as_bytes()).unwrap();
         enc.finish().unwrap();
         let t = read_columns(&p, &names(&["q"])).unwrap();
-        assert_eq!(t.columns[0], vec![1.0, 2.0]);
-        let e = read_columns(&dir.join("none.csv"), &names(&["q"])).unwrap_err();
+        assert_eq!(t.columns[0][..2], [0.0, 0.5]);
+        let bytes = std::fs::read(&p).unwrap();
+        let cut = dir.path().join("cut.csv.gz");
+        std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+        let e = read_columns(&cut, &names(&["q"])).unwrap_err();
+        assert!(matches!(e, Error::Corrupt { .. }), "{e}");
+        assert!(e.to_string().contains("truncated or corrupt"), "{e}");
+        let e = read_columns(&dir.path().join("none.csv"), &names(&["q"])).unwrap_err();
         assert!(matches!(e, Error::Io { .. }));
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 use crate::data::PerJoint;
 use crate::drive::RotorConfig;
 use crate::error::{Error, Result};
+use crate::limits::MAX_FACTOR;
 
 /// Which side of the transmission a signal is measured on.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -81,38 +82,49 @@ impl DriveConfig {
         key: &str,
         dof: usize,
     ) -> Result<Option<DMatrix<f64>>> {
+        let bad = |key: String, problem: String| Err(Error::setting("Config", &key, problem));
         if let Some(rows) = given {
+            let key = format!("drive.{key}");
             if rows.len() != dof {
-                return Err(Error::JointCountMismatch {
-                    context: format!("config `drive.{key}` rows"),
-                    expected: dof,
-                    found: rows.len(),
-                });
+                return bad(
+                    key,
+                    format!(
+                        "{} rows for a model of {dof} joints; give a {dof} x {dof} matrix",
+                        rows.len()
+                    ),
+                );
             }
             let mut m = DMatrix::zeros(dof, dof);
             for (i, r) in rows.iter().enumerate() {
                 if r.len() != dof {
-                    return Err(Error::JointCountMismatch {
-                        context: format!("config `drive.{key}` row {}", i + 1),
-                        expected: dof,
-                        found: r.len(),
-                    });
+                    return bad(
+                        format!("{key}[{}]", i + 1),
+                        format!("{} entries; each row needs {dof}", r.len()),
+                    );
                 }
                 for (j, v) in r.iter().enumerate() {
+                    if !(v.abs() <= MAX_FACTOR) {
+                        return bad(
+                            format!("{key}[{}][{}]", i + 1, j + 1),
+                            format!(
+                                "{} is not a finite number of magnitude at most {MAX_FACTOR:e}",
+                                crate::error::num(*v)
+                            ),
+                        );
+                    }
                     m[(i, j)] = *v;
                 }
             }
             return Ok(Some(m));
         }
         match &self.gear_ratios {
-            Some(n) if n.len() != dof => Err(Error::JointCountMismatch {
-                context: "config `drive.gear_ratios`".into(),
-                expected: dof,
-                found: n.len(),
-            }),
-            Some(n) => Ok(Some(DMatrix::from_diagonal(
-                &nalgebra::DVector::from_column_slice(n),
-            ))),
+            Some(n) => {
+                let n = PerJoint::Each(n.clone()).values(dof, "drive.gear_ratios")?;
+                let n = crate::data::nonzero(n, "drive.gear_ratios")?;
+                Ok(Some(DMatrix::from_diagonal(
+                    &nalgebra::DVector::from_column_slice(&n),
+                )))
+            }
             None => Ok(None),
         }
     }
@@ -125,11 +137,11 @@ impl DriveChain {
         let rt = cfg.ratio_matrix(&cfg.torque_coupling, "torque_coupling", dof)?;
         let needs = |side: Side, m: &Option<DMatrix<f64>>, key: &str| -> Result<()> {
             if side == Side::Motor && m.is_none() {
-                return Err(Error::InvalidConfig {
-                    key: key.into(),
-                    problem: "motor-side signals need `drive.gear_ratios` or a coupling matrix"
-                        .into(),
-                });
+                return Err(Error::setting(
+                    "Config",
+                    key,
+                    "motor-side signals need `drive.gear_ratios` or a coupling matrix",
+                ));
             }
             Ok(())
         };
@@ -137,9 +149,16 @@ impl DriveChain {
         needs(cfg.torque_side, &rt, "drive.torque_side")?;
         let eye = DMatrix::identity(dof, dof);
         let motor_inverse = match &rq {
-            Some(m) => m.clone().try_inverse().ok_or_else(|| Error::Singular {
-                what: "drive position coupling R_q".into(),
-                hint: "every joint needs a non-zero gear ratio and the coupling must be invertible",
+            Some(m) => m.clone().try_inverse().ok_or_else(|| {
+                Error::setting(
+                    "Config",
+                    if cfg.position_coupling.is_some() {
+                        "drive.position_coupling"
+                    } else {
+                        "drive.gear_ratios"
+                    },
+                    "the position coupling R_q is singular; every joint needs a non-zero gear ratio and the coupling must be invertible",
+                )
             })?,
             None => eye.clone(),
         };
@@ -153,7 +172,10 @@ impl DriveChain {
             _ => eye,
         };
         let constants = match &cfg.torque_constants {
-            Some(k) => k.values(dof, "drive.torque_constants")?,
+            Some(k) => crate::data::nonzero(
+                k.values(dof, "drive.torque_constants")?,
+                "drive.torque_constants",
+            )?,
             None => vec![1.0; dof],
         };
         if let Some(r) = &cfg.rotor {
@@ -262,14 +284,24 @@ mod tests {
         c.position_coupling = None;
         assert!(matches!(
             DriveChain::new(&c, 6),
-            Err(Error::JointCountMismatch { .. })
+            Err(Error::InvalidConfig { ref key, .. }) if key == "drive.gear_ratios"
         ));
         let mut c = tx40();
         c.position_coupling = Some(vec![vec![0.0; 6]; 6]);
         assert!(matches!(
             DriveChain::new(&c, 6),
-            Err(Error::Singular { .. })
+            Err(Error::InvalidConfig { ref key, .. }) if key == "drive.position_coupling"
         ));
+        let mut c = tx40();
+        c.torque_coupling.as_mut().unwrap()[2][1] = f64::NAN;
+        assert!(matches!(
+            DriveChain::new(&c, 6),
+            Err(Error::InvalidConfig { ref key, .. }) if key == "drive.torque_coupling[3][2]"
+        ));
+        let mut c = tx40();
+        c.position_coupling = None;
+        c.gear_ratios = Some(vec![32.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
+        assert!(DriveChain::new(&c, 6).is_err());
         let c = DriveConfig {
             position_side: Side::Motor,
             ..Default::default()

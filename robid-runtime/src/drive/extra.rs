@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::Real;
 use crate::error::{Error, Result};
+use crate::limits::MAX_FACTOR;
 
 /// The signal a term is built from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -70,33 +71,58 @@ pub struct ExtraColumn {
 }
 
 impl ExtraColumn {
-    /// Checks row and joint numbers against `dof`.
+    /// Checks row and joint numbers against `dof`, and the coefficients.
     pub fn check(&self, dof: usize) -> Result<()> {
-        let bad = |what: &str, v: usize| Error::InvalidConfig {
-            key: format!("extra_column `{}`", self.name),
-            problem: format!(
-                "{what} {v} is outside 1..={dof}; rows and joints are numbered from 1"
-            ),
+        self.check_keyed(dof, &format!("extra_column({})", self.name))
+    }
+
+    /// [`ExtraColumn::check`] with errors on the `Config` key `key` (e.g. `extra_column[2]`).
+    pub(crate) fn check_keyed(&self, dof: usize, key: &str) -> Result<()> {
+        let name = &self.name;
+        let bad = |sub: String, problem: String| {
+            Err(Error::setting("Config", &format!("{key}{sub}"), problem))
         };
         if self.terms.is_empty() {
-            return Err(Error::InvalidConfig {
-                key: format!("extra_column `{}`", self.name),
-                problem: "has no terms; add terms = [{ row = .., signal = .., joints = [..] }]"
-                    .into(),
-            });
+            return bad(
+                String::new(),
+                format!(
+                    "extra column `{name}` has no terms; add terms = [{{ row = .., signal = .., joints = [..] }}]"
+                ),
+            );
         }
-        for t in &self.terms {
+        for (k, t) in self.terms.iter().enumerate() {
+            let at = format!(".terms[{}]", k + 1);
             if t.row == 0 || t.row > dof {
-                return Err(bad("row", t.row));
+                return bad(
+                    format!("{at}.row"),
+                    format!(
+                        "row {} of `{name}` is outside 1..={dof}; rows and joints are numbered from 1",
+                        t.row
+                    ),
+                );
             }
             if let Some(&j) = t.joints.iter().find(|&&j| j == 0 || j > dof) {
-                return Err(bad("joint", j));
+                return bad(
+                    format!("{at}.joints"),
+                    format!(
+                        "joint {j} of `{name}` is outside 1..={dof}; rows and joints are numbered from 1"
+                    ),
+                );
             }
             if t.signal != TermSignal::Constant && t.joints.is_empty() {
-                return Err(Error::InvalidConfig {
-                    key: format!("extra_column `{}`", self.name),
-                    problem: "a q, qd, qdd or sign_qd term needs `joints = [..]`".into(),
-                });
+                return bad(
+                    format!("{at}.joints"),
+                    format!("a q, qd, qdd or sign_qd term of `{name}` needs `joints = [..]`"),
+                );
+            }
+            if !(t.coefficient.abs() <= MAX_FACTOR) {
+                return bad(
+                    format!("{at}.coefficient"),
+                    format!(
+                        "{} is not a finite number of magnitude at most {MAX_FACTOR:e}",
+                        crate::error::num(t.coefficient)
+                    ),
+                );
             }
         }
         Ok(())

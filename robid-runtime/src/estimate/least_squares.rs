@@ -2,6 +2,9 @@
 //!
 //! WLS weights each joint's equations by 1/sigma_j, with sigma_j^2 = ||rho_j||^2 /
 //! (r_j - c) the variance of the OLS residual of joint j's r_j equations (c parameters).
+//! A joint whose residual is (nearly) zero would get an infinite weight: sigma_j has a
+//! floor of [`SIGMA_FLOOR`] times the largest sigma of the joints (and all weights are 1
+//! when every residual is zero, as for exact data).
 //!
 //! ## Reference
 //! M. Gautier, "Dynamic identification of robots with power model", ICRA 1997;
@@ -15,25 +18,43 @@ use crate::estimate::lstsq::solve;
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation};
 
+/// Floor of the per-joint residual sigma of WLS, relative to the largest joint sigma.
+pub const SIGMA_FLOOR: f64 = 1e-6;
+
+/// Checks the relative singular-value threshold of the estimators.
+pub(crate) fn check_tolerance(tolerance: f64) -> Result<()> {
+    if tolerance > 0.0 && tolerance < 1.0 {
+        Ok(())
+    } else {
+        Err(Error::setting(
+            "Config",
+            "estimation.rank_tolerance",
+            format!("{tolerance} must lie in (0, 1)"),
+        ))
+    }
+}
+
 /// Ordinary least squares; `tolerance` is the relative singular-value threshold.
 pub fn ols(obs: &Observation, tolerance: f64) -> Result<Estimate> {
+    check_tolerance(tolerance)?;
     let s = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
-    Ok(assemble(
+    assemble(
         Estimator::Ols,
         obs,
         obs,
         s.beta,
         &s.inverse_gram,
         s.condition_number,
-    ))
+    )
 }
 
 /// Weighted least squares with per-joint weights from the OLS residuals.
 pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
+    check_tolerance(tolerance)?;
     let first = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
     let r = &obs.y - &obs.w * &first.beta;
     let c = obs.cols();
-    let weights: Vec<f64> = obs
+    let sigma: Vec<f64> = obs
         .joint_rows
         .iter()
         .map(|b| {
@@ -42,10 +63,17 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
             } else {
                 b.len().max(1)
             };
-            let var = r.rows(b.start, b.len()).norm_squared() / dof as f64;
-            if var > 0.0 { 1.0 / var.sqrt() } else { 1.0 }
+            (r.rows(b.start, b.len()).norm_squared() / dof as f64).sqrt()
         })
         .collect();
+    let largest = sigma.iter().copied().fold(0.0f64, f64::max);
+    if !largest.is_finite() {
+        return Err(Error::NonFiniteResult {
+            what: "the WLS weights".into(),
+            cause: "the OLS residual overflowed: check the data's units and outliers".into(),
+        });
+    }
+    let weights = joint_weights(&sigma);
     let mut weighted = obs.clone();
     let mut row_weight = DVector::from_element(obs.rows(), 1.0);
     for (b, w) in obs.joint_rows.iter().zip(&weights) {
@@ -63,19 +91,38 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
         s.beta,
         &s.inverse_gram,
         s.condition_number,
-    );
+    )?;
     e.weights = Some(weights);
     Ok(e)
+}
+
+/// Weights 1 / sigma_j with the floor [`SIGMA_FLOOR`] x the largest sigma (all 1 when every
+/// sigma is zero).
+fn joint_weights(sigma: &[f64]) -> Vec<f64> {
+    let largest = sigma.iter().copied().fold(0.0f64, f64::max);
+    sigma
+        .iter()
+        .map(|s| {
+            if largest > 0.0 {
+                1.0 / s.max(SIGMA_FLOOR * largest)
+            } else {
+                1.0
+            }
+        })
+        .collect()
 }
 
 /// Checks that the columns are named uniquely (an error names the duplicate).
 pub fn check_names(names: &[String]) -> Result<()> {
     for (i, n) in names.iter().enumerate() {
         if names[..i].contains(n) {
-            return Err(Error::InvalidConfig {
-                key: format!("parameter `{n}`"),
-                problem: "appears twice; rename the extra column".into(),
-            });
+            return Err(Error::setting(
+                "Config",
+                "extra_column",
+                format!(
+                    "the parameter name `{n}` appears twice (an extra column with the name of a model parameter, or two extra columns of that name); rename the extra column"
+                ),
+            ));
         }
     }
     Ok(())
@@ -160,6 +207,47 @@ mod tests {
             "weighted residual variance ~ 1: {}",
             w.sigma2
         );
+    }
+
+    /// A joint whose residual is (exactly or nearly) zero gets a finite weight (the floor),
+    /// not an infinite one.
+    #[test]
+    fn a_zero_residual_joint_gets_a_floored_weight() {
+        assert_eq!(
+            joint_weights(&[0.0, 2.0]),
+            vec![1.0 / (SIGMA_FLOOR * 2.0), 0.5]
+        );
+        assert_eq!(joint_weights(&[0.0, 0.0]), vec![1.0, 1.0]);
+        // joint 1 alone determines `a` and is exact; joint 2 is noisy
+        let n = 200;
+        let mut w = DMatrix::zeros(2 * n, 3);
+        let mut y = DVector::zeros(2 * n);
+        for k in 0..n {
+            let t = k as f64 * 0.05;
+            w[(k, 0)] = t.sin();
+            y[k] = 2.0 * t.sin();
+            w[(n + k, 1)] = t.cos();
+            w[(n + k, 2)] = 1.0;
+            y[n + k] = -t.cos() + 0.5 + 0.1 * (k as f64 * 7.3).sin();
+        }
+        let names = vec!["a".into(), "b".into(), "c".into()];
+        let obs = Observation::new(
+            w,
+            y,
+            vec![0..n, n..2 * n],
+            (0..n).chain(0..n).collect(),
+            names,
+        )
+        .unwrap();
+        let e = wls(&obs, 1e-10).unwrap();
+        let weights = e.weights.clone().unwrap();
+        assert!(weights.iter().all(|v| v.is_finite()), "{weights:?}");
+        assert!(
+            (weights[0] / weights[1] * SIGMA_FLOOR - 1.0).abs() < 1e-9,
+            "{weights:?}"
+        );
+        assert!(e.values.iter().chain(&e.std).all(|v| v.is_finite()));
+        assert!((e.values[0] - 2.0).abs() < 1e-12);
     }
 
     #[test]

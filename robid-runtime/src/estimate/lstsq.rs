@@ -1,9 +1,17 @@
 //! Least squares by QR then SVD of R, never by normal equations.
 //!
-//! [W y] = Q R_a (Householder), with R_a = [[R, z], [0, rho]]: z = Q'y (first n entries).
-//! R = U S V'. The singular values of R are those of W, so the rank is decided with a
-//! relative threshold on them, the condition number is s_max / s_min,
-//! beta = V S^-1 U' z, and (W'W)^-1 = V S^-2 V'.
+//! The columns of W are scaled to unit norm first (W = W_s D, D = diag of the column
+//! norms) and y to unit norm, so that neither the QR nor the SVD sees the magnitudes of
+//! the data (a sample of 1e200 once made the SVD loop for ever): every entry they see is
+//! at most 1.
+//!
+//! [W_s y_s] = Q R_a (Householder), with R_a = [[R, z], [0, rho]]: z = Q'y_s (first n
+//! entries). R = U S V' (nalgebra's `try_svd`, capped at
+//! [`SVD_ITERATIONS`](crate::limits::SVD_ITERATIONS)). The rank is decided on the
+//! singular values of the scaled W with a relative threshold (a parameter's unit does not
+//! make it unidentifiable), gamma = V S^-1 U' z, and exactly unscaled: beta = |y| D^-1
+//! gamma, (W'W)^-1 = D^-1 V S^-2 V' D^-1. The condition number reported is that of W
+//! itself (the singular values of R D).
 //!
 //! The QR runs on blocks of rows in parallel (tall-skinny QR): each block's R, then the
 //! R factors stacked and factorised again. It is the same R (up to row signs) as one QR
@@ -11,6 +19,9 @@
 
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::limits::SVD_ITERATIONS;
 
 /// Rows per block of the tall-skinny QR.
 const BLOCK: usize = 1024;
@@ -26,8 +37,9 @@ fn r_factor(a: DMatrix<f64>) -> DMatrix<f64> {
     a.qr().r()
 }
 
-/// R of the tall matrix [W y] ((cols + 1) x (cols + 1), upper triangular), by blocks.
-fn augmented_r(w: &DMatrix<f64>, y: &DVector<f64>) -> DMatrix<f64> {
+/// R of the tall matrix [W D^-1, y / y_scale] ((cols + 1) x (cols + 1), upper
+/// triangular), by blocks.
+fn augmented_r(w: &DMatrix<f64>, y: &DVector<f64>, d: &[f64], y_scale: f64) -> DMatrix<f64> {
     let (m, n) = w.shape();
     let blocks = m.div_ceil(BLOCK).max(1);
     (0..blocks)
@@ -35,10 +47,15 @@ fn augmented_r(w: &DMatrix<f64>, y: &DVector<f64>) -> DMatrix<f64> {
         .map(|b| {
             let (lo, hi) = (b * BLOCK, ((b + 1) * BLOCK).min(m));
             let mut a = DMatrix::zeros(hi - lo, n + 1);
-            a.view_mut((0, 0), (hi - lo, n))
-                .copy_from(&w.view((lo, 0), (hi - lo, n)));
-            a.view_mut((0, n), (hi - lo, 1))
-                .copy_from(&y.rows(lo, hi - lo));
+            for (j, dj) in d.iter().enumerate() {
+                let src = w.view((lo, j), (hi - lo, 1));
+                for (dst, v) in a.column_mut(j).iter_mut().zip(src.iter()) {
+                    *dst = v / dj;
+                }
+            }
+            for (dst, v) in a.column_mut(n).iter_mut().zip(y.rows(lo, hi - lo).iter()) {
+                *dst = v / y_scale;
+            }
             r_factor(a)
         })
         .reduce_with(|a, b| {
@@ -50,7 +67,14 @@ fn augmented_r(w: &DMatrix<f64>, y: &DVector<f64>) -> DMatrix<f64> {
         .unwrap_or_else(|| DMatrix::zeros(n + 1, n + 1))
 }
 
-use crate::error::{Error, Result};
+/// The 2-norm of `x` without overflow or underflow (scaled by the largest magnitude).
+fn norm(x: impl Iterator<Item = f64> + Clone) -> f64 {
+    let big = x.clone().fold(0.0f64, |m, v| m.max(v.abs()));
+    if big == 0.0 || !big.is_finite() {
+        return big;
+    }
+    big * x.map(|v| (v / big) * (v / big)).sum::<f64>().sqrt()
+}
 
 /// A full-rank least-squares solution with what the statistics need.
 #[derive(Debug, Clone)]
@@ -61,8 +85,54 @@ pub(crate) struct Solution {
     pub(crate) condition_number: f64,
 }
 
-/// Solves min ||y - W beta||; `tolerance` is relative to the largest singular value.
-/// Rank-deficient W is an error naming the parameters in the unexcited directions.
+/// The column norms of `w` (the scaling D); an all-zero column is a rank deficiency
+/// naming its parameter, a non-finite entry an error naming its row and column.
+pub(crate) fn column_scales(w: &DMatrix<f64>, names: &[String]) -> Result<Vec<f64>> {
+    let name = |j: usize| {
+        names
+            .get(j)
+            .cloned()
+            .unwrap_or_else(|| format!("column {}", j + 1))
+    };
+    if let Some(i) = w.iter().position(|v| !v.is_finite()) {
+        let (r, c) = (i % w.nrows().max(1), i / w.nrows().max(1));
+        return Err(Error::NonFiniteObservation {
+            location: format!("equation {}", r + 1),
+            sample: None,
+            joint: 0,
+            parameter: name(c),
+            value: w[(r, c)],
+        });
+    }
+    let d: Vec<f64> = w.column_iter().map(|c| norm(c.iter().copied())).collect();
+    let zero: Vec<String> = (0..d.len()).filter(|&j| d[j] == 0.0).map(name).collect();
+    if !zero.is_empty() {
+        return Err(Error::RankDeficient {
+            rank: d.len() - zero.len(),
+            columns: d.len(),
+            unexcited: zero,
+        });
+    }
+    Ok(d)
+}
+
+/// Capped SVD of a small square matrix.
+fn svd(
+    r: DMatrix<f64>,
+    vectors: bool,
+    what: &str,
+) -> Result<nalgebra::SVD<f64, nalgebra::Dyn, nalgebra::Dyn>> {
+    r.try_svd(vectors, vectors, f64::EPSILON, SVD_ITERATIONS)
+        .ok_or_else(|| Error::NoConvergence {
+            what: format!("the SVD of {what}"),
+            iterations: SVD_ITERATIONS,
+            hint: "the data hold values of wildly different magnitudes; check them for outliers",
+        })
+}
+
+/// Solves min ||y - W beta||; `tolerance` is relative to the largest singular value of the
+/// column-scaled W. Rank-deficient W is an error naming the parameters in the unexcited
+/// directions.
 pub(crate) fn solve(
     w: &DMatrix<f64>,
     y: &DVector<f64>,
@@ -78,22 +148,33 @@ pub(crate) fn solve(
             hint: "use more data, less decimation, or fewer parameters",
         });
     }
-    let ra = augmented_r(w, y);
+    let d = column_scales(w, names)?;
+    if let Some(r) = y.iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFiniteObservation {
+            location: format!("equation {}", r + 1),
+            sample: None,
+            joint: 0,
+            parameter: "torque".into(),
+            value: y[r],
+        });
+    }
+    let y_norm = norm(y.iter().copied());
+    let y_scale = if y_norm > 0.0 { y_norm } else { 1.0 };
+    let ra = augmented_r(w, y, &d, y_scale);
     let r = ra.view((0, 0), (n, n)).into_owned();
     let qty = ra.view((0, n), (n, 1)).into_owned();
-    let svd = r.svd(true, true);
-    let (Some(u), Some(vt)) = (svd.u.as_ref(), svd.v_t.as_ref()) else {
+    let svd_s = svd(r.clone(), true, "the scaled observation matrix")?;
+    let (Some(u), Some(vt)) = (svd_s.u.as_ref(), svd_s.v_t.as_ref()) else {
         return Err(Error::Singular {
             what: "observation matrix (SVD failed)".into(),
             hint: "check the data for extreme values",
         });
     };
-    let s = &svd.singular_values;
+    let s = &svd_s.singular_values;
     let smax = s.max();
-    let smin = s.min();
     let cut = tolerance * smax;
-    let null: Vec<usize> = (0..n).filter(|&k| s[k] <= cut || s[k].is_nan()).collect();
-    if smax == 0.0 || !null.is_empty() {
+    let null: Vec<usize> = (0..n).filter(|&k| !(s[k] > cut)).collect();
+    if !(smax > 0.0) || !null.is_empty() {
         return Err(Error::RankDeficient {
             rank: n - null.len(),
             columns: n,
@@ -103,32 +184,100 @@ pub(crate) fn solve(
     let uty = u.transpose() * qty;
     let scaled = DVector::from_iterator(n, (0..n).map(|k| uty[k] / s[k]));
     let v = vt.transpose();
-    let beta = &v * scaled;
+    let gamma = &v * scaled;
+    let beta = DVector::from_iterator(n, (0..n).map(|j| gamma[j] * y_scale / d[j]));
     let mut vs = v.clone();
     for k in 0..n {
         vs.column_mut(k).scale_mut(1.0 / (s[k] * s[k]));
     }
-    let inverse_gram = vs * vt;
+    let mut inverse_gram = vs * vt;
+    for i in 0..n {
+        for j in 0..n {
+            inverse_gram[(i, j)] = inverse_gram[(i, j)] / d[i] / d[j];
+        }
+    }
+    let condition_number = condition(&r, u, &svd_s.singular_values, vt, &d)?;
+    if beta
+        .iter()
+        .chain(inverse_gram.diagonal().iter())
+        .any(|v| !v.is_finite())
+    {
+        return Err(Error::NonFiniteResult {
+            what: "the least-squares solution".into(),
+            cause: format!(
+                "the columns of the observation matrix span magnitudes too different to unscale (condition number {condition_number:e}); check the data for outliers and the parameters' units"
+            ),
+        });
+    }
     Ok(Solution {
         beta,
         inverse_gram,
-        condition_number: smax / smin,
+        condition_number,
     })
 }
 
-/// Singular values of W (via QR), largest first.
-pub(crate) fn singular_values(w: &DMatrix<f64>) -> Vec<f64> {
-    let n = w.ncols();
-    let r = if w.nrows() > n {
-        augmented_r(w, &DVector::zeros(w.nrows()))
-            .view((0, 0), (n, n))
-            .into_owned()
-    } else {
-        w.clone()
+/// cond(W) = ||R D|| ||(R D)^-1|| from the R factor of the column-scaled W (R = U S V')
+/// and the scales D. Both norms are largest singular values, which an SVD computes to
+/// full relative accuracy, and (R D)^-1 = D^-1 V S^-1 U' is formed from the well-scaled
+/// factors, so the condition number is right even where it is far beyond 1 / epsilon.
+fn condition(
+    r: &DMatrix<f64>,
+    u: &DMatrix<f64>,
+    s: &DVector<f64>,
+    vt: &DMatrix<f64>,
+    d: &[f64],
+) -> Result<f64> {
+    let n = d.len();
+    let mut rd = r.clone();
+    for (j, dj) in d.iter().enumerate() {
+        rd.column_mut(j).scale_mut(*dj);
+    }
+    let mut inv = vt.transpose();
+    for k in 0..n {
+        inv.column_mut(k).scale_mut(1.0 / s[k]);
+    }
+    let mut inv = inv * u.transpose();
+    for (i, di) in d.iter().enumerate() {
+        inv.row_mut(i).scale_mut(1.0 / di);
+    }
+    let largest = |m: DMatrix<f64>| -> Result<f64> {
+        Ok(svd(m, false, "the observation matrix")?
+            .singular_values
+            .max())
     };
-    let mut s: Vec<f64> = r.singular_values().iter().copied().collect();
-    s.sort_by(|a, b| b.total_cmp(a));
-    s
+    let cond = largest(rd)? * largest(inv)?;
+    if cond.is_finite() {
+        Ok(cond.max(1.0))
+    } else {
+        Err(Error::NonFiniteResult {
+            what: "the condition number of the observation matrix".into(),
+            cause: "the parameters' columns differ by more than the floating-point range: check the data and the parameters' units".into(),
+        })
+    }
+}
+
+/// The condition number of W (column scaling, QR, the capped SVD of the scaled R, see
+/// [`solve`]).
+pub(crate) fn condition_number(w: &DMatrix<f64>, names: &[String]) -> Result<f64> {
+    let n = w.ncols();
+    let d = column_scales(w, names)?;
+    let ra = augmented_r(w, &DVector::zeros(w.nrows()), &d, 1.0);
+    let r = ra.view((0, 0), (n, n)).into_owned();
+    let f = svd(r.clone(), true, "the scaled observation matrix")?;
+    let (Some(u), Some(vt)) = (f.u.as_ref(), f.v_t.as_ref()) else {
+        return Err(Error::Singular {
+            what: "observation matrix (SVD failed)".into(),
+            hint: "check the data for extreme values",
+        });
+    };
+    if !(f.singular_values.min() > 0.0) {
+        return Err(Error::RankDeficient {
+            rank: (0..n).filter(|&k| f.singular_values[k] > 0.0).count(),
+            columns: n,
+            unexcited: Vec::new(),
+        });
+    }
+    condition(&r, u, &f.singular_values, vt, &d)
 }
 
 /// Parameters sorted by their weight in the null-space directions (weight > 1e-3).
@@ -206,12 +355,68 @@ mod tests {
         );
         let g = (w.transpose() * &w).try_inverse().unwrap();
         assert!((g - &s.inverse_gram).norm() < 1e-10);
-        let sv = singular_values(&w);
-        let mut reference: Vec<f64> = w.singular_values().iter().copied().collect();
-        reference.sort_by(|a, b| b.total_cmp(a));
-        for (a, b) in sv.iter().zip(&reference) {
-            assert!((a - b).abs() < 1e-9 * b);
+        let reference = w.singular_values();
+        let want = reference.max() / reference.min();
+        assert!((s.condition_number - want).abs() < 1e-9 * want);
+        assert!((condition_number(&w, &names(4)).unwrap() - want).abs() < 1e-9 * want);
+    }
+
+    /// One entry of 1e200 among values of order 1 (the sample that once hung the SVD):
+    /// the scaled problem is solved, and the solution is the exact one.
+    #[test]
+    fn a_huge_entry_is_solved_not_looped_on() {
+        let m = 200;
+        let mut w = DMatrix::from_fn(m, 3, |i, j| {
+            ((i * (j + 2)) as f64 * 0.71).sin() + 0.1 * j as f64
+        });
+        w[(17, 1)] = 1e200;
+        let beta = DVector::from_vec(vec![2.0, 3e-200, -1.0]);
+        let y = &w * &beta;
+        let s = solve(&w, &y, &names(3), 1e-12).unwrap();
+        assert!(
+            (s.beta[0] - 2.0).abs() < 1e-9 && (s.beta[2] + 1.0).abs() < 1e-9,
+            "{}",
+            s.beta
+        );
+        assert!((s.beta[1] / 3e-200 - 1.0).abs() < 1e-9, "{}", s.beta);
+        assert!(s.condition_number.is_finite() && s.condition_number > 1e150);
+        // unscaled statistics: (W'W)^-1 of the middle parameter is of order 1e-400 -> 0,
+        // never NaN
+        assert!(s.inverse_gram.iter().all(|v| v.is_finite()));
+        // a non-finite entry names its row and column
+        w[(5, 2)] = f64::INFINITY;
+        match solve(&w, &y, &names(3), 1e-12) {
+            Err(Error::NonFiniteObservation {
+                location,
+                parameter,
+                ..
+            }) => {
+                assert_eq!(
+                    (location.as_str(), parameter.as_str()),
+                    ("equation 6", "p3")
+                )
+            }
+            other => panic!("{other:?}"),
         }
+    }
+
+    /// Columns of very different units are not rank deficient: the rank decision is made
+    /// on the scaled columns, the solution is exact.
+    #[test]
+    fn columns_of_different_units_are_full_rank() {
+        let m = 100;
+        let w = DMatrix::from_fn(m, 2, |i, j| {
+            let x = (i as f64 * 0.37).sin() + 0.3 * (i as f64 * 1.9).cos() * j as f64;
+            if j == 0 {
+                1e-8 * x
+            } else {
+                1e8 * (x + (i as f64 * 0.11).cos())
+            }
+        });
+        let y = &w * DVector::from_vec(vec![1e8, 1e-8]);
+        let s = solve(&w, &y, &names(2), 1e-10).unwrap();
+        assert!((s.beta[0] / 1e8 - 1.0).abs() < 1e-9 && (s.beta[1] / 1e-8 - 1.0).abs() < 1e-9);
+        assert!(s.condition_number > 1e15);
     }
 
     #[test]

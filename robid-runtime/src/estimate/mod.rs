@@ -6,13 +6,20 @@ mod energy;
 mod least_squares;
 mod lstsq;
 mod observation;
+mod quality;
 mod result;
 mod rls;
 
 pub use energy::{
     EnergyRegressor, energy, energy_observation, friction_power, model_energy_observation,
 };
-pub use least_squares::{check_names, ols, wls};
+pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
 pub use observation::Observation;
+#[cfg(test)]
+pub(crate) use quality::assess;
+pub(crate) use quality::dominated_columns;
+pub use quality::{
+    CONDITION_WARNING, OUTLIER_ROWS, OUTLIER_SHARE, QualityWarning, REL_STD_WARNING,
+};
 pub use result::{Estimate, Estimator};
 pub use rls::{Rls, rls};

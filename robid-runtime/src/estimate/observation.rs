@@ -52,10 +52,26 @@ impl Observation {
         if covered != w.nrows() || joint_rows.iter().any(|r| r.end > w.nrows()) {
             return Err(dim("rows covered by the joint blocks", w.nrows(), covered));
         }
-        if w.iter().chain(y.iter()).any(|v| !v.is_finite()) {
-            return Err(Error::Singular {
-                what: "observation matrix (NaN or infinite entries)".into(),
-                hint: "check the data and the model for non-finite values",
+        let bad_w = w.iter().position(|v| !v.is_finite());
+        let bad_y = y.iter().position(|v| !v.is_finite());
+        if bad_w.is_some() || bad_y.is_some() {
+            let rows = w.nrows().max(1);
+            let (row, parameter, value) = match (bad_w, bad_y) {
+                (Some(i), _) => (i % rows, names[i / rows].clone(), w[(i % rows, i / rows)]),
+                (None, Some(r)) => (r, "torque".to_string(), y[r]),
+                _ => (0, String::new(), f64::NAN),
+            };
+            let joint = joint_rows
+                .iter()
+                .position(|b| b.contains(&row))
+                .map_or(0, |j| j + 1);
+            let sample = sample_of_row[row];
+            return Err(Error::NonFiniteObservation {
+                location: format!("equation {} (sample {sample})", row + 1),
+                sample: Some(sample),
+                joint,
+                parameter,
+                value,
             });
         }
         Ok(Self {

@@ -3,7 +3,9 @@
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
+use crate::error::{Error, Result};
 use crate::estimate::Observation;
+use crate::estimate::quality::{QualityWarning, assess};
 
 /// Which estimator produced a result.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -42,7 +44,8 @@ pub struct Estimate {
     pub values: Vec<f64>,
     /// Standard deviations sqrt(diag(sigma^2 (W'W)^-1)) of the solved (possibly weighted) system.
     pub std: Vec<f64>,
-    /// 100 * std / |value| (infinite for a zero value).
+    /// 100 * std / |value| (infinite only for a value that is exactly zero; reports write
+    /// null or `-` for it).
     pub rel_std_percent: Vec<f64>,
     /// sigma^2 = ||y - W beta||^2 / (rows - cols) of the solved system.
     pub sigma2: f64,
@@ -54,6 +57,10 @@ pub struct Estimate {
     pub rows: usize,
     /// Per-joint weights 1/sigma_j (WLS only).
     pub weights: Option<Vec<f64>>,
+    /// What the user should know before trusting the result (ill conditioning,
+    /// parameters with a relative standard deviation above 100 %).
+    #[serde(default)]
+    pub warnings: Vec<QualityWarning>,
 }
 
 impl Estimate {
@@ -72,7 +79,8 @@ impl Estimate {
 }
 
 /// Assembles statistics: `solved` is the system actually solved (weighted for WLS),
-/// `original` the unweighted one for the residual RMS per joint.
+/// `original` the unweighted one for the residual RMS per joint. Every number returned is
+/// checked finite (an exactly zero value has an infinite relative deviation).
 pub(crate) fn assemble(
     method: Estimator,
     solved: &Observation,
@@ -80,7 +88,7 @@ pub(crate) fn assemble(
     beta: DVector<f64>,
     inverse_gram: &DMatrix<f64>,
     condition_number: f64,
-) -> Estimate {
+) -> Result<Estimate> {
     let (m, n) = (solved.rows(), solved.cols());
     let r = &solved.y - &solved.w * &beta;
     let dof = m.saturating_sub(n).max(1);
@@ -88,7 +96,7 @@ pub(crate) fn assemble(
     let std: Vec<f64> = (0..n)
         .map(|i| (sigma2 * inverse_gram[(i, i)].max(0.0)).sqrt())
         .collect();
-    let rel = std
+    let rel: Vec<f64> = std
         .iter()
         .zip(beta.iter())
         .map(|(s, v)| {
@@ -99,10 +107,42 @@ pub(crate) fn assemble(
             }
         })
         .collect();
-    Estimate {
+    let names = original.names.clone();
+    let residual_rms = original.residual_rms(&beta);
+    let not_finite = |what: String, cause: &str| Error::NonFiniteResult {
+        what,
+        cause: cause.to_string(),
+    };
+    let name = |i: usize| names.get(i).cloned().unwrap_or_default();
+    if let Some(i) = beta.iter().position(|v| !v.is_finite()) {
+        return Err(not_finite(
+            format!("the {} estimate of `{}`", method.name(), name(i)),
+            "the estimator diverged; use ols or wls, or (rls) a forgetting factor closer to 1",
+        ));
+    }
+    if let Some(i) = std.iter().position(|v| !v.is_finite()) {
+        return Err(not_finite(
+            format!("the standard deviation of `{}`", name(i)),
+            "the residual or the covariance overflowed: the torques are far from what the parameters can explain; check the data's units and outliers",
+        ));
+    }
+    if !sigma2.is_finite() || residual_rms.iter().any(|v| !v.is_finite()) {
+        return Err(not_finite(
+            "the residual of the fit".into(),
+            "the prediction overflowed: check the data's units and outliers",
+        ));
+    }
+    if !condition_number.is_finite() {
+        return Err(not_finite(
+            "the condition number".into(),
+            "the observation matrix is numerically singular; use a richer trajectory",
+        ));
+    }
+    let warnings = assess(condition_number, &names, &rel);
+    Ok(Estimate {
         method,
-        names: original.names.clone(),
-        residual_rms: original.residual_rms(&beta),
+        names,
+        residual_rms,
         values: beta.iter().copied().collect(),
         std,
         rel_std_percent: rel,
@@ -110,5 +150,6 @@ pub(crate) fn assemble(
         condition_number,
         rows: m,
         weights: None,
-    }
+        warnings,
+    })
 }

@@ -11,7 +11,8 @@
 use nalgebra::{DMatrix, DVector};
 
 use crate::error::{Error, Result};
-use crate::estimate::lstsq::{singular_values, solve};
+use crate::estimate::least_squares::check_tolerance;
+use crate::estimate::lstsq::{column_scales, condition_number, solve};
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation};
 
@@ -28,16 +29,18 @@ impl Rls {
     /// `n` parameters starting at zero with P = p0 I.
     pub fn new(n: usize, lambda: f64, p0: f64) -> Result<Self> {
         if !(lambda > 0.0 && lambda <= 1.0) {
-            return Err(Error::InvalidConfig {
-                key: "estimation.forgetting".into(),
-                problem: format!("{lambda} must satisfy 0 < lambda <= 1"),
-            });
+            return Err(Error::setting(
+                "Config",
+                "estimation.forgetting",
+                format!("{lambda} must satisfy 0 < lambda <= 1"),
+            ));
         }
         if !(p0 > 0.0 && p0.is_finite()) {
-            return Err(Error::InvalidConfig {
-                key: "rls initial covariance".into(),
-                problem: format!("{p0} must be positive"),
-            });
+            return Err(Error::setting(
+                "Rls::new",
+                "p0",
+                format!("{p0} must be positive and finite"),
+            ));
         }
         Ok(Self {
             beta: DVector::zeros(n),
@@ -75,30 +78,47 @@ impl Rls {
 /// Runs RLS over the equations in sample order (joints interleaved) and returns the final
 /// estimate with statistics; standard deviations use sigma^2 P. Rank-deficient data is an
 /// error, as for [`crate::estimate::ols`].
+///
+/// The recursion runs on column-scaled equations (each column divided by its RMS, so that
+/// P0 = 1e8 I is large against every column) and is unscaled exactly at the end. It visits
+/// every equation once: no iteration to cap. A state that overflowed (possible with a
+/// forgetting factor below 1 on poorly excited data) is an error, not NaN.
 pub fn rls(obs: &Observation, lambda: f64, tolerance: f64) -> Result<Estimate> {
-    // the batch solution only checks the rank and scales P0
+    check_tolerance(tolerance)?;
+    // the batch solution checks the rank
     solve(&obs.w, &obs.y, &obs.names, tolerance)?;
-    let scale = obs.w.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
-    let mut state = Rls::new(obs.cols(), lambda, 1e8 / (scale * scale))?;
+    let rows = obs.rows().max(1) as f64;
+    let d: Vec<f64> = column_scales(&obs.w, &obs.names)?
+        .into_iter()
+        .map(|n| n / rows.sqrt())
+        .collect();
+    let mut state = Rls::new(obs.cols(), lambda, 1e8)?;
     let mut order: Vec<usize> = (0..obs.rows()).collect();
     order.sort_by_key(|&r| obs.sample_of_row[r]);
     let mut phi = vec![0.0; obs.cols()];
     for r in order {
         for (c, v) in phi.iter_mut().enumerate() {
-            *v = obs.w[(r, c)];
+            *v = obs.w[(r, c)] / d[c];
         }
         state.update(&phi, obs.y[r]);
     }
-    let s = singular_values(&obs.w);
-    let cond = s[0] / s[s.len() - 1];
-    Ok(assemble(
-        Estimator::Rls,
-        obs,
-        obs,
-        state.beta.clone(),
-        &state.p,
-        cond,
-    ))
+    let n = obs.cols();
+    let beta = DVector::from_iterator(n, (0..n).map(|j| state.beta[j] / d[j]));
+    let p = DMatrix::from_fn(n, n, |i, j| state.p[(i, j)] / d[i] / d[j]);
+    if beta
+        .iter()
+        .chain(p.diagonal().iter())
+        .any(|v| !v.is_finite())
+    {
+        return Err(Error::NonFiniteResult {
+            what: "the recursive least-squares state".into(),
+            cause: format!(
+                "it overflowed with the forgetting factor {lambda}: the data do not excite every parameter all the time; set estimation.forgetting closer to 1 or use ols or wls"
+            ),
+        });
+    }
+    let cond = condition_number(&obs.w, &obs.names)?;
+    assemble(Estimator::Rls, obs, obs, beta, &p, cond)
 }
 
 #[cfg(test)]

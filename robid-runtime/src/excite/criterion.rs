@@ -127,11 +127,22 @@ pub(crate) fn add_rows(gram: &mut DMatrix<f64>, y: &[f64], rows: usize) {
     }
 }
 
-/// Singular values of W from the lower triangle of W'W, largest first.
+/// Iteration cap of the symmetric eigenvalue solver of the criteria.
+const EIGEN_ITERATIONS: usize = 10_000;
+
+/// Singular values of W from the lower triangle of W'W, largest first; all zero when W'W
+/// holds a non-finite value or the eigenvalue iteration does not converge within its cap
+/// (the criteria are then infinite: such a design is never chosen).
 pub(crate) fn singular_values(gram: &DMatrix<f64>) -> Vec<f64> {
+    let n = gram.ncols();
+    if gram.iter().any(|v| !v.is_finite()) {
+        return vec![0.0; n];
+    }
     let g = gram.clone().lower_triangle() + gram.clone().lower_triangle().transpose()
         - DMatrix::from_diagonal(&gram.diagonal());
-    let eig = SymmetricEigen::new(g);
+    let Some(eig) = SymmetricEigen::try_new(g, f64::EPSILON, EIGEN_ITERATIONS) else {
+        return vec![0.0; n];
+    };
     let mut s: Vec<f64> = eig.eigenvalues.iter().map(|&l| l.max(0.0).sqrt()).collect();
     s.sort_by(|a, b| b.total_cmp(a));
     s

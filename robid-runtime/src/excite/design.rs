@@ -15,10 +15,13 @@ use std::f64::consts::FRAC_PI_2;
 use rayon::prelude::*;
 
 use crate::Model;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::excite::limits::{TorquePenalty, check_reference};
 use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Fourier, Information, JointLimits, JointSeries, check_limits};
+use crate::excite::{
+    MAX_BASE_FREQUENCY, MAX_EVALUATIONS, MAX_HARMONICS, MAX_POINTS, MAX_RESTARTS, MAX_WEIGHT,
+};
 use crate::nelder_mead::NelderMead;
 use crate::rng::Rng;
 
@@ -153,51 +156,43 @@ impl Decoder<'_> {
 }
 
 impl FourierDesign {
-    /// Checks the settings for a model of `dof` joints.
+    /// Checks the settings for a model of `dof` joints (ranges in
+    /// [`crate::excite`]'s documentation).
     pub fn check(&self, dof: usize) -> Result<()> {
-        let bad = |key: &str, problem: String| Error::InvalidConfig {
-            key: key.into(),
-            problem,
-        };
-        if self.harmonics < 2 {
-            return Err(bad(
+        let bad = |key: &str, problem: String| Err(Error::setting("FourierDesign", key, problem));
+        if !(2..=MAX_HARMONICS).contains(&self.harmonics) {
+            return bad(
                 "harmonics",
-                format!("{} must be at least 2", self.harmonics),
-            ));
+                format!("{} must lie between 2 and {MAX_HARMONICS}", self.harmonics),
+            );
         }
-        if !(self.base_frequency > 0.0 && self.base_frequency.is_finite()) {
-            return Err(bad(
+        if !(self.base_frequency > 0.0 && self.base_frequency <= MAX_BASE_FREQUENCY) {
+            return bad(
                 "base_frequency",
-                format!("{} Hz must be positive", self.base_frequency),
-            ));
+                format!(
+                    "{} Hz must lie in (0, {MAX_BASE_FREQUENCY}] Hz",
+                    num(self.base_frequency)
+                ),
+            );
         }
         if !(self.safety > 0.0 && self.safety <= 1.0) {
-            return Err(bad("safety", format!("{} must lie in (0, 1]", self.safety)));
+            return bad("safety", format!("{} must lie in (0, 1]", num(self.safety)));
         }
-        if self.restarts == 0 || self.evaluations == 0 {
-            return Err(bad(
-                "restarts",
-                "restarts and evaluations must be at least 1".into(),
-            ));
-        }
-        for (what, v) in [("start position", &self.start), ("weights", &self.weights)] {
-            if let Some(v) = v.as_ref().filter(|v| v.len() != dof) {
-                return Err(Error::JointCountMismatch {
-                    context: what.into(),
-                    expected: dof,
-                    found: v.len(),
-                });
-            }
-        }
-        if let Some(w) = &self.weights
-            && w.iter().any(|w| !(*w > 0.0 && w.is_finite()))
-        {
-            return Err(Error::InvalidConfig {
-                key: "weights".into(),
-                problem: format!("{w:?} must be positive and finite"),
-            });
-        }
-        Ok(())
+        check_count("FourierDesign", "points", self.points, 1, MAX_POINTS)?;
+        check_count("FourierDesign", "restarts", self.restarts, 1, MAX_RESTARTS)?;
+        check_count(
+            "FourierDesign",
+            "evaluations",
+            self.evaluations,
+            1,
+            MAX_EVALUATIONS,
+        )?;
+        check_joint_vectors(
+            "FourierDesign",
+            dof,
+            self.start.as_deref(),
+            self.weights.as_deref(),
+        )
     }
 
     /// Designs a trajectory for `model` within `limits`; `torque` = reference base
@@ -228,7 +223,7 @@ impl FourierDesign {
             step: vec![0.4],
         };
         let root = Rng::new(self.seed);
-        let runs: Vec<_> = (0..self.restarts)
+        let runs: Vec<crate::nelder_mead::Minimum> = (0..self.restarts)
             .into_par_iter()
             .map(|r| {
                 let x0 = self.start_point(&mut root.fork(r as u64), n * m, m);
@@ -237,18 +232,15 @@ impl FourierDesign {
                     cost(x)
                 })
             })
-            .collect();
+            .collect::<Result<_>>()?;
         let best = runs
             .iter()
             .min_by(|a, b| a.value.total_cmp(&b.value))
-            .ok_or_else(|| Error::InvalidConfig {
-                key: "restarts".into(),
-                problem: "no start was run".into(),
-            })?;
+            .ok_or_else(|| Error::setting("FourierDesign", "restarts", "no start was run"))?;
         let polished = nm.minimize(&best.x, |x| {
             progress.tick();
             cost(x)
-        });
+        })?;
         progress.finish();
         let evaluations = runs.iter().map(|r| r.evaluations).sum::<usize>() + polished.evaluations;
         let x = if polished.value <= best.value {
@@ -256,9 +248,11 @@ impl FourierDesign {
         } else {
             &best.x
         };
+        let cost = polished.value.min(best.value);
+        check_design_cost(cost, self.criterion)?;
         Ok(FourierResult {
             fourier: decoder.decode(x),
-            cost: polished.value.min(best.value),
+            cost,
             evaluations,
         })
     }
@@ -342,14 +336,110 @@ impl FourierDesign {
 pub(crate) fn check_start(start: Option<&[f64]>, limits: &[JointLimits]) -> Result<()> {
     for (j, (q, l)) in start.unwrap_or_default().iter().zip(limits).enumerate() {
         if !(l.position[0] < *q && *q < l.position[1]) {
-            return Err(Error::InvalidConfig {
-                key: format!("start position of joint {}", j + 1),
-                problem: format!(
-                    "{q} is outside the limits {:?}; choose a start inside them",
+            return Err(Error::setting(
+                "design",
+                "start",
+                format!(
+                    "joint {}: {q} is outside the limits {:?}; choose a start inside them",
+                    j + 1,
                     l.position
                 ),
-            });
+            ));
         }
     }
     Ok(())
+}
+
+/// Checks a count setting against `lo..=hi`.
+pub(crate) fn check_count(
+    owner: &str,
+    key: &str,
+    value: usize,
+    lo: usize,
+    hi: usize,
+) -> Result<()> {
+    if (lo..=hi).contains(&value) {
+        Ok(())
+    } else {
+        Err(Error::setting(
+            owner,
+            key,
+            format!("{value} must lie between {lo} and {hi}"),
+        ))
+    }
+}
+
+/// Checks the per-joint start and weights of a design: one per joint, weights positive
+/// and finite (a weight is 1 / the joint's expected torque noise).
+pub(crate) fn check_joint_vectors(
+    owner: &str,
+    dof: usize,
+    start: Option<&[f64]>,
+    weights: Option<&[f64]>,
+) -> Result<()> {
+    for (key, v) in [("start", start), ("weights", weights)] {
+        if let Some(v) = v.filter(|v| v.len() != dof) {
+            return Err(Error::setting(
+                owner,
+                key,
+                format!(
+                    "{} values for a model of {dof} joints; give one per joint",
+                    v.len()
+                ),
+            ));
+        }
+    }
+    if let Some(j) = weights.and_then(|w| w.iter().position(|w| !(*w > 0.0 && *w <= MAX_WEIGHT))) {
+        return Err(Error::setting(
+            owner,
+            "weights",
+            format!(
+                "the weight of joint {} is {}; a weight is 1 / the joint's expected torque noise and must lie in (0, {MAX_WEIGHT:e}] (see excite::weights_from_sigma)",
+                j + 1,
+                num(weights.map_or(0.0, |w| w[j]))
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Regressor-row weights 1 / sigma_j from the expected torque noise `sigma` of each joint
+/// (N m): what weighted least squares will see. A sigma must be positive and finite: a
+/// joint without noise would get an infinite weight (and one with a sigma below
+/// 1 / [`MAX_WEIGHT`] a weight beyond the limit). `owner` and `key` name the setting in
+/// the error (e.g. `"excite"`, `"sigma"`).
+pub fn weights_from_sigma(sigma: &[f64], owner: &str, key: &str) -> Result<Vec<f64>> {
+    sigma
+        .iter()
+        .enumerate()
+        .map(|(j, &s)| {
+            if s > 0.0 && s.is_finite() && 1.0 / s <= MAX_WEIGHT {
+                Ok(1.0 / s)
+            } else {
+                Err(Error::setting(
+                    owner,
+                    key,
+                    format!(
+                        "joint {} has {}; give each joint's expected torque noise as a positive number (at least {:e} N m): a noise of zero would make its weight 1 / sigma infinite",
+                        j + 1,
+                        num(s),
+                        1.0 / MAX_WEIGHT
+                    ),
+                ))
+            }
+        })
+        .collect()
+}
+
+/// A finished design's cost must be finite: infinite means that no trajectory tried
+/// excites every base parameter.
+pub(crate) fn check_design_cost(cost: f64, criterion: Criterion) -> Result<()> {
+    if cost.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::NonFiniteResult {
+            what: format!("the design criterion ({criterion:?}) of the best trajectory"),
+            cause: "every trajectory tried leaves some base parameter unexcited (or exceeds the torque limits without bound): check the joint limits (a joint with almost no range cannot excite its parameters), or give the search more restarts and evaluations".into(),
+        })
+    }
 }

@@ -98,8 +98,9 @@ impl Fourier {
     }
 
     /// Samples `duration` seconds at `rate` Hz (t = 0, 1/rate, ..., duration inclusive).
+    /// The size is checked before allocating ([`crate::limits::MAX_SAMPLES`]).
     pub fn sample(&self, duration: f64, rate: f64) -> Result<Trajectory> {
-        let count = sample_count(duration, rate)?;
+        let count = sample_count("Fourier::sample", duration, rate, self.joints.len())?;
         let t: Vec<f64> = (0..count).map(|k| k as f64 / rate).collect();
         let mut tr = Trajectory::zeros(self.joints.len(), t);
         let w = self.omega();
@@ -108,21 +109,15 @@ impl Fourier {
                 [tr.q[j][k], tr.qd[j][k], tr.qdd[j][k]] = s.eval(w, tr.t[k]);
             }
         }
+        tr.check_finite("Fourier::sample")?;
         Ok(tr)
     }
 }
 
-/// Number of samples of `duration` s at `rate` Hz, both ends included; checks both.
-pub(crate) fn sample_count(duration: f64, rate: f64) -> Result<usize> {
-    for (key, x) in [("duration", duration), ("rate", rate)] {
-        if !(x > 0.0 && x.is_finite()) {
-            return Err(Error::InvalidConfig {
-                key: key.into(),
-                problem: format!("{x} must be positive and finite"),
-            });
-        }
-    }
-    let n = (duration * rate).round() as usize + 1;
+/// Number of samples of `duration` s at `rate` Hz for `dof` joints, both ends included;
+/// checks both and the size.
+pub(crate) fn sample_count(owner: &str, duration: f64, rate: f64, dof: usize) -> Result<usize> {
+    let n = crate::limits::trajectory_samples(owner, duration, rate, dof)?;
     if n < 3 {
         return Err(Error::TooFewSamples {
             context: "trajectory".into(),
@@ -151,7 +146,21 @@ mod tests {
         let mid = s.eval(w, t);
         assert!(((p[0] - m[0]) / (2.0 * h) - mid[1]).abs() < 1e-8);
         assert!(((p[1] - m[1]) / (2.0 * h) - mid[2]).abs() < 1e-8);
-        assert!(sample_count(1.0, 0.0).is_err());
-        assert_eq!(sample_count(1.0, 10.0).unwrap(), 11);
+        assert!(sample_count("f", 1.0, 0.0, 1).is_err());
+        assert_eq!(sample_count("f", 1.0, 10.0, 1).unwrap(), 11);
+        // the sizes of `excite --rate 1e9` and `--duration 1e9` are named, not allocated
+        for (d, r) in [(30.0, 1e9), (1e9, 500.0), (1e300, 1e6)] {
+            let e = sample_count("Fourier::sample", d, r, 6).unwrap_err();
+            assert!(
+                matches!(e, Error::TooLarge { .. } | Error::InvalidConfig { .. }),
+                "{e}"
+            );
+        }
+        let e = sample_count("Fourier::sample", 1e9, 500.0, 6).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("shorten the duration or lower the rate"),
+            "{e}"
+        );
     }
 }

@@ -1,6 +1,7 @@
 //! Joint limits and the margins a trajectory keeps to them.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
+use crate::limits::{MAX_ACCELERATION, MAX_PARAMETER, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
 use crate::simulate::Trajectory;
 use crate::{LengthError, Model};
 
@@ -18,29 +19,35 @@ pub struct JointLimits {
 }
 
 impl JointLimits {
-    /// Checks that the limits are finite, ordered and positive; `joint` is 1-based.
+    /// Checks that the limits are finite, ordered, positive and within the ranges of
+    /// [`crate::limits`]; `joint` is 1-based.
     pub fn check(&self, joint: usize) -> Result<()> {
         let [lo, hi] = self.position;
-        let bad = |what: &str, problem: String| Error::InvalidConfig {
-            key: format!("joint {joint} {what} limit"),
-            problem,
+        let bad = |what: &str, problem: String| {
+            Err(Error::setting(
+                "JointLimits",
+                what,
+                format!("joint {joint}: {problem}"),
+            ))
         };
-        if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-            return Err(bad(
+        if !(lo.abs() <= MAX_POSITION && hi.abs() <= MAX_POSITION && lo < hi) {
+            return bad(
                 "position",
-                format!("[{lo}, {hi}] must be finite with low < high"),
-            ));
+                format!(
+                    "[{}, {}] must be finite within +-{MAX_POSITION:e}, with low < high",
+                    num(lo),
+                    num(hi)
+                ),
+            );
         }
-        for (what, x) in [
-            ("velocity", self.velocity),
-            ("acceleration", self.acceleration),
+        for (what, x, limit) in [
+            ("velocity", self.velocity, MAX_VELOCITY),
+            ("acceleration", self.acceleration, MAX_ACCELERATION),
+            ("torque", self.torque.unwrap_or(1.0), MAX_TORQUE),
         ] {
-            if !(x > 0.0 && x.is_finite()) {
-                return Err(bad(what, format!("{x} must be positive and finite")));
+            if !(x > 0.0 && x <= limit) {
+                return bad(what, format!("{} must lie in (0, {limit:e}]", num(x)));
             }
-        }
-        if let Some(t) = self.torque.filter(|t| !(*t > 0.0 && t.is_finite())) {
-            return Err(bad("torque", format!("{t} must be positive and finite")));
         }
         Ok(())
     }
@@ -49,11 +56,11 @@ impl JointLimits {
 /// Checks a set of limits against the model's joint count.
 pub fn check_limits(limits: &[JointLimits], dof: usize) -> Result<()> {
     if limits.len() != dof {
-        return Err(Error::JointCountMismatch {
-            context: "joint limits".into(),
-            expected: dof,
-            found: limits.len(),
-        });
+        return Err(Error::setting(
+            "design",
+            "limits",
+            format!("{} joint limits for a model of {dof} joints", limits.len()),
+        ));
     }
     limits
         .iter()
@@ -130,12 +137,35 @@ impl<'a> TorquePenalty<'a> {
 
 /// Checks that reference base parameters (enabling the torque limits) fit the model.
 pub(crate) fn check_reference<M: Model + ?Sized>(model: &M, base: Option<&[f64]>) -> Result<()> {
-    match base.filter(|b| b.len() != model.base_parameter_count()) {
-        Some(b) => Err(Error::DimensionMismatch {
+    match base {
+        Some(b) if b.len() != model.base_parameter_count() => Err(Error::DimensionMismatch {
             what: "reference base parameters".into(),
             expected: model.base_parameter_count(),
             found: b.len(),
         }),
+        Some(b) => check_parameters("design", "torque", model, b),
+        None => Ok(()),
+    }
+}
+
+/// Checks base-parameter values given as input: finite, magnitude at most
+/// [`MAX_PARAMETER`]; the error names the parameter.
+pub(crate) fn check_parameters<M: Model + ?Sized>(
+    owner: &str,
+    key: &str,
+    model: &M,
+    base: &[f64],
+) -> Result<()> {
+    match base.iter().position(|v| !(v.abs() <= MAX_PARAMETER)) {
+        Some(i) => Err(Error::setting(
+            owner,
+            key,
+            format!(
+                "base parameter `{}` is {}; parameter values must be finite with magnitude at most {MAX_PARAMETER:e}",
+                model.base_parameter_name(i).unwrap_or("?"),
+                num(base[i])
+            ),
+        )),
         None => Ok(()),
     }
 }

@@ -31,10 +31,13 @@ use rayon::prelude::*;
 
 use crate::Model;
 use crate::error::{Error, Result};
+use crate::excite::design::{check_count, check_design_cost, check_joint_vectors};
 use crate::excite::limits::{TorquePenalty, check_reference};
 use crate::excite::polynomial::{Knot, Septic};
 use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Information, JointLimits, Points, check_limits};
+use crate::excite::{MAX_EVALUATIONS, MAX_POINTS, MAX_RESTARTS};
+use crate::limits::MAX_SAMPLES;
 use crate::nelder_mead::NelderMead;
 use crate::rng::Rng;
 
@@ -111,58 +114,34 @@ pub struct PointResult {
 }
 
 impl PointDesign {
-    /// Checks the settings for a model of `dof` joints.
+    /// Checks the settings for a model of `dof` joints (ranges in [`crate::excite`]'s
+    /// documentation).
     pub fn check(&self, dof: usize) -> Result<()> {
-        let bad = |key: &str, problem: String| Error::InvalidConfig {
-            key: key.into(),
-            problem,
-        };
-        if !(self.duration > 0.0 && self.duration.is_finite()) {
-            return Err(bad(
+        let owner = "PointDesign";
+        let bad = |key: &str, problem: String| Err(Error::setting(owner, key, problem));
+        if !(self.duration > 0.0 && self.duration <= MAX_SAMPLES as f64) {
+            return bad(
                 "duration",
-                format!("{} s must be positive", self.duration),
-            ));
+                format!(
+                    "{} s must lie in (0, {MAX_SAMPLES}] s",
+                    crate::error::num(self.duration)
+                ),
+            );
         }
-        if self.intervals < 2 {
-            return Err(bad(
-                "intervals",
-                format!("{} must be at least 2", self.intervals),
-            ));
-        }
+        check_count(owner, "intervals", self.intervals, 2, MAX_POINTS)?;
         if !(self.window > 0.0 && self.window <= 1.0) {
-            return Err(bad("window", format!("{} must lie in (0, 1]", self.window)));
+            return bad("window", format!("{} must lie in (0, 1]", self.window));
         }
         if !(self.safety > 0.0 && self.safety <= 1.0) {
-            return Err(bad("safety", format!("{} must lie in (0, 1]", self.safety)));
+            return bad("safety", format!("{} must lie in (0, 1]", self.safety));
         }
-        if self.restarts == 0
-            || self.sweeps == 0
-            || self.evaluations == 0
-            || self.torque_samples == 0
-            || self.fine < 2
-        {
-            return Err(bad(
-                "restarts",
-                "restarts, sweeps, evaluations and torque samples must be at least 1, fine at \
-                 least 2"
-                    .into(),
-            ));
-        }
-        for (what, v) in [("start position", &self.start), ("weights", &self.weights)] {
-            if let Some(v) = v.as_ref().filter(|v| v.len() != dof) {
-                return Err(Error::JointCountMismatch {
-                    context: what.into(),
-                    expected: dof,
-                    found: v.len(),
-                });
-            }
-        }
-        if let Some(w) = &self.weights
-            && w.iter().any(|w| !(*w > 0.0 && w.is_finite()))
-        {
-            return Err(bad("weights", format!("{w:?} must be positive and finite")));
-        }
-        Ok(())
+        check_count(owner, "around", self.around, 0, MAX_POINTS)?;
+        check_count(owner, "fine", self.fine, 2, MAX_POINTS)?;
+        check_count(owner, "torque_samples", self.torque_samples, 1, MAX_POINTS)?;
+        check_count(owner, "restarts", self.restarts, 1, MAX_RESTARTS)?;
+        check_count(owner, "sweeps", self.sweeps, 1, MAX_RESTARTS)?;
+        check_count(owner, "evaluations", self.evaluations, 1, MAX_EVALUATIONS)?;
+        check_joint_vectors(owner, dof, self.start.as_deref(), self.weights.as_deref())
     }
 
     /// Designs a trajectory for `model` within `limits`; `torque` = reference base
@@ -180,10 +159,12 @@ impl PointDesign {
         check_reference(model, torque)?;
         let decoder = Decoder::new(self, limits);
         let m = decoder.per_joint();
-        let cost = |x: &[f64]| {
-            let points = decoder.decode(x);
-            self.cost(model, &points)
-                + torque.map_or(0.0, |b| self.penalty(model, limits, b, &points))
+        let cost = |x: &[f64]| match decoder.decode(x) {
+            Ok(points) => {
+                self.cost(model, &points)
+                    + torque.map_or(0.0, |b| self.penalty(model, limits, b, &points))
+            }
+            Err(_) => f64::INFINITY,
         };
         let interior = self.intervals - 1;
         let blocks = interior + usize::from(self.start.is_none());
@@ -226,7 +207,7 @@ impl PointDesign {
                                 trial[i] = v;
                             }
                             cost(&trial)
-                        });
+                        })?;
                         evaluations += found.evaluations;
                         if found.value < value {
                             value = found.value;
@@ -236,21 +217,19 @@ impl PointDesign {
                         }
                     }
                 }
-                (x, value, initial, evaluations)
+                Ok((x, value, initial, evaluations))
             })
-            .collect();
+            .collect::<Result<Vec<_>>>()?;
         progress.finish();
         let evaluations = runs.iter().map(|r| r.3).sum();
         let initial_cost = runs.iter().map(|r| r.2).fold(f64::INFINITY, f64::min);
         let (x, cost, _, _) = runs
             .into_iter()
             .min_by(|a, b| a.1.total_cmp(&b.1))
-            .ok_or_else(|| Error::InvalidConfig {
-                key: "restarts".into(),
-                problem: "no start was run".into(),
-            })?;
+            .ok_or_else(|| Error::setting("PointDesign", "restarts", "no start was run"))?;
+        check_design_cost(cost, self.criterion)?;
         Ok(PointResult {
-            points: decoder.decode(&x),
+            points: decoder.decode(&x)?,
             cost,
             initial_cost,
             evaluations,
@@ -264,7 +243,7 @@ impl PointDesign {
         check_limits(limits, limits.len())?;
         let decoder = Decoder::new(self, limits);
         let len = limits.len() * decoder.per_joint();
-        Ok(decoder.decode(&decoder.start_point(&mut Rng::new(self.seed).fork(0), len)))
+        decoder.decode(&decoder.start_point(&mut Rng::new(self.seed).fork(0), len))
     }
 
     /// The times at which the criterion stacks the regressor: every interior point and
@@ -368,7 +347,7 @@ impl<'a> Decoder<'a> {
             .collect()
     }
 
-    fn decode(&self, x: &[f64]) -> Points {
+    fn decode(&self, x: &[f64]) -> Result<Points> {
         let d = self.design;
         let m = self.per_joint();
         let interior = d.intervals - 1;
@@ -403,7 +382,7 @@ impl<'a> Decoder<'a> {
                     .collect()
             })
             .collect();
-        Points::new(self.times.clone(), knots).expect("decoded points are valid")
+        Points::new(self.times.clone(), knots)
     }
 
     /// The largest factor <= 1 that keeps the interpolated excursions `k` within the limits.

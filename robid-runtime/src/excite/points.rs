@@ -28,12 +28,11 @@ impl Points {
             || times[0] != 0.0
             || times.windows(2).any(|w| w[1] <= w[0] || w[1].is_nan())
         {
-            return Err(Error::InvalidConfig {
-                key: "point times".into(),
-                problem: format!(
-                    "{times:?} must start at 0 and increase, with at least two points"
-                ),
-            });
+            return Err(Error::setting(
+                "Points::new",
+                "times",
+                "they must start at 0 and increase, with at least two points",
+            ));
         }
         if let Some(bad) = knots.iter().position(|k| k.len() != times.len()) {
             return Err(Error::JointCountMismatch {
@@ -43,10 +42,11 @@ impl Points {
             });
         }
         if knots.iter().flatten().flatten().any(|x| !x.is_finite()) {
-            return Err(Error::InvalidConfig {
-                key: "points".into(),
-                problem: "a knot state is not finite".into(),
-            });
+            return Err(Error::setting(
+                "Points::new",
+                "knots",
+                "a knot state is not finite",
+            ));
         }
         let segments = knots
             .iter()
@@ -97,7 +97,7 @@ impl Points {
 
     /// Samples the whole trajectory at `rate` Hz (t = 0, 1/rate, ..., duration inclusive).
     pub fn sample(&self, rate: f64) -> Result<Trajectory> {
-        let count = sample_count(self.duration(), rate)?;
+        let count = sample_count("Points::sample", self.duration(), rate, self.dof())?;
         let t: Vec<f64> = (0..count)
             .map(|k| (k as f64 / rate).min(self.duration()))
             .collect();
@@ -108,6 +108,7 @@ impl Points {
                 [tr.q[j][k], tr.qd[j][k], tr.qdd[j][k]] = [p, v, a];
             }
         }
+        tr.check_finite("Points::sample")?;
         Ok(tr)
     }
 }

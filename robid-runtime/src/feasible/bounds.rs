@@ -18,6 +18,8 @@ use std::collections::BTreeMap;
 
 use serde::Deserialize;
 
+use crate::data::KeyMap;
+use crate::limits::MAX_PARAMETER;
 use crate::{Error, Result};
 
 /// Bounds of one link.
@@ -93,8 +95,31 @@ impl Bounds {
         }
     }
 
-    /// Reads bounds for a robot with `links` links; `path` names the file in errors.
+    /// Reads bounds for a robot with `links` links; `path` names the file in errors, which
+    /// give a wrong value's key at its file:line:column ([`Error::ConfigKey`]).
     pub fn from_toml(text: &str, path: &str, links: usize) -> Result<Bounds> {
+        let keys = KeyMap::parse(text);
+        let locate = |e: Error| match e {
+            Error::InvalidConfig {
+                owner,
+                key,
+                problem,
+            } if owner == "Bounds" => {
+                let at = keys.find(&key);
+                Error::ConfigKey {
+                    path: path.into(),
+                    line: at.map(|a| a.0),
+                    column: at.map(|a| a.1),
+                    key,
+                    problem,
+                }
+            }
+            e => e,
+        };
+        Self::parse(text, path, links).map_err(locate)
+    }
+
+    fn parse(text: &str, path: &str, links: usize) -> Result<Bounds> {
         let raw: Raw = toml::from_str(text).map_err(|e| Error::ConfigSyntax {
             path: path.into(),
             reason: e.to_string(),
@@ -106,9 +131,12 @@ impl Bounds {
                 .parse()
                 .ok()
                 .filter(|j| (1..=links).contains(j))
-                .ok_or_else(|| Error::InvalidConfig {
-                    key: format!("links.{key}"),
-                    problem: format!("not a link number; write 1 to {links}"),
+                .ok_or_else(|| {
+                    Error::setting(
+                        "Bounds",
+                        &format!("links.{key}"),
+                        format!("not a link number; write 1 to {links}"),
+                    )
                 })?;
             out[j - 1] = merge(base, Some(link));
         }
@@ -121,24 +149,22 @@ impl Bounds {
         Ok(bounds)
     }
 
-    /// Checks every range (finite, ordered, masses and moments non-negative) and that the
-    /// total-mass range meets the sum of the link mass ranges.
+    /// Checks every range (finite with magnitude at most
+    /// [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER), ordered, masses and moments
+    /// non-negative) and that the total-mass range meets the sum of the link mass ranges.
     pub fn validate(&self) -> Result<()> {
-        let bad = |key: String, problem: &str| Error::InvalidConfig {
-            key,
-            problem: problem.to_owned(),
-        };
-        if !(self.margin.is_finite() && self.margin >= 0.0) {
+        let bad = |key: String, problem: &str| Error::setting("Bounds", &key, problem);
+        if !(self.margin >= 0.0 && self.margin <= 1.0) {
             return Err(bad(
                 "margin".into(),
-                "must be a finite number >= 0, e.g. 1e-6",
+                "must be a number in [0, 1], e.g. 1e-6",
             ));
         }
         let check = |key: String, r: [f64; 2], non_negative: bool| -> Result<()> {
-            if !(r[0].is_finite() && r[1].is_finite()) {
+            if !(r[0].abs() <= MAX_PARAMETER && r[1].abs() <= MAX_PARAMETER) {
                 return Err(bad(
                     key,
-                    "holds NaN or an infinite value; write finite numbers",
+                    "holds NaN, an infinite value or a magnitude above 1e6; write finite numbers",
                 ));
             }
             if r[0] > r[1] {
@@ -202,6 +228,20 @@ mod tests {
         assert_eq!(b.links[0].mass, [0.0, 5.0]);
         assert_eq!(b.links[1].mass, [1.0, 2.0]);
         assert_eq!(b.total_mass, Some([1.0, 20.0]));
+    }
+
+    #[test]
+    fn errors_name_the_key_at_its_line() {
+        let e = Bounds::from_toml(
+            "[default]\nmass = [0, 5]\n[links.2]\nmass = [3, 1]\n",
+            "b.toml",
+            3,
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().starts_with("b.toml:4:1: `links.2.mass`"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -110,10 +110,11 @@ fn solve_stage(
         if prior.standard.iter().flatten().any(|v| !v.is_finite())
             || !(prior.weight.is_finite() && prior.weight >= 0.0)
         {
-            return Err(Error::InvalidConfig {
-                key: "prior".to_owned(),
-                problem: "holds NaN, an infinite value or a negative weight".to_owned(),
-            });
+            return Err(Error::setting(
+                "SdpOptions",
+                "prior",
+                "holds NaN, an infinite value or a negative weight",
+            ));
         }
         for (s, v) in prior.standard.iter().enumerate() {
             if let Some(v) = v {

@@ -46,10 +46,17 @@ pub fn pseudo_inertia(p: &[f64; 10]) -> Matrix4<f64> {
     out
 }
 
+/// Iteration cap of the symmetric eigenvalue solver.
+const EIGEN_ITERATIONS: usize = 1000;
+
 /// The smallest eigenvalue of the pseudo-inertia: positive means physically consistent
-/// with some margin.
+/// with some margin. NaN when `p` is not finite (the solver is capped, so it cannot loop).
 pub fn pseudo_inertia_min_eigenvalue(p: &[f64; 10]) -> f64 {
-    SymmetricEigen::new(pseudo_inertia(p)).eigenvalues.min()
+    if p.iter().any(|v| !v.is_finite()) {
+        return f64::NAN;
+    }
+    SymmetricEigen::try_new(pseudo_inertia(p), f64::EPSILON, EIGEN_ITERATIONS)
+        .map_or(f64::NAN, |e| e.eigenvalues.min())
 }
 
 impl LinkInertial {
@@ -94,14 +101,17 @@ impl LinkInertial {
         ]
     }
 
-    /// Principal moments of the inertia about the centre of mass, ascending.
+    /// Principal moments of the inertia about the centre of mass, ascending (NaN when the
+    /// inertia is not finite).
     pub fn principal_moments(&self) -> [f64; 3] {
         let ic = Matrix3::from_fn(|i, k| self.inertia[i][k]);
-        let mut e: Vec<f64> = SymmetricEigen::new(ic)
-            .eigenvalues
-            .iter()
-            .copied()
-            .collect();
+        if ic.iter().any(|v| !v.is_finite()) {
+            return [f64::NAN; 3];
+        }
+        let Some(eig) = SymmetricEigen::try_new(ic, f64::EPSILON, EIGEN_ITERATIONS) else {
+            return [f64::NAN; 3];
+        };
+        let mut e: Vec<f64> = eig.eigenvalues.iter().copied().collect();
         e.sort_by(f64::total_cmp);
         [e[0], e[1], e[2]]
     }

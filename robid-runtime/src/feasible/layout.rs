@@ -98,12 +98,17 @@ impl Layout {
             .map(|(j, slots)| {
                 let mut out = [0; 10];
                 for (s, slot) in slots.iter().enumerate() {
-                    out[s] = slot.ok_or_else(|| Error::InvalidConfig {
-                        key: format!("{}{}", INERTIAL[s], j + 1),
-                        problem: format!(
-                            "link {} lacks this standard parameter; every link needs all ten inertial parameters",
-                            j + 1
-                        ),
+                    out[s] = slot.ok_or_else(|| {
+                        Error::setting(
+                            "Layout::from_names",
+                            "names",
+                            format!(
+                                "link {} lacks the standard parameter {}{}; every link needs all ten inertial parameters",
+                                j + 1,
+                                INERTIAL[s],
+                                j + 1
+                            ),
+                        )
                     })?;
                 }
                 Ok(out)
@@ -133,12 +138,13 @@ impl Layout {
 }
 
 fn unknown(name: &str) -> Error {
-    Error::InvalidConfig {
-        key: name.to_owned(),
-        problem:
-            "not a standard parameter name (XXj XYj XZj YYj YZj ZZj MXj MYj MZj Mj Iaj Fvj Fcj Foj)"
-                .to_owned(),
-    }
+    Error::setting(
+        "Layout::from_names",
+        "names",
+        format!(
+            "`{name}` is not a standard parameter name (XXj XYj XZj YYj YZj ZZj MXj MYj MZj Mj Iaj Fvj Fcj Foj)"
+        ),
+    )
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::layout::Layout;
+use crate::limits::MAX_PARAMETER;
 use crate::{Error, Model, Result};
 
 /// Identified base parameters to reproduce, and the map from standard parameters.
@@ -46,11 +47,19 @@ impl Problem {
                 k.ncols(),
             ));
         }
-        if let Some(i) = k.iter().position(|v| !v.is_finite()) {
-            return Err(Error::InvalidConfig {
-                key: format!("K[{}][{}]", i % k.nrows(), i / k.nrows()),
-                problem: "is NaN or infinite; give the geometric symbols finite values".to_owned(),
-            });
+        if let Some(i) = k.iter().position(|v| !(v.abs() <= MAX_PARAMETER)) {
+            return Err(Error::setting(
+                "Problem::new",
+                "k",
+                format!(
+                    "K[{}][{}] (base parameter `{}`, standard parameter `{}`) is {}; the geometry must give finite coefficients of magnitude at most {MAX_PARAMETER:e}",
+                    i % k.nrows(),
+                    i / k.nrows(),
+                    base_names[i % k.nrows()],
+                    standard_names[i / k.nrows()],
+                    crate::error::num(k[(i % k.nrows(), i / k.nrows())])
+                ),
+            ));
         }
         let layout = Layout::from_names(&standard_names)?;
         let nb = base_names.len();
@@ -108,10 +117,13 @@ impl Problem {
                 || self.base_names.contains(n)
                 || names[..i].contains(n)
             {
-                return Err(Error::InvalidConfig {
-                    key: n.clone(),
-                    problem: "an extra column with the name of a parameter already present; rename the extra column".to_owned(),
-                });
+                return Err(Error::setting(
+                    "Problem::with_extra_columns",
+                    "names",
+                    format!(
+                        "`{n}` is the name of a parameter already present; rename the extra column"
+                    ),
+                ));
             }
         }
         let (nb, ns, ne) = (self.k.nrows(), self.k.ncols(), names.len());
@@ -143,23 +155,28 @@ impl Problem {
         let mut v = Vec::with_capacity(self.base_names.len());
         let mut s = Vec::with_capacity(self.base_names.len());
         for b in &self.base_names {
-            let i = names.iter().position(|n| n == b).ok_or_else(|| Error::InvalidConfig {
-                key: b.clone(),
-                problem: "base parameter missing from the identified result; identify with the same robot description".to_owned(),
+            let i = names.iter().position(|n| n == b).ok_or_else(|| {
+                Error::setting(
+                    "Problem::with_identified",
+                    "names",
+                    format!("base parameter `{b}` is missing from the identified result; identify with the same robot description"),
+                )
             })?;
             v.push(values[i]);
             s.push(std[i]);
         }
         if names.len() != self.base_names.len() {
             let extra = names.iter().find(|n| !self.base_names.contains(n));
-            return Err(Error::InvalidConfig {
-                key: extra.cloned().unwrap_or_default(),
-                problem: format!(
-                    "the identified result has {} parameters, the model {} base parameters; identify with the same robot description",
+            return Err(Error::setting(
+                "Problem::with_identified",
+                "names",
+                format!(
+                    "the identified result has {} parameters (e.g. `{}`), the model {} base parameters; identify with the same robot description",
                     names.len(),
+                    extra.cloned().unwrap_or_default(),
                     self.base_names.len()
                 ),
-            });
+            ));
         }
         self.with_target(&v, &s)
     }
@@ -172,11 +189,16 @@ impl Problem {
             return Err(dims("standard deviations", nb, std.len()));
         }
         for (i, &s) in std.iter().enumerate() {
-            if !(s.is_finite() && s > 0.0) {
-                return Err(Error::InvalidConfig {
-                    key: format!("{}.std", self.base_names[i]),
-                    problem: format!("is {s}; a standard deviation must be finite and positive"),
-                });
+            if !(s > 0.0 && s <= MAX_PARAMETER) {
+                return Err(Error::setting(
+                    "Problem::with_target",
+                    "std",
+                    format!(
+                        "the standard deviation of `{}` is {}; it must be positive and at most {MAX_PARAMETER:e} (a zero deviation would claim an exact value)",
+                        self.base_names[i],
+                        crate::error::num(s)
+                    ),
+                ));
             }
             cov[(i, i)] = s * s;
         }
@@ -185,9 +207,12 @@ impl Problem {
 
     /// Sets the identified values and their full covariance (symmetric positive definite).
     ///
-    /// Each variance gets a floor at the solvers' precision, (1e-5 |beta_i| + 1e-8 max |beta|)^2:
-    /// values from noise-free data (std at rounding level) would otherwise make the whitened
-    /// problem too ill-conditioned to solve, and a misfit below that precision meaningless.
+    /// Each variance gets a floor at the solvers' precision,
+    /// (1e-5 |beta_i| + 1e-8 max |beta| + 1e-12)^2: values from noise-free data (std at rounding level) would otherwise make
+    /// the whitened problem too ill-conditioned to solve, and a misfit below that precision
+    /// meaningless. Values must be finite with magnitude at most
+    /// [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER) (a larger identified value is not a
+    /// physical parameter: check the identification and its warnings).
     pub fn with_covariance(mut self, values: &[f64], covariance: &DMatrix<f64>) -> Result<Problem> {
         let nb = self.base_names.len();
         if values.len() != nb {
@@ -196,28 +221,37 @@ impl Problem {
         if covariance.shape() != (nb, nb) {
             return Err(dims("covariance entries", nb * nb, covariance.len()));
         }
-        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::InvalidConfig {
-                key: self.base_names[i].clone(),
-                problem: "identified value is NaN or infinite".to_owned(),
-            });
+        if let Some(i) = values.iter().position(|v| !(v.abs() <= MAX_PARAMETER)) {
+            return Err(Error::setting(
+                "Problem::with_covariance",
+                "values",
+                format!(
+                    "the identified value of `{}` is {}, beyond +-{MAX_PARAMETER:e}: not a physical parameter; check the identification (its condition number and relative deviations)",
+                    self.base_names[i],
+                    crate::error::num(values[i])
+                ),
+            ));
         }
         let singular = || Error::Singular {
             what: "the covariance of the identified base parameters".to_owned(),
             hint: "every base parameter needs a positive, finite variance",
         };
-        if covariance.iter().any(|v| !v.is_finite()) {
+        if covariance
+            .iter()
+            .any(|v| !(v.abs() <= MAX_PARAMETER * MAX_PARAMETER))
+        {
             return Err(singular());
         }
         let largest = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let mut covariance = covariance.clone();
         for (i, v) in values.iter().enumerate() {
-            covariance[(i, i)] += (1e-5 * v.abs() + 1e-8 * largest).powi(2);
+            covariance[(i, i)] += (1e-5 * v.abs() + 1e-8 * largest + 1e-12).powi(2);
         }
         let chol = covariance.clone().cholesky().ok_or_else(singular)?;
         let l = chol.l();
         let whitening = l
             .solve_lower_triangular(&DMatrix::identity(nb, nb))
+            .filter(|w| w.iter().all(|v| v.is_finite()))
             .ok_or_else(singular)?;
         self.std = covariance.diagonal().map(f64::sqrt);
         self.target = DVector::from_column_slice(values);

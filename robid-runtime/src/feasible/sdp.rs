@@ -67,16 +67,49 @@ impl Default for SdpOptions {
 /// identified base parameters of `problem`.
 pub fn solve_sdp(problem: &Problem, bounds: &Bounds, options: &SdpOptions) -> Result<Solution> {
     let start = Instant::now();
+    options.check()?;
     let a = &problem.whitening * &problem.k;
     let b = &problem.whitening * &problem.target;
     let p = solve(problem, bounds, &a, &b, options)?;
-    Ok(Solution::assemble(
-        problem,
-        bounds,
-        Method::Sdp,
-        p,
-        start.elapsed(),
-    ))
+    Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())
+}
+
+impl SdpOptions {
+    /// Checks the regularization and the prior: finite, non-negative weights, prior values
+    /// finite with magnitude at most [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER).
+    pub fn check(&self) -> Result<()> {
+        let bad = |key: &str, problem: String| Err(Error::setting("SdpOptions", key, problem));
+        if !(self.regularization >= 0.0 && self.regularization <= 1e12) {
+            return bad(
+                "regularization",
+                format!("{} must lie in [0, 1e12]", self.regularization),
+            );
+        }
+        if let Some(p) = &self.prior {
+            if !(p.weight >= 0.0 && p.weight <= 1e12) {
+                return bad(
+                    "prior.weight",
+                    format!("{} must lie in [0, 1e12]", p.weight),
+                );
+            }
+            if let Some(i) = p
+                .standard
+                .iter()
+                .position(|v| v.is_some_and(|v| !(v.abs() <= crate::limits::MAX_PARAMETER)))
+            {
+                return bad(
+                    "prior.standard",
+                    format!(
+                        "standard parameter {} of the prior is {:?}; give finite values of magnitude at most {:e}",
+                        i + 1,
+                        p.standard[i],
+                        crate::limits::MAX_PARAMETER
+                    ),
+                );
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Physically consistent least squares on data: minimises ||W K p - y|| over standard
@@ -91,6 +124,7 @@ pub fn consistent_least_squares(
     options: &SdpOptions,
 ) -> Result<Solution> {
     let start = Instant::now();
+    options.check()?;
     let nb = problem.base_names.len();
     if w.ncols() != nb {
         return Err(Error::DimensionMismatch {
@@ -115,22 +149,17 @@ pub fn consistent_least_squares(
         });
     }
     if w.iter().chain(y.iter()).any(|v| !v.is_finite()) {
-        return Err(Error::InvalidConfig {
-            key: "observation".to_owned(),
-            problem: "holds NaN or infinite values; remove those samples".to_owned(),
-        });
+        return Err(Error::setting(
+            "consistent_least_squares",
+            "w",
+            "the observation holds NaN or infinite values; remove those samples",
+        ));
     }
     let qr = w.clone().qr();
     let a = qr.r() * &problem.k;
     let b = qr.q().transpose() * y;
     let p = solve(problem, bounds, &a, &b, options)?;
-    Ok(Solution::assemble(
-        problem,
-        bounds,
-        Method::Sdp,
-        p,
-        start.elapsed(),
-    ))
+    Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())
 }
 
 /// Without the `sdp` feature there is no conic solver to call.

@@ -59,14 +59,26 @@ pub struct Solution {
 }
 
 impl Solution {
-    /// Assembles the result and its checks.
+    /// Assembles the result and its checks; a non-finite number in it is an error.
     pub(crate) fn assemble(
         problem: &Problem,
         bounds: &Bounds,
         method: Method,
         standard: Vec<f64>,
         elapsed: Duration,
-    ) -> Solution {
+    ) -> crate::Result<Solution> {
+        if let Some(i) = standard.iter().position(|v| !v.is_finite()) {
+            return Err(crate::Error::NonFiniteResult {
+                what: format!(
+                    "the feasible value of `{}`",
+                    problem.standard_names.get(i).cloned().unwrap_or_default()
+                ),
+                cause: format!(
+                    "the {} solver diverged; check the identified values and deviations and the bounds",
+                    method.name()
+                ),
+            });
+        }
         let layout = &problem.layout;
         let z = problem.normalized_residual(&standard);
         let mut links = Vec::new();
@@ -124,7 +136,7 @@ impl Solution {
             .into_iter()
             .map(|s| problem.standard_names[s].clone())
             .collect();
-        Solution {
+        let solution = Solution {
             method,
             names: problem.standard_names.clone(),
             base: problem.base_of(&standard).iter().copied().collect(),
@@ -136,7 +148,20 @@ impl Solution {
             dont_care,
             violations,
             seconds: elapsed.as_secs_f64(),
+        };
+        let numbers = solution
+            .base
+            .iter()
+            .chain(&solution.normalized_residual)
+            .chain(&solution.min_eigenvalues)
+            .chain(std::iter::once(&solution.chi2));
+        if numbers.clone().any(|v| !v.is_finite()) {
+            return Err(crate::Error::NonFiniteResult {
+                what: "the misfit (chi^2) of the feasible parameters".into(),
+                cause: "the identified values or their deviations are too extreme for the whitened misfit; check the identification's warnings".into(),
+            });
         }
+        Ok(solution)
     }
 
     /// Largest |z|: at most 1 means every base parameter is reproduced within one std.

@@ -1,18 +1,29 @@
 //! From a model, data and a config to identified parameters, fit and validation.
+//!
+//! Every entry point checks the config against the model, places errors about config keys
+//! at their file:line ([`Config::locate`]), names a data row by its file:line, and checks
+//! what it returns: no NaN or infinity in a successful result.
+
+use std::ops::Range;
 
 use crate::Model;
-use crate::data::{Config, Dataset, Method, Warning};
+use crate::data::{Config, Dataset, Method, Warning, check_joints};
 use crate::error::{Error, Result};
-use crate::estimate::{Estimate, Observation, energy, model_energy_observation, ols, rls, wls};
-use crate::pipeline::{Prepared, decimator, observe, prepare};
-use crate::validate::{Fit, Prediction};
+use crate::estimate::{
+    Estimate, Observation, QualityWarning, dominated_columns, energy, model_energy_observation,
+    ols, rls, wls,
+};
+use crate::pipeline::prepare::{Rows, prepare_rows};
+use crate::pipeline::{Prepared, decimator, observe};
+use crate::validate::{Fit, Prediction, UsedRows};
 
 /// The result of [`identify`].
 #[derive(Debug, Clone)]
 pub struct Identification {
     /// Robot name (from the model).
     pub robot: String,
-    /// Estimated parameters (base parameters, then extra columns).
+    /// Estimated parameters (base parameters, then extra columns), with their quality
+    /// warnings (`estimate.warnings`).
     pub estimate: Estimate,
     /// Fit on the estimation data.
     pub fit: Fit,
@@ -20,20 +31,28 @@ pub struct Identification {
     pub prediction: Prediction,
     /// Warnings from loading.
     pub warnings: Vec<Warning>,
+    /// The rows of the data used for estimation.
+    pub used: UsedRows,
 }
 
-/// Builds the observation of a data set: prepare, regressor, decimate, stack.
-/// Returns it with the decimated sample time.
+/// Builds the observation of a data set: prepare (with `processing.range`), regressor,
+/// decimate, stack. Returns it with the decimated sample time.
 pub fn observation(
     model: &(dyn Model + Sync),
     data: &Dataset,
     config: &Config,
 ) -> Result<(Observation, f64)> {
-    let prepared = checked_prepare(model, data, config)?;
-    torque_observation(model, &prepared, config)
+    let (prepared, kept) = checked_prepare(model, data, config, Rows::Estimation)?;
+    torque_observation(model, &prepared, config, data, &kept)
 }
 
-fn checked_prepare(model: &dyn Model, data: &Dataset, config: &Config) -> Result<Prepared> {
+fn checked_prepare(
+    model: &dyn Model,
+    data: &Dataset,
+    config: &Config,
+    rows: Rows,
+) -> Result<(Prepared, Range<usize>)> {
+    check_joints(model.dof())?;
     config.check(model.dof())?;
     if data.dof() != model.dof() {
         return Err(Error::JointCountMismatch {
@@ -42,16 +61,36 @@ fn checked_prepare(model: &dyn Model, data: &Dataset, config: &Config) -> Result
             found: data.dof(),
         });
     }
-    prepare(data, config)
+    prepare_rows(data, config, rows).map_err(|e| config.locate(e))
 }
 
+/// The observation of prepared signals that are the samples `kept` of `data`; a
+/// non-finite equation is named by its data row.
 fn torque_observation(
     model: &(dyn Model + Sync),
     prepared: &Prepared,
     config: &Config,
+    data: &Dataset,
+    kept: &Range<usize>,
 ) -> Result<(Observation, f64)> {
-    let obs = observe(model, prepared, config)?;
-    let dt = prepared.sample_time * decimator(config)?.factor() as f64;
+    let obs = observe(model, prepared, config).map_err(|e| match e {
+        Error::NonFiniteObservation {
+            sample: Some(k),
+            joint,
+            parameter,
+            value,
+            ..
+        } => Error::NonFiniteObservation {
+            location: data.location(kept.start + k),
+            sample: Some(kept.start + k),
+            joint,
+            parameter,
+            value,
+        },
+        e => config.locate(e),
+    })?;
+    let dt =
+        prepared.sample_time * decimator(config).map_err(|e| config.locate(e))?.factor() as f64;
     Ok((obs, dt))
 }
 
@@ -63,13 +102,13 @@ pub fn energy_observation_of(
     config: &Config,
 ) -> Result<Observation> {
     if let Some(c) = config.extra_columns.first() {
-        return Err(Error::InvalidConfig {
-            key: "estimation.method".into(),
-            problem: format!(
+        return Err(config.key_error(
+            "estimation.method",
+            format!(
                 "the energy model has no power term for the extra column `{}`; use ols, wls or rls with extra columns",
                 c.name
             ),
-        });
+        ));
     }
     let window = (config.estimation.energy_window / prepared.sample_time).round() as usize;
     model_energy_observation(model, prepared, window.max(1))
@@ -78,15 +117,17 @@ pub fn energy_observation_of(
 /// Estimates with the configured method.
 pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
     let e = &config.estimation;
-    match e.method {
+    let result = match e.method {
         Method::Ols => ols(obs, e.rank_tolerance),
         Method::Wls => wls(obs, e.rank_tolerance),
         Method::Rls => rls(obs, e.forgetting, e.rank_tolerance),
-        Method::Energy => Err(Error::InvalidConfig {
-            key: "estimation.method".into(),
-            problem: "the energy model is built from the signals, not from a torque observation: use pipeline::identify".into(),
-        }),
-    }
+        Method::Energy => Err(Error::setting(
+            "Config",
+            "estimation.method",
+            "the energy model is built from the signals, not from a torque observation: use pipeline::identify",
+        )),
+    };
+    result.map_err(|e| config.locate(e))
 }
 
 /// The whole pipeline: observation matrix from `data`, estimation, fit. With the energy
@@ -97,35 +138,72 @@ pub fn identify(
     data: &Dataset,
     config: &Config,
 ) -> Result<Identification> {
-    let prepared = checked_prepare(model, data, config)?;
+    let (prepared, kept) = checked_prepare(model, data, config, Rows::Estimation)?;
     let estimate_of = |obs: &Observation| match config.estimation.method {
         Method::Energy => energy(
             &energy_observation_of(model, &prepared, config)?,
             config.estimation.rank_tolerance,
-        ),
+        )
+        .map_err(|e| config.locate(e)),
         _ => estimate(obs, config),
     };
-    let (obs, dt) = torque_observation(model, &prepared, config)?;
-    let estimate = estimate_of(&obs)?;
-    let prediction = Prediction::new(&obs, &estimate.values, dt);
+    let (obs, dt) = torque_observation(model, &prepared, config, data, &kept)?;
+    let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
+    // the data row of an equation
+    let location = |row: usize| {
+        let k = obs.sample_of_row.get(row).copied().unwrap_or(0);
+        data.location(kept.start + k * factor)
+    };
+    let dominated = dominated_columns(&obs.w);
+    let mut estimate = estimate_of(&obs).map_err(|e| match e {
+        Error::RankDeficient { ref unexcited, .. } => {
+            match dominated
+                .iter()
+                .find(|(c, _, _)| unexcited.contains(&obs.names[*c]))
+            {
+                Some(&(c, row, share)) => Error::Outlier {
+                    location: location(row),
+                    parameter: obs.names[c].clone(),
+                    share,
+                },
+                None => e,
+            }
+        }
+        e => e,
+    })?;
+    for &(c, row, share) in &dominated {
+        estimate.warnings.push(QualityWarning::Outlier {
+            parameter: obs.names[c].clone(),
+            location: location(row),
+            share,
+        });
+    }
+    let used = UsedRows::of(data, kept);
+    let mut prediction = Prediction::new(&obs, &estimate.values, dt);
+    prediction.check(&format!("the estimation data ({used})"))?;
+    prediction.used = Some(used.clone());
     Ok(Identification {
         robot: model.name().to_string(),
         fit: prediction.fit(),
         prediction,
         estimate,
         warnings: data.warnings.clone(),
+        used,
     })
 }
 
 /// Predicts the torques of another data set with identified values (base parameters then
-/// extra columns, as in [`Estimate::values`]), processed like the estimation data.
+/// extra columns, as in [`Estimate::values`]), processed like the estimation data but on
+/// its own: `processing.validation_range` applies (default: the whole data set), not the
+/// estimation's `processing.range`. The prediction records the rows used.
 pub fn validate(
     model: &(dyn Model + Sync),
     data: &Dataset,
     config: &Config,
     values: &[f64],
 ) -> Result<Prediction> {
-    let (obs, dt) = observation(model, data, config)?;
+    let (prepared, kept) = checked_prepare(model, data, config, Rows::Validation)?;
+    let (obs, dt) = torque_observation(model, &prepared, config, data, &kept)?;
     if values.len() != obs.cols() {
         return Err(Error::DimensionMismatch {
             what: "parameter values".into(),
@@ -133,5 +211,19 @@ pub fn validate(
             found: values.len(),
         });
     }
-    Ok(Prediction::new(&obs, values, dt))
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(Error::setting(
+            "validate",
+            "values",
+            format!(
+                "the value of `{}` is {}; give finite identified values",
+                obs.names[i], values[i]
+            ),
+        ));
+    }
+    let used = UsedRows::of(data, kept);
+    let mut prediction = Prediction::new(&obs, values, dt);
+    prediction.check(&format!("the validation data ({used})"))?;
+    prediction.used = Some(used);
+    Ok(prediction)
 }

@@ -62,6 +62,18 @@ impl Layout {
     fn qd(&self, j: usize) -> usize {
         self.dof * (self.p + self.e + 1) + j
     }
+    /// The joint (0-based) and the parameter column (`None`: torque or velocity) of a
+    /// channel.
+    fn of_channel(&self, c: usize) -> (usize, Option<usize>) {
+        let (d, p, e) = (self.dof, self.p, self.e);
+        if c < d * p {
+            (c / p, Some(c % p))
+        } else if c < d * (p + e) {
+            ((c - d * p) % d, Some(p + (c - d * p) / d))
+        } else {
+            ((c - d * (p + e)) % d, None)
+        }
+    }
 }
 
 /// The decimation configured in `[processing]`.
@@ -97,10 +109,28 @@ pub fn observe(
         e: extra.len(),
     };
     let mut names = crate::model::base_parameter_names(model);
-    names.extend(extra.iter().map(|c| c.name.clone()));
+    for (i, c) in extra.iter().enumerate() {
+        if names.contains(&c.name) {
+            return Err(Error::setting(
+                "Config",
+                &format!("extra_column[{}].name", i + 1),
+                format!(
+                    "`{}` is already a parameter (of the model or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
+                    c.name
+                ),
+            ));
+        }
+        names.push(c.name.clone());
+    }
     check_names(&names)?;
     let n = signals.samples();
     let stride = lay.stride();
+    crate::limits::check_size(
+        || format!("regressor values before decimation ({n} samples x {stride} channels)"),
+        n as f64 * stride as f64,
+        crate::limits::MAX_OBSERVATION_ENTRIES,
+        "use a shorter record or identify it in parts (processing.range)",
+    )?;
     let row_at = |k: usize,
                   st: &mut Scratch,
                   row: &mut [f64]|
@@ -139,37 +169,72 @@ pub fn observe(
     let mut channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
     let inactive: Vec<usize> = (0..stride).filter(|&c| !active[c]).collect();
     let mut rows = Vec::new();
+    // the first sample whose regressor row holds NaN or an infinite value
+    let mut bad: Option<(usize, usize, f64)> = None;
     for attempt in 0..2 {
         if attempt == 1 {
             channels = (0..stride).collect();
         }
         let a = channels.len();
         rows = vec![0.0; n * a];
-        let missed = rows
+        let (missed, first_bad) = rows
             .par_chunks_mut(a * BLOCK)
             .enumerate()
             .map(|(b, chunk)| {
                 let mut st = Scratch::new(dof);
                 let mut full = vec![0.0; stride];
                 let mut missed = false;
+                let mut first_bad = None;
                 for (i, out) in chunk.chunks_exact_mut(a).enumerate() {
+                    let k = b * BLOCK + i;
                     // the probes above passed, so the sizes are right; a model that
-                    // still refuses leaves NaN, which the solver reports by row
-                    if row_at(b * BLOCK + i, &mut st, &mut full).is_err() {
+                    // still refuses leaves NaN, which is reported by row below
+                    if row_at(k, &mut st, &mut full).is_err() {
                         full.iter_mut().for_each(|v| *v = f64::NAN);
                     }
+                    // whether the row holds NaN or an infinity, in the copy loop
+                    let mut poison = false;
                     for (o, &c) in out.iter_mut().zip(&channels) {
                         *o = full[c];
+                        poison |= !full[c].is_finite();
                     }
                     let outside: f64 = inactive.iter().map(|&c| full[c].abs()).sum();
+                    // a non-finite inactive channel makes `outside` NaN: `missed` then
+                    // brings the second attempt with every channel
                     missed |= outside != 0.0;
+                    if poison
+                        && first_bad.is_none()
+                        && let Some(c) = full.iter().position(|v| !v.is_finite())
+                    {
+                        first_bad = Some((k, c, full[c]));
+                    }
                 }
-                missed
+                (missed, first_bad)
             })
-            .reduce(|| false, |x, y| x || y);
-        if !missed || attempt == 1 {
+            .reduce(
+                || (false, None),
+                |x, y| {
+                    let first = match (x.1, y.1) {
+                        (Some(a), Some(b)) => Some(if a.0 <= b.0 { a } else { b }),
+                        (a, b) => a.or(b),
+                    };
+                    (x.0 || y.0, first)
+                },
+            );
+        bad = first_bad;
+        if bad.is_some() || !missed || attempt == 1 {
             break;
         }
+    }
+    if let Some((k, c, value)) = bad {
+        let (j, col) = lay.of_channel(c);
+        return Err(Error::NonFiniteObservation {
+            location: format!("processed sample {k}"),
+            sample: Some(k),
+            joint: j + 1,
+            parameter: col.map_or_else(|| "torque or velocity".to_string(), |i| names[i].clone()),
+            value,
+        });
     }
     let a = channels.len();
 
@@ -239,5 +304,21 @@ pub fn observe(
         joint_rows.push(start..start + ks.len());
         start += ks.len();
     }
-    Observation::new(w, y, joint_rows, sample_of_row, names)
+    Observation::new(w, y, joint_rows, sample_of_row, names).map_err(|e| match e {
+        // a decimated sample k is processed sample k * factor
+        Error::NonFiniteObservation {
+            sample: Some(k),
+            joint,
+            parameter,
+            value,
+            ..
+        } => Error::NonFiniteObservation {
+            location: format!("processed sample {}", k * dec.factor()),
+            sample: Some(k * dec.factor()),
+            joint,
+            parameter,
+            value,
+        },
+        e => e,
+    })
 }

@@ -63,18 +63,56 @@ fn differentiate(x: &[Vec<f64>], dt: f64) -> Vec<Vec<f64>> {
     x.par_iter().map(|v| central_difference(v, dt)).collect()
 }
 
-/// Applies the `[processing]` options (range, low-pass, derivatives, trim) and the
-/// rotor compensation of `[drive.rotor]` to a data set.
+/// Applies the `[processing]` options (estimation range, low-pass, derivatives, trim)
+/// and the rotor compensation of `[drive.rotor]` to a data set.
 pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
+    prepare_rows(data, config, Rows::Estimation)
+        .map(|(p, _)| p)
+        .map_err(|e| config.locate(e))
+}
+
+/// Which sample range of `[processing]` applies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Rows {
+    /// `processing.range`.
+    Estimation,
+    /// `processing.validation_range`.
+    Validation,
+}
+
+impl Rows {
+    fn key(self) -> &'static str {
+        match self {
+            Rows::Estimation => "processing.range",
+            Rows::Validation => "processing.validation_range",
+        }
+    }
+}
+
+/// [`prepare`] with the range `rows`; also returns the samples of `data` kept.
+pub(crate) fn prepare_rows(
+    data: &Dataset,
+    config: &Config,
+    rows: Rows,
+) -> Result<(Prepared, std::ops::Range<usize>)> {
     let p = &config.processing;
     let dt = data.sample_time;
     let sos = match &p.lowpass {
         Some(lp) => Some(
             butterworth_hz(lp.order, lp.cutoff, 1.0 / dt).map_err(|e| match e {
-                Error::InvalidConfig { problem, .. } => Error::InvalidConfig {
-                    key: "processing.lowpass".into(),
-                    problem,
-                },
+                Error::InvalidConfig { key, problem, .. } => Error::setting(
+                    "Config",
+                    if key == "order" {
+                        "processing.lowpass.order"
+                    } else {
+                        "processing.lowpass.cutoff"
+                    },
+                    format!(
+                        "{problem} (cutoff {} Hz, data sampled at {:.6} Hz)",
+                        lp.cutoff,
+                        1.0 / dt
+                    ),
+                ),
                 e => e,
             })?,
         ),
@@ -115,15 +153,22 @@ pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
     }
     // the range is cut after filtering and differentiation, so that its ends are free of
     // filter start-up transients (a split of one record into training and test data)
-    let (lo, hi) = match p.range {
+    let range = match rows {
+        Rows::Estimation => p.range,
+        Rows::Validation => p.validation_range,
+    };
+    let (lo, hi) = match range {
         Some([a, b]) if a < b && a < data.samples() => (a, b.min(data.samples())),
         Some([a, b]) => {
-            return Err(Error::TooFewSamples {
-                context: format!("{} rows {a}..{b}", data.name),
-                found: 0,
-                required: 1,
-                hint: "choose processing.range inside the data",
-            });
+            return Err(Error::setting(
+                "Config",
+                rows.key(),
+                format!(
+                    "[{a}, {b}] lies outside {}, which has {} samples; choose a range inside the data",
+                    data.name,
+                    data.samples()
+                ),
+            ));
         }
         None => (0, data.samples()),
     };
@@ -147,20 +192,41 @@ pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
     let cut = |v: Vec<Vec<f64>>| -> Vec<Vec<f64>> {
         v.into_iter().map(|x| x[start..end].to_vec()).collect()
     };
-    Ok(Prepared {
+    let prepared = Prepared {
         q: cut(q),
         qd: cut(qd),
         qdd: cut(qdd),
         tau: cut(tau),
         sample_time: dt,
-    })
+    };
+    for (signal, x) in [
+        ("position", &prepared.q),
+        ("velocity", &prepared.qd),
+        ("acceleration", &prepared.qdd),
+        ("torque", &prepared.tau),
+    ] {
+        for (j, v) in x.iter().enumerate() {
+            if let Some(k) = v.iter().position(|v| !v.is_finite()) {
+                return Err(Error::NonFiniteResult {
+                    what: format!(
+                        "the processed {signal} of joint {} at {}",
+                        j + 1,
+                        data.location(start + k)
+                    ),
+                    cause: "the low-pass filter, differentiation or rotor compensation overflowed; check [processing] (a higher cutoff, measured velocities) and the data near that row".into(),
+                });
+            }
+        }
+    }
+    Ok((prepared, start..end))
 }
 
 fn missing(key: &str, role: &str) -> Error {
-    Error::InvalidConfig {
-        key: key.into(),
-        problem: format!(
+    Error::setting(
+        "Config",
+        key,
+        format!(
             "the data has no `{role}` columns; add them to a [[source]] or let robid differentiate (\"auto\")"
         ),
-    }
+    )
 }

@@ -206,10 +206,15 @@ fn bad_inputs_for_the_pipeline() {
     let data = dataset(3000, 1000.0, 0.0);
     let dup =
         "[[extra_column]]\nname = \"Fv1\"\nterms = [{ row = 1, signal = \"qd\", joints = [1] }]\n";
-    assert!(matches!(
-        identify(&model, &data, &config(dup)),
-        Err(Error::InvalidConfig { .. })
-    ));
+    let e = identify(&model, &data, &config(dup)).unwrap_err();
+    assert!(
+        matches!(&e, Error::ConfigKey { path, key, line: Some(_), .. } if path.ends_with("synthetic.toml") && key == "extra_column[1].name"),
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("`Fv1` is already a parameter"),
+        "{e}"
+    );
     let dof = model.dof();
     assert_eq!(dof, 6);
 }

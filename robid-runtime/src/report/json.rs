@@ -5,10 +5,32 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::Result;
-use crate::estimate::Estimate;
+use crate::error::{Error, Result};
+use crate::estimate::{Estimate, QualityWarning};
 use crate::pipeline::Identification;
-use crate::validate::Fit;
+use crate::validate::{Fit, Prediction, UsedRows};
+
+/// A warning in the report: machine-readable kind and parameters, and the message a
+/// person reads (also what a command line prints on stderr).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReportWarning {
+    /// `ill_conditioned`, `uncertain` or `validation_repeats_estimation`.
+    pub kind: String,
+    /// The parameters concerned (empty for a warning about the whole run).
+    pub parameters: Vec<String>,
+    /// What it means and what to do.
+    pub message: String,
+}
+
+impl From<&QualityWarning> for ReportWarning {
+    fn from(w: &QualityWarning) -> Self {
+        Self {
+            kind: w.kind().to_string(),
+            parameters: w.parameters(),
+            message: w.to_string(),
+        }
+    }
+}
 
 /// One identified parameter.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -41,6 +63,9 @@ pub struct FitEntry {
 pub struct ValidationEntry {
     /// The file (or data set name).
     pub file: String,
+    /// The rows of the file used (null when not known).
+    #[serde(default)]
+    pub rows: Option<UsedRows>,
     /// ||tau - tauhat|| / ||tau||.
     pub relative_error: f64,
     /// RMS per joint.
@@ -60,12 +85,19 @@ pub struct Report {
     pub samples: usize,
     /// Condition number of W.
     pub condition_number: f64,
+    /// The rows of the file used for estimation (null when not known).
+    #[serde(default)]
+    pub estimation: Option<UsedRows>,
     /// The parameters.
     pub parameters: Vec<ParameterEntry>,
     /// Fit on the estimation data.
     pub fit: FitEntry,
     /// Fits on validation data.
     pub validation: Vec<ValidationEntry>,
+    /// What to know before trusting the result (ill conditioning, parameters with a
+    /// relative standard deviation above 100 %, a validation that repeats the fit).
+    #[serde(default)]
+    pub warnings: Vec<ReportWarning>,
 }
 
 impl From<&Fit> for FitEntry {
@@ -101,9 +133,11 @@ impl Report {
             method: estimate.method.name().to_string(),
             samples: estimate.rows,
             condition_number: estimate.condition_number,
+            estimation: None,
             parameters,
             fit: fit.into(),
             validation: Vec::new(),
+            warnings: estimate.warnings.iter().map(ReportWarning::from).collect(),
         }
     }
 
@@ -112,13 +146,16 @@ impl Report {
         id: &Identification,
         expressions: impl Fn(&str) -> Option<String>,
     ) -> Self {
-        Self::new(&id.robot, &id.estimate, &id.fit, expressions)
+        let mut report = Self::new(&id.robot, &id.estimate, &id.fit, expressions);
+        report.estimation = Some(id.used.clone());
+        report
     }
 
-    /// Adds the fit of a validation file.
+    /// Adds the fit of a validation file (rows unknown).
     pub fn with_validation(mut self, file: &str, fit: &Fit) -> Self {
         self.validation.push(ValidationEntry {
             file: file.to_string(),
+            rows: None,
             relative_error: fit.relative_error,
             rms_per_joint: fit.rms_per_joint.clone(),
             nmse: fit.nmse,
@@ -126,13 +163,77 @@ impl Report {
         self
     }
 
+    /// Adds a validation from its prediction ([`crate::pipeline::validate`]), with the file
+    /// and rows it used; when they overlap the estimation rows of the same file, a
+    /// `validation_repeats_estimation` warning is added.
+    pub fn with_prediction(mut self, prediction: &Prediction) -> Self {
+        let fit = prediction.fit();
+        let rows = prediction.used.clone();
+        let file = rows.as_ref().map_or_else(String::new, |r| r.file.clone());
+        if let (Some(r), Some(e)) = (&rows, &self.estimation)
+            && r.overlaps(e)
+        {
+            self.warnings.push(ReportWarning::from(
+                &QualityWarning::ValidationRepeatsEstimation {
+                    file: r.to_string(),
+                },
+            ));
+        }
+        self.validation.push(ValidationEntry {
+            file,
+            rows,
+            relative_error: fit.relative_error,
+            rms_per_joint: fit.rms_per_joint.clone(),
+            nmse: fit.nmse,
+        });
+        self
+    }
+
+    /// Checks that every number of the report is finite (a relative deviation may be
+    /// null): a report is never written with NaN or infinity.
+    pub fn check(&self) -> Result<()> {
+        let bad = |what: String| {
+            Err(Error::NonFiniteResult {
+                what,
+                cause: "the report was built from an unchecked estimate or fit".into(),
+            })
+        };
+        if !self.condition_number.is_finite() {
+            return bad("the report's condition number".into());
+        }
+        for p in &self.parameters {
+            if !(p.value.is_finite() && p.std.is_finite())
+                || p.rel_std_percent.is_some_and(|r| !r.is_finite())
+            {
+                return bad(format!("the report's entry for `{}`", p.name));
+            }
+        }
+        let fits = std::iter::once((
+            &self.fit.rms_per_joint,
+            self.fit.relative_error,
+            self.fit.nmse,
+        ))
+        .chain(
+            self.validation
+                .iter()
+                .map(|v| (&v.rms_per_joint, v.relative_error, v.nmse)),
+        );
+        for (rms, rel, nmse) in fits {
+            if !(rel.is_finite() && nmse.is_finite() && rms.iter().all(|v| v.is_finite())) {
+                return bad("the report's fit metrics".into());
+            }
+        }
+        Ok(())
+    }
+
     /// Pretty-printed JSON.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
     }
 
-    /// Writes the JSON to a file.
+    /// Writes the JSON to a file, after [`Report::check`].
     pub fn write_json(&self, path: &Path) -> Result<()> {
+        self.check()?;
         crate::output::write_bytes(path, self.to_json().as_bytes())
     }
 }

@@ -5,6 +5,6 @@ mod json;
 mod plot;
 mod table;
 
-pub use json::{FitEntry, ParameterEntry, Report, ValidationEntry};
+pub use json::{FitEntry, ParameterEntry, Report, ReportWarning, ValidationEntry};
 pub use plot::plot_torques;
 pub use table::text_table;

@@ -104,6 +104,7 @@ mod tests {
             measured: vec![m.clone(), m],
             predicted: vec![p.clone(), p],
             time: vec![t.clone(), t],
+            used: None,
         };
         let dir = std::env::temp_dir().join(format!("robid-plot-{}", std::process::id()));
         let paths = plot_torques(&pred, &dir, "fit").unwrap();

@@ -12,6 +12,9 @@ pub fn text_table(report: &Report) -> String {
         "robot {}  method {}  equations {}  cond(W) {:.1}",
         report.robot, report.method, report.samples, report.condition_number
     );
+    if let Some(rows) = &report.estimation {
+        let _ = writeln!(s, "estimation rows: {rows}");
+    }
     let width = report
         .parameters
         .iter()
@@ -49,14 +52,20 @@ pub fn text_table(report: &Report) -> String {
         joints(&f.rms_per_joint)
     );
     for v in &report.validation {
+        let file = v
+            .rows
+            .as_ref()
+            .map_or_else(|| v.file.clone(), |r| r.to_string());
         let _ = writeln!(
             s,
-            "validation {}: relative error {:.2} %, NMSE {:.4}, RMS per joint [{}]",
-            v.file,
+            "validation {file}: relative error {:.2} %, NMSE {:.4}, RMS per joint [{}]",
             100.0 * v.relative_error,
             v.nmse,
             joints(&v.rms_per_joint)
         );
+    }
+    for w in &report.warnings {
+        let _ = writeln!(s, "warning: {}", w.message);
     }
     s
 }
@@ -79,6 +88,11 @@ mod tests {
             residual_rms: vec![1.5],
             rows: 2079,
             weights: None,
+            warnings: crate::estimate::assess(
+                1019.0,
+                &["MXR2".into(), "Fv1".into()],
+                &[100.0 * 0.04 / 2.24, f64::INFINITY],
+            ),
         };
         let fit = Fit {
             relative_error: 0.052,
@@ -111,8 +125,93 @@ mod tests {
         assert!(v["parameters"][1]["rel_std_percent"].is_null());
         assert_eq!(v["fit"]["nmse"], 3.1);
         assert_eq!(v["validation"][0]["file"], "run2.csv");
+        assert_eq!(v["warnings"][0]["kind"], "uncertain");
+        assert_eq!(v["warnings"][0]["parameters"][0], "Fv1");
         let back: Report = serde_json::from_value(v).unwrap();
         assert_eq!(back, report());
+    }
+
+    /// The run of the issue: cond 6.9e9 and a parameter of -2.2e6 +- 1.0e6 was written
+    /// without a word; now the table and the JSON say so and name the parameter.
+    #[test]
+    fn an_ill_conditioned_run_is_reported_as_such() {
+        let names: Vec<String> = vec!["ZZR1".into(), "MXR2".into()];
+        let e = Estimate {
+            method: Estimator::Ols,
+            names: names.clone(),
+            values: vec![1.2, -2.2e6],
+            std: vec![0.01, 1.0e6],
+            rel_std_percent: vec![0.83, 45.45],
+            sigma2: 1.0,
+            condition_number: 6.9e9,
+            residual_rms: vec![1.0],
+            rows: 100,
+            weights: None,
+            warnings: crate::estimate::assess(6.9e9, &names, &[0.83, 45.45]),
+        };
+        let fit = Fit {
+            relative_error: 0.1,
+            rms_per_joint: vec![1.0],
+            nmse: 1.0,
+        };
+        let r = Report::new("x", &e, &fit, |_| None);
+        let t = text_table(&r);
+        assert!(
+            t.contains(
+                "warning: the observation matrix is ill-conditioned (condition number 6.900e9"
+            ),
+            "{t}"
+        );
+        let v: serde_json::Value = serde_json::from_str(&r.to_json()).unwrap();
+        assert_eq!(v["warnings"][0]["kind"], "ill_conditioned");
+        // a parameter known to worse than its size is named
+        let e2 = Estimate {
+            rel_std_percent: vec![0.83, 145.0],
+            warnings: crate::estimate::assess(10.0, &names, &[0.83, 145.0]),
+            ..e
+        };
+        let r = Report::new("x", &e2, &fit, |_| None);
+        assert_eq!(r.warnings.len(), 1);
+        assert_eq!(r.warnings[0].parameters, vec!["MXR2"]);
+        assert!(text_table(&r).contains("MXR2 (145 %)"));
+    }
+
+    /// Validation rows are reported, and rows that repeat the estimation rows of the same
+    /// file are a warning.
+    #[test]
+    fn validation_rows_and_repeats_are_reported() {
+        use crate::validate::{Prediction, UsedRows};
+        let used = |a: usize, b: usize| UsedRows {
+            file: "run.csv".into(),
+            samples: [a, b],
+            lines: Some([a as u64 + 2, b as u64 + 1]),
+        };
+        let mut r = report();
+        r.estimation = Some(used(0, 500));
+        let p = |u: UsedRows| Prediction {
+            measured: vec![vec![1.0, 2.0]],
+            predicted: vec![vec![1.0, 2.1]],
+            time: vec![vec![0.0, 0.1]],
+            used: Some(u),
+        };
+        let before = r.warnings.len();
+        let r = r.with_prediction(&p(used(600, 900)));
+        assert_eq!(r.warnings.len(), before);
+        let r = r.with_prediction(&p(used(0, 900)));
+        assert_eq!(r.warnings.len(), before + 1);
+        assert_eq!(r.warnings[before].kind, "validation_repeats_estimation");
+        let t = text_table(&r);
+        assert!(
+            t.contains("estimation rows: run.csv lines 2-501 (samples 0..500)"),
+            "{t}"
+        );
+        assert!(
+            t.contains("validation run.csv lines 602-901 (samples 600..900)"),
+            "{t}"
+        );
+        let v: serde_json::Value = serde_json::from_str(&r.to_json()).unwrap();
+        assert_eq!(v["validation"][1]["rows"]["samples"][0], 600);
+        assert_eq!(v["estimation"]["lines"][1], 501);
     }
 
     #[test]

@@ -21,13 +21,25 @@ pub struct Decimator {
 impl Decimator {
     /// Stages with the given factors, applied in order (factor 1 = no-op).
     pub fn new(factors: &[usize]) -> Result<Self> {
+        let total = factors.iter().map(|&q| q as f64).product::<f64>();
+        if total > crate::limits::MAX_DECIMATION as f64 {
+            return Err(Error::setting(
+                "Config",
+                "processing.decimation",
+                format!(
+                    "a total factor of {total:e} is more than the limit of {}",
+                    crate::limits::MAX_DECIMATION
+                ),
+            ));
+        }
         let stages = factors
             .iter()
             .map(|&q| match q {
-                0 => Err(Error::InvalidConfig {
-                    key: "processing.decimation".into(),
-                    problem: "a decimation factor of 0 is meaningless; use 1 for none".into(),
-                }),
+                0 => Err(Error::setting(
+                    "Config",
+                    "processing.decimation",
+                    "a decimation factor of 0 is meaningless; use 1 for none",
+                )),
                 1 => Ok((1, None)),
                 q => Ok((q, Some(chebyshev1(8, 0.05, 0.8 / q as f64)?))),
             })
@@ -144,21 +156,23 @@ impl Decimator {
 /// Splits a total decimation factor into factors of at most 10.
 pub fn split_factor(total: usize) -> Result<Vec<usize>> {
     if total == 0 {
-        return Err(Error::InvalidConfig {
-            key: "processing.decimation".into(),
-            problem: "a decimation factor of 0 is meaningless; use 1 for none".into(),
-        });
+        return Err(Error::setting(
+            "Config",
+            "processing.decimation",
+            "a decimation factor of 0 is meaningless; use 1 for none",
+        ));
     }
     let mut rest = total;
     let mut out = Vec::new();
     while rest > 1 {
         let Some(f) = (2..=10).rev().find(|f| rest.is_multiple_of(*f)) else {
-            return Err(Error::InvalidConfig {
-                key: "processing.decimation".into(),
-                problem: format!(
+            return Err(Error::setting(
+                "Config",
+                "processing.decimation",
+                format!(
                     "factor {total} has a prime factor above 10; give the stages explicitly, e.g. decimation = [10, 5]"
                 ),
-            });
+            ));
         };
         out.push(f);
         rest /= f;

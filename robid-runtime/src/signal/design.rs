@@ -38,10 +38,11 @@ pub fn butterworth_hz(order: usize, cutoff_hz: f64, sample_rate: f64) -> Result<
 pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
     check(order, cutoff)?;
     if !(ripple_db > 0.0 && ripple_db.is_finite()) {
-        return Err(Error::InvalidConfig {
-            key: "ripple".into(),
-            problem: format!("pass-band ripple {ripple_db} dB must be positive"),
-        });
+        return Err(Error::setting(
+            "chebyshev1",
+            "ripple_db",
+            format!("pass-band ripple {ripple_db} dB must be positive"),
+        ));
     }
     let n = order as f64;
     let eps = (10f64.powf(0.1 * ripple_db) - 1.0).sqrt();
@@ -60,20 +61,36 @@ pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
     Ok(digital_lowpass(&poles, gain, cutoff))
 }
 
+/// Smallest cutoff, as a fraction of the Nyquist frequency, that a design accepts.
+pub const MIN_CUTOFF: f64 = 1e-5;
+
 fn check(order: usize, cutoff: f64) -> Result<()> {
     if order == 0 || order > 20 {
-        return Err(Error::InvalidConfig {
-            key: "order".into(),
-            problem: format!("filter order {order} must be between 1 and 20"),
-        });
+        return Err(Error::setting(
+            "butterworth",
+            "order",
+            format!("filter order {order} must be between 1 and 20"),
+        ));
     }
     if !(cutoff > 0.0 && cutoff < 1.0) {
-        return Err(Error::InvalidConfig {
-            key: "cutoff".into(),
-            problem: format!(
-                "normalised cutoff {cutoff} must lie strictly between 0 and 1 (the Nyquist frequency); lower the cutoff or raise the sample rate"
+        return Err(Error::setting(
+            "butterworth",
+            "cutoff",
+            format!(
+                "normalised cutoff {} must lie strictly between 0 and 1 (the Nyquist frequency); lower the cutoff or raise the sample rate",
+                crate::error::num(cutoff)
             ),
-        });
+        ));
+    }
+    if cutoff < MIN_CUTOFF {
+        return Err(Error::setting(
+            "butterworth",
+            "cutoff",
+            format!(
+                "normalised cutoff {} is below {MIN_CUTOFF:e} of the Nyquist frequency, where the filter's poles are too close to 1 to be represented; raise the cutoff or decimate the data first",
+                crate::error::num(cutoff)
+            ),
+        ));
     }
     Ok(())
 }
@@ -91,13 +108,22 @@ fn digital_lowpass(proto: &[C], proto_gain: f64, cutoff: f64) -> Sos {
         .fold(C::new(1.0, 0.0), |acc, p| acc * (fs2 - p));
     let gain = k_analog * (C::new(1.0, 0.0) / denom).re;
 
-    let mut pairs: Vec<C> = digital.iter().copied().filter(|p| p.im > 1e-14).collect();
+    // one pole of each conjugate pair, chosen on the prototype (unit circle, well-separated
+    // imaginary parts), not on the digital pole, whose imaginary part vanishes as the
+    // cutoff does
+    let mut pairs: Vec<C> = proto
+        .iter()
+        .zip(&digital)
+        .filter(|(a, _)| a.im > 1e-9)
+        .map(|(_, d)| if d.im < 0.0 { d.conj() } else { *d })
+        .collect();
     pairs.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
     let real: Option<C> = (n % 2 == 1).then(|| {
-        *digital
+        proto
             .iter()
-            .min_by(|a, b| a.im.abs().total_cmp(&b.im.abs()))
-            .unwrap_or(&C::new(0.0, 0.0))
+            .zip(&digital)
+            .min_by(|a, b| a.0.im.abs().total_cmp(&b.0.im.abs()))
+            .map_or(C::new(0.0, 0.0), |(_, d)| *d)
     });
     let mut sections = Vec::with_capacity(n.div_ceil(2));
     if let Some(p) = real {
@@ -279,5 +305,17 @@ mod tests {
         assert!(butterworth(4, f64::NAN).is_err());
         assert!(butterworth_hz(4, 600.0, 1000.0).is_err());
         assert!(chebyshev1(8, -1.0, 0.1).is_err());
+        // a cutoff too small to represent is an error, not an empty filter (the fuzzer's
+        // `cutoff = 1e-12` once built no sections and indexed an empty list)
+        assert!(butterworth(4, 1e-12).is_err());
+        for order in 1..=8 {
+            let s = butterworth(order, 2.0 * MIN_CUTOFF).unwrap();
+            assert_eq!(s.sections().len(), order.div_ceil(2), "order {order}");
+            assert!(
+                (s.dc_gain() - 1.0).abs() < 1e-6,
+                "order {order}: {}",
+                s.dc_gain()
+            );
+        }
     }
 }

@@ -8,7 +8,7 @@ mod rest;
 mod sos;
 
 pub use decimate::{Decimator, split_factor};
-pub use design::{butterworth, butterworth_hz, chebyshev1};
+pub use design::{MIN_CUTOFF, butterworth, butterworth_hz, chebyshev1};
 pub use diff::central_difference;
 pub use rest::moving_samples;
 pub use sos::Sos;

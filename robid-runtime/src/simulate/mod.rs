@@ -14,7 +14,10 @@ mod run;
 mod trajectory;
 
 pub use forward::ForwardDynamics;
-pub use run::{Noise, Simulated, Simulation};
+pub use run::{
+    DIVERGENCE_FACTOR, MAX_BANDWIDTH, MAX_SIMULATION_STEPS, MAX_SUBSTEPS, Noise, Simulated,
+    Simulation,
+};
 pub use trajectory::{Record, Trajectory};
 
 #[cfg(test)]

@@ -10,9 +10,33 @@
 //! satisfies the model exactly. Measurements: positions quantized to the encoder
 //! resolution plus Gaussian noise; torques plus Gaussian noise; velocities and
 //! accelerations are the true ones (plus optional Gaussian noise).
+//!
+//! Checks: the settings ([`Simulation::check`]: bandwidth up to [`MAX_BANDWIDTH`] Hz,
+//! 1 to [`MAX_SUBSTEPS`] substeps, at most [`MAX_SIMULATION_STEPS`] integration steps in
+//! all), the base parameters (finite, magnitude at most
+//! [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER); M(q) positive definite at the
+//! reference's first state, else the parameters are blamed), the reference (finite and
+//! within the ranges of [`crate::limits`], a bad sample named by its index and time). At
+//! every reference sample the run is checked for divergence: a non-finite state, a
+//! tracking error above [`DIVERGENCE_FACTOR`] times (the joint's reference range + 1 rad),
+//! or a torque above [`MAX_TORQUE`](crate::limits::MAX_TORQUE) ends it with
+//! [`Error::Diverged`], which says whether the controller is too fast for the integration
+//! step.
 
 use crate::Model;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
+use crate::excite::check_parameters;
+use crate::limits::{MAX_ACCELERATION, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+
+/// Largest controller bandwidth (Hz).
+pub const MAX_BANDWIDTH: f64 = 1e6;
+/// Largest number of substeps per reference interval.
+pub const MAX_SUBSTEPS: usize = 10_000;
+/// Largest number of integration steps of a run (reference samples x substeps).
+pub const MAX_SIMULATION_STEPS: usize = 200_000_000;
+/// A tracking error above this many times (the joint's reference range + 1 rad or m) is a
+/// diverged simulation.
+pub const DIVERGENCE_FACTOR: f64 = 10.0;
 use crate::rng::Rng;
 use crate::simulate::{ForwardDynamics, Record, Trajectory};
 
@@ -85,57 +109,64 @@ pub struct Simulated {
 }
 
 fn invalid(key: &str, problem: String) -> Error {
-    Error::InvalidConfig {
-        key: key.into(),
-        problem,
-    }
+    Error::setting("Simulation", key, problem)
 }
 
 impl Simulation {
     /// Checks the settings against a model of `dof` joints.
     pub fn check(&self, dof: usize) -> Result<()> {
-        let positive = |x: f64| x > 0.0 && x.is_finite();
-        let non_negative = |x: f64| x >= 0.0 && x.is_finite();
-        if !positive(self.bandwidth) {
+        if !(self.bandwidth > 0.0 && self.bandwidth <= MAX_BANDWIDTH) {
             return Err(invalid(
                 "bandwidth",
-                format!("{} Hz must be positive", self.bandwidth),
+                format!(
+                    "{} Hz must lie in (0, {MAX_BANDWIDTH:e}] Hz",
+                    num(self.bandwidth)
+                ),
             ));
         }
-        if !positive(self.damping) {
+        if !(self.damping > 0.0 && self.damping <= 1e3) {
             return Err(invalid(
                 "damping",
-                format!("{} must be positive", self.damping),
+                format!("{} must lie in (0, 1000]", num(self.damping)),
             ));
         }
-        if self.substeps == 0 {
-            return Err(invalid("substeps", "must be at least 1".into()));
+        if !(1..=MAX_SUBSTEPS).contains(&self.substeps) {
+            return Err(invalid(
+                "substeps",
+                format!("{} must lie between 1 and {MAX_SUBSTEPS}", self.substeps),
+            ));
         }
         let n = &self.noise;
         if n.torque.len() != 1 && n.torque.len() != dof {
-            return Err(Error::JointCountMismatch {
-                context: "torque noise".into(),
-                expected: dof,
-                found: n.torque.len(),
-            });
+            return Err(invalid(
+                "noise.torque",
+                format!(
+                    "{} values for a model of {dof} joints; give one value or one per joint",
+                    n.torque.len()
+                ),
+            ));
         }
-        for (key, x) in [
-            ("position noise", n.position),
-            ("velocity noise", n.velocity),
-            ("acceleration noise", n.acceleration),
-            ("quantization", n.quantization),
+        for (key, x, limit) in [
+            ("noise.position", n.position, MAX_POSITION),
+            ("noise.velocity", n.velocity, MAX_VELOCITY),
+            ("noise.acceleration", n.acceleration, MAX_ACCELERATION),
+            ("noise.quantization", n.quantization, MAX_POSITION),
         ]
         .into_iter()
-        .chain(n.torque.iter().map(|&x| ("torque noise", x)))
+        .chain(n.torque.iter().map(|&x| ("noise.torque", x, MAX_TORQUE)))
         {
-            if !non_negative(x) {
-                return Err(invalid(key, format!("{x} must be zero or positive")));
+            if !(x >= 0.0 && x <= limit) {
+                return Err(invalid(
+                    key,
+                    format!("{} must be zero or positive, at most {limit:e}", num(x)),
+                ));
             }
         }
         Ok(())
     }
 
-    /// Simulates `model` with true base parameters `base` tracking `reference`.
+    /// Simulates `model` with true base parameters `base` tracking `reference` (see the
+    /// module documentation for what is checked).
     pub fn run<M: Model + ?Sized>(
         &self,
         model: &M,
@@ -152,7 +183,20 @@ impl Simulation {
             });
         }
         let samples = reference.samples();
+        crate::limits::check_size(
+            || {
+                format!(
+                    "integration steps ({samples} samples x {} substeps)",
+                    self.substeps
+                )
+            },
+            samples as f64 * self.substeps as f64,
+            MAX_SIMULATION_STEPS,
+            "use fewer substeps or a shorter trajectory",
+        )?;
+        reference.check("reference trajectory")?;
         let mut fd = ForwardDynamics::new(model, base)?;
+        check_parameters("Simulation::run", "base", model, base)?;
         let mut rng = Rng::new(self.seed);
         let mut r0 = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
         let mut r1 = r0.clone();
@@ -160,11 +204,64 @@ impl Simulation {
         reference.state(0, q0, qd0, qdd0);
         let mut m = vec![0.0; n * n];
         model.mass_matrix(&r0[0], base, &mut m)?;
+        if nalgebra::DMatrix::from_row_slice(n, n, &m)
+            .cholesky()
+            .is_none()
+        {
+            return Err(Error::Singular {
+                what: format!(
+                    "the mass matrix M(q) of {} at the reference's first state q = {:?}",
+                    model.name(),
+                    r0[0]
+                ),
+                hint: "the parameters are not physically consistent; use a feasible parameter set (robid feasible)",
+            });
+        }
         let wn = std::f64::consts::TAU * self.bandwidth;
         let kp: Vec<f64> = (0..n).map(|j| wn * wn * m[j * n + j]).collect();
         let kd: Vec<f64> = (0..n)
             .map(|j| 2.0 * self.damping * wn * m[j * n + j])
             .collect();
+        // divergence: a tracking error beyond DIVERGENCE_FACTOR x (reference range + 1)
+        let allowed: Vec<f64> = reference
+            .q
+            .iter()
+            .map(|v| {
+                let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                DIVERGENCE_FACTOR * (hi - lo + 1.0)
+            })
+            .collect();
+        let diverged = |k: usize, reason: String| {
+            let dt = if samples > 1 {
+                (reference.t[samples - 1] - reference.t[0]) / (samples - 1) as f64
+            } else {
+                0.0
+            };
+            let h = dt / self.substeps as f64;
+            let fix = if wn * h > 0.5 {
+                format!(
+                    "the controller bandwidth {} Hz is too high for the integration step {h:.3e} s \
+                     ({:.6} Hz reference, {} substeps): lower the bandwidth below {:.3} Hz or raise \
+                     the substeps or the trajectory's sample rate",
+                    self.bandwidth,
+                    1.0 / dt,
+                    self.substeps,
+                    0.5 / (std::f64::consts::TAU * h)
+                )
+            } else {
+                "check the reference trajectory near this sample (its velocities and accelerations \
+                 must be the derivatives of its positions, within the robot's limits) and the \
+                 parameters"
+                    .to_string()
+            };
+            Error::Diverged {
+                time: reference.t[k],
+                sample: k,
+                reason,
+                fix,
+            }
+        };
         let (mut q, mut qd) = (r0[0].clone(), r0[1].clone());
         let mut truth = Record {
             trajectory: Trajectory::zeros(n, reference.t.clone()),
@@ -186,11 +283,56 @@ impl Simulation {
             }
             Ok::<(), crate::LengthError>(())
         };
+        // the state and the torque at sample k, checked for divergence
+        let check = |k: usize, r: &[Vec<f64>; 3], q: &[f64], qd: &[f64], tau: &[f64]| {
+            for j in 0..n {
+                let e = q[j] - r[0][j];
+                if !(q[j].is_finite() && qd[j].is_finite() && tau[j].is_finite()) {
+                    return Err(diverged(
+                        k,
+                        format!("the state of joint {} is not finite", j + 1),
+                    ));
+                }
+                if e.abs() > allowed[j] {
+                    return Err(diverged(
+                        k,
+                        format!(
+                            "joint {} is {e:.3e} from its reference (more than {:.3e})",
+                            j + 1,
+                            allowed[j]
+                        ),
+                    ));
+                }
+                if tau[j].abs() > MAX_TORQUE {
+                    return Err(diverged(
+                        k,
+                        format!(
+                            "the torque of joint {} is {:.3e} (more than {MAX_TORQUE:e})",
+                            j + 1,
+                            tau[j]
+                        ),
+                    ));
+                }
+            }
+            Ok(())
+        };
+        let inconsistent = |k: usize, q: &[f64], e: Error| match e {
+            Error::Singular { what, .. } => Error::Singular {
+                what: format!(
+                    "{what} (reached at reference sample {k}, t = {} s, q = {q:?})",
+                    reference.t[k]
+                ),
+                hint: "the parameters are not physically consistent at this state (M(q) was positive definite at the start); use a feasible parameter set (robid feasible)",
+            },
+            e => e,
+        };
         for k in 0..samples {
             let [a, b, c] = &mut r0;
             reference.state(k, a, b, c);
             control(&r0, &q, &qd, &mut rng, &mut tau)?;
-            fd.accelerations(&q, &qd, &tau, &mut qdd)?;
+            check(k, &r0, &q, &qd, &tau)?;
+            fd.accelerations(&q, &qd, &tau, &mut qdd)
+                .map_err(|e| inconsistent(k, &q, e))?;
             for j in 0..n {
                 let tr = &mut truth.trajectory;
                 (tr.q[j][k], tr.qd[j][k], tr.qdd[j][k]) = (q[j], qd[j], qdd[j]);
@@ -213,8 +355,25 @@ impl Simulation {
                         }
                     }
                     control(&r, &q, &qd, &mut rng, &mut tau)?;
-                    step(&mut fd, &mut q, &mut qd, &tau, &kd, h)?;
+                    step(&mut fd, &mut q, &mut qd, &tau, &kd, h)
+                        .map_err(|e| inconsistent(k, &q, e))?;
+                    if q.iter().chain(qd.iter()).any(|v| !v.is_finite()) {
+                        return Err(diverged(
+                            k,
+                            "the state became infinite between two samples".into(),
+                        ));
+                    }
                 }
+            }
+        }
+        measured.trajectory.check("the simulated measurement")?;
+        truth.trajectory.check("the simulated truth")?;
+        for (j, v) in measured.tau.iter().enumerate() {
+            if let Some(k) = v.iter().position(|x| !(x.abs() <= MAX_TORQUE)) {
+                return Err(diverged(
+                    k,
+                    format!("the measured torque of joint {} is {:.3e}", j + 1, v[k]),
+                ));
             }
         }
         Ok(Simulated { measured, truth })

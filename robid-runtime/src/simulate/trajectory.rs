@@ -5,8 +5,9 @@
 
 use std::path::Path;
 
-use crate::data::read_columns;
+use crate::data::{ColumnMapping, read_columns};
 use crate::error::{Error, Result};
+use crate::limits::Quantity;
 
 /// Positions, velocities and accelerations on a time grid.
 #[derive(Debug, Clone, PartialEq)]
@@ -77,9 +78,37 @@ impl Trajectory {
 
     /// Reads a trajectory CSV of `dof` joints (header `t,q1..,qd1..,qdd1..`, any column order,
     /// extra columns ignored); time must increase and there must be at least 2 samples.
+    /// Every value must lie within the range of its quantity ([`crate::limits`]); an error
+    /// names the file, line and column.
     pub fn read_csv(path: &Path, dof: usize) -> Result<Self> {
-        let table = read_columns(path, &Self::header(dof))?;
-        let mut cols = table.columns.into_iter();
+        crate::data::check_joints(dof)?;
+        let header = Self::header(dof);
+        let mut table = read_columns(path, &header).map_err(|e| match e {
+            Error::MissingColumn {
+                path,
+                column,
+                available,
+                ..
+            } => Error::MissingColumn {
+                path,
+                column,
+                available,
+                mapping: Box::new(ColumnMapping::Header {
+                    expected: "t,q1..qn,qd1..qdn,qdd1..qddn".into(),
+                }),
+            },
+            e => e,
+        })?;
+        for (i, name) in header.iter().enumerate() {
+            let quantity = match i {
+                0 => Quantity::Time,
+                i if i <= dof => Quantity::Position,
+                i if i <= 2 * dof => Quantity::Velocity,
+                _ => Quantity::Acceleration,
+            };
+            table.check_range(i, name, quantity)?;
+        }
+        let mut cols = std::mem::take(&mut table.columns).into_iter();
         let t = cols.next().unwrap_or_default();
         if t.len() < 2 {
             return Err(Error::TooFewSamples {
@@ -93,6 +122,92 @@ impl Trajectory {
         let mut take = || (0..dof).map(|_| cols.next().unwrap_or_default()).collect();
         let (q, qd, qdd) = (take(), take(), take());
         Ok(Self { t, q, qd, qdd })
+    }
+
+    /// Checks that every value is finite (a result about to be returned); `owner` names the
+    /// function in the error.
+    pub(crate) fn check_finite(&self, owner: &str) -> Result<()> {
+        let bad = self
+            .q
+            .iter()
+            .chain(&self.qd)
+            .chain(&self.qdd)
+            .chain(std::iter::once(&self.t))
+            .any(|v| v.iter().any(|x| !x.is_finite()));
+        if bad {
+            return Err(Error::NonFiniteResult {
+                what: format!("the trajectory of {owner}"),
+                cause: "its coefficients overflowed; check the design's limits and settings".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Checks a trajectory given as input: shapes consistent, time increasing, every value
+    /// finite and within the range of its quantity ([`crate::limits`]). `what` names it in
+    /// errors, which give the sample and its time.
+    pub fn check(&self, what: &str) -> Result<()> {
+        let n = self.samples();
+        for (name, block) in [("q", &self.q), ("qd", &self.qd), ("qdd", &self.qdd)] {
+            if block.len() != self.dof() || block.iter().any(|v| v.len() != n) {
+                return Err(Error::DimensionMismatch {
+                    what: format!("{what}: `{name}` signals ({} joints)", self.dof()),
+                    expected: n,
+                    found: block
+                        .iter()
+                        .map(Vec::len)
+                        .find(|&l| l != n)
+                        .unwrap_or(block.len()),
+                });
+            }
+        }
+        if n < 2 {
+            return Err(Error::TooFewSamples {
+                context: what.to_string(),
+                found: n,
+                required: 2,
+                hint: "a trajectory needs at least two time stamps",
+            });
+        }
+        let at = |k: usize| format!("{what}, sample {k} (t = {})", self.t[k]);
+        if let Some(k) = Quantity::Time.first_outside(&self.t) {
+            return Err(Error::OutOfRange {
+                location: format!("{what}, sample {k}"),
+                what: "time".into(),
+                quantity: "time",
+                value: self.t[k],
+                limit: Quantity::Time.limit(),
+            });
+        }
+        if let Some(k) = (1..n).find(|&k| self.t[k] <= self.t[k - 1]) {
+            return Err(Error::setting(
+                "Trajectory",
+                "t",
+                format!(
+                    "{}: time does not increase (previous {})",
+                    at(k),
+                    self.t[k - 1]
+                ),
+            ));
+        }
+        for (name, block, quantity) in [
+            ("q", &self.q, Quantity::Position),
+            ("qd", &self.qd, Quantity::Velocity),
+            ("qdd", &self.qdd, Quantity::Acceleration),
+        ] {
+            for (j, v) in block.iter().enumerate() {
+                if let Some(k) = quantity.first_outside(v) {
+                    return Err(Error::OutOfRange {
+                        location: at(k),
+                        what: format!("{name}{}", j + 1),
+                        quantity: quantity.name(),
+                        value: v[k],
+                        limit: quantity.limit(),
+                    });
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Writes the trajectory as CSV.

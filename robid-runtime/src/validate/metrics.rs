@@ -15,8 +15,29 @@ pub struct Fit {
     pub nmse: f64,
 }
 
+impl Fit {
+    /// Checks that every metric is finite; `what` names the data in the error.
+    pub fn check(&self, what: &str) -> crate::Result<()> {
+        if !self.relative_error.is_finite() {
+            return Err(crate::Error::NonFiniteResult {
+                what: format!("the relative error on {what}"),
+                cause: "the measured torques are all zero (it divides by their norm): the data hold no torque to identify from or predict; check the torque columns".into(),
+            });
+        }
+        if !self.nmse.is_finite() || self.rms_per_joint.iter().any(|v| !v.is_finite()) {
+            return Err(crate::Error::NonFiniteResult {
+                what: format!("the error metrics on {what}"),
+                cause: "the prediction error overflowed; check the data's units and outliers"
+                    .into(),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// Computes the metrics from per-joint measured and predicted torques (same lengths).
-/// Joints with no samples contribute nothing.
+/// Joints with no samples contribute nothing; the relative error is infinite when every
+/// measured torque is zero ([`Fit::check`] reports it).
 pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
     let (mut err2, mut norm2, mut nmse) = (0.0, 0.0, 0.0);
     let mut rms = Vec::with_capacity(measured.len());

@@ -5,7 +5,71 @@ mod metrics;
 
 pub use metrics::{Fit, fit, relative_improvement};
 
+use serde::{Deserialize, Serialize};
+
+use crate::data::Dataset;
+use crate::error::{Error, Result};
 use crate::estimate::Observation;
+
+/// Which rows of which file a fit or a validation used.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct UsedRows {
+    /// The file (the first file of a joined data set), or the data set's name when it was
+    /// not read from a file.
+    pub file: String,
+    /// The samples used, `[start, end)`, 0-based in the data set (after joining and
+    /// resampling; ranges, trimming and filter settling applied).
+    pub samples: [usize; 2],
+    /// The 1-based file lines of the first and the last sample used, when read from a file.
+    pub lines: Option<[u64; 2]>,
+}
+
+impl UsedRows {
+    /// The samples `range` of `data`.
+    pub fn of(data: &Dataset, range: std::ops::Range<usize>) -> UsedRows {
+        let lines = data.origin.as_ref().and_then(|o| {
+            let first = *o.lines.get(range.start)?;
+            let last = *o.lines.get(range.end.checked_sub(1)?)?;
+            Some([first, last])
+        });
+        UsedRows {
+            file: data
+                .origin
+                .as_ref()
+                .map_or_else(|| data.name.clone(), |o| o.path.display().to_string()),
+            samples: [range.start, range.end],
+            lines,
+        }
+    }
+
+    /// Whether two uses share rows of the same file.
+    pub fn overlaps(&self, other: &UsedRows) -> bool {
+        if self.file != other.file {
+            return false;
+        }
+        match (self.lines, other.lines) {
+            (Some(a), Some(b)) => a[0] <= b[1] && b[0] <= a[1],
+            _ => self.samples[0] < other.samples[1] && other.samples[0] < self.samples[1],
+        }
+    }
+}
+
+impl std::fmt::Display for UsedRows {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.lines {
+            Some([a, b]) => write!(
+                f,
+                "{} lines {a}-{b} (samples {}..{})",
+                self.file, self.samples[0], self.samples[1]
+            ),
+            None => write!(
+                f,
+                "{} samples {}..{}",
+                self.file, self.samples[0], self.samples[1]
+            ),
+        }
+    }
+}
 
 /// Measured and predicted (filtered, decimated) torques per joint.
 #[derive(Debug, Clone)]
@@ -16,6 +80,8 @@ pub struct Prediction {
     pub predicted: Vec<Vec<f64>>,
     /// Time (s) of each entry per joint (samples near rest are absent).
     pub time: Vec<Vec<f64>>,
+    /// The rows of the data used, when known (set by the pipeline).
+    pub used: Option<UsedRows>,
 }
 
 impl Prediction {
@@ -43,7 +109,25 @@ impl Prediction {
             measured: block(&obs.y),
             predicted: block(&pred),
             time,
+            used: None,
         }
+    }
+
+    /// Checks that every predicted torque and every metric is finite; `what` names the
+    /// data in the error.
+    pub fn check(&self, what: &str) -> Result<()> {
+        if let Some((j, _)) = self
+            .predicted
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.iter().any(|v| !v.is_finite()))
+        {
+            return Err(Error::NonFiniteResult {
+                what: format!("the predicted torque of joint {} on {what}", j + 1),
+                cause: "the identified values times the regressor overflowed; check the data's units and outliers".into(),
+            });
+        }
+        self.fit().check(what)
     }
 
     /// The metrics of this prediction.

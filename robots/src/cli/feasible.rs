@@ -146,7 +146,7 @@ fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
 /// named as that file: the runtime reports such keys as "config" keys.
 fn about(path: &Path, e: robid_runtime::Error) -> Error {
     match e {
-        robid_runtime::Error::InvalidConfig { key, problem } => {
+        robid_runtime::Error::InvalidConfig { key, problem, .. } => {
             format!("{}: `{key}`: {problem}", path.display()).into()
         }
         robid_runtime::Error::ConfigSyntax { reason, .. } => {

@@ -4,9 +4,9 @@
 //! (DESIGN.md 6 and 10). A table on stdout; JSON and SVG plots on request.
 //!
 //! The results are checked before anything is printed or written (every value finite),
-//! and the warnings of an ill-conditioned identification (condition number above
-//! [`CONDITION_WARNING`], a relative standard deviation above 100 %) go to stderr,
-//! naming the parameters.
+//! and the report's quality warnings (an ill-conditioned observation matrix, parameters
+//! known to worse than their own size, an outlier, a validation that repeats the
+//! estimation rows) also go to stderr, naming the parameters.
 
 use std::path::{Path, PathBuf};
 
@@ -18,10 +18,6 @@ use robid_symbolic::program::BaseParameter;
 use robots::interpreted::{Chosen, model_for};
 
 use super::{Error, files, out};
-
-/// The condition number of the observation matrix above which `identify` warns that the
-/// data barely excite some directions of the parameters.
-pub(crate) const CONDITION_WARNING: f64 = 1e5;
 
 /// Arguments of `robid identify`.
 #[derive(Debug, clap::Args)]
@@ -195,10 +191,10 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             out::warn(format_args!("warning: {w}"));
         }
         let p = validate(model, &d, &config, &id.estimate.values)?;
-        report = report.with_validation(&group[0].display().to_string(), &p.fit());
+        report = report.with_prediction(&p);
         predictions.push(p);
     }
-    check_report(&report)?;
+    report.check()?;
     // files first: a reader that closes standard output early does not cost them
     if let Some(path) = &args.json {
         report.write_json(path)?;
@@ -208,8 +204,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             plot_torques(p, dir, prefix)?;
         }
     }
-    for w in warnings(&report) {
-        out::warn(format_args!("warning: {w}"));
+    for w in &report.warnings {
+        out::warn(format_args!("warning: {}", w.message));
     }
     let mut stdout = out::Stdout::new();
     stdout.write_str(&text_table(&report))?;
@@ -227,150 +223,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     Ok(())
 }
 
-/// Refuses a report with a value that is not a finite number (nothing is printed or
-/// written then), naming the value.
-fn check_report(report: &Report) -> Result<(), Error> {
-    let fix = "a sample far out of range in the data (check the columns for outliers) or \
-               data that do not excite this parameter";
-    if !report.condition_number.is_finite() {
-        return Err(format!(
-            "the condition number of the observation matrix is {}: {fix}",
-            report.condition_number
-        )
-        .into());
-    }
-    for p in &report.parameters {
-        if !(p.value.is_finite() && p.std.is_finite()) {
-            return Err(format!(
-                "the identified {} is {} +- {}, not a finite number: {fix}",
-                p.name, p.value, p.std
-            )
-            .into());
-        }
-    }
-    let fits = std::iter::once((
-        "the fit",
-        &report.fit.rms_per_joint,
-        report.fit.relative_error,
-        report.fit.nmse,
-    ))
-    .chain(
-        report
-            .validation
-            .iter()
-            .map(|v| (v.file.as_str(), &v.rms_per_joint, v.relative_error, v.nmse)),
-    );
-    for (what, rms, relative, nmse) in fits {
-        if !(relative.is_finite() && nmse.is_finite() && rms.iter().all(|x| x.is_finite())) {
-            return Err(
-                format!("the prediction errors of {what} are not finite numbers: {fix}").into(),
-            );
-        }
-    }
-    Ok(())
-}
-
-/// The warnings of an identification: a condition number above [`CONDITION_WARNING`] and
-/// every parameter with a relative standard deviation above 100 %.
-///
-/// The runtime's report is to carry these warnings itself (issue 11); until it does,
-/// they are derived here from the report's values.
-fn warnings(report: &Report) -> Vec<String> {
-    let mut out = Vec::new();
-    if report.condition_number > CONDITION_WARNING {
-        out.push(format!(
-            "condition number {:.3e} is above {CONDITION_WARNING:e}: the data barely excite \
-             some combinations of parameters; use a richer trajectory (robid excite)",
-            report.condition_number
-        ));
-    }
-    let poor: Vec<String> = report
-        .parameters
-        .iter()
-        .filter_map(|p| {
-            p.rel_std_percent
-                .filter(|r| *r > 100.0)
-                .map(|r| format!("{} ({r:.0} %)", p.name))
-        })
-        .collect();
-    if !poor.is_empty() {
-        out.push(format!(
-            "relative standard deviation above 100 % (the value is not determined by the \
-             data): {}",
-            poor.join(", ")
-        ));
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use robid_runtime::report::{FitEntry, ParameterEntry, ValidationEntry};
-
-    /// A report of three parameters with relative standard deviations 45 %, 150 % and
-    /// none (a value of zero), condition number `cond`.
-    fn report(cond: f64) -> Report {
-        let p = |name: &str, value: f64, std: f64, rel: Option<f64>| ParameterEntry {
-            name: name.into(),
-            expression: String::new(),
-            value,
-            std,
-            rel_std_percent: rel,
-        };
-        Report {
-            robot: "r".into(),
-            method: "ols".into(),
-            samples: 100,
-            condition_number: cond,
-            parameters: vec![
-                p("ZZR1", -2.2e6, 1.0e6, Some(45.0)),
-                p("MX2", 0.1, 0.15, Some(150.0)),
-                p("Fo1", 0.0, 0.1, None),
-            ],
-            fit: FitEntry {
-                relative_error: 0.1,
-                rms_per_joint: vec![0.1, 0.2],
-                nmse: 0.5,
-            },
-            validation: vec![ValidationEntry {
-                file: "run2.csv".into(),
-                relative_error: 0.2,
-                rms_per_joint: vec![0.1, 0.2],
-                nmse: 0.5,
-            }],
-        }
-    }
-
-    /// The issue's case: condition number 6.9e9 and ZZR1 = -2.2e6 +- 1.0e6 used to be
-    /// written without a warning.
-    #[test]
-    fn warnings_name_the_condition_number_and_the_undetermined_parameters() {
-        let w = warnings(&report(6.9e9));
-        assert_eq!(w.len(), 2, "{w:?}");
-        assert!(
-            w[0].contains("condition number 6.900e9 is above 1e5"),
-            "{w:?}"
-        );
-        assert!(w[1].ends_with(": MX2 (150 %)"), "{w:?}");
-        let w = warnings(&report(CONDITION_WARNING));
-        assert_eq!(w.len(), 1, "{w:?}");
-        assert!(w[0].contains("MX2"), "{w:?}");
-    }
-
-    #[test]
-    fn a_report_with_a_non_finite_value_is_refused_naming_it() {
-        assert!(check_report(&report(10.0)).is_ok());
-        let mut r = report(10.0);
-        r.parameters[1].value = f64::NAN;
-        let e = check_report(&r).unwrap_err().to_string();
-        assert!(e.contains("the identified MX2 is NaN"), "{e}");
-        let mut r = report(10.0);
-        r.validation[0].rms_per_joint[1] = f64::INFINITY;
-        let e = check_report(&r).unwrap_err().to_string();
-        assert!(e.contains("run2.csv"), "{e}");
-        assert!(check_report(&report(f64::INFINITY)).is_err());
-    }
 
     /// The shortcut gives what the derivation gives: same names, expressions and model.
     #[test]

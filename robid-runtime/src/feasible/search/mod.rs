@@ -74,6 +74,52 @@ impl Default for AnnealOptions {
     }
 }
 
+impl AnnealOptions {
+    /// Checks the settings: counts within their caps (every loop of the search is bounded
+    /// by them: annealing steps, Nelder-Mead evaluations, Levenberg-Marquardt steps, hops),
+    /// a positive finite penalty, a finite non-negative target.
+    pub fn check(&self) -> Result<()> {
+        let count = |key: &str, v: usize, lo: usize, hi: usize| {
+            if (lo..=hi).contains(&v) {
+                Ok(())
+            } else {
+                Err(Error::setting(
+                    "AnnealOptions",
+                    key,
+                    format!("{v} must lie between {lo} and {hi}"),
+                ))
+            }
+        };
+        count("restarts", self.restarts, 1, 10_000)?;
+        count("iterations", self.iterations, 0, 1_000_000_000)?;
+        count(
+            "local_evaluations",
+            self.local_evaluations,
+            0,
+            1_000_000_000,
+        )?;
+        count("polish_iterations", self.polish_iterations, 0, 1_000_000)?;
+        count("hops", self.hops, 0, 1_000_000)?;
+        if !(self.penalty > 0.0 && self.penalty <= 1e20) {
+            return Err(Error::setting(
+                "AnnealOptions",
+                "penalty",
+                format!("{} must lie in (0, 1e20]", self.penalty),
+            ));
+        }
+        if let Some(t) = self.target_chi2
+            && !(t >= 0.0 && t.is_finite())
+        {
+            return Err(Error::setting(
+                "AnnealOptions",
+                "target_chi2",
+                format!("{t} must be finite and non-negative"),
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The objective over the free variables.
 struct Objective<'a> {
     problem: &'a Problem,
@@ -175,12 +221,7 @@ pub fn solve_anneal(
             found: bounds.links.len(),
         });
     }
-    if options.restarts == 0 {
-        return Err(Error::InvalidConfig {
-            key: "restarts".to_owned(),
-            problem: "must be at least 1".to_owned(),
-        });
-    }
+    options.check()?;
     let a = &problem.whitening * &problem.k;
     let b = &problem.whitening * &problem.target;
     let linear: Vec<(usize, bool)> = layout
@@ -195,8 +236,10 @@ pub fn solve_anneal(
             .map(|&(i, _)| a.column(i).into_owned())
             .collect();
         let ad = DMatrix::from_columns(&cols);
-        ad.pseudo_inverse(1e-10)
-            .unwrap_or_else(|_| DMatrix::zeros(cols.len(), a.nrows()))
+        // a capped SVD: the iteration cannot loop whatever the matrix holds
+        ad.try_svd(true, true, f64::EPSILON, crate::limits::SVD_ITERATIONS)
+            .and_then(|s| s.pseudo_inverse(1e-10).ok())
+            .unwrap_or_else(|| DMatrix::zeros(cols.len(), a.nrows()))
     });
     let mut lo = Vec::with_capacity(nl * PER_LINK);
     let mut hi = Vec::with_capacity(nl * PER_LINK);
@@ -258,8 +301,11 @@ pub fn solve_anneal(
                     .collect();
                 objective.value(&z)
             };
-            let xn: Vec<f64> = local
-                .minimize(&xa, g)
+            let found = match local.minimize(&xa, g) {
+                Ok(m) => m,
+                Err(e) => return Some(Err(e)),
+            };
+            let xn: Vec<f64> = found
                 .x
                 .iter()
                 .enumerate()
@@ -290,9 +336,9 @@ pub fn solve_anneal(
             if fx <= target {
                 done.store(true, Ordering::Relaxed);
             }
-            Some((xn, fx))
+            Some(Ok((xn, fx)))
         })
-        .collect();
+        .collect::<Result<_>>()?;
     let (best, _) = runs
         .into_iter()
         .min_by(|a, b| a.1.total_cmp(&b.1))
@@ -300,13 +346,7 @@ pub fn solve_anneal(
             reason: "the search ran no restart".to_owned(),
         })?;
     let p = objective.standard(&objective.full(&best));
-    Ok(Solution::assemble(
-        problem,
-        bounds,
-        Method::Anneal,
-        p,
-        start.elapsed(),
-    ))
+    Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())
 }
 
 /// The variables that change the objective somewhere in the box (checked by finite

@@ -1,0 +1,119 @@
+//! Where each key of a TOML file is, so that a value found wrong after parsing is reported
+//! at its file:line:column (toml's spans).
+//!
+//! Keys are dotted paths; elements of arrays (of values or of tables) are numbered from 1:
+//! `processing.lowpass.cutoff`, `source[2].torque`, `drive.gear_ratios[3]`,
+//! `extra_column[4].terms[1].row`.
+
+use std::collections::BTreeMap;
+
+use toml::de::{DeTable, DeValue};
+
+/// 1-based line and column of every key (or array element) of a TOML text.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct KeyMap {
+    keys: BTreeMap<String, (usize, usize)>,
+}
+
+impl KeyMap {
+    /// The keys of `text` (empty when it is not valid TOML: the parser reports that).
+    pub fn parse(text: &str) -> KeyMap {
+        let mut map = KeyMap::default();
+        if let Ok(table) = DeTable::parse(text) {
+            let starts = line_starts(text);
+            map.walk(table.get_ref(), "", &starts, 0);
+        }
+        map
+    }
+
+    /// The line and column of `key`, or of its nearest enclosing key that is in the file
+    /// (a table header, an array), or `None`.
+    pub fn find(&self, key: &str) -> Option<(usize, usize)> {
+        let mut k = key;
+        loop {
+            if let Some(&at) = self.keys.get(k) {
+                return Some(at);
+            }
+            let cut = k.rfind(['.', '['])?;
+            k = &k[..cut];
+        }
+    }
+
+    /// Every key, in order.
+    pub fn keys(&self) -> impl Iterator<Item = &str> {
+        self.keys.keys().map(String::as_str)
+    }
+
+    fn walk(&mut self, table: &DeTable<'_>, prefix: &str, starts: &[usize], depth: usize) {
+        // TOML nesting in a config is shallow; the cap keeps a hostile file from recursing
+        if depth > 32 {
+            return;
+        }
+        for (k, v) in table.iter() {
+            let path = if prefix.is_empty() {
+                k.get_ref().to_string()
+            } else {
+                format!("{prefix}.{}", k.get_ref())
+            };
+            self.keys
+                .insert(path.clone(), position(starts, k.span().start));
+            self.value(v.get_ref(), &path, starts, depth);
+        }
+    }
+
+    fn value(&mut self, v: &DeValue<'_>, path: &str, starts: &[usize], depth: usize) {
+        if depth > 32 {
+            return;
+        }
+        match v {
+            DeValue::Table(t) => self.walk(t, path, starts, depth + 1),
+            DeValue::Array(a) => {
+                for (i, e) in a.iter().enumerate() {
+                    let p = format!("{path}[{}]", i + 1);
+                    self.keys
+                        .insert(p.clone(), position(starts, e.span().start));
+                    self.value(e.get_ref(), &p, starts, depth + 1);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+fn line_starts(text: &str) -> Vec<usize> {
+    std::iter::once(0)
+        .chain(
+            text.bytes()
+                .enumerate()
+                .filter(|(_, b)| *b == b'\n')
+                .map(|(i, _)| i + 1),
+        )
+        .collect()
+}
+
+/// 1-based (line, column) of a byte offset (column in characters).
+fn position(starts: &[usize], offset: usize) -> (usize, usize) {
+    let line = starts.partition_point(|&s| s <= offset).max(1);
+    (line, offset - starts[line - 1] + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_keys_array_elements_and_enclosing_tables() {
+        let text = "dof = 2\n[[source]]\nposition = \"q{}\"\n[[source]]\ntorque = [\"a\", \"b\"]\n\
+                    [processing]\nlowpass = { cutoff = 5.0 }\nrange = [0, 10]\n";
+        let k = KeyMap::parse(text);
+        assert_eq!(k.find("dof"), Some((1, 1)));
+        assert_eq!(k.find("source[2].torque"), Some((5, 1)));
+        assert_eq!(k.find("source[2].torque[2]"), Some((5, 16)));
+        assert_eq!(k.find("processing.lowpass.cutoff"), Some((7, 13)));
+        assert_eq!(k.find("processing.range[2]"), Some((8, 13)));
+        // a key that is absent: its table
+        assert_eq!(k.find("processing.trim"), Some((6, 2)));
+        assert_eq!(k.find("sample_rate"), None);
+        assert_eq!(KeyMap::parse("dof = [").find("dof"), None);
+    }
+}

@@ -1,0 +1,241 @@
+//! Warnings on a successful identification that should not be trusted blindly: an
+//! ill-conditioned observation matrix, parameters known to worse than their own size, a
+//! validation that repeats the estimation data. They are returned with the result (never
+//! printed by the library): reports carry them, a command line prints them on stderr.
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+/// Condition number of the observation matrix W above which an identification is reported
+/// as ill-conditioned. Well-excited real recordings give 1e2 to 1e3 (the TX40 and LWR4
+/// logs of `data/`: about 1,000); at 1e4 noise in the torques is amplified ten thousand
+/// times into the parameters.
+pub const CONDITION_WARNING: f64 = 1e4;
+
+/// Relative standard deviation (percent) above which a parameter is reported as poorly
+/// identified: its uncertainty is larger than its value.
+pub const REL_STD_WARNING: f64 = 100.0;
+
+/// Something a caller should tell the user about an identification that succeeded.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum QualityWarning {
+    /// cond(W) is above [`CONDITION_WARNING`].
+    IllConditioned {
+        /// cond(W).
+        condition_number: f64,
+        /// The threshold.
+        threshold: f64,
+    },
+    /// Parameters whose relative standard deviation is above [`REL_STD_WARNING`] percent
+    /// (or whose value is exactly zero).
+    Uncertain {
+        /// Their names, in parameter order.
+        parameters: Vec<String>,
+        /// Their relative standard deviations in percent (`None` for a zero value).
+        rel_std_percent: Vec<Option<f64>>,
+        /// The threshold in percent.
+        threshold_percent: f64,
+    },
+    /// Validation data that are the estimation data: the validation repeats the fit.
+    ValidationRepeatsEstimation {
+        /// The validation file (or data set).
+        file: String,
+    },
+    /// A parameter's column is dominated by a few equations (the largest
+    /// [`OUTLIER_ROWS`] hold more than [`OUTLIER_SHARE`] of its squared norm): an outlier
+    /// in the data, which the fit follows instead of the rest of the record.
+    Outlier {
+        /// The parameter.
+        parameter: String,
+        /// Where the largest equation comes from (file:line when known).
+        location: String,
+        /// The share of the column's squared norm held by those equations.
+        share: f64,
+    },
+}
+
+/// Number of equations whose share of a column is tested for an outlier.
+pub const OUTLIER_ROWS: usize = 3;
+/// Share of a column's squared norm above which its largest [`OUTLIER_ROWS`] equations
+/// are an outlier (checked when there are at least 100 equations).
+pub const OUTLIER_SHARE: f64 = 0.9;
+
+impl QualityWarning {
+    /// A short machine-readable name (`ill_conditioned`, `uncertain`,
+    /// `validation_repeats_estimation`).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            QualityWarning::IllConditioned { .. } => "ill_conditioned",
+            QualityWarning::Uncertain { .. } => "uncertain",
+            QualityWarning::ValidationRepeatsEstimation { .. } => "validation_repeats_estimation",
+            QualityWarning::Outlier { .. } => "outlier",
+        }
+    }
+
+    /// The parameters concerned (empty when the warning is about the whole run).
+    pub fn parameters(&self) -> Vec<String> {
+        match self {
+            QualityWarning::Uncertain { parameters, .. } => parameters.clone(),
+            QualityWarning::Outlier { parameter, .. } => vec![parameter.clone()],
+            _ => Vec::new(),
+        }
+    }
+}
+
+impl fmt::Display for QualityWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            QualityWarning::IllConditioned {
+                condition_number,
+                threshold,
+            } => write!(
+                f,
+                "the observation matrix is ill-conditioned (condition number {condition_number:.3e} > {threshold:e}): \
+                 the estimates are sensitive to noise; excite the robot with a richer trajectory \
+                 (robid excite) or remove parameters the motion cannot separate"
+            ),
+            QualityWarning::Uncertain {
+                parameters,
+                rel_std_percent,
+                threshold_percent,
+            } => {
+                let list: Vec<String> = parameters
+                    .iter()
+                    .zip(rel_std_percent)
+                    .map(|(n, r)| match r {
+                        Some(r) => format!("{n} ({r:.0} %)"),
+                        None => format!("{n} (value 0)"),
+                    })
+                    .collect();
+                write!(
+                    f,
+                    "{} parameter(s) with a relative standard deviation above {threshold_percent} % \
+                     (known to worse than their own size): {}",
+                    parameters.len(),
+                    list.join(", ")
+                )
+            }
+            QualityWarning::Outlier {
+                parameter,
+                location,
+                share,
+            } => write!(
+                f,
+                "column `{parameter}` is dominated by a few equations ({:.1} % of its squared norm, the largest from {location}): an outlier in the data; repair or remove that row (check its velocities and accelerations)",
+                100.0 * share
+            ),
+            QualityWarning::ValidationRepeatsEstimation { file } => write!(
+                f,
+                "validation on {file} uses rows that were used for estimation: it repeats the fit \
+                 instead of testing the model; validate on other rows or another file"
+            ),
+        }
+    }
+}
+
+/// Columns of W dominated by a few equations: (column, row of the largest entry, share of
+/// the squared norm held by the largest [`OUTLIER_ROWS`] entries), for W with at least 100
+/// rows.
+pub(crate) fn dominated_columns(w: &nalgebra::DMatrix<f64>) -> Vec<(usize, usize, f64)> {
+    if w.nrows() < 100 {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for (j, col) in w.column_iter().enumerate() {
+        // one pass on the squares; a column whose squares overflow is scaled first
+        let mut share = top_share(col.iter().copied(), 1.0);
+        if !share.1.is_finite() {
+            let big = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if !(big > 0.0 && big.is_finite()) {
+                continue;
+            }
+            share = top_share(col.iter().copied(), 1.0 / big);
+        }
+        let (row, fraction) = share;
+        if fraction > OUTLIER_SHARE {
+            out.push((j, row, fraction));
+        }
+    }
+    out
+}
+
+/// The row of the largest |x| and the share of the squared norm held by the largest
+/// [`OUTLIER_ROWS`] entries of `x * scale` (NaN for a zero column).
+fn top_share(x: impl Iterator<Item = f64>, scale: f64) -> (usize, f64) {
+    let mut top = [(0.0f64, 0usize); OUTLIER_ROWS];
+    let mut total = 0.0;
+    for (i, v) in x.enumerate() {
+        let s = (v * scale) * (v * scale);
+        total += s;
+        if s > top[OUTLIER_ROWS - 1].0 {
+            top[OUTLIER_ROWS - 1] = (s, i);
+            top.sort_by(|a, b| b.0.total_cmp(&a.0));
+        }
+    }
+    (top[0].1, top.iter().map(|t| t.0).sum::<f64>() / total)
+}
+
+/// The warnings of an estimate with condition number `condition` and relative standard
+/// deviations `rel` (percent, infinite for a zero value) of the parameters `names`.
+pub(crate) fn assess(condition: f64, names: &[String], rel: &[f64]) -> Vec<QualityWarning> {
+    let mut out = Vec::new();
+    if condition > CONDITION_WARNING {
+        out.push(QualityWarning::IllConditioned {
+            condition_number: condition,
+            threshold: CONDITION_WARNING,
+        });
+    }
+    let poor: Vec<(String, Option<f64>)> = names
+        .iter()
+        .zip(rel)
+        .filter(|(_, r)| **r > REL_STD_WARNING)
+        .map(|(n, r)| (n.clone(), Some(*r).filter(|r| r.is_finite())))
+        .collect();
+    if !poor.is_empty() {
+        let (parameters, rel_std_percent) = poor.into_iter().unzip();
+        out.push(QualityWarning::Uncertain {
+            parameters,
+            rel_std_percent,
+            threshold_percent: REL_STD_WARNING,
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_column_held_by_a_few_rows_is_found_whatever_its_magnitude() {
+        let w = nalgebra::DMatrix::from_fn(200, 3, |i, j| match j {
+            0 => (i as f64 * 0.3).sin(),
+            1 if i == 57 => 1e3,
+            2 if i == 91 => 1e200,
+            _ => 1e-3 * (i as f64).cos(),
+        });
+        let d = dominated_columns(&w);
+        assert_eq!(d.len(), 2, "{d:?}");
+        assert_eq!((d[0].0, d[0].1), (1, 57));
+        assert_eq!((d[1].0, d[1].1), (2, 91));
+        assert!(d.iter().all(|x| x.2 > 0.99));
+        // too few rows to tell
+        assert!(dominated_columns(&w.rows(0, 99).into_owned()).is_empty());
+    }
+
+    #[test]
+    fn thresholds_decide_and_name_the_parameters() {
+        let names: Vec<String> = ["a", "b", "c"].iter().map(|s| s.to_string()).collect();
+        assert!(assess(CONDITION_WARNING, &names, &[1.0, 100.0, 5.0]).is_empty());
+        let w = assess(6.9e9, &names, &[1.0, 45.5, 250.0]);
+        assert_eq!(w.len(), 2);
+        assert_eq!(w[0].kind(), "ill_conditioned");
+        assert_eq!(w[1].parameters(), vec!["c"]);
+        assert!(w[1].to_string().contains("c (250 %)"), "{}", w[1]);
+        let w = assess(10.0, &names, &[f64::INFINITY, 1.0, 1.0]);
+        assert!(w[0].to_string().contains("a (value 0)"), "{}", w[0]);
+    }
+}

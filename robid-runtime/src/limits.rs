@@ -1,0 +1,207 @@
+//! The documented limits of every input, checked where the input is read (CSV files,
+//! config files, settings given in code) and named in the error that reports a breach.
+//!
+//! They are generous: no real recording, robot or design comes near them. They exist so
+//! that a logging, unit or typing error (a torque of 1e200, `--rate 1e9`) is a clear error
+//! naming the row and column or the setting, instead of a hang, an abort on an impossible
+//! allocation, or NaN in a result.
+//!
+//! Magnitudes apply to the raw columns of a data file (in whatever unit it uses: degrees,
+//! motor-side angles, mN m, A) and again to the joint-side signals after the config's
+//! units and drive chain:
+//!
+//! | quantity | limit |
+//! |---|---|
+//! | position (rad, m, deg) | `|q| <=` [`MAX_POSITION`] = 1e6 |
+//! | velocity | `|qd| <=` [`MAX_VELOCITY`] = 1e6 |
+//! | acceleration | `|qdd| <=` [`MAX_ACCELERATION`] = 1e8 |
+//! | torque, force or current | `|tau| <=` [`MAX_TORQUE`] = 1e7 |
+//! | time (s, after `time_scale`) | `|t| <=` [`MAX_TIME`] = 1e10 s |
+//! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
+//! | parameter values and standard deviations given as input | `|x| <=` [`MAX_PARAMETER`] = 1e6 |
+//! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | `|x| <=` [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants) also `|x| >=` [`MIN_FACTOR`] = 1e-12 |
+//!
+//! Sizes are checked before anything of that size is allocated:
+//!
+//! | size | limit |
+//! |---|---|
+//! | file size (after gzip decompression) | [`MAX_FILE_BYTES`] = 4 GiB |
+//! | header fields of a CSV file | [`MAX_COLUMNS`] = 10,000 |
+//! | data rows of a CSV file | [`MAX_ROWS`] = 50,000,000 |
+//! | joints of a model | [`MAX_JOINTS`] = 64 |
+//! | samples of a trajectory or simulation (duration x rate) | [`MAX_SAMPLES`] = 10,000,000 |
+//! | values of a trajectory (samples x (3 joints + 1)) | [`MAX_TRAJECTORY_VALUES`] = 2^28 (2 GiB) |
+//! | regressor channels x samples before decimation | [`MAX_OBSERVATION_ENTRIES`] = 2^30 (8 GiB) |
+//! | extra regressor columns of a config | [`MAX_EXTRA_COLUMNS`] = 1,000 |
+//! | total decimation factor | [`MAX_DECIMATION`] = 10,000 |
+//!
+//! Solvers stop at iteration caps ([`SVD_ITERATIONS`] for the SVD of least squares; the
+//! optimisers at their documented evaluation and step counts).
+
+/// Largest |position| accepted (rad, m, or degrees; joint or motor side).
+pub const MAX_POSITION: f64 = 1e6;
+/// Largest |velocity| accepted.
+pub const MAX_VELOCITY: f64 = 1e6;
+/// Largest |acceleration| accepted.
+pub const MAX_ACCELERATION: f64 = 1e8;
+/// Largest |torque|, |force| or |current| accepted (raw column or joint side).
+pub const MAX_TORQUE: f64 = 1e7;
+/// Largest |time| accepted, in seconds (after `time_scale`; a Unix time stamp fits).
+pub const MAX_TIME: f64 = 1e10;
+/// Largest sample rate (Hz), given or derived from time stamps.
+pub const MAX_SAMPLE_RATE: f64 = 1e7;
+/// Smallest sample rate (Hz), given or derived from time stamps (one sample per 1000 s).
+pub const MIN_SAMPLE_RATE: f64 = 1e-3;
+/// Largest |factor| of a unit or drive-chain setting.
+pub const MAX_FACTOR: f64 = 1e6;
+/// Smallest |factor| of a unit or drive-chain setting that scales a signal (`time_scale`,
+/// `torque_scale`, gear ratios, torque constants): a smaller one erases the signal.
+pub const MIN_FACTOR: f64 = 1e-12;
+/// Largest |value| and standard deviation of a base or standard parameter given as input
+/// (identified values for the feasible search, reference parameters of a simulation or a
+/// design): kg, kg m, kg m^2, N m s/rad, N m.
+pub const MAX_PARAMETER: f64 = 1e6;
+
+/// Largest file read (bytes, after decompression).
+pub const MAX_FILE_BYTES: u64 = 4 << 30;
+/// Largest number of fields in a CSV header.
+pub const MAX_COLUMNS: usize = 10_000;
+/// Largest number of data rows in a CSV file.
+pub const MAX_ROWS: usize = 50_000_000;
+/// Largest number of joints.
+pub const MAX_JOINTS: usize = 64;
+/// Largest number of samples of a trajectory or a simulation (duration x rate).
+pub const MAX_SAMPLES: usize = 10_000_000;
+/// Largest number of values of a trajectory or simulated record (samples x (3 joints + 1)).
+pub const MAX_TRAJECTORY_VALUES: usize = 1 << 28;
+/// Largest number of regressor values held before decimation (channels x samples).
+pub const MAX_OBSERVATION_ENTRIES: usize = 1 << 30;
+/// Largest number of extra regressor columns.
+pub const MAX_EXTRA_COLUMNS: usize = 1_000;
+/// Largest total decimation factor.
+pub const MAX_DECIMATION: usize = 10_000;
+
+/// Iteration cap of the SVD in least squares (nalgebra's `try_svd`).
+pub const SVD_ITERATIONS: usize = 10_000;
+
+/// Which physical quantity a signal holds: it selects the range checked.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Quantity {
+    /// Position (rad, m or degrees).
+    Position,
+    /// Velocity.
+    Velocity,
+    /// Acceleration.
+    Acceleration,
+    /// Torque, force or current.
+    Torque,
+    /// Time (s).
+    Time,
+}
+
+impl Quantity {
+    /// The largest accepted magnitude.
+    pub fn limit(self) -> f64 {
+        match self {
+            Quantity::Position => MAX_POSITION,
+            Quantity::Velocity => MAX_VELOCITY,
+            Quantity::Acceleration => MAX_ACCELERATION,
+            Quantity::Torque => MAX_TORQUE,
+            Quantity::Time => MAX_TIME,
+        }
+    }
+
+    /// The word used in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::Position => "position",
+            Quantity::Velocity => "velocity",
+            Quantity::Acceleration => "acceleration",
+            Quantity::Torque => "torque",
+            Quantity::Time => "time",
+        }
+    }
+
+    /// Index of the first value outside the range (NaN included), if any.
+    pub fn first_outside(self, values: &[f64]) -> Option<usize> {
+        let limit = self.limit();
+        values.iter().position(|v| !(v.abs() <= limit))
+    }
+}
+
+/// Checks the size of a trajectory of `duration` s at `rate` Hz for `dof` joints before it
+/// is allocated; `owner` names the function in errors. Returns the number of samples,
+/// both ends included.
+pub(crate) fn trajectory_samples(
+    owner: &str,
+    duration: f64,
+    rate: f64,
+    dof: usize,
+) -> crate::Result<usize> {
+    if !(duration > 0.0 && duration.is_finite()) {
+        return Err(crate::Error::setting(
+            owner,
+            "duration",
+            format!(
+                "{} s must be positive and finite",
+                crate::error::num(duration)
+            ),
+        ));
+    }
+    if !(MIN_SAMPLE_RATE..=MAX_SAMPLE_RATE).contains(&rate) {
+        return Err(crate::Error::setting(
+            owner,
+            "rate",
+            format!(
+                "{} Hz must lie in [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz",
+                crate::error::num(rate)
+            ),
+        ));
+    }
+    let samples = (duration * rate).round() + 1.0;
+    check_size(
+        || {
+            format!(
+                "trajectory samples ({} s at {} Hz)",
+                crate::error::num(duration),
+                crate::error::num(rate)
+            )
+        },
+        samples,
+        MAX_SAMPLES,
+        "shorten the duration or lower the rate",
+    )?;
+    check_size(
+        || {
+            format!(
+                "trajectory values ({samples} samples x {} signals)",
+                3 * dof + 1
+            )
+        },
+        samples * (3 * dof + 1) as f64,
+        MAX_TRAJECTORY_VALUES,
+        "shorten the duration or lower the rate",
+    )?;
+    Ok(samples as usize)
+}
+
+/// Checks that `count` (computed in floating point, so that an overflow is seen) is at
+/// most `limit`.
+pub(crate) fn check_size(
+    what: impl FnOnce() -> String,
+    count: f64,
+    limit: usize,
+    fix: &str,
+) -> crate::Result<()> {
+    if count.is_finite() && count <= limit as f64 {
+        Ok(())
+    } else {
+        Err(crate::Error::TooLarge {
+            what: what(),
+            found: count,
+            limit,
+            fix: fix.to_string(),
+        })
+    }
+}

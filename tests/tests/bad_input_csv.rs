@@ -1,0 +1,158 @@
+//! Class "one CSV behaviour" of issue 11: two readers once disagreed (a config that maps
+//! one column to two roles failed with "expected 0 entries, found 1001" on a plain file and
+//! succeeded on a file with a `"`). Now one reader gives quoted and unquoted files the same
+//! result or the same error; a UTF-8 byte-order mark and CRLF line ends are accepted;
+//! duplicate column names are an error naming both; another separator gets a message that
+//! says what is supported; a truncated gzip file is called truncated or corrupt.
+
+#[path = "../src/fuzz_data.rs"]
+mod fuzz_data;
+
+use std::path::{Path, PathBuf};
+
+use robid_runtime::Error;
+use robid_runtime::data::{Config, Dataset, load, read_columns};
+
+fn dir() -> PathBuf {
+    let d = std::env::temp_dir().join(format!("robid-bad-csv-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(name: &str, text: &str) -> PathBuf {
+    let p = dir().join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// Every field quoted.
+fn quoted(text: &str) -> String {
+    text.lines()
+        .map(|l| {
+            l.split(',')
+                .map(|f| format!("\"{f}\""))
+                .collect::<Vec<_>>()
+                .join(",")
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn same(a: &Dataset, b: &Dataset) {
+    assert_eq!(a.q, b.q);
+    assert_eq!(a.qd, b.qd);
+    assert_eq!(a.qdd, b.qdd);
+    assert_eq!(a.tau, b.tau);
+    assert_eq!(a.sample_time, b.sample_time);
+    assert_eq!(
+        a.origin.as_ref().map(|o| &o.lines),
+        b.origin.as_ref().map(|o| &o.lines)
+    );
+}
+
+fn config(text: &str) -> Config {
+    Config::from_toml_str(text, &dir().join("c.toml")).unwrap()
+}
+
+#[test]
+fn quoted_and_unquoted_files_give_the_same_data_or_the_same_error() {
+    let plain = fuzz_data::motion_csv(&fuzz_data::motion(200));
+    let configs = [
+        Config::default_mapping(),
+        // one column in two roles: the case where the two readers disagreed
+        config(
+            "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\nvelocity = \"qd{}\"\n\
+             acceleration = \"qd{}\"\ntorque = \"tau{}\"\n",
+        ),
+        config("sample_rate = 100.0\n[[source]]\nposition = \"q{}\"\ntorque = \"q{}\"\n"),
+    ];
+    for (k, c) in configs.iter().enumerate() {
+        let a = load(c, &[write(&format!("plain{k}.csv"), &plain)], 6).unwrap();
+        let b = load(c, &[write(&format!("quoted{k}.csv"), &quoted(&plain))], 6).unwrap();
+        same(&a, &b);
+    }
+    // the same errors, at the same line
+    let broken = plain.replacen("\n0.05,", "\n0.05,x", 1);
+    let ragged = {
+        let mut l: Vec<&str> = plain.lines().collect();
+        l[30] = "1,2,3";
+        l.join("\n")
+    };
+    for (name, text) in [("broken", broken), ("ragged", ragged)] {
+        let a = load(&configs[0], &[write(&format!("{name}.csv"), &text)], 6).unwrap_err();
+        let b = load(
+            &configs[0],
+            &[write(&format!("{name}.csv"), &quoted(&text))],
+            6,
+        )
+        .unwrap_err();
+        assert_eq!(a.to_string(), b.to_string());
+    }
+}
+
+#[test]
+fn bom_and_crlf_are_accepted() {
+    let plain = fuzz_data::motion_csv(&fuzz_data::motion(100));
+    let reference = load(&Config::default_mapping(), &[write("ref.csv", &plain)], 6).unwrap();
+    for (name, text) in [
+        ("bom.csv", format!("\u{feff}{plain}")),
+        ("crlf.csv", plain.replace('\n', "\r\n")),
+        (
+            "both.csv",
+            format!("\u{feff}{}", quoted(&plain).replace('\n', "\r\n")),
+        ),
+    ] {
+        let d = load(&Config::default_mapping(), &[write(name, &text)], 6).unwrap();
+        same(&reference, &d);
+    }
+}
+
+#[test]
+fn duplicate_column_names_are_an_error_naming_both() {
+    let plain = fuzz_data::motion_csv(&fuzz_data::motion(50));
+    let text = plain.replacen("q3,", "q2,", 1);
+    let e = load(&Config::default_mapping(), &[write("dup.csv", &text)], 6).unwrap_err();
+    assert!(
+        matches!(&e, Error::DuplicateColumn { column, first: 3, second: 4, .. } if column == "q2"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("`q2` twice (fields 3 and 4)"), "{e}");
+}
+
+#[test]
+fn other_separators_get_a_message_that_says_what_is_supported() {
+    let plain = fuzz_data::motion_csv(&fuzz_data::motion(50));
+    for (name, sep, said) in [("semi.csv", ";", "`;`"), ("tab.csv", "\t", "tabs")] {
+        let e = load(
+            &Config::default_mapping(),
+            &[write(name, &plain.replace(',', sep))],
+            6,
+        )
+        .unwrap_err();
+        let text = e.to_string();
+        assert!(
+            matches!(&e, Error::UnsupportedSeparator { separator, .. } if separator == said),
+            "{text}"
+        );
+        assert!(
+            text.contains("comma-separated") && text.contains("convert"),
+            "{text}"
+        );
+    }
+}
+
+#[test]
+fn a_truncated_gzip_is_called_truncated_or_corrupt() {
+    let real =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/staubli_tx40/data/curr_data.csv.gz");
+    let bytes = std::fs::read(real).unwrap();
+    let cut = write("cut.csv.gz", "");
+    std::fs::write(&cut, &bytes[..bytes.len() / 3]).unwrap();
+    let e = read_columns(&cut, &["Joint_1".to_string()]).unwrap_err();
+    let text = e.to_string();
+    assert!(matches!(e, Error::Corrupt { .. }), "{text}");
+    assert!(
+        text.contains("truncated or corrupt") && !text.contains("permissions"),
+        "{text}"
+    );
+}
