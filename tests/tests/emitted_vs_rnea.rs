@@ -1,0 +1,364 @@
+//! Every function a model exposes, checked on its own against the independent numeric
+//! RNEA of `tests::rnea` (which shares no code with robid-symbolic), so that no value under
+//! test can cancel out of a sum:
+//!
+//! - inverse dynamics == RNEA(q, qd, qdd);
+//! - standard regressor: column i == RNEA with standard parameter i at 1, all others 0;
+//! - base regressor times base_from_standard(p) == RNEA with p (random p: a wrong K or a
+//!   wrong Y_b column shows);
+//! - gravity == RNEA(q, 0, 0) - Fo;
+//! - mass matrix column k == RNEA(q, 0, e_k) - RNEA(q, 0, 0);
+//! - coriolis == RNEA(q, qd, 0) - RNEA(q, 0, 0) - Fv qd - Fc sign(qd), the friction terms
+//!   computed from the parameters, and == C(q, qd) qd from the Christoffel symbols of the
+//!   mass matrix differentiated numerically (central differences).
+//!
+//! Models: the compiled reference robots (rigid, as described), the interpreted programs of
+//! the same descriptions with every drive term, and random robots (both conventions, revolute
+//! and prismatic joints, arbitrary twists, tilted gravity, every drive term). The interpreter
+//! runs the very programs the emitted code is printed from (emitted == interpreted is
+//! `robots::models::consistency`).
+
+use robid_runtime::Model;
+use robid_symbolic::sample::Rng;
+use robid_symbolic::{Drive, Robot};
+use robots::interpreted::Interpreted;
+use tests::reference::by_name;
+use tests::rnea::{Chain, Link, links_from_standard};
+use tests::state::{close, random_parameters, random_state};
+
+/// Rounding of the two computations differs; a wrong term is O(1) (relative to the
+/// torques' scale of ~1..100 N m). 1e-9 leaves orders of magnitude over f64 rounding.
+const RELATIVE: f64 = 1e-9;
+
+/// The Christoffel check differentiates M numerically with step H: the truncation error is
+/// about H^2 / 6 * |d3M/dq3| ~ 1e-11 relative for these robots, and rounding
+/// eps * |M| / H ~ 1e-11; 1e-6 is well above both and far below a wrong term.
+const H: f64 = 1e-5;
+const CHRISTOFFEL_RELATIVE: f64 = 1e-6;
+
+fn assert_close(what: &str, got: &[f64], want: &[f64], relative: f64) {
+    assert_eq!(got.len(), want.len(), "{what}: lengths");
+    let scale = want.iter().chain(got).fold(1.0_f64, |m, x| m.max(x.abs()));
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!(
+            close(*g, *w, relative, scale),
+            "{what}[{i}]: model {g} vs reference {w}"
+        );
+    }
+}
+
+fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// Checks every function of `model` (of `robot`) at `states` random states.
+fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states: usize) {
+    let n = robot.dof();
+    let ns = model.standard_parameter_count();
+    let nb = model.base_parameter_count();
+    assert_eq!(ns, robot.standard_parameters().len(), "{label}");
+    let chain = Chain::from_robot(robot);
+    let mut rng = Rng::new(seed);
+    let zero = vec![0.0; n];
+    for s in 0..states {
+        let what = |f: &str| format!("{label} state {s}: {f}");
+        let standard = random_parameters(ns, &mut rng);
+        let links = links_from_standard(robot, &standard);
+        let state = random_state(robot, &mut rng);
+        let (q, qd, qdd) = (&state.q, &state.qd, &state.qdd);
+        let rnea =
+            |links: &[Link], qd: &[f64], qdd: &[f64]| chain.inverse_dynamics(links, q, qd, qdd);
+
+        let mut base = vec![0.0; nb];
+        model.base_from_standard(&standard, &mut base).unwrap();
+
+        // inverse dynamics
+        let mut tau = vec![0.0; n];
+        model.inverse_dynamics(q, qd, qdd, &base, &mut tau).unwrap();
+        assert_close(
+            &what("inverse dynamics"),
+            &tau,
+            &rnea(&links, qd, qdd),
+            RELATIVE,
+        );
+
+        // standard regressor, column by column
+        let mut y = vec![0.0; n * ns];
+        model.standard_regressor(q, qd, qdd, &mut y).unwrap();
+        let mut unit = vec![0.0; ns];
+        for i in 0..ns {
+            unit[i] = 1.0;
+            let column = rnea(&links_from_standard(robot, &unit), qd, qdd);
+            unit[i] = 0.0;
+            let got: Vec<f64> = (0..n).map(|j| y[j * ns + i]).collect();
+            let name = &robot.standard_parameters()[i].name;
+            assert_close(&what(&format!("Y column {name}")), &got, &column, RELATIVE);
+        }
+
+        // base regressor times the base parameters
+        let mut yb = vec![0.0; n * nb];
+        model.base_regressor(q, qd, qdd, &mut yb).unwrap();
+        let product: Vec<f64> = (0..n)
+            .map(|j| (0..nb).map(|k| yb[j * nb + k] * base[k]).sum())
+            .collect();
+        assert_close(&what("Y_b K p"), &product, &rnea(&links, qd, qdd), RELATIVE);
+
+        // gravity: the torque at rest less the constant offsets
+        let at_rest = rnea(&links, &zero, &zero);
+        let offsets: Vec<f64> = links.iter().map(|l| l.fo).collect();
+        let mut g = vec![0.0; n];
+        model.gravity(q, &base, &mut g).unwrap();
+        let want: Vec<f64> = (0..n).map(|j| at_rest[j] - offsets[j]).collect();
+        assert_close(&what("gravity"), &g, &want, RELATIVE);
+
+        // mass matrix, column by column
+        let mut m = vec![0.0; n * n];
+        model.mass_matrix(q, &base, &mut m).unwrap();
+        for k in 0..n {
+            let mut e = zero.clone();
+            e[k] = 1.0;
+            let column = rnea(&links, &zero, &e);
+            let want: Vec<f64> = (0..n).map(|i| column[i] - at_rest[i]).collect();
+            let got: Vec<f64> = (0..n).map(|i| m[i * n + k]).collect();
+            assert_close(&what(&format!("M column {}", k + 1)), &got, &want, RELATIVE);
+        }
+
+        // coriolis: velocity terms less gravity, offsets and the friction of the parameters
+        let mut c = vec![0.0; n];
+        model.coriolis(q, qd, &base, &mut c).unwrap();
+        let moving = rnea(&links, qd, &zero);
+        let want: Vec<f64> = (0..n)
+            .map(|j| moving[j] - at_rest[j] - links[j].fv * qd[j] - links[j].fc * sign(qd[j]))
+            .collect();
+        assert_close(&what("coriolis vs RNEA"), &c, &want, RELATIVE);
+        let christoffel = christoffel_times(model, q, qd, &base);
+        assert_close(
+            &what("coriolis vs Christoffel"),
+            &c,
+            &christoffel,
+            CHRISTOFFEL_RELATIVE,
+        );
+    }
+}
+
+/// c_i = sum_jk Gamma_ijk qd_j qd_k with Gamma_ijk = (dM_ij/dq_k + dM_ik/dq_j - dM_jk/dq_i) / 2,
+/// the derivatives of M by central differences of step H.
+fn christoffel_times(model: &dyn Model, q: &[f64], qd: &[f64], base: &[f64]) -> Vec<f64> {
+    let n = q.len();
+    // dm[k][i * n + j] = dM_ij / dq_k
+    let dm: Vec<Vec<f64>> = (0..n)
+        .map(|k| {
+            let (mut plus, mut minus) = (q.to_vec(), q.to_vec());
+            plus[k] += H;
+            minus[k] -= H;
+            let (mut mp, mut mm) = (vec![0.0; n * n], vec![0.0; n * n]);
+            model.mass_matrix(&plus, base, &mut mp).unwrap();
+            model.mass_matrix(&minus, base, &mut mm).unwrap();
+            mp.iter()
+                .zip(&mm)
+                .map(|(a, b)| (a - b) / (2.0 * H))
+                .collect()
+        })
+        .collect();
+    (0..n)
+        .map(|i| {
+            let mut c = 0.0;
+            for j in 0..n {
+                for k in 0..n {
+                    let gamma = 0.5 * (dm[k][i * n + j] + dm[j][i * n + k] - dm[i][j * n + k]);
+                    c += gamma * qd[j] * qd[k];
+                }
+            }
+            c
+        })
+        .collect()
+}
+
+/// The compiled model of a reference robot, then the interpreted one with every drive term.
+fn check(name: &str) {
+    let reference = by_name(name);
+    let rigid = reference.robot(Drive::NONE);
+    let compiled = robots::reference_model(name).expect("a compiled reference model");
+    check_model(
+        &format!("{name} (compiled)"),
+        &rigid,
+        compiled.as_ref(),
+        0xc0de,
+        6,
+    );
+    let driven = reference.robot(Drive::ALL);
+    let interpreted = Interpreted::new(&driven).unwrap();
+    check_model(
+        &format!("{name} (interpreted, all drive terms)"),
+        &driven,
+        &interpreted,
+        0xd1e,
+        4,
+    );
+}
+
+tests::per_robot!(check);
+
+/// A random description: 2 to 5 joints, either convention, revolute or prismatic joints,
+/// twists that are quarter turns or arbitrary, lengths that are zero or not, every drive
+/// term, gravity tilted.
+fn random_robot(seed: u64) -> Robot {
+    let mut rng = Rng::new(seed);
+    let n = 2 + rng.below(4);
+    let convention = if rng.below(2) == 0 {
+        "modified"
+    } else {
+        "standard"
+    };
+    let tilt = rng.uniform(-0.5, 0.5);
+    let mut text = format!(
+        "name = \"random{seed}\"\nconvention = \"{convention}\"\ndrive = [\"Ia\", \"Fv\", \"Fc\", \"Fo\"]\n\
+         gravity = [{}, {}, {}]\n",
+        9.81 * tilt.sin(),
+        rng.uniform(-1.0, 1.0),
+        -9.81 * tilt.cos()
+    );
+    let angle = |rng: &mut Rng| match rng.below(4) {
+        0 => "0".to_owned(),
+        1 => "pi/2".to_owned(),
+        2 => "-pi/2".to_owned(),
+        _ => format!("{}", rng.uniform(-3.0, 3.0)),
+    };
+    let length = |rng: &mut Rng| {
+        if rng.below(3) == 0 {
+            "0".to_owned()
+        } else {
+            format!("{}", rng.uniform(-0.6, 0.6))
+        }
+    };
+    for _ in 0..n {
+        let kind = if rng.below(4) == 0 {
+            "prismatic"
+        } else {
+            "revolute"
+        };
+        let (alpha, a, d, theta) = (
+            angle(&mut rng),
+            length(&mut rng),
+            length(&mut rng),
+            angle(&mut rng),
+        );
+        text += &format!(
+            "[[joints]]\ntype = \"{kind}\"\nalpha = \"{alpha}\"\na = {a}\nd = {d}\ntheta = \"{theta}\"\n"
+        );
+    }
+    Robot::from_toml(&text, "random.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+#[test]
+fn random_robots() {
+    for seed in 1..=8 {
+        let robot = random_robot(seed);
+        let model = Interpreted::new(&robot).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        check_model(&format!("random robot {seed}"), &robot, &model, seed, 3);
+    }
+}
+
+/// The checks can fail: a model whose Coriolis vector is its gravity vector (the planted bug
+/// that the older sum-only checks let through) is caught, and so is one parameter changed.
+#[test]
+fn a_wrong_function_is_caught() {
+    struct CoriolisIsGravity(Box<dyn Model>);
+    impl Model for CoriolisIsGravity {
+        fn name(&self) -> &str {
+            self.0.name()
+        }
+        fn dof(&self) -> usize {
+            self.0.dof()
+        }
+        fn standard_parameter_count(&self) -> usize {
+            self.0.standard_parameter_count()
+        }
+        fn standard_parameter_name(&self, i: usize) -> Option<&str> {
+            self.0.standard_parameter_name(i)
+        }
+        fn base_parameter_count(&self) -> usize {
+            self.0.base_parameter_count()
+        }
+        fn base_parameter_name(&self, i: usize) -> Option<&str> {
+            self.0.base_parameter_name(i)
+        }
+        fn base_regressor(
+            &self,
+            q: &[f64],
+            qd: &[f64],
+            qdd: &[f64],
+            out: &mut [f64],
+        ) -> Result<(), robid_runtime::LengthError> {
+            self.0.base_regressor(q, qd, qdd, out)
+        }
+        fn standard_regressor(
+            &self,
+            q: &[f64],
+            qd: &[f64],
+            qdd: &[f64],
+            out: &mut [f64],
+        ) -> Result<(), robid_runtime::LengthError> {
+            self.0.standard_regressor(q, qd, qdd, out)
+        }
+        fn inverse_dynamics(
+            &self,
+            q: &[f64],
+            qd: &[f64],
+            qdd: &[f64],
+            base: &[f64],
+            tau: &mut [f64],
+        ) -> Result<(), robid_runtime::LengthError> {
+            self.0.inverse_dynamics(q, qd, qdd, base, tau)
+        }
+        fn mass_matrix(
+            &self,
+            q: &[f64],
+            base: &[f64],
+            out: &mut [f64],
+        ) -> Result<(), robid_runtime::LengthError> {
+            self.0.mass_matrix(q, base, out)
+        }
+        fn gravity(
+            &self,
+            q: &[f64],
+            base: &[f64],
+            out: &mut [f64],
+        ) -> Result<(), robid_runtime::LengthError> {
+            self.0.gravity(q, base, out)
+        }
+        fn coriolis(
+            &self,
+            q: &[f64],
+            _qd: &[f64],
+            base: &[f64],
+            out: &mut [f64],
+        ) -> Result<(), robid_runtime::LengthError> {
+            self.0.gravity(q, base, out)
+        }
+        fn base_from_standard(
+            &self,
+            standard: &[f64],
+            base: &mut [f64],
+        ) -> Result<(), robid_runtime::LengthError> {
+            self.0.base_from_standard(standard, base)
+        }
+    }
+    let robot = by_name("ur5e").robot(Drive::NONE);
+    let planted = CoriolisIsGravity(robots::reference_model("ur5e").unwrap());
+    let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        check_model("planted", &robot, &planted, 1, 1)
+    }));
+    let message = caught.expect_err("c := g must be caught");
+    let text = message
+        .downcast_ref::<String>()
+        .cloned()
+        .unwrap_or_default();
+    assert!(text.contains("coriolis"), "{text}");
+}
