@@ -340,11 +340,16 @@ mod tests {
         let text = include_str!("../descriptions/tx40.toml");
         let robot = Robot::from_toml(text, "tx40.toml").unwrap();
         assert!(model_for(&robot, text).unwrap().compiled);
-        let edited = format!("{text}\n# a comment\ndrive = [\"Fv\"]\n");
-        let robot = Robot::from_toml(&edited, "edited.toml");
-        // a top-level key after a table belongs to the table; either way not compiled
-        if let Ok(robot) = robot {
-            assert!(!model_for(&robot, &edited).unwrap().compiled);
-        }
+        // the same robot with viscous friction on every joint (a top-level key, before
+        // the first table): another model, so not the compiled one
+        let edited = text.replacen(
+            "gravity = [0, 0, -9.81]\n",
+            "gravity = [0, 0, -9.81]\ndrive = [\"Fv\"]\n",
+            1,
+        );
+        assert_ne!(edited, text, "the edit applies");
+        let robot = Robot::from_toml(&edited, "edited.toml").unwrap();
+        assert_eq!(robot.standard_parameters().len(), 6 * 10 + 6);
+        assert!(!model_for(&robot, &edited).unwrap().compiled);
     }
 }

@@ -85,8 +85,10 @@ pub(crate) struct Solution {
     pub(crate) condition_number: f64,
 }
 
-/// The column norms of `w` (the scaling D); an all-zero column is a rank deficiency
-/// naming its parameter, a non-finite entry an error naming its row and column.
+/// The column norms of `w` (the scaling D), 1 for an all-zero column: such a column stays
+/// zero after scaling and the SVD reports it with the other unexcited directions (an
+/// early return on zero columns alone would understate the rank deficiency when other
+/// columns are dependent too). A non-finite entry is an error naming its row and column.
 pub(crate) fn column_scales(w: &DMatrix<f64>, names: &[String]) -> Result<Vec<f64>> {
     let name = |j: usize| {
         names
@@ -104,16 +106,10 @@ pub(crate) fn column_scales(w: &DMatrix<f64>, names: &[String]) -> Result<Vec<f6
             value: w[(r, c)],
         });
     }
-    let d: Vec<f64> = w.column_iter().map(|c| norm(c.iter().copied())).collect();
-    let zero: Vec<String> = (0..d.len()).filter(|&j| d[j] == 0.0).map(name).collect();
-    if !zero.is_empty() {
-        return Err(Error::RankDeficient {
-            rank: d.len() - zero.len(),
-            columns: d.len(),
-            unexcited: zero,
-        });
-    }
-    Ok(d)
+    Ok(w.column_iter()
+        .map(|c| norm(c.iter().copied()))
+        .map(|d| if d == 0.0 { 1.0 } else { d })
+        .collect())
 }
 
 /// Capped SVD of a small square matrix.
@@ -270,11 +266,12 @@ pub(crate) fn condition_number(w: &DMatrix<f64>, names: &[String]) -> Result<f64
             hint: "check the data for extreme values",
         });
     };
-    if !(f.singular_values.min() > 0.0) {
+    let null: Vec<usize> = (0..n).filter(|&k| !(f.singular_values[k] > 0.0)).collect();
+    if !null.is_empty() {
         return Err(Error::RankDeficient {
-            rank: (0..n).filter(|&k| f.singular_values[k] > 0.0).count(),
+            rank: n - null.len(),
             columns: n,
-            unexcited: Vec::new(),
+            unexcited: unexcited(vt, &null, names),
         });
     }
     condition(&r, u, &f.singular_values, vt, &d)
@@ -335,6 +332,21 @@ mod tests {
         let w = DMatrix::from_row_slice(3, 2, &[1.0, 1.0, 2.0, 2.0, 3.0, 3.0]);
         match solve(&w, &y, &names(2), 1e-10) {
             Err(Error::RankDeficient { unexcited, .. }) => assert_eq!(unexcited.len(), 2),
+            other => panic!("{other:?}"),
+        }
+            // a zero column and two dependent ones: rank 1 of 3, all three named (zero columns
+        // alone would give rank 2 and name only the zero one)
+        let w = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 2.0, 2.0, 0.0, 4.0, 3.0, 0.0, 6.0]);
+        match solve(&w, &y, &names(3), 1e-10) {
+            Err(Error::RankDeficient {
+                rank,
+                columns,
+                mut unexcited,
+            }) => {
+                unexcited.sort();
+                assert_eq!((rank, columns), (1, 3));
+                assert_eq!(unexcited, vec!["p1", "p2", "p3"]);
+            }
             other => panic!("{other:?}"),
         }
     }
