@@ -97,8 +97,8 @@ fn feasible_anneal_writes_consistent_toml_and_urdf_that_fit_the_identified_param
     let dir = folder();
     let toml_path = out(&dir, "anneal.toml");
     let chi2 = feasible("anneal", &toml_path);
-    // statistically acceptable: at most the number of base parameters (its expectation)
-    assert!(chi2 <= 61.0, "chi^2 {chi2}");
+    // measured 13.91 (the SDP's global optimum: 13.68); bound 2x
+    assert!(chi2 <= 28.0, "chi^2 {chi2}");
     check_toml(&toml_path);
     let urdf_path = out(&dir, "anneal.urdf");
     feasible("anneal", &urdf_path);
@@ -180,14 +180,18 @@ fn feasible_sdp_prior_pulls_the_free_directions_towards_cad() {
     let cad = [10.5, 3.6, 4.07, 3.62, 1.02, 0.2];
     let distance = |m: &[f64]| -> f64 { m.iter().zip(&cad).map(|(a, b)| (a - b).abs()).sum() };
     let plain = out(&dir, "sdp_plain.toml");
-    feasible("sdp", &plain);
+    let chi2_plain = feasible("sdp", &plain);
     let pulled = out(&dir, "sdp_prior.toml");
     let chi2 = feasible_with("sdp", &pulled, &["--prior", "parameters/tx40.toml"]);
     check_toml(&pulled);
     let (d0, d1) = (distance(&masses(&plain)), distance(&masses(&pulled)));
     eprintln!("sum |m - m_CAD|: without prior {d0:.3} kg, with prior {d1:.3} kg; chi^2 {chi2:.2}");
     assert!(d1 < 0.5 * d0, "without prior {d0}, with prior {d1}");
-    assert!(chi2 <= 61.0, "chi^2 {chi2}");
+    // the prior settles what the data leave free: the fit hardly changes (measured x1.006)
+    assert!(
+        chi2 <= 1.05 * chi2_plain,
+        "chi^2 {chi2} against {chi2_plain}"
+    );
 }
 
 #[test]

@@ -40,17 +40,18 @@ fn setup() -> &'static Setup {
     })
 }
 
+/// Measured: cond 71.9 (3001 samples); the bound is 1.4x that.
 #[test]
-fn panda_fourier_design_has_condition_below_150_within_every_limit_starting_and_ending_at_rest() {
-    setup().check_design(Some(150.0));
+fn panda_fourier_design_has_condition_at_most_100_within_every_limit_starting_and_ending_at_rest() {
+    setup().check_design(Some(100.0));
 }
 
 #[test]
-fn panda_fourier_design_validates_within_10_percent_of_the_noise_floor_and_beats_random_parameter_errors()
- {
+fn panda_fourier_design_beats_random_trajectories_in_condition_and_parameter_error() {
     setup().check_identification(&[3, 4]);
 }
 
+/// Measured: cond 60.6 (3001 samples); the bound is 1.2x that.
 #[test]
 fn panda_point_design_lowers_its_criterion_and_has_condition_at_most_70_within_every_limit() {
     let cond = setup().check_point_design(2);

@@ -41,19 +41,20 @@ fn setup() -> &'static Setup {
     })
 }
 
+/// Measured: cond 59.0 (3001 samples); the bound is 1.2x that.
 #[test]
 fn ur5e_fourier_design_has_condition_at_most_70_within_every_limit_starting_and_ending_at_rest() {
     setup().check_design(Some(70.0));
 }
 
 #[test]
-fn ur5e_fourier_design_validates_within_10_percent_of_the_noise_floor_and_beats_random_parameter_errors()
- {
+fn ur5e_fourier_design_beats_random_trajectories_in_condition_and_parameter_error() {
     setup().check_identification(&[3, 4]);
 }
 
+/// Measured: cond 34.9 (3001 samples); the bound is 1.4x that.
 #[test]
-fn ur5e_point_design_lowers_its_criterion_and_has_condition_at_most_70_within_every_limit() {
+fn ur5e_point_design_lowers_its_criterion_and_has_condition_at_most_50_within_every_limit() {
     let cond = setup().check_point_design(2);
-    assert!(cond <= 70.0, "condition number {cond}");
+    assert!(cond <= 50.0, "condition number {cond}");
 }

@@ -89,8 +89,9 @@ fn bounds(case: &Case) -> Bounds {
 }
 
 /// `global`: the method claims the global optimum (SDP), so it must fit at least as well as
-/// the truth and within one std everywhere; otherwise (stochastic search) the fit must be
-/// statistically acceptable: chi^2 at most the number of base parameters (its expectation).
+/// the truth and within one std everywhere; otherwise (stochastic search) it must still fit
+/// at least as well as the truth, a feasible point it could have found (measured: chi^2
+/// 3.1e-2, 2.0e-5 and 7.9e-14 for seeds 1 to 3 against the truth's 10.07).
 fn check(
     case: &mut Case,
     solution: &Solution,
@@ -99,7 +100,6 @@ fn check(
     global: bool,
 ) {
     let truth_chi2 = case.problem.normalized_residual(&case.truth).norm_squared();
-    let nb = case.beta.len() as f64;
     if global {
         // The truth is feasible and within one std of beta, so the optimum is at least as good.
         assert!(
@@ -115,8 +115,8 @@ fn check(
         );
     } else {
         assert!(
-            solution.chi2 <= nb,
-            "{label}: chi2 {} above {nb}",
+            solution.chi2 <= truth_chi2,
+            "{label}: chi2 {} above the truth's {truth_chi2}",
             solution.chi2
         );
     }

@@ -55,6 +55,7 @@ fn lwr4_run1_predicts_run2_and_run3() {
         );
         errors.push(f.relative_error);
     }
+    // measured: run 2 2.03 %, run 3 13.14 % (a different, faster motion); bounds 1.2x
     assert!(errors[0] <= 0.025, "run 2: {}", errors[0]);
-    assert!(errors[1] < 0.20, "run 3: {}", errors[1]);
+    assert!(errors[1] <= 0.16, "run 3: {}", errors[1]);
 }

@@ -334,7 +334,7 @@ mod tests {
             Err(Error::RankDeficient { unexcited, .. }) => assert_eq!(unexcited.len(), 2),
             other => panic!("{other:?}"),
         }
-            // a zero column and two dependent ones: rank 1 of 3, all three named (zero columns
+        // a zero column and two dependent ones: rank 1 of 3, all three named (zero columns
         // alone would give rank 2 and name only the zero one)
         let w = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 2.0, 2.0, 0.0, 4.0, 3.0, 0.0, 6.0]);
         match solve(&w, &y, &names(3), 1e-10) {

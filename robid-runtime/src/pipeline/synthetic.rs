@@ -213,8 +213,13 @@ pub(crate) fn trajectory(t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64])
 }
 
 /// CSV text `t,q1..q6,tau1..tau6` of `n` samples at `rate` Hz with torques from the true
-/// parameters plus deterministic pseudo-noise of amplitude `noise`.
+/// parameters plus deterministic pseudo-noise of amplitude `noise` on every joint.
 pub(crate) fn csv(n: usize, rate: f64, noise: f64) -> String {
+    csv_with_noise(n, rate, [noise; DOF])
+}
+
+/// [`csv`] with a pseudo-noise amplitude per joint.
+pub(crate) fn csv_with_noise(n: usize, rate: f64, noise: [f64; DOF]) -> String {
     let model = Synthetic::default();
     let beta = true_parameters();
     let mut out = String::from("t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n");
@@ -230,12 +235,12 @@ pub(crate) fn csv(n: usize, rate: f64, noise: f64) -> String {
         for v in q {
             out.push_str(&format!(",{v}"));
         }
-        for v in tau {
+        for (v, amplitude) in tau.into_iter().zip(noise) {
             seed = seed
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
             let r = ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
-            out.push_str(&format!(",{}", v + noise * r));
+            out.push_str(&format!(",{}", v + amplitude * r));
         }
         out.push('\n');
     }

@@ -12,21 +12,28 @@ use crate::pipeline::{identify, validate};
 
 #[path = "synthetic.rs"]
 mod synthetic;
-use synthetic::{CONFIG, DOF, Synthetic, csv, trajectory, true_parameters};
+use synthetic::{CONFIG, DOF, Synthetic, csv, csv_with_noise, trajectory, true_parameters};
 
 fn config(extra: &str) -> Config {
     Config::from_toml_str(&format!("{CONFIG}{extra}"), Path::new("synthetic.toml")).unwrap()
 }
 
 fn dataset(n: usize, rate: f64, noise: f64) -> Dataset {
+    dataset_with_noise(n, rate, [noise; DOF])
+}
+
+fn dataset_with_noise(n: usize, rate: f64, noise: [f64; DOF]) -> Dataset {
     let dir = std::env::temp_dir().join(format!(
         "robid-pipe-{}-{n}-{}",
         std::process::id(),
-        noise.to_bits()
+        noise
+            .iter()
+            .map(|v| v.to_bits())
+            .fold(0u64, |h, b| h.rotate_left(7) ^ b)
     ));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("run.csv");
-    std::fs::write(&file, csv(n, rate, noise)).unwrap();
+    std::fs::write(&file, csv_with_noise(n, rate, noise)).unwrap();
     let data = load(&config(""), &[file], DOF).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
     data
@@ -50,7 +57,8 @@ fn csv_to_parameters_recovers_the_truth() {
 
 #[test]
 fn wls_is_no_worse_than_ols_with_unequal_noise() {
-    let data = dataset(20_000, 1000.0, 0.5);
+    // joints 4 to 6 twenty times noisier than joints 1 to 3
+    let data = dataset_with_noise(20_000, 1000.0, [0.1, 0.1, 0.1, 2.0, 2.0, 2.0]);
     let ols = identify(&Synthetic::default(), &data, &config("")).unwrap();
     let mut cfg = config("");
     cfg.estimation.method = crate::data::Method::Wls;
@@ -69,7 +77,22 @@ fn wls_is_no_worse_than_ols_with_unequal_noise() {
         "{}",
         within(&wls.estimate)
     );
-    assert!(wls.fit.relative_error <= ols.fit.relative_error * 1.05);
+    // in the distance to the truth (not the torque residual, which OLS minimises by
+    // construction), WLS does better: it trusts the quiet joints more (measured: relative
+    // parameter error 1.75e-3 against 1.99e-3)
+    let error = |e: &crate::estimate::Estimate| {
+        let d: f64 = e
+            .values
+            .iter()
+            .zip(&truth)
+            .map(|(v, t)| (v - t).powi(2))
+            .sum();
+        let t: f64 = truth.iter().map(|t| t * t).sum();
+        (d / t).sqrt()
+    };
+    let (e_wls, e_ols) = (error(&wls.estimate), error(&ols.estimate));
+    eprintln!("relative parameter error: WLS {e_wls:.3e}, OLS {e_ols:.3e}");
+    assert!(e_wls < e_ols, "WLS {e_wls} vs OLS {e_ols}");
 }
 
 #[test]

@@ -121,8 +121,11 @@ impl Setup {
     }
 
     /// Identifies (WLS, two noise seeds) on the design and on random trajectories of the same
-    /// family (`random_seeds`): the design validates within 10 % of the noise floor and has a
-    /// lower parameter error, empirical and expected, than every random trajectory.
+    /// family (`random_seeds`): the design has a lower condition number and a lower parameter
+    /// error, empirical and expected, than every random trajectory. The validation error is
+    /// printed, not asserted: it is the noise floor to within 0.5 % for the design and for
+    /// random trajectories alike (UR5e: 0.03195 and 0.03191 against a floor of 0.03185), so it
+    /// cannot tell a good design from a poor one.
     pub(crate) fn check_identification(&self, random_seeds: &[u64]) {
         let noise = self.noise();
         let run = |tr: &Trajectory| {
@@ -142,12 +145,9 @@ impl Setup {
             "optimised: parameter error {:.5} (expected {opt_expected:.5}), model error {:.5}, validation {:.5}, floor {:.5}",
             opt[0], opt[1], opt[2], opt[3]
         );
-        assert!(
-            opt[2] <= 1.1 * opt[3],
-            "validation {} vs floor {}",
-            opt[2],
-            opt[3]
-        );
+        let opt_cond = assess(&self.model, &self.optimal, &self.limits, None, 1)
+            .unwrap()
+            .condition_number;
         for &seed in random_seeds {
             let random = FourierDesign {
                 seed,
@@ -163,6 +163,11 @@ impl Setup {
             println!(
                 "random {seed} (cond {:.1}): parameter error {:.5} (expected {rnd_expected:.5}), model error {:.5}, validation {:.5}",
                 a.condition_number, rnd[0], rnd[1], rnd[2]
+            );
+            assert!(
+                opt_cond < a.condition_number,
+                "condition number {opt_cond} vs random {}",
+                a.condition_number
             );
             assert!(opt[0] < rnd[0], "{} vs random {}", opt[0], rnd[0]);
             assert!(
