@@ -12,7 +12,7 @@ use crate::pipeline::{identify, validate};
 
 #[path = "synthetic.rs"]
 mod synthetic;
-use synthetic::{CONFIG, DOF, Synthetic, csv, csv_with_noise, trajectory, true_parameters};
+use synthetic::{CONFIG, DOF, Synthetic, csv_with_noise, trajectory, true_parameters};
 
 fn config(extra: &str) -> Config {
     Config::from_toml_str(&format!("{CONFIG}{extra}"), Path::new("synthetic.toml")).unwrap()
