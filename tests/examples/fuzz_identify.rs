@@ -2,7 +2,7 @@
 //! (load, identify, report, validation) and `N` cases each of the config parser and the CSV
 //! reader, from mutated bundled configs, CSV files made from a good UR5e record and the real
 //! logs' headers (`tests/src/fuzz_data.rs`, the code of the in-suite test
-//! `tests/tests/fuzz_identify.rs`), on two threads with seeds `SEED` and `SEED + 1`.
+//! `tests/tests/suite/fuzz_identify.rs`), on two threads with seeds `SEED` and `SEED + 1`.
 //!
 //! ```sh
 //! cargo run --release -p tests --example fuzz_identify -- 100000 [SEED]
@@ -14,8 +14,7 @@
 //! promise (a panic, a success holding NaN or an infinity); a case that makes no progress
 //! for 120 s is reported as a hang and ends the run. Exit status 1 when anything broke.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use std::sync::Arc;
 use std::sync::atomic::Ordering;

@@ -4,11 +4,9 @@
 //! end to end) with the checks every outcome must pass: no panic, no hang, and an `Ok`
 //! never holds NaN or an infinity.
 //!
-//! Used by `tests/tests/fuzz_identify.rs` (a short run in the test suite) and by the long
-//! run `cargo run --release -p tests --example fuzz_identify -- N [SEED]`; both include this
-//! file with `#[path]`, so they run the same code. The bad-input tests use the record.
-
-#![allow(dead_code, unreachable_pub)]
+//! Used by `tests/tests/suite/fuzz_identify.rs` (a short run in the test suite) and by the
+//! long run `cargo run --release -p tests --example fuzz_identify -- N [SEED]`, so they run
+//! the same code. The bad-input tests use the record.
 
 use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -35,7 +33,7 @@ pub fn repo() -> PathBuf {
 /// The UR5e reference base parameters (`robots/parameters/ur5e.toml`, rigid body).
 pub fn ur5e_base() -> Vec<f64> {
     let model = Ur5e;
-    let table = crate_reference::parameter_table();
+    let table = crate::reference::by_name("ur5e").parameter_table();
     let standard: Vec<f64> = (0..model.standard_parameter_count())
         .map(|i| {
             let name = model.standard_parameter_name(i);
@@ -49,29 +47,6 @@ pub fn ur5e_base() -> Vec<f64> {
     Model::base_from_standard(&model, &standard, &mut base)
         .expect("the standard vector has the model's length");
     base
-}
-
-/// The reference parameter file, read without the `tests` library (this file is included
-/// by path into test and example crates).
-mod crate_reference {
-    pub(super) fn parameter_table() -> Vec<(String, f64)> {
-        let text = include_str!("../../robots/parameters/ur5e.toml");
-        let mut out = Vec::new();
-        let mut standard = false;
-        for line in text.lines() {
-            let line = line.split('#').next().unwrap_or("").trim();
-            if line.starts_with('[') {
-                standard = line == "[standard]";
-                continue;
-            }
-            if let (true, Some((k, v))) = (standard, line.split_once('='))
-                && let Ok(v) = v.trim().parse::<f64>()
-            {
-                out.push((k.trim().to_string(), v));
-            }
-        }
-        out
-    }
 }
 
 /// A smooth UR5e motion of `rows` samples at [`RATE`] and its torques (inverse dynamics of
@@ -752,6 +727,7 @@ pub fn run(plan: Plan, dir: &Path, progress: &Arc<Progress>) -> Tally {
 
 /// Everything the cases of a plan are made from; case `k` is a pure function of the plan
 /// and `k`, so a finding can be replayed alone ([`Inputs::case`]).
+#[derive(Debug)]
 pub struct Inputs {
     seeds: Seeds,
     record: Motion,

@@ -2,8 +2,11 @@
 //!
 //! - [`reference`](mod@reference): the reference robots (descriptions and parameter sets, compiled in);
 //! - [`rnea`]: an independent plain-`f64` recursive Newton-Euler, the numeric reference;
-//! - [`state`]: random states, smooth trajectories and symbol bindings for evaluation.
+//! - [`state`]: random states, smooth trajectories and symbol bindings for evaluation;
+//! - [`fuzz_data`]: the known-good UR5e record, the seeds and the cases of the
+//!   identification fuzzer (the suite's bad-input tests and `examples/fuzz_identify.rs`).
 
+pub mod fuzz_data;
 pub mod reference;
 pub mod rnea;
 pub mod state;

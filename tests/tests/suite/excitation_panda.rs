@@ -14,7 +14,7 @@
 //! Drive values are plausible for the Panda's joints (Gaz et al. 2019 report Coulomb friction
 //! of a few tenths of a newton metre); torque noise follows its joint torque sensors.
 
-mod simulation_model;
+use crate::simulation_model;
 
 use std::sync::OnceLock;
 

@@ -3,7 +3,7 @@
 //! (a write error) with one line naming standard output and status 1; never a panic
 //! (they used to end with "failed printing to stdout", status 101).
 
-mod common;
+use crate::common;
 
 use std::process::Stdio;
 

@@ -5,8 +5,7 @@
 //! which rows of which file were used for estimation and for validation; a validation that
 //! uses rows of the estimation is a warning.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use std::path::PathBuf;
 

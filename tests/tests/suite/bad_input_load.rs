@@ -4,8 +4,7 @@
 //! (config); sizes (samples = duration x rate, integration steps) are checked against their
 //! limits before anything is allocated, with an error that names them.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use std::path::PathBuf;
 use std::time::Instant;

@@ -4,8 +4,7 @@
 //! standard deviations above `REL_STD_WARNING` percent now says so, naming them, in the
 //! estimate (for the caller to print on stderr), the text table and the JSON report.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use robid_runtime::data::{Config, load};
 use robid_runtime::estimate::{CONDITION_WARNING, QualityWarning, REL_STD_WARNING};

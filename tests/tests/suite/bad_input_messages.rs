@@ -7,8 +7,7 @@
 //! - a bad trajectory row in `simulate` was blamed on the parameters: it is named by its row;
 //! - config keys are named by file:line:column, library settings by their field.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use std::path::PathBuf;
 

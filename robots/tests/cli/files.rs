@@ -3,7 +3,7 @@
 //! every subcommand that writes; and a failed or killed write leaves an existing file
 //! exactly as it was (every output goes through a temporary file and a rename).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

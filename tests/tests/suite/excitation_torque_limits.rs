@@ -5,7 +5,7 @@
 //! the reference parameters keeps every torque within every limit on the sampled trajectory
 //! (39.4 and 37.9 N m).
 
-mod simulation_model;
+use crate::simulation_model;
 
 use robid_runtime::Model;
 use robid_runtime::excite::{FourierDesign, JointLimits, PointDesign, assess};

@@ -4,7 +4,7 @@
 //! including the coupled-wrist extra columns `Iam6 fvm6 fsm6`) with loose bounds
 //! (`tests/fixtures/tx40_bounds.toml`).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -8,8 +8,7 @@
 //! - `--sigma 0` reported "weights: [inf, ...]": a zero noise is refused by name;
 //! - torques that are all zero give an error that says so, not an infinite relative error.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use robid_runtime::Error;
 use robid_runtime::data::{Config, load};

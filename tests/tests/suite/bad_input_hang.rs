@@ -4,8 +4,7 @@
 //! themselves finish on such an entry (column scaling, a capped SVD); every iterative loop
 //! stops at a documented cap.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use std::sync::mpsc;
 use std::time::Duration;

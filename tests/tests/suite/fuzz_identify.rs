@@ -5,8 +5,7 @@
 //! fails the test when a case takes more than 30 s) or succeed with a non-finite number.
 //! The long run is `cargo run --release -p tests --example fuzz_identify -- N [SEED]`.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};

@@ -4,7 +4,7 @@
 //! identified results out of range; and the warnings of a poorly determined
 //! identification. Every case ends with a message and an error status, never a panic.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Output;

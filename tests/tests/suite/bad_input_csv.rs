@@ -5,8 +5,7 @@
 //! duplicate column names are an error naming both; another separator gets a message that
 //! says what is supported; a truncated gzip file is called truncated or corrupt.
 
-#[path = "../src/fuzz_data.rs"]
-mod fuzz_data;
+use tests::fuzz_data;
 
 use std::path::{Path, PathBuf};
 

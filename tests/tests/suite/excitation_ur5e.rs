@@ -14,7 +14,7 @@
 //! weighted least squares sees; its condition number is computed unweighted. Runtime: reduced
 //! budgets keep the file fast in the dev profile; `robid excite` uses the full defaults.
 
-mod simulation_model;
+use crate::simulation_model;
 
 use std::sync::OnceLock;
 

@@ -1,7 +1,7 @@
 //! The `robid` binary end to end: forms scripts rely on (DESIGN.md 10) and
 //! bad input that must give a located error, never a panic.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -1,0 +1,11 @@
+//! The `robid` command line end to end, one module per subject, in one test binary.
+//!
+//! Run one subject with `cargo test -p robots --test cli MODULE::`, e.g.
+//! `cargo test -p robots --test cli stdout::`.
+
+mod bad_input;
+mod common;
+mod feasible;
+mod files;
+mod stdout;
+mod subcommands;

@@ -1,0 +1,34 @@
+//! The workspace-level integration tests, one module per subject, in one test binary (one
+//! link instead of one per file: the suite builds and starts much faster).
+//!
+//! Run one subject with `cargo test -p tests --test suite MODULE::`, e.g.
+//! `cargo test -p tests --test suite emitted_vs_rnea::`.
+
+mod bad_input_csv;
+mod bad_input_hang;
+mod bad_input_load;
+mod bad_input_messages;
+mod bad_input_results;
+mod bad_input_validation;
+mod bad_input_warnings;
+mod emitted_vs_rnea;
+mod excitation_panda;
+mod excitation_torque_limits;
+mod excitation_ur5e;
+mod feasible_bad_input;
+mod feasible_real_data;
+mod feasible_simulated;
+mod fuzz_identify;
+mod identify_bad_input;
+mod identify_energy;
+mod identify_lwr4;
+mod identify_tx40;
+mod identify_ur5e_simulated;
+mod mass_matrix_spd;
+mod model_equation;
+mod ne_equals_le;
+mod power_balance;
+mod reference_files;
+mod rnea_agrees;
+mod simulation_model;
+mod standard_vs_modified;
