@@ -1,4 +1,4 @@
-//! The drive chain between what is measured and the joint-side model (DESIGN 6.2):
+//! The drive chain between what is measured and the joint-side model (docs/identification.md#drive-chain):
 //! gear ratios and couplings, torque constants, rotor-dynamics compensation, and extra
 //! regressor columns for drive terms the symbolic model does not have.
 

@@ -1,4 +1,4 @@
-//! Exciting trajectories (DESIGN 7): finite Fourier series optimised for a low condition
+//! Exciting trajectories (docs/experiments.md#exciting-trajectories): finite Fourier series optimised for a low condition
 //! number (or D-optimality) of the stacked base regressor within the joint limits
 //! (Swevers et al. 1997), and the point-based design of Milella (optimal position, velocity
 //! and acceleration points, 7th-order polynomial interpolation with continuous jerk, and the

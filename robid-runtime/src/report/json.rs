@@ -1,5 +1,5 @@
 //! The machine-readable identification report (the `robid identify --json` shape of
-//! DESIGN 10).
+//! docs/command-line.md#robid-identify).
 
 use std::path::Path;
 

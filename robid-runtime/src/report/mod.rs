@@ -1,4 +1,4 @@
-//! Reports (DESIGN 6.6): JSON for machines, a text table for people, SVG plots of
+//! Reports (docs/identification.md#reports): JSON for machines, a text table for people, SVG plots of
 //! measured vs predicted torque per joint.
 
 mod json;

@@ -1,4 +1,4 @@
-//! Validation on data not used for estimation (DESIGN 6.5): relative error, RMS per
+//! Validation on data not used for estimation (docs/identification.md#validation-metrics): relative error, RMS per
 //! joint, NMSE, improvement against a reference model; and per-joint predictions.
 
 mod metrics;

@@ -1,7 +1,8 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
 //! [--method sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
-//! consistent link parameters that reproduce identified base parameters (DESIGN.md 7, 10). Writes OUT as TOML, or as URDF
-//! `<inertial>` elements when OUT ends in `.urdf` or `.xml`. Identified parameters with an
+//! consistent link parameters that reproduce identified base parameters (docs/experiments.md#feasible-parameters,
+//! docs/command-line.md#robid-feasible). Writes OUT as TOML, or as URDF `<inertial>` elements
+//! when OUT ends in `.urdf` or `.xml`. Identified parameters with an
 //! empty expression that are not base parameters of the description (the extra columns of
 //! an identification config) are kept as free terms.
 //!

@@ -1,4 +1,4 @@
-//! The subcommands of `robid` (DESIGN.md 10). Each file holds one subcommand;
+//! The subcommands of `robid` (docs/command-line.md). Each file holds one subcommand;
 //! they read descriptions and data, call the library crates and print.
 
 mod bench;
