@@ -1,9 +1,11 @@
-//! Where each link's ten inertial parameters and each drive term sit in the
-//! standard parameter vector, found from the parameter names (docs/conventions.md#standard-parameters).
+//! Where each link's ten inertial parameters and each drive term sit in the standard
+//! parameter vector, found from the parameter names
+//! (docs/conventions.md#standard-parameters).
 
 use crate::{Error, Result};
 
-/// Names of the ten inertial slots of a link, in the order of docs/conventions.md#standard-parameters.
+/// Names of the ten inertial slots of a link, in the order of
+/// docs/conventions.md#standard-parameters.
 pub const INERTIAL: [&str; 10] = ["XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"];
 
 /// A drive term of one joint.
