@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # System packages the build needs: OpenBLAS and gfortran's runtime for clarabel's
-# semidefinite cones (robid-runtime's `feasible` module, DESIGN.md 11).
+# semidefinite cones (robid-runtime's `feasible` module with the `sdp` feature,
+# docs/experiments.md#semidefinite-program).
 # Idempotent: installs only what is missing; does nothing when all is present.
 set -euo pipefail
 

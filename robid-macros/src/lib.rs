@@ -7,20 +7,82 @@
 //!
 //! # From a description file
 //!
-//! ```ignore
-//! robid_macros::robot_model!(file = "descriptions/ur5e.toml");
-//! // with all drive terms (Ia, Fv, Fc, Fo) on every joint, under another name:
-//! robid_macros::robot_model!(file = "descriptions/panda.toml", name = "panda_drive", drive = [Ia, Fv, Fc, Fo]);
-//! ```
-//!
 //! The path is relative to the directory of the calling crate's `Cargo.toml`
 //! (or, if not found there, to the directory of the file invoking the macro);
 //! the file is tracked, so Cargo rebuilds when it changes. The format is the
-//! one of the command-line tool (see `robid_symbolic::robot`).
+//! one of the command-line tool (see `robid_symbolic::robot`). The examples
+//! below use `descriptions/planar2.toml` of this crate: a two-link planar arm
+//! (modified DH, both axes along z, links of 0.5 m and 0.3 m) with gravity
+//! along -y, so that at q = 0 both links point along x, across gravity.
+//!
+//! ```
+//! robid_macros::robot_model!(file = "descriptions/planar2.toml");
+//! use robid_runtime::Model;
+//!
+//! // Point masses at the link ends: 2 kg at x = 0.5 m of frame 1, 1 kg at x = 0.3 m of
+//! // frame 2. Standard parameters per link, about the frame origin:
+//! // XX XY XZ YY YZ ZZ MX MY MZ M (a point mass m at (x, 0, 0) has YY = ZZ = m x^2, MX = m x).
+//! let point = |m: f64, x: f64| [0.0, 0.0, 0.0, m * x * x, 0.0, m * x * x, m * x, 0.0, 0.0, m];
+//! let standard: Vec<f64> = point(2.0, 0.5).into_iter().chain(point(1.0, 0.3)).collect();
+//!
+//! // Through the runtime's `Model` trait (slices, lengths checked), as the
+//! // identification pipeline uses it.
+//! let arm: &dyn Model = &Planar2;
+//! assert_eq!((arm.dof(), arm.standard_parameter_count()), (2, 20));
+//! assert_eq!(arm.base_parameter_name(0), Some("ZZR1"));
+//! let mut base = vec![0.0; arm.base_parameter_count()];
+//! arm.base_from_standard(&standard, &mut base)?;
+//!
+//! // Holding the arm straight out at rest takes tau1 = g (m1 l1 + m2 (l1 + l2)) and
+//! // tau2 = g m2 l2.
+//! let (g, zero) = (9.81, [0.0; 2]);
+//! let mut tau = [0.0; 2];
+//! arm.inverse_dynamics(&zero, &zero, &zero, &base, &mut tau)?;
+//! assert!((tau[0] - g * (2.0 * 0.5 + 1.0 * 0.8)).abs() < 1e-12);
+//! assert!((tau[1] - g * 1.0 * 0.3).abs() < 1e-12);
+//!
+//! // The base regressor gives the same torques in any state: tau = Y_b(q, qd, qdd) base.
+//! let (q, qd, qdd) = ([0.3, -1.2], [0.5, 2.0], [-1.0, 4.0]);
+//! let mut y = vec![0.0; 2 * base.len()];
+//! arm.base_regressor(&q, &qd, &qdd, &mut y)?;
+//! arm.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau)?;
+//! for (row, t) in y.chunks(base.len()).zip(tau) {
+//!     let dot: f64 = row.iter().zip(&base).map(|(a, b)| a * b).sum();
+//!     assert!((dot - t).abs() < 1e-12);
+//! }
+//!
+//! // Stretched out, the mass matrix is that of two point masses on a rigid rod:
+//! // M11 = m1 l1^2 + m2 (l1 + l2)^2, M12 = m2 (l1 + l2) l2, M22 = m2 l2^2.
+//! let mut m = [0.0; 4];
+//! arm.mass_matrix(&zero, &base, &mut m)?;
+//! let expected = [2.0 * 0.25 + 0.64, 0.8 * 0.3, 0.8 * 0.3, 0.09];
+//! assert!(m.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-12));
+//!
+//! // A slice of the wrong length is an error naming the argument, never a panic.
+//! let err = arm.inverse_dynamics(&[0.0; 3], &zero, &zero, &base, &mut tau).unwrap_err();
+//! assert_eq!(err.argument, "q");
+//!
+//! // The type's own functions take and return fixed-size arrays, generic over the scalar.
+//! let base: [f64; Planar2::BASE_PARAMETERS] = Planar2.base_parameters(&standard.try_into().unwrap());
+//! let tau32: [f32; 2] = Planar2.gravity(&[0.0f32; 2], &base.map(|b| b as f32));
+//! assert!((tau32[1] - 2.943).abs() < 1e-5);
+//! # Ok::<(), robid_runtime::model::LengthError>(())
+//! ```
+//!
+//! Options: `name` for another type name, and `drive` to add drive terms (`Ia`,
+//! `Fv`, `Fc`, `Fo`) to every joint:
+//!
+//! ```
+//! robid_macros::robot_model!(file = "descriptions/planar2.toml", name = "planar2_drive", drive = [Ia, Fv, Fc, Fo]);
+//!
+//! // Ten inertial parameters and four drive terms per joint.
+//! assert_eq!(Planar2Drive::STANDARD_PARAMETERS, 2 * (10 + 4));
+//! assert_eq!(Planar2Drive::STANDARD_PARAMETER_NAMES[10..14], ["Ia1", "Fv1", "Fc1", "Fo1"]);
+//! ```
 //!
 //! # Inline
 //!
-//! ```ignore
+//! ```
 //! robid_macros::robot_model! {
 //!     name = "planar",
 //!     convention = "modified",        // or "standard"
@@ -34,6 +96,29 @@
 //!         prismatic("pi/2", 0,   0, 0),
 //!     ],
 //! }
+//! use robid_runtime::Model;
+//!
+//! // A geometric symbol stays symbolic: it is a field of the type, which `Default`
+//! // sets to the description's value.
+//! let arm = Planar::default();
+//! assert_eq!(arm.L1, 0.5);
+//! assert_eq!(arm.dof(), 3);
+//!
+//! // A 1 kg point mass at the origin of frame 2, which lies L1 from axis 1 along x:
+//! // holding it at q = 0 against gravity along -y takes g L1 at joint 1.
+//! let mut standard = vec![0.0; arm.standard_parameter_count()];
+//! let m2 = (0..standard.len()).position(|i| arm.standard_parameter_name(i) == Some("M2"));
+//! standard[m2.unwrap()] = 1.0;
+//! for l1 in [0.5, 0.8] {
+//!     // (the type's own `gravity` takes arrays; the trait's, slices)
+//!     let arm: &dyn Model = &Planar { L1: l1 };
+//!     let mut base = vec![0.0; arm.base_parameter_count()];
+//!     arm.base_from_standard(&standard, &mut base)?;
+//!     let mut g = [0.0; 3];
+//!     arm.gravity(&[0.0; 3], &base, &mut g)?;
+//!     assert!((g[0] - 9.81 * l1).abs() < 1e-12, "{g:?}");
+//! }
+//! # Ok::<(), robid_runtime::model::LengthError>(())
 //! ```
 //!
 //! Each joint is `revolute(alpha, a, d, theta)` or `prismatic(alpha, a, d,

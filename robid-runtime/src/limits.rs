@@ -12,14 +12,14 @@
 //!
 //! | quantity | limit |
 //! |---|---|
-//! | position (rad, m, deg) | `|q| <=` [`MAX_POSITION`] = 1e6 |
-//! | velocity | `|qd| <=` [`MAX_VELOCITY`] = 1e6 |
-//! | acceleration | `|qdd| <=` [`MAX_ACCELERATION`] = 1e8 |
-//! | torque, force or current | `|tau| <=` [`MAX_TORQUE`] = 1e7 |
-//! | time (s, after `time_scale`) | `|t| <=` [`MAX_TIME`] = 1e10 s |
+//! | position (rad, m, deg) | magnitude at most [`MAX_POSITION`] = 1e6 |
+//! | velocity | magnitude at most [`MAX_VELOCITY`] = 1e6 |
+//! | acceleration | magnitude at most [`MAX_ACCELERATION`] = 1e8 |
+//! | torque, force or current | magnitude at most [`MAX_TORQUE`] = 1e7 |
+//! | time (s, after `time_scale`) | magnitude at most [`MAX_TIME`] = 1e10 s |
 //! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
-//! | parameter values and standard deviations given as input | `|x| <=` [`MAX_PARAMETER`] = 1e6 |
-//! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | `|x| <=` [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants) also `|x| >=` [`MIN_FACTOR`] = 1e-12 |
+//! | parameter values and standard deviations given as input | magnitude at most [`MAX_PARAMETER`] = 1e6 |
+//! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | magnitude at most [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants) also magnitude at least [`MIN_FACTOR`] = 1e-12 |
 //!
 //! Sizes are checked before anything of that size is allocated:
 //!

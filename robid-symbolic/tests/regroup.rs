@@ -1,4 +1,4 @@
-//! Base parameters: known counts from the literature (DESIGN.md 4.4), the
+//! Base parameters: known counts from the literature (docs/regrouping.md#known-answers), the
 //! identity Y_b K p = Y p, minimality (count = numeric rank), symbolic lengths
 //! and standard-DH robots.
 

@@ -1,6 +1,6 @@
-//! Speed of the compiled UR5e model (DESIGN.md 8), with a baseline measured in
-//! the same run: 6 x (sin + cos) through libm, the floor of any model that
-//! evaluates the joint angles' trigonometry.
+//! Speed of the compiled UR5e model (docs/performance.md#what-robid-measures), with a
+//! baseline measured in the same run: 6 x (sin + cos) through libm, the floor of any model
+//! that evaluates the joint angles' trigonometry.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use robots::Ur5e;

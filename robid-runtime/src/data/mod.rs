@@ -1,4 +1,5 @@
-//! Loading measured data (DESIGN 6.1): CSV files with a header (optionally gzip),
+//! Loading measured data (docs/identification.md#data-and-configuration and
+//! docs/identification.md#time-stamps-and-resampling): CSV files with a header (optionally gzip),
 //! a TOML config mapping columns and units, time stamps checked and resampled,
 //! several files joined, the drive chain applied.
 

@@ -1,6 +1,7 @@
-//! The drive chain between what is measured and the joint-side model (DESIGN 6.2):
-//! gear ratios and couplings, torque constants, rotor-dynamics compensation, and extra
-//! regressor columns for drive terms the symbolic model does not have.
+//! The drive chain between what is measured and the joint-side model
+//! (docs/identification.md#drive-chain): gear ratios and couplings, torque constants,
+//! rotor-dynamics compensation, and extra regressor columns for drive terms the symbolic
+//! model does not have.
 
 mod chain;
 mod extra;

@@ -1,4 +1,5 @@
-//! Rotor-dynamics compensation with a motor-side encoder (Madsen et al. 2020, eq. 15):
+//! Rotor-dynamics compensation with a motor-side encoder (Madsen et al. 2020, eq. 14;
+//! docs/identification.md#rotor-dynamics-compensation):
 //! tau_J = K_r i - B thetaddot - fhat(thetadot).
 //!
 //! theta are the motor positions reflected through the gear ratios to the link side,

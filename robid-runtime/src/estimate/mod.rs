@@ -1,6 +1,7 @@
-//! Estimators (DESIGN 6.4): OLS, WLS (Gautier's per-joint weights), recursive least
-//! squares with forgetting factor, and the energy model. Least squares always goes
-//! through QR and an SVD of R with a relative rank threshold, never the normal equations.
+//! Estimators (docs/identification.md#estimators): OLS, WLS (Gautier's per-joint weights),
+//! recursive least squares with forgetting factor, and the energy model. Least squares
+//! always goes through QR and an SVD of R with a relative rank threshold, never the normal
+//! equations.
 
 mod energy;
 mod least_squares;

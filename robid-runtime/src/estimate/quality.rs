@@ -64,7 +64,7 @@ pub const OUTLIER_ROWS: usize = 3;
 pub const OUTLIER_SHARE: f64 = 0.9;
 
 impl QualityWarning {
-    /// A short machine-readable name (`ill_conditioned`, `uncertain`,
+    /// A short machine-readable name (`ill_conditioned`, `uncertain`, `outlier`,
     /// `validation_repeats_estimation`).
     pub fn kind(&self) -> &'static str {
         match self {

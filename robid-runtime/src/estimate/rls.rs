@@ -4,9 +4,11 @@
 //! beta += L (y - phi' beta), P = (I - L phi') P / lambda.
 //!
 //! ## Reference
-//! A. Y. Zomaya, "Modelling and simulation of robot manipulators: a parallel processing
-//! approach", 1992 (Table 1: RLS with forgetting factor); L. Ljung, "System
-//! Identification", 1999.
+//! A. Y. Zomaya, "Extraction and computation of identifiable parameters in robot dynamic
+//! models: theory and application", IEE Proceedings - Control Theory and Applications
+//! 141(1), 1994 (Table 1: RLS with a forgetting factor); L. Ljung, "System
+//! Identification: Theory for the User", 2nd ed., 1999; see
+//! docs/identification.md#recursive-least-squares.
 
 use nalgebra::{DMatrix, DVector};
 

@@ -1,8 +1,8 @@
-//! Exciting trajectories (DESIGN 7): finite Fourier series optimised for a low condition
-//! number (or D-optimality) of the stacked base regressor within the joint limits
-//! (Swevers et al. 1997), and the point-based design of Milella (optimal position, velocity
-//! and acceleration points, 7th-order polynomial interpolation with continuous jerk, and the
-//! regressor extended over intervals around the points).
+//! Exciting trajectories (docs/experiments.md#exciting-trajectories): finite Fourier series
+//! optimised for a low condition number (or D-optimality) of the stacked base regressor
+//! within the joint limits (Swevers et al. 1997), and the point-based design of Milella
+//! (optimal position, velocity and acceleration points, 7th-order polynomial interpolation
+//! with continuous jerk, and the regressor extended over intervals around the points).
 //!
 //! Settings are checked before any work ([`FourierDesign::check`], [`PointDesign::check`]);
 //! an error names the setting by its field ([`crate::Error::InvalidConfig`], owner

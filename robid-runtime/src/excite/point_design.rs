@@ -1,4 +1,4 @@
-//! The point-based design of Milella et al.: optimal position, velocity and acceleration
+//! The point-based design of Milella: optimal position, velocity and acceleration
 //! points (OPVA) under the joint limits, joined by seventh-order polynomials.
 //!
 //! Decision variables, per joint and interior point, are z_q, z_v, z_a with the
@@ -24,8 +24,10 @@
 //! from random starts run in parallel.
 //!
 //! ## Reference
-//! P. P. Milella, A. Rizzo, F. Cupertino, "Identification of robot dynamic parameters with
-//! optimal exciting trajectories" (Phases II and III; extended regressor, eqs. 13-15).
+//! F. Milella, "Direct estimate of closed-form dynamic equation parameters of a robot:
+//! tools and methods for designing experiments" (docs/references.md#milella), Phases II
+//! and III: OPVA points (eq. 8), sine substitution (eq. 9), extended regressor
+//! (eqs. 13-15); see also docs/experiments.md#point-method.
 
 use rayon::prelude::*;
 

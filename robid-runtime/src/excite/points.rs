@@ -1,10 +1,10 @@
-//! Point-based trajectories (Milella et al.): knot states (position, velocity, acceleration,
+//! Point-based trajectories (Milella): knot states (position, velocity, acceleration,
 //! jerk) at given times joined by seventh-order polynomials, so that position, velocity,
 //! acceleration and jerk are continuous everywhere.
 //!
 //! ## Reference
-//! P. P. Milella, A. Rizzo, F. Cupertino, "Identification of robot dynamic parameters with
-//! optimal exciting trajectories" (Phase III).
+//! F. Milella, "Direct estimate of closed-form dynamic equation parameters of a robot:
+//! tools and methods for designing experiments" (docs/references.md#milella), Phase III.
 
 use crate::error::{Error, Result};
 use crate::excite::fourier::sample_count;

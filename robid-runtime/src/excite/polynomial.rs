@@ -1,4 +1,4 @@
-//! Seventh-order (septic) polynomials between two states: the interpolation of Milella et al.
+//! Seventh-order (septic) polynomials between two states: the interpolation of Milella.
 //!
 //! A segment of width T joins the knot states (q, qd, qdd, jerk) at u = 0 and at u = T. Eight
 //! boundary values fix the eight coefficients, so consecutive segments that share a knot are
@@ -9,9 +9,10 @@
 //! c0..c3 and M the rows of d^k/ds^k [s^4..s^7] at s = 1 for k = 0..3.
 //!
 //! ## Reference
-//! P. P. Milella, A. Rizzo, F. Cupertino, "Identification of robot dynamic parameters with
-//! optimal exciting trajectories" (Phase III: interpolation with 7th-order polynomials,
-//! jerk imposed at the points).
+//! F. Milella, "Direct estimate of closed-form dynamic equation parameters of a robot:
+//! tools and methods for designing experiments" (docs/references.md#milella), Phase III:
+//! interpolation with 7th-order polynomials (eqs. 10-11), jerk imposed at the points
+//! (eq. 12); see also docs/experiments.md#interpolation-with-seventh-order-polynomials.
 
 /// A state at a knot: position, velocity, acceleration and jerk.
 pub type Knot = [f64; 4];

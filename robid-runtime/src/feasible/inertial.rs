@@ -7,9 +7,10 @@
 //! from a real mass distribution exactly when P is positive semidefinite
 //! (Wensing, Kim, Slotine, "Linear matrix inequalities for physically consistent
 //! inertial parameter identification: a statistical perspective on the mass
-//! distribution", IEEE RA-L 3(1), 2017); P positive semidefinite means m >= 0,
-//! the inertia about the centre of mass positive semidefinite and its principal
-//! moments satisfying the triangle inequalities.
+//! distribution", IEEE RA-L 3(1), pp. 60-67, 2018); P positive semidefinite means
+//! m >= 0, the inertia about the centre of mass positive semidefinite and its principal
+//! moments satisfying the triangle inequalities
+//! (docs/experiments.md#physical-consistency-and-the-pseudo-inertia).
 
 use nalgebra::{Matrix3, Matrix4, SymmetricEigen, Vector3};
 use serde::{Deserialize, Serialize};

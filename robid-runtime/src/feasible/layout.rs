@@ -1,9 +1,11 @@
-//! Where each link's ten inertial parameters and each drive term sit in the
-//! standard parameter vector, found from the parameter names (DESIGN.md 2).
+//! Where each link's ten inertial parameters and each drive term sit in the standard
+//! parameter vector, found from the parameter names
+//! (docs/conventions.md#standard-parameters).
 
 use crate::{Error, Result};
 
-/// Names of the ten inertial slots of a link, in the order of DESIGN.md 2.
+/// Names of the ten inertial slots of a link, in the order of
+/// docs/conventions.md#standard-parameters.
 pub const INERTIAL: [&str; 10] = ["XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"];
 
 /// A drive term of one joint.

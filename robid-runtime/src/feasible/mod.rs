@@ -1,4 +1,5 @@
-//! Physically feasible link parameters from identified base parameters (DESIGN.md 7).
+//! Physically feasible link parameters from identified base parameters
+//! (docs/experiments.md#feasible-parameters).
 //!
 //! Identification gives base parameters beta = K p (K from the regrouping, p the standard
 //! parameters) with a covariance. Simulators and Newton-Euler controllers need a complete
@@ -8,7 +9,7 @@
 //! - [`solve_sdp`]: the convex formulation. p enters linearly and consistency is the
 //!   linear matrix inequality "pseudo-inertia P = [[0.5 tr(J) I - J, h], [h', m]] is positive
 //!   (semi)definite" (Wensing, Kim, Slotine, "Linear matrix inequalities for physically
-//!   consistent inertial parameter identification", IEEE RA-L 3(1), 2017), so
+//!   consistent inertial parameter identification", IEEE RA-L 3(1), 2018), so
 //!   min ||L^-1 (K p - beta)|| under it and linear bounds is a semidefinite program with a
 //!   global optimum (solved with Clarabel). [`consistent_least_squares`] applies the same
 //!   constraints directly to the least-squares fit on data.

@@ -1,6 +1,7 @@
 //! The convex formulation: standard parameters are linear, physical consistency is
 //! the linear matrix inequality P_j(p) >= margin * I on every link's pseudo-inertia
-//! (Wensing, Kim, Slotine, IEEE RA-L 3(1), 2017), bounds on mass, centre of mass and
+//! (Wensing, Kim, Slotine, IEEE RA-L 3(1), 2018;
+//! docs/references.md#wensing-kim-and-slotine-2018), bounds on mass, centre of mass and
 //! total mass are linear (m c_lo <= h <= m c_hi), so
 //!
 //! ```text

@@ -1,5 +1,6 @@
 //! The identification pipeline: data set -> prepared signals -> observation matrix ->
-//! estimate -> fit (DESIGN 6). Regressor rows and filtering run in parallel (rayon).
+//! estimate -> fit (docs/identification.md#pipeline-overview). Regressor rows and filtering
+//! run in parallel (rayon).
 
 mod identify;
 mod observe;

@@ -1,5 +1,5 @@
 //! The machine-readable identification report (the `robid identify --json` shape of
-//! DESIGN 10).
+//! docs/command-line.md#robid-identify).
 
 use std::path::Path;
 
@@ -14,7 +14,7 @@ use crate::validate::{Fit, Prediction, UsedRows};
 /// person reads (also what a command line prints on stderr).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ReportWarning {
-    /// `ill_conditioned`, `uncertain` or `validation_repeats_estimation`.
+    /// `ill_conditioned`, `uncertain`, `outlier` or `validation_repeats_estimation`.
     pub kind: String,
     /// The parameters concerned (empty for a warning about the whole run).
     pub parameters: Vec<String>,
@@ -95,7 +95,8 @@ pub struct Report {
     /// Fits on validation data.
     pub validation: Vec<ValidationEntry>,
     /// What to know before trusting the result (ill conditioning, parameters with a
-    /// relative standard deviation above 100 %, a validation that repeats the fit).
+    /// relative standard deviation above 100 %, an outlier, a validation that repeats the
+    /// fit; docs/identification.md#quality-warnings).
     #[serde(default)]
     pub warnings: Vec<ReportWarning>,
 }

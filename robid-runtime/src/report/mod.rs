@@ -1,5 +1,5 @@
-//! Reports (DESIGN 6.6): JSON for machines, a text table for people, SVG plots of
-//! measured vs predicted torque per joint.
+//! Reports (docs/identification.md#reports): JSON for machines, a text table for people,
+//! SVG plots of measured vs predicted torque per joint.
 
 mod json;
 mod plot;

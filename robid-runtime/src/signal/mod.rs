@@ -1,5 +1,5 @@
 //! Signal processing: zero-phase low-pass filters, differentiation, decimation and
-//! removal of samples near rest (DESIGN 6.3).
+//! removal of samples near rest (docs/identification.md#signal-processing).
 
 mod decimate;
 mod design;

@@ -1,7 +1,7 @@
-//! Simulation with known truth (DESIGN 6.7): forward dynamics of a model in base
-//! parameters, integrated along a reference trajectory under a PD tracking controller
-//! with computed-torque feed-forward, with Gaussian noise on torques and positions and
-//! encoder quantization, reproducible from a seed.
+//! Simulation with known truth (docs/identification.md#simulation): forward dynamics of a
+//! model in base parameters, integrated along a reference trajectory under a PD tracking
+//! controller with computed-torque feed-forward, with Gaussian noise on torques and
+//! positions and encoder quantization, reproducible from a seed.
 //!
 //! ```
 //! # use robid_runtime::simulate::{Noise, Simulation};

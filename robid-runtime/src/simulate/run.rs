@@ -1,4 +1,4 @@
-//! Closed-loop simulation along a reference trajectory (DESIGN 6.7).
+//! Closed-loop simulation along a reference trajectory (docs/identification.md#simulation).
 //!
 //! The controller computes tau = tau_ff + Kp (q_ref - q_meas) + Kd (qd_ref - qd), with the
 //! computed-torque feed-forward tau_ff = ID(q_ref, qd_ref, qdd_ref) of the true model

@@ -1,4 +1,4 @@
-//! Torque-prediction metrics (DESIGN 6.5).
+//! Torque-prediction metrics (docs/identification.md#validation-metrics).
 
 use serde::{Deserialize, Serialize};
 

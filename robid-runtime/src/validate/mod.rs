@@ -1,5 +1,6 @@
-//! Validation on data not used for estimation (DESIGN 6.5): relative error, RMS per
-//! joint, NMSE, improvement against a reference model; and per-joint predictions.
+//! Validation on data not used for estimation (docs/identification.md#validation-metrics):
+//! relative error, RMS per joint, NMSE, improvement against a reference model; and
+//! per-joint predictions.
 
 mod metrics;
 

@@ -1,6 +1,7 @@
 //! Forward kinematics in modified-DH frames: rotations and offsets between
 //! consecutive frames, base-frame poses, and the velocity and acceleration
-//! recursion of Newton-Euler (Khalil and Dombre, ch. 9).
+//! recursion of Newton-Euler (docs/dynamics.md#kinematics-of-the-chain,
+//! docs/dynamics.md#forward-recursion).
 
 use super::vector::{self, Mat3, Vec3};
 use crate::expr::{Arena, Id};

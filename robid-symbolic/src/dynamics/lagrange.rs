@@ -1,4 +1,4 @@
-//! Lagrange-Euler dynamics from the energies (DESIGN.md 4.2): M(q), c(q, qd),
+//! Lagrange-Euler dynamics from the energies (docs/dynamics.md#lagrange-euler): M(q), c(q, qd),
 //! g(q), the total energy, and tau = d/dt(dL/dqd) - dL/dq by symbolic
 //! differentiation. Independent of Newton-Euler, so the two check each other.
 

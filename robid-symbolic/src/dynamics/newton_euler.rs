@@ -1,5 +1,6 @@
-//! Newton-Euler inverse dynamics, linear in the link parameters (DESIGN.md 4.1;
-//! Khalil and Dombre, "Modeling, Identification and Control of Robots", 9.5).
+//! Newton-Euler inverse dynamics, linear in the link parameters
+//! (docs/dynamics.md#newton-euler-linear-in-the-parameters; Khalil and Dombre 2002, the
+//! chapter on dynamic modelling).
 
 use super::kinematics::Kinematics;
 use super::link::LinkParameters;

@@ -1,4 +1,5 @@
-//! The programs of one robot (DESIGN.md 4.5, 5): standard and base regressors,
+//! The programs of one robot (docs/dynamics.md#inverse-dynamics-with-base-parameters,
+//! docs/dynamics.md#programs-and-generated-code): standard and base regressors,
 //! inverse dynamics with base parameters as a customised Newton-Euler, mass
 //! matrix, gravity and Coriolis vectors, and the standard -> base map.
 //!

@@ -98,7 +98,7 @@ const SLOT_NAMES: [&str; 14] = [
 ];
 
 impl Derivation {
-    /// Derives the base parameters (DESIGN.md 4.3).
+    /// Derives the base parameters (docs/regrouping.md#overview-of-the-method).
     pub fn base_parameters(&mut self) -> Result<BaseParameters, RegroupError> {
         let user = self.parameter_symbols();
         let mut links = self.link_parameters(&user);

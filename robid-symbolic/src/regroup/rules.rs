@@ -1,7 +1,8 @@
 //! The closed-form grouping rules of Gautier and Khalil, applied from the last
 //! joint down to joint 2 on the link parameters in modified-DH frames
-//! (Khalil and Dombre, "Modeling, Identification and Control of Robots", 12.4;
-//! DESIGN.md 4.3).
+//! (Gautier and Khalil 1990; Khalil and Dombre 2002, the chapter on base inertial
+//! parameters; derived in docs/regrouping.md#revolute-joints and
+//! docs/regrouping.md#prismatic-joints).
 //!
 //! The rules are not tabulated here but derived: for a revolute joint j the
 //! part of link j that is invariant under rotation about z_j, i.e. the inertia

@@ -1,4 +1,4 @@
-//! The standard parameters of a robot and their names (DESIGN.md 2).
+//! The standard parameters of a robot and their names (docs/conventions.md#standard-parameters).
 
 use super::Robot;
 

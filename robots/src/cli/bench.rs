@@ -1,7 +1,7 @@
-//! `robid bench [--robot NAME] [--json]`: median nanoseconds per call of the
-//! compiled reference models (DESIGN.md 8), with a baseline measured in the
-//! same run (6 x (sin + cos) through libm) so figures compare across machines.
-//! The criterion benches in robots/benches measure the same functions.
+//! `robid bench [--robot NAME] [--json]`: median nanoseconds per call of the compiled
+//! reference models (docs/performance.md#what-robid-measures), with a baseline measured in
+//! the same run (6 x (sin + cos) through libm) so figures compare across machines. The
+//! criterion benches in robots/benches measure the same functions.
 
 use super::{Error, out};
 use robid_runtime::Real;

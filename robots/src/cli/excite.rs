@@ -1,7 +1,7 @@
 //! `robid excite ROBOT.toml [options] -o TRAJ.csv`: an exciting trajectory optimised for the
 //! condition number (or D-optimality) of the stacked base regressor within the description's
 //! joint limits, either a finite Fourier series (`--method fourier`, Swevers et al. 1997) or
-//! optimal points joined by 7th-order polynomials (`--method points`, Milella et al.); it
+//! optimal points joined by 7th-order polynomials (`--method points`, Milella); it
 //! starts and ends at rest at `--start` (default: the middle of the position limits). Prints
 //! the condition number and the margin to every limit. The trajectory has the header
 //! `t,q1..,qd1..,qdd1..`.
@@ -24,7 +24,7 @@ pub(crate) struct Args {
     /// Robot description (TOML) with joint limits.
     robot: PathBuf,
     /// Design method: `fourier` (finite Fourier series, Swevers et al.) or `points` (optimal
-    /// position, velocity and acceleration points with 7th-order polynomials, Milella et al.).
+    /// position, velocity and acceleration points with 7th-order polynomials, Milella).
     #[arg(long, value_enum, default_value_t = Method::Fourier)]
     method: Method,
     /// Duration in (0, 1e6] s (`fourier`: a whole number of periods 1 / base frequency).

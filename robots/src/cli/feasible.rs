@@ -1,9 +1,10 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
 //! [--method sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
-//! consistent link parameters that reproduce identified base parameters (DESIGN.md 7, 10). Writes OUT as TOML, or as URDF
-//! `<inertial>` elements when OUT ends in `.urdf` or `.xml`. Identified parameters with an
-//! empty expression that are not base parameters of the description (the extra columns of
-//! an identification config) are kept as free terms.
+//! consistent link parameters that reproduce identified base parameters
+//! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
+//! OUT as TOML, or as URDF `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
+//! Identified parameters with an empty expression that are not base parameters of the
+//! description (the extra columns of an identification config) are kept as free terms.
 //!
 //! RESULT.json is checked before use: every value finite and within +-[`VALUE_LIMIT`],
 //! every standard deviation finite, positive and at most [`VALUE_LIMIT`], each entry

@@ -1,7 +1,8 @@
 //! `robid identify ROBOT.toml --data FILE... [--config CFG.toml] [--validate FILE...]
 //! [--method ols|wls|rls|energy] [--json OUT.json] [--plot DIR]`: base parameters with
 //! their uncertainty from measured data, the fit, and predictions of other files
-//! (DESIGN.md 6 and 10). A table on stdout; JSON and SVG plots on request.
+//! (docs/identification.md, docs/command-line.md#robid-identify). A table on stdout; JSON
+//! and SVG plots on request.
 //!
 //! The results are checked before anything is printed or written (every value finite),
 //! and the report's quality warnings (an ill-conditioned observation matrix, parameters

@@ -1,4 +1,4 @@
-//! The subcommands of `robid` (DESIGN.md 10). Each file holds one subcommand;
+//! The subcommands of `robid` (docs/command-line.md). Each file holds one subcommand;
 //! they read descriptions and data, call the library crates and print.
 
 mod bench;
@@ -36,7 +36,8 @@ enum Command {
     /// Base parameters with their uncertainty from measured data, fit and validation.
     ///
     /// Warns on stderr, naming them, when the condition number of the observation matrix
-    /// exceeds 1e5 or a parameter's relative standard deviation exceeds 100 %.
+    /// exceeds 1e4, a parameter's relative standard deviation exceeds 100 %, a few rows
+    /// dominate a parameter's column (an outlier), or a validation reuses estimation rows.
     Identify(identify::Args),
     /// Inverse dynamics row by row from a parameter file and a state file.
     ///

@@ -1,9 +1,9 @@
 //! `robid torques ROBOT.toml --parameters PARAMS.toml --states STATES.csv [-o OUT.csv]`:
-//! inverse dynamics row by row (DESIGN.md 10). PARAMS.toml holds a `[standard]` table
-//! (name = value, missing names are 0) or a `[base]` table; STATES.csv has the columns
-//! `q1..qn,qd1..qdn,qdd1..qddn`; the output has `tau1..taun`. A torque that is not a
-//! finite number (states or parameters too large for f64) is an error naming the row of
-//! STATES.csv; nothing is written then.
+//! inverse dynamics row by row (docs/command-line.md#robid-torques). PARAMS.toml holds a
+//! `[standard]` table (name = value, missing names are 0) or a `[base]` table; STATES.csv
+//! has the columns `q1..qn,qd1..qdn,qdd1..qddn`; the output has `tau1..taun`. A torque that
+//! is not a finite number (states or parameters too large for f64) is an error naming the
+//! row of STATES.csv; nothing is written then.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;

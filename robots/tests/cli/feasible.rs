@@ -1,4 +1,5 @@
-//! `robid feasible` end to end (DESIGN.md 10) on the TX40's identification JSON
+//! `robid feasible` end to end (docs/command-line.md#robid-feasible) on the TX40's
+//! identification JSON
 //! (`tests/fixtures/tx40_identified.json`, written by `robid identify
 //! configs/tx40_robot.toml --config configs/tx40.toml --data ... --json`, 61 parameters
 //! including the coupled-wrist extra columns `Iam6 fvm6 fsm6`) with loose bounds

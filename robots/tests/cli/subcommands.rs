@@ -1,4 +1,4 @@
-//! The `robid` binary end to end: forms scripts rely on (DESIGN.md 10) and
+//! The `robid` binary end to end: forms scripts rely on (docs/command-line.md#stability) and
 //! bad input that must give a located error, never a panic.
 
 use crate::common;

@@ -1,4 +1,5 @@
-//! Bad input on the identification path (DESIGN.md 9), end to end from files through
+//! Bad input on the identification path (docs/robustness.md#what-is-checked), end to end
+//! from files through
 //! `load` and `identify` with the compiled UR5e: clear errors naming the file, line or
 //! column and the parameters not excited; never a panic.
 

@@ -1,4 +1,5 @@
-//! The energy (power balance) model end to end on the UR5e (issue 5, DESIGN 6.4):
+//! The energy (power balance) model end to end on the UR5e (issue 5,
+//! docs/identification.md#energy-model):
 //! `identify` with `method = "energy"` builds one equation per window of
 //! `estimation.energy_window` seconds,
 //! T(t_b) - T(t_a) + integral of g(q).qd dt (+ friction integrals) = integral of tau.qd dt,

@@ -1,5 +1,5 @@
 //! The Newton-Euler and Lagrange-Euler regressors agree at 100 random states for every
-//! reference robot, with all drive terms (DESIGN.md 4.2).
+//! reference robot, with all drive terms (docs/dynamics.md#newton-euler-equals-lagrange-euler).
 
 use robid_symbolic::sample::Rng;
 use robid_symbolic::{Derivation, Drive};

@@ -1,9 +1,9 @@
 //! The customised Newton-Euler algorithm written straight into a program
-//! (Khalil and Kleinfinger; Khalil and Dombre 9.5.3): the recursion is run on
-//! program values instead of expressions, and every operation whose operands
-//! are known folds away (0, +-1, a constant times a constant), so only the
-//! nonzero components of each vector are computed and a rotation by a DH
-//! angle alpha in {0, +-pi/2} costs nothing. Each intermediate quantity gets a
+//! (Khalil and Kleinfinger 1987; docs/dynamics.md#customised-newton-euler): the
+//! recursion is run on program values instead of expressions, and every operation whose
+//! operands are known folds away (0, +-1, a constant times a constant), so only the
+//! nonzero components of each vector are computed and a rotation by a DH angle alpha in
+//! {0, +-pi/2} costs nothing. Each intermediate quantity gets a
 //! temporary of its own, so nothing is expanded.
 //!
 //! The forward recursion uses Khalil's U_j = skew(wd_j) + skew(w_j)^2, shared
