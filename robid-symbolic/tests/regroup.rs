@@ -254,5 +254,5 @@ fn standard_dh_lwr4_has_the_count_of_its_modified_equivalent() {
     }
     // That the standard-DH base parameters are the modified ones moved to the user's own
     // frames (same torques with the link parameters mapped by code independent of
-    // robid-symbolic) is tests/tests/standard_vs_modified.rs.
+    // robid-symbolic) is tests/tests/suite/standard_vs_modified.rs.
 }

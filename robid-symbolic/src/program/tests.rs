@@ -77,7 +77,7 @@ fn ur5e_programs_counts() {
 /// states: the inverse dynamics with base parameters equals the standard
 /// regressor (lowered from the arena) times the standard parameters, and
 /// M qdd equals tau(q, qd, qdd) - tau(q, qd, 0). Gravity and Coriolis are checked on
-/// their own against an independent RNEA in `tests/tests/emitted_vs_rnea.rs`.
+/// their own against an independent RNEA in `tests/tests/suite/emitted_vs_rnea.rs`.
 #[test]
 fn programs_agree_for_reference_robots() {
     let close = |a: f64, b: f64, what: &str| {

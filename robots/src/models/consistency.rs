@@ -3,7 +3,7 @@
 //! emitted code == interpreted program == `Arena::eval` of the regressor;
 //! inverse dynamics == Y_b * base; M is symmetric and M qdd == tau(q, qd, qdd) - tau(q, qd, 0);
 //! `f32` within `f32` tolerance. Gravity and Coriolis vectors are checked on their own
-//! against an independent RNEA in `tests/tests/emitted_vs_rnea.rs`.
+//! against an independent RNEA in `tests/tests/suite/emitted_vs_rnea.rs`.
 
 use super::{Lwr4, Panda, Puma560, Rx90, Stanford, Tx40, Ur5e};
 use robid_runtime::Model;
