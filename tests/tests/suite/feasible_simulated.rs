@@ -90,8 +90,9 @@ fn bounds(case: &Case) -> Bounds {
 
 /// `global`: the method claims the global optimum (SDP), so it must fit at least as well as
 /// the truth and within one std everywhere; otherwise (stochastic search) it must still fit
-/// at least as well as the truth, a feasible point it could have found (measured: chi^2
-/// 3.1e-2, 2.0e-5 and 7.9e-14 for seeds 1 to 3 against the truth's 10.07).
+/// at least as well as the truth, a feasible point it could have found, to the solvers'
+/// precision (measured: chi^2 3.1e-2, 2.0e-5 and 7.9e-14 for seeds 1 to 3 against the
+/// truth's 10.07).
 fn check(
     case: &mut Case,
     solution: &Solution,
@@ -114,8 +115,9 @@ fn check(
             solution.chi2
         );
     } else {
+        // to the solvers' precision, as in the global case
         assert!(
-            solution.chi2 <= truth_chi2,
+            solution.chi2 <= truth_chi2 + 1e-6,
             "{label}: chi2 {} above the truth's {truth_chi2}",
             solution.chi2
         );
@@ -293,6 +295,8 @@ fn sdp_noise_free_target_fits_to_solver_precision() {
         s.chi2,
         s.max_normalized_residual()
     );
-    assert!(s.chi2 <= c.beta.len() as f64, "chi2 {}", s.chi2);
+    // the target is feasible and exact: the fit reaches the solver's precision (measured
+    // chi^2 3.7e-8)
+    assert!(s.chi2 <= 1e-6, "chi2 {}", s.chi2);
     check(&mut c, &s, "sdp ur5e noise-free", false, false);
 }
