@@ -21,6 +21,26 @@ pub(crate) struct Atom {
     /// The cosine of an angle whose sine is also an atom: its powers above
     /// one are not independent of the sine's.
     pub(crate) paired_cosine: bool,
+    /// The sine or cosine of an angle.
+    pub(crate) trig: bool,
+}
+
+/// The symbols that enter `atoms` only through sines and cosines: angles,
+/// which the fits may sample over a whole turn.
+pub(crate) fn angle_symbols(arena: &Arena, atoms: &[Atom]) -> Vec<Symbol> {
+    let ids = |trig: bool| -> Vec<Id> {
+        atoms
+            .iter()
+            .filter(|a| a.trig == trig)
+            .map(|a| a.id)
+            .collect()
+    };
+    let other = arena.free_symbols(&ids(false));
+    arena
+        .free_symbols(&ids(true))
+        .into_iter()
+        .filter(|s| !other.contains(s))
+        .collect()
 }
 
 /// The atoms of the expressions `roots`, for the geometric symbols
@@ -96,6 +116,7 @@ pub(crate) fn find(arena: &mut Arena, roots: &[Id], geometry: &[Symbol]) -> Vec<
         .map(|id| Atom {
             id,
             paired_cosine: false,
+            trig: false,
         })
         .collect();
     for angle in angles {
@@ -103,10 +124,12 @@ pub(crate) fn find(arena: &mut Arena, roots: &[Id], geometry: &[Symbol]) -> Vec<
         atoms.push(Atom {
             id: sin,
             paired_cosine: false,
+            trig: true,
         });
         atoms.push(Atom {
             id: cos,
             paired_cosine: true,
+            trig: true,
         });
     }
     atoms.sort_by_key(|a| (a.id, a.paired_cosine));
@@ -160,6 +183,19 @@ mod tests {
             atoms_of("sin(q1 + th)*qdd1", &["th"]),
             ["cos(th) (paired)", "sin(th)"]
         );
+    }
+
+    #[test]
+    fn angle_symbols_are_those_only_inside_sines_and_cosines() {
+        let mut a = Arena::new();
+        let e = a.parse("L*sin(al)*qdd1 + cos(th)*q1 + th*qd1").unwrap();
+        let symbols: Vec<_> = ["L", "al", "th"].iter().map(|s| a.symbol(s)).collect();
+        let atoms = super::find(&mut a, &[e], &symbols);
+        let angles: Vec<&str> = super::angle_symbols(&a, &atoms)
+            .into_iter()
+            .map(|s| a.symbol_name(s))
+            .collect();
+        assert_eq!(angles, ["al"]);
     }
 
     #[test]

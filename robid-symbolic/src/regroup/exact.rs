@@ -232,6 +232,7 @@ mod tests {
         Atom {
             id: arena.var(name),
             paired_cosine: false,
+            trig: false,
         }
     }
 
@@ -242,6 +243,7 @@ mod tests {
         let c = Atom {
             id: a.var("c"),
             paired_cosine: true,
+            trig: true,
         };
         // 1, s, c, s^2, s c (not c^2).
         assert_eq!(monomials(&[s, c], 2).len(), 5);

@@ -33,7 +33,7 @@ pub(crate) fn least_squares(a: &DMatrix<f64>, b: &[f64]) -> Option<Vec<f64>> {
         return Some(Vec::new());
     }
     let norms: Vec<f64> = a.column_iter().map(|c| c.norm()).collect();
-    if norms.iter().any(|&s| s == 0.0) {
+    if norms.contains(&0.0) {
         return None;
     }
     let mut scaled = a.clone();
@@ -42,7 +42,8 @@ pub(crate) fn least_squares(a: &DMatrix<f64>, b: &[f64]) -> Option<Vec<f64>> {
     }
     let qr = scaled.qr();
     let r = qr.r();
-    if (0..n).any(|i| !(r[(i, i)].abs() > FULL_RANK)) {
+    // (The entries are finite: checked above.)
+    if (0..n).any(|i| r[(i, i)].abs() <= FULL_RANK) {
         return None;
     }
     let qtb = qr.q().transpose() * DVector::from_column_slice(b);
