@@ -513,6 +513,7 @@ fn a_coefficient_that_is_a_ratio_is_refused_naming_its_symbols() {
                 parameter: parameter.to_owned(),
                 on: on.to_owned(),
                 symbols: vec![symbol.to_owned()],
+                degree: 4,
             }
         );
         let message = e.to_string();

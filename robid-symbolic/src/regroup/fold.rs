@@ -6,14 +6,16 @@
 //! dependency is a function of them, and the base parameters must hold for
 //! every value, since the symbols are inputs of the generated code. The
 //! dependent column and the columns it depends on are sampled again at other
-//! values of the symbols (each sample: a fresh value of every symbol in
-//! [`SYMBOL_SAMPLES`], the columns at random states, the coefficients by least
-//! squares on the columns the dependency involves), and each coefficient is
-//! fitted by a polynomial in the atoms of those columns (`atoms.rs`), of the
-//! lowest degree that reproduces it: degree 0 is a constant. A fit of `m`
-//! monomials uses `m + 3` samples and is checked on 2 more; a coefficient
-//! that no polynomial up to [`exact::MAX_DEGREE`] (within
-//! [`exact::MAX_MONOMIALS`]) reproduces is an error that names the symbols.
+//! values of the symbols (each sample: a fresh value of every symbol, in
+//! [`SYMBOL_SAMPLES`], or over a whole turn for a symbol that enters the
+//! columns only through sines and cosines; the columns at random states; the
+//! coefficients by least squares on the columns the dependency involves),
+//! and each coefficient is fitted by a polynomial in the atoms of those
+//! columns (`atoms.rs`), of the lowest degree that reproduces it: degree 0 is
+//! a constant. A fit of `m` monomials uses `m + 3` samples and is checked on
+//! 2 more; a coefficient that no polynomial up to [`exact::MAX_DEGREE`]
+//! (within [`exact::MAX_MONOMIALS`]) reproduces is an error that names the
+//! symbols it varies with.
 //!
 //! A polynomial identity that holds at random points holds everywhere, so
 //! the fitted coefficients, hence the base parameters and the base regressor,
@@ -68,6 +70,8 @@ struct Fit {
     result: Vec<Option<Id>>,
     /// No higher degree can be tried (too many monomials).
     exhausted: bool,
+    /// The highest degree tried.
+    tried: usize,
 }
 
 impl Fit {
@@ -157,6 +161,7 @@ impl Derivation {
                 atom_values: Vec::new(),
                 result,
                 exhausted: false,
+                tried: 0,
             });
         }
         // Angles (symbols only inside sines and cosines) are sampled over a
@@ -189,6 +194,7 @@ impl Derivation {
                     f.exhausted = true;
                 } else {
                     *need = monomials + MARGIN + CHECKS;
+                    f.tried = degree;
                 }
             }
             if needs.iter().all(|&n| n == 0) {
@@ -232,6 +238,7 @@ impl Derivation {
                         parameter: cx.name(dependencies[f].candidate),
                         on: cx.name(kept[k]),
                         symbols,
+                        degree: fit.tried,
                     });
                 };
                 if !self.arena.is_zero(c) {

@@ -70,12 +70,13 @@ impl BaseParameters {
 #[non_exhaustive]
 pub enum RegroupError {
     /// A dependency's coefficient varies with the geometric symbols in a way
-    /// that is not a polynomial (of degree at most four) in them and in the
-    /// sines and cosines of those used as angles, so no expression holds for
-    /// every value of the symbols.
+    /// that is not a polynomial in them and in the sines and cosines of those
+    /// used as angles (of degree at most four, and at most 160 monomials), so
+    /// no expression robid writes holds for every value of the symbols.
     #[error(
-        "the dependency of `{parameter}` on `{on}` has a coefficient that varies with the geometric symbols {} in a way robid cannot write for every value of them: it is not a polynomial of degree four or less in them (and in the sines and cosines of those used as angles), such as a ratio like 1/g or tan(alpha), which has no value where its denominator vanishes; give {} numeric values (write the numbers in the description in place of the symbols)",
+        "the dependency of `{parameter}` on `{on}` has a coefficient that varies with the geometric symbols {} in a way robid cannot write for every value of them: it is not a polynomial of degree {degree} or less in them (and in the sines and cosines of those used as angles){}; give {} numeric values (write the numbers in the description in place of the symbols)",
         quoted(.symbols),
+        limit_note(*.degree),
         quoted(.symbols)
     )]
     NotExpressible {
@@ -85,12 +86,27 @@ pub enum RegroupError {
         on: String,
         /// The geometric symbols the coefficient varies with.
         symbols: Vec<String>,
+        /// The highest degree of the polynomials tried (lower than four when
+        /// a higher one would have more than 160 terms).
+        degree: usize,
     },
-    /// The sampled regressor is not finite, or its factorisation did not converge.
+    /// The sampled regressor is not finite, its kept columns are not
+    /// independent, or a dependency found at one value of the geometric
+    /// symbols does not hold at another.
     #[error(
         "the numeric rank analysis of the regressor failed ({0}); keep the description's values within robid's limits (robid_symbolic::robot::bounds)"
     )]
     Numeric(String),
+}
+
+/// What bounded the polynomials tried for a coefficient, for the message.
+fn limit_note(degree: usize) -> String {
+    if degree < exact::MAX_DEGREE {
+        format!(" with at most {} terms", exact::MAX_MONOMIALS)
+    } else {
+        ", such as a ratio like 1/g or tan(alpha), which has no value where its denominator vanishes"
+            .to_owned()
+    }
 }
 
 /// `a`, `b` and `c`, each in backquotes.
@@ -311,6 +327,27 @@ impl Derivation {
 #[cfg(test)]
 mod tests {
     use crate::robot::INERTIAL_NAMES;
+
+    #[test]
+    fn a_refusal_says_what_bounded_the_fit() {
+        let error = |degree| {
+            super::RegroupError::NotExpressible {
+                parameter: "MZ2".to_owned(),
+                on: "MY2".to_owned(),
+                symbols: vec!["al".to_owned(), "g".to_owned()],
+                degree,
+            }
+            .to_string()
+        };
+        let full = error(super::exact::MAX_DEGREE);
+        assert!(
+            full.contains("degree 4 or less") && full.contains("ratio"),
+            "{full}"
+        );
+        assert!(full.contains("`al` and `g`"), "{full}");
+        let capped = error(2);
+        assert!(capped.contains("degree 2 or less") && capped.contains("at most 160 terms"));
+    }
 
     #[test]
     fn slot_names_extend_the_inertial_names() {
