@@ -10,12 +10,14 @@
 //!
 //! The result is minimal: its size equals the numeric rank of the regressor.
 
+mod atoms;
 mod exact;
+mod fold;
 mod rank;
 mod rules;
 
 use crate::dynamics::{Derivation, LinkParameters, newton_euler};
-use crate::expr::{Arena, Id, Node, Num};
+use crate::expr::{Arena, Id, Node};
 use crate::robot::Parameter;
 use crate::robot::bounds::SYMBOL_SAMPLES;
 use crate::sample::Rng;
@@ -67,22 +69,54 @@ impl BaseParameters {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum RegroupError {
-    /// A numeric dependency has no exact form (rational, or polynomial of
-    /// degree two in the geometric symbols).
+    /// A dependency's coefficient varies with the geometric symbols in a way
+    /// that is not a polynomial in them and in the sines and cosines of those
+    /// used as angles (of degree at most four, and at most 160 monomials), so
+    /// no expression robid writes holds for every value of the symbols.
     #[error(
-        "the dependency of `{parameter}` on `{on}` has no exact coefficient (a polynomial of degree two at most in the geometric symbols); give the symbols involved numeric values, in particular a symbol used as an angle"
+        "the dependency of `{parameter}` on `{on}` has a coefficient that varies with the geometric symbols {} in a way robid cannot write for every value of them: it is not a polynomial of degree {degree} or less in them (and in the sines and cosines of those used as angles){}; give {} numeric values (write the numbers in the description in place of the symbols)",
+        quoted(.symbols),
+        limit_note(*.degree),
+        quoted(.symbols)
     )]
     NotExpressible {
         /// The dependent parameter.
         parameter: String,
-        /// The parameter it depends on.
+        /// A parameter it depends on.
         on: String,
+        /// The geometric symbols the coefficient varies with.
+        symbols: Vec<String>,
+        /// The highest degree of the polynomials tried (lower than four when
+        /// a higher one would have more than 160 terms).
+        degree: usize,
     },
-    /// The sampled regressor is not finite, or its factorisation did not converge.
+    /// The sampled regressor is not finite, its kept columns are not
+    /// independent, or a dependency found at one value of the geometric
+    /// symbols does not hold at another.
     #[error(
         "the numeric rank analysis of the regressor failed ({0}); keep the description's values within robid's limits (robid_symbolic::robot::bounds)"
     )]
     Numeric(String),
+}
+
+/// What bounded the polynomials tried for a coefficient, for the message.
+fn limit_note(degree: usize) -> String {
+    if degree < exact::MAX_DEGREE {
+        format!(" with at most {} terms", exact::MAX_MONOMIALS)
+    } else {
+        ", such as a ratio like 1/g or tan(alpha), which has no value where its denominator vanishes"
+            .to_owned()
+    }
+}
+
+/// `a`, `b` and `c`, each in backquotes.
+fn quoted(names: &[String]) -> String {
+    let names: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    match names.as_slice() {
+        [] => "(none)".to_owned(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
 }
 
 /// A parameter that survived the rules: where it lives and its expression.
@@ -119,22 +153,35 @@ impl Derivation {
         let columns: Vec<&[Id]> = candidates.iter().map(|c| c.column.as_slice()).collect();
         let sampled = self.sample(&columns, &geometry, &first_geometry, &mut rng);
         let status = rank::analyse(&sampled).ok_or_else(|| {
-            RegroupError::Numeric("a sampled regressor value is not finite".to_owned())
+            RegroupError::Numeric(
+                "a sampled regressor value is not finite, or the columns kept are not independent"
+                    .to_owned(),
+            )
         })?;
         let kept: Vec<usize> = (0..candidates.len())
             .filter(|&i| matches!(status[i], Status::Kept(_)))
             .collect();
 
         // Fold each dependency into the kept parameters, with exact coefficients.
+        let dependencies: Vec<fold::Dependency> = status
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| match s {
+                Status::Dependent(numeric) => Some(fold::Dependency {
+                    candidate: i,
+                    numeric: numeric.clone(),
+                }),
+                _ => None,
+            })
+            .collect();
+        let coefficients =
+            self.dependency_coefficients(&dependencies, &kept, &candidates, &geometry, &mut rng)?;
         let mut expressions: Vec<Id> = kept.iter().map(|&i| candidates[i].expression).collect();
-        for (i, s) in status.iter().enumerate() {
-            let Status::Dependent(numeric) = s else {
-                continue;
-            };
-            let exact =
-                self.exact_coefficients(i, numeric, &kept, &candidates, &geometry, &mut rng)?;
+        for (dependency, exact) in dependencies.iter().zip(coefficients) {
             for (k, c) in exact {
-                let t = self.arena.mul2(c, candidates[i].expression);
+                let t = self
+                    .arena
+                    .mul2(c, candidates[dependency.candidate].expression);
                 expressions[k] = self.arena.add2(expressions[k], t);
             }
         }
@@ -275,114 +322,32 @@ impl Derivation {
         }
         out
     }
-
-    /// Exact coefficients of dependent candidate `i` on the kept candidates.
-    fn exact_coefficients(
-        &mut self,
-        i: usize,
-        numeric: &[(usize, f64)],
-        kept: &[usize],
-        candidates: &[Candidate],
-        geometry: &[Id],
-        rng: &mut Rng,
-    ) -> Result<Vec<(usize, Id)>, RegroupError> {
-        let name = |c: &Candidate| format!("{}{}", SLOT_NAMES[c.slot], c.link + 1);
-        let all_constant = numeric
-            .iter()
-            .all(|&(_, c)| exact::rationalize(c).is_some());
-        if geometry.is_empty()
-            || all_constant
-                && self.same_at_other_geometry(i, numeric, kept, candidates, geometry, rng)?
-        {
-            return Ok(numeric
-                .iter()
-                .map(|&(k, c)| {
-                    let value = exact::rationalize(c).unwrap_or(Num::Float(c));
-                    (k, self.arena.num(value))
-                })
-                .collect());
-        }
-        // Coefficients vary with the lengths: fit a polynomial in them.
-        let count = exact::monomials(geometry.len()).len() + 4;
-        let samples: Vec<Vec<f64>> = (0..count)
-            .map(|_| {
-                geometry
-                    .iter()
-                    .map(|_| rng.uniform(SYMBOL_SAMPLES[0], SYMBOL_SAMPLES[1]))
-                    .collect()
-            })
-            .collect();
-        let mut per_sample: Vec<Vec<f64>> = Vec::with_capacity(count);
-        for g in &samples {
-            per_sample.push(self.coefficients_at(i, kept, candidates, geometry, g, rng)?);
-        }
-        let mut out = Vec::new();
-        for k in 0..kept.len() {
-            let values: Vec<f64> = per_sample.iter().map(|c| c[k]).collect();
-            if values.iter().all(|v| v.abs() < 1e-10) {
-                continue;
-            }
-            let c = exact::fit_polynomial(&mut self.arena, geometry, &samples, &values)
-                .ok_or_else(|| RegroupError::NotExpressible {
-                    parameter: name(&candidates[i]),
-                    on: name(&candidates[kept[k]]),
-                })?;
-            out.push((k, c));
-        }
-        Ok(out)
-    }
-
-    fn same_at_other_geometry(
-        &mut self,
-        i: usize,
-        numeric: &[(usize, f64)],
-        kept: &[usize],
-        candidates: &[Candidate],
-        geometry: &[Id],
-        rng: &mut Rng,
-    ) -> Result<bool, RegroupError> {
-        let g: Vec<f64> = geometry
-            .iter()
-            .map(|_| rng.uniform(SYMBOL_SAMPLES[0], SYMBOL_SAMPLES[1]))
-            .collect();
-        let other = self.coefficients_at(i, kept, candidates, geometry, &g, rng)?;
-        let mut expected = vec![0.0; kept.len()];
-        for &(k, c) in numeric {
-            expected[k] = c;
-        }
-        Ok(other
-            .iter()
-            .zip(&expected)
-            .all(|(a, b)| (a - b).abs() <= 1e-8 * b.abs().max(1.0)))
-    }
-
-    fn coefficients_at(
-        &mut self,
-        i: usize,
-        kept: &[usize],
-        candidates: &[Candidate],
-        geometry: &[Id],
-        values: &[f64],
-        rng: &mut Rng,
-    ) -> Result<Vec<f64>, RegroupError> {
-        let mut columns: Vec<&[Id]> = kept
-            .iter()
-            .map(|&k| candidates[k].column.as_slice())
-            .collect();
-        columns.push(candidates[i].column.as_slice());
-        let sampled = self.sample(&columns, geometry, values, rng);
-        let (dependent, kept_columns) =
-            sampled.split_last().expect("at least the dependent column");
-        let refs: Vec<&Vec<f64>> = kept_columns.iter().collect();
-        rank::coefficients(&refs, dependent).ok_or_else(|| {
-            RegroupError::Numeric("a sampled regressor value is not finite".to_owned())
-        })
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use crate::robot::INERTIAL_NAMES;
+
+    #[test]
+    fn a_refusal_says_what_bounded_the_fit() {
+        let error = |degree| {
+            super::RegroupError::NotExpressible {
+                parameter: "MZ2".to_owned(),
+                on: "MY2".to_owned(),
+                symbols: vec!["al".to_owned(), "g".to_owned()],
+                degree,
+            }
+            .to_string()
+        };
+        let full = error(super::exact::MAX_DEGREE);
+        assert!(
+            full.contains("degree 4 or less") && full.contains("ratio"),
+            "{full}"
+        );
+        assert!(full.contains("`al` and `g`"), "{full}");
+        let capped = error(2);
+        assert!(capped.contains("degree 2 or less") && capped.contains("at most 160 terms"));
+    }
 
     #[test]
     fn slot_names_extend_the_inertial_names() {

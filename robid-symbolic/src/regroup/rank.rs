@@ -5,21 +5,51 @@
 //! so far (Gram-Schmidt, twice for stability, as a column-norm-pivot-free QR
 //! that keeps the earliest columns); a column whose residual is tiny relative
 //! to its norm is dependent, and its coefficients on the kept columns come
-//! from a least-squares solve (SVD) on the kept columns.
+//! from a least-squares solve (Householder QR) on the kept columns.
 
-use nalgebra::{DMatrix, DVector, SVD};
+use nalgebra::{DMatrix, DVector};
 
-/// Most iterations of an SVD: finite input converges in a few sweeps per
-/// singular value; the cap only guarantees an end.
-const SVD_ITERATIONS: usize = 10_000;
+/// Smallest diagonal entry of the triangular factor, for columns scaled to
+/// unit norm, of a matrix taken to have full column rank: a column whose
+/// part outside the span of the columns before it is smaller than this
+/// fraction of its norm makes the least-squares problem singular.
+const FULL_RANK: f64 = 1e-12;
 
-/// The SVD of `a` as nalgebra's `svd(true, true)` computes it, or `None`
-/// when an entry is not finite or it does not converge within the cap.
-pub(crate) fn svd(a: DMatrix<f64>) -> Option<SVD<f64, nalgebra::Dyn, nalgebra::Dyn>> {
-    if a.iter().any(|x| !x.is_finite()) {
+/// The least-squares solution of `a x = b` for `a` of full column rank, or
+/// `None` when a value is not finite, `a` has fewer rows than columns or is
+/// not of full numeric rank.
+///
+/// Householder QR of `a` with its columns scaled to unit norm: direct and
+/// backward stable. (An iterative SVD was used before; nalgebra's can return
+/// a decomposition that does not reproduce its matrix,
+/// <https://github.com/dimforge/nalgebra/issues/1172>, which gave dependency
+/// coefficients wrong by 1e-5 for some sampled regressors.)
+pub(crate) fn least_squares(a: &DMatrix<f64>, b: &[f64]) -> Option<Vec<f64>> {
+    let (m, n) = a.shape();
+    if b.len() != m || a.iter().chain(b).any(|x| !x.is_finite()) || m < n {
         return None;
     }
-    a.try_svd(true, true, f64::EPSILON * 5.0, SVD_ITERATIONS)
+    if n == 0 {
+        return Some(Vec::new());
+    }
+    let norms: Vec<f64> = a.column_iter().map(|c| c.norm()).collect();
+    if norms.contains(&0.0) {
+        return None;
+    }
+    let mut scaled = a.clone();
+    for (mut column, &s) in scaled.column_iter_mut().zip(&norms) {
+        column /= s;
+    }
+    let qr = scaled.qr();
+    let r = qr.r();
+    // (The entries are finite: checked above.)
+    if (0..n).any(|i| r[(i, i)].abs() <= FULL_RANK) {
+        return None;
+    }
+    let qtb = qr.q().transpose() * DVector::from_column_slice(b);
+    let y = r.solve_upper_triangular(&qtb)?;
+    let x: Vec<f64> = y.iter().zip(&norms).map(|(v, s)| v / s).collect();
+    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// What the analysis found for a column.
@@ -34,10 +64,10 @@ pub(crate) enum Status {
 }
 
 /// Relative residual below which a column counts as dependent.
-const DEPENDENT: f64 = 1e-8;
+pub(crate) const DEPENDENT: f64 = 1e-8;
 
 /// Classifies `columns` (each a sampled column of length m); `None` when a
-/// value is not finite or the least-squares solve does not converge.
+/// value is not finite.
 pub(crate) fn analyse(columns: &[Vec<f64>]) -> Option<Vec<Status>> {
     if columns.iter().flatten().any(|x| !x.is_finite()) {
         return None;
@@ -77,18 +107,13 @@ pub(crate) fn analyse(columns: &[Vec<f64>]) -> Option<Vec<Status>> {
     // Coefficients of each dependent column on the kept ones.
     if status.iter().any(|s| matches!(s, Status::Dependent(_))) {
         let a = DMatrix::from_fn(m, kept.len(), |r, k| columns[kept[k]][r]);
-        let svd = svd(a)?;
         for (i, s) in status.iter_mut().enumerate() {
             if let Status::Dependent(coefficients) = s {
-                let b = DVector::from_column_slice(&columns[i]);
-                let x = svd
-                    .solve(&b, 1e-12)
-                    .unwrap_or_else(|_| DVector::zeros(kept.len()));
+                let x = least_squares(&a, &columns[i])?;
                 *coefficients = x
-                    .iter()
+                    .into_iter()
                     .enumerate()
                     .filter(|(_, v)| v.abs() > 1e-10)
-                    .map(|(k, &v)| (k, v))
                     .collect();
             }
         }
@@ -97,20 +122,11 @@ pub(crate) fn analyse(columns: &[Vec<f64>]) -> Option<Vec<Status>> {
 }
 
 /// Coefficients of `column` on the given kept columns (least squares);
-/// `None` when a value is not finite or the solve does not converge.
+/// `None` when a value is not finite or the kept columns are not
+/// independent.
 pub(crate) fn coefficients(kept: &[&Vec<f64>], column: &[f64]) -> Option<Vec<f64>> {
-    let m = column.len();
-    let a = DMatrix::from_fn(m, kept.len(), |r, k| kept[k][r]);
-    let b = DVector::from_column_slice(column);
-    if b.iter().any(|x| !x.is_finite()) {
-        return None;
-    }
-    Some(
-        svd(a)?
-            .solve(&b, 1e-12)
-            .map(|x| x.iter().copied().collect())
-            .unwrap_or_else(|_| vec![0.0; kept.len()]),
-    )
+    let a = DMatrix::from_fn(column.len(), kept.len(), |r, k| kept[k][r]);
+    least_squares(&a, column)
 }
 
 fn norm(v: &[f64]) -> f64 {
