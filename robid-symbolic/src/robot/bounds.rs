@@ -27,8 +27,10 @@
 /// seconds, the cost grows faster than the square of the count).
 pub const MAX_JOINTS: usize = 32;
 
-/// Most geometric symbols of a robot (exact dependency coefficients are fitted
-/// as polynomials of degree two in them, so the fit grows with their square).
+/// Most geometric symbols of a robot (dependency coefficients that change with the
+/// symbols are fitted as polynomials of degree up to four, at most 160 terms, in them
+/// and in the sines and cosines of angle symbols, so the fit grows quickly with their
+/// number).
 pub const MAX_SYMBOLS: usize = 16;
 
 /// Largest magnitude of a DH length `a` or `d` (m).
