@@ -187,7 +187,8 @@ fn feasible_sdp_prior_pulls_the_free_directions_towards_cad() {
     check_toml(&pulled);
     let (d0, d1) = (distance(&masses(&plain)), distance(&masses(&pulled)));
     eprintln!("sum |m - m_CAD|: without prior {d0:.3} kg, with prior {d1:.3} kg; chi^2 {chi2:.2}");
-    assert!(d1 < 0.5 * d0, "without prior {d0}, with prior {d1}");
+    // measured ratio 0.18 (4.5 against 25.1 kg); bound 2x
+    assert!(d1 < 0.35 * d0, "without prior {d0}, with prior {d1}");
     // the prior settles what the data leave free: the fit hardly changes (measured x1.006)
     assert!(
         chi2 <= 1.05 * chi2_plain,

@@ -116,8 +116,9 @@ fn energy_model_sees_every_base_parameter_of_the_ur5e() {
     );
     // the trapezoidal rule leaves < 1e-6 of the work in each equation (checked below);
     // times a condition number of a few 1e4 that bounds the parameter error by ~1e-4
+    // (measured: 1.13e-4 against a bound of 4.2e-4; torque fit 2.5e-6, bound 2x)
     assert!(worst < 1e-4 * scale, "worst error {worst}");
-    assert!(id.fit.relative_error < 1e-4, "{:?}", id.fit);
+    assert!(id.fit.relative_error < 5e-6, "{:?}", id.fit);
     // the equations: the truth satisfies them up to the trapezoidal rule
     let prepared = prepare(&data, &config()).unwrap();
     let obs = energy_observation_of(&model, &prepared, &config()).unwrap();
@@ -166,6 +167,8 @@ fn energy_model_statistics_are_honest_with_noise() {
         undetermined.join(" ")
     );
     let coverage = inside as f64 / truth.len() as f64;
+    // a 3-std interval holds the truth with probability 0.997 when the statistics are
+    // honest; 0.9 of 36 leaves room for the correlated estimates of one record
     assert!(coverage >= 0.9, "coverage {coverage}");
     // the large, well-excited ones are determined
     for name in ["ZZR1", "MXR2", "MXR3"] {
