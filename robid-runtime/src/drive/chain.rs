@@ -277,6 +277,41 @@ mod tests {
         }
     }
 
+    /// Motor encoders are reflected through R_q^-1 whatever the side of the position
+    /// columns; torque constants scale the currents before R_tau.
+    #[test]
+    fn motor_encoders_and_torque_constants() {
+        let mut c = tx40();
+        c.position_side = Side::Joint;
+        c.torque_constants = Some(PerJoint::Each(vec![2.0, 1.0, 1.0, 1.0, 0.5, 1.0]));
+        c.check(6).unwrap();
+        let chain = DriveChain::new(&c, 6).unwrap();
+        assert_eq!(chain.dof(), 6);
+        let theta: Vec<Vec<f64>> = [32.0, 64.0, 45.0, -96.0, 90.0, 320.0]
+            .iter()
+            .map(|v| vec![*v, 2.0 * v])
+            .collect();
+        // joint-side positions pass through; motor positions are reflected
+        assert_eq!(chain.joint_positions(&theta), theta);
+        let reflected = chain.reflected_motor_positions(&theta);
+        for (a, e) in reflected.iter().zip([1.0, 2.0, 1.0, 2.0, 2.0, 8.0]) {
+            assert!(
+                (a[0] - e).abs() < 1e-12 && (a[1] - 2.0 * e).abs() < 1e-12,
+                "{a:?}"
+            );
+        }
+        let current: Vec<Vec<f64>> = [1.0, 1.0, 1.0, 1.0, 1.0, 2.0]
+            .iter()
+            .map(|v| vec![*v])
+            .collect();
+        let tau = chain.joint_torques(&current);
+        // tau_1 = N1 * 2 * i1; tau_5 = N5 * 0.5 * i5 + N6 * i6
+        let expect = [64.0, 32.0, 45.0, -48.0, 22.5 + 64.0, 64.0];
+        for (a, e) in tau.iter().zip(expect) {
+            assert!((a[0] - e).abs() < 1e-12, "{a:?} vs {e}");
+        }
+    }
+
     #[test]
     fn bad_drive_configs_are_errors() {
         let mut c = tx40();
@@ -286,6 +321,7 @@ mod tests {
             DriveChain::new(&c, 6),
             Err(Error::InvalidConfig { ref key, .. }) if key == "drive.gear_ratios"
         ));
+        assert!(c.check(6).is_err());
         let mut c = tx40();
         c.position_coupling = Some(vec![vec![0.0; 6]; 6]);
         assert!(matches!(

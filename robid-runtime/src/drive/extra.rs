@@ -220,5 +220,13 @@ terms = [{ row = 2, signal = "constant", coefficient = 2.0 }]
         let bad: ExtraColumn =
             toml::from_str("name = \"x\"\nterms = [{ row = 1, signal = \"qd\" }]").unwrap();
         assert!(bad.check(2).is_err());
+        // without a coefficient, a term counts once
+        let plain: ExtraColumn =
+            toml::from_str("name = \"fv\"\nterms = [{ row = 1, signal = \"qd\", joints = [2] }]")
+                .unwrap();
+        plain.check(2).unwrap();
+        let mut out = [9.0; 2];
+        plain.fill(&[0.0; 2], &[0.0, -1.5], &[0.0; 2], &mut out);
+        assert_eq!(out, [-1.5, 0.0]);
     }
 }

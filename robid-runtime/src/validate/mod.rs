@@ -136,3 +136,62 @@ impl Prediction {
         fit(&self.measured, &self.predicted)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Prediction, UsedRows};
+
+    /// A non-finite predicted torque is an error naming the joint; finite ones pass.
+    #[test]
+    fn check_refuses_a_non_finite_prediction() {
+        let mut p = Prediction {
+            measured: vec![vec![1.0, 2.0], vec![3.0, 4.0]],
+            predicted: vec![vec![1.1, 2.1], vec![2.9, 4.2]],
+            time: vec![vec![0.0, 0.1], vec![0.0, 0.1]],
+            used: None,
+        };
+        assert!(p.check("run.csv").is_ok());
+        p.predicted[1][0] = f64::INFINITY;
+        let e = p.check("run.csv").unwrap_err().to_string();
+        assert!(e.contains("joint 2") && e.contains("run.csv"), "{e}");
+    }
+
+    fn rows(file: &str, samples: [usize; 2], lines: Option<[u64; 2]>) -> UsedRows {
+        UsedRows {
+            file: file.into(),
+            samples,
+            lines,
+        }
+    }
+
+    /// Sample ranges are half-open, line ranges closed; another file never overlaps.
+    #[test]
+    fn overlaps_is_sharing_a_row_of_the_same_file() {
+        let a = rows("a.csv", [10, 20], None);
+        for (other, expected) in [
+            ([0, 10], false),
+            ([0, 11], true),
+            ([19, 30], true),
+            ([20, 30], false),
+            ([12, 15], true),
+            ([0, 40], true),
+        ] {
+            let b = rows("a.csv", other, None);
+            assert_eq!(a.overlaps(&b), expected, "{other:?}");
+            assert_eq!(b.overlaps(&a), expected, "{other:?} (reversed)");
+        }
+        assert!(!a.overlaps(&rows("b.csv", [10, 20], None)));
+        let l = rows("a.csv", [0, 1], Some([100, 200]));
+        for (other, expected) in [
+            ([50, 99], false),
+            ([50, 100], true),
+            ([200, 300], true),
+            ([201, 300], false),
+            ([120, 130], true),
+        ] {
+            let m = rows("a.csv", [5, 6], Some(other));
+            assert_eq!(l.overlaps(&m), expected, "lines {other:?}");
+            assert_eq!(m.overlaps(&l), expected, "lines {other:?} (reversed)");
+        }
+    }
+}
