@@ -220,6 +220,15 @@ terms = [{ row = 2, signal = "constant", coefficient = 2.0 }]
         let bad: ExtraColumn =
             toml::from_str("name = \"x\"\nterms = [{ row = 1, signal = \"qd\" }]").unwrap();
         assert!(bad.check(2).is_err());
+        // joints are numbered 1..=dof
+        for joints in ["[0]", "[3]"] {
+            let c: ExtraColumn = toml::from_str(&format!(
+                "name = \"x\"\nterms = [{{ row = 1, signal = \"qd\", joints = {joints} }}]"
+            ))
+            .unwrap();
+            let e = c.check(2).unwrap_err().to_string();
+            assert!(e.contains("outside 1..=2"), "{joints}: {e}");
+        }
         // without a coefficient, a term counts once
         let plain: ExtraColumn =
             toml::from_str("name = \"fv\"\nterms = [{ row = 1, signal = \"qd\", joints = [2] }]")
