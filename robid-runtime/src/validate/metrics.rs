@@ -92,6 +92,35 @@ mod tests {
         assert_eq!(fit(&m, &m).relative_error, 0.0);
     }
 
+    /// Every metric must be finite: all-zero measured torques (an infinite relative error)
+    /// and an overflowed NMSE or RMS are errors naming the data.
+    #[test]
+    fn check_refuses_each_non_finite_metric() {
+        let good = fit(&[vec![1.0, 2.0]], &[vec![1.5, 2.0]]);
+        assert!(good.check("run.csv").is_ok());
+        let zero = fit(&[vec![0.0, 0.0]], &[vec![1.0, 0.0]]);
+        assert!(!zero.relative_error.is_finite());
+        assert!(
+            zero.check("run.csv")
+                .unwrap_err()
+                .to_string()
+                .contains("relative error on run.csv")
+        );
+        for bad in [
+            Fit {
+                nmse: f64::NAN,
+                ..good.clone()
+            },
+            Fit {
+                rms_per_joint: vec![f64::INFINITY],
+                ..good.clone()
+            },
+        ] {
+            let e = bad.check("run.csv").unwrap_err().to_string();
+            assert!(e.contains("error metrics on run.csv"), "{e}");
+        }
+    }
+
     #[test]
     fn improvement() {
         assert!((relative_improvement(506.8, 94.5) - 81.35).abs() < 0.01);
