@@ -98,6 +98,13 @@ mod tests {
     fn check_refuses_each_non_finite_metric() {
         let good = fit(&[vec![1.0, 2.0]], &[vec![1.5, 2.0]]);
         assert!(good.check("run.csv").is_ok());
+        // a joint whose measured torque is zero adds nothing to the NMSE
+        let with_still = fit(
+            &[vec![1.0, 2.0], vec![0.0, 0.0]],
+            &[vec![1.5, 2.0], vec![0.1, 0.0]],
+        );
+        assert_eq!(with_still.nmse, good.nmse);
+        assert!(with_still.check("run.csv").is_ok());
         let zero = fit(&[vec![0.0, 0.0]], &[vec![1.0, 0.0]]);
         assert!(!zero.relative_error.is_finite());
         assert!(
