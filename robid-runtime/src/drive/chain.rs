@@ -294,6 +294,7 @@ mod tests {
         // joint-side positions pass through; motor positions are reflected
         assert_eq!(chain.joint_positions(&theta), theta);
         let reflected = chain.reflected_motor_positions(&theta);
+        assert_eq!(reflected.len(), 6);
         for (a, e) in reflected.iter().zip([1.0, 2.0, 1.0, 2.0, 2.0, 8.0]) {
             assert!(
                 (a[0] - e).abs() < 1e-12 && (a[1] - 2.0 * e).abs() < 1e-12,
@@ -305,6 +306,7 @@ mod tests {
             .map(|v| vec![*v])
             .collect();
         let tau = chain.joint_torques(&current);
+        assert_eq!(tau.len(), 6);
         // tau_1 = N1 * 2 * i1; tau_5 = N5 * 0.5 * i5 + N6 * i6
         let expect = [64.0, 32.0, 45.0, -48.0, 22.5 + 64.0, 64.0];
         for (a, e) in tau.iter().zip(expect) {
