@@ -17,7 +17,8 @@ fn generated_code_is_up_to_date() {
         let current = std::fs::read_to_string(&path).unwrap_or_default();
         if current != code {
             if bless {
-                std::fs::write(&path, &code).unwrap();
+                // atomically: an interrupted bless leaves the old file whole
+                robid_runtime::output::write_bytes(&path, code.as_bytes()).unwrap();
             } else {
                 stale.push(path.display().to_string());
             }
