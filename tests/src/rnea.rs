@@ -360,7 +360,8 @@ fn identity() -> M3 {
     [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
 }
 
-fn sign(x: f64) -> f64 {
+/// The sign of `x`, 0 at 0 (the Coulomb friction term of the drive model).
+pub fn sign(x: f64) -> f64 {
     if x > 0.0 {
         1.0
     } else if x < 0.0 {

@@ -23,7 +23,7 @@ use robid_symbolic::sample::Rng;
 use robid_symbolic::{Drive, Robot};
 use robots::interpreted::Interpreted;
 use tests::reference::by_name;
-use tests::rnea::{Chain, Link, links_from_standard};
+use tests::rnea::{Chain, Link, links_from_standard, sign};
 use tests::state::{close, random_parameters, random_state};
 
 /// Rounding of the two computations differs; a wrong term is O(1) (relative to the
@@ -44,16 +44,6 @@ fn assert_close(what: &str, got: &[f64], want: &[f64], relative: f64) {
             close(*g, *w, relative, scale),
             "{what}[{i}]: model {g} vs reference {w}"
         );
-    }
-}
-
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
 
