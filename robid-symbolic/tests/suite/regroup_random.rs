@@ -2,9 +2,7 @@
 //! random}, lengths, gravity direction) the number of base parameters equals
 //! the numeric rank of the full regressor, and Y_b K p = Y p.
 
-mod common;
-
-use common::random_state;
+use crate::common::random_state;
 use proptest::prelude::*;
 use robid_symbolic::robot::Geometry;
 use robid_symbolic::robot::bounds::MIN_GRAVITY;

@@ -11,21 +11,33 @@ use robid_symbolic::robot::bounds::{
 use robid_symbolic::{Derivation, Drive, Robot};
 
 const ROBOTS: [(&str, &str); 7] = [
-    ("ur5e", include_str!("../../robots/descriptions/ur5e.toml")),
+    (
+        "ur5e",
+        include_str!("../../../robots/descriptions/ur5e.toml"),
+    ),
     (
         "puma560",
-        include_str!("../../robots/descriptions/puma560.toml"),
+        include_str!("../../../robots/descriptions/puma560.toml"),
     ),
-    ("rx90", include_str!("../../robots/descriptions/rx90.toml")),
-    ("tx40", include_str!("../../robots/descriptions/tx40.toml")),
-    ("lwr4", include_str!("../../robots/descriptions/lwr4.toml")),
+    (
+        "rx90",
+        include_str!("../../../robots/descriptions/rx90.toml"),
+    ),
+    (
+        "tx40",
+        include_str!("../../../robots/descriptions/tx40.toml"),
+    ),
+    (
+        "lwr4",
+        include_str!("../../../robots/descriptions/lwr4.toml"),
+    ),
     (
         "panda",
-        include_str!("../../robots/descriptions/panda.toml"),
+        include_str!("../../../robots/descriptions/panda.toml"),
     ),
     (
         "stanford",
-        include_str!("../../robots/descriptions/stanford.toml"),
+        include_str!("../../../robots/descriptions/stanford.toml"),
     ),
 ];
 

@@ -4,7 +4,7 @@ use robid_symbolic::{Derivation, Robot};
 
 #[test]
 fn ur5e_ne_equals_le() {
-    let text = include_str!("../../robots/descriptions/ur5e.toml");
+    let text = include_str!("../../../robots/descriptions/ur5e.toml");
     let robot = Robot::from_toml(text, "ur5e.toml")
         .unwrap()
         .with_drive(robid_symbolic::Drive::ALL);

@@ -8,7 +8,7 @@ use robid_symbolic::program::RobotPrograms;
 
 #[test]
 fn ur5e_inverse_dynamics_program_text() {
-    let text = include_str!("../../robots/descriptions/ur5e.toml");
+    let text = include_str!("../../../robots/descriptions/ur5e.toml");
     let robot = Robot::from_toml(text, "ur5e.toml").unwrap();
     let programs = RobotPrograms::derive(&robot).unwrap();
     insta::assert_snapshot!(programs.inverse_dynamics.to_string());

@@ -7,8 +7,6 @@
 //! regrouping samples them ([0.2, 1]); a dependency coefficient that is a
 //! ratio of the symbols (no value somewhere) is refused, naming the symbols.
 
-mod common;
-
 use proptest::prelude::*;
 use robid_symbolic::regroup::{BaseParameters, RegroupError};
 use robid_symbolic::robot::Geometry;
@@ -180,7 +178,7 @@ fn torques(
     let mut rng = Rng::new(seed);
     let (mut base, mut full) = (Vec::new(), Vec::new());
     for _ in 0..states {
-        let values = common::random_state(&mut d.arena, n, symbols, &mut rng);
+        let values = crate::common::random_state(&mut d.arena, n, symbols, &mut rng);
         let yv = d.arena.eval(&y.entries(), &values).unwrap();
         let ybv = d.arena.eval(&b.columns.concat(), &values).unwrap();
         let kv = d.arena.eval(&k.concat(), &values).unwrap();
@@ -453,7 +451,7 @@ a = "L"
 #[test]
 fn a_twist_written_as_a_symbol_holds_at_every_angle() {
     for (name, joint) in [("ur5e", 1), ("stanford", 2), ("puma560", 3)] {
-        let reference = common::reference(name).with_drive(Drive::ALL);
+        let reference = crate::common::reference(name).with_drive(Drive::ALL);
         let with = |alpha: &str| {
             let mut joints = reference.joints().to_vec();
             joints[joint].alpha = Geometry::text(alpha).unwrap();

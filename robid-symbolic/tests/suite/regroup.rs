@@ -2,9 +2,7 @@
 //! identity Y_b K p = Y p, minimality (count = numeric rank), symbolic lengths
 //! and standard-DH robots.
 
-mod common;
-
-use common::{random_state, reference};
+use crate::common::{random_state, reference};
 use robid_symbolic::regroup::BaseParameters;
 use robid_symbolic::sample::Rng;
 use robid_symbolic::{Derivation, Drive, Robot};

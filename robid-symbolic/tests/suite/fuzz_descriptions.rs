@@ -4,7 +4,7 @@
 //! non-finite number in base parameters or programs. The long run is
 //! `cargo run --release -p robid-symbolic --example fuzz_descriptions -- 1000000`.
 
-#[path = "../examples/fuzz_descriptions.rs"]
+#[path = "../../examples/fuzz_descriptions.rs"]
 mod fuzz;
 
 use std::time::Duration;
