@@ -188,7 +188,8 @@ mod tests {
                     .sum()
             })
             .unwrap();
-        assert!(q.value < 1e-6, "{q:?}");
+        // measured 9.4e-15 after 1236 evaluations (the cap is 5000 plus one simplex)
+        assert!(q.value < 2e-14, "{q:?}");
         assert!(q.evaluations <= 5000 + 11);
         // infinite values are avoided
         let c = nm
@@ -200,7 +201,8 @@ mod tests {
                 }
             })
             .unwrap();
-        assert!((c.x[0] - 0.1).abs() < 1e-4);
+        // measured 2.4e-8
+        assert!((c.x[0] - 0.1).abs() < 5e-8);
     }
 
     #[test]
@@ -212,7 +214,8 @@ mod tests {
             step: vec![0.1, 0.1],
         };
         let r = nm.minimize(&[-1.2, 1.0], rosenbrock).unwrap();
-        assert!(r.value < 1e-8 && (r.x[0] - 1.0).abs() < 1e-3, "{r:?}");
+        // measured 2.0e-29 and 3.9e-15
+        assert!(r.value < 4e-29 && (r.x[0] - 1.0).abs() < 8e-15, "{r:?}");
         let nm = NelderMead {
             max_evaluations: 20_000,
             tolerance: 1e-16,
@@ -227,7 +230,8 @@ mod tests {
                     .sum::<f64>()
             })
             .unwrap();
-        assert!(q.value < 1e-8, "{q:?}");
+        // measured 1.7e-30
+        assert!(q.value < 3.3e-30, "{q:?}");
         // the steps scale the simplex: a coordinate with a tiny scale converges too
         let nm = NelderMead {
             step: vec![1.0, 1e-6],

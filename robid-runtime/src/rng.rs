@@ -81,6 +81,7 @@ mod tests {
         let xs: Vec<f64> = (0..n).map(|_| a.normal()).collect();
         let mean = xs.iter().sum::<f64>() / n as f64;
         let var = xs.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n as f64;
+        // 4.2 and 5 standard errors: sigma(mean) = 1/sqrt(n) = 0.0071, sigma(var) = sqrt(2/n) = 0.01
         assert!(mean.abs() < 0.03, "{mean}");
         assert!((var - 1.0).abs() < 0.05, "{var}");
         let u: Vec<f64> = (0..n).map(|_| a.uniform()).collect();

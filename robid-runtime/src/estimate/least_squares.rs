@@ -184,9 +184,11 @@ mod tests {
                 e.values[i],
                 e.std[i]
             );
-            assert!(e.std[i] > 0.0 && e.std[i] < 0.01);
+            // measured 8.6e-4 to 1.24e-3
+            assert!(e.std[i] > 0.0 && e.std[i] < 2.5e-3);
         }
         assert_eq!(e.residual_rms.len(), 2);
+        // the second output is ten times noisier (measured ratio 8.8)
         assert!(e.residual_rms[1] > 5.0 * e.residual_rms[0]);
         assert!((e.rel_std_percent[0] - 100.0 * e.std[0] / e.values[0].abs()).abs() < 1e-12);
     }
@@ -197,6 +199,7 @@ mod tests {
         let o = ols(&obs, 1e-10).unwrap();
         let w = wls(&obs, 1e-10).unwrap();
         let weights = w.weights.clone().unwrap();
+        // measured ratio 8.8
         assert!(weights[0] > 5.0 * weights[1], "{weights:?}");
         for i in 0..3 {
             assert!((w.values[i] - beta[i]).abs() < 4.0 * w.std[i]);

@@ -221,7 +221,8 @@ mod tests {
         assert_eq!(d.len(), 2, "{d:?}");
         assert_eq!((d[0].0, d[0].1), (1, 57));
         assert_eq!((d[1].0, d[1].1), (2, 91));
-        assert!(d.iter().all(|x| x.2 > 0.99));
+        // a spike 1e6 times the column dominates it: measured share 1 - 1e-10
+        assert!(d.iter().all(|x| x.2 > 1.0 - 2e-10));
         // too few rows to tell
         assert!(dominated_columns(&w.rows(0, 99).into_owned()).is_empty());
     }

@@ -147,12 +147,13 @@ mod tests {
         let o = ols(&obs, 1e-10).unwrap();
         for i in 0..2 {
             assert!(
-                (r.values[i] - o.values[i]).abs() < 1e-6,
+                (r.values[i] - o.values[i]).abs() < 1.5e-10,
                 "{:?} vs {:?}",
                 r.values,
                 o.values
             );
-            assert!((r.std[i] - o.std[i]).abs() < 1e-3 * o.std[i]);
+            // measured 6.6e-11 in value and 1.7e-11 relative in std (the regularised start)
+            assert!((r.std[i] - o.std[i]).abs() < 3.5e-11 * o.std[i]);
         }
     }
 
@@ -162,11 +163,12 @@ mod tests {
         let tracked = rls(&obs, 0.95, 1e-10).unwrap();
         let averaged = rls(&obs, 1.0, 1e-10).unwrap();
         assert!(
-            (tracked.values[0] - 3.0).abs() < 0.01,
+            (tracked.values[0] - 3.0).abs() < 1.2e-4,
             "{:?}",
             tracked.values
         );
-        assert!((averaged.values[0] - 2.5).abs() < 0.1);
+        // measured 5.8e-5 from 3 with forgetting, 3.5e-3 from the average 2.5 without
+        assert!((averaged.values[0] - 2.5).abs() < 7e-3);
     }
 
     #[test]

@@ -44,14 +44,16 @@ fn csv_to_parameters_recovers_the_truth() {
     let data = dataset(20_000, 1000.0, 0.0);
     let id = identify(&Synthetic::default(), &data, &config("")).unwrap();
     let truth = true_parameters();
+    // noise-free: what is left is the filtering and differentiation (measured 1.03e-5 relative
+    // at worst, relative error of the fit 1.04e-6)
     for (i, (v, t)) in id.estimate.values.iter().zip(&truth).enumerate() {
         assert!(
-            (v - t).abs() < 2e-3 * t.abs().max(1.0),
+            (v - t).abs() < 2e-5 * t.abs().max(1.0),
             "{}: {v} vs {t}",
             id.estimate.names[i]
         );
     }
-    assert!(id.fit.relative_error < 1e-3, "{:?}", id.fit);
+    assert!(id.fit.relative_error < 2e-6, "{:?}", id.fit);
     assert!(id.estimate.condition_number > 1.0 && id.estimate.condition_number.is_finite());
 }
 
@@ -103,7 +105,8 @@ fn validation_on_other_data_predicts_well() {
     let model = Synthetic::default();
     let id = identify(&model, &train, &config("")).unwrap();
     let pred = validate(&model, &test, &config(""), &id.estimate.values).unwrap();
-    assert!(pred.fit().relative_error < 5e-3, "{:?}", pred.fit());
+    // measured 1.12e-6 (noise-free data)
+    assert!(pred.fit().relative_error < 2.5e-6, "{:?}", pred.fit());
     assert!(matches!(
         validate(&model, &test, &config(""), &[1.0]),
         Err(Error::DimensionMismatch { .. })
@@ -269,9 +272,10 @@ fn rotor_compensation_removes_rotor_inertia_and_friction() {
     let extra = "[drive.rotor]\ninertia = 0.7\nviscous = 0.3\n";
     let id = identify(&model, &data, &config(extra)).unwrap();
     let ia1 = id.estimate.value("Ia1").unwrap();
-    assert!((ia1 - beta[4]).abs() < 5e-3, "Ia1 {ia1} vs {}", beta[4]);
+    // measured 7.5e-6 both ways
+    assert!((ia1 - beta[4]).abs() < 1.5e-5, "Ia1 {ia1} vs {}", beta[4]);
     let plain = identify(&model, &data, &config("")).unwrap();
-    assert!((plain.estimate.value("Ia1").unwrap() - beta[4] - b).abs() < 5e-3);
+    assert!((plain.estimate.value("Ia1").unwrap() - beta[4] - b).abs() < 1.5e-5);
 }
 
 /// A log cut during motion, with no manual trim: the long odd padding of the low-pass
@@ -283,11 +287,12 @@ fn a_log_cut_during_motion_needs_no_manual_trim() {
     let mut cfg = config("");
     cfg.processing.trim = 0;
     let id = identify(&Synthetic::default(), &cut, &cfg).unwrap();
+    // measured: relative error 9.6e-4, parameters 1.3e-3 relative at worst
     assert!(id.fit.relative_error < 1e-3, "{:?}", id.fit);
     let truth = true_parameters();
     for (i, (v, t)) in id.estimate.values.iter().zip(&truth).enumerate() {
         assert!(
-            (v - t).abs() < 5e-3 * t.abs().max(1.0),
+            (v - t).abs() < 2.5e-3 * t.abs().max(1.0),
             "{}: {v} vs {t}",
             id.estimate.names[i]
         );

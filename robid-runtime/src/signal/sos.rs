@@ -363,7 +363,8 @@ mod tests {
         let short = sos.filtfilt(&x).unwrap();
         let long = sos.filtfilt_padded(&x, k).unwrap();
         let err = |y: &[f64]| (0..50).map(|i| (y[i] - x[i]).abs()).fold(0.0, f64::max);
-        assert!(err(&long) < 1e-5, "{}", err(&long));
+        // measured 4.2e-6 (1.0e-3 without the long padding)
+        assert!(err(&long) < 8.5e-6, "{}", err(&long));
         assert!(
             err(&long) < 0.1 * err(&short),
             "{} vs {}",
