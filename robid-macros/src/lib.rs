@@ -25,27 +25,27 @@
 //! let point = |m: f64, x: f64| [0.0, 0.0, 0.0, m * x * x, 0.0, m * x * x, m * x, 0.0, 0.0, m];
 //! let standard: Vec<f64> = point(2.0, 0.5).into_iter().chain(point(1.0, 0.3)).collect();
 //!
-//! // Through the runtime's `Model` trait (slices, lengths checked), as the
-//! // identification pipeline uses it.
+//! // Through the runtime's `Model` trait (slices, lengths checked; its methods end in
+//! // `_into`), as the identification pipeline uses it.
 //! let arm: &dyn Model = &Planar2;
 //! assert_eq!((arm.dof(), arm.standard_parameter_count()), (2, 20));
 //! assert_eq!(arm.base_parameter_name(0), Some("ZZR1"));
 //! let mut base = vec![0.0; arm.base_parameter_count()];
-//! arm.base_from_standard(&standard, &mut base)?;
+//! arm.base_from_standard_into(&standard, &mut base)?;
 //!
 //! // Holding the arm straight out at rest takes tau1 = g (m1 l1 + m2 (l1 + l2)) and
 //! // tau2 = g m2 l2.
 //! let (g, zero) = (9.81, [0.0; 2]);
 //! let mut tau = [0.0; 2];
-//! arm.inverse_dynamics(&zero, &zero, &zero, &base, &mut tau)?;
+//! arm.inverse_dynamics_into(&zero, &zero, &zero, &base, &mut tau)?;
 //! assert!((tau[0] - g * (2.0 * 0.5 + 1.0 * 0.8)).abs() < 1e-12);
 //! assert!((tau[1] - g * 1.0 * 0.3).abs() < 1e-12);
 //!
 //! // The base regressor gives the same torques in any state: tau = Y_b(q, qd, qdd) base.
 //! let (q, qd, qdd) = ([0.3, -1.2], [0.5, 2.0], [-1.0, 4.0]);
 //! let mut y = vec![0.0; 2 * base.len()];
-//! arm.base_regressor(&q, &qd, &qdd, &mut y)?;
-//! arm.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau)?;
+//! arm.base_regressor_into(&q, &qd, &qdd, &mut y)?;
+//! arm.inverse_dynamics_into(&q, &qd, &qdd, &base, &mut tau)?;
 //! for (row, t) in y.chunks(base.len()).zip(tau) {
 //!     let dot: f64 = row.iter().zip(&base).map(|(a, b)| a * b).sum();
 //!     assert!((dot - t).abs() < 1e-12);
@@ -54,16 +54,16 @@
 //! // Stretched out, the mass matrix is that of two point masses on a rigid rod:
 //! // M11 = m1 l1^2 + m2 (l1 + l2)^2, M12 = m2 (l1 + l2) l2, M22 = m2 l2^2.
 //! let mut m = [0.0; 4];
-//! arm.mass_matrix(&zero, &base, &mut m)?;
+//! arm.mass_matrix_into(&zero, &base, &mut m)?;
 //! let expected = [2.0 * 0.25 + 0.64, 0.8 * 0.3, 0.8 * 0.3, 0.09];
 //! assert!(m.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-12));
 //!
 //! // A slice of the wrong length is an error naming the argument, never a panic.
-//! let err = arm.inverse_dynamics(&[0.0; 3], &zero, &zero, &base, &mut tau).unwrap_err();
+//! let err = arm.inverse_dynamics_into(&[0.0; 3], &zero, &zero, &base, &mut tau).unwrap_err();
 //! assert_eq!(err.argument, "q");
 //!
 //! // The type's own functions take and return fixed-size arrays, generic over the scalar.
-//! let base: [f64; Planar2::BASE_PARAMETERS] = Planar2.base_parameters(&standard.try_into().unwrap());
+//! let base: [f64; Planar2::BASE_PARAMETERS] = Planar2.base_from_standard(&standard.try_into().unwrap());
 //! let tau32: [f32; 2] = Planar2.gravity(&[0.0f32; 2], &base.map(|b| b as f32));
 //! assert!((tau32[1] - 2.943).abs() < 1e-5);
 //! # Ok::<(), robid_runtime::model::LengthError>(())
@@ -110,12 +110,12 @@
 //! let m2 = (0..standard.len()).position(|i| arm.standard_parameter_name(i) == Some("M2"));
 //! standard[m2.unwrap()] = 1.0;
 //! for l1 in [0.5, 0.8] {
-//!     // (the type's own `gravity` takes arrays; the trait's, slices)
+//!     // (the type's own `gravity` takes and returns arrays; the trait's `gravity_into`, slices)
 //!     let arm: &dyn Model = &Planar { L1: l1 };
 //!     let mut base = vec![0.0; arm.base_parameter_count()];
-//!     arm.base_from_standard(&standard, &mut base)?;
+//!     arm.base_from_standard_into(&standard, &mut base)?;
 //!     let mut g = [0.0; 3];
-//!     arm.gravity(&[0.0; 3], &base, &mut g)?;
+//!     arm.gravity_into(&[0.0; 3], &base, &mut g)?;
 //!     assert!((g[0] - 9.81 * l1).abs() < 1e-12, "{g:?}");
 //! }
 //! # Ok::<(), robid_runtime::model::LengthError>(())

@@ -8,7 +8,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use robid_runtime::Model;
 use robid_runtime::data::{Config, load};
 #[allow(unused_imports)]
-use robid_runtime::model::{LengthError, check_length};
+use robid_runtime::model::{LengthError, ProgramKind, check_arguments, check_length};
 use robid_runtime::pipeline::identify;
 
 #[path = "../src/pipeline/synthetic.rs"]

@@ -217,16 +217,8 @@ fn derive_and_check(robot: &Robot) -> Outcome {
             return Outcome::Finding(format!("base parameter {} = {}", b.name, b.expression));
         }
     }
-    let all = [
-        ("standard_regressor", &programs.standard_regressor),
-        ("base_regressor", &programs.base_regressor),
-        ("inverse_dynamics", &programs.inverse_dynamics),
-        ("mass_matrix", &programs.mass_matrix),
-        ("gravity", &programs.gravity),
-        ("coriolis", &programs.coriolis),
-        ("base_from_standard", &programs.base_from_standard),
-    ];
-    for (name, program) in all {
+    for (info, program) in programs.iter() {
+        let name = info.name;
         if let Some(c) = program.constants.iter().find(|c| !c.is_finite()) {
             return Outcome::Finding(format!("{name} has the constant {c}"));
         }

@@ -43,7 +43,7 @@ fn truth(model: &Ur5e) -> Vec<f64> {
         .collect();
     let mut base = vec![0.0; model.base_parameter_count()];
     model
-        .base_from_standard(&standard, &mut base)
+        .base_from_standard_into(&standard, &mut base)
         .expect("sizes from the model");
     base
 }

@@ -177,9 +177,9 @@ impl Panda {
         "MX7",
         "MY7",
     ];
-    /// Standard regressor Y(q, qd, qdd), `7 x 70` row-major: tau = Y * standard.
+    /// Standard regressor Y(q, qd, qdd): tau = Y * standard.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `out`: joints x standard parameters, row-major (490 values).
     ///
     /// - `q`: q1 .. q7
     /// - `qd`: qd1 .. qd7
@@ -2353,9 +2353,9 @@ impl Panda {
         out[487] = t1897;
         out
     }
-    /// Base regressor Y_b(q, qd, qdd), `7 x 43` row-major: tau = Y_b * base.
+    /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `out`: joints x base parameters, row-major (301 values).
     ///
     /// - `q`: q1 .. q7
     /// - `qd`: qd1 .. qd7
@@ -3799,7 +3799,7 @@ impl Panda {
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `tau`: one entry per joint (7 values).
     ///
     /// - `q`: q1 .. q7
     /// - `qd`: qd1 .. qd7
@@ -4442,7 +4442,9 @@ impl Panda {
         let t618 = t614 - t617;
         [t618, t613, t564, t500, t428, t364, t296]
     }
-    /// Joint-space inertia matrix M(q), `7 x 7` row-major, rotor inertias included.
+    /// Joint-space inertia matrix M(q), rotor inertias included.
+    ///
+    /// Returns `out`: joints x joints, row-major (49 values).
     ///
     /// - `q`: q1 .. q7
     /// - `base`: ZZR1 .. MY7
@@ -5515,6 +5517,8 @@ impl Panda {
     }
     /// Gravity torques g(q).
     ///
+    /// Returns `out`: one entry per joint (7 values).
+    ///
     /// - `q`: q1 .. q7
     /// - `base`: ZZR1 .. MY7
     ///
@@ -5647,6 +5651,8 @@ impl Panda {
         [t112, t113, t114, t115, t116, t117, t118]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
+    ///
+    /// Returns `out`: one entry per joint (7 values).
     ///
     /// - `q`: q1 .. q7
     /// - `qd`: qd1 .. qd7
@@ -6255,13 +6261,15 @@ impl Panda {
         let t587 = -t586;
         [t587, t583, t542, t478, t406, t342, t274]
     }
-    /// Base parameters from standard parameters (base = K * standard).
+    /// Base parameters from standard parameters: base = K * standard.
+    ///
+    /// Returns `base`: one entry per base parameter (43 values).
     ///
     /// - `standard`: XX1 .. M7
     ///
     /// Operations: 18 mul, 49 add, 0 neg.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
-    pub fn base_parameters<T: ::robid_runtime::Real>(
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 70],
     ) -> [T; 43] {
@@ -6417,121 +6425,134 @@ impl ::robid_runtime::Model for Panda {
     fn base_parameter_name(&self, index: usize) -> ::core::option::Option<&str> {
         Self::BASE_PARAMETER_NAMES.get(index).copied()
     }
-    fn base_regressor(
+    fn run(
         &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
+        program: ::robid_runtime::model::ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
     ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Panda::base_regressor::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn standard_regressor(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Panda::standard_regressor::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn inverse_dynamics(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        base: &[f64],
-        tau: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Panda::inverse_dynamics::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("tau", tau)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn mass_matrix(
-        &self,
-        q: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Panda::mass_matrix::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn gravity(
-        &self,
-        q: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Panda::gravity::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn coriolis(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Panda::coriolis::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn base_from_standard(
-        &self,
-        standard: &[f64],
-        base: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Panda::base_parameters::<
-            f64,
-        >(self, ::robid_runtime::model::fixed("standard", standard)?);
-        *::robid_runtime::model::fixed_mut("base", base)? = value;
+        match program {
+            ::robid_runtime::model::ProgramKind::StandardRegressor => {
+                let [q, qd, qdd] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Panda::standard_regressor::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::BaseRegressor => {
+                let [q, qd, qdd] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Panda::base_regressor::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::InverseDynamics => {
+                let [q, qd, qdd, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 4usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Panda::inverse_dynamics::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::MassMatrix => {
+                let [q, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 2usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Panda::mass_matrix::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::Gravity => {
+                let [q, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 2usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Panda::gravity::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::Coriolis => {
+                let [q, qd, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Panda::coriolis::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::BaseFromStandard => {
+                let [standard] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 1usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Panda::base_from_standard::<
+                    f64,
+                >(self, ::robid_runtime::model::fixed("standard", standard)?);
+                *::robid_runtime::model::fixed_mut("base", output)? = value;
+            }
+        }
         ::core::result::Result::Ok(())
     }
 }

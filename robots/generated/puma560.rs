@@ -153,9 +153,9 @@ impl Puma560 {
         "MX6",
         "MY6",
     ];
-    /// Standard regressor Y(q, qd, qdd), `6 x 60` row-major: tau = Y * standard.
+    /// Standard regressor Y(q, qd, qdd): tau = Y * standard.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `out`: joints x standard parameters, row-major (360 values).
     ///
     /// - `q`: q1 .. q6
     /// - `qd`: qd1 .. qd6
@@ -1848,9 +1848,9 @@ impl Puma560 {
         out[357] = t1471;
         out
     }
-    /// Base regressor Y_b(q, qd, qdd), `6 x 36` row-major: tau = Y_b * base.
+    /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `out`: joints x base parameters, row-major (216 values).
     ///
     /// - `q`: q1 .. q6
     /// - `qd`: qd1 .. qd6
@@ -2728,7 +2728,7 @@ impl Puma560 {
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `tau`: one entry per joint (6 values).
     ///
     /// - `q`: q1 .. q6
     /// - `qd`: qd1 .. qd6
@@ -3247,7 +3247,9 @@ impl Puma560 {
         let t495 = t478 + t494;
         [t495, t488, t441, t372, t308, t244]
     }
-    /// Joint-space inertia matrix M(q), `6 x 6` row-major, rotor inertias included.
+    /// Joint-space inertia matrix M(q), rotor inertias included.
+    ///
+    /// Returns `out`: joints x joints, row-major (36 values).
     ///
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
@@ -3817,6 +3819,8 @@ impl Puma560 {
     }
     /// Gravity torques g(q).
     ///
+    /// Returns `out`: one entry per joint (6 values).
+    ///
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
     ///
@@ -3916,6 +3920,8 @@ impl Puma560 {
         [t80, t81, t82, t83, t84, t85]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
+    ///
+    /// Returns `out`: one entry per joint (6 values).
     ///
     /// - `q`: q1 .. q6
     /// - `qd`: qd1 .. qd6
@@ -4388,13 +4394,15 @@ impl Puma560 {
         let t450 = t435 + t449;
         [t450, t445, t406, t340, t276, t212]
     }
-    /// Base parameters from standard parameters (base = K * standard).
+    /// Base parameters from standard parameters: base = K * standard.
+    ///
+    /// Returns `base`: one entry per base parameter (36 values).
     ///
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 19 mul, 46 add, 5 neg.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
-    pub fn base_parameters<T: ::robid_runtime::Real>(
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
@@ -4543,121 +4551,134 @@ impl ::robid_runtime::Model for Puma560 {
     fn base_parameter_name(&self, index: usize) -> ::core::option::Option<&str> {
         Self::BASE_PARAMETER_NAMES.get(index).copied()
     }
-    fn base_regressor(
+    fn run(
         &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
+        program: ::robid_runtime::model::ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
     ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Puma560::base_regressor::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn standard_regressor(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Puma560::standard_regressor::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn inverse_dynamics(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        base: &[f64],
-        tau: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Puma560::inverse_dynamics::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("tau", tau)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn mass_matrix(
-        &self,
-        q: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Puma560::mass_matrix::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn gravity(
-        &self,
-        q: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Puma560::gravity::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn coriolis(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Puma560::coriolis::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn base_from_standard(
-        &self,
-        standard: &[f64],
-        base: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Puma560::base_parameters::<
-            f64,
-        >(self, ::robid_runtime::model::fixed("standard", standard)?);
-        *::robid_runtime::model::fixed_mut("base", base)? = value;
+        match program {
+            ::robid_runtime::model::ProgramKind::StandardRegressor => {
+                let [q, qd, qdd] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Puma560::standard_regressor::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::BaseRegressor => {
+                let [q, qd, qdd] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Puma560::base_regressor::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::InverseDynamics => {
+                let [q, qd, qdd, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 4usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Puma560::inverse_dynamics::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::MassMatrix => {
+                let [q, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 2usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Puma560::mass_matrix::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::Gravity => {
+                let [q, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 2usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Puma560::gravity::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::Coriolis => {
+                let [q, qd, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Puma560::coriolis::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::BaseFromStandard => {
+                let [standard] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 1usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Puma560::base_from_standard::<
+                    f64,
+                >(self, ::robid_runtime::model::fixed("standard", standard)?);
+                *::robid_runtime::model::fixed_mut("base", output)? = value;
+            }
+        }
         ::core::result::Result::Ok(())
     }
 }

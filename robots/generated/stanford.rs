@@ -75,9 +75,9 @@ impl Stanford {
         "MZ3",
         "M3",
     ];
-    /// Standard regressor Y(q, qd, qdd), `3 x 30` row-major: tau = Y * standard.
+    /// Standard regressor Y(q, qd, qdd): tau = Y * standard.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `out`: joints x standard parameters, row-major (90 values).
     ///
     /// - `q`: q1, q2, q3
     /// - `qd`: qd1, qd2, qd3
@@ -271,9 +271,9 @@ impl Stanford {
         out[88] = t130;
         out
     }
-    /// Base regressor Y_b(q, qd, qdd), `3 x 12` row-major: tau = Y_b * base.
+    /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `out`: joints x base parameters, row-major (36 values).
     ///
     /// - `q`: q1, q2, q3
     /// - `qd`: qd1, qd2, qd3
@@ -438,7 +438,7 @@ impl Stanford {
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `tau`: one entry per joint (3 values).
     ///
     /// - `q`: q1, q2, q3
     /// - `qd`: qd1, qd2, qd3
@@ -596,7 +596,9 @@ impl Stanford {
         let t133 = t131 - t132;
         [t133, t123, t65]
     }
-    /// Joint-space inertia matrix M(q), `3 x 3` row-major, rotor inertias included.
+    /// Joint-space inertia matrix M(q), rotor inertias included.
+    ///
+    /// Returns `out`: joints x joints, row-major (9 values).
     ///
     /// - `q`: q1, q2, q3
     /// - `base`: ZZR1 .. M3
@@ -676,6 +678,8 @@ impl Stanford {
     }
     /// Gravity torques g(q).
     ///
+    /// Returns `out`: one entry per joint (3 values).
+    ///
     /// - `q`: q1, q2, q3
     /// - `base`: ZZR1 .. M3
     ///
@@ -719,6 +723,8 @@ impl Stanford {
         [t24, t25, t26]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
+    ///
+    /// Returns `out`: one entry per joint (3 values).
     ///
     /// - `q`: q1, q2, q3
     /// - `qd`: qd1, qd2, qd3
@@ -842,13 +848,15 @@ impl Stanford {
         let t103 = -t43;
         [t102, t93, t103]
     }
-    /// Base parameters from standard parameters (base = K * standard).
+    /// Base parameters from standard parameters: base = K * standard.
+    ///
+    /// Returns `base`: one entry per base parameter (12 values).
     ///
     /// - `standard`: XX1 .. M3
     ///
     /// Operations: 2 mul, 11 add, 0 neg.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
-    pub fn base_parameters<T: ::robid_runtime::Real>(
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 30],
     ) -> [T; 12] {
@@ -891,121 +899,134 @@ impl ::robid_runtime::Model for Stanford {
     fn base_parameter_name(&self, index: usize) -> ::core::option::Option<&str> {
         Self::BASE_PARAMETER_NAMES.get(index).copied()
     }
-    fn base_regressor(
+    fn run(
         &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
+        program: ::robid_runtime::model::ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
     ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Stanford::base_regressor::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn standard_regressor(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Stanford::standard_regressor::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn inverse_dynamics(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        base: &[f64],
-        tau: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Stanford::inverse_dynamics::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("tau", tau)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn mass_matrix(
-        &self,
-        q: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Stanford::mass_matrix::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn gravity(
-        &self,
-        q: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Stanford::gravity::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn coriolis(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Stanford::coriolis::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn base_from_standard(
-        &self,
-        standard: &[f64],
-        base: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Stanford::base_parameters::<
-            f64,
-        >(self, ::robid_runtime::model::fixed("standard", standard)?);
-        *::robid_runtime::model::fixed_mut("base", base)? = value;
+        match program {
+            ::robid_runtime::model::ProgramKind::StandardRegressor => {
+                let [q, qd, qdd] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Stanford::standard_regressor::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::BaseRegressor => {
+                let [q, qd, qdd] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Stanford::base_regressor::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::InverseDynamics => {
+                let [q, qd, qdd, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 4usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Stanford::inverse_dynamics::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::MassMatrix => {
+                let [q, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 2usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Stanford::mass_matrix::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::Gravity => {
+                let [q, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 2usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Stanford::gravity::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::Coriolis => {
+                let [q, qd, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Stanford::coriolis::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::BaseFromStandard => {
+                let [standard] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 1usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Stanford::base_from_standard::<
+                    f64,
+                >(self, ::robid_runtime::model::fixed("standard", standard)?);
+                *::robid_runtime::model::fixed_mut("base", output)? = value;
+            }
+        }
         ::core::result::Result::Ok(())
     }
 }

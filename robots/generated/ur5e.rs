@@ -153,9 +153,9 @@ impl Ur5e {
         "MX6",
         "MY6",
     ];
-    /// Standard regressor Y(q, qd, qdd), `6 x 60` row-major: tau = Y * standard.
+    /// Standard regressor Y(q, qd, qdd): tau = Y * standard.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `out`: joints x standard parameters, row-major (360 values).
     ///
     /// - `q`: q1 .. q6
     /// - `qd`: qd1 .. qd6
@@ -1683,9 +1683,9 @@ impl Ur5e {
         out[357] = t1313;
         out
     }
-    /// Base regressor Y_b(q, qd, qdd), `6 x 36` row-major: tau = Y_b * base.
+    /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `out`: joints x base parameters, row-major (216 values).
     ///
     /// - `q`: q1 .. q6
     /// - `qd`: qd1 .. qd6
@@ -2482,7 +2482,7 @@ impl Ur5e {
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
-    /// `q`, `qd`, `qdd` have one entry per joint.
+    /// Returns `tau`: one entry per joint (6 values).
     ///
     /// - `q`: q1 .. q6
     /// - `qd`: qd1 .. qd6
@@ -2991,7 +2991,9 @@ impl Ur5e {
         let t483 = t480 + t482;
         [t483, t474, t434, t371, t306, t242]
     }
-    /// Joint-space inertia matrix M(q), `6 x 6` row-major, rotor inertias included.
+    /// Joint-space inertia matrix M(q), rotor inertias included.
+    ///
+    /// Returns `out`: joints x joints, row-major (36 values).
     ///
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
@@ -3486,6 +3488,8 @@ impl Ur5e {
     }
     /// Gravity torques g(q).
     ///
+    /// Returns `out`: one entry per joint (6 values).
+    ///
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
     ///
@@ -3575,6 +3579,8 @@ impl Ur5e {
         [t70, t71, t72, t73, t74, t75]
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
+    ///
+    /// Returns `out`: one entry per joint (6 values).
     ///
     /// - `q`: q1 .. q6
     /// - `qd`: qd1 .. qd6
@@ -4027,13 +4033,15 @@ impl Ur5e {
         let t427 = t424 + t426;
         [t427, t420, t388, t328, t266, t202]
     }
-    /// Base parameters from standard parameters (base = K * standard).
+    /// Base parameters from standard parameters: base = K * standard.
+    ///
+    /// Returns `base`: one entry per base parameter (36 values).
     ///
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 17 mul, 39 add, 0 neg.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
-    pub fn base_parameters<T: ::robid_runtime::Real>(
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
@@ -4170,121 +4178,134 @@ impl ::robid_runtime::Model for Ur5e {
     fn base_parameter_name(&self, index: usize) -> ::core::option::Option<&str> {
         Self::BASE_PARAMETER_NAMES.get(index).copied()
     }
-    fn base_regressor(
+    fn run(
         &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
+        program: ::robid_runtime::model::ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
     ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Ur5e::base_regressor::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn standard_regressor(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Ur5e::standard_regressor::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn inverse_dynamics(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        base: &[f64],
-        tau: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Ur5e::inverse_dynamics::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("qdd", qdd)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("tau", tau)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn mass_matrix(
-        &self,
-        q: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Ur5e::mass_matrix::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn gravity(
-        &self,
-        q: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Ur5e::gravity::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn coriolis(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Ur5e::coriolis::<
-            f64,
-        >(
-            self,
-            ::robid_runtime::model::fixed("q", q)?,
-            ::robid_runtime::model::fixed("qd", qd)?,
-            ::robid_runtime::model::fixed("base", base)?,
-        );
-        *::robid_runtime::model::fixed_mut("out", out)? = value;
-        ::core::result::Result::Ok(())
-    }
-    fn base_from_standard(
-        &self,
-        standard: &[f64],
-        base: &mut [f64],
-    ) -> ::core::result::Result<(), ::robid_runtime::LengthError> {
-        let value = Ur5e::base_parameters::<
-            f64,
-        >(self, ::robid_runtime::model::fixed("standard", standard)?);
-        *::robid_runtime::model::fixed_mut("base", base)? = value;
+        match program {
+            ::robid_runtime::model::ProgramKind::StandardRegressor => {
+                let [q, qd, qdd] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Ur5e::standard_regressor::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::BaseRegressor => {
+                let [q, qd, qdd] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Ur5e::base_regressor::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::InverseDynamics => {
+                let [q, qd, qdd, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 4usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Ur5e::inverse_dynamics::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("qdd", qdd)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::MassMatrix => {
+                let [q, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 2usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Ur5e::mass_matrix::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::Gravity => {
+                let [q, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 2usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Ur5e::gravity::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::Coriolis => {
+                let [q, qd, base] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 3usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Ur5e::coriolis::<
+                    f64,
+                >(
+                    self,
+                    ::robid_runtime::model::fixed("q", q)?,
+                    ::robid_runtime::model::fixed("qd", qd)?,
+                    ::robid_runtime::model::fixed("base", base)?,
+                );
+                *::robid_runtime::model::fixed_mut("out", output)? = value;
+            }
+            ::robid_runtime::model::ProgramKind::BaseFromStandard => {
+                let [standard] = inputs else {
+                    return ::core::result::Result::Err(::robid_runtime::LengthError {
+                        argument: "inputs",
+                        expected: 1usize,
+                        found: inputs.len(),
+                    });
+                };
+                let value = Ur5e::base_from_standard::<
+                    f64,
+                >(self, ::robid_runtime::model::fixed("standard", standard)?);
+                *::robid_runtime::model::fixed_mut("base", output)? = value;
+            }
+        }
         ::core::result::Result::Ok(())
     }
 }

@@ -1,12 +1,12 @@
 //! A robot model for any description file: robid-symbolic derives its programs at run
 //! time and [`Interpreted`] runs them behind [`robid_runtime::Model`]; [`model_for`]
-//! picks the compiled model instead when the text is a reference description.
+//! picks the compiled model instead when the robot is a reference robot.
 //!
 //! ```
 //! use robid_runtime::Model;
 //! let text = include_str!("../descriptions/ur5e.toml");
 //! let robot = robid_symbolic::Robot::from_toml(text, "ur5e.toml").unwrap();
-//! let chosen = robots::interpreted::model_for(&robot, text).unwrap();
+//! let chosen = robots::interpreted::model_for(&robot).unwrap();
 //! assert!(chosen.compiled);
 //! assert_eq!(chosen.model.dof(), 6);
 //! ```
@@ -14,11 +14,11 @@
 use std::cell::RefCell;
 
 use robid_runtime::Model;
-use robid_runtime::model::{LengthError, check_length};
+use robid_runtime::model::{LengthError, ProgramKind, check_arguments};
 use robid_symbolic::Robot;
-use robid_symbolic::program::{BaseParameter, DeriveError, Program, RobotPrograms};
+use robid_symbolic::program::{BaseParameter, DeriveError, RobotPrograms};
 
-use crate::models::{Lwr4, Panda, Puma560, Rx90, Stanford, Tx40, Ur5e};
+use crate::models::Reference;
 
 /// A description could not be turned into a model.
 #[derive(Debug, thiserror::Error)]
@@ -85,32 +85,6 @@ impl Interpreted {
     pub fn programs(&self) -> &RobotPrograms {
         &self.programs
     }
-
-    /// Runs `p` after checking every slice against the program's groups (the same
-    /// [`LengthError`] as the compiled models, and the output untouched on a mismatch).
-    fn run(
-        &self,
-        p: &Program,
-        inputs: &[(&'static str, &[f64])],
-        output: (&'static str, &mut [f64]),
-    ) -> Result<(), LengthError> {
-        for ((name, slice), group) in inputs.iter().zip(&p.inputs) {
-            check_length(name, slice, group.len())?;
-        }
-        let (name, out) = output;
-        check_length(name, out, p.outputs.iter().map(|o| o.values.len()).sum())?;
-        let mut all: Vec<&[f64]> = inputs.iter().map(|(_, s)| *s).collect();
-        if !self.geometry.is_empty() {
-            all.push(&self.geometry);
-        }
-        TEMPS
-            .with(|t| p.run(&all, &mut [out], &mut t.borrow_mut()))
-            .map_err(|_| LengthError {
-                argument: name,
-                expected: p.outputs.iter().map(|o| o.values.len()).sum(),
-                found: 0,
-            })
-    }
 }
 
 impl Model for Interpreted {
@@ -132,59 +106,28 @@ impl Model for Interpreted {
     fn base_parameter_name(&self, index: usize) -> Option<&str> {
         self.programs.base.get(index).map(|b| b.name.as_str())
     }
-    fn base_regressor(
+    /// Checks every slice against the table (the same [`LengthError`] as the compiled
+    /// models, and the output untouched on a mismatch), then interprets the program.
+    fn run(
         &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
+        program: ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
     ) -> Result<(), LengthError> {
-        let p = &self.programs.base_regressor;
-        self.run(p, &[("q", q), ("qd", qd), ("qdd", qdd)], ("out", out))
-    }
-    fn standard_regressor(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut [f64],
-    ) -> Result<(), LengthError> {
-        let p = &self.programs.standard_regressor;
-        self.run(p, &[("q", q), ("qd", qd), ("qdd", qdd)], ("out", out))
-    }
-    fn inverse_dynamics(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        base: &[f64],
-        tau: &mut [f64],
-    ) -> Result<(), LengthError> {
-        let p = &self.programs.inverse_dynamics;
-        let inputs = [("q", q), ("qd", qd), ("qdd", qdd), ("base", base)];
-        self.run(p, &inputs, ("tau", tau))
-    }
-    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
-        let p = &self.programs.mass_matrix;
-        self.run(p, &[("q", q), ("base", base)], ("out", out))
-    }
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
-        let p = &self.programs.gravity;
-        self.run(p, &[("q", q), ("base", base)], ("out", out))
-    }
-    fn coriolis(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        base: &[f64],
-        out: &mut [f64],
-    ) -> Result<(), LengthError> {
-        let p = &self.programs.coriolis;
-        self.run(p, &[("q", q), ("qd", qd), ("base", base)], ("out", out))
-    }
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) -> Result<(), LengthError> {
-        let p = &self.programs.base_from_standard;
-        self.run(p, &[("standard", standard)], ("base", base))
+        check_arguments(program, self.sizes(), inputs, output)?;
+        let p = &self.programs[program];
+        let mut all: Vec<&[f64]> = inputs.to_vec();
+        if !self.geometry.is_empty() {
+            all.push(&self.geometry);
+        }
+        let expected = output.len();
+        TEMPS
+            .with(|t| p.run(&all, &mut [output], &mut t.borrow_mut()))
+            .map_err(|_| LengthError {
+                argument: program.info().output.name,
+                expected,
+                found: 0,
+            })
     }
 }
 
@@ -223,41 +166,21 @@ impl Chosen {
 /// The text of each reference description and its compiled model (`default()` because a
 /// model with geometric symbols is not a unit struct).
 #[allow(clippy::default_constructed_unit_structs)]
-fn compiled(text: &str) -> Option<Box<dyn Model + Send + Sync>> {
-    let same = |reference: &str| reference.trim() == text.trim();
-    Some(if same(include_str!("../descriptions/ur5e.toml")) {
-        Box::new(Ur5e::default())
-    } else if same(include_str!("../descriptions/puma560.toml")) {
-        Box::new(Puma560::default())
-    } else if same(include_str!("../descriptions/rx90.toml")) {
-        Box::new(Rx90::default())
-    } else if same(include_str!("../descriptions/tx40.toml")) {
-        Box::new(Tx40::default())
-    } else if same(include_str!("../descriptions/lwr4.toml")) {
-        Box::new(Lwr4::default())
-    } else if same(include_str!("../descriptions/panda.toml")) {
-        Box::new(Panda::default())
-    } else if same(include_str!("../descriptions/stanford.toml")) {
-        Box::new(Stanford::default())
-    } else {
-        return None;
-    })
-}
-
-/// The model of `robot`, parsed from `text`: the compiled reference model when `text`
-/// is a reference description, else the interpreter. The derivation (for the names and
-/// expressions) runs in both cases.
-pub fn model_for(robot: &Robot, text: &str) -> Result<Chosen, ModelError> {
+/// The model of `robot`: the compiled reference model when `robot` is a reference
+/// description ([`Reference::matching`]), else the interpreter. The derivation (for the
+/// names and expressions) runs in both cases.
+pub fn model_for(robot: &Robot) -> Result<Chosen, ModelError> {
     let programs = RobotPrograms::derive(robot).map_err(|source| ModelError::Derive {
         robot: robot.name().to_owned(),
         source,
     })?;
     let base = programs.base.clone();
     let standard = programs.standard.clone();
-    let (model, compiled): (Box<dyn Model + Send + Sync>, bool) = match compiled(text) {
-        Some(m) if m.base_parameter_count() == base.len() => (m, true),
-        _ => (Box::new(Interpreted::from_programs(programs)?), false),
-    };
+    let (model, compiled): (Box<dyn Model + Send + Sync>, bool) =
+        match Reference::matching(robot).map(Reference::model) {
+            Some(m) if m.base_parameter_count() == base.len() => (m, true),
+            _ => (Box::new(Interpreted::from_programs(programs)?), false),
+        };
     Ok(Chosen {
         model,
         compiled,
@@ -275,7 +198,7 @@ mod tests {
         let text = include_str!("../descriptions/tx40.toml");
         let robot = Robot::from_toml(text, "tx40.toml").unwrap();
         let i = Interpreted::new(&robot).unwrap();
-        let c = Tx40;
+        let c = crate::Tx40;
         let (q, qd, qdd) = (
             [0.1, -0.4, 0.7, 1.1, -0.3, 0.2],
             [0.5, 0.2, -0.3, 0.8, 1.0, -1.2],
@@ -283,8 +206,8 @@ mod tests {
         );
         let p = Model::base_parameter_count(&c);
         let (mut a, mut b) = (vec![0.0; 6 * p], vec![0.0; 6 * p]);
-        i.base_regressor(&q, &qd, &qdd, &mut a).unwrap();
-        Model::base_regressor(&c, &q, &qd, &qdd, &mut b).unwrap();
+        i.base_regressor_into(&q, &qd, &qdd, &mut a).unwrap();
+        c.base_regressor_into(&q, &qd, &qdd, &mut b).unwrap();
         for (x, y) in a.iter().zip(&b) {
             assert!((x - y).abs() < 1e-9 * (1.0 + y.abs()));
         }
@@ -296,8 +219,10 @@ mod tests {
     fn a_wrong_length_is_the_same_error_for_compiled_and_interpreted() {
         let text = include_str!("../descriptions/tx40.toml");
         let robot = Robot::from_toml(text, "tx40.toml").unwrap();
-        let models: [Box<dyn Model>; 2] =
-            [Box::new(Interpreted::new(&robot).unwrap()), Box::new(Tx40)];
+        let models: [Box<dyn Model>; 2] = [
+            Box::new(Interpreted::new(&robot).unwrap()),
+            crate::Reference::named("tx40").unwrap().model(),
+        ];
         let p = models[1].base_parameter_count();
         let ns = models[1].standard_parameter_count();
         let (q, short, base) = ([0.3; 6], [0.3; 2], vec![0.5; p]);
@@ -305,17 +230,18 @@ mod tests {
         for m in &models {
             let mut out = vec![7.0; 6];
             let e = [
-                m.gravity(&short, &base, &mut out).unwrap_err(),
-                m.gravity(&q, &base[1..], &mut out).unwrap_err(),
-                m.gravity(&q, &base, &mut out[..5]).unwrap_err(),
-                m.inverse_dynamics(&q, &q, &short, &base, &mut out)
+                m.gravity_into(&short, &base, &mut out).unwrap_err(),
+                m.gravity_into(&q, &base[1..], &mut out).unwrap_err(),
+                m.gravity_into(&q, &base, &mut out[..5]).unwrap_err(),
+                m.inverse_dynamics_into(&q, &q, &short, &base, &mut out)
                     .unwrap_err(),
-                m.coriolis(&q, &short, &base, &mut out).unwrap_err(),
-                m.mass_matrix(&q, &base, &mut out).unwrap_err(),
-                m.base_regressor(&q, &q, &q, &mut out).unwrap_err(),
-                m.standard_regressor(&q, &q, &short, &mut vec![0.0; 6 * ns])
+                m.coriolis_into(&q, &short, &base, &mut out).unwrap_err(),
+                m.mass_matrix_into(&q, &base, &mut out).unwrap_err(),
+                m.base_regressor_into(&q, &q, &q, &mut out).unwrap_err(),
+                m.standard_regressor_into(&q, &q, &short, &mut vec![0.0; 6 * ns])
                     .unwrap_err(),
-                m.base_from_standard(&base, &mut vec![0.0; p]).unwrap_err(),
+                m.base_from_standard_into(&base, &mut vec![0.0; p])
+                    .unwrap_err(),
             ];
             assert!(out.iter().all(|&v| v == 7.0), "output written on error");
             assert_eq!(m.base_parameter_name(p), None);
@@ -339,7 +265,7 @@ mod tests {
     fn reference_text_chooses_the_compiled_model() {
         let text = include_str!("../descriptions/tx40.toml");
         let robot = Robot::from_toml(text, "tx40.toml").unwrap();
-        assert!(model_for(&robot, text).unwrap().compiled);
+        assert!(model_for(&robot).unwrap().compiled);
         // the same robot with viscous friction on every joint (a top-level key, before
         // the first table): another model, so not the compiled one
         let edited = text.replacen(
@@ -350,6 +276,6 @@ mod tests {
         assert_ne!(edited, text, "the edit applies");
         let robot = Robot::from_toml(&edited, "edited.toml").unwrap();
         assert_eq!(robot.standard_parameters().len(), 6 * 10 + 6);
-        assert!(!model_for(&robot, &edited).unwrap().compiled);
+        assert!(!model_for(&robot).unwrap().compiled);
     }
 }

@@ -5,6 +5,4 @@
 pub mod interpreted;
 pub mod models;
 
-pub use models::{
-    Lwr4, Panda, Puma560, REFERENCE_ROBOTS, Rx90, Stanford, Tx40, Ur5e, reference_model,
-};
+pub use models::{Lwr4, Panda, Puma560, REFERENCES, Reference, Rx90, Stanford, Tx40, Ur5e};

@@ -75,7 +75,7 @@ fn run(label: &str, problem: &Problem, bounds: &Bounds, w: &DMatrix<f64>, y: &DV
 fn tx40() {
     let text = std::fs::read_to_string(repo("robots/configs/tx40_robot.toml")).unwrap();
     let robot = robid_symbolic::Robot::from_toml(&text, "tx40_robot.toml").unwrap();
-    let chosen = robots::interpreted::model_for(&robot, &text).unwrap();
+    let chosen = robots::interpreted::model_for(&robot).unwrap();
     let config = Config::from_file(repo("robots/configs/tx40.toml")).unwrap();
     let data = load_config_files(&config, 6).unwrap();
     let (a, b, margin) = (0, 24750, 1000);

@@ -44,7 +44,7 @@ pub fn ur5e_base() -> Vec<f64> {
         })
         .collect();
     let mut base = vec![0.0; model.base_parameter_count()];
-    Model::base_from_standard(&model, &standard, &mut base)
+    Model::base_from_standard_into(&model, &standard, &mut base)
         .expect("the standard vector has the model's length");
     base
 }
@@ -82,7 +82,7 @@ pub fn motion_scaled(rows: usize, scale: [f64; 6]) -> Motion {
             qd[j] = a * w * (w * time + p).cos() + b * w2 * (w2 * time).cos();
             qdd[j] = -a * w * w * (w * time + p).sin() - b * w2 * w2 * (w2 * time).sin();
         }
-        Model::inverse_dynamics(&model, &q, &qd, &qdd, &base, &mut tau)
+        Model::inverse_dynamics_into(&model, &q, &qd, &qdd, &base, &mut tau)
             .expect("the reference state and parameters have the model's lengths");
         for j in 0..n {
             s[0][j][k] = q[j];

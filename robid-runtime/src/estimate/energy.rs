@@ -115,8 +115,8 @@ pub fn model_energy_observation(
     // per sample: the kinetic energy per parameter (window ends only) and the power
     // g(q).qd + friction per parameter, both from at most two regressor calls
     let energy_at = |q: &[f64], qd: &[f64], y0: &mut [f64], y1: &mut [f64], out: &mut [f64]| {
-        model.base_regressor(q, &zeros, &zeros, y0)?;
-        model.base_regressor(q, &zeros, qd, y1)?;
+        model.base_regressor_into(q, &zeros, &zeros, y0)?;
+        model.base_regressor_into(q, &zeros, qd, y1)?;
         for (i, o) in out.iter_mut().enumerate() {
             *o = 0.5
                 * (0..dof)
@@ -126,7 +126,7 @@ pub fn model_energy_observation(
         Ok::<(), LengthError>(())
     };
     let power_at = |q: &[f64], qd: &[f64], y0: &mut [f64], d: &mut [f64], out: &mut [f64]| {
-        model.base_regressor(q, &zeros, &zeros, y0)?;
+        model.base_regressor_into(q, &zeros, &zeros, y0)?;
         friction(q, qd, d);
         for (i, o) in out.iter_mut().enumerate() {
             *o = if dissipative[i] {

@@ -64,7 +64,7 @@ impl Information {
         qd: &[f64],
         qdd: &[f64],
     ) -> Result<(), LengthError> {
-        model.base_regressor(q, qd, qdd, &mut self.y)?;
+        model.base_regressor_into(q, qd, qdd, &mut self.y)?;
         if let Some(w) = &self.weights {
             let p = self.gram.ncols();
             for (row, w) in self.y.chunks_mut(p).zip(w) {

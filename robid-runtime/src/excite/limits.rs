@@ -109,7 +109,7 @@ impl<'a> TorquePenalty<'a> {
         qd: &[f64],
         qdd: &[f64],
     ) -> std::result::Result<(), LengthError> {
-        model.inverse_dynamics(q, qd, qdd, self.base, &mut self.tau)?;
+        model.inverse_dynamics_into(q, qd, qdd, self.base, &mut self.tau)?;
         for (j, l) in self.limits.iter().enumerate() {
             if let Some(t) = l.torque {
                 let excess = (self.tau[j].abs() / (self.safety * t) - 1.0).max(0.0);
@@ -213,7 +213,7 @@ pub fn margins<M: Model + ?Sized>(
             (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         for k in 0..trajectory.samples() {
             trajectory.state(k, &mut q, &mut qd, &mut qdd);
-            model.inverse_dynamics(&q, &qd, &qdd, base, &mut tau)?;
+            model.inverse_dynamics_into(&q, &qd, &qdd, base, &mut tau)?;
             for j in 0..n {
                 p[j] = p[j].max(tau[j].abs());
             }

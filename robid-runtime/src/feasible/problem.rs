@@ -97,7 +97,7 @@ impl Problem {
         let mut column = vec![0.0; nb];
         for s in 0..ns {
             unit[s] = 1.0;
-            model.base_from_standard(&unit, &mut column)?;
+            model.base_from_standard_into(&unit, &mut column)?;
             unit[s] = 0.0;
             k.set_column(s, &DVector::from_column_slice(&column));
         }

@@ -140,7 +140,7 @@ pub fn observe(
             st.qd[j] = signals.qd[j][k];
             st.qdd[j] = signals.qdd[j][k];
         }
-        model.base_regressor(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
+        model.base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
         for (c, x) in extra.iter().enumerate() {
             x.fill(&st.q, &st.qd, &st.qdd, &mut st.col);
             let start = lay.column(0, lay.p + c);

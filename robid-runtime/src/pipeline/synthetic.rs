@@ -6,7 +6,7 @@
 #![allow(dead_code)]
 
 use super::Model;
-use super::{LengthError, check_length};
+use super::{LengthError, ProgramKind, check_arguments, check_length};
 
 /// Joints.
 pub(crate) const DOF: usize = 6;
@@ -103,6 +103,34 @@ impl Model for Synthetic {
     fn base_parameter_name(&self, index: usize) -> Option<&str> {
         self.names.get(index).map(String::as_str)
     }
+    fn run(
+        &self,
+        program: ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_arguments(program, self.sizes(), inputs, output)?;
+        match (program, inputs) {
+            (ProgramKind::BaseRegressor, [q, qd, qdd]) => self.base_regressor(q, qd, qdd, output),
+            (ProgramKind::StandardRegressor, [q, qd, qdd]) => {
+                self.standard_regressor(q, qd, qdd, output)
+            }
+            (ProgramKind::InverseDynamics, [q, qd, qdd, base]) => {
+                self.inverse_dynamics(q, qd, qdd, base, output)
+            }
+            (ProgramKind::MassMatrix, [q, base]) => self.mass_matrix(q, base, output),
+            (ProgramKind::Gravity, [q, base]) => self.gravity(q, base, output),
+            (ProgramKind::Coriolis, [q, qd, base]) => self.coriolis(q, qd, base, output),
+            (ProgramKind::BaseFromStandard, [standard]) => {
+                self.base_from_standard(standard, output)
+            }
+            _ => unreachable!("check_arguments checked the number of inputs"),
+        }
+    }
+}
+
+/// The programs, written by hand (`run` dispatches to them).
+impl Synthetic {
     fn base_regressor(
         &self,
         q: &[f64],
@@ -229,7 +257,7 @@ pub(crate) fn csv_with_noise(n: usize, rate: f64, noise: [f64; DOF]) -> String {
         let t = k as f64 / rate;
         trajectory(t, &mut q, &mut qd, &mut qdd);
         model
-            .inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau)
+            .inverse_dynamics_into(&q, &qd, &qdd, &beta, &mut tau)
             .unwrap();
         out.push_str(&format!("{t}"));
         for v in q {

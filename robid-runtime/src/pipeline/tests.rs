@@ -6,8 +6,9 @@ use crate::Model;
 use crate::data::{Config, Dataset, load};
 use crate::drive::ExtraColumn;
 use crate::error::Error;
+// used by the synthetic model (a child module, also built by benches/pipeline.rs)
 #[allow(unused_imports)]
-use crate::model::{LengthError, check_length};
+use crate::model::{LengthError, ProgramKind, check_arguments, check_length};
 use crate::pipeline::{identify, validate};
 
 #[path = "synthetic.rs"]
@@ -129,7 +130,7 @@ fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
         qdd[5] = 0.0;
         let mut tau = [0.0; DOF];
         model
-            .inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau)
+            .inverse_dynamics_into(&q, &qd, &qdd, &beta, &mut tau)
             .unwrap();
         for j in 0..DOF {
             qs[j][k] = q[j];
@@ -167,7 +168,7 @@ fn extra_coupled_wrist_columns_are_identified() {
         trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
         let mut tau = [0.0; DOF];
         model
-            .inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau)
+            .inverse_dynamics_into(&q, &qd, &qdd, &beta, &mut tau)
             .unwrap();
         let s = crate::Real::sign(qd[4] + qd[5]);
         tau[4] += iam * qdd[5] + fvm * qd[5] + fsm * s;
@@ -258,7 +259,7 @@ fn rotor_compensation_removes_rotor_inertia_and_friction() {
         trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
         let mut tau = [0.0; DOF];
         model
-            .inverse_dynamics(&q, &qd, &qdd, &beta, &mut tau)
+            .inverse_dynamics_into(&q, &qd, &qdd, &beta, &mut tau)
             .unwrap();
         for j in 0..DOF {
             qs[j][k] = q[j];

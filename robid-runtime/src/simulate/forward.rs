@@ -1,7 +1,7 @@
 //! Forward dynamics from a model in base parameters.
 //!
 //! M(q) qdd = tau - h(q, qd), where h = c(q, qd) + g(q) + friction(qd) + offsets is the
-//! inverse dynamics at zero acceleration (`Model::inverse_dynamics(q, qd, 0)`): the model's
+//! inverse dynamics at zero acceleration (`Model::inverse_dynamics_into(q, qd, 0)`): the model's
 //! own drive terms (Fv qd, Fc sign(qd), Fo) are therefore exactly those of the data it is
 //! identified from. M(q) includes the rotor inertias Ia. The system is solved by Cholesky.
 
@@ -60,9 +60,9 @@ impl<'a, M: Model + ?Sized> ForwardDynamics<'a, M> {
         qdd: &mut [f64],
     ) -> Result<()> {
         let n = self.model.dof();
-        self.model.mass_matrix(q, self.base, &mut self.m)?;
+        self.model.mass_matrix_into(q, self.base, &mut self.m)?;
         self.model
-            .inverse_dynamics(q, qd, &self.zero, self.base, &mut self.h)?;
+            .inverse_dynamics_into(q, qd, &self.zero, self.base, &mut self.h)?;
         let m = DMatrix::from_row_slice(n, n, &self.m);
         let rhs = DVector::from_iterator(n, (0..n).map(|j| tau[j] - self.h[j]));
         let chol = m.cholesky().ok_or_else(|| Error::Singular {
@@ -87,7 +87,8 @@ mod tests {
         let mut fd = ForwardDynamics::new(&p, &base).unwrap();
         let (q, qd, qdd) = ([0.3, -0.7], [0.5, 1.2], [2.0, -3.0]);
         let mut tau = [0.0; 2];
-        p.inverse_dynamics(&q, &qd, &qdd, &base, &mut tau).unwrap();
+        p.inverse_dynamics_into(&q, &qd, &qdd, &base, &mut tau)
+            .unwrap();
         let mut back = [0.0; 2];
         fd.accelerations(&q, &qd, &tau, &mut back).unwrap();
         for j in 0..2 {

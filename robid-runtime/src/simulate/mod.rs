@@ -67,7 +67,7 @@ mod run_tests {
         let mut tau = [0.0; 2];
         for k in (10..r.samples()).step_by(37) {
             let s = |v: &Vec<Vec<f64>>| [v[0][k], v[1][k]];
-            p.inverse_dynamics(&s(&tr.q), &s(&tr.qd), &s(&tr.qdd), &base, &mut tau)
+            p.inverse_dynamics_into(&s(&tr.q), &s(&tr.qd), &s(&tr.qdd), &base, &mut tau)
                 .unwrap();
             for (t, truth) in tau.iter().zip(&out.truth.tau) {
                 assert!((t - truth[k]).abs() < 1e-9);

@@ -203,7 +203,7 @@ impl Simulation {
         let [q0, qd0, qdd0] = &mut r0;
         reference.state(0, q0, qd0, qdd0);
         let mut m = vec![0.0; n * n];
-        model.mass_matrix(&r0[0], base, &mut m)?;
+        model.mass_matrix_into(&r0[0], base, &mut m)?;
         if nalgebra::DMatrix::from_row_slice(n, n, &m)
             .cholesky()
             .is_none()
@@ -273,7 +273,7 @@ impl Simulation {
         let sigma_tau = |j: usize| self.noise.torque[j.min(self.noise.torque.len() - 1)];
         let control = |r: &[Vec<f64>; 3], q: &[f64], qd: &[f64], rng: &mut Rng, tau: &mut [f64]| {
             if self.feedforward {
-                model.inverse_dynamics(&r[0], &r[1], &r[2], base, tau)?;
+                model.inverse_dynamics_into(&r[0], &r[1], &r[2], base, tau)?;
             } else {
                 tau.iter_mut().for_each(|t| *t = 0.0);
             }
@@ -403,16 +403,16 @@ fn step<M: Model + ?Sized>(
     let base = fd.base();
     let zero = vec![0.0; n];
     let mut m = vec![0.0; n * n];
-    model.mass_matrix(q, base, &mut m)?;
+    model.mass_matrix_into(q, base, &mut m)?;
     let mut h0 = vec![0.0; n];
-    model.inverse_dynamics(q, qd, &zero, base, &mut h0)?;
+    model.inverse_dynamics_into(q, qd, &zero, base, &mut h0)?;
     let mut a = nalgebra::DMatrix::from_row_slice(n, n, &m);
     let mut shifted = qd.to_vec();
     let mut h1 = vec![0.0; n];
     for k in 0..n {
         let eps = 1e-6 * (1.0 + qd[k].abs()) * if qd[k] < 0.0 { -1.0 } else { 1.0 };
         shifted[k] = qd[k] + eps;
-        model.inverse_dynamics(q, &shifted, &zero, base, &mut h1)?;
+        model.inverse_dynamics_into(q, &shifted, &zero, base, &mut h1)?;
         shifted[k] = qd[k];
         for i in 0..n {
             a[(i, k)] += h * (h1[i] - h0[i]) / eps;

@@ -2,7 +2,7 @@
 //! exactly known model for the unit tests of `simulate` and `excite`.
 
 use crate::Model;
-use crate::model::{LengthError, check_length};
+use crate::model::{LengthError, ProgramKind, check_arguments, check_length};
 
 /// Gravity (m/s^2).
 const G0: f64 = 9.81;
@@ -62,6 +62,34 @@ impl Model for Pendulum {
     fn base_parameter_name(&self, index: usize) -> Option<&str> {
         self.names.get(index).map(String::as_str)
     }
+    fn run(
+        &self,
+        program: ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_arguments(program, self.sizes(), inputs, output)?;
+        match (program, inputs) {
+            (ProgramKind::BaseRegressor, [q, qd, qdd]) => self.base_regressor(q, qd, qdd, output),
+            (ProgramKind::StandardRegressor, [q, qd, qdd]) => {
+                self.standard_regressor(q, qd, qdd, output)
+            }
+            (ProgramKind::InverseDynamics, [q, qd, qdd, base]) => {
+                self.inverse_dynamics(q, qd, qdd, base, output)
+            }
+            (ProgramKind::MassMatrix, [q, base]) => self.mass_matrix(q, base, output),
+            (ProgramKind::Gravity, [q, base]) => self.gravity(q, base, output),
+            (ProgramKind::Coriolis, [q, qd, base]) => self.coriolis(q, qd, base, output),
+            (ProgramKind::BaseFromStandard, [standard]) => {
+                self.base_from_standard(standard, output)
+            }
+            _ => unreachable!("check_arguments checked the number of inputs"),
+        }
+    }
+}
+
+/// The programs, written by hand (`run` dispatches to them).
+impl Pendulum {
     fn base_regressor(
         &self,
         q: &[f64],
@@ -117,7 +145,7 @@ impl Model for Pendulum {
         check_length("q", q, 2)?;
         check_length("qd", qd, 2)?;
         check_length("qdd", qdd, 2)?;
-        self.base_regressor(q, qd, qdd, out)?;
+        self.base_regressor_into(q, qd, qdd, out)?;
         Ok(())
     }
     fn inverse_dynamics(
@@ -132,7 +160,7 @@ impl Model for Pendulum {
         check_length("qd", qd, 2)?;
         check_length("qdd", qdd, 2)?;
         let mut y = [0.0; 20];
-        self.base_regressor(q, qd, qdd, &mut y)?;
+        self.base_regressor_into(q, qd, qdd, &mut y)?;
         for j in 0..2 {
             tau[j] = (0..10).map(|i| y[j * 10 + i] * base[i]).sum();
         }
@@ -150,7 +178,7 @@ impl Model for Pendulum {
     }
     fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
         check_length("q", q, 2)?;
-        self.inverse_dynamics(q, &[0.0; 2], &[0.0; 2], &base_without_friction(base), out)?;
+        self.inverse_dynamics_into(q, &[0.0; 2], &[0.0; 2], &base_without_friction(base), out)?;
         Ok(())
     }
     fn coriolis(
@@ -164,8 +192,8 @@ impl Model for Pendulum {
         check_length("qd", qd, 2)?;
         let p = base_without_friction(base);
         let mut g = [0.0; 2];
-        self.gravity(q, base, &mut g)?;
-        self.inverse_dynamics(q, qd, &[0.0; 2], &p, out)?;
+        self.gravity_into(q, base, &mut g)?;
+        self.inverse_dynamics_into(q, qd, &[0.0; 2], &p, out)?;
         out[0] -= g[0];
         out[1] -= g[1];
         Ok(())
@@ -188,15 +216,15 @@ fn mass_matrix_matches_the_regressor() {
     let base = p.base();
     let q = [0.4, -1.1];
     let mut m = [0.0; 4];
-    p.mass_matrix(&q, &base, &mut m).unwrap();
+    p.mass_matrix_into(&q, &base, &mut m).unwrap();
     let mut g = [0.0; 2];
-    p.inverse_dynamics(&q, &[0.0; 2], &[0.0; 2], &base, &mut g)
+    p.inverse_dynamics_into(&q, &[0.0; 2], &[0.0; 2], &base, &mut g)
         .unwrap();
     for k in 0..2 {
         let mut e = [0.0; 2];
         e[k] = 1.0;
         let mut t = [0.0; 2];
-        p.inverse_dynamics(&q, &[0.0; 2], &e, &base, &mut t)
+        p.inverse_dynamics_into(&q, &[0.0; 2], &e, &base, &mut t)
             .unwrap();
         for i in 0..2 {
             assert!((t[i] - g[i] - m[i * 2 + k]).abs() < 1e-12);

@@ -7,6 +7,7 @@ use super::names::{ident, type_name, value_ident, value_name};
 use crate::program::RobotPrograms;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
+use robid_runtime::model::{ProgramInfo, Sizes};
 
 /// The type (named after the robot) with its constants, functions and `Model`
 /// impl; its documentation lists the run-time inputs (geometric symbols
@@ -83,52 +84,14 @@ pub fn robot_tokens(p: &RobotPrograms) -> Result<TokenStream, EmitError> {
         )
     };
     let default_impl = default_impl(p, &ty);
-    let jd = |what: &str| format!("{what}\n\n`q`, `qd`, `qdd` have one entry per joint.");
-    let f: [Result<TokenStream, EmitError>; 7] = [
-        function_tokens(
-            "standard_regressor",
-            &jd(&format!(
-                "Standard regressor Y(q, qd, qdd), `{n} x {}` row-major: tau = Y * standard.",
-                p.standard.len()
-            )),
-            &p.standard_regressor,
-        ),
-        function_tokens(
-            "base_regressor",
-            &jd(&format!(
-                "Base regressor Y_b(q, qd, qdd), `{n} x {}` row-major: tau = Y_b * base.",
-                p.base.len()
-            )),
-            &p.base_regressor,
-        ),
-        function_tokens(
-            "inverse_dynamics",
-            &jd(
-                "Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.",
-            ),
-            &p.inverse_dynamics,
-        ),
-        function_tokens(
-            "mass_matrix",
-            &format!(
-                "Joint-space inertia matrix M(q), `{n} x {n}` row-major, rotor inertias included."
-            ),
-            &p.mass_matrix,
-        ),
-        function_tokens("gravity", "Gravity torques g(q).", &p.gravity),
-        function_tokens(
-            "coriolis",
-            "Coriolis and centripetal torques c(q, qd) (no gravity, no friction).",
-            &p.coriolis,
-        ),
-        function_tokens(
-            "base_parameters",
-            "Base parameters from standard parameters (base = K * standard).",
-            &p.base_from_standard,
-        ),
-    ];
-    let f = f
-        .into_iter()
+    let sizes = Sizes {
+        joints: n,
+        base: p.base.len(),
+        standard: p.standard.len(),
+    };
+    let f = p
+        .iter()
+        .map(|(info, program)| function_tokens(info.name, &function_doc(info, sizes), program))
         .collect::<Result<Vec<TokenStream>, EmitError>>()?;
     let model = model_impl(&ty);
     Ok(quote! {
@@ -159,6 +122,18 @@ pub fn robot_tokens(p: &RobotPrograms) -> Result<TokenStream, EmitError> {
 
         #model
     })
+}
+
+/// The documentation of a generated function: the table's summary and the output's shape.
+pub(crate) fn function_doc(info: &ProgramInfo, sizes: Sizes) -> String {
+    let output = info.output;
+    format!(
+        "{}\n\nReturns `{}`: {} ({} values).",
+        info.summary,
+        output.name,
+        output.size.describe(),
+        output.size.len(sizes)
+    )
 }
 
 /// `Default` with the description's values of the geometric symbols, when it gives them all.

@@ -6,6 +6,7 @@ use super::names::type_name;
 use crate::robot::name_problem;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
+use robid_runtime::model::PROGRAMS;
 
 /// A type named after `robot_name` with the constants and functions of a real
 /// model, accepting any sizes, whose bodies are unreachable (the crate does
@@ -17,27 +18,30 @@ pub fn stub_tokens(robot_name: &str) -> Option<TokenStream> {
     }
     let ident = |name: &str| Ident::new(name, Span::call_site());
     let ty = ident(&type_name(robot_name));
-    let f = |name: &str, args: &[&str]| {
-        let name = ident(name);
-        let args = args.iter().map(|a| {
-            let a = ident(a);
-            quote!(#a: &[T; N])
+    // every program of the table, each argument with its own length
+    let fns = PROGRAMS.iter().map(|p| {
+        let name = ident(p.name);
+        let lengths: Vec<Ident> = (0..p.inputs.len()).map(|i| ident(&format!("A{i}"))).collect();
+        let args = p.inputs.iter().zip(&lengths).map(|(a, n)| {
+            let a = ident(a.name);
+            quote!(#a: &[T; #n])
         });
+        // an output as long as an input takes its length (so `let tau = ...` infers)
+        let same = p.inputs.iter().position(|a| a.size == p.output.size);
+        let (out, extra) = match same {
+            Some(i) => {
+                let n = &lengths[i];
+                (quote!(#n), quote!())
+            }
+            None => (quote!(M), quote!(const M: usize,)),
+        };
         quote! {
             /// Placeholder after an error in `robot_model!`.
-            pub fn #name<T: ::robid_runtime::Real, const N: usize, const M: usize>(&self, #(#args),*) -> [T; M] {
+            pub fn #name<T: ::robid_runtime::Real, #(const #lengths: usize,)* #extra>(&self, #(#args),*) -> [T; #out] {
                 ::core::unreachable!()
             }
         }
-    };
-    let fns = [
-        f("standard_regressor", &["q", "qd", "qdd"]),
-        f("base_regressor", &["q", "qd", "qdd"]),
-        f("mass_matrix", &["q", "base"]),
-        f("gravity", &["q", "base"]),
-        f("coriolis", &["q", "qd", "base"]),
-        f("base_parameters", &["standard"]),
-    ];
+    });
     Some(quote! {
         /// Placeholder after an error in `robot_model!`.
         #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -52,12 +56,6 @@ pub fn stub_tokens(robot_name: &str) -> Option<TokenStream> {
             pub const STANDARD_PARAMETERS: usize = 0;
             /// Placeholder.
             pub const BASE_PARAMETERS: usize = 0;
-            /// Placeholder.
-            pub fn inverse_dynamics<T: ::robid_runtime::Real, const N: usize, const B: usize>(
-                &self, q: &[T; N], qd: &[T; N], qdd: &[T; N], base: &[T; B],
-            ) -> [T; N] {
-                ::core::unreachable!()
-            }
             #(#fns)*
         }
     })

@@ -141,7 +141,7 @@ pub enum ProgramError {
 }
 
 /// A straight-line program: inputs, constants, instructions, outputs.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Program {
     /// Input groups; `Value::Input(i)` counts their elements in order.
     pub inputs: Vec<Group>,

@@ -18,6 +18,8 @@ use crate::dynamics::{Derivation, JointInputs, LinkParameters};
 use crate::expr::{Arena, Id};
 use crate::regroup::{BaseParameters, RegroupError};
 use crate::robot::{INERTIAL_NAMES, Robot};
+use robid_runtime::model::{PROGRAMS, ProgramInfo, ProgramKind, Sizes};
+use std::ops::{Index, IndexMut};
 
 /// A base parameter as the generated code describes it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -39,20 +41,29 @@ pub struct RobotPrograms {
     pub base: Vec<BaseParameter>,
     /// Geometric symbols (inputs of every program, group `geometry`) and default values.
     pub geometry: Vec<(String, Option<f64>)>,
-    /// `(q, qd, qdd) -> out`: Y, `dof x standard` row-major.
-    pub standard_regressor: Program,
-    /// `(q, qd, qdd) -> out`: Y_b, `dof x base` row-major.
-    pub base_regressor: Program,
-    /// `(q, qd, qdd, base) -> tau`.
-    pub inverse_dynamics: Program,
-    /// `(q, base) -> out`: M(q), `dof x dof` row-major.
-    pub mass_matrix: Program,
-    /// `(q, base) -> tau`: g(q).
-    pub gravity: Program,
-    /// `(q, qd, base) -> tau`: c(q, qd).
-    pub coriolis: Program,
-    /// `standard -> base`.
-    pub base_from_standard: Program,
+    /// The programs, in the order of the table
+    /// ([`PROGRAMS`](robid_runtime::model::PROGRAMS)); index with a [`ProgramKind`].
+    pub programs: [Program; PROGRAMS.len()],
+}
+
+impl RobotPrograms {
+    /// Each program with its table entry, in table order.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static ProgramInfo, &Program)> {
+        PROGRAMS.iter().zip(&self.programs)
+    }
+}
+
+impl Index<ProgramKind> for RobotPrograms {
+    type Output = Program;
+    fn index(&self, kind: ProgramKind) -> &Program {
+        &self.programs[kind as usize]
+    }
+}
+
+impl IndexMut<ProgramKind> for RobotPrograms {
+    fn index_mut(&mut self, kind: ProgramKind) -> &mut Program {
+        &mut self.programs[kind as usize]
+    }
 }
 
 /// A robot's models could not be derived.
@@ -242,6 +253,62 @@ impl Context {
         Ok(l.finish(inputs.clone(), vec![(group, values)]))
     }
 
+    /// The builder of each program of the table.
+    fn build(&mut self, kind: ProgramKind) -> Result<Program, ProgramError> {
+        let n = self.d.robot.dof();
+        let info = kind.info();
+        let inputs: Vec<&str> = info.inputs.iter().map(|a| a.name).collect();
+        let output = info.output.name;
+        let single = |t: &[Vec<Value>]| t[0].clone();
+        match kind {
+            ProgramKind::StandardRegressor => {
+                let columns = self.d.regressor().columns;
+                self.expressions(&inputs, output, row_major(&columns, n))
+            }
+            ProgramKind::BaseRegressor => self.base_regressor_program(),
+            ProgramKind::InverseDynamics => {
+                let symbolic = [self.d.inputs.clone()];
+                self.newton_euler_program(&inputs, output, &symbolic, true, single)
+            }
+            ProgramKind::MassMatrix => {
+                let columns: Vec<JointInputs> = (0..n)
+                    .map(|k| self.constant_inputs(false, Some(k), false))
+                    .collect();
+                self.newton_euler_program(&inputs, output, &columns, false, |t| {
+                    (0..n * n)
+                        .map(|e| {
+                            let (i, k) = (e / n, e % n);
+                            if i >= k { t[k][i] } else { t[i][k] }
+                        })
+                        .collect()
+                })
+            }
+            ProgramKind::Gravity => {
+                let runs = [self.constant_inputs(false, None, true)];
+                self.newton_euler_program(&inputs, output, &runs, false, single)
+            }
+            ProgramKind::Coriolis => {
+                let runs = [self.constant_inputs(true, None, false)];
+                self.newton_euler_program(&inputs, output, &runs, false, single)
+            }
+            ProgramKind::BaseFromStandard => {
+                let expressions: Vec<Id> = self.base.base.iter().map(|b| b.expression).collect();
+                self.expressions(&inputs, output, expressions)
+            }
+        }
+    }
+
+    /// A program computing `ids` (expressions of the arena) into output group `name`.
+    fn expressions(
+        &self,
+        inputs: &[&str],
+        name: &str,
+        ids: Vec<Id>,
+    ) -> Result<Program, ProgramError> {
+        let group = Group::new(name, element_names(name, ids.len()));
+        Program::build(&self.d.arena, self.inputs(inputs), vec![(group, ids)])
+    }
+
     fn constant_inputs(&mut self, qd: bool, qdd: Option<usize>, gravity: bool) -> JointInputs {
         let a = &mut self.d.arena;
         let zero = a.zero();
@@ -288,49 +355,22 @@ impl RobotPrograms {
             beta,
             geometry,
         };
-        let standard_columns = cx.d.regressor().columns;
-        let p = standard_columns.len();
-        let b = cx.base.base.len();
-        let build = |cx: &Context, inputs: &[&str], name: &str, ids: Vec<Id>| {
-            let group = Group::new(name, element_names(name, ids.len()));
-            Program::build(&cx.d.arena, cx.inputs(inputs), vec![(group, ids)])
-        };
-        let standard_regressor = build(
-            &cx,
-            &["q", "qd", "qdd"],
-            "out",
-            row_major(&standard_columns, n),
-        )?;
-        let base_regressor = cx.base_regressor_program()?;
-        let symbolic = cx.d.inputs.clone();
-        let single = |t: &[Vec<Value>]| t[0].clone();
-        let inverse_dynamics = cx.newton_euler_program(
-            &["q", "qd", "qdd", "base"],
-            "tau",
-            std::slice::from_ref(&symbolic),
-            true,
-            single,
-        )?;
-        let columns: Vec<JointInputs> = (0..n)
-            .map(|k| cx.constant_inputs(false, Some(k), false))
-            .collect();
-        let mass_matrix = cx.newton_euler_program(&["q", "base"], "out", &columns, false, |t| {
-            (0..n * n)
-                .map(|e| {
-                    let (i, k) = (e / n, e % n);
-                    if i >= k { t[k][i] } else { t[i][k] }
-                })
-                .collect()
-        })?;
-        let inputs = [cx.constant_inputs(false, None, true)];
-        let gravity = cx.newton_euler_program(&["q", "base"], "tau", &inputs, false, single)?;
-        let inputs = [cx.constant_inputs(true, None, false)];
-        let coriolis =
-            cx.newton_euler_program(&["q", "qd", "base"], "tau", &inputs, false, single)?;
-        let expressions: Vec<Id> = cx.base.base.iter().map(|b| b.expression).collect();
-        let base_from_standard = build(&cx, &["standard"], "base", expressions)?;
-        debug_assert_eq!(base_regressor.outputs[0].values.len(), n * b);
-        debug_assert_eq!(standard_regressor.outputs[0].values.len(), n * p);
+        let mut built = Vec::with_capacity(PROGRAMS.len());
+        for kind in ProgramKind::ALL {
+            let program = cx.build(kind)?;
+            debug_assert_eq!(
+                program.outputs[0].values.len(),
+                kind.info().output.size.len(Sizes {
+                    joints: n,
+                    base: cx.base.base.len(),
+                    standard: cx.base.standard.len(),
+                }),
+                "{kind:?}"
+            );
+            built.push(program);
+        }
+        let mut built = built.into_iter();
+        let programs = std::array::from_fn(|_| built.next().unwrap_or_default());
         let arena: &Arena = &cx.d.arena;
         Ok(RobotPrograms {
             robot: robot.clone(),
@@ -345,13 +385,7 @@ impl RobotPrograms {
                 })
                 .collect(),
             geometry: robot.symbols().to_vec(),
-            standard_regressor,
-            base_regressor,
-            inverse_dynamics,
-            mass_matrix,
-            gravity,
-            coriolis,
-            base_from_standard,
+            programs,
         })
     }
 }

@@ -3,6 +3,7 @@
 use super::{Group, Program};
 use crate::sample::Rng;
 use crate::{Derivation, Robot};
+use robid_runtime::model::ProgramKind;
 
 const UR5E: &str = include_str!("../../../robots/descriptions/ur5e.toml");
 
@@ -52,13 +53,13 @@ fn ur5e_programs_counts() {
     let p = super::RobotPrograms::derive(&robot).unwrap();
     eprintln!("derive {:?}", t.elapsed());
     for (name, prog) in [
-        ("id", &p.inverse_dynamics),
-        ("yb", &p.base_regressor),
-        ("y", &p.standard_regressor),
-        ("m", &p.mass_matrix),
-        ("g", &p.gravity),
-        ("c", &p.coriolis),
-        ("k", &p.base_from_standard),
+        ("id", &p[ProgramKind::InverseDynamics]),
+        ("yb", &p[ProgramKind::BaseRegressor]),
+        ("y", &p[ProgramKind::StandardRegressor]),
+        ("m", &p[ProgramKind::MassMatrix]),
+        ("g", &p[ProgramKind::Gravity]),
+        ("c", &p[ProgramKind::Coriolis]),
+        ("k", &p[ProgramKind::BaseFromStandard]),
     ] {
         eprintln!(
             "{name}: {} flops {}",
@@ -67,11 +68,11 @@ fn ur5e_programs_counts() {
         );
     }
     // the counts measured today (UR5e): they may fall, never grow
-    assert!(p.inverse_dynamics.operations().flops() <= 474);
-    assert!(p.base_regressor.operations().flops() <= 624);
-    assert!(p.mass_matrix.operations().flops() <= 428);
-    assert!(p.gravity.operations().flops() <= 66);
-    assert!(p.coriolis.operations().flops() <= 418);
+    assert!(p[ProgramKind::InverseDynamics].operations().flops() <= 474);
+    assert!(p[ProgramKind::BaseRegressor].operations().flops() <= 624);
+    assert!(p[ProgramKind::MassMatrix].operations().flops() <= 428);
+    assert!(p[ProgramKind::Gravity].operations().flops() <= 66);
+    assert!(p[ProgramKind::Coriolis].operations().flops() <= 418);
 }
 
 /// For every reference robot (rigid and with every drive term), at random
@@ -114,12 +115,15 @@ fn programs_agree_for_reference_robots() {
                 let (q, qd, qdd) = (random(n, 3.0), random(n, 2.0), random(n, 4.0));
                 let standard = random(p.standard.len(), 1.0);
                 let zero = vec![0.0; n];
-                let base = run(&p.base_from_standard, vec![&standard]);
-                let y = run(&p.standard_regressor, vec![&q, &qd, &qdd]);
-                let yb = run(&p.base_regressor, vec![&q, &qd, &qdd]);
-                let tau = run(&p.inverse_dynamics, vec![&q, &qd, &qdd, &base]);
-                let tau_v = run(&p.inverse_dynamics, vec![&q, &qd, &zero, &base]);
-                let m = run(&p.mass_matrix, vec![&q, &base]);
+                let base = run(&p[ProgramKind::BaseFromStandard], vec![&standard]);
+                let y = run(&p[ProgramKind::StandardRegressor], vec![&q, &qd, &qdd]);
+                let yb = run(&p[ProgramKind::BaseRegressor], vec![&q, &qd, &qdd]);
+                let tau = run(&p[ProgramKind::InverseDynamics], vec![&q, &qd, &qdd, &base]);
+                let tau_v = run(
+                    &p[ProgramKind::InverseDynamics],
+                    vec![&q, &qd, &zero, &base],
+                );
+                let m = run(&p[ProgramKind::MassMatrix], vec![&q, &base]);
                 let (ns, nb) = (standard.len(), base.len());
                 for j in 0..n {
                     let ys: f64 = (0..ns).map(|k| y[j * ns + k] * standard[k]).sum();
@@ -148,7 +152,11 @@ fn run_checks_every_length_and_never_panics() {
     let robot = Robot::from_toml(text, "rx90.toml").unwrap();
     let p = super::RobotPrograms::derive(&robot).unwrap();
     let mut rng = Rng::new(11);
-    for program in [&p.inverse_dynamics, &p.mass_matrix, &p.base_from_standard] {
+    for program in [
+        &p[ProgramKind::InverseDynamics],
+        &p[ProgramKind::MassMatrix],
+        &p[ProgramKind::BaseFromStandard],
+    ] {
         let inputs: Vec<usize> = program.inputs.iter().map(Group::len).collect();
         let outputs: Vec<usize> = program.outputs.iter().map(|o| o.values.len()).collect();
         let mut temps = Vec::new();

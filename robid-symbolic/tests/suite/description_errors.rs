@@ -1,6 +1,7 @@
 //! Bad descriptions are located errors, all reported at once; bad library
 //! calls are errors naming the argument; nothing panics.
 
+use robid_runtime::model::ProgramKind;
 use robid_symbolic::emit::{EmitError, emit_programs, emit_robot};
 use robid_symbolic::program::RobotPrograms;
 use robid_symbolic::robot::{Geometry, GeometryError};
@@ -349,28 +350,29 @@ fn emission_fails_without_panicking() {
     let programs = RobotPrograms::derive(&robot).unwrap();
     assert!(emit_programs(&programs).is_ok());
     let mut nan = programs.clone();
-    nan.gravity.constants.push(f64::NAN);
+    nan[ProgramKind::Gravity].constants.push(f64::NAN);
     assert!(matches!(
         emit_programs(&nan),
         Err(EmitError::NotFinite { .. })
     ));
     let mut group = programs.clone();
-    group.mass_matrix.inputs[0].name = "not an ident".to_owned();
+    group[ProgramKind::MassMatrix].inputs[0].name = "not an ident".to_owned();
     assert!(matches!(emit_programs(&group), Err(EmitError::Name { .. })));
     let mut element = programs.clone();
-    element.coriolis.inputs[0].elements[0] = "q 1".to_owned();
+    element[ProgramKind::Coriolis].inputs[0].elements[0] = "q 1".to_owned();
     assert!(matches!(
         emit_programs(&element),
         Err(EmitError::Name { .. })
     ));
     let mut operand = programs.clone();
-    operand.gravity.outputs[0].values[0] = robid_symbolic::program::Value::Temp(u32::MAX);
+    operand[ProgramKind::Gravity].outputs[0].values[0] =
+        robid_symbolic::program::Value::Temp(u32::MAX);
     assert!(matches!(
         emit_programs(&operand),
         Err(EmitError::Program { .. })
     ));
     let mut empty = programs;
-    empty.gravity.outputs.clear();
+    empty[ProgramKind::Gravity].outputs.clear();
     assert!(matches!(
         emit_programs(&empty),
         Err(EmitError::Program { .. })

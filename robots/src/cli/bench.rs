@@ -4,8 +4,10 @@
 //! criterion benches in robots/benches measure the same functions.
 
 use super::{Error, out};
-use robid_runtime::Real;
+use robid_runtime::model::PROGRAMS;
+use robid_runtime::{Model, Real};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -24,10 +26,8 @@ pub(crate) struct Args {
 #[derive(Debug, Serialize)]
 struct Timing {
     robot: &'static str,
-    inverse_dynamics_ns: f64,
-    base_regressor_ns: f64,
-    mass_matrix_ns: f64,
-    gravity_ns: f64,
+    /// Per program of the table, by name.
+    programs: BTreeMap<&'static str, f64>,
     baseline_trig_ns: f64,
 }
 
@@ -57,13 +57,15 @@ fn median_ns(mut f: impl FnMut()) -> f64 {
     samples[samples.len() / 2]
 }
 
-/// A deterministic state and parameter vector of the right sizes.
-fn filled<const N: usize>(scale: f64) -> [f64; N] {
-    core::array::from_fn(|i| scale * (0.3 + 0.17 * i as f64).sin())
+/// A deterministic vector of `n` values of magnitude `scale`.
+fn filled(n: usize, scale: f64) -> Vec<f64> {
+    (0..n)
+        .map(|i| scale * (0.3 + 0.17 * i as f64).sin())
+        .collect()
 }
 
 fn baseline() -> f64 {
-    let q: [f64; 6] = filled(1.0);
+    let q = filled(6, 1.0);
     median_ns(|| {
         let q = black_box(&q);
         let mut acc = [0.0; 12];
@@ -75,40 +77,38 @@ fn baseline() -> f64 {
     })
 }
 
-macro_rules! time_robot {
-    ($name:literal, $model:ty, $baseline:expr) => {{
-        const N: usize = <$model>::DOF;
-        const B: usize = <$model>::BASE_PARAMETERS;
-        let model = <$model>::default();
-        let (q, qd, qdd) = (filled::<N>(1.0), filled::<N>(0.7), filled::<N>(1.3));
-        let base = filled::<B>(0.5);
-        Timing {
-            robot: $name,
-            inverse_dynamics_ns: median_ns(|| {
-                black_box(model.inverse_dynamics(
-                    black_box(&q),
-                    black_box(&qd),
-                    black_box(&qdd),
-                    black_box(&base),
-                ));
-            }),
-            base_regressor_ns: median_ns(|| {
-                black_box(model.base_regressor(black_box(&q), black_box(&qd), black_box(&qdd)));
-            }),
-            mass_matrix_ns: median_ns(|| {
-                black_box(model.mass_matrix(black_box(&q), black_box(&base)));
-            }),
-            gravity_ns: median_ns(|| {
-                black_box(model.gravity(black_box(&q), black_box(&base)));
-            }),
-            baseline_trig_ns: $baseline,
-        }
-    }};
+/// Times every program of the table on `model` through [`Model::run`] (the slice
+/// interface: the length checks are part of the figure).
+fn time_robot<M: Model + ?Sized>(robot: &'static str, model: &M, baseline: f64) -> Timing {
+    let sizes = model.sizes();
+    let programs = PROGRAMS
+        .iter()
+        .map(|p| {
+            let inputs: Vec<Vec<f64>> = p
+                .inputs
+                .iter()
+                .enumerate()
+                .map(|(i, a)| filled(a.size.len(sizes), 0.7 + 0.3 * i as f64))
+                .collect();
+            let inputs: Vec<&[f64]> = inputs.iter().map(Vec::as_slice).collect();
+            let mut out = vec![0.0; p.output.size.len(sizes)];
+            let ns = median_ns(|| {
+                let result = model.run(p.kind, black_box(&inputs), black_box(&mut out));
+                black_box(result).ok();
+            });
+            (p.name, ns)
+        })
+        .collect();
+    Timing {
+        robot,
+        programs,
+        baseline_trig_ns: baseline,
+    }
 }
 
 /// Times the compiled models and prints the figures.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    let names = robots::REFERENCE_ROBOTS;
+    let names: Vec<&str> = robots::REFERENCES.iter().map(|r| r.name).collect();
     if let Some(r) = &args.robot
         && !names.contains(&r.as_str())
     {
@@ -121,26 +121,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let wanted = |n: &str| args.robot.as_deref().is_none_or(|r| r == n);
     let base = baseline();
     let mut timings = Vec::new();
-    if wanted("ur5e") {
-        timings.push(time_robot!("ur5e", robots::Ur5e, base));
-    }
-    if wanted("puma560") {
-        timings.push(time_robot!("puma560", robots::Puma560, base));
-    }
-    if wanted("rx90") {
-        timings.push(time_robot!("rx90", robots::Rx90, base));
-    }
-    if wanted("tx40") {
-        timings.push(time_robot!("tx40", robots::Tx40, base));
-    }
-    if wanted("lwr4") {
-        timings.push(time_robot!("lwr4", robots::Lwr4, base));
-    }
-    if wanted("panda") {
-        timings.push(time_robot!("panda", robots::Panda, base));
-    }
-    if wanted("stanford") {
-        timings.push(time_robot!("stanford", robots::Stanford, base));
+    for reference in robots::REFERENCES.iter().filter(|r| wanted(r.name)) {
+        timings.push(time_robot(reference.name, &*reference.model(), base));
     }
     let mut stdout = out::Stdout::new();
     if args.json {
@@ -154,17 +136,18 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         stdout,
         "median ns per call (baseline 6 x (sin + cos) via libm: {base:.1} ns)"
     )?;
-    writeln!(
-        stdout,
-        "{:<10} {:>17} {:>15} {:>12} {:>9}",
-        "robot", "inverse_dynamics", "base_regressor", "mass_matrix", "gravity"
-    )?;
+    write!(stdout, "{:<10}", "robot")?;
+    for p in &PROGRAMS {
+        write!(stdout, " {:>w$}", p.name, w = p.name.len().max(8))?;
+    }
+    writeln!(stdout)?;
     for t in &timings {
-        writeln!(
-            stdout,
-            "{:<10} {:>17.1} {:>15.1} {:>12.1} {:>9.1}",
-            t.robot, t.inverse_dynamics_ns, t.base_regressor_ns, t.mass_matrix_ns, t.gravity_ns
-        )?;
+        write!(stdout, "{:<10}", t.robot)?;
+        for p in &PROGRAMS {
+            let ns = t.programs.get(p.name).copied().unwrap_or(f64::NAN);
+            write!(stdout, " {:>w$.1}", ns, w = p.name.len().max(8))?;
+        }
+        writeln!(stdout)?;
     }
     if cfg!(debug_assertions) {
         writeln!(

@@ -39,7 +39,7 @@ const HELD_OUT: (usize, usize) = (29250, 45000);
 pub(crate) fn run() -> Result<(), Error> {
     let start = Instant::now();
     let robot = Robot::from_toml(ROBOT, "robots/configs/tx40_robot.toml")?;
-    let chosen = model_for(&robot, ROBOT)?;
+    let chosen = model_for(&robot)?;
     let config = Config::from_toml_str(CONFIG, Path::new("robots/configs/tx40.toml"))?;
     let data = load(&config)?;
     let mut stdout = out::Stdout::new();

@@ -16,6 +16,7 @@ use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, plot_torques, text_table};
 use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
+use robots::Reference;
 use robots::interpreted::{Chosen, model_for};
 
 use super::{Error, files, out};
@@ -74,56 +75,36 @@ torque = "tau{}"
     Config::from_toml_str(text, Path::new("<default config>")).unwrap_or_default()
 }
 
-/// Reads a description and chooses its model: the compiled model of a reference
-/// description as it is (names and expressions from its generated code, no symbolic
-/// derivation), else the derived one.
+/// Reads a description and chooses its model: the compiled model of a reference robot
+/// (names and expressions from its generated code, no symbolic derivation), else the
+/// derived one.
 pub(crate) fn robot_model(path: &Path) -> Result<Chosen, Error> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    if let Some(chosen) = compiled_reference(&text) {
+    let robot = Robot::from_file(path)?;
+    if let Some(chosen) = compiled_reference(&robot) {
         return Ok(chosen);
     }
-    let robot = Robot::from_toml(&text, &path.display().to_string())?;
-    Ok(model_for(&robot, &text)?)
+    Ok(model_for(&robot)?)
 }
 
-/// The compiled model when `text` is a reference description (as `model_for` decides),
-/// with the parameter names and expressions its generated code carries.
-fn compiled_reference(text: &str) -> Option<Chosen> {
-    macro_rules! reference {
-        ($($file:literal => $model:ident),* $(,)?) => {
-            $(
-                if include_str!(concat!("../../descriptions/", $file)).trim() == text.trim() {
-                    return Some(Chosen {
-                        model: Box::new(robots::$model::default()),
-                        compiled: true,
-                        base: robots::$model::BASE_PARAMETER_NAMES
-                            .iter()
-                            .zip(robots::$model::BASE_PARAMETER_EXPRESSIONS)
-                            .map(|(name, expression)| BaseParameter {
-                                name: name.to_string(),
-                                expression: expression.to_string(),
-                            })
-                            .collect(),
-                        standard: robots::$model::STANDARD_PARAMETER_NAMES
-                            .iter()
-                            .map(|s| s.to_string())
-                            .collect(),
-                    });
-                }
-            )*
-        };
-    }
-    reference!(
-        "ur5e.toml" => Ur5e,
-        "puma560.toml" => Puma560,
-        "rx90.toml" => Rx90,
-        "tx40.toml" => Tx40,
-        "lwr4.toml" => Lwr4,
-        "panda.toml" => Panda,
-        "stanford.toml" => Stanford,
-    );
-    None
+/// The compiled model when `robot` is a reference robot, with the parameter names and
+/// expressions its generated code carries.
+fn compiled_reference(robot: &Robot) -> Option<Chosen> {
+    let reference = Reference::matching(robot)?;
+    let model = reference.model();
+    let base = (0..model.base_parameter_count())
+        .zip(reference.base_expressions)
+        .map(|(i, expression)| BaseParameter {
+            name: model.base_parameter_name(i).unwrap_or_default().to_owned(),
+            expression: (*expression).to_owned(),
+        })
+        .collect();
+    let standard = robid_runtime::model::standard_parameter_names(&*model);
+    Some(Chosen {
+        model,
+        compiled: true,
+        base,
+        standard,
+    })
 }
 
 /// Runs the identification and prints the table.
@@ -231,14 +212,11 @@ mod tests {
     /// The shortcut gives what the derivation gives: same names, expressions and model.
     #[test]
     fn compiled_reference_equals_the_derived_choice() {
-        for name in robots::REFERENCE_ROBOTS {
-            let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("descriptions")
-                .join(format!("{name}.toml"));
-            let text = std::fs::read_to_string(&path).unwrap();
-            let fast = compiled_reference(&text).unwrap();
-            let robot = Robot::from_toml(&text, name).unwrap();
-            let derived = model_for(&robot, &text).unwrap();
+        for reference in &robots::REFERENCES {
+            let name = reference.name;
+            let robot = reference.robot();
+            let fast = compiled_reference(&robot).unwrap();
+            let derived = model_for(&robot).unwrap();
             assert!(fast.compiled && derived.compiled, "{name}");
             assert_eq!(fast.standard, derived.standard, "{name}");
             assert_eq!(fast.base.len(), derived.base.len(), "{name}");
@@ -247,6 +225,9 @@ mod tests {
             }
             assert_eq!(fast.model.name(), derived.model.name());
         }
-        assert!(compiled_reference("name = \"other\"").is_none());
+        // a reference robot with one more drive term is another robot
+        let ur5e = robots::Reference::named("ur5e").unwrap().robot();
+        let edited = ur5e.with_drive(robid_symbolic::Drive::ALL);
+        assert!(compiled_reference(&edited).is_none());
     }
 }

@@ -118,16 +118,9 @@ fn derive(robot: &Robot) -> Result<Report, Error> {
     }
     let programs = RobotPrograms::derive(robot)?;
     let mut operations = serde_json::Map::new();
-    for (name, program) in [
-        ("inverse_dynamics", &programs.inverse_dynamics),
-        ("base_regressor", &programs.base_regressor),
-        ("standard_regressor", &programs.standard_regressor),
-        ("mass_matrix", &programs.mass_matrix),
-        ("gravity", &programs.gravity),
-        ("coriolis", &programs.coriolis),
-    ] {
+    for (info, program) in programs.iter() {
         operations.insert(
-            name.to_owned(),
+            info.name.to_owned(),
             serde_json::to_value(Counts::from(program.operations()))?,
         );
     }

@@ -352,7 +352,7 @@ pub(crate) fn base_parameters(path: &Path, model: &dyn Model) -> Result<Vec<f64>
                 .collect();
             check_physical(&file, true)?;
             let mut base = vec![0.0; model.base_parameter_count()];
-            model.base_from_standard(&standard, &mut base)?;
+            model.base_from_standard_into(&standard, &mut base)?;
             if let Some(i) = base.iter().position(|b| !b.is_finite()) {
                 return Err(format!(
                     "{}: base parameter {} = {} is not a finite number; check the values of \

@@ -67,7 +67,7 @@ fn torques(model: &dyn Model, base: &[f64], table: &Table) -> Result<String, Err
             qd[j] = table.columns[n + j][k];
             qdd[j] = table.columns[2 * n + j][k];
         }
-        model.inverse_dynamics(&q, &qd, &qdd, base, &mut tau)?;
+        model.inverse_dynamics_into(&q, &qd, &qdd, base, &mut tau)?;
         if let Some(j) = tau.iter().position(|t| !t.is_finite()) {
             return Err(format!(
                 "{}:{line}: tau{} = {} from this row's states: the states or the parameters are \

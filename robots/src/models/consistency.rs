@@ -1,6 +1,7 @@
 //! The compiled models against the interpreter and the symbolic derivation,
 //! at random states, for every reference robot:
-//! emitted code == interpreted program == `Arena::eval` of the regressor;
+//! emitted code == interpreted program for every program of the table, and
+//! == `Arena::eval` for the regressor;
 //! inverse dynamics == Y_b * base; M is symmetric and M qdd == tau(q, qd, qdd) - tau(q, qd, 0);
 //! `f32` within `f32` tolerance. Gravity and Coriolis vectors are checked on their own
 //! against an independent RNEA in `tests/tests/suite/emitted_vs_rnea.rs`.
@@ -50,29 +51,35 @@ fn check(name: &str, model: &dyn Model) {
         );
         let standard = random(&mut rng, ns, 1.0);
         let mut base = vec![0.0; nb];
-        model.base_from_standard(&standard, &mut base).unwrap();
-        // base parameters: compiled == interpreted
-        let interp = programs
-            .base_from_standard
-            .eval(&with_geometry(vec![&standard], &geometry))
-            .unwrap();
-        close(&base, &interp[0], 1e-12, "base_from_standard");
+        model.base_from_standard_into(&standard, &mut base).unwrap();
 
-        // regressors: compiled == interpreted; Y * standard == Y_b * base
+        // every program of the table: compiled == interpreted
+        let sizes = model.sizes();
+        for (info, program) in programs.iter() {
+            let inputs: Vec<&[f64]> = info
+                .inputs
+                .iter()
+                .map(|a| match a.name {
+                    "q" => q.as_slice(),
+                    "qd" => qd.as_slice(),
+                    "qdd" => qdd.as_slice(),
+                    "base" => base.as_slice(),
+                    _ => standard.as_slice(),
+                })
+                .collect();
+            let mut compiled = vec![0.0; info.output.size.len(sizes)];
+            model.run(info.kind, &inputs, &mut compiled).unwrap();
+            let interpreted = program.eval(&with_geometry(inputs, &geometry)).unwrap();
+            close(&compiled, &interpreted[0], 1e-12, info.name);
+        }
+
+        // Y * standard == Y_b * base == inverse dynamics
         let mut y = vec![0.0; n * ns];
-        model.standard_regressor(&q, &qd, &qdd, &mut y).unwrap();
-        let interp = programs
-            .standard_regressor
-            .eval(&with_geometry(vec![&q, &qd, &qdd], &geometry))
+        model
+            .standard_regressor_into(&q, &qd, &qdd, &mut y)
             .unwrap();
-        close(&y, &interp[0], 1e-12, "standard_regressor");
         let mut yb = vec![0.0; n * nb];
-        model.base_regressor(&q, &qd, &qdd, &mut yb).unwrap();
-        let interp = programs
-            .base_regressor
-            .eval(&with_geometry(vec![&q, &qd, &qdd], &geometry))
-            .unwrap();
-        close(&yb, &interp[0], 1e-12, "base_regressor");
+        model.base_regressor_into(&q, &qd, &qdd, &mut yb).unwrap();
         let product = |m: &[f64], p: &[f64]| -> Vec<f64> {
             (0..n)
                 .map(|j| (0..p.len()).map(|k| m[j * p.len() + k] * p[k]).sum())
@@ -81,26 +88,19 @@ fn check(name: &str, model: &dyn Model) {
         let tau_standard = product(&y, &standard);
         let tau_base = product(&yb, &base);
         close(&tau_base, &tau_standard, 1e-9, "Y_b base vs Y standard");
-
-        // inverse dynamics == Y_b * base, and == interpreter
         let mut tau = vec![0.0; n];
         model
-            .inverse_dynamics(&q, &qd, &qdd, &base, &mut tau)
+            .inverse_dynamics_into(&q, &qd, &qdd, &base, &mut tau)
             .unwrap();
         close(&tau, &tau_base, 1e-9, "inverse_dynamics vs Y_b base");
-        let interp = programs
-            .inverse_dynamics
-            .eval(&with_geometry(vec![&q, &qd, &qdd, &base], &geometry))
-            .unwrap();
-        close(&tau, &interp[0], 1e-12, "inverse_dynamics interpreted");
 
         // M qdd == tau(q, qd, qdd) - tau(q, qd, 0): every term but the inertial one cancels
         let mut m = vec![0.0; n * n];
-        model.mass_matrix(&q, &base, &mut m).unwrap();
+        model.mass_matrix_into(&q, &base, &mut m).unwrap();
         let zero = vec![0.0; n];
         let mut tau_v = vec![0.0; n];
         model
-            .inverse_dynamics(&q, &qd, &zero, &base, &mut tau_v)
+            .inverse_dynamics_into(&q, &qd, &zero, &base, &mut tau_v)
             .unwrap();
         for j in 0..n {
             for k in 0..n {
@@ -116,10 +116,10 @@ fn check(name: &str, model: &dyn Model) {
             );
         }
         let mut g = vec![0.0; n];
-        model.gravity(&q, &base, &mut g).unwrap();
+        model.gravity_into(&q, &base, &mut g).unwrap();
         let mut g_id = vec![0.0; n];
         model
-            .inverse_dynamics(&q, &zero, &zero, &base, &mut g_id)
+            .inverse_dynamics_into(&q, &zero, &zero, &base, &mut g_id)
             .unwrap();
         // With qd = 0 only gravity and the offsets Fo remain; rigid models have no Fo.
         close(&g, &g_id, 1e-9, "gravity vs inverse dynamics at rest");
@@ -177,7 +177,7 @@ fn ur5e_f32_within_f32_tolerance() {
         let qd: [f64; 6] = random(&mut rng, 6, 2.0).try_into().unwrap();
         let qdd: [f64; 6] = random(&mut rng, 6, 4.0).try_into().unwrap();
         let standard: [f64; 60] = random(&mut rng, 60, 1.0).try_into().unwrap();
-        let base = Ur5e.base_parameters(&standard);
+        let base = Ur5e.base_from_standard(&standard);
         let tau = Ur5e.inverse_dynamics(&q, &qd, &qdd, &base);
         let f = |x: &[f64]| -> Vec<f32> { x.iter().map(|&v| v as f32).collect() };
         let tau32 = Ur5e.inverse_dynamics(

@@ -1,7 +1,7 @@
 //! The checked-in generated code of every reference robot (`generated/NAME.rs`)
 //! must be what robid emits now. Run with `ROBID_BLESS=1` to rewrite the files.
 
-use super::REFERENCE_ROBOTS;
+use super::REFERENCES;
 use robid_symbolic::Robot;
 use std::path::Path;
 
@@ -10,7 +10,7 @@ fn generated_code_is_up_to_date() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let bless = std::env::var_os("ROBID_BLESS").is_some();
     let mut stale = Vec::new();
-    for name in REFERENCE_ROBOTS {
+    for name in REFERENCES.iter().map(|r| r.name) {
         let robot = Robot::from_file(&root.join(format!("descriptions/{name}.toml"))).unwrap();
         let code = robid_symbolic::emit::emit_robot(&robot).unwrap();
         let path = root.join(format!("generated/{name}.rs"));

@@ -21,23 +21,99 @@ pub use stanford::Stanford;
 pub use tx40::Tx40;
 pub use ur5e::Ur5e;
 
-/// The names of the reference robots (their description files are `descriptions/NAME.toml`).
-pub const REFERENCE_ROBOTS: [&str; 7] = [
-    "ur5e", "puma560", "rx90", "tx40", "lwr4", "panda", "stanford",
+use robid_runtime::Model;
+use robid_symbolic::Robot;
+
+/// A reference robot: its description, its nominal parameters and its compiled model.
+///
+/// ```
+/// let ur5e = robots::Reference::named("ur5e").unwrap();
+/// assert_eq!(ur5e.model().dof(), 6);
+/// assert_eq!(robots::Reference::matching(&ur5e.robot()).unwrap().name, "ur5e");
+/// ```
+#[derive(Debug)]
+pub struct Reference {
+    /// Name: the description's `name` and the stem of its files.
+    pub name: &'static str,
+    /// The description (TOML), `descriptions/NAME.toml`.
+    pub description: &'static str,
+    /// Nominal parameters (a parameter file with a `[standard]` table), `parameters/NAME.toml`.
+    pub parameters: &'static str,
+    /// Each base parameter as an expression in the standard parameters (from the generated code).
+    pub base_expressions: &'static [&'static str],
+    model: fn() -> Box<dyn Model + Send + Sync>,
+}
+
+/// Registry entry of a compiled reference robot.
+macro_rules! reference {
+    ($name:literal, $ty:ident) => {
+        Reference {
+            name: $name,
+            description: include_str!(concat!("../../descriptions/", $name, ".toml")),
+            parameters: include_str!(concat!("../../parameters/", $name, ".toml")),
+            base_expressions: &$ty::BASE_PARAMETER_EXPRESSIONS,
+            model: || Box::new($ty::default()),
+        }
+    };
+}
+
+/// Every reference robot.
+#[allow(clippy::default_constructed_unit_structs)] // the robots with symbols are not unit structs
+pub static REFERENCES: [Reference; 7] = [
+    reference!("ur5e", Ur5e),
+    reference!("puma560", Puma560),
+    reference!("rx90", Rx90),
+    reference!("tx40", Tx40),
+    reference!("lwr4", Lwr4),
+    reference!("panda", Panda),
+    reference!("stanford", Stanford),
 ];
 
-/// The compiled model of a reference robot, by name (geometric symbols at
-/// their description values).
-#[allow(clippy::default_constructed_unit_structs)] // the robots with symbols are not unit structs
-pub fn reference_model(name: &str) -> Option<Box<dyn robid_runtime::Model>> {
-    Some(match name {
-        "ur5e" => Box::new(Ur5e::default()),
-        "puma560" => Box::new(Puma560::default()),
-        "rx90" => Box::new(Rx90::default()),
-        "tx40" => Box::new(Tx40::default()),
-        "lwr4" => Box::new(Lwr4::default()),
-        "panda" => Box::new(Panda::default()),
-        "stanford" => Box::new(Stanford::default()),
-        _ => return None,
-    })
+impl Reference {
+    /// The reference robot called `name`.
+    pub fn named(name: &str) -> Option<&'static Reference> {
+        REFERENCES.iter().find(|r| r.name == name)
+    }
+
+    /// The reference robot whose description is `robot` (the same table, drive terms,
+    /// gravity, symbols and name, however the file is written).
+    pub fn matching(robot: &Robot) -> Option<&'static Reference> {
+        REFERENCES
+            .iter()
+            .find(|r| r.robot_checked().is_ok_and(|own| own == *robot))
+    }
+
+    /// The compiled model (geometric symbols at their description values).
+    pub fn model(&self) -> Box<dyn Model + Send + Sync> {
+        (self.model)()
+    }
+
+    /// The description as a [`Robot`] (the checked-in files are valid; a test reads each).
+    pub fn robot(&self) -> Robot {
+        self.robot_checked()
+            .unwrap_or_else(|e| unreachable!("reference description {}: {e}", self.name))
+    }
+
+    fn robot_checked(&self) -> Result<Robot, robid_symbolic::DescriptionError> {
+        Robot::from_toml(self.description, &format!("{}.toml", self.name))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_reference_is_consistent() {
+        for r in &REFERENCES {
+            let robot = r.robot();
+            assert_eq!(robot.name(), r.name);
+            let model = r.model();
+            assert_eq!(model.name(), r.name);
+            assert_eq!(model.base_parameter_count(), r.base_expressions.len());
+            assert_eq!(Reference::matching(&robot).map(|m| m.name), Some(r.name));
+            assert_eq!(Reference::named(r.name).map(|m| m.name), Some(r.name));
+        }
+        assert!(Reference::named("r2d2").is_none());
+    }
 }

@@ -19,6 +19,7 @@
 //! `robots::models::consistency`).
 
 use robid_runtime::Model;
+use robid_runtime::model::ProgramKind;
 use robid_symbolic::sample::Rng;
 use robid_symbolic::{Drive, Robot};
 use robots::interpreted::Interpreted;
@@ -66,11 +67,13 @@ fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states:
             |links: &[Link], qd: &[f64], qdd: &[f64]| chain.inverse_dynamics(links, q, qd, qdd);
 
         let mut base = vec![0.0; nb];
-        model.base_from_standard(&standard, &mut base).unwrap();
+        model.base_from_standard_into(&standard, &mut base).unwrap();
 
         // inverse dynamics
         let mut tau = vec![0.0; n];
-        model.inverse_dynamics(q, qd, qdd, &base, &mut tau).unwrap();
+        model
+            .inverse_dynamics_into(q, qd, qdd, &base, &mut tau)
+            .unwrap();
         assert_close(
             &what("inverse dynamics"),
             &tau,
@@ -80,7 +83,7 @@ fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states:
 
         // standard regressor, column by column
         let mut y = vec![0.0; n * ns];
-        model.standard_regressor(q, qd, qdd, &mut y).unwrap();
+        model.standard_regressor_into(q, qd, qdd, &mut y).unwrap();
         let mut unit = vec![0.0; ns];
         for i in 0..ns {
             unit[i] = 1.0;
@@ -93,7 +96,7 @@ fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states:
 
         // base regressor times the base parameters
         let mut yb = vec![0.0; n * nb];
-        model.base_regressor(q, qd, qdd, &mut yb).unwrap();
+        model.base_regressor_into(q, qd, qdd, &mut yb).unwrap();
         let product: Vec<f64> = (0..n)
             .map(|j| (0..nb).map(|k| yb[j * nb + k] * base[k]).sum())
             .collect();
@@ -103,13 +106,13 @@ fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states:
         let at_rest = rnea(&links, &zero, &zero);
         let offsets: Vec<f64> = links.iter().map(|l| l.fo).collect();
         let mut g = vec![0.0; n];
-        model.gravity(q, &base, &mut g).unwrap();
+        model.gravity_into(q, &base, &mut g).unwrap();
         let want: Vec<f64> = (0..n).map(|j| at_rest[j] - offsets[j]).collect();
         assert_close(&what("gravity"), &g, &want, RELATIVE);
 
         // mass matrix, column by column
         let mut m = vec![0.0; n * n];
-        model.mass_matrix(q, &base, &mut m).unwrap();
+        model.mass_matrix_into(q, &base, &mut m).unwrap();
         for k in 0..n {
             let mut e = zero.clone();
             e[k] = 1.0;
@@ -121,7 +124,7 @@ fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states:
 
         // coriolis: velocity terms less gravity, offsets and the friction of the parameters
         let mut c = vec![0.0; n];
-        model.coriolis(q, qd, &base, &mut c).unwrap();
+        model.coriolis_into(q, qd, &base, &mut c).unwrap();
         let moving = rnea(&links, qd, &zero);
         let want: Vec<f64> = (0..n)
             .map(|j| moving[j] - at_rest[j] - links[j].fv * qd[j] - links[j].fc * sign(qd[j]))
@@ -148,8 +151,8 @@ fn christoffel_times(model: &dyn Model, q: &[f64], qd: &[f64], base: &[f64]) -> 
             plus[k] += H;
             minus[k] -= H;
             let (mut mp, mut mm) = (vec![0.0; n * n], vec![0.0; n * n]);
-            model.mass_matrix(&plus, base, &mut mp).unwrap();
-            model.mass_matrix(&minus, base, &mut mm).unwrap();
+            model.mass_matrix_into(&plus, base, &mut mp).unwrap();
+            model.mass_matrix_into(&minus, base, &mut mm).unwrap();
             mp.iter()
                 .zip(&mm)
                 .map(|(a, b)| (a - b) / (2.0 * H))
@@ -174,7 +177,9 @@ fn christoffel_times(model: &dyn Model, q: &[f64], qd: &[f64], base: &[f64]) -> 
 fn check(name: &str) {
     let reference = by_name(name);
     let rigid = reference.robot(Drive::NONE);
-    let compiled = robots::reference_model(name).expect("a compiled reference model");
+    let compiled = robots::Reference::named(name)
+        .expect("a compiled reference model")
+        .model();
     check_model(
         &format!("{name} (compiled)"),
         &rigid,
@@ -279,69 +284,21 @@ fn a_wrong_function_is_caught() {
         fn base_parameter_name(&self, i: usize) -> Option<&str> {
             self.0.base_parameter_name(i)
         }
-        fn base_regressor(
+        fn run(
             &self,
-            q: &[f64],
-            qd: &[f64],
-            qdd: &[f64],
-            out: &mut [f64],
+            program: ProgramKind,
+            inputs: &[&[f64]],
+            output: &mut [f64],
         ) -> Result<(), robid_runtime::LengthError> {
-            self.0.base_regressor(q, qd, qdd, out)
-        }
-        fn standard_regressor(
-            &self,
-            q: &[f64],
-            qd: &[f64],
-            qdd: &[f64],
-            out: &mut [f64],
-        ) -> Result<(), robid_runtime::LengthError> {
-            self.0.standard_regressor(q, qd, qdd, out)
-        }
-        fn inverse_dynamics(
-            &self,
-            q: &[f64],
-            qd: &[f64],
-            qdd: &[f64],
-            base: &[f64],
-            tau: &mut [f64],
-        ) -> Result<(), robid_runtime::LengthError> {
-            self.0.inverse_dynamics(q, qd, qdd, base, tau)
-        }
-        fn mass_matrix(
-            &self,
-            q: &[f64],
-            base: &[f64],
-            out: &mut [f64],
-        ) -> Result<(), robid_runtime::LengthError> {
-            self.0.mass_matrix(q, base, out)
-        }
-        fn gravity(
-            &self,
-            q: &[f64],
-            base: &[f64],
-            out: &mut [f64],
-        ) -> Result<(), robid_runtime::LengthError> {
-            self.0.gravity(q, base, out)
-        }
-        fn coriolis(
-            &self,
-            q: &[f64],
-            _qd: &[f64],
-            base: &[f64],
-            out: &mut [f64],
-        ) -> Result<(), robid_runtime::LengthError> {
-            self.0.gravity(q, base, out)
-        }
-        fn base_from_standard(
-            &self,
-            standard: &[f64],
-            base: &mut [f64],
-        ) -> Result<(), robid_runtime::LengthError> {
-            self.0.base_from_standard(standard, base)
+            match (program, inputs) {
+                // c(q, qd) := g(q)
+                (ProgramKind::Coriolis, [q, _qd, base]) => self.0.gravity_into(q, base, output),
+                _ => self.0.run(program, inputs, output),
+            }
         }
     }
     let robot = by_name("ur5e").robot(Drive::NONE);
-    let planted = CoriolisIsGravity(robots::reference_model("ur5e").unwrap());
+    let planted = CoriolisIsGravity(robots::Reference::named("ur5e").unwrap().model());
     let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         check_model("planted", &robot, &planted, 1, 1)
     }));

@@ -39,7 +39,7 @@ fn repo(p: &str) -> PathBuf {
 fn chosen(description: &str) -> Chosen {
     let text = std::fs::read_to_string(repo(description)).unwrap();
     let robot = robid_symbolic::Robot::from_toml(&text, description).unwrap();
-    model_for(&robot, &text).unwrap()
+    model_for(&robot).unwrap()
 }
 
 /// Loose bounds from the catalogue weight `weight` (kg) and the reach `reach` (m).

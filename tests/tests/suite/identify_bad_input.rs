@@ -155,7 +155,7 @@ fn still_observation() -> nalgebra::DMatrix<f64> {
         qd[0] = w * (w * t).cos();
         qdd[0] = -w * w * (w * t).sin();
         let mut y = vec![0.0; 6 * nb];
-        Model::base_regressor(&Ur5e, &q, &qd, &qdd, &mut y).unwrap();
+        Model::base_regressor_into(&Ur5e, &q, &qd, &qdd, &mut y).unwrap();
         rows.extend(y);
     }
     nalgebra::DMatrix::from_row_slice(rows.len() / nb, nb, &rows)

@@ -37,7 +37,7 @@ fn truth(model: &Ur5e) -> Vec<f64> {
     let r = by_name("ur5e");
     let standard = r.parameter_values(&r.robot(Drive::NONE));
     let mut base = vec![0.0; model.base_parameter_count()];
-    model.base_from_standard(&standard, &mut base).unwrap();
+    model.base_from_standard_into(&standard, &mut base).unwrap();
     base
 }
 
@@ -74,7 +74,7 @@ fn record(model: &Ur5e, truth: &[f64], seed: u64, noise: Option<([f64; 6], f64, 
     let mut taus = vec![vec![0.0; n]; 6];
     for k in 0..n {
         tr.state(k, &mut q, &mut qd, &mut qdd);
-        Model::inverse_dynamics(model, &q, &qd, &qdd, truth, &mut tau).unwrap();
+        Model::inverse_dynamics_into(model, &q, &qd, &qdd, truth, &mut tau).unwrap();
         for j in 0..6 {
             let (mut x, mut t) = (q[j], tau[j]);
             if let Some((torque, position, step)) = noise {

@@ -22,7 +22,7 @@ fn repo(p: &str) -> PathBuf {
 fn lwr4_run1_predicts_run2_and_run3() {
     let text = std::fs::read_to_string(repo("robots/configs/lwr4_robot.toml")).unwrap();
     let robot = robid_symbolic::Robot::from_toml(&text, "lwr4_robot.toml").unwrap();
-    let chosen = model_for(&robot, &text).unwrap();
+    let chosen = model_for(&robot).unwrap();
     let model = chosen.model.as_ref();
     let config = Config::from_file(repo("robots/configs/lwr4.toml")).unwrap();
     let data = load_config_files(&config, 7).unwrap();

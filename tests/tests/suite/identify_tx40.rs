@@ -98,7 +98,7 @@ struct Tx40 {
 fn setup() -> Tx40 {
     let text = std::fs::read_to_string(repo("robots/configs/tx40_robot.toml")).unwrap();
     let robot = robid_symbolic::Robot::from_toml(&text, "tx40_robot.toml").unwrap();
-    let chosen = model_for(&robot, &text).unwrap();
+    let chosen = model_for(&robot).unwrap();
     let config = Config::from_file(repo("robots/configs/tx40.toml")).unwrap();
     let data = load_config_files(&config, 6).unwrap();
     Tx40 {
@@ -242,7 +242,7 @@ fn tx40_with_figaroh_bugs_emulated_reproduces_its_offsets_and_iam6() {
         ..robot.joints()[5].drive
     };
     let robot = robot.with_joint_drive(5, drive).unwrap();
-    let chosen = model_for(&robot, &text).unwrap();
+    let chosen = model_for(&robot).unwrap();
     let model = chosen.model.as_ref();
     let mut p = prepare(&t.data, &t.config).unwrap();
     p.qdd[5].fill(0.0); // (a)

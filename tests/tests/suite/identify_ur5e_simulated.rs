@@ -28,7 +28,7 @@ fn truth(model: &Ur5e) -> Vec<f64> {
     let standard = r.parameter_values(&r.robot(Drive::NONE));
     assert_eq!(standard.len(), model.standard_parameter_count());
     let mut base = vec![0.0; model.base_parameter_count()];
-    model.base_from_standard(&standard, &mut base).unwrap();
+    model.base_from_standard_into(&standard, &mut base).unwrap();
     base
 }
 

@@ -40,7 +40,7 @@ pub(crate) fn reference(
         })
         .collect();
     let mut base = vec![0.0; model.base_parameter_count()];
-    model.base_from_standard(&standard, &mut base).unwrap();
+    model.base_from_standard_into(&standard, &mut base).unwrap();
     let limits = robot
         .joints()
         .iter()

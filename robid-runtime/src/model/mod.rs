@@ -10,6 +10,10 @@
 
 use core::fmt;
 
+mod program;
+
+pub use program::{Argument, PROGRAMS, ProgramInfo, ProgramKind, Size, Sizes};
+
 /// A slice given to a [`Model`] method does not have the length the model needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LengthError {
@@ -33,6 +37,7 @@ impl fmt::Display for LengthError {
                 "q" | "qd" | "qdd" | "tau" => "joint",
                 "base" => "base parameter",
                 "standard" => "standard parameter",
+                "inputs" => "input of the program (see robid_runtime::model::PROGRAMS)",
                 _ => "output value",
             }
         )
@@ -91,16 +96,18 @@ pub fn fixed_mut<'a, const N: usize>(
 /// kept symbolic in the description) are part of the implementing value, set when it
 /// is constructed.
 ///
-/// Every computing method checks the length of every slice first: on a mismatch it
-/// returns the [`LengthError`] of the first wrong argument and leaves the output as
-/// it was; otherwise it overwrites the output completely.
+/// An implementation provides [`run`](Model::run), which computes any program of the
+/// table [`PROGRAMS`]; the named methods (`inverse_dynamics_into`, ...) call it. Every
+/// computation checks the number of inputs and the length of every slice first: on a
+/// mismatch it returns the [`LengthError`] of the first wrong argument and leaves the
+/// output as it was; otherwise it overwrites the output completely.
 ///
 /// ```
 /// use robid_runtime::model::{LengthError, Model};
 /// fn torques(m: &dyn Model, q: &[f64], base: &[f64]) -> Result<Vec<f64>, LengthError> {
 ///     let zero = vec![0.0; m.dof()];
 ///     let mut tau = vec![0.0; m.dof()];
-///     m.inverse_dynamics(q, &zero, &zero, base, &mut tau)?;
+///     m.inverse_dynamics_into(q, &zero, &zero, base, &mut tau)?;
 ///     Ok(tau)
 /// }
 /// ```
@@ -118,46 +125,109 @@ pub trait Model {
     /// Name of base parameter `index` (e.g. `ZZR1`, `MXR2`); `None` past the end.
     fn base_parameter_name(&self, index: usize) -> Option<&str>;
 
+    /// Runs `program` on `inputs` (one slice per input of its table entry, in order)
+    /// and writes its result to `output`.
+    fn run(
+        &self,
+        program: ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
+    ) -> Result<(), LengthError>;
+
+    /// The sizes the table's shapes are measured in.
+    fn sizes(&self) -> Sizes {
+        Sizes {
+            joints: self.dof(),
+            base: self.base_parameter_count(),
+            standard: self.standard_parameter_count(),
+        }
+    }
+
     /// Base regressor Y_b(q, qd, qdd): `out` is `dof x base_parameter_count`, row-major,
     /// so that tau = Y_b * base.
-    fn base_regressor(
+    fn base_regressor_into(
         &self,
         q: &[f64],
         qd: &[f64],
         qdd: &[f64],
         out: &mut [f64],
-    ) -> Result<(), LengthError>;
+    ) -> Result<(), LengthError> {
+        self.run(ProgramKind::BaseRegressor, &[q, qd, qdd], out)
+    }
     /// Standard regressor Y(q, qd, qdd): `out` is `dof x standard_parameter_count`, row-major.
-    fn standard_regressor(
+    fn standard_regressor_into(
         &self,
         q: &[f64],
         qd: &[f64],
         qdd: &[f64],
         out: &mut [f64],
-    ) -> Result<(), LengthError>;
+    ) -> Result<(), LengthError> {
+        self.run(ProgramKind::StandardRegressor, &[q, qd, qdd], out)
+    }
     /// Inverse dynamics with base parameters, friction and offsets included: `tau` has `dof` entries.
-    fn inverse_dynamics(
+    fn inverse_dynamics_into(
         &self,
         q: &[f64],
         qd: &[f64],
         qdd: &[f64],
         base: &[f64],
         tau: &mut [f64],
-    ) -> Result<(), LengthError>;
+    ) -> Result<(), LengthError> {
+        self.run(ProgramKind::InverseDynamics, &[q, qd, qdd, base], tau)
+    }
     /// Joint-space inertia matrix M(q) (rotor inertias included): `out` is `dof x dof`, row-major.
-    fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError>;
+    fn mass_matrix_into(
+        &self,
+        q: &[f64],
+        base: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), LengthError> {
+        self.run(ProgramKind::MassMatrix, &[q, base], out)
+    }
     /// Gravity torques g(q): `out` has `dof` entries.
-    fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError>;
+    fn gravity_into(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
+        self.run(ProgramKind::Gravity, &[q, base], out)
+    }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction): `out` has `dof` entries.
-    fn coriolis(
+    fn coriolis_into(
         &self,
         q: &[f64],
         qd: &[f64],
         base: &[f64],
         out: &mut [f64],
-    ) -> Result<(), LengthError>;
+    ) -> Result<(), LengthError> {
+        self.run(ProgramKind::Coriolis, &[q, qd, base], out)
+    }
     /// Maps standard parameters to base parameters (base = K * standard).
-    fn base_from_standard(&self, standard: &[f64], base: &mut [f64]) -> Result<(), LengthError>;
+    fn base_from_standard_into(
+        &self,
+        standard: &[f64],
+        base: &mut [f64],
+    ) -> Result<(), LengthError> {
+        self.run(ProgramKind::BaseFromStandard, &[standard], base)
+    }
+}
+
+/// Checks `inputs` and `output` against `program`'s table entry for a model of `sizes`:
+/// the number of inputs (argument `inputs`), then each slice's length in order.
+pub fn check_arguments(
+    program: ProgramKind,
+    sizes: Sizes,
+    inputs: &[&[f64]],
+    output: &[f64],
+) -> Result<(), LengthError> {
+    let info = program.info();
+    if inputs.len() != info.inputs.len() {
+        return Err(LengthError {
+            argument: "inputs",
+            expected: info.inputs.len(),
+            found: inputs.len(),
+        });
+    }
+    for (slice, argument) in inputs.iter().zip(info.inputs) {
+        check_length(argument.name, slice, argument.size.len(sizes))?;
+    }
+    check_length(info.output.name, output, info.output.size.len(sizes))
 }
 
 /// The base parameter names of `model`, in order.
