@@ -1,4 +1,4 @@
-//! Rust code emission: the programs of a robot as straight-line Rust.
+//! Code emission: the programs of a robot as straight-line Rust (and as C99, `c.rs`).
 //!
 //! Each program becomes one generic function over `T: ::robid_runtime::Real`
 //! with fixed-size array arguments and result (`function.rs`): the inputs are
@@ -10,12 +10,14 @@
 //! after an error. Paths are absolute (`::core::`, `::robid_runtime::`), so the
 //! code compiles wherever it is pasted.
 
+mod c;
 mod function;
 mod model;
 mod names;
 mod robot;
 mod stub;
 
+pub use c::{CCode, CScalar, emit_c};
 pub use function::function_tokens;
 pub use names::type_name;
 pub use robot::robot_tokens;

@@ -1,32 +1,104 @@
-//! `robid emit ROBOT.toml [-o FILE]`: the generated Rust module of a robot,
-//! pretty-printed: the same text `robot_model!` compiles and that is checked
-//! into robots/generated/ for the reference robots.
+//! `robid emit ROBOT.toml [--lang rust|c] [--scalar double|float] [-o FILE]`: the
+//! generated code of a robot. Rust (the default): the pretty-printed module that
+//! `robot_model!` compiles and that is checked into robots/generated/ for the reference
+//! robots. C: a C99 header and source with the same functions and operation counts.
 
 use super::{Error, files, out};
 use robid_symbolic::Robot;
-use robid_symbolic::emit::emit_robot;
-use std::path::PathBuf;
+use robid_symbolic::emit::{CScalar, emit_c, emit_programs};
+use robid_symbolic::program::RobotPrograms;
+use std::path::{Path, PathBuf};
+
+/// The language of `robid emit`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum Lang {
+    /// A Rust module (`no_std`, generic over the scalar).
+    Rust,
+    /// A C99 header and source (`-o FILE.c`; the header is written next to it as `FILE.h`).
+    C,
+}
+
+/// The scalar type of emitted C.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum Scalar {
+    /// `double`.
+    Double,
+    /// `float`.
+    Float,
+}
 
 /// Arguments of `robid emit`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
     /// Robot description file (TOML).
     robot: PathBuf,
-    /// Write to this file instead of standard output.
+    /// Language of the generated code.
+    #[arg(long, value_enum, default_value = "rust")]
+    lang: Lang,
+    /// Scalar type of C code (`--lang c` only; Rust code is generic over it).
+    #[arg(long, value_enum)]
+    scalar: Option<Scalar>,
+    /// Write to this file instead of standard output (required for C: `FILE.c`, with
+    /// the header `FILE.h` next to it).
     #[arg(short, long)]
     output: Option<PathBuf>,
 }
 
-/// Emits the module.
+/// Emits the code.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    match args.lang {
+        Lang::Rust => rust(args),
+        Lang::C => c(args),
+    }
+}
+
+fn rust(args: &Args) -> Result<(), Error> {
+    if args.scalar.is_some() {
+        return Err("`--scalar` is for `--lang c`; Rust code is generic over the scalar".into());
+    }
     if let Some(path) = &args.output {
         files::refuse(&[&args.robot], &[path])?;
     }
     let robot = Robot::from_file(&args.robot)?;
-    let code = emit_robot(&robot)?;
+    let code = emit_programs(&RobotPrograms::derive(&robot)?)?;
     match &args.output {
         Some(path) => files::write(path, &code)?,
         None => out::print(&code)?,
     }
     Ok(())
+}
+
+fn c(args: &Args) -> Result<(), Error> {
+    let Some(source) = args.output.as_deref() else {
+        return Err(
+            "`--lang c` writes a header and a source: give `-o FILE.c` (the header is written \
+             next to it as FILE.h)"
+                .into(),
+        );
+    };
+    if source.extension().and_then(|e| e.to_str()) != Some("c") {
+        return Err(format!(
+            "`-o {}`: the C source must end in `.c` (the header is written next to it as .h)",
+            source.display()
+        )
+        .into());
+    }
+    let header = source.with_extension("h");
+    files::refuse(&[&args.robot], &[source, &header])?;
+    let robot = Robot::from_file(&args.robot)?;
+    let scalar = match args.scalar {
+        Some(Scalar::Float) => CScalar::Float,
+        Some(Scalar::Double) | None => CScalar::Double,
+    };
+    let header_name = file_name(&header);
+    let code = emit_c(&RobotPrograms::derive(&robot)?, scalar, &header_name)?;
+    files::write(&header, &code.header)?;
+    files::write(source, &code.source)?;
+    Ok(())
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }

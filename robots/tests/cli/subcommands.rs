@@ -20,6 +20,41 @@ fn emit_prints_the_checked_in_code() {
     );
 }
 
+/// `--lang c` writes FILE.c and FILE.h (compiled and checked against the Rust models in
+/// tests/tests/suite/emit_c.rs); its misuses are errors naming the flag.
+#[test]
+fn emit_c_writes_a_header_and_a_source() {
+    let dir = folder();
+    let source = dir.path().join("arm.c");
+    let source = source.to_str().unwrap();
+    let o = robid(&[
+        "emit",
+        "descriptions/tx40.toml",
+        "--lang",
+        "c",
+        "--scalar",
+        "float",
+        "-o",
+        source,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let header = std::fs::read_to_string(dir.path().join("arm.h")).unwrap();
+    assert!(header.contains("void tx40_mass_matrix(const float q[6], const float base["));
+    let code = std::fs::read_to_string(source).unwrap();
+    assert!(code.contains("#include \"arm.h\""), "{code}");
+    for (args, says) in [
+        (vec!["--lang", "c"], "give `-o FILE.c`"),
+        (vec!["--lang", "c", "-o", "arm.txt"], "must end in `.c`"),
+        (vec!["--scalar", "float"], "`--scalar` is for `--lang c`"),
+    ] {
+        let mut all = vec!["emit", "descriptions/tx40.toml"];
+        all.extend(args);
+        let o = robid(&all);
+        assert_eq!(o.status.code(), Some(1), "{all:?}");
+        assert!(stderr(&o).contains(says), "{all:?}: {}", stderr(&o));
+    }
+}
+
 #[test]
 fn model_json_has_the_documented_shape() {
     let o = robid(&["model", "descriptions/ur5e.toml", "--json"]);
