@@ -31,3 +31,15 @@ pub fn random_state(arena: &mut Arena, dof: usize, extra: &[(&str, f64)], rng: &
     pairs.extend_from_slice(extra);
     arena.values(&pairs)
 }
+
+/// The configuration of the property tests: `cases` cases from a fixed seed, so that
+/// every run (and CI) tests the same cases and a failure reproduces; no regression
+/// files. To explore other cases, change the seed here and run the tests.
+pub fn proptest_config(cases: u32) -> proptest::test_runner::Config {
+    proptest::test_runner::Config {
+        cases,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(20_261_123),
+        failure_persistence: None,
+        ..proptest::test_runner::Config::default()
+    }
+}

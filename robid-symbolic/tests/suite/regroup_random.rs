@@ -96,7 +96,7 @@ fn check(seed: u64) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(40))]
+    #![proptest_config(crate::common::proptest_config(40))]
     #[test]
     fn base_count_equals_numeric_rank(seed in any::<u64>()) {
         check(seed);

@@ -255,7 +255,7 @@ fn check(seed: u64) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(crate::common::proptest_config(128))]
     #[test]
     fn symbolic_twins_regroup_like_numeric_twins(seed in any::<u64>()) {
         check(seed);

@@ -131,7 +131,7 @@ fn check(seed: u64, flavour: Flavour) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(400))]
+    #![proptest_config(crate::common::proptest_config(400))]
     #[test]
     fn constant_folding_keeps_value(seed in any::<u64>()) { check(seed, Flavour::Constants) }
     #[test]
@@ -142,6 +142,21 @@ proptest! {
     fn pythagoras_keeps_value(seed in any::<u64>()) { check(seed, Flavour::Pythagoras) }
     #[test]
     fn all_passes_keep_value(seed in any::<u64>()) { check(seed, Flavour::Mixed) }
+}
+
+/// A case a random run once found (its regression file is replaced by fixed seeds), in
+/// every flavour.
+#[test]
+fn a_case_found_before_keeps_value() {
+    for flavour in [
+        Flavour::Constants,
+        Flavour::LikeTerms,
+        Flavour::Trig,
+        Flavour::Pythagoras,
+        Flavour::Mixed,
+    ] {
+        check(3_375_750_310_395_185_919, flavour);
+    }
 }
 
 /// The passes do simplify: the test above would pass for a no-op, this does not.
