@@ -42,7 +42,7 @@ pub struct RobotPrograms {
     /// Geometric symbols (inputs of every program, group `geometry`) and default values.
     pub geometry: Vec<(String, Option<f64>)>,
     /// The programs, in the order of the table
-    /// ([`PROGRAMS`](robid_runtime::model::PROGRAMS)); index with a [`ProgramKind`].
+    /// ([`robid_runtime::model::PROGRAMS`]); index with a [`ProgramKind`].
     pub programs: [Program; PROGRAMS.len()],
 }
 
