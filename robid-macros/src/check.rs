@@ -4,6 +4,7 @@
 
 use crate::input::{Input, Item};
 use proc_macro2::Span;
+use robid_symbolic::robot::DriveTerm;
 use robid_symbolic::robot::Geometry;
 use robid_symbolic::robot::bounds::MAX_DESCRIPTION_LEN;
 use robid_symbolic::{Convention, DescriptionError, Drive, Joint, JointKind, Robot};
@@ -350,14 +351,12 @@ fn drive(cx: &mut Ctxt, e: &Expr) -> Option<Drive> {
             Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
             _ => None,
         };
-        match name.as_deref() {
-            Some("Ia") => d.ia = true,
-            Some("Fv") => d.fv = true,
-            Some("Fc") => d.fc = true,
-            Some("Fo") => d.fo = true,
-            _ => cx.error(
+        match name.as_deref().map(str::parse::<DriveTerm>) {
+            Some(Ok(t)) => d.add(t),
+            Some(Err(e)) => cx.error(term.span(), format!("unknown drive term; {}", e.expected)),
+            None => cx.error(
                 term.span(),
-                "unknown drive term; write `Ia` (rotor inertia), `Fv` (viscous), `Fc` (Coulomb) or `Fo` (offset)",
+                "a drive term is a name: `Ia` (rotor inertia), `Fv` (viscous), `Fc` (Coulomb) or `Fo` (offset)",
             ),
         }
     }

@@ -232,6 +232,20 @@ pub enum Error {
         /// What is wrong and what to write instead.
         problem: String,
     },
+    /// A parameter file (`[standard]` or `[base]` table, see [`crate::data::ParameterFile`])
+    /// is not valid or holds a value that cannot be (`line` is `None` for a problem of the
+    /// whole file).
+    #[error("{}: {problem}", place(path, *line, *column))]
+    ParameterFile {
+        /// The parameter file.
+        path: PathBuf,
+        /// 1-based line of the entry.
+        line: Option<usize>,
+        /// 1-based column (in characters) of the entry.
+        column: Option<usize>,
+        /// What is wrong and what to write instead.
+        problem: String,
+    },
     /// A setting given in code is out of range or inconsistent: a field of a settings
     /// struct (`Simulation::bandwidth`, a [`crate::data::Config`] built in code) or a
     /// function argument (`rate` of [`crate::excite::Fourier::sample`]). `owner` is the

@@ -30,22 +30,11 @@ const SAMPLES: usize = 30_000;
 
 /// The reference UR5e base parameters (`parameters/ur5e.toml`, rigid body).
 fn truth(model: &Ur5e) -> Vec<f64> {
-    let text = include_str!("../parameters/ur5e.toml");
-    let table: toml::Table = toml::from_str(text).expect("parameters");
-    let standard_table = table["standard"].as_table().expect("[standard]");
-    let standard: Vec<f64> = (0..model.standard_parameter_count())
-        .map(|i| {
-            standard_table
-                .get(Ur5e::STANDARD_PARAMETER_NAMES[i])
-                .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-                .unwrap_or(0.0)
-        })
-        .collect();
-    let mut base = vec![0.0; model.base_parameter_count()];
-    model
-        .base_from_standard_into(&standard, &mut base)
-        .expect("sizes from the model");
-    base
+    robots::Reference::named("ur5e")
+        .expect("a reference robot")
+        .parameter_file()
+        .base_parameters(model)
+        .expect("the reference parameters fit the model")
 }
 
 /// Sums of three sines per joint (amplitudes within the UR5e's limits).

@@ -49,6 +49,8 @@ pub enum ModelError {
 pub struct Interpreted {
     programs: RobotPrograms,
     geometry: Vec<f64>,
+    /// The base parameters' names, written once (`Model` lends them as `&str`).
+    base_names: Vec<String>,
 }
 
 thread_local! {
@@ -78,7 +80,12 @@ impl Interpreted {
                 })
             })
             .collect::<Result<_, _>>()?;
-        Ok(Self { programs, geometry })
+        let base_names = programs.base.iter().map(|b| b.name.to_string()).collect();
+        Ok(Self {
+            programs,
+            geometry,
+            base_names,
+        })
     }
 
     /// The derived programs (names and expressions of the parameters included).
@@ -104,7 +111,7 @@ impl Model for Interpreted {
         self.programs.base.len()
     }
     fn base_parameter_name(&self, index: usize) -> Option<&str> {
-        self.programs.base.get(index).map(|b| b.name.as_str())
+        self.base_names.get(index).map(String::as_str)
     }
     /// Checks every slice against the table (the same [`LengthError`] as the compiled
     /// models, and the output untouched on a mismatch), then interprets the program.
@@ -158,14 +165,11 @@ impl Chosen {
     pub fn expression(&self, name: &str) -> Option<String> {
         self.base
             .iter()
-            .find(|b| b.name == name)
+            .find(|b| b.name.to_string() == name)
             .map(|b| b.expression.clone())
     }
 }
 
-/// The text of each reference description and its compiled model (`default()` because a
-/// model with geometric symbols is not a unit struct).
-#[allow(clippy::default_constructed_unit_structs)]
 /// The model of `robot`: the compiled reference model when `robot` is a reference
 /// description ([`Reference::matching`]), else the interpreter. The derivation (for the
 /// names and expressions) runs in both cases.

@@ -13,8 +13,8 @@ fn main() {
         "release"
     };
     println!("profile: {profile}");
-    for r in ROBOTS {
-        let robot = r.robot(Drive::ALL);
+    for r in &ROBOTS {
+        let robot = r.robot().with_drive(Drive::ALL);
         // Median of a few runs for NE (fast), one run for LE.
         let mut ne_times = Vec::new();
         let mut nodes = 0;

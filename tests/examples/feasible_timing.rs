@@ -126,7 +126,7 @@ fn tx40() {
 /// random states for consistent least squares.
 fn panda() {
     let reference = by_name("panda");
-    let robot = reference.robot(Drive::NONE);
+    let robot = reference.robot().with_drive(Drive::NONE);
     let truth = reference.parameter_values(&robot);
     let mut derivation = Derivation::new(&robot);
     let base = derivation.base_parameters().unwrap();
@@ -149,8 +149,8 @@ fn panda() {
         .map(|(v, s)| v + s * rng.uniform(-1.0, 1.0))
         .collect();
     let problem = Problem::new(
-        base.standard.iter().map(|p| p.name.clone()).collect(),
-        base.base.iter().map(|b| b.name.clone()).collect(),
+        base.standard.iter().map(|p| p.to_string()).collect(),
+        base.base.iter().map(|b| b.name.to_string()).collect(),
         k,
     )
     .unwrap()

@@ -33,15 +33,10 @@ pub fn repo() -> PathBuf {
 /// The UR5e reference base parameters (`robots/parameters/ur5e.toml`, rigid body).
 pub fn ur5e_base() -> Vec<f64> {
     let model = Ur5e;
-    let table = crate::reference::by_name("ur5e").parameter_table();
-    let standard: Vec<f64> = (0..model.standard_parameter_count())
-        .map(|i| {
-            let name = model.standard_parameter_name(i);
-            table
-                .iter()
-                .find(|(n, _)| Some(n.as_str()) == name)
-                .map_or(0.0, |(_, v)| *v)
-        })
+    let file = crate::reference::by_name("ur5e").parameter_file();
+    let standard: Vec<f64> = robid_runtime::model::standard_parameter_names(&model)
+        .iter()
+        .map(|name| file.get(name).unwrap_or(0.0))
         .collect();
     let mut base = vec![0.0; model.base_parameter_count()];
     Model::base_from_standard_into(&model, &standard, &mut base)

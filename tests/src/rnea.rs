@@ -24,7 +24,7 @@
 //!           plus Ia qdd + Fv qd + Fc sign(qd) + Fo.
 //! ```
 
-use robid_symbolic::robot::{DriveTerm, ParameterKind};
+use robid_symbolic::robot::{DriveTerm, Inertial, ParameterKind};
 use robid_symbolic::{Arena, Convention, JointKind, Robot};
 
 /// A 3-vector.
@@ -244,6 +244,30 @@ impl Chain {
     }
 }
 
+/// The entry of `link` that holds the standard parameter `kind`, written out variant by
+/// variant (this module shares no mapping with robid-symbolic); the tensor's products
+/// are set on both sides by the callers.
+fn entry(l: &mut Link, kind: ParameterKind) -> &mut f64 {
+    match kind {
+        ParameterKind::Inertial(i) => match i {
+            Inertial::XX => &mut l.inertia[0][0],
+            Inertial::XY => &mut l.inertia[0][1],
+            Inertial::XZ => &mut l.inertia[0][2],
+            Inertial::YY => &mut l.inertia[1][1],
+            Inertial::YZ => &mut l.inertia[1][2],
+            Inertial::ZZ => &mut l.inertia[2][2],
+            Inertial::MX => &mut l.first_moment[0],
+            Inertial::MY => &mut l.first_moment[1],
+            Inertial::MZ => &mut l.first_moment[2],
+            Inertial::M => &mut l.mass,
+        },
+        ParameterKind::Drive(DriveTerm::Ia) => &mut l.ia,
+        ParameterKind::Drive(DriveTerm::Fv) => &mut l.fv,
+        ParameterKind::Drive(DriveTerm::Fc) => &mut l.fc,
+        ParameterKind::Drive(DriveTerm::Fo) => &mut l.fo,
+    }
+}
+
 /// Link parameters from values of `robot.standard_parameters()` (in the user's frames).
 pub fn links_from_standard(robot: &Robot, values: &[f64]) -> Vec<Link> {
     let parameters = robot.standard_parameters();
@@ -251,19 +275,11 @@ pub fn links_from_standard(robot: &Robot, values: &[f64]) -> Vec<Link> {
     let mut links = vec![Link::default(); robot.dof()];
     for (p, &v) in parameters.iter().zip(values) {
         let l = &mut links[p.link];
-        match p.kind {
-            ParameterKind::Inertia(k) => {
-                let (r, c) = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)][k];
-                l.inertia[r][c] = v;
-                l.inertia[c][r] = v;
-            }
-            ParameterKind::FirstMoment(k) => l.first_moment[k] = v,
-            ParameterKind::Mass => l.mass = v,
-            ParameterKind::Drive(DriveTerm::Ia) => l.ia = v,
-            ParameterKind::Drive(DriveTerm::Fv) => l.fv = v,
-            ParameterKind::Drive(DriveTerm::Fc) => l.fc = v,
-            ParameterKind::Drive(DriveTerm::Fo) => l.fo = v,
-        }
+        *entry(l, p.kind) = v;
+        // the tensor is symmetric
+        l.inertia[1][0] = l.inertia[0][1];
+        l.inertia[2][0] = l.inertia[0][2];
+        l.inertia[2][1] = l.inertia[1][2];
     }
     links
 }
@@ -274,21 +290,7 @@ pub fn standard_from_links(robot: &Robot, links: &[Link]) -> Vec<f64> {
     robot
         .standard_parameters()
         .iter()
-        .map(|p| {
-            let l = &links[p.link];
-            match p.kind {
-                ParameterKind::Inertia(k) => {
-                    let (r, c) = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)][k];
-                    l.inertia[r][c]
-                }
-                ParameterKind::FirstMoment(k) => l.first_moment[k],
-                ParameterKind::Mass => l.mass,
-                ParameterKind::Drive(DriveTerm::Ia) => l.ia,
-                ParameterKind::Drive(DriveTerm::Fv) => l.fv,
-                ParameterKind::Drive(DriveTerm::Fc) => l.fc,
-                ParameterKind::Drive(DriveTerm::Fo) => l.fo,
-            }
-        })
+        .map(|p| *entry(&mut links[p.link].clone(), p.kind))
         .collect()
 }
 

@@ -56,7 +56,7 @@ pub fn bind(arena: &mut Arena, robot: &Robot, state: &State, parameters: Option<
     }
     if let Some(values) = parameters {
         for (p, &v) in robot.standard_parameters().iter().zip(values) {
-            owned.push((p.name.clone(), v));
+            owned.push((p.to_string(), v));
         }
     }
     let pairs: Vec<(&str, f64)> = owned.iter().map(|(n, v)| (n.as_str(), *v)).collect();

@@ -7,6 +7,7 @@ mod config;
 mod dataset;
 mod keys;
 mod load;
+mod parameters;
 mod table;
 mod time;
 
@@ -19,6 +20,7 @@ pub use dataset::{DataOrigin, Dataset};
 pub use keys::KeyMap;
 pub(crate) use load::check_joints;
 pub use load::{load, load_config_files, load_from_config_file};
+pub use parameters::{INERTIA_TOLERANCE, PARAMETER_LIMIT, ParameterFile, ParameterTable};
 pub use table::{ColumnMapping, Table, read_columns, read_columns_from};
 pub use time::{
     IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,

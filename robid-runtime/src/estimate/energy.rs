@@ -16,6 +16,7 @@ use crate::LengthError;
 use crate::Model;
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation, ols};
+use crate::model::{DriveTerm, ParameterId, ParameterKind};
 use crate::pipeline::Prepared;
 
 /// The energy regressor: writes h(q, qd) (one entry per parameter) into the last argument.
@@ -197,20 +198,18 @@ pub fn energy(obs: &Observation, tolerance: f64) -> Result<Estimate> {
 }
 
 /// Dissipated-power regressor from parameter names: `Fv{j}` -> qd_j^2,
-/// `Fc{j}` -> |qd_j|, `Fo{j}` -> qd_j (joints from 1); other parameters -> 0.
+/// `Fc{j}` -> |qd_j|, `Fo{j}` -> qd_j (joints from 1); other parameters, and friction
+/// terms that were regrouped with others, -> 0.
 pub fn friction_power(names: &[String]) -> impl EnergyRegressor + use<> {
-    let terms: Vec<(usize, u8, usize)> = names
+    let terms: Vec<(usize, DriveTerm, usize)> = names
         .iter()
         .enumerate()
-        .filter_map(|(i, n)| {
-            let kind = match n.get(..2)? {
-                "Fv" => b'v',
-                "Fc" => b'c',
-                "Fo" => b'o',
-                _ => return None,
-            };
-            let j: usize = n[2..].parse().ok()?;
-            (j >= 1).then_some((i, kind, j - 1))
+        .filter_map(|(i, n)| match n.parse::<ParameterId>().ok()? {
+            ParameterId {
+                link,
+                kind: ParameterKind::Drive(t @ (DriveTerm::Fv | DriveTerm::Fc | DriveTerm::Fo)),
+            } => Some((i, t, link)),
+            _ => None,
         })
         .collect();
     move |_q: &[f64], qd: &[f64], out: &mut [f64]| {
@@ -218,8 +217,8 @@ pub fn friction_power(names: &[String]) -> impl EnergyRegressor + use<> {
         for &(i, kind, j) in &terms {
             let v = qd.get(j).copied().unwrap_or(0.0);
             out[i] = match kind {
-                b'v' => v * v,
-                b'c' => v.abs(),
+                DriveTerm::Fv => v * v,
+                DriveTerm::Fc => v.abs(),
                 _ => v,
             };
         }

@@ -2,41 +2,8 @@
 //! parameter vector, found from the parameter names
 //! (docs/conventions.md#standard-parameters).
 
+use crate::model::{DriveTerm, Inertial, ParameterId, ParameterKind};
 use crate::{Error, Result};
-
-/// Names of the ten inertial slots of a link, in the order of
-/// docs/conventions.md#standard-parameters.
-pub const INERTIAL: [&str; 10] = ["XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"];
-
-/// A drive term of one joint.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum DriveKind {
-    /// Rotor inertia `Ia` (non-negative).
-    Ia,
-    /// Viscous friction `Fv` (non-negative).
-    Fv,
-    /// Coulomb friction `Fc` (non-negative).
-    Fc,
-    /// Constant offset `Fo` (any sign).
-    Fo,
-}
-
-impl DriveKind {
-    /// Whether the term must be non-negative to be physical.
-    pub fn non_negative(self) -> bool {
-        !matches!(self, DriveKind::Fo)
-    }
-
-    fn parse(stem: &str) -> Option<DriveKind> {
-        Some(match stem {
-            "Ia" => DriveKind::Ia,
-            "Fv" => DriveKind::Fv,
-            "Fc" => DriveKind::Fc,
-            "Fo" => DriveKind::Fo,
-            _ => return None,
-        })
-    }
-}
 
 /// One drive term: its joint (0-based), kind and index in the standard vector.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,7 +11,7 @@ pub struct Drive {
     /// Joint, 0-based.
     pub joint: usize,
     /// Which term.
-    pub kind: DriveKind,
+    pub kind: DriveTerm,
     /// Index into the standard parameters.
     pub index: usize,
 }
@@ -52,7 +19,7 @@ pub struct Drive {
 /// The layout of a standard parameter vector.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Layout {
-    /// Per link (0-based), the indices of `XX YY .. M` in [`INERTIAL`] order.
+    /// Per link (0-based), the indices of `XX XY .. M` in [`Inertial::ALL`] order.
     pub links: Vec<[usize; 10]>,
     /// The drive terms.
     pub drives: Vec<Drive>,
@@ -70,28 +37,19 @@ impl Layout {
         let mut links: Vec<[Option<usize>; 10]> = Vec::new();
         let mut drives = Vec::new();
         for (index, name) in names.iter().enumerate() {
-            let digits_at = name
-                .find(|c: char| c.is_ascii_digit())
-                .ok_or_else(|| unknown(name))?;
-            let (stem, digits) = name.split_at(digits_at);
-            let link: usize = digits.parse().map_err(|_| unknown(name))?;
-            if link == 0 {
-                return Err(unknown(name));
-            }
-            let link = link - 1;
-            if let Some(slot) = INERTIAL.iter().position(|s| *s == stem) {
-                if links.len() <= link {
-                    links.resize(link + 1, [None; 10]);
+            let id: ParameterId = name.parse().map_err(|_| unknown(name))?;
+            match id.kind {
+                ParameterKind::Inertial(slot) => {
+                    if links.len() <= id.link {
+                        links.resize(id.link + 1, [None; 10]);
+                    }
+                    links[id.link][slot.index()] = Some(index);
                 }
-                links[link][slot] = Some(index);
-            } else if let Some(kind) = DriveKind::parse(stem) {
-                drives.push(Drive {
-                    joint: link,
+                ParameterKind::Drive(kind) => drives.push(Drive {
+                    joint: id.link,
                     kind,
                     index,
-                });
-            } else {
-                return Err(unknown(name));
+                }),
             }
         }
         let links = links
@@ -107,7 +65,7 @@ impl Layout {
                             format!(
                                 "link {} lacks the standard parameter {}{}; every link needs all ten inertial parameters",
                                 j + 1,
-                                INERTIAL[s],
+                                Inertial::ALL[s].stem(),
                                 j + 1
                             ),
                         )
@@ -155,11 +113,14 @@ mod tests {
 
     #[test]
     fn reads_links_and_drives() {
-        let mut names: Vec<String> = INERTIAL.iter().map(|s| format!("{s}1")).collect();
+        let mut names: Vec<String> = Inertial::ALL
+            .iter()
+            .map(|s| format!("{}1", s.stem()))
+            .collect();
         names.push("Fv1".into());
         let layout = Layout::from_names(&names).unwrap();
         assert_eq!(layout.links, vec![[0, 1, 2, 3, 4, 5, 6, 7, 8, 9]]);
-        assert_eq!(layout.drives[0].kind, DriveKind::Fv);
+        assert_eq!(layout.drives[0].kind, DriveTerm::Fv);
         assert_eq!(layout.len(), 11);
     }
 

@@ -41,7 +41,7 @@ pub use centre::centre;
 pub use inertial::{
     LinkInertial, inertia_at_origin, pseudo_inertia, pseudo_inertia_min_eigenvalue,
 };
-pub use layout::{Drive, DriveKind, INERTIAL, Layout};
+pub use layout::{Drive, Layout};
 pub use output::{to_toml, to_urdf};
 pub use problem::Problem;
 pub use sdp::{Prior, SdpOptions, consistent_least_squares, solve_sdp};

@@ -10,8 +10,10 @@
 
 use core::fmt;
 
+mod parameter;
 mod program;
 
+pub use parameter::{BaseName, DriveTerm, Inertial, ParameterId, ParameterKind, ParseNameError};
 pub use program::{Argument, PROGRAMS, ProgramInfo, ProgramKind, Size, Sizes};
 
 /// A slice given to a [`Model`] method does not have the length the model needs.

@@ -3,7 +3,7 @@
 
 use super::vector::{self, Mat3, Vec3};
 use crate::expr::{Arena, Id};
-use crate::robot::{DriveTerm, Parameter, ParameterKind, Robot};
+use crate::robot::{DriveTerm, ParameterId, ParameterKind, Robot};
 
 /// Parameters of one link (about the frame origin, in the link frame) and its joint's drive.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,6 +47,21 @@ impl LinkParameters {
             .chain([&self.mass])
             .all(|&x| arena.is_zero(x))
     }
+
+    /// The entry of the standard parameter `kind` (docs/conventions.md#standard-parameters).
+    pub fn slot_mut(&mut self, kind: ParameterKind) -> &mut Id {
+        match kind {
+            ParameterKind::Inertial(i) => match i.index() {
+                k @ 0..=5 => &mut self.inertia[k],
+                k @ 6..=8 => &mut self.first_moment[k - 6],
+                _ => &mut self.mass,
+            },
+            ParameterKind::Drive(DriveTerm::Ia) => &mut self.ia,
+            ParameterKind::Drive(DriveTerm::Fv) => &mut self.fv,
+            ParameterKind::Drive(DriveTerm::Fc) => &mut self.fc,
+            ParameterKind::Drive(DriveTerm::Fo) => &mut self.fo,
+        }
+    }
 }
 
 /// The constant transform from each modified-DH link frame to the user's
@@ -68,7 +83,7 @@ pub fn user_frames(arena: &mut Arena, robot: &Robot) -> Vec<Option<(Id, Id)>> {
 /// user's frames; `frames` from [`user_frames`]). Disabled drive terms are zero.
 pub fn link_parameters(
     arena: &mut Arena,
-    parameters: &[Parameter],
+    parameters: &[ParameterId],
     frames: &[Option<(Id, Id)>],
     values: &[Id],
 ) -> Vec<LinkParameters> {
@@ -81,16 +96,7 @@ pub fn link_parameters(
         .map(|_| LinkParameters::zero(arena))
         .collect();
     for (p, &v) in parameters.iter().zip(values) {
-        let l = &mut links[p.link];
-        match p.kind {
-            ParameterKind::Inertia(k) => l.inertia[k] = v,
-            ParameterKind::FirstMoment(k) => l.first_moment[k] = v,
-            ParameterKind::Mass => l.mass = v,
-            ParameterKind::Drive(DriveTerm::Ia) => l.ia = v,
-            ParameterKind::Drive(DriveTerm::Fv) => l.fv = v,
-            ParameterKind::Drive(DriveTerm::Fc) => l.fc = v,
-            ParameterKind::Drive(DriveTerm::Fo) => l.fo = v,
-        }
+        *links[p.link].slot_mut(p.kind) = v;
     }
     links
         .into_iter()

@@ -15,13 +15,13 @@ pub use lagrange::Lagrange;
 pub use link::LinkParameters;
 
 use crate::expr::{Arena, Id};
-use crate::robot::{Parameter, Robot};
+use crate::robot::{ParameterId, Robot};
 
 /// A regressor: one torque column per standard parameter, tau = sum_p column_p * p.
 #[derive(Clone, Debug)]
 pub struct Regressor {
     /// The parameters, in column order.
-    pub parameters: Vec<Parameter>,
+    pub parameters: Vec<ParameterId>,
     /// `columns[p][j]`: joint j's torque per unit of parameter p.
     pub columns: Vec<Vec<Id>>,
 }
@@ -45,7 +45,7 @@ pub struct Derivation {
     /// Kinematics for those inputs.
     pub kinematics: Kinematics,
     /// The standard parameters, in column order.
-    parameters: Vec<Parameter>,
+    parameters: Vec<ParameterId>,
     /// Modified-DH to user link frames (standard DH only).
     frames: Vec<Option<(Id, Id)>>,
 }
@@ -77,12 +77,12 @@ impl Derivation {
     pub fn parameter_symbols(&mut self) -> Vec<Id> {
         self.parameters
             .iter()
-            .map(|p| self.arena.var(&p.name))
+            .map(|p| self.arena.var(&p.to_string()))
             .collect()
     }
 
     /// The standard parameters, in column order.
-    pub fn standard_parameters(&self) -> &[Parameter] {
+    pub fn standard_parameters(&self) -> &[ParameterId] {
         &self.parameters
     }
 

@@ -184,7 +184,7 @@ pub fn emit_c(
         robot.name()
     );
     let _ = writeln!(c, "#include \"{header_file}\"\n#include <math.h>\n");
-    let names = |list: Vec<&str>| {
+    let names = |list: Vec<String>| {
         list.iter()
             .map(|n| format!("\"{n}\""))
             .collect::<Vec<_>>()
@@ -194,13 +194,13 @@ pub fn emit_c(
         c,
         "const char *const {prefix}_standard_parameter_names[{}] = {{{}}};",
         sizes.standard,
-        names(programs.standard.iter().map(String::as_str).collect())
+        names(programs.standard.clone())
     );
     let _ = writeln!(
         c,
         "const char *const {prefix}_base_parameter_names[{}] = {{{}}};",
         sizes.base,
-        names(programs.base.iter().map(|b| b.name.as_str()).collect())
+        names(programs.base.iter().map(|b| b.name.to_string()).collect())
     );
 
     for (info, program) in programs.iter() {

@@ -41,7 +41,7 @@ pub fn robot_tokens(p: &RobotPrograms) -> Result<TokenStream, EmitError> {
     let nb = Literal::usize_unsuffixed(p.base.len());
     let name = robot.name();
     let standard = &p.standard;
-    let base_names = p.base.iter().map(|b| &b.name);
+    let base_names = p.base.iter().map(|b| b.name.to_string());
     let base_expressions = p.base.iter().map(|b| &b.expression);
     let mut type_doc = vec![format!(
         " Dynamic model of `{name}`: {n} joints, {} DH, {} standard and {} base parameters.",

@@ -28,7 +28,7 @@ mod tests;
 
 pub use count::Operations;
 pub use interpret::LengthError;
-pub use robot::{BaseParameter, DeriveError, RobotPrograms, slot_of};
+pub use robot::{BaseParameter, DeriveError, RobotPrograms};
 
 /// An operand: a temporary, an input element or a constant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -17,15 +17,16 @@ use super::{Group, Program, ProgramError, Value};
 use crate::dynamics::{Derivation, JointInputs, LinkParameters};
 use crate::expr::{Arena, Id};
 use crate::regroup::{BaseParameters, RegroupError};
-use crate::robot::{INERTIAL_NAMES, Robot};
+use crate::robot::{DriveTerm, ParameterKind, Robot};
+use robid_runtime::model::BaseName;
 use robid_runtime::model::{PROGRAMS, ProgramInfo, ProgramKind, Sizes};
 use std::ops::{Index, IndexMut};
 
 /// A base parameter as the generated code describes it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BaseParameter {
-    /// Name (`ZZR1`, `XY2`).
-    pub name: String,
+    /// Name (`ZZR1`, `XY2`): the standard parameter it is built on.
+    pub name: BaseName,
     /// Its expression in the standard parameters, as text.
     pub expression: String,
 }
@@ -78,31 +79,6 @@ pub enum DeriveError {
     Program(#[from] ProgramError),
 }
 
-/// The link and slot (0..14: XX..M, Ia, Fv, Fc, Fo) a base parameter is built on.
-pub fn slot_of(name: &str) -> Option<(usize, usize)> {
-    let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
-    let link: usize = digits.parse().ok()?;
-    let stem = &name[..name.len() - digits.len()];
-    let stem = stem.strip_suffix('R').unwrap_or(stem);
-    let slot = INERTIAL_NAMES
-        .iter()
-        .chain(&["Ia", "Fv", "Fc", "Fo"])
-        .position(|s| *s == stem)?;
-    (link >= 1).then_some((link - 1, slot))
-}
-
-fn set_slot(l: &mut LinkParameters, slot: usize, value: Id) {
-    match slot {
-        0..=5 => l.inertia[slot] = value,
-        6..=8 => l.first_moment[slot - 6] = value,
-        9 => l.mass = value,
-        10 => l.ia = value,
-        11 => l.fv = value,
-        12 => l.fc = value,
-        _ => l.fo = value,
-    }
-}
-
 /// Group of symbols `prefix1..prefixn`.
 fn joint_group(name: &str, n: usize) -> Group {
     Group::new(name, (1..=n).map(|j| format!("{name}{j}")).collect())
@@ -123,11 +99,11 @@ impl Context {
             .map(|&g| match g {
                 "base" => Group::new(
                     "base",
-                    self.base.base.iter().map(|b| b.name.clone()).collect(),
+                    self.base.base.iter().map(|b| b.name.to_string()).collect(),
                 ),
                 "standard" => Group::new(
                     "standard",
-                    self.base.standard.iter().map(|p| p.name.clone()).collect(),
+                    self.base.standard.iter().map(|p| p.to_string()).collect(),
                 ),
                 other => joint_group(other, n),
             })
@@ -136,22 +112,20 @@ impl Context {
         out
     }
 
-    /// The link parameters with every base parameter in its slot (drive
-    /// terms Fv, Fc, Fo only with `friction`), and the base parameters that
-    /// have no slot.
-    fn slots(&mut self, friction: bool) -> (Vec<LinkParameters>, Vec<usize>) {
+    /// The link parameters with every base parameter in the slot of the standard
+    /// parameter it is built on (drive terms Fv, Fc, Fo only with `friction`).
+    fn slots(&mut self, friction: bool) -> Vec<LinkParameters> {
         let arena = &mut self.d.arena;
         let n = self.d.robot.dof();
         let mut links: Vec<LinkParameters> = (0..n).map(|_| LinkParameters::zero(arena)).collect();
-        let mut fallback = Vec::new();
-        for (k, b) in self.base.base.iter().enumerate() {
-            match slot_of(&b.name) {
-                Some((_, slot)) if slot >= 11 && !friction => {}
-                Some((link, slot)) if link < n => set_slot(&mut links[link], slot, self.beta[k]),
-                _ => fallback.push(k),
+        for (b, &beta) in self.base.base.iter().zip(&self.beta) {
+            let on = b.name.on;
+            let is_friction = matches!(on.kind, ParameterKind::Drive(t) if t != DriveTerm::Ia);
+            if friction || !is_friction {
+                *links[on.link].slot_mut(on.kind) = beta;
             }
         }
-        (links, fallback)
+        links
     }
 
     /// A program running the customised Newton-Euler algorithm once per
@@ -165,7 +139,7 @@ impl Context {
         friction: bool,
         assemble: impl Fn(&[Vec<Value>]) -> Vec<Value>,
     ) -> Result<Program, ProgramError> {
-        let (links, fallback) = self.slots(friction);
+        let links = self.slots(friction);
         let q = self.d.inputs.q.clone();
         let frames = frame_exprs(&mut self.d.arena, &self.d.robot, &q);
         let inputs = self.inputs(groups);
@@ -182,15 +156,7 @@ impl Context {
             // single runs only.
             let tau = l.newton_euler(&frames, &run_inputs, &links, runs.len() == 1)?;
             let mut values = Vec::with_capacity(tau.len());
-            for (j, t) in tau.into_iter().enumerate() {
-                // A parameter without a slot: its Y_b column times the
-                // parameter (only valid for the symbolic inputs the columns
-                // were derived with).
-                let products: Vec<(Id, Id)> = fallback
-                    .iter()
-                    .map(|&k| (self.base.columns[k][j], self.beta[k]))
-                    .collect();
-                let t = l.add_products(t, &products)?;
+            for t in tau {
                 values.push(l.output(t));
             }
             torques.push(values);
@@ -205,8 +171,7 @@ impl Context {
     /// parameter k's slot at 1 (a few entries of w, wd, vd and U), projected
     /// on the axis of every joint i <= j expressed in frame j (torque
     /// z_i . n + (z_i x P_(i, j)) . f), so no column is transformed back
-    /// link by link; the drive terms add to joint j alone. A parameter
-    /// without a slot takes its arena column.
+    /// link by link; the drive terms add to joint j alone.
     fn base_regressor_program(&mut self) -> Result<Program, ProgramError> {
         let n = self.d.robot.dof();
         let one = self.d.arena.one();
@@ -227,23 +192,12 @@ impl Context {
         let axes = l.axes(&kinematics);
         let arms = l.arms(&kinematics, &axes);
         let mut columns: Vec<Vec<Value>> = Vec::with_capacity(self.base.base.len());
-        for (k, b) in self.base.base.iter().enumerate() {
-            let column = match slot_of(&b.name) {
-                Some((link, slot)) if link < n => {
-                    let mut params = zero_links[link];
-                    set_slot(&mut params, slot, one);
-                    let tau = l.link_column(&kinematics, &axes, &arms, link, &params)?;
-                    tau.into_iter().map(|t| l.output(t)).collect()
-                }
-                _ => {
-                    let mut values = Vec::with_capacity(n);
-                    for j in 0..n {
-                        let e = l.e(self.base.columns[k][j])?;
-                        values.push(l.output(e));
-                    }
-                    values
-                }
-            };
+        for b in &self.base.base {
+            let on = b.name.on;
+            let mut params = zero_links[on.link];
+            *params.slot_mut(on.kind) = one;
+            let tau = l.link_column(&kinematics, &axes, &arms, on.link, &params)?;
+            let column: Vec<Value> = tau.into_iter().map(|t| l.output(t)).collect();
             columns.push(column);
         }
         let values: Vec<Value> = (0..n)
@@ -342,7 +296,11 @@ impl RobotPrograms {
         let mut d = Derivation::new(robot);
         let base = d.base_parameters()?;
         let n = robot.dof();
-        let beta: Vec<Id> = base.base.iter().map(|b| d.arena.var(&b.name)).collect();
+        let beta: Vec<Id> = base
+            .base
+            .iter()
+            .map(|b| d.arena.var(&b.name.to_string()))
+            .collect();
         let geometry = (!robot.symbols().is_empty()).then(|| {
             Group::new(
                 "geometry",
@@ -374,13 +332,13 @@ impl RobotPrograms {
         let arena: &Arena = &cx.d.arena;
         Ok(RobotPrograms {
             robot: robot.clone(),
-            standard: cx.base.standard.iter().map(|p| p.name.clone()).collect(),
+            standard: cx.base.standard.iter().map(|p| p.to_string()).collect(),
             base: cx
                 .base
                 .base
                 .iter()
                 .map(|b| BaseParameter {
-                    name: b.name.clone(),
+                    name: b.name,
                     expression: arena.display(b.expression),
                 })
                 .collect(),

@@ -28,7 +28,7 @@
 use super::atoms::{self, Atom};
 use super::exact::{self, Samples};
 use super::rank::{self, DEPENDENT};
-use super::{Candidate, RegroupError, SLOT_NAMES};
+use super::{Candidate, RegroupError};
 use crate::dynamics::Derivation;
 use crate::expr::{Id, Node, Symbol, Values};
 use crate::robot::bounds::SYMBOL_SAMPLES;
@@ -91,8 +91,7 @@ struct Context<'a> {
 
 impl Context<'_> {
     fn name(&self, candidate: usize) -> String {
-        let c = &self.candidates[candidate];
-        format!("{}{}", SLOT_NAMES[c.slot], c.link + 1)
+        self.candidates[candidate].id.to_string()
     }
 
     /// The candidates fit `f` involves: the dependent one, then its support.

@@ -18,17 +18,18 @@ mod rules;
 
 use crate::dynamics::{Derivation, LinkParameters, newton_euler};
 use crate::expr::{Arena, Id, Node};
-use crate::robot::Parameter;
 use crate::robot::bounds::SYMBOL_SAMPLES;
+use crate::robot::{ParameterId, ParameterKind};
 use crate::sample::Rng;
 use rank::Status;
+use robid_runtime::model::BaseName;
 
 /// One base parameter.
 #[derive(Clone, Debug)]
 pub struct BaseParameter {
     /// Name in the literature's style: the parameter it is built on, with `R`
     /// when something was grouped into it (`ZZR1`, `XY2`, `MXR2`).
-    pub name: String,
+    pub name: BaseName,
     /// Its expression in the standard parameters (and geometric symbols).
     pub expression: Id,
     /// Its terms: (standard-parameter index, coefficient), nonzero only.
@@ -39,7 +40,7 @@ pub struct BaseParameter {
 #[derive(Clone, Debug)]
 pub struct BaseParameters {
     /// The standard parameters (columns of K).
-    pub standard: Vec<Parameter>,
+    pub standard: Vec<ParameterId>,
     /// The base parameters (rows of K).
     pub base: Vec<BaseParameter>,
     /// Base regressor: `columns[b][joint]`, so tau = sum over b of `columns[b]` times base parameter b.
@@ -121,15 +122,10 @@ fn quoted(names: &[String]) -> String {
 
 /// A parameter that survived the rules: where it lives and its expression.
 struct Candidate {
-    link: usize,
-    slot: usize,
+    id: ParameterId,
     expression: Id,
     column: Vec<Id>,
 }
-
-const SLOT_NAMES: [&str; 14] = [
-    "XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M", "Ia", "Fv", "Fc", "Fo",
-];
 
 impl Derivation {
     /// Derives the base parameters (docs/regrouping.md#overview-of-the-method).
@@ -190,12 +186,10 @@ impl Derivation {
         let mut base = Vec::with_capacity(kept.len());
         for (&i, &expression) in kept.iter().zip(&expressions) {
             let c = &candidates[i];
-            let plain = format!("{}{}", SLOT_NAMES[c.slot], c.link + 1);
-            let plain_id = self.arena.var(&plain);
-            let name = if expression == plain_id {
-                plain
-            } else {
-                format!("{}R{}", SLOT_NAMES[c.slot], c.link + 1)
+            let plain = self.arena.var(&c.id.to_string());
+            let name = BaseName {
+                on: c.id,
+                regrouped: expression != plain,
             };
             // The expression is linear in the standard parameters: each
             // coefficient is a derivative, taken only for the symbols it holds.
@@ -263,8 +257,7 @@ impl Derivation {
                     &params,
                 );
                 out.push(Candidate {
-                    link: j,
-                    slot,
+                    id: ParameterId::new(j, ParameterKind::ALL[slot]),
                     expression: slots[slot],
                     column,
                 });
@@ -326,8 +319,6 @@ impl Derivation {
 
 #[cfg(test)]
 mod tests {
-    use crate::robot::INERTIAL_NAMES;
-
     #[test]
     fn a_refusal_says_what_bounded_the_fit() {
         let error = |degree| {
@@ -347,10 +338,5 @@ mod tests {
         assert!(full.contains("`al` and `g`"), "{full}");
         let capped = error(2);
         assert!(capped.contains("degree 2 or less") && capped.contains("at most 160 terms"));
-    }
-
-    #[test]
-    fn slot_names_extend_the_inertial_names() {
-        assert_eq!(&super::SLOT_NAMES[..10], &INERTIAL_NAMES);
     }
 }

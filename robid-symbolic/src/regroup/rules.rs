@@ -18,7 +18,7 @@ use crate::dynamics::LinkParameters;
 use crate::dynamics::link::transfer;
 use crate::dynamics::vector::{self, Mat3};
 use crate::expr::{Arena, Id};
-use crate::robot::{FrameRow, JointKind};
+use crate::robot::{FrameRow, JointKind, ParameterKind};
 
 /// Which of a link's 14 parameter slots the rules eliminated (moved into its parent).
 pub(crate) type Eliminated = [bool; 14];
@@ -107,14 +107,6 @@ pub(crate) fn slots(l: &LinkParameters) -> [Id; 14] {
 pub(crate) fn unit(arena: &mut Arena, slot: usize) -> LinkParameters {
     let mut l = LinkParameters::zero(arena);
     let one = arena.one();
-    match slot {
-        0..=5 => l.inertia[slot] = one,
-        6..=8 => l.first_moment[slot - 6] = one,
-        9 => l.mass = one,
-        10 => l.ia = one,
-        11 => l.fv = one,
-        12 => l.fc = one,
-        _ => l.fo = one,
-    }
+    *l.slot_mut(ParameterKind::ALL[slot]) = one;
     l
 }

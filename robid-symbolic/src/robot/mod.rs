@@ -21,7 +21,7 @@ mod read;
 pub use dh::FrameRow;
 pub use error::DescriptionError;
 pub use geometry::{Expression, Geometry, GeometryError, Number};
-pub use parameters::{DriveTerm, INERTIAL_NAMES, Parameter, ParameterKind};
+pub use parameters::{DriveTerm, Inertial, ParameterId, ParameterKind};
 
 pub(crate) use check::name_problem;
 use check::{Code, Parts};
@@ -95,6 +95,41 @@ impl Drive {
         fc: false,
         fo: false,
     };
+
+    /// Whether the joint has `term`.
+    pub fn has(self, term: DriveTerm) -> bool {
+        match term {
+            DriveTerm::Ia => self.ia,
+            DriveTerm::Fv => self.fv,
+            DriveTerm::Fc => self.fc,
+            DriveTerm::Fo => self.fo,
+        }
+    }
+
+    /// Turns `term` on.
+    pub fn add(&mut self, term: DriveTerm) {
+        *match term {
+            DriveTerm::Ia => &mut self.ia,
+            DriveTerm::Fv => &mut self.fv,
+            DriveTerm::Fc => &mut self.fc,
+            DriveTerm::Fo => &mut self.fo,
+        } = true;
+    }
+
+    /// The terms the joint has, in the standard order.
+    pub fn terms(self) -> impl Iterator<Item = DriveTerm> {
+        DriveTerm::ALL.into_iter().filter(move |&t| self.has(t))
+    }
+}
+
+impl FromIterator<DriveTerm> for Drive {
+    fn from_iter<I: IntoIterator<Item = DriveTerm>>(terms: I) -> Drive {
+        let mut d = Drive::NONE;
+        for t in terms {
+            d.add(t);
+        }
+        d
+    }
 }
 
 /// One row of the DH table and what belongs to its joint: plain data, checked

@@ -5,7 +5,7 @@
 
 use super::check::{Dh, Item, Limit, Parts, distance};
 use super::file::Place;
-use super::{Convention, DescriptionError, Drive, Geometry, Joint, JointKind, Limits};
+use super::{Convention, DescriptionError, Drive, DriveTerm, Geometry, Joint, JointKind, Limits};
 use std::collections::HashMap;
 use std::ops::Range;
 use toml::Spanned;
@@ -272,17 +272,16 @@ impl<'a> Reader<'a> {
         let mut d = Drive::NONE;
         let expected = "drive terms such as `drive = [\"Ia\", \"Fv\"]`";
         for term in self.array(v, "`drive`", expected).unwrap_or_default() {
-            match self.string(term, "a drive term").as_deref() {
-                Some("Ia") => d.ia = true,
-                Some("Fv") => d.fv = true,
-                Some("Fc") => d.fc = true,
-                Some("Fo") => d.fo = true,
-                Some(other) => self.error(
+            let Some(name) = self.string(term, "a drive term") else {
+                continue;
+            };
+            match name.parse::<DriveTerm>() {
+                Ok(t) => d.add(t),
+                Err(e) => self.error(
                     term.span(),
-                    format!("unknown drive term `{other}`"),
-                    "drive terms are \"Ia\" (rotor inertia), \"Fv\" (viscous), \"Fc\" (Coulomb), \"Fo\" (offset)",
+                    format!("unknown drive term `{name}`"),
+                    e.expected,
                 ),
-                None => {}
             }
         }
         d

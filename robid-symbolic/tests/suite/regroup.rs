@@ -64,7 +64,7 @@ fn ur5e_with_tilted_gravity_has_38() {
 fn ur5e_rigid_set_has_table_3_names_except_xzr3() {
     let mut d = Derivation::new(&reference("ur5e"));
     let b = d.base_parameters().unwrap();
-    let names: Vec<&str> = b.base.iter().map(|p| p.name.as_str()).collect();
+    let names: Vec<String> = b.base.iter().map(|p| p.name.to_string()).collect();
     let expected = [
         "ZZR1", "XXR2", "XY2", "XZR2", "YZ2", "ZZR2", "MXR2", "MY2", "XXR3", "XY3", "XZR3", "YZ3",
         "ZZR3", "MXR3", "MY3", "XXR4", "XY4", "XZ4", "YZ4", "ZZR4", "MX4", "MYR4", "XXR5", "XY5",
@@ -175,7 +175,7 @@ fn symbolic_lengths_give_the_same_set_and_substitute_to_the_numeric_one() {
     let bs = ds.base_parameters().unwrap();
     let mut dn = Derivation::new(&reference("ur5e"));
     let bn = dn.base_parameters().unwrap();
-    let names = |b: &BaseParameters| b.base.iter().map(|p| p.name.clone()).collect::<Vec<_>>();
+    let names = |b: &BaseParameters| b.base.iter().map(|p| p.name).collect::<Vec<_>>();
     assert_eq!(names(&bs), names(&bn));
     let mxr2 = ds.arena.display(bs.base[6].expression);
     assert!(mxr2.contains("a2"), "lengths stay symbolic: {mxr2}");
@@ -184,7 +184,7 @@ fn symbolic_lengths_give_the_same_set_and_substitute_to_the_numeric_one() {
     let standard: Vec<(String, f64)> = bn
         .standard
         .iter()
-        .map(|p| (p.name.clone(), rng.uniform(-1.0, 1.0)))
+        .map(|p| (p.to_string(), rng.uniform(-1.0, 1.0)))
         .collect();
     let mut pairs: Vec<(&str, f64)> = standard.iter().map(|(n, v)| (n.as_str(), *v)).collect();
     let lengths: Vec<(String, f64)> = symbolic

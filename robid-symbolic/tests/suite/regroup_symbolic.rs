@@ -193,14 +193,6 @@ fn torques(
     (base, full)
 }
 
-/// The candidate a base parameter is built on: its name without the `R`
-/// that says something was grouped into it (`MYR2` -> `MY2`).
-fn stem(name: &str) -> String {
-    let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
-    let head = &name[..name.len() - digits.len()];
-    format!("{}{digits}", head.strip_suffix('R').unwrap_or(head))
-}
-
 /// The twins of `seed` regroup to the same parameters, and their torques
 /// (base and full models, symbols at their values) agree to 1e-12 of the
 /// largest torque, the bound issue 12 sets (measured: at most 4.3e-15 over
@@ -221,7 +213,7 @@ fn check(seed: u64) -> f64 {
         .unwrap_or_else(|e| panic!("seed {seed}: symbolic twin: {e}\n{symbolic_text}"));
     // The same candidates kept (a grouped term that is rounding in one twin
     // may add an `R` to a name in it).
-    let stems = |b: &BaseParameters| b.base.iter().map(|p| stem(&p.name)).collect::<Vec<_>>();
+    let stems = |b: &BaseParameters| b.base.iter().map(|p| p.name.on).collect::<Vec<_>>();
     assert_eq!(
         stems(&bs),
         stems(&bn),
@@ -282,13 +274,17 @@ fn derive(text: &str) -> (Derivation, Result<BaseParameters, RegroupError>) {
 
 /// The coefficient of standard parameter `standard` in base parameter `base`.
 fn coefficient(b: &BaseParameters, base: &str, standard: &str) -> robid_symbolic::Id {
-    let s = b.standard.iter().position(|p| p.name == standard).unwrap();
-    let p = b.base.iter().find(|p| p.name == base).unwrap();
+    let s = b
+        .standard
+        .iter()
+        .position(|p| p.to_string() == standard)
+        .unwrap();
+    let p = b.base.iter().find(|p| p.name.to_string() == base).unwrap();
     p.terms.iter().find(|&&(t, _)| t == s).unwrap().1
 }
 
-fn names(b: &BaseParameters) -> Vec<&str> {
-    b.base.iter().map(|p| p.name.as_str()).collect()
+fn names(b: &BaseParameters) -> Vec<String> {
+    b.base.iter().map(|p| p.name.to_string()).collect()
 }
 
 /// One prismatic joint along gravity, its offset `L1 = 0.3` as a symbol or

@@ -10,11 +10,11 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use robid_runtime::Model;
+use robid_runtime::data::ParameterFile;
 use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, assess};
 use robid_runtime::simulate::Trajectory;
 
 use super::flags::{check_samples, closed, count, only_for, positive, real};
-use super::parameters::base_parameters;
 use super::simulate::load_model;
 use super::{Error, files, out};
 
@@ -167,7 +167,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         })
         .collect::<Result<Vec<_>, String>>()?;
     let reference = match &args.parameters {
-        Some(p) => Some(base_parameters(p, &model)?),
+        Some(p) => Some(ParameterFile::read(p)?.base_parameters(&model)?),
         None => None,
     };
     let n = limits.len();

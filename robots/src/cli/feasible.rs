@@ -12,6 +12,7 @@
 
 use std::path::{Path, PathBuf};
 
+use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
     AnnealOptions, Bounds, Prior, Problem, SdpOptions, Solution, solve_anneal, solve_sdp, to_toml,
     to_urdf,
@@ -20,7 +21,6 @@ use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
 use super::flags::{closed, real, short};
-use super::parameters::standard_parameters;
 use super::{Error, files, out};
 
 /// The largest magnitude of an identified value or standard deviation in RESULT.json.
@@ -215,7 +215,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     };
     let prior = match &args.prior {
         Some(path) => Some(Prior {
-            standard: standard_parameters(path, &problem.standard_names)?,
+            standard: ParameterFile::read(path)?.prior(&problem.standard_names)?,
             weight: args.prior_weight.unwrap_or(1.0),
         }),
         None => None,
@@ -284,8 +284,8 @@ fn problem(robot: &Robot) -> Result<Problem, Error> {
                 .map_err(|e| format!("{e:?}"))?[0];
         }
     }
-    let standard = base.standard.iter().map(|p| p.name.clone()).collect();
-    let names = base.base.iter().map(|b| b.name.clone()).collect();
+    let standard = base.standard.iter().map(|p| p.to_string()).collect();
+    let names = base.base.iter().map(|b| b.name.to_string()).collect();
     Ok(Problem::from_rows(standard, names, &k)?)
 }
 

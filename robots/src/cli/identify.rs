@@ -93,11 +93,13 @@ fn compiled_reference(robot: &Robot) -> Option<Chosen> {
     let model = reference.model();
     let base = (0..model.base_parameter_count())
         .zip(reference.base_expressions)
-        .map(|(i, expression)| BaseParameter {
-            name: model.base_parameter_name(i).unwrap_or_default().to_owned(),
-            expression: (*expression).to_owned(),
+        .map(|(i, expression)| {
+            Some(BaseParameter {
+                name: model.base_parameter_name(i)?.parse().ok()?,
+                expression: (*expression).to_owned(),
+            })
         })
-        .collect();
+        .collect::<Option<_>>()?;
     let standard = robid_runtime::model::standard_parameter_names(&*model);
     Some(Chosen {
         model,

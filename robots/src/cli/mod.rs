@@ -11,7 +11,6 @@ mod flags;
 mod identify;
 mod model;
 mod out;
-mod parameters;
 mod simulate;
 mod states;
 mod torques;

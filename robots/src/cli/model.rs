@@ -90,7 +90,7 @@ fn derive(robot: &Robot) -> Result<Report, Error> {
     for p in &b.base {
         let mut terms = Vec::with_capacity(p.terms.len());
         for &(s, c) in &p.terms {
-            let parameter = b.standard[s].name.clone();
+            let parameter = b.standard[s].to_string();
             let coefficient = match d.arena.as_num(c) {
                 Some(n) if !n.to_f64().is_finite() => {
                     return Err(format!(
@@ -111,7 +111,7 @@ fn derive(robot: &Robot) -> Result<Report, Error> {
             });
         }
         base_parameters.push(Base {
-            name: p.name.clone(),
+            name: p.name.to_string(),
             expression: d.arena.display(p.expression),
             terms,
         });
@@ -128,12 +128,12 @@ fn derive(robot: &Robot) -> Result<Report, Error> {
         name: robot.name().to_owned(),
         dof: robot.dof(),
         convention: robot.convention().as_str(),
-        standard_parameters: b.standard.iter().map(|p| p.name.clone()).collect(),
+        standard_parameters: b.standard.iter().map(|p| p.to_string()).collect(),
         base_parameters,
         unidentifiable: b
             .unidentifiable
             .iter()
-            .map(|&s| b.standard[s].name.clone())
+            .map(|&s| b.standard[s].to_string())
             .collect(),
         operations,
     })

@@ -12,7 +12,9 @@
 use std::path::{Path, PathBuf};
 
 use robid_runtime::Model;
+use robid_runtime::data::ParameterFile;
 use robid_runtime::simulate::{Noise, Record, Simulation, Trajectory};
+use robid_symbolic::robot::DriveTerm;
 use robid_symbolic::{Drive, Robot};
 use robots::interpreted::Interpreted;
 
@@ -76,7 +78,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         )
         .into());
     }
-    let base = super::parameters::base_parameters(&args.parameters, &model)?;
+    let base = ParameterFile::read(&args.parameters)?.base_parameters(&model)?;
     super::states::read(&args.trajectory, &Trajectory::header(n))?;
     let reference = Trajectory::read_csv(&args.trajectory, n)?;
     check_bandwidth(args.bandwidth, &reference, &args.trajectory)?;
@@ -181,20 +183,14 @@ pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {
     if names.is_empty() {
         return Ok(None);
     }
-    let mut d = Drive::NONE;
-    for n in names {
-        match n.trim() {
-            "Ia" => d.ia = true,
-            "Fv" => d.fv = true,
-            "Fc" => d.fc = true,
-            "Fo" => d.fo = true,
-            other => {
-                return Err(
-                    format!("--drive: unknown term `{other}`; use Ia, Fv, Fc or Fo").into(),
-                );
-            }
-        }
-    }
+    let d = names
+        .iter()
+        .map(|n| {
+            n.trim()
+                .parse::<DriveTerm>()
+                .map_err(|e| format!("--drive: unknown term `{}`; {}", n.trim(), e.expected))
+        })
+        .collect::<Result<Drive, _>>()?;
     Ok(Some(d))
 }
 

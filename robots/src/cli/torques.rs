@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use robid_runtime::Model;
-use robid_runtime::data::Table;
+use robid_runtime::data::{ParameterFile, Table};
 
 use super::{Error, files, out};
 
@@ -38,7 +38,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let chosen = super::identify::robot_model(&args.robot)?;
     let model = chosen.model.as_ref();
     let n = model.dof();
-    let base = super::parameters::base_parameters(&args.parameters, model)?;
+    let base = ParameterFile::read(&args.parameters)?.base_parameters(model)?;
     let names: Vec<String> = ["q", "qd", "qdd"]
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))

@@ -22,6 +22,7 @@ pub use tx40::Tx40;
 pub use ur5e::Ur5e;
 
 use robid_runtime::Model;
+use robid_runtime::data::ParameterFile;
 use robid_symbolic::Robot;
 
 /// A reference robot: its description, its nominal parameters and its compiled model.
@@ -94,6 +95,25 @@ impl Reference {
             .unwrap_or_else(|e| unreachable!("reference description {}: {e}", self.name))
     }
 
+    /// The nominal parameter file (the checked-in files are valid; a test reads each).
+    pub fn parameter_file(&self) -> ParameterFile {
+        let path = format!("parameters/{}.toml", self.name);
+        ParameterFile::parse(self.parameters, path.as_ref())
+            .unwrap_or_else(|e| unreachable!("reference parameters {}: {e}", self.name))
+    }
+
+    /// The nominal values of `robot.standard_parameters()` (`robot` is this description,
+    /// possibly with other drive terms): missing names are 0, and names of parameters
+    /// `robot` does not have (drive terms it leaves out) are ignored.
+    pub fn parameter_values(&self, robot: &Robot) -> Vec<f64> {
+        let file = self.parameter_file();
+        robot
+            .standard_parameters()
+            .iter()
+            .map(|p| file.get(&p.to_string()).unwrap_or(0.0))
+            .collect()
+    }
+
     fn robot_checked(&self) -> Result<Robot, robid_symbolic::DescriptionError> {
         Robot::from_toml(self.description, &format!("{}.toml", self.name))
     }
@@ -113,6 +133,17 @@ mod tests {
             assert_eq!(model.base_parameter_count(), r.base_expressions.len());
             assert_eq!(Reference::matching(&robot).map(|m| m.name), Some(r.name));
             assert_eq!(Reference::named(r.name).map(|m| m.name), Some(r.name));
+            // every name is a parameter of the description with all drive terms, and the
+            // values are physically consistent
+            let all = robot.clone().with_drive(robid_symbolic::Drive::ALL);
+            let names: Vec<String> = all
+                .standard_parameters()
+                .iter()
+                .map(|p| p.to_string())
+                .collect();
+            r.parameter_file()
+                .prior(&names)
+                .unwrap_or_else(|e| panic!("{e}"));
         }
         assert!(Reference::named("r2d2").is_none());
     }

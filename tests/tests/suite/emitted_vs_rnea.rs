@@ -90,7 +90,7 @@ fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states:
             let column = rnea(&links_from_standard(robot, &unit), qd, qdd);
             unit[i] = 0.0;
             let got: Vec<f64> = (0..n).map(|j| y[j * ns + i]).collect();
-            let name = &robot.standard_parameters()[i].name;
+            let name = robot.standard_parameters()[i];
             assert_close(&what(&format!("Y column {name}")), &got, &column, RELATIVE);
         }
 
@@ -176,7 +176,7 @@ fn christoffel_times(model: &dyn Model, q: &[f64], qd: &[f64], base: &[f64]) -> 
 /// The compiled model of a reference robot, then the interpreted one with every drive term.
 fn check(name: &str) {
     let reference = by_name(name);
-    let rigid = reference.robot(Drive::NONE);
+    let rigid = reference.robot().with_drive(Drive::NONE);
     let compiled = robots::Reference::named(name)
         .expect("a compiled reference model")
         .model();
@@ -187,7 +187,7 @@ fn check(name: &str) {
         0xc0de,
         6,
     );
-    let driven = reference.robot(Drive::ALL);
+    let driven = reference.robot().with_drive(Drive::ALL);
     let interpreted = Interpreted::new(&driven).unwrap();
     check_model(
         &format!("{name} (interpreted, all drive terms)"),
@@ -297,7 +297,7 @@ fn a_wrong_function_is_caught() {
             }
         }
     }
-    let robot = by_name("ur5e").robot(Drive::NONE);
+    let robot = by_name("ur5e").robot().with_drive(Drive::NONE);
     let planted = CoriolisIsGravity(robots::Reference::named("ur5e").unwrap().model());
     let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         check_model("planted", &robot, &planted, 1, 1)

@@ -19,6 +19,7 @@ use crate::simulation_model;
 use std::sync::OnceLock;
 
 use robid_symbolic::Drive;
+use robid_symbolic::robot::DriveTerm;
 use simulation_model::excitation::Setup;
 
 fn setup() -> &'static Setup {
@@ -28,12 +29,11 @@ fn setup() -> &'static Setup {
         let fv = [0.1, 0.1, 0.1, 0.1, 0.05, 0.05, 0.05];
         let fc = [0.5, 0.4, 0.35, 0.4, 0.3, 0.2, 0.15];
         let fo = [0.05, -0.1, 0.02, -0.05, 0.01, 0.02, -0.01];
-        let value = |p: &str, j: usize| match p {
-            "Ia" => ia[j - 1],
-            "Fv" => fv[j - 1],
-            "Fc" => fc[j - 1],
-            "Fo" => fo[j - 1],
-            _ => 0.0,
+        let value = |t: DriveTerm, j: usize| match t {
+            DriveTerm::Ia => ia[j],
+            DriveTerm::Fv => fv[j],
+            DriveTerm::Fc => fc[j],
+            DriveTerm::Fo => fo[j],
         };
         let sigma = [0.2, 0.2, 0.2, 0.2, 0.05, 0.05, 0.05];
         Setup::new("panda", Drive::ALL, value, &sigma, 3)

@@ -19,6 +19,7 @@ use crate::simulation_model;
 use std::sync::OnceLock;
 
 use robid_symbolic::Drive;
+use robid_symbolic::robot::DriveTerm;
 use simulation_model::excitation::Setup;
 
 fn setup() -> &'static Setup {
@@ -32,9 +33,9 @@ fn setup() -> &'static Setup {
         };
         let fv = [6.0, 6.0, 3.5, 1.2, 1.2, 1.0];
         let fc = [9.0, 9.0, 5.0, 1.5, 1.5, 1.2];
-        let value = |p: &str, j: usize| match p {
-            "Fv" => fv[j - 1],
-            "Fc" => fc[j - 1],
+        let value = |t: DriveTerm, j: usize| match t {
+            DriveTerm::Fv => fv[j],
+            DriveTerm::Fc => fc[j],
             _ => 0.0,
         };
         Setup::new("ur5e", drive, value, &[1.0, 1.0, 0.5, 0.1, 0.1, 0.1], 3)

@@ -26,7 +26,7 @@ struct Case {
 /// K evaluated at the description's geometry, the truth, and beta = K p + noise.
 fn case(name: &str) -> Case {
     let reference = by_name(name);
-    let robot = reference.robot(Drive::NONE);
+    let robot = reference.robot().with_drive(Drive::NONE);
     let truth = reference.parameter_values(&robot);
     let mut derivation = Derivation::new(&robot);
     let base = derivation.base_parameters().expect("regrouping");
@@ -48,8 +48,8 @@ fn case(name: &str) -> Case {
         .map(|(v, s)| v + s * rng.uniform(-1.0, 1.0))
         .collect();
     let problem = Problem::new(
-        base.standard.iter().map(|p| p.name.clone()).collect(),
-        base.base.iter().map(|b| b.name.clone()).collect(),
+        base.standard.iter().map(|p| p.to_string()).collect(),
+        base.base.iter().map(|b| b.name.to_string()).collect(),
         k,
     )
     .unwrap()

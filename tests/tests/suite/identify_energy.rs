@@ -35,14 +35,14 @@ const RATE: f64 = 1000.0;
 
 fn truth(model: &Ur5e) -> Vec<f64> {
     let r = by_name("ur5e");
-    let standard = r.parameter_values(&r.robot(Drive::NONE));
+    let standard = r.parameter_values(&r.robot().with_drive(Drive::NONE));
     let mut base = vec![0.0; model.base_parameter_count()];
     model.base_from_standard_into(&standard, &mut base).unwrap();
     base
 }
 
 fn trajectory(seed: u64) -> Trajectory {
-    let robot = by_name("ur5e").robot(Drive::NONE);
+    let robot = by_name("ur5e").robot().with_drive(Drive::NONE);
     let limits: Vec<JointLimits> = robot
         .joints()
         .iter()

@@ -25,7 +25,7 @@ const RATE: f64 = 100.0;
 
 fn truth(model: &Ur5e) -> Vec<f64> {
     let r = by_name("ur5e");
-    let standard = r.parameter_values(&r.robot(Drive::NONE));
+    let standard = r.parameter_values(&r.robot().with_drive(Drive::NONE));
     assert_eq!(standard.len(), model.standard_parameter_count());
     let mut base = vec![0.0; model.base_parameter_count()];
     model.base_from_standard_into(&standard, &mut base).unwrap();
@@ -33,7 +33,7 @@ fn truth(model: &Ur5e) -> Vec<f64> {
 }
 
 fn trajectory(seed: u64) -> Trajectory {
-    let robot = by_name("ur5e").robot(Drive::NONE);
+    let robot = by_name("ur5e").robot().with_drive(Drive::NONE);
     let limits: Vec<JointLimits> = robot
         .joints()
         .iter()

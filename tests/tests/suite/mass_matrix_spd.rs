@@ -10,7 +10,7 @@ use tests::state::{bind, random_state};
 /// Evaluates M(q) at 100 random positions; returns the matrices.
 fn mass_matrices(name: &str, negate: bool) -> Vec<DMatrix<f64>> {
     let r = by_name(name);
-    let robot = r.robot(Drive::ALL);
+    let robot = r.robot().with_drive(Drive::ALL);
     let mut parameters = r.parameter_values(&robot);
     if negate {
         parameters.iter_mut().for_each(|p| *p = -*p);

@@ -10,7 +10,7 @@ use tests::state::{bind, close, random_parameters, random_state, regressor_times
 const RELATIVE: f64 = 1e-9;
 
 fn check(name: &str) {
-    let robot = by_name(name).robot(Drive::ALL);
+    let robot = by_name(name).robot().with_drive(Drive::ALL);
     let n = robot.dof();
     let mut d = Derivation::new(&robot);
     let ne = d.regressor();

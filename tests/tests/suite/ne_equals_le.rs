@@ -12,7 +12,7 @@ use tests::state::{bind, close, random_state};
 const RELATIVE: f64 = 1e-9;
 
 fn check(name: &str) {
-    let robot = by_name(name).robot(Drive::ALL);
+    let robot = by_name(name).robot().with_drive(Drive::ALL);
     let mut d = Derivation::new(&robot);
     let ne = d.regressor();
     let le = d.lagrange_regressor();
@@ -32,7 +32,7 @@ fn check(name: &str) {
                 close(*x, *y, RELATIVE, 1.0),
                 "{name} state {s} ({state:?}): joint {} column {}: NE {x} vs LE {y}",
                 j + 1,
-                ne.parameters[p].name
+                ne.parameters[p]
             );
         }
     }

@@ -26,7 +26,7 @@ fn check(name: &str) {
         ia: true,
         ..Drive::NONE
     };
-    let robot = r.robot(drive);
+    let robot = r.robot().with_drive(drive);
     let n = robot.dof();
     let mut d = Derivation::new(&robot);
     let symbols = d.parameter_symbols();

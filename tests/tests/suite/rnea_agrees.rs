@@ -15,7 +15,7 @@ const RELATIVE: f64 = 1e-9;
 
 fn check(name: &str) {
     let r = by_name(name);
-    let robot = r.robot(Drive::ALL);
+    let robot = r.robot().with_drive(Drive::ALL);
     let n = robot.dof();
     let chain = Chain::from_robot(&robot);
     let mut d = Derivation::new(&robot);
@@ -84,7 +84,7 @@ tests::per_robot!(check);
 #[test]
 fn a_changed_parameter_is_detected() {
     let r = by_name("puma560");
-    let robot = r.robot(Drive::ALL);
+    let robot = r.robot().with_drive(Drive::ALL);
     let chain = Chain::from_robot(&robot);
     let mut d = Derivation::new(&robot);
     let ne = d.regressor();
@@ -96,7 +96,7 @@ fn a_changed_parameter_is_detected() {
     let mz = robot
         .standard_parameters()
         .iter()
-        .position(|p| p.name == "MX2")
+        .position(|p| p.to_string() == "MX2")
         .unwrap();
     parameters[mz] *= 1.01;
     let links = links_from_standard(&robot, &parameters);

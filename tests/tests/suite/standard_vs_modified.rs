@@ -61,7 +61,7 @@ fn to_modified(standard: &Robot, modified: &Robot, values: &[f64]) -> Vec<f64> {
 
 fn check(name: &str) {
     let r = by_name(name);
-    let standard = r.robot(Drive::ALL);
+    let standard = r.robot().with_drive(Drive::ALL);
     let modified = modified_equivalent(&standard);
     let n = standard.dof();
     let mut ds = Derivation::new(&standard);
@@ -125,7 +125,7 @@ fn puma560() {
 /// The comparison can fail: without the parameter mapping the two descriptions disagree.
 #[test]
 fn unmapped_parameters_disagree() {
-    let standard = by_name("puma560").robot(Drive::ALL);
+    let standard = by_name("puma560").robot().with_drive(Drive::ALL);
     let modified = modified_equivalent(&standard);
     let values = by_name("puma560").parameter_values(&standard);
     let state = random_state(&standard, &mut Rng::new(3));

@@ -163,19 +163,4 @@ impl Lowering<'_> {
             },
         }
     }
-
-    /// `a + sum b_k c_k` for expressions b_k, c_k (the fallback of a base
-    /// parameter without a link slot).
-    pub(in crate::program) fn add_products(
-        &mut self,
-        a: E,
-        products: &[(Id, Id)],
-    ) -> Result<E, ProgramError> {
-        let mut terms = vec![a];
-        for &(b, c) in products {
-            let (b, c) = (self.e(b)?, self.e(c)?);
-            terms.push(self.mul(b, c));
-        }
-        Ok(self.add(&terms))
-    }
 }

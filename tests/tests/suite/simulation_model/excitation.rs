@@ -5,6 +5,7 @@
 use robid_runtime::excite::{FourierDesign, JointLimits, PointDesign, assess};
 use robid_runtime::simulate::{Noise, Trajectory};
 use robid_symbolic::Drive;
+use robid_symbolic::robot::DriveTerm;
 
 use super::{Interpreted, expected_error, mean_outcome, reference};
 
@@ -37,7 +38,7 @@ impl Setup {
     pub(crate) fn new(
         robot: &str,
         drive: Drive,
-        drive_value: impl Fn(&str, usize) -> f64,
+        drive_value: impl Fn(DriveTerm, usize) -> f64,
         sigma: &[f64],
         seed: u64,
     ) -> Self {

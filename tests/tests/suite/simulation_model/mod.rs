@@ -8,6 +8,7 @@
 use robid_runtime::Model;
 use robid_runtime::excite::JointLimits;
 use robid_symbolic::Drive;
+use robid_symbolic::robot::{DriveTerm, ParameterKind};
 use tests::reference::by_name;
 
 pub(crate) mod excitation;
@@ -16,27 +17,23 @@ pub(crate) mod excitation;
 pub(crate) use robots::interpreted::Interpreted;
 
 /// The reference robot `name` with `drive` terms, its reference base parameters (drive values
-/// from `drive_value(prefix, joint)`, e.g. Fv, Fc) and its joint limits.
+/// from `drive_value(term, joint)`, joints from 0) and its joint limits.
 pub(crate) fn reference(
     name: &str,
     drive: Drive,
-    drive_value: impl Fn(&str, usize) -> f64,
+    drive_value: impl Fn(DriveTerm, usize) -> f64,
 ) -> (Interpreted, Vec<f64>, Vec<JointLimits>) {
     let r = by_name(name);
-    let robot = r.robot(drive);
+    let robot = r.robot().with_drive(drive);
     let model = Interpreted::new(&robot).expect("derivation");
-    let table = r.parameter_table();
-    let standard: Vec<f64> = model
-        .programs()
-        .standard
+    let file = r.parameter_file();
+    let standard: Vec<f64> = robot
+        .standard_parameters()
         .iter()
-        .map(|n| {
-            if let Some((_, v)) = table.iter().find(|(k, _)| k == n) {
-                return *v;
-            }
-            let digits = n.trim_start_matches(|c: char| !c.is_ascii_digit());
-            let joint: usize = digits.parse().unwrap_or(0);
-            drive_value(&n[..n.len() - digits.len()], joint)
+        .map(|p| match (file.get(&p.to_string()), p.kind) {
+            (Some(v), _) => v,
+            (None, ParameterKind::Drive(t)) => drive_value(t, p.link),
+            (None, ParameterKind::Inertial(_)) => 0.0,
         })
         .collect();
     let mut base = vec![0.0; model.base_parameter_count()];

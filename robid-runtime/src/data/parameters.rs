@@ -1,0 +1,514 @@
+//! Parameter files, the one reader: a `[standard]` table (name = value; missing names are
+//! 0, or have no prior) or a `[base]` table (every base parameter). `robid feasible`
+//! writes this format; `torques`, `simulate`, `excite`, `feasible --prior`, the reference
+//! robots, the tests and the benches read it here.
+//!
+//! What is checked, each mistake an [`Error::ParameterFile`] at `file:line:column` with the
+//! fix. When the file is read:
+//! - exactly one table, `[standard]` or `[base]`; any other table or key is an error;
+//! - every value is a number, finite and within +-[`PARAMETER_LIMIT`].
+//!
+//! When its values are taken for a model ([`ParameterFile::base_parameters`],
+//! [`ParameterFile::prior`]):
+//! - every key is a parameter of the robot (the nearest name is suggested);
+//! - in `[standard]`: masses `Mj`, rotor inertias `Iaj` and friction coefficients `Fvj`,
+//!   `Fcj` are not negative; a first moment `MXj MYj MZj` needs a positive mass `Mj`;
+//!   each link's inertia tensor `XXj XYj XZj YYj YZj ZZj` (about the frame origin, `XYj`
+//!   the tensor's entry) and, with a mass, the tensor about the centre of mass are
+//!   positive semidefinite (smallest eigenvalue at least -[`INERTIA_TOLERANCE`] times the
+//!   largest entry, for rounded published values). Missing values count as 0; for a prior,
+//!   links with missing values are not checked as a whole.
+//!
+//! ```
+//! use robid_runtime::data::{ParameterFile, ParameterTable};
+//!
+//! let text = "[standard]\nM1 = 2.5\nMX1 = 0.5  # kg m\nFv1 = 0.1\n";
+//! let file = ParameterFile::parse(text, "arm.toml".as_ref()).unwrap();
+//! assert_eq!(file.table(), ParameterTable::Standard);
+//! assert_eq!(file.get("MX1"), Some(0.5));
+//! let names: Vec<String> = ["M1", "MX1", "Fv1", "Fc1"].map(String::from).to_vec();
+//! assert_eq!(file.prior(&names).unwrap(), [Some(2.5), Some(0.5), Some(0.1), None]);
+//!
+//! let negative = ParameterFile::parse("[standard]\nM1 = -1\n", "arm.toml".as_ref()).unwrap();
+//! let e = negative.prior(&names).unwrap_err();
+//! assert!(e.to_string().starts_with("arm.toml:2:1: `M1` = -1 is negative"));
+//! ```
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use toml::de::{DeTable, DeValue};
+
+use crate::Model;
+use crate::error::{Error, Result};
+use crate::feasible::{LinkInertial, inertia_at_origin};
+use crate::model::{Inertial, ParameterId, ParameterKind};
+
+/// The largest magnitude of a value in a parameter file (SI units: kg, kg m, kg m^2,
+/// N m s/rad, N m).
+pub const PARAMETER_LIMIT: f64 = 1e6;
+
+/// How negative (relative to the largest entry) the smallest eigenvalue of a link's
+/// inertia tensor may be: room for rounded published values.
+pub const INERTIA_TOLERANCE: f64 = 1e-6;
+
+/// Which table a parameter file holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParameterTable {
+    /// `[standard]`: standard parameters, any subset.
+    Standard,
+    /// `[base]`: every base parameter of the model.
+    Base,
+}
+
+impl fmt::Display for ParameterTable {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            ParameterTable::Standard => "standard",
+            ParameterTable::Base => "base",
+        })
+    }
+}
+
+/// One `name = value` of the table, with the place of its name.
+#[derive(Debug, Clone, Copy)]
+struct Entry {
+    value: f64,
+    line: usize,
+    column: usize,
+}
+
+/// A parameter file, read and checked for syntax, table and values.
+#[derive(Debug, Clone)]
+pub struct ParameterFile {
+    path: PathBuf,
+    table: ParameterTable,
+    /// In file order.
+    entries: Vec<(String, Entry)>,
+}
+
+impl ParameterFile {
+    /// Reads the file at `path` (see the module documentation for the checks).
+    pub fn read(path: &Path) -> Result<ParameterFile> {
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        ParameterFile::parse(&text, path)
+    }
+
+    /// Reads `text`, naming it `path` in errors.
+    pub fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
+        parse(text, path)
+    }
+
+    /// The table the file holds.
+    pub fn table(&self) -> ParameterTable {
+        self.table
+    }
+
+    /// The value of `name`, if the file has it.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.entries
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, e)| e.value)
+    }
+
+    /// Every `(name, value)`, in file order.
+    pub fn entries(&self) -> impl Iterator<Item = (&str, f64)> {
+        self.entries.iter().map(|(n, e)| (n.as_str(), e.value))
+    }
+
+    /// The values of `names` (`None` where missing); a key that is not one of `names` is an
+    /// error naming the nearest name. The values are not checked for physical consistency
+    /// (see [`ParameterFile::base_parameters`] and [`ParameterFile::prior`]).
+    pub fn values(&self, names: &[String]) -> Result<Vec<Option<f64>>> {
+        for (key, entry) in &self.entries {
+            if names.contains(key) {
+                continue;
+            }
+            let drive = matches!(
+                key.parse::<ParameterId>(),
+                Ok(ParameterId {
+                    kind: ParameterKind::Drive(_),
+                    ..
+                })
+            );
+            let same_but_case = names.iter().any(|n| n.eq_ignore_ascii_case(key));
+            let hint = match nearest(key, names) {
+                Some(n) if same_but_case || !drive => format!("did you mean `{n}`?"),
+                _ if drive => format!(
+                    "`{key}` is a drive term, which this robot does not model: add it to the \
+                     description's `drive` key (or --drive where the subcommand has it)"
+                ),
+                _ => format!("they are: {}", names.join(", ")),
+            };
+            return Err(self.at(
+                entry,
+                format!(
+                    "[{what}] has `{key}`, which is not a {what} parameter of this robot; {hint}",
+                    what = self.table
+                ),
+            ));
+        }
+        Ok(names.iter().map(|n| self.get(n)).collect())
+    }
+
+    /// The base parameters of `model`: from a `[base]` table, every one; from a
+    /// `[standard]` table, through the model's map (missing values are 0).
+    pub fn base_parameters(&self, model: &dyn Model) -> Result<Vec<f64>> {
+        match self.table {
+            ParameterTable::Standard => {
+                let names = crate::model::standard_parameter_names(model);
+                let standard: Vec<f64> = self
+                    .values(&names)?
+                    .into_iter()
+                    .map(|v| v.unwrap_or(0.0))
+                    .collect();
+                self.check_physical(true)?;
+                let mut base = vec![0.0; model.base_parameter_count()];
+                model.base_from_standard_into(&standard, &mut base)?;
+                if let Some(i) = base.iter().position(|b| !b.is_finite()) {
+                    return Err(self.whole(format!(
+                        "base parameter {} = {} is not a finite number; check the values of \
+                         its standard parameters",
+                        model.base_parameter_name(i).unwrap_or("?"),
+                        base[i]
+                    )));
+                }
+                Ok(base)
+            }
+            ParameterTable::Base => {
+                let names = crate::model::base_parameter_names(model);
+                self.values(&names)?
+                    .into_iter()
+                    .zip(&names)
+                    .map(|(v, n)| {
+                        v.ok_or_else(|| {
+                            self.whole(format!("[base] has no `{n}`; list every base parameter"))
+                        })
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// The standard parameters `names` as a prior (`None` where missing): needs a
+    /// `[standard]` table; links with missing inertial values are not checked as a whole.
+    pub fn prior(&self, names: &[String]) -> Result<Vec<Option<f64>>> {
+        match self.table {
+            ParameterTable::Standard => {
+                let values = self.values(names)?;
+                self.check_physical(false)?;
+                Ok(values)
+            }
+            ParameterTable::Base => Err(self.whole(
+                "a prior needs standard parameters, a [standard] table (base parameters leave \
+                 the link parameters undetermined)"
+                    .to_owned(),
+            )),
+        }
+    }
+
+    /// An error at `entry`.
+    fn at(&self, e: &Entry, problem: String) -> Error {
+        Error::ParameterFile {
+            path: self.path.clone(),
+            line: Some(e.line),
+            column: Some(e.column),
+            problem,
+        }
+    }
+
+    /// An error about the whole file.
+    fn whole(&self, problem: String) -> Error {
+        Error::ParameterFile {
+            path: self.path.clone(),
+            line: None,
+            column: None,
+            problem,
+        }
+    }
+
+    /// The physical checks of a `[standard]` table (see the module documentation);
+    /// `missing_is_zero`: a missing value counts as 0 (else a link with a missing inertial
+    /// value is not checked as a whole). Names that are not standard parameters (extra
+    /// columns) are left to [`ParameterFile::values`].
+    fn check_physical(&self, missing_is_zero: bool) -> Result<()> {
+        let mut links: BTreeMap<usize, [Option<(f64, Entry)>; 10]> = BTreeMap::new();
+        for (name, entry) in &self.entries {
+            let Ok(id) = name.parse::<ParameterId>() else {
+                continue;
+            };
+            let meaning = match id.kind {
+                ParameterKind::Inertial(Inertial::M) => Some("a mass"),
+                ParameterKind::Drive(d) if d.non_negative() => Some(d.meaning()),
+                _ => None,
+            };
+            if let Some(what) = meaning
+                && entry.value < 0.0
+            {
+                return Err(self.at(
+                    entry,
+                    format!(
+                        "`{name}` = {} is negative; {what} cannot be negative",
+                        entry.value
+                    ),
+                ));
+            }
+            if let ParameterKind::Inertial(slot) = id.kind {
+                links.entry(id.link + 1).or_insert([None; 10])[slot.index()] =
+                    Some((entry.value, *entry));
+            }
+        }
+        for (link, slots) in &links {
+            if !missing_is_zero && slots.iter().any(Option::is_none) {
+                continue;
+            }
+            self.check_link(*link, slots)?;
+        }
+        Ok(())
+    }
+
+    /// The inertia tensor of link `link` (1-based), about its origin and its centre of
+    /// mass, is positive semidefinite; a first moment has a mass.
+    fn check_link(&self, link: usize, slots: &[Option<(f64, Entry)>; 10]) -> Result<()> {
+        let p: [f64; 10] = std::array::from_fn(|i| slots[i].map_or(0.0, |(v, _)| v));
+        // the place of the link: its first entry in the file
+        let Some(first) = slots
+            .iter()
+            .flatten()
+            .map(|(_, e)| *e)
+            .min_by_key(|e| e.line)
+        else {
+            return Ok(());
+        };
+        let names = |stems: &[Inertial]| -> String {
+            stems
+                .iter()
+                .map(|s| format!("{}{link}", s.stem()))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        let tensor = names(&Inertial::ALL[..6]);
+        let moments = names(&Inertial::ALL[6..9]);
+        let scale = p[..6].iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let lowest = inertia_at_origin(&p).symmetric_eigenvalues().min();
+        if lowest < -INERTIA_TOLERANCE * scale {
+            return Err(self.at(
+                &first,
+                format!(
+                    "the inertia tensor of link {link} ({tensor}, about the frame origin) is \
+                     not positive semidefinite (smallest eigenvalue {lowest:.4e} kg m^2), so no \
+                     mass distribution has it; check these values and the sign of the products \
+                     of inertia (XY{link} is the tensor's entry, -sum m x y)"
+                ),
+            ));
+        }
+        let mass = p[9];
+        if mass == 0.0 && p[6..9].iter().any(|h| *h != 0.0) {
+            return Err(self.at(
+                &first,
+                format!(
+                    "link {link} has a first moment ({moments}) but no mass M{link}; give its mass"
+                ),
+            ));
+        }
+        if let Some(l) = LinkInertial::from_standard(&p) {
+            let lowest = l.principal_moments()[0];
+            if lowest < -INERTIA_TOLERANCE * scale {
+                let [x, y, z] = l.com;
+                return Err(self.at(
+                    &first,
+                    format!(
+                        "the inertia of link {link} about its centre of mass ({x:.4}, {y:.4}, \
+                         {z:.4}) m is not positive semidefinite (smallest principal moment \
+                         {lowest:.4e} kg m^2): the first moments place the centre of mass too \
+                         far from the origin for the inertias {tensor}; check {moments} and \
+                         M{link}"
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// 1-based line and column (in characters) of byte `offset` of `text`.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = text.get(..offset).unwrap_or(text);
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    (line, before[start..].chars().count() + 1)
+}
+
+/// Syntax, table and values (not the physical checks).
+fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
+    let located = |offset: usize, problem: String| -> Error {
+        let (line, column) = line_column(text, offset);
+        Error::ParameterFile {
+            path: path.to_owned(),
+            line: Some(line),
+            column: Some(column),
+            problem,
+        }
+    };
+    let doc = DeTable::parse(text).map_err(|e| {
+        let offset = e.span().map_or(0, |s| s.start);
+        located(offset, format!("not valid TOML: {}", e.message().trim()))
+    })?;
+    let mut found: Option<(ParameterTable, Vec<(String, Entry)>)> = None;
+    for (key, value) in doc.get_ref() {
+        let name: &str = key.get_ref();
+        let at = key.span().start;
+        let table = match name {
+            "standard" => ParameterTable::Standard,
+            "base" => ParameterTable::Base,
+            other => {
+                return Err(located(
+                    at,
+                    format!(
+                        "unknown table or key `{other}`; a parameter file holds one table, \
+                         [standard] or [base]"
+                    ),
+                ));
+            }
+        };
+        let DeValue::Table(items) = value.get_ref() else {
+            return Err(located(at, format!("`{name}` must be a table [{name}]")));
+        };
+        if found.is_some() {
+            return Err(located(
+                at,
+                format!(
+                    "a second table [{name}]; a parameter file needs exactly one of the tables \
+                     [standard] or [base]"
+                ),
+            ));
+        }
+        let mut entries = Vec::with_capacity(items.len());
+        for (k, v) in items {
+            let key: &str = k.get_ref();
+            let (line, column) = line_column(text, k.span().start);
+            let source = text.get(v.span()).unwrap_or("?").trim();
+            let value = number(v.get_ref())
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| {
+                    located(
+                        k.span().start,
+                        format!("[{name}] `{key}` = {source} is not a finite number"),
+                    )
+                })?;
+            if value.abs() > PARAMETER_LIMIT {
+                return Err(located(
+                    k.span().start,
+                    format!(
+                        "[{name}] `{key}` = {source} is outside +-{PARAMETER_LIMIT:e}; give it \
+                         in SI units (kg, m, kg m^2, N m)"
+                    ),
+                ));
+            }
+            entries.push((
+                key.to_owned(),
+                Entry {
+                    value,
+                    line,
+                    column,
+                },
+            ));
+        }
+        // the parser's table is sorted by name; keep the file's order
+        entries.sort_by_key(|(_, e)| (e.line, e.column));
+        found = Some((table, entries));
+    }
+    let (table, entries) = found.ok_or_else(|| Error::ParameterFile {
+        path: path.to_owned(),
+        line: None,
+        column: None,
+        problem: "needs exactly one of the tables [standard] or [base]".to_owned(),
+    })?;
+    Ok(ParameterFile {
+        path: path.to_owned(),
+        table,
+        entries,
+    })
+}
+
+/// The number a TOML value holds (`None` for a string, a table, ..).
+fn number(v: &DeValue<'_>) -> Option<f64> {
+    match v {
+        DeValue::Float(f) => f.as_str().parse().ok(),
+        DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix())
+            .ok()
+            .map(|i| i as f64),
+        _ => None,
+    }
+}
+
+/// The name of `names` closest to `key`: the same but for case, or one edit away.
+fn nearest<'a>(key: &str, names: &'a [String]) -> Option<&'a str> {
+    if let Some(n) = names.iter().find(|n| n.eq_ignore_ascii_case(key)) {
+        return Some(n);
+    }
+    names
+        .iter()
+        .map(|n| (edits(key, n), n))
+        .filter(|(d, _)| *d <= 1)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, n)| n.as_str())
+}
+
+/// Levenshtein distance.
+fn edits(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (diagonal + usize::from(ca != *cb))
+                .min(row[j] + 1)
+                .min(above + 1);
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn places_are_lines_and_columns_of_characters() {
+        let text = "a = 1\n[standard]\nµM1 = 2\n";
+        assert_eq!(line_column(text, 0), (1, 1));
+        assert_eq!(line_column(text, 6), (2, 1));
+        let at = text.find("M1").unwrap();
+        assert_eq!(line_column(text, at), (3, 2));
+    }
+
+    #[test]
+    fn the_nearest_name_is_suggested() {
+        let names: Vec<String> = ["M1", "MX1", "ZZ2", "Fv1"].map(String::from).to_vec();
+        assert_eq!(nearest("m1", &names), Some("M1"));
+        assert_eq!(nearest("ZZ3", &names), Some("ZZ2"));
+        assert_eq!(nearest("Fv", &names), Some("Fv1"));
+        assert_eq!(nearest("Fc1", &names), Some("Fv1"));
+        assert_eq!(nearest("Ia1", &names), None);
+        assert_eq!(nearest("inertia", &names), None);
+        assert_eq!(edits("kitten", "sitting"), 3);
+        assert_eq!(edits("", "ab"), 2);
+    }
+
+    #[test]
+    fn entries_keep_the_file_order() {
+        let file =
+            ParameterFile::parse("[standard]\nZZ2 = 1\nM1 = 2\n", Path::new("p.toml")).unwrap();
+        let names: Vec<&str> = file.entries().map(|(n, _)| n).collect();
+        assert_eq!(names, ["ZZ2", "M1"]);
+    }
+}
