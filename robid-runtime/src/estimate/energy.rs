@@ -110,7 +110,10 @@ pub fn model_energy_observation(
     let dissipative: Vec<bool> = names
         .iter()
         .zip(&probe)
-        .map(|(n, v)| *v != 0.0 && !n.starts_with("Fo"))
+        .map(|(n, v)| {
+            let offset = ParameterKind::Drive(DriveTerm::Fo);
+            *v != 0.0 && n.parse::<ParameterId>().map_or(true, |p| p.kind != offset)
+        })
         .collect();
     let zeros = vec![0.0; dof];
     // per sample: the kinetic energy per parameter (window ends only) and the power

@@ -1,6 +1,7 @@
 //! Geometric values: numbers, or expressions in numbers, `pi` and symbol
 //! names, read once when built and valid by construction.
 
+use super::ParameterKind;
 use crate::expr::{Arena, Ast, Id, Node, Num, ParseError};
 use std::fmt;
 
@@ -254,17 +255,16 @@ pub(crate) fn excerpt(text: &str) -> String {
     }
 }
 
-/// True for names the derivation uses itself (joint variables, parameters).
+/// True for names the derivation uses itself: joint variables (`q1`, `qd1`, `qdd1`),
+/// standard and base parameters (`XX1`, `ZZR1`), with any digits after the stem.
 pub(crate) fn reserved(name: &str) -> bool {
-    let prefixes = [
-        "qdd", "qd", "q", "XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M", "Ia", "Fv",
-        "Fc", "Fo",
-    ];
-    prefixes.iter().any(|p| {
-        name.strip_prefix(p)
-            .is_some_and(|rest| !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit()))
-    }) || name == "pi"
-        || not_finite_name(name)
+    let digits = name.len() - name.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+    let stem = &name[..name.len() - digits];
+    let parameter = |s: &str| ParameterKind::ALL.iter().any(|k| k.stem() == s);
+    let used = ["qdd", "qd", "q"].contains(&stem)
+        || parameter(stem)
+        || stem.strip_suffix('R').is_some_and(parameter);
+    (digits > 0 && used) || name == "pi" || not_finite_name(name)
 }
 
 /// `inf`, `infinity` and `nan` in any case: as symbols they would read as
@@ -312,6 +312,17 @@ mod tests {
             assert!(e.to_string().contains("not finite"), "{e}");
         }
         assert!(Geometry::text("L_inf + nan2").is_ok());
+    }
+
+    #[test]
+    fn names_of_variables_and_parameters_are_reserved() {
+        // a base parameter's name is a symbol of the derivation too (`ZZR1`)
+        for name in ["q1", "qdd12", "XX1", "M3", "Fo2", "ZZR1", "MR2", "MXR10"] {
+            assert!(super::reserved(name), "{name}");
+        }
+        for name in ["q", "L1", "Ma1", "ZZR", "R1", "XXRR1", "d_tool", "qq1"] {
+            assert!(!super::reserved(name), "{name}");
+        }
     }
 
     #[test]
