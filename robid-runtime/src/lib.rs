@@ -46,4 +46,6 @@ pub mod simulate;
 pub mod validate;
 
 #[cfg(feature = "std")]
-pub use error::{Error, Result};
+pub use error::{
+    DataError, Error, EstimateError, FeasibleError, OutputError, Result, SimulateError,
+};

@@ -58,7 +58,7 @@ impl NelderMead {
     /// Minimises `f` from `x0`. Non-finite values count as +infinity.
     ///
     /// `step` must hold one value or one per coordinate of `x0`, all finite, and `x0` must
-    /// be finite; otherwise an [`Error::InvalidConfig`] names the setting.
+    /// be finite; otherwise an [`Error::Setting`] names the setting.
     pub fn minimize(&self, x0: &[f64], mut f: impl FnMut(&[f64]) -> f64) -> Result<Minimum> {
         let n = x0.len();
         if !(self.step.len() == 1 || self.step.len() == n) {

@@ -29,9 +29,11 @@ pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<()> {
-    let err = |e: &dyn std::fmt::Display| Error::Write {
-        path: path.to_path_buf(),
-        reason: e.to_string(),
+    let err = |e: &dyn std::fmt::Display| {
+        Error::Output(OutputError::Write {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        })
     };
     // Write beside the file a link points to, so the rename replaces that file.
     let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
@@ -81,9 +83,11 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
 
 /// Creates the folder `dir` (and its parents) for outputs.
 pub fn create_folder(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::Write {
-        path: dir.to_path_buf(),
-        reason: format!("cannot create the folder: {e}"),
+    std::fs::create_dir_all(dir).map_err(|e| {
+        Error::Output(OutputError::Write {
+            path: dir.to_path_buf(),
+            reason: format!("cannot create the folder: {e}"),
+        })
     })
 }
 
@@ -94,14 +98,36 @@ pub fn refuse_inputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
     for output in outputs {
         for input in inputs {
             if same_file::is_same_file(output, input).unwrap_or(false) {
-                return Err(Error::OutputIsInput {
+                return Err(Error::Output(OutputError::OutputIsInput {
                     output: output.to_path_buf(),
                     input: input.to_path_buf(),
-                });
+                }));
             }
         }
     }
     Ok(())
+}
+
+/// An output cannot be written.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum OutputError {
+    /// A file could not be written.
+    #[error("{path}: cannot write: {reason}; check that the folder exists and is writable")]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// What the writer reported.
+        reason: String,
+    },
+    /// An output would replace one of the run's inputs.
+    #[error("{output} is also an input of this run ({input}); write the output to another file")]
+    OutputIsInput {
+        /// The output path as given.
+        output: PathBuf,
+        /// The input it is the same file as.
+        input: PathBuf,
+    },
 }
 
 #[cfg(test)]
@@ -117,7 +143,10 @@ mod tests {
             w.write_all(b"new, half wri")?;
             Err(std::io::Error::other("disk full"))
         });
-        assert!(matches!(result, Err(Error::Write { .. })), "{result:?}");
+        assert!(
+            matches!(result, Err(Error::Output(OutputError::Write { .. }))),
+            "{result:?}"
+        );
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "old contents\n");
         // no temporary file is left behind
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
@@ -161,7 +190,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         assert!(matches!(
             write_bytes(dir.path(), b"x"),
-            Err(Error::Write { .. })
+            Err(Error::Output(OutputError::Write { .. }))
         ));
     }
 
@@ -174,7 +203,7 @@ mod tests {
         let fresh = dir.path().join("new.csv");
         assert!(matches!(
             refuse_inputs(&[&input], &[&fresh, &other_name]),
-            Err(Error::OutputIsInput { .. })
+            Err(Error::Output(OutputError::OutputIsInput { .. }))
         ));
         assert!(refuse_inputs(&[&input], &[&fresh]).is_ok());
         #[cfg(unix)]

@@ -187,8 +187,10 @@ pub fn seeds() -> Seeds {
         "data/staubli_tx40/data/curr_data.csv.gz",
         "data/kuka_lwr4/data/measurements_1.csv.gz",
     ] {
-        if let Err(robid_runtime::Error::MissingColumn { available, .. }) =
-            read_columns(&root.join(f), &["\u{1}".to_string()])
+        if let Err(robid_runtime::Error::Data(robid_runtime::DataError::MissingColumn {
+            available,
+            ..
+        })) = read_columns(&root.join(f), &["\u{1}".to_string()])
         {
             headers.push(available);
         }
@@ -479,9 +481,17 @@ pub struct Violation {
     pub what: String,
 }
 
+/// The innermost variant's name (`ConfigSyntax` for `Data(ConfigSyntax { .. })`).
 fn variant(e: &robid_runtime::Error) -> String {
     let d = format!("{e:?}");
-    d.split([' ', '{', '(']).next().unwrap_or("").to_string()
+    let mut rest = d.as_str();
+    loop {
+        let name = rest.split([' ', '{', '(']).next().unwrap_or("");
+        match rest[name.len()..].strip_prefix('(') {
+            Some(inner) if inner.starts_with(|c: char| c.is_ascii_uppercase()) => rest = inner,
+            _ => return name.to_string(),
+        }
+    }
 }
 
 fn error(e: &robid_runtime::Error) -> Result<Outcome, String> {

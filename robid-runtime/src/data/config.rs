@@ -42,8 +42,8 @@
 //!
 //! Every number is checked when the config is checked ([`Config::check`], called by
 //! [`crate::data::load`] and the pipeline), and an error names the key at its
-//! file:line:column ([`Error::ConfigKey`]); a config built in code is named by its fields
-//! ([`Error::InvalidConfig`] with owner `Config`). Ranges (see [`crate::limits`]):
+//! file:line:column ([`crate::DataError::ConfigKey`]); a config built in code is named by its fields
+//! ([`Error::Setting`] with owner `Config`). Ranges (see [`crate::limits`]):
 //!
 //! | key | accepted |
 //! |---|---|
@@ -64,6 +64,7 @@
 //! | `estimation.energy_window` | 0 < window <= 1e6 s |
 //! | `extra_column` | at most 1,000 |
 
+use crate::DataError;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
@@ -81,12 +82,12 @@ use crate::limits::{
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum ConfigOrigin {
-    /// Built in code: keys are named as fields of `Config` ([`Error::InvalidConfig`]).
+    /// Built in code: keys are named as fields of `Config` ([`Error::Setting`]).
     #[default]
     Code,
     /// [`Config::default_mapping`], used when no config file is given.
     DefaultMapping,
-    /// Read from a file: keys are named by file:line:column ([`Error::ConfigKey`]).
+    /// Read from a file: keys are named by file:line:column ([`crate::DataError::ConfigKey`]).
     File {
         /// The file.
         path: PathBuf,
@@ -208,7 +209,7 @@ pub enum PerJoint {
 impl PerJoint {
     /// One value per joint, each finite with magnitude at most
     /// [`MAX_FACTOR`](crate::limits::MAX_FACTOR); `key` names the config entry in the error
-    /// (an [`Error::InvalidConfig`] of owner `Config`, which [`Config::locate`] places in
+    /// (an [`Error::Setting`] of owner `Config`, which [`Config::locate`] places in
     /// its file).
     pub fn values(&self, dof: usize, key: &str) -> Result<Vec<f64>> {
         let v = match self {
@@ -413,9 +414,11 @@ impl Config {
     /// Parses a config from TOML text; `path` names it in errors and its folder resolves
     /// relative file paths.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Self> {
-        let mut cfg: Config = toml::from_str(text).map_err(|e| Error::ConfigSyntax {
-            path: path.to_path_buf(),
-            reason: e.to_string(),
+        let mut cfg: Config = toml::from_str(text).map_err(|e| {
+            Error::Data(DataError::ConfigSyntax {
+                path: path.to_path_buf(),
+                reason: e.to_string(),
+            })
         })?;
         cfg.base_dir = path.parent().map(Path::to_path_buf);
         cfg.origin = ConfigOrigin::File {
@@ -428,9 +431,11 @@ impl Config {
     /// Reads and parses a config file.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
+        let text = std::fs::read_to_string(path).map_err(|source| {
+            Error::Data(DataError::Io {
+                path: path.to_path_buf(),
+                source,
+            })
         })?;
         Self::from_toml_str(&text, path)
     }
@@ -470,24 +475,24 @@ impl Config {
         match &self.origin {
             ConfigOrigin::File { path, keys } => {
                 let at = keys.find(key);
-                Error::ConfigKey {
+                Error::Data(DataError::ConfigKey {
                     path: path.clone(),
                     line: at.map(|a| a.0),
                     column: at.map(|a| a.1),
                     key: key.to_string(),
                     problem: problem.into(),
-                }
+                })
             }
             ConfigOrigin::DefaultMapping => Error::setting("default column mapping", key, problem),
             ConfigOrigin::Code => Error::setting("Config", key, problem),
         }
     }
 
-    /// Places an error about a `Config` field (an [`Error::InvalidConfig`] of owner
+    /// Places an error about a `Config` field (an [`Error::Setting`] of owner
     /// `Config`) at its key in the config file; other errors pass unchanged.
     pub fn locate(&self, e: Error) -> Error {
         match e {
-            Error::InvalidConfig {
+            Error::Setting {
                 owner,
                 key,
                 problem,
@@ -764,7 +769,7 @@ method = "wls"
         let cfg = Config::from_toml_str(&bad, Path::new("c.toml")).unwrap();
         let e = cfg.check(2).unwrap_err();
         assert!(
-            matches!(&e, Error::ConfigKey { line: Some(15), key, .. } if key == "estimation.forgetting"),
+            matches!(&e, Error::Data(DataError::ConfigKey { line: Some(15), key, .. }) if key == "estimation.forgetting"),
             "{e}"
         );
         let bad = EXAMPLE.replace("rest_velocity = 0.1", "rest_velocity = [0.1]");

@@ -1,5 +1,6 @@
 //! A loaded, joint-side, uniformly sampled data set.
 
+use crate::DataError;
 use std::path::PathBuf;
 
 use crate::data::Warning;
@@ -206,11 +207,11 @@ impl Dataset {
     ) -> Result<()> {
         let name = &self.name;
         if x.len() != dof {
-            return Err(Error::JointCountMismatch {
+            return Err(Error::Data(DataError::JointCountMismatch {
                 context: format!("{name}: {what} signals"),
                 expected: dof,
                 found: x.len(),
-            });
+            }));
         }
         for (j, v) in x.iter().enumerate() {
             if v.len() != n {
@@ -223,25 +224,25 @@ impl Dataset {
             if let Some(k) = quantity.first_outside(v) {
                 let what = format!("joint {} {what} (after units and drive chain)", j + 1);
                 return Err(if v[k].is_finite() {
-                    Error::OutOfRange {
+                    Error::Data(DataError::OutOfRange {
                         location: self.location(k),
                         what,
                         quantity: quantity.name(),
                         value: v[k],
                         limit: quantity.limit(),
-                    }
+                    })
                 } else {
                     let at = self
                         .origin
                         .as_ref()
                         .and_then(|o| Some((o.path.clone(), *o.lines.get(k)?)));
                     let (path, line) = at.unwrap_or_else(|| (name.into(), k as u64));
-                    Error::NotFinite {
+                    Error::Data(DataError::NotFinite {
                         path,
                         line,
                         column: what,
                         value: v[k],
-                    }
+                    })
                 });
             }
         }
@@ -259,7 +260,7 @@ mod tests {
         assert_eq!((d.dof(), d.samples()), (2, 5));
         assert!(matches!(
             d.clone().with_velocities(vec![vec![0.0; 5]; 3]),
-            Err(Error::JointCountMismatch { .. })
+            Err(Error::Data(DataError::JointCountMismatch { .. }))
         ));
         assert!(matches!(
             d.clone().with_accelerations(vec![vec![0.0; 4]; 2]),
@@ -267,12 +268,12 @@ mod tests {
         ));
         assert!(matches!(
             Dataset::new("m", 0.01, vec![vec![f64::NAN]], vec![vec![0.0]]),
-            Err(Error::NotFinite { .. })
+            Err(Error::Data(DataError::NotFinite { .. }))
         ));
         assert!(Dataset::new("m", 0.0, vec![vec![0.0]], vec![vec![0.0]]).is_err());
         let e = Dataset::new("m", 0.01, vec![vec![0.0, 2e6]], vec![vec![0.0; 2]]).unwrap_err();
         assert!(
-            matches!(e, Error::OutOfRange { ref location, .. } if location == "data set `m`, sample 1"),
+            matches!(e, Error::Data(DataError::OutOfRange { ref location, .. }) if location == "data set `m`, sample 1"),
             "{e}"
         );
         let e = Dataset::new_at(

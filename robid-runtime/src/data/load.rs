@@ -1,10 +1,11 @@
 //! From config + files to a joint-side, uniformly sampled [`Dataset`].
 //!
-//! Every value read is checked at load time: finite ([`Error::NotFinite`]) and within the
-//! range of its quantity ([`crate::limits`], [`Error::OutOfRange`] naming file:line and
+//! Every value read is checked at load time: finite ([`crate::DataError::NotFinite`]) and within the
+//! range of its quantity ([`crate::limits`], [`crate::DataError::OutOfRange`] naming file:line and
 //! column), both as read and after the units and the drive chain. Errors about the config
 //! name its keys at their file:line ([`Config::locate`]).
 
+use crate::DataError;
 use std::path::{Path, PathBuf};
 
 use crate::data::dataset::DataOrigin;
@@ -82,12 +83,12 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
             names.push(t.clone());
         }
         let mut table = read_columns(path, &names).map_err(|e| match e {
-            Error::MissingColumn {
+            Error::Data(DataError::MissingColumn {
                 path,
                 column,
                 available,
                 ..
-            } => {
+            }) => {
                 let key = spans
                     .iter()
                     .find(|(_, start)| names[*start..*start + dof].contains(&column))
@@ -96,12 +97,12 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
                         |(r, _)| format!("source[{}].{}", index + 1, ROLES[*r]),
                     );
                 let mapping = config.mapping(&key);
-                Error::MissingColumn {
+                Error::Data(DataError::MissingColumn {
                     path,
                     column,
                     available,
                     mapping: Box::new(mapping),
-                }
+                })
             }
             e => e,
         })?;
@@ -314,12 +315,12 @@ fn check_rows(rows: &mut Option<(usize, PathBuf, Vec<u64>)>, table: &Table) -> R
     match rows {
         None => *rows = Some((table.rows(), table.path.clone(), table.lines.clone())),
         Some((n, first, _)) if *n != table.rows() => {
-            return Err(Error::RowCountMismatch {
+            return Err(Error::Data(DataError::RowCountMismatch {
                 first: first.clone(),
                 first_rows: *n,
                 second: table.path.clone(),
                 second_rows: table.rows(),
-            });
+            }));
         }
         _ => {}
     }

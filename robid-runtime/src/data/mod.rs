@@ -5,6 +5,7 @@
 
 mod config;
 mod dataset;
+mod error;
 mod keys;
 mod load;
 mod parameters;
@@ -17,6 +18,7 @@ pub use config::{
     PerJoint, Processing, Signal, Source, Units,
 };
 pub use dataset::{DataOrigin, Dataset};
+pub use error::DataError;
 pub use keys::KeyMap;
 pub(crate) use load::check_joints;
 pub use load::{load, load_config_files, load_from_config_file};

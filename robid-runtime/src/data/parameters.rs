@@ -3,7 +3,7 @@
 //! writes this format; `torques`, `simulate`, `excite`, `feasible --prior`, the reference
 //! robots, the tests and the benches read it here.
 //!
-//! What is checked, each mistake an [`Error::ParameterFile`] at `file:line:column` with the
+//! What is checked, each mistake an [`crate::DataError::ParameterFile`] at `file:line:column` with the
 //! fix. When the file is read:
 //! - exactly one table, `[standard]` or `[base]`; any other table or key is an error;
 //! - every value is a number, finite and within +-[`PARAMETER_LIMIT`].
@@ -34,6 +34,7 @@
 //! assert!(e.to_string().starts_with("arm.toml:2:1: `M1` = -1 is negative"));
 //! ```
 
+use crate::DataError;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -91,9 +92,11 @@ pub struct ParameterFile {
 impl ParameterFile {
     /// Reads the file at `path` (see the module documentation for the checks).
     pub fn read(path: &Path) -> Result<ParameterFile> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            path: path.to_owned(),
-            source,
+        let text = std::fs::read_to_string(path).map_err(|source| {
+            Error::Data(DataError::Io {
+                path: path.to_owned(),
+                source,
+            })
         })?;
         ParameterFile::parse(&text, path)
     }
@@ -214,22 +217,22 @@ impl ParameterFile {
 
     /// An error at `entry`.
     fn at(&self, e: &Entry, problem: String) -> Error {
-        Error::ParameterFile {
+        Error::Data(DataError::ParameterFile {
             path: self.path.clone(),
             line: Some(e.line),
             column: Some(e.column),
             problem,
-        }
+        })
     }
 
     /// An error about the whole file.
     fn whole(&self, problem: String) -> Error {
-        Error::ParameterFile {
+        Error::Data(DataError::ParameterFile {
             path: self.path.clone(),
             line: None,
             column: None,
             problem,
-        }
+        })
     }
 
     /// The physical checks of a `[standard]` table (see the module documentation);
@@ -348,12 +351,12 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
 fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
     let located = |offset: usize, problem: String| -> Error {
         let (line, column) = line_column(text, offset);
-        Error::ParameterFile {
+        Error::Data(DataError::ParameterFile {
             path: path.to_owned(),
             line: Some(line),
             column: Some(column),
             problem,
-        }
+        })
     };
     let doc = DeTable::parse(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
@@ -423,11 +426,13 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         entries.sort_by_key(|(_, e)| (e.line, e.column));
         found = Some((table, entries));
     }
-    let (table, entries) = found.ok_or_else(|| Error::ParameterFile {
-        path: path.to_owned(),
-        line: None,
-        column: None,
-        problem: "needs exactly one of the tables [standard] or [base]".to_owned(),
+    let (table, entries) = found.ok_or_else(|| {
+        Error::Data(DataError::ParameterFile {
+            path: path.to_owned(),
+            line: None,
+            column: None,
+            problem: "needs exactly one of the tables [standard] or [base]".to_owned(),
+        })
     })?;
     Ok(ParameterFile {
         path: path.to_owned(),

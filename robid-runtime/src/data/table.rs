@@ -14,6 +14,7 @@
 //! [`MAX_ROWS`](crate::limits::MAX_ROWS) data rows. Every value read must be a finite
 //! number; [`Table::check_range`] checks a column against the range of its quantity.
 
+use crate::DataError;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -49,7 +50,7 @@ impl Table {
         };
         match quantity.first_outside(column) {
             None => Ok(()),
-            Some(k) => Err(Error::OutOfRange {
+            Some(k) => Err(Error::Data(DataError::OutOfRange {
                 location: format!(
                     "{}:{}",
                     self.path.display(),
@@ -59,7 +60,7 @@ impl Table {
                 quantity: quantity.name(),
                 value: column[k],
                 limit: quantity.limit(),
-            }),
+            })),
         }
     }
 }
@@ -116,9 +117,11 @@ impl ColumnMapping {
 /// Reads the columns `names` from a CSV file. A file whose first bytes are the gzip
 /// magic number is decompressed. See the module documentation for the format.
 pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
-    let io = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
+    let io = |source| {
+        Error::Data(DataError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
     };
     let file = std::fs::File::open(path).map_err(io)?;
     let size = file.metadata().map_or(0, |m| m.len());
@@ -159,15 +162,15 @@ fn read_limited(reader: impl Read, path: &Path, decoding: bool, hint: usize) -> 
         .read_to_end(&mut out)
         .map_err(|source| {
             if decoding {
-                Error::Corrupt {
+                Error::Data(DataError::Corrupt {
                     path: path.to_path_buf(),
                     reason: format!("gzip: {source}"),
-                }
+                })
             } else {
-                Error::Io {
+                Error::Data(DataError::Io {
                     path: path.to_path_buf(),
                     source,
-                }
+                })
             }
         })?;
     check_size(
@@ -399,12 +402,12 @@ fn wanted(
             let mut at = header.iter().enumerate().filter(|(_, h)| *h == name);
             match (at.next(), at.next()) {
                 (Some((i, _)), None) => Ok(i),
-                (Some((i, _)), Some((k, _))) => Err(Error::DuplicateColumn {
+                (Some((i, _)), Some((k, _))) => Err(Error::Data(DataError::DuplicateColumn {
                     path: path.to_path_buf(),
                     column: name.clone(),
                     first: i + 1,
                     second: k + 1,
-                }),
+                })),
                 (None, _) => Err(missing(header, name, path, text, header_line)),
             }
         })
@@ -422,27 +425,27 @@ fn missing(header: &[String], name: &str, path: &Path, text: &[u8], header_line:
     for (sep, described) in [(';', "`;`"), ('\t', "tabs"), ('|', "`|`")] {
         if line.contains(sep) && line.split(sep).any(|f| f.trim().trim_matches('"') == name) {
             let shown: String = line.chars().take(60).collect();
-            return Error::UnsupportedSeparator {
+            return Error::Data(DataError::UnsupportedSeparator {
                 path: path.to_path_buf(),
                 header: shown,
                 separator: described.into(),
-            };
+            });
         }
     }
     if header.len() == 1 && line.split_whitespace().any(|f| f == name) {
         let shown: String = line.chars().take(60).collect();
-        return Error::UnsupportedSeparator {
+        return Error::Data(DataError::UnsupportedSeparator {
             path: path.to_path_buf(),
             header: shown,
             separator: "spaces".into(),
-        };
+        });
     }
-    Error::MissingColumn {
+    Error::Data(DataError::MissingColumn {
         path: path.to_path_buf(),
         column: name.to_string(),
         available: header.to_vec(),
         mapping: Box::new(ColumnMapping::Code),
-    }
+    })
 }
 
 /// Block boundaries of `body`: after a line end every [`CHUNK`] bytes.
@@ -496,23 +499,23 @@ impl BlockError {
         let path = path.to_path_buf();
         let name = |k: usize| names.get(k).cloned().unwrap_or_default();
         match self {
-            BlockError::Csv { line, reason } => Error::Csv {
+            BlockError::Csv { line, reason } => Error::Data(DataError::Csv {
                 path,
                 line: line + base,
                 reason,
-            },
-            BlockError::Value { line, want, text } => Error::NotANumber {
+            }),
+            BlockError::Value { line, want, text } => Error::Data(DataError::NotANumber {
                 path,
                 line: line + base,
                 column: name(want),
                 text,
-            },
-            BlockError::NotFinite { line, want, value } => Error::NotFinite {
+            }),
+            BlockError::NotFinite { line, want, value } => Error::Data(DataError::NotFinite {
                 path,
                 line: line + base,
                 column: name(want),
                 value,
-            },
+            }),
             BlockError::Rows => Error::TooLarge {
                 what: format!("{}: data rows", path.display()),
                 found: (MAX_ROWS + 1) as f64,
@@ -645,13 +648,13 @@ mod tests {
             let e =
                 read_columns_from(bad.as_bytes(), Path::new("m.csv"), &names(&["a"])).unwrap_err();
             assert!(
-                matches!(&e, Error::NotANumber { line, column, .. } if *line == line_of(199_999) + 1 + shift && column == "a"),
+                matches!(&e, Error::Data(DataError::NotANumber { line, column, .. }) if *line == line_of(199_999) + 1 + shift && column == "a"),
                 "{e}"
             );
             let ragged = format!("{t}200000,1\n");
             let e = read_columns_from(ragged.as_bytes(), Path::new("m.csv"), &cols).unwrap_err();
             assert!(
-                matches!(e, Error::Csv { line, .. } if line == line_of(199_999) + 1 + shift),
+                matches!(e, Error::Data(DataError::Csv { line, .. }) if line == line_of(199_999) + 1 + shift),
                 "{e}"
             );
         }
@@ -689,7 +692,7 @@ mod tests {
     fn duplicate_columns_name_both_positions() {
         let e = read("t,q1,q2,q2\n0,1,2,3\n", &["q2"]).unwrap_err();
         assert!(
-            matches!(&e, Error::DuplicateColumn { column, first: 3, second: 4, .. } if column == "q2"),
+            matches!(&e, Error::Data(DataError::DuplicateColumn { column, first: 3, second: 4, .. }) if column == "q2"),
             "{e}"
         );
         assert!(e.to_string().contains("fields 3 and 4"), "{e}");
@@ -706,7 +709,7 @@ mod tests {
         ] {
             let e = read(text, &["q1"]).unwrap_err();
             assert!(
-                matches!(&e, Error::UnsupportedSeparator { separator, .. } if separator == sep),
+                matches!(&e, Error::Data(DataError::UnsupportedSeparator { separator, .. }) if separator == sep),
                 "{e}"
             );
             assert!(e.to_string().contains("comma-separated"), "{e}");
@@ -716,17 +719,23 @@ mod tests {
     #[test]
     fn missing_column_lists_the_header() {
         let e = read("a,b\n1,2\n", &["q1"]).unwrap_err();
-        assert!(matches!(e, Error::MissingColumn { .. }));
+        assert!(matches!(e, Error::Data(DataError::MissingColumn { .. })));
         assert!(e.to_string().contains("found: a, b"), "{e}");
     }
 
     #[test]
     fn nan_and_inf_name_line_and_column() {
         let e = read("a,b\n1,2\n3,NaN\n", &["a", "b"]).unwrap_err();
-        assert!(matches!(e, Error::NotFinite { line: 3, .. }), "{e}");
+        assert!(
+            matches!(e, Error::Data(DataError::NotFinite { line: 3, .. })),
+            "{e}"
+        );
         assert!(e.to_string().contains("mem.csv:3: column `b`"), "{e}");
         let e = read("a\ninf\n", &["a"]).unwrap_err();
-        assert!(matches!(e, Error::NotFinite { line: 2, .. }));
+        assert!(matches!(
+            e,
+            Error::Data(DataError::NotFinite { line: 2, .. })
+        ));
     }
 
     #[test]
@@ -736,7 +745,10 @@ mod tests {
             .check_range(1, "qdd1", Quantity::Acceleration)
             .unwrap_err();
         let text = e.to_string();
-        assert!(matches!(e, Error::OutOfRange { .. }), "{text}");
+        assert!(
+            matches!(e, Error::Data(DataError::OutOfRange { .. })),
+            "{text}"
+        );
         assert!(
             text.starts_with("mem.csv:3: column `qdd1`") && text.contains("1e8"),
             "{text}"
@@ -747,9 +759,15 @@ mod tests {
     #[test]
     fn text_ragged_and_empty_are_errors() {
         let e = read("a,b\n1,x\n", &["b"]).unwrap_err();
-        assert!(matches!(e, Error::NotANumber { line: 2, .. }), "{e}");
+        assert!(
+            matches!(e, Error::Data(DataError::NotANumber { line: 2, .. })),
+            "{e}"
+        );
         let e = read("a,b\n1,2\n3\n", &["a"]).unwrap_err();
-        assert!(matches!(e, Error::Csv { line: 3, .. }), "{e}");
+        assert!(
+            matches!(e, Error::Data(DataError::Csv { line: 3, .. })),
+            "{e}"
+        );
         let e = read("", &["a"]).unwrap_err();
         assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
         let e = read("# only a comment\n", &["a"]).unwrap_err();
@@ -777,9 +795,9 @@ mod tests {
         let cut = dir.path().join("cut.csv.gz");
         std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
         let e = read_columns(&cut, &names(&["q"])).unwrap_err();
-        assert!(matches!(e, Error::Corrupt { .. }), "{e}");
+        assert!(matches!(e, Error::Data(DataError::Corrupt { .. })), "{e}");
         assert!(e.to_string().contains("truncated or corrupt"), "{e}");
         let e = read_columns(&dir.path().join("none.csv"), &names(&["q"])).unwrap_err();
-        assert!(matches!(e, Error::Io { .. }));
+        assert!(matches!(e, Error::Data(DataError::Io { .. })));
     }
 }

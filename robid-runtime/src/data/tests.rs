@@ -1,5 +1,6 @@
 //! Loading tests: joins, time handling, bad input, and the real TX40 log.
 
+use crate::DataError;
 use std::path::{Path, PathBuf};
 
 use super::*;
@@ -61,11 +62,11 @@ fn row_count_mismatch_is_an_error() {
     assert!(
         matches!(
             e,
-            Error::RowCountMismatch {
+            Error::Data(DataError::RowCountMismatch {
                 first_rows: 3,
                 second_rows: 2,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -80,7 +81,7 @@ fn joint_count_mismatch_is_an_error() {
     assert!(
         matches!(
             &e,
-            Error::ConfigKey { line: Some(6), key, .. } if key == "source[2].torque"
+            Error::Data(DataError::ConfigKey { line: Some(6), key, .. }) if key == "source[2].torque"
         ),
         "{e}"
     );
@@ -147,7 +148,10 @@ fn non_monotonic_time_names_the_line() {
     let d = Dir::new("monotonic");
     let a = d.file("q.csv", "t,q1\n0,0\n0.1,0.2\n0.1,0.5\n");
     let e = load(&cfg(TIMED), &[a.clone(), a], 1).unwrap_err();
-    assert!(matches!(e, Error::NonMonotonicTime { line: 4, .. }), "{e}");
+    assert!(
+        matches!(e, Error::Data(DataError::NonMonotonicTime { line: 4, .. })),
+        "{e}"
+    );
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! Time stamps: monotonicity, detection of irregular sampling, resampling onto a
 //! uniform grid and joining files by time (linear interpolation).
 
+use crate::DataError;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -62,12 +63,12 @@ pub const IRREGULAR_TOLERANCE: f64 = 0.01;
 pub fn check_monotonic(t: &[f64], lines: &[u64], path: &Path) -> Result<()> {
     for k in 1..t.len() {
         if t[k] <= t[k - 1] {
-            return Err(Error::NonMonotonicTime {
+            return Err(Error::Data(DataError::NonMonotonicTime {
                 path: path.to_path_buf(),
                 line: lines.get(k).copied().unwrap_or(0),
                 previous: t[k - 1],
                 value: t[k],
-            });
+            }));
         }
     }
     Ok(())
@@ -127,7 +128,10 @@ mod tests {
     #[test]
     fn detects_non_monotonic_time_with_line() {
         let e = check_monotonic(&[0.0, 0.1, 0.1], &[2, 3, 4], Path::new("a.csv")).unwrap_err();
-        assert!(matches!(e, Error::NonMonotonicTime { line: 4, .. }), "{e}");
+        assert!(
+            matches!(e, Error::Data(DataError::NonMonotonicTime { line: 4, .. })),
+            "{e}"
+        );
         assert!(e.to_string().starts_with("a.csv:4"), "{e}");
     }
 

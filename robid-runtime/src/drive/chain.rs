@@ -321,20 +321,20 @@ mod tests {
         c.position_coupling = None;
         assert!(matches!(
             DriveChain::new(&c, 6),
-            Err(Error::InvalidConfig { ref key, .. }) if key == "drive.gear_ratios"
+            Err(Error::Setting { ref key, .. }) if key == "drive.gear_ratios"
         ));
         assert!(c.check(6).is_err());
         let mut c = tx40();
         c.position_coupling = Some(vec![vec![0.0; 6]; 6]);
         assert!(matches!(
             DriveChain::new(&c, 6),
-            Err(Error::InvalidConfig { ref key, .. }) if key == "drive.position_coupling"
+            Err(Error::Setting { ref key, .. }) if key == "drive.position_coupling"
         ));
         let mut c = tx40();
         c.torque_coupling.as_mut().unwrap()[2][1] = f64::NAN;
         assert!(matches!(
             DriveChain::new(&c, 6),
-            Err(Error::InvalidConfig { ref key, .. }) if key == "drive.torque_coupling[3][2]"
+            Err(Error::Setting { ref key, .. }) if key == "drive.torque_coupling[3][2]"
         ));
         let mut c = tx40();
         c.position_coupling = None;
@@ -344,9 +344,6 @@ mod tests {
             position_side: Side::Motor,
             ..Default::default()
         };
-        assert!(matches!(
-            DriveChain::new(&c, 6),
-            Err(Error::InvalidConfig { .. })
-        ));
+        assert!(matches!(DriveChain::new(&c, 6), Err(Error::Setting { .. })));
     }
 }

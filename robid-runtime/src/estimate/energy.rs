@@ -9,6 +9,7 @@
 //! ## Reference
 //! M. Gautier, "Dynamic identification of robots with power model", ICRA 1997.
 
+use crate::DataError;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
@@ -97,11 +98,11 @@ pub fn model_energy_observation(
     let p = model.base_parameter_count();
     let names = crate::model::base_parameter_names(model);
     if signals.q.len() != dof {
-        return Err(Error::JointCountMismatch {
+        return Err(Error::Data(DataError::JointCountMismatch {
             context: "energy model: data".into(),
             expected: dof,
             found: signals.q.len(),
-        });
+        }));
     }
     let friction = friction_power(&names);
     // columns whose power is the friction term (Fv, Fc; Fo is in the potential part)

@@ -17,6 +17,7 @@
 //! R factors stacked and factorised again. It is the same R (up to row signs) as one QR
 //! of the whole matrix, stays in cache, and never copies W whole.
 
+use crate::EstimateError;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
@@ -98,13 +99,13 @@ pub(crate) fn column_scales(w: &DMatrix<f64>, names: &[String]) -> Result<Vec<f6
     };
     if let Some(i) = w.iter().position(|v| !v.is_finite()) {
         let (r, c) = (i % w.nrows().max(1), i / w.nrows().max(1));
-        return Err(Error::NonFiniteObservation {
+        return Err(Error::Estimate(EstimateError::NonFiniteObservation {
             location: format!("equation {}", r + 1),
             sample: None,
             joint: 0,
             parameter: name(c),
             value: w[(r, c)],
-        });
+        }));
     }
     Ok(w.column_iter()
         .map(|c| norm(c.iter().copied()))
@@ -146,13 +147,13 @@ pub(crate) fn solve(
     }
     let d = column_scales(w, names)?;
     if let Some(r) = y.iter().position(|v| !v.is_finite()) {
-        return Err(Error::NonFiniteObservation {
+        return Err(Error::Estimate(EstimateError::NonFiniteObservation {
             location: format!("equation {}", r + 1),
             sample: None,
             joint: 0,
             parameter: "torque".into(),
             value: y[r],
-        });
+        }));
     }
     let y_norm = norm(y.iter().copied());
     let y_scale = if y_norm > 0.0 { y_norm } else { 1.0 };
@@ -171,11 +172,11 @@ pub(crate) fn solve(
     let cut = tolerance * smax;
     let null: Vec<usize> = (0..n).filter(|&k| !(s[k] > cut)).collect();
     if !(smax > 0.0) || !null.is_empty() {
-        return Err(Error::RankDeficient {
+        return Err(Error::Estimate(EstimateError::RankDeficient {
             rank: n - null.len(),
             columns: n,
             unexcited: unexcited(vt, &null, names),
-        });
+        }));
     }
     let uty = u.transpose() * qty;
     let scaled = DVector::from_iterator(n, (0..n).map(|k| uty[k] / s[k]));
@@ -268,11 +269,11 @@ pub(crate) fn condition_number(w: &DMatrix<f64>, names: &[String]) -> Result<f64
     };
     let null: Vec<usize> = (0..n).filter(|&k| !(f.singular_values[k] > 0.0)).collect();
     if !null.is_empty() {
-        return Err(Error::RankDeficient {
+        return Err(Error::Estimate(EstimateError::RankDeficient {
             rank: n - null.len(),
             columns: n,
             unexcited: unexcited(vt, &null, names),
-        });
+        }));
     }
     condition(&r, u, &f.singular_values, vt, &d)
 }
@@ -321,28 +322,30 @@ mod tests {
         let w = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0]);
         let y = DVector::from_vec(vec![1.0, 2.0, 3.0]);
         match solve(&w, &y, &names(3), 1e-10) {
-            Err(Error::RankDeficient {
+            Err(Error::Estimate(EstimateError::RankDeficient {
                 rank: 2,
                 columns: 3,
                 unexcited,
-            }) => assert_eq!(unexcited, vec!["p3"]),
+            })) => assert_eq!(unexcited, vec!["p3"]),
             other => panic!("{other:?}"),
         }
         // two identical columns: both named
         let w = DMatrix::from_row_slice(3, 2, &[1.0, 1.0, 2.0, 2.0, 3.0, 3.0]);
         match solve(&w, &y, &names(2), 1e-10) {
-            Err(Error::RankDeficient { unexcited, .. }) => assert_eq!(unexcited.len(), 2),
+            Err(Error::Estimate(EstimateError::RankDeficient { unexcited, .. })) => {
+                assert_eq!(unexcited.len(), 2)
+            }
             other => panic!("{other:?}"),
         }
         // a zero column and two dependent ones: rank 1 of 3, all three named (zero columns
         // alone would give rank 2 and name only the zero one)
         let w = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 2.0, 2.0, 0.0, 4.0, 3.0, 0.0, 6.0]);
         match solve(&w, &y, &names(3), 1e-10) {
-            Err(Error::RankDeficient {
+            Err(Error::Estimate(EstimateError::RankDeficient {
                 rank,
                 columns,
                 mut unexcited,
-            }) => {
+            })) => {
                 unexcited.sort();
                 assert_eq!((rank, columns), (1, 3));
                 assert_eq!(unexcited, vec!["p1", "p2", "p3"]);
@@ -398,11 +401,11 @@ mod tests {
         // a non-finite entry names its row and column
         w[(5, 2)] = f64::INFINITY;
         match solve(&w, &y, &names(3), 1e-12) {
-            Err(Error::NonFiniteObservation {
+            Err(Error::Estimate(EstimateError::NonFiniteObservation {
                 location,
                 parameter,
                 ..
-            }) => {
+            })) => {
                 assert_eq!(
                     (location.as_str(), parameter.as_str()),
                     ("equation 6", "p3")

@@ -4,6 +4,7 @@
 //! equations.
 
 mod energy;
+mod error;
 mod least_squares;
 mod lstsq;
 mod observation;
@@ -14,6 +15,7 @@ mod rls;
 pub use energy::{
     EnergyRegressor, energy, energy_observation, friction_power, model_energy_observation,
 };
+pub use error::EstimateError;
 pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
 pub use observation::Observation;
 #[cfg(test)]

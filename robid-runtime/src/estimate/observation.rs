@@ -1,5 +1,6 @@
 //! The stacked linear system y = W beta that the estimators solve.
 
+use crate::EstimateError;
 use std::ops::Range;
 
 use nalgebra::{DMatrix, DVector};
@@ -66,13 +67,13 @@ impl Observation {
                 .position(|b| b.contains(&row))
                 .map_or(0, |j| j + 1);
             let sample = sample_of_row[row];
-            return Err(Error::NonFiniteObservation {
+            return Err(Error::Estimate(EstimateError::NonFiniteObservation {
                 location: format!("equation {} (sample {sample})", row + 1),
                 sample: Some(sample),
                 joint,
                 parameter,
                 value,
-            });
+            }));
         }
         Ok(Self {
             w,

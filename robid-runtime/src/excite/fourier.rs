@@ -153,7 +153,7 @@ mod tests {
         for (d, r) in [(30.0, 1e9), (1e9, 500.0), (1e300, 1e6)] {
             let e = sample_count("Fourier::sample", d, r, 6).unwrap_err();
             assert!(
-                matches!(e, Error::TooLarge { .. } | Error::InvalidConfig { .. }),
+                matches!(e, Error::TooLarge { .. } | Error::Setting { .. }),
                 "{e}"
             );
         }

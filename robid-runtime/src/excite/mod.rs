@@ -5,7 +5,7 @@
 //! with continuous jerk, and the regressor extended over intervals around the points).
 //!
 //! Settings are checked before any work ([`FourierDesign::check`], [`PointDesign::check`]);
-//! an error names the setting by its field ([`crate::Error::InvalidConfig`], owner
+//! an error names the setting by its field ([`crate::Error::Setting`], owner
 //! `FourierDesign` or `PointDesign`). Limits: harmonics 2 to [`MAX_HARMONICS`], base
 //! frequency up to [`MAX_BASE_FREQUENCY`] Hz, at most [`MAX_POINTS`] criterion points or
 //! intervals, [`MAX_RESTARTS`] restarts and sweeps, [`MAX_EVALUATIONS`] evaluations per

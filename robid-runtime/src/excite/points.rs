@@ -6,6 +6,7 @@
 //! F. Milella, "Direct estimate of closed-form dynamic equation parameters of a robot:
 //! tools and methods for designing experiments" (docs/references.md#milella), Phase III.
 
+use crate::DataError;
 use crate::error::{Error, Result};
 use crate::excite::fourier::sample_count;
 use crate::excite::polynomial::{Knot, Septic};
@@ -35,11 +36,11 @@ impl Points {
             ));
         }
         if let Some(bad) = knots.iter().position(|k| k.len() != times.len()) {
-            return Err(Error::JointCountMismatch {
+            return Err(Error::Data(DataError::JointCountMismatch {
                 context: format!("points of joint {}", bad + 1),
                 expected: times.len(),
                 found: knots[bad].len(),
-            });
+            }));
         }
         if knots.iter().flatten().flatten().any(|x| !x.is_finite()) {
             return Err(Error::setting(

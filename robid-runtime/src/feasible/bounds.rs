@@ -14,6 +14,8 @@
 //! mass = [2.0, 4.0]
 //! ```
 
+use crate::DataError;
+use crate::FeasibleError;
 use std::collections::BTreeMap;
 
 use serde::Deserialize;
@@ -96,23 +98,23 @@ impl Bounds {
     }
 
     /// Reads bounds for a robot with `links` links; `path` names the file in errors, which
-    /// give a wrong value's key at its file:line:column ([`Error::ConfigKey`]).
+    /// give a wrong value's key at its file:line:column ([`crate::DataError::ConfigKey`]).
     pub fn from_toml(text: &str, path: &str, links: usize) -> Result<Bounds> {
         let keys = KeyMap::parse(text);
         let locate = |e: Error| match e {
-            Error::InvalidConfig {
+            Error::Setting {
                 owner,
                 key,
                 problem,
             } if owner == "Bounds" => {
                 let at = keys.find(&key);
-                Error::ConfigKey {
+                Error::Data(DataError::ConfigKey {
                     path: path.into(),
                     line: at.map(|a| a.0),
                     column: at.map(|a| a.1),
                     key,
                     problem,
-                }
+                })
             }
             e => e,
         };
@@ -120,9 +122,11 @@ impl Bounds {
     }
 
     fn parse(text: &str, path: &str, links: usize) -> Result<Bounds> {
-        let raw: Raw = toml::from_str(text).map_err(|e| Error::ConfigSyntax {
-            path: path.into(),
-            reason: e.to_string(),
+        let raw: Raw = toml::from_str(text).map_err(|e| {
+            Error::Data(DataError::ConfigSyntax {
+                path: path.into(),
+                reason: e.to_string(),
+            })
         })?;
         let base = merge(LinkBounds::default(), raw.default.as_ref());
         let mut out = vec![base; links];
@@ -196,12 +200,12 @@ impl Bounds {
             let lo: f64 = self.links.iter().map(|l| l.mass[0]).sum();
             let hi: f64 = self.links.iter().map(|l| l.mass[1]).sum();
             if t[1] < lo || t[0] > hi {
-                return Err(Error::NoFeasibleParameters {
+                return Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
                     reason: format!(
                         "the total mass range [{}, {}] kg does not meet the sum of the link mass ranges [{lo}, {hi}] kg; widen one of them",
                         t[0], t[1]
                     ),
-                });
+                }));
             }
         }
         Ok(())
@@ -254,6 +258,9 @@ mod tests {
             "b",
             3,
         );
-        assert!(matches!(e, Err(Error::NoFeasibleParameters { .. })));
+        assert!(matches!(
+            e,
+            Err(Error::Feasible(FeasibleError::NoFeasibleParameters { .. }))
+        ));
     }
 }

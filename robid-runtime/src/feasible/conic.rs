@@ -2,6 +2,7 @@
 //! `A x + s = b` with `s` in a product of cones (zero, nonnegative, second-order
 //! and PSD cones), solved by Clarabel's interior-point method.
 
+use crate::FeasibleError;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
@@ -223,23 +224,25 @@ fn solve_stage(
         .verbose(false)
         .max_iter(400)
         .build()
-        .map_err(|e| Error::NoFeasibleParameters {
-            reason: format!("solver settings: {e}"),
+        .map_err(|e| {
+            Error::Feasible(FeasibleError::NoFeasibleParameters {
+                reason: format!("solver settings: {e}"),
+            })
         })?;
     let mut solver =
         DefaultSolver::new(&p_mat, &q, &a_mat, &c.b, &c.cones, settings).map_err(|e| {
-            Error::NoFeasibleParameters {
+            Error::Feasible(FeasibleError::NoFeasibleParameters {
                 reason: format!("solver setup: {e:?}"),
-            }
+            })
         })?;
     solver.solve();
     match solver.solution.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(solver.solution.x[..ns].to_vec()),
-        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Err(Error::NoFeasibleParameters {
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
             reason: "the bounds and the physical-consistency constraints exclude every solution; widen the mass or centre-of-mass bounds, the total-mass range, or lower the margin".to_owned(),
-        }),
-        other => Err(Error::NoFeasibleParameters {
+        })),
+        other => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
             reason: format!("the conic solver stopped with status {other:?}; check the bounds' scale (kg, m, kg m^2)"),
-        }),
+        })),
     }
 }

@@ -28,6 +28,7 @@ mod bounds;
 mod centre;
 #[cfg(feature = "sdp")]
 mod conic;
+mod error;
 mod inertial;
 mod layout;
 mod output;
@@ -38,6 +39,7 @@ mod solution;
 
 pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds};
 pub use centre::centre;
+pub use error::FeasibleError;
 pub use inertial::{
     LinkInertial, inertia_at_origin, pseudo_inertia, pseudo_inertia_min_eigenvalue,
 };

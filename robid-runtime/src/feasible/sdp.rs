@@ -18,8 +18,10 @@
 //! Clarabel's semidefinite cones need BLAS/LAPACK (OpenBLAS), which a machine
 //! with only the Rust toolchain does not have, so the solver is behind the
 //! `sdp` feature (`.ci/install-deps.sh` installs the system libraries); without
-//! it these functions return [`Error::Unavailable`] saying how to enable it.
+//! it these functions return [`crate::FeasibleError::Unavailable`] saying how to enable it.
 
+#[cfg(not(feature = "sdp"))]
+use crate::FeasibleError;
 use std::time::Instant;
 
 use nalgebra::{DMatrix, DVector};
@@ -173,8 +175,8 @@ fn solve(
     _options: &SdpOptions,
 ) -> Result<Vec<f64>> {
     bounds.validate()?;
-    Err(Error::Unavailable {
+    Err(Error::Feasible(FeasibleError::Unavailable {
         what: "the semidefinite (sdp) method".to_owned(),
         fix: "install OpenBLAS (`bash .ci/install-deps.sh`) and build with `--features sdp`, or use `--method anneal`".to_owned(),
-    })
+    }))
 }

@@ -4,6 +4,8 @@
 //! at their file:line ([`Config::locate`]), names a data row by its file:line, and checks
 //! what it returns: no NaN or infinity in a successful result.
 
+use crate::DataError;
+use crate::EstimateError;
 use std::ops::Range;
 
 use crate::Model;
@@ -55,11 +57,11 @@ fn checked_prepare(
     check_joints(model.dof())?;
     config.check(model.dof())?;
     if data.dof() != model.dof() {
-        return Err(Error::JointCountMismatch {
+        return Err(Error::Data(DataError::JointCountMismatch {
             context: format!("data set {}", data.name),
             expected: model.dof(),
             found: data.dof(),
-        });
+        }));
     }
     prepare_rows(data, config, rows).map_err(|e| config.locate(e))
 }
@@ -74,19 +76,19 @@ fn torque_observation(
     kept: &Range<usize>,
 ) -> Result<(Observation, f64)> {
     let obs = observe(model, prepared, config).map_err(|e| match e {
-        Error::NonFiniteObservation {
+        Error::Estimate(EstimateError::NonFiniteObservation {
             sample: Some(k),
             joint,
             parameter,
             value,
             ..
-        } => Error::NonFiniteObservation {
+        }) => Error::Estimate(EstimateError::NonFiniteObservation {
             location: data.location(kept.start + k),
             sample: Some(kept.start + k),
             joint,
             parameter,
             value,
-        },
+        }),
         e => config.locate(e),
     })?;
     let dt =
@@ -156,16 +158,16 @@ pub fn identify(
     };
     let dominated = dominated_columns(&obs.w);
     let mut estimate = estimate_of(&obs).map_err(|e| match e {
-        Error::RankDeficient { ref unexcited, .. } => {
+        Error::Estimate(EstimateError::RankDeficient { ref unexcited, .. }) => {
             match dominated
                 .iter()
                 .find(|(c, _, _)| unexcited.contains(&obs.names[*c]))
             {
-                Some(&(c, row, share)) => Error::Outlier {
+                Some(&(c, row, share)) => Error::Estimate(EstimateError::Outlier {
                     location: location(row),
                     parameter: obs.names[c].clone(),
                     share,
-                },
+                }),
                 None => e,
             }
         }

@@ -2,6 +2,8 @@
 //! drive columns, parallel low-pass + decimation of every column and of the torque,
 //! removal of equations near rest, joint-major stacking.
 
+use crate::DataError;
+use crate::EstimateError;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
@@ -93,11 +95,11 @@ pub fn observe(
 ) -> Result<Observation> {
     let dof = model.dof();
     if signals.q.len() != dof {
-        return Err(Error::JointCountMismatch {
+        return Err(Error::Data(DataError::JointCountMismatch {
             context: "data".into(),
             expected: dof,
             found: signals.q.len(),
-        });
+        }));
     }
     let extra = &config.extra_columns;
     for c in extra {
@@ -228,13 +230,13 @@ pub fn observe(
     }
     if let Some((k, c, value)) = bad {
         let (j, col) = lay.of_channel(c);
-        return Err(Error::NonFiniteObservation {
+        return Err(Error::Estimate(EstimateError::NonFiniteObservation {
             location: format!("processed sample {k}"),
             sample: Some(k),
             joint: j + 1,
             parameter: col.map_or_else(|| "torque or velocity".to_string(), |i| names[i].clone()),
             value,
-        });
+        }));
     }
     let a = channels.len();
 
@@ -306,19 +308,19 @@ pub fn observe(
     }
     Observation::new(w, y, joint_rows, sample_of_row, names).map_err(|e| match e {
         // a decimated sample k is processed sample k * factor
-        Error::NonFiniteObservation {
+        Error::Estimate(EstimateError::NonFiniteObservation {
             sample: Some(k),
             joint,
             parameter,
             value,
             ..
-        } => Error::NonFiniteObservation {
+        }) => Error::Estimate(EstimateError::NonFiniteObservation {
             location: format!("processed sample {}", k * dec.factor()),
             sample: Some(k * dec.factor()),
             joint,
             parameter,
             value,
-        },
+        }),
         e => e,
     })
 }

@@ -100,7 +100,7 @@ pub(crate) fn prepare_rows(
     let sos = match &p.lowpass {
         Some(lp) => Some(
             butterworth_hz(lp.order, lp.cutoff, 1.0 / dt).map_err(|e| match e {
-                Error::InvalidConfig { key, problem, .. } => Error::setting(
+                Error::Setting { key, problem, .. } => Error::setting(
                     "Config",
                     if key == "order" {
                         "processing.lowpass.order"

@@ -1,5 +1,7 @@
 //! Pipeline tests on the synthetic model with known parameters.
 
+use crate::DataError;
+use crate::EstimateError;
 use std::path::Path;
 
 use crate::Model;
@@ -141,11 +143,11 @@ fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
     let mut cfg = config("");
     cfg.processing.rest_velocity = None;
     match identify(&model, &data, &cfg) {
-        Err(Error::RankDeficient {
+        Err(Error::Estimate(EstimateError::RankDeficient {
             unexcited,
             rank,
             columns,
-        }) => {
+        })) => {
             assert!(rank < columns);
             assert!(unexcited.iter().any(|n| n == "Ia6"), "{unexcited:?}");
             assert!(unexcited.iter().any(|n| n == "Fv6"), "{unexcited:?}");
@@ -213,11 +215,11 @@ fn bad_inputs_for_the_pipeline() {
     .unwrap();
     assert!(matches!(
         identify(&model, &data, &config("")),
-        Err(Error::JointCountMismatch {
+        Err(Error::Data(DataError::JointCountMismatch {
             expected: 6,
             found: 5,
             ..
-        })
+        }))
     ));
     let short = Dataset::new(
         "short",
@@ -235,7 +237,7 @@ fn bad_inputs_for_the_pipeline() {
         "[[extra_column]]\nname = \"Fv1\"\nterms = [{ row = 1, signal = \"qd\", joints = [1] }]\n";
     let e = identify(&model, &data, &config(dup)).unwrap_err();
     assert!(
-        matches!(&e, Error::ConfigKey { path, key, line: Some(_), .. } if path.ends_with("synthetic.toml") && key == "extra_column[1].name"),
+        matches!(&e, Error::Data(DataError::ConfigKey { path, key, line: Some(_), .. }) if path.ends_with("synthetic.toml") && key == "extra_column[1].name"),
         "{e}"
     );
     assert!(

@@ -1,5 +1,6 @@
 //! Plots of measured vs predicted torque per joint (SVG, with plotters).
 
+use crate::OutputError;
 use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
@@ -20,9 +21,11 @@ pub fn plot_torques(prediction: &Prediction, dir: &Path, prefix: &str) -> Result
         let path = dir.join(format!("{prefix}_joint{}.svg", j + 1));
         let t = &prediction.time[j];
         let mut svg = String::new();
-        plot_one(&mut svg, j + 1, t, m, p).map_err(|e| Error::Write {
-            path: path.clone(),
-            reason: e.to_string(),
+        plot_one(&mut svg, j + 1, t, m, p).map_err(|e| {
+            Error::Output(OutputError::Write {
+                path: path.clone(),
+                reason: e.to_string(),
+            })
         })?;
         crate::output::write_bytes(&path, svg.as_bytes())?;
         paths.push(path);

@@ -9,10 +9,12 @@
 //! assert!(sim.check(6).is_ok());
 //! ```
 
+mod error;
 mod forward;
 mod run;
 mod trajectory;
 
+pub use error::SimulateError;
 pub use forward::ForwardDynamics;
 pub use run::{
     DIVERGENCE_FACTOR, MAX_BANDWIDTH, MAX_SIMULATION_STEPS, MAX_SUBSTEPS, Noise, Simulated,

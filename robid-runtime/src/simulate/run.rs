@@ -20,10 +20,12 @@
 //! every reference sample the run is checked for divergence: a non-finite state, a
 //! tracking error above [`DIVERGENCE_FACTOR`] times (the joint's reference range + 1 rad),
 //! or a torque above [`MAX_TORQUE`](crate::limits::MAX_TORQUE) ends it with
-//! [`Error::Diverged`], which says whether the controller is too fast for the integration
+//! [`crate::SimulateError::Diverged`], which says whether the controller is too fast for the integration
 //! step.
 
+use crate::DataError;
 use crate::Model;
+use crate::SimulateError;
 use crate::error::{Error, Result, num};
 use crate::excite::check_parameters;
 use crate::limits::{MAX_ACCELERATION, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
@@ -176,11 +178,11 @@ impl Simulation {
         let n = model.dof();
         self.check(n)?;
         if reference.dof() != n {
-            return Err(Error::JointCountMismatch {
+            return Err(Error::Data(DataError::JointCountMismatch {
                 context: "reference trajectory".into(),
                 expected: n,
                 found: reference.dof(),
-            });
+            }));
         }
         let samples = reference.samples();
         crate::limits::check_size(
@@ -255,12 +257,12 @@ impl Simulation {
                  parameters"
                     .to_string()
             };
-            Error::Diverged {
+            Error::Simulate(SimulateError::Diverged {
                 time: reference.t[k],
                 sample: k,
                 reason,
                 fix,
-            }
+            })
         };
         let (mut q, mut qd) = (r0[0].clone(), r0[1].clone());
         let mut truth = Record {

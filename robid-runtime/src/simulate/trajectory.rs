@@ -3,6 +3,7 @@
 //! A trajectory file has the header `t,q1..qn,qd1..qdn,qdd1..qddn`; a simulated record
 //! adds `tau1..taun`. Signals are stored per joint: `q[j][k]` is joint j at sample k.
 
+use crate::DataError;
 use std::path::Path;
 
 use crate::data::{ColumnMapping, read_columns};
@@ -84,19 +85,19 @@ impl Trajectory {
         crate::data::check_joints(dof)?;
         let header = Self::header(dof);
         let mut table = read_columns(path, &header).map_err(|e| match e {
-            Error::MissingColumn {
+            Error::Data(DataError::MissingColumn {
                 path,
                 column,
                 available,
                 ..
-            } => Error::MissingColumn {
+            }) => Error::Data(DataError::MissingColumn {
                 path,
                 column,
                 available,
                 mapping: Box::new(ColumnMapping::Header {
                     expected: "t,q1..qn,qd1..qdn,qdd1..qddn".into(),
                 }),
-            },
+            }),
             e => e,
         })?;
         for (i, name) in header.iter().enumerate() {
@@ -171,13 +172,13 @@ impl Trajectory {
         }
         let at = |k: usize| format!("{what}, sample {k} (t = {})", self.t[k]);
         if let Some(k) = Quantity::Time.first_outside(&self.t) {
-            return Err(Error::OutOfRange {
+            return Err(Error::Data(DataError::OutOfRange {
                 location: format!("{what}, sample {k}"),
                 what: "time".into(),
                 quantity: "time",
                 value: self.t[k],
                 limit: Quantity::Time.limit(),
-            });
+            }));
         }
         if let Some(k) = (1..n).find(|&k| self.t[k] <= self.t[k - 1]) {
             return Err(Error::setting(
@@ -197,13 +198,13 @@ impl Trajectory {
         ] {
             for (j, v) in block.iter().enumerate() {
                 if let Some(k) = quantity.first_outside(v) {
-                    return Err(Error::OutOfRange {
+                    return Err(Error::Data(DataError::OutOfRange {
                         location: at(k),
                         what: format!("{name}{}", j + 1),
                         quantity: quantity.name(),
                         value: v[k],
                         limit: quantity.limit(),
-                    });
+                    }));
                 }
             }
         }

@@ -140,6 +140,19 @@ const HARMONICS: usize = 5;
 const BASE_FREQUENCY: f64 = 0.1;
 
 /// Runs the subcommand.
+/// The settings of `FourierDesign`, `PointDesign` and the sampling that flags fill, and
+/// their flags.
+const DESIGN_FLAGS: &[(&str, &str)] = &[
+    ("harmonics", "--harmonics"),
+    ("base_frequency", "--base-frequency"),
+    ("restarts", "--restarts"),
+    ("evaluations", "--evaluations"),
+    ("duration", "--duration"),
+    ("intervals", "--intervals"),
+    ("sweeps", "--sweeps"),
+    ("rate", "--rate"),
+];
+
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
     let model = load_model(&args.robot, &args.drive)?;
@@ -240,9 +253,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 progress: true,
                 ..FourierDesign::default()
             };
-            let result = design.optimize(&model, &limits, reference.as_deref())?;
+            let result = design
+                .optimize(&model, &limits, reference.as_deref())
+                .map_err(|e| e.on_flags(DESIGN_FLAGS))?;
             (
-                result.fourier.sample(args.duration, args.rate)?,
+                result
+                    .fourier
+                    .sample(args.duration, args.rate)
+                    .map_err(|e| e.on_flags(DESIGN_FLAGS))?,
                 result.evaluations,
             )
         }
@@ -260,8 +278,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 progress: true,
                 ..PointDesign::default()
             };
-            let result = design.optimize(&model, &limits, reference.as_deref())?;
-            (result.points.sample(args.rate)?, result.evaluations)
+            let result = design
+                .optimize(&model, &limits, reference.as_deref())
+                .map_err(|e| e.on_flags(DESIGN_FLAGS))?;
+            let trajectory = result
+                .points
+                .sample(args.rate)
+                .map_err(|e| e.on_flags(DESIGN_FLAGS))?;
+            (trajectory, result.evaluations)
         }
     };
     let elapsed = start.elapsed();

@@ -147,10 +147,10 @@ fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
 /// named as that file: the runtime reports such keys as "config" keys.
 fn about(path: &Path, e: robid_runtime::Error) -> Error {
     match e {
-        robid_runtime::Error::InvalidConfig { key, problem, .. } => {
+        robid_runtime::Error::Setting { key, problem, .. } => {
             format!("{}: `{key}`: {problem}", path.display()).into()
         }
-        robid_runtime::Error::ConfigSyntax { reason, .. } => {
+        robid_runtime::Error::Data(robid_runtime::DataError::ConfigSyntax { reason, .. }) => {
             format!("{}: {reason}", path.display()).into()
         }
         other => other.into(),

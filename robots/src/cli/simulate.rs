@@ -93,7 +93,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         },
         ..Simulation::default()
     };
-    let result = sim.run(&model, &base, &reference)?;
+    let result = sim
+        .run(&model, &base, &reference)
+        .map_err(|e| e.on_flags(SIMULATION_FLAGS))?;
     let tolerance = TRACKING_LIMIT + 10.0 * (args.position_noise + args.quantization);
     check_result(&result.truth, &reference, tolerance)?;
     check_result(&result.measured, &reference, f64::INFINITY)?;
@@ -177,6 +179,14 @@ fn diverged(what: &str, t: f64) -> Error {
     )
     .into()
 }
+
+/// The settings of `Simulation` that flags fill, and their flags.
+const SIMULATION_FLAGS: &[(&str, &str)] = &[
+    ("bandwidth", "--bandwidth"),
+    ("noise.torque", "--torque-noise"),
+    ("noise.position", "--position-noise"),
+    ("noise.quantization", "--quantization"),
+];
 
 /// The drive terms named on the command line (`Ia`, `Fv`, `Fc`, `Fo`).
 pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {

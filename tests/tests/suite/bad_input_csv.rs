@@ -5,6 +5,7 @@
 //! duplicate column names are an error naming both; another separator gets a message that
 //! says what is supported; a truncated gzip file is called truncated or corrupt.
 
+use robid_runtime::DataError;
 use tests::fuzz_data;
 
 use std::path::{Path, PathBuf};
@@ -112,7 +113,7 @@ fn duplicate_column_names_are_an_error_naming_both() {
     let text = plain.replacen("q3,", "q2,", 1);
     let e = load(&Config::default_mapping(), &[write("dup.csv", &text)], 6).unwrap_err();
     assert!(
-        matches!(&e, Error::DuplicateColumn { column, first: 3, second: 4, .. } if column == "q2"),
+        matches!(&e, Error::Data(DataError::DuplicateColumn { column, first: 3, second: 4, .. }) if column == "q2"),
         "{e}"
     );
     assert!(e.to_string().contains("`q2` twice (fields 3 and 4)"), "{e}");
@@ -130,7 +131,7 @@ fn other_separators_get_a_message_that_says_what_is_supported() {
         .unwrap_err();
         let text = e.to_string();
         assert!(
-            matches!(&e, Error::UnsupportedSeparator { separator, .. } if separator == said),
+            matches!(&e, Error::Data(DataError::UnsupportedSeparator { separator, .. }) if separator == said),
             "{text}"
         );
         assert!(
@@ -149,7 +150,10 @@ fn a_truncated_gzip_is_called_truncated_or_corrupt() {
     std::fs::write(&cut, &bytes[..bytes.len() / 3]).unwrap();
     let e = read_columns(&cut, &["Joint_1".to_string()]).unwrap_err();
     let text = e.to_string();
-    assert!(matches!(e, Error::Corrupt { .. }), "{text}");
+    assert!(
+        matches!(e, Error::Data(DataError::Corrupt { .. })),
+        "{text}"
+    );
     assert!(
         text.contains("truncated or corrupt") && !text.contains("permissions"),
         "{text}"

@@ -4,6 +4,8 @@
 //! themselves finish on such an entry (column scaling, a capped SVD); every iterative loop
 //! stops at a documented cap.
 
+use robid_runtime::DataError;
+use robid_runtime::EstimateError;
 use tests::fuzz_data;
 
 use std::sync::mpsc;
@@ -58,7 +60,10 @@ fn a_huge_sample_is_named_at_load_time_for_every_method() {
         let f = file.clone();
         let e = within(30, "load", move || load(&config, &[f], 6).unwrap_err());
         let text = e.to_string();
-        assert!(matches!(e, Error::OutOfRange { .. }), "{text}");
+        assert!(
+            matches!(e, Error::Data(DataError::OutOfRange { .. })),
+            "{text}"
+        );
         assert!(
             text.contains("huge.csv:58: column `qdd1` is 1e200") && text.contains("<= 1e8"),
             "{text}"
@@ -136,7 +141,7 @@ fn the_estimators_finish_on_a_huge_entry() {
     )
     .unwrap_err();
     assert!(
-        matches!(&e, Error::NonFiniteObservation { joint: 1, parameter, .. } if parameter == "b"),
+        matches!(&e, Error::Estimate(EstimateError::NonFiniteObservation { joint: 1, parameter, .. }) if parameter == "b"),
         "{e}"
     );
 }

@@ -4,6 +4,7 @@
 //! (config); sizes (samples = duration x rate, integration steps) are checked against their
 //! limits before anything is allocated, with an error that names them.
 
+use robid_runtime::DataError;
 use tests::fuzz_data;
 
 use std::path::PathBuf;
@@ -46,7 +47,10 @@ fn each_quantity_is_checked_against_its_range_with_line_and_column() {
         let f = record_with(&format!("{column}.csv"), 20, column, value);
         let e = load(&Config::default_mapping(), &[f], 6).unwrap_err();
         let text = e.to_string();
-        assert!(matches!(e, Error::OutOfRange { .. }), "{text}");
+        assert!(
+            matches!(e, Error::Data(DataError::OutOfRange { .. })),
+            "{text}"
+        );
         assert!(
             text.contains(&format!("{column}.csv:22: column `{column}`"))
                 && text.contains(&format!("|{quantity}| <= {limit}")),
@@ -132,7 +136,7 @@ fn config_numbers_are_checked_and_located() {
             Ok(_) => panic!("{key}: loaded"),
         };
         assert!(
-            matches!(&e, Error::ConfigKey { key: k, line: Some(l), .. } if k == key && *l == line),
+            matches!(&e, Error::Data(DataError::ConfigKey { key: k, line: Some(l), .. }) if k == key && *l == line),
             "{key}: {e}"
         );
         assert!(
@@ -151,7 +155,7 @@ fn an_absurd_sample_rate_from_time_stamps_names_time_scale() {
     let config = Config::from_toml_str(text, &dir().join("ns.toml")).unwrap();
     let e = load(&config, &[f], 6).unwrap_err();
     assert!(
-        matches!(&e, Error::ConfigKey { key, line: Some(2), .. } if key == "time_scale"),
+        matches!(&e, Error::Data(DataError::ConfigKey { key, line: Some(2), .. }) if key == "time_scale"),
         "{e}"
     );
 }
@@ -167,7 +171,7 @@ fn trajectory_sizes_are_checked_before_allocating() {
     let start = Instant::now();
     let e = fourier.sample(30.0, 1e9).unwrap_err();
     assert!(
-        matches!(&e, Error::InvalidConfig { owner, key, .. } if owner == "Fourier::sample" && key == "rate"),
+        matches!(&e, Error::Setting { owner, key, .. } if owner == "Fourier::sample" && key == "rate"),
         "{e}"
     );
     let e = fourier.sample(1e9, 500.0).unwrap_err();

@@ -7,6 +7,7 @@
 //! - a bad trajectory row in `simulate` was blamed on the parameters: it is named by its row;
 //! - config keys are named by file:line:column, library settings by their field.
 
+use robid_runtime::EstimateError;
 use tests::fuzz_data;
 
 use std::path::PathBuf;
@@ -79,7 +80,10 @@ fn an_acceleration_outlier_is_named_at_its_row_not_blamed_on_the_trajectory() {
     match identify(&Ur5e, &data, &config) {
         Err(e) => {
             let m = e.to_string();
-            assert!(matches!(e, Error::Outlier { .. }), "{m}");
+            assert!(
+                matches!(e, Error::Estimate(EstimateError::Outlier { .. })),
+                "{m}"
+            );
             assert!(m.contains(at) && !m.contains("richer trajectory"), "{m}");
         }
         Ok(id) => {
@@ -171,7 +175,7 @@ fn config_keys_are_named_by_file_line_and_settings_by_their_field() {
     }
     .check(6)
     .unwrap_err();
-    assert!(matches!(e, Error::InvalidConfig { .. }));
+    assert!(matches!(e, Error::Setting { .. }));
     assert_eq!(
         e.to_string(),
         "Simulation `bandwidth`: -1 Hz must lie in (0, 1e6] Hz"

@@ -8,6 +8,7 @@
 //! - `--sigma 0` reported "weights: [inf, ...]": a zero noise is refused by name;
 //! - torques that are all zero give an error that says so, not an infinite relative error.
 
+use robid_runtime::SimulateError;
 use tests::fuzz_data;
 
 use robid_runtime::Error;
@@ -35,7 +36,10 @@ fn a_diverging_simulation_is_an_error_that_blames_the_bandwidth() {
     };
     let e = fast.run(&Ur5e, &base, &r).unwrap_err();
     let text = e.to_string();
-    assert!(matches!(e, Error::Diverged { .. }), "{text}");
+    assert!(
+        matches!(e, Error::Simulate(SimulateError::Diverged { .. })),
+        "{text}"
+    );
     assert!(
         text.contains("the controller bandwidth 1000 Hz is too high for the integration step")
             && text.contains("lower the bandwidth below"),

@@ -1,6 +1,7 @@
 //! Bad input to the feasible-parameter extraction gives a clear error, never a panic.
 
 use robid_runtime::Error;
+use robid_runtime::FeasibleError;
 use robid_runtime::feasible::{Bounds, LinkBounds, Problem, SdpOptions, solve_sdp};
 
 /// One link, base parameters ZZ1 and M1 (K picks two standard parameters).
@@ -33,7 +34,7 @@ fn nan_and_wrong_counts_are_rejected() {
     let e = p
         .clone()
         .with_identified(&["ZZ1".into(), "Q9".into()], &[1.0, 1.0], &[0.1, 0.1]);
-    assert!(matches!(e, Err(Error::InvalidConfig { .. })));
+    assert!(matches!(e, Err(Error::Setting { .. })));
     assert!(Problem::from_rows(vec!["XX1".into()], vec!["B".into()], &[vec![1.0, 2.0]]).is_err());
 }
 
@@ -52,11 +53,11 @@ fn bounds_that_exclude_every_solution_are_reported() {
     };
     assert!(matches!(
         b.validate(),
-        Err(Error::NoFeasibleParameters { .. })
+        Err(Error::Feasible(FeasibleError::NoFeasibleParameters { .. }))
     ));
     assert!(matches!(
         solve_sdp(&p, &b, &SdpOptions::default()),
-        Err(Error::NoFeasibleParameters { .. })
+        Err(Error::Feasible(FeasibleError::NoFeasibleParameters { .. }))
     ));
 }
 
@@ -76,7 +77,9 @@ fn inconsistent_identified_values_are_projected_onto_consistent_ones() {
 fn sdp_without_the_feature_says_how_to_enable_it() {
     let p = problem().with_target(&[0.1, 1.0], &[0.01, 0.01]).unwrap();
     match solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()) {
-        Err(e @ Error::Unavailable { .. }) => assert!(e.to_string().contains("--features sdp")),
+        Err(e @ Error::Feasible(FeasibleError::Unavailable { .. })) => {
+            assert!(e.to_string().contains("--features sdp"))
+        }
         other => panic!("expected Error::Unavailable, got {other:?}"),
     }
 }

@@ -3,6 +3,8 @@
 //! `load` and `identify` with the compiled UR5e: clear errors naming the file, line or
 //! column and the parameters not excited; never a panic.
 
+use robid_runtime::DataError;
+use robid_runtime::EstimateError;
 use std::path::PathBuf;
 
 use robid_runtime::Error;
@@ -72,7 +74,7 @@ fn run(file: PathBuf, config: &str) -> Result<(), Error> {
 fn wrong_joint_count_in_data() {
     let e = run(csv("five.csv", 400, 5, false, |s| s), CONFIG).unwrap_err();
     assert!(
-        matches!(e, Error::MissingColumn { ref column, .. } if column == "q6"),
+        matches!(e, Error::Data(DataError::MissingColumn { ref column, .. }) if column == "q6"),
         "{e}"
     );
     let e = run(
@@ -82,7 +84,7 @@ fn wrong_joint_count_in_data() {
     .unwrap_err();
     // the config's `dof` is named at its file:line
     assert!(
-        matches!(&e, Error::ConfigKey { line: Some(1), key, .. } if key == "dof"),
+        matches!(&e, Error::Data(DataError::ConfigKey { line: Some(1), key, .. }) if key == "dof"),
         "{e}"
     );
     assert!(
@@ -102,7 +104,10 @@ fn nan_in_csv_names_the_line_and_column() {
     });
     let e = run(f, CONFIG).unwrap_err();
     let text = e.to_string();
-    assert!(matches!(e, Error::NotFinite { line: 11, .. }), "{text}");
+    assert!(
+        matches!(e, Error::Data(DataError::NotFinite { line: 11, .. })),
+        "{text}"
+    );
     assert!(text.contains("nan.csv") && text.contains("q3"), "{text}");
 }
 
@@ -113,7 +118,7 @@ fn missing_column_lists_the_header() {
     });
     let e = run(f, CONFIG).unwrap_err();
     assert!(
-        matches!(e, Error::MissingColumn { ref column, .. } if column == "tau4"),
+        matches!(e, Error::Data(DataError::MissingColumn { ref column, .. }) if column == "tau4"),
         "{e}"
     );
     assert!(e.to_string().contains("torque4"), "{e}");
@@ -127,7 +132,10 @@ fn non_monotonic_time() {
         lines.join("\n")
     });
     let e = run(f, CONFIG).unwrap_err();
-    assert!(matches!(e, Error::NonMonotonicTime { .. }), "{e}");
+    assert!(
+        matches!(e, Error::Data(DataError::NonMonotonicTime { .. })),
+        "{e}"
+    );
 }
 
 #[test]
@@ -182,11 +190,11 @@ fn rank_of(w: &nalgebra::DMatrix<f64>, keep: Option<&[usize]>) -> usize {
 fn rank_deficient_data_names_the_parameters_not_excited() {
     let e = run(csv("still.csv", 600, 6, true, |s| s), CONFIG).unwrap_err();
     match &e {
-        Error::RankDeficient {
+        Error::Estimate(EstimateError::RankDeficient {
             rank,
             columns,
             unexcited,
-        } => {
+        }) => {
             // the same motion through the model, computed here: W's rank, and the named
             // parameters are exactly those in its dependencies
             let names = robid_runtime::model::base_parameter_names(&Ur5e);

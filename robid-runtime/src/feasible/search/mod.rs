@@ -23,6 +23,7 @@ mod anneal;
 mod levenberg;
 mod parametrise;
 
+use crate::FeasibleError;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -342,8 +343,10 @@ pub fn solve_anneal(
     let (best, _) = runs
         .into_iter()
         .min_by(|a, b| a.1.total_cmp(&b.1))
-        .ok_or_else(|| Error::NoFeasibleParameters {
-            reason: "the search ran no restart".to_owned(),
+        .ok_or_else(|| {
+            Error::Feasible(FeasibleError::NoFeasibleParameters {
+                reason: "the search ran no restart".to_owned(),
+            })
         })?;
     let p = objective.standard(&objective.full(&best));
     Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())

@@ -1,0 +1,199 @@
+//! Reading inputs: data files, identification configs and parameter files, each problem
+//! named by file, line and column (or config key) with the fix.
+
+use super::ColumnMapping;
+use crate::error::place;
+use std::path::PathBuf;
+
+/// A data file, a config file or a parameter file cannot be used.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum DataError {
+    /// A file could not be opened or read.
+    #[error("{path}: cannot read: {source}; check the path and permissions")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating-system error.
+        source: std::io::Error,
+    },
+    /// A file was read but its content is damaged (e.g. a truncated gzip stream).
+    #[error(
+        "{path}: the file is truncated or corrupt ({reason}); copy or export it again from its source"
+    )]
+    Corrupt {
+        /// The file.
+        path: PathBuf,
+        /// What the decoder reported.
+        reason: String,
+    },
+    /// The CSV structure is broken (e.g. a row with a different number of fields).
+    #[error("{path}:{line}: malformed CSV: {reason}; every row needs as many fields as the header")]
+    Csv {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// What the CSV reader reported.
+        reason: String,
+    },
+    /// The file separates its fields with something other than a comma.
+    #[error(
+        "{path}: the header `{header}` is separated by {separator}; robid reads comma-separated files (fields separated by `,`, optionally quoted with `\"`, `#` starts a comment line): convert the file to commas (with `.` as the decimal point)"
+    )]
+    UnsupportedSeparator {
+        /// The file.
+        path: PathBuf,
+        /// The header line (shortened).
+        header: String,
+        /// The separator found, described (e.g. "`;`", "tabs").
+        separator: String,
+    },
+    /// Two columns of the header have a name that is read.
+    #[error(
+        "{path}: the header names column `{column}` twice (fields {first} and {second}); rename one of them so that `{column}` means one column"
+    )]
+    DuplicateColumn {
+        /// The file.
+        path: PathBuf,
+        /// The name.
+        column: String,
+        /// 1-based position of the first field with that name.
+        first: usize,
+        /// 1-based position of the second field with that name.
+        second: usize,
+    },
+    /// A field is not a number.
+    #[error(
+        "{path}:{line}: column `{column}` holds `{text}`, which is not a number; write a decimal number such as 1.5e-3"
+    )]
+    NotANumber {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// Column name.
+        column: String,
+        /// The offending text.
+        text: String,
+    },
+    /// A value is NaN or infinite.
+    #[error(
+        "{path}:{line}: column `{column}` is {value}; remove or repair this row (NaN and infinite values cannot be identified from)"
+    )]
+    NotFinite {
+        /// The file (or data set).
+        path: PathBuf,
+        /// 1-based line (or sample number for a data set built in code).
+        line: u64,
+        /// Column name.
+        column: String,
+        /// The value.
+        value: f64,
+    },
+    /// A finite value outside the documented range of its quantity (see [`crate::limits`]).
+    #[error(
+        "{location}: {what} is {value:e}, outside the accepted range |{quantity}| <= {limit:e}; repair or remove this row (a value this large is a logging, unit or export error, not a measurement)"
+    )]
+    OutOfRange {
+        /// Where: `file:line` of a data file, or the data set and sample.
+        location: String,
+        /// What holds the value (e.g. "column `qdd1`").
+        what: String,
+        /// The quantity whose range applies (e.g. "acceleration").
+        quantity: &'static str,
+        /// The value.
+        value: f64,
+        /// The largest accepted magnitude.
+        limit: f64,
+    },
+    /// A column named by the column mapping is not in the file's header.
+    #[error("{path}: no column `{column}` in the header (found: {}); {}", available.join(", "), mapping.fix())]
+    MissingColumn {
+        /// The file.
+        path: PathBuf,
+        /// The missing column.
+        column: String,
+        /// The header's columns.
+        available: Vec<String>,
+        /// Where the column names came from (a config file, the default mapping, code).
+        mapping: Box<ColumnMapping>,
+    },
+    /// Time stamps do not increase.
+    #[error(
+        "{path}:{line}: time {value} does not increase (previous {previous}); sort the rows by time or remove duplicates"
+    )]
+    NonMonotonicTime {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line of the offending sample.
+        line: u64,
+        /// Previous time stamp.
+        previous: f64,
+        /// This time stamp.
+        value: f64,
+    },
+    /// The number of joints in the data does not match the model.
+    #[error(
+        "{context}: {found} joints, the model has {expected}; list exactly one column per joint"
+    )]
+    JointCountMismatch {
+        /// Where the count was found.
+        context: String,
+        /// The model's joint count.
+        expected: usize,
+        /// The count found.
+        found: usize,
+    },
+    /// Two files to be joined sample by sample have different lengths.
+    #[error(
+        "{first} has {first_rows} rows but {second} has {second_rows}; give both files the same rows, or a time column in each so they can be joined by time"
+    )]
+    RowCountMismatch {
+        /// First file.
+        first: PathBuf,
+        /// Its rows.
+        first_rows: usize,
+        /// Second file.
+        second: PathBuf,
+        /// Its rows.
+        second_rows: usize,
+    },
+    /// The config file is not valid TOML or does not match the expected format.
+    #[error("{path}: invalid config: {reason}")]
+    ConfigSyntax {
+        /// The config file.
+        path: PathBuf,
+        /// The parser's message (with line and column).
+        reason: String,
+    },
+    /// A key of a config file has a value that is out of range or inconsistent (or a
+    /// required key is missing: then `line` is `None`).
+    #[error("{}: `{key}`: {problem}", place(path, *line, *column))]
+    ConfigKey {
+        /// The config file.
+        path: PathBuf,
+        /// 1-based line of the key, when it is in the file.
+        line: Option<usize>,
+        /// 1-based column of the key, when it is in the file.
+        column: Option<usize>,
+        /// The key as a dotted path, arrays of tables numbered from 1 (`source[2].torque`).
+        key: String,
+        /// What is wrong and what to write instead.
+        problem: String,
+    },
+    /// A parameter file (`[standard]` or `[base]` table, see [`crate::data::ParameterFile`])
+    /// is not valid or holds a value that cannot be (`line` is `None` for a problem of the
+    /// whole file).
+    #[error("{}: {problem}", place(path, *line, *column))]
+    ParameterFile {
+        /// The parameter file.
+        path: PathBuf,
+        /// 1-based line of the entry.
+        line: Option<usize>,
+        /// 1-based column (in characters) of the entry.
+        column: Option<usize>,
+        /// What is wrong and what to write instead.
+        problem: String,
+    },
+}

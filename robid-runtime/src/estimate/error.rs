@@ -1,0 +1,47 @@
+//! What the data cannot give an estimator: unexcited parameters, outliers, non-finite rows.
+
+/// The observation matrix cannot be solved as given.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum EstimateError {
+    /// The data do not excite every parameter: the observation matrix is rank deficient.
+    #[error("rank-deficient data: rank {rank} of {columns} parameters; not excited: {}; use a richer trajectory or remove these parameters", unexcited.join(", "))]
+    RankDeficient {
+        /// Numerical rank found.
+        rank: usize,
+        /// Number of parameters (columns).
+        columns: usize,
+        /// The parameters that make up the unexcited directions, most affected first.
+        unexcited: Vec<String>,
+    },
+    /// One or a few equations dominate the column of a parameter the data do not otherwise
+    /// determine: an outlier in the data, not a poor trajectory.
+    #[error(
+        "{location}: an outlier: {:.1} % of column `{parameter}` comes from the equations around this row, which hides the rest of the record; repair or remove the row (check its velocities and accelerations)",
+        100.0 * share
+    )]
+    Outlier {
+        /// Where the largest equation comes from (file:line when known).
+        location: String,
+        /// The parameter whose column it dominates.
+        parameter: String,
+        /// The share of the column's squared norm held by the largest equations.
+        share: f64,
+    },
+    /// The observation matrix (or the torque vector) holds NaN or an infinite value.
+    #[error(
+        "the observation matrix is {value} at {location}, joint {joint}, column `{parameter}`: the regressor overflowed there; check that row's positions, velocities and accelerations (and the extra column's definition)"
+    )]
+    NonFiniteObservation {
+        /// Where the equation comes from: `file:line` when known, else the sample.
+        location: String,
+        /// 0-based sample index in the data set (after any resampling), when known.
+        sample: Option<usize>,
+        /// 1-based joint (equation row of the regressor).
+        joint: usize,
+        /// The parameter (column), or `torque` for the measurement.
+        parameter: String,
+        /// The value found.
+        value: f64,
+    },
+}
