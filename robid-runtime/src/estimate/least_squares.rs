@@ -254,6 +254,69 @@ mod tests {
     }
 
     #[test]
+    fn the_rank_tolerance_must_lie_strictly_between_0_and_1() {
+        let (obs, _) = problem();
+        for bad in [0.0, 1.0, -1e-10, 1.5, f64::NAN, f64::INFINITY] {
+            for e in [ols(&obs, bad), wls(&obs, bad)] {
+                let e = e.unwrap_err().to_string();
+                assert!(e.contains("estimation.rank_tolerance"), "{bad}: {e}");
+            }
+        }
+        assert!(ols(&obs, 0.5).is_ok() && wls(&obs, f64::MIN_POSITIVE).is_ok());
+    }
+
+    /// A joint with no more equations than parameters has no residual degrees of freedom:
+    /// its sigma is taken over its rows (not divided by zero), so WLS stays finite.
+    #[test]
+    fn a_joint_with_as_many_rows_as_parameters_gets_a_finite_weight() {
+        let n = 100;
+        let rows = n + 3;
+        let mut w = DMatrix::zeros(rows, 3);
+        let mut y = DVector::zeros(rows);
+        for k in 0..rows {
+            let t = k as f64 * 0.1;
+            w[(k, 0)] = t.sin();
+            w[(k, 1)] = t.cos();
+            w[(k, 2)] = 1.0;
+            y[k] = 2.0 * t.sin() - t.cos() + 0.5 + 0.01 * (k as f64 * 7.3).sin();
+        }
+        let names = vec!["a".into(), "b".into(), "c".into()];
+        let obs = Observation::new(
+            w,
+            y,
+            vec![0..n, n..rows],
+            (0..n).chain(0..3).collect(),
+            names,
+        )
+        .unwrap();
+        let e = wls(&obs, 1e-10).unwrap();
+        let weights = e.weights.clone().unwrap();
+        assert!(
+            weights.iter().all(|v| v.is_finite() && *v > 0.0),
+            "{weights:?}"
+        );
+        // the three rows of joint 2 still leave a residual (the fit is shared), so its
+        // sigma is theirs: sum of squares over 3 rows
+        let r: Vec<f64> = (n..rows)
+            .map(|k| {
+                let x = obs.w.row(k);
+                obs.y[k]
+                    - (0..3)
+                        .map(|c| x[c] * ols(&obs, 1e-10).unwrap().values[c])
+                        .sum::<f64>()
+            })
+            .collect();
+        let sigma2 = (r.iter().map(|v| v * v).sum::<f64>() / 3.0).sqrt();
+        let largest = weights.iter().map(|w| 1.0 / w).fold(0.0, f64::max);
+        let expected = 1.0 / sigma2.max(SIGMA_FLOOR * largest);
+        assert!(
+            (weights[1] / expected - 1.0).abs() < 1e-9,
+            "{} vs {expected}",
+            weights[1]
+        );
+    }
+
+    #[test]
     fn duplicate_names_are_an_error() {
         assert!(check_names(&["a".into(), "b".into(), "a".into()]).is_err());
         assert!(check_names(&["a".into(), "b".into()]).is_ok());
