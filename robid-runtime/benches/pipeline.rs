@@ -6,6 +6,8 @@ use std::path::{Path, PathBuf};
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use robid_runtime::Model;
+#[allow(unused_imports)]
+use robid_runtime::Real;
 use robid_runtime::data::{Config, load};
 #[allow(unused_imports)]
 use robid_runtime::model::{LengthError, ProgramKind, check_arguments, check_length};

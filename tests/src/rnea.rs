@@ -24,6 +24,7 @@
 //!           plus Ia qdd + Fv qd + Fc sign(qd) + Fo.
 //! ```
 
+use robid_runtime::Real;
 use robid_symbolic::robot::{DriveTerm, Inertial, ParameterKind};
 use robid_symbolic::{Arena, Convention, JointKind, Robot};
 
@@ -238,7 +239,7 @@ impl Chain {
                 JointKind::Prismatic => dot(u, f),
             };
             let l = &links[j];
-            tau[j] = rigid + l.ia * qdd[j] + l.fv * qd[j] + l.fc * sign(qd[j]) + l.fo;
+            tau[j] = rigid + l.ia * qdd[j] + l.fv * qd[j] + l.fc * qd[j].sign() + l.fo;
         }
         tau
     }
@@ -360,17 +361,6 @@ pub fn rot_z(t: f64) -> M3 {
 
 fn identity() -> M3 {
     [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
-}
-
-/// The sign of `x`, 0 at 0 (the Coulomb friction term of the drive model).
-pub fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
 }
 
 fn column(m: &M3, k: usize) -> V3 {

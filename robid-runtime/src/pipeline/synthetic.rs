@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 use super::Model;
+use super::Real;
 use super::{LengthError, ProgramKind, check_arguments, check_length};
 
 /// Joints.
@@ -34,16 +35,6 @@ impl Default for Synthetic {
     }
 }
 
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
-}
-
 impl Synthetic {
     fn regressor(q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
         let p = DOF * PER_LINK;
@@ -65,7 +56,7 @@ impl Synthetic {
             let row = &mut out[k * p..(k + 1) * p];
             row[base + 4] = qdd[k];
             row[base + 5] = qd[k];
-            row[base + 6] = sign(qd[k]);
+            row[base + 6] = qd[k].sign();
             row[base + 7] = 1.0;
         }
     }

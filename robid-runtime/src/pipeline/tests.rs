@@ -10,6 +10,8 @@ use crate::drive::ExtraColumn;
 use crate::error::Error;
 // used by the synthetic model (a child module, also built by benches/pipeline.rs)
 #[allow(unused_imports)]
+use crate::Real;
+#[allow(unused_imports)]
 use crate::model::{LengthError, ProgramKind, check_arguments, check_length};
 use crate::pipeline::{identify, validate};
 

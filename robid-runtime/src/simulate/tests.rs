@@ -2,6 +2,7 @@
 //! exactly known model for the unit tests of `simulate` and `excite`.
 
 use crate::Model;
+use crate::Real;
 use crate::model::{LengthError, ProgramKind, check_arguments, check_length};
 
 /// Gravity (m/s^2).
@@ -23,16 +24,6 @@ impl Default for Pendulum {
             l1: 0.5,
             names: names.iter().map(|s| s.to_string()).collect(),
         }
-    }
-}
-
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
 
@@ -114,7 +105,7 @@ impl Pendulum {
             G0 * c1,
             -G0 * s1,
             qd[0],
-            sign(qd[0]),
+            qd[0].sign(),
             0.0,
             0.0,
         ];
@@ -129,7 +120,7 @@ impl Pendulum {
             0.0,
             0.0,
             qd[1],
-            sign(qd[1]),
+            qd[1].sign(),
         ];
         out[..10].copy_from_slice(&row1);
         out[10..20].copy_from_slice(&row2);

@@ -3,6 +3,7 @@
 //! compiled in.
 
 use super::{Instr, Program, Value};
+use robid_runtime::Real;
 
 /// Inputs or outputs whose lengths do not match the program's groups.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -55,7 +56,7 @@ impl Program {
                     Instr::Neg(a) => -v(a),
                     Instr::Sin(a) => v(a).sin(),
                     Instr::Cos(a) => v(a).cos(),
-                    Instr::Sign(a) => sign(v(a)),
+                    Instr::Sign(a) => v(a).sign(),
                     Instr::Sqrt(a) => v(a).sqrt(),
                 }
             };
@@ -83,17 +84,6 @@ impl Program {
         let mut slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
         self.run(inputs, &mut slices, &mut Vec::new())?;
         Ok(outs)
-    }
-}
-
-/// -1, 0 or 1 (0 at zero, as `Real::sign`).
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
 

@@ -19,12 +19,13 @@
 //! `robots::models::consistency`).
 
 use robid_runtime::Model;
+use robid_runtime::Real;
 use robid_runtime::model::ProgramKind;
 use robid_symbolic::sample::Rng;
 use robid_symbolic::{Drive, Robot};
 use robots::interpreted::Interpreted;
 use tests::reference::by_name;
-use tests::rnea::{Chain, Link, links_from_standard, sign};
+use tests::rnea::{Chain, Link, links_from_standard};
 use tests::state::{close, random_parameters, random_state};
 
 /// Rounding of the two computations differs; a wrong term is O(1) (relative to the
@@ -127,7 +128,7 @@ fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states:
         model.coriolis_into(q, qd, &base, &mut c).unwrap();
         let moving = rnea(&links, qd, &zero);
         let want: Vec<f64> = (0..n)
-            .map(|j| moving[j] - at_rest[j] - links[j].fv * qd[j] - links[j].fc * sign(qd[j]))
+            .map(|j| moving[j] - at_rest[j] - links[j].fv * qd[j] - links[j].fc * qd[j].sign())
             .collect();
         assert_close(&what("coriolis vs RNEA"), &c, &want, RELATIVE);
         let christoffel = christoffel_times(model, q, qd, &base);
