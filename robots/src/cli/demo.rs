@@ -4,7 +4,6 @@
 //! estimate with FIGAROH's published base parameters, and write the report (JSON and SVG
 //! plots of measured vs predicted torque per joint) into `./robid-demo/`.
 
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
@@ -18,6 +17,7 @@ use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::report::{Report, plot_torques, text_table};
 use robid_runtime::validate::Prediction;
 use robid_symbolic::Robot;
+use robots::figaroh::{self, Combination, combination, same};
 use robots::interpreted::{Chosen, model_for};
 
 use super::{Error, files, out};
@@ -27,8 +27,6 @@ const ROBOT: &str = include_str!("../../configs/tx40_robot.toml");
 const CONFIG: &str = include_str!("../../configs/tx40.toml");
 const POSITIONS: &[u8] = include_bytes!("../../../data/staubli_tx40/data/pos_read_data.csv.gz");
 const TORQUES: &[u8] = include_bytes!("../../../data/staubli_tx40/data/curr_data.csv.gz");
-/// FIGAROH's base parameters for this log: `expression, OLS value, rel. std %, WLS, rel. std %`.
-const FIGAROH: &str = include_str!("../../../data/staubli_tx40/reference/TX40_bp_5.csv");
 /// Where the report goes.
 const OUTPUT: &str = "robid-demo";
 /// Training rows and held-out rows of the log (the README's temporal split).
@@ -135,55 +133,13 @@ fn rows(
 }
 
 /// A linear combination of standard parameters: name -> coefficient.
-type Combination = BTreeMap<String, f64>;
-
-/// Parses `a + 0.5*b - c`, with names passed through `rename`.
-fn parse(text: &str, rename: impl Fn(&str) -> String) -> Option<Combination> {
-    let mut out = Combination::new();
-    for term in text.replace(" - ", " + -").split(" + ") {
-        let term = term.trim();
-        let (sign, term) = match term.strip_prefix('-') {
-            Some(t) => (-1.0, t.trim()),
-            None => (1.0, term),
-        };
-        let (coef, name) = match term.split_once('*') {
-            Some((c, n)) => (c.trim().parse::<f64>().ok()?, n.trim()),
-            None => (1.0, term),
-        };
-        *out.entry(rename(name)).or_insert(0.0) += sign * coef;
-    }
-    Some(out)
-}
-
-/// FIGAROH's names in ours: Izz1 -> ZZ1, mx2 -> MX2, m3 -> M3, fs1 -> Fc1, off1 -> Fo1.
-fn figaroh_name(name: &str) -> String {
-    let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
-    let stem = &name[..name.len() - digits.len()];
-    let ours = match stem {
-        "Ixx" | "Iyy" | "Izz" | "Ixy" | "Ixz" | "Iyz" => stem[1..].to_uppercase(),
-        "mx" | "my" | "mz" | "m" => stem.to_uppercase(),
-        "fv" => "Fv".into(),
-        "fs" => "Fc".into(),
-        "off" => "Fo".into(),
-        _ => return name.to_string(),
-    };
-    format!("{ours}{digits}")
-}
-
-fn same(a: &Combination, b: &Combination) -> bool {
-    a.len() == b.len()
-        && a.iter()
-            .zip(b)
-            .all(|((n, x), (m, y))| n == m && (x - y).abs() <= 1e-4 * x.abs().max(1.0))
-}
-
 /// Our estimate next to FIGAROH's OLS values, matched by expression.
 fn compare(chosen: &Chosen, e: &Estimate) -> String {
     let ours: Vec<Option<Combination>> = e
         .names
         .iter()
         .map(|n| match chosen.expression(n) {
-            Some(x) => parse(&x, str::to_string),
+            Some(x) => combination(&x, str::to_string),
             None => Some(Combination::from([(n.clone(), 1.0)])),
         })
         .collect();
@@ -193,17 +149,11 @@ fn compare(chosen: &Chosen, e: &Estimate) -> String {
         "{:<7} {:>11} {:>9} {:>11} {:>8}  FIGAROH expression",
         "ours", "value", "rel.std%", "FIGAROH", "diff %"
     );
-    for line in FIGAROH.lines().filter(|l| !l.trim().is_empty()) {
-        let f: Vec<&str> = line.split(',').collect();
-        let (Some(c), Some(v)) = (
-            parse(f[0], figaroh_name),
-            f.get(1).and_then(|v| v.parse::<f64>().ok()),
-        ) else {
-            continue;
-        };
+    for p in figaroh::tx40() {
+        let (c, v) = (&p.combination, p.value);
         match ours
             .iter()
-            .position(|o| o.as_ref().is_some_and(|o| same(o, &c)))
+            .position(|o| o.as_ref().is_some_and(|o| same(o, c)))
         {
             Some(i) => {
                 let _ = writeln!(
@@ -214,14 +164,14 @@ fn compare(chosen: &Chosen, e: &Estimate) -> String {
                     e.rel_std_percent[i],
                     v,
                     100.0 * (e.values[i] - v) / v.abs(),
-                    f[0]
+                    p.text
                 );
             }
             None => {
                 let _ = writeln!(
                     s,
                     "{:<7} {:>11} {:>9} {v:>11.5} {:>8}  {}",
-                    "-", "-", "-", "-", f[0]
+                    "-", "-", "-", "-", p.text
                 );
             }
         }

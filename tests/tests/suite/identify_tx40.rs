@@ -15,80 +15,20 @@
 //! within three of our standard deviations, and, with the bugs emulated, all 60 of
 //! FIGAROH's values are reproduced.
 
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use robid_runtime::data::{Config, Dataset, load_config_files};
 use robid_runtime::estimate::Observation;
 use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::validate::Prediction;
+use robots::figaroh::{self, Combination, combination, same};
 use robots::interpreted::{Chosen, model_for};
 
 fn repo(p: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..").join(p)
 }
 
-/// A linear combination of standard parameters: name -> coefficient.
-type Combination = BTreeMap<String, f64>;
-
-/// Parses `a + 0.5*b - c` (our form and FIGAROH's, names mapped by `rename`).
-fn parse(text: &str, rename: impl Fn(&str) -> String) -> Combination {
-    let mut out = Combination::new();
-    for term in text.replace(" - ", " + -").split(" + ") {
-        let term = term.trim();
-        let (sign, term) = match term.strip_prefix('-') {
-            Some(t) => (-1.0, t.trim()),
-            None => (1.0, term),
-        };
-        let (coef, name) = match term.split_once('*') {
-            Some((c, n)) => (c.trim().parse::<f64>().expect(c), n.trim()),
-            None => (1.0, term),
-        };
-        *out.entry(rename(name)).or_insert(0.0) += sign * coef;
-    }
-    out
-}
-
-/// FIGAROH's parameter names in ours: Izz1 -> ZZ1, mx2 -> MX2, m3 -> M3, fs1 -> Fc1, off1 -> Fo1.
-fn figaroh_name(name: &str) -> String {
-    let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
-    let stem = &name[..name.len() - digits.len()];
-    let ours = match stem {
-        "Ixx" | "Iyy" | "Izz" | "Ixy" | "Ixz" | "Iyz" => stem[1..].to_uppercase(),
-        "mx" | "my" | "mz" | "m" => stem.to_uppercase(),
-        "fv" => "Fv".into(),
-        "fs" => "Fc".into(),
-        "off" => "Fo".into(),
-        "Iam" | "fvm" | "fsm" => return name.to_string(),
-        other => other.to_string(),
-    };
-    format!("{ours}{digits}")
-}
-
-fn same(a: &Combination, b: &Combination) -> bool {
-    a.len() == b.len()
-        && a.iter()
-            .zip(b)
-            .all(|((n, x), (m, y))| n == m && (x - y).abs() <= 1e-4 * x.abs().max(1.0))
-}
-
-/// FIGAROH's base parameters: (text, combination, OLS value, OLS relative std in %).
-fn figaroh() -> Vec<(String, Combination, f64, f64)> {
-    let text = std::fs::read_to_string(repo("data/staubli_tx40/reference/TX40_bp_5.csv")).unwrap();
-    text.lines()
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            (
-                f[0].to_string(),
-                parse(f[0], figaroh_name),
-                f[1].parse().unwrap(),
-                f[2].parse().unwrap(),
-            )
-        })
-        .collect()
-}
-
+/// The TX40 description's model, FIGAROH's processing config and the log.
 struct Tx40 {
     chosen: Chosen,
     config: Config,
@@ -113,7 +53,7 @@ fn ours(chosen: &Chosen, names: &[String]) -> Vec<Combination> {
     names
         .iter()
         .map(|n| match chosen.expression(n) {
-            Some(e) => parse(&e, str::to_string),
+            Some(e) => combination(&e, str::to_string).expect("a base parameter's expression"),
             None => Combination::from([(n.clone(), 1.0)]),
         })
         .collect()
@@ -136,17 +76,17 @@ fn tx40_reproduces_figaroh() {
     assert!(id.fit.relative_error <= 0.055, "{}", id.fit.relative_error);
 
     let combos = ours(&t.chosen, &id.estimate.names);
-    let reference = figaroh();
+    let reference = figaroh::tx40();
     assert_eq!(reference.len(), 60);
     // (index of ours, FIGAROH value, FIGAROH text) for every FIGAROH parameter
     let matched: Vec<(usize, f64, &str)> = reference
         .iter()
-        .map(|(text, c, v, _)| {
+        .map(|p| {
             let i = combos
                 .iter()
-                .position(|o| same(o, c))
-                .unwrap_or_else(|| panic!("FIGAROH's `{text}` is none of our base parameters"));
-            (i, *v, text.as_str())
+                .position(|o| same(o, &p.combination))
+                .unwrap_or_else(|| panic!("FIGAROH's `{}` is none of our base parameters", p.text));
+            (i, p.value, p.text.as_str())
         })
         .collect();
     let check = |what: &str, pred: &dyn Fn(&str) -> bool, tol: &dyn Fn(f64, usize) -> f64| {
@@ -286,8 +226,9 @@ fn tx40_with_figaroh_bugs_emulated_reproduces_its_offsets_and_iam6() {
     let e = estimate(&obs, &t.config).unwrap();
     // every one of FIGAROH's 60 parameters, matched by expression
     let combos = ours(&chosen, &e.names);
-    for (text, c, v, rel_std) in figaroh() {
-        let i = combos.iter().position(|o| same(o, &c)).unwrap();
+    for p in figaroh::tx40() {
+        let (text, v, rel_std) = (&p.text, p.value, p.relative_std_percent);
+        let i = combos.iter().position(|o| same(o, &p.combination)).unwrap();
         let x = e.values[i];
         let tol = (0.05 * v.abs()).max(0.1 * rel_std / 100.0 * v.abs());
         println!(
