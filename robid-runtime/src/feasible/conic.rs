@@ -10,10 +10,18 @@ use clarabel::solver::{
 use nalgebra::{DMatrix, DVector};
 
 use super::bounds::Bounds;
-use super::centre::{centre, scales};
+use super::centre::scales;
 use super::problem::Problem;
-use super::sdp::SdpOptions;
 use crate::{Error, Result};
+
+/// Where the objective pulls each standard parameter (its prior value, or the centre of
+/// its bounds) and how hard: it settles what the data leave free.
+pub(super) struct Pull {
+    /// Target per standard parameter.
+    pub target: Vec<f64>,
+    /// Weight per standard parameter.
+    pub weight: Vec<f64>,
+}
 
 /// Rows of `A x + s = b, s in K`, with the cones in order.
 struct Conic {
@@ -56,15 +64,15 @@ pub(super) fn solve(
     bounds: &Bounds,
     a: &DMatrix<f64>,
     b: &DVector<f64>,
-    options: &SdpOptions,
+    pull: &Pull,
 ) -> Result<Vec<f64>> {
-    let p = solve_stage(problem, bounds, a, b, options, None)?;
+    let p = solve_stage(problem, bounds, a, b, pull, None)?;
     let no_effect = problem.no_effect();
     if no_effect.is_empty() {
         return Ok(p);
     }
     // A failure here (numerical) keeps the first solution, which is feasible.
-    Ok(solve_stage(problem, bounds, a, b, options, Some((&p, &no_effect))).unwrap_or(p))
+    Ok(solve_stage(problem, bounds, a, b, pull, Some((&p, &no_effect))).unwrap_or(p))
 }
 
 /// One conic program. With `settle = Some((p, free))`, every parameter outside `free` is
@@ -74,7 +82,7 @@ fn solve_stage(
     bounds: &Bounds,
     a: &DMatrix<f64>,
     b: &DVector<f64>,
-    options: &SdpOptions,
+    pull: &Pull,
     settle: Option<(&[f64], &[usize])>,
 ) -> Result<Vec<f64>> {
     bounds.validate()?;
@@ -96,33 +104,15 @@ fn solve_stage(
         cones: vec![],
     };
 
-    // Second-order cone: (t, A p - b, pull rows). Each parameter is pulled towards its
-    // prior value, or weakly towards the centre of its bounds.
-    let mut p0 = centre(layout, bounds);
-    let mut weight = vec![options.regularization; ns];
-    if let Some(prior) = &options.prior {
-        if prior.standard.len() != ns {
-            return Err(Error::DimensionMismatch {
-                what: "prior standard parameters".to_owned(),
-                expected: ns,
-                found: prior.standard.len(),
-            });
-        }
-        if prior.standard.iter().flatten().any(|v| !v.is_finite())
-            || !(prior.weight.is_finite() && prior.weight >= 0.0)
-        {
-            return Err(Error::setting(
-                "SdpOptions",
-                "prior",
-                "holds NaN, an infinite value or a negative weight",
-            ));
-        }
-        for (s, v) in prior.standard.iter().enumerate() {
-            if let Some(v) = v {
-                p0[s] = *v;
-                weight[s] = prior.weight;
-            }
-        }
+    // Second-order cone: (t, A p - b, pull rows): each parameter is pulled towards
+    // `pull.target` with `pull.weight`.
+    let (p0, weight) = (&pull.target, &pull.weight);
+    if p0.len() != ns || weight.len() != ns {
+        return Err(Error::DimensionMismatch {
+            what: "the pull of the standard parameters".to_owned(),
+            expected: ns,
+            found: p0.len().min(weight.len()),
+        });
     }
     let scale = scales(layout, bounds);
     c.row(&[(t, -1.0)], 0.0);

@@ -31,9 +31,6 @@ use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::{Error, Result};
 
-#[cfg(feature = "sdp")]
-use super::conic::solve;
-
 /// A prior (e.g. CAD values) the fit is pulled towards.
 ///
 /// The data decide what they determine; the prior decides the rest (the directions the
@@ -163,6 +160,55 @@ pub fn consistent_least_squares(
     let b = qr.q().transpose() * y;
     let p = solve(problem, bounds, &a, &b, options)?;
     Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())
+}
+
+/// The conic program with the pull of `options` (the prior, else the centre of the bounds).
+#[cfg(feature = "sdp")]
+fn solve(
+    problem: &Problem,
+    bounds: &Bounds,
+    a: &DMatrix<f64>,
+    b: &DVector<f64>,
+    options: &SdpOptions,
+) -> Result<Vec<f64>> {
+    bounds.validate()?;
+    let layout = &problem.layout;
+    if bounds.links.len() != layout.links.len() {
+        return Err(Error::DimensionMismatch {
+            what: "links in the bounds".to_owned(),
+            expected: layout.links.len(),
+            found: bounds.links.len(),
+        });
+    }
+    let ns = problem.standard_names.len();
+    let mut target = super::centre::centre(layout, bounds);
+    let mut weight = vec![options.regularization; ns];
+    if let Some(prior) = &options.prior {
+        if prior.standard.len() != ns {
+            return Err(Error::DimensionMismatch {
+                what: "prior standard parameters".to_owned(),
+                expected: ns,
+                found: prior.standard.len(),
+            });
+        }
+        if prior.standard.iter().flatten().any(|v| !v.is_finite())
+            || !(prior.weight.is_finite() && prior.weight >= 0.0)
+        {
+            return Err(Error::setting(
+                "SdpOptions",
+                "prior",
+                "holds NaN, an infinite value or a negative weight",
+            ));
+        }
+        for (s, v) in prior.standard.iter().enumerate() {
+            if let Some(v) = v {
+                target[s] = *v;
+                weight[s] = prior.weight;
+            }
+        }
+    }
+    let pull = super::conic::Pull { target, weight };
+    super::conic::solve(problem, bounds, a, b, &pull)
 }
 
 /// Without the `sdp` feature there is no conic solver to call.
