@@ -10,6 +10,7 @@
 
 pub mod model;
 mod real;
+pub mod rng;
 
 pub use model::{LengthError, Model};
 pub use real::Real;
@@ -36,8 +37,6 @@ pub mod output;
 pub mod pipeline;
 #[cfg(feature = "std")]
 pub mod report;
-#[cfg(feature = "std")]
-pub mod rng;
 #[cfg(feature = "std")]
 pub mod signal;
 #[cfg(feature = "std")]

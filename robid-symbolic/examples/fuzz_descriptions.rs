@@ -21,10 +21,10 @@
 
 #![allow(dead_code)]
 
+use robid_runtime::rng::Rng;
 use robid_symbolic::Robot;
 use robid_symbolic::emit::emit_programs;
 use robid_symbolic::program::{Program, RobotPrograms};
-use robid_symbolic::sample::Rng;
 use std::collections::HashSet;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -103,7 +103,7 @@ pub(crate) fn run(config: &Config) -> Report {
     watchdog(Arc::clone(&current));
     let previous_hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
-    let mut rng = Rng::new(config.seed);
+    let mut rng = Rng::from_state(config.seed);
     let mut report = Report::default();
     let mut seen: HashSet<String> = HashSet::new();
     let mut derive_time = Duration::ZERO;

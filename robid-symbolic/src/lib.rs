@@ -46,7 +46,6 @@ pub mod expr;
 pub mod program;
 pub mod regroup;
 pub mod robot;
-pub mod sample;
 
 pub use dynamics::{Derivation, Regressor};
 pub use expr::{Arena, Id, Node, Num, Symbol, Values};

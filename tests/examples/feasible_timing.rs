@@ -18,7 +18,7 @@ use robid_runtime::feasible::{
     AnnealOptions, Bounds, LinkBounds, LinkInertial, Problem, Solution, solve_anneal,
 };
 use robid_runtime::pipeline::{estimate, observe, prepare};
-use robid_symbolic::sample::Rng;
+use robid_runtime::rng::Rng;
 use robid_symbolic::{Derivation, Drive};
 use tests::reference::by_name;
 use tests::state::{bind, random_state};
@@ -130,7 +130,7 @@ fn panda() {
     let truth = reference.parameter_values(&robot);
     let mut derivation = Derivation::new(&robot);
     let base = derivation.base_parameters().unwrap();
-    let mut rng = Rng::new(0xFEA5);
+    let mut rng = Rng::from_state(0xFEA5);
     let state = random_state(&robot, &mut rng);
     let values = bind(&mut derivation.arena, &robot, &state, None);
     let ns = base.standard.len();

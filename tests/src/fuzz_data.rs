@@ -291,14 +291,14 @@ fn number_spans(text: &str) -> Vec<(usize, usize)> {
 }
 
 fn pick<'a, T>(rng: &mut Rng, v: &'a [T]) -> &'a T {
-    &v[rng.index(v.len())]
+    &v[rng.below(v.len())]
 }
 
 /// One random edit of a CSV text.
 fn mutate_csv_once(text: &str, rng: &mut Rng) -> String {
     let mut lines: Vec<String> = text.split('\n').map(str::to_string).collect();
     let n = lines.len().max(1);
-    match rng.index(13) {
+    match rng.below(13) {
         0..=2 => {
             let spans = number_spans(text);
             if spans.is_empty() {
@@ -308,17 +308,17 @@ fn mutate_csv_once(text: &str, rng: &mut Rng) -> String {
             format!("{}{}{}", &text[..a], pick(rng, &NUMBERS), &text[b..])
         }
         3 => {
-            lines.remove(rng.index(n).min(lines.len().saturating_sub(1)));
+            lines.remove(rng.below(n).min(lines.len().saturating_sub(1)));
             lines.join("\n")
         }
         4 => {
-            let i = rng.index(n).min(lines.len() - 1);
+            let i = rng.below(n).min(lines.len() - 1);
             let l = lines[i].clone();
             lines.insert(i, l);
             lines.join("\n")
         }
         5 => {
-            let (i, k) = (rng.index(n), rng.index(n));
+            let (i, k) = (rng.below(n), rng.below(n));
             lines.swap(i.min(n - 1), k.min(n - 1));
             lines.join("\n")
         }
@@ -338,13 +338,13 @@ fn mutate_csv_once(text: &str, rng: &mut Rng) -> String {
                     "t,t",
                 ],
             );
-            lines.insert(rng.index(n), extra.to_string());
+            lines.insert(rng.below(n), extra.to_string());
             lines.join("\n")
         }
         7 => {
             let mut b = text.as_bytes().to_vec();
             if !b.is_empty() {
-                let i = rng.index(b.len());
+                let i = rng.below(b.len());
                 b[i] = pick(
                     rng,
                     &[b',', b'\n', b'"', b';', b'\t', 0xff, b'e', b'-', b' ', b'#'],
@@ -354,24 +354,24 @@ fn mutate_csv_once(text: &str, rng: &mut Rng) -> String {
             String::from_utf8_lossy(&b).into_owned()
         }
         8 => {
-            let cut = rng.index(text.len().max(1));
+            let cut = rng.below(text.len().max(1));
             text.get(..cut).unwrap_or(text).to_string()
         }
         9 => {
-            let i = rng.index(n).min(lines.len() - 1);
+            let i = rng.below(n).min(lines.len() - 1);
             let sep = pick(rng, &[";", "\t", " "]);
             lines[i] = lines[i].replace(',', sep);
             lines.join("\n")
         }
-        10 => match rng.index(3) {
+        10 => match rng.below(3) {
             0 => format!("\u{feff}{text}"),
             1 => text.replace('\n', "\r\n"),
             _ => {
-                let i = rng.index(n).min(lines.len() - 1);
+                let i = rng.below(n).min(lines.len() - 1);
                 let fields: Vec<String> = lines[i]
                     .split(',')
                     .map(|f| {
-                        if rng.index(3) == 0 {
+                        if rng.below(3) == 0 {
                             format!("\"{f}\"")
                         } else {
                             f.to_string()
@@ -385,9 +385,9 @@ fn mutate_csv_once(text: &str, rng: &mut Rng) -> String {
         11 => {
             // the header: a column renamed or a name duplicated
             let mut fields: Vec<String> = lines[0].split(',').map(str::to_string).collect();
-            let i = rng.index(fields.len());
-            let k = rng.index(fields.len());
-            fields[i] = if rng.index(2) == 0 {
+            let i = rng.below(fields.len());
+            let k = rng.below(fields.len());
+            fields[i] = if rng.below(2) == 0 {
                 fields[k].clone()
             } else {
                 format!("{}x", fields[i])
@@ -397,10 +397,10 @@ fn mutate_csv_once(text: &str, rng: &mut Rng) -> String {
         }
         _ => {
             // a whole column of one row set to a value
-            let i = 1 + rng.index(n.saturating_sub(1).max(1));
+            let i = 1 + rng.below(n.saturating_sub(1).max(1));
             if let Some(line) = lines.get_mut(i.min(n - 1)) {
                 let mut fields: Vec<String> = line.split(',').map(str::to_string).collect();
-                let k = rng.index(fields.len());
+                let k = rng.below(fields.len());
                 fields[k] = pick(rng, &NUMBERS).to_string();
                 *line = fields.join(",");
             }
@@ -413,7 +413,7 @@ fn mutate_csv_once(text: &str, rng: &mut Rng) -> String {
 fn mutate_toml_once(text: &str, rng: &mut Rng) -> String {
     let mut lines: Vec<String> = text.split('\n').map(str::to_string).collect();
     let n = lines.len().max(1);
-    match rng.index(8) {
+    match rng.below(8) {
         0..=2 => {
             let spans = number_spans(text);
             if spans.is_empty() {
@@ -423,18 +423,18 @@ fn mutate_toml_once(text: &str, rng: &mut Rng) -> String {
             format!("{}{}{}", &text[..a], pick(rng, &TOML_VALUES), &text[b..])
         }
         3 => {
-            lines.remove(rng.index(n).min(lines.len() - 1));
+            lines.remove(rng.below(n).min(lines.len() - 1));
             lines.join("\n")
         }
         4 => {
-            let i = rng.index(n).min(lines.len() - 1);
+            let i = rng.below(n).min(lines.len() - 1);
             let l = lines[i].clone();
             lines.insert(i, l);
             lines.join("\n")
         }
         5 => format!("{text}\n{}\n", pick(rng, &TOML_LINES)),
         6 => {
-            let i = rng.index(n).min(lines.len() - 1);
+            let i = rng.below(n).min(lines.len() - 1);
             lines[i] = lines[i]
                 .replace("q{}", "x{}")
                 .replace("\"t\"", "\"time\"")
@@ -442,7 +442,7 @@ fn mutate_toml_once(text: &str, rng: &mut Rng) -> String {
             lines.join("\n")
         }
         _ => {
-            let cut = rng.index(text.len().max(1));
+            let cut = rng.below(text.len().max(1));
             text.get(..cut).unwrap_or(text).to_string()
         }
     }
@@ -754,7 +754,7 @@ impl Inputs {
             .collect();
         let mut shuffle = root.fork(u64::MAX);
         for k in (1..kinds.len()).rev() {
-            kinds.swap(k, shuffle.index(k + 1));
+            kinds.swap(k, shuffle.below(k + 1));
         }
         Self {
             seeds: seeds(),
@@ -772,11 +772,11 @@ impl Inputs {
         match self.kinds.get(case).copied().unwrap_or("identify") {
             "config" => {
                 let (_, text) = pick(&mut rng, &self.seeds.configs);
-                let rounds = rng.index(4);
+                let rounds = rng.below(4);
                 config_case(&mutate_toml(text, &mut rng, rounds), dir)
             }
             "csv" => {
-                let names: Vec<String> = if rng.index(3) == 0 && !self.seeds.headers.is_empty() {
+                let names: Vec<String> = if rng.below(3) == 0 && !self.seeds.headers.is_empty() {
                     pick(&mut rng, &self.seeds.headers).clone()
                 } else {
                     self.header.clone()
@@ -791,10 +791,10 @@ impl Inputs {
                         .collect();
                     csv_with(&self.record, &cols, "")
                 };
-                let rounds = 1 + rng.index(4);
+                let rounds = 1 + rng.below(4);
                 let wanted: Vec<String> = names
                     .iter()
-                    .filter(|_| rng.index(2) == 0)
+                    .filter(|_| rng.below(2) == 0)
                     .cloned()
                     .collect();
                 csv_case(&mutate_csv(&source, &mut rng, rounds), &wanted)
@@ -814,14 +814,14 @@ fn identify_one(
     dir: &Path,
 ) -> Result<Outcome, String> {
     // light mutation, so that many cases get through to the estimate
-    let rounds = [0, 0, 1, 1, 1, 2, 3][rng.index(7)];
-    let validation_rounds = rng.index(2);
+    let rounds = [0, 0, 1, 1, 1, 2, 3][rng.below(7)];
+    let validation_rounds = rng.below(2);
     let validation = vec![mutate_csv(base_csv, rng, validation_rounds)];
-    match rng.index(4) {
+    match rng.below(4) {
         0 => identify_case(None, &[mutate_csv(base_csv, rng, rounds)], &validation, dir),
         1 | 2 => {
-            let text = RECORD_CONFIGS[rng.index(RECORD_CONFIGS.len())];
-            let config_rounds = rng.index(2);
+            let text = RECORD_CONFIGS[rng.below(RECORD_CONFIGS.len())];
+            let config_rounds = rng.below(2);
             let text = mutate_toml(text, rng, config_rounds);
             identify_case(
                 Some(&text),
@@ -868,7 +868,7 @@ fn identify_one(
                     mutate_csv(&csv_with(record, &cols, &time), rng, rounds)
                 })
                 .collect();
-            let config_rounds = rng.index(2);
+            let config_rounds = rng.below(2);
             let text = mutate_toml(text, rng, config_rounds);
             identify_case(Some(&text), &data, &[], dir)
         }

@@ -1,6 +1,6 @@
 //! Joint states, smooth trajectories and symbol bindings for evaluating derivations.
 
-use robid_symbolic::sample::Rng;
+use robid_runtime::rng::Rng;
 use robid_symbolic::{Arena, JointKind, Robot, Values};
 
 /// A joint state.

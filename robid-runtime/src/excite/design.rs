@@ -265,7 +265,7 @@ impl FourierDesign {
             .map(|i| match i % m {
                 k if k < 2 * h => rng.normal() / (2 + k % h) as f64,
                 k if k == 2 * h => FRAC_PI_2 + 0.1 * rng.normal(),
-                _ => rng.range(-1.0, 1.0),
+                _ => rng.uniform(-1.0, 1.0),
             })
             .collect()
     }

@@ -342,8 +342,8 @@ impl<'a> Decoder<'a> {
         let interior = 3 * (self.design.intervals - 1);
         (0..len)
             .map(|i| match i % m {
-                k if k >= interior => rng.range(-1.5, 1.5),
-                k if k % 3 == 0 => rng.range(-1.5, 1.5),
+                k if k >= interior => rng.uniform(-1.5, 1.5),
+                k if k % 3 == 0 => rng.uniform(-1.5, 1.5),
                 _ => 0.6 * rng.normal(),
             })
             .collect()

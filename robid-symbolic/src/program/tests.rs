@@ -1,9 +1,9 @@
 //! The program against the arena's evaluation on the UR5e.
 
 use super::{Group, Program};
-use crate::sample::Rng;
 use crate::{Derivation, Robot};
 use robid_runtime::model::ProgramKind;
+use robid_runtime::rng::Rng;
 
 const UR5E: &str = include_str!("../../../robots/descriptions/ur5e.toml");
 
@@ -20,7 +20,7 @@ fn regressor_program_equals_arena_eval() {
     let out = Group::new("y", (0..entries.len()).map(|i| format!("y{i}")).collect());
     let program = Program::build(&d.arena, groups, vec![(out, entries.clone())]).unwrap();
     eprintln!("{}", program.operations());
-    let mut rng = Rng::new(7);
+    let mut rng = Rng::from_state(7);
     for _ in 0..20 {
         let x: Vec<Vec<f64>> = (0..3)
             .map(|_| (0..6).map(|_| rng.uniform(-3.0, 3.0)).collect())
@@ -108,7 +108,7 @@ fn programs_agree_for_reference_robots() {
                 }
                 prog.eval(&inputs).unwrap().remove(0)
             };
-            let mut rng = Rng::new(11);
+            let mut rng = Rng::from_state(11);
             for _ in 0..5 {
                 let mut random =
                     |k: usize, r: f64| -> Vec<f64> { (0..k).map(|_| rng.uniform(-r, r)).collect() };
@@ -151,7 +151,7 @@ fn run_checks_every_length_and_never_panics() {
     let text = include_str!("../../../robots/descriptions/rx90.toml");
     let robot = Robot::from_toml(text, "rx90.toml").unwrap();
     let p = super::RobotPrograms::derive(&robot).unwrap();
-    let mut rng = Rng::new(11);
+    let mut rng = Rng::from_state(11);
     for program in [
         &p[ProgramKind::InverseDynamics],
         &p[ProgramKind::MassMatrix],

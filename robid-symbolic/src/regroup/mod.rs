@@ -20,9 +20,9 @@ use crate::dynamics::{Derivation, LinkParameters, newton_euler};
 use crate::expr::{Arena, Id, Node};
 use crate::robot::bounds::SYMBOL_SAMPLES;
 use crate::robot::{ParameterId, ParameterKind};
-use crate::sample::Rng;
 use rank::Status;
 use robid_runtime::model::BaseName;
+use robid_runtime::rng::Rng;
 
 /// One base parameter.
 #[derive(Clone, Debug)]
@@ -141,7 +141,7 @@ impl Derivation {
             .iter()
             .map(|(s, _)| self.arena.var(s))
             .collect();
-        let mut rng = Rng::new(0x5EED);
+        let mut rng = Rng::from_state(0x5EED);
         let first_geometry: Vec<f64> = geometry
             .iter()
             .map(|_| rng.uniform(SYMBOL_SAMPLES[0], SYMBOL_SAMPLES[1]))

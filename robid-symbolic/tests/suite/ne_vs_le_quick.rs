@@ -1,5 +1,5 @@
 //! Quick cross-check of Newton-Euler against Lagrange-Euler on the UR5e.
-use robid_symbolic::sample::Rng;
+use robid_runtime::rng::Rng;
 use robid_symbolic::{Derivation, Robot};
 
 #[test]
@@ -15,7 +15,7 @@ fn ur5e_ne_equals_le() {
     let t0 = std::time::Instant::now();
     let le = d.lagrange_regressor();
     eprintln!("LE {:?} nodes {}", t0.elapsed(), d.arena.len());
-    let mut rng = Rng::new(1);
+    let mut rng = Rng::from_state(1);
     let n = robot.dof();
     for _ in 0..5 {
         let mut pairs = Vec::new();

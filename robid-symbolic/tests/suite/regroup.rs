@@ -3,8 +3,8 @@
 //! and standard-DH robots.
 
 use crate::common::{random_state, reference};
+use robid_runtime::rng::Rng;
 use robid_symbolic::regroup::BaseParameters;
-use robid_symbolic::sample::Rng;
 use robid_symbolic::{Derivation, Drive, Robot};
 
 const IA: Drive = Drive {
@@ -85,7 +85,7 @@ fn check_identity_and_rank(robot: &Robot, seed: u64) {
     let y = d.regressor();
     let b: BaseParameters = d.base_parameters().unwrap();
     let k = b.k_matrix(&mut d.arena);
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::from_state(seed);
     let extra_names: Vec<String> = robot.symbols().iter().map(|(s, _)| s.clone()).collect();
     let extra_values: Vec<f64> = extra_names.iter().map(|_| rng.uniform(0.2, 1.0)).collect();
     let extra: Vec<(&str, f64)> = extra_names
@@ -180,7 +180,7 @@ fn symbolic_lengths_give_the_same_set_and_substitute_to_the_numeric_one() {
     let mxr2 = ds.arena.display(bs.base[6].expression);
     assert!(mxr2.contains("a2"), "lengths stay symbolic: {mxr2}");
     // Substituting the values gives the numeric expressions.
-    let mut rng = Rng::new(7);
+    let mut rng = Rng::from_state(7);
     let standard: Vec<(String, f64)> = bn
         .standard
         .iter()

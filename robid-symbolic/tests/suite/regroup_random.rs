@@ -4,13 +4,13 @@
 
 use crate::common::random_state;
 use proptest::prelude::*;
+use robid_runtime::rng::Rng;
 use robid_symbolic::robot::Geometry;
 use robid_symbolic::robot::bounds::MIN_GRAVITY;
-use robid_symbolic::sample::Rng;
 use robid_symbolic::{Convention, Derivation, Drive, Joint, JointKind, Robot};
 
 fn random_robot(seed: u64) -> Robot {
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::from_state(seed);
     let dof = 2 + rng.below(4);
     let joints = (0..dof)
         .map(|_| {
@@ -65,7 +65,7 @@ fn check(seed: u64) {
     let b = d.base_parameters().unwrap();
     let k = b.k_matrix(&mut d.arena);
     let n = robot.dof();
-    let mut rng = Rng::new(seed ^ 0xABCD);
+    let mut rng = Rng::from_state(seed ^ 0xABCD);
     let ns = b.standard.len();
     let p: Vec<f64> = (0..ns).map(|_| rng.uniform(-1.0, 1.0)).collect();
     let mut full_rows: Vec<f64> = Vec::new();

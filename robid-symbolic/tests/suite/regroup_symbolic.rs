@@ -8,9 +8,9 @@
 //! ratio of the symbols (no value somewhere) is refused, naming the symbols.
 
 use proptest::prelude::*;
+use robid_runtime::rng::Rng;
 use robid_symbolic::regroup::{BaseParameters, RegroupError};
 use robid_symbolic::robot::Geometry;
-use robid_symbolic::sample::Rng;
 use robid_symbolic::{Derivation, Drive, Num, Robot};
 
 /// One joint of a random robot.
@@ -51,7 +51,7 @@ fn random_angle(rng: &mut Rng) -> String {
 /// twice, also negated or halved), random drive terms, either convention,
 /// gravity along -z or tilted.
 fn random_spec(seed: u64) -> Spec {
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::from_state(seed);
     let dof = 1 + rng.below(5);
     let mut symbols: Vec<(String, f64)> = Vec::new();
     let mut joints = Vec::with_capacity(dof);
@@ -175,7 +175,7 @@ fn torques(
     let k = b.k_matrix(&mut d.arena);
     let n = d.robot.dof();
     let ns = p.len();
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::from_state(seed);
     let (mut base, mut full) = (Vec::new(), Vec::new());
     for _ in 0..states {
         let values = crate::common::random_state(&mut d.arena, n, symbols, &mut rng);
@@ -219,7 +219,7 @@ fn check(seed: u64) -> f64 {
         stems(&bn),
         "seed {seed}: base parameters differ\n{symbolic_text}"
     );
-    let mut rng = Rng::new(seed ^ 0x5151);
+    let mut rng = Rng::from_state(seed ^ 0x5151);
     let p: Vec<f64> = bn.standard.iter().map(|_| rng.uniform(-1.0, 1.0)).collect();
     let states = bn.standard.len() / numeric.dof() + 4;
     let values: Vec<(&str, f64)> = spec.symbols.iter().map(|(s, v)| (s.as_str(), *v)).collect();
@@ -391,7 +391,7 @@ fn prismatic_joint_with_a_twist_and_a_symbolic_offset() {
 fn identity_error(robot: &Robot, values: &[(&str, f64)], seed: u64) -> f64 {
     let mut d = Derivation::new(robot);
     let b = d.base_parameters().unwrap();
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::from_state(seed);
     let p: Vec<f64> = b.standard.iter().map(|_| rng.uniform(-1.0, 1.0)).collect();
     let (base, full) = torques(&mut d, &b, &p, values, seed, 8);
     let scale = full.iter().fold(0.0_f64, |m, t| m.max(t.abs()));

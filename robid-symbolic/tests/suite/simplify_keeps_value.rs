@@ -5,7 +5,7 @@
 //! test draws trees rich in what one pass rewrites.
 
 use proptest::prelude::*;
-use robid_symbolic::sample::Rng;
+use robid_runtime::rng::Rng;
 use robid_symbolic::{Arena, Id, Node, Num};
 
 /// What the generator favours.
@@ -82,7 +82,7 @@ fn tree(a: &mut Arena, rng: &mut Rng, depth: u32, flavour: Flavour) -> Id {
 }
 
 fn check(seed: u64, flavour: Flavour) {
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::from_state(seed);
     let mut a = Arena::new();
     let raw = tree(&mut a, &mut rng, 5, flavour);
     let values = a.values(&[

@@ -8,9 +8,9 @@
 
 use super::{Lwr4, Panda, Puma560, Rx90, Stanford, Tx40, Ur5e};
 use robid_runtime::Model;
+use robid_runtime::rng::Rng;
 use robid_symbolic::Robot;
 use robid_symbolic::program::RobotPrograms;
-use robid_symbolic::sample::Rng;
 
 fn close(a: &[f64], b: &[f64], tol: f64, what: &str) {
     assert_eq!(a.len(), b.len(), "{what}: lengths");
@@ -42,7 +42,7 @@ fn check(name: &str, model: &dyn Model) {
         model.standard_parameter_count(),
         model.base_parameter_count(),
     );
-    let mut rng = Rng::new(42);
+    let mut rng = Rng::from_state(42);
     for _ in 0..10 {
         let (q, qd, qdd) = (
             random(&mut rng, n, 3.0),
@@ -133,7 +133,7 @@ fn ur5e_regressor_equals_symbolic_evaluation() {
     let robot = Robot::from_file(std::path::Path::new(&path)).unwrap();
     let mut d = robid_symbolic::Derivation::new(&robot);
     let entries = d.regressor().entries();
-    let mut rng = Rng::new(3);
+    let mut rng = Rng::from_state(3);
     for _ in 0..5 {
         let (q, qd, qdd) = (
             random(&mut rng, 6, 3.0),
@@ -171,7 +171,7 @@ fn ur5e_regressor_equals_symbolic_evaluation() {
 
 #[test]
 fn ur5e_f32_within_f32_tolerance() {
-    let mut rng = Rng::new(9);
+    let mut rng = Rng::from_state(9);
     for _ in 0..20 {
         let q: [f64; 6] = random(&mut rng, 6, 3.0).try_into().unwrap();
         let qd: [f64; 6] = random(&mut rng, 6, 2.0).try_into().unwrap();

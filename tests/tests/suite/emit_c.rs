@@ -10,10 +10,10 @@ use std::process::{Command, Stdio};
 
 use robid_runtime::Model;
 use robid_runtime::model::{PROGRAMS, Sizes};
+use robid_runtime::rng::Rng;
 use robid_symbolic::Drive;
 use robid_symbolic::emit::{CScalar, emit_c};
 use robid_symbolic::program::RobotPrograms;
-use robid_symbolic::sample::Rng;
 use robots::REFERENCES;
 use robots::interpreted::Interpreted;
 
@@ -171,7 +171,7 @@ fn c_code_agrees_with_the_rust_models() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    let mut rng = Rng::new(11);
+    let mut rng = Rng::from_state(11);
     let mut worst = (0.0_f64, 0.0_f64);
     // the compiled reference models, and the UR5e with every drive term (sign() for
     // Coulomb friction, Ia, Fo) against the interpreter

@@ -21,7 +21,7 @@
 use robid_runtime::Model;
 use robid_runtime::Real;
 use robid_runtime::model::ProgramKind;
-use robid_symbolic::sample::Rng;
+use robid_runtime::rng::Rng;
 use robid_symbolic::{Drive, Robot};
 use robots::interpreted::Interpreted;
 use tests::reference::by_name;
@@ -56,7 +56,7 @@ fn check_model(label: &str, robot: &Robot, model: &dyn Model, seed: u64, states:
     let nb = model.base_parameter_count();
     assert_eq!(ns, robot.standard_parameters().len(), "{label}");
     let chain = Chain::from_robot(robot);
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::from_state(seed);
     let zero = vec![0.0; n];
     for s in 0..states {
         let what = |f: &str| format!("{label} state {s}: {f}");
@@ -205,7 +205,7 @@ tests::per_robot!(check);
 /// twists that are quarter turns or arbitrary, lengths that are zero or not, every drive
 /// term, gravity tilted.
 fn random_robot(seed: u64) -> Robot {
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::from_state(seed);
     let n = 2 + rng.below(4);
     let convention = if rng.below(2) == 0 {
         "modified"

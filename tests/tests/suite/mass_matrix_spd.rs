@@ -2,7 +2,7 @@
 //! reference parameters (rotor inertias included), for every reference robot.
 
 use nalgebra::DMatrix;
-use robid_symbolic::sample::Rng;
+use robid_runtime::rng::Rng;
 use robid_symbolic::{Derivation, Drive};
 use tests::reference::by_name;
 use tests::state::{bind, random_state};
@@ -20,7 +20,7 @@ fn mass_matrices(name: &str, negate: bool) -> Vec<DMatrix<f64>> {
     let model = d.lagrange(&symbols);
     let n = robot.dof();
     let roots: Vec<_> = model.mass_matrix.iter().flatten().copied().collect();
-    let mut rng = Rng::new(0x5eed_0002);
+    let mut rng = Rng::from_state(0x5eed_0002);
     (0..100)
         .map(|_| {
             let state = random_state(&robot, &mut rng);

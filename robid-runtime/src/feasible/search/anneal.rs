@@ -34,13 +34,13 @@ pub(crate) fn anneal(
     let alpha = settings.final_ratio.powf(1.0 / settings.iterations as f64);
     let mut t = t0;
     for _ in 0..settings.iterations {
-        let i = rng.index(n);
+        let i = rng.below(n);
         let width = hi[i] - lo[i];
         let step = width * 0.3 * (t / t0).sqrt().max(1e-4);
         let old = x[i];
         x[i] = reflect(old + step * rng.normal(), lo[i], hi[i]);
         let fnew = f(&x);
-        if fnew <= fx || rng.uniform() < (-(fnew - fx) / t).exp() {
+        if fnew <= fx || rng.unit() < (-(fnew - fx) / t).exp() {
             fx = fnew;
             if fx < fbest {
                 fbest = fx;

@@ -290,7 +290,11 @@ pub fn solve_anneal(
                 return None;
             }
             let mut rng = Rng::new(options.seed.wrapping_mul(1_000_003).wrapping_add(k as u64));
-            let x0: Vec<f64> = lo.iter().zip(&hi).map(|(l, h)| rng.range(*l, *h)).collect();
+            let x0: Vec<f64> = lo
+                .iter()
+                .zip(&hi)
+                .map(|(l, h)| rng.uniform(*l, *h))
+                .collect();
             let f = |y: &[f64]| objective.value(y);
             let (xa, _) = anneal::anneal(&f, &lo, &hi, &x0, settings, &mut rng);
             // Nelder-Mead on the box: evaluate at the reflected point.
@@ -325,7 +329,7 @@ pub fn solve_anneal(
                     .zip(objective.free.iter().zip(lo.iter().zip(&hi)))
                 {
                     if full / PER_LINK == link {
-                        *yi = rng.range(*l, *h);
+                        *yi = rng.uniform(*l, *h);
                     }
                 }
                 let y = levenberg::polish(&r, &lo, &hi, &y, options.polish_iterations);
@@ -359,7 +363,7 @@ fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: 
     let mut rng = Rng::new(seed ^ 0x00D0_C42E);
     let mut effective = vec![false; n];
     for _ in 0..4 {
-        let x: Vec<f64> = (0..n).map(|i| rng.range(lo[i], hi[i])).collect();
+        let x: Vec<f64> = (0..n).map(|i| rng.uniform(lo[i], hi[i])).collect();
         let base = misfit(objective, &x);
         for i in 0..n {
             if effective[i] {

@@ -84,7 +84,7 @@ mod tests {
         let (lo, hi) = link_box(&b, 1e-6);
         let mut rng = crate::rng::Rng::new(3);
         for _ in 0..200 {
-            let x: Vec<f64> = (0..PER_LINK).map(|i| rng.range(lo[i], hi[i])).collect();
+            let x: Vec<f64> = (0..PER_LINK).map(|i| rng.uniform(lo[i], hi[i])).collect();
             let p = link_of(&x).to_standard();
             assert!(pseudo_inertia_min_eigenvalue(&p) > 0.0);
         }
