@@ -1,9 +1,8 @@
-#![doc = "robid runtime: the `no_std` scalar and model traits that generated models implement, and, with the `std` feature, the identification pipeline."]
-#![cfg_attr(feature = "std", doc = "")]
 #![cfg_attr(
-    feature = "std",
-    doc = "With `std`, every input (data files, config files, settings given in code) is checked against the documented limits of [`limits`] before any work, every solver stops at an iteration cap, and a successful result holds no NaN or infinity; an [`Error`] names the input, its place (file:line and column, config key at file:line:column, or the setting's field) and the fix."
+    not(feature = "std"),
+    doc = "robid runtime: the `no_std` scalar, model trait, program table, parameter names and random generator that generated models use (the identification pipeline needs the `std` feature)."
 )]
+#![cfg_attr(feature = "std", doc = include_str!("../README.md"))]
 #![cfg_attr(not(feature = "std"), no_std)]
 // Range checks are written `!(lo < x && x <= hi)` so that NaN fails them too.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
