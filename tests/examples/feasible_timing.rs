@@ -84,9 +84,7 @@ fn tx40() {
     let trim = config.processing.trim;
     let end = (b - trim).min(p.samples());
     for v in [&mut p.q, &mut p.qd, &mut p.qdd, &mut p.tau] {
-        for x in v.iter_mut() {
-            *x = x[..end].to_vec();
-        }
+        *v = v.range(0..end);
     }
     let obs: Observation = observe(chosen.model.as_ref(), &p, &config).unwrap();
     let e = estimate(&obs, &config).unwrap();

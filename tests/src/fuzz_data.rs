@@ -20,6 +20,7 @@ use robid_runtime::data::{Config, load, read_columns, read_columns_from};
 use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, text_table};
 use robid_runtime::rng::Rng;
+use robid_runtime::signal::Signals;
 use robots::Ur5e;
 
 /// Sample rate of the generated record (Hz).
@@ -51,7 +52,7 @@ pub struct Motion {
     /// Time stamps (s).
     pub t: Vec<f64>,
     /// Positions, velocities, accelerations and torques, `[signal][joint][sample]`.
-    pub signals: [Vec<Vec<f64>>; 4],
+    pub signals: [Signals; 4],
 }
 
 /// The motion (two sines per joint, different frequencies, within the UR5e's limits).
@@ -65,7 +66,7 @@ pub fn motion_scaled(rows: usize, scale: [f64; 6]) -> Motion {
     let base = ur5e_base();
     let n = 6;
     let t: Vec<f64> = (0..rows).map(|k| k as f64 / RATE).collect();
-    let mut s: [Vec<Vec<f64>>; 4] = std::array::from_fn(|_| vec![vec![0.0; rows]; n]);
+    let mut s: [Signals; 4] = std::array::from_fn(|_| Signals::zeros(n, rows));
     let mut rng = Rng::new(5);
     let (mut q, mut qd, mut qdd, mut tau) = ([0.0; 6], [0.0; 6], [0.0; 6], [0.0; 6]);
     for (k, &time) in t.iter().enumerate() {

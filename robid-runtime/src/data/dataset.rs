@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use crate::data::Warning;
 use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, Quantity, check_size};
+use crate::signal::Signals;
 
 /// The file a data set was read from and the line of each sample, for messages and
 /// reports (when files were joined: the first file with a time column, or the first file).
@@ -18,7 +19,7 @@ pub struct DataOrigin {
     pub lines: Vec<u64>,
 }
 
-/// Joint-side signals on a uniform time grid, one vector per joint.
+/// Joint-side signals on a uniform time grid.
 #[derive(Debug, Clone)]
 pub struct Dataset {
     /// Name for reports (usually the first file's name).
@@ -26,15 +27,15 @@ pub struct Dataset {
     /// Sample time in seconds.
     pub sample_time: f64,
     /// Joint positions (rad or m).
-    pub q: Vec<Vec<f64>>,
+    pub q: Signals,
     /// Joint velocities, when measured.
-    pub qd: Option<Vec<Vec<f64>>>,
+    pub qd: Option<Signals>,
     /// Joint accelerations, when measured.
-    pub qdd: Option<Vec<Vec<f64>>>,
+    pub qdd: Option<Signals>,
     /// Joint torques (after torque constants and the drive chain).
-    pub tau: Vec<Vec<f64>>,
+    pub tau: Signals,
     /// Motor encoder positions reflected to the link side, for rotor compensation.
-    pub motor: Option<Vec<Vec<f64>>>,
+    pub motor: Option<Signals>,
     /// What was repaired while loading.
     pub warnings: Vec<super::Warning>,
     /// The file and lines the samples come from (`None` for a data set built in code).
@@ -42,13 +43,13 @@ pub struct Dataset {
 }
 
 impl Dataset {
-    /// A data set from positions and torques (per joint, equal lengths, finite values
+    /// A data set from positions and torques (the same joints and samples, finite values
     /// within the ranges of [`crate::limits`]).
     pub fn new(
         name: impl Into<String>,
         sample_time: f64,
-        q: Vec<Vec<f64>>,
-        tau: Vec<Vec<f64>>,
+        q: Signals,
+        tau: Signals,
     ) -> Result<Self> {
         Self::new_at(name, sample_time, q, tau, None)
     }
@@ -57,8 +58,8 @@ impl Dataset {
     pub fn new_at(
         name: impl Into<String>,
         sample_time: f64,
-        q: Vec<Vec<f64>>,
-        tau: Vec<Vec<f64>>,
+        q: Signals,
+        tau: Signals,
         origin: Option<DataOrigin>,
     ) -> Result<Self> {
         let name = name.into();
@@ -79,23 +80,23 @@ impl Dataset {
         }
         check_size(
             || format!("{name}: joints"),
-            q.len() as f64,
+            q.dof() as f64,
             MAX_JOINTS,
             "use a description with fewer joints",
         )?;
-        let n = q.first().map_or(0, Vec::len);
+        let n = q.samples();
         let mut data = Self {
             name,
             sample_time,
-            q: Vec::new(),
+            q: Signals::default(),
             qd: None,
             qdd: None,
-            tau: Vec::new(),
+            tau: Signals::default(),
             motor: None,
             warnings: Vec::<Warning>::new(),
             origin,
         };
-        let dof = q.len();
+        let dof = q.dof();
         data.check_block("torque", Quantity::Torque, &tau, dof, n)?;
         data.check_block("position", Quantity::Position, &q, dof, n)?;
         data.q = q;
@@ -117,7 +118,7 @@ impl Dataset {
     }
 
     /// Adds measured velocities.
-    pub fn with_velocities(mut self, qd: Vec<Vec<f64>>) -> Result<Self> {
+    pub fn with_velocities(mut self, qd: Signals) -> Result<Self> {
         self.check_block(
             "velocity",
             Quantity::Velocity,
@@ -130,7 +131,7 @@ impl Dataset {
     }
 
     /// Adds measured accelerations.
-    pub fn with_accelerations(mut self, qdd: Vec<Vec<f64>>) -> Result<Self> {
+    pub fn with_accelerations(mut self, qdd: Signals) -> Result<Self> {
         self.check_block(
             "acceleration",
             Quantity::Acceleration,
@@ -143,7 +144,7 @@ impl Dataset {
     }
 
     /// Adds motor encoder positions (link side).
-    pub fn with_motor_positions(mut self, motor: Vec<Vec<f64>>) -> Result<Self> {
+    pub fn with_motor_positions(mut self, motor: Signals) -> Result<Self> {
         self.check_block(
             "motor position",
             Quantity::Position,
@@ -157,12 +158,12 @@ impl Dataset {
 
     /// Number of joints.
     pub fn dof(&self) -> usize {
-        self.q.len()
+        self.q.dof()
     }
 
     /// Number of samples.
     pub fn samples(&self) -> usize {
-        self.q.first().map_or(0, Vec::len)
+        self.q.samples()
     }
 
     /// The samples `start..end` (end clamped to the length).
@@ -176,7 +177,7 @@ impl Dataset {
                 hint: "choose a range inside the data",
             });
         }
-        let cut = |v: &Vec<Vec<f64>>| v.iter().map(|x| x[start..end].to_vec()).collect::<Vec<_>>();
+        let cut = |v: &Signals| v.range(start..end);
         Ok(Self {
             name: format!("{}[{start}..{end}]", self.name),
             sample_time: self.sample_time,
@@ -201,26 +202,26 @@ impl Dataset {
         &self,
         what: &str,
         quantity: Quantity,
-        x: &[Vec<f64>],
+        x: &Signals,
         dof: usize,
         n: usize,
     ) -> Result<()> {
         let name = &self.name;
-        if x.len() != dof {
+        if x.dof() != dof {
             return Err(Error::Data(DataError::JointCountMismatch {
                 context: format!("{name}: {what} signals"),
                 expected: dof,
-                found: x.len(),
+                found: x.dof(),
             }));
         }
-        for (j, v) in x.iter().enumerate() {
-            if v.len() != n {
-                return Err(Error::DimensionMismatch {
-                    what: format!("{name}: {what} of joint {}", j + 1),
-                    expected: n,
-                    found: v.len(),
-                });
-            }
+        if x.samples() != n && dof > 0 {
+            return Err(Error::DimensionMismatch {
+                what: format!("{name}: samples of the {what} signals"),
+                expected: n,
+                found: x.samples(),
+            });
+        }
+        for (j, v) in x.joints().enumerate() {
             if let Some(k) = quantity.first_outside(v) {
                 let what = format!("joint {} {what} (after units and drive chain)", j + 1);
                 return Err(if v[k].is_finite() {
@@ -254,24 +255,35 @@ impl Dataset {
 mod tests {
     use super::*;
 
+    fn s(joints: Vec<Vec<f64>>) -> Signals {
+        Signals::new(joints).unwrap()
+    }
+
     #[test]
     fn checks_shapes_and_values() {
-        let d = Dataset::new("m", 0.01, vec![vec![0.0; 5]; 2], vec![vec![1.0; 5]; 2]).unwrap();
+        let d = Dataset::new(
+            "m",
+            0.01,
+            s(vec![vec![0.0; 5]; 2]),
+            s(vec![vec![1.0; 5]; 2]),
+        )
+        .unwrap();
         assert_eq!((d.dof(), d.samples()), (2, 5));
         assert!(matches!(
-            d.clone().with_velocities(vec![vec![0.0; 5]; 3]),
+            d.clone().with_velocities(s(vec![vec![0.0; 5]; 3])),
             Err(Error::Data(DataError::JointCountMismatch { .. }))
         ));
         assert!(matches!(
-            d.clone().with_accelerations(vec![vec![0.0; 4]; 2]),
+            d.clone().with_accelerations(s(vec![vec![0.0; 4]; 2])),
             Err(Error::DimensionMismatch { .. })
         ));
         assert!(matches!(
-            Dataset::new("m", 0.01, vec![vec![f64::NAN]], vec![vec![0.0]]),
+            Dataset::new("m", 0.01, s(vec![vec![f64::NAN]]), s(vec![vec![0.0]])),
             Err(Error::Data(DataError::NotFinite { .. }))
         ));
-        assert!(Dataset::new("m", 0.0, vec![vec![0.0]], vec![vec![0.0]]).is_err());
-        let e = Dataset::new("m", 0.01, vec![vec![0.0, 2e6]], vec![vec![0.0; 2]]).unwrap_err();
+        assert!(Dataset::new("m", 0.0, s(vec![vec![0.0]]), s(vec![vec![0.0]])).is_err());
+        let e =
+            Dataset::new("m", 0.01, s(vec![vec![0.0, 2e6]]), s(vec![vec![0.0; 2]])).unwrap_err();
         assert!(
             matches!(e, Error::Data(DataError::OutOfRange { ref location, .. }) if location == "data set `m`, sample 1"),
             "{e}"
@@ -279,8 +291,8 @@ mod tests {
         let e = Dataset::new_at(
             "m",
             0.01,
-            vec![vec![0.0; 2]],
-            vec![vec![0.0, 1e300]],
+            s(vec![vec![0.0; 2]]),
+            s(vec![vec![0.0, 1e300]]),
             Some(DataOrigin {
                 path: "f.csv".into(),
                 lines: vec![2, 3],

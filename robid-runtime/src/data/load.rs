@@ -14,6 +14,7 @@ use crate::data::{AngleUnit, Config, Dataset, Source, Table, Warning, read_colum
 use crate::drive::DriveChain;
 use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, MAX_SAMPLE_RATE, MIN_SAMPLE_RATE, Quantity, check_size};
+use crate::signal::Signals;
 
 /// The roles a column block can have, in the order of `Loaded::blocks`.
 const ROLES: [&str; 5] = [
@@ -233,12 +234,15 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         tau.ok_or_else(|| missing("torque"))?,
     );
     let chain = DriveChain::new(&config.drive, dof)?;
-    let angle = |x: Vec<Vec<f64>>| match config.units.angle {
-        AngleUnit::Rad => x,
-        AngleUnit::Deg => x
-            .into_iter()
-            .map(|v| v.into_iter().map(f64::to_radians).collect())
-            .collect(),
+    // columns of one role to signals in radians
+    let angle = |x: Vec<Vec<f64>>| {
+        Signals::new(match config.units.angle {
+            AngleUnit::Rad => x,
+            AngleUnit::Deg => x
+                .into_iter()
+                .map(|v| v.into_iter().map(f64::to_radians).collect())
+                .collect(),
+        })
     };
     let mut tau = tau;
     if let Some(s) = &config.units.torque_scale {
@@ -253,18 +257,18 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let mut data = Dataset::new_at(
         name,
         sample_time,
-        chain.joint_positions(&angle(q)),
-        chain.joint_torques(&tau),
+        chain.joint_positions(&angle(q)?),
+        chain.joint_torques(&Signals::new(tau)?),
         Some(origin),
     )?;
     if let Some(v) = qd {
-        data = data.with_velocities(chain.joint_positions(&angle(v)))?;
+        data = data.with_velocities(chain.joint_positions(&angle(v)?))?;
     }
     if let Some(a) = qdd {
-        data = data.with_accelerations(chain.joint_positions(&angle(a)))?;
+        data = data.with_accelerations(chain.joint_positions(&angle(a)?))?;
     }
     if let Some(m) = motor {
-        data = data.with_motor_positions(chain.reflected_motor_positions(&angle(m)))?;
+        data = data.with_motor_positions(chain.reflected_motor_positions(&angle(m)?))?;
     }
     if config.drive.rotor.is_some() && data.motor.is_none() {
         return Err(config.key_error(

@@ -12,6 +12,7 @@ use crate::data::PerJoint;
 use crate::drive::RotorConfig;
 use crate::error::{Error, Result};
 use crate::limits::MAX_FACTOR;
+use crate::signal::Signals;
 
 /// Which side of the transmission a signal is measured on.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -191,17 +192,17 @@ impl DriveChain {
     }
 
     /// Joint positions (or velocities, accelerations) from the measured ones, per joint.
-    pub fn joint_positions(&self, measured: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    pub fn joint_positions(&self, measured: &Signals) -> Signals {
         apply(&self.position_inverse, measured, None)
     }
 
     /// Motor encoder positions reflected to the link side: R_q^-1 theta_m.
-    pub fn reflected_motor_positions(&self, motor: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    pub fn reflected_motor_positions(&self, motor: &Signals) -> Signals {
         apply(&self.motor_inverse, motor, None)
     }
 
     /// Joint torques from the measured torques or currents: R_tau K_r i.
-    pub fn joint_torques(&self, measured: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    pub fn joint_torques(&self, measured: &Signals) -> Signals {
         apply(&self.torque_map, measured, Some(&self.constants))
     }
 
@@ -212,22 +213,19 @@ impl DriveChain {
 }
 
 /// out_i = sum_j m_ij * scale_j * x_j, skipping zero entries (diagonal maps stay cheap).
-fn apply(m: &DMatrix<f64>, x: &[Vec<f64>], scale: Option<&[f64]>) -> Vec<Vec<f64>> {
-    let n = x.first().map_or(0, Vec::len);
-    (0..m.nrows())
-        .map(|i| {
-            let mut out = vec![0.0; n];
-            for (j, xj) in x.iter().enumerate() {
-                let c = m[(i, j)] * scale.map_or(1.0, |s| s[j]);
-                if c != 0.0 {
-                    for (o, v) in out.iter_mut().zip(xj) {
-                        *o += c * v;
-                    }
+fn apply(m: &DMatrix<f64>, x: &Signals, scale: Option<&[f64]>) -> Signals {
+    let mut out = Signals::zeros(m.nrows(), x.samples());
+    for (i, oi) in out.joints_mut().enumerate() {
+        for (j, xj) in x.joints().enumerate() {
+            let c = m[(i, j)] * scale.map_or(1.0, |s| s[j]);
+            if c != 0.0 {
+                for (o, v) in oi.iter_mut().zip(xj) {
+                    *o += c * v;
                 }
             }
-            out
-        })
-        .collect()
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -252,27 +250,26 @@ mod tests {
         }
     }
 
+    /// Signals whose sample k of joint j is (k + 1) values[j].
+    fn per_joint(values: &[f64], samples: usize) -> Signals {
+        Signals::from_fn(values.len(), samples, |j, k| (k + 1) as f64 * values[j])
+    }
+
     #[test]
     fn tx40_wrist_coupling() {
         let chain = DriveChain::new(&tx40(), 6).unwrap();
-        let theta: Vec<Vec<f64>> = [32.0, 64.0, 45.0, -96.0, 90.0, 320.0]
-            .iter()
-            .map(|v| vec![*v])
-            .collect();
+        let theta = per_joint(&[32.0, 64.0, 45.0, -96.0, 90.0, 320.0], 1);
         let q = chain.joint_positions(&theta);
         // q_i = theta_i / N_i for i <= 5, q6 = theta6 / N6 - q5
         let expect = [1.0, 2.0, 1.0, 2.0, 2.0, 8.0];
-        for (a, e) in q.iter().zip(expect) {
+        for (a, e) in q.joints().zip(expect) {
             assert!((a[0] - e).abs() < 1e-12);
         }
-        let tm: Vec<Vec<f64>> = [1.0, 1.0, 1.0, 1.0, 1.0, 2.0]
-            .iter()
-            .map(|v| vec![*v])
-            .collect();
+        let tm = per_joint(&[1.0, 1.0, 1.0, 1.0, 1.0, 2.0], 1);
         let tau = chain.joint_torques(&tm);
         // tau_5 = N5 tm5 + N6 tm6 = 45 + 64
         let expect = [32.0, 32.0, 45.0, -48.0, 109.0, 64.0];
-        for (a, e) in tau.iter().zip(expect) {
+        for (a, e) in tau.joints().zip(expect) {
             assert!((a[0] - e).abs() < 1e-12);
         }
     }
@@ -287,29 +284,23 @@ mod tests {
         c.check(6).unwrap();
         let chain = DriveChain::new(&c, 6).unwrap();
         assert_eq!(chain.dof(), 6);
-        let theta: Vec<Vec<f64>> = [32.0, 64.0, 45.0, -96.0, 90.0, 320.0]
-            .iter()
-            .map(|v| vec![*v, 2.0 * v])
-            .collect();
+        let theta = per_joint(&[32.0, 64.0, 45.0, -96.0, 90.0, 320.0], 2);
         // joint-side positions pass through; motor positions are reflected
         assert_eq!(chain.joint_positions(&theta), theta);
         let reflected = chain.reflected_motor_positions(&theta);
-        assert_eq!(reflected.len(), 6);
-        for (a, e) in reflected.iter().zip([1.0, 2.0, 1.0, 2.0, 2.0, 8.0]) {
+        assert_eq!(reflected.dof(), 6);
+        for (a, e) in reflected.joints().zip([1.0, 2.0, 1.0, 2.0, 2.0, 8.0]) {
             assert!(
                 (a[0] - e).abs() < 1e-12 && (a[1] - 2.0 * e).abs() < 1e-12,
                 "{a:?}"
             );
         }
-        let current: Vec<Vec<f64>> = [1.0, 1.0, 1.0, 1.0, 1.0, 2.0]
-            .iter()
-            .map(|v| vec![*v])
-            .collect();
+        let current = per_joint(&[1.0, 1.0, 1.0, 1.0, 1.0, 2.0], 1);
         let tau = chain.joint_torques(&current);
-        assert_eq!(tau.len(), 6);
+        assert_eq!(tau.dof(), 6);
         // tau_1 = N1 * 2 * i1; tau_5 = N5 * 0.5 * i5 + N6 * i6
         let expect = [64.0, 32.0, 45.0, -48.0, 22.5 + 64.0, 64.0];
-        for (a, e) in tau.iter().zip(expect) {
+        for (a, e) in tau.joints().zip(expect) {
             assert!((a[0] - e).abs() < 1e-12, "{a:?} vs {e}");
         }
     }

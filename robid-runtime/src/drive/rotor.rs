@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::PerJoint;
 use crate::error::Result;
+use crate::signal::Signals;
 
 /// The `[drive.rotor]` table: known rotor inertias and rotor friction estimate.
 ///
@@ -49,13 +50,8 @@ impl RotorConfig {
     }
 
     /// Subtracts B thetaddot + fhat(thetadot) from the torques in place (per joint signals).
-    pub fn compensate(
-        &self,
-        tau: &mut [Vec<f64>],
-        thetad: &[Vec<f64>],
-        thetadd: &[Vec<f64>],
-    ) -> Result<()> {
-        let dof = tau.len();
+    pub fn compensate(&self, tau: &mut Signals, thetad: &Signals, thetadd: &Signals) -> Result<()> {
+        let dof = tau.dof();
         let b = self.inertia.values(dof, "drive.rotor.inertia")?;
         let fv = match &self.viscous {
             Some(v) => v.values(dof, "drive.rotor.viscous")?,
@@ -65,8 +61,8 @@ impl RotorConfig {
             Some(v) => v.values(dof, "drive.rotor.coulomb")?,
             None => vec![0.0; dof],
         };
-        for j in 0..dof {
-            for ((t, w), a) in tau[j].iter_mut().zip(&thetad[j]).zip(&thetadd[j]) {
+        for (j, tj) in tau.joints_mut().enumerate() {
+            for ((t, w), a) in tj.iter_mut().zip(&thetad[j]).zip(&thetadd[j]) {
                 *t -= b[j] * a + fv[j] * w + fc[j] * crate::Real::sign(*w);
             }
         }
@@ -85,15 +81,16 @@ mod tests {
             viscous: Some(PerJoint::All(0.1)),
             coulomb: Some(PerJoint::All(1.0)),
         };
-        let mut tau = vec![vec![10.0, 10.0], vec![1.0, 1.0]];
+        let signals = |x: [[f64; 2]; 2]| Signals::new(x.map(Vec::from).to_vec()).unwrap();
+        let mut tau = signals([[10.0, 10.0], [1.0, 1.0]]);
         cfg.compensate(
             &mut tau,
-            &[vec![1.0, -1.0], vec![0.0, 2.0]],
-            &[vec![3.0, 0.0], vec![2.0, 0.0]],
+            &signals([[1.0, -1.0], [0.0, 2.0]]),
+            &signals([[3.0, 0.0], [2.0, 0.0]]),
         )
         .unwrap();
         let expected = [[2.9, 11.1], [0.0, -0.2]];
-        for (t, e) in tau.iter().zip(expected) {
+        for (t, e) in tau.joints().zip(expected) {
             assert!(t.iter().zip(e).all(|(a, b)| (a - b).abs() < 1e-12), "{t:?}");
         }
         assert!(cfg.check(3).is_err());

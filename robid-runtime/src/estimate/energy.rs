@@ -9,7 +9,6 @@
 //! ## Reference
 //! M. Gautier, "Dynamic identification of robots with power model", ICRA 1997.
 
-use crate::DataError;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
@@ -19,6 +18,7 @@ use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation, ols};
 use crate::model::{DriveTerm, ParameterId, ParameterKind};
 use crate::pipeline::Prepared;
+use crate::signal::Signals;
 
 /// The energy regressor: writes h(q, qd) (one entry per parameter) into the last argument.
 pub trait EnergyRegressor: Fn(&[f64], &[f64], &mut [f64]) + Sync {}
@@ -36,10 +36,10 @@ pub fn energy_observation(
     dissipation: &impl EnergyRegressor,
 ) -> Result<Observation> {
     let (q, qd, tau, dt) = (&signals.q, &signals.qd, &signals.tau, signals.sample_time);
-    let dof = q.len();
-    let n = q.first().map_or(0, Vec::len);
+    let (dof, n) = (q.dof(), q.samples());
     let p = names.len();
-    if window == 0 || n < window + 1 || qd.len() != dof || tau.len() != dof {
+    let same = |x: &Signals| x.dof() == dof && x.samples() == n;
+    if window == 0 || n < window + 1 || !same(qd) || !same(tau) {
         return Err(Error::TooFewSamples {
             context: "energy model".into(),
             found: n,
@@ -47,7 +47,7 @@ pub fn energy_observation(
             hint: "use a window shorter than the record and one signal per joint",
         });
     }
-    let sample = |k: usize, x: &[Vec<f64>]| x.iter().map(|v| v[k]).collect::<Vec<f64>>();
+    let sample = |k: usize, x: &Signals| x.sample(k);
     let power = |k: usize| (0..dof).map(|j| tau[j][k] * qd[j][k]).sum::<f64>();
     let windows = (n - 1) / window;
     let rows: Vec<(Vec<f64>, f64)> = (0..windows)
@@ -97,13 +97,7 @@ pub fn model_energy_observation(
     let dof = model.dof();
     let p = model.base_parameter_count();
     let names = crate::model::base_parameter_names(model);
-    if signals.q.len() != dof {
-        return Err(Error::Data(DataError::JointCountMismatch {
-            context: "energy model: data".into(),
-            expected: dof,
-            found: signals.q.len(),
-        }));
-    }
+    signals.check(dof, "energy model: data")?;
     let friction = friction_power(&names);
     // columns whose power is the friction term (Fv, Fc; Fo is in the potential part)
     let mut probe = vec![0.0; p];
@@ -143,7 +137,7 @@ pub fn model_energy_observation(
         Ok::<(), LengthError>(())
     };
     let n = signals.samples();
-    if window == 0 || n < window + 1 || signals.qd.len() != dof || signals.tau.len() != dof {
+    if window == 0 || n < window + 1 {
         return Err(Error::TooFewSamples {
             context: "energy model".into(),
             found: n,
@@ -165,10 +159,8 @@ pub fn model_energy_observation(
             let mut row = vec![0.0; p];
             let mut y = 0.0;
             let load = |k: usize, q: &mut [f64], qd: &mut [f64]| {
-                for j in 0..dof {
-                    q[j] = signals.q[j][k];
-                    qd[j] = signals.qd[j][k];
-                }
+                signals.q.sample_into(k, q);
+                signals.qd.sample_into(k, qd);
             };
             for (k, sign) in [(a, -1.0), (b, 1.0)] {
                 load(k, &mut q, &mut qd);
@@ -260,10 +252,10 @@ mod tests {
             out[2] = 0.0;
         };
         let signals = Prepared {
-            q: vec![q],
-            qd: vec![qd],
-            qdd: vec![vec![0.0; n]],
-            tau: vec![tau],
+            q: Signals::new(vec![q]).unwrap(),
+            qd: Signals::new(vec![qd]).unwrap(),
+            qdd: Signals::zeros(1, n),
+            tau: Signals::new(vec![tau]).unwrap(),
             sample_time: dt,
         };
         let obs =
@@ -295,10 +287,10 @@ mod tests {
     fn too_short_record_is_an_error() {
         let h = |_: &[f64], _: &[f64], _: &mut [f64]| {};
         let short = Prepared {
-            q: vec![vec![0.0; 5]],
-            qd: vec![vec![0.0; 5]],
-            qdd: vec![vec![0.0; 5]],
-            tau: vec![vec![0.0; 5]],
+            q: Signals::zeros(1, 5),
+            qd: Signals::zeros(1, 5),
+            qdd: Signals::zeros(1, 5),
+            tau: Signals::zeros(1, 5),
             sample_time: 0.1,
         };
         let e = energy_observation(&short, 10, vec!["a".into()], &h, &h);

@@ -2,7 +2,6 @@
 //! drive columns, parallel low-pass + decimation of every column and of the torque,
 //! removal of equations near rest, joint-major stacking.
 
-use crate::DataError;
 use crate::EstimateError;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
@@ -12,7 +11,7 @@ use crate::data::{Config, Decimation};
 use crate::error::{Error, Result};
 use crate::estimate::{Observation, check_names};
 use crate::pipeline::Prepared;
-use crate::signal::{Decimator, moving_samples};
+use crate::signal::{Decimator, Signals, moving_samples};
 
 /// Samples per parallel work item when evaluating the regressor.
 const BLOCK: usize = 512;
@@ -94,13 +93,7 @@ pub fn observe(
     config: &Config,
 ) -> Result<Observation> {
     let dof = model.dof();
-    if signals.q.len() != dof {
-        return Err(Error::Data(DataError::JointCountMismatch {
-            context: "data".into(),
-            expected: dof,
-            found: signals.q.len(),
-        }));
-    }
+    signals.check(dof, "data")?;
     let extra = &config.extra_columns;
     for c in extra {
         c.check(dof)?;
@@ -137,11 +130,9 @@ pub fn observe(
                   st: &mut Scratch,
                   row: &mut [f64]|
      -> std::result::Result<(), crate::LengthError> {
-        for j in 0..dof {
-            st.q[j] = signals.q[j][k];
-            st.qd[j] = signals.qd[j][k];
-            st.qdd[j] = signals.qdd[j][k];
-        }
+        signals.q.sample_into(k, &mut st.q);
+        signals.qd.sample_into(k, &mut st.qd);
+        signals.qdd.sample_into(k, &mut st.qdd);
         model.base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
         for (c, x) in extra.iter().enumerate() {
             x.fill(&st.q, &st.qd, &st.qdd, &mut st.col);
@@ -269,12 +260,14 @@ pub fn observe(
         place[ch].map(|(g, k, w)| (groups[g].as_slice(), k, w))
     };
 
-    let qd_dec: Vec<Vec<f64>> = (0..dof)
-        .map(|j| match series(lay.qd(j)) {
-            Some((v, k, w)) => v.iter().skip(k).step_by(w).take(m).copied().collect(),
-            None => vec![0.0; m],
-        })
-        .collect();
+    let qd_dec = Signals::new(
+        (0..dof)
+            .map(|j| match series(lay.qd(j)) {
+                Some((v, k, w)) => v.iter().skip(k).step_by(w).take(m).copied().collect(),
+                None => vec![0.0; m],
+            })
+            .collect(),
+    )?;
     let keep: Vec<Vec<usize>> = match &config.processing.rest_velocity {
         Some(t) => moving_samples(&qd_dec, &t.values(dof, "processing.rest_velocity")?),
         None => vec![(0..m).collect(); dof],

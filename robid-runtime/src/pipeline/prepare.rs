@@ -8,23 +8,22 @@
 //! automatic trim of one settling time at each real end of the record, on top of
 //! `processing.trim`.
 
-use rayon::prelude::*;
-
+use crate::DataError;
 use crate::data::{Config, Dataset, Derivative, Signal};
 use crate::error::{Error, Result};
-use crate::signal::{Sos, butterworth_hz, central_difference};
+use crate::signal::{Signals, Sos, butterworth_hz, central_difference};
 
-/// Joint signals ready for the regressor, one vector per joint, all the same length.
+/// Joint signals ready for the regressor.
 #[derive(Debug, Clone)]
 pub struct Prepared {
     /// Positions.
-    pub q: Vec<Vec<f64>>,
+    pub q: Signals,
     /// Velocities.
-    pub qd: Vec<Vec<f64>>,
+    pub qd: Signals,
     /// Accelerations.
-    pub qdd: Vec<Vec<f64>>,
+    pub qdd: Signals,
     /// Joint torques (rotor-compensated when configured).
-    pub tau: Vec<Vec<f64>>,
+    pub tau: Signals,
     /// Sample time (s).
     pub sample_time: f64,
 }
@@ -32,7 +31,34 @@ pub struct Prepared {
 impl Prepared {
     /// Number of samples.
     pub fn samples(&self) -> usize {
-        self.q.first().map_or(0, Vec::len)
+        self.q.samples()
+    }
+
+    /// Checks that the four signals have `dof` joints and as many samples as the
+    /// positions; `context` names the user in the error.
+    pub fn check(&self, dof: usize, context: &str) -> Result<()> {
+        for (what, x) in [
+            ("positions", &self.q),
+            ("velocities", &self.qd),
+            ("accelerations", &self.qdd),
+            ("torques", &self.tau),
+        ] {
+            if x.dof() != dof {
+                return Err(Error::Data(DataError::JointCountMismatch {
+                    context: format!("{context}: {what}"),
+                    expected: dof,
+                    found: x.dof(),
+                }));
+            }
+            if x.samples() != self.samples() {
+                return Err(Error::DimensionMismatch {
+                    what: format!("{context}: samples of the {what}"),
+                    expected: self.samples(),
+                    found: x.samples(),
+                });
+            }
+        }
+        Ok(())
     }
 }
 
@@ -42,10 +68,10 @@ const PADDING_TOLERANCE: f64 = 1e-4;
 /// lobe of the response: where the bent curvature of the extension still shows in qdd).
 const SETTLING_TOLERANCE: f64 = 1e-1;
 
-fn filter_all(sos: Option<&Sos>, pad: usize, x: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
+fn filter_all(sos: Option<&Sos>, pad: usize, x: &Signals) -> Result<Signals> {
     match sos {
-        Some(s) => x.par_iter().map(|v| s.filtfilt_padded(v, pad)).collect(),
-        None => Ok(x.to_vec()),
+        Some(s) => x.try_map(|v| s.filtfilt_padded(v, pad)),
+        None => Ok(x.clone()),
     }
 }
 
@@ -59,8 +85,8 @@ pub fn automatic_trim(config: &Config, sample_time: f64) -> Result<usize> {
     }
 }
 
-fn differentiate(x: &[Vec<f64>], dt: f64) -> Vec<Vec<f64>> {
-    x.par_iter().map(|v| central_difference(v, dt)).collect()
+fn differentiate(x: &Signals, dt: f64) -> Result<Signals> {
+    x.map(|v| central_difference(v, dt))
 }
 
 /// Applies the `[processing]` options (estimation range, low-pass, derivatives, trim)
@@ -133,12 +159,12 @@ pub(crate) fn prepare_rows(
     let qd = match (p.velocity, &data.qd) {
         (Derivative::Auto | Derivative::Data, Some(v)) => filter_all(on(Signal::Qd), pad, v)?,
         (Derivative::Data, None) => return Err(missing("processing.velocity", "velocity")),
-        _ => differentiate(&q, dt),
+        _ => differentiate(&q, dt)?,
     };
     let qdd = match (p.acceleration, &data.qdd) {
         (Derivative::Auto | Derivative::Data, Some(a)) => filter_all(on(Signal::Qdd), pad, a)?,
         (Derivative::Data, None) => return Err(missing("processing.acceleration", "acceleration")),
-        _ => differentiate(&qd, dt),
+        _ => differentiate(&qd, dt)?,
     };
     let mut tau = filter_all(on(Signal::Tau), pad, &data.tau)?;
     if let Some(rotor) = &config.drive.rotor {
@@ -147,8 +173,8 @@ pub(crate) fn prepare_rows(
             .as_ref()
             .ok_or_else(|| missing("drive.rotor", "motor_position"))?;
         let theta = filter_all(on(Signal::Q), pad, motor)?;
-        let thetad = differentiate(&theta, dt);
-        let thetadd = differentiate(&thetad, dt);
+        let thetad = differentiate(&theta, dt)?;
+        let thetadd = differentiate(&thetad, dt)?;
         rotor.compensate(&mut tau, &thetad, &thetadd)?;
     }
     // the range is cut after filtering and differentiation, so that its ends are free of
@@ -189,14 +215,11 @@ pub(crate) fn prepare_rows(
             hint: "reduce processing.trim, raise the low-pass cutoff or use a longer record",
         });
     }
-    let cut = |v: Vec<Vec<f64>>| -> Vec<Vec<f64>> {
-        v.into_iter().map(|x| x[start..end].to_vec()).collect()
-    };
     let prepared = Prepared {
-        q: cut(q),
-        qd: cut(qd),
-        qdd: cut(qdd),
-        tau: cut(tau),
+        q: q.range(start..end),
+        qd: qd.range(start..end),
+        qdd: qdd.range(start..end),
+        tau: tau.range(start..end),
         sample_time: dt,
     };
     for (signal, x) in [
@@ -205,17 +228,15 @@ pub(crate) fn prepare_rows(
         ("acceleration", &prepared.qdd),
         ("torque", &prepared.tau),
     ] {
-        for (j, v) in x.iter().enumerate() {
-            if let Some(k) = v.iter().position(|v| !v.is_finite()) {
-                return Err(Error::NonFiniteResult {
-                    what: format!(
-                        "the processed {signal} of joint {} at {}",
-                        j + 1,
-                        data.location(start + k)
-                    ),
-                    cause: "the low-pass filter, differentiation or rotor compensation overflowed; check [processing] (a higher cutoff, measured velocities) and the data near that row".into(),
-                });
-            }
+        if let Some((j, k)) = x.first_non_finite() {
+            return Err(Error::NonFiniteResult {
+                what: format!(
+                    "the processed {signal} of joint {} at {}",
+                    j + 1,
+                    data.location(start + k)
+                ),
+                cause: "the low-pass filter, differentiation or rotor compensation overflowed; check [processing] (a higher cutoff, measured velocities) and the data near that row".into(),
+            });
         }
     }
     Ok((prepared, start..end))

@@ -14,6 +14,7 @@ use crate::Real;
 #[allow(unused_imports)]
 use crate::model::{LengthError, ProgramKind, check_arguments, check_length};
 use crate::pipeline::{identify, validate};
+use crate::signal::Signals;
 
 #[path = "synthetic.rs"]
 mod synthetic;
@@ -123,8 +124,8 @@ fn validation_on_other_data_predicts_well() {
 fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
     let n = 6000;
     let (mut q, mut qd, mut qdd) = ([0.0; DOF], [0.0; DOF], [0.0; DOF]);
-    let mut qs = vec![vec![0.0; n]; DOF];
-    let mut taus = vec![vec![0.0; n]; DOF];
+    let mut qs = Signals::zeros(DOF, n);
+    let mut taus = Signals::zeros(DOF, n);
     let model = Synthetic::default();
     let beta = true_parameters();
     for k in 0..n {
@@ -166,8 +167,8 @@ fn extra_coupled_wrist_columns_are_identified() {
     let model = Synthetic::default();
     let beta = true_parameters();
     let (mut q, mut qd, mut qdd) = ([0.0; DOF], [0.0; DOF], [0.0; DOF]);
-    let mut qs = vec![vec![0.0; n]; DOF];
-    let mut taus = vec![vec![0.0; n]; DOF];
+    let mut qs = Signals::zeros(DOF, n);
+    let mut taus = Signals::zeros(DOF, n);
     for k in 0..n {
         trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
         let mut tau = [0.0; DOF];
@@ -208,13 +209,7 @@ fn extra_coupled_wrist_columns_are_identified() {
 #[test]
 fn bad_inputs_for_the_pipeline() {
     let model = Synthetic::default();
-    let data = Dataset::new(
-        "five",
-        1e-3,
-        vec![vec![0.0; 100]; 5],
-        vec![vec![0.0; 100]; 5],
-    )
-    .unwrap();
+    let data = Dataset::new("five", 1e-3, Signals::zeros(5, 100), Signals::zeros(5, 100)).unwrap();
     assert!(matches!(
         identify(&model, &data, &config("")),
         Err(Error::Data(DataError::JointCountMismatch {
@@ -223,13 +218,7 @@ fn bad_inputs_for_the_pipeline() {
             ..
         }))
     ));
-    let short = Dataset::new(
-        "short",
-        1e-3,
-        vec![vec![0.0; 30]; 6],
-        vec![vec![0.0; 30]; 6],
-    )
-    .unwrap();
+    let short = Dataset::new("short", 1e-3, Signals::zeros(6, 30), Signals::zeros(6, 30)).unwrap();
     assert!(matches!(
         identify(&model, &short, &config("")),
         Err(Error::TooFewSamples { .. })
@@ -257,8 +246,8 @@ fn rotor_compensation_removes_rotor_inertia_and_friction() {
     let model = Synthetic::default();
     let beta = true_parameters();
     let (mut q, mut qd, mut qdd) = ([0.0; DOF], [0.0; DOF], [0.0; DOF]);
-    let mut qs = vec![vec![0.0; n]; DOF];
-    let mut taus = vec![vec![0.0; n]; DOF];
+    let mut qs = Signals::zeros(DOF, n);
+    let mut taus = Signals::zeros(DOF, n);
     for k in 0..n {
         trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
         let mut tau = [0.0; DOF];

@@ -7,10 +7,8 @@
 //! FIGAROH's `decimate(decimate(x, 10), 10)`), because the 8th-order design loses
 //! accuracy for larger single factors.
 
-use rayon::prelude::*;
-
 use crate::error::{Error, Result};
-use crate::signal::{Sos, chebyshev1};
+use crate::signal::{Signals, Sos, chebyshev1};
 
 /// A chain of decimation stages.
 #[derive(Debug, Clone)]
@@ -139,17 +137,14 @@ impl Decimator {
 
     /// Decimates many signals in parallel; signals that are identically zero are
     /// passed through without filtering.
-    pub fn apply_all(&self, signals: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
-        signals
-            .par_iter()
-            .map(|x| {
-                if x.iter().all(|v| *v == 0.0) {
-                    Ok(vec![0.0; self.output_len(x.len())])
-                } else {
-                    self.apply(x)
-                }
-            })
-            .collect()
+    pub fn apply_all(&self, signals: &Signals) -> Result<Signals> {
+        signals.try_map(|x| {
+            if x.iter().all(|v| *v == 0.0) {
+                Ok(vec![0.0; self.output_len(x.len())])
+            } else {
+                self.apply(x)
+            }
+        })
     }
 }
 
@@ -249,9 +244,9 @@ mod tests {
     #[test]
     fn parallel_matches_serial_and_keeps_zeros() {
         let dec = Decimator::with_total(10).unwrap();
-        let signals = vec![signal(), vec![0.0; 200]];
+        let signals = Signals::new(vec![signal(), vec![0.0; 200]]).unwrap();
         let out = dec.apply_all(&signals).unwrap();
         assert_eq!(out[0], dec.apply(&signals[0]).unwrap());
-        assert_eq!(out[1], vec![0.0; 20]);
+        assert_eq!(out[1], [0.0; 20]);
     }
 }

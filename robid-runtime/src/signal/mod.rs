@@ -5,10 +5,12 @@ mod decimate;
 mod design;
 mod diff;
 mod rest;
+mod signals;
 mod sos;
 
 pub use decimate::{Decimator, split_factor};
 pub use design::{MIN_CUTOFF, butterworth, butterworth_hz, chebyshev1};
 pub use diff::central_difference;
 pub use rest::moving_samples;
+pub use signals::Signals;
 pub use sos::Sos;

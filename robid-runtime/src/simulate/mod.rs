@@ -30,6 +30,7 @@ mod run_tests {
     use super::tests::Pendulum;
     use super::*;
     use crate::Model;
+    use crate::signal::Signals;
 
     /// A smooth reference starting at rest.
     pub(crate) fn reference(seconds: f64, rate: f64) -> Trajectory {
@@ -68,10 +69,10 @@ mod run_tests {
         // the recorded (q, qd, qdd, tau) satisfy the model
         let mut tau = [0.0; 2];
         for k in (10..r.samples()).step_by(37) {
-            let s = |v: &Vec<Vec<f64>>| [v[0][k], v[1][k]];
+            let s = |v: &Signals| [v[0][k], v[1][k]];
             p.inverse_dynamics_into(&s(&tr.q), &s(&tr.qd), &s(&tr.qdd), &base, &mut tau)
                 .unwrap();
-            for (t, truth) in tau.iter().zip(&out.truth.tau) {
+            for (t, truth) in tau.iter().zip(out.truth.tau.joints()) {
                 assert!((t - truth[k]).abs() < 1e-9);
             }
         }

@@ -40,6 +40,7 @@ pub const MAX_SIMULATION_STEPS: usize = 200_000_000;
 /// diverged simulation.
 pub const DIVERGENCE_FACTOR: f64 = 10.0;
 use crate::rng::Rng;
+use crate::signal::Signals;
 use crate::simulate::{ForwardDynamics, Record, Trajectory};
 
 /// Measurement noise and quantization.
@@ -227,7 +228,7 @@ impl Simulation {
         // divergence: a tracking error beyond DIVERGENCE_FACTOR x (reference range + 1)
         let allowed: Vec<f64> = reference
             .q
-            .iter()
+            .joints()
             .map(|v| {
                 let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
                 let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -267,7 +268,7 @@ impl Simulation {
         let (mut q, mut qd) = (r0[0].clone(), r0[1].clone());
         let mut truth = Record {
             trajectory: Trajectory::zeros(n, reference.t.clone()),
-            tau: vec![vec![0.0; samples]; n],
+            tau: Signals::zeros(n, samples),
         };
         let mut measured = truth.clone();
         let (mut tau, mut qdd) = (vec![0.0; n], vec![0.0; n]);
@@ -370,7 +371,7 @@ impl Simulation {
         }
         measured.trajectory.check("the simulated measurement")?;
         truth.trajectory.check("the simulated truth")?;
-        for (j, v) in measured.tau.iter().enumerate() {
+        for (j, v) in measured.tau.joints().enumerate() {
             if let Some(k) = v.iter().position(|x| !(x.abs() <= MAX_TORQUE)) {
                 return Err(diverged(
                     k,

@@ -1,7 +1,7 @@
 //! Joint trajectories and simulated records, with their CSV form.
 //!
 //! A trajectory file has the header `t,q1..qn,qd1..qdn,qdd1..qddn`; a simulated record
-//! adds `tau1..taun`. Signals are stored per joint: `q[j][k]` is joint j at sample k.
+//! adds `tau1..taun`. Signals are [`Signals`]: `q[j][k]` is joint j at sample k.
 
 use crate::DataError;
 use std::path::Path;
@@ -9,6 +9,7 @@ use std::path::Path;
 use crate::data::{ColumnMapping, read_columns};
 use crate::error::{Error, Result};
 use crate::limits::Quantity;
+use crate::signal::Signals;
 
 /// Positions, velocities and accelerations on a time grid.
 #[derive(Debug, Clone, PartialEq)]
@@ -16,11 +17,11 @@ pub struct Trajectory {
     /// Time stamps (s), increasing.
     pub t: Vec<f64>,
     /// Positions per joint.
-    pub q: Vec<Vec<f64>>,
+    pub q: Signals,
     /// Velocities per joint.
-    pub qd: Vec<Vec<f64>>,
+    pub qd: Signals,
     /// Accelerations per joint.
-    pub qdd: Vec<Vec<f64>>,
+    pub qdd: Signals,
 }
 
 /// A simulated (or measured) record: the trajectory followed and the joint torques.
@@ -29,7 +30,7 @@ pub struct Record {
     /// What the joints did (as measured: with noise and quantization when simulated so).
     pub trajectory: Trajectory,
     /// Joint torques per joint.
-    pub tau: Vec<Vec<f64>>,
+    pub tau: Signals,
 }
 
 /// Header names `prefix1..prefixn`.
@@ -43,15 +44,15 @@ impl Trajectory {
         let n = t.len();
         Self {
             t,
-            q: vec![vec![0.0; n]; dof],
-            qd: vec![vec![0.0; n]; dof],
-            qdd: vec![vec![0.0; n]; dof],
+            q: Signals::zeros(dof, n),
+            qd: Signals::zeros(dof, n),
+            qdd: Signals::zeros(dof, n),
         }
     }
 
     /// Number of joints.
     pub fn dof(&self) -> usize {
-        self.q.len()
+        self.q.dof()
     }
 
     /// Number of samples.
@@ -61,11 +62,9 @@ impl Trajectory {
 
     /// Writes joint states of sample `k` into the three slices.
     pub fn state(&self, k: usize, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
-        for j in 0..self.dof() {
-            q[j] = self.q[j][k];
-            qd[j] = self.qd[j][k];
-            qdd[j] = self.qdd[j][k];
-        }
+        self.q.sample_into(k, q);
+        self.qd.sample_into(k, qd);
+        self.qdd.sample_into(k, qdd);
     }
 
     /// The CSV header `t,q1..,qd1..,qdd1..`.
@@ -120,21 +119,18 @@ impl Trajectory {
             });
         }
         crate::data::check_monotonic(&t, &table.lines, path)?;
-        let mut take = || (0..dof).map(|_| cols.next().unwrap_or_default()).collect();
-        let (q, qd, qdd) = (take(), take(), take());
+        let mut take = || Signals::new((0..dof).map(|_| cols.next().unwrap_or_default()).collect());
+        let (q, qd, qdd) = (take()?, take()?, take()?);
         Ok(Self { t, q, qd, qdd })
     }
 
     /// Checks that every value is finite (a result about to be returned); `owner` names the
     /// function in the error.
     pub(crate) fn check_finite(&self, owner: &str) -> Result<()> {
-        let bad = self
-            .q
+        let bad = [&self.q, &self.qd, &self.qdd]
             .iter()
-            .chain(&self.qd)
-            .chain(&self.qdd)
-            .chain(std::iter::once(&self.t))
-            .any(|v| v.iter().any(|x| !x.is_finite()));
+            .any(|x| x.first_non_finite().is_some())
+            || self.t.iter().any(|x| !x.is_finite());
         if bad {
             return Err(Error::NonFiniteResult {
                 what: format!("the trajectory of {owner}"),
@@ -150,15 +146,18 @@ impl Trajectory {
     pub fn check(&self, what: &str) -> Result<()> {
         let n = self.samples();
         for (name, block) in [("q", &self.q), ("qd", &self.qd), ("qdd", &self.qdd)] {
-            if block.len() != self.dof() || block.iter().any(|v| v.len() != n) {
+            if block.dof() != self.dof() {
                 return Err(Error::DimensionMismatch {
-                    what: format!("{what}: `{name}` signals ({} joints)", self.dof()),
+                    what: format!("{what}: joints of the `{name}` signals"),
+                    expected: self.dof(),
+                    found: block.dof(),
+                });
+            }
+            if block.dof() > 0 && block.samples() != n {
+                return Err(Error::DimensionMismatch {
+                    what: format!("{what}: samples of the `{name}` signals (one per time stamp)"),
                     expected: n,
-                    found: block
-                        .iter()
-                        .map(Vec::len)
-                        .find(|&l| l != n)
-                        .unwrap_or(block.len()),
+                    found: block.samples(),
                 });
             }
         }
@@ -196,7 +195,7 @@ impl Trajectory {
             ("qd", &self.qd, Quantity::Velocity),
             ("qdd", &self.qdd, Quantity::Acceleration),
         ] {
-            for (j, v) in block.iter().enumerate() {
+            for (j, v) in block.joints().enumerate() {
                 if let Some(k) = quantity.first_outside(v) {
                     return Err(Error::Data(DataError::OutOfRange {
                         location: at(k),
@@ -221,7 +220,7 @@ impl Trajectory {
     fn push_row(&self, k: usize, row: &mut Vec<f64>) {
         row.push(self.t[k]);
         for block in [&self.q, &self.qd, &self.qdd] {
-            row.extend(block.iter().map(|v| v[k]));
+            row.extend(block.joints().map(|v| v[k]));
         }
     }
 }
@@ -243,7 +242,7 @@ impl Record {
             self.trajectory.samples(),
             |k, row| {
                 self.trajectory.push_row(k, row);
-                row.extend(self.tau.iter().map(|v| v[k]));
+                row.extend(self.tau.joints().map(|v| v[k]));
             },
         )
     }

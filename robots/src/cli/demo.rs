@@ -15,6 +15,7 @@ use robid_runtime::estimate::{Estimate, Observation};
 use robid_runtime::output::create_folder;
 use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::report::{Report, plot_torques, text_table};
+use robid_runtime::signal::Signals;
 use robid_runtime::validate::Prediction;
 use robid_symbolic::Robot;
 use robots::figaroh::{self, Combination, combination, same};
@@ -101,7 +102,9 @@ pub(crate) fn run() -> Result<(), Error> {
 fn load(config: &Config) -> Result<Dataset, Error> {
     let dof = 6;
     let read = |bytes: &'static [u8], file: &str, names: Vec<String>| {
-        read_columns_from(MultiGzDecoder::new(bytes), Path::new(file), &names).map(|t| t.columns)
+        Signals::new(
+            read_columns_from(MultiGzDecoder::new(bytes), Path::new(file), &names)?.columns,
+        )
     };
     let columns = |i: usize, position: bool| -> Result<Vec<String>, Error> {
         let s = config.sources.get(i).ok_or("config: missing [[source]]")?;

@@ -368,7 +368,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
 /// Refuses a sampled trajectory with a value that is not finite.
 fn check_trajectory(tr: &Trajectory) -> Result<(), Error> {
     for (name, block) in [("q", &tr.q), ("qd", &tr.qd), ("qdd", &tr.qdd)] {
-        for (j, signal) in block.iter().enumerate() {
+        for (j, signal) in block.joints().enumerate() {
             if let Some(k) = signal.iter().position(|x| !x.is_finite()) {
                 return Err(format!(
                     "the designed trajectory has {name}{} = {} at t = {} s; nothing was \

@@ -145,7 +145,7 @@ fn check_result(record: &Record, reference: &Trajectory, tolerance: f64) -> Resu
         ("tau", &record.tau),
     ];
     for (name, block) in blocks {
-        for (j, signal) in block.iter().enumerate() {
+        for (j, signal) in block.joints().enumerate() {
             if let Some(k) = signal.iter().position(|x| !x.is_finite()) {
                 return Err(diverged(
                     &format!("{name}{} is {}", j + 1, signal[k]),
@@ -154,7 +154,7 @@ fn check_result(record: &Record, reference: &Trajectory, tolerance: f64) -> Resu
             }
         }
     }
-    for (j, (q, r)) in tr.q.iter().zip(&reference.q).enumerate() {
+    for (j, (q, r)) in tr.q.joints().zip(&reference.q).enumerate() {
         if let Some((k, e)) = q
             .iter()
             .zip(r)
@@ -223,7 +223,7 @@ mod tests {
         let reference = Trajectory::zeros(2, vec![0.0, 0.1, 0.2]);
         let record = Record {
             trajectory: reference.clone(),
-            tau: vec![vec![0.0; 3]; 2],
+            tau: robid_runtime::signal::Signals::zeros(2, 3),
         };
         (record, reference)
     }

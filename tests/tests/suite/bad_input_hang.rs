@@ -18,6 +18,7 @@ use robid_runtime::estimate::{Observation, ols, rls, wls};
 use robid_runtime::excite::FourierDesign;
 use robid_runtime::feasible::AnnealOptions;
 use robid_runtime::nelder_mead::NelderMead;
+use robid_runtime::signal::Signals;
 use robid_runtime::simulate::{Simulation, Trajectory};
 use robots::Ur5e;
 
@@ -75,9 +76,9 @@ fn a_huge_sample_is_named_at_load_time_for_every_method() {
 /// The same value in a data set built in code is named by its sample.
 #[test]
 fn a_huge_sample_in_a_data_set_built_in_code_is_named_by_its_sample() {
-    let mut tau = vec![vec![1.0; 100]; 6];
+    let mut tau = Signals::from_fn(6, 100, |_, _| 1.0);
     tau[2][41] = 1e200;
-    let e = Dataset::new("mine", 0.01, vec![vec![0.0; 100]; 6], tau).unwrap_err();
+    let e = Dataset::new("mine", 0.01, Signals::zeros(6, 100), tau).unwrap_err();
     assert_eq!(
         e.to_string(),
         "data set `mine`, sample 41: joint 3 torque (after units and drive chain) is 1e200, \

@@ -109,7 +109,7 @@ fn a_bad_trajectory_row_is_named_by_its_row_not_blamed_on_the_parameters() {
     for k in 0..200 {
         text.push_str(&format!("{}", m.t[k]));
         for block in &m.signals[..3] {
-            for (j, v) in block.iter().enumerate() {
+            for (j, v) in block.joints().enumerate() {
                 let bad = k == 77 && std::ptr::eq(block, &m.signals[2]) && j == 1;
                 text.push_str(&format!(",{}", if bad { 5e8 } else { v[k] }));
             }

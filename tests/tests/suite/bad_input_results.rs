@@ -50,7 +50,7 @@ fn a_diverging_simulation_is_an_error_that_blames_the_bandwidth() {
     assert!(
         ok.measured
             .tau
-            .iter()
+            .joints()
             .chain(&ok.measured.trajectory.q)
             .flatten()
             .all(|v| v.is_finite() && v.abs() < 1e3)
@@ -125,7 +125,7 @@ fn all_zero_torques_are_an_error_that_says_so() {
     let dir = std::env::temp_dir().join(format!("robid-bad-results-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut m = fuzz_data::motion(300);
-    m.signals[3].iter_mut().flatten().for_each(|v| *v = 0.0);
+    m.signals[3].joints_mut().flatten().for_each(|v| *v = 0.0);
     let f = dir.join("still.csv");
     std::fs::write(&f, fuzz_data::motion_csv(&m)).unwrap();
     let config = Config::default_mapping();

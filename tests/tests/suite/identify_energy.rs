@@ -25,6 +25,7 @@ use robid_runtime::data::{Config, Dataset, Derivative, Method};
 use robid_runtime::excite::{FourierDesign, JointLimits};
 use robid_runtime::pipeline::{energy_observation_of, identify, prepare};
 use robid_runtime::rng::Rng;
+use robid_runtime::signal::Signals;
 use robid_runtime::simulate::Trajectory;
 use robid_symbolic::Drive;
 use robots::Ur5e;
@@ -70,8 +71,8 @@ fn record(model: &Ur5e, truth: &[f64], seed: u64, noise: Option<([f64; 6], f64, 
     let n = tr.samples();
     let mut rng = Rng::new(seed);
     let (mut q, mut qd, mut qdd, mut tau) = ([0.0; 6], [0.0; 6], [0.0; 6], [0.0; 6]);
-    let mut qs = vec![vec![0.0; n]; 6];
-    let mut taus = vec![vec![0.0; n]; 6];
+    let mut qs = Signals::zeros(6, n);
+    let mut taus = Signals::zeros(6, n);
     for k in 0..n {
         tr.state(k, &mut q, &mut qd, &mut qdd);
         Model::inverse_dynamics_into(model, &q, &qd, &qdd, truth, &mut tau).unwrap();

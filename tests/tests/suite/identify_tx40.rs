@@ -20,6 +20,7 @@ use std::path::PathBuf;
 use robid_runtime::data::{Config, Dataset, load_config_files};
 use robid_runtime::estimate::Observation;
 use robid_runtime::pipeline::{estimate, identify, observation};
+use robid_runtime::signal::Signals;
 use robid_runtime::validate::Prediction;
 use robots::figaroh::{self, Combination, combination, same};
 use robots::interpreted::{Chosen, model_for};
@@ -195,8 +196,7 @@ fn tx40_with_figaroh_bugs_emulated_reproduces_its_offsets_and_iam6() {
     for j in 0..6 {
         let lead = 2 * j;
         let n = p.samples() - lead;
-        let advance =
-            |v: &Vec<Vec<f64>>| -> Vec<Vec<f64>> { v.iter().map(|x| x[lead..].to_vec()).collect() };
+        let advance = |v: &Signals| v.range(lead..v.samples());
         let mut pj = robid_runtime::pipeline::Prepared {
             q: advance(&p.q),
             qd: advance(&p.qd),
@@ -204,7 +204,7 @@ fn tx40_with_figaroh_bugs_emulated_reproduces_its_offsets_and_iam6() {
             tau: advance(&p.tau),
             sample_time: p.sample_time,
         };
-        pj.tau[j] = p.tau[j][..n].to_vec();
+        pj.tau[j].copy_from_slice(&p.tau[j][..n]);
         let o = observe(model, &pj, &t.config).unwrap();
         let start = y.len();
         for k in o.joint_rows[j].clone() {

@@ -114,7 +114,7 @@ impl Setup {
             );
         }
         assert!(a.within_limits(), "{:?}", a.margins);
-        for (j, q) in self.optimal.q.iter().enumerate() {
+        for (j, q) in self.optimal.q.joints().enumerate() {
             assert!(self.optimal.qd[j][0].abs() < 1e-12 && self.optimal.qdd[j][0].abs() < 1e-9);
             assert!((q[0] - q[q.len() - 1]).abs() < 1e-9);
         }
