@@ -201,6 +201,19 @@ mod tests {
         let weights = w.weights.clone().unwrap();
         // measured ratio 8.8
         assert!(weights[0] > 5.0 * weights[1], "{weights:?}");
+        // each weight is 1 / sigma_j, sigma_j^2 = joint j's OLS residual sum of squares over
+        // its rows minus the parameters (400 - 3)
+        for (j, rows) in obs.joint_rows.iter().enumerate() {
+            let rss: f64 = rows
+                .clone()
+                .map(|k| {
+                    let x = obs.w.row(k);
+                    (obs.y[k] - (0..3).map(|c| x[c] * o.values[c]).sum::<f64>()).powi(2)
+                })
+                .sum();
+            let expected = 1.0 / (rss / (rows.len() - 3) as f64).sqrt();
+            assert!((weights[j] / expected - 1.0).abs() < 1e-9, "joint {j}");
+        }
         for i in 0..3 {
             assert!((w.values[i] - beta[i]).abs() < 4.0 * w.std[i]);
         }
