@@ -1,4 +1,4 @@
-//! The stated don't-care values (centre of the bounds) and per-parameter scales.
+//! The centre of the bounds: the default prior when the links' shapes are unknown.
 
 use super::bounds::Bounds;
 use super::inertial::LinkInertial;
@@ -21,29 +21,4 @@ pub fn centre(layout: &Layout, bounds: &Bounds) -> Vec<f64> {
         }
     }
     p
-}
-
-/// A typical magnitude of each standard parameter under the bounds.
-#[cfg(feature = "sdp")]
-pub(super) fn scales(layout: &Layout, bounds: &Bounds) -> Vec<f64> {
-    let mut s = vec![1.0; layout.len()];
-    for (j, idx) in layout.links.iter().enumerate() {
-        let b = &bounds.links[j];
-        let m = b.mass[1].max(1e-9);
-        let r = b
-            .com
-            .iter()
-            .flatten()
-            .fold(0.0f64, |a, v| a.max(v.abs()))
-            .max(1e-3);
-        let inertia = (b.inertia[1] + m * r * r).max(1e-9);
-        for (k, &i) in idx.iter().enumerate() {
-            s[i] = match k {
-                0..=5 => inertia,
-                6..=8 => m * r,
-                _ => m,
-            };
-        }
-    }
-    s
 }

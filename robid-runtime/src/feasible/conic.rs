@@ -10,18 +10,9 @@ use clarabel::solver::{
 use nalgebra::{DMatrix, DVector};
 
 use super::bounds::Bounds;
-use super::centre::scales;
+use super::prior::Pull;
 use super::problem::Problem;
 use crate::{Error, Result};
-
-/// Where the objective pulls each standard parameter (its prior value, or the centre of
-/// its bounds) and how hard: it settles what the data leave free.
-pub(super) struct Pull {
-    /// Target per standard parameter.
-    pub target: Vec<f64>,
-    /// Weight per standard parameter.
-    pub weight: Vec<f64>,
-}
 
 /// Rows of `A x + s = b, s in K`, with the cones in order.
 struct Conic {
@@ -114,7 +105,7 @@ fn solve_stage(
             found: p0.len().min(weight.len()),
         });
     }
-    let scale = scales(layout, bounds);
+    let scale = &pull.scale;
     c.row(&[(t, -1.0)], 0.0);
     if let Some((fixed, free)) = settle {
         // Relative weights only: a parameter with a prior outweighs one without.

@@ -31,10 +31,13 @@ mod conic;
 mod error;
 mod inertial;
 mod layout;
+mod log_cholesky;
 mod output;
+mod prior;
 mod problem;
 mod sdp;
 mod search;
+mod smooth;
 mod solution;
 
 pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds};
@@ -45,7 +48,9 @@ pub use inertial::{
 };
 pub use layout::{Drive, Layout};
 pub use output::{to_toml, to_urdf};
+pub use prior::{LinkShape, Prior};
 pub use problem::Problem;
-pub use sdp::{Prior, SdpOptions, consistent_least_squares, solve_sdp};
+pub use sdp::{SdpOptions, consistent_least_squares, solve_sdp};
 pub use search::{AnnealOptions, solve_anneal};
+pub use smooth::{SmoothOptions, solve_smooth};
 pub use solution::{Method, Solution};

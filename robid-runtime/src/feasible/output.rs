@@ -33,6 +33,42 @@ pub fn to_toml(solution: &Solution, robot: &str) -> String {
     for v in &solution.violations {
         let _ = writeln!(s, "# bound not met: {v}");
     }
+    for v in &solution.at_bounds {
+        let _ = writeln!(s, "# at a bound: {v}");
+    }
+    if !solution.determined.is_empty() {
+        let _ = writeln!(
+            s,
+            "# Share determined by the data (1) rather than the prior (0), per link:"
+        );
+        for j in 0..solution.links.len() {
+            let share = |stems: &[&str]| {
+                let values: Vec<f64> = stems
+                    .iter()
+                    .filter_map(|stem| {
+                        let name = format!("{stem}{}", j + 1);
+                        let i = solution.names.iter().position(|n| *n == name)?;
+                        solution.determined.get(i).copied()
+                    })
+                    .collect();
+                let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                if (hi - lo).abs() < 0.005 {
+                    format!("{lo:.2}")
+                } else {
+                    format!("{lo:.2}-{hi:.2}")
+                }
+            };
+            let _ = writeln!(
+                s,
+                "#   link {}: mass {}, first moments {}, inertia {}",
+                j + 1,
+                share(&["M"]),
+                share(&["MX", "MY", "MZ"]),
+                share(&["XX", "XY", "XZ", "YY", "YZ", "ZZ"])
+            );
+        }
+    }
     let _ = writeln!(s, "\n[standard]");
     for (n, v) in solution.names.iter().zip(&solution.standard) {
         let _ = writeln!(s, "{n} = {v:e}");

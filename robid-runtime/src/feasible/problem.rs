@@ -4,6 +4,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::layout::Layout;
+use super::prior::LinkShape;
 use crate::limits::MAX_PARAMETER;
 use crate::{Error, Model, Result};
 
@@ -24,6 +25,9 @@ pub struct Problem {
     pub std: DVector<f64>,
     /// Whitening L^-1 (covariance = L L'): z = L^-1 (K p - beta) has unit covariance.
     pub whitening: DMatrix<f64>,
+    /// Each link's extent, when the geometry is known: the default prior is then a solid
+    /// of that size ([`super::prior`]); else the centre of the bounds.
+    pub shapes: Option<Vec<LinkShape>>,
 }
 
 impl Problem {
@@ -71,7 +75,28 @@ impl Problem {
             target: DVector::zeros(nb),
             std: DVector::from_element(nb, 1.0),
             whitening: DMatrix::identity(nb, nb),
+            shapes: None,
         })
+    }
+
+    /// Sets each link's extent (one shape per link), for the default prior.
+    pub fn with_shapes(mut self, shapes: Vec<LinkShape>) -> Result<Problem> {
+        if shapes.len() != self.layout.links.len() {
+            return Err(dims("link shapes", self.layout.links.len(), shapes.len()));
+        }
+        if shapes
+            .iter()
+            .flat_map(|s| s.from.iter().chain(&s.to))
+            .any(|v| !(v.abs() <= MAX_PARAMETER))
+        {
+            return Err(Error::setting(
+                "Problem::with_shapes",
+                "shapes",
+                "a link end is not a finite length of at most 1e6 m",
+            ));
+        }
+        self.shapes = Some(shapes);
+        Ok(self)
     }
 
     /// A problem from names and K given row by row (`rows[b][s]`).

@@ -27,22 +27,10 @@ use std::time::Instant;
 use nalgebra::{DMatrix, DVector};
 
 use super::bounds::Bounds;
+use super::prior::{Prior, Pull};
 use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::{Error, Result};
-
-/// A prior (e.g. CAD values) the fit is pulled towards.
-///
-/// The data decide what they determine; the prior decides the rest (the directions the
-/// base parameters leave free) and, with a firm weight, competes with the data.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Prior {
-    /// Standard parameter values, in the problem's order; `None` where there is no prior
-    /// (that parameter is pulled weakly towards the centre of its bounds, as without a prior).
-    pub standard: Vec<Option<f64>>,
-    /// Weight of the pull, relative to one unit of chi^2 per parameter scale (1 is firm).
-    pub weight: f64,
-}
 
 /// Options of the semidefinite formulation.
 #[derive(Debug, Clone, PartialEq)]
@@ -71,7 +59,15 @@ pub fn solve_sdp(problem: &Problem, bounds: &Bounds, options: &SdpOptions) -> Re
     let a = &problem.whitening * &problem.k;
     let b = &problem.whitening * &problem.target;
     let p = solve(problem, bounds, &a, &b, options)?;
-    Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())
+    let mut solution = Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())?;
+    let pull = Pull::new(
+        problem,
+        bounds,
+        options.prior.as_ref(),
+        options.regularization,
+    )?;
+    solution.determined = super::prior::determined(problem, &pull);
+    Ok(solution)
 }
 
 impl SdpOptions {
@@ -159,7 +155,15 @@ pub fn consistent_least_squares(
     let a = qr.r() * &problem.k;
     let b = qr.q().transpose() * y;
     let p = solve(problem, bounds, &a, &b, options)?;
-    Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())
+    let mut solution = Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())?;
+    let pull = Pull::new(
+        problem,
+        bounds,
+        options.prior.as_ref(),
+        options.regularization,
+    )?;
+    solution.determined = super::prior::determined(problem, &pull);
+    Ok(solution)
 }
 
 /// The conic program with the pull of `options` (the prior, else the centre of the bounds).
@@ -180,34 +184,12 @@ fn solve(
             found: bounds.links.len(),
         });
     }
-    let ns = problem.standard_names.len();
-    let mut target = super::centre::centre(layout, bounds);
-    let mut weight = vec![options.regularization; ns];
-    if let Some(prior) = &options.prior {
-        if prior.standard.len() != ns {
-            return Err(Error::DimensionMismatch {
-                what: "prior standard parameters".to_owned(),
-                expected: ns,
-                found: prior.standard.len(),
-            });
-        }
-        if prior.standard.iter().flatten().any(|v| !v.is_finite())
-            || !(prior.weight.is_finite() && prior.weight >= 0.0)
-        {
-            return Err(Error::setting(
-                "SdpOptions",
-                "prior",
-                "holds NaN, an infinite value or a negative weight",
-            ));
-        }
-        for (s, v) in prior.standard.iter().enumerate() {
-            if let Some(v) = v {
-                target[s] = *v;
-                weight[s] = prior.weight;
-            }
-        }
-    }
-    let pull = super::conic::Pull { target, weight };
+    let pull = Pull::new(
+        problem,
+        bounds,
+        options.prior.as_ref(),
+        options.regularization,
+    )?;
     super::conic::solve(problem, bounds, a, b, &pull)
 }
 

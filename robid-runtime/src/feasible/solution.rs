@@ -16,6 +16,8 @@ pub enum Method {
     Sdp,
     /// Simulated annealing with random restarts and Nelder-Mead (Gaz et al.).
     Anneal,
+    /// Levenberg-Marquardt over the log-Cholesky parameters (the default).
+    LogCholesky,
 }
 
 impl Method {
@@ -24,6 +26,7 @@ impl Method {
         match self {
             Method::Sdp => "sdp",
             Method::Anneal => "anneal",
+            Method::LogCholesky => "log-cholesky",
         }
     }
 }
@@ -54,6 +57,12 @@ pub struct Solution {
     /// Bounds that the result does not meet (the SDP cannot impose the upper bound on the
     /// principal moments about the centre of mass, which is not convex).
     pub violations: Vec<String>,
+    /// Values that sit at one of their bounds (within 0.1 % of the range): the data or a
+    /// bound pushed them there, worth a look before the values go into a simulator.
+    pub at_bounds: Vec<String>,
+    /// Per standard parameter, the share the data determine (1) rather than the prior (0);
+    /// empty when not computed.
+    pub determined: Vec<f64>,
     /// Wall-clock time of the solve.
     pub seconds: f64,
 }
@@ -84,6 +93,7 @@ impl Solution {
         let mut links = Vec::new();
         let mut min_eigenvalues = Vec::new();
         let mut violations = Vec::new();
+        let mut at_bounds = Vec::new();
         let tol = 1e-6;
         for (j, b) in bounds.links.iter().enumerate() {
             let p = layout.link_values(j, &standard);
@@ -93,6 +103,28 @@ impl Solution {
                 let out = |v: f64, r: [f64; 2]| {
                     v < r[0] - tol * (1.0 + r[0].abs()) || v > r[1] + tol * (1.0 + r[1].abs())
                 };
+                let mut at = |what: String, v: f64, r: [f64; 2]| {
+                    let near = 1e-3 * (r[1] - r[0]).max(1e-12);
+                    for (side, bound) in [("lower", r[0]), ("upper", r[1])] {
+                        if (v - bound).abs() <= near {
+                            at_bounds.push(format!(
+                                "link {}: {what} {v:.6e} at its {side} bound {bound}",
+                                j + 1
+                            ));
+                        }
+                    }
+                };
+                at("mass".into(), l.mass, b.mass);
+                for a in 0..3 {
+                    at(format!("centre of mass [{a}]"), l.com[a], b.com[a]);
+                }
+                // a moment near a lower bound of zero is a small link, not a pinned one
+                let moments = [b.inertia[0].max(f64::MIN_POSITIVE), b.inertia[1]];
+                for (a, m) in l.principal_moments().iter().enumerate() {
+                    if b.inertia[0] > 0.0 || (*m - b.inertia[1]).abs() < (*m - moments[0]).abs() {
+                        at(format!("principal moment {a}"), *m, b.inertia);
+                    }
+                }
                 if out(l.mass, b.mass) {
                     violations.push(format!(
                         "link {}: mass {} outside {:?}",
@@ -147,6 +179,8 @@ impl Solution {
             min_eigenvalues,
             dont_care,
             violations,
+            at_bounds,
+            determined: Vec::new(),
             seconds: elapsed.as_secs_f64(),
         };
         let numbers = solution

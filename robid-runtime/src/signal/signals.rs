@@ -125,11 +125,6 @@ impl Signals {
             .enumerate()
             .find_map(|(j, v)| Some((j, v.iter().position(|x| !x.is_finite())?)))
     }
-
-    /// The vectors per joint.
-    pub fn into_joints(self) -> Vec<Vec<f64>> {
-        self.joints
-    }
 }
 
 impl Index<usize> for Signals {

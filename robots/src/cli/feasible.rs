@@ -1,5 +1,5 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
-//! [--method sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
+//! [--method log-cholesky|sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
 //! consistent link parameters that reproduce identified base parameters
 //! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
 //! OUT as TOML, or as URDF `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
@@ -14,8 +14,8 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Prior, Problem, SdpOptions, Solution, solve_anneal, solve_sdp, to_toml,
-    to_urdf,
+    AnnealOptions, Bounds, Prior, Problem, SdpOptions, SmoothOptions, Solution, solve_anneal,
+    solve_sdp, solve_smooth, to_toml, to_urdf,
 };
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
@@ -37,11 +37,14 @@ pub(crate) struct Args {
     /// Bounds on masses, centres of mass, inertias and the total mass (TOML).
     #[arg(long)]
     bounds: Option<PathBuf>,
-    /// `sdp` (convex, global optimum) or `anneal` (Gaz et al. global search).
-    #[arg(long, default_value = "sdp")]
+    /// `log-cholesky` (Levenberg-Marquardt over the log-Cholesky parameters, every point
+    /// physically consistent; needs nothing but the Rust toolchain), `sdp` (convex, global
+    /// optimum; needs the `sdp` feature) or `anneal` (Gaz et al. global search).
+    #[arg(long, default_value = "log-cholesky")]
     method: String,
     /// Prior standard parameters, e.g. CAD values (a parameter file with a `[standard]`
-    /// table; parameters it does not list have no prior). `--method sdp` only.
+    /// table; parameters it does not list get the default prior). `--method log-cholesky`
+    /// and `sdp`.
     #[arg(long)]
     prior: Option<PathBuf>,
     /// Weight in [0, 1e6] of the pull towards the prior (`--prior` only): a deviation of
@@ -82,14 +85,20 @@ fn check(args: &Args) -> Result<(), Error> {
     inputs.extend(args.prior.as_deref());
     files::refuse(&inputs, &[&args.output])?;
     match args.method.as_str() {
-        "sdp" => {}
+        "sdp" | "log-cholesky" => {}
         "anneal" if args.prior.is_some() => {
             return Err(
-                "--prior: only --method sdp uses a prior; drop --prior or use --method sdp".into(),
+                "--prior: only --method log-cholesky and sdp use a prior; drop --prior \
+                        or use --method log-cholesky"
+                    .into(),
             );
         }
         "anneal" => {}
-        other => return Err(format!("--method {other}: unknown; use sdp or anneal").into()),
+        other => {
+            return Err(
+                format!("--method {other}: unknown; use log-cholesky, sdp or anneal").into(),
+            );
+        }
     }
     if args.prior_weight.is_some() && args.prior.is_none() {
         return Err(
@@ -220,17 +229,24 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }),
         None => None,
     };
-    let solution = if args.method == "anneal" {
-        solve_anneal(&problem, &bounds, &AnnealOptions::default())?
-    } else {
-        solve_sdp(
+    let solution = match args.method.as_str() {
+        "anneal" => solve_anneal(&problem, &bounds, &AnnealOptions::default())?,
+        "sdp" => solve_sdp(
             &problem,
             &bounds,
             &SdpOptions {
                 prior,
                 ..SdpOptions::default()
             },
-        )?
+        )?,
+        _ => solve_smooth(
+            &problem,
+            &bounds,
+            &SmoothOptions {
+                prior,
+                ..SmoothOptions::default()
+            },
+        )?,
     };
     check_solution(&solution)?;
     let urdf = matches!(
@@ -260,6 +276,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             format!("; bounds not met: {}", solution.violations.join("; "))
         }
     ));
+    for at in &solution.at_bounds {
+        out::warn(format_args!("warning: {at}"));
+    }
     Ok(())
 }
 
@@ -306,6 +325,8 @@ mod tests {
             min_eigenvalues: Vec::new(),
             dont_care: Vec::new(),
             violations: Vec::new(),
+            at_bounds: Vec::new(),
+            determined: Vec::new(),
             seconds: 0.0,
         }
     }

@@ -217,7 +217,7 @@ fn feasible_rejects_a_base_table_prior_and_a_prior_with_anneal() {
     let o = run("anneal", "parameters/tx40.toml");
     assert!(!o.status.success());
     assert!(
-        stderr(&o).contains("only --method sdp uses a prior"),
+        stderr(&o).contains("only --method log-cholesky and sdp use a prior"),
         "{}",
         stderr(&o)
     );

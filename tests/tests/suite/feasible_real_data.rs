@@ -209,9 +209,7 @@ fn tx40_rows(chosen: &Chosen, data: &Dataset, config: &Config, a: usize, b: usiz
         (b - lo - trim).min(p.samples()),
     );
     for v in [&mut p.q, &mut p.qd, &mut p.qdd, &mut p.tau] {
-        for x in v.iter_mut() {
-            *x = x[s..e].to_vec();
-        }
+        *v = v.range(s..e);
     }
     observe(chosen.model.as_ref(), &p, config).unwrap()
 }

@@ -5,7 +5,8 @@
 
 use nalgebra::DMatrix;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, LinkBounds, LinkInertial, Problem, Solution, solve_anneal,
+    AnnealOptions, Bounds, LinkBounds, LinkInertial, Problem, SmoothOptions, Solution,
+    solve_anneal, solve_smooth,
 };
 use robid_runtime::rng::Rng;
 use robid_symbolic::regroup::BaseParameters;
@@ -183,6 +184,37 @@ fn check(
         worst,
         solution.seconds
     );
+}
+
+/// The log-Cholesky fit without a prior to speak of (weight 1e-6, as the SDP's pull)
+/// solves the SDP's problem: it must reach the global optimum's guarantees. Measured (release,
+/// one thread): UR5e chi^2 1.1e-14 in 2.4 s, TX40 with wide bounds 1.13 in 4.5 s. Not yet
+/// checked here: the Panda with the tight bounds of `bounds`, where the exterior penalty of
+/// the active bounds stalls the solver (chi^2 2.4e3 after its patience; 4e-10 with wide
+/// bounds, 7 s).
+fn smooth(name: &str, wide: bool) {
+    let mut c = case(name);
+    let b = if wide {
+        Bounds::wide(c.problem.layout.links.len())
+    } else {
+        bounds(&c)
+    };
+    let options = SmoothOptions {
+        default_weight: 1e-6,
+        ..SmoothOptions::default()
+    };
+    let s = solve_smooth(&c.problem, &b, &options).unwrap();
+    check(&mut c, &s, &format!("log-cholesky {name}"), wide, true);
+}
+
+#[test]
+fn smooth_ur5e() {
+    smooth("ur5e", false);
+}
+
+#[test]
+fn smooth_tx40_wide_default_bounds() {
+    smooth("tx40", true);
 }
 
 #[cfg(feature = "sdp")]

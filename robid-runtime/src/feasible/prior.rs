@@ -1,0 +1,338 @@
+//! What settles the directions the identified base parameters leave free: a user's prior
+//! (CAD values) where given, else the default prior. The default prior models each link as
+//! a solid cylinder along its segment of the kinematic chain ([`LinkShape`]), all links of
+//! one density fitted to the identified base parameters, so that a link the data cannot
+//! weigh (the first link of most arms) gets the mass of a solid of its size at the density
+//! the other links show; without shapes it is the centre of the bounds.
+//! (docs/experiments.md#feasible-parameters)
+
+use nalgebra::DVector;
+
+use super::bounds::Bounds;
+use super::centre::centre;
+use super::inertial::LinkInertial;
+use super::layout::Layout;
+use super::problem::Problem;
+use crate::{Error, Result};
+
+/// A prior (e.g. CAD values) the fit is pulled towards.
+///
+/// The data decide what they determine; the prior decides the rest (the directions the
+/// base parameters leave free) and, with a firm weight, competes with the data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Prior {
+    /// Standard parameter values, in the problem's order; `None` where there is no prior
+    /// (that parameter gets the default prior).
+    pub standard: Vec<Option<f64>>,
+    /// Weight of the pull: a deviation of one parameter scale (a link's mass, its mass
+    /// times its size, its mass times its size squared) costs this many chi^2 units.
+    pub weight: f64,
+}
+
+/// A link's extent in its own frame: the segment from the joint it turns about to the
+/// next joint (both ends in the link frame, m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkShape {
+    /// One end of the segment.
+    pub from: [f64; 3],
+    /// The other end.
+    pub to: [f64; 3],
+}
+
+/// A segment shorter than this share of the whole chain's length is given that length
+/// (a wrist link whose frames coincide is still a body).
+const MIN_LENGTH_SHARE: f64 = 0.1;
+/// Radius of the solid, relative to its length.
+const RADIUS_SHARE: f64 = 0.25;
+
+/// The pull on each standard parameter: towards `target`, with `weight` per unit of
+/// `scale`.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Pull {
+    /// Target per standard parameter.
+    pub target: Vec<f64>,
+    /// Weight per standard parameter.
+    pub weight: Vec<f64>,
+    /// Typical magnitude per standard parameter.
+    pub scale: Vec<f64>,
+}
+
+impl Pull {
+    /// The pull of `prior` where it gives a value, else of the default prior with
+    /// `default_weight`.
+    pub(super) fn new(
+        problem: &Problem,
+        bounds: &Bounds,
+        prior: Option<&Prior>,
+        default_weight: f64,
+    ) -> Result<Pull> {
+        let layout = &problem.layout;
+        let ns = layout.len();
+        let (mut target, scale) = match &problem.shapes {
+            Some(shapes) => solid_prior(problem, bounds, shapes),
+            None => (centre(layout, bounds), bounds_scales(layout, bounds)),
+        };
+        let mut weight = vec![default_weight; ns];
+        if let Some(prior) = prior {
+            if prior.standard.len() != ns {
+                return Err(Error::DimensionMismatch {
+                    what: "prior standard parameters".to_owned(),
+                    expected: ns,
+                    found: prior.standard.len(),
+                });
+            }
+            if prior
+                .standard
+                .iter()
+                .flatten()
+                .any(|v| !(v.abs() <= crate::limits::MAX_PARAMETER))
+                || !(prior.weight >= 0.0 && prior.weight <= 1e12)
+            {
+                return Err(Error::setting(
+                    "Prior",
+                    "prior",
+                    "holds NaN, an infinite or huge value, or a weight outside [0, 1e12]",
+                ));
+            }
+            for (s, v) in prior.standard.iter().enumerate() {
+                if let Some(v) = v {
+                    target[s] = *v;
+                    weight[s] = prior.weight;
+                }
+            }
+        }
+        Ok(Pull {
+            target,
+            weight,
+            scale,
+        })
+    }
+}
+
+/// The length of a link for the default prior: its segment, at least
+/// [`MIN_LENGTH_SHARE`] of the chain's total.
+fn lengths(shapes: &[LinkShape]) -> Vec<f64> {
+    let raw: Vec<f64> = shapes
+        .iter()
+        .map(|s| {
+            (0..3)
+                .map(|i| (s.to[i] - s.from[i]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let total: f64 = raw.iter().sum();
+    let floor = (MIN_LENGTH_SHARE * total).max(1e-3);
+    raw.iter().map(|l| l.max(floor)).collect()
+}
+
+/// A solid cylinder of density 1 along a link's segment (a zero segment: along z about
+/// the origin), with the given length and a radius of [`RADIUS_SHARE`] of it.
+fn solid(shape: &LinkShape, length: f64) -> LinkInertial {
+    let d: Vec<f64> = (0..3).map(|i| shape.to[i] - shape.from[i]).collect();
+    let norm = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let axis = if norm > 1e-9 {
+        [d[0] / norm, d[1] / norm, d[2] / norm]
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    let r = RADIUS_SHARE * length;
+    let mass = std::f64::consts::PI * r * r * length;
+    let across = mass * (3.0 * r * r + length * length) / 12.0;
+    let along = 0.5 * mass * r * r;
+    let inertia: [[f64; 3]; 3] = std::array::from_fn(|i| {
+        std::array::from_fn(|k| {
+            let uu = axis[i] * axis[k];
+            let id = if i == k { 1.0 } else { 0.0 };
+            across * (id - uu) + along * uu
+        })
+    });
+    LinkInertial {
+        mass,
+        com: std::array::from_fn(|i| 0.5 * (shape.from[i] + shape.to[i])),
+        inertia,
+    }
+}
+
+/// The default prior from the link shapes: solids of one density, fitted to the identified
+/// base parameters (weighted least squares in the density alone), each link's mass and
+/// centre of mass then held inside its bounds; drive terms zero. Also the scales of the
+/// pull: per link its prior mass, mass times length and mass times length squared.
+fn solid_prior(problem: &Problem, bounds: &Bounds, shapes: &[LinkShape]) -> (Vec<f64>, Vec<f64>) {
+    let layout = &problem.layout;
+    let ns = layout.len();
+    let lengths = lengths(shapes);
+    let unit: Vec<LinkInertial> = shapes
+        .iter()
+        .zip(&lengths)
+        .map(|(s, l)| solid(s, *l))
+        .collect();
+    let mut p = vec![0.0; ns];
+    for (idx, link) in layout.links.iter().zip(&unit) {
+        for (s, v) in idx.iter().zip(link.to_standard()) {
+            p[*s] = v;
+        }
+    }
+    // density: minimise || L^-1 (K rho p - beta) || over rho
+    let a = &problem.whitening * (&problem.k * DVector::from_column_slice(&p));
+    let b = &problem.whitening * &problem.target;
+    let rho = a.dot(&b) / a.norm_squared();
+    // a density the data cannot give (a robot without gravity terms, or a poor fit): that
+    // of a hollow aluminium structure
+    let rho = if rho.is_finite() && rho > 0.0 {
+        rho
+    } else {
+        1000.0
+    };
+    let mut target = vec![0.0; ns];
+    let mut scale = vec![1.0; ns];
+    for (j, idx) in layout.links.iter().enumerate() {
+        let b = &bounds.links[j];
+        let link = unit[j];
+        let inside = |v: f64, r: [f64; 2]| {
+            let pad = 0.05 * (r[1] - r[0]);
+            v.clamp(r[0] + pad, r[1] - pad)
+        };
+        let mass = inside(rho * link.mass, b.mass);
+        let com = std::array::from_fn(|i| inside(link.com[i], b.com[i]));
+        let ratio = mass / link.mass;
+        let inertia = link.inertia.map(|row| row.map(|v| v * ratio));
+        let prior = LinkInertial { mass, com, inertia };
+        let l = lengths[j];
+        for (k, (s, v)) in idx.iter().zip(prior.to_standard()).enumerate() {
+            target[*s] = v;
+            scale[*s] = match k {
+                0..=5 => mass * l * l,
+                6..=8 => mass * l,
+                _ => mass,
+            };
+        }
+    }
+    (target, scale)
+}
+
+/// The share of each standard parameter that the data determine, in [0, 1]: the diagonal
+/// of the resolution matrix (F_data + F_prior)^-1 F_data, with F_data = (L^-1 K)' (L^-1 K)
+/// the information of the identified base parameters and F_prior that of the pull. 1: the
+/// data alone fix it; 0: only the prior does.
+pub(super) fn determined(problem: &Problem, pull: &Pull) -> Vec<f64> {
+    let ns = problem.layout.len();
+    // in units of each parameter's scale, so that the weights compare
+    let s = DVector::from_column_slice(&pull.scale);
+    let a = (&problem.whitening * &problem.k) * nalgebra::DMatrix::from_diagonal(&s);
+    let data = a.transpose() * &a;
+    let top = data.diagonal().max().max(1.0);
+    let mut total = data.clone();
+    for i in 0..ns {
+        total[(i, i)] += pull.weight[i] + 1e-12 * top;
+    }
+    match total.cholesky() {
+        Some(c) => c
+            .solve(&data)
+            .diagonal()
+            .iter()
+            .map(|v| v.clamp(0.0, 1.0))
+            .collect(),
+        None => vec![f64::NAN; ns],
+    }
+}
+
+/// A typical magnitude of each standard parameter under the bounds (no shapes known).
+pub(super) fn bounds_scales(layout: &Layout, bounds: &Bounds) -> Vec<f64> {
+    let mut s = vec![1.0; layout.len()];
+    for (j, idx) in layout.links.iter().enumerate() {
+        let b = &bounds.links[j];
+        let m = b.mass[1].max(1e-9);
+        let r = b
+            .com
+            .iter()
+            .flatten()
+            .fold(0.0f64, |a, v| a.max(v.abs()))
+            .max(1e-3);
+        let inertia = (b.inertia[1] + m * r * r).max(1e-9);
+        for (k, &i) in idx.iter().enumerate() {
+            s[i] = match k {
+                0..=5 => inertia,
+                6..=8 => m * r,
+                _ => m,
+            };
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_solid_cylinder_has_the_textbook_inertia() {
+        let shape = LinkShape {
+            from: [0.0, 0.0, 0.0],
+            to: [0.4, 0.0, 0.0],
+        };
+        let s = solid(&shape, 0.4);
+        let r: f64 = 0.1;
+        let m = std::f64::consts::PI * r * r * 0.4;
+        assert!((s.mass - m).abs() < 1e-15);
+        assert_eq!(s.com, [0.2, 0.0, 0.0]);
+        // about the axis m r^2 / 2, across m (3 r^2 + L^2) / 12
+        assert!((s.inertia[0][0] - 0.5 * m * r * r).abs() < 1e-15);
+        assert!((s.inertia[1][1] - m * (3.0 * r * r + 0.16) / 12.0).abs() < 1e-15);
+        assert!(s.inertia[0][1].abs() < 1e-18);
+    }
+
+    /// A one-link arm whose identified ZZ1 and MX1 are those of a solid of density 500
+    /// along its segment: the default prior finds that density, so the link's mass (which
+    /// no base parameter holds alone) is the solid's.
+    #[test]
+    fn the_default_prior_finds_the_density_of_the_data() {
+        let names: Vec<String> = crate::model::Inertial::ALL
+            .iter()
+            .map(|s| format!("{}1", s.stem()))
+            .collect();
+        // ZZ1 and MX1 (columns 5 and 6)
+        let mut k = nalgebra::DMatrix::zeros(2, 10);
+        k[(0, 5)] = 1.0;
+        k[(1, 6)] = 1.0;
+        let shape = LinkShape {
+            from: [0.0; 3],
+            to: [0.5, 0.0, 0.0],
+        };
+        let truth = solid(&shape, 0.5);
+        let p = truth.to_standard();
+        let rho = 500.0;
+        let problem = Problem::new(names, vec!["ZZ1".into(), "MX1".into()], k)
+            .unwrap()
+            .with_target(&[rho * p[5], rho * p[6]], &[1e-3, 1e-3])
+            .unwrap()
+            .with_shapes(vec![shape])
+            .unwrap();
+        let bounds = Bounds::wide(1);
+        let pull = Pull::new(&problem, &bounds, None, 1.0).unwrap();
+        let mass = pull.target[9];
+        assert!((mass - rho * truth.mass).abs() < 1e-6 * mass, "{mass}");
+        assert!((pull.scale[9] - mass).abs() < 1e-9 * mass);
+        // a user prior replaces the values it gives, with its weight
+        let prior = Prior {
+            standard: (0..10).map(|i| (i == 9).then_some(3.0)).collect(),
+            weight: 5.0,
+        };
+        let pull = Pull::new(&problem, &bounds, Some(&prior), 1.0).unwrap();
+        assert_eq!(
+            (pull.target[9], pull.weight[9], pull.weight[0]),
+            (3.0, 5.0, 1.0)
+        );
+    }
+
+    #[test]
+    fn short_links_get_a_share_of_the_chain() {
+        let seg = |l: f64| LinkShape {
+            from: [0.0; 3],
+            to: [0.0, 0.0, l],
+        };
+        let l = lengths(&[seg(1.0), seg(0.0), seg(0.5)]);
+        assert_eq!(l[0], 1.0);
+        assert!((l[1] - 0.15).abs() < 1e-15 && l[2] == 0.5, "{l:?}");
+    }
+}
