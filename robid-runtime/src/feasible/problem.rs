@@ -26,7 +26,7 @@ pub struct Problem {
     /// Whitening L^-1 (covariance = L L'): z = L^-1 (K p - beta) has unit covariance.
     pub whitening: DMatrix<f64>,
     /// Each link's extent, when the geometry is known: the default prior is then a solid
-    /// of that size ([`super::prior`]); else the centre of the bounds.
+    /// of that size (see the module `feasible`); else the centre of the bounds.
     pub shapes: Option<Vec<LinkShape>>,
 }
 
