@@ -153,6 +153,19 @@ impl Bounds {
         Ok(bounds)
     }
 
+    /// [`Bounds::validate`], and that there are bounds for each of `links` links.
+    pub fn check_for(&self, links: usize) -> Result<()> {
+        self.validate()?;
+        if self.links.len() != links {
+            return Err(Error::DimensionMismatch {
+                what: "links in the bounds".to_owned(),
+                expected: links,
+                found: self.links.len(),
+            });
+        }
+        Ok(())
+    }
+
     /// Checks every range (finite with magnitude at most
     /// [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER), ordered, masses and moments
     /// non-negative) and that the total-mass range meets the sum of the link mass ranges.

@@ -76,16 +76,9 @@ fn solve_stage(
     pull: &Pull,
     settle: Option<(&[f64], &[usize])>,
 ) -> Result<Vec<f64>> {
-    bounds.validate()?;
     let layout = &problem.layout;
     let ns = problem.standard_names.len();
-    if bounds.links.len() != layout.links.len() {
-        return Err(Error::DimensionMismatch {
-            what: "links in the bounds".to_owned(),
-            expected: layout.links.len(),
-            found: bounds.links.len(),
-        });
-    }
+    bounds.check_for(layout.links.len())?;
     let t = ns; // epigraph variable of the norm
     let mut c = Conic {
         i: vec![],

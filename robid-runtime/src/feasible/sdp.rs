@@ -27,9 +27,9 @@ use std::time::Instant;
 use nalgebra::{DMatrix, DVector};
 
 use super::bounds::Bounds;
-use super::prior::{Prior, Pull};
+use super::prior::Prior;
 use super::problem::Problem;
-use super::solution::{Method, Solution};
+use super::solution::Solution;
 use crate::{Error, Result};
 
 /// Options of the semidefinite formulation.
@@ -58,16 +58,7 @@ pub fn solve_sdp(problem: &Problem, bounds: &Bounds, options: &SdpOptions) -> Re
     options.check()?;
     let a = &problem.whitening * &problem.k;
     let b = &problem.whitening * &problem.target;
-    let p = solve(problem, bounds, &a, &b, options)?;
-    let mut solution = Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())?;
-    let pull = Pull::new(
-        problem,
-        bounds,
-        options.prior.as_ref(),
-        options.regularization,
-    )?;
-    solution.determined = super::prior::determined(problem, &pull);
-    Ok(solution)
+    solve(problem, bounds, &a, &b, options, start)
 }
 
 impl SdpOptions {
@@ -154,16 +145,7 @@ pub fn consistent_least_squares(
     let qr = w.clone().qr();
     let a = qr.r() * &problem.k;
     let b = qr.q().transpose() * y;
-    let p = solve(problem, bounds, &a, &b, options)?;
-    let mut solution = Solution::assemble(problem, bounds, Method::Sdp, p, start.elapsed())?;
-    let pull = Pull::new(
-        problem,
-        bounds,
-        options.prior.as_ref(),
-        options.regularization,
-    )?;
-    solution.determined = super::prior::determined(problem, &pull);
-    Ok(solution)
+    solve(problem, bounds, &a, &b, options, start)
 }
 
 /// The conic program with the pull of `options` (the prior, else the centre of the bounds).
@@ -174,23 +156,25 @@ fn solve(
     a: &DMatrix<f64>,
     b: &DVector<f64>,
     options: &SdpOptions,
-) -> Result<Vec<f64>> {
-    bounds.validate()?;
-    let layout = &problem.layout;
-    if bounds.links.len() != layout.links.len() {
-        return Err(Error::DimensionMismatch {
-            what: "links in the bounds".to_owned(),
-            expected: layout.links.len(),
-            found: bounds.links.len(),
-        });
-    }
-    let pull = Pull::new(
+    start: Instant,
+) -> Result<Solution> {
+    bounds.check_for(problem.layout.links.len())?;
+    let pull = super::prior::Pull::new(
         problem,
         bounds,
         options.prior.as_ref(),
         options.regularization,
     )?;
-    super::conic::solve(problem, bounds, a, b, &pull)
+    let p = super::conic::solve(problem, bounds, a, b, &pull)?;
+    let mut solution = Solution::assemble(
+        problem,
+        bounds,
+        super::solution::Method::Sdp,
+        p,
+        start.elapsed(),
+    )?;
+    solution.determined = super::prior::determined(problem, &pull);
+    Ok(solution)
 }
 
 /// Without the `sdp` feature there is no conic solver to call.
@@ -201,10 +185,11 @@ fn solve(
     _a: &DMatrix<f64>,
     _b: &DVector<f64>,
     _options: &SdpOptions,
-) -> Result<Vec<f64>> {
+    _start: Instant,
+) -> Result<Solution> {
     bounds.validate()?;
     Err(Error::Feasible(FeasibleError::Unavailable {
         what: "the semidefinite (sdp) method".to_owned(),
-        fix: "install OpenBLAS (`bash .ci/install-deps.sh`) and build with `--features sdp`, or use `--method anneal`".to_owned(),
+        fix: "install OpenBLAS (`bash .ci/install-deps.sh`) and build with `--features sdp`, or use `--method log-cholesky` (the default) or `anneal`".to_owned(),
     }))
 }

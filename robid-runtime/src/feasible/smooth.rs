@@ -371,15 +371,8 @@ pub fn solve_smooth(
 ) -> Result<Solution> {
     let start = Instant::now();
     options.check()?;
-    bounds.validate()?;
     let layout = &problem.layout;
-    if bounds.links.len() != layout.links.len() {
-        return Err(Error::DimensionMismatch {
-            what: "links in the bounds".to_owned(),
-            expected: layout.links.len(),
-            found: bounds.links.len(),
-        });
-    }
+    bounds.check_for(layout.links.len())?;
     let pull = Pull::new(
         problem,
         bounds,

@@ -212,16 +212,9 @@ pub fn solve_anneal(
     options: &AnnealOptions,
 ) -> Result<Solution> {
     let start = Instant::now();
-    bounds.validate()?;
     let layout = &problem.layout;
     let nl = layout.links.len();
-    if bounds.links.len() != nl {
-        return Err(Error::DimensionMismatch {
-            what: "links in the bounds".to_owned(),
-            expected: nl,
-            found: bounds.links.len(),
-        });
-    }
+    bounds.check_for(nl)?;
     options.check()?;
     let a = &problem.whitening * &problem.k;
     let b = &problem.whitening * &problem.target;
