@@ -30,8 +30,10 @@ mod centre;
 mod conic;
 mod error;
 mod inertial;
+mod interior;
 mod layout;
 mod log_cholesky;
+mod objective;
 mod output;
 mod prior;
 mod problem;
@@ -46,6 +48,7 @@ pub use error::FeasibleError;
 pub use inertial::{
     LinkInertial, inertia_at_origin, pseudo_inertia, pseudo_inertia_min_eigenvalue,
 };
+pub use interior::solve_interior;
 pub use layout::{Drive, Layout};
 pub use output::{to_toml, to_urdf};
 pub use prior::{LinkShape, Prior};

@@ -18,6 +18,8 @@ pub enum Method {
     Anneal,
     /// Levenberg-Marquardt over the log-Cholesky parameters (the default).
     LogCholesky,
+    /// Interior-point method on the convex fit ([`solve_interior`](super::solve_interior)).
+    Interior,
 }
 
 impl Method {
@@ -27,6 +29,7 @@ impl Method {
             Method::Sdp => "sdp",
             Method::Anneal => "anneal",
             Method::LogCholesky => "log-cholesky",
+            Method::Interior => "interior-point",
         }
     }
 }

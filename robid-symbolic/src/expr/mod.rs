@@ -22,7 +22,7 @@ mod parse;
 pub mod simplify;
 
 pub(crate) use ast::Ast;
-pub use eval::Values;
+pub use eval::{Unbound, Values};
 pub use num::Num;
 pub use parse::{MAX_EXPONENT, MAX_EXPRESSION_LEN, MAX_NESTING, ParseError};
 

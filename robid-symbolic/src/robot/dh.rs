@@ -8,6 +8,7 @@
 //! parameters map linearly to modified-frame ones (see `dynamics::link`).
 
 use super::{Convention, Geometry, JointKind, Robot};
+use crate::expr::{Arena, Unbound};
 
 /// One row in modified-DH form, plus the constant transform from the modified
 /// link frame to the user's link frame (`user_alpha`, `user_a`; zero for a
@@ -64,5 +65,63 @@ impl Robot {
                 },
             })
             .collect()
+    }
+
+    /// Each link's segment of the kinematic chain in its own (user's) frame, from the
+    /// axis of the joint that moves it to the axis of the next joint, with the
+    /// description's symbol values and every joint variable at its offset (m).
+    ///
+    /// Standard DH: link j runs from frame j-1's origin, at (-a_j, -d_j sin alpha_j,
+    /// -d_j cos alpha_j) in frame j, to frame j's origin. Modified DH: from frame j's
+    /// origin to frame j+1's, at (a_(j+1), -d_(j+1) sin alpha_(j+1), d_(j+1) cos
+    /// alpha_(j+1)); the last link of a modified table has no next joint and gets a
+    /// segment of length zero. The default prior of `robid feasible` models each link
+    /// as a solid along this segment.
+    ///
+    /// # Errors
+    /// A symbol the geometry uses has no value in the description.
+    ///
+    /// # Examples
+    /// ```
+    /// use robid_symbolic::{Convention, Joint, Robot};
+    /// let robot = Robot::new(
+    ///     "arm",
+    ///     Convention::Standard,
+    ///     None,
+    ///     vec![Joint::revolute("0", 0.5, 0.0, "0")?, Joint::revolute("0", 0.3, 0.0, "0")?],
+    /// )?;
+    /// let segments = robot.link_segments()?;
+    /// assert_eq!(segments[0], [[-0.5, 0.0, 0.0], [0.0, 0.0, 0.0]]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn link_segments(&self) -> Result<Vec<[[f64; 3]; 2]>, Unbound> {
+        let mut arena = Arena::new();
+        let mut ids = Vec::new();
+        for joint in self.joints() {
+            for g in [&joint.alpha, &joint.a, &joint.d] {
+                ids.push(g.to_expr(&mut arena));
+            }
+        }
+        let mut pairs = Vec::new();
+        for (name, value) in self.symbols() {
+            pairs.push((name.as_str(), value.ok_or_else(|| Unbound(name.clone()))?));
+        }
+        let values = arena.values(&pairs);
+        let v = arena.eval(&ids, &values)?;
+        let n = self.dof();
+        let row = |j: usize| (v[3 * j], v[3 * j + 1], v[3 * j + 2]);
+        Ok((0..n)
+            .map(|j| match self.convention {
+                Convention::Standard => {
+                    let (alpha, a, d) = row(j);
+                    [[-a, -d * alpha.sin(), -d * alpha.cos()], [0.0; 3]]
+                }
+                Convention::Modified if j + 1 < n => {
+                    let (alpha, a, d) = row(j + 1);
+                    [[0.0; 3], [a, -d * alpha.sin(), d * alpha.cos()]]
+                }
+                Convention::Modified => [[0.0; 3]; 2],
+            })
+            .collect())
     }
 }

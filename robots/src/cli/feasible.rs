@@ -1,5 +1,5 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
-//! [--method log-cholesky|sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
+//! [--method interior-point|log-cholesky|sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
 //! consistent link parameters that reproduce identified base parameters
 //! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
 //! OUT as TOML, or as URDF `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
@@ -14,14 +14,17 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Prior, Problem, SdpOptions, SmoothOptions, Solution, solve_anneal,
-    solve_sdp, solve_smooth, to_toml, to_urdf,
+    AnnealOptions, Bounds, LinkShape, Prior, Problem, SdpOptions, SmoothOptions, Solution,
+    solve_anneal, solve_interior, solve_sdp, solve_smooth, to_toml, to_urdf,
 };
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
 use super::flags::{closed, real, short};
 use super::{Error, files, out};
+
+/// The weight of the default prior of solid links (see `--prior-weight`).
+const DEFAULT_PRIOR_WEIGHT: f64 = 1e-2;
 
 /// The largest magnitude of an identified value or standard deviation in RESULT.json.
 pub(crate) const VALUE_LIMIT: f64 = 1e6;
@@ -37,20 +40,25 @@ pub(crate) struct Args {
     /// Bounds on masses, centres of mass, inertias and the total mass (TOML).
     #[arg(long)]
     bounds: Option<PathBuf>,
-    /// `log-cholesky` (Levenberg-Marquardt over the log-Cholesky parameters, every point
-    /// physically consistent; needs nothing but the Rust toolchain), `sdp` (convex, global
-    /// optimum; needs the `sdp` feature) or `anneal` (Gaz et al. global search).
-    #[arg(long, default_value = "log-cholesky")]
+    /// `interior-point` (the convex fit's global optimum by a log-barrier method, every
+    /// iterate physically consistent; needs nothing but the Rust toolchain),
+    /// `log-cholesky` (Levenberg-Marquardt over the log-Cholesky parameters), `sdp` (the
+    /// same convex fit by Clarabel; needs the `sdp` feature) or `anneal` (Gaz et al.'s
+    /// global search).
+    #[arg(long, default_value = "interior-point")]
     method: String,
     /// Prior standard parameters, e.g. CAD values (a parameter file with a `[standard]`
-    /// table; parameters it does not list get the default prior). `--method log-cholesky`
-    /// and `sdp`.
+    /// table; parameters it does not list get the default prior, a solid along each link,
+    /// except with `anneal`, which keeps the centre of the bounds for them).
     #[arg(long)]
     prior: Option<PathBuf>,
-    /// Weight in [0, 1e6] of the pull towards the prior (`--prior` only): a deviation of
-    /// one parameter scale (from the bounds, e.g. the largest mass) costs this many chi^2
-    /// units. The default 1 settles what the data barely determine and leaves what they
-    /// determine; 100 overrides data.
+    /// Weight in [0, 1e6] of the pull towards the prior: a deviation of one parameter
+    /// scale (a link's mass, its mass times its size, times its size squared) costs this
+    /// many chi^2 units. With `--prior`, the weight of that prior (default 1: it settles
+    /// what the data barely determine and leaves what they determine; 100 overrides
+    /// data); without, the weight of the default prior of solid links (default 0.01: it
+    /// settles what the data leave free; 0 leaves the fit to the data alone). Not with
+    /// `anneal`, which has no default prior.
     #[arg(long, value_parser = real(closed(0.0, 1e6, "")))]
     prior_weight: Option<f64>,
     /// Output file: TOML, or URDF inertial elements for a `.urdf` / `.xml` name.
@@ -84,25 +92,16 @@ fn check(args: &Args) -> Result<(), Error> {
     inputs.extend(args.bounds.as_deref());
     inputs.extend(args.prior.as_deref());
     files::refuse(&inputs, &[&args.output])?;
-    match args.method.as_str() {
-        "sdp" | "log-cholesky" => {}
-        "anneal" if args.prior.is_some() => {
-            return Err(
-                "--prior: only --method log-cholesky and sdp use a prior; drop --prior \
-                        or use --method log-cholesky"
-                    .into(),
-            );
-        }
-        "anneal" => {}
-        other => {
-            return Err(
-                format!("--method {other}: unknown; use log-cholesky, sdp or anneal").into(),
-            );
-        }
+    if !["interior-point", "log-cholesky", "sdp", "anneal"].contains(&args.method.as_str()) {
+        return Err(format!(
+            "--method {}: unknown; use interior-point, log-cholesky, sdp or anneal",
+            args.method
+        )
+        .into());
     }
-    if args.prior_weight.is_some() && args.prior.is_none() {
+    if args.prior_weight.is_some() && args.prior.is_none() && args.method == "anneal" {
         return Err(
-            "--prior-weight weighs the pull towards --prior; give --prior FILE or drop \
+            "--prior-weight: anneal has no default prior to weigh; give --prior FILE or drop \
                     --prior-weight"
                 .into(),
         );
@@ -229,24 +228,35 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }),
         None => None,
     };
+    // the default prior's weight: --prior-weight without --prior, else the default
+    let default_weight = match (&args.prior, args.prior_weight) {
+        (None, Some(w)) => w,
+        _ => DEFAULT_PRIOR_WEIGHT,
+    };
+    let smooth = SmoothOptions {
+        prior: prior.clone(),
+        default_weight,
+        ..SmoothOptions::default()
+    };
     let solution = match args.method.as_str() {
-        "anneal" => solve_anneal(&problem, &bounds, &AnnealOptions::default())?,
+        "anneal" => solve_anneal(
+            &problem,
+            &bounds,
+            &AnnealOptions {
+                prior,
+                ..AnnealOptions::default()
+            },
+        )?,
         "sdp" => solve_sdp(
             &problem,
             &bounds,
             &SdpOptions {
                 prior,
-                ..SdpOptions::default()
+                regularization: default_weight,
             },
         )?,
-        _ => solve_smooth(
-            &problem,
-            &bounds,
-            &SmoothOptions {
-                prior,
-                ..SmoothOptions::default()
-            },
-        )?,
+        "log-cholesky" => solve_smooth(&problem, &bounds, &smooth)?,
+        _ => solve_interior(&problem, &bounds, &smooth)?,
     };
     check_solution(&solution)?;
     let urdf = matches!(
@@ -305,7 +315,14 @@ fn problem(robot: &Robot) -> Result<Problem, Error> {
     }
     let standard = base.standard.iter().map(|p| p.to_string()).collect();
     let names = base.base.iter().map(|b| b.name.to_string()).collect();
-    Ok(Problem::from_rows(standard, names, &k)?)
+    // The links' segments of the chain give the default prior its solids.
+    let shapes = robot
+        .link_segments()
+        .map_err(|e| e.to_string())?
+        .into_iter()
+        .map(|[from, to]| LinkShape { from, to })
+        .collect();
+    Ok(Problem::from_rows(standard, names, &k)?.with_shapes(shapes)?)
 }
 
 #[cfg(test)]

@@ -128,7 +128,7 @@ fn options_of_the_other_method_are_refused() {
         &o,
         &["--rate 1 Hz is too low for the highest harmonic (0.5 Hz"],
     );
-    // feasible: --prior-weight without --prior
+    // feasible: --prior-weight with anneal and without --prior
     let o = robid(&[
         "feasible",
         "configs/tx40_robot.toml",

@@ -6,7 +6,7 @@
 use nalgebra::DMatrix;
 use robid_runtime::feasible::{
     AnnealOptions, Bounds, LinkBounds, LinkInertial, Problem, SmoothOptions, Solution,
-    solve_anneal, solve_smooth,
+    solve_anneal, solve_interior, solve_smooth,
 };
 use robid_runtime::rng::Rng;
 use robid_symbolic::regroup::BaseParameters;
@@ -217,8 +217,68 @@ fn smooth_tx40_wide_default_bounds() {
     smooth("tx40", true);
 }
 
+/// The interior-point method with the SDP's weak pull (1e-6) solves the SDP's problem
+/// exactly: the global optimum's guarantees on every robot, tight or wide bounds.
+fn interior(name: &str, wide: bool) -> Solution {
+    let mut c = case(name);
+    let b = if wide {
+        Bounds::wide(c.problem.layout.links.len())
+    } else {
+        bounds(&c)
+    };
+    let options = SmoothOptions {
+        default_weight: 1e-6,
+        ..SmoothOptions::default()
+    };
+    let s = solve_interior(&c.problem, &b, &options).unwrap();
+    check(&mut c, &s, &format!("interior-point {name}"), wide, true);
+    s
+}
+
+#[test]
+fn interior_ur5e() {
+    interior("ur5e", false);
+}
+
+#[test]
+fn interior_panda() {
+    interior("panda", false);
+}
+
+#[test]
+fn interior_tx40_wide_default_bounds() {
+    interior("tx40", true);
+}
+
 #[cfg(feature = "sdp")]
 use robid_runtime::feasible::{SdpOptions, solve_sdp};
+
+/// The pure-Rust interior-point method reaches the SDP's optimum: chi^2 equal within
+/// 1e-3 relative (plus the SDP's own tolerance, 1e-8 absolute) on every robot.
+#[cfg(feature = "sdp")]
+#[test]
+fn interior_equals_sdp() {
+    for (name, wide) in [("ur5e", false), ("panda", false), ("tx40", true)] {
+        let c = case(name);
+        let b = if wide {
+            Bounds::wide(c.problem.layout.links.len())
+        } else {
+            bounds(&c)
+        };
+        let sdp = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+        let int = interior(name, wide);
+        eprintln!(
+            "{name}: chi2 interior-point {:.6e} in {:.3} s, sdp {:.6e} in {:.3} s",
+            int.chi2, int.seconds, sdp.chi2, sdp.seconds
+        );
+        assert!(
+            (int.chi2 - sdp.chi2).abs() <= 1e-3 * sdp.chi2 + 1e-8,
+            "{name}: interior-point chi2 {} vs sdp {}",
+            int.chi2,
+            sdp.chi2
+        );
+    }
+}
 
 #[cfg(feature = "sdp")]
 #[test]

@@ -31,6 +31,7 @@ use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use super::bounds::Bounds;
+use super::prior::{Prior, Pull};
 use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::nelder_mead::NelderMead;
@@ -58,6 +59,10 @@ pub struct AnnealOptions {
     pub polish_iterations: usize,
     /// Hops per restart: one link (in turn) drawn afresh and polished, kept when better.
     pub hops: usize,
+    /// The user's prior (e.g. CAD values), pulled towards as in the other methods; the
+    /// search keeps its don't-care values (centre of the bounds) for the parameters the
+    /// prior does not give.
+    pub prior: Option<Prior>,
 }
 
 impl Default for AnnealOptions {
@@ -71,6 +76,7 @@ impl Default for AnnealOptions {
             penalty: 1e10,
             polish_iterations: 200,
             hops: 12,
+            prior: None,
         }
     }
 }
@@ -138,6 +144,8 @@ struct Objective<'a> {
     /// Which full variables are searched.
     free: Vec<usize>,
     penalty: f64,
+    /// The pull towards the user's prior (weight zero where it gives no value).
+    pull: Option<Pull>,
 }
 
 impl Objective<'_> {
@@ -173,11 +181,10 @@ impl Objective<'_> {
         self.residual(y).norm_squared()
     }
 
-    /// The whitened misfit followed by the weighted relative bound violations.
+    /// The whitened misfit and the pull, followed by the weighted relative bound violations.
     fn residual(&self, y: &[f64]) -> DVector<f64> {
         let x = self.full(y);
-        let p = self.standard(&x);
-        let r = &self.a * DVector::from_column_slice(&p) - &self.b;
+        let r = misfit(self, &x);
         let v = self.violations(&x);
         let w = self.penalty.sqrt();
         DVector::from_iterator(
@@ -254,6 +261,10 @@ pub fn solve_anneal(
         fixed,
         free: (0..nl * PER_LINK).collect(),
         penalty: options.penalty,
+        pull: match &options.prior {
+            Some(prior) => Some(Pull::new(problem, bounds, Some(prior), 0.0)?),
+            None => None,
+        },
     };
     objective.free = effective_variables(&objective, &lo, &hi, options.seed);
     let lo: Vec<f64> = objective.free.iter().map(|&i| lo[i]).collect();
@@ -379,8 +390,16 @@ fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: 
     (0..n).filter(|&i| effective[i]).collect()
 }
 
-/// The misfit of a full variable vector, bounds ignored.
+/// The misfit of a full variable vector and its pull towards the prior, bounds ignored.
 fn misfit(objective: &Objective<'_>, x: &[f64]) -> DVector<f64> {
     let p = objective.standard(x);
-    &objective.a * DVector::from_column_slice(&p) - &objective.b
+    let r = &objective.a * DVector::from_column_slice(&p) - &objective.b;
+    let Some(pull) = &objective.pull else {
+        return r;
+    };
+    let rows = (0..p.len())
+        .filter(|&s| pull.weight[s] > 0.0)
+        .map(|s| pull.weight[s].sqrt() * (p[s] - pull.target[s]) / pull.scale[s]);
+    let r: Vec<f64> = r.iter().copied().chain(rows).collect();
+    DVector::from_vec(r)
 }

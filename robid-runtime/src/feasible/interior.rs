@@ -1,0 +1,213 @@
+//! The default method: the objective of `objective` minimised directly in the standard
+//! parameters p by a primal interior-point (log-barrier) method, the textbook path
+//! following of Boyd and Vandenberghe, "Convex Optimization" (2004), ch. 11
+//! (docs/experiments.md#feasible-parameters):
+//!
+//! ```text
+//! minimise  f(p) + mu B(p),   B(p) = - sum_links log det(P_j(p) - margin I)
+//!                                    - sum_{Ia, Fv, Fc} log p_i
+//! ```
+//!
+//! for mu falling tenfold per stage, each stage solved by Newton's method with a
+//! backtracking line search that never leaves the interior. f is the sum of squares of
+//! `objective` (Gauss-Newton Hessian, exact for all but the violated nonlinear bounds) and
+//! B's gradient and Hessian are closed form (d log det P = tr(P^-1 dP)). Every iterate is
+//! physically consistent with a margin; the problem is convex in p, so the method reaches
+//! the global optimum that the SDP finds, to the barrier's gap `nu mu` (`nu` the barrier's
+//! degree), which it drives below 1e-10 of the objective. Needs only the Rust toolchain.
+
+use std::time::Instant;
+
+use nalgebra::{DMatrix, DVector, Matrix4};
+
+use super::bounds::Bounds;
+use super::inertial::pseudo_inertia;
+use super::log_cholesky::PER_LINK;
+use super::objective::Objective;
+use super::prior::Pull;
+use super::problem::Problem;
+use super::smooth::SmoothOptions;
+use super::solution::{Method, Solution};
+use crate::{Error, FeasibleError, Result};
+
+/// The barrier weight falls by this factor per stage.
+const MU_FACTOR: f64 = 10.0;
+/// Stop when the barrier's gap `nu mu` is below this share of the objective (plus one).
+const GAP: f64 = 1e-10;
+/// Newton steps per stage at most.
+const STEPS_PER_STAGE: usize = 60;
+
+/// The barrier of the consistent set and the non-negative drive terms.
+struct Barrier<'a> {
+    links: &'a [[usize; PER_LINK]],
+    positive: Vec<usize>,
+    margin: f64,
+    /// P(e_k) for each of a link's ten parameters (P is linear in them).
+    basis: [Matrix4<f64>; PER_LINK],
+}
+
+impl Barrier<'_> {
+    /// The barrier's degree: its gap at the optimum of a stage is `nu mu`.
+    fn degree(&self) -> f64 {
+        (4 * self.links.len() + self.positive.len()) as f64
+    }
+
+    /// Each link's P - margin I, or `None` outside the interior.
+    fn shifted(&self, p: &[f64], idx: &[usize; PER_LINK]) -> Option<Matrix4<f64>> {
+        let values: [f64; PER_LINK] = idx.map(|i| p[i]);
+        Some(pseudo_inertia(&values) - Matrix4::identity() * self.margin)
+    }
+
+    /// B(p), or `None` outside the interior.
+    fn value(&self, p: &[f64]) -> Option<f64> {
+        let mut b = 0.0;
+        for idx in self.links {
+            let c = self.shifted(p, idx)?.cholesky()?;
+            let det: f64 = c.l().diagonal().iter().map(|d| d.ln()).sum();
+            b -= 2.0 * det;
+        }
+        for &i in &self.positive {
+            if !(p[i] > 0.0) {
+                return None;
+            }
+            b -= p[i].ln();
+        }
+        b.is_finite().then_some(b)
+    }
+
+    /// Adds `mu` times B's gradient and Hessian at an interior p.
+    fn add_derivatives(&self, p: &[f64], mu: f64, g: &mut DVector<f64>, h: &mut DMatrix<f64>) {
+        for idx in self.links {
+            let Some(q) = self.shifted(p, idx).and_then(|s| s.try_inverse()) else {
+                continue;
+            };
+            let qe: Vec<Matrix4<f64>> = self.basis.iter().map(|e| q * e).collect();
+            for (a, &i) in idx.iter().enumerate() {
+                g[i] -= mu * qe[a].trace();
+                for (b, &k) in idx.iter().enumerate() {
+                    // tr(Q E_a Q E_b)
+                    h[(i, k)] += mu * qe[a].component_mul(&qe[b].transpose()).sum();
+                }
+            }
+        }
+        for &i in &self.positive {
+            g[i] -= mu / p[i];
+            h[(i, i)] += mu / (p[i] * p[i]);
+        }
+    }
+}
+
+/// Physically consistent standard parameters that reproduce the identified base
+/// parameters of `problem` within the bounds, settled by the prior where the data leave
+/// them free: the global optimum of the convex fit, by an interior-point method (see the
+/// module documentation). `options.patience` caps the Newton steps at `patience` per
+/// variable.
+pub fn solve_interior(
+    problem: &Problem,
+    bounds: &Bounds,
+    options: &SmoothOptions,
+) -> Result<Solution> {
+    let start = Instant::now();
+    options.check()?;
+    let layout = &problem.layout;
+    bounds.check_for(layout.links.len())?;
+    let pull = Pull::new(
+        problem,
+        bounds,
+        options.prior.as_ref(),
+        options.default_weight,
+    )?;
+    let objective = Objective::new(problem, bounds, pull, options.penalty);
+    let mut p = objective.start(bounds.margin)?;
+    let barrier = Barrier {
+        links: &layout.links,
+        positive: (0..p.len())
+            .filter(|&i| objective.non_negative(i))
+            .collect(),
+        margin: bounds.margin,
+        basis: std::array::from_fn(|k| {
+            let mut e = [0.0; PER_LINK];
+            e[k] = 1.0;
+            pseudo_inertia(&e)
+        }),
+    };
+    let stuck = || {
+        Error::Feasible(FeasibleError::NoFeasibleParameters {
+            reason: "the interior-point fit left the consistent set or met a non-finite value; check the identified values and the bounds".into(),
+        })
+    };
+    let phi = |p: &[f64], mu: f64| -> Option<f64> {
+        let v = objective.value(p) + mu * barrier.value(p)?;
+        v.is_finite().then_some(v)
+    };
+    let nu = barrier.degree();
+    let mut mu = objective.value(&p).max(1.0) / nu;
+    let mut steps_left = options.patience.saturating_mul(p.len() + 1);
+    loop {
+        for _ in 0..STEPS_PER_STAGE {
+            if steps_left == 0 {
+                break;
+            }
+            steps_left -= 1;
+            let r = objective.residuals(&p);
+            let j = objective.jacobian(&p);
+            let mut g = j.tr_mul(&r) * 2.0;
+            let mut h = j.tr_mul(&j) * 2.0;
+            barrier.add_derivatives(&p, mu, &mut g, &mut h);
+            let step = newton_step(h, &g).ok_or_else(stuck)?;
+            let slope = g.dot(&step);
+            let now = phi(&p, mu).ok_or_else(stuck)?;
+            if -slope <= 1e-14 * (1.0 + now.abs()) {
+                break;
+            }
+            let mut s = 1.0;
+            let accepted = loop {
+                let trial: Vec<f64> = p.iter().zip(step.iter()).map(|(a, d)| a + s * d).collect();
+                if let Some(v) = phi(&trial, mu)
+                    && v <= now + 1e-4 * s * slope
+                {
+                    break Some(trial);
+                }
+                s *= 0.5;
+                if s < 1e-12 {
+                    break None;
+                }
+            };
+            match accepted {
+                Some(trial) => p = trial,
+                None => break,
+            }
+        }
+        let f = objective.value(&p);
+        if nu * mu <= GAP * (1.0 + f) || steps_left == 0 {
+            break;
+        }
+        mu /= MU_FACTOR;
+    }
+    let mut solution = Solution::assemble(problem, bounds, Method::Interior, p, start.elapsed())?;
+    solution.determined = super::prior::determined(problem, &objective.pull);
+    Ok(solution)
+}
+
+/// Solves H step = -g by Cholesky, adding a small multiple of the identity when H is not
+/// numerically positive definite (a free term the data and the prior leave undetermined).
+fn newton_step(h: DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
+    let top = h.diagonal().iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let mut shift = 0.0;
+    for _ in 0..12 {
+        let mut shifted = h.clone();
+        for i in 0..shifted.nrows() {
+            shifted[(i, i)] += shift;
+        }
+        if let Some(c) = shifted.cholesky() {
+            let step = -c.solve(g);
+            return step.iter().all(|v| v.is_finite()).then_some(step);
+        }
+        shift = if shift == 0.0 {
+            1e-14 * top.max(1e-300)
+        } else {
+            shift * 100.0
+        };
+    }
+    None
+}

@@ -1,0 +1,270 @@
+//! The objective the pure-Rust methods minimise, as residual rows in the standard
+//! parameters p (docs/experiments.md#feasible-parameters):
+//!
+//! ```text
+//! || L^-1 (K p - beta) ||^2  +  sum_s w_s ((p_s - p0_s) / scale_s)^2
+//!                            +  mu * sum (violated bound / its scale)^2
+//! ```
+//!
+//! with p0 the prior (the user's, else the default of `prior`). The first two terms are
+//! convex quadratics; the bounds on masses, centres of mass, the total mass and the
+//! diagonal of each inertia about its centre of mass enter as a stiff exterior penalty
+//! (weight `mu`). `smooth` (Levenberg-Marquardt over log-Cholesky parameters) and
+//! `interior` (a log-det barrier in p) minimise the same rows, so their optima compare.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::bounds::Bounds;
+use super::log_cholesky::{PER_LINK, inside};
+use super::prior::Pull;
+use super::problem::Problem;
+use crate::{Error, FeasibleError, Result};
+
+/// One inequality g(p) >= 0 of the bounds, linear or (the inertia diagonal) not.
+#[derive(Debug, Clone, Copy)]
+enum Bound {
+    /// sum of `coefficient * p[index]` minus `rhs`, over the listed entries.
+    Linear {
+        entries: [(usize, f64); 2],
+        rhs: f64,
+        scale: f64,
+    },
+    /// `sign * (I_c[axis][axis] - limit)` for the link with standard indices `link`.
+    InertiaDiagonal {
+        link: [usize; PER_LINK],
+        axis: usize,
+        limit: f64,
+        sign: f64,
+        scale: f64,
+    },
+    /// The total mass: `sign * (sum of masses - limit)`.
+    TotalMass { limit: f64, sign: f64, scale: f64 },
+}
+
+/// The residual rows of the objective.
+#[derive(Clone)]
+pub(super) struct Objective<'a> {
+    pub(super) problem: &'a Problem,
+    /// Whitened K and target.
+    a: DMatrix<f64>,
+    b: DVector<f64>,
+    pub(super) pull: Pull,
+    bounds: Vec<Bound>,
+    penalty: f64,
+}
+
+impl<'a> Objective<'a> {
+    /// The objective of `problem` under `bounds`, pulled by `pull`, with bound penalty
+    /// `penalty`.
+    pub(super) fn new(problem: &'a Problem, bounds: &Bounds, pull: Pull, penalty: f64) -> Self {
+        Objective {
+            problem,
+            a: &problem.whitening * &problem.k,
+            b: &problem.whitening * &problem.target,
+            bounds: inequalities(problem, bounds, &pull.scale),
+            pull,
+            penalty,
+        }
+    }
+
+    /// The number of residual rows.
+    pub(super) fn rows(&self) -> usize {
+        self.a.nrows() + self.pull.target.len() + self.bounds.len()
+    }
+
+    /// The value g(p) of a bound, its scale and its gradient in p (sparse: (index,
+    /// derivative)).
+    fn bound(&self, bound: &Bound, p: &[f64], grad: &mut Vec<(usize, f64)>) -> (f64, f64) {
+        grad.clear();
+        match *bound {
+            Bound::Linear {
+                entries,
+                rhs,
+                scale,
+            } => {
+                grad.extend(entries.iter().filter(|e| e.1 != 0.0));
+                let g = entries.iter().map(|&(i, c)| c * p[i]).sum::<f64>() - rhs;
+                (g, scale)
+            }
+            Bound::InertiaDiagonal {
+                link,
+                axis,
+                limit,
+                sign,
+                scale,
+            } => {
+                // I_c[a][a] = J[a][a] - (|h|^2 - h_a^2) / m
+                let diagonal = [0, 3, 5][axis];
+                let m = p[link[9]].max(1e-300);
+                let h = [p[link[6]], p[link[7]], p[link[8]]];
+                let off: f64 = (0..3).filter(|&k| k != axis).map(|k| h[k] * h[k]).sum();
+                let value = p[link[diagonal]] - off / m;
+                grad.push((link[diagonal], sign));
+                for k in (0..3).filter(|&k| k != axis) {
+                    grad.push((link[6 + k], -sign * 2.0 * h[k] / m));
+                }
+                grad.push((link[9], sign * off / (m * m)));
+                (sign * (value - limit), scale)
+            }
+            Bound::TotalMass { limit, sign, scale } => {
+                let layout = &self.problem.layout;
+                let total: f64 = layout.links.iter().map(|idx| p[idx[9]]).sum();
+                grad.extend(layout.links.iter().map(|idx| (idx[9], sign)));
+                (sign * (total - limit), scale)
+            }
+        }
+    }
+
+    /// The residual rows at p: data, pull, bounds.
+    pub(super) fn residuals(&self, p: &[f64]) -> DVector<f64> {
+        let mut r = DVector::zeros(self.rows());
+        let data = &self.a * DVector::from_column_slice(p) - &self.b;
+        let nb = data.len();
+        r.rows_mut(0, nb).copy_from(&data);
+        let pull = &self.pull;
+        for (s, v) in p.iter().enumerate() {
+            r[nb + s] = pull.weight[s].sqrt() * (v - pull.target[s]) / pull.scale[s];
+        }
+        let start = nb + p.len();
+        let mut grad = Vec::new();
+        let mu = self.penalty.sqrt();
+        for (k, bound) in self.bounds.iter().enumerate() {
+            let (g, scale) = self.bound(bound, p, &mut grad);
+            r[start + k] = mu * g.min(0.0) / scale;
+        }
+        r
+    }
+
+    /// d residuals / d p at p.
+    pub(super) fn jacobian(&self, p: &[f64]) -> DMatrix<f64> {
+        let ns = p.len();
+        let nb = self.a.nrows();
+        let mut jac = DMatrix::zeros(self.rows(), ns);
+        jac.rows_mut(0, nb).copy_from(&self.a);
+        let pull = &self.pull;
+        for s in 0..ns {
+            jac[(nb + s, s)] = pull.weight[s].sqrt() / pull.scale[s];
+        }
+        let mut grad = Vec::new();
+        let mu = self.penalty.sqrt();
+        for (k, bound) in self.bounds.iter().enumerate() {
+            let (g, scale) = self.bound(bound, p, &mut grad);
+            if g < 0.0 {
+                for &(i, d) in &grad {
+                    jac[(nb + ns + k, i)] += mu * d / scale;
+                }
+            }
+        }
+        jac
+    }
+
+    /// The objective's value at p.
+    pub(super) fn value(&self, p: &[f64]) -> f64 {
+        self.residuals(p).norm_squared()
+    }
+
+    /// The starting point of both methods: the prior, each link just inside the consistent
+    /// set (pseudo-inertia at least `margin` plus a small share of its scale), and the
+    /// drive and free terms that fit best with those links (non-negative ones at least a
+    /// small positive value).
+    pub(super) fn start(&self, margin: f64) -> Result<Vec<f64>> {
+        let layout = &self.problem.layout;
+        let pull = &self.pull;
+        let mut p = pull.target.clone();
+        for idx in &layout.links {
+            let values: [f64; PER_LINK] = idx.map(|i| p[i]);
+            let floor = margin + 1e-6 * pull.scale[idx[9]].max(1e-12);
+            let link = inside(&values, floor);
+            if super::inertial::pseudo_inertia_min_eigenvalue(&link) <= margin {
+                return Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
+                    reason: "the prior of a link cannot be made physically consistent; check the prior's masses and inertias".into(),
+                }));
+            }
+            for (&i, v) in idx.iter().zip(link) {
+                p[i] = v;
+            }
+        }
+        let linear: Vec<usize> = layout
+            .drives
+            .iter()
+            .map(|d| d.index)
+            .chain(layout.extra.iter().copied())
+            .collect();
+        if linear.is_empty() {
+            return Ok(p);
+        }
+        let cols: Vec<DVector<f64>> = linear
+            .iter()
+            .map(|&i| self.a.column(i).into_owned())
+            .collect();
+        let ad = DMatrix::from_columns(&cols);
+        for &i in &linear {
+            p[i] = 0.0;
+        }
+        let rest = &self.b - &self.a * DVector::from_column_slice(&p);
+        let d = ad
+            .try_svd(true, true, f64::EPSILON, crate::limits::SVD_ITERATIONS)
+            .and_then(|s| s.solve(&rest, 1e-10).ok())
+            .unwrap_or_else(|| DVector::zeros(linear.len()));
+        for (k, &i) in linear.iter().enumerate() {
+            p[i] = if self.non_negative(i) {
+                d[k].max(1e-6 * pull.scale[i])
+            } else {
+                d[k]
+            };
+        }
+        Ok(p)
+    }
+
+    /// True for a drive term that cannot be negative (Ia, Fv, Fc).
+    pub(super) fn non_negative(&self, index: usize) -> bool {
+        self.problem
+            .layout
+            .drives
+            .iter()
+            .any(|d| d.index == index && d.kind.non_negative())
+    }
+}
+
+/// The inequalities of the bounds, each with the scale of its parameter.
+fn inequalities(problem: &Problem, bounds: &Bounds, scale: &[f64]) -> Vec<Bound> {
+    let mut out = Vec::new();
+    let mut masses = 0.0;
+    for (j, idx) in problem.layout.links.iter().enumerate() {
+        let b = &bounds.links[j];
+        let m = idx[9];
+        let linear = |entries: [(usize, f64); 2], rhs: f64, scale: f64| Bound::Linear {
+            entries,
+            rhs,
+            scale,
+        };
+        masses += scale[m];
+        out.push(linear([(m, 1.0), (m, 0.0)], b.mass[0], scale[m]));
+        out.push(linear([(m, -1.0), (m, 0.0)], -b.mass[1], scale[m]));
+        for axis in 0..3 {
+            let h = idx[6 + axis];
+            let [lo, hi] = b.com[axis];
+            out.push(linear([(h, 1.0), (m, -lo)], 0.0, scale[h]));
+            out.push(linear([(h, -1.0), (m, hi)], 0.0, scale[h]));
+            for (limit, sign) in [(b.inertia[0], 1.0), (b.inertia[1], -1.0)] {
+                out.push(Bound::InertiaDiagonal {
+                    link: *idx,
+                    axis,
+                    limit,
+                    sign,
+                    scale: scale[idx[0]],
+                });
+            }
+        }
+    }
+    if let Some([lo, hi]) = bounds.total_mass {
+        for (limit, sign) in [(lo, 1.0), (hi, -1.0)] {
+            out.push(Bound::TotalMass {
+                limit,
+                sign,
+                scale: masses,
+            });
+        }
+    }
+    out
+}
