@@ -4,15 +4,21 @@
 //! Identification gives base parameters beta = K p (K from the regrouping, p the standard
 //! parameters) with a covariance. Simulators and Newton-Euler controllers need a complete
 //! p: per link a mass m, a centre of mass c and an inertia I_c about it, physically
-//! consistent. Two methods find one that reproduces beta:
+//! consistent. The fit is convex: p enters linearly and consistency is the linear matrix
+//! inequality "pseudo-inertia P = [[0.5 tr(J) I - J, h], [h', m]] is positive
+//! (semi)definite" (Wensing, Kim, Slotine, "Linear matrix inequalities for physically
+//! consistent inertial parameter identification", IEEE RA-L 3(1), 2018). What the data
+//! leave free is settled by a prior (the user's, else solids along the links). Four
+//! methods find a p that reproduces beta:
 //!
-//! - [`solve_sdp`]: the convex formulation. p enters linearly and consistency is the
-//!   linear matrix inequality "pseudo-inertia P = [[0.5 tr(J) I - J, h], [h', m]] is positive
-//!   (semi)definite" (Wensing, Kim, Slotine, "Linear matrix inequalities for physically
-//!   consistent inertial parameter identification", IEEE RA-L 3(1), 2018), so
-//!   min ||L^-1 (K p - beta)|| under it and linear bounds is a semidefinite program with a
-//!   global optimum (solved with Clarabel). [`consistent_least_squares`] applies the same
-//!   constraints directly to the least-squares fit on data.
+//! - [`solve_interior`] (the default): min ||L^-1 (K p - beta)||^2 plus the prior's pull
+//!   by a log-barrier interior-point method in p; global optimum, pure Rust.
+//! - [`solve_smooth`]: the same objective by Levenberg-Marquardt over the log-Cholesky
+//!   parameters of every link (Rucker and Wensing 2022), every point consistent; slower
+//!   where the optimum lies on the boundary of the consistent set.
+//! - [`solve_sdp`]: the same fit as a semidefinite program solved with Clarabel (feature
+//!   `sdp`, needs OpenBLAS); [`consistent_least_squares`] applies the same constraints
+//!   directly to the least-squares fit on data.
 //! - [`solve_anneal`]: the method of Gaz, Flacco, De Luca ("Extracting feasible robot
 //!   parameters from dynamic coefficients using nonlinear optimization methods", ICRA 2016):
 //!   simulated annealing with random restarts, each followed by Nelder-Mead, over bounded

@@ -1,21 +1,15 @@
-//! The default method: the covariance-weighted fit of the standard parameters to the
-//! identified base parameters, over the log-Cholesky parameters of every link (so every
-//! point is physically consistent, see `log_cholesky`), solved by Levenberg-Marquardt
-//! (the `levenberg-marquardt` crate):
+//! The objective of `objective` (the covariance-weighted fit of the standard parameters to
+//! the identified base parameters, the prior's pull and the bounds' penalty) minimised over
+//! the log-Cholesky parameters of every link (so every point is physically consistent, see
+//! `log_cholesky`) by Levenberg-Marquardt (the `levenberg-marquardt` crate).
 //!
-//! ```text
-//! minimise  || L^-1 (K p(x) - beta) ||^2  +  sum_s w_s ((p_s(x) - p0_s) / scale_s)^2
-//!           +  mu * sum (violated linear bounds / their scale)^2
-//! ```
-//!
-//! with p0 the prior (the user's, else the default of `prior`). The objective is convex
-//! in the standard parameters p, the consistent set is convex, and the parametrisation
-//! maps its interior smoothly and one-to-one, so the local optimum the solver finds is the
-//! global one whenever it lies inside (the prior keeps it there unless the data push a
-//! link to the boundary, which is then approached). Bounds on masses, centres of mass,
-//! the total mass and the diagonal of each inertia about its centre of mass enter as a
-//! stiff exterior penalty (weight `mu`, [`SmoothOptions::penalty`]). Non-negative drive
-//! terms (Ia, Fv, Fc) are exponentials of their variables; Fo and extra columns are free.
+//! The objective is convex in the standard parameters p, the consistent set is convex, and
+//! the parametrisation maps its interior smoothly and one-to-one, so the local optimum the
+//! solver finds is the global one whenever it lies inside; an optimum on the boundary (a
+//! link the data push to a singular pseudo-inertia, common on real data) is only
+//! approached, slowly, where the interior-point method of `interior` lands on it. The
+//! prior's weight is lowered in stages ([`CONTINUATION`]). Non-negative drive terms (Ia,
+//! Fv, Fc) are exponentials of their variables; Fo and extra columns are free.
 
 use std::time::Instant;
 
@@ -31,7 +25,7 @@ use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::{Error, FeasibleError, Result};
 
-/// Settings of the log-Cholesky fit.
+/// Settings of the pure-Rust fits (interior-point and log-Cholesky).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SmoothOptions {
     /// The user's prior (e.g. CAD values); the default prior settles the rest.
@@ -41,7 +35,8 @@ pub struct SmoothOptions {
     pub default_weight: f64,
     /// Weight of a bound's violation (relative to its parameter's scale), in chi^2 units.
     pub penalty: f64,
-    /// Patience of the solver: at most `patience * (variables + 1)` evaluations.
+    /// Patience of the solver: at most `patience * (variables + 1)` evaluations per stage
+    /// (log-Cholesky) or Newton steps in all (interior-point).
     pub patience: usize,
 }
 

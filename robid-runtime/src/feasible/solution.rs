@@ -16,9 +16,9 @@ pub enum Method {
     Sdp,
     /// Simulated annealing with random restarts and Nelder-Mead (Gaz et al.).
     Anneal,
-    /// Levenberg-Marquardt over the log-Cholesky parameters (the default).
+    /// Levenberg-Marquardt over the log-Cholesky parameters.
     LogCholesky,
-    /// Interior-point method on the convex fit ([`solve_interior`](super::solve_interior)).
+    /// Interior-point method on the convex fit (the default).
     Interior,
 }
 

@@ -38,7 +38,19 @@ pub(crate) struct Args {
     #[arg(long)]
     identified: PathBuf,
     /// Bounds on masses, centres of mass, inertias and the total mass (TOML).
-    #[arg(long)]
+    ///
+    /// Links are numbered from 1; a link's table overrides the keys it gives; without the
+    /// file every link gets the [default] shown (see docs/command-line.md, "Bounds file"):
+    ///
+    ///   total_mass = [15.0, 19.0]                       # kg, optional
+    ///   margin = 1e-6                                   # pseudo-inertia >= margin I
+    ///   [default]
+    ///   mass = [0.0, 50.0]                              # kg
+    ///   com = [[-1.0, 1.0], [-1.0, 1.0], [-1.0, 1.0]]   # box in the link frame, m
+    ///   inertia = [0.0, 5.0]                            # moments about the com, kg m^2
+    ///   [links.6]
+    ///   mass = [0.1, 0.5]
+    #[arg(long, verbatim_doc_comment)]
     bounds: Option<PathBuf>,
     /// `interior-point` (the convex fit's global optimum by a log-barrier method, every
     /// iterate physically consistent; needs nothing but the Rust toolchain),
