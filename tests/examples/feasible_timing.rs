@@ -111,6 +111,7 @@ fn tx40() {
                 mass: [0.05, 27.0],
                 com: [[-0.6, 0.6]; 3],
                 inertia: [0.0, 5.0],
+                tensor: [None; 6],
             };
             6
         ],
@@ -164,6 +165,7 @@ fn panda() {
                 mass: [0.0, 2.0 * link.mass + 1.0],
                 com: link.com.map(|c| [c - 0.15, c + 0.15]),
                 inertia: [0.0, 2.0 * link.principal_moments()[2] + 0.01],
+                tensor: [None; 6],
             }
         })
         .collect();

@@ -12,6 +12,9 @@
 //!
 //! [links.3]                           # link 3 (1-based); missing keys come from [default]
 //! mass = [2.0, 4.0]
+//! # elements of the inertia about the centre of mass in the link frame (Gaz et al.'s
+//! # Table III), each optional
+//! inertia_tensor = { xx = [0.01, 0.05], yy = [0.01, 0.05], zz = [0.0, 0.02], xy = [-0.01, 0.01] }
 //! ```
 
 use crate::DataError;
@@ -33,7 +36,20 @@ pub struct LinkBounds {
     pub com: [[f64; 2]; 3],
     /// Range of the principal moments of inertia about the centre of mass, kg m^2.
     pub inertia: [f64; 2],
+    /// Ranges of the elements of the inertia tensor about the centre of mass, in the link
+    /// frame, in the order of [`TENSOR_ELEMENTS`] (kg m^2); `None`: not bounded.
+    pub tensor: [Option<[f64; 2]>; 6],
 }
+
+/// The elements of an inertia tensor a bound may name: key, row, column.
+pub const TENSOR_ELEMENTS: [(&str, usize, usize); 6] = [
+    ("xx", 0, 0),
+    ("yy", 1, 1),
+    ("zz", 2, 2),
+    ("xy", 0, 1),
+    ("xz", 0, 2),
+    ("yz", 1, 2),
+];
 
 impl Default for LinkBounds {
     /// Wide bounds for an arm of ordinary size: 0..50 kg, a 2 m box, moments up to 5 kg m^2.
@@ -42,6 +58,7 @@ impl Default for LinkBounds {
             mass: [0.0, 50.0],
             com: [[-1.0, 1.0]; 3],
             inertia: [0.0, 5.0],
+            tensor: [None; 6],
         }
     }
 }
@@ -72,6 +89,25 @@ struct RawLink {
     mass: Option<[f64; 2]>,
     com: Option<[[f64; 2]; 3]>,
     inertia: Option<[f64; 2]>,
+    inertia_tensor: Option<RawTensor>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawTensor {
+    xx: Option<[f64; 2]>,
+    yy: Option<[f64; 2]>,
+    zz: Option<[f64; 2]>,
+    xy: Option<[f64; 2]>,
+    xz: Option<[f64; 2]>,
+    yz: Option<[f64; 2]>,
+}
+
+impl RawTensor {
+    /// In the order of [`TENSOR_ELEMENTS`].
+    fn elements(&self) -> [Option<[f64; 2]>; 6] {
+        [self.xx, self.yy, self.zz, self.xy, self.xz, self.yz]
+    }
 }
 
 #[derive(Deserialize)]
@@ -201,6 +237,12 @@ impl Bounds {
             for (a, r) in l.com.iter().enumerate() {
                 check(format!("links.{}.com[{a}]", j + 1), *r, false)?;
             }
+            for (r, (name, row, column)) in l.tensor.iter().zip(TENSOR_ELEMENTS) {
+                if let Some(r) = r {
+                    let key = format!("links.{}.inertia_tensor.{name}", j + 1);
+                    check(key, *r, row == column)?;
+                }
+            }
             if l.mass[1] <= 0.0 {
                 return Err(bad(
                     format!("links.{}.mass", j + 1),
@@ -227,10 +269,16 @@ impl Bounds {
 
 fn merge(base: LinkBounds, raw: Option<&RawLink>) -> LinkBounds {
     let Some(raw) = raw else { return base };
+    let given = raw
+        .inertia_tensor
+        .as_ref()
+        .map(RawTensor::elements)
+        .unwrap_or_default();
     LinkBounds {
         mass: raw.mass.unwrap_or(base.mass),
         com: raw.com.unwrap_or(base.com),
         inertia: raw.inertia.unwrap_or(base.inertia),
+        tensor: std::array::from_fn(|e| given[e].or(base.tensor[e])),
     }
 }
 
@@ -259,6 +307,30 @@ mod tests {
             e.to_string().starts_with("b.toml:4:1: `links.2.mass`"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn reads_inertia_tensor_elements_per_link_over_the_default() {
+        let text = "[default]\ninertia_tensor = { xx = [0, 1], xy = [-0.1, 0.1] }\n\
+                    [links.2]\ninertia_tensor = { xy = [-0.2, 0.3], zz = [0.5, 2] }\n";
+        let b = Bounds::from_toml(text, "b.toml", 2).unwrap();
+        assert_eq!(b.links[0].tensor[0], Some([0.0, 1.0]));
+        assert_eq!(b.links[0].tensor[3], Some([-0.1, 0.1]));
+        assert_eq!(b.links[0].tensor[2], None);
+        assert_eq!(b.links[1].tensor[0], Some([0.0, 1.0]));
+        assert_eq!(b.links[1].tensor[2], Some([0.5, 2.0]));
+        assert_eq!(b.links[1].tensor[3], Some([-0.2, 0.3]));
+        // a diagonal element is a moment: not negative; a product of inertia may be
+        let e = Bounds::from_toml(
+            "[links.1]\ninertia_tensor = { yy = [-1, 1] }\n",
+            "b.toml",
+            2,
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("`links.1.inertia_tensor.yy`"), "{e}");
+        let e = Bounds::from_toml("[links.1]\ninertia_tensor = { xw = [0, 1] }\n", "b.toml", 2)
+            .unwrap_err();
+        assert!(e.to_string().contains("xw"), "{e}");
     }
 
     #[test]

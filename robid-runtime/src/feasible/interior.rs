@@ -36,6 +36,11 @@ const MU_FACTOR: f64 = 10.0;
 const GAP: f64 = 1e-10;
 /// Newton steps per stage at most.
 const STEPS_PER_STAGE: usize = 60;
+/// The bounds hold when no violation exceeds this share of the bound's scale (the
+/// solution's own check allows 1e-6 of the bound).
+const BOUND_TOLERANCE: f64 = 1e-7;
+/// Extra rounds of multiplier updates at the final barrier weight, at most.
+const ROUNDS: usize = 30;
 
 /// The barrier of the consistent set and the non-negative drive terms.
 struct Barrier<'a> {
@@ -117,7 +122,7 @@ pub fn solve_interior(
         options.prior.as_ref(),
         options.default_weight,
     )?;
-    let objective = Objective::new(problem, bounds, pull, options.penalty);
+    let mut objective = Objective::new(problem, bounds, pull, options.penalty);
     let mut p = objective.start(bounds.margin)?;
     let barrier = Barrier {
         links: &layout.links,
@@ -131,62 +136,81 @@ pub fn solve_interior(
             pseudo_inertia(&e)
         }),
     };
+    let nu = barrier.degree();
+    let mut mu = objective.value(&p).max(1.0) / nu;
+    let mut steps_left = options.patience.saturating_mul(p.len() + 1);
+    loop {
+        p = newton(&objective, &barrier, p, mu, &mut steps_left)?;
+        if nu * mu <= GAP * (1.0 + objective.value(&p)) || steps_left == 0 {
+            break;
+        }
+        mu /= MU_FACTOR;
+    }
+    // the multipliers of the bounds, at the final barrier weight, until the bounds hold
+    for _ in 0..ROUNDS {
+        if objective.update_shifts(&p) <= BOUND_TOLERANCE || steps_left == 0 {
+            break;
+        }
+        p = newton(&objective, &barrier, p, mu, &mut steps_left)?;
+    }
+    let mut solution = Solution::assemble(problem, bounds, Method::Interior, p, start.elapsed())?;
+    solution.determined = super::prior::determined(problem, &objective.pull);
+    Ok(solution)
+}
+
+/// Newton's method on `f + mu B` from the interior point p, at most [`STEPS_PER_STAGE`]
+/// steps (and `steps_left`); every step stays in the interior.
+fn newton(
+    objective: &Objective<'_>,
+    barrier: &Barrier<'_>,
+    mut p: Vec<f64>,
+    mu: f64,
+    steps_left: &mut usize,
+) -> Result<Vec<f64>> {
     let stuck = || {
         Error::Feasible(FeasibleError::NoFeasibleParameters {
             reason: "the interior-point fit left the consistent set or met a non-finite value; check the identified values and the bounds".into(),
         })
     };
-    let phi = |p: &[f64], mu: f64| -> Option<f64> {
+    let phi = |p: &[f64]| -> Option<f64> {
         let v = objective.value(p) + mu * barrier.value(p)?;
         v.is_finite().then_some(v)
     };
-    let nu = barrier.degree();
-    let mut mu = objective.value(&p).max(1.0) / nu;
-    let mut steps_left = options.patience.saturating_mul(p.len() + 1);
-    loop {
-        for _ in 0..STEPS_PER_STAGE {
-            if steps_left == 0 {
-                break;
-            }
-            steps_left -= 1;
-            let r = objective.residuals(&p);
-            let j = objective.jacobian(&p);
-            let mut g = j.tr_mul(&r) * 2.0;
-            let mut h = j.tr_mul(&j) * 2.0;
-            barrier.add_derivatives(&p, mu, &mut g, &mut h);
-            let step = newton_step(h, &g).ok_or_else(stuck)?;
-            let slope = g.dot(&step);
-            let now = phi(&p, mu).ok_or_else(stuck)?;
-            if -slope <= 1e-14 * (1.0 + now.abs()) {
-                break;
-            }
-            let mut s = 1.0;
-            let accepted = loop {
-                let trial: Vec<f64> = p.iter().zip(step.iter()).map(|(a, d)| a + s * d).collect();
-                if let Some(v) = phi(&trial, mu)
-                    && v <= now + 1e-4 * s * slope
-                {
-                    break Some(trial);
-                }
-                s *= 0.5;
-                if s < 1e-12 {
-                    break None;
-                }
-            };
-            match accepted {
-                Some(trial) => p = trial,
-                None => break,
-            }
-        }
-        let f = objective.value(&p);
-        if nu * mu <= GAP * (1.0 + f) || steps_left == 0 {
+    for _ in 0..STEPS_PER_STAGE {
+        if *steps_left == 0 {
             break;
         }
-        mu /= MU_FACTOR;
+        *steps_left -= 1;
+        let r = objective.residuals(&p);
+        let j = objective.jacobian(&p);
+        let mut g = j.tr_mul(&r) * 2.0;
+        let mut h = j.tr_mul(&j) * 2.0;
+        barrier.add_derivatives(&p, mu, &mut g, &mut h);
+        let step = newton_step(h, &g).ok_or_else(stuck)?;
+        let slope = g.dot(&step);
+        let now = phi(&p).ok_or_else(stuck)?;
+        if -slope <= 1e-14 * (1.0 + now.abs()) {
+            break;
+        }
+        let mut s = 1.0;
+        let accepted = loop {
+            let trial: Vec<f64> = p.iter().zip(step.iter()).map(|(a, d)| a + s * d).collect();
+            if let Some(v) = phi(&trial)
+                && v <= now + 1e-4 * s * slope
+            {
+                break Some(trial);
+            }
+            s *= 0.5;
+            if s < 1e-12 {
+                break None;
+            }
+        };
+        match accepted {
+            Some(trial) => p = trial,
+            None => break,
+        }
     }
-    let mut solution = Solution::assemble(problem, bounds, Method::Interior, p, start.elapsed())?;
-    solution.determined = super::prior::determined(problem, &objective.pull);
-    Ok(solution)
+    Ok(p)
 }
 
 /// Solves H step = -g by Cholesky, adding a small multiple of the identity when H is not

@@ -48,7 +48,7 @@ mod search;
 mod smooth;
 mod solution;
 
-pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds};
+pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds, TENSOR_ELEMENTS};
 pub use centre::centre;
 pub use error::FeasibleError;
 pub use inertial::{

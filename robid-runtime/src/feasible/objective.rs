@@ -9,12 +9,13 @@
 //! with p0 the prior (the user's, else the default of `prior`). The first two terms are
 //! convex quadratics; the bounds on masses, centres of mass, the total mass and the
 //! diagonal of each inertia about its centre of mass enter as a stiff exterior penalty
-//! (weight `mu`). `smooth` (Levenberg-Marquardt over log-Cholesky parameters) and
+//! (weight `mu`) with the shifts of an augmented Lagrangian, which the methods update
+//! until the bounds hold to 1e-7 of their scale. `smooth` (Levenberg-Marquardt over log-Cholesky parameters) and
 //! `interior` (a log-det barrier in p) minimise the same rows, so their optima compare.
 
 use nalgebra::{DMatrix, DVector};
 
-use super::bounds::Bounds;
+use super::bounds::{Bounds, TENSOR_ELEMENTS};
 use super::log_cholesky::{PER_LINK, inside};
 use super::prior::Pull;
 use super::problem::Problem;
@@ -29,10 +30,12 @@ enum Bound {
         rhs: f64,
         scale: f64,
     },
-    /// `sign * (I_c[axis][axis] - limit)` for the link with standard indices `link`.
-    InertiaDiagonal {
+    /// `sign * (I_c[row][column] - limit)` for the link with standard indices `link`
+    /// (`I_c` the inertia about the centre of mass).
+    InertiaElement {
         link: [usize; PER_LINK],
-        axis: usize,
+        row: usize,
+        column: usize,
         limit: f64,
         sign: f64,
         scale: f64,
@@ -40,6 +43,10 @@ enum Bound {
     /// The total mass: `sign * (sum of masses - limit)`.
     TotalMass { limit: f64, sign: f64, scale: f64 },
 }
+
+/// The index among a link's ten standard values of the inertia tensor's entry (row,
+/// column): `XX XY XZ YY YZ ZZ`.
+const STANDARD_ENTRY: [[usize; 3]; 3] = [[0, 1, 2], [1, 3, 4], [2, 4, 5]];
 
 /// The residual rows of the objective.
 #[derive(Clone)]
@@ -51,20 +58,41 @@ pub(super) struct Objective<'a> {
     pub(super) pull: Pull,
     bounds: Vec<Bound>,
     penalty: f64,
+    /// Per bound, the shift of the augmented Lagrangian (its multiplier over twice the
+    /// penalty, in units of the bound's scale): the penalty acts on g / scale - shift, so
+    /// that updating the shifts drives violations to zero at a finite penalty.
+    shifts: Vec<f64>,
 }
 
 impl<'a> Objective<'a> {
     /// The objective of `problem` under `bounds`, pulled by `pull`, with bound penalty
     /// `penalty`.
     pub(super) fn new(problem: &'a Problem, bounds: &Bounds, pull: Pull, penalty: f64) -> Self {
+        let bounds = inequalities(problem, bounds, &pull.scale);
         Objective {
             problem,
             a: &problem.whitening * &problem.k,
             b: &problem.whitening * &problem.target,
-            bounds: inequalities(problem, bounds, &pull.scale),
+            shifts: vec![0.0; bounds.len()],
+            bounds,
             pull,
             penalty,
         }
+    }
+
+    /// The multiplier update of the augmented Lagrangian (Powell-Hestenes-Rockafellar for
+    /// inequalities: shift = max(0, shift - g / scale)) at p; returns the largest violation
+    /// of a bound at p, in units of its scale.
+    pub(super) fn update_shifts(&mut self, p: &[f64]) -> f64 {
+        let mut grad = Vec::new();
+        let mut worst: f64 = 0.0;
+        for k in 0..self.bounds.len() {
+            let (g, scale) = self.bound(&self.bounds[k], p, &mut grad);
+            let g = g / scale;
+            worst = worst.max(-g);
+            self.shifts[k] = (self.shifts[k] - g).max(0.0);
+        }
+        worst
     }
 
     /// The number of residual rows.
@@ -86,24 +114,36 @@ impl<'a> Objective<'a> {
                 let g = entries.iter().map(|&(i, c)| c * p[i]).sum::<f64>() - rhs;
                 (g, scale)
             }
-            Bound::InertiaDiagonal {
+            Bound::InertiaElement {
                 link,
-                axis,
+                row,
+                column,
                 limit,
                 sign,
                 scale,
             } => {
-                // I_c[a][a] = J[a][a] - (|h|^2 - h_a^2) / m
-                let diagonal = [0, 3, 5][axis];
+                // I_c = J - (|h|^2 I - h h') / m, J the inertia about the origin
+                let (a, b) = (row, column);
+                let entry = link[STANDARD_ENTRY[a][b]];
                 let m = p[link[9]].max(1e-300);
                 let h = [p[link[6]], p[link[7]], p[link[8]]];
-                let off: f64 = (0..3).filter(|&k| k != axis).map(|k| h[k] * h[k]).sum();
-                let value = p[link[diagonal]] - off / m;
-                grad.push((link[diagonal], sign));
-                for k in (0..3).filter(|&k| k != axis) {
-                    grad.push((link[6 + k], -sign * 2.0 * h[k] / m));
+                let delta = if a == b { 1.0 } else { 0.0 };
+                let norm2: f64 = h.iter().map(|v| v * v).sum();
+                let shift = delta * norm2 - h[a] * h[b];
+                let value = p[entry] - shift / m;
+                grad.push((entry, sign));
+                for (k, hk) in h.iter().enumerate() {
+                    // d shift / d h_k
+                    let mut d = 2.0 * delta * hk;
+                    if k == a {
+                        d -= h[b];
+                    }
+                    if k == b {
+                        d -= h[a];
+                    }
+                    grad.push((link[6 + k], -sign * d / m));
                 }
-                grad.push((link[9], sign * off / (m * m)));
+                grad.push((link[9], sign * shift / (m * m)));
                 (sign * (value - limit), scale)
             }
             Bound::TotalMass { limit, sign, scale } => {
@@ -130,7 +170,7 @@ impl<'a> Objective<'a> {
         let mu = self.penalty.sqrt();
         for (k, bound) in self.bounds.iter().enumerate() {
             let (g, scale) = self.bound(bound, p, &mut grad);
-            r[start + k] = mu * g.min(0.0) / scale;
+            r[start + k] = mu * (g / scale - self.shifts[k]).min(0.0);
         }
         r
     }
@@ -149,7 +189,7 @@ impl<'a> Objective<'a> {
         let mu = self.penalty.sqrt();
         for (k, bound) in self.bounds.iter().enumerate() {
             let (g, scale) = self.bound(bound, p, &mut grad);
-            if g < 0.0 {
+            if g / scale < self.shifts[k] {
                 for &(i, d) in &grad {
                     jac[(nb + ns + k, i)] += mu * d / scale;
                 }
@@ -247,9 +287,23 @@ fn inequalities(problem: &Problem, bounds: &Bounds, scale: &[f64]) -> Vec<Bound>
             out.push(linear([(h, 1.0), (m, -lo)], 0.0, scale[h]));
             out.push(linear([(h, -1.0), (m, hi)], 0.0, scale[h]));
             for (limit, sign) in [(b.inertia[0], 1.0), (b.inertia[1], -1.0)] {
-                out.push(Bound::InertiaDiagonal {
+                out.push(Bound::InertiaElement {
                     link: *idx,
-                    axis,
+                    row: axis,
+                    column: axis,
+                    limit,
+                    sign,
+                    scale: scale[idx[0]],
+                });
+            }
+        }
+        for (range, (_, row, column)) in b.tensor.iter().zip(TENSOR_ELEMENTS) {
+            let Some([lo, hi]) = *range else { continue };
+            for (limit, sign) in [(lo, 1.0), (hi, -1.0)] {
+                out.push(Bound::InertiaElement {
+                    link: *idx,
+                    row,
+                    column,
                     limit,
                     sign,
                     scale: scale[idx[0]],

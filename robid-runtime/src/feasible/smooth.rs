@@ -140,33 +140,38 @@ impl Fit<'_> {
         Some(DVector::from_vec(x))
     }
 
-    /// d standard / d x (dense, standard parameters by variables).
-    fn standard_jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {
+    /// d residuals / d x from d residuals / d p, through the block-diagonal d p / d x (a
+    /// link's ten by ten block, or one entry).
+    fn chain(&self, x: &DVector<f64>, jp: &DMatrix<f64>) -> DMatrix<f64> {
         let layout = &self.objective.problem.layout;
-        let mut d = DMatrix::zeros(layout.len(), x.len());
+        let mut out = DMatrix::zeros(jp.nrows(), x.len());
         let mut v = 0;
         for map in &self.maps {
             match *map {
                 Map::Link(j) => {
                     let jac = jacobian(&self.theta(x, j));
                     for (k, &i) in layout.links[j].iter().enumerate() {
-                        for (t, value) in jac[k].iter().enumerate() {
-                            d[(i, v + t)] = *value;
+                        let column = jp.column(i);
+                        for (t, d) in jac[k].iter().enumerate() {
+                            if *d != 0.0 {
+                                out.column_mut(v + t).axpy(*d, &column, 1.0);
+                            }
                         }
                     }
                     v += PER_LINK;
                 }
                 Map::Positive(i) => {
-                    d[(i, v)] = x[v].clamp(-700.0, 700.0).exp();
+                    let d = x[v].clamp(-700.0, 700.0).exp();
+                    out.column_mut(v).axpy(d, &jp.column(i), 0.0);
                     v += 1;
                 }
                 Map::Free(i) => {
-                    d[(i, v)] = 1.0;
+                    out.column_mut(v).copy_from(&jp.column(i));
                     v += 1;
                 }
             }
         }
-        d
+        out
     }
 }
 
@@ -190,7 +195,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Fit<'_> {
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
         let p = self.standard(&self.x);
-        let j = self.objective.jacobian(&p) * self.standard_jacobian(&self.x);
+        let j = self.chain(&self.x, &self.objective.jacobian(&p));
         j.iter().all(|v| v.is_finite()).then_some(j)
     }
 }
@@ -199,6 +204,8 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Fit<'_> {
 /// own value: each round starts next to its optimum, so no link's mass is driven towards
 /// zero early, where the exponential parametrisation leaves it no gradient to come back.
 const CONTINUATION: [f64; 5] = [1e4, 1e3, 1e2, 1e1, 1.0];
+/// Rounds of the augmented Lagrangian's multiplier update after the stages, at most.
+const BOUND_ROUNDS: usize = 3;
 
 /// Physically consistent standard parameters that reproduce the identified base
 /// parameters of `problem` within the bounds, settled by the prior where the data leave
@@ -241,7 +248,11 @@ pub fn solve_smooth(
         })
     })?;
     let weight = fit.objective.pull.weight.clone();
-    for factor in CONTINUATION {
+    // the prior's stages, then rounds at its own weight until the bounds hold
+    let rounds = CONTINUATION
+        .into_iter()
+        .chain(std::iter::repeat_n(1.0, BOUND_ROUNDS));
+    for (round, factor) in rounds.enumerate() {
         fit.objective.pull.weight = weight.iter().map(|w| w * factor).collect();
         let (next, report) = LevenbergMarquardt::new()
             .with_patience(options.patience)
@@ -254,6 +265,11 @@ pub fn solve_smooth(
                     report.termination
                 ),
             }));
+        }
+        let p = fit.standard(&fit.x);
+        let violation = fit.objective.update_shifts(&p);
+        if round + 1 >= CONTINUATION.len() && violation <= 1e-7 {
+            break;
         }
     }
     let p = fit.standard(&fit.x);

@@ -4,7 +4,7 @@ use std::time::Duration;
 
 use serde::Serialize;
 
-use super::bounds::Bounds;
+use super::bounds::{Bounds, TENSOR_ELEMENTS};
 use super::inertial::{LinkInertial, pseudo_inertia_min_eigenvalue};
 use super::problem::Problem;
 
@@ -144,6 +144,15 @@ impl Solution {
                             l.com[a],
                             b.com[a]
                         ));
+                    }
+                }
+                for (range, (name, row, column)) in b.tensor.iter().zip(TENSOR_ELEMENTS) {
+                    let Some(r) = *range else { continue };
+                    let v = l.inertia[row][column];
+                    at(format!("inertia {name}"), v, r);
+                    if out(v, r) {
+                        violations
+                            .push(format!("link {}: inertia {name} {v} outside {r:?}", j + 1));
                     }
                 }
                 for (a, m) in l.principal_moments().iter().enumerate() {

@@ -50,6 +50,7 @@ fn bounds(links: usize, weight: f64, reach: f64) -> Bounds {
                 mass: [0.05, weight],
                 com: [[-reach, reach]; 3],
                 inertia: [0.0, 0.5 * weight * reach * reach],
+                tensor: [None; 6],
             };
             links
         ],

@@ -79,6 +79,7 @@ fn bounds(case: &Case) -> Bounds {
                 mass: [0.0, 2.0 * link.mass + 1.0],
                 com: link.com.map(|c| [c - 0.15, c + 0.15]),
                 inertia: [0.0, 2.0 * top + 0.01],
+                tensor: [None; 6],
             }
         })
         .collect();
@@ -248,6 +249,66 @@ fn interior_panda() {
 #[test]
 fn interior_tx40_wide_default_bounds() {
     interior("tx40", true);
+}
+
+/// Bounds on the elements of the inertia about the centre of mass (Gaz et al.'s Table III
+/// form) hold: around the truth they cost nothing (the truth is feasible, so the optimum
+/// fits at least as well), and a range that excludes the truth's value is met.
+#[test]
+fn interior_honours_inertia_tensor_bounds() {
+    use robid_runtime::feasible::TENSOR_ELEMENTS;
+    let mut c = case("ur5e");
+    let options = SmoothOptions {
+        default_weight: 1e-6,
+        ..SmoothOptions::default()
+    };
+    let mut b = bounds(&c);
+    let layout = c.problem.layout.clone();
+    let truth: Vec<LinkInertial> = (0..layout.links.len())
+        .map(|j| LinkInertial::from_standard(&layout.link_values(j, &c.truth)).unwrap())
+        .collect();
+    for (lb, link) in b.links.iter_mut().zip(&truth) {
+        lb.tensor = TENSOR_ELEMENTS.map(|(_, r, k)| {
+            let v = link.inertia[r][k];
+            let pad = 0.1 * v.abs() + 1e-4;
+            Some([if r == k { (v - pad).max(0.0) } else { v - pad }, v + pad])
+        });
+    }
+    let around = solve_interior(&c.problem, &b, &options).unwrap();
+    check(
+        &mut c,
+        &around,
+        "interior-point ur5e, tensor bounds",
+        false,
+        true,
+    );
+    // link 3's yy (row 1) capped at half the truth's value, its other elements free (link 3
+    // is a rod along x: yy >= zz - xx, so zz's range around the truth would exclude it)
+    let yy = truth[2].inertia[1][1];
+    b.links[2].tensor = [None; 6];
+    b.links[2].tensor[1] = Some([0.0, 0.5 * yy]);
+    let capped = solve_interior(&c.problem, &b, &options).unwrap();
+    let got = capped.links[2].unwrap().inertia[1][1];
+    eprintln!(
+        "ur5e link 3 yy capped at {:.4e} (truth {yy:.4e}): {got:.4e}, chi2 {:.3e} (uncapped {:.3e})",
+        0.5 * yy,
+        capped.chi2,
+        around.chi2
+    );
+    assert!(
+        got <= 0.5 * yy * (1.0 + 1e-6),
+        "yy {got} above {}",
+        0.5 * yy
+    );
+    assert!(capped.violations.is_empty(), "{:?}", capped.violations);
+    // a smaller feasible set cannot fit better (to the solver's precision; measured: the
+    // data do not see link 3's yy alone, chi^2 6.7e-11 against 1.4e-10)
+    assert!(
+        capped.chi2 >= around.chi2 - 1e-9,
+        "{} vs {}",
+        capped.chi2,
+        around.chi2
+    );
 }
 
 #[cfg(feature = "sdp")]

@@ -30,7 +30,7 @@ use std::time::Instant;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
-use super::bounds::Bounds;
+use super::bounds::{Bounds, TENSOR_ELEMENTS};
 use super::prior::{Prior, Pull};
 use super::problem::Problem;
 use super::solution::{Method, Solution};
@@ -206,6 +206,15 @@ impl Objective<'_> {
             let d = &x[j * PER_LINK + 4..j * PER_LINK + 7];
             for m in [d[1] + d[2], d[0] + d[2], d[0] + d[1]] {
                 v.push(out(m, b.inertia, b.inertia[1].max(1e-9)));
+            }
+            if b.tensor.iter().any(Option::is_some) {
+                let inertia = link_of(&x[j * PER_LINK..(j + 1) * PER_LINK]).inertia;
+                for (range, (_, row, column)) in b.tensor.iter().zip(TENSOR_ELEMENTS) {
+                    if let Some(r) = *range {
+                        let scale = r[0].abs().max(r[1].abs()).max(1e-9);
+                        v.push(out(inertia[row][column], r, scale));
+                    }
+                }
             }
         }
         v
