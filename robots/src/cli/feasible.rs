@@ -50,6 +50,7 @@ pub(crate) struct Args {
     ///   inertia = [0.0, 5.0]                            # moments about the com, kg m^2
     ///   [links.6]
     ///   mass = [0.1, 0.5]
+    ///   inertia_tensor = { xx = [0.0, 0.004], xy = [-0.001, 0.001] }   # about the com
     #[arg(long, verbatim_doc_comment)]
     bounds: Option<PathBuf>,
     /// `interior-point` (the convex fit's global optimum by a log-barrier method, every
