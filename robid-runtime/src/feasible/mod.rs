@@ -25,7 +25,7 @@
 //!   masses, centres of mass and inertias, with a total-mass range.
 //!
 //! Bounds come from TOML ([`Bounds`]); the result ([`Solution`]) is written as TOML or as
-//! URDF `<inertial>` elements ([`to_toml`], [`to_urdf`]).
+//! a complete URDF robot ([`to_toml`], [`to_urdf`]).
 
 #[cfg(feature = "sdp")]
 use openblas_src as _;
@@ -56,7 +56,7 @@ pub use inertial::{
 };
 pub use interior::solve_interior;
 pub use layout::{Drive, Layout};
-pub use output::{to_toml, to_urdf};
+pub use output::{UrdfJoint, to_toml, to_urdf};
 pub use prior::{LinkShape, Prior};
 pub use problem::Problem;
 pub use sdp::{SdpOptions, consistent_least_squares, solve_sdp};

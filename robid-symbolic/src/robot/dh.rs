@@ -95,10 +95,63 @@ impl Robot {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn link_segments(&self) -> Result<Vec<[[f64; 3]; 2]>, Unbound> {
+        let rows = self.numeric_rows()?;
+        let n = rows.len();
+        Ok((0..n)
+            .map(|j| match self.convention {
+                Convention::Standard => {
+                    let [alpha, a, d, _] = rows[j];
+                    [[-a, -d * alpha.sin(), -d * alpha.cos()], [0.0; 3]]
+                }
+                Convention::Modified if j + 1 < n => {
+                    let [alpha, a, d, _] = rows[j + 1];
+                    [[0.0; 3], [a, -d * alpha.sin(), d * alpha.cos()]]
+                }
+                Convention::Modified => [[0.0; 3]; 2],
+            })
+            .collect())
+    }
+
+    /// Where each joint sits, for a description with joint frames (URDF): per joint, the
+    /// pose of its frame (joint variable at zero; z its axis) in the previous joint's frame
+    /// (the base frame for the first), and the pose of the user's DH link frame in it. Each
+    /// joint frame moves with its link, turning about or sliding along its z axis, so the
+    /// chain base -> joint 1 -> ... is a URDF chain whose link j carries link j's inertia
+    /// placed by the second pose. Poses are 4x4 homogeneous matrices, row-major.
+    ///
+    /// Modified DH: joint j's frame is DH frame j, at Rx(alpha_j) Tx(a_j) Rz(theta_j)
+    /// Tz(d_j) in frame j-1. Standard DH: joint j turns about z_(j-1), so its frame is DH
+    /// frame j-1 (turned by the joint) and DH frame j lies at Rz(theta_j) Tz(d_j) Tx(a_j)
+    /// Rx(alpha_j) in it.
+    ///
+    /// # Errors
+    /// A symbol the geometry uses has no value in the description.
+    pub fn joint_placements(&self) -> Result<Vec<JointPlacement>, Unbound> {
+        let rows = self.numeric_rows()?;
+        let mut out: Vec<JointPlacement> = Vec::with_capacity(rows.len());
+        for [alpha, a, d, theta] in rows {
+            let placement = match self.convention {
+                Convention::Modified => JointPlacement {
+                    origin: product(&[rot_x(alpha), trans_x(a), rot_z(theta), trans_z(d)]),
+                    link_frame: IDENTITY,
+                },
+                Convention::Standard => JointPlacement {
+                    // DH frame j-1 in joint j-1's frame: the previous link's placement
+                    origin: out.last().map_or(IDENTITY, |p| p.link_frame),
+                    link_frame: product(&[rot_z(theta), trans_z(d), trans_x(a), rot_x(alpha)]),
+                },
+            };
+            out.push(placement);
+        }
+        Ok(out)
+    }
+
+    /// Per joint `[alpha, a, d, theta]` at the description's symbol values.
+    fn numeric_rows(&self) -> Result<Vec<[f64; 4]>, Unbound> {
         let mut arena = Arena::new();
         let mut ids = Vec::new();
         for joint in self.joints() {
-            for g in [&joint.alpha, &joint.a, &joint.d] {
+            for g in [&joint.alpha, &joint.a, &joint.d, &joint.theta] {
                 ids.push(g.to_expr(&mut arena));
             }
         }
@@ -108,20 +161,63 @@ impl Robot {
         }
         let values = arena.values(&pairs);
         let v = arena.eval(&ids, &values)?;
-        let n = self.dof();
-        let row = |j: usize| (v[3 * j], v[3 * j + 1], v[3 * j + 2]);
-        Ok((0..n)
-            .map(|j| match self.convention {
-                Convention::Standard => {
-                    let (alpha, a, d) = row(j);
-                    [[-a, -d * alpha.sin(), -d * alpha.cos()], [0.0; 3]]
-                }
-                Convention::Modified if j + 1 < n => {
-                    let (alpha, a, d) = row(j + 1);
-                    [[0.0; 3], [a, -d * alpha.sin(), d * alpha.cos()]]
-                }
-                Convention::Modified => [[0.0; 3]; 2],
-            })
-            .collect())
+        Ok(v.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect())
     }
+}
+
+/// A 4x4 homogeneous transform, row-major.
+pub type Pose = [[f64; 4]; 4];
+
+/// Where one joint sits (see [`Robot::joint_placements`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointPlacement {
+    /// The joint's frame (joint variable at zero) in the previous joint's frame.
+    pub origin: Pose,
+    /// The user's DH frame of the link the joint moves, in the joint's frame.
+    pub link_frame: Pose,
+}
+
+const IDENTITY: Pose = [
+    [1.0, 0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0, 0.0],
+    [0.0, 0.0, 0.0, 1.0],
+];
+
+fn product(poses: &[Pose]) -> Pose {
+    poses.iter().fold(IDENTITY, |acc, p| {
+        std::array::from_fn(|i| std::array::from_fn(|k| (0..4).map(|m| acc[i][m] * p[m][k]).sum()))
+    })
+}
+
+fn rot_x(angle: f64) -> Pose {
+    let (s, c) = angle.sin_cos();
+    [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, c, -s, 0.0],
+        [0.0, s, c, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ]
+}
+
+fn rot_z(angle: f64) -> Pose {
+    let (s, c) = angle.sin_cos();
+    [
+        [c, -s, 0.0, 0.0],
+        [s, c, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ]
+}
+
+fn trans_x(length: f64) -> Pose {
+    let mut p = IDENTITY;
+    p[0][3] = length;
+    p
+}
+
+fn trans_z(length: f64) -> Pose {
+    let mut p = IDENTITY;
+    p[2][3] = length;
+    p
 }

@@ -18,7 +18,7 @@ mod interval;
 mod parameters;
 mod read;
 
-pub use dh::FrameRow;
+pub use dh::{FrameRow, JointPlacement, Pose};
 pub use error::DescriptionError;
 pub use geometry::{Expression, Geometry, GeometryError, Number};
 pub use parameters::{DriveTerm, Inertial, ParameterId, ParameterKind};

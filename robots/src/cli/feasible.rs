@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
     AnnealOptions, Bounds, LinkShape, Prior, Problem, SdpOptions, SmoothOptions, Solution,
-    solve_anneal, solve_interior, solve_sdp, solve_smooth, to_toml, to_urdf,
+    UrdfJoint, solve_anneal, solve_interior, solve_sdp, solve_smooth, to_toml, to_urdf,
 };
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
@@ -74,7 +74,8 @@ pub(crate) struct Args {
     /// `anneal`, which has no default prior.
     #[arg(long, value_parser = real(closed(0.0, 1e6, "")))]
     prior_weight: Option<f64>,
-    /// Output file: TOML, or URDF inertial elements for a `.urdf` / `.xml` name.
+    /// Output file: TOML, or a complete URDF (links with their inertials, joints from the
+    /// description) for a `.urdf` / `.xml` name.
     #[arg(short, long)]
     output: PathBuf,
 }
@@ -277,7 +278,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Some("urdf" | "xml")
     );
     let text = if urdf {
-        to_urdf(&solution, robot.name())
+        to_urdf(&solution, robot.name(), &urdf_joints(&robot)?)
     } else {
         to_toml(&solution, robot.name())
     };
@@ -303,6 +304,24 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         out::warn(format_args!("warning: {at}"));
     }
     Ok(())
+}
+
+/// The description's joints for a URDF: placements and limits.
+fn urdf_joints(robot: &Robot) -> Result<Vec<UrdfJoint>, Error> {
+    let placements = robot.joint_placements().map_err(|e| e.to_string())?;
+    Ok(robot
+        .joints()
+        .iter()
+        .zip(placements)
+        .map(|(joint, place)| UrdfJoint {
+            prismatic: joint.kind == robid_symbolic::JointKind::Prismatic,
+            origin: place.origin,
+            link_frame: place.link_frame,
+            position: joint.limits.position,
+            velocity: joint.limits.velocity,
+            effort: joint.limits.torque,
+        })
+        .collect())
 }
 
 /// K evaluated at the description's geometric values.

@@ -453,3 +453,141 @@ fn sdp_noise_free_target_fits_to_solver_precision() {
     assert!(s.chi2 <= 1e-6, "chi2 {}", s.chi2);
     check(&mut c, &s, "sdp ur5e noise-free", false, false);
 }
+
+/// The URDF output is a complete robot that a URDF parser (urdf-rs) reads: moved by its
+/// own joints to random configurations, its inertials are the solution's links as the DH
+/// chain (`tests::rnea`, independent of the URDF writer) places them, in the base frame;
+/// and at zero, expressed back in the DH frames, they give back the solution's base
+/// parameters. Both conventions and both joint kinds: UR5e, Stanford arm (prismatic
+/// joint 3), PUMA 560 and LWR4 (standard DH).
+#[test]
+fn urdf_output_reads_back_to_the_same_links_and_base_parameters() {
+    use nalgebra::{Matrix3, Rotation3, Vector3};
+    use robid_runtime::feasible::{UrdfJoint, to_urdf};
+    use tests::rnea::{Link, express_in_parent, standard_from_links};
+    type Pose = (Matrix3<f64>, Vector3<f64>);
+    let of = |p: &urdf_rs::Pose| -> Pose {
+        let [roll, pitch, yaw] = p.rpy.0;
+        let r = Rotation3::from_euler_angles(roll, pitch, yaw).into_inner();
+        (r, Vector3::from(p.xyz.0))
+    };
+    let compose = |a: &Pose, b: &Pose| -> Pose { (a.0 * b.0, a.0 * b.1 + a.1) };
+    let m3 = |m: &Matrix3<f64>| -> [[f64; 3]; 3] {
+        std::array::from_fn(|i| std::array::from_fn(|k| m[(i, k)]))
+    };
+    for name in ["ur5e", "stanford", "puma560", "lwr4"] {
+        let c = case(name);
+        let b = Bounds::wide(c.problem.layout.links.len());
+        let s = solve_interior(&c.problem, &b, &SmoothOptions::default()).unwrap();
+        let joints: Vec<UrdfJoint> = c
+            .robot
+            .joints()
+            .iter()
+            .zip(c.robot.joint_placements().unwrap())
+            .map(|(j, place)| UrdfJoint {
+                prismatic: j.kind == robid_symbolic::JointKind::Prismatic,
+                origin: place.origin,
+                link_frame: place.link_frame,
+                position: j.limits.position,
+                velocity: j.limits.velocity,
+                effort: j.limits.torque,
+            })
+            .collect();
+        let urdf = urdf_rs::read_from_string(&to_urdf(&s, name, &joints))
+            .unwrap_or_else(|e| panic!("{name}: the URDF does not parse: {e}"));
+        let n = c.robot.dof();
+        assert_eq!(urdf.joints.len(), n, "{name}");
+        let chain = Chain::from_robot(&c.robot);
+        let dh_links = links_from_standard(&c.robot, &s.standard);
+        // each link of the URDF, in the base frame at q
+        let urdf_links = |q: &[f64]| -> Vec<Link> {
+            let mut pose: Pose = (Matrix3::identity(), Vector3::zeros());
+            (0..n)
+                .map(|j| {
+                    let joint = urdf
+                        .joints
+                        .iter()
+                        .find(|k| k.child.link == format!("link{}", j + 1))
+                        .unwrap();
+                    let axis = Vector3::from(joint.axis.xyz.0);
+                    let motion: Pose = match joint.joint_type {
+                        urdf_rs::JointType::Prismatic => (Matrix3::identity(), axis * q[j]),
+                        _ => (
+                            Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), q[j])
+                                .into_inner(),
+                            Vector3::zeros(),
+                        ),
+                    };
+                    pose = compose(&compose(&pose, &of(&joint.origin)), &motion);
+                    let link = urdf
+                        .links
+                        .iter()
+                        .find(|l| l.name == format!("link{}", j + 1))
+                        .unwrap();
+                    let inertial = compose(&pose, &of(&link.inertial.origin));
+                    let i = &link.inertial.inertia;
+                    let at_com = Link {
+                        mass: link.inertial.mass.value,
+                        inertia: [
+                            [i.ixx, i.ixy, i.ixz],
+                            [i.ixy, i.iyy, i.iyz],
+                            [i.ixz, i.iyz, i.izz],
+                        ],
+                        ..Link::default()
+                    };
+                    express_in_parent(&at_com, &m3(&inertial.0), inertial.1.into())
+                })
+                .collect()
+        };
+        let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-9 * scale;
+        let mut rng = Rng::from_state(0x0DF);
+        for _ in 0..3 {
+            let q = random_state(&c.robot, &mut rng).q;
+            let poses = chain.poses(&q);
+            for (j, (u, link)) in urdf_links(&q).iter().zip(&dh_links).enumerate() {
+                let d = express_in_parent(link, &poses[j].rotation, poses[j].position);
+                let scale = d.mass.abs().max(1e-3);
+                assert!(close(u.mass, d.mass, scale), "{name} link {}: mass", j + 1);
+                for k in 0..3 {
+                    assert!(
+                        close(u.first_moment[k], d.first_moment[k], scale),
+                        "{name} link {}: first moment {k}: {} vs {}",
+                        j + 1,
+                        u.first_moment[k],
+                        d.first_moment[k]
+                    );
+                    for l in 0..3 {
+                        assert!(
+                            close(u.inertia[k][l], d.inertia[k][l], scale),
+                            "{name} link {}: inertia {k}{l}: {} vs {}",
+                            j + 1,
+                            u.inertia[k][l],
+                            d.inertia[k][l]
+                        );
+                    }
+                }
+            }
+        }
+        // at zero, back in the DH frames: the same base parameters
+        let zero = vec![0.0; n];
+        let poses = chain.poses(&zero);
+        let back: Vec<Link> = urdf_links(&zero)
+            .iter()
+            .zip(&poses)
+            .map(|(l, p)| {
+                let rt = [0, 1, 2].map(|i| [0, 1, 2].map(|k| p.rotation[k][i]));
+                let t = [0, 1, 2].map(|i| -(0..3).map(|k| rt[i][k] * p.position[k]).sum::<f64>());
+                express_in_parent(l, &rt, t)
+            })
+            .collect();
+        let p = standard_from_links(&c.robot, &back);
+        let base = c.problem.base_of(&p);
+        for (k, (x, y)) in base.iter().zip(&s.base).enumerate() {
+            assert!(
+                (x - y).abs() <= 1e-9 * (1.0 + y.abs()),
+                "{name}: base parameter {}: {x} from the URDF, {y} in the solution",
+                c.problem.base_names[k]
+            );
+        }
+    }
+}
