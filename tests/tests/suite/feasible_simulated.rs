@@ -29,6 +29,11 @@ fn case(name: &str) -> Case {
     let reference = by_name(name);
     let robot = reference.robot().with_drive(Drive::NONE);
     let truth = reference.parameter_values(&robot);
+    case_of(robot, truth)
+}
+
+/// [`case`] for any robot and true standard parameters.
+fn case_of(robot: Robot, truth: Vec<f64>) -> Case {
     let mut derivation = Derivation::new(&robot);
     let base = derivation.base_parameters().expect("regrouping");
     let mut rng = Rng::from_state(0xFEA5);
@@ -459,7 +464,8 @@ fn sdp_noise_free_target_fits_to_solver_precision() {
 /// chain (`tests::rnea`, independent of the URDF writer) places them, in the base frame;
 /// and at zero, expressed back in the DH frames, they give back the solution's base
 /// parameters. Both conventions and both joint kinds: UR5e, Stanford arm (prismatic
-/// joint 3), PUMA 560 and LWR4 (standard DH).
+/// joint 3), TX40 (angle offsets), PUMA 560 (also with angle offsets) and LWR4 (standard
+/// DH).
 #[test]
 fn urdf_output_reads_back_to_the_same_links_and_base_parameters() {
     use nalgebra::{Matrix3, Rotation3, Vector3};
@@ -475,8 +481,24 @@ fn urdf_output_reads_back_to_the_same_links_and_base_parameters() {
     let m3 = |m: &Matrix3<f64>| -> [[f64; 3]; 3] {
         std::array::from_fn(|i| std::array::from_fn(|k| m[(i, k)]))
     };
-    for name in ["ur5e", "stanford", "puma560", "lwr4"] {
-        let c = case(name);
+    // the PUMA 560 with angle offsets, so that the standard DH link frames turn about z too
+    let puma = by_name("puma560");
+    let turned = {
+        let robot = puma.robot().with_drive(Drive::NONE);
+        let mut joints = robot.joints().to_vec();
+        for (j, theta) in joints.iter_mut().zip([0.3, -0.7, 1.1, 0.2, -0.4, 0.9]) {
+            j.theta = robid_symbolic::robot::Geometry::number(theta).unwrap();
+        }
+        Robot::new("puma_turned", robot.convention(), None, joints).unwrap()
+    };
+    let cases = ["ur5e", "stanford", "tx40", "puma560", "lwr4"]
+        .map(|name| (name, case(name)))
+        .into_iter()
+        .chain([("puma_turned", {
+            let truth = puma.parameter_values(&turned);
+            case_of(turned, truth)
+        })]);
+    for (name, c) in cases {
         let b = Bounds::wide(c.problem.layout.links.len());
         let s = solve_interior(&c.problem, &b, &SmoothOptions::default()).unwrap();
         let joints: Vec<UrdfJoint> = c
