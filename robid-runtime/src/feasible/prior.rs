@@ -42,6 +42,8 @@ pub struct LinkShape {
 /// A segment shorter than this share of the whole chain's length is given that length
 /// (a wrist link whose frames coincide is still a body).
 const MIN_LENGTH_SHARE: f64 = 0.1;
+/// The default prior's weight on a drive term, relative to its weight on link parameters.
+const DRIVE_WEIGHT_SHARE: f64 = 1e-4;
 /// Radius of the solid, relative to its length.
 const RADIUS_SHARE: f64 = 0.25;
 
@@ -73,6 +75,12 @@ impl Pull {
             None => (centre(layout, bounds), bounds_scales(layout, bounds)),
         };
         let mut weight = vec![default_weight; ns];
+        // Drive terms have no geometric prior: a far weaker pull towards zero lets the data
+        // and the links' solids settle them (a rotor inertia regrouped with its link's
+        // inertia takes what the solid leaves of the identified sum).
+        for d in &layout.drives {
+            weight[d.index] *= DRIVE_WEIGHT_SHARE;
+        }
         if let Some(prior) = prior {
             if prior.standard.len() != ns {
                 return Err(Error::DimensionMismatch {
