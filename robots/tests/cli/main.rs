@@ -7,5 +7,6 @@ mod bad_input;
 mod common;
 mod feasible;
 mod files;
+mod sequence;
 mod stdout;
 mod subcommands;
