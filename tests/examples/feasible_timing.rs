@@ -1,10 +1,12 @@
-//! Prints fit (chi^2, max |z|) and time of the feasible-parameter methods on two problems:
+//! Prints fit (chi^2, max |z|) and time of the feasible-parameter methods on three problems:
 //! the TX40 identified from its real log (train rows 0-24750, 61 base parameters with drive
-//! terms and extra columns) and the simulated Panda (`feasible_simulated.rs`'s setup: 1 %
-//! noise on beta, CAD-like bounds around the truth). Methods: SDP projection of the base
-//! parameters (`solve_sdp`), consistent least squares on the observation matrix
-//! (`consistent_least_squares`; for the Panda, 300 random states with 1 % torque noise) and
-//! the Gaz et al. search (`solve_anneal`, default options). Nothing is asserted.
+//! terms and extra columns) and the simulated UR5e and Panda (`feasible_simulated.rs`'s
+//! setup: 1 % noise on beta, CAD-like bounds around the truth). Methods: SDP projection of
+//! the base parameters (`solve_sdp`), consistent least squares on the observation matrix
+//! (`consistent_least_squares`; for the simulated robots, 300 random states with 1 % torque
+//! noise), the interior-point and log-Cholesky fits with the SDP's weak pull
+//! (`solve_interior`, `solve_smooth`) and the Gaz et al. search (`solve_anneal`, default
+//! options). Nothing is asserted.
 //!
 //! `cargo run --release -p tests --features sdp --example feasible_timing`
 //! (without `--features sdp` only the search runs).
@@ -15,7 +17,8 @@ use nalgebra::{DMatrix, DVector};
 use robid_runtime::data::{Config, load_config_files};
 use robid_runtime::estimate::Observation;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, LinkBounds, LinkInertial, Problem, Solution, solve_anneal,
+    AnnealOptions, Bounds, LinkBounds, LinkInertial, Problem, SmoothOptions, Solution,
+    solve_anneal, solve_interior, solve_smooth,
 };
 use robid_runtime::pipeline::{estimate, observe, prepare};
 use robid_runtime::rng::Rng;
@@ -67,6 +70,15 @@ fn run(label: &str, problem: &Problem, bounds: &Bounds, w: &DMatrix<f64>, y: &DV
         w.nrows()
     );
     convex(label, problem, bounds, w, y);
+    // the SDP's problem: the same weak pull (1e-6)
+    let smooth = SmoothOptions {
+        default_weight: 1e-6,
+        ..SmoothOptions::default()
+    };
+    let s = solve_interior(problem, bounds, &smooth).unwrap();
+    report(label, "interior-point", &s);
+    let s = solve_smooth(problem, bounds, &smooth).unwrap();
+    report(label, "log-cholesky", &s);
     let s = solve_anneal(problem, bounds, &AnnealOptions::default()).unwrap();
     report(label, "anneal (8 restarts)", &s);
 }
@@ -121,10 +133,10 @@ fn tx40() {
     run("TX40", &problem, &bounds, &obs.w, &obs.y);
 }
 
-/// The simulated Panda of `feasible_simulated.rs`, with an observation matrix of 300
-/// random states for consistent least squares.
-fn panda() {
-    let reference = by_name("panda");
+/// A simulated robot as in `feasible_simulated.rs` (UR5e, Panda), with an observation
+/// matrix of 300 random states for consistent least squares.
+fn simulated(name: &str, label: &str) {
+    let reference = by_name(name);
     let robot = reference.robot().with_drive(Drive::NONE);
     let truth = reference.parameter_values(&robot);
     let mut derivation = Derivation::new(&robot);
@@ -191,7 +203,7 @@ fn panda() {
     }
     let clean = &w * &exact;
     let y = clean.map(|v| v + 0.01 * v.abs() * rng.uniform(-1.0, 1.0));
-    run("Panda", &problem, &bounds, &w, &y);
+    run(label, &problem, &bounds, &w, &y);
 }
 
 fn main() {
@@ -202,5 +214,6 @@ fn main() {
     };
     println!("profile: {profile}");
     tx40();
-    panda();
+    simulated("ur5e", "UR5e");
+    simulated("panda", "Panda");
 }
