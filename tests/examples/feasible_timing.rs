@@ -43,7 +43,7 @@ fn report(label: &str, method: &str, s: &Solution) {
         if s.violations.is_empty() {
             String::new()
         } else {
-            format!("({} bounds reported)", s.violations.len())
+            format!("(bounds not met: {})", s.violations.join("; "))
         }
     );
 }
