@@ -146,6 +146,7 @@ pub fn solve_interior(
     // the barrier's path; near its end (gap below SETTLE of the objective) the multipliers
     // of the bounds are updated once per stage, then at the last weight until they hold
     let mut rounds = 0;
+    let mut last = f64::INFINITY;
     loop {
         p = newton(&objective, &barrier, p, mu, &mut steps_left)?;
         let f = objective.value(&p);
@@ -155,6 +156,12 @@ pub fn solve_interior(
         } else {
             0.0
         };
+        // the multipliers converge at the rate data / (data + penalty): a violation that
+        // falls slowly means data firmer than the penalty
+        if violation > BOUND_TOLERANCE && violation > 0.25 * last {
+            objective.stiffen(10.0);
+        }
+        last = violation;
         if steps_left == 0 || (converged && (violation <= BOUND_TOLERANCE || rounds == ROUNDS)) {
             break;
         }
@@ -245,4 +252,114 @@ fn newton_step(h: DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
         };
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::{LinkBounds, LinkInertial};
+
+    /// One link plus a rotor inertia, every standard parameter its own base parameter
+    /// (K = I), identified as `target` with standard deviation 1e-3.
+    fn problem(target: &[f64; 11]) -> Problem {
+        let mut names: Vec<String> = crate::model::Inertial::ALL
+            .iter()
+            .map(|s| format!("{}1", s.stem()))
+            .collect();
+        names.push("Ia1".into());
+        let k = nalgebra::DMatrix::identity(11, 11);
+        Problem::new(names.clone(), names, k)
+            .unwrap()
+            .with_target(target, &[1e-3; 11])
+            .unwrap()
+    }
+
+    fn link() -> [f64; 10] {
+        LinkInertial {
+            mass: 2.0,
+            com: [0.0; 3],
+            inertia: [[0.03, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.015]],
+        }
+        .to_standard()
+    }
+
+    fn options() -> SmoothOptions {
+        SmoothOptions {
+            default_weight: 1e-9,
+            ..SmoothOptions::default()
+        }
+    }
+
+    fn target(link: [f64; 10], ia: f64) -> [f64; 11] {
+        std::array::from_fn(|i| if i < 10 { link[i] } else { ia })
+    }
+
+    /// A consistent target inside the bounds is its own optimum: the barrier and the
+    /// penalty leave it where it is.
+    #[test]
+    fn a_consistent_target_is_returned_as_it_is() {
+        let t = target(link(), 0.1);
+        let s = solve_interior(&problem(&t), &Bounds::wide(1), &options()).unwrap();
+        for (got, want) in s.standard.iter().zip(&t) {
+            assert!((got - want).abs() < 1e-7, "{:?} vs {t:?}", s.standard);
+        }
+        assert!(s.chi2 < 1e-6, "chi2 {}", s.chi2);
+    }
+
+    /// A negative rotor inertia is held at zero (the barrier of Ia >= 0), the rest kept:
+    /// chi^2 = (Ia / std)^2.
+    #[test]
+    fn a_negative_rotor_inertia_is_held_at_zero() {
+        let t = target(link(), -0.004);
+        let s = solve_interior(&problem(&t), &Bounds::wide(1), &options()).unwrap();
+        assert!(
+            s.standard[10] >= 0.0 && s.standard[10] < 1e-6,
+            "{}",
+            s.standard[10]
+        );
+        assert!((s.chi2 - 16.0).abs() < 1e-3, "chi2 {}", s.chi2);
+    }
+
+    /// A mass bound below the identified mass (with the centre of mass at the origin, so
+    /// the mass couples to nothing else) is met exactly, the other values kept: chi^2 =
+    /// ((m - bound) / std)^2 = 25.
+    #[test]
+    fn a_mass_bound_is_met_exactly() {
+        let t = target(link(), 0.1);
+        let mut bounds = Bounds::wide(1);
+        bounds.links[0] = LinkBounds {
+            mass: [0.0, 1.995],
+            ..LinkBounds::default()
+        };
+        let s = solve_interior(&problem(&t), &bounds, &options()).unwrap();
+        assert!(
+            (s.standard[9] - 1.995).abs() < 1e-6,
+            "mass {}",
+            s.standard[9]
+        );
+        // 1e-6 on the mass (the solution's own tolerance) moves chi^2 by 2 * 5 * 1e-3 = 0.01
+        assert!((s.chi2 - 25.0).abs() < 2e-2, "chi2 {}", s.chi2);
+        assert!(s.violations.is_empty(), "{:?}", s.violations);
+    }
+
+    /// A target that breaks the triangle inequality (XX > YY + ZZ about the centre of
+    /// mass) is moved onto the boundary of the consistent set: its smallest pseudo-inertia
+    /// eigenvalue is the margin, and the fit is the best consistent one, better than the
+    /// nearest point that a naive repair (raising YY) gives.
+    #[test]
+    fn an_inconsistent_target_lands_on_the_boundary() {
+        let mut l = link();
+        l[0] = 0.05; // XX above YY + ZZ = 0.035 (com at the origin: J = I_c)
+        let t = target(l, 0.1);
+        let s = solve_interior(&problem(&t), &Bounds::wide(1), &options()).unwrap();
+        let margin = Bounds::wide(1).margin;
+        let e = s.min_eigenvalues[0];
+        assert!(
+            e >= margin * (1.0 - 1e-6) && e < 2.0 * margin,
+            "eigenvalue {e}"
+        );
+        // raising YY by 0.015 alone is consistent and costs (0.015 / 1e-3)^2 = 225; the
+        // optimum spreads the change over XX, YY and ZZ: (0.015^2 / 3) / 1e-6 = 75
+        assert!((s.chi2 - 75.0).abs() < 0.1, "chi2 {}", s.chi2);
+    }
 }

@@ -44,6 +44,9 @@ enum Bound {
     TotalMass { limit: f64, sign: f64, scale: f64 },
 }
 
+/// The stiffest penalty [`Objective::stiffen`] reaches.
+const MAX_PENALTY: f64 = 1e14;
+
 /// The index among a link's ten standard values of the inertia tensor's entry (row,
 /// column): `XX XY XZ YY YZ ZZ`.
 const STANDARD_ENTRY: [[usize; 3]; 3] = [[0, 1, 2], [1, 3, 4], [2, 4, 5]];
@@ -78,6 +81,16 @@ impl<'a> Objective<'a> {
             pull,
             penalty,
         }
+    }
+
+    /// Multiplies the penalty by `factor` (at most up to [`MAX_PENALTY`]), keeping the
+    /// multipliers: for bounds that the data push against harder than the penalty holds.
+    pub(super) fn stiffen(&mut self, factor: f64) {
+        let next = (self.penalty * factor).min(MAX_PENALTY);
+        for s in &mut self.shifts {
+            *s *= self.penalty / next;
+        }
+        self.penalty = next;
     }
 
     /// The multiplier update of the augmented Lagrangian (Powell-Hestenes-Rockafellar for
