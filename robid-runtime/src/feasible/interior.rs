@@ -294,6 +294,98 @@ mod tests {
         std::array::from_fn(|i| if i < 10 { link[i] } else { ia })
     }
 
+    /// The barrier's value, gradient and Hessian agree: a known value (P - margin I = 2 I
+    /// and Ia = 0.5 give B = -4 ln 2 - ln 0.5), and the derivatives against central
+    /// differences at an interior point.
+    #[test]
+    fn the_barrier_derivatives_match_its_value() {
+        let layout =
+            crate::feasible::Layout::from_names(&problem(&[0.0; 11]).standard_names).unwrap();
+        let margin = 1e-3;
+        let barrier = Barrier {
+            links: &layout.links,
+            positive: vec![10],
+            margin,
+            basis: std::array::from_fn(|k| {
+                let mut e = [0.0; PER_LINK];
+                e[k] = 1.0;
+                pseudo_inertia(&e)
+            }),
+        };
+        assert_eq!(barrier.degree(), 5.0);
+        // P = (2 + margin) I: Sigma = (2 + margin) I, so J = tr(Sigma) I - Sigma = 2 (2 + margin) I
+        let s = 2.0 + margin;
+        let mut p = vec![
+            2.0 * s,
+            0.0,
+            0.0,
+            2.0 * s,
+            0.0,
+            2.0 * s,
+            0.0,
+            0.0,
+            0.0,
+            s,
+            0.5,
+        ];
+        let known = -4.0 * 2.0f64.ln() - 0.5f64.ln();
+        assert!((barrier.value(&p).unwrap() - known).abs() < 1e-12);
+        // an interior point with products of inertia and an offset centre of mass
+        p = target(
+            LinkInertial {
+                mass: 1.5,
+                com: [0.05, -0.02, 0.1],
+                inertia: [
+                    [0.03, 0.002, -0.001],
+                    [0.002, 0.025, 0.003],
+                    [-0.001, 0.003, 0.02],
+                ],
+            }
+            .to_standard(),
+            0.2,
+        )
+        .to_vec();
+        let n = p.len();
+        let mu = 0.7;
+        let mut g = DVector::zeros(n);
+        let mut h = DMatrix::zeros(n, n);
+        barrier.add_derivatives(&p, mu, &mut g, &mut h);
+        let gradient = |p: &[f64]| {
+            let mut g = DVector::zeros(n);
+            barrier.add_derivatives(p, mu, &mut g, &mut DMatrix::zeros(n, n));
+            g
+        };
+        let step = 1e-6;
+        for i in 0..n {
+            let (mut up, mut down) = (p.clone(), p.clone());
+            up[i] += step;
+            down[i] -= step;
+            let fd =
+                mu * (barrier.value(&up).unwrap() - barrier.value(&down).unwrap()) / (2.0 * step);
+            assert!(
+                (fd - g[i]).abs() < 1e-5 * (1.0 + g[i].abs()),
+                "gradient {i}: {fd} vs {}",
+                g[i]
+            );
+            let dg = (gradient(&up) - gradient(&down)) / (2.0 * step);
+            for k in 0..n {
+                assert!(
+                    (dg[k] - h[(k, i)]).abs() < 1e-4 * (1.0 + h[(k, i)].abs()),
+                    "hessian {k} {i}: {} vs {}",
+                    dg[k],
+                    h[(k, i)]
+                );
+            }
+        }
+        // outside: a mass at zero and a negative rotor inertia
+        let mut out = p.clone();
+        out[10] = 0.0;
+        assert!(barrier.value(&out).is_none());
+        out = p.clone();
+        out[9] = 0.0;
+        assert!(barrier.value(&out).is_none());
+    }
+
     /// A consistent target inside the bounds is its own optimum: the barrier and the
     /// penalty leave it where it is.
     #[test]
