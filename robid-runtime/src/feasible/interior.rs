@@ -42,7 +42,7 @@ const SETTLE: f64 = 1e-3;
 const STEPS_PER_STAGE: usize = 60;
 /// The bounds hold when no violation exceeds this share of the bound's scale (the
 /// solution's own check allows 1e-6 of the bound).
-const BOUND_TOLERANCE: f64 = 1e-7;
+const BOUND_TOLERANCE: f64 = 1e-9;
 /// Extra rounds of multiplier updates at the final barrier weight, at most.
 const ROUNDS: usize = 30;
 
@@ -432,6 +432,61 @@ mod tests {
         // 1e-6 on the mass (the solution's own tolerance) moves chi^2 by 2 * 5 * 1e-3 = 0.01
         assert!((s.chi2 - 25.0).abs() < 2e-2, "chi2 {}", s.chi2);
         assert!(s.violations.is_empty(), "{:?}", s.violations);
+    }
+
+    /// Each kind of bound met at its known optimum (centre of mass at the origin unless
+    /// said, so that the bound couples to nothing else): a product of inertia capped at 0
+    /// (chi^2 (0.002 / 1e-3)^2 = 4), a moment capped 0.003 below its value (9), the total
+    /// mass capped 0.01 below (100), and a centre-of-mass box edge 5 cm inside a centre of
+    /// mass at x = 0.1 m, where h_x - 0.05 m = 0.1 is shared by h_x and m:
+    /// (0.1 / 1e-3)^2 / (1 + 0.05^2).
+    #[test]
+    fn each_kind_of_bound_is_met_at_its_known_optimum() {
+        let mut l = link();
+        l[1] = 0.002; // XY: with the centre of mass at the origin, I_c's xy
+        let t = target(l, 0.1);
+        let solve = |edit: &dyn Fn(&mut Bounds), t: &[f64; 11]| {
+            let mut bounds = Bounds::wide(1);
+            edit(&mut bounds);
+            let s = solve_interior(&problem(t), &bounds, &options()).unwrap();
+            assert!(s.violations.is_empty(), "{:?}", s.violations);
+            s
+        };
+        let s = solve(&|b| b.links[0].tensor[3] = Some([-1.0, 0.0]), &t);
+        assert!(
+            s.standard[1].abs() < 1e-6 && (s.chi2 - 4.0).abs() < 2e-2,
+            "{} {}",
+            s.standard[1],
+            s.chi2
+        );
+        let s = solve(&|b| b.links[0].tensor[2] = Some([0.0, 0.012]), &t);
+        assert!(
+            (s.standard[5] - 0.012).abs() < 1e-6 && (s.chi2 - 9.0).abs() < 3e-2,
+            "{} {}",
+            s.standard[5],
+            s.chi2
+        );
+        let s = solve(&|b| b.total_mass = Some([0.0, 1.99]), &t);
+        assert!(
+            (s.standard[9] - 1.99).abs() < 1e-6 && (s.chi2 - 100.0).abs() < 0.1,
+            "{} {}",
+            s.standard[9],
+            s.chi2
+        );
+        let mut shifted = link();
+        shifted[6] = 0.2; // MX: centre of mass at x = 0.1 m
+        shifted[3] += 2.0 * 0.01; // YY and ZZ by the parallel axis: m x^2 = 0.02
+        shifted[5] += 2.0 * 0.01;
+        let t = target(shifted, 0.1);
+        let s = solve(&|b| b.links[0].com[0] = [-1.0, 0.05], &t);
+        let (h, m) = (s.standard[6], s.standard[9]);
+        let want = (0.1f64 / 1e-3).powi(2) / (1.0 + 0.05 * 0.05);
+        assert!((h - 0.05 * m).abs() < 1e-6, "h {h}, m {m}");
+        assert!(
+            (s.chi2 - want).abs() < 1e-3 * want,
+            "chi2 {} vs {want}",
+            s.chi2
+        );
     }
 
     /// A target that breaks the triangle inequality (XX > YY + ZZ about the centre of
