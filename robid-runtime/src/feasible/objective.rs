@@ -335,3 +335,87 @@ fn inequalities(problem: &Problem, bounds: &Bounds, scale: &[f64]) -> Vec<Bound>
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::{LinkBounds, LinkInertial};
+
+    /// Two links, every standard parameter its own base parameter.
+    fn problem() -> Problem {
+        let names: Vec<String> = (1..=2)
+            .flat_map(|j| {
+                crate::model::Inertial::ALL
+                    .iter()
+                    .map(move |s| format!("{}{j}", s.stem()))
+            })
+            .collect();
+        let n = names.len();
+        Problem::new(names.clone(), names, nalgebra::DMatrix::identity(n, n))
+            .unwrap()
+            .with_target(&vec![0.1; n], &vec![1e-2; n])
+            .unwrap()
+    }
+
+    /// Every kind of bound violated at once, and a point with an offset centre of mass and
+    /// products of inertia: the Jacobian of the residuals equals their central differences
+    /// (the penalty rows of the violated bounds included), and each violated bound adds
+    /// its share to the objective.
+    #[test]
+    fn the_jacobian_matches_the_residuals_with_every_bound_violated() {
+        let problem = problem();
+        let link = |m: f64, c: [f64; 3]| {
+            LinkInertial {
+                mass: m,
+                com: c,
+                inertia: [[0.03, 0.004, -0.002], [0.004, 0.025, 0.003], [-0.002, 0.003, 0.02]],
+            }
+            .to_standard()
+        };
+        let mut p = link(1.5, [0.05, -0.08, 0.1]).to_vec();
+        p.extend(link(0.8, [-0.1, 0.02, 0.04]));
+        let tight = LinkBounds {
+            mass: [2.0, 3.0],
+            com: [[0.06, 0.1], [-0.05, 0.0], [-0.1, 0.05]],
+            inertia: [0.021, 0.024],
+            tensor: [
+                Some([0.0, 0.01]),
+                Some([0.03, 0.04]),
+                Some([0.0, 0.01]),
+                Some([-0.01, -0.005]),
+                Some([0.0, 0.01]),
+                Some([-0.01, -0.005]),
+            ],
+        };
+        let bounds = Bounds {
+            links: vec![tight, tight],
+            total_mass: Some([5.0, 6.0]),
+            margin: 1e-6,
+        };
+        let pull = Pull::new(&problem, &bounds, None, 1e-2).unwrap();
+        let mut objective = Objective::new(&problem, &bounds, pull, 1e4);
+        let free = Objective::new(&problem, &Bounds::wide(2), objective.pull.clone(), 1e4);
+        assert!(objective.value(&p) > free.value(&p) + 1.0, "the bounds add to the objective");
+        for shifted in [false, true] {
+            if shifted {
+                objective.update_shifts(&p);
+            }
+            let j = objective.jacobian(&p);
+            let step = 1e-7;
+            for i in 0..p.len() {
+                let (mut up, mut down) = (p.clone(), p.clone());
+                up[i] += step;
+                down[i] -= step;
+                let fd = (objective.residuals(&up) - objective.residuals(&down)) / (2.0 * step);
+                for r in 0..fd.len() {
+                    assert!(
+                        (fd[r] - j[(r, i)]).abs() <= 1e-4 * (1.0 + j[(r, i)].abs()),
+                        "row {r}, parameter {i}: {} vs {} (shifted {shifted})",
+                        fd[r],
+                        j[(r, i)]
+                    );
+                }
+            }
+        }
+    }
+}
