@@ -368,7 +368,11 @@ mod tests {
             LinkInertial {
                 mass: m,
                 com: c,
-                inertia: [[0.03, 0.004, -0.002], [0.004, 0.025, 0.003], [-0.002, 0.003, 0.02]],
+                inertia: [
+                    [0.03, 0.004, -0.002],
+                    [0.004, 0.025, 0.003],
+                    [-0.002, 0.003, 0.02],
+                ],
             }
             .to_standard()
         };
@@ -395,7 +399,10 @@ mod tests {
         let pull = Pull::new(&problem, &bounds, None, 1e-2).unwrap();
         let mut objective = Objective::new(&problem, &bounds, pull, 1e4);
         let free = Objective::new(&problem, &Bounds::wide(2), objective.pull.clone(), 1e4);
-        assert!(objective.value(&p) > free.value(&p) + 1.0, "the bounds add to the objective");
+        assert!(
+            objective.value(&p) > free.value(&p) + 1.0,
+            "the bounds add to the objective"
+        );
         for shifted in [false, true] {
             if shifted {
                 objective.update_shifts(&p);
@@ -417,5 +424,84 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The bounds' values against independent computations: each element of the inertia
+    /// about the centre of mass (`LinkInertial::from_standard`), each centre-of-mass box
+    /// edge through the centre of mass itself (zero there), and the pull rows (zero at the
+    /// prior, sqrt(weight) one scale away).
+    #[test]
+    fn the_bounds_and_the_pull_have_their_values() {
+        let problem = problem();
+        let inertial = LinkInertial {
+            mass: 1.5,
+            com: [0.05, -0.08, 0.1],
+            inertia: [
+                [0.03, 0.004, -0.002],
+                [0.004, 0.025, 0.003],
+                [-0.002, 0.003, 0.02],
+            ],
+        };
+        let mut p = inertial.to_standard().to_vec();
+        p.extend(inertial.to_standard());
+        let back = LinkInertial::from_standard(&inertial.to_standard()).unwrap();
+        let pull = Pull::new(&problem, &Bounds::wide(2), None, 1e-2).unwrap();
+        let objective = Objective::new(&problem, &Bounds::wide(2), pull.clone(), 1.0);
+        let mut grad = Vec::new();
+        for (_, row, column) in TENSOR_ELEMENTS {
+            let bound = Bound::InertiaElement {
+                link: problem.layout.links[0],
+                row,
+                column,
+                limit: 0.0,
+                sign: 1.0,
+                scale: 1.0,
+            };
+            let (g, _) = objective.bound(&bound, &p, &mut grad);
+            assert!(
+                (g - back.inertia[row][column]).abs() < 1e-15,
+                "{row}{column}: {g}"
+            );
+        }
+        let idx = problem.layout.links[0];
+        for axis in 0..3 {
+            let c = inertial.com[axis];
+            for (sign, coefficient) in [(1.0, -c), (-1.0, c)] {
+                let bound = Bound::Linear {
+                    entries: [(idx[6 + axis], sign), (idx[9], coefficient)],
+                    rhs: 0.0,
+                    scale: 1.0,
+                };
+                let (g, _) = objective.bound(&bound, &p, &mut grad);
+                assert!(g.abs() < 1e-15, "axis {axis}: {g}");
+            }
+        }
+        // the inequalities of a box around the centre of mass: every one slack by m * 0.01
+        let mut bounds = Bounds::wide(2);
+        bounds.links[0].com = inertial.com.map(|c| [c - 0.01, c + 0.01]);
+        let boxed = Objective::new(&problem, &bounds, pull.clone(), 1.0);
+        let slack: Vec<f64> = boxed
+            .bounds
+            .iter()
+            .filter_map(|b| match b {
+                Bound::Linear { entries, .. } if entries[1].1 != 0.0 && entries[0].0 < 10 => {
+                    Some(boxed.bound(b, &p, &mut grad).0)
+                }
+                _ => None,
+            })
+            .collect();
+        assert_eq!(slack.len(), 6);
+        assert!(slack.iter().all(|g| (g - 0.015).abs() < 1e-12), "{slack:?}");
+        let nb = problem.base_names.len();
+        let r = objective.residuals(&pull.target);
+        assert!(r.rows(nb, p.len()).iter().all(|v| v.abs() < 1e-15));
+        let mut moved = pull.target.clone();
+        moved[3] += pull.scale[3];
+        let r = objective.residuals(&moved);
+        assert!(
+            (r[nb + 3] - pull.weight[3].sqrt()).abs() < 1e-12,
+            "{}",
+            r[nb + 3]
+        );
     }
 }
