@@ -142,7 +142,8 @@ pub fn solve_interior(
     };
     let nu = barrier.degree();
     let mut mu = objective.value(&p).max(1.0) / nu;
-    let mut steps_left = options.patience.saturating_mul(p.len() + 1);
+    let budget = options.patience.saturating_mul(p.len() + 1);
+    let mut steps_left = budget;
     // the barrier's path; near its end (gap below SETTLE of the objective) the multipliers
     // of the bounds are updated once per stage, then at the last weight until they hold
     let mut rounds = 0;
@@ -172,6 +173,7 @@ pub fn solve_interior(
         }
     }
     let mut solution = Solution::assemble(problem, bounds, Method::Interior, p, start.elapsed())?;
+    solution.iterations = budget - steps_left;
     solution.determined = super::prior::determined(problem, &objective.pull);
     Ok(solution)
 }
@@ -290,6 +292,16 @@ mod tests {
         }
     }
 
+    /// The path is as short as measured: at most twice `measured` Newton steps (a wrong
+    /// barrier weight, stopping rule or line search still ends at the optimum, but late).
+    fn steps(s: &Solution, measured: usize) {
+        assert!(
+            s.iterations <= 2 * measured,
+            "{} Newton steps, measured {measured}",
+            s.iterations
+        );
+    }
+
     fn target(link: [f64; 10], ia: f64) -> [f64; 11] {
         std::array::from_fn(|i| if i < 10 { link[i] } else { ia })
     }
@@ -392,6 +404,7 @@ mod tests {
     fn a_consistent_target_is_returned_as_it_is() {
         let t = target(link(), 0.1);
         let s = solve_interior(&problem(&t), &Bounds::wide(1), &options()).unwrap();
+        steps(&s, 72);
         for (got, want) in s.standard.iter().zip(&t) {
             assert!((got - want).abs() < 1e-7, "{:?} vs {t:?}", s.standard);
         }
@@ -404,6 +417,7 @@ mod tests {
     fn a_negative_rotor_inertia_is_held_at_zero() {
         let t = target(link(), -0.004);
         let s = solve_interior(&problem(&t), &Bounds::wide(1), &options()).unwrap();
+        steps(&s, 132);
         assert!(
             s.standard[10] >= 0.0 && s.standard[10] < 1e-6,
             "{}",
@@ -424,6 +438,7 @@ mod tests {
             ..LinkBounds::default()
         };
         let s = solve_interior(&problem(&t), &bounds, &options()).unwrap();
+        steps(&s, 63);
         assert!(
             (s.standard[9] - 1.995).abs() < 1e-6,
             "mass {}",
@@ -449,6 +464,7 @@ mod tests {
             let mut bounds = Bounds::wide(1);
             edit(&mut bounds);
             let s = solve_interior(&problem(t), &bounds, &options()).unwrap();
+            steps(&s, 90);
             assert!(s.violations.is_empty(), "{:?}", s.violations);
             s
         };
@@ -499,6 +515,7 @@ mod tests {
         l[0] = 0.05; // XX above YY + ZZ = 0.035 (com at the origin: J = I_c)
         let t = target(l, 0.1);
         let s = solve_interior(&problem(&t), &Bounds::wide(1), &options()).unwrap();
+        steps(&s, 114);
         let margin = Bounds::wide(1).margin;
         let e = s.min_eigenvalues[0];
         assert!(

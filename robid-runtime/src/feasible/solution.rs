@@ -68,6 +68,8 @@ pub struct Solution {
     pub determined: Vec<f64>,
     /// Wall-clock time of the solve.
     pub seconds: f64,
+    /// Newton steps of the interior-point method (0 for the other methods).
+    pub iterations: usize,
 }
 
 impl Solution {
@@ -194,6 +196,7 @@ impl Solution {
             at_bounds,
             determined: Vec::new(),
             seconds: elapsed.as_secs_f64(),
+            iterations: 0,
         };
         let numbers = solution
             .base

@@ -377,6 +377,7 @@ mod tests {
             at_bounds: Vec::new(),
             determined: Vec::new(),
             seconds: 0.0,
+            iterations: 0,
         }
     }
 
