@@ -399,6 +399,26 @@ mod tests {
         assert!(barrier.value(&out).is_none());
     }
 
+    /// A singular Hessian (a direction neither the data, the prior nor the barrier sees)
+    /// still gives a finite step: the smallest identity shift that makes it positive
+    /// definite, so that the shifted system holds; a positive definite one is solved as is.
+    #[test]
+    fn a_singular_hessian_gets_the_smallest_shift_that_works() {
+        let g = DVector::from_vec(vec![1.0, -2.0]);
+        let h = DMatrix::from_row_slice(2, 2, &[2.0, 0.0, 0.0, 4.0]);
+        let step = newton_step(h, &g).unwrap();
+        assert!(
+            (step[0] + 0.5).abs() < 1e-15 && (step[1] - 0.5).abs() < 1e-15,
+            "{step}"
+        );
+        let h = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 1.0]);
+        let step = newton_step(h.clone(), &g).unwrap();
+        // the residual of the unshifted system is the shift times the step: tiny
+        let residual = &h * &step + &g;
+        let shift = residual.norm() / step.norm();
+        assert!(shift > 0.0 && shift < 1e-9, "shift {shift}, step {step}");
+    }
+
     /// A consistent target inside the bounds is its own optimum: the barrier and the
     /// penalty leave it where it is.
     #[test]

@@ -23,6 +23,22 @@ use serde::Deserialize;
 use super::flags::{closed, real, short};
 use super::{Error, files, out};
 
+/// `robid feasible --help` on `--bounds`: the format with a complete example.
+const BOUNDS_HELP: &str = "Bounds on masses, centres of mass, inertias and the total mass (TOML).
+
+Links are numbered from 1; a link's table overrides the keys it gives; without the file every
+link gets the [default] shown (see docs/command-line.md, \"Bounds file\"):
+
+  total_mass = [15.0, 19.0]                       # kg, optional
+  margin = 1e-6                                   # pseudo-inertia >= margin I
+  [default]
+  mass = [0.0, 50.0]                              # kg
+  com = [[-1.0, 1.0], [-1.0, 1.0], [-1.0, 1.0]]   # box in the link frame, m
+  inertia = [0.0, 5.0]                            # moments about the com, kg m^2
+  [links.6]
+  mass = [0.1, 0.5]
+  inertia_tensor = { xx = [0.0, 0.004], xy = [-0.001, 0.001] }   # about the com";
+
 /// The weight of the default prior of solid links (see `--prior-weight`).
 const DEFAULT_PRIOR_WEIGHT: f64 = 1e-2;
 
@@ -38,20 +54,7 @@ pub(crate) struct Args {
     #[arg(long)]
     identified: PathBuf,
     /// Bounds on masses, centres of mass, inertias and the total mass (TOML).
-    ///
-    /// Links are numbered from 1; a link's table overrides the keys it gives; without the
-    /// file every link gets the [default] shown (see docs/command-line.md, "Bounds file"):
-    ///
-    ///   total_mass = [15.0, 19.0]                       # kg, optional
-    ///   margin = 1e-6                                   # pseudo-inertia >= margin I
-    ///   [default]
-    ///   mass = [0.0, 50.0]                              # kg
-    ///   com = [[-1.0, 1.0], [-1.0, 1.0], [-1.0, 1.0]]   # box in the link frame, m
-    ///   inertia = [0.0, 5.0]                            # moments about the com, kg m^2
-    ///   [links.6]
-    ///   mass = [0.1, 0.5]
-    ///   inertia_tensor = { xx = [0.0, 0.004], xy = [-0.001, 0.001] }   # about the com
-    #[arg(long, verbatim_doc_comment)]
+    #[arg(long, long_help = BOUNDS_HELP)]
     bounds: Option<PathBuf>,
     /// `interior-point` (the convex fit's global optimum by a log-barrier method, every
     /// iterate physically consistent; needs nothing but the Rust toolchain),
