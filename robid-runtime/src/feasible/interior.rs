@@ -326,6 +326,13 @@ mod tests {
             }),
         };
         assert_eq!(barrier.degree(), 5.0);
+        let two = [layout.links[0]; 2];
+        let pair = Barrier {
+            links: &two,
+            positive: vec![10, 10, 10],
+            ..barrier
+        };
+        assert_eq!(pair.degree(), 11.0);
         // P = (2 + margin) I: Sigma = (2 + margin) I, so J = tr(Sigma) I - Sigma = 2 (2 + margin) I
         let s = 2.0 + margin;
         let mut p = vec![

@@ -403,10 +403,17 @@ mod tests {
             objective.value(&p) > free.value(&p) + 1.0,
             "the bounds add to the objective"
         );
+        // after the update, at a point where the masses meet their lower bound 2 kg by less
+        // than the shift (g / scale = 0.3 / 3 < 1.5 / 3... the row stays active): the rows
+        // that the multipliers keep active must be in the Jacobian
+        let mut inside = p.clone();
+        inside[9] = 2.3;
+        inside[19] = 2.3;
         for shifted in [false, true] {
             if shifted {
                 objective.update_shifts(&p);
             }
+            let p = if shifted { inside.clone() } else { p.clone() };
             let j = objective.jacobian(&p);
             let step = 1e-7;
             for i in 0..p.len() {
