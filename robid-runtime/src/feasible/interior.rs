@@ -24,7 +24,6 @@ use super::bounds::Bounds;
 use super::inertial::pseudo_inertia;
 use super::log_cholesky::PER_LINK;
 use super::objective::Objective;
-use super::prior::Pull;
 use super::problem::Problem;
 use super::smooth::SmoothOptions;
 use super::solution::{Method, Solution};
@@ -117,16 +116,8 @@ pub fn solve_interior(
     options: &SmoothOptions,
 ) -> Result<Solution> {
     let start = Instant::now();
-    options.check()?;
     let layout = &problem.layout;
-    bounds.check_for(layout.links.len())?;
-    let pull = Pull::new(
-        problem,
-        bounds,
-        options.prior.as_ref(),
-        options.default_weight,
-    )?;
-    let mut objective = Objective::new(problem, bounds, pull, options.penalty);
+    let mut objective = Objective::from_options(problem, bounds, options)?;
     let mut p = objective.start(bounds.margin)?;
     let barrier = Barrier {
         links: &layout.links,

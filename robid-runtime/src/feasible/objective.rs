@@ -19,6 +19,7 @@ use super::bounds::{Bounds, TENSOR_ELEMENTS};
 use super::log_cholesky::{PER_LINK, inside};
 use super::prior::Pull;
 use super::problem::Problem;
+use super::smooth::SmoothOptions;
 use crate::{Error, FeasibleError, Result};
 
 /// One inequality g(p) >= 0 of the bounds, linear or (the inertia diagonal) not.
@@ -106,6 +107,24 @@ impl<'a> Objective<'a> {
             self.shifts[k] = (self.shifts[k] - g).max(0.0);
         }
         worst
+    }
+
+    /// The objective of `problem` under `bounds` with the prior, weights and penalty of
+    /// `options`, each checked first (the entry of both pure-Rust methods).
+    pub(super) fn from_options(
+        problem: &'a Problem,
+        bounds: &Bounds,
+        options: &SmoothOptions,
+    ) -> Result<Self> {
+        options.check()?;
+        bounds.check_for(problem.layout.links.len())?;
+        let pull = Pull::new(
+            problem,
+            bounds,
+            options.prior.as_ref(),
+            options.default_weight,
+        )?;
+        Ok(Objective::new(problem, bounds, pull, options.penalty))
     }
 
     /// The number of residual rows.

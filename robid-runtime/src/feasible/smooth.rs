@@ -20,7 +20,7 @@ use nalgebra::{DMatrix, DVector, Dyn};
 use super::bounds::Bounds;
 use super::log_cholesky::{PER_LINK, jacobian, standard_of, theta_of};
 use super::objective::Objective;
-use super::prior::{Prior, Pull};
+use super::prior::Prior;
 use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::{Error, FeasibleError, Result};
@@ -216,15 +216,8 @@ pub fn solve_smooth(
     options: &SmoothOptions,
 ) -> Result<Solution> {
     let start = Instant::now();
-    options.check()?;
     let layout = &problem.layout;
-    bounds.check_for(layout.links.len())?;
-    let pull = Pull::new(
-        problem,
-        bounds,
-        options.prior.as_ref(),
-        options.default_weight,
-    )?;
+    let objective = Objective::from_options(problem, bounds, options)?;
     let mut maps: Vec<Map> = (0..layout.links.len()).map(Map::Link).collect();
     maps.extend(layout.drives.iter().map(|d| {
         if d.kind.non_negative() {
@@ -234,7 +227,6 @@ pub fn solve_smooth(
         }
     }));
     maps.extend(layout.extra.iter().map(|&i| Map::Free(i)));
-    let objective = Objective::new(problem, bounds, pull, options.penalty);
     let p0 = objective.start(bounds.margin)?;
     let mut fit = Fit {
         objective,
