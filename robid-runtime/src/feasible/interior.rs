@@ -417,6 +417,40 @@ mod tests {
         assert!(shift > 0.0 && shift < 1e-9, "shift {shift}, step {step}");
     }
 
+    /// Settings out of range are refused by both pure-Rust methods, naming the setting.
+    #[test]
+    fn bad_settings_are_refused_by_name() {
+        let problem = problem(&target(link(), 0.1));
+        for (options, key) in [
+            (
+                SmoothOptions {
+                    default_weight: f64::NAN,
+                    ..options()
+                },
+                "default_weight",
+            ),
+            (
+                SmoothOptions {
+                    penalty: 0.0,
+                    ..options()
+                },
+                "penalty",
+            ),
+            (
+                SmoothOptions {
+                    patience: 0,
+                    ..options()
+                },
+                "patience",
+            ),
+        ] {
+            for solve in [solve_interior, super::super::solve_smooth] {
+                let e = solve(&problem, &Bounds::wide(1), &options).unwrap_err();
+                assert!(e.to_string().contains(key), "{e}");
+            }
+        }
+    }
+
     /// A consistent target inside the bounds is its own optimum: the barrier and the
     /// penalty leave it where it is.
     #[test]
