@@ -80,6 +80,23 @@ impl Place<'_> {
     }
 }
 
+/// What is valid but probably not meant, each with its place and what to do.
+fn warnings(place: &Place<'_>, spans: &Spans) -> Vec<String> {
+    let mut out = Vec::new();
+    if let Some(span) = spans.stray_drive() {
+        let (line, column) = place.line_column(span.start);
+        let joint = spans.joint_count();
+        out.push(format!(
+            "{}:{line}:{column}: only joint {joint}, the last, has a `drive` key: TOML gives \
+             every key after a `[[joints]]` header to that joint; to give every joint these \
+             drive terms move the line above the first `[[joints]]` (or pass --drive), or \
+             write `drive = []` in the other joints to keep it for joint {joint} alone",
+            place.file
+        ));
+    }
+    out
+}
+
 /// Errors of the checks, located through the spans the reader kept.
 struct FileLocator<'a> {
     place: &'a Place<'a>,
@@ -96,6 +113,15 @@ impl Robot {
     /// Reads a description file (at most
     /// [`MAX_DESCRIPTION_LEN`] bytes).
     pub fn from_file(path: &std::path::Path) -> Result<Robot, DescriptionError> {
+        Robot::from_file_with_warnings(path).map(|(robot, _)| robot)
+    }
+
+    /// Reads a description file like [`Robot::from_file`], with the warnings about what
+    /// is valid but probably not meant (each `file:line:column: what; what to do`), for
+    /// example a `drive` key at the end of the file, which TOML gives to the last joint.
+    pub fn from_file_with_warnings(
+        path: &std::path::Path,
+    ) -> Result<(Robot, Vec<String>), DescriptionError> {
         let file = path.display().to_string();
         let read_error = |reason: String| DescriptionError::Read {
             file: file.clone(),
@@ -118,7 +144,7 @@ impl Robot {
                 e.utf8_error().valid_up_to()
             ))
         })?;
-        Robot::from_toml(&text, &file)
+        Robot::from_toml_with_warnings(&text, &file)
     }
 
     /// Parses a description from TOML text; `file` names it in errors. Every
@@ -126,6 +152,24 @@ impl Robot {
     /// more than one), except that a TOML syntax error is reported alone.
     /// Values are checked against the limits of [`bounds`](super::bounds).
     pub fn from_toml(text: &str, file: &str) -> Result<Robot, DescriptionError> {
+        Robot::from_toml_with_warnings(text, file).map(|(robot, _)| robot)
+    }
+
+    /// Parses a description like [`Robot::from_toml`], with the warnings of
+    /// [`Robot::from_file_with_warnings`].
+    ///
+    /// ```
+    /// use robid_symbolic::Robot;
+    /// let text = "name = \"arm\"\nconvention = \"modified\"\n\
+    ///             [[joints]]\nalpha = 0\n[[joints]]\nalpha = 0\n\ndrive = [\"Fv\"]\n";
+    /// let (robot, warnings) = Robot::from_toml_with_warnings(text, "arm.toml").unwrap();
+    /// assert!(robot.joints()[0].drive.terms().next().is_none());
+    /// assert!(warnings[0].starts_with("arm.toml:8:9: only joint 2, the last, has a `drive` key"));
+    /// ```
+    pub fn from_toml_with_warnings(
+        text: &str,
+        file: &str,
+    ) -> Result<(Robot, Vec<String>), DescriptionError> {
         let place = Place { file, text };
         if text.len() > MAX_DESCRIPTION_LEN {
             return Err(place.invalid(
@@ -157,7 +201,7 @@ impl Robot {
             spans: &spans,
         });
         match checked {
-            Ok(robot) if errors.is_empty() => return Ok(robot),
+            Ok(robot) if errors.is_empty() => return Ok((robot, warnings(&place, &spans))),
             Ok(_) => {}
             Err(more) => errors.extend(more),
         }

@@ -24,6 +24,9 @@ pub(super) struct Spans {
     gravity: Option<Range<usize>>,
     gravity_values: HashMap<usize, Range<usize>>,
     symbols: HashMap<String, Range<usize>>,
+    /// The top-level `drive` key, and each joint's.
+    drive: Option<Range<usize>>,
+    joint_drives: Vec<(usize, Range<usize>)>,
 }
 
 impl Spans {
@@ -43,6 +46,23 @@ impl Spans {
             Item::Symbol(s) => self.symbols.get(s).cloned(),
         };
         found.unwrap_or(0..0)
+    }
+
+    /// The number of `[[joints]]` tables read.
+    pub(super) fn joint_count(&self) -> usize {
+        self.joint_tables.len()
+    }
+
+    /// A `drive` key that TOML gave to the last joint although it reads as the robot's:
+    /// only the last of several joints has one and the top level has none. TOML attaches
+    /// every key after a `[[joints]]` header to that table, so `drive = [...]` written at
+    /// the end of a file silently becomes the last joint's.
+    pub(super) fn stray_drive(&self) -> Option<Range<usize>> {
+        let last = self.joint_tables.len().checked_sub(1)?;
+        match self.joint_drives.as_slice() {
+            [(j, span)] if *j == last && last > 0 && self.drive.is_none() => Some(span.clone()),
+            _ => None,
+        }
     }
 }
 
@@ -117,6 +137,7 @@ impl<'a> Reader<'a> {
             }
         };
         let gravity = values[2].map(|g| self.gravity(g));
+        self.spans.drive = values[3].map(|v| v.span());
         let default_drive = values[3].map_or(Drive::NONE, |d| self.drive(d));
         let symbols = values[4].map(|s| self.symbols(s)).unwrap_or_default();
         let joints = match values[5] {
@@ -350,6 +371,9 @@ impl<'a> Reader<'a> {
                     dh[k] = g;
                 }
             }
+        }
+        if let Some(d) = values[5] {
+            self.spans.joint_drives.push((j, d.span()));
         }
         let drive = values[5].map_or(default_drive, |d| self.drive(d));
         let limits = values[6].map(|l| self.limits(j, l)).unwrap_or_default();

@@ -378,3 +378,37 @@ fn emission_fails_without_panicking() {
         Err(EmitError::Program { .. })
     ));
 }
+
+/// A `drive` key that TOML attaches to the last joint only is warned about with its line;
+/// the intended forms are not.
+#[test]
+fn a_drive_key_given_to_the_last_joint_by_accident_is_warned_about() {
+    let head = "name = \"arm\"\nconvention = \"modified\"\n";
+    let joint = "[[joints]]\nalpha = 0\n";
+    let warned = |text: &str| Robot::from_toml_with_warnings(text, "arm.toml").unwrap().1;
+    let stray = format!("{head}{joint}{joint}{joint}\ndrive = [\"Fv\", \"Fc\"]\n");
+    let w = warned(&stray);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].starts_with("arm.toml:10:9: only joint 3, the last"),
+        "{w:?}"
+    );
+    assert!(w[0].contains("above the first `[[joints]]`"), "{w:?}");
+    // what TOML did: the last joint alone has the terms
+    let (robot, _) = Robot::from_toml_with_warnings(&stray, "arm.toml").unwrap();
+    let counts: Vec<usize> = robot
+        .joints()
+        .iter()
+        .map(|j| j.drive.terms().count())
+        .collect();
+    assert_eq!(counts, [0, 0, 2]);
+    for quiet in [
+        format!("{head}drive = [\"Fv\"]\n{joint}{joint}"),
+        format!("{head}{joint}drive = []\n{joint}drive = [\"Fv\"]\n"),
+        format!("{head}{joint}drive = [\"Fv\"]\n{joint}"),
+        format!("{head}{joint}drive = [\"Fv\"]\n"),
+        format!("{head}drive = [\"Fc\"]\n{joint}{joint}drive = [\"Fv\"]\n"),
+    ] {
+        assert!(warned(&quiet).is_empty(), "{quiet}");
+    }
+}

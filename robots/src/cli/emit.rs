@@ -3,8 +3,8 @@
 //! `robot_model!` compiles and that is checked into robots/generated/ for the reference
 //! robots. C: a C99 header and source with the same functions and operation counts.
 
+use super::description::{self, DriveFlag};
 use super::{Error, files, out};
-use robid_symbolic::Robot;
 use robid_symbolic::emit::{CScalar, emit_c, emit_programs};
 use robid_symbolic::program::RobotPrograms;
 use std::path::{Path, PathBuf};
@@ -32,6 +32,8 @@ pub(crate) enum Scalar {
 pub(crate) struct Args {
     /// Robot description file (TOML).
     robot: PathBuf,
+    #[command(flatten)]
+    drive: DriveFlag,
     /// Language of the generated code.
     #[arg(long, value_enum, default_value = "rust")]
     lang: Lang,
@@ -59,7 +61,7 @@ fn rust(args: &Args) -> Result<(), Error> {
     if let Some(path) = &args.output {
         files::refuse(&[&args.robot], &[path])?;
     }
-    let robot = Robot::from_file(&args.robot)?;
+    let robot = description::read(&args.robot, &args.drive)?;
     let code = emit_programs(&RobotPrograms::derive(&robot)?)?;
     match &args.output {
         Some(path) => files::write(path, &code)?,
@@ -85,7 +87,7 @@ fn c(args: &Args) -> Result<(), Error> {
     }
     let header = source.with_extension("h");
     files::refuse(&[&args.robot], &[source, &header])?;
-    let robot = Robot::from_file(&args.robot)?;
+    let robot = description::read(&args.robot, &args.drive)?;
     let scalar = match args.scalar {
         Some(Scalar::Float) => CScalar::Float,
         Some(Scalar::Double) | None => CScalar::Double,

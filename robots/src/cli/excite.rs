@@ -14,6 +14,7 @@ use robid_runtime::data::ParameterFile;
 use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, assess};
 use robid_runtime::simulate::Trajectory;
 
+use super::description::DriveFlag;
 use super::flags::{check_samples, closed, count, only_for, positive, real};
 use super::simulate::load_model;
 use super::{Error, files, out};
@@ -46,9 +47,8 @@ pub(crate) struct Args {
     /// regressor rows by 1 / s (what weighted least squares sees). Default: unweighted.
     #[arg(long, value_delimiter = ',', value_parser = real(closed(1e-9, 1e6, "N m")))]
     sigma: Vec<f64>,
-    /// Drive terms in the regressor, e.g. `Fv,Fc` (default: the description's).
-    #[arg(long, value_delimiter = ',')]
-    drive: Vec<String>,
+    #[command(flatten)]
+    drive: DriveFlag,
     /// Intervals between optimised points, 2 to 200 (`--method points` only; default 12).
     #[arg(long, value_parser = count(2, 200))]
     intervals: Option<usize>,

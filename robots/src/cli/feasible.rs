@@ -20,6 +20,7 @@ use robid_runtime::feasible::{
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
+use super::description::{self, DriveFlag};
 use super::flags::{closed, real, short};
 use super::{Error, files, out};
 
@@ -50,6 +51,8 @@ pub(crate) const VALUE_LIMIT: f64 = 1e6;
 pub(crate) struct Args {
     /// The robot description (TOML).
     robot: PathBuf,
+    #[command(flatten)]
+    drive: DriveFlag,
     /// The identification result (JSON of `robid identify`: parameters with name, value, std).
     #[arg(long)]
     identified: PathBuf,
@@ -205,7 +208,7 @@ fn check_solution(solution: &Solution) -> Result<(), Error> {
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
-    let robot = Robot::from_toml(&read(&args.robot)?, &args.robot.display().to_string())?;
+    let robot = description::read(&args.robot, &args.drive)?;
     let json = read(&args.identified)?;
     let identified: Identified = serde_json::from_str(&json)
         .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;

@@ -19,6 +19,7 @@ use robid_symbolic::program::BaseParameter;
 use robots::Reference;
 use robots::interpreted::{Chosen, model_for};
 
+use super::description::{self, DriveFlag};
 use super::{Error, files, out};
 
 /// Arguments of `robid identify`.
@@ -26,6 +27,8 @@ use super::{Error, files, out};
 pub(crate) struct Args {
     /// Robot description file (TOML), with the drive terms to identify.
     robot: PathBuf,
+    #[command(flatten)]
+    drive: DriveFlag,
     /// Data files, one per `[[source]]` of the config (CSV, optionally gzip).
     #[arg(long, num_args = 1.., required = true)]
     data: Vec<PathBuf>,
@@ -78,8 +81,8 @@ torque = "tau{}"
 /// Reads a description and chooses its model: the compiled model of a reference robot
 /// (names and expressions from its generated code, no symbolic derivation), else the
 /// derived one.
-pub(crate) fn robot_model(path: &Path) -> Result<Chosen, Error> {
-    let robot = Robot::from_file(path)?;
+pub(crate) fn robot_model(path: &Path, drive: &DriveFlag) -> Result<Chosen, Error> {
+    let robot = description::read(path, drive)?;
     if let Some(chosen) = compiled_reference(&robot) {
         return Ok(chosen);
     }
@@ -119,7 +122,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     outputs.extend(args.json.as_deref());
     outputs.extend(args.plot.as_deref());
     files::refuse(&inputs, &outputs)?;
-    let chosen = robot_model(&args.robot)?;
+    let chosen = robot_model(&args.robot, &args.drive)?;
     let model = chosen.model.as_ref();
     let mut config = match &args.config {
         Some(p) => Config::from_file(p)?,

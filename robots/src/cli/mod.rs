@@ -3,6 +3,7 @@
 
 mod bench;
 mod demo;
+mod description;
 mod emit;
 mod excite;
 mod feasible;

@@ -2,6 +2,7 @@
 //! parameters with expressions, the unidentifiable parameters and the
 //! operation counts of the derived programs.
 
+use super::description::{self, DriveFlag};
 use super::{Error, out};
 use robid_symbolic::program::Operations;
 use robid_symbolic::program::RobotPrograms;
@@ -14,6 +15,8 @@ use std::path::PathBuf;
 pub(crate) struct Args {
     /// Robot description file (TOML).
     robot: PathBuf,
+    #[command(flatten)]
+    drive: DriveFlag,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -68,7 +71,7 @@ struct Report {
 
 /// Derives the model and prints it.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    let robot = Robot::from_file(&args.robot)?;
+    let robot = description::read(&args.robot, &args.drive)?;
     out::print(&render(&robot, args.json)?)?;
     Ok(())
 }

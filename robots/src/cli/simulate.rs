@@ -14,10 +14,9 @@ use std::path::{Path, PathBuf};
 use robid_runtime::Model;
 use robid_runtime::data::ParameterFile;
 use robid_runtime::simulate::{Noise, Record, Simulation, Trajectory};
-use robid_symbolic::robot::DriveTerm;
-use robid_symbolic::{Drive, Robot};
 use robots::interpreted::Interpreted;
 
+use super::description::{self, DriveFlag};
 use super::flags::{closed, positive, real};
 use super::{Error, files, out};
 
@@ -37,9 +36,8 @@ pub(crate) struct Args {
     /// Reference trajectory (CSV with header t,q1..,qd1..,qdd1..; states within +-1e6).
     #[arg(long)]
     trajectory: PathBuf,
-    /// Drive terms added to every joint, e.g. `Fv,Fc` (default: the description's).
-    #[arg(long, value_delimiter = ',')]
-    drive: Vec<String>,
+    #[command(flatten)]
+    drive: DriveFlag,
     /// Torque noise standard deviation in [0, 1e6] N m: one value, or one per joint
     /// separated by commas.
     #[arg(long, value_delimiter = ',', default_value = "0",
@@ -188,30 +186,10 @@ const SIMULATION_FLAGS: &[(&str, &str)] = &[
     ("noise.quantization", "--quantization"),
 ];
 
-/// The drive terms named on the command line (`Ia`, `Fv`, `Fc`, `Fo`).
-pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {
-    if names.is_empty() {
-        return Ok(None);
-    }
-    let d = names
-        .iter()
-        .map(|n| {
-            n.trim()
-                .parse::<DriveTerm>()
-                .map_err(|e| format!("--drive: unknown term `{}`; {}", n.trim(), e.expected))
-        })
-        .collect::<Result<Drive, _>>()?;
-    Ok(Some(d))
-}
-
-/// Reads and derives a description, with the drive terms named by `drive` when
-/// given, as an interpreted `Model` (the one adapter, `robots::interpreted`).
-pub(crate) fn load_model(path: &Path, drive: &[String]) -> Result<Interpreted, Error> {
-    let mut robot = Robot::from_file(path)?;
-    if let Some(d) = parse_drive(drive)? {
-        robot = robot.with_drive(d);
-    }
-    Ok(Interpreted::new(&robot)?)
+/// Reads and derives a description, with the drive terms of `drive` when given, as an
+/// interpreted `Model` (the one adapter, `robots::interpreted`).
+pub(crate) fn load_model(path: &Path, drive: &DriveFlag) -> Result<Interpreted, Error> {
+    Ok(Interpreted::new(&description::read(path, drive)?)?)
 }
 
 #[cfg(test)]

@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use robid_runtime::Model;
 use robid_runtime::data::{ParameterFile, Table};
 
+use super::description::DriveFlag;
 use super::{Error, files, out};
 
 /// Arguments of `robid torques`.
@@ -18,6 +19,8 @@ use super::{Error, files, out};
 pub(crate) struct Args {
     /// Robot description file (TOML).
     robot: PathBuf,
+    #[command(flatten)]
+    drive: DriveFlag,
     /// Parameter file with a `[standard]` or a `[base]` table (values within +-1e6, see
     /// README "Parameter files").
     #[arg(long)]
@@ -35,7 +38,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     if let Some(output) = &args.output {
         files::refuse(&[&args.robot, &args.parameters, &args.states], &[output])?;
     }
-    let chosen = super::identify::robot_model(&args.robot)?;
+    let chosen = super::identify::robot_model(&args.robot, &args.drive)?;
     let model = chosen.model.as_ref();
     let n = model.dof();
     let base = ParameterFile::read(&args.parameters)?.base_parameters(model)?;

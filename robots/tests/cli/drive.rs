@@ -1,0 +1,82 @@
+//! `--drive` on every subcommand that reads a description, and the warning about a `drive`
+//! key that TOML gave to the last joint.
+
+use crate::common::{folder, robid, stderr, stdout, write};
+
+/// Two joints; the `drive` line at the end belongs to joint 2 in TOML.
+const STRAY: &str = "name = \"arm\"\nconvention = \"modified\"\ngravity = [0, 0, 0]\n\
+                     [[joints]]\nalpha = 0\n[[joints]]\nalpha = \"pi/2\"\na = 0.3\n\n\
+                     drive = [\"Fv\", \"Fc\"]\n";
+
+#[test]
+fn a_stray_drive_key_is_warned_about_and_drive_replaces_it() {
+    let dir = folder();
+    let robot = write(dir.path(), "arm.toml", STRAY);
+    let robot = robot.to_str().unwrap();
+    let o = robid(&["model", robot]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (out, err) = (stdout(&o), stderr(&o));
+    assert!(
+        err.contains("arm.toml:10:9: only joint 2, the last, has a `drive` key"),
+        "{err}"
+    );
+    assert!(out.contains("Fv2") && !out.contains("Fv1"), "{out}");
+    for command in ["model", "emit"] {
+        let o = robid(&[command, robot, "--drive", "Fv,Fc"]);
+        assert!(o.status.success(), "{command}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("warning"), "{command}: {}", stderr(&o));
+        let out = stdout(&o);
+        assert!(
+            out.contains("Fv1") && out.contains("Fc1"),
+            "{command}: {out}"
+        );
+    }
+    let o = robid(&["model", robot, "--drive", "Fx"]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("--drive: unknown term `Fx`"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// `torques --drive Fv` computes tau = Fv qd for a robot without gravity or mass: the
+/// viscous terms exist only because of the flag.
+#[test]
+fn torques_uses_the_drive_terms_of_the_flag() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "arm.toml", STRAY);
+    let params = write(d, "p.toml", "[standard]\nFv1 = 2.0\nFv2 = 3.0\n");
+    let states = write(
+        d,
+        "s.csv",
+        "q1,q2,qd1,qd2,qdd1,qdd2\n0.1,0.2,0.5,-1.5,0,0\n",
+    );
+    let run = |drive: &str| {
+        robid(&[
+            "torques",
+            robot.to_str().unwrap(),
+            "--parameters",
+            params.to_str().unwrap(),
+            "--states",
+            states.to_str().unwrap(),
+            "--drive",
+            drive,
+        ])
+    };
+    let o = run("Fv");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let row: Vec<f64> = stdout(&o)
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(row, [1.0, -4.5]);
+    // without Fv in the model the file's Fv1 is not a parameter
+    let o = run("Fc");
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("`Fv1`"), "{}", stderr(&o));
+}
