@@ -24,7 +24,8 @@
 //! lowpass = { cutoff = 25.0, order = 4, signals = ["q"] }   # Hz, zero-phase Butterworth
 //! velocity = "auto"              # "data", "differentiate" or "auto" (data when given)
 //! acceleration = "auto"
-//! trim = 20                      # samples dropped at each end after differentiation
+//! trim = 20                      # samples dropped at each end of the range (at least one
+//!                                # settling time of the low-pass at each end of the record)
 //! decimation = 100               # total factor (stages of <= 10) or a list [10, 10]
 //! rest_velocity = 0.05           # rad/s, number or one per joint
 //! range = [0, 24750]             # optional sample range used for estimation (end exclusive)
@@ -77,6 +78,11 @@ use crate::limits::{
     MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
     MIN_FACTOR, MIN_SAMPLE_RATE,
 };
+
+/// A complete, annotated config: every key with its default or an example value, and what
+/// it does (`robid identify --example-config` prints it; README.md shows it). It parses
+/// as a [`Config`] (a test checks it).
+pub const EXAMPLE_CONFIG: &str = include_str!("example_config.toml");
 
 /// Where a [`Config`] came from: it decides how errors name its keys.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -331,7 +337,9 @@ pub struct Processing {
     /// Acceleration source.
     #[serde(default)]
     pub acceleration: Derivative,
-    /// Samples dropped at each end after filtering and differentiation.
+    /// Samples dropped at each end of the used range after filtering and differentiation.
+    /// With a low-pass, at least one settling time is dropped at each real end of the
+    /// record in any case: there the larger of the two counts applies (they do not add).
     #[serde(default)]
     pub trim: usize,
     /// Low-pass + decimation of every regressor column and of the torque.

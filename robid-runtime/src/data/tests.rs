@@ -197,3 +197,24 @@ fn tx40_joint_torque_ranges_match_the_readme() {
         );
     }
 }
+
+/// The annotated example config is a complete, valid config: it parses, passes its checks
+/// and loads its own `file` (relative to the config's folder).
+#[test]
+fn the_example_config_loads_its_own_file() {
+    let d = Dir::new("example");
+    let mut csv = String::from("t,q1,q2,q3,q4,q5,q6,tau_1,tau_2,tau_3,tau_4,tau_5,tau_6\n");
+    for k in 0..2000 {
+        let t = k as f64 * 1e-3;
+        let q = (t * 3.0).sin();
+        csv.push_str(&format!("{t},{q},{q},{q},{q},{q},{q},1,2,3,4,5,6\n"));
+    }
+    d.file("run1.csv.gz", &csv);
+    let path = d.file("identify.toml", EXAMPLE_CONFIG);
+    let config = Config::from_file(&path).unwrap();
+    config.check(6).unwrap();
+    let data = load_config_files(&config, 6).unwrap();
+    assert_eq!(data.samples(), 2000);
+    assert_eq!(data.tau[5][7], 6.0);
+    assert_eq!(config.estimation.method, Method::Wls);
+}

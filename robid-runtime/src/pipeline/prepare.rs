@@ -5,8 +5,9 @@
 //! odd extension as long as the filter's settling time (not scipy's few samples), so the
 //! start-up transient dies out in the padding; what is left near an edge (the extension
 //! bends the signal's curvature, which two differentiations amplify) is removed by an
-//! automatic trim of one settling time at each real end of the record, on top of
-//! `processing.trim`.
+//! automatic trim of one settling time at each real end of the record. `processing.trim`
+//! drops samples at each end of the used range; where the range reaches a real end of the
+//! record, the larger of the two counts is dropped there (they overlap, they do not add).
 
 use crate::DataError;
 use crate::data::{Config, Dataset, Derivative, Signal};

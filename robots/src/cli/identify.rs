@@ -1,4 +1,4 @@
-//! `robid identify ROBOT.toml --data FILE... [--config CFG.toml] [--validate FILE...]
+//! `robid identify ROBOT.toml [--data FILE...] [--config CFG.toml] [--validate FILE...]
 //! [--method ols|wls|rls|energy] [--json OUT.json] [--plot DIR]`: base parameters with
 //! their uncertainty from measured data, the fit, and predictions of other files
 //! (docs/identification.md, docs/command-line.md#robid-identify). A table on stdout; JSON
@@ -11,7 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
-use robid_runtime::data::{Config, Method, load};
+use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load};
 use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, plot_torques, text_table};
 use robid_symbolic::Robot;
@@ -26,11 +26,13 @@ use super::{Error, files, out};
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
     /// Robot description file (TOML), with the drive terms to identify.
-    robot: PathBuf,
+    #[arg(required_unless_present = "example_config")]
+    robot: Option<PathBuf>,
     #[command(flatten)]
     drive: DriveFlag,
-    /// Data files, one per `[[source]]` of the config (CSV, optionally gzip).
-    #[arg(long, num_args = 1.., required = true)]
+    /// Data files, one per `[[source]]` of the config (CSV, optionally gzip); default: the
+    /// `file` of each `[[source]]` (relative to the config file).
+    #[arg(long, num_args = 1..)]
     data: Vec<PathBuf>,
     /// Identification config (columns, units, drive chain, processing). Without it the
     /// data need the columns `t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` (`robid simulate`).
@@ -50,6 +52,9 @@ pub(crate) struct Args {
     /// replaced).
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Print a complete annotated config (every key, its default and what it does) and exit.
+    #[arg(long, exclusive = true)]
+    example_config: bool,
 }
 
 /// The estimators of the command line.
@@ -63,19 +68,6 @@ enum MethodArg {
     Rls,
     /// Energy (power-balance) model.
     Energy,
-}
-
-/// The config for data written by `robid simulate` (or any file with that header).
-pub(crate) fn default_config() -> Config {
-    let text = r#"
-time_column = "t"
-[[source]]
-position = "q{}"
-velocity = "qd{}"
-acceleration = "qdd{}"
-torque = "tau{}"
-"#;
-    Config::from_toml_str(text, Path::new("<default config>")).unwrap_or_default()
 }
 
 /// Reads a description and chooses its model: the compiled model of a reference robot
@@ -112,31 +104,36 @@ fn compiled_reference(robot: &Robot) -> Option<Chosen> {
     })
 }
 
-/// Runs the identification and prints the table.
-pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    let mut inputs: Vec<&Path> = vec![&args.robot];
-    inputs.extend(args.config.as_deref());
-    inputs.extend(args.data.iter().map(PathBuf::as_path));
-    inputs.extend(args.validate.iter().map(PathBuf::as_path));
-    let mut outputs: Vec<&Path> = Vec::new();
-    outputs.extend(args.json.as_deref());
-    outputs.extend(args.plot.as_deref());
-    files::refuse(&inputs, &outputs)?;
-    let chosen = robot_model(&args.robot, &args.drive)?;
-    let model = chosen.model.as_ref();
-    let mut config = match &args.config {
-        Some(p) => Config::from_file(p)?,
-        None => default_config(),
-    };
-    if let Some(m) = args.method {
-        config.estimation.method = match m {
-            MethodArg::Ols => Method::Ols,
-            MethodArg::Wls => Method::Wls,
-            MethodArg::Rls => Method::Rls,
-            MethodArg::Energy => Method::Energy,
-        };
-    }
+/// The data files: `--data`, else the `file` of each `[[source]]` of the config
+/// (resolved against the config's folder).
+fn data_files(args: &Args, config: &Config) -> Result<Vec<PathBuf>, Error> {
     let per_set = config.sources.len().max(1);
+    if args.data.is_empty() {
+        let Some(path) = &args.config else {
+            return Err(
+                "--data: give the data file (columns t,q1..,qd1..,qdd1..,tau1.., as \
+                        `robid simulate` writes), or a --config whose [[source]] tables name \
+                        their files"
+                    .into(),
+            );
+        };
+        return config
+            .sources
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                s.file.as_deref().map(|f| config.resolve(f)).ok_or_else(|| {
+                    format!(
+                        "{}: [[source]] {} has no `file`; add `file = \"...\"` (relative to \
+                         the config) or give the files with --data",
+                        path.display(),
+                        i + 1
+                    )
+                    .into()
+                })
+            })
+            .collect();
+    }
     if args.data.len() != per_set {
         let fix = match &args.config {
             Some(path) => format!(
@@ -149,6 +146,39 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         };
         return Err(format!("--data: {} files given; {fix}", args.data.len()).into());
     }
+    Ok(args.data.clone())
+}
+
+/// Runs the identification and prints the table.
+pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    if args.example_config {
+        return Ok(out::print(EXAMPLE_CONFIG)?);
+    }
+    let robot = args.robot.as_deref().ok_or("give the robot description")?;
+    let mut config = match &args.config {
+        Some(p) => Config::from_file(p)?,
+        None => Config::default_mapping(),
+    };
+    let data = data_files(args, &config)?;
+    let mut inputs: Vec<&Path> = vec![robot];
+    inputs.extend(args.config.as_deref());
+    inputs.extend(data.iter().map(PathBuf::as_path));
+    inputs.extend(args.validate.iter().map(PathBuf::as_path));
+    let mut outputs: Vec<&Path> = Vec::new();
+    outputs.extend(args.json.as_deref());
+    outputs.extend(args.plot.as_deref());
+    files::refuse(&inputs, &outputs)?;
+    let chosen = robot_model(robot, &args.drive)?;
+    let model = chosen.model.as_ref();
+    if let Some(m) = args.method {
+        config.estimation.method = match m {
+            MethodArg::Ols => Method::Ols,
+            MethodArg::Wls => Method::Wls,
+            MethodArg::Rls => Method::Rls,
+            MethodArg::Energy => Method::Energy,
+        };
+    }
+    let per_set = config.sources.len().max(1);
     if !args.validate.len().is_multiple_of(per_set) {
         return Err(format!(
             "--validate: {} files given; give them in groups of {per_set}, one per [[source]] \
@@ -165,7 +195,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         let plots: Vec<&Path> = plots.iter().map(PathBuf::as_path).collect();
         files::refuse(&inputs, &plots)?;
     }
-    let data = load(&config, &args.data, model.dof())?;
+    let data = load(&config, &data, model.dof())?;
     for w in &data.warnings {
         out::warn(format_args!("warning: {w}"));
     }
