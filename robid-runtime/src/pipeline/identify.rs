@@ -15,7 +15,7 @@ use crate::estimate::{
     Estimate, Observation, QualityWarning, dominated_columns, energy, model_energy_observation,
     ols, rls, wls,
 };
-use crate::pipeline::prepare::{Rows, prepare_rows};
+use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
 use crate::pipeline::{Prepared, decimator, observe};
 use crate::validate::{Fit, Prediction, UsedRows};
 
@@ -44,8 +44,8 @@ pub fn observation(
     data: &Dataset,
     config: &Config,
 ) -> Result<(Observation, f64)> {
-    let (prepared, kept) = checked_prepare(model, data, config, Rows::Estimation)?;
-    torque_observation(model, &prepared, config, data, &kept)
+    let rows = checked_prepare(model, data, config, Rows::Estimation)?;
+    torque_observation(model, &rows.prepared, config, data, &rows.kept)
 }
 
 fn checked_prepare(
@@ -53,7 +53,7 @@ fn checked_prepare(
     data: &Dataset,
     config: &Config,
     rows: Rows,
-) -> Result<(Prepared, Range<usize>)> {
+) -> Result<PreparedRows> {
     check_joints(model.dof())?;
     config.check(model.dof())?;
     if data.dof() != model.dof() {
@@ -116,6 +116,34 @@ pub fn energy_observation_of(
     model_energy_observation(model, prepared, window.max(1))
 }
 
+/// Gives `prediction` the torque before any low-pass at its samples, when its measured
+/// torque is filtered: by `[processing] lowpass` on `tau`, or by the anti-alias filter of
+/// a decimation (`factor` > 1; decimated sample k is processed sample k * factor).
+fn with_unfiltered(
+    prediction: &mut Prediction,
+    obs: &Observation,
+    rows: &PreparedRows,
+    factor: usize,
+) {
+    let raw = match &rows.unfiltered_tau {
+        Some(raw) => raw,
+        None if factor > 1 => &rows.prepared.tau,
+        None => return,
+    };
+    prediction.unfiltered = Some(
+        obs.joint_rows
+            .iter()
+            .enumerate()
+            .map(|(j, r)| {
+                obs.sample_of_row[r.clone()]
+                    .iter()
+                    .map(|&k| raw[j][k * factor])
+                    .collect()
+            })
+            .collect(),
+    );
+}
+
 /// Estimates with the configured method.
 pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
     let e = &config.estimation;
@@ -140,16 +168,17 @@ pub fn identify(
     data: &Dataset,
     config: &Config,
 ) -> Result<Identification> {
-    let (prepared, kept) = checked_prepare(model, data, config, Rows::Estimation)?;
+    let rows = checked_prepare(model, data, config, Rows::Estimation)?;
+    let (prepared, kept) = (&rows.prepared, &rows.kept);
     let estimate_of = |obs: &Observation| match config.estimation.method {
         Method::Energy => energy(
-            &energy_observation_of(model, &prepared, config)?,
+            &energy_observation_of(model, prepared, config)?,
             config.estimation.rank_tolerance,
         )
         .map_err(|e| config.locate(e)),
         _ => estimate(obs, config),
     };
-    let (obs, dt) = torque_observation(model, &prepared, config, data, &kept)?;
+    let (obs, dt) = torque_observation(model, prepared, config, data, kept)?;
     let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
     // the data row of an equation
     let location = |row: usize| {
@@ -180,8 +209,9 @@ pub fn identify(
             share,
         });
     }
-    let used = UsedRows::of(data, kept);
+    let used = UsedRows::of(data, kept.clone());
     let mut prediction = Prediction::new(&obs, &estimate.values, dt);
+    with_unfiltered(&mut prediction, &obs, &rows, factor);
     prediction.check(&format!("the estimation data ({used})"))?;
     prediction.used = Some(used.clone());
     Ok(Identification {
@@ -204,8 +234,8 @@ pub fn validate(
     config: &Config,
     values: &[f64],
 ) -> Result<Prediction> {
-    let (prepared, kept) = checked_prepare(model, data, config, Rows::Validation)?;
-    let (obs, dt) = torque_observation(model, &prepared, config, data, &kept)?;
+    let rows = checked_prepare(model, data, config, Rows::Validation)?;
+    let (obs, dt) = torque_observation(model, &rows.prepared, config, data, &rows.kept)?;
     if values.len() != obs.cols() {
         return Err(Error::DimensionMismatch {
             what: "parameter values".into(),
@@ -223,8 +253,10 @@ pub fn validate(
             ),
         ));
     }
-    let used = UsedRows::of(data, kept);
+    let used = UsedRows::of(data, rows.kept.clone());
     let mut prediction = Prediction::new(&obs, values, dt);
+    let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
+    with_unfiltered(&mut prediction, &obs, &rows, factor);
     prediction.check(&format!("the validation data ({used})"))?;
     prediction.used = Some(used);
     Ok(prediction)

@@ -94,8 +94,20 @@ fn differentiate(x: &Signals, dt: f64) -> Result<Signals> {
 /// and the rotor compensation of `[drive.rotor]` to a data set.
 pub fn prepare(data: &Dataset, config: &Config) -> Result<Prepared> {
     prepare_rows(data, config, Rows::Estimation)
-        .map(|(p, _)| p)
+        .map(|rows| rows.prepared)
         .map_err(|e| config.locate(e))
+}
+
+/// What [`prepare_rows`] gives the pipeline.
+pub(crate) struct PreparedRows {
+    /// The signals.
+    pub(crate) prepared: Prepared,
+    /// The samples of the data set kept.
+    pub(crate) kept: std::ops::Range<usize>,
+    /// The torque before the low-pass (rotor-compensated like `prepared.tau`) on the kept
+    /// samples, when `[processing] lowpass` filters the torque: the fit is also reported
+    /// against it.
+    pub(crate) unfiltered_tau: Option<Signals>,
 }
 
 /// Which sample range of `[processing]` applies.
@@ -116,12 +128,9 @@ impl Rows {
     }
 }
 
-/// [`prepare`] with the range `rows`; also returns the samples of `data` kept.
-pub(crate) fn prepare_rows(
-    data: &Dataset,
-    config: &Config,
-    rows: Rows,
-) -> Result<(Prepared, std::ops::Range<usize>)> {
+/// [`prepare`] with the range `rows`; also returns the samples of `data` kept and the
+/// unfiltered torque.
+pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Result<PreparedRows> {
     let p = &config.processing;
     let dt = data.sample_time;
     let sos = match &p.lowpass {
@@ -168,6 +177,7 @@ pub(crate) fn prepare_rows(
         _ => differentiate(&qd, dt)?,
     };
     let mut tau = filter_all(on(Signal::Tau), pad, &data.tau)?;
+    let mut unfiltered_tau = on(Signal::Tau).map(|_| data.tau.clone());
     if let Some(rotor) = &config.drive.rotor {
         let motor = data
             .motor
@@ -177,6 +187,9 @@ pub(crate) fn prepare_rows(
         let thetad = differentiate(&theta, dt)?;
         let thetadd = differentiate(&thetad, dt)?;
         rotor.compensate(&mut tau, &thetad, &thetadd)?;
+        if let Some(raw) = &mut unfiltered_tau {
+            rotor.compensate(raw, &thetad, &thetadd)?;
+        }
     }
     // the range is cut after filtering and differentiation, so that its ends are free of
     // filter start-up transients (a split of one record into training and test data)
@@ -240,7 +253,11 @@ pub(crate) fn prepare_rows(
             });
         }
     }
-    Ok((prepared, start..end))
+    Ok(PreparedRows {
+        prepared,
+        kept: start..end,
+        unfiltered_tau: unfiltered_tau.map(|t| t.range(start..end)),
+    })
 }
 
 fn missing(key: &str, role: &str) -> Error {

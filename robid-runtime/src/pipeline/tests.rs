@@ -295,3 +295,71 @@ fn a_log_cut_during_motion_needs_no_manual_trim() {
     let auto = crate::pipeline::automatic_trim(&cfg, 1e-3).unwrap();
     assert!((10..200).contains(&auto), "{auto}");
 }
+
+/// With a filtered torque (a decimation's anti-alias filter, or a low-pass on `tau`) the
+/// prediction carries the torque as measured at its samples: the file's values at the
+/// rows' own times (checked against the model's torque there), and the report labels
+/// both errors; with an unfiltered torque it carries nothing and says "measured".
+#[test]
+fn the_fit_is_also_measured_against_the_unfiltered_torque() {
+    let rate = 1000.0;
+    let data = dataset(20_000, rate, 0.0);
+    let model = Synthetic::default();
+    let beta = true_parameters();
+    let id = identify(&model, &data, &config("")).unwrap();
+    let unfiltered = id
+        .prediction
+        .unfiltered
+        .as_ref()
+        .expect("decimation filters");
+    let start = id.used.samples[0] as f64 / rate;
+    let (mut q, mut qd, mut qdd, mut tau) = ([0.0; DOF], [0.0; DOF], [0.0; DOF], [0.0; DOF]);
+    let mut rows = 0;
+    for (j, (times, values)) in id.prediction.time.iter().zip(unfiltered).enumerate() {
+        assert_eq!(times.len(), values.len());
+        for (t, v) in times.iter().zip(values) {
+            synthetic::trajectory(start + t, &mut q, &mut qd, &mut qdd);
+            model
+                .inverse_dynamics_into(&q, &qd, &qdd, &beta, &mut tau)
+                .unwrap();
+            assert!(
+                (v - tau[j]).abs() <= 1e-9 * tau[j].abs().max(1.0),
+                "joint {j} t {t}: {v} vs {}",
+                tau[j]
+            );
+            rows += 1;
+        }
+    }
+    assert!(rows > 1000);
+    let report = crate::report::Report::from_identification(&id, |_| None);
+    assert_eq!(report.fit.torque.as_deref(), Some("filtered"));
+    let raw = id.prediction.unfiltered_fit().unwrap().relative_error;
+    assert_eq!(report.fit.unfiltered_relative_error, Some(raw));
+    let text = crate::report::text_table(&report);
+    assert!(
+        text.contains("(filtered torque; ") && text.contains("against the measured torque"),
+        "{text}"
+    );
+
+    // no decimation, no low-pass on tau: the measured torque is the torque as measured
+    let plain = config("").clone();
+    let mut plain = plain;
+    plain.processing.decimation = crate::data::Decimation::Total(1);
+    let id = identify(&model, &data, &plain).unwrap();
+    assert!(id.prediction.unfiltered.is_none());
+    let report = crate::report::Report::from_identification(&id, |_| None);
+    assert_eq!(report.fit.torque.as_deref(), Some("measured"));
+    assert!(crate::report::text_table(&report).contains("% (measured torque)"));
+
+    // a low-pass on tau alone also filters it
+    let mut on_tau = plain;
+    on_tau
+        .processing
+        .lowpass
+        .as_mut()
+        .unwrap()
+        .signals
+        .push(crate::data::Signal::Tau);
+    let id = identify(&model, &data, &on_tau).unwrap();
+    assert!(id.prediction.unfiltered.is_some());
+}

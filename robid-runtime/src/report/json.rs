@@ -56,6 +56,15 @@ pub struct FitEntry {
     pub rms_per_joint: Vec<f64>,
     /// NMSE (Madsen's metric).
     pub nmse: f64,
+    /// The torque the metrics above compare with: `"measured"`, or `"filtered"` when the
+    /// processing low-passes the torque (`[processing] lowpass` on `tau`, or a
+    /// decimation); null when not known.
+    #[serde(default)]
+    pub torque: Option<String>,
+    /// With a filtered torque: the relative error against the torque as measured (before
+    /// any low-pass) at the same samples.
+    #[serde(default)]
+    pub unfiltered_relative_error: Option<f64>,
 }
 
 /// Fit metrics of one validation file.
@@ -72,6 +81,29 @@ pub struct ValidationEntry {
     pub rms_per_joint: Vec<f64>,
     /// NMSE.
     pub nmse: f64,
+    /// As [`FitEntry::torque`].
+    #[serde(default)]
+    pub torque: Option<String>,
+    /// As [`FitEntry::unfiltered_relative_error`].
+    #[serde(default)]
+    pub unfiltered_relative_error: Option<f64>,
+}
+
+/// The fit of a prediction with the torque it compares with (see [`FitEntry::torque`]).
+fn labelled_fit(prediction: &Prediction) -> FitEntry {
+    let unfiltered = prediction.unfiltered_fit();
+    FitEntry {
+        torque: Some(
+            if unfiltered.is_some() {
+                "filtered"
+            } else {
+                "measured"
+            }
+            .to_string(),
+        ),
+        unfiltered_relative_error: unfiltered.map(|f| f.relative_error),
+        ..FitEntry::from(&prediction.fit())
+    }
 }
 
 /// The identification report.
@@ -107,6 +139,8 @@ impl From<&Fit> for FitEntry {
             relative_error: f.relative_error,
             rms_per_joint: f.rms_per_joint.clone(),
             nmse: f.nmse,
+            torque: None,
+            unfiltered_relative_error: None,
         }
     }
 }
@@ -149,6 +183,7 @@ impl Report {
     ) -> Self {
         let mut report = Self::new(&id.robot, &id.estimate, &id.fit, expressions);
         report.estimation = Some(id.used.clone());
+        report.fit = labelled_fit(&id.prediction);
         report
     }
 
@@ -160,6 +195,8 @@ impl Report {
             relative_error: fit.relative_error,
             rms_per_joint: fit.rms_per_joint.clone(),
             nmse: fit.nmse,
+            torque: None,
+            unfiltered_relative_error: None,
         });
         self
     }
@@ -168,7 +205,7 @@ impl Report {
     /// and rows it used; when they overlap the estimation rows of the same file, a
     /// `validation_repeats_estimation` warning is added.
     pub fn with_prediction(mut self, prediction: &Prediction) -> Self {
-        let fit = prediction.fit();
+        let fit = labelled_fit(prediction);
         let rows = prediction.used.clone();
         let file = rows.as_ref().map_or_else(String::new, |r| r.file.clone());
         if let (Some(r), Some(e)) = (&rows, &self.estimation)
@@ -184,8 +221,10 @@ impl Report {
             file,
             rows,
             relative_error: fit.relative_error,
-            rms_per_joint: fit.rms_per_joint.clone(),
+            rms_per_joint: fit.rms_per_joint,
             nmse: fit.nmse,
+            torque: fit.torque,
+            unfiltered_relative_error: fit.unfiltered_relative_error,
         });
         self
     }
@@ -208,6 +247,11 @@ impl Report {
             {
                 return bad(format!("the report's entry for `{}`", p.name));
             }
+        }
+        let unfiltered = std::iter::once(self.fit.unfiltered_relative_error)
+            .chain(self.validation.iter().map(|v| v.unfiltered_relative_error));
+        if unfiltered.flatten().any(|r| !r.is_finite()) {
+            return bad("the report's relative error against the unfiltered torque".into());
         }
         let fits = std::iter::once((
             &self.fit.rms_per_joint,

@@ -107,6 +107,7 @@ mod tests {
             measured: vec![m.clone(), m],
             predicted: vec![p.clone(), p],
             time: vec![t.clone(), t],
+            unfiltered: None,
             used: None,
         };
         let dir = std::env::temp_dir().join(format!("robid-plot-{}", std::process::id()));

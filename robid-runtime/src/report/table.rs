@@ -46,8 +46,9 @@ pub fn text_table(report: &Report) -> String {
     let f = &report.fit;
     let _ = writeln!(
         s,
-        "fit: relative error {:.2} %, NMSE {:.4}, RMS per joint [{}]",
+        "fit: relative error {:.2} %{}, NMSE {:.4}, RMS per joint [{}]",
         100.0 * f.relative_error,
+        against(f.torque.as_deref(), f.unfiltered_relative_error),
         f.nmse,
         joints(&f.rms_per_joint)
     );
@@ -58,8 +59,9 @@ pub fn text_table(report: &Report) -> String {
             .map_or_else(|| v.file.clone(), |r| r.to_string());
         let _ = writeln!(
             s,
-            "validation {file}: relative error {:.2} %, NMSE {:.4}, RMS per joint [{}]",
+            "validation {file}: relative error {:.2} %{}, NMSE {:.4}, RMS per joint [{}]",
             100.0 * v.relative_error,
+            against(v.torque.as_deref(), v.unfiltered_relative_error),
             v.nmse,
             joints(&v.rms_per_joint)
         );
@@ -68,6 +70,19 @@ pub fn text_table(report: &Report) -> String {
         let _ = writeln!(s, "warning: {}", w.message);
     }
     s
+}
+
+/// What a relative error compares with: ` (measured torque)`, or for a filtered torque
+/// ` (filtered torque; X % against the measured torque)`; nothing when not known.
+fn against(torque: Option<&str>, unfiltered: Option<f64>) -> String {
+    match (torque, unfiltered) {
+        (Some("filtered"), Some(u)) => format!(
+            " (filtered torque; {:.2} % against the measured torque)",
+            100.0 * u
+        ),
+        (Some(t), _) => format!(" ({t} torque)"),
+        (None, _) => String::new(),
+    }
 }
 
 #[cfg(test)]
@@ -192,6 +207,7 @@ mod tests {
             measured: vec![vec![1.0, 2.0]],
             predicted: vec![vec![1.0, 2.1]],
             time: vec![vec![0.0, 0.1]],
+            unfiltered: None,
             used: Some(u),
         };
         let before = r.warnings.len();

@@ -81,6 +81,10 @@ pub struct Prediction {
     pub predicted: Vec<Vec<f64>>,
     /// Time (s) of each entry per joint (samples near rest are absent).
     pub time: Vec<Vec<f64>>,
+    /// The measured torque before any low-pass at the same samples, when `measured` is
+    /// filtered (a low-pass on the torque or a decimation's anti-alias filter); `None`
+    /// when `measured` is the torque as measured.
+    pub unfiltered: Option<Vec<Vec<f64>>>,
     /// The rows of the data used, when known (set by the pipeline).
     pub used: Option<UsedRows>,
 }
@@ -110,6 +114,7 @@ impl Prediction {
             measured: block(&obs.y),
             predicted: block(&pred),
             time,
+            unfiltered: None,
             used: None,
         }
     }
@@ -131,9 +136,15 @@ impl Prediction {
         self.fit().check(what)
     }
 
-    /// The metrics of this prediction.
+    /// The metrics of this prediction against `measured` (filtered when the processing
+    /// filters the torque).
     pub fn fit(&self) -> Fit {
         fit(&self.measured, &self.predicted)
+    }
+
+    /// The metrics against the torque before any low-pass, when `measured` is filtered.
+    pub fn unfiltered_fit(&self) -> Option<Fit> {
+        self.unfiltered.as_ref().map(|u| fit(u, &self.predicted))
     }
 }
 
@@ -148,6 +159,7 @@ mod tests {
             measured: vec![vec![1.0, 2.0], vec![3.0, 4.0]],
             predicted: vec![vec![1.1, 2.1], vec![2.9, 4.2]],
             time: vec![vec![0.0, 0.1], vec![0.0, 0.1]],
+            unfiltered: None,
             used: None,
         };
         assert!(p.check("run.csv").is_ok());
