@@ -104,7 +104,8 @@ impl ColumnMapping {
             }
             ColumnMapping::Default => "the default column mapping needs the header \
                  t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun (as `robid simulate` writes it); \
-                 rename the file's columns to these names"
+                 rename the file's columns to these names, or map the file's own columns \
+                 in a config (`robid identify --example-config` prints one) given with --config"
                 .into(),
             ColumnMapping::Config { path, line, key } => match line {
                 Some(l) => format!("fix `{key}` at {}:{l} or the file's header", path.display()),

@@ -7,6 +7,7 @@ mod energy;
 mod error;
 mod least_squares;
 mod lstsq;
+pub(crate) use lstsq::condition_number;
 mod observation;
 mod quality;
 mod result;
@@ -22,7 +23,8 @@ pub use observation::Observation;
 pub(crate) use quality::assess;
 pub(crate) use quality::dominated_columns;
 pub use quality::{
-    CONDITION_WARNING, OUTLIER_ROWS, OUTLIER_SHARE, QualityWarning, REL_STD_WARNING,
+    CONDITION_WARNING, ENERGY_CONDITION_RATIO, OUTLIER_ROWS, OUTLIER_SHARE, QualityWarning,
+    REL_STD_WARNING,
 };
 pub use result::{Estimate, Estimator};
 pub use rls::{Rls, rls};

@@ -39,6 +39,18 @@ pub enum QualityWarning {
         /// The threshold in percent.
         threshold_percent: f64,
     },
+    /// The energy model's observation is ill-conditioned, or much worse conditioned than
+    /// the torque model's on the same data (by more than [`ENERGY_CONDITION_RATIO`]).
+    EnergyIllConditioned {
+        /// cond of the energy observation.
+        energy: f64,
+        /// cond of the torque observation of the same samples.
+        torque: f64,
+        /// Energy equations (one per window, all joints together).
+        energy_equations: usize,
+        /// Torque equations (one per joint and sample).
+        torque_equations: usize,
+    },
     /// Validation data that are the estimation data: the validation repeats the fit.
     ValidationRepeatsEstimation {
         /// The validation file (or data set).
@@ -57,6 +69,10 @@ pub enum QualityWarning {
     },
 }
 
+/// How much worse than the torque model's the energy model's condition number may be
+/// before [`QualityWarning::EnergyIllConditioned`] is raised.
+pub const ENERGY_CONDITION_RATIO: f64 = 4.0;
+
 /// Number of equations whose share of a column is tested for an outlier.
 pub const OUTLIER_ROWS: usize = 3;
 /// Share of a column's squared norm above which its largest [`OUTLIER_ROWS`] equations
@@ -64,11 +80,12 @@ pub const OUTLIER_ROWS: usize = 3;
 pub const OUTLIER_SHARE: f64 = 0.9;
 
 impl QualityWarning {
-    /// A short machine-readable name (`ill_conditioned`, `uncertain`, `outlier`,
-    /// `validation_repeats_estimation`).
+    /// A short machine-readable name (`ill_conditioned`, `energy_ill_conditioned`,
+    /// `uncertain`, `outlier`, `validation_repeats_estimation`).
     pub fn kind(&self) -> &'static str {
         match self {
             QualityWarning::IllConditioned { .. } => "ill_conditioned",
+            QualityWarning::EnergyIllConditioned { .. } => "energy_ill_conditioned",
             QualityWarning::Uncertain { .. } => "uncertain",
             QualityWarning::ValidationRepeatsEstimation { .. } => "validation_repeats_estimation",
             QualityWarning::Outlier { .. } => "outlier",
@@ -96,6 +113,21 @@ impl fmt::Display for QualityWarning {
                 "the observation matrix is ill-conditioned (condition number {condition_number:.3e} > {threshold:e}): \
                  the estimates are sensitive to noise; excite the robot with a richer trajectory \
                  (robid excite) or remove parameters the motion cannot separate"
+            ),
+            QualityWarning::EnergyIllConditioned {
+                energy,
+                torque,
+                energy_equations,
+                torque_equations,
+            } => write!(
+                f,
+                "the energy model's observation is ill-conditioned (condition number {energy:.3e}, \
+                 against {torque:.3e} for the torque model on the same samples): it has one \
+                 equation per window for all joints together ({energy_equations} here, against \
+                 {torque_equations} torque equations), so parameters that the power balance \
+                 mixes are poorly separated and the noise reaches them; use --method wls or ols \
+                 (robid differentiates the positions for the accelerations) unless the \
+                 accelerations cannot be had, or change estimation.energy_window"
             ),
             QualityWarning::Uncertain {
                 parameters,

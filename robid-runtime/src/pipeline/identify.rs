@@ -12,8 +12,8 @@ use crate::Model;
 use crate::data::{Config, Dataset, Method, Warning, check_joints};
 use crate::error::{Error, Result};
 use crate::estimate::{
-    Estimate, Observation, QualityWarning, dominated_columns, energy, model_energy_observation,
-    ols, rls, wls,
+    CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, Observation, QualityWarning,
+    dominated_columns, energy, model_energy_observation, ols, rls, wls,
 };
 use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
 use crate::pipeline::{Prepared, decimator, observe};
@@ -116,6 +116,29 @@ pub fn energy_observation_of(
     model_energy_observation(model, prepared, window.max(1))
 }
 
+/// Replaces the generic ill-conditioning warning of an energy estimate by one that compares
+/// it with the torque model on the same samples, and raises it also when the energy
+/// model is more than [`ENERGY_CONDITION_RATIO`] times worse conditioned.
+fn energy_conditioning(estimate: &mut Estimate, torque: &Observation) -> Result<()> {
+    let cond = crate::estimate::condition_number(&torque.w, &torque.names)?;
+    let energy = estimate.condition_number;
+    if energy > CONDITION_WARNING || energy > ENERGY_CONDITION_RATIO * cond {
+        estimate
+            .warnings
+            .retain(|w| !matches!(w, QualityWarning::IllConditioned { .. }));
+        estimate.warnings.insert(
+            0,
+            QualityWarning::EnergyIllConditioned {
+                energy,
+                torque: cond,
+                energy_equations: estimate.rows,
+                torque_equations: torque.w.nrows(),
+            },
+        );
+    }
+    Ok(())
+}
+
 /// Gives `prediction` the torque before any low-pass at its samples, when its measured
 /// torque is filtered: by `[processing] lowpass` on `tau`, or by the anti-alias filter of
 /// a decimation (`factor` > 1; decimated sample k is processed sample k * factor).
@@ -202,6 +225,9 @@ pub fn identify(
         }
         e => e,
     })?;
+    if config.estimation.method == Method::Energy {
+        energy_conditioning(&mut estimate, &obs).map_err(|e| config.locate(e))?;
+    }
     for &(c, row, share) in &dominated {
         estimate.warnings.push(QualityWarning::Outlier {
             parameter: obs.names[c].clone(),
@@ -260,4 +286,72 @@ pub fn validate(
     prediction.check(&format!("the validation data ({used})"))?;
     prediction.used = Some(used);
     Ok(prediction)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::Estimator;
+    use nalgebra::{DMatrix, DVector};
+
+    /// A torque observation with orthogonal columns of equal norm (condition number 1) and
+    /// energy estimates of chosen condition numbers: the warning is raised exactly above
+    /// the ratio or the absolute threshold, names both figures and replaces the generic one.
+    #[test]
+    fn an_energy_estimate_is_compared_with_the_torque_model() {
+        let w = DMatrix::from_row_slice(4, 2, &[1.0, 0.0, 0.0, 1.0, 2.0, 0.0, 0.0, 2.0]);
+        let names = vec!["a".to_string(), "b".to_string()];
+        let torque = Observation::new(
+            w,
+            DVector::zeros(4),
+            vec![0..2, 2..4],
+            vec![0, 1, 2, 3],
+            names.clone(),
+        )
+        .unwrap();
+        let estimate = |cond: f64| Estimate {
+            method: Estimator::Energy,
+            names: names.clone(),
+            values: vec![1.0, 2.0],
+            std: vec![0.1, 0.1],
+            rel_std_percent: vec![10.0, 5.0],
+            sigma2: 1.0,
+            condition_number: cond,
+            residual_rms: vec![0.1],
+            rows: 3,
+            weights: None,
+            warnings: vec![QualityWarning::IllConditioned {
+                condition_number: cond,
+                threshold: CONDITION_WARNING,
+            }],
+        };
+        for (cond, raised) in [(3.9, false), (4.1, true), (2e4, true)] {
+            let mut e = estimate(cond);
+            energy_conditioning(&mut e, &torque).unwrap();
+            let first = &e.warnings[0];
+            assert_eq!(
+                matches!(first, QualityWarning::EnergyIllConditioned { .. }),
+                raised,
+                "{cond}"
+            );
+            if raised {
+                let QualityWarning::EnergyIllConditioned {
+                    energy,
+                    torque,
+                    energy_equations,
+                    torque_equations,
+                } = first
+                else {
+                    unreachable!()
+                };
+                assert_eq!(*energy, cond);
+                assert!((torque - 1.0).abs() < 1e-12, "{torque}");
+                assert_eq!((*energy_equations, *torque_equations), (3, 4));
+                assert_eq!(e.warnings.len(), 1, "the generic warning is replaced");
+                assert!(first.to_string().contains("--method wls or ols"));
+            } else {
+                assert_eq!(e.warnings.len(), 1);
+            }
+        }
+    }
 }
