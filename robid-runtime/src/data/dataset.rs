@@ -38,6 +38,8 @@ pub struct Dataset {
     pub motor: Option<Signals>,
     /// What was repaired while loading.
     pub warnings: Vec<super::Warning>,
+    /// How each file was sampled (empty for a data set built in code).
+    pub sampling: Vec<super::Sampling>,
     /// The file and lines the samples come from (`None` for a data set built in code).
     pub origin: Option<DataOrigin>,
 }
@@ -94,6 +96,7 @@ impl Dataset {
             tau: Signals::default(),
             motor: None,
             warnings: Vec::<Warning>::new(),
+            sampling: Vec::new(),
             origin,
         };
         let dof = q.dof();
@@ -187,6 +190,7 @@ impl Dataset {
             tau: cut(&self.tau),
             motor: self.motor.as_ref().map(cut),
             warnings: self.warnings.clone(),
+            sampling: self.sampling.clone(),
             origin: self.origin.as_ref().map(|o| DataOrigin {
                 path: o.path.clone(),
                 lines: o.lines.get(start..end).unwrap_or_default().to_vec(),

@@ -10,7 +10,9 @@ use std::path::{Path, PathBuf};
 
 use crate::data::dataset::DataOrigin;
 use crate::data::time::{check_monotonic, interpolate, regularity, uniform_grid};
-use crate::data::{AngleUnit, Config, Dataset, Source, Table, Warning, read_columns};
+use crate::data::{
+    AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_columns,
+};
 use crate::drive::DriveChain;
 use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, MAX_SAMPLE_RATE, MIN_SAMPLE_RATE, Quantity, check_size};
@@ -69,6 +71,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let mut reference: Option<(Vec<f64>, PathBuf, Vec<u64>)> = None;
     let mut rows: Option<(usize, PathBuf, Vec<u64>)> = None;
     let mut warnings = Vec::new();
+    let mut samplings = Vec::new();
 
     for (index, (src, path)) in config.sources.iter().zip(&paths).enumerate() {
         let mut names = Vec::new();
@@ -121,18 +124,36 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
             }
         }
         let mut columns = std::mem::take(&mut table.columns);
-        if let Some(name) = &config.time_column {
-            let mut t = columns.pop().unwrap_or_default();
-            t.iter_mut().for_each(|v| *v *= config.time_scale);
-            let scaled = Table {
+        let time = match &config.time_column {
+            Some(name) => {
+                let mut t = columns.pop().unwrap_or_default();
+                t.iter_mut().for_each(|v| *v *= config.time_scale);
+                let scaled = Table {
+                    path: path.clone(),
+                    columns: vec![t],
+                    lines: table.lines.clone(),
+                };
+                scaled.check_range(0, name, Quantity::Time)?;
+                let t = scaled.columns.into_iter().next().unwrap_or_default();
+                check_monotonic(&t, &table.lines, path)?;
+                Some(t)
+            }
+            None => None,
+        };
+        let sampling = Sampling::of(path.clone(), time.as_deref(), &columns);
+        if let Some(&first) = sampling.stale_rows.first()
+            && sampling.stale_rows.len() as f64 > STALE_SHARE * sampling.rows as f64
+        {
+            warnings.push(Warning::StaleRows {
                 path: path.clone(),
-                columns: vec![t],
-                lines: table.lines.clone(),
-            };
-            scaled.check_range(0, name, Quantity::Time)?;
-            let t = scaled.columns.into_iter().next().unwrap_or_default();
-            check_monotonic(&t, &table.lines, path)?;
-            match &reference {
+                stale: sampling.stale_rows.len(),
+                rows: sampling.rows,
+                first_line: table.lines.get(first).copied().unwrap_or(0),
+            });
+        }
+        samplings.push(sampling);
+        match time {
+            Some(t) => match &reference {
                 None => reference = Some((t, path.clone(), table.lines.clone())),
                 Some((tref, _, _)) => {
                     columns = columns.iter().map(|x| interpolate(&t, x, tref)).collect();
@@ -147,9 +168,8 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
                         });
                     }
                 }
-            }
-        } else {
-            check_rows(&mut rows, &table)?;
+            },
+            None => check_rows(&mut rows, &table)?,
         }
         for (role, start) in spans {
             if blocks[role].is_some() {
@@ -277,6 +297,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         ));
     }
     data.warnings = warnings;
+    data.sampling = samplings;
     Ok(data)
 }
 

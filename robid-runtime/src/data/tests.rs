@@ -218,3 +218,42 @@ fn the_example_config_loads_its_own_file() {
     assert_eq!(data.tau[5][7], 6.0);
     assert_eq!(config.estimation.method, Method::Wls);
 }
+
+/// Stale rows and skipped ticks are counted per file and named in the warnings, with the
+/// file line of the first stale row; the data are left as they were.
+#[test]
+fn stale_rows_and_skipped_ticks_are_reported() {
+    let d = Dir::new("stale");
+    let mut csv = String::from("t,q1,tau1\n");
+    let mut t = 0.0;
+    for k in 0..400 {
+        // a tick missing every 50 rows, a stale row every 100
+        t += if k % 50 == 49 { 0.004 } else { 0.002 };
+        let q = if k % 100 == 60 {
+            0.01 * (k - 1) as f64
+        } else {
+            0.01 * k as f64
+        };
+        csv.push_str(&format!("{t},{q},1\n"));
+    }
+    let a = d.file("run.csv", &csv);
+    let text = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"";
+    let data = load(&cfg(text), &[a], 1).unwrap();
+    let s = &data.sampling[0];
+    assert_eq!(s.rows, 400);
+    assert_eq!(s.skipped_ticks, 8);
+    assert_eq!(s.stale_rows, [60, 160, 260, 360]);
+    let warnings: Vec<String> = data.warnings.iter().map(ToString::to_string).collect();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.contains("4 rows (1.0 %, the first at line 62)")),
+        "{warnings:?}"
+    );
+    assert!(
+        warnings.iter().any(|w| w.contains("8 skipped ticks")),
+        "{warnings:?}"
+    );
+    // not repaired: the stale value is still there (before resampling onto the grid)
+    assert_eq!(data.samples(), 400);
+}

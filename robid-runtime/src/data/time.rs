@@ -21,6 +21,24 @@ pub enum Warning {
         max_step: f64,
         /// Step of the uniform grid (s).
         step: f64,
+        /// Median step (s).
+        median_step: f64,
+        /// RMS deviation of the regular steps from the median (s).
+        jitter: f64,
+        /// Ticks skipped by steps of at least 1.5 median steps.
+        skipped_ticks: usize,
+    },
+    /// Rows that look like an old sample written again (see [`super::Sampling`]), more
+    /// than [`super::STALE_SHARE`] of the file.
+    StaleRows {
+        /// The file.
+        path: PathBuf,
+        /// How many.
+        stale: usize,
+        /// Rows of the file.
+        rows: usize,
+        /// The file line of the first.
+        first_line: u64,
     },
     /// Files joined by time only overlap partly; samples outside the overlap were dropped.
     PartialOverlap {
@@ -39,13 +57,29 @@ impl fmt::Display for Warning {
                 min_step,
                 max_step,
                 step,
+                median_step,
+                jitter,
+                skipped_ticks,
             } => write!(
                 f,
-                "{}: irregular time steps ({:.6} s to {:.6} s); resampled onto a uniform grid of {:.6} s by linear interpolation",
+                "{}: irregular time steps ({:.6} s to {:.6} s, median {:.6} s, jitter {:.2e} s, {skipped_ticks} skipped ticks); resampled onto a uniform grid of {:.6} s by linear interpolation (robid inspect shows the sampling)",
                 path.display(),
                 min_step,
                 max_step,
+                median_step,
+                jitter,
                 step
+            ),
+            Warning::StaleRows {
+                path,
+                stale,
+                rows,
+                first_line,
+            } => write!(
+                f,
+                "{}: {stale} rows ({:.1} %, the first at line {first_line}) repeat the previous row and are followed by a step that catches up: an old sample written again by the logger. Velocities and accelerations see a stop and a jump there; the low-pass smooths a few of them, but many bias the fit: fix the logger (robid inspect lists the sampling)",
+                path.display(),
+                100.0 * *stale as f64 / (*rows).max(1) as f64
             ),
             Warning::PartialOverlap { path, dropped } => write!(
                 f,
@@ -86,12 +120,18 @@ pub fn regularity(t: &[f64], path: &Path) -> (f64, Option<Warning>) {
         hi = hi.max(d);
     }
     let irregular = (hi - step).max(step - lo) > IRREGULAR_TOLERANCE * step;
-    let warning = irregular.then(|| Warning::IrregularTime {
-        path: path.to_path_buf(),
-        min_step: lo,
-        max_step: hi,
-        step,
-    });
+    let warning = irregular
+        .then(|| super::sampling::step_statistics(t))
+        .flatten()
+        .map(|s| Warning::IrregularTime {
+            path: path.to_path_buf(),
+            min_step: lo,
+            max_step: hi,
+            step,
+            median_step: s.median,
+            jitter: s.jitter,
+            skipped_ticks: s.skipped_ticks,
+        });
     (step, warning)
 }
 

@@ -1,5 +1,5 @@
 //! Signal processing: zero-phase low-pass filters, differentiation, decimation and
-//! removal of samples near rest (docs/identification.md#signal-processing).
+//! removal of samples near rest, spectra (docs/identification.md#signal-processing).
 
 mod decimate;
 mod design;
@@ -7,6 +7,7 @@ mod diff;
 mod rest;
 mod signals;
 mod sos;
+mod spectrum;
 
 pub use decimate::{Decimator, split_factor};
 pub use design::{MIN_CUTOFF, butterworth, butterworth_hz, chebyshev1};
@@ -14,3 +15,4 @@ pub use diff::central_difference;
 pub use rest::moving_samples;
 pub use signals::Signals;
 pub use sos::Sos;
+pub use spectrum::{MIN_SPECTRUM_SAMPLES, Spectrum};
