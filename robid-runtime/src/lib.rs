@@ -27,6 +27,8 @@ pub mod excite;
 #[cfg(feature = "std")]
 pub mod feasible;
 #[cfg(feature = "std")]
+pub mod inspect;
+#[cfg(feature = "std")]
 pub mod limits;
 #[cfg(feature = "std")]
 pub mod nelder_mead;

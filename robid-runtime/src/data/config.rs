@@ -21,7 +21,7 @@
 //! [[extra_column]]               # see `ExtraColumn`
 //!
 //! [processing]
-//! lowpass = { cutoff = 25.0, order = 4, signals = ["q"] }   # Hz, zero-phase Butterworth
+//! lowpass = { cutoff = 25.0, order = 4, signals = ["q"] }   # Hz or "auto", zero-phase Butterworth
 //! velocity = "auto"              # "data", "differentiate" or "auto" (data when given)
 //! acceleration = "auto"
 //! trim = 20                      # samples dropped at each end of the range (at least one
@@ -54,7 +54,7 @@
 //! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, magnitude 1e-12 to 1e6 |
 //! | `drive.position_coupling`, `drive.torque_coupling` | finite, magnitude <= 1e6, invertible |
 //! | `drive.rotor.*`, `extra_column[i].terms[k].coefficient` | finite, magnitude <= 1e6 |
-//! | `processing.lowpass.cutoff` | 0 < cutoff < the Nyquist frequency of the data |
+//! | `processing.lowpass.cutoff` | 0 < cutoff < the Nyquist frequency of the data, or `"auto"` |
 //! | `processing.lowpass.order` | 1 to 20 |
 //! | `processing.decimation` | factors >= 1, product <= 10,000 |
 //! | `processing.trim` | <= 50,000,000 |
@@ -282,12 +282,69 @@ pub enum Signal {
     Tau,
 }
 
+/// A low-pass cutoff: a frequency, or `"auto"`, chosen from the estimation data by
+/// [`crate::inspect::suggest_cutoff`] (docs/identification.md#choosing-the-cutoff).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Cutoff {
+    /// The cutoff in Hz.
+    Hz(f64),
+    /// Chosen from the data.
+    Auto,
+}
+
+impl Cutoff {
+    /// The frequency, when one is given.
+    pub fn hz(self) -> Option<f64> {
+        match self {
+            Cutoff::Hz(c) => Some(c),
+            Cutoff::Auto => None,
+        }
+    }
+}
+
+impl Serialize for Cutoff {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        match self {
+            Cutoff::Hz(c) => s.serialize_f64(*c),
+            Cutoff::Auto => s.serialize_str("auto"),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Cutoff {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = Cutoff;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a cutoff in Hz (a number) or \"auto\"")
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> std::result::Result<Cutoff, E> {
+                Ok(Cutoff::Hz(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> std::result::Result<Cutoff, E> {
+                Ok(Cutoff::Hz(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> std::result::Result<Cutoff, E> {
+                Ok(Cutoff::Hz(v as f64))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<Cutoff, E> {
+                match v {
+                    "auto" => Ok(Cutoff::Auto),
+                    _ => Err(E::invalid_value(serde::de::Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
+}
+
 /// Zero-phase Butterworth low-pass.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Lowpass {
-    /// Cutoff in Hz.
-    pub cutoff: f64,
+    /// Cutoff in Hz, or `"auto"`.
+    pub cutoff: Cutoff,
     /// Filter order (applied twice by the forward-backward pass).
     #[serde(default = "four")]
     pub order: usize,
@@ -587,10 +644,12 @@ impl Config {
         }
         let p = &self.processing;
         if let Some(lp) = &p.lowpass {
-            if !(lp.cutoff > 0.0 && lp.cutoff.is_finite()) {
+            if let Cutoff::Hz(c) = lp.cutoff
+                && !(c > 0.0 && c.is_finite())
+            {
                 return bad(
                     "processing.lowpass.cutoff",
-                    format!("{} Hz must be positive", num(lp.cutoff)),
+                    format!("{} Hz must be positive", num(c)),
                 );
             }
             if !(1..=20).contains(&lp.order) {
@@ -792,7 +851,7 @@ method = "wls"
         // a config built in code is named by its fields, never as a file
         let mut code = Config::default();
         code.processing.lowpass = Some(Lowpass {
-            cutoff: -1.0,
+            cutoff: Cutoff::Hz(-1.0),
             order: 4,
             signals: vec![Signal::Q],
         });

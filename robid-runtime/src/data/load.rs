@@ -225,15 +225,20 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         }
     };
 
-    if let Some(lp) = &config.processing.lowpass {
+    if let Some(cutoff) = config
+        .processing
+        .lowpass
+        .as_ref()
+        .and_then(|lp| lp.cutoff.hz())
+    {
         let nyquist = 0.5 / sample_time;
         let min = crate::signal::MIN_CUTOFF * nyquist;
-        if !(lp.cutoff < nyquist && lp.cutoff >= min) {
+        if !(cutoff < nyquist && cutoff >= min) {
             return Err(config.key_error(
                 "processing.lowpass.cutoff",
                 format!(
                     "{} Hz is outside [{}, {}) Hz for data sampled at {} Hz (below the Nyquist frequency, above {:e} of it so that the filter can be represented); choose a cutoff in that range",
-                    crate::error::num(lp.cutoff),
+                    crate::error::num(cutoff),
                     crate::error::num(min),
                     crate::error::num(nyquist),
                     crate::error::num(1.0 / sample_time),

@@ -15,6 +15,7 @@ use crate::estimate::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, Observation, QualityWarning,
     dominated_columns, energy, model_energy_observation, ols, rls, wls,
 };
+use crate::inspect::CutoffSuggestion;
 use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
 use crate::pipeline::{Prepared, decimator, observe};
 use crate::validate::{Fit, Prediction, UsedRows};
@@ -35,6 +36,9 @@ pub struct Identification {
     pub warnings: Vec<Warning>,
     /// The rows of the data used for estimation.
     pub used: UsedRows,
+    /// The cutoff chosen for `cutoff = "auto"` (validation data get their own unless the
+    /// config is resolved first with [`crate::inspect::resolve_cutoff`]).
+    pub cutoff: Option<CutoffSuggestion>,
 }
 
 /// Builds the observation of a data set: prepare (with `processing.range`), regressor,
@@ -247,6 +251,7 @@ pub fn identify(
         estimate,
         warnings: data.warnings.clone(),
         used,
+        cutoff: rows.auto_cutoff.clone(),
     })
 }
 

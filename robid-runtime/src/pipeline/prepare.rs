@@ -10,8 +10,9 @@
 //! record, the larger of the two counts is dropped there (they overlap, they do not add).
 
 use crate::DataError;
-use crate::data::{Config, Dataset, Derivative, Signal};
+use crate::data::{Config, Cutoff, Dataset, Derivative, Signal};
 use crate::error::{Error, Result};
+use crate::inspect::{CutoffSuggestion, suggest_cutoff};
 use crate::signal::{Signals, Sos, butterworth_hz, central_difference};
 
 /// Joint signals ready for the regressor.
@@ -80,8 +81,17 @@ fn filter_all(sos: Option<&Sos>, pad: usize, x: &Signals) -> Result<Signals> {
 /// low-pass (0 without one).
 pub fn automatic_trim(config: &Config, sample_time: f64) -> Result<usize> {
     match &config.processing.lowpass {
-        Some(lp) => Ok(butterworth_hz(lp.order, lp.cutoff, 1.0 / sample_time)?
-            .settling_samples(SETTLING_TOLERANCE, 1 << 20)),
+        Some(lp) => {
+            let cutoff = lp.cutoff.hz().ok_or_else(|| {
+                Error::setting(
+                    "Config",
+                    "processing.lowpass.cutoff",
+                    "\"auto\" is chosen from data: resolve it first (inspect::resolve_cutoff)",
+                )
+            })?;
+            Ok(butterworth_hz(lp.order, cutoff, 1.0 / sample_time)?
+                .settling_samples(SETTLING_TOLERANCE, 1 << 20))
+        }
         None => Ok(0),
     }
 }
@@ -108,6 +118,8 @@ pub(crate) struct PreparedRows {
     /// samples, when `[processing] lowpass` filters the torque: the fit is also reported
     /// against it.
     pub(crate) unfiltered_tau: Option<Signals>,
+    /// The cutoff chosen for `cutoff = "auto"`.
+    pub(crate) auto_cutoff: Option<CutoffSuggestion>,
 }
 
 /// Which sample range of `[processing]` applies.
@@ -133,9 +145,17 @@ impl Rows {
 pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Result<PreparedRows> {
     let p = &config.processing;
     let dt = data.sample_time;
+    let auto_cutoff = match &p.lowpass {
+        Some(lp) if lp.cutoff == Cutoff::Auto => Some(suggest_cutoff(data)?),
+        _ => None,
+    };
     let sos = match &p.lowpass {
-        Some(lp) => Some(
-            butterworth_hz(lp.order, lp.cutoff, 1.0 / dt).map_err(|e| match e {
+        Some(lp) => Some({
+            let cutoff = auto_cutoff
+                .as_ref()
+                .map_or(lp.cutoff.hz(), |s| Some(s.cutoff));
+            let cutoff = cutoff.unwrap_or_default();
+            butterworth_hz(lp.order, cutoff, 1.0 / dt).map_err(|e| match e {
                 Error::Setting { key, problem, .. } => Error::setting(
                     "Config",
                     if key == "order" {
@@ -145,13 +165,13 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
                     },
                     format!(
                         "{problem} (cutoff {} Hz, data sampled at {:.6} Hz)",
-                        lp.cutoff,
+                        cutoff,
                         1.0 / dt
                     ),
                 ),
                 e => e,
-            })?,
-        ),
+            })?
+        }),
         None => None,
     };
     let (pad, settle) = match &sos {
@@ -257,6 +277,7 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
         prepared,
         kept: start..end,
         unfiltered_tau: unfiltered_tau.map(|t| t.range(start..end)),
+        auto_cutoff,
     })
 }
 

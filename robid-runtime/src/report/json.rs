@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, QualityWarning};
+use crate::inspect::CutoffSuggestion;
 use crate::pipeline::Identification;
 use crate::validate::{Fit, Prediction, UsedRows};
 
@@ -126,6 +127,9 @@ pub struct Report {
     pub fit: FitEntry,
     /// Fits on validation data.
     pub validation: Vec<ValidationEntry>,
+    /// The low-pass cutoff chosen for `cutoff = "auto"`, with its reason (null otherwise).
+    #[serde(default)]
+    pub cutoff: Option<CutoffSuggestion>,
     /// What to know before trusting the result (ill conditioning, parameters with a
     /// relative standard deviation above 100 %, an outlier, a validation that repeats the
     /// fit; docs/identification.md#quality-warnings).
@@ -172,6 +176,7 @@ impl Report {
             parameters,
             fit: fit.into(),
             validation: Vec::new(),
+            cutoff: None,
             warnings: estimate.warnings.iter().map(ReportWarning::from).collect(),
         }
     }
@@ -184,6 +189,7 @@ impl Report {
         let mut report = Self::new(&id.robot, &id.estimate, &id.fit, expressions);
         report.estimation = Some(id.used.clone());
         report.fit = labelled_fit(&id.prediction);
+        report.cutoff = id.cutoff.clone();
         report
     }
 

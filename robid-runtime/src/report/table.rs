@@ -43,6 +43,9 @@ pub fn text_table(report: &Report) -> String {
             .collect::<Vec<_>>()
             .join(" ")
     };
+    if let Some(c) = &report.cutoff {
+        let _ = writeln!(s, "low-pass cutoff (auto): {} Hz: {}", c.cutoff, c.reason);
+    }
     let f = &report.fit;
     let _ = writeln!(
         s,

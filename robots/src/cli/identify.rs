@@ -12,6 +12,7 @@
 use std::path::{Path, PathBuf};
 
 use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load};
+use robid_runtime::inspect::resolve_cutoff;
 use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, plot_torques, text_table};
 use robid_symbolic::Robot;
@@ -104,12 +105,16 @@ fn compiled_reference(robot: &Robot) -> Option<Chosen> {
     })
 }
 
-/// The data files: `--data`, else the `file` of each `[[source]]` of the config
-/// (resolved against the config's folder).
-fn data_files(args: &Args, config: &Config) -> Result<Vec<PathBuf>, Error> {
+/// The data files: `data` (`--data`), else the `file` of each `[[source]]` of the config
+/// read from `config_path` (resolved against the config's folder).
+pub(crate) fn data_files(
+    data: &[PathBuf],
+    config_path: Option<&Path>,
+    config: &Config,
+) -> Result<Vec<PathBuf>, Error> {
     let per_set = config.sources.len().max(1);
-    if args.data.is_empty() {
-        let Some(path) = &args.config else {
+    if data.is_empty() {
+        let Some(path) = config_path else {
             return Err(
                 "--data: give the data file (columns t,q1..,qd1..,qdd1..,tau1.., as \
                         `robid simulate` writes), or a --config whose [[source]] tables name \
@@ -134,8 +139,8 @@ fn data_files(args: &Args, config: &Config) -> Result<Vec<PathBuf>, Error> {
             })
             .collect();
     }
-    if args.data.len() != per_set {
-        let fix = match &args.config {
+    if data.len() != per_set {
+        let fix = match config_path {
             Some(path) => format!(
                 "{} has {per_set} [[source]] tables; give one file per table",
                 path.display()
@@ -144,9 +149,9 @@ fn data_files(args: &Args, config: &Config) -> Result<Vec<PathBuf>, Error> {
                      t,q1..,qd1..,qdd1..,tau1.. (or a --config with one [[source]] per file)"
                 .to_string(),
         };
-        return Err(format!("--data: {} files given; {fix}", args.data.len()).into());
+        return Err(format!("--data: {} files given; {fix}", data.len()).into());
     }
-    Ok(args.data.clone())
+    Ok(data.to_vec())
 }
 
 /// Runs the identification and prints the table.
@@ -159,7 +164,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Some(p) => Config::from_file(p)?,
         None => Config::default_mapping(),
     };
-    let data = data_files(args, &config)?;
+    let data = data_files(&args.data, args.config.as_deref(), &config)?;
     let mut inputs: Vec<&Path> = vec![robot];
     inputs.extend(args.config.as_deref());
     inputs.extend(data.iter().map(PathBuf::as_path));
@@ -199,8 +204,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for w in &data.warnings {
         out::warn(format_args!("warning: {w}"));
     }
+    // "auto" is chosen once, on the estimation data, and used for the validation data too
+    let auto = resolve_cutoff(&mut config, &data).map_err(|e| config.locate(e))?;
     let id = identify(model, &data, &config)?;
     let mut report = Report::from_identification(&id, |n| chosen.expression(n));
+    report.cutoff = auto;
     let mut predictions = vec![id.prediction.clone()];
     for group in args.validate.chunks(per_set) {
         let d = load(&config, group, model.dof())?;

@@ -10,6 +10,7 @@ mod feasible;
 mod files;
 mod flags;
 mod identify;
+mod inspect;
 mod model;
 mod out;
 mod simulate;
@@ -39,6 +40,9 @@ enum Command {
     /// exceeds 1e4, a parameter's relative standard deviation exceeds 100 %, a few rows
     /// dominate a parameter's column (an outlier), or a validation reuses estimation rows.
     Identify(identify::Args),
+    /// What a log holds before identifying from it: sampling, bandwidth and noise per
+    /// joint, saturation, time at rest, and a suggested low-pass cutoff with its reason.
+    Inspect(inspect::Args),
     /// Inverse dynamics row by row from a parameter file and a state file.
     ///
     /// Parameter values lie within +-1e6 (SI units) and states within +-1e6; a torque that
@@ -77,6 +81,7 @@ pub(crate) fn run() -> ExitCode {
         Command::Model(args) => model::run(&args),
         Command::Demo => demo::run(),
         Command::Identify(args) => identify::run(&args),
+        Command::Inspect(args) => inspect::run(&args),
         Command::Torques(args) => torques::run(&args),
         Command::Emit(args) => emit::run(&args),
         Command::Bench(args) => bench::run(&args),

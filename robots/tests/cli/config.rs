@@ -107,3 +107,48 @@ fn the_example_config_is_printed_and_works() {
     let o = robid(&["identify", "--example-config", "--method", "ols"]);
     assert!(!o.status.success());
 }
+
+/// `robid inspect` reads the same config and files as `identify` and suggests a cutoff;
+/// `cutoff = "auto"` in the config makes `identify` use that cutoff and say so, and the
+/// JSON report carries it.
+#[test]
+fn inspect_suggests_the_cutoff_that_auto_uses() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    write(d, "run.csv", &log());
+    let auto = CONFIG
+        .replace("cutoff = 5.0", "cutoff = \"auto\"")
+        .replace("[[source]]\n", "[[source]]\nfile = \"run.csv\"\n");
+    let config = write(d, "auto.toml", &auto);
+    let (robot, config) = (robot.to_str().unwrap(), config.to_str().unwrap());
+    let o = robid(&["inspect", robot, "--config", config]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("suggested low-pass cutoff:"), "{text}");
+    let o = robid(&["inspect", robot, "--config", config, "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let cutoff = json["cutoff"]["cutoff"].as_f64().unwrap();
+    assert!(cutoff > 0.0 && cutoff < 250.0, "{cutoff}");
+    assert_eq!(json["joints"].as_array().unwrap().len(), 1);
+    assert_eq!(json["sampling"][0]["rows"], 3000);
+    let report = d.join("report.json");
+    let o = robid(&[
+        "identify",
+        robot,
+        "--config",
+        config,
+        "--json",
+        report.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains(&format!("low-pass cutoff (auto): {cutoff} Hz")),
+        "{}",
+        stdout(&o)
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
+    assert_eq!(report["cutoff"]["cutoff"].as_f64(), Some(cutoff));
+}

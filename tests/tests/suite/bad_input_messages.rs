@@ -13,7 +13,7 @@ use tests::fuzz_data;
 use std::path::PathBuf;
 
 use robid_runtime::Error;
-use robid_runtime::data::{Config, Lowpass, Signal, load};
+use robid_runtime::data::{Config, Cutoff, Lowpass, Signal, load};
 use robid_runtime::estimate::QualityWarning;
 use robid_runtime::excite::FourierDesign;
 use robid_runtime::pipeline::identify;
@@ -192,7 +192,7 @@ fn config_keys_are_named_by_file_line_and_settings_by_their_field() {
     );
     let mut code = Config::default();
     code.processing.lowpass = Some(Lowpass {
-        cutoff: 0.0,
+        cutoff: Cutoff::Hz(0.0),
         order: 4,
         signals: vec![Signal::Q],
     });

@@ -1,0 +1,442 @@
+//! Diagnostics of a data set before identification (docs/identification.md#choosing-the-cutoff):
+//! per joint the bandwidth and noise of positions and torques, saturation and time at
+//! rest; per file the sampling; and a low-pass cutoff with its reason, which
+//! `cutoff = "auto"` in a config uses.
+//!
+//! The cutoff rule. Accelerations are differentiated twice from the positions, so the
+//! low-pass must pass the motion and stop the noise. The motion's bandwidth is where the
+//! positions hold [`MOTION_SHARE`] of their power (the largest over the joints that
+//! move); a zero-phase Butterworth at [`MOTION_MARGIN`] times that frequency passes the
+//! motion's harmonics undistorted (an order-4 filter applied forward and backward keeps
+//! 99.6 % of the amplitude at a fifth of its cutoff). When some moving joint's position
+//! spectrum meets its noise floor (it falls below [`NOISE_RATIO`] times the floor)
+//! below that, the cutoff moves down to there, but not below [`MIN_MARGIN`] times the
+//! motion's bandwidth.
+
+use serde::{Deserialize, Serialize};
+
+use crate::data::{Config, Cutoff, Dataset, Sampling};
+use crate::error::{Error, Result};
+use crate::signal::{Signals, Spectrum, butterworth_hz, central_difference};
+
+/// Share of the positions' power that defines the motion's bandwidth.
+pub const MOTION_SHARE: f64 = 0.999;
+/// Cutoff over motion bandwidth.
+pub const MOTION_MARGIN: f64 = 5.0;
+/// The least cutoff over motion bandwidth, however noisy the positions.
+pub const MIN_MARGIN: f64 = 2.0;
+/// A position spectrum this many times its noise floor is still signal.
+pub const NOISE_RATIO: f64 = 100.0;
+/// Share of a torque's power that defines its bandwidth.
+pub const TORQUE_SHARE: f64 = 0.99;
+/// A joint moves when its position's standard deviation is this many times its noise.
+pub const MOVING_RATIO: f64 = 10.0;
+/// A torque within this share of its extreme value counts as at the extreme.
+pub const EXTREME_TOLERANCE: f64 = 1e-3;
+/// The least standard deviation of a moving position (rad or m).
+pub const MIN_MOTION: f64 = 1e-9;
+/// Velocity below which a joint is at rest when the config gives none (rad/s or m/s).
+pub const DEFAULT_REST_VELOCITY: f64 = 0.05;
+
+/// A suggested low-pass cutoff and why.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CutoffSuggestion {
+    /// The cutoff (Hz).
+    pub cutoff: f64,
+    /// The motion's bandwidth (Hz): where the positions hold [`MOTION_SHARE`] of their power.
+    pub motion_bandwidth: f64,
+    /// The joint (1-based) with the widest motion.
+    pub joint: usize,
+    /// One sentence for people.
+    pub reason: String,
+}
+
+/// What the data show about one joint.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JointReport {
+    /// Joint number (1-based).
+    pub joint: usize,
+    /// Whether the joint moves (its position's spread is [`MOVING_RATIO`] times its noise).
+    pub moves: bool,
+    /// Smallest and largest position (rad or m).
+    pub position_range: [f64; 2],
+    /// Where the detrended position holds [`MOTION_SHARE`] of its power (Hz).
+    pub position_bandwidth: f64,
+    /// The highest frequency where the position spectrum is [`NOISE_RATIO`] times its
+    /// noise floor (Hz).
+    pub position_signal_top: f64,
+    /// RMS of the position noise, from the spectrum's floor (rad or m).
+    pub position_noise: f64,
+    /// Where the detrended torque holds [`TORQUE_SHARE`] of its power (Hz).
+    pub torque_bandwidth: f64,
+    /// RMS of the torque noise, from the spectrum's floor (N m or N).
+    pub torque_noise: f64,
+    /// Share of samples whose torque lies within [`EXTREME_TOLERANCE`] of the largest
+    /// or the smallest torque of the record (a clipped signal holds many).
+    pub torque_at_extremes: f64,
+    /// Share of samples whose torque magnitude is at least 98 % of the description's
+    /// torque limit, when it has one.
+    pub torque_at_limit: Option<f64>,
+    /// Share of samples at rest (|velocity| below the rest velocity).
+    pub at_rest: f64,
+}
+
+/// The diagnostics of a data set.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Inspection {
+    /// The data set's name.
+    pub name: String,
+    /// Sample rate after loading (Hz).
+    pub sample_rate: f64,
+    /// Samples.
+    pub samples: usize,
+    /// Each file's sampling.
+    pub sampling: Vec<Sampling>,
+    /// Per joint.
+    pub joints: Vec<JointReport>,
+    /// The suggested low-pass cutoff.
+    pub cutoff: CutoffSuggestion,
+    /// The rest velocity used (rad/s or m/s per joint).
+    pub rest_velocity: Vec<f64>,
+}
+
+/// The spectrum of one signal, or the error naming it.
+fn spectrum(x: &[f64], rate: f64, what: &str, joint: usize) -> Result<Spectrum> {
+    Spectrum::welch(x, rate).ok_or_else(|| Error::TooFewSamples {
+        context: format!("the spectrum of the {what} of joint {joint}"),
+        found: x.len(),
+        required: crate::signal::MIN_SPECTRUM_SAMPLES,
+        hint: "a spectrum needs a longer record",
+    })
+}
+
+/// The suggested low-pass cutoff for the positions of `data` (see the module's rule).
+pub fn suggest_cutoff(data: &Dataset) -> Result<CutoffSuggestion> {
+    let rate = 1.0 / data.sample_time;
+    let mut widest: Option<(f64, usize)> = None;
+    let mut noisiest: Option<(f64, usize)> = None;
+    for (j, q) in data.q.joints().enumerate() {
+        let s = spectrum(q, rate, "position", j + 1)?;
+        if !moves(&s) {
+            continue;
+        }
+        let b = s.bandwidth(MOTION_SHARE);
+        if widest.is_none_or(|(w, _)| b > w) {
+            widest = Some((b, j + 1));
+        }
+        let top = s.above_floor(NOISE_RATIO);
+        if noisiest.is_none_or(|(t, _)| top < t) {
+            noisiest = Some((top, j + 1));
+        }
+    }
+    let Some((motion, joint)) = widest else {
+        return Err(Error::setting(
+            "Config",
+            "processing.lowpass.cutoff",
+            format!(
+                "\"auto\" needs motion, and no joint of {} moves beyond its noise; give the cutoff in Hz",
+                data.name
+            ),
+        ));
+    };
+    let nyquist = rate / 2.0;
+    let mut cutoff = MOTION_MARGIN * motion;
+    let mut reason = format!(
+        "the positions hold {:.1} % of their power below {} Hz (joint {joint}); {MOTION_MARGIN} times that passes the motion undistorted",
+        100.0 * MOTION_SHARE,
+        two_digits(motion)
+    );
+    if let Some((top, noisy)) = noisiest
+        && top < cutoff
+    {
+        cutoff = top.max(MIN_MARGIN * motion);
+        reason += &format!(
+            ", lowered to where joint {noisy}'s position spectrum meets its noise floor ({} Hz; at least {MIN_MARGIN} times the motion)",
+            two_digits(top)
+        );
+    }
+    let highest = 0.8 * nyquist;
+    if cutoff > highest {
+        cutoff = highest;
+        reason += &format!(
+            ", capped at 0.8 times the Nyquist frequency ({} Hz)",
+            two_digits(nyquist)
+        );
+    }
+    let lowest = crate::signal::MIN_CUTOFF * nyquist * 1.01;
+    Ok(CutoffSuggestion {
+        cutoff: two_digits(cutoff).max(lowest),
+        motion_bandwidth: motion,
+        joint,
+        reason,
+    })
+}
+
+/// Replaces `cutoff = "auto"` in `config` by the cutoff suggested for `data` and returns
+/// the suggestion (`None` when the config gives a frequency or no low-pass). Resolve it
+/// once on the estimation data so that validation data are filtered the same way.
+pub fn resolve_cutoff(config: &mut Config, data: &Dataset) -> Result<Option<CutoffSuggestion>> {
+    match &mut config.processing.lowpass {
+        Some(lp) if lp.cutoff == Cutoff::Auto => {
+            let s = suggest_cutoff(data)?;
+            lp.cutoff = Cutoff::Hz(s.cutoff);
+            Ok(Some(s))
+        }
+        _ => Ok(None),
+    }
+}
+
+/// Whether a position with spectrum `s` moves beyond its noise (and beyond rounding: a
+/// constant signal's detrended residue is of the order of 1e-17).
+fn moves(s: &Spectrum) -> bool {
+    let spread = s.power().sqrt();
+    spread > MOVING_RATIO * s.noise_rms() && spread > MIN_MOTION
+}
+
+/// `x` rounded to two significant digits (the double nearest the decimal, so that it
+/// prints as written: 2.9, not 2.9000000000000004).
+fn two_digits(x: f64) -> f64 {
+    if !(x > 0.0 && x.is_finite()) {
+        return x;
+    }
+    format!("{x:.1e}").parse().unwrap_or(x)
+}
+
+/// The diagnostics of `data`; `config` gives the rest velocity (default
+/// [`DEFAULT_REST_VELOCITY`]), `torque_limits` the description's limits where it has them.
+pub fn inspect(
+    data: &Dataset,
+    config: &Config,
+    torque_limits: &[Option<f64>],
+) -> Result<Inspection> {
+    let rate = 1.0 / data.sample_time;
+    let dof = data.dof();
+    let rest_velocity = match &config.processing.rest_velocity {
+        Some(v) => v.values(dof, "processing.rest_velocity")?,
+        None => vec![DEFAULT_REST_VELOCITY; dof],
+    };
+    let cutoff = suggest_cutoff(data)?;
+    let velocity = match &data.qd {
+        Some(v) => v.clone(),
+        None => {
+            let sos = butterworth_hz(4, cutoff.cutoff, rate)?;
+            data.q
+                .try_map(|q| Ok(central_difference(&sos.filtfilt(q)?, data.sample_time)))?
+        }
+    };
+    let joints = (0..dof)
+        .map(|j| {
+            joint_report(
+                data,
+                &velocity,
+                j,
+                rest_velocity[j],
+                torque_limits.get(j).copied().flatten(),
+            )
+        })
+        .collect::<Result<_>>()?;
+    Ok(Inspection {
+        name: data.name.clone(),
+        sample_rate: rate,
+        samples: data.samples(),
+        sampling: data.sampling.clone(),
+        joints,
+        cutoff,
+        rest_velocity,
+    })
+}
+
+fn joint_report(
+    data: &Dataset,
+    velocity: &Signals,
+    j: usize,
+    rest: f64,
+    limit: Option<f64>,
+) -> Result<JointReport> {
+    let rate = 1.0 / data.sample_time;
+    let (q, tau) = (&data.q[j], &data.tau[j]);
+    let sq = spectrum(q, rate, "position", j + 1)?;
+    let st = spectrum(tau, rate, "torque", j + 1)?;
+    let n = q.len() as f64;
+    let (lo, hi) = q
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(*v), b.max(*v))
+        });
+    let (tlo, thi) = tau
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(*v), b.max(*v))
+        });
+    let span = (thi - tlo).max(f64::MIN_POSITIVE);
+    let at_extremes = tau
+        .iter()
+        .filter(|v| {
+            (thi - **v) <= EXTREME_TOLERANCE * span || (**v - tlo) <= EXTREME_TOLERANCE * span
+        })
+        .count() as f64
+        / n;
+    let at_limit = limit.map(|l| tau.iter().filter(|v| v.abs() >= 0.98 * l).count() as f64 / n);
+    let at_rest = velocity[j].iter().filter(|v| v.abs() < rest).count() as f64 / n;
+    Ok(JointReport {
+        joint: j + 1,
+        moves: moves(&sq),
+        position_range: [lo, hi],
+        position_bandwidth: sq.bandwidth(MOTION_SHARE),
+        position_signal_top: sq.above_floor(NOISE_RATIO),
+        position_noise: sq.noise_rms(),
+        torque_bandwidth: st.bandwidth(TORQUE_SHARE),
+        torque_noise: st.noise_rms(),
+        torque_at_extremes: at_extremes,
+        torque_at_limit: at_limit,
+        at_rest,
+    })
+}
+
+impl Inspection {
+    /// A table for people.
+    pub fn text(&self) -> String {
+        use std::fmt::Write as _;
+        let mut s = format!(
+            "{}: {} samples at {:.1} Hz\n",
+            self.name, self.samples, self.sample_rate
+        );
+        for f in &self.sampling {
+            let _ = writeln!(s, "  {}", f.summary());
+        }
+        let _ = writeln!(
+            s,
+            "\n  j  moves  position range        bandwidth  signal to  noise       torque bw  torque noise  at extremes  at limit  at rest\n                                   (99.9 %)   (100x floor)  (position)  (99 %)     (RMS)"
+        );
+        for r in &self.joints {
+            let limit = r
+                .torque_at_limit
+                .map_or_else(|| "-".to_string(), |v| format!("{:.1} %", 100.0 * v));
+            let _ = writeln!(
+                s,
+                "{:>3}  {:<5}  [{:>8.3}, {:>8.3}]  {:>7.2} Hz  {:>7.1} Hz  {:>9.2e}  {:>7.1} Hz  {:>11.2e}  {:>9.1} %  {:>8}  {:>5.1} %",
+                r.joint,
+                if r.moves { "yes" } else { "no" },
+                r.position_range[0],
+                r.position_range[1],
+                r.position_bandwidth,
+                r.position_signal_top,
+                r.position_noise,
+                r.torque_bandwidth,
+                r.torque_noise,
+                100.0 * r.torque_at_extremes,
+                limit,
+                100.0 * r.at_rest
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\nsuggested low-pass cutoff: {} Hz ({})",
+            self.cutoff.cutoff, self.cutoff.reason
+        );
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    /// Two joints: one moving (0.5 and 2 Hz, plus weak vibrations from 3 to 30 Hz that
+    /// hold 3e-7 of the power) with white noise of standard deviation `noise`, one at rest
+    /// (noise only).
+    fn data(noise: f64) -> Dataset {
+        let rate = 500.0;
+        let n = 30_000;
+        let mut rng = Rng::new(3);
+        let two_pi = 2.0 * std::f64::consts::PI;
+        let q0: Vec<f64> = (0..n)
+            .map(|k| {
+                let t = k as f64 / rate;
+                let vibration: f64 = (3..=30).map(|f| 1e-4 * (two_pi * f as f64 * t).sin()).sum();
+                (two_pi * 0.5 * t).sin()
+                    + 0.2 * (two_pi * 2.0 * t).sin()
+                    + vibration
+                    + noise * rng.normal()
+            })
+            .collect();
+        let q1: Vec<f64> = (0..n).map(|_| 1e-4 * rng.normal()).collect();
+        let tau: Vec<Vec<f64>> = vec![q0.iter().map(|q| 3.0 * q).collect(), vec![0.5; n]];
+        Dataset::new(
+            "test",
+            1.0 / rate,
+            Signals::new(vec![q0, q1]).unwrap(),
+            Signals::new(tau).unwrap(),
+        )
+        .unwrap()
+    }
+
+    /// The widest motion is the moving joint's; the vibrations stand above the noise up to
+    /// 30 Hz, so the cutoff is five times the motion's bandwidth; the resting joint is said
+    /// not to move and to be at rest.
+    #[test]
+    fn the_cutoff_is_five_times_the_motion() {
+        let d = data(1e-5);
+        let c = suggest_cutoff(&d).unwrap();
+        assert_eq!(c.joint, 1);
+        // 99.9 % of the power: the 2 Hz harmonic holds 3.8 % of it, so the bandwidth is
+        // on that line (within the Hann window's leakage)
+        assert!((c.motion_bandwidth - 2.0).abs() < 0.3, "{c:?}");
+        assert!(
+            (c.cutoff - two_digits(5.0 * c.motion_bandwidth)).abs() < 1e-12,
+            "{c:?}"
+        );
+        assert!(c.reason.contains("joint 1"), "{}", c.reason);
+        let i = inspect(&d, &Config::default(), &[Some(3.0), None]).unwrap();
+        assert!(i.joints[0].moves && !i.joints[1].moves);
+        assert!(
+            i.joints[1].at_rest > 0.99 && i.joints[0].at_rest < 0.1,
+            "{:?}",
+            i.joints
+        );
+        // torque 3 q peaks at 3.6 N m: above 98 % of a 3 N m limit for part of the time
+        let limit = i.joints[0].torque_at_limit.unwrap();
+        assert!(limit > 0.01 && limit < 0.5, "{limit}");
+        assert_eq!(i.joints[1].torque_at_limit, None);
+        // a constant torque sits at its extremes all the time
+        assert_eq!(i.joints[1].torque_at_extremes, 1.0);
+        assert!(i.text().contains("suggested low-pass cutoff"));
+    }
+
+    /// Noisy positions: the vibrations drown, the position spectrum meets its noise floor
+    /// just above the motion, and the cutoff follows it down, but not below twice the
+    /// motion.
+    #[test]
+    fn noise_lowers_the_cutoff() {
+        let clean = suggest_cutoff(&data(1e-5)).unwrap();
+        let noisy = suggest_cutoff(&data(3e-3)).unwrap();
+        assert!(noisy.cutoff < clean.cutoff, "{noisy:?} vs {clean:?}");
+        assert!(
+            noisy.cutoff >= 2.0 * noisy.motion_bandwidth - 0.1,
+            "{noisy:?}"
+        );
+        assert!(noisy.reason.contains("noise floor"), "{}", noisy.reason);
+    }
+
+    #[test]
+    fn no_motion_is_an_error_that_says_so() {
+        let n = 1000;
+        let d = Dataset::new(
+            "still",
+            0.01,
+            Signals::new(vec![vec![0.3; n]]).unwrap(),
+            Signals::new(vec![vec![1.0; n]]).unwrap(),
+        )
+        .unwrap();
+        let e = suggest_cutoff(&d).unwrap_err().to_string();
+        assert!(e.contains("no joint of still moves"), "{e}");
+    }
+
+    #[test]
+    fn two_significant_digits() {
+        assert_eq!(two_digits(18.34), 18.0);
+        assert_eq!(two_digits(0.1234), 0.12);
+        assert_eq!(two_digits(1234.0), 1200.0);
+    }
+}

@@ -1,0 +1,55 @@
+//! `robid inspect ROBOT.toml [--data FILE...] [--config CFG.toml] [--drive ..] [--json]`:
+//! what a log holds before identifying from it (robid_runtime::inspect): per file the
+//! sampling (median step, jitter, skipped ticks, stale rows), per joint the bandwidth and
+//! noise of positions and torques, torque saturation and time at rest, and a suggested
+//! low-pass cutoff with its reason (what `cutoff = "auto"` uses).
+
+use std::path::PathBuf;
+
+use robid_runtime::data::{Config, load};
+use robid_runtime::inspect::inspect;
+
+use super::description::{self, DriveFlag};
+use super::identify::data_files;
+use super::{Error, out};
+
+/// Arguments of `robid inspect`.
+#[derive(Debug, clap::Args)]
+pub(crate) struct Args {
+    /// Robot description file (TOML): the joint count and the torque limits.
+    robot: PathBuf,
+    #[command(flatten)]
+    drive: DriveFlag,
+    /// Data files, one per `[[source]]` of the config (default: the config's `file`s).
+    #[arg(long, num_args = 1..)]
+    data: Vec<PathBuf>,
+    /// Identification config (columns, units, drive chain; its rest velocity is used).
+    /// Without it the data need the columns `t,q1..,qd1..,qdd1..,tau1..`.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs the subcommand.
+pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    let robot = description::read(&args.robot, &args.drive)?;
+    let config = match &args.config {
+        Some(p) => Config::from_file(p)?,
+        None => Config::default_mapping(),
+    };
+    let files = data_files(&args.data, args.config.as_deref(), &config)?;
+    let data = load(&config, &files, robot.dof())?;
+    for w in &data.warnings {
+        out::warn(format_args!("warning: {w}"));
+    }
+    let limits: Vec<Option<f64>> = robot.joints().iter().map(|j| j.limits.torque).collect();
+    let inspection = inspect(&data, &config, &limits).map_err(|e| config.locate(e))?;
+    let text = if args.json {
+        serde_json::to_string_pretty(&inspection)? + "\n"
+    } else {
+        inspection.text()
+    };
+    Ok(out::print(&text)?)
+}
