@@ -526,6 +526,26 @@ impl Config {
         }
     }
 
+    /// The default mapping for a file with the column names `header`:
+    /// [`Config::default_mapping`] when it has velocities (`qd1`), else the mapping of a
+    /// log of positions and torques (`t,q1..qn,tau1..taun`, what `robid simulate
+    /// --columns positions` writes): velocities and accelerations differentiated from the
+    /// positions, low-passed at `cutoff = "auto"`.
+    pub fn default_mapping_for(header: &[String]) -> Self {
+        let mut config = Self::default_mapping();
+        if !header.iter().any(|n| n == "qd1") {
+            let source = &mut config.sources[0];
+            source.velocity = None;
+            source.acceleration = None;
+            config.processing.lowpass = Some(Lowpass {
+                cutoff: Cutoff::Auto,
+                order: four(),
+                signals: default_signals(),
+            });
+        }
+        config
+    }
+
     /// Resolves a path from the config against its folder.
     pub fn resolve(&self, file: &Path) -> PathBuf {
         match &self.base_dir {

@@ -25,7 +25,7 @@ pub(crate) use load::check_joints;
 pub use load::{load, load_config_files, load_from_config_file};
 pub use parameters::{INERTIA_TOLERANCE, PARAMETER_LIMIT, ParameterFile, ParameterTable};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};
-pub use table::{ColumnMapping, Table, read_columns, read_columns_from};
+pub use table::{ColumnMapping, Table, read_columns, read_columns_from, read_header};
 pub use time::{
     IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,
 };

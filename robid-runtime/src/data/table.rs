@@ -136,6 +136,32 @@ pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
     decode(bytes, path, names)
 }
 
+/// The column names of a CSV file (gzip-compressed or not): its first line that is not a
+/// `#` comment, split at commas and trimmed; reads no further.
+pub fn read_header(path: &Path) -> Result<Vec<String>> {
+    use std::io::BufRead as _;
+    let io = |source| {
+        Error::Data(DataError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    };
+    let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
+    let gzip = file.fill_buf().map_err(io)?.starts_with(&[0x1f, 0x8b]);
+    let reader: Box<dyn std::io::BufRead> = if gzip {
+        Box::new(std::io::BufReader::new(MultiGzDecoder::new(file)))
+    } else {
+        Box::new(file)
+    };
+    for line in reader.take(1 << 20).lines() {
+        let line = line.map_err(io)?;
+        if !line.trim_start().starts_with('#') {
+            return Ok(line.split(',').map(|n| n.trim().to_string()).collect());
+        }
+    }
+    Ok(Vec::new())
+}
+
 /// Reads the columns `names` from any reader (gzip-compressed or not); `path` is used
 /// in messages.
 pub fn read_columns_from(reader: impl Read, path: &Path, names: &[String]) -> Result<Table> {

@@ -247,6 +247,29 @@ impl Record {
         )
     }
 
+    /// Writes what a real log holds: every `every`-th sample of the time, the measured
+    /// positions and the torques (`t,q1..,tau1..`), or with `currents` the motor currents
+    /// `tau_j / currents[j]` (`t,q1..,i1..`; `currents` are the torque constants times
+    /// the gear ratios, N m per A at the joint). No velocities or accelerations: who reads
+    /// it must differentiate, as on real data.
+    pub fn write_log_csv(&self, path: &Path, every: usize, currents: Option<&[f64]>) -> Result<()> {
+        let n = self.trajectory.dof();
+        let every = every.max(1);
+        let mut header = vec!["t".to_string()];
+        header.extend(names("q", n));
+        header.extend(names(if currents.is_some() { "i" } else { "tau" }, n));
+        let rows = self.trajectory.samples().div_ceil(every);
+        write_rows(path, header, rows, |r, row| {
+            let k = r * every;
+            row.push(self.trajectory.t[k]);
+            row.extend(self.trajectory.q.joints().map(|v| v[k]));
+            match currents {
+                Some(c) => row.extend(self.tau.joints().zip(c).map(|(v, c)| v[k] / c)),
+                None => row.extend(self.tau.joints().map(|v| v[k])),
+            }
+        })
+    }
+
     /// The record as a data set for the identification pipeline (uniform sample time
     /// taken from the first two time stamps; velocities and accelerations included).
     pub fn dataset(&self, name: &str) -> Result<crate::data::Dataset> {

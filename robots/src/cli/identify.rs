@@ -11,7 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
-use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load};
+use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load, read_header};
 use robid_runtime::inspect::resolve_cutoff;
 use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, plot_torques, text_table};
@@ -36,7 +36,9 @@ pub(crate) struct Args {
     #[arg(long, num_args = 1..)]
     data: Vec<PathBuf>,
     /// Identification config (columns, units, drive chain, processing). Without it the
-    /// data need the columns `t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` (`robid simulate`).
+    /// data need the columns `t,q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` (`robid simulate`),
+    /// or `t,q1..qn,tau1..taun` (`robid simulate --columns positions`: differentiated,
+    /// with `cutoff = "auto"`).
     #[arg(long)]
     config: Option<PathBuf>,
     /// Files to predict with the identified parameters (as many per data set as --data).
@@ -105,6 +107,18 @@ fn compiled_reference(robot: &Robot) -> Option<Chosen> {
     })
 }
 
+/// The config read from `path`, else the default mapping for the header of the first data
+/// file (with velocities, or a log of positions and torques: see
+/// `Config::default_mapping_for`).
+pub(crate) fn config_for(path: Option<&Path>, data: &[PathBuf]) -> Result<Config, Error> {
+    Ok(match (path, data) {
+        (Some(p), _) => Config::from_file(p)?,
+        (None, [file]) => Config::default_mapping_for(&read_header(file)?),
+        // none or several files: the count check says what to give
+        (None, _) => Config::default_mapping(),
+    })
+}
+
 /// The data files: `data` (`--data`), else the `file` of each `[[source]]` of the config
 /// read from `config_path` (resolved against the config's folder).
 pub(crate) fn data_files(
@@ -160,10 +174,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         return Ok(out::print(EXAMPLE_CONFIG)?);
     }
     let robot = args.robot.as_deref().ok_or("give the robot description")?;
-    let mut config = match &args.config {
-        Some(p) => Config::from_file(p)?,
-        None => Config::default_mapping(),
-    };
+    let mut config = config_for(args.config.as_deref(), &args.data)?;
     let data = data_files(&args.data, args.config.as_deref(), &config)?;
     let mut inputs: Vec<&Path> = vec![robot];
     inputs.extend(args.config.as_deref());

@@ -6,11 +6,11 @@
 
 use std::path::PathBuf;
 
-use robid_runtime::data::{Config, load};
+use robid_runtime::data::load;
 use robid_runtime::inspect::inspect;
 
 use super::description::{self, DriveFlag};
-use super::identify::data_files;
+use super::identify::{config_for, data_files};
 use super::{Error, out};
 
 /// Arguments of `robid inspect`.
@@ -35,10 +35,7 @@ pub(crate) struct Args {
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let robot = description::read(&args.robot, &args.drive)?;
-    let config = match &args.config {
-        Some(p) => Config::from_file(p)?,
-        None => Config::default_mapping(),
-    };
+    let config = config_for(args.config.as_deref(), &args.data)?;
     let files = data_files(&args.data, args.config.as_deref(), &config)?;
     let data = load(&config, &files, robot.dof())?;
     for w in &data.warnings {

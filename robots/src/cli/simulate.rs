@@ -17,7 +17,7 @@ use robid_runtime::simulate::{Noise, Record, Simulation, Trajectory};
 use robots::interpreted::Interpreted;
 
 use super::description::{self, DriveFlag};
-use super::flags::{closed, positive, real};
+use super::flags::{self, closed, positive, real};
 use super::{Error, files, out};
 
 /// How far (rad or m) the simulated positions may leave the reference before the run
@@ -55,9 +55,31 @@ pub(crate) struct Args {
     /// Seed of the noise (0 to 2^64 - 1).
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// What to write: `all` (`t,q,qd,qdd,tau`, velocities and accelerations exact, for
+    /// checking) or `positions` (`t,q,tau`, as a real log: `identify` differentiates).
+    #[arg(long, value_enum, default_value_t = Columns::All)]
+    columns: Columns,
+    /// Write every sample at this rate in Hz (a whole fraction of the trajectory's rate;
+    /// default: the trajectory's rate). `--columns positions` only.
+    #[arg(long, value_parser = real(positive(1e6, "Hz")))]
+    rate: Option<f64>,
+    /// Write motor currents `i1..in` instead of torques: the torque per ampere at each
+    /// joint (torque constant times gear ratio), `k1,..,kn` in [1e-6, 1e6] N m/A.
+    /// `--columns positions` only.
+    #[arg(long, value_delimiter = ',', value_parser = real(closed(1e-6, 1e6, "N m/A")))]
+    currents: Vec<f64>,
     /// Output CSV.
     #[arg(short, long)]
     output: PathBuf,
+}
+
+/// The columns `robid simulate` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Columns {
+    /// `t,q1..,qd1..,qdd1..,tau1..`.
+    All,
+    /// `t,q1..,tau1..` (or `i1..` with `--currents`).
+    Positions,
 }
 
 /// Runs the subcommand.
@@ -76,10 +98,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         )
         .into());
     }
+    log_settings(args, n)?;
     let base = ParameterFile::read(&args.parameters)?.base_parameters(&model)?;
     super::states::read(&args.trajectory, &Trajectory::header(n))?;
     let reference = Trajectory::read_csv(&args.trajectory, n)?;
     check_bandwidth(args.bandwidth, &reference, &args.trajectory)?;
+    let every = every_sample(args.rate, &reference, &args.trajectory)?;
     let sim = Simulation {
         bandwidth: args.bandwidth,
         seed: args.seed,
@@ -97,7 +121,15 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let tolerance = TRACKING_LIMIT + 10.0 * (args.position_noise + args.quantization);
     check_result(&result.truth, &reference, tolerance)?;
     check_result(&result.measured, &reference, f64::INFINITY)?;
-    result.measured.write_csv(&args.output)?;
+    match args.columns {
+        Columns::All => result.measured.write_csv(&args.output)?,
+        Columns::Positions => {
+            let currents = (!args.currents.is_empty()).then_some(args.currents.as_slice());
+            result
+                .measured
+                .write_log_csv(&args.output, every, currents)?;
+        }
+    }
     let mut stdout = out::Stdout::new();
     writeln!(
         stdout,
@@ -108,6 +140,52 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     )?;
     stdout.flush()?;
     Ok(())
+}
+
+/// Checks the log flags against `--columns` and the joint count.
+fn log_settings(args: &Args, n: usize) -> Result<(), Error> {
+    if args.columns == Columns::All {
+        flags::only_for(
+            args.rate.is_some(),
+            "--rate",
+            "--columns positions",
+            "--columns all",
+        )?;
+        flags::only_for(
+            !args.currents.is_empty(),
+            "--currents",
+            "--columns positions",
+            "--columns all",
+        )?;
+    }
+    if !args.currents.is_empty() && args.currents.len() != n {
+        return Err(format!(
+            "--currents has {} values but {} has {n} joints; give k1,..,k{n}",
+            args.currents.len(),
+            args.robot.display()
+        )
+        .into());
+    }
+    Ok(())
+}
+
+/// Every how many trajectory samples one is written for `--rate`: the rate must be a
+/// whole fraction of the trajectory's.
+fn every_sample(rate: Option<f64>, reference: &Trajectory, path: &Path) -> Result<usize, Error> {
+    let Some(rate) = rate else { return Ok(1) };
+    let t = &reference.t;
+    let own = (t.len() - 1) as f64 / (t[t.len() - 1] - t[0]);
+    let every = (own / rate).round();
+    if every < 1.0 || (own / rate - every).abs() > 1e-6 * every {
+        return Err(format!(
+            "--rate {rate} Hz is not a whole fraction of the rate of {} ({own:.6} Hz); \
+             choose {own:.6} Hz divided by a whole number, or design the trajectory at a \
+             multiple of {rate} Hz",
+            path.display()
+        )
+        .into());
+    }
+    Ok(every as usize)
 }
 
 /// Refuses a bandwidth above a quarter of the trajectory's sample rate at its largest step.

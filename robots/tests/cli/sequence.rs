@@ -48,8 +48,9 @@ fn run(args: &[&str]) -> String {
     err
 }
 
-/// excite -> simulate (torque noise 0.2 N m) -> identify (WLS) in `dir`; returns the
-/// identification JSON.
+/// excite -> simulate (torque noise 0.2 N m, an encoder of 1e-5 rad, positions and
+/// torques only, as a real log) -> identify (WLS: differentiated, cutoff "auto") in `dir`;
+/// returns the identification JSON.
 fn identify(dir: &Path, robot: &str, parameters: &str, excite: &[&str]) -> String {
     let path = |name: &str| dir.join(name).display().to_string();
     let (traj, data, result) = (path("traj.csv"), path("data.csv"), path("result.json"));
@@ -65,6 +66,10 @@ fn identify(dir: &Path, robot: &str, parameters: &str, excite: &[&str]) -> Strin
         &traj,
         "--torque-noise",
         "0.2",
+        "--quantization",
+        "1e-5",
+        "--columns",
+        "positions",
         "-o",
         &data,
     ]);
