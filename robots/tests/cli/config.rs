@@ -152,3 +152,94 @@ fn inspect_suggests_the_cutoff_that_auto_uses() {
         serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
     assert_eq!(report["cutoff"]["cutoff"].as_f64(), Some(cutoff));
 }
+
+/// `simulate --columns positions` writes t, q and torques (or currents) at a fraction of
+/// the trajectory's rate, the same samples as the full record; a rate that is not a whole
+/// fraction, and log flags with `--columns all`, are refused by name.
+#[test]
+fn simulate_writes_a_log_of_positions_and_currents() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let params = write(
+        d,
+        "p.toml",
+        "[standard]\nXX1 = 0.2\nYY1 = 0.2\nZZ1 = 0.2\nMY1 = 0.5\nM1 = 2.0\nFv1 = 0.3\n",
+    );
+    let mut traj = String::from("t,q1,qd1,qdd1\n");
+    for k in 0..=2000 {
+        let t = k as f64 * 1e-3;
+        let w = 2.0;
+        traj.push_str(&format!(
+            "{t},{},{},{}\n",
+            (w * t).sin(),
+            w * (w * t).cos(),
+            -w * w * (w * t).sin()
+        ));
+    }
+    let traj = write(d, "traj.csv", &traj);
+    let run = |extra: &[&str], out: &str| {
+        let out = d.join(out);
+        let mut args = vec![
+            "simulate",
+            robot.to_str().unwrap(),
+            "--parameters",
+            params.to_str().unwrap(),
+            "--trajectory",
+            traj.to_str().unwrap(),
+            "--torque-noise",
+            "0.01",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        (robid(&args), out)
+    };
+    let rows = |path: &std::path::Path| -> Vec<Vec<f64>> {
+        std::fs::read_to_string(path)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+            .collect()
+    };
+    let (o, all) = run(&[], "all.csv");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (o, log) = run(
+        &["--columns", "positions", "--rate", "250", "--currents", "2"],
+        "log.csv",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let header = std::fs::read_to_string(&log).unwrap();
+    assert!(header.starts_with("t,q1,i1\n"), "{}", &header[..20]);
+    let (all, log) = (rows(&all), rows(&log));
+    assert_eq!(log.len(), 501);
+    for (r, row) in log.iter().enumerate() {
+        let full = &all[4 * r];
+        assert_eq!(row[0], full[0]);
+        assert_eq!(row[1], full[1]);
+        // `all` is t,q1,qd1,qdd1,tau1; the current is tau / 2 (printed to 10 digits)
+        assert!(
+            (row[2] - full[4] / 2.0).abs() <= 1e-9 * full[4].abs().max(1.0),
+            "row {r}"
+        );
+    }
+    let (o, _) = run(&["--columns", "positions", "--rate", "300"], "bad.csv");
+    assert!(
+        stderr(&o).contains("--rate 300 Hz is not a whole fraction"),
+        "{}",
+        stderr(&o)
+    );
+    let (o, _) = run(&["--rate", "250"], "bad.csv");
+    assert!(
+        stderr(&o).contains("--rate is an option of --columns positions"),
+        "{}",
+        stderr(&o)
+    );
+    let (o, _) = run(&["--columns", "positions", "--currents", "1,2"], "bad.csv");
+    assert!(
+        stderr(&o).contains("--currents has 2 values"),
+        "{}",
+        stderr(&o)
+    );
+}
