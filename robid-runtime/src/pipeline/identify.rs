@@ -240,7 +240,8 @@ pub fn identify(
         });
     }
     let used = UsedRows::of(data, kept.clone());
-    let mut prediction = Prediction::new(&obs, &estimate.values, dt);
+    let mut prediction = Prediction::new(&obs, &estimate.values, dt)
+        .starting_at(kept.start as f64 * data.sample_time);
     with_unfiltered(&mut prediction, &obs, &rows, factor);
     prediction.check(&format!("the estimation data ({used})"))?;
     prediction.used = Some(used.clone());
@@ -285,7 +286,8 @@ pub fn validate(
         ));
     }
     let used = UsedRows::of(data, rows.kept.clone());
-    let mut prediction = Prediction::new(&obs, values, dt);
+    let mut prediction =
+        Prediction::new(&obs, values, dt).starting_at(rows.kept.start as f64 * data.sample_time);
     let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
     with_unfiltered(&mut prediction, &obs, &rows, factor);
     prediction.check(&format!("the validation data ({used})"))?;

@@ -312,13 +312,15 @@ fn the_fit_is_also_measured_against_the_unfiltered_torque() {
         .unfiltered
         .as_ref()
         .expect("decimation filters");
+    // times are on the log's own axis: the first row used is at its own time
     let start = id.used.samples[0] as f64 / rate;
+    assert!(id.prediction.time.iter().all(|t| t[0] >= start - 1e-12));
     let (mut q, mut qd, mut qdd, mut tau) = ([0.0; DOF], [0.0; DOF], [0.0; DOF], [0.0; DOF]);
     let mut rows = 0;
     for (j, (times, values)) in id.prediction.time.iter().zip(unfiltered).enumerate() {
         assert_eq!(times.len(), values.len());
         for (t, v) in times.iter().zip(values) {
-            synthetic::trajectory(start + t, &mut q, &mut qd, &mut qdd);
+            synthetic::trajectory(*t, &mut q, &mut qd, &mut qdd);
             model
                 .inverse_dynamics_into(&q, &qd, &qdd, &beta, &mut tau)
                 .unwrap();

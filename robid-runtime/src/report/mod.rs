@@ -1,10 +1,13 @@
 //! Reports (docs/identification.md#reports): JSON for machines, a text table for people,
-//! SVG plots of measured vs predicted torque per joint.
+//! SVG plots of measured vs predicted torque and residual per joint, and one
+//! self-contained HTML page with all of it.
 
+mod html;
 mod json;
 mod plot;
 mod table;
 
+pub use html::{html_report, write_html};
 pub use json::{FitEntry, ParameterEntry, Report, ReportWarning, ValidationEntry};
-pub use plot::plot_torques;
+pub use plot::{plot_torques, torque_svg};
 pub use table::text_table;

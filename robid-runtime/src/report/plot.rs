@@ -1,4 +1,5 @@
-//! Plots of measured vs predicted torque per joint (SVG, with plotters).
+//! Plots of measured vs predicted torque per joint and its residual (SVG, with plotters),
+//! as files or as text for the HTML report.
 
 use crate::OutputError;
 use std::path::{Path, PathBuf};
@@ -12,25 +13,71 @@ use crate::validate::Prediction;
 pub fn plot_torques(prediction: &Prediction, dir: &Path, prefix: &str) -> Result<Vec<PathBuf>> {
     crate::output::create_folder(dir)?;
     let mut paths = Vec::new();
-    for (j, (m, p)) in prediction
-        .measured
-        .iter()
-        .zip(&prediction.predicted)
-        .enumerate()
-    {
+    for j in 0..prediction.measured.len() {
         let path = dir.join(format!("{prefix}_joint{}.svg", j + 1));
-        let t = &prediction.time[j];
-        let mut svg = String::new();
-        plot_one(&mut svg, j + 1, t, m, p).map_err(|e| {
-            Error::Output(OutputError::Write {
+        let svg = torque_svg(prediction, j).map_err(|e| match e {
+            Error::Output(OutputError::Write { reason, .. }) => Error::Output(OutputError::Write {
                 path: path.clone(),
-                reason: e.to_string(),
-            })
+                reason,
+            }),
+            e => e,
         })?;
         crate::output::write_bytes(&path, svg.as_bytes())?;
         paths.push(path);
     }
     Ok(paths)
+}
+
+/// The SVG of joint `joint` (0-based) of a prediction: measured and predicted torque over
+/// the log's own time, and below it the residual (measured - predicted), with the RMS of
+/// the residual in the title. Samples left out (near rest) leave gaps: the lines are not
+/// drawn across them.
+pub fn torque_svg(prediction: &Prediction, joint: usize) -> Result<String> {
+    let mut svg = String::new();
+    let t = &prediction.time[joint];
+    let m = &prediction.measured[joint];
+    let p = &prediction.predicted[joint];
+    plot_one(&mut svg, joint + 1, t, m, p).map_err(|e| {
+        Error::Output(OutputError::Write {
+            path: PathBuf::from(format!("<joint {} plot>", joint + 1)),
+            reason: e.to_string(),
+        })
+    })?;
+    Ok(svg)
+}
+
+/// The index ranges of `t` between gaps: a step longer than 1.5 times the median step.
+fn segments(t: &[f64]) -> Vec<std::ops::Range<usize>> {
+    if t.len() < 2 {
+        return vec![0..t.len()];
+    }
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let gap = 1.5 * steps[steps.len() / 2];
+    let mut out = Vec::new();
+    let mut start = 0;
+    for k in 1..t.len() {
+        if t[k] - t[k - 1] > gap {
+            out.push(start..k);
+            start = k;
+        }
+    }
+    out.push(start..t.len());
+    out
+}
+
+/// The range of `values` with a 5 % margin ((-1, 1) when empty or flat).
+fn span<'a>(values: impl Iterator<Item = &'a f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(*v), b.max(*v))
+    });
+    let (lo, hi) = if lo.is_finite() && hi > lo {
+        (lo, hi)
+    } else {
+        (-1.0, 1.0)
+    };
+    let margin = 0.05 * (hi - lo);
+    (lo - margin)..(hi + margin)
 }
 
 fn plot_one(
@@ -40,56 +87,58 @@ fn plot_one(
     m: &[f64],
     p: &[f64],
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let root = SVGBackend::with_string(svg, (900, 360)).into_drawing_area();
+    let root = SVGBackend::with_string(svg, (900, 480)).into_drawing_area();
     root.fill(&WHITE)?;
-    let (t0, t1) = (
-        t.first().copied().unwrap_or(0.0),
-        t.last()
-            .copied()
-            .unwrap_or(1.0)
-            .max(t.first().copied().unwrap_or(0.0) + 1e-9),
-    );
-    let lo = m.iter().chain(p).copied().fold(f64::INFINITY, f64::min);
-    let hi = m.iter().chain(p).copied().fold(f64::NEG_INFINITY, f64::max);
-    let (lo, hi) = if lo.is_finite() && hi > lo {
-        (lo, hi)
-    } else {
-        (-1.0, 1.0)
-    };
-    let margin = 0.05 * (hi - lo);
-    let mut chart = ChartBuilder::on(&root)
+    let (upper, lower) = root.split_vertically(320);
+    let t0 = t.first().copied().unwrap_or(0.0);
+    let t1 = t.last().copied().unwrap_or(1.0).max(t0 + 1e-9);
+    let residual: Vec<f64> = m.iter().zip(p).map(|(m, p)| m - p).collect();
+    let rms = (residual.iter().map(|r| r * r).sum::<f64>() / residual.len().max(1) as f64).sqrt();
+    let pieces = segments(t);
+    let mut chart = ChartBuilder::on(&upper)
         .caption(
-            format!("joint {joint}: measured vs predicted torque"),
+            format!("joint {joint}: measured vs predicted torque (residual RMS {rms:.3e} N m)"),
             ("sans-serif", 18),
         )
         .margin(10)
-        .x_label_area_size(35)
-        .y_label_area_size(55)
-        .build_cartesian_2d(t0..t1, (lo - margin)..(hi + margin))?;
-    chart
-        .configure_mesh()
-        .x_desc("time [s]")
-        .y_desc("torque [N m]")
-        .draw()?;
-    chart
-        .draw_series(LineSeries::new(
-            t.iter().copied().zip(m.iter().copied()),
-            &BLUE,
-        ))?
-        .label("measured")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE));
-    chart
-        .draw_series(LineSeries::new(
-            t.iter().copied().zip(p.iter().copied()),
-            &RED,
-        ))?
-        .label("predicted")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED));
+        .x_label_area_size(30)
+        .y_label_area_size(60)
+        .build_cartesian_2d(t0..t1, span(m.iter().chain(p)))?;
+    chart.configure_mesh().y_desc("torque [N m]").draw()?;
+    for (values, colour, name) in [(m, BLUE, "measured"), (p, RED, "predicted")] {
+        for (i, r) in pieces.iter().enumerate() {
+            let series = chart.draw_series(LineSeries::new(
+                r.clone().map(|s| (t[s], values[s])),
+                &colour,
+            ))?;
+            if i == 0 {
+                series
+                    .label(name)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+            }
+        }
+    }
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()?;
+    let mut below = ChartBuilder::on(&lower)
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(60)
+        .build_cartesian_2d(t0..t1, span(residual.iter()))?;
+    below
+        .configure_mesh()
+        .x_desc("time [s]")
+        .y_desc("residual [N m]")
+        .draw()?;
+    for r in &pieces {
+        below.draw_series(LineSeries::new(
+            r.clone().map(|s| (t[s], residual[s])),
+            &BLACK,
+        ))?;
+    }
     root.present()?;
     Ok(())
 }
@@ -120,5 +169,33 @@ mod tests {
             &svg[..200.min(svg.len())]
         );
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A gap (samples dropped at rest) splits the lines; regular steps do not.
+    #[test]
+    fn lines_stop_at_gaps() {
+        let t = [0.0, 0.1, 0.2, 0.9, 1.0, 1.1, 1.2];
+        assert_eq!(segments(&t), [0..3, 3..7]);
+        assert_eq!(segments(&[0.0, 0.1, 0.2]), [0..3]);
+        assert_eq!(segments(&[0.5]), [0..1]);
+        // drawn as separate polylines: two per series (plus its legend line)
+        let m: Vec<f64> = t.iter().map(|x| x.sin()).collect();
+        let p: Vec<f64> = t.iter().map(|x| x.sin() + 0.01).collect();
+        let pred = Prediction {
+            measured: vec![m],
+            predicted: vec![p],
+            time: vec![t.to_vec()],
+            unfiltered: None,
+            used: None,
+        };
+        let svg = torque_svg(&pred, 0).unwrap();
+        for colour in ["#0000FF", "#FF0000"] {
+            let lines = svg
+                .lines()
+                .filter(|l| l.starts_with("<polyline") && l.contains(colour))
+                .count();
+            assert_eq!(lines, 3, "{colour}");
+        }
+        assert!(svg.contains("residual RMS 1.000e-2 N m"), "{svg}");
     }
 }

@@ -136,6 +136,15 @@ impl Prediction {
         self.fit().check(what)
     }
 
+    /// The prediction with its times moved by `start` seconds: the pipeline places them on
+    /// the log's own time axis (from its first sample), not from the first sample used.
+    pub fn starting_at(mut self, start: f64) -> Self {
+        for t in &mut self.time {
+            t.iter_mut().for_each(|v| *v += start);
+        }
+        self
+    }
+
     /// The metrics of this prediction against `measured` (filtered when the processing
     /// filters the torque).
     pub fn fit(&self) -> Fit {

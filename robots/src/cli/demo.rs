@@ -14,7 +14,7 @@ use robid_runtime::drive::DriveChain;
 use robid_runtime::estimate::{Estimate, Observation};
 use robid_runtime::output::create_folder;
 use robid_runtime::pipeline::{estimate, identify, observation};
-use robid_runtime::report::{Report, plot_torques, text_table};
+use robid_runtime::report::{Report, plot_torques, text_table, write_html};
 use robid_runtime::signal::Signals;
 use robid_runtime::validate::Prediction;
 use robid_symbolic::Robot;
@@ -57,8 +57,18 @@ pub(crate) fn run() -> Result<(), Error> {
     let held_out = rows(&chosen, &config, &data, HELD_OUT)?;
     let est = estimate(&train, &config)?;
     let dt = data.sample_time * robid_runtime::pipeline::decimator(&config)?.factor() as f64;
-    let fit = Prediction::new(&train, &est.values, dt);
-    let valid = Prediction::new(&held_out, &est.values, dt);
+    // on the log's own time axis: the rows used start one settling time (or the trim)
+    // after each cut
+    let kept = config
+        .processing
+        .trim
+        .max(robid_runtime::pipeline::automatic_trim(
+            &config,
+            data.sample_time,
+        )?);
+    let at = |first: usize| (first + kept) as f64 * data.sample_time;
+    let fit = Prediction::new(&train, &est.values, dt).starting_at(at(TRAIN.0));
+    let valid = Prediction::new(&held_out, &est.values, dt).starting_at(at(HELD_OUT.0));
     let report = Report::new("tx40", &est, &fit.fit(), |n| chosen.expression(n))
         .with_validation("held-out rows 29250-45000", &valid.fit());
     writeln!(stdout, "\nTrained on rows {}-{}:", TRAIN.0, TRAIN.1)?;
@@ -86,11 +96,20 @@ pub(crate) fn run() -> Result<(), Error> {
     files::write(&dir.join("figaroh_comparison.txt"), &comparison)?;
     plot_torques(&fit, dir, "train")?;
     plot_torques(&valid, dir, "heldout")?;
+    write_html(
+        &dir.join("report.html"),
+        &report,
+        &[
+            ("trained on rows 0-24750", &fit),
+            ("held-out rows 29250-45000", &valid),
+        ],
+    )?;
     let shown = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
     writeln!(
         stdout,
-        "\nReport in {}: report.json (split), whole_run.json, figaroh_comparison.txt, \
-         train_joint1..6.svg, heldout_joint1..6.svg ({:.2} s)",
+        "\nReport in {}: report.html (open it in a browser), report.json (split), \
+         whole_run.json, figaroh_comparison.txt, train_joint1..6.svg, heldout_joint1..6.svg \
+         ({:.2} s)",
         shown.display(),
         start.elapsed().as_secs_f64()
     )?;

@@ -1,5 +1,5 @@
 //! `robid identify ROBOT.toml [--data FILE...] [--config CFG.toml] [--validate FILE...]
-//! [--method ols|wls|rls|energy] [--json OUT.json] [--plot DIR]`: base parameters with
+//! [--method ols|wls|rls|energy] [--json OUT.json] [--plot DIR] [--report OUT.html]`: base parameters with
 //! their uncertainty from measured data, the fit, and predictions of other files
 //! (docs/identification.md, docs/command-line.md#robid-identify). A table on stdout; JSON
 //! and SVG plots on request.
@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load, read_header};
 use robid_runtime::inspect::resolve_cutoff;
 use robid_runtime::pipeline::{identify, validate};
-use robid_runtime::report::{Report, plot_torques, text_table};
+use robid_runtime::report::{Report, plot_torques, text_table, write_html};
 use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
 use robots::Reference;
@@ -55,6 +55,10 @@ pub(crate) struct Args {
     /// replaced).
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Write one self-contained HTML report to this file: figures, parameters, warnings
+    /// and per joint the measured vs predicted torque with its residual (inline SVG).
+    #[arg(long)]
+    report: Option<PathBuf>,
     /// Print a complete annotated config (every key, its default and what it does) and exit.
     #[arg(long, exclusive = true)]
     example_config: bool,
@@ -183,6 +187,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut outputs: Vec<&Path> = Vec::new();
     outputs.extend(args.json.as_deref());
     outputs.extend(args.plot.as_deref());
+    outputs.extend(args.report.as_deref());
     files::refuse(&inputs, &outputs)?;
     let chosen = robot_model(robot, &args.drive)?;
     let model = chosen.model.as_ref();
@@ -240,6 +245,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             plot_torques(p, dir, prefix)?;
         }
     }
+    if let Some(path) = &args.report {
+        let named: Vec<(&str, &_)> = prefixes
+            .iter()
+            .map(String::as_str)
+            .zip(&predictions)
+            .collect();
+        write_html(path, &report, &named)?;
+    }
     for w in &report.warnings {
         out::warn(format_args!("warning: {}", w.message));
     }
@@ -247,6 +260,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     stdout.write_str(&text_table(&report))?;
     if let Some(path) = &args.json {
         writeln!(stdout, "JSON report: {}", path.display())?;
+    }
+    if let Some(path) = &args.report {
+        writeln!(stdout, "HTML report: {}", path.display())?;
     }
     if let Some(dir) = &args.plot {
         writeln!(

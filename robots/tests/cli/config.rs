@@ -243,3 +243,69 @@ fn simulate_writes_a_log_of_positions_and_currents() {
         stderr(&o)
     );
 }
+
+/// `identify --report` writes one self-contained HTML page; when a Chromium is installed
+/// (Debian's `chromium`), it renders it headless to a screenshot that holds a drawing, not
+/// an empty page. Without a browser the rendering is skipped, saying so.
+#[test]
+fn the_html_report_renders_in_a_browser() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let data = write(d, "run.csv", &log());
+    let config = write(d, "job.toml", CONFIG);
+    let html = d.join("report.html");
+    let o = robid(&[
+        "identify",
+        robot.to_str().unwrap(),
+        "--config",
+        config.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--validate",
+        data.to_str().unwrap(),
+        "--report",
+        html.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("HTML report:"));
+    let page = std::fs::read_to_string(&html).unwrap();
+    assert!(page.starts_with("<!DOCTYPE html>") && page.ends_with("</html>\n"));
+    // the fit and the validation, one joint each; parameters and figures
+    assert_eq!(page.matches("<svg").count(), 2);
+    assert!(page.contains("ZZ1") && page.contains("relative error"));
+    let Some(browser) = ["chromium", "chromium-browser", "google-chrome"]
+        .into_iter()
+        .find(|b| {
+            std::process::Command::new(b)
+                .arg("--version")
+                .output()
+                .is_ok_and(|o| o.status.success())
+        })
+    else {
+        eprintln!("the_html_report_renders_in_a_browser: no Chromium installed, rendering skipped");
+        return;
+    };
+    let shot = d.join("shot.png");
+    let o = std::process::Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--hide-scrollbars",
+            "--window-size=1000,2400",
+            &format!("--screenshot={}", shot.display()),
+        ])
+        .arg(format!("file://{}", html.display()))
+        .output()
+        .unwrap();
+    assert!(shot.exists(), "{}", String::from_utf8_lossy(&o.stderr));
+    // a PNG of a page with tables and plots: a blank page compresses to a few kB
+    let png = std::fs::read(&shot).unwrap();
+    assert!(png.starts_with(b"\x89PNG"), "not a PNG");
+    assert!(
+        png.len() > 30_000,
+        "the screenshot is {} bytes: an empty page?",
+        png.len()
+    );
+}

@@ -1,0 +1,202 @@
+//! One self-contained HTML page of an identification (docs/identification.md#reports):
+//! the fit and validation figures, the condition number, the warnings, the parameter table
+//! with relative standard deviations, and per data set and joint the measured vs predicted
+//! torque with its residual, on the log's own time axis, as inline SVG. No script, no
+//! style sheet or font from the network: the file opens anywhere.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use crate::error::Result;
+use crate::report::{FitEntry, Report, torque_svg};
+use crate::validate::Prediction;
+
+/// `text` with `&`, `<`, `>` and `"` escaped for HTML.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// One row of the figures table.
+fn figures_row(html: &mut String, what: &str, f: &FitEntry) {
+    let against = match (f.torque.as_deref(), f.unfiltered_relative_error) {
+        (Some("filtered"), Some(u)) => {
+            format!("filtered torque; {:.2} % against the measured", 100.0 * u)
+        }
+        (Some(t), _) => format!("{t} torque"),
+        (None, _) => String::new(),
+    };
+    let rms: Vec<String> = f.rms_per_joint.iter().map(|v| format!("{v:.3}")).collect();
+    let _ = writeln!(
+        html,
+        "<tr><td>{}</td><td>{:.2} %</td><td>{}</td><td>{:.4}</td><td>{}</td></tr>",
+        escape(what),
+        100.0 * f.relative_error,
+        escape(&against),
+        f.nmse,
+        rms.join(" ")
+    );
+}
+
+/// The page of `report`, with the plots of `predictions` (a title and a prediction each,
+/// e.g. the fit and each validation).
+pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Result<String> {
+    let mut h = String::new();
+    let title = format!("robid identification: {}", report.robot);
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{}</title>\n\
+         <style>\nbody {{ font-family: sans-serif; margin: 2em; max-width: 960px; }}\n\
+         table {{ border-collapse: collapse; margin: 1em 0; }}\n\
+         td, th {{ border: 1px solid #bbb; padding: 0.2em 0.6em; text-align: right; white-space: nowrap; }}\n\
+         th {{ background: #eee; }} td.name, td.expr {{ text-align: left; white-space: normal; }}\n\
+         .warning {{ color: #a00; }}\n</style>\n</head>\n<body>\n<h1>{}</h1>\n",
+        escape(&title),
+        escape(&title)
+    );
+    let _ = writeln!(
+        h,
+        "<p>Method <b>{}</b>, {} equations, condition number {:.1}.</p>",
+        escape(&report.method),
+        report.samples,
+        report.condition_number
+    );
+    if let Some(rows) = &report.estimation {
+        let _ = writeln!(h, "<p>Estimation rows: {}.</p>", escape(&rows.to_string()));
+    }
+    if let Some(c) = &report.cutoff {
+        let _ = writeln!(
+            h,
+            "<p>Low-pass cutoff (auto): {} Hz: {}.</p>",
+            c.cutoff,
+            escape(&c.reason)
+        );
+    }
+    h.push_str(
+        "<h2>Fit and validation</h2>\n<table>\n<tr><th>data</th><th>relative error</th>\
+         <th>against</th><th>NMSE</th><th>RMS per joint [N m]</th></tr>\n",
+    );
+    figures_row(&mut h, "fit", &report.fit);
+    for v in &report.validation {
+        let name = v
+            .rows
+            .as_ref()
+            .map_or_else(|| v.file.clone(), |r| r.to_string());
+        let f = FitEntry {
+            relative_error: v.relative_error,
+            rms_per_joint: v.rms_per_joint.clone(),
+            nmse: v.nmse,
+            torque: v.torque.clone(),
+            unfiltered_relative_error: v.unfiltered_relative_error,
+        };
+        figures_row(&mut h, &format!("validation {name}"), &f);
+    }
+    h.push_str("</table>\n");
+    if !report.warnings.is_empty() {
+        h.push_str("<h2>Warnings</h2>\n<ul>\n");
+        for w in &report.warnings {
+            let _ = writeln!(h, "<li class=\"warning\">{}</li>", escape(&w.message));
+        }
+        h.push_str("</ul>\n");
+    }
+    h.push_str(
+        "<h2>Parameters</h2>\n<table>\n<tr><th>parameter</th><th>value</th><th>std</th>\
+         <th>rel. std [%]</th><th>expression</th></tr>\n",
+    );
+    for p in &report.parameters {
+        let rel = p
+            .rel_std_percent
+            .map_or_else(|| "-".to_string(), |r| format!("{r:.2}"));
+        let _ = writeln!(
+            h,
+            "<tr><td class=\"name\">{}</td><td>{:.6}</td><td>{:.3e}</td><td>{rel}</td><td class=\"expr\">{}</td></tr>",
+            escape(&p.name),
+            p.value,
+            p.std,
+            escape(&p.expression)
+        );
+    }
+    h.push_str("</table>\n");
+    for (name, prediction) in predictions {
+        let _ = writeln!(h, "<h2>{}: torque per joint</h2>", escape(name));
+        for j in 0..prediction.measured.len() {
+            let _ = writeln!(h, "<figure>\n{}\n</figure>", torque_svg(prediction, j)?);
+        }
+    }
+    h.push_str("</body>\n</html>\n");
+    Ok(h)
+}
+
+/// Writes [`html_report`] to `path` (through a temporary file and a rename).
+pub fn write_html(path: &Path, report: &Report, predictions: &[(&str, &Prediction)]) -> Result<()> {
+    crate::output::write_bytes(path, html_report(report, predictions)?.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::{ParameterEntry, ReportWarning};
+
+    fn report() -> Report {
+        Report {
+            robot: "arm<1>".into(),
+            method: "wls".into(),
+            samples: 100,
+            condition_number: 12.5,
+            estimation: None,
+            parameters: vec![ParameterEntry {
+                name: "ZZR1".into(),
+                expression: "ZZ1 + 0.5*M2".into(),
+                value: 1.25,
+                std: 0.01,
+                rel_std_percent: Some(0.8),
+            }],
+            fit: FitEntry {
+                relative_error: 0.052,
+                rms_per_joint: vec![0.1, 0.2],
+                nmse: 0.3,
+                torque: Some("filtered".into()),
+                unfiltered_relative_error: Some(0.09),
+            },
+            validation: Vec::new(),
+            cutoff: None,
+            warnings: vec![ReportWarning {
+                kind: "uncertain".into(),
+                parameters: vec!["ZZR1".into()],
+                message: "a & b".into(),
+            }],
+        }
+    }
+
+    /// The page holds every figure, escapes text, has one inline SVG per joint and data
+    /// set, and refers to nothing outside itself.
+    #[test]
+    fn the_page_is_complete_and_self_contained() {
+        let t: Vec<f64> = (0..40).map(|k| 3.0 + 0.01 * k as f64).collect();
+        let p = Prediction {
+            measured: vec![t.clone(), t.iter().map(|x| -x).collect()],
+            predicted: vec![
+                t.iter().map(|x| x + 0.1).collect(),
+                t.iter().map(|x| 0.1 - x).collect(),
+            ],
+            time: vec![t.clone(), t],
+            unfiltered: None,
+            used: None,
+        };
+        let html = html_report(&report(), &[("fit", &p), ("validation 1", &p)]).unwrap();
+        assert!(html.starts_with("<!DOCTYPE html>"));
+        assert!(html.contains("robid identification: arm&lt;1&gt;"));
+        assert!(
+            html.contains("<td>5.20 %</td><td>filtered torque; 9.00 % against the measured</td>")
+        );
+        assert!(html.contains("ZZ1 + 0.5*M2") && html.contains("<td>0.80</td>"));
+        assert!(html.contains("a &amp; b"));
+        assert!(html.contains("condition number 12.5"));
+        assert_eq!(html.matches("<svg").count(), 4);
+        for external in ["src=\"http", "href=\"http", "<script", "@import", "url("] {
+            assert!(!html.contains(external), "{external}");
+        }
+    }
+}
