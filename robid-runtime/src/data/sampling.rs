@@ -27,6 +27,9 @@ pub struct Sampling {
     /// Ticks skipped: over the steps of at least [`SKIP_RATIO`] median steps, the number
     /// of median steps each spans less one.
     pub skipped_ticks: usize,
+    /// Rows equal to the previous row in every column (at rest, quantised slow motion, or
+    /// stale).
+    pub repeated_rows: usize,
     /// Rows (0-based) that look like an old sample written again: equal to the previous
     /// row in every column, in a run after which some column catches up the steps it
     /// missed.
@@ -48,6 +51,9 @@ impl Sampling {
             step,
             jitter,
             skipped_ticks,
+            repeated_rows: (1..rows)
+                .filter(|&k| columns.iter().all(|c| c[k] == c[k - 1]))
+                .count(),
             stale_rows: stale_rows(columns),
         }
     }
@@ -67,7 +73,9 @@ impl Sampling {
             );
         }
         s + &format!(
-            ", {} stale rows ({:.1} %)",
+            ", {} rows repeat the previous one ({:.1} %), {} of them stale ({:.2} %)",
+            self.repeated_rows,
+            share(self.repeated_rows),
             self.stale_rows.len(),
             share(self.stale_rows.len())
         )
@@ -177,7 +185,9 @@ mod tests {
         let jitter = (2.0 * 0.0001f64.powi(2) / 18.0).sqrt();
         assert!((s.jitter.unwrap() - jitter).abs() < 1e-12, "{:?}", s.jitter);
         assert_eq!(s.stale_rows, [8]);
-        assert!(s.summary().contains("2 skipped ticks") && s.summary().contains("1 stale rows"));
+        // every row of the constant column repeats, but only row 8 of both columns
+        assert_eq!(s.repeated_rows, 1);
+        assert!(s.summary().contains("2 skipped ticks") && s.summary().contains("1 of them stale"));
     }
 
     /// A robot at rest, or quantised slow motion (steps of 0 and 1 count, or 1 and 2),
