@@ -49,7 +49,7 @@ pub fn torque_svg(prediction: &Prediction, joint: usize) -> Result<String> {
 /// The index ranges of `t` between gaps: a step longer than 1.5 times the median step.
 fn segments(t: &[f64]) -> Vec<std::ops::Range<usize>> {
     if t.len() < 2 {
-        return vec![0..t.len()];
+        return std::iter::once(0..t.len()).collect();
     }
     let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
     steps.sort_by(f64::total_cmp);
@@ -176,8 +176,11 @@ mod tests {
     fn lines_stop_at_gaps() {
         let t = [0.0, 0.1, 0.2, 0.9, 1.0, 1.1, 1.2];
         assert_eq!(segments(&t), [0..3, 3..7]);
-        assert_eq!(segments(&[0.0, 0.1, 0.2]), [0..3]);
-        assert_eq!(segments(&[0.5]), [0..1]);
+        assert_eq!(
+            segments(&[0.0, 0.1, 0.2]),
+            std::iter::once(0..3).collect::<Vec<_>>()
+        );
+        assert_eq!(segments(&[0.5]), std::iter::once(0..1).collect::<Vec<_>>());
         // drawn as separate polylines: two per series (plus its legend line)
         let m: Vec<f64> = t.iter().map(|x| x.sin()).collect();
         let p: Vec<f64> = t.iter().map(|x| x.sin() + 0.01).collect();

@@ -11,12 +11,11 @@ use std::time::Instant;
 use flate2::read::MultiGzDecoder;
 use robid_runtime::data::{Config, Dataset, read_columns_from};
 use robid_runtime::drive::DriveChain;
-use robid_runtime::estimate::{Estimate, Observation};
+use robid_runtime::estimate::Estimate;
 use robid_runtime::output::create_folder;
-use robid_runtime::pipeline::{estimate, identify, observation};
+use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
 use robid_runtime::signal::Signals;
-use robid_runtime::validate::Prediction;
 use robid_symbolic::Robot;
 use robots::figaroh::{self, Combination, combination, same};
 use robots::interpreted::{Chosen, model_for};
@@ -52,25 +51,20 @@ pub(crate) fn run() -> Result<(), Error> {
     )?;
     stdout.flush()?;
 
-    // temporal split: train, then predict the held-out rows
-    let train = rows(&chosen, &config, &data, TRAIN)?;
-    let held_out = rows(&chosen, &config, &data, HELD_OUT)?;
-    let est = estimate(&train, &config)?;
-    let dt = data.sample_time * robid_runtime::pipeline::decimator(&config)?.factor() as f64;
-    // on the log's own time axis: the rows used start one settling time (or the trim)
-    // after each cut
-    let kept = config
-        .processing
-        .trim
-        .max(robid_runtime::pipeline::automatic_trim(
-            &config,
-            data.sample_time,
-        )?);
-    let at = |first: usize| (first + kept) as f64 * data.sample_time;
-    let fit = Prediction::new(&train, &est.values, dt).starting_at(at(TRAIN.0));
-    let valid = Prediction::new(&held_out, &est.values, dt).starting_at(at(HELD_OUT.0));
-    let report = Report::new("tx40", &est, &fit.fit(), |n| chosen.expression(n))
-        .with_validation("held-out rows 29250-45000", &valid.fit());
+    // temporal split: train, then predict the held-out rows. Each part is cut before
+    // processing: `prepare` pads the low-pass with one settling time of odd extension and
+    // trims the cut ends automatically, so a cut made during motion leaves no filter
+    // transient in the equations.
+    let model = chosen.model.as_ref();
+    let trained = identify(model, &data.slice(TRAIN.0, TRAIN.1)?, &config)?;
+    let held_out = data.slice(HELD_OUT.0, HELD_OUT.1)?;
+    // on the log's own time axis
+    let at = |first: usize| first as f64 * data.sample_time;
+    let fit = trained.prediction.clone().starting_at(at(TRAIN.0));
+    let valid =
+        validate(model, &held_out, &config, &trained.estimate.values)?.starting_at(at(HELD_OUT.0));
+    let report =
+        Report::from_identification(&trained, |n| chosen.expression(n)).with_prediction(&valid);
     writeln!(stdout, "\nTrained on rows {}-{}:", TRAIN.0, TRAIN.1)?;
     stdout.write_str(&text_table(&report))?;
     stdout.flush()?;
@@ -140,18 +134,6 @@ fn load(config: &Config) -> Result<Dataset, Error> {
         chain.joint_positions(&q),
         chain.joint_torques(&tau),
     )?)
-}
-
-/// The observation of rows `a..b`, cut before processing: `prepare` pads the low-pass
-/// with one settling time of odd extension and trims the cut ends automatically, so a
-/// cut made during motion leaves no filter transient in the equations.
-fn rows(
-    chosen: &Chosen,
-    config: &Config,
-    data: &Dataset,
-    (a, b): (usize, usize),
-) -> Result<Observation, Error> {
-    Ok(observation(chosen.model.as_ref(), &data.slice(a, b)?, config)?.0)
 }
 
 /// A linear combination of standard parameters: name -> coefficient.
