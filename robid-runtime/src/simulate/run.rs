@@ -335,24 +335,35 @@ impl Simulation {
         let (mut tau, mut qdd) = (vec![0.0; n], vec![0.0; n]);
         let mut r = r0.clone();
         let sigma_tau = |j: usize| self.noise.torque[j.min(self.noise.torque.len() - 1)];
-        // the controller; `noise` is the position noise of its measurement, held over a step
+        // the control law, tau = feedforward + M(q) servo: the feed-forward of the reference,
+        // and the servo acceleration from the measured error (`noise` is the position noise
+        // of the measurement, held over a step)
+        let feedforward = |r: &[Vec<f64>; 3], tau: &mut [f64]| {
+            if self.feedforward {
+                model.inverse_dynamics_into(&r[0], &r[1], &r[2], base, tau)
+            } else {
+                tau.iter_mut().for_each(|t| *t = 0.0);
+                Ok(())
+            }
+        };
+        let servo = |r: &[Vec<f64>; 3], q: &[f64], qd: &[f64], noise: &[f64], pd: &mut [f64]| {
+            for j in 0..n {
+                let e = r[0][j] - (self.quantize(q[j]) + noise[j]);
+                pd[j] = kp * e + kd * (r[1][j] - qd[j]);
+            }
+        };
+        // the torque at a sample, recorded
         let mut control =
             |r: &[Vec<f64>; 3], q: &[f64], qd: &[f64], noise: &[f64], tau: &mut [f64]| {
-                if self.feedforward {
-                    model.inverse_dynamics_into(&r[0], &r[1], &r[2], base, tau)?;
-                } else {
-                    tau.iter_mut().for_each(|t| *t = 0.0);
-                }
-                for j in 0..n {
-                    let e = r[0][j] - (self.quantize(q[j]) + noise[j]);
-                    pd[j] = kp * e + kd * (r[1][j] - qd[j]);
-                }
+                feedforward(r, tau)?;
+                servo(r, q, qd, noise, &mut pd);
                 model.mass_matrix_into(q, base, &mut mass)?;
                 for i in 0..n {
                     tau[i] += (0..n).map(|j| mass[i * n + j] * pd[j]).sum::<f64>();
                 }
                 Ok::<(), crate::LengthError>(())
             };
+        let mut stage_pd = vec![0.0; n];
         let mut noise = vec![0.0; n];
         let draw = |rng: &mut Rng, noise: &mut [f64]| {
             noise
@@ -443,8 +454,13 @@ impl Simulation {
                                 let s = (i as f64 + (part as f64 + c) / split as f64)
                                     / self.substeps as f64;
                                 quintic(s, interval, &r0, &r1, &mut r);
-                                control(&r, q, qd, &noise, &mut tau)?;
-                                fd.accelerations(q, qd, &tau, acc)
+                                // M^-1 (feedforward + M servo - h) = M^-1 (feedforward - h)
+                                // + servo: one mass matrix per stage
+                                feedforward(&r, &mut tau)?;
+                                servo(&r, q, qd, &noise, &mut stage_pd);
+                                fd.accelerations(q, qd, &tau, acc)?;
+                                acc.iter_mut().zip(&stage_pd).for_each(|(a, s)| *a += s);
+                                Ok(())
                             };
                         rk4_step(&mut f, &mut q, &mut qd, h / split as f64)
                             .map_err(|e| inconsistent(k, &q, e))?;
@@ -492,9 +508,10 @@ impl Simulation {
     }
 }
 
-/// The largest |h lambda| kept per Runge-Kutta step (its stability reaches 2.78 on the
-/// negative real axis; half that keeps damped modes accurate too).
-const RK4_REACH: f64 = 1.4;
+/// The largest |h lambda| kept per Runge-Kutta step, for the bound of the damping rates
+/// (the method is stable to 2.78 on the negative real axis; a mode that fast decays within
+/// a step, so only its stability matters).
+const RK4_REACH: f64 = 2.5;
 /// The most Runge-Kutta steps one substep is split into.
 const MAX_SPLIT: f64 = 1000.0;
 
@@ -599,6 +616,56 @@ mod interpolation_tests {
             assert!((out[0][0] - p(t)).abs() < 1e-13, "q at {s}");
             assert!((out[1][0] - v(t)).abs() < 1e-12, "qd at {s}");
             assert!((out[2][0] - a(t)).abs() < 1e-10, "qdd at {s}");
+        }
+    }
+}
+
+#[cfg(test)]
+mod consistency_tests {
+    use super::Simulation;
+    use crate::signal::Signals;
+    use crate::simulate::Trajectory;
+    use crate::simulate::tests::Pendulum;
+
+    /// What the simulator records at the samples agrees with the motion it integrates:
+    /// the second differences of the simulated positions equal the recorded accelerations
+    /// (which satisfy the model with the recorded torques) to well within 0.1 % RMS, with
+    /// friction and the default 10 Hz loop. (The first-order scheme missed by 24 %; a
+    /// differentiating identification then saw inertias biased by 4-6 %.)
+    #[test]
+    fn positions_agree_with_the_recorded_accelerations() {
+        let rate = 500.0;
+        let t: Vec<f64> = (0..2000).map(|k| k as f64 / rate).collect();
+        let w = [1.3, 2.1];
+        let joint = |f: &dyn Fn(f64, f64) -> f64| -> Signals {
+            Signals::new(
+                w.iter()
+                    .map(|&w| t.iter().map(|&t| f(w, t)).collect())
+                    .collect(),
+            )
+            .unwrap()
+        };
+        let reference = Trajectory {
+            t: t.clone(),
+            q: joint(&|w, t| 0.8 * (w * t).sin()),
+            qd: joint(&|w, t| 0.8 * w * (w * t).cos()),
+            qdd: joint(&|w, t| -0.8 * w * w * (w * t).sin()),
+        };
+        let model = Pendulum::default();
+        let run = Simulation::default()
+            .run(&model, &model.base(), &reference)
+            .unwrap();
+        let tr = &run.truth.trajectory;
+        let dt = 1.0 / rate;
+        for j in 0..2 {
+            let (mut e2, mut a2) = (0.0, 0.0);
+            for k in 1..t.len() - 1 {
+                let c = (tr.q[j][k + 1] - 2.0 * tr.q[j][k] + tr.q[j][k - 1]) / (dt * dt);
+                e2 += (c - tr.qdd[j][k]).powi(2);
+                a2 += tr.qdd[j][k].powi(2);
+            }
+            let ratio = (e2 / a2).sqrt();
+            assert!(ratio < 1e-3, "joint {}: {ratio}", j + 1);
         }
     }
 }

@@ -135,7 +135,34 @@ fn norm(v: &[f64]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{Status, analyse};
+    use super::{Status, analyse, least_squares};
+    use nalgebra::DMatrix;
+
+    /// Least squares refuses what it cannot solve (a right-hand side of another length, a
+    /// value that is not finite, fewer rows than columns, a zero or dependent column) and
+    /// solves a square system exactly.
+    #[test]
+    fn least_squares_solves_or_refuses() {
+        let a = DMatrix::from_row_slice(2, 2, &[2.0, 1.0, 1.0, 3.0]);
+        let x = least_squares(&a, &[5.0, 10.0]).unwrap();
+        assert!(
+            (x[0] - 1.0).abs() < 1e-14 && (x[1] - 3.0).abs() < 1e-14,
+            "{x:?}"
+        );
+        assert_eq!(least_squares(&a, &[5.0]), None);
+        assert_eq!(least_squares(&a, &[5.0, f64::NAN]), None);
+        let mut bad = a.clone();
+        bad[(1, 1)] = f64::INFINITY;
+        assert_eq!(least_squares(&bad, &[5.0, 10.0]), None);
+        let wide = DMatrix::from_row_slice(1, 2, &[1.0, 2.0]);
+        assert_eq!(least_squares(&wide, &[1.0]), None);
+        let zero = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 1.0, 0.0]);
+        assert_eq!(least_squares(&zero, &[1.0, 1.0]), None);
+        let dependent = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
+        assert_eq!(least_squares(&dependent, &[1.0, 2.0]), None);
+        let empty = DMatrix::<f64>::zeros(2, 0);
+        assert_eq!(least_squares(&empty, &[1.0, 2.0]), Some(Vec::new()));
+    }
 
     #[test]
     fn finds_zero_and_dependent_columns() {
