@@ -215,6 +215,21 @@ mod tests {
         assert_eq!(rationalize(x), None);
     }
 
+    /// The tolerance is relative: a small number 3e-9 away (relatively) from 1/3000 is
+    /// no fraction, though 1e-12 away in absolute terms. Decimals and fractions agree
+    /// where both exist (what makes the bounds at 1e12 and at the largest denominator
+    /// equivalent in mutants-equivalent.txt).
+    #[test]
+    fn the_tolerance_is_relative_and_decimals_equal_fractions() {
+        assert_eq!(rationalize(1.0 / 3000.0 + 1e-12), None);
+        assert_eq!(rationalize(1.0 / 3000.0), Num::ratio(1, 3000));
+        assert_eq!(
+            Num::parse_decimal("1000000000000.0"),
+            Num::ratio(1_000_000_000_000, 1)
+        );
+        assert_eq!(Num::parse_decimal("0.0007"), Num::ratio(7, 10_000));
+    }
+
     #[test]
     fn constants_are_exact_fractions_or_floats() {
         // 1/9.81 is past the short fractions but exact with its denominator.
