@@ -4,7 +4,7 @@
 //! setup: 1 % noise on beta, CAD-like bounds around the truth). Methods: SDP projection of
 //! the base parameters (`solve_sdp`), consistent least squares on the observation matrix
 //! (`consistent_least_squares`; for the simulated robots, 300 random states with 1 % torque
-//! noise), the interior-point and log-Cholesky fits with the SDP's weak pull
+//! noise), the interior-point and Cholesky fits with the SDP's weak pull
 //! (`solve_interior`, `solve_smooth`) and the Gaz et al. search (`solve_anneal`, default
 //! options). Nothing is asserted.
 //!
@@ -78,7 +78,7 @@ fn run(label: &str, problem: &Problem, bounds: &Bounds, w: &DMatrix<f64>, y: &DV
     let s = solve_interior(problem, bounds, &smooth).unwrap();
     report(label, "interior-point", &s);
     let s = solve_smooth(problem, bounds, &smooth).unwrap();
-    report(label, "log-cholesky", &s);
+    report(label, "cholesky", &s);
     let s = solve_anneal(problem, bounds, &AnnealOptions::default()).unwrap();
     report(label, "anneal (8 restarts)", &s);
 }

@@ -21,8 +21,8 @@ use std::time::Instant;
 use nalgebra::{DMatrix, DVector, Matrix4};
 
 use super::bounds::Bounds;
+use super::cholesky::PER_LINK;
 use super::inertial::pseudo_inertia;
-use super::log_cholesky::PER_LINK;
 use super::objective::Objective;
 use super::problem::Problem;
 use super::smooth::SmoothOptions;

@@ -13,9 +13,10 @@
 //!
 //! - [`solve_interior`] (the default): min ||L^-1 (K p - beta)||^2 plus the prior's pull
 //!   by a log-barrier interior-point method in p; global optimum, pure Rust.
-//! - [`solve_smooth`]: the same objective by Levenberg-Marquardt over the log-Cholesky
-//!   parameters of every link (Rucker and Wensing 2022), every point consistent; slower
-//!   where the optimum lies on the boundary of the consistent set.
+//! - [`solve_smooth`]: the same objective over the Cholesky factors of every link's
+//!   pseudo-inertia (Rucker and Wensing's parametrisation without its logarithms), every
+//!   point consistent, by argmin's trust-region Newton method; the same optimum, slower
+//!   where it lies on the boundary of the consistent set.
 //! - [`solve_sdp`]: the same fit as a semidefinite program solved with Clarabel (feature
 //!   `sdp`, needs OpenBLAS); [`consistent_least_squares`] applies the same constraints
 //!   directly to the least-squares fit on data.
@@ -32,13 +33,13 @@ use openblas_src as _;
 
 mod bounds;
 mod centre;
+mod cholesky;
 #[cfg(feature = "sdp")]
 mod conic;
 mod error;
 mod inertial;
 mod interior;
 mod layout;
-mod log_cholesky;
 mod objective;
 mod output;
 mod prior;

@@ -10,13 +10,14 @@
 //! convex quadratics; the bounds on masses, centres of mass, the total mass and the
 //! diagonal of each inertia about its centre of mass enter as a stiff exterior penalty
 //! (weight `mu`) with the shifts of an augmented Lagrangian, which the methods update
-//! until the bounds hold to 1e-7 of their scale. `smooth` (Levenberg-Marquardt over log-Cholesky parameters) and
-//! `interior` (a log-det barrier in p) minimise the same rows, so their optima compare.
+//! until the bounds hold to 1e-7 of their scale. `smooth` (a trust-region Newton method over
+//! Cholesky factors) and `interior` (a log-det barrier in p) minimise the same rows, so
+//! their optima compare.
 
 use nalgebra::{DMatrix, DVector};
 
 use super::bounds::{Bounds, TENSOR_ELEMENTS};
-use super::log_cholesky::{PER_LINK, inside};
+use super::cholesky::{PER_LINK, inside};
 use super::prior::Pull;
 use super::problem::Problem;
 use super::smooth::SmoothOptions;

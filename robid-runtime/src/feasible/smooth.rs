@@ -1,31 +1,34 @@
 //! The objective of `objective` (the covariance-weighted fit of the standard parameters to
 //! the identified base parameters, the prior's pull and the bounds' penalty) minimised over
-//! the log-Cholesky parameters of every link (so every point is physically consistent, see
-//! `log_cholesky`) by Levenberg-Marquardt (the `levenberg-marquardt` crate).
+//! the Cholesky factors of every link's pseudo-inertia (so every point is physically
+//! consistent, see `cholesky`) by argmin's trust-region Newton method with Steihaug's
+//! conjugate-gradient subproblem, on the exact Hessian (the factorisation's own curvature
+//! included).
 //!
-//! The objective is convex in the standard parameters p, the consistent set is convex, and
-//! the parametrisation maps its interior smoothly and one-to-one, so the local optimum the
-//! solver finds is the global one whenever it lies inside; an optimum on the boundary (a
-//! link the data push to a singular pseudo-inertia, common on real data) is only
-//! approached, slowly, where the interior-point method of `interior` lands on it. The
-//! prior's weight is lowered in stages ([`CONTINUATION`]). Non-negative drive terms (Ia,
-//! Fv, Fc) are exponentials of their variables; Fo and extra columns are free.
+//! The objective is convex in the standard parameters p and the consistent set is convex;
+//! the map from factors to pseudo-inertias is onto and, where the factor is invertible, a
+//! local diffeomorphism, so a stationary point with invertible factors is the global
+//! optimum (Burer and Monteiro, Math. Program. 95, 2003, for the factored form of a convex
+//! semidefinite problem). Unlike the log-Cholesky form, whose boundary lies at infinity, a
+//! singular pseudo-inertia (a link the data push to the boundary, common on real data) is
+//! a finite point, reached at a linear rate. Non-negative drive terms (Ia, Fv, Fc) are
+//! squares of their variables; Fo and extra columns are free.
 
 use std::time::Instant;
 
-use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
-use nalgebra::storage::Owned;
-use nalgebra::{DMatrix, DVector, Dyn};
+use argmin::core::{CostFunction, Executor, Gradient, Hessian};
+use argmin::solver::trustregion::{Steihaug, TrustRegion};
+use nalgebra::{DMatrix, DVector};
 
 use super::bounds::Bounds;
-use super::log_cholesky::{PER_LINK, jacobian, standard_of, theta_of};
+use super::cholesky::{ENTRIES, PER_LINK, jacobian, second_derivative, standard_of, theta_of};
 use super::objective::Objective;
 use super::prior::Prior;
 use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::{Error, FeasibleError, Result};
 
-/// Settings of the pure-Rust fits (interior-point and log-Cholesky).
+/// Settings of the pure-Rust fits (interior-point and Cholesky).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SmoothOptions {
     /// The user's prior (e.g. CAD values); the default prior settles the rest.
@@ -35,8 +38,8 @@ pub struct SmoothOptions {
     pub default_weight: f64,
     /// Weight of a bound's violation (relative to its parameter's scale), in chi^2 units.
     pub penalty: f64,
-    /// Patience of the solver: at most `patience * (variables + 1)` evaluations per stage
-    /// (log-Cholesky) or Newton steps in all (interior-point).
+    /// Patience of the solver: at most `patience * (variables + 1)` Newton steps in all
+    /// (trust-region steps for the Cholesky fit).
     pub patience: usize,
 }
 
@@ -114,7 +117,7 @@ impl Fit<'_> {
                     v += PER_LINK;
                 }
                 Map::Positive(i) => {
-                    p[i] = x[v].clamp(-700.0, 700.0).exp();
+                    p[i] = x[v] * x[v];
                     v += 1;
                 }
                 Map::Free(i) => {
@@ -133,7 +136,7 @@ impl Fit<'_> {
         for map in &self.maps {
             match *map {
                 Map::Link(j) => x.extend(theta_of(&layout.link_values(j, p), self.margin)?),
-                Map::Positive(i) => x.push(p[i].ln()),
+                Map::Positive(i) => x.push(p[i].max(0.0).sqrt()),
                 Map::Free(i) => x.push(p[i]),
             }
         }
@@ -161,7 +164,7 @@ impl Fit<'_> {
                     v += PER_LINK;
                 }
                 Map::Positive(i) => {
-                    let d = x[v].clamp(-700.0, 700.0).exp();
+                    let d = 2.0 * x[v];
                     out.column_mut(v).axpy(d, &jp.column(i), 0.0);
                     v += 1;
                 }
@@ -175,37 +178,84 @@ impl Fit<'_> {
     }
 }
 
-impl LeastSquaresProblem<f64, Dyn, Dyn> for Fit<'_> {
-    type ResidualStorage = Owned<f64, Dyn>;
-    type JacobianStorage = Owned<f64, Dyn, Dyn>;
-    type ParameterStorage = Owned<f64, Dyn>;
-
-    fn set_params(&mut self, x: &DVector<f64>) {
-        self.x.copy_from(x);
-    }
-
-    fn params(&self) -> DVector<f64> {
-        self.x.clone()
-    }
-
-    fn residuals(&self) -> Option<DVector<f64>> {
-        let r = self.objective.residuals(&self.standard(&self.x));
+impl Fit<'_> {
+    /// The residuals at x, `None` where they are not finite (a wild trial step).
+    fn residuals_at(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
+        let r = self.objective.residuals(&self.standard(x));
         r.iter().all(|v| v.is_finite()).then_some(r)
-    }
-
-    fn jacobian(&self) -> Option<DMatrix<f64>> {
-        let p = self.standard(&self.x);
-        let j = self.chain(&self.x, &self.objective.jacobian(&p));
-        j.iter().all(|v| v.is_finite()).then_some(j)
     }
 }
 
-/// The prior's weight is raised this much at first and lowered tenfold per round to its
-/// own value: each round starts next to its optimum, so no link's mass is driven towards
-/// zero early, where the exponential parametrisation leaves it no gradient to come back.
-const CONTINUATION: [f64; 5] = [1e4, 1e3, 1e2, 1e1, 1.0];
-/// Rounds of the augmented Lagrangian's multiplier update after the stages, at most.
-const BOUND_ROUNDS: usize = 3;
+impl CostFunction for Fit<'_> {
+    type Param = DVector<f64>;
+    type Output = f64;
+
+    fn cost(&self, x: &DVector<f64>) -> std::result::Result<f64, argmin::core::Error> {
+        // outside the finite range the trust region shrinks (its reduction ratio is -inf)
+        Ok(self
+            .residuals_at(x)
+            .map_or(f64::INFINITY, |r| r.norm_squared()))
+    }
+}
+
+impl Gradient for Fit<'_> {
+    type Param = DVector<f64>;
+    type Gradient = DVector<f64>;
+
+    fn gradient(&self, x: &DVector<f64>) -> std::result::Result<DVector<f64>, argmin::core::Error> {
+        let p = self.standard(x);
+        let r = self.objective.residuals(&p);
+        Ok(self.chain(x, &self.objective.jacobian(&p)).tr_mul(&r) * 2.0)
+    }
+}
+
+impl Hessian for Fit<'_> {
+    type Param = DVector<f64>;
+    type Hessian = DMatrix<f64>;
+
+    /// The exact Hessian of the sum of squares in x, but for the bound rows' own
+    /// curvature: 2 Jx' Jx plus the gradient in p times the (constant) second derivatives
+    /// of p(x), which make the Newton step converge fast where Gauss-Newton crawls.
+    fn hessian(&self, x: &DVector<f64>) -> std::result::Result<DMatrix<f64>, argmin::core::Error> {
+        let p = self.standard(x);
+        let r = self.objective.residuals(&p);
+        let jp = self.objective.jacobian(&p);
+        let jx = self.chain(x, &jp);
+        let mut h = jx.tr_mul(&jx) * 2.0;
+        let gp = jp.tr_mul(&r) * 2.0;
+        let layout = &self.objective.problem.layout;
+        let mut v = 0;
+        for map in &self.maps {
+            match *map {
+                Map::Link(j) => {
+                    let g: [f64; PER_LINK] = std::array::from_fn(|s| gp[layout.links[j][s]]);
+                    for (a, (_, i, k)) in ENTRIES.iter().enumerate() {
+                        for (b, (_, m, l)) in ENTRIES.iter().enumerate() {
+                            if k == l {
+                                h[(v + a, v + b)] += second_derivative(&g, *i, *m);
+                            }
+                        }
+                    }
+                    v += PER_LINK;
+                }
+                Map::Positive(i) => {
+                    h[(v, v)] += 2.0 * gp[i];
+                    v += 1;
+                }
+                Map::Free(_) => v += 1,
+            }
+        }
+        Ok(h)
+    }
+}
+
+/// Conjugate-gradient steps of a trust-region subproblem, at most (more than the
+/// variables: rounding spoils the conjugacy on these ill-conditioned Hessians).
+const STEIHAUG_ITERATIONS: u64 = 200;
+/// The trust region's largest radius in the variables (square roots of kg and kg m^2).
+const MAX_RADIUS: f64 = 1e3;
+/// Rounds of the augmented Lagrangian's multiplier update, at most.
+const BOUND_ROUNDS: usize = 4;
 
 /// Physically consistent standard parameters that reproduce the identified base
 /// parameters of `problem` within the bounds, settled by the prior where the data leave
@@ -239,34 +289,74 @@ pub fn solve_smooth(
             reason: "the prior of a link cannot be made physically consistent; check the prior's masses and inertias".into(),
         })
     })?;
-    let weight = fit.objective.pull.weight.clone();
-    // the prior's stages, then rounds at its own weight until the bounds hold
-    let rounds = CONTINUATION
-        .into_iter()
-        .chain(std::iter::repeat_n(1.0, BOUND_ROUNDS));
-    for (round, factor) in rounds.enumerate() {
-        fit.objective.pull.weight = weight.iter().map(|w| w * factor).collect();
-        let (next, report) = LevenbergMarquardt::new()
-            .with_patience(options.patience)
-            .minimize(fit);
+    // rounds of the bounds' multipliers until the bounds hold
+    let budget = options.patience.saturating_mul(fit.x.len() + 1);
+    let mut iterations = 0;
+    for _ in 0..BOUND_ROUNDS {
+        let (next, used) = minimise(fit, budget.saturating_sub(iterations))?;
         fit = next;
-        if !report.objective_function.is_finite() {
-            return Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
-                reason: format!(
-                    "the log-Cholesky fit stopped without a finite objective ({:?}); check the identified values and the bounds",
-                    report.termination
-                ),
-            }));
-        }
+        iterations += used;
         let p = fit.standard(&fit.x);
-        let violation = fit.objective.update_shifts(&p);
-        if round + 1 >= CONTINUATION.len() && violation <= 1e-7 {
+        if fit.objective.update_shifts(&p) <= 1e-7 {
             break;
         }
     }
     let p = fit.standard(&fit.x);
-    let mut solution =
-        Solution::assemble(problem, bounds, Method::LogCholesky, p, start.elapsed())?;
+    let mut solution = Solution::assemble(problem, bounds, Method::Cholesky, p, start.elapsed())?;
+    solution.iterations = iterations;
     solution.determined = super::prior::determined(problem, &fit.objective.pull);
     Ok(solution)
+}
+
+/// Trust-region iterations per call of the solver; between calls the fit stops when the
+/// objective fell by less than [`STALL`] of itself.
+const CHUNK: usize = 25;
+/// See [`CHUNK`].
+const STALL: f64 = 1e-10;
+
+/// Minimises the fit from its x by argmin's trust-region Newton method (Steihaug's
+/// conjugate-gradient subproblem), at most `budget` iterations; returns the fit at the
+/// best point and the iterations used.
+fn minimise(mut fit: Fit<'_>, budget: usize) -> Result<(Fit<'_>, usize)> {
+    let stopped = |why: String| {
+        Error::Feasible(FeasibleError::NoFeasibleParameters {
+            reason: format!(
+                "the smooth fit stopped: {why}; check the identified values and the bounds"
+            ),
+        })
+    };
+    let mut used = 0;
+    let mut now = fit.cost(&fit.x).map_err(|e| stopped(e.to_string()))?;
+    if !now.is_finite() {
+        return Err(stopped("the start has no finite objective".into()));
+    }
+    while used < budget {
+        let chunk = CHUNK.min(budget - used);
+        let x0 = fit.x.clone();
+        let solver = TrustRegion::new(Steihaug::new().with_max_iters(STEIHAUG_ITERATIONS))
+            .with_max_radius(MAX_RADIUS)
+            .map_err(|e| stopped(e.to_string()))?;
+        let result = Executor::new(fit, solver)
+            .configure(|state| state.param(x0).max_iters(chunk as u64))
+            .run()
+            .map_err(|e| stopped(e.to_string()))?;
+        used += chunk;
+        let best = result.state.best_param;
+        let cost = result.state.best_cost;
+        fit = result
+            .problem
+            .problem
+            .ok_or_else(|| stopped("the solver kept the problem".into()))?;
+        if let Some(best) = best
+            && cost <= now
+        {
+            fit.x = best;
+        }
+        let fell = now - cost;
+        now = now.min(cost);
+        if fell <= STALL * (1.0 + now) {
+            break;
+        }
+    }
+    Ok((fit, used))
 }

@@ -16,8 +16,8 @@ pub enum Method {
     Sdp,
     /// Simulated annealing with random restarts and Nelder-Mead (Gaz et al.).
     Anneal,
-    /// Levenberg-Marquardt over the log-Cholesky parameters.
-    LogCholesky,
+    /// Trust-region Newton over the Cholesky factors of the pseudo-inertias.
+    Cholesky,
     /// Interior-point method on the convex fit (the default).
     Interior,
 }
@@ -28,7 +28,7 @@ impl Method {
         match self {
             Method::Sdp => "sdp",
             Method::Anneal => "anneal",
-            Method::LogCholesky => "log-cholesky",
+            Method::Cholesky => "cholesky",
             Method::Interior => "interior-point",
         }
     }

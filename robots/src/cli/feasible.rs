@@ -1,5 +1,5 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
-//! [--method interior-point|log-cholesky|sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
+//! [--method interior-point|cholesky|sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
 //! consistent link parameters that reproduce identified base parameters
 //! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
 //! OUT as TOML, or as URDF `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
@@ -61,7 +61,7 @@ pub(crate) struct Args {
     bounds: Option<PathBuf>,
     /// `interior-point` (the convex fit's global optimum by a log-barrier method, every
     /// iterate physically consistent; needs nothing but the Rust toolchain),
-    /// `log-cholesky` (Levenberg-Marquardt over the log-Cholesky parameters), `sdp` (the
+    /// `cholesky` (the same fit over Cholesky factors, by argmin's trust region), `sdp` (the
     /// same convex fit by Clarabel; needs the `sdp` feature) or `anneal` (Gaz et al.'s
     /// global search).
     #[arg(long, default_value = "interior-point")]
@@ -112,9 +112,9 @@ fn check(args: &Args) -> Result<(), Error> {
     inputs.extend(args.bounds.as_deref());
     inputs.extend(args.prior.as_deref());
     files::refuse(&inputs, &[&args.output])?;
-    if !["interior-point", "log-cholesky", "sdp", "anneal"].contains(&args.method.as_str()) {
+    if !["interior-point", "cholesky", "sdp", "anneal"].contains(&args.method.as_str()) {
         return Err(format!(
-            "--method {}: unknown; use interior-point, log-cholesky, sdp or anneal",
+            "--method {}: unknown; use interior-point, cholesky, sdp or anneal",
             args.method
         )
         .into());
@@ -275,7 +275,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 regularization: default_weight,
             },
         )?,
-        "log-cholesky" => solve_smooth(&problem, &bounds, &smooth)?,
+        "cholesky" => solve_smooth(&problem, &bounds, &smooth)?,
         _ => solve_interior(&problem, &bounds, &smooth)?,
     };
     check_solution(&solution)?;

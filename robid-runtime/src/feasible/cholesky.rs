@@ -1,18 +1,20 @@
-//! The log-Cholesky parametrisation of a link's pseudo-inertia (Rucker and Wensing,
-//! "Smooth parameterization of rigid-body inertia", IEEE RA-L 7(2), 2022;
-//! docs/experiments.md#feasible-parameters): ten unconstrained numbers
-//! theta = (alpha, d1, d2, d3, s12, s23, s13, t1, t2, t3) give
+//! The Cholesky parametrisation of a link's pseudo-inertia: ten unconstrained numbers
+//! theta = (u, d1, d2, d3, s12, s23, s13, t1, t2, t3) give
 //!
 //! ```text
-//! P = margin I + U U',   U = e^alpha [[e^d1, s12, s13, t1],
-//!                                     [0,    e^d2, s23, t2],
-//!                                     [0,    0,    e^d3, t3],
-//!                                     [0,    0,    0,    1 ]]
+//! P = margin I + U U',   U = [[d1, s12, s13, t1],
+//!                             [0,  d2,  s23, t2],
+//!                             [0,  0,   d3,  t3],
+//!                             [0,  0,   0,   u ]]
 //! ```
 //!
-//! so every theta is a physically consistent link (P >= margin I), and every link with
-//! P > margin I has exactly one theta. The ten standard parameters are linear in P
-//! (`m = P44`, `h = P[0..3, 3]`, `J = tr(S) I - S` with `S = P[0..3, 0..3]`).
+//! so every theta is a physically consistent link (P >= margin I) and every consistent
+//! link has a theta, the singular ones (P = margin I on some direction) at finite theta.
+//! It is the log-Cholesky parametrisation of Rucker and Wensing ("Smooth parameterization
+//! of rigid-body inertia", IEEE RA-L 7(2), 2022; docs/experiments.md#feasible-parameters)
+//! without the exponentials on the diagonal, which put the boundary at infinity. The ten
+//! standard parameters are linear in P (`m = P44`, `h = P[0..3, 3]`, `J = tr(S) I - S`
+//! with `S = P[0..3, 0..3]`) and so quadratic in theta.
 
 use nalgebra::{Matrix4, SymmetricEigen};
 
@@ -21,34 +23,11 @@ use super::inertial::pseudo_inertia;
 /// Parameters per link.
 pub(super) const PER_LINK: usize = 10;
 
-/// Exponents are clamped here: e^60 is far beyond any physical link, and the clamp keeps
-/// a wild trial step of the solver finite.
-const MAX_EXPONENT: f64 = 60.0;
-
-fn exp(x: f64) -> f64 {
-    x.clamp(-MAX_EXPONENT, MAX_EXPONENT).exp()
-}
-
-/// The scaled factor V = U e^-alpha of `theta`.
+/// The factor U of `theta` (upper triangular, entries as they are).
 fn factor(theta: &[f64; PER_LINK]) -> Matrix4<f64> {
-    let [_, d1, d2, d3, s12, s23, s13, t1, t2, t3] = *theta;
+    let [u, d1, d2, d3, s12, s23, s13, t1, t2, t3] = *theta;
     Matrix4::new(
-        exp(d1),
-        s12,
-        s13,
-        t1,
-        0.0,
-        exp(d2),
-        s23,
-        t2,
-        0.0,
-        0.0,
-        exp(d3),
-        t3,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
+        d1, s12, s13, t1, 0.0, d2, s23, t2, 0.0, 0.0, d3, t3, 0.0, 0.0, 0.0, u,
     )
 }
 
@@ -71,43 +50,52 @@ fn standard_of_matrix(p: &Matrix4<f64>) -> [f64; PER_LINK] {
 
 /// The standard values of `theta` with P >= `margin` I.
 pub(super) fn standard_of(theta: &[f64; PER_LINK], margin: f64) -> [f64; PER_LINK] {
-    let v = factor(theta);
-    let p = v * v.transpose() * exp(2.0 * theta[0]) + Matrix4::identity() * margin;
+    let u = factor(theta);
+    let p = u * u.transpose() + Matrix4::identity() * margin;
     standard_of_matrix(&p)
+}
+
+/// The entry (i, k) of U behind each variable t: `(t, i, k)`.
+pub(super) const ENTRIES: [(usize, usize, usize); PER_LINK] = [
+    (0, 3, 3),
+    (1, 0, 0),
+    (2, 1, 1),
+    (3, 2, 2),
+    (4, 0, 1),
+    (5, 1, 2),
+    (6, 0, 2),
+    (7, 0, 3),
+    (8, 1, 3),
+    (9, 2, 3),
+];
+
+/// The second derivative of `sum_s g[s] standard_s(U U')` by U_ik and U_ml (zero unless
+/// k == l, then the functional at E_im + E_mi): constant, as P is quadratic in U.
+pub(super) fn second_derivative(g: &[f64; PER_LINK], i: usize, m: usize) -> f64 {
+    let e = Matrix4::from_fn(|a, b| {
+        f64::from(u8::from(a == i && b == m)) + f64::from(u8::from(a == m && b == i))
+    });
+    standard_of_matrix(&e)
+        .iter()
+        .zip(g)
+        .map(|(d, w)| d * w)
+        .sum()
 }
 
 /// d standard / d theta: `out[s][t]` is the derivative of standard value `s` by `theta[t]`.
 pub(super) fn jacobian(theta: &[f64; PER_LINK]) -> [[f64; PER_LINK]; PER_LINK] {
     let v = factor(theta);
-    let scale = exp(2.0 * theta[0]);
     let mut out = [[0.0; PER_LINK]; PER_LINK];
-    let mut set = |t: usize, dp: Matrix4<f64>| {
-        for (s, d) in standard_of_matrix(&dp).into_iter().enumerate() {
-            out[s][t] = d;
-        }
-    };
-    set(0, v * v.transpose() * (2.0 * scale));
-    // the entry (i, k) of V behind each variable, and dV/dvariable there
-    let entries = [
-        (1, 0, 0),
-        (2, 1, 1),
-        (3, 2, 2),
-        (4, 0, 1),
-        (5, 1, 2),
-        (6, 0, 2),
-        (7, 0, 3),
-        (8, 1, 3),
-        (9, 2, 3),
-    ];
-    for (t, i, k) in entries {
-        let c = if i == k { v[(i, i)] } else { 1.0 };
-        // d(V V') = c (E_ik V' + V E_ki)
+    for (t, i, k) in ENTRIES {
+        // d(U U') = E_ik U' + U E_ki
         let dp = Matrix4::from_fn(|a, b| {
             let left = if a == i { v[(b, k)] } else { 0.0 };
             let right = if b == i { v[(a, k)] } else { 0.0 };
-            c * scale * (left + right)
+            left + right
         });
-        set(t, dp);
+        for (s, d) in standard_of_matrix(&dp).into_iter().enumerate() {
+            out[s][t] = d;
+        }
     }
     out
 }
@@ -124,22 +112,17 @@ pub(super) fn theta_of(standard: &[f64; PER_LINK], margin: f64) -> Option<[f64; 
     let flip = |m: &Matrix4<f64>| Matrix4::from_fn(|i, k| m[(3 - i, 3 - k)]);
     let l = flip(&a).cholesky()?.l();
     let u = flip(&l);
-    let scale = u[(3, 3)];
-    if !(scale > 0.0) {
-        return None;
-    }
-    let v = u / scale;
-    let theta = [
-        scale.ln(),
-        v[(0, 0)].ln(),
-        v[(1, 1)].ln(),
-        v[(2, 2)].ln(),
-        v[(0, 1)],
-        v[(1, 2)],
-        v[(0, 2)],
-        v[(0, 3)],
-        v[(1, 3)],
-        v[(2, 3)],
+    let theta: [f64; PER_LINK] = [
+        u[(3, 3)],
+        u[(0, 0)],
+        u[(1, 1)],
+        u[(2, 2)],
+        u[(0, 1)],
+        u[(1, 2)],
+        u[(0, 2)],
+        u[(0, 3)],
+        u[(1, 3)],
+        u[(2, 3)],
     ];
     theta.iter().all(|x| x.is_finite()).then_some(theta)
 }
@@ -228,6 +211,33 @@ mod tests {
                         j[s][t]
                     );
                 }
+            }
+        }
+    }
+
+    /// The second derivatives of a weighted sum of the standard values equal central
+    /// differences of the analytic Jacobian (exact up to rounding: the Jacobian is linear).
+    #[test]
+    fn second_derivatives_match_the_jacobian() {
+        let mut rng = crate::rng::Rng::new(13);
+        let g: [f64; PER_LINK] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
+        let theta: [f64; PER_LINK] = std::array::from_fn(|_| rng.uniform(-1.5, 1.5));
+        let h = 1e-3;
+        for (a, (_, i, k)) in ENTRIES.iter().enumerate() {
+            for (b, (_, m, l)) in ENTRIES.iter().enumerate() {
+                let (mut up, mut down) = (theta, theta);
+                up[b] += h;
+                down[b] -= h;
+                let (ju, jd) = (jacobian(&up), jacobian(&down));
+                let fd: f64 = (0..PER_LINK)
+                    .map(|s| g[s] * (ju[s][a] - jd[s][a]) / (2.0 * h))
+                    .sum();
+                let exact = if k == l {
+                    second_derivative(&g, *i, *m)
+                } else {
+                    0.0
+                };
+                assert!((fd - exact).abs() < 1e-9, "({a}, {b}): {fd} vs {exact}");
             }
         }
     }
