@@ -133,8 +133,8 @@ impl Derivation {
         let user = self.parameter_symbols();
         let mut links = self.link_parameters(&user);
         let rows = self.robot.frame_rows();
-        let eliminated = rules::apply(&mut self.arena, &rows, &mut links);
-        let candidates = self.candidates(&links, &eliminated);
+        rules::apply(&mut self.arena, &rows, &mut links);
+        let candidates = self.candidates(&links);
         let geometry: Vec<Id> = self
             .robot
             .symbols()
@@ -226,23 +226,16 @@ impl Derivation {
         })
     }
 
-    /// Every slot the rules left, with its regressor column (modified frames).
-    fn candidates(
-        &mut self,
-        links: &[LinkParameters],
-        eliminated: &[rules::Eliminated],
-    ) -> Vec<Candidate> {
+    /// Every slot the rules left, with its regressor column (modified frames): the
+    /// non-zero ones (the rules zero what they move into the parent, and a drive term the
+    /// joint does not have is no parameter).
+    fn candidates(&mut self, links: &[LinkParameters]) -> Vec<Candidate> {
         let n = links.len();
         let mut out = Vec::new();
         for j in 0..n {
-            let drive = self.robot.joints()[j].drive;
-            let enabled = [drive.ia, drive.fv, drive.fc, drive.fo];
             let slots = rules::slots(&links[j]);
             for slot in 0..14 {
-                if eliminated[j][slot]
-                    || (slot >= 10 && !enabled[slot - 10])
-                    || self.arena.is_zero(slots[slot])
-                {
+                if self.arena.is_zero(slots[slot]) {
                     continue;
                 }
                 let mut params: Vec<LinkParameters> = (0..n)
@@ -319,6 +312,66 @@ impl Derivation {
 
 #[cfg(test)]
 mod tests {
+    use super::rules;
+    use crate::dynamics::Derivation;
+    use crate::robot::{ParameterId, ParameterKind, Robot};
+
+    /// The rules zero exactly what they move into the parent link (for a revolute joint
+    /// after the first YY, MZ and M, for a prismatic one the six inertia terms), a drive
+    /// term the joint does not have is zero, and the candidates are the other slots.
+    #[test]
+    fn candidates_are_the_slots_the_rules_left() {
+        let robot = Robot::from_toml(
+            r#"
+name = "mixed"
+convention = "modified"
+[[joints]]
+alpha = 0
+a = 0
+d = 0
+drive = ["Ia"]
+[[joints]]
+alpha = "-pi/2"
+a = 0.1
+d = 0.2
+drive = ["Fv", "Fc"]
+[[joints]]
+type = "prismatic"
+alpha = "pi/2"
+a = 0.3
+theta = 0
+[[joints]]
+alpha = 0.4
+a = 0.2
+d = 0
+drive = ["Ia", "Fv", "Fc", "Fo"]
+"#,
+            "mixed.toml",
+        )
+        .unwrap();
+        let mut d = Derivation::new(&robot);
+        let user = d.parameter_symbols();
+        let mut links = d.link_parameters(&user);
+        let rows = d.robot.frame_rows();
+        rules::apply(&mut d.arena, &rows, &mut links);
+        let candidates: Vec<ParameterId> = d.candidates(&links).iter().map(|c| c.id).collect();
+        let moved: [&[usize]; 4] = [&[], &[3, 8, 9], &[0, 1, 2, 3, 4, 5], &[3, 8, 9]];
+        let mut left = 0;
+        for (j, link) in links.iter().enumerate() {
+            let drive = robot.joints()[j].drive;
+            let enabled = [drive.ia, drive.fv, drive.fc, drive.fo];
+            let slots = rules::slots(link);
+            for (slot, kind) in ParameterKind::ALL.iter().enumerate() {
+                let id = ParameterId::new(j, *kind);
+                let zero = moved[j].contains(&slot) || (slot >= 10 && !enabled[slot - 10]);
+                assert_eq!(d.arena.is_zero(slots[slot]), zero, "{id:?}");
+                assert_eq!(candidates.contains(&id), !zero, "{id:?}");
+                left += usize::from(!zero);
+            }
+        }
+        assert_eq!(candidates.len(), left);
+    }
+
     #[test]
     fn a_refusal_says_what_bounded_the_fit() {
         let error = |degree| {

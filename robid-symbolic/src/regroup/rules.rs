@@ -20,22 +20,13 @@ use crate::dynamics::vector::{self, Mat3};
 use crate::expr::{Arena, Id};
 use crate::robot::{FrameRow, JointKind, ParameterKind};
 
-/// Which of a link's 14 parameter slots the rules eliminated (moved into its parent).
-pub(crate) type Eliminated = [bool; 14];
-
 /// Slot indices: 0..6 inertia, 6..9 first moment, 9 mass, 10..14 Ia Fv Fc Fo.
 pub(crate) const SLOT_YY: usize = 3;
-const SLOT_MZ: usize = 8;
-const SLOT_M: usize = 9;
 
-/// Applies the rules in place; returns the eliminated slots of each link.
-pub(crate) fn apply(
-    arena: &mut Arena,
-    rows: &[FrameRow],
-    links: &mut [LinkParameters],
-) -> Vec<Eliminated> {
+/// Applies the rules in place: a parameter moved into the parent link leaves its slot at
+/// zero.
+pub(crate) fn apply(arena: &mut Arena, rows: &[FrameRow], links: &mut [LinkParameters]) {
     let n = links.len();
-    let mut eliminated = vec![[false; 14]; n];
     for j in (1..n).rev() {
         let row = &rows[j];
         let alpha = row.alpha.to_expr(arena);
@@ -61,9 +52,6 @@ pub(crate) fn apply(
                 links[j].inertia[SLOT_YY] = zero;
                 links[j].first_moment[2] = zero;
                 links[j].mass = zero;
-                for slot in [SLOT_YY, SLOT_MZ, SLOT_M] {
-                    eliminated[j][slot] = true;
-                }
                 let into_parent = transfer(arena, moved, &rx, p);
                 add_inertial(arena, &mut links[j - 1], &into_parent);
             }
@@ -73,15 +61,11 @@ pub(crate) fn apply(
                 let r = vector::rot_x_rot_z(arena, s, c, st, ct);
                 moved.inertia = l.inertia;
                 links[j].inertia = [zero; 6];
-                for slot in eliminated[j].iter_mut().take(6) {
-                    *slot = true;
-                }
                 let into_parent = transfer(arena, moved, &r, [zero; 3]);
                 add_inertial(arena, &mut links[j - 1], &into_parent);
             }
         }
     }
-    eliminated
 }
 
 fn add_inertial(arena: &mut Arena, target: &mut LinkParameters, extra: &LinkParameters) {
