@@ -234,8 +234,8 @@ impl Derivation {
         let mut out = Vec::new();
         for j in 0..n {
             let slots = rules::slots(&links[j]);
-            for slot in 0..14 {
-                if self.arena.is_zero(slots[slot]) {
+            for (slot, &expression) in slots.iter().enumerate() {
+                if self.arena.is_zero(expression) {
                     continue;
                 }
                 let mut params: Vec<LinkParameters> = (0..n)
@@ -251,7 +251,7 @@ impl Derivation {
                 );
                 out.push(Candidate {
                     id: ParameterId::new(j, ParameterKind::ALL[slot]),
-                    expression: slots[slot],
+                    expression,
                     column,
                 });
             }
