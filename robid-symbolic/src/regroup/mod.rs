@@ -372,6 +372,28 @@ drive = ["Ia", "Fv", "Fc", "Fo"]
         assert_eq!(candidates.len(), left);
     }
 
+    /// A revolute joint about the gravity axis: its rotation sees only ZZ1, every other
+    /// parameter of the link is unidentifiable (named in the standard order).
+    #[test]
+    fn a_vertical_joint_leaves_all_but_zz_unidentifiable() {
+        let robot = Robot::from_toml(
+            "name = \"one\"\nconvention = \"modified\"\n[[joints]]\nalpha = 0\na = 0\nd = 0\n",
+            "one.toml",
+        )
+        .unwrap();
+        let base = Derivation::new(&robot).base_parameters().unwrap();
+        let names = |list: Vec<usize>| -> Vec<String> {
+            list.into_iter()
+                .map(|s| base.standard[s].to_string())
+                .collect()
+        };
+        assert_eq!(base.base.len(), 1);
+        assert_eq!(
+            names(base.unidentifiable.clone()),
+            ["XX1", "XY1", "XZ1", "YY1", "YZ1", "MX1", "MY1", "MZ1", "M1"]
+        );
+    }
+
     #[test]
     fn a_refusal_says_what_bounded_the_fit() {
         let error = |degree| {
