@@ -115,31 +115,6 @@ impl Derivation {
         self.regressor_by(|d, values| d.lagrange(values).torques)
     }
 
-    /// The energy regressor h: total energy H = T + U = h . parameters.
-    pub fn energy_regressor(&mut self) -> Vec<Id> {
-        self.regressor_by(|d, values| {
-            let l = d.lagrange_energies(values);
-            vec![l]
-        })
-        .columns
-        .into_iter()
-        .map(|c| c[0])
-        .collect()
-    }
-
-    fn lagrange_energies(&mut self, values: &[Id]) -> Id {
-        let params = self.link_parameters(values);
-        let t =
-            lagrange::kinetic_energy(&mut self.arena, &self.kinematics, &self.inputs.qd, &params);
-        let u = lagrange::potential_energy(
-            &mut self.arena,
-            &self.kinematics,
-            self.inputs.gravity,
-            &params,
-        );
-        self.arena.add2(t, u)
-    }
-
     fn regressor_by(
         &mut self,
         mut torques: impl FnMut(&mut Derivation, &[Id]) -> Vec<Id>,

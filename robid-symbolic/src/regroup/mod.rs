@@ -381,7 +381,12 @@ drive = ["Ia", "Fv", "Fc", "Fo"]
             "one.toml",
         )
         .unwrap();
-        let base = Derivation::new(&robot).base_parameters().unwrap();
+        let mut derivation = Derivation::new(&robot);
+        assert_eq!(
+            derivation.standard_parameters(),
+            robot.standard_parameters().as_slice()
+        );
+        let base = derivation.base_parameters().unwrap();
         let names = |list: Vec<usize>| -> Vec<String> {
             list.into_iter()
                 .map(|s| base.standard[s].to_string())
