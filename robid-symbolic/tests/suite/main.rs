@@ -12,4 +12,5 @@ mod regroup;
 mod regroup_random;
 mod regroup_symbolic;
 mod simplify_keeps_value;
+mod standard_frames;
 mod ur5e_inverse_dynamics_text;
