@@ -3,24 +3,34 @@
 
 use robid_symbolic::{Derivation, Robot};
 
-/// One revolute joint, standard DH with a = 0.4 and alpha = pi/2, gravity along -y of the
-/// base. The centre of mass at c in frame 1 sits at Rz(q) ((a, 0, 0) + Rx(pi/2) c) in the
-/// base, so the potential energy is g (sin q (M a + MX) - cos q MZ) and the gravity torque
-/// g (cos q (M a + MX) + sin q MZ); MY (along the joint axis once twisted) has no effect.
-/// The first moments as if they were in the modified frame (no transfer) would miss M a and
-/// swap MZ for MY.
+/// One revolute joint, standard DH with a = 0.4, gravity along -y of the base. The centre
+/// of mass at c in frame 1 sits at Rz(q) ((a, 0, 0) + Rx(alpha) c) in the base. With
+/// alpha = pi/2 the potential energy is g (sin q (M a + MX) - cos q MZ), the gravity torque
+/// g (cos q (M a + MX) + sin q MZ), and MY (along the joint axis once twisted) has no
+/// effect; with alpha = 0 the torque is g (cos q (M a + MX) - sin q MY). The first moments
+/// taken as if in the modified frame (no transfer) would miss M a and mix up MY and MZ.
 #[test]
 fn a_standard_frame_parameter_reaches_the_torque_through_a_and_alpha() {
+    let (m, mx, my, mz, q) = (2.0, 0.5, 0.3, 0.7, 0.3f64);
+    let twisted = 9.81 * (q.cos() * (m * 0.4 + mx) + q.sin() * mz);
+    let straight = 9.81 * (q.cos() * (m * 0.4 + mx) - q.sin() * my);
+    for (alpha, want) in [("pi/2", twisted), ("0", straight)] {
+        gravity_torque(alpha, [m, mx, my, mz, q], want);
+    }
+}
+
+fn gravity_torque(alpha: &str, [m, mx, my, mz, q]: [f64; 5], want: f64) {
     let robot = Robot::from_toml(
-        "name = \"one\"\nconvention = \"standard\"\ngravity = [0, -9.81, 0]\n\
-         [[joints]]\nalpha = \"pi/2\"\na = 0.4\nd = 0\n",
+        &format!(
+            "name = \"one\"\nconvention = \"standard\"\ngravity = [0, -9.81, 0]\n\
+             [[joints]]\nalpha = \"{alpha}\"\na = 0.4\nd = 0\n"
+        ),
         "one.toml",
     )
     .unwrap();
     let mut d = Derivation::new(&robot);
     let symbols = d.parameter_symbols();
     let tau = d.inverse_dynamics(&symbols);
-    let (m, mx, my, mz, q) = (2.0, 0.5, 0.3, 0.7, 0.3f64);
     let values = d.arena.values(&[
         ("q1", q),
         ("qd1", 0.0),
@@ -37,6 +47,5 @@ fn a_standard_frame_parameter_reaches_the_torque_through_a_and_alpha() {
         ("ZZ1", 0.0),
     ]);
     let got = d.arena.eval(&tau, &values).unwrap()[0];
-    let want = 9.81 * (q.cos() * (m * 0.4 + mx) + q.sin() * mz);
-    assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+    assert!((got - want).abs() < 1e-12, "alpha {alpha}: {got} vs {want}");
 }
