@@ -1,5 +1,5 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
-//! [--method interior-point|cholesky|sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
+//! [--method cholesky|interior-point|sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
 //! consistent link parameters that reproduce identified base parameters
 //! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
 //! OUT as TOML, or as URDF `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
@@ -59,12 +59,12 @@ pub(crate) struct Args {
     /// Bounds on masses, centres of mass, inertias and the total mass (TOML).
     #[arg(long, long_help = BOUNDS_HELP)]
     bounds: Option<PathBuf>,
-    /// `interior-point` (the convex fit's global optimum by a log-barrier method, every
-    /// iterate physically consistent; needs nothing but the Rust toolchain),
-    /// `cholesky` (the same fit over Cholesky factors, by argmin's trust region), `sdp` (the
-    /// same convex fit by Clarabel; needs the `sdp` feature) or `anneal` (Gaz et al.'s
-    /// global search).
-    #[arg(long, default_value = "interior-point")]
+    /// `cholesky` (the convex fit's global optimum over the Cholesky factors of every
+    /// link's pseudo-inertia, so every point is physically consistent, by argmin's trust
+    /// region; needs nothing but the Rust toolchain), `interior-point` (the same optimum by
+    /// a log-barrier method in the parameters, usually faster), `sdp` (the same convex fit
+    /// by Clarabel; needs the `sdp` feature) or `anneal` (Gaz et al.'s global search).
+    #[arg(long, default_value = "cholesky")]
     method: String,
     /// Prior standard parameters, e.g. CAD values (a parameter file with a `[standard]`
     /// table; parameters it does not list get the default prior, a solid along each link,
@@ -114,7 +114,7 @@ fn check(args: &Args) -> Result<(), Error> {
     files::refuse(&inputs, &[&args.output])?;
     if !["interior-point", "cholesky", "sdp", "anneal"].contains(&args.method.as_str()) {
         return Err(format!(
-            "--method {}: unknown; use interior-point, cholesky, sdp or anneal",
+            "--method {}: unknown; use cholesky, interior-point, sdp or anneal",
             args.method
         )
         .into());
@@ -275,8 +275,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 regularization: default_weight,
             },
         )?,
-        "cholesky" => solve_smooth(&problem, &bounds, &smooth)?,
-        _ => solve_interior(&problem, &bounds, &smooth)?,
+        "interior-point" => solve_interior(&problem, &bounds, &smooth)?,
+        _ => solve_smooth(&problem, &bounds, &smooth)?,
     };
     check_solution(&solution)?;
     let urdf = matches!(
