@@ -32,7 +32,7 @@ fn repo(p: &str) -> PathBuf {
 
 fn report(label: &str, method: &str, s: &Solution) {
     println!(
-        "{label:6} {method:26} chi^2 {:>10.4e}  max |z| {:>7.3}  min eig {:>9.2e}  {:>8.3} s  {}",
+        "{label:6} {method:26} chi^2 {:>10.4e}  max |z| {:>7.3}  min eig {:>9.2e}  {:>8.3} s {:>5} it  {}",
         s.chi2,
         s.max_normalized_residual(),
         s.min_eigenvalues
@@ -40,6 +40,7 @@ fn report(label: &str, method: &str, s: &Solution) {
             .copied()
             .fold(f64::INFINITY, f64::min),
         s.seconds,
+        s.iterations,
         if s.violations.is_empty() {
             String::new()
         } else {
