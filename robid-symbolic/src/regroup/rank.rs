@@ -183,6 +183,22 @@ mod tests {
         }
     }
 
+    /// Both thresholds are relative: a column of rounding noise (1e-9 against columns of
+    /// norm 1e3) is zero, and a column 5e-11 of its size away from the span of the others
+    /// is dependent, while one 1e-6 away is kept.
+    #[test]
+    fn the_thresholds_are_relative_to_the_columns() {
+        let a = vec![1e3, 0.0, 0.0, 0.0];
+        let noise = vec![0.0, 1e-9, 0.0, 0.0];
+        let near = vec![2e3, 1e-7, 0.0, 0.0];
+        let apart = vec![1e3, 0.0, 1e-3, 0.0];
+        let s = analyse(&[a, noise, near, apart]).unwrap();
+        assert_eq!(s[0], Status::Kept(0));
+        assert_eq!(s[1], Status::Zero);
+        assert!(matches!(s[2], Status::Dependent(_)), "{:?}", s[2]);
+        assert_eq!(s[3], Status::Kept(1));
+    }
+
     #[test]
     fn values_that_are_not_finite_are_refused() {
         assert_eq!(analyse(&[vec![1.0, f64::NAN]]), None);
