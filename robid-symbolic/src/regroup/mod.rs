@@ -399,6 +399,33 @@ drive = ["Ia", "Fv", "Fc", "Fo"]
         );
     }
 
+    /// The sampled states keep every velocity between 0.2 and 2 in size (so sign(qd) is
+    /// defined and Coulomb columns are not degenerate), and positions and accelerations
+    /// spread over [-3, 3].
+    #[test]
+    fn sampled_velocities_stay_away_from_zero() {
+        let robot = Robot::from_toml(
+            "name = \"two\"\nconvention = \"modified\"\n[[joints]]\nalpha = 0\na = 0\nd = 0\n\
+             [[joints]]\nalpha = \"pi/2\"\na = 0\nd = 0\n",
+            "two.toml",
+        )
+        .unwrap();
+        let mut d = Derivation::new(&robot);
+        let velocities = d.inputs.qd.clone();
+        let others = [d.inputs.q[0], d.inputs.qdd[1]];
+        let mut rng = super::Rng::from_state(7);
+        let sampled = d.sample(&[&velocities, &others], &[], &[], &mut rng);
+        assert!(sampled[0].len() >= 40);
+        for v in &sampled[0] {
+            assert!((0.2..=2.0).contains(&v.abs()), "velocity {v}");
+        }
+        assert!(sampled[0].iter().any(|v| *v < 0.0) && sampled[0].iter().any(|v| *v > 0.0));
+        assert!(sampled[1].iter().all(|v| v.abs() <= 3.0));
+        assert!(
+            sampled[1].iter().any(|v| v.abs() < 0.2) && sampled[1].iter().any(|v| v.abs() > 2.0)
+        );
+    }
+
     #[test]
     fn a_refusal_says_what_bounded_the_fit() {
         let error = |degree| {
