@@ -228,6 +228,13 @@ mod tests {
             Num::ratio(1_000_000_000_000, 1)
         );
         assert_eq!(Num::parse_decimal("0.0007"), Num::ratio(7, 10_000));
+        // past 1e12 no fraction is sought: the float itself is a short decimal there (its
+        // step is 2^-11), kept exactly rather than taken for the nearby 9000000000001/3
+        assert_eq!(
+            rationalize(3e12 + 1.0 / 3.0),
+            Num::ratio(6_000_000_000_000_667, 2000)
+        );
+        assert_eq!(rationalize(3e12 + 0.5), Num::ratio(6_000_000_000_001, 2));
     }
 
     #[test]
