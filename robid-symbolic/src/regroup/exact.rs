@@ -294,11 +294,54 @@ mod tests {
             values: &values,
             geometry: &geometry,
         };
-        // Degree one cannot reproduce it; degree two does, exactly.
+        // Degree one cannot reproduce it; degree two does, exactly, from as few samples as
+        // it has monomials (six), not from fewer.
         assert_eq!(fit_polynomial(&mut a, &atoms, 1, &samples, 9), None);
         let e = fit_polynomial(&mut a, &atoms, 2, &samples, 9).unwrap();
         let expected = a.parse("2*L1*L2 - L2^2 + 0.5").unwrap();
         assert_eq!(e, expected);
+        assert_eq!(
+            fit_polynomial(&mut a, &atoms, 2, &samples, 6),
+            Some(expected)
+        );
+        assert_eq!(fit_polynomial(&mut a, &atoms, 2, &samples, 5), None);
+    }
+
+    /// A fit has at most MAX_MONOMIALS monomials: 159 atoms at degree one (160 with the
+    /// constant) are fitted, 160 atoms are refused whatever the samples; monomials() stops
+    /// growing only past the cap.
+    #[test]
+    fn the_monomial_cap_is_inclusive() {
+        let mut a = Arena::new();
+        let names: Vec<String> = (0..160).map(|i| format!("L{i}")).collect();
+        let atoms: Vec<Atom> = names.iter().map(|n| plain(&mut a, n)).collect();
+        assert_eq!(monomials(&atoms[..159], 1).len(), super::MAX_MONOMIALS);
+        assert!(monomials(&atoms[..159], 2).len() > super::MAX_MONOMIALS);
+        let mut rng = robid_runtime::rng::Rng::from_state(3);
+        let points: Vec<Vec<f64>> = (0..170)
+            .map(|_| (0..160).map(|_| rng.uniform(0.1, 1.0)).collect())
+            .collect();
+        for count in [159, 160] {
+            let values: Vec<f64> = points
+                .iter()
+                .map(|p| 1.0 + p[..count].iter().sum::<f64>())
+                .collect();
+            let geometry: Vec<_> = points
+                .iter()
+                .map(|p| {
+                    let pairs: Vec<(&str, f64)> =
+                        names.iter().zip(p).map(|(n, v)| (n.as_str(), *v)).collect();
+                    a.values(&pairs)
+                })
+                .collect();
+            let samples = Samples {
+                atoms: &points,
+                values: &values,
+                geometry: &geometry,
+            };
+            let fitted = fit_polynomial(&mut a, &atoms[..count], 1, &samples, 170);
+            assert_eq!(fitted.is_some(), count == 159, "{count} atoms");
+        }
     }
 
     #[test]
