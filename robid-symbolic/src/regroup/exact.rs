@@ -202,7 +202,7 @@ pub(crate) fn fit_polynomial(
 #[cfg(test)]
 mod tests {
     use super::{Samples, constant, fit_polynomial, monomials, rationalize};
-    use crate::expr::{Arena, Num};
+    use crate::expr::{Arena, Num, Values};
     use crate::regroup::atoms::Atom;
 
     #[test]
@@ -305,6 +305,60 @@ mod tests {
             Some(expected)
         );
         assert_eq!(fit_polynomial(&mut a, &atoms, 2, &samples, 5), None);
+    }
+
+    /// Samples of one length `L` and the values of `f` there.
+    fn samples_of(a: &mut Arena, lengths: &[f64], f: impl Fn(f64) -> f64) -> SampleSet {
+        let points: Vec<Vec<f64>> = lengths.iter().map(|l| vec![*l]).collect();
+        let values = lengths.iter().map(|l| f(*l)).collect();
+        let geometry = lengths.iter().map(|l| a.values(&[("L", *l)])).collect();
+        SampleSet {
+            points,
+            values,
+            geometry,
+        }
+    }
+
+    struct SampleSet {
+        points: Vec<Vec<f64>>,
+        values: Vec<f64>,
+        geometry: Vec<Values>,
+    }
+
+    impl SampleSet {
+        fn samples(&self) -> Samples<'_> {
+            Samples {
+                atoms: &self.points,
+                values: &self.values,
+                geometry: &self.geometry,
+            }
+        }
+    }
+
+    /// What a fit keeps is judged against the values' size: a genuine small coefficient on
+    /// a large monomial stays (1e-6 L^2 with L up to 1e3), the samples the fit did not use
+    /// reject an interpolation (L^3 by degree two through three samples), and rounding
+    /// noise of values of size 1e3 leaves no extra term.
+    #[test]
+    fn a_fit_is_judged_against_the_size_of_the_values() {
+        let mut a = Arena::new();
+        let atoms = [plain(&mut a, "L")];
+        let lengths: Vec<f64> = (0..8).map(|i| 100.0 + 125.0 * i as f64).collect();
+        let set = samples_of(&mut a, &lengths, |l| 1e-6 * l * l + l);
+        let e = fit_polynomial(&mut a, &atoms, 2, &set.samples(), 5).unwrap();
+        let at = a.values(&[("L", 333.0)]);
+        let got = a.eval(&[e], &at).unwrap()[0];
+        assert!(
+            (got - (1e-6 * 333.0 * 333.0 + 333.0)).abs() < 1e-9,
+            "{}",
+            a.display(e)
+        );
+        let short: Vec<f64> = (0..8).map(|i| 0.2 + 0.1 * i as f64).collect();
+        let set = samples_of(&mut a, &short, |l| l * l * l);
+        assert_eq!(fit_polynomial(&mut a, &atoms, 2, &set.samples(), 3), None);
+        let set = samples_of(&mut a, &short, |l| 1000.0 * l * l - 500.0);
+        let e = fit_polynomial(&mut a, &atoms, 2, &set.samples(), 8).unwrap();
+        assert_eq!(e, a.parse("1000*L^2 - 500").unwrap(), "{}", a.display(e));
     }
 
     /// A fit has at most MAX_MONOMIALS monomials: 159 atoms at degree one (160 with the
