@@ -183,6 +183,8 @@ mod tests {
             atoms_of("sin(q1 + th)*qdd1", &["th"]),
             ["cos(th) (paired)", "sin(th)"]
         );
+        // A geometric factor inside a function of the state is found inside it.
+        assert_eq!(atoms_of("sin(L*q1)*qdd1", &["L"]), ["L"]);
     }
 
     #[test]
