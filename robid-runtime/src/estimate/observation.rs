@@ -121,3 +121,30 @@ impl Observation {
             .collect()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{DMatrix, DVector};
+
+    use super::Observation;
+
+    /// A known answer: residuals (1, -1, 3) in joint 1's block and (2) in joint 2's give RMS
+    /// sqrt(11 / 3) and 2; an empty block gives 0.
+    #[test]
+    fn residual_rms_is_per_joint_block() {
+        let w = DMatrix::from_row_slice(4, 1, &[1.0, 2.0, 0.0, 1.0]);
+        let y = DVector::from_vec(vec![2.0, 1.0, 3.0, 3.0]);
+        let o = Observation::new(
+            w,
+            y,
+            vec![0..3, 3..4, 4..4],
+            vec![0, 1, 2, 0],
+            vec!["a".into()],
+        )
+        .unwrap();
+        let rms = o.residual_rms(&DVector::from_vec(vec![1.0]));
+        assert!((rms[0] - (11.0f64 / 3.0).sqrt()).abs() < 1e-15, "{rms:?}");
+        assert_eq!(rms[1], 2.0);
+        assert_eq!(rms[2], 0.0);
+    }
+}

@@ -153,3 +153,37 @@ pub(crate) fn assemble(
         warnings,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{DMatrix, DVector};
+
+    use super::{Estimator, assemble};
+    use crate::estimate::Observation;
+
+    fn observation(y: &[f64]) -> Observation {
+        let rows = y.len();
+        Observation::new(
+            DMatrix::from_element(rows, 1, 1.0),
+            DVector::from_column_slice(y),
+            vec![0..rows],
+            (0..rows).collect(),
+            vec!["a".into()],
+        )
+        .unwrap()
+    }
+
+    /// The weighted system can be tame while the unweighted residual overflows (weights of
+    /// 1e-200 on torques of 1e200): the residual RMS is checked on its own.
+    #[test]
+    fn an_overflowing_residual_is_refused_even_when_the_weighted_fit_is_finite() {
+        let solved = observation(&[1.0, 2.0, 3.0]);
+        let original = observation(&[1e200, -1e200, 3e200]);
+        let beta = DVector::from_vec(vec![2.0]);
+        let gram = DMatrix::from_element(1, 1, 1.0 / 3.0);
+        let fine = assemble(Estimator::Wls, &solved, &solved, beta.clone(), &gram, 1.0);
+        assert!(fine.is_ok());
+        let e = assemble(Estimator::Wls, &solved, &original, beta, &gram, 1.0).unwrap_err();
+        assert!(e.to_string().contains("residual of the fit"), "{e}");
+    }
+}
