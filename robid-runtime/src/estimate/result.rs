@@ -166,7 +166,7 @@ mod tests {
         Observation::new(
             DMatrix::from_element(rows, 1, 1.0),
             DVector::from_column_slice(y),
-            vec![0..rows],
+            std::iter::once(0..rows).collect(),
             (0..rows).collect(),
             vec!["a".into()],
         )
