@@ -154,6 +154,7 @@ impl Derivation {
                     .to_owned(),
             )
         })?;
+        self.check_zero_columns(&columns, &candidates, &geometry, &status)?;
         let kept: Vec<usize> = (0..candidates.len())
             .filter(|&i| matches!(status[i], Status::Kept(_)))
             .collect();
@@ -224,6 +225,48 @@ impl Derivation {
             columns,
             unidentifiable,
         })
+    }
+
+    /// A column below rounding at the sampled geometry (a high power of a symbol that was
+    /// drawn small) may still act elsewhere: where every symbol is at the top of the
+    /// interval, which is where a product of lengths is largest, a column found zero must be
+    /// zero too. (Dependent columns are checked at other geometries by the fold.)
+    fn check_zero_columns(
+        &mut self,
+        columns: &[&[Id]],
+        candidates: &[Candidate],
+        geometry: &[Id],
+        status: &[Status],
+    ) -> Result<(), RegroupError> {
+        // zero, or dependent with every coefficient below rounding: no effect here
+        let nothing = |s: &Status| match s {
+            Status::Zero => true,
+            Status::Dependent(c) => c.is_empty(),
+            Status::Kept(_) => false,
+        };
+        if geometry.is_empty() || !status.iter().any(nothing) {
+            return Ok(());
+        }
+        // its own random states, so the rest of the derivation draws what it always drew
+        let mut rng = Rng::from_state(0x70B);
+        let top = vec![SYMBOL_SAMPLES[1]; geometry.len()];
+        let sampled = self.sample(columns, geometry, &top, &mut rng);
+        let at_top = rank::analyse(&sampled).ok_or_else(|| {
+            RegroupError::Numeric("a sampled regressor value is not finite".to_owned())
+        })?;
+        let Some(i) = (0..status.len()).find(|&i| nothing(&status[i]) && !nothing(&at_top[i]))
+        else {
+            return Ok(());
+        };
+        let symbols: Vec<String> = geometry.iter().map(|&g| self.arena.display(g)).collect();
+        Err(RegroupError::Numeric(format!(
+            "`{}` has no effect at one value of the geometric symbols {} in [{}, {}] but has one where they are {}: a value whose size changes by many orders of magnitude over that interval (a high power of a symbol) leaves part of the model below rounding; write the value with fewer factors or give the symbols numeric values",
+            candidates[i].id,
+            quoted(&symbols),
+            SYMBOL_SAMPLES[0],
+            SYMBOL_SAMPLES[1],
+            SYMBOL_SAMPLES[1]
+        )))
     }
 
     /// Every slot the rules left, with its regressor column (modified frames): the

@@ -440,6 +440,37 @@ a = "L"
     }
 }
 
+/// A length that is a high power of a symbol (`a = L^16`, 1.5e-5 m at L = 0.5) is below
+/// rounding wherever L is drawn small, so one sample of the geometry can see no effect of
+/// MX2 that other values of L have: regrouping must refuse it, not return a base model that
+/// is wrong by 31 % at L = 1 (as it did). A fourth power regroups and holds at every L.
+#[test]
+fn a_length_below_rounding_at_the_sample_is_refused() {
+    let text = |power: usize| {
+        let a = vec!["L"; power].join("*");
+        format!(
+            "name = \"p\"\nconvention = \"modified\"\n[symbols]\nL = 0.5\n[[joints]]\n\
+             [[joints]]\ntype = \"prismatic\"\ntheta = \"-pi/4\"\na = \"{a}\"\n\
+             [[joints]]\nalpha = \"pi/2\"\na = \"L\"\nd = 0.1\n"
+        )
+    };
+    for power in [16, 19] {
+        let e = derive(&text(power)).1.unwrap_err().to_string();
+        assert!(
+            e.contains("`MX2` has no effect at one value") && e.contains("below rounding"),
+            "L^{power}: {e}"
+        );
+    }
+    let (_, b) = derive(&text(4));
+    assert_eq!(b.unwrap().base.len(), 9);
+    let robot = Robot::from_toml(&text(4), "inline.toml").unwrap();
+    for l in [0.5, 0.9, 1.0, 1.2] {
+        // measured at most 1.2e-14
+        let e = identity_error(&robot, &[("L", l)], 5);
+        assert!(e <= 1e-12, "L = {l}: {e}");
+    }
+}
+
 /// A twist written as a symbol: the reference arms with one twist replaced
 /// by a symbol regroup (generic twist, so as the numeric robot with a
 /// generic twist), and the base model holds at every angle, also at the
