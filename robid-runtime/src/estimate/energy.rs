@@ -282,6 +282,39 @@ mod tests {
         assert!(model_energy_observation(&model, &one, 100).is_err());
     }
 
+    /// The signals must agree with the positions in joints and samples, and the record must
+    /// hold one window plus a sample: each mismatch alone is refused, the smallest record
+    /// accepted.
+    #[test]
+    fn energy_observation_checks_its_signals() {
+        let names: Vec<String> = vec!["ZZ1".into()];
+        let h = |_: &[f64], qd: &[f64], out: &mut [f64]| out[0] = 0.5 * qd[0] * qd[0];
+        let d = |_: &[f64], _: &[f64], out: &mut [f64]| out[0] = 0.0;
+        let one = |n: usize| Signals::new(vec![vec![1.0; n]]).unwrap();
+        let two = |n: usize| Signals::new(vec![vec![1.0; n]; 2]).unwrap();
+        let prepared = |qd: Signals, tau: Signals| Prepared {
+            q: one(11),
+            qd,
+            qdd: Signals::zeros(1, 11),
+            tau,
+            sample_time: 0.01,
+        };
+        let run = |p: &Prepared, window: usize| {
+            energy_observation(p, window, names.clone(), &h, &d).map(|o| o.rows())
+        };
+        assert_eq!(run(&prepared(one(11), one(11)), 10).unwrap(), 1);
+        assert!(run(&prepared(one(11), one(11)), 11).is_err());
+        assert!(run(&prepared(one(11), one(11)), 0).is_err());
+        for (qd, tau) in [
+            (one(10), one(11)),
+            (one(11), one(10)),
+            (two(11), one(11)),
+            (one(11), two(11)),
+        ] {
+            assert!(run(&prepared(qd, tau), 5).is_err());
+        }
+    }
+
     /// A pendulum with viscous friction: H = 1/2 I qd^2 + m g l (1 - cos q).
     #[test]
     fn pendulum_energy_recovers_inertia_gravity_and_friction() {
