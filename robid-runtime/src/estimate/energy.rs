@@ -303,7 +303,12 @@ mod tests {
             energy_observation(p, window, names.clone(), &h, &d).map(|o| o.rows())
         };
         assert_eq!(run(&prepared(one(11), one(11)), 10).unwrap(), 1);
-        assert!(run(&prepared(one(11), one(11)), 11).is_err());
+        match run(&prepared(one(11), one(11)), 11) {
+            Err(crate::Error::TooFewSamples {
+                found, required, ..
+            }) => assert_eq!((found, required), (11, 12)),
+            other => panic!("{other:?}"),
+        }
         assert!(run(&prepared(one(11), one(11)), 0).is_err());
         for (qd, tau) in [
             (one(10), one(11)),
