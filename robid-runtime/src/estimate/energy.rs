@@ -320,6 +320,30 @@ mod tests {
         }
     }
 
+    /// Known rows: with qd_k = k, H = qd^2 / 2 and tau = 1, the windows [0, 5] and [5, 10]
+    /// give H differences 12.5 and 37.5 and power integrals (trapezoidal, dt = 0.01) 0.125
+    /// and 0.375.
+    #[test]
+    fn energy_rows_are_the_windows_differences_and_integrals() {
+        let names: Vec<String> = vec!["ZZ1".into()];
+        let h = |_: &[f64], qd: &[f64], out: &mut [f64]| out[0] = 0.5 * qd[0] * qd[0];
+        let d = |_: &[f64], _: &[f64], out: &mut [f64]| out[0] = 0.0;
+        let ramp: Vec<f64> = (0..11).map(f64::from).collect();
+        let p = Prepared {
+            q: Signals::new(vec![vec![0.0; 11]]).unwrap(),
+            qd: Signals::new(vec![ramp]).unwrap(),
+            qdd: Signals::zeros(1, 11),
+            tau: Signals::new(vec![vec![1.0; 11]]).unwrap(),
+            sample_time: 0.01,
+        };
+        let o = energy_observation(&p, 5, names, &h, &d).unwrap();
+        assert_eq!(o.rows(), 2);
+        for (r, (w, y)) in [(12.5, 0.125), (37.5, 0.375)].into_iter().enumerate() {
+            assert!((o.w[(r, 0)] - w).abs() < 1e-12, "{}", o.w);
+            assert!((o.y[r] - y).abs() < 1e-12, "{}", o.y);
+        }
+    }
+
     /// A pendulum with viscous friction: H = 1/2 I qd^2 + m g l (1 - cos q).
     #[test]
     fn pendulum_energy_recovers_inertia_gravity_and_friction() {
