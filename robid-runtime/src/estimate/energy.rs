@@ -275,8 +275,21 @@ mod tests {
             // 8.4e-7 (Fc2), against parameters of 0.05 to 3
             assert!((v - t).abs() < 1.5e-6, "{}: {v} vs {t}", e.names[i]);
         }
-        // the window must fit in the record, and the data must have the model's joints
-        assert!(model_energy_observation(&model, &signals, n).is_err());
+        // the window must fit in the record (one window plus a sample: n - 1 fits, n does
+        // not, and the refusal says how many samples it needs), and the data must have the
+        // model's joints
+        assert_eq!(
+            model_energy_observation(&model, &signals, n - 1)
+                .unwrap()
+                .rows(),
+            1
+        );
+        match model_energy_observation(&model, &signals, n) {
+            Err(crate::Error::TooFewSamples {
+                found, required, ..
+            }) => assert_eq!((found, required), (n, n + 1)),
+            other => panic!("{other:?}"),
+        }
         let mut one = signals.clone();
         one.q = one.q.range(0..0);
         assert!(model_energy_observation(&model, &one, 100).is_err());
