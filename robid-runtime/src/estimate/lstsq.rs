@@ -301,6 +301,17 @@ fn unexcited(vt: &DMatrix<f64>, null: &[usize], names: &[String]) -> Vec<String>
 mod tests {
     use super::*;
 
+    /// A block with fewer rows than columns (the last block of a record) is padded to a
+    /// square factor, which equals the factor of the rows themselves (R' R = A' A).
+    #[test]
+    fn a_short_block_gives_a_square_factor() {
+        let a = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 3.0, 0.0, 4.0, 5.0]);
+        let r = r_factor(a.clone());
+        assert_eq!(r.shape(), (3, 3));
+        let gram = r.transpose() * &r - a.transpose() * &a;
+        assert!(gram.amax() < 1e-12, "{gram}");
+    }
+
     fn names(n: usize) -> Vec<String> {
         (1..=n).map(|i| format!("p{i}")).collect()
     }
