@@ -301,6 +301,16 @@ fn unexcited(vt: &DMatrix<f64>, null: &[usize], names: &[String]) -> Vec<String>
 mod tests {
     use super::*;
 
+    /// The scaled norm is the 2-norm, also where the squares overflow or underflow.
+    #[test]
+    fn the_norm_neither_overflows_nor_underflows() {
+        for scale in [1.0, 1e300, 1e-300] {
+            let n = norm([3.0 * scale, -4.0 * scale].into_iter());
+            assert!((n / (5.0 * scale) - 1.0).abs() < 1e-15, "{scale}: {n}");
+        }
+        assert_eq!(norm([0.0, 0.0].into_iter()), 0.0);
+    }
+
     /// A block with fewer rows than columns (the last block of a record) is padded to a
     /// square factor, which equals the factor of the rows themselves (R' R = A' A).
     #[test]
