@@ -179,6 +179,14 @@ impl Fit<'_> {
 }
 
 impl Fit<'_> {
+    /// The residuals at x with their Jacobians in p and in x.
+    fn linearise(&self, x: &DVector<f64>) -> (DVector<f64>, DMatrix<f64>, DMatrix<f64>) {
+        let p = self.standard(x);
+        let jp = self.objective.jacobian(&p);
+        let jx = self.chain(x, &jp);
+        (self.objective.residuals(&p), jp, jx)
+    }
+
     /// The residuals at x, `None` where they are not finite (a wild trial step).
     fn residuals_at(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
         let r = self.objective.residuals(&self.standard(x));
@@ -203,9 +211,8 @@ impl Gradient for Fit<'_> {
     type Gradient = DVector<f64>;
 
     fn gradient(&self, x: &DVector<f64>) -> std::result::Result<DVector<f64>, argmin::core::Error> {
-        let p = self.standard(x);
-        let r = self.objective.residuals(&p);
-        Ok(self.chain(x, &self.objective.jacobian(&p)).tr_mul(&r) * 2.0)
+        let (r, _, jx) = self.linearise(x);
+        Ok(jx.tr_mul(&r) * 2.0)
     }
 }
 
@@ -217,10 +224,7 @@ impl Hessian for Fit<'_> {
     /// curvature: 2 Jx' Jx plus the gradient in p times the (constant) second derivatives
     /// of p(x), which make the Newton step converge fast where Gauss-Newton crawls.
     fn hessian(&self, x: &DVector<f64>) -> std::result::Result<DMatrix<f64>, argmin::core::Error> {
-        let p = self.standard(x);
-        let r = self.objective.residuals(&p);
-        let jp = self.objective.jacobian(&p);
-        let jx = self.chain(x, &jp);
+        let (r, jp, jx) = self.linearise(x);
         let mut h = jx.tr_mul(&jx) * 2.0;
         let gp = jp.tr_mul(&r) * 2.0;
         let layout = &self.objective.problem.layout;

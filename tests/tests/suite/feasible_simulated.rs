@@ -192,6 +192,15 @@ fn check(
     );
 }
 
+/// Wide default bounds, or the CAD-like bounds around the truth of [`bounds`].
+fn bounds_for(case: &Case, wide: bool) -> Bounds {
+    if wide {
+        Bounds::wide(case.problem.layout.links.len())
+    } else {
+        bounds(case)
+    }
+}
+
 /// A pure-Rust method with the SDP's weak pull (1e-6) solves the SDP's problem: it must
 /// reach the global optimum's guarantees (tight CAD-like bounds, or wide ones).
 fn pure_rust(
@@ -201,11 +210,7 @@ fn pure_rust(
     wide: bool,
 ) -> Solution {
     let mut c = case(name);
-    let b = if wide {
-        Bounds::wide(c.problem.layout.links.len())
-    } else {
-        bounds(&c)
-    };
+    let b = bounds_for(&c, wide);
     let options = SmoothOptions {
         default_weight: 1e-6,
         ..SmoothOptions::default()
@@ -327,11 +332,7 @@ use robid_runtime::feasible::{SdpOptions, solve_sdp};
 fn pure_rust_methods_equal_sdp() {
     for (name, wide) in [("ur5e", false), ("panda", false), ("tx40", true)] {
         let c = case(name);
-        let b = if wide {
-            Bounds::wide(c.problem.layout.links.len())
-        } else {
-            bounds(&c)
-        };
+        let b = bounds_for(&c, wide);
         let sdp = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
         for s in [interior(name, wide), smooth(name, wide)] {
             eprintln!(
@@ -629,11 +630,7 @@ fn urdf_output_reads_back_to_the_same_links_and_base_parameters() {
 fn pure_rust_methods_find_the_same_parameters() {
     for (name, wide) in [("ur5e", false), ("panda", false), ("tx40", true)] {
         let c = case(name);
-        let b = if wide {
-            Bounds::wide(c.problem.layout.links.len())
-        } else {
-            bounds(&c)
-        };
+        let b = bounds_for(&c, wide);
         let options = SmoothOptions::default();
         let int = solve_interior(&c.problem, &b, &options).unwrap();
         let chol = solve_smooth(&c.problem, &b, &options).unwrap();
