@@ -375,6 +375,22 @@ mod tests {
         }
     }
 
+    /// The rank tolerance is relative to the largest singular value: two unit columns at
+    /// an angle t have singular values sqrt(1 +- cos t), and the system is refused exactly
+    /// when the smaller one falls below tolerance x the larger.
+    #[test]
+    fn the_rank_tolerance_is_relative_to_the_largest_singular_value() {
+        let t: f64 = 1e-3;
+        let w = DMatrix::from_row_slice(2, 2, &[1.0, t.cos(), 0.0, t.sin()]);
+        let y = DVector::from_vec(vec![1.0, 2.0]);
+        let ratio = ((1.0 - t.cos()) / (1.0 + t.cos())).sqrt();
+        assert!(solve(&w, &y, &names(2), 0.8 * ratio).is_ok());
+        assert!(matches!(
+            solve(&w, &y, &names(2), 1.25 * ratio),
+            Err(Error::Estimate(EstimateError::RankDeficient { rank: 1, .. }))
+        ));
+    }
+
     /// The torques are scaled by their norm for the factorisation: torques of 1e300 give
     /// parameters of 1e300, and all-zero torques give zero parameters (a zero norm is not
     /// divided by).
