@@ -387,7 +387,10 @@ mod tests {
         assert!(solve(&w, &y, &names(2), 0.8 * ratio).is_ok());
         assert!(matches!(
             solve(&w, &y, &names(2), 1.25 * ratio),
-            Err(Error::Estimate(EstimateError::RankDeficient { rank: 1, .. }))
+            Err(Error::Estimate(EstimateError::RankDeficient {
+                rank: 1,
+                ..
+            }))
         ));
     }
 

@@ -63,7 +63,7 @@ fn bounds_that_exclude_every_solution_are_reported() {
 
 #[cfg(feature = "sdp")]
 #[test]
-fn inconsistent_identified_values_are_projected_onto_consistent_ones() {
+fn sdp_projects_inconsistent_identified_values_onto_consistent_ones() {
     // A negative identified mass: the SDP returns the nearest consistent set (mass >= margin).
     let p = problem().with_target(&[0.1, -1.0], &[0.01, 0.01]).unwrap();
     let s = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()).unwrap();

@@ -18,7 +18,7 @@ mod excitation_panda;
 mod excitation_torque_limits;
 mod excitation_ur5e;
 mod feasible_bad_input;
-mod feasible_real_data;
+mod feasible_sdp_real_data;
 mod feasible_simulated;
 mod fuzz_identify;
 mod identify_bad_input;
