@@ -259,6 +259,36 @@ mod tests {
         assert!(dominated_columns(&w.rows(0, 99).into_owned()).is_empty());
     }
 
+    /// The share is that of the squares, and "dominated" means more than
+    /// [`OUTLIER_SHARE`]: a 100-row column of 29, 4, 4 and 97 ones has its three largest
+    /// squares 873 of 970, exactly 0.9, and is not flagged; with one of the ones halved
+    /// (873 of 969.25) it is.
+    #[test]
+    fn the_share_of_the_squares_decides_from_100_rows() {
+        let column = |fourth: f64| {
+            nalgebra::DMatrix::from_fn(100, 1, |i, _| match i {
+                10 => 29.0,
+                20 | 30 => 4.0,
+                40 => fourth,
+                _ => 1.0,
+            })
+        };
+        assert_eq!(top_share(column(1.0).iter().copied(), 1.0), (10, 0.9));
+        assert!(dominated_columns(&column(1.0)).is_empty());
+        let d = dominated_columns(&column(0.5));
+        assert_eq!(d, vec![(0, 10, 873.0 / 969.25)]);
+    }
+
+    #[test]
+    fn an_outlier_names_its_parameter() {
+        let w = QualityWarning::Outlier {
+            parameter: "XX2".into(),
+            location: "run.csv:12".into(),
+            share: 0.95,
+        };
+        assert_eq!(w.parameters(), vec!["XX2"]);
+    }
+
     #[test]
     fn thresholds_decide_and_name_the_parameters() {
         let names: Vec<String> = ["a", "b", "c"].iter().map(|s| s.to_string()).collect();
