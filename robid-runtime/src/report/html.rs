@@ -31,13 +31,52 @@ fn figures_row(html: &mut String, what: &str, f: &FitEntry) {
     let rms: Vec<String> = f.rms_per_joint.iter().map(|v| format!("{v:.3}")).collect();
     let _ = writeln!(
         html,
-        "<tr><td>{}</td><td>{:.2} %</td><td>{}</td><td>{:.4}</td><td>{}</td></tr>",
+        "<tr><td>{}</td><td>{:.2} %</td><td>{}</td><td>{:.4}</td><td>{:.1}</td><td>{}</td></tr>",
         escape(what),
         100.0 * f.relative_error,
         escape(&against),
         f.nmse,
+        f.nmse_eq22,
         rms.join(" ")
     );
+}
+
+/// The validation files against the reference model, in the form of Madsen et al.'s
+/// Table 5 (nothing without a reference).
+fn reference_table(h: &mut String, report: &Report) {
+    let rows: Vec<_> = report
+        .validation
+        .iter()
+        .filter_map(|v| v.reference.as_ref().map(|r| (v, r)))
+        .collect();
+    let Some((_, first)) = rows.first() else {
+        return;
+    };
+    let _ = writeln!(
+        h,
+        "<h2>Against the reference {}</h2>\n<table>\n<tr><th>data</th>\
+         <th>NMSE eq. 22 reference [N m]</th><th>NMSE eq. 22 identified [N m]</th>\
+         <th>relative improvement</th></tr>",
+        escape(&first.file)
+    );
+    for (v, r) in rows {
+        let name = v
+            .rows
+            .as_ref()
+            .map_or_else(|| v.file.clone(), |r| r.to_string());
+        let improvement = r
+            .relative_improvement_percent
+            .map_or_else(|| "-".to_string(), |p| format!("{p:.1} %"));
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{:.1}</td><td>{:.1}</td><td>{}</td></tr>",
+            escape(&name),
+            r.nmse_eq22,
+            v.nmse_eq22,
+            improvement
+        );
+    }
+    h.push_str("</table>\n");
 }
 
 /// The page of `report`, with the plots of `predictions` (a title and a prediction each,
@@ -76,7 +115,7 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
     }
     h.push_str(
         "<h2>Fit and validation</h2>\n<table>\n<tr><th>data</th><th>relative error</th>\
-         <th>against</th><th>NMSE</th><th>RMS per joint [N m]</th></tr>\n",
+         <th>against</th><th>NMSE</th><th>NMSE eq. 22 [N m]</th><th>RMS per joint [N m]</th></tr>\n",
     );
     figures_row(&mut h, "fit", &report.fit);
     for v in &report.validation {
@@ -88,12 +127,14 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
             relative_error: v.relative_error,
             rms_per_joint: v.rms_per_joint.clone(),
             nmse: v.nmse,
+            nmse_eq22: v.nmse_eq22,
             torque: v.torque.clone(),
             unfiltered_relative_error: v.unfiltered_relative_error,
         };
         figures_row(&mut h, &format!("validation {name}"), &f);
     }
     h.push_str("</table>\n");
+    reference_table(&mut h, report);
     if !report.warnings.is_empty() {
         h.push_str("<h2>Warnings</h2>\n<ul>\n");
         for w in &report.warnings {
@@ -157,6 +198,7 @@ mod tests {
                 relative_error: 0.052,
                 rms_per_joint: vec![0.1, 0.2],
                 nmse: 0.3,
+                nmse_eq22: 12.5,
                 torque: Some("filtered".into()),
                 unfiltered_relative_error: Some(0.09),
             },

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::estimate::{Estimate, QualityWarning};
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::Identification;
-use crate::validate::{Fit, Prediction, UsedRows};
+use crate::validate::{Fit, Prediction, UsedRows, relative_improvement};
 
 /// A warning in the report: machine-readable kind and parameters, and the message a
 /// person reads (also what a command line prints on stderr).
@@ -55,8 +55,11 @@ pub struct FitEntry {
     pub relative_error: f64,
     /// RMS per joint.
     pub rms_per_joint: Vec<f64>,
-    /// NMSE (Madsen's metric).
+    /// NMSE per joint normalised by the mean torque magnitude ([`Fit::nmse`]).
     pub nmse: f64,
+    /// Madsen et al.'s NMSE of their eq. 22, on their scale ([`Fit::nmse_eq22`]).
+    #[serde(default)]
+    pub nmse_eq22: f64,
     /// The torque the metrics above compare with: `"measured"`, or `"filtered"` when the
     /// processing low-passes the torque (`[processing] lowpass` on `tau`, or a
     /// decimation); null when not known.
@@ -80,14 +83,35 @@ pub struct ValidationEntry {
     pub relative_error: f64,
     /// RMS per joint.
     pub rms_per_joint: Vec<f64>,
-    /// NMSE.
+    /// As [`FitEntry::nmse`].
     pub nmse: f64,
+    /// As [`FitEntry::nmse_eq22`].
+    #[serde(default)]
+    pub nmse_eq22: f64,
+    /// The same data predicted by a reference model (`robid identify --reference`), as in
+    /// Madsen et al.'s Table 5; null without one.
+    #[serde(default)]
+    pub reference: Option<ReferenceFit>,
     /// As [`FitEntry::torque`].
     #[serde(default)]
     pub torque: Option<String>,
     /// As [`FitEntry::unfiltered_relative_error`].
     #[serde(default)]
     pub unfiltered_relative_error: Option<f64>,
+}
+
+/// A validation file predicted by a reference model (parameters from CAD, a data sheet or
+/// an earlier identification) next to the identified one (Madsen et al. 2020, Table 5).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReferenceFit {
+    /// The reference parameter file.
+    pub file: String,
+    /// The reference model's NMSE of eq. 22 on the same samples.
+    pub nmse_eq22: f64,
+    /// 100 (reference - identified) / reference of the eq. 22 NMSE: positive when the
+    /// identified model predicts better; null when the reference predicts the data exactly
+    /// (a zero NMSE leaves no relative improvement).
+    pub relative_improvement_percent: Option<f64>,
 }
 
 /// The fit of a prediction with the torque it compares with (see [`FitEntry::torque`]).
@@ -143,6 +167,7 @@ impl From<&Fit> for FitEntry {
             relative_error: f.relative_error,
             rms_per_joint: f.rms_per_joint.clone(),
             nmse: f.nmse,
+            nmse_eq22: f.nmse_eq22,
             torque: None,
             unfiltered_relative_error: None,
         }
@@ -201,6 +226,8 @@ impl Report {
             relative_error: fit.relative_error,
             rms_per_joint: fit.rms_per_joint.clone(),
             nmse: fit.nmse,
+            nmse_eq22: fit.nmse_eq22,
+            reference: None,
             torque: None,
             unfiltered_relative_error: None,
         });
@@ -229,9 +256,26 @@ impl Report {
             relative_error: fit.relative_error,
             rms_per_joint: fit.rms_per_joint,
             nmse: fit.nmse,
+            nmse_eq22: fit.nmse_eq22,
+            reference: None,
             torque: fit.torque,
             unfiltered_relative_error: fit.unfiltered_relative_error,
         });
+        self
+    }
+
+    /// Adds to validation entry `index` the fit of the same data (the same rows: `validate`
+    /// with the same config) predicted by the reference model of parameter file `file`.
+    pub fn with_reference(mut self, index: usize, file: &str, fit: &Fit) -> Self {
+        if let Some(v) = self.validation.get_mut(index) {
+            let nmse_eq22 = fit.nmse_eq22;
+            v.reference = Some(ReferenceFit {
+                file: file.to_string(),
+                nmse_eq22,
+                relative_improvement_percent: (nmse_eq22 > 0.0)
+                    .then(|| relative_improvement(nmse_eq22, v.nmse_eq22)),
+            });
+        }
         self
     }
 
@@ -262,15 +306,23 @@ impl Report {
         let fits = std::iter::once((
             &self.fit.rms_per_joint,
             self.fit.relative_error,
-            self.fit.nmse,
+            [self.fit.nmse, self.fit.nmse_eq22, 0.0, 0.0],
         ))
-        .chain(
-            self.validation
-                .iter()
-                .map(|v| (&v.rms_per_joint, v.relative_error, v.nmse)),
-        );
-        for (rms, rel, nmse) in fits {
-            if !(rel.is_finite() && nmse.is_finite() && rms.iter().all(|v| v.is_finite())) {
+        .chain(self.validation.iter().map(|v| {
+            let reference = v.reference.as_ref().map_or([0.0, 0.0], |r| {
+                [r.nmse_eq22, r.relative_improvement_percent.unwrap_or(0.0)]
+            });
+            (
+                &v.rms_per_joint,
+                v.relative_error,
+                [v.nmse, v.nmse_eq22, reference[0], reference[1]],
+            )
+        }));
+        for (rms, rel, figures) in fits {
+            if !(rel.is_finite()
+                && figures.iter().all(|v| v.is_finite())
+                && rms.iter().all(|v| v.is_finite()))
+            {
                 return bad("the report's fit metrics".into());
             }
         }

@@ -8,6 +8,6 @@ mod plot;
 mod table;
 
 pub use html::{html_report, write_html};
-pub use json::{FitEntry, ParameterEntry, Report, ReportWarning, ValidationEntry};
+pub use json::{FitEntry, ParameterEntry, ReferenceFit, Report, ReportWarning, ValidationEntry};
 pub use plot::{plot_torques, torque_svg};
 pub use table::text_table;

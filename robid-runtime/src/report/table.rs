@@ -49,10 +49,11 @@ pub fn text_table(report: &Report) -> String {
     let f = &report.fit;
     let _ = writeln!(
         s,
-        "fit: relative error {:.2} %{}, NMSE {:.4}, RMS per joint [{}]",
+        "fit: relative error {:.2} %{}, NMSE {:.4} (eq. 22: {:.1} N m), RMS per joint [{}]",
         100.0 * f.relative_error,
         against(f.torque.as_deref(), f.unfiltered_relative_error),
         f.nmse,
+        f.nmse_eq22,
         joints(&f.rms_per_joint)
     );
     for v in &report.validation {
@@ -62,12 +63,24 @@ pub fn text_table(report: &Report) -> String {
             .map_or_else(|| v.file.clone(), |r| r.to_string());
         let _ = writeln!(
             s,
-            "validation {file}: relative error {:.2} %{}, NMSE {:.4}, RMS per joint [{}]",
+            "validation {file}: relative error {:.2} %{}, NMSE {:.4} (eq. 22: {:.1} N m), RMS per joint [{}]",
             100.0 * v.relative_error,
             against(v.torque.as_deref(), v.unfiltered_relative_error),
             v.nmse,
+            v.nmse_eq22,
             joints(&v.rms_per_joint)
         );
+        if let Some(r) = &v.reference {
+            let improvement = r.relative_improvement_percent.map_or_else(
+                || "none (the reference predicts these data exactly)".to_string(),
+                |p| format!("{p:.1} %"),
+            );
+            let _ = writeln!(
+                s,
+                "  against the reference {}: NMSE (eq. 22) {:.1} N m, identified {:.1} N m, relative improvement {improvement}",
+                r.file, r.nmse_eq22, v.nmse_eq22
+            );
+        }
     }
     for w in &report.warnings {
         let _ = writeln!(s, "warning: {}", w.message);
@@ -116,6 +129,7 @@ mod tests {
             relative_error: 0.052,
             rms_per_joint: vec![1.5],
             nmse: 3.1,
+            nmse_eq22: 250.0,
         };
         Report::new("tx40", &e, &fit, |n| {
             (n == "MXR2").then(|| "MX2 + 0.225 M3".to_string())
@@ -126,8 +140,51 @@ mod tests {
                 relative_error: 0.02,
                 rms_per_joint: vec![0.2],
                 nmse: 0.4,
+                nmse_eq22: 30.0,
             },
         )
+    }
+
+    /// A reference model's prediction of a validation file: its eq. 22 NMSE and the
+    /// relative improvement of the identified model (Madsen et al.'s Table 5, row 1:
+    /// 325.9 -> 233.0 is 28.5 %), in the JSON, the table and the check; none when the
+    /// reference is exact.
+    #[test]
+    fn a_reference_gives_the_relative_improvement() {
+        let fit = |nmse_eq22| Fit {
+            relative_error: 0.03,
+            rms_per_joint: vec![0.3],
+            nmse: 0.5,
+            nmse_eq22,
+        };
+        let r = report()
+            .with_validation("run3.csv", &fit(233.0))
+            .with_reference(1, "cad.toml", &fit(325.9));
+        let v: serde_json::Value = serde_json::from_str(&r.to_json()).unwrap();
+        assert!(v["validation"][0]["reference"].is_null());
+        let reference = &v["validation"][1]["reference"];
+        assert_eq!(reference["file"], "cad.toml");
+        assert_eq!(reference["nmse_eq22"], 325.9);
+        let p = reference["relative_improvement_percent"].as_f64().unwrap();
+        assert!((p - 28.51).abs() < 0.01, "{p}");
+        assert!(r.check().is_ok());
+        let t = text_table(&r);
+        assert!(
+            t.contains("against the reference cad.toml: NMSE (eq. 22) 325.9 N m, identified 233.0 N m, relative improvement 28.5 %"),
+            "{t}"
+        );
+        let exact = report().with_reference(0, "truth.toml", &fit(0.0));
+        assert!(
+            exact.validation[0]
+                .reference
+                .as_ref()
+                .unwrap()
+                .relative_improvement_percent
+                .is_none()
+        );
+        assert!(text_table(&exact).contains("none (the reference predicts these data exactly)"));
+        let bad = report().with_reference(0, "cad.toml", &fit(f64::NAN));
+        assert!(bad.check().is_err());
     }
 
     #[test]
@@ -142,6 +199,8 @@ mod tests {
         assert!((v["parameters"][0]["rel_std_percent"].as_f64().unwrap() - 1.7857).abs() < 1e-3);
         assert!(v["parameters"][1]["rel_std_percent"].is_null());
         assert_eq!(v["fit"]["nmse"], 3.1);
+        assert_eq!(v["fit"]["nmse_eq22"], 250.0);
+        assert_eq!(v["validation"][0]["nmse_eq22"], 30.0);
         assert_eq!(v["validation"][0]["file"], "run2.csv");
         assert_eq!(v["warnings"][0]["kind"], "uncertain");
         assert_eq!(v["warnings"][0]["parameters"][0], "Fv1");
@@ -171,6 +230,7 @@ mod tests {
             relative_error: 0.1,
             rms_per_joint: vec![1.0],
             nmse: 1.0,
+            nmse_eq22: 1.0,
         };
         let r = Report::new("x", &e, &fit, |_| None);
         let t = text_table(&r);

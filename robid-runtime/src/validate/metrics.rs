@@ -13,6 +13,12 @@ pub struct Fit {
     /// normalised per joint by the mean torque magnitude rather than per sample, which
     /// would divide by torques that cross zero).
     pub nmse: f64,
+    /// Madsen et al.'s NMSE exactly as their eq. 22 writes it, on their scale (N m):
+    /// sum over joints and samples of (tau - tauhat)^2 / |tau|. Samples whose measured
+    /// torque is exactly zero are left out (they would divide by zero); samples near zero
+    /// weigh heavily, as in the paper. Default 0 in reports written before it existed.
+    #[serde(default)]
+    pub nmse_eq22: f64,
 }
 
 impl Fit {
@@ -24,7 +30,9 @@ impl Fit {
                 cause: "the measured torques are all zero (it divides by their norm): the data hold no torque to identify from or predict; check the torque columns".into(),
             });
         }
-        if !self.nmse.is_finite() || self.rms_per_joint.iter().any(|v| !v.is_finite()) {
+        if !(self.nmse.is_finite() && self.nmse_eq22.is_finite())
+            || self.rms_per_joint.iter().any(|v| !v.is_finite())
+        {
             return Err(crate::Error::NonFiniteResult {
                 what: format!("the error metrics on {what}"),
                 cause: "the prediction error overflowed; check the data's units and outliers"
@@ -39,7 +47,7 @@ impl Fit {
 /// Joints with no samples contribute nothing; the relative error is infinite when every
 /// measured torque is zero ([`Fit::check`] reports it).
 pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
-    let (mut err2, mut norm2, mut nmse) = (0.0, 0.0, 0.0);
+    let (mut err2, mut norm2, mut nmse, mut nmse_eq22) = (0.0, 0.0, 0.0, 0.0);
     let mut rms = Vec::with_capacity(measured.len());
     for (m, p) in measured.iter().zip(predicted) {
         let n = m.len().min(p.len());
@@ -49,6 +57,12 @@ pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
         }
         let e2: f64 = m.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum();
         let mean_abs = m.iter().map(|a| a.abs()).sum::<f64>() / n as f64;
+        nmse_eq22 += m
+            .iter()
+            .zip(p)
+            .filter(|(a, _)| **a != 0.0)
+            .map(|(a, b)| (a - b) * (a - b) / a.abs())
+            .sum::<f64>();
         err2 += e2;
         norm2 += m.iter().map(|a| a * a).sum::<f64>();
         rms.push((e2 / n as f64).sqrt());
@@ -65,6 +79,7 @@ pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
         relative_error,
         rms_per_joint: rms,
         nmse,
+        nmse_eq22,
     }
 }
 
@@ -89,6 +104,8 @@ mod tests {
         assert!((f.rms_per_joint[1] - (0.125f64).sqrt()).abs() < 1e-12);
         // nmse = (1/4)/1.5 + (0.25/2)/0.5
         assert!((f.nmse - (0.25 / 1.5 + 0.125 / 0.5)).abs() < 1e-12);
+        // eq. 22: 1^2 / |-2| + 0.5^2 / |0.5|, per sample
+        assert!((f.nmse_eq22 - (0.5 + 0.5)).abs() < 1e-12);
         assert_eq!(fit(&m, &m).relative_error, 0.0);
     }
 
@@ -104,6 +121,7 @@ mod tests {
             &[vec![1.5, 2.0], vec![0.1, 0.0]],
         );
         assert_eq!(with_still.nmse, good.nmse);
+        assert_eq!(with_still.nmse_eq22, good.nmse_eq22);
         assert!(with_still.check("run.csv").is_ok());
         let zero = fit(&[vec![0.0, 0.0]], &[vec![1.0, 0.0]]);
         assert!(!zero.relative_error.is_finite());
@@ -116,6 +134,10 @@ mod tests {
         for bad in [
             Fit {
                 nmse: f64::NAN,
+                ..good.clone()
+            },
+            Fit {
+                nmse_eq22: f64::INFINITY,
                 ..good.clone()
             },
             Fit {

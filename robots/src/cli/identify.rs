@@ -44,6 +44,12 @@ pub(crate) struct Args {
     /// Files to predict with the identified parameters (as many per data set as --data).
     #[arg(long, num_args = 1..)]
     validate: Vec<PathBuf>,
+    /// A reference model's parameters (a `[base]` or `[standard]` file: CAD values, a data
+    /// sheet, an earlier identification): each --validate file is also predicted with it,
+    /// and the report gives both NMSEs of Madsen et al.'s eq. 22 and the relative
+    /// improvement (their Table 5). Extra columns of the config are zero in the reference.
+    #[arg(long, requires = "validate")]
+    reference: Option<PathBuf>,
     /// Estimator (overrides the config's `[estimation] method`).
     #[arg(long, value_enum)]
     method: Option<MethodArg>,
@@ -184,6 +190,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     inputs.extend(args.config.as_deref());
     inputs.extend(data.iter().map(PathBuf::as_path));
     inputs.extend(args.validate.iter().map(PathBuf::as_path));
+    inputs.extend(args.reference.as_deref());
     let mut outputs: Vec<&Path> = Vec::new();
     outputs.extend(args.json.as_deref());
     outputs.extend(args.plot.as_deref());
@@ -222,6 +229,10 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     // "auto" is chosen once, on the estimation data, and used for the validation data too
     let auto = resolve_cutoff(&mut config, &data).map_err(|e| config.locate(e))?;
+    let reference = match &args.reference {
+        Some(path) => Some((path, reference_values(path, model, &config)?)),
+        None => None,
+    };
     let id = identify(model, &data, &config)?;
     let mut report = Report::from_identification(&id, |n| chosen.expression(n));
     report.cutoff = auto;
@@ -233,6 +244,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
         let p = validate(model, &d, &config, &id.estimate.values)?;
         report = report.with_prediction(&p);
+        if let Some((path, values)) = &reference {
+            let fit = validate(model, &d, &config, values)?.fit();
+            let index = report.validation.len() - 1;
+            report = report.with_reference(index, &path.display().to_string(), &fit);
+        }
         predictions.push(p);
     }
     report.check()?;
@@ -273,6 +289,20 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     stdout.flush()?;
     Ok(())
+}
+
+/// The values of the reference model of `--reference`: its base parameters (from a `[base]`
+/// table, or mapped from a `[standard]` one), then zero for every extra column of the
+/// config, which a reference model does not have.
+fn reference_values(
+    path: &Path,
+    model: &dyn robid_runtime::model::Model,
+    config: &Config,
+) -> Result<Vec<f64>, Error> {
+    let file = robid_runtime::data::ParameterFile::read(path)?;
+    let mut values = file.base_parameters(model)?;
+    values.resize(values.len() + config.extra_columns.len(), 0.0);
+    Ok(values)
 }
 
 #[cfg(test)]
