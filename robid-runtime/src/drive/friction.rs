@@ -9,8 +9,8 @@
 //! with `w` the rotor velocity reflected to the link side (rad/s), `tl` the load torque,
 //! the joint torque `tau_J` (N m), and `T` the temperature (deg C). The Coulomb level rises
 //! linearly with the load torque, as the tooth contact force of the gear does (Bittencourt
-//! and Gunnarsson 2012; Madsen et al. 2020, Control Engineering Practice, for strain-wave
-//! gears); the Stribeck term adds the static friction that falls off with velocity
+//! and Gunnarsson 2012; Madsen, Rosenlund, Brandt and Zhang 2020 for strain-wave gears);
+//! the Stribeck term adds the static friction that falls off with velocity
 //! (Armstrong-Helouvry 1991); the Coulomb and viscous levels fall with temperature as the
 //! lubricant's viscosity does (Bittencourt and Gunnarsson 2012). `s` is a smooth sign: it
 //! keeps the model differentiable for the fit and bounded through a velocity reversal,
