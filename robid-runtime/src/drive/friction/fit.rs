@@ -623,7 +623,7 @@ fn refine(
             .configure(|state| state.param(z0).max_iters(CHUNK))
             .run()
             .map_err(|e| stopped(e.to_string()))?;
-        used += CHUNK as usize;
+        used += usize::try_from(result.state.iter).unwrap_or(usize::MAX);
         let cost = result.state.best_cost;
         if let Some(best) = result.state.best_param
             && cost < now
