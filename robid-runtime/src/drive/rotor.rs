@@ -3,8 +3,10 @@
 //! tau_J = K_r i - B thetaddot - fhat(thetadot).
 //!
 //! theta are the motor positions reflected through the gear ratios to the link side,
-//! B the rotor inertias (link side) and fhat a friction estimate on the rotor,
-//! here viscous plus Coulomb: fhat = F_v thetadot + F_c sign(thetadot).
+//! B the rotor inertias (link side) and fhat a friction estimate on the rotor: viscous
+//! plus Coulomb, fhat = F_v thetadot + F_c sign(thetadot) ([`RotorConfig::compensate`]), or
+//! the nonlinear [`FrictionModel`] of rotor velocity, load torque and temperature
+//! ([`RotorConfig::compensate_nonlinear`]), whose load torque is tau_J itself.
 //!
 //! ## Reference
 //! E. Madsen, S. A. Timm, N. A. Ujfalusi, O. S. Rosenlund, D. Brandt, X. Zhang,
@@ -13,8 +15,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::FrictionModel;
 use crate::data::PerJoint;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::signal::Signals;
 
 /// The `[drive.rotor]` table: known rotor inertias and rotor friction estimate.
@@ -68,6 +71,93 @@ impl RotorConfig {
         }
         Ok(())
     }
+
+    /// Subtracts B thetaddot + fhat from the torques in place with the nonlinear friction
+    /// `model` (docs/identification.md#nonlinear-rotor-friction): per sample, tau_J solves
+    /// `tau_J = y - f(thetadot, tau_J, T)` with `y = K_r i - B thetaddot` the torque in
+    /// `tau` less the rotor inertia's, since the load torque of `f` is tau_J itself (see
+    /// [`FrictionModel::joint_torque`]: exact, as `f` is linear in `|tau_J|` with slope
+    /// below 1). `temperature` gives T per joint; `None` evaluates every joint at its
+    /// reference temperature.
+    ///
+    /// Errors: `viscous` or `coulomb` given here as well (the rotor friction would be
+    /// subtracted twice), a model or temperature of another joint count or length, a
+    /// non-finite temperature (named by joint and sample), a load slope of 1 or more.
+    pub fn compensate_nonlinear(
+        &self,
+        model: &FrictionModel,
+        tau: &mut Signals,
+        thetad: &Signals,
+        thetadd: &Signals,
+        temperature: Option<&Signals>,
+    ) -> Result<()> {
+        let dof = tau.dof();
+        let b = self.inertia.values(dof, "drive.rotor.inertia")?;
+        for (key, given) in [("viscous", &self.viscous), ("coulomb", &self.coulomb)] {
+            if given.is_some() {
+                return Err(Error::setting(
+                    "RotorConfig",
+                    key,
+                    format!(
+                        "is given with a nonlinear friction model, which holds the rotor \
+                         friction; remove `drive.rotor.{key}`"
+                    ),
+                ));
+            }
+        }
+        model.check()?;
+        if model.dof() != dof {
+            return Err(Error::DimensionMismatch {
+                what: "joints of the rotor friction model (one per joint of the torques)".into(),
+                expected: dof,
+                found: model.dof(),
+            });
+        }
+        if let Some(t) = temperature
+            && t.dof() != dof
+        {
+            return Err(Error::DimensionMismatch {
+                what: "joints of the temperatures (one per joint of the torques)".into(),
+                expected: dof,
+                found: t.dof(),
+            });
+        }
+        for (j, tj) in tau.joints_mut().enumerate() {
+            let samples = tj.len();
+            for (what, s) in [
+                ("velocities", Some(thetad)),
+                ("accelerations", Some(thetadd)),
+                ("temperatures", temperature),
+            ] {
+                if let Some(s) = s
+                    && s[j].len() != samples
+                {
+                    return Err(Error::DimensionMismatch {
+                        what: format!("rotor {what} of joint {} (one per torque sample)", j + 1),
+                        expected: samples,
+                        found: s[j].len(),
+                    });
+                }
+            }
+            let reference = model.joints()[j].reference_temperature;
+            for (k, t) in tj.iter_mut().enumerate() {
+                let temp = temperature.map_or(reference, |s| s[j][k]);
+                if !temp.is_finite() {
+                    return Err(Error::setting(
+                        "RotorConfig::compensate_nonlinear",
+                        &format!("temperature[{}][{k}]", j + 1),
+                        format!(
+                            "joint {} sample {k} (from 0) is {temp}; repair the temperature",
+                            j + 1
+                        ),
+                    ));
+                }
+                let y = *t - b[j] * thetadd[j][k];
+                *t = model.joint_torque(j, y, thetad[j][k], temp)?;
+            }
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]
@@ -94,5 +184,72 @@ mod tests {
             assert!(t.iter().zip(e).all(|(a, b)| (a - b).abs() < 1e-12), "{t:?}");
         }
         assert!(cfg.check(3).is_err());
+    }
+
+    #[test]
+    fn nonlinear_compensation_solves_for_the_joint_torque() {
+        let model = FrictionModel::new(vec![
+            crate::drive::friction::tests::truth(),
+            crate::drive::JointFriction {
+                load: 0.05,
+                ..crate::drive::friction::tests::truth()
+            },
+        ])
+        .unwrap();
+        let cfg = RotorConfig {
+            inertia: PerJoint::Each(vec![2.0, 0.5]),
+            viscous: None,
+            coulomb: None,
+        };
+        let signals = |x: [[f64; 3]; 2]| Signals::new(x.map(Vec::from).to_vec()).unwrap();
+        let measured = signals([[40.0, -30.0, 0.5], [-60.0, 5.0, 70.0]]);
+        let (w, a) = (
+            signals([[1.0, -0.05, 0.0], [-2.0, 0.3, 0.02]]),
+            signals([[3.0, 0.0, -1.0], [2.0, -4.0, 0.0]]),
+        );
+        let temp = signals([[25.0, 35.0, 45.0], [30.0, 40.0, 50.0]]);
+        let mut tau = measured.clone();
+        cfg.compensate_nonlinear(&model, &mut tau, &w, &a, Some(&temp))
+            .unwrap();
+        let b = [2.0, 0.5];
+        let mut worst = 0.0_f64;
+        for j in 0..2 {
+            for k in 0..3 {
+                let y = measured[j][k] - b[j] * a[j][k];
+                let f = model.evaluate(j, w[j][k], tau[j][k], temp[j][k]);
+                worst = worst.max((tau[j][k] - (y - f)).abs());
+            }
+        }
+        // measured 3.6e-15
+        assert!(worst < 1e-12, "{worst}");
+        // without temperatures: the reference temperature
+        let mut at_reference = measured.clone();
+        cfg.compensate_nonlinear(&model, &mut at_reference, &w, &a, None)
+            .unwrap();
+        let y = measured[0][0] - 2.0 * 3.0;
+        let f = model.evaluate(0, 1.0, at_reference[0][0], 35.0);
+        assert!((at_reference[0][0] - (y - f)).abs() < 1e-12);
+        // the constant friction as well is refused, as is another joint count
+        let both = RotorConfig {
+            viscous: Some(PerJoint::All(0.1)),
+            ..cfg.clone()
+        };
+        let e = both
+            .compensate_nonlinear(&model, &mut measured.clone(), &w, &a, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("viscous"), "{e}");
+        let one = FrictionModel::new(vec![model.joints()[0]]).unwrap();
+        assert!(
+            cfg.compensate_nonlinear(&one, &mut measured.clone(), &w, &a, None)
+                .is_err()
+        );
+        let mut bad_temp = temp.clone();
+        bad_temp.joints_mut().nth(1).unwrap()[2] = f64::NAN;
+        let e = cfg
+            .compensate_nonlinear(&model, &mut measured.clone(), &w, &a, Some(&bad_temp))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("joint 2 sample 2"), "{e}");
     }
 }
