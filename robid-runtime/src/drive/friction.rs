@@ -124,7 +124,7 @@ impl JointFriction {
     }
 
     /// The first value out of range, as `(field, problem)`.
-    fn problem(&self) -> Option<(&'static str, String)> {
+    pub(crate) fn problem(&self) -> Option<(&'static str, String)> {
         let fields = [
             ("coulomb", self.coulomb),
             ("load", self.load),

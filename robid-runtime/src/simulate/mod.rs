@@ -10,11 +10,13 @@
 //! ```
 
 mod error;
+mod flexible;
 mod forward;
 mod run;
 mod trajectory;
 
 pub use error::SimulateError;
+pub use flexible::{Flexibility, FlexibleJoint, FlexibleRecord, TemperatureProfile};
 pub use forward::ForwardDynamics;
 pub use run::{
     DIVERGENCE_FACTOR, MAX_BANDWIDTH, MAX_SIMULATION_STEPS, MAX_SUBSTEPS, Noise, Simulated,
@@ -26,7 +28,7 @@ pub use trajectory::{Record, Trajectory};
 pub(crate) mod tests;
 
 #[cfg(test)]
-mod run_tests {
+pub(crate) mod run_tests {
     use super::tests::Pendulum;
     use super::*;
     use crate::Model;

@@ -45,7 +45,7 @@ use crate::limits::{MAX_ACCELERATION, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
 /// samples `a` and `b` (each `[q, qd, qdd]`): quintic Hermite interpolation, exact for
 /// polynomials up to degree 5, its velocity and acceleration the derivatives of its
 /// position.
-fn quintic(s: f64, interval: f64, a: &[Vec<f64>; 3], b: &[Vec<f64>; 3], out: &mut [Vec<f64>; 3]) {
+pub(super) fn quintic(s: f64, interval: f64, a: &[Vec<f64>; 3], b: &[Vec<f64>; 3], out: &mut [Vec<f64>; 3]) {
     let (s2, s3) = (s * s, s * s * s);
     let (s4, s5) = (s3 * s, s3 * s2);
     // basis for q0, T v0, T^2 a0, T^2 a1, T v1, q1; and its first and second derivatives in s
@@ -511,9 +511,9 @@ impl Simulation {
 /// The largest |h lambda| kept per Runge-Kutta step, for the bound of the damping rates
 /// (the method is stable to 2.78 on the negative real axis; a mode that fast decays within
 /// a step, so only its stability matters).
-const RK4_REACH: f64 = 2.5;
+pub(super) const RK4_REACH: f64 = 2.5;
 /// The most Runge-Kutta steps one substep is split into.
-const MAX_SPLIT: f64 = 1000.0;
+pub(super) const MAX_SPLIT: f64 = 1000.0;
 
 /// A bound on the damping rates of the plant at (q, qd): the infinity norm of
 /// M^-1 dh/dqd, with dh/dqd by one-sided differences away from zero velocity (so that a
@@ -554,7 +554,7 @@ fn damping_rate<M: Model + ?Sized>(model: &M, base: &[f64], q: &[f64], qd: &[f64
 /// first-order step's error, amplified by the PD loop, made them differ by 24 % at 10
 /// substeps and a 10 Hz loop, which anyone differentiating the positions saw as biased
 /// inertias).
-fn rk4_step(
+pub(super) fn rk4_step(
     f: &mut impl FnMut(f64, &[f64], &[f64], &mut [f64]) -> Result<()>,
     q: &mut [f64],
     qd: &mut [f64],

@@ -281,7 +281,7 @@ impl Record {
     }
 }
 
-fn write_rows(
+pub(super) fn write_rows(
     path: &Path,
     header: Vec<String>,
     rows: usize,

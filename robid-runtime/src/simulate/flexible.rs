@@ -1,0 +1,663 @@
+//! Flexible-joint simulation: robots whose joints have a compliant transmission (a
+//! strain-wave gear) between a motor with its own encoder and the link, logged as such a
+//! robot logs (docs/identification.md#flexible-joint-simulation).
+//!
+//! Spong's model with the rotor positions reflected through the gear ratios to the link
+//! side (Madsen et al. 2020, eqs. 1-2):
+//!
+//! ```text
+//! M(q) q'' + h(q, q') = tau_J                        link (h: the rigid model's rest,
+//!                                                     its own drive terms included)
+//! B theta'' + f(theta', tau_J, T) + tau_J = u        rotor, u = N k i the motor torque
+//! tau_J = K1 d + K3 d^3 + D d',   d = theta - q      transmission
+//! ```
+//!
+//! The transmission stiffens with its deflection (a hardening cubic, as strain-wave gears
+//! do: Tuttle and Seering 1996, Dhaouadi et al. 2003), `f` is the nonlinear rotor friction
+//! of [`crate::drive::JointFriction`], `T` the temperature, warming from `start` towards
+//! `end` with a time constant. A motor-side controller tracks the reference: the rigid
+//! model's torque along the reference as feed-forward, the deflection that torque needs
+//! added to the motor reference, the rotor's inertia and friction fed forward, and a PD
+//! loop on the motor encoder with gains scaled by each joint's rotor plus link inertia.
+//! Four state vectors (q, q', theta, theta') are integrated by classical Runge-Kutta with
+//! enough steps per sample for the stiffest mode of the state (the transmission, the
+//! friction near a reversal).
+//!
+//! The log holds the link encoder `q`, the motor encoder `theta_m = N theta` (motor
+//! radians), the motor current `i`, the temperature `T`, and (for checking) the true joint
+//! torque `tau_J`.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use super::run::{MAX_SPLIT, RK4_REACH, quintic, rk4_step};
+use super::{ForwardDynamics, Simulation, Trajectory};
+use crate::Model;
+use crate::SimulateError;
+use crate::data::{DataError, KeyMap};
+use crate::drive::{FrictionModel, JointFriction};
+use crate::error::{Error, Result};
+use crate::excite::check_parameters;
+use crate::limits::{MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use crate::rng::Rng;
+use crate::signal::Signals;
+
+/// One joint's transmission, rotor and drive.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlexibleJoint {
+    /// `N`, motor angle per joint angle (with sign).
+    pub gear_ratio: f64,
+    /// `B`, the rotor inertia reflected to the link side, kg m^2.
+    pub rotor_inertia: f64,
+    /// `k`, the motor's torque constant, N m/A on the motor shaft (`u = N k i`).
+    pub torque_constant: f64,
+    /// `K1`, the transmission's stiffness at no load, N m/rad.
+    pub stiffness: f64,
+    /// `K3`, its hardening, N m/rad^3 (`tau_J = K1 d + K3 d^3 + D d'`).
+    pub hardening: f64,
+    /// `D`, its damping, N m s/rad.
+    pub damping: f64,
+    /// The rotor friction `f(theta', tau_J, T)`.
+    pub friction: JointFriction,
+}
+
+impl FlexibleJoint {
+    /// The elastic torque at deflection `d`.
+    pub fn elastic(&self, d: f64) -> f64 {
+        self.stiffness * d + self.hardening * d * d * d
+    }
+
+    /// The deflection whose elastic torque is `tau` (Newton's method on the monotone
+    /// cubic, from the linear deflection, which overshoots towards the root: it converges
+    /// monotonically).
+    pub fn deflection(&self, tau: f64) -> f64 {
+        let mut d = tau / self.stiffness;
+        for _ in 0..50 {
+            let step = (self.elastic(d) - tau) / (self.stiffness + 3.0 * self.hardening * d * d);
+            d -= step;
+            if step.abs() <= 1e-15 * d.abs() {
+                break;
+            }
+        }
+        d
+    }
+}
+
+/// The temperature of the drives, the same for every joint: `T(t) = end - (end - start)
+/// exp(-t / time_constant)`, deg C.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TemperatureProfile {
+    /// At t = 0.
+    pub start: f64,
+    /// Approached as t grows.
+    pub end: f64,
+    /// Seconds.
+    pub time_constant: f64,
+}
+
+impl TemperatureProfile {
+    /// The temperature at time `t`.
+    pub fn at(&self, t: f64) -> f64 {
+        self.end - (self.end - self.start) * (-t / self.time_constant).exp()
+    }
+}
+
+/// A joint-flexibility file (`robid simulate --flexible FLEX.toml`): the temperature and
+/// one `[[joint]]` table per joint.
+///
+/// ```
+/// use robid_runtime::simulate::Flexibility;
+/// let text = r#"
+/// [temperature]
+/// start = 25.0
+/// end = 40.0
+/// time_constant = 600.0
+///
+/// [[joint]]
+/// joint = 1
+/// gear_ratio = 101.0
+/// rotor_inertia = 0.2
+/// torque_constant = 0.12
+/// stiffness = 3.0e4
+/// hardening = 2.0e9
+/// damping = 30.0
+/// friction = { coulomb = 4.0, load = 0.02, stribeck = 1.0, stribeck_velocity = 0.05,
+///              viscous = 6.0, coulomb_temperature = 0.005, viscous_temperature = 0.01,
+///              reference_temperature = 25.0 }
+/// "#;
+/// let flex = Flexibility::from_toml_str(text, "flex.toml".as_ref()).unwrap();
+/// assert_eq!(flex.joints.len(), 1);
+/// assert!((flex.joints[0].deflection(30.0) - 9.99e-4).abs() < 1e-6);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Flexibility {
+    /// Per joint, joint 1 first.
+    pub joints: Vec<FlexibleJoint>,
+    /// The drives' temperature.
+    pub temperature: TemperatureProfile,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct File {
+    temperature: TemperatureProfile,
+    joint: Vec<Row>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Row {
+    joint: usize,
+    gear_ratio: f64,
+    rotor_inertia: f64,
+    torque_constant: f64,
+    stiffness: f64,
+    #[serde(default)]
+    hardening: f64,
+    #[serde(default)]
+    damping: f64,
+    friction: JointFriction,
+}
+
+/// The largest transmission stiffness accepted, N m/rad (a rigid joint is simulated
+/// without `--flexible`).
+const MAX_STIFFNESS: f64 = 1e9;
+
+impl Row {
+    /// The first value out of range, as `(field, problem)`.
+    fn problem(&self) -> Option<(&'static str, String)> {
+        let positive = [
+            ("rotor_inertia", self.rotor_inertia, 1e6),
+            ("torque_constant", self.torque_constant, 1e6),
+            ("stiffness", self.stiffness, MAX_STIFFNESS),
+        ];
+        for (field, x, limit) in positive {
+            if !(x > 0.0 && x <= limit) {
+                return Some((field, format!("{x} must be positive, at most {limit:e}")));
+            }
+        }
+        for (field, x) in [("hardening", self.hardening), ("damping", self.damping)] {
+            if !(x >= 0.0 && x <= 1e15) {
+                return Some((field, format!("{x} must be zero or positive, at most 1e15")));
+            }
+        }
+        if !(self.gear_ratio.is_finite() && self.gear_ratio.abs() >= 1e-3)
+            || self.gear_ratio.abs() > 1e6
+        {
+            return Some((
+                "gear_ratio",
+                format!(
+                    "{} must be a number of magnitude 1e-3 to 1e6 (motor angle per joint angle)",
+                    self.gear_ratio
+                ),
+            ));
+        }
+        self.friction
+            .problem()
+            .map(|(field, problem)| (field, format!("friction.{field}: {problem}")))
+            .map(|(_, p)| ("friction", p))
+    }
+}
+
+impl Flexibility {
+    /// Reads a joint-flexibility file.
+    pub fn read(path: &Path) -> Result<Flexibility> {
+        let text = std::fs::read_to_string(path).map_err(|source| {
+            Error::Data(DataError::Io {
+                path: path.to_owned(),
+                source,
+            })
+        })?;
+        Flexibility::from_toml_str(&text, path)
+    }
+
+    /// Reads the text of a joint-flexibility file, naming it `path` in errors.
+    pub fn from_toml_str(text: &str, path: &Path) -> Result<Flexibility> {
+        let file: File = toml::from_str(text).map_err(|e| {
+            Error::Data(DataError::ConfigSyntax {
+                path: path.to_path_buf(),
+                reason: e.to_string(),
+            })
+        })?;
+        let keys = KeyMap::parse(text);
+        let at = |key: String, problem: String| {
+            let (line, column) = keys.find(&key).unzip();
+            Error::Data(DataError::ConfigKey {
+                path: PathBuf::from(path),
+                line,
+                column,
+                key,
+                problem,
+            })
+        };
+        let t = file.temperature;
+        for (field, x) in [("start", t.start), ("end", t.end)] {
+            if !(-100.0..=300.0).contains(&x) {
+                return Err(at(
+                    format!("temperature.{field}"),
+                    format!("{x} deg C must lie in [-100, 300]"),
+                ));
+            }
+        }
+        if !(t.time_constant > 0.0 && t.time_constant <= 1e9) {
+            return Err(at(
+                "temperature.time_constant".into(),
+                format!("{} s must be positive, at most 1e9", t.time_constant),
+            ));
+        }
+        let n = file.joint.len();
+        let mut joints: Vec<Option<FlexibleJoint>> = vec![None; n];
+        for (i, row) in file.joint.iter().enumerate() {
+            let key = |field: &str| format!("joint[{}].{field}", i + 1);
+            if !(1..=n).contains(&row.joint) {
+                return Err(at(
+                    key("joint"),
+                    format!(
+                        "{} is not a joint from 1 to {n} (the number of [[joint]] tables); give \
+                         one table per joint",
+                        row.joint
+                    ),
+                ));
+            }
+            if let Some((field, problem)) = row.problem() {
+                return Err(at(key(field), format!("joint {}: {problem}", row.joint)));
+            }
+            let slot = &mut joints[row.joint - 1];
+            if slot.is_some() {
+                return Err(at(
+                    key("joint"),
+                    format!("joint {} has a second table; give one per joint", row.joint),
+                ));
+            }
+            *slot = Some(FlexibleJoint {
+                gear_ratio: row.gear_ratio,
+                rotor_inertia: row.rotor_inertia,
+                torque_constant: row.torque_constant,
+                stiffness: row.stiffness,
+                hardening: row.hardening,
+                damping: row.damping,
+                friction: row.friction,
+            });
+        }
+        if n == 0 {
+            return Err(at(
+                "joint".into(),
+                "no [[joint]] table; give one per joint of the robot".into(),
+            ));
+        }
+        Ok(Flexibility {
+            // every slot is filled: n tables, each a distinct joint of 1..=n
+            joints: joints.into_iter().flatten().collect(),
+            temperature: t,
+        })
+    }
+
+    /// The rotor friction of every joint as one model (for the compensation of the data).
+    pub fn friction(&self) -> Result<FrictionModel> {
+        FrictionModel::new(self.joints.iter().map(|j| j.friction).collect())
+    }
+}
+
+/// What a flexible-joint robot logs, and the truth behind it.
+#[derive(Debug, Clone)]
+pub struct FlexibleRecord {
+    /// Time stamps, s.
+    pub t: Vec<f64>,
+    /// Link encoder positions (noise and quantization applied), rad.
+    pub q: Signals,
+    /// Motor encoder positions on the motor side, `N theta` (noise and quantization
+    /// applied), motor rad.
+    pub motor: Signals,
+    /// Motor currents (with the torque noise divided by `N k`), A.
+    pub current: Signals,
+    /// Drive temperatures, deg C.
+    pub temperature: Signals,
+    /// The true joint torques `tau_J`, N m.
+    pub joint_torque: Signals,
+    /// The true link positions, rad.
+    pub true_q: Signals,
+    /// The true rotor positions reflected to the link side, rad.
+    pub true_theta: Signals,
+}
+
+impl FlexibleRecord {
+    /// The largest |theta - q| per joint over the run (the transmission's deflection).
+    pub fn largest_deflection(&self) -> Vec<f64> {
+        self.true_theta
+            .joints()
+            .zip(self.true_q.joints())
+            .map(|(th, q)| {
+                th.iter()
+                    .zip(q)
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(0.0, f64::max)
+            })
+            .collect()
+    }
+
+    /// Writes `t,q1..,theta1..,i1..,T1..` and with `joint_torque` also `tauJ1..`, every
+    /// `every`-th sample.
+    pub fn write_csv(&self, path: &Path, every: usize, joint_torque: bool) -> Result<()> {
+        let n = self.q.dof();
+        let mut header = vec!["t".to_string()];
+        let mut signals = vec![&self.q, &self.motor, &self.current, &self.temperature];
+        let mut prefixes = vec!["q", "theta", "i", "T"];
+        if joint_torque {
+            signals.push(&self.joint_torque);
+            prefixes.push("tauJ");
+        }
+        for p in &prefixes {
+            header.extend((1..=n).map(|j| format!("{p}{j}")));
+        }
+        let every = every.max(1);
+        let rows = self.t.len().div_ceil(every);
+        super::trajectory::write_rows(path, header, rows, |r, row| {
+            let k = r * every;
+            row.push(self.t[k]);
+            for s in &signals {
+                row.extend(s.joints().map(|v| v[k]));
+            }
+        })
+    }
+}
+
+/// The motor-side controller's reference at one instant: link states, the joint torque
+/// the rigid model needs, and the motor position that gives it.
+struct Reference {
+    q: [Vec<f64>; 3],
+    tau: Vec<f64>,
+    theta: Vec<f64>,
+}
+
+impl Simulation {
+    /// Simulates `model` (true base parameters `base`) with the flexible joints of `flex`
+    /// tracking `reference` under a motor-side controller of bandwidth
+    /// [`Simulation::bandwidth`]; the noise settings apply to both encoders (positions,
+    /// quantization per count of each) and, divided by `N k`, the torque noise to the
+    /// currents.
+    pub fn run_flexible<M: Model + ?Sized>(
+        &self,
+        model: &M,
+        base: &[f64],
+        flex: &Flexibility,
+        reference: &Trajectory,
+    ) -> Result<FlexibleRecord> {
+        let n = model.dof();
+        self.check(n)?;
+        if flex.joints.len() != n || reference.dof() != n {
+            return Err(Error::Data(DataError::JointCountMismatch {
+                context: "joint-flexibility file and reference trajectory".into(),
+                expected: n,
+                found: if flex.joints.len() != n {
+                    flex.joints.len()
+                } else {
+                    reference.dof()
+                },
+            }));
+        }
+        reference.check("reference trajectory")?;
+        let samples = reference.samples();
+        crate::limits::check_size(
+            || format!("integration steps ({samples} samples x {} substeps)", self.substeps),
+            samples as f64 * self.substeps as f64,
+            super::MAX_SIMULATION_STEPS,
+            "use fewer substeps or a shorter trajectory",
+        )?;
+        check_parameters("Simulation::run_flexible", "base", model, base)?;
+        let mut fd = ForwardDynamics::new(model, base)?;
+        let joints = &flex.joints;
+        let wn = std::f64::consts::TAU * self.bandwidth;
+        // PD gains per joint on the rotor plus the link's own inertia at the start
+        let mut r0 = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        {
+            let [a, b, c] = &mut r0;
+            reference.state(0, a, b, c);
+        }
+        let mut mass = vec![0.0; n * n];
+        model.mass_matrix_into(&r0[0], base, &mut mass)?;
+        let inertia: Vec<f64> = (0..n)
+            .map(|j| joints[j].rotor_inertia + mass[j * n + j].max(0.0))
+            .collect();
+        let kp: Vec<f64> = inertia.iter().map(|i| i * wn * wn).collect();
+        let kd: Vec<f64> = inertia.iter().map(|i| 2.0 * self.damping * i * wn).collect();
+        let quantize = |x: f64| {
+            let r = self.noise.quantization;
+            if r > 0.0 { (x / r).round() * r } else { x }
+        };
+        let sigma_tau = |j: usize| self.noise.torque[j.min(self.noise.torque.len() - 1)];
+        // the reference at an instant: the rigid torque along it and the motor position
+        // whose deflection gives that torque
+        let target = |r: &[Vec<f64>; 3], out: &mut Reference| -> Result<()> {
+            out.q.clone_from(r);
+            model.inverse_dynamics_into(&r[0], &r[1], &r[2], base, &mut out.tau)?;
+            for j in 0..n {
+                out.theta[j] = r[0][j] + joints[j].deflection(out.tau[j]);
+            }
+            Ok(())
+        };
+        let new_reference = || Reference {
+            q: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            tau: vec![0.0; n],
+            theta: vec![0.0; n],
+        };
+        // the motor torque u: feed-forward of the joint torque, the rotor's inertia and
+        // friction, and the PD loop on the measured motor position (noise held over a step)
+        let command = |r: &Reference, theta: &[f64], thetad: &[f64], noise: &[f64], temp: f64, u: &mut [f64]| {
+            for j in 0..n {
+                let g = &joints[j];
+                let measured = quantize(g.gear_ratio * theta[j]) / g.gear_ratio + noise[j];
+                u[j] = r.tau[j]
+                    + g.rotor_inertia * r.q[2][j]
+                    + g.friction.evaluate(r.q[1][j], r.tau[j], temp)
+                    + kp[j] * (r.theta[j] - measured)
+                    + kd[j] * (r.q[1][j] - thetad[j]);
+            }
+        };
+        // the joint torques of a state
+        let transmission = |x: &[f64], v: &[f64], tau: &mut [f64]| {
+            for j in 0..n {
+                let g = &joints[j];
+                tau[j] = g.elastic(x[n + j] - x[j]) + g.damping * (v[n + j] - v[j]);
+            }
+        };
+        let t0 = reference.t[0];
+        let temperature = |t: f64| flex.temperature.at(t - t0);
+        let allowed: Vec<f64> = reference
+            .q
+            .joints()
+            .map(|v| {
+                let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                super::DIVERGENCE_FACTOR * (hi - lo + 1.0)
+            })
+            .collect();
+        let diverged = |k: usize, reason: String| {
+            Error::Simulate(SimulateError::Diverged {
+                time: reference.t[k],
+                sample: k,
+                reason,
+                fix: "check the joint-flexibility file (a stiffness or rotor inertia far from \
+                      the robot's, a bandwidth near the transmission's resonance) and the \
+                      reference trajectory near this sample"
+                    .into(),
+            })
+        };
+
+        // state: positions (q, theta) and velocities (q', theta'), theta on the link side,
+        // starting at rest on the reference with the transmission deflected by the load
+        let mut reference_now = new_reference();
+        target(&r0, &mut reference_now)?;
+        let mut x: Vec<f64> = r0[0].iter().chain(&reference_now.theta).copied().collect();
+        let mut v: Vec<f64> = r0[1].iter().chain(&r0[1]).copied().collect();
+        let zeros = || Signals::zeros(n, samples);
+        let mut out = FlexibleRecord {
+            t: reference.t.clone(),
+            q: zeros(),
+            motor: zeros(),
+            current: zeros(),
+            temperature: zeros(),
+            joint_torque: zeros(),
+            true_q: zeros(),
+            true_theta: zeros(),
+        };
+        let mut rng = Rng::new(self.seed);
+        let mut noise = vec![0.0; n];
+        let draw = |rng: &mut Rng, noise: &mut [f64]| {
+            noise
+                .iter_mut()
+                .for_each(|e| *e = self.noise.position * rng.normal());
+        };
+        let (mut tau, mut u, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut r1 = r0.clone();
+        let mut r = r0.clone();
+        let mut stage = new_reference();
+        for k in 0..samples {
+            {
+                let [a, b, c] = &mut r0;
+                reference.state(k, a, b, c);
+            }
+            target(&r0, &mut reference_now)?;
+            draw(&mut rng, &mut noise);
+            let temp = temperature(reference.t[k]);
+            command(&reference_now, &x[n..], &v[n..], &noise, temp, &mut u);
+            transmission(&x, &v, &mut tau);
+            for j in 0..n {
+                let g = &joints[j];
+                let e = x[j] - r0[0][j];
+                if !(x[j].is_finite() && x[n + j].is_finite() && u[j].is_finite()) {
+                    return Err(diverged(k, format!("the state of joint {} is not finite", j + 1)));
+                }
+                if e.abs() > allowed[j] || u[j].abs() > MAX_TORQUE {
+                    return Err(diverged(
+                        k,
+                        format!(
+                            "joint {} is {e:.3e} from its reference with a motor torque of {:.3e}",
+                            j + 1,
+                            u[j]
+                        ),
+                    ));
+                }
+                let link = quantize(x[j]) + self.noise.position * rng.normal();
+                let motor = quantize(g.gear_ratio * x[n + j]) + self.noise.position * rng.normal();
+                let per_amp = g.gear_ratio * g.torque_constant;
+                out.q[j][k] = link;
+                out.motor[j][k] = motor;
+                out.current[j][k] = (u[j] + sigma_tau(j) * rng.normal()) / per_amp;
+                out.temperature[j][k] = temp;
+                out.joint_torque[j][k] = tau[j];
+                out.true_q[j][k] = x[j];
+                out.true_theta[j][k] = x[n + j];
+            }
+            if k + 1 == samples {
+                break;
+            }
+            {
+                let [a, b, c] = &mut r1;
+                reference.state(k + 1, a, b, c);
+            }
+            let interval = reference.t[k + 1] - reference.t[k];
+            let h = interval / self.substeps as f64;
+            for i in 0..self.substeps {
+                if i > 0 {
+                    draw(&mut rng, &mut noise);
+                }
+                // Runge-Kutta steps for this substep: enough for the fastest rate of the
+                // state, the friction's slope taken at the smallest rotor speed the
+                // substep can reach
+                let s0 = i as f64 / self.substeps as f64;
+                quintic(s0, interval, &r0, &r1, &mut r);
+                target(&r, &mut stage)?;
+                let temp = temperature(reference.t[k] + s0 * interval);
+                command(&stage, &x[n..], &v[n..], &noise, temp, &mut u);
+                transmission(&x, &v, &mut tau);
+                let slowest: Vec<f64> = (0..n)
+                    .map(|j| {
+                        let g = &joints[j];
+                        let f = g.friction.evaluate(v[n + j], tau[j], temp);
+                        let acc = (u[j] - f - tau[j]) / g.rotor_inertia;
+                        (v[n + j].abs() - 2.0 * h * acc.abs()).max(0.0)
+                    })
+                    .collect();
+                let rate = self.fastest_rate(model, base, joints, &x, &slowest, &tau, &kd, &inertia)?;
+                let split = (h * rate / RK4_REACH).ceil().clamp(1.0, MAX_SPLIT) as usize;
+                for part in 0..split {
+                    let mut f = |c: f64, x: &[f64], v: &[f64], acc: &mut [f64]| -> Result<()> {
+                        let s = (i as f64 + (part as f64 + c) / split as f64) / self.substeps as f64;
+                        quintic(s, interval, &r0, &r1, &mut r);
+                        target(&r, &mut stage)?;
+                        let temp = temperature(reference.t[k] + s * interval);
+                        command(&stage, &x[n..], &v[n..], &noise, temp, &mut u);
+                        transmission(x, v, &mut tau);
+                        fd.accelerations(&x[..n], &v[..n], &tau, &mut qdd)?;
+                        for j in 0..n {
+                            let g = &joints[j];
+                            acc[j] = qdd[j];
+                            acc[n + j] = (u[j] - g.friction.evaluate(v[n + j], tau[j], temp) - tau[j])
+                                / g.rotor_inertia;
+                        }
+                        Ok(())
+                    };
+                    rk4_step(&mut f, &mut x, &mut v, h / split as f64)?;
+                    if x.iter().any(|p| !(p.abs() <= MAX_POSITION))
+                        || v.iter().any(|w| !(w.abs() <= MAX_VELOCITY))
+                    {
+                        return Err(diverged(
+                            k,
+                            "the state left every physical range between two samples".into(),
+                        ));
+                    }
+                }
+            }
+            transmission(&x, &v, &mut tau);
+        }
+        Ok(out)
+    }
+
+    /// A bound on the fastest rate of the flexible plant at positions `x` with rotor speeds
+    /// down to `slowest`: per joint the transmission's resonance on the rotor and link
+    /// inertias, its damping, the friction's slope (the smooth sign's is level / eps at a
+    /// reversal), and the PD loop's.
+    #[allow(clippy::too_many_arguments)]
+    fn fastest_rate<M: Model + ?Sized>(
+        &self,
+        model: &M,
+        base: &[f64],
+        joints: &[FlexibleJoint],
+        x: &[f64],
+        slowest: &[f64],
+        tau: &[f64],
+        kd: &[f64],
+        inertia: &[f64],
+    ) -> Result<f64> {
+        let n = joints.len();
+        let mut mass = vec![0.0; n * n];
+        model.mass_matrix_into(&x[..n], base, &mut mass)?;
+        let mut rate: f64 = 0.0;
+        for (j, g) in joints.iter().enumerate() {
+            // the link's own inertia at this joint; a joint whose link is nearly massless
+            // moves with the link's smallest principal inertia, bounded below by 1e-9
+            let m = mass[j * n + j].max(1e-9);
+            let d = x[n + j] - x[j];
+            let stiffness = g.stiffness + 3.0 * g.hardening * (2.0 * d) * (2.0 * d);
+            let compliance = 1.0 / g.rotor_inertia + 1.0 / m;
+            let f = &g.friction;
+            let level = f.coulomb + f.load * tau[j].abs() + f.stribeck;
+            let sech = 1.0 / (slowest[j] / f.smoothing).cosh();
+            let slope = level * sech * sech / f.smoothing
+                + f.viscous
+                + f.stribeck / f.stribeck_velocity;
+            rate = rate.max(
+                (stiffness * compliance).sqrt()
+                    + g.damping * compliance
+                    + slope / g.rotor_inertia
+                    + kd[j] / inertia[j],
+            );
+        }
+        Ok(rate + std::f64::consts::TAU * self.bandwidth)
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,202 @@
+//! The flexible-joint simulation against its own equations, checked from the outside:
+//! the logged positions, differentiated, and the logged currents must satisfy the link and
+//! rotor equations with the logged joint torque.
+
+use super::*;
+use crate::simulate::Noise;
+use crate::simulate::run_tests::reference;
+use crate::simulate::tests::Pendulum;
+
+fn friction() -> JointFriction {
+    JointFriction {
+        coulomb: 1.5,
+        load: 0.02,
+        stribeck: 0.5,
+        stribeck_velocity: 0.05,
+        viscous: 2.0,
+        coulomb_temperature: 0.005,
+        viscous_temperature: 0.01,
+        reference_temperature: 25.0,
+        smoothing: crate::drive::DEFAULT_SMOOTHING,
+    }
+}
+
+fn flexibility() -> Flexibility {
+    let joint = |stiffness: f64, rotor_inertia: f64| FlexibleJoint {
+        gear_ratio: 100.0,
+        rotor_inertia,
+        torque_constant: 0.1,
+        stiffness,
+        hardening: 1e9,
+        damping: 5.0,
+        friction: friction(),
+    };
+    Flexibility {
+        joints: vec![joint(2e4, 0.3), joint(8e3, 0.1)],
+        temperature: TemperatureProfile {
+            start: 25.0,
+            end: 45.0,
+            time_constant: 2.0,
+        },
+    }
+}
+
+/// Second derivative by central differences of samples `h` apart.
+fn second(v: &[f64], k: usize, h: f64) -> f64 {
+    (v[k + 1] - 2.0 * v[k] + v[k - 1]) / (h * h)
+}
+
+fn first(v: &[f64], k: usize, h: f64) -> f64 {
+    (v[k + 1] - v[k - 1]) / (2.0 * h)
+}
+
+/// Without noise, at 2 kHz: the link equation M(q) q'' + h(q, q') = tau_J and the rotor
+/// equation B theta'' + f(theta', tau_J, T) + tau_J = N k i hold on the logged signals to
+/// the central differences' truncation error (measured residuals 1.2e-4 and 1.1e-5 of the
+/// largest torque, the rotor's away from speed reversals); the link tracks its reference;
+/// the largest deflection is that of the largest joint torque (1e-3 to 2e-3 rad here, as
+/// on a UR5e under load).
+#[test]
+fn flexible_log_satisfies_the_link_and_rotor_equations() {
+    let p = Pendulum::default();
+    let base = p.base();
+    let flex = flexibility();
+    let r = reference(3.0, 2000.0);
+    let sim = Simulation::default();
+    let log = sim.run_flexible(&p, &base, &flex, &r).unwrap();
+    let h = 1.0 / 2000.0;
+    let (mut link, mut rotor, mut largest) = (0.0f64, 0.0f64, 0.0f64);
+    let mut tau = [0.0; 2];
+    for k in (5..r.samples() - 5).step_by(7) {
+        let q: Vec<f64> = log.true_q.joints().map(|v| v[k]).collect();
+        let qd: Vec<f64> = log.true_q.joints().map(|v| first(v, k, h)).collect();
+        let qdd: Vec<f64> = log.true_q.joints().map(|v| second(v, k, h)).collect();
+        p.inverse_dynamics_into(&q, &qd, &qdd, &base, &mut tau).unwrap();
+        for (j, g) in flex.joints.iter().enumerate() {
+            let tau_j = log.joint_torque[j][k];
+            largest = largest.max(tau_j.abs());
+            link = link.max((tau[j] - tau_j).abs());
+            let theta = &log.true_theta[j];
+            // the friction's smooth sign turns within a few eps of zero speed, faster
+            // than differences over 1 ms can follow: those samples are left out
+            if first(theta, k, h).abs() < 50.0 * g.friction.smoothing {
+                continue;
+            }
+            let u = log.current[j][k] * g.gear_ratio * g.torque_constant;
+            let f = g
+                .friction
+                .evaluate(first(theta, k, h), tau_j, log.temperature[j][k]);
+            rotor = rotor.max((g.rotor_inertia * second(theta, k, h) + f + tau_j - u).abs());
+        }
+    }
+    eprintln!("largest torque {largest}, link residual {link}, rotor residual {rotor}");
+    assert!(link <= 2.5e-4 * largest, "link equation: {link} of {largest}");
+    assert!(rotor <= 2.5e-5 * largest, "rotor equation: {rotor} of {largest}");
+    // tracking (measured 1.6e-4 rad) and the deflection of the load (2.0e-3 and 1.1e-3 rad,
+    // within 2.7e-6 and 2.4e-5 of the deflection of the largest torque)
+    let tracking = (0..r.samples())
+        .map(|k| (log.true_q[0][k] - r.q[0][k]).abs().max((log.true_q[1][k] - r.q[1][k]).abs()))
+        .fold(0.0, f64::max);
+    assert!(tracking < 3.5e-4, "tracking {tracking}");
+    let d = log.largest_deflection();
+    let expected: Vec<f64> = (0..2)
+        .map(|j| {
+            let g = &flex.joints[j];
+            let tau_max = log.joint_torque[j].iter().fold(0.0f64, |m, t| m.max(t.abs()));
+            g.deflection(tau_max)
+        })
+        .collect();
+    for j in 0..2 {
+        assert!((d[j] / expected[j] - 1.0).abs() < 5e-5, "{d:?} vs {expected:?}");
+    }
+    // the temperature warms from 25 towards 45 deg C with a 2 s time constant
+    let last = r.samples() - 1;
+    let t = log.temperature[0][last];
+    assert!((t - (45.0 - 20.0 * (-r.t[last] / 2.0f64).exp())).abs() < 1e-12, "{t}");
+}
+
+/// The motor encoder and the current carry the noise and quantization; the same seed
+/// gives the same log; the torque noise reaches the current divided by N k.
+#[test]
+fn flexible_noise_reaches_both_encoders_and_the_current() {
+    let p = Pendulum::default();
+    let flex = flexibility();
+    let r = reference(0.5, 1000.0);
+    let quiet = Simulation::default().run_flexible(&p, &p.base(), &flex, &r).unwrap();
+    let noisy = Simulation {
+        noise: Noise {
+            torque: vec![0.5],
+            quantization: 1e-4,
+            ..Noise::default()
+        },
+        ..Simulation::default()
+    };
+    let a = noisy.run_flexible(&p, &p.base(), &flex, &r).unwrap();
+    let b = noisy.run_flexible(&p, &p.base(), &flex, &r).unwrap();
+    assert_eq!(a.current, b.current);
+    for k in 0..r.samples() {
+        // quantized to the count on each side
+        let m = a.motor[0][k] / 1e-4;
+        assert!((m - m.round()).abs() < 1e-6, "{m}");
+        let q = a.q[1][k] / 1e-4;
+        assert!((q - q.round()).abs() < 1e-6, "{q}");
+    }
+    // current noise 0.5 / (100 x 0.1) = 0.05 A on top of what the controller commands
+    let d: Vec<f64> = (0..r.samples())
+        .map(|k| {
+            let g = &flex.joints[0];
+            a.current[0][k] - a.joint_torque[0][k] / (g.gear_ratio * g.torque_constant)
+        })
+        .collect();
+    let quiet_spread: f64 = (0..r.samples())
+        .map(|k| {
+            let g = &flex.joints[0];
+            (quiet.current[0][k] - quiet.joint_torque[0][k] / (g.gear_ratio * g.torque_constant))
+                .powi(2)
+        })
+        .sum::<f64>();
+    let spread: f64 = d.iter().map(|x| x * x).sum::<f64>();
+    assert!(spread > quiet_spread + 0.5 * 0.05 * 0.05 * r.samples() as f64);
+}
+
+/// File errors name the file, the key with its line and the fix; a joint count that
+/// differs from the robot's is refused.
+#[test]
+fn flexible_file_errors_name_the_key() {
+    let text = |stiffness: &str, second: &str| {
+        format!(
+            "[temperature]\nstart = 25.0\nend = 40.0\ntime_constant = 60.0\n\
+             [[joint]]\njoint = 1\ngear_ratio = 100.0\nrotor_inertia = 0.3\n\
+             torque_constant = 0.1\nstiffness = {stiffness}\n\
+             friction = {{ coulomb = 1.0, load = 0.0, stribeck = 0.0, stribeck_velocity = 0.1, \
+             viscous = 1.0, coulomb_temperature = 0.0, viscous_temperature = 0.0, \
+             reference_temperature = 25.0 }}\n{second}"
+        )
+    };
+    let path = Path::new("flex.toml");
+    let ok = Flexibility::from_toml_str(&text("2e4", ""), path).unwrap();
+    assert_eq!(ok.joints[0].hardening, 0.0);
+    let e = Flexibility::from_toml_str(&text("-1.0", ""), path)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("flex.toml:10") && e.contains("joint[1].stiffness"), "{e}");
+    let twice = "[[joint]]\njoint = 1\ngear_ratio = 1.0\nrotor_inertia = 1.0\n\
+                 torque_constant = 1.0\nstiffness = 1.0\nfriction = { coulomb = 1.0, \
+                 load = 0.0, stribeck = 0.0, stribeck_velocity = 0.1, viscous = 1.0, \
+                 coulomb_temperature = 0.0, viscous_temperature = 0.0, \
+                 reference_temperature = 25.0 }\n";
+    let e = Flexibility::from_toml_str(&text("2e4", twice), path)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("second table"), "{e}");
+    let e = Flexibility::from_toml_str(&text("2e4", "colour = 3\n"), path)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("colour"), "{e}");
+    let p = Pendulum::default();
+    let e = Simulation::default()
+        .run_flexible(&p, &p.base(), &ok, &reference(0.1, 100.0))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("joint-flexibility file"), "{e}");
+}
