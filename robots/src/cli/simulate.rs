@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::Model;
 use robid_runtime::data::ParameterFile;
-use robid_runtime::simulate::{Noise, Record, Simulation, Trajectory};
+use robid_runtime::simulate::{Flexibility, Noise, Record, Simulation, Trajectory};
 use robots::interpreted::Interpreted;
 
 use super::description::{self, DriveFlag};
@@ -57,8 +57,9 @@ pub(crate) struct Args {
     seed: u64,
     /// What to write: `all` (`t,q,qd,qdd,tau`, velocities and accelerations exact, for
     /// checking) or `positions` (`t,q,tau`, as a real log: `identify` differentiates).
-    #[arg(long, value_enum, default_value_t = Columns::All)]
-    columns: Columns,
+    /// [default: all]
+    #[arg(long, value_enum)]
+    columns: Option<Columns>,
     /// Write every sample at this rate in Hz (a whole fraction of the trajectory's rate;
     /// default: the trajectory's rate). `--columns positions` only.
     #[arg(long, value_parser = real(positive(1e6, "Hz")))]
@@ -68,6 +69,17 @@ pub(crate) struct Args {
     /// `--columns positions` only.
     #[arg(long, value_delimiter = ',', value_parser = real(closed(1e-6, 1e6, "N m/A")))]
     currents: Vec<f64>,
+    /// Joint-flexibility file (TOML: per joint the transmission's stiffness, hardening and
+    /// damping, rotor inertia, gear ratio, torque constant and rotor friction; the drives'
+    /// temperature): simulate a robot with two encoders per joint, under a motor-side
+    /// controller, and write what it logs, `t,q1..,theta1..,i1..,T1..` (link encoders,
+    /// motor encoders in motor radians, currents, temperatures; `--rate` applies).
+    #[arg(long)]
+    flexible: Option<PathBuf>,
+    /// With `--flexible`: also write the true joint torques `tauJ1..` (for checking; a
+    /// robot without joint-torque sensors does not log them).
+    #[arg(long)]
+    joint_torque: bool,
     /// Output CSV.
     #[arg(short, long)]
     output: PathBuf,
@@ -84,10 +96,9 @@ enum Columns {
 
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    files::refuse(
-        &[&args.robot, &args.parameters, &args.trajectory],
-        &[&args.output],
-    )?;
+    let mut inputs = vec![args.robot.as_path(), &args.parameters, &args.trajectory];
+    inputs.extend(args.flexible.as_deref());
+    files::refuse(&inputs, &[&args.output])?;
     let model = load_model(&args.robot, &args.drive)?;
     let n = model.dof();
     if args.torque_noise.len() != 1 && args.torque_noise.len() != n {
@@ -115,13 +126,16 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         },
         ..Simulation::default()
     };
+    if let Some(path) = &args.flexible {
+        return run_flexible(args, path, &model, &base, &reference, &sim, every);
+    }
     let result = sim
         .run(&model, &base, &reference)
         .map_err(|e| e.on_flags(SIMULATION_FLAGS))?;
     let tolerance = TRACKING_LIMIT + 10.0 * (args.position_noise + args.quantization);
     check_result(&result.truth, &reference, tolerance)?;
     check_result(&result.measured, &reference, f64::INFINITY)?;
-    match args.columns {
+    match args.columns.unwrap_or(Columns::All) {
         Columns::All => result.measured.write_csv(&args.output)?,
         Columns::Positions => {
             let currents = (!args.currents.is_empty()).then_some(args.currents.as_slice());
@@ -142,9 +156,70 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     Ok(())
 }
 
-/// Checks the log flags against `--columns` and the joint count.
+/// `--flexible`: the two-encoder log of a robot with flexible joints, and the largest
+/// deflection per joint on standard output.
+fn run_flexible(
+    args: &Args,
+    path: &Path,
+    model: &Interpreted,
+    base: &[f64],
+    reference: &Trajectory,
+    sim: &Simulation,
+    every: usize,
+) -> Result<(), Error> {
+    let flex = Flexibility::read(path)?;
+    if flex.joints.len() != model.dof() {
+        return Err(format!(
+            "{} has {} [[joint]] tables but {} has {} joints; give one per joint",
+            path.display(),
+            flex.joints.len(),
+            args.robot.display(),
+            model.dof()
+        )
+        .into());
+    }
+    let log = sim
+        .run_flexible(model, base, &flex, reference)
+        .map_err(|e| e.on_flags(SIMULATION_FLAGS))?;
+    log.write_csv(&args.output, every, args.joint_torque)?;
+    let deflection: Vec<String> = log
+        .largest_deflection()
+        .iter()
+        .map(|d| format!("{d:.2e}"))
+        .collect();
+    let mut stdout = out::Stdout::new();
+    writeln!(
+        stdout,
+        "{}: {} samples simulated with flexible joints (largest deflection per joint [{}] rad), \
+         written to {}",
+        model.name(),
+        reference.samples(),
+        deflection.join(" "),
+        args.output.display()
+    )?;
+    stdout.flush()?;
+    Ok(())
+}
+
+/// Checks the log flags against `--columns`, `--flexible` and the joint count.
 fn log_settings(args: &Args, n: usize) -> Result<(), Error> {
-    if args.columns == Columns::All {
+    if args.flexible.is_some() {
+        for (given, flag) in [
+            (args.columns.is_some(), "--columns"),
+            (!args.currents.is_empty(), "--currents"),
+        ] {
+            if given {
+                return Err(format!(
+                    "{flag} does not apply with --flexible, whose log is t,q..,theta..,i..,T.. \
+                     (the torque constants are in the flexibility file); drop {flag}"
+                )
+                .into());
+            }
+        }
+        return Ok(());
+    }
+    flags::only_for(args.joint_torque, "--joint-torque", "--flexible", "a rigid simulation")?;
+    if args.columns.unwrap_or(Columns::All) == Columns::All {
         flags::only_for(
             args.rate.is_some(),
             "--rate",
