@@ -179,7 +179,7 @@ impl Row {
             }
         }
         for (field, x) in [("hardening", self.hardening), ("damping", self.damping)] {
-            if !(x >= 0.0 && x <= 1e15) {
+            if !(0.0..=1e15).contains(&x) {
                 return Some((field, format!("{x} must be zero or positive, at most 1e15")));
             }
         }
@@ -400,7 +400,12 @@ impl Simulation {
         reference.check("reference trajectory")?;
         let samples = reference.samples();
         crate::limits::check_size(
-            || format!("integration steps ({samples} samples x {} substeps)", self.substeps),
+            || {
+                format!(
+                    "integration steps ({samples} samples x {} substeps)",
+                    self.substeps
+                )
+            },
             samples as f64 * self.substeps as f64,
             super::MAX_SIMULATION_STEPS,
             "use fewer substeps or a shorter trajectory",
@@ -421,7 +426,10 @@ impl Simulation {
             .map(|j| joints[j].rotor_inertia + mass[j * n + j].max(0.0))
             .collect();
         let kp: Vec<f64> = inertia.iter().map(|i| i * wn * wn).collect();
-        let kd: Vec<f64> = inertia.iter().map(|i| 2.0 * self.damping * i * wn).collect();
+        let kd: Vec<f64> = inertia
+            .iter()
+            .map(|i| 2.0 * self.damping * i * wn)
+            .collect();
         let quantize = |x: f64| {
             let r = self.noise.quantization;
             if r > 0.0 { (x / r).round() * r } else { x }
@@ -444,7 +452,12 @@ impl Simulation {
         };
         // the motor torque u: feed-forward of the joint torque, the rotor's inertia and
         // friction, and the PD loop on the measured motor position (noise held over a step)
-        let command = |r: &Reference, theta: &[f64], thetad: &[f64], noise: &[f64], temp: f64, u: &mut [f64]| {
+        let command = |r: &Reference,
+                       theta: &[f64],
+                       thetad: &[f64],
+                       noise: &[f64],
+                       temp: f64,
+                       u: &mut [f64]| {
             for j in 0..n {
                 let g = &joints[j];
                 let measured = quantize(g.gear_ratio * theta[j]) / g.gear_ratio + noise[j];
@@ -527,7 +540,10 @@ impl Simulation {
                 let g = &joints[j];
                 let e = x[j] - r0[0][j];
                 if !(x[j].is_finite() && x[n + j].is_finite() && u[j].is_finite()) {
-                    return Err(diverged(k, format!("the state of joint {} is not finite", j + 1)));
+                    return Err(diverged(
+                        k,
+                        format!("the state of joint {} is not finite", j + 1),
+                    ));
                 }
                 if e.abs() > allowed[j] || u[j].abs() > MAX_TORQUE {
                     return Err(diverged(
@@ -580,11 +596,13 @@ impl Simulation {
                         (v[n + j].abs() - 2.0 * h * acc.abs()).max(0.0)
                     })
                     .collect();
-                let rate = self.fastest_rate(model, base, joints, &x, &slowest, &tau, &kd, &inertia)?;
+                let rate =
+                    self.fastest_rate(model, base, joints, &x, &slowest, &tau, &kd, &inertia)?;
                 let split = (h * rate / RK4_REACH).ceil().clamp(1.0, MAX_SPLIT) as usize;
                 for part in 0..split {
                     let mut f = |c: f64, x: &[f64], v: &[f64], acc: &mut [f64]| -> Result<()> {
-                        let s = (i as f64 + (part as f64 + c) / split as f64) / self.substeps as f64;
+                        let s =
+                            (i as f64 + (part as f64 + c) / split as f64) / self.substeps as f64;
                         quintic(s, interval, &r0, &r1, &mut r);
                         target(&r, &mut stage)?;
                         let temp = temperature(reference.t[k] + s * interval);
@@ -594,8 +612,9 @@ impl Simulation {
                         for j in 0..n {
                             let g = &joints[j];
                             acc[j] = qdd[j];
-                            acc[n + j] = (u[j] - g.friction.evaluate(v[n + j], tau[j], temp) - tau[j])
-                                / g.rotor_inertia;
+                            acc[n + j] =
+                                (u[j] - g.friction.evaluate(v[n + j], tau[j], temp) - tau[j])
+                                    / g.rotor_inertia;
                         }
                         Ok(())
                     };
@@ -645,9 +664,8 @@ impl Simulation {
             let f = &g.friction;
             let level = f.coulomb + f.load * tau[j].abs() + f.stribeck;
             let sech = 1.0 / (slowest[j] / f.smoothing).cosh();
-            let slope = level * sech * sech / f.smoothing
-                + f.viscous
-                + f.stribeck / f.stribeck_velocity;
+            let slope =
+                level * sech * sech / f.smoothing + f.viscous + f.stribeck / f.stribeck_velocity;
             rate = rate.max(
                 (stiffness * compliance).sqrt()
                     + g.damping * compliance

@@ -45,7 +45,13 @@ use crate::limits::{MAX_ACCELERATION, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
 /// samples `a` and `b` (each `[q, qd, qdd]`): quintic Hermite interpolation, exact for
 /// polynomials up to degree 5, its velocity and acceleration the derivatives of its
 /// position.
-pub(super) fn quintic(s: f64, interval: f64, a: &[Vec<f64>; 3], b: &[Vec<f64>; 3], out: &mut [Vec<f64>; 3]) {
+pub(super) fn quintic(
+    s: f64,
+    interval: f64,
+    a: &[Vec<f64>; 3],
+    b: &[Vec<f64>; 3],
+    out: &mut [Vec<f64>; 3],
+) {
     let (s2, s3) = (s * s, s * s * s);
     let (s4, s5) = (s3 * s, s3 * s2);
     // basis for q0, T v0, T^2 a0, T^2 a1, T v1, q1; and its first and second derivatives in s

@@ -218,7 +218,12 @@ fn log_settings(args: &Args, n: usize) -> Result<(), Error> {
         }
         return Ok(());
     }
-    flags::only_for(args.joint_torque, "--joint-torque", "--flexible", "a rigid simulation")?;
+    flags::only_for(
+        args.joint_torque,
+        "--joint-torque",
+        "--flexible",
+        "a rigid simulation",
+    )?;
     if args.columns.unwrap_or(Columns::All) == Columns::All {
         flags::only_for(
             args.rate.is_some(),

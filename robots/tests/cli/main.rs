@@ -9,6 +9,7 @@ mod config;
 mod drive;
 mod feasible;
 mod files;
+mod flexible;
 mod reference;
 mod sequence;
 mod stdout;

@@ -71,7 +71,8 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
         let q: Vec<f64> = log.true_q.joints().map(|v| v[k]).collect();
         let qd: Vec<f64> = log.true_q.joints().map(|v| first(v, k, h)).collect();
         let qdd: Vec<f64> = log.true_q.joints().map(|v| second(v, k, h)).collect();
-        p.inverse_dynamics_into(&q, &qd, &qdd, &base, &mut tau).unwrap();
+        p.inverse_dynamics_into(&q, &qd, &qdd, &base, &mut tau)
+            .unwrap();
         for (j, g) in flex.joints.iter().enumerate() {
             let tau_j = log.joint_torque[j][k];
             largest = largest.max(tau_j.abs());
@@ -90,29 +91,47 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
         }
     }
     eprintln!("largest torque {largest}, link residual {link}, rotor residual {rotor}");
-    assert!(link <= 2.5e-4 * largest, "link equation: {link} of {largest}");
-    assert!(rotor <= 2.5e-5 * largest, "rotor equation: {rotor} of {largest}");
+    assert!(
+        link <= 2.5e-4 * largest,
+        "link equation: {link} of {largest}"
+    );
+    assert!(
+        rotor <= 2.5e-5 * largest,
+        "rotor equation: {rotor} of {largest}"
+    );
     // tracking (measured 1.6e-4 rad) and the deflection of the load (2.0e-3 and 1.1e-3 rad,
     // within 2.7e-6 and 2.4e-5 of the deflection of the largest torque)
     let tracking = (0..r.samples())
-        .map(|k| (log.true_q[0][k] - r.q[0][k]).abs().max((log.true_q[1][k] - r.q[1][k]).abs()))
+        .map(|k| {
+            (log.true_q[0][k] - r.q[0][k])
+                .abs()
+                .max((log.true_q[1][k] - r.q[1][k]).abs())
+        })
         .fold(0.0, f64::max);
     assert!(tracking < 3.5e-4, "tracking {tracking}");
     let d = log.largest_deflection();
     let expected: Vec<f64> = (0..2)
         .map(|j| {
             let g = &flex.joints[j];
-            let tau_max = log.joint_torque[j].iter().fold(0.0f64, |m, t| m.max(t.abs()));
+            let tau_max = log.joint_torque[j]
+                .iter()
+                .fold(0.0f64, |m, t| m.max(t.abs()));
             g.deflection(tau_max)
         })
         .collect();
     for j in 0..2 {
-        assert!((d[j] / expected[j] - 1.0).abs() < 5e-5, "{d:?} vs {expected:?}");
+        assert!(
+            (d[j] / expected[j] - 1.0).abs() < 5e-5,
+            "{d:?} vs {expected:?}"
+        );
     }
     // the temperature warms from 25 towards 45 deg C with a 2 s time constant
     let last = r.samples() - 1;
     let t = log.temperature[0][last];
-    assert!((t - (45.0 - 20.0 * (-r.t[last] / 2.0f64).exp())).abs() < 1e-12, "{t}");
+    assert!(
+        (t - (45.0 - 20.0 * (-r.t[last] / 2.0f64).exp())).abs() < 1e-12,
+        "{t}"
+    );
 }
 
 /// The motor encoder and the current carry the noise and quantization; the same seed
@@ -122,7 +141,9 @@ fn flexible_noise_reaches_both_encoders_and_the_current() {
     let p = Pendulum::default();
     let flex = flexibility();
     let r = reference(0.5, 1000.0);
-    let quiet = Simulation::default().run_flexible(&p, &p.base(), &flex, &r).unwrap();
+    let quiet = Simulation::default()
+        .run_flexible(&p, &p.base(), &flex, &r)
+        .unwrap();
     let noisy = Simulation {
         noise: Noise {
             torque: vec![0.5],
@@ -179,7 +200,10 @@ fn flexible_file_errors_name_the_key() {
     let e = Flexibility::from_toml_str(&text("-1.0", ""), path)
         .unwrap_err()
         .to_string();
-    assert!(e.contains("flex.toml:10") && e.contains("joint[1].stiffness"), "{e}");
+    assert!(
+        e.contains("flex.toml:10") && e.contains("joint[1].stiffness"),
+        "{e}"
+    );
     let twice = "[[joint]]\njoint = 1\ngear_ratio = 1.0\nrotor_inertia = 1.0\n\
                  torque_constant = 1.0\nstiffness = 1.0\nfriction = { coulomb = 1.0, \
                  load = 0.0, stribeck = 0.0, stribeck_velocity = 0.1, viscous = 1.0, \

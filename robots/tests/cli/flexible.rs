@@ -1,0 +1,159 @@
+//! `robid simulate --flexible`: the two-encoder log of a flexible-joint UR5e, and its
+//! flags' errors.
+
+use crate::common;
+
+use common::{folder, robid, stderr, stdout};
+
+/// A 2 s UR5e trajectory at 200 Hz (sines from rest).
+fn trajectory(dir: &std::path::Path) -> String {
+    let mut text = String::from("t");
+    for p in ["q", "qd", "qdd"] {
+        for j in 1..=6 {
+            text.push_str(&format!(",{p}{j}"));
+        }
+    }
+    text.push('\n');
+    for k in 0..=400 {
+        let t = k as f64 / 200.0;
+        let mut row = vec![t];
+        let w = |j: usize| 1.0 + 0.3 * j as f64;
+        row.extend((0..6).map(|j| 0.3 * (1.0 - (w(j) * t).cos())));
+        row.extend((0..6).map(|j| 0.3 * w(j) * (w(j) * t).sin()));
+        row.extend((0..6).map(|j| 0.3 * w(j) * w(j) * (w(j) * t).cos()));
+        let row: Vec<String> = row.iter().map(|v| v.to_string()).collect();
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    let path = dir.join("traj.csv");
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+/// The log has the link and motor encoders, currents, temperatures and (on request) the
+/// joint torques; the motor encoder reads the link angle times the gear ratio plus the
+/// deflection; the shoulder deflects by about 1e-3 rad under the arm's weight.
+#[test]
+fn flexible_simulate_writes_both_encoders_currents_and_temperatures() {
+    let dir = folder();
+    let traj = trajectory(dir.path());
+    let out = dir.path().join("log.csv").display().to_string();
+    let args = [
+        "simulate",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--trajectory",
+        &traj,
+        "--flexible",
+        "drives/ur5e_flexible.toml",
+        "--joint-torque",
+        "--rate",
+        "100",
+        "-o",
+        &out,
+    ];
+    let o = robid(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("largest deflection per joint"),
+        "{}",
+        stdout(&o)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let mut expected = vec!["t".to_string()];
+    for p in ["q", "theta", "i", "T", "tauJ"] {
+        expected.extend((1..=6).map(|j| format!("{p}{j}")));
+    }
+    assert_eq!(header, expected);
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 201, "every second sample of 401");
+    // shoulder: d = theta2 / 101 - q2 is the deflection, whose elastic torque
+    // K1 d + K3 d^3 (3.5e4, 5e9 in the file) is the joint torque but for the damping term
+    // (measured at most 1.3e-4 of the largest joint torque; the CSV rounds to 10 digits)
+    let largest = rows
+        .iter()
+        .map(|r| (r[8] / 101.0 - r[2]).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        (5e-4..3e-3).contains(&largest),
+        "shoulder deflection {largest}"
+    );
+    let tau_max = rows.iter().map(|r| r[26].abs()).fold(0.0, f64::max);
+    for r in &rows {
+        let d = r[8] / 101.0 - r[2];
+        let elastic = 3.5e4 * d + 5e9 * d * d * d;
+        assert!(
+            (elastic - r[26]).abs() < 3e-4 * tau_max,
+            "{elastic} vs {}",
+            r[26]
+        );
+    }
+}
+
+/// `--columns` and `--currents` do not apply to the flexible log; `--joint-torque` needs
+/// `--flexible`; a file of another joint count is refused.
+#[test]
+fn flexible_flags_are_checked() {
+    let dir = folder();
+    let traj = trajectory(dir.path());
+    let out = dir.path().join("log.csv").display().to_string();
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e.toml",
+            "--trajectory",
+            &traj,
+            "-o",
+            &out,
+        ];
+        args.extend_from_slice(extra);
+        robid(&args)
+    };
+    let flex = ["--flexible", "drives/ur5e_flexible.toml"];
+    for (extra, expected) in [
+        (
+            vec!["--columns", "positions"],
+            "--columns does not apply with --flexible",
+        ),
+        (
+            vec!["--currents", "1,1,1,1,1,1"],
+            "--currents does not apply",
+        ),
+    ] {
+        let mut args = flex.to_vec();
+        args.extend(extra);
+        let o = run(&args);
+        assert!(
+            !o.status.success() && stderr(&o).contains(expected),
+            "{}",
+            stderr(&o)
+        );
+    }
+    let o = run(&["--joint-torque"]);
+    assert!(
+        stderr(&o).contains("--joint-torque is an option of --flexible"),
+        "{}",
+        stderr(&o)
+    );
+    let o = robid(&[
+        "simulate",
+        "descriptions/panda.toml",
+        "--parameters",
+        "parameters/panda.toml",
+        "--trajectory",
+        &traj,
+        "--flexible",
+        "drives/ur5e_flexible.toml",
+        "-o",
+        &out,
+    ]);
+    assert!(!o.status.success());
+    assert!(!std::path::Path::new(&out).exists());
+}
