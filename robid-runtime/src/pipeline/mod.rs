@@ -10,7 +10,7 @@ pub use identify::{
     Identification, energy_observation_of, estimate, identify, observation, validate,
 };
 pub use observe::{decimator, observe};
-pub use prepare::{Prepared, automatic_trim, prepare};
+pub use prepare::{Prepared, RotorStates, automatic_trim, prepare};
 
 #[cfg(test)]
 mod tests;
