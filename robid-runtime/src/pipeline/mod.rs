@@ -2,10 +2,12 @@
 //! estimate -> fit (docs/identification.md#pipeline-overview). Regressor rows and filtering
 //! run in parallel (rayon).
 
+mod friction;
 mod identify;
 mod observe;
 mod prepare;
 
+pub use friction::{FrictionData, JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 pub use identify::{
     Identification, energy_observation_of, estimate, identify, observation, validate,
 };

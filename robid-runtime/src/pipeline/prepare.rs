@@ -43,6 +43,9 @@ pub struct RotorStates {
     pub thetadd: Signals,
     /// Drive temperatures (deg C) as read, when the data have them.
     pub temperature: Option<Signals>,
+    /// Link-side joint torques of a joint-torque sensor (`joint_torque` columns), low-passed
+    /// like the torque, when the data have them.
+    pub joint_torque: Option<Signals>,
 }
 
 impl Prepared {
@@ -246,7 +249,11 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
                 }
             }
         }
-        rotor_states = Some((thetad, thetadd));
+        let joint_torque = match &data.joint_torque {
+            Some(t) => Some(filter_all(on(Signal::Tau), pad, t)?),
+            None => None,
+        };
+        rotor_states = Some((thetad, thetadd, joint_torque));
     }
     // the range is cut after filtering and differentiation, so that its ends are free of
     // filter start-up transients (a split of one record into training and test data)
@@ -291,10 +298,11 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
         qd: qd.range(start..end),
         qdd: qdd.range(start..end),
         tau: tau.range(start..end),
-        rotor: rotor_states.map(|(thetad, thetadd)| RotorStates {
+        rotor: rotor_states.map(|(thetad, thetadd, joint_torque)| RotorStates {
             thetad: thetad.range(start..end),
             thetadd: thetadd.range(start..end),
             temperature: data.temperature.as_ref().map(|t| t.range(start..end)),
+            joint_torque: joint_torque.map(|t| t.range(start..end)),
         }),
         sample_time: dt,
     };

@@ -373,6 +373,7 @@ fn the_fit_is_also_measured_against_the_unfiltered_torque() {
 /// Y_b gamma_b + Fc~ sgn(thetadot) + Fv~ thetadot`. thetadot and thetaddot are the central
 /// differences the pipeline takes of theta (no low-pass), so that a noise-free log is
 /// exactly consistent. Returns the data, the friction model and the residuals (Fc~, Fv~).
+#[allow(clippy::needless_range_loop)] // joint and sample index several signals at once
 fn two_encoder_log(n: usize) -> (Dataset, crate::drive::FrictionModel, [f64; 2]) {
     use crate::drive::{FrictionModel, JointFriction};
     let dt = 1e-3;

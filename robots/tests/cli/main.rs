@@ -9,6 +9,7 @@ mod config;
 mod drive;
 mod feasible;
 mod files;
+mod friction;
 mod reference;
 mod sequence;
 mod stdout;
