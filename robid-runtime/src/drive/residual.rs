@@ -171,6 +171,10 @@ mod tests {
         let cols = all.columns(2).unwrap();
         let names: Vec<&str> = cols.iter().map(|c| c.name.as_str()).collect();
         assert_eq!(names, ["Fc1_rotor", "Fv1_rotor", "Fc2_rotor", "Fv2_rotor"]);
+        // never read as the link-side drive term (parameter files, energy model, reports)
+        for n in names {
+            assert!(n.parse::<crate::model::ParameterId>().is_err(), "{n}");
+        }
         let rotor = super::super::extra::RotorSample {
             thetad: &[-0.25, 2.0],
             thetadd: &[5.0, 7.0],
