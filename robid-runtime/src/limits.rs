@@ -17,6 +17,7 @@
 //! | acceleration | magnitude at most [`MAX_ACCELERATION`] = 1e8 |
 //! | torque, force or current | magnitude at most [`MAX_TORQUE`] = 1e7 |
 //! | time (s, after `time_scale`) | magnitude at most [`MAX_TIME`] = 1e10 s |
+//! | temperature (deg C) | magnitude at most [`MAX_TEMPERATURE`] = 1e3 deg C |
 //! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
 //! | parameter values and standard deviations given as input | magnitude at most [`MAX_PARAMETER`] = 1e6 |
 //! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | magnitude at most [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants) also magnitude at least [`MIN_FACTOR`] = 1e-12 |
@@ -48,6 +49,9 @@ pub const MAX_ACCELERATION: f64 = 1e8;
 pub const MAX_TORQUE: f64 = 1e7;
 /// Largest |time| accepted, in seconds (after `time_scale`; a Unix time stamp fits).
 pub const MAX_TIME: f64 = 1e10;
+/// Largest |temperature| (deg C): beyond any drive, while a temperature in Kelvin or
+/// Fahrenheit still passes (its coefficients are then per K or per deg F).
+pub const MAX_TEMPERATURE: f64 = 1e3;
 /// Largest sample rate (Hz), given or derived from time stamps.
 pub const MAX_SAMPLE_RATE: f64 = 1e7;
 /// Smallest sample rate (Hz), given or derived from time stamps (one sample per 1000 s).
@@ -98,6 +102,8 @@ pub enum Quantity {
     Torque,
     /// Time (s).
     Time,
+    /// Temperature (deg C).
+    Temperature,
 }
 
 impl Quantity {
@@ -109,6 +115,7 @@ impl Quantity {
             Quantity::Acceleration => MAX_ACCELERATION,
             Quantity::Torque => MAX_TORQUE,
             Quantity::Time => MAX_TIME,
+            Quantity::Temperature => MAX_TEMPERATURE,
         }
     }
 
@@ -120,6 +127,7 @@ impl Quantity {
             Quantity::Acceleration => "acceleration",
             Quantity::Torque => "torque",
             Quantity::Time => "time",
+            Quantity::Temperature => "temperature",
         }
     }
 

@@ -11,7 +11,8 @@
 //! [[source]]
 //! file = "data/cur.csv.gz"
 //! torque = ["Joint_1", "Joint_2", "Joint_3", "Joint_4", "Joint_5", "Joint_6"]
-//! # also: velocity, acceleration, motor_position (motor encoder for rotor compensation)
+//! # also: velocity, acceleration, motor_position (motor encoder for rotor compensation),
+//! # temperature (deg C, for the nonlinear rotor friction), joint_torque (link side, N m)
 //!
 //! [units]
 //! angle = "rad"                  # or "deg": positions, velocities, accelerations
@@ -177,6 +178,12 @@ pub struct Source {
     pub torque: Option<Columns>,
     /// Motor-side encoder positions, for rotor-dynamics compensation.
     pub motor_position: Option<Columns>,
+    /// Drive temperatures (deg C), for the nonlinear rotor friction model
+    /// (`[drive.rotor] friction`, `robid friction`).
+    pub temperature: Option<Columns>,
+    /// Link-side joint torques (N m) from a joint-torque sensor (or a simulator's truth),
+    /// used by `robid friction`; not scaled by `units` or the drive chain.
+    pub joint_torque: Option<Columns>,
 }
 
 /// Column names for one signal: a template with `{}` for the joint number, or a list.
@@ -520,6 +527,8 @@ impl Config {
                 acceleration: template("qdd{}"),
                 torque: template("tau{}"),
                 motor_position: None,
+                temperature: None,
+                joint_torque: None,
             }],
             origin: ConfigOrigin::DefaultMapping,
             ..Config::default()
@@ -544,6 +553,26 @@ impl Config {
             });
         }
         config
+    }
+
+    /// The extra regressor columns of a `dof`-joint model: the `[[extra_column]]` tables,
+    /// then the rotor-side residual columns of `[drive.rotor] residual`.
+    pub fn extra_columns_for(&self, dof: usize) -> Result<Vec<ExtraColumn>> {
+        let mut columns = self.extra_columns.clone();
+        if let Some(r) = self.drive.rotor.as_ref().and_then(|r| r.residual.as_ref()) {
+            columns.extend(r.columns(dof)?);
+        }
+        Ok(columns)
+    }
+
+    /// Whether an extra column (or the residual shorthand) uses the motor encoders.
+    pub fn uses_rotor_signals(&self) -> bool {
+        self.extra_columns.iter().any(|c| c.rotor_term().is_some())
+            || self
+                .drive
+                .rotor
+                .as_ref()
+                .is_some_and(|r| r.residual.is_some())
     }
 
     /// Resolves a path from the config against its folder.
@@ -645,6 +674,8 @@ impl Config {
                 ("acceleration", &s.acceleration),
                 ("torque", &s.torque),
                 ("motor_position", &s.motor_position),
+                ("temperature", &s.temperature),
+                ("joint_torque", &s.joint_torque),
             ] {
                 if let Some(c) = c {
                     let n = c.names(dof).len();

@@ -36,6 +36,10 @@ pub struct Dataset {
     pub tau: Signals,
     /// Motor encoder positions reflected to the link side, for rotor compensation.
     pub motor: Option<Signals>,
+    /// Drive temperatures (deg C), for the nonlinear rotor friction.
+    pub temperature: Option<Signals>,
+    /// Link-side joint torques from a joint-torque sensor (N m), for `robid friction`.
+    pub joint_torque: Option<Signals>,
     /// What was repaired while loading.
     pub warnings: Vec<super::Warning>,
     /// How each file was sampled (empty for a data set built in code).
@@ -95,6 +99,8 @@ impl Dataset {
             qdd: None,
             tau: Signals::default(),
             motor: None,
+            temperature: None,
+            joint_torque: None,
             warnings: Vec::<Warning>::new(),
             sampling: Vec::new(),
             origin,
@@ -159,6 +165,32 @@ impl Dataset {
         Ok(self)
     }
 
+    /// Adds drive temperatures (deg C).
+    pub fn with_temperatures(mut self, temperature: Signals) -> Result<Self> {
+        self.check_block(
+            "temperature",
+            Quantity::Temperature,
+            &temperature,
+            self.dof(),
+            self.samples(),
+        )?;
+        self.temperature = Some(temperature);
+        Ok(self)
+    }
+
+    /// Adds link-side joint torques measured by a joint-torque sensor (N m).
+    pub fn with_joint_torques(mut self, joint_torque: Signals) -> Result<Self> {
+        self.check_block(
+            "joint torque",
+            Quantity::Torque,
+            &joint_torque,
+            self.dof(),
+            self.samples(),
+        )?;
+        self.joint_torque = Some(joint_torque);
+        Ok(self)
+    }
+
     /// Number of joints.
     pub fn dof(&self) -> usize {
         self.q.dof()
@@ -189,6 +221,8 @@ impl Dataset {
             qdd: self.qdd.as_ref().map(cut),
             tau: cut(&self.tau),
             motor: self.motor.as_ref().map(cut),
+            temperature: self.temperature.as_ref().map(cut),
+            joint_torque: self.joint_torque.as_ref().map(cut),
             warnings: self.warnings.clone(),
             sampling: self.sampling.clone(),
             origin: self.origin.as_ref().map(|o| DataOrigin {

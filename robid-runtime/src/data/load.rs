@@ -19,21 +19,25 @@ use crate::limits::{MAX_JOINTS, MAX_SAMPLE_RATE, MIN_SAMPLE_RATE, Quantity, chec
 use crate::signal::Signals;
 
 /// The roles a column block can have, in the order of `Loaded::blocks`.
-const ROLES: [&str; 5] = [
+const ROLES: [&str; 7] = [
     "position",
     "velocity",
     "acceleration",
     "torque",
     "motor_position",
+    "temperature",
+    "joint_torque",
 ];
 
 /// The quantity of each role.
-const QUANTITIES: [Quantity; 5] = [
+const QUANTITIES: [Quantity; 7] = [
     Quantity::Position,
     Quantity::Velocity,
     Quantity::Acceleration,
     Quantity::Torque,
     Quantity::Position,
+    Quantity::Temperature,
+    Quantity::Torque,
 ];
 
 fn role_columns(s: &Source, role: usize) -> Option<&crate::data::Columns> {
@@ -43,6 +47,8 @@ fn role_columns(s: &Source, role: usize) -> Option<&crate::data::Columns> {
         &s.acceleration,
         &s.torque,
         &s.motor_position,
+        &s.temperature,
+        &s.joint_torque,
     ][role]
         .as_ref()
 }
@@ -67,7 +73,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     check_joints(dof)?;
     config.check(dof)?;
     let paths = source_paths(config, files)?;
-    let mut blocks: [Option<Vec<Vec<f64>>>; 5] = Default::default();
+    let mut blocks: [Option<Vec<Vec<f64>>>; 7] = Default::default();
     let mut reference: Option<(Vec<f64>, PathBuf, Vec<u64>)> = None;
     let mut rows: Option<(usize, PathBuf, Vec<u64>)> = None;
     let mut warnings = Vec::new();
@@ -247,7 +253,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
             ));
         }
     }
-    let [q, qd, qdd, tau, motor] = blocks;
+    let [q, qd, qdd, tau, motor, temperature, joint_torque] = blocks;
     let missing = |role: &str| {
         config.key_error(
             "source",
@@ -294,6 +300,13 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     }
     if let Some(m) = motor {
         data = data.with_motor_positions(chain.reflected_motor_positions(&angle(m)?))?;
+    }
+    // temperatures and joint torques are used as read: deg C and link-side N m
+    if let Some(t) = temperature {
+        data = data.with_temperatures(Signals::new(t)?)?;
+    }
+    if let Some(t) = joint_torque {
+        data = data.with_joint_torques(Signals::new(t)?)?;
     }
     if config.drive.rotor.is_some() && data.motor.is_none() {
         return Err(config.key_error(

@@ -3,7 +3,11 @@
 //! An extra column has a name (its parameter) and a list of terms; each term puts
 //! `coefficient * f(sum of the listed joints' signal)` into one row of the regressor.
 //! With `signal` = `q`, `qd`, `qdd` the function is the identity, with `sign_qd` it is
-//! the sign, and `constant` puts the coefficient itself. The Staubli TX40 coupled wrist:
+//! the sign, and `constant` puts the coefficient itself. `theta_d`, `theta_dd` and
+//! `sign_theta_d` are the same for the motor encoders' velocities and accelerations
+//! reflected to the link side (Madsen et al. 2020, eqs. 14-15: the rotor's friction acts
+//! at the rotor velocity), differentiated from the same filtered motor positions as the
+//! rotor compensation; they need `motor_position` columns. The Staubli TX40 coupled wrist:
 //!
 //! ```toml
 //! [[extra_column]]
@@ -38,6 +42,32 @@ pub enum TermSignal {
     SignQd,
     /// The constant 1 (an offset).
     Constant,
+    /// Sum of motor velocities reflected to the link side, thetadot.
+    ThetaD,
+    /// Sum of motor accelerations reflected to the link side, thetaddot.
+    ThetaDd,
+    /// Sign of the sum of reflected motor velocities (rotor Coulomb friction).
+    SignThetaD,
+}
+
+impl TermSignal {
+    /// Whether the signal comes from the motor encoders (`theta_d`, `theta_dd`,
+    /// `sign_theta_d`).
+    pub fn is_rotor(self) -> bool {
+        matches!(
+            self,
+            TermSignal::ThetaD | TermSignal::ThetaDd | TermSignal::SignThetaD
+        )
+    }
+}
+
+/// The reflected motor velocities and accelerations of one sample, per joint.
+#[derive(Debug, Clone, Copy)]
+pub struct RotorSample<'a> {
+    /// thetadot.
+    pub thetad: &'a [f64],
+    /// thetaddot.
+    pub thetadd: &'a [f64],
 }
 
 /// One entry of an extra column.
@@ -112,7 +142,10 @@ impl ExtraColumn {
             if t.signal != TermSignal::Constant && t.joints.is_empty() {
                 return bad(
                     format!("{at}.joints"),
-                    format!("a q, qd, qdd or sign_qd term of `{name}` needs `joints = [..]`"),
+                    format!(
+                        "a {} term of `{name}` needs `joints = [..]`",
+                        signal_name(t.signal)
+                    ),
                 );
             }
             if !(t.coefficient.abs() <= MAX_FACTOR) {
@@ -128,18 +161,46 @@ impl ExtraColumn {
         Ok(())
     }
 
+    /// The first term built from the motor encoders, as (term index from 0, signal).
+    pub fn rotor_term(&self) -> Option<(usize, TermSignal)> {
+        self.terms
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.signal.is_rotor())
+            .map(|(k, t)| (k, t.signal))
+    }
+
     /// Writes this column's entries for one sample into `out` (one per row, `dof` long,
-    /// zeroed first).
+    /// zeroed first). Terms of the motor encoders (see [`TermSignal::is_rotor`]) put 0: use
+    /// [`ExtraColumn::fill_with_rotor`] for them.
     pub fn fill(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        self.fill_with_rotor(q, qd, qdd, None, out);
+    }
+
+    /// [`ExtraColumn::fill`] with the reflected motor signals of the sample (`None`: the
+    /// data have no motor encoders, and rotor terms put 0; the pipeline refuses such a
+    /// column before it gets here).
+    pub fn fill_with_rotor(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        rotor: Option<RotorSample<'_>>,
+        out: &mut [f64],
+    ) {
         out.iter_mut().for_each(|v| *v = 0.0);
         for t in &self.terms {
             let sum = |x: &[f64]| t.joints.iter().map(|&j| x[j - 1]).sum::<f64>();
-            let v = match t.signal {
-                TermSignal::Q => sum(q),
-                TermSignal::Qd => sum(qd),
-                TermSignal::Qdd => sum(qdd),
-                TermSignal::SignQd => Real::sign(sum(qd)),
-                TermSignal::Constant => 1.0,
+            let v = match (t.signal, rotor) {
+                (TermSignal::Q, _) => sum(q),
+                (TermSignal::Qd, _) => sum(qd),
+                (TermSignal::Qdd, _) => sum(qdd),
+                (TermSignal::SignQd, _) => Real::sign(sum(qd)),
+                (TermSignal::Constant, _) => 1.0,
+                (TermSignal::ThetaD, Some(r)) => sum(r.thetad),
+                (TermSignal::ThetaDd, Some(r)) => sum(r.thetadd),
+                (TermSignal::SignThetaD, Some(r)) => Real::sign(sum(r.thetad)),
+                (_, None) => 0.0,
             };
             out[t.row - 1] += t.coefficient * v;
         }
@@ -182,6 +243,20 @@ impl ExtraColumn {
             cross("fvm", TermSignal::Qd),
             sign,
         ]
+    }
+}
+
+/// The name of `signal` in the config (`theta_d`).
+pub fn signal_name(signal: TermSignal) -> &'static str {
+    match signal {
+        TermSignal::Q => "q",
+        TermSignal::Qd => "qd",
+        TermSignal::Qdd => "qdd",
+        TermSignal::SignQd => "sign_qd",
+        TermSignal::Constant => "constant",
+        TermSignal::ThetaD => "theta_d",
+        TermSignal::ThetaDd => "theta_dd",
+        TermSignal::SignThetaD => "sign_theta_d",
     }
 }
 
@@ -237,5 +312,42 @@ terms = [{ row = 2, signal = "constant", coefficient = 2.0 }]
         let mut out = [9.0; 2];
         plain.fill(&[0.0; 2], &[0.0, -1.5], &[0.0; 2], &mut out);
         assert_eq!(out, [-1.5, 0.0]);
+    }
+
+    #[test]
+    fn rotor_signals_use_the_reflected_motor_states() {
+        let text = r#"
+name = "x"
+terms = [
+  { row = 1, signal = "theta_d", joints = [2] },
+  { row = 2, signal = "theta_dd", joints = [1], coefficient = 2.0 },
+  { row = 2, signal = "sign_theta_d", joints = [1, 2] },
+]
+"#;
+        let c: ExtraColumn = toml::from_str(text).unwrap();
+        c.check(2).unwrap();
+        assert_eq!(c.rotor_term(), Some((0, TermSignal::ThetaD)));
+        let (q, qd, qdd) = ([0.3, 0.4], [5.0, 6.0], [7.0, 8.0]);
+        let rotor = RotorSample {
+            thetad: &[0.5, -1.5],
+            thetadd: &[3.0, 4.0],
+        };
+        let mut out = [9.0; 2];
+        c.fill_with_rotor(&q, &qd, &qdd, Some(rotor), &mut out);
+        // row 1: thetad_2; row 2: 2 thetadd_1 + sign(thetad_1 + thetad_2)
+        assert_eq!(out, [-1.5, 2.0 * 3.0 - 1.0]);
+        // without motor states the rotor terms are 0, never a link-side stand-in
+        c.fill(&q, &qd, &qdd, &mut out);
+        assert_eq!(out, [0.0, 0.0]);
+        let plain = ExtraColumn::coupled_wrist(1, 2);
+        assert!(plain.iter().all(|c| c.rotor_term().is_none()));
+        let e = toml::from_str::<ExtraColumn>(
+            "name = \"x\"\nterms = [{ row = 1, signal = \"theta_d\" }]",
+        )
+        .unwrap()
+        .check(2)
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("theta_d term"), "{e}");
     }
 }

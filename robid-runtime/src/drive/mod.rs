@@ -6,13 +6,15 @@
 mod chain;
 mod extra;
 mod friction;
+mod residual;
 mod rotor;
 
 pub use chain::{DriveChain, DriveConfig, Side};
-pub use extra::{ExtraColumn, ExtraTerm, TermSignal};
+pub use extra::{ExtraColumn, ExtraTerm, RotorSample, TermSignal, signal_name};
 pub use friction::{
     DEFAULT_SMOOTHING, FixedParameter, FrictionFit, FrictionFitOptions, FrictionModel,
     FrictionParameter, FrictionSample, JointFriction, LOAD_SPREAD, TEMPERATURE_COEFFICIENT_LIMIT,
     TEMPERATURE_SPREAD, identify_friction,
 };
+pub use residual::{Residual, ResidualTerm};
 pub use rotor::RotorConfig;

@@ -15,7 +15,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::FrictionModel;
+use std::path::PathBuf;
+
+use super::{FrictionModel, Residual};
 use crate::data::PerJoint;
 use crate::error::{Error, Result};
 use crate::signal::Signals;
@@ -27,6 +29,9 @@ use crate::signal::Signals;
 /// inertia = [0.1, 0.1, 0.1, 0.02, 0.02, 0.02]   # B, kg m^2 reflected to the link side
 /// viscous = 0.0                                  # F_v of fhat
 /// coulomb = 0.0                                  # F_c of fhat
+/// # friction = "friction.toml"  # or: the nonlinear fhat (a FrictionModel file), not with
+/// #                             # viscous/coulomb; T from the `temperature` columns
+/// residual = ["Fc", "Fv"]                        # rotor-side residual columns, see Residual
 /// ```
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -37,12 +42,33 @@ pub struct RotorConfig {
     pub viscous: Option<PerJoint>,
     /// Coulomb rotor friction.
     pub coulomb: Option<PerJoint>,
+    /// A [`FrictionModel`] file (relative to the config file): the nonlinear rotor friction
+    /// of the compensation, in place of `viscous` and `coulomb`.
+    pub friction: Option<PathBuf>,
+    /// Rotor-side residual columns (see [`Residual`]).
+    pub residual: Option<Residual>,
 }
 
 impl RotorConfig {
-    /// Checks the sizes.
+    /// Checks the sizes, and that the friction is given once.
     pub fn check(&self, dof: usize) -> Result<()> {
         self.inertia.values(dof, "drive.rotor.inertia")?;
+        if self.friction.is_some() {
+            for (key, given) in [("viscous", &self.viscous), ("coulomb", &self.coulomb)] {
+                if given.is_some() {
+                    return Err(Error::setting(
+                        "Config",
+                        "drive.rotor.friction",
+                        format!(
+                            "is given with `drive.rotor.{key}`: the friction model holds the                              rotor friction, which would be subtracted twice; remove                              `drive.rotor.{key}`"
+                        ),
+                    ));
+                }
+            }
+        }
+        if let Some(r) = &self.residual {
+            r.terms(dof)?;
+        }
         if let Some(v) = &self.viscous {
             v.values(dof, "drive.rotor.viscous")?;
         }
@@ -170,6 +196,8 @@ mod tests {
             inertia: PerJoint::Each(vec![2.0, 0.5]),
             viscous: Some(PerJoint::All(0.1)),
             coulomb: Some(PerJoint::All(1.0)),
+            friction: None,
+            residual: None,
         };
         let signals = |x: [[f64; 2]; 2]| Signals::new(x.map(Vec::from).to_vec()).unwrap();
         let mut tau = signals([[10.0, 10.0], [1.0, 1.0]]);
@@ -200,6 +228,8 @@ mod tests {
             inertia: PerJoint::Each(vec![2.0, 0.5]),
             viscous: None,
             coulomb: None,
+            friction: None,
+            residual: None,
         };
         let signals = |x: [[f64; 3]; 2]| Signals::new(x.map(Vec::from).to_vec()).unwrap();
         let measured = signals([[40.0, -30.0, 0.5], [-60.0, 5.0, 70.0]]);

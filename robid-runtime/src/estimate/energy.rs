@@ -265,6 +265,7 @@ mod tests {
             qd,
             qdd,
             tau,
+            rotor: None,
             sample_time: 1.0 / rate,
         };
         let obs = model_energy_observation(&model, &signals, 100).unwrap();
@@ -310,6 +311,7 @@ mod tests {
             qd,
             qdd: Signals::zeros(1, 11),
             tau,
+            rotor: None,
             sample_time: 0.01,
         };
         let run = |p: &Prepared, window: usize| {
@@ -347,6 +349,7 @@ mod tests {
             qd: Signals::new(vec![ramp]).unwrap(),
             qdd: Signals::zeros(1, 11),
             tau: Signals::new(vec![vec![1.0; 11]]).unwrap(),
+            rotor: None,
             sample_time: 0.01,
         };
         let o = energy_observation(&p, 5, names, &h, &d).unwrap();
@@ -388,6 +391,7 @@ mod tests {
             qd: Signals::new(vec![qd]).unwrap(),
             qdd: Signals::zeros(1, n),
             tau: Signals::new(vec![tau]).unwrap(),
+            rotor: None,
             sample_time: dt,
         };
         let obs =
@@ -423,6 +427,7 @@ mod tests {
             qd: Signals::zeros(1, 5),
             qdd: Signals::zeros(1, 5),
             tau: Signals::zeros(1, 5),
+            rotor: None,
             sample_time: 0.1,
         };
         let e = energy_observation(&short, 10, vec!["a".into()], &h, &h);

@@ -107,7 +107,7 @@ pub fn energy_observation_of(
     prepared: &Prepared,
     config: &Config,
 ) -> Result<Observation> {
-    if let Some(c) = config.extra_columns.first() {
+    if let Some(c) = config.extra_columns_for(model.dof())?.first() {
         return Err(config.key_error(
             "estimation.method",
             format!(

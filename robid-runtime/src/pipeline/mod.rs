@@ -2,15 +2,17 @@
 //! estimate -> fit (docs/identification.md#pipeline-overview). Regressor rows and filtering
 //! run in parallel (rayon).
 
+mod friction;
 mod identify;
 mod observe;
 mod prepare;
 
+pub use friction::{FrictionData, JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 pub use identify::{
     Identification, energy_observation_of, estimate, identify, observation, validate,
 };
 pub use observe::{decimator, observe};
-pub use prepare::{Prepared, automatic_trim, prepare};
+pub use prepare::{Prepared, RotorStates, automatic_trim, prepare};
 
 #[cfg(test)]
 mod tests;

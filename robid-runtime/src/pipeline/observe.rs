@@ -25,6 +25,8 @@ struct Scratch {
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
+    thetad: Vec<f64>,
+    thetadd: Vec<f64>,
     col: Vec<f64>,
 }
 
@@ -34,6 +36,8 @@ impl Scratch {
             q: vec![0.0; dof],
             qd: vec![0.0; dof],
             qdd: vec![0.0; dof],
+            thetad: vec![0.0; dof],
+            thetadd: vec![0.0; dof],
             col: vec![0.0; dof],
         }
     }
@@ -94,9 +98,19 @@ pub fn observe(
 ) -> Result<Observation> {
     let dof = model.dof();
     signals.check(dof, "data")?;
-    let extra = &config.extra_columns;
+    let extra = &config.extra_columns_for(dof)?;
     for c in extra {
         c.check(dof)?;
+    }
+    let rotor = signals.rotor.as_ref();
+    if rotor.is_none() && extra.iter().any(|c| c.rotor_term().is_some()) {
+        return Err(Error::setting(
+            "Config",
+            "extra_column",
+            "a rotor-side column (theta_d, theta_dd, sign_theta_d or drive.rotor.residual) \
+             needs the motor encoders' signals, which these prepared signals do not have; add \
+             motor_position = [...] to a [[source]]",
+        ));
     }
     let lay = Layout {
         dof,
@@ -104,11 +118,24 @@ pub fn observe(
         e: extra.len(),
     };
     let mut names = crate::model::base_parameter_names(model);
+    if let Some(r) = config
+        .drive
+        .rotor
+        .as_ref()
+        .and_then(|r| r.residual.as_ref())
+    {
+        r.check_against(dof, &names)?;
+    }
     for (i, c) in extra.iter().enumerate() {
         if names.contains(&c.name) {
+            let key = if i < config.extra_columns.len() {
+                format!("extra_column[{}].name", i + 1)
+            } else {
+                "drive.rotor.residual".to_string()
+            };
             return Err(Error::setting(
                 "Config",
-                &format!("extra_column[{}].name", i + 1),
+                &key,
                 format!(
                     "`{}` is already a parameter (of the model or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
                     c.name
@@ -134,8 +161,16 @@ pub fn observe(
         signals.qd.sample_into(k, &mut st.qd);
         signals.qdd.sample_into(k, &mut st.qdd);
         model.base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
+        if let Some(r) = rotor {
+            r.thetad.sample_into(k, &mut st.thetad);
+            r.thetadd.sample_into(k, &mut st.thetadd);
+        }
         for (c, x) in extra.iter().enumerate() {
-            x.fill(&st.q, &st.qd, &st.qdd, &mut st.col);
+            let r = rotor.map(|_| crate::drive::RotorSample {
+                thetad: &st.thetad,
+                thetadd: &st.thetadd,
+            });
+            x.fill_with_rotor(&st.q, &st.qd, &st.qdd, r, &mut st.col);
             let start = lay.column(0, lay.p + c);
             row[start..start + dof].copy_from_slice(&st.col);
         }

@@ -11,6 +11,7 @@
 
 use crate::DataError;
 use crate::data::{Config, Cutoff, Dataset, Derivative, Signal};
+use crate::drive::FrictionModel;
 use crate::error::{Error, Result};
 use crate::inspect::{CutoffSuggestion, suggest_cutoff};
 use crate::signal::{Signals, Sos, butterworth_hz, central_difference};
@@ -26,8 +27,25 @@ pub struct Prepared {
     pub qdd: Signals,
     /// Joint torques (rotor-compensated when configured).
     pub tau: Signals,
+    /// The motor encoders' signals, when the data have them and the config uses them
+    /// (rotor compensation, rotor-side extra columns).
+    pub rotor: Option<RotorStates>,
     /// Sample time (s).
     pub sample_time: f64,
+}
+
+/// Motor-encoder signals reflected to the link side, on the samples of [`Prepared`].
+#[derive(Debug, Clone)]
+pub struct RotorStates {
+    /// thetadot: differentiated from the motor positions low-passed like the positions.
+    pub thetad: Signals,
+    /// thetaddot.
+    pub thetadd: Signals,
+    /// Drive temperatures (deg C) as read, when the data have them.
+    pub temperature: Option<Signals>,
+    /// Link-side joint torques of a joint-torque sensor (`joint_torque` columns), low-passed
+    /// like the torque, when the data have them.
+    pub joint_torque: Option<Signals>,
 }
 
 impl Prepared {
@@ -39,12 +57,21 @@ impl Prepared {
     /// Checks that the four signals have `dof` joints and as many samples as the
     /// positions; `context` names the user in the error.
     pub fn check(&self, dof: usize, context: &str) -> Result<()> {
+        let rotor = self.rotor.as_ref();
+        let rotor = [
+            rotor.map(|r| ("motor velocities", &r.thetad)),
+            rotor.map(|r| ("motor accelerations", &r.thetadd)),
+            rotor.and_then(|r| Some(("temperatures", r.temperature.as_ref()?))),
+        ];
         for (what, x) in [
             ("positions", &self.q),
             ("velocities", &self.qd),
             ("accelerations", &self.qdd),
             ("torques", &self.tau),
-        ] {
+        ]
+        .into_iter()
+        .chain(rotor.into_iter().flatten())
+        {
             if x.dof() != dof {
                 return Err(Error::Data(DataError::JointCountMismatch {
                     context: format!("{context}: {what}"),
@@ -198,18 +225,35 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
     };
     let mut tau = filter_all(on(Signal::Tau), pad, &data.tau)?;
     let mut unfiltered_tau = on(Signal::Tau).map(|_| data.tau.clone());
-    if let Some(rotor) = &config.drive.rotor {
-        let motor = data
-            .motor
-            .as_ref()
-            .ok_or_else(|| missing("drive.rotor", "motor_position"))?;
+    let mut rotor_states = None;
+    if config.drive.rotor.is_some() || config.uses_rotor_signals() {
+        let motor = data.motor.as_ref().ok_or_else(|| no_motor(config))?;
         let theta = filter_all(on(Signal::Q), pad, motor)?;
         let thetad = differentiate(&theta, dt)?;
         let thetadd = differentiate(&thetad, dt)?;
-        rotor.compensate(&mut tau, &thetad, &thetadd)?;
-        if let Some(raw) = &mut unfiltered_tau {
-            rotor.compensate(raw, &thetad, &thetadd)?;
+        if let Some(rotor) = &config.drive.rotor {
+            let model = match &rotor.friction {
+                Some(file) => Some(friction_model(config, file, data.dof())?),
+                None => None,
+            };
+            for t in std::iter::once(&mut tau).chain(unfiltered_tau.as_mut()) {
+                match &model {
+                    Some(m) => rotor.compensate_nonlinear(
+                        m,
+                        t,
+                        &thetad,
+                        &thetadd,
+                        data.temperature.as_ref(),
+                    )?,
+                    None => rotor.compensate(t, &thetad, &thetadd)?,
+                }
+            }
         }
+        let joint_torque = match &data.joint_torque {
+            Some(t) => Some(filter_all(on(Signal::Tau), pad, t)?),
+            None => None,
+        };
+        rotor_states = Some((thetad, thetadd, joint_torque));
     }
     // the range is cut after filtering and differentiation, so that its ends are free of
     // filter start-up transients (a split of one record into training and test data)
@@ -254,14 +298,28 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
         qd: qd.range(start..end),
         qdd: qdd.range(start..end),
         tau: tau.range(start..end),
+        rotor: rotor_states.map(|(thetad, thetadd, joint_torque)| RotorStates {
+            thetad: thetad.range(start..end),
+            thetadd: thetadd.range(start..end),
+            temperature: data.temperature.as_ref().map(|t| t.range(start..end)),
+            joint_torque: joint_torque.map(|t| t.range(start..end)),
+        }),
         sample_time: dt,
     };
+    let rotor = prepared.rotor.as_ref();
+    let rotor = [
+        rotor.map(|r| ("motor velocity", &r.thetad)),
+        rotor.map(|r| ("motor acceleration", &r.thetadd)),
+    ];
     for (signal, x) in [
         ("position", &prepared.q),
         ("velocity", &prepared.qd),
         ("acceleration", &prepared.qdd),
         ("torque", &prepared.tau),
-    ] {
+    ]
+    .into_iter()
+    .chain(rotor.into_iter().flatten())
+    {
         if let Some((j, k)) = x.first_non_finite() {
             return Err(Error::NonFiniteResult {
                 what: format!(
@@ -279,6 +337,50 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
         unfiltered_tau: unfiltered_tau.map(|t| t.range(start..end)),
         auto_cutoff,
     })
+}
+
+/// The friction model of `[drive.rotor] friction` (resolved against the config's folder),
+/// checked against the data's joint count.
+fn friction_model(config: &Config, file: &std::path::Path, dof: usize) -> Result<FrictionModel> {
+    let path = config.resolve(file);
+    let model = FrictionModel::read(&path)?;
+    if model.dof() != dof {
+        return Err(Error::setting(
+            "Config",
+            "drive.rotor.friction",
+            format!(
+                "{} has {} [[friction]] tables, but the data have {dof} joints; give one table                  per joint (robid friction writes them)",
+                path.display(),
+                model.dof()
+            ),
+        ));
+    }
+    Ok(model)
+}
+
+/// The error for a config that uses the motor encoders on data without them, at the
+/// first key that does.
+fn no_motor(config: &Config) -> Error {
+    let user = config.extra_columns.iter().enumerate().find_map(|(i, c)| {
+        let (k, signal) = c.rotor_term()?;
+        Some((
+            format!("extra_column[{}].terms[{}].signal", i + 1, k + 1),
+            crate::drive::signal_name(signal),
+        ))
+    });
+    let (key, what) = match (&config.drive.rotor, user) {
+        (Some(_), _) => ("drive.rotor".to_string(), "rotor compensation"),
+        (None, Some((key, signal))) => (key, signal),
+        (None, None) => ("drive.rotor".to_string(), "rotor compensation"),
+    };
+    Error::setting(
+        "Config",
+        &key,
+        format!(
+            "{what} needs the motor encoders, but the data has no `motor_position` columns; \
+             add motor_position = [...] to a [[source]]"
+        ),
+    )
 }
 
 fn missing(key: &str, role: &str) -> Error {

@@ -18,24 +18,62 @@ const PER_LINK: usize = 8;
 #[derive(Debug)]
 pub(crate) struct Synthetic {
     names: Vec<String>,
+    /// The columns of the full layout (`DOF * PER_LINK`) this model has, in order.
+    keep: Vec<usize>,
 }
 
 impl Default for Synthetic {
     fn default() -> Self {
-        let mut names = Vec::new();
-        for k in 1..=DOF {
-            for n in ["A", "B", "G", "C"] {
-                names.push(format!("{n}{k}"));
-            }
-            for n in ["Ia", "Fv", "Fc", "Fo"] {
-                names.push(format!("{n}{k}"));
-            }
-        }
-        Self { names }
+        Self::without(&[])
     }
 }
 
 impl Synthetic {
+    /// The model without the drive terms `dropped` (e.g. `["Fv", "Fc"]`) of every link.
+    pub(crate) fn without(dropped: &[&str]) -> Self {
+        let mut names = Vec::new();
+        let mut keep = Vec::new();
+        for k in 1..=DOF {
+            for (i, n) in ["A", "B", "G", "C", "Ia", "Fv", "Fc", "Fo"]
+                .into_iter()
+                .enumerate()
+            {
+                if !dropped.contains(&n) {
+                    names.push(format!("{n}{k}"));
+                    keep.push((k - 1) * PER_LINK + i);
+                }
+            }
+        }
+        Self { names, keep }
+    }
+
+    /// The regressor of the kept columns.
+    fn kept_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
+        let (p, n) = (DOF * PER_LINK, self.keep.len());
+        let mut full = vec![0.0; DOF * p];
+        Self::regressor(q, qd, qdd, &mut full);
+        for j in 0..DOF {
+            for (c, &i) in self.keep.iter().enumerate() {
+                out[j * n + c] = full[j * p + i];
+            }
+        }
+    }
+
+    /// The parameters of the kept columns in the full layout (0 elsewhere).
+    fn full(&self, base: &[f64]) -> Vec<f64> {
+        let mut full = vec![0.0; DOF * PER_LINK];
+        for (&i, b) in self.keep.iter().zip(base) {
+            full[i] = *b;
+        }
+        full
+    }
+
+    /// The true parameters of the kept columns.
+    pub(crate) fn truth(&self) -> Vec<f64> {
+        let all = true_parameters();
+        self.keep.iter().map(|&i| all[i]).collect()
+    }
+
     fn regressor(q: &[f64], qd: &[f64], qdd: &[f64], out: &mut [f64]) {
         let p = DOF * PER_LINK;
         out[..DOF * p].iter_mut().for_each(|v| *v = 0.0);
@@ -132,7 +170,7 @@ impl Synthetic {
         check_length("q", q, DOF)?;
         check_length("qd", qd, DOF)?;
         check_length("qdd", qdd, DOF)?;
-        Self::regressor(q, qd, qdd, out);
+        self.kept_regressor(q, qd, qdd, out);
         Ok(())
     }
     fn standard_regressor(
@@ -145,7 +183,7 @@ impl Synthetic {
         check_length("q", q, DOF)?;
         check_length("qd", qd, DOF)?;
         check_length("qdd", qdd, DOF)?;
-        Self::regressor(q, qd, qdd, out);
+        self.kept_regressor(q, qd, qdd, out);
         Ok(())
     }
     fn inverse_dynamics(
@@ -159,11 +197,12 @@ impl Synthetic {
         check_length("q", q, DOF)?;
         check_length("qd", qd, DOF)?;
         check_length("qdd", qdd, DOF)?;
-        Self::torque(q, qd, qdd, base, tau);
+        Self::torque(q, qd, qdd, &self.full(base), tau);
         Ok(())
     }
     fn mass_matrix(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
         check_length("q", q, DOF)?;
+        let base = &self.full(base);
         let zero = [0.0; DOF];
         let mut g = [0.0; DOF];
         Self::torque(q, &zero, &zero, base, &mut g);
@@ -180,7 +219,7 @@ impl Synthetic {
     }
     fn gravity(&self, q: &[f64], base: &[f64], out: &mut [f64]) -> Result<(), LengthError> {
         check_length("q", q, DOF)?;
-        Self::torque(q, &[0.0; DOF], &[0.0; DOF], base, out);
+        Self::torque(q, &[0.0; DOF], &[0.0; DOF], &self.full(base), out);
         Ok(())
     }
     fn coriolis(
@@ -192,6 +231,7 @@ impl Synthetic {
     ) -> Result<(), LengthError> {
         check_length("q", q, DOF)?;
         check_length("qd", qd, DOF)?;
+        let base = &self.full(base);
         let mut g = [0.0; DOF];
         Self::torque(q, &[0.0; DOF], &[0.0; DOF], base, &mut g);
         Self::torque(q, qd, &[0.0; DOF], base, out);

@@ -293,7 +293,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
 
 /// The values of the reference model of `--reference`: its base parameters (from a `[base]`
 /// table, or mapped from a `[standard]` one), then zero for every extra column of the
-/// config, which a reference model does not have.
+/// config (and of `[drive.rotor] residual`), which a reference model does not have.
 fn reference_values(
     path: &Path,
     model: &dyn robid_runtime::model::Model,
@@ -301,7 +301,10 @@ fn reference_values(
 ) -> Result<Vec<f64>, Error> {
     let file = robid_runtime::data::ParameterFile::read(path)?;
     let mut values = file.base_parameters(model)?;
-    values.resize(values.len() + config.extra_columns.len(), 0.0);
+    let extra = config
+        .extra_columns_for(model.dof())
+        .map_err(|e| config.locate(e))?;
+    values.resize(values.len() + extra.len(), 0.0);
     Ok(values)
 }
 

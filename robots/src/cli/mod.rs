@@ -9,6 +9,7 @@ mod excite;
 mod feasible;
 mod files;
 mod flags;
+mod friction;
 mod identify;
 mod inspect;
 mod model;
@@ -56,6 +57,9 @@ enum Command {
     Excite(excite::Args),
     /// Physically consistent link parameters from identified base parameters (TOML or URDF).
     Feasible(feasible::Args),
+    /// The nonlinear rotor friction of every joint from a two-encoder log (motor and link
+    /// encoders), written as a friction file for `[drive.rotor] friction`.
+    Friction(friction::Args),
     /// Closed-loop simulation of a trajectory with noise, producing data with known truth.
     ///
     /// A run whose positions leave the trajectory by more than 1 rad (plus ten times the
@@ -87,6 +91,7 @@ pub(crate) fn run() -> ExitCode {
         Command::Bench(args) => bench::run(&args),
         Command::Excite(args) => excite::run(&args),
         Command::Feasible(args) => feasible::run(&args),
+        Command::Friction(args) => friction::run(&args),
         Command::Simulate(args) => simulate::run(&args),
     };
     match result {

@@ -10,6 +10,7 @@ mod drive;
 mod feasible;
 mod files;
 mod flexible;
+mod friction;
 mod reference;
 mod sequence;
 mod stdout;

@@ -202,6 +202,7 @@ fn tx40_with_figaroh_bugs_emulated_reproduces_its_offsets_and_iam6() {
             qd: advance(&p.qd),
             qdd: advance(&p.qdd),
             tau: advance(&p.tau),
+            rotor: None,
             sample_time: p.sample_time,
         };
         pj.tau[j].copy_from_slice(&p.tau[j][..n]);

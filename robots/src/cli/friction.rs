@@ -1,0 +1,155 @@
+//! `robid friction ROBOT.toml --config CFG.toml [--data FILE...] [--parameters P.toml]
+//! -o FRICTION.toml`: the nonlinear rotor friction of every joint from a two-encoder log
+//! (docs/command-line.md#robid-friction, docs/identification.md#nonlinear-rotor-friction).
+//!
+//! Per sample the friction is `f = K_r i - B thetaddot - tau_J` (Madsen et al. 2020,
+//! eq. 14): the torque through the drive chain, the rotor inertias of `[drive.rotor]` and
+//! the joint torque, from `joint_torque` columns or, with `--parameters`, from the rigid
+//! model's inverse dynamics. Each joint is fitted on its own; the table on stdout gives the
+//! parameters, the residuals and what was held fixed and why, and the file is written
+//! atomically only when every joint's fit succeeded.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use robid_runtime::data::{Config, ParameterFile, load};
+use robid_runtime::drive::{
+    FrictionFit, FrictionFitOptions, FrictionModel, FrictionParameter, identify_friction,
+};
+use robid_runtime::pipeline::{JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
+
+use super::description::DriveFlag;
+use super::{Error, files, out};
+
+/// Arguments of `robid friction`.
+#[derive(Debug, clap::Args)]
+pub(crate) struct Args {
+    /// Robot description file (TOML).
+    robot: PathBuf,
+    #[command(flatten)]
+    drive: DriveFlag,
+    /// Identification config with `motor_position` columns and `[drive.rotor]` (the rotor
+    /// inertias B); `joint_torque` and `temperature` columns when the log has them.
+    #[arg(long)]
+    config: PathBuf,
+    /// Data files, one per `[[source]]` of the config; default: their `file` entries.
+    #[arg(long, num_args = 1..)]
+    data: Vec<PathBuf>,
+    /// The rigid model's parameters (`[base]` or `[standard]`): tau_J from its inverse
+    /// dynamics instead of `joint_torque` columns.
+    #[arg(long)]
+    parameters: Option<PathBuf>,
+    /// The friction model to write (`[[friction]]` tables, one per joint).
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Identifies, prints and writes the friction model.
+pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    let config = Config::from_file(&args.config)?;
+    let data = super::identify::data_files(&args.data, Some(&args.config), &config)?;
+    let mut inputs: Vec<&Path> = vec![&args.robot, &args.config];
+    inputs.extend(data.iter().map(PathBuf::as_path));
+    inputs.extend(args.parameters.as_deref());
+    files::refuse(&inputs, &[&args.output])?;
+    if config.drive.rotor.is_none() {
+        return Err(config
+            .key_error(
+                "drive.rotor",
+                "robid friction needs [drive.rotor] with inertia = [...] (the rotor inertias B, \
+                 link side; 0 when unknown): the friction is K_r i - B thetaddot - tau_J",
+            )
+            .into());
+    }
+    let chosen = super::identify::robot_model(&args.robot, &args.drive)?;
+    let model = chosen.model.as_ref();
+    let base = match &args.parameters {
+        Some(p) => Some(ParameterFile::read(p)?.base_parameters(model)?),
+        None => None,
+    };
+    let data = load(&config, &data, model.dof())?;
+    for w in &data.warnings {
+        out::warn(format_args!("warning: {w}"));
+    }
+    let found = friction_samples(
+        &data,
+        &config,
+        base.as_deref()
+            .map(|b| (model as &dyn robid_runtime::Model, b)),
+    )?;
+    let mut fits = Vec::with_capacity(found.samples.len());
+    for (j, samples) in found.samples.iter().enumerate() {
+        let fit = identify_friction(samples, &FrictionFitOptions::default())
+            .map_err(|e| format!("joint {}: {e}", j + 1))?;
+        fits.push(fit);
+    }
+    let text = table(&fits, found.joint_torque, found.temperature_measured);
+    let friction = FrictionModel::new(fits.iter().map(|f| f.friction).collect())?;
+    friction.write(&args.output)?;
+    let mut stdout = out::Stdout::new();
+    stdout.write_str(&text)?;
+    writeln!(stdout, "written: {}", args.output.display())?;
+    stdout.flush()?;
+    Ok(())
+}
+
+/// The printed table: the source of tau_J and T, then per joint the parameters, the
+/// residuals and what was held fixed.
+fn table(fits: &[FrictionFit], source: JointTorqueSource, temperature: bool) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "rotor friction f = K_r i - B thetaddot - tau_J, tau_J from {}",
+        match source {
+            JointTorqueSource::Measured => "the joint_torque columns",
+            JointTorqueSource::Model => "the rigid model's inverse dynamics (--parameters)",
+        }
+    );
+    if !temperature {
+        let _ = writeln!(
+            s,
+            "no temperature columns: every sample at {REFERENCE_TEMPERATURE} deg C, so the \
+             temperature coefficients are held at 0 (add temperature = [...] to a [[source]] \
+             to identify them)"
+        );
+    }
+    for (j, fit) in fits.iter().enumerate() {
+        let f = &fit.friction;
+        let _ = writeln!(
+            s,
+            "\njoint {}: {} samples, RMS residual {:.4e} N m, largest {:.4e} N m",
+            j + 1,
+            fit.samples,
+            fit.rms,
+            fit.max_residual
+        );
+        let values = [
+            f.coulomb,
+            f.load,
+            f.stribeck,
+            f.stribeck_velocity,
+            f.viscous,
+            f.coulomb_temperature,
+            f.viscous_temperature,
+        ];
+        for (p, v) in FrictionParameter::ALL.into_iter().zip(values) {
+            let held = if fit.is_fixed(p) { "  (held)" } else { "" };
+            let _ = writeln!(s, "  {:<22}{v:>14.6e}{held}", p.name());
+        }
+        let _ = writeln!(
+            s,
+            "  {:<22}{:>14.6e}",
+            "reference_temperature", f.reference_temperature
+        );
+        for h in &fit.fixed {
+            let _ = writeln!(
+                s,
+                "  held {} = {}: {}",
+                h.parameter.name(),
+                h.value,
+                h.reason
+            );
+        }
+    }
+    s
+}

@@ -1,0 +1,262 @@
+//! `robid friction`: the nonlinear rotor friction from a synthetic two-encoder log whose
+//! friction is known, and its refusals of incomplete input.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use robid_runtime::drive::{FrictionModel, JointFriction};
+
+use crate::common::{folder, robid, stderr, stdout, write};
+
+/// Two joints, no gravity (the model is read but tau_J comes from the sensor columns).
+const ROBOT: &str = "name = \"arm\"\nconvention = \"modified\"\ngravity = [0, 0, 0]\n\
+                     [[joints]]\nalpha = 0\n[[joints]]\nalpha = \"pi/2\"\na = 0.3\n";
+
+/// Gear ratios, torque constants (the torque columns are currents) and rotor inertias.
+const RATIOS: [f64; 2] = [10.0, -20.0];
+const CONSTANTS: [f64; 2] = [0.1, 0.05];
+const INERTIA: [f64; 2] = [0.4, 0.2];
+
+fn truth() -> FrictionModel {
+    let joint = |coulomb: f64, viscous: f64| JointFriction {
+        coulomb,
+        load: 0.03,
+        stribeck: 0.8,
+        stribeck_velocity: 0.1,
+        viscous,
+        coulomb_temperature: 0.01,
+        viscous_temperature: 0.02,
+        reference_temperature: 40.0,
+        smoothing: 1e-3,
+    };
+    FrictionModel::new(vec![joint(2.0, 3.0), joint(1.0, 1.5)]).unwrap()
+}
+
+/// The analytic link position, velocity, acceleration of joint `j` at `t`, and the
+/// deflection's (theta = q + d).
+fn motion(j: usize, t: f64) -> ([f64; 3], [f64; 3]) {
+    let mut q = [0.0; 3];
+    for (h, (a, w)) in [(0.8, 0.9), (0.3, 2.3)].into_iter().enumerate() {
+        let w = w * (1.0 + 0.2 * j as f64);
+        let p = h as f64 + j as f64;
+        q[0] += a * (w * t + p).sin();
+        q[1] += a * w * (w * t + p).cos();
+        q[2] -= a * w * w * (w * t + p).sin();
+    }
+    let w = 7.0;
+    let d = [
+        0.01 * (w * t).sin(),
+        0.01 * w * (w * t).cos(),
+        -0.01 * w * w * (w * t).sin(),
+    ];
+    (q, d)
+}
+
+/// A log of `n` samples at 500 Hz: link positions, motor encoder positions (motor side),
+/// motor currents, joint-torque sensor, and temperatures when `temperature`. The currents
+/// are Madsen's eq. 14 solved for them: `N K i = tau_J + B thetaddot + f(thetadot, tau_J, T)`.
+fn log(n: usize, temperature: bool) -> String {
+    let model = truth();
+    let mut text = String::from("t,q1,q2,m1,m2,i1,i2,tj1,tj2");
+    if temperature {
+        text.push_str(",T1,T2");
+    }
+    text.push('\n');
+    for k in 0..n {
+        let t = k as f64 / 500.0;
+        let temp = if temperature {
+            30.0 + 20.0 * k as f64 / n as f64
+        } else {
+            25.0
+        };
+        // columns by group: q, m, i, tj, T
+        let mut groups = vec![String::new(); 5];
+        for j in 0..2 {
+            let (q, d) = motion(j, t);
+            let (thetad, thetadd) = (q[1] + d[1], q[2] + d[2]);
+            let tau_j = 15.0 * (0.7 * t + j as f64).sin() + 5.0 * q[2];
+            let f = model.evaluate(j, thetad, tau_j, temp);
+            let current = (tau_j + INERTIA[j] * thetadd + f) / (RATIOS[j] * CONSTANTS[j]);
+            let values = [q[0], RATIOS[j] * (q[0] + d[0]), current, tau_j, temp];
+            for (g, v) in groups.iter_mut().zip(values) {
+                let _ = write!(g, ",{v}");
+            }
+        }
+        if !temperature {
+            groups.pop();
+        }
+        let _ = writeln!(text, "{t}{}", groups.concat());
+    }
+    text
+}
+
+/// The config of [`log`]; `rotor` false leaves out `[drive.rotor]`.
+fn config(temperature: bool, rotor: bool) -> String {
+    let mut c = format!(
+        "dof = 2\ntime_column = \"t\"\n[[source]]\nfile = \"log.csv\"\nposition = \"q{{}}\"\n\
+         motor_position = \"m{{}}\"\ntorque = \"i{{}}\"\njoint_torque = \"tj{{}}\"\n{}\
+         [drive]\ntorque_side = \"motor\"\ngear_ratios = {RATIOS:?}\n\
+         torque_constants = {CONSTANTS:?}\n",
+        if temperature {
+            "temperature = \"T{}\"\n"
+        } else {
+            ""
+        }
+    );
+    if rotor {
+        let _ = write!(c, "[drive.rotor]\ninertia = {INERTIA:?}\n");
+    }
+    c
+}
+
+fn setup(dir: &Path, temperature: bool, rotor: bool) -> (String, String) {
+    let robot = write(dir, "arm.toml", ROBOT);
+    write(dir, "log.csv", &log(5000, temperature));
+    let cfg = write(dir, "cfg.toml", &config(temperature, rotor));
+    (
+        robot.to_str().unwrap().to_string(),
+        cfg.to_str().unwrap().to_string(),
+    )
+}
+
+/// The largest difference between two models' friction over the log's range of rotor
+/// velocity (beyond the smooth sign's 0.01 rad/s), load and temperature, relative to the
+/// largest friction there.
+fn curve_error(fitted: &FrictionModel, truth: &FrictionModel, temps: [f64; 2]) -> f64 {
+    let mut worst = 0.0_f64;
+    for j in 0..2 {
+        let mut scale = 0.0_f64;
+        let mut diff = 0.0_f64;
+        for iw in 0..=200 {
+            let w = -2.5 + 5.0 * iw as f64 / 200.0;
+            if w.abs() < 0.01 {
+                continue;
+            }
+            for load in [-20.0, -5.0, 0.0, 10.0, 20.0] {
+                for temp in temps {
+                    let t = truth.evaluate(j, w, load, temp);
+                    scale = scale.max(t.abs());
+                    diff = diff.max((fitted.evaluate(j, w, load, temp) - t).abs());
+                }
+            }
+        }
+        worst = worst.max(diff / scale);
+    }
+    worst
+}
+
+#[test]
+fn recovers_the_friction_of_a_two_encoder_log() {
+    let dir = folder();
+    let (robot, cfg) = setup(dir.path(), true, true);
+    let out = dir.path().join("friction.toml");
+    let o = robid(&[
+        "friction",
+        &robot,
+        "--config",
+        &cfg,
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(
+        text.contains("joint 1: ") && text.contains("joint 2: ") && text.contains("RMS residual"),
+        "{text}"
+    );
+    assert!(text.contains("joint_torque columns"), "{text}");
+    let fitted = FrictionModel::read(&out).unwrap();
+    let e = curve_error(&fitted, &truth(), [30.0, 50.0]);
+    // measured 4.0e-4 of the largest friction (the residual's RMS is 5e-3 N m, from the
+    // central differences of the motor encoder through velocity reversals)
+    assert!(e < 0.01, "friction curve off by {e}\n{text}");
+}
+
+#[test]
+fn without_temperatures_the_coefficients_are_held_and_said() {
+    let dir = folder();
+    let (robot, cfg) = setup(dir.path(), false, true);
+    let out = dir.path().join("friction.toml");
+    let o = robid(&[
+        "friction",
+        &robot,
+        "--config",
+        &cfg,
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(
+        text.contains("no temperature columns") && text.contains("held coulomb_temperature = 0"),
+        "{text}"
+    );
+    let fitted = FrictionModel::read(&out).unwrap();
+    assert!(
+        fitted
+            .joints()
+            .iter()
+            .all(|f| f.coulomb_temperature == 0.0 && f.viscous_temperature == 0.0)
+    );
+    // at the log's one temperature the curve is recovered
+    let e = curve_error(&fitted, &truth(), [25.0, 25.0]);
+    // measured 1.9e-4 of the largest friction
+    assert!(e < 0.01, "friction curve off by {e}\n{text}");
+}
+
+#[test]
+fn incomplete_input_is_a_clear_error() {
+    let dir = folder();
+    let (robot, cfg) = setup(dir.path(), false, false);
+    let out = dir.path().join("friction.toml");
+    let run = |cfg: &str, extra: &[&str]| {
+        let mut args = vec![
+            "friction",
+            &robot,
+            "--config",
+            cfg,
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let o = robid(&args);
+        assert!(!o.status.success());
+        assert_eq!(o.status.code(), Some(1));
+        let e = stderr(&o);
+        assert!(!e.contains("panicked"), "{e}");
+        e
+    };
+    // no [drive.rotor]: the key and the fix
+    let e = run(&cfg, &[]);
+    assert!(e.contains("drive.rotor") && e.contains("inertia"), "{e}");
+    // no joint torque and no --parameters
+    let bare = config(false, true).replace("joint_torque = \"tj{}\"\n", "");
+    let bare = write(dir.path(), "bare.toml", &bare);
+    let e = run(bare.to_str().unwrap(), &[]);
+    assert!(
+        e.contains("no joint torque") && e.contains("--parameters"),
+        "{e}"
+    );
+    // a data file that is not there, and one without the motor columns
+    let e = run(
+        write(dir.path(), "rotor.toml", &config(false, true))
+            .to_str()
+            .unwrap(),
+        &["--data", dir.path().join("missing.csv").to_str().unwrap()],
+    );
+    assert!(e.contains("missing.csv"), "{e}");
+    let short = write(
+        dir.path(),
+        "short.csv",
+        "t,q1,q2,i1,i2,tj1,tj2\n0,0,0,0,0,0,0\n0.002,0,0,0,0,0,0\n",
+    );
+    let e = run(
+        dir.path().join("rotor.toml").to_str().unwrap(),
+        &["--data", short.to_str().unwrap()],
+    );
+    assert!(
+        e.contains("no column `m1`") && e.contains("source[1].motor_position"),
+        "{e}"
+    );
+    assert!(!out.exists(), "nothing is written on an error");
+}
