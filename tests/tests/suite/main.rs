@@ -20,6 +20,7 @@ mod excitation_ur5e;
 mod feasible_bad_input;
 mod feasible_sdp_real_data;
 mod feasible_simulated;
+mod flexible_ur5e;
 mod fuzz_identify;
 mod identify_bad_input;
 mod identify_energy;
