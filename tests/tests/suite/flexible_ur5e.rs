@@ -1,5 +1,6 @@
 //! Madsen et al. (2020)'s calibration of a flexible-joint cobot, end to end on simulated
-//! data: a UR5e whose links differ from their CAD values, with the strain-wave joints of
+//! data: a UR5e whose links differ from their CAD values (`robots/parameters/ur5e_as_built.toml`
+//! against `ur5e.toml`), with the strain-wave joints of
 //! `robots/drives/ur5e_flexible.toml` (compliant transmissions, reflected rotor
 //! inertias, nonlinear rotor friction in speed, load and temperature, drives warming
 //! up), logged as such a robot logs: link and motor encoders (2^20 counts a turn), motor
@@ -18,7 +19,7 @@
 use std::sync::OnceLock;
 
 use robid_runtime::Model;
-use robid_runtime::data::{Config, Dataset};
+use robid_runtime::data::{Config, Dataset, ParameterFile};
 use robid_runtime::drive::{FrictionFitOptions, FrictionModel, JointFriction, identify_friction};
 use robid_runtime::estimate::Estimate;
 use robid_runtime::excite::{FourierDesign, JointLimits};
@@ -42,20 +43,19 @@ struct Case {
     validation: Vec<FlexibleRecord>,
 }
 
-/// Scales link j's ten inertial parameters by `scales[j]` (a denser or lighter link of
-/// the same shape: still physically consistent).
-fn scaled(standard: &[f64], scales: &[f64]) -> Vec<f64> {
-    standard
-        .iter()
-        .enumerate()
-        .map(|(i, v)| v * scales[i / 10])
-        .collect()
+/// A file of the repository.
+fn repo(path: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(path)
 }
 
-fn base(standard: &[f64]) -> Vec<f64> {
-    let mut out = vec![0.0; Ur5e.base_parameter_count()];
-    Ur5e.base_from_standard_into(standard, &mut out).unwrap();
-    out
+/// The base parameters of a parameter file of the repository.
+fn base(path: &str) -> Vec<f64> {
+    ParameterFile::read(&repo(path))
+        .unwrap()
+        .base_parameters(&Ur5e)
+        .unwrap()
 }
 
 fn trajectory(seed: u64, seconds: f64) -> Trajectory {
@@ -83,12 +83,9 @@ fn trajectory(seed: u64, seconds: f64) -> Trajectory {
 fn case() -> &'static Case {
     static CASE: OnceLock<Case> = OnceLock::new();
     CASE.get_or_init(|| {
-        let r = by_name("ur5e");
-        let cad_standard = r.parameter_values(&r.robot().with_drive(Drive::NONE));
-        let truth = base(&scaled(&cad_standard, &[1.0, 1.08, 0.93, 1.12, 0.95, 1.1]));
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../robots/drives/ur5e_flexible.toml");
-        let mut flex = Flexibility::read(&path).unwrap();
+        // the robot as built: its links 0 to 12 % off the CAD values
+        let truth = base("robots/parameters/ur5e_as_built.toml");
+        let mut flex = Flexibility::read(&repo("robots/drives/ur5e_flexible.toml")).unwrap();
         // warm up within the records, so that the temperature's effect is seen
         flex.temperature.time_constant = 20.0;
         let simulate = |seed: u64, seconds: f64| {
@@ -105,7 +102,7 @@ fn case() -> &'static Case {
             .unwrap()
         };
         Case {
-            cad: base(&cad_standard),
+            cad: base("robots/parameters/ur5e.toml"),
             estimation: simulate(11, 40.0),
             validation: vec![simulate(12, 15.0), simulate(13, 15.0)],
             truth,
@@ -176,17 +173,13 @@ fn identified_friction(c: &Case, dir: &std::path::Path) -> FrictionModel {
     FrictionModel::new(joints).unwrap()
 }
 
-/// The friction samples of the estimation log. The friction is not linear in the rotor
-/// speed (its sign turns within a few mrad/s), so a low-pass on the torque would smear
-/// each reversal over the filter's length: only the positions are filtered, and the
-/// samples stay at the log's rate.
+/// The friction samples of the estimation log, with the identification's config (the
+/// samples take only its positions' low-pass, not the torque's nor the decimation).
 fn friction_data(c: &Case, dir: &std::path::Path) -> robid_runtime::pipeline::FrictionData {
-    let text = format!(
-        "[processing]\nlowpass = {{ cutoff = 10.0, order = 4, signals = [\"q\"] }}\n\
-         [drive.rotor]\ninertia = {}\n",
-        rotor_inertias(&c.flex)
+    let cfg = config(
+        dir,
+        &format!("[drive.rotor]\ninertia = {}\n", rotor_inertias(&c.flex)),
     );
-    let cfg = Config::from_toml_str(&text, &dir.join("friction-config.toml")).unwrap();
     friction_samples(&dataset(&c.estimation, &c.flex), &cfg, None).unwrap()
 }
 
