@@ -55,6 +55,7 @@ fn reference_table(h: &mut String, report: &Report) {
     let _ = writeln!(
         h,
         "<h2>Against the reference {}</h2>\n<table>\n<tr><th>data</th>\
+         <th>relative error reference</th><th>relative error identified</th>\
          <th>NMSE eq. 22 reference [N m]</th><th>NMSE eq. 22 identified [N m]</th>\
          <th>relative improvement</th></tr>",
         escape(&first.file)
@@ -69,8 +70,10 @@ fn reference_table(h: &mut String, report: &Report) {
             .map_or_else(|| "-".to_string(), |p| format!("{p:.1} %"));
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td>{:.1}</td><td>{:.1}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td>{:.2} %</td><td>{:.2} %</td><td>{:.1}</td><td>{:.1}</td><td>{}</td></tr>",
             escape(&name),
+            100.0 * r.relative_error,
+            100.0 * v.relative_error,
             r.nmse_eq22,
             v.nmse_eq22,
             improvement

@@ -106,6 +106,9 @@ pub struct ValidationEntry {
 pub struct ReferenceFit {
     /// The reference parameter file.
     pub file: String,
+    /// The reference model's relative error `||tau - tauhat|| / ||tau||` on the same
+    /// samples (a figure that torques near zero do not dominate, unlike eq. 22's).
+    pub relative_error: f64,
     /// The reference model's NMSE of eq. 22 on the same samples.
     pub nmse_eq22: f64,
     /// 100 (reference - identified) / reference of the eq. 22 NMSE: positive when the
@@ -271,6 +274,7 @@ impl Report {
             let nmse_eq22 = fit.nmse_eq22;
             v.reference = Some(ReferenceFit {
                 file: file.to_string(),
+                relative_error: fit.relative_error,
                 nmse_eq22,
                 relative_improvement_percent: (nmse_eq22 > 0.0)
                     .then(|| relative_improvement(nmse_eq22, v.nmse_eq22)),
@@ -306,16 +310,26 @@ impl Report {
         let fits = std::iter::once((
             &self.fit.rms_per_joint,
             self.fit.relative_error,
-            [self.fit.nmse, self.fit.nmse_eq22, 0.0, 0.0],
+            [self.fit.nmse, self.fit.nmse_eq22, 0.0, 0.0, 0.0],
         ))
         .chain(self.validation.iter().map(|v| {
-            let reference = v.reference.as_ref().map_or([0.0, 0.0], |r| {
-                [r.nmse_eq22, r.relative_improvement_percent.unwrap_or(0.0)]
+            let reference = v.reference.as_ref().map_or([0.0; 3], |r| {
+                [
+                    r.nmse_eq22,
+                    r.relative_improvement_percent.unwrap_or(0.0),
+                    r.relative_error,
+                ]
             });
             (
                 &v.rms_per_joint,
                 v.relative_error,
-                [v.nmse, v.nmse_eq22, reference[0], reference[1]],
+                [
+                    v.nmse,
+                    v.nmse_eq22,
+                    reference[0],
+                    reference[1],
+                    reference[2],
+                ],
             )
         }));
         for (rms, rel, figures) in fits {

@@ -77,8 +77,12 @@ pub fn text_table(report: &Report) -> String {
             );
             let _ = writeln!(
                 s,
-                "  against the reference {}: NMSE (eq. 22) {:.1} N m, identified {:.1} N m, relative improvement {improvement}",
-                r.file, r.nmse_eq22, v.nmse_eq22
+                "  against the reference {}: relative error {:.2} % (identified {:.2} %); NMSE (eq. 22) {:.1} N m, identified {:.1} N m, relative improvement {improvement}",
+                r.file,
+                100.0 * r.relative_error,
+                100.0 * v.relative_error,
+                r.nmse_eq22,
+                v.nmse_eq22
             );
         }
     }
@@ -170,7 +174,7 @@ mod tests {
         assert!(r.check().is_ok());
         let t = text_table(&r);
         assert!(
-            t.contains("against the reference cad.toml: NMSE (eq. 22) 325.9 N m, identified 233.0 N m, relative improvement 28.5 %"),
+            t.contains("against the reference cad.toml: relative error 3.00 % (identified 3.00 %); NMSE (eq. 22) 325.9 N m, identified 233.0 N m, relative improvement 28.5 %"),
             "{t}"
         );
         let exact = report().with_reference(0, "truth.toml", &fit(0.0));
