@@ -65,7 +65,7 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
     let sim = Simulation::default();
     let log = sim.run_flexible(&p, &base, &flex, &r).unwrap();
     let h = 1.0 / 2000.0;
-    let (mut link, mut rotor, mut largest) = (0.0f64, 0.0f64, 0.0f64);
+    let (mut link, mut rotor, mut largest, mut spring) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let mut tau = [0.0; 2];
     for k in (5..r.samples() - 5).step_by(7) {
         let q: Vec<f64> = log.true_q.joints().map(|v| v[k]).collect();
@@ -78,6 +78,10 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
             largest = largest.max(tau_j.abs());
             link = link.max((tau[j] - tau_j).abs());
             let theta = &log.true_theta[j];
+            // the transmission: tau_J = K1 d + K3 d^3 + D d'
+            let d = theta[k] - log.true_q[j][k];
+            let dd = first(theta, k, h) - first(&log.true_q[j], k, h);
+            spring = spring.max((g.elastic(d) + g.damping * dd - tau_j).abs());
             // the friction's smooth sign turns within a few eps of zero speed, faster
             // than differences over 1 ms can follow: those samples are left out
             if first(theta, k, h).abs() < 50.0 * g.friction.smoothing {
@@ -90,7 +94,10 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
             rotor = rotor.max((g.rotor_inertia * second(theta, k, h) + f + tau_j - u).abs());
         }
     }
-    eprintln!("largest torque {largest}, link residual {link}, rotor residual {rotor}");
+    eprintln!(
+        "largest torque {largest}, link residual {link}, rotor residual {rotor}, \
+         transmission residual {spring}"
+    );
     assert!(
         link <= 2.5e-4 * largest,
         "link equation: {link} of {largest}"
