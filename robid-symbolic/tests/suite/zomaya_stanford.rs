@@ -184,7 +184,7 @@ impl State {
 /// The full closed form, written independently of robid: `coef[i][l][e]` is
 /// joint i's torque per unit of pseudo-inertia entry e of link l (index
 /// [`w`]), from Paul's Lagrange-Euler form `tau_i = sum_l (sum_j tr(U_li W_l
-/// (dU_l/dt)^T) ... )` worked out by hand for this table. The paper's printed
+/// (dU_l/dt)^T) ... )` worked out for this table with a computer-algebra system (SymPy, outside robid) and typed in. The paper's printed
 /// terms are the parts so marked.
 fn closed_form(s: &State) -> [[[f64; 10]; 3]; 3] {
     let ([_, t2, d3], [t1d, t2d, d3d], [t1dd, t2dd, d3dd]) = (s.q, s.qd, s.qdd);
