@@ -14,3 +14,4 @@ mod regroup_symbolic;
 mod simplify_keeps_value;
 mod standard_frames;
 mod ur5e_inverse_dynamics_text;
+mod zomaya_stanford;
