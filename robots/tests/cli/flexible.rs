@@ -84,6 +84,51 @@ fn flexible_readme_sequence_identifies_and_beats_cad() {
         &path("ur5e_friction.toml"),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // tau_J from the rigid model with the true parameters instead of the logged joint
+    // torque: the same friction (measured: Coulomb and viscous levels within 2.4e-4)
+    let o = robid(&[
+        "friction",
+        "descriptions/ur5e.toml",
+        "--config",
+        &config,
+        "--data",
+        &path("flex.csv"),
+        "--parameters",
+        "parameters/ur5e_as_built.toml",
+        "-o",
+        &path("from_model.toml"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let levels = |file: &str| -> Vec<(f64, f64)> {
+        let v: toml::Value = toml::from_str(&std::fs::read_to_string(path(file)).unwrap()).unwrap();
+        v["friction"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|j| {
+                (
+                    j["coulomb"].as_float().unwrap(),
+                    j["viscous"].as_float().unwrap(),
+                )
+            })
+            .collect()
+    };
+    for (j, (a, b)) in levels("ur5e_friction.toml")
+        .iter()
+        .zip(levels("from_model.toml"))
+        .enumerate()
+    {
+        eprintln!(
+            "joint {}: Coulomb {} vs {}, viscous {} vs {}",
+            j + 1,
+            a.0,
+            b.0,
+            a.1,
+            b.1
+        );
+        assert!((a.0 - b.0).abs() <= 5e-4 * a.0, "joint {} Coulomb", j + 1);
+        assert!((a.1 - b.1).abs() <= 5e-4 * a.1, "joint {} viscous", j + 1);
+    }
     let json = path("report.json");
     let o = robid(&[
         "identify",
