@@ -228,6 +228,9 @@ fn powers_quotients_and_inputs_lower_exactly() {
     let scaled = a.mul2(three, minus_x);
     outputs.push(a.add2(scaled, y));
     outputs.push(y);
+    let z2 = a.mul2(z, z);
+    outputs.push(a.sqrt(z2));
+    outputs.push(a.sign(xy));
     let inputs = vec![
         Group::new("x", vec!["x".into()]),
         Group::new("y", vec!["y".into()]),
@@ -247,7 +250,10 @@ fn powers_quotients_and_inputs_lower_exactly() {
             );
         }
     }
-    assert!(program.operations().div > 0);
+    let ops = program.operations();
+    assert!(ops.div > 0 && ops.sign == 1 && ops.sqrt == 1, "{ops}");
+    let total = ops.mul + ops.add + ops.neg + ops.div + ops.sin + ops.cos + ops.sign + ops.sqrt;
+    assert_eq!(total, program.instrs.len());
     assert!((0..3).all(|g| program.uses_input_group(g)));
     assert!(!program.uses_input_group(3));
     // y is read by instructions and by an output; an output alone is a use too
