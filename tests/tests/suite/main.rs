@@ -35,3 +35,4 @@ mod reference_files;
 mod rnea_agrees;
 mod simulation_model;
 mod standard_vs_modified;
+mod wrench_link;
