@@ -30,6 +30,7 @@ mod identify_ur5e_simulated;
 mod mass_matrix_spd;
 mod model_equation;
 mod ne_equals_le;
+mod payload_identify;
 mod power_balance;
 mod reference_files;
 mod rnea_agrees;
