@@ -10,6 +10,7 @@
 pub mod model;
 mod real;
 pub mod rng;
+pub mod wrench;
 
 pub use model::{LengthError, Model};
 pub use real::Real;
@@ -34,6 +35,8 @@ pub mod limits;
 pub mod nelder_mead;
 #[cfg(feature = "std")]
 pub mod output;
+#[cfg(feature = "std")]
+pub mod payload;
 #[cfg(feature = "std")]
 pub mod pipeline;
 #[cfg(feature = "std")]

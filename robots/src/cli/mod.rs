@@ -14,6 +14,7 @@ mod identify;
 mod inspect;
 mod model;
 mod out;
+mod payload;
 mod simulate;
 mod states;
 mod torques;
@@ -65,6 +66,9 @@ enum Command {
     /// A run whose positions leave the trajectory by more than 1 rad (plus ten times the
     /// position noise and quantization) is refused as diverged; nothing is written then.
     Simulate(simulate::Args),
+    /// The ten inertial parameters of a payload on the last link, with standard deviations
+    /// and a physical consistency check, from joint torques and the robot's known model.
+    Payload(payload::Args),
 }
 
 /// Parses the command line, runs the subcommand and reports errors on stderr: status 0
@@ -93,6 +97,7 @@ pub(crate) fn run() -> ExitCode {
         Command::Feasible(args) => feasible::run(&args),
         Command::Friction(args) => friction::run(&args),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Payload(args) => payload::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

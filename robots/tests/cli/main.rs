@@ -11,6 +11,7 @@ mod feasible;
 mod files;
 mod flexible;
 mod friction;
+mod payload;
 mod reference;
 mod sequence;
 mod stdout;

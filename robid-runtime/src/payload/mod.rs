@@ -1,0 +1,103 @@
+//! The ten inertial parameters of a payload rigidly attached to the last link
+//! (docs/identification.md#payload-identification), two ways:
+//!
+//! - [`from_wrenches`]: from a wrist force-torque sensor, whose wrench is
+//!   `A(omega, omegadot, vdot, g) phi` of the payload alone ([`crate::wrench`]);
+//! - [`from_torques`]: from joint torques with the robot's model known, since the payload
+//!   adds to the last link's standard parameters: `tau - tau_model = Y_last phi`.
+//!
+//! Both stack the equations and solve them with the crate's least squares
+//! ([`crate::estimate::ols`] or [`crate::estimate::wls`]), so the values come with
+//! standard deviations `sqrt(diag(sigma^2 (W'W)^-1))` and data that do not excite the
+//! payload are a rank-deficiency error naming the unexcited parameters. The result is then
+//! checked for physical consistency ([`Consistency`]).
+
+mod consistency;
+mod sensor;
+mod torques;
+
+pub use consistency::Consistency;
+pub use sensor::{WrenchSample, from_wrenches};
+pub use torques::{JointSample, from_torques, last_link_columns};
+
+use nalgebra::DMatrix;
+use nalgebra::DVector;
+use std::ops::Range;
+
+use crate::error::{Error, Result};
+use crate::estimate::{Estimate, Observation, ols, wls};
+use crate::model::Inertial;
+
+/// How a payload is estimated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PayloadOptions {
+    /// Weighted least squares (each group of equations weighted by its own residual
+    /// noise: the joints, or the sensor's forces and moments) instead of ordinary.
+    pub weighted: bool,
+    /// Relative singular-value threshold of the rank decision, in (0, 1).
+    pub rank_tolerance: f64,
+}
+
+impl Default for PayloadOptions {
+    fn default() -> Self {
+        Self {
+            weighted: true,
+            rank_tolerance: 1e-10,
+        }
+    }
+}
+
+/// An identified payload: the estimate of `XX XY XZ YY YZ ZZ MX MY MZ M` (about the
+/// last link's frame origin, in that frame) and its physical consistency.
+#[derive(Debug, Clone)]
+pub struct Payload {
+    /// Values, standard deviations and the fit's statistics; parameters named by their
+    /// stems (`XX` .. `M`).
+    pub estimate: Estimate,
+    /// Mass, centre of mass, inertia about it, and the verdict.
+    pub consistency: Consistency,
+}
+
+impl Payload {
+    /// The ten values in the standard order.
+    pub fn parameters(&self) -> [f64; 10] {
+        std::array::from_fn(|k| self.estimate.values[k])
+    }
+
+    /// The ten standard deviations in the standard order.
+    pub fn std(&self) -> [f64; 10] {
+        std::array::from_fn(|k| self.estimate.std[k])
+    }
+}
+
+/// The payload's column names: the ten stems.
+fn names() -> Vec<String> {
+    Inertial::ALL.iter().map(|p| p.stem().to_string()).collect()
+}
+
+/// Solves the stacked system and checks the result.
+fn estimate(
+    w: DMatrix<f64>,
+    y: DVector<f64>,
+    groups: Vec<Range<usize>>,
+    sample_of_row: Vec<usize>,
+    options: &PayloadOptions,
+) -> Result<Payload> {
+    let obs = Observation::new(w, y, groups, sample_of_row, names())?;
+    let estimate = if options.weighted {
+        wls(&obs, options.rank_tolerance)?
+    } else {
+        ols(&obs, options.rank_tolerance)?
+    };
+    if let Some(k) = estimate.values.iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFiniteResult {
+            what: format!("the payload's {}", estimate.names[k]),
+            cause: "the data are too large for f64 arithmetic; check their units".into(),
+        });
+    }
+    let consistency = Consistency::of(&std::array::from_fn(|k| estimate.values[k]));
+    Ok(Payload {
+        estimate,
+        consistency,
+    })
+}

@@ -1,0 +1,143 @@
+//! `robid payload ROBOT.toml --parameters PARAMS.toml --data DATA.csv [-o PAYLOAD.toml]`:
+//! the ten inertial parameters of a payload on the last link from joint torques, the
+//! robot's model without the payload being known (docs/command-line.md#robid-payload).
+//! DATA.csv has the columns `q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` (`robid simulate`
+//! writes them, with `t`, which is not used); PARAMS.toml holds the model's `[standard]`
+//! or `[base]` table, as for `robid torques`.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use robid_runtime::data::ParameterFile;
+use robid_runtime::model::Inertial;
+use robid_runtime::payload::{JointSample, Payload, PayloadOptions, from_torques};
+
+use super::description::DriveFlag;
+use super::{Error, files, out};
+
+/// Arguments of `robid payload`.
+#[derive(Debug, clap::Args)]
+pub(crate) struct Args {
+    /// Robot description file (TOML).
+    robot: PathBuf,
+    #[command(flatten)]
+    drive: DriveFlag,
+    /// The robot's parameters without the payload: a `[standard]` or a `[base]` table.
+    #[arg(long)]
+    parameters: PathBuf,
+    /// Samples with the payload on, header q1..qn,qd1..qdn,qdd1..qddn,tau1..taun.
+    #[arg(long)]
+    data: PathBuf,
+    /// Ordinary least squares instead of weighted (per-joint weights).
+    #[arg(long)]
+    ols: bool,
+    /// Writes the payload as TOML (a `[payload]` table of the ten values and their
+    /// standard deviations, and a `[payload.physical]` table).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+}
+
+/// Identifies the payload, prints it and writes it when asked.
+pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    if let Some(output) = &args.output {
+        files::refuse(&[&args.robot, &args.parameters, &args.data], &[output])?;
+    }
+    let chosen = super::identify::robot_model(&args.robot, &args.drive)?;
+    let model = chosen.model.as_ref();
+    let n = model.dof();
+    let base = ParameterFile::read(&args.parameters)?.base_parameters(model)?;
+    let names: Vec<String> = ["q", "qd", "qdd", "tau"]
+        .iter()
+        .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))
+        .collect();
+    let table = super::states::read(&args.data, &names)?;
+    let samples: Vec<JointSample> = (0..table.lines.len())
+        .map(|k| {
+            let block = |b: usize| (0..n).map(|j| table.columns[b * n + j][k]).collect();
+            JointSample {
+                q: block(0),
+                qd: block(1),
+                qdd: block(2),
+                tau: block(3),
+            }
+        })
+        .collect();
+    let options = PayloadOptions {
+        weighted: !args.ols,
+        ..PayloadOptions::default()
+    };
+    let payload = from_torques(model, &base, &samples, &options)
+        .map_err(|e| format!("{}: {e}", args.data.display()))?;
+    out::print(&summary(&payload))?;
+    if let Some(p) = &args.output {
+        files::write(p, &toml(&payload))?;
+    }
+    Ok(())
+}
+
+/// What is printed: the ten values with their deviations, then the physical reading.
+fn summary(p: &Payload) -> String {
+    let e = &p.estimate;
+    let mut s = format!(
+        "payload on the last link ({}, {} equations, condition number {:.1})\n",
+        e.method.name(),
+        e.rows,
+        e.condition_number
+    );
+    for (k, name) in e.names.iter().enumerate() {
+        let _ = writeln!(s, "  {name:<3} {:>14.6e} +- {:.2e}", e.values[k], e.std[k]);
+    }
+    let c = &p.consistency;
+    let _ = writeln!(s, "mass: {:.6} +- {:.2e} kg", c.mass, e.std[9]);
+    if let Some(l) = &c.physical {
+        let _ = writeln!(
+            s,
+            "centre of mass: [{:.6}, {:.6}, {:.6}] m",
+            l.com[0], l.com[1], l.com[2]
+        );
+        let _ = writeln!(s, "inertia about the centre of mass (kg m^2):");
+        for row in &l.inertia {
+            let _ = writeln!(
+                s,
+                "  [{:>13.6e}, {:>13.6e}, {:>13.6e}]",
+                row[0], row[1], row[2]
+            );
+        }
+    }
+    if c.is_consistent() {
+        s.push_str("physically consistent: yes\n");
+    } else {
+        let _ = writeln!(s, "physically consistent: no: {}", c.problems.join("; "));
+    }
+    s
+}
+
+/// The payload as TOML: `[payload]` (the ten values), `[payload.std]`, `[payload.physical]`.
+fn toml(p: &Payload) -> String {
+    let e = &p.estimate;
+    let mut s = String::from(
+        "# The payload on the last link, about its frame origin in its frame (robid payload).\n\
+         [payload]\n",
+    );
+    for (k, stem) in Inertial::ALL.iter().map(|i| i.stem()).enumerate() {
+        let _ = writeln!(s, "{stem} = {:?}", e.values[k]);
+    }
+    s.push_str("\n[payload.std]\n");
+    for (k, stem) in Inertial::ALL.iter().map(|i| i.stem()).enumerate() {
+        let _ = writeln!(s, "{stem} = {:?}", e.std[k]);
+    }
+    let c = &p.consistency;
+    s.push_str("\n[payload.physical]\n");
+    let _ = writeln!(s, "mass = {:?}", c.mass);
+    if let Some(l) = &c.physical {
+        let _ = writeln!(s, "com = [{:?}, {:?}, {:?}]", l.com[0], l.com[1], l.com[2]);
+        let rows: Vec<String> = l
+            .inertia
+            .iter()
+            .map(|r| format!("[{:?}, {:?}, {:?}]", r[0], r[1], r[2]))
+            .collect();
+        let _ = writeln!(s, "inertia = [{}]", rows.join(", "));
+    }
+    let _ = writeln!(s, "consistent = {}", c.is_consistent());
+    s
+}
