@@ -231,6 +231,7 @@ fn powers_quotients_and_inputs_lower_exactly() {
     let z2 = a.mul2(z, z);
     outputs.push(a.sqrt(z2));
     outputs.push(a.sign(xy));
+    outputs.push(a.int(-3));
     let inputs = vec![
         Group::new("x", vec!["x".into()]),
         Group::new("y", vec!["y".into()]),
@@ -265,6 +266,34 @@ fn powers_quotients_and_inputs_lower_exactly() {
     .unwrap();
     assert!(only.instrs.is_empty() && only.uses_input_group(0));
     assert!(!group.is_empty() && Group::new("none", Vec::new()).is_empty());
+}
+
+/// Powers by repeated squaring: x^5 takes three multiplications (x^2, x^4, x x^4), x^-2
+/// one and a division, and nothing more.
+#[test]
+fn powers_cost_what_repeated_squaring_costs() {
+    let mut a = crate::expr::Arena::new();
+    let x = a.var("x");
+    for (n, mul, div) in [(5, 3, 0), (-2, 1, 1), (8, 3, 0), (3, 2, 0)] {
+        let p = a.pow(x, n);
+        let program = Program::build(
+            &a,
+            vec![Group::new("x", vec!["x".into()])],
+            vec![(Group::new("out", vec!["o".into()]), vec![p])],
+        )
+        .unwrap();
+        let ops = program.operations();
+        assert_eq!(
+            (ops.mul, ops.div, program.instrs.len()),
+            (mul, div, mul + div),
+            "x^{n}"
+        );
+        let got = program.eval(&[&[1.3]]).unwrap()[0][0];
+        assert!(
+            (got - 1.3f64.powi(n)).abs() < 1e-14 * got.abs(),
+            "x^{n}: {got}"
+        );
+    }
 }
 
 /// Every program's outputs are named `{group}{index}`, which the emitter relies on.
