@@ -309,3 +309,21 @@ fn output_elements_are_numbered() {
         assert_eq!(output.group.elements, names);
     }
 }
+
+/// A sum reuses the largest earlier sum among its terms: with x + y, x + y + z and
+/// x + y + z + w + v as outputs, each later sum adds to the one before (4 additions); a
+/// smaller earlier sum would cost one more.
+#[test]
+fn a_sum_reuses_the_largest_earlier_sum() {
+    let mut a = crate::expr::Arena::new();
+    let names = ["x", "y", "z", "w", "v"];
+    let vars: Vec<_> = names.iter().map(|n| a.var(n)).collect();
+    let sums: Vec<_> = [2, 3, 5].iter().map(|&k| a.add(&vars[..k])).collect();
+    let inputs: Vec<Group> = names.iter().map(|n| Group::new(n, vec![n.to_string()])).collect();
+    let out = Group::new("out", vec!["a".into(), "b".into(), "c".into()]);
+    for _ in 0..20 {
+        // the candidates are visited in a hash map's order: every order must find the largest
+        let program = Program::build(&a, inputs.clone(), vec![(out.clone(), sums.clone())]).unwrap();
+        assert_eq!(program.operations().add, 4, "{}", program.operations());
+    }
+}
