@@ -319,11 +319,15 @@ fn a_sum_reuses_the_largest_earlier_sum() {
     let names = ["x", "y", "z", "w", "v"];
     let vars: Vec<_> = names.iter().map(|n| a.var(n)).collect();
     let sums: Vec<_> = [2, 3, 5].iter().map(|&k| a.add(&vars[..k])).collect();
-    let inputs: Vec<Group> = names.iter().map(|n| Group::new(n, vec![n.to_string()])).collect();
+    let inputs: Vec<Group> = names
+        .iter()
+        .map(|n| Group::new(n, vec![n.to_string()]))
+        .collect();
     let out = Group::new("out", vec!["a".into(), "b".into(), "c".into()]);
     for _ in 0..20 {
         // the candidates are visited in a hash map's order: every order must find the largest
-        let program = Program::build(&a, inputs.clone(), vec![(out.clone(), sums.clone())]).unwrap();
+        let program =
+            Program::build(&a, inputs.clone(), vec![(out.clone(), sums.clone())]).unwrap();
         assert_eq!(program.operations().add, 4, "{}", program.operations());
     }
 }
