@@ -109,14 +109,44 @@ fn programs_agree_for_reference_robots() {
             "{what}: {a} vs {b}"
         );
     };
-    for name in [
+    let mut robots: Vec<(String, Robot)> = [
         "ur5e", "puma560", "rx90", "tx40", "lwr4", "panda", "stanford",
-    ] {
+    ]
+    .iter()
+    .map(|name| {
         let path = format!(
             "{}/../robots/descriptions/{name}.toml",
             env!("CARGO_MANIFEST_DIR")
         );
-        let robot = Robot::from_file(std::path::Path::new(&path)).unwrap();
+        (
+            name.to_string(),
+            Robot::from_file(std::path::Path::new(&path)).unwrap(),
+        )
+    })
+    .collect();
+    // small chains where the customised programs' special cases meet their edges: one
+    // joint about gravity (its link's mass acts on nothing), one across it, a planar 2R,
+    // and a prismatic last joint
+    for (name, joints) in [
+        ("1R vertical", "[[joints]]\n"),
+        ("1R horizontal", "[[joints]]\nalpha = \"pi/2\"\n"),
+        (
+            "2R planar",
+            "[[joints]]\nalpha = \"pi/2\"\n[[joints]]\na = 0.4\n",
+        ),
+        (
+            "RRP",
+            "[[joints]]\n[[joints]]\nalpha = \"pi/2\"\nd = 0.2\n\
+             [[joints]]\ntype = \"prismatic\"\nalpha = \"-pi/2\"\na = 0.1\n",
+        ),
+    ] {
+        let text = format!("name = \"small\"\nconvention = \"modified\"\n{joints}");
+        robots.push((
+            name.to_string(),
+            Robot::from_toml(&text, "small.toml").unwrap(),
+        ));
+    }
+    for (name, robot) in &robots {
         for drive in [crate::Drive::NONE, crate::Drive::ALL] {
             let robot = robot.clone().with_drive(drive);
             let p = super::RobotPrograms::derive(&robot).unwrap();
