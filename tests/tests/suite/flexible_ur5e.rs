@@ -22,14 +22,11 @@ use robid_runtime::Model;
 use robid_runtime::data::{Config, Dataset, ParameterFile};
 use robid_runtime::drive::{FrictionFitOptions, FrictionModel, JointFriction, identify_friction};
 use robid_runtime::estimate::Estimate;
-use robid_runtime::excite::{FourierDesign, JointLimits};
 use robid_runtime::pipeline::{friction_samples, identify, validate};
 use robid_runtime::signal::Signals;
 use robid_runtime::simulate::{Flexibility, FlexibleRecord, Noise, Simulation, Trajectory};
 use robid_runtime::validate::relative_improvement;
-use robid_symbolic::Drive;
 use robots::Ur5e;
-use tests::reference::by_name;
 
 /// Sample rate of the logs, Hz.
 const RATE: f64 = 200.0;
@@ -59,25 +56,7 @@ fn base(path: &str) -> Vec<f64> {
 }
 
 fn trajectory(seed: u64, seconds: f64) -> Trajectory {
-    let robot = by_name("ur5e").robot().with_drive(Drive::NONE);
-    let limits: Vec<JointLimits> = robot
-        .joints()
-        .iter()
-        .map(|j| JointLimits {
-            position: j.limits.position.expect("position limits"),
-            velocity: j.limits.velocity.expect("velocity limit"),
-            acceleration: j.limits.acceleration.expect("acceleration limit"),
-            torque: j.limits.torque,
-        })
-        .collect();
-    FourierDesign {
-        seed,
-        ..FourierDesign::default()
-    }
-    .random(&limits)
-    .unwrap()
-    .sample(seconds, RATE)
-    .unwrap()
+    tests::reference::random_fourier("ur5e", seed, seconds, RATE)
 }
 
 fn case() -> &'static Case {

@@ -22,7 +22,6 @@
 
 use robid_runtime::Model;
 use robid_runtime::data::{Config, Dataset, Derivative, Method};
-use robid_runtime::excite::{FourierDesign, JointLimits};
 use robid_runtime::pipeline::{energy_observation_of, identify, prepare};
 use robid_runtime::rng::Rng;
 use robid_runtime::signal::Signals;
@@ -43,25 +42,7 @@ fn truth(model: &Ur5e) -> Vec<f64> {
 }
 
 fn trajectory(seed: u64) -> Trajectory {
-    let robot = by_name("ur5e").robot().with_drive(Drive::NONE);
-    let limits: Vec<JointLimits> = robot
-        .joints()
-        .iter()
-        .map(|j| JointLimits {
-            position: j.limits.position.expect("position limits"),
-            velocity: j.limits.velocity.expect("velocity limit"),
-            acceleration: j.limits.acceleration.expect("acceleration limit"),
-            torque: j.limits.torque,
-        })
-        .collect();
-    FourierDesign {
-        seed,
-        ..FourierDesign::default()
-    }
-    .random(&limits)
-    .unwrap()
-    .sample(DURATION, RATE)
-    .unwrap()
+    tests::reference::random_fourier("ur5e", seed, DURATION, RATE)
 }
 
 /// Inverse dynamics along the trajectory; `noise` = (torque std per joint, position std,

@@ -13,7 +13,6 @@
 use robid_runtime::Model;
 use robid_runtime::data::{Config, Derivative, Method};
 use robid_runtime::estimate::Estimate;
-use robid_runtime::excite::{FourierDesign, JointLimits};
 use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::simulate::{Noise, Simulation, Trajectory};
 use robid_symbolic::Drive;
@@ -33,25 +32,7 @@ fn truth(model: &Ur5e) -> Vec<f64> {
 }
 
 fn trajectory(seed: u64) -> Trajectory {
-    let robot = by_name("ur5e").robot().with_drive(Drive::NONE);
-    let limits: Vec<JointLimits> = robot
-        .joints()
-        .iter()
-        .map(|j| JointLimits {
-            position: j.limits.position.expect("position limits"),
-            velocity: j.limits.velocity.expect("velocity limit"),
-            acceleration: j.limits.acceleration.expect("acceleration limit"),
-            torque: j.limits.torque,
-        })
-        .collect();
-    FourierDesign {
-        seed,
-        ..FourierDesign::default()
-    }
-    .random(&limits)
-    .unwrap()
-    .sample(DURATION, RATE)
-    .unwrap()
+    tests::reference::random_fourier("ur5e", seed, DURATION, RATE)
 }
 
 fn simulate(model: &Ur5e, truth: &[f64], seed: u64) -> robid_runtime::data::Dataset {

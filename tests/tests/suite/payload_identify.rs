@@ -10,7 +10,6 @@
 //! and the errors for data that do not excite the payload.
 
 use robid_runtime::Model;
-use robid_runtime::excite::{FourierDesign, JointLimits};
 use robid_runtime::feasible::LinkInertial;
 use robid_runtime::payload::{
     JointSample, Payload, PayloadOptions, WrenchSample, from_torques, from_wrenches,
@@ -55,25 +54,7 @@ fn simulate_with(model: &Ur5e, payload: &LinkInertial, seed: u64) -> Record {
     for (c, p) in columns.iter().zip(payload.to_standard()) {
         truth[*c] += p;
     }
-    let robot = by_name("ur5e").robot().with_drive(Drive::NONE);
-    let limits: Vec<JointLimits> = robot
-        .joints()
-        .iter()
-        .map(|j| JointLimits {
-            position: j.limits.position.expect("position limits"),
-            velocity: j.limits.velocity.expect("velocity limit"),
-            acceleration: j.limits.acceleration.expect("acceleration limit"),
-            torque: j.limits.torque,
-        })
-        .collect();
-    let trajectory = FourierDesign {
-        seed,
-        ..FourierDesign::default()
-    }
-    .random(&limits)
-    .unwrap()
-    .sample(20.0, 100.0)
-    .unwrap();
+    let trajectory = tests::reference::random_fourier("ur5e", seed, 20.0, 100.0);
     Simulation {
         noise: Noise {
             torque: vec![0.8, 0.8, 0.4, 0.1, 0.1, 0.05],
