@@ -37,6 +37,9 @@
 //! rank_tolerance = 1e-10         # singular values below this times the largest are zero
 //! forgetting = 1.0               # RLS forgetting factor, 0 < lambda <= 1
 //! energy_window = 0.05           # s, one energy-model equation per window
+//! known = "masses.toml"          # optional: a [known] table of standard parameters known
+//!                                # beforehand (not estimated; their torques move to the
+//!                                # right-hand side)
 //! ```
 //!
 //! Without a config file robid uses [`Config::default_mapping`]: the header
@@ -64,6 +67,7 @@
 //! | `estimation.rank_tolerance` | 0 < tol < 1 |
 //! | `estimation.forgetting` | 0 < lambda <= 1 |
 //! | `estimation.energy_window` | 0 < window <= 1e6 s |
+//! | `estimation.known` | a parameter file with a `[known]` table, its names standard parameters of the robot |
 //! | `extra_column` | at most 1,000 |
 
 use crate::DataError;
@@ -453,6 +457,11 @@ pub struct Estimation {
     /// Window of the energy model (s): one equation per window.
     #[serde(default = "default_energy_window")]
     pub energy_window: f64,
+    /// A parameter file with a `[known]` table (relative to the config's folder): standard
+    /// parameters known beforehand, which are not estimated (their torques move to the
+    /// right-hand side; docs/identification.md#known-parameters).
+    #[serde(default)]
+    pub known: Option<PathBuf>,
 }
 
 impl Default for Estimation {
@@ -462,6 +471,7 @@ impl Default for Estimation {
             rank_tolerance: default_tolerance(),
             forgetting: 1.0,
             energy_window: default_energy_window(),
+            known: None,
         }
     }
 }

@@ -1,15 +1,17 @@
 //! Parameter files, the one reader: a `[standard]` table (name = value; missing names are
-//! 0, or have no prior) or a `[base]` table (every base parameter). `robid feasible`
-//! writes this format; `torques`, `simulate`, `excite`, `feasible --prior`, the reference
-//! robots, the tests and the benches read it here.
+//! 0, or have no prior), a `[base]` table (every base parameter) or a `[known]` table
+//! (standard parameters known beforehand, such as weighed masses, which identification
+//! moves to the right-hand side: `estimation.known`, docs/identification.md#known-parameters).
+//! `robid feasible` writes this format; `torques`, `simulate`, `excite`, `feasible --prior`,
+//! `identify` (known parameters), the reference robots, the tests and the benches read it here.
 //!
 //! What is checked, each mistake an [`crate::DataError::ParameterFile`] at `file:line:column` with the
 //! fix. When the file is read:
-//! - exactly one table, `[standard]` or `[base]`; any other table or key is an error;
+//! - exactly one table, `[standard]`, `[base]` or `[known]`; any other table or key is an error;
 //! - every value is a number, finite and within +-[`PARAMETER_LIMIT`].
 //!
 //! When its values are taken for a model ([`ParameterFile::base_parameters`],
-//! [`ParameterFile::prior`]):
+//! [`ParameterFile::prior`], [`ParameterFile::known`]):
 //! - every key is a parameter of the robot (the nearest name is suggested);
 //! - in `[standard]`: masses `Mj`, rotor inertias `Iaj` and friction coefficients `Fvj`,
 //!   `Fcj` are not negative; a first moment `MXj MYj MZj` needs a positive mass `Mj`;
@@ -61,6 +63,9 @@ pub enum ParameterTable {
     Standard,
     /// `[base]`: every base parameter of the model.
     Base,
+    /// `[known]`: standard parameters known beforehand (any subset), which identification
+    /// does not estimate.
+    Known,
 }
 
 impl fmt::Display for ParameterTable {
@@ -68,6 +73,7 @@ impl fmt::Display for ParameterTable {
         f.write_str(match self {
             ParameterTable::Standard => "standard",
             ParameterTable::Base => "base",
+            ParameterTable::Known => "known",
         })
     }
 }
@@ -195,7 +201,41 @@ impl ParameterFile {
                     })
                     .collect()
             }
+            ParameterTable::Known => Err(self.whole(
+                "a [known] table lists only the parameters known beforehand, for \
+                 `estimation.known` of an identification; give the robot's parameters in a \
+                 [standard] or [base] table"
+                    .to_owned(),
+            )),
         }
+    }
+
+    /// The known standard parameters of a `[known]` table: `(index into names, value)` in
+    /// the order of `names`. Every key must be one of `names`, and the values pass the
+    /// physical checks of the module documentation (links with missing inertial values are
+    /// not checked as a whole). At least one parameter must be listed.
+    pub fn known(&self, names: &[String]) -> Result<Vec<(usize, f64)>> {
+        if self.table != ParameterTable::Known {
+            return Err(self.whole(format!(
+                "known parameters need a [known] table (this file has [{}]); write the \
+                 parameters known beforehand as `[known]` with name = value",
+                self.table
+            )));
+        }
+        if self.entries.is_empty() {
+            return Err(self.whole(
+                "[known] is empty; list the standard parameters known beforehand (name = \
+                 value), or leave `estimation.known` out"
+                    .to_owned(),
+            ));
+        }
+        let values = self.values(names)?;
+        self.check_physical(false)?;
+        Ok(values
+            .into_iter()
+            .enumerate()
+            .filter_map(|(i, v)| v.map(|v| (i, v)))
+            .collect())
     }
 
     /// The standard parameters `names` as a prior (`None` where missing): needs a
@@ -207,7 +247,7 @@ impl ParameterFile {
                 self.check_physical(false)?;
                 Ok(values)
             }
-            ParameterTable::Base => Err(self.whole(
+            ParameterTable::Base | ParameterTable::Known => Err(self.whole(
                 "a prior needs standard parameters, a [standard] table (base parameters leave \
                  the link parameters undetermined)"
                     .to_owned(),
@@ -369,12 +409,13 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         let table = match name {
             "standard" => ParameterTable::Standard,
             "base" => ParameterTable::Base,
+            "known" => ParameterTable::Known,
             other => {
                 return Err(located(
                     at,
                     format!(
                         "unknown table or key `{other}`; a parameter file holds one table, \
-                         [standard] or [base]"
+                         [standard], [base] or [known]"
                     ),
                 ));
             }
@@ -387,7 +428,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
                 at,
                 format!(
                     "a second table [{name}]; a parameter file needs exactly one of the tables \
-                     [standard] or [base]"
+                     [standard], [base] or [known]"
                 ),
             ));
         }
@@ -431,7 +472,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
             path: path.to_owned(),
             line: None,
             column: None,
-            problem: "needs exactly one of the tables [standard] or [base]".to_owned(),
+            problem: "needs exactly one of the tables [standard], [base] or [known]".to_owned(),
         })
     })?;
     Ok(ParameterFile {

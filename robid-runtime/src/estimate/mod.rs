@@ -5,6 +5,7 @@
 
 mod energy;
 mod error;
+mod known;
 mod least_squares;
 mod lstsq;
 pub(crate) use lstsq::condition_number;
@@ -17,6 +18,7 @@ pub use energy::{
     EnergyRegressor, energy, energy_observation, friction_power, model_energy_observation,
 };
 pub use error::EstimateError;
+pub use known::KnownParameters;
 pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
 pub use observation::Observation;
 #[cfg(test)]

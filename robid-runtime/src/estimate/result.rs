@@ -61,6 +61,10 @@ pub struct Estimate {
     /// parameters with a relative standard deviation above 100 %).
     #[serde(default)]
     pub warnings: Vec<QualityWarning>,
+    /// Parameters fixed by known standard parameters, not estimated (their std is 0;
+    /// `estimation.known`, [`crate::estimate::KnownParameters`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub known: Vec<String>,
 }
 
 impl Estimate {
@@ -151,6 +155,7 @@ pub(crate) fn assemble(
         rows: m,
         weights: None,
         warnings,
+        known: Vec::new(),
     })
 }
 

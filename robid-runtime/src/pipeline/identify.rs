@@ -9,11 +9,11 @@ use crate::EstimateError;
 use std::ops::Range;
 
 use crate::Model;
-use crate::data::{Config, Dataset, Method, Warning, check_joints};
+use crate::data::{Config, Dataset, Method, ParameterFile, Warning, check_joints};
 use crate::error::{Error, Result};
 use crate::estimate::{
-    CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, Observation, QualityWarning,
-    dominated_columns, energy, model_energy_observation, ols, rls, wls,
+    CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, KnownParameters, Observation,
+    QualityWarning, dominated_columns, energy, model_energy_observation, ols, rls, wls,
 };
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
@@ -197,13 +197,31 @@ pub fn identify(
 ) -> Result<Identification> {
     let rows = checked_prepare(model, data, config, Rows::Estimation)?;
     let (prepared, kept) = (&rows.prepared, &rows.kept);
-    let estimate_of = |obs: &Observation| match config.estimation.method {
-        Method::Energy => energy(
-            &energy_observation_of(model, prepared, config)?,
-            config.estimation.rank_tolerance,
-        )
-        .map_err(|e| config.locate(e)),
-        _ => estimate(obs, config),
+    let known = known_parameters(model, config)?;
+    let tolerance = config.estimation.rank_tolerance;
+    // the system the method solves, reduced by the known parameters
+    let system_of = |obs: &Observation| -> Result<Observation> {
+        let system = match config.estimation.method {
+            Method::Energy => energy_observation_of(model, prepared, config)?,
+            _ => obs.clone(),
+        };
+        match &known {
+            Some(k) => k.reduce(&system).map_err(|e| config.locate(e)),
+            None => Ok(system),
+        }
+    };
+    let estimate_of = |obs: &Observation| -> Result<Estimate> {
+        let system = system_of(obs)?;
+        let e = match config.estimation.method {
+            Method::Energy => energy(&system, tolerance).map_err(|e| config.locate(e))?,
+            _ => estimate(&system, config)?,
+        };
+        match &known {
+            Some(k) => k
+                .expand(&e, &system, tolerance)
+                .map_err(|e| config.locate(e)),
+            None => Ok(e),
+        }
     };
     let (obs, dt) = torque_observation(model, prepared, config, data, kept)?;
     let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
@@ -230,7 +248,11 @@ pub fn identify(
         e => e,
     })?;
     if config.estimation.method == Method::Energy {
-        energy_conditioning(&mut estimate, &obs).map_err(|e| config.locate(e))?;
+        let torque = match &known {
+            Some(k) => k.reduce(&obs).map_err(|e| config.locate(e))?,
+            None => obs.clone(),
+        };
+        energy_conditioning(&mut estimate, &torque).map_err(|e| config.locate(e))?;
     }
     for &(c, row, share) in &dominated {
         estimate.warnings.push(QualityWarning::Outlier {
@@ -254,6 +276,29 @@ pub fn identify(
         used,
         cutoff: rows.auto_cutoff.clone(),
     })
+}
+
+/// The regrouping with the standard parameters of `estimation.known` fixed, if the config
+/// names a file (resolved against the config's folder).
+fn known_parameters(model: &dyn Model, config: &Config) -> Result<Option<KnownParameters>> {
+    let Some(file) = &config.estimation.known else {
+        return Ok(None);
+    };
+    let path = config.resolve(file);
+    let names = crate::model::standard_parameter_names(model);
+    let values = ParameterFile::read(&path)?.known(&names)?;
+    let known = KnownParameters::new(model, &values).map_err(|e| config.locate(e))?;
+    if known.kept_names().is_empty() && config.extra_columns_for(model.dof())?.is_empty() {
+        return Err(config.key_error(
+            "estimation.known",
+            format!(
+                "the known values in {} fix every base parameter: nothing is left to identify; \
+                 list fewer known parameters",
+                path.display()
+            ),
+        ));
+    }
+    Ok(Some(known))
 }
 
 /// Predicts the torques of another data set with identified values (base parameters then
@@ -331,6 +376,7 @@ mod tests {
                 condition_number: cond,
                 threshold: CONDITION_WARNING,
             }],
+            known: Vec::new(),
         };
         for (cond, raised) in [(3.9, false), (4.1, true), (2e4, true)] {
             let mut e = estimate(cond);

@@ -150,9 +150,11 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
          <th>rel. std [%]</th><th>expression</th></tr>\n",
     );
     for p in &report.parameters {
-        let rel = p
-            .rel_std_percent
-            .map_or_else(|| "-".to_string(), |r| format!("{r:.2}"));
+        let rel = match p.rel_std_percent {
+            _ if p.known => "known".to_string(),
+            Some(r) => format!("{r:.2}"),
+            None => "-".to_string(),
+        };
         let _ = writeln!(
             h,
             "<tr><td class=\"name\">{}</td><td>{:.6}</td><td>{:.3e}</td><td>{rel}</td><td class=\"expr\">{}</td></tr>",
@@ -196,6 +198,7 @@ mod tests {
                 value: 1.25,
                 std: 0.01,
                 rel_std_percent: Some(0.8),
+                known: false,
             }],
             fit: FitEntry {
                 relative_error: 0.052,

@@ -46,6 +46,9 @@ pub struct ParameterEntry {
     pub std: f64,
     /// Relative standard deviation in percent (null when the value is zero).
     pub rel_std_percent: Option<f64>,
+    /// Fixed by known standard parameters (`estimation.known`), not estimated.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub known: bool,
 }
 
 /// Fit metrics of the estimation data.
@@ -193,6 +196,7 @@ impl Report {
                 value: estimate.values[i],
                 std: estimate.std[i],
                 rel_std_percent: Some(estimate.rel_std_percent[i]).filter(|v| v.is_finite()),
+                known: estimate.known.contains(&estimate.names[i]),
             })
             .collect();
         Self {

@@ -28,9 +28,11 @@ pub fn text_table(report: &Report) -> String {
         "parameter", "value", "std", "rel.std%"
     );
     for p in &report.parameters {
-        let rel = p
-            .rel_std_percent
-            .map_or_else(|| "-".to_string(), |r| format!("{r:.2}"));
+        let rel = match p.rel_std_percent {
+            _ if p.known => "known".to_string(),
+            Some(r) => format!("{r:.2}"),
+            None => "-".to_string(),
+        };
         let _ = writeln!(
             s,
             "{:<width$}  {:>14.6}  {:>12.3e}  {:>9}  {}",
@@ -128,6 +130,7 @@ mod tests {
                 &["MXR2".into(), "Fv1".into()],
                 &[100.0 * 0.04 / 2.24, f64::INFINITY],
             ),
+            known: Vec::new(),
         };
         let fit = Fit {
             relative_error: 0.052,
@@ -191,6 +194,26 @@ mod tests {
         assert!(bad.check().is_err());
     }
 
+    /// A parameter fixed by known values says so in the table and the JSON, and the others
+    /// carry no flag.
+    #[test]
+    fn known_parameters_are_marked() {
+        let mut r = report();
+        let row = |t: &str| {
+            t.lines()
+                .find(|l| l.starts_with("MXR2"))
+                .unwrap()
+                .to_string()
+        };
+        assert!(!row(&text_table(&r)).contains("known"));
+        let v: serde_json::Value = serde_json::from_str(&r.to_json()).unwrap();
+        assert!(v["parameters"][0].get("known").is_none());
+        r.parameters[0].known = true;
+        assert!(row(&text_table(&r)).contains("known"));
+        let v: serde_json::Value = serde_json::from_str(&r.to_json()).unwrap();
+        assert_eq!(v["parameters"][0]["known"], true);
+    }
+
     #[test]
     fn json_has_the_documented_shape() {
         let v: serde_json::Value = serde_json::from_str(&report().to_json()).unwrap();
@@ -229,6 +252,7 @@ mod tests {
             rows: 100,
             weights: None,
             warnings: crate::estimate::assess(6.9e9, &names, &[0.83, 45.45]),
+            known: Vec::new(),
         };
         let fit = Fit {
             relative_error: 0.1,

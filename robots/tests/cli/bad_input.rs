@@ -268,7 +268,7 @@ fn parameter_file_mistakes_are_located_by_line_and_column() {
             &[
                 "params.toml:1:2:",
                 "unknown table or key `standrd`",
-                "[standard] or [base]",
+                "[standard], [base] or [known]",
             ][..],
         ),
         (

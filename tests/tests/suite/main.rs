@@ -24,6 +24,7 @@ mod flexible_ur5e;
 mod fuzz_identify;
 mod identify_bad_input;
 mod identify_energy;
+mod identify_known;
 mod identify_lwr4;
 mod identify_tx40;
 mod identify_ur5e_simulated;
