@@ -33,7 +33,7 @@
 //! validation_range = [0, 15750]  # optional sample range of each validation file (default: all)
 //!
 //! [estimation]
-//! method = "wls"                 # "ols", "wls", "rls" or "energy"
+//! method = "wls"                 # "ols", "wls", "rls", "energy" or "per-axis"
 //! rank_tolerance = 1e-10         # singular values below this times the largest are zero
 //! forgetting = 1.0               # RLS forgetting factor, 0 < lambda <= 1
 //! energy_window = 0.05           # s, one energy-model equation per window
@@ -439,6 +439,10 @@ pub enum Method {
     /// The energy (power balance) model: one equation per window of
     /// `estimation.energy_window` seconds, no accelerations needed.
     Energy,
+    /// Per-axis least squares (Milella): each joint's equation on its own, each parameter
+    /// from the joint that determines it with the smallest relative deviation.
+    #[serde(rename = "per-axis")]
+    PerAxis,
 }
 
 /// Estimator options.

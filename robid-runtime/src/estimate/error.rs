@@ -14,6 +14,15 @@ pub enum EstimateError {
         /// The parameters that make up the unexcited directions, most affected first.
         unexcited: Vec<String>,
     },
+    /// Per-axis identification: some parameters are determined by no single joint's equation.
+    #[error(
+        "per-axis identification: no joint's equation alone determines {} (they are separable only across joints, or not excited); use ols or wls, or a trajectory that separates them within one axis",
+        parameters.join(", ")
+    )]
+    NotPerAxis {
+        /// The parameters no axis determines.
+        parameters: Vec<String>,
+    },
     /// One or a few equations dominate the column of a parameter the data do not otherwise
     /// determine: an outlier in the data, not a poor trajectory.
     #[error(

@@ -10,6 +10,7 @@ mod least_squares;
 mod lstsq;
 pub(crate) use lstsq::condition_number;
 mod observation;
+mod per_axis;
 mod quality;
 mod result;
 mod rls;
@@ -21,6 +22,7 @@ pub use error::EstimateError;
 pub use known::KnownParameters;
 pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
 pub use observation::Observation;
+pub use per_axis::{AxisFit, PerAxis, per_axis};
 #[cfg(test)]
 pub(crate) use quality::assess;
 pub(crate) use quality::dominated_columns;

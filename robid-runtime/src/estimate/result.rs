@@ -19,6 +19,10 @@ pub enum Estimator {
     Rls,
     /// Energy (power balance) model.
     Energy,
+    /// Per-axis least squares (Milella): each parameter from the joint equation that
+    /// determines it best.
+    #[serde(rename = "per-axis")]
+    PerAxis,
 }
 
 impl Estimator {
@@ -29,6 +33,7 @@ impl Estimator {
             Estimator::Wls => "wls",
             Estimator::Rls => "rls",
             Estimator::Energy => "energy",
+            Estimator::PerAxis => "per-axis",
         }
     }
 }

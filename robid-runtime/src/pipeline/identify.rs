@@ -13,7 +13,7 @@ use crate::data::{Config, Dataset, Method, ParameterFile, Warning, check_joints}
 use crate::error::{Error, Result};
 use crate::estimate::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, KnownParameters, Observation,
-    QualityWarning, dominated_columns, energy, model_energy_observation, ols, rls, wls,
+    QualityWarning, dominated_columns, energy, model_energy_observation, ols, per_axis, rls, wls,
 };
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
@@ -178,6 +178,7 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
         Method::Ols => ols(obs, e.rank_tolerance),
         Method::Wls => wls(obs, e.rank_tolerance),
         Method::Rls => rls(obs, e.forgetting, e.rank_tolerance),
+        Method::PerAxis => per_axis(obs, e.rank_tolerance).map(|p| p.estimate),
         Method::Energy => Err(Error::setting(
             "Config",
             "estimation.method",

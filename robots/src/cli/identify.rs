@@ -81,6 +81,8 @@ enum MethodArg {
     Rls,
     /// Energy (power-balance) model.
     Energy,
+    /// Per-axis least squares (Milella): each joint's equation on its own.
+    PerAxis,
 }
 
 /// Reads a description and chooses its model: the compiled model of a reference robot
@@ -204,6 +206,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             MethodArg::Wls => Method::Wls,
             MethodArg::Rls => Method::Rls,
             MethodArg::Energy => Method::Energy,
+            MethodArg::PerAxis => Method::PerAxis,
         };
     }
     let per_set = config.sources.len().max(1);

@@ -14,7 +14,7 @@ use std::time::Duration;
 use nalgebra::{DMatrix, DVector};
 use robid_runtime::Error;
 use robid_runtime::data::{Config, Dataset, Method, load};
-use robid_runtime::estimate::{Observation, ols, rls, wls};
+use robid_runtime::estimate::{Observation, ols, per_axis, rls, wls};
 use robid_runtime::excite::FourierDesign;
 use robid_runtime::feasible::AnnealOptions;
 use robid_runtime::nelder_mead::NelderMead;
@@ -55,7 +55,13 @@ fn a_huge_sample_is_named_at_load_time_for_every_method() {
     lines[57] = fields.join(",");
     let file = dir().join("huge.csv");
     std::fs::write(&file, lines.join("\n")).unwrap();
-    for method in [Method::Ols, Method::Wls, Method::Rls, Method::Energy] {
+    for method in [
+        Method::Ols,
+        Method::Wls,
+        Method::Rls,
+        Method::Energy,
+        Method::PerAxis,
+    ] {
         let mut config = Config::default_mapping();
         config.estimation.method = method;
         let f = file.clone();
@@ -130,6 +136,19 @@ fn the_estimators_finish_on_a_huge_entry() {
         );
         assert!(e.condition_number > 1e150, "{name}: {}", e.condition_number);
     }
+    // per-axis: each joint's least squares on its column-scaled rows
+    let o = obs.clone();
+    let p = within(30, "per-axis", move || per_axis(&o, 1e-10)).unwrap();
+    let e = &p.estimate;
+    assert!(
+        e.values.iter().chain(&e.std).all(|v| v.is_finite()) && e.condition_number.is_finite(),
+        "per-axis: {e:?}"
+    );
+    assert!(
+        (e.values[0] - 1.5).abs() < 1e-3 && (e.values[3] - 3.0).abs() < 1e-3,
+        "per-axis: {:?}",
+        e.values
+    );
     // a non-finite entry is named by its equation and column
     let mut w = obs.w.clone();
     w[(7, 1)] = f64::INFINITY;

@@ -26,6 +26,7 @@ mod identify_bad_input;
 mod identify_energy;
 mod identify_known;
 mod identify_lwr4;
+mod identify_per_axis;
 mod identify_tx40;
 mod identify_ur5e_simulated;
 mod mass_matrix_spd;
