@@ -31,6 +31,8 @@
 //! rest_velocity = 0.05           # rad/s, number or one per joint
 //! range = [0, 24750]             # optional sample range used for estimation (end exclusive)
 //! validation_range = [0, 15750]  # optional sample range of each validation file (default: all)
+//! pieces = [[1.2, 1.9], [2.6, 3.3]]  # optional: estimate on these windows only (s from the
+//!                                # first sample; Milella's piece-wise identification)
 //!
 //! [estimation]
 //! method = "wls"                 # "ols", "wls", "rls", "energy" or "per-axis"
@@ -64,6 +66,7 @@
 //! | `processing.trim` | <= 50,000,000 |
 //! | `processing.rest_velocity` | 0 <= v <= 1e6 |
 //! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end |
+//! | `processing.pieces` | windows `[start, end]` in s, 0 <= start < end; not with the energy method |
 //! | `estimation.rank_tolerance` | 0 < tol < 1 |
 //! | `estimation.forgetting` | 0 < lambda <= 1 |
 //! | `estimation.energy_window` | 0 < window <= 1e6 s |
@@ -423,6 +426,11 @@ pub struct Processing {
     /// the whole file). Validation files are processed on their own: `range` does not
     /// apply to them.
     pub validation_range: Option<[usize; 2]>,
+    /// Piece-wise estimation (Milella): only the samples within these `[start, end]` windows
+    /// (seconds from the record's first sample; `robid excite --method points --pieces`
+    /// designs them) enter the estimation; the fit is still reported on the whole range.
+    #[serde(default)]
+    pub pieces: Option<Vec<[f64; 2]>>,
 }
 
 /// Estimation method of the pipeline.
@@ -774,6 +782,37 @@ impl Config {
                     format!(
                         "[{a}, {b}] is empty; write [start, end] with start < end (end excluded)"
                     ),
+                );
+            }
+        }
+        if let Some(pieces) = &p.pieces {
+            if pieces.is_empty() {
+                return bad(
+                    "processing.pieces",
+                    "no window given; list [start, end] windows in seconds, or leave the key out"
+                        .into(),
+                );
+            }
+            if let Some([a, b]) = pieces
+                .iter()
+                .find(|[a, b]| !(a.is_finite() && b.is_finite() && *a >= 0.0 && a < b))
+            {
+                return bad(
+                    "processing.pieces",
+                    format!(
+                        "[{}, {}] is not a window; write [start, end] in seconds from the \
+                         record's first sample, 0 <= start < end",
+                        num(*a),
+                        num(*b)
+                    ),
+                );
+            }
+            if self.estimation.method == Method::Energy {
+                return bad(
+                    "processing.pieces",
+                    "the energy model integrates over contiguous windows of its own; use \
+                     pieces with ols, wls, rls or per-axis"
+                        .into(),
                 );
             }
         }

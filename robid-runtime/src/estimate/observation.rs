@@ -84,6 +84,24 @@ impl Observation {
         })
     }
 
+    /// The rows whose sample index satisfies `keep`, joint blocks and order kept.
+    pub fn select_samples(&self, keep: impl Fn(usize) -> bool) -> Result<Self> {
+        let rows: Vec<usize> = (0..self.rows())
+            .filter(|&r| keep(self.sample_of_row[r]))
+            .collect();
+        let w = self.w.select_rows(rows.iter());
+        let y = DVector::from_iterator(rows.len(), rows.iter().map(|&r| self.y[r]));
+        let mut joint_rows = Vec::with_capacity(self.joint_rows.len());
+        let mut start = 0;
+        for block in &self.joint_rows {
+            let count = rows.iter().filter(|r| block.contains(r)).count();
+            joint_rows.push(start..start + count);
+            start += count;
+        }
+        let sample_of_row = rows.iter().map(|&r| self.sample_of_row[r]).collect();
+        Self::new(w, y, joint_rows, sample_of_row, self.names.clone())
+    }
+
     /// A single-block observation (e.g. one equation per row with no joint structure).
     pub fn single(w: DMatrix<f64>, y: DVector<f64>, names: Vec<String>) -> Result<Self> {
         let n = w.nrows();

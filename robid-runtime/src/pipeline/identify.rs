@@ -232,7 +232,8 @@ pub fn identify(
         data.location(kept.start + k * factor)
     };
     let dominated = dominated_columns(&obs.w);
-    let mut estimate = estimate_of(&obs).map_err(|e| match e {
+    let pieces = pieces_of(&obs, config, data, kept.start, factor)?;
+    let mut estimate = estimate_of(pieces.as_ref().unwrap_or(&obs)).map_err(|e| match e {
         Error::Estimate(EstimateError::RankDeficient { ref unexcited, .. }) => {
             match dominated
                 .iter()
@@ -277,6 +278,36 @@ pub fn identify(
         used,
         cutoff: rows.auto_cutoff.clone(),
     })
+}
+
+/// The rows of `obs` within `processing.pieces` (Milella's piece-wise estimation), if the
+/// config has pieces: decimated sample k is record sample `start + k * factor`.
+fn pieces_of(
+    obs: &Observation,
+    config: &Config,
+    data: &Dataset,
+    start: usize,
+    factor: usize,
+) -> Result<Option<Observation>> {
+    let Some(pieces) = &config.processing.pieces else {
+        return Ok(None);
+    };
+    let time = |k: usize| (start + k * factor) as f64 * data.sample_time;
+    let inside = |k: usize| pieces.iter().any(|[a, b]| (*a..=*b).contains(&time(k)));
+    let selected = obs.select_samples(inside)?;
+    if selected.rows() < obs.cols() {
+        return Err(config.key_error(
+            "processing.pieces",
+            format!(
+                "the pieces hold {} equations of the estimation range, fewer than the {} \
+                 parameters; check that they are in seconds from the record's first sample \
+                 and inside processing.range",
+                selected.rows(),
+                obs.cols()
+            ),
+        ));
+    }
+    Ok(Some(selected))
 }
 
 /// The regrouping with the standard parameters of `estimation.known` fixed, if the config

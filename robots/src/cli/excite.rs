@@ -75,6 +75,12 @@ pub(crate) struct Args {
     /// Reference parameters (`[standard]` or `[base]`): enables the torque limits.
     #[arg(long)]
     parameters: Option<PathBuf>,
+    /// Milella's piece-wise identification (`--method points` only): choose the widths of
+    /// the pieces around the points by minimising the extended regressor's condition
+    /// number, and write them to this TOML file as `[processing] pieces = [[start, end],
+    /// ..]` for the identification config.
+    #[arg(long)]
+    pieces: Option<PathBuf>,
     /// Output CSV.
     #[arg(short, long)]
     output: PathBuf,
@@ -101,12 +107,15 @@ enum CriterionArg {
 fn check(args: &Args) -> Result<(), Error> {
     let mut inputs = vec![args.robot.as_path()];
     inputs.extend(args.parameters.as_deref());
-    files::refuse(&inputs, &[&args.output])?;
+    let mut outputs = vec![args.output.as_path()];
+    outputs.extend(args.pieces.as_deref());
+    files::refuse(&inputs, &outputs)?;
     check_samples(args.duration, args.rate)?;
     match args.method {
         Method::Fourier => {
             let (method, owner) = ("--method fourier", "--method points");
             only_for(args.intervals.is_some(), "--intervals", owner, method)?;
+            only_for(args.pieces.is_some(), "--pieces", owner, method)?;
             only_for(args.sweeps.is_some(), "--sweeps", owner, method)?;
             let highest = args.harmonics.unwrap_or(HARMONICS) as f64
                 * args.base_frequency.unwrap_or(BASE_FREQUENCY);
@@ -139,7 +148,6 @@ const HARMONICS: usize = 5;
 /// Default base frequency (Hz) of `--method fourier`.
 const BASE_FREQUENCY: f64 = 0.1;
 
-/// Runs the subcommand.
 /// The settings of `FourierDesign`, `PointDesign` and the sampling that flags fill, and
 /// their flags.
 const DESIGN_FLAGS: &[(&str, &str)] = &[
@@ -285,6 +293,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 .points
                 .sample(args.rate)
                 .map_err(|e| e.on_flags(DESIGN_FLAGS))?;
+            if let Some(path) = &args.pieces {
+                write_pieces(&model, &result.points, path)?;
+            }
             (trajectory, result.evaluations)
         }
     };
@@ -381,6 +392,42 @@ fn check_trajectory(tr: &Trajectory) -> Result<(), Error> {
             }
         }
     }
+    Ok(())
+}
+
+/// Chooses the pieces around `points` (Milella's eq. 15) and writes them as a config
+/// fragment.
+fn write_pieces(
+    model: &(dyn robid_runtime::Model + Sync),
+    points: &robid_runtime::excite::Points,
+    path: &std::path::Path,
+) -> Result<(), Error> {
+    let pieces = robid_runtime::excite::PieceDesign::default().optimise(model, points)?;
+    let windows: Vec<String> = pieces
+        .windows
+        .iter()
+        .map(|[a, b]| format!("[{a:.6}, {b:.6}]"))
+        .collect();
+    let text = format!(
+        "# Milella's piece-wise identification: the windows (s from the start of the \
+         trajectory) around the optimal points; condition number of the extended regressor \
+         {:.2} (every width at its minimum: {:.2}), {:.0} % of the record.\n[processing]\n\
+         pieces = [\n    {},\n]\n",
+        pieces.condition_number,
+        pieces.initial_condition_number,
+        100.0 * pieces.coverage(points.duration()),
+        windows.join(",\n    ")
+    );
+    robid_runtime::output::write_bytes(path, text.as_bytes())?;
+    let mut stdout = out::Stdout::new();
+    writeln!(
+        stdout,
+        "pieces: {} windows, condition number {:.2} (minimum widths {:.2}), written to {}",
+        pieces.windows.len(),
+        pieces.condition_number,
+        pieces.initial_condition_number,
+        path.display()
+    )?;
     Ok(())
 }
 

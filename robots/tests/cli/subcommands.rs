@@ -335,3 +335,51 @@ fn excite_writes_a_trajectory_at_rest_at_the_start_within_the_limits() {
     // (a fresh folder: the file is this run's, not one left by an earlier run)
     assert!(output.exists());
 }
+
+/// `--pieces` writes Milella's pieces as a config fragment that the identification config
+/// reads: one window per interior point, each around its point, lower condition number
+/// than the minimum widths (said in the header).
+#[test]
+fn excite_points_writes_pieces_for_the_config() {
+    let dir = folder();
+    let (output, pieces) = (dir.path().join("p.csv"), dir.path().join("pieces.toml"));
+    let o = robid(&[
+        "excite",
+        "descriptions/ur5e.toml",
+        "--method",
+        "points",
+        "--intervals",
+        "6",
+        "--duration",
+        "12",
+        "--rate",
+        "100",
+        "--restarts",
+        "1",
+        "--sweeps",
+        "1",
+        "--evaluations",
+        "20",
+        "--pieces",
+        pieces.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&pieces).unwrap();
+    let v: toml::Value = toml::from_str(&text).unwrap();
+    let windows = v["processing"]["pieces"].as_array().unwrap();
+    assert_eq!(windows.len(), 5, "{text}");
+    for (i, w) in windows.iter().enumerate() {
+        let (a, b) = (w[0].as_float().unwrap(), w[1].as_float().unwrap());
+        let point = 2.0 * (i + 1) as f64;
+        assert!(
+            a < point && point < b && a >= point - 1.0 && b <= point + 1.0,
+            "{text}"
+        );
+    }
+    let config = format!("[estimation]\nmethod = \"ols\"\n{text}");
+    let config: robid_runtime::data::Config =
+        robid_runtime::data::Config::from_toml_str(&config, "c.toml".as_ref()).unwrap();
+    assert_eq!(config.processing.pieces.unwrap().len(), 5);
+}

@@ -15,6 +15,7 @@ mod cutoff_auto;
 mod emit_c;
 mod emitted_vs_rnea;
 mod excitation_panda;
+mod excitation_pieces;
 mod excitation_torque_limits;
 mod excitation_ur5e;
 mod feasible_bad_input;
