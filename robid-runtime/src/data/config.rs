@@ -33,7 +33,7 @@
 //! validation_range = [0, 15750]  # optional sample range of each validation file (default: all)
 //!
 //! [estimation]
-//! method = "wls"                 # "ols", "wls", "rls" or "energy"
+//! method = "wls"                 # "ols", "wls", "rls", "link-by-link" or "energy"
 //! rank_tolerance = 1e-10         # singular values below this times the largest are zero
 //! forgetting = 1.0               # RLS forgetting factor, 0 < lambda <= 1
 //! energy_window = 0.05           # s, one energy-model equation per window
@@ -432,6 +432,10 @@ pub enum Method {
     Wls,
     /// Recursive least squares with forgetting factor.
     Rls,
+    /// Link by link from the last joint's torque backwards, each step by recursive least
+    /// squares with `estimation.forgetting` (Zomaya 1994).
+    #[serde(rename = "link-by-link")]
+    LinkByLink,
     /// The energy (power balance) model: one equation per window of
     /// `estimation.energy_window` seconds, no accelerations needed.
     Energy,

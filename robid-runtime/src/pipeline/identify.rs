@@ -13,7 +13,7 @@ use crate::data::{Config, Dataset, Method, Warning, check_joints};
 use crate::error::{Error, Result};
 use crate::estimate::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, Observation, QualityWarning,
-    dominated_columns, energy, model_energy_observation, ols, rls, wls,
+    dominated_columns, energy, link_by_link, model_energy_observation, ols, rls, wls,
 };
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
@@ -178,6 +178,7 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
         Method::Ols => ols(obs, e.rank_tolerance),
         Method::Wls => wls(obs, e.rank_tolerance),
         Method::Rls => rls(obs, e.forgetting, e.rank_tolerance),
+        Method::LinkByLink => link_by_link(obs, e.forgetting, e.rank_tolerance),
         Method::Energy => Err(Error::setting(
             "Config",
             "estimation.method",

@@ -139,7 +139,7 @@ fn labelled_fit(prediction: &Prediction) -> FitEntry {
 pub struct Report {
     /// Robot name.
     pub robot: String,
-    /// "ols", "wls", "rls" or "energy".
+    /// "ols", "wls", "rls", "link-by-link" or "energy".
     pub method: String,
     /// Equations used (rows of W).
     pub samples: usize,
