@@ -8,6 +8,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod model;
+pub mod online;
 mod real;
 pub mod rng;
 pub mod wrench;

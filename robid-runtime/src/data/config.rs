@@ -35,7 +35,7 @@
 //!                                # first sample; Milella's piece-wise identification)
 //!
 //! [estimation]
-//! method = "wls"                 # "ols", "wls", "rls", "energy" or "per-axis"
+//! method = "wls"                 # "ols", "wls", "rls", "link-by-link", "energy" or "per-axis"
 //! rank_tolerance = 1e-10         # singular values below this times the largest are zero
 //! forgetting = 1.0               # RLS forgetting factor, 0 < lambda <= 1
 //! energy_window = 0.05           # s, one energy-model equation per window
@@ -444,6 +444,10 @@ pub enum Method {
     Wls,
     /// Recursive least squares with forgetting factor.
     Rls,
+    /// Link by link from the last joint's torque backwards, each step by recursive least
+    /// squares with `estimation.forgetting` (Zomaya 1994).
+    #[serde(rename = "link-by-link")]
+    LinkByLink,
     /// The energy (power balance) model: one equation per window of
     /// `estimation.energy_window` seconds, no accelerations needed.
     Energy,
@@ -811,7 +815,7 @@ impl Config {
                 return bad(
                     "processing.pieces",
                     "the energy model integrates over contiguous windows of its own; use \
-                     pieces with ols, wls, rls or per-axis"
+                     pieces with ols, wls, rls, link-by-link or per-axis"
                         .into(),
                 );
             }

@@ -1,5 +1,6 @@
 //! Estimators (docs/identification.md#estimators): OLS, WLS (Gautier's per-joint weights),
-//! recursive least squares with forgetting factor, and the energy model. Least squares
+//! recursive least squares with forgetting factor (also link by link, Zomaya's order),
+//! and the energy model. Least squares
 //! always goes through QR and an SVD of R with a relative rank threshold, never the normal
 //! equations.
 
@@ -7,6 +8,7 @@ mod energy;
 mod error;
 mod known;
 mod least_squares;
+mod link_by_link;
 mod lstsq;
 pub(crate) use lstsq::condition_number;
 mod observation;
@@ -21,6 +23,7 @@ pub use energy::{
 pub use error::EstimateError;
 pub use known::KnownParameters;
 pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
+pub use link_by_link::{link_by_link, link_by_link_steps};
 pub use observation::Observation;
 pub use per_axis::{AxisFit, PerAxis, per_axis};
 #[cfg(test)]

@@ -17,6 +17,9 @@ pub enum Estimator {
     Wls,
     /// Recursive least squares.
     Rls,
+    /// Link by link from the last link backwards, recursive least squares at each step.
+    #[serde(rename = "link-by-link")]
+    LinkByLink,
     /// Energy (power balance) model.
     Energy,
     /// Per-axis least squares (Milella): each parameter from the joint equation that
@@ -32,6 +35,7 @@ impl Estimator {
             Estimator::Ols => "ols",
             Estimator::Wls => "wls",
             Estimator::Rls => "rls",
+            Estimator::LinkByLink => "link-by-link",
             Estimator::Energy => "energy",
             Estimator::PerAxis => "per-axis",
         }

@@ -86,6 +86,18 @@ impl Rls {
 /// every equation once: no iteration to cap. A state that overflowed (possible with a
 /// forgetting factor below 1 on poorly excited data) is an error, not NaN.
 pub fn rls(obs: &Observation, lambda: f64, tolerance: f64) -> Result<Estimate> {
+    let (beta, p) = recursion(obs, lambda, tolerance)?;
+    let cond = condition_number(&obs.w, &obs.names)?;
+    assemble(Estimator::Rls, obs, obs, beta, &p, cond)
+}
+
+/// The recursion of [`rls`] without the statistics: the final estimate and `P`, checked
+/// (tolerance, rank, finite result).
+pub(crate) fn recursion(
+    obs: &Observation,
+    lambda: f64,
+    tolerance: f64,
+) -> Result<(DVector<f64>, DMatrix<f64>)> {
     check_tolerance(tolerance)?;
     // the batch solution checks the rank
     solve(&obs.w, &obs.y, &obs.names, tolerance)?;
@@ -119,8 +131,7 @@ pub fn rls(obs: &Observation, lambda: f64, tolerance: f64) -> Result<Estimate> {
             ),
         });
     }
-    let cond = condition_number(&obs.w, &obs.names)?;
-    assemble(Estimator::Rls, obs, obs, beta, &p, cond)
+    Ok((beta, p))
 }
 
 #[cfg(test)]

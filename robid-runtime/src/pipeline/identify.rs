@@ -13,7 +13,8 @@ use crate::data::{Config, Dataset, Method, ParameterFile, Warning, check_joints}
 use crate::error::{Error, Result};
 use crate::estimate::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, KnownParameters, Observation,
-    QualityWarning, dominated_columns, energy, model_energy_observation, ols, per_axis, rls, wls,
+    QualityWarning, dominated_columns, energy, link_by_link, model_energy_observation, ols,
+    per_axis, rls, wls,
 };
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
@@ -179,6 +180,7 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
         Method::Wls => wls(obs, e.rank_tolerance),
         Method::Rls => rls(obs, e.forgetting, e.rank_tolerance),
         Method::PerAxis => per_axis(obs, e.rank_tolerance).map(|p| p.estimate),
+        Method::LinkByLink => link_by_link(obs, e.forgetting, e.rank_tolerance),
         Method::Energy => Err(Error::setting(
             "Config",
             "estimation.method",

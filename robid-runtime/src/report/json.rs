@@ -142,7 +142,7 @@ fn labelled_fit(prediction: &Prediction) -> FitEntry {
 pub struct Report {
     /// Robot name.
     pub robot: String,
-    /// "ols", "wls", "rls", "energy" or "per-axis".
+    /// "ols", "wls", "rls", "link-by-link", "energy" or "per-axis".
     pub method: String,
     /// Equations used (rows of W).
     pub samples: usize,

@@ -21,6 +21,7 @@ mod dce;
 mod interpret;
 mod lower;
 pub mod robot;
+pub mod schedule;
 mod text;
 
 #[cfg(test)]

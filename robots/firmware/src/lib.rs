@@ -5,6 +5,8 @@
 //! real check that nothing pulls in `std`.
 #![no_std]
 
+use robid_runtime::online::{OnlineRls, OnlineRlsError};
+
 robid_macros::robot_model!(file = "../descriptions/ur5e.toml");
 
 robid_macros::robot_model!(
@@ -37,4 +39,17 @@ pub fn panda_torque(
     qdd: &[f32; 7],
 ) -> [f32; 7] {
     PandaDrive.inverse_dynamics(q, qd, qdd, base)
+}
+
+/// One control period of on-line identification for the UR5e: the base regressor of the
+/// measured state (in `f64`) and one recursive least-squares update per joint, with no
+/// allocation (Zomaya's Table 1; docs/identification.md#online-recursive-least-squares).
+/// The state lives in the caller's memory, e.g. a `static` (about 10 KB for 36 parameters).
+pub fn ur5e_identify(
+    rls: &mut OnlineRls<{ Ur5e::BASE_PARAMETERS }>,
+    state: (&[f64; 6], &[f64; 6], &[f64; 6]),
+    tau: &[f64; 6],
+) -> Result<(), OnlineRlsError> {
+    let rows = Ur5e.base_regressor(state.0, state.1, state.2);
+    rls.update_rows(&rows, tau)
 }

@@ -1,5 +1,5 @@
 //! `robid identify ROBOT.toml [--data FILE...] [--config CFG.toml] [--validate FILE...]
-//! [--method ols|wls|rls|energy] [--json OUT.json] [--plot DIR] [--report OUT.html]`: base parameters with
+//! [--method ols|wls|rls|link-by-link|energy] [--json OUT.json] [--plot DIR] [--report OUT.html]`: base parameters with
 //! their uncertainty from measured data, the fit, and predictions of other files
 //! (docs/identification.md, docs/command-line.md#robid-identify). A table on stdout; JSON
 //! and SVG plots on request.
@@ -79,6 +79,8 @@ enum MethodArg {
     Wls,
     /// Recursive least squares (forgetting factor from the config).
     Rls,
+    /// Link by link from the last joint backwards, recursive least squares at each step.
+    LinkByLink,
     /// Energy (power-balance) model.
     Energy,
     /// Per-axis least squares (Milella): each joint's equation on its own.
@@ -205,6 +207,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             MethodArg::Ols => Method::Ols,
             MethodArg::Wls => Method::Wls,
             MethodArg::Rls => Method::Rls,
+            MethodArg::LinkByLink => Method::LinkByLink,
             MethodArg::Energy => Method::Energy,
             MethodArg::PerAxis => Method::PerAxis,
         };

@@ -15,6 +15,7 @@ mod inspect;
 mod model;
 mod out;
 mod payload;
+mod schedule;
 mod simulate;
 mod states;
 mod torques;

@@ -1,11 +1,14 @@
 //! `robid model ROBOT.toml [--json]`: the robot, its standard and base
 //! parameters with expressions, the unidentifiable parameters and the
-//! operation counts of the derived programs.
+//! operation counts of the derived programs; with `--schedule P`, the parallel schedule of
+//! one program (`schedule.rs`).
 
 use super::description::{self, DriveFlag};
-use super::{Error, out};
+use super::{Error, flags, out, schedule};
+use robid_runtime::model::ProgramKind;
 use robid_symbolic::program::Operations;
 use robid_symbolic::program::RobotPrograms;
+use robid_symbolic::program::schedule::MAX_PROCESSORS;
 use robid_symbolic::{Derivation, Robot};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -20,6 +23,13 @@ pub(crate) struct Args {
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
+    /// Also schedule a program's task graph on P identical processors by Zomaya's
+    /// first-fit and best-fit decreasing rules (critical path, loads, speed-up).
+    #[arg(long, value_name = "P", value_parser = flags::count(1, MAX_PROCESSORS))]
+    schedule: Option<usize>,
+    /// The program `--schedule` analyses.
+    #[arg(long, value_name = "NAME")]
+    schedule_program: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -67,26 +77,47 @@ struct Report {
     base_parameters: Vec<Base>,
     unidentifiable: Vec<String>,
     operations: serde_json::Map<String, serde_json::Value>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    schedule: Option<schedule::Report>,
 }
 
 /// Derives the model and prints it.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    let scheduled = match (args.schedule, &args.schedule_program) {
+        (Some(p), name) => Some((
+            p,
+            schedule::program_kind(name.as_deref().unwrap_or("inverse_dynamics"))?,
+        )),
+        (None, Some(_)) => {
+            return Err("--schedule-program needs --schedule P (the number of processors)".into());
+        }
+        (None, None) => None,
+    };
     let robot = description::read(&args.robot, &args.drive)?;
-    out::print(&render(&robot, args.json)?)?;
+    out::print(&render(&robot, args.json, scheduled)?)?;
     Ok(())
 }
 
-/// The model of `robot` as text or JSON.
-pub(crate) fn render(robot: &Robot, json: bool) -> Result<String, Error> {
-    let report = derive(robot)?;
+/// The model of `robot` as text or JSON, with the schedule of a program on a number of
+/// processors when asked.
+pub(crate) fn render(
+    robot: &Robot,
+    json: bool,
+    scheduled: Option<(usize, ProgramKind)>,
+) -> Result<String, Error> {
+    let report = derive(robot, scheduled)?;
     Ok(if json {
         serde_json::to_string_pretty(&report)? + "\n"
     } else {
-        text(robot, &report)
+        let mut t = text(robot, &report);
+        if let Some(s) = &report.schedule {
+            t.push_str(&schedule::text(s));
+        }
+        t
     })
 }
 
-fn derive(robot: &Robot) -> Result<Report, Error> {
+fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Report, Error> {
     let mut d = Derivation::new(robot);
     let b = d.base_parameters()?;
     let mut base_parameters = Vec::with_capacity(b.base.len());
@@ -127,6 +158,10 @@ fn derive(robot: &Robot) -> Result<Report, Error> {
             serde_json::to_value(Counts::from(program.operations()))?,
         );
     }
+    let schedule = match scheduled {
+        Some((p, kind)) => Some(schedule::analyse(&programs, kind, p)?),
+        None => None,
+    };
     Ok(Report {
         name: robot.name().to_owned(),
         dof: robot.dof(),
@@ -139,6 +174,7 @@ fn derive(robot: &Robot) -> Result<Report, Error> {
             .map(|&s| b.standard[s].to_string())
             .collect(),
         operations,
+        schedule,
     })
 }
 

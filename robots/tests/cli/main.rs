@@ -13,6 +13,7 @@ mod flexible;
 mod friction;
 mod payload;
 mod reference;
+mod schedule;
 mod sequence;
 mod stdout;
 mod subcommands;

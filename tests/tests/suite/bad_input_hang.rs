@@ -60,6 +60,7 @@ fn a_huge_sample_is_named_at_load_time_for_every_method() {
         Method::Wls,
         Method::Rls,
         Method::Energy,
+        Method::LinkByLink,
         Method::PerAxis,
     ] {
         let mut config = Config::default_mapping();

@@ -40,3 +40,4 @@ mod rnea_agrees;
 mod simulation_model;
 mod standard_vs_modified;
 mod wrench_link;
+mod zomaya_link_by_link;

@@ -1,0 +1,254 @@
+//! Recursive least squares that runs sample by sample on a controller: fixed-size arrays,
+//! no allocation, `no_std` (docs/identification.md#online-recursive-least-squares).
+//!
+//! The same recursion as the batch estimator of the pipeline (`estimate::Rls`), after
+//! Zomaya's Table 1: for each equation `y = phi' beta`,
+//!
+//! ```text
+//! L    = P phi / (lambda + phi' P phi)
+//! beta = beta + L (y - phi' beta)
+//! P    = (P - L (P phi)') / lambda          kept symmetric
+//! ```
+//!
+//! with `0 < lambda <= 1` the forgetting factor and `P(0) = p0 I`, `p0 > 0`.
+//!
+//! ## Reference
+//! A. Y. Zomaya, "Extraction and computation of identifiable parameters in robot dynamic
+//! models: theory and application", IEE Proceedings - Control Theory and Applications
+//! 141(1), 1994 (Table 1: recursive least squares with a forgetting factor).
+
+use core::fmt;
+
+use crate::model::LengthError;
+
+/// The largest diagonal entry of `P` an update may produce. `P` after an update is at most
+/// `P / lambda` (in the order of positive semidefinite matrices), so an update whose
+/// `max diag(P) / lambda` exceeds this is refused before it changes anything: the state
+/// never overflows, it stops (estimator wind-up with a forgetting factor and no excitation).
+pub const P_LIMIT: f64 = 1e150;
+
+/// What an [`OnlineRls`] refused.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum OnlineRlsError {
+    /// The forgetting factor is not in `(0, 1]`.
+    Forgetting(f64),
+    /// `p0` is not positive and finite.
+    InitialCovariance(f64),
+    /// An input value is NaN or infinite; `what` is `phi` or `y`, `index` its entry.
+    NonFinite {
+        /// `phi` or `y`.
+        what: &'static str,
+        /// The entry.
+        index: usize,
+    },
+    /// `lambda + phi' P phi` is not positive and finite: `P` lost its positive
+    /// definiteness to rounding (restart with [`OnlineRls::reset`]).
+    Denominator(f64),
+    /// The update would push `P` beyond [`P_LIMIT`]: the data do not excite every
+    /// parameter and the forgetting factor inflates `P`; use a forgetting factor closer to 1.
+    WindUp(f64),
+    /// A slice has the wrong length.
+    Length(LengthError),
+}
+
+impl fmt::Display for OnlineRlsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Forgetting(l) => write!(
+                f,
+                "the forgetting factor {l} must satisfy 0 < lambda <= 1 (1 keeps every equation)"
+            ),
+            Self::InitialCovariance(p) => write!(
+                f,
+                "P(0) = p0 I needs p0 > 0 and finite, not {p0}; a large p0 (1e6 to 1e8 times \
+                 1 / |phi|^2) trusts the data over the zero start",
+                p0 = p
+            ),
+            Self::NonFinite { what, index } => write!(
+                f,
+                "{what}[{index}] is NaN or infinite; the update was skipped and the state is unchanged"
+            ),
+            Self::Denominator(d) => write!(
+                f,
+                "lambda + phi' P phi = {d} is not positive: P lost its positive definiteness \
+                 to rounding; reset the estimator"
+            ),
+            Self::WindUp(p) => write!(
+                f,
+                "the update would make P as large as {p:e} (limit {P_LIMIT:e}): the data do not \
+                 excite every parameter; use a forgetting factor closer to 1"
+            ),
+            Self::Length(e) => e.fmt(f),
+        }
+    }
+}
+
+impl core::error::Error for OnlineRlsError {}
+
+impl From<LengthError> for OnlineRlsError {
+    fn from(e: LengthError) -> Self {
+        Self::Length(e)
+    }
+}
+
+/// Recursive least squares for `N` parameters in fixed arrays: no allocation, `no_std`.
+///
+/// Every refused update leaves the state as it was, so the estimate is never NaN.
+///
+/// ```
+/// use robid_runtime::online::OnlineRls;
+/// // y = 2 x + 1, one equation at a time
+/// let mut rls = OnlineRls::<2>::new(1.0, 1e8).unwrap();
+/// for k in 0..50 {
+///     let x = (k as f64 * 0.3).sin();
+///     rls.update(&[x, 1.0], 2.0 * x + 1.0).unwrap();
+/// }
+/// let [slope, offset] = *rls.estimate();
+/// assert!((slope - 2.0).abs() < 1e-6 && (offset - 1.0).abs() < 1e-6);
+/// ```
+///
+/// With a model compiled by `robot_model!`, the base regressor's rows (row-major, one row
+/// per joint) and the measured torques are one update per sample:
+///
+/// ```
+/// use robid_runtime::Model;
+/// use robid_runtime::online::{OnlineRls, OnlineRlsError};
+///
+/// /// One control period: the regressor of the measured state, then one update.
+/// fn step<const B: usize>(
+///     model: &dyn Model,
+///     rls: &mut OnlineRls<B>,
+///     state: (&[f64], &[f64], &[f64]),
+///     tau: &[f64],
+///     regressor: &mut [f64], // dof * B entries, kept between calls: nothing is allocated
+/// ) -> Result<(), OnlineRlsError> {
+///     model.base_regressor_into(state.0, state.1, state.2, regressor)?;
+///     rls.update_rows(regressor, tau)
+/// }
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct OnlineRls<const N: usize> {
+    beta: [f64; N],
+    p: [[f64; N]; N],
+    lambda: f64,
+    p0: f64,
+    updates: u64,
+}
+
+impl<const N: usize> OnlineRls<N> {
+    /// `beta = 0`, `P = p0 I`, forgetting factor `lambda` in `(0, 1]`.
+    pub fn new(lambda: f64, p0: f64) -> Result<Self, OnlineRlsError> {
+        if !(lambda > 0.0 && lambda <= 1.0) {
+            return Err(OnlineRlsError::Forgetting(lambda));
+        }
+        if !(p0 > 0.0 && p0 <= P_LIMIT) {
+            return Err(OnlineRlsError::InitialCovariance(p0));
+        }
+        let mut s = Self {
+            beta: [0.0; N],
+            p: [[0.0; N]; N],
+            lambda,
+            p0,
+            updates: 0,
+        };
+        s.reset();
+        Ok(s)
+    }
+
+    /// Back to `beta = 0`, `P = p0 I`.
+    pub fn reset(&mut self) {
+        self.beta = [0.0; N];
+        self.p = [[0.0; N]; N];
+        for (i, row) in self.p.iter_mut().enumerate() {
+            row[i] = self.p0;
+        }
+        self.updates = 0;
+    }
+
+    /// One equation `y = phi' beta`; returns the prediction error `y - phi' beta` before
+    /// the update. A refused update changes nothing.
+    pub fn update(&mut self, phi: &[f64; N], y: f64) -> Result<f64, OnlineRlsError> {
+        if let Some(index) = phi.iter().position(|v| !v.is_finite()) {
+            return Err(OnlineRlsError::NonFinite { what: "phi", index });
+        }
+        if !y.is_finite() {
+            return Err(OnlineRlsError::NonFinite {
+                what: "y",
+                index: 0,
+            });
+        }
+        // ph = P phi
+        let mut ph = [0.0; N];
+        for (out, row) in ph.iter_mut().zip(&self.p) {
+            *out = dot(row, phi);
+        }
+        let denom = self.lambda + dot(phi, &ph);
+        if !(denom > 0.0 && denom.is_finite()) {
+            return Err(OnlineRlsError::Denominator(denom));
+        }
+        let largest = self
+            .p
+            .iter()
+            .enumerate()
+            .map(|(i, r)| r[i])
+            .fold(0.0, f64::max);
+        if !(largest / self.lambda <= P_LIMIT) {
+            return Err(OnlineRlsError::WindUp(largest / self.lambda));
+        }
+        let err = y - dot(phi, &self.beta);
+        for (b, h) in self.beta.iter_mut().zip(&ph) {
+            *b += h / denom * err;
+        }
+        // P = (P - ph ph' / denom) / lambda, computed on the upper triangle and mirrored
+        for i in 0..N {
+            for k in i..N {
+                let v = (0.5 * (self.p[i][k] + self.p[k][i]) - ph[i] * ph[k] / denom) / self.lambda;
+                self.p[i][k] = v;
+                self.p[k][i] = v;
+            }
+        }
+        self.updates += 1;
+        Ok(err)
+    }
+
+    /// One sample of a robot: `rows` is the base regressor row-major (one row of `N` per
+    /// joint, as [`crate::Model::base_regressor_into`] writes it) and `tau` the joint
+    /// torques; one update per joint in joint order. The lengths are checked before any
+    /// update; an update refused stops there (earlier joints of the sample are kept).
+    pub fn update_rows(&mut self, rows: &[f64], tau: &[f64]) -> Result<(), OnlineRlsError> {
+        crate::model::check_length("out", rows, tau.len() * N)?;
+        for (row, &y) in rows.chunks_exact(N).zip(tau) {
+            let phi: &[f64; N] = crate::model::fixed("out", row)?;
+            self.update(phi, y)?;
+        }
+        Ok(())
+    }
+
+    /// The current estimate.
+    pub fn estimate(&self) -> &[f64; N] {
+        &self.beta
+    }
+
+    /// The current `P` (for `lambda = 1`, `(p0^-1 I + W'W)^-1`, which tends to `(W'W)^-1`).
+    pub fn covariance(&self) -> &[[f64; N]; N] {
+        &self.p
+    }
+
+    /// The forgetting factor.
+    pub fn forgetting(&self) -> f64 {
+        self.lambda
+    }
+
+    /// Updates accepted since the start or the last [`reset`](Self::reset).
+    pub fn updates(&self) -> u64 {
+        self.updates
+    }
+}
+
+fn dot<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+#[cfg(all(test, feature = "std"))]
+mod tests;
