@@ -25,6 +25,7 @@
 //! lowpass = { cutoff = 25.0, order = 4, signals = ["q"] }   # Hz or "auto", zero-phase Butterworth
 //! velocity = "auto"              # "data", "differentiate" or "auto" (data when given)
 //! acceleration = "auto"
+//! differentiation = { method = "savitzky-golay", window = 21, order = 3 }  # or "central" (default)
 //! trim = 20                      # samples dropped at each end of the range (at least one
 //!                                # settling time of the low-pass at each end of the record)
 //! decimation = 100               # total factor (stages of <= 10) or a list [10, 10]
@@ -58,6 +59,7 @@
 //! | `processing.lowpass.cutoff` | 0 < cutoff < the Nyquist frequency of the data, or `"auto"` |
 //! | `processing.lowpass.order` | 1 to 20 |
 //! | `processing.decimation` | factors >= 1, product <= 10,000 |
+//! | `processing.differentiation` | `method` `"central"` or `"savitzky-golay"`; for the latter `window` odd, 3 to 1,001, and `order` 2 to 10, below the window |
 //! | `processing.trim` | <= 50,000,000 |
 //! | `processing.rest_velocity` | 0 <= v <= 1e6 |
 //! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end |
@@ -79,6 +81,7 @@ use crate::limits::{
     MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
     MIN_FACTOR, MIN_SAMPLE_RATE,
 };
+use crate::signal::SavitzkyGolay;
 
 /// A complete, annotated config: every key with its default or an example value, and what
 /// it does (`robid identify --example-config` prints it; README.md shows it). It parses
@@ -373,6 +376,77 @@ pub enum Derivative {
     Differentiate,
 }
 
+/// How velocities and accelerations are differentiated (`processing.differentiation`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DifferentiationMethod {
+    /// Central differences of the (filtered) lower derivative.
+    #[default]
+    Central,
+    /// The derivative of a local least-squares polynomial (Savitzky and Golay 1964,
+    /// Milella's least-squares-fit estimator), `window` and `order` required.
+    SavitzkyGolay,
+}
+
+/// `processing.differentiation`: the method, and for `"savitzky-golay"` its window
+/// (odd, samples) and polynomial order (2 or more, below the window)
+/// (docs/identification.md#savitzky-golay-derivatives).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Differentiation {
+    /// The method.
+    #[serde(default)]
+    pub method: DifferentiationMethod,
+    /// Window length in samples (Savitzky-Golay only).
+    pub window: Option<usize>,
+    /// Polynomial order (Savitzky-Golay only).
+    pub order: Option<usize>,
+}
+
+impl Differentiation {
+    /// The Savitzky-Golay differentiator, `None` for central differences; errors name the
+    /// key `processing.differentiation.*` (owner `Config`).
+    pub fn savitzky_golay(&self) -> Result<Option<SavitzkyGolay>> {
+        let key = |k: &str| format!("processing.differentiation.{k}");
+        match self.method {
+            DifferentiationMethod::Central => {
+                if let Some(k) = [("window", self.window), ("order", self.order)]
+                    .iter()
+                    .find_map(|(k, v)| v.map(|_| k))
+                {
+                    return Err(Error::setting(
+                        "Config",
+                        &key(k),
+                        "applies to method = \"savitzky-golay\" only; remove it or choose that method",
+                    ));
+                }
+                Ok(None)
+            }
+            DifferentiationMethod::SavitzkyGolay => {
+                let (Some(window), Some(order)) = (self.window, self.order) else {
+                    return Err(Error::setting(
+                        "Config",
+                        &key(if self.window.is_none() {
+                            "window"
+                        } else {
+                            "order"
+                        }),
+                        "method = \"savitzky-golay\" needs a window (odd, samples) and an order, e.g. { method = \"savitzky-golay\", window = 21, order = 3 }",
+                    ));
+                };
+                SavitzkyGolay::new(window, order)
+                    .map(Some)
+                    .map_err(|e| match e {
+                        Error::Setting {
+                            key: k, problem, ..
+                        } => Error::setting("Config", &key(&k), problem),
+                        e => e,
+                    })
+            }
+        }
+    }
+}
+
 /// A total decimation factor or explicit stages.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
@@ -401,6 +475,10 @@ pub struct Processing {
     /// Acceleration source.
     #[serde(default)]
     pub acceleration: Derivative,
+    /// How velocities and accelerations are differentiated: central differences (default)
+    /// or Savitzky-Golay.
+    #[serde(default)]
+    pub differentiation: Differentiation,
     /// Samples dropped at each end of the used range after filtering and differentiation.
     /// With a low-pass, at least one settling time is dropped at each real end of the
     /// record in any case: there the larger of the two counts applies (they do not add).
@@ -710,6 +788,7 @@ impl Config {
                 );
             }
         }
+        p.differentiation.savitzky_golay()?;
         if p.trim > MAX_ROWS {
             return bad(
                 "processing.trim",
@@ -911,5 +990,68 @@ method = "wls"
             e.to_string(),
             "Config `processing.lowpass.cutoff`: -1 Hz must be positive"
         );
+    }
+
+    /// `processing.differentiation`: the Savitzky-Golay settings are checked and every
+    /// mistake names its key at its line.
+    #[test]
+    fn milella_differentiation_settings_are_checked() {
+        let with = |d: &str| {
+            let text = EXAMPLE.replace("rest_velocity = 0.1", &format!("differentiation = {d}"));
+            Config::from_toml_str(&text, Path::new("c.toml")).unwrap()
+        };
+        let good = with("{ method = \"savitzky-golay\", window = 21, order = 3 }");
+        good.check(2).unwrap();
+        let sg = good
+            .processing
+            .differentiation
+            .savitzky_golay()
+            .unwrap()
+            .unwrap();
+        assert_eq!((sg.window(), sg.order()), (21, 3));
+        assert!(with("{ method = \"central\" }").check(2).is_ok());
+        for (d, key, says) in [
+            (
+                "{ method = \"savitzky-golay\", window = 20, order = 3 }",
+                "window",
+                "odd",
+            ),
+            (
+                "{ method = \"savitzky-golay\", window = 5, order = 5 }",
+                "order",
+                "not below the window",
+            ),
+            (
+                "{ method = \"savitzky-golay\", window = 21, order = 1 }",
+                "order",
+                "2 at least",
+            ),
+            (
+                "{ method = \"savitzky-golay\", window = 21 }",
+                "order",
+                "needs a window",
+            ),
+            (
+                "{ method = \"central\", window = 21 }",
+                "window",
+                "savitzky-golay\" only",
+            ),
+        ] {
+            let e = with(d).check(2).unwrap_err();
+            assert!(
+                matches!(&e, Error::Data(DataError::ConfigKey { line: Some(13), key: k, problem, .. })
+                    if *k == format!("processing.differentiation.{key}") && problem.contains(says)),
+                "{d}: {e}"
+            );
+        }
+        let e = Config::from_toml_str(
+            &EXAMPLE.replace(
+                "rest_velocity = 0.1",
+                "differentiation = { method = \"spline\" }",
+            ),
+            Path::new("c.toml"),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("spline"), "{e}");
     }
 }

@@ -15,8 +15,9 @@ mod time;
 
 pub(crate) use config::nonzero;
 pub use config::{
-    AngleUnit, Columns, Config, ConfigOrigin, Cutoff, Decimation, Derivative, EXAMPLE_CONFIG,
-    Estimation, Lowpass, Method, PerJoint, Processing, Signal, Source, Units,
+    AngleUnit, Columns, Config, ConfigOrigin, Cutoff, Decimation, Derivative, Differentiation,
+    DifferentiationMethod, EXAMPLE_CONFIG, Estimation, Lowpass, Method, PerJoint, Processing,
+    Signal, Source, Units,
 };
 pub use dataset::{DataOrigin, Dataset};
 pub use error::DataError;

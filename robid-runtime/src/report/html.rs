@@ -100,10 +100,12 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
     );
     let _ = writeln!(
         h,
-        "<p>Method <b>{}</b>, {} equations, condition number {:.1}.</p>",
+        "<p>Method <b>{}</b>, {} equations, condition number {:.1}, upper bound on the \
+         relative estimation error {:.1} % (cond(W) ||residual|| / ||torque||, Milella).</p>",
         escape(&report.method),
         report.samples,
-        report.condition_number
+        report.condition_number,
+        report.error_bound_percent
     );
     if let Some(rows) = &report.estimation {
         let _ = writeln!(h, "<p>Estimation rows: {}.</p>", escape(&rows.to_string()));
@@ -189,6 +191,7 @@ mod tests {
             method: "wls".into(),
             samples: 100,
             condition_number: 12.5,
+            error_bound_percent: 3.5,
             estimation: None,
             parameters: vec![ParameterEntry {
                 name: "ZZR1".into(),

@@ -145,6 +145,10 @@ pub struct Report {
     pub samples: usize,
     /// Condition number of W.
     pub condition_number: f64,
+    /// Milella's upper bound on the relative estimation error, `100 cond(W) ||rho|| /
+    /// ||y||` percent ([`Estimate::error_bound`], docs/identification.md#error-bound).
+    #[serde(default)]
+    pub error_bound_percent: f64,
     /// The rows of the file used for estimation (null when not known).
     #[serde(default)]
     pub estimation: Option<UsedRows>,
@@ -200,6 +204,7 @@ impl Report {
             method: estimate.method.name().to_string(),
             samples: estimate.rows,
             condition_number: estimate.condition_number,
+            error_bound_percent: 100.0 * estimate.error_bound,
             estimation: None,
             parameters,
             fit: fit.into(),
@@ -294,6 +299,9 @@ impl Report {
         };
         if !self.condition_number.is_finite() {
             return bad("the report's condition number".into());
+        }
+        if !self.error_bound_percent.is_finite() {
+            return bad("the report's bound on the relative estimation error".into());
         }
         for p in &self.parameters {
             if !(p.value.is_finite() && p.std.is_finite())

@@ -9,8 +9,12 @@ pub fn text_table(report: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "robot {}  method {}  equations {}  cond(W) {:.1}",
-        report.robot, report.method, report.samples, report.condition_number
+        "robot {}  method {}  equations {}  cond(W) {:.1}  error bound {:.1} %",
+        report.robot,
+        report.method,
+        report.samples,
+        report.condition_number,
+        report.error_bound_percent
     );
     if let Some(rows) = &report.estimation {
         let _ = writeln!(s, "estimation rows: {rows}");
@@ -120,6 +124,7 @@ mod tests {
             rel_std_percent: vec![100.0 * 0.04 / 2.24, f64::INFINITY],
             sigma2: 1.0,
             condition_number: 1019.0,
+            error_bound: 0.25,
             residual_rms: vec![1.5],
             rows: 2079,
             weights: None,
@@ -225,6 +230,7 @@ mod tests {
             rel_std_percent: vec![0.83, 45.45],
             sigma2: 1.0,
             condition_number: 6.9e9,
+            error_bound: 12.0,
             residual_rms: vec![1.0],
             rows: 100,
             weights: None,
