@@ -38,6 +38,10 @@
 //! rank_tolerance = 1e-10         # singular values below this times the largest are zero
 //! forgetting = 1.0               # RLS forgetting factor, 0 < lambda <= 1
 //! energy_window = 0.05           # s, one energy-model equation per window
+//!
+//! [runs]                         # repeated acquisitions of one trajectory (see `Runs`)
+//! mode = "stacked"               # or "averaged" (sample-wise mean, same time grid)
+//! files = ["run1.csv", "run2.csv"]   # one entry per run, a file per [[source]]
 //! ```
 //!
 //! Without a config file robid uses [`Config::default_mapping`]: the header
@@ -67,6 +71,7 @@
 //! | `estimation.forgetting` | 0 < lambda <= 1 |
 //! | `estimation.energy_window` | 0 < window <= 1e6 s |
 //! | `extra_column` | at most 1,000 |
+//! | `runs.files` | at least 2 runs, each with one file per `[[source]]`; `mode = "stacked"` not with `method = "energy"` |
 
 use crate::DataError;
 use std::path::{Path, PathBuf};
@@ -137,6 +142,9 @@ pub struct Config {
     /// Estimator options.
     #[serde(default)]
     pub estimation: Estimation,
+    /// Repeated acquisitions of one trajectory, identified together or averaged (none
+    /// when absent).
+    pub runs: Option<Runs>,
     /// Folder that relative `file` paths are resolved against (the config file's folder).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -159,6 +167,7 @@ impl Default for Config {
             extra_columns: Vec::new(),
             processing: Processing::default(),
             estimation: Estimation::default(),
+            runs: None,
             base_dir: None,
             origin: ConfigOrigin::Code,
         }
@@ -497,6 +506,57 @@ pub struct Processing {
     /// the whole file). Validation files are processed on their own: `range` does not
     /// apply to them.
     pub validation_range: Option<[usize; 2]>,
+}
+
+/// How repeated acquisitions of one trajectory are combined (`runs.mode`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RunMode {
+    /// The runs' equations stacked into one system (each run processed on its own).
+    #[default]
+    Stacked,
+    /// The sample-wise mean of the runs (the same time grid), processed as one record:
+    /// the noise of the mean is that of one run over sqrt(runs).
+    Averaged,
+}
+
+/// The files of one run: one file, or one file per `[[source]]` table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum RunFiles {
+    /// The file of a config with one `[[source]]`.
+    One(PathBuf),
+    /// One file per `[[source]]`, in their order.
+    Each(Vec<PathBuf>),
+}
+
+impl RunFiles {
+    /// The files, in `[[source]]` order.
+    pub fn paths(&self) -> Vec<PathBuf> {
+        match self {
+            RunFiles::One(p) => vec![p.clone()],
+            RunFiles::Each(v) => v.clone(),
+        }
+    }
+}
+
+/// `[runs]`: repeated acquisitions of the same trajectory (Milella's ten acquisitions),
+/// identified together and each on its own, with the run-to-run spread reported
+/// (docs/identification.md#repeated-acquisitions).
+///
+/// ```toml
+/// [runs]
+/// mode = "averaged"            # or "stacked" (default)
+/// files = ["run1.csv", "run2.csv", "run3.csv"]   # or [["pos1.csv", "cur1.csv"], ...]
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Runs {
+    /// Stacked or averaged.
+    #[serde(default)]
+    pub mode: RunMode,
+    /// The runs: at least two, each with one file per `[[source]]` (relative to the config).
+    pub files: Vec<RunFiles>,
 }
 
 /// Estimation method of the pipeline.
@@ -864,6 +924,9 @@ impl Config {
                 format!("{} must lie in (0, 1)", num(e.rank_tolerance)),
             );
         }
+        if let Some(runs) = &self.runs {
+            self.check_runs(runs)?;
+        }
         self.drive.check(dof)?;
         if self.extra_columns.len() > MAX_EXTRA_COLUMNS {
             return bad(
@@ -876,6 +939,42 @@ impl Config {
         }
         for (i, c) in self.extra_columns.iter().enumerate() {
             c.check_keyed(dof, &format!("extra_column[{}]", i + 1))?;
+        }
+        Ok(())
+    }
+}
+
+impl Config {
+    fn check_runs(&self, runs: &Runs) -> Result<()> {
+        if runs.files.len() < 2 {
+            return Err(Error::setting(
+                "Config",
+                "runs.files",
+                format!(
+                    "{} run(s): repeated acquisitions need at least two; list one entry per run or remove [runs]",
+                    runs.files.len()
+                ),
+            ));
+        }
+        let per_run = self.sources.len().max(1);
+        for (i, r) in runs.files.iter().enumerate() {
+            let n = r.paths().len();
+            if n != per_run {
+                return Err(Error::setting(
+                    "Config",
+                    &format!("runs.files[{}]", i + 1),
+                    format!(
+                        "{n} file(s) for a config with {per_run} [[source]] table(s); give one file per table, in their order"
+                    ),
+                ));
+            }
+        }
+        if runs.mode == RunMode::Stacked && self.estimation.method == Method::Energy {
+            return Err(Error::setting(
+                "Config",
+                "runs.mode",
+                "the energy model is built from each record's signals and cannot stack runs; use mode = \"averaged\" or another estimation.method",
+            ));
         }
         Ok(())
     }

@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::estimate::{Estimate, QualityWarning};
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::Identification;
+use crate::report::RunsEntry;
 use crate::validate::{Fit, Prediction, UsedRows, relative_improvement};
 
 /// A warning in the report: machine-readable kind and parameters, and the message a
@@ -118,7 +119,7 @@ pub struct ReferenceFit {
 }
 
 /// The fit of a prediction with the torque it compares with (see [`FitEntry::torque`]).
-fn labelled_fit(prediction: &Prediction) -> FitEntry {
+pub(crate) fn labelled_fit(prediction: &Prediction) -> FitEntry {
     let unfiltered = prediction.unfiltered_fit();
     FitEntry {
         torque: Some(
@@ -166,6 +167,10 @@ pub struct Report {
     /// fit; docs/identification.md#quality-warnings).
     #[serde(default)]
     pub warnings: Vec<ReportWarning>,
+    /// Repeated acquisitions (`[runs]`): each run alone and the run-to-run spread (null
+    /// for one data set).
+    #[serde(default)]
+    pub runs: Option<RunsEntry>,
 }
 
 impl From<&Fit> for FitEntry {
@@ -211,6 +216,7 @@ impl Report {
             validation: Vec::new(),
             cutoff: None,
             warnings: estimate.warnings.iter().map(ReportWarning::from).collect(),
+            runs: None,
         }
     }
 
@@ -302,6 +308,9 @@ impl Report {
         }
         if !self.error_bound_percent.is_finite() {
             return bad("the report's bound on the relative estimation error".into());
+        }
+        if self.runs.as_ref().is_some_and(|r| !r.is_finite()) {
+            return bad("the report's figures of the repeated runs".into());
         }
         for p in &self.parameters {
             if !(p.value.is_finite() && p.std.is_finite())

@@ -90,6 +90,9 @@ pub fn text_table(report: &Report) -> String {
             );
         }
     }
+    if let Some(r) = &report.runs {
+        s.push_str(&r.text());
+    }
     for w in &report.warnings {
         let _ = writeln!(s, "warning: {}", w.message);
     }
@@ -203,6 +206,13 @@ mod tests {
         assert_eq!(v["method"], "wls");
         assert_eq!(v["samples"], 2079);
         assert_eq!(v["condition_number"], 1019.0);
+        // Milella's bound, as a percentage, in the JSON and the table
+        assert_eq!(v["error_bound_percent"], 25.0);
+        assert!(v["runs"].is_null());
+        assert!(text_table(&report()).contains("cond(W) 1019.0  error bound 25.0 %"));
+        let mut bad = report();
+        bad.error_bound_percent = f64::INFINITY;
+        assert!(bad.check().is_err());
         assert_eq!(v["parameters"][0]["name"], "MXR2");
         assert_eq!(v["parameters"][0]["expression"], "MX2 + 0.225 M3");
         assert!((v["parameters"][0]["rel_std_percent"].as_f64().unwrap() - 1.7857).abs() < 1e-3);
