@@ -35,6 +35,7 @@
 //! | regressor channels x samples before decimation | [`MAX_OBSERVATION_ENTRIES`] = 2^30 (8 GiB) |
 //! | extra regressor columns of a config | [`MAX_EXTRA_COLUMNS`] = 1,000 |
 //! | total decimation factor | [`MAX_DECIMATION`] = 10,000 |
+//! | Savitzky-Golay window and order | window odd, 3 to [`MAX_SAVGOL_WINDOW`] = 1,001; order 2 to [`MAX_SAVGOL_ORDER`] = 10, below the window |
 //!
 //! Solvers stop at iteration caps ([`SVD_ITERATIONS`] for the SVD of least squares; the
 //! optimisers at their documented evaluation and step counts).
@@ -84,6 +85,10 @@ pub const MAX_OBSERVATION_ENTRIES: usize = 1 << 30;
 pub const MAX_EXTRA_COLUMNS: usize = 1_000;
 /// Largest total decimation factor.
 pub const MAX_DECIMATION: usize = 10_000;
+/// Longest Savitzky-Golay window (samples): its edge coefficients are window^2 numbers.
+pub const MAX_SAVGOL_WINDOW: usize = 1_001;
+/// Highest polynomial order of a Savitzky-Golay fit.
+pub const MAX_SAVGOL_ORDER: usize = 10;
 
 /// Iteration cap of the SVD in least squares (nalgebra's `try_svd`).
 pub const SVD_ITERATIONS: usize = 10_000;

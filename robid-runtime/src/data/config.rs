@@ -25,6 +25,7 @@
 //! lowpass = { cutoff = 25.0, order = 4, signals = ["q"] }   # Hz or "auto", zero-phase Butterworth
 //! velocity = "auto"              # "data", "differentiate" or "auto" (data when given)
 //! acceleration = "auto"
+//! differentiation = { method = "savitzky-golay", window = 21, order = 3 }  # or "central" (default)
 //! trim = 20                      # samples dropped at each end of the range (at least one
 //!                                # settling time of the low-pass at each end of the record)
 //! decimation = 100               # total factor (stages of <= 10) or a list [10, 10]
@@ -42,6 +43,10 @@
 //! known = "masses.toml"          # optional: a [known] table of standard parameters known
 //!                                # beforehand (not estimated; their torques move to the
 //!                                # right-hand side)
+//!
+//! [runs]                         # repeated acquisitions of one trajectory (see `Runs`)
+//! mode = "stacked"               # or "averaged" (sample-wise mean, same time grid)
+//! files = ["run1.csv", "run2.csv"]   # one entry per run, a file per [[source]]
 //! ```
 //!
 //! Without a config file robid uses [`Config::default_mapping`]: the header
@@ -63,6 +68,7 @@
 //! | `processing.lowpass.cutoff` | 0 < cutoff < the Nyquist frequency of the data, or `"auto"` |
 //! | `processing.lowpass.order` | 1 to 20 |
 //! | `processing.decimation` | factors >= 1, product <= 10,000 |
+//! | `processing.differentiation` | `method` `"central"` or `"savitzky-golay"`; for the latter `window` odd, 3 to 1,001, and `order` 2 to 10, below the window |
 //! | `processing.trim` | <= 50,000,000 |
 //! | `processing.rest_velocity` | 0 <= v <= 1e6 |
 //! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end |
@@ -72,6 +78,7 @@
 //! | `estimation.energy_window` | 0 < window <= 1e6 s |
 //! | `estimation.known` | a parameter file with a `[known]` table, its names standard parameters of the robot |
 //! | `extra_column` | at most 1,000 |
+//! | `runs.files` | at least 2 runs, each with one file per `[[source]]`; `mode = "stacked"` not with `method = "energy"` |
 
 use crate::DataError;
 use std::path::{Path, PathBuf};
@@ -86,6 +93,7 @@ use crate::limits::{
     MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
     MIN_FACTOR, MIN_SAMPLE_RATE,
 };
+use crate::signal::SavitzkyGolay;
 
 /// A complete, annotated config: every key with its default or an example value, and what
 /// it does (`robid identify --example-config` prints it; README.md shows it). It parses
@@ -141,6 +149,9 @@ pub struct Config {
     /// Estimator options.
     #[serde(default)]
     pub estimation: Estimation,
+    /// Repeated acquisitions of one trajectory, identified together or averaged (none
+    /// when absent).
+    pub runs: Option<Runs>,
     /// Folder that relative `file` paths are resolved against (the config file's folder).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -163,6 +174,7 @@ impl Default for Config {
             extra_columns: Vec::new(),
             processing: Processing::default(),
             estimation: Estimation::default(),
+            runs: None,
             base_dir: None,
             origin: ConfigOrigin::Code,
         }
@@ -380,6 +392,77 @@ pub enum Derivative {
     Differentiate,
 }
 
+/// How velocities and accelerations are differentiated (`processing.differentiation`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DifferentiationMethod {
+    /// Central differences of the (filtered) lower derivative.
+    #[default]
+    Central,
+    /// The derivative of a local least-squares polynomial (Savitzky and Golay 1964,
+    /// Milella's least-squares-fit estimator), `window` and `order` required.
+    SavitzkyGolay,
+}
+
+/// `processing.differentiation`: the method, and for `"savitzky-golay"` its window
+/// (odd, samples) and polynomial order (2 or more, below the window)
+/// (docs/identification.md#savitzky-golay-derivatives).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Differentiation {
+    /// The method.
+    #[serde(default)]
+    pub method: DifferentiationMethod,
+    /// Window length in samples (Savitzky-Golay only).
+    pub window: Option<usize>,
+    /// Polynomial order (Savitzky-Golay only).
+    pub order: Option<usize>,
+}
+
+impl Differentiation {
+    /// The Savitzky-Golay differentiator, `None` for central differences; errors name the
+    /// key `processing.differentiation.*` (owner `Config`).
+    pub fn savitzky_golay(&self) -> Result<Option<SavitzkyGolay>> {
+        let key = |k: &str| format!("processing.differentiation.{k}");
+        match self.method {
+            DifferentiationMethod::Central => {
+                if let Some(k) = [("window", self.window), ("order", self.order)]
+                    .iter()
+                    .find_map(|(k, v)| v.map(|_| k))
+                {
+                    return Err(Error::setting(
+                        "Config",
+                        &key(k),
+                        "applies to method = \"savitzky-golay\" only; remove it or choose that method",
+                    ));
+                }
+                Ok(None)
+            }
+            DifferentiationMethod::SavitzkyGolay => {
+                let (Some(window), Some(order)) = (self.window, self.order) else {
+                    return Err(Error::setting(
+                        "Config",
+                        &key(if self.window.is_none() {
+                            "window"
+                        } else {
+                            "order"
+                        }),
+                        "method = \"savitzky-golay\" needs a window (odd, samples) and an order, e.g. { method = \"savitzky-golay\", window = 21, order = 3 }",
+                    ));
+                };
+                SavitzkyGolay::new(window, order)
+                    .map(Some)
+                    .map_err(|e| match e {
+                        Error::Setting {
+                            key: k, problem, ..
+                        } => Error::setting("Config", &key(&k), problem),
+                        e => e,
+                    })
+            }
+        }
+    }
+}
+
 /// A total decimation factor or explicit stages.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
@@ -408,6 +491,10 @@ pub struct Processing {
     /// Acceleration source.
     #[serde(default)]
     pub acceleration: Derivative,
+    /// How velocities and accelerations are differentiated: central differences (default)
+    /// or Savitzky-Golay.
+    #[serde(default)]
+    pub differentiation: Differentiation,
     /// Samples dropped at each end of the used range after filtering and differentiation.
     /// With a low-pass, at least one settling time is dropped at each real end of the
     /// record in any case: there the larger of the two counts applies (they do not add).
@@ -431,6 +518,57 @@ pub struct Processing {
     /// designs them) enter the estimation; the fit is still reported on the whole range.
     #[serde(default)]
     pub pieces: Option<Vec<[f64; 2]>>,
+}
+
+/// How repeated acquisitions of one trajectory are combined (`runs.mode`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RunMode {
+    /// The runs' equations stacked into one system (each run processed on its own).
+    #[default]
+    Stacked,
+    /// The sample-wise mean of the runs (the same time grid), processed as one record:
+    /// the noise of the mean is that of one run over sqrt(runs).
+    Averaged,
+}
+
+/// The files of one run: one file, or one file per `[[source]]` table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum RunFiles {
+    /// The file of a config with one `[[source]]`.
+    One(PathBuf),
+    /// One file per `[[source]]`, in their order.
+    Each(Vec<PathBuf>),
+}
+
+impl RunFiles {
+    /// The files, in `[[source]]` order.
+    pub fn paths(&self) -> Vec<PathBuf> {
+        match self {
+            RunFiles::One(p) => vec![p.clone()],
+            RunFiles::Each(v) => v.clone(),
+        }
+    }
+}
+
+/// `[runs]`: repeated acquisitions of the same trajectory (Milella's ten acquisitions),
+/// identified together and each on its own, with the run-to-run spread reported
+/// (docs/identification.md#repeated-acquisitions).
+///
+/// ```toml
+/// [runs]
+/// mode = "averaged"            # or "stacked" (default)
+/// files = ["run1.csv", "run2.csv", "run3.csv"]   # or [["pos1.csv", "cur1.csv"], ...]
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Runs {
+    /// Stacked or averaged.
+    #[serde(default)]
+    pub mode: RunMode,
+    /// The runs: at least two, each with one file per `[[source]]` (relative to the config).
+    pub files: Vec<RunFiles>,
 }
 
 /// Estimation method of the pipeline.
@@ -736,6 +874,7 @@ impl Config {
                 );
             }
         }
+        p.differentiation.savitzky_golay()?;
         if p.trim > MAX_ROWS {
             return bad(
                 "processing.trim",
@@ -842,6 +981,9 @@ impl Config {
                 format!("{} must lie in (0, 1)", num(e.rank_tolerance)),
             );
         }
+        if let Some(runs) = &self.runs {
+            self.check_runs(runs)?;
+        }
         self.drive.check(dof)?;
         if self.extra_columns.len() > MAX_EXTRA_COLUMNS {
             return bad(
@@ -854,6 +996,42 @@ impl Config {
         }
         for (i, c) in self.extra_columns.iter().enumerate() {
             c.check_keyed(dof, &format!("extra_column[{}]", i + 1))?;
+        }
+        Ok(())
+    }
+}
+
+impl Config {
+    fn check_runs(&self, runs: &Runs) -> Result<()> {
+        if runs.files.len() < 2 {
+            return Err(Error::setting(
+                "Config",
+                "runs.files",
+                format!(
+                    "{} run(s): repeated acquisitions need at least two; list one entry per run or remove [runs]",
+                    runs.files.len()
+                ),
+            ));
+        }
+        let per_run = self.sources.len().max(1);
+        for (i, r) in runs.files.iter().enumerate() {
+            let n = r.paths().len();
+            if n != per_run {
+                return Err(Error::setting(
+                    "Config",
+                    &format!("runs.files[{}]", i + 1),
+                    format!(
+                        "{n} file(s) for a config with {per_run} [[source]] table(s); give one file per table, in their order"
+                    ),
+                ));
+            }
+        }
+        if runs.mode == RunMode::Stacked && self.estimation.method == Method::Energy {
+            return Err(Error::setting(
+                "Config",
+                "runs.mode",
+                "the energy model is built from each record's signals and cannot stack runs; use mode = \"averaged\" or another estimation.method",
+            ));
         }
         Ok(())
     }
@@ -968,5 +1146,68 @@ method = "wls"
             e.to_string(),
             "Config `processing.lowpass.cutoff`: -1 Hz must be positive"
         );
+    }
+
+    /// `processing.differentiation`: the Savitzky-Golay settings are checked and every
+    /// mistake names its key at its line.
+    #[test]
+    fn milella_differentiation_settings_are_checked() {
+        let with = |d: &str| {
+            let text = EXAMPLE.replace("rest_velocity = 0.1", &format!("differentiation = {d}"));
+            Config::from_toml_str(&text, Path::new("c.toml")).unwrap()
+        };
+        let good = with("{ method = \"savitzky-golay\", window = 21, order = 3 }");
+        good.check(2).unwrap();
+        let sg = good
+            .processing
+            .differentiation
+            .savitzky_golay()
+            .unwrap()
+            .unwrap();
+        assert_eq!((sg.window(), sg.order()), (21, 3));
+        assert!(with("{ method = \"central\" }").check(2).is_ok());
+        for (d, key, says) in [
+            (
+                "{ method = \"savitzky-golay\", window = 20, order = 3 }",
+                "window",
+                "odd",
+            ),
+            (
+                "{ method = \"savitzky-golay\", window = 5, order = 5 }",
+                "order",
+                "not below the window",
+            ),
+            (
+                "{ method = \"savitzky-golay\", window = 21, order = 1 }",
+                "order",
+                "2 at least",
+            ),
+            (
+                "{ method = \"savitzky-golay\", window = 21 }",
+                "order",
+                "needs a window",
+            ),
+            (
+                "{ method = \"central\", window = 21 }",
+                "window",
+                "savitzky-golay\" only",
+            ),
+        ] {
+            let e = with(d).check(2).unwrap_err();
+            assert!(
+                matches!(&e, Error::Data(DataError::ConfigKey { line: Some(13), key: k, problem, .. })
+                    if *k == format!("processing.differentiation.{key}") && problem.contains(says)),
+                "{d}: {e}"
+            );
+        }
+        let e = Config::from_toml_str(
+            &EXAMPLE.replace(
+                "rest_velocity = 0.1",
+                "differentiation = { method = \"spline\" }",
+            ),
+            Path::new("c.toml"),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("spline"), "{e}");
     }
 }

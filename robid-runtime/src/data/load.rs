@@ -370,6 +370,25 @@ fn check_rows(rows: &mut Option<(usize, PathBuf, Vec<u64>)>, table: &Table) -> R
     Ok(())
 }
 
+/// Loads every run of `[runs]` (files relative to the config file), in order; an error
+/// when the config has no `[runs]`. Each run is loaded like [`load`] with its files.
+pub fn load_runs(config: &Config, dof: usize) -> Result<Vec<Dataset>> {
+    let runs = config.runs.as_ref().ok_or_else(|| {
+        config.key_error(
+            "runs",
+            "no [runs] table; list the runs' files in [runs] files = [...]",
+        )
+    })?;
+    config.check(dof)?;
+    runs.files
+        .iter()
+        .map(|r| {
+            let files: Vec<PathBuf> = r.paths().iter().map(|f| config.resolve(f)).collect();
+            load(config, &files, dof)
+        })
+        .collect()
+}
+
 /// Loads with the sources' own `file` entries (relative to the config file).
 pub fn load_config_files(config: &Config, dof: usize) -> Result<Dataset> {
     load(config, &[], dof)

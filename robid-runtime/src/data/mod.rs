@@ -15,14 +15,15 @@ mod time;
 
 pub(crate) use config::nonzero;
 pub use config::{
-    AngleUnit, Columns, Config, ConfigOrigin, Cutoff, Decimation, Derivative, EXAMPLE_CONFIG,
-    Estimation, Lowpass, Method, PerJoint, Processing, Signal, Source, Units,
+    AngleUnit, Columns, Config, ConfigOrigin, Cutoff, Decimation, Derivative, Differentiation,
+    DifferentiationMethod, EXAMPLE_CONFIG, Estimation, Lowpass, Method, PerJoint, Processing,
+    RunFiles, RunMode, Runs, Signal, Source, Units,
 };
 pub use dataset::{DataOrigin, Dataset};
 pub use error::DataError;
 pub use keys::KeyMap;
 pub(crate) use load::check_joints;
-pub use load::{load, load_config_files, load_from_config_file};
+pub use load::{load, load_config_files, load_from_config_file, load_runs};
 pub use parameters::{INERTIA_TOLERANCE, PARAMETER_LIMIT, ParameterFile, ParameterTable};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};
 pub use table::{ColumnMapping, Table, read_columns, read_columns_from, read_header};

@@ -33,5 +33,5 @@ pub use quality::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, OUTLIER_ROWS, OUTLIER_SHARE, QualityWarning,
     REL_STD_WARNING,
 };
-pub use result::{Estimate, Estimator};
+pub use result::{Estimate, Estimator, error_bound};
 pub use rls::{Rls, rls};

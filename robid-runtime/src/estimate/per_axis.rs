@@ -24,7 +24,7 @@ use crate::error::{Error, Result};
 use crate::estimate::least_squares::check_tolerance;
 use crate::estimate::lstsq::column_scales;
 use crate::estimate::quality::assess;
-use crate::estimate::{Estimate, Estimator, Observation};
+use crate::estimate::{Estimate, Estimator, Observation, error_bound};
 use crate::limits::SVD_ITERATIONS;
 
 /// A parameter counts as determined by an axis when its unit vector has less than this
@@ -157,6 +157,14 @@ pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
         });
     }
     let warnings = assess(condition_number, &obs.names, &rel);
+    // Milella's bound with the worst axis's condition number and the combined residual
+    let bound = error_bound(condition_number, &r, &obs.y);
+    if !bound.is_finite() {
+        return Err(Error::NonFiniteResult {
+            what: "the error bound of the per-axis estimate".into(),
+            cause: "the residual or the condition number overflowed: check the data".into(),
+        });
+    }
     let estimate = Estimate {
         method: Estimator::PerAxis,
         names: obs.names.clone(),
@@ -170,6 +178,7 @@ pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
         weights: None,
         warnings,
         known: Vec::new(),
+        error_bound: bound,
     };
     Ok(PerAxis {
         estimate,

@@ -24,8 +24,8 @@
 //! from random starts run in parallel.
 //!
 //! ## Reference
-//! F. Milella, "Direct estimate of closed-form dynamic equation parameters of a robot:
-//! tools and methods for designing experiments" (docs/references.md#milella), Phases II
+//! F. Milella, "Direct Estimate of Closed-Form Dynamic Equation Parameters of a Robot:
+//! Tools and Methods for Designing Experiments" (docs/references.md#milella), Phases II
 //! and III: OPVA points (eq. 8), sine substitution (eq. 9), extended regressor
 //! (eqs. 13-15); see also docs/experiments.md#point-method.
 

@@ -3,8 +3,8 @@
 //! acceleration and jerk are continuous everywhere.
 //!
 //! ## Reference
-//! F. Milella, "Direct estimate of closed-form dynamic equation parameters of a robot:
-//! tools and methods for designing experiments" (docs/references.md#milella), Phase III.
+//! F. Milella, "Direct Estimate of Closed-Form Dynamic Equation Parameters of a Robot:
+//! Tools and Methods for Designing Experiments" (docs/references.md#milella), Phase III.
 
 use crate::DataError;
 use crate::error::{Error, Result};

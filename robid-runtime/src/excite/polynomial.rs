@@ -9,8 +9,8 @@
 //! c0..c3 and M the rows of d^k/ds^k [s^4..s^7] at s = 1 for k = 0..3.
 //!
 //! ## Reference
-//! F. Milella, "Direct estimate of closed-form dynamic equation parameters of a robot:
-//! tools and methods for designing experiments" (docs/references.md#milella), Phase III:
+//! F. Milella, "Direct Estimate of Closed-Form Dynamic Equation Parameters of a Robot:
+//! Tools and Methods for Designing Experiments" (docs/references.md#milella), Phase III:
 //! interpolation with 7th-order polynomials (eqs. 10-11), jerk imposed at the points
 //! (eq. 12); see also docs/experiments.md#interpolation-with-seventh-order-polynomials.
 

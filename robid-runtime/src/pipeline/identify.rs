@@ -403,6 +403,7 @@ mod tests {
             rel_std_percent: vec![10.0, 5.0],
             sigma2: 1.0,
             condition_number: cond,
+            error_bound: 0.5,
             residual_rms: vec![0.1],
             rows: 3,
             weights: None,

@@ -6,6 +6,7 @@ mod friction;
 mod identify;
 mod observe;
 mod prepare;
+mod runs;
 
 pub use friction::{FrictionData, JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 pub use identify::{
@@ -13,6 +14,7 @@ pub use identify::{
 };
 pub use observe::{decimator, observe};
 pub use prepare::{Prepared, RotorStates, automatic_trim, prepare};
+pub use runs::{RepeatedIdentification, RunSpread, average, identify_runs, stack};
 
 #[cfg(test)]
 mod tests;

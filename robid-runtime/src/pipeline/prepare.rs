@@ -14,7 +14,7 @@ use crate::data::{Config, Cutoff, Dataset, Derivative, Signal};
 use crate::drive::FrictionModel;
 use crate::error::{Error, Result};
 use crate::inspect::{CutoffSuggestion, suggest_cutoff};
-use crate::signal::{Signals, Sos, butterworth_hz, central_difference};
+use crate::signal::{SavitzkyGolay, Signals, Sos, butterworth_hz, central_difference};
 
 /// Joint signals ready for the regressor.
 #[derive(Debug, Clone)]
@@ -123,8 +123,41 @@ pub fn automatic_trim(config: &Config, sample_time: f64) -> Result<usize> {
     }
 }
 
-fn differentiate(x: &Signals, dt: f64) -> Result<Signals> {
-    x.map(|v| central_difference(v, dt))
+/// The first derivative of every joint: central differences, or the Savitzky-Golay fit
+/// of `processing.differentiation` (docs/identification.md#savitzky-golay-derivatives).
+fn differentiate(x: &Signals, dt: f64, sg: Option<&SavitzkyGolay>) -> Result<Signals> {
+    match sg {
+        Some(sg) => savitzky_golay(x, dt, sg, 1),
+        None => x.map(|v| central_difference(v, dt)),
+    }
+}
+
+/// The second derivative: central differences of the first derivative `first`, or the
+/// Savitzky-Golay second derivative of `x` itself (one fit, not two in a row).
+fn differentiate_twice(
+    x: &Signals,
+    first: &Signals,
+    dt: f64,
+    sg: Option<&SavitzkyGolay>,
+) -> Result<Signals> {
+    match sg {
+        Some(sg) => savitzky_golay(x, dt, sg, 2),
+        None => differentiate(first, dt, None),
+    }
+}
+
+fn savitzky_golay(x: &Signals, dt: f64, sg: &SavitzkyGolay, order: usize) -> Result<Signals> {
+    x.try_map(|v| sg.derivative(v, dt, order))
+        .map_err(|e| match e {
+            Error::TooFewSamples { found, required, .. } => Error::setting(
+                "Config",
+                "processing.differentiation.window",
+                format!(
+                    "{required} samples is longer than the record ({found} samples); use a shorter window"
+                ),
+            ),
+            e => e,
+        })
 }
 
 /// Applies the `[processing]` options (estimation range, low-pass, derivatives, trim)
@@ -212,16 +245,22 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
         sos.as_ref()
             .filter(|_| p.lowpass.as_ref().is_some_and(|lp| lp.signals.contains(&s)))
     };
+    let sg = p.differentiation.savitzky_golay()?;
+    let sg = sg.as_ref();
     let q = filter_all(on(Signal::Q), pad, &data.q)?;
-    let qd = match (p.velocity, &data.qd) {
-        (Derivative::Auto | Derivative::Data, Some(v)) => filter_all(on(Signal::Qd), pad, v)?,
+    let (qd, qd_measured) = match (p.velocity, &data.qd) {
+        (Derivative::Auto | Derivative::Data, Some(v)) => {
+            (filter_all(on(Signal::Qd), pad, v)?, true)
+        }
         (Derivative::Data, None) => return Err(missing("processing.velocity", "velocity")),
-        _ => differentiate(&q, dt)?,
+        _ => (differentiate(&q, dt, sg)?, false),
     };
     let qdd = match (p.acceleration, &data.qdd) {
         (Derivative::Auto | Derivative::Data, Some(a)) => filter_all(on(Signal::Qdd), pad, a)?,
         (Derivative::Data, None) => return Err(missing("processing.acceleration", "acceleration")),
-        _ => differentiate(&qd, dt)?,
+        // a measured velocity is differentiated once, a differentiated one from q
+        _ if qd_measured => differentiate(&qd, dt, sg)?,
+        _ => differentiate_twice(&q, &qd, dt, sg)?,
     };
     let mut tau = filter_all(on(Signal::Tau), pad, &data.tau)?;
     let mut unfiltered_tau = on(Signal::Tau).map(|_| data.tau.clone());
@@ -229,8 +268,8 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
     if config.drive.rotor.is_some() || config.uses_rotor_signals() {
         let motor = data.motor.as_ref().ok_or_else(|| no_motor(config))?;
         let theta = filter_all(on(Signal::Q), pad, motor)?;
-        let thetad = differentiate(&theta, dt)?;
-        let thetadd = differentiate(&thetad, dt)?;
+        let thetad = differentiate(&theta, dt, sg)?;
+        let thetadd = differentiate_twice(&theta, &thetad, dt, sg)?;
         if let Some(rotor) = &config.drive.rotor {
             let model = match &rotor.friction {
                 Some(file) => Some(friction_model(config, file, data.dof())?),

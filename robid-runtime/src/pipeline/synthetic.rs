@@ -279,11 +279,17 @@ pub(crate) fn csv(n: usize, rate: f64, noise: f64) -> String {
 
 /// [`csv`] with a pseudo-noise amplitude per joint.
 pub(crate) fn csv_with_noise(n: usize, rate: f64, noise: [f64; DOF]) -> String {
+    csv_seeded(n, rate, noise, 7)
+}
+
+/// [`csv_with_noise`] with the noise generator's seed: another acquisition of the same
+/// trajectory.
+pub(crate) fn csv_seeded(n: usize, rate: f64, noise: [f64; DOF], seed: u64) -> String {
     let model = Synthetic::default();
     let beta = true_parameters();
     let mut out = String::from("t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n");
     let (mut q, mut qd, mut qdd, mut tau) = ([0.0; DOF], [0.0; DOF], [0.0; DOF], [0.0; DOF]);
-    let mut seed = 7u64;
+    let mut seed = seed;
     for k in 0..n {
         let t = k as f64 / rate;
         trajectory(t, &mut q, &mut qd, &mut qdd);

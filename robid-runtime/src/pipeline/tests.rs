@@ -16,6 +16,8 @@ use crate::model::{LengthError, ProgramKind, check_arguments, check_length};
 use crate::pipeline::{identify, validate};
 use crate::signal::{Signals, central_difference};
 
+mod milella;
+mod runs;
 #[path = "synthetic.rs"]
 mod synthetic;
 use synthetic::{CONFIG, DOF, Synthetic, csv_with_noise, trajectory, true_parameters};

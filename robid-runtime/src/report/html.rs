@@ -12,7 +12,7 @@ use crate::report::{FitEntry, Report, torque_svg};
 use crate::validate::Prediction;
 
 /// `text` with `&`, `<`, `>` and `"` escaped for HTML.
-fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -100,10 +100,12 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
     );
     let _ = writeln!(
         h,
-        "<p>Method <b>{}</b>, {} equations, condition number {:.1}.</p>",
+        "<p>Method <b>{}</b>, {} equations, condition number {:.1}, upper bound on the \
+         relative estimation error {:.1} % (cond(W) ||residual|| / ||torque||, Milella).</p>",
         escape(&report.method),
         report.samples,
-        report.condition_number
+        report.condition_number,
+        report.error_bound_percent
     );
     if let Some(rows) = &report.estimation {
         let _ = writeln!(h, "<p>Estimation rows: {}.</p>", escape(&rows.to_string()));
@@ -165,6 +167,9 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
         );
     }
     h.push_str("</table>\n");
+    if let Some(r) = &report.runs {
+        h.push_str(&r.html());
+    }
     for (name, prediction) in predictions {
         let _ = writeln!(h, "<h2>{}: torque per joint</h2>", escape(name));
         for j in 0..prediction.measured.len() {
@@ -191,6 +196,7 @@ mod tests {
             method: "wls".into(),
             samples: 100,
             condition_number: 12.5,
+            error_bound_percent: 3.5,
             estimation: None,
             parameters: vec![ParameterEntry {
                 name: "ZZR1".into(),
@@ -215,6 +221,7 @@ mod tests {
                 parameters: vec!["ZZR1".into()],
                 message: "a & b".into(),
             }],
+            runs: None,
         }
     }
 
@@ -242,6 +249,7 @@ mod tests {
         assert!(html.contains("ZZ1 + 0.5*M2") && html.contains("<td>0.80</td>"));
         assert!(html.contains("a &amp; b"));
         assert!(html.contains("condition number 12.5"));
+        assert!(html.contains("relative estimation error 3.5 %"), "{html}");
         assert_eq!(html.matches("<svg").count(), 4);
         for external in ["src=\"http", "href=\"http", "<script", "@import", "url("] {
             assert!(!html.contains(external), "{external}");

@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::estimate::{Estimate, QualityWarning};
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::Identification;
+use crate::report::RunsEntry;
 use crate::validate::{Fit, Prediction, UsedRows, relative_improvement};
 
 /// A warning in the report: machine-readable kind and parameters, and the message a
@@ -121,7 +122,7 @@ pub struct ReferenceFit {
 }
 
 /// The fit of a prediction with the torque it compares with (see [`FitEntry::torque`]).
-fn labelled_fit(prediction: &Prediction) -> FitEntry {
+pub(crate) fn labelled_fit(prediction: &Prediction) -> FitEntry {
     let unfiltered = prediction.unfiltered_fit();
     FitEntry {
         torque: Some(
@@ -148,6 +149,10 @@ pub struct Report {
     pub samples: usize,
     /// Condition number of W.
     pub condition_number: f64,
+    /// Milella's upper bound on the relative estimation error, `100 cond(W) ||rho|| /
+    /// ||y||` percent ([`Estimate::error_bound`], docs/identification.md#error-bound).
+    #[serde(default)]
+    pub error_bound_percent: f64,
     /// The rows of the file used for estimation (null when not known).
     #[serde(default)]
     pub estimation: Option<UsedRows>,
@@ -165,6 +170,10 @@ pub struct Report {
     /// fit; docs/identification.md#quality-warnings).
     #[serde(default)]
     pub warnings: Vec<ReportWarning>,
+    /// Repeated acquisitions (`[runs]`): each run alone and the run-to-run spread (null
+    /// for one data set).
+    #[serde(default)]
+    pub runs: Option<RunsEntry>,
 }
 
 impl From<&Fit> for FitEntry {
@@ -204,12 +213,14 @@ impl Report {
             method: estimate.method.name().to_string(),
             samples: estimate.rows,
             condition_number: estimate.condition_number,
+            error_bound_percent: 100.0 * estimate.error_bound,
             estimation: None,
             parameters,
             fit: fit.into(),
             validation: Vec::new(),
             cutoff: None,
             warnings: estimate.warnings.iter().map(ReportWarning::from).collect(),
+            runs: None,
         }
     }
 
@@ -298,6 +309,12 @@ impl Report {
         };
         if !self.condition_number.is_finite() {
             return bad("the report's condition number".into());
+        }
+        if !self.error_bound_percent.is_finite() {
+            return bad("the report's bound on the relative estimation error".into());
+        }
+        if self.runs.as_ref().is_some_and(|r| !r.is_finite()) {
+            return bad("the report's figures of the repeated runs".into());
         }
         for p in &self.parameters {
             if !(p.value.is_finite() && p.std.is_finite())

@@ -5,9 +5,11 @@
 mod html;
 mod json;
 mod plot;
+mod runs;
 mod table;
 
 pub use html::{html_report, write_html};
 pub use json::{FitEntry, ParameterEntry, ReferenceFit, Report, ReportWarning, ValidationEntry};
 pub use plot::{plot_torques, torque_svg};
+pub use runs::{RunEntry, RunParameterEntry, RunsEntry};
 pub use table::text_table;

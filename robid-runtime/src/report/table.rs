@@ -9,8 +9,12 @@ pub fn text_table(report: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "robot {}  method {}  equations {}  cond(W) {:.1}",
-        report.robot, report.method, report.samples, report.condition_number
+        "robot {}  method {}  equations {}  cond(W) {:.1}  error bound {:.1} %",
+        report.robot,
+        report.method,
+        report.samples,
+        report.condition_number,
+        report.error_bound_percent
     );
     if let Some(rows) = &report.estimation {
         let _ = writeln!(s, "estimation rows: {rows}");
@@ -88,6 +92,9 @@ pub fn text_table(report: &Report) -> String {
             );
         }
     }
+    if let Some(r) = &report.runs {
+        s.push_str(&r.text());
+    }
     for w in &report.warnings {
         let _ = writeln!(s, "warning: {}", w.message);
     }
@@ -122,6 +129,7 @@ mod tests {
             rel_std_percent: vec![100.0 * 0.04 / 2.24, f64::INFINITY],
             sigma2: 1.0,
             condition_number: 1019.0,
+            error_bound: 0.25,
             residual_rms: vec![1.5],
             rows: 2079,
             weights: None,
@@ -221,6 +229,13 @@ mod tests {
         assert_eq!(v["method"], "wls");
         assert_eq!(v["samples"], 2079);
         assert_eq!(v["condition_number"], 1019.0);
+        // Milella's bound, as a percentage, in the JSON and the table
+        assert_eq!(v["error_bound_percent"], 25.0);
+        assert!(v["runs"].is_null());
+        assert!(text_table(&report()).contains("cond(W) 1019.0  error bound 25.0 %"));
+        let mut bad = report();
+        bad.error_bound_percent = f64::INFINITY;
+        assert!(bad.check().is_err());
         assert_eq!(v["parameters"][0]["name"], "MXR2");
         assert_eq!(v["parameters"][0]["expression"], "MX2 + 0.225 M3");
         assert!((v["parameters"][0]["rel_std_percent"].as_f64().unwrap() - 1.7857).abs() < 1e-3);
@@ -248,6 +263,7 @@ mod tests {
             rel_std_percent: vec![0.83, 45.45],
             sigma2: 1.0,
             condition_number: 6.9e9,
+            error_bound: 12.0,
             residual_rms: vec![1.0],
             rows: 100,
             weights: None,

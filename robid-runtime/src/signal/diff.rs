@@ -1,4 +1,5 @@
-//! Central differences for velocities and accelerations.
+//! Central differences for velocities and accelerations (the Savitzky-Golay alternative is
+//! `savgol.rs`).
 
 /// Derivative of a uniformly sampled signal by central differences
 /// (`(x[k+1] - x[k-1]) / 2 dt` inside, one-sided at both ends, as `numpy.gradient`).

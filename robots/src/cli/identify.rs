@@ -11,9 +11,9 @@
 
 use std::path::{Path, PathBuf};
 
-use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load, read_header};
+use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load, load_runs, read_header};
 use robid_runtime::inspect::resolve_cutoff;
-use robid_runtime::pipeline::{identify, validate};
+use robid_runtime::pipeline::{identify, identify_runs, validate};
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
 use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
@@ -189,7 +189,28 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     let robot = args.robot.as_deref().ok_or("give the robot description")?;
     let mut config = config_for(args.config.as_deref(), &args.data)?;
-    let data = data_files(&args.data, args.config.as_deref(), &config)?;
+    // repeated acquisitions: the config's [runs] lists every run's files
+    let runs: Option<Vec<PathBuf>> = match &config.runs {
+        Some(_) if !args.data.is_empty() => {
+            return Err(
+                "--data: the config's [runs] lists the runs' files; give no --data \
+                        (or remove [runs] to identify one data set)"
+                    .into(),
+            );
+        }
+        Some(r) => Some(
+            r.files
+                .iter()
+                .flat_map(|f| f.paths())
+                .map(|f| config.resolve(&f))
+                .collect(),
+        ),
+        None => None,
+    };
+    let data = match &runs {
+        Some(files) => files.clone(),
+        None => data_files(&args.data, args.config.as_deref(), &config)?,
+    };
     let mut inputs: Vec<&Path> = vec![robot];
     inputs.extend(args.config.as_deref());
     inputs.extend(data.iter().map(PathBuf::as_path));
@@ -229,26 +250,37 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         let plots: Vec<&Path> = plots.iter().map(PathBuf::as_path).collect();
         files::refuse(&inputs, &plots)?;
     }
-    let data = load(&config, &data, model.dof())?;
-    for w in &data.warnings {
+    let sets = match runs {
+        Some(_) => load_runs(&config, model.dof())?,
+        None => vec![load(&config, &data, model.dof())?],
+    };
+    for w in sets.iter().flat_map(|d| &d.warnings) {
         out::warn(format_args!("warning: {w}"));
     }
-    // "auto" is chosen once, on the estimation data, and used for the validation data too
-    let auto = resolve_cutoff(&mut config, &data).map_err(|e| config.locate(e))?;
+    // "auto" is chosen once, on the estimation data (the first run), and used for the
+    // other runs and the validation data too
+    let auto = resolve_cutoff(&mut config, &sets[0]).map_err(|e| config.locate(e))?;
     let reference = match &args.reference {
         Some(path) => Some((path, reference_values(path, model, &config)?)),
         None => None,
     };
-    let id = identify(model, &data, &config)?;
-    let mut report = Report::from_identification(&id, |n| chosen.expression(n));
+    let (mut report, prediction, values) = if config.runs.is_some() {
+        let id = identify_runs(model, &sets, &config)?;
+        let report = Report::from_runs(&id, |n| chosen.expression(n));
+        (report, id.prediction, id.estimate.values)
+    } else {
+        let id = identify(model, &sets[0], &config)?;
+        let report = Report::from_identification(&id, |n| chosen.expression(n));
+        (report, id.prediction, id.estimate.values)
+    };
     report.cutoff = auto;
-    let mut predictions = vec![id.prediction.clone()];
+    let mut predictions = vec![prediction];
     for group in args.validate.chunks(per_set) {
         let d = load(&config, group, model.dof())?;
         for w in &d.warnings {
             out::warn(format_args!("warning: {w}"));
         }
-        let p = validate(model, &d, &config, &id.estimate.values)?;
+        let p = validate(model, &d, &config, &values)?;
         report = report.with_prediction(&p);
         if let Some((path, values)) = &reference {
             let fit = validate(model, &d, &config, values)?.fit();

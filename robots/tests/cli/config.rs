@@ -309,3 +309,69 @@ fn the_html_report_renders_in_a_browser() {
         png.len()
     );
 }
+
+/// The pendulum log with a different noise per run (a seeded pseudo-random sequence).
+fn noisy_log(seed: u64) -> String {
+    let mut rng = robid_runtime::rng::Rng::new(seed);
+    let mut csv = String::from("time,angle,torque\n");
+    for k in 0..3000 {
+        let t = k as f64 * 2e-3;
+        let q = 1.2 * (1.3 * t).sin() + 0.3 * (4.1 * t).cos();
+        let tau = 2.0 * q.cos() + 0.4 * (1.3 * t).cos() + 0.05 * rng.normal();
+        csv.push_str(&format!("{t},{q},{tau}\n"));
+    }
+    csv
+}
+
+/// `[runs]` end to end: three runs averaged, each identified alone, the spread and the
+/// error bound in the table and the JSON; `--data` beside `[runs]` is refused.
+#[test]
+fn milella_identify_repeated_runs_end_to_end() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    for r in 1..=3 {
+        write(d, &format!("run{r}.csv"), &noisy_log(r));
+    }
+    let runs = format!(
+        "{CONFIG}[runs]\nmode = \"averaged\"\nfiles = [\"run1.csv\", \"run2.csv\", \"run3.csv\"]\n"
+    );
+    let job = write(d, "runs.toml", &runs);
+    let json = d.join("report.json");
+    let (robot, job) = (robot.to_str().unwrap(), job.to_str().unwrap());
+    let o = robid(&[
+        "identify",
+        robot,
+        "--config",
+        job,
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = stdout(&o);
+    assert!(table.contains("runs: 3 (averaged)"), "{table}");
+    assert!(table.contains("error bound"), "{table}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["runs"]["runs"].as_array().unwrap().len(), 3);
+    assert_eq!(v["runs"]["mode"], "averaged");
+    let bound = v["error_bound_percent"].as_f64().unwrap();
+    assert!(bound > 0.0 && bound.is_finite(), "{bound}");
+    let p = &v["runs"]["parameters"][0];
+    assert_eq!(p["values"].as_array().unwrap().len(), 3);
+    assert!(p["std"].as_f64().unwrap() > 0.0);
+    // the torque spread is the noise's std, 0.05 (RMS of the sample-wise std of 3 runs)
+    let t = v["runs"]["torque_std_per_joint"][0].as_f64().unwrap();
+    assert!((t - 0.05).abs() < 0.005, "{t}");
+    let data = d.join("run1.csv");
+    let o = robid(&[
+        "identify",
+        robot,
+        "--config",
+        job,
+        "--data",
+        data.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("[runs]"), "{}", stderr(&o));
+}

@@ -1,0 +1,211 @@
+//! Repeated acquisitions (`[runs]`) of the synthetic trajectory with different noise.
+
+use std::path::{Path, PathBuf};
+
+use super::milella::relative_error;
+use super::synthetic::{CONFIG, DOF, Synthetic, csv_seeded};
+use crate::data::{Config, RunMode, load_runs};
+use crate::error::Error;
+use crate::pipeline::{average, identify_runs};
+use crate::report::{Report, text_table};
+
+/// Runs of the synthetic trajectory (`samples` each, torque noise 0.5) written to a fresh
+/// folder, and a config listing them with `mode`.
+fn runs_config(name: &str, samples: &[usize], mode: &str) -> (Config, PathBuf) {
+    let dir = std::env::temp_dir().join(format!("robid-runs-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut files = Vec::new();
+    for (r, &n) in samples.iter().enumerate() {
+        let file = format!("run{}.csv", r + 1);
+        std::fs::write(
+            dir.join(&file),
+            csv_seeded(n, 1000.0, [0.5; DOF], 100 + r as u64),
+        )
+        .unwrap();
+        files.push(format!("\"{file}\""));
+    }
+    let text = format!(
+        "{CONFIG}\n[runs]\nmode = \"{mode}\"\nfiles = [{}]\n",
+        files.join(", ")
+    );
+    std::fs::write(dir.join("runs.toml"), &text).unwrap();
+    let config = Config::from_toml_str(&text, &dir.join("runs.toml")).unwrap();
+    (config, dir)
+}
+
+/// Eight runs identified alone: the spread of their values agrees with the standard
+/// deviation each run reports, and stacking them divides it by sqrt(8).
+#[test]
+fn milella_run_spread_agrees_with_the_reported_std() {
+    let r = 8;
+    let (config, dir) = runs_config("stacked", &[20_000; 8], "stacked");
+    let data = load_runs(&config, DOF).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(data.len(), r);
+    let id = identify_runs(&Synthetic::default(), &data, &config).unwrap();
+    assert_eq!(id.mode, RunMode::Stacked);
+    assert_eq!(id.runs.len(), r);
+    let s = &id.spread;
+    let mut ratios: Vec<f64> = s
+        .std
+        .iter()
+        .zip(&s.reported_std)
+        .map(|(a, b)| a / b)
+        .collect();
+    ratios.sort_by(f64::total_cmp);
+    let median = ratios[ratios.len() / 2];
+    // the sample std of 8 values over the true std is sqrt(chi^2_7 / 7): within
+    // [0.376, 1.70] with probability 99 % (measured median 1.007 over the 48 parameters, range 0.49 to 1.55)
+    eprintln!(
+        "run spread / reported std: median {median:.3}, range {:.3} to {:.3}",
+        ratios[0],
+        ratios[ratios.len() - 1]
+    );
+    assert!((0.376..1.70).contains(&median), "{median}");
+    // stacked: 8 times the equations of one run with the same noise, the std falls by
+    // sqrt(8) up to the scatter of the residual variance (measured 1.0001 for every
+    // parameter)
+    let mut stacked: Vec<f64> = id
+        .estimate
+        .std
+        .iter()
+        .zip(&s.reported_std)
+        .map(|(a, b)| a * (r as f64).sqrt() / b)
+        .collect();
+    stacked.sort_by(f64::total_cmp);
+    eprintln!(
+        "stacked std x sqrt(8) / reported std: {:.4} to {:.4}",
+        stacked[0],
+        stacked[stacked.len() - 1]
+    );
+    assert!(
+        stacked[0] > 0.95 && stacked[stacked.len() - 1] < 1.05,
+        "{stacked:?}"
+    );
+    // the torque spread is the noise's: uniform of amplitude 0.5, std 0.5 / sqrt(12) =
+    // 0.144 on every joint (the drive chain is the identity)
+    let t = s.torque_std.as_ref().unwrap();
+    for v in t {
+        assert!((v - 0.5 / 12f64.sqrt()).abs() < 0.01, "{t:?}");
+    }
+    // the report carries it all
+    let report = Report::from_runs(&id, |_| None);
+    report.check().unwrap();
+    let runs = report.runs.as_ref().unwrap();
+    assert_eq!((runs.mode.as_str(), runs.runs.len()), ("stacked", r));
+    assert_eq!(
+        runs.parameters[3].values,
+        s.values.iter().map(|v| v[3]).collect::<Vec<_>>()
+    );
+    let json: serde_json::Value = serde_json::from_str(&report.to_json()).unwrap();
+    assert_eq!(json["runs"]["parameters"][0]["std"], s.std[0]);
+    assert!(report.estimation.is_none());
+    let table = text_table(&report);
+    assert!(table.contains("runs: 8 (stacked)"), "{table}");
+    assert!(table.contains("torque spread across the runs"), "{table}");
+    let html = crate::report::html_report(&report, &[]).unwrap();
+    assert!(html.contains("Repeated acquisitions"));
+}
+
+/// Averaging eight runs: the noise of the estimate falls by sqrt(8), and with one time
+/// grid the averaged estimate equals the stacked one (the processing is linear in the
+/// torque and the positions of the runs are the same).
+#[test]
+fn milella_averaged_runs_lower_the_noise_by_sqrt_r() {
+    let r = 8.0f64;
+    let (config, dir) = runs_config("averaged", &[20_000; 8], "averaged");
+    let data = load_runs(&config, DOF).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let averaged = identify_runs(&Synthetic::default(), &data, &config).unwrap();
+    assert_eq!(averaged.mode, RunMode::Averaged);
+    assert!(averaged.used.is_some());
+    // the mean of 8 noises has 1 / sqrt(8) of their std, and so has the estimate's std
+    // (measured 0.9970 x sqrt(8) for every parameter)
+    let mut ratios: Vec<f64> = averaged
+        .estimate
+        .std
+        .iter()
+        .zip(&averaged.spread.reported_std)
+        .map(|(a, b)| a * r.sqrt() / b)
+        .collect();
+    ratios.sort_by(f64::total_cmp);
+    eprintln!(
+        "averaged std x sqrt(8) / one run's: {:.4} to {:.4}",
+        ratios[0],
+        ratios[ratios.len() - 1]
+    );
+    assert!(
+        ratios[0] > 0.95 && ratios[ratios.len() - 1] < 1.05,
+        "{ratios:?}"
+    );
+    // the distance to the truth: one run's against the mean's, about 1 / sqrt(8) = 0.354
+    // (measured 5.56e-4 against 1.60e-3, 0.348); the bound 2 / sqrt(8) leaves room for the draw
+    let single: f64 = averaged
+        .runs
+        .iter()
+        .map(|id| relative_error(&id.estimate.values))
+        .sum::<f64>()
+        / r;
+    let mean = relative_error(&averaged.estimate.values);
+    eprintln!("relative error: one run {single:.3e} on average, the averaged runs {mean:.3e}");
+    assert!(mean < 2.0 / r.sqrt() * single, "{mean} vs {single}");
+    let mut stacked_config = config.clone();
+    stacked_config.runs.as_mut().unwrap().mode = RunMode::Stacked;
+    let stacked = identify_runs(&Synthetic::default(), &data, &stacked_config).unwrap();
+    for (a, b) in averaged
+        .estimate
+        .values
+        .iter()
+        .zip(&stacked.estimate.values)
+    {
+        // rounding only (measured 1e-12 relative)
+        assert!((a - b).abs() < 1e-8 * a.abs().max(1.0), "{a} vs {b}");
+    }
+}
+
+/// Runs of different lengths cannot be averaged (the error names the run), can be
+/// stacked; a single run or a wrong file count is refused by the config check.
+#[test]
+fn milella_runs_bad_input() {
+    let (config, dir) = runs_config("lengths", &[20_000, 20_000, 18_000], "averaged");
+    let data = load_runs(&config, DOF).unwrap();
+    let e = identify_runs(&Synthetic::default(), &data, &config).unwrap_err();
+    assert!(
+        e.to_string().contains("runs.files[3]") && e.to_string().contains("18000 samples"),
+        "{e}"
+    );
+    assert!(
+        matches!(average(&data[1..]), Err(Error::Setting { key, .. }) if key == "runs.files[2]")
+    );
+    let mut stacked = config.clone();
+    stacked.runs.as_mut().unwrap().mode = RunMode::Stacked;
+    let id = identify_runs(&Synthetic::default(), &data, &stacked).unwrap();
+    assert!(id.spread.torque_std.is_none());
+    let text = std::fs::read_to_string(dir.join("runs.toml")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    for (bad, key) in [
+        (
+            text.replace("files = [\"run1.csv\", ", "files = [")
+                .replace(", \"run3.csv\"", ""),
+            "runs.files",
+        ),
+        (
+            text.replace("\"run2.csv\"", "[\"run2.csv\", \"x.csv\"]"),
+            "runs.files[2]",
+        ),
+        (
+            text.replace("mode = \"averaged\"", "mode = \"stacked\"")
+                .replace("[runs]", "[estimation]\nmethod = \"energy\"\n[runs]"),
+            "runs.mode",
+        ),
+    ] {
+        let cfg = Config::from_toml_str(&bad, Path::new("r.toml")).unwrap();
+        let e = cfg.check(DOF).unwrap_err();
+        assert!(
+            matches!(&e, Error::Data(crate::DataError::ConfigKey { key: k, line: Some(_), .. }) if k == key),
+            "{key}: {e}"
+        );
+    }
+    let e = identify_runs(&Synthetic::default(), &data[..1], &config).unwrap_err();
+    assert!(e.to_string().contains("at least two"), "{e}");
+}
