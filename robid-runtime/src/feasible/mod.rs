@@ -67,7 +67,8 @@ pub use prior::{LinkShape, Prior};
 pub use problem::Problem;
 pub use sdp::{SdpOptions, consistent_least_squares, solve_sdp};
 pub use search::{
-    AnnealOptions, Equality, Quantity, TwoStep, Variable, solve_anneal, solve_two_step,
+    AnnealOptions, Equality, Quantity, TwoStep, Variable, solve_anneal, solve_gravity_step,
+    solve_two_step,
 };
 pub use smooth::{SmoothOptions, solve_smooth};
 pub use solution::{Method, Solution};

@@ -43,7 +43,7 @@ use anneal::{AnnealSettings, reflect};
 use parametrise::{PER_LINK, link_box, link_centre, link_of};
 
 pub use equality::{Equality, Quantity, Variable};
-pub use two_step::{TwoStep, solve_two_step};
+pub use two_step::{TwoStep, solve_gravity_step, solve_two_step};
 
 /// Settings of the global search.
 #[derive(Debug, Clone, PartialEq)]
@@ -194,6 +194,9 @@ struct Objective<'a> {
     equalities: &'a [Equality],
     /// Gaz et al.'s step penalty on the total mass, if chosen.
     mass_step: Option<f64>,
+    /// The links whose mass is neither searched nor held (it has no effect on the fit),
+    /// with the box of that mass.
+    loose: Vec<(usize, [f64; 2])>,
 }
 
 impl Objective<'_> {
@@ -245,13 +248,57 @@ impl Objective<'_> {
     /// Gaz et al.'s step: sqrt(delta) when the total mass is outside its range, else zero
     /// (so the cost grows by delta); no row without a range or without the step.
     fn mass_step_row(&self, x: &[f64]) -> Option<f64> {
-        let (t, delta) = (self.bounds.total_mass?, self.mass_step?);
-        let total: f64 = (0..self.bounds.links.len()).map(|j| x[j * PER_LINK]).sum();
-        Some(if total < t[0] || total > t[1] {
-            delta.sqrt()
-        } else {
-            0.0
-        })
+        let delta = self.mass_step?;
+        let excess = self.mass_excess(x)?;
+        Some(if excess > 0.0 { delta.sqrt() } else { 0.0 })
+    }
+
+    /// How far (kg) the total mass misses its range; a loose mass (no effect on the fit)
+    /// counts as anything in its box, since [`Objective::settle_masses`] sets it afterwards.
+    fn mass_excess(&self, x: &[f64]) -> Option<f64> {
+        let t = self.bounds.total_mass?;
+        let (lo, hi) = self.total_mass_span(x);
+        Some((t[0] - hi).max(lo - t[1]).max(0.0))
+    }
+
+    /// The least and the largest total mass with the loose masses anywhere in their boxes.
+    fn total_mass_span(&self, x: &[f64]) -> (f64, f64) {
+        let (mut lo, mut hi) = (0.0, 0.0);
+        for j in 0..self.bounds.links.len() {
+            match self.loose.iter().find(|(l, _)| *l == j) {
+                Some((_, b)) => {
+                    lo += b[0];
+                    hi += b[1];
+                }
+                None => {
+                    lo += x[j * PER_LINK];
+                    hi += x[j * PER_LINK];
+                }
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Moves the loose masses from their don't-care values, by one share of each box, just
+    /// far enough to bring the total mass into its range (nothing else changes: they have no
+    /// effect on the fit).
+    fn settle_masses(&self, x: &mut [f64]) {
+        let Some(t) = self.bounds.total_mass else {
+            return;
+        };
+        if self.loose.is_empty() {
+            return;
+        }
+        let (lo, hi) = self.total_mass_span(x);
+        let now: f64 = (0..self.bounds.links.len()).map(|j| x[j * PER_LINK]).sum();
+        let wanted = now.clamp(t[0], t[1]).clamp(lo, hi);
+        if (wanted - now).abs() == 0.0 || hi <= lo {
+            return;
+        }
+        let share = (wanted - lo) / (hi - lo);
+        for (j, b) in &self.loose {
+            x[j * PER_LINK] = b[0] + share * (b[1] - b[0]);
+        }
     }
 
     /// Relative violations of the total-mass range and the principal-moment ranges.
@@ -260,8 +307,7 @@ impl Objective<'_> {
         let out =
             |value: f64, r: [f64; 2], scale: f64| (r[0] - value).max(value - r[1]).max(0.0) / scale;
         if let (Some(t), None) = (self.bounds.total_mass, self.mass_step) {
-            let total: f64 = (0..self.bounds.links.len()).map(|j| x[j * PER_LINK]).sum();
-            v.push(out(total, t, t[1].max(1e-9)));
+            v.push(self.mass_excess(x).unwrap_or(0.0) / t[1].max(1e-9));
         }
         for (j, b) in self.bounds.links.iter().enumerate() {
             let d = &x[j * PER_LINK + 4..j * PER_LINK + 7];
@@ -351,6 +397,7 @@ fn search(
         },
         equalities: &options.equalities,
         mass_step: options.mass_step,
+        loose: Vec::new(),
     };
     let named = options
         .fixed
@@ -394,6 +441,10 @@ fn search(
     objective.free.sort_unstable();
     objective.free.dedup();
     objective.free.retain(|i| !held.contains(i));
+    objective.loose = (0..nl)
+        .filter(|j| !objective.free.contains(&(j * PER_LINK)) && !held.contains(&(j * PER_LINK)))
+        .map(|j| (j, [lo[j * PER_LINK], hi[j * PER_LINK]]))
+        .collect();
     let lo: Vec<f64> = objective.free.iter().map(|&i| lo[i]).collect();
     let hi: Vec<f64> = objective.free.iter().map(|&i| hi[i]).collect();
     let target = options
@@ -483,7 +534,9 @@ fn search(
                 reason: "the search ran no restart".to_owned(),
             })
         })?;
-    let p = objective.standard(&objective.full(&best));
+    let mut x = objective.full(&best);
+    objective.settle_masses(&mut x);
+    let p = objective.standard(&x);
     let solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
     Ok((solution, objective.free))
 }

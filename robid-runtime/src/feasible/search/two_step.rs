@@ -30,9 +30,12 @@ pub struct TwoStep {
 /// gravity coefficients (e.g. [`GravityCoefficients::problem`](crate::feasible::GravityCoefficients::problem)
 /// with its target set), `problem` the whole one, over the same standard parameters.
 ///
-/// The first step searches with the boxes of `bounds` only: no total-mass range, no
-/// equalities (Gaz et al. impose them in the second step); the second step uses `options`
-/// as given plus the held values.
+/// The first step searches without the equalities (Gaz et al. impose them in the second
+/// step only) but, unlike their problem 16, with the total-mass range: the masses the
+/// gravity coefficients do not see (the first link's) count as anything in their boxes, so
+/// the range only excludes held masses that no second step could complete; without it the
+/// first step often holds masses whose sum leaves the range out of reach. The second step
+/// uses `options` as given plus the held values.
 ///
 /// ```no_run
 /// # fn f(gravity: &robid_runtime::feasible::Problem, full: &robid_runtime::feasible::Problem,
@@ -62,16 +65,30 @@ pub fn solve_two_step(
              build the gravity problem from the whole one (GravityCoefficients::problem)",
         ));
     }
-    let boxes = Bounds {
-        total_mass: None,
-        ..bounds.clone()
-    };
+    let (solution, held) = solve_gravity_step(gravity, bounds, options)?;
+    let mut second = options.clone();
+    second.fixed.extend(held.iter().copied());
+    let (full, _) = search(problem, bounds, &second)?;
+    Ok(TwoStep {
+        gravity: solution,
+        held,
+        solution: full,
+    })
+}
+
+/// The first step of [`solve_two_step`] alone: the gravity problem's solution and the
+/// masses and centre-of-mass coordinates it determines (the variables that change its fit),
+/// with their values.
+pub fn solve_gravity_step(
+    gravity: &Problem,
+    bounds: &Bounds,
+    options: &AnnealOptions,
+) -> Result<(Solution, Vec<(Variable, f64)>)> {
     let first = AnnealOptions {
         equalities: Vec::new(),
-        mass_step: None,
         ..options.clone()
     };
-    let (solution, searched) = search(gravity, &boxes, &first)?;
+    let (solution, searched) = search(gravity, bounds, &first)?;
     let mut held = Vec::new();
     for i in searched {
         let (link, slot) = (i / PER_LINK, i % PER_LINK);
@@ -89,12 +106,5 @@ pub fn solve_two_step(
         };
         held.push((Variable { link, quantity }, value));
     }
-    let mut second = options.clone();
-    second.fixed.extend(held.iter().copied());
-    let (full, _) = search(problem, bounds, &second)?;
-    Ok(TwoStep {
-        gravity: solution,
-        held,
-        solution: full,
-    })
+    Ok((solution, held))
 }
