@@ -584,3 +584,6 @@ fn misfit(objective: &Objective<'_>, x: &[f64]) -> DVector<f64> {
     let r: Vec<f64> = r.iter().copied().chain(rows).collect();
     DVector::from_vec(r)
 }
+
+#[cfg(test)]
+mod tests;
