@@ -130,6 +130,17 @@ fn gaz_held_values_are_kept_and_refused_when_not_a_mass_or_centre() {
 
 /// The objective of two links at full variables, none searched, for the penalty tests.
 fn value(mass_step: Option<f64>, loose: Vec<(usize, [f64; 2])>, masses: [f64; 2]) -> f64 {
+    with_objective(mass_step, loose, masses, |o| o.value(&[]))
+}
+
+/// Runs `f` on the objective of two links with masses `masses`, none searched, a total-mass
+/// range of [13, 19] kg and an exact fit.
+fn with_objective<T>(
+    mass_step: Option<f64>,
+    loose: Vec<(usize, [f64; 2])>,
+    masses: [f64; 2],
+    f: impl FnOnce(&Objective<'_>) -> T,
+) -> T {
     let problem = problem(2, &["MX1"], &[0.0; 20]);
     let bounds = Bounds {
         total_mass: Some([13.0, 19.0]),
@@ -156,7 +167,7 @@ fn value(mass_step: Option<f64>, loose: Vec<(usize, [f64; 2])>, masses: [f64; 2]
         mass_step,
         loose,
     };
-    objective.value(&[])
+    f(&objective)
 }
 
 #[test]
@@ -179,4 +190,23 @@ fn gaz_the_step_penalty_adds_delta_outside_the_total_mass_range() {
     assert!((v - 10.0).abs() < 1e-12, "{v}");
     let p = value(None, vec![(1, [0.0, 6.0])], [5.0, 0.0]);
     assert!((p - 1e4 * (2.0f64 / 19.0).powi(2)).abs() < 1e-9, "{p}");
+}
+
+#[test]
+fn gaz_a_mass_the_fit_does_not_see_is_settled_into_the_total_mass_range() {
+    let settled = |masses: [f64; 2]| {
+        with_objective(None, vec![(1, [0.0, 6.0])], masses, |o| {
+            let mut x = o.fixed.clone();
+            o.settle_masses(&mut x);
+            x[PER_LINK]
+        })
+    };
+    // 8 kg + 3 kg (the don't-care value) is short of 13 kg: the loose mass goes to 5 kg
+    assert!((settled([8.0, 3.0]) - 5.0).abs() < 1e-12);
+    // 12 kg + 3 kg is inside: unchanged
+    assert_eq!(settled([12.0, 3.0]), 3.0);
+    // 18 kg + 3 kg is above 19 kg: 1 kg
+    assert!((settled([18.0, 3.0]) - 1.0).abs() < 1e-12);
+    // 4 kg + at most 6 kg cannot reach 13 kg: the top of its box
+    assert!((settled([4.0, 3.0]) - 6.0).abs() < 1e-12);
 }
