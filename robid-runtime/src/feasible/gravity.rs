@@ -146,8 +146,8 @@ impl GravityCoefficients {
 
     /// The extraction problem of the gravity coefficients: K_g = G K over the same standard
     /// parameters as `full` (whose base parameters must be the model's, without extra
-    /// columns); the target starts at zero with unit deviations (set it with
-    /// [`Problem::with_target`]).
+    /// columns), with `full`'s target mapped (G beta) and its covariance (G Sigma G'); set
+    /// another with [`Problem::with_target`].
     pub fn problem(&self, full: &Problem) -> Result<Problem> {
         if full.k.nrows() != self.map.ncols() {
             return Err(Error::DimensionMismatch {
@@ -159,6 +159,19 @@ impl GravityCoefficients {
         }
         let k = &self.map * &full.k;
         let problem = Problem::new(full.standard_names.clone(), self.names.clone(), k)?;
+        // Sigma = L L' with L the inverse of the whitening
+        let l = full
+            .whitening
+            .clone()
+            .try_inverse()
+            .ok_or_else(|| Error::Singular {
+                what: "the whitening of the identified base parameters".into(),
+                hint: "every base parameter needs a positive, finite variance",
+            })?;
+        let gl = &self.map * l;
+        let covariance = &gl * gl.transpose();
+        let target: Vec<f64> = (&self.map * &full.target).iter().copied().collect();
+        let problem = problem.with_covariance(&target, &covariance)?;
         match &full.shapes {
             Some(shapes) => problem.with_shapes(shapes.clone()),
             None => Ok(problem),

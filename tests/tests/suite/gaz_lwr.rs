@@ -228,6 +228,22 @@ fn gaz_gravity_coefficients_reproduce_the_gravity_torques() {
     let lwr = lwr();
     let d = gravity_through_coefficients(&lwr.model, &lwr.gravity, 3);
     assert!(d < 1e-13, "LWR: {d}");
+    // the gravity problem carries the identified values and their deviations over: here
+    // G selects, so each coefficient keeps its base parameter's value and deviation (the
+    // deviation up to the variance floor of Problem::with_covariance, applied twice:
+    // at most (1e-5 * 2 + 1e-8 * 2)^2 / (2 * 0.05^2) = 4e-8 relative; measured 3.1e-8)
+    let mut rng = Rng::new(5);
+    let nb = lwr.full.base_names.len();
+    let beta: Vec<f64> = (0..nb).map(|_| rng.uniform(-2.0, 2.0)).collect();
+    let std: Vec<f64> = (0..nb).map(|_| rng.uniform(0.05, 0.2)).collect();
+    let full = lwr.full.clone().with_target(&beta, &std).unwrap();
+    let gp = lwr.gravity.problem(&full).unwrap();
+    let mut worst = 0.0f64;
+    for (i, &b) in lwr.gravity.kept.iter().enumerate() {
+        assert_eq!(gp.target[i], beta[b]);
+        worst = worst.max((gp.std[i] / full.std[b] - 1.0).abs());
+    }
+    assert!(worst < 4e-8, "deviations carried over to {worst} relative");
     // one vertical prismatic joint with a torque offset: the mass's column (9.81) and the
     // offset's (1) are dependent at rest, so one coefficient folds both,
     // M1 + Fo1 / 9.81 (measured 2.3e-16 relative)
