@@ -19,6 +19,37 @@ use super::problem::Problem;
 use crate::rng::Rng;
 use crate::{Error, Model, Result};
 
+/// The stacked rows `fill` writes (row-major, `base` columns, at most `dof * (dof + 1) / 2`
+/// rows per pose) at `3 * base + 8` seeded random poses, joint values uniform in [-pi, pi].
+fn stack(
+    model: &dyn Model,
+    fill: impl Fn(&dyn Model, &[f64], &mut [f64]) -> Result<usize>,
+) -> Result<DMatrix<f64>> {
+    let (n, nb) = (model.dof(), model.base_parameter_count());
+    let per = n * (n + 1) / 2;
+    let poses = 3 * nb + 8;
+    let mut rows: Vec<f64> = Vec::with_capacity(poses * per * nb);
+    let mut rng = Rng::new(0x6A2_2016);
+    let mut buffer = vec![0.0; per * nb];
+    let mut count = 0;
+    for _ in 0..poses {
+        let q: Vec<f64> = (0..n)
+            .map(|_| rng.uniform(-std::f64::consts::PI, std::f64::consts::PI))
+            .collect();
+        let written = fill(model, &q, &mut buffer)?;
+        rows.extend_from_slice(&buffer[..written * nb]);
+        count += written;
+    }
+    let w = DMatrix::from_row_slice(count, nb, &rows);
+    if let Some(v) = w.iter().find(|v| !v.is_finite()) {
+        return Err(Error::NonFiniteResult {
+            what: "the base regressor at rest".into(),
+            cause: format!("the model gave {v}; check the description's geometry"),
+        });
+    }
+    Ok(w)
+}
+
 /// A column whose stacked norm is below this share of the largest is zero.
 const ZERO_COLUMN: f64 = 1e-10;
 /// A column whose part outside the kept columns' span is below this share of its norm is
@@ -49,30 +80,37 @@ impl GravityCoefficients {
     /// # Ok(()) }
     /// ```
     pub fn of_model(model: &dyn Model) -> Result<GravityCoefficients> {
-        let n = model.dof();
+        let w = stack(model, |model, q, rows| {
+            let n = model.dof();
+            let zero = vec![0.0; n];
+            model.base_regressor_into(
+                q,
+                &zero,
+                &zero,
+                &mut rows[..n * model.base_parameter_count()],
+            )?;
+            Ok(n)
+        })?;
+        Self::of_columns(model, &w)
+    }
+
+    /// The same for the mass matrix (the name notwithstanding): the combinations of base
+    /// parameters that M(q) determines, from the stacked rows of its upper triangle,
+    /// `M(q) e_k = Y_b(q, 0, e_k) beta - Y_b(q, 0, 0) beta` (row i of column k is entry
+    /// `M_ik`; see [`static_rows`](crate::pipeline::static_rows)).
+    pub fn of_mass_matrix(model: &dyn Model) -> Result<GravityCoefficients> {
+        let w = stack(model, |model, q, rows| {
+            let upper =
+                crate::pipeline::static_rows(model, q, crate::pipeline::StaticKind::MassMatrix)?;
+            rows[..upper.len()].copy_from_slice(&upper);
+            Ok(upper.len() / model.base_parameter_count().max(1))
+        })?;
+        Self::of_columns(model, &w)
+    }
+
+    /// The combinations that the stacked columns `w` (one per base parameter) determine.
+    fn of_columns(model: &dyn Model, w: &DMatrix<f64>) -> Result<GravityCoefficients> {
         let nb = model.base_parameter_count();
-        let poses = 3 * nb + 8;
-        let mut w = DMatrix::zeros(n * poses, nb);
-        let mut rng = Rng::new(0x6A2_2016);
-        let zero = vec![0.0; n];
-        let mut row = vec![0.0; n * nb];
-        for k in 0..poses {
-            let q: Vec<f64> = (0..n)
-                .map(|_| rng.uniform(-std::f64::consts::PI, std::f64::consts::PI))
-                .collect();
-            model.base_regressor_into(&q, &zero, &zero, &mut row)?;
-            for i in 0..n {
-                for b in 0..nb {
-                    w[(k * n + i, b)] = row[i * nb + b];
-                }
-            }
-        }
-        if let Some(v) = w.iter().find(|v| !v.is_finite()) {
-            return Err(Error::NonFiniteResult {
-                what: "the base regressor at rest".into(),
-                cause: format!("the model gave {v}; check the description's geometry"),
-            });
-        }
         let largest = (0..nb).map(|b| w.column(b).norm()).fold(0.0, f64::max);
         let mut kept: Vec<usize> = Vec::new();
         let mut basis: Vec<DVector<f64>> = Vec::new();

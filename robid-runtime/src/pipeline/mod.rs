@@ -6,6 +6,7 @@ mod friction;
 mod identify;
 mod observe;
 mod prepare;
+mod static_samples;
 
 pub use friction::{FrictionData, JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 pub use identify::{
@@ -13,6 +14,7 @@ pub use identify::{
 };
 pub use observe::{decimator, observe};
 pub use prepare::{Prepared, RotorStates, automatic_trim, prepare};
+pub use static_samples::{StaticFit, StaticKind, identify_static, static_rows};
 
 #[cfg(test)]
 mod tests;
