@@ -14,5 +14,6 @@ mod friction;
 mod payload;
 mod reference;
 mod sequence;
+mod static_samples;
 mod stdout;
 mod subcommands;
