@@ -23,7 +23,10 @@
 //! - [`solve_anneal`]: the method of Gaz, Flacco, De Luca ("Extracting feasible robot
 //!   parameters from dynamic coefficients using nonlinear optimization methods", ICRA 2016):
 //!   simulated annealing with random restarts, each followed by Nelder-Mead, over bounded
-//!   masses, centres of mass and inertias, with a total-mass range.
+//!   masses, centres of mass and inertias, with a total-mass range; [`solve_two_step`] is
+//!   their two-step extraction (gravity parameters from the [`GravityCoefficients`] first,
+//!   then the rest with those held), with equalities ([`Equality`]) and their step penalty
+//!   on the total mass.
 //!
 //! Bounds come from TOML ([`Bounds`]); the result ([`Solution`]) is written as TOML or as
 //! a complete URDF robot ([`to_toml`], [`to_urdf`]).
@@ -37,6 +40,7 @@ mod cholesky;
 #[cfg(feature = "sdp")]
 mod conic;
 mod error;
+mod gravity;
 mod inertial;
 mod interior;
 mod layout;
@@ -52,6 +56,7 @@ mod solution;
 pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds, TENSOR_ELEMENTS};
 pub use centre::centre;
 pub use error::FeasibleError;
+pub use gravity::GravityCoefficients;
 pub use inertial::{
     LinkInertial, inertia_at_origin, pseudo_inertia, pseudo_inertia_min_eigenvalue,
 };
@@ -61,6 +66,9 @@ pub use output::{UrdfJoint, to_toml, to_urdf};
 pub use prior::{LinkShape, Prior};
 pub use problem::Problem;
 pub use sdp::{SdpOptions, consistent_least_squares, solve_sdp};
-pub use search::{AnnealOptions, solve_anneal};
+pub use search::{
+    AnnealOptions, Equality, Quantity, TwoStep, Variable, solve_anneal, solve_gravity_step,
+    solve_two_step,
+};
 pub use smooth::{SmoothOptions, solve_smooth};
 pub use solution::{Method, Solution};

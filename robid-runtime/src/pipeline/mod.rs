@@ -7,6 +7,7 @@ mod identify;
 mod observe;
 mod prepare;
 mod runs;
+mod static_samples;
 
 pub use friction::{FrictionData, JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 pub use identify::{
@@ -15,6 +16,7 @@ pub use identify::{
 pub use observe::{decimator, observe};
 pub use prepare::{Prepared, RotorStates, automatic_trim, prepare};
 pub use runs::{RepeatedIdentification, RunSpread, average, identify_runs, stack};
+pub use static_samples::{StaticFit, StaticKind, identify_static, static_rows};
 
 #[cfg(test)]
 mod tests;

@@ -1,5 +1,6 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
-//! [--method cholesky|interior-point|sdp|anneal] [--prior CAD.toml [--prior-weight W]] -o OUT`: physically
+//! [--method cholesky|interior-point|sdp|anneal] [--prior CAD.toml [--prior-weight W]]
+//! [--restarts N] [--two-step] [--equal EQ]... [--mass-step DELTA] -o OUT`: physically
 //! consistent link parameters that reproduce identified base parameters
 //! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
 //! OUT as TOML, or as URDF `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
@@ -14,14 +15,15 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, LinkShape, Prior, Problem, SdpOptions, SmoothOptions, Solution,
-    UrdfJoint, solve_anneal, solve_interior, solve_sdp, solve_smooth, to_toml, to_urdf,
+    AnnealOptions, Bounds, Equality, GravityCoefficients, LinkShape, Prior, Problem, SdpOptions,
+    SmoothOptions, Solution, UrdfJoint, solve_anneal, solve_interior, solve_sdp, solve_smooth,
+    solve_two_step, to_toml, to_urdf,
 };
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
 use super::description::{self, DriveFlag};
-use super::flags::{closed, real, short};
+use super::flags::{closed, count, only_for, positive, real, short};
 use super::{Error, files, out};
 
 /// `robid feasible --help` on `--bounds`: the format with a complete example.
@@ -80,6 +82,25 @@ pub(crate) struct Args {
     /// `anneal`, which has no default prior.
     #[arg(long, value_parser = real(closed(0.0, 1e6, "")))]
     prior_weight: Option<f64>,
+    /// `anneal`: random restarts, each annealing then a local search (default 8; Gaz et al.
+    /// use 1000).
+    #[arg(long, value_parser = count(1, 10_000))]
+    restarts: Option<usize>,
+    /// `anneal`: Gaz et al.'s two-step extraction: first the masses and centres of mass from
+    /// the gravity coefficients (the combinations of the identified base parameters that the
+    /// gravity torques determine), then every other parameter with those held.
+    #[arg(long)]
+    two_step: bool,
+    /// `anneal`: an equality constraint in the form of Gaz et al.'s eq. 15, e.g.
+    /// "I7xz = c7x * c7z * m7" (m<link> mass, c<link>x|y|z centre of mass, I<link>xx..yz
+    /// inertia about the centre of mass; links from 1); repeat for more.
+    #[arg(long = "equal", value_name = "EQ")]
+    equalities: Vec<String>,
+    /// `anneal`: Gaz et al.'s step penalty, added to chi^2 when the total mass is outside
+    /// the bounds' `total_mass` range (their delta), instead of the penalty proportional to
+    /// the excess.
+    #[arg(long, value_parser = real(positive(1e20, "")))]
+    mass_step: Option<f64>,
     /// Output file: TOML, or a complete URDF (links with their inertials, joints from the
     /// description) for a `.urdf` / `.xml` name.
     #[arg(short, long)]
@@ -118,6 +139,13 @@ fn check(args: &Args) -> Result<(), Error> {
             args.method
         )
         .into());
+    }
+    if args.method != "anneal" {
+        let (owner, method) = ("--method anneal", format!("--method {}", args.method));
+        only_for(args.restarts.is_some(), "--restarts", owner, &method)?;
+        only_for(args.two_step, "--two-step", owner, &method)?;
+        only_for(!args.equalities.is_empty(), "--equal", owner, &method)?;
+        only_for(args.mass_step.is_some(), "--mass-step", owner, &method)?;
     }
     if args.prior_weight.is_some() && args.prior.is_none() && args.method == "anneal" {
         return Err(
@@ -259,14 +287,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         ..SmoothOptions::default()
     };
     let solution = match args.method.as_str() {
-        "anneal" => solve_anneal(
-            &problem,
-            &bounds,
-            &AnnealOptions {
-                prior,
-                ..AnnealOptions::default()
-            },
-        )?,
+        "anneal" => anneal(args, &robot, &problem, &bounds, prior, extra.is_empty())?,
         "sdp" => solve_sdp(
             &problem,
             &bounds,
@@ -310,6 +331,93 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         out::warn(format_args!("warning: {at}"));
     }
     Ok(())
+}
+
+/// The `anneal` method with its options, in one step or in Gaz et al.'s two.
+fn anneal(
+    args: &Args,
+    robot: &Robot,
+    problem: &Problem,
+    bounds: &Bounds,
+    prior: Option<Prior>,
+    no_extra: bool,
+) -> Result<Solution, Error> {
+    let equalities = args
+        .equalities
+        .iter()
+        .map(|e| {
+            e.parse::<Equality>()
+                .map_err(|err| Error::from(format!("--equal: {}", problem_of(err))))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if args.mass_step.is_some() && bounds.total_mass.is_none() {
+        return Err(
+            "--mass-step: the bounds give no `total_mass` range to hold; add one to \
+                    --bounds or drop --mass-step"
+                .into(),
+        );
+    }
+    let options = AnnealOptions {
+        prior,
+        restarts: args.restarts.unwrap_or(AnnealOptions::default().restarts),
+        equalities,
+        mass_step: args.mass_step,
+        ..AnnealOptions::default()
+    };
+    if !args.two_step {
+        return Ok(solve_anneal(problem, bounds, &options)?);
+    }
+    if !no_extra {
+        return Err(format!(
+            "--two-step: {} holds columns that are not base parameters of the description \
+             (extra config columns); the gravity step needs the model's base parameters only",
+            args.identified.display()
+        )
+        .into());
+    }
+    let model = robots::interpreted::model_for(robot)?;
+    let names: Vec<&str> = (0..model.model.base_parameter_count())
+        .filter_map(|b| model.model.base_parameter_name(b))
+        .collect();
+    if names != problem.base_names {
+        return Err(format!(
+            "--two-step: the model's base parameters ({}) differ from the extraction \
+             problem's ({}); please report this",
+            names.join(" "),
+            problem.base_names.join(" ")
+        )
+        .into());
+    }
+    let gravity = GravityCoefficients::of_model(model.model.as_ref())?;
+    if gravity.names.is_empty() {
+        return Err(
+            "--two-step: gravity determines no combination of base parameters for \
+                    this description (no gravity along a joint's motion); drop --two-step"
+                .into(),
+        );
+    }
+    let result = solve_two_step(&gravity.problem(problem)?, problem, bounds, &options)?;
+    out::warn(format_args!(
+        "gravity step: chi^2 {:.3e} over {} gravity coefficients ({}); holds {}",
+        result.gravity.chi2,
+        gravity.names.len(),
+        gravity.names.join(" "),
+        result
+            .held
+            .iter()
+            .map(|(v, x)| format!("{v} = {x:.6e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    Ok(result.solution)
+}
+
+/// The problem a runtime setting error states, without its owner.
+fn problem_of(e: robid_runtime::Error) -> String {
+    match e {
+        robid_runtime::Error::Setting { problem, .. } => problem,
+        other => other.to_string(),
+    }
 }
 
 /// The description's joints for a URDF: placements and limits.

@@ -1,5 +1,6 @@
 //! `robid identify ROBOT.toml [--data FILE...] [--config CFG.toml] [--validate FILE...]
-//! [--method ols|wls|rls|link-by-link|energy] [--json OUT.json] [--plot DIR] [--report OUT.html]`: base parameters with
+//! [--method ols|wls|rls|link-by-link|energy|per-axis] [--json OUT.json] [--plot DIR] [--report OUT.html]`, or
+//! `robid identify ROBOT.toml --static SAMPLES.csv [--json OUT.json]`: base parameters with
 //! their uncertainty from measured data, the fit, and predictions of other files
 //! (docs/identification.md, docs/command-line.md#robid-identify). A table on stdout; JSON
 //! and SVG plots on request.
@@ -13,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load, load_runs, read_header};
 use robid_runtime::inspect::resolve_cutoff;
-use robid_runtime::pipeline::{identify, identify_runs, validate};
+use robid_runtime::pipeline::{identify, identify_runs, identify_static, validate};
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
 use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
@@ -65,10 +66,92 @@ pub(crate) struct Args {
     /// and per joint the measured vs predicted torque with its residual (inline SVG).
     #[arg(long)]
     report: Option<PathBuf>,
+    /// Static samples of a numeric model (CSV, as Gaz et al. 2016 take them from the robot's
+    /// controller): `q1..qn` with `g1..gn` (gravity torques) or with `M11 M12 .. M1n M22 ..
+    /// Mnn` (the upper triangle of the mass matrix, `Mij` for i <= j). Identifies, by least
+    /// squares, the combinations of base parameters such samples determine and names the
+    /// others. Only with --json.
+    #[arg(
+        long = "static",
+        value_name = "SAMPLES.csv",
+        conflicts_with_all = ["data", "config", "validate", "reference", "method", "plot", "report"]
+    )]
+    static_samples: Option<PathBuf>,
     /// Print a complete annotated config (every key, its default and what it does) and exit.
     #[arg(long, exclusive = true)]
     example_config: bool,
 }
+
+/// `--static`: the combinations of base parameters static samples determine
+/// (docs/identification.md#static-samples), a table on stdout, the undetermined ones on
+/// stderr, and the JSON report on request.
+fn run_static(args: &Args, robot: &Path, samples: &Path) -> Result<(), Error> {
+    let outputs: Vec<&Path> = args.json.iter().map(PathBuf::as_path).collect();
+    files::refuse(&[robot, samples], &outputs)?;
+    let chosen = robot_model(robot, &args.drive)?;
+    let model = chosen.model.as_ref();
+    // the estimators' default relative singular-value threshold (`estimation.rank_tolerance`)
+    let fit = identify_static(model, samples, STATIC_RANK_TOLERANCE)?;
+    let e = &fit.estimate;
+    if let Some(bad) = e.values.iter().chain(&e.std).find(|v| !v.is_finite()) {
+        return Err(format!("the static fit gave {bad}; nothing was written").into());
+    }
+    let mut table = format!(
+        "{} samples: {} equations, condition number {:.3e}\n{:<10} {:>14} {:>12} {:>8}\n",
+        fit.kind.name(),
+        e.rows,
+        e.condition_number,
+        "parameter",
+        "value",
+        "std",
+        "std %"
+    );
+    for i in 0..e.names.len() {
+        table += &format!(
+            "{:<10} {:>14.6e} {:>12.3e} {:>8.2}\n",
+            e.names[i], e.values[i], e.std[i], e.rel_std_percent[i]
+        );
+    }
+    out::print(&table)?;
+    if !fit.undetermined.is_empty() {
+        out::warn(format_args!(
+            "{} samples determine {} of the {} base parameters (each named after the one \
+             that leads its combination); not determined by them: {}",
+            fit.kind.name(),
+            e.names.len(),
+            e.names.len() + fit.undetermined.len(),
+            fit.undetermined.join(" ")
+        ));
+    }
+    for w in &e.warnings {
+        out::warn(format_args!("warning: {}", w));
+    }
+    if let Some(path) = &args.json {
+        let parameters: Vec<serde_json::Value> = (0..e.names.len())
+            .map(|i| {
+                serde_json::json!({
+                    "name": e.names[i],
+                    "value": e.values[i],
+                    "std": e.std[i],
+                    "rel_std_percent": e.rel_std_percent[i],
+                })
+            })
+            .collect();
+        let report = serde_json::json!({
+            "kind": fit.kind.name(),
+            "equations": e.rows,
+            "condition_number": e.condition_number,
+            "parameters": parameters,
+            "undetermined": fit.undetermined,
+        });
+        let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+        files::write(path, &(text + "\n"))?;
+    }
+    Ok(())
+}
+
+/// The relative singular-value threshold of `--static` (the estimators' default).
+const STATIC_RANK_TOLERANCE: f64 = 1e-10;
 
 /// The estimators of the command line.
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
@@ -188,6 +271,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         return Ok(out::print(EXAMPLE_CONFIG)?);
     }
     let robot = args.robot.as_deref().ok_or("give the robot description")?;
+    if let Some(samples) = &args.static_samples {
+        return run_static(args, robot, samples);
+    }
     let mut config = config_for(args.config.as_deref(), &args.data)?;
     // repeated acquisitions: the config's [runs] lists every run's files
     let runs: Option<Vec<PathBuf>> = match &config.runs {

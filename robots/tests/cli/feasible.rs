@@ -309,3 +309,188 @@ fn feasible_rejects_a_base_table_prior() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("[standard] table"), "{}", stderr(&o));
 }
+
+/// The LWR IV+ in the frames of Gaz et al. 2016 with their bounds (Tables I and III, eq. 18;
+/// `tests/fixtures/lwr4_gaz2016*.toml`), and identified base parameters of a robot inside
+/// those bounds: every mass 2 kg (14 kg in all), each centre of mass at the centre of its
+/// box, inertias at the centre of their element boxes; deviation 1e-5 each. Returns the
+/// JSON's path.
+fn lwr_identified(dir: &tempfile::TempDir) -> PathBuf {
+    use robid_runtime::feasible::{Bounds, LinkInertial, Problem};
+    let robot =
+        robid_symbolic::Robot::from_file(Path::new("tests/fixtures/lwr4_gaz2016.toml")).unwrap();
+    let model = robots::interpreted::Interpreted::new(&robot).unwrap();
+    let problem = Problem::from_model(&model).unwrap();
+    let text = std::fs::read_to_string("tests/fixtures/lwr4_gaz2016_bounds.toml").unwrap();
+    let bounds = Bounds::from_toml(&text, "bounds", 7).unwrap();
+    let mut p = vec![0.0; problem.standard_names.len()];
+    for (j, b) in bounds.links.iter().enumerate() {
+        let mid = |e: usize| {
+            let r = b.tensor[e].unwrap();
+            0.5 * (r[0] + r[1])
+        };
+        let link = LinkInertial {
+            mass: 2.0,
+            com: b.com.map(|r| 0.5 * (r[0] + r[1])),
+            inertia: [
+                [mid(0), mid(3), mid(4)],
+                [mid(3), mid(1), mid(5)],
+                [mid(4), mid(5), mid(2)],
+            ],
+        };
+        for (&i, v) in problem.layout.links[j].iter().zip(link.to_standard()) {
+            p[i] = v;
+        }
+    }
+    let beta = problem.base_of(&p);
+    let entries: Vec<String> = problem
+        .base_names
+        .iter()
+        .zip(beta.iter())
+        .map(|(n, v)| format!("{{\"name\": \"{n}\", \"value\": {v:e}, \"std\": 1e-5}}"))
+        .collect();
+    let path = out(dir, "lwr_identified.json");
+    std::fs::write(
+        &path,
+        format!("{{\"parameters\": [{}]}}", entries.join(", ")),
+    )
+    .unwrap();
+    path
+}
+
+#[test]
+fn gaz_feasible_two_step_on_the_lwr_with_the_papers_bounds() {
+    let dir = folder();
+    let identified = lwr_identified(&dir);
+    let output = out(&dir, "lwr.toml");
+    let args = [
+        "feasible",
+        "tests/fixtures/lwr4_gaz2016.toml",
+        "--identified",
+        identified.to_str().unwrap(),
+        "--bounds",
+        "tests/fixtures/lwr4_gaz2016_bounds.toml",
+        "--method",
+        "anneal",
+        "--two-step",
+        "--restarts",
+        "2",
+        "--equal",
+        "I7xz = c7x * c7z * m7",
+        "--equal",
+        "I7yz = c7y * c7z * m7",
+        "--mass-step",
+        "10",
+        "-o",
+        output.to_str().unwrap(),
+    ];
+    let o = robid(&args);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    // the gravity step: the twelve coefficients fitted exactly (a solution exists; whitened
+    // by deviations of 1e-5, rounding gives chi^2 near 1e-20; measured 3.3e-29)
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("gravity step: chi^2 "))
+        .unwrap();
+    let chi2: f64 = line["gravity step: chi^2 ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(chi2 < 1e-18, "{line}");
+    assert!(line.contains("over 12 gravity coefficients"), "{line}");
+    // the second step keeps the 23 held values: the output's masses are the printed ones
+    let held: Vec<(String, f64)> = line
+        .split("holds ")
+        .nth(1)
+        .unwrap()
+        .split(", ")
+        .map(|h| {
+            let (name, value) = h.split_once(" = ").unwrap();
+            (name.to_owned(), value.parse().unwrap())
+        })
+        .collect();
+    assert_eq!(held.len(), 23, "{line}");
+    let text = std::fs::read_to_string(&output).unwrap();
+    let v: toml::Value = toml::from_str(&text).unwrap();
+    let standard = v["standard"].as_table().unwrap();
+    let value = |name: &str| standard[name].as_float().unwrap();
+    for (name, x) in held.iter().filter(|(n, _)| n.starts_with('m')) {
+        let m = value(&format!("M{}", &name[1..]));
+        // printed with 7 significant digits
+        assert!((m - x).abs() <= 1e-6 * x.abs(), "{name}: {m} against {x}");
+    }
+    // eq. 15 makes the products of inertia about frame 7's origin vanish (I_xz about the
+    // origin is I_xz about the centre of mass minus m c_x c_z); measured 5.5e-12 and
+    // 2.7e-11 kg m^2 (this target has c7x = c7y = 0, so the check is weak: the unit test
+    // gaz_an_equality_holds_where_the_fit_is_blind tests the equality itself)
+    for name in ["XZ7", "YZ7"] {
+        assert!(value(name).abs() < 5.5e-11, "{name} = {}", value(name));
+    }
+    // Whether the second step can fit the whole problem depends on step 1's choice among
+    // the gravity solutions (docs/experiments.md#two-step-extraction): here it cannot
+    // (measured chi^2 2.9e7), and the summary says which bounds the result misses.
+    eprintln!("{err}");
+}
+
+#[test]
+fn gaz_feasible_refuses_gaz_options_out_of_place() {
+    let dir = folder();
+    let identified = lwr_identified(&dir);
+    let output = out(&dir, "lwr.toml");
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "feasible",
+            "tests/fixtures/lwr4_gaz2016.toml",
+            "--identified",
+            identified.to_str().unwrap(),
+            "-o",
+            output.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = robid(&args);
+        assert!(!o.status.success());
+        assert!(!output.exists());
+        stderr(&o)
+    };
+    let e = run(&["--two-step"]);
+    assert!(
+        e.contains("--two-step is an option of --method anneal, not of --method cholesky"),
+        "{e}"
+    );
+    let e = run(&["--method", "anneal", "--equal", "I7xz = c7x * q7"]);
+    assert!(e.contains("--equal: `q7` is not a link variable"), "{e}");
+    let e = run(&["--method", "anneal", "--mass-step", "10"]);
+    assert!(e.contains("no `total_mass` range"), "{e}");
+    let e = run(&["--method", "anneal", "--restarts", "0"]);
+    assert!(e.contains("0 is outside 1..=10000"), "{e}");
+    let e = run(&[
+        "--method",
+        "anneal",
+        "--equal",
+        "I8xz = c7x",
+        "--bounds",
+        "tests/fixtures/lwr4_gaz2016_bounds.toml",
+    ]);
+    assert!(e.contains("the robot has 7 links"), "{e}");
+    // the TX40's result holds extra config columns: no gravity step for them
+    let o = robid(&[
+        "feasible",
+        "configs/tx40_robot.toml",
+        "--identified",
+        "tests/fixtures/tx40_identified.json",
+        "--method",
+        "anneal",
+        "--two-step",
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("extra config columns"),
+        "{}",
+        stderr(&o)
+    );
+}

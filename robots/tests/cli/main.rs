@@ -15,5 +15,6 @@ mod payload;
 mod reference;
 mod schedule;
 mod sequence;
+mod static_samples;
 mod stdout;
 mod subcommands;

@@ -20,8 +20,10 @@
 //! none of 16 did.
 
 mod anneal;
+mod equality;
 mod levenberg;
 mod parametrise;
+mod two_step;
 
 use crate::FeasibleError;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -40,10 +42,14 @@ use crate::{Error, Result};
 use anneal::{AnnealSettings, reflect};
 use parametrise::{PER_LINK, link_box, link_centre, link_of};
 
+pub use equality::{Equality, Quantity, Variable};
+pub use two_step::{TwoStep, solve_gravity_step, solve_two_step};
+
 /// Settings of the global search.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AnnealOptions {
-    /// Random restarts (each: annealing, then Nelder-Mead), run in parallel.
+    /// Random restarts (each: annealing, then Nelder-Mead), run in parallel (Gaz et al.'s K,
+    /// 1000 in their paper).
     pub restarts: usize,
     /// Annealing steps per restart.
     pub iterations: usize,
@@ -63,6 +69,16 @@ pub struct AnnealOptions {
     /// search keeps its don't-care values (centre of the bounds) for the parameters the
     /// prior does not give.
     pub prior: Option<Prior>,
+    /// Masses and centre-of-mass coordinates held at given values (the second step of
+    /// [`solve_two_step`] holds those the gravity step found).
+    pub fixed: Vec<(Variable, f64)>,
+    /// Equality constraints in the form of Gaz et al.'s eq. 15, each a penalty row weighted
+    /// like the bounds (`penalty`).
+    pub equalities: Vec<Equality>,
+    /// Gaz et al.'s step penalty on the total mass (their delta, 10 in the paper): this much
+    /// is added to the cost when the total mass is outside its range, instead of the
+    /// penalty proportional to the excess. `None`: the proportional penalty.
+    pub mass_step: Option<f64>,
 }
 
 impl Default for AnnealOptions {
@@ -77,6 +93,9 @@ impl Default for AnnealOptions {
             polish_iterations: 200,
             hops: 12,
             prior: None,
+            fixed: Vec::new(),
+            equalities: Vec::new(),
+            mass_step: None,
         }
     }
 }
@@ -114,6 +133,31 @@ impl AnnealOptions {
                 format!("{} must lie in (0, 1e20]", self.penalty),
             ));
         }
+        if let Some(d) = self.mass_step
+            && !(d > 0.0 && d <= 1e20)
+        {
+            return Err(Error::setting(
+                "AnnealOptions",
+                "mass_step",
+                format!("{d} must lie in (0, 1e20]"),
+            ));
+        }
+        for (v, value) in &self.fixed {
+            if v.index().is_none() {
+                return Err(Error::setting(
+                    "AnnealOptions",
+                    "fixed",
+                    format!("{v}: only masses and centre-of-mass coordinates can be held fixed"),
+                ));
+            }
+            if !(value.abs() <= crate::limits::MAX_PARAMETER) {
+                return Err(Error::setting(
+                    "AnnealOptions",
+                    "fixed",
+                    format!("{v} = {value}: write a finite value of magnitude at most 1e6"),
+                ));
+            }
+        }
         if let Some(t) = self.target_chi2
             && !(t >= 0.0 && t.is_finite())
         {
@@ -146,6 +190,13 @@ struct Objective<'a> {
     penalty: f64,
     /// The pull towards the user's prior (weight zero where it gives no value).
     pull: Option<Pull>,
+    /// Equality constraints (penalty rows).
+    equalities: &'a [Equality],
+    /// Gaz et al.'s step penalty on the total mass, if chosen.
+    mass_step: Option<f64>,
+    /// The links whose mass is neither searched nor held (it has no effect on the fit),
+    /// with the box of that mass.
+    loose: Vec<(usize, [f64; 2])>,
 }
 
 impl Objective<'_> {
@@ -187,10 +238,67 @@ impl Objective<'_> {
         let r = misfit(self, &x);
         let v = self.violations(&x);
         let w = self.penalty.sqrt();
+        let step = self.mass_step_row(&x);
         DVector::from_iterator(
-            r.len() + v.len(),
-            r.iter().copied().chain(v.iter().map(|e| w * e)),
+            r.len() + v.len() + usize::from(step.is_some()),
+            r.iter().copied().chain(v.iter().map(|e| w * e)).chain(step),
         )
+    }
+
+    /// Gaz et al.'s step: sqrt(delta) when the total mass is outside its range, else zero
+    /// (so the cost grows by delta); no row without a range or without the step.
+    fn mass_step_row(&self, x: &[f64]) -> Option<f64> {
+        let delta = self.mass_step?;
+        let excess = self.mass_excess(x)?;
+        Some(if excess > 0.0 { delta.sqrt() } else { 0.0 })
+    }
+
+    /// How far (kg) the total mass misses its range; a loose mass (no effect on the fit)
+    /// counts as anything in its box, since [`Objective::settle_masses`] sets it afterwards.
+    fn mass_excess(&self, x: &[f64]) -> Option<f64> {
+        let t = self.bounds.total_mass?;
+        let (lo, hi) = self.total_mass_span(x);
+        Some((t[0] - hi).max(lo - t[1]).max(0.0))
+    }
+
+    /// The least and the largest total mass with the loose masses anywhere in their boxes.
+    fn total_mass_span(&self, x: &[f64]) -> (f64, f64) {
+        let (mut lo, mut hi) = (0.0, 0.0);
+        for j in 0..self.bounds.links.len() {
+            match self.loose.iter().find(|(l, _)| *l == j) {
+                Some((_, b)) => {
+                    lo += b[0];
+                    hi += b[1];
+                }
+                None => {
+                    lo += x[j * PER_LINK];
+                    hi += x[j * PER_LINK];
+                }
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Moves the loose masses from their don't-care values, by one share of each box, just
+    /// far enough to bring the total mass into its range (nothing else changes: they have no
+    /// effect on the fit).
+    fn settle_masses(&self, x: &mut [f64]) {
+        let Some(t) = self.bounds.total_mass else {
+            return;
+        };
+        if self.loose.is_empty() {
+            return;
+        }
+        let (lo, hi) = self.total_mass_span(x);
+        let now: f64 = (0..self.bounds.links.len()).map(|j| x[j * PER_LINK]).sum();
+        let wanted = now.clamp(t[0], t[1]).clamp(lo, hi);
+        if (wanted - now).abs() == 0.0 || hi <= lo {
+            return;
+        }
+        let share = (wanted - lo) / (hi - lo);
+        for (j, b) in &self.loose {
+            x[j * PER_LINK] = b[0] + share * (b[1] - b[0]);
+        }
     }
 
     /// Relative violations of the total-mass range and the principal-moment ranges.
@@ -198,9 +306,8 @@ impl Objective<'_> {
         let mut v = Vec::new();
         let out =
             |value: f64, r: [f64; 2], scale: f64| (r[0] - value).max(value - r[1]).max(0.0) / scale;
-        if let Some(t) = self.bounds.total_mass {
-            let total: f64 = (0..self.bounds.links.len()).map(|j| x[j * PER_LINK]).sum();
-            v.push(out(total, t, t[1].max(1e-9)));
+        if let (Some(t), None) = (self.bounds.total_mass, self.mass_step) {
+            v.push(self.mass_excess(x).unwrap_or(0.0) / t[1].max(1e-9));
         }
         for (j, b) in self.bounds.links.iter().enumerate() {
             let d = &x[j * PER_LINK + 4..j * PER_LINK + 7];
@@ -217,6 +324,11 @@ impl Objective<'_> {
                 }
             }
         }
+        v.extend(
+            self.equalities
+                .iter()
+                .map(|e| e.violation(x, &self.bounds.links)),
+        );
         v
     }
 }
@@ -227,6 +339,15 @@ pub fn solve_anneal(
     bounds: &Bounds,
     options: &AnnealOptions,
 ) -> Result<Solution> {
+    search(problem, bounds, options).map(|(solution, _)| solution)
+}
+
+/// [`solve_anneal`], and the searched variables (indices into the full variable vector).
+fn search(
+    problem: &Problem,
+    bounds: &Bounds,
+    options: &AnnealOptions,
+) -> Result<(Solution, Vec<usize>)> {
     let start = Instant::now();
     let layout = &problem.layout;
     let nl = layout.links.len();
@@ -274,8 +395,56 @@ pub fn solve_anneal(
             Some(prior) => Some(Pull::new(problem, bounds, Some(prior), 0.0)?),
             None => None,
         },
+        equalities: &options.equalities,
+        mass_step: options.mass_step,
+        loose: Vec::new(),
     };
+    let named = options
+        .fixed
+        .iter()
+        .map(|(v, _)| v.link)
+        .chain(options.equalities.iter().flat_map(Equality::links));
+    for link in named {
+        if link >= nl {
+            return Err(Error::setting(
+                "AnnealOptions",
+                "fixed",
+                format!(
+                    "link {} named in a fixed value or an equality: the robot has {nl} links",
+                    link + 1
+                ),
+            ));
+        }
+    }
+    let held: Vec<usize> = options
+        .fixed
+        .iter()
+        .filter_map(|(v, _)| v.index())
+        .collect();
+    for (v, value) in &options.fixed {
+        if let Some(i) = v.index() {
+            objective.fixed[i] = *value;
+        }
+    }
     objective.free = effective_variables(&objective, &lo, &hi, options.seed);
+    // variables in an equality matter even where the fit does not see them
+    for e in &options.equalities {
+        for v in std::iter::once(&e.left).chain(&e.factors) {
+            let at = v.link * PER_LINK;
+            let own: Vec<usize> = match v.index() {
+                Some(i) => vec![i],
+                None => (at + 4..at + PER_LINK).collect(),
+            };
+            objective.free.extend(own);
+        }
+    }
+    objective.free.sort_unstable();
+    objective.free.dedup();
+    objective.free.retain(|i| !held.contains(i));
+    objective.loose = (0..nl)
+        .filter(|j| !objective.free.contains(&(j * PER_LINK)) && !held.contains(&(j * PER_LINK)))
+        .map(|j| (j, [lo[j * PER_LINK], hi[j * PER_LINK]]))
+        .collect();
     let lo: Vec<f64> = objective.free.iter().map(|&i| lo[i]).collect();
     let hi: Vec<f64> = objective.free.iter().map(|&i| hi[i]).collect();
     let target = options
@@ -365,8 +534,11 @@ pub fn solve_anneal(
                 reason: "the search ran no restart".to_owned(),
             })
         })?;
-    let p = objective.standard(&objective.full(&best));
-    Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())
+    let mut x = objective.full(&best);
+    objective.settle_masses(&mut x);
+    let p = objective.standard(&x);
+    let solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
+    Ok((solution, objective.free))
 }
 
 /// The variables that change the objective somewhere in the box (checked by finite
@@ -412,3 +584,6 @@ fn misfit(objective: &Objective<'_>, x: &[f64]) -> DVector<f64> {
     let r: Vec<f64> = r.iter().copied().chain(rows).collect();
     DVector::from_vec(r)
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,247 @@
+//! Named link variables and equality constraints between them in the form of Gaz et al.'s
+//! eq. 15 (`I7xz = c7x c7z m7`): one variable equals a constant times a product of others
+//! (docs/experiments.md#two-step-extraction). The search adds each as a penalty row
+//! `sqrt(penalty) (left - coefficient * product) / scale`, next to the bound penalties.
+
+use std::fmt;
+use std::str::FromStr;
+
+use crate::feasible::bounds::{LinkBounds, TENSOR_ELEMENTS};
+use crate::limits::MAX_PARAMETER;
+use crate::{Error, Result};
+
+use super::parametrise::{PER_LINK, link_of};
+
+/// What a link variable is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// The mass `m`, kg.
+    Mass,
+    /// A coordinate (0 x, 1 y, 2 z) of the centre of mass in the link frame, m.
+    Com(usize),
+    /// An element of the inertia tensor about the centre of mass in the link frame,
+    /// indexed as [`TENSOR_ELEMENTS`], kg m^2.
+    Inertia(usize),
+}
+
+/// A link variable named as in Gaz et al. 2016: `m3`, `c3x`, `I7xz` (link numbers from 1).
+///
+/// ```
+/// use robid_runtime::feasible::{Quantity, Variable};
+/// let v: Variable = "I7xz".parse().unwrap();
+/// assert_eq!((v.link, v.quantity), (6, Quantity::Inertia(4)));
+/// assert_eq!(v.to_string(), "I7xz");
+/// assert!("q7".parse::<Variable>().is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Variable {
+    /// The link, 0-based.
+    pub link: usize,
+    /// The quantity.
+    pub quantity: Quantity,
+}
+
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+impl FromStr for Variable {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<Variable> {
+        let bad = || {
+            Error::setting(
+                "Variable",
+                "name",
+                format!(
+                    "`{s}` is not a link variable; write m<link>, c<link>x|y|z or \
+                     I<link>xx|yy|zz|xy|xz|yz with links from 1 (e.g. m7, c7z, I7xz)"
+                ),
+            )
+        };
+        let s = s.trim();
+        let (head, rest) = s.split_at(s.chars().next().map_or(0, char::len_utf8));
+        let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
+        let suffix = &rest[digits.len()..];
+        let link: usize = digits.parse().ok().filter(|&j| j >= 1).ok_or_else(bad)?;
+        let quantity = match (head, suffix) {
+            ("m", "") => Quantity::Mass,
+            ("c", a) => Quantity::Com(AXES.iter().position(|x| *x == a).ok_or_else(bad)?),
+            ("I", e) => Quantity::Inertia(
+                TENSOR_ELEMENTS
+                    .iter()
+                    .position(|(n, _, _)| *n == e)
+                    .ok_or_else(bad)?,
+            ),
+            _ => return Err(bad()),
+        };
+        Ok(Variable {
+            link: link - 1,
+            quantity,
+        })
+    }
+}
+
+impl fmt::Display for Variable {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let j = self.link + 1;
+        match self.quantity {
+            Quantity::Mass => write!(f, "m{j}"),
+            Quantity::Com(a) => write!(f, "c{j}{}", AXES[a]),
+            Quantity::Inertia(e) => write!(f, "I{j}{}", TENSOR_ELEMENTS[e].0),
+        }
+    }
+}
+
+impl Variable {
+    /// Its value in a full vector of search variables.
+    pub(crate) fn value(&self, x: &[f64]) -> f64 {
+        let at = self.link * PER_LINK;
+        match self.quantity {
+            Quantity::Mass => x[at],
+            Quantity::Com(a) => x[at + 1 + a],
+            Quantity::Inertia(e) => {
+                let (_, row, column) = TENSOR_ELEMENTS[e];
+                link_of(&x[at..at + PER_LINK]).inertia[row][column]
+            }
+        }
+    }
+
+    /// Its index among the search variables, for a mass or a centre-of-mass coordinate.
+    pub(crate) fn index(&self) -> Option<usize> {
+        let at = self.link * PER_LINK;
+        match self.quantity {
+            Quantity::Mass => Some(at),
+            Quantity::Com(a) => Some(at + 1 + a),
+            Quantity::Inertia(_) => None,
+        }
+    }
+
+    /// Its typical magnitude under `b`: the largest magnitude its bounds allow.
+    pub(crate) fn scale(&self, b: &LinkBounds) -> f64 {
+        let wide = |r: [f64; 2]| r[0].abs().max(r[1].abs());
+        let s = match self.quantity {
+            Quantity::Mass => wide(b.mass),
+            Quantity::Com(a) => wide(b.com[a]),
+            Quantity::Inertia(e) => b.tensor[e].map_or(b.inertia[1], wide),
+        };
+        s.max(1e-9)
+    }
+}
+
+/// `left = coefficient * factors[0] * factors[1] * ...` (Gaz et al.'s eq. 15 form).
+///
+/// ```
+/// use robid_runtime::feasible::Equality;
+/// // Gaz et al. 2016, eq. 15
+/// let e: Equality = "I7xz = c7x * c7z * m7".parse().unwrap();
+/// assert_eq!(e.factors.len(), 3);
+/// assert_eq!(e.to_string(), "I7xz = c7x * c7z * m7");
+/// let half: Equality = "c6y = -0.5 * c6x".parse().unwrap();
+/// assert_eq!(half.coefficient, -0.5);
+/// assert!("I7xz = ".parse::<Equality>().is_err());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Equality {
+    /// The variable on the left.
+    pub left: Variable,
+    /// The constant factor on the right (1 when none is written).
+    pub coefficient: f64,
+    /// The variables multiplied on the right (none: `left` equals the constant).
+    pub factors: Vec<Variable>,
+}
+
+impl FromStr for Equality {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<Equality> {
+        let bad = |why: &str| {
+            Error::setting(
+                "Equality",
+                "text",
+                format!("`{s}`: {why}; write e.g. `I7xz = c7x * c7z * m7` or `c6y = -0.5 * c6x`"),
+            )
+        };
+        let (left, right) = s.split_once('=').ok_or_else(|| bad("no `=`"))?;
+        let left: Variable = left.parse()?;
+        let mut coefficient = 1.0;
+        let mut factors = Vec::new();
+        for part in right.split('*') {
+            let part = part.trim();
+            if part.is_empty() {
+                return Err(bad("an empty factor"));
+            }
+            match part.parse::<f64>() {
+                Ok(c) if c.is_finite() && c.abs() <= MAX_PARAMETER => coefficient *= c,
+                Ok(_) => return Err(bad("a constant that is not finite or beyond 1e6")),
+                Err(_) => factors.push(part.parse::<Variable>()?),
+            }
+        }
+        Ok(Equality {
+            left,
+            coefficient,
+            factors,
+        })
+    }
+}
+
+impl fmt::Display for Equality {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} = ", self.left)?;
+        let mut parts: Vec<String> = Vec::new();
+        if self.coefficient != 1.0 || self.factors.is_empty() {
+            parts.push(format!("{}", self.coefficient));
+        }
+        parts.extend(self.factors.iter().map(Variable::to_string));
+        write!(f, "{}", parts.join(" * "))
+    }
+}
+
+impl Equality {
+    /// The links it names, 0-based.
+    pub(crate) fn links(&self) -> impl Iterator<Item = usize> + '_ {
+        std::iter::once(self.left.link).chain(self.factors.iter().map(|v| v.link))
+    }
+
+    /// `(left - right) / scale` at a full vector of search variables.
+    pub(crate) fn violation(&self, x: &[f64], bounds: &[LinkBounds]) -> f64 {
+        let right: f64 =
+            self.coefficient * self.factors.iter().map(|v| v.value(x)).product::<f64>();
+        (self.left.value(x) - right) / self.left.scale(&bounds[self.left.link])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_bad_names_are_refused() {
+        for name in ["m1", "c2x", "c12z", "I3xx", "I7yz"] {
+            assert_eq!(name.parse::<Variable>().unwrap().to_string(), name);
+        }
+        for bad in ["", "m", "m0", "c3w", "I3zx", "x3", "m3x", "c-1x"] {
+            let e = bad.parse::<Variable>().unwrap_err().to_string();
+            assert!(e.contains("not a link variable"), "{bad}: {e}");
+        }
+        let e = "I7xz = c7x * * m7".parse::<Equality>().unwrap_err();
+        assert!(e.to_string().contains("empty factor"), "{e}");
+        assert!("I7xz c7x".parse::<Equality>().is_err());
+        assert!("I7xz = 1e400 * c7x".parse::<Equality>().is_err());
+    }
+
+    #[test]
+    fn the_violation_is_the_scaled_difference() {
+        // link 1 at m = 2, c = (0.1, 0, 0.3), no inertia: I1xz = 0 against c1x c1z m1 = 0.06
+        let mut x = vec![0.0; PER_LINK];
+        x[0] = 2.0;
+        x[1] = 0.1;
+        x[3] = 0.3;
+        let b = LinkBounds {
+            tensor: [None, None, None, None, Some([-0.2, 0.1]), None],
+            ..LinkBounds::default()
+        };
+        let e: Equality = "I1xz = c1x * c1z * m1".parse().unwrap();
+        assert!((e.violation(&x, &[b]) - (0.0 - 0.06) / 0.2).abs() < 1e-15);
+        let e: Equality = "m1 = 4 * c1z".parse().unwrap();
+        assert!((e.violation(&x, &[b]) - (2.0 - 1.2) / 50.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,212 @@
+//! The search's additions for Gaz et al.'s method (docs/experiments.md#two-step-extraction):
+//! held values, eq. 15 equalities, the step penalty on the total mass, and masses the fit
+//! does not see counted by their boxes.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::*;
+use crate::feasible::bounds::LinkBounds;
+use crate::feasible::inertial::LinkInertial;
+use crate::model::Inertial;
+
+/// Standard names of `links` links (`XX1 .. M1 XX2 ..`).
+fn names(links: usize) -> Vec<String> {
+    (1..=links)
+        .flat_map(|j| {
+            Inertial::ALL
+                .iter()
+                .map(move |s| format!("{}{j}", s.stem()))
+        })
+        .collect()
+}
+
+/// A problem whose base parameters are the standard parameters `rows` (by name), with
+/// targets from `truth` (a standard vector) and deviations 1e-6.
+fn problem(links: usize, rows: &[&str], truth: &[f64]) -> Problem {
+    let standard = names(links);
+    let k = DMatrix::from_fn(rows.len(), standard.len(), |b, s| {
+        f64::from(u8::from(standard[s] == rows[b]))
+    });
+    let target: Vec<f64> = (&k * DVector::from_column_slice(truth))
+        .iter()
+        .copied()
+        .collect();
+    let base = rows.iter().map(|r| format!("b{r}")).collect();
+    Problem::new(standard, base, k)
+        .unwrap()
+        .with_target(&target, &vec![1e-6; rows.len()])
+        .unwrap()
+}
+
+/// One link of mass 2 kg at (0.1, 0.05, 0.2) m, isotropic 0.01 kg m^2 about it.
+fn one_link() -> Vec<f64> {
+    let link = LinkInertial {
+        mass: 2.0,
+        com: [0.1, 0.05, 0.2],
+        inertia: [[0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0.0, 0.0, 0.01]],
+    };
+    link.to_standard().to_vec()
+}
+
+fn quick() -> AnnealOptions {
+    AnnealOptions {
+        restarts: 2,
+        iterations: 2000,
+        local_evaluations: 2000,
+        seed: 5,
+        ..AnnealOptions::default()
+    }
+}
+
+#[test]
+fn gaz_an_equality_holds_where_the_fit_is_blind() {
+    // The fit sees the mass and first moments only; the equality sets I1xz, which the fit
+    // leaves at its don't-care value 0 without it.
+    let truth = one_link();
+    let problem = problem(1, &["M1", "MX1", "MY1", "MZ1"], &truth);
+    let bounds = Bounds {
+        links: vec![LinkBounds {
+            mass: [0.5, 4.0],
+            com: [[-0.3, 0.3]; 3],
+            inertia: [0.0, 0.2],
+            tensor: [None; 6],
+        }],
+        total_mass: None,
+        margin: 1e-6,
+    };
+    let options = AnnealOptions {
+        equalities: vec!["I1xz = c1x * c1z * m1".parse().unwrap()],
+        ..quick()
+    };
+    let s = solve_anneal(&problem, &bounds, &options).unwrap();
+    let l = s.links[0].unwrap();
+    // 2 kg * 0.1 m * 0.2 m; the fit and the equality can both hold exactly, so the misses
+    // are rounding (measured 6.9e-18 kg m^2, 0 kg, 0 m)
+    let eq = l.inertia[0][2] - 0.04;
+    assert!(eq.abs() < 1e-15, "I1xz - c1x c1z m1 = {eq}");
+    assert!(
+        (l.mass - 2.0).abs() < 1e-12 && (l.com[2] - 0.2).abs() < 1e-12,
+        "{l:?}"
+    );
+    let without = solve_anneal(&problem, &bounds, &quick()).unwrap();
+    assert_eq!(without.links[0].unwrap().inertia[0][2], 0.0);
+}
+
+#[test]
+fn gaz_held_values_are_kept_and_refused_when_not_a_mass_or_centre() {
+    let truth = one_link();
+    let problem = problem(1, &["MX1", "MY1", "MZ1", "ZZ1"], &truth);
+    let bounds = Bounds::wide(1);
+    let held: Variable = "m1".parse().unwrap();
+    let options = AnnealOptions {
+        fixed: vec![(held, 2.0)],
+        ..quick()
+    };
+    let s = solve_anneal(&problem, &bounds, &options).unwrap();
+    let l = s.links[0].unwrap();
+    assert_eq!(l.mass, 2.0);
+    // with the mass held, the first moments give the centre of mass itself (rounding:
+    // measured 2.8e-17 m at most)
+    for (a, c) in [0.1, 0.05, 0.2].iter().enumerate() {
+        assert!((l.com[a] - c).abs() < 1e-12, "{l:?}");
+    }
+    let options = AnnealOptions {
+        fixed: vec![("I1xx".parse().unwrap(), 0.1)],
+        ..quick()
+    };
+    let e = solve_anneal(&problem, &bounds, &options)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("only masses and centre-of-mass"), "{e}");
+    let options = AnnealOptions {
+        fixed: vec![("m3".parse().unwrap(), 1.0)],
+        ..quick()
+    };
+    let e = solve_anneal(&problem, &bounds, &options)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("the robot has 1 links"), "{e}");
+}
+
+/// The objective of two links at full variables, none searched, for the penalty tests.
+fn value(mass_step: Option<f64>, loose: Vec<(usize, [f64; 2])>, masses: [f64; 2]) -> f64 {
+    with_objective(mass_step, loose, masses, |o| o.value(&[]))
+}
+
+/// Runs `f` on the objective of two links with masses `masses`, none searched, a total-mass
+/// range of [13, 19] kg and an exact fit.
+fn with_objective<T>(
+    mass_step: Option<f64>,
+    loose: Vec<(usize, [f64; 2])>,
+    masses: [f64; 2],
+    f: impl FnOnce(&Objective<'_>) -> T,
+) -> T {
+    let problem = problem(2, &["MX1"], &[0.0; 20]);
+    let bounds = Bounds {
+        total_mass: Some([13.0, 19.0]),
+        ..Bounds::wide(2)
+    };
+    let mut fixed = vec![0.0; 2 * PER_LINK];
+    fixed[0] = masses[0];
+    fixed[PER_LINK] = masses[1];
+    for d in [4, 5, 6, 14, 15, 16] {
+        fixed[d] = 0.1;
+    }
+    let objective = Objective {
+        problem: &problem,
+        bounds: &bounds,
+        a: problem.whitening.clone() * &problem.k,
+        b: problem.whitening.clone() * &problem.target,
+        linear: Vec::new(),
+        drive_pinv: None,
+        fixed,
+        free: Vec::new(),
+        penalty: 1e4,
+        pull: None,
+        equalities: &[],
+        mass_step,
+        loose,
+    };
+    f(&objective)
+}
+
+#[test]
+fn gaz_the_step_penalty_adds_delta_outside_the_total_mass_range() {
+    let inside = value(Some(10.0), Vec::new(), [8.0, 8.0]);
+    // the fit (MX1 = 0 at c = 0) is exact: only the penalties count
+    assert_eq!(inside, 0.0);
+    for out in [[8.0, 4.0], [8.0, 12.0], [0.1, 0.1]] {
+        // sqrt(10)^2: rounding only
+        let v = value(Some(10.0), Vec::new(), out);
+        assert!((v - 10.0).abs() < 1e-12, "{out:?}: {v}");
+    }
+    // the proportional penalty instead: 1e4 (excess / 19 kg)^2, 1 kg short
+    let p = value(None, Vec::new(), [8.0, 4.0]);
+    assert!((p - 1e4 / 361.0).abs() < 1e-9, "{p}");
+    // a mass the fit does not see counts as anything in its box [0, 6]: 8 + [0, 6] meets
+    // [13, 19], 5 + [0, 6] misses it by 2 kg
+    assert_eq!(value(Some(10.0), vec![(1, [0.0, 6.0])], [8.0, 0.0]), 0.0);
+    let v = value(Some(10.0), vec![(1, [0.0, 6.0])], [5.0, 0.0]);
+    assert!((v - 10.0).abs() < 1e-12, "{v}");
+    let p = value(None, vec![(1, [0.0, 6.0])], [5.0, 0.0]);
+    assert!((p - 1e4 * (2.0f64 / 19.0).powi(2)).abs() < 1e-9, "{p}");
+}
+
+#[test]
+fn gaz_a_mass_the_fit_does_not_see_is_settled_into_the_total_mass_range() {
+    let settled = |masses: [f64; 2]| {
+        with_objective(None, vec![(1, [0.0, 6.0])], masses, |o| {
+            let mut x = o.fixed.clone();
+            o.settle_masses(&mut x);
+            x[PER_LINK]
+        })
+    };
+    // 8 kg + 3 kg (the don't-care value) is short of 13 kg: the loose mass goes to 5 kg
+    assert!((settled([8.0, 3.0]) - 5.0).abs() < 1e-12);
+    // 12 kg + 3 kg is inside: unchanged
+    assert_eq!(settled([12.0, 3.0]), 3.0);
+    // 18 kg + 3 kg is above 19 kg: 1 kg
+    assert!((settled([18.0, 3.0]) - 1.0).abs() < 1e-12);
+    // 4 kg + at most 6 kg cannot reach 13 kg: the top of its box
+    assert!((settled([4.0, 3.0]) - 6.0).abs() < 1e-12);
+}

@@ -1,0 +1,170 @@
+//! Identification from samples of a numeric model at static poses, as Gaz, Flacco, De Luca
+//! (ICRA 2016, Sec. II-D) identify the KUKA LWR IV+ from the gravity vector and the inertia
+//! matrix its controller reports (docs/identification.md#static-samples): pairs
+//! (q, g(q)) give the combinations of base parameters the gravity torques determine, pairs
+//! (q, M(q)) those the mass matrix determines, each by least squares on the stacked rows.
+//!
+//! A CSV file holds `q1..qn` and either `g1..gn` (gravity torques, N m) or the upper
+//! triangle of the mass matrix `M11 M12 .. M1n M22 .. Mnn` (`Mij` with i <= j, row i and
+//! column j, kg m^2 or kg for a prismatic joint).
+
+use std::path::Path;
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::data::{read_columns, read_header};
+use crate::estimate::{Estimate, Observation, ols};
+use crate::feasible::GravityCoefficients;
+use crate::{Error, Model, Result};
+
+/// What the samples hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StaticKind {
+    /// Gravity torques `g1..gn`.
+    Gravity,
+    /// The upper triangle of the mass matrix, `M11 M12 .. Mnn`.
+    MassMatrix,
+}
+
+impl StaticKind {
+    /// The value columns of a robot with `dof` joints.
+    ///
+    /// ```
+    /// use robid_runtime::pipeline::StaticKind;
+    /// assert_eq!(StaticKind::Gravity.columns(2), ["g1", "g2"]);
+    /// assert_eq!(StaticKind::MassMatrix.columns(2), ["M11", "M12", "M22"]);
+    /// ```
+    pub fn columns(self, dof: usize) -> Vec<String> {
+        match self {
+            StaticKind::Gravity => (1..=dof).map(|i| format!("g{i}")).collect(),
+            StaticKind::MassMatrix => (1..=dof)
+                .flat_map(|i| (i..=dof).map(move |j| format!("M{i}{j}")))
+                .collect(),
+        }
+    }
+
+    /// Lower-case name (`gravity`, `mass matrix`).
+    pub fn name(self) -> &'static str {
+        match self {
+            StaticKind::Gravity => "gravity",
+            StaticKind::MassMatrix => "mass matrix",
+        }
+    }
+}
+
+/// The base-regressor rows of one pose, row-major with `base_parameter_count` columns, in
+/// the order of [`StaticKind::columns`]: for gravity `Y_b(q, 0, 0)`; for the mass matrix the
+/// entry `M_ij` (i <= j) is row i of `Y_b(q, 0, e_j) - Y_b(q, 0, 0)` (M's column j is the
+/// inverse dynamics at unit acceleration of joint j, gravity removed).
+pub fn static_rows(model: &dyn Model, q: &[f64], kind: StaticKind) -> Result<Vec<f64>> {
+    let (n, nb) = (model.dof(), model.base_parameter_count());
+    let zero = vec![0.0; n];
+    let mut rest = vec![0.0; n * nb];
+    model.base_regressor_into(q, &zero, &zero, &mut rest)?;
+    if kind == StaticKind::Gravity {
+        return Ok(rest);
+    }
+    let mut columns = Vec::with_capacity(n);
+    let mut unit = zero.clone();
+    let mut y = vec![0.0; n * nb];
+    for j in 0..n {
+        unit[j] = 1.0;
+        model.base_regressor_into(q, &zero, &unit, &mut y)?;
+        unit[j] = 0.0;
+        columns.push(
+            y.iter()
+                .zip(&rest)
+                .map(|(a, b)| a - b)
+                .collect::<Vec<f64>>(),
+        );
+    }
+    let mut out = Vec::with_capacity(n * (n + 1) / 2 * nb);
+    for i in 0..n {
+        for column in &columns[i..] {
+            out.extend_from_slice(&column[i * nb..(i + 1) * nb]);
+        }
+    }
+    Ok(out)
+}
+
+/// The result of [`identify_static`].
+#[derive(Debug, Clone)]
+pub struct StaticFit {
+    /// What the samples held.
+    pub kind: StaticKind,
+    /// The combinations of base parameters such samples determine (`map` from the base
+    /// parameters), named after the base parameter that leads each.
+    pub determined: GravityCoefficients,
+    /// The base parameters that lead no determined combination: these samples say nothing
+    /// about them (or only through a combination led by another).
+    pub undetermined: Vec<String>,
+    /// The least-squares estimate of the determined combinations, with its statistics.
+    pub estimate: Estimate,
+}
+
+/// Reads static samples from `path` (see the module docs) and identifies, by ordinary least
+/// squares with relative singular-value threshold `tolerance`, the combinations of base
+/// parameters they determine. A file with neither or both kinds of value columns, a
+/// missing column, or poses too few or too alike to determine every combination is an
+/// error that says so.
+pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result<StaticFit> {
+    let n = model.dof();
+    let header = read_header(path)?;
+    let has = |kind: StaticKind| kind.columns(n).iter().any(|c| header.contains(c));
+    let kind = match (has(StaticKind::Gravity), has(StaticKind::MassMatrix)) {
+        (true, false) => StaticKind::Gravity,
+        (false, true) => StaticKind::MassMatrix,
+        (g, _) => {
+            return Err(Error::setting(
+                "static samples",
+                &path.display().to_string(),
+                format!(
+                    "{}; give q1..q{n} and either g1..g{n} (gravity torques) or M11 M12 .. \
+                     M{n}{n} (the upper triangle of the mass matrix), in separate files",
+                    if g {
+                        "holds both gravity (g) and mass-matrix (M) columns"
+                    } else {
+                        "holds neither gravity columns g1.. nor mass-matrix columns M11.."
+                    }
+                ),
+            ));
+        }
+    };
+    let values = kind.columns(n);
+    let mut names: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
+    names.extend(values.iter().cloned());
+    let table = read_columns(path, &names)?;
+    let determined = match kind {
+        StaticKind::Gravity => GravityCoefficients::of_model(model)?,
+        StaticKind::MassMatrix => GravityCoefficients::of_mass_matrix(model)?,
+    };
+    let (rows, nb) = (table.rows(), model.base_parameter_count());
+    let per = values.len();
+    let nc = determined.kept.len();
+    let mut w = DMatrix::zeros(rows * per, nc);
+    let mut y = DVector::zeros(rows * per);
+    for r in 0..rows {
+        let q: Vec<f64> = (0..n).map(|i| table.columns[i][r]).collect();
+        let full = static_rows(model, &q, kind)?;
+        for e in 0..per {
+            for (c, &b) in determined.kept.iter().enumerate() {
+                w[(r * per + e, c)] = full[e * nb + b];
+            }
+            y[r * per + e] = table.columns[n + e][r];
+        }
+    }
+    let estimate = ols(
+        &Observation::single(w, y, determined.names.clone())?,
+        tolerance,
+    )?;
+    let undetermined = (0..nb)
+        .filter(|b| !determined.kept.contains(b))
+        .filter_map(|b| model.base_parameter_name(b).map(str::to_owned))
+        .collect();
+    Ok(StaticFit {
+        kind,
+        determined,
+        undetermined,
+        estimate,
+    })
+}

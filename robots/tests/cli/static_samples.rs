@@ -1,0 +1,91 @@
+//! `robid identify --static` end to end (docs/identification.md#static-samples): gravity
+//! samples of the LWR IV+ in the frames of Gaz et al. 2016, made by the model's gravity
+//! program from known base parameters, give back the twelve gravity coefficients.
+
+use crate::common;
+
+use std::path::{Path, PathBuf};
+
+use common::{folder, robid, stderr, stdout};
+use robid_runtime::Model;
+use robid_runtime::feasible::GravityCoefficients;
+use robid_runtime::rng::Rng;
+
+const LWR: &str = "tests/fixtures/lwr4_gaz2016.toml";
+
+/// Writes `poses` gravity samples for base parameters `beta`; returns the path.
+fn samples(dir: &Path, model: &dyn Model, beta: &[f64], poses: usize) -> PathBuf {
+    let mut text = "q1,q2,q3,q4,q5,q6,q7,g1,g2,g3,g4,g5,g6,g7\n".to_owned();
+    let mut rng = Rng::new(2016);
+    for _ in 0..poses {
+        let q: Vec<f64> = (0..7).map(|_| rng.uniform(-2.9, 2.9)).collect();
+        let mut g = vec![0.0; 7];
+        model.gravity_into(&q, beta, &mut g).unwrap();
+        let row: Vec<String> = q.iter().chain(&g).map(|v| format!("{v:e}")).collect();
+        text += &(row.join(",") + "\n");
+    }
+    let path = dir.join("gravity.csv");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn gaz_identify_static_gravity_samples_give_the_gravity_coefficients() {
+    let dir = folder();
+    let robot = robid_symbolic::Robot::from_file(Path::new(LWR)).unwrap();
+    let model = robots::interpreted::Interpreted::new(&robot).unwrap();
+    let nb = model.base_parameter_count();
+    let mut rng = Rng::new(7);
+    let beta: Vec<f64> = (0..nb).map(|_| rng.uniform(-1.0, 1.0)).collect();
+    let csv = samples(dir.path(), &model, &beta, 30);
+    let json = dir.path().join("static.json");
+    let o = robid(&[
+        "identify",
+        LWR,
+        "--static",
+        csv.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    let (out, err) = (stdout(&o), stderr(&o));
+    assert!(o.status.success(), "{err}");
+    assert!(out.starts_with("gravity samples: 210 equations"), "{out}");
+    assert!(
+        err.contains("gravity samples determine 12 of the 43 base parameters"),
+        "{err}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let truth = GravityCoefficients::of_model(&model).unwrap();
+    let expected = truth.values(&beta).unwrap();
+    let parameters = v["parameters"].as_array().unwrap();
+    assert_eq!(parameters.len(), 12);
+    assert_eq!(v["undetermined"].as_array().unwrap().len(), 31);
+    for (p, (name, x)) in parameters.iter().zip(truth.names.iter().zip(&expected)) {
+        assert_eq!(p["name"].as_str().unwrap(), name);
+        let value = p["value"].as_f64().unwrap();
+        // exact samples written to full precision: rounding only (the library test
+        // measured 6.0e-16 relative)
+        assert!((value - x).abs() < 1e-10, "{name}: {value} against {x}");
+    }
+}
+
+#[test]
+fn gaz_identify_static_refuses_bad_columns_and_other_data() {
+    let dir = folder();
+    let bad = dir.path().join("bad.csv");
+    std::fs::write(&bad, "q1,q2,q3,q4,q5,q6,q7,g1,g2\n0,0,0,0,0,0,0,1,2\n").unwrap();
+    let o = robid(&["identify", LWR, "--static", bad.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("no column `g3`"), "{}", stderr(&o));
+    let o = robid(&[
+        "identify",
+        LWR,
+        "--static",
+        bad.to_str().unwrap(),
+        "--data",
+        "x.csv",
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("cannot be used with"), "{}", stderr(&o));
+}
