@@ -379,6 +379,51 @@ fn emission_fails_without_panicking() {
     ));
 }
 
+/// Operands one past the last temporary, input or constant (and an instruction reading its
+/// own result) are refused by the Rust and the C emitters; the last valid ones are not.
+#[test]
+fn emission_refuses_operands_one_past_the_end() {
+    use robid_symbolic::emit::{CScalar, emit_c};
+    use robid_symbolic::program::{Instr, Value};
+    let text = format!("{HEAD}[[joints]]\na = 0.5\n[[joints]]\nalpha = \"pi/2\"\n");
+    let programs = RobotPrograms::derive(&Robot::from_toml(&text, "arm.toml").unwrap()).unwrap();
+    let kind = ProgramKind::InverseDynamics;
+    let p = &programs[kind];
+    let (temps, inputs, constants) = (
+        p.instrs.len() as u32,
+        p.input_len() as u32,
+        p.constants.len() as u32,
+    );
+    assert!(temps > 0 && constants > 0);
+    let both = |programs: &RobotPrograms| {
+        (
+            emit_programs(programs).is_ok(),
+            emit_c(programs, CScalar::Double, "arm.h").is_ok(),
+        )
+    };
+    // an output reading each kind of value at its last valid index, then one past it
+    for (last, past) in [
+        (Value::Temp(temps - 1), Value::Temp(temps)),
+        (Value::Input(inputs - 1), Value::Input(inputs)),
+        (Value::Const(constants - 1), Value::Const(constants)),
+    ] {
+        let mut ok = programs.clone();
+        ok[kind].outputs[0].values[0] = last;
+        assert_eq!(both(&ok), (true, true), "{last:?}");
+        let mut bad = programs.clone();
+        bad[kind].outputs[0].values[0] = past;
+        assert_eq!(both(&bad), (false, false), "{past:?}");
+    }
+    // an instruction reading its own result, and one reading the one before
+    let last = p.instrs.len() - 1;
+    let mut own = programs.clone();
+    own[kind].instrs[last] = Instr::Neg(Value::Temp(last as u32));
+    assert_eq!(both(&own), (false, false));
+    let mut before = programs.clone();
+    before[kind].instrs[last] = Instr::Neg(Value::Temp(last as u32 - 1));
+    assert_eq!(both(&before), (true, true));
+}
+
 /// A `drive` key that TOML attaches to the last joint only is warned about with its line;
 /// the intended forms are not.
 #[test]
