@@ -312,3 +312,19 @@ fn instr_tokens(program: &Program, instr: &Instr) -> TokenStream {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::describe;
+
+    /// Input groups are described in the generated docs by their elements, up to four
+    /// written out, longer ones by their ends.
+    #[test]
+    fn input_groups_are_described_by_their_elements() {
+        let names = |n: usize| (1..=n).map(|k| format!("q{k}")).collect::<Vec<_>>();
+        assert_eq!(describe(&names(0)), "");
+        assert_eq!(describe(&names(1)), "q1");
+        assert_eq!(describe(&names(4)), "q1, q2, q3, q4");
+        assert_eq!(describe(&names(5)), "q1 .. q5");
+    }
+}
