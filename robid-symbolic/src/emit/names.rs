@@ -56,6 +56,11 @@ mod tests {
         assert_eq!(super::value_ident("type").to_string(), "s_type");
         assert_eq!(super::value_ident("out").to_string(), "s_out");
         assert_eq!(super::value_ident("L3").to_string(), "L3");
+        // only `t` or `c` followed by digits clashes: `t`, `c`, `tool` and `c3x` stay as named
+        for name in ["t", "c", "tool", "c3x"] {
+            assert_eq!(super::value_ident(name).to_string(), name);
+        }
+        assert_eq!(super::value_ident("c12").to_string(), "s_c12");
         assert!(super::ident("self").is_none() && super::ident("a b").is_none());
         assert!(super::value_name("L_3") && !super::value_name("a b") && !super::value_name(""));
     }
