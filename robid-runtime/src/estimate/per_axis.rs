@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 use crate::EstimateError;
 use crate::error::{Error, Result};
 use crate::estimate::least_squares::check_tolerance;
-use crate::estimate::lstsq::column_scales;
+use crate::estimate::lstsq::{column_scales, condition_number};
 use crate::estimate::quality::assess;
 use crate::estimate::{Estimate, Estimator, Observation, error_bound};
 use crate::limits::SVD_ITERATIONS;
@@ -46,7 +46,7 @@ pub struct AxisFit {
     pub parameters: usize,
     /// The numeric rank of the axis's regressor.
     pub rank: usize,
-    /// Condition number of the axis's column-scaled regressor (over its rank).
+    /// Condition number of the axis's regressor over the parameters it determines.
     pub condition_number: f64,
     /// RMS of the axis's residual.
     pub residual_rms: f64,
@@ -277,14 +277,22 @@ fn solve_axis(
             determined.push(obs.names[col].clone());
         }
     }
-    let smallest = kept.iter().map(|&i| s[i]).fold(f64::INFINITY, f64::min);
+    // the condition number of the axis's own regressor over the columns it determines (as
+    // the other estimators report cond(W): of W itself, not of its column-scaled form)
+    let columns: Vec<usize> = values.iter().map(|v| v.0).collect();
+    let condition_number = if columns.is_empty() {
+        1.0
+    } else {
+        let names: Vec<String> = columns.iter().map(|&c| obs.names[c].clone()).collect();
+        condition_number(&w.select_columns(columns.iter()), &names)?
+    };
     Ok(AxisSolution {
         fit: AxisFit {
             joint: j + 1,
             rows: rows.len(),
             parameters: k,
             rank,
-            condition_number: if rank == 0 { 1.0 } else { smax / smallest },
+            condition_number,
             residual_rms: (residual.norm_squared() / rows.len().max(1) as f64).sqrt(),
             determined,
         },
