@@ -595,6 +595,20 @@ pub enum Method {
     PerAxis,
 }
 
+impl Method {
+    /// The name in configs and reports (`ols`, `link-by-link`, ..).
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Ols => "ols",
+            Method::Wls => "wls",
+            Method::Rls => "rls",
+            Method::LinkByLink => "link-by-link",
+            Method::Energy => "energy",
+            Method::PerAxis => "per-axis",
+        }
+    }
+}
+
 /// Estimator options.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -257,3 +257,20 @@ fn stale_rows_and_skipped_ticks_are_reported() {
     // not repaired: the stale value is still there (before resampling onto the grid)
     assert_eq!(data.samples(), 400);
 }
+
+/// A method's name in reports is the one a config writes (serde), for every method.
+#[test]
+fn method_names_are_the_config_names() {
+    use crate::data::Method;
+    for m in [
+        Method::Ols,
+        Method::Wls,
+        Method::Rls,
+        Method::LinkByLink,
+        Method::Energy,
+        Method::PerAxis,
+    ] {
+        let written = toml::to_string(&std::collections::BTreeMap::from([("m", m)])).unwrap();
+        assert_eq!(written.trim(), format!("m = \"{}\"", m.name()));
+    }
+}

@@ -7,40 +7,9 @@ use crate::error::{Error, Result};
 use crate::estimate::Observation;
 use crate::estimate::quality::{QualityWarning, assess};
 
-/// Which estimator produced a result.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Estimator {
-    /// Ordinary least squares.
-    Ols,
-    /// Weighted least squares (Gautier).
-    Wls,
-    /// Recursive least squares.
-    Rls,
-    /// Link by link from the last link backwards, recursive least squares at each step.
-    #[serde(rename = "link-by-link")]
-    LinkByLink,
-    /// Energy (power balance) model.
-    Energy,
-    /// Per-axis least squares (Milella): each parameter from the joint equation that
-    /// determines it best.
-    #[serde(rename = "per-axis")]
-    PerAxis,
-}
-
-impl Estimator {
-    /// Lower-case name, as in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Estimator::Ols => "ols",
-            Estimator::Wls => "wls",
-            Estimator::Rls => "rls",
-            Estimator::LinkByLink => "link-by-link",
-            Estimator::Energy => "energy",
-            Estimator::PerAxis => "per-axis",
-        }
-    }
-}
+/// Which estimator produced a result: the config's estimation method, one list for both
+/// (the names in reports are its [`Method::name`](crate::data::Method::name)).
+pub type Estimator = crate::data::Method;
 
 /// Identified parameters with their uncertainty.
 #[derive(Debug, Clone, Serialize, Deserialize)]
