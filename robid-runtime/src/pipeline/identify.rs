@@ -203,27 +203,28 @@ pub fn identify(
     let known = known_parameters(model, config)?;
     let tolerance = config.estimation.rank_tolerance;
     // the system the method solves, reduced by the known parameters
-    let system_of = |obs: &Observation| -> Result<Observation> {
-        let system = match config.estimation.method {
-            Method::Energy => energy_observation_of(model, prepared, config)?,
-            _ => obs.clone(),
-        };
-        match &known {
-            Some(k) => k.reduce(&system).map_err(|e| config.locate(e)),
-            None => Ok(system),
-        }
-    };
+    // the system the method solves (borrowed, not copied, unless the energy model or the
+    // known parameters make a new one), then the estimate of every base parameter
     let estimate_of = |obs: &Observation| -> Result<Estimate> {
-        let system = system_of(obs)?;
-        let e = match config.estimation.method {
-            Method::Energy => energy(&system, tolerance).map_err(|e| config.locate(e))?,
-            _ => estimate(&system, config)?,
+        let energy_system;
+        let system = match config.estimation.method {
+            Method::Energy => {
+                energy_system = energy_observation_of(model, prepared, config)?;
+                &energy_system
+            }
+            _ => obs,
+        };
+        let solve = |system: &Observation| match config.estimation.method {
+            Method::Energy => energy(system, tolerance).map_err(|e| config.locate(e)),
+            _ => estimate(system, config),
         };
         match &known {
-            Some(k) => k
-                .expand(&e, &system, tolerance)
-                .map_err(|e| config.locate(e)),
-            None => Ok(e),
+            Some(k) => {
+                let reduced = k.reduce(system).map_err(|e| config.locate(e))?;
+                k.expand(&solve(&reduced)?, &reduced, tolerance)
+                    .map_err(|e| config.locate(e))
+            }
+            None => solve(system),
         }
     };
     let (obs, dt) = torque_observation(model, prepared, config, data, kept)?;
@@ -252,11 +253,12 @@ pub fn identify(
         e => e,
     })?;
     if config.estimation.method == Method::Energy {
-        let torque = match &known {
-            Some(k) => k.reduce(&obs).map_err(|e| config.locate(e))?,
-            None => obs.clone(),
+        let reduced = match &known {
+            Some(k) => Some(k.reduce(&obs).map_err(|e| config.locate(e))?),
+            None => None,
         };
-        energy_conditioning(&mut estimate, &torque).map_err(|e| config.locate(e))?;
+        energy_conditioning(&mut estimate, reduced.as_ref().unwrap_or(&obs))
+            .map_err(|e| config.locate(e))?;
     }
     for &(c, row, share) in &dominated {
         estimate.warnings.push(QualityWarning::Outlier {

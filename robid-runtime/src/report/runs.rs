@@ -125,13 +125,7 @@ impl RunsEntry {
                 r.error_bound_percent
             );
         }
-        let width = self
-            .parameters
-            .iter()
-            .map(|p| p.name.len())
-            .max()
-            .unwrap_or(4)
-            .max(9);
+        let width = super::table::name_width(self.parameters.iter().map(|p| p.name.as_str()));
         let _ = writeln!(
             s,
             "{:<width$}  {:>14}  {:>12}  {:>12}",

@@ -4,6 +4,12 @@ use std::fmt::Write;
 
 use crate::report::Report;
 
+/// The width of a table's parameter-name column: the longest name, at least that of the
+/// header `parameter`.
+pub(crate) fn name_width<'a>(names: impl Iterator<Item = &'a str>) -> usize {
+    names.map(str::len).max().unwrap_or(0).max(9)
+}
+
 /// Formats a report as a text table.
 pub fn text_table(report: &Report) -> String {
     let mut s = String::new();
@@ -19,13 +25,7 @@ pub fn text_table(report: &Report) -> String {
     if let Some(rows) = &report.estimation {
         let _ = writeln!(s, "estimation rows: {rows}");
     }
-    let width = report
-        .parameters
-        .iter()
-        .map(|p| p.name.len())
-        .max()
-        .unwrap_or(4)
-        .max(9);
+    let width = name_width(report.parameters.iter().map(|p| p.name.as_str()));
     let _ = writeln!(
         s,
         "{:<width$}  {:>14}  {:>12}  {:>9}  expression",
