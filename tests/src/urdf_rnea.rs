@@ -578,6 +578,70 @@ mod tests {
         assert!((tau - (-needed)).abs() < 1e-12, "{tau} vs {}", -needed);
     }
 
+    /// A chain a -(revolute r, origin t1)-> b -(prismatic p, origin t2)-> c, its torques with
+    /// the base at c equal those of the same mechanism written with c as its root, each joint
+    /// reversed by hand. With pure-translation origins, X_c = X_b Trans(t2) Trans(q2 u2) and
+    /// X_b = X_a Trans(t1) R(u1, q1) give X_b = X_c Trans(q2 (-u2)) Trans(-t2) and
+    /// X_a = X_b R(-u1, q1) Trans(-t1): in the rewritten file c -(p, origin 0, axis -u2)-> b'
+    /// -(r, origin -t2, axis -u1)-> a', with b's centre of mass at its xyz - t2 in b' and a's
+    /// at its xyz - t1 in a' (same axes). The effort of b' on a' along -u1 is the
+    /// effort of a on b along u1 (two sign changes), so the torques are the same numbers.
+    #[test]
+    fn base_away_from_the_root_equals_the_reversed_file() {
+        let original = r#"<robot name="forward">
+          <link name="a"><inertial><origin xyz="0.1 -0.2 0.05" rpy="0.3 0.2 0.1"/>
+            <mass value="2.5"/><inertia ixx="0.05" ixy="0.001" ixz="0" iyy="0.04" iyz="0.002"
+            izz="0.03"/></inertial></link>
+          <joint name="r" type="revolute"><origin xyz="0.3 0.1 -0.2"/>
+            <parent link="a"/><child link="b"/><axis xyz="1 2 2"/>
+            <limit lower="-3" upper="3" effort="10" velocity="1"/></joint>
+          <link name="b"><inertial><origin xyz="0.2 0.05 0.1" rpy="-0.4 0.1 0.9"/>
+            <mass value="1.5"/><inertia ixx="0.02" ixy="0" ixz="0.001" iyy="0.03" iyz="0"
+            izz="0.025"/></inertial></link>
+          <joint name="p" type="prismatic"><origin xyz="-0.1 0.25 0.15"/>
+            <parent link="b"/><child link="c"/><axis xyz="0 3 4"/>
+            <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+          <link name="c"><inertial><origin xyz="0 0 0.1"/><mass value="7"/>
+            <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+        </robot>"#;
+        // a at (0.1, -0.2, 0.05) - t1 in a', b at (0.2, 0.05, 0.1) - t2 in b'
+        let reversed = r#"<robot name="reversed">
+          <link name="c"/>
+          <joint name="p" type="prismatic"><origin xyz="0 0 0"/>
+            <parent link="c"/><child link="b"/><axis xyz="0 -3 -4"/>
+            <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+          <link name="b"><inertial><origin xyz="0.3 -0.2 -0.05" rpy="-0.4 0.1 0.9"/>
+            <mass value="1.5"/><inertia ixx="0.02" ixy="0" ixz="0.001" iyy="0.03" iyz="0"
+            izz="0.025"/></inertial></link>
+          <joint name="r" type="revolute"><origin xyz="0.1 -0.25 -0.15"/>
+            <parent link="b"/><child link="a"/><axis xyz="-1 -2 -2"/>
+            <limit lower="-3" upper="3" effort="10" velocity="1"/></joint>
+          <link name="a"><inertial><origin xyz="-0.2 -0.3 0.25" rpy="0.3 0.2 0.1"/>
+            <mass value="2.5"/><inertia ixx="0.05" ixy="0.001" ixz="0" iyy="0.04" iyz="0.002"
+            izz="0.03"/></inertial></link>
+        </robot>"#;
+        let (forward, backward) = (
+            UrdfTree::from_str(original, false).unwrap(),
+            UrdfTree::from_str(reversed, false).unwrap(),
+        );
+        assert_eq!(forward.root(), "a");
+        assert_eq!(backward.root(), "c");
+        let chain = ["r", "p"];
+        for (q, qd, qdd) in [
+            ([0.7, 0.15], [-1.1, 0.4], [2.3, -0.8]),
+            ([-2.1, -0.3], [0.6, -0.9], [-1.4, 1.7]),
+        ] {
+            let a = forward.torques_from("c", &chain, &q, &qd, &qdd);
+            let b = backward.torques(&chain, &q, &qd, &qdd);
+            for (x, y) in a.iter().zip(&b) {
+                assert!((x - y).abs() < 1e-12, "{a:?} vs {b:?}");
+            }
+            // and the base matters: from the root the same state needs other efforts
+            let from_root = forward.torques(&chain, &q, &qd, &qdd);
+            assert!((from_root[0] - a[0]).abs() > 1e-3, "{from_root:?} vs {a:?}");
+        }
+    }
+
     /// A prismatic joint along a written `0 0 3` axis lifting a mass: f = m (qdd + g).
     #[test]
     fn vertical_slider() {
@@ -602,12 +666,16 @@ mod tests {
 
     #[test]
     fn snapping_is_exact_and_limited() {
-        assert_eq!(sin_cos(1.57079632679, true), (1.0, 0.0));
-        assert_eq!(sin_cos(-3.14159265359, true), (0.0, -1.0));
+        // as written in the UR5 and TX40 files: 1.57079632679 and -3.14159265359
+        let (half, minus_pi) = (FRAC_PI_2 - 4.9e-12, -std::f64::consts::PI - 2.1e-12);
+        assert_eq!(sin_cos(half, true), (1.0, 0.0));
+        assert_eq!(sin_cos(minus_pi, true), (0.0, -1.0));
         assert_eq!(sin_cos(-FRAC_PI_2, true), (-1.0, 0.0));
         assert_eq!(sin_cos(0.0, true), (0.0, 1.0));
-        assert_eq!(sin_cos(1.5707963, true), 1.5707963f64.sin_cos());
-        assert_ne!(sin_cos(1.57079632679, false), (1.0, 0.0));
+        assert_eq!(sin_cos(5.0 * FRAC_PI_2, true), (1.0, 0.0));
+        let far = FRAC_PI_2 - 2e-9;
+        assert_eq!(sin_cos(far, true), far.sin_cos());
+        assert_ne!(sin_cos(half, false), (1.0, 0.0));
         let r = rpy(&[FRAC_PI_2, 0.0, 0.0], true);
         assert_eq!(column(&r, 2), [0.0, -1.0, 0.0]);
     }
