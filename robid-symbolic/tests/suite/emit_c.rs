@@ -1,21 +1,73 @@
-//! The C emitter (`robid emit --lang c`): for every reference robot, the C99 code
-//! compiled by the system C compiler agrees with the compiled Rust model on every
-//! program of the table, at random states, to 1e-12 (relative to the output's largest
-//! entry); with `float` it compiles warning-free too and agrees to float precision.
-//! Skipped, with a message, when no C compiler is installed.
+//! The C emitter (`robid emit --lang c`): for every reference robot (the descriptions in
+//! `robots/descriptions/`) and the UR5e with every drive term, the C99 code compiled by the
+//! system C compiler agrees with the interpreter on every program of the table, at random
+//! states, to 1e-12 (relative to the output's largest entry); with `float` it compiles
+//! warning-free too and agrees to float precision. The interpreter is the reference the
+//! compiled Rust models are checked against (`robots/src/models/consistency.rs`), so the
+//! test lives here, where a change to the emitter rebuilds only this crate (mutation
+//! testing, README "Mutation testing"). Skipped, with a message, when no C compiler is
+//! installed.
 
 use std::fmt::Write;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use robid_runtime::Model;
 use robid_runtime::model::{PROGRAMS, Sizes};
 use robid_runtime::rng::Rng;
-use robid_symbolic::Drive;
 use robid_symbolic::emit::{CScalar, emit_c};
 use robid_symbolic::program::RobotPrograms;
-use robots::REFERENCES;
-use robots::interpreted::Interpreted;
+use robid_symbolic::{Drive, Robot};
+
+/// The reference descriptions of the workspace, by name.
+fn references() -> Vec<Robot> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots/descriptions");
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    assert!(
+        paths.len() >= 8,
+        "the reference descriptions in {}",
+        dir.display()
+    );
+    paths.iter().map(|p| Robot::from_file(p).unwrap()).collect()
+}
+
+/// Every program's output for one state, by the interpreter (in the table's order).
+fn interpret(programs: &RobotPrograms, inputs: &[&[f64]; 5]) -> Vec<Vec<f64>> {
+    let geometry: Vec<f64> = programs
+        .geometry
+        .iter()
+        .map(|(s, v)| v.unwrap_or_else(|| panic!("reference symbol {s} has a value")))
+        .collect();
+    let sizes = sizes(programs);
+    let mut temps = Vec::new();
+    PROGRAMS
+        .iter()
+        .zip(&programs.programs)
+        .map(|(p, program)| {
+            let mut all: Vec<&[f64]> = p
+                .inputs
+                .iter()
+                .map(|a| match a.name {
+                    "q" => inputs[0],
+                    "qd" => inputs[1],
+                    "qdd" => inputs[2],
+                    "base" => inputs[3],
+                    _ => inputs[4],
+                })
+                .collect();
+            if !geometry.is_empty() {
+                all.push(&geometry);
+            }
+            let mut out = vec![0.0; p.output.size.len(sizes)];
+            program.run(&all, &mut [&mut out], &mut temps).unwrap();
+            out
+        })
+        .collect()
+}
 
 /// The C compiler, if there is one (`$CC`, else `cc`).
 fn compiler() -> Option<String> {
@@ -165,34 +217,26 @@ fn relative(a: &[f64], b: &[f64]) -> f64 {
 }
 
 #[test]
-fn c_code_agrees_with_the_rust_models() {
+fn c_code_agrees_with_the_interpreter() {
     let Some(cc) = compiler() else {
         eprintln!("emit_c: skipped, no C compiler (set CC or install cc)");
         return;
     };
-    let dir = tempfile::tempdir().unwrap();
+    let dir = std::env::temp_dir().join(format!("robid-emit-c-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
     let mut rng = Rng::from_state(11);
     let mut worst = (0.0_f64, 0.0_f64);
-    // the compiled reference models, and the UR5e with every drive term (sign() for
-    // Coulomb friction, Ia, Fo) against the interpreter
-    let mut cases: Vec<(RobotPrograms, Box<dyn Model>)> = REFERENCES
-        .iter()
-        .map(|r| {
-            (
-                RobotPrograms::derive(&r.robot()).unwrap(),
-                r.model() as Box<dyn Model>,
-            )
-        })
-        .collect();
-    let ur5e = robots::Reference::named("ur5e").unwrap().robot();
-    let drive = ur5e.with_drive(Drive::ALL).with_name("ur5e_drive").unwrap();
-    let interpreted = Interpreted::new(&drive).unwrap();
-    cases.push((interpreted.programs().clone(), Box::new(interpreted)));
-    for (programs, model) in &cases {
+    // every reference robot, and the UR5e with every drive term (sign() for Coulomb
+    // friction, Ia, Fo)
+    let mut robots = references();
+    let ur5e = robots.iter().find(|r| r.name() == "ur5e").unwrap().clone();
+    robots.push(ur5e.with_drive(Drive::ALL).with_name("ur5e_drive").unwrap());
+    for robot in &robots {
+        let programs = RobotPrograms::derive(robot).unwrap();
         let name = programs.robot.name();
-        let sizes = model.sizes();
-        let double = build(&cc, dir.path(), programs, CScalar::Double);
-        let float = build(&cc, dir.path(), programs, CScalar::Float);
+        let sizes = sizes(&programs);
+        let double = build(&cc, &dir, &programs, CScalar::Double);
+        let float = build(&cc, &dir, &programs, CScalar::Float);
         for _ in 0..3 {
             let mut random =
                 |n: usize, r: f64| -> Vec<f64> { (0..n).map(|_| rng.uniform(-r, r)).collect() };
@@ -204,21 +248,12 @@ fn c_code_agrees_with_the_rust_models() {
             let (base, standard) = (random(sizes.base, 1.0), random(sizes.standard, 1.0));
             let all: [&[f64]; 5] = [&q, &qd, &qdd, &base, &standard];
             let (c, c32) = (run(&double, &all), run(&float, &all));
+            let reference = interpret(&programs, &all);
             for (k, p) in PROGRAMS.iter().enumerate() {
-                let inputs: Vec<&[f64]> = p
-                    .inputs
-                    .iter()
-                    .map(|a| match a.name {
-                        "q" => q.as_slice(),
-                        "qd" => qd.as_slice(),
-                        "qdd" => qdd.as_slice(),
-                        "base" => base.as_slice(),
-                        _ => standard.as_slice(),
-                    })
-                    .collect();
-                let mut rust = vec![0.0; p.output.size.len(sizes)];
-                model.run(p.kind, &inputs, &mut rust).unwrap();
-                let (e, e32) = (relative(&c[k], &rust), relative(&c32[k], &rust));
+                let (e, e32) = (
+                    relative(&c[k], &reference[k]),
+                    relative(&c32[k], &reference[k]),
+                );
                 assert!(e <= 1e-12, "{} {}: C double off by {e:e}", name, p.name);
                 // measured at most 5.2e-16 (double) and 5.2e-7, a few float roundings of 6e-8
                 assert!(e32 <= 8.4e-7, "{} {}: C float off by {e32:e}", name, p.name);
@@ -226,6 +261,7 @@ fn c_code_agrees_with_the_rust_models() {
             }
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
     eprintln!(
         "emit_c: worst relative difference {:e} (double), {:e} (float)",
         worst.0, worst.1
