@@ -17,11 +17,13 @@ mod geometry;
 mod interval;
 mod parameters;
 mod read;
+mod urdf;
 
 pub use dh::{FrameRow, JointPlacement, Pose};
 pub use error::DescriptionError;
 pub use geometry::{Expression, Geometry, GeometryError, Number};
 pub use parameters::{DriveTerm, Inertial, ParameterId, ParameterKind};
+pub use urdf::{AttachedLink, ChainLink, ChainSelection, UrdfChain, write_inertials};
 
 pub(crate) use check::name_problem;
 use check::{Code, Parts};

@@ -1,0 +1,1 @@
+//! The real robots: UR5, Panda, LWR4, TX40.
