@@ -339,9 +339,10 @@ pub(super) fn choose(
         };
         let joint = &urdf.joints[j];
         let on_path = path_names.contains_key(joint.name.as_str());
-        if let Some((mimicked, at)) = &joint.mimic {
-            if on_path || path_names.contains_key(mimicked.as_str()) {
-                errors.push(place.invalid(
+        if let Some((mimicked, at)) = &joint.mimic
+            && (on_path || path_names.contains_key(mimicked.as_str()))
+        {
+            errors.push(place.invalid(
                     at.clone(),
                     if on_path {
                         format!("joint `{}` of the chain mimics joint `{mimicked}`", joint.name)
@@ -353,7 +354,6 @@ pub(super) fn choose(
                     },
                     "robid models independent joints: choose a chain without coupled joints, or make the joint fixed",
                 ));
-            }
         }
         if matches!(joint.kind, JointType::Floating | JointType::Planar) {
             errors.push(place.invalid(

@@ -84,12 +84,10 @@ impl Rigid {
 
     /// The 4 x 4 homogeneous matrix.
     pub(super) fn pose(&self) -> Pose {
-        let mut m = [[0.0; 4]; 4];
-        for i in 0..3 {
-            m[i][..3].copy_from_slice(&self.r[i]);
-            m[i][3] = self.p[i];
+        let mut m = [[0.0, 0.0, 0.0, 1.0]; 4];
+        for (row, (r, p)) in m.iter_mut().zip(self.r.iter().zip(self.p)) {
+            *row = [r[0], r[1], r[2], p];
         }
-        m[3][3] = 1.0;
         m
     }
 
@@ -169,6 +167,7 @@ mod tests {
     use super::*;
 
     #[test]
+    #[allow(clippy::approx_constant)] // the printed values of files
     fn printed_right_angles_snap_and_coarser_ones_do_not() {
         assert_eq!(right_angle_multiple(1.57079632679), Some(1));
         assert_eq!(right_angle_multiple(-3.14159265359), Some(-2));

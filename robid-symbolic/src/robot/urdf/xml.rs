@@ -310,18 +310,18 @@ impl Reader<'_> {
                 None
             }
         };
-        if let (Some(m), Some(mass_node)) = (mass, first_child(node, "mass")) {
-            if m < 0.0 {
-                let span = mass_node
-                    .attribute_node("value")
-                    .map_or(mass_node.range(), |a| a.range_value());
-                self.error(
-                    span,
-                    format!("the mass {m} is negative"),
-                    "a mass is positive or zero (kg)",
-                );
-                return None;
-            }
+        if let (Some(m), Some(mass_node)) = (mass, first_child(node, "mass"))
+            && m < 0.0
+        {
+            let span = mass_node
+                .attribute_node("value")
+                .map_or(mass_node.range(), |a| a.range_value());
+            self.error(
+                span,
+                format!("the mass {m} is negative"),
+                "a mass is positive or zero (kg)",
+            );
+            return None;
         }
         let inertia = match first_child(node, "inertia") {
             Some(i) => {

@@ -17,8 +17,8 @@ impl Sums {
     /// Adds a point-mass-plus-inertia: mass `m` at `c` with inertia `i` about `c`.
     fn add(&mut self, m: f64, c: [f64; 3], i: [[f64; 3]; 3]) {
         self.m += m;
-        for k in 0..3 {
-            self.ms[k] += m * c[k];
+        for (ms, c) in self.ms.iter_mut().zip(c) {
+            *ms += m * c;
         }
         let cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
         for a in 0..3 {
