@@ -97,6 +97,7 @@ fn limits(place: &Place<'_>, joint: &xml::Joint) -> Result<Limits, DescriptionEr
     Ok(out)
 }
 
+/// A finite angle as a geometric value (exact text for multiples of pi/2).
 fn angle(value: f64) -> Geometry {
     match angle_text(value) {
         Some(text) => Geometry::text(text).unwrap_or_else(|_| Geometry::zero()),
@@ -104,6 +105,7 @@ fn angle(value: f64) -> Geometry {
     }
 }
 
+/// A finite length as a geometric value (the rows are checked finite first).
 fn length(value: f64) -> Geometry {
     Geometry::number(value).unwrap_or_else(|_| Geometry::zero())
 }
@@ -131,6 +133,17 @@ pub(super) fn robot(
     for (k, &j) in chain.joints.iter().enumerate() {
         let urdf_joint = &urdf.joints[j];
         let [alpha, a, d, theta] = fit.rows[k];
+        if !fit.rows[k].iter().all(|x| x.is_finite()) {
+            errors.push(place.invalid(
+                urdf_joint.range.clone(),
+                format!(
+                    "the DH row robid fits at joint `{}` is not finite ({:?})",
+                    urdf_joint.name, fit.rows[k]
+                ),
+                "check the origins and axes of the chain's joints (are two axes almost parallel?)",
+            ));
+            continue;
+        }
         let kind = if urdf_joint.kind == JointType::Prismatic {
             JointKind::Prismatic
         } else {

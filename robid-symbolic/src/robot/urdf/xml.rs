@@ -13,6 +13,10 @@ use super::rigid::{Rigid, norm, scale};
 use roxmltree::{Document, Node};
 use std::ops::Range;
 
+/// Largest magnitude of a number in a URDF: no robot has larger lengths (m), masses (kg),
+/// inertias (kg m^2) or limits, and products of such values stay finite.
+const MAX_VALUE: f64 = 1e9;
+
 /// A URDF joint type.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum JointType {
@@ -217,7 +221,18 @@ impl Reader<'_> {
         let mut values = Vec::new();
         for word in text.split_whitespace() {
             match word.parse::<f64>() {
-                Ok(v) if v.is_finite() => values.push(v),
+                Ok(v) if v.abs() <= MAX_VALUE => values.push(v),
+                Ok(v) if v.is_finite() => {
+                    self.error(
+                        span,
+                        format!(
+                            "`{name}=\"{text}\"` of {}: `{word}` is beyond ±{MAX_VALUE:e}, not a value of a robot",
+                            describe(node)
+                        ),
+                        "write lengths in m, masses in kg, inertias in kg m^2, angles in rad",
+                    );
+                    return None;
+                }
                 Ok(_) => {
                     self.error(
                         span,

@@ -28,6 +28,7 @@ fn each_mistake_is_named_at_its_place() {
         (arm(&J1.replace(" type=\"revolute\"", "")), "t.urdf:5:1:", &["`<joint name=\"j1\">` has no `type` attribute", "add `type=\"...\"`"]),
         (arm(&J1.replace("0 0 1", "0 x 1")), "t.urdf:5:", &["`x` is not a number"]),
         (arm(&J1.replace("0 0 1", "0 inf 1")), "t.urdf:5:", &["is not finite", "write finite numbers"]),
+        (arm(&J1.replace("0 0 1", "0 1e300 1")), "t.urdf:5:", &["`1e300` is beyond ±1e9, not a value of a robot"]),
         (arm(&J1.replace("0 0 1", "0 1")), "t.urdf:5:", &["has 2 numbers", "write 3 numbers"]),
         (arm(&J1.replace("0 0 1", "0 0 0")), "t.urdf:5:", &["the axis of `<joint name=\"j1\">` has no direction"]),
         (arm(&J1.replace("revolute", "hinge")), "t.urdf:5:", &["unknown joint type `hinge`", "revolute, continuous, prismatic"]),
@@ -128,6 +129,23 @@ fn odd_robot_names_become_identifiers_with_a_warning() {
             chain.warnings
         );
     }
+}
+
+#[test]
+fn files_are_read_or_named_in_the_error() {
+    let chain = Robot::from_urdf_file(
+        std::path::Path::new(&format!("{}/../{UR5}", env!("CARGO_MANIFEST_DIR"))),
+        &ChainSelection::default(),
+    )
+    .unwrap();
+    assert_eq!(chain.robot.dof(), 6);
+    let e = Robot::from_urdf_file(
+        std::path::Path::new("no/such.urdf"),
+        &ChainSelection::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("no/such.urdf: cannot read the file"), "{e}");
 }
 
 #[test]
