@@ -249,9 +249,19 @@ pub(super) fn choose(
                 .map(|j| tree.ends[j].1)
                 .collect();
             // a single path: every movable joint's child lies on the path to the deepest one
-            ends.sort_by_key(|&l| tree.path(base, l).map_or(0, |p| p.len()));
+            let mut depth = vec![0_usize; urdf.links.len()];
+            for &l in &below {
+                if let Some(j) = tree.parent[l].filter(|_| l != base) {
+                    depth[l] = depth[tree.ends[j].0] + 1;
+                }
+            }
+            ends.sort_by_key(|&l| depth[l]);
             let single = ends.last().is_some_and(|&last| {
-                let path = tree.path(base, last).unwrap_or_default();
+                let path: std::collections::HashSet<usize> = tree
+                    .path(base, last)
+                    .unwrap_or_default()
+                    .into_iter()
+                    .collect();
                 ends.iter()
                     .all(|&l| tree.parent[l].is_some_and(|j| path.contains(&j)))
             });
@@ -304,6 +314,7 @@ pub(super) fn choose(
         ));
     }
     // body of every link below the base: 0 the fixed base, j robid joint j
+    let position: HashMap<usize, usize> = joints.iter().enumerate().map(|(k, &j)| (j, k)).collect();
     let mut body = vec![usize::MAX; urdf.links.len()];
     let mut bodies = vec![Vec::new(); joints.len()];
     body[base] = 0;
@@ -313,8 +324,8 @@ pub(super) fn choose(
         }
         let Some(j) = tree.parent[l] else { continue };
         let p = tree.ends[j].0;
-        body[l] = match joints.iter().position(|&k| k == j) {
-            Some(k) => k + 1,
+        body[l] = match position.get(&j) {
+            Some(&k) => k + 1,
             None => body[p],
         };
         if body[l] > 0 {
