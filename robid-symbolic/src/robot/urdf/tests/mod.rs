@@ -4,6 +4,7 @@
 mod errors;
 mod inertials;
 mod kinematics;
+mod limits_gravity;
 mod robots;
 mod writing;
 
