@@ -42,6 +42,7 @@ fn gravity_is_the_roots_down_in_frame_0() {
 }
 
 #[test]
+#[allow(clippy::approx_constant)] // the UR5 file's printed 2 pi
 fn limits_come_from_the_limit_elements() {
     let chain = Robot::from_urdf(TILTED, "t.urdf", &selection(Some("base"), None)).unwrap();
     let [j1, j2] = [
