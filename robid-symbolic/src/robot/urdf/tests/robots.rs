@@ -155,3 +155,35 @@ fn base_parameter_counts_equal_the_hand_written_descriptions() {
     assert_eq!(count(&tx40), 36);
     assert_eq!(count(&tx40), count(&description("tx40")));
 }
+/// The inner rows (2 to n-1: the first and last hold frame choices, such as where frame 0
+/// sits) equal the hand-written tables' up to the signs of axes (z_j follows the URDF's
+/// axis sign, flipping alpha, a and d) and theta offsets of 0 or pi (x_j points from axis
+/// j to axis j+1, so a_j >= 0 where the Franka table writes a_5 = -0.0825).
+#[test]
+fn inner_rows_equal_the_hand_written_tables_up_to_signs() {
+    for (path, tip, name) in [
+        (PANDA, Some("panda_hand"), "panda"),
+        (LWR4, None, "lwr4"),
+        (TX40, None, "tx40"),
+    ] {
+        let urdf = rows(&read(path, tip).robot);
+        let toml = rows(&description(name));
+        let n = urdf.len();
+        assert_eq!(n, toml.len());
+        for j in 1..n - 1 {
+            for k in 0..3 {
+                assert!(
+                    (urdf[j][k].abs() - toml[j][k].abs()).abs() < 1e-12,
+                    "{name} row {}: {:?} {:?}",
+                    j + 1,
+                    urdf[j],
+                    toml[j]
+                );
+            }
+        }
+    }
+    let panda = rows(&read(PANDA, Some("panda_hand")).robot);
+    let thetas: Vec<f64> = panda.iter().map(|r| r[3]).collect();
+    let pi = std::f64::consts::PI;
+    assert_eq!(thetas, [0.0, 0.0, 0.0, pi, 0.0, pi, 0.0]);
+}
