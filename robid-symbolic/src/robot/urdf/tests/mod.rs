@@ -5,6 +5,7 @@ mod errors;
 mod inertials;
 mod kinematics;
 mod limits_gravity;
+mod pinocchio;
 mod robots;
 mod writing;
 
