@@ -231,6 +231,19 @@ fn c_code_agrees_with_the_interpreter() {
     let mut robots = references();
     let ur5e = robots.iter().find(|r| r.name() == "ur5e").unwrap().clone();
     robots.push(ur5e.with_drive(Drive::ALL).with_name("ur5e_drive").unwrap());
+    // small chains whose programs leave whole input groups unread (one joint: no Coriolis,
+    // so its regressor reads no velocity), which the C code must mark `(void)` to compile
+    // warning-free, while reading the first input
+    for (name, joints) in [
+        ("one_r", "[[joints]]\nalpha = \"pi/2\"\n"),
+        (
+            "one_p",
+            "[[joints]]\ntype = \"prismatic\"\nalpha = \"pi/2\"\n",
+        ),
+    ] {
+        let text = format!("name = \"{name}\"\nconvention = \"modified\"\n{joints}");
+        robots.push(Robot::from_toml(&text, "small.toml").unwrap());
+    }
     for robot in &robots {
         let programs = RobotPrograms::derive(robot).unwrap();
         let name = programs.robot.name();
@@ -266,4 +279,59 @@ fn c_code_agrees_with_the_interpreter() {
         "emit_c: worst relative difference {:e} (double), {:e} (float)",
         worst.0, worst.1
     );
+}
+
+/// A geometric symbol named like a C keyword cannot become a field of the geometry struct:
+/// the C emitter refuses it by name (the Rust emitter accepts it).
+#[test]
+fn a_symbol_named_like_c_is_refused() {
+    for symbol in ["float", "double", "int"] {
+        let text = format!(
+            "name = \"arm\"\nconvention = \"modified\"\n[[joints]]\nalpha = \"pi/2\"\n\
+             [[joints]]\na = \"{symbol}\"\n"
+        );
+        let robot = Robot::from_toml(&text, "arm.toml").unwrap();
+        let programs = RobotPrograms::derive(&robot).unwrap();
+        match emit_c(&programs, CScalar::Double, "arm.h") {
+            Err(robid_symbolic::emit::EmitError::Name { name, .. }) => assert_eq!(name, symbol),
+            other => panic!("{symbol}: {:?}", other.map(|_| ())),
+        }
+    }
+}
+
+/// A negative constant is written in parentheses, so that negating it is `-(-1.5)` and not
+/// the decrement `--1.5`: a program whose output adds the negation of a negative constant
+/// compiles warning-free and agrees with the interpreter.
+#[test]
+fn a_negated_negative_constant_compiles() {
+    use robid_symbolic::program::{Instr, Value};
+    let Some(cc) = compiler() else {
+        eprintln!("emit_c: skipped, no C compiler (set CC or install cc)");
+        return;
+    };
+    let text = "name = \"neg\"\nconvention = \"modified\"\n[[joints]]\nalpha = \"pi/2\"\n";
+    let mut programs = RobotPrograms::derive(&Robot::from_toml(text, "neg.toml").unwrap()).unwrap();
+    let gravity = &mut programs[robid_runtime::model::ProgramKind::Gravity];
+    let k = gravity.constants.len() as u32;
+    gravity.constants.push(-1.5);
+    let t = gravity.instrs.len() as u32;
+    let old = gravity.outputs[0].values[0];
+    gravity.instrs.push(Instr::Neg(Value::Const(k)));
+    gravity.instrs.push(Instr::Add(old, Value::Temp(t)));
+    gravity.outputs[0].values[0] = Value::Temp(t + 1);
+    let dir = std::env::temp_dir().join(format!("robid-emit-neg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let exe = build(&cc, &dir, &programs, CScalar::Double);
+    let q = [0.7];
+    let base: Vec<f64> = (0..programs.base.len()).map(|i| 0.1 + i as f64).collect();
+    let standard = vec![0.0; programs.standard.len()];
+    let inputs: [&[f64]; 5] = [&q, &q, &q, &base, &standard];
+    let out = run(&exe, &inputs);
+    let reference = interpret(&programs, &inputs);
+    let _ = std::fs::remove_dir_all(&dir);
+    let gravity = PROGRAMS
+        .iter()
+        .position(|p| p.kind == robid_runtime::model::ProgramKind::Gravity)
+        .unwrap();
+    assert!(relative(&out[gravity], &reference[gravity]) <= 1e-15);
 }
