@@ -17,11 +17,13 @@ mod geometry;
 mod interval;
 mod parameters;
 mod read;
+mod transform;
 
 pub use dh::{FrameRow, JointPlacement, Pose};
 pub use error::DescriptionError;
 pub use geometry::{Expression, Geometry, GeometryError, Number};
 pub use parameters::{DriveTerm, Inertial, ParameterId, ParameterKind};
+pub use transform::Transform;
 
 pub(crate) use check::name_problem;
 use check::{Code, Parts};
@@ -134,10 +136,20 @@ impl FromIterator<DriveTerm> for Drive {
 
 /// One row of the DH table and what belongs to its joint: plain data, checked
 /// when a [`Robot`] is built from it.
+///
+/// In the modified convention a row may carry Khalil and Kleinfinger's two extra values,
+/// `gamma` about and `b` along z_(j-1), placed in front of the DH row: frame j-1 -> j is
+/// Rz(gamma) Tz(b) Rx(alpha) Tx(a) Rz(theta) Tz(d) (docs/conventions.md#khalil-kleinfinger-general-frames).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Joint {
     /// Revolute or prismatic.
     pub kind: JointKind,
+    /// Rotation gamma about z_(j-1) (rad), before the DH row (modified convention only; 0
+    /// for a plain DH row).
+    pub gamma: Geometry,
+    /// Translation b along z_(j-1) (m), before the DH row (modified convention only; 0 for
+    /// a plain DH row).
+    pub b: Geometry,
     /// Twist alpha (rad).
     pub alpha: Geometry,
     /// Length a (m).
@@ -163,6 +175,8 @@ impl Joint {
     ) -> Joint {
         Joint {
             kind,
+            gamma: Geometry::zero(),
+            b: Geometry::zero(),
             alpha,
             a,
             d,
@@ -170,6 +184,22 @@ impl Joint {
             limits: Limits::default(),
             drive: Drive::NONE,
         }
+    }
+
+    /// The same joint with Khalil and Kleinfinger's `gamma` (rotation about z_(j-1)) and `b`
+    /// (translation along it) in front of its DH row; for a modified table only (a
+    /// standard table with either nonzero is refused when the robot is built).
+    ///
+    /// ```
+    /// use robid_symbolic::{Convention, Geometry, Joint, Robot};
+    /// let joint = Joint::revolute("pi/2", 0.1, 0.0, "0")?
+    ///     .with_gamma_b(Geometry::text("pi/4")?, Geometry::number(0.05)?);
+    /// let robot = Robot::new("arm", Convention::Modified, None, vec![joint])?;
+    /// assert_eq!(robot.joints()[0].gamma.as_str(), "pi/4");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_gamma_b(self, gamma: Geometry, b: Geometry) -> Joint {
+        Joint { gamma, b, ..self }
     }
 
     /// A revolute joint with numeric lengths, no limits and no drive terms;
@@ -208,6 +238,8 @@ pub struct Robot {
     convention: Convention,
     gravity: [Geometry; 3],
     joints: Vec<Joint>,
+    base: Option<Transform>,
+    tool: Option<Transform>,
     symbols: Vec<(String, Option<f64>)>,
 }
 
@@ -225,6 +257,8 @@ impl Robot {
             convention,
             gravity: gravity.unwrap_or_else(default_gravity),
             joints,
+            base: None,
+            tool: None,
             values: Vec::new(),
             unread_words: Vec::new(),
         };
@@ -241,9 +275,23 @@ impl Robot {
         self.convention
     }
 
-    /// Gravity in the base frame (m/s^2).
+    /// Gravity in the world frame (m/s^2): the frame the base transform places robid's
+    /// frame 0 in ([`Robot::base`]); without a base transform, frame 0 itself. The
+    /// dynamics use it in frame 0, `R_base' g` (docs/conventions.md#gravity).
     pub fn gravity(&self) -> &[Geometry; 3] {
         &self.gravity
+    }
+
+    /// The pose of frame 0 in the world frame (the description's `[base]`), if given: a
+    /// robot mounted on a wall or rotated on its plate.
+    pub fn base(&self) -> Option<&Transform> {
+        self.base.as_ref()
+    }
+
+    /// The end-effector (tool) frame in the last link's frame n (the description's
+    /// `[tool]`), if given.
+    pub fn tool(&self) -> Option<&Transform> {
+        self.tool.as_ref()
     }
 
     /// Joints, base to tip.
@@ -315,6 +363,30 @@ impl Robot {
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
 
+    /// The same robot with frame 0 placed at `base` in the world frame (checked as in a
+    /// description; `None` removes it). Gravity stays in the world frame.
+    ///
+    /// ```
+    /// use robid_symbolic::{Convention, Joint, Robot, Transform};
+    /// let robot = Robot::new("arm", Convention::Modified, None, vec![Joint::revolute("0", 0.0, 0.0, "0")?])?
+    ///     .with_base(Some(Transform::numbers([0.0, 0.0, 1.0], [std::f64::consts::FRAC_PI_2, 0.0, 0.0])?))?;
+    /// assert_eq!(robot.base_pose()?[2][3], 1.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_base(self, base: Option<Transform>) -> Result<Robot, DescriptionError> {
+        let mut parts = self.into_parts();
+        parts.base = base;
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
+    /// The same robot with the tool frame `tool` in frame n (checked as in a description;
+    /// `None` removes it).
+    pub fn with_tool(self, tool: Option<Transform>) -> Result<Robot, DescriptionError> {
+        let mut parts = self.into_parts();
+        parts.tool = tool;
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
     /// The same robot under another name (checked as in a description).
     pub fn with_name(self, name: &str) -> Result<Robot, DescriptionError> {
         let mut parts = self.into_parts();
@@ -338,6 +410,8 @@ impl Robot {
             convention: self.convention,
             gravity: self.gravity,
             joints: self.joints,
+            base: self.base,
+            tool: self.tool,
             values: self
                 .symbols
                 .into_iter()
