@@ -7,6 +7,7 @@ mod bounds_extremes;
 mod deep_expressions;
 mod description_errors;
 mod fuzz_descriptions;
+mod general_frames;
 mod ne_vs_le_quick;
 mod regroup;
 mod regroup_random;
