@@ -419,7 +419,7 @@ pub(super) fn standard_gamma_b(j: usize, dh: Dh) -> (String, String) {
             j + 1,
             dh.key()
         ),
-        "`gamma` and `b` (Khalil and Kleinfinger's rotation about and translation along z_(j-1)) extend the modified convention: write the table in the modified convention (`convention = \"modified\"`, docs/conventions.md#standard-dh-in-modified-frames)".to_owned(),
+        "`gamma` and `b` (Khalil and Kleinfinger's rotation about and translation along z_(j-1)) extend the modified convention: write the table in the modified convention (`convention = \"modified\"`, see docs/conventions.md#khalil-kleinfinger-general-frames)".to_owned(),
     )
 }
 
