@@ -434,10 +434,6 @@ pub fn homogeneous_product(factors: &[H4]) -> H4 {
     })
 }
 
-fn identity() -> M3 {
-    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
-}
-
 fn column(m: &M3, k: usize) -> V3 {
     [m[0][k], m[1][k], m[2][k]]
 }
@@ -513,7 +509,7 @@ mod tests {
                     mass: m,
                     ..Link::default()
                 },
-                &identity(),
+                &rot_z(0.0),
                 [l, 0.0, 0.0],
             );
             let (q, qd, qdd) = (0.4, -1.3, 2.1);
@@ -521,6 +517,54 @@ mod tests {
             let expected = m * l * l * qdd + m * 9.81 * l * q.cos();
             assert!((tau - expected).abs() < 1e-12, "{tau} vs {expected}");
         }
+    }
+
+    /// A pendulum whose base is turned by pi/2 about x (its joint axis horizontal in the
+    /// world, gravity along -z of the world): tau = m l^2 qdd + m g l cos(q), as the plain
+    /// pendulum under gravity along -y; and a gamma in front of the row acts as a theta
+    /// offset.
+    #[test]
+    fn a_turned_base_and_gamma_are_placed_in_the_world() {
+        let row = DhRow {
+            kind: JointKind::Revolute,
+            gamma: 0.0,
+            b: 0.0,
+            alpha: 0.0,
+            a: 0.0,
+            d: 0.0,
+            theta: 0.0,
+        };
+        let chain = Chain {
+            convention: Convention::Modified,
+            rows: vec![row],
+            base: homogeneous_product(&[
+                h_translation([0.3, -0.2, 1.0]),
+                h_rotation(0, std::f64::consts::FRAC_PI_2),
+            ]),
+            gravity: [0.0, 0.0, -9.81],
+        };
+        let (m, l) = (2.0, 0.7);
+        let link = Link {
+            mass: m,
+            first_moment: [m * l, 0.0, 0.0],
+            inertia: [[0.0; 3], [0.0, m * l * l, 0.0], [0.0, 0.0, m * l * l]],
+            ..Link::default()
+        };
+        let (q, qd, qdd) = (0.4, -1.3, 2.1);
+        let tau = chain.inverse_dynamics(&[link], &[q], &[qd], &[qdd])[0];
+        let expected = m * l * l * qdd + m * 9.81 * l * q.cos();
+        assert!((tau - expected).abs() < 1e-12, "{tau} vs {expected}");
+        let turned = Chain {
+            rows: vec![DhRow { gamma: 0.3, ..row }],
+            ..chain.clone()
+        };
+        let offset = Chain {
+            rows: vec![DhRow { theta: 0.3, ..row }],
+            ..chain
+        };
+        let a = turned.inverse_dynamics(&[link], &[q], &[qd], &[qdd])[0];
+        let b = offset.inverse_dynamics(&[link], &[q], &[qd], &[qdd])[0];
+        assert!((a - b).abs() < 1e-12 && (a - tau).abs() > 0.1, "{a} vs {b}");
     }
 
     /// A prismatic joint lifting a mass straight up: f = m (qdd + g).
