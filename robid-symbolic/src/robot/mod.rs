@@ -191,7 +191,8 @@ impl Joint {
     /// standard table with either nonzero is refused when the robot is built).
     ///
     /// ```
-    /// use robid_symbolic::{Convention, Geometry, Joint, Robot};
+    /// use robid_symbolic::robot::Geometry;
+    /// use robid_symbolic::{Convention, Joint, Robot};
     /// let joint = Joint::revolute("pi/2", 0.1, 0.0, "0")?
     ///     .with_gamma_b(Geometry::text("pi/4")?, Geometry::number(0.05)?);
     /// let robot = Robot::new("arm", Convention::Modified, None, vec![joint])?;
@@ -367,10 +368,19 @@ impl Robot {
     /// description; `None` removes it). Gravity stays in the world frame.
     ///
     /// ```
+    /// use robid_symbolic::robot::Geometry;
     /// use robid_symbolic::{Convention, Joint, Robot, Transform};
-    /// let robot = Robot::new("arm", Convention::Modified, None, vec![Joint::revolute("0", 0.0, 0.0, "0")?])?
-    ///     .with_base(Some(Transform::numbers([0.0, 0.0, 1.0], [std::f64::consts::FRAC_PI_2, 0.0, 0.0])?))?;
-    /// assert_eq!(robot.base_pose()?[2][3], 1.0);
+    /// // on a wall: frame 0 turned a quarter turn about the world's x, 1 m up
+    /// let mut wall = Transform::numbers([0.0, 0.0, 1.0], [0.0; 3])?;
+    /// wall.rpy[0] = Geometry::text("pi/2")?;
+    /// let joints = vec![Joint::revolute("0", 0.0, 0.0, "0")?];
+    /// let robot = Robot::new("arm", Convention::Modified, None, joints)?.with_base(Some(wall))?;
+    /// let pose = robot.base_pose()?;
+    /// assert_eq!(pose[2][3], 1.0);
+    /// assert!((pose[2][1] - 1.0).abs() < 1e-15); // y_0 points up
+    /// // an angle a hair from pi/2 is refused: write "pi/2"
+    /// let near = Transform::numbers([0.0; 3], [std::f64::consts::FRAC_PI_2, 0.0, 0.0])?;
+    /// assert!(robot.with_base(Some(near)).is_err());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn with_base(self, base: Option<Transform>) -> Result<Robot, DescriptionError> {

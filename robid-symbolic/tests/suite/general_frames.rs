@@ -111,10 +111,12 @@ fn rank(mut rows: Vec<Vec<f64>>, columns: usize) -> usize {
             continue;
         }
         rows.swap(r, pivot);
-        for i in r + 1..rows.len() {
-            let f = rows[i][c] / rows[r][c];
-            for k in c..columns {
-                rows[i][k] -= f * rows[r][k];
+        let (top, below) = rows.split_at_mut(r + 1);
+        let pivot_row = &top[r];
+        for row in below {
+            let f = row[c] / pivot_row[c];
+            for (x, p) in row[c..columns].iter_mut().zip(&pivot_row[c..columns]) {
+                *x -= f * p;
             }
         }
         r += 1;
