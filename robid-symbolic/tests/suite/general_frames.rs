@@ -347,3 +347,61 @@ fn explicit_zeros_change_nothing() {
         pp[ProgramKind::InverseDynamics].to_string()
     );
 }
+
+/// `gamma`, `b` and the base angles may be symbols: the base parameters and the programs
+/// keep them (a run-time `geometry` input) and equal the Lagrange-Euler model at their
+/// values.
+#[test]
+fn symbolic_gamma_b_and_base() {
+    let text = "name = \"arm\"\nconvention = \"modified\"\n[base]\nrpy = [\"tilt\", 0, 0]\n\
+                [[joints]]\n[[joints]]\ngamma = \"g2\"\nb = \"b2\"\nalpha = \"pi/2\"\na = 0.2\n\
+                [[joints]]\ntype = \"prismatic\"\ngamma = 0.3\nalpha = \"-pi/2\"\na = 0.1\n\
+                [symbols]\ntilt = 0.4\ng2 = 0.7\nb2 = 0.15\n";
+    let robot = Robot::from_toml(text, "arm.toml").unwrap();
+    assert_eq!(robot.symbols().len(), 3);
+    let programs = RobotPrograms::derive(&robot).unwrap();
+    let geometry: Vec<f64> = robot.symbols().iter().map(|(_, v)| v.unwrap()).collect();
+    let mut d = Derivation::new(&robot);
+    let symbols = d.parameter_symbols();
+    let le = d.lagrange(&symbols);
+    let mut rng = Rng::from_state(3);
+    let n = robot.dof();
+    for _ in 0..4 {
+        let p: Vec<f64> = (0..symbols.len()).map(|_| rng.uniform(-1.0, 1.0)).collect();
+        let (q, qd, qdd): (Vec<f64>, Vec<f64>, Vec<f64>) = (
+            (0..n).map(|_| rng.uniform(-3.0, 3.0)).collect(),
+            (0..n).map(|_| rng.uniform(-2.0, 2.0)).collect(),
+            (0..n).map(|_| rng.uniform(-3.0, 3.0)).collect(),
+        );
+        let mut names: Vec<(String, f64)> = Vec::new();
+        for j in 0..n {
+            names.push((format!("q{}", j + 1), q[j]));
+            names.push((format!("qd{}", j + 1), qd[j]));
+            names.push((format!("qdd{}", j + 1), qdd[j]));
+        }
+        for (id, v) in robot.standard_parameters().iter().zip(&p) {
+            names.push((id.to_string(), *v));
+        }
+        for (s, v) in robot.symbols() {
+            names.push((s.clone(), v.unwrap()));
+        }
+        let pairs: Vec<(&str, f64)> = names.iter().map(|(s, v)| (s.as_str(), *v)).collect();
+        let values = d.arena.values(&pairs);
+        let tau = d.arena.eval(&le.torques, &values).unwrap();
+        let base = run(
+            &programs[ProgramKind::BaseFromStandard],
+            &[("standard", &p), ("geometry", &geometry)],
+        );
+        let inputs: [(&str, &[f64]); 5] = [
+            ("q", &q),
+            ("qd", &qd),
+            ("qdd", &qdd),
+            ("base", &base),
+            ("geometry", &geometry),
+        ];
+        let id = run(&programs[ProgramKind::InverseDynamics], &inputs);
+        for j in 0..n {
+            close(id[j], tau[j], &format!("joint {j}: inverse dynamics"));
+        }
+    }
+}
