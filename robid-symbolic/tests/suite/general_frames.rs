@@ -297,6 +297,14 @@ fn a_wall_mount_is_a_rotated_gravity() {
     for kind in ProgramKind::ALL {
         assert_eq!(pw[kind].to_string(), pf[kind].to_string(), "{kind:?}");
     }
+    // the emitted type says how it is mounted
+    let emitted = robid_symbolic::emit::emit_programs(&pw).unwrap();
+    assert!(
+        emitted.contains("base transform (xyz [0.1, 0, 1.2], rpy [pi/2, 0, 0])"),
+        "{emitted}"
+    );
+    let plain = robid_symbolic::emit::emit_programs(&pf).unwrap();
+    assert!(!plain.contains("base transform"));
     // and a base turned the other way is another robot
     let mut turned = robid_symbolic::Transform::identity();
     turned.rpy[0] = robid_symbolic::robot::Geometry::text("-pi/2").unwrap();
