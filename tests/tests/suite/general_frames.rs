@@ -10,7 +10,10 @@
 
 use robid_runtime::rng::Rng;
 use robid_symbolic::{Derivation, Drive, Robot};
-use tests::rnea::{Chain, express_in_parent, links_from_standard, rot_z, standard_from_links};
+use tests::rnea::{
+    Chain, H4, express_in_parent, h_identity, homogeneous_product, links_from_standard, rot_z,
+    standard_from_links,
+};
 use tests::state::{bind, close, random_parameters, random_state, regressor_times};
 
 /// See rnea_agrees.rs.
@@ -58,13 +61,21 @@ fn rows(rng: &mut Rng, dof: usize) -> Vec<Row> {
 
 /// The description of `rows` (modified, all drive terms), with `head` after the name.
 fn description(head: &str, rows: &[Row]) -> Robot {
-    let mut text = format!("name = \"general\"\nconvention = \"modified\"\n{head}\n");
+    description_in("modified", head, rows)
+}
+
+/// The description of `rows` in `convention` (a standard table leaves gamma and b out).
+fn description_in(convention: &str, head: &str, rows: &[Row]) -> Robot {
+    let mut text = format!("name = \"general\"\nconvention = \"{convention}\"\n{head}\n");
     for r in rows {
         let kind = if r.prismatic { "prismatic" } else { "revolute" };
         let [gamma, b, alpha, a, d, theta] = &r.values;
         text += &format!(
-            "[[joints]]\ntype = \"{kind}\"\ngamma = {gamma}\nb = {b}\nalpha = {alpha}\na = {a}\nd = {d}\ntheta = {theta}\n"
+            "[[joints]]\ntype = \"{kind}\"\nalpha = {alpha}\na = {a}\nd = {d}\ntheta = {theta}\n"
         );
+        if convention == "modified" {
+            text += &format!("gamma = {gamma}\nb = {b}\n");
+        }
     }
     Robot::from_toml(&text, "general.toml")
         .unwrap_or_else(|e| panic!("{e}\n{text}"))
@@ -100,7 +111,8 @@ fn torques(robot: &Robot, p: &[f64], state: &tests::state::State) -> [Vec<f64>; 
 }
 
 /// Newton-Euler, Lagrange-Euler and the RNEA agree for random general robots on random
-/// bases, with both joint kinds and every drive term.
+/// bases, with both joint kinds and every drive term (every fourth a standard table on a
+/// base).
 #[test]
 fn rnea_agrees_with_gamma_b_and_a_base() {
     let mut rng = Rng::from_state(0x6A33_0001);
@@ -108,7 +120,12 @@ fn rnea_agrees_with_gamma_b_and_a_base() {
         let dof = 2 + rng.below(4);
         let rows = rows(&mut rng, dof);
         let head = base(&mut rng);
-        let robot = description(&head, &rows);
+        let convention = if case % 4 == 3 {
+            "standard"
+        } else {
+            "modified"
+        };
+        let robot = description_in(convention, &head, &rows);
         for _ in 0..4 {
             let p = random_parameters(robot.standard_parameters().len(), &mut rng);
             let state = random_state(&robot, &mut rng);
@@ -267,4 +284,85 @@ fn the_first_rows_gamma_and_b_are_a_base() {
         let count = |r: &Robot| Derivation::new(r).base_parameters().unwrap().base.len();
         assert_eq!(count(&kk), count(&based), "case {case}");
     }
+}
+
+/// The numeric poses robid writes (URDF joint origins, the tool) place every frame where
+/// the RNEA's chain does: the product of the joint placements (the base under the first)
+/// is frame j in the world at q = 0, and with the tool placement the tool frame, frame n
+/// times the description's tool pose; the last link's default solid runs to the tool.
+#[test]
+fn joint_placements_and_the_tool_follow_the_chain() {
+    let mut rng = Rng::from_state(0x6A33_0004);
+    for case in 0..8 {
+        let dof = 2 + rng.below(4);
+        let rows = rows(&mut rng, dof);
+        let head = format!(
+            "{}\n[tool]\nxyz = [{}, {}, {}]\nrpy = [{}, {}, {}]",
+            base(&mut rng),
+            length(&mut rng),
+            length(&mut rng),
+            length(&mut rng),
+            angle(&mut rng),
+            angle(&mut rng),
+            angle(&mut rng)
+        );
+        let convention = if case % 2 == 1 {
+            "standard"
+        } else {
+            "modified"
+        };
+        let robot = description_in(convention, &head, &rows);
+        let poses = Chain::from_robot(&robot).poses(&vec![0.0; dof]);
+        let placements = robot.joint_placements().unwrap();
+        let mut world = h_identity();
+        let near = |a: &H4, p: &tests::rnea::Pose, what: &str| {
+            for r in 0..3 {
+                for c in 0..3 {
+                    assert!(
+                        (a[r][c] - p.rotation[r][c]).abs() < 1e-12,
+                        "case {case}: {what}"
+                    );
+                }
+                assert!(
+                    (a[r][3] - p.position[r]).abs() < 1e-12,
+                    "case {case}: {what}"
+                );
+            }
+        };
+        for (j, place) in placements.iter().enumerate() {
+            world = homogeneous_product(&[world, place.origin]);
+            near(
+                &homogeneous_product(&[world, place.link_frame]),
+                &poses[j],
+                &format!("frame {}", j + 1),
+            );
+        }
+        let tool = robot.tool_placement().unwrap().unwrap();
+        let expected =
+            homogeneous_product(&[h_from(&poses[dof - 1]), robot.tool_pose().unwrap().unwrap()]);
+        let got = homogeneous_product(&[world, tool]);
+        for r in 0..3 {
+            for c in 0..4 {
+                assert!(
+                    (got[r][c] - expected[r][c]).abs() < 1e-12,
+                    "case {case}: tool"
+                );
+            }
+        }
+        if convention == "modified" {
+            let segments = robot.link_segments().unwrap();
+            let t = robot.tool_pose().unwrap().unwrap();
+            assert_eq!(segments[dof - 1], [[0.0; 3], [t[0][3], t[1][3], t[2][3]]]);
+        }
+    }
+}
+
+/// A pose as a homogeneous transform.
+fn h_from(p: &tests::rnea::Pose) -> H4 {
+    let mut h = h_identity();
+    for r in 0..3 {
+        h[r][..3].copy_from_slice(&p.rotation[r]);
+        h[r][3] = p.position[r];
+    }
+    h
 }
