@@ -315,19 +315,16 @@ fn joint_placements_and_the_tool_follow_the_chain() {
         let poses = Chain::from_robot(&robot).poses(&vec![0.0; dof]);
         let placements = robot.joint_placements().unwrap();
         let mut world = h_identity();
+        let largest_difference = |a: &H4, b: &H4| {
+            (0..12)
+                .map(|k| (a[k / 4][k % 4] - b[k / 4][k % 4]).abs())
+                .fold(0.0, f64::max)
+        };
         let near = |a: &H4, p: &tests::rnea::Pose, what: &str| {
-            for r in 0..3 {
-                for c in 0..3 {
-                    assert!(
-                        (a[r][c] - p.rotation[r][c]).abs() < 1e-12,
-                        "case {case}: {what}"
-                    );
-                }
-                assert!(
-                    (a[r][3] - p.position[r]).abs() < 1e-12,
-                    "case {case}: {what}"
-                );
-            }
+            assert!(
+                largest_difference(a, &h_from(p)) < 1e-12,
+                "case {case}: {what}"
+            );
         };
         for (j, place) in placements.iter().enumerate() {
             world = homogeneous_product(&[world, place.origin]);
@@ -341,14 +338,10 @@ fn joint_placements_and_the_tool_follow_the_chain() {
         let expected =
             homogeneous_product(&[h_from(&poses[dof - 1]), robot.tool_pose().unwrap().unwrap()]);
         let got = homogeneous_product(&[world, tool]);
-        for r in 0..3 {
-            for c in 0..4 {
-                assert!(
-                    (got[r][c] - expected[r][c]).abs() < 1e-12,
-                    "case {case}: tool"
-                );
-            }
-        }
+        assert!(
+            largest_difference(&got, &expected) < 1e-12,
+            "case {case}: tool"
+        );
         if convention == "modified" {
             let segments = robot.link_segments().unwrap();
             let t = robot.tool_pose().unwrap().unwrap();
@@ -360,9 +353,9 @@ fn joint_placements_and_the_tool_follow_the_chain() {
 /// A pose as a homogeneous transform.
 fn h_from(p: &tests::rnea::Pose) -> H4 {
     let mut h = h_identity();
-    for r in 0..3 {
-        h[r][..3].copy_from_slice(&p.rotation[r]);
-        h[r][3] = p.position[r];
+    for ((row, rotation), position) in h.iter_mut().zip(&p.rotation).zip(p.position) {
+        row[..3].copy_from_slice(rotation);
+        row[3] = position;
     }
     h
 }
