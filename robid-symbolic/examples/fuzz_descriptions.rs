@@ -4,7 +4,8 @@
 //! cargo run --release -p robid-symbolic --example fuzz_descriptions -- CASES [SEED] [DERIVE_SECONDS]
 //! ```
 //!
-//! Each case mutates one of the reference descriptions (byte flips,
+//! Each case mutates one of the reference descriptions or a general one with
+//! Khalil-Kleinfinger `gamma` and `b`, a `[base]` and a `[tool]` (byte flips,
 //! deletions, duplications, splices from another description, numbers
 //! replaced by extremes such as 1e308, NaN, -0 or 1e-320, values replaced by
 //! deeply nested or long expressions, keys and names replaced) and reads it
@@ -30,8 +31,50 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// The reference descriptions the mutations start from.
-const SEEDS: [&str; 7] = [
+/// A general description: Khalil-Kleinfinger `gamma` and `b`, a `[base]` and a `[tool]`
+/// (docs/conventions.md#khalil-kleinfinger-general-frames).
+const GENERAL: &str = r#"name = "general"
+convention = "modified"
+gravity = [0, 0, -9.81]
+drive = ["Ia", "Fv"]
+
+[base]
+xyz = [0.1, 0, 1.2]
+rpy = ["pi/2", 0, 0.3]
+
+[tool]
+xyz = [0, 0, "L_tool"]
+rpy = [0, "-pi/2", 0]
+
+[symbols]
+L_tool = 0.1
+
+[[joints]]
+alpha = 0
+a = 0
+d = 0.2
+
+[[joints]]
+gamma = "pi/2"
+b = 0.05
+alpha = "-pi/2"
+a = 0.1
+d = 0
+theta = 0
+
+[[joints]]
+type = "prismatic"
+gamma = 0.4
+b = -0.1
+alpha = "pi/2"
+a = 0.3
+d = 0.1
+theta = "pi/2"
+"#;
+
+/// The descriptions the mutations start from: the reference robots and [`GENERAL`].
+const SEEDS: [&str; 8] = [
+    GENERAL,
     include_str!("../../robots/descriptions/ur5e.toml"),
     include_str!("../../robots/descriptions/puma560.toml"),
     include_str!("../../robots/descriptions/rx90.toml"),
@@ -384,7 +427,13 @@ fn line(rng: &mut Rng) -> String {
         "l1",
         "D3",
         "colour",
-    ][rng.below(14)];
+        "gamma",
+        "b",
+        "xyz",
+        "rpy",
+        "base",
+        "tool",
+    ][rng.below(20)];
     let value = match rng.below(8) {
         0 => NUMBERS[rng.below(NUMBERS.len())].to_owned(),
         1 => format!("\"{}\"", expression(rng)),
@@ -410,9 +459,11 @@ fn line(rng: &mut Rng) -> String {
         6 => "[]".to_owned(),
         _ => "{ }".to_owned(),
     };
-    match rng.below(6) {
+    match rng.below(8) {
         0 => format!("\n[symbols]\n{key} = {value}\n"),
         1 => format!("\n[[joints]]\n{key} = {value}\n"),
+        2 => format!("\n[base]\n{key} = {value}\n"),
+        3 => format!("\n[tool]\n{key} = {value}\n"),
         _ => format!("\n{key} = {value}\n"),
     }
 }

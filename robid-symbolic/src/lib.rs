@@ -49,4 +49,4 @@ pub mod robot;
 
 pub use dynamics::{Derivation, Regressor};
 pub use expr::{Arena, Id, Node, Num, Symbol, Values};
-pub use robot::{Convention, DescriptionError, Drive, Joint, JointKind, Robot};
+pub use robot::{Convention, DescriptionError, Drive, Joint, JointKind, Robot, Transform};

@@ -6,7 +6,12 @@
 //! (standard or modified, used as they are, with no conversion between conventions), and the
 //! joint axis of each convention is taken where the textbook puts it (z_(j-1) through O_(j-1)
 //! for standard DH, z_j through O_j for modified DH). Link j's parameters are about the origin
-//! O_j of its own frame, as the user gives them.
+//! O_j of its own frame, as the user gives them. Khalil and Kleinfinger's `gamma` and `b`
+//! are two more steps in front of a modified row, and the description's base transform
+//! places frame 0 in the world frame: the chain is laid out in the world frame from the
+//! base's 4x4 homogeneous transform, built here from `xyz` and `rpy` as a product of
+//! elementary homogeneous transforms, and gravity is used as the description gives it, in
+//! the world frame (robid-symbolic turns gravity into frame 0 instead).
 //!
 //! ```text
 //! Forward pass (base frame, gravity as a base acceleration of -g), for link j with joint
@@ -38,6 +43,10 @@ pub type M3 = [[f64; 3]; 3];
 pub struct DhRow {
     /// Joint type.
     pub kind: JointKind,
+    /// Khalil-Kleinfinger rotation about the previous z (modified rows only; 0 for DH).
+    pub gamma: f64,
+    /// Khalil-Kleinfinger translation along the previous z (modified rows only; 0 for DH).
+    pub b: f64,
     /// Twist.
     pub alpha: f64,
     /// Length.
@@ -55,9 +64,14 @@ pub struct Chain {
     pub convention: Convention,
     /// The rows, base to tip.
     pub rows: Vec<DhRow>,
-    /// Gravity in the base frame.
+    /// Frame 0 in the world frame, a 4x4 homogeneous transform (row-major).
+    pub base: H4,
+    /// Gravity in the world frame.
     pub gravity: V3,
 }
+
+/// A 4x4 homogeneous transform, row-major.
+pub type H4 = [[f64; 4]; 4];
 
 /// The parameters of one link about its frame origin, in its frame, and its joint's drive terms.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -111,6 +125,8 @@ impl Chain {
             .iter()
             .map(|j| DhRow {
                 kind: j.kind,
+                gamma: number(&j.gamma),
+                b: number(&j.b),
                 alpha: number(&j.alpha),
                 a: number(&j.a),
                 d: number(&j.d),
@@ -118,19 +134,38 @@ impl Chain {
             })
             .collect();
         let gravity = [0, 1, 2].map(|i| number(&robot.gravity()[i]));
+        let base = match robot.base() {
+            Some(t) => {
+                let xyz = [0, 1, 2].map(|i| number(&t.xyz[i]));
+                let [roll, pitch, yaw] = [0, 1, 2].map(|i| number(&t.rpy[i]));
+                homogeneous_product(&[
+                    h_translation(xyz),
+                    h_rotation(2, yaw),
+                    h_rotation(1, pitch),
+                    h_rotation(0, roll),
+                ])
+            }
+            None => h_identity(),
+        };
         Chain {
             convention: robot.convention(),
             rows,
+            base,
             gravity,
         }
     }
 
-    /// The pose of every link frame j (1..=n) in the base frame at `q`.
+    /// Frame 0 as a pose in the world frame.
+    pub fn base_pose(&self) -> Pose {
+        Pose {
+            rotation: [0, 1, 2].map(|r| [0, 1, 2].map(|c| self.base[r][c])),
+            position: [0, 1, 2].map(|r| self.base[r][3]),
+        }
+    }
+
+    /// The pose of every link frame j (1..=n) in the world frame at `q`.
     pub fn poses(&self, q: &[f64]) -> Vec<Pose> {
-        let mut pose = Pose {
-            rotation: identity(),
-            position: [0.0; 3],
-        };
+        let mut pose = self.base_pose();
         self.rows
             .iter()
             .zip(q)
@@ -141,17 +176,27 @@ impl Chain {
                 };
                 let steps = match self.convention {
                     Convention::Modified => [
+                        Step::RotZ(row.gamma),
+                        Step::Along(2, row.b),
                         Step::RotX(row.alpha),
                         Step::Along(0, row.a),
                         Step::RotZ(theta),
                         Step::Along(2, d),
                     ],
-                    Convention::Standard => [
-                        Step::RotZ(theta),
-                        Step::Along(2, d),
-                        Step::Along(0, row.a),
-                        Step::RotX(row.alpha),
-                    ],
+                    Convention::Standard => {
+                        assert!(
+                            row.gamma == 0.0 && row.b == 0.0,
+                            "gamma and b belong to modified rows"
+                        );
+                        [
+                            Step::RotZ(theta),
+                            Step::Along(2, d),
+                            Step::Along(0, row.a),
+                            Step::RotX(row.alpha),
+                            Step::RotZ(0.0),
+                            Step::Along(2, 0.0),
+                        ]
+                    }
                 };
                 for s in steps {
                     pose = s.apply(pose);
@@ -166,10 +211,7 @@ impl Chain {
         let n = self.rows.len();
         assert!(links.len() == n && q.len() == n && qd.len() == n && qdd.len() == n);
         let poses = self.poses(q);
-        let base = Pose {
-            rotation: identity(),
-            position: [0.0; 3],
-        };
+        let base = self.base_pose();
         // Joint axis (point, direction) of each joint, by convention.
         let axes: Vec<(V3, V3)> = (0..n)
             .map(|j| {
@@ -188,7 +230,7 @@ impl Chain {
             .collect();
         let (mut w, mut wd) = ([0.0; 3], [0.0; 3]);
         let mut acc = scale(-1.0, self.gravity);
-        let mut origin = [0.0; 3];
+        let mut origin = base.position;
         let mut forces = Vec::with_capacity(n);
         let mut moments = Vec::with_capacity(n);
         for j in 0..n {
@@ -359,6 +401,39 @@ pub fn rot_z(t: f64) -> M3 {
     [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
 }
 
+/// The 4x4 identity.
+pub fn h_identity() -> H4 {
+    std::array::from_fn(|r| std::array::from_fn(|c| if r == c { 1.0 } else { 0.0 }))
+}
+
+/// The homogeneous translation by `t`.
+pub fn h_translation(t: V3) -> H4 {
+    let mut h = h_identity();
+    for (r, x) in t.into_iter().enumerate() {
+        h[r][3] = x;
+    }
+    h
+}
+
+/// The homogeneous rotation by `angle` about axis `axis` (0 x, 1 y, 2 z).
+pub fn h_rotation(axis: usize, angle: f64) -> H4 {
+    let (s, c) = angle.sin_cos();
+    let (i, k) = ((axis + 1) % 3, (axis + 2) % 3);
+    let mut h = h_identity();
+    h[i][i] = c;
+    h[i][k] = -s;
+    h[k][i] = s;
+    h[k][k] = c;
+    h
+}
+
+/// The product of homogeneous transforms, left to right.
+pub fn homogeneous_product(factors: &[H4]) -> H4 {
+    factors.iter().fold(h_identity(), |acc, f| {
+        std::array::from_fn(|r| std::array::from_fn(|c| (0..4).map(|m| acc[r][m] * f[m][c]).sum()))
+    })
+}
+
 pub(crate) fn identity() -> M3 {
     [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
 }
@@ -422,11 +497,14 @@ mod tests {
                 convention,
                 rows: vec![DhRow {
                     kind: JointKind::Revolute,
+                    gamma: 0.0,
+                    b: 0.0,
                     alpha: 0.0,
                     a: 0.0,
                     d: 0.0,
                     theta: 0.0,
                 }],
+                base: h_identity(),
                 gravity: [0.0, -9.81, 0.0],
             };
             let (m, l) = (2.0, 0.7);
@@ -435,7 +513,7 @@ mod tests {
                     mass: m,
                     ..Link::default()
                 },
-                &identity(),
+                &rot_z(0.0),
                 [l, 0.0, 0.0],
             );
             let (q, qd, qdd) = (0.4, -1.3, 2.1);
@@ -445,6 +523,54 @@ mod tests {
         }
     }
 
+    /// A pendulum whose base is turned by pi/2 about x (its joint axis horizontal in the
+    /// world, gravity along -z of the world): tau = m l^2 qdd + m g l cos(q), as the plain
+    /// pendulum under gravity along -y; and a gamma in front of the row acts as a theta
+    /// offset.
+    #[test]
+    fn a_turned_base_and_gamma_are_placed_in_the_world() {
+        let row = DhRow {
+            kind: JointKind::Revolute,
+            gamma: 0.0,
+            b: 0.0,
+            alpha: 0.0,
+            a: 0.0,
+            d: 0.0,
+            theta: 0.0,
+        };
+        let chain = Chain {
+            convention: Convention::Modified,
+            rows: vec![row],
+            base: homogeneous_product(&[
+                h_translation([0.3, -0.2, 1.0]),
+                h_rotation(0, std::f64::consts::FRAC_PI_2),
+            ]),
+            gravity: [0.0, 0.0, -9.81],
+        };
+        let (m, l) = (2.0, 0.7);
+        let link = Link {
+            mass: m,
+            first_moment: [m * l, 0.0, 0.0],
+            inertia: [[0.0; 3], [0.0, m * l * l, 0.0], [0.0, 0.0, m * l * l]],
+            ..Link::default()
+        };
+        let (q, qd, qdd) = (0.4, -1.3, 2.1);
+        let tau = chain.inverse_dynamics(&[link], &[q], &[qd], &[qdd])[0];
+        let expected = m * l * l * qdd + m * 9.81 * l * q.cos();
+        assert!((tau - expected).abs() < 1e-12, "{tau} vs {expected}");
+        let turned = Chain {
+            rows: vec![DhRow { gamma: 0.3, ..row }],
+            ..chain.clone()
+        };
+        let offset = Chain {
+            rows: vec![DhRow { theta: 0.3, ..row }],
+            ..chain
+        };
+        let a = turned.inverse_dynamics(&[link], &[q], &[qd], &[qdd])[0];
+        let b = offset.inverse_dynamics(&[link], &[q], &[qd], &[qdd])[0];
+        assert!((a - b).abs() < 1e-12 && (a - tau).abs() > 0.1, "{a} vs {b}");
+    }
+
     /// A prismatic joint lifting a mass straight up: f = m (qdd + g).
     #[test]
     fn vertical_slider_matches_closed_form() {
@@ -452,11 +578,14 @@ mod tests {
             convention: Convention::Modified,
             rows: vec![DhRow {
                 kind: JointKind::Prismatic,
+                gamma: 0.0,
+                b: 0.0,
                 alpha: 0.0,
                 a: 0.3,
                 d: 0.1,
                 theta: 0.5,
             }],
+            base: h_identity(),
             gravity: [0.0, 0.0, -9.81],
         };
         let link = Link {

@@ -135,8 +135,17 @@ fn xyz_rpy(pose: &[[f64; 4]; 4]) -> String {
 /// `<inertial>` (mass, centre of mass, inertia about it, placed by the link's DH frame)
 /// and the joints from the description's geometry (`joints`, one per link), with the
 /// limits it gives. A revolute joint without position limits is `continuous`; a prismatic
-/// one without them gets +-1e9 m, said in a comment.
-pub fn to_urdf(solution: &Solution, robot: &str, joints: &[UrdfJoint]) -> String {
+/// one without them gets +-1e9 m, said in a comment. The first joint's origin is in
+/// `base_link`, the world frame (the description's base transform is part of it). With
+/// `tool`, the pose of the description's tool frame in the last joint's frame
+/// (`robid_symbolic::Robot::tool_placement`), a massless link `tool` hangs from the last
+/// link on a fixed joint `tool_joint`.
+pub fn to_urdf(
+    solution: &Solution,
+    robot: &str,
+    joints: &[UrdfJoint],
+    tool: Option<&[[f64; 4]; 4]>,
+) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "<?xml version=\"1.0\"?>");
     let _ = writeln!(
@@ -215,6 +224,17 @@ pub fn to_urdf(solution: &Solution, robot: &str, joints: &[UrdfJoint]) -> String
             }
             _ => {}
         }
+        let _ = writeln!(s, "  </joint>");
+    }
+    let last = solution.links.len().min(joints.len());
+    if let Some(pose) = tool
+        && last > 0
+    {
+        let _ = writeln!(s, "  <link name=\"tool\"/>");
+        let _ = writeln!(s, "  <joint name=\"tool_joint\" type=\"fixed\">");
+        let _ = writeln!(s, "    <parent link=\"link{last}\"/>");
+        let _ = writeln!(s, "    <child link=\"tool\"/>");
+        let _ = writeln!(s, "    <origin {}/>", xyz_rpy(pose));
         let _ = writeln!(s, "  </joint>");
     }
     let _ = writeln!(s, "</robot>");

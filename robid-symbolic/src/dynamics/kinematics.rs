@@ -1,4 +1,5 @@
-//! Forward kinematics in modified-DH frames: rotations and offsets between
+//! Forward kinematics in modified-DH frames (with Khalil and Kleinfinger's gamma and b,
+//! docs/conventions.md#khalil-kleinfinger-general-frames): rotations and offsets between
 //! consecutive frames, base-frame poses, and the velocity and acceleration
 //! recursion of Newton-Euler (docs/dynamics.md#kinematics-of-the-chain,
 //! docs/dynamics.md#forward-recursion).
@@ -17,12 +18,14 @@ pub struct JointInputs {
     pub qd: Vec<Id>,
     /// Joint accelerations.
     pub qdd: Vec<Id>,
-    /// Gravity in the base frame.
+    /// Gravity in the base frame (frame 0).
     pub gravity: Vec3,
 }
 
 impl JointInputs {
-    /// The symbols `q1.., qd1.., qdd1..` and the robot's gravity.
+    /// The symbols `q1.., qd1.., qdd1..` and the robot's gravity in frame 0: the
+    /// description's (world-frame) gravity turned by the base rotation, R_base' g
+    /// (docs/conventions.md#gravity); as written when there is no base rotation.
     pub fn symbols(arena: &mut Arena, robot: &Robot) -> JointInputs {
         let n = robot.dof();
         let names = |prefix: &str, arena: &mut Arena| -> Vec<Id> {
@@ -33,7 +36,14 @@ impl JointInputs {
         let q = names("q", arena);
         let qd = names("qd", arena);
         let qdd = names("qdd", arena);
-        let gravity = [0, 1, 2].map(|i| robot.gravity()[i].to_expr(arena));
+        let world = [0, 1, 2].map(|i| robot.gravity()[i].to_expr(arena));
+        let gravity = match robot.base() {
+            Some(base) if !base.rotation_is_identity() => {
+                let r = base.rotation(arena);
+                vector::mat_t_vec(arena, &r, world)
+            }
+            _ => world,
+        };
         JointInputs {
             q,
             qd,
@@ -101,12 +111,24 @@ impl Kinematics {
             }
             let (sa, ca) = (arena.sin(alpha), arena.cos(alpha));
             let (st, ct) = (arena.sin(theta), arena.cos(theta));
-            let rot = vector::rot_x_rot_z(arena, sa, ca, st, ct);
+            let mut rot = vector::rot_x_rot_z(arena, sa, ca, st, ct);
             let nsa_d = {
                 let sd = arena.mul2(sa, d);
                 arena.neg(sd)
             };
-            let p = [a, nsa_d, arena.mul2(ca, d)];
+            let mut p = [a, nsa_d, arena.mul2(ca, d)];
+            // Khalil-Kleinfinger: Rz(gamma) Tz(b) in front of the row; a DH row (both
+            // exactly 0) is left as it is.
+            let gamma = row.gamma.to_expr(arena);
+            if !arena.is_zero(gamma) {
+                let rz = vector::rot_z(arena, gamma);
+                rot = vector::mat_mul(arena, &rz, &rot);
+                p = vector::mat_vec(arena, &rz, p);
+            }
+            let b = row.b.to_expr(arena);
+            if !arena.is_zero(b) {
+                p[2] = arena.add2(p[2], b);
+            }
 
             // Velocities: the parent's, moved into frame j, plus the joint's own motion.
             let w_in = vector::mat_t_vec(arena, &rot, w);

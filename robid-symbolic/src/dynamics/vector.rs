@@ -85,3 +85,12 @@ pub fn rot_x_rot_z(arena: &mut Arena, sa: Id, ca: Id, st: Id, ct: Id) -> Mat3 {
         [arena.mul2(sa, st), arena.mul2(sa, ct), ca],
     ]
 }
+
+/// Rz(angle).
+pub fn rot_z(arena: &mut Arena, angle: Id) -> Mat3 {
+    let (s, c) = (arena.sin(angle), arena.cos(angle));
+    let zero = arena.zero();
+    let one = arena.one();
+    let ns = arena.neg(s);
+    [[c, ns, zero], [s, c, zero], [zero, zero, one]]
+}

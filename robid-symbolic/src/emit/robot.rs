@@ -49,6 +49,27 @@ pub fn robot_tokens(p: &RobotPrograms) -> Result<TokenStream, EmitError> {
         p.standard.len(),
         p.base.len()
     )];
+    // general frames and mounts (docs/conventions.md#khalil-kleinfinger-general-frames,
+    // docs/conventions.md#base-and-tool-frames), said only when the description has them
+    if robot
+        .joints()
+        .iter()
+        .any(|j| !j.gamma.is_zero() || !j.b.is_zero())
+    {
+        type_doc.push(String::new());
+        type_doc.push(
+            " Some rows carry Khalil-Kleinfinger `gamma` and `b` (Rz(gamma) Tz(b) before the row)."
+                .to_owned(),
+        );
+    }
+    if let Some(base) = robot.base() {
+        type_doc.push(String::new());
+        type_doc.push(format!(
+            " Mounted by the description's base transform (xyz [{}], rpy [{}]): gravity, given in the world frame, is turned into frame 0.",
+            base.xyz.iter().map(|g| g.as_str()).collect::<Vec<_>>().join(", "),
+            base.rpy.iter().map(|g| g.as_str()).collect::<Vec<_>>().join(", ")
+        ));
+    }
     let inputs: Vec<String> = p
         .geometry
         .iter()

@@ -13,6 +13,12 @@
 //! 2 d MZj + d^2 Mj, ... exactly. For a prismatic joint the inertia of link j
 //! (invariant under translation along z_j) moves into link j-1, rotated by the
 //! constant R = Rx(alpha_j) Rz(theta_j).
+//!
+//! With Khalil and Kleinfinger's gamma_j and b_j (docs/conventions.md#khalil-kleinfinger-general-frames)
+//! the constant part of the joint transform gains Rz(gamma_j) Tz(b_j) in front: R =
+//! Rz(gamma_j) Rx(alpha_j) and P_j = Rz(gamma_j) (a_j, -S d_j, C d_j) + (0, 0, b_j) for a
+//! revolute joint, R = Rz(gamma_j) Rx(alpha_j) Rz(theta_j) for a prismatic one; for a DH
+//! row (both 0) nothing changes.
 
 use crate::dynamics::LinkParameters;
 use crate::dynamics::link::transfer;
@@ -35,6 +41,9 @@ pub(crate) fn apply(arena: &mut Arena, rows: &[FrameRow], links: &mut [LinkParam
         let one = arena.one();
         let ns = arena.neg(s);
         let rx: Mat3 = [[one, zero, zero], [zero, c, ns], [zero, s, c]];
+        let gamma = row.gamma.to_expr(arena);
+        let rz = (!arena.is_zero(gamma)).then(|| vector::rot_z(arena, gamma));
+        let b = row.b.to_expr(arena);
         let mut moved = LinkParameters::zero(arena);
         let l = links[j];
         match row.kind {
@@ -42,7 +51,15 @@ pub(crate) fn apply(arena: &mut Arena, rows: &[FrameRow], links: &mut [LinkParam
                 let d = row.d.to_expr(arena);
                 let a = row.a.to_expr(arena);
                 let sd = arena.mul2(s, d);
-                let p = [a, arena.neg(sd), arena.mul2(c, d)];
+                let mut p = [a, arena.neg(sd), arena.mul2(c, d)];
+                let mut r = rx;
+                if let Some(rz) = &rz {
+                    p = vector::mat_vec(arena, rz, p);
+                    r = vector::mat_mul(arena, rz, &rx);
+                }
+                if !arena.is_zero(b) {
+                    p[2] = arena.add2(p[2], b);
+                }
                 let yy = l.inertia[SLOT_YY];
                 moved.inertia[0] = yy;
                 moved.inertia[SLOT_YY] = yy;
@@ -52,13 +69,16 @@ pub(crate) fn apply(arena: &mut Arena, rows: &[FrameRow], links: &mut [LinkParam
                 links[j].inertia[SLOT_YY] = zero;
                 links[j].first_moment[2] = zero;
                 links[j].mass = zero;
-                let into_parent = transfer(arena, moved, &rx, p);
+                let into_parent = transfer(arena, moved, &r, p);
                 add_inertial(arena, &mut links[j - 1], &into_parent);
             }
             JointKind::Prismatic => {
                 let theta = row.theta.to_expr(arena);
                 let (st, ct) = (arena.sin(theta), arena.cos(theta));
-                let r = vector::rot_x_rot_z(arena, s, c, st, ct);
+                let mut r = vector::rot_x_rot_z(arena, s, c, st, ct);
+                if let Some(rz) = &rz {
+                    r = vector::mat_mul(arena, rz, &r);
+                }
                 moved.inertia = l.inertia;
                 links[j].inertia = [zero; 6];
                 let into_parent = transfer(arena, moved, &r, [zero; 3]);

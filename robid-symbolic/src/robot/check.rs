@@ -9,7 +9,7 @@ use super::bounds::{
     SYMBOL_SAMPLES,
 };
 use super::interval::magnitude_bound;
-use super::{Convention, DescriptionError, Geometry, Joint, Limits, Robot};
+use super::{Convention, DescriptionError, Geometry, Joint, Limits, Robot, Transform};
 use crate::emit::type_name;
 use crate::expr::Arena;
 use std::f64::consts::FRAC_PI_2;
@@ -20,6 +20,10 @@ pub(super) struct Parts {
     pub(super) convention: Convention,
     pub(super) gravity: [Geometry; 3],
     pub(super) joints: Vec<Joint>,
+    /// Frame 0 in the world frame, if given.
+    pub(super) base: Option<Transform>,
+    /// The tool frame in frame n, if given.
+    pub(super) tool: Option<Transform>,
     /// Values given to symbols, in the order given.
     pub(super) values: Vec<(String, f64)>,
     /// The words of values that could not be read (their symbols are
@@ -27,17 +31,19 @@ pub(super) struct Parts {
     pub(super) unread_words: Vec<String>,
 }
 
-/// A DH value of a joint.
+/// A geometric value of a joint: the DH row and Khalil and Kleinfinger's `gamma` and `b`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(super) enum Dh {
     Alpha,
     A,
     D,
     Theta,
+    Gamma,
+    B,
 }
 
 impl Dh {
-    pub(super) const ALL: [Dh; 4] = [Dh::Alpha, Dh::A, Dh::D, Dh::Theta];
+    pub(super) const ALL: [Dh; 6] = [Dh::Alpha, Dh::A, Dh::D, Dh::Theta, Dh::Gamma, Dh::B];
 
     pub(super) fn key(self) -> &'static str {
         match self {
@@ -45,6 +51,8 @@ impl Dh {
             Dh::A => "a",
             Dh::D => "d",
             Dh::Theta => "theta",
+            Dh::Gamma => "gamma",
+            Dh::B => "b",
         }
     }
 
@@ -54,6 +62,55 @@ impl Dh {
             Dh::A => &joint.a,
             Dh::D => &joint.d,
             Dh::Theta => &joint.theta,
+            Dh::Gamma => &joint.gamma,
+            Dh::B => &joint.b,
+        }
+    }
+
+    fn role(self) -> Role {
+        match self {
+            Dh::Alpha | Dh::Theta | Dh::Gamma => Role::Angle,
+            Dh::A | Dh::D | Dh::B => Role::Length,
+        }
+    }
+}
+
+/// Which constant transform of a description: `[base]` or `[tool]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Mount {
+    Base,
+    Tool,
+}
+
+impl Mount {
+    pub(super) fn key(self) -> &'static str {
+        match self {
+            Mount::Base => "base",
+            Mount::Tool => "tool",
+        }
+    }
+}
+
+/// The translation or the rotation of a transform.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Part {
+    Xyz,
+    Rpy,
+}
+
+impl Part {
+    pub(super) fn key(self) -> &'static str {
+        match self {
+            Part::Xyz => "xyz",
+            Part::Rpy => "rpy",
+        }
+    }
+
+    /// The name of component `i` in messages.
+    fn component(self, i: usize) -> &'static str {
+        match self {
+            Part::Xyz => ["x", "y", "z"][i.min(2)],
+            Part::Rpy => ["roll", "pitch", "yaw"][i.min(2)],
         }
     }
 }
@@ -95,6 +152,8 @@ pub(super) enum Item<'a> {
     /// Gravity component `i`.
     Gravity(usize),
     Limit(usize, Limit),
+    /// Component `i` of the translation or rotation of `[base]` or `[tool]`.
+    Transform(Mount, Part, usize),
     /// The value given to a symbol.
     Symbol(&'a str),
 }
@@ -115,6 +174,7 @@ impl Locate for Code {
             Item::Value(j, dh) => format!("`joints[{j}].{}`", dh.key()),
             Item::Gravity(i) => format!("`gravity[{i}]`"),
             Item::Limit(j, l) => format!("`joints[{j}].limits.{}`", l.key()),
+            Item::Transform(m, p, i) => format!("`{}.{}[{i}]`", m.key(), p.key()),
             Item::Symbol(s) => format!("the value of symbol `{s}`"),
         };
         DescriptionError::Argument {
@@ -284,6 +344,16 @@ impl Parts {
                 error(*item, message, &help);
             }
         }
+        if self.convention == Convention::Standard {
+            for (j, joint) in self.joints.iter().enumerate() {
+                for dh in [Dh::Gamma, Dh::B] {
+                    if !dh.of(joint).is_zero() {
+                        let (message, help) = standard_gamma_b(j, dh);
+                        error(Item::Value(j, dh), message, &help);
+                    }
+                }
+            }
+        }
         for (j, joint) in self.joints.iter().enumerate() {
             for (limit, message, help) in limit_problems(&joint.limits) {
                 error(
@@ -308,27 +378,49 @@ impl Parts {
             convention: self.convention,
             gravity: self.gravity,
             joints: self.joints,
+            base: self.base,
+            tool: self.tool,
             symbols,
         })
     }
 
     /// Every geometric value with its item and role, joints first.
     fn values(&self) -> Vec<(Item<'static>, Geometry, Role)> {
-        let mut out = Vec::with_capacity(4 * self.joints.len() + 3);
+        let mut out = Vec::with_capacity(6 * self.joints.len() + 15);
         for (j, joint) in self.joints.iter().enumerate() {
             for dh in Dh::ALL {
-                let role = match dh {
-                    Dh::Alpha | Dh::Theta => Role::Angle,
-                    Dh::A | Dh::D => Role::Length,
-                };
-                out.push((Item::Value(j, dh), dh.of(joint).clone(), role));
+                out.push((Item::Value(j, dh), dh.of(joint).clone(), dh.role()));
             }
         }
         for (i, g) in self.gravity.iter().enumerate() {
             out.push((Item::Gravity(i), g.clone(), Role::Gravity));
         }
+        for (mount, transform) in [(Mount::Base, &self.base), (Mount::Tool, &self.tool)] {
+            let Some(t) = transform else { continue };
+            for (part, values, role) in [
+                (Part::Xyz, &t.xyz, Role::Length),
+                (Part::Rpy, &t.rpy, Role::Angle),
+            ] {
+                for (i, g) in values.iter().enumerate() {
+                    out.push((Item::Transform(mount, part, i), g.clone(), role));
+                }
+            }
+        }
         out
     }
+}
+
+/// The error (message, help) for a nonzero `gamma` or `b` (`dh`) of joint `j` (0-based) in a
+/// standard-DH table.
+pub(super) fn standard_gamma_b(j: usize, dh: Dh) -> (String, String) {
+    (
+        format!(
+            "joint {} has `{}`, which a standard-DH table cannot have",
+            j + 1,
+            dh.key()
+        ),
+        "`gamma` and `b` (Khalil and Kleinfinger's rotation about and translation along z_(j-1)) extend the modified convention: write the table in the modified convention (`convention = \"modified\"`, see docs/conventions.md#khalil-kleinfinger-general-frames)".to_owned(),
+    )
 }
 
 /// The help for a value given to a symbol nothing uses: the nearest used one.
@@ -369,6 +461,7 @@ fn describe(item: Item<'_>) -> String {
         Item::Value(j, dh) => format!("joint {} `{}`", j + 1, dh.key()),
         Item::Gravity(i) => format!("gravity {}", ["x", "y", "z"][i.min(2)]),
         Item::Limit(j, l) => format!("joint {} {} limit", j + 1, l.key()),
+        Item::Transform(m, p, i) => format!("[{}] {} {}", m.key(), p.key(), p.component(i)),
         Item::Name => "the name".to_owned(),
         Item::Joints => "the joints".to_owned(),
         Item::Symbol(s) => format!("symbol `{s}`"),

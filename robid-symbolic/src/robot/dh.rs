@@ -6,8 +6,14 @@
 //! and the same theta and d. The user's standard frame j is then modified
 //! frame j followed by the constant Tx(a_j) Rx(alpha_j), so standard-frame link
 //! parameters map linearly to modified-frame ones (see `dynamics::link`).
+//!
+//! A modified table may add Khalil and Kleinfinger's `gamma_j`, `b_j` in front of a row
+//! (frame j-1 -> j = Rz(gamma_j) Tz(b_j) Rx(alpha_j) Tx(a_j) Rz(theta_j) Tz(d_j),
+//! docs/conventions.md#khalil-kleinfinger-general-frames); a standard table has none.
+//! The numeric poses here also place the description's base and tool frames
+//! (docs/conventions.md#base-and-tool-frames).
 
-use super::{Convention, Geometry, JointKind, Robot};
+use super::{Convention, Geometry, JointKind, Robot, Transform};
 use crate::expr::{Arena, Unbound};
 
 /// One row in modified-DH form, plus the constant transform from the modified
@@ -17,6 +23,10 @@ use crate::expr::{Arena, Unbound};
 pub struct FrameRow {
     /// Joint type.
     pub kind: JointKind,
+    /// Khalil-Kleinfinger gamma_j: rotation about z_(j-1) before the row (0 for a DH row).
+    pub gamma: Geometry,
+    /// Khalil-Kleinfinger b_j: translation along z_(j-1) before the row (0 for a DH row).
+    pub b: Geometry,
     /// Modified-DH alpha_j.
     pub alpha: Geometry,
     /// Modified-DH a_j.
@@ -39,6 +49,8 @@ impl Robot {
             .map(|i| match self.convention {
                 Convention::Modified => FrameRow {
                     kind: j[i].kind,
+                    gamma: j[i].gamma.clone(),
+                    b: j[i].b.clone(),
                     alpha: j[i].alpha.clone(),
                     a: j[i].a.clone(),
                     d: j[i].d.clone(),
@@ -48,6 +60,8 @@ impl Robot {
                 },
                 Convention::Standard => FrameRow {
                     kind: j[i].kind,
+                    gamma: Geometry::zero(),
+                    b: Geometry::zero(),
                     alpha: if i == 0 {
                         Geometry::zero()
                     } else {
@@ -73,10 +87,11 @@ impl Robot {
     ///
     /// Standard DH: link j runs from frame j-1's origin, at (-a_j, -d_j sin alpha_j,
     /// -d_j cos alpha_j) in frame j, to frame j's origin. Modified DH: from frame j's
-    /// origin to frame j+1's, at (a_(j+1), -d_(j+1) sin alpha_(j+1), d_(j+1) cos
-    /// alpha_(j+1)); the last link of a modified table has no next joint and gets a
-    /// segment of length zero. The default prior of `robid feasible` models each link
-    /// as a solid along this segment.
+    /// origin to frame j+1's, at Rz(gamma_(j+1)) (a_(j+1), -d_(j+1) sin alpha_(j+1),
+    /// d_(j+1) cos alpha_(j+1)) + (0, 0, b_(j+1)); the last link of a modified table has
+    /// no next joint and runs to the tool frame's origin when the description gives a
+    /// `[tool]`, else its segment has length zero. The default prior of `robid feasible`
+    /// models each link as a solid along this segment.
     ///
     /// # Errors
     /// A symbol the geometry uses has no value in the description.
@@ -96,18 +111,29 @@ impl Robot {
     /// ```
     pub fn link_segments(&self) -> Result<Vec<[[f64; 3]; 2]>, Unbound> {
         let rows = self.numeric_rows()?;
+        let tool = self.tool_pose()?;
         let n = rows.len();
         Ok((0..n)
             .map(|j| match self.convention {
                 Convention::Standard => {
-                    let [alpha, a, d, _] = rows[j];
+                    let [alpha, a, d, ..] = rows[j];
                     [[-a, -d * alpha.sin(), -d * alpha.cos()], [0.0; 3]]
                 }
                 Convention::Modified if j + 1 < n => {
-                    let [alpha, a, d, _] = rows[j + 1];
-                    [[0.0; 3], [a, -d * alpha.sin(), d * alpha.cos()]]
+                    let [alpha, a, d, _, gamma, b] = rows[j + 1];
+                    let p = product(&[
+                        rot_z(gamma),
+                        trans_z(b),
+                        rot_x(alpha),
+                        trans_x(a),
+                        trans_z(d),
+                    ]);
+                    [[0.0; 3], [p[0][3], p[1][3], p[2][3]]]
                 }
-                Convention::Modified => [[0.0; 3]; 2],
+                Convention::Modified => match tool {
+                    Some(t) => [[0.0; 3], [t[0][3], t[1][3], t[2][3]]],
+                    None => [[0.0; 3]; 2],
+                },
             })
             .collect())
     }
@@ -119,20 +145,30 @@ impl Robot {
     /// chain base -> joint 1 -> ... is a URDF chain whose link j carries link j's inertia
     /// placed by the second pose. Poses are 4x4 homogeneous matrices, row-major.
     ///
-    /// Modified DH: joint j's frame is DH frame j, at Rx(alpha_j) Tx(a_j) Rz(theta_j)
-    /// Tz(d_j) in frame j-1. Standard DH: joint j turns about z_(j-1), so its frame is DH
-    /// frame j-1 (turned by the joint) and DH frame j lies at Rz(theta_j) Tz(d_j) Tx(a_j)
-    /// Rx(alpha_j) in it.
+    /// Modified DH: joint j's frame is DH frame j, at Rz(gamma_j) Tz(b_j) Rx(alpha_j)
+    /// Tx(a_j) Rz(theta_j) Tz(d_j) in frame j-1. Standard DH: joint j turns about z_(j-1),
+    /// so its frame is DH frame j-1 (turned by the joint) and DH frame j lies at
+    /// Rz(theta_j) Tz(d_j) Tx(a_j) Rx(alpha_j) in it. The first joint's frame is placed in
+    /// the world frame: the description's `[base]` ([`Robot::base_pose`]) comes first.
+    /// [`Robot::tool_placement`] places the tool frame the same way.
     ///
     /// # Errors
     /// A symbol the geometry uses has no value in the description.
     pub fn joint_placements(&self) -> Result<Vec<JointPlacement>, Unbound> {
         let rows = self.numeric_rows()?;
+        let base = self.base_pose()?;
         let mut out: Vec<JointPlacement> = Vec::with_capacity(rows.len());
-        for [alpha, a, d, theta] in rows {
-            let placement = match self.convention {
+        for [alpha, a, d, theta, gamma, b] in rows {
+            let mut placement = match self.convention {
                 Convention::Modified => JointPlacement {
-                    origin: product(&[rot_x(alpha), trans_x(a), rot_z(theta), trans_z(d)]),
+                    origin: product(&[
+                        rot_z(gamma),
+                        trans_z(b),
+                        rot_x(alpha),
+                        trans_x(a),
+                        rot_z(theta),
+                        trans_z(d),
+                    ]),
                     link_frame: IDENTITY,
                 },
                 Convention::Standard => JointPlacement {
@@ -141,27 +177,110 @@ impl Robot {
                     link_frame: product(&[rot_z(theta), trans_z(d), trans_x(a), rot_x(alpha)]),
                 },
             };
+            if out.is_empty() {
+                placement.origin = product(&[base, placement.origin]);
+            }
             out.push(placement);
         }
         Ok(out)
     }
 
-    /// Per joint `[alpha, a, d, theta]` at the description's symbol values.
-    fn numeric_rows(&self) -> Result<Vec<[f64; 4]>, Unbound> {
+    /// The pose of frame 0 in the world frame: the description's `[base]`, the identity
+    /// without one.
+    ///
+    /// # Errors
+    /// A symbol the base transform uses has no value in the description.
+    pub fn base_pose(&self) -> Result<Pose, Unbound> {
+        match self.base() {
+            Some(t) => self.pose_of(t),
+            None => Ok(IDENTITY),
+        }
+    }
+
+    /// The pose of the tool frame in the user's frame n (the last link's frame), if the
+    /// description gives a `[tool]`.
+    ///
+    /// # Errors
+    /// A symbol the tool transform uses has no value in the description.
+    pub fn tool_pose(&self) -> Result<Option<Pose>, Unbound> {
+        self.tool().map(|t| self.pose_of(t)).transpose()
+    }
+
+    /// The pose of the tool frame in the last joint's frame (see
+    /// [`Robot::joint_placements`]), if the description gives a `[tool]`: the tool pose in
+    /// frame n, behind the last link's DH frame for a standard table.
+    ///
+    /// # Errors
+    /// A symbol the geometry uses has no value in the description.
+    ///
+    /// # Examples
+    /// ```
+    /// use robid_symbolic::Robot;
+    /// let text = "name = \"arm\"\nconvention = \"modified\"\n[tool]\nxyz = [0, 0, 0.1]\n\
+    ///             [[joints]]\n";
+    /// let robot = Robot::from_toml(text, "arm.toml")?;
+    /// let tool = robot.tool_placement()?.unwrap();
+    /// assert_eq!(tool[2][3], 0.1);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn tool_placement(&self) -> Result<Option<Pose>, Unbound> {
+        let Some(tool) = self.tool_pose()? else {
+            return Ok(None);
+        };
+        let last = self.joint_placements()?.last().map(|p| p.link_frame);
+        Ok(Some(product(&[last.unwrap_or(IDENTITY), tool])))
+    }
+
+    /// A transform at the description's symbol values.
+    fn pose_of(&self, t: &Transform) -> Result<Pose, Unbound> {
+        let mut arena = Arena::new();
+        let ids: Vec<_> = t
+            .xyz
+            .iter()
+            .chain(&t.rpy)
+            .map(|g| g.to_expr(&mut arena))
+            .collect();
+        let v = self.evaluate(&mut arena, &ids)?;
+        Ok(product(&[
+            trans_x(v[0]),
+            trans_y(v[1]),
+            trans_z(v[2]),
+            rot_z(v[5]),
+            rot_y(v[4]),
+            rot_x(v[3]),
+        ]))
+    }
+
+    /// Per joint `[alpha, a, d, theta, gamma, b]` at the description's symbol values.
+    fn numeric_rows(&self) -> Result<Vec<[f64; 6]>, Unbound> {
         let mut arena = Arena::new();
         let mut ids = Vec::new();
         for joint in self.joints() {
-            for g in [&joint.alpha, &joint.a, &joint.d, &joint.theta] {
+            for g in [
+                &joint.alpha,
+                &joint.a,
+                &joint.d,
+                &joint.theta,
+                &joint.gamma,
+                &joint.b,
+            ] {
                 ids.push(g.to_expr(&mut arena));
             }
         }
+        let v = self.evaluate(&mut arena, &ids)?;
+        Ok(v.chunks(6)
+            .map(|c| [c[0], c[1], c[2], c[3], c[4], c[5]])
+            .collect())
+    }
+
+    /// `ids` at the description's symbol values.
+    fn evaluate(&self, arena: &mut Arena, ids: &[crate::expr::Id]) -> Result<Vec<f64>, Unbound> {
         let mut pairs = Vec::new();
         for (name, value) in self.symbols() {
             pairs.push((name.as_str(), value.ok_or_else(|| Unbound(name.clone()))?));
         }
         let values = arena.values(&pairs);
-        let v = arena.eval(&ids, &values)?;
-        Ok(v.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect())
+        arena.eval(ids, &values)
     }
 }
 
@@ -200,6 +319,16 @@ fn rot_x(angle: f64) -> Pose {
     ]
 }
 
+fn rot_y(angle: f64) -> Pose {
+    let (s, c) = angle.sin_cos();
+    [
+        [c, 0.0, s, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [-s, 0.0, c, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ]
+}
+
 fn rot_z(angle: f64) -> Pose {
     let (s, c) = angle.sin_cos();
     [
@@ -213,6 +342,12 @@ fn rot_z(angle: f64) -> Pose {
 fn trans_x(length: f64) -> Pose {
     let mut p = IDENTITY;
     p[0][3] = length;
+    p
+}
+
+fn trans_y(length: f64) -> Pose {
+    let mut p = IDENTITY;
+    p[1][3] = length;
     p
 }
 

@@ -4,16 +4,23 @@
 //! ```toml
 //! name = "ur5e"                  # names the generated type (Ur5e): an identifier, not a Rust keyword
 //! convention = "modified"        # or "standard"
-//! gravity = [0, 0, -9.81]        # optional, base frame, m/s^2
+//! gravity = [0, 0, -9.81]        # optional, world frame (frame 0 without [base]), m/s^2
 //! drive = ["Ia", "Fv", "Fc"]     # optional default drive terms of every joint
 //! [symbols]                      # optional values of geometric symbols
 //! L3 = 0.425
+//! [base]                         # optional: frame 0 in the world frame (gravity is in the world)
+//! xyz = [0, 0, 0]                #   metres
+//! rpy = ["pi/2", 0, 0]           #   radians, R = Rz(yaw) Ry(pitch) Rx(roll), as in URDF
+//! [tool]                         # optional: the end-effector frame in frame n, same keys
+//! xyz = [0, 0, 0.1]
 //! [[joints]]
 //! type = "revolute"              # or "prismatic"; default revolute
 //! alpha = "pi/2"                 # a number, an exact angle, or a symbol expression (rad)
 //! a = "-L3"                      # lengths in metres
 //! d = 0.1625
 //! theta = 0                      # offset of the joint angle
+//! gamma = 0                      # optional, modified tables only: Khalil-Kleinfinger rotation
+//! b = 0                          #   about and translation along z_(j-1), before the row
 //! drive = ["Ia"]                 # optional, overrides the default
 //! limits = { position = [-6.28, 6.28], velocity = 3.14, acceleration = 10, torque = 150 }
 //! ```

@@ -19,12 +19,14 @@ mod geometry;
 mod interval;
 mod parameters;
 mod read;
+mod transform;
 mod urdf;
 
 pub use dh::{FrameRow, JointPlacement, Pose};
 pub use error::DescriptionError;
 pub use geometry::{Expression, Geometry, GeometryError, Number};
 pub use parameters::{DriveTerm, Inertial, ParameterId, ParameterKind};
+pub use transform::Transform;
 pub use urdf::{AttachedLink, ChainLink, ChainSelection, UrdfChain, write_inertials};
 
 pub(crate) use check::name_problem;
@@ -138,10 +140,20 @@ impl FromIterator<DriveTerm> for Drive {
 
 /// One row of the DH table and what belongs to its joint: plain data, checked
 /// when a [`Robot`] is built from it.
+///
+/// In the modified convention a row may carry Khalil and Kleinfinger's two extra values,
+/// `gamma` about and `b` along z_(j-1), placed in front of the DH row: frame j-1 -> j is
+/// Rz(gamma) Tz(b) Rx(alpha) Tx(a) Rz(theta) Tz(d) (docs/conventions.md#khalil-kleinfinger-general-frames).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Joint {
     /// Revolute or prismatic.
     pub kind: JointKind,
+    /// Rotation gamma about z_(j-1) (rad), before the DH row (modified convention only; 0
+    /// for a plain DH row).
+    pub gamma: Geometry,
+    /// Translation b along z_(j-1) (m), before the DH row (modified convention only; 0 for
+    /// a plain DH row).
+    pub b: Geometry,
     /// Twist alpha (rad).
     pub alpha: Geometry,
     /// Length a (m).
@@ -167,6 +179,8 @@ impl Joint {
     ) -> Joint {
         Joint {
             kind,
+            gamma: Geometry::zero(),
+            b: Geometry::zero(),
             alpha,
             a,
             d,
@@ -174,6 +188,23 @@ impl Joint {
             limits: Limits::default(),
             drive: Drive::NONE,
         }
+    }
+
+    /// The same joint with Khalil and Kleinfinger's `gamma` (rotation about z_(j-1)) and `b`
+    /// (translation along it) in front of its DH row; for a modified table only (a
+    /// standard table with either nonzero is refused when the robot is built).
+    ///
+    /// ```
+    /// use robid_symbolic::robot::Geometry;
+    /// use robid_symbolic::{Convention, Joint, Robot};
+    /// let joint = Joint::revolute("pi/2", 0.1, 0.0, "0")?
+    ///     .with_gamma_b(Geometry::text("pi/4")?, Geometry::number(0.05)?);
+    /// let robot = Robot::new("arm", Convention::Modified, None, vec![joint])?;
+    /// assert_eq!(robot.joints()[0].gamma.as_str(), "pi/4");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_gamma_b(self, gamma: Geometry, b: Geometry) -> Joint {
+        Joint { gamma, b, ..self }
     }
 
     /// A revolute joint with numeric lengths, no limits and no drive terms;
@@ -212,6 +243,8 @@ pub struct Robot {
     convention: Convention,
     gravity: [Geometry; 3],
     joints: Vec<Joint>,
+    base: Option<Transform>,
+    tool: Option<Transform>,
     symbols: Vec<(String, Option<f64>)>,
 }
 
@@ -229,6 +262,8 @@ impl Robot {
             convention,
             gravity: gravity.unwrap_or_else(default_gravity),
             joints,
+            base: None,
+            tool: None,
             values: Vec::new(),
             unread_words: Vec::new(),
         };
@@ -245,9 +280,23 @@ impl Robot {
         self.convention
     }
 
-    /// Gravity in the base frame (m/s^2).
+    /// Gravity in the world frame (m/s^2): the frame the base transform places robid's
+    /// frame 0 in ([`Robot::base`]); without a base transform, frame 0 itself. The
+    /// dynamics use it in frame 0, `R_base' g` (docs/conventions.md#gravity).
     pub fn gravity(&self) -> &[Geometry; 3] {
         &self.gravity
+    }
+
+    /// The pose of frame 0 in the world frame (the description's `[base]`), if given: a
+    /// robot mounted on a wall or rotated on its plate.
+    pub fn base(&self) -> Option<&Transform> {
+        self.base.as_ref()
+    }
+
+    /// The end-effector (tool) frame in the last link's frame n (the description's
+    /// `[tool]`), if given.
+    pub fn tool(&self) -> Option<&Transform> {
+        self.tool.as_ref()
     }
 
     /// Joints, base to tip.
@@ -319,6 +368,39 @@ impl Robot {
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
 
+    /// The same robot with frame 0 placed at `base` in the world frame (checked as in a
+    /// description; `None` removes it). Gravity stays in the world frame.
+    ///
+    /// ```
+    /// use robid_symbolic::robot::Geometry;
+    /// use robid_symbolic::{Convention, Joint, Robot, Transform};
+    /// // on a wall: frame 0 turned a quarter turn about the world's x, 1 m up
+    /// let mut wall = Transform::numbers([0.0, 0.0, 1.0], [0.0; 3])?;
+    /// wall.rpy[0] = Geometry::text("pi/2")?;
+    /// let joints = vec![Joint::revolute("0", 0.0, 0.0, "0")?];
+    /// let robot = Robot::new("arm", Convention::Modified, None, joints)?.with_base(Some(wall))?;
+    /// let pose = robot.base_pose()?;
+    /// assert_eq!(pose[2][3], 1.0);
+    /// assert!((pose[2][1] - 1.0).abs() < 1e-15); // y_0 points up
+    /// // an angle a hair from pi/2 is refused: write "pi/2"
+    /// let near = Transform::numbers([0.0; 3], [std::f64::consts::FRAC_PI_2, 0.0, 0.0])?;
+    /// assert!(robot.with_base(Some(near)).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_base(self, base: Option<Transform>) -> Result<Robot, DescriptionError> {
+        let mut parts = self.into_parts();
+        parts.base = base;
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
+    /// The same robot with the tool frame `tool` in frame n (checked as in a description;
+    /// `None` removes it).
+    pub fn with_tool(self, tool: Option<Transform>) -> Result<Robot, DescriptionError> {
+        let mut parts = self.into_parts();
+        parts.tool = tool;
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
     /// The same robot under another name (checked as in a description).
     pub fn with_name(self, name: &str) -> Result<Robot, DescriptionError> {
         let mut parts = self.into_parts();
@@ -342,6 +424,8 @@ impl Robot {
             convention: self.convention,
             gravity: self.gravity,
             joints: self.joints,
+            base: self.base,
+            tool: self.tool,
             values: self
                 .symbols
                 .into_iter()

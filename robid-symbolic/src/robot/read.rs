@@ -3,9 +3,11 @@
 //! unreadable values are collected, each with its span, and reading goes on
 //! with a placeholder so that the checks can report the rest.
 
-use super::check::{Dh, Item, Limit, Parts, distance};
+use super::check::{Dh, Item, Limit, Mount, Part, Parts, distance, standard_gamma_b};
 use super::file::Place;
-use super::{Convention, DescriptionError, Drive, DriveTerm, Geometry, Joint, JointKind, Limits};
+use super::{
+    Convention, DescriptionError, Drive, DriveTerm, Geometry, Joint, JointKind, Limits, Transform,
+};
 use std::collections::HashMap;
 use std::ops::Range;
 use toml::Spanned;
@@ -24,6 +26,10 @@ pub(super) struct Spans {
     gravity: Option<Range<usize>>,
     gravity_values: HashMap<usize, Range<usize>>,
     symbols: HashMap<String, Range<usize>>,
+    /// `[base]` and `[tool]`: the tables, their `xyz` and `rpy` arrays and each value.
+    mounts: HashMap<Mount, Range<usize>>,
+    parts: HashMap<(Mount, Part), Range<usize>>,
+    components: HashMap<(Mount, Part, usize), Range<usize>>,
     /// The top-level `drive` key, and each joint's.
     drive: Option<Range<usize>>,
     joint_drives: Vec<(usize, Range<usize>)>,
@@ -43,6 +49,12 @@ impl Spans {
                 .get(&i)
                 .cloned()
                 .or_else(|| self.gravity.clone()),
+            Item::Transform(m, p, i) => self
+                .components
+                .get(&(m, p, i))
+                .or_else(|| self.parts.get(&(m, p)))
+                .or_else(|| self.mounts.get(&m))
+                .cloned(),
             Item::Symbol(s) => self.symbols.get(s).cloned(),
         };
         found.unwrap_or(0..0)
@@ -74,18 +86,25 @@ pub(super) struct Reader<'a> {
     /// The words of geometric values that could not be read (their symbols
     /// are unknown).
     unread_words: Vec<String>,
+    /// The table's convention (`gamma` and `b` belong to the modified one).
+    convention: Convention,
 }
 
-const ROBOT_KEYS: [&str; 6] = [
+const ROBOT_KEYS: [&str; 8] = [
     "name",
     "convention",
     "gravity",
     "drive",
     "symbols",
     "joints",
+    "base",
+    "tool",
 ];
-const JOINT_KEYS: [&str; 7] = ["type", "alpha", "a", "d", "theta", "drive", "limits"];
+const JOINT_KEYS: [&str; 9] = [
+    "type", "alpha", "a", "d", "theta", "drive", "limits", "gamma", "b",
+];
 const LIMIT_KEYS: [&str; 4] = ["position", "velocity", "acceleration", "torque"];
+const TRANSFORM_KEYS: [&str; 2] = ["xyz", "rpy"];
 
 impl<'a> Reader<'a> {
     pub(super) fn new(place: &'a Place<'a>) -> Reader<'a> {
@@ -94,6 +113,7 @@ impl<'a> Reader<'a> {
             errors: Vec::new(),
             spans: Spans::default(),
             unread_words: Vec::new(),
+            convention: Convention::Modified,
         }
     }
 
@@ -136,6 +156,7 @@ impl<'a> Reader<'a> {
                 Convention::Modified
             }
         };
+        self.convention = convention;
         let gravity = values[2].map(|g| self.gravity(g));
         self.spans.drive = values[3].map(|v| v.span());
         let default_drive = values[3].map_or(Drive::NONE, |d| self.drive(d));
@@ -147,11 +168,15 @@ impl<'a> Reader<'a> {
             }
             None => Vec::new(),
         };
+        let base = values[6].map(|v| self.transform(Mount::Base, v));
+        let tool = values[7].map(|v| self.transform(Mount::Tool, v));
         Parts {
             name: name.unwrap_or_else(|| "robot".to_owned()),
             convention,
             gravity: gravity.unwrap_or_else(super::default_gravity),
             joints,
+            base,
+            tool,
             values: symbols,
             unread_words: std::mem::take(&mut self.unread_words),
         }
@@ -362,14 +387,22 @@ impl<'a> Reader<'a> {
                 }
             },
         };
-        let mut dh = [(); 4].map(|_| Geometry::zero());
+        let mut dh = [(); 6].map(|_| Geometry::zero());
         for (k, key) in Dh::ALL.into_iter().enumerate() {
-            if let Some(v) = values[k + 1] {
-                self.spans.values.insert((j, key), v.span());
-                let what = format!("joint {} `{}`", j + 1, key.key());
-                if let Some(g) = self.geometry(v, &what) {
-                    dh[k] = g;
-                }
+            let Some(v) = values[joint_key(key)] else {
+                continue;
+            };
+            self.spans.values.insert((j, key), v.span());
+            if matches!(key, Dh::Gamma | Dh::B) && self.convention == Convention::Standard {
+                // reported here, where it was written; the robot gets 0 so the checks
+                // do not report it again
+                let (message, help) = standard_gamma_b(j, key);
+                self.error(v.span(), message, help);
+                continue;
+            }
+            let what = format!("joint {} `{}`", j + 1, key.key());
+            if let Some(g) = self.geometry(v, &what) {
+                dh[k] = g;
             }
         }
         if let Some(d) = values[5] {
@@ -377,9 +410,11 @@ impl<'a> Reader<'a> {
         }
         let drive = values[5].map_or(default_drive, |d| self.drive(d));
         let limits = values[6].map(|l| self.limits(j, l)).unwrap_or_default();
-        let [alpha, a, d, theta] = dh;
+        let [alpha, a, d, theta, gamma, b] = dh;
         Joint {
             kind,
+            gamma,
+            b,
             alpha,
             a,
             d,
@@ -387,6 +422,60 @@ impl<'a> Reader<'a> {
             limits,
             drive,
         }
+    }
+
+    /// A `[base]` or `[tool]` table: `xyz` and `rpy`, each optional (zero when left out).
+    fn transform(&mut self, mount: Mount, v: &Value<'_>) -> Transform {
+        let mut t = Transform::identity();
+        self.spans.mounts.insert(mount, v.span());
+        let name = mount.key();
+        let DeValue::Table(table) = v.get_ref() else {
+            self.type_error(
+                v,
+                &format!("`{name}`"),
+                &format!(
+                    "a table `[{name}]` with `xyz = [x, y, z]` and `rpy = [roll, pitch, yaw]`"
+                ),
+            );
+            return t;
+        };
+        let context = format!("of `[{name}]`");
+        let values = self.keys(table, &TRANSFORM_KEYS, &context);
+        for (part, value) in [(Part::Xyz, values[0]), (Part::Rpy, values[1])] {
+            let Some(value) = value else { continue };
+            self.spans.parts.insert((mount, part), value.span());
+            let example = match part {
+                Part::Xyz => "`xyz = [0, 0, 0.1]` (m)",
+                Part::Rpy => "`rpy = [\"pi/2\", 0, 0]` (rad, R = Rz(yaw) Ry(pitch) Rx(roll))",
+            };
+            let what = format!("[{name}] `{}`", part.key());
+            let Some(items) = self.array(value, &what, &format!("three values, e.g. {example}"))
+            else {
+                continue;
+            };
+            if items.len() != 3 {
+                self.error(
+                    value.span(),
+                    format!("{what} has {} values", items.len()),
+                    format!("give three values, e.g. {example}"),
+                );
+                continue;
+            }
+            for (i, item) in items.iter().enumerate() {
+                self.spans.components.insert((mount, part, i), item.span());
+                let component = match part {
+                    Part::Xyz => ["x", "y", "z"][i],
+                    Part::Rpy => ["roll", "pitch", "yaw"][i],
+                };
+                if let Some(g) = self.geometry(item, &format!("[{name}] {component}")) {
+                    match part {
+                        Part::Xyz => t.xyz[i] = g,
+                        Part::Rpy => t.rpy[i] = g,
+                    }
+                }
+            }
+        }
+        t
     }
 
     fn limits(&mut self, j: usize, v: &Value<'_>) -> Limits {
@@ -462,11 +551,23 @@ impl<'a> Reader<'a> {
                 self.error(
                     v.span(),
                     format!("{what} is {x}, not a finite number"),
-                    "DH values and gravity are finite numbers, exact angles such as \"pi/2\" or symbols such as \"L3\"",
+                    "geometric values (DH values, gravity, `[base]`, `[tool]`) are finite numbers, exact angles such as \"pi/2\" or symbols such as \"L3\"",
                 );
                 None
             }
         }
+    }
+}
+
+/// The index of a joint value's key in [`JOINT_KEYS`].
+fn joint_key(key: Dh) -> usize {
+    match key {
+        Dh::Alpha => 1,
+        Dh::A => 2,
+        Dh::D => 3,
+        Dh::Theta => 4,
+        Dh::Gamma => 7,
+        Dh::B => 8,
     }
 }
 

@@ -457,3 +457,113 @@ fn a_drive_key_given_to_the_last_joint_by_accident_is_warned_about() {
         assert!(warned(&quiet).is_empty(), "{quiet}");
     }
 }
+
+/// Khalil-Kleinfinger `gamma` and `b` belong to a modified table; `[base]` and `[tool]` are
+/// tables of `xyz` and `rpy`, three finite values each within the bounds of lengths and
+/// angles. Every mistake is located at its key or value.
+#[test]
+fn general_frames_base_and_tool_are_checked() {
+    let standard = "name = \"arm\"\nconvention = \"standard\"\n[[joints]]\na = 0.1\ngamma = \"pi/2\"\nb = 0.2\n";
+    let all = errors(standard);
+    assert_eq!(all.len(), 2, "{all:#?}");
+    assert!(
+        all[0].starts_with("arm.toml:5:9: joint 1 has `gamma`"),
+        "{}",
+        all[0]
+    );
+    assert!(
+        all[1].starts_with("arm.toml:6:5: joint 1 has `b`"),
+        "{}",
+        all[1]
+    );
+    assert!(
+        all[0].contains("write the table in the modified convention"),
+        "{}",
+        all[0]
+    );
+    // even a zero is refused: the key says the table was meant as a modified one
+    single(
+        "name = \"arm\"\nconvention = \"standard\"\n[[joints]]\ngamma = 0\n",
+        "4:9",
+        &["joint 1 has `gamma`", "convention = \"modified\""],
+    );
+    // in a modified table they read, with the checks of angles and lengths
+    let ok = format!("{HEAD}[[joints]]\ngamma = \"pi/2\"\nb = \"L\"\n[symbols]\nL = 0.3\n");
+    let robot = Robot::from_toml(&ok, "arm.toml").unwrap();
+    assert_eq!(robot.joints()[0].gamma.as_str(), "pi/2");
+    assert_eq!(robot.symbols(), [("L".to_owned(), Some(0.3))]);
+    single(
+        &format!("{HEAD}[[joints]]\ngamma = 1.5707963\n"),
+        "4:9",
+        &["joint 1 `gamma` = 1.5707963 is only", "write \"pi/2\""],
+    );
+    single(
+        &format!("{HEAD}[[joints]]\nb = 2e3\n"),
+        "4:5",
+        &["joint 1 `b` = 2000 is beyond ±1000 m"],
+    );
+    // [base] and [tool]
+    for (table, at, says) in [
+        ("[base]\nxyz = [0, 0]\n", "4:7", "[base] `xyz` has 2 values"),
+        (
+            "[base]\nrpy = [0, 0, 0, 0]\n",
+            "4:7",
+            "[base] `rpy` has 4 values",
+        ),
+        (
+            "[tool]\nxyz = [0, 0, nan]\n",
+            "4:14",
+            "[tool] z is NaN, not a finite number",
+        ),
+        (
+            "[tool]\nrpy = [inf, 0, 0]\n",
+            "4:8",
+            "[tool] roll is inf, not a finite number",
+        ),
+        ("[base]\nxzy = [0, 0, 0]\n", "4:1", "unknown key `xzy`"),
+        (
+            "[base]\nrpy = [0, 90, 0]\n",
+            "4:11",
+            "[base] rpy pitch = 90 is more than a turn",
+        ),
+        (
+            "[tool]\nxyz = [0, 0, 5e3]\n",
+            "4:14",
+            "[tool] xyz z = 5000 is beyond ±1000 m",
+        ),
+        ("base = 3\n", "3:8", "`base` is an integer"),
+        (
+            "[tool]\nxyz = \"0 0 1\"\n",
+            "4:7",
+            "[tool] `xyz` is a string",
+        ),
+    ] {
+        let text = format!("{HEAD}{table}[[joints]]\n");
+        single(&text, at, &[says]);
+    }
+    // in code: the argument is named
+    let joint = Joint::revolute("0", 0.1, 0.0, "0")
+        .unwrap()
+        .with_gamma_b(Geometry::text("pi/2").unwrap(), Geometry::zero());
+    let e = Robot::new("arm", Convention::Standard, None, vec![joint]).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("`joints[0].gamma`: joint 1 has `gamma`"),
+        "{e}"
+    );
+    let arm = Robot::new(
+        "arm",
+        Convention::Modified,
+        None,
+        vec![Joint::revolute("0", 0.1, 0.0, "0").unwrap()],
+    )
+    .unwrap();
+    let mut far = robid_symbolic::Transform::identity();
+    far.xyz[1] = Geometry::number(-3e3).unwrap();
+    let e = arm.with_tool(Some(far)).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("`tool.xyz[1]`: [tool] xyz y = -3000"),
+        "{e}"
+    );
+}

@@ -8,6 +8,7 @@ mod deep_expressions;
 mod description_errors;
 mod emit_c;
 mod fuzz_descriptions;
+mod general_frames;
 mod ne_vs_le_quick;
 mod regroup;
 mod regroup_random;

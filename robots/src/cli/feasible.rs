@@ -305,7 +305,13 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Some("urdf" | "xml")
     );
     let text = if urdf {
-        to_urdf(&solution, robot.name(), &urdf_joints(&robot)?)
+        let tool = robot.tool_placement().map_err(|e| e.to_string())?;
+        to_urdf(
+            &solution,
+            robot.name(),
+            &urdf_joints(&robot)?,
+            tool.as_ref(),
+        )
     } else {
         to_toml(&solution, robot.name())
     };

@@ -68,11 +68,31 @@ impl From<Operations> for Counts {
     }
 }
 
+/// A `[base]` or `[tool]` transform as written.
+#[derive(Serialize)]
+struct Mount {
+    xyz: [String; 3],
+    rpy: [String; 3],
+}
+
+impl Mount {
+    fn of(t: Option<&robid_symbolic::Transform>) -> Option<Mount> {
+        t.map(|t| Mount {
+            xyz: t.xyz.clone().map(|g| g.as_str().to_owned()),
+            rpy: t.rpy.clone().map(|g| g.as_str().to_owned()),
+        })
+    }
+}
+
 #[derive(Serialize)]
 struct Report {
     name: String,
     dof: usize,
     convention: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    base: Option<Mount>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    tool: Option<Mount>,
     standard_parameters: Vec<String>,
     base_parameters: Vec<Base>,
     unidentifiable: Vec<String>,
@@ -166,6 +186,8 @@ fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Repo
         name: robot.name().to_owned(),
         dof: robot.dof(),
         convention: robot.convention().as_str(),
+        base: Mount::of(robot.base()),
+        tool: Mount::of(robot.tool()),
         standard_parameters: b.standard.iter().map(|p| p.to_string()).collect(),
         base_parameters,
         unidentifiable: b
@@ -182,18 +204,34 @@ fn text(robot: &Robot, r: &Report) -> String {
     use std::fmt::Write;
     let mut out = String::new();
     let _ = writeln!(out, "robot {} ({} DOF, {} DH)", r.name, r.dof, r.convention);
+    // gamma and b (docs/conventions.md#khalil-kleinfinger-general-frames) only when a
+    // joint has them, so a DH table prints as it always has
+    let general = robot
+        .joints()
+        .iter()
+        .any(|j| !j.gamma.is_zero() || !j.b.is_zero());
     let _ = writeln!(
         out,
-        "\n  j  type       alpha        a            d            theta"
+        "\n  j  type       {}alpha        a            d            theta",
+        if general {
+            "gamma        b            "
+        } else {
+            ""
+        }
     );
     for (j, joint) in robot.joints().iter().enumerate() {
         let kind = match joint.kind {
             robid_symbolic::JointKind::Revolute => "revolute",
             robid_symbolic::JointKind::Prismatic => "prismatic",
         };
+        let extra = if general {
+            format!("{:<12} {:<12} ", joint.gamma.as_str(), joint.b.as_str())
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             out,
-            "  {:<2} {:<10} {:<12} {:<12} {:<12} {}",
+            "  {:<2} {:<10} {extra}{:<12} {:<12} {:<12} {}",
             j + 1,
             kind,
             joint.alpha.as_str(),
@@ -201,6 +239,19 @@ fn text(robot: &Robot, r: &Report) -> String {
             joint.d.as_str(),
             joint.theta.as_str()
         );
+    }
+    for (what, mount) in [
+        ("base (frame 0 in the world)", &r.base),
+        ("tool (in frame n)", &r.tool),
+    ] {
+        if let Some(m) = mount {
+            let _ = writeln!(
+                out,
+                "  {what}: xyz [{}], rpy [{}]",
+                m.xyz.join(", "),
+                m.rpy.join(", ")
+            );
+        }
     }
     let _ = writeln!(
         out,

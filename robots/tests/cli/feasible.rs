@@ -494,3 +494,59 @@ fn gaz_feasible_refuses_gaz_options_out_of_place() {
         stderr(&o)
     );
 }
+
+/// A description's `[base]` and `[tool]` reach the URDF: the first joint's origin is the
+/// base transform (here 1.2 m up, turned a quarter turn about z), and a massless `tool`
+/// link hangs from the last link on a fixed joint at the tool pose. `robid model` prints
+/// both.
+#[test]
+fn feasible_urdf_places_the_base_and_the_tool() {
+    let dir = folder();
+    let text = std::fs::read_to_string(common::asset("configs/tx40_robot.toml")).unwrap();
+    let description = out(&dir, "tx40_mounted.toml");
+    std::fs::write(
+        &description,
+        format!(
+            "{text}\n[base]\nxyz = [0, 0, 1.2]\nrpy = [0, 0, \"pi/2\"]\n\n[tool]\nxyz = [0, 0, 0.065]\n"
+        ),
+    )
+    .unwrap();
+    let urdf = out(&dir, "mounted.urdf");
+    let o = robid(&[
+        "feasible",
+        description.to_str().unwrap(),
+        "--identified",
+        "tests/fixtures/tx40_identified.json",
+        "--bounds",
+        "tests/fixtures/tx40_bounds.toml",
+        "-o",
+        urdf.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    check_urdf(&urdf);
+    let text = std::fs::read_to_string(&urdf).unwrap();
+    let joint1 = text.split("<joint name=\"joint1\"").nth(1).unwrap();
+    assert!(
+        joint1.contains("<origin xyz=\"0e0 0e0 1.2e0\" rpy=\"0e0 -0e0 1.5707963267948966e0\"/>"),
+        "{joint1}"
+    );
+    let tool = text
+        .split("<joint name=\"tool_joint\" type=\"fixed\">")
+        .nth(1)
+        .unwrap();
+    assert!(tool.contains("<parent link=\"link6\"/>"), "{tool}");
+    assert!(tool.contains("<child link=\"tool\"/>"), "{tool}");
+    assert!(tool.contains("<origin xyz=\"0e0 0e0 6.5e-2\""), "{tool}");
+    assert!(text.contains("<link name=\"tool\"/>"));
+    let o = robid(&["model", description.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let model = common::stdout(&o);
+    assert!(
+        model.contains("base (frame 0 in the world): xyz [0, 0, 1.2], rpy [0, 0, pi/2]"),
+        "{model}"
+    );
+    assert!(
+        model.contains("tool (in frame n): xyz [0, 0, 0.065], rpy [0, 0, 0]"),
+        "{model}"
+    );
+}

@@ -523,8 +523,13 @@ fn urdf_output_reads_back_to_the_same_links_and_base_parameters() {
                 effort: j.limits.torque,
             })
             .collect();
-        let urdf = urdf_rs::read_from_string(&to_urdf(&s, name, &joints))
-            .unwrap_or_else(|e| panic!("{name}: the URDF does not parse: {e}"));
+        let urdf = urdf_rs::read_from_string(&to_urdf(
+            &s,
+            name,
+            &joints,
+            c.robot.tool_placement().unwrap().as_ref(),
+        ))
+        .unwrap_or_else(|e| panic!("{name}: the URDF does not parse: {e}"));
         let n = c.robot.dof();
         assert_eq!(urdf.joints.len(), n, "{name}");
         let chain = Chain::from_robot(&c.robot);

@@ -23,6 +23,7 @@ mod feasible_simulated;
 mod flexible_ur5e;
 mod fuzz_identify;
 mod gaz_lwr;
+mod general_frames;
 mod identify_bad_input;
 mod identify_energy;
 mod identify_known;

@@ -187,7 +187,7 @@ impl Lowering<'_> {
     }
 
     /// The last link's moment taken about O_(n-1) instead of O_n when O_(n-1)
-    /// is on its axis (a_n = 0; r = O_(n-1) O_n = [0, 0, d] in frame n) and
+    /// is on its axis (a_n = b_n = 0; r = O_(n-1) O_n = [0, 0, d] in frame n) and
     /// it has neither mass nor MZ: n + r x F = J' wd + w x (J' w) + MS x vd_o
     /// with J' = J - MS r' - r MS' (XZ - d MX, YZ - d MY) and vd_o the
     /// acceleration of O_(n-1). The torque about z_n is the same, the
@@ -196,11 +196,17 @@ impl Lowering<'_> {
         let zero = |x: E| x.c == 0.0;
         let n = frames.len();
         let (f, l) = (frames.last()?, links.last()?);
-        if n < 2 || f.kind != JointKind::Revolute || !zero(f.p[0]) || !zero(l.m) || !zero(l.ms[2]) {
+        if n < 2
+            || f.kind != JointKind::Revolute
+            || !zero(f.p_dh[0])
+            || !zero(f.b)
+            || !zero(l.m)
+            || !zero(l.ms[2])
+        {
             return None;
         }
-        // P = [0, -sa d, ca d]
-        let (a, b) = (self.mul(f.ca, f.p[2]), self.mul(f.sa, f.p[1]));
+        // The DH part of P is [0, -sa d, ca d] (and P = Rz(gamma) of it, along z_n)
+        let (a, b) = (self.mul(f.ca, f.p_dh[2]), self.mul(f.sa, f.p_dh[1]));
         let d = self.add(&[a, neg(b)]);
         let vd_o = self.rotate_back(f, kin[n - 2].2);
         Some((d, vd_o))

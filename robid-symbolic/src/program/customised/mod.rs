@@ -3,7 +3,10 @@
 //! recursion is run on program values instead of expressions, and every operation whose
 //! operands are known folds away (0, +-1, a constant times a constant), so only the
 //! nonzero components of each vector are computed and a rotation by a DH angle alpha in
-//! {0, +-pi/2} costs nothing. Each intermediate quantity gets a
+//! {0, +-pi/2} costs nothing. Khalil and Kleinfinger's Rz(gamma_j) Tz(b_j) in front of a
+//! row (docs/conventions.md#khalil-kleinfinger-general-frames) is one more rotation and
+//! offset, left out altogether where gamma_j or b_j is exactly 0, so a DH table costs
+//! what it cost without them. Each intermediate quantity gets a
 //! temporary of its own, so nothing is expanded.
 //!
 //! The forward recursion uses Khalil's U_j = skew(wd_j) + skew(w_j)^2, shared
@@ -48,10 +51,13 @@ fn neg(a: E) -> E {
     E { c: -a.c, v: a.v }
 }
 
-/// One modified-DH frame as expressions: sin and cos of alpha and theta, a, d.
+/// One modified-DH frame as expressions: sin and cos of gamma, alpha and theta, b, a, d.
 #[derive(Clone, Copy, Debug)]
 pub(in crate::program) struct FrameExprs {
     kind: JointKind,
+    sg: Id,
+    cg: Id,
+    b: Id,
     sa: Id,
     ca: Id,
     st: Id,
@@ -71,6 +77,8 @@ pub(in crate::program) fn frame_exprs(
         .iter()
         .enumerate()
         .map(|(j, row)| {
+            let gamma = row.gamma.to_expr(arena);
+            let b = row.b.to_expr(arena);
             let alpha = row.alpha.to_expr(arena);
             let a = row.a.to_expr(arena);
             let mut theta = row.theta.to_expr(arena);
@@ -81,6 +89,9 @@ pub(in crate::program) fn frame_exprs(
             }
             FrameExprs {
                 kind: row.kind,
+                sg: arena.sin(gamma),
+                cg: arena.cos(gamma),
+                b,
                 sa: arena.sin(alpha),
                 ca: arena.cos(alpha),
                 st: arena.sin(theta),
@@ -96,11 +107,17 @@ pub(in crate::program) fn frame_exprs(
 #[derive(Clone, Copy, Debug)]
 struct Frame {
     kind: JointKind,
+    /// sin and cos of gamma; `None` when gamma is exactly 0 (no rotation at all).
+    gamma: Option<(E, E)>,
+    /// b (zero for a DH row).
+    b: E,
     sa: E,
     ca: E,
     st: E,
     ct: E,
-    /// P_(j-1, j) = [a, -sa d, ca d].
+    /// The DH row's part of the origin, [a, -sa d, ca d].
+    p_dh: V3,
+    /// P_(j-1, j) = Rz(gamma) [a, -sa d, ca d] + [0, 0, b].
     p: V3,
 }
 
@@ -127,8 +144,35 @@ pub(in crate::program) struct RunInputs<'a> {
 }
 
 impl Lowering<'_> {
-    /// R v for R = Rx(alpha) Rz(theta).
+    /// Rz(gamma) v, with (sin, cos) of gamma.
+    fn rotate_gamma(&mut self, (sg, cg): (E, E), v: V3) -> V3 {
+        let a = self.mul(cg, v[0]);
+        let b = self.mul(sg, v[1]);
+        let c = self.mul(sg, v[0]);
+        let d = self.mul(cg, v[1]);
+        [self.add(&[a, neg(b)]), self.add(&[c, d]), v[2]]
+    }
+
+    /// R v for R = Rz(gamma) Rx(alpha) Rz(theta) (Rx(alpha) Rz(theta) for a DH row).
     fn rotate(&mut self, f: &Frame, v: V3) -> V3 {
+        let u = self.rotate_dh(f, v);
+        match f.gamma {
+            Some(g) => self.rotate_gamma(g, u),
+            None => u,
+        }
+    }
+
+    /// R' v for R = Rz(gamma) Rx(alpha) Rz(theta).
+    fn rotate_back(&mut self, f: &Frame, v: V3) -> V3 {
+        let v = match f.gamma {
+            Some((sg, cg)) => self.rotate_gamma((neg(sg), cg), v),
+            None => v,
+        };
+        self.rotate_back_dh(f, v)
+    }
+
+    /// Rx(alpha) Rz(theta) v.
+    fn rotate_dh(&mut self, f: &Frame, v: V3) -> V3 {
         let a = self.mul(f.ct, v[0]);
         let b = self.mul(f.st, v[1]);
         let c = self.mul(f.st, v[0]);
@@ -141,8 +185,8 @@ impl Lowering<'_> {
         [u[0], self.add(&[a, neg(b)]), self.add(&[c, d])]
     }
 
-    /// R' v for R = Rx(alpha) Rz(theta).
-    fn rotate_back(&mut self, f: &Frame, v: V3) -> V3 {
+    /// (Rx(alpha) Rz(theta))' v.
+    fn rotate_back_dh(&mut self, f: &Frame, v: V3) -> V3 {
         let a = self.mul(f.ca, v[1]);
         let b = self.mul(f.sa, v[2]);
         let c = self.mul(f.sa, v[1]);
@@ -158,13 +202,27 @@ impl Lowering<'_> {
     fn frame(&mut self, f: &FrameExprs) -> Result<Frame, ProgramError> {
         let (sa, ca, d) = (self.e(f.sa)?, self.e(f.ca)?, self.e(f.d)?);
         let py = self.mul(sa, d);
+        let p_dh = [self.e(f.a)?, neg(py), self.mul(ca, d)];
+        let (sg, cg, b) = (self.e(f.sg)?, self.e(f.cg)?, self.e(f.b)?);
+        // gamma = 0 (or a whole turn): the identity, folded away
+        let gamma = (!(sg == ZERO && cg == number(1.0))).then_some((sg, cg));
+        let mut p = match gamma {
+            Some(g) => self.rotate_gamma(g, p_dh),
+            None => p_dh,
+        };
+        if b.c != 0.0 {
+            p[2] = self.add(&[p[2], b]);
+        }
         Ok(Frame {
             kind: f.kind,
+            gamma,
+            b,
             sa,
             ca,
             st: self.e(f.st)?,
             ct: self.e(f.ct)?,
-            p: [self.e(f.a)?, neg(py), self.mul(ca, d)],
+            p_dh,
+            p,
         })
     }
 
