@@ -3,7 +3,9 @@
 //! [--restarts N] [--two-step] [--equal EQ]... [--mass-step DELTA] -o OUT`: physically
 //! consistent link parameters that reproduce identified base parameters
 //! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
-//! OUT as TOML, or as URDF `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
+//! OUT as TOML, or as URDF when OUT ends in `.urdf` or `.xml`: for a URDF description, the
+//! user's own file with its chain links' `<inertial>` elements replaced; for a DH
+//! description, a complete URDF in the DH frames.
 //! Identified parameters with an empty expression that are not base parameters of the
 //! description (the extra columns of an identification config) are kept as free terms.
 //!
@@ -19,10 +21,11 @@ use robid_runtime::feasible::{
     SmoothOptions, Solution, UrdfJoint, solve_anneal, solve_interior, solve_sdp, solve_smooth,
     solve_two_step, to_toml, to_urdf,
 };
+use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
-use super::description::{self, DriveFlag};
+use super::description::{self, DescriptionFlags};
 use super::flags::{closed, count, only_for, positive, real, short};
 use super::{Error, files, out};
 
@@ -54,7 +57,7 @@ pub(crate) struct Args {
     /// The robot description (TOML).
     robot: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// The identification result (JSON of `robid identify`: parameters with name, value, std).
     #[arg(long)]
     identified: PathBuf,
@@ -236,12 +239,13 @@ fn check_solution(solution: &Solution) -> Result<(), Error> {
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
-    let robot = description::read(&args.robot, &args.drive)?;
+    let description = description::load(&args.robot, &args.description)?;
+    let robot = &description.robot;
     let json = read(&args.identified)?;
     let identified: Identified = serde_json::from_str(&json)
         .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;
     check_identified(&identified, &args.identified)?;
-    let problem = problem(&robot)?;
+    let problem = problem(robot)?;
     // Extra columns of the identification config (no expression, not a base parameter,
     // e.g. a coupled wrist's `Iam6`) are kept as free terms.
     let extra: Vec<String> = identified
@@ -287,7 +291,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         ..SmoothOptions::default()
     };
     let solution = match args.method.as_str() {
-        "anneal" => anneal(args, &robot, &problem, &bounds, prior, extra.is_empty())?,
+        "anneal" => anneal(args, robot, &problem, &bounds, prior, extra.is_empty())?,
         "sdp" => solve_sdp(
             &problem,
             &bounds,
@@ -304,8 +308,10 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         args.output.extension().and_then(|e| e.to_str()),
         Some("urdf" | "xml")
     );
-    let text = if urdf {
-        to_urdf(&solution, robot.name(), &urdf_joints(&robot)?)
+    let text = if let (true, Some(chain)) = (urdf, &description.urdf) {
+        urdf_written_back(&args.robot, chain, &solution)?
+    } else if urdf {
+        to_urdf(&solution, robot.name(), &urdf_joints(robot)?)
     } else {
         to_toml(&solution, robot.name())
     };
@@ -418,6 +424,30 @@ fn problem_of(e: robid_runtime::Error) -> String {
         robid_runtime::Error::Setting { problem, .. } => problem,
         other => other.to_string(),
     }
+}
+
+/// The user's URDF with each chain link's `<inertial>` replaced by the solution's, in the
+/// URDF's own link frames, every other byte as it was (docs/urdf.md#inertials-both-ways).
+fn urdf_written_back(path: &Path, chain: &UrdfChain, solution: &Solution) -> Result<String, Error> {
+    let text = read(path)?;
+    let mut inertials = vec![[0.0; 10]; chain.links.len()];
+    for (name, value) in solution.names.iter().zip(&solution.standard) {
+        if let Ok(ParameterId {
+            link,
+            kind: ParameterKind::Inertial(inertial),
+        }) = name.parse::<ParameterId>()
+            && let Some(k) = Inertial::ALL.iter().position(|&i| i == inertial)
+            && let Some(row) = inertials.get_mut(link)
+        {
+            row[k] = *value;
+        }
+    }
+    let (written, warnings) =
+        write_inertials(&text, &path.display().to_string(), chain, &inertials)?;
+    for w in &warnings {
+        out::warn(format_args!("warning: {w}"));
+    }
+    Ok(written)
 }
 
 /// The description's joints for a URDF: placements and limits.
