@@ -359,35 +359,35 @@ pub fn rot_z(t: f64) -> M3 {
     [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
 }
 
-fn identity() -> M3 {
+pub(crate) fn identity() -> M3 {
     [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
 }
 
-fn column(m: &M3, k: usize) -> V3 {
+pub(crate) fn column(m: &M3, k: usize) -> V3 {
     [m[0][k], m[1][k], m[2][k]]
 }
 
-fn add(a: V3, b: V3) -> V3 {
+pub(crate) fn add(a: V3, b: V3) -> V3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
-fn add3(a: V3, b: V3, c: V3) -> V3 {
+pub(crate) fn add3(a: V3, b: V3, c: V3) -> V3 {
     add(add(a, b), c)
 }
 
-fn sub(a: V3, b: V3) -> V3 {
+pub(crate) fn sub(a: V3, b: V3) -> V3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-fn scale(s: f64, a: V3) -> V3 {
+pub(crate) fn scale(s: f64, a: V3) -> V3 {
     [s * a[0], s * a[1], s * a[2]]
 }
 
-fn dot(a: V3, b: V3) -> f64 {
+pub(crate) fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross(a: V3, b: V3) -> V3 {
+pub(crate) fn cross(a: V3, b: V3) -> V3 {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -395,11 +395,11 @@ fn cross(a: V3, b: V3) -> V3 {
     ]
 }
 
-fn mat_vec(m: &M3, v: V3) -> V3 {
+pub(crate) fn mat_vec(m: &M3, v: V3) -> V3 {
     [dot(m[0], v), dot(m[1], v), dot(m[2], v)]
 }
 
-fn transpose(m: &M3) -> M3 {
+pub(crate) fn transpose(m: &M3) -> M3 {
     [column(m, 0), column(m, 1), column(m, 2)]
 }
 

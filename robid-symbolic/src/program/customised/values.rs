@@ -164,3 +164,65 @@ impl Lowering<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::lower::Lowering;
+    use super::super::super::{Group, Value};
+    use super::super::{E, ZERO, number};
+    use crate::expr::Arena;
+
+    /// One input group `x` with one element.
+    fn group() -> Vec<Group> {
+        vec![Group {
+            name: "x".to_owned(),
+            elements: vec!["x".to_owned()],
+        }]
+    }
+
+    /// The input `x` as a value.
+    const X: E = E {
+        c: 1.0,
+        v: Some(Value::Input(0)),
+    };
+
+    /// sign(0) is 0, not the sign of +0.0 (which `f64::signum` gives as 1): the
+    /// customised programs take sign(qd) for Coulomb friction, and qd is the number 0
+    /// in the programs at rest.
+    #[test]
+    fn the_sign_of_zero_is_zero() {
+        let (arena, inputs) = (Arena::new(), group());
+        let mut l = Lowering::new(&arena, &inputs);
+        let x = X;
+        assert_eq!(l.sign_of(ZERO), ZERO);
+        assert_eq!(l.sign_of(number(-2.5)), number(-1.0));
+        let s = l.sign_of(E { c: -3.0, ..x });
+        assert_eq!(s.c, -1.0);
+        assert!(s.v.is_some());
+    }
+
+    /// A product with the number 0 is the number 0 whatever the other factor, so that
+    /// no zero-coefficient program value is ever carried (or multiplied out).
+    #[test]
+    fn a_product_with_zero_is_the_number_zero() {
+        let (arena, inputs) = (Arena::new(), group());
+        let mut l = Lowering::new(&arena, &inputs);
+        let x = X;
+        assert_eq!(l.mul(ZERO, x), ZERO);
+        assert_eq!(l.mul(x, ZERO), ZERO);
+        assert_eq!(l.mul(number(2.0), x), E { c: 2.0, ..x });
+    }
+
+    /// An output that is zero is the constant +0.0 (not -0.0, which a sign test or a
+    /// printed table would show).
+    #[test]
+    fn a_zero_output_is_positive_zero() {
+        let (arena, inputs) = (Arena::new(), group());
+        let mut l = Lowering::new(&arena, &inputs);
+        let Value::Const(i) = l.output(ZERO) else {
+            panic!("a zero output is a constant");
+        };
+        let zero = l.constant_value(i);
+        assert!(zero == 0.0 && zero.is_sign_positive(), "{zero}");
+    }
+}
