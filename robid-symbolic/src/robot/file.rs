@@ -50,7 +50,8 @@ pub(super) struct Place<'a> {
 }
 
 impl Place<'_> {
-    fn line_column(&self, offset: usize) -> (usize, usize) {
+    /// The 1-based line and column of byte `offset`.
+    pub(super) fn line_column(&self, offset: usize) -> (usize, usize) {
         let mut offset = offset.min(self.text.len());
         while !self.text.is_char_boundary(offset) {
             offset -= 1;
@@ -59,6 +60,12 @@ impl Place<'_> {
         let line = before.matches('\n').count() + 1;
         let column = before.chars().rev().take_while(|&c| c != '\n').count() + 1;
         (line, column)
+    }
+
+    /// A warning about the text at `offset`: `file:line:column: what`.
+    pub(super) fn warning(&self, offset: usize, what: &str) -> String {
+        let (line, column) = self.line_column(offset);
+        format!("{}:{line}:{column}: {what}", self.file)
     }
 
     /// An error about the text at `span`.

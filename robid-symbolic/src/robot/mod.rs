@@ -6,7 +6,9 @@
 //! construction (`geometry.rs`). `file.rs` reads a robot from TOML, reporting
 //! every mistake with its line and column; [`bounds`] holds the documented
 //! limits on values and sizes; `parameters.rs` names the standard parameters;
-//! `dh.rs` turns either DH convention into modified-DH frames.
+//! `dh.rs` turns either DH convention into modified-DH frames; `urdf/` reads a URDF
+//! chain as a modified-DH robot with the frames back to the URDF's links
+//! ([`Robot::from_urdf`], docs/urdf.md).
 
 pub mod bounds;
 mod check;
@@ -17,11 +19,13 @@ mod geometry;
 mod interval;
 mod parameters;
 mod read;
+mod urdf;
 
 pub use dh::{FrameRow, JointPlacement, Pose};
 pub use error::DescriptionError;
 pub use geometry::{Expression, Geometry, GeometryError, Number};
 pub use parameters::{DriveTerm, Inertial, ParameterId, ParameterKind};
+pub use urdf::{AttachedLink, ChainLink, ChainSelection, UrdfChain, write_inertials};
 
 pub(crate) use check::name_problem;
 use check::{Code, Parts};

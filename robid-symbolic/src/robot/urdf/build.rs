@@ -1,0 +1,213 @@
+//! The validated [`Robot`] of a fitted chain: its name, the DH rows as geometric values,
+//! the URDF's joint limits and gravity (docs/urdf.md#the-robot).
+
+use super::super::bounds::{MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use super::super::file::Place;
+use super::super::{
+    Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem,
+};
+use super::chain::Chain;
+use super::frames::{Fit, angle_text};
+use super::rigid::{mat_vec, transpose};
+use super::xml::{self, JointType, Urdf};
+
+/// Gravity components (m/s^2) smaller than this are rounding of a rotation by a multiple
+/// of pi/2 (docs/urdf.md#gravity) and are zero.
+const ZERO_GRAVITY: f64 = 1e-9;
+
+/// The robot name of a URDF's name: a Rust identifier (`kuka-lwr` -> `kuka_lwr`), with a
+/// warning when more than dashes and spaces had to change.
+pub(super) fn robot_name(place: &Place<'_>, urdf: &Urdf, warnings: &mut Vec<String>) -> String {
+    let written = urdf.name.as_str();
+    let mut name: String = written
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    let mut changed = None;
+    if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        name = format!("robot_{name}");
+        changed = Some("does not start with a letter");
+    } else if name_problem(&name).is_some() {
+        name = format!("{name}_robot");
+        changed = Some("is a Rust keyword or makes one");
+    }
+    if let Some(why) = changed {
+        warnings.push(place.warning(
+            urdf.name_at.start,
+            &format!(
+                "the robot name `{written}` {why}, so the robot is named `{name}`; rename it in \
+                 the URDF, or pass another name where the robot is used"
+            ),
+        ));
+    }
+    name
+}
+
+/// The robid limits of a URDF joint (`<limit>`): position (not for continuous joints),
+/// velocity and effort (as torque). Zero effort or velocity, and equal lower and upper
+/// positions, mean "not given" (the URDF defaults).
+fn limits(place: &Place<'_>, joint: &xml::Joint) -> Result<Limits, DescriptionError> {
+    let mut out = Limits::default();
+    let Some(limit) = &joint.limit else {
+        return Ok(out);
+    };
+    let at = || limit.range.clone();
+    let describe = format!("`<limit>` of joint `{}`", joint.name);
+    if joint.kind != JointType::Continuous {
+        let lower = limit.lower.unwrap_or(0.0);
+        let upper = limit.upper.unwrap_or(0.0);
+        if lower > upper {
+            return Err(place.invalid(
+                at(),
+                format!("{describe}: lower {lower} is above upper {upper}"),
+                "write lower < upper (rad for revolute, m for prismatic joints)",
+            ));
+        }
+        if lower.abs().max(upper.abs()) > MAX_POSITION {
+            return Err(place.invalid(
+                at(),
+                format!("{describe}: positions [{lower}, {upper}] go beyond ±{MAX_POSITION}"),
+                "positions are in radians (revolute) or metres (prismatic)",
+            ));
+        }
+        if lower < upper {
+            out.position = Some([lower, upper]);
+        }
+    }
+    for (value, max, key, unit) in [
+        (limit.velocity, MAX_VELOCITY, "velocity", "rad/s or m/s"),
+        (limit.effort, MAX_TORQUE, "effort", "N m or N"),
+    ] {
+        let Some(x) = value.filter(|&x| x != 0.0) else {
+            continue;
+        };
+        if !(x > 0.0 && x <= max) {
+            return Err(place.invalid(
+                at(),
+                format!("{describe}: {key} {x} is not a positive number up to {max}"),
+                format!("{key} is a maximum absolute value in {unit}"),
+            ));
+        }
+        if key == "velocity" {
+            out.velocity = Some(x);
+        } else {
+            out.torque = Some(x);
+        }
+    }
+    Ok(out)
+}
+
+/// A finite angle as a geometric value (exact text for multiples of pi/2).
+fn angle(value: f64) -> Geometry {
+    match angle_text(value) {
+        Some(text) => Geometry::text(text).unwrap_or_else(|_| Geometry::zero()),
+        None => Geometry::number(value).unwrap_or_else(|_| Geometry::zero()),
+    }
+}
+
+/// A finite length as a geometric value (the rows are checked finite first).
+fn length(value: f64) -> Geometry {
+    Geometry::number(value).unwrap_or_else(|_| Geometry::zero())
+}
+
+/// Gravity in robid frame 0: `[0, 0, -9.81]` in the root link frame, through the fixed
+/// path root -> base (every joint at zero) and frame 0's rotation in the base link frame.
+pub(super) fn gravity(base_in_root: &super::rigid::Rigid, fit: &Fit) -> [f64; 3] {
+    let in_base = mat_vec(&transpose(&base_in_root.r), [0.0, 0.0, -9.81]);
+    let g = mat_vec(&transpose(&fit.frames[0].r), in_base);
+    g.map(|x| if x.abs() < ZERO_GRAVITY { 0.0 } else { x })
+}
+
+/// The robot: modified DH, numeric, no drive terms, the URDF's limits. A DH value or
+/// gravity outside robid's bounds is an error at the joint (or the robot name).
+pub(super) fn robot(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    chain: &Chain,
+    fit: &Fit,
+    gravity: [f64; 3],
+    name: &str,
+) -> Result<Robot, DescriptionError> {
+    let mut joints = Vec::new();
+    let mut errors = Vec::new();
+    for (k, &j) in chain.joints.iter().enumerate() {
+        let urdf_joint = &urdf.joints[j];
+        let [alpha, a, d, theta] = fit.rows[k];
+        if !fit.rows[k].iter().all(|x| x.is_finite()) {
+            errors.push(place.invalid(
+                urdf_joint.range.clone(),
+                format!(
+                    "the DH row robid fits at joint `{}` is not finite ({:?})",
+                    urdf_joint.name, fit.rows[k]
+                ),
+                "check the origins and axes of the chain's joints (are two axes almost parallel?)",
+            ));
+            continue;
+        }
+        let kind = if urdf_joint.kind == JointType::Prismatic {
+            JointKind::Prismatic
+        } else {
+            JointKind::Revolute
+        };
+        let mut joint = Joint::new(kind, angle(alpha), length(a), length(d), angle(theta));
+        match limits(place, urdf_joint) {
+            Ok(l) => joint.limits = l,
+            Err(e) => errors.push(e),
+        }
+        joints.push(joint);
+    }
+    if !errors.is_empty() {
+        return Err(DescriptionError::from_errors(errors));
+    }
+    let g = gravity.map(|x| Geometry::number(x).unwrap_or_else(|_| Geometry::zero()));
+    Robot::new(name, Convention::Modified, Some(g), joints).map_err(|e| {
+        let located = e
+            .errors()
+            .into_iter()
+            .map(|one| locate(place, urdf, chain, one))
+            .collect();
+        DescriptionError::from_errors(located)
+    })
+}
+
+/// An error of [`Robot::new`] (naming `joints[k]` or gravity) at the URDF joint it concerns.
+fn locate(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    chain: &Chain,
+    error: &DescriptionError,
+) -> DescriptionError {
+    let DescriptionError::Argument {
+        argument,
+        message,
+        help,
+    } = error
+    else {
+        return error.clone();
+    };
+    let joint = argument
+        .split("joints[")
+        .nth(1)
+        .and_then(|rest| rest.split(']').next())
+        .and_then(|k| k.parse::<usize>().ok())
+        .and_then(|k| chain.joints.get(k))
+        .map(|&j| &urdf.joints[j]);
+    match joint {
+        Some(j) => place.invalid(
+            j.range.clone(),
+            format!(
+                "the DH table robid fits to the URDF has, at joint `{}`, a value robid does not accept ({argument}): {message}",
+                j.name
+            ),
+            format!(
+                "{help}; a URDF's lengths and angles are used as written (docs/urdf.md#the-angle-rule): \
+                 write right angles to within 1e-9 rad and offsets of at least 1 µm or exactly 0"
+            ),
+        ),
+        None => place.invalid(
+            urdf.name_at.clone(),
+            format!("the robot robid builds from the URDF is not accepted ({argument}): {message}"),
+            help.clone(),
+        ),
+    }
+}

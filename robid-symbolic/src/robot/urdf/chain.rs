@@ -1,0 +1,408 @@
+//! The link tree of a URDF and the serial chain robid models in it: base and tip, the
+//! movable joints between them (robid's joints 1..n), and the rigid body each of them
+//! moves (docs/urdf.md#choosing-the-chain).
+
+use super::super::DescriptionError;
+use super::super::check::distance;
+use super::super::file::Place;
+use super::rigid::Rigid;
+use super::xml::{JointType, Urdf};
+use std::collections::HashMap;
+
+/// Which part of a URDF robid models: the chain from `base` to `tip`.
+///
+/// `base` defaults to the root link. `tip` defaults to the link moved by the last
+/// movable joint (revolute, continuous or prismatic) when the movable joints under the
+/// base form a single path; otherwise a tip is needed and the error lists the leaves.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ChainSelection {
+    /// The link that stays fixed (robid's base); `None`: the root link.
+    pub base: Option<String>,
+    /// The last link of the chain; `None`: see the type's documentation.
+    pub tip: Option<String>,
+}
+
+/// The tree: per link its parent joint and child joints.
+pub(super) struct Tree {
+    /// Per link, the joint whose child it is.
+    pub(super) parent: Vec<Option<usize>>,
+    /// Per link, the joints whose parent it is, in file order.
+    pub(super) children: Vec<Vec<usize>>,
+    /// Per joint, its parent and child link.
+    pub(super) ends: Vec<(usize, usize)>,
+    /// The root link.
+    pub(super) root: usize,
+    /// Per link, its pose in the root link's frame with every joint at zero.
+    pub(super) at_zero: Vec<Rigid>,
+}
+
+/// The chain robid models.
+pub(super) struct Chain {
+    pub(super) base: usize,
+    pub(super) tip: usize,
+    /// URDF joints of robid's joints 1..n.
+    pub(super) joints: Vec<usize>,
+    /// Per robid joint j (0-based), the URDF links of its body: the link it moves first,
+    /// then the attached ones.
+    pub(super) bodies: Vec<Vec<usize>>,
+    /// Per link, its pose in the base link's frame with every joint at zero.
+    pub(super) in_base: Vec<Rigid>,
+}
+
+fn nearest(names: &[&str], wanted: &str) -> String {
+    let mut sorted: Vec<&str> = names.to_vec();
+    sorted.sort_by_key(|n| {
+        (
+            distance(&n.to_lowercase(), &wanted.to_lowercase()),
+            n.to_string(),
+        )
+    });
+    sorted
+        .iter()
+        .take(3)
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Builds the tree: every parent and child names a link, every link has at most one
+/// parent, there is no cycle and there is one root.
+pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionError> {
+    let names: Vec<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
+    let index: HashMap<&str, usize> = names.iter().enumerate().map(|(i, &n)| (n, i)).collect();
+    let mut errors = Vec::new();
+    let n = urdf.links.len();
+    let mut parent = vec![None; n];
+    let mut children = vec![Vec::new(); n];
+    let mut ends = Vec::new();
+    for (k, joint) in urdf.joints.iter().enumerate() {
+        let mut find = |name: &str, at: &std::ops::Range<usize>, role: &str| {
+            let found = index.get(name).copied();
+            if found.is_none() {
+                errors.push(place.invalid(
+                    at.clone(),
+                    format!(
+                        "the {role} link `{name}` of joint `{}` is no `<link>` of the robot",
+                        joint.name
+                    ),
+                    if names.is_empty() {
+                        "add the `<link>` elements".to_owned()
+                    } else {
+                        format!("the nearest link names are {}", nearest(&names, name))
+                    },
+                ));
+            }
+            found
+        };
+        let p = find(&joint.parent, &joint.parent_at, "parent");
+        let c = find(&joint.child, &joint.child_at, "child");
+        let (Some(p), Some(c)) = (p, c) else {
+            ends.push((0, 0));
+            continue;
+        };
+        ends.push((p, c));
+        if let Some(first) = parent[c] {
+            let first: usize = first;
+            errors.push(place.invalid(
+                joint.child_at.clone(),
+                format!(
+                    "link `{}` has two parents: it is the child of joint `{}` and of joint `{}`",
+                    joint.child, urdf.joints[first].name, joint.name
+                ),
+                "a URDF is a tree: give each link one parent joint (close loops are not modelled)",
+            ));
+            continue;
+        }
+        parent[c] = Some(k);
+        children[p].push(k);
+    }
+    if !errors.is_empty() {
+        return Err(DescriptionError::from_errors(errors));
+    }
+    let roots: Vec<usize> = (0..n).filter(|&l| parent[l].is_none()).collect();
+    if roots.len() > 1 {
+        let list = roots
+            .iter()
+            .map(|&l| format!("`{}`", names[l]))
+            .collect::<Vec<_>>()
+            .join(", ");
+        return Err(place.invalid(
+            urdf.links[roots[1]].range.clone(),
+            format!("the robot has several root links (links no joint moves): {list}"),
+            "connect every link but one to a parent through a `<joint>`",
+        ));
+    }
+    // Every link must be reached from the root; the others lie on a cycle or hang from one.
+    let mut reached = vec![false; n];
+    let mut stack: Vec<usize> = roots.clone();
+    while let Some(l) = stack.pop() {
+        reached[l] = true;
+        stack.extend(children[l].iter().map(|&j| ends[j].1));
+    }
+    if let Some(l) = (0..n).find(|&l| !reached[l]) {
+        // walk up to a joint on the cycle
+        let mut at = l;
+        for _ in 0..n {
+            at = parent[at].map_or(at, |j| ends[j].0);
+        }
+        let joint = parent[at].map_or(0, |j| j);
+        let j = &urdf.joints[joint];
+        return Err(place.invalid(
+            j.range.clone(),
+            format!(
+                "joint `{}` closes a cycle of links (through link `{}`)",
+                j.name, names[at]
+            ),
+            "a URDF is a tree: remove the joint that closes the loop",
+        ));
+    }
+    let Some(&root) = roots.first() else {
+        return Err(place.invalid(
+            urdf.name_at.clone(),
+            "the robot has no `<link>`".to_owned(),
+            "a URDF describes links connected by joints",
+        ));
+    };
+    let mut at_zero = vec![Rigid::IDENTITY; n];
+    let mut stack = vec![root];
+    while let Some(l) = stack.pop() {
+        for &j in &children[l] {
+            let c = ends[j].1;
+            at_zero[c] = at_zero[l].then(&urdf.joints[j].origin);
+            stack.push(c);
+        }
+    }
+    Ok(Tree {
+        parent,
+        children,
+        ends,
+        root,
+        at_zero,
+    })
+}
+
+fn argument(which: &str, message: String, help: String) -> DescriptionError {
+    DescriptionError::Argument {
+        argument: format!("the chain's {which} link (`ChainSelection::{which}`)"),
+        message,
+        help,
+    }
+}
+
+impl Tree {
+    /// The links below `link` (itself included), depth first in file order.
+    pub(super) fn subtree(&self, link: usize) -> Vec<usize> {
+        let mut out = Vec::new();
+        let mut stack = vec![link];
+        while let Some(l) = stack.pop() {
+            out.push(l);
+            stack.extend(self.children[l].iter().rev().map(|&j| self.ends[j].1));
+        }
+        out
+    }
+
+    /// The joints from `top` down to `link`, top first (`None`: `link` is not below `top`).
+    fn path(&self, top: usize, link: usize) -> Option<Vec<usize>> {
+        let mut out = Vec::new();
+        let mut at = link;
+        while at != top {
+            let j = self.parent[at]?;
+            out.push(j);
+            at = self.ends[j].0;
+        }
+        out.reverse();
+        Some(out)
+    }
+}
+
+/// Chooses the chain (see [`ChainSelection`]) and splits the links below the base into
+/// the bodies of robid's joints. `warnings` gets the `<dynamics>` warning.
+pub(super) fn choose(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    tree: &Tree,
+    selection: &ChainSelection,
+    warnings: &mut Vec<String>,
+) -> Result<Chain, DescriptionError> {
+    let names: Vec<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
+    let find = |which: &str, name: &str| {
+        names.iter().position(|&n| n == name).ok_or_else(|| {
+            argument(
+                which,
+                format!("the URDF has no link `{name}`"),
+                format!("the nearest link names are {}", nearest(&names, name)),
+            )
+        })
+    };
+    let base = match &selection.base {
+        Some(name) => find("base", name)?,
+        None => tree.root,
+    };
+    let below = tree.subtree(base);
+    let movable = |j: usize| urdf.joints[j].kind.movable();
+    let tip = match &selection.tip {
+        Some(name) => find("tip", name)?,
+        None => {
+            let mut ends: Vec<usize> = below
+                .iter()
+                .filter_map(|&l| tree.parent[l].filter(|&j| l != base && movable(j)))
+                .map(|j| tree.ends[j].1)
+                .collect();
+            // a single path: every movable joint's child lies on the path to the deepest one
+            let mut depth = vec![0_usize; urdf.links.len()];
+            for &l in &below {
+                if let Some(j) = tree.parent[l].filter(|_| l != base) {
+                    depth[l] = depth[tree.ends[j].0] + 1;
+                }
+            }
+            ends.sort_by_key(|&l| depth[l]);
+            let single = ends.last().is_some_and(|&last| {
+                let path: std::collections::HashSet<usize> = tree
+                    .path(base, last)
+                    .unwrap_or_default()
+                    .into_iter()
+                    .collect();
+                ends.iter()
+                    .all(|&l| tree.parent[l].is_some_and(|j| path.contains(&j)))
+            });
+            match ends.last() {
+                Some(&last) if single => last,
+                _ => {
+                    let leaves: Vec<String> = below
+                        .iter()
+                        .filter(|&&l| tree.children[l].is_empty())
+                        .map(|&l| format!("`{}`", names[l]))
+                        .collect();
+                    return Err(argument(
+                        "tip",
+                        if ends.is_empty() {
+                            format!("no movable joint lies below link `{}`", names[base])
+                        } else {
+                            format!(
+                                "the movable joints below link `{}` do not form a single path, so the chain's tip must be chosen",
+                                names[base]
+                            )
+                        },
+                        format!("choose the tip among the leaves {}", leaves.join(", ")),
+                    ));
+                }
+            }
+        }
+    };
+    let Some(path) = tree.path(base, tip) else {
+        return Err(argument(
+            "tip",
+            format!(
+                "link `{}` is not below the base link `{}`",
+                names[tip], names[base]
+            ),
+            format!(
+                "choose a tip in the subtree of `{}`, or a base above `{}`",
+                names[base], names[tip]
+            ),
+        ));
+    };
+    let joints: Vec<usize> = path.iter().copied().filter(|&j| movable(j)).collect();
+    if joints.is_empty() {
+        return Err(argument(
+            "tip",
+            format!(
+                "no movable joint lies between links `{}` and `{}`",
+                names[base], names[tip]
+            ),
+            "choose a tip that revolute, continuous or prismatic joints move".to_owned(),
+        ));
+    }
+    // body of every link below the base: 0 the fixed base, j robid joint j
+    let position: HashMap<usize, usize> = joints.iter().enumerate().map(|(k, &j)| (j, k)).collect();
+    let mut body = vec![usize::MAX; urdf.links.len()];
+    let mut bodies = vec![Vec::new(); joints.len()];
+    body[base] = 0;
+    for &l in &below {
+        if l == base {
+            continue;
+        }
+        let Some(j) = tree.parent[l] else { continue };
+        let p = tree.ends[j].0;
+        body[l] = match position.get(&j) {
+            Some(&k) => k + 1,
+            None => body[p],
+        };
+        if body[l] > 0 {
+            let list = &mut bodies[body[l] - 1];
+            if joints[body[l] - 1] == j {
+                list.insert(0, l);
+            } else {
+                list.push(l);
+            }
+        }
+    }
+    let path_names: HashMap<&str, usize> = joints
+        .iter()
+        .enumerate()
+        .map(|(k, &j)| (urdf.joints[j].name.as_str(), k))
+        .collect();
+    let mut errors = Vec::new();
+    let mut dynamics = None;
+    for &l in &below {
+        let Some(j) = tree.parent[l].filter(|_| l != base && body[l] > 0) else {
+            continue;
+        };
+        let joint = &urdf.joints[j];
+        let on_path = path_names.contains_key(joint.name.as_str());
+        if let Some((mimicked, at)) = &joint.mimic
+            && (on_path || path_names.contains_key(mimicked.as_str()))
+        {
+            errors.push(place.invalid(
+                    at.clone(),
+                    if on_path {
+                        format!("joint `{}` of the chain mimics joint `{mimicked}`", joint.name)
+                    } else {
+                        format!(
+                            "joint `{}` mimics joint `{mimicked}` of the chain: it would move with it",
+                            joint.name
+                        )
+                    },
+                    "robid models independent joints: choose a chain without coupled joints, or make the joint fixed",
+                ));
+        }
+        if matches!(joint.kind, JointType::Floating | JointType::Planar) {
+            errors.push(place.invalid(
+                joint.range.clone(),
+                format!(
+                    "joint `{}` is {}: robid models revolute and prismatic joints",
+                    joint.name,
+                    if joint.kind == JointType::Floating {
+                        "floating"
+                    } else {
+                        "planar"
+                    }
+                ),
+                "make it fixed, or choose a chain that does not contain it",
+            ));
+        }
+        if dynamics.is_none() {
+            dynamics = joint.dynamics.clone();
+        }
+    }
+    if !errors.is_empty() {
+        return Err(DescriptionError::from_errors(errors));
+    }
+    if let Some(at) = dynamics {
+        warnings.push(place.warning(
+            at.start,
+            "`<dynamics damping friction>` is ignored (here and in every other joint): it is not \
+             part of the rigid-body model; joint friction belongs to robid's drive terms Fv and \
+             Fc (--drive), which identification estimates",
+        ));
+    }
+    let to_base = tree.at_zero[base].inverse();
+    let in_base = tree.at_zero.iter().map(|t| to_base.then(t)).collect();
+    Ok(Chain {
+        base,
+        tip,
+        joints,
+        bodies,
+        in_base,
+    })
+}

@@ -1,0 +1,175 @@
+//! From the joint axes of a chain to a modified-DH table (docs/urdf.md#fitting-the-dh-table).
+//!
+//! Frame j (Khalil-Kleinfinger / Craig) has z_j along joint j's axis with its sign and x_j
+//! along the common normal from axis j to axis j+1; frame 0 is frame 1 at q = 0 and frame
+//! n keeps x_(n-1)'s direction. Any serial chain of revolute and prismatic joints has such
+//! a table: consecutive frames are Rx(alpha_j) Tx(a_j) Rz(theta_j) Tz(d_j).
+
+use super::rigid::{Rigid, add, cross, dot, norm, right_angle_multiple, scale, sub};
+use std::f64::consts::FRAC_PI_2;
+
+/// Below this sine of the angle between two axes (the angle rule's 1e-9 rad,
+/// docs/urdf.md#the-angle-rule), they are parallel.
+const PARALLEL: f64 = 1e-9;
+
+/// Shorter lengths (m) are zero: axes closer than this meet.
+pub(super) const ZERO_LENGTH: f64 = 1e-12;
+
+/// One joint axis at q = 0: unit direction and a point, in the base link frame.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Axis {
+    pub(super) direction: [f64; 3],
+    pub(super) point: [f64; 3],
+    /// The x axis of the URDF joint frame (to choose among equally good DH frames).
+    pub(super) hint: [f64; 3],
+}
+
+/// The fitted table: frames 0..n in the base link frame at q = 0 and the rows
+/// `[alpha, a, d, theta]` of joints 1..n, angles within the angle rule of k pi/2 made
+/// exact, lengths below [`ZERO_LENGTH`] made 0.
+pub(super) struct Fit {
+    pub(super) frames: Vec<Rigid>,
+    pub(super) rows: Vec<[f64; 4]>,
+}
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    scale(v, 1.0 / norm(v))
+}
+
+/// The part of `v` perpendicular to unit `z`.
+fn perpendicular(v: [f64; 3], z: [f64; 3]) -> [f64; 3] {
+    sub(v, scale(z, dot(v, z)))
+}
+
+/// The foot of `point` on the line through `on` along unit `z`.
+fn project(point: [f64; 3], on: [f64; 3], z: [f64; 3]) -> [f64; 3] {
+    add(on, scale(z, dot(sub(point, on), z)))
+}
+
+/// A unit vector perpendicular to unit `z`, as close as possible to `hint`.
+fn perpendicular_towards(z: [f64; 3], hint: [f64; 3]) -> [f64; 3] {
+    for candidate in [hint, cross(z, hint), [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+        let p = perpendicular(candidate, z);
+        if norm(p) > 1e-6 {
+            return unit(p);
+        }
+    }
+    unit(perpendicular([0.0, 0.0, 1.0], z))
+}
+
+fn frame(x: [f64; 3], z: [f64; 3], origin: [f64; 3]) -> Rigid {
+    let y = cross(z, x);
+    Rigid {
+        r: std::array::from_fn(|i| [x[i], y[i], z[i]]),
+        p: origin,
+    }
+}
+
+/// The DH frames and table of a chain with these axes (at least one).
+pub(super) fn fit(axes: &[Axis]) -> Fit {
+    let n = axes.len();
+    let mut origins = Vec::with_capacity(n);
+    let mut xs: Vec<[f64; 3]> = Vec::with_capacity(n);
+    for j in 0..n {
+        let z = axes[j].direction;
+        let previous_x = xs.last().copied();
+        // where the previous x line meets this axis (first axis: the base origin's foot)
+        let foot = project(
+            origins.last().copied().unwrap_or([0.0; 3]),
+            axes[j].point,
+            z,
+        );
+        let keep = |x: Option<[f64; 3]>| match x {
+            Some(x) => unit(perpendicular(x, z)),
+            None => perpendicular_towards(z, axes[j].hint),
+        };
+        let (origin, x) = match axes.get(j + 1) {
+            None => (foot, keep(previous_x)),
+            Some(next) => {
+                let w = next.direction;
+                let normal = cross(z, w);
+                let between = sub(next.point, axes[j].point);
+                if norm(normal) <= PARALLEL {
+                    let to_next = perpendicular(sub(next.point, foot), z);
+                    if norm(to_next) > ZERO_LENGTH {
+                        (foot, unit(to_next))
+                    } else {
+                        (foot, keep(previous_x))
+                    }
+                } else {
+                    let nn = dot(normal, normal);
+                    let s = dot(cross(between, w), normal) / nn;
+                    let t = dot(cross(between, z), normal) / nn;
+                    let here = add(axes[j].point, scale(z, s));
+                    let there = add(next.point, scale(w, t));
+                    let gap = sub(there, here);
+                    if norm(gap) > ZERO_LENGTH {
+                        (here, unit(gap))
+                    } else {
+                        let x = unit(normal);
+                        let reference = previous_x.unwrap_or(axes[j].hint);
+                        let x = if dot(x, reference) < 0.0 {
+                            scale(x, -1.0)
+                        } else {
+                            x
+                        };
+                        (here, x)
+                    }
+                }
+            }
+        };
+        origins.push(origin);
+        xs.push(x);
+    }
+    let mut frames = Vec::with_capacity(n + 1);
+    frames.push(frame(xs[0], axes[0].direction, origins[0]));
+    for j in 0..n {
+        frames.push(frame(xs[j], axes[j].direction, origins[j]));
+    }
+    let rows = (1..=n)
+        .map(|j| row(&frames[j - 1].inverse().then(&frames[j])))
+        .collect();
+    Fit { frames, rows }
+}
+
+/// `[alpha, a, d, theta]` of Rx(alpha) Tx(a) Rz(theta) Tz(d) = `t`.
+fn row(t: &Rigid) -> [f64; 4] {
+    let alpha = snap(f64::atan2(-t.r[1][2], t.r[2][2]));
+    let theta = snap(f64::atan2(-t.r[0][1], t.r[0][0]));
+    let (s, c) = super::rigid::sin_cos(alpha);
+    let a = t.p[0];
+    let d = -t.p[1] * s + t.p[2] * c;
+    [alpha, zero_small(a), zero_small(d), theta]
+}
+
+/// Exactly k pi/2 within the angle rule; -pi becomes pi.
+fn snap(angle: f64) -> f64 {
+    match right_angle_multiple(angle) {
+        Some(-2) => 2.0 * FRAC_PI_2,
+        Some(k) => k as f64 * FRAC_PI_2,
+        None => angle,
+    }
+}
+
+fn zero_small(length: f64) -> f64 {
+    if length.abs() < ZERO_LENGTH {
+        0.0
+    } else {
+        length
+    }
+}
+
+/// The exact text of an angle that is a multiple of pi/2 within the angle rule.
+pub(super) fn angle_text(angle: f64) -> Option<&'static str> {
+    Some(match right_angle_multiple(angle)? {
+        0 => "0",
+        1 => "pi/2",
+        -1 => "-pi/2",
+        2 | -2 => "pi",
+        3 => "3*pi/2",
+        -3 => "-3*pi/2",
+        4 => "2*pi",
+        -4 => "-2*pi",
+        _ => return None,
+    })
+}

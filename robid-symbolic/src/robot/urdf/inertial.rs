@@ -1,0 +1,104 @@
+//! The standard parameters of each rigid body of the chain (docs/urdf.md#inertials):
+//! every URDF link of the body, its centre of mass c and inertia I_c moved into robid's
+//! frame j, summed as J_O += R I_c R' + m (c'c I3 - c c'), MS += m c, M += m.
+
+use super::rigid::{Mat3, Rigid, dot, mul, transpose};
+use super::xml::Inertial;
+
+/// The inertia tensor of a URDF `<inertia>` (`ixy` is the tensor entry, as robid's `XY`,
+/// docs/conventions.md#standard-parameters).
+pub(super) fn tensor(i: &[f64; 6]) -> Mat3 {
+    [[i[0], i[1], i[2]], [i[1], i[3], i[4]], [i[2], i[4], i[5]]]
+}
+
+/// Standard parameters `[XX XY XZ YY YZ ZZ MX MY MZ M]` of one `<inertial>` of a link whose
+/// frame is `link` in the target frame.
+pub(super) fn parameters(link: &Rigid, inertial: &Inertial) -> [f64; 10] {
+    let com = link.then(&inertial.origin);
+    let m = inertial.mass;
+    let c = com.p;
+    let rotated = mul(&mul(&com.r, &tensor(&inertial.inertia)), &transpose(&com.r));
+    let cc = dot(c, c);
+    let j = |a: usize, b: usize| {
+        let identity = if a == b { cc } else { 0.0 };
+        rotated[a][b] + m * (identity - c[a] * c[b])
+    };
+    [
+        j(0, 0),
+        j(0, 1),
+        j(0, 2),
+        j(1, 1),
+        j(1, 2),
+        j(2, 2),
+        m * c[0],
+        m * c[1],
+        m * c[2],
+        m,
+    ]
+}
+
+/// The sum of standard parameters.
+pub(super) fn sum(a: [f64; 10], b: [f64; 10]) -> [f64; 10] {
+    std::array::from_fn(|k| a[k] + b[k])
+}
+
+/// The mass, centre of mass and inertia about it (`ixx ixy ixz iyy iyz izz`) of standard
+/// parameters (`None` when the mass is not positive).
+pub(super) fn physical(p: &[f64; 10]) -> Option<(f64, [f64; 3], [f64; 6])> {
+    let m = p[9];
+    if m <= 0.0 || !m.is_finite() {
+        return None;
+    }
+    let c = [p[6] / m, p[7] / m, p[8] / m];
+    let cc = dot(c, c);
+    let about = |value: f64, a: usize, b: usize| {
+        let identity = if a == b { cc } else { 0.0 };
+        value - m * (identity - c[a] * c[b])
+    };
+    Some((
+        m,
+        c,
+        [
+            about(p[0], 0, 0),
+            about(p[1], 0, 1),
+            about(p[2], 0, 2),
+            about(p[3], 1, 1),
+            about(p[4], 1, 2),
+            about(p[5], 2, 2),
+        ],
+    ))
+}
+
+fn skew(v: [f64; 3]) -> Mat3 {
+    [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]]
+}
+
+/// Standard parameters expressed in another frame, exactly (they move linearly): `p` in
+/// frame b, `b_in_a` frame b in frame a (R, t); the result in frame a:
+/// J_a = R J_b R' - S(t) S(R MS) - S(R MS) S(t) - M S(t) S(t), MS_a = R MS + M t
+/// (S the cross-product matrix, J = -integral S(r) S(r) dm).
+pub(super) fn moved(b_in_a: &Rigid, p: &[f64; 10]) -> [f64; 10] {
+    let r = &b_in_a.r;
+    let t = b_in_a.p;
+    let m = p[9];
+    let ms = b_in_a.apply_vector([p[6], p[7], p[8]]);
+    let j = mul(
+        &mul(r, &tensor(&[p[0], p[1], p[2], p[3], p[4], p[5]])),
+        &transpose(r),
+    );
+    let (st, sm) = (skew(t), skew(ms));
+    let (a, b, c) = (mul(&st, &sm), mul(&sm, &st), mul(&st, &st));
+    let e = |i: usize, k: usize| j[i][k] - a[i][k] - b[i][k] - m * c[i][k];
+    [
+        e(0, 0),
+        e(0, 1),
+        e(0, 2),
+        e(1, 1),
+        e(1, 2),
+        e(2, 2),
+        ms[0] + m * t[0],
+        ms[1] + m * t[1],
+        ms[2] + m * t[2],
+        m,
+    ]
+}

@@ -1,0 +1,209 @@
+//! Reading a URDF as a robid [`Robot`] (docs/urdf.md).
+//!
+//! `xml.rs` reads the `<link>` and `<joint>` elements with every number checked and every
+//! mistake located; `rigid.rs` holds rigid transforms and the angle rule; `chain.rs` builds
+//! the tree and chooses the chain; `frames.rs` fits the modified-DH table to the joint
+//! axes; `build.rs` makes the validated robot (name, limits, gravity); `inertial.rs` sums
+//! each body's standard parameters; `write.rs` writes identified parameters back.
+
+mod build;
+mod chain;
+mod frames;
+mod inertial;
+mod rigid;
+mod write;
+mod xml;
+
+#[cfg(test)]
+mod tests;
+
+pub use chain::ChainSelection;
+
+use super::bounds::MAX_DESCRIPTION_LEN;
+use super::file::Place;
+use super::{DescriptionError, Pose, Robot};
+use frames::Axis;
+use std::io::Read;
+use std::path::Path;
+
+/// A URDF chain as a robid robot, with what is needed to go back to the URDF's frames.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrdfChain {
+    /// Modified DH, numeric, no drive terms, the URDF's limits; gravity in frame 0.
+    pub robot: Robot,
+    /// One per robid joint, base to tip.
+    pub links: Vec<ChainLink>,
+    /// robid frame 0 in the base link's frame.
+    pub base: Pose,
+    /// The tip link's frame in robid frame n.
+    pub tool: Pose,
+    /// What is valid but worth knowing: `file:line:column: what; what to do`.
+    pub warnings: Vec<String>,
+}
+
+/// The rigid body robid joint j moves.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChainLink {
+    /// The URDF joint (robid joint j).
+    pub joint: String,
+    /// The URDF link it moves.
+    pub link: String,
+    /// That URDF link's frame in robid frame j.
+    pub frame: Pose,
+    /// Links rigidly attached to it (through fixed joints, or joints off the chain held
+    /// at zero).
+    pub attached: Vec<AttachedLink>,
+    /// Standard parameters `[XX XY XZ YY YZ ZZ MX MY MZ M]` of the whole body about the
+    /// origin of robid frame j, in frame j.
+    pub inertial: [f64; 10],
+}
+
+/// A URDF link rigidly attached to a chain link.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AttachedLink {
+    /// The URDF link.
+    pub name: String,
+    /// Its frame in the chain link's frame.
+    pub frame: Pose,
+}
+
+impl Robot {
+    /// Reads the chain `selection` of a URDF as a robid robot (docs/urdf.md); `file` names
+    /// the text in errors and warnings.
+    ///
+    /// # Errors
+    /// Malformed XML, missing or bad values, a link tree that is not a tree, a chain that
+    /// cannot be chosen or modelled, or a DH table or limit outside robid's
+    /// [`bounds`](super::bounds): each with its place and fix.
+    ///
+    /// # Examples
+    /// ```
+    /// use robid_symbolic::robot::ChainSelection;
+    /// use robid_symbolic::Robot;
+    /// let urdf = r#"<robot name="arm">
+    ///   <link name="base"/>
+    ///   <link name="upper"><inertial><mass value="2"/>
+    ///     <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.05"/></inertial></link>
+    ///   <link name="lower"/>
+    ///   <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    ///     <origin xyz="0 0 0.3"/><axis xyz="0 0 1"/>
+    ///     <limit lower="-3" upper="3" effort="50" velocity="2"/></joint>
+    ///   <joint name="elbow" type="continuous"><parent link="upper"/><child link="lower"/>
+    ///     <origin xyz="0.5 0 0" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/></joint>
+    /// </robot>"#;
+    /// let chain = Robot::from_urdf(urdf, "arm.urdf", &ChainSelection::default())?;
+    /// assert_eq!(chain.robot.dof(), 2);
+    /// assert_eq!(chain.links[1].joint, "elbow");
+    /// assert_eq!(chain.links[0].inertial[9], 2.0);
+    /// # Ok::<(), robid_symbolic::DescriptionError>(())
+    /// ```
+    pub fn from_urdf(
+        text: &str,
+        file: &str,
+        selection: &ChainSelection,
+    ) -> Result<UrdfChain, DescriptionError> {
+        let place = Place { file, text };
+        let urdf = xml::read(&place)?;
+        let mut warnings = urdf.warnings.clone();
+        let tree = chain::tree(&place, &urdf)?;
+        let chain = chain::choose(&place, &urdf, &tree, selection, &mut warnings)?;
+        let axes: Vec<Axis> = chain
+            .joints
+            .iter()
+            .map(|&j| {
+                let joint = &urdf.joints[j];
+                let frame = chain.in_base[tree.ends[j].0].then(&joint.origin);
+                Axis {
+                    direction: frame.apply_vector(joint.axis),
+                    point: frame.p,
+                    hint: frame.apply_vector([1.0, 0.0, 0.0]),
+                }
+            })
+            .collect();
+        let fit = frames::fit(&axes);
+        let name = build::robot_name(&place, &urdf, &mut warnings);
+        let gravity = build::gravity(&tree.at_zero[chain.base], &fit);
+        let robot = build::robot(&place, &urdf, &chain, &fit, gravity, &name)?;
+        let links = chain
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(k, body)| {
+                let to_frame = fit.frames[k + 1].inverse();
+                let link = body[0];
+                let in_link = chain.in_base[link].inverse();
+                let mut parameters = [0.0; 10];
+                for &l in body {
+                    if let Some(i) = &urdf.links[l].inertial {
+                        let p = inertial::parameters(&to_frame.then(&chain.in_base[l]), i);
+                        parameters = inertial::sum(parameters, p);
+                    }
+                }
+                ChainLink {
+                    joint: urdf.joints[chain.joints[k]].name.clone(),
+                    link: urdf.links[link].name.clone(),
+                    frame: to_frame.then(&chain.in_base[link]).pose(),
+                    attached: body[1..]
+                        .iter()
+                        .map(|&a| AttachedLink {
+                            name: urdf.links[a].name.clone(),
+                            frame: in_link.then(&chain.in_base[a]).pose(),
+                        })
+                        .collect(),
+                    inertial: parameters,
+                }
+            })
+            .collect();
+        let n = chain.joints.len();
+        Ok(UrdfChain {
+            robot,
+            links,
+            base: fit.frames[0].pose(),
+            tool: fit.frames[n]
+                .inverse()
+                .then(&chain.in_base[chain.tip])
+                .pose(),
+            warnings,
+        })
+    }
+
+    /// Reads a URDF file (at most [`MAX_DESCRIPTION_LEN`] bytes) like [`Robot::from_urdf`].
+    ///
+    /// # Errors
+    /// The file cannot be read, is too long or not UTF-8, or [`Robot::from_urdf`]'s errors.
+    pub fn from_urdf_file(
+        path: &Path,
+        selection: &ChainSelection,
+    ) -> Result<UrdfChain, DescriptionError> {
+        let file = path.display().to_string();
+        let text = read_text(path, &file)?;
+        Robot::from_urdf(&text, &file, selection)
+    }
+}
+
+/// The text of a file of at most [`MAX_DESCRIPTION_LEN`] bytes.
+fn read_text(path: &Path, file: &str) -> Result<String, DescriptionError> {
+    let read_error = |reason: String| DescriptionError::Read {
+        file: file.to_owned(),
+        reason,
+    };
+    let handle = std::fs::File::open(path).map_err(|e| read_error(e.to_string()))?;
+    let mut bytes = Vec::new();
+    handle
+        .take(MAX_DESCRIPTION_LEN as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| read_error(e.to_string()))?;
+    if bytes.len() > MAX_DESCRIPTION_LEN {
+        return Err(read_error(format!(
+            "it is longer than {MAX_DESCRIPTION_LEN} bytes, the most robid reads; meshes belong in their own files"
+        )));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        read_error(format!(
+            "it is not UTF-8 text (invalid byte at offset {}); save it as UTF-8",
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
+
+pub use write::write_inertials;

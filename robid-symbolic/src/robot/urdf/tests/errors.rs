@@ -1,0 +1,178 @@
+//! Every mistake the reader names, with its place and wording; no panic on garbage.
+
+use super::*;
+
+/// A two-joint arm with `joints` replacing its joints (links a, b, c).
+fn arm(joints: &str) -> String {
+    format!(
+        "<robot name=\"arm\">\n<link name=\"a\"/>\n<link name=\"b\"/>\n<link name=\"c\"/>\n{joints}</robot>\n"
+    )
+}
+
+const J1: &str = "<joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><axis xyz=\"0 0 1\"/></joint>\n";
+const J2: &str = "<joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><origin xyz=\"0.5 0 0\"/><axis xyz=\"0 0 1\"/></joint>\n";
+
+fn error_of(text: &str, chosen: &ChainSelection) -> String {
+    match Robot::from_urdf(text, "t.urdf", chosen) {
+        Ok(_) => panic!("no error for\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn each_mistake_is_named_at_its_place() {
+    let two = format!("{J1}{J2}");
+    let cases: Vec<(String, &str, &[&str])> = vec![
+        ("<robot name=\"x\"><link name=\"a\"></robot>".to_owned(), "t.urdf:1:", &["not well-formed XML"]),
+        ("<model name=\"x\"/>".to_owned(), "t.urdf:1:1:", &["`<model>`, not `<robot>`"]),
+        (arm(&J1.replace(" type=\"revolute\"", "")), "t.urdf:5:1:", &["`<joint name=\"j1\">` has no `type` attribute", "add `type=\"...\"`"]),
+        (arm(&J1.replace("0 0 1", "0 x 1")), "t.urdf:5:", &["`x` is not a number"]),
+        (arm(&J1.replace("0 0 1", "0 inf 1")), "t.urdf:5:", &["is not finite", "write finite numbers"]),
+        (arm(&J1.replace("0 0 1", "0 1e300 1")), "t.urdf:5:", &["`1e300` is beyond ±1e9, not a value of a robot"]),
+        (arm(&J1.replace("0 0 1", "0 1")), "t.urdf:5:", &["has 2 numbers", "write 3 numbers"]),
+        (arm(&J1.replace("0 0 1", "0 0 0")), "t.urdf:5:", &["the axis of `<joint name=\"j1\">` has no direction"]),
+        (arm(&J1.replace("revolute", "hinge")), "t.urdf:5:", &["unknown joint type `hinge`", "revolute, continuous, prismatic"]),
+        (arm(&format!("{J1}{}", J2.replace("\"b\"/><child", "\"bb\"/><child"))), "t.urdf:6:", &["the parent link `bb` of joint `j2` is no `<link>`", "`b`"]),
+        (arm(&format!("{J1}{}", J2.replace("j2", "j1"))), "t.urdf:6:1:", &["a second joint is named `j1` (the first is on line 5)"]),
+        (arm(&format!("{J1}{}", J2.replace("\"b\"/><child", "\"a\"/><child").replace("\"c\"/>", "\"b\"/>"))), "t.urdf:6:", &["link `b` has two parents"]),
+        (arm(&format!("{J1}{}", J2.replace("<child link=\"c\"", "<child link=\"a\""))), "t.urdf:", &["closes a cycle"]),
+        (arm(J1), "t.urdf:4:1:", &["several root links", "`a`, `c`"]),
+        (
+            arm(&format!("{J1}{J2}")).replace("<link name=\"c\"/>", "<link name=\"c\"><inertial><mass value=\"-1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"),
+            "t.urdf:4:",
+            &["the mass -1 is negative"],
+        ),
+        (
+            arm(&format!("{J1}{J2}")).replace("<link name=\"c\"/>", "<link name=\"c\"><inertial><mass value=\"1\"/></inertial></link>"),
+            "t.urdf:4:",
+            &["has no `<inertia"],
+        ),
+        (arm(&format!("{J1}{}", J2.replace("</joint>", "<mimic joint=\"j1\"/></joint>"))), "t.urdf:6:", &["joint `j2` of the chain mimics joint `j1`"]),
+        (arm(&format!("{J1}{}", J2.replace("revolute", "floating"))), "t.urdf:6:1:", &["joint `j2` is floating"]),
+        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit effort=\"1e9\" velocity=\"1\"/></joint>"))), "t.urdf:6:", &["`<limit>` of joint `j2`: effort 1000000000 is not a positive number"]),
+        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"1\" upper=\"-1\"/></joint>"))), "t.urdf:6:", &["lower 1 is above upper -1"]),
+        (
+            arm(&format!("{J1}{}", J2.replace("0.5 0 0", "0.0000001 0 0"))),
+            "t.urdf:6:1:",
+            &["at joint `j2`, a value robid does not accept", "joints[1].a"],
+        ),
+        (arm(&two.replace("revolute", "fixed")), "the chain's tip link", &["no movable joint lies below link `a`"]),
+    ];
+    for (text, place, words) in &cases {
+        let message = error_of(text, &ChainSelection::default());
+        assert!(message.starts_with(place), "{message}\nexpected at {place}");
+        for w in *words {
+            assert!(message.contains(w), "{message}\nexpected {w:?}");
+        }
+    }
+}
+
+#[test]
+fn duplicate_links_and_mimics_of_chain_joints_off_the_chain() {
+    let text = arm(&format!("{J1}{J2}")).replace(
+        "<link name=\"c\"/>",
+        "<link name=\"c\"/>\n<link name=\"a\"/>",
+    );
+    let message = error_of(&text, &ChainSelection::default());
+    assert!(
+        message.starts_with("t.urdf:5:1: a second link is named `a` (the first is on line 2)"),
+        "{message}"
+    );
+    let side = "<link name=\"d\"/><joint name=\"s\" type=\"revolute\"><parent link=\"b\"/><child link=\"d\"/><mimic joint=\"j2\"/></joint>\n";
+    let text = arm(&format!("{J1}{J2}{side}"));
+    let message = error_of(&text, &selection(None, Some("c")));
+    assert!(
+        message.contains("joint `s` mimics joint `j2` of the chain"),
+        "{message}"
+    );
+}
+
+#[test]
+fn bad_selections_name_the_nearest_links() {
+    let text = arm(&format!("{J1}{J2}"));
+    let message = error_of(&text, &selection(Some("bb"), None));
+    assert!(
+        message.starts_with(
+            "the chain's base link (`ChainSelection::base`): the URDF has no link `bb`"
+        ),
+        "{message}"
+    );
+    assert!(
+        message.contains("the nearest link names are `b`"),
+        "{message}"
+    );
+    let message = error_of(&text, &selection(Some("b"), Some("a")));
+    assert!(
+        message.contains("link `a` is not below the base link `b`"),
+        "{message}"
+    );
+}
+
+#[test]
+fn odd_robot_names_become_identifiers_with_a_warning() {
+    let two = format!("{J1}{J2}");
+    for (name, expected, warned) in [
+        ("kuka-lwr", "kuka_lwr", false),
+        ("self", "self_robot", true),
+        ("2dof", "robot_2dof", true),
+    ] {
+        let text = arm(&two).replace("name=\"arm\"", &format!("name=\"{name}\""));
+        let chain = Robot::from_urdf(&text, "t.urdf", &ChainSelection::default()).unwrap();
+        assert_eq!(chain.robot.name(), expected);
+        assert_eq!(
+            chain
+                .warnings
+                .iter()
+                .any(|w| w.starts_with("t.urdf:1:14: the robot name")),
+            warned,
+            "{:?}",
+            chain.warnings
+        );
+    }
+}
+
+#[test]
+fn files_are_read_or_named_in_the_error() {
+    let chain = Robot::from_urdf_file(
+        std::path::Path::new(&format!("{}/../{UR5}", env!("CARGO_MANIFEST_DIR"))),
+        &ChainSelection::default(),
+    )
+    .unwrap();
+    assert_eq!(chain.robot.dof(), 6);
+    let e = Robot::from_urdf_file(
+        std::path::Path::new("no/such.urdf"),
+        &ChainSelection::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("no/such.urdf: cannot read the file"), "{e}");
+}
+
+#[test]
+fn truncated_and_garbled_files_are_errors_not_panics() {
+    let text = repository_file(PANDA);
+    let chosen = selection(None, Some("panda_hand"));
+    for cut in (0..text.len()).step_by(41) {
+        if text.is_char_boundary(cut) {
+            let _ = Robot::from_urdf(&text[..cut], "t.urdf", &chosen);
+        }
+    }
+    let mut rng = robid_runtime::rng::Rng::new(11);
+    let noise = ['<', '>', '"', '=', '/', ' ', '0', 'x', '-', '.', 'e', '9'];
+    let mut errors = 0;
+    for _ in 0..400 {
+        let mut bytes = text.clone().into_bytes();
+        for _ in 0..3 {
+            let at = rng.below(bytes.len());
+            bytes[at] = noise[rng.below(noise.len())] as u8;
+        }
+        let Ok(garbled) = String::from_utf8(bytes) else {
+            continue;
+        };
+        if let Err(e) = Robot::from_urdf(&garbled, "t.urdf", &chosen) {
+            errors += 1;
+            assert!(!e.to_string().contains("NaN"), "{e}");
+        }
+    }
+    assert!(errors > 50, "{errors}");
+}

@@ -1,0 +1,207 @@
+//! Each body's standard parameters against an independent sum over its URDF links in the
+//! base frame at q = 0.
+
+use super::super::inertial::tensor;
+use super::super::rigid::{mul, transpose};
+use super::*;
+
+/// Mass, first moment and inertia about the origin, in the base frame.
+#[derive(Clone, Copy, Debug, Default)]
+struct Sums {
+    m: f64,
+    ms: [f64; 3],
+    j: [[f64; 3]; 3],
+}
+
+impl Sums {
+    /// Adds a point-mass-plus-inertia: mass `m` at `c` with inertia `i` about `c`.
+    fn add(&mut self, m: f64, c: [f64; 3], i: [[f64; 3]; 3]) {
+        self.m += m;
+        for (ms, c) in self.ms.iter_mut().zip(c) {
+            *ms += m * c;
+        }
+        let cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+        for a in 0..3 {
+            for b in 0..3 {
+                let identity = if a == b { cc } else { 0.0 };
+                self.j[a][b] += i[a][b] + m * (identity - c[a] * c[b]);
+            }
+        }
+    }
+
+    fn difference(&self, other: &Sums) -> f64 {
+        let mut worst = (self.m - other.m).abs();
+        for a in 0..3 {
+            worst = worst.max((self.ms[a] - other.ms[a]).abs());
+            for b in 0..3 {
+                worst = worst.max((self.j[a][b] - other.j[a][b]).abs());
+            }
+        }
+        worst
+    }
+}
+
+/// The URDF's own sum over `links`, in the frame of `base`, every joint at zero.
+fn urdf_sum(text: &str, base: &str, links: &[&str]) -> Sums {
+    let urdf = xml::read(&Place { file: "t", text }).unwrap();
+    let poses = direct_poses(&direct_joints(text), base, &HashMap::new());
+    let mut sums = Sums::default();
+    for link in urdf
+        .links
+        .iter()
+        .filter(|l| links.contains(&l.name.as_str()))
+    {
+        if let Some(i) = &link.inertial {
+            let com = poses[&link.name].then(&i.origin);
+            let rotated = mul(&mul(&com.r, &tensor(&i.inertia)), &transpose(&com.r));
+            sums.add(i.mass, com.p, rotated);
+        }
+    }
+    sums
+}
+
+/// A body's standard parameters (in robid frame j) moved to the base frame through its
+/// centre of mass.
+fn chain_sum(frame: &Rigid, p: &[f64; 10]) -> Sums {
+    let m = p[9];
+    let mut sums = Sums::default();
+    if m == 0.0 {
+        return sums;
+    }
+    let c = [p[6] / m, p[7] / m, p[8] / m];
+    let cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    let j = tensor(&[p[0], p[1], p[2], p[3], p[4], p[5]]);
+    let about_com: [[f64; 3]; 3] = std::array::from_fn(|a| {
+        std::array::from_fn(|b| {
+            let identity = if a == b { cc } else { 0.0 };
+            j[a][b] - m * (identity - c[a] * c[b])
+        })
+    });
+    let rotated = mul(&mul(&frame.r, &about_com), &transpose(&frame.r));
+    let c_base: [f64; 3] = std::array::from_fn(|k| {
+        frame.p[k] + frame.r[k][0] * c[0] + frame.r[k][1] * c[1] + frame.r[k][2] * c[2]
+    });
+    sums.add(m, c_base, rotated);
+    sums
+}
+
+/// Every body of `chain` against the URDF's sum over its links; returns the whole chain's
+/// sums (URDF, robid).
+fn check_bodies(text: &str, chain: &UrdfChain, base: &str) -> (Sums, Sums) {
+    let frames = dh_frames(chain, &vec![0.0; chain.robot.dof()]);
+    let mut whole = (Sums::default(), Sums::default());
+    for (link, frame) in chain.links.iter().zip(&frames) {
+        let mut names = vec![link.link.as_str()];
+        names.extend(link.attached.iter().map(|a| a.name.as_str()));
+        let expected = urdf_sum(text, base, &names);
+        let got = chain_sum(frame, &link.inertial);
+        let worst = expected.difference(&got);
+        assert!(worst < 1e-12, "body of {}: {worst:e}", link.joint);
+        whole.0.add(expected.m, [0.0; 3], [[0.0; 3]; 3]);
+        for k in 0..3 {
+            whole.0.ms[k] += expected.ms[k];
+        }
+        whole.1.add(got.m, [0.0; 3], [[0.0; 3]; 3]);
+        for k in 0..3 {
+            whole.1.ms[k] += got.ms[k];
+        }
+    }
+    whole
+}
+
+#[test]
+fn every_body_of_the_real_robots_sums_its_links() {
+    for (path, base, tip) in [
+        (PANDA, "panda_link0", Some("panda_hand")),
+        (UR5, "world", None),
+        (LWR4, "box", None),
+        (TX40, "base_link", None),
+    ] {
+        let text = repository_file(path);
+        let chain = Robot::from_urdf(&text, path, &selection(None, tip)).unwrap();
+        check_bodies(&text, &chain, base);
+    }
+}
+
+#[test]
+fn the_panda_to_its_hand_has_the_urdfs_mass_and_centre_of_mass() {
+    let text = repository_file(PANDA);
+    let chain = Robot::from_urdf(&text, PANDA, &selection(None, Some("panda_hand"))).unwrap();
+    let (urdf, robid) = check_bodies(&text, &chain, "panda_link0");
+    // every link but the fixed base panda_link0, summed from the file directly
+    let all: Vec<String> = xml::read(&Place {
+        file: "t",
+        text: &text,
+    })
+    .unwrap()
+    .links
+    .iter()
+    .map(|l| l.name.clone())
+    .filter(|n| n != "panda_link0")
+    .collect();
+    let names: Vec<&str> = all.iter().map(String::as_str).collect();
+    let direct = urdf_sum(&text, "panda_link0", &names);
+    assert!((direct.m - robid.m).abs() < 1e-12 && (urdf.m - robid.m).abs() < 1e-12);
+    // link1 to link8, the hand, its tcp and both fingers: 16.82 kg
+    assert_eq!(names.len(), 12);
+    assert!((direct.m - 16.822132).abs() < 1e-9, "{}", direct.m);
+    for k in 0..3 {
+        let com = robid.ms[k] / robid.m;
+        assert!((direct.ms[k] / direct.m - com).abs() < 1e-12, "{k}");
+    }
+}
+
+#[test]
+fn the_bodies_of_random_chains_sum_their_links() {
+    use std::fmt::Write;
+    // a chain with side links on fixed and off-path joints and rotated inertial frames
+    let mut text = String::from("<robot name=\"r\"><link name=\"b\"/>");
+    let mut rng = robid_runtime::rng::Rng::new(3);
+    let mut parent = "b".to_owned();
+    for j in 0..4 {
+        let v = |rng: &mut robid_runtime::rng::Rng| {
+            format!(
+                "{:?} {:?} {:?}",
+                rng.uniform(-0.5, 0.5),
+                rng.uniform(-0.5, 0.5),
+                rng.uniform(-0.5, 0.5)
+            )
+        };
+        let inertial = |rng: &mut robid_runtime::rng::Rng| {
+            format!(
+                "<inertial><origin xyz=\"{}\" rpy=\"{}\"/><mass value=\"{:?}\"/><inertia ixx=\"0.3\" ixy=\"-0.01\" ixz=\"0.02\" iyy=\"0.2\" iyz=\"0.015\" izz=\"0.25\"/></inertial>",
+                v(rng),
+                v(rng),
+                rng.uniform(0.1, 2.0)
+            )
+        };
+        let _ = write!(
+            text,
+            "<link name=\"l{j}\">{}</link><joint name=\"j{j}\" type=\"revolute\"><parent link=\"{parent}\"/><child link=\"l{j}\"/><origin xyz=\"{}\" rpy=\"{}\"/><axis xyz=\"{}\"/></joint>",
+            inertial(&mut rng),
+            v(&mut rng),
+            v(&mut rng),
+            v(&mut rng)
+        );
+        let _ = write!(
+            text,
+            "<link name=\"fixed{j}\">{}</link><joint name=\"f{j}\" type=\"fixed\"><parent link=\"l{j}\"/><child link=\"fixed{j}\"/><origin xyz=\"{}\" rpy=\"{}\"/></joint>",
+            inertial(&mut rng),
+            v(&mut rng),
+            v(&mut rng)
+        );
+        let _ = write!(
+            text,
+            "<link name=\"side{j}\">{}</link><joint name=\"s{j}\" type=\"prismatic\"><parent link=\"fixed{j}\"/><child link=\"side{j}\"/><origin xyz=\"{}\" rpy=\"{}\"/><axis xyz=\"1 0 0\"/></joint>",
+            inertial(&mut rng),
+            v(&mut rng),
+            v(&mut rng)
+        );
+        parent = format!("l{j}");
+    }
+    text.push_str("</robot>");
+    let chain = Robot::from_urdf(&text, "r.urdf", &selection(None, Some("l3"))).unwrap();
+    assert_eq!(chain.links[3].attached.len(), 2);
+    let (urdf, robid) = check_bodies(&text, &chain, "b");
+    assert!((urdf.m - robid.m).abs() < 1e-12);
+}

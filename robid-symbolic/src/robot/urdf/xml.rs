@@ -1,0 +1,497 @@
+//! From URDF text to plain structs: the `<link>` and `<joint>` elements that are direct
+//! children of `<robot>`, every number checked, every mistake located
+//! (docs/urdf.md#reading).
+//!
+//! Angles go through the angle rule of `rigid.rs` (docs/urdf.md#the-angle-rule); axes are
+//! normalised. Only the first `<origin>` of a joint counts (as in URDF parsers), with a
+//! warning for the others.
+
+use super::super::DescriptionError;
+use super::super::bounds::MAX_DESCRIPTION_LEN;
+use super::super::file::Place;
+use super::rigid::{Rigid, norm, scale};
+use roxmltree::{Document, Node};
+use std::ops::Range;
+
+/// Largest magnitude of a number in a URDF: no robot has larger lengths (m), masses (kg),
+/// inertias (kg m^2) or limits, and products of such values stay finite.
+const MAX_VALUE: f64 = 1e9;
+
+/// A URDF joint type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum JointType {
+    Revolute,
+    Continuous,
+    Prismatic,
+    Fixed,
+    Floating,
+    Planar,
+}
+
+impl JointType {
+    /// Whether robid can take the joint as one of its joints.
+    pub(super) fn movable(self) -> bool {
+        matches!(
+            self,
+            JointType::Revolute | JointType::Continuous | JointType::Prismatic
+        )
+    }
+}
+
+/// `<inertial>`: the centre of mass frame, the mass, the inertia about the centre of mass in
+/// that frame.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Inertial {
+    /// The `<origin>`: the centre of mass frame in the link frame.
+    pub(super) origin: Rigid,
+    pub(super) mass: f64,
+    /// `ixx ixy ixz iyy iyz izz`.
+    pub(super) inertia: [f64; 6],
+    /// The element's bytes.
+    pub(super) range: Range<usize>,
+}
+
+/// `<link>`.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Link {
+    pub(super) name: String,
+    /// The element's bytes.
+    pub(super) range: Range<usize>,
+    /// Whether the element is written `<link .../>`.
+    pub(super) empty: bool,
+    pub(super) inertial: Option<Inertial>,
+}
+
+/// `<limit>`.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Limit {
+    pub(super) lower: Option<f64>,
+    pub(super) upper: Option<f64>,
+    pub(super) effort: Option<f64>,
+    pub(super) velocity: Option<f64>,
+    pub(super) range: Range<usize>,
+}
+
+/// `<joint>`.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Joint {
+    pub(super) name: String,
+    pub(super) kind: JointType,
+    /// The element's bytes.
+    pub(super) range: Range<usize>,
+    pub(super) parent: String,
+    /// The `link` attribute of `<parent>`.
+    pub(super) parent_at: Range<usize>,
+    pub(super) child: String,
+    /// The `link` attribute of `<child>`.
+    pub(super) child_at: Range<usize>,
+    /// The first `<origin>`: the joint frame in the parent link frame.
+    pub(super) origin: Rigid,
+    /// The unit axis in the joint frame.
+    pub(super) axis: [f64; 3],
+    pub(super) limit: Option<Limit>,
+    /// The joint named by `<mimic>` and where.
+    pub(super) mimic: Option<(String, Range<usize>)>,
+    /// Where `<dynamics>` is.
+    pub(super) dynamics: Option<Range<usize>>,
+}
+
+/// A read URDF.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Urdf {
+    pub(super) name: String,
+    /// Where the robot name is.
+    pub(super) name_at: Range<usize>,
+    pub(super) links: Vec<Link>,
+    pub(super) joints: Vec<Joint>,
+    pub(super) warnings: Vec<String>,
+}
+
+/// Reads `place.text` (at most [`MAX_DESCRIPTION_LEN`] bytes).
+pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
+    if place.text.len() > MAX_DESCRIPTION_LEN {
+        return Err(place.invalid(
+            0..0,
+            format!(
+                "the URDF is {} bytes long, more than the {MAX_DESCRIPTION_LEN} robid reads",
+                place.text.len()
+            ),
+            "check that this is the right file (meshes belong in their own files)",
+        ));
+    }
+    let doc = Document::parse(place.text).map_err(|e| {
+        let pos = e.pos();
+        DescriptionError::Invalid {
+            file: place.file.to_owned(),
+            line: pos.row as usize,
+            column: pos.col as usize,
+            message: format!("the URDF is not well-formed XML: {e}"),
+            help: "fix the XML at this place (every tag closed, attribute values quoted)"
+                .to_owned(),
+            span: None,
+        }
+    })?;
+    let root = doc.root_element();
+    let mut reader = Reader {
+        place,
+        errors: Vec::new(),
+        warnings: Vec::new(),
+    };
+    if root.tag_name().name() != "robot" {
+        return Err(place.invalid(
+            root.range(),
+            format!(
+                "the top element is `<{}>`, not `<robot>`",
+                root.tag_name().name()
+            ),
+            "give a URDF file, whose elements are inside `<robot name=\"...\">`",
+        ));
+    }
+    let (name, name_at) = reader
+        .required(root, "name")
+        .unwrap_or((String::new(), root.range()));
+    let mut links = Vec::new();
+    let mut joints = Vec::new();
+    for node in root.children().filter(Node::is_element) {
+        match node.tag_name().name() {
+            "link" => links.extend(reader.link(node)),
+            "joint" => joints.extend(reader.joint(node)),
+            _ => {}
+        }
+    }
+    reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
+    reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
+    if reader.errors.is_empty() {
+        Ok(Urdf {
+            name,
+            name_at,
+            links,
+            joints,
+            warnings: reader.warnings,
+        })
+    } else {
+        Err(DescriptionError::from_errors(reader.errors))
+    }
+}
+
+struct Reader<'a> {
+    place: &'a Place<'a>,
+    errors: Vec<DescriptionError>,
+    warnings: Vec<String>,
+}
+
+/// `<tag name="...">` for messages.
+fn describe(node: Node<'_, '_>) -> String {
+    match node.attribute("name") {
+        Some(name) => format!("`<{} name=\"{name}\">`", node.tag_name().name()),
+        None => format!("`<{}>`", node.tag_name().name()),
+    }
+}
+
+fn first_child<'a, 'i>(node: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
+    node.children()
+        .find(|c| c.is_element() && c.tag_name().name() == tag)
+}
+
+impl Reader<'_> {
+    fn error(&mut self, span: Range<usize>, message: String, help: impl Into<String>) {
+        self.errors.push(self.place.invalid(span, message, help));
+    }
+
+    /// A required attribute and where its value is.
+    fn required(&mut self, node: Node<'_, '_>, name: &str) -> Option<(String, Range<usize>)> {
+        match node.attribute_node(name) {
+            Some(a) => Some((a.value().to_owned(), a.range_value())),
+            None => {
+                self.error(
+                    node.range(),
+                    format!("{} has no `{name}` attribute", describe(node)),
+                    format!("add `{name}=\"...\"` (the URDF format requires it)"),
+                );
+                None
+            }
+        }
+    }
+
+    /// An optional attribute of `count` finite numbers (`count` = 1: a scalar).
+    fn numbers(&mut self, node: Node<'_, '_>, name: &str, count: usize) -> Option<Vec<f64>> {
+        let attribute = node.attribute_node(name)?;
+        let text = attribute.value();
+        let span = attribute.range_value();
+        let mut values = Vec::new();
+        for word in text.split_whitespace() {
+            match word.parse::<f64>() {
+                Ok(v) if v.abs() <= MAX_VALUE => values.push(v),
+                Ok(v) if v.is_finite() => {
+                    self.error(
+                        span,
+                        format!(
+                            "`{name}=\"{text}\"` of {}: `{word}` is beyond ±{MAX_VALUE:e}, not a value of a robot",
+                            describe(node)
+                        ),
+                        "write lengths in m, masses in kg, inertias in kg m^2, angles in rad",
+                    );
+                    return None;
+                }
+                Ok(_) => {
+                    self.error(
+                        span,
+                        format!("`{name}=\"{text}\"` of {} is not finite", describe(node)),
+                        "write finite numbers",
+                    );
+                    return None;
+                }
+                Err(_) => {
+                    self.error(
+                        span,
+                        format!(
+                            "`{name}=\"{text}\"` of {}: `{word}` is not a number",
+                            describe(node)
+                        ),
+                        "write decimal numbers such as `0.5` or `-1.2e-3`",
+                    );
+                    return None;
+                }
+            }
+        }
+        if values.len() != count {
+            let expected = if count == 1 {
+                "one number".to_owned()
+            } else {
+                format!("{count} numbers separated by spaces")
+            };
+            self.error(
+                span,
+                format!(
+                    "`{name}=\"{text}\"` of {} has {} numbers",
+                    describe(node),
+                    values.len()
+                ),
+                format!("write {expected}"),
+            );
+            return None;
+        }
+        Some(values)
+    }
+
+    fn scalar(&mut self, node: Node<'_, '_>, name: &str) -> Option<f64> {
+        self.numbers(node, name, 1).map(|v| v[0])
+    }
+
+    fn required_scalar(&mut self, node: Node<'_, '_>, name: &str) -> Option<f64> {
+        if node.attribute(name).is_none() {
+            self.required(node, name);
+            return None;
+        }
+        self.scalar(node, name)
+    }
+
+    fn vector(&mut self, node: Node<'_, '_>, name: &str) -> Option<[f64; 3]> {
+        self.numbers(node, name, 3).map(|v| [v[0], v[1], v[2]])
+    }
+
+    /// An `<origin xyz rpy>` (each default 0).
+    fn origin(&mut self, node: Option<Node<'_, '_>>) -> Rigid {
+        let Some(node) = node else {
+            return Rigid::IDENTITY;
+        };
+        let xyz = self.vector(node, "xyz").unwrap_or([0.0; 3]);
+        let rpy = self.vector(node, "rpy").unwrap_or([0.0; 3]);
+        Rigid::from_xyz_rpy(xyz, rpy)
+    }
+
+    fn link(&mut self, node: Node<'_, '_>) -> Option<Link> {
+        let (name, _) = self.required(node, "name")?;
+        let inertial = first_child(node, "inertial").and_then(|i| self.inertial(i));
+        let text = &self.place.text[node.range()];
+        Some(Link {
+            name,
+            range: node.range(),
+            empty: text.trim_end().ends_with("/>"),
+            inertial,
+        })
+    }
+
+    fn inertial(&mut self, node: Node<'_, '_>) -> Option<Inertial> {
+        let origin = self.origin(first_child(node, "origin"));
+        let mass = match first_child(node, "mass") {
+            Some(m) => self.required_scalar(m, "value"),
+            None => {
+                self.error(
+                    node.range(),
+                    "`<inertial>` has no `<mass value=\"...\">`".to_owned(),
+                    "add the mass in kg, or remove `<inertial>` for a massless link",
+                );
+                None
+            }
+        };
+        if let (Some(m), Some(mass_node)) = (mass, first_child(node, "mass"))
+            && m < 0.0
+        {
+            let span = mass_node
+                .attribute_node("value")
+                .map_or(mass_node.range(), |a| a.range_value());
+            self.error(
+                span,
+                format!("the mass {m} is negative"),
+                "a mass is positive or zero (kg)",
+            );
+            return None;
+        }
+        let inertia = match first_child(node, "inertia") {
+            Some(i) => {
+                let mut values = [0.0; 6];
+                let mut complete = true;
+                for (k, name) in ["ixx", "ixy", "ixz", "iyy", "iyz", "izz"]
+                    .iter()
+                    .enumerate()
+                {
+                    match self.required_scalar(i, name) {
+                        Some(v) => values[k] = v,
+                        None => complete = false,
+                    }
+                }
+                complete.then_some(values)
+            }
+            None => {
+                self.error(
+                    node.range(),
+                    "`<inertial>` has no `<inertia ixx=... izz=...>`".to_owned(),
+                    "add the inertia about the centre of mass (kg m^2)",
+                );
+                None
+            }
+        };
+        Some(Inertial {
+            origin,
+            mass: mass?,
+            inertia: inertia?,
+            range: node.range(),
+        })
+    }
+
+    fn joint(&mut self, node: Node<'_, '_>) -> Option<Joint> {
+        let name = self.required(node, "name");
+        let kind = self.required(node, "type").and_then(|(t, span)| {
+            Some(match t.as_str() {
+                "revolute" => JointType::Revolute,
+                "continuous" => JointType::Continuous,
+                "prismatic" => JointType::Prismatic,
+                "fixed" => JointType::Fixed,
+                "floating" => JointType::Floating,
+                "planar" => JointType::Planar,
+                other => {
+                    self.error(
+                        span,
+                        format!("{} has the unknown joint type `{other}`", describe(node)),
+                        "write one of revolute, continuous, prismatic, fixed, floating, planar",
+                    );
+                    return None;
+                }
+            })
+        });
+        let parent = self.link_reference(node, "parent");
+        let child = self.link_reference(node, "child");
+        let origins: Vec<Node<'_, '_>> = node
+            .children()
+            .filter(|c| c.is_element() && c.tag_name().name() == "origin")
+            .collect();
+        if origins.len() > 1 {
+            let w = self.place.warning(
+                origins[1].range().start,
+                &format!(
+                    "{} has {} `<origin>` elements: the first is used, as URDF parsers do; \
+                     remove the others",
+                    describe(node),
+                    origins.len()
+                ),
+            );
+            self.warnings.push(w);
+        }
+        let origin = self.origin(origins.first().copied());
+        let axis = match first_child(node, "axis") {
+            None => Some([1.0, 0.0, 0.0]),
+            Some(a) => match a.attribute_node("xyz") {
+                None => Some([1.0, 0.0, 0.0]),
+                Some(attribute) => {
+                    let span = attribute.range_value();
+                    self.vector(a, "xyz").and_then(|v| {
+                        let length = norm(v);
+                        if length > 0.0 && length.is_finite() {
+                            Some(scale(v, 1.0 / length))
+                        } else {
+                            self.error(
+                                span,
+                                format!("the axis of {} has no direction", describe(node)),
+                                "give the axis as a non-zero vector, e.g. `0 0 1`",
+                            );
+                            None
+                        }
+                    })
+                }
+            },
+        };
+        let limit = first_child(node, "limit").map(|l| Limit {
+            lower: self.scalar(l, "lower"),
+            upper: self.scalar(l, "upper"),
+            effort: self.scalar(l, "effort"),
+            velocity: self.scalar(l, "velocity"),
+            range: l.range(),
+        });
+        let mimic = first_child(node, "mimic").and_then(|m| self.required(m, "joint"));
+        let dynamics = first_child(node, "dynamics").map(|d| d.range());
+        let (name, _) = name?;
+        let (parent, parent_at) = parent?;
+        let (child, child_at) = child?;
+        Some(Joint {
+            name,
+            kind: kind?,
+            range: node.range(),
+            parent,
+            parent_at,
+            child,
+            child_at,
+            origin,
+            axis: axis?,
+            limit,
+            mimic,
+            dynamics,
+        })
+    }
+
+    /// `<parent link="...">` or `<child link="...">`.
+    fn link_reference(&mut self, joint: Node<'_, '_>, tag: &str) -> Option<(String, Range<usize>)> {
+        match first_child(joint, tag) {
+            Some(node) => self.required(node, "link"),
+            None => {
+                self.error(
+                    joint.range(),
+                    format!("{} has no `<{tag} link=\"...\"/>`", describe(joint)),
+                    format!("add `<{tag} link=\"...\"/>` naming the {tag} link"),
+                );
+                None
+            }
+        }
+    }
+
+    /// An error for every name used a second time.
+    fn duplicates<'n>(
+        &mut self,
+        items: impl Iterator<Item = (&'n String, &'n Range<usize>)>,
+        what: &str,
+    ) {
+        let mut seen: std::collections::HashMap<&str, usize> = Default::default();
+        for (name, range) in items {
+            if let Some(&first) = seen.get(name.as_str()) {
+                let (line, _) = self.place.line_column(first);
+                self.error(
+                    range.clone(),
+                    format!("a second {what} is named `{name}` (the first is on line {line})"),
+                    format!("give every {what} its own name"),
+                );
+            } else {
+                seen.insert(name, range.start);
+            }
+        }
+    }
+}
