@@ -8,7 +8,7 @@ use std::path::Path;
 use robid_runtime::Model;
 use robid_runtime::data::ParameterFile;
 use robid_symbolic::robot::{ChainSelection, DriveTerm, UrdfChain};
-use robid_symbolic::{Drive, Robot};
+use robid_symbolic::{DescriptionError, Drive, Robot};
 
 use super::{Error, out};
 
@@ -40,6 +40,12 @@ pub(crate) struct Description {
 }
 
 impl Description {
+    /// A URDF's value of the inertial parameter `name` (`None` for a TOML description, a
+    /// drive term or an unknown name).
+    pub(crate) fn urdf_inertial(&self, name: &str) -> Option<f64> {
+        urdf_inertial(self.urdf.as_ref()?, name)
+    }
+
     /// The base parameters of `model` (this description's model): those of the parameter
     /// file `parameters` (`--parameters`) when given, else the URDF's own inertials; an
     /// error for a TOML description without a parameter file.
@@ -65,10 +71,7 @@ impl Description {
             return Ok(None);
         };
         let names = robid_runtime::model::standard_parameter_names(model);
-        let standard: Vec<f64> = names
-            .iter()
-            .map(|name| urdf_value(chain, name))
-            .collect();
+        let standard: Vec<f64> = names.iter().map(|name| urdf_value(chain, name)).collect();
         let mut base = vec![0.0; model.base_parameter_count()];
         model.base_from_standard_into(&standard, &mut base)?;
         Ok(Some(base))
@@ -79,20 +82,41 @@ impl Description {
 /// inertials: the ten inertial parameters of each chain link, 0 for the drive terms (a URDF
 /// has none: `<dynamics>` is not read, docs/urdf.md).
 fn urdf_value(chain: &UrdfChain, name: &str) -> f64 {
+    urdf_inertial(chain, name).unwrap_or(0.0)
+}
+
+/// The value of the inertial parameter `name` in the URDF's inertials; `None` for a drive
+/// term or a name that is not a standard parameter of the chain.
+fn urdf_inertial(chain: &UrdfChain, name: &str) -> Option<f64> {
     use robid_symbolic::robot::{ParameterId, ParameterKind};
     use robid_symbolic::robot::Inertial;
-    let Ok(id) = name.parse::<ParameterId>() else {
-        return 0.0;
-    };
+    let id = name.parse::<ParameterId>().ok()?;
     match id.kind {
         ParameterKind::Inertial(inertial) => {
-            let k = Inertial::ALL.iter().position(|&i| i == inertial);
-            match (chain.links.get(id.link), k) {
-                (Some(link), Some(k)) => link.inertial[k],
-                _ => 0.0,
-            }
+            let k = Inertial::ALL.iter().position(|&i| i == inertial)?;
+            Some(chain.links.get(id.link)?.inertial[k])
         }
-        ParameterKind::Drive(_) => 0.0,
+        ParameterKind::Drive(_) => None,
+    }
+}
+
+/// A URDF error about the chain's choice, told in terms of `--base` and `--tip` (the
+/// library names its `ChainSelection` fields); any other error as it is.
+fn as_flags(e: DescriptionError) -> Error {
+    match e {
+        DescriptionError::Argument {
+            argument,
+            message,
+            help,
+        } if argument.contains("ChainSelection::") => {
+            let flag = if argument.contains("ChainSelection::tip") {
+                "--tip"
+            } else {
+                "--base"
+            };
+            format!("{flag}: {message}; {help}").into()
+        }
+        other => other.into(),
     }
 }
 
@@ -133,7 +157,7 @@ pub(crate) fn load(path: &Path, flags: &DescriptionFlags) -> Result<Description,
             base: flags.base_link.clone(),
             tip: flags.tip_link.clone(),
         };
-        let chain = Robot::from_urdf_file(path, &selection)?;
+        let chain = Robot::from_urdf_file(path, &selection).map_err(as_flags)?;
         // a URDF's warnings are about the file, whatever --drive says
         for w in &chain.warnings {
             out::warn(format_args!("warning: {w}"));

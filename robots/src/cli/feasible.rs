@@ -73,7 +73,8 @@ pub(crate) struct Args {
     method: String,
     /// Prior standard parameters, e.g. CAD values (a parameter file with a `[standard]`
     /// table; parameters it does not list get the default prior, a solid along each link,
-    /// except with `anneal`, which keeps the centre of the bounds for them).
+    /// except with `anneal`, which keeps the centre of the bounds for them). Default for a
+    /// URDF: its own `<inertial>` elements.
     #[arg(long)]
     prior: Option<PathBuf>,
     /// Weight in [0, 1e6] of the pull towards the prior: a deviation of one parameter
@@ -150,7 +151,11 @@ fn check(args: &Args) -> Result<(), Error> {
         only_for(!args.equalities.is_empty(), "--equal", owner, &method)?;
         only_for(args.mass_step.is_some(), "--mass-step", owner, &method)?;
     }
-    if args.prior_weight.is_some() && args.prior.is_none() && args.method == "anneal" {
+    if args.prior_weight.is_some()
+        && args.prior.is_none()
+        && !description::is_urdf(&args.robot)
+        && args.method == "anneal"
+    {
         return Err(
             "--prior-weight: anneal has no default prior to weigh; give --prior FILE or drop \
                     --prior-weight"
@@ -273,15 +278,31 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             .map_err(|e| about(path, e))?,
         None => Bounds::wide(links),
     };
-    let prior = match &args.prior {
-        Some(path) => Some(Prior {
+    let weight = args.prior_weight.unwrap_or(1.0);
+    let prior = match (&args.prior, &description.urdf) {
+        (Some(path), _) => Some(Prior {
             standard: ParameterFile::read(path)?.prior(&problem.standard_names)?,
-            weight: args.prior_weight.unwrap_or(1.0),
+            weight,
         }),
-        None => None,
+        // a URDF's own inertials are its CAD values
+        (None, Some(_)) => {
+            out::warn(format_args!(
+                "prior: the URDF's own <inertial> elements (weight {weight}; --prior FILE \
+                 replaces them, --prior-weight 0 leaves the fit to the data)"
+            ));
+            Some(Prior {
+                standard: problem
+                    .standard_names
+                    .iter()
+                    .map(|name| description.urdf_inertial(name))
+                    .collect(),
+                weight,
+            })
+        }
+        (None, None) => None,
     };
-    // the default prior's weight: --prior-weight without --prior, else the default
-    let default_weight = match (&args.prior, args.prior_weight) {
+    // the default prior's weight: --prior-weight without a prior, else the default
+    let default_weight = match (&prior, args.prior_weight) {
         (None, Some(w)) => w,
         _ => DEFAULT_PRIOR_WEIGHT,
     };
