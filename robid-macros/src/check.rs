@@ -216,11 +216,7 @@ struct ChainSelection {
     tip: Option<LitStr>,
 }
 
-fn from_file(
-    cx: &mut Ctxt,
-    e: &Expr,
-    chain: &ChainSelection,
-) -> Option<Read> {
+fn from_file(cx: &mut Ctxt, e: &Expr, chain: &ChainSelection) -> Option<Read> {
     let lit = string(cx, e, "the description file")?;
     let relative = lit.value();
     let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
@@ -319,11 +315,7 @@ fn lookup<'a>(found: &[&'a Item], key: &str) -> Option<&'a Item> {
     found.iter().find(|i| i.key == key).copied()
 }
 
-fn inline(
-    cx: &mut Ctxt,
-    found: &[&Item],
-    name: Option<&LitStr>,
-) -> Option<Read> {
+fn inline(cx: &mut Ctxt, found: &[&Item], name: Option<&LitStr>) -> Option<Read> {
     let get = |k: &str| lookup(found, k);
     let span = Span::call_site();
     if name.is_none() && get("name").is_none() {

@@ -66,7 +66,10 @@ impl Description {
 
     /// The base parameters of `model` (this description's model) from the URDF's own
     /// `<inertial>` elements, drive terms 0; `None` for a TOML description.
-    pub(crate) fn urdf_base_parameters(&self, model: &dyn Model) -> Result<Option<Vec<f64>>, Error> {
+    pub(crate) fn urdf_base_parameters(
+        &self,
+        model: &dyn Model,
+    ) -> Result<Option<Vec<f64>>, Error> {
         let Some(chain) = &self.urdf else {
             return Ok(None);
         };
@@ -88,8 +91,8 @@ fn urdf_value(chain: &UrdfChain, name: &str) -> f64 {
 /// The value of the inertial parameter `name` in the URDF's inertials; `None` for a drive
 /// term or a name that is not a standard parameter of the chain.
 fn urdf_inertial(chain: &UrdfChain, name: &str) -> Option<f64> {
-    use robid_symbolic::robot::{ParameterId, ParameterKind};
     use robid_symbolic::robot::Inertial;
+    use robid_symbolic::robot::{ParameterId, ParameterKind};
     let id = name.parse::<ParameterId>().ok()?;
     match id.kind {
         ParameterKind::Inertial(inertial) => {

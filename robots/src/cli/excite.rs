@@ -16,8 +16,8 @@ use robid_runtime::simulate::Trajectory;
 
 use super::description::{self, DescriptionFlags};
 use super::flags::{check_samples, closed, count, only_for, positive, real};
-use robots::interpreted::Interpreted;
 use super::{Error, files, out};
+use robots::interpreted::Interpreted;
 
 /// Arguments of `robid excite`.
 #[derive(Debug, clap::Args)]

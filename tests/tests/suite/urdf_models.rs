@@ -9,7 +9,8 @@
 //! - the base-parameter counts of the literature, and the numeric rank of the standard
 //!   regressor for a URDF that no DH table describes directly;
 //! - a round trip: inertials written into the URDF (`write_inertials`) and read back give
-//!   the torques of the values written.
+//!   the torques of the values written;
+//! - `robot_model!` on a URDF: the generated code against the interpreter.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -60,7 +61,7 @@ const CASES: [Case; 5] = [
     Case {
         name: "skewed_arm",
         text: include_str!("../../reference/urdf/skewed_arm.urdf"),
-        tip: None,
+        tip: Some("payload"),
         base_parameters: None,
     },
 ];
@@ -205,7 +206,9 @@ fn urdf_base_parameter_counts_are_the_known_answers() {
                 .flat_map(|_| {
                     let [q, qd, qdd] = state(&chain.robot, &mut rng);
                     let mut y = vec![0.0; n * s];
-                    model.standard_regressor_into(&q, &qd, &qdd, &mut y).unwrap();
+                    model
+                        .standard_regressor_into(&q, &qd, &qdd, &mut y)
+                        .unwrap();
                     y
                 })
                 .collect();
@@ -232,7 +235,9 @@ fn tx40_urdf_model_equals_the_dh_description() {
     urdf.base_from_standard_into(&standard(&chain), &mut urdf_base)
         .unwrap();
     // the URDF's links about their own origins are the DH links
-    let dh_robot = by_name("tx40").robot().with_drive(robid_symbolic::Drive::NONE);
+    let dh_robot = by_name("tx40")
+        .robot()
+        .with_drive(robid_symbolic::Drive::NONE);
     let links: Vec<tests::rnea::Link> = chain
         .links
         .iter()
@@ -300,8 +305,7 @@ fn inertials_written_into_the_urdf_reproduce_the_torques() {
             .iter()
             .map(|l| l.inertial.map(|x| x * scale))
             .collect();
-        let (text, _warnings) =
-            write_inertials(case.text, case.name, &original, &written).unwrap();
+        let (text, _warnings) = write_inertials(case.text, case.name, &original, &written).unwrap();
         let selection = ChainSelection {
             base: None,
             tip: case.tip.map(str::to_owned),
@@ -319,14 +323,72 @@ fn inertials_written_into_the_urdf_reproduce_the_torques() {
                 .unwrap();
             base
         };
-        let (expected, got) = (with(&written), with(&read.links.iter().map(|l| l.inertial).collect::<Vec<_>>()));
+        let (expected, got) = (
+            with(&written),
+            with(&read.links.iter().map(|l| l.inertial).collect::<Vec<_>>()),
+        );
         for _ in 0..10 {
             let [q, qd, qdd] = state(&read.robot, &mut rng);
             let (mut a, mut b) = (vec![0.0; 7], vec![0.0; 7]);
-            model.inverse_dynamics_into(&q, &qd, &qdd, &expected, &mut a).unwrap();
-            model.inverse_dynamics_into(&q, &qd, &qdd, &got, &mut b).unwrap();
+            model
+                .inverse_dynamics_into(&q, &qd, &qdd, &expected, &mut a)
+                .unwrap();
+            model
+                .inverse_dynamics_into(&q, &qd, &qdd, &got, &mut b)
+                .unwrap();
             let e = relative(&b, &a);
             assert!(e <= TOLERANCE, "scale {scale}: {e:e}");
+        }
+    }
+}
+
+// The Panda read from its URDF at compile time, the hand and fingers attached to link 7.
+robid_macros::robot_model!(
+    file = "../data/example_robot_data/panda/panda.urdf",
+    tip = "panda_hand"
+);
+
+/// `robot_model!` on a URDF: the generated code carries the URDF's inertials
+/// (`URDF_STANDARD_PARAMETERS`, equal to the reader's) and every program agrees with the
+/// interpreter of the same chain at random states (1e-12 of the output's largest entry).
+#[test]
+fn robot_model_on_a_urdf_agrees_with_the_interpreter() {
+    use robid_runtime::model::ProgramKind;
+    let chain = chain(&CASES[0]);
+    assert_eq!(Panda::URDF_STANDARD_PARAMETERS.to_vec(), standard(&chain));
+    let interpreted = Interpreted::new(&chain.robot).unwrap();
+    let compiled: &dyn Model = &Panda;
+    assert_eq!(compiled.sizes(), interpreted.sizes());
+    let sizes = compiled.sizes();
+    let mut base = vec![0.0; sizes.base];
+    compiled
+        .base_from_standard_into(&Panda::URDF_STANDARD_PARAMETERS, &mut base)
+        .unwrap();
+    let mut rng = Rng::from_state(0x00ad_f005);
+    for _ in 0..10 {
+        let [q, qd, qdd] = state(&chain.robot, &mut rng);
+        let standard: Vec<f64> = (0..sizes.standard)
+            .map(|_| rng.uniform(-1.0, 1.0))
+            .collect();
+        for kind in ProgramKind::ALL {
+            let inputs: Vec<&[f64]> = kind
+                .info()
+                .inputs
+                .iter()
+                .map(|a| match a.name {
+                    "q" => q.as_slice(),
+                    "qd" => qd.as_slice(),
+                    "qdd" => qdd.as_slice(),
+                    "base" => base.as_slice(),
+                    _ => standard.as_slice(),
+                })
+                .collect();
+            let n = kind.info().output.size.len(sizes);
+            let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+            compiled.run(kind, &inputs, &mut a).unwrap();
+            interpreted.run(kind, &inputs, &mut b).unwrap();
+            let e = relative(&a, &b);
+            assert!(e <= TOLERANCE, "{}: {e:e}", kind.info().name);
         }
     }
 }
