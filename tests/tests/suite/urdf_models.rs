@@ -4,8 +4,9 @@
 //! - the independent RNEA on the URDF's own frames (`tests::urdf_rnea`, which equals
 //!   Pinocchio's `rnea` to 2.6e-15, `urdf_reference.rs`), for every program: inverse
 //!   dynamics, gravity, Coriolis and each column of the mass matrix;
-//! - the hand-written DH description where the URDF's frames are known to be its DH frames
-//!   (the TX40: `urdf_reference.rs` found the mapping);
+//! - robid's model of the hand-written DH description of the same robot (Panda, LWR4,
+//!   TX40), with the URDF's inertials moved into the description's frames through link
+//!   poses that are checked first;
 //! - the base-parameter counts of the literature, and the numeric rank of the standard
 //!   regressor for a URDF that no DH table describes directly;
 //! - a round trip: inertials written into the URDF (`write_inertials`) and read back give
@@ -221,60 +222,20 @@ fn urdf_base_parameter_counts_are_the_known_answers() {
     }
 }
 
-/// The TX40 URDF's link frames are tx40.toml's modified-DH frames raised by 0.320 m, with
-/// q_urdf = q_dh + (0, -pi/2, pi/2, 0, 0, 0) (`urdf_reference.rs`
-/// `tx40_urdf_frames_are_the_dh_frames`): robid's model of the URDF and robid's model of the
-/// hand-written description, given the URDF's inertials about each link frame's origin,
-/// give the same torques.
-#[test]
-fn tx40_urdf_model_equals_the_dh_description() {
-    let case = &CASES[3];
-    let chain = chain(case);
-    let urdf = Interpreted::new(&chain.robot).unwrap();
-    let mut urdf_base = vec![0.0; urdf.base_parameter_count()];
-    urdf.base_from_standard_into(&standard(&chain), &mut urdf_base)
-        .unwrap();
-    // the URDF's links about their own origins are the DH links
-    let dh_robot = by_name("tx40")
-        .robot()
-        .with_drive(robid_symbolic::Drive::NONE);
-    let links: Vec<tests::rnea::Link> = chain
-        .links
-        .iter()
-        .map(|l| {
-            // the body's parameters in the URDF link frame: robid frame j -> link frame
-            let inverse = inverse(&l.frame);
-            let rotation = [0, 1, 2].map(|a| [0, 1, 2].map(|b| inverse[a][b]));
-            let origin = [0, 1, 2].map(|a| inverse[a][3]);
-            let mut link = tests::rnea::Link {
-                mass: l.inertial[9],
-                first_moment: [l.inertial[6], l.inertial[7], l.inertial[8]],
-                ..Default::default()
-            };
-            let i = &l.inertial;
-            link.inertia = [[i[0], i[1], i[2]], [i[1], i[3], i[4]], [i[2], i[4], i[5]]];
-            tests::rnea::express_in_parent(&link, &rotation, origin)
-        })
-        .collect();
-    let dh = Interpreted::new(&dh_robot).unwrap();
-    let mut dh_base = vec![0.0; dh.base_parameter_count()];
-    dh.base_from_standard_into(&standard_from_links(&dh_robot, &links), &mut dh_base)
-        .unwrap();
-    let offsets = [0.0, -FRAC_PI_2, FRAC_PI_2, 0.0, 0.0, 0.0];
-    let mut rng = Rng::from_state(0x00ad_f003);
-    let mut worst: f64 = 0.0;
-    for _ in 0..20 {
-        let [q, qd, qdd] = state(&chain.robot, &mut rng);
-        let q_dh: Vec<f64> = q.iter().zip(offsets).map(|(q, o)| q - o).collect();
-        let (mut a, mut b) = (vec![0.0; 6], vec![0.0; 6]);
-        urdf.inverse_dynamics_into(&q, &qd, &qdd, &urdf_base, &mut a)
-            .unwrap();
-        dh.inverse_dynamics_into(&q_dh, &qd, &qdd, &dh_base, &mut b)
-            .unwrap();
-        worst = worst.max(relative(&a, &b));
+/// A 4x4 rigid transform from a rotation and a translation.
+fn transform(rotation: &[[f64; 3]; 3], position: [f64; 3]) -> [[f64; 4]; 4] {
+    let mut t = [[0.0; 4]; 4];
+    for r in 0..3 {
+        t[r][..3].copy_from_slice(&rotation[r]);
+        t[r][3] = position[r];
     }
-    eprintln!("tx40 URDF model against tx40.toml: {worst:e}");
-    assert!(worst <= TOLERANCE, "{worst:e}");
+    t[3][3] = 1.0;
+    t
+}
+
+/// The product of two 4x4 transforms.
+fn product(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
+    std::array::from_fn(|i| std::array::from_fn(|k| (0..4).map(|m| a[i][m] * b[m][k]).sum()))
 }
 
 /// The inverse of a rigid 4x4 transform.
@@ -288,6 +249,124 @@ fn inverse(t: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
     }
     out[3][3] = 1.0;
     out
+}
+
+/// robid's model of a URDF equals robid's model of the hand-written DH description of the
+/// same robot, given the URDF's inertials moved into the description's frames. `base` is
+/// where the description's base frame sits in the URDF's root frame (a translation), and
+/// q_urdf = q_dh + `offsets`. The mapping is checked first: every URDF link frame is, at
+/// random angles, the description's link frame times one constant transform (1e-12).
+fn equals_the_description(case: &Case, description: &str, base: [f64; 3], offsets: &[f64]) {
+    let chain = chain(case);
+    let tree = reference(case);
+    let joints: Vec<&str> = chain.links.iter().map(|l| l.joint.as_str()).collect();
+    let dh_robot = by_name(description)
+        .robot()
+        .with_drive(robid_symbolic::Drive::NONE);
+    let dh_chain = tests::rnea::Chain::from_robot(&dh_robot);
+    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let b = transform(&identity, base);
+    let dh_pose = |q_dh: &[f64]| -> Vec<[[f64; 4]; 4]> {
+        dh_chain
+            .poses(q_dh)
+            .iter()
+            .map(|p| product(&b, &transform(&p.rotation, p.position)))
+            .collect()
+    };
+    let to_urdf =
+        |q_dh: &[f64]| -> Vec<f64> { q_dh.iter().zip(offsets).map(|(q, o)| q + o).collect() };
+    // X_j: the URDF link frame in the description's frame j, from q_dh = 0
+    let zero = vec![0.0; offsets.len()];
+    let x: Vec<[[f64; 4]; 4]> = dh_pose(&zero)
+        .iter()
+        .zip(&chain.links)
+        .map(|(h, l)| {
+            product(
+                &inverse(h),
+                &tree.link_pose(&l.link, &joints, &to_urdf(&zero)),
+            )
+        })
+        .collect();
+    let mut rng = Rng::from_state(0x00ad_f003);
+    for _ in 0..10 {
+        let [q, _, _] = state(&dh_robot, &mut rng);
+        for ((h, x), l) in dh_pose(&q).iter().zip(&x).zip(&chain.links) {
+            let ours = product(h, x);
+            let urdf = tree.link_pose(&l.link, &joints, &to_urdf(&q));
+            let e = ours
+                .iter()
+                .flatten()
+                .zip(urdf.iter().flatten())
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(e <= 1e-12, "{}: link {} off by {e:e}", case.name, l.link);
+        }
+    }
+    // the bodies in the description's frames: robid frame j -> URDF link frame -> frame j
+    let links: Vec<tests::rnea::Link> = chain
+        .links
+        .iter()
+        .zip(&x)
+        .map(|(l, x)| {
+            let t = product(x, &inverse(&l.frame));
+            let rotation = [0, 1, 2].map(|a| [0, 1, 2].map(|b| t[a][b]));
+            let origin = [0, 1, 2].map(|a| t[a][3]);
+            let i = &l.inertial;
+            let link = tests::rnea::Link {
+                mass: i[9],
+                first_moment: [i[6], i[7], i[8]],
+                inertia: [[i[0], i[1], i[2]], [i[1], i[3], i[4]], [i[2], i[4], i[5]]],
+                ..Default::default()
+            };
+            tests::rnea::express_in_parent(&link, &rotation, origin)
+        })
+        .collect();
+    let urdf = Interpreted::new(&chain.robot).unwrap();
+    let mut urdf_base = vec![0.0; urdf.base_parameter_count()];
+    urdf.base_from_standard_into(&standard(&chain), &mut urdf_base)
+        .unwrap();
+    let dh = Interpreted::new(&dh_robot).unwrap();
+    let mut dh_base = vec![0.0; dh.base_parameter_count()];
+    dh.base_from_standard_into(&standard_from_links(&dh_robot, &links), &mut dh_base)
+        .unwrap();
+    let n = dh.dof();
+    let mut worst: f64 = 0.0;
+    for _ in 0..20 {
+        let [q, qd, qdd] = state(&dh_robot, &mut rng);
+        let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+        urdf.inverse_dynamics_into(&to_urdf(&q), &qd, &qdd, &urdf_base, &mut a)
+            .unwrap();
+        dh.inverse_dynamics_into(&q, &qd, &qdd, &dh_base, &mut b)
+            .unwrap();
+        worst = worst.max(relative(&a, &b));
+    }
+    eprintln!(
+        "{} URDF model against {description}.toml: {worst:e}",
+        case.name
+    );
+    assert!(worst <= TOLERANCE, "{}: {worst:e}", case.name);
+}
+
+/// The TX40 URDF's link frames are tx40.toml's modified-DH frames raised by 0.320 m, with
+/// q_urdf = q_dh + (0, -pi/2, pi/2, 0, 0, 0) (`urdf_reference.rs`
+/// `tx40_urdf_frames_are_the_dh_frames`).
+#[test]
+fn tx40_urdf_model_equals_the_dh_description() {
+    let offsets = [0.0, -FRAC_PI_2, FRAC_PI_2, 0.0, 0.0, 0.0];
+    equals_the_description(&CASES[3], "tx40", [0.0, 0.0, 0.320], &offsets);
+}
+
+/// The Panda URDF's root is the base frame of panda.toml (Franka's modified DH table),
+/// with the same joint angles.
+#[test]
+fn panda_urdf_model_equals_the_dh_description() {
+    equals_the_description(&CASES[0], "panda", [0.0; 3], &[0.0; 7]);
+}
+
+/// The LWR4 URDF's `lwr_base_link` sits at (-0.25, 0, 1) in its root `box`, and is the
+/// base frame of lwr4.toml (standard DH), with the same joint angles.
+#[test]
+fn lwr4_urdf_model_equals_the_dh_description() {
+    equals_the_description(&CASES[2], "lwr4", [-0.25, 0.0, 1.0], &[0.0; 7]);
 }
 
 /// Inertials written into the URDF and read back give the torques of the values written
