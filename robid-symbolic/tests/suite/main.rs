@@ -6,6 +6,7 @@ mod common;
 mod bounds_extremes;
 mod deep_expressions;
 mod description_errors;
+mod emit_c;
 mod fuzz_descriptions;
 mod ne_vs_le_quick;
 mod regroup;

@@ -12,7 +12,6 @@ mod bad_input_results;
 mod bad_input_validation;
 mod bad_input_warnings;
 mod cutoff_auto;
-mod emit_c;
 mod emitted_vs_rnea;
 mod excitation_panda;
 mod excitation_pieces;
