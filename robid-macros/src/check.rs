@@ -12,8 +12,10 @@ use std::path::PathBuf;
 use syn::spanned::Spanned;
 use syn::{Expr, ExprLit, Lit, LitStr, UnOp};
 
-const KEYS: [&str; 7] = [
+const KEYS: [&str; 9] = [
     "file",
+    "base",
+    "tip",
     "name",
     "convention",
     "gravity",
@@ -26,7 +28,13 @@ const KEYS: [&str; 7] = [
 pub(crate) struct Checked {
     pub(crate) robot: Robot,
     pub(crate) tracked: Option<PathBuf>,
+    /// For a URDF: its `<inertial>` elements as the robot's standard parameters (in robid's
+    /// frames, drive terms 0), emitted as `URDF_STANDARD_PARAMETERS`.
+    pub(crate) urdf_standard: Option<Vec<f64>>,
 }
+
+/// What a description gave: the robot, the file to track, a URDF's inertials per link.
+type Read = (Robot, Option<PathBuf>, Option<Vec<[f64; 10]>>);
 
 /// The problems found, and the robot name for the placeholder type if known.
 pub(crate) struct Failed {
@@ -127,21 +135,35 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
                     );
                 }
             }
-            from_file(&mut cx, &file.value)
+            let chain = ChainSelection {
+                base: get("base").and_then(|i| string(&mut cx, &i.value, "the base link")),
+                tip: get("tip").and_then(|i| string(&mut cx, &i.value, "the tip link")),
+            };
+            from_file(&mut cx, &file.value, &chain)
         }
-        None => inline(&mut cx, &found, name.as_ref()),
+        None => {
+            for k in ["base", "tip"] {
+                if let Some(i) = get(k) {
+                    cx.error(
+                        i.key.span(),
+                        format!("`{k}` chooses the chain of a URDF `file`; an inline description is one chain already"),
+                    );
+                }
+            }
+            inline(&mut cx, &found, name.as_ref())
+        }
     };
     let stub_name = name
         .as_ref()
         .map(|n| n.value())
-        .or_else(|| result.as_ref().map(|(r, _)| r.name().to_owned()))
+        .or_else(|| result.as_ref().map(|(r, _, _)| r.name().to_owned()))
         .or_else(|| {
             let file = get("file").and_then(|i| literal(&i.value))?;
             let path = PathBuf::from(file.value());
             Some(path.file_stem()?.to_string_lossy().into_owned())
         });
     match result {
-        Some((mut robot, tracked)) if cx.errors.is_empty() => {
+        Some((mut robot, tracked, inertials)) if cx.errors.is_empty() => {
             if let Some(n) = &name {
                 match robot.with_name(&n.value()) {
                     Ok(r) => robot = r,
@@ -157,7 +179,12 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
             if let Some(Some(d)) = drive {
                 robot = robot.with_drive(d);
             }
-            Ok(Checked { robot, tracked })
+            let urdf_standard = inertials.map(|links| standard_values(&robot, &links));
+            Ok(Checked {
+                robot,
+                tracked,
+                urdf_standard,
+            })
         }
         _ => Err(Failed {
             errors: cx.errors,
@@ -183,7 +210,13 @@ fn string(cx: &mut Ctxt, e: &Expr, what: &str) -> Option<LitStr> {
     s
 }
 
-fn from_file(cx: &mut Ctxt, e: &Expr) -> Option<(Robot, Option<PathBuf>)> {
+/// `base = "..."` and `tip = "..."` as written, for a URDF file.
+struct ChainSelection {
+    base: Option<LitStr>,
+    tip: Option<LitStr>,
+}
+
+fn from_file(cx: &mut Ctxt, e: &Expr, chain: &ChainSelection) -> Option<Read> {
     let lit = string(cx, e, "the description file")?;
     let relative = lit.value();
     let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
@@ -223,9 +256,36 @@ fn from_file(cx: &mut Ctxt, e: &Expr) -> Option<(Robot, Option<PathBuf>)> {
             return None;
         }
     };
+    let urdf = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
+    if !urdf {
+        for given in [&chain.base, &chain.tip].into_iter().flatten() {
+            cx.error(
+                given.span(),
+                format!("`{relative}` is a TOML description: `base` and `tip` choose the chain of a URDF (`.urdf`) file"),
+            );
+        }
+        if chain.base.is_some() || chain.tip.is_some() {
+            return None;
+        }
+    }
     // Every mistake of the file, each at the path (the message says where in the file).
-    match Robot::from_toml(&text, &relative) {
-        Ok(robot) => Some((robot, Some(path))),
+    let read = if urdf {
+        let selection = robid_symbolic::robot::ChainSelection {
+            base: chain.base.as_ref().map(LitStr::value),
+            tip: chain.tip.as_ref().map(LitStr::value),
+        };
+        Robot::from_urdf(&text, &relative, &selection).map(|chain| {
+            let inertials = chain.links.iter().map(|l| l.inertial).collect();
+            (chain.robot, Some(inertials))
+        })
+    } else {
+        Robot::from_toml(&text, &relative).map(|robot| (robot, None))
+    };
+    match read {
+        Ok((robot, inertials)) => Some((robot, Some(path), inertials)),
         Err(err) => {
             cx.description(&err, |_| lit.span());
             None
@@ -233,15 +293,29 @@ fn from_file(cx: &mut Ctxt, e: &Expr) -> Option<(Robot, Option<PathBuf>)> {
     }
 }
 
+/// The robot's standard parameters from per-link inertials (`XX .. M` of each link in
+/// robid's frames), its drive terms 0.
+fn standard_values(robot: &Robot, links: &[[f64; 10]]) -> Vec<f64> {
+    use robid_symbolic::robot::{Inertial, ParameterKind};
+    robot
+        .standard_parameters()
+        .iter()
+        .map(|p| match p.kind {
+            ParameterKind::Inertial(i) => Inertial::ALL
+                .iter()
+                .position(|&k| k == i)
+                .and_then(|k| Some(links.get(p.link)?[k]))
+                .unwrap_or(0.0),
+            ParameterKind::Drive(_) => 0.0,
+        })
+        .collect()
+}
+
 fn lookup<'a>(found: &[&'a Item], key: &str) -> Option<&'a Item> {
     found.iter().find(|i| i.key == key).copied()
 }
 
-fn inline(
-    cx: &mut Ctxt,
-    found: &[&Item],
-    name: Option<&LitStr>,
-) -> Option<(Robot, Option<PathBuf>)> {
+fn inline(cx: &mut Ctxt, found: &[&Item], name: Option<&LitStr>) -> Option<Read> {
     let get = |k: &str| lookup(found, k);
     let span = Span::call_site();
     if name.is_none() && get("name").is_none() {
@@ -298,7 +372,7 @@ fn inline(
             Err(err) => cx.description(&err, |_| span),
         }
     }
-    Some((robot, None))
+    Some((robot, None, None))
 }
 
 fn convention(cx: &mut Ctxt, e: &Expr) -> Option<Convention> {

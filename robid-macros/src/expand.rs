@@ -30,6 +30,18 @@ pub(crate) fn expand(input: Input) -> TokenStream {
         Ok(m) => m,
         Err(err) => return fail(&err),
     };
+    let urdf = checked.urdf_standard.map(|values| {
+        let ty = syn::Ident::new(&robid_symbolic::emit::type_name(&name), Span::call_site());
+        let n = values.len();
+        quote! {
+            impl #ty {
+                /// The URDF's own `<inertial>` elements as this model's standard parameters
+                /// (per link `XX XY XZ YY YZ ZZ MX MY MZ M` in robid's frames, drive terms
+                /// 0): pass them to `base_from_standard` for the URDF's rigid-body dynamics.
+                pub const URDF_STANDARD_PARAMETERS: [f64; #n] = [#(#values),*];
+            }
+        }
+    });
     let track = checked.tracked.map(|path| {
         let path = path.to_string_lossy().into_owned();
         quote! { const _: &str = ::core::include_str!(#path); }
@@ -37,6 +49,7 @@ pub(crate) fn expand(input: Input) -> TokenStream {
     quote! {
         #track
         #model
+        #urdf
     }
 }
 

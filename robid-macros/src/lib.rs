@@ -80,6 +80,34 @@
 //! assert_eq!(Planar2Drive::STANDARD_PARAMETER_NAMES[10..14], ["Ia1", "Fv1", "Fc1", "Fo1"]);
 //! ```
 //!
+//! # From a URDF
+//!
+//! A file ending in `.urdf` is read as a URDF (docs/urdf.md of the repository): the chain
+//! from `base` (default: the root link) to `tip` (default: where the movable joints end,
+//! when they form one path), fixed joints and everything hanging off the chain merged
+//! into the link that carries it. robid fits its own modified-DH frames to the joint axes,
+//! so the URDF's `<inertial>` elements come with the model as standard parameters in
+//! those frames, `URDF_STANDARD_PARAMETERS`:
+//!
+//! ```
+//! robid_macros::robot_model!(file = "descriptions/planar2.urdf");
+//! use robid_runtime::Model;
+//!
+//! let arm: &dyn Model = &Planar2Urdf;
+//! let mut base = vec![0.0; arm.base_parameter_count()];
+//! arm.base_from_standard_into(&Planar2Urdf::URDF_STANDARD_PARAMETERS, &mut base)?;
+//!
+//! // The file's point masses (2 kg at 0.5 m, 1 kg at 0.8 m from the shoulder), held
+//! // straight out against gravity.
+//! let mut tau = [0.0; 2];
+//! arm.inverse_dynamics_into(&[0.0; 2], &[0.0; 2], &[0.0; 2], &base, &mut tau)?;
+//! assert!((tau[0] - 9.81 * (2.0 * 0.5 + 1.0 * 0.8)).abs() < 1e-12, "{tau:?}");
+//! assert!((tau[1] - 9.81 * 1.0 * 0.3).abs() < 1e-12);
+//! # Ok::<(), robid_runtime::model::LengthError>(())
+//! ```
+//!
+//! `robot_model!(file = "panda.urdf", tip = "panda_hand")` chooses the chain of a tree.
+//!
 //! # Inline
 //!
 //! ```

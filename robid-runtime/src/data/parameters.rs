@@ -7,7 +7,10 @@
 //!
 //! What is checked, each mistake an [`crate::DataError::ParameterFile`] at `file:line:column` with the
 //! fix. When the file is read:
-//! - exactly one table, `[standard]`, `[base]` or `[known]`; any other table or key is an error;
+//! - exactly one table, `[standard]`, `[base]` or `[known]`; any other table or key is an
+//!   error, but for the `[[links]]` summary that `robid feasible` writes after its
+//!   `[standard]` table (mass, centre of mass and inertia per link, for people), which is
+//!   read over;
 //! - every value is a number, finite and within +-[`PARAMETER_LIMIT`].
 //!
 //! When its values are taken for a model ([`ParameterFile::base_parameters`],
@@ -410,6 +413,8 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
             "standard" => ParameterTable::Standard,
             "base" => ParameterTable::Base,
             "known" => ParameterTable::Known,
+            // robid feasible's per-link summary: the [standard] table holds the same values
+            "links" if matches!(value.get_ref(), DeValue::Array(_)) => continue,
             other => {
                 return Err(located(
                     at,
@@ -527,6 +532,24 @@ fn edits(a: &str, b: &str) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What `robid feasible` writes is a parameter file: its `[[links]]` summary is read
+    /// over; a `links` key that is not that array of tables is still an error.
+    #[test]
+    fn the_feasible_output_is_a_parameter_file() {
+        let text = "[standard]\nM1 = 2.5\nMX1 = 0.5\n\n[[links]]\nlink = 1\nmass = 2.5\n\
+                    com = [0.2, 0.0, 0.0]\n";
+        let file = ParameterFile::parse(text, "out.toml".as_ref()).unwrap();
+        assert_eq!(file.table(), ParameterTable::Standard);
+        assert_eq!(file.get("MX1"), Some(0.5));
+        let stray = ParameterFile::parse("links = 3\n[standard]\nM1 = 1\n", "x.toml".as_ref());
+        assert!(
+            stray
+                .unwrap_err()
+                .to_string()
+                .contains("unknown table or key `links`")
+        );
+    }
 
     #[test]
     fn places_are_lines_and_columns_of_characters() {

@@ -1,21 +1,133 @@
-//! Reading a robot description on the command line: the one place that reads the file,
-//! prints its warnings (file:line, e.g. a `drive` key that TOML gave to the last joint)
-//! and applies `--drive`, so that every subcommand sees the same robot.
+//! Reading a robot description on the command line: the one place that reads the file (a
+//! TOML description, or a URDF by its extension, docs/urdf.md), prints its warnings
+//! (file:line, e.g. a `drive` key that TOML gave to the last joint) and applies `--drive`,
+//! `--base` and `--tip`, so that every subcommand sees the same robot.
 
 use std::path::Path;
 
-use robid_symbolic::robot::DriveTerm;
-use robid_symbolic::{Drive, Robot};
+use robid_runtime::Model;
+use robid_runtime::data::ParameterFile;
+use robid_symbolic::robot::{ChainSelection, DriveTerm, UrdfChain};
+use robid_symbolic::{DescriptionError, Drive, Robot};
 
 use super::{Error, out};
 
-/// `--drive TERMS`, shared by every subcommand that reads a description.
+/// The flags of every subcommand that reads a description: `--drive`, and for a URDF the
+/// chain (`--base`, `--tip`).
 #[derive(Debug, Clone, Default, clap::Args)]
-pub(crate) struct DriveFlag {
+pub(crate) struct DescriptionFlags {
     /// Drive terms of every joint, e.g. `Ia,Fv,Fc,Fo` (replaces the description's; give the
     /// same terms to every subcommand of one job).
     #[arg(long, value_delimiter = ',')]
     pub(crate) drive: Vec<String>,
+    /// URDF only: the link the chain starts from (default: the root link).
+    #[arg(long = "base", value_name = "LINK")]
+    pub(crate) base_link: Option<String>,
+    /// URDF only: the link the chain ends at (default: where the movable joints end, when
+    /// they form one path; a tree needs it).
+    #[arg(long = "tip", value_name = "LINK")]
+    pub(crate) tip_link: Option<String>,
+}
+
+/// A description as read: the robot, and for a URDF the chain with the URDF's own
+/// inertials and frames.
+#[derive(Debug)]
+pub(crate) struct Description {
+    /// The robot, with the drive terms of `--drive`.
+    pub(crate) robot: Robot,
+    /// The chain of a URDF (`None` for a TOML description).
+    pub(crate) urdf: Option<UrdfChain>,
+}
+
+impl Description {
+    /// A URDF's value of the inertial parameter `name` (`None` for a TOML description, a
+    /// drive term or an unknown name).
+    pub(crate) fn urdf_inertial(&self, name: &str) -> Option<f64> {
+        urdf_inertial(self.urdf.as_ref()?, name)
+    }
+
+    /// The base parameters of `model` (this description's model): those of the parameter
+    /// file `parameters` (`--parameters`) when given, else the URDF's own inertials; an
+    /// error for a TOML description without a parameter file.
+    pub(crate) fn base_parameters(
+        &self,
+        parameters: Option<&Path>,
+        model: &dyn Model,
+    ) -> Result<Vec<f64>, Error> {
+        match parameters {
+            Some(path) => Ok(ParameterFile::read(path)?.base_parameters(model)?),
+            None => self.urdf_base_parameters(model)?.ok_or_else(|| {
+                "--parameters: give a parameter file with a [standard] or a [base] table (see \
+                 docs/command-line.md); only a URDF description carries its own inertials"
+                    .into()
+            }),
+        }
+    }
+
+    /// The base parameters of `model` (this description's model) from the URDF's own
+    /// `<inertial>` elements, drive terms 0; `None` for a TOML description.
+    pub(crate) fn urdf_base_parameters(
+        &self,
+        model: &dyn Model,
+    ) -> Result<Option<Vec<f64>>, Error> {
+        let Some(chain) = &self.urdf else {
+            return Ok(None);
+        };
+        let names = robid_runtime::model::standard_parameter_names(model);
+        let standard: Vec<f64> = names.iter().map(|name| urdf_value(chain, name)).collect();
+        let mut base = vec![0.0; model.base_parameter_count()];
+        model.base_from_standard_into(&standard, &mut base)?;
+        Ok(Some(base))
+    }
+}
+
+/// The value of the standard parameter `name` (`XX2`, `M1`, `Fv3`) in the URDF's
+/// inertials: the ten inertial parameters of each chain link, 0 for the drive terms (a URDF
+/// has none: `<dynamics>` is not read, docs/urdf.md).
+fn urdf_value(chain: &UrdfChain, name: &str) -> f64 {
+    urdf_inertial(chain, name).unwrap_or(0.0)
+}
+
+/// The value of the inertial parameter `name` in the URDF's inertials; `None` for a drive
+/// term or a name that is not a standard parameter of the chain.
+fn urdf_inertial(chain: &UrdfChain, name: &str) -> Option<f64> {
+    use robid_symbolic::robot::Inertial;
+    use robid_symbolic::robot::{ParameterId, ParameterKind};
+    let id = name.parse::<ParameterId>().ok()?;
+    match id.kind {
+        ParameterKind::Inertial(inertial) => {
+            let k = Inertial::ALL.iter().position(|&i| i == inertial)?;
+            Some(chain.links.get(id.link)?.inertial[k])
+        }
+        ParameterKind::Drive(_) => None,
+    }
+}
+
+/// A URDF error about the chain's choice, told in terms of `--base` and `--tip` (the
+/// library names its `ChainSelection` fields); any other error as it is.
+fn as_flags(e: DescriptionError) -> Error {
+    match e {
+        DescriptionError::Argument {
+            argument,
+            message,
+            help,
+        } if argument.contains("ChainSelection::") => {
+            let flag = if argument.contains("ChainSelection::tip") {
+                "--tip"
+            } else {
+                "--base"
+            };
+            format!("{flag}: {message}; {help}").into()
+        }
+        other => other.into(),
+    }
+}
+
+/// Whether `path` names a URDF (by its extension, `.urdf` in any case).
+pub(crate) fn is_urdf(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
 }
 
 /// The drive terms named on the command line (`Ia`, `Fv`, `Fc`, `Fo`); `None` when none.
@@ -35,15 +147,47 @@ pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {
 }
 
 /// Reads the description at `path`, warns on stderr about what it probably does not mean,
-/// and gives every joint the drive terms of `drive` when any are named.
-pub(crate) fn read(path: &Path, drive: &DriveFlag) -> Result<Robot, Error> {
-    let (mut robot, warnings) = Robot::from_file_with_warnings(path)?;
-    if let Some(d) = parse_drive(&drive.drive)? {
-        robot = robot.with_drive(d);
-    } else {
-        for w in &warnings {
+/// and gives every joint the drive terms of `--drive` when any are named.
+pub(crate) fn read(path: &Path, flags: &DescriptionFlags) -> Result<Robot, Error> {
+    Ok(load(path, flags)?.robot)
+}
+
+/// Reads the description at `path` like [`read`], keeping a URDF's chain.
+pub(crate) fn load(path: &Path, flags: &DescriptionFlags) -> Result<Description, Error> {
+    let drive = parse_drive(&flags.drive)?;
+    let (mut robot, urdf, warnings) = if is_urdf(path) {
+        let selection = ChainSelection {
+            base: flags.base_link.clone(),
+            tip: flags.tip_link.clone(),
+        };
+        let chain = Robot::from_urdf_file(path, &selection).map_err(as_flags)?;
+        // a URDF's warnings are about the file, whatever --drive says
+        for w in &chain.warnings {
             out::warn(format_args!("warning: {w}"));
         }
+        (chain.robot.clone(), Some(chain), Vec::new())
+    } else {
+        if let Some(flag) = [("--base", &flags.base_link), ("--tip", &flags.tip_link)]
+            .into_iter()
+            .find_map(|(flag, value)| value.as_ref().map(|_| flag))
+        {
+            return Err(format!(
+                "{flag} chooses the chain of a URDF, but {} is a TOML description (a DH table is \
+                 one chain already); drop {flag}, or give the robot's .urdf file",
+                path.display()
+            )
+            .into());
+        }
+        let (robot, warnings) = Robot::from_file_with_warnings(path)?;
+        (robot, None, warnings)
+    };
+    match drive {
+        Some(d) => robot = robot.with_drive(d),
+        None => {
+            for w in &warnings {
+                out::warn(format_args!("warning: {w}"));
+            }
+        }
     }
-    Ok(robot)
+    Ok(Description { robot, urdf })
 }

@@ -3,7 +3,7 @@
 //! `robot_model!` compiles and that is checked into robots/generated/ for the reference
 //! robots. C: a C99 header and source with the same functions and operation counts.
 
-use super::description::{self, DriveFlag};
+use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
 use robid_symbolic::emit::{CScalar, emit_c, emit_programs};
 use robid_symbolic::program::RobotPrograms;
@@ -30,10 +30,10 @@ pub(crate) enum Scalar {
 /// Arguments of `robid emit`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML).
+    /// Robot description file (TOML, or URDF by its extension).
     robot: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// Language of the generated code.
     #[arg(long, value_enum, default_value = "rust")]
     lang: Lang,
@@ -61,7 +61,7 @@ fn rust(args: &Args) -> Result<(), Error> {
     if let Some(path) = &args.output {
         files::refuse(&[&args.robot], &[path])?;
     }
-    let robot = description::read(&args.robot, &args.drive)?;
+    let robot = description::read(&args.robot, &args.description)?;
     let code = emit_programs(&RobotPrograms::derive(&robot)?)?;
     match &args.output {
         Some(path) => files::write(path, &code)?,
@@ -87,7 +87,7 @@ fn c(args: &Args) -> Result<(), Error> {
     }
     let header = source.with_extension("h");
     files::refuse(&[&args.robot], &[source, &header])?;
-    let robot = description::read(&args.robot, &args.drive)?;
+    let robot = description::read(&args.robot, &args.description)?;
     let scalar = match args.scalar {
         Some(Scalar::Float) => CScalar::Float,
         Some(Scalar::Double) | None => CScalar::Double,

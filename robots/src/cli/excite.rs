@@ -14,10 +14,10 @@ use robid_runtime::data::ParameterFile;
 use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, assess};
 use robid_runtime::simulate::Trajectory;
 
-use super::description::DriveFlag;
+use super::description::{self, DescriptionFlags};
 use super::flags::{check_samples, closed, count, only_for, positive, real};
-use super::simulate::load_model;
 use super::{Error, files, out};
+use robots::interpreted::Interpreted;
 
 /// Arguments of `robid excite`.
 #[derive(Debug, clap::Args)]
@@ -48,7 +48,11 @@ pub(crate) struct Args {
     #[arg(long, value_delimiter = ',', value_parser = real(closed(1e-9, 1e6, "N m")))]
     sigma: Vec<f64>,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
+    /// Acceleration limits `a1,..,an` (or one for every joint), each in (0, 1e6]: replace
+    /// the description's (a URDF states none).
+    #[arg(long, value_delimiter = ',', value_parser = real(positive(1e6, "rad/s^2")))]
+    acceleration_limits: Vec<f64>,
     /// Intervals between optimised points, 2 to 200 (`--method points` only; default 12).
     #[arg(long, value_parser = count(2, 200))]
     intervals: Option<usize>,
@@ -72,7 +76,8 @@ pub(crate) struct Args {
     /// (`points`; default 120), 1 to 1e6.
     #[arg(long, value_parser = count(1, 1_000_000))]
     evaluations: Option<usize>,
-    /// Reference parameters (`[standard]` or `[base]`): enables the torque limits.
+    /// Reference parameters (`[standard]` or `[base]`): enables the torque limits (default
+    /// for a URDF: its own `<inertial>` elements).
     #[arg(long)]
     parameters: Option<PathBuf>,
     /// Milella's piece-wise identification (`--method points` only): choose the widths of
@@ -163,7 +168,23 @@ const DESIGN_FLAGS: &[(&str, &str)] = &[
 
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
-    let model = load_model(&args.robot, &args.drive)?;
+    let description = description::load(&args.robot, &args.description)?;
+    let model = Interpreted::new(&description.robot)?;
+    let n = model.dof();
+    let accelerations = match args.acceleration_limits.as_slice() {
+        [] => vec![None; n],
+        [a] => vec![Some(*a); n],
+        many if many.len() == n => many.iter().copied().map(Some).collect(),
+        many => {
+            return Err(format!(
+                "--acceleration-limits has {} values but {} has {n} joints; give one value or \
+                 a1,..,a{n}",
+                many.len(),
+                args.robot.display()
+            )
+            .into());
+        }
+    };
     let limits = model
         .programs()
         .robot
@@ -172,26 +193,39 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .enumerate()
         .map(|(j, joint)| {
             let l = &joint.limits;
-            let missing = |what: &str| {
-                format!(
+            let missing = |what: &str| match (&description.urdf, what) {
+                (Some(_), "acceleration") => format!(
+                    "{}: joint {} has no acceleration limit (a URDF states none); give \
+                     --acceleration-limits a1,..,an (rad/s^2 or m/s^2)",
+                    args.robot.display(),
+                    j + 1
+                ),
+                (Some(_), _) => format!(
+                    "{}: joint {} has no {what} limit; add `lower`/`upper` and `velocity` to \
+                     its <limit> element",
+                    args.robot.display(),
+                    j + 1
+                ),
+                (None, _) => format!(
                     "{}: joint {} has no {what} limit; add `limits = {{ position = [lo, hi], velocity = .., acceleration = .. }}`",
                     args.robot.display(),
                     j + 1
-                )
+                ),
             };
             Ok(JointLimits {
                 position: l.position.ok_or_else(|| missing("position"))?,
                 velocity: l.velocity.ok_or_else(|| missing("velocity"))?,
-                acceleration: l.acceleration.ok_or_else(|| missing("acceleration"))?,
+                acceleration: accelerations[j]
+                    .or(l.acceleration)
+                    .ok_or_else(|| missing("acceleration"))?,
                 torque: l.torque,
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
     let reference = match &args.parameters {
         Some(p) => Some(ParameterFile::read(p)?.base_parameters(&model)?),
-        None => None,
+        None => description.urdf_base_parameters(&model)?,
     };
-    let n = limits.len();
     let start_pose = if args.start.is_empty() {
         limits
             .iter()

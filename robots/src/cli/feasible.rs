@@ -3,7 +3,9 @@
 //! [--restarts N] [--two-step] [--equal EQ]... [--mass-step DELTA] -o OUT`: physically
 //! consistent link parameters that reproduce identified base parameters
 //! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
-//! OUT as TOML, or as URDF `<inertial>` elements when OUT ends in `.urdf` or `.xml`.
+//! OUT as TOML, or as URDF when OUT ends in `.urdf` or `.xml`: for a URDF description, the
+//! user's own file with its chain links' `<inertial>` elements replaced; for a DH
+//! description, a complete URDF in the DH frames.
 //! Identified parameters with an empty expression that are not base parameters of the
 //! description (the extra columns of an identification config) are kept as free terms.
 //!
@@ -19,10 +21,11 @@ use robid_runtime::feasible::{
     SmoothOptions, Solution, UrdfJoint, solve_anneal, solve_interior, solve_sdp, solve_smooth,
     solve_two_step, to_toml, to_urdf,
 };
+use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
 use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
-use super::description::{self, DriveFlag};
+use super::description::{self, DescriptionFlags};
 use super::flags::{closed, count, only_for, positive, real, short};
 use super::{Error, files, out};
 
@@ -54,7 +57,7 @@ pub(crate) struct Args {
     /// The robot description (TOML).
     robot: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// The identification result (JSON of `robid identify`: parameters with name, value, std).
     #[arg(long)]
     identified: PathBuf,
@@ -70,7 +73,8 @@ pub(crate) struct Args {
     method: String,
     /// Prior standard parameters, e.g. CAD values (a parameter file with a `[standard]`
     /// table; parameters it does not list get the default prior, a solid along each link,
-    /// except with `anneal`, which keeps the centre of the bounds for them).
+    /// except with `anneal`, which keeps the centre of the bounds for them). Default for a
+    /// URDF: its own `<inertial>` elements.
     #[arg(long)]
     prior: Option<PathBuf>,
     /// Weight in [0, 1e6] of the pull towards the prior: a deviation of one parameter
@@ -147,7 +151,11 @@ fn check(args: &Args) -> Result<(), Error> {
         only_for(!args.equalities.is_empty(), "--equal", owner, &method)?;
         only_for(args.mass_step.is_some(), "--mass-step", owner, &method)?;
     }
-    if args.prior_weight.is_some() && args.prior.is_none() && args.method == "anneal" {
+    if args.prior_weight.is_some()
+        && args.prior.is_none()
+        && !description::is_urdf(&args.robot)
+        && args.method == "anneal"
+    {
         return Err(
             "--prior-weight: anneal has no default prior to weigh; give --prior FILE or drop \
                     --prior-weight"
@@ -236,12 +244,13 @@ fn check_solution(solution: &Solution) -> Result<(), Error> {
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
-    let robot = description::read(&args.robot, &args.drive)?;
+    let description = description::load(&args.robot, &args.description)?;
+    let robot = &description.robot;
     let json = read(&args.identified)?;
     let identified: Identified = serde_json::from_str(&json)
         .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;
     check_identified(&identified, &args.identified)?;
-    let problem = problem(&robot)?;
+    let problem = problem(robot)?;
     // Extra columns of the identification config (no expression, not a base parameter,
     // e.g. a coupled wrist's `Iam6`) are kept as free terms.
     let extra: Vec<String> = identified
@@ -269,15 +278,31 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             .map_err(|e| about(path, e))?,
         None => Bounds::wide(links),
     };
-    let prior = match &args.prior {
-        Some(path) => Some(Prior {
+    let weight = args.prior_weight.unwrap_or(1.0);
+    let prior = match (&args.prior, &description.urdf) {
+        (Some(path), _) => Some(Prior {
             standard: ParameterFile::read(path)?.prior(&problem.standard_names)?,
-            weight: args.prior_weight.unwrap_or(1.0),
+            weight,
         }),
-        None => None,
+        // a URDF's own inertials are its CAD values
+        (None, Some(_)) => {
+            out::warn(format_args!(
+                "prior: the URDF's own <inertial> elements (weight {weight}; --prior FILE \
+                 replaces them, --prior-weight 0 leaves the fit to the data)"
+            ));
+            Some(Prior {
+                standard: problem
+                    .standard_names
+                    .iter()
+                    .map(|name| description.urdf_inertial(name))
+                    .collect(),
+                weight,
+            })
+        }
+        (None, None) => None,
     };
-    // the default prior's weight: --prior-weight without --prior, else the default
-    let default_weight = match (&args.prior, args.prior_weight) {
+    // the default prior's weight: --prior-weight without a prior, else the default
+    let default_weight = match (&prior, args.prior_weight) {
         (None, Some(w)) => w,
         _ => DEFAULT_PRIOR_WEIGHT,
     };
@@ -287,7 +312,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         ..SmoothOptions::default()
     };
     let solution = match args.method.as_str() {
-        "anneal" => anneal(args, &robot, &problem, &bounds, prior, extra.is_empty())?,
+        "anneal" => anneal(args, robot, &problem, &bounds, prior, extra.is_empty())?,
         "sdp" => solve_sdp(
             &problem,
             &bounds,
@@ -304,12 +329,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         args.output.extension().and_then(|e| e.to_str()),
         Some("urdf" | "xml")
     );
-    let text = if urdf {
+    let text = if let (true, Some(chain)) = (urdf, &description.urdf) {
+        urdf_written_back(&args.robot, chain, &solution)?
+    } else if urdf {
         let tool = robot.tool_placement().map_err(|e| e.to_string())?;
         to_urdf(
             &solution,
             robot.name(),
-            &urdf_joints(&robot)?,
+            &urdf_joints(robot)?,
             tool.as_ref(),
         )
     } else {
@@ -424,6 +451,30 @@ fn problem_of(e: robid_runtime::Error) -> String {
         robid_runtime::Error::Setting { problem, .. } => problem,
         other => other.to_string(),
     }
+}
+
+/// The user's URDF with each chain link's `<inertial>` replaced by the solution's, in the
+/// URDF's own link frames, every other byte as it was (docs/urdf.md#inertials-both-ways).
+fn urdf_written_back(path: &Path, chain: &UrdfChain, solution: &Solution) -> Result<String, Error> {
+    let text = read(path)?;
+    let mut inertials = vec![[0.0; 10]; chain.links.len()];
+    for (name, value) in solution.names.iter().zip(&solution.standard) {
+        if let Ok(ParameterId {
+            link,
+            kind: ParameterKind::Inertial(inertial),
+        }) = name.parse::<ParameterId>()
+            && let Some(k) = Inertial::ALL.iter().position(|&i| i == inertial)
+            && let Some(row) = inertials.get_mut(link)
+        {
+            row[k] = *value;
+        }
+    }
+    let (written, warnings) =
+        write_inertials(&text, &path.display().to_string(), chain, &inertials)?;
+    for w in &warnings {
+        out::warn(format_args!("warning: {w}"));
+    }
+    Ok(written)
 }
 
 /// The description's joints for a URDF: placements and limits.

@@ -18,16 +18,16 @@ use robid_runtime::drive::{
 };
 use robid_runtime::pipeline::{JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 
-use super::description::DriveFlag;
+use super::description::DescriptionFlags;
 use super::{Error, files, out};
 
 /// Arguments of `robid friction`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML).
+    /// Robot description file (TOML, or URDF by its extension).
     robot: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// Identification config with `motor_position` columns and `[drive.rotor]` (the rotor
     /// inertias B); `joint_torque` and `temperature` columns when the log has them.
     #[arg(long)]
@@ -61,7 +61,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             )
             .into());
     }
-    let chosen = super::identify::robot_model(&args.robot, &args.drive)?;
+    let chosen = super::identify::robot_model(&args.robot, &args.description)?;
     let model = chosen.model.as_ref();
     let base = match &args.parameters {
         Some(p) => Some(ParameterFile::read(p)?.base_parameters(model)?),

@@ -21,17 +21,17 @@ use robid_symbolic::program::BaseParameter;
 use robots::Reference;
 use robots::interpreted::{Chosen, model_for};
 
-use super::description::{self, DriveFlag};
+use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
 
 /// Arguments of `robid identify`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML), with the drive terms to identify.
+    /// Robot description file (TOML, or URDF by its extension), with the drive terms to identify.
     #[arg(required_unless_present = "example_config")]
     robot: Option<PathBuf>,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// Data files, one per `[[source]]` of the config (CSV, optionally gzip); default: the
     /// `file` of each `[[source]]` (relative to the config file).
     #[arg(long, num_args = 1..)]
@@ -88,7 +88,7 @@ pub(crate) struct Args {
 fn run_static(args: &Args, robot: &Path, samples: &Path) -> Result<(), Error> {
     let outputs: Vec<&Path> = args.json.iter().map(PathBuf::as_path).collect();
     files::refuse(&[robot, samples], &outputs)?;
-    let chosen = robot_model(robot, &args.drive)?;
+    let chosen = robot_model(robot, &args.description)?;
     let model = chosen.model.as_ref();
     // the estimators' default relative singular-value threshold (`estimation.rank_tolerance`)
     let fit = identify_static(model, samples, STATIC_RANK_TOLERANCE)?;
@@ -173,12 +173,17 @@ enum MethodArg {
 /// Reads a description and chooses its model: the compiled model of a reference robot
 /// (names and expressions from its generated code, no symbolic derivation), else the
 /// derived one.
-pub(crate) fn robot_model(path: &Path, drive: &DriveFlag) -> Result<Chosen, Error> {
-    let robot = description::read(path, drive)?;
-    if let Some(chosen) = compiled_reference(&robot) {
+pub(crate) fn robot_model(path: &Path, flags: &DescriptionFlags) -> Result<Chosen, Error> {
+    model_of(&description::read(path, flags)?)
+}
+
+/// The model of a robot already read: the compiled reference model when `robot` is a
+/// reference robot, else the derived one.
+pub(crate) fn model_of(robot: &Robot) -> Result<Chosen, Error> {
+    if let Some(chosen) = compiled_reference(robot) {
         return Ok(chosen);
     }
-    Ok(model_for(&robot)?)
+    Ok(model_for(robot)?)
 }
 
 /// The compiled model when `robot` is a reference robot, with the parameter names and
@@ -307,7 +312,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     outputs.extend(args.plot.as_deref());
     outputs.extend(args.report.as_deref());
     files::refuse(&inputs, &outputs)?;
-    let chosen = robot_model(robot, &args.drive)?;
+    let chosen = robot_model(robot, &args.description)?;
     let model = chosen.model.as_ref();
     if let Some(m) = args.method {
         config.estimation.method = match m {

@@ -9,17 +9,17 @@ use std::path::PathBuf;
 use robid_runtime::data::load;
 use robid_runtime::inspect::inspect;
 
-use super::description::{self, DriveFlag};
+use super::description::{self, DescriptionFlags};
 use super::identify::{config_for, data_files};
 use super::{Error, out};
 
 /// Arguments of `robid inspect`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML): the joint count and the torque limits.
+    /// Robot description file (TOML, or URDF by its extension): the joint count and the torque limits.
     robot: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// Data files, one per `[[source]]` of the config (default: the config's `file`s).
     #[arg(long, num_args = 1..)]
     data: Vec<PathBuf>,
@@ -34,7 +34,7 @@ pub(crate) struct Args {
 
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    let robot = description::read(&args.robot, &args.drive)?;
+    let robot = description::read(&args.robot, &args.description)?;
     let config = config_for(args.config.as_deref(), &args.data)?;
     let files = data_files(&args.data, args.config.as_deref(), &config)?;
     let data = load(&config, &files, robot.dof())?;

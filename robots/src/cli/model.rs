@@ -3,7 +3,7 @@
 //! operation counts of the derived programs; with `--schedule P`, the parallel schedule of
 //! one program (`schedule.rs`).
 
-use super::description::{self, DriveFlag};
+use super::description::{self, DescriptionFlags};
 use super::{Error, flags, out, schedule};
 use robid_runtime::model::ProgramKind;
 use robid_symbolic::program::Operations;
@@ -16,10 +16,10 @@ use std::path::PathBuf;
 /// Arguments of `robid model`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML).
+    /// Robot description file (TOML, or URDF by its extension).
     robot: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -113,7 +113,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
         (None, None) => None,
     };
-    let robot = description::read(&args.robot, &args.drive)?;
+    let robot = description::read(&args.robot, &args.description)?;
     out::print(&render(&robot, args.json, scheduled)?)?;
     Ok(())
 }

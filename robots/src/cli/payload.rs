@@ -12,16 +12,16 @@ use robid_runtime::data::ParameterFile;
 use robid_runtime::model::Inertial;
 use robid_runtime::payload::{JointSample, Payload, PayloadOptions, from_torques};
 
-use super::description::DriveFlag;
+use super::description::DescriptionFlags;
 use super::{Error, files, out};
 
 /// Arguments of `robid payload`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML).
+    /// Robot description file (TOML, or URDF by its extension).
     robot: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// The robot's parameters without the payload: a `[standard]` or a `[base]` table.
     #[arg(long)]
     parameters: PathBuf,
@@ -42,7 +42,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     if let Some(output) = &args.output {
         files::refuse(&[&args.robot, &args.parameters, &args.data], &[output])?;
     }
-    let chosen = super::identify::robot_model(&args.robot, &args.drive)?;
+    let chosen = super::identify::robot_model(&args.robot, &args.description)?;
     let model = chosen.model.as_ref();
     let n = model.dof();
     let base = ParameterFile::read(&args.parameters)?.base_parameters(model)?;

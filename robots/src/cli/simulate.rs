@@ -12,11 +12,10 @@
 use std::path::{Path, PathBuf};
 
 use robid_runtime::Model;
-use robid_runtime::data::ParameterFile;
 use robid_runtime::simulate::{Flexibility, Noise, Record, Simulation, Trajectory};
 use robots::interpreted::Interpreted;
 
-use super::description::{self, DriveFlag};
+use super::description::{self, DescriptionFlags};
 use super::flags::{self, closed, positive, real};
 use super::{Error, files, out};
 
@@ -30,14 +29,15 @@ pub(crate) struct Args {
     /// Robot description (TOML).
     robot: PathBuf,
     /// Parameter file with a `[standard]` (missing names are 0) or a `[base]` table
-    /// (values within +-1e6, see README "Parameter files").
+    /// (values within +-1e6, see README "Parameter files"); default for a URDF: its own
+    /// `<inertial>` elements.
     #[arg(long)]
-    parameters: PathBuf,
+    parameters: Option<PathBuf>,
     /// Reference trajectory (CSV with header t,q1..,qd1..,qdd1..; states within +-1e6).
     #[arg(long)]
     trajectory: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// Torque noise standard deviation in [0, 1e6] N m: one value, or one per joint
     /// separated by commas.
     #[arg(long, value_delimiter = ',', default_value = "0",
@@ -96,10 +96,12 @@ enum Columns {
 
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    let mut inputs = vec![args.robot.as_path(), &args.parameters, &args.trajectory];
+    let mut inputs = vec![args.robot.as_path(), &args.trajectory];
+    inputs.extend(args.parameters.as_deref());
     inputs.extend(args.flexible.as_deref());
     files::refuse(&inputs, &[&args.output])?;
-    let model = load_model(&args.robot, &args.drive)?;
+    let description = description::load(&args.robot, &args.description)?;
+    let model = Interpreted::new(&description.robot)?;
     let n = model.dof();
     if args.torque_noise.len() != 1 && args.torque_noise.len() != n {
         return Err(format!(
@@ -110,7 +112,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .into());
     }
     log_settings(args, n)?;
-    let base = ParameterFile::read(&args.parameters)?.base_parameters(&model)?;
+    let base = description.base_parameters(args.parameters.as_deref(), &model)?;
     super::states::read(&args.trajectory, &Trajectory::header(n))?;
     let reference = Trajectory::read_csv(&args.trajectory, n)?;
     check_bandwidth(args.bandwidth, &reference, &args.trajectory)?;
@@ -343,12 +345,6 @@ const SIMULATION_FLAGS: &[(&str, &str)] = &[
     ("noise.position", "--position-noise"),
     ("noise.quantization", "--quantization"),
 ];
-
-/// Reads and derives a description, with the drive terms of `drive` when given, as an
-/// interpreted `Model` (the one adapter, `robots::interpreted`).
-pub(crate) fn load_model(path: &Path, drive: &DriveFlag) -> Result<Interpreted, Error> {
-    Ok(Interpreted::new(&description::read(path, drive)?)?)
-}
 
 #[cfg(test)]
 mod tests {

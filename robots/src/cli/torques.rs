@@ -9,22 +9,22 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use robid_runtime::Model;
-use robid_runtime::data::{ParameterFile, Table};
+use robid_runtime::data::Table;
 
-use super::description::DriveFlag;
+use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
 
 /// Arguments of `robid torques`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML).
+    /// Robot description file (TOML, or URDF by its extension).
     robot: PathBuf,
     #[command(flatten)]
-    drive: DriveFlag,
+    description: DescriptionFlags,
     /// Parameter file with a `[standard]` or a `[base]` table (values within +-1e6, see
-    /// README "Parameter files").
+    /// README "Parameter files"); default for a URDF: its own `<inertial>` elements.
     #[arg(long)]
-    parameters: PathBuf,
+    parameters: Option<PathBuf>,
     /// States, header q1..qn,qd1..qdn,qdd1..qddn.
     #[arg(long)]
     states: PathBuf,
@@ -36,12 +36,15 @@ pub(crate) struct Args {
 /// Computes and writes the torques.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     if let Some(output) = &args.output {
-        files::refuse(&[&args.robot, &args.parameters, &args.states], &[output])?;
+        let mut inputs = vec![args.robot.as_path(), &args.states];
+        inputs.extend(args.parameters.as_deref());
+        files::refuse(&inputs, &[output])?;
     }
-    let chosen = super::identify::robot_model(&args.robot, &args.drive)?;
+    let description = description::load(&args.robot, &args.description)?;
+    let chosen = super::identify::model_of(&description.robot)?;
     let model = chosen.model.as_ref();
     let n = model.dof();
-    let base = ParameterFile::read(&args.parameters)?.base_parameters(model)?;
+    let base = description.base_parameters(args.parameters.as_deref(), model)?;
     let names: Vec<String> = ["q", "qd", "qdd"]
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))

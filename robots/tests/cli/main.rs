@@ -18,3 +18,4 @@ mod sequence;
 mod static_samples;
 mod stdout;
 mod subcommands;
+mod urdf;

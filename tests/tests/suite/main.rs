@@ -40,6 +40,7 @@ mod reference_files;
 mod rnea_agrees;
 mod simulation_model;
 mod standard_vs_modified;
+mod urdf_models;
 mod urdf_reference;
 mod wrench_link;
 mod zomaya_link_by_link;

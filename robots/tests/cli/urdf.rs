@@ -1,0 +1,240 @@
+//! A URDF as the description of any subcommand (docs/command-line.md, "Descriptions,
+//! `--drive`, `--base` and `--tip`"): the chain flags, the URDF's own inertials where no
+//! parameters are given, and `robid feasible` writing the user's URDF back.
+
+use std::path::{Path, PathBuf};
+
+use robid_runtime::Model;
+use robid_symbolic::Robot;
+use robid_symbolic::robot::{ChainSelection, Inertial, ParameterKind, UrdfChain};
+use robots::interpreted::Interpreted;
+
+use crate::common::{asset, fails_with, folder, robid, stderr, stdout, write};
+
+/// The UR5 of example-robot-data.
+const UR5: &str = "../data/example_robot_data/ur5/ur5_robot.urdf";
+/// The Panda of example-robot-data (a tree: the hand's two fingers).
+const PANDA: &str = "../data/example_robot_data/panda/panda.urdf";
+
+/// The chain robid reads from `path` (relative to the crate folder).
+fn chain(path: &str, tip: Option<&str>) -> UrdfChain {
+    let selection = ChainSelection {
+        base: None,
+        tip: tip.map(str::to_owned),
+    };
+    Robot::from_urdf_file(Path::new(&asset(path)), &selection).unwrap()
+}
+
+/// The base parameters of the chain's model from its own inertials.
+fn urdf_base(chain: &UrdfChain, model: &dyn Model) -> Vec<f64> {
+    let standard: Vec<f64> = chain
+        .robot
+        .standard_parameters()
+        .iter()
+        .map(|p| match p.kind {
+            ParameterKind::Inertial(i) => {
+                chain.links[p.link].inertial[Inertial::ALL.iter().position(|&k| k == i).unwrap()]
+            }
+            ParameterKind::Drive(_) => 0.0,
+        })
+        .collect();
+    let mut base = vec![0.0; model.base_parameter_count()];
+    model.base_from_standard_into(&standard, &mut base).unwrap();
+    base
+}
+
+/// Six-joint states `q1..q6,qd1..qd6,qdd1..qdd6`, varied row by row.
+fn states(dir: &Path) -> PathBuf {
+    let mut text =
+        String::from("q1,q2,q3,q4,q5,q6,qd1,qd2,qd3,qd4,qd5,qd6,qdd1,qdd2,qdd3,qdd4,qdd5,qdd6\n");
+    for k in 0..5 {
+        let x = 0.3 * k as f64;
+        let row: Vec<String> = (0..18)
+            .map(|i| format!("{}", (x + 0.17 * i as f64).sin()))
+            .collect();
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    write(dir, "states.csv", &text)
+}
+
+/// The torques of a `robid torques` output, row by row.
+fn torques(csv: &str) -> Vec<Vec<f64>> {
+    csv.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
+/// Without `--parameters`, `robid torques` on a URDF is the rigid-body inverse dynamics of
+/// the URDF as written: equal to the reader's chain with its inertials through the
+/// interpreter (to the last printed digit: the output is Rust's shortest exact form).
+#[test]
+fn urdf_torques_without_parameters_use_its_own_inertials() {
+    let dir = folder();
+    let states = states(dir.path());
+    let o = robid(&["torques", UR5, "--states", states.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let printed = torques(&stdout(&o));
+    let chain = chain(UR5, None);
+    let model = Interpreted::new(&chain.robot).unwrap();
+    let base = urdf_base(&chain, &model);
+    let text = std::fs::read_to_string(&states).unwrap();
+    for (line, row) in text.lines().skip(1).zip(&printed) {
+        let x: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+        let mut tau = vec![0.0; 6];
+        model
+            .inverse_dynamics_into(&x[..6], &x[6..12], &x[12..], &base, &mut tau)
+            .unwrap();
+        assert_eq!(&tau, row);
+    }
+    // the URDF's <dynamics> is named once, as not part of the model
+    assert_eq!(stderr(&o).matches("<dynamics").count(), 1, "{}", stderr(&o));
+}
+
+/// `--tip` chooses the chain of a tree, and the errors speak of the flags.
+#[test]
+fn urdf_chain_flags() {
+    let o = robid(&["model", PANDA]);
+    fails_with(
+        &o,
+        &[
+            "--tip:",
+            "panda_hand_tcp",
+            "panda_leftfinger",
+            "panda_rightfinger",
+        ],
+    );
+    let o = robid(&["model", PANDA, "--tip", "panda_hand"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("(7 DOF, modified DH)"),
+        "{}",
+        stdout(&o)
+    );
+    let o = robid(&["model", PANDA, "--tip", "panda_hnd"]);
+    fails_with(&o, &["--tip:", "no link `panda_hnd`", "panda_hand"]);
+    let o = robid(&["model", "descriptions/ur5e.toml", "--base", "base_link"]);
+    fails_with(
+        &o,
+        &["--base chooses the chain of a URDF", "TOML description"],
+    );
+    // a TOML description still needs parameters
+    let dir = folder();
+    let states = states(dir.path());
+    let o = robid(&[
+        "torques",
+        "descriptions/ur5e.toml",
+        "--states",
+        states.to_str().unwrap(),
+    ]);
+    fails_with(&o, &["--parameters", "only a URDF description carries"]);
+}
+
+/// Identified base parameters of the UR5 whose links are the URDF's scaled by 1.2 (a
+/// heavier robot of the same shape), each with a deviation of 1e-6.
+fn identified(dir: &Path) -> PathBuf {
+    let chain = chain(UR5, None);
+    let model = Interpreted::new(&chain.robot).unwrap();
+    let base = urdf_base(&chain, &model);
+    let entries: Vec<String> = base
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let name = model.base_parameter_name(i).unwrap();
+            format!(
+                "{{\"name\": \"{name}\", \"value\": {:e}, \"std\": 1e-6}}",
+                1.2 * v
+            )
+        })
+        .collect();
+    write(
+        dir,
+        "identified.json",
+        &format!("{{\"parameters\": [{}]}}", entries.join(", ")),
+    )
+}
+
+/// `robid feasible` on a URDF writes the user's own file back with only the chain links'
+/// `<inertial>` elements changed, and reading it gives the torques of the same solution
+/// written as a parameter file (1e-12: the URDF holds the values in another form, centre
+/// of mass and inertia about it in the link frame).
+#[test]
+fn feasible_writes_the_users_urdf_back() {
+    let dir = folder();
+    let identified = identified(dir.path());
+    let solve = |output: &str| {
+        let path = dir.path().join(output);
+        let o = robid(&[
+            "feasible",
+            UR5,
+            "--identified",
+            identified.to_str().unwrap(),
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("prior: the URDF's own"),
+            "{}",
+            stderr(&o)
+        );
+        path
+    };
+    let (urdf, toml) = (solve("ur5.urdf"), solve("ur5.toml"));
+    // every line outside the <inertial> elements as it was
+    let outside = |text: &str| -> Vec<String> {
+        let mut inside = false;
+        let mut kept = Vec::new();
+        for line in text.lines() {
+            let t = line.trim();
+            if t.starts_with("<inertial") {
+                inside = true;
+            }
+            if !inside {
+                kept.push(line.to_owned());
+            }
+            if t.starts_with("</inertial") {
+                inside = false;
+            }
+        }
+        kept
+    };
+    let original = std::fs::read_to_string(asset(UR5)).unwrap();
+    let written = std::fs::read_to_string(&urdf).unwrap();
+    assert_ne!(original, written);
+    assert_eq!(outside(&original), outside(&written));
+    let states = states(dir.path());
+    let from_urdf = robid(&[
+        "torques",
+        urdf.to_str().unwrap(),
+        "--states",
+        states.to_str().unwrap(),
+    ]);
+    let from_toml = robid(&[
+        "torques",
+        UR5,
+        "--parameters",
+        toml.to_str().unwrap(),
+        "--states",
+        states.to_str().unwrap(),
+    ]);
+    assert!(from_urdf.status.success(), "{}", stderr(&from_urdf));
+    assert!(from_toml.status.success(), "{}", stderr(&from_toml));
+    let (a, b) = (torques(&stdout(&from_urdf)), torques(&stdout(&from_toml)));
+    for (x, y) in a.iter().zip(&b) {
+        let scale = y.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        for (p, q) in x.iter().zip(y) {
+            assert!((p - q).abs() <= 1e-12 * scale, "{p} vs {q}");
+        }
+    }
+    // the written inertials reproduce the identified robot: 1.2 times the URDF's torques
+    let scaled = robid(&["torques", UR5, "--states", states.to_str().unwrap()]);
+    let c = torques(&stdout(&scaled));
+    for (x, y) in a.iter().zip(&c) {
+        let scale = y.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        for (p, q) in x.iter().zip(y) {
+            assert!((p - 1.2 * q).abs() <= 1e-4 * scale, "{p} vs 1.2 x {q}");
+        }
+    }
+}
