@@ -333,12 +333,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         urdf_written_back(&args.robot, chain, &solution)?
     } else if urdf {
         let tool = robot.tool_placement().map_err(|e| e.to_string())?;
-        to_urdf(
-            &solution,
-            robot.name(),
-            &urdf_joints(robot)?,
-            tool.as_ref(),
-        )
+        to_urdf(&solution, robot.name(), &urdf_joints(robot)?, tool.as_ref())
     } else {
         to_toml(&solution, robot.name())
     };
