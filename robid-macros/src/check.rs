@@ -287,7 +287,20 @@ fn from_file(cx: &mut Ctxt, e: &Expr, chain: &ChainSelection) -> Option<Read> {
     match read {
         Ok((robot, inertials)) => Some((robot, Some(path), inertials)),
         Err(err) => {
-            cx.description(&err, |_| lit.span());
+            // an error about the chain's choice at `base = ..` or `tip = ..`, the rest at the path
+            cx.description(&err, |e| match e {
+                DescriptionError::Argument { argument, .. } => {
+                    let given = if argument.contains("ChainSelection::tip") {
+                        &chain.tip
+                    } else if argument.contains("ChainSelection::base") {
+                        &chain.base
+                    } else {
+                        &None
+                    };
+                    given.as_ref().map_or_else(|| lit.span(), LitStr::span)
+                }
+                _ => lit.span(),
+            });
             None
         }
     }
