@@ -138,10 +138,19 @@ impl Geometry {
     /// A number; fails when it is NaN or infinite.
     pub fn number(value: f64) -> Result<Geometry, GeometryError> {
         let exact = Num::from_f64(value).ok_or(GeometryError::NotFinite(value))?;
-        let text = exact.to_string();
+        let exact_text = exact.to_string();
         // The text form reads back (it is how the value has always been
         // built); the number itself is the fallback.
-        let ast = Ast::parse(&text).unwrap_or(Ast::Number(exact));
+        let ast = Ast::parse(&exact_text).unwrap_or(Ast::Number(exact));
+        // A long fraction that is the float's own decimal (a length fitted from a URDF,
+        // 9217659541255431/25000000000000000) is shown as that decimal, 0.36870638165021724
+        // (the exact number stays the value).
+        let decimal = format!("{value:?}");
+        let text = if exact_text.contains('/') && decimal.len() < exact_text.len() {
+            decimal
+        } else {
+            exact_text
+        };
         Ok(Geometry::Number(Number {
             value: exact,
             text,
@@ -280,6 +289,15 @@ fn not_finite_name(name: &str) -> bool {
 mod tests {
     use super::{Geometry, GeometryError};
     use crate::expr::Arena;
+
+    /// A float that is only a long fraction is written as its decimal, which reads back as
+    /// the same exact number; short fractions and decimals keep their form.
+    #[test]
+    fn long_fractions_are_written_as_decimals() {
+        let x = Geometry::number(0.36870638165021724).unwrap();
+        assert_eq!(x.as_str(), "0.36870638165021724");
+        assert_eq!(Geometry::number(0.425).unwrap().as_str(), "0.425");
+    }
 
     #[test]
     fn invalid_values_are_errors_not_panics() {

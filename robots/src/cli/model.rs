@@ -11,6 +11,7 @@ use robid_symbolic::program::RobotPrograms;
 use robid_symbolic::program::schedule::MAX_PROCESSORS;
 use robid_symbolic::{Derivation, Robot};
 use serde::Serialize;
+use std::fmt::Write as _;
 use std::path::PathBuf;
 
 /// Arguments of `robid model`.
@@ -113,8 +114,33 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
         (None, None) => None,
     };
-    let robot = description::read(&args.robot, &args.description)?;
-    out::print(&render(&robot, args.json, scheduled)?)?;
+    let description = description::load(&args.robot, &args.description)?;
+    let mut text = render(&description.robot, args.json, scheduled)?;
+    if let (false, Some(chain)) = (args.json, &description.urdf) {
+        // which URDF joint each row is, and what its link carries
+        let mut names = String::from(
+            "\nfrom the URDF (robid's frames fitted to its joint axes, docs/urdf.md):\n",
+        );
+        for (j, link) in chain.links.iter().enumerate() {
+            let attached: Vec<&str> = link.attached.iter().map(|a| a.name.as_str()).collect();
+            let _ = writeln!(
+                names,
+                "  {:<2} joint `{}` moves `{}`{}",
+                j + 1,
+                link.joint,
+                link.link,
+                if attached.is_empty() {
+                    String::new()
+                } else {
+                    format!(", with {} attached", attached.join(", "))
+                }
+            );
+        }
+        if let Some(at) = text.find("\nstandard parameters") {
+            text.insert_str(at, &names);
+        }
+    }
+    out::print(&text)?;
     Ok(())
 }
 
@@ -201,7 +227,6 @@ fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Repo
 }
 
 fn text(robot: &Robot, r: &Report) -> String {
-    use std::fmt::Write;
     let mut out = String::new();
     let _ = writeln!(out, "robot {} ({} DOF, {} DH)", r.name, r.dof, r.convention);
     // gamma and b (docs/conventions.md#khalil-kleinfinger-general-frames) only when a

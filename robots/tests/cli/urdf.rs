@@ -112,6 +112,13 @@ fn urdf_chain_flags() {
         "{}",
         stdout(&o)
     );
+    // which URDF joint each row is, and what the last link carries
+    assert!(
+        stdout(&o)
+            .contains("7  joint `panda_joint7` moves `panda_link7`, with panda_link8, panda_hand"),
+        "{}",
+        stdout(&o)
+    );
     let o = robid(&["model", PANDA, "--tip", "panda_hnd"]);
     fails_with(&o, &["--tip:", "no link `panda_hnd`", "panda_hand"]);
     let o = robid(&["model", "descriptions/ur5e.toml", "--base", "base_link"]);
