@@ -31,14 +31,10 @@ fn dataset(n: usize, rate: f64, noise: f64) -> Dataset {
 }
 
 fn dataset_with_noise(n: usize, rate: f64, noise: [f64; DOF]) -> Dataset {
-    let dir = std::env::temp_dir().join(format!(
-        "robid-pipe-{}-{n}-{}",
-        std::process::id(),
-        noise
-            .iter()
-            .map(|v| v.to_bits())
-            .fold(0u64, |h, b| h.rotate_left(7) ^ b)
-    ));
+    // one folder per call: tests running at once may ask for the same data set
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("robid-pipe-{}-{call}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("run.csv");
     std::fs::write(&file, csv_with_noise(n, rate, noise)).unwrap();
