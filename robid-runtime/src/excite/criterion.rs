@@ -192,14 +192,16 @@ pub(crate) fn symmetric_eigenvalues(mut m: DMatrix<f64>) -> Option<Vec<f64>> {
             }
             // one implicit QL sweep on rows l..=m with the Wilkinson shift
             let mut g = (d[l + 1] - d[l]) / (2.0 * e[l]);
-            let mut r = g.hypot(1.0);
+            // the matrix is scaled to magnitudes of at most 1: no hypot needed against
+            // overflow (and an infinite g only zeroes the shift's correction)
+            let mut r = (g * g + 1.0).sqrt();
             g = d[m] - d[l] + e[l] / (g + r.copysign(g));
             let (mut s, mut c, mut p) = (1.0, 1.0, 0.0);
             let mut deflated = false;
             for i in (l..m).rev() {
                 let f = s * e[i];
                 let b = c * e[i];
-                r = f.hypot(g);
+                r = (f * f + g * g).sqrt();
                 e[i + 1] = r;
                 if r == 0.0 {
                     d[i + 1] -= p;
