@@ -291,7 +291,14 @@ mod tests {
     #[test]
     fn eigenvalues_match_the_full_decomposition() {
         let mut rng = crate::rng::Rng::new(7);
-        for (size, spread) in [(1, 1.0f64), (2, 1.0), (5, 10.0), (12, 1e2), (48, 1e3), (60, 1e4)] {
+        for (size, spread) in [
+            (1, 1.0f64),
+            (2, 1.0),
+            (5, 10.0),
+            (12, 1e2),
+            (48, 1e3),
+            (60, 1e4),
+        ] {
             let rows = 3 * size;
             let w: Vec<f64> = (0..rows * size)
                 .map(|i| rng.normal() * spread.powf((i % size) as f64 / size as f64))
@@ -300,7 +307,11 @@ mod tests {
             add_rows(&mut g, &w, rows);
             let full = g.clone().lower_triangle() + g.clone().lower_triangle().transpose()
                 - DMatrix::from_diagonal(&g.diagonal());
-            let mut want: Vec<f64> = SymmetricEigen::new(full).eigenvalues.iter().copied().collect();
+            let mut want: Vec<f64> = SymmetricEigen::new(full)
+                .eigenvalues
+                .iter()
+                .copied()
+                .collect();
             let mut got = symmetric_eigenvalues(g).unwrap();
             want.sort_by(f64::total_cmp);
             got.sort_by(f64::total_cmp);
@@ -309,7 +320,10 @@ mod tests {
                 assert!((a - b).abs() <= 1e-12 * top, "{size}: {got:?} {want:?}");
             }
         }
-        assert_eq!(symmetric_eigenvalues(DMatrix::zeros(3, 3)), Some(vec![0.0; 3]));
+        assert_eq!(
+            symmetric_eigenvalues(DMatrix::zeros(3, 3)),
+            Some(vec![0.0; 3])
+        );
         let d = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(vec![2.0, 5.0, 2.0, 1.0]));
         let mut e = symmetric_eigenvalues(d).unwrap();
         e.sort_by(f64::total_cmp);

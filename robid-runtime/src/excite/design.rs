@@ -210,9 +210,8 @@ impl FourierDesign {
         check_reference(model, torque)?;
         let decoder = self.decoder(limits);
         let basis = DesignBasis::new(self.harmonics, self.points);
-        let cost = |x: &[f64], scratch: &mut Scratch<'_>| {
-            self.cost(model, &decoder.decode(x), scratch)
-        };
+        let cost =
+            |x: &[f64], scratch: &mut Scratch<'_>| self.cost(model, &decoder.decode(x), scratch);
         let m = decoder.per_joint();
         let progress = Progress::new(
             self.progress,
