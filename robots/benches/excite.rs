@@ -42,7 +42,10 @@ fn excite(c: &mut Criterion) {
     fourier.state(1.3, &mut q, &mut qd, &mut qdd);
     let mut y = vec![0.0; n * p];
     let program = &programs[ProgramKind::BaseRegressor];
-    assert!(programs.geometry.is_empty(), "the UR5e has no geometric symbol");
+    assert!(
+        programs.geometry.is_empty(),
+        "the UR5e has no geometric symbol"
+    );
     let mut temps = Vec::new();
     c.bench_function("excite base_regressor Program::run (old)", |b| {
         b.iter(|| {
@@ -67,8 +70,8 @@ fn excite(c: &mut Criterion) {
         b.iter(|| {
             let full = g.clone().lower_triangle() + g.clone().lower_triangle().transpose()
                 - nalgebra::DMatrix::from_diagonal(&g.diagonal());
-            let e = nalgebra::SymmetricEigen::try_new(black_box(full), f64::EPSILON, 10_000)
-                .unwrap();
+            let e =
+                nalgebra::SymmetricEigen::try_new(black_box(full), f64::EPSILON, 10_000).unwrap();
             e.eigenvalues.max() / e.eigenvalues.min()
         })
     });

@@ -427,7 +427,9 @@ fn compact_programs_equal_the_interpreter_to_the_bit() {
             }
         }
         if !geometry.is_empty() {
-            let e = p[ProgramKind::MassMatrix].compact(&geometry[1..]).unwrap_err();
+            let e = p[ProgramKind::MassMatrix]
+                .compact(&geometry[1..])
+                .unwrap_err();
             assert_eq!(e.found, geometry.len() - 1);
         }
     }
