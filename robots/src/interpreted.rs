@@ -14,9 +14,9 @@
 use std::cell::RefCell;
 
 use robid_runtime::Model;
-use robid_runtime::model::{LengthError, ProgramKind, check_arguments};
+use robid_runtime::model::{LengthError, PROGRAMS, ProgramKind, check_arguments};
 use robid_symbolic::Robot;
-use robid_symbolic::program::{BaseParameter, DeriveError, RobotPrograms};
+use robid_symbolic::program::{BaseParameter, Compact, DeriveError, RobotPrograms};
 
 use crate::models::Reference;
 
@@ -48,9 +48,11 @@ pub enum ModelError {
 #[derive(Debug, Clone)]
 pub struct Interpreted {
     programs: RobotPrograms,
-    geometry: Vec<f64>,
     /// The base parameters' names, written once (`Model` lends them as `&str`).
     base_names: Vec<String>,
+    /// Every program lowered for repeated runs with the geometry bound, in the order of
+    /// [`robid_runtime::model::PROGRAMS`] (docs/performance.md#excitation).
+    compact: Vec<Compact>,
 }
 
 thread_local! {
@@ -70,7 +72,7 @@ impl Interpreted {
 
     /// Wraps programs that are already derived.
     pub fn from_programs(programs: RobotPrograms) -> Result<Self, ModelError> {
-        let geometry = programs
+        let geometry: Vec<f64> = programs
             .geometry
             .iter()
             .map(|(s, v)| {
@@ -81,10 +83,22 @@ impl Interpreted {
             })
             .collect::<Result<_, _>>()?;
         let base_names = programs.base.iter().map(|b| b.name.to_string()).collect();
+        let compact = PROGRAMS
+            .iter()
+            .map(|info| {
+                // the geometry is the last input group of every program that reads it
+                let p = &programs[info.kind];
+                let reads_geometry = p.inputs.len() > info.inputs.len();
+                let bound: &[f64] = if reads_geometry { &geometry } else { &[] };
+                p.compact(bound).unwrap_or_else(|e| {
+                    unreachable!("the derivation appends the geometry group last: {e}")
+                })
+            })
+            .collect();
         Ok(Self {
             programs,
-            geometry,
             base_names,
+            compact,
         })
     }
 
@@ -122,14 +136,10 @@ impl Model for Interpreted {
         output: &mut [f64],
     ) -> Result<(), LengthError> {
         check_arguments(program, self.sizes(), inputs, output)?;
-        let p = &self.programs[program];
-        let mut all: Vec<&[f64]> = inputs.to_vec();
-        if !self.geometry.is_empty() {
-            all.push(&self.geometry);
-        }
+        let p = &self.compact[program as usize];
         let expected = output.len();
         TEMPS
-            .with(|t| p.run(&all, &mut [output], &mut t.borrow_mut()))
+            .with(|t| p.run(inputs, &mut [output], &mut t.borrow_mut()))
             .map_err(|_| LengthError {
                 argument: program.info().output.name,
                 expected,

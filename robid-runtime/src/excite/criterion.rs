@@ -11,7 +11,8 @@
 //! excitation and identification", IEEE Trans. Robotics and Automation 13(5), 1997 (condition
 //! number and D-optimality of the regressor).
 
-use nalgebra::{DMatrix, SymmetricEigen};
+use nalgebra::DMatrix;
+use nalgebra::linalg::SymmetricTridiagonal;
 
 use crate::simulate::Trajectory;
 use crate::{LengthError, Model};
@@ -54,6 +55,12 @@ impl Information {
     pub fn with_weights(mut self, weights: &[f64]) -> Self {
         self.weights = Some(weights.to_vec());
         self
+    }
+
+    /// Empties the accumulator (keeping its buffers and weights).
+    pub fn reset(&mut self) {
+        self.gram.fill(0.0);
+        self.samples = 0;
     }
 
     /// Adds the rows Y_b(q, qd, qdd).
@@ -127,25 +134,98 @@ pub(crate) fn add_rows(gram: &mut DMatrix<f64>, y: &[f64], rows: usize) {
     }
 }
 
-/// Iteration cap of the symmetric eigenvalue solver of the criteria.
+/// Iteration cap of the symmetric eigenvalue solver of the criteria (QL sweeps in all).
 const EIGEN_ITERATIONS: usize = 10_000;
 
 /// Singular values of W from the lower triangle of W'W, largest first; all zero when W'W
 /// holds a non-finite value or the eigenvalue iteration does not converge within its cap
 /// (the criteria are then infinite: such a design is never chosen).
+///
+/// Only the eigenvalues are computed (Householder tridiagonalisation, then the implicit QL
+/// iteration with Wilkinson shifts, no eigenvectors): the criteria need nothing else, and
+/// the eigenvectors cost most of a full decomposition (docs/performance.md#excitation).
 pub(crate) fn singular_values(gram: &DMatrix<f64>) -> Vec<f64> {
     let n = gram.ncols();
     if gram.iter().any(|v| !v.is_finite()) {
         return vec![0.0; n];
     }
-    let g = gram.clone().lower_triangle() + gram.clone().lower_triangle().transpose()
-        - DMatrix::from_diagonal(&gram.diagonal());
-    let Some(eig) = SymmetricEigen::try_new(g, f64::EPSILON, EIGEN_ITERATIONS) else {
+    let Some(mut s) = symmetric_eigenvalues(gram.clone()) else {
         return vec![0.0; n];
     };
-    let mut s: Vec<f64> = eig.eigenvalues.iter().map(|&l| l.max(0.0).sqrt()).collect();
+    for l in &mut s {
+        *l = l.max(0.0).sqrt();
+    }
     s.sort_by(|a, b| b.total_cmp(a));
     s
+}
+
+/// The eigenvalues of a symmetric matrix given by its lower triangle (unordered); `None`
+/// when the QL iteration needs more than [`EIGEN_ITERATIONS`] sweeps. The matrix is scaled
+/// by its largest magnitude first, as nalgebra's `SymmetricEigen` does.
+pub(crate) fn symmetric_eigenvalues(mut m: DMatrix<f64>) -> Option<Vec<f64>> {
+    let n = m.ncols();
+    let amax = m.amax();
+    if n == 0 || amax == 0.0 {
+        return Some(vec![0.0; n]);
+    }
+    m.unscale_mut(amax);
+    let (d, e) = SymmetricTridiagonal::new(m).unpack_tridiagonal();
+    let mut d: Vec<f64> = d.iter().copied().collect();
+    let mut e: Vec<f64> = e.iter().copied().chain([0.0]).collect();
+    let mut sweeps = 0;
+    for l in 0..n {
+        loop {
+            let mut m = l;
+            while m + 1 < n {
+                let dd = d[m].abs() + d[m + 1].abs();
+                if e[m].abs() <= f64::EPSILON * dd {
+                    break;
+                }
+                m += 1;
+            }
+            if m == l {
+                break;
+            }
+            sweeps += 1;
+            if sweeps > EIGEN_ITERATIONS {
+                return None;
+            }
+            // one implicit QL sweep on rows l..=m with the Wilkinson shift
+            let mut g = (d[l + 1] - d[l]) / (2.0 * e[l]);
+            // the matrix is scaled to magnitudes of at most 1: no hypot needed against
+            // overflow (and an infinite g only zeroes the shift's correction)
+            let mut r = (g * g + 1.0).sqrt();
+            g = d[m] - d[l] + e[l] / (g + r.copysign(g));
+            let (mut s, mut c, mut p) = (1.0, 1.0, 0.0);
+            let mut deflated = false;
+            for i in (l..m).rev() {
+                let f = s * e[i];
+                let b = c * e[i];
+                r = (f * f + g * g).sqrt();
+                e[i + 1] = r;
+                if r == 0.0 {
+                    d[i + 1] -= p;
+                    e[m] = 0.0;
+                    deflated = true;
+                    break;
+                }
+                s = f / r;
+                c = g / r;
+                g = d[i + 1] - p;
+                r = (d[i] - g) * s + 2.0 * c * b;
+                p = s * r;
+                d[i + 1] = g + p;
+                g = c * r - b;
+            }
+            if !deflated {
+                d[l] -= p;
+                e[l] = g;
+                e[m] = 0.0;
+            }
+        }
+    }
+    d.iter_mut().for_each(|x| *x *= amax);
+    Some(d)
 }
 
 /// sigma_max / sigma_min, infinite when sigma_min is zero.
@@ -174,6 +254,7 @@ pub(crate) fn cost(gram: &DMatrix<f64>, samples: usize, criterion: Criterion) ->
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::SymmetricEigen;
 
     #[test]
     fn condition_of_a_known_matrix() {
@@ -202,5 +283,50 @@ mod tests {
             cost(&DMatrix::zeros(2, 2), 1, Criterion::Condition),
             f64::INFINITY
         );
+    }
+
+    /// The eigenvalue-only solver against nalgebra's full decomposition, on random
+    /// information matrices W'W of growing condition (columns scaled by up to 1e4) and on
+    /// edge cases (zero, 1 x 1, diagonal, repeated eigenvalues).
+    #[test]
+    fn eigenvalues_match_the_full_decomposition() {
+        let mut rng = crate::rng::Rng::new(7);
+        for (size, spread) in [
+            (1, 1.0f64),
+            (2, 1.0),
+            (5, 10.0),
+            (12, 1e2),
+            (48, 1e3),
+            (60, 1e4),
+        ] {
+            let rows = 3 * size;
+            let w: Vec<f64> = (0..rows * size)
+                .map(|i| rng.normal() * spread.powf((i % size) as f64 / size as f64))
+                .collect();
+            let mut g = DMatrix::zeros(size, size);
+            add_rows(&mut g, &w, rows);
+            let full = g.clone().lower_triangle() + g.clone().lower_triangle().transpose()
+                - DMatrix::from_diagonal(&g.diagonal());
+            let mut want: Vec<f64> = SymmetricEigen::new(full)
+                .eigenvalues
+                .iter()
+                .copied()
+                .collect();
+            let mut got = symmetric_eigenvalues(g).unwrap();
+            want.sort_by(f64::total_cmp);
+            got.sort_by(f64::total_cmp);
+            let top = want[size - 1];
+            for (a, b) in got.iter().zip(&want) {
+                assert!((a - b).abs() <= 1e-12 * top, "{size}: {got:?} {want:?}");
+            }
+        }
+        assert_eq!(
+            symmetric_eigenvalues(DMatrix::zeros(3, 3)),
+            Some(vec![0.0; 3])
+        );
+        let d = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(vec![2.0, 5.0, 2.0, 1.0]));
+        let mut e = symmetric_eigenvalues(d).unwrap();
+        e.sort_by(f64::total_cmp);
+        assert_eq!(e, vec![1.0, 2.0, 2.0, 5.0]);
     }
 }

@@ -209,7 +209,9 @@ impl FourierDesign {
         check_start(self.start.as_deref(), limits)?;
         check_reference(model, torque)?;
         let decoder = self.decoder(limits);
-        let cost = |x: &[f64]| self.cost(model, limits, torque, &decoder.decode(x));
+        let basis = DesignBasis::new(self.harmonics, self.points);
+        let cost =
+            |x: &[f64], scratch: &mut Scratch<'_>| self.cost(model, &decoder.decode(x), scratch);
         let m = decoder.per_joint();
         let progress = Progress::new(
             self.progress,
@@ -227,9 +229,10 @@ impl FourierDesign {
             .into_par_iter()
             .map(|r| {
                 let x0 = self.start_point(&mut root.fork(r as u64), n * m, m);
+                let mut scratch = self.scratch(model, limits, torque, &basis);
                 nm.minimize(&x0, |x| {
                     progress.tick();
-                    cost(x)
+                    cost(x, &mut scratch)
                 })
             })
             .collect::<Result<_>>()?;
@@ -237,9 +240,10 @@ impl FourierDesign {
             .iter()
             .min_by(|a, b| a.value.total_cmp(&b.value))
             .ok_or_else(|| Error::setting("FourierDesign", "restarts", "no start was run"))?;
+        let mut scratch = self.scratch(model, limits, torque, &basis);
         let polished = nm.minimize(&best.x, |x| {
             progress.tick();
-            cost(x)
+            cost(x, &mut scratch)
         })?;
         progress.finish();
         let evaluations = runs.iter().map(|r| r.evaluations).sum::<usize>() + polished.evaluations;
@@ -298,38 +302,121 @@ impl FourierDesign {
         }
     }
 
-    /// The criterion on the design grid, plus a torque-limit penalty.
+    /// The criterion on the design grid, plus a torque-limit penalty, with the work
+    /// buffers of `scratch` (one per search: nothing is allocated per evaluation).
     fn cost<M: Model + ?Sized>(
         &self,
         model: &M,
-        limits: &[JointLimits],
-        torque: Option<&[f64]>,
         fourier: &Fourier,
+        scratch: &mut Scratch<'_>,
     ) -> f64 {
+        let Scratch {
+            basis,
+            info,
+            penalty,
+            q,
+            qd,
+            qdd,
+        } = scratch;
+        info.reset();
+        if let Some(p) = penalty.as_mut() {
+            p.reset();
+        }
+        let w = fourier.omega();
+        for k in 0..self.points {
+            basis.state(fourier, w, k, q, qd, qdd);
+            // The sizes were checked on entry: a model that still refuses a state makes
+            // this candidate infinitely bad rather than silently wrong.
+            if info.add(model, q, qd, qdd).is_err() {
+                return f64::INFINITY;
+            }
+            if let Some(p) = penalty.as_mut()
+                && p.add(model, q, qd, qdd).is_err()
+            {
+                return f64::INFINITY;
+            }
+        }
+        info.cost(self.criterion) + penalty.as_ref().map_or(0.0, |p| p.value())
+    }
+
+    /// The work buffers of one search.
+    fn scratch<'a, M: Model + ?Sized>(
+        &self,
+        model: &M,
+        limits: &'a [JointLimits],
+        torque: Option<&'a [f64]>,
+        basis: &DesignBasis,
+    ) -> Scratch<'a> {
         let n = model.dof();
         let mut info = Information::new(model);
         if let Some(w) = &self.weights {
             info = info.with_weights(w);
         }
-        let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let mut penalty = torque.map(|base| TorquePenalty::new(limits, self.safety, base));
-        let period = fourier.period();
-        for k in 0..self.points {
-            let t = period * k as f64 / self.points as f64;
-            fourier.state(t, &mut q, &mut qd, &mut qdd);
-            // The sizes were checked on entry: a model that still refuses a state makes
-            // this candidate infinitely bad rather than silently wrong.
-            if info.add(model, &q, &qd, &qdd).is_err() {
-                return f64::INFINITY;
-            }
-            if let Some(penalty) = &mut penalty
-                && penalty.add(model, &q, &qd, &qdd).is_err()
-            {
-                return f64::INFINITY;
-            }
+        Scratch {
+            basis: basis.clone(),
+            info,
+            penalty: torque.map(|base| TorquePenalty::new(limits, self.safety, base)),
+            q: vec![0.0; n],
+            qd: vec![0.0; n],
+            qdd: vec![0.0; n],
         }
-        info.cost(self.criterion) + penalty.map_or(0.0, |p| p.value())
     }
+}
+
+/// sin and cos of every harmonic at every point of the design grid, t_k = k T / K: the
+/// phases l w t_k = 2 pi l k / K are constants of the design, so the series is evaluated
+/// there without a sine or cosine (docs/performance.md#excitation).
+#[derive(Debug, Clone)]
+struct DesignBasis {
+    /// (sin, cos) of harmonic l (0-based index) at point k, at `l * points + k`.
+    table: Vec<(f64, f64)>,
+    points: usize,
+}
+
+impl DesignBasis {
+    fn new(harmonics: usize, points: usize) -> Self {
+        let table = (1..=harmonics)
+            .flat_map(|l| {
+                (0..points).map(move |k| {
+                    (std::f64::consts::TAU * ((l * k) % points) as f64 / points as f64).sin_cos()
+                })
+            })
+            .collect();
+        Self { table, points }
+    }
+
+    /// (q, qd, qdd) of every joint at design point k ([`JointSeries::eval`] at t_k).
+    fn state(
+        &self,
+        fourier: &Fourier,
+        w: f64,
+        k: usize,
+        q: &mut [f64],
+        qd: &mut [f64],
+        qdd: &mut [f64],
+    ) {
+        for (j, s) in fourier.joints.iter().enumerate() {
+            let mut out = [s.q0, 0.0, 0.0];
+            for (i, (a, b)) in s.a.iter().zip(&s.b).enumerate() {
+                let wl = w * (i + 1) as f64;
+                let (sn, c) = self.table[i * self.points + k];
+                out[0] += a / wl * sn - b / wl * (c - 1.0);
+                out[1] += a * c + b * sn;
+                out[2] += wl * (-a * sn + b * c);
+            }
+            [q[j], qd[j], qdd[j]] = out;
+        }
+    }
+}
+
+/// The buffers one search reuses for every evaluation of the criterion.
+struct Scratch<'a> {
+    basis: DesignBasis,
+    info: Information,
+    penalty: Option<TorquePenalty<'a>>,
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
 }
 
 /// Checks that a fixed start position lies strictly inside the position limits.

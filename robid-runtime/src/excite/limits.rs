@@ -101,6 +101,13 @@ impl<'a> TorquePenalty<'a> {
         }
     }
 
+    /// Forgets every state added (keeping the buffers).
+    pub(crate) fn reset(&mut self) {
+        self.worst.fill(0.0);
+        self.total.fill(0.0);
+        self.states = 0;
+    }
+
     /// Adds one state.
     pub(crate) fn add<M: Model + ?Sized>(
         &mut self,

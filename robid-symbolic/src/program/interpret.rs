@@ -2,7 +2,7 @@
 //! code is tested against and what the CLI uses for descriptions that are not
 //! compiled in.
 
-use super::{Instr, Program, Value};
+use super::{Group, Instr, Program, Value};
 use robid_runtime::Real;
 
 /// Inputs or outputs whose lengths do not match the program's groups.
@@ -103,6 +103,180 @@ fn check<'a>(
         });
     }
     for ((name, e), f) in expected.into_iter().zip(found) {
+        if e != f {
+            return Err(LengthError {
+                what,
+                group: name.clone(),
+                found: f,
+                expected: e,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The operation of one [`Compact`] instruction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Op {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Neg,
+    Sin,
+    Cos,
+    Sign,
+    Sqrt,
+}
+
+/// A program lowered for repeated interpretation: every operand is an index into one
+/// register file `[inputs | bound inputs | constants | temporaries]`, so the loop reads
+/// operands without matching on their kind, and a run allocates nothing once its register
+/// buffer has grown. It computes the same operations in the same order as
+/// [`Program::run`], so the results are the same to the bit (docs/performance.md#excitation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Compact {
+    /// Operation, first and second operand register (the first again for one operand).
+    ops: Vec<(Op, u32, u32)>,
+    /// The input groups still passed to [`Compact::run`]: name and length.
+    inputs: Vec<(String, usize)>,
+    /// The bound input values, then the constants.
+    fixed: Vec<f64>,
+    /// Output groups: name and the register of each element.
+    outputs: Vec<(String, Vec<u32>)>,
+}
+
+impl Program {
+    /// The program lowered for repeated interpretation; the trailing input groups holding
+    /// `bound.len()` elements take the values `bound` (e.g. geometric symbols) and are no
+    /// longer passed to [`Compact::run`]. The error names the input groups when `bound`
+    /// does not cover whole trailing groups.
+    pub fn compact(&self, bound: &[f64]) -> Result<Compact, LengthError> {
+        let mut free = self.inputs.len();
+        let mut covered = 0;
+        while covered < bound.len() && free > 0 {
+            free -= 1;
+            covered += self.inputs[free].len();
+        }
+        if covered != bound.len() {
+            return Err(LengthError {
+                what: "input",
+                group: "bound trailing groups".into(),
+                found: bound.len(),
+                expected: covered,
+            });
+        }
+        let input_count: usize = self.inputs.iter().map(Group::len).sum();
+        let reg = |v: Value| -> u32 {
+            match v {
+                Value::Input(i) => i,
+                Value::Const(c) => (input_count + c as usize) as u32,
+                Value::Temp(t) => (input_count + self.constants.len()) as u32 + t,
+            }
+        };
+        let ops = self
+            .instrs
+            .iter()
+            .map(|instr| match *instr {
+                Instr::Add(a, b) => (Op::Add, reg(a), reg(b)),
+                Instr::Sub(a, b) => (Op::Sub, reg(a), reg(b)),
+                Instr::Mul(a, b) => (Op::Mul, reg(a), reg(b)),
+                Instr::Div(a, b) => (Op::Div, reg(a), reg(b)),
+                Instr::Neg(a) => (Op::Neg, reg(a), reg(a)),
+                Instr::Sin(a) => (Op::Sin, reg(a), reg(a)),
+                Instr::Cos(a) => (Op::Cos, reg(a), reg(a)),
+                Instr::Sign(a) => (Op::Sign, reg(a), reg(a)),
+                Instr::Sqrt(a) => (Op::Sqrt, reg(a), reg(a)),
+            })
+            .collect();
+        Ok(Compact {
+            ops,
+            inputs: self.inputs[..free]
+                .iter()
+                .map(|g| (g.name.clone(), g.len()))
+                .collect(),
+            fixed: bound.iter().chain(&self.constants).copied().collect(),
+            outputs: self
+                .outputs
+                .iter()
+                .map(|o| {
+                    (
+                        o.group.name.clone(),
+                        o.values.iter().map(|&v| reg(v)).collect(),
+                    )
+                })
+                .collect(),
+        })
+    }
+}
+
+impl Compact {
+    /// Runs the program: one slice per input group that is not bound, one per output
+    /// group. `registers` is scratch space reused between calls.
+    pub fn run(
+        &self,
+        inputs: &[&[f64]],
+        outputs: &mut [&mut [f64]],
+        registers: &mut Vec<f64>,
+    ) -> Result<(), LengthError> {
+        check_groups(
+            "input",
+            self.inputs.iter().map(|(name, len)| (name, *len)),
+            inputs.iter().map(|s| s.len()),
+        )?;
+        check_groups(
+            "output",
+            self.outputs.iter().map(|(name, regs)| (name, regs.len())),
+            outputs.iter().map(|s| s.len()),
+        )?;
+        let r = registers;
+        r.clear();
+        r.reserve(
+            self.fixed.len() + self.ops.len() + inputs.iter().map(|s| s.len()).sum::<usize>(),
+        );
+        for s in inputs {
+            r.extend_from_slice(s);
+        }
+        r.extend_from_slice(&self.fixed);
+        for &(op, a, b) in &self.ops {
+            let (x, y) = (r[a as usize], r[b as usize]);
+            r.push(match op {
+                Op::Add => x + y,
+                Op::Sub => x - y,
+                Op::Mul => x * y,
+                Op::Div => x / y,
+                Op::Neg => -x,
+                Op::Sin => x.sin(),
+                Op::Cos => x.cos(),
+                Op::Sign => x.sign(),
+                Op::Sqrt => x.sqrt(),
+            });
+        }
+        for ((_, regs), out) in self.outputs.iter().zip(outputs.iter_mut()) {
+            for (slot, &i) in out.iter_mut().zip(regs) {
+                *slot = r[i as usize];
+            }
+        }
+        Ok(())
+    }
+}
+
+/// [`check`] without allocating: group counts, then each group's length.
+fn check_groups<'a>(
+    what: &'static str,
+    expected: impl Iterator<Item = (&'a String, usize)> + Clone,
+    found: impl ExactSizeIterator<Item = usize>,
+) -> Result<(), LengthError> {
+    let count = expected.clone().count();
+    if found.len() != count {
+        return Err(LengthError {
+            what,
+            group: format!("{what} groups"),
+            found: found.len(),
+            expected: count,
+        });
+    }
+    for ((name, e), f) in expected.zip(found) {
         if e != f {
             return Err(LengthError {
                 what,

@@ -28,7 +28,7 @@ mod text;
 mod tests;
 
 pub use count::Operations;
-pub use interpret::LengthError;
+pub use interpret::{Compact, LengthError};
 pub use robot::{BaseParameter, DeriveError, RobotPrograms};
 
 /// An operand: a temporary, an input element or a constant.

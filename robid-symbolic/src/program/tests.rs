@@ -374,3 +374,63 @@ fn the_last_joint_shift_applies_from_two_joints() {
     let ops = p[ProgramKind::InverseDynamics].operations();
     assert_eq!((ops.mul, ops.add, ops.neg), (32, 25, 0), "{ops}");
 }
+
+/// The compact form computes every program of the rx90 (which reads a `geometry` group,
+/// bound here) and of the UR5e with every drive term to the bit as `Program::run` does,
+/// refuses a binding that does not cover whole trailing groups, and names a group of the
+/// wrong length as `Program::run` does.
+#[test]
+fn compact_programs_equal_the_interpreter_to_the_bit() {
+    let rx90 = Robot::from_toml(
+        include_str!("../../../robots/descriptions/rx90.toml"),
+        "rx90.toml",
+    )
+    .unwrap();
+    let ur5e = Robot::from_toml(UR5E, "ur5e.toml")
+        .unwrap()
+        .with_drive(crate::Drive::ALL);
+    let mut rng = Rng::from_state(5);
+    for robot in [rx90, ur5e] {
+        let p = super::RobotPrograms::derive(&robot).unwrap();
+        let geometry: Vec<f64> = robot.symbols().iter().map(|(_, v)| v.unwrap()).collect();
+        for info in robid_runtime::model::PROGRAMS {
+            let program = &p[info.kind];
+            let compact = program.compact(&geometry).unwrap();
+            let (mut temps, mut registers) = (Vec::new(), Vec::new());
+            for _ in 0..4 {
+                let xs: Vec<Vec<f64>> = info
+                    .inputs
+                    .iter()
+                    .zip(&program.inputs)
+                    .map(|(_, g)| (0..g.len()).map(|_| rng.uniform(-2.0, 2.0)).collect())
+                    .collect();
+                let mut all: Vec<&[f64]> = xs.iter().map(Vec::as_slice).collect();
+                let free = all.clone();
+                if !geometry.is_empty() {
+                    all.push(&geometry);
+                }
+                let len = program.outputs[0].values.len();
+                let (mut want, mut got) = (vec![0.0; len], vec![f64::NAN; len]);
+                program.run(&all, &mut [&mut want], &mut temps).unwrap();
+                compact.run(&free, &mut [&mut got], &mut registers).unwrap();
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&got), bits(&want), "{} {}", robot.name(), info.name);
+                if let Some(first) = xs.first() {
+                    let mut short = free.clone();
+                    short[0] = &first[1..];
+                    let e = compact.run(&short, &mut [&mut got], &mut registers);
+                    let mut all_short = all.clone();
+                    all_short[0] = &first[1..];
+                    let want_e = program.run(&all_short, &mut [&mut want], &mut temps);
+                    assert_eq!(e.unwrap_err(), want_e.unwrap_err());
+                }
+            }
+        }
+        if !geometry.is_empty() {
+            let e = p[ProgramKind::MassMatrix]
+                .compact(&geometry[1..])
+                .unwrap_err();
+            assert_eq!(e.found, geometry.len() - 1);
+        }
+    }
+}
