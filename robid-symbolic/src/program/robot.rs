@@ -1,7 +1,9 @@
 //! The programs of one robot (docs/dynamics.md#inverse-dynamics-with-base-parameters,
 //! docs/dynamics.md#programs-and-generated-code): standard and base regressors,
 //! inverse dynamics with base parameters as a customised Newton-Euler, mass
-//! matrix, gravity and Coriolis vectors, and the standard -> base map.
+//! matrix (the composite-rigid-body algorithm on the same values,
+//! docs/dynamics.md#composite-rigid-body-mass-matrix), gravity and Coriolis vectors,
+//! and the standard -> base map.
 //!
 //! Every base parameter is built on one link parameter slot in modified-DH
 //! frames (its name says which: `MXR2` is MX of link 2), and its base
@@ -176,8 +178,8 @@ impl Context {
                 gravity: run.gravity,
             };
             // Reusing scaled accelerations saves a few multiplications but
-            // made the 7-run Panda mass matrix ~3 % slower (compiled code):
-            // single runs only.
+            // made the 7-run Panda mass matrix ~3 % slower (compiled code, when the
+            // mass matrix was built this way): single runs only.
             let tau = l.newton_euler(&frames, &run_inputs, &links, runs.len() == 1)?;
             let mut values = Vec::with_capacity(tau.len());
             for t in tau {
