@@ -4184,7 +4184,7 @@ impl Lwr4 {
     /// - `q`: q1 .. q7
     /// - `base`: ZZR1 .. MY7
     ///
-    /// Operations: 184 mul, 144 add, 5 neg, 6 sin, 6 cos.
+    /// Operations: 184 mul, 147 add, 2 neg, 6 sin, 6 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
@@ -4582,13 +4582,13 @@ impl Lwr4 {
         let t341 = -t250;
         out[17] = t341;
         out[23] = t341;
-        let t342 = -t193;
+        let t342 = t191 - t190;
         out[18] = t342;
         out[30] = t342;
-        let t343 = -t130;
+        let t343 = t128 - t127;
         out[19] = t343;
         out[37] = t343;
-        let t344 = -t60;
+        let t344 = t58 - t57;
         out[20] = t344;
         out[44] = t344;
         out

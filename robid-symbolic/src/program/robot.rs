@@ -214,7 +214,7 @@ impl Context {
             let v = if i > k {
                 values[k * n + i]
             } else {
-                l.output(entry)
+                l.output_swapping(entry)
             };
             values.push(v);
         }
