@@ -603,7 +603,7 @@ impl Stanford {
     /// - `q`: q1, q2, q3
     /// - `base`: ZZR1 .. M3
     ///
-    /// Operations: 35 mul, 23 add, 2 neg, 1 sin, 1 cos.
+    /// Operations: 19 mul, 17 add, 2 neg, 1 sin, 1 cos.
     #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
@@ -613,68 +613,47 @@ impl Stanford {
         let [_, q2, q3] = *q;
         let [ZZR1, XXR2, XYR2, XZR2, YZR2, ZZR2, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(0.154);
+        let c1 = T::from_f64(2.0);
         let (t0, t1) = q2.sin_cos();
-        let t2 = t0 * q3;
-        let t3 = t1 * M3;
-        let t4 = t2 * M3;
-        let t5 = t0 * M3;
-        let t6 = t1 * MY3;
-        let t7 = t1 * MX3;
-        let t8 = t0 * MZ3;
-        let t9 = t7 + t8;
-        let t10 = t0 * MY3;
-        let t11 = t3 * c0;
-        let t12 = t6 + t11;
-        let t13 = t4 + t9;
-        let t14 = t5 * c0;
-        let t15 = t10 + t14;
-        let t16 = t2 * MZ3;
-        let t17 = t10 * c0;
-        let t18 = t16 + t17;
-        let t19 = t1 * MZ3;
-        let t20 = t0 * MX3;
-        let t21 = t20 - t19;
-        let t22 = t2 * MX3;
-        let t23 = t6 * c0;
-        let t24 = t22 + t23;
-        let t25 = t0 * XXR2;
-        let t26 = t1 * XYR2;
-        let t27 = t25 + t26;
-        let t28 = t0 * XYR2;
-        let t29 = t0 * XZR2;
-        let t30 = t1 * YZR2;
+        let t2 = t0 * M3;
+        let t3 = t0 * MY3;
+        let t4 = t2 * c0;
+        let t5 = t3 + t4;
+        let t6 = q3 * M3;
+        let t7 = t6 + MZ3;
+        let t8 = t7 + MZ3;
+        let t9 = t8 * q3;
+        let t10 = q3 * MX3;
+        let t11 = q3 * MY3;
+        let t12 = t9 + XXR2;
+        let t13 = t10 + XYR2;
+        let t14 = t11 + YZR2;
+        let t15 = t9 + ZZR2;
+        let t16 = MX2 + MX3;
+        let t17 = MY2 - t7;
+        let t18 = t1 * t17;
+        let t19 = t0 * t16;
+        let t20 = t18 + t19;
+        let t21 = t0 * XZR2;
+        let t22 = t1 * t14;
+        let t23 = t21 + t22;
+        let t24 = t20 * c0;
+        let t25 = t24 - t23;
+        let t26 = t0 * t0;
+        let t27 = t0 * t1;
+        let t28 = t27 * c1;
+        let t29 = t12 * t26;
+        let t30 = t13 * t28;
         let t31 = t29 + t30;
-        let t32 = t0 * MX2;
-        let t33 = t1 * MY2;
-        let t34 = t32 + t33;
+        let t32 = M3 * c0;
+        let t33 = t32 + MY3;
+        let t34 = t33 + MY3;
         let t35 = t34 * c0;
-        let t36 = t35 - t31;
-        let t37 = t13 * q3;
-        let t38 = t12 * q3;
-        let t39 = t18 + t37;
-        let t40 = t27 + t39;
-        let t41 = t24 + t28;
-        let t42 = t36 - t38;
-        let t43 = t21 * c0;
-        let t44 = t42 + t43;
-        let t45 = t1 * t12;
-        let t46 = t0 * t15;
-        let t47 = t45 + t46;
-        let t48 = t0 * t40;
-        let t49 = t1 * t41;
-        let t50 = t48 + t49;
-        let t51 = t50 + ZZR1;
-        let t52 = t47 * c0;
-        let t53 = t51 + t52;
-        let t54 = -t15;
-        let t55 = q3 * M3;
-        let t56 = t55 + MZ3;
-        let t57 = q3 * MZ3;
-        let t58 = t56 * q3;
-        let t59 = t57 + t58;
-        let t60 = t59 + ZZR2;
-        let t61 = -MX3;
-        [t53, t44, t54, t44, t60, t61, t54, t61, M3]
+        let t36 = t31 + t35;
+        let t37 = t36 + ZZR1;
+        let t38 = -t5;
+        let t39 = -MX3;
+        [t37, t25, t38, t25, t15, t39, t38, t39, M3]
     }
     /// Gravity torques g(q).
     ///

@@ -170,6 +170,14 @@ impl<'a> Lowering<'a> {
             .copied()
     }
 
+    /// The instruction that computes `v`, if `v` is a temporary.
+    pub(super) fn instr_of(&self, v: Value) -> Option<Instr> {
+        match v {
+            Value::Temp(i) => self.instrs.get(i as usize).copied(),
+            _ => None,
+        }
+    }
+
     /// Appends an instruction unless the same one exists (commutative operands sorted).
     pub(super) fn emit(&mut self, instr: Instr) -> Value {
         let instr = sorted(instr);

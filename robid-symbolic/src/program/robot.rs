@@ -1,7 +1,9 @@
 //! The programs of one robot (docs/dynamics.md#inverse-dynamics-with-base-parameters,
 //! docs/dynamics.md#programs-and-generated-code): standard and base regressors,
 //! inverse dynamics with base parameters as a customised Newton-Euler, mass
-//! matrix, gravity and Coriolis vectors, and the standard -> base map.
+//! matrix (the composite-rigid-body algorithm on the same values,
+//! docs/dynamics.md#composite-rigid-body-mass-matrix), gravity and Coriolis vectors,
+//! and the standard -> base map.
 //!
 //! Every base parameter is built on one link parameter slot in modified-DH
 //! frames (its name says which: `MXR2` is MX of link 2), and its base
@@ -92,6 +94,30 @@ struct Context {
 }
 
 impl Context {
+    /// The derivation and base parameters of `robot`, with a symbol for each base
+    /// parameter.
+    fn new(robot: &Robot) -> Result<Context, DeriveError> {
+        let mut d = Derivation::new(robot);
+        let base = d.base_parameters()?;
+        let beta: Vec<Id> = base
+            .base
+            .iter()
+            .map(|b| d.arena.var(&b.name.to_string()))
+            .collect();
+        let geometry = (!robot.symbols().is_empty()).then(|| {
+            Group::new(
+                "geometry",
+                robot.symbols().iter().map(|(s, _)| s.clone()).collect(),
+            )
+        });
+        Ok(Context {
+            d,
+            base,
+            beta,
+            geometry,
+        })
+    }
+
     fn inputs(&self, groups: &[&str]) -> Vec<Group> {
         let n = self.d.robot.dof();
         let mut out: Vec<Group> = groups
@@ -152,8 +178,8 @@ impl Context {
                 gravity: run.gravity,
             };
             // Reusing scaled accelerations saves a few multiplications but
-            // made the 7-run Panda mass matrix ~3 % slower (compiled code):
-            // single runs only.
+            // made the 7-run Panda mass matrix ~3 % slower (compiled code, when the
+            // mass matrix was built this way): single runs only.
             let tau = l.newton_euler(&frames, &run_inputs, &links, runs.len() == 1)?;
             let mut values = Vec::with_capacity(tau.len());
             for t in tau {
@@ -164,6 +190,57 @@ impl Context {
         let values = assemble(&torques);
         let group = Group::new(name, element_names(name, values.len()));
         Ok(l.finish(inputs.clone(), vec![(group, values)]))
+    }
+
+    /// The mass matrix by the composite-rigid-body algorithm (`customised/crba.rs`,
+    /// docs/dynamics.md#composite-rigid-body-mass-matrix): one pass from the tip for
+    /// the composite bodies, each column's wrench moved to the joints before it.
+    fn mass_matrix_program(
+        &mut self,
+        groups: &[&str],
+        name: &str,
+    ) -> Result<Program, ProgramError> {
+        let links = self.slots(false);
+        let q = self.d.inputs.q.clone();
+        let frames = frame_exprs(&mut self.d.arena, &self.d.robot, &q);
+        let inputs = self.inputs(groups);
+        let mut l = Lowering::new(&self.d.arena, &inputs);
+        let entries = l.mass_matrix(&frames, &links)?;
+        // Each entry is output once, the symmetric one shares its value.
+        let mut values = Vec::with_capacity(entries.len());
+        let n = frames.len();
+        for (e, entry) in entries.into_iter().enumerate() {
+            let (i, k) = (e / n, e % n);
+            let v = if i > k {
+                values[k * n + i]
+            } else {
+                l.output_swapping(entry)
+            };
+            values.push(v);
+        }
+        let group = Group::new(name, element_names(name, values.len()));
+        Ok(l.finish(inputs.clone(), vec![(group, values)]))
+    }
+
+    /// The mass matrix as the customised Newton-Euler algorithm gives it, column k
+    /// with `qd = 0`, `qdd = e_k` and no gravity: the construction the
+    /// composite-rigid-body program replaced, kept for the tests that compare the two.
+    #[cfg(test)]
+    pub(super) fn mass_matrix_by_columns(&mut self) -> Result<Program, ProgramError> {
+        let n = self.d.robot.dof();
+        let info = ProgramKind::MassMatrix.info();
+        let inputs: Vec<&str> = info.inputs.iter().map(|a| a.name).collect();
+        let columns: Vec<JointInputs> = (0..n)
+            .map(|k| self.constant_inputs(false, Some(k), false))
+            .collect();
+        self.newton_euler_program(&inputs, info.output.name, &columns, false, |t| {
+            (0..n * n)
+                .map(|e| {
+                    let (i, k) = (e / n, e % n);
+                    if i >= k { t[k][i] } else { t[i][k] }
+                })
+                .collect()
+        })
     }
 
     /// Y_b written straight into a program (`customised/columns.rs`): one forward
@@ -224,19 +301,7 @@ impl Context {
                 let symbolic = [self.d.inputs.clone()];
                 self.newton_euler_program(&inputs, output, &symbolic, true, single)
             }
-            ProgramKind::MassMatrix => {
-                let columns: Vec<JointInputs> = (0..n)
-                    .map(|k| self.constant_inputs(false, Some(k), false))
-                    .collect();
-                self.newton_euler_program(&inputs, output, &columns, false, |t| {
-                    (0..n * n)
-                        .map(|e| {
-                            let (i, k) = (e / n, e % n);
-                            if i >= k { t[k][i] } else { t[i][k] }
-                        })
-                        .collect()
-                })
-            }
+            ProgramKind::MassMatrix => self.mass_matrix_program(&inputs, output),
             ProgramKind::Gravity => {
                 let runs = [self.constant_inputs(false, None, true)];
                 self.newton_euler_program(&inputs, output, &runs, false, single)
@@ -293,26 +358,8 @@ fn element_names(prefix: &str, count: usize) -> Vec<String> {
 impl RobotPrograms {
     /// Derives the base parameters and every program of `robot`.
     pub fn derive(robot: &Robot) -> Result<RobotPrograms, DeriveError> {
-        let mut d = Derivation::new(robot);
-        let base = d.base_parameters()?;
         let n = robot.dof();
-        let beta: Vec<Id> = base
-            .base
-            .iter()
-            .map(|b| d.arena.var(&b.name.to_string()))
-            .collect();
-        let geometry = (!robot.symbols().is_empty()).then(|| {
-            Group::new(
-                "geometry",
-                robot.symbols().iter().map(|(s, _)| s.clone()).collect(),
-            )
-        });
-        let mut cx = Context {
-            d,
-            base,
-            beta,
-            geometry,
-        };
+        let mut cx = Context::new(robot)?;
         let mut built = Vec::with_capacity(PROGRAMS.len());
         for kind in ProgramKind::ALL {
             let program = cx.build(kind)?;
@@ -347,3 +394,6 @@ impl RobotPrograms {
         })
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -82,7 +82,7 @@ fn ur5e_programs_counts() {
         (ProgramKind::InverseDynamics, ops(248, 226, 0, 5), 474),
         (ProgramKind::BaseRegressor, ops(345, 259, 20, 5), 624),
         (ProgramKind::StandardRegressor, ops(784, 498, 22, 5), 1304),
-        (ProgramKind::MassMatrix, ops(250, 177, 1, 5), 428),
+        (ProgramKind::MassMatrix, ops(148, 127, 0, 5), 275),
         (ProgramKind::Gravity, ops(44, 22, 0, 5), 66),
         (ProgramKind::Coriolis, ops(232, 186, 0, 5), 418),
         (ProgramKind::BaseFromStandard, ops(17, 39, 0, 0), 56),

@@ -19,10 +19,12 @@
 //!
 //! Here: values, frames and rotations. `values.rs`: arithmetic on values;
 //! `forward.rs`: the forward recursion; `backward.rs`: link wrenches, their
-//! transfer and the torques; `columns.rs`: base regressor columns.
+//! transfer and the torques; `columns.rs`: base regressor columns; `crba.rs`: the
+//! mass matrix by the composite-rigid-body algorithm.
 
 mod backward;
 mod columns;
+mod crba;
 mod forward;
 mod values;
 

@@ -53,6 +53,20 @@ impl Lowering<'_> {
         self.materialize(s)
     }
 
+    /// As [`Lowering::output`], but the negative of a difference `a - b` is the
+    /// difference `b - a` instead of a negation: the same one instruction, and the
+    /// original difference is dead code when nothing else reads it. Used by the mass
+    /// matrix only, whose entries often end in a sign.
+    pub(in crate::program) fn output_swapping(&mut self, e: E) -> Value {
+        if e.c == -1.0
+            && let Some(v) = e.v
+            && let Some(Instr::Sub(a, b)) = self.instr_of(v)
+        {
+            return self.emit(Instr::Sub(b, a));
+        }
+        self.output(e)
+    }
+
     /// `e` with its coefficient's magnitude applied if that product exists.
     pub(super) fn reuse(&self, e: E) -> E {
         match e.v {

@@ -1,0 +1,142 @@
+//! The composite-rigid-body mass matrix against the construction it replaced (the
+//! customised Newton-Euler algorithm run with `qd = 0`, `qdd = e_k`), on random robots
+//! (docs/dynamics.md#composite-rigid-body-mass-matrix).
+
+use super::Context;
+use crate::Robot;
+use robid_runtime::model::ProgramKind;
+use robid_runtime::rng::Rng;
+
+/// A random description: either convention, 2 to 5 joints, prismatic joints now and
+/// then, twists and offsets in {0, +-pi/2, pi} or a number, lengths zero, a number or
+/// the symbol `L` (of random value), Khalil-Kleinfinger `gamma` and `b` in the modified
+/// convention, every drive term or none, a base transform now and then.
+fn random_description(seed: u64) -> String {
+    let mut rng = Rng::from_state(seed);
+    let angle = |rng: &mut Rng| match rng.below(6) {
+        0 | 1 => "0".to_owned(),
+        2 => "\"pi/2\"".to_owned(),
+        3 => "\"-pi/2\"".to_owned(),
+        4 => "\"pi\"".to_owned(),
+        _ => format!("{:.3}", rng.uniform(-3.0, 3.0)),
+    };
+    let length = |rng: &mut Rng| match rng.below(4) {
+        0 => "0".to_owned(),
+        1 => "\"L\"".to_owned(),
+        _ => format!("{:.3}", rng.uniform(0.05, 0.5) * [-1.0, 1.0][rng.below(2)]),
+    };
+    let modified = rng.below(2) == 0;
+    let convention = ["standard", "modified"][usize::from(modified)];
+    let drive = ["[]", "[\"Ia\", \"Fv\", \"Fc\", \"Fo\"]"][rng.below(2)];
+    let mut text = format!(
+        "name = \"random\"\nconvention = \"{convention}\"\ndrive = {drive}\n\
+         gravity = [0, 0, -9.81]\n"
+    );
+    let symbol = format!("[symbols]\nL = {:.3}\n", rng.uniform(0.05, 0.5));
+    if rng.below(3) == 0 {
+        text += &format!(
+            "[base]\nxyz = [0.1, 0, 0.2]\nrpy = [{}, {}, {}]\n",
+            angle(&mut rng),
+            angle(&mut rng),
+            angle(&mut rng)
+        );
+    }
+    let mut joints = String::new();
+    for _ in 0..2 + rng.below(4) {
+        let kind = ["revolute", "revolute", "revolute", "prismatic"][rng.below(4)];
+        joints += &format!(
+            "[[joints]]\ntype = \"{kind}\"\nalpha = {}\na = {}\nd = {}\ntheta = {}\n",
+            angle(&mut rng),
+            length(&mut rng),
+            length(&mut rng),
+            angle(&mut rng)
+        );
+        if modified && rng.below(2) == 0 {
+            joints += &format!("gamma = {}\nb = {}\n", angle(&mut rng), length(&mut rng));
+        }
+    }
+    if joints.contains("\"L\"") {
+        text += &symbol;
+    }
+    text + &joints
+}
+
+/// The composite-rigid-body program equals the Newton-Euler columns to 1e-12 at random
+/// joint positions, base parameters and symbol values; the two constructions share the
+/// frames and the link parameters in their slots, nothing of the algorithms.
+#[test]
+fn composite_rigid_body_equals_newton_euler_columns() {
+    let (mut prismatic, mut general, mut standard, mut drives) = (0, 0, 0, 0);
+    for seed in 0..60 {
+        let text = random_description(seed);
+        let robot =
+            Robot::from_toml(&text, "random.toml").unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let mut cx = Context::new(&robot).unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let crba = cx.build(ProgramKind::MassMatrix).unwrap();
+        let columns = cx.mass_matrix_by_columns().unwrap();
+        assert_eq!(crba.inputs, columns.inputs);
+        prismatic += usize::from(text.contains("prismatic"));
+        general += usize::from(text.contains("gamma"));
+        standard += usize::from(text.contains("standard"));
+        drives += usize::from(text.contains("Ia"));
+        let mut rng = Rng::from_state(1000 + seed);
+        for _ in 0..10 {
+            let inputs: Vec<Vec<f64>> = crba
+                .inputs
+                .iter()
+                .map(|g| (0..g.len()).map(|_| rng.uniform(-2.0, 2.0)).collect())
+                .collect();
+            let slices: Vec<&[f64]> = inputs.iter().map(|v| v.as_slice()).collect();
+            let a = &crba.eval(&slices).unwrap()[0];
+            let b = &columns.eval(&slices).unwrap()[0];
+            let scale = b.iter().fold(1.0f64, |s, x| s.max(x.abs()));
+            for (e, (x, y)) in a.iter().zip(b).enumerate() {
+                assert!(
+                    (x - y).abs() <= 1e-12 * scale,
+                    "seed {seed}, entry {e}: {x} vs {y}\n{text}"
+                );
+            }
+        }
+    }
+    // every feature was drawn
+    assert!(
+        prismatic > 5 && general > 5 && standard > 5 && drives > 5,
+        "{prismatic} {general} {standard} {drives}"
+    );
+}
+
+/// For every reference robot (robots/descriptions), the composite-rigid-body mass
+/// matrix costs no more flops than the Newton-Euler columns did; the table of both and
+/// of the inverse dynamics is printed (docs/performance.md#mass-matrix-counts).
+#[test]
+fn composite_rigid_body_is_no_dearer_for_reference_robots() {
+    let dir = format!("{}/../robots/descriptions", env!("CARGO_MANIFEST_DIR"));
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 8, "{paths:?}");
+    eprintln!("| robot | mass matrix before | mass matrix after | inverse dynamics |");
+    for path in paths {
+        let robot = Robot::from_file(&path).unwrap();
+        let mut cx = Context::new(&robot).unwrap();
+        let crba = cx.build(ProgramKind::MassMatrix).unwrap().operations();
+        let columns = cx.mass_matrix_by_columns().unwrap().operations();
+        let id = cx.build(ProgramKind::InverseDynamics).unwrap().operations();
+        eprintln!(
+            "| {} | {} ({columns}) | {} ({crba}) | {} ({id}) |",
+            robot.name(),
+            columns.flops(),
+            crba.flops(),
+            id.flops()
+        );
+        assert!(
+            crba.flops() <= columns.flops(),
+            "{}: {crba} vs {columns}",
+            robot.name()
+        );
+        assert!(crba.sin <= columns.sin && crba.cos <= columns.cos);
+    }
+}
