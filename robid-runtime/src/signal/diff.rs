@@ -27,16 +27,25 @@ mod tests {
     #[test]
     fn exact_on_a_parabola_inside() {
         let dt = 0.01;
+        // an offset, so that no sample is zero and a sum cannot pass for a difference
         let x: Vec<f64> = (0..50)
-            .map(|k| 3.0 * (k as f64 * dt).powi(2) - (k as f64 * dt))
+            .map(|k| 3.0 * (k as f64 * dt).powi(2) - (k as f64 * dt) + 0.7)
             .collect();
         let d = central_difference(&x, dt);
         for (k, v) in d.iter().enumerate().take(49).skip(1) {
             let t = k as f64 * dt;
             assert!((v - (6.0 * t - 1.0)).abs() < 1e-9);
         }
-        // one-sided at the ends: forward difference
-        assert!((d[0] - (x[1] - x[0]) / dt).abs() < 1e-12);
+        // one-sided at the ends: the forward and the backward difference, each the exact
+        // derivative of the parabola half a step inside (6 t - 1 at t = dt/2, 48.5 dt)
+        assert!((d[0] - (6.0 * 0.5 * dt - 1.0)).abs() < 1e-9, "{}", d[0]);
+        assert!((d[49] - (6.0 * 48.5 * dt - 1.0)).abs() < 1e-9, "{}", d[49]);
+    }
+
+    /// Two samples: the one difference there is, at both.
+    #[test]
+    fn two_samples_give_their_difference() {
+        assert_eq!(central_difference(&[1.0, 1.5], 0.1), vec![5.0, 5.0]);
     }
 
     #[test]
