@@ -341,6 +341,27 @@ mod tests {
         ));
         assert!(sg.derivative(&[1.0; 9], 0.1, 3).is_err());
         assert!(sg.derivative(&[1.0; 9], 0.0, 1).is_err());
+        // the sample time is refused whatever the derivative: zero (which the smoothing
+        // weights, derivative 0, would not notice), negative, infinite
+        for dt in [0.0, -0.1, f64::INFINITY, f64::NAN] {
+            for derivative in [0, 1] {
+                let e = sg.coefficients(derivative, 3, dt).unwrap_err();
+                assert!(
+                    matches!(&e, Error::Setting { key, .. } if key == "dt"),
+                    "dt {dt}, derivative {derivative}: {e}"
+                );
+            }
+        }
         assert!(sg.derivative(&[1.0; 9], f64::NAN, 1).is_err());
+    }
+
+    /// A position past the window's end is its last sample (the weights of the window's
+    /// end, which the derivative uses near the signal's end).
+    #[test]
+    fn a_position_past_the_window_is_its_last_sample() {
+        let sg = SavitzkyGolay::new(7, 2).unwrap();
+        let last = sg.coefficients(1, 6, 0.1).unwrap();
+        assert_eq!(sg.coefficients(1, 9, 0.1).unwrap(), last);
+        assert_ne!(sg.coefficients(1, 5, 0.1).unwrap(), last);
     }
 }
