@@ -339,6 +339,8 @@ mod tests {
                 ..
             })
         ));
+        // exactly one window is enough: a constant has derivative zero everywhere
+        assert_eq!(sg.derivative(&[1.0; 7], 0.1, 1).unwrap().len(), 7);
         assert!(sg.derivative(&[1.0; 9], 0.1, 3).is_err());
         assert!(sg.derivative(&[1.0; 9], 0.0, 1).is_err());
         // the sample time is refused whatever the derivative: zero (which the smoothing
