@@ -6,6 +6,7 @@ use crate::input::{Input, Item};
 use proc_macro2::Span;
 use robid_symbolic::robot::DriveTerm;
 use robid_symbolic::robot::Geometry;
+use robid_symbolic::robot::UrdfChain;
 use robid_symbolic::robot::bounds::MAX_DESCRIPTION_LEN;
 use robid_symbolic::{Convention, DescriptionError, Drive, Joint, JointKind, Robot};
 use std::path::PathBuf;
@@ -33,8 +34,8 @@ pub(crate) struct Checked {
     pub(crate) urdf_standard: Option<Vec<f64>>,
 }
 
-/// What a description gave: the robot, the file to track, a URDF's inertials per link.
-type Read = (Robot, Option<PathBuf>, Option<Vec<[f64; 10]>>);
+/// What a description gave: the robot, the file to track, a URDF's chain.
+type Read = (Robot, Option<PathBuf>, Option<UrdfChain>);
 
 /// The problems found, and the robot name for the placeholder type if known.
 pub(crate) struct Failed {
@@ -179,7 +180,7 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
             if let Some(Some(d)) = drive {
                 robot = robot.with_drive(d);
             }
-            let urdf_standard = inertials.map(|links| standard_values(&robot, &links));
+            let urdf_standard = inertials.map(|chain| chain.standard_values(&robot));
             Ok(Checked {
                 robot,
                 tracked,
@@ -277,10 +278,8 @@ fn from_file(cx: &mut Ctxt, e: &Expr, chain: &ChainSelection) -> Option<Read> {
             base: chain.base.as_ref().map(LitStr::value),
             tip: chain.tip.as_ref().map(LitStr::value),
         };
-        Robot::from_urdf(&text, &relative, &selection).map(|chain| {
-            let inertials = chain.links.iter().map(|l| l.inertial).collect();
-            (chain.robot, Some(inertials))
-        })
+        Robot::from_urdf(&text, &relative, &selection)
+            .map(|chain| (chain.robot.clone(), Some(chain)))
     } else {
         Robot::from_toml(&text, &relative).map(|robot| (robot, None))
     };
@@ -304,24 +303,6 @@ fn from_file(cx: &mut Ctxt, e: &Expr, chain: &ChainSelection) -> Option<Read> {
             None
         }
     }
-}
-
-/// The robot's standard parameters from per-link inertials (`XX .. M` of each link in
-/// robid's frames), its drive terms 0.
-fn standard_values(robot: &Robot, links: &[[f64; 10]]) -> Vec<f64> {
-    use robid_symbolic::robot::{Inertial, ParameterKind};
-    robot
-        .standard_parameters()
-        .iter()
-        .map(|p| match p.kind {
-            ParameterKind::Inertial(i) => Inertial::ALL
-                .iter()
-                .position(|&k| k == i)
-                .and_then(|k| Some(links.get(p.link)?[k]))
-                .unwrap_or(0.0),
-            ParameterKind::Drive(_) => 0.0,
-        })
-        .collect()
 }
 
 fn lookup<'a>(found: &[&'a Item], key: &str) -> Option<&'a Item> {

@@ -43,7 +43,7 @@ impl Description {
     /// A URDF's value of the inertial parameter `name` (`None` for a TOML description, a
     /// drive term or an unknown name).
     pub(crate) fn urdf_inertial(&self, name: &str) -> Option<f64> {
-        urdf_inertial(self.urdf.as_ref()?, name)
+        self.urdf.as_ref()?.inertial_value(name.parse().ok()?)
     }
 
     /// The base parameters of `model` (this description's model): those of the parameter
@@ -74,32 +74,18 @@ impl Description {
             return Ok(None);
         };
         let names = robid_runtime::model::standard_parameter_names(model);
-        let standard: Vec<f64> = names.iter().map(|name| urdf_value(chain, name)).collect();
+        let standard: Vec<f64> = names
+            .iter()
+            .map(|name| {
+                name.parse()
+                    .ok()
+                    .and_then(|id| chain.inertial_value(id))
+                    .unwrap_or(0.0)
+            })
+            .collect();
         let mut base = vec![0.0; model.base_parameter_count()];
         model.base_from_standard_into(&standard, &mut base)?;
         Ok(Some(base))
-    }
-}
-
-/// The value of the standard parameter `name` (`XX2`, `M1`, `Fv3`) in the URDF's
-/// inertials: the ten inertial parameters of each chain link, 0 for the drive terms (a URDF
-/// has none: `<dynamics>` is not read, docs/urdf.md).
-fn urdf_value(chain: &UrdfChain, name: &str) -> f64 {
-    urdf_inertial(chain, name).unwrap_or(0.0)
-}
-
-/// The value of the inertial parameter `name` in the URDF's inertials; `None` for a drive
-/// term or a name that is not a standard parameter of the chain.
-fn urdf_inertial(chain: &UrdfChain, name: &str) -> Option<f64> {
-    use robid_symbolic::robot::Inertial;
-    use robid_symbolic::robot::{ParameterId, ParameterKind};
-    let id = name.parse::<ParameterId>().ok()?;
-    match id.kind {
-        ParameterKind::Inertial(inertial) => {
-            let k = Inertial::ALL.iter().position(|&i| i == inertial)?;
-            Some(chain.links.get(id.link)?.inertial[k])
-        }
-        ParameterKind::Drive(_) => None,
     }
 }
 

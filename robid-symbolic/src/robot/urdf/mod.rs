@@ -21,7 +21,7 @@ pub use chain::ChainSelection;
 
 use super::bounds::MAX_DESCRIPTION_LEN;
 use super::file::Place;
-use super::{DescriptionError, Pose, Robot};
+use super::{DescriptionError, Inertial, ParameterId, ParameterKind, Pose, Robot};
 use frames::Axis;
 use std::io::Read;
 use std::path::Path;
@@ -39,6 +39,29 @@ pub struct UrdfChain {
     pub tool: Pose,
     /// What is valid but worth knowing: `file:line:column: what; what to do`.
     pub warnings: Vec<String>,
+}
+
+impl UrdfChain {
+    /// The URDF's value of standard parameter `id`: the inertial parameters of each chain
+    /// link's body in robid's frame (`None` for a drive term, which a URDF does not give,
+    /// or a link past the chain).
+    pub fn inertial_value(&self, id: ParameterId) -> Option<f64> {
+        let ParameterKind::Inertial(inertial) = id.kind else {
+            return None;
+        };
+        let k = Inertial::ALL.iter().position(|&i| i == inertial)?;
+        Some(self.links.get(id.link)?.inertial[k])
+    }
+
+    /// The URDF's inertials as the values of `robot.standard_parameters()`, drive terms 0
+    /// (`robot` is this chain's robot, perhaps with drive terms added).
+    pub fn standard_values(&self, robot: &Robot) -> Vec<f64> {
+        robot
+            .standard_parameters()
+            .into_iter()
+            .map(|p| self.inertial_value(p).unwrap_or(0.0))
+            .collect()
+    }
 }
 
 /// The rigid body robid joint j moves.
