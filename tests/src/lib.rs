@@ -4,6 +4,7 @@
 //! - [`rnea`]: an independent plain-`f64` recursive Newton-Euler, the numeric reference;
 //! - [`urdf_rnea`]: the same on a URDF's own frames (whole tree, read with `urdf-rs`), the
 //!   reference of robid's URDF reader, anchored to Pinocchio (`tests/reference/urdf/`);
+//! - [`scratch`]: a fresh temporary folder per test, removed when the test ends;
 //! - [`state`]: random states, smooth trajectories and symbol bindings for evaluation;
 //! - [`fuzz_data`]: the known-good UR5e record, the seeds and the cases of the
 //!   identification fuzzer (the suite's bad-input tests and `examples/fuzz_identify.rs`).
@@ -11,6 +12,7 @@
 pub mod fuzz_data;
 pub mod reference;
 pub mod rnea;
+pub mod scratch;
 pub mod state;
 pub mod urdf_rnea;
 

@@ -6,24 +6,17 @@ use std::path::{Path, PathBuf};
 use super::*;
 use crate::error::Error;
 
-struct Dir(PathBuf);
+/// A fresh folder for one test's files, removed when the test ends (even by a panic).
+struct Dir(tempfile::TempDir);
 
 impl Dir {
-    fn new(tag: &str) -> Self {
-        let p = std::env::temp_dir().join(format!("robid-load-{tag}-{}", std::process::id()));
-        std::fs::create_dir_all(&p).unwrap();
-        Dir(p)
+    fn new() -> Self {
+        Dir(tempfile::tempdir().unwrap())
     }
     fn file(&self, name: &str, text: &str) -> PathBuf {
-        let p = self.0.join(name);
+        let p = self.0.path().join(name);
         std::fs::write(&p, text).unwrap();
         p
-    }
-}
-
-impl Drop for Dir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
     }
 }
 
@@ -43,7 +36,7 @@ angle = "deg"
 
 #[test]
 fn joins_two_files_row_by_row() {
-    let d = Dir::new("join");
+    let d = Dir::new();
     let a = d.file("pos.csv", "q1,q2\n0,180\n90,0\n");
     let b = d.file("tau.csv", "q1,q2\n1,2\n3,4\n");
     let data = load(&cfg(TWO_FILES), &[a, b], 2).unwrap();
@@ -55,7 +48,7 @@ fn joins_two_files_row_by_row() {
 
 #[test]
 fn row_count_mismatch_is_an_error() {
-    let d = Dir::new("rows");
+    let d = Dir::new();
     let a = d.file("pos.csv", "q1,q2\n0,0\n1,1\n2,2\n");
     let b = d.file("tau.csv", "q1,q2\n1,2\n3,4\n");
     let e = load(&cfg(TWO_FILES), &[a, b], 2).unwrap_err();
@@ -74,7 +67,7 @@ fn row_count_mismatch_is_an_error() {
 
 #[test]
 fn joint_count_mismatch_is_an_error() {
-    let d = Dir::new("dof");
+    let d = Dir::new();
     let a = d.file("pos.csv", "q1,q2\n0,0\n1,1\n");
     let text = TWO_FILES.replace("torque = \"q{}\"", "torque = [\"q1\"]");
     let e = load(&cfg(&text), &[a.clone(), a], 2).unwrap_err();
@@ -94,7 +87,7 @@ fn joint_count_mismatch_is_an_error() {
 
 #[test]
 fn missing_sample_rate_and_roles_are_errors() {
-    let d = Dir::new("roles");
+    let d = Dir::new();
     let a = d.file("x.csv", "q1,t1\n0,0\n1,1\n");
     let e = load(
         &cfg("[[source]]\nposition = \"q{}\"\ntorque = \"t{}\""),
@@ -129,7 +122,7 @@ torque = "tau{}"
 
 #[test]
 fn irregular_time_is_resampled_with_a_warning() {
-    let d = Dir::new("irregular");
+    let d = Dir::new();
     // q = 2 t sampled irregularly: resampling must stay on the line
     let a = d.file("q.csv", "t,q1\n0,0\n0.1,0.2\n0.25,0.5\n0.3,0.6\n0.4,0.8\n");
     let b = d.file("tau.csv", "t,tau1\n0,0\n0.2,2\n0.4,4\n");
@@ -145,7 +138,7 @@ fn irregular_time_is_resampled_with_a_warning() {
 
 #[test]
 fn non_monotonic_time_names_the_line() {
-    let d = Dir::new("monotonic");
+    let d = Dir::new();
     let a = d.file("q.csv", "t,q1\n0,0\n0.1,0.2\n0.1,0.5\n");
     let e = load(&cfg(TIMED), &[a.clone(), a], 1).unwrap_err();
     assert!(
@@ -156,7 +149,7 @@ fn non_monotonic_time_names_the_line() {
 
 #[test]
 fn too_few_rows_is_an_error() {
-    let d = Dir::new("few");
+    let d = Dir::new();
     let a = d.file("q.csv", "t,q1,tau1\n0,0,0\n");
     let text = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"";
     let e = load(&cfg(text), &[a], 1).unwrap_err();
@@ -202,7 +195,7 @@ fn tx40_joint_torque_ranges_match_the_readme() {
 /// and loads its own `file` (relative to the config's folder).
 #[test]
 fn the_example_config_loads_its_own_file() {
-    let d = Dir::new("example");
+    let d = Dir::new();
     let mut csv = String::from("t,q1,q2,q3,q4,q5,q6,tau_1,tau_2,tau_3,tau_4,tau_5,tau_6\n");
     for k in 0..2000 {
         let t = k as f64 * 1e-3;
@@ -223,7 +216,7 @@ fn the_example_config_loads_its_own_file() {
 /// file line of the first stale row; the data are left as they were.
 #[test]
 fn stale_rows_and_skipped_ticks_are_reported() {
-    let d = Dir::new("stale");
+    let d = Dir::new();
     let mut csv = String::from("t,q1,tau1\n");
     let mut t = 0.0;
     for k in 0..400 {

@@ -31,16 +31,10 @@ fn dataset(n: usize, rate: f64, noise: f64) -> Dataset {
 }
 
 fn dataset_with_noise(n: usize, rate: f64, noise: [f64; DOF]) -> Dataset {
-    // one folder per call: tests running at once may ask for the same data set
-    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("robid-pipe-{}-{call}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("run.csv");
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("run.csv");
     std::fs::write(&file, csv_with_noise(n, rate, noise)).unwrap();
-    let data = load(&config(""), &[file], DOF).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
-    data
+    load(&config(""), &[file], DOF).unwrap()
 }
 
 #[test]
@@ -465,8 +459,9 @@ fn two_encoder_config(dir: &Path, friction: &crate::drive::FrictionModel, extra:
 #[test]
 fn rotor_side_residuals_after_the_nonlinear_compensation() {
     let (data, friction, [fc, fv]) = two_encoder_log(12_000);
-    let dir = std::env::temp_dir().join(format!("robid-rotor-side-{}", std::process::id()));
-    let cfg = two_encoder_config(&dir, &friction, "residual = [\"Fc\", \"Fv\"]\n");
+    let folder = tempfile::tempdir().unwrap();
+    let dir = folder.path();
+    let cfg = two_encoder_config(dir, &friction, "residual = [\"Fc\", \"Fv\"]\n");
     let rotor_model = Synthetic::without(&["Fv", "Fc"]);
     let id = identify(&rotor_model, &data, &cfg).unwrap();
     let truth = rotor_model.truth();
@@ -487,7 +482,7 @@ fn rotor_side_residuals_after_the_nonlinear_compensation() {
     assert!(id.fit.relative_error < 1e-12, "{:?}", id.fit);
 
     // the link-side columns on the same log: the deflection's velocity is left unmodelled
-    let link = two_encoder_config(&dir, &friction, "");
+    let link = two_encoder_config(dir, &friction, "");
     let linked = identify(&Synthetic::default(), &data, &link).unwrap();
     let fv1 = linked.estimate.value("Fv1").unwrap();
     // measured: relative fit error 1.55e-2, Fv1 = 0.775 for Fv~ = 0.25, Fc1 = 0.036 for
@@ -510,7 +505,7 @@ fn rotor_side_residuals_after_the_nonlinear_compensation() {
     );
     // a friction file of another joint count, and friction with viscous: errors on the key
     let one = crate::drive::FrictionModel::new(vec![friction.joints()[0]]).unwrap();
-    let e = identify(&rotor_model, &data, &two_encoder_config(&dir, &one, ""))
+    let e = identify(&rotor_model, &data, &two_encoder_config(dir, &one, ""))
         .unwrap_err()
         .to_string();
     assert!(
@@ -520,7 +515,7 @@ fn rotor_side_residuals_after_the_nonlinear_compensation() {
     let e = identify(
         &rotor_model,
         &data,
-        &two_encoder_config(&dir, &friction, "viscous = 0.1\n"),
+        &two_encoder_config(dir, &friction, "viscous = 0.1\n"),
     )
     .unwrap_err()
     .to_string();
@@ -540,5 +535,4 @@ fn rotor_side_residuals_after_the_nonlinear_compensation() {
         e.contains("extra_column[1].terms[1].signal") && e.contains("motor_position"),
         "{e}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }

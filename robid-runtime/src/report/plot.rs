@@ -159,7 +159,8 @@ mod tests {
             unfiltered: None,
             used: None,
         };
-        let dir = std::env::temp_dir().join(format!("robid-plot-{}", std::process::id()));
+        let folder = tempfile::tempdir().unwrap();
+        let dir = folder.path().join("plots");
         let paths = plot_torques(&pred, &dir, "fit").unwrap();
         assert_eq!(paths.len(), 2);
         let svg = std::fs::read_to_string(&paths[1]).unwrap();
@@ -168,7 +169,6 @@ mod tests {
             "{}",
             &svg[..200.min(svg.len())]
         );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// A gap (samples dropped at rest) splits the lines; regular steps do not.

@@ -124,14 +124,12 @@ pub(crate) mod run_tests {
     #[test]
     fn csv_round_trip() {
         let r = reference(0.2, 100.0);
-        let dir = std::env::temp_dir().join(format!("robid-sim-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let f = dir.join("traj.csv");
+        let dir = tempfile::tempdir().unwrap();
+        let f = dir.path().join("traj.csv");
         r.write_csv(&f).unwrap();
         let back = Trajectory::read_csv(&f, 2).unwrap();
         assert_eq!(back.samples(), r.samples());
         assert!((back.q[1][7] - r.q[1][7]).abs() < 1e-8);
         assert!(Trajectory::read_csv(&f, 3).is_err());
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

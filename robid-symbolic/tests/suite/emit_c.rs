@@ -222,8 +222,8 @@ fn c_code_agrees_with_the_interpreter() {
         eprintln!("emit_c: skipped, no C compiler (set CC or install cc)");
         return;
     };
-    let dir = std::env::temp_dir().join(format!("robid-emit-c-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
     let mut rng = Rng::from_state(11);
     let mut worst = (0.0_f64, 0.0_f64);
     // every reference robot, and the UR5e with every drive term (sign() for Coulomb
@@ -248,8 +248,8 @@ fn c_code_agrees_with_the_interpreter() {
         let programs = RobotPrograms::derive(robot).unwrap();
         let name = programs.robot.name();
         let sizes = sizes(&programs);
-        let double = build(&cc, &dir, &programs, CScalar::Double);
-        let float = build(&cc, &dir, &programs, CScalar::Float);
+        let double = build(&cc, dir, &programs, CScalar::Double);
+        let float = build(&cc, dir, &programs, CScalar::Float);
         for _ in 0..3 {
             let mut random =
                 |n: usize, r: f64| -> Vec<f64> { (0..n).map(|_| rng.uniform(-r, r)).collect() };
@@ -274,7 +274,6 @@ fn c_code_agrees_with_the_interpreter() {
             }
         }
     }
-    let _ = std::fs::remove_dir_all(&dir);
     eprintln!(
         "emit_c: worst relative difference {:e} (double), {:e} (float)",
         worst.0, worst.1
@@ -319,16 +318,15 @@ fn a_negated_negative_constant_compiles() {
     gravity.instrs.push(Instr::Neg(Value::Const(k)));
     gravity.instrs.push(Instr::Add(old, Value::Temp(t)));
     gravity.outputs[0].values[0] = Value::Temp(t + 1);
-    let dir = std::env::temp_dir().join(format!("robid-emit-neg-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let exe = build(&cc, &dir, &programs, CScalar::Double);
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let exe = build(&cc, dir, &programs, CScalar::Double);
     let q = [0.7];
     let base: Vec<f64> = (0..programs.base.len()).map(|i| 0.1 + i as f64).collect();
     let standard = vec![0.0; programs.standard.len()];
     let inputs: [&[f64]; 5] = [&q, &q, &q, &base, &standard];
     let out = run(&exe, &inputs);
     let reference = interpret(&programs, &inputs);
-    let _ = std::fs::remove_dir_all(&dir);
     let gravity = PROGRAMS
         .iter()
         .position(|p| p.kind == robid_runtime::model::ProgramKind::Gravity)

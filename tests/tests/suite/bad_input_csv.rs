@@ -7,23 +7,12 @@
 
 use robid_runtime::DataError;
 use tests::fuzz_data;
+use tests::scratch::Scratch;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use robid_runtime::Error;
 use robid_runtime::data::{Config, Dataset, load, read_columns};
-
-fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("robid-bad-csv-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(name: &str, text: &str) -> PathBuf {
-    let p = dir().join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
 
 /// Every field quoted.
 fn quoted(text: &str) -> String {
@@ -51,11 +40,12 @@ fn same(a: &Dataset, b: &Dataset) {
 }
 
 fn config(text: &str) -> Config {
-    Config::from_toml_str(text, &dir().join("c.toml")).unwrap()
+    Config::from_toml_str(text, Path::new("c.toml")).unwrap()
 }
 
 #[test]
 fn quoted_and_unquoted_files_give_the_same_data_or_the_same_error() {
+    let tmp = Scratch::new();
     let plain = fuzz_data::motion_csv(&fuzz_data::motion(200));
     let configs = [
         Config::default_mapping(),
@@ -67,8 +57,13 @@ fn quoted_and_unquoted_files_give_the_same_data_or_the_same_error() {
         config("sample_rate = 100.0\n[[source]]\nposition = \"q{}\"\ntorque = \"q{}\"\n"),
     ];
     for (k, c) in configs.iter().enumerate() {
-        let a = load(c, &[write(&format!("plain{k}.csv"), &plain)], 6).unwrap();
-        let b = load(c, &[write(&format!("quoted{k}.csv"), &quoted(&plain))], 6).unwrap();
+        let a = load(c, &[tmp.write(&format!("plain{k}.csv"), &plain)], 6).unwrap();
+        let b = load(
+            c,
+            &[tmp.write(&format!("quoted{k}.csv"), &quoted(&plain))],
+            6,
+        )
+        .unwrap();
         same(&a, &b);
     }
     // the same errors, at the same line
@@ -79,10 +74,10 @@ fn quoted_and_unquoted_files_give_the_same_data_or_the_same_error() {
         l.join("\n")
     };
     for (name, text) in [("broken", broken), ("ragged", ragged)] {
-        let a = load(&configs[0], &[write(&format!("{name}.csv"), &text)], 6).unwrap_err();
+        let a = load(&configs[0], &[tmp.write(&format!("{name}.csv"), &text)], 6).unwrap_err();
         let b = load(
             &configs[0],
-            &[write(&format!("{name}.csv"), &quoted(&text))],
+            &[tmp.write(&format!("{name}.csv"), &quoted(&text))],
             6,
         )
         .unwrap_err();
@@ -92,8 +87,14 @@ fn quoted_and_unquoted_files_give_the_same_data_or_the_same_error() {
 
 #[test]
 fn bom_and_crlf_are_accepted() {
+    let tmp = Scratch::new();
     let plain = fuzz_data::motion_csv(&fuzz_data::motion(100));
-    let reference = load(&Config::default_mapping(), &[write("ref.csv", &plain)], 6).unwrap();
+    let reference = load(
+        &Config::default_mapping(),
+        &[tmp.write("ref.csv", &plain)],
+        6,
+    )
+    .unwrap();
     for (name, text) in [
         ("bom.csv", format!("\u{feff}{plain}")),
         ("crlf.csv", plain.replace('\n', "\r\n")),
@@ -102,16 +103,22 @@ fn bom_and_crlf_are_accepted() {
             format!("\u{feff}{}", quoted(&plain).replace('\n', "\r\n")),
         ),
     ] {
-        let d = load(&Config::default_mapping(), &[write(name, &text)], 6).unwrap();
+        let d = load(&Config::default_mapping(), &[tmp.write(name, &text)], 6).unwrap();
         same(&reference, &d);
     }
 }
 
 #[test]
 fn duplicate_column_names_are_an_error_naming_both() {
+    let tmp = Scratch::new();
     let plain = fuzz_data::motion_csv(&fuzz_data::motion(50));
     let text = plain.replacen("q3,", "q2,", 1);
-    let e = load(&Config::default_mapping(), &[write("dup.csv", &text)], 6).unwrap_err();
+    let e = load(
+        &Config::default_mapping(),
+        &[tmp.write("dup.csv", &text)],
+        6,
+    )
+    .unwrap_err();
     assert!(
         matches!(&e, Error::Data(DataError::DuplicateColumn { column, first: 3, second: 4, .. }) if column == "q2"),
         "{e}"
@@ -121,11 +128,12 @@ fn duplicate_column_names_are_an_error_naming_both() {
 
 #[test]
 fn other_separators_get_a_message_that_says_what_is_supported() {
+    let tmp = Scratch::new();
     let plain = fuzz_data::motion_csv(&fuzz_data::motion(50));
     for (name, sep, said) in [("semi.csv", ";", "`;`"), ("tab.csv", "\t", "tabs")] {
         let e = load(
             &Config::default_mapping(),
-            &[write(name, &plain.replace(',', sep))],
+            &[tmp.write(name, &plain.replace(',', sep))],
             6,
         )
         .unwrap_err();
@@ -143,10 +151,11 @@ fn other_separators_get_a_message_that_says_what_is_supported() {
 
 #[test]
 fn a_truncated_gzip_is_called_truncated_or_corrupt() {
+    let tmp = Scratch::new();
     let real =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/staubli_tx40/data/curr_data.csv.gz");
     let bytes = std::fs::read(real).unwrap();
-    let cut = write("cut.csv.gz", "");
+    let cut = tmp.write("cut.csv.gz", "");
     std::fs::write(&cut, &bytes[..bytes.len() / 3]).unwrap();
     let e = read_columns(&cut, &["Joint_1".to_string()]).unwrap_err();
     let text = e.to_string();

@@ -7,6 +7,7 @@
 use robid_runtime::DataError;
 use robid_runtime::EstimateError;
 use tests::fuzz_data;
+use tests::scratch::Scratch;
 
 use std::sync::mpsc;
 use std::time::Duration;
@@ -36,24 +37,19 @@ fn within<T: Send + 'static>(
         .unwrap_or_else(|_| panic!("{what} did not finish within {seconds} s"))
 }
 
-fn dir() -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("robid-bad-hang-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// The reported case: qdd1 = 1e200 in one row, for every method: an error at load time
 /// naming the file, the line and the column, and the range; never a hang, never "use a
 /// richer trajectory".
 #[test]
 fn a_huge_sample_is_named_at_load_time_for_every_method() {
+    let tmp = Scratch::new();
     let csv = fuzz_data::motion_csv(&fuzz_data::motion(400));
     let mut lines: Vec<String> = csv.lines().map(str::to_string).collect();
     // data row 57 is line 58 of the file (the header is line 1)
     let mut fields: Vec<String> = lines[57].split(',').map(str::to_string).collect();
     fields[13] = "1e200".into(); // t, q1..6, qd1..6, qdd1
     lines[57] = fields.join(",");
-    let file = dir().join("huge.csv");
+    let file = tmp.path("huge.csv");
     std::fs::write(&file, lines.join("\n")).unwrap();
     for method in [
         Method::Ols,

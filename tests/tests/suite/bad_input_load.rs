@@ -6,6 +6,7 @@
 
 use robid_runtime::DataError;
 use tests::fuzz_data;
+use tests::scratch::Scratch;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -15,14 +16,8 @@ use robid_runtime::data::{Config, load};
 use robid_runtime::excite::{Fourier, JointSeries, PointDesign};
 use robid_runtime::limits;
 
-fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("robid-bad-load-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// The good record with the field `column` of data row `row` set to `value`.
-fn record_with(name: &str, row: usize, column: &str, value: &str) -> PathBuf {
+fn record_with(tmp: &Scratch, name: &str, row: usize, column: &str, value: &str) -> PathBuf {
     let csv = fuzz_data::motion_csv(&fuzz_data::motion(300));
     let header = fuzz_data::default_header();
     let c = header.iter().position(|h| h == column).unwrap();
@@ -30,13 +25,14 @@ fn record_with(name: &str, row: usize, column: &str, value: &str) -> PathBuf {
     let mut fields: Vec<String> = lines[row + 1].split(',').map(str::to_string).collect();
     fields[c] = value.into();
     lines[row + 1] = fields.join(",");
-    let p = dir().join(name);
+    let p = tmp.path(name);
     std::fs::write(&p, lines.join("\n")).unwrap();
     p
 }
 
 #[test]
 fn each_quantity_is_checked_against_its_range_with_line_and_column() {
+    let tmp = Scratch::new();
     for (column, value, quantity, limit) in [
         ("q2", "2e6", "position", "1e6"),
         ("qd3", "-2e6", "velocity", "1e6"),
@@ -44,7 +40,7 @@ fn each_quantity_is_checked_against_its_range_with_line_and_column() {
         ("tau5", "1e200", "torque", "1e7"),
         ("t", "1e11", "time", "1e10"),
     ] {
-        let f = record_with(&format!("{column}.csv"), 20, column, value);
+        let f = record_with(&tmp, &format!("{column}.csv"), 20, column, value);
         let e = load(&Config::default_mapping(), &[f], 6).unwrap_err();
         let text = e.to_string();
         assert!(
@@ -58,7 +54,7 @@ fn each_quantity_is_checked_against_its_range_with_line_and_column() {
         );
     }
     // values within range load
-    let f = record_with("fine.csv", 20, "qdd4", "9e7");
+    let f = record_with(&tmp, "fine.csv", 20, "qdd4", "9e7");
     assert!(load(&Config::default_mapping(), &[f], 6).is_ok());
 }
 
@@ -66,10 +62,11 @@ fn each_quantity_is_checked_against_its_range_with_line_and_column() {
 /// by their file line too.
 #[test]
 fn the_joint_side_values_are_checked_after_the_drive_chain() {
-    let f = record_with("scaled.csv", 0, "t", "0");
+    let tmp = Scratch::new();
+    let f = record_with(&tmp, "scaled.csv", 0, "t", "0");
     let text = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n\
                 [units]\ntorque_scale = [1e6, 1, 1, 1, 1, 1]\n";
-    let config = Config::from_toml_str(text, &dir().join("scaled.toml")).unwrap();
+    let config = Config::from_toml_str(text, &tmp.path("scaled.toml")).unwrap();
     let e = load(&config, &[f], 6).unwrap_err();
     let text = e.to_string();
     assert!(
@@ -82,9 +79,10 @@ fn the_joint_side_values_are_checked_after_the_drive_chain() {
 /// Config numbers: finite and in range, named at their file:line:column.
 #[test]
 fn config_numbers_are_checked_and_located() {
+    let tmp = Scratch::new();
     let source = "[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n";
     let timed = format!("time_column = \"t\"\n{source}");
-    let f = record_with("cfg.csv", 0, "t", "0");
+    let f = record_with(&tmp, "cfg.csv", 0, "t", "0");
     for (text, key, line) in [
         (format!("sample_rate = 1e300\n{source}"), "sample_rate", 1),
         (format!("sample_rate = nan\n{source}"), "sample_rate", 1),
@@ -129,7 +127,7 @@ fn config_numbers_are_checked_and_located() {
             7,
         ),
     ] {
-        let path = dir().join("k.toml");
+        let path = tmp.path("k.toml");
         let config = Config::from_toml_str(&text, &path).unwrap();
         let e = match load(&config, std::slice::from_ref(&f), 6) {
             Err(e) => e,
@@ -150,9 +148,10 @@ fn config_numbers_are_checked_and_located() {
 /// Time stamps that give an absurd sample rate name the time scale.
 #[test]
 fn an_absurd_sample_rate_from_time_stamps_names_time_scale() {
-    let f = record_with("ns.csv", 0, "t", "0");
+    let tmp = Scratch::new();
+    let f = record_with(&tmp, "ns.csv", 0, "t", "0");
     let text = "time_column = \"t\"\ntime_scale = 1e-9\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n";
-    let config = Config::from_toml_str(text, &dir().join("ns.toml")).unwrap();
+    let config = Config::from_toml_str(text, &tmp.path("ns.toml")).unwrap();
     let e = load(&config, &[f], 6).unwrap_err();
     assert!(
         matches!(&e, Error::Data(DataError::ConfigKey { key, line: Some(2), .. }) if key == "time_scale"),

@@ -9,8 +9,7 @@
 
 use robid_runtime::EstimateError;
 use tests::fuzz_data;
-
-use std::path::PathBuf;
+use tests::scratch::Scratch;
 
 use robid_runtime::Error;
 use robid_runtime::data::{Config, Cutoff, Lowpass, Signal, load};
@@ -20,26 +19,15 @@ use robid_runtime::pipeline::identify;
 use robid_runtime::simulate::{Simulation, Trajectory};
 use robots::Ur5e;
 
-fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("robid-bad-msg-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(name: &str, text: &str) -> PathBuf {
-    let p = dir().join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
-
 fn record() -> String {
     fuzz_data::motion_csv(&fuzz_data::motion(400))
 }
 
 #[test]
 fn a_missing_column_names_where_the_column_names_came_from() {
+    let tmp = Scratch::new();
     let text = record().replacen("tau4", "torque4", 1);
-    let f = write("renamed.csv", &text);
+    let f = tmp.write("renamed.csv", &text);
     // no config file: the default mapping, and no config file blamed
     let e = load(&Config::default_mapping(), std::slice::from_ref(&f), 6).unwrap_err();
     let m = e.to_string();
@@ -51,7 +39,7 @@ fn a_missing_column_names_where_the_column_names_came_from() {
     // it names no config file to fix (there is none); it may suggest writing one
     assert!(!m.contains("in the config") && !m.contains(".toml"), "{m}");
     // a config file: its key at its line
-    let cfg = dir().join("map.toml");
+    let cfg = tmp.path("map.toml");
     let config = Config::from_toml_str(
         "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n",
         &cfg,
@@ -69,12 +57,13 @@ fn a_missing_column_names_where_the_column_names_came_from() {
 
 #[test]
 fn an_acceleration_outlier_is_named_at_its_row_not_blamed_on_the_trajectory() {
+    let tmp = Scratch::new();
     let mut lines: Vec<String> = record().lines().map(str::to_string).collect();
     // data row 150 (file line 152): qdd3 = 5e7, inside the accepted range (1e8)
     let mut fields: Vec<String> = lines[151].split(',').map(str::to_string).collect();
     fields[15] = "5e7".into();
     lines[151] = fields.join(",");
-    let f = write("outlier.csv", &lines.join("\n"));
+    let f = tmp.write("outlier.csv", &lines.join("\n"));
     let config = Config::default_mapping();
     let data = load(&config, &[f], 6).unwrap();
     let at = "outlier.csv:152";
@@ -98,6 +87,7 @@ fn an_acceleration_outlier_is_named_at_its_row_not_blamed_on_the_trajectory() {
 
 #[test]
 fn a_bad_trajectory_row_is_named_by_its_row_not_blamed_on_the_parameters() {
+    let tmp = Scratch::new();
     let m = fuzz_data::motion(200);
     // in a file: its line and column
     let mut text = String::from("t");
@@ -117,7 +107,7 @@ fn a_bad_trajectory_row_is_named_by_its_row_not_blamed_on_the_parameters() {
         }
         text.push('\n');
     }
-    let e = Trajectory::read_csv(&write("traj.csv", &text), 6).unwrap_err();
+    let e = Trajectory::read_csv(&tmp.write("traj.csv", &text), 6).unwrap_err();
     let msg = e.to_string();
     assert!(msg.contains("traj.csv:79: column `qdd2` is 5e8"), "{msg}");
     // built in code: the sample and its time
@@ -157,7 +147,8 @@ fn a_bad_trajectory_row_is_named_by_its_row_not_blamed_on_the_parameters() {
 
 #[test]
 fn config_keys_are_named_by_file_line_and_settings_by_their_field() {
-    let cfg = dir().join("keys.toml");
+    let tmp = Scratch::new();
+    let cfg = tmp.path("keys.toml");
     let config = Config::from_toml_str(
         "sample_rate = 0\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n",
         &cfg,
@@ -208,6 +199,7 @@ fn config_keys_are_named_by_file_line_and_settings_by_their_field() {
 /// as a `Config` key. They are named as a problem of the default mapping's time column.
 #[test]
 fn time_stamps_in_another_unit_under_the_default_mapping_name_the_time_column() {
+    let tmp = Scratch::new();
     let text: String = record()
         .lines()
         .enumerate()
@@ -219,7 +211,7 @@ fn time_stamps_in_another_unit_under_the_default_mapping_name_the_time_column() 
             format!("{},{rest}\n", t.parse::<f64>().unwrap() * 1e9)
         })
         .collect();
-    let e = load(&Config::default_mapping(), &[write("ns.csv", &text)], 6).unwrap_err();
+    let e = load(&Config::default_mapping(), &[tmp.write("ns.csv", &text)], 6).unwrap_err();
     let m = e.to_string();
     assert!(
         m.starts_with("default column mapping `time_scale`:")

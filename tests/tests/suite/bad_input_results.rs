@@ -10,6 +10,7 @@
 
 use robid_runtime::SimulateError;
 use tests::fuzz_data;
+use tests::scratch::Scratch;
 
 use robid_runtime::Error;
 use robid_runtime::data::{Config, load};
@@ -124,12 +125,10 @@ fn a_zero_torque_noise_is_refused_by_name_not_turned_into_infinite_weights() {
 
 #[test]
 fn all_zero_torques_are_an_error_that_says_so() {
-    let dir = std::env::temp_dir().join(format!("robid-bad-results-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = Scratch::new();
     let mut m = fuzz_data::motion(300);
     m.signals[3].joints_mut().flatten().for_each(|v| *v = 0.0);
-    let f = dir.join("still.csv");
-    std::fs::write(&f, fuzz_data::motion_csv(&m)).unwrap();
+    let f = tmp.write("still.csv", &fuzz_data::motion_csv(&m));
     let config = Config::default_mapping();
     let data = load(&config, &[f], 6).unwrap();
     let e = identify(&Ur5e, &data, &config).unwrap_err();

@@ -6,6 +6,7 @@
 //! uses rows of the estimation is a warning.
 
 use tests::fuzz_data;
+use tests::scratch::Scratch;
 
 use std::path::PathBuf;
 
@@ -14,18 +15,13 @@ use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, text_table};
 use robots::Ur5e;
 
-/// A folder per test (the tests run in parallel).
-fn dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("robid-bad-val-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 const MAPPING: &str = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\nvelocity = \"qd{}\"\n\
                        acceleration = \"qdd{}\"\ntorque = \"tau{}\"\n";
 
-fn setup(tag: &str, processing: &str) -> (Config, PathBuf, PathBuf) {
-    let d = dir(tag);
+/// A config and two runs in a fresh folder (kept alive by the returned [`Scratch`]).
+fn setup(processing: &str) -> (Scratch, Config, PathBuf, PathBuf) {
+    let tmp = Scratch::new();
+    let d = tmp.dir();
     let config = Config::from_toml_str(
         &format!("{MAPPING}[processing]\n{processing}"),
         &d.join("v.toml"),
@@ -35,12 +31,12 @@ fn setup(tag: &str, processing: &str) -> (Config, PathBuf, PathBuf) {
     let run2 = d.join("run2.csv");
     std::fs::write(&run1, fuzz_data::motion_csv(&fuzz_data::motion(500))).unwrap();
     std::fs::write(&run2, fuzz_data::motion_csv(&fuzz_data::motion(450))).unwrap();
-    (config, run1, run2)
+    (tmp, config, run1, run2)
 }
 
 #[test]
 fn the_estimation_range_does_not_apply_to_a_validation_file() {
-    let (config, run1, run2) = setup("plain", "range = [0, 300]\n");
+    let (_tmp, config, run1, run2) = setup("range = [0, 300]\n");
     let data = load(&config, std::slice::from_ref(&run1), 6).unwrap();
     let id = identify(&Ur5e, &data, &config).unwrap();
     assert_eq!(id.used.samples, [0, 300]);
@@ -87,10 +83,7 @@ fn the_estimation_range_does_not_apply_to_a_validation_file() {
 
 #[test]
 fn a_validation_range_selects_the_validation_rows() {
-    let (config, run1, _) = setup(
-        "ranged",
-        "range = [0, 300]\nvalidation_range = [320, 500]\n",
-    );
+    let (_tmp, config, run1, _) = setup("range = [0, 300]\nvalidation_range = [320, 500]\n");
     let data = load(&config, std::slice::from_ref(&run1), 6).unwrap();
     let id = identify(&Ur5e, &data, &config).unwrap();
     let p = validate(&Ur5e, &data, &config, &id.estimate.values).unwrap();
@@ -103,7 +96,7 @@ fn a_validation_range_selects_the_validation_rows() {
             .all(|w| w.kind != "validation_repeats_estimation")
     );
     // a validation range outside a file is named by its key
-    let (config, _, run2) = setup("outside", "validation_range = [600, 700]\n");
+    let (_tmp, config, _, run2) = setup("validation_range = [600, 700]\n");
     let other = load(&config, &[run2], 6).unwrap();
     let e = validate(&Ur5e, &other, &config, &id.estimate.values).unwrap_err();
     assert!(

@@ -5,6 +5,7 @@
 //! estimate (for the caller to print on stderr), the text table and the JSON report.
 
 use tests::fuzz_data;
+use tests::scratch::Scratch;
 
 use robid_runtime::data::{Config, load};
 use robid_runtime::estimate::{CONDITION_WARNING, QualityWarning, REL_STD_WARNING};
@@ -13,10 +14,8 @@ use robid_runtime::report::{Report, text_table};
 use robots::Ur5e;
 
 fn run(name: &str, motion: &fuzz_data::Motion) -> robid_runtime::pipeline::Identification {
-    let dir = std::env::temp_dir().join(format!("robid-bad-warn-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let f = dir.join(name);
-    std::fs::write(&f, fuzz_data::motion_csv(motion)).unwrap();
+    let tmp = Scratch::new();
+    let f = tmp.write(name, &fuzz_data::motion_csv(motion));
     let config = Config::default_mapping();
     identify(&Ur5e, &load(&config, &[f], 6).unwrap(), &config).unwrap()
 }

@@ -6,6 +6,7 @@
 //! The long run is `cargo run --release -p tests --example fuzz_identify -- N [SEED]`.
 
 use tests::fuzz_data;
+use tests::scratch::Scratch;
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -19,8 +20,8 @@ const HANG: u64 = 30;
 fn mutated_configs_csvs_and_identifications_never_panic_hang_or_give_nan() {
     // the panics are caught and counted; their messages would only clutter the output
     std::panic::set_hook(Box::new(|_| {}));
-    let dir = std::env::temp_dir().join(format!("robid-fuzz-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = Scratch::new();
+    let dir = tmp.dir().to_path_buf();
     let plan = Plan {
         configs: 8000,
         csvs: 8000,
@@ -52,7 +53,6 @@ fn mutated_configs_csvs_and_identifications_never_panic_hang_or_give_nan() {
     }
     let _ = std::panic::take_hook();
     let tally = worker.join().expect("the fuzz loop itself does not panic");
-    let _ = std::fs::remove_dir_all(&dir);
     println!(
         "{} config, {} csv, {} identify cases in {:.1} s; slowest {:.2} s ({})",
         tally.count("config"),

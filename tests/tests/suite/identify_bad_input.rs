@@ -6,6 +6,7 @@
 use robid_runtime::DataError;
 use robid_runtime::EstimateError;
 use std::path::PathBuf;
+use tests::scratch::Scratch;
 
 use robid_runtime::Error;
 use robid_runtime::data::{Config, load};
@@ -21,15 +22,10 @@ acceleration = "qdd{}"
 torque = "tau{}"
 "#;
 
-fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("robid-identify-bad-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// A CSV with `rows` samples of a smooth motion of `joints` joints (only joint 1 moves
 /// when `only_first`); `edit` may change the text before it is written.
 fn csv(
+    tmp: &Scratch,
     name: &str,
     rows: usize,
     joints: usize,
@@ -59,26 +55,28 @@ fn csv(
         }
         s += &(row.join(",") + "\n");
     }
-    let path = dir().join(name);
+    let path = tmp.path(name);
     std::fs::write(&path, edit(s)).unwrap();
     path
 }
 
-fn run(file: PathBuf, config: &str) -> Result<(), Error> {
-    let config = Config::from_toml_str(config, &dir().join("cfg.toml"))?;
+fn run(tmp: &Scratch, file: PathBuf, config: &str) -> Result<(), Error> {
+    let config = Config::from_toml_str(config, &tmp.path("cfg.toml"))?;
     let data = load(&config, &[file], 6)?;
     identify(&Ur5e, &data, &config).map(|_| ())
 }
 
 #[test]
 fn wrong_joint_count_in_data() {
-    let e = run(csv("five.csv", 400, 5, false, |s| s), CONFIG).unwrap_err();
+    let tmp = Scratch::new();
+    let e = run(&tmp, csv(&tmp, "five.csv", 400, 5, false, |s| s), CONFIG).unwrap_err();
     assert!(
         matches!(e, Error::Data(DataError::MissingColumn { ref column, .. }) if column == "q6"),
         "{e}"
     );
     let e = run(
-        csv("six.csv", 400, 6, false, |s| s),
+        &tmp,
+        csv(&tmp, "six.csv", 400, 6, false, |s| s),
         &format!("dof = 5\n{CONFIG}"),
     )
     .unwrap_err();
@@ -95,14 +93,15 @@ fn wrong_joint_count_in_data() {
 
 #[test]
 fn nan_in_csv_names_the_line_and_column() {
-    let f = csv("nan.csv", 400, 6, false, |s| {
+    let tmp = Scratch::new();
+    let f = csv(&tmp, "nan.csv", 400, 6, false, |s| {
         let mut lines: Vec<String> = s.lines().map(str::to_string).collect();
         let mut fields: Vec<&str> = lines[10].split(',').collect();
         fields[3] = "NaN";
         lines[10] = fields.join(",");
         lines.join("\n")
     });
-    let e = run(f, CONFIG).unwrap_err();
+    let e = run(&tmp, f, CONFIG).unwrap_err();
     let text = e.to_string();
     assert!(
         matches!(e, Error::Data(DataError::NotFinite { line: 11, .. })),
@@ -113,10 +112,11 @@ fn nan_in_csv_names_the_line_and_column() {
 
 #[test]
 fn missing_column_lists_the_header() {
-    let f = csv("missing.csv", 400, 6, false, |s| {
+    let tmp = Scratch::new();
+    let f = csv(&tmp, "missing.csv", 400, 6, false, |s| {
         s.replacen("tau4", "torque4", 1)
     });
-    let e = run(f, CONFIG).unwrap_err();
+    let e = run(&tmp, f, CONFIG).unwrap_err();
     assert!(
         matches!(e, Error::Data(DataError::MissingColumn { ref column, .. }) if column == "tau4"),
         "{e}"
@@ -126,12 +126,13 @@ fn missing_column_lists_the_header() {
 
 #[test]
 fn non_monotonic_time() {
-    let f = csv("time.csv", 400, 6, false, |s| {
+    let tmp = Scratch::new();
+    let f = csv(&tmp, "time.csv", 400, 6, false, |s| {
         let mut lines: Vec<String> = s.lines().map(str::to_string).collect();
         lines.swap(20, 21);
         lines.join("\n")
     });
-    let e = run(f, CONFIG).unwrap_err();
+    let e = run(&tmp, f, CONFIG).unwrap_err();
     assert!(
         matches!(e, Error::Data(DataError::NonMonotonicTime { .. })),
         "{e}"
@@ -140,10 +141,11 @@ fn non_monotonic_time() {
 
 #[test]
 fn too_few_samples() {
-    let e = run(csv("short.csv", 1, 6, false, |s| s), CONFIG).unwrap_err();
+    let tmp = Scratch::new();
+    let e = run(&tmp, csv(&tmp, "short.csv", 1, 6, false, |s| s), CONFIG).unwrap_err();
     assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
     let trimmed = format!("{CONFIG}[processing]\ntrim = 30\n");
-    let e = run(csv("short2.csv", 50, 6, false, |s| s), &trimmed).unwrap_err();
+    let e = run(&tmp, csv(&tmp, "short2.csv", 50, 6, false, |s| s), &trimmed).unwrap_err();
     assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
 }
 
@@ -188,7 +190,8 @@ fn rank_of(w: &nalgebra::DMatrix<f64>, keep: Option<&[usize]>) -> usize {
 
 #[test]
 fn rank_deficient_data_names_the_parameters_not_excited() {
-    let e = run(csv("still.csv", 600, 6, true, |s| s), CONFIG).unwrap_err();
+    let tmp = Scratch::new();
+    let e = run(&tmp, csv(&tmp, "still.csv", 600, 6, true, |s| s), CONFIG).unwrap_err();
     match &e {
         Error::Estimate(EstimateError::RankDeficient {
             rank,

@@ -1,6 +1,6 @@
 //! Repeated acquisitions (`[runs]`) of the synthetic trajectory with different noise.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use super::milella::relative_error;
 use super::synthetic::{CONFIG, DOF, Synthetic, csv_seeded};
@@ -11,9 +11,9 @@ use crate::report::{Report, text_table};
 
 /// Runs of the synthetic trajectory (`samples` each, torque noise 0.5) written to a fresh
 /// folder, and a config listing them with `mode`.
-fn runs_config(name: &str, samples: &[usize], mode: &str) -> (Config, PathBuf) {
-    let dir = std::env::temp_dir().join(format!("robid-runs-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+fn runs_config(samples: &[usize], mode: &str) -> (Config, tempfile::TempDir) {
+    let folder = tempfile::tempdir().unwrap();
+    let dir = folder.path();
     let mut files = Vec::new();
     for (r, &n) in samples.iter().enumerate() {
         let file = format!("run{}.csv", r + 1);
@@ -30,7 +30,7 @@ fn runs_config(name: &str, samples: &[usize], mode: &str) -> (Config, PathBuf) {
     );
     std::fs::write(dir.join("runs.toml"), &text).unwrap();
     let config = Config::from_toml_str(&text, &dir.join("runs.toml")).unwrap();
-    (config, dir)
+    (config, folder)
 }
 
 /// Eight runs identified alone: the spread of their values agrees with the standard
@@ -38,9 +38,9 @@ fn runs_config(name: &str, samples: &[usize], mode: &str) -> (Config, PathBuf) {
 #[test]
 fn milella_run_spread_agrees_with_the_reported_std() {
     let r = 8;
-    let (config, dir) = runs_config("stacked", &[20_000; 8], "stacked");
+    let (config, dir) = runs_config(&[20_000; 8], "stacked");
     let data = load_runs(&config, DOF).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
+    drop(dir);
     assert_eq!(data.len(), r);
     let id = identify_runs(&Synthetic::default(), &data, &config).unwrap();
     assert_eq!(id.mode, RunMode::Stacked);
@@ -113,9 +113,9 @@ fn milella_run_spread_agrees_with_the_reported_std() {
 #[test]
 fn milella_averaged_runs_lower_the_noise_by_sqrt_r() {
     let r = 8.0f64;
-    let (config, dir) = runs_config("averaged", &[20_000; 8], "averaged");
+    let (config, dir) = runs_config(&[20_000; 8], "averaged");
     let data = load_runs(&config, DOF).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
+    drop(dir);
     let averaged = identify_runs(&Synthetic::default(), &data, &config).unwrap();
     assert_eq!(averaged.mode, RunMode::Averaged);
     assert!(averaged.used.is_some());
@@ -167,7 +167,7 @@ fn milella_averaged_runs_lower_the_noise_by_sqrt_r() {
 /// stacked; a single run or a wrong file count is refused by the config check.
 #[test]
 fn milella_runs_bad_input() {
-    let (config, dir) = runs_config("lengths", &[20_000, 20_000, 18_000], "averaged");
+    let (config, dir) = runs_config(&[20_000, 20_000, 18_000], "averaged");
     let data = load_runs(&config, DOF).unwrap();
     let e = identify_runs(&Synthetic::default(), &data, &config).unwrap_err();
     assert!(
@@ -181,8 +181,8 @@ fn milella_runs_bad_input() {
     stacked.runs.as_mut().unwrap().mode = RunMode::Stacked;
     let id = identify_runs(&Synthetic::default(), &data, &stacked).unwrap();
     assert!(id.spread.torque_std.is_none());
-    let text = std::fs::read_to_string(dir.join("runs.toml")).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(dir.path().join("runs.toml")).unwrap();
+    drop(dir);
     for (bad, key) in [
         (
             text.replace("files = [\"run1.csv\", ", "files = [")
