@@ -14,7 +14,7 @@
 use std::cell::RefCell;
 
 use robid_runtime::Model;
-use robid_runtime::model::{LengthError, PROGRAMS, ProgramKind, check_arguments};
+use robid_runtime::model::{LengthError, PROGRAMS, ProgramKind, check_arguments, check_lanes};
 use robid_symbolic::Robot;
 use robid_symbolic::program::{BaseParameter, Compact, DeriveError, RobotPrograms};
 
@@ -140,6 +140,26 @@ impl Model for Interpreted {
         let expected = output.len();
         TEMPS
             .with(|t| p.run(inputs, &mut [output], &mut t.borrow_mut()))
+            .map_err(|_| LengthError {
+                argument: program.info().output.name,
+                expected,
+                found: 0,
+            })
+    }
+    /// As [`run`](Self::run), each operation interpreted once for all `lanes` sets
+    /// (`Compact::run_lanes`: the same results to the bit).
+    fn run_lanes(
+        &self,
+        program: ProgramKind,
+        lanes: usize,
+        inputs: &[&[f64]],
+        output: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_lanes(program, self.sizes(), lanes, inputs, output)?;
+        let p = &self.compact[program as usize];
+        let expected = output.len();
+        TEMPS
+            .with(|t| p.run_lanes(lanes, inputs, &mut [output], &mut t.borrow_mut()))
             .map_err(|_| LengthError {
                 argument: program.info().output.name,
                 expected,

@@ -35,6 +35,8 @@ pub struct Information {
     /// Samples added.
     pub samples: usize,
     y: Vec<f64>,
+    /// The regressors of [`Information::add_lanes`], lane-major.
+    lanes: Vec<f64>,
     weights: Option<Vec<f64>>,
 }
 
@@ -46,6 +48,7 @@ impl Information {
             gram: DMatrix::zeros(p, p),
             samples: 0,
             y: vec![0.0; model.dof() * p],
+            lanes: Vec::new(),
             weights: None,
         }
     }
@@ -80,6 +83,47 @@ impl Information {
         }
         add_rows(&mut self.gram, &self.y, model.dof());
         self.samples += 1;
+        Ok(())
+    }
+
+    /// Adds the rows Y_b of `lanes` samples given lane-major (joint i of sample l at
+    /// `i * lanes + l`, [`Model::run_lanes`]): the model evaluates them in one call (an
+    /// interpreter dispatches each operation once for all of them), then they are added
+    /// sample by sample, so W'W is the same to the bit as with [`Information::add`] on
+    /// each sample in order.
+    pub fn add_lanes<M: Model + ?Sized>(
+        &mut self,
+        model: &M,
+        lanes: usize,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> Result<(), LengthError> {
+        let p = self.gram.ncols();
+        let rows = model.dof();
+        self.lanes.resize(rows * p * lanes, 0.0);
+        model.run_lanes(
+            crate::model::ProgramKind::BaseRegressor,
+            lanes,
+            &[q, qd, qdd],
+            &mut self.lanes,
+        )?;
+        for l in 0..lanes {
+            for (y, &v) in self
+                .y
+                .iter_mut()
+                .zip(self.lanes.iter().skip(l).step_by(lanes))
+            {
+                *y = v;
+            }
+            if let Some(w) = &self.weights {
+                for (row, w) in self.y.chunks_mut(p).zip(w) {
+                    row.iter_mut().for_each(|y| *y *= w);
+                }
+            }
+            add_rows(&mut self.gram, &self.y, rows);
+            self.samples += 1;
+        }
         Ok(())
     }
 
@@ -283,6 +327,61 @@ mod tests {
             cost(&DMatrix::zeros(2, 2), 1, Criterion::Condition),
             f64::INFINITY
         );
+    }
+
+    /// The default `Model::run_lanes` equals one run per set, and `add_lanes` gives the
+    /// W'W of adding the same samples one by one, to the bit (weights included); lengths
+    /// that are not `lanes` times the table's, and zero lanes, are errors.
+    #[test]
+    fn lanes_give_the_same_information_to_the_bit() {
+        use crate::model::ProgramKind;
+        use crate::pipeline::tests::synthetic::Synthetic;
+        let model = Synthetic::default();
+        let n = model.dof();
+        let mut rng = crate::rng::Rng::new(3);
+        let lanes = 5;
+        let states: Vec<[Vec<f64>; 3]> = (0..lanes)
+            .map(|_| [(); 3].map(|()| (0..n).map(|_| rng.uniform(-2.0, 2.0)).collect()))
+            .collect();
+        let lane_major = |s: usize| -> Vec<f64> {
+            (0..n * lanes)
+                .map(|k| states[k % lanes][s][k / lanes])
+                .collect()
+        };
+        let (q, qd, qdd) = (lane_major(0), lane_major(1), lane_major(2));
+        let weights: Vec<f64> = (0..n).map(|j| 1.0 + j as f64 / 3.0).collect();
+        let mut one = Information::new(&model).with_weights(&weights);
+        for [q, qd, qdd] in &states {
+            one.add(&model, q, qd, qdd).unwrap();
+        }
+        let mut all = Information::new(&model).with_weights(&weights);
+        all.add_lanes(&model, lanes, &q, &qd, &qdd).unwrap();
+        let bits = |m: &DMatrix<f64>| m.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&all.gram), bits(&one.gram));
+        assert_eq!(all.samples, lanes);
+        // the default run_lanes, gravity: set l's torques at l, l + lanes, ...
+        let base: Vec<f64> = (0..model.base_parameter_count())
+            .map(|i| 0.1 * i as f64)
+            .collect();
+        let base_lanes: Vec<f64> = base.iter().flat_map(|b| [*b; 5]).collect();
+        let mut tau = vec![0.0; n * lanes];
+        model
+            .run_lanes(ProgramKind::Gravity, lanes, &[&q, &base_lanes], &mut tau)
+            .unwrap();
+        for (l, [q, ..]) in states.iter().enumerate() {
+            let mut want = vec![0.0; n];
+            model.gravity_into(q, &base, &mut want).unwrap();
+            let got: Vec<f64> = (0..n).map(|i| tau[i * lanes + l]).collect();
+            assert_eq!(got, want);
+        }
+        let e = all
+            .add_lanes(&model, lanes, &q[1..], &qd, &qdd)
+            .unwrap_err();
+        assert_eq!((e.argument, e.expected), ("q", n * lanes));
+        let e = model
+            .run_lanes(ProgramKind::Gravity, 0, &[&[], &[]], &mut [])
+            .unwrap_err();
+        assert_eq!(e.argument, "lanes");
     }
 
     /// The eigenvalue-only solver against nalgebra's full decomposition, on random

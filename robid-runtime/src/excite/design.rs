@@ -317,22 +317,34 @@ impl FourierDesign {
             q,
             qd,
             qdd,
+            lanes,
         } = scratch;
         info.reset();
         if let Some(p) = penalty.as_mut() {
             p.reset();
         }
         let w = fourier.omega();
-        for k in 0..self.points {
-            basis.state(fourier, w, k, q, qd, qdd);
-            // The sizes were checked on entry: a model that still refuses a state makes
-            // this candidate infinitely bad rather than silently wrong.
-            if info.add(model, q, qd, qdd).is_err() {
-                return f64::INFINITY;
+        let n = q.len();
+        for first in (0..self.points).step_by(LANES) {
+            let count = LANES.min(self.points - first);
+            for l in 0..count {
+                basis.state(fourier, w, first + l, q, qd, qdd);
+                for (lane, state) in lanes.chunks_exact_mut(n * count).zip([&*q, qd, qdd]) {
+                    for (i, v) in state.iter().enumerate() {
+                        lane[i * count + l] = *v;
+                    }
+                }
+                // The sizes were checked on entry: a model that still refuses a state
+                // makes this candidate infinitely bad rather than silently wrong.
+                if let Some(p) = penalty.as_mut()
+                    && p.add(model, q, qd, qdd).is_err()
+                {
+                    return f64::INFINITY;
+                }
             }
-            if let Some(p) = penalty.as_mut()
-                && p.add(model, q, qd, qdd).is_err()
-            {
+            let (ql, rest) = lanes[..3 * n * count].split_at(n * count);
+            let (qdl, qddl) = rest.split_at(n * count);
+            if info.add_lanes(model, count, ql, qdl, qddl).is_err() {
                 return f64::INFINITY;
             }
         }
@@ -359,6 +371,7 @@ impl FourierDesign {
             q: vec![0.0; n],
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
+            lanes: vec![0.0; 3 * n * LANES],
         }
     }
 }
@@ -417,7 +430,14 @@ struct Scratch<'a> {
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
+    /// Up to [`LANES`] states, lane-major: q, then qd, then qdd ([`Information::add_lanes`]).
+    lanes: Vec<f64>,
 }
+
+/// Design points evaluated in one call of the model: an interpreted model dispatches each
+/// operation once for all of them, and 8 lanes of its registers stay in the cache
+/// (docs/performance.md#excitation).
+const LANES: usize = 8;
 
 /// Checks that a fixed start position lies strictly inside the position limits.
 pub(crate) fn check_start(start: Option<&[f64]>, limits: &[JointLimits]) -> Result<()> {

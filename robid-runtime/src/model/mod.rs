@@ -136,6 +136,57 @@ pub trait Model {
         output: &mut [f64],
     ) -> Result<(), LengthError>;
 
+    /// Runs `program` on `lanes` argument sets at once. Every input and the output are
+    /// lane-major: element `i` of set `l` is at `i * lanes + l`, so each slice is `lanes`
+    /// times as long as for [`run`](Model::run). Each set's result equals that of `run`
+    /// on it. The default runs the sets one by one (it allocates one buffer per input and
+    /// one for the output per call); an interpreter overrides it to dispatch each operation
+    /// once for all sets.
+    ///
+    /// ```
+    /// use robid_runtime::model::{LengthError, Model, ProgramKind};
+    /// /// Gravity torques at two positions `qa`, `qb` in one call.
+    /// fn two(m: &dyn Model, qa: &[f64], qb: &[f64], base: &[f64]) -> Result<Vec<f64>, LengthError> {
+    ///     let q: Vec<f64> = qa.iter().zip(qb).flat_map(|(a, b)| [*a, *b]).collect();
+    ///     let base2: Vec<f64> = base.iter().flat_map(|b| [*b, *b]).collect();
+    ///     let mut tau = vec![0.0; 2 * m.dof()];
+    ///     m.run_lanes(ProgramKind::Gravity, 2, &[&q, &base2], &mut tau)?;
+    ///     Ok(tau) // tau[2 i] is joint i at qa, tau[2 i + 1] at qb
+    /// }
+    /// ```
+    ///
+    /// # Errors
+    /// The [`LengthError`] of the first wrong argument, with `lanes` times the length
+    /// `run` expects; `lanes` = 0 is an error on the argument `lanes`.
+    #[cfg(feature = "std")]
+    fn run_lanes(
+        &self,
+        program: ProgramKind,
+        lanes: usize,
+        inputs: &[&[f64]],
+        output: &mut [f64],
+    ) -> Result<(), LengthError> {
+        check_lanes(program, self.sizes(), lanes, inputs, output)?;
+        let mut sets: Vec<Vec<f64>> = inputs.iter().map(|s| vec![0.0; s.len() / lanes]).collect();
+        let mut one = vec![0.0; output.len() / lanes];
+        for l in 0..lanes {
+            for (set, s) in sets.iter_mut().zip(inputs) {
+                set.iter_mut()
+                    .zip(s.iter().skip(l).step_by(lanes))
+                    .for_each(|(x, &v)| *x = v);
+            }
+            let views: Vec<&[f64]> = sets.iter().map(Vec::as_slice).collect();
+            self.run(program, &views, &mut one)?;
+            output
+                .iter_mut()
+                .skip(l)
+                .step_by(lanes)
+                .zip(&one)
+                .for_each(|(o, &v)| *o = v);
+        }
+        Ok(())
+    }
+
     /// The sizes the table's shapes are measured in.
     fn sizes(&self) -> Sizes {
         Sizes {
@@ -218,6 +269,26 @@ pub fn check_arguments(
     inputs: &[&[f64]],
     output: &[f64],
 ) -> Result<(), LengthError> {
+    check_lanes(program, sizes, 1, inputs, output)
+}
+
+/// [`check_arguments`] for `lanes` argument sets in one lane-major slice each
+/// ([`Model::run_lanes`]): every length `lanes` times the table's; `lanes` = 0 is an error
+/// on the argument `lanes`.
+pub fn check_lanes(
+    program: ProgramKind,
+    sizes: Sizes,
+    lanes: usize,
+    inputs: &[&[f64]],
+    output: &[f64],
+) -> Result<(), LengthError> {
+    if lanes == 0 {
+        return Err(LengthError {
+            argument: "lanes",
+            expected: 1,
+            found: 0,
+        });
+    }
     let info = program.info();
     if inputs.len() != info.inputs.len() {
         return Err(LengthError {
@@ -227,9 +298,13 @@ pub fn check_arguments(
         });
     }
     for (slice, argument) in inputs.iter().zip(info.inputs) {
-        check_length(argument.name, slice, argument.size.len(sizes))?;
+        check_length(argument.name, slice, argument.size.len(sizes) * lanes)?;
     }
-    check_length(info.output.name, output, info.output.size.len(sizes))
+    check_length(
+        info.output.name,
+        output,
+        info.output.size.len(sizes) * lanes,
+    )
 }
 
 /// The base parameter names of `model`, in order.

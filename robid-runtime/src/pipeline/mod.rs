@@ -19,4 +19,4 @@ pub use runs::{RepeatedIdentification, RunSpread, average, identify_runs, stack}
 pub use static_samples::{StaticFit, StaticKind, identify_static, static_rows};
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

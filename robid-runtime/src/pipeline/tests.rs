@@ -19,7 +19,7 @@ use crate::signal::{Signals, central_difference};
 mod milella;
 mod runs;
 #[path = "synthetic.rs"]
-mod synthetic;
+pub(crate) mod synthetic;
 use synthetic::{CONFIG, DOF, Synthetic, csv_with_noise, trajectory, true_parameters};
 
 fn config(extra: &str) -> Config {

@@ -261,6 +261,89 @@ impl Compact {
     }
 }
 
+impl Compact {
+    /// Runs the program on `lanes` argument sets at once, dispatching each operation once
+    /// for all of them (the loop over the sets is what the compiler vectorises). Every
+    /// input and output is lane-major: element `i` of set `l` is at `i * lanes + l`, so a
+    /// group of `n` elements holds `n * lanes` values. Each set gets exactly the
+    /// operations of [`Compact::run`], so its results are the same to the bit.
+    ///
+    /// # Errors
+    /// A group whose length is not `lanes` times its element count, as [`Compact::run`]
+    /// names it (with that product as the expected length); `lanes` = 0 is refused.
+    pub fn run_lanes(
+        &self,
+        lanes: usize,
+        inputs: &[&[f64]],
+        outputs: &mut [&mut [f64]],
+        registers: &mut Vec<f64>,
+    ) -> Result<(), LengthError> {
+        if lanes == 0 {
+            return Err(LengthError {
+                what: "input",
+                group: "lanes".into(),
+                found: 0,
+                expected: 1,
+            });
+        }
+        check_groups(
+            "input",
+            self.inputs.iter().map(|(name, len)| (name, *len * lanes)),
+            inputs.iter().map(|s| s.len()),
+        )?;
+        check_groups(
+            "output",
+            self.outputs
+                .iter()
+                .map(|(name, regs)| (name, regs.len() * lanes)),
+            outputs.iter().map(|s| s.len()),
+        )?;
+        let r = registers;
+        r.clear();
+        let first = inputs.iter().map(|s| s.len()).sum::<usize>() + self.fixed.len() * lanes;
+        r.reserve(first + self.ops.len() * lanes);
+        for s in inputs {
+            r.extend_from_slice(s);
+        }
+        for &v in &self.fixed {
+            r.extend(core::iter::repeat_n(v, lanes));
+        }
+        r.resize(first + self.ops.len() * lanes, 0.0);
+        for (k, &(op, a, b)) in self.ops.iter().enumerate() {
+            // operands always name earlier registers (the program is in order)
+            let (done, next) = r.split_at_mut(first + k * lanes);
+            let d = &mut next[..lanes];
+            let x = &done[a as usize * lanes..][..lanes];
+            let y = &done[b as usize * lanes..][..lanes];
+            let unary = |d: &mut [f64], f: fn(f64) -> f64| {
+                d.iter_mut().zip(x).for_each(|(d, &x)| *d = f(x));
+            };
+            let binary = |d: &mut [f64], f: fn(f64, f64) -> f64| {
+                d.iter_mut()
+                    .zip(x.iter().zip(y))
+                    .for_each(|(d, (&x, &y))| *d = f(x, y));
+            };
+            match op {
+                Op::Add => binary(d, |x, y| x + y),
+                Op::Sub => binary(d, |x, y| x - y),
+                Op::Mul => binary(d, |x, y| x * y),
+                Op::Div => binary(d, |x, y| x / y),
+                Op::Neg => unary(d, |x| -x),
+                Op::Sin => unary(d, f64::sin),
+                Op::Cos => unary(d, f64::cos),
+                Op::Sign => unary(d, <f64 as Real>::sign),
+                Op::Sqrt => unary(d, f64::sqrt),
+            }
+        }
+        for ((_, regs), out) in self.outputs.iter().zip(outputs.iter_mut()) {
+            for (slot, &i) in out.chunks_exact_mut(lanes).zip(regs) {
+                slot.copy_from_slice(&r[i as usize * lanes..][..lanes]);
+            }
+        }
+        Ok(())
+    }
+}
+
 /// [`check`] without allocating: group counts, then each group's length.
 fn check_groups<'a>(
     what: &'static str,

@@ -434,3 +434,85 @@ fn compact_programs_equal_the_interpreter_to_the_bit() {
         }
     }
 }
+
+/// Lane-major runs equal one run per argument set to the bit, for every program of a robot
+/// with every drive term (sign, sqrt-free friction, offsets) and several lane counts; a
+/// group whose length is not lanes times its element count, and zero lanes, are refused.
+#[test]
+fn compact_lanes_equal_one_run_per_set_to_the_bit() {
+    let ur5e = Robot::from_toml(UR5E, "ur5e.toml")
+        .unwrap()
+        .with_drive(crate::Drive::ALL);
+    let p = super::RobotPrograms::derive(&ur5e).unwrap();
+    let geometry: Vec<f64> = ur5e.symbols().iter().map(|(_, v)| v.unwrap()).collect();
+    let mut rng = Rng::from_state(9);
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for info in robid_runtime::model::PROGRAMS {
+        let program = &p[info.kind];
+        let compact = program.compact(&geometry).unwrap();
+        let len = program.outputs[0].values.len();
+        let groups: Vec<usize> = info
+            .inputs
+            .iter()
+            .zip(&program.inputs)
+            .map(|(_, g)| g.len())
+            .collect();
+        let mut registers = Vec::new();
+        for lanes in [1, 3, 8] {
+            // set l of group g: sets[l][g]; a zero velocity in one set exercises sign(0)
+            let sets: Vec<Vec<Vec<f64>>> = (0..lanes)
+                .map(|l| {
+                    groups
+                        .iter()
+                        .map(|&n| {
+                            (0..n)
+                                .map(|_| if l == 1 { 0.0 } else { rng.uniform(-2.0, 2.0) })
+                                .collect()
+                        })
+                        .collect()
+                })
+                .collect();
+            let lane_major: Vec<Vec<f64>> = groups
+                .iter()
+                .enumerate()
+                .map(|(g, &n)| {
+                    (0..n * lanes)
+                        .map(|k| sets[k % lanes][g][k / lanes])
+                        .collect()
+                })
+                .collect();
+            let inputs: Vec<&[f64]> = lane_major.iter().map(Vec::as_slice).collect();
+            let mut got = vec![f64::NAN; len * lanes];
+            compact
+                .run_lanes(lanes, &inputs, &mut [&mut got], &mut registers)
+                .unwrap();
+            for (l, set) in sets.iter().enumerate() {
+                let one: Vec<&[f64]> = set.iter().map(Vec::as_slice).collect();
+                let mut want = vec![f64::NAN; len];
+                compact
+                    .run(&one, &mut [&mut want], &mut Vec::new())
+                    .unwrap();
+                let lane: Vec<f64> = (0..len).map(|i| got[i * lanes + l]).collect();
+                assert_eq!(
+                    bits(&lane),
+                    bits(&want),
+                    "{} lane {l} of {lanes}",
+                    info.name
+                );
+            }
+            if let Some(first) = inputs.first().filter(|s| !s.is_empty()) {
+                let mut short = inputs.clone();
+                short[0] = &first[1..];
+                let e = compact
+                    .run_lanes(lanes, &short, &mut [&mut got], &mut registers)
+                    .unwrap_err();
+                assert_eq!((e.found, e.expected), (first.len() - 1, first.len()));
+            }
+        }
+        assert!(
+            compact
+                .run_lanes(0, &[], &mut [&mut []], &mut registers)
+                .is_err()
+        );
+    }
+}
