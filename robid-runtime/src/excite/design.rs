@@ -114,13 +114,20 @@ impl Decoder<'_> {
                     Some(q0) => q0[j],
                     None => mid + half * v[m - 1].sin(),
                 };
+                // per harmonic: a, b, w_l, a / w_l, b / w_l (the same values the loop
+                // below would compute at every point)
+                let mut terms = [[0.0; 5]; MAX_HARMONICS];
+                for (i, ((a, b), t)) in s.a.iter().zip(&s.b).zip(&mut terms).enumerate() {
+                    let wl = w * (i + 1) as f64;
+                    *t = [*a, *b, wl, a / wl, b / wl];
+                }
+                let terms = &terms[..s.a.len()];
                 let (mut gmax, mut gmin, mut vmax, mut amax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
                 for k in 0..self.fine {
                     let (mut g, mut gd, mut gdd) = (0.0, 0.0, 0.0);
-                    for (i, (a, b)) in s.a.iter().zip(&s.b).enumerate() {
+                    for (i, &[a, b, wl, a_w, b_w]) in terms.iter().enumerate() {
                         let (sn, cs) = self.table[i * self.fine + k];
-                        let wl = w * (i + 1) as f64;
-                        g += a / wl * sn - b / wl * (cs - 1.0);
+                        g += a_w * sn - b_w * (cs - 1.0);
                         gd += a * cs + b * sn;
                         gdd += wl * (-a * sn + b * cs);
                     }
