@@ -140,3 +140,59 @@ fn composite_rigid_body_is_no_dearer_for_reference_robots() {
         assert!(crba.sin <= columns.sin && crba.cos <= columns.cos);
     }
 }
+
+/// The flops (mul + add + neg) of the inverse dynamics, base regressor, gravity, mass
+/// matrix and Coriolis programs of every reference robot (robots/descriptions), in that
+/// order: the figures of today (docs/performance.md#operation-counts).
+const REFERENCE_FLOPS: [(&str, [usize; 5]); 8] = [
+    ("kr6r900", [527, 721, 76, 281, 453]),
+    ("lwr4", [578, 1195, 107, 333, 549]),
+    ("panda", [607, 1222, 107, 374, 576]),
+    ("puma560", [486, 707, 76, 282, 441]),
+    ("rx90", [462, 650, 76, 242, 425]),
+    ("stanford", [132, 112, 25, 38, 102]),
+    ("tx40", [476, 697, 76, 272, 434]),
+    ("ur5e", [474, 624, 66, 275, 418]),
+];
+
+/// No reference robot's program costs more flops than [`REFERENCE_FLOPS`] says, and none
+/// costs fewer either (a lowering that saves operations updates the table, so the table
+/// stays the floor). Prints the table of the counts.
+#[test]
+fn reference_robot_counts_are_the_recorded_floor() {
+    let kinds = [
+        ProgramKind::InverseDynamics,
+        ProgramKind::BaseRegressor,
+        ProgramKind::Gravity,
+        ProgramKind::MassMatrix,
+        ProgramKind::Coriolis,
+    ];
+    let dir = format!("{}/../robots/descriptions", env!("CARGO_MANIFEST_DIR"));
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    assert_eq!(paths.len(), REFERENCE_FLOPS.len(), "{paths:?}");
+    eprintln!("| robot | inverse dynamics | base regressor | gravity | mass matrix | Coriolis |");
+    let mut mismatches = Vec::new();
+    for (path, (name, expected)) in paths.iter().zip(REFERENCE_FLOPS) {
+        let robot = Robot::from_file(path).unwrap();
+        assert_eq!(robot.name(), name);
+        let mut cx = Context::new(&robot).unwrap();
+        let mut row = format!("| {name} |");
+        for (kind, want) in kinds.into_iter().zip(expected) {
+            let ops = cx.build(kind).unwrap().operations();
+            row += &format!(" {} ({ops}) |", ops.flops());
+            if ops.flops() != want {
+                mismatches.push(format!(
+                    "{name} {kind:?}: {} flops, recorded {want}",
+                    ops.flops()
+                ));
+            }
+        }
+        eprintln!("{row}");
+    }
+    assert!(mismatches.is_empty(), "{mismatches:#?}");
+}
