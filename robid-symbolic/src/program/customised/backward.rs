@@ -40,6 +40,7 @@ impl Lowering<'_> {
             qdd,
             kin,
         } = self.forward(frames, inputs)?;
+        self.mark(|| "backward: projection axes, shift".to_owned());
         let projection = self.projection(&frames);
         let shift = self.shift(&frames, &kin, &links);
         let mut projected: Vec<E> = Vec::new();
@@ -50,9 +51,11 @@ impl Lowering<'_> {
         for j in (0..n).rev() {
             let (w, wd, vd, u) = kin[j];
             let l = &links[j];
+            self.mark(|| format!("backward {}: F", j + 1));
             let m_vd = vd.map(|x| self.mul(l.m, x));
             let u_ms = self.mat_vec(&u, l.ms);
             let force = self.add3(&[m_vd, u_ms]);
+            self.mark(|| format!("backward {}: N (Euler)", j + 1));
             let (inertia, vd_moment) = match shift {
                 Some((d, vd_o)) if j + 1 == n => (self.shifted_inertia(l, d), vd_o),
                 _ => (l.inertia, vd),
@@ -67,8 +70,10 @@ impl Lowering<'_> {
                 true => vd_moment.map(|x| self.reuse(x)),
                 false => vd_moment,
             };
+            self.mark(|| format!("backward {}: MS x vd", j + 1));
             let ms_x_vd = self.cross(l.ms, vd_moment);
             let moment = self.add3(&[euler, ms_x_vd]);
+            self.mark(|| format!("backward {}: f, n (transfer)", j + 1));
             let (f, m) = if j + 1 < n {
                 let next = &frames[j + 1];
                 let rf = self.rotate(next, f_next);
@@ -102,6 +107,7 @@ impl Lowering<'_> {
                 // Not needed below the perpendicular joint (n_z alone is).
                 (m[0], m[1]) = (ZERO, ZERO);
             }
+            self.mark(|| format!("backward {}: torque", j + 1));
             let axis = match frames[j].kind {
                 JointKind::Revolute => m[2],
                 JointKind::Prismatic => f[2],

@@ -196,3 +196,48 @@ fn reference_robot_counts_are_the_recorded_floor() {
     }
     assert!(mismatches.is_empty(), "{mismatches:#?}");
 }
+
+/// The inverse dynamics' flops stage by stage (forward recursion per link: vd, w and
+/// wd, U; backward per link: F, Euler's N, MS x vd, the transfer of f and n, the
+/// torque), printed for the UR5e and the PUMA 560; the stages add up to the program's
+/// count.
+#[test]
+fn inverse_dynamics_flops_by_stage() {
+    use super::super::customised::{RunInputs, frame_exprs};
+    use super::super::lower::Lowering;
+    for name in ["ur5e", "puma560"] {
+        let path = format!(
+            "{}/../robots/descriptions/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let robot = Robot::from_file(std::path::Path::new(&path)).unwrap();
+        let mut cx = Context::new(&robot).unwrap();
+        let program = cx.build(ProgramKind::InverseDynamics).unwrap();
+        let info = ProgramKind::InverseDynamics.info();
+        let groups: Vec<&str> = info.inputs.iter().map(|a| a.name).collect();
+        let links = cx.slots(true);
+        let q = cx.d.inputs.q.clone();
+        let frames = frame_exprs(&mut cx.d.arena, &cx.d.robot, &q);
+        let inputs = cx.inputs(&groups);
+        let mut l = Lowering::new(&cx.d.arena, &inputs);
+        let sym = &cx.d.inputs;
+        let run = RunInputs {
+            qd: &sym.qd,
+            qdd: &sym.qdd,
+            gravity: sym.gravity,
+        };
+        let tau = l.newton_euler(&frames, &run, &links, true).unwrap();
+        l.mark(|| "outputs".to_owned());
+        let outputs: Vec<_> = tau.into_iter().map(|t| l.output(t)).collect();
+        let stages = l.stage_flops(&outputs);
+        eprintln!(
+            "{name}: inverse dynamics {} flops",
+            program.operations().flops()
+        );
+        for (label, flops) in &stages {
+            eprintln!("  {label}: {flops}");
+        }
+        let total: usize = stages.iter().map(|s| s.1).sum();
+        assert_eq!(total, program.operations().flops(), "{name}");
+    }
+}
