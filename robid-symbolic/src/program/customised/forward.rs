@@ -140,7 +140,7 @@ impl Lowering<'_> {
     }
 
     /// U = skew(wd) + skew(w)^2.
-    fn u_matrix(&mut self, w: V3, wd: V3) -> [[E; 3]; 3] {
+    pub(super) fn u_matrix(&mut self, w: V3, wd: V3) -> [[E; 3]; 3] {
         let sq = [0, 1, 2].map(|i| self.mul(w[i], w[i]));
         let mut u = [[ZERO; 3]; 3];
         for i in 0..3 {
