@@ -298,32 +298,30 @@ impl Lowering<'_> {
 
     /// Q M Q' for symmetric `m` and the turn Q by the angle with (sin, cos) `(s, c)`
     /// about axis `k`, taking axis `a` towards axis `b` (`(a, b, k)` = (x, y, z) for a
-    /// turn about z, (y, z, x) about x): M'_aa = c^2 M_aa - 2 s c M_ab + s^2 M_bb,
-    /// M'_bb = M_aa + M_bb - M'_aa (the trace of the block is kept), M'_ab = s c (M_aa -
-    /// M_bb) + (c^2 - s^2) M_ab, (M'_ak, M'_bk) = the turn of (M_ak, M_bk), M'_kk = M_kk.
+    /// turn about z, (y, z, x) about x). With the block's first row turned,
+    /// (u, v) = (c M_aa - s M_ab, c M_ab - s M_bb): M'_aa = c u - s v, M'_ab = s u + c v,
+    /// M'_bb = M_aa + M_bb - M'_aa (the trace of the block is kept),
+    /// (M'_ak, M'_bk) = the turn of (M_ak, M_bk) and M'_kk = M_kk.
     fn turn_symmetric(
         &mut self,
         m: [[E; 3]; 3],
         (a, b, k): (usize, usize, usize),
         (s, c): (E, E),
     ) -> [[E; 3]; 3] {
-        let (cc, ss, sc) = (self.mul(c, c), self.mul(s, s), self.mul(s, c));
-        let two_sc = self.mul(number(2.0), sc);
-        let cos2 = self.add(&[cc, neg(ss)]);
-        let (p, q, r) = (
-            self.mul(cc, m[a][a]),
-            self.mul(two_sc, m[a][b]),
-            self.mul(ss, m[b][b]),
-        );
-        let aa = self.add(&[p, neg(q), r]);
+        // c x - s y
+        let mut first = |x: E, y: E| {
+            let (p, q) = (self.mul(c, x), self.mul(s, y));
+            self.add(&[p, neg(q)])
+        };
+        let (u, v) = (first(m[a][a], m[a][b]), first(m[a][b], m[b][b]));
+        let (aa, ak) = (first(u, v), first(m[a][k], m[b][k]));
+        // s x + c y
+        let mut second = |x: E, y: E| {
+            let (p, q) = (self.mul(s, x), self.mul(c, y));
+            self.add(&[p, q])
+        };
+        let (ab, bk) = (second(u, v), second(m[a][k], m[b][k]));
         let bb = self.add(&[m[a][a], m[b][b], neg(aa)]);
-        let diff = self.add(&[m[a][a], neg(m[b][b])]);
-        let (p, q) = (self.mul(sc, diff), self.mul(cos2, m[a][b]));
-        let ab = self.add(&[p, q]);
-        let (p, q) = (self.mul(c, m[a][k]), self.mul(s, m[b][k]));
-        let ak = self.add(&[p, neg(q)]);
-        let (p, q) = (self.mul(s, m[a][k]), self.mul(c, m[b][k]));
-        let bk = self.add(&[p, q]);
         let mut out = m;
         out[a][a] = aa;
         out[b][b] = bb;

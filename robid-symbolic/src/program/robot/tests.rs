@@ -145,14 +145,14 @@ fn composite_rigid_body_is_no_dearer_for_reference_robots() {
 /// matrix and Coriolis programs of every reference robot (robots/descriptions), in that
 /// order: the figures of today (docs/performance.md#operation-counts).
 const REFERENCE_FLOPS: [(&str, [usize; 5]); 8] = [
-    ("kr6r900", [521, 721, 70, 281, 445]),
-    ("lwr4", [572, 1195, 101, 333, 541]),
-    ("panda", [602, 1222, 101, 374, 569]),
-    ("puma560", [480, 707, 70, 282, 433]),
-    ("rx90", [456, 650, 70, 242, 417]),
+    ("kr6r900", [520, 721, 70, 281, 444]),
+    ("lwr4", [571, 1195, 101, 333, 540]),
+    ("panda", [601, 1222, 101, 374, 568]),
+    ("puma560", [479, 707, 70, 282, 432]),
+    ("rx90", [455, 650, 70, 242, 416]),
     ("stanford", [132, 112, 25, 38, 102]),
-    ("tx40", [471, 697, 70, 272, 427]),
-    ("ur5e", [468, 624, 60, 275, 410]),
+    ("tx40", [470, 697, 70, 272, 426]),
+    ("ur5e", [467, 624, 60, 275, 409]),
 ];
 
 /// No reference robot's program costs more flops than [`REFERENCE_FLOPS`] says, and none
