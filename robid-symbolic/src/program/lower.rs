@@ -51,6 +51,10 @@ pub(super) struct Lowering<'a> {
     /// For a product with a coefficient of magnitude c != 1: c and the rest.
     scaled: Vec<Option<(f64, Signed)>>,
     sums: SumIndex,
+    /// Stage labels: (index of the first instruction of the stage, label), for
+    /// the per-stage operation counts of the tests.
+    #[cfg(test)]
+    pub(super) marks: Vec<(usize, String)>,
 }
 
 impl Program {
@@ -103,7 +107,63 @@ impl<'a> Lowering<'a> {
             lowered: vec![None; arena.len()],
             scaled: vec![None; arena.len()],
             sums: SumIndex::default(),
+            #[cfg(test)]
+            marks: Vec::new(),
         }
+    }
+
+    /// Starts a stage: the instructions emitted from here on count to `label` (tests
+    /// only; a no-op otherwise).
+    #[allow(unused_variables)]
+    pub(super) fn mark(&mut self, label: impl FnOnce() -> String) {
+        #[cfg(test)]
+        self.marks.push((self.instrs.len(), label()));
+    }
+
+    /// The flops (mul + add + neg) each stage ([`Lowering::mark`]) contributes to the
+    /// program with these outputs, dead code left out, in the order the stages began.
+    #[cfg(test)]
+    pub(super) fn stage_flops(&self, outputs: &[Value]) -> Vec<(String, usize)> {
+        let mut live = vec![false; self.instrs.len()];
+        let mut stack: Vec<usize> = Vec::new();
+        let mark = |v: Value, live: &mut Vec<bool>, stack: &mut Vec<usize>| {
+            if let Value::Temp(t) = v
+                && !std::mem::replace(&mut live[t as usize], true)
+            {
+                stack.push(t as usize);
+            }
+        };
+        for &v in outputs {
+            mark(v, &mut live, &mut stack);
+        }
+        while let Some(t) = stack.pop() {
+            for v in self.instrs[t].operands() {
+                mark(v, &mut live, &mut stack);
+            }
+        }
+        let mut out: Vec<(String, usize)> = Vec::new();
+        let start = self.marks.first().map_or(self.instrs.len(), |m| m.0);
+        let mut bounds: Vec<(usize, String)> = vec![(0, "(before)".to_owned())];
+        bounds.extend(self.marks.iter().cloned());
+        for (k, (from, label)) in bounds.iter().enumerate() {
+            let to = bounds.get(k + 1).map_or(self.instrs.len(), |b| b.0);
+            let from = if k == 0 { 0 } else { *from };
+            let to = if k == 0 { start } else { to };
+            let n = (from..to)
+                .filter(|&t| {
+                    live[t]
+                        && matches!(
+                            self.instrs[t],
+                            Instr::Add(..) | Instr::Sub(..) | Instr::Mul(..) | Instr::Neg(_)
+                        )
+                })
+                .count();
+            match out.iter_mut().find(|o| o.0 == *label) {
+                Some(o) => o.1 += n,
+                None => out.push((label.clone(), n)),
+            }
+        }
+        out
     }
 
     /// The program with these outputs, dead code removed.

@@ -169,27 +169,39 @@ impl Context {
         let q = self.d.inputs.q.clone();
         let frames = frame_exprs(&mut self.d.arena, &self.d.robot, &q);
         let inputs = self.inputs(groups);
-        let mut l = Lowering::new(&self.d.arena, &inputs);
-        let mut torques = Vec::with_capacity(runs.len());
-        for run in runs {
-            let run_inputs = RunInputs {
-                qd: &run.qd,
-                qdd: &run.qdd,
-                gravity: run.gravity,
-            };
-            // Reusing scaled accelerations saves a few multiplications but
-            // made the 7-run Panda mass matrix ~3 % slower (compiled code, when the
-            // mass matrix was built this way): single runs only.
-            let tau = l.newton_euler(&frames, &run_inputs, &links, runs.len() == 1)?;
-            let mut values = Vec::with_capacity(tau.len());
-            for t in tau {
-                values.push(l.output(t));
+        // The last link's wrench in its own frame or in its parent's
+        // (`Lowering::tip`): whichever program is the cheaper, so no robot pays for it.
+        let mut best: Option<Program> = None;
+        for tip in [false, true] {
+            let mut l = Lowering::new(&self.d.arena, &inputs);
+            let mut torques = Vec::with_capacity(runs.len());
+            for run in runs {
+                let run_inputs = RunInputs {
+                    qd: &run.qd,
+                    qdd: &run.qdd,
+                    gravity: run.gravity,
+                };
+                // Reusing scaled accelerations saves a few multiplications but
+                // made the 7-run Panda mass matrix ~3 % slower (compiled code, when the
+                // mass matrix was built this way): single runs only.
+                let tau = l.newton_euler(&frames, &run_inputs, &links, runs.len() == 1, tip)?;
+                let mut values = Vec::with_capacity(tau.len());
+                for t in tau {
+                    values.push(l.output(t));
+                }
+                torques.push(values);
             }
-            torques.push(values);
+            let values = assemble(&torques);
+            let group = Group::new(name, element_names(name, values.len()));
+            let program = l.finish(inputs.clone(), vec![(group, values)]);
+            if best
+                .as_ref()
+                .is_none_or(|b| program.operations().flops() < b.operations().flops())
+            {
+                best = Some(program);
+            }
         }
-        let values = assemble(&torques);
-        let group = Group::new(name, element_names(name, values.len()));
-        Ok(l.finish(inputs.clone(), vec![(group, values)]))
+        Ok(best.unwrap_or_default())
     }
 
     /// The mass matrix by the composite-rigid-body algorithm (`customised/crba.rs`,

@@ -268,8 +268,12 @@ fn c_code_agrees_with_the_interpreter() {
                     relative(&c32[k], &reference[k]),
                 );
                 assert!(e <= 1e-12, "{} {}: C double off by {e:e}", name, p.name);
-                // measured at most 5.2e-16 (double) and 5.2e-7, a few float roundings of 6e-8
-                assert!(e32 <= 8.4e-7, "{} {}: C float off by {e32:e}", name, p.name);
+                // measured at most 5.2e-16 (double) and 8.8e-7 (float, the UR5e's Coriolis
+                // with drive terms), a few float roundings of 6e-8; over 2000 random states
+                // the inverse dynamics, gravity and Coriolis programs interpreted in f32 reach
+                // 1e-6 to 2e-6 (with the last link's wrench in its own frame or its parent's
+                // alike), so the bound leaves that room
+                assert!(e32 <= 2e-6, "{} {}: C float off by {e32:e}", name, p.name);
                 worst = (worst.0.max(e), worst.1.max(e32));
             }
         }

@@ -10,6 +10,16 @@ use super::{E, Frame, FrameExprs, Link, Lowering, RunInputs, V3, ZERO, neg, numb
 use crate::dynamics::LinkParameters;
 use crate::robot::JointKind;
 
+/// The last link's kinematics in its parent's frame ([`Lowering::tip`]).
+struct Tip {
+    /// Its joint axis.
+    z: V3,
+    w: V3,
+    wd: V3,
+    vd: V3,
+    u: [[E; 3]; 3],
+}
+
 /// Links `start..=end` whose moments' x, y components are projected on
 /// `axes[k - start]` (see [`Lowering::projection`]).
 struct Projection {
@@ -21,13 +31,16 @@ struct Projection {
 impl Lowering<'_> {
     /// Joint torques of the customised Newton-Euler algorithm. With `reuse`,
     /// an acceleration component a * x whose product is computed already (in
-    /// the next link's acceleration) enters MS x vd as that product.
+    /// the next link's acceleration) enters MS x vd as that product. With `tip`, the
+    /// last link's wrench is written in its parent's frame when that is allowed (see
+    /// [`Lowering::tip`]).
     pub(in crate::program) fn newton_euler(
         &mut self,
         frames: &[FrameExprs],
         inputs: &RunInputs<'_>,
         links: &[LinkParameters],
         reuse: bool,
+        tip: bool,
     ) -> Result<Vec<E>, ProgramError> {
         let n = frames.len();
         let links: Vec<Link> = links
@@ -40,22 +53,47 @@ impl Lowering<'_> {
             qdd,
             kin,
         } = self.forward(frames, inputs)?;
+        self.mark(|| "backward: projection axes, shift".to_owned());
         let projection = self.projection(&frames);
         let shift = self.shift(&frames, &kin, &links);
+        // Not where the projection reaches the last link (its moment is projected in
+        // its own frame there).
+        let tip = tip
+            && n >= 2
+            && frames[n - 1].kind == JointKind::Revolute
+            && projection.as_ref().is_none_or(|pr| pr.end + 1 < n);
         let mut projected: Vec<E> = Vec::new();
         // Backward: wrenches and torques.
         let mut tau = vec![ZERO; n];
         let mut f_next: V3 = [ZERO; 3];
         let mut n_next: V3 = [ZERO; 3];
         for j in (0..n).rev() {
-            let (w, wd, vd, u) = kin[j];
             let l = &links[j];
+            let in_parent = tip && j + 1 == n;
+            self.mark(|| format!("backward {}: kinematics in the parent frame", j + 1));
+            let (w, wd, vd, u, ms, axis_of) = if in_parent {
+                let f = &frames[j];
+                let t = self.tip(f, kin[j - 1], qd[j], qdd[j]);
+                (t.w, t.wd, t.vd, t.u, self.rotate(f, l.ms), Some(t.z))
+            } else {
+                let (w, wd, vd, u) = kin[j];
+                (w, wd, vd, u, l.ms, None)
+            };
+            self.mark(|| format!("backward {}: F", j + 1));
             let m_vd = vd.map(|x| self.mul(l.m, x));
-            let u_ms = self.mat_vec(&u, l.ms);
+            let u_ms = self.mat_vec(&u, ms);
             let force = self.add3(&[m_vd, u_ms]);
+            self.mark(|| format!("backward {}: N (Euler)", j + 1));
             let (inertia, vd_moment) = match shift {
+                // vd_o is the acceleration of the parent's origin, vd_(n-1) in the
+                // parent's frame
+                Some((d, _)) if in_parent => (self.shifted_inertia(l, d), kin[j - 1].2),
                 Some((d, vd_o)) if j + 1 == n => (self.shifted_inertia(l, d), vd_o),
                 _ => (l.inertia, vd),
+            };
+            let inertia = match in_parent {
+                true => self.rotate_inertia(&frames[j], inertia),
+                false => inertia,
             };
             // Of the moments of the projected links only e . n_xy is needed,
             // and w_xy lies along e there.
@@ -67,12 +105,17 @@ impl Lowering<'_> {
                 true => vd_moment.map(|x| self.reuse(x)),
                 false => vd_moment,
             };
-            let ms_x_vd = self.cross(l.ms, vd_moment);
+            self.mark(|| format!("backward {}: MS x vd", j + 1));
+            let ms_x_vd = self.cross(ms, vd_moment);
             let moment = self.add3(&[euler, ms_x_vd]);
+            self.mark(|| format!("backward {}: f, n (transfer)", j + 1));
             let (f, m) = if j + 1 < n {
                 let next = &frames[j + 1];
-                let rf = self.rotate(next, f_next);
-                let mut rm = self.rotate(next, n_next);
+                // the tip's wrench is in this frame already
+                let (rf, mut rm) = match tip && j + 2 == n {
+                    true => (f_next, n_next),
+                    false => (self.rotate(next, f_next), self.rotate(next, n_next)),
+                };
                 if let Some(pr) = &projection
                     && pr.start < j + 1
                     && j < pr.end
@@ -102,9 +145,14 @@ impl Lowering<'_> {
                 // Not needed below the perpendicular joint (n_z alone is).
                 (m[0], m[1]) = (ZERO, ZERO);
             }
-            let axis = match frames[j].kind {
-                JointKind::Revolute => m[2],
-                JointKind::Prismatic => f[2],
+            self.mark(|| format!("backward {}: torque", j + 1));
+            let axis = match (frames[j].kind, axis_of) {
+                (JointKind::Revolute, Some(z)) => {
+                    let terms = [0, 1, 2].map(|i| self.mul(z[i], m[i]));
+                    self.add(&terms)
+                }
+                (JointKind::Revolute, None) => m[2],
+                (JointKind::Prismatic, _) => f[2],
             };
             let ia = self.mul(l.ia, qdd[j]);
             let fv = self.mul(l.fv, qd[j]);
@@ -210,6 +258,77 @@ impl Lowering<'_> {
         let d = self.add(&[a, neg(b)]);
         let vd_o = self.rotate_back(f, kin[n - 2].2);
         Some((d, vd_o))
+    }
+
+    /// The last link's kinematics in its parent's frame, from the parent's
+    /// (`w`, `wd`, `vd`, `U`): the joint axis z = R z_n, w = w_p + qd z,
+    /// wd = wd_p + qdd z + w_p x qd z, vd = vd_p + U_p P (the acceleration of O_n) and
+    /// U of those. With alpha in {0, +-pi/2} and gamma = 0, z is a coordinate axis and
+    /// none of this rotates anything: the last link's w, wd and vd and its wrench are
+    /// not rotated (only its inertia and MS are, [`Lowering::rotate_inertia`]), and
+    /// its squares and products of w are mostly its parent's.
+    fn tip(&mut self, f: &Frame, parent: KinLink, qd: E, qdd: E) -> Tip {
+        let (w_p, wd_p, vd_p, u_p) = parent;
+        let z = self.rotate(f, [ZERO, ZERO, number(1.0)]);
+        let z_qd = z.map(|x| self.mul(x, qd));
+        let z_qdd = z.map(|x| self.mul(x, qdd));
+        let w = self.add3(&[w_p, z_qd]);
+        let w_x_z = self.cross(w_p, z_qd);
+        let wd = self.add3(&[wd_p, z_qdd, w_x_z]);
+        let up = self.mat_vec(&u_p, f.p);
+        let vd = self.add3(&[vd_p, up]);
+        let u = self.u_matrix(w, wd);
+        Tip { z, w, wd, vd, u }
+    }
+
+    /// R J R' for the rotation R = Rz(gamma) Rx(alpha) Rz(theta) of frame `f` and the
+    /// inertia `j` = [XX, XY, XZ, YY, YZ, ZZ]: the symmetric matrix turned about z, x
+    /// and z in turn ([`Lowering::turn_symmetric`]), which costs nothing for alpha in
+    /// {0, +-pi/2} and gamma = 0 but the turn by theta.
+    pub(super) fn rotate_inertia(&mut self, f: &Frame, j: [E; 6]) -> [E; 6] {
+        let [xx, xy, xz, yy, yz, zz] = j;
+        let mut m = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
+        m = self.turn_symmetric(m, (0, 1, 2), (f.st, f.ct));
+        m = self.turn_symmetric(m, (1, 2, 0), (f.sa, f.ca));
+        if let Some(g) = f.gamma {
+            m = self.turn_symmetric(m, (0, 1, 2), g);
+        }
+        [m[0][0], m[0][1], m[0][2], m[1][1], m[1][2], m[2][2]]
+    }
+
+    /// Q M Q' for symmetric `m` and the turn Q by the angle with (sin, cos) `(s, c)`
+    /// about axis `k`, taking axis `a` towards axis `b` (`(a, b, k)` = (x, y, z) for a
+    /// turn about z, (y, z, x) about x). With the block's first row turned,
+    /// (u, v) = (c M_aa - s M_ab, c M_ab - s M_bb): M'_aa = c u - s v, M'_ab = s u + c v,
+    /// M'_bb = M_aa + M_bb - M'_aa (the trace of the block is kept),
+    /// (M'_ak, M'_bk) = the turn of (M_ak, M_bk) and M'_kk = M_kk.
+    fn turn_symmetric(
+        &mut self,
+        m: [[E; 3]; 3],
+        (a, b, k): (usize, usize, usize),
+        (s, c): (E, E),
+    ) -> [[E; 3]; 3] {
+        // c x - s y
+        let mut first = |x: E, y: E| {
+            let (p, q) = (self.mul(c, x), self.mul(s, y));
+            self.add(&[p, neg(q)])
+        };
+        let (u, v) = (first(m[a][a], m[a][b]), first(m[a][b], m[b][b]));
+        let (aa, ak) = (first(u, v), first(m[a][k], m[b][k]));
+        // s x + c y
+        let mut second = |x: E, y: E| {
+            let (p, q) = (self.mul(s, x), self.mul(c, y));
+            self.add(&[p, q])
+        };
+        let (ab, bk) = (second(u, v), second(m[a][k], m[b][k]));
+        let bb = self.add(&[m[a][a], m[b][b], neg(aa)]);
+        let mut out = m;
+        out[a][a] = aa;
+        out[b][b] = bb;
+        (out[a][b], out[b][a]) = (ab, ab);
+        (out[a][k], out[k][a]) = (ak, ak);
+        (out[b][k], out[k][b]) = (bk, bk);
+        out
     }
 
     fn shifted_inertia(&mut self, l: &Link, d: E) -> [E; 6] {

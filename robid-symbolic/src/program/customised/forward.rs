@@ -61,6 +61,7 @@ impl Lowering<'_> {
         inputs: &RunInputs<'_>,
     ) -> Result<Kinematics, ProgramError> {
         let n = frames.len();
+        self.mark(|| "frames".to_owned());
         let frames: Vec<Frame> = frames
             .iter()
             .map(|f| self.frame(f))
@@ -81,9 +82,11 @@ impl Lowering<'_> {
         let mut plane: Option<Plane> = None;
         let mut kin = Vec::with_capacity(n);
         for (j, f) in frames.iter().enumerate() {
+            self.mark(|| format!("forward {}: vd", j + 1));
             let up = self.mat_vec(&u, f.p);
             let vd_parent = self.add3(&[vd, up]);
             let vd_in = self.rotate_back(f, vd_parent);
+            self.mark(|| format!("forward {}: w, wd", j + 1));
             let w_in = self.rotate_back(f, w);
             let wd_in = self.rotate_back(f, wd);
             plane = self.plane(f, plane, w, wd);
@@ -118,6 +121,7 @@ impl Lowering<'_> {
                     self.add(&[vd_in[2], qdd[j]]),
                 ],
             };
+            self.mark(|| format!("forward {}: U", j + 1));
             u = self.u_matrix(w, wd);
             if let Some(p) = plane {
                 // w_y w_z - wd_x and w_x w_z + wd_y, with the products cancelled.
@@ -136,7 +140,7 @@ impl Lowering<'_> {
     }
 
     /// U = skew(wd) + skew(w)^2.
-    fn u_matrix(&mut self, w: V3, wd: V3) -> [[E; 3]; 3] {
+    pub(super) fn u_matrix(&mut self, w: V3, wd: V3) -> [[E; 3]; 3] {
         let sq = [0, 1, 2].map(|i| self.mul(w[i], w[i]));
         let mut u = [[ZERO; 3]; 3];
         for i in 0..3 {

@@ -140,3 +140,162 @@ fn composite_rigid_body_is_no_dearer_for_reference_robots() {
         assert!(crba.sin <= columns.sin && crba.cos <= columns.cos);
     }
 }
+
+/// The flops (mul + add + neg) of the inverse dynamics, base regressor, gravity, mass
+/// matrix and Coriolis programs of every reference robot (robots/descriptions), in that
+/// order: the figures of today (docs/performance.md#operation-counts).
+const REFERENCE_FLOPS: [(&str, [usize; 5]); 8] = [
+    ("kr6r900", [520, 721, 70, 281, 444]),
+    ("lwr4", [571, 1195, 101, 333, 540]),
+    ("panda", [601, 1222, 101, 374, 568]),
+    ("puma560", [479, 707, 70, 282, 432]),
+    ("rx90", [455, 650, 70, 242, 416]),
+    ("stanford", [132, 112, 25, 38, 102]),
+    ("tx40", [470, 697, 70, 272, 426]),
+    ("ur5e", [467, 624, 60, 275, 409]),
+];
+
+/// No reference robot's program costs more flops than [`REFERENCE_FLOPS`] says, and none
+/// costs fewer either (a lowering that saves operations updates the table, so the table
+/// stays the floor). Prints the table of the counts.
+#[test]
+fn reference_robot_counts_are_the_recorded_floor() {
+    let kinds = [
+        ProgramKind::InverseDynamics,
+        ProgramKind::BaseRegressor,
+        ProgramKind::Gravity,
+        ProgramKind::MassMatrix,
+        ProgramKind::Coriolis,
+    ];
+    let dir = format!("{}/../robots/descriptions", env!("CARGO_MANIFEST_DIR"));
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    assert_eq!(paths.len(), REFERENCE_FLOPS.len(), "{paths:?}");
+    eprintln!("| robot | inverse dynamics | base regressor | gravity | mass matrix | Coriolis |");
+    let mut mismatches = Vec::new();
+    for (path, (name, expected)) in paths.iter().zip(REFERENCE_FLOPS) {
+        let robot = Robot::from_file(path).unwrap();
+        assert_eq!(robot.name(), name);
+        let mut cx = Context::new(&robot).unwrap();
+        let mut row = format!("| {name} |");
+        for (kind, want) in kinds.into_iter().zip(expected) {
+            let ops = cx.build(kind).unwrap().operations();
+            row += &format!(" {} ({ops}) |", ops.flops());
+            if ops.flops() != want {
+                mismatches.push(format!(
+                    "{name} {kind:?}: {} flops, recorded {want}",
+                    ops.flops()
+                ));
+            }
+        }
+        eprintln!("{row}");
+    }
+    assert!(mismatches.is_empty(), "{mismatches:#?}");
+}
+
+/// The inverse dynamics' flops stage by stage (forward recursion per link: vd, w and
+/// wd, U; backward per link: F, Euler's N, MS x vd, the transfer of f and n, the
+/// torque), printed for the UR5e and the PUMA 560; the stages add up to the program's
+/// count.
+#[test]
+fn inverse_dynamics_flops_by_stage() {
+    use super::super::customised::{RunInputs, frame_exprs};
+    use super::super::lower::Lowering;
+    for name in ["ur5e", "puma560"] {
+        let path = format!(
+            "{}/../robots/descriptions/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let robot = Robot::from_file(std::path::Path::new(&path)).unwrap();
+        let mut cx = Context::new(&robot).unwrap();
+        let program = cx.build(ProgramKind::InverseDynamics).unwrap();
+        let info = ProgramKind::InverseDynamics.info();
+        let groups: Vec<&str> = info.inputs.iter().map(|a| a.name).collect();
+        let links = cx.slots(true);
+        let q = cx.d.inputs.q.clone();
+        let frames = frame_exprs(&mut cx.d.arena, &cx.d.robot, &q);
+        let inputs = cx.inputs(&groups);
+        let mut l = Lowering::new(&cx.d.arena, &inputs);
+        let sym = &cx.d.inputs;
+        let run = RunInputs {
+            qd: &sym.qd,
+            qdd: &sym.qdd,
+            gravity: sym.gravity,
+        };
+        let tau = l.newton_euler(&frames, &run, &links, true, true).unwrap();
+        l.mark(|| "outputs".to_owned());
+        let outputs: Vec<_> = tau.into_iter().map(|t| l.output(t)).collect();
+        let stages = l.stage_flops(&outputs);
+        eprintln!(
+            "{name}: inverse dynamics {} flops",
+            program.operations().flops()
+        );
+        for (label, flops) in &stages {
+            eprintln!("  {label}: {flops}");
+        }
+        let total: usize = stages.iter().map(|s| s.1).sum();
+        assert_eq!(total, program.operations().flops(), "{name}");
+    }
+}
+
+/// The inverse dynamics with the last link's wrench in its parent's frame equals the one
+/// with it in its own frame to 1e-12, on random robots (twists, offsets and
+/// Khalil-Kleinfinger gamma and b of any value, prismatic joints, drive terms) at random
+/// states: both variants are built whichever is the cheaper, and the variant is taken
+/// on at least a third of the robots.
+#[test]
+fn last_link_in_its_parents_frame_changes_no_torque() {
+    use super::super::customised::{RunInputs, frame_exprs};
+    use super::super::lower::Lowering;
+    let mut differ = 0u64;
+    let seeds = 60u64;
+    for seed in 0..seeds {
+        let text = random_description(seed);
+        let robot =
+            Robot::from_toml(&text, "random.toml").unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let mut cx = Context::new(&robot).unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let info = ProgramKind::InverseDynamics.info();
+        let groups: Vec<&str> = info.inputs.iter().map(|a| a.name).collect();
+        let links = cx.slots(true);
+        let q = cx.d.inputs.q.clone();
+        let frames = frame_exprs(&mut cx.d.arena, &cx.d.robot, &q);
+        let inputs = cx.inputs(&groups);
+        let sym = cx.d.inputs.clone();
+        let run = RunInputs {
+            qd: &sym.qd,
+            qdd: &sym.qdd,
+            gravity: sym.gravity,
+        };
+        let [own, parent] = [false, true].map(|tip| {
+            let mut l = Lowering::new(&cx.d.arena, &inputs);
+            let tau = l.newton_euler(&frames, &run, &links, true, tip).unwrap();
+            let values: Vec<_> = tau.into_iter().map(|t| l.output(t)).collect();
+            let group = super::Group::new("tau", super::element_names("tau", values.len()));
+            l.finish(inputs.clone(), vec![(group, values)])
+        });
+        differ += u64::from(own.instrs != parent.instrs);
+        let mut rng = Rng::from_state(2000 + seed);
+        for _ in 0..10 {
+            let values: Vec<Vec<f64>> = own
+                .inputs
+                .iter()
+                .map(|g| (0..g.len()).map(|_| rng.uniform(-2.0, 2.0)).collect())
+                .collect();
+            let slices: Vec<&[f64]> = values.iter().map(|v| v.as_slice()).collect();
+            let a = &parent.eval(&slices).unwrap()[0];
+            let b = &own.eval(&slices).unwrap()[0];
+            let scale = b.iter().fold(1.0f64, |s, x| s.max(x.abs()));
+            for (j, (x, y)) in a.iter().zip(b).enumerate() {
+                assert!(
+                    (x - y).abs() <= 1e-12 * scale,
+                    "seed {seed}, joint {j}: {x} vs {y}\n{text}"
+                );
+            }
+        }
+    }
+    assert!(differ * 3 >= seeds, "{differ} of {seeds}");
+}
