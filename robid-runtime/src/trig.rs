@@ -60,6 +60,7 @@ mod avx2;
 ///
 /// One angle costs the same through either (one libm `sincos` is about as dear as a
 /// call to the vector code, which cannot be inlined into code compiled without AVX2).
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 const VECTOR_FROM: usize = 2;
 
 /// Angles up to this magnitude take the vector path; beyond (and NaN), libm.

@@ -16,6 +16,7 @@ mod model;
 mod names;
 mod robot;
 mod stub;
+mod trig;
 
 pub use c::{CCode, CScalar, emit_c};
 pub use function::function_tokens;
