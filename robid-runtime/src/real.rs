@@ -43,8 +43,8 @@ pub trait Real:
     /// code calls once, at its start, for the joint angles it needs.
     ///
     /// By default each angle goes through [`sin_cos`](Real::sin_cos) (libm); for `f64`,
-    /// [`trig::sin_cos`](crate::trig::sin_cos), which is vectorised on x86-64 with AVX2
-    /// and FMA.
+    /// [`trig::sin_cos_static`](crate::trig::sin_cos_static): vectorised when the build
+    /// enables AVX2 and FMA on x86-64, libm otherwise.
     ///
     /// ```
     /// use robid_runtime::Real;
@@ -122,7 +122,7 @@ impl_real!(
     libm::cos,
     libm::sincos,
     libm::sqrt,
-    crate::trig::sin_cos
+    crate::trig::sin_cos_static
 );
 impl_real!(f32, libm::sinf, libm::cosf, libm::sincosf, libm::sqrtf);
 

@@ -1,20 +1,24 @@
 //! Sines and cosines of several angles in one call.
 //!
 //! Generated models need the sine and cosine of every joint angle before anything
-//! else; [`sin_cos`] computes them for an array of angles at once, which
-//! [`Real::sin_cos_array`](crate::Real::sin_cos_array) uses for `f64`.
+//! else, and get them from one call of
+//! [`Real::sin_cos_array`](crate::Real::sin_cos_array), which for `f64` is
+//! [`sin_cos_static`].
 //!
-//! - On x86-64 with AVX2 and FMA, four angles at a time are reduced and evaluated
-//!   in vector registers ([`vector_available`] says whether this path is taken). The
-//!   CPU is asked once (with the `std` feature; the answer is cached in an atomic),
-//!   or not at all when the code is compiled with `-C target-feature=+avx2,+fma`.
-//!   Angles with `|x| <= 1e5` are within 1 ulp of libm's result, so within 2 ulp of
-//!   the exact value (tested on 1.38e7 angles, 0.55 % of the results differ from
-//!   libm's); any other angle (larger, infinite or NaN) is passed to libm, so the
-//!   results are libm's there.
-//! - Everywhere else (other architectures, CPUs without AVX2, `no_std` builds for
-//!   x86-64 without the target features) each angle goes through libm's `sincos`
-//!   ([`sin_cos_libm`]).
+//! - [`sin_cos`]: on x86-64 with AVX2 and FMA, four angles at a time are reduced and
+//!   evaluated in vector registers ([`vector_available`] says whether this path is
+//!   taken). The CPU is asked once (with the `std` feature; the answer is cached in an
+//!   atomic), or not at all when the code is compiled with
+//!   `-C target-feature=+avx2,+fma`. Angles with `|x| <= 1e5` are within 1 ulp of
+//!   libm's result, so within 2 ulp of the exact value (tested on 1.38e7 angles; under
+//!   1 % of the results differ from libm's); any other angle (larger, infinite or NaN,
+//!   or within `2^-36` of a nonzero multiple of pi/2) is passed to libm, so the results
+//!   are libm's there. Everywhere else (other architectures, CPUs without AVX2, `no_std`
+//!   builds for x86-64 without the target features) each angle goes through libm's
+//!   `sincos` ([`sin_cos_libm`]).
+//! - [`sin_cos_static`], what generated models use: the vector path only when the build
+//!   enables AVX2 and FMA, so that it inlines; libm otherwise (see its documentation for
+//!   why the run-time choice is not taken there).
 //!
 //! `f32` keeps the scalar libm path: its models are for microcontrollers, which have
 //! no AVX2.
@@ -28,30 +32,30 @@
 //!    two's complement bits (valid for `|k| < 2^51`).
 //! 2. Cody-Waite reduction by `pi/2 = P1 + P2 + P3` (three doubles, 159 bits of
 //!    `pi/2`), keeping the result as a double-double `r_hi + r_lo`:
-//!    - `r1 = fma(-k, P1, x)` is exact: for `0.5 <= |x| <= 1e5`, `x` and `k * P1` are
-//!      whole multiples of `2^-53` (`P1` lies in `[1, 2)`, so its last bit weighs
-//!      `2^-52`; `x >= 0.5` has no bit below `2^-53`), and their difference is below
-//!      1 in magnitude (`|x - k pi/2| <= pi/4` plus `|k| * 6.2e-17`), so it has at
-//!      most 53 significant bits and the fused operation, which rounds the exact
-//!      value once, does not round it. Below `0.5`, `k = 0` and `r1 = x`.
-//!    - `k * P2` is split exactly into `p_hi + p_lo` (`p_lo = fma(k, P2, -p_hi)`),
-//!      `r1 - p_hi` into `s + e` by Knuth's two-sum (exact whatever the magnitudes),
-//!      and `lo = (e - p_lo) - k * P3` carries the rest. The only roundings left
-//!      are those of `lo`, which is at most `ulp(s)/2 + 2^-94` in magnitude, and the
-//!      neglected `k * (pi/2 - P1 - P2 - P3)`, below `1e5 * 5.6e-50`: both are far
-//!      below an ulp of `r` for any double in range (the closest a double of
-//!      magnitude up to `1e5` comes to a multiple of `pi/2` is about `2^-60`, where
-//!      these absolute errors of about `2^-140` are `2^-80` relative).
-//!    - `r_hi = s + lo`, `r_lo = lo - (r_hi - s)` (fast two-sum).
+//!    - `r1 = fma(-k, P1, x)` is exact: for `|x| >= pi/4` (otherwise `k = 0` and
+//!      `r1 = x`), `x` and `k * P1` are whole multiples of `2^-53` (`P1` lies in
+//!      `[1, 2)`, so its last bit weighs `2^-52`; `|x| >= 0.5` has no bit below
+//!      `2^-53`), and their difference is below 1 in magnitude (`|x - k pi/2| <= pi/4`
+//!      plus `|k| * 6.2e-17`), so it has at most 53 significant bits and the fused
+//!      operation, which rounds the exact value once, does not round it.
+//!    - `r_hi = fma(-k, P2, r1)`, one rounding of `r1 - k P2`.
+//!    - `r_lo = fma(-k, P3, fma(-k, P2, r1 - r_hi))`: `r1 - r_hi` is exact (Sterbenz)
+//!      when `|k P2| <= |r1| / 2`, which holds whenever `|r1| >= 2^-36` (`|k| <= 63663`
+//!      for `|x| <= 1e5`, so `2 |k P2| < 7.8e-12 < 2^-36`); the inner fused operation
+//!      then gives the rounding error of `r_hi` to 53 bits, and the outer one subtracts
+//!      `k P3`. `r_hi + r_lo` is `x - k pi/2` to about `2^-104` relative (the neglected
+//!      `k (pi/2 - P1 - P2 - P3)` is below `1e5 * 5.6e-50`). Lanes with `k != 0` and
+//!      `|r1| < 2^-36` (angles within `2^-36` of a nonzero multiple of pi/2, `x = pi/2`
+//!      typed as a double among them) go to libm instead.
 //! 3. The sine and cosine of `r_hi + r_lo` on `[-pi/4, pi/4]` by the minimax
 //!    polynomials of fdlibm's `__kernel_sin` and `__kernel_cos` (the ones musl and the
-//!    Rust libm crate use, error below `2^-58` relative), with their corrections for
+//!    Rust libm crate use, error below `2^-58` relative), evaluated by Estrin's scheme
+//!    (shorter dependency chains than Horner's), with their first-order corrections for
 //!    `r_lo`.
 //! 4. The quadrant `k mod 4` swaps sine and cosine (`k` odd) and sets their signs:
 //!    `sin x = [S, C, -S, -C][k mod 4]`, `cos x = [C, -S, -C, S][k mod 4]`.
 //!
-//! `±0` is returned unchanged as its own sine (the double-double sum would lose the sign
-//! of `-0`).
+//! `±0` is returned unchanged as its own sine (`x + 0` would lose the sign of `-0`).
 
 #[cfg(target_arch = "x86_64")]
 mod avx2;
@@ -90,6 +94,39 @@ pub fn sin_cos<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     sin_cos_libm(x)
 }
 
+/// What [`Real::sin_cos_array`](crate::Real::sin_cos_array) computes for `f64`: the
+/// vector path when the build enables AVX2 and FMA (`-C target-cpu=native` or
+/// `-C target-feature=+avx2,+fma`), where it inlines into the generated code; libm for
+/// each angle otherwise.
+///
+/// The run-time choice of [`sin_cos`] is not taken here: its call cannot be inlined into
+/// code compiled without AVX2, and for the five to seven angles of a model it measured
+/// slower in the generated functions than libm's calls inlined there, whose independent
+/// evaluations the processor overlaps with each other and with the arithmetic
+/// (docs/performance.md, "Trigonometry").
+///
+/// ```
+/// let x = [0.1, 1.2, -2.3, 4.0, 5.5];
+/// let (s, c) = robid_runtime::trig::sin_cos_static(x);
+/// let (ls, lc) = robid_runtime::trig::sin_cos_libm(x);
+/// for i in 0..5 {
+///     assert!((s[i] - ls[i]).abs() <= f64::EPSILON && (c[i] - lc[i]).abs() <= f64::EPSILON);
+/// }
+/// ```
+#[inline(always)]
+pub fn sin_cos_static<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        target_feature = "fma"
+    ))]
+    if N >= VECTOR_FROM {
+        // SAFETY: the build's target features guarantee AVX2 and FMA.
+        return unsafe { avx2::sin_cos(x) };
+    }
+    sin_cos_libm(x)
+}
+
 /// Sines and cosines of `N` angles through libm's `sincos`, one angle at a time: the
 /// path [`sin_cos`] takes without AVX2, and its reference.
 ///
@@ -97,7 +134,7 @@ pub fn sin_cos<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
 /// let (s, c) = robid_runtime::trig::sin_cos_libm([1.0, 2.0]);
 /// assert_eq!((s[1], c[1]), libm::sincos(2.0));
 /// ```
-#[inline]
+#[inline(always)]
 pub fn sin_cos_libm<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];

@@ -2,11 +2,11 @@
 //! described in the parent module).
 
 use core::arch::x86_64::{
-    __m256d, _CMP_EQ_OQ, _CMP_NLE_UQ, _mm256_add_epi64, _mm256_add_pd, _mm256_and_pd,
-    _mm256_and_si256, _mm256_blendv_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_cmp_pd,
-    _mm256_fmadd_pd, _mm256_fmsub_pd, _mm256_fnmadd_pd, _mm256_loadu_pd, _mm256_movemask_pd,
-    _mm256_mul_pd, _mm256_set1_epi64x, _mm256_set1_pd, _mm256_setzero_pd, _mm256_slli_epi64,
-    _mm256_storeu_pd, _mm256_sub_pd, _mm256_xor_pd,
+    __m256d, _CMP_EQ_OQ, _CMP_LT_OQ, _CMP_NEQ_OQ, _CMP_NLE_UQ, _mm256_add_epi64, _mm256_add_pd,
+    _mm256_and_pd, _mm256_and_si256, _mm256_blendv_pd, _mm256_castpd_si256, _mm256_castsi256_pd,
+    _mm256_cmp_pd, _mm256_fmadd_pd, _mm256_fnmadd_pd, _mm256_loadu_pd, _mm256_movemask_pd,
+    _mm256_mul_pd, _mm256_or_pd, _mm256_set1_epi64x, _mm256_set1_pd, _mm256_setzero_pd,
+    _mm256_slli_epi64, _mm256_storeu_pd, _mm256_sub_pd, _mm256_xor_pd,
 };
 
 use super::VECTOR_LIMIT as LIMIT;
@@ -40,10 +40,12 @@ const C6: f64 = -1.13596475577881948265e-11;
 /// # Safety
 ///
 /// The CPU must support AVX2 and FMA.
+#[inline]
 #[target_feature(enable = "avx2,fma")]
 pub(super) unsafe fn sin_cos<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
+    let mut to_libm = false;
     let mut i = 0;
     while i < N {
         let n = (N - i).min(4);
@@ -52,97 +54,102 @@ pub(super) unsafe fn sin_cos<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]
         let (mut ls, mut lc) = ([0.0; 4], [0.0; 4]);
         // SAFETY: the caller guarantees AVX2 and FMA; the loads and stores are
         // unaligned ones from and to arrays of four doubles.
-        unsafe {
-            let (vs, vc) = sin_cos4(_mm256_loadu_pd(lanes.as_ptr()));
+        let outside = unsafe {
+            let (vs, vc, outside) = sin_cos4(_mm256_loadu_pd(lanes.as_ptr()));
             _mm256_storeu_pd(ls.as_mut_ptr(), vs);
             _mm256_storeu_pd(lc.as_mut_ptr(), vc);
-            let outside = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_NLE_UQ>(
-                abs(_mm256_loadu_pd(lanes.as_ptr())),
-                _mm256_set1_pd(LIMIT),
-            ));
-            if outside != 0 {
-                for (l, &x) in lanes.iter().enumerate() {
-                    if outside & (1 << l) != 0 {
-                        (ls[l], lc[l]) = libm::sincos(x);
-                    }
-                }
-            }
-        }
+            outside
+        };
+        to_libm |= outside != 0;
         s[i..i + n].copy_from_slice(&ls[..n]);
         c[i..i + n].copy_from_slice(&lc[..n]);
         i += n;
     }
+    if to_libm {
+        // Rare: redo the angles the vector path does not take (libm's results are
+        // within its accuracy anyway, so all of them).
+        for i in 0..N {
+            if !in_range(x[i]) {
+                (s[i], c[i]) = libm::sincos(x[i]);
+            }
+        }
+    }
     (s, c)
 }
 
-/// `|x|`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn abs(x: __m256d) -> __m256d {
-    // SAFETY: the caller guarantees AVX2 (these are AVX instructions). The block is
-    // needed before Rust 1.87, which made these intrinsics safe in AVX2 functions.
-    #[allow(unused_unsafe)]
-    unsafe {
-        _mm256_and_pd(x, _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX)))
-    }
+/// Whether the vector path computes the sine and cosine of `x`: `|x| <= LIMIT`, and `x`
+/// is not within `2^-36` of a nonzero multiple of `P1` (the scalar twin of the mask
+/// [`sin_cos4`] returns).
+fn in_range(x: f64) -> bool {
+    let t = libm::fma(x, TWO_OVER_PI, ROUND);
+    let k = t - ROUND;
+    let r1 = libm::fma(-k, P1, x);
+    libm::fabs(x) <= LIMIT && !(k != 0.0 && libm::fabs(r1) < TINY)
 }
 
-/// Sine and cosine of four angles of magnitude at most [`LIMIT`] (other lanes give
-/// garbage, which the caller replaces).
+/// Below this, a reduced argument `x - k P1` with `k != 0` goes to libm (see [`sin_cos4`]).
+const TINY: f64 = 1.4551915228366852e-11; // 2^-36
+
+/// Sine and cosine of four angles, and the mask (bit `l` for lane `l`) of the lanes whose
+/// results are not valid and must come from libm: `|x| > LIMIT`, NaN, and angles within
+/// `2^-36` of a nonzero multiple of pi/2.
 ///
 /// # Safety
 ///
 /// The CPU must support AVX2 and FMA.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn sin_cos4(x: __m256d) -> (__m256d, __m256d) {
+unsafe fn sin_cos4(x: __m256d) -> (__m256d, __m256d, i32) {
     // SAFETY: register-only AVX2/FMA arithmetic; the caller guarantees the CPU has it.
     // (The block is needed before Rust 1.87, which made these intrinsics safe here.)
     #[allow(unused_unsafe)]
     unsafe {
         let splat = |v: f64| _mm256_set1_pd(v);
+        let abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX));
         // 1. k = round(x * 2/pi), its bits in the low mantissa of `t`.
         let t = _mm256_fmadd_pd(x, splat(TWO_OVER_PI), splat(ROUND));
         let k = _mm256_sub_pd(t, splat(ROUND));
-        // 2. r_hi + r_lo = x - k pi/2.
+        // 2. r_hi + r_lo = x - k pi/2: r1 is exact, r_hi one rounding away from
+        //    r1 - k P2, and r_lo that rounding error (r1 - r_hi is exact by Sterbenz's
+        //    lemma, |k P2| <= |r1| / 2 where the lane is valid) minus k P3.
         let r1 = _mm256_fnmadd_pd(k, splat(P1), x);
-        let p_hi = _mm256_mul_pd(k, splat(P2));
-        let p_lo = _mm256_fmsub_pd(k, splat(P2), p_hi);
-        let s = _mm256_sub_pd(r1, p_hi);
-        let b = _mm256_sub_pd(s, r1);
-        let e = _mm256_sub_pd(
-            _mm256_sub_pd(r1, _mm256_sub_pd(s, b)),
-            _mm256_add_pd(p_hi, b),
+        let rh = _mm256_fnmadd_pd(k, splat(P2), r1);
+        let rl = _mm256_fnmadd_pd(
+            k,
+            splat(P3),
+            _mm256_fnmadd_pd(k, splat(P2), _mm256_sub_pd(r1, rh)),
         );
-        let lo = _mm256_fnmadd_pd(k, splat(P3), _mm256_sub_pd(e, p_lo));
-        let rh = _mm256_add_pd(s, lo);
-        let rl = _mm256_sub_pd(lo, _mm256_sub_pd(rh, s));
-        // 3. The kernels (fdlibm's evaluation order, with fused multiply-adds).
+        let outside = _mm256_or_pd(
+            _mm256_cmp_pd::<_CMP_NLE_UQ>(_mm256_and_pd(x, abs_mask), splat(LIMIT)),
+            _mm256_and_pd(
+                _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_and_pd(r1, abs_mask), splat(TINY)),
+                _mm256_cmp_pd::<_CMP_NEQ_OQ>(k, _mm256_setzero_pd()),
+            ),
+        );
+        // 3. The kernels: fdlibm's polynomials, evaluated by Estrin's scheme.
         let z = _mm256_mul_pd(rh, rh);
         let w = _mm256_mul_pd(z, z);
         let half = splat(0.5);
-        // sin: r = S2 + z (S3 + z S4) + z w (S5 + z S6);
-        //      sin = x - ((z (y/2 - v r) - y) - v S1), v = z x.
-        let a = _mm256_fmadd_pd(z, _mm256_fmadd_pd(z, splat(S4), splat(S3)), splat(S2));
-        let bs = _mm256_fmadd_pd(z, splat(S6), splat(S5));
-        let rs = _mm256_fmadd_pd(_mm256_mul_pd(z, w), bs, a);
-        let v = _mm256_mul_pd(z, rh);
-        let inner = _mm256_fnmadd_pd(v, rs, _mm256_mul_pd(half, rl));
-        let tail = _mm256_fnmadd_pd(v, splat(S1), _mm256_fmsub_pd(z, inner, rl));
-        let sin = _mm256_sub_pd(rh, tail);
-        // cos: r = z (C1 + z (C2 + z C3)) + w^2 (C4 + z (C5 + z C6));
-        //      cos = (1 - z/2) + (((1 - (1 - z/2)) - z/2) + (z r - x y)).
-        let ac = _mm256_fmadd_pd(z, _mm256_fmadd_pd(z, splat(C3), splat(C2)), splat(C1));
-        let bc = _mm256_fmadd_pd(z, _mm256_fmadd_pd(z, splat(C6), splat(C5)), splat(C4));
-        let rc = _mm256_fmadd_pd(_mm256_mul_pd(w, w), bc, _mm256_mul_pd(z, ac));
-        let hz = _mm256_mul_pd(half, z);
         let one = splat(1.0);
+        // sin = x + (v (S1 + z r) + y (1 - z/2)), v = z x,
+        //       r = S2 + z S3 + z^2 S4 + z^3 S5 + z^4 S6 (fdlibm's terms regrouped).
+        let f1 = _mm256_fmadd_pd(z, splat(S3), splat(S2));
+        let f2 = _mm256_fmadd_pd(z, splat(S5), splat(S4));
+        let rs = _mm256_fmadd_pd(_mm256_mul_pd(w, w), splat(S6), _mm256_fmadd_pd(w, f2, f1));
+        let v = _mm256_mul_pd(z, rh);
+        let ys = _mm256_mul_pd(rl, _mm256_fnmadd_pd(half, z, one));
+        let ps = _mm256_fmadd_pd(z, rs, splat(S1));
+        let sin = _mm256_add_pd(rh, _mm256_fmadd_pd(v, ps, ys));
+        // cos = (1 - z/2) + (z^2 P + (((1 - (1 - z/2)) - z/2) - x y)),
+        //       P = C1 + z C2 + z^2 C3 + z^3 C4 + z^4 C5 + z^5 C6.
+        let e1 = _mm256_fmadd_pd(z, splat(C2), splat(C1));
+        let e2 = _mm256_fmadd_pd(z, splat(C4), splat(C3));
+        let e3 = _mm256_fmadd_pd(z, splat(C6), splat(C5));
+        let pc = _mm256_fmadd_pd(_mm256_mul_pd(w, w), e3, _mm256_fmadd_pd(w, e2, e1));
+        let hz = _mm256_mul_pd(half, z);
         let w1 = _mm256_sub_pd(one, hz);
-        let corr = _mm256_fnmadd_pd(rh, rl, _mm256_mul_pd(z, rc));
-        let cos = _mm256_add_pd(
-            w1,
-            _mm256_add_pd(_mm256_sub_pd(_mm256_sub_pd(one, w1), hz), corr),
-        );
+        let c0 = _mm256_fnmadd_pd(rh, rl, _mm256_sub_pd(_mm256_sub_pd(one, w1), hz));
+        let cos = _mm256_add_pd(w1, _mm256_fmadd_pd(w, pc, c0));
         // 4. Quadrant: swap for odd k, then the signs of bit 1 of k (sine) and of k + 1
         //    (cosine).
         let bits = _mm256_castpd_si256(t);
@@ -161,8 +168,12 @@ unsafe fn sin_cos4(x: __m256d) -> (__m256d, __m256d) {
             _mm256_blendv_pd(cos, sin, odd),
             _mm256_castsi256_pd(cos_sign),
         );
-        // sin(±0) = ±0 (the reduction above returns +0 for -0).
+        // sin(±0) = ±0 (x + (+0) would be +0 for -0).
         let zero = _mm256_cmp_pd::<_CMP_EQ_OQ>(x, _mm256_setzero_pd());
-        (_mm256_blendv_pd(sin_q, x, zero), cos_q)
+        (
+            _mm256_blendv_pd(sin_q, x, zero),
+            cos_q,
+            _mm256_movemask_pd(outside),
+        )
     }
 }
