@@ -12,27 +12,40 @@ use core::arch::x86_64::{
 use super::VECTOR_LIMIT as LIMIT;
 
 /// 2/pi rounded to a double.
-const TWO_OVER_PI: f64 = 0.6366197723675814;
+const TWO_OVER_PI: f64 = core::f64::consts::FRAC_2_PI;
 /// 1.5 * 2^52: added to a number of magnitude below 2^51, rounds it to an integer held in
 /// the low bits of the mantissa.
 const ROUND: f64 = 6755399441055744.0;
 /// pi/2 = P1 + P2 + P3 + (about 5.6e-50): each the double nearest to what is left.
-const P1: f64 = 1.5707963267948966;
+const P1: f64 = core::f64::consts::FRAC_PI_2;
 const P2: f64 = 6.123233995736766e-17;
 const P3: f64 = -1.4973849048591698e-33;
 
-// fdlibm's __kernel_sin and __kernel_cos coefficients (as in musl and the libm crate).
+// fdlibm's __kernel_sin and __kernel_cos coefficients (as in musl and the libm crate),
+// written as fdlibm publishes them.
+#[allow(clippy::excessive_precision)]
 const S1: f64 = -1.66666666666666324348e-01;
+#[allow(clippy::excessive_precision)]
 const S2: f64 = 8.33333333332248946124e-03;
+#[allow(clippy::excessive_precision)]
 const S3: f64 = -1.98412698298579493134e-04;
+#[allow(clippy::excessive_precision)]
 const S4: f64 = 2.75573137070700676789e-06;
+#[allow(clippy::excessive_precision)]
 const S5: f64 = -2.50507602534068634195e-08;
+#[allow(clippy::excessive_precision)]
 const S6: f64 = 1.58969099521155010221e-10;
+#[allow(clippy::excessive_precision)]
 const C1: f64 = 4.16666666666666019037e-02;
+#[allow(clippy::excessive_precision)]
 const C2: f64 = -1.38888888888741095749e-03;
+#[allow(clippy::excessive_precision)]
 const C3: f64 = 2.48015872894767294178e-05;
+#[allow(clippy::excessive_precision)]
 const C4: f64 = -2.75573143513906633035e-07;
+#[allow(clippy::excessive_precision)]
 const C5: f64 = 2.08757232129817482790e-09;
+#[allow(clippy::excessive_precision)]
 const C6: f64 = -1.13596475577881948265e-11;
 
 /// Sines and cosines of `N` angles, four at a time (the last vector padded with zeros).
