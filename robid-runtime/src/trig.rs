@@ -11,7 +11,8 @@
 //!   atomic), or not at all when the code is compiled with
 //!   `-C target-feature=+avx2,+fma`. Angles with `|x| <= 1e5` are within 1 ulp of
 //!   libm's result, so within 2 ulp of the exact value (tested on 1.38e7 angles; under
-//!   1 % of the results differ from libm's); any other angle (larger, infinite or NaN,
+//!   1 % of the results differ from libm's; against 200-bit values on 58 184 angles, the
+//!   largest error was 0.74 ulp); any other angle (larger, infinite or NaN,
 //!   or within `2^-36` of a nonzero multiple of pi/2) is passed to libm, so the results
 //!   are libm's there. Everywhere else (other architectures, CPUs without AVX2, `no_std`
 //!   builds for x86-64 without the target features) each angle goes through libm's
