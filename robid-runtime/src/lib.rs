@@ -11,6 +11,7 @@ pub mod model;
 pub mod online;
 mod real;
 pub mod rng;
+pub mod trig;
 pub mod wrench;
 
 pub use model::{LengthError, Model};

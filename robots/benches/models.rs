@@ -1,6 +1,7 @@
 //! Speed of the compiled UR5e model (docs/performance.md#what-robid-measures), with a
 //! baseline measured in the same run: 6 x (sin + cos) through libm, the floor of any model
-//! that evaluates the joint angles' trigonometry.
+//! that evaluates the joint angles' trigonometry; and the batched sines and cosines alone
+//! (`robid_runtime::trig`), vectorised and through libm.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use robots::Ur5e;
@@ -30,6 +31,12 @@ fn ur5e(c: &mut Criterion) {
             }
             acc
         })
+    });
+    c.bench_function("trig::sin_cos of 6 angles (AVX2 when available)", |b| {
+        b.iter(|| robid_runtime::trig::sin_cos(black_box(q)))
+    });
+    c.bench_function("trig::sin_cos_libm of 6 angles", |b| {
+        b.iter(|| robid_runtime::trig::sin_cos_libm(black_box(q)))
     });
     c.bench_function("ur5e inverse_dynamics", |b| {
         b.iter(|| {

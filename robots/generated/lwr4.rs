@@ -205,7 +205,14 @@ impl Lwr4 {
         let mut out = [T::ZERO; 490];
         out[3] = qdd1;
         out[83] = qdd2;
-        let (t0, t1) = q2.sin_cos();
+        let ([t0, t12, t54, t80, t120, t146], [t1, t13, t55, t81, t121, t147]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t2 = t1 * qd1;
         let t3 = t0 * qdd1;
         let t4 = t1 * qdd1;
@@ -217,7 +224,6 @@ impl Lwr4 {
         let t9 = t0 * t7;
         let t10 = t3 + t8;
         let t11 = t4 - t9;
-        let (t12, t13) = q3.sin_cos();
         let t14 = t0 * qd1;
         let t15 = t13 * t14;
         let t16 = t12 * qd2;
@@ -260,7 +266,6 @@ impl Lwr4 {
         let t52 = t23 + t51;
         let t53 = t11 + qdd3;
         out[163] = t53;
-        let (t54, t55) = q4.sin_cos();
         let t56 = t17 * t55;
         let t57 = t48 * t54;
         let t58 = t56 - t57;
@@ -287,7 +292,6 @@ impl Lwr4 {
         let t78 = t64 + t77;
         let t79 = qdd4 - t52;
         out[243] = t79;
-        let (t80, t81) = q5.sin_cos();
         let t82 = t58 * t81;
         let t83 = t74 * t80;
         let t84 = t82 + t83;
@@ -329,7 +333,6 @@ impl Lwr4 {
         let t118 = t117 - t90;
         let t119 = t78 + qdd5;
         out[323] = t119;
-        let (t120, t121) = q6.sin_cos();
         let t122 = t84 * t121;
         let t123 = t114 * t120;
         let t124 = t122 + t123;
@@ -355,7 +358,6 @@ impl Lwr4 {
         let t144 = t143 - t130;
         let t145 = qdd6 - t118;
         out[403] = t145;
-        let (t146, t147) = q7.sin_cos();
         let t148 = t124 * t147;
         let t149 = t140 * t146;
         let t150 = t148 - t149;
@@ -2173,12 +2175,14 @@ impl Lwr4 {
         let mut out = [T::ZERO; 301];
         out[0] = qdd1;
         out[48] = qdd2;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t0 * qdd1;
@@ -3591,12 +3595,14 @@ impl Lwr4 {
         let c1 = T::from_f64(0.4);
         let c2 = T::from_f64(0.39);
         let c3 = T::from_f64(0.078);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t0 * qdd1;
@@ -4197,12 +4203,14 @@ impl Lwr4 {
         let c5 = T::from_f64(0.8);
         let mut out = [T::ZERO; 49];
         out[48] = ZZ7;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t11 * MY7;
         let t13 = t10 * MX7;
         let t14 = t10 * MY7;
@@ -4606,12 +4614,14 @@ impl Lwr4 {
         ] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t0 * t3;
         let t13 = t0 * t2;
         let t14 = t5 * t12;
@@ -4741,12 +4751,14 @@ impl Lwr4 {
         let c2 = T::from_f64(0.39);
         let c3 = T::from_f64(0.078);
         let c4 = T::from_f64(2.0);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t13 * qd2;

@@ -208,7 +208,14 @@ impl Panda {
         let mut out = [T::ZERO; 490];
         out[5] = qdd1;
         out[85] = qdd2;
-        let (t0, t1) = q2.sin_cos();
+        let ([t0, t12, t54, t94, t147, t173], [t1, t13, t55, t95, t148, t174]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t2 = t1 * qd1;
         let t3 = t0 * qdd1;
         let t4 = t1 * qdd1;
@@ -220,7 +227,6 @@ impl Panda {
         let t9 = t0 * t7;
         let t10 = t3 + t8;
         let t11 = t9 - t4;
-        let (t12, t13) = q3.sin_cos();
         let t14 = t0 * qd1;
         let t15 = t13 * t14;
         let t16 = t12 * qd2;
@@ -264,7 +270,6 @@ impl Panda {
         let t52 = t23 + t51;
         let t53 = qdd3 - t11;
         out[165] = t53;
-        let (t54, t55) = q4.sin_cos();
         let t56 = t17 * t55;
         let t57 = t48 * t54;
         let t58 = t56 + t57;
@@ -305,7 +310,6 @@ impl Panda {
         let t92 = t91 - t64;
         let t93 = qdd4 - t52;
         out[245] = t93;
-        let (t94, t95) = q5.sin_cos();
         let t96 = t58 * t95;
         let t97 = t88 * t94;
         let t98 = t96 - t97;
@@ -358,7 +362,6 @@ impl Panda {
         let t145 = t104 + t144;
         let t146 = t92 + qdd5;
         out[325] = t146;
-        let (t147, t148) = q6.sin_cos();
         let t149 = t98 * t148;
         let t150 = t141 * t147;
         let t151 = t149 + t150;
@@ -385,7 +388,6 @@ impl Panda {
         let t171 = t170 - t157;
         let t172 = t145 + qdd6;
         out[405] = t172;
-        let (t173, t174) = q7.sin_cos();
         let t175 = t151 * t174;
         let t176 = t167 * t173;
         let t177 = t175 + t176;
@@ -2381,12 +2383,14 @@ impl Panda {
         let mut out = [T::ZERO; 301];
         out[0] = qdd1;
         out[48] = qdd2;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t0 * qdd1;
@@ -3827,12 +3831,14 @@ impl Panda {
         let c2 = T::from_f64(0.0825);
         let c3 = T::from_f64(0.384);
         let c4 = T::from_f64(0.088);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t0 * qdd1;
@@ -4466,12 +4472,14 @@ impl Panda {
         let c8 = T::from_f64(0.632);
         let mut out = [T::ZERO; 49];
         out[48] = ZZ7;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t11 * MY7;
         let t13 = t10 * MX7;
         let t14 = t10 * MY7;
@@ -4916,12 +4924,14 @@ impl Panda {
         MY7] = *base;
         let c0 = T::from_f64(-9.81);
         let c1 = T::from_f64(9.81);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t0 * t3;
         let t13 = t0 * t2;
         let t14 = t5 * t12;
@@ -5052,12 +5062,14 @@ impl Panda {
         let c3 = T::from_f64(0.384);
         let c4 = T::from_f64(0.088);
         let c5 = T::from_f64(2.0);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
-        let (t10, t11) = q7.sin_cos();
+        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+            q7,
+        ]);
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t13 * qd2;

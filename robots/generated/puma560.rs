@@ -190,7 +190,13 @@ impl Puma560 {
         let mut out = [T::ZERO; 360];
         out[3] = qdd1;
         out[75] = qdd2;
-        let (t0, t1) = q2.sin_cos();
+        let ([t0, t11, t59, t114, t140], [t1, t12, t60, t115, t141]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t2 = t0 * qdd1;
         out[72] = t2;
         let t3 = t1 * qdd1;
@@ -202,7 +208,6 @@ impl Puma560 {
         let t8 = t0 * t6;
         let t9 = t2 + t7;
         let t10 = t3 - t8;
-        let (t11, t12) = q3.sin_cos();
         let t13 = t0 * qd1;
         let t14 = t12 * t13;
         let t15 = t1 * qd1;
@@ -252,7 +257,6 @@ impl Puma560 {
         let t58 = qdd2 + qdd3;
         out[83] = t58;
         out[143] = t58;
-        let (t59, t60) = q4.sin_cos();
         let t61 = t17 * t60;
         let t62 = t53 * t59;
         let t63 = t61 - t62;
@@ -308,7 +312,6 @@ impl Puma560 {
         let t112 = t69 + t111;
         let t113 = t57 + qdd4;
         out[213] = t113;
-        let (t114, t115) = q5.sin_cos();
         let t116 = t63 * t115;
         let t117 = t108 * t114;
         let t118 = t116 + t117;
@@ -335,7 +338,6 @@ impl Puma560 {
         let t138 = t137 - t124;
         let t139 = t112 + qdd5;
         out[283] = t139;
-        let (t140, t141) = q6.sin_cos();
         let t142 = t118 * t141;
         let t143 = t134 * t140;
         let t144 = t142 - t143;
@@ -1875,11 +1877,13 @@ impl Puma560 {
         let mut out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2754,11 +2758,13 @@ impl Puma560 {
         let c1 = T::from_f64(0.15005);
         let c2 = T::from_f64(9.81);
         let c3 = T::from_f64(0.0203);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -3267,11 +3273,13 @@ impl Puma560 {
         let c6 = T::from_f64(0.3001);
         let mut out = [T::ZERO; 36];
         out[35] = ZZ6;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t9 * MY6;
         let t11 = t8 * MX6;
         let t12 = t8 * MY6;
@@ -3610,11 +3618,13 @@ impl Puma560 {
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * t3;
         let t11 = t1 * t2;
         let t12 = t0 * t2;
@@ -3714,11 +3724,13 @@ impl Puma560 {
         let c3 = T::from_f64(0.4318);
         let c4 = T::from_f64(0.0406);
         let c5 = T::from_f64(2.0);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t11 * qd2;

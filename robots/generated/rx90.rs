@@ -189,7 +189,13 @@ impl Rx90 {
         let mut out = [T::ZERO; 360];
         out[5] = qdd1;
         out[75] = qdd2;
-        let (t0, t1) = q2.sin_cos();
+        let ([t0, t11, t56, t98, t124], [t1, t12, t57, t99, t125]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t2 = t0 * qdd1;
         out[72] = t2;
         let t3 = t1 * qdd1;
@@ -202,7 +208,6 @@ impl Rx90 {
         let t8 = t0 * t6;
         let t9 = t2 + t7;
         let t10 = t3 - t8;
-        let (t11, t12) = q3.sin_cos();
         let t13 = t0 * qd1;
         let t14 = t12 * t13;
         let t15 = t1 * qd1;
@@ -249,7 +254,6 @@ impl Rx90 {
         let t55 = qdd2 + qdd3;
         out[85] = t55;
         out[145] = t55;
-        let (t56, t57) = q4.sin_cos();
         let t58 = t17 * t57;
         let t59 = t50 * t56;
         let t60 = t58 - t59;
@@ -293,7 +297,6 @@ impl Rx90 {
         let t96 = t66 + t95;
         let t97 = t54 + qdd4;
         out[215] = t97;
-        let (t98, t99) = q5.sin_cos();
         let t100 = t60 * t99;
         let t101 = t92 * t98;
         let t102 = t100 + t101;
@@ -320,7 +323,6 @@ impl Rx90 {
         let t122 = t121 - t108;
         let t123 = t96 + qdd5;
         out[285] = t123;
-        let (t124, t125) = q6.sin_cos();
         let t126 = t102 * t125;
         let t127 = t118 * t124;
         let t128 = t126 - t127;
@@ -1547,11 +1549,13 @@ impl Rx90 {
         let mut out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2368,11 +2372,13 @@ impl Rx90 {
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(9.81);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2853,11 +2859,13 @@ impl Rx90 {
         let c0 = T::from_f64(2.0);
         let mut out = [T::ZERO; 36];
         out[35] = ZZ6;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t9 * MY6;
         let t11 = t8 * MX6;
         let t12 = t8 * MY6;
@@ -3156,11 +3164,13 @@ impl Rx90 {
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * t3;
         let t11 = t1 * t2;
         let t12 = t0 * t2;
@@ -3257,11 +3267,13 @@ impl Rx90 {
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(2.0);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t11 * qd2;

@@ -101,7 +101,7 @@ impl Stanford {
         out[5] = qdd1;
         out[45] = qdd2;
         out[53] = qdd2;
-        let (t0, t1) = q2.sin_cos();
+        let ([t0], [t1]) = T::sin_cos_array([q2]);
         let t2 = t0 * qdd1;
         let t3 = t1 * qdd1;
         out[54] = t3;
@@ -296,7 +296,7 @@ impl Stanford {
         let mut out = [T::ZERO; 36];
         out[0] = qdd1;
         out[17] = qdd2;
-        let (t0, t1) = q2.sin_cos();
+        let ([t0], [t1]) = T::sin_cos_array([q2]);
         let t2 = qd1 * qd1;
         let t3 = t1 * qdd1;
         let t4 = t0 * qdd1;
@@ -461,7 +461,7 @@ impl Stanford {
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
         let c2 = T::from_f64(2.0);
-        let (t0, t1) = q2.sin_cos();
+        let ([t0], [t1]) = T::sin_cos_array([q2]);
         let t2 = qd1 * qd1;
         let t3 = t1 * qdd1;
         let t4 = t0 * qdd1;
@@ -614,7 +614,7 @@ impl Stanford {
         let [ZZR1, XXR2, XYR2, XZR2, YZR2, ZZR2, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(2.0);
-        let (t0, t1) = q2.sin_cos();
+        let ([t0], [t1]) = T::sin_cos_array([q2]);
         let t2 = t0 * M3;
         let t3 = t0 * MY3;
         let t4 = t2 * c0;
@@ -673,7 +673,7 @@ impl Stanford {
         let [_, _, _, _, _, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(1.51074);
-        let (t0, t1) = q2.sin_cos();
+        let ([t0], [t1]) = T::sin_cos_array([q2]);
         let t2 = t0 * M3;
         let t3 = t1 * M3;
         let t4 = t1 * MY3;
@@ -722,7 +722,7 @@ impl Stanford {
         let [_, XXR2, XYR2, XZR2, YZR2, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(2.0);
-        let (t0, t1) = q2.sin_cos();
+        let ([t0], [t1]) = T::sin_cos_array([q2]);
         let t2 = qd1 * qd1;
         let t3 = t0 * qd1;
         let t4 = t1 * qd1;

@@ -181,7 +181,13 @@ impl Tx40 {
         let mut out = [T::ZERO; 360];
         out[5] = qdd1;
         out[75] = qdd2;
-        let (t1, t0) = q2.sin_cos();
+        let ([t1, t12, t63, t105, t131], [t0, t11, t64, t106, t132]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t2 = t0 * qdd1;
         out[72] = t2;
         let t3 = t1 * qdd1;
@@ -192,7 +198,6 @@ impl Tx40 {
         let t8 = t0 * t6;
         let t9 = t2 - t7;
         let t10 = t3 + t8;
-        let (t12, t11) = q3.sin_cos();
         let t13 = t0 * qd1;
         let t14 = t12 * t13;
         let t15 = t1 * qd1;
@@ -246,7 +251,6 @@ impl Tx40 {
         let t62 = qdd2 + qdd3;
         out[85] = t62;
         out[145] = t62;
-        let (t63, t64) = q4.sin_cos();
         let t65 = t17 * t64;
         let t66 = t57 * t63;
         let t67 = t66 - t65;
@@ -289,7 +293,6 @@ impl Tx40 {
         let t103 = t102 - t73;
         let t104 = qdd4 - t61;
         out[215] = t104;
-        let (t105, t106) = q5.sin_cos();
         let t107 = t67 * t106;
         let t108 = t99 * t105;
         let t109 = t107 - t108;
@@ -316,7 +319,6 @@ impl Tx40 {
         let t129 = t115 + t128;
         let t130 = t103 + qdd5;
         out[285] = t130;
-        let (t131, t132) = q6.sin_cos();
         let t133 = t109 * t132;
         let t134 = t125 * t131;
         let t135 = t133 + t134;
@@ -1677,11 +1679,13 @@ impl Tx40 {
         let mut out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
-        let (t1, t0) = q2.sin_cos();
-        let (t3, t2) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t1, t3, t4, t6, t8], [t0, t2, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2545,11 +2549,13 @@ impl Tx40 {
         let c0 = T::from_f64(0.225);
         let c1 = T::from_f64(0.035);
         let c2 = T::from_f64(9.81);
-        let (t1, t0) = q2.sin_cos();
-        let (t3, t2) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t1, t3, t4, t6, t8], [t0, t2, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -3047,11 +3053,13 @@ impl Tx40 {
         let c4 = T::from_f64(0.07);
         let mut out = [T::ZERO; 36];
         out[35] = ZZ6;
-        let (t1, t0) = q2.sin_cos();
-        let (t3, t2) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t1, t3, t4, t6, t8], [t0, t2, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t9 * MY6;
         let t11 = t8 * MX6;
         let t12 = t8 * MY6;
@@ -3380,11 +3388,13 @@ impl Tx40 {
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(-9.81);
         let c1 = T::from_f64(9.81);
-        let (t1, t0) = q2.sin_cos();
-        let (t3, t2) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t1, t3, t4, t6, t8], [t0, t2, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * t3;
         let t11 = t1 * t2;
         let t12 = t0 * t2;
@@ -3482,11 +3492,13 @@ impl Tx40 {
         let c1 = T::from_f64(0.035);
         let c2 = T::from_f64(0.225);
         let c3 = T::from_f64(2.0);
-        let (t1, t0) = q2.sin_cos();
-        let (t3, t2) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t1, t3, t4, t6, t8], [t0, t2, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t11 * qd2;

@@ -188,7 +188,13 @@ impl Ur5e {
         let mut out = [T::ZERO; 360];
         out[5] = qdd1;
         out[75] = qdd2;
-        let (t0, t1) = q2.sin_cos();
+        let ([t0, t11, t54, t105, t145], [t1, t12, t55, t106, t146]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t2 = t0 * qdd1;
         out[72] = t2;
         let t3 = t1 * qdd1;
@@ -201,7 +207,6 @@ impl Ur5e {
         let t8 = t0 * t6;
         let t9 = t2 + t7;
         let t10 = t3 - t8;
-        let (t11, t12) = q3.sin_cos();
         let t13 = t0 * qd1;
         let t14 = t12 * t13;
         let t15 = t1 * qd1;
@@ -247,7 +252,6 @@ impl Ur5e {
         let t53 = qdd2 + qdd3;
         out[85] = t53;
         out[145] = t53;
-        let (t54, t55) = q4.sin_cos();
         let t56 = t17 * t55;
         let t57 = t20 * t54;
         let t58 = t56 + t57;
@@ -301,7 +305,6 @@ impl Ur5e {
         out[95] = t104;
         out[155] = t104;
         out[215] = t104;
-        let (t105, t106) = q5.sin_cos();
         let t107 = t58 * t106;
         let t108 = t99 * t105;
         let t109 = t107 + t108;
@@ -342,7 +345,6 @@ impl Ur5e {
         let t143 = t142 - t115;
         let t144 = qdd5 - t103;
         out[285] = t144;
-        let (t145, t146) = q6.sin_cos();
         let t147 = t109 * t146;
         let t148 = t139 * t145;
         let t149 = t147 - t148;
@@ -1712,11 +1714,13 @@ impl Ur5e {
         let mut out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2510,11 +2514,13 @@ impl Ur5e {
         let c3 = T::from_f64(0.1333);
         let c4 = T::from_f64(0.0997);
         let c5 = T::from_f64(0.0996);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -3014,11 +3020,13 @@ impl Ur5e {
         let c9 = T::from_f64(0.85);
         let mut out = [T::ZERO; 36];
         out[35] = ZZ6;
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t9 * MY6;
         let t11 = t8 * MX6;
         let t12 = t8 * MY6;
@@ -3350,11 +3358,13 @@ impl Ur5e {
         MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * t3;
         let t11 = t1 * t2;
         let t12 = t0 * t2;
@@ -3447,11 +3457,13 @@ impl Ur5e {
         let c6 = T::from_f64(0.1994);
         let c7 = T::from_f64(0.0996);
         let c8 = T::from_f64(2.0);
-        let (t0, t1) = q2.sin_cos();
-        let (t2, t3) = q3.sin_cos();
-        let (t4, t5) = q4.sin_cos();
-        let (t6, t7) = q5.sin_cos();
-        let (t8, t9) = q6.sin_cos();
+        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
+            q2,
+            q3,
+            q4,
+            q5,
+            q6,
+        ]);
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t11 * qd2;

@@ -2,6 +2,7 @@
 
 use super::EmitError;
 use super::names::{ident, value_ident, value_name};
+use super::trig::{Role, TrigBatch};
 use crate::program::{Instr, Program, Value};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -87,10 +88,15 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
             quote! { let #id = T::from_f64(#lit); }
         })
     });
-    // sin(x) and cos(x) of the same x are computed together, where the first
-    // of the two is.
+    // The sines and cosines of the angles that need no trigonometry themselves come
+    // from one batched call before the rest (`trig.rs`). Of the others, sin(x) and
+    // cos(x) of the same x are computed together, where the first of the two is.
+    let batch = TrigBatch::new(program);
     let mut pair_of: Vec<Option<usize>> = vec![None; program.instrs.len()];
     for (i, instr) in program.instrs.iter().enumerate() {
+        if batch.role[i] != Role::InOrder {
+            continue;
+        }
         if let Instr::Sin(x) = *instr
             && let Some(k) = program
                 .instrs
@@ -124,7 +130,7 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
         let ks = stores_of[i].iter().map(|&k| Literal::usize_unsuffixed(k));
         quote! { #(out[#ks] = #id;)* }
     };
-    let lets = program.instrs.iter().enumerate().filter_map(|(i, instr)| {
+    let emit = |i: usize, instr: &Instr| {
         let id = format_ident!("t{}", i);
         match (pair_of[i], instr) {
             (Some(k), _) if k < i => None,
@@ -144,7 +150,44 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
                 Some(quote! { let #id = #rhs; #st })
             }
         }
-    });
+    };
+    let (emit, role_of) = (&emit, &batch.role);
+    let in_role = |role: Role| {
+        program
+            .instrs
+            .iter()
+            .enumerate()
+            .filter(move |&(i, _)| role_of[i] == role)
+            .filter_map(move |(i, instr)| emit(i, instr))
+    };
+    let mut lets: Vec<TokenStream> = in_role(Role::Hoisted).collect();
+    if !batch.angles.is_empty() {
+        let bind = |slot: &Option<usize>| match *slot {
+            Some(i) => {
+                let id = format_ident!("t{}", i);
+                quote!(#id)
+            }
+            None => quote!(_),
+        };
+        let sins = batch.sin.iter().map(bind);
+        let coss = batch.cos.iter().map(bind);
+        let angles = batch.angles.iter().map(|&x| value_tokens(program, x));
+        let stores = (0..program.instrs.len())
+            .filter(|&i| batch.role[i] == Role::Batched)
+            .map(store);
+        lets.push(quote! {
+            let ([#(#sins),*], [#(#coss),*]) = T::sin_cos_array([#(#angles),*]);
+            #(#stores)*
+        });
+        for (i, role) in batch.role.iter().enumerate() {
+            if let Role::Copy { of } = *role {
+                let (id, of) = (format_ident!("t{}", i), format_ident!("t{}", of));
+                let st = store(i);
+                lets.push(quote! { let #id = #of; #st });
+            }
+        }
+    }
+    lets.extend(in_role(Role::InOrder));
     let body = if eager {
         quote! {
             let mut out = [T::ZERO; #out_len];

@@ -3,8 +3,9 @@
 //! Each program becomes one generic function over `T: ::robid_runtime::Real`
 //! with fixed-size array arguments and result (`function.rs`): the inputs are
 //! destructured into named values (`q1`, `ZZR1`), constants are bound once
-//! with `T::from_f64`, every temporary is one `let`, and the doc comment states
-//! the operation count. `robot.rs` wraps the functions of a robot into a type
+//! with `T::from_f64`, the sines and cosines come from one `T::sin_cos_array`
+//! call (`trig.rs`), every other temporary is one `let`, and the doc comment
+//! states the operation count. `robot.rs` wraps the functions of a robot into a type
 //! with its constants, `model.rs` implements the runtime's slice-based
 //! `Model` trait, and `stub.rs` emits the placeholder `robot_model!` produces
 //! after an error. Paths are absolute (`::core::`, `::robid_runtime::`), so the
@@ -16,6 +17,7 @@ mod model;
 mod names;
 mod robot;
 mod stub;
+mod trig;
 
 pub use c::{CCode, CScalar, emit_c};
 pub use function::function_tokens;

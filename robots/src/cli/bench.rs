@@ -1,7 +1,9 @@
 //! `robid bench [--robot NAME] [--json]`: median nanoseconds per call of the compiled
 //! reference models (docs/performance.md#what-robid-measures), with a baseline measured in
-//! the same run (6 x (sin + cos) through libm) so figures compare across machines. The
-//! criterion benches in robots/benches measure the same functions.
+//! the same run (6 x (sin + cos) through libm) so figures compare across machines, and the
+//! batched sines and cosines of six angles (`robid_runtime::trig::sin_cos`, vectorised
+//! with AVX2) in the same units. The criterion benches in robots/benches measure the same
+//! functions.
 
 use super::{Error, out};
 use robid_runtime::model::PROGRAMS;
@@ -29,6 +31,10 @@ struct Timing {
     /// Per program of the table, by name.
     programs: BTreeMap<&'static str, f64>,
     baseline_trig_ns: f64,
+    /// `robid_runtime::trig::sin_cos` of six angles.
+    batched_trig_ns: f64,
+    /// Whether that call took the vector path (AVX2 and FMA).
+    vector_trig: bool,
 }
 
 /// Median time per call of `f` over 31 batches of about a millisecond each.
@@ -77,9 +83,21 @@ fn baseline() -> f64 {
     })
 }
 
+/// The sines and cosines of six angles in one call, `robid_runtime::trig::sin_cos`.
+fn batched() -> f64 {
+    let q: [f64; 6] = filled(6, 1.0).try_into().expect("six angles");
+    median_ns(|| {
+        black_box(robid_runtime::trig::sin_cos(black_box(q)));
+    })
+}
+
 /// Times every program of the table on `model` through [`Model::run`] (the slice
 /// interface: the length checks are part of the figure).
-fn time_robot<M: Model + ?Sized>(robot: &'static str, model: &M, baseline: f64) -> Timing {
+fn time_robot<M: Model + ?Sized>(
+    robot: &'static str,
+    model: &M,
+    (baseline, batched): (f64, f64),
+) -> Timing {
     let sizes = model.sizes();
     let programs = PROGRAMS
         .iter()
@@ -103,6 +121,8 @@ fn time_robot<M: Model + ?Sized>(robot: &'static str, model: &M, baseline: f64) 
         robot,
         programs,
         baseline_trig_ns: baseline,
+        batched_trig_ns: batched,
+        vector_trig: robid_runtime::trig::vector_available(),
     }
 }
 
@@ -119,10 +139,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .into());
     }
     let wanted = |n: &str| args.robot.as_deref().is_none_or(|r| r == n);
-    let base = baseline();
+    let (base, batch) = (baseline(), batched());
     let mut timings = Vec::new();
     for reference in robots::REFERENCES.iter().filter(|r| wanted(r.name)) {
-        timings.push(time_robot(reference.name, &*reference.model(), base));
+        timings.push(time_robot(
+            reference.name,
+            &*reference.model(),
+            (base, batch),
+        ));
     }
     let mut stdout = out::Stdout::new();
     if args.json {
@@ -134,7 +158,13 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     writeln!(
         stdout,
-        "median ns per call (baseline 6 x (sin + cos) via libm: {base:.1} ns)"
+        "median ns per call (baseline 6 x (sin + cos) via libm: {base:.1} ns; \
+         batched sin_cos of 6 angles{}: {batch:.1} ns)",
+        if robid_runtime::trig::vector_available() {
+            ", AVX2"
+        } else {
+            ", libm"
+        }
     )?;
     write!(stdout, "{:<10}", "robot")?;
     for p in &PROGRAMS {

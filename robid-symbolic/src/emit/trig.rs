@@ -1,0 +1,172 @@
+//! The sines and cosines of a program, computed together in one call at the top of the
+//! emitted function (`T::sin_cos_array`, vectorised for `f64` on x86-64 with AVX2).
+//!
+//! Every angle whose value does not itself need a sine or cosine is batched: a joint
+//! variable, a constant, or a temporary computed from them (a joint angle plus an offset
+//! the simplifier could not fold, a sum of two joint angles). The instructions computing
+//! such temporaries are hoisted before the call, in program order; an angle that depends
+//! on another sine or cosine (none of the reference robots has one) keeps its
+//! `x.sin_cos()` where the program first needs it.
+
+use crate::program::{Instr, Program, Value};
+
+/// What the emitter does with one instruction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Role {
+    /// Emitted in program order after the batch.
+    InOrder,
+    /// Computes (part of) a batched angle: emitted before the batch, in program order.
+    Hoisted,
+    /// The sine or cosine of batched angle `angle`, bound by the batch call.
+    Batched,
+    /// The same sine or cosine as the earlier instruction `of` (programs built by hand):
+    /// a copy of it after the batch.
+    Copy { of: usize },
+}
+
+/// The plan of a program's trigonometry.
+#[derive(Debug)]
+pub(super) struct TrigBatch {
+    /// The batched angles, in order of first use.
+    pub(super) angles: Vec<Value>,
+    /// Per angle, the instruction whose result is its sine, if the program needs it.
+    pub(super) sin: Vec<Option<usize>>,
+    /// Per angle, the instruction whose result is its cosine, if the program needs it.
+    pub(super) cos: Vec<Option<usize>>,
+    /// Per instruction.
+    pub(super) role: Vec<Role>,
+}
+
+impl TrigBatch {
+    pub(super) fn new(program: &Program) -> Self {
+        let n = program.instrs.len();
+        let is_trig = |i: &Instr| matches!(i, Instr::Sin(_) | Instr::Cos(_));
+        // Whether an instruction's value needs a sine or cosine (its own or upstream).
+        let mut needs_trig = vec![false; n];
+        for (i, instr) in program.instrs.iter().enumerate() {
+            needs_trig[i] = is_trig(instr)
+                || instr.operands().into_iter().any(|v| match v {
+                    Value::Temp(t) => needs_trig[t as usize],
+                    _ => false,
+                });
+        }
+        let batchable = |x: Value| match x {
+            Value::Temp(t) => !needs_trig[t as usize],
+            Value::Input(_) | Value::Const(_) => true,
+        };
+        let mut batch = TrigBatch {
+            angles: Vec::new(),
+            sin: Vec::new(),
+            cos: Vec::new(),
+            role: vec![Role::InOrder; n],
+        };
+        for (i, instr) in program.instrs.iter().enumerate() {
+            let (x, is_sin) = match *instr {
+                Instr::Sin(x) => (x, true),
+                Instr::Cos(x) => (x, false),
+                _ => continue,
+            };
+            if !batchable(x) {
+                continue;
+            }
+            let a = match batch.angles.iter().position(|&y| y == x) {
+                Some(a) => a,
+                None => {
+                    batch.angles.push(x);
+                    batch.sin.push(None);
+                    batch.cos.push(None);
+                    batch.angles.len() - 1
+                }
+            };
+            let slot = if is_sin {
+                &mut batch.sin[a]
+            } else {
+                &mut batch.cos[a]
+            };
+            batch.role[i] = match *slot {
+                Some(of) => Role::Copy { of },
+                None => {
+                    *slot = Some(i);
+                    Role::Batched
+                }
+            };
+        }
+        // The instructions the batched angles are computed from.
+        let mut stack: Vec<u32> = batch
+            .angles
+            .iter()
+            .filter_map(|&x| match x {
+                Value::Temp(t) => Some(t),
+                _ => None,
+            })
+            .collect();
+        while let Some(t) = stack.pop() {
+            let t = t as usize;
+            if batch.role[t] == Role::Hoisted {
+                continue;
+            }
+            batch.role[t] = Role::Hoisted;
+            for v in program.instrs[t].operands() {
+                if let Value::Temp(u) = v {
+                    stack.push(u);
+                }
+            }
+        }
+        batch
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Role, TrigBatch};
+    use crate::program::{Instr, Program, Value};
+
+    fn program(instrs: Vec<Instr>) -> Program {
+        Program {
+            instrs,
+            ..Program::default()
+        }
+    }
+
+    /// Inputs, constants and temporaries computed without trigonometry are batched (the
+    /// temporaries' instructions hoisted); an angle computed from a sine is not; a second
+    /// sine of the same angle becomes a copy.
+    #[test]
+    fn batches_the_angles_that_need_no_trigonometry() {
+        let (q1, q2, c0) = (Value::Input(0), Value::Input(1), Value::Const(0));
+        let p = program(vec![
+            Instr::Mul(q1, q2),             // t0: hoisted
+            Instr::Add(Value::Temp(0), c0), // t1 = q1 q2 + c0: hoisted, an angle
+            Instr::Sin(q1),                 // t2
+            Instr::Mul(q2, q2),             // t3: in order
+            Instr::Cos(Value::Temp(1)),     // t4
+            Instr::Cos(q1),                 // t5
+            Instr::Sin(Value::Temp(2)),     // t6 = sin(sin(q1)): in order
+            Instr::Sin(q1),                 // t7 = t2
+            Instr::Sin(c0),                 // t8
+            Instr::Add(Value::Temp(2), q2), // t9: in order
+            Instr::Cos(Value::Temp(9)),     // t10: in order (needs t2)
+        ]);
+        let b = TrigBatch::new(&p);
+        assert_eq!(b.angles, vec![q1, Value::Temp(1), c0]);
+        assert_eq!(b.sin, vec![Some(2), None, Some(8)]);
+        assert_eq!(b.cos, vec![Some(5), Some(4), None]);
+        use Role::*;
+        assert_eq!(
+            b.role,
+            vec![
+                Hoisted,
+                Hoisted,
+                Batched,
+                InOrder,
+                Batched,
+                Batched,
+                InOrder,
+                Copy { of: 2 },
+                Batched,
+                InOrder,
+                InOrder,
+            ]
+        );
+    }
+}
