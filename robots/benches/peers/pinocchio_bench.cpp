@@ -12,8 +12,9 @@
 //   The listed joints are locked at their neutral value (pinocchio::buildReducedModel):
 //   the Panda's two finger joints, so that the model is robid's 7-joint arm.
 // Prints one JSON line: {"robot": LABEL, "variant": ..., "nq": n, "programs": {...},
-//   "baseline_trig_ns": n x (sin + cos), "baseline_trig6_ns": 6 x (sin + cos) at the
-//   values robid's own baseline uses}.
+//   "baseline_trig_ns": n x (sin + cos) at the random states, "baseline_trig6_ns":
+//   6 x (sin + cos) at the values robid's own baseline uses, "baseline_sincos6_ns": the
+//   same through 6 x sincos, "check_residual": max |rnea - (M a + nle)| at one state}.
 //
 // Build (run.sh does this), PREFIX = <venv>/lib/python3.X/site-packages/cmeel.prefix:
 //   g++ -std=c++17 -O3 -DNDEBUG pinocchio_bench.cpp -I$PREFIX/include \
@@ -107,6 +108,24 @@ namespace
     });
   }
 
+  // The same through glibc's sincos (one call a joint): what compilers emit for
+  // sin(x) and cos(x) of the same x when they may (LLVM does for Rust's f64::sin and
+  // f64::cos; g++ -O3 without -ffast-math does not).
+  double sincos_ns(const std::vector<std::vector<double>> & qs)
+  {
+    const std::size_t n = qs[0].size();
+    std::vector<double> acc(2 * n);
+    std::size_t s = 0;
+    return median_ns([&] {
+      const double * q = qs[s].data();
+      escape(q);
+      for (std::size_t j = 0; j < n; ++j)
+        ::sincos(q[j], &acc[2 * j], &acc[2 * j + 1]);
+      escape(acc.data());
+      s = (s + 1) % qs.size();
+    });
+  }
+
 } // namespace
 
 int main(int argc, char ** argv)
@@ -179,6 +198,7 @@ int main(int argc, char ** argv)
   for (int j = 0; j < 6; ++j)
     robid_q[0].push_back(std::sin(0.3 + 0.17 * j));
   const double trig6 = trig_ns(robid_q);
+  const double sincos6 = sincos_ns(robid_q);
 
   // Inverse dynamics: tau = M(q) a + C(q, v) v + g(q) (rigid bodies, armature included).
   const double rnea = median_ns([&] {
@@ -221,6 +241,20 @@ int main(int argc, char ** argv)
   });
   clobber();
 
+  // Consistency of what was timed: rnea(q, v, a) = M(q) a + nle(q, v) at one state, with
+  // M symmetrised from crba's upper triangle (a wrong build or ABI shows here).
+  pinocchio::rnea(model, data, qs[0], vs[0], as[0]);
+  const Eigen::VectorXd tau = data.tau;
+  pinocchio::crba(model, data, qs[0]);
+  const Eigen::MatrixXd m = data.M.selfadjointView<Eigen::Upper>();
+  pinocchio::nonLinearEffects(model, data, qs[0], vs[0]);
+  const double residual = (tau - m * as[0] - data.nle).cwiseAbs().maxCoeff();
+  if (!(residual < 1e-9 * (1.0 + tau.cwiseAbs().maxCoeff())))
+  {
+    std::fprintf(stderr, "rnea != M a + nle: residual %g\n", residual);
+    return 1;
+  }
+
 #ifdef PINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION
   const char * instances = "library";
 #else
@@ -234,7 +268,9 @@ int main(int argc, char ** argv)
   std::printf(
     "{\"robot\":\"%s\",\"variant\":\"%s-%s\",\"nq\":%d,\"programs\":{\"rnea\":%.3f,"
     "\"crba\":%.3f,\"crba_symmetric\":%.3f,\"computeGeneralizedGravity\":%.3f,"
-    "\"nonLinearEffects\":%.3f},\"baseline_trig_ns\":%.3f,\"baseline_trig6_ns\":%.3f}\n",
-    label.c_str(), target, instances, n, rnea, crba, crba_full, gravity, nle, trig, trig6);
+    "\"nonLinearEffects\":%.3f},\"baseline_trig_ns\":%.3f,\"baseline_trig6_ns\":%.3f,"
+    "\"baseline_sincos6_ns\":%.3f,\"check_residual\":%.3g}\n",
+    label.c_str(), target, instances, n, rnea, crba, crba_full, gravity, nle, trig, trig6,
+    sincos6, residual);
   return 0;
 }
