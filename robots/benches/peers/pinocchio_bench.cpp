@@ -260,7 +260,7 @@ int main(int argc, char ** argv)
 #else
   const char * instances = "headers";
 #endif
-#ifdef PEER_TARGET // the -march the script passed ("native"), if any
+#ifdef PEER_TARGET // a -march given by hand (-DPEER_TARGET='"native"'), if any
   const char * target = PEER_TARGET;
 #else
   const char * target = "default";

@@ -9,12 +9,12 @@
 #   1. Pinocchio: a Python virtual environment under /tmp (never in the repository) with
 #      `pin` and the cmeel wheels it needs to compile against (Eigen and urdfdom headers);
 #      the wheels ship Pinocchio's C++ headers and shared libraries under cmeel.prefix.
-#   2. Compiles pinocchio_bench.cpp with g++ -O3 three ways: for the default x86-64
-#      target, the same target as robid's release build, with the algorithms instantiated
-#      from Pinocchio's headers (`default-headers`, the figure reported); the same with
-#      -march=native (`native-headers`; Eigen kept at 16-byte alignment, the wheel's ABI:
-#      with AVX-512 alignment the program crashes in the wheel's code); and calling the
-#      wheel's precompiled instances (`default-library`).
+#   2. Compiles pinocchio_bench.cpp with g++ -O3 for the default x86-64 target, the same
+#      target as robid's release build, two ways: with the algorithms instantiated from
+#      Pinocchio's headers in the program (`default-headers`, the figure reported), and
+#      calling the wheel's precompiled instances (`default-library`). No -march=native
+#      build: against the wheel's libraries (built for the baseline target) it crashes
+#      (docs/performance.md#measured-in-the-same-run).
 #   3. Builds `robid` in release.
 #   4. Runs, PEERS_ROUNDS times (3), alternating which side goes first: `robid bench
 #      --robot ur5e --json`, the Pinocchio bench on the UR5 URDF, `robid bench --robot
@@ -25,7 +25,7 @@
 #
 # Environment: PEERS_VENV (default /tmp/pinenv), PEERS_BUILD (default /tmp/robid-peers:
 # the compiled bench and the raw JSON lines), PEERS_ROUNDS (default 3), PEERS_VARIANTS
-# (default "default native library": which of the three builds to time),
+# (default "default library": which of the two builds to time),
 # CARGO_TARGET_DIR as for cargo.
 set -euo pipefail
 
@@ -34,7 +34,7 @@ root="$(cd "$here/../../.." && pwd)"
 venv="${PEERS_VENV:-/tmp/pinenv}"
 build="${PEERS_BUILD:-/tmp/robid-peers}"
 rounds="${PEERS_ROUNDS:-3}"
-variants="${PEERS_VARIANTS:-default native library}"
+variants="${PEERS_VARIANTS:-default library}"
 ur5_urdf="$root/data/example_robot_data/ur5/ur5_robot.urdf"
 panda_urdf="$root/data/example_robot_data/panda/panda.urdf"
 panda_locked=(panda_finger_joint1 panda_finger_joint2)
@@ -72,8 +72,6 @@ for v in $variants; do
   bin="$build/pinocchio_bench-$v"
   case "$v" in
     default) extra=() ;;
-    native) extra=(-march=native -DPEER_TARGET='"native"' -DEIGEN_MAX_ALIGN_BYTES=16
-      -DEIGEN_MAX_STATIC_ALIGN_BYTES=16 -Wno-stringop-overread) ;;
     library) extra=(-DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION) ;;
     *) echo "unknown variant $v" >&2; exit 2 ;;
   esac
@@ -147,7 +145,7 @@ def get(side, robot, rnd, variant=None):
             return r
     raise KeyError((side, robot, rnd, variant))
 
-print(f"Pinocchio {pin_version} (g++ -O3, instantiated from its headers) vs robid bench, "
+print(f"Pinocchio {pin_version} (g++ -O3, default x86-64 target) vs robid bench, "
       f"{len(rounds)} alternating rounds; {cpu}, {cores} cores; "
       f"load average {load_before} before, {load_after} after")
 print("ns: median over the rounds of each program's median; ratio: median over the rounds "
