@@ -89,83 +89,102 @@ pub fn decimator(config: &Config) -> Result<Decimator> {
     }
 }
 
-/// Builds W and y from prepared signals: `model`'s base regressor plus the config's
-/// extra columns, filtered and decimated, with rest samples removed per joint.
-pub fn observe(
-    model: &(dyn Model + Sync),
-    signals: &Prepared,
-    config: &Config,
-) -> Result<Observation> {
-    let dof = model.dof();
-    signals.check(dof, "data")?;
-    let extra = &config.extra_columns_for(dof)?;
-    for c in extra {
-        c.check(dof)?;
-    }
-    let rotor = signals.rotor.as_ref();
-    if rotor.is_none() && extra.iter().any(|c| c.rotor_term().is_some()) {
-        return Err(Error::setting(
-            "Config",
-            "extra_column",
-            "a rotor-side column (theta_d, theta_dd, sign_theta_d or drive.rotor.residual) \
-             needs the motor encoders' signals, which these prepared signals do not have; add \
-             motor_position = [...] to a [[source]]",
-        ));
-    }
-    let lay = Layout {
-        dof,
-        p: model.base_parameter_count(),
-        e: extra.len(),
-    };
-    let mut names = crate::model::base_parameter_names(model);
-    if let Some(r) = config
-        .drive
-        .rotor
-        .as_ref()
-        .and_then(|r| r.residual.as_ref())
-    {
-        r.check_against(dof, &names)?;
-    }
-    for (i, c) in extra.iter().enumerate() {
-        if names.contains(&c.name) {
-            let key = if i < config.extra_columns.len() {
-                format!("extra_column[{}].name", i + 1)
-            } else {
-                "drive.rotor.residual".to_string()
-            };
+/// What building the rows of a record needs, checked once: the model, the prepared
+/// signals, the extra columns, the channel layout and the parameter names. Shared by the
+/// dense observation ([`observe`]) and the streaming one (`pipeline::stream`).
+pub(crate) struct Observer<'a> {
+    pub(crate) model: &'a (dyn Model + Sync),
+    pub(crate) signals: &'a Prepared,
+    extra: Vec<crate::drive::ExtraColumn>,
+    lay: Layout,
+    /// Parameter names: the base parameters, then the extra columns.
+    pub(crate) names: Vec<String>,
+}
+
+impl<'a> Observer<'a> {
+    /// Checks the signals and the config's extra columns against `model`.
+    pub(crate) fn new(
+        model: &'a (dyn Model + Sync),
+        signals: &'a Prepared,
+        config: &Config,
+    ) -> Result<Self> {
+        let dof = model.dof();
+        signals.check(dof, "data")?;
+        let extra = config.extra_columns_for(dof)?;
+        for c in &extra {
+            c.check(dof)?;
+        }
+        let rotor = signals.rotor.as_ref();
+        if rotor.is_none() && extra.iter().any(|c| c.rotor_term().is_some()) {
             return Err(Error::setting(
                 "Config",
-                &key,
-                format!(
-                    "`{}` is already a parameter (of the model or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
-                    c.name
-                ),
+                "extra_column",
+                "a rotor-side column (theta_d, theta_dd, sign_theta_d or drive.rotor.residual) \
+                 needs the motor encoders' signals, which these prepared signals do not have; add \
+                 motor_position = [...] to a [[source]]",
             ));
         }
-        names.push(c.name.clone());
+        let lay = Layout {
+            dof,
+            p: model.base_parameter_count(),
+            e: extra.len(),
+        };
+        let mut names = crate::model::base_parameter_names(model);
+        if let Some(r) = config
+            .drive
+            .rotor
+            .as_ref()
+            .and_then(|r| r.residual.as_ref())
+        {
+            r.check_against(dof, &names)?;
+        }
+        for (i, c) in extra.iter().enumerate() {
+            if names.contains(&c.name) {
+                let key = if i < config.extra_columns.len() {
+                    format!("extra_column[{}].name", i + 1)
+                } else {
+                    "drive.rotor.residual".to_string()
+                };
+                return Err(Error::setting(
+                    "Config",
+                    &key,
+                    format!(
+                        "`{}` is already a parameter (of the model or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
+                        c.name
+                    ),
+                ));
+            }
+            names.push(c.name.clone());
+        }
+        check_names(&names)?;
+        Ok(Self {
+            model,
+            signals,
+            extra,
+            lay,
+            names,
+        })
     }
-    check_names(&names)?;
-    let n = signals.samples();
-    let stride = lay.stride();
-    crate::limits::check_size(
-        || format!("regressor values before decimation ({n} samples x {stride} channels)"),
-        n as f64 * stride as f64,
-        crate::limits::MAX_OBSERVATION_ENTRIES,
-        "use a shorter record or identify it in parts (processing.range)",
-    )?;
-    let row_at = |k: usize,
-                  st: &mut Scratch,
-                  row: &mut [f64]|
-     -> std::result::Result<(), crate::LengthError> {
+
+    /// Fills `row` (`stride` values) with sample k's channels.
+    fn row_at(
+        &self,
+        k: usize,
+        st: &mut Scratch,
+        row: &mut [f64],
+    ) -> std::result::Result<(), crate::LengthError> {
+        let (signals, lay, dof) = (self.signals, &self.lay, self.lay.dof);
         signals.q.sample_into(k, &mut st.q);
         signals.qd.sample_into(k, &mut st.qd);
         signals.qdd.sample_into(k, &mut st.qdd);
-        model.base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
+        self.model
+            .base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
+        let rotor = signals.rotor.as_ref();
         if let Some(r) = rotor {
             r.thetad.sample_into(k, &mut st.thetad);
             r.thetadd.sample_into(k, &mut st.thetadd);
         }
-        for (c, x) in extra.iter().enumerate() {
+        for (c, x) in self.extra.iter().enumerate() {
             let r = rotor.map(|_| crate::drive::RotorSample {
                 thetad: &st.thetad,
                 thetadd: &st.thetadd,
@@ -179,7 +198,169 @@ pub fn observe(
             row[lay.qd(j)] = st.qd[j];
         }
         Ok(())
-    };
+    }
+}
+
+/// The equations of some decimated samples, in sample order (for each sample, the joints
+/// that move at it, in joint order).
+#[derive(Debug, Default)]
+pub(crate) struct Equations {
+    /// Values per regressor row (parameters + extra columns).
+    pub(crate) cols: usize,
+    /// Regressor rows, row-major.
+    pub(crate) w: Vec<f64>,
+    /// Torques.
+    pub(crate) y: Vec<f64>,
+    /// Joint (0-based) of each equation.
+    pub(crate) joint: Vec<usize>,
+    /// Decimated sample of each equation.
+    pub(crate) sample: Vec<usize>,
+}
+
+impl Equations {
+    /// Equation i's regressor row.
+    pub(crate) fn row(&self, i: usize) -> &[f64] {
+        &self.w[i * self.cols..(i + 1) * self.cols]
+    }
+}
+
+impl Observer<'_> {
+    /// The error for a non-finite value of channel `c` at processed sample `k`.
+    fn bad_channel(&self, k: usize, c: usize, value: f64) -> Error {
+        let (j, col) = self.lay.of_channel(c);
+        Error::Estimate(EstimateError::NonFiniteObservation {
+            location: format!("processed sample {k}"),
+            sample: Some(k),
+            joint: j + 1,
+            parameter: col.map_or_else(
+                || "torque or velocity".to_string(),
+                |i| self.names[i].clone(),
+            ),
+            value,
+        })
+    }
+
+    /// The equations of the decimated samples whose processed samples lie in `core`
+    /// (`core.start` a multiple of the total factor): the regressor rows of `core` and
+    /// `overlap` samples on each side (a multiple of the factor, at least
+    /// [`Decimator::settling`]), decimated as a block, then the samples of `core` kept
+    /// and those near rest (`rest`, per joint) removed. The same equations as [`observe`]
+    /// gives for these samples, to the decimation filter's settling tolerance.
+    pub(crate) fn window(
+        &self,
+        dec: &Decimator,
+        overlap: usize,
+        rest: Option<&[f64]>,
+        core: std::ops::Range<usize>,
+    ) -> Result<Equations> {
+        let (lay, dof) = (&self.lay, self.lay.dof);
+        let n = self.signals.samples();
+        let f = dec.factor();
+        let lo = core.start.saturating_sub(overlap);
+        let hi = (core.end + overlap).min(n);
+        let stride = lay.stride();
+        let mut rows = vec![0.0; (hi - lo) * stride];
+        let mut st = Scratch::new(dof);
+        let mut active = vec![false; stride];
+        for j in 0..dof {
+            active[lay.tau(j)] = true;
+            active[lay.qd(j)] = true;
+        }
+        for (i, out) in rows.chunks_exact_mut(stride).enumerate() {
+            if self.row_at(lo + i, &mut st, out).is_err() {
+                out.iter_mut().for_each(|v| *v = f64::NAN);
+            }
+            for (c, v) in out.iter().enumerate() {
+                if !v.is_finite() {
+                    return Err(self.bad_channel(lo + i, c, *v));
+                }
+                active[c] |= *v != 0.0;
+            }
+        }
+        // decimated channels: (values, index in a row, row width)
+        let channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
+        let mut place: Vec<Option<(usize, usize)>> = vec![None; stride];
+        let groups: Vec<(Vec<f64>, usize)> = if f == 1 {
+            for c in 0..stride {
+                place[c] = Some((0, c));
+            }
+            vec![(rows, stride)]
+        } else {
+            let mut out = Vec::new();
+            for (g, group) in channels.chunks(GROUP).enumerate() {
+                for (i, &c) in group.iter().enumerate() {
+                    place[c] = Some((g, i));
+                }
+                out.push((dec.apply_block(&rows, stride, group)?, group.len()));
+            }
+            drop(rows);
+            out
+        };
+        let value = |i: usize, c: usize| -> f64 {
+            place[c].map_or(0.0, |(g, k)| {
+                let (v, width) = &groups[g];
+                v[i * width + k]
+            })
+        };
+        let cols = lay.p + lay.e;
+        let mut eq = Equations {
+            cols,
+            ..Equations::default()
+        };
+        let first = lo / f;
+        for k in core.start / f..core.end.div_ceil(f) {
+            let i = k - first;
+            for j in 0..dof {
+                if let Some(t) = rest
+                    && !(value(i, lay.qd(j)).abs() >= t[j])
+                {
+                    continue;
+                }
+                let y = value(i, lay.tau(j));
+                let start = eq.w.len();
+                eq.w.extend((0..cols).map(|c| value(i, lay.column(j, c))));
+                let bad = eq.w[start..]
+                    .iter()
+                    .position(|v| !v.is_finite())
+                    .map(|c| (self.names[c].clone(), eq.w[start + c]))
+                    .or((!y.is_finite()).then(|| ("torque".to_string(), y)));
+                if let Some((parameter, value)) = bad {
+                    return Err(Error::Estimate(EstimateError::NonFiniteObservation {
+                        location: format!("processed sample {}", k * f),
+                        sample: Some(k * f),
+                        joint: j + 1,
+                        parameter,
+                        value,
+                    }));
+                }
+                eq.y.push(y);
+                eq.joint.push(j);
+                eq.sample.push(k);
+            }
+        }
+        Ok(eq)
+    }
+}
+
+/// Builds W and y from prepared signals: `model`'s base regressor plus the config's
+/// extra columns, filtered and decimated, with rest samples removed per joint.
+pub fn observe(
+    model: &(dyn Model + Sync),
+    signals: &Prepared,
+    config: &Config,
+) -> Result<Observation> {
+    let observer = Observer::new(model, signals, config)?;
+    let (lay, names) = (&observer.lay, &observer.names);
+    let dof = lay.dof;
+    let n = signals.samples();
+    let stride = lay.stride();
+    crate::limits::check_size(
+        || format!("regressor values before decimation ({n} samples x {stride} channels)"),
+        n as f64 * stride as f64,
+        crate::limits::MAX_OBSERVATION_ENTRIES,
+        "use a shorter record or identify it in parts (processing.range)",
+    )?;
+    let row_at = |k: usize, st: &mut Scratch, row: &mut [f64]| observer.row_at(k, st, row);
     // channels that are not identically zero, probed at a few samples; verified below
     let mut st = Scratch::new(dof);
     let mut probe = vec![0.0; stride];
@@ -255,14 +436,7 @@ pub fn observe(
         }
     }
     if let Some((k, c, value)) = bad {
-        let (j, col) = lay.of_channel(c);
-        return Err(Error::Estimate(EstimateError::NonFiniteObservation {
-            location: format!("processed sample {k}"),
-            sample: Some(k),
-            joint: j + 1,
-            parameter: col.map_or_else(|| "torque or velocity".to_string(), |i| names[i].clone()),
-            value,
-        }));
+        return Err(observer.bad_channel(k, c, value));
     }
     let a = channels.len();
 
@@ -334,7 +508,7 @@ pub fn observe(
         joint_rows.push(start..start + ks.len());
         start += ks.len();
     }
-    Observation::new(w, y, joint_rows, sample_of_row, names).map_err(|e| match e {
+    Observation::new(w, y, joint_rows, sample_of_row, names.clone()).map_err(|e| match e {
         // a decimated sample k is processed sample k * factor
         Error::Estimate(EstimateError::NonFiniteObservation {
             sample: Some(k),

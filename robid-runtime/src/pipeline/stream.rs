@@ -1,0 +1,369 @@
+//! Identification and validation that never hold the observation matrix
+//! (docs/identification.md#streaming-least-squares).
+//!
+//! The prepared record is cut into blocks of processed samples; each block's regressor
+//! rows are evaluated with an overlap on both sides long enough for the decimation
+//! filter to forget the block's edges ([`Decimator::settling`]), decimated as a block,
+//! and the block's own decimated samples kept: the same equations as the dense
+//! observation's, to the filter's settling tolerance. Blocks run in parallel, as many
+//! at a time as there are threads, and are folded in record order.
+//!
+//! OLS and WLS take one pass: each block's equations go into a
+//! [`StreamingLeastSquares`] (per-joint R factors), merged in order; the outlier check
+//! (`Dominance`) rides along. The prediction (measured against predicted torque, the fit
+//! and the report's plots) takes a second pass with the estimated values. Memory is the
+//! blocks in flight, the R factors, and one measured and one predicted torque per
+//! equation, never the equations' rows.
+
+use std::ops::Range;
+
+use rayon::prelude::*;
+
+use crate::Model;
+use crate::data::{Config, Dataset, Method};
+use crate::error::{Error, Result};
+use crate::estimate::{Dominance, EstimateError, QualityWarning, StreamingLeastSquares};
+use crate::pipeline::Prepared;
+use crate::pipeline::observe::{Equations, Observer};
+use crate::pipeline::prepare::PreparedRows;
+use crate::pipeline::{Identification, decimator};
+use crate::signal::Decimator;
+use crate::validate::{Prediction, UsedRows};
+
+/// Tolerance of the decimation filter's settling (relative to its impulse response's
+/// absolute sum) that sets the blocks' overlap.
+const SETTLING_TOLERANCE: f64 = 1e-15;
+
+/// Processed samples per block, at least (four times the overlap when that is more).
+const BLOCK: usize = 16_384;
+
+/// A prepared record cut into blocks of equations.
+pub(crate) struct Stream<'a> {
+    observer: Observer<'a>,
+    dec: Decimator,
+    overlap: usize,
+    block: usize,
+    rest: Option<Vec<f64>>,
+}
+
+impl<'a> Stream<'a> {
+    /// The blocks of `prepared` with `config`'s decimation and rest removal.
+    pub(crate) fn new(
+        model: &'a (dyn Model + Sync),
+        prepared: &'a Prepared,
+        config: &Config,
+    ) -> Result<Self> {
+        let observer = Observer::new(model, prepared, config)?;
+        let dec = decimator(config)?;
+        let f = dec.factor();
+        let overlap = if f == 1 {
+            0
+        } else {
+            dec.settling(SETTLING_TOLERANCE).div_ceil(f) * f
+        };
+        let block = BLOCK.max(4 * overlap).div_ceil(f) * f;
+        let rest = match &config.processing.rest_velocity {
+            Some(t) => Some(t.values(model.dof(), "processing.rest_velocity")?),
+            None => None,
+        };
+        Ok(Self {
+            observer,
+            dec,
+            overlap,
+            block,
+            rest,
+        })
+    }
+
+    /// Parameter names (base parameters, then extra columns).
+    pub(crate) fn names(&self) -> &[String] {
+        &self.observer.names
+    }
+
+    /// The total decimation factor.
+    pub(crate) fn factor(&self) -> usize {
+        self.dec.factor()
+    }
+
+    /// Runs `map` on each block's equations, in parallel, and `fold` on the results in
+    /// record order; the first error (in record order) stops it.
+    pub(crate) fn run<T: Send>(
+        &self,
+        map: impl Fn(Equations) -> Result<T> + Sync,
+        mut fold: impl FnMut(T) -> Result<()>,
+    ) -> Result<()> {
+        let n = self.observer.signals.samples();
+        let blocks: Vec<Range<usize>> = (0..n.div_ceil(self.block))
+            .map(|i| i * self.block..((i + 1) * self.block).min(n))
+            .collect();
+        let threads = rayon::current_num_threads().max(1);
+        for chunk in blocks.chunks(threads) {
+            let out: Vec<Result<T>> = chunk
+                .par_iter()
+                .map(|b| {
+                    let eq = self.observer.window(
+                        &self.dec,
+                        self.overlap,
+                        self.rest.as_deref(),
+                        b.clone(),
+                    )?;
+                    map(eq)
+                })
+                .collect();
+            for o in out {
+                fold(o?)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Measured and predicted torque per joint with `values` (the decimated sample time
+    /// `dt`, times from the record's first sample used), in the dense [`Prediction`]'s
+    /// order: joint by joint, samples in order.
+    fn prediction(&self, values: &[f64], dt: f64) -> Result<(Prediction, Vec<Vec<usize>>)> {
+        let dof = self.observer.model.dof();
+        let mut measured = vec![Vec::new(); dof];
+        let mut predicted = vec![Vec::new(); dof];
+        let mut samples = vec![Vec::new(); dof];
+        self.run(
+            |eq| {
+                Ok((0..eq.y.len())
+                    .map(|i| {
+                        let p: f64 = eq.row(i).iter().zip(values).map(|(a, b)| a * b).sum();
+                        (eq.joint[i], eq.sample[i], eq.y[i], p)
+                    })
+                    .collect::<Vec<_>>())
+            },
+            |part| {
+                for (j, k, y, p) in part {
+                    measured[j].push(y);
+                    predicted[j].push(p);
+                    samples[j].push(k);
+                }
+                Ok(())
+            },
+        )?;
+        let time = samples
+            .iter()
+            .map(|s| s.iter().map(|&k| k as f64 * dt).collect())
+            .collect();
+        Ok((
+            Prediction {
+                measured,
+                predicted,
+                time,
+                unfiltered: None,
+                used: None,
+            },
+            samples,
+        ))
+    }
+}
+
+/// Whether [`identify`](crate::pipeline::identify) streams: OLS or WLS without known
+/// parameters (the other methods and the known-parameter reduction take the dense
+/// observation).
+pub(crate) fn streams(config: &Config) -> bool {
+    matches!(config.estimation.method, Method::Ols | Method::Wls)
+        && config.estimation.known.is_none()
+}
+
+/// An error of the observation with its processed sample placed at its data row.
+fn located(e: Error, config: &Config, data: &Dataset, kept: &Range<usize>) -> Error {
+    match e {
+        Error::Estimate(EstimateError::NonFiniteObservation {
+            sample: Some(k),
+            joint,
+            parameter,
+            value,
+            ..
+        }) => Error::Estimate(EstimateError::NonFiniteObservation {
+            location: data.location(kept.start + k),
+            sample: Some(kept.start + k),
+            joint,
+            parameter,
+            value,
+        }),
+        e => config.locate(e),
+    }
+}
+
+/// The prediction with the unfiltered torque (as `identify::with_unfiltered`), its
+/// check and the rows used.
+fn finish_prediction(
+    mut prediction: Prediction,
+    samples: &[Vec<usize>],
+    rows: &PreparedRows,
+    factor: usize,
+    used: &UsedRows,
+    what: &str,
+) -> Result<Prediction> {
+    let raw = match &rows.unfiltered_tau {
+        Some(raw) => Some(raw),
+        None if factor > 1 => Some(&rows.prepared.tau),
+        None => None,
+    };
+    if let Some(raw) = raw {
+        prediction.unfiltered = Some(
+            samples
+                .iter()
+                .enumerate()
+                .map(|(j, s)| s.iter().map(|&k| raw[j][k * factor]).collect())
+                .collect(),
+        );
+    }
+    prediction.check(&format!("{what} ({used})"))?;
+    prediction.used = Some(used.clone());
+    Ok(prediction)
+}
+
+/// [`identify`](crate::pipeline::identify) for OLS and WLS, streaming: the same result
+/// as the dense path to rounding.
+pub(crate) fn identify_streaming(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+    rows: &PreparedRows,
+) -> Result<Identification> {
+    let kept = &rows.kept;
+    let at = |e: Error| located(e, config, data, kept);
+    let stream = Stream::new(model, &rows.prepared, config).map_err(at)?;
+    let names = stream.names().to_vec();
+    let (dof, cols, factor) = (model.dof(), names.len(), stream.factor());
+    let time = |k: usize| (kept.start + k * factor) as f64 * data.sample_time;
+    let inside = |k: usize| match &config.processing.pieces {
+        Some(pieces) => pieces.iter().any(|[a, b]| (*a..=*b).contains(&time(k))),
+        None => true,
+    };
+    let mut ls = StreamingLeastSquares::new(names.clone(), dof).map_err(at)?;
+    let mut dominance = Dominance::new(cols);
+    stream
+        .run(
+            |eq| {
+                let mut ls = StreamingLeastSquares::new(names.clone(), dof)?;
+                let mut d = Dominance::new(cols);
+                for i in 0..eq.y.len() {
+                    d.push(eq.row(i), eq.sample[i]);
+                    if inside(eq.sample[i]) {
+                        ls.push(eq.joint[i], eq.row(i), eq.y[i])?;
+                    }
+                }
+                Ok((ls, d))
+            },
+            |(part, d)| {
+                ls.merge(part)?;
+                dominance.merge(&d);
+                Ok(())
+            },
+        )
+        .map_err(at)?;
+    if config.processing.pieces.is_some() && ls.rows() < cols {
+        return Err(config.key_error(
+            "processing.pieces",
+            format!(
+                "the pieces hold {} equations of the estimation range, fewer than the {} \
+                 parameters; check that they are in seconds from the record's first sample \
+                 and inside processing.range",
+                ls.rows(),
+                cols
+            ),
+        ));
+    }
+    let location = |k: usize| data.location(kept.start + k * factor);
+    let dominated = dominance.dominated();
+    let tolerance = config.estimation.rank_tolerance;
+    let result = match config.estimation.method {
+        Method::Wls => ls.wls(tolerance),
+        _ => ls.ols(tolerance),
+    };
+    let mut estimate = result.map_err(|e| config.locate(e)).map_err(|e| match e {
+        Error::Estimate(EstimateError::RankDeficient { ref unexcited, .. }) => {
+            match dominated
+                .iter()
+                .find(|(c, _, _)| unexcited.contains(&names[*c]))
+            {
+                Some(&(c, k, share)) => Error::Estimate(EstimateError::Outlier {
+                    location: location(k),
+                    parameter: names[c].clone(),
+                    share,
+                }),
+                None => e,
+            }
+        }
+        e => e,
+    })?;
+    for &(c, k, share) in &dominated {
+        estimate.warnings.push(QualityWarning::Outlier {
+            parameter: names[c].clone(),
+            location: location(k),
+            share,
+        });
+    }
+    let dt = rows.prepared.sample_time * factor as f64;
+    let (prediction, samples) = stream.prediction(&estimate.values, dt).map_err(at)?;
+    let prediction = prediction.starting_at(kept.start as f64 * data.sample_time);
+    let used = UsedRows::of(data, kept.clone());
+    let prediction = finish_prediction(
+        prediction,
+        &samples,
+        rows,
+        factor,
+        &used,
+        "the estimation data",
+    )?;
+    Ok(Identification {
+        robot: model.name().to_string(),
+        fit: prediction.fit(),
+        prediction,
+        estimate,
+        warnings: data.warnings.clone(),
+        used,
+        cutoff: rows.auto_cutoff.clone(),
+    })
+}
+
+/// [`validate`](crate::pipeline::validate), streaming.
+pub(crate) fn validate_streaming(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+    rows: &PreparedRows,
+    values: &[f64],
+) -> Result<Prediction> {
+    let kept = &rows.kept;
+    let stream =
+        Stream::new(model, &rows.prepared, config).map_err(|e| located(e, config, data, kept))?;
+    let names = stream.names();
+    if values.len() != names.len() {
+        return Err(Error::DimensionMismatch {
+            what: "parameter values".into(),
+            expected: names.len(),
+            found: values.len(),
+        });
+    }
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(Error::setting(
+            "validate",
+            "values",
+            format!(
+                "the value of `{}` is {}; give finite identified values",
+                names[i], values[i]
+            ),
+        ));
+    }
+    let factor = stream.factor();
+    let dt = rows.prepared.sample_time * factor as f64;
+    let (prediction, samples) = stream
+        .prediction(values, dt)
+        .map_err(|e| located(e, config, data, kept))?;
+    let prediction = prediction.starting_at(kept.start as f64 * data.sample_time);
+    let used = UsedRows::of(data, kept.clone());
+    finish_prediction(
+        prediction,
+        &samples,
+        rows,
+        factor,
+        &used,
+        "the validation data",
+    )
+}
