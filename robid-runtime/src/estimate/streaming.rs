@@ -251,6 +251,45 @@ impl StreamingLeastSquares {
         Ok(())
     }
 
+    /// Adds equations in bulk: equation i is `w[i * n..(i + 1) * n] . beta = y[i]` in
+    /// group `groups[i]` (n parameters). The groups are updated in parallel; the result is
+    /// that of pushing the equations one by one. Nothing is added if any equation is
+    /// refused (as by [`push`](Self::push)).
+    pub fn push_rows(&mut self, groups: &[usize], w: &[f64], y: &[f64]) -> Result<()> {
+        let n = self.names.len();
+        if groups.len() != y.len() || w.len() != n * y.len() {
+            return Err(Error::DimensionMismatch {
+                what: "equations (regressor values, groups and torques)".into(),
+                expected: n * y.len(),
+                found: w.len(),
+            });
+        }
+        for (i, &g) in groups.iter().enumerate() {
+            let row = &w[i * n..(i + 1) * n];
+            if g >= self.groups.len() || row.iter().chain([&y[i]]).any(|v| !v.is_finite()) {
+                // the error of pushing it alone
+                let mut probe = StreamingLeastSquares {
+                    names: self.names.clone(),
+                    groups: vec![Factor::new(0); self.groups.len()],
+                };
+                if let Some(f) = probe.groups.get_mut(g) {
+                    f.rows = self.groups[g].rows;
+                }
+                return probe.push(g, row, y[i]);
+            }
+        }
+        use rayon::prelude::*;
+        self.groups
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(j, factor)| {
+                for (i, _) in groups.iter().enumerate().filter(|(_, g)| **g == j) {
+                    factor.push(&w[i * n..(i + 1) * n], y[i]);
+                }
+            });
+        Ok(())
+    }
+
     /// Adds the equations of `other` (same parameters and groups), as if they had been
     /// pushed here: for accumulating parts of a record in parallel.
     pub fn merge(&mut self, mut other: StreamingLeastSquares) -> Result<()> {

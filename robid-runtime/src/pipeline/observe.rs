@@ -240,12 +240,93 @@ impl Observer<'_> {
         })
     }
 
+    /// Runs `fill(full row, out)` for the processed samples `lo..hi` in
+    /// parallel, into rows of `width` values; returns the rows, whether a call reported a
+    /// miss, and the first non-finite value reported (sample, channel, value).
+    fn rows_in_parallel(
+        &self,
+        lo: usize,
+        hi: usize,
+        width: usize,
+        fill: impl Fn(&[f64], &mut [f64]) -> (bool, Option<(usize, f64)>) + Sync,
+    ) -> (Vec<f64>, bool, Option<(usize, usize, f64)>) {
+        let dof = self.lay.dof;
+        let stride = self.lay.stride();
+        let mut rows = vec![0.0; (hi - lo) * width];
+        let (missed, bad) = rows
+            .par_chunks_mut((width * BLOCK).max(1))
+            .enumerate()
+            .map(|(b, chunk)| {
+                let mut st = Scratch::new(dof);
+                let mut full = vec![0.0; stride];
+                let mut missed = false;
+                let mut bad = None;
+                for (i, out) in chunk.chunks_exact_mut(width.max(1)).enumerate() {
+                    let k = lo + b * BLOCK + i;
+                    if self.row_at(k, &mut st, &mut full).is_err() {
+                        full.iter_mut().for_each(|v| *v = f64::NAN);
+                    }
+                    let (m, x) = fill(&full, out);
+                    missed |= m;
+                    if bad.is_none()
+                        && let Some((c, v)) = x
+                    {
+                        bad = Some((k, c, v));
+                    }
+                }
+                (missed, bad)
+            })
+            .reduce(|| (false, None), |x, y| (x.0 || y.0, x.1.or(y.1)));
+        (rows, missed, bad)
+    }
+
+    /// The samples `lo..hi` of the channels `channels` of every sample row (in parallel),
+    /// decimated: `(values, width)` groups of [`GROUP`] channels, row-major, one row per
+    /// decimated sample (all channels in one group without decimation). A channel outside
+    /// `channels` that is not zero is a miss (reported as `Ok(None)`).
+    fn decimated_channels(
+        &self,
+        dec: &Decimator,
+        lo: usize,
+        hi: usize,
+        channels: &[usize],
+    ) -> Result<Option<Vec<(Vec<f64>, usize)>>> {
+        let stride = self.lay.stride();
+        let mut inside = vec![false; stride];
+        for &c in channels {
+            inside[c] = true;
+        }
+        let inactive: Vec<usize> = (0..stride).filter(|&c| !inside[c]).collect();
+        let a = channels.len();
+        let (rows, missed, bad) = self.rows_in_parallel(lo, hi, a, |full, out| {
+            for (o, &c) in out.iter_mut().zip(channels) {
+                *o = full[c];
+            }
+            let bad = full
+                .iter()
+                .position(|v| !v.is_finite())
+                .map(|c| (c, full[c]));
+            // a non-finite inactive channel is found by `bad`
+            let missed = inactive.iter().any(|&c| full[c] != 0.0);
+            (missed, bad)
+        });
+        if let Some((k, c, v)) = bad {
+            return Err(self.bad_channel(k, c, v));
+        }
+        if missed {
+            return Ok(None);
+        }
+        decimate_rows(dec, rows, a).map(Some)
+    }
+
     /// The equations of the decimated samples whose processed samples lie in `core`
     /// (`core.start` a multiple of the total factor): the regressor rows of `core` and
     /// `overlap` samples on each side (a multiple of the factor, at least
     /// [`Decimator::settling`]), decimated as a block, then the samples of `core` kept
     /// and those near rest (`rest`, per joint) removed. The same equations as [`observe`]
-    /// gives for these samples, to the decimation filter's settling tolerance.
+    /// gives for these samples, to the decimation filter's settling tolerance. Channels
+    /// that are zero at a few probed samples are assumed zero (checked on every sample,
+    /// then all channels taken if one is not), as in [`observe`].
     pub(crate) fn window(
         &self,
         dec: &Decimator,
@@ -259,43 +340,38 @@ impl Observer<'_> {
         let lo = core.start.saturating_sub(overlap);
         let hi = (core.end + overlap).min(n);
         let stride = lay.stride();
-        let mut rows = vec![0.0; (hi - lo) * stride];
         let mut st = Scratch::new(dof);
+        let mut probe = vec![0.0; stride];
         let mut active = vec![false; stride];
+        for i in 0..PROBES {
+            let k = lo + i * (hi - lo).saturating_sub(1) / (PROBES - 1);
+            if self.row_at(k, &mut st, &mut probe).is_ok() {
+                for (a, v) in active.iter_mut().zip(&probe) {
+                    *a |= *v != 0.0;
+                }
+            }
+        }
         for j in 0..dof {
             active[lay.tau(j)] = true;
             active[lay.qd(j)] = true;
         }
-        for (i, out) in rows.chunks_exact_mut(stride).enumerate() {
-            if self.row_at(lo + i, &mut st, out).is_err() {
-                out.iter_mut().for_each(|v| *v = f64::NAN);
+        let mut channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
+        let groups = match self.decimated_channels(dec, lo, hi, &channels)? {
+            Some(g) => g,
+            None => {
+                channels = (0..stride).collect();
+                self.decimated_channels(dec, lo, hi, &channels)?
+                    .unwrap_or_default()
             }
-            for (c, v) in out.iter().enumerate() {
-                if !v.is_finite() {
-                    return Err(self.bad_channel(lo + i, c, *v));
-                }
-                active[c] |= *v != 0.0;
-            }
-        }
-        // decimated channels: (values, index in a row, row width)
-        let channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
-        let mut place: Vec<Option<(usize, usize)>> = vec![None; stride];
-        let groups: Vec<(Vec<f64>, usize)> = if f == 1 {
-            for c in 0..stride {
-                place[c] = Some((0, c));
-            }
-            vec![(rows, stride)]
-        } else {
-            let mut out = Vec::new();
-            for (g, group) in channels.chunks(GROUP).enumerate() {
-                for (i, &c) in group.iter().enumerate() {
-                    place[c] = Some((g, i));
-                }
-                out.push((dec.apply_block(&rows, stride, group)?, group.len()));
-            }
-            drop(rows);
-            out
         };
+        let mut place: Vec<Option<(usize, usize)>> = vec![None; stride];
+        for (i, &c) in channels.iter().enumerate() {
+            place[c] = Some(if f == 1 {
+                (0, i)
+            } else {
+                (i / GROUP, i % GROUP)
+            });
+        }
         let value = |i: usize, c: usize| -> f64 {
             place[c].map_or(0.0, |(g, k)| {
                 let (v, width) = &groups[g];
@@ -340,6 +416,80 @@ impl Observer<'_> {
         }
         Ok(eq)
     }
+
+    /// The measured and predicted torques of the decimated samples of `core` with the
+    /// parameter values `beta`, as [`window`](Self::window) would give them (`y` and
+    /// `W beta`) but cheaper: the decimation filter is linear, so the prediction is the
+    /// decimated `Y(t) beta`, and only three channels per joint (prediction, torque,
+    /// velocity) are filtered. Returns `(joint, decimated sample, measured, predicted)`.
+    pub(crate) fn window_prediction(
+        &self,
+        dec: &Decimator,
+        overlap: usize,
+        rest: Option<&[f64]>,
+        core: std::ops::Range<usize>,
+        beta: &[f64],
+    ) -> Result<Vec<(usize, usize, f64, f64)>> {
+        let (lay, dof) = (&self.lay, self.lay.dof);
+        let n = self.signals.samples();
+        let f = dec.factor();
+        let lo = core.start.saturating_sub(overlap);
+        let hi = (core.end + overlap).min(n);
+        let cols = lay.p + lay.e;
+        let (rows, _, bad) = self.rows_in_parallel(lo, hi, 3 * dof, |full, out| {
+            for j in 0..dof {
+                out[j] = (0..cols).map(|c| full[lay.column(j, c)] * beta[c]).sum();
+                out[dof + j] = full[lay.tau(j)];
+                out[2 * dof + j] = full[lay.qd(j)];
+            }
+            let bad = full
+                .iter()
+                .position(|v| !v.is_finite())
+                .map(|c| (c, full[c]));
+            (false, bad)
+        });
+        if let Some((k, c, v)) = bad {
+            return Err(self.bad_channel(k, c, v));
+        }
+        let groups = decimate_rows(dec, rows, 3 * dof)?;
+        let value = |i: usize, c: usize| -> f64 {
+            let (g, k) = if f == 1 {
+                (0, c)
+            } else {
+                (c / GROUP, c % GROUP)
+            };
+            let (v, width) = &groups[g];
+            v[i * width + k]
+        };
+        let first = lo / f;
+        let mut out = Vec::new();
+        for k in core.start / f..core.end.div_ceil(f) {
+            let i = k - first;
+            for j in 0..dof {
+                if let Some(t) = rest
+                    && !(value(i, 2 * dof + j).abs() >= t[j])
+                {
+                    continue;
+                }
+                out.push((j, k, value(i, dof + j), value(i, j)));
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// Decimates every channel of row-major `rows` (`width` values per row): groups of
+/// [`GROUP`] channels in parallel, each `(values, width)` row-major with one row per
+/// decimated sample; the rows themselves as one group without decimation.
+fn decimate_rows(dec: &Decimator, rows: Vec<f64>, width: usize) -> Result<Vec<(Vec<f64>, usize)>> {
+    if dec.factor() == 1 {
+        return Ok(vec![(rows, width)]);
+    }
+    let local: Vec<usize> = (0..width).collect();
+    local
+        .par_chunks(GROUP)
+        .map(|g| Ok((dec.apply_block(&rows, width, g)?, g.len())))
+        .collect()
 }
 
 /// Builds W and y from prepared signals: `model`'s base regressor plus the config's

@@ -5,19 +5,19 @@
 //! rows are evaluated with an overlap on both sides long enough for the decimation
 //! filter to forget the block's edges ([`Decimator::settling`]), decimated as a block,
 //! and the block's own decimated samples kept: the same equations as the dense
-//! observation's, to the filter's settling tolerance. Blocks run in parallel, as many
-//! at a time as there are threads, and are folded in record order.
+//! observation's, to the filter's settling tolerance. Blocks are taken in record order,
+//! each built in parallel (regressor rows, channel groups of the filter, joints' factors).
 //!
 //! OLS and WLS take one pass: each block's equations go into a
 //! [`StreamingLeastSquares`] (per-joint R factors), merged in order; the outlier check
 //! (`Dominance`) rides along. The prediction (measured against predicted torque, the fit
-//! and the report's plots) takes a second pass with the estimated values. Memory is the
+//! and the report's plots) takes a second pass with the estimated values, which filters
+//! three channels per joint only (the filter is linear: the decimated `W beta` is the
+//! decimated `Y(t) beta`). Memory is the
 //! blocks in flight, the R factors, and one measured and one predicted torque per
 //! equation, never the equations' rows.
 
 use std::ops::Range;
-
-use rayon::prelude::*;
 
 use crate::Model;
 use crate::data::{Config, Dataset, Method};
@@ -85,64 +85,48 @@ impl<'a> Stream<'a> {
         self.dec.factor()
     }
 
-    /// Runs `map` on each block's equations, in parallel, and `fold` on the results in
-    /// record order; the first error (in record order) stops it.
-    pub(crate) fn run<T: Send>(
-        &self,
-        map: impl Fn(Equations) -> Result<T> + Sync,
-        mut fold: impl FnMut(T) -> Result<()>,
-    ) -> Result<()> {
+    /// The blocks of processed samples, in record order.
+    fn blocks(&self) -> Vec<Range<usize>> {
         let n = self.observer.signals.samples();
-        let blocks: Vec<Range<usize>> = (0..n.div_ceil(self.block))
+        (0..n.div_ceil(self.block))
             .map(|i| i * self.block..((i + 1) * self.block).min(n))
-            .collect();
-        let threads = rayon::current_num_threads().max(1);
-        for chunk in blocks.chunks(threads) {
-            let out: Vec<Result<T>> = chunk
-                .par_iter()
-                .map(|b| {
-                    let eq = self.observer.window(
-                        &self.dec,
-                        self.overlap,
-                        self.rest.as_deref(),
-                        b.clone(),
-                    )?;
-                    map(eq)
-                })
-                .collect();
-            for o in out {
-                fold(o?)?;
-            }
+            .collect()
+    }
+
+    /// Calls `fold` with each block's equations in record order (each block built in
+    /// parallel); the first error stops it.
+    pub(crate) fn run(&self, mut fold: impl FnMut(Equations) -> Result<()>) -> Result<()> {
+        for b in self.blocks() {
+            fold(
+                self.observer
+                    .window(&self.dec, self.overlap, self.rest.as_deref(), b)?,
+            )?;
         }
         Ok(())
     }
 
     /// Measured and predicted torque per joint with `values` (the decimated sample time
     /// `dt`, times from the record's first sample used), in the dense [`Prediction`]'s
-    /// order: joint by joint, samples in order.
+    /// order: joint by joint, samples in order; with the decimated samples.
     fn prediction(&self, values: &[f64], dt: f64) -> Result<(Prediction, Vec<Vec<usize>>)> {
         let dof = self.observer.model.dof();
         let mut measured = vec![Vec::new(); dof];
         let mut predicted = vec![Vec::new(); dof];
         let mut samples = vec![Vec::new(); dof];
-        self.run(
-            |eq| {
-                Ok((0..eq.y.len())
-                    .map(|i| {
-                        let p: f64 = eq.row(i).iter().zip(values).map(|(a, b)| a * b).sum();
-                        (eq.joint[i], eq.sample[i], eq.y[i], p)
-                    })
-                    .collect::<Vec<_>>())
-            },
-            |part| {
-                for (j, k, y, p) in part {
-                    measured[j].push(y);
-                    predicted[j].push(p);
-                    samples[j].push(k);
-                }
-                Ok(())
-            },
-        )?;
+        for b in self.blocks() {
+            let part = self.observer.window_prediction(
+                &self.dec,
+                self.overlap,
+                self.rest.as_deref(),
+                b,
+                values,
+            )?;
+            for (j, k, y, p) in part {
+                measured[j].push(y);
+                predicted[j].push(p);
+                samples[j].push(k);
+            }
+        }
         let time = samples
             .iter()
             .map(|s| s.iter().map(|&k| k as f64 * dt).collect())
@@ -238,24 +222,22 @@ pub(crate) fn identify_streaming(
     let mut ls = StreamingLeastSquares::new(names.clone(), dof).map_err(at)?;
     let mut dominance = Dominance::new(cols);
     stream
-        .run(
-            |eq| {
-                let mut ls = StreamingLeastSquares::new(names.clone(), dof)?;
-                let mut d = Dominance::new(cols);
-                for i in 0..eq.y.len() {
-                    d.push(eq.row(i), eq.sample[i]);
-                    if inside(eq.sample[i]) {
-                        ls.push(eq.joint[i], eq.row(i), eq.y[i])?;
-                    }
-                }
-                Ok((ls, d))
-            },
-            |(part, d)| {
-                ls.merge(part)?;
-                dominance.merge(&d);
-                Ok(())
-            },
-        )
+        .run(|eq| {
+            for i in 0..eq.y.len() {
+                dominance.push(eq.row(i), eq.sample[i]);
+            }
+            if config.processing.pieces.is_none() {
+                return ls.push_rows(&eq.joint, &eq.w, &eq.y);
+            }
+            let keep: Vec<usize> = (0..eq.y.len()).filter(|&i| inside(eq.sample[i])).collect();
+            let joint: Vec<usize> = keep.iter().map(|&i| eq.joint[i]).collect();
+            let w: Vec<f64> = keep
+                .iter()
+                .flat_map(|&i| eq.row(i).iter().copied())
+                .collect();
+            let y: Vec<f64> = keep.iter().map(|&i| eq.y[i]).collect();
+            ls.push_rows(&joint, &w, &y)
+        })
         .map_err(at)?;
     if config.processing.pieces.is_some() && ls.rows() < cols {
         return Err(config.key_error(

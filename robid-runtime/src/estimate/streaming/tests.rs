@@ -315,3 +315,29 @@ fn dominance_equals_dominated_columns() {
     few.push(&[0.0, 1.0, 0.0, 0.0], 99);
     assert_eq!(few.dominated().len(), 1);
 }
+
+/// Equations pushed in bulk (groups updated in parallel) give the result of pushing them
+/// one by one; a bad equation anywhere refuses the whole bulk with the error `push` gives.
+#[test]
+fn bulk_pushes_equal_single_ones() {
+    let (obs, rows) = problem(4, 500, 5, 1.0, 13);
+    let mut one = streamed(&obs, &rows);
+    let mut bulk = StreamingLeastSquares::new(obs.names.clone(), 4).unwrap();
+    for part in rows.chunks(777) {
+        let groups: Vec<usize> = part.iter().map(|r| r.0).collect();
+        let w: Vec<f64> = part.iter().flat_map(|r| r.1.iter().copied()).collect();
+        let y: Vec<f64> = part.iter().map(|r| r.2).collect();
+        bulk.push_rows(&groups, &w, &y).unwrap();
+    }
+    assert_eq!(bulk.group_rows(), one.group_rows());
+    let (a, b) = (bulk.wls(1e-12).unwrap(), one.wls(1e-12).unwrap());
+    assert_eq!(a.values, b.values, "the same operations in the same order");
+    let before = bulk.rows();
+    let mut w = vec![1.0; 10];
+    w[7] = f64::NAN;
+    let e = bulk.push_rows(&[0, 1], &w, &[1.0, 2.0]).unwrap_err();
+    assert!(e.to_string().contains("p3"), "{e}");
+    assert!(bulk.push_rows(&[0, 9], &[1.0; 10], &[1.0, 2.0]).is_err());
+    assert!(bulk.push_rows(&[0], &[1.0; 10], &[1.0, 2.0]).is_err());
+    assert_eq!(bulk.rows(), before, "nothing added");
+}

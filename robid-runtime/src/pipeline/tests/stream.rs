@@ -134,18 +134,14 @@ fn the_blocks_hold_the_dense_equations() {
         let mut eqs: Vec<(usize, usize, Vec<f64>, f64)> = Vec::new();
         let mut blocks = 0;
         stream
-            .run(
-                |eq| {
-                    Ok((0..eq.y.len())
-                        .map(|i| (eq.joint[i], eq.sample[i], eq.row(i).to_vec(), eq.y[i]))
-                        .collect::<Vec<_>>())
-                },
-                |part| {
-                    blocks += 1;
-                    eqs.extend(part);
-                    Ok(())
-                },
-            )
+            .run(|eq| {
+                blocks += 1;
+                eqs.extend(
+                    (0..eq.y.len())
+                        .map(|i| (eq.joint[i], eq.sample[i], eq.row(i).to_vec(), eq.y[i])),
+                );
+                Ok(())
+            })
             .unwrap();
         assert!(blocks >= 2, "{decimation}: {blocks} blocks");
         eqs.sort_by_key(|e| (e.0, e.1));
