@@ -17,8 +17,9 @@
 //!   low-pass of the positions, central differences, decimation by 10, rest samples
 //!   removed, WLS), which streams (`pipeline::stream`);
 //! - `dense`: the same through the whole observation matrix (`pipeline::observation`,
-//!   `pipeline::estimate`), on the first `min(SECONDS, 300)` seconds only, since the
-//!   hour does not fit in memory that way.
+//!   `pipeline::estimate`), on a record of the first `min(SECONDS, 300)` seconds of the
+//!   same motion (`panda_300.csv`) only, since the hour does not fit in memory that way;
+//!   the streaming identification and the parsing of that record are run too.
 //!
 //! Figures are printed, never asserted: they depend on the machine and its load.
 
@@ -129,15 +130,11 @@ fn peak_mib() -> f64 {
 }
 
 /// One stage in this process: prints `stage seconds samples peak_mib detail`.
-fn stage(name: &str, path: &Path, seconds_limit: Option<f64>) {
+fn stage(name: &str, path: &Path) {
     let config = Config::from_toml_str(CONFIG, Path::new("hour.toml")).expect("config");
     let model = Panda;
     let start = Instant::now();
-    let mut data = load(&config, &[path.to_path_buf()], DOF).expect("load");
-    if let Some(limit) = seconds_limit {
-        let n = ((limit * RATE) as usize).min(data.samples());
-        data = data.slice(0, n).expect("slice");
-    }
+    let data = load(&config, &[path.to_path_buf()], DOF).expect("load");
     let samples = data.samples();
     let detail = match name {
         "parse" => format!("{samples} samples"),
@@ -172,12 +169,9 @@ fn relative_error(values: &[f64], truth: &[f64]) -> f64 {
 }
 
 /// Runs a stage in a child process and returns (seconds, samples, peak MiB, detail).
-fn child(name: &str, path: &Path, limit: Option<f64>) -> (f64, usize, f64, String) {
+fn child(name: &str, path: &Path) -> (f64, usize, f64, String) {
     let mut cmd = Command::new(std::env::current_exe().expect("this program"));
     cmd.arg("--stage").arg(name).arg(path);
-    if let Some(l) = limit {
-        cmd.arg(l.to_string());
-    }
     let out = cmd.output().expect("run a stage");
     assert!(
         out.status.success(),
@@ -197,8 +191,7 @@ fn child(name: &str, path: &Path, limit: Option<f64>) -> (f64, usize, f64, Strin
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("--stage") {
-        let limit = args.get(3).and_then(|v| v.parse().ok());
-        stage(&args[1], Path::new(&args[2]), limit);
+        stage(&args[1], Path::new(&args[2]));
         return;
     }
     let seconds: f64 = args.first().and_then(|v| v.parse().ok()).unwrap_or(3600.0);
@@ -206,27 +199,34 @@ fn main() {
         .get(1)
         .map(PathBuf::from)
         .unwrap_or_else(std::env::temp_dir);
-    let path = folder.join(format!("panda_{}.csv", seconds as u64));
-    if !path.exists() {
-        let start = Instant::now();
-        write(seconds, &path).expect("write the record");
-        eprintln!(
-            "wrote {} in {:.1} s",
-            path.display(),
-            start.elapsed().as_secs_f64()
-        );
-    }
+    let record = |seconds: f64| {
+        let path = folder.join(format!("panda_{}.csv", seconds as u64));
+        if !path.exists() {
+            let start = Instant::now();
+            write(seconds, &path).expect("write the record");
+            eprintln!(
+                "wrote {} in {:.1} s",
+                path.display(),
+                start.elapsed().as_secs_f64()
+            );
+        }
+        path
+    };
+    let path = record(seconds);
+    // the dense path's record: the first minutes of the same motion, in a file of its own
+    let dense_limit = seconds.min(300.0);
+    let short = record(dense_limit);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     println!(
         "{} ({:.0} MB), {threads} threads",
         path.display(),
         std::fs::metadata(&path).map_or(0, |m| m.len()) as f64 / 1e6
     );
-    let (parse_s, n, parse_mib, _) = child("parse", &path, None);
-    let (id_s, _, id_mib, detail) = child("identify", &path, None);
-    let dense_limit = seconds.min(300.0);
-    let (dense_s, dense_n, dense_mib, dense_detail) = child("dense", &path, Some(dense_limit));
-    let (short_s, short_n, short_mib, short_detail) = child("identify", &path, Some(dense_limit));
+    let (parse_s, n, parse_mib, _) = child("parse", &path);
+    let (id_s, _, id_mib, detail) = child("identify", &path);
+    let (dense_s, dense_n, dense_mib, dense_detail) = child("dense", &short);
+    let (short_s, short_n, short_mib, short_detail) = child("identify", &short);
+    let (short_parse_s, _, short_parse_mib, _) = child("parse", &short);
     // the baseline: parsing time per sample; each stage's time per sample is a multiple
     let parse_per_sample = parse_s / n as f64;
     println!(
@@ -242,6 +242,12 @@ fn main() {
     };
     row("parse CSV (baseline)", n, parse_s, parse_mib);
     row("parse + identify, streaming", n, id_s, id_mib);
+    row(
+        &format!("parse CSV, first {dense_limit} s"),
+        short_n,
+        short_parse_s,
+        short_parse_mib,
+    );
     row(
         &format!("parse + identify, streaming, first {dense_limit} s"),
         short_n,

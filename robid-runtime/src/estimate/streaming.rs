@@ -516,27 +516,6 @@ impl Dominance {
         }
     }
 
-    /// Adds the rows of `other` (tags kept).
-    pub(crate) fn merge(&mut self, other: &Dominance) {
-        self.rows += other.rows;
-        for (a, b) in self.columns.iter_mut().zip(&other.columns) {
-            if b.scale == 0.0 {
-                continue;
-            }
-            let s = a.scale.max(b.scale);
-            let fa = if a.scale > 0.0 { a.scale / s } else { 0.0 };
-            let fb = b.scale / s;
-            a.sum = a.sum * fa * fa + b.sum * fb * fb;
-            a.scale = s;
-            for t in b.top {
-                if t.0 > a.top[OUTLIER_ROWS - 1].0 {
-                    a.top[OUTLIER_ROWS - 1] = t;
-                    a.top.sort_by(|x, y| y.0.total_cmp(&x.0));
-                }
-            }
-        }
-    }
-
     /// (column, tag of its largest entry, share) of the dominated columns, with at least
     /// 100 rows given (as `dominated_columns`).
     pub(crate) fn dominated(&self) -> Vec<(usize, usize, f64)> {
