@@ -209,7 +209,7 @@ pub(crate) fn solve_factor(
             inverse_gram[(i, j)] = inverse_gram[(i, j)] / d[i] / d[j];
         }
     }
-    let condition_number = condition(&r, u, &svd_s.singular_values, vt, &d)?;
+    let condition_number = condition(&r, u, &svd_s.singular_values, vt, d)?;
     if beta
         .iter()
         .chain(inverse_gram.diagonal().iter())

@@ -368,13 +368,13 @@ impl StreamingLeastSquares {
         let col_norm = |j: usize| norm(rc.view((0, j), (j + 1, 1)).iter().copied());
         let mut ra = rc.clone();
         let mut d = Vec::with_capacity(n);
-        for j in 0..=n {
+        for (j, s) in common.iter().enumerate() {
             let c = col_norm(j);
             if c > 0.0 {
                 ra.column_mut(j).scale_mut(1.0 / c);
             }
             if j < n {
-                let dj = divisor(common[j]) * top * c;
+                let dj = divisor(*s) * top * c;
                 d.push(if dj > 0.0 { dj } else { 1.0 });
             }
         }

@@ -54,7 +54,7 @@ pub fn observation(
     torque_observation(model, &rows.prepared, config, data, &rows.kept)
 }
 
-fn checked_prepare(
+pub(crate) fn checked_prepare(
     model: &dyn Model,
     data: &Dataset,
     config: &Config,

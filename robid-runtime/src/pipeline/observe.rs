@@ -290,7 +290,7 @@ impl Observer<'_> {
         lo: usize,
         hi: usize,
         channels: &[usize],
-    ) -> Result<Option<Vec<(Vec<f64>, usize)>>> {
+    ) -> Result<Option<Vec<Decimated>>> {
         let stride = self.lay.stride();
         let mut inside = vec![false; stride];
         for &c in channels {
@@ -478,10 +478,14 @@ impl Observer<'_> {
     }
 }
 
+/// A group of decimated channels: values (row-major, one row per decimated sample) and
+/// the row width.
+type Decimated = (Vec<f64>, usize);
+
 /// Decimates every channel of row-major `rows` (`width` values per row): groups of
 /// [`GROUP`] channels in parallel, each `(values, width)` row-major with one row per
 /// decimated sample; the rows themselves as one group without decimation.
-fn decimate_rows(dec: &Decimator, rows: Vec<f64>, width: usize) -> Result<Vec<(Vec<f64>, usize)>> {
+fn decimate_rows(dec: &Decimator, rows: Vec<f64>, width: usize) -> Result<Vec<Decimated>> {
     if dec.factor() == 1 {
         return Ok(vec![(rows, width)]);
     }

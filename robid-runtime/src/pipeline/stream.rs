@@ -22,10 +22,11 @@ use std::ops::Range;
 use crate::Model;
 use crate::data::{Config, Dataset, Method};
 use crate::error::{Error, Result};
-use crate::estimate::{Dominance, EstimateError, QualityWarning, StreamingLeastSquares};
+use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
 use crate::pipeline::Prepared;
+use crate::pipeline::identify::checked_prepare;
 use crate::pipeline::observe::{Equations, Observer};
-use crate::pipeline::prepare::PreparedRows;
+use crate::pipeline::prepare::{PreparedRows, Rows};
 use crate::pipeline::{Identification, decimator};
 use crate::signal::Decimator;
 use crate::validate::{Prediction, UsedRows};
@@ -348,4 +349,68 @@ pub(crate) fn validate_streaming(
         &used,
         "the validation data",
     )
+}
+
+/// The stacked runs' estimate and prediction (as [`stack`](crate::pipeline::stack) then
+/// [`estimate`](crate::pipeline::estimate) and [`Prediction::new`] give them), streaming:
+/// every run's equations go into one accumulator, joint by joint; in the prediction, joint
+/// j holds every run's equations in turn, each run's samples after the previous run's.
+pub(crate) fn stacked_streaming(
+    model: &(dyn Model + Sync),
+    runs: &[Dataset],
+    config: &Config,
+) -> Result<(Estimate, Prediction)> {
+    let prepared = runs
+        .iter()
+        .map(|d| checked_prepare(model, d, config, Rows::Estimation))
+        .collect::<Result<Vec<_>>>()?;
+    let streams = prepared
+        .iter()
+        .zip(runs)
+        .map(|(r, d)| {
+            Stream::new(model, &r.prepared, config).map_err(|e| located(e, config, d, &r.kept))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let Some(first) = streams.first() else {
+        return Err(Error::TooFewSamples {
+            context: "the runs to stack".into(),
+            found: 0,
+            required: 1,
+            hint: "give at least one run",
+        });
+    };
+    let dof = model.dof();
+    let mut ls = StreamingLeastSquares::new(first.names().to_vec(), dof)?;
+    for ((s, r), d) in streams.iter().zip(&prepared).zip(runs) {
+        s.run(|eq| ls.push_rows(&eq.joint, &eq.w, &eq.y))
+            .map_err(|e| located(e, config, d, &r.kept))?;
+    }
+    let tolerance = config.estimation.rank_tolerance;
+    let estimate = match config.estimation.method {
+        Method::Wls => ls.wls(tolerance),
+        _ => ls.ols(tolerance),
+    }
+    .map_err(|e| config.locate(e))?;
+    let dt = prepared[0].prepared.sample_time * first.factor() as f64;
+    let mut stacked = Prediction {
+        measured: vec![Vec::new(); dof],
+        predicted: vec![Vec::new(); dof],
+        time: vec![Vec::new(); dof],
+        unfiltered: None,
+        used: None,
+    };
+    let mut offset = 0;
+    for ((s, r), d) in streams.iter().zip(&prepared).zip(runs) {
+        let (p, samples) = s
+            .prediction(&estimate.values, dt)
+            .map_err(|e| located(e, config, d, &r.kept))?;
+        for (j, s) in samples.iter().enumerate() {
+            stacked.measured[j].extend(&p.measured[j]);
+            stacked.predicted[j].extend(&p.predicted[j]);
+            stacked.time[j].extend(s.iter().map(|&k| (k + offset) as f64 * dt));
+        }
+        offset += samples.iter().flatten().max().map_or(0, |m| m + 1);
+    }
+    stacked.check("the stacked runs")?;
+    Ok((estimate, stacked))
 }

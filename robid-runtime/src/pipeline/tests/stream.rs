@@ -213,3 +213,22 @@ fn pieces_stream_like_the_dense_path() {
     assert!(s.contains("processing.pieces"), "{s}");
     let _ = DOF;
 }
+
+/// Stacked repeated acquisitions (`[runs] mode = "stacked"`): OLS and WLS on every run's
+/// equations at once, and the stacked prediction, equal the dense stacked observation's.
+#[test]
+fn stacked_runs_stream_like_the_dense_path() {
+    let data = data();
+    let runs: Vec<_> = [0, 20_000, 40_000]
+        .iter()
+        .map(|&a| data.slice(a, a + 20_000).unwrap())
+        .collect();
+    let model = Synthetic::default();
+    for method in [Method::Ols, Method::Wls] {
+        let config = with("", method);
+        let (es, ps) = crate::pipeline::stream::stacked_streaming(&model, &runs, &config).unwrap();
+        let (ed, pd) = crate::pipeline::runs::stacked_dense(&model, &runs, &config).unwrap();
+        same_estimate(&es, &ed);
+        same_prediction(&ps, &pd);
+    }
+}
