@@ -8,14 +8,14 @@
 //! observation's, to the filter's settling tolerance. Blocks are taken in record order,
 //! each built in parallel (regressor rows, channel groups of the filter, joints' factors).
 //!
-//! OLS and WLS take one pass: each block's equations go into a
-//! [`StreamingLeastSquares`] (per-joint R factors), merged in order; the outlier check
-//! (`Dominance`) rides along. The prediction (measured against predicted torque, the fit
-//! and the report's plots) takes a second pass with the estimated values, which filters
-//! three channels per joint only (the filter is linear: the decimated `W beta` is the
-//! decimated `Y(t) beta`). Memory is the
-//! blocks in flight, the R factors, and one measured and one predicted torque per
-//! equation, never the equations' rows.
+//! OLS and WLS take one pass: each block's equations go into one
+//! [`StreamingLeastSquares`] (per-joint R factors, the joints updated in parallel); the
+//! outlier check (`Dominance`) rides along. The prediction (measured against predicted
+//! torque, the fit and the report's plots) takes a second pass with the estimated values,
+//! which filters three channels per joint only (the filter is linear: the decimated
+//! `W beta` is the decimated `Y(t) beta`). Memory is one block of regressor channels, the
+//! R factors, and one measured and one predicted torque per equation, never the
+//! equations' rows.
 
 use std::ops::Range;
 
