@@ -166,6 +166,12 @@ impl<'a> Observer<'a> {
         })
     }
 
+    /// Channels per processed sample (regressor columns of every joint, torques,
+    /// velocities).
+    pub(crate) fn channels(&self) -> usize {
+        self.lay.stride()
+    }
+
     /// Fills `row` (`stride` values) with sample k's channels.
     fn row_at(
         &self,

@@ -38,6 +38,11 @@ const SETTLING_TOLERANCE: f64 = 1e-15;
 /// Processed samples per block, at least (four times the overlap when that is more).
 const BLOCK: usize = 16_384;
 
+/// Bytes of regressor channels a block may take: blocks are as long as that allows (the
+/// longer, the less overlap is evaluated twice); a record up to half a block longer is
+/// one block, with no overlap at all.
+const BLOCK_BYTES: usize = 64 << 20;
+
 /// A prepared record cut into blocks of equations.
 pub(crate) struct Stream<'a> {
     observer: Observer<'a>,
@@ -62,7 +67,14 @@ impl<'a> Stream<'a> {
         } else {
             dec.settling(SETTLING_TOLERANCE).div_ceil(f) * f
         };
-        let block = BLOCK.max(4 * overlap).div_ceil(f) * f;
+        let by_memory = BLOCK_BYTES / (8 * observer.channels().max(1));
+        let block = BLOCK.max(by_memory).max(4 * overlap).div_ceil(f) * f;
+        let n = prepared.samples();
+        let block = if n <= block + block / 2 {
+            n.max(1)
+        } else {
+            block
+        };
         let rest = match &config.processing.rest_velocity {
             Some(t) => Some(t.values(model.dof(), "processing.rest_velocity")?),
             None => None,
