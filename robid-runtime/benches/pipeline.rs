@@ -1,5 +1,6 @@
 //! CSV to identified parameters: 30 s of 6-DOF data at 1 kHz (30,000 samples) with the
-//! synthetic 48-parameter model, on one core and on all cores.
+//! synthetic 48-parameter model, on one core and on all cores; on one core also the
+//! dense path (the whole observation matrix) that OLS took before it streamed.
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -11,7 +12,8 @@ use robid_runtime::Real;
 use robid_runtime::data::{Config, load};
 #[allow(unused_imports)]
 use robid_runtime::model::{LengthError, ProgramKind, check_arguments, check_length};
-use robid_runtime::pipeline::identify;
+use robid_runtime::pipeline::{estimate, identify, observation};
+use robid_runtime::validate::Prediction;
 
 #[path = "../src/pipeline/synthetic.rs"]
 mod synthetic;
@@ -68,6 +70,18 @@ fn bench(c: &mut Criterion) {
             one.install(|| black_box(identify(&model, &data, &config).expect("identify").fit.nmse))
         })
     });
+    // OLS streams (identify); the dense path builds the whole observation matrix
+    // (observation + estimate + prediction), the path every OLS run took before
+    let dense = |b: &mut criterion::Bencher<'_>| {
+        b.iter(|| {
+            one.install(|| {
+                let (obs, dt) = observation(&model, &data, &config).expect("observation");
+                let e = estimate(&obs, &config).expect("estimate");
+                black_box(Prediction::new(&obs, &e.values, dt).fit().nmse)
+            })
+        })
+    };
+    c.bench_function("identify_30k_one_core_dense", dense);
 }
 
 criterion_group!(benches, bench);

@@ -174,9 +174,10 @@ fn decode(bytes: Vec<u8>, path: &Path, names: &[String]) -> Result<Table> {
     if bytes.starts_with(&[0x1f, 0x8b]) {
         let hint = bytes.len().saturating_mul(4);
         let text = read_limited(MultiGzDecoder::new(bytes.as_slice()), path, true, hint)?;
-        parse(&text, path, names)
+        drop(bytes);
+        parse(text, path, names)
     } else {
-        parse(&bytes, path, names)
+        parse(bytes, path, names)
     }
 }
 
@@ -341,8 +342,10 @@ fn number(b: &[u8]) -> Option<f64> {
     std::str::from_utf8(b).ok()?.parse::<f64>().ok()
 }
 
-/// The parsed CSV text in memory.
-fn parse(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
+/// The parsed CSV text in memory; the text is freed once parsed, before the columns are
+/// assembled (a long record's file is not held beside its values).
+fn parse(owned: Vec<u8>, path: &Path, names: &[String]) -> Result<Table> {
+    let text = owned.as_slice();
     let text = text.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(text);
     let mut records = Records::new(text);
     let Some(header_line) = records.next_record() else {
@@ -384,6 +387,7 @@ fn parse(text: &[u8], path: &Path, names: &[String]) -> Result<Table> {
         .par_windows(2)
         .map(|w| block(body, w[0], w[1], &want, header.len(), &rows))
         .collect();
+    drop(owned);
     let total: usize = parts.iter().map(|p| p.lines.len()).sum();
     let mut columns: Vec<Vec<f64>> = (0..names.len())
         .map(|_| Vec::with_capacity(total))

@@ -57,23 +57,9 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     let sigma: Vec<f64> = obs
         .joint_rows
         .iter()
-        .map(|b| {
-            let dof = if b.len() > c {
-                b.len() - c
-            } else {
-                b.len().max(1)
-            };
-            (r.rows(b.start, b.len()).norm_squared() / dof as f64).sqrt()
-        })
+        .map(|b| joint_sigma(r.rows(b.start, b.len()).norm_squared(), b.len(), c))
         .collect();
-    let largest = sigma.iter().copied().fold(0.0f64, f64::max);
-    if !largest.is_finite() {
-        return Err(Error::NonFiniteResult {
-            what: "the WLS weights".into(),
-            cause: "the OLS residual overflowed: check the data's units and outliers".into(),
-        });
-    }
-    let weights = joint_weights(&sigma);
+    let weights = checked_weights(&sigma)?;
     let mut weighted = obs.clone();
     let mut row_weight = DVector::from_element(obs.rows(), 1.0);
     for (b, w) in obs.joint_rows.iter().zip(&weights) {
@@ -94,6 +80,26 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     )?;
     e.weights = Some(weights);
     Ok(e)
+}
+
+/// The residual sigma of a joint from its OLS residual sum of squares `rss` over `rows`
+/// equations with `c` parameters: over `rows - c` degrees of freedom, or over its rows
+/// when it has no more equations than parameters.
+pub(crate) fn joint_sigma(rss: f64, rows: usize, c: usize) -> f64 {
+    let dof = if rows > c { rows - c } else { rows.max(1) };
+    (rss / dof as f64).sqrt()
+}
+
+/// [`joint_weights`], refusing sigmas that overflowed.
+pub(crate) fn checked_weights(sigma: &[f64]) -> Result<Vec<f64>> {
+    let largest = sigma.iter().copied().fold(0.0f64, f64::max);
+    if !largest.is_finite() {
+        return Err(Error::NonFiniteResult {
+            what: "the WLS weights".into(),
+            cause: "the OLS residual overflowed: check the data's units and outliers".into(),
+        });
+    }
+    Ok(joint_weights(sigma))
 }
 
 /// Weights 1 / sigma_j with the floor [`SIGMA_FLOOR`] x the largest sigma (all 1 when every

@@ -69,7 +69,7 @@ fn augmented_r(w: &DMatrix<f64>, y: &DVector<f64>, d: &[f64], y_scale: f64) -> D
 }
 
 /// The 2-norm of `x` without overflow or underflow (scaled by the largest magnitude).
-fn norm(x: impl Iterator<Item = f64> + Clone) -> f64 {
+pub(crate) fn norm(x: impl Iterator<Item = f64> + Clone) -> f64 {
     let big = x.clone().fold(0.0f64, |m, v| m.max(v.abs()));
     if big == 0.0 || !big.is_finite() {
         return big;
@@ -158,6 +158,22 @@ pub(crate) fn solve(
     let y_norm = norm(y.iter().copied());
     let y_scale = if y_norm > 0.0 { y_norm } else { 1.0 };
     let ra = augmented_r(w, y, &d, y_scale);
+    solve_factor(&ra, &d, y_scale, names, tolerance)
+}
+
+/// Solves from `ra`, the R factor ((n + 1) x (n + 1), upper triangular) of
+/// [W D^-1, y / y_scale] with D = `d` the column norms of W (1 for a zero column): the
+/// second half of [`solve`], shared with the streaming accumulator
+/// ([`crate::estimate::StreamingLeastSquares`]), which builds the factor block by block.
+/// The caller has checked that there are at least n equations.
+pub(crate) fn solve_factor(
+    ra: &DMatrix<f64>,
+    d: &[f64],
+    y_scale: f64,
+    names: &[String],
+    tolerance: f64,
+) -> Result<Solution> {
+    let n = d.len();
     let r = ra.view((0, 0), (n, n)).into_owned();
     let qty = ra.view((0, n), (n, 1)).into_owned();
     let svd_s = svd(r.clone(), true, "the scaled observation matrix")?;
@@ -193,7 +209,7 @@ pub(crate) fn solve(
             inverse_gram[(i, j)] = inverse_gram[(i, j)] / d[i] / d[j];
         }
     }
-    let condition_number = condition(&r, u, &svd_s.singular_values, vt, &d)?;
+    let condition_number = condition(&r, u, &svd_s.singular_values, vt, d)?;
     if beta
         .iter()
         .chain(inverse_gram.diagonal().iter())

@@ -16,6 +16,7 @@ mod per_axis;
 mod quality;
 mod result;
 mod rls;
+mod streaming;
 
 pub use energy::{
     EnergyRegressor, energy, energy_observation, friction_power, model_energy_observation,
@@ -35,3 +36,5 @@ pub use quality::{
 };
 pub use result::{Estimate, Estimator, error_bound};
 pub use rls::{Rls, rls};
+pub(crate) use streaming::Dominance;
+pub use streaming::StreamingLeastSquares;

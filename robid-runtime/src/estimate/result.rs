@@ -77,10 +77,51 @@ pub(crate) fn assemble(
     inverse_gram: &DMatrix<f64>,
     condition_number: f64,
 ) -> Result<Estimate> {
-    let (m, n) = (solved.rows(), solved.cols());
+    let m = solved.rows();
     let r = &solved.y - &solved.w * &beta;
+    let residual_rms = original.residual_rms(&beta);
+    let bound = error_bound(condition_number, &r, &solved.y);
+    assemble_parts(
+        method,
+        original.names.clone(),
+        beta,
+        inverse_gram,
+        condition_number,
+        Residual {
+            squared_norm: r.norm_squared(),
+            rows: m,
+            per_joint_rms: residual_rms,
+            error_bound: bound,
+        },
+    )
+}
+
+/// What the statistics need of the residual of a solution, however it was computed
+/// (from the rows, [`assemble`], or from R factors, the streaming accumulator).
+pub(crate) struct Residual {
+    /// ||y - W beta||^2 of the solved system (infinite when it overflowed).
+    pub(crate) squared_norm: f64,
+    /// Equations of the solved system.
+    pub(crate) rows: usize,
+    /// RMS of the unweighted residual per joint block.
+    pub(crate) per_joint_rms: Vec<f64>,
+    /// [`error_bound`] of the solved system.
+    pub(crate) error_bound: f64,
+}
+
+/// The statistics of a solution from its residual: sigma^2, the standard deviations, the
+/// relative ones, the warnings; every number checked finite.
+pub(crate) fn assemble_parts(
+    method: Estimator,
+    names: Vec<String>,
+    beta: DVector<f64>,
+    inverse_gram: &DMatrix<f64>,
+    condition_number: f64,
+    residual: Residual,
+) -> Result<Estimate> {
+    let (m, n) = (residual.rows, beta.len());
     let dof = m.saturating_sub(n).max(1);
-    let sigma2 = r.norm_squared() / dof as f64;
+    let sigma2 = residual.squared_norm / dof as f64;
     let std: Vec<f64> = (0..n)
         .map(|i| (sigma2 * inverse_gram[(i, i)].max(0.0)).sqrt())
         .collect();
@@ -95,8 +136,7 @@ pub(crate) fn assemble(
             }
         })
         .collect();
-    let names = original.names.clone();
-    let residual_rms = original.residual_rms(&beta);
+    let residual_rms = residual.per_joint_rms;
     let not_finite = |what: String, cause: &str| Error::NonFiniteResult {
         what,
         cause: cause.to_string(),
@@ -126,7 +166,7 @@ pub(crate) fn assemble(
             "the observation matrix is numerically singular; use a richer trajectory",
         ));
     }
-    let error_bound = error_bound(condition_number, &r, &solved.y);
+    let error_bound = residual.error_bound;
     if !error_bound.is_finite() {
         return Err(not_finite(
             "the upper bound on the relative estimation error".into(),

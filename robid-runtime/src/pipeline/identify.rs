@@ -18,6 +18,7 @@ use crate::estimate::{
 };
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
+use crate::pipeline::stream::{identify_streaming, streams, validate_streaming};
 use crate::pipeline::{Prepared, decimator, observe};
 use crate::validate::{Fit, Prediction, UsedRows};
 
@@ -53,7 +54,7 @@ pub fn observation(
     torque_observation(model, &rows.prepared, config, data, &rows.kept)
 }
 
-fn checked_prepare(
+pub(crate) fn checked_prepare(
     model: &dyn Model,
     data: &Dataset,
     config: &Config,
@@ -193,12 +194,30 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
 /// The whole pipeline: observation matrix from `data`, estimation, fit. With the energy
 /// method the parameters come from the energy observation and the fit is still the
 /// torque prediction of the (filtered, decimated) torque observation.
+///
+/// OLS and WLS without known parameters stream: they never hold the observation matrix
+/// (`pipeline::stream`, docs/identification.md#streaming-least-squares); the other
+/// methods build it.
 pub fn identify(
     model: &(dyn Model + Sync),
     data: &Dataset,
     config: &Config,
 ) -> Result<Identification> {
     let rows = checked_prepare(model, data, config, Rows::Estimation)?;
+    if streams(config) {
+        return identify_streaming(model, data, config, &rows);
+    }
+    identify_dense(model, data, config, rows)
+}
+
+/// [`identify`] through the whole observation matrix (every method; the reference of the
+/// streaming path in tests).
+pub(crate) fn identify_dense(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+    rows: PreparedRows,
+) -> Result<Identification> {
     let (prepared, kept) = (&rows.prepared, &rows.kept);
     let known = known_parameters(model, config)?;
     let tolerance = config.estimation.rank_tolerance;
@@ -340,8 +359,34 @@ fn known_parameters(model: &dyn Model, config: &Config) -> Result<Option<KnownPa
 /// Predicts the torques of another data set with identified values (base parameters then
 /// extra columns, as in [`Estimate::values`]), processed like the estimation data but on
 /// its own: `processing.validation_range` applies (default: the whole data set), not the
-/// estimation's `processing.range`. The prediction records the rows used.
+/// estimation's `processing.range`. The prediction records the rows used. It streams:
+/// the observation matrix is never held, only the measured and predicted torques.
 pub fn validate(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+    values: &[f64],
+) -> Result<Prediction> {
+    let rows = checked_prepare(model, data, config, Rows::Validation)?;
+    validate_streaming(model, data, config, &rows, values)
+}
+
+/// [`identify`] through the whole observation matrix whatever the method: the reference
+/// of the streaming path in tests.
+#[cfg(test)]
+pub(crate) fn identify_dense_of(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+) -> Result<Identification> {
+    let rows = checked_prepare(model, data, config, Rows::Estimation)?;
+    identify_dense(model, data, config, rows)
+}
+
+/// [`validate`] through the whole observation matrix: the reference of the streaming
+/// path in tests.
+#[cfg(test)]
+pub(crate) fn validate_dense(
     model: &(dyn Model + Sync),
     data: &Dataset,
     config: &Config,

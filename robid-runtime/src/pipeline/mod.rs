@@ -8,6 +8,7 @@ mod observe;
 mod prepare;
 mod runs;
 mod static_samples;
+mod stream;
 
 pub use friction::{FrictionData, JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 pub use identify::{

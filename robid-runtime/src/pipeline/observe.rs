@@ -89,83 +89,108 @@ pub fn decimator(config: &Config) -> Result<Decimator> {
     }
 }
 
-/// Builds W and y from prepared signals: `model`'s base regressor plus the config's
-/// extra columns, filtered and decimated, with rest samples removed per joint.
-pub fn observe(
-    model: &(dyn Model + Sync),
-    signals: &Prepared,
-    config: &Config,
-) -> Result<Observation> {
-    let dof = model.dof();
-    signals.check(dof, "data")?;
-    let extra = &config.extra_columns_for(dof)?;
-    for c in extra {
-        c.check(dof)?;
-    }
-    let rotor = signals.rotor.as_ref();
-    if rotor.is_none() && extra.iter().any(|c| c.rotor_term().is_some()) {
-        return Err(Error::setting(
-            "Config",
-            "extra_column",
-            "a rotor-side column (theta_d, theta_dd, sign_theta_d or drive.rotor.residual) \
-             needs the motor encoders' signals, which these prepared signals do not have; add \
-             motor_position = [...] to a [[source]]",
-        ));
-    }
-    let lay = Layout {
-        dof,
-        p: model.base_parameter_count(),
-        e: extra.len(),
-    };
-    let mut names = crate::model::base_parameter_names(model);
-    if let Some(r) = config
-        .drive
-        .rotor
-        .as_ref()
-        .and_then(|r| r.residual.as_ref())
-    {
-        r.check_against(dof, &names)?;
-    }
-    for (i, c) in extra.iter().enumerate() {
-        if names.contains(&c.name) {
-            let key = if i < config.extra_columns.len() {
-                format!("extra_column[{}].name", i + 1)
-            } else {
-                "drive.rotor.residual".to_string()
-            };
+/// What building the rows of a record needs, checked once: the model, the prepared
+/// signals, the extra columns, the channel layout and the parameter names. Shared by the
+/// dense observation ([`observe`]) and the streaming one (`pipeline::stream`).
+pub(crate) struct Observer<'a> {
+    pub(crate) model: &'a (dyn Model + Sync),
+    pub(crate) signals: &'a Prepared,
+    extra: Vec<crate::drive::ExtraColumn>,
+    lay: Layout,
+    /// Parameter names: the base parameters, then the extra columns.
+    pub(crate) names: Vec<String>,
+}
+
+impl<'a> Observer<'a> {
+    /// Checks the signals and the config's extra columns against `model`.
+    pub(crate) fn new(
+        model: &'a (dyn Model + Sync),
+        signals: &'a Prepared,
+        config: &Config,
+    ) -> Result<Self> {
+        let dof = model.dof();
+        signals.check(dof, "data")?;
+        let extra = config.extra_columns_for(dof)?;
+        for c in &extra {
+            c.check(dof)?;
+        }
+        let rotor = signals.rotor.as_ref();
+        if rotor.is_none() && extra.iter().any(|c| c.rotor_term().is_some()) {
             return Err(Error::setting(
                 "Config",
-                &key,
-                format!(
-                    "`{}` is already a parameter (of the model or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
-                    c.name
-                ),
+                "extra_column",
+                "a rotor-side column (theta_d, theta_dd, sign_theta_d or drive.rotor.residual) \
+                 needs the motor encoders' signals, which these prepared signals do not have; add \
+                 motor_position = [...] to a [[source]]",
             ));
         }
-        names.push(c.name.clone());
+        let lay = Layout {
+            dof,
+            p: model.base_parameter_count(),
+            e: extra.len(),
+        };
+        let mut names = crate::model::base_parameter_names(model);
+        if let Some(r) = config
+            .drive
+            .rotor
+            .as_ref()
+            .and_then(|r| r.residual.as_ref())
+        {
+            r.check_against(dof, &names)?;
+        }
+        for (i, c) in extra.iter().enumerate() {
+            if names.contains(&c.name) {
+                let key = if i < config.extra_columns.len() {
+                    format!("extra_column[{}].name", i + 1)
+                } else {
+                    "drive.rotor.residual".to_string()
+                };
+                return Err(Error::setting(
+                    "Config",
+                    &key,
+                    format!(
+                        "`{}` is already a parameter (of the model or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
+                        c.name
+                    ),
+                ));
+            }
+            names.push(c.name.clone());
+        }
+        check_names(&names)?;
+        Ok(Self {
+            model,
+            signals,
+            extra,
+            lay,
+            names,
+        })
     }
-    check_names(&names)?;
-    let n = signals.samples();
-    let stride = lay.stride();
-    crate::limits::check_size(
-        || format!("regressor values before decimation ({n} samples x {stride} channels)"),
-        n as f64 * stride as f64,
-        crate::limits::MAX_OBSERVATION_ENTRIES,
-        "use a shorter record or identify it in parts (processing.range)",
-    )?;
-    let row_at = |k: usize,
-                  st: &mut Scratch,
-                  row: &mut [f64]|
-     -> std::result::Result<(), crate::LengthError> {
+
+    /// Channels per processed sample (regressor columns of every joint, torques,
+    /// velocities).
+    pub(crate) fn channels(&self) -> usize {
+        self.lay.stride()
+    }
+
+    /// Fills `row` (`stride` values) with sample k's channels.
+    fn row_at(
+        &self,
+        k: usize,
+        st: &mut Scratch,
+        row: &mut [f64],
+    ) -> std::result::Result<(), crate::LengthError> {
+        let (signals, lay, dof) = (self.signals, &self.lay, self.lay.dof);
         signals.q.sample_into(k, &mut st.q);
         signals.qd.sample_into(k, &mut st.qd);
         signals.qdd.sample_into(k, &mut st.qdd);
-        model.base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
+        self.model
+            .base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
+        let rotor = signals.rotor.as_ref();
         if let Some(r) = rotor {
             r.thetad.sample_into(k, &mut st.thetad);
             r.thetadd.sample_into(k, &mut st.thetadd);
         }
-        for (c, x) in extra.iter().enumerate() {
+        for (c, x) in self.extra.iter().enumerate() {
             let r = rotor.map(|_| crate::drive::RotorSample {
                 thetad: &st.thetad,
                 thetadd: &st.thetadd,
@@ -179,7 +204,323 @@ pub fn observe(
             row[lay.qd(j)] = st.qd[j];
         }
         Ok(())
-    };
+    }
+}
+
+/// The equations of some decimated samples, in sample order (for each sample, the joints
+/// that move at it, in joint order).
+#[derive(Debug, Default)]
+pub(crate) struct Equations {
+    /// Values per regressor row (parameters + extra columns).
+    pub(crate) cols: usize,
+    /// Regressor rows, row-major.
+    pub(crate) w: Vec<f64>,
+    /// Torques.
+    pub(crate) y: Vec<f64>,
+    /// Joint (0-based) of each equation.
+    pub(crate) joint: Vec<usize>,
+    /// Decimated sample of each equation.
+    pub(crate) sample: Vec<usize>,
+}
+
+impl Equations {
+    /// Equation i's regressor row.
+    pub(crate) fn row(&self, i: usize) -> &[f64] {
+        &self.w[i * self.cols..(i + 1) * self.cols]
+    }
+}
+
+impl Observer<'_> {
+    /// The error for a non-finite value of channel `c` at processed sample `k`.
+    fn bad_channel(&self, k: usize, c: usize, value: f64) -> Error {
+        let (j, col) = self.lay.of_channel(c);
+        Error::Estimate(EstimateError::NonFiniteObservation {
+            location: format!("processed sample {k}"),
+            sample: Some(k),
+            joint: j + 1,
+            parameter: col.map_or_else(
+                || "torque or velocity".to_string(),
+                |i| self.names[i].clone(),
+            ),
+            value,
+        })
+    }
+
+    /// Runs `fill(full row, out)` for the processed samples `lo..hi` in
+    /// parallel, into rows of `width` values; returns the rows, whether a call reported a
+    /// miss, and the first non-finite value reported (sample, channel, value).
+    fn rows_in_parallel(
+        &self,
+        lo: usize,
+        hi: usize,
+        width: usize,
+        fill: impl Fn(&[f64], &mut [f64]) -> (bool, Option<(usize, f64)>) + Sync,
+    ) -> (Vec<f64>, bool, Option<(usize, usize, f64)>) {
+        let dof = self.lay.dof;
+        let stride = self.lay.stride();
+        let mut rows = vec![0.0; (hi - lo) * width];
+        let (missed, bad) = rows
+            .par_chunks_mut((width * BLOCK).max(1))
+            .enumerate()
+            .map(|(b, chunk)| {
+                let mut st = Scratch::new(dof);
+                let mut full = vec![0.0; stride];
+                let mut missed = false;
+                let mut bad = None;
+                for (i, out) in chunk.chunks_exact_mut(width.max(1)).enumerate() {
+                    let k = lo + b * BLOCK + i;
+                    if self.row_at(k, &mut st, &mut full).is_err() {
+                        full.iter_mut().for_each(|v| *v = f64::NAN);
+                    }
+                    let (m, x) = fill(&full, out);
+                    missed |= m;
+                    if bad.is_none()
+                        && let Some((c, v)) = x
+                    {
+                        bad = Some((k, c, v));
+                    }
+                }
+                (missed, bad)
+            })
+            .reduce(|| (false, None), |x, y| (x.0 || y.0, x.1.or(y.1)));
+        (rows, missed, bad)
+    }
+
+    /// The samples `lo..hi` of the channels `channels` of every sample row (in parallel),
+    /// decimated: `(values, width)` groups of [`GROUP`] channels, row-major, one row per
+    /// decimated sample (all channels in one group without decimation). A channel outside
+    /// `channels` that is not zero is a miss (reported as `Ok(None)`).
+    fn decimated_channels(
+        &self,
+        dec: &Decimator,
+        lo: usize,
+        hi: usize,
+        channels: &[usize],
+    ) -> Result<Option<Vec<Decimated>>> {
+        let stride = self.lay.stride();
+        let mut inside = vec![false; stride];
+        for &c in channels {
+            inside[c] = true;
+        }
+        let inactive: Vec<usize> = (0..stride).filter(|&c| !inside[c]).collect();
+        let a = channels.len();
+        let (rows, missed, bad) = self.rows_in_parallel(lo, hi, a, |full, out| {
+            for (o, &c) in out.iter_mut().zip(channels) {
+                *o = full[c];
+            }
+            let bad = full
+                .iter()
+                .position(|v| !v.is_finite())
+                .map(|c| (c, full[c]));
+            // a non-finite inactive channel is found by `bad`
+            let missed = inactive.iter().any(|&c| full[c] != 0.0);
+            (missed, bad)
+        });
+        if let Some((k, c, v)) = bad {
+            return Err(self.bad_channel(k, c, v));
+        }
+        if missed {
+            return Ok(None);
+        }
+        decimate_rows(dec, rows, a).map(Some)
+    }
+
+    /// The equations of the decimated samples whose processed samples lie in `core`
+    /// (`core.start` a multiple of the total factor): the regressor rows of `core` and
+    /// `overlap` samples on each side (a multiple of the factor, at least
+    /// [`Decimator::settling`]), decimated as a block, then the samples of `core` kept
+    /// and those near rest (`rest`, per joint) removed. The same equations as [`observe`]
+    /// gives for these samples, to the decimation filter's settling tolerance. Channels
+    /// that are zero at a few probed samples are assumed zero (checked on every sample,
+    /// then all channels taken if one is not), as in [`observe`].
+    pub(crate) fn window(
+        &self,
+        dec: &Decimator,
+        overlap: usize,
+        rest: Option<&[f64]>,
+        core: std::ops::Range<usize>,
+    ) -> Result<Equations> {
+        let (lay, dof) = (&self.lay, self.lay.dof);
+        let n = self.signals.samples();
+        let f = dec.factor();
+        let lo = core.start.saturating_sub(overlap);
+        let hi = (core.end + overlap).min(n);
+        let stride = lay.stride();
+        let mut st = Scratch::new(dof);
+        let mut probe = vec![0.0; stride];
+        let mut active = vec![false; stride];
+        for i in 0..PROBES {
+            let k = lo + i * (hi - lo).saturating_sub(1) / (PROBES - 1);
+            if self.row_at(k, &mut st, &mut probe).is_ok() {
+                for (a, v) in active.iter_mut().zip(&probe) {
+                    *a |= *v != 0.0;
+                }
+            }
+        }
+        for j in 0..dof {
+            active[lay.tau(j)] = true;
+            active[lay.qd(j)] = true;
+        }
+        let mut channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
+        let groups = match self.decimated_channels(dec, lo, hi, &channels)? {
+            Some(g) => g,
+            None => {
+                channels = (0..stride).collect();
+                self.decimated_channels(dec, lo, hi, &channels)?
+                    .unwrap_or_default()
+            }
+        };
+        let mut place: Vec<Option<(usize, usize)>> = vec![None; stride];
+        for (i, &c) in channels.iter().enumerate() {
+            place[c] = Some(if f == 1 {
+                (0, i)
+            } else {
+                (i / GROUP, i % GROUP)
+            });
+        }
+        let value = |i: usize, c: usize| -> f64 {
+            place[c].map_or(0.0, |(g, k)| {
+                let (v, width) = &groups[g];
+                v[i * width + k]
+            })
+        };
+        let cols = lay.p + lay.e;
+        let mut eq = Equations {
+            cols,
+            ..Equations::default()
+        };
+        let first = lo / f;
+        for k in core.start / f..core.end.div_ceil(f) {
+            let i = k - first;
+            for j in 0..dof {
+                if let Some(t) = rest
+                    && !(value(i, lay.qd(j)).abs() >= t[j])
+                {
+                    continue;
+                }
+                let y = value(i, lay.tau(j));
+                let start = eq.w.len();
+                eq.w.extend((0..cols).map(|c| value(i, lay.column(j, c))));
+                let bad = eq.w[start..]
+                    .iter()
+                    .position(|v| !v.is_finite())
+                    .map(|c| (self.names[c].clone(), eq.w[start + c]))
+                    .or((!y.is_finite()).then(|| ("torque".to_string(), y)));
+                if let Some((parameter, value)) = bad {
+                    return Err(Error::Estimate(EstimateError::NonFiniteObservation {
+                        location: format!("processed sample {}", k * f),
+                        sample: Some(k * f),
+                        joint: j + 1,
+                        parameter,
+                        value,
+                    }));
+                }
+                eq.y.push(y);
+                eq.joint.push(j);
+                eq.sample.push(k);
+            }
+        }
+        Ok(eq)
+    }
+
+    /// The measured and predicted torques of the decimated samples of `core` with the
+    /// parameter values `beta`, as [`window`](Self::window) would give them (`y` and
+    /// `W beta`) but cheaper: the decimation filter is linear, so the prediction is the
+    /// decimated `Y(t) beta`, and only three channels per joint (prediction, torque,
+    /// velocity) are filtered. Returns `(joint, decimated sample, measured, predicted)`.
+    pub(crate) fn window_prediction(
+        &self,
+        dec: &Decimator,
+        overlap: usize,
+        rest: Option<&[f64]>,
+        core: std::ops::Range<usize>,
+        beta: &[f64],
+    ) -> Result<Vec<(usize, usize, f64, f64)>> {
+        let (lay, dof) = (&self.lay, self.lay.dof);
+        let n = self.signals.samples();
+        let f = dec.factor();
+        let lo = core.start.saturating_sub(overlap);
+        let hi = (core.end + overlap).min(n);
+        let cols = lay.p + lay.e;
+        let (rows, _, bad) = self.rows_in_parallel(lo, hi, 3 * dof, |full, out| {
+            for j in 0..dof {
+                out[j] = (0..cols).map(|c| full[lay.column(j, c)] * beta[c]).sum();
+                out[dof + j] = full[lay.tau(j)];
+                out[2 * dof + j] = full[lay.qd(j)];
+            }
+            let bad = full
+                .iter()
+                .position(|v| !v.is_finite())
+                .map(|c| (c, full[c]));
+            (false, bad)
+        });
+        if let Some((k, c, v)) = bad {
+            return Err(self.bad_channel(k, c, v));
+        }
+        let groups = decimate_rows(dec, rows, 3 * dof)?;
+        let value = |i: usize, c: usize| -> f64 {
+            let (g, k) = if f == 1 {
+                (0, c)
+            } else {
+                (c / GROUP, c % GROUP)
+            };
+            let (v, width) = &groups[g];
+            v[i * width + k]
+        };
+        let first = lo / f;
+        let mut out = Vec::new();
+        for k in core.start / f..core.end.div_ceil(f) {
+            let i = k - first;
+            for j in 0..dof {
+                if let Some(t) = rest
+                    && !(value(i, 2 * dof + j).abs() >= t[j])
+                {
+                    continue;
+                }
+                out.push((j, k, value(i, dof + j), value(i, j)));
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// A group of decimated channels: values (row-major, one row per decimated sample) and
+/// the row width.
+type Decimated = (Vec<f64>, usize);
+
+/// Decimates every channel of row-major `rows` (`width` values per row): groups of
+/// [`GROUP`] channels in parallel, each `(values, width)` row-major with one row per
+/// decimated sample; the rows themselves as one group without decimation.
+fn decimate_rows(dec: &Decimator, rows: Vec<f64>, width: usize) -> Result<Vec<Decimated>> {
+    if dec.factor() == 1 {
+        return Ok(vec![(rows, width)]);
+    }
+    let local: Vec<usize> = (0..width).collect();
+    local
+        .par_chunks(GROUP)
+        .map(|g| Ok((dec.apply_block(&rows, width, g)?, g.len())))
+        .collect()
+}
+
+/// Builds W and y from prepared signals: `model`'s base regressor plus the config's
+/// extra columns, filtered and decimated, with rest samples removed per joint.
+pub fn observe(
+    model: &(dyn Model + Sync),
+    signals: &Prepared,
+    config: &Config,
+) -> Result<Observation> {
+    let observer = Observer::new(model, signals, config)?;
+    let (lay, names) = (&observer.lay, &observer.names);
+    let dof = lay.dof;
+    let n = signals.samples();
+    let stride = lay.stride();
+    crate::limits::check_size(
+        || format!("regressor values before decimation ({n} samples x {stride} channels)"),
+        n as f64 * stride as f64,
+        crate::limits::MAX_OBSERVATION_ENTRIES,
+        "use a shorter record or identify it in parts (processing.range)",
+    )?;
+    let row_at = |k: usize, st: &mut Scratch, row: &mut [f64]| observer.row_at(k, st, row);
     // channels that are not identically zero, probed at a few samples; verified below
     let mut st = Scratch::new(dof);
     let mut probe = vec![0.0; stride];
@@ -255,14 +596,7 @@ pub fn observe(
         }
     }
     if let Some((k, c, value)) = bad {
-        let (j, col) = lay.of_channel(c);
-        return Err(Error::Estimate(EstimateError::NonFiniteObservation {
-            location: format!("processed sample {k}"),
-            sample: Some(k),
-            joint: j + 1,
-            parameter: col.map_or_else(|| "torque or velocity".to_string(), |i| names[i].clone()),
-            value,
-        }));
+        return Err(observer.bad_channel(k, c, value));
     }
     let a = channels.len();
 
@@ -334,7 +668,7 @@ pub fn observe(
         joint_rows.push(start..start + ks.len());
         start += ks.len();
     }
-    Observation::new(w, y, joint_rows, sample_of_row, names).map_err(|e| match e {
+    Observation::new(w, y, joint_rows, sample_of_row, names.clone()).map_err(|e| match e {
         // a decimated sample k is processed sample k * factor
         Error::Estimate(EstimateError::NonFiniteObservation {
             sample: Some(k),

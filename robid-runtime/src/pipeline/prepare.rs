@@ -333,15 +333,15 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
         });
     }
     let prepared = Prepared {
-        q: q.range(start..end),
-        qd: qd.range(start..end),
-        qdd: qdd.range(start..end),
-        tau: tau.range(start..end),
+        q: q.into_range(start..end),
+        qd: qd.into_range(start..end),
+        qdd: qdd.into_range(start..end),
+        tau: tau.into_range(start..end),
         rotor: rotor_states.map(|(thetad, thetadd, joint_torque)| RotorStates {
-            thetad: thetad.range(start..end),
-            thetadd: thetadd.range(start..end),
+            thetad: thetad.into_range(start..end),
+            thetadd: thetadd.into_range(start..end),
             temperature: data.temperature.as_ref().map(|t| t.range(start..end)),
-            joint_torque: joint_torque.map(|t| t.range(start..end)),
+            joint_torque: joint_torque.map(|t| t.into_range(start..end)),
         }),
         sample_time: dt,
     };
@@ -373,7 +373,7 @@ pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Resul
     Ok(PreparedRows {
         prepared,
         kept: start..end,
-        unfiltered_tau: unfiltered_tau.map(|t| t.range(start..end)),
+        unfiltered_tau: unfiltered_tau.map(|t| t.into_range(start..end)),
         auto_cutoff,
     })
 }

@@ -12,6 +12,7 @@ use crate::data::{Config, Dataset, RunMode};
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation};
 use crate::inspect::CutoffSuggestion;
+use crate::pipeline::stream::{stacked_streaming, streams};
 use crate::pipeline::{Identification, estimate, identify, observation};
 use crate::signal::Signals;
 use crate::validate::{Fit, Prediction, UsedRows};
@@ -103,15 +104,11 @@ pub fn identify_runs(
             }
         }
         RunMode::Stacked => {
-            let mut parts = Vec::with_capacity(runs.len());
-            for d in runs {
-                parts.push(observation(model, d, config)?);
-            }
-            let dt = parts[0].1;
-            let obs = stack(parts.into_iter().map(|p| p.0).collect())?;
-            let estimate = estimate(&obs, config)?;
-            let prediction = Prediction::new(&obs, &estimate.values, dt);
-            prediction.check("the stacked runs")?;
+            let (estimate, prediction) = if streams(config) {
+                stacked_streaming(model, runs, config)?
+            } else {
+                stacked_dense(model, runs, config)?
+            };
             RepeatedIdentification {
                 robot,
                 mode,
@@ -125,6 +122,26 @@ pub fn identify_runs(
             }
         }
     })
+}
+
+/// The stacked runs' estimate and prediction through the whole stacked observation
+/// matrix (every method; OLS and WLS without known parameters stream instead, see
+/// `pipeline::stream`).
+pub(crate) fn stacked_dense(
+    model: &(dyn Model + Sync),
+    runs: &[Dataset],
+    config: &Config,
+) -> Result<(Estimate, Prediction)> {
+    let mut parts = Vec::with_capacity(runs.len());
+    for d in runs {
+        parts.push(observation(model, d, config)?);
+    }
+    let dt = parts.first().map_or(1.0, |p| p.1);
+    let obs = stack(parts.into_iter().map(|p| p.0).collect())?;
+    let estimate = estimate(&obs, config)?;
+    let prediction = Prediction::new(&obs, &estimate.values, dt);
+    prediction.check("the stacked runs")?;
+    Ok((estimate, prediction))
 }
 
 /// Stacks observations with the same columns: joint block j of the result holds block j

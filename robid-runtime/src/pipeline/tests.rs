@@ -18,6 +18,7 @@ use crate::signal::{Signals, central_difference};
 
 mod milella;
 mod runs;
+mod stream;
 #[path = "synthetic.rs"]
 pub(crate) mod synthetic;
 use synthetic::{CONFIG, DOF, Synthetic, csv_with_noise, trajectory, true_parameters};

@@ -60,6 +60,25 @@ impl Decimator {
         self.stages.iter().fold(n, |n, s| n.div_ceil(s.0))
     }
 
+    /// Full-rate samples within which a change at one end of a record reaches the
+    /// decimated signal: each stage's settling time (its impulse response's tail below
+    /// `tolerance` of its absolute sum, [`Sos::settling_samples`]) at that stage's input
+    /// rate, plus one sample of it, summed. Decimating a block of a record that extends
+    /// this far beyond the samples kept gives them as decimating the whole record does,
+    /// to about `tolerance` of the signal (the zero-phase filter runs both ways, and
+    /// each way forgets where it started within the settling time).
+    pub fn settling(&self, tolerance: f64) -> usize {
+        let mut rate = 1;
+        let mut total = 0;
+        for (q, sos) in &self.stages {
+            if let Some(sos) = sos {
+                total += rate * (sos.settling_samples(tolerance, 1 << 22) + 1);
+            }
+            rate *= q;
+        }
+        total
+    }
+
     /// Decimates one signal.
     pub fn apply(&self, x: &[f64]) -> Result<Vec<f64>> {
         let mut cur = x.to_vec();

@@ -102,6 +102,19 @@ impl Signals {
         }
     }
 
+    /// The samples `range` of every joint, as [`range`](Self::range) gives them, cut in
+    /// place: no copy of the signals is made (the memory of a long record is not doubled).
+    pub fn into_range(mut self, range: Range<usize>) -> Self {
+        let n = self.samples();
+        let (start, end) = (range.start.min(n), range.end.min(n));
+        let start = start.min(end);
+        for v in &mut self.joints {
+            v.truncate(end);
+            v.drain(..start);
+        }
+        self
+    }
+
     /// Applies `f` to every joint's signal (in parallel); the results must have equal
     /// lengths, as filters, differentiation and decimation give.
     pub fn map(&self, f: impl Fn(&[f64]) -> Vec<f64> + Sync) -> Result<Self> {
@@ -174,6 +187,11 @@ mod tests {
         assert_eq!(s.range(5..9).samples(), 0);
         let (from, to) = (2, 1);
         assert_eq!(s.range(from..to).samples(), 0);
+        // cut in place: the same samples as a copy, also out of bounds or reversed
+        let (from, to) = (3, 1);
+        for r in [0..4, 1..3, 3..9, 5..9, 0..0, from..to] {
+            assert_eq!(s.clone().into_range(r.clone()), s.range(r.clone()), "{r:?}");
+        }
         let mut out = [0.0; 2];
         s.sample_into(2, &mut out);
         assert_eq!(out, [2.0, 12.0]);

@@ -1,0 +1,337 @@
+//! The streaming accumulator against the dense solvers on the same equations.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::*;
+use crate::estimate::{Observation, dominated_columns, ols, wls};
+use crate::rng::Rng;
+
+/// Relative difference, with `floor` as the smallest magnitude compared.
+fn close(a: f64, b: f64, tol: f64, floor: f64) -> bool {
+    (a - b).abs() <= tol * a.abs().max(b.abs()).max(floor)
+}
+
+fn assert_same(s: &Estimate, d: &Estimate, tol: f64) {
+    assert_eq!(s.names, d.names);
+    assert_eq!(s.rows, d.rows);
+    for i in 0..d.values.len() {
+        assert!(
+            close(s.values[i], d.values[i], tol, d.std[i]),
+            "value {i}: {} vs {} (cond {:e})",
+            s.values[i],
+            d.values[i],
+            d.condition_number
+        );
+        assert!(
+            close(s.std[i], d.std[i], tol, 0.0),
+            "std {i}: {} vs {}",
+            s.std[i],
+            d.std[i]
+        );
+    }
+    assert!(
+        close(s.sigma2, d.sigma2, tol, 0.0),
+        "{} vs {}",
+        s.sigma2,
+        d.sigma2
+    );
+    assert!(
+        close(s.condition_number, d.condition_number, tol, 0.0),
+        "{} vs {}",
+        s.condition_number,
+        d.condition_number
+    );
+    assert!(close(s.error_bound, d.error_bound, tol, 0.0));
+    for (a, b) in s.residual_rms.iter().zip(&d.residual_rms) {
+        assert!(close(*a, *b, tol, 0.0), "rms {a} vs {b}");
+    }
+    match (&s.weights, &d.weights) {
+        (Some(a), Some(b)) => {
+            for (x, y) in a.iter().zip(b) {
+                assert!(close(*x, *y, tol, 0.0), "weight {x} vs {y}");
+            }
+        }
+        (None, None) => {}
+        other => panic!("{other:?}"),
+    }
+    let kinds = |e: &Estimate| e.warnings.iter().map(|w| w.kind()).collect::<Vec<_>>();
+    assert_eq!(kinds(s), kinds(d));
+}
+
+/// `groups` joints of `per_group` equations, `p` parameters whose columns differ in
+/// magnitude by `spread` decades, noise growing with the joint; returns the dense
+/// observation (joint-major) and the rows in the order they are pushed (interleaved by
+/// sample, as the pipeline gives them).
+fn problem(
+    groups: usize,
+    per_group: usize,
+    p: usize,
+    spread: f64,
+    seed: u64,
+) -> (Observation, Vec<(usize, Vec<f64>, f64)>) {
+    let mut rng = Rng::new(seed);
+    let beta: Vec<f64> = (0..p)
+        .map(|i| (i as f64 + 1.0) * if i % 2 == 0 { 1.0 } else { -0.5 })
+        .collect();
+    let unit: Vec<f64> = (0..p)
+        .map(|i| 10f64.powf(spread * (i as f64 / p.max(2) as f64 - 0.5)))
+        .collect();
+    let mut rows = Vec::new();
+    for k in 0..per_group {
+        for j in 0..groups {
+            let t = k as f64 * 0.013;
+            let row: Vec<f64> = (0..p)
+                .map(|i| {
+                    unit[i]
+                        * ((t * (1.0 + 0.37 * i as f64) + j as f64).sin()
+                            + 0.3 * rng.uniform(-1.0, 1.0))
+                })
+                .collect();
+            let y = row
+                .iter()
+                .zip(&beta)
+                .zip(&unit)
+                .map(|((a, b), u)| a * b / u)
+                .sum::<f64>()
+                + 0.01 * (j + 1) as f64 * rng.uniform(-1.0, 1.0);
+            rows.push((j, row, y));
+        }
+    }
+    let n = rows.len();
+    let mut w = DMatrix::zeros(n, p);
+    let mut y = DVector::zeros(n);
+    let mut joint_rows = Vec::new();
+    let mut sample_of_row = Vec::new();
+    let mut r = 0;
+    for j in 0..groups {
+        let start = r;
+        for (k, (g, row, v)) in rows.iter().filter(|x| x.0 == j).enumerate() {
+            debug_assert_eq!(*g, j);
+            for (c, x) in row.iter().enumerate() {
+                w[(r, c)] = *x;
+            }
+            y[r] = *v;
+            sample_of_row.push(k);
+            r += 1;
+        }
+        joint_rows.push(start..r);
+    }
+    let names = (1..=p).map(|i| format!("p{i}")).collect();
+    let obs = Observation::new(w, y, joint_rows, sample_of_row, names).unwrap();
+    (obs, rows)
+}
+
+fn streamed(obs: &Observation, rows: &[(usize, Vec<f64>, f64)]) -> StreamingLeastSquares {
+    let mut s = StreamingLeastSquares::new(obs.names.clone(), obs.joint_rows.len()).unwrap();
+    for (j, row, y) in rows {
+        s.push(*j, row, *y).unwrap();
+    }
+    s
+}
+
+/// OLS and WLS equal the dense solvers to 1e-10 on systems of several sizes, with columns
+/// of equal and of very different magnitudes (12 decades), rows enough for many buffer
+/// updates.
+#[test]
+fn ols_and_wls_equal_the_dense_solvers() {
+    for (groups, per_group, p, spread, seed) in [
+        (1, 300, 3, 0.0, 1),
+        (2, 2000, 5, 0.0, 2),
+        (6, 1500, 24, 3.0, 3),
+        (7, 700, 40, 12.0, 4),
+    ] {
+        let (obs, rows) = problem(groups, per_group, p, spread, seed);
+        let mut s = streamed(&obs, &rows);
+        assert_eq!(s.rows(), obs.rows());
+        assert_eq!(s.group_rows(), vec![per_group; groups]);
+        assert_same(&s.ols(1e-12).unwrap(), &ols(&obs, 1e-12).unwrap(), 1e-10);
+        assert_same(&s.wls(1e-12).unwrap(), &wls(&obs, 1e-12).unwrap(), 1e-10);
+    }
+}
+
+/// Equations split in parts accumulated apart and merged give the result of one
+/// accumulation, whatever the parts' magnitudes (the second part is 2^40 larger in one
+/// column, so the scales differ).
+#[test]
+fn merged_parts_equal_one_accumulation() {
+    let (obs, mut rows) = problem(3, 900, 6, 2.0, 7);
+    for r in rows.iter_mut().skip(1500) {
+        r.1[2] *= 1.0995e12;
+    }
+    let whole = streamed(&obs, &rows).ols(1e-12).unwrap();
+    let mut parts: Vec<StreamingLeastSquares> =
+        rows.chunks(1000).map(|c| streamed(&obs, c)).collect();
+    let mut first = parts.remove(0);
+    for p in parts {
+        first.merge(p).unwrap();
+    }
+    assert_eq!(first.rows(), rows.len());
+    assert_same(&first.ols(1e-12).unwrap(), &whole, 1e-10);
+    let other = StreamingLeastSquares::new(vec!["x".into()], 3).unwrap();
+    assert!(first.merge(other).is_err());
+}
+
+/// Magnitudes whose squares overflow or underflow (1e200, 1e-150) are solved as the dense
+/// solver solves them; at 1e-200 the covariance of that parameter (1e400) overflows, and
+/// both refuse it with the same error.
+#[test]
+fn extreme_magnitudes_are_solved_like_the_dense_path() {
+    for scale in [1e200, 1e-150, 1e-200] {
+        let (mut obs, mut rows) = problem(2, 400, 3, 0.0, 11);
+        for r in rows.iter_mut() {
+            r.1[1] *= scale;
+        }
+        obs.w.column_mut(1).scale_mut(scale);
+        let mut s = streamed(&obs, &rows);
+        match (s.ols(1e-12), ols(&obs, 1e-12)) {
+            (Ok(a), Ok(b)) => assert_same(&a, &b, 1e-10),
+            (
+                Err(Error::NonFiniteResult { what: a, .. }),
+                Err(Error::NonFiniteResult { what: b, .. }),
+            ) => {
+                assert_eq!(scale, 1e-200);
+                assert_eq!(a, b);
+                continue;
+            }
+            other => panic!("{scale:e}: {other:?}"),
+        }
+        assert_same(&s.wls(1e-12).unwrap(), &wls(&obs, 1e-12).unwrap(), 1e-10);
+    }
+}
+
+/// The dense solver's errors: rank deficiency naming the unexcited parameters, too few
+/// equations, a bad rank tolerance; and the accumulator's own: non-finite values, wrong
+/// lengths, groups out of range.
+#[test]
+fn errors_are_those_of_the_dense_path() {
+    let (mut obs, mut rows) = problem(2, 300, 4, 0.0, 5);
+    obs.w.column_mut(2).fill(0.0);
+    for r in rows.iter_mut() {
+        r.1[2] = 0.0;
+    }
+    let dense = ols(&obs, 1e-10).unwrap_err().to_string();
+    let mut s = streamed(&obs, &rows);
+    assert_eq!(s.ols(1e-10).unwrap_err().to_string(), dense);
+    assert!(dense.contains("p3"), "{dense}");
+    assert_eq!(s.wls(1e-10).unwrap_err().to_string(), dense);
+    assert!(
+        s.ols(0.0)
+            .unwrap_err()
+            .to_string()
+            .contains("rank_tolerance")
+    );
+
+    let names: Vec<String> = vec!["a".into(), "b".into()];
+    let mut few = StreamingLeastSquares::new(names.clone(), 1).unwrap();
+    few.push(0, &[1.0, 2.0], 3.0).unwrap();
+    assert!(matches!(few.ols(1e-10), Err(Error::TooFewSamples { .. })));
+    let e = few.push(0, &[1.0, f64::NAN], 3.0).unwrap_err().to_string();
+    assert!(e.contains("`b`") || e.contains("b"), "{e}");
+    assert!(few.push(0, &[1.0, 1.0], f64::INFINITY).is_err());
+    assert!(few.push(0, &[1.0], 1.0).is_err());
+    assert!(few.push(1, &[1.0, 1.0], 1.0).is_err());
+    assert_eq!(few.rows(), 1, "refused equations are not added");
+    assert!(StreamingLeastSquares::new(vec![], 1).is_err());
+    assert!(StreamingLeastSquares::new(names.clone(), 0).is_err());
+    assert!(StreamingLeastSquares::new(vec!["a".into(), "a".into()], 1).is_err());
+}
+
+/// A group with no equations is left out of the fit and has a residual RMS of 0, as an
+/// empty joint block of the dense path.
+#[test]
+fn an_empty_group_is_left_out() {
+    let (obs, rows) = problem(2, 300, 3, 0.0, 9);
+    let mut s = StreamingLeastSquares::new(obs.names.clone(), 3).unwrap();
+    for (j, row, y) in &rows {
+        s.push(*j, row, *y).unwrap();
+    }
+    let mut with_empty = obs.clone();
+    with_empty.joint_rows.push(obs.rows()..obs.rows());
+    assert_same(
+        &s.ols(1e-12).unwrap(),
+        &ols(&with_empty, 1e-12).unwrap(),
+        1e-10,
+    );
+    assert_same(
+        &s.wls(1e-12).unwrap(),
+        &wls(&with_empty, 1e-12).unwrap(),
+        1e-10,
+    );
+}
+
+#[test]
+fn powers_of_two_bound_their_argument() {
+    for x in [1.0, 1.5, 3.0, 1e-300, 5e-324, 1e300, f64::MAX, 0.75] {
+        let s = pow2_above(x);
+        assert_eq!(
+            s.to_bits() & ((1 << 52) - 1),
+            0,
+            "{x}: {s} is a power of two"
+        );
+        assert!(x < s || (x >= 2f64.powi(1023) && x < 2.0 * s), "{x}: {s}");
+        assert!(
+            s <= 2.0 * x || x < f64::MIN_POSITIVE,
+            "{x}: {s} is the smallest"
+        );
+    }
+    assert_eq!(pow2_above(1.0), 2.0);
+    assert_eq!(pow2_above(3.0), 4.0);
+}
+
+/// The streaming outlier check finds the columns `dominated_columns` finds, with the same
+/// shares, the largest entry's tag and the 100-row minimum.
+#[test]
+fn dominance_equals_dominated_columns() {
+    let w = DMatrix::from_fn(200, 4, |i, j| match j {
+        0 => (i as f64 * 0.3).sin(),
+        1 if i == 57 => 1e3,
+        2 if i == 91 => 1e200,
+        3 => 0.0,
+        _ => 1e-3 * (i as f64).cos(),
+    });
+    let dense = dominated_columns(&w);
+    let mut d = Dominance::new(4);
+    for i in 0..200 {
+        let row: Vec<f64> = w.row(i).iter().copied().collect();
+        d.push(&row, i);
+    }
+    let s = d.dominated();
+    assert_eq!(s.len(), dense.len());
+    for (a, b) in s.iter().zip(&dense) {
+        assert_eq!((a.0, a.1), (b.0, b.1));
+        assert!(close(a.2, b.2, 1e-12, 0.0), "{a:?} vs {b:?}");
+    }
+    let mut few = Dominance::new(4);
+    for i in 0..99 {
+        few.push(&[0.0, if i == 3 { 1e3 } else { 1.0 }, 0.0, 0.0], i);
+    }
+    assert!(few.dominated().is_empty());
+    few.push(&[0.0, 1.0, 0.0, 0.0], 99);
+    assert_eq!(few.dominated().len(), 1);
+}
+
+/// Equations pushed in bulk (groups updated in parallel) give the result of pushing them
+/// one by one; a bad equation anywhere refuses the whole bulk with the error `push` gives.
+#[test]
+fn bulk_pushes_equal_single_ones() {
+    let (obs, rows) = problem(4, 500, 5, 1.0, 13);
+    let mut one = streamed(&obs, &rows);
+    let mut bulk = StreamingLeastSquares::new(obs.names.clone(), 4).unwrap();
+    for part in rows.chunks(777) {
+        let groups: Vec<usize> = part.iter().map(|r| r.0).collect();
+        let w: Vec<f64> = part.iter().flat_map(|r| r.1.iter().copied()).collect();
+        let y: Vec<f64> = part.iter().map(|r| r.2).collect();
+        bulk.push_rows(&groups, &w, &y).unwrap();
+    }
+    assert_eq!(bulk.group_rows(), one.group_rows());
+    let (a, b) = (bulk.wls(1e-12).unwrap(), one.wls(1e-12).unwrap());
+    assert_eq!(a.values, b.values, "the same operations in the same order");
+    let before = bulk.rows();
+    let mut w = vec![1.0; 10];
+    w[7] = f64::NAN;
+    let e = bulk.push_rows(&[0, 1], &w, &[1.0, 2.0]).unwrap_err();
+    assert!(e.to_string().contains("p3"), "{e}");
+    assert!(bulk.push_rows(&[0, 9], &[1.0; 10], &[1.0, 2.0]).is_err());
+    assert!(bulk.push_rows(&[0], &[1.0; 10], &[1.0, 2.0]).is_err());
+    assert_eq!(bulk.rows(), before, "nothing added");
+}

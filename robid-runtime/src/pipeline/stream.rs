@@ -1,0 +1,428 @@
+//! Identification and validation that never hold the observation matrix
+//! (docs/identification.md#streaming-least-squares).
+//!
+//! The prepared record is cut into blocks of processed samples; each block's regressor
+//! rows are evaluated with an overlap on both sides long enough for the decimation
+//! filter to forget the block's edges ([`Decimator::settling`]), decimated as a block,
+//! and the block's own decimated samples kept: the same equations as the dense
+//! observation's, to the filter's settling tolerance. Blocks are taken in record order,
+//! each built in parallel (regressor rows, channel groups of the filter, joints' factors).
+//!
+//! OLS and WLS take one pass: each block's equations go into one
+//! [`StreamingLeastSquares`] (per-joint R factors, the joints updated in parallel); the
+//! outlier check (`Dominance`) rides along. The prediction (measured against predicted
+//! torque, the fit and the report's plots) takes a second pass with the estimated values,
+//! which filters three channels per joint only (the filter is linear: the decimated
+//! `W beta` is the decimated `Y(t) beta`). Memory is one block of regressor channels, the
+//! R factors, and one measured and one predicted torque per equation, never the
+//! equations' rows.
+
+use std::ops::Range;
+
+use crate::Model;
+use crate::data::{Config, Dataset, Method};
+use crate::error::{Error, Result};
+use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
+use crate::pipeline::Prepared;
+use crate::pipeline::identify::checked_prepare;
+use crate::pipeline::observe::{Equations, Observer};
+use crate::pipeline::prepare::{PreparedRows, Rows};
+use crate::pipeline::{Identification, decimator};
+use crate::signal::Decimator;
+use crate::validate::{Prediction, UsedRows};
+
+/// Tolerance of the decimation filter's settling (relative to its impulse response's
+/// absolute sum) that sets the blocks' overlap.
+const SETTLING_TOLERANCE: f64 = 1e-15;
+
+/// Processed samples per block, at least (four times the overlap when that is more).
+const BLOCK: usize = 16_384;
+
+/// Bytes of regressor channels a block may take: blocks are as long as that allows (the
+/// longer, the less overlap is evaluated twice); a record up to half a block longer is
+/// one block, with no overlap at all.
+const BLOCK_BYTES: usize = 64 << 20;
+
+/// A prepared record cut into blocks of equations.
+pub(crate) struct Stream<'a> {
+    observer: Observer<'a>,
+    dec: Decimator,
+    overlap: usize,
+    block: usize,
+    rest: Option<Vec<f64>>,
+}
+
+impl<'a> Stream<'a> {
+    /// The blocks of `prepared` with `config`'s decimation and rest removal.
+    pub(crate) fn new(
+        model: &'a (dyn Model + Sync),
+        prepared: &'a Prepared,
+        config: &Config,
+    ) -> Result<Self> {
+        let observer = Observer::new(model, prepared, config)?;
+        let dec = decimator(config)?;
+        let f = dec.factor();
+        let overlap = if f == 1 {
+            0
+        } else {
+            dec.settling(SETTLING_TOLERANCE).div_ceil(f) * f
+        };
+        let by_memory = BLOCK_BYTES / (8 * observer.channels().max(1));
+        let block = BLOCK.max(by_memory).max(4 * overlap).div_ceil(f) * f;
+        let n = prepared.samples();
+        let block = if n <= block + block / 2 {
+            n.max(1)
+        } else {
+            block
+        };
+        let rest = match &config.processing.rest_velocity {
+            Some(t) => Some(t.values(model.dof(), "processing.rest_velocity")?),
+            None => None,
+        };
+        Ok(Self {
+            observer,
+            dec,
+            overlap,
+            block,
+            rest,
+        })
+    }
+
+    /// Parameter names (base parameters, then extra columns).
+    pub(crate) fn names(&self) -> &[String] {
+        &self.observer.names
+    }
+
+    /// The total decimation factor.
+    pub(crate) fn factor(&self) -> usize {
+        self.dec.factor()
+    }
+
+    /// The blocks of processed samples, in record order.
+    fn blocks(&self) -> Vec<Range<usize>> {
+        let n = self.observer.signals.samples();
+        (0..n.div_ceil(self.block))
+            .map(|i| i * self.block..((i + 1) * self.block).min(n))
+            .collect()
+    }
+
+    /// Calls `fold` with each block's equations in record order (each block built in
+    /// parallel); the first error stops it.
+    pub(crate) fn run(&self, mut fold: impl FnMut(Equations) -> Result<()>) -> Result<()> {
+        for b in self.blocks() {
+            fold(
+                self.observer
+                    .window(&self.dec, self.overlap, self.rest.as_deref(), b)?,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Measured and predicted torque per joint with `values` (the decimated sample time
+    /// `dt`, times from the record's first sample used), in the dense [`Prediction`]'s
+    /// order: joint by joint, samples in order; with the decimated samples.
+    fn prediction(&self, values: &[f64], dt: f64) -> Result<(Prediction, Vec<Vec<usize>>)> {
+        let dof = self.observer.model.dof();
+        let mut measured = vec![Vec::new(); dof];
+        let mut predicted = vec![Vec::new(); dof];
+        let mut samples = vec![Vec::new(); dof];
+        for b in self.blocks() {
+            let part = self.observer.window_prediction(
+                &self.dec,
+                self.overlap,
+                self.rest.as_deref(),
+                b,
+                values,
+            )?;
+            for (j, k, y, p) in part {
+                measured[j].push(y);
+                predicted[j].push(p);
+                samples[j].push(k);
+            }
+        }
+        let time = samples
+            .iter()
+            .map(|s| s.iter().map(|&k| k as f64 * dt).collect())
+            .collect();
+        Ok((
+            Prediction {
+                measured,
+                predicted,
+                time,
+                unfiltered: None,
+                used: None,
+            },
+            samples,
+        ))
+    }
+}
+
+/// Whether [`identify`](crate::pipeline::identify) streams: OLS or WLS without known
+/// parameters (the other methods and the known-parameter reduction take the dense
+/// observation).
+pub(crate) fn streams(config: &Config) -> bool {
+    matches!(config.estimation.method, Method::Ols | Method::Wls)
+        && config.estimation.known.is_none()
+}
+
+/// An error of the observation with its processed sample placed at its data row.
+fn located(e: Error, config: &Config, data: &Dataset, kept: &Range<usize>) -> Error {
+    match e {
+        Error::Estimate(EstimateError::NonFiniteObservation {
+            sample: Some(k),
+            joint,
+            parameter,
+            value,
+            ..
+        }) => Error::Estimate(EstimateError::NonFiniteObservation {
+            location: data.location(kept.start + k),
+            sample: Some(kept.start + k),
+            joint,
+            parameter,
+            value,
+        }),
+        e => config.locate(e),
+    }
+}
+
+/// The prediction with the unfiltered torque (as `identify::with_unfiltered`), its
+/// check and the rows used.
+fn finish_prediction(
+    mut prediction: Prediction,
+    samples: &[Vec<usize>],
+    rows: &PreparedRows,
+    factor: usize,
+    used: &UsedRows,
+    what: &str,
+) -> Result<Prediction> {
+    let raw = match &rows.unfiltered_tau {
+        Some(raw) => Some(raw),
+        None if factor > 1 => Some(&rows.prepared.tau),
+        None => None,
+    };
+    if let Some(raw) = raw {
+        prediction.unfiltered = Some(
+            samples
+                .iter()
+                .enumerate()
+                .map(|(j, s)| s.iter().map(|&k| raw[j][k * factor]).collect())
+                .collect(),
+        );
+    }
+    prediction.check(&format!("{what} ({used})"))?;
+    prediction.used = Some(used.clone());
+    Ok(prediction)
+}
+
+/// [`identify`](crate::pipeline::identify) for OLS and WLS, streaming: the same result
+/// as the dense path to rounding.
+pub(crate) fn identify_streaming(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+    rows: &PreparedRows,
+) -> Result<Identification> {
+    let kept = &rows.kept;
+    let at = |e: Error| located(e, config, data, kept);
+    let stream = Stream::new(model, &rows.prepared, config).map_err(at)?;
+    let names = stream.names().to_vec();
+    let (dof, cols, factor) = (model.dof(), names.len(), stream.factor());
+    let time = |k: usize| (kept.start + k * factor) as f64 * data.sample_time;
+    let inside = |k: usize| match &config.processing.pieces {
+        Some(pieces) => pieces.iter().any(|[a, b]| (*a..=*b).contains(&time(k))),
+        None => true,
+    };
+    let mut ls = StreamingLeastSquares::new(names.clone(), dof).map_err(at)?;
+    let mut dominance = Dominance::new(cols);
+    stream
+        .run(|eq| {
+            for i in 0..eq.y.len() {
+                dominance.push(eq.row(i), eq.sample[i]);
+            }
+            if config.processing.pieces.is_none() {
+                return ls.push_rows(&eq.joint, &eq.w, &eq.y);
+            }
+            let keep: Vec<usize> = (0..eq.y.len()).filter(|&i| inside(eq.sample[i])).collect();
+            let joint: Vec<usize> = keep.iter().map(|&i| eq.joint[i]).collect();
+            let w: Vec<f64> = keep
+                .iter()
+                .flat_map(|&i| eq.row(i).iter().copied())
+                .collect();
+            let y: Vec<f64> = keep.iter().map(|&i| eq.y[i]).collect();
+            ls.push_rows(&joint, &w, &y)
+        })
+        .map_err(at)?;
+    if config.processing.pieces.is_some() && ls.rows() < cols {
+        return Err(config.key_error(
+            "processing.pieces",
+            format!(
+                "the pieces hold {} equations of the estimation range, fewer than the {} \
+                 parameters; check that they are in seconds from the record's first sample \
+                 and inside processing.range",
+                ls.rows(),
+                cols
+            ),
+        ));
+    }
+    let location = |k: usize| data.location(kept.start + k * factor);
+    let dominated = dominance.dominated();
+    let tolerance = config.estimation.rank_tolerance;
+    let result = match config.estimation.method {
+        Method::Wls => ls.wls(tolerance),
+        _ => ls.ols(tolerance),
+    };
+    let mut estimate = result.map_err(|e| config.locate(e)).map_err(|e| match e {
+        Error::Estimate(EstimateError::RankDeficient { ref unexcited, .. }) => {
+            match dominated
+                .iter()
+                .find(|(c, _, _)| unexcited.contains(&names[*c]))
+            {
+                Some(&(c, k, share)) => Error::Estimate(EstimateError::Outlier {
+                    location: location(k),
+                    parameter: names[c].clone(),
+                    share,
+                }),
+                None => e,
+            }
+        }
+        e => e,
+    })?;
+    for &(c, k, share) in &dominated {
+        estimate.warnings.push(QualityWarning::Outlier {
+            parameter: names[c].clone(),
+            location: location(k),
+            share,
+        });
+    }
+    let dt = rows.prepared.sample_time * factor as f64;
+    let (prediction, samples) = stream.prediction(&estimate.values, dt).map_err(at)?;
+    let prediction = prediction.starting_at(kept.start as f64 * data.sample_time);
+    let used = UsedRows::of(data, kept.clone());
+    let prediction = finish_prediction(
+        prediction,
+        &samples,
+        rows,
+        factor,
+        &used,
+        "the estimation data",
+    )?;
+    Ok(Identification {
+        robot: model.name().to_string(),
+        fit: prediction.fit(),
+        prediction,
+        estimate,
+        warnings: data.warnings.clone(),
+        used,
+        cutoff: rows.auto_cutoff.clone(),
+    })
+}
+
+/// [`validate`](crate::pipeline::validate), streaming.
+pub(crate) fn validate_streaming(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+    rows: &PreparedRows,
+    values: &[f64],
+) -> Result<Prediction> {
+    let kept = &rows.kept;
+    let stream =
+        Stream::new(model, &rows.prepared, config).map_err(|e| located(e, config, data, kept))?;
+    let names = stream.names();
+    if values.len() != names.len() {
+        return Err(Error::DimensionMismatch {
+            what: "parameter values".into(),
+            expected: names.len(),
+            found: values.len(),
+        });
+    }
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(Error::setting(
+            "validate",
+            "values",
+            format!(
+                "the value of `{}` is {}; give finite identified values",
+                names[i], values[i]
+            ),
+        ));
+    }
+    let factor = stream.factor();
+    let dt = rows.prepared.sample_time * factor as f64;
+    let (prediction, samples) = stream
+        .prediction(values, dt)
+        .map_err(|e| located(e, config, data, kept))?;
+    let prediction = prediction.starting_at(kept.start as f64 * data.sample_time);
+    let used = UsedRows::of(data, kept.clone());
+    finish_prediction(
+        prediction,
+        &samples,
+        rows,
+        factor,
+        &used,
+        "the validation data",
+    )
+}
+
+/// The stacked runs' estimate and prediction (as [`stack`](crate::pipeline::stack) then
+/// [`estimate`](crate::pipeline::estimate) and [`Prediction::new`] give them), streaming:
+/// every run's equations go into one accumulator, joint by joint; in the prediction, joint
+/// j holds every run's equations in turn, each run's samples after the previous run's.
+pub(crate) fn stacked_streaming(
+    model: &(dyn Model + Sync),
+    runs: &[Dataset],
+    config: &Config,
+) -> Result<(Estimate, Prediction)> {
+    let prepared = runs
+        .iter()
+        .map(|d| checked_prepare(model, d, config, Rows::Estimation))
+        .collect::<Result<Vec<_>>>()?;
+    let streams = prepared
+        .iter()
+        .zip(runs)
+        .map(|(r, d)| {
+            Stream::new(model, &r.prepared, config).map_err(|e| located(e, config, d, &r.kept))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let Some(first) = streams.first() else {
+        return Err(Error::TooFewSamples {
+            context: "the runs to stack".into(),
+            found: 0,
+            required: 1,
+            hint: "give at least one run",
+        });
+    };
+    let dof = model.dof();
+    let mut ls = StreamingLeastSquares::new(first.names().to_vec(), dof)?;
+    for ((s, r), d) in streams.iter().zip(&prepared).zip(runs) {
+        s.run(|eq| ls.push_rows(&eq.joint, &eq.w, &eq.y))
+            .map_err(|e| located(e, config, d, &r.kept))?;
+    }
+    let tolerance = config.estimation.rank_tolerance;
+    let estimate = match config.estimation.method {
+        Method::Wls => ls.wls(tolerance),
+        _ => ls.ols(tolerance),
+    }
+    .map_err(|e| config.locate(e))?;
+    let dt = prepared[0].prepared.sample_time * first.factor() as f64;
+    let mut stacked = Prediction {
+        measured: vec![Vec::new(); dof],
+        predicted: vec![Vec::new(); dof],
+        time: vec![Vec::new(); dof],
+        unfiltered: None,
+        used: None,
+    };
+    let mut offset = 0;
+    for ((s, r), d) in streams.iter().zip(&prepared).zip(runs) {
+        let (p, samples) = s
+            .prediction(&estimate.values, dt)
+            .map_err(|e| located(e, config, d, &r.kept))?;
+        for (j, s) in samples.iter().enumerate() {
+            stacked.measured[j].extend(&p.measured[j]);
+            stacked.predicted[j].extend(&p.predicted[j]);
+            stacked.time[j].extend(s.iter().map(|&k| (k + offset) as f64 * dt));
+        }
+        offset += samples.iter().flatten().max().map_or(0, |m| m + 1);
+    }
+    stacked.check("the stacked runs")?;
+    Ok((estimate, stacked))
+}

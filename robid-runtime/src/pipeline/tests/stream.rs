@@ -1,0 +1,234 @@
+//! The streaming identification against the dense path (the whole observation matrix) on
+//! the synthetic model: the same equations, estimates, statistics, fit and validation to
+//! 1e-10.
+
+use super::synthetic::{DOF, Synthetic};
+use super::{config, dataset_with_noise};
+use crate::data::{Config, Method};
+use crate::estimate::Estimate;
+use crate::pipeline::identify::{identify_dense_of, validate_dense};
+use crate::pipeline::prepare::{Rows, prepare_rows};
+use crate::pipeline::stream::Stream;
+use crate::pipeline::{Identification, identify, observe, validate};
+use crate::validate::{Fit, Prediction};
+
+/// |a - b| <= tol max(|a|, |b|, floor).
+fn close(a: f64, b: f64, tol: f64, floor: f64) -> bool {
+    (a - b).abs() <= tol * a.abs().max(b.abs()).max(floor)
+}
+
+fn same_list(what: &str, a: &[f64], b: &[f64], tol: f64, floor: f64) {
+    assert_eq!(a.len(), b.len(), "{what}");
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        assert!(close(*x, *y, tol, floor), "{what} {i}: {x} vs {y}");
+    }
+}
+
+fn same_estimate(s: &Estimate, d: &Estimate) {
+    assert_eq!((&s.names, s.rows, s.method), (&d.names, d.rows, d.method));
+    for (i, (v, w)) in s.values.iter().zip(&d.values).enumerate() {
+        assert!(close(*v, *w, 1e-10, d.std[i]), "{}: {v} vs {w}", s.names[i]);
+    }
+    same_list("std", &s.std, &d.std, 1e-10, 0.0);
+    same_list("sigma2", &[s.sigma2], &[d.sigma2], 1e-10, 0.0);
+    same_list(
+        "cond",
+        &[s.condition_number],
+        &[d.condition_number],
+        1e-10,
+        0.0,
+    );
+    same_list("bound", &[s.error_bound], &[d.error_bound], 1e-10, 0.0);
+    same_list("rms", &s.residual_rms, &d.residual_rms, 1e-10, 0.0);
+    match (&s.weights, &d.weights) {
+        (Some(a), Some(b)) => same_list("weights", a, b, 1e-10, 0.0),
+        (a, b) => assert_eq!(a, b),
+    }
+    let kinds = |e: &Estimate| e.warnings.iter().map(|w| w.kind()).collect::<Vec<_>>();
+    assert_eq!(kinds(s), kinds(d));
+}
+
+fn same_fit(s: &Fit, d: &Fit) {
+    same_list(
+        "relative error",
+        &[s.relative_error],
+        &[d.relative_error],
+        1e-10,
+        0.0,
+    );
+    same_list(
+        "rms per joint",
+        &s.rms_per_joint,
+        &d.rms_per_joint,
+        1e-10,
+        0.0,
+    );
+    same_list(
+        "nmse",
+        &[s.nmse, s.nmse_eq22],
+        &[d.nmse, d.nmse_eq22],
+        1e-10,
+        0.0,
+    );
+}
+
+fn same_prediction(s: &Prediction, d: &Prediction) {
+    let scale = d
+        .measured
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    for j in 0..d.measured.len() {
+        same_list("measured", &s.measured[j], &d.measured[j], 1e-10, scale);
+        same_list("predicted", &s.predicted[j], &d.predicted[j], 1e-10, scale);
+        assert_eq!(s.time[j], d.time[j]);
+    }
+    match (&s.unfiltered, &d.unfiltered) {
+        (Some(a), Some(b)) => assert_eq!(a, b),
+        (a, b) => assert_eq!(a.is_some(), b.is_some()),
+    }
+    assert_eq!(s.used, d.used);
+    same_fit(&s.fit(), &d.fit());
+}
+
+fn same_identification(s: &Identification, d: &Identification) {
+    same_estimate(&s.estimate, &d.estimate);
+    same_fit(&s.fit, &d.fit);
+    same_prediction(&s.prediction, &d.prediction);
+    assert_eq!(s.used, d.used);
+}
+
+/// 60,000 samples, joints 4 to 6 noisier: several blocks of the stream.
+fn data() -> crate::data::Dataset {
+    dataset_with_noise(60_000, 1000.0, [0.05, 0.05, 0.05, 1.0, 1.0, 1.0])
+}
+
+fn with(extra: &str, method: Method) -> Config {
+    let text = extra.to_string();
+    let mut c = if text.contains("decimation") {
+        let base = super::synthetic::CONFIG.replace("decimation = 10\n", "");
+        Config::from_toml_str(
+            &base.replace("[processing]\n", &format!("[processing]\n{text}\n")),
+            std::path::Path::new("synthetic.toml"),
+        )
+        .unwrap()
+    } else {
+        config(extra)
+    };
+    c.estimation.method = method;
+    c
+}
+
+/// The blocks' equations are the dense observation's (joint-major there, sample-major in
+/// the stream), to 1e-12 of the column's magnitude: with one decimation stage, two, and
+/// none (no overlap).
+#[test]
+fn the_blocks_hold_the_dense_equations() {
+    let data = data();
+    let model = Synthetic::default();
+    for decimation in ["decimation = 10", "decimation = [10, 2]", "decimation = 1"] {
+        let config = with(decimation, Method::Ols);
+        let rows = prepare_rows(&data, &config, Rows::Estimation).unwrap();
+        let dense = observe(&model, &rows.prepared, &config).unwrap();
+        let stream = Stream::new(&model, &rows.prepared, &config).unwrap();
+        let mut eqs: Vec<(usize, usize, Vec<f64>, f64)> = Vec::new();
+        let mut blocks = 0;
+        stream
+            .run(|eq| {
+                blocks += 1;
+                eqs.extend(
+                    (0..eq.y.len())
+                        .map(|i| (eq.joint[i], eq.sample[i], eq.row(i).to_vec(), eq.y[i])),
+                );
+                Ok(())
+            })
+            .unwrap();
+        assert!(blocks >= 2, "{decimation}: {blocks} blocks");
+        eqs.sort_by_key(|e| (e.0, e.1));
+        assert_eq!(eqs.len(), dense.rows(), "{decimation}");
+        let big: Vec<f64> = dense
+            .w
+            .column_iter()
+            .map(|c| c.amax())
+            .chain(std::iter::once(dense.y.amax()))
+            .collect();
+        let mut worst = 0.0f64;
+        for (r, (j, k, row, y)) in eqs.iter().enumerate() {
+            assert_eq!(dense.sample_of_row[r], *k);
+            assert!(dense.joint_rows[*j].contains(&r));
+            for (c, v) in row.iter().enumerate() {
+                worst = worst.max((v - dense.w[(r, c)]).abs() / big[c].max(1e-300));
+            }
+            worst = worst.max((y - dense.y[r]).abs() / big[big.len() - 1]);
+        }
+        eprintln!("{decimation}: {blocks} blocks, largest difference {worst:e} of the column");
+        assert!(worst < 1e-12, "{decimation}: {worst:e}");
+    }
+}
+
+/// OLS and WLS end to end (estimate, statistics, fit, prediction, validation) equal the
+/// dense path to 1e-10.
+#[test]
+fn streaming_identification_equals_the_dense_path() {
+    let data = data();
+    let (train, test) = (
+        data.slice(0, 45_000).unwrap(),
+        data.slice(45_000, 60_000).unwrap(),
+    );
+    let model = Synthetic::default();
+    for method in [Method::Ols, Method::Wls] {
+        for extra in ["decimation = 10", "decimation = [10, 2]", "decimation = 1"] {
+            let config = with(extra, method);
+            let s = identify(&model, &train, &config).unwrap();
+            let d = identify_dense_of(&model, &train, &config).unwrap();
+            same_identification(&s, &d);
+            let vs = validate(&model, &test, &config, &s.estimate.values).unwrap();
+            let vd = validate_dense(&model, &test, &config, &s.estimate.values).unwrap();
+            same_prediction(&vs, &vd);
+        }
+    }
+}
+
+/// Milella's pieces select the equations of the estimate; the prediction keeps them all.
+#[test]
+fn pieces_stream_like_the_dense_path() {
+    let data = data();
+    let model = Synthetic::default();
+    let config = with("", Method::Wls);
+    let mut pieced = config.clone();
+    pieced.processing.pieces = Some(vec![[1.0, 20.0], [31.5, 50.0]]);
+    let s = identify(&model, &data, &pieced).unwrap();
+    let d = identify_dense_of(&model, &data, &pieced).unwrap();
+    same_identification(&s, &d);
+    assert!(s.estimate.rows < identify(&model, &data, &config).unwrap().estimate.rows);
+    // too few equations in the pieces: the dense path's error
+    pieced.processing.pieces = Some(vec![[1.0, 1.05]]);
+    let (s, d) = (
+        identify(&model, &data, &pieced).unwrap_err().to_string(),
+        identify_dense_of(&model, &data, &pieced)
+            .unwrap_err()
+            .to_string(),
+    );
+    assert_eq!(s, d);
+    assert!(s.contains("processing.pieces"), "{s}");
+    let _ = DOF;
+}
+
+/// Stacked repeated acquisitions (`[runs] mode = "stacked"`): OLS and WLS on every run's
+/// equations at once, and the stacked prediction, equal the dense stacked observation's.
+#[test]
+fn stacked_runs_stream_like_the_dense_path() {
+    let data = data();
+    let runs: Vec<_> = [0, 20_000, 40_000]
+        .iter()
+        .map(|&a| data.slice(a, a + 20_000).unwrap())
+        .collect();
+    let model = Synthetic::default();
+    for method in [Method::Ols, Method::Wls] {
+        let config = with("", method);
+        let (es, ps) = crate::pipeline::stream::stacked_streaming(&model, &runs, &config).unwrap();
+        let (ed, pd) = crate::pipeline::runs::stacked_dense(&model, &runs, &config).unwrap();
+        same_estimate(&es, &ed);
+        same_prediction(&ps, &pd);
+    }
+}
