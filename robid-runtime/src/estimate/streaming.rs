@@ -152,8 +152,8 @@ impl Factor {
     }
 }
 
-/// OLS and WLS (Gautier's per-joint weights) from equations given a block at a time; see
-/// the [module documentation](self). The results equal those of
+/// OLS and WLS (Gautier's per-joint weights) from equations given a block at a time
+/// (docs/identification.md#streaming-least-squares). The results equal those of
 /// [`ols`](crate::estimate::ols) and [`wls`](crate::estimate::wls) on the stacked
 /// observation to rounding.
 ///
