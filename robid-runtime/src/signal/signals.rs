@@ -177,6 +177,15 @@ impl TryFrom<Vec<Vec<f64>>> for Signals {
 mod tests {
     use super::*;
 
+    /// `try_from` is `new`: the joints' values kept, unequal lengths refused.
+    #[test]
+    fn try_from_keeps_the_values() {
+        let s = Signals::try_from(vec![vec![1.0, 2.0], vec![3.0, 4.0]]).unwrap();
+        assert_eq!((s.dof(), s.samples()), (2, 2));
+        assert_eq!(s[1], [3.0, 4.0]);
+        assert!(Signals::try_from(vec![vec![1.0], vec![]]).is_err());
+    }
+
     #[test]
     fn keeps_lengths_equal() {
         let e = Signals::new(vec![vec![0.0; 4], vec![0.0; 4], vec![0.0; 3]]).unwrap_err();
