@@ -75,14 +75,7 @@ impl Information {
         qdd: &[f64],
     ) -> Result<(), LengthError> {
         model.base_regressor_into(q, qd, qdd, &mut self.y)?;
-        if let Some(w) = &self.weights {
-            let p = self.gram.ncols();
-            for (row, w) in self.y.chunks_mut(p).zip(w) {
-                row.iter_mut().for_each(|y| *y *= w);
-            }
-        }
-        add_rows(&mut self.gram, &self.y, model.dof());
-        self.samples += 1;
+        self.add_y(model.dof());
         Ok(())
     }
 
@@ -116,15 +109,21 @@ impl Information {
             {
                 *y = v;
             }
-            if let Some(w) = &self.weights {
-                for (row, w) in self.y.chunks_mut(p).zip(w) {
-                    row.iter_mut().for_each(|y| *y *= w);
-                }
-            }
-            add_rows(&mut self.gram, &self.y, rows);
-            self.samples += 1;
+            self.add_y(rows);
         }
         Ok(())
+    }
+
+    /// Adds the `rows` regressor rows in `y` (weighted first, when weights are set).
+    fn add_y(&mut self, rows: usize) {
+        if let Some(w) = &self.weights {
+            let p = self.gram.ncols();
+            for (row, w) in self.y.chunks_mut(p).zip(w) {
+                row.iter_mut().for_each(|y| *y *= w);
+            }
+        }
+        add_rows(&mut self.gram, &self.y, rows);
+        self.samples += 1;
     }
 
     /// Adds every `stride`-th sample of a trajectory.
