@@ -457,6 +457,18 @@ mod tests {
         let bits = |m: &DMatrix<f64>| m.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&all.gram), bits(&one.gram));
         assert_eq!(all.samples, lanes);
+        // the weights: joint j's row times weights[j], applied here by hand
+        let p = model.base_parameter_count();
+        let mut by_hand = DMatrix::zeros(p, p);
+        let mut y = vec![0.0; n * p];
+        for [q, qd, qdd] in &states {
+            model.base_regressor_into(q, qd, qdd, &mut y).unwrap();
+            for (row, w) in y.chunks_mut(p).zip(&weights) {
+                row.iter_mut().for_each(|v| *v *= w);
+            }
+            add_rows(&mut by_hand, &y, n);
+        }
+        assert_eq!(bits(&one.gram), bits(&by_hand));
         // the default run_lanes, gravity: set l's torques at l, l + lanes, ...
         let base: Vec<f64> = (0..model.base_parameter_count())
             .map(|i| 0.1 * i as f64)
