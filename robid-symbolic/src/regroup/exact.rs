@@ -118,11 +118,16 @@ pub(crate) fn monomials(atoms: &[Atom], degree: usize) -> Vec<Vec<usize>> {
         }
         out.extend(next.iter().cloned());
         previous = next;
-        if out.len() > MAX_MONOMIALS {
+        if !within_limit(out.len()) {
             break;
         }
     }
     out
+}
+
+/// Whether a fit of `monomials` monomials is within [`MAX_MONOMIALS`].
+pub(crate) fn within_limit(monomials: usize) -> bool {
+    monomials <= MAX_MONOMIALS
 }
 
 /// Samples for a fit: the atoms' values and the coefficient's value at each
@@ -149,7 +154,7 @@ pub(crate) fn fit_polynomial(
 ) -> Option<Id> {
     let basis = monomials(atoms, degree);
     let fit = fit.min(samples.values.len());
-    if basis.len() > MAX_MONOMIALS || fit < basis.len() {
+    if !within_limit(basis.len()) || fit < basis.len() {
         return None;
     }
     let value_of = |s: usize, m: &[usize]| m.iter().map(|&a| samples.atoms[s][a]).product::<f64>();

@@ -189,7 +189,7 @@ impl Derivation {
                     continue;
                 }
                 let monomials = exact::monomials(&f.atoms, degree).len();
-                if monomials > exact::MAX_MONOMIALS {
+                if !exact::within_limit(monomials) {
                     f.exhausted = true;
                 } else {
                     *need = monomials + MARGIN + CHECKS;
@@ -344,14 +344,7 @@ impl Derivation {
             let d = &cx.dependencies[f];
             let dependent = at(d.candidate);
             let on: Vec<&Vec<f64>> = fits[f].support.iter().map(|&k| at(cx.kept[k])).collect();
-            let c = rank::coefficients(&on, dependent).ok_or_else(not_finite)?;
-            // The dependency must hold here too.
-            let size = norm(dependent);
-            let remainder: Vec<f64> = (0..dependent.len())
-                .map(|r| dependent[r] - on.iter().zip(&c).map(|(col, ck)| col[r] * ck).sum::<f64>())
-                .collect();
-            let off = norm(&remainder);
-            if off > DEPENDENT * size || !off.is_finite() {
+            let Some(at) = holds(&on, dependent).ok_or_else(not_finite)? else {
                 let atom_ids: Vec<Id> = fits[f].atoms.iter().map(|a| a.id).collect();
                 let symbols: Vec<String> = self
                     .arena
@@ -366,13 +359,8 @@ impl Derivation {
                     SYMBOL_SAMPLES[0],
                     SYMBOL_SAMPLES[1]
                 )));
-            }
-            let terms = on
-                .iter()
-                .zip(&c)
-                .map(|(col, ck)| ck.abs() * norm(col) / size)
-                .collect();
-            out.push((c, terms));
+            };
+            out.push(at);
         }
         Ok(out)
     }
@@ -409,8 +397,7 @@ impl Derivation {
             point[g] = rng.uniform(range[0], range[1]);
             let at = self.coefficients_at(cx, fits, &[f], &point, rng)?;
             let value = at.first().map_or(reference, |(c, _)| c[position]);
-            let size = value.abs().max(reference.abs());
-            if (value - reference).abs() > exact::FIT_TOLERANCE * size {
+            if varies(value, reference) {
                 out.push(self.arena.symbol_name(symbol).to_owned());
             }
         }
@@ -422,6 +409,106 @@ fn not_finite() -> RegroupError {
     RegroupError::Numeric("a sampled regressor value is not finite".to_owned())
 }
 
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+/// The coefficients of `dependent` on the columns `on` (least squares) and each term's
+/// size relative to the dependent column's (`|c_k| |on_k| / |dependent|`, 0 for a zero
+/// column), when the dependency holds: its remainder within [`DEPENDENT`] of the
+/// column's size. `Some(None)`: it does not hold; `None`: a value is not finite.
+fn holds(on: &[&Vec<f64>], dependent: &[f64]) -> Option<Option<(Vec<f64>, Vec<f64>)>> {
+    let c = rank::coefficients(on, dependent)?;
+    let size = rank::norm(dependent);
+    let remainder: Vec<f64> = (0..dependent.len())
+        .map(|r| dependent[r] - on.iter().zip(&c).map(|(col, ck)| col[r] * ck).sum::<f64>())
+        .collect();
+    let off = rank::norm(&remainder);
+    if !off.is_finite() {
+        return None;
+    }
+    if off > DEPENDENT * size {
+        return Some(None);
+    }
+    let terms = on
+        .iter()
+        .zip(&c)
+        .map(|(col, ck)| {
+            if size > 0.0 {
+                ck.abs() * rank::norm(col) / size
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    Some(Some((c, terms)))
+}
+
+/// Whether a coefficient's `value` at another point differs from its `reference` by
+/// more than the fit's tolerance, relative to the larger of the two.
+fn varies(value: f64, reference: f64) -> bool {
+    let size = value.abs().max(reference.abs());
+    (value - reference).abs() > exact::FIT_TOLERANCE * size
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{holds, varies};
+
+    fn column(f: impl Fn(f64) -> f64) -> Vec<f64> {
+        (0..8).map(|r| f(r as f64 + 1.0)).collect()
+    }
+
+    /// A column in the span of others gives its coefficients and the sizes of its terms
+    /// relative to it; one that leaves a remainder beyond the threshold does not hold,
+    /// however large or small the column; a zero column holds with zero terms; a value
+    /// past the floats' range is not finite.
+    #[test]
+    fn a_dependency_holds_only_within_the_threshold() {
+        let (a, b) = (column(|x| x), column(|x| x * x));
+        let dependent: Vec<f64> = a.iter().zip(&b).map(|(x, y)| 2.0 * x - 0.5 * y).collect();
+        let (c, terms) = holds(&[&a, &b], &dependent).unwrap().unwrap();
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        assert!(
+            (c[0] - 2.0).abs() < 1e-12 && (c[1] + 0.5).abs() < 1e-12,
+            "{c:?}"
+        );
+        for (t, expected) in terms.iter().zip([
+            2.0 * norm(&a) / norm(&dependent),
+            0.5 * norm(&b) / norm(&dependent),
+        ]) {
+            assert!((t - expected).abs() < 1e-12 * expected, "{terms:?}");
+        }
+        // a remainder of 1e-7 of the column's size, at sizes 1e-3 and 1e3: not a dependency
+        let wiggle = column(|x| (3.0 * x).sin());
+        for scale in [1e-3, 1e3] {
+            let off: Vec<f64> = a
+                .iter()
+                .zip(&wiggle)
+                .map(|(x, w)| x + 1e-7 * 5.0 * w)
+                .collect();
+            let scaled: Vec<f64> = off.iter().map(|v| v * scale).collect();
+            assert_eq!(holds(&[&a], &scaled), Some(None), "scale {scale}");
+            // and 1e-10 of it holds
+            let near: Vec<f64> = a
+                .iter()
+                .zip(&wiggle)
+                .map(|(x, w)| scale * (x + 1e-10 * w))
+                .collect();
+            assert!(holds(&[&a], &near).unwrap().is_some(), "scale {scale}");
+        }
+        let zero = vec![0.0; a.len()];
+        assert_eq!(holds(&[&a], &zero), Some(Some((vec![0.0], vec![0.0]))));
+        let huge: Vec<f64> = a.iter().map(|x| x * 1e300).collect();
+        assert_eq!(holds(&[&a], &huge), None);
+    }
+
+    /// A coefficient varies when it moves by more than the fit's tolerance relative to
+    /// the larger value, at any magnitude; equal values, zeros included, do not.
+    #[test]
+    fn a_coefficient_varies_beyond_the_tolerance() {
+        for size in [1e-6, 1.0, 1e6] {
+            assert!(varies(size * (1.0 + 1e-7), size), "{size}");
+            assert!(!varies(size * (1.0 + 1e-9), size), "{size}");
+            assert!(!varies(size, size));
+        }
+        assert!(!varies(0.0, 0.0));
+        assert!(varies(1e-300, 0.0));
+    }
 }

@@ -129,7 +129,8 @@ pub(crate) fn coefficients(kept: &[&Vec<f64>], column: &[f64]) -> Option<Vec<f64
     least_squares(&a, column)
 }
 
-fn norm(v: &[f64]) -> f64 {
+/// The Euclidean norm.
+pub(crate) fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
