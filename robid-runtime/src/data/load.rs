@@ -188,7 +188,13 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
                     ),
                 ));
             }
-            blocks[role] = Some(columns[start..start + dof].to_vec());
+            // moved, not copied: a long record is held once
+            blocks[role] = Some(
+                columns[start..start + dof]
+                    .iter_mut()
+                    .map(std::mem::take)
+                    .collect(),
+            );
         }
     }
 
@@ -269,10 +275,12 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let angle = |x: Vec<Vec<f64>>| {
         Signals::new(match config.units.angle {
             AngleUnit::Rad => x,
-            AngleUnit::Deg => x
-                .into_iter()
-                .map(|v| v.into_iter().map(f64::to_radians).collect())
-                .collect(),
+            AngleUnit::Deg => {
+                let mut x = x;
+                x.iter_mut()
+                    .for_each(|v| v.iter_mut().for_each(|a| *a = a.to_radians()));
+                x
+            }
         })
     };
     let mut tau = tau;
@@ -288,18 +296,18 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let mut data = Dataset::new_at(
         name,
         sample_time,
-        chain.joint_positions(&angle(q)?),
-        chain.joint_torques(&Signals::new(tau)?),
+        chain.joint_positions(angle(q)?),
+        chain.joint_torques(Signals::new(tau)?),
         Some(origin),
     )?;
     if let Some(v) = qd {
-        data = data.with_velocities(chain.joint_positions(&angle(v)?))?;
+        data = data.with_velocities(chain.joint_positions(angle(v)?))?;
     }
     if let Some(a) = qdd {
-        data = data.with_accelerations(chain.joint_positions(&angle(a)?))?;
+        data = data.with_accelerations(chain.joint_positions(angle(a)?))?;
     }
     if let Some(m) = motor {
-        data = data.with_motor_positions(chain.reflected_motor_positions(&angle(m)?))?;
+        data = data.with_motor_positions(chain.reflected_motor_positions(angle(m)?))?;
     }
     // temperatures and joint torques are used as read: deg C and link-side N m
     if let Some(t) = temperature {

@@ -26,7 +26,9 @@ pub(crate) use load::check_joints;
 pub use load::{load, load_config_files, load_from_config_file, load_runs};
 pub use parameters::{INERTIA_TOLERANCE, PARAMETER_LIMIT, ParameterFile, ParameterTable};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};
-pub use table::{ColumnMapping, Table, read_columns, read_columns_from, read_header};
+pub use table::{
+    ColumnMapping, Table, WINDOW, for_each_window, read_columns, read_columns_from, read_header,
+};
 pub use time::{
     IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,
 };

@@ -3,10 +3,14 @@
 //! One reader for every file, `csv_core` (the parser of the `csv` crate, driven over the
 //! text in memory): fields separated by `,`, optionally quoted
 //! with `"`, surrounding spaces trimmed, lines that start with `#` are comments, empty lines
-//! are skipped, `\n` or `\r\n` line ends, and a UTF-8 byte-order mark is ignored. A file
-//! without quote characters is cut at line ends into blocks that the same reader parses in
-//! parallel (a quoted field may hold a line end, so a file with quotes is read in one
-//! block); both give the same table and the same errors.
+//! are skipped, `\n` or `\r\n` line ends, and a UTF-8 byte-order mark is ignored.
+//!
+//! The text is read in windows of [`WINDOW`] bytes cut at a line end, so that a long record
+//! is never held as text beside its values ([`for_each_window`] hands each window's rows on
+//! as they are parsed). A window without quote characters is cut at line ends into blocks
+//! that the same reader parses in parallel; from the first window with a quote on, the rest
+//! of the file is parsed in one block (a quoted field may hold a line end). Every way gives
+//! the same table and the same errors.
 //!
 //! Limits ([`crate::limits`]): the file (after decompression) at most
 //! [`MAX_FILE_BYTES`](crate::limits::MAX_FILE_BYTES), its header at most
@@ -118,13 +122,14 @@ impl ColumnMapping {
 /// Reads the columns `names` from a CSV file. A file whose first bytes are the gzip
 /// magic number is decompressed. See the module documentation for the format.
 pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
-    let io = |source| {
-        Error::Data(DataError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
-    };
-    let file = std::fs::File::open(path).map_err(io)?;
+    let file = open(path)?;
+    let size = file.metadata().map_or(0, |m| m.len() as usize);
+    collect(file, path, names, size)
+}
+
+/// Opens a CSV file, refusing one larger than [`MAX_FILE_BYTES`].
+fn open(path: &Path) -> Result<std::fs::File> {
+    let file = std::fs::File::open(path).map_err(|source| io(path, source))?;
     let size = file.metadata().map_or(0, |m| m.len());
     check_size(
         || format!("{}: file size in bytes", path.display()),
@@ -132,8 +137,14 @@ pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
         MAX_FILE_BYTES as usize,
         "split the file",
     )?;
-    let bytes = read_limited(file, path, false, size as usize)?;
-    decode(bytes, path, names)
+    Ok(file)
+}
+
+fn io(path: &Path, source: std::io::Error) -> Error {
+    Error::Data(DataError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// The column names of a CSV file (gzip-compressed or not): its first line that is not a
@@ -165,55 +176,268 @@ pub fn read_header(path: &Path) -> Result<Vec<String>> {
 /// Reads the columns `names` from any reader (gzip-compressed or not); `path` is used
 /// in messages.
 pub fn read_columns_from(reader: impl Read, path: &Path, names: &[String]) -> Result<Table> {
-    let bytes = read_limited(reader, path, false, 0)?;
-    decode(bytes, path, names)
+    collect(reader, path, names, 0)
 }
 
-/// Decompresses gzip (recognised by its magic number), then parses.
-fn decode(bytes: Vec<u8>, path: &Path, names: &[String]) -> Result<Table> {
-    if bytes.starts_with(&[0x1f, 0x8b]) {
-        let hint = bytes.len().saturating_mul(4);
-        let text = read_limited(MultiGzDecoder::new(bytes.as_slice()), path, true, hint)?;
-        drop(bytes);
-        parse(text, path, names)
+/// The windows of [`for_each_window`] gathered into one table (`size`: the file's size
+/// when known, to allocate the columns once).
+fn collect(reader: impl Read, path: &Path, names: &[String], size: usize) -> Result<Table> {
+    let mut table = Table {
+        path: path.to_path_buf(),
+        columns: vec![Vec::new(); names.len()],
+        lines: Vec::new(),
+    };
+    let mut first = true;
+    for_each_window(reader, path, names, WINDOW, |part, read| {
+        if std::mem::take(&mut first) && size > read && read > 0 {
+            // the whole file at the first window's bytes per row, and a little more
+            let rows = part.rows() as f64 * (size as f64 / read as f64) * 1.02;
+            let rows = (rows as usize).min(MAX_ROWS);
+            table.lines.reserve(rows);
+            table.columns.iter_mut().for_each(|c| c.reserve(rows));
+        }
+        table.lines.extend(&part.lines);
+        for (c, v) in table.columns.iter_mut().zip(part.columns) {
+            c.extend(v);
+        }
+        Ok(())
+    })?;
+    Ok(table)
+}
+
+/// Bytes of text read and parsed at a time.
+pub const WINDOW: usize = 16 << 20;
+
+/// Reads the columns `names` window by window: `each` gets the rows of each window of
+/// about `window` bytes of text (whole lines, in order, lines numbered in the file) and
+/// the bytes of text read up to that window's end. The header must come first; the first
+/// error (of the text or of `each`) stops the reading. A gzip stream (recognised by its
+/// magic number) is decompressed as it is read.
+pub fn for_each_window(
+    reader: impl Read,
+    path: &Path,
+    names: &[String],
+    window: usize,
+    mut each: impl FnMut(Table, usize) -> Result<()>,
+) -> Result<()> {
+    use std::io::BufRead as _;
+    let mut input = std::io::BufReader::new(reader);
+    let gzip = input
+        .fill_buf()
+        .map_err(|source| io(path, source))?
+        .starts_with(&[0x1f, 0x8b]);
+    let mut source: Box<dyn Read> = if gzip {
+        Box::new(MultiGzDecoder::new(input))
     } else {
-        parse(bytes, path, names)
+        Box::new(input)
+    };
+    let mut text = Text {
+        bytes: Vec::new(),
+        read: 0,
+        end: false,
+        gzip,
+        path,
+    };
+    let mut window = window.max(1);
+    let mut header: Option<Header> = None;
+    let mut quoted = false;
+    let rows = AtomicUsize::new(0);
+    loop {
+        text.fill(&mut source, window)?;
+        if header.is_none() {
+            match Header::read(&text.bytes, text.end, path, names)? {
+                Some(h) => {
+                    text.bytes.drain(..h.body_start);
+                    header = Some(h);
+                }
+                // the header line goes past the window: read more
+                None => {
+                    window *= 2;
+                    continue;
+                }
+            }
+        }
+        let Some(h) = header.as_mut() else {
+            continue;
+        };
+        quoted = quoted || text.bytes.contains(&b'"');
+        if quoted {
+            text.fill(&mut source, usize::MAX)?;
+        }
+        let cut = if text.end {
+            text.bytes.len()
+        } else {
+            match text.bytes.iter().rposition(|&b| b == b'\n') {
+                Some(i) => i + 1,
+                // one line longer than the window: read more
+                None => {
+                    window *= 2;
+                    continue;
+                }
+            }
+        };
+        let body = &text.bytes[..cut];
+        let cuts = if quoted {
+            vec![0, body.len()]
+        } else {
+            cuts(body)
+        };
+        let parts: Vec<Part> = cuts
+            .par_windows(2)
+            .map(|w| block(body, w[0], w[1], &h.want, h.fields, &rows))
+            .collect();
+        let total: usize = parts.iter().map(|p| p.lines.len()).sum();
+        let mut table = Table {
+            path: path.to_path_buf(),
+            columns: (0..names.len())
+                .map(|_| Vec::with_capacity(total))
+                .collect(),
+            lines: Vec::with_capacity(total),
+        };
+        for part in parts {
+            if let Some(e) = part.error {
+                return Err(e.locate(path, names, h.base));
+            }
+            for (c, v) in table.columns.iter_mut().zip(part.columns) {
+                c.extend(v);
+            }
+            table.lines.extend(part.lines.iter().map(|l| l + h.base));
+            h.base += part.newlines;
+        }
+        check_size(
+            || format!("{}: data rows", path.display()),
+            rows.load(Ordering::Relaxed) as f64,
+            MAX_ROWS,
+            "split the file",
+        )?;
+        let read = text.read - (text.bytes.len() - cut);
+        text.bytes.drain(..cut);
+        each(table, read)?;
+        if text.end && text.bytes.is_empty() {
+            return Ok(());
+        }
     }
 }
 
-/// Reads everything, at most [`MAX_FILE_BYTES`] (`hint`: the expected size, to allocate
-/// once); a decoding error is a corrupt file.
-fn read_limited(reader: impl Read, path: &Path, decoding: bool, hint: usize) -> Result<Vec<u8>> {
-    let mut out = Vec::with_capacity(hint.min(MAX_FILE_BYTES as usize) + 1);
-    reader
-        .take(MAX_FILE_BYTES + 1)
-        .read_to_end(&mut out)
-        .map_err(|source| {
-            if decoding {
-                Error::Data(DataError::Corrupt {
-                    path: path.to_path_buf(),
-                    reason: format!("gzip: {source}"),
-                })
-            } else {
-                Error::Data(DataError::Io {
-                    path: path.to_path_buf(),
-                    source,
-                })
+/// The text of a file read so far and not yet parsed.
+struct Text<'p> {
+    bytes: Vec<u8>,
+    /// Bytes of text read in all.
+    read: usize,
+    /// The end was reached.
+    end: bool,
+    gzip: bool,
+    path: &'p Path,
+}
+
+impl Text<'_> {
+    /// Reads until `bytes` holds `window` bytes or the text ends, within
+    /// [`MAX_FILE_BYTES`]; a decoding error is a corrupt file.
+    fn fill(&mut self, source: &mut dyn Read, window: usize) -> Result<()> {
+        while !self.end && self.bytes.len() < window {
+            let want = (window - self.bytes.len()).min(1 << 22);
+            let before = self.bytes.len();
+            let got = source
+                .take(want as u64)
+                .read_to_end(&mut self.bytes)
+                .map_err(|source| {
+                    if self.gzip {
+                        Error::Data(DataError::Corrupt {
+                            path: self.path.to_path_buf(),
+                            reason: format!("gzip: {source}"),
+                        })
+                    } else {
+                        io(self.path, source)
+                    }
+                })?;
+            debug_assert_eq!(got, self.bytes.len() - before);
+            if got == 0 {
+                self.end = true;
             }
-        })?;
-    check_size(
-        || {
-            format!(
-                "{}: {}size in bytes",
-                path.display(),
-                if decoding { "decompressed " } else { "" }
-            )
-        },
-        out.len() as f64,
-        MAX_FILE_BYTES as usize,
-        "split the file",
-    )?;
-    Ok(out)
+            self.read += got;
+            check_size(
+                || {
+                    format!(
+                        "{}: {}size in bytes",
+                        self.path.display(),
+                        if self.gzip { "decompressed " } else { "" }
+                    )
+                },
+                self.read as f64,
+                MAX_FILE_BYTES as usize,
+                "split the file",
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// The header of a file: where each requested column is, and where the body starts.
+struct Header {
+    /// Field index of each requested column.
+    want: Vec<usize>,
+    /// Fields per row.
+    fields: usize,
+    /// Bytes of the text before the body (byte-order mark, comments, header).
+    body_start: usize,
+    /// The 1-based line of the next window's first line.
+    base: u64,
+}
+
+impl Header {
+    /// The header at the start of `text` (`None`: its line is not complete yet and more
+    /// text follows).
+    fn read(text: &[u8], end: bool, path: &Path, names: &[String]) -> Result<Option<Header>> {
+        let bom = if text.starts_with(b"\xEF\xBB\xBF") {
+            3
+        } else {
+            0
+        };
+        let text = &text[bom..];
+        let mut records = Records::new(text);
+        let Some(header_line) = records.next_record() else {
+            if !end {
+                return Ok(None);
+            }
+            return Err(Error::TooFewSamples {
+                context: path.display().to_string(),
+                found: 0,
+                required: 2,
+                hint: "the file is empty; it needs a header line and data rows",
+            });
+        };
+        // the body starts on the line after the header's
+        let after = records.consumed;
+        let body_start = if after > 0 && text.get(after - 1) == Some(&b'\n') {
+            Some(after)
+        } else {
+            text[after.min(text.len())..]
+                .iter()
+                .position(|&b| b == b'\n')
+                .map(|i| after + i + 1)
+        };
+        let body_start = match body_start {
+            Some(b) => b,
+            None if end => text.len(),
+            None => return Ok(None),
+        };
+        check_size(
+            || format!("{}: fields in the header", path.display()),
+            records.len() as f64,
+            MAX_COLUMNS,
+            "keep only the columns needed in the file",
+        )?;
+        let header: Vec<String> = (0..records.len())
+            .map(|i| String::from_utf8_lossy(records.field(i)).into_owned())
+            .collect();
+        let want = wanted(&header, names, path, text, header_line)?;
+        Ok(Some(Header {
+            want,
+            fields: header.len(),
+            body_start: bom + body_start,
+            base: header_line + 1,
+        }))
+    }
 }
 
 /// Bytes per parallel block of an unquoted body.
@@ -340,82 +564,6 @@ fn trim(mut b: &[u8]) -> &[u8] {
 /// A number field (the standard library's parser: correctly rounded).
 fn number(b: &[u8]) -> Option<f64> {
     std::str::from_utf8(b).ok()?.parse::<f64>().ok()
-}
-
-/// The parsed CSV text in memory; the text is freed once parsed, before the columns are
-/// assembled (a long record's file is not held beside its values).
-fn parse(owned: Vec<u8>, path: &Path, names: &[String]) -> Result<Table> {
-    let text = owned.as_slice();
-    let text = text.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(text);
-    let mut records = Records::new(text);
-    let Some(header_line) = records.next_record() else {
-        return Err(Error::TooFewSamples {
-            context: path.display().to_string(),
-            found: 0,
-            required: 2,
-            hint: "the file is empty; it needs a header line and data rows",
-        });
-    };
-    check_size(
-        || format!("{}: fields in the header", path.display()),
-        records.len() as f64,
-        MAX_COLUMNS,
-        "keep only the columns needed in the file",
-    )?;
-    let header: Vec<String> = (0..records.len())
-        .map(|i| String::from_utf8_lossy(records.field(i)).into_owned())
-        .collect();
-    let want = wanted(&header, names, path, text, header_line)?;
-    // the body starts on the line after the header's
-    let after = records.consumed;
-    let body_start = if after > 0 && text.get(after - 1) == Some(&b'\n') {
-        after
-    } else {
-        text[after.min(text.len())..]
-            .iter()
-            .position(|&b| b == b'\n')
-            .map_or(text.len(), |i| after + i + 1)
-    };
-    let body = &text[body_start.min(text.len())..];
-    let cuts = if text.contains(&b'"') {
-        vec![0, body.len()]
-    } else {
-        cuts(body)
-    };
-    let rows = AtomicUsize::new(0);
-    let parts: Vec<Part> = cuts
-        .par_windows(2)
-        .map(|w| block(body, w[0], w[1], &want, header.len(), &rows))
-        .collect();
-    drop(owned);
-    let total: usize = parts.iter().map(|p| p.lines.len()).sum();
-    let mut columns: Vec<Vec<f64>> = (0..names.len())
-        .map(|_| Vec::with_capacity(total))
-        .collect();
-    let mut row_lines = Vec::with_capacity(total);
-    // the 1-based line of the first line of each block
-    let mut base = header_line + 1;
-    for part in parts {
-        if let Some(e) = part.error {
-            return Err(e.locate(path, names, base));
-        }
-        for (c, v) in columns.iter_mut().zip(part.columns) {
-            c.extend(v);
-        }
-        row_lines.extend(part.lines.iter().map(|l| l + base));
-        base += part.newlines;
-    }
-    check_size(
-        || format!("{}: data rows", path.display()),
-        total as f64,
-        MAX_ROWS,
-        "split the file",
-    )?;
-    Ok(Table {
-        path: path.to_path_buf(),
-        columns,
-        lines: row_lines,
-    })
 }
 
 /// Field index of every requested name; a missing, duplicated or badly separated header
@@ -668,6 +816,31 @@ mod tests {
         let fast = read_columns_from(text.as_bytes(), Path::new("m.csv"), &cols).unwrap();
         let slow = read_columns_from(quoted.as_bytes(), Path::new("m.csv"), &cols).unwrap();
         assert!(fast.columns == slow.columns);
+        // windows of a few lines (the header longer than the first ones), and a quote
+        // that turns up in a later window, give the same rows and lines
+        let late = text.replace("# comment\n\n150000,", "# \"comment\"\n\n150000,");
+        assert_ne!(late, text);
+        for (t, window) in [(&text, 7), (&text, 1000), (&text, 65_536), (&late, 999)] {
+            let (mut table, mut calls) = (Vec::new(), 0);
+            for_each_window(
+                t.as_bytes(),
+                Path::new("m.csv"),
+                &cols,
+                window,
+                |part, _| {
+                    calls += 1;
+                    table.push(part);
+                    Ok(())
+                },
+            )
+            .unwrap();
+            assert!(calls > 10, "{calls} windows of {window} bytes");
+            let columns: Vec<Vec<f64>> = (0..2)
+                .map(|c| table.iter().flat_map(|p| p.columns[c].clone()).collect())
+                .collect();
+            let lines: Vec<u64> = table.iter().flat_map(|p| p.lines.clone()).collect();
+            assert!(columns == fast.columns && lines == fast.lines, "{window}");
+        }
         assert_eq!(fast.rows(), 200_000);
         // the true 1-based lines: 2 header lines, then 2 extra lines every 5000 records
         let line_of = |k: u64| 3 + k + 2 * (k / 5000 + 1);
@@ -675,19 +848,28 @@ mod tests {
         assert!((0..200_000usize).all(|k| slow.lines[k] == fast.lines[k] + 1));
         // an error far into the file (in a later parallel block) names its line and column
         for (t, shift) in [(&text, 0), (&quoted, 1)] {
-            let bad = format!("{t}200000,x,1\n");
-            let e =
-                read_columns_from(bad.as_bytes(), Path::new("m.csv"), &names(&["a"])).unwrap_err();
-            assert!(
-                matches!(&e, Error::Data(DataError::NotANumber { line, column, .. }) if *line == line_of(199_999) + 1 + shift && column == "a"),
-                "{e}"
-            );
-            let ragged = format!("{t}200000,1\n");
-            let e = read_columns_from(ragged.as_bytes(), Path::new("m.csv"), &cols).unwrap_err();
-            assert!(
-                matches!(e, Error::Data(DataError::Csv { line, .. }) if line == line_of(199_999) + 1 + shift),
-                "{e}"
-            );
+            for window in [WINDOW, 4096] {
+                let read = |t: &str, cols: &[String]| {
+                    let mut rows = 0;
+                    for_each_window(t.as_bytes(), Path::new("m.csv"), cols, window, |p, _| {
+                        rows += p.rows();
+                        Ok(())
+                    })
+                    .map(|()| rows)
+                };
+                let bad = format!("{t}200000,x,1\n");
+                let e = read(&bad, &names(&["a"])).unwrap_err();
+                assert!(
+                    matches!(&e, Error::Data(DataError::NotANumber { line, column, .. }) if *line == line_of(199_999) + 1 + shift && column == "a"),
+                    "{e}"
+                );
+                let ragged = format!("{t}200000,1\n");
+                let e = read(&ragged, &cols).unwrap_err();
+                assert!(
+                    matches!(e, Error::Data(DataError::Csv { line, .. }) if line == line_of(199_999) + 1 + shift),
+                    "{e}"
+                );
+            }
         }
     }
 

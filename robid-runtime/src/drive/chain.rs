@@ -192,17 +192,17 @@ impl DriveChain {
     }
 
     /// Joint positions (or velocities, accelerations) from the measured ones, per joint.
-    pub fn joint_positions(&self, measured: &Signals) -> Signals {
+    pub fn joint_positions(&self, measured: Signals) -> Signals {
         apply(&self.position_inverse, measured, None)
     }
 
     /// Motor encoder positions reflected to the link side: R_q^-1 theta_m.
-    pub fn reflected_motor_positions(&self, motor: &Signals) -> Signals {
+    pub fn reflected_motor_positions(&self, motor: Signals) -> Signals {
         apply(&self.motor_inverse, motor, None)
     }
 
     /// Joint torques from the measured torques or currents: R_tau K_r i.
-    pub fn joint_torques(&self, measured: &Signals) -> Signals {
+    pub fn joint_torques(&self, measured: Signals) -> Signals {
         apply(&self.torque_map, measured, Some(&self.constants))
     }
 
@@ -212,12 +212,27 @@ impl DriveChain {
     }
 }
 
-/// out_i = sum_j m_ij * scale_j * x_j, skipping zero entries (diagonal maps stay cheap).
-fn apply(m: &DMatrix<f64>, x: &Signals, scale: Option<&[f64]>) -> Signals {
-    let mut out = Signals::zeros(m.nrows(), x.samples());
+/// out_i = sum_j m_ij * scale_j * x_j, skipping zero entries; a diagonal map works in
+/// place (a long record is not copied), with the same values as the sum (`0 + c x`).
+fn apply(m: &DMatrix<f64>, x: Signals, scale: Option<&[f64]>) -> Signals {
+    let c = |i: usize, j: usize| m[(i, j)] * scale.map_or(1.0, |s| s[j]);
+    let n = m.nrows();
+    let diagonal =
+        n == m.ncols() && n == x.dof() && (0..n).all(|i| (0..n).all(|j| i == j || c(i, j) == 0.0));
+    if diagonal {
+        let mut x = x;
+        for (i, xi) in x.joints_mut().enumerate() {
+            let ci = c(i, i);
+            for v in xi.iter_mut() {
+                *v = if ci != 0.0 { 0.0 + ci * *v } else { 0.0 };
+            }
+        }
+        return x;
+    }
+    let mut out = Signals::zeros(n, x.samples());
     for (i, oi) in out.joints_mut().enumerate() {
         for (j, xj) in x.joints().enumerate() {
-            let c = m[(i, j)] * scale.map_or(1.0, |s| s[j]);
+            let c = c(i, j);
             if c != 0.0 {
                 for (o, v) in oi.iter_mut().zip(xj) {
                     *o += c * v;
@@ -259,14 +274,14 @@ mod tests {
     fn tx40_wrist_coupling() {
         let chain = DriveChain::new(&tx40(), 6).unwrap();
         let theta = per_joint(&[32.0, 64.0, 45.0, -96.0, 90.0, 320.0], 1);
-        let q = chain.joint_positions(&theta);
+        let q = chain.joint_positions(theta.clone());
         // q_i = theta_i / N_i for i <= 5, q6 = theta6 / N6 - q5
         let expect = [1.0, 2.0, 1.0, 2.0, 2.0, 8.0];
         for (a, e) in q.joints().zip(expect) {
             assert!((a[0] - e).abs() < 1e-12);
         }
         let tm = per_joint(&[1.0, 1.0, 1.0, 1.0, 1.0, 2.0], 1);
-        let tau = chain.joint_torques(&tm);
+        let tau = chain.joint_torques(tm);
         // tau_5 = N5 tm5 + N6 tm6 = 45 + 64
         let expect = [32.0, 32.0, 45.0, -48.0, 109.0, 64.0];
         for (a, e) in tau.joints().zip(expect) {
@@ -286,8 +301,8 @@ mod tests {
         assert_eq!(chain.dof(), 6);
         let theta = per_joint(&[32.0, 64.0, 45.0, -96.0, 90.0, 320.0], 2);
         // joint-side positions pass through; motor positions are reflected
-        assert_eq!(chain.joint_positions(&theta), theta);
-        let reflected = chain.reflected_motor_positions(&theta);
+        assert_eq!(chain.joint_positions(theta.clone()), theta);
+        let reflected = chain.reflected_motor_positions(theta.clone());
         assert_eq!(reflected.dof(), 6);
         for (a, e) in reflected.joints().zip([1.0, 2.0, 1.0, 2.0, 2.0, 8.0]) {
             assert!(
@@ -296,7 +311,7 @@ mod tests {
             );
         }
         let current = per_joint(&[1.0, 1.0, 1.0, 1.0, 1.0, 2.0], 1);
-        let tau = chain.joint_torques(&current);
+        let tau = chain.joint_torques(current);
         assert_eq!(tau.dof(), 6);
         // tau_1 = N1 * 2 * i1; tau_5 = N5 * 0.5 * i5 + N6 * i6
         let expect = [64.0, 32.0, 45.0, -48.0, 22.5 + 64.0, 64.0];

@@ -131,8 +131,8 @@ fn load(config: &Config) -> Result<Dataset, Error> {
     Ok(Dataset::new(
         "staubli_tx40",
         1.0 / rate,
-        chain.joint_positions(&q),
-        chain.joint_torques(&tau),
+        chain.joint_positions(q),
+        chain.joint_torques(tau),
     )?)
 }
 
