@@ -17,7 +17,7 @@ use crate::estimate::{
     per_axis, rls, wls,
 };
 use crate::inspect::CutoffSuggestion;
-use crate::pipeline::prepare::{PreparedRows, Rows, prepare_rows};
+use crate::pipeline::prepare::{Plan, PreparedRows, Rows, prepare_rows};
 use crate::pipeline::stream::{identify_streaming, streams, validate_streaming};
 use crate::pipeline::{Prepared, decimator, observe};
 use crate::validate::{Fit, Prediction, UsedRows};
@@ -60,6 +60,24 @@ pub(crate) fn checked_prepare(
     config: &Config,
     rows: Rows,
 ) -> Result<PreparedRows> {
+    check_data(model, data, config)?;
+    prepare_rows(data, config, rows).map_err(|e| config.locate(e))
+}
+
+/// The plan of the preparation of `data`'s signals (checked as [`checked_prepare`]
+/// checks them), for preparing them block by block.
+pub(crate) fn checked_plan(
+    model: &dyn Model,
+    data: &Dataset,
+    config: &Config,
+    rows: Rows,
+) -> Result<Plan> {
+    check_data(model, data, config)?;
+    Plan::new(data, config, rows).map_err(|e| config.locate(e))
+}
+
+/// The model's joint count against the limit, the config and the data.
+fn check_data(model: &dyn Model, data: &Dataset, config: &Config) -> Result<()> {
     check_joints(model.dof())?;
     config.check(model.dof())?;
     if data.dof() != model.dof() {
@@ -69,7 +87,7 @@ pub(crate) fn checked_prepare(
             found: data.dof(),
         }));
     }
-    prepare_rows(data, config, rows).map_err(|e| config.locate(e))
+    Ok(())
 }
 
 /// The observation of prepared signals that are the samples `kept` of `data`; a
@@ -203,10 +221,11 @@ pub fn identify(
     data: &Dataset,
     config: &Config,
 ) -> Result<Identification> {
-    let rows = checked_prepare(model, data, config, Rows::Estimation)?;
     if streams(config) {
-        return identify_streaming(model, data, config, &rows);
+        let plan = checked_plan(model, data, config, Rows::Estimation)?;
+        return identify_streaming(model, data, config, &plan);
     }
+    let rows = checked_prepare(model, data, config, Rows::Estimation)?;
     identify_dense(model, data, config, rows)
 }
 
@@ -367,8 +386,8 @@ pub fn validate(
     config: &Config,
     values: &[f64],
 ) -> Result<Prediction> {
-    let rows = checked_prepare(model, data, config, Rows::Validation)?;
-    validate_streaming(model, data, config, &rows, values)
+    let plan = checked_plan(model, data, config, Rows::Validation)?;
+    validate_streaming(model, data, config, &plan, values)
 }
 
 /// [`identify`] through the whole observation matrix whatever the method: the reference

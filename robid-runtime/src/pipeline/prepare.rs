@@ -203,179 +203,303 @@ impl Rows {
 /// [`prepare`] with the range `rows`; also returns the samples of `data` kept and the
 /// unfiltered torque.
 pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Result<PreparedRows> {
-    let p = &config.processing;
-    let dt = data.sample_time;
-    let auto_cutoff = match &p.lowpass {
-        Some(lp) if lp.cutoff == Cutoff::Auto => Some(suggest_cutoff(data)?),
-        _ => None,
-    };
-    let sos = match &p.lowpass {
-        Some(lp) => Some({
-            let cutoff = auto_cutoff
-                .as_ref()
-                .map_or(lp.cutoff.hz(), |s| Some(s.cutoff));
-            let cutoff = cutoff.unwrap_or_default();
-            butterworth_hz(lp.order, cutoff, 1.0 / dt).map_err(|e| match e {
-                Error::Setting { key, problem, .. } => Error::setting(
-                    "Config",
-                    if key == "order" {
-                        "processing.lowpass.order"
-                    } else {
-                        "processing.lowpass.cutoff"
-                    },
-                    format!(
-                        "{problem} (cutoff {} Hz, data sampled at {:.6} Hz)",
-                        cutoff,
-                        1.0 / dt
-                    ),
-                ),
-                e => e,
-            })?
-        }),
-        None => None,
-    };
-    let (pad, settle) = match &sos {
-        Some(s) => (
-            s.settling_samples(PADDING_TOLERANCE, 1 << 20),
-            s.settling_samples(SETTLING_TOLERANCE, 1 << 20),
-        ),
-        None => (0, 0),
-    };
-    let on = |s: Signal| {
-        sos.as_ref()
-            .filter(|_| p.lowpass.as_ref().is_some_and(|lp| lp.signals.contains(&s)))
-    };
-    let sg = p.differentiation.savitzky_golay()?;
-    let sg = sg.as_ref();
-    let q = filter_all(on(Signal::Q), pad, &data.q)?;
-    let (qd, qd_measured) = match (p.velocity, &data.qd) {
-        (Derivative::Auto | Derivative::Data, Some(v)) => {
-            (filter_all(on(Signal::Qd), pad, v)?, true)
-        }
-        (Derivative::Data, None) => return Err(missing("processing.velocity", "velocity")),
-        _ => (differentiate(&q, dt, sg)?, false),
-    };
-    let qdd = match (p.acceleration, &data.qdd) {
-        (Derivative::Auto | Derivative::Data, Some(a)) => filter_all(on(Signal::Qdd), pad, a)?,
-        (Derivative::Data, None) => return Err(missing("processing.acceleration", "acceleration")),
-        // a measured velocity is differentiated once, a differentiated one from q
-        _ if qd_measured => differentiate(&qd, dt, sg)?,
-        _ => differentiate_twice(&q, &qd, dt, sg)?,
-    };
-    let mut tau = filter_all(on(Signal::Tau), pad, &data.tau)?;
-    let mut unfiltered_tau = on(Signal::Tau).map(|_| data.tau.clone());
-    let mut rotor_states = None;
-    if config.drive.rotor.is_some() || config.uses_rotor_signals() {
-        let motor = data.motor.as_ref().ok_or_else(|| no_motor(config))?;
-        let theta = filter_all(on(Signal::Q), pad, motor)?;
-        let thetad = differentiate(&theta, dt, sg)?;
-        let thetadd = differentiate_twice(&theta, &thetad, dt, sg)?;
-        if let Some(rotor) = &config.drive.rotor {
-            let model = match &rotor.friction {
-                Some(file) => Some(friction_model(config, file, data.dof())?),
-                None => None,
-            };
-            for t in std::iter::once(&mut tau).chain(unfiltered_tau.as_mut()) {
-                match &model {
-                    Some(m) => rotor.compensate_nonlinear(
-                        m,
-                        t,
-                        &thetad,
-                        &thetadd,
-                        data.temperature.as_ref(),
-                    )?,
-                    None => rotor.compensate(t, &thetad, &thetadd)?,
-                }
-            }
-        }
-        let joint_torque = match &data.joint_torque {
-            Some(t) => Some(filter_all(on(Signal::Tau), pad, t)?),
-            None => None,
-        };
-        rotor_states = Some((thetad, thetadd, joint_torque));
-    }
-    // the range is cut after filtering and differentiation, so that its ends are free of
-    // filter start-up transients (a split of one record into training and test data)
-    let range = match rows {
-        Rows::Estimation => p.range,
-        Rows::Validation => p.validation_range,
-    };
-    let (lo, hi) = match range {
-        Some([a, b]) if a < b && a < data.samples() => (a, b.min(data.samples())),
-        Some([a, b]) => {
-            return Err(Error::setting(
-                "Config",
-                rows.key(),
-                format!(
-                    "[{a}, {b}] lies outside {}, which has {} samples; choose a range inside the data",
-                    data.name,
-                    data.samples()
-                ),
-            ));
-        }
-        None => (0, data.samples()),
-    };
-    // processing.trim inside the range, and at least one settling time from the record's
-    // real ends (where the filter saw no data)
-    let t = p.trim;
-    let total = data.samples();
-    let start = (lo + t).max(settle);
-    let end = hi.saturating_sub(t).min(total.saturating_sub(settle));
-    if end <= start + 1 {
-        return Err(Error::TooFewSamples {
-            context: format!(
-                "{} after trimming {t} samples at each end ({settle} at the record's ends for the low-pass to settle)",
-                data.name
-            ),
-            found: end.saturating_sub(start),
-            required: 2,
-            hint: "reduce processing.trim, raise the low-pass cutoff or use a longer record",
-        });
-    }
-    let prepared = Prepared {
-        q: q.into_range(start..end),
-        qd: qd.into_range(start..end),
-        qdd: qdd.into_range(start..end),
-        tau: tau.into_range(start..end),
-        rotor: rotor_states.map(|(thetad, thetadd, joint_torque)| RotorStates {
-            thetad: thetad.into_range(start..end),
-            thetadd: thetadd.into_range(start..end),
-            temperature: data.temperature.as_ref().map(|t| t.range(start..end)),
-            joint_torque: joint_torque.map(|t| t.into_range(start..end)),
-        }),
-        sample_time: dt,
-    };
-    let rotor = prepared.rotor.as_ref();
-    let rotor = [
-        rotor.map(|r| ("motor velocity", &r.thetad)),
-        rotor.map(|r| ("motor acceleration", &r.thetadd)),
-    ];
-    for (signal, x) in [
-        ("position", &prepared.q),
-        ("velocity", &prepared.qd),
-        ("acceleration", &prepared.qdd),
-        ("torque", &prepared.tau),
-    ]
-    .into_iter()
-    .chain(rotor.into_iter().flatten())
-    {
-        if let Some((j, k)) = x.first_non_finite() {
-            return Err(Error::NonFiniteResult {
-                what: format!(
-                    "the processed {signal} of joint {} at {}",
-                    j + 1,
-                    data.location(start + k)
-                ),
-                cause: "the low-pass filter, differentiation or rotor compensation overflowed; check [processing] (a higher cutoff, measured velocities) and the data near that row".into(),
-            });
-        }
-    }
+    let plan = Plan::new(data, config, rows)?;
+    let kept = plan.kept.clone();
+    let (prepared, unfiltered_tau) = plan.signals(data, config)?;
+    let (prepared, unfiltered_tau) = plan.cut(data, 0, prepared, unfiltered_tau, kept.clone())?;
     Ok(PreparedRows {
         prepared,
-        kept: start..end,
-        unfiltered_tau: unfiltered_tau.map(|t| t.into_range(start..end)),
-        auto_cutoff,
+        kept,
+        unfiltered_tau,
+        auto_cutoff: plan.auto_cutoff,
     })
+}
+
+/// How the signals of a data set are prepared: the low-pass, the derivatives, the rotor
+/// compensation, and the samples kept. The preparation of any block of the kept samples
+/// ([`Plan::block`]) is that of the whole record to the low-pass's settling tolerance:
+/// each block is prepared with [`Plan::margin`] more samples of the record on each side.
+pub(crate) struct Plan {
+    sos: Option<Sos>,
+    /// Samples of odd extension at each end of what is filtered.
+    pad: usize,
+    sg: Option<SavitzkyGolay>,
+    friction: Option<FrictionModel>,
+    /// The samples of the data set kept.
+    pub(crate) kept: std::ops::Range<usize>,
+    /// The cutoff chosen for `cutoff = "auto"`.
+    pub(crate) auto_cutoff: Option<CutoffSuggestion>,
+    /// Samples of the record on each side of a block prepared with it.
+    margin: usize,
+}
+
+/// Share of the low-pass's impulse response left beyond a block's margin: the block's
+/// edges change its kept samples by about this much of the signal, below the filter's own
+/// rounding (about 1e-16 of the signal), which two differentiations amplify by 1 / dt^2
+/// in the accelerations either way.
+const BLOCK_TOLERANCE: f64 = 1e-20;
+
+impl Plan {
+    /// The plan of `config`'s `[processing]` for `data` with the range `rows`; checks the
+    /// settings against the data (derivatives and motor encoders the data must have, the
+    /// range and trims).
+    pub(crate) fn new(data: &Dataset, config: &Config, rows: Rows) -> Result<Self> {
+        let p = &config.processing;
+        let dt = data.sample_time;
+        let auto_cutoff = match &p.lowpass {
+            Some(lp) if lp.cutoff == Cutoff::Auto => Some(suggest_cutoff(data)?),
+            _ => None,
+        };
+        let sos = match &p.lowpass {
+            Some(lp) => Some({
+                let cutoff = auto_cutoff
+                    .as_ref()
+                    .map_or(lp.cutoff.hz(), |s| Some(s.cutoff));
+                let cutoff = cutoff.unwrap_or_default();
+                butterworth_hz(lp.order, cutoff, 1.0 / dt).map_err(|e| match e {
+                    Error::Setting { key, problem, .. } => Error::setting(
+                        "Config",
+                        if key == "order" {
+                            "processing.lowpass.order"
+                        } else {
+                            "processing.lowpass.cutoff"
+                        },
+                        format!(
+                            "{problem} (cutoff {} Hz, data sampled at {:.6} Hz)",
+                            cutoff,
+                            1.0 / dt
+                        ),
+                    ),
+                    e => e,
+                })?
+            }),
+            None => None,
+        };
+        let (pad, settle, tail) = match &sos {
+            Some(s) => (
+                s.settling_samples(PADDING_TOLERANCE, 1 << 20),
+                s.settling_samples(SETTLING_TOLERANCE, 1 << 20),
+                s.settling_samples(BLOCK_TOLERANCE, 1 << 22),
+            ),
+            None => (0, 0, 0),
+        };
+        let sg = p.differentiation.savitzky_golay()?;
+        if p.velocity == Derivative::Data && data.qd.is_none() {
+            return Err(missing("processing.velocity", "velocity"));
+        }
+        if p.acceleration == Derivative::Data && data.qdd.is_none() {
+            return Err(missing("processing.acceleration", "acceleration"));
+        }
+        let mut friction = None;
+        if config.drive.rotor.is_some() || config.uses_rotor_signals() {
+            data.motor.as_ref().ok_or_else(|| no_motor(config))?;
+            if let Some(file) = config
+                .drive
+                .rotor
+                .as_ref()
+                .and_then(|r| r.friction.as_ref())
+            {
+                friction = Some(friction_model(config, file, data.dof())?);
+            }
+        }
+        // the range is cut after filtering and differentiation, so that its ends are free
+        // of filter start-up transients (a split of one record into training and test data)
+        let range = match rows {
+            Rows::Estimation => p.range,
+            Rows::Validation => p.validation_range,
+        };
+        let (lo, hi) = match range {
+            Some([a, b]) if a < b && a < data.samples() => (a, b.min(data.samples())),
+            Some([a, b]) => {
+                return Err(Error::setting(
+                    "Config",
+                    rows.key(),
+                    format!(
+                        "[{a}, {b}] lies outside {}, which has {} samples; choose a range inside the data",
+                        data.name,
+                        data.samples()
+                    ),
+                ));
+            }
+            None => (0, data.samples()),
+        };
+        // processing.trim inside the range, and at least one settling time from the
+        // record's real ends (where the filter saw no data)
+        let t = p.trim;
+        let total = data.samples();
+        let start = (lo + t).max(settle);
+        let end = hi.saturating_sub(t).min(total.saturating_sub(settle));
+        if end <= start + 1 {
+            return Err(Error::TooFewSamples {
+                context: format!(
+                    "{} after trimming {t} samples at each end ({settle} at the record's ends for the low-pass to settle)",
+                    data.name
+                ),
+                found: end.saturating_sub(start),
+                required: 2,
+                hint: "reduce processing.trim, raise the low-pass cutoff or use a longer record",
+            });
+        }
+        // the filter's memory, two differentiations (or a Savitzky-Golay window) after it
+        let stencil = sg.as_ref().map_or(2, |g| g.window());
+        Ok(Self {
+            sos,
+            pad,
+            sg,
+            friction,
+            kept: start..end,
+            auto_cutoff,
+            margin: tail + stencil + 1,
+        })
+    }
+
+    /// The prepared signals of the kept samples `block` (indices into [`Plan::kept`]) and
+    /// their torque before the low-pass when the low-pass filters the torque: the
+    /// samples of the whole record's preparation, to [`BLOCK_TOLERANCE`] of the signals
+    /// (the same when the block and its margins reach both ends of the record).
+    pub(crate) fn block(
+        &self,
+        data: &Dataset,
+        config: &Config,
+        block: std::ops::Range<usize>,
+    ) -> Result<(Prepared, Option<Signals>)> {
+        let (start, end) = (self.kept.start + block.start, self.kept.start + block.end);
+        let from = start.saturating_sub(self.margin);
+        let to = (end + self.margin).min(data.samples());
+        let (prepared, unfiltered) = if from == 0 && to == data.samples() {
+            self.signals(data, config)?
+        } else {
+            self.signals(&data.slice(from, to)?, config)?
+        };
+        self.cut(data, from, prepared, unfiltered, start..end)
+    }
+
+    /// The samples `keep` of `data` from signals prepared from its sample `from` on,
+    /// checked finite.
+    fn cut(
+        &self,
+        data: &Dataset,
+        from: usize,
+        prepared: Prepared,
+        unfiltered: Option<Signals>,
+        keep: std::ops::Range<usize>,
+    ) -> Result<(Prepared, Option<Signals>)> {
+        let local = keep.start - from..keep.end - from;
+        let prepared = Prepared {
+            q: prepared.q.into_range(local.clone()),
+            qd: prepared.qd.into_range(local.clone()),
+            qdd: prepared.qdd.into_range(local.clone()),
+            tau: prepared.tau.into_range(local.clone()),
+            rotor: prepared.rotor.map(|r| RotorStates {
+                thetad: r.thetad.into_range(local.clone()),
+                thetadd: r.thetadd.into_range(local.clone()),
+                temperature: r.temperature.map(|t| t.into_range(local.clone())),
+                joint_torque: r.joint_torque.map(|t| t.into_range(local.clone())),
+            }),
+            sample_time: prepared.sample_time,
+        };
+        let rotor = prepared.rotor.as_ref();
+        let rotor = [
+            rotor.map(|r| ("motor velocity", &r.thetad)),
+            rotor.map(|r| ("motor acceleration", &r.thetadd)),
+        ];
+        for (signal, x) in [
+            ("position", &prepared.q),
+            ("velocity", &prepared.qd),
+            ("acceleration", &prepared.qdd),
+            ("torque", &prepared.tau),
+        ]
+        .into_iter()
+        .chain(rotor.into_iter().flatten())
+        {
+            if let Some((j, k)) = x.first_non_finite() {
+                return Err(Error::NonFiniteResult {
+                    what: format!(
+                        "the processed {signal} of joint {} at {}",
+                        j + 1,
+                        data.location(keep.start + k)
+                    ),
+                    cause: "the low-pass filter, differentiation or rotor compensation overflowed; check [processing] (a higher cutoff, measured velocities) and the data near that row".into(),
+                });
+            }
+        }
+        Ok((prepared, unfiltered.map(|t| t.into_range(local))))
+    }
+
+    /// Every sample of `data` prepared (low-pass, derivatives, rotor compensation), and
+    /// the torque before the low-pass when the low-pass filters it.
+    fn signals(&self, data: &Dataset, config: &Config) -> Result<(Prepared, Option<Signals>)> {
+        let p = &config.processing;
+        let dt = data.sample_time;
+        let pad = self.pad;
+        let on = |s: Signal| {
+            self.sos
+                .as_ref()
+                .filter(|_| p.lowpass.as_ref().is_some_and(|lp| lp.signals.contains(&s)))
+        };
+        let sg = self.sg.as_ref();
+        let q = filter_all(on(Signal::Q), pad, &data.q)?;
+        let (qd, qd_measured) = match (p.velocity, &data.qd) {
+            (Derivative::Auto | Derivative::Data, Some(v)) => {
+                (filter_all(on(Signal::Qd), pad, v)?, true)
+            }
+            (Derivative::Data, None) => return Err(missing("processing.velocity", "velocity")),
+            _ => (differentiate(&q, dt, sg)?, false),
+        };
+        let qdd = match (p.acceleration, &data.qdd) {
+            (Derivative::Auto | Derivative::Data, Some(a)) => filter_all(on(Signal::Qdd), pad, a)?,
+            (Derivative::Data, None) => {
+                return Err(missing("processing.acceleration", "acceleration"));
+            }
+            // a measured velocity is differentiated once, a differentiated one from q
+            _ if qd_measured => differentiate(&qd, dt, sg)?,
+            _ => differentiate_twice(&q, &qd, dt, sg)?,
+        };
+        let mut tau = filter_all(on(Signal::Tau), pad, &data.tau)?;
+        let mut unfiltered_tau = on(Signal::Tau).map(|_| data.tau.clone());
+        let mut rotor_states = None;
+        if config.drive.rotor.is_some() || config.uses_rotor_signals() {
+            let motor = data.motor.as_ref().ok_or_else(|| no_motor(config))?;
+            let theta = filter_all(on(Signal::Q), pad, motor)?;
+            let thetad = differentiate(&theta, dt, sg)?;
+            let thetadd = differentiate_twice(&theta, &thetad, dt, sg)?;
+            if let Some(rotor) = &config.drive.rotor {
+                for t in std::iter::once(&mut tau).chain(unfiltered_tau.as_mut()) {
+                    match &self.friction {
+                        Some(m) => rotor.compensate_nonlinear(
+                            m,
+                            t,
+                            &thetad,
+                            &thetadd,
+                            data.temperature.as_ref(),
+                        )?,
+                        None => rotor.compensate(t, &thetad, &thetadd)?,
+                    }
+                }
+            }
+            let joint_torque = match &data.joint_torque {
+                Some(t) => Some(filter_all(on(Signal::Tau), pad, t)?),
+                None => None,
+            };
+            rotor_states = Some(RotorStates {
+                thetad,
+                thetadd,
+                temperature: data.temperature.clone(),
+                joint_torque,
+            });
+        }
+        Ok((
+            Prepared {
+                q,
+                qd,
+                qdd,
+                tau,
+                rotor: rotor_states,
+                sample_time: dt,
+            },
+            unfiltered_tau,
+        ))
+    }
 }
 
 /// The friction model of `[drive.rotor] friction` (resolved against the config's folder),

@@ -1,21 +1,24 @@
 //! Identification and validation that never hold the observation matrix
 //! (docs/identification.md#streaming-least-squares).
 //!
-//! The prepared record is cut into blocks of processed samples; each block's regressor
-//! rows are evaluated with an overlap on both sides long enough for the decimation
-//! filter to forget the block's edges ([`Decimator::settling`]), decimated as a block,
-//! and the block's own decimated samples kept: the same equations as the dense
-//! observation's, to the filter's settling tolerance. Blocks are taken in record order,
-//! each built in parallel (regressor rows, channel groups of the filter, joints' factors).
+//! The kept samples of the record are cut into blocks; each block is prepared from the
+//! data set with a margin of the record on each side ([`Plan::block`]: the low-pass,
+//! derivatives and rotor compensation of the whole record, to the low-pass's settling
+//! tolerance), its regressor rows are evaluated with an overlap on both sides long enough
+//! for the decimation filter to forget the block's edges ([`Decimator::settling`]),
+//! decimated as a block, and the block's own decimated samples kept: the same equations as
+//! the dense observation's, to the filters' settling tolerances. Blocks are taken in
+//! record order, each built in parallel (regressor rows, channel groups of the filter,
+//! joints' factors).
 //!
 //! OLS and WLS take one pass: each block's equations go into one
 //! [`StreamingLeastSquares`] (per-joint R factors, the joints updated in parallel); the
 //! outlier check (`Dominance`) rides along. The prediction (measured against predicted
 //! torque, the fit and the report's plots) takes a second pass with the estimated values,
 //! which filters three channels per joint only (the filter is linear: the decimated
-//! `W beta` is the decimated `Y(t) beta`). Memory is one block of regressor channels, the
-//! R factors, and one measured and one predicted torque per equation, never the
-//! equations' rows.
+//! `W beta` is the decimated `Y(t) beta`). Memory is the data set, one block of prepared
+//! signals and of regressor channels, the R factors, and one measured and one predicted
+//! torque per equation: never the prepared record nor the equations' rows.
 
 use std::ops::Range;
 
@@ -23,10 +26,9 @@ use crate::Model;
 use crate::data::{Config, Dataset, Method};
 use crate::error::{Error, Result};
 use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
-use crate::pipeline::Prepared;
-use crate::pipeline::identify::checked_prepare;
+use crate::pipeline::identify::checked_plan;
 use crate::pipeline::observe::{Equations, Observer};
-use crate::pipeline::prepare::{PreparedRows, Rows};
+use crate::pipeline::prepare::{Plan, Rows};
 use crate::pipeline::{Identification, decimator};
 use crate::signal::Decimator;
 use crate::validate::{Prediction, UsedRows};
@@ -43,9 +45,13 @@ const BLOCK: usize = 16_384;
 /// one block, with no overlap at all.
 const BLOCK_BYTES: usize = 64 << 20;
 
-/// A prepared record cut into blocks of equations.
+/// A record's kept samples cut into blocks of equations.
 pub(crate) struct Stream<'a> {
-    observer: Observer<'a>,
+    model: &'a (dyn Model + Sync),
+    config: &'a Config,
+    data: &'a Dataset,
+    plan: &'a Plan,
+    names: Vec<String>,
     dec: Decimator,
     overlap: usize,
     block: usize,
@@ -53,13 +59,18 @@ pub(crate) struct Stream<'a> {
 }
 
 impl<'a> Stream<'a> {
-    /// The blocks of `prepared` with `config`'s decimation and rest removal.
+    /// The blocks of `data`'s samples kept by `plan`, with `config`'s decimation and rest
+    /// removal.
     pub(crate) fn new(
         model: &'a (dyn Model + Sync),
-        prepared: &'a Prepared,
-        config: &Config,
+        data: &'a Dataset,
+        plan: &'a Plan,
+        config: &'a Config,
     ) -> Result<Self> {
-        let observer = Observer::new(model, prepared, config)?;
+        // the parameters and channels, and the checks of the signals against the model and
+        // the config, on the first sample
+        let (first, _) = plan.block(data, config, 0..1)?;
+        let observer = Observer::new(model, &first, config)?;
         let dec = decimator(config)?;
         let f = dec.factor();
         let overlap = if f == 1 {
@@ -69,7 +80,7 @@ impl<'a> Stream<'a> {
         };
         let by_memory = BLOCK_BYTES / (8 * observer.channels().max(1));
         let block = BLOCK.max(by_memory).max(4 * overlap).div_ceil(f) * f;
-        let n = prepared.samples();
+        let n = plan.kept.len();
         let block = if n <= block + block / 2 {
             n.max(1)
         } else {
@@ -80,7 +91,11 @@ impl<'a> Stream<'a> {
             None => None,
         };
         Ok(Self {
-            observer,
+            model,
+            config,
+            data,
+            plan,
+            names: observer.names,
             dec,
             overlap,
             block,
@@ -90,7 +105,7 @@ impl<'a> Stream<'a> {
 
     /// Parameter names (base parameters, then extra columns).
     pub(crate) fn names(&self) -> &[String] {
-        &self.observer.names
+        &self.names
     }
 
     /// The total decimation factor.
@@ -100,52 +115,89 @@ impl<'a> Stream<'a> {
 
     /// The blocks of processed samples, in record order.
     fn blocks(&self) -> Vec<Range<usize>> {
-        let n = self.observer.signals.samples();
+        let n = self.plan.kept.len();
         (0..n.div_ceil(self.block))
             .map(|i| i * self.block..((i + 1) * self.block).min(n))
             .collect()
     }
 
+    /// Calls `with` with the observer of block `b`'s prepared samples and overlap, the
+    /// block's place among them, the first processed sample they hold, and the torque
+    /// before the low-pass when it filters the torque.
+    fn in_block<T>(
+        &self,
+        b: &Range<usize>,
+        with: impl FnOnce(
+            &Observer<'_>,
+            Range<usize>,
+            usize,
+            Option<&crate::signal::Signals>,
+        ) -> Result<T>,
+    ) -> Result<T> {
+        let lo = b.start.saturating_sub(self.overlap);
+        let hi = (b.end + self.overlap).min(self.plan.kept.len());
+        let (prepared, unfiltered) = self.plan.block(self.data, self.config, lo..hi)?;
+        let observer = Observer::new(self.model, &prepared, self.config)?;
+        with(&observer, b.start - lo..b.end - lo, lo, unfiltered.as_ref())
+            .map_err(|e| shifted(e, lo))
+    }
+
     /// Calls `fold` with each block's equations in record order (each block built in
     /// parallel); the first error stops it.
     pub(crate) fn run(&self, mut fold: impl FnMut(Equations) -> Result<()>) -> Result<()> {
+        let f = self.dec.factor();
         for b in self.blocks() {
-            fold(
-                self.observer
-                    .window(&self.dec, self.overlap, self.rest.as_deref(), b)?,
-            )?;
+            let eq = self.in_block(&b, |observer, core, lo, _| {
+                let mut eq =
+                    observer.window(&self.dec, self.overlap, self.rest.as_deref(), core)?;
+                // `lo` is a multiple of the factor: the decimated samples shift by lo / f
+                eq.sample.iter_mut().for_each(|k| *k += lo / f);
+                Ok(eq)
+            })?;
+            fold(eq)?;
         }
         Ok(())
     }
 
     /// Measured and predicted torque per joint with `values` (the decimated sample time
     /// `dt`, times from the record's first sample used), in the dense [`Prediction`]'s
-    /// order: joint by joint, samples in order; with the decimated samples.
-    fn prediction(&self, values: &[f64], dt: f64) -> Result<(Prediction, Vec<Vec<usize>>)> {
-        let dof = self.observer.model.dof();
+    /// order: joint by joint, samples in order; with the decimated samples, and the
+    /// torque before filtering at them (before the low-pass when it filters the torque,
+    /// before the decimation otherwise; `None` when neither filters it).
+    fn prediction(&self, values: &[f64], dt: f64) -> Result<PredictionParts> {
+        let dof = self.model.dof();
+        let f = self.dec.factor();
         let mut measured = vec![Vec::new(); dof];
         let mut predicted = vec![Vec::new(); dof];
         let mut samples = vec![Vec::new(); dof];
+        let mut raw = vec![Vec::new(); dof];
+        let mut has_raw = f > 1;
         for b in self.blocks() {
-            let part = self.observer.window_prediction(
-                &self.dec,
-                self.overlap,
-                self.rest.as_deref(),
-                b,
-                values,
-            )?;
-            for (j, k, y, p) in part {
-                measured[j].push(y);
-                predicted[j].push(p);
-                samples[j].push(k);
-            }
+            self.in_block(&b, |observer, core, lo, unfiltered| {
+                let part = observer.window_prediction(
+                    &self.dec,
+                    self.overlap,
+                    self.rest.as_deref(),
+                    core,
+                    values,
+                )?;
+                has_raw |= unfiltered.is_some();
+                let tau = unfiltered.unwrap_or(&observer.signals.tau);
+                for (j, k, y, p) in part {
+                    measured[j].push(y);
+                    predicted[j].push(p);
+                    samples[j].push(k + lo / f);
+                    raw[j].push(tau[j][k * f]);
+                }
+                Ok(())
+            })?;
         }
         let time = samples
             .iter()
             .map(|s| s.iter().map(|&k| k as f64 * dt).collect())
             .collect();
-        Ok((
-            Prediction {
+        Ok(PredictionParts {
+            prediction: Prediction {
                 measured,
                 predicted,
                 time,
@@ -153,7 +205,38 @@ impl<'a> Stream<'a> {
                 used: None,
             },
             samples,
-        ))
+            raw: has_raw.then_some(raw),
+        })
+    }
+}
+
+/// What [`Stream::prediction`] gives.
+struct PredictionParts {
+    prediction: Prediction,
+    /// The decimated sample of each prediction, per joint.
+    samples: Vec<Vec<usize>>,
+    /// The torque before filtering at each, per joint.
+    raw: Option<Vec<Vec<f64>>>,
+}
+
+/// An error of a block whose prepared samples start at processed sample `lo`, placed
+/// among the record's processed samples.
+fn shifted(e: Error, lo: usize) -> Error {
+    match e {
+        Error::Estimate(EstimateError::NonFiniteObservation {
+            sample: Some(k),
+            joint,
+            parameter,
+            value,
+            ..
+        }) => Error::Estimate(EstimateError::NonFiniteObservation {
+            location: format!("processed sample {}", k + lo),
+            sample: Some(k + lo),
+            joint,
+            parameter,
+            value,
+        }),
+        e => e,
     }
 }
 
@@ -185,30 +268,11 @@ fn located(e: Error, config: &Config, data: &Dataset, kept: &Range<usize>) -> Er
     }
 }
 
-/// The prediction with the unfiltered torque (as `identify::with_unfiltered`), its
-/// check and the rows used.
-fn finish_prediction(
-    mut prediction: Prediction,
-    samples: &[Vec<usize>],
-    rows: &PreparedRows,
-    factor: usize,
-    used: &UsedRows,
-    what: &str,
-) -> Result<Prediction> {
-    let raw = match &rows.unfiltered_tau {
-        Some(raw) => Some(raw),
-        None if factor > 1 => Some(&rows.prepared.tau),
-        None => None,
-    };
-    if let Some(raw) = raw {
-        prediction.unfiltered = Some(
-            samples
-                .iter()
-                .enumerate()
-                .map(|(j, s)| s.iter().map(|&k| raw[j][k * factor]).collect())
-                .collect(),
-        );
-    }
+/// The prediction with the torque before filtering (as `identify::with_unfiltered`),
+/// its check and the rows used.
+fn finish_prediction(parts: PredictionParts, used: &UsedRows, what: &str) -> Result<Prediction> {
+    let mut prediction = parts.prediction;
+    prediction.unfiltered = parts.raw;
     prediction.check(&format!("{what} ({used})"))?;
     prediction.used = Some(used.clone());
     Ok(prediction)
@@ -220,11 +284,11 @@ pub(crate) fn identify_streaming(
     model: &(dyn Model + Sync),
     data: &Dataset,
     config: &Config,
-    rows: &PreparedRows,
+    plan: &Plan,
 ) -> Result<Identification> {
-    let kept = &rows.kept;
+    let kept = &plan.kept;
     let at = |e: Error| located(e, config, data, kept);
-    let stream = Stream::new(model, &rows.prepared, config).map_err(at)?;
+    let stream = Stream::new(model, data, plan, config).map_err(at)?;
     let names = stream.names().to_vec();
     let (dof, cols, factor) = (model.dof(), names.len(), stream.factor());
     let time = |k: usize| (kept.start + k * factor) as f64 * data.sample_time;
@@ -294,18 +358,13 @@ pub(crate) fn identify_streaming(
             share,
         });
     }
-    let dt = rows.prepared.sample_time * factor as f64;
-    let (prediction, samples) = stream.prediction(&estimate.values, dt).map_err(at)?;
-    let prediction = prediction.starting_at(kept.start as f64 * data.sample_time);
+    let dt = data.sample_time * factor as f64;
+    let mut parts = stream.prediction(&estimate.values, dt).map_err(at)?;
+    parts.prediction = parts
+        .prediction
+        .starting_at(kept.start as f64 * data.sample_time);
     let used = UsedRows::of(data, kept.clone());
-    let prediction = finish_prediction(
-        prediction,
-        &samples,
-        rows,
-        factor,
-        &used,
-        "the estimation data",
-    )?;
+    let prediction = finish_prediction(parts, &used, "the estimation data")?;
     Ok(Identification {
         robot: model.name().to_string(),
         fit: prediction.fit(),
@@ -313,7 +372,7 @@ pub(crate) fn identify_streaming(
         estimate,
         warnings: data.warnings.clone(),
         used,
-        cutoff: rows.auto_cutoff.clone(),
+        cutoff: plan.auto_cutoff.clone(),
     })
 }
 
@@ -322,12 +381,12 @@ pub(crate) fn validate_streaming(
     model: &(dyn Model + Sync),
     data: &Dataset,
     config: &Config,
-    rows: &PreparedRows,
+    plan: &Plan,
     values: &[f64],
 ) -> Result<Prediction> {
-    let kept = &rows.kept;
+    let kept = &plan.kept;
     let stream =
-        Stream::new(model, &rows.prepared, config).map_err(|e| located(e, config, data, kept))?;
+        Stream::new(model, data, plan, config).map_err(|e| located(e, config, data, kept))?;
     let names = stream.names();
     if values.len() != names.len() {
         return Err(Error::DimensionMismatch {
@@ -346,21 +405,15 @@ pub(crate) fn validate_streaming(
             ),
         ));
     }
-    let factor = stream.factor();
-    let dt = rows.prepared.sample_time * factor as f64;
-    let (prediction, samples) = stream
+    let dt = data.sample_time * stream.factor() as f64;
+    let mut parts = stream
         .prediction(values, dt)
         .map_err(|e| located(e, config, data, kept))?;
-    let prediction = prediction.starting_at(kept.start as f64 * data.sample_time);
+    parts.prediction = parts
+        .prediction
+        .starting_at(kept.start as f64 * data.sample_time);
     let used = UsedRows::of(data, kept.clone());
-    finish_prediction(
-        prediction,
-        &samples,
-        rows,
-        factor,
-        &used,
-        "the validation data",
-    )
+    finish_prediction(parts, &used, "the validation data")
 }
 
 /// The stacked runs' estimate and prediction (as [`stack`](crate::pipeline::stack) then
@@ -372,16 +425,14 @@ pub(crate) fn stacked_streaming(
     runs: &[Dataset],
     config: &Config,
 ) -> Result<(Estimate, Prediction)> {
-    let prepared = runs
+    let plans = runs
         .iter()
-        .map(|d| checked_prepare(model, d, config, Rows::Estimation))
+        .map(|d| checked_plan(model, d, config, Rows::Estimation))
         .collect::<Result<Vec<_>>>()?;
-    let streams = prepared
+    let streams = plans
         .iter()
         .zip(runs)
-        .map(|(r, d)| {
-            Stream::new(model, &r.prepared, config).map_err(|e| located(e, config, d, &r.kept))
-        })
+        .map(|(p, d)| Stream::new(model, d, p, config).map_err(|e| located(e, config, d, &p.kept)))
         .collect::<Result<Vec<_>>>()?;
     let Some(first) = streams.first() else {
         return Err(Error::TooFewSamples {
@@ -393,9 +444,9 @@ pub(crate) fn stacked_streaming(
     };
     let dof = model.dof();
     let mut ls = StreamingLeastSquares::new(first.names().to_vec(), dof)?;
-    for ((s, r), d) in streams.iter().zip(&prepared).zip(runs) {
+    for ((s, p), d) in streams.iter().zip(&plans).zip(runs) {
         s.run(|eq| ls.push_rows(&eq.joint, &eq.w, &eq.y))
-            .map_err(|e| located(e, config, d, &r.kept))?;
+            .map_err(|e| located(e, config, d, &p.kept))?;
     }
     let tolerance = config.estimation.rank_tolerance;
     let estimate = match config.estimation.method {
@@ -403,7 +454,7 @@ pub(crate) fn stacked_streaming(
         _ => ls.ols(tolerance),
     }
     .map_err(|e| config.locate(e))?;
-    let dt = prepared[0].prepared.sample_time * first.factor() as f64;
+    let dt = runs[0].sample_time * first.factor() as f64;
     let mut stacked = Prediction {
         measured: vec![Vec::new(); dof],
         predicted: vec![Vec::new(); dof],
@@ -412,10 +463,14 @@ pub(crate) fn stacked_streaming(
         used: None,
     };
     let mut offset = 0;
-    for ((s, r), d) in streams.iter().zip(&prepared).zip(runs) {
-        let (p, samples) = s
+    for ((s, plan), d) in streams.iter().zip(&plans).zip(runs) {
+        let PredictionParts {
+            prediction: p,
+            samples,
+            ..
+        } = s
             .prediction(&estimate.values, dt)
-            .map_err(|e| located(e, config, d, &r.kept))?;
+            .map_err(|e| located(e, config, d, &plan.kept))?;
         for (j, s) in samples.iter().enumerate() {
             stacked.measured[j].extend(&p.measured[j]);
             stacked.predicted[j].extend(&p.predicted[j]);

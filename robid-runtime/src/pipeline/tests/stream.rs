@@ -7,7 +7,7 @@ use super::{config, dataset_with_noise};
 use crate::data::{Config, Method};
 use crate::estimate::Estimate;
 use crate::pipeline::identify::{identify_dense_of, validate_dense};
-use crate::pipeline::prepare::{Rows, prepare_rows};
+use crate::pipeline::prepare::{Plan, Rows, prepare_rows};
 use crate::pipeline::stream::Stream;
 use crate::pipeline::{Identification, identify, observe, validate};
 use crate::validate::{Fit, Prediction};
@@ -119,7 +119,8 @@ fn with(extra: &str, method: Method) -> Config {
     c
 }
 
-/// The blocks' equations are the dense observation's (joint-major there, sample-major in
+/// The blocks' equations (each block prepared from the data set with its margins) are the
+/// dense observation's of the whole prepared record (joint-major there, sample-major in
 /// the stream), to 1e-12 of the column's magnitude: with one decimation stage, two, and
 /// none (no overlap).
 #[test]
@@ -130,7 +131,8 @@ fn the_blocks_hold_the_dense_equations() {
         let config = with(decimation, Method::Ols);
         let rows = prepare_rows(&data, &config, Rows::Estimation).unwrap();
         let dense = observe(&model, &rows.prepared, &config).unwrap();
-        let stream = Stream::new(&model, &rows.prepared, &config).unwrap();
+        let plan = Plan::new(&data, &config, Rows::Estimation).unwrap();
+        let stream = Stream::new(&model, &data, &plan, &config).unwrap();
         let mut eqs: Vec<(usize, usize, Vec<f64>, f64)> = Vec::new();
         let mut blocks = 0;
         stream
@@ -162,7 +164,12 @@ fn the_blocks_hold_the_dense_equations() {
             worst = worst.max((y - dense.y[r]).abs() / big[big.len() - 1]);
         }
         eprintln!("{decimation}: {blocks} blocks, largest difference {worst:e} of the column");
-        assert!(worst < 1e-12, "{decimation}: {worst:e}");
+        // Each block's positions are low-passed apart from the whole record's, so they
+        // differ by the recursive filter's rounding (measured: 8.4e-15 of q), which the two
+        // differences of the accelerations divide by dt^2 = 1e-6: about 1e-8 of the
+        // columns (measured: 1.9e-10 without decimation, 1.8e-11 and 1.8e-14 with; 1e-14
+        // when the blocks shared the whole record's preparation).
+        assert!(worst < 1e-8, "{decimation}: {worst:e}");
     }
 }
 
