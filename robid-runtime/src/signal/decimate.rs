@@ -299,7 +299,9 @@ mod tests {
     #[test]
     fn parallel_matches_serial_and_keeps_zeros() {
         let dec = Decimator::with_total(10).unwrap();
-        let signals = Signals::new(vec![signal(), vec![0.0; 200]]).unwrap();
+        // no zero sample in the first signal: only an all-zero signal skips the filter
+        let lifted: Vec<f64> = signal().iter().map(|v| v + 2.0).collect();
+        let signals = Signals::new(vec![lifted, vec![0.0; 200]]).unwrap();
         let out = dec.apply_all(&signals).unwrap();
         assert_eq!(out[0], dec.apply(&signals[0]).unwrap());
         assert_eq!(out[1], [0.0; 20]);
