@@ -248,6 +248,15 @@ mod tests {
         for k in 0..dx.len() {
             assert!((out[2 * k] - dy[k]).abs() < 1e-12 && (out[2 * k + 1] - dx[k]).abs() < 1e-12);
         }
+        // adjacent channels (copied row by row) give the same
+        let adjacent = dec.apply_block(&source, 3, &[1, 2]).unwrap();
+        let seven = dec.apply(&[7.0; 200]).unwrap();
+        for k in 0..dx.len() {
+            assert!(
+                (adjacent[2 * k] - seven[k]).abs() < 1e-12
+                    && (adjacent[2 * k + 1] - dy[k]).abs() < 1e-12
+            );
+        }
     }
 
     /// A chain's settling time is each stage's settling time plus one sample, at that
