@@ -305,6 +305,14 @@ mod tests {
         assert!(butterworth(4, f64::NAN).is_err());
         assert!(butterworth_hz(4, 600.0, 1000.0).is_err());
         assert!(chebyshev1(8, -1.0, 0.1).is_err());
+        // the bounds themselves: order 20 and a cutoff of exactly MIN_CUTOFF are designed,
+        // order 21, a ripple of 0 dB and a cutoff of 0 are refused, each by its own check
+        assert!(butterworth(20, 0.3).is_ok());
+        assert!(butterworth(21, 0.3).is_err());
+        assert!(butterworth(4, MIN_CUTOFF).is_ok());
+        assert!(chebyshev1(8, 0.0, 0.1).is_err());
+        let zero = butterworth(4, 0.0).unwrap_err().to_string();
+        assert!(zero.contains("strictly between 0 and 1"), "{zero}");
         // a cutoff too small to represent is an error, not an empty filter (the fuzzer's
         // `cutoff = 1e-12` once built no sections and indexed an empty list)
         assert!(butterworth(4, 1e-12).is_err());
