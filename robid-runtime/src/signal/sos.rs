@@ -297,7 +297,27 @@ unsafe fn passes_avx2(sections: &[[f64; 6]], zi: &[[f64; 2]], ext: &mut [f64], g
 
 #[cfg(test)]
 mod tests {
+    use super::Sos;
     use crate::signal::butterworth;
+
+    /// The DC gain is the product of the sections' `sum(b) / sum(a)`; the padding is
+    /// scipy's `padlen`, `3 * (2 * sections + 1 - min(trailing zeros of b, of a))`.
+    #[test]
+    fn dc_gain_and_padding_of_given_sections() {
+        let first_order = [1.0, 1.0, 0.0, 1.0, -0.5, 0.0];
+        let second_order = [1.0, 2.0, 1.0, 1.0, -0.4, 0.2];
+        let sos = Sos::new(vec![first_order, second_order]);
+        assert!((sos.dc_gain() - 2.0 / 0.5 * 4.0 / 0.8).abs() < 1e-12);
+        assert_eq!(sos.pad_length(), 3 * (2 * 2 + 1 - 1));
+        assert_eq!(Sos::new(vec![first_order; 3]).pad_length(), 3 * (2 * 3 + 1 - 3));
+        assert_eq!(Sos::new(vec![second_order; 2]).pad_length(), 3 * (2 * 2 + 1));
+        // a section with a trailing zero in a only does not shorten the padding
+        let a_only = [1.0, 2.0, 1.0, 1.0, -0.5, 0.0];
+        assert_eq!(Sos::new(vec![a_only; 2]).pad_length(), 3 * 5);
+        // scipy: butter(4, 0.2) pads 15, butter(5, 0.2) 18
+        assert_eq!(butterworth(4, 0.2).unwrap().pad_length(), 15);
+        assert_eq!(butterworth(5, 0.2).unwrap().pad_length(), 18);
+    }
 
     #[test]
     fn filtfilt_matches_scipy() {
