@@ -309,8 +309,14 @@ mod tests {
         let sos = Sos::new(vec![first_order, second_order]);
         assert!((sos.dc_gain() - 2.0 / 0.5 * 4.0 / 0.8).abs() < 1e-12);
         assert_eq!(sos.pad_length(), 3 * (2 * 2 + 1 - 1));
-        assert_eq!(Sos::new(vec![first_order; 3]).pad_length(), 3 * (2 * 3 + 1 - 3));
-        assert_eq!(Sos::new(vec![second_order; 2]).pad_length(), 3 * (2 * 2 + 1));
+        assert_eq!(
+            Sos::new(vec![first_order; 3]).pad_length(),
+            3 * (2 * 3 + 1 - 3)
+        );
+        assert_eq!(
+            Sos::new(vec![second_order; 2]).pad_length(),
+            3 * (2 * 2 + 1)
+        );
         // a section with a trailing zero in a only does not shorten the padding
         let a_only = [1.0, 2.0, 1.0, 1.0, -0.5, 0.0];
         assert_eq!(Sos::new(vec![a_only; 2]).pad_length(), 3 * 5);
@@ -391,8 +397,48 @@ mod tests {
             err(&long),
             err(&short)
         );
+        // and at the other end (measured 1.23e-5, 9.4e-3 without the long padding)
+        let n = x.len();
+        let end = |y: &[f64]| (n - 50..n).map(|i| (y[i] - x[i]).abs()).fold(0.0, f64::max);
+        assert!(end(&long) < 2.5e-5, "{}", end(&long));
+        assert!(end(&long) < 0.1 * end(&short));
         // in the middle both are the plain filter
         assert!((long[1500] - short[1500]).abs() < 1e-9);
+    }
+
+    /// The settling time is the first sample from which the impulse response's absolute
+    /// tail is at most `tolerance` of its absolute sum: checked against the response
+    /// computed a million samples long, for short and long responses and tolerances down
+    /// to 1e-15.
+    #[test]
+    fn settling_is_where_the_tail_falls_below_the_tolerance() {
+        let n = 1 << 20;
+        for sos in [
+            crate::signal::butterworth_hz(4, 25.0, 5000.0).unwrap(),
+            crate::signal::butterworth_hz(4, 1.0, 1000.0).unwrap(),
+            crate::signal::chebyshev1(8, 0.05, 0.08).unwrap(),
+        ] {
+            let mut h = vec![0.0; n];
+            h[0] = 1.0;
+            let mut zi = vec![[0.0; 2]; sos.sections().len()];
+            sos.filter_in_place(&mut h, &mut zi);
+            let total: f64 = h.iter().map(|v| v.abs()).sum();
+            // tail[k] = sum of |h| from k on
+            let mut tail = vec![0.0; n + 1];
+            for k in (0..n).rev() {
+                tail[k] = tail[k + 1] + h[k].abs();
+            }
+            for tolerance in [1e-3, 1e-12, 1e-15] {
+                let k = sos.settling_samples(tolerance, n);
+                let bound = tolerance * total;
+                // the sums differ in order from the function's: 1e-9 of slack
+                assert!(tail[k] <= bound * (1.0 + 1e-9), "{tolerance}: {k}");
+                assert!(
+                    k > 0 && tail[k - 1] > bound * (1.0 - 1e-9),
+                    "{tolerance}: {k}"
+                );
+            }
+        }
     }
 
     #[test]
