@@ -234,9 +234,8 @@ impl Sos {
         }
         let zi = self.steady_state();
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-        {
-            // SAFETY: the CPU has the features `passes_avx2` is compiled for.
+        if crate::trig::vector_available() {
+            // SAFETY: the CPU has AVX2 and FMA, the features `passes_avx2` is compiled for.
             unsafe { passes_avx2(&self.sections, &zi, ext, g) };
             return Ok(());
         }
@@ -454,5 +453,18 @@ mod tests {
         assert_eq!(sos.pad_length(), 15);
         assert!(sos.filtfilt(&[1.0; 15]).is_err());
         assert!(sos.filtfilt(&[1.0; 16]).is_ok());
+        // the error says how many samples are needed, by either path
+        let needs = |e: crate::error::Error| match e {
+            crate::error::Error::TooFewSamples {
+                found, required, ..
+            } => (found, required),
+            e => panic!("{e}"),
+        };
+        assert_eq!(needs(sos.filtfilt(&[1.0; 15]).unwrap_err()), (15, 16));
+        let mut block = vec![1.0; 2 * 15];
+        assert_eq!(
+            needs(sos.filtfilt_channels(&mut block, 2).unwrap_err()),
+            (15, 16)
+        );
     }
 }
