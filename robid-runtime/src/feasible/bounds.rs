@@ -334,6 +334,46 @@ mod tests {
     }
 
     #[test]
+    fn the_centre_is_mid_box_mid_mass_and_mid_moment() {
+        let l = LinkBounds {
+            mass: [1.0, 4.0],
+            com: [[-0.5, 0.1], [0.2, 0.4], [-3.0, -1.0]],
+            inertia: [0.5, 1.5],
+            tensor: [None; 6],
+        };
+        assert_eq!(l.centre(), ([-0.2, 0.30000000000000004, -2.0], 2.5, 1.0));
+    }
+
+    #[test]
+    fn check_for_wants_valid_bounds_for_every_link() {
+        let b = Bounds::wide(3);
+        assert!(b.check_for(3).is_ok());
+        assert!(matches!(
+            b.check_for(4),
+            Err(Error::DimensionMismatch {
+                expected: 4,
+                found: 3,
+                ..
+            })
+        ));
+        let mut bad = b.clone();
+        bad.links[1].mass = [2.0, 1.0];
+        assert!(bad.check_for(3).is_err());
+    }
+
+    #[test]
+    fn the_margin_is_within_zero_and_one() {
+        for (margin, ok) in [(0.0, true), (1.0, true), (-1e-9, false), (1.5, false)] {
+            let b = Bounds {
+                margin,
+                ..Bounds::wide(2)
+            };
+            assert_eq!(b.validate().is_ok(), ok, "{margin}");
+        }
+        assert!(Bounds::from_toml("margin = nan\n", "b", 2).is_err());
+    }
+
+    #[test]
     fn rejects_bad_ranges() {
         assert!(Bounds::from_toml("[links.4]\nmass = [0, 1]\n", "b", 3).is_err());
         assert!(Bounds::from_toml("[default]\nmass = [2, 1]\n", "b", 3).is_err());
