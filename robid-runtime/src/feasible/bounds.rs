@@ -374,6 +374,16 @@ mod tests {
     }
 
     #[test]
+    fn equal_bounds_fix_a_value() {
+        let b = Bounds::from_toml(
+            "[links.1]\nmass = [2, 2]\ncom = [[0, 0], [0.1, 0.1], [0, 0]]\n",
+            "b",
+            2,
+        );
+        assert_eq!(b.unwrap().links[0].mass, [2.0, 2.0]);
+    }
+
+    #[test]
     fn rejects_bad_ranges() {
         assert!(Bounds::from_toml("[links.4]\nmass = [0, 1]\n", "b", 3).is_err());
         assert!(Bounds::from_toml("[default]\nmass = [2, 1]\n", "b", 3).is_err());

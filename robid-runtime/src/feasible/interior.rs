@@ -250,53 +250,8 @@ fn newton_step(h: DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::feasible::fixture::{link, options, problem, steps, target};
     use crate::feasible::{LinkBounds, LinkInertial};
-
-    /// One link plus a rotor inertia, every standard parameter its own base parameter
-    /// (K = I), identified as `target` with standard deviation 1e-3.
-    fn problem(target: &[f64; 11]) -> Problem {
-        let mut names: Vec<String> = crate::model::Inertial::ALL
-            .iter()
-            .map(|s| format!("{}1", s.stem()))
-            .collect();
-        names.push("Ia1".into());
-        let k = nalgebra::DMatrix::identity(11, 11);
-        Problem::new(names.clone(), names, k)
-            .unwrap()
-            .with_target(target, &[1e-3; 11])
-            .unwrap()
-    }
-
-    fn link() -> [f64; 10] {
-        LinkInertial {
-            mass: 2.0,
-            com: [0.0; 3],
-            inertia: [[0.03, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.015]],
-        }
-        .to_standard()
-    }
-
-    fn options() -> SmoothOptions {
-        SmoothOptions {
-            default_weight: 1e-9,
-            ..SmoothOptions::default()
-        }
-    }
-
-    /// The path is as long as measured: within a factor 2 of `measured` Newton steps (a
-    /// wrong barrier weight, stopping rule or line search still ends at the optimum, but
-    /// late; a miscounted step shows too).
-    fn steps(s: &Solution, measured: usize) {
-        assert!(
-            s.iterations <= 2 * measured && 2 * s.iterations >= measured,
-            "{} Newton steps, measured {measured}",
-            s.iterations
-        );
-    }
-
-    fn target(link: [f64; 10], ia: f64) -> [f64; 11] {
-        std::array::from_fn(|i| if i < 10 { link[i] } else { ia })
-    }
 
     /// The barrier's value, gradient and Hessian agree: a known value (P - margin I = 2 I
     /// and Ia = 0.5 give B = -4 ln 2 - ln 0.5), and the derivatives against central

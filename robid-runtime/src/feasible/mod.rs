@@ -40,6 +40,8 @@ mod cholesky;
 #[cfg(feature = "sdp")]
 mod conic;
 mod error;
+#[cfg(test)]
+mod fixture;
 mod gravity;
 mod inertial;
 mod interior;

@@ -377,3 +377,181 @@ fn minimise(mut fit: Fit<'_>, budget: usize) -> Result<(Fit<'_>, usize)> {
     }
     Ok((fit, used))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::LinkBounds;
+    use crate::feasible::fixture::{link, options, problem, problem_with, steps, target};
+
+    fn solve(problem: &Problem, bounds: &Bounds) -> Solution {
+        let s = solve_smooth(problem, bounds, &options()).unwrap();
+        assert_eq!(s.method, Method::Cholesky);
+        assert!(s.violations.is_empty(), "{:?}", s.violations);
+        s
+    }
+
+    /// A consistent target inside the bounds is its own optimum.
+    #[test]
+    fn a_consistent_target_is_returned_as_it_is() {
+        let t = target(link(), 0.1);
+        let s = solve(&problem(&t), &Bounds::wide(1));
+        steps(&s, 50);
+        let worst = s
+            .standard
+            .iter()
+            .zip(&t)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        // the start is the target itself: equal to rounding (chi^2 measured 2.0e-25)
+        assert!(worst < 1e-14, "{:?} vs {t:?}", s.standard);
+        assert!(s.chi2 < 4e-25, "chi2 {}", s.chi2);
+    }
+
+    /// Negative non-negative drive terms are held at zero, a free one kept with its sign:
+    /// chi^2 = (Ia / std)^2 + (Fv / std)^2 = 16 + 4.
+    #[test]
+    fn drive_terms_are_held_at_zero_or_kept_by_their_kind() {
+        let mut t = target(link(), -0.004).to_vec();
+        t.extend([-0.002, -0.3]);
+        let s = solve(&problem_with(&t, &["Fv", "Fo"]), &Bounds::wide(1));
+        steps(&s, 50);
+        // squares of variables driven to zero: measured 1.5e-39 and 3.1e-35, nothing the
+        // data (std 1e-3) can tell from zero
+        assert!(
+            s.standard[10] >= 0.0 && s.standard[10] < 1e-30,
+            "{}",
+            s.standard[10]
+        );
+        assert!(
+            s.standard[11] >= 0.0 && s.standard[11] < 1e-30,
+            "{}",
+            s.standard[11]
+        );
+        assert!((s.standard[12] + 0.3).abs() < 1e-9, "{}", s.standard[12]);
+        // measured 20 - 6.4e-8
+        assert!((s.chi2 - 20.0).abs() < 1.3e-7, "chi2 {}", s.chi2);
+    }
+
+    /// Each kind of bound met at its known optimum (worked out in the interior-point
+    /// method's test of the same name): a mass bound 5 mm below (chi^2 25), a product of
+    /// inertia capped at 0 (4), a moment capped 0.003 below (9), the total mass 0.01 below
+    /// (100), a centre-of-mass box edge 5 cm inside x = 0.1 m ((0.1 / 1e-3)^2 / (1 + 0.05^2)).
+    #[test]
+    fn each_kind_of_bound_is_met_at_its_known_optimum() {
+        let mut l = link();
+        l[1] = 0.002;
+        let t = target(l, 0.1);
+        let at = |edit: &dyn Fn(&mut Bounds), t: &[f64; 11]| {
+            let mut bounds = Bounds::wide(1);
+            edit(&mut bounds);
+            solve(&problem(t), &bounds)
+        };
+        let s = at(
+            &|b| {
+                b.links[0] = LinkBounds {
+                    mass: [0.0, 1.995],
+                    ..LinkBounds::default()
+                }
+            },
+            &t,
+        );
+        // measured (mass - bound, chi^2 - optimum): 1.9e-9, -1.0e-2; then 5.3e-8, -2.1e-4;
+        // 7.9e-8, -4.8e-4; 8.7e-8, -4.2e-2; 8.6e-7 and -2.2e-5 of chi^2 (the bounds hold to
+        // BOUND_TOLERANCE of their scale, so chi^2 may dip below the exact optimum)
+        steps(&s, 325);
+        assert!((s.standard[9] - 1.995).abs() < 4e-9 && (s.chi2 - 25.0).abs() < 2e-2);
+        let s = at(&|b| b.links[0].tensor[3] = Some([-1.0, 0.0]), &t);
+        steps(&s, 600);
+        assert!(s.standard[1].abs() < 1.1e-7 && (s.chi2 - 4.0).abs() < 4.2e-4);
+        let s = at(&|b| b.links[0].tensor[2] = Some([0.0, 0.012]), &t);
+        steps(&s, 600);
+        assert!((s.standard[5] - 0.012).abs() < 1.6e-7 && (s.chi2 - 9.0).abs() < 9.6e-4);
+        let s = at(&|b| b.total_mass = Some([0.0, 1.99]), &t);
+        steps(&s, 575);
+        assert!((s.standard[9] - 1.99).abs() < 1.8e-7 && (s.chi2 - 100.0).abs() < 8.4e-2);
+        let mut shifted = link();
+        shifted[6] = 0.2;
+        shifted[3] += 2.0 * 0.01;
+        shifted[5] += 2.0 * 0.01;
+        let s = at(&|b| b.links[0].com[0] = [-1.0, 0.05], &target(shifted, 0.1));
+        let want = (0.1f64 / 1e-3).powi(2) / (1.0 + 0.05 * 0.05);
+        steps(&s, 575);
+        assert!((s.standard[6] - 0.05 * s.standard[9]).abs() < 1.8e-6);
+        assert!(
+            (s.chi2 - want).abs() < 4.5e-5 * want,
+            "chi2 {} vs {want}",
+            s.chi2
+        );
+    }
+
+    /// A target that breaks the triangle inequality lands on the boundary of the
+    /// consistent set at the best consistent fit, chi^2 = (0.015^2 / 3) / 1e-6 = 75.
+    #[test]
+    fn an_inconsistent_target_lands_on_the_boundary() {
+        let mut l = link();
+        l[0] = 0.05;
+        let s = solve(&problem(&target(l, 0.1)), &Bounds::wide(1));
+        steps(&s, 50);
+        let margin = Bounds::wide(1).margin;
+        let e = s.min_eigenvalues[0];
+        assert!(
+            e >= margin * (1.0 - 1e-6) && e < 2.0 * margin,
+            "eigenvalue {e}"
+        );
+        // measured 75.020 (the margin keeps the point 1e-6 inside)
+        assert!((s.chi2 - 75.0).abs() < 0.04, "chi2 {}", s.chi2);
+    }
+
+    /// The gradient and Hessian of the fit in the Cholesky variables against central
+    /// differences of its cost, at a point with residuals, drive terms of both kinds and a
+    /// violated bound.
+    #[test]
+    fn the_fit_derivatives_match_its_cost() {
+        let mut l = link();
+        l[0] = 0.05;
+        let mut t = target(l, -0.004).to_vec();
+        t.extend([0.01, -0.3]);
+        let problem = problem_with(&t, &["Fv", "Fo"]);
+        let mut bounds = Bounds::wide(1);
+        bounds.links[0].mass = [0.0, 1.9];
+        let objective = Objective::from_options(&problem, &bounds, &options()).unwrap();
+        let maps = vec![
+            Map::Link(0),
+            Map::Positive(10),
+            Map::Positive(11),
+            Map::Free(12),
+        ];
+        let mut fit = Fit {
+            objective,
+            margin: bounds.margin,
+            maps,
+            x: DVector::zeros(0),
+        };
+        let p0 = fit.objective.start(bounds.margin).unwrap();
+        let x = fit.variables(&p0).unwrap().map(|v| v * 1.1 + 0.01);
+        fit.x = x.clone();
+        let n = x.len();
+        assert_eq!(n, 13);
+        let g = fit.gradient(&x).unwrap();
+        let h = fit.hessian(&x).unwrap();
+        let mut worst = (0.0f64, 0.0f64);
+        for i in 0..n {
+            let step = 1e-6 * (1.0 + x[i].abs());
+            let (mut up, mut down) = (x.clone(), x.clone());
+            up[i] += step;
+            down[i] -= step;
+            let dc = (fit.cost(&up).unwrap() - fit.cost(&down).unwrap()) / (2.0 * step);
+            worst.0 = worst.0.max((dc - g[i]).abs() / (1.0 + g[i].abs()));
+            let dg = (fit.gradient(&up).unwrap() - fit.gradient(&down).unwrap()) / (2.0 * step);
+            for k in 0..n {
+                worst.1 = worst
+                    .1
+                    .max((dg[k] - h[(k, i)]).abs() / (1.0 + h[(k, i)].abs()));
+            }
+        }
+        // measured 2.1e-6 and 1.9e-8: central differences with a step of 1e-6 are exact to
+        // the rounding of the cost (about 1e-16 of 1e4 over 1e-6) and O(step^2)
+        assert!(worst.0 < 4e-6 && worst.1 < 4e-8, "{worst:?}");
+    }
+}
