@@ -374,6 +374,22 @@ mod tests {
     }
 
     #[test]
+    fn a_total_mass_range_that_touches_the_links_sum_is_met() {
+        let text = "[default]\nmass = [1, 2]\n";
+        let with =
+            |total: &str| Bounds::from_toml(&format!("total_mass = {total}\n{text}"), "b", 2);
+        // the links' masses sum to [2, 4]
+        for (total, ok) in [
+            ("[0, 2]", true),
+            ("[4, 10]", true),
+            ("[0, 1.9]", false),
+            ("[4.1, 10]", false),
+        ] {
+            assert_eq!(with(total).is_ok(), ok, "{total}");
+        }
+    }
+
+    #[test]
     fn equal_bounds_fix_a_value() {
         let b = Bounds::from_toml(
             "[links.1]\nmass = [2, 2]\ncom = [[0, 0], [0.1, 0.1], [0, 0]]\n",

@@ -309,3 +309,256 @@ fn dims(what: &str, expected: usize, found: usize) -> Error {
         found,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::LinkShape;
+    use crate::feasible::fixture::{problem, problem_with};
+
+    fn names() -> Vec<String> {
+        problem(&[0.0; 11]).standard_names
+    }
+
+    /// K's shape must match the names, and a non-finite entry is named by its place.
+    #[test]
+    fn k_must_fit_the_names_and_be_finite() {
+        let n = names();
+        let e = Problem::new(n.clone(), n[..10].to_vec(), DMatrix::zeros(11, 11)).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::DimensionMismatch {
+                    expected: 10,
+                    found: 11,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let e = Problem::new(n.clone(), n.clone(), DMatrix::zeros(11, 10)).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::DimensionMismatch {
+                    expected: 11,
+                    found: 10,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let mut k = DMatrix::identity(11, 11);
+        k[(2, 7)] = f64::NAN;
+        let e = Problem::new(n.clone(), n.clone(), k.clone()).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("K[2][7] (base parameter `XZ1`, standard parameter `MY1`)"),
+            "{e}"
+        );
+        k[(2, 7)] = 2e6;
+        assert!(Problem::new(n.clone(), n.clone(), k.clone()).is_err());
+        k[(2, 7)] = 1e6;
+        let p = Problem::new(n.clone(), n, k).unwrap();
+        assert_eq!(p.target, DVector::zeros(11));
+        assert_eq!(p.std, DVector::from_element(11, 1.0));
+        assert_eq!(p.whitening, DMatrix::identity(11, 11));
+    }
+
+    #[test]
+    fn rows_give_k_and_must_be_complete() {
+        let n = names();
+        let rows: Vec<Vec<f64>> = (0..2)
+            .map(|b| (0..11).map(|s| (b * 11 + s) as f64).collect())
+            .collect();
+        let p = Problem::from_rows(n.clone(), vec!["A".into(), "B".into()], &rows).unwrap();
+        assert_eq!(p.k[(1, 3)], 14.0);
+        assert_eq!(p.k[(0, 10)], 10.0);
+        let short = vec![vec![0.0; 11], vec![0.0; 10]];
+        let e = Problem::from_rows(n, vec!["A".into(), "B".into()], &short).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::DimensionMismatch {
+                    expected: 11,
+                    found: 10,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn shapes_are_one_finite_segment_per_link() {
+        let shape = LinkShape {
+            from: [0.0; 3],
+            to: [0.0, 0.0, 0.3],
+        };
+        assert!(
+            problem(&[0.0; 11])
+                .with_shapes(vec![shape])
+                .unwrap()
+                .shapes
+                .is_some()
+        );
+        assert!(problem(&[0.0; 11]).with_shapes(vec![shape; 2]).is_err());
+        for bad in [f64::NAN, 2e6] {
+            let far = LinkShape {
+                to: [0.0, bad, 0.0],
+                ..shape
+            };
+            assert!(problem(&[0.0; 11]).with_shapes(vec![far]).is_err(), "{bad}");
+        }
+        let far = LinkShape {
+            to: [0.0, 1e6, 0.0],
+            ..shape
+        };
+        assert!(problem(&[0.0; 11]).with_shapes(vec![far]).is_ok());
+    }
+
+    /// Extra columns are their own base parameters, free of sign; names must be new.
+    #[test]
+    fn extra_columns_extend_k_by_an_identity_block() {
+        let n = names();
+        let mut k = DMatrix::zeros(2, 11);
+        k[(0, 0)] = 2.0;
+        k[(1, 9)] = 3.0;
+        let p = Problem::new(n, vec!["A".into(), "B".into()], k).unwrap();
+        let e = p
+            .with_extra_columns(&["Iam6".into(), "fvm6".into()])
+            .unwrap();
+        assert_eq!(e.k.shape(), (4, 13));
+        assert_eq!(
+            (e.k[(0, 0)], e.k[(1, 9)], e.k[(2, 11)], e.k[(3, 12)]),
+            (2.0, 3.0, 1.0, 1.0)
+        );
+        assert_eq!(e.k.sum(), 7.0);
+        assert_eq!(e.layout.extra, vec![11, 12]);
+        assert_eq!(e.standard_names[12], "fvm6");
+        assert_eq!(e.base_names[2..], ["Iam6".to_string(), "fvm6".into()]);
+        assert_eq!(
+            (e.target.len(), e.std.len(), e.whitening.shape()),
+            (4, 4, (4, 4))
+        );
+        let p = problem(&[0.0; 11]);
+        assert!(p.clone().with_extra_columns(&["M1".into()]).is_err());
+        assert!(
+            p.clone()
+                .with_extra_columns(&["x".into(), "x".into()])
+                .is_err()
+        );
+        let two =
+            Problem::new(names(), vec!["A".into(), "B".into()], DMatrix::zeros(2, 11)).unwrap();
+        assert!(two.with_extra_columns(&["B".into()]).is_err());
+    }
+
+    /// Identified values are matched to the base parameters by name, in any order.
+    #[test]
+    fn identified_values_are_matched_by_name() {
+        let base = vec!["A".to_string(), "B".into()];
+        let p = Problem::new(names(), base, DMatrix::zeros(2, 11)).unwrap();
+        let got = p
+            .clone()
+            .with_identified(&["B".into(), "A".into()], &[2.0, 1.0], &[0.2, 0.1])
+            .unwrap();
+        assert_eq!(got.target.as_slice(), [1.0, 2.0]);
+        // with the floor (1e-5 |beta_i| + 1e-8 max |beta| + 1e-12)^2 added to the variance
+        let floored = |s: f64, v: f64| (s * s + (1e-5 * v + 2e-8 + 1e-12).powi(2)).sqrt();
+        assert_eq!(got.std.as_slice(), [floored(0.1, 1.0), floored(0.2, 2.0)]);
+        // missing, one too many, and lengths that disagree
+        assert!(
+            p.clone()
+                .with_identified(&["A".into(), "C".into()], &[1.0, 2.0], &[0.1; 2])
+                .is_err()
+        );
+        let e = p
+            .clone()
+            .with_identified(&["A".into(), "B".into(), "C".into()], &[1.0; 3], &[0.1; 3])
+            .unwrap_err();
+        assert!(e.to_string().contains("`C`"), "{e}");
+        assert!(
+            p.clone()
+                .with_identified(&["A".into(), "B".into()], &[1.0; 2], &[0.1])
+                .is_err()
+        );
+        assert!(
+            p.with_identified(&["A".into(), "B".into()], &[1.0], &[0.1; 2])
+                .is_err()
+        );
+    }
+
+    /// Deviations must be positive and finite; the variance gets the solvers' floor
+    /// (1e-5 |beta_i| + 1e-8 max |beta| + 1e-12)^2 and the whitening is the inverse factor.
+    #[test]
+    fn the_covariance_gets_its_floor_and_whitens() {
+        let p = problem(&[0.0; 11]);
+        for bad in [0.0, -1.0, f64::NAN, 2e6] {
+            assert!(
+                p.clone().with_target(&[0.0; 11], &[bad; 11]).is_err(),
+                "{bad}"
+            );
+        }
+        assert!(p.clone().with_target(&[0.0; 11], &[1e-3; 10]).is_err());
+        assert!(p.clone().with_target(&[0.0; 10], &[1e-3; 11]).is_err());
+        assert!(p.clone().with_target(&[2e6; 11], &[1e-3; 11]).is_err());
+        let mut values = [0.0; 11];
+        values[0] = 4.0;
+        values[1] = -2.0;
+        let mut cov = DMatrix::identity(11, 11) * 1e-4;
+        cov[(0, 1)] = 5e-5;
+        cov[(1, 0)] = 5e-5;
+        let got = p.clone().with_covariance(&values, &cov).unwrap();
+        let floor = |v: f64| (1e-5 * v + 1e-8 * 4.0 + 1e-12).powi(2);
+        assert_eq!(got.std[0], (1e-4 + floor(4.0)).sqrt());
+        assert_eq!(got.std[1], (1e-4 + floor(2.0)).sqrt());
+        assert_eq!(got.std[5], (1e-4 + floor(0.0)).sqrt());
+        // whitened covariance is the identity: W (C + floor) W' = I
+        let mut floored = cov.clone();
+        for i in 0..11 {
+            floored[(i, i)] += floor(values[i].abs());
+        }
+        let white = &got.whitening * floored * got.whitening.transpose();
+        assert!((white - DMatrix::identity(11, 11)).amax() < 1e-12);
+        let mut singular = cov.clone();
+        singular[(0, 1)] = 1.0;
+        singular[(1, 0)] = 1.0;
+        assert!(matches!(
+            p.clone().with_covariance(&values, &singular),
+            Err(Error::Singular { .. })
+        ));
+        singular[(0, 1)] = f64::INFINITY;
+        assert!(matches!(
+            p.clone().with_covariance(&values, &singular),
+            Err(Error::Singular { .. })
+        ));
+        assert!(
+            p.with_covariance(&values, &DMatrix::identity(10, 10))
+                .is_err()
+        );
+    }
+
+    /// K p, the whitened misfit, and the parameters K does not see.
+    #[test]
+    fn base_misfit_and_blind_parameters() {
+        let mut k = DMatrix::zeros(2, 11);
+        k[(0, 0)] = 2.0;
+        k[(0, 3)] = -1.0;
+        k[(1, 9)] = 1.0;
+        k[(1, 4)] = 1e-13;
+        let p = Problem::new(names(), vec!["A".into(), "B".into()], k)
+            .unwrap()
+            .with_target(&[1.0, 3.0], &[0.5, 2.0])
+            .unwrap();
+        let mut standard = vec![0.0; 11];
+        standard[0] = 1.0;
+        standard[3] = 0.5;
+        standard[9] = 4.0;
+        assert_eq!(p.base_of(&standard).as_slice(), [1.5, 4.0]);
+        let z = p.normalized_residual(&standard);
+        assert!((z[0] - 0.5 / p.std[0]).abs() < 1e-12 && (z[1] - 1.0 / p.std[1]).abs() < 1e-12);
+        assert_eq!(p.no_effect(), vec![1, 2, 4, 5, 6, 7, 8, 10]);
+        let all = problem_with(&[0.0; 11], &["Fv"]);
+        assert!(all.no_effect().is_empty());
+    }
+}

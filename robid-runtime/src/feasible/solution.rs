@@ -220,3 +220,166 @@ impl Solution {
             .fold(0.0, |a, z| a.max(z.abs()))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::fixture::{link, problem, target};
+    use crate::feasible::{Bounds, LinkBounds};
+
+    fn assemble(standard: &[f64], bounds: &Bounds) -> crate::Result<Solution> {
+        let t = target(link(), 0.1);
+        Solution::assemble(
+            &problem(&t),
+            bounds,
+            Method::Interior,
+            standard.to_vec(),
+            Duration::from_millis(1500),
+        )
+    }
+
+    /// The misfit, the links and the checks of a solution that is the target itself, and
+    /// of one 2 mm off in the mass (z = 2).
+    #[test]
+    fn a_solution_carries_its_misfit_and_links() {
+        let t = target(link(), 0.1);
+        let s = assemble(&t, &Bounds::wide(1)).unwrap();
+        assert_eq!(
+            (s.method, s.seconds, s.iterations),
+            (Method::Interior, 1.5, 0)
+        );
+        assert_eq!(s.names.len(), 11);
+        assert_eq!(s.chi2, 0.0);
+        assert_eq!(s.base, t.to_vec());
+        assert!(s.violations.is_empty() && s.at_bounds.is_empty() && s.dont_care.is_empty());
+        let l = s.links[0].unwrap();
+        assert!((l.mass - 2.0).abs() < 1e-15 && l.com == [0.0; 3]);
+        // P's eigenvalues: m = 2 and half the sums of pairs minus one moment, the least
+        // (0.02 + 0.015 - 0.03) / 2 = 0.0025
+        assert!(
+            (s.min_eigenvalues[0] - 0.0025).abs() < 1e-15,
+            "{:?}",
+            s.min_eigenvalues
+        );
+        // the mass's deviation is 1e-3 with the solvers' floor added (problem.rs)
+        let z = 0.002 / problem(&t).std[9];
+        assert!((z - 2.0).abs() < 1e-3, "{z}");
+        let mut off = t;
+        off[9] += 0.002;
+        let s = assemble(&off, &Bounds::wide(1)).unwrap();
+        assert!((s.chi2 - z * z).abs() < 1e-9, "{}", s.chi2);
+        assert!((s.max_normalized_residual() - z).abs() < 1e-9);
+        off[9] -= 0.004;
+        let s = assemble(&off, &Bounds::wide(1)).unwrap();
+        assert!((s.max_normalized_residual() - z).abs() < 1e-9);
+        assert_eq!(Method::Cholesky.name(), "cholesky");
+        assert_eq!(Method::Interior.name(), "interior-point");
+        assert_eq!(Method::Sdp.name(), "sdp");
+        assert_eq!(Method::Anneal.name(), "anneal");
+    }
+
+    /// Each kind of bound that the values break is reported, and a value at a bound is
+    /// noted; within the tolerance 1e-6 (1 + |bound|) a value is not a violation.
+    #[test]
+    fn broken_bounds_are_reported_and_values_at_bounds_noted() {
+        let t = target(link(), 0.1);
+        let tight = LinkBounds {
+            mass: [0.0, 1.9],
+            com: [[0.01, 0.5], [-0.5, 0.5], [-0.5, 0.5]],
+            inertia: [0.0, 0.025],
+            tensor: [None, None, None, Some([0.001, 0.01]), None, None],
+        };
+        let bounds = Bounds {
+            links: vec![tight],
+            total_mass: Some([0.0, 1.95]),
+            margin: 0.0,
+        };
+        let s = assemble(&t, &bounds).unwrap();
+        let v = s.violations.join("\n");
+        for want in [
+            "link 1: mass 2 outside [0.0, 1.9]",
+            "link 1: com[0] 0 outside [0.01, 0.5]",
+            "link 1: inertia xy 0 outside [0.001, 0.01]",
+            "link 1: principal moment",
+            "total mass 2 outside [0.0, 1.95]",
+        ] {
+            assert!(v.contains(want), "{want} not in\n{v}");
+        }
+        // the moments are 0.03, 0.02, 0.015: only 0.03 is above 0.025
+        assert_eq!(s.violations.len(), 5, "{v}");
+        // just inside the tolerance, at the bounds
+        let edge = LinkBounds {
+            mass: [0.0, 2.0 - 1e-6],
+            com: [[1e-6, 0.5], [-0.5, 0.0], [-0.5, 0.5]],
+            inertia: [0.0, 0.03],
+            tensor: [None; 6],
+        };
+        let bounds = Bounds {
+            links: vec![edge],
+            total_mass: Some([2.0 + 0.5e-6, 3.0]),
+            margin: 0.0,
+        };
+        let s = assemble(&t, &bounds).unwrap();
+        assert!(s.violations.is_empty(), "{:?}", s.violations);
+        let at = s.at_bounds.join("\n");
+        for want in [
+            "link 1: mass 2.000000e0 at its upper bound",
+            "link 1: centre of mass [0] 0.000000e0 at its lower bound",
+            "link 1: centre of mass [1] 0.000000e0 at its upper bound",
+            "link 1: principal moment 2 3.000000e-2 at its upper bound",
+        ] {
+            assert!(at.contains(want), "{want} not in\n{at}");
+        }
+        assert_eq!(s.at_bounds.len(), 4, "{at}");
+    }
+
+    /// A moment near a lower bound of zero is a small link, not a pinned one; a positive
+    /// lower bound is a bound like any other.
+    #[test]
+    fn a_small_moment_is_at_a_bound_only_when_the_bound_is_positive() {
+        let t = target(link(), 0.1);
+        let with = |inertia: [f64; 2]| {
+            let b = Bounds {
+                links: vec![LinkBounds {
+                    inertia,
+                    ..LinkBounds::default()
+                }],
+                ..Bounds::wide(1)
+            };
+            assemble(&t, &b).unwrap().at_bounds
+        };
+        assert!(with([0.0, 5.0]).is_empty());
+        assert!(with([0.0, 10.0]).is_empty());
+        let at = with([0.015, 5.0]);
+        assert_eq!(at.len(), 1, "{at:?}");
+        assert!(
+            at[0].contains("principal moment 0 1.500000e-2 at its lower bound"),
+            "{at:?}"
+        );
+        // a range of 0.03 with the upper end at 0.03: 0.03 is at it, nothing else is
+        let at = with([0.0, 0.03]);
+        assert_eq!(at.len(), 1, "{at:?}");
+    }
+
+    /// A non-finite value is an error naming the parameter and the method.
+    #[test]
+    fn a_non_finite_value_is_refused_by_name() {
+        let mut t = target(link(), 0.1);
+        t[6] = f64::NAN;
+        let e = assemble(&t, &Bounds::wide(1)).unwrap_err().to_string();
+        assert!(e.contains("`MX1`") && e.contains("interior-point"), "{e}");
+        // finite values whose misfit overflows
+        let mut t = target(link(), 0.1);
+        t[10] = 1e306;
+        assert!(assemble(&t, &Bounds::wide(1)).is_err());
+    }
+
+    /// A link whose mass came out zero has no inertial description; its eigenvalue is
+    /// still reported.
+    #[test]
+    fn a_massless_link_has_no_inertial() {
+        let s = assemble(&[0.0; 11], &Bounds::wide(1)).unwrap();
+        assert!(s.links[0].is_none());
+        assert_eq!(s.min_eigenvalues[0], 0.0);
+    }
+}
