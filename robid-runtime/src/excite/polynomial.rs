@@ -97,8 +97,9 @@ mod tests {
         let (p, m, mid) = (seg.eval(u + h), seg.eval(u - h), seg.eval(u));
         for k in 0..3 {
             let fd = (p[k] - m[k]) / (2.0 * h);
+            // central differences, h = 1e-5: measured 6.4e-11, 3.8e-10 and 4.2e-10 relative
             assert!(
-                (fd - mid[k + 1]).abs() < 1e-5 * (1.0 + fd.abs()),
+                (fd - mid[k + 1]).abs() < 8.5e-10 * (1.0 + fd.abs()),
                 "{k}: {fd}"
             );
         }

@@ -53,7 +53,9 @@ fn csv_to_parameters_recovers_the_truth() {
         );
     }
     assert!(id.fit.relative_error < 2e-6, "{:?}", id.fit);
-    assert!(id.estimate.condition_number > 1.0 && id.estimate.condition_number.is_finite());
+    // measured 46.0
+    let cond = id.estimate.condition_number;
+    assert!((23.0..92.0).contains(&cond), "{cond}");
 }
 
 #[test]
@@ -73,6 +75,7 @@ fn wls_is_no_worse_than_ols_with_unequal_noise() {
             .filter(|((v, s), t)| (*v - *t).abs() <= 3.0 * *s + 1e-9)
             .count()
     };
+    // measured 47 of the 48 within 3 sigma (seeded)
     assert!(
         within(&wls.estimate) as f64 >= 0.9 * truth.len() as f64,
         "{}",
@@ -182,18 +185,20 @@ fn extra_coupled_wrist_columns_are_identified() {
     let id = identify(&model, &data, &cfg).unwrap();
     let e = &id.estimate;
     assert_eq!(e.names.len(), model.base_parameter_count() + 3);
+    // noise-free, what is left is the filtering and differentiation: measured 2.1e-7,
+    // 2.9e-6 and 1.1e-6
     assert!(
-        (e.value("Iam6").unwrap() - iam).abs() < 2e-3,
+        (e.value("Iam6").unwrap() - iam).abs() < 4.1e-7,
         "{:?}",
         e.value("Iam6")
     );
     assert!(
-        (e.value("fvm6").unwrap() - fvm).abs() < 2e-2,
+        (e.value("fvm6").unwrap() - fvm).abs() < 5.7e-6,
         "{:?}",
         e.value("fvm6")
     );
     assert!(
-        (e.value("fsm6").unwrap() - fsm).abs() < 5e-2,
+        (e.value("fsm6").unwrap() - fsm).abs() < 2.2e-6,
         "{:?}",
         e.value("fsm6")
     );
@@ -284,9 +289,9 @@ fn a_log_cut_during_motion_needs_no_manual_trim() {
             id.estimate.names[i]
         );
     }
-    // the automatic trim is one settling time of the 20 Hz low-pass at 1 kHz
+    // the automatic trim is one settling time of the 20 Hz low-pass at 1 kHz (measured 56)
     let auto = crate::pipeline::automatic_trim(&cfg, 1e-3).unwrap();
-    assert!((10..200).contains(&auto), "{auto}");
+    assert!((28..112).contains(&auto), "{auto}");
 }
 
 /// With a filtered torque (a decimation's anti-alias filter, or a low-pass on `tau`) the
@@ -325,7 +330,8 @@ fn the_fit_is_also_measured_against_the_unfiltered_torque() {
             rows += 1;
         }
     }
-    assert!(rows > 1000);
+    // measured 11 083 rows
+    assert!(rows > 5600);
     let report = crate::report::Report::from_identification(&id, |_| None);
     assert_eq!(report.fit.torque.as_deref(), Some("filtered"));
     let raw = id.prediction.unfiltered_fit().unwrap().relative_error;
@@ -489,12 +495,12 @@ fn rotor_side_residuals_after_the_nonlinear_compensation() {
     // measured: relative fit error 1.55e-2, Fv1 = 0.775 for Fv~ = 0.25, Fc1 = 0.036 for
     // Fc~ = 0.4
     assert!(
-        linked.fit.relative_error > 1e-3,
+        linked.fit.relative_error > 7.8e-3,
         "link side {:?} vs rotor side {:?}",
         linked.fit,
         id.fit
     );
-    assert!((fv1 - fv).abs() > 0.1, "Fv1 {fv1}");
+    assert!((fv1 - fv).abs() > 0.27, "Fv1 {fv1}");
 
     // both sides for one joint: refused, naming the fix
     let e = identify(&Synthetic::default(), &data, &cfg)

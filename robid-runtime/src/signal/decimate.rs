@@ -292,7 +292,7 @@ mod tests {
         // measured: 0 (the same values) with the settling time, a few ulp allowed;
         // 1.4e-7 with a quarter of it
         assert!(worst(full) < 1e-14, "{:e}", worst(full));
-        assert!(worst(full / 4) > 1e-9, "{:e}", worst(full / 4));
+        assert!(worst(full / 4) > 7e-8, "{:e}", worst(full / 4));
     }
 
     #[test]

@@ -272,7 +272,7 @@ mod tests {
         let sg = SavitzkyGolay::new(51, 3).unwrap();
         let cutoff = bandwidth(&sg, dt);
         // measured 20.9 Hz (Schafer's rule (N + 1) / (3.2 m - 4.6) f_nyquist gives 25.7)
-        assert!((10.0..40.0).contains(&cutoff), "{cutoff}");
+        assert!((10.5..40.0).contains(&cutoff), "{cutoff}");
         let bw = butterworth_hz(4, cutoff, 1.0 / dt).unwrap();
         let filtered = bw.filtfilt_padded(&x, 2000).unwrap();
         let rms = |d: &[f64], truth: &dyn Fn(f64) -> f64| {
@@ -300,10 +300,10 @@ mod tests {
              low-pass + central {bw_a:.3e}"
         );
         // raw central differences amplify the noise (about 1e-4 / dt / sqrt(2) = 0.07 on the
-        // velocity): the fit is an order of magnitude better on both (measured 0.0716 and
-        // 61.8 against 2.61e-3 and 0.822)
-        assert!(10.0 * sg_v < raw_v, "{sg_v} vs {raw_v}");
-        assert!(10.0 * sg_a < raw_a, "{sg_a} vs {raw_a}");
+        // velocity): the fit is more than an order of magnitude better on both (measured
+        // 0.0716 and 61.8 against 2.61e-3 and 0.822, ratios 27.5 and 75; the bounds are half)
+        assert!(14.0 * sg_v < raw_v, "{sg_v} vs {raw_v}");
+        assert!(38.0 * sg_a < raw_a, "{sg_a} vs {raw_a}");
         // at the same -3 dB bandwidth the fit does NOT beat the pipeline's zero-phase
         // Butterworth (order 4, applied twice) followed by central differences: measured
         // velocity 2.61e-3 against 1.52e-3 (ratio 1.72), acceleration 0.822 against 0.161

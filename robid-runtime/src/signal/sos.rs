@@ -377,7 +377,8 @@ mod tests {
         // 4th-order 25 Hz low-pass at 5 kHz: the impulse response lasts ~ 2 / 25 Hz
         let sos = crate::signal::butterworth_hz(4, 25.0, 5000.0).unwrap();
         let k = sos.settling_samples(1e-3, 100_000);
-        assert!((200..800).contains(&k), "{k}");
+        // measured 584
+        assert!((300..800).contains(&k), "{k}");
         // a ramp-and-sine cut mid-motion: long odd padding keeps the edges right
         let x: Vec<f64> = (0..3000)
             .map(|i| {
@@ -388,19 +389,19 @@ mod tests {
         let short = sos.filtfilt(&x).unwrap();
         let long = sos.filtfilt_padded(&x, k).unwrap();
         let err = |y: &[f64]| (0..50).map(|i| (y[i] - x[i]).abs()).fold(0.0, f64::max);
-        // measured 4.2e-6 (1.0e-3 without the long padding)
+        // measured 4.2e-6 (1.0e-3 without the long padding: a ratio of 4.1e-3)
         assert!(err(&long) < 8.5e-6, "{}", err(&long));
         assert!(
-            err(&long) < 0.1 * err(&short),
+            err(&long) < 8e-3 * err(&short),
             "{} vs {}",
             err(&long),
             err(&short)
         );
-        // and at the other end (measured 1.23e-5, 9.4e-3 without the long padding)
+        // and at the other end (measured 1.23e-5, 9.4e-3 without the long padding: 1.3e-3)
         let n = x.len();
         let end = |y: &[f64]| (n - 50..n).map(|i| (y[i] - x[i]).abs()).fold(0.0, f64::max);
         assert!(end(&long) < 2.5e-5, "{}", end(&long));
-        assert!(end(&long) < 0.1 * end(&short));
+        assert!(end(&long) < 2.6e-3 * end(&short));
         // in the middle both are the plain filter
         assert!((long[1500] - short[1500]).abs() < 1e-9);
     }

@@ -635,7 +635,7 @@ mod consistency_tests {
 
     /// What the simulator records at the samples agrees with the motion it integrates:
     /// the second differences of the simulated positions equal the recorded accelerations
-    /// (which satisfy the model with the recorded torques) to well within 0.1 % RMS, with
+    /// (which satisfy the model with the recorded torques) to 1.5e-6 RMS at worst, with
     /// friction and the default 10 Hz loop. (The first-order scheme missed by 24 %; a
     /// differentiating identification then saw inertias biased by 4-6 %.)
     #[test]
@@ -671,7 +671,8 @@ mod consistency_tests {
                 a2 += tr.qdd[j][k].powi(2);
             }
             let ratio = (e2 / a2).sqrt();
-            assert!(ratio < 1e-3, "joint {}: {ratio}", j + 1);
+            // measured 5.6e-7 and 1.47e-6
+            assert!(ratio < [1.1e-6, 2.9e-6][j], "joint {}: {ratio}", j + 1);
         }
     }
 }

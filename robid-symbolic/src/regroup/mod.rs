@@ -458,6 +458,7 @@ drive = ["Ia", "Fv", "Fc", "Fo"]
         let others = [d.inputs.q[0], d.inputs.qdd[1]];
         let mut rng = super::Rng::from_state(7);
         let sampled = d.sample(&[&velocities, &others], &[], &[], &mut rng);
+        // measured 40
         assert!(sampled[0].len() >= 40);
         for v in &sampled[0] {
             assert!((0.2..=2.0).contains(&v.abs()), "velocity {v}");

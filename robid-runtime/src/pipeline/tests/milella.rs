@@ -51,7 +51,7 @@ fn milella_savitzky_golay_identification_recovers_the_truth() {
     }
     // without noise or low-pass what is left is the differentiators' truncation error:
     // the fit of order 4 is far more accurate than central differences, which shows the
-    // option is really used (measured 1.30e-8 against 3.09e-6)
+    // option is really used (measured 1.30e-8 against 3.09e-6, 237 times; the bound is half)
     let bare = CONFIG.replace(
         "lowpass = { cutoff = 20.0, order = 4, signals = [\"q\"] }",
         "",
@@ -72,7 +72,7 @@ fn milella_savitzky_golay_identification_recovers_the_truth() {
         run("differentiation = { method = \"savitzky-golay\", window = 31, order = 4 }\n"),
     );
     eprintln!("noise-free, no low-pass: central {central:.3e}, Savitzky-Golay {sg:.3e}");
-    assert!(10.0 * sg < central, "{sg} vs {central}");
+    assert!(120.0 * sg < central, "{sg} vs {central}");
 }
 
 /// Milella's bound `cond(W) ||rho|| / ||y||` on simulated identifications where the truth

@@ -63,7 +63,7 @@ fn milella_run_spread_agrees_with_the_reported_std() {
     );
     assert!((0.376..1.70).contains(&median), "{median}");
     // stacked: 8 times the equations of one run with the same noise, the std falls by
-    // sqrt(8) up to the scatter of the residual variance (measured 1.0001 for every
+    // sqrt(8) up to the scatter of the residual variance (measured 1 + 8.5e-5 for every
     // parameter)
     let mut stacked: Vec<f64> = id
         .estimate
@@ -79,14 +79,19 @@ fn milella_run_spread_agrees_with_the_reported_std() {
         stacked[stacked.len() - 1]
     );
     assert!(
-        stacked[0] > 0.95 && stacked[stacked.len() - 1] < 1.05,
+        stacked[0] > 1.0 - 1.7e-4 && stacked[stacked.len() - 1] < 1.0 + 1.7e-4,
         "{stacked:?}"
     );
     // the torque spread is the noise's: uniform of amplitude 0.5, std 0.5 / sqrt(12) =
-    // 0.144 on every joint (the drive chain is the identity)
+    // 0.144 on every joint (the drive chain is the identity), pooled over 20 000 samples
+    // of 7 degrees of freedom: 4 standard errors of a normal sample's std, sigma /
+    // sqrt(2 dof), bound it (the uniform's lighter tails only narrow it; measured 2.5e-4
+    // at worst)
     let t = s.torque_std.as_ref().unwrap();
+    let sigma = 0.5 / 12f64.sqrt();
+    let se = sigma / (2.0 * 20_000.0 * 7.0f64).sqrt();
     for v in t {
-        assert!((v - 0.5 / 12f64.sqrt()).abs() < 0.01, "{t:?}");
+        assert!((v - sigma).abs() < 4.0 * se, "{t:?}");
     }
     // the report carries it all
     let report = Report::from_runs(&id, |_| None);
@@ -120,7 +125,7 @@ fn milella_averaged_runs_lower_the_noise_by_sqrt_r() {
     assert_eq!(averaged.mode, RunMode::Averaged);
     assert!(averaged.used.is_some());
     // the mean of 8 noises has 1 / sqrt(8) of their std, and so has the estimate's std
-    // (measured 0.9970 x sqrt(8) for every parameter)
+    // (measured (1 - 3.0e-3) / sqrt(8) of one run's, for every parameter)
     let mut ratios: Vec<f64> = averaged
         .estimate
         .std
@@ -135,11 +140,11 @@ fn milella_averaged_runs_lower_the_noise_by_sqrt_r() {
         ratios[ratios.len() - 1]
     );
     assert!(
-        ratios[0] > 0.95 && ratios[ratios.len() - 1] < 1.05,
+        ratios[0] > 1.0 - 6e-3 && ratios[ratios.len() - 1] < 1.0 + 6e-3,
         "{ratios:?}"
     );
     // the distance to the truth: one run's against the mean's, about 1 / sqrt(8) = 0.354
-    // (measured 5.56e-4 against 1.60e-3, 0.348); the bound 2 / sqrt(8) leaves room for the draw
+    // (measured 5.56e-4 against 1.60e-3, 0.348, seeded); the bound is twice that
     let single: f64 = averaged
         .runs
         .iter()
@@ -148,7 +153,7 @@ fn milella_averaged_runs_lower_the_noise_by_sqrt_r() {
         / r;
     let mean = relative_error(&averaged.estimate.values);
     eprintln!("relative error: one run {single:.3e} on average, the averaged runs {mean:.3e}");
-    assert!(mean < 2.0 / r.sqrt() * single, "{mean} vs {single}");
+    assert!(mean < 0.69 * single, "{mean} vs {single}");
     let mut stacked_config = config.clone();
     stacked_config.runs.as_mut().unwrap().mode = RunMode::Stacked;
     let stacked = identify_runs(&Synthetic::default(), &data, &stacked_config).unwrap();

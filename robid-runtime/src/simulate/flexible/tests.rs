@@ -100,11 +100,11 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
          transmission residual {spring}"
     );
     assert!(
-        link <= 2.5e-4 * largest,
+        link <= 2.4e-4 * largest,
         "link equation: {link} of {largest}"
     );
     assert!(
-        rotor <= 2.5e-5 * largest,
+        rotor <= 2.2e-5 * largest,
         "rotor equation: {rotor} of {largest}"
     );
     // measured 2.0e-5 of the largest torque (the damping term reaches 1e-3 of it)
@@ -121,7 +121,7 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
                 .max((log.true_q[1][k] - r.q[1][k]).abs())
         })
         .fold(0.0, f64::max);
-    assert!(tracking < 3.5e-4, "tracking {tracking}");
+    assert!(tracking < 3.2e-4, "tracking {tracking}");
     let d = log.largest_deflection();
     let expected: Vec<f64> = (0..2)
         .map(|j| {
@@ -134,7 +134,7 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
         .collect();
     for j in 0..2 {
         assert!(
-            (d[j] / expected[j] - 1.0).abs() < 5e-5,
+            (d[j] / expected[j] - 1.0).abs() < [5.4e-6, 4.8e-5][j],
             "{d:?} vs {expected:?}"
         );
     }
@@ -169,11 +169,13 @@ fn flexible_noise_reaches_both_encoders_and_the_current() {
     let b = noisy.run_flexible(&p, &p.base(), &flex, &r).unwrap();
     assert_eq!(a.current, b.current);
     for k in 0..r.samples() {
-        // quantized to the count on each side
+        // quantized to the count on each side: round(x / r) r / r is the count after two
+        // roundings of half an ulp, so within about eps |m| (measured 0.82 eps |m|, with
+        // |m| up to 4.2e5)
         let m = a.motor[0][k] / 1e-4;
-        assert!((m - m.round()).abs() < 1e-6, "{m}");
+        assert!((m - m.round()).abs() <= 2.0 * f64::EPSILON * m.abs(), "{m}");
         let q = a.q[1][k] / 1e-4;
-        assert!((q - q.round()).abs() < 1e-6, "{q}");
+        assert!((q - q.round()).abs() <= 2.0 * f64::EPSILON * q.abs(), "{q}");
     }
     // current noise 0.5 / (100 x 0.1) = 0.05 A on top of what the controller commands
     let d: Vec<f64> = (0..r.samples())
@@ -190,6 +192,7 @@ fn flexible_noise_reaches_both_encoders_and_the_current() {
         })
         .sum::<f64>();
     let spread: f64 = d.iter().map(|x| x * x).sum::<f64>();
+    // measured: the noise adds 0.53 x 0.05^2 per sample (seeded), not the whole 0.05^2
     assert!(spread > quiet_spread + 0.5 * 0.05 * 0.05 * r.samples() as f64);
 }
 

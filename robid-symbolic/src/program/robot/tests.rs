@@ -98,9 +98,9 @@ fn composite_rigid_body_equals_newton_euler_columns() {
             }
         }
     }
-    // every feature was drawn
+    // every feature was drawn (measured 43, 31, 27 and 28 times, seeded)
     assert!(
-        prismatic > 5 && general > 5 && standard > 5 && drives > 5,
+        prismatic > 22 && general > 16 && standard > 14 && drives > 14,
         "{prismatic} {general} {standard} {drives}"
     );
 }

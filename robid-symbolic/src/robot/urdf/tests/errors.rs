@@ -174,5 +174,6 @@ fn truncated_and_garbled_files_are_errors_not_panics() {
             assert!(!e.to_string().contains("NaN"), "{e}");
         }
     }
-    assert!(errors > 50, "{errors}");
+    // measured 352 of the 400 (seeded)
+    assert!(errors > 176, "{errors}");
 }
