@@ -22,3 +22,46 @@ pub fn centre(layout: &Layout, bounds: &Bounds) -> Vec<f64> {
     }
     p
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::LinkBounds;
+    use crate::feasible::fixture::problem_with;
+
+    /// The centre of the bounds as standard parameters: the link at its mid mass, centre of
+    /// mass and moment (moved to the frame origin), drive terms zero.
+    #[test]
+    fn the_centre_is_a_solid_at_mid_bounds() {
+        let layout = problem_with(&[0.0; 11], &["Fv"]).layout;
+        let bounds = Bounds {
+            links: vec![LinkBounds {
+                mass: [1.0, 3.0],
+                com: [[0.0, 0.2], [-0.1, 0.1], [0.2, 0.4]],
+                inertia: [0.01, 0.03],
+                tensor: [None; 6],
+            }],
+            ..Bounds::wide(1)
+        };
+        let p = centre(&layout, &bounds);
+        // m = 2, c = (0.1, 0, 0.3), I_c = 0.02 I; J_O = I_c + m (c'c I - c c')
+        let want = [
+            0.02 + 2.0 * 0.09,
+            0.0,
+            -2.0 * 0.03,
+            0.02 + 2.0 * 0.1,
+            0.0,
+            0.02 + 2.0 * 0.01,
+            0.2,
+            0.0,
+            0.6,
+            2.0,
+            0.0,
+            0.0,
+        ];
+        assert_eq!(p.len(), 12);
+        for (i, (a, b)) in p.iter().zip(want).enumerate() {
+            assert!((a - b).abs() < 1e-15, "{i}: {p:?}");
+        }
+    }
+}

@@ -216,3 +216,160 @@ impl GravityCoefficients {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::fixture::problem;
+    use crate::model::{LengthError, ProgramKind, check_arguments};
+
+    /// A 2-joint model whose base regressor is written by hand (base parameters A..E):
+    /// at rest row 1 is [cos q1, 2 cos q1, sin(q1 + q2), 0, 1] and row 2
+    /// [0, 0, sin(q1 + q2), 0, 0], so B's gravity column is twice A's, D has none and E is
+    /// a constant offset; D's column is qdd1 + qdd2 in row 1 and qdd2 in row 2, its mass
+    /// matrix [[1, 1], [., 1]]. `poison` puts a NaN in E's column.
+    struct Hand {
+        names: Vec<String>,
+        poison: bool,
+    }
+
+    impl Hand {
+        fn new(poison: bool) -> Self {
+            let names = ["A", "B", "C", "D", "E"].map(String::from).to_vec();
+            Self { names, poison }
+        }
+    }
+
+    impl Model for Hand {
+        fn name(&self) -> &str {
+            "hand"
+        }
+        fn dof(&self) -> usize {
+            2
+        }
+        fn standard_parameter_count(&self) -> usize {
+            5
+        }
+        fn standard_parameter_name(&self, index: usize) -> Option<&str> {
+            self.names.get(index).map(String::as_str)
+        }
+        fn base_parameter_count(&self) -> usize {
+            5
+        }
+        fn base_parameter_name(&self, index: usize) -> Option<&str> {
+            self.names.get(index).map(String::as_str)
+        }
+        fn run(
+            &self,
+            program: ProgramKind,
+            inputs: &[&[f64]],
+            output: &mut [f64],
+        ) -> std::result::Result<(), LengthError> {
+            check_arguments(program, self.sizes(), inputs, output)?;
+            output.fill(0.0);
+            if let (ProgramKind::BaseRegressor, [q, _, qdd]) = (program, inputs) {
+                let (c1, s12) = (q[0].cos(), (q[0] + q[1]).sin());
+                let e = if self.poison { f64::NAN } else { 1.0 };
+                output[..5].copy_from_slice(&[c1, 2.0 * c1, s12, qdd[0] + qdd[1], e]);
+                output[5..].copy_from_slice(&[0.0, 0.0, s12, qdd[1], 0.0]);
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn dependent_columns_fold_into_the_kept_and_zero_ones_drop() {
+        let g = GravityCoefficients::of_model(&Hand::new(false)).unwrap();
+        assert_eq!(g.names, ["A", "C", "E"]);
+        assert_eq!(g.kept, [0, 2, 4]);
+        let want = DMatrix::from_row_slice(
+            3,
+            5,
+            &[
+                1.0, 2.0, 0.0, 0.0, 0.0, //
+                0.0, 0.0, 1.0, 0.0, 0.0, //
+                0.0, 0.0, 0.0, 0.0, 1.0,
+            ],
+        );
+        // the fold's coefficient 2 comes from a least-squares solve: to rounding
+        assert!((&g.map - want).amax() < 1e-12, "{}", g.map);
+        let v = g.values(&[1.0, 0.5, -2.0, 7.0, 3.0]).unwrap();
+        assert!(
+            (v[0] - 2.0).abs() < 1e-12 && v[1] == -2.0 && v[2] == 3.0,
+            "{v:?}"
+        );
+        assert!(matches!(
+            g.values(&[1.0; 4]),
+            Err(Error::DimensionMismatch {
+                expected: 5,
+                found: 4,
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn the_mass_matrix_determines_only_what_the_accelerations_see() {
+        let m = GravityCoefficients::of_mass_matrix(&Hand::new(false)).unwrap();
+        assert_eq!(m.names, ["D"]);
+        assert_eq!(m.map.shape(), (1, 5));
+        assert_eq!(m.map[(0, 3)], 1.0);
+        assert_eq!(m.map.sum(), 1.0);
+    }
+
+    #[test]
+    fn a_non_finite_regressor_is_refused() {
+        let e = GravityCoefficients::of_model(&Hand::new(true)).unwrap_err();
+        assert!(matches!(e, Error::NonFiniteResult { .. }), "{e}");
+    }
+
+    /// The coefficients' problem: K_g = G K, target G beta and covariance G Sigma G'
+    /// (with the solvers' variance floor), the shapes carried over.
+    #[test]
+    fn the_coefficients_problem_maps_k_the_target_and_the_covariance() {
+        let g = GravityCoefficients::of_model(&Hand::new(false)).unwrap();
+        let full = problem(&[0.0; 11]);
+        let mut k = DMatrix::zeros(5, 11);
+        for (b, s) in [(0, 9), (1, 6), (2, 7), (3, 0), (4, 10)] {
+            k[(b, s)] = 1.0 + b as f64;
+        }
+        let names = ["A", "B", "C", "D", "E"].map(String::from).to_vec();
+        let full = Problem::new(full.standard_names, names, k.clone())
+            .unwrap()
+            .with_target(&[1.0, 0.5, -2.0, 7.0, 3.0], &[0.1, 0.2, 0.3, 0.4, 0.5])
+            .unwrap()
+            .with_shapes(vec![crate::feasible::LinkShape {
+                from: [0.0; 3],
+                to: [0.0, 0.0, 0.4],
+            }])
+            .unwrap();
+        let p = g.problem(&full).unwrap();
+        assert_eq!(p.base_names, ["A", "C", "E"]);
+        assert!((&p.k - &g.map * &k).amax() < 1e-15);
+        assert!((p.target[0] - 2.0).abs() < 1e-12 && p.target[1] == -2.0 && p.target[2] == 3.0);
+        // var(A + 2B) = 0.1^2 + 4 * 0.2^2 plus the floors of the full problem's variances
+        let sigma = full.std.map(|s| s * s);
+        let want = sigma[0] + 4.0 * sigma[1];
+        let floor = |v: f64| (1e-5 * v + 1e-8 * 3.0 + 1e-12).powi(2);
+        assert!(
+            (p.std[0] * p.std[0] - want - floor(2.0)).abs() < 1e-12,
+            "{}",
+            p.std
+        );
+        assert!(
+            (p.std[2] * p.std[2] - sigma[4] - floor(3.0)).abs() < 1e-12,
+            "{}",
+            p.std
+        );
+        assert!(p.shapes.is_some());
+        let wrong = problem(&[0.0; 11]);
+        assert!(matches!(
+            g.problem(&wrong),
+            Err(Error::DimensionMismatch {
+                expected: 5,
+                found: 11,
+                ..
+            })
+        ));
+    }
+}
