@@ -247,3 +247,156 @@ const IDENTITY: [[f64; 4]; 4] = [
     [0.0, 0.0, 1.0, 0.0],
     [0.0, 0.0, 0.0, 1.0],
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::fixture::{link, problem, target};
+    use crate::feasible::{Bounds, LinkInertial, Method};
+
+    fn solution() -> Solution {
+        let t = target(link(), 0.1);
+        let mut off = t;
+        off[9] += 0.002;
+        let mut s = Solution::assemble(
+            &problem(&t),
+            &Bounds::wide(1),
+            Method::Interior,
+            off.to_vec(),
+            std::time::Duration::from_millis(250),
+        )
+        .unwrap();
+        s.dont_care = vec!["XY1".into(), "YZ1".into()];
+        s.violations = vec!["link 1: mass 2 outside [0.0, 1.9]".into()];
+        s.at_bounds = vec!["link 1: mass 2 at its upper bound 2".into()];
+        s.determined = vec![0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.2, 0.9, 0.4, 1.0, 1.0];
+        s
+    }
+
+    #[test]
+    fn the_toml_has_the_summary_the_standard_table_and_the_links() {
+        let s = solution();
+        let text = to_toml(&s, "arm");
+        let z = s.max_normalized_residual();
+        for want in [
+            "# Physically consistent link parameters of arm (method interior-point).\n".to_string(),
+            format!("# chi^2 = {:.6e} over 11 base parameters, max |z| = {z:.4} (|z| <= 1: within one std); 0.250 s.\n", s.chi2),
+            "# No effect on the dynamics (don't-care values): XY1 YZ1.\n".into(),
+            "# bound not met: link 1: mass 2 outside [0.0, 1.9]\n".into(),
+            "# at a bound: link 1: mass 2 at its upper bound 2\n".into(),
+            "# Share determined by the data (1) rather than the prior (0), per link:\n".into(),
+            "#   link 1: mass 1.00, first moments 0.20-0.90, inertia 0.50\n".into(),
+            "\n[standard]\nXX1 = 3e-2\nXY1 = 0e0\n".into(),
+            "M1 = 2.002e0\nIa1 = 1e-1\n".into(),
+            "\n[[links]]\nlink = 1\npseudo_inertia_min_eigenvalue = ".into(),
+            "mass = 2.002e0\ncom = [0e0, 0e0, 0e0]\ninertia = [[3e-2, 0e0, 0e0], [0e0, 2e-2, 0e0], [0e0, 0e0, 1.5e-2]]\n".into(),
+        ] {
+            assert!(text.contains(&want), "{want:?} not in\n{text}");
+        }
+        // the values read back as written
+        let table: toml::Table = toml::from_str(&text).unwrap();
+        for (n, v) in s.names.iter().zip(&s.standard) {
+            assert_eq!(table["standard"][n.as_str()].as_float(), Some(*v), "{n}");
+        }
+        // without the optional parts, and a massless link
+        let mut bare = s.clone();
+        bare.dont_care.clear();
+        bare.violations.clear();
+        bare.at_bounds.clear();
+        bare.determined.clear();
+        bare.links[0] = None;
+        let text = to_toml(&bare, "arm");
+        for absent in [
+            "don't-care",
+            "bound not met",
+            "at a bound",
+            "Share",
+            "com =",
+        ] {
+            assert!(!text.contains(absent), "{absent} in\n{text}");
+        }
+        assert!(text.ends_with("mass = 0.0\n"), "{text}");
+    }
+
+    fn pose(yaw: f64, xyz: [f64; 3]) -> [[f64; 4]; 4] {
+        let (s, c) = yaw.sin_cos();
+        [
+            [c, -s, 0.0, xyz[0]],
+            [s, c, 0.0, xyz[1]],
+            [0.0, 0.0, 1.0, xyz[2]],
+            [0.0, 0.0, 0.0, 1.0],
+        ]
+    }
+
+    /// Links carry their inertials placed by the link frames, joints their kinds and
+    /// limits, and a tool hangs from the last link.
+    #[test]
+    fn the_urdf_places_inertials_and_gives_each_joint_its_kind() {
+        let mut s = solution();
+        let body = LinkInertial {
+            mass: 1.5,
+            com: [0.1, 0.0, 0.0],
+            inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.03]],
+        };
+        s.links = vec![Some(body), None, Some(body)];
+        let yaw = std::f64::consts::FRAC_PI_2;
+        let joint = UrdfJoint {
+            prismatic: false,
+            origin: pose(0.0, [0.0, 0.0, 0.3]),
+            link_frame: pose(yaw, [0.0, 0.0, 0.05]),
+            position: Some([-1.0, 2.0]),
+            velocity: Some(3.0),
+            effort: Some(40.0),
+        };
+        let joints = [
+            joint,
+            UrdfJoint {
+                position: None,
+                effort: None,
+                ..joint
+            },
+            UrdfJoint {
+                prismatic: true,
+                position: None,
+                ..joint
+            },
+        ];
+        let tool = pose(0.0, [0.0, 0.0, 0.1]);
+        let urdf = to_urdf(&s, "arm", &joints, Some(&tool));
+        for want in [
+            "<robot name=\"arm\">\n  <link name=\"base_link\"/>\n  <link name=\"link1\">\n",
+            // the centre of mass (0.1, 0, 0) of the link frame turned by 90 degrees: y
+            "<origin xyz=\"6.123233995736766e-18 1e-1 5e-2\" rpy=\"0e0 -0e0 1.5707963267948966e0\"/>\n      <mass value=\"1.5e0\"/>\n",
+            "<inertia ixx=\"1e-2\" ixy=\"1e-3\" ixz=\"0e0\" iyy=\"2e-2\" iyz=\"2e-3\" izz=\"3e-2\"/>",
+            "<link name=\"link2\">\n    <inertial>\n      <origin xyz=\"0e0 0e0 5e-2\"",
+            "<mass value=\"0e0\"/>",
+            "<joint name=\"joint1\" type=\"revolute\">\n    <parent link=\"base_link\"/>\n    <child link=\"link1\"/>\n    <origin xyz=\"0e0 0e0 3e-1\" rpy=\"0e0 -0e0 0e0\"/>\n    <axis xyz=\"0 0 1\"/>\n    <limit lower=\"-1e0\" upper=\"2e0\" effort=\"4e1\" velocity=\"3e0\"/>\n  </joint>",
+            "<joint name=\"joint2\" type=\"continuous\">\n    <parent link=\"link1\"/>",
+            "<!-- 0: the description gives no torque or no velocity limit -->\n    <limit effort=\"0e0\" velocity=\"3e0\"/>",
+            "<joint name=\"joint3\" type=\"prismatic\">\n    <parent link=\"link2\"/>",
+            "<!-- the description gives no position limits -->\n    <limit lower=\"-1e9\" upper=\"1e9\" effort=\"4e1\" velocity=\"3e0\"/>",
+            "<joint name=\"tool_joint\" type=\"fixed\">\n    <parent link=\"link3\"/>\n    <child link=\"tool\"/>\n    <origin xyz=\"0e0 0e0 1e-1\"",
+        ] {
+            assert!(urdf.contains(want), "{want:?} not in\n{urdf}");
+        }
+        assert_eq!(urdf.matches("<limit").count(), 3, "{urdf}");
+        assert!(urdf.ends_with("</robot>\n"));
+        // a revolute joint with no limit at all has no <limit>, and no tool without a pose
+        let free = UrdfJoint {
+            position: None,
+            effort: None,
+            velocity: None,
+            ..joint
+        };
+        let urdf = to_urdf(&s, "arm", &[free], None);
+        assert!(!urdf.contains("<limit") && !urdf.contains("tool"), "{urdf}");
+        assert_eq!(urdf.matches("<joint ").count(), 1);
+        // no joints: the inertials stay in their own frames
+        let urdf = to_urdf(&s, "arm", &[], Some(&tool));
+        assert!(
+            urdf.contains("<origin xyz=\"1e-1 0e0 0e0\" rpy=\"0e0 -0e0 0e0\"/>"),
+            "{urdf}"
+        );
+        assert!(!urdf.contains("<joint") && !urdf.contains("tool"), "{urdf}");
+    }
+}
