@@ -193,3 +193,207 @@ fn solve(
         fix: "install OpenBLAS (`bash .ci/install-deps.sh`) and build with `--features sdp`, or use `--method cholesky` (the default, the same optimum), `interior-point` or `anneal`".to_owned(),
     }))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feasible::fixture::{link, problem, target};
+
+    /// The shapes of the data are checked before any solver runs (with or without the
+    /// `sdp` feature); settings out of range are refused by name.
+    #[test]
+    fn data_and_settings_are_checked_first() {
+        let p = problem(&target(link(), 0.1));
+        let b = Bounds::wide(1);
+        let o = SdpOptions::default();
+        let w = DMatrix::identity(11, 11);
+        let y = DVector::zeros(11);
+        let e = consistent_least_squares(&p, &DMatrix::zeros(11, 10), &y, &b, &o).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::DimensionMismatch {
+                    expected: 11,
+                    found: 10,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let e = consistent_least_squares(&p, &w, &DVector::zeros(12), &b, &o).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::DimensionMismatch {
+                    expected: 11,
+                    found: 12,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let e = consistent_least_squares(&p, &DMatrix::zeros(10, 11), &DVector::zeros(10), &b, &o)
+            .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::TooFewSamples {
+                    found: 10,
+                    required: 11,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let mut bad = w.clone();
+        bad[(3, 4)] = f64::NAN;
+        let e = consistent_least_squares(&p, &bad, &y, &b, &o).unwrap_err();
+        assert!(e.to_string().contains("NaN"), "{e}");
+        let mut y_bad = y.clone();
+        y_bad[2] = f64::INFINITY;
+        assert!(consistent_least_squares(&p, &w, &y_bad, &b, &o).is_err());
+        for (options, key) in [
+            (
+                SdpOptions {
+                    regularization: -1.0,
+                    ..SdpOptions::default()
+                },
+                "regularization",
+            ),
+            (
+                SdpOptions {
+                    regularization: 2e12,
+                    ..SdpOptions::default()
+                },
+                "regularization",
+            ),
+            (
+                SdpOptions {
+                    prior: Some(Prior {
+                        standard: Vec::new(),
+                        weight: f64::NAN,
+                    }),
+                    ..SdpOptions::default()
+                },
+                "prior.weight",
+            ),
+            (
+                SdpOptions {
+                    prior: Some(Prior {
+                        standard: vec![None, Some(2e6)],
+                        weight: 1.0,
+                    }),
+                    ..SdpOptions::default()
+                },
+                "standard parameter 2",
+            ),
+        ] {
+            let e = solve_sdp(&p, &b, &options).unwrap_err().to_string();
+            assert!(e.contains(key), "{key}: {e}");
+            let e = consistent_least_squares(&p, &w, &y, &b, &options)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(key), "{key}: {e}");
+        }
+        assert!(
+            SdpOptions {
+                regularization: 1e12,
+                ..SdpOptions::default()
+            }
+            .check()
+            .is_ok()
+        );
+    }
+
+    /// Without the feature the method says how to get it (after checking the bounds).
+    #[cfg(not(feature = "sdp"))]
+    #[test]
+    fn without_the_feature_the_method_is_unavailable() {
+        let p = problem(&target(link(), 0.1));
+        let e = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("--features sdp"), "{e}");
+        let mut bad = Bounds::wide(1);
+        bad.margin = 2.0;
+        let e = solve_sdp(&p, &bad, &SdpOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("margin"), "{e}");
+    }
+
+    /// The known optima of the interior-point method's tests, by the conic solver: a
+    /// parameter moved by `delta` from its target costs (delta / std)^2, with std the
+    /// deviation 1e-3 and the solvers' floor (problem.rs).
+    #[cfg(feature = "sdp")]
+    #[test]
+    fn the_known_optima_of_each_kind() {
+        let options = SdpOptions {
+            regularization: 1e-9,
+            ..SdpOptions::default()
+        };
+        let solve = |t: &[f64; 11], edit: &dyn Fn(&mut Bounds)| {
+            let mut bounds = Bounds::wide(1);
+            edit(&mut bounds);
+            let p = problem(t);
+            let s = solve_sdp(&p, &bounds, &options).unwrap();
+            assert_eq!(s.method, crate::feasible::Method::Sdp);
+            assert!(s.violations.is_empty(), "{:?}", s.violations);
+            (s, p.std)
+        };
+        let cost = |delta: f64, std: f64| (delta / std).powi(2);
+        // measured: chi^2 1.4e-19; Ia 3.4e-11 and chi^2 2.8e-7 off; then (value - bound,
+        // chi^2 - optimum) for the mass (-4.0e-12, 4.0e-8), the total mass (-1.3e-10,
+        // 2.9e-6), the centre of mass (-1.1e-10, -5.1e-6 of chi^2); the inconsistent target
+        // at 1.00007 margins, chi^2 75.020 (the margin keeps it inside)
+        let t = target(link(), 0.1);
+        let (s, _) = solve(&t, &|_| {});
+        assert!(s.chi2 < 2.8e-19, "{}", s.chi2);
+        let (s, std) = solve(&target(link(), -0.004), &|_| {});
+        assert!(
+            s.standard[10] >= 0.0 && s.standard[10] < 6.8e-11,
+            "{}",
+            s.standard[10]
+        );
+        assert!((s.chi2 - cost(0.004, std[10])).abs() < 5.6e-7, "{}", s.chi2);
+        let (s, std) = solve(&t, &|b| b.links[0].mass = [0.0, 1.995]);
+        assert!((s.standard[9] - 1.995).abs() < 8e-12, "{}", s.standard[9]);
+        assert!((s.chi2 - cost(0.005, std[9])).abs() < 8e-8, "{}", s.chi2);
+        let (s, std) = solve(&t, &|b| b.total_mass = Some([0.0, 1.99]));
+        assert!((s.standard[9] - 1.99).abs() < 2.6e-10, "{}", s.standard[9]);
+        assert!((s.chi2 - cost(0.01, std[9])).abs() < 5.8e-6, "{}", s.chi2);
+        let mut l = link();
+        l[0] = 0.05;
+        let (s, _) = solve(&target(l, 0.1), &|_| {});
+        let e = s.min_eigenvalues[0] / Bounds::wide(1).margin;
+        assert!((1.0..1.00014).contains(&e), "{e}");
+        assert!((s.chi2 - 75.0).abs() < 0.04, "{}", s.chi2);
+        let mut shifted = link();
+        shifted[6] = 0.2;
+        shifted[3] += 2.0 * 0.01;
+        shifted[5] += 2.0 * 0.01;
+        let (s, _) = solve(&target(shifted, 0.1), &|b| b.links[0].com[0] = [-1.0, 0.05]);
+        assert!((s.standard[6] - 0.05 * s.standard[9]).abs() < 2.2e-10);
+        let want = (0.1f64 / 1e-3).powi(2) / (1.0 + 0.05 * 0.05);
+        assert!((s.chi2 / want - 1.0).abs() < 1e-5, "{}", s.chi2);
+    }
+
+    /// On noise-free data the consistent least squares returns the truth (a consistent
+    /// link) whatever the observation's rows.
+    #[cfg(feature = "sdp")]
+    #[test]
+    fn consistent_least_squares_recovers_a_consistent_truth() {
+        let truth = target(link(), 0.1);
+        let p = problem(&truth);
+        let mut rng = crate::rng::Rng::new(7);
+        let w = DMatrix::from_fn(40, 11, |_, _| rng.uniform(-1.0, 1.0));
+        let y = &w * DVector::from_column_slice(&truth);
+        let s =
+            consistent_least_squares(&p, &w, &y, &Bounds::wide(1), &SdpOptions::default()).unwrap();
+        let worst = s
+            .standard
+            .iter()
+            .zip(&truth)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        // measured 3.0e-9 and chi^2 2.8e-11 (the conic solver's tolerance)
+        assert!(worst < 6e-9, "{worst:e}");
+        assert!(s.chi2 < 5.6e-11, "{}", s.chi2);
+    }
+}
