@@ -421,26 +421,33 @@ mod tests {
     #[test]
     fn extra_columns_extend_k_by_an_identity_block() {
         let n = names();
-        let mut k = DMatrix::zeros(2, 11);
+        // three base rows and two extras: no sum of the sizes is also their product
+        let mut k = DMatrix::zeros(3, 11);
         k[(0, 0)] = 2.0;
         k[(1, 9)] = 3.0;
-        let p = Problem::new(n, vec!["A".into(), "B".into()], k).unwrap();
+        k[(2, 4)] = 4.0;
+        let p = Problem::new(n, vec!["A".into(), "B".into(), "C".into()], k).unwrap();
         let e = p
             .with_extra_columns(&["Iam6".into(), "fvm6".into()])
             .unwrap();
-        assert_eq!(e.k.shape(), (4, 13));
+        assert_eq!(e.k.shape(), (5, 13));
         assert_eq!(
-            (e.k[(0, 0)], e.k[(1, 9)], e.k[(2, 11)], e.k[(3, 12)]),
-            (2.0, 3.0, 1.0, 1.0)
+            (
+                e.k[(0, 0)],
+                e.k[(1, 9)],
+                e.k[(2, 4)],
+                e.k[(3, 11)],
+                e.k[(4, 12)]
+            ),
+            (2.0, 3.0, 4.0, 1.0, 1.0)
         );
-        assert_eq!(e.k.sum(), 7.0);
+        assert_eq!(e.k.sum(), 11.0);
         assert_eq!(e.layout.extra, vec![11, 12]);
         assert_eq!(e.standard_names[12], "fvm6");
-        assert_eq!(e.base_names[2..], ["Iam6".to_string(), "fvm6".into()]);
-        assert_eq!(
-            (e.target.len(), e.std.len(), e.whitening.shape()),
-            (4, 4, (4, 4))
-        );
+        assert_eq!(e.base_names[3..], ["Iam6".to_string(), "fvm6".into()]);
+        assert_eq!(e.target, DVector::zeros(5));
+        assert_eq!(e.std, DVector::from_element(5, 1.0));
+        assert_eq!(e.whitening, DMatrix::identity(5, 5));
         let p = problem(&[0.0; 11]);
         assert!(p.clone().with_extra_columns(&["M1".into()]).is_err());
         assert!(
@@ -532,10 +539,23 @@ mod tests {
             p.clone().with_covariance(&values, &singular),
             Err(Error::Singular { .. })
         ));
-        assert!(
-            p.with_covariance(&values, &DMatrix::identity(10, 10))
-                .is_err()
-        );
+        assert!(matches!(
+            p.clone()
+                .with_covariance(&values, &DMatrix::identity(10, 10)),
+            Err(Error::DimensionMismatch {
+                expected: 121,
+                found: 100,
+                ..
+            })
+        ));
+        // variances up to MAX_PARAMETER^2 (a deviation of 1e6), not beyond
+        let wide = DMatrix::identity(11, 11) * 1e11;
+        assert!(p.clone().with_covariance(&values, &wide).is_ok());
+        let wider = DMatrix::identity(11, 11) * 2e12;
+        assert!(matches!(
+            p.with_covariance(&values, &wider),
+            Err(Error::Singular { .. })
+        ));
     }
 
     /// K p, the whitened misfit, and the parameters K does not see.

@@ -391,6 +391,33 @@ mod tests {
         s
     }
 
+    /// Each setting has its range, both ends checked.
+    #[test]
+    fn settings_outside_their_ranges_are_refused() {
+        let with = |edit: &dyn Fn(&mut SmoothOptions)| {
+            let mut o = SmoothOptions::default();
+            edit(&mut o);
+            o.check()
+        };
+        for (edit, ok) in [
+            (
+                &(|o: &mut SmoothOptions| o.default_weight = 0.0) as &dyn Fn(&mut SmoothOptions),
+                true,
+            ),
+            (&|o: &mut SmoothOptions| o.default_weight = 1e12, true),
+            (&|o: &mut SmoothOptions| o.default_weight = -1e-9, false),
+            (&|o: &mut SmoothOptions| o.default_weight = 2e12, false),
+            (&|o: &mut SmoothOptions| o.penalty = 1e16, true),
+            (&|o: &mut SmoothOptions| o.penalty = -1.0, false),
+            (&|o: &mut SmoothOptions| o.penalty = 2e16, false),
+            (&|o: &mut SmoothOptions| o.patience = 1, true),
+            (&|o: &mut SmoothOptions| o.patience = 100_000, true),
+            (&|o: &mut SmoothOptions| o.patience = 100_001, false),
+        ] {
+            assert_eq!(with(edit).is_ok(), ok);
+        }
+    }
+
     /// A consistent target inside the bounds is its own optimum.
     #[test]
     fn a_consistent_target_is_returned_as_it_is() {
