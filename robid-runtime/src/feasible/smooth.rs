@@ -578,8 +578,9 @@ mod tests {
         let maps = vec![
             Map::Link(0),
             Map::Positive(10),
-            Map::Positive(11),
+            // the free term before a non-negative one: each variable's place counts
             Map::Free(12),
+            Map::Positive(11),
         ];
         let mut fit = Fit {
             objective,
