@@ -383,3 +383,95 @@ mod tests {
         assert_eq!(s.min_eigenvalues[0], 0.0);
     }
 }
+
+#[cfg(test)]
+mod edges {
+    use super::*;
+    use crate::feasible::fixture::{link, problem, target};
+    use crate::feasible::{Bounds, LinkBounds, LinkInertial};
+
+    fn assemble(standard: &[f64], bounds: &Bounds) -> Solution {
+        let t = target(link(), 0.1);
+        Solution::assemble(
+            &problem(&t),
+            bounds,
+            Method::Interior,
+            standard.to_vec(),
+            Duration::ZERO,
+        )
+        .unwrap()
+    }
+
+    /// The tolerances are inclusive: a value exactly `tol (1 + |bound|)` outside a link's
+    /// bound, or exactly `tol` outside the total-mass range, is not a violation.
+    #[test]
+    fn a_value_exactly_at_the_tolerance_is_not_a_violation() {
+        let mut t = target(link(), 0.1);
+        // centre of mass x = MX / M = 2e-6 / 2 = 1e-6 exactly (halving is exact)
+        t[6] = 2e-6;
+        let b = Bounds {
+            links: vec![LinkBounds {
+                com: [[-1.0, 0.0], [-1.0, 1.0], [-1.0, 1.0]],
+                ..LinkBounds::default()
+            }],
+            ..Bounds::wide(1)
+        };
+        assert!(assemble(&t, &b).violations.is_empty());
+        t[6] = -2e-6;
+        let b = Bounds {
+            links: vec![LinkBounds {
+                com: [[0.0, 1.0], [-1.0, 1.0], [-1.0, 1.0]],
+                ..LinkBounds::default()
+            }],
+            ..Bounds::wide(1)
+        };
+        assert!(assemble(&t, &b).violations.is_empty());
+        // a total mass of 3 - 1e-6 against a range from 3, and 1 + 1e-6 against one to 1
+        let mut t = target(link(), 0.1);
+        t[9] = 3.0 - 1e-6;
+        let b = Bounds {
+            total_mass: Some([3.0, 4.0]),
+            ..Bounds::wide(1)
+        };
+        assert!(assemble(&t, &b).violations.is_empty());
+        t[9] = 1.0 + 1e-6;
+        let b = Bounds {
+            total_mass: Some([0.5, 1.0]),
+            ..Bounds::wide(1)
+        };
+        assert!(assemble(&t, &b).violations.is_empty());
+        // one step further is one
+        t[9] = 1.0 + 2e-6;
+        assert_eq!(assemble(&t, &b).violations.len(), 1);
+    }
+
+    /// A thin link (a principal moment of 1e-4 kg m^2) with a lower bound of zero is not
+    /// "at its bound"; with a positive lower bound near it, it is.
+    #[test]
+    fn a_thin_link_is_at_a_zero_bound_only_when_it_is_a_real_bound() {
+        let thin = LinkInertial {
+            mass: 2.0,
+            com: [0.0; 3],
+            inertia: [[1e-4, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.02]],
+        }
+        .to_standard();
+        let t = target(thin, 0.1);
+        let with = |inertia: [f64; 2]| {
+            let b = Bounds {
+                links: vec![LinkBounds {
+                    inertia,
+                    ..LinkBounds::default()
+                }],
+                ..Bounds::wide(1)
+            };
+            assemble(&t, &b).at_bounds
+        };
+        assert!(with([0.0, 1.0]).is_empty(), "{:?}", with([0.0, 1.0]));
+        let at = with([1e-4, 1.0]);
+        assert_eq!(at.len(), 1, "{at:?}");
+        assert!(
+            at[0].contains("principal moment 0 1.000000e-4 at its lower bound"),
+            "{at:?}"
+        );
+    }
+}
