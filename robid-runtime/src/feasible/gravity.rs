@@ -228,15 +228,22 @@ mod tests {
     /// [0, 0, sin(q1 + q2), 0, 0], so B's gravity column is twice A's, D has none and E is
     /// a constant offset; D's column is qdd1 + qdd2 in row 1 and qdd2 in row 2, its mass
     /// matrix [[1, 1], [., 1]]. `poison` puts a NaN in E's column.
+    /// With `dof` above 2, joint j >= 3 adds the row `[0, 0, 0, qdd_j, 0]` and its
+    /// acceleration to D's entry in row 1.
     struct Hand {
         names: Vec<String>,
         poison: bool,
+        dof: usize,
     }
 
     impl Hand {
         fn new(poison: bool) -> Self {
             let names = ["A", "B", "C", "D", "E"].map(String::from).to_vec();
-            Self { names, poison }
+            Self {
+                names,
+                poison,
+                dof: 2,
+            }
         }
     }
 
@@ -245,7 +252,7 @@ mod tests {
             "hand"
         }
         fn dof(&self) -> usize {
-            2
+            self.dof
         }
         fn standard_parameter_count(&self) -> usize {
             5
@@ -270,8 +277,12 @@ mod tests {
             if let (ProgramKind::BaseRegressor, [q, _, qdd]) = (program, inputs) {
                 let (c1, s12) = (q[0].cos(), (q[0] + q[1]).sin());
                 let e = if self.poison { f64::NAN } else { 1.0 };
-                output[..5].copy_from_slice(&[c1, 2.0 * c1, s12, qdd[0] + qdd[1], e]);
-                output[5..].copy_from_slice(&[0.0, 0.0, s12, qdd[1], 0.0]);
+                let all: f64 = qdd.iter().sum();
+                output[..5].copy_from_slice(&[c1, 2.0 * c1, s12, all, e]);
+                output[5..10].copy_from_slice(&[0.0, 0.0, s12, qdd[1], 0.0]);
+                for j in 2..self.dof {
+                    output[5 * j + 3] = qdd[j];
+                }
             }
             Ok(())
         }
@@ -315,6 +326,24 @@ mod tests {
         assert_eq!(m.map.shape(), (1, 5));
         assert_eq!(m.map[(0, 3)], 1.0);
         assert_eq!(m.map.sum(), 1.0);
+    }
+
+    /// The stack has 3 x base + 8 poses of one row per joint at rest, and room for the
+    /// n (n + 1) / 2 rows of a mass matrix's upper triangle (6 for three joints).
+    #[test]
+    fn the_stack_has_its_poses_and_room_for_the_upper_triangle() {
+        let hand = Hand::new(false);
+        let w = stack(&hand, |_, _, _| Ok(2)).unwrap();
+        assert_eq!(w.shape(), ((3 * 5 + 8) * 2, 5));
+        let three = Hand { dof: 3, ..hand };
+        let w = stack(&three, |_, _, rows| {
+            rows.fill(1.0);
+            Ok(6)
+        })
+        .unwrap();
+        assert_eq!(w.nrows(), (3 * 5 + 8) * 6);
+        let m = GravityCoefficients::of_mass_matrix(&three).unwrap();
+        assert_eq!(m.names, ["D"]);
     }
 
     #[test]
