@@ -234,6 +234,8 @@ mod tests {
         names: Vec<String>,
         poison: bool,
         dof: usize,
+        /// Factors of C's and E's columns.
+        scale: [f64; 2],
     }
 
     impl Hand {
@@ -243,6 +245,7 @@ mod tests {
                 names,
                 poison,
                 dof: 2,
+                scale: [1.0; 2],
             }
         }
     }
@@ -276,10 +279,10 @@ mod tests {
             output.fill(0.0);
             if let (ProgramKind::BaseRegressor, [q, _, qdd]) = (program, inputs) {
                 let (c1, s12) = (q[0].cos(), (q[0] + q[1]).sin());
-                let e = if self.poison { f64::NAN } else { 1.0 };
-                let all: f64 = qdd.iter().sum();
-                output[..5].copy_from_slice(&[c1, 2.0 * c1, s12, all, e]);
-                output[5..10].copy_from_slice(&[0.0, 0.0, s12, qdd[1], 0.0]);
+                let e = if self.poison { f64::NAN } else { self.scale[1] };
+                let (all, c): (f64, f64) = (qdd.iter().sum(), s12 * self.scale[0]);
+                output[..5].copy_from_slice(&[c1, 2.0 * c1, c, all, e]);
+                output[5..10].copy_from_slice(&[0.0, 0.0, c, qdd[1], 0.0]);
                 for j in 2..self.dof {
                     output[5 * j + 3] = qdd[j];
                 }
@@ -344,6 +347,19 @@ mod tests {
         assert_eq!(w.nrows(), (3 * 5 + 8) * 6);
         let m = GravityCoefficients::of_mass_matrix(&three).unwrap();
         assert_eq!(m.names, ["D"]);
+    }
+
+    /// A column below 1e-10 of the largest is zero (E at 1e-11 against B's 9.6); a small
+    /// one above that is independent when its part outside the others' span is above
+    /// 1e-8 of its own norm, whatever its size (C at 1e-6).
+    #[test]
+    fn small_columns_are_judged_relative_to_their_sizes() {
+        let hand = Hand {
+            scale: [1e-6, 1e-11],
+            ..Hand::new(false)
+        };
+        let g = GravityCoefficients::of_model(&hand).unwrap();
+        assert_eq!(g.names, ["A", "C"]);
     }
 
     #[test]
