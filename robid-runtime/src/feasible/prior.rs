@@ -272,6 +272,8 @@ pub(super) fn bounds_scales(layout: &Layout, bounds: &Bounds) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::feasible::LinkBounds;
+    use crate::feasible::fixture;
 
     #[test]
     fn a_solid_cylinder_has_the_textbook_inertia() {
@@ -349,5 +351,192 @@ mod tests {
         let l = lengths(&[seg(1.0), seg(0.0), seg(0.5)]);
         assert_eq!(l[0], 1.0);
         assert!((l[1] - 0.15).abs() < 1e-15 && l[2] == 0.5, "{l:?}");
+    }
+
+    /// A user prior of the wrong length, with a value past the limits or a weight outside
+    /// [0, 1e12] is refused; the limits themselves are accepted.
+    #[test]
+    fn a_user_prior_is_checked() {
+        let problem = fixture::problem(&[0.0; 11]);
+        let bounds = Bounds::wide(1);
+        let pull = |standard: Vec<Option<f64>>, weight: f64| {
+            Pull::new(&problem, &bounds, Some(&Prior { standard, weight }), 1.0)
+        };
+        let short = pull(vec![None; 10], 1.0);
+        assert!(
+            matches!(
+                short,
+                Err(Error::DimensionMismatch {
+                    expected: 11,
+                    found: 10,
+                    ..
+                })
+            ),
+            "{short:?}"
+        );
+        let limit = crate::limits::MAX_PARAMETER;
+        for (value, weight) in [
+            (f64::NAN, 1.0),
+            (1.01 * limit, 1.0),
+            (1.0, -1e-9),
+            (1.0, 1.01e12),
+        ] {
+            let mut standard = vec![None; 11];
+            standard[2] = Some(value);
+            let refused = pull(standard, weight);
+            assert!(
+                matches!(&refused, Err(Error::Setting { owner, .. }) if owner == "Prior"),
+                "{value} {weight}: {refused:?}"
+            );
+        }
+        for (value, weight) in [(-limit, 0.0), (limit, 1e12)] {
+            let mut standard = vec![None; 11];
+            standard[2] = Some(value);
+            let kept = pull(standard, weight).unwrap();
+            assert_eq!((kept.target[2], kept.weight[2]), (value, weight));
+        }
+    }
+
+    /// Without shapes the prior is the centre of the bounds with the bounds' scales; drive
+    /// terms are pulled 1e-4 as hard as link parameters.
+    #[test]
+    fn without_shapes_the_prior_is_the_centre_of_the_bounds() {
+        let problem = fixture::problem(&[0.0; 11]);
+        let mut bounds = Bounds::wide(1);
+        bounds.links[0] = LinkBounds {
+            mass: [1.0, 4.0],
+            com: [[-0.1, 0.2], [-0.05, 0.05], [0.0, 0.1]],
+            inertia: [0.0, 0.05],
+            tensor: [None; 6],
+        };
+        let pull = Pull::new(&problem, &bounds, None, 2.0).unwrap();
+        assert_eq!(pull.target, centre(&problem.layout, &bounds));
+        assert_eq!(pull.weight[..10], [2.0; 10]);
+        assert_eq!(pull.weight[10], 2.0 * DRIVE_WEIGHT_SHARE);
+        // 4 kg at up to 0.2 m: inertia 0.05 + 4 x 0.2^2, first moments 4 x 0.2
+        let inertia = 0.05 + 4.0 * 0.04;
+        let expected = [[inertia; 6].as_slice(), &[0.8; 3], &[4.0, 1.0]].concat();
+        for (s, e) in pull.scale.iter().zip(&expected) {
+            assert!((s - e).abs() < 1e-15, "{:?}", pull.scale);
+        }
+        // bounds of zero size: the floors 1e-9 kg and 1 mm
+        let mut point = bounds.clone();
+        point.links[0] = LinkBounds {
+            mass: [0.0, 0.0],
+            com: [[0.0; 2]; 3],
+            inertia: [0.0, 0.0],
+            tensor: [None; 6],
+        };
+        let scale = bounds_scales(&problem.layout, &point);
+        assert_eq!(scale[9], 1e-9);
+        assert_eq!(scale[6], 1e-9 * 1e-3);
+        assert_eq!(scale[0], 1e-9);
+    }
+
+    /// A solid along a slanted segment has its axis there (the tensor maps the axis to
+    /// m r^2 / 2 times it); a zero segment stands along z.
+    #[test]
+    fn a_solid_lies_along_its_segment() {
+        let slanted = LinkShape {
+            from: [0.1, 0.0, 0.0],
+            to: [0.4, 0.4, 0.0],
+        };
+        let s = solid(&slanted, 0.5);
+        let r: f64 = 0.125;
+        let along = 0.5 * s.mass * r * r;
+        let across = s.mass * (3.0 * r * r + 0.25) / 12.0;
+        let axis = [0.6, 0.8, 0.0];
+        for i in 0..3 {
+            let image: f64 = (0..3).map(|k| s.inertia[i][k] * axis[k]).sum();
+            assert!((image - along * axis[i]).abs() < 1e-15, "{i}");
+        }
+        assert!((s.inertia[2][2] - across).abs() < 1e-15);
+        assert_eq!(s.com, [0.25, 0.2, 0.0]);
+        let point = LinkShape {
+            from: [0.2; 3],
+            to: [0.2; 3],
+        };
+        let s = solid(&point, 0.5);
+        assert!((s.inertia[2][2] - along).abs() < 1e-15);
+        assert!((s.inertia[0][0] - across).abs() < 1e-15 && s.inertia[0][2] == 0.0);
+        assert_eq!(s.com, [0.2; 3]);
+        // a chain of zero length: every link 1 mm
+        assert_eq!(lengths(&[point, point]), [1e-3, 1e-3]);
+    }
+
+    /// The solid's mass and centre of mass are held 5 % of their ranges inside the bounds
+    /// (the inertia scaled with the mass); a density the data cannot give (a negative fit)
+    /// is that of a hollow aluminium structure, 1000 kg/m^3.
+    #[test]
+    fn the_solid_prior_stays_inside_the_bounds() {
+        let shape = LinkShape {
+            from: [0.0; 3],
+            to: [0.0, 0.0, 0.4],
+        };
+        let unit = solid(&shape, 0.4);
+        // the data weigh a solid of density `rho`
+        let with_target = |rho: f64| {
+            let mut values = [0.0; 11];
+            for (v, u) in values.iter_mut().zip(unit.to_standard()) {
+                *v = rho * u;
+            }
+            fixture::problem(&values).with_shapes(vec![shape]).unwrap()
+        };
+        let mut bounds = Bounds::wide(1);
+        // the data weigh the link at 1000 solids: held at 2 - 0.05 x 1 kg, the centre 0.2 m
+        // at 0.1 - 0.05 x 0.2 m
+        bounds.links[0].mass = [1.0, 2.0];
+        bounds.links[0].com[2] = [-0.1, 0.1];
+        let (target, scale) = solid_prior(&with_target(1000.0), &bounds, &[shape]);
+        assert_eq!(target[9], 1.95);
+        assert!((target[8] - 1.95 * 0.09).abs() < 1e-15, "{}", target[8]);
+        let ratio = 1.95 / unit.mass;
+        let zz = unit.inertia[2][2] * ratio + 1.95 * (0.0 + 0.0);
+        assert!(
+            (target[5] - zz).abs() < 1e-15 * zz.abs().max(1.0),
+            "{}",
+            target[5]
+        );
+        assert_eq!(scale[9], 1.95);
+        assert!((scale[6] - 1.95 * 0.4).abs() < 1e-15);
+        assert!((scale[0] - 1.95 * 0.16).abs() < 1e-15);
+        assert_eq!(target[10], 0.0);
+        // a negative weighing: the default density
+        let wide = Bounds::wide(1);
+        let (target, _) = solid_prior(&with_target(-1.0), &wide, &[shape]);
+        assert!(
+            (target[9] - 1000.0 * unit.mass).abs() < 1e-12,
+            "{}",
+            target[9]
+        );
+        // the fitted density, unclamped in wide bounds
+        let (target, _) = solid_prior(&with_target(300.0), &wide, &[shape]);
+        assert!(
+            (target[9] - 300.0 * unit.mass).abs() < 1e-12,
+            "{}",
+            target[9]
+        );
+    }
+
+    /// The shares are the resolution matrix's diagonal, data / (data + pull) per parameter
+    /// when K = I: within 1e-9 of 1 under a negligible pull, and the known fraction under a
+    /// firm one (the data's information in units of each scale: (scale / 1e-3)^2).
+    #[test]
+    fn the_determined_share_is_the_data_fraction() {
+        let problem = fixture::problem(&[0.0; 11]);
+        let pull = Pull::new(&problem, &Bounds::wide(1), None, 1e-9).unwrap();
+        for weight in [1e-9, 1e6] {
+            let pull = Pull {
+                weight: vec![weight; 11],
+                ..pull.clone()
+            };
+            let data: Vec<f64> = pull.scale.iter().map(|s| (s / 1e-3).powi(2)).collect();
+            let top = data.iter().copied().fold(1.0, f64::max);
+            let share = determined(&problem, &pull);
+            for (d, v) in data.iter().zip(&share) {
+                let expected = d / (d + weight + 1e-12 * top);
+                assert!((v - expected).abs() < 1e-12, "{v} vs {expected} ({weight})");
+            }
+        }
     }
 }
