@@ -163,8 +163,8 @@ fn milella_averaged_runs_lower_the_noise_by_sqrt_r() {
         .iter()
         .zip(&stacked.estimate.values)
     {
-        // rounding only (measured 1e-12 relative)
-        assert!((a - b).abs() < 1e-8 * a.abs().max(1.0), "{a} vs {b}");
+        // rounding only (measured 5.3e-12 relative at worst)
+        assert!((a - b).abs() < 1e-11 * a.abs().max(1.0), "{a} vs {b}");
     }
 }
 
