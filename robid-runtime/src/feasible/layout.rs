@@ -126,7 +126,43 @@ mod tests {
 
     #[test]
     fn rejects_unknown_and_incomplete() {
-        assert!(Layout::from_names(&["QQ1".to_owned()]).is_err());
-        assert!(Layout::from_names(&["XX1".to_owned()]).is_err());
+        let unknown = Layout::from_names(&["QQ1".to_owned()]).unwrap_err();
+        assert!(unknown.to_string().contains("`QQ1` is not"), "{unknown}");
+        let lacking = Layout::from_names(&["XX2".to_owned()]).unwrap_err();
+        assert!(
+            lacking
+                .to_string()
+                .contains("link 1 lacks the standard parameter XX1"),
+            "{lacking}"
+        );
+    }
+
+    /// Links, drive terms and extra columns all count; no names, no parameters.
+    #[test]
+    fn the_length_counts_every_kind_of_parameter() {
+        let mut names: Vec<String> = (1..=2)
+            .flat_map(|j| {
+                Inertial::ALL
+                    .iter()
+                    .map(move |s| format!("{}{j}", s.stem()))
+            })
+            .collect();
+        names.extend(["Ia2", "Fc1"].map(String::from));
+        let mut layout = Layout::from_names(&names).unwrap();
+        assert_eq!((layout.len(), layout.is_empty()), (22, false));
+        assert_eq!(
+            layout.drives[1],
+            Drive {
+                joint: 0,
+                kind: DriveTerm::Fc,
+                index: 21
+            }
+        );
+        layout.extra = vec![22, 23, 24];
+        assert_eq!(layout.len(), 25);
+        let empty = Layout::from_names(&[]).unwrap();
+        assert_eq!((empty.len(), empty.is_empty()), (0, true));
+        let drives_only = Layout::from_names(&["Fv1".to_owned()]).unwrap();
+        assert_eq!((drives_only.len(), drives_only.is_empty()), (1, false));
     }
 }
