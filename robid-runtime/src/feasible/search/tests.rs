@@ -210,3 +210,204 @@ fn gaz_a_mass_the_fit_does_not_see_is_settled_into_the_total_mass_range() {
     // 4 kg + at most 6 kg cannot reach 13 kg: the top of its box
     assert!((settled([4.0, 3.0]) - 6.0).abs() < 1e-12);
 }
+
+/// Every setting is checked against its range by name; the ends of each range pass.
+#[test]
+fn gaz_settings_are_checked_at_their_limits() {
+    let ok = |o: AnnealOptions| o.check().map_err(|e| e.to_string());
+    let refused = |o: AnnealOptions, key: &str| {
+        let e = ok(o).unwrap_err();
+        assert!(e.contains(key), "{key}: {e}");
+    };
+    let d = AnnealOptions::default;
+    ok(d()).unwrap();
+    for (restarts, good) in [(0, false), (1, true), (10_000, true), (10_001, false)] {
+        let o = AnnealOptions { restarts, ..d() };
+        if good {
+            ok(o).unwrap()
+        } else {
+            refused(o, "restarts")
+        }
+    }
+    let big = 1_000_000_000;
+    for (n, good) in [(0, true), (big, true), (big + 1, false)] {
+        for (o, key) in [
+            (
+                AnnealOptions {
+                    iterations: n,
+                    ..d()
+                },
+                "iterations",
+            ),
+            (
+                AnnealOptions {
+                    local_evaluations: n,
+                    ..d()
+                },
+                "local_evaluations",
+            ),
+        ] {
+            if good {
+                ok(o).unwrap()
+            } else {
+                refused(o, key)
+            }
+        }
+    }
+    for (n, good) in [(0, true), (1_000_000, true), (1_000_001, false)] {
+        for (o, key) in [
+            (
+                AnnealOptions {
+                    polish_iterations: n,
+                    ..d()
+                },
+                "polish_iterations",
+            ),
+            (AnnealOptions { hops: n, ..d() }, "hops"),
+        ] {
+            if good {
+                ok(o).unwrap()
+            } else {
+                refused(o, key)
+            }
+        }
+    }
+    for (v, good) in [
+        (0.0, false),
+        (1e-300, true),
+        (1e20, true),
+        (1.01e20, false),
+        (f64::NAN, false),
+    ] {
+        let o = AnnealOptions { penalty: v, ..d() };
+        if good {
+            ok(o).unwrap()
+        } else {
+            refused(o, "penalty")
+        }
+        let o = AnnealOptions {
+            mass_step: Some(v),
+            ..d()
+        };
+        if good {
+            ok(o).unwrap()
+        } else {
+            refused(o, "mass_step")
+        }
+    }
+    for (v, good) in [
+        (-1e-9, false),
+        (0.0, true),
+        (1e300, true),
+        (f64::INFINITY, false),
+        (f64::NAN, false),
+    ] {
+        let o = AnnealOptions {
+            target_chi2: Some(v),
+            ..d()
+        };
+        if good {
+            ok(o).unwrap()
+        } else {
+            refused(o, "target_chi2")
+        }
+    }
+    let limit = crate::limits::MAX_PARAMETER;
+    for (v, good) in [
+        (limit, true),
+        (-limit, true),
+        (1.01 * limit, false),
+        (f64::NAN, false),
+    ] {
+        let o = AnnealOptions {
+            fixed: vec![("c2y".parse().unwrap(), v)],
+            ..d()
+        };
+        if good {
+            ok(o).unwrap()
+        } else {
+            refused(o, "c2y")
+        }
+    }
+}
+
+/// The searched variables are those the fit sees somewhere in the box (`x = [m, cx, cy,
+/// cz, d1, d2, d3, r1, r2, r3]`), those an equality names (an inertia element: the second
+/// moments and the rotation), less the held ones; a mass neither searched nor held is
+/// loose.
+#[test]
+fn gaz_the_searched_variables_are_those_the_fit_or_an_equality_sees() {
+    let truth = one_link();
+    let bounds = Bounds::wide(1);
+    let free = |rows: &[&str], options: AnnealOptions| {
+        let problem = problem(1, rows, &truth);
+        search(&problem, &bounds, &options).unwrap().1
+    };
+    assert_eq!(free(&["M1", "MX1"], quick()), [0, 1]);
+    assert_eq!(free(&["MY1"], quick()), [0, 2]);
+    // ZZ = d1 + d2 about principal axes turned by r, plus m (cx^2 + cy^2)
+    assert_eq!(free(&["ZZ1"], quick()), [0, 1, 2, 4, 5, 6, 7, 8, 9]);
+    let equality = AnnealOptions {
+        equalities: vec!["I1xz = c1x * c1z * m1".parse().unwrap()],
+        ..quick()
+    };
+    assert_eq!(
+        free(&["MY1"], equality.clone()),
+        [0, 1, 2, 3, 4, 5, 6, 7, 8, 9]
+    );
+    let held = AnnealOptions {
+        fixed: vec![("m1".parse().unwrap(), 2.0), ("c1x".parse().unwrap(), 0.1)],
+        ..equality
+    };
+    assert_eq!(free(&["MY1"], held), [2, 3, 4, 5, 6, 7, 8, 9]);
+}
+
+/// Drive terms are solved for in their own columns: a negative rotor inertia is held at
+/// zero, an offset keeps its sign; the link is found as it is.
+#[test]
+fn gaz_drive_terms_are_solved_for_and_clamped() {
+    let truth: Vec<f64> = one_link().into_iter().chain([-0.1, -0.2]).collect();
+    let problem = crate::feasible::fixture::problem_with(&truth, &["Fo"]);
+    // no target: every restart runs, whichever thread starts first
+    let options = AnnealOptions {
+        target_chi2: Some(0.0),
+        ..quick()
+    };
+    let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
+    assert_eq!(s.standard[10], 0.0);
+    assert!((s.standard[11] + 0.2).abs() < 1e-15, "{}", s.standard[11]);
+    let l = s.links[0].unwrap();
+    // the search's own precision (measured 4.0e-13 kg, 1.1e-13 m, 2.2e-12 kg m^2)
+    assert!(
+        (l.mass - 2.0).abs() < 8e-13
+            && (l.com[1] - 0.05).abs() < 2.2e-13
+            && (l.inertia[0][0] - 0.01).abs() < 4.4e-12,
+        "{l:?}"
+    );
+}
+
+/// A user prior on the mass, which the data (the first moments) cannot weigh: the search
+/// follows it, and the centre of mass follows the moments.
+#[test]
+fn gaz_a_user_prior_settles_what_the_data_leave_free() {
+    let truth = one_link();
+    let problem = problem(1, &["MX1", "MY1", "MZ1"], &truth);
+    let prior = Prior {
+        standard: (0..10).map(|i| (i == 9).then_some(2.5)).collect(),
+        weight: 1e6,
+    };
+    // the default target (1e-3 chi^2 per base parameter) would stop the search within 2.7
+    // mg of the prior (a pull of weight 1e6 per 50 kg, the wide bounds' mass scale)
+    let options = AnnealOptions {
+        prior: Some(prior),
+        target_chi2: Some(0.0),
+        ..quick()
+    };
+    let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
+    let l = s.links[0].unwrap();
+    // measured 3.6e-15 kg and 2.3e-16 m at most
+    assert!((l.mass - 2.5).abs() < 7e-15, "{l:?}");
+    for (c, want) in l.com.iter().zip([0.2 / 2.5, 0.1 / 2.5, 0.4 / 2.5]) {
+        assert!((c - want).abs() < 5e-16, "{l:?}");
+    }
+}
