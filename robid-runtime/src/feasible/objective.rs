@@ -359,7 +359,8 @@ fn inequalities(problem: &Problem, bounds: &Bounds, scale: &[f64]) -> Vec<Bound>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::feasible::{LinkBounds, LinkInertial};
+    use crate::feasible::prior::Prior;
+    use crate::feasible::{LinkBounds, LinkInertial, fixture};
 
     /// Two links, every standard parameter its own base parameter.
     fn problem() -> Problem {
@@ -530,5 +531,101 @@ mod tests {
             "{}",
             r[nb + 3]
         );
+    }
+
+    /// The multiplier update: a violated bound's shift grows by its violation (in units of
+    /// its scale) and the worst violation is returned; a slack bound's shift falls to zero.
+    /// Stiffening scales the shifts so that penalty x shift (the multiplier) is kept, up to
+    /// the stiffest penalty.
+    #[test]
+    fn the_multipliers_are_updated_and_kept_when_stiffening() {
+        let problem = fixture::problem(&fixture::target(fixture::link(), 0.1));
+        let mut bounds = Bounds::wide(1);
+        bounds.links[0].mass = [3.0, 4.0];
+        let pull = Pull::new(&problem, &bounds, None, 1e-9).unwrap();
+        let mut objective = Objective::new(&problem, &bounds, pull, 100.0);
+        // 2 kg against at least 3 kg, in units of the mass scale (4 kg): 0.25; the upper
+        // bound is slack by 0.5
+        let p = fixture::target(fixture::link(), 0.1);
+        let worst = objective.update_shifts(&p);
+        assert!((worst - 0.25).abs() < 1e-15, "{worst}");
+        assert!((objective.shifts[0] - 0.25).abs() < 1e-15);
+        assert_eq!(objective.shifts[1], 0.0);
+        // twice: the shift accumulates
+        objective.update_shifts(&p);
+        assert!((objective.shifts[0] - 0.5).abs() < 1e-15);
+        // a point inside: the shift falls by the slack (0.25), then to zero
+        let mut inside = p;
+        inside[9] = 4.0;
+        assert_eq!(objective.update_shifts(&inside), 0.0);
+        assert!((objective.shifts[0] - 0.25).abs() < 1e-15);
+        objective.update_shifts(&inside);
+        assert_eq!(objective.shifts[0], 0.0);
+        objective.update_shifts(&p);
+        objective.stiffen(10.0);
+        assert_eq!(objective.penalty, 1000.0);
+        assert!((objective.shifts[0] - 0.025).abs() < 1e-15);
+        objective.stiffen(1e20);
+        assert_eq!(objective.penalty, MAX_PENALTY);
+        assert!((objective.shifts[0] - 0.025 * 1000.0 / MAX_PENALTY).abs() < 1e-27);
+    }
+
+    /// The start: a consistent prior stays where it is, an inconsistent link is raised just
+    /// inside the consistent set, the drive terms are those that fit best with the links
+    /// (a rotor inertia at least 1e-6 of its scale, an offset of any sign).
+    #[test]
+    fn the_start_is_consistent_and_fits_the_drive_terms() {
+        let mut t: Vec<f64> = fixture::target(fixture::link(), -0.1).to_vec();
+        t.push(-0.3);
+        let problem = fixture::problem_with(&t, &["Fo"]);
+        let options = fixture::options();
+        let objective = Objective::from_options(&problem, &Bounds::wide(1), &options).unwrap();
+        let p = objective.start(1e-6).unwrap();
+        // the centre of the wide bounds is a consistent link: kept as the prior gives it
+        assert_eq!(p[..10], objective.pull.target[..10]);
+        assert_eq!(p[10], 1e-6 * objective.pull.scale[10]);
+        assert!((p[11] + 0.3).abs() < 1e-15, "{}", p[11]);
+        assert!(objective.non_negative(10) && !objective.non_negative(11));
+        assert!(!objective.non_negative(9));
+        // a prior with a mass but no inertia: raised to the floor
+        let mut standard = vec![None; 12];
+        for (i, v) in [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2.0]
+            .iter()
+            .enumerate()
+        {
+            standard[i] = Some(*v);
+        }
+        let options = SmoothOptions {
+            prior: Some(Prior {
+                standard,
+                weight: 1.0,
+            }),
+            ..fixture::options()
+        };
+        let objective = Objective::from_options(&problem, &Bounds::wide(1), &options).unwrap();
+        let p = objective.start(1e-6).unwrap();
+        let link: [f64; 10] = std::array::from_fn(|i| p[i]);
+        let floor = 1e-6 + 1e-6 * objective.pull.scale[9];
+        let least = crate::feasible::pseudo_inertia_min_eigenvalue(&link);
+        assert!(
+            least >= floor * (1.0 - 1e-9) && least <= 1.01 * floor,
+            "{least}"
+        );
+        // a negative mass too: its pseudo-inertia raised to the floor gives a small
+        // positive mass
+        let mut standard = vec![None; 12];
+        standard[9] = Some(-1.0);
+        let options = SmoothOptions {
+            prior: Some(Prior {
+                standard,
+                weight: 1.0,
+            }),
+            ..fixture::options()
+        };
+        let objective = Objective::from_options(&problem, &Bounds::wide(1), &options).unwrap();
+        let p = objective.start(1e-6).unwrap();
+        let link: [f64; 10] = std::array::from_fn(|i| p[i]);
+        let least = crate::feasible::pseudo_inertia_min_eigenvalue(&link);
+        assert!(p[9] > 0.0 && least >= 1e-6, "{p:?}");
     }
 }
