@@ -318,6 +318,17 @@ mod tests {
         assert!(text.ends_with("mass = 0.0\n"), "{text}");
     }
 
+    /// Shares that differ by less than 0.005 show as one value, by 0.005 or more as a
+    /// range.
+    #[test]
+    fn the_shares_show_a_range_from_half_a_percent_on() {
+        let mut s = solution();
+        s.determined = vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.005, 0.3, 0.304, 0.3, 1.0, 1.0];
+        let text = to_toml(&s, "arm");
+        let want = "#   link 1: mass 1.00, first moments 0.30, inertia 0.00-0.01\n";
+        assert!(text.contains(want), "{want:?} not in\n{text}");
+    }
+
     fn pose(yaw: f64, xyz: [f64; 3]) -> [[f64; 4]; 4] {
         let (s, c) = yaw.sin_cos();
         [
