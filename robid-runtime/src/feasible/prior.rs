@@ -437,21 +437,25 @@ mod tests {
     /// m r^2 / 2 times it); a zero segment stands along z.
     #[test]
     fn a_solid_lies_along_its_segment() {
+        // along (2, 3, 6) / 7: the axis maps to along x it, a perpendicular (3, -2, 0) to
+        // across x it
         let slanted = LinkShape {
             from: [0.1, 0.0, 0.0],
-            to: [0.4, 0.4, 0.0],
+            to: [0.3, 0.3, 0.6],
         };
         let s = solid(&slanted, 0.5);
         let r: f64 = 0.125;
         let along = 0.5 * s.mass * r * r;
         let across = s.mass * (3.0 * r * r + 0.25) / 12.0;
-        let axis = [0.6, 0.8, 0.0];
+        let axis = [2.0 / 7.0, 3.0 / 7.0, 6.0 / 7.0];
+        let normal = [3.0, -2.0, 0.0];
         for i in 0..3 {
             let image: f64 = (0..3).map(|k| s.inertia[i][k] * axis[k]).sum();
             assert!((image - along * axis[i]).abs() < 1e-15, "{i}");
+            let image: f64 = (0..3).map(|k| s.inertia[i][k] * normal[k]).sum();
+            assert!((image - across * normal[i]).abs() < 1e-15, "{i}");
         }
-        assert!((s.inertia[2][2] - across).abs() < 1e-15);
-        assert_eq!(s.com, [0.25, 0.2, 0.0]);
+        assert_eq!(s.com, [0.2, 0.15, 0.3]);
         let point = LinkShape {
             from: [0.2; 3],
             to: [0.2; 3],
@@ -501,14 +505,16 @@ mod tests {
         assert!((scale[6] - 1.95 * 0.4).abs() < 1e-15);
         assert!((scale[0] - 1.95 * 0.16).abs() < 1e-15);
         assert_eq!(target[10], 0.0);
-        // a negative weighing: the default density
+        // a negative weighing or none at all (a zero density): the default density
         let wide = Bounds::wide(1);
-        let (target, _) = solid_prior(&with_target(-1.0), &wide, &[shape]);
-        assert!(
-            (target[9] - 1000.0 * unit.mass).abs() < 1e-12,
-            "{}",
-            target[9]
-        );
+        for rho in [-1.0, 0.0] {
+            let (target, _) = solid_prior(&with_target(rho), &wide, &[shape]);
+            assert!(
+                (target[9] - 1000.0 * unit.mass).abs() < 1e-12,
+                "{}",
+                target[9]
+            );
+        }
         // the fitted density, unclamped in wide bounds
         let (target, _) = solid_prior(&with_target(300.0), &wide, &[shape]);
         assert!(
