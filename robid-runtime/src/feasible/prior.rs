@@ -505,6 +505,11 @@ mod tests {
         assert!((scale[6] - 1.95 * 0.4).abs() < 1e-15);
         assert!((scale[0] - 1.95 * 0.16).abs() < 1e-15);
         assert_eq!(target[10], 0.0);
+        // from below: a density of 1 kg/m^3 is held at 1 + 0.05 kg, the centre at 0.3 + 0.01 m
+        bounds.links[0].com[2] = [0.3, 0.5];
+        let (target, _) = solid_prior(&with_target(1.0), &bounds, &[shape]);
+        assert_eq!(target[9], 1.05);
+        assert!((target[8] - 1.05 * 0.31).abs() < 1e-15, "{}", target[8]);
         // a negative weighing or none at all (a zero density): the default density
         let wide = Bounds::wide(1);
         for rho in [-1.0, 0.0] {
