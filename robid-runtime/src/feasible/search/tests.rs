@@ -411,3 +411,30 @@ fn gaz_a_user_prior_settles_what_the_data_leave_free() {
         assert!((c - want).abs() < 5e-16, "{l:?}");
     }
 }
+
+/// Two links, each weighed by the data: each gets its own mass and first moment.
+#[test]
+fn gaz_each_link_has_its_own_variables() {
+    let second = LinkInertial {
+        mass: 3.0,
+        com: [-0.1, 0.2, 0.05],
+        inertia: [[0.02, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.02]],
+    };
+    let truth: Vec<f64> = one_link().into_iter().chain(second.to_standard()).collect();
+    let problem = problem(2, &["M1", "MX1", "M2", "MY2"], &truth);
+    let options = AnnealOptions {
+        target_chi2: Some(0.0),
+        ..quick()
+    };
+    let s = solve_anneal(&problem, &Bounds::wide(2), &options).unwrap();
+    let (a, b) = (s.links[0].unwrap(), s.links[1].unwrap());
+    // rounding only (measured 0, 0, 0 and 2.8e-17 m)
+    for (got, want) in [
+        (a.mass, 2.0),
+        (a.com[0], 0.1),
+        (b.mass, 3.0),
+        (b.com[1], 0.2),
+    ] {
+        assert!((got - want).abs() < 1e-15, "{a:?} {b:?}");
+    }
+}
