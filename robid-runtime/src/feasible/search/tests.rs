@@ -190,6 +190,9 @@ fn gaz_the_step_penalty_adds_delta_outside_the_total_mass_range() {
     assert!((v - 10.0).abs() < 1e-12, "{v}");
     let p = value(None, vec![(1, [0.0, 6.0])], [5.0, 0.0]);
     assert!((p - 1e4 * (2.0f64 / 19.0).powi(2)).abs() < 1e-9, "{p}");
+    // from above: 18.5 kg + [1, 6] kg is at least 19.5 kg, 0.5 kg over
+    let p = value(None, vec![(1, [1.0, 6.0])], [18.5, 0.0]);
+    assert!((p - 1e4 * (0.5f64 / 19.0).powi(2)).abs() < 1e-9, "{p}");
 }
 
 #[test]
