@@ -95,4 +95,49 @@ mod tests {
         assert_eq!(reflect(-0.25, 0.0, 1.0), 0.25);
         assert!((0.0..=1.0).contains(&reflect(7.3, 0.0, 1.0)));
     }
+
+    /// Nothing to search or no steps: the start and its value. Otherwise the best point
+    /// seen, inside the box, with its own value, no worse than the start.
+    #[test]
+    fn the_best_point_seen_is_returned() {
+        let calls = std::cell::Cell::new(0);
+        let f = |x: &[f64]| {
+            calls.set(calls.get() + 1);
+            x.iter().map(|v| (v - 0.3).powi(2)).sum::<f64>()
+        };
+        let s = AnnealSettings {
+            iterations: 0,
+            final_ratio: 1e-6,
+        };
+        let mut rng = Rng::new(3);
+        assert_eq!(
+            anneal(&f, &[0.0], &[1.0], &[0.9], s, &mut rng),
+            (vec![0.9], f(&[0.9]))
+        );
+        let none: [f64; 0] = [];
+        let s = AnnealSettings {
+            iterations: 100,
+            ..s
+        };
+        assert_eq!(anneal(&f, &none, &none, &none, s, &mut rng), (vec![], 0.0));
+        calls.set(0);
+        let (x, fx) = anneal(&f, &[0.0; 3], &[1.0; 3], &[0.9; 3], s, &mut rng);
+        // one evaluation at the start, one per step
+        assert_eq!(calls.get(), 101);
+        assert_eq!(fx, f(&x));
+        assert!(
+            fx < 3.0 * 0.36 && x.iter().all(|v| (0.0..=1.0).contains(v)),
+            "{x:?}"
+        );
+    }
+
+    /// Reflection folds any distance back into the box, an empty box gives its lower end.
+    #[test]
+    fn reflection_folds_back_and_forth() {
+        assert_eq!(reflect(2.25, 0.0, 1.0), 0.25);
+        assert_eq!(reflect(-1.25, 0.0, 1.0), 0.75);
+        assert_eq!(reflect(3.5, 1.0, 2.0), 1.5);
+        assert_eq!(reflect(0.75, 0.5, 0.5), 0.5);
+        assert_eq!(reflect(0.75, 0.5, 0.25), 0.5);
+    }
 }

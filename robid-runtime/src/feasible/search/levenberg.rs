@@ -93,4 +93,25 @@ mod tests {
             "{x:?}"
         );
     }
+
+    /// A minimum outside the box: the variable the bound holds stays at it, the other
+    /// reaches its own optimum (the step is solved in the free variable alone).
+    #[test]
+    fn a_variable_at_a_bound_stays_there() {
+        // (x0 - 3)^2 + (x1 - x0 + 1)^2 on [0, 2] x [0, 5]: x0 = 2 at its bound, x1 = 1
+        let r = |x: &[f64]| DVector::from_vec(vec![x[0] - 3.0, x[1] - x[0] + 1.0]);
+        let x = polish(&r, &[0.0, 0.0], &[2.0, 5.0], &[0.5, 4.0], 100);
+        assert_eq!(x[0], 2.0);
+        // measured 7.3e-13 (the forward differences' step, 1e-7 of the box)
+        assert!((x[1] - 1.0).abs() < 1.5e-12, "{x:?}");
+        // and from the bound itself, the gradient pushing outwards
+        let x = polish(&r, &[0.0, 0.0], &[2.0, 5.0], &[2.0, 0.0], 100);
+        assert_eq!(x[0], 2.0);
+        assert!((x[1] - 1.0).abs() < 1.5e-12, "{x:?}");
+        // no steps: the start as it is
+        assert_eq!(
+            polish(&r, &[0.0, 0.0], &[2.0, 5.0], &[0.5, 4.0], 0),
+            [0.5, 4.0]
+        );
+    }
 }
