@@ -212,6 +212,22 @@ fn gaz_a_mass_the_fit_does_not_see_is_settled_into_the_total_mass_range() {
     assert!((settled([18.0, 3.0]) - 1.0).abs() < 1e-12);
     // 4 kg + at most 6 kg cannot reach 13 kg: the top of its box
     assert!((settled([4.0, 3.0]) - 6.0).abs() < 1e-12);
+    // two loose masses whose sum is inside the range keep their own values (they are not
+    // spread over their boxes); short of it, both move by the same share of their boxes
+    let both = |masses: [f64; 2]| {
+        with_objective(
+            None,
+            vec![(0, [0.0, 10.0]), (1, [0.0, 10.0])],
+            masses,
+            |o| {
+                let mut x = o.fixed.clone();
+                o.settle_masses(&mut x);
+                [x[0], x[PER_LINK]]
+            },
+        )
+    };
+    assert_eq!(both([8.0, 6.0]), [8.0, 6.0]);
+    assert_eq!(both([4.0, 6.0]), [6.5, 6.5]);
 }
 
 /// Every setting is checked against its range by name; the ends of each range pass.
