@@ -321,15 +321,17 @@ mod tests {
         let bounds = Bounds::wide(1);
         let pull = Pull::new(&problem, &bounds, None, 1.0).unwrap();
         let mass = pull.target[9];
-        assert!((mass - rho * truth.mass).abs() < 1e-6 * mass, "{mass}");
-        assert!((pull.scale[9] - mass).abs() < 1e-9 * mass);
+        // rounding only (measured 0 for both)
+        assert!((mass - rho * truth.mass).abs() < 1e-15 * mass, "{mass}");
+        assert!((pull.scale[9] - mass).abs() < 1e-15 * mass);
         // ZZ1 and MX1 are measured to 1e-3 against a pull of weight 1 per scale: the data
         // fix them; the mass and XX1 have no data at all
         let share = determined(&problem, &pull);
         assert!(share[5] > 0.999 && share[6] > 0.999, "{share:?}");
         assert!(share[9] == 0.0 && share[0] == 0.0, "{share:?}");
         let weak = Pull::new(&problem, &bounds, None, 1e12).unwrap();
-        assert!(determined(&problem, &weak)[6] < 0.5);
+        // measured 3.8e-5: a pull of 1e12 per scale outweighs the data
+        assert!(determined(&problem, &weak)[6] < 7.5e-5);
         // a user prior replaces the values it gives, with its weight
         let prior = Prior {
             standard: (0..10).map(|i| (i == 9).then_some(3.0)).collect(),
