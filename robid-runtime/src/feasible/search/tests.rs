@@ -141,11 +141,22 @@ fn with_objective<T>(
     masses: [f64; 2],
     f: impl FnOnce(&Objective<'_>) -> T,
 ) -> T {
-    let problem = problem(2, &["MX1"], &[0.0; 20]);
     let bounds = Bounds {
         total_mass: Some([13.0, 19.0]),
         ..Bounds::wide(2)
     };
+    with_bounds(bounds, mass_step, loose, masses, f)
+}
+
+/// [`with_objective`] under other bounds.
+fn with_bounds<T>(
+    bounds: Bounds,
+    mass_step: Option<f64>,
+    loose: Vec<(usize, [f64; 2])>,
+    masses: [f64; 2],
+    f: impl FnOnce(&Objective<'_>) -> T,
+) -> T {
+    let problem = problem(2, &["MX1"], &[0.0; 20]);
     let mut fixed = vec![0.0; 2 * PER_LINK];
     fixed[0] = masses[0];
     fixed[PER_LINK] = masses[1];
@@ -230,6 +241,43 @@ fn gaz_a_mass_the_fit_does_not_see_is_settled_into_the_total_mass_range() {
     };
     assert_eq!(both([8.0, 6.0]), [8.0, 6.0]);
     assert_eq!(both([4.0, 6.0]), [6.5, 6.5]);
+    // boxes that do not start at zero: 2 + 11 / 16 of [2, 18] kg reaches 13 kg
+    let inner = with_objective(
+        None,
+        vec![(0, [1.0, 9.0]), (1, [1.0, 9.0])],
+        [4.0, 6.0],
+        |o| {
+            let mut x = o.fixed.clone();
+            o.settle_masses(&mut x);
+            [x[0], x[PER_LINK]]
+        },
+    );
+    assert_eq!(inner, [6.5, 6.5]);
+}
+
+/// The bound violations, each relative to its scale: the total mass, then per link the
+/// three principal moments d_j + d_k against their range.
+#[test]
+fn gaz_each_link_is_held_to_its_own_moment_range() {
+    let mut bounds = Bounds {
+        total_mass: Some([13.0, 19.0]),
+        ..Bounds::wide(2)
+    };
+    bounds.links[0].inertia = [0.25, 5.0];
+    bounds.links[1].inertia = [0.0, 0.15];
+    let v = with_bounds(bounds, None, Vec::new(), [8.0, 8.0], |o| {
+        let mut x = o.fixed.clone();
+        for d in &mut x[PER_LINK + 4..PER_LINK + 7] {
+            *d = 0.2;
+        }
+        o.violations(&x)
+    });
+    // moments 0.2 below 0.25 (scale 5), and 0.4 above 0.15 (scale 0.15)
+    let want = [0.0, 0.01, 0.01, 0.01, 5.0 / 3.0, 5.0 / 3.0, 5.0 / 3.0];
+    assert_eq!(v.len(), want.len());
+    for (got, want) in v.iter().zip(want) {
+        assert!((got - want).abs() < 1e-15, "{v:?}");
+    }
 }
 
 /// Every setting is checked against its range by name; the ends of each range pass.
