@@ -265,6 +265,7 @@ fn gaz_each_link_is_held_to_its_own_moment_range() {
     };
     bounds.links[0].inertia = [0.25, 5.0];
     bounds.links[1].inertia = [0.0, 0.15];
+    bounds.links[1].tensor[0] = Some([0.0, 0.1]);
     let v = with_bounds(bounds, None, Vec::new(), [8.0, 8.0], |o| {
         let mut x = o.fixed.clone();
         for d in &mut x[PER_LINK + 4..PER_LINK + 7] {
@@ -272,8 +273,9 @@ fn gaz_each_link_is_held_to_its_own_moment_range() {
         }
         o.violations(&x)
     });
-    // moments 0.2 below 0.25 (scale 5), and 0.4 above 0.15 (scale 0.15)
-    let want = [0.0, 0.01, 0.01, 0.01, 5.0 / 3.0, 5.0 / 3.0, 5.0 / 3.0];
+    // moments 0.2 below 0.25 (scale 5), and 0.4 above 0.15 (scale 0.15), the second
+    // link's I_xx 0.4 above 0.1 (scale 0.1)
+    let want = [0.0, 0.01, 0.01, 0.01, 5.0 / 3.0, 5.0 / 3.0, 5.0 / 3.0, 3.0];
     assert_eq!(v.len(), want.len());
     for (got, want) in v.iter().zip(want) {
         assert!((got - want).abs() < 1e-15, "{v:?}");
@@ -429,6 +431,36 @@ fn gaz_the_searched_variables_are_those_the_fit_or_an_equality_sees() {
         ..equality
     };
     assert_eq!(free(&["MY1"], held), [2, 3, 4, 5, 6, 7, 8, 9]);
+    // an equality on the second link's inertia: its second moments and rotation
+    let problem = problem(2, &["MY1"], &[truth.clone(), truth.clone()].concat());
+    let options = AnnealOptions {
+        equalities: vec!["I2xy = 0.001".parse().unwrap()],
+        ..quick()
+    };
+    let (_, free) = search(&problem, &Bounds::wide(2), &options).unwrap();
+    assert_eq!(free, [0, 2, 14, 15, 16, 17, 18, 19]);
+}
+
+/// A mass the fit does not see is loose: set last, within its own box, to bring the
+/// total mass as near its range as the box allows (here the top of the box, 9 kg).
+#[test]
+fn gaz_a_loose_mass_stays_in_its_own_box() {
+    let truth: Vec<f64> = [one_link(), one_link()].concat();
+    let problem = problem(2, &["M1", "MX1"], &truth);
+    let mut bounds = Bounds {
+        total_mass: Some([12.0, 13.0]),
+        ..Bounds::wide(2)
+    };
+    bounds.links[1].mass = [1.0, 9.0];
+    let options = AnnealOptions {
+        target_chi2: Some(0.0),
+        ..quick()
+    };
+    let s = solve_anneal(&problem, &bounds, &options).unwrap();
+    let (a, b) = (s.links[0].unwrap(), s.links[1].unwrap());
+    assert_eq!(b.mass, 9.0, "{a:?} {b:?}");
+    // the seen mass is pulled up towards the range by the penalty (measured 2.023 kg)
+    assert!(a.mass > 2.0 && a.mass < 2.05, "{a:?}");
 }
 
 /// Drive terms are solved for in their own columns: a negative rotor inertia is held at
