@@ -68,7 +68,9 @@ pub struct Solution {
     pub determined: Vec<f64>,
     /// Wall-clock time of the solve.
     pub seconds: f64,
-    /// Newton steps of the interior-point method (0 for the other methods).
+    /// Steps of the method: Newton steps (interior point), trust-region steps (smooth),
+    /// restarts run (global search; fewer than asked when one met the target first); 0 for
+    /// the others.
     pub iterations: usize,
 }
 

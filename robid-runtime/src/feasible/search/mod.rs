@@ -526,6 +526,7 @@ fn search(
             Some(Ok((xn, fx)))
         })
         .collect::<Result<_>>()?;
+    let restarts_run = runs.len();
     let (best, _) = runs
         .into_iter()
         .min_by(|a, b| a.1.total_cmp(&b.1))
@@ -537,7 +538,8 @@ fn search(
     let mut x = objective.full(&best);
     objective.settle_masses(&mut x);
     let p = objective.standard(&x);
-    let solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
+    let mut solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
+    solution.iterations = restarts_run;
     Ok((solution, objective.free))
 }
 

@@ -539,3 +539,31 @@ fn gaz_each_link_has_its_own_variables() {
         assert!((got - want).abs() < 1e-15, "{a:?} {b:?}");
     }
 }
+
+/// Once a restart meets the target, no new one starts: on one thread, with a target any
+/// fit meets, one of 16 restarts runs; with one no fit meets (a negative mass cannot be
+/// matched), all 16 do.
+#[test]
+fn gaz_restarts_stop_at_the_target() {
+    let mut truth = one_link();
+    truth[9] = -1.0;
+    let problem = problem(1, &["M1"], &truth);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let run = |target: f64| {
+        let options = AnnealOptions {
+            restarts: 16,
+            iterations: 10,
+            local_evaluations: 10,
+            target_chi2: Some(target),
+            ..quick()
+        };
+        pool.install(|| solve_anneal(&problem, &Bounds::wide(1), &options))
+            .unwrap()
+            .iterations
+    };
+    assert_eq!(run(1e300), 1);
+    assert_eq!(run(0.0), 16);
+}
