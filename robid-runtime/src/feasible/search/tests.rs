@@ -567,3 +567,28 @@ fn gaz_restarts_stop_at_the_target() {
     assert_eq!(run(1e300), 1);
     assert_eq!(run(0.0), 16);
 }
+
+/// A firm user prior competes with the data in units of the parameter's scale: the data
+/// weigh the mass at 2 kg (std 1e-3), the prior says 3 kg with a weight of 2.5e9 per
+/// scale (50 kg with the wide bounds), as firm as the data, so the optimum is half-way.
+#[test]
+fn gaz_a_firm_prior_and_the_data_share_the_mass() {
+    let truth = crate::feasible::fixture::target(crate::feasible::fixture::link(), 0.1);
+    let problem = crate::feasible::fixture::problem(&truth);
+    let prior = Prior {
+        standard: (0..11).map(|i| (i == 9).then_some(3.0)).collect(),
+        weight: 2.5e9,
+    };
+    let options = AnnealOptions {
+        prior: Some(prior),
+        target_chi2: Some(0.0),
+        ..quick()
+    };
+    let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
+    let m = s.links[0].unwrap().mass;
+    // the data's weight 1 / std^2 with the solvers' floor on std, the prior's 2.5e9 / 50^2
+    let (data, pull) = (problem.std[9].powi(-2), 2.5e9 / 2500.0);
+    let want = 2.0 + pull / (data + pull);
+    // the search's own precision: measured 1.0e-12
+    assert!((m - want).abs() < 2e-12, "{m} vs {want}");
+}
