@@ -105,6 +105,13 @@ fn gaz_held_values_are_kept_and_refused_when_not_a_mass_or_centre() {
     let s = solve_anneal(&problem, &bounds, &options).unwrap();
     let l = s.links[0].unwrap();
     assert_eq!(l.mass, 2.0);
+    // a held mass is not loose: a total-mass range it misses does not move it
+    let ranged = Bounds {
+        total_mass: Some([5.0, 6.0]),
+        ..Bounds::wide(1)
+    };
+    let s = solve_anneal(&problem, &ranged, &options).unwrap();
+    assert_eq!(s.links[0].unwrap().mass, 2.0);
     // with the mass held, the first moments give the centre of mass itself (rounding:
     // measured 2.8e-17 m at most)
     for (a, c) in [0.1, 0.05, 0.2].iter().enumerate() {
@@ -461,6 +468,10 @@ fn gaz_a_loose_mass_stays_in_its_own_box() {
     assert_eq!(b.mass, 9.0, "{a:?} {b:?}");
     // the seen mass is pulled up towards the range by the penalty (measured 2.023 kg)
     assert!(a.mass > 2.0 && a.mass < 2.05, "{a:?}");
+    // above the range: the bottom of its box
+    bounds.total_mass = Some([0.0, 2.5]);
+    let s = solve_anneal(&problem, &bounds, &options).unwrap();
+    assert_eq!(s.links[1].unwrap().mass, 1.0, "{:?}", s.links);
 }
 
 /// Drive terms are solved for in their own columns: a negative rotor inertia is held at
