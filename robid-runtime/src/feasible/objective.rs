@@ -596,18 +596,23 @@ mod tests {
         {
             standard[i] = Some(*v);
         }
-        let options = SmoothOptions {
-            prior: Some(Prior {
-                standard,
-                weight: 1.0,
-            }),
-            ..fixture::options()
+        // the start and its link's least pseudo-inertia eigenvalue under a prior
+        let start = |standard: Vec<Option<f64>>| {
+            let options = SmoothOptions {
+                prior: Some(Prior {
+                    standard,
+                    weight: 1.0,
+                }),
+                ..fixture::options()
+            };
+            let objective = Objective::from_options(&problem, &Bounds::wide(1), &options).unwrap();
+            let p = objective.start(1e-6).unwrap();
+            let link: [f64; 10] = std::array::from_fn(|i| p[i]);
+            let least = crate::feasible::pseudo_inertia_min_eigenvalue(&link);
+            (p, least, objective.pull.scale[9])
         };
-        let objective = Objective::from_options(&problem, &Bounds::wide(1), &options).unwrap();
-        let p = objective.start(1e-6).unwrap();
-        let link: [f64; 10] = std::array::from_fn(|i| p[i]);
-        let floor = 1e-6 + 1e-6 * objective.pull.scale[9];
-        let least = crate::feasible::pseudo_inertia_min_eigenvalue(&link);
+        let (_, least, scale) = start(standard);
+        let floor = 1e-6 + 1e-6 * scale;
         assert!(
             least >= floor * (1.0 - 1e-9) && least <= 1.01 * floor,
             "{least}"
@@ -616,17 +621,7 @@ mod tests {
         // positive mass
         let mut standard = vec![None; 12];
         standard[9] = Some(-1.0);
-        let options = SmoothOptions {
-            prior: Some(Prior {
-                standard,
-                weight: 1.0,
-            }),
-            ..fixture::options()
-        };
-        let objective = Objective::from_options(&problem, &Bounds::wide(1), &options).unwrap();
-        let p = objective.start(1e-6).unwrap();
-        let link: [f64; 10] = std::array::from_fn(|i| p[i]);
-        let least = crate::feasible::pseudo_inertia_min_eigenvalue(&link);
+        let (p, least, _) = start(standard);
         assert!(p[9] > 0.0 && least >= 1e-6, "{p:?}");
     }
 }

@@ -504,17 +504,9 @@ fn gaz_drive_terms_are_solved_for_and_clamped() {
 fn gaz_a_user_prior_settles_what_the_data_leave_free() {
     let truth = one_link();
     let problem = problem(1, &["MX1", "MY1", "MZ1"], &truth);
-    let prior = Prior {
-        standard: (0..10).map(|i| (i == 9).then_some(2.5)).collect(),
-        weight: 1e6,
-    };
     // the default target (1e-3 chi^2 per base parameter) would stop the search within 2.7
     // mg of the prior (a pull of weight 1e6 per 50 kg, the wide bounds' mass scale)
-    let options = AnnealOptions {
-        prior: Some(prior),
-        target_chi2: Some(0.0),
-        ..quick()
-    };
+    let options = mass_prior(10, 2.5, 1e6);
     let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
     let l = s.links[0].unwrap();
     // measured 3.6e-15 kg and 2.3e-16 m at most
@@ -586,15 +578,7 @@ fn gaz_restarts_stop_at_the_target() {
 fn gaz_a_firm_prior_and_the_data_share_the_mass() {
     let truth = crate::feasible::fixture::target(crate::feasible::fixture::link(), 0.1);
     let problem = crate::feasible::fixture::problem(&truth);
-    let prior = Prior {
-        standard: (0..11).map(|i| (i == 9).then_some(3.0)).collect(),
-        weight: 2.5e9,
-    };
-    let options = AnnealOptions {
-        prior: Some(prior),
-        target_chi2: Some(0.0),
-        ..quick()
-    };
+    let options = mass_prior(11, 3.0, 2.5e9);
     let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
     let m = s.links[0].unwrap().mass;
     // the data's weight 1 / std^2 with the solvers' floor on std, the prior's 2.5e9 / 50^2
@@ -602,4 +586,17 @@ fn gaz_a_firm_prior_and_the_data_share_the_mass() {
     let want = 2.0 + pull / (data + pull);
     // the search's own precision: measured 1.0e-12
     assert!((m - want).abs() < 2e-12, "{m} vs {want}");
+}
+
+/// [`quick`] settings with a user prior on the first link's mass alone (of `n` standard
+/// parameters) and no target, so that every restart runs.
+fn mass_prior(n: usize, mass: f64, weight: f64) -> AnnealOptions {
+    AnnealOptions {
+        prior: Some(Prior {
+            standard: (0..n).map(|i| (i == 9).then_some(mass)).collect(),
+            weight,
+        }),
+        target_chi2: Some(0.0),
+        ..quick()
+    }
 }
