@@ -472,6 +472,13 @@ fn gaz_a_loose_mass_stays_in_its_own_box() {
     bounds.total_mass = Some([0.0, 2.5]);
     let s = solve_anneal(&problem, &bounds, &options).unwrap();
     assert_eq!(s.links[1].unwrap().mass, 1.0, "{:?}", s.links);
+    // the second link's mass held: not loose, so the range does not move it
+    let held = AnnealOptions {
+        fixed: vec![("m2".parse().unwrap(), 5.0)],
+        ..options
+    };
+    let s = solve_anneal(&problem, &bounds, &held).unwrap();
+    assert_eq!(s.links[1].unwrap().mass, 5.0, "{:?}", s.links);
 }
 
 /// Drive terms are solved for in their own columns: a negative rotor inertia is held at
