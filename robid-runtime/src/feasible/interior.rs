@@ -475,11 +475,11 @@ mod tests {
         let mut l = link();
         l[1] = 0.002; // XY: with the centre of mass at the origin, I_c's xy
         let t = target(l, 0.1);
-        let solve = |edit: &dyn Fn(&mut Bounds), t: &[f64; 11]| {
+        let solve = |edit: &dyn Fn(&mut Bounds), t: &[f64; 11], measured: usize| {
             let mut bounds = Bounds::wide(1);
             edit(&mut bounds);
             let s = solve_interior(&problem(t), &bounds, &options()).unwrap();
-            steps(&s, 90);
+            steps(&s, measured);
             assert!(s.violations.is_empty(), "{:?}", s.violations);
             s
         };
@@ -488,13 +488,13 @@ mod tests {
         // centre of mass 3.4e-8 m kg and -6.9e-7 of chi^2
         let std = problem(&t).std;
         let cost = |delta: f64, i: usize| (delta / std[i]).powi(2);
-        let s = solve(&|b| b.links[0].tensor[3] = Some([-1.0, 0.0]), &t);
+        let s = solve(&|b| b.links[0].tensor[3] = Some([-1.0, 0.0]), &t, 85);
         assert!(s.standard[1].abs() < 1.1e-7, "{}", s.standard[1]);
         assert!((s.chi2 - cost(0.002, 1)).abs() < 4.3e-4, "{}", s.chi2);
-        let s = solve(&|b| b.links[0].tensor[2] = Some([0.0, 0.012]), &t);
+        let s = solve(&|b| b.links[0].tensor[2] = Some([0.0, 0.012]), &t, 87);
         assert!((s.standard[5] - 0.012).abs() < 3.7e-8, "{}", s.standard[5]);
         assert!((s.chi2 - cost(0.003, 5)).abs() < 2.2e-4, "{}", s.chi2);
-        let s = solve(&|b| b.total_mass = Some([0.0, 1.99]), &t);
+        let s = solve(&|b| b.total_mass = Some([0.0, 1.99]), &t, 87);
         assert!((s.standard[9] - 1.99).abs() < 3.5e-8, "{}", s.standard[9]);
         assert!((s.chi2 - cost(0.01, 9)).abs() < 7e-4, "{}", s.chi2);
         let mut shifted = link();
@@ -502,7 +502,7 @@ mod tests {
         shifted[3] += 2.0 * 0.01; // YY and ZZ by the parallel axis: m x^2 = 0.02
         shifted[5] += 2.0 * 0.01;
         let t = target(shifted, 0.1);
-        let s = solve(&|b| b.links[0].com[0] = [-1.0, 0.05], &t);
+        let s = solve(&|b| b.links[0].com[0] = [-1.0, 0.05], &t, 90);
         let (h, m) = (s.standard[6], s.standard[9]);
         let std = problem(&t).std;
         let want = 0.1f64.powi(2) / (std[6].powi(2) + (0.05 * std[9]).powi(2));
@@ -512,6 +512,23 @@ mod tests {
             "chi2 {} vs {want}",
             s.chi2
         );
+    }
+
+    /// Bounds that no consistent link meets (XX and YY at most 0.001, ZZ at least 0.01,
+    /// against ZZ <= XX + YY): the multipliers cannot settle, so the fit stops after its
+    /// rounds at the last barrier weight, well inside the budget of Newton steps, and
+    /// reports what it could not meet.
+    #[test]
+    fn bounds_no_consistent_link_meets_end_after_the_rounds_and_are_reported() {
+        let t = target(link(), 0.1);
+        let mut bounds = Bounds::wide(1);
+        bounds.links[0].tensor[0] = Some([0.0, 0.001]);
+        bounds.links[0].tensor[1] = Some([0.0, 0.001]);
+        bounds.links[0].tensor[2] = Some([0.01, 1.0]);
+        let s = solve_interior(&problem(&t), &bounds, &options()).unwrap();
+        // the budget is 100 x 12 steps
+        steps(&s, 134);
+        assert_eq!(s.violations.len(), 3, "{:?}", s.violations);
     }
 
     /// A target that breaks the triangle inequality (XX > YY + ZZ about the centre of
