@@ -7,11 +7,7 @@ use super::{LinkInertial, Problem, SmoothOptions, Solution};
 /// The one-link problem with `target` (XX1 .. M1, Ia1) identified with standard deviation
 /// 1e-3 and `drives` appended as further terms of the same joint (target 0 unless set).
 pub(super) fn problem_with(target: &[f64], drives: &[&str]) -> Problem {
-    let mut names: Vec<String> = crate::model::Inertial::ALL
-        .iter()
-        .map(|s| format!("{}1", s.stem()))
-        .collect();
-    names.push("Ia1".into());
+    let mut names = names();
     names.extend(drives.iter().map(|d| format!("{d}1")));
     let n = names.len();
     let mut values = target.to_vec();
@@ -20,6 +16,16 @@ pub(super) fn problem_with(target: &[f64], drives: &[&str]) -> Problem {
         .unwrap()
         .with_target(&values, &vec![1e-3; n])
         .unwrap()
+}
+
+/// The standard names of the link and its rotor inertia: `XX1 .. M1, Ia1`.
+pub(super) fn names() -> Vec<String> {
+    let mut names: Vec<String> = crate::model::Inertial::ALL
+        .iter()
+        .map(|s| format!("{}1", s.stem()))
+        .collect();
+    names.push("Ia1".into());
+    names
 }
 
 /// [`problem_with`] without further drive terms.

@@ -629,11 +629,7 @@ mod tests {
     /// start's link leaves of the identified value: Ia1 = ZZR1 - ZZ1.
     #[test]
     fn a_regrouped_drive_term_starts_at_what_the_link_leaves() {
-        let mut names: Vec<String> = crate::model::Inertial::ALL
-            .iter()
-            .map(|s| format!("{}1", s.stem()))
-            .collect();
-        names.push("Ia1".into());
+        let names = fixture::names();
         // every link parameter its own base parameter but ZZ1, which joins Ia1
         let rows: Vec<usize> = (0..10).filter(|&i| i != 5).collect();
         let mut k = DMatrix::zeros(10, 11);
