@@ -6,7 +6,7 @@
 //! nowhere else, and every name it writes is this module's `Display`.
 //!
 //! ```
-//! use robid_runtime::model::{BaseName, DriveTerm, Inertial, ParameterId, ParameterKind};
+//! use robid_core::{BaseName, DriveTerm, Inertial, ParameterId, ParameterKind};
 //!
 //! let p: ParameterId = "MZ3".parse().unwrap();
 //! assert_eq!(p, ParameterId::new(2, ParameterKind::Inertial(Inertial::MZ)));
@@ -196,8 +196,7 @@ impl fmt::Display for ParseNameError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for ParseNameError {}
+impl core::error::Error for ParseNameError {}
 
 const PARAMETER_NAME: ParseNameError = ParseNameError {
     expected: "a standard parameter name is a stem XX XY XZ YY YZ ZZ MX MY MZ M Ia Fv Fc Fo \
@@ -285,9 +284,10 @@ impl fmt::Display for DriveTerm {
     }
 }
 
-#[cfg(all(test, feature = "std"))]
+#[cfg(test)]
 mod tests {
     use super::*;
+    use std::string::ToString;
 
     #[test]
     fn every_name_reads_back_as_written() {

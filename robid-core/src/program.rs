@@ -1,6 +1,6 @@
 //! The table of the programs every robot model has: one entry per program with its
 //! name, documentation, inputs and output shape. The symbolic builder, the Rust and C
-//! emitters, the [`Model`](super::Model) implementations (generated and interpreted),
+//! emitters, the `Model` implementations (generated and interpreted),
 //! `robid model`'s operation counts and `robid bench` all iterate this table, so adding
 //! a program is one entry here plus its builder in robid-symbolic.
 
@@ -64,7 +64,7 @@ impl Size {
 }
 
 /// An input or output of a program: its name (the argument's name in generated code
-/// and in [`LengthError`](super::LengthError)) and its size.
+/// and in the runtime's `LengthError`) and its size.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Argument {
     /// Name: `q`, `qd`, `qdd`, `base`, `standard`, `tau`, `out`.
@@ -100,7 +100,7 @@ impl Argument {
 /// One of the programs a model has.
 ///
 /// ```
-/// use robid_runtime::model::ProgramKind;
+/// use robid_core::ProgramKind;
 /// let p = ProgramKind::MassMatrix.info();
 /// assert_eq!(p.name, "mass_matrix");
 /// assert_eq!(p.inputs.len(), 2); // q and the base parameters
@@ -129,7 +129,7 @@ pub struct ProgramInfo {
     /// Which program.
     pub kind: ProgramKind,
     /// Name of the generated function and of the program (`inverse_dynamics`); the
-    /// [`Model`](super::Model) method that runs it is this name with `_into`.
+    /// `Model` method that runs it is this name with `_into`.
     pub name: &'static str,
     /// One sentence for the documentation of the generated function.
     pub summary: &'static str,

@@ -1,11 +1,11 @@
 //! The one seeded random-number generator (SplitMix64, Steele, Lea and Flood 2014, with
 //! Box-Muller normals): the symbolic engine's sampled states, simulations, trajectory
 //! designs, the feasible-parameter search and the tests are reproducible from one integer
-//! on every platform, without a dependency. Part of the `no_std` core (the normal
-//! distribution needs `std`).
+//! on every platform, without a dependency. `no_std` but for the normal distribution,
+//! which needs the `std` feature (std's `ln` and `sin_cos`).
 //!
 //! ```
-//! use robid_runtime::rng::Rng;
+//! use robid_core::rng::Rng;
 //!
 //! let mut a = Rng::new(7);
 //! let x = a.uniform(-1.0, 1.0);
@@ -93,6 +93,7 @@ impl Rng {
 #[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
+    use std::vec::Vec;
 
     #[test]
     fn reproducible_and_standard_normal() {

@@ -10,7 +10,7 @@
 pub mod model;
 pub mod online;
 mod real;
-pub mod rng;
+pub use robid_core::rng;
 pub mod trig;
 pub mod wrench;
 

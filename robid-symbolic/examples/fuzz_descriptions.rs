@@ -22,7 +22,7 @@
 
 #![allow(dead_code)]
 
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use robid_symbolic::Robot;
 use robid_symbolic::emit::emit_programs;
 use robid_symbolic::program::{Program, RobotPrograms};

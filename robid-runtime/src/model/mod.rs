@@ -10,11 +10,12 @@
 
 use core::fmt;
 
-mod parameter;
-mod program;
-
-pub use parameter::{BaseName, DriveTerm, Inertial, ParameterId, ParameterKind, ParseNameError};
-pub use program::{Argument, PROGRAMS, ProgramInfo, ProgramKind, Size, Sizes};
+// The vocabulary this trait is written in lives in robid-core, which the symbolic engine
+// shares without depending on the runtime.
+pub use robid_core::{
+    Argument, BaseName, DriveTerm, Inertial, PROGRAMS, ParameterId, ParameterKind, ParseNameError,
+    ProgramInfo, ProgramKind, Size, Sizes,
+};
 
 /// A slice given to a [`Model`] method does not have the length the model needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

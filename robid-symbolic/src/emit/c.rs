@@ -1,7 +1,7 @@
 //! C99 emission: the programs of a robot as a header and a source file.
 //!
 //! The same programs and table as the Rust emitter (one function per entry of
-//! [`PROGRAMS`](robid_runtime::model::PROGRAMS)), so the same operation counts: each input array is read into named
+//! [`PROGRAMS`](robid_core::PROGRAMS)), so the same operation counts: each input array is read into named
 //! values, every temporary is one `const` local, and the output array is written at
 //! the end. No allocation, no global state; `double` or `float`; only `<math.h>`
 //! (`sin`, `cos`, `sqrt`). Geometric symbols are the fields of a `NAME_geometry`
@@ -10,7 +10,7 @@
 use super::EmitError;
 use super::names::value_name;
 use crate::program::{Instr, Program, RobotPrograms, Value};
-use robid_runtime::model::{ProgramInfo, Sizes};
+use robid_core::{ProgramInfo, Sizes};
 use std::fmt::Write;
 
 /// The scalar type of emitted C code.

@@ -1,14 +1,14 @@
 //! `impl ::robid_runtime::Model`: the slice-based view of the emitted functions.
 //!
 //! `run` has one arm per entry of the program table
-//! ([`PROGRAMS`](robid_runtime::model::PROGRAMS)): it checks the number of inputs,
+//! ([`PROGRAMS`](robid_core::PROGRAMS)): it checks the number of inputs,
 //! turns each slice into the fixed-size array of the generic function (a wrong length
 //! is a `LengthError`, returned before the output is touched), calls it with `f64` and
 //! stores the result.
 
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
-use robid_runtime::model::{PROGRAMS, ProgramInfo};
+use robid_core::{PROGRAMS, ProgramInfo};
 
 /// The `run` arm of one program: `ProgramKind::X => { .. }`.
 fn arm(ty: &Ident, p: &ProgramInfo) -> TokenStream {

@@ -7,7 +7,7 @@ use super::names::{ident, type_name, value_ident, value_name};
 use crate::program::RobotPrograms;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
-use robid_runtime::model::{ProgramInfo, Sizes};
+use robid_core::{ProgramInfo, Sizes};
 
 /// The type (named after the robot) with its constants, functions and `Model`
 /// impl; its documentation lists the run-time inputs (geometric symbols

@@ -6,7 +6,7 @@ use super::names::type_name;
 use crate::robot::name_problem;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
-use robid_runtime::model::PROGRAMS;
+use robid_core::PROGRAMS;
 
 /// A type named after `robot_name` with the constants and functions of a real
 /// model, accepting any sizes, whose bodies are unreachable (the crate does

@@ -3,7 +3,6 @@
 //! compiled in.
 
 use super::{Group, Instr, Program, Value};
-use robid_runtime::Real;
 
 /// Inputs or outputs whose lengths do not match the program's groups.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -56,7 +55,7 @@ impl Program {
                     Instr::Neg(a) => -v(a),
                     Instr::Sin(a) => v(a).sin(),
                     Instr::Cos(a) => v(a).cos(),
-                    Instr::Sign(a) => v(a).sign(),
+                    Instr::Sign(a) => sign(v(a)),
                     Instr::Sqrt(a) => v(a).sqrt(),
                 }
             };
@@ -248,7 +247,7 @@ impl Compact {
                 Op::Neg => -x,
                 Op::Sin => x.sin(),
                 Op::Cos => x.cos(),
-                Op::Sign => x.sign(),
+                Op::Sign => sign(x),
                 Op::Sqrt => x.sqrt(),
             });
         }
@@ -331,7 +330,7 @@ impl Compact {
                 Op::Neg => unary(d, |x| -x),
                 Op::Sin => unary(d, f64::sin),
                 Op::Cos => unary(d, f64::cos),
-                Op::Sign => unary(d, <f64 as Real>::sign),
+                Op::Sign => unary(d, sign),
                 Op::Sqrt => unary(d, f64::sqrt),
             }
         }
@@ -370,4 +369,32 @@ fn check_groups<'a>(
         }
     }
     Ok(())
+}
+
+/// Coulomb friction's sign as the emitted code computes it (`robid_runtime::Real::sign`):
+/// -1, 0 or 1, with 0 at exactly zero (unlike `f64::signum`); the tests that compare the
+/// emitted code with this interpreter hold the two to the same values.
+fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod sign_tests {
+    use super::sign;
+
+    /// Zero at both zeros, as the emitted code's `Real::sign`: a joint at rest has no
+    /// Coulomb torque.
+    #[test]
+    fn sign_is_zero_at_zero_and_unit_elsewhere() {
+        assert_eq!(sign(0.0), 0.0);
+        assert_eq!(sign(-0.0), 0.0);
+        assert_eq!(sign(1e-300), 1.0);
+        assert_eq!(sign(-2.5), -1.0);
+    }
 }

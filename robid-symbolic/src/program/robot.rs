@@ -20,8 +20,8 @@ use crate::dynamics::{Derivation, JointInputs, LinkParameters};
 use crate::expr::{Arena, Id};
 use crate::regroup::{BaseParameters, RegroupError};
 use crate::robot::{DriveTerm, ParameterKind, Robot};
-use robid_runtime::model::BaseName;
-use robid_runtime::model::{PROGRAMS, ProgramInfo, ProgramKind, Sizes};
+use robid_core::BaseName;
+use robid_core::{PROGRAMS, ProgramInfo, ProgramKind, Sizes};
 use std::ops::{Index, IndexMut};
 
 /// A base parameter as the generated code describes it.
@@ -45,7 +45,7 @@ pub struct RobotPrograms {
     /// Geometric symbols (inputs of every program, group `geometry`) and default values.
     pub geometry: Vec<(String, Option<f64>)>,
     /// The programs, in the order of the table
-    /// ([`robid_runtime::model::PROGRAMS`]); index with a [`ProgramKind`].
+    /// ([`robid_core::PROGRAMS`]); index with a [`ProgramKind`].
     pub programs: [Program; PROGRAMS.len()],
 }
 

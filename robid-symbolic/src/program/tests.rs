@@ -2,8 +2,8 @@
 
 use super::{Group, Operations, Program};
 use crate::{Derivation, Robot};
-use robid_runtime::model::ProgramKind;
-use robid_runtime::rng::Rng;
+use robid_core::ProgramKind;
+use robid_core::rng::Rng;
 
 const UR5E: &str = include_str!("../../../robots/descriptions/ur5e.toml");
 
@@ -398,7 +398,7 @@ fn compact_programs_equal_the_interpreter_to_the_bit() {
     for robot in [rx90, ur5e] {
         let p = super::RobotPrograms::derive(&robot).unwrap();
         let geometry: Vec<f64> = robot.symbols().iter().map(|(_, v)| v.unwrap()).collect();
-        for info in robid_runtime::model::PROGRAMS {
+        for info in robid_core::PROGRAMS {
             let program = &p[info.kind];
             let compact = program.compact(&geometry).unwrap();
             let (mut temps, mut registers) = (Vec::new(), Vec::new());
@@ -452,7 +452,7 @@ fn compact_lanes_equal_one_run_per_set_to_the_bit() {
     let geometry: Vec<f64> = ur5e.symbols().iter().map(|(_, v)| v.unwrap()).collect();
     let mut rng = Rng::from_state(9);
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    for info in robid_runtime::model::PROGRAMS {
+    for info in robid_core::PROGRAMS {
         let program = &p[info.kind];
         let compact = program.compact(&geometry).unwrap();
         let len = program.outputs[0].values.len();

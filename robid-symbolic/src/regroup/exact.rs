@@ -376,7 +376,7 @@ mod tests {
         let atoms: Vec<Atom> = names.iter().map(|n| plain(&mut a, n)).collect();
         assert_eq!(monomials(&atoms[..159], 1).len(), super::MAX_MONOMIALS);
         assert!(monomials(&atoms[..159], 2).len() > super::MAX_MONOMIALS);
-        let mut rng = robid_runtime::rng::Rng::from_state(3);
+        let mut rng = robid_core::rng::Rng::from_state(3);
         let points: Vec<Vec<f64>> = (0..170)
             .map(|_| (0..160).map(|_| rng.uniform(0.1, 1.0)).collect())
             .collect();

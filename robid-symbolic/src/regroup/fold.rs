@@ -32,7 +32,7 @@ use super::{Candidate, RegroupError};
 use crate::dynamics::Derivation;
 use crate::expr::{Id, Node, Symbol, Values};
 use crate::robot::bounds::SYMBOL_SAMPLES;
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 
 /// Extra samples of a fit beyond its monomials (least squares, so a wrong
 /// degree leaves a residual).

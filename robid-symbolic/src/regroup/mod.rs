@@ -21,8 +21,8 @@ use crate::expr::{Arena, Id, Node};
 use crate::robot::bounds::SYMBOL_SAMPLES;
 use crate::robot::{ParameterId, ParameterKind};
 use rank::Status;
-use robid_runtime::model::BaseName;
-use robid_runtime::rng::Rng;
+use robid_core::BaseName;
+use robid_core::rng::Rng;
 
 /// One base parameter.
 #[derive(Clone, Debug)]

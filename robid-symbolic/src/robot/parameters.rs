@@ -1,9 +1,9 @@
 //! The standard parameters of a robot (docs/conventions.md#standard-parameters). What a
-//! parameter is, and its name, is [`robid_runtime::model::ParameterId`]: one type for every
+//! parameter is, and its name, is [`robid_core::ParameterId`]: one type for every
 //! crate, parsed in one place.
 
 use super::Robot;
-pub use robid_runtime::model::{DriveTerm, Inertial, ParameterId, ParameterKind};
+pub use robid_core::{DriveTerm, Inertial, ParameterId, ParameterKind};
 
 impl Robot {
     /// The standard parameters: per link `XX XY XZ YY YZ ZZ MX MY MZ M`, then

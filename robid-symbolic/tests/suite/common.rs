@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests of robid-symbolic.
 #![allow(dead_code, unreachable_pub)]
 
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use robid_symbolic::{Arena, Robot, Values};
 
 /// A reference robot description from robots/descriptions.

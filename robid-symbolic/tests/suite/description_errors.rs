@@ -1,7 +1,7 @@
 //! Bad descriptions are located errors, all reported at once; bad library
 //! calls are errors naming the argument; nothing panics.
 
-use robid_runtime::model::ProgramKind;
+use robid_core::ProgramKind;
 use robid_symbolic::emit::{EmitError, emit_programs, emit_robot};
 use robid_symbolic::program::RobotPrograms;
 use robid_symbolic::robot::{Geometry, GeometryError};

@@ -12,8 +12,8 @@ use std::fmt::Write;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use robid_runtime::model::{PROGRAMS, Sizes};
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
+use robid_core::{PROGRAMS, Sizes};
 use robid_symbolic::emit::{CScalar, emit_c};
 use robid_symbolic::program::RobotPrograms;
 use robid_symbolic::{Drive, Robot};
@@ -314,7 +314,7 @@ fn a_negated_negative_constant_compiles() {
     };
     let text = "name = \"neg\"\nconvention = \"modified\"\n[[joints]]\nalpha = \"pi/2\"\n";
     let mut programs = RobotPrograms::derive(&Robot::from_toml(text, "neg.toml").unwrap()).unwrap();
-    let gravity = &mut programs[robid_runtime::model::ProgramKind::Gravity];
+    let gravity = &mut programs[robid_core::ProgramKind::Gravity];
     let k = gravity.constants.len() as u32;
     gravity.constants.push(-1.5);
     let t = gravity.instrs.len() as u32;
@@ -333,7 +333,7 @@ fn a_negated_negative_constant_compiles() {
     let reference = interpret(&programs, &inputs);
     let gravity = PROGRAMS
         .iter()
-        .position(|p| p.kind == robid_runtime::model::ProgramKind::Gravity)
+        .position(|p| p.kind == robid_core::ProgramKind::Gravity)
         .unwrap();
     assert!(relative(&out[gravity], &reference[gravity]) <= 1e-15);
 }

@@ -7,8 +7,8 @@
 //! equal the Lagrange-Euler expressions; a wall mount equals a rotated gravity; explicit
 //! zeros change nothing.
 
-use robid_runtime::model::ProgramKind;
-use robid_runtime::rng::Rng;
+use robid_core::ProgramKind;
+use robid_core::rng::Rng;
 use robid_symbolic::program::{Program, RobotPrograms};
 use robid_symbolic::{Arena, Derivation, Drive, Robot, Values};
 

@@ -1,5 +1,5 @@
 //! Quick cross-check of Newton-Euler against Lagrange-Euler on the UR5e.
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use robid_symbolic::{Derivation, Robot};
 
 #[test]

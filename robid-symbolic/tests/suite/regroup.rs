@@ -3,7 +3,7 @@
 //! and standard-DH robots.
 
 use crate::common::{random_state, reference};
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use robid_symbolic::regroup::BaseParameters;
 use robid_symbolic::{Derivation, Drive, Robot};
 

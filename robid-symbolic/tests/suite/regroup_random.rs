@@ -4,7 +4,7 @@
 
 use crate::common::random_state;
 use proptest::prelude::*;
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use robid_symbolic::robot::Geometry;
 use robid_symbolic::robot::bounds::MIN_GRAVITY;
 use robid_symbolic::{Convention, Derivation, Drive, Joint, JointKind, Robot};

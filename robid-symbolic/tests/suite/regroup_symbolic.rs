@@ -8,7 +8,7 @@
 //! ratio of the symbols (no value somewhere) is refused, naming the symbols.
 
 use proptest::prelude::*;
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use robid_symbolic::regroup::{BaseParameters, RegroupError};
 use robid_symbolic::robot::Geometry;
 use robid_symbolic::{Derivation, Drive, Num, Robot};

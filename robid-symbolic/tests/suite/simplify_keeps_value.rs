@@ -5,7 +5,7 @@
 //! test draws trees rich in what one pass rewrites.
 
 use proptest::prelude::*;
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use robid_symbolic::{Arena, Id, Node, Num};
 
 /// What the generator favours.

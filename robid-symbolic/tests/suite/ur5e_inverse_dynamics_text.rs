@@ -11,7 +11,5 @@ fn ur5e_inverse_dynamics_program_text() {
     let text = include_str!("../../../robots/descriptions/ur5e.toml");
     let robot = Robot::from_toml(text, "ur5e.toml").unwrap();
     let programs = RobotPrograms::derive(&robot).unwrap();
-    insta::assert_snapshot!(
-        programs[robid_runtime::model::ProgramKind::InverseDynamics].to_string()
-    );
+    insta::assert_snapshot!(programs[robid_core::ProgramKind::InverseDynamics].to_string());
 }

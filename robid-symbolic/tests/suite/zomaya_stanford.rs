@@ -61,7 +61,7 @@
 //! holds (with `w^2_11 + w^3_11`, identifiable on its own).
 
 use nalgebra::DMatrix;
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use robid_symbolic::regroup::BaseParameters;
 use robid_symbolic::{Derivation, Robot};
 

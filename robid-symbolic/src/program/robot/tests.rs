@@ -4,8 +4,8 @@
 
 use super::Context;
 use crate::Robot;
-use robid_runtime::model::ProgramKind;
-use robid_runtime::rng::Rng;
+use robid_core::ProgramKind;
+use robid_core::rng::Rng;
 
 /// A random description: either convention, 2 to 5 joints, prismatic joints now and
 /// then, twists and offsets in {0, +-pi/2, pi} or a number, lengths zero, a number or

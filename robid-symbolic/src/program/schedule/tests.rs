@@ -1,7 +1,7 @@
 use super::*;
 use crate::Robot;
 use crate::program::RobotPrograms;
-use robid_runtime::model::ProgramKind;
+use robid_core::ProgramKind;
 
 /// Seven tasks on which the two rules differ (worked out by hand):
 ///

@@ -157,7 +157,7 @@ fn truncated_and_garbled_files_are_errors_not_panics() {
             let _ = Robot::from_urdf(&text[..cut], "t.urdf", &chosen);
         }
     }
-    let mut rng = robid_runtime::rng::Rng::new(11);
+    let mut rng = robid_core::rng::Rng::new(11);
     let noise = ['<', '>', '"', '=', '/', ' ', '0', 'x', '-', '.', 'e', '9'];
     let mut errors = 0;
     for _ in 0..400 {

@@ -156,10 +156,10 @@ fn the_bodies_of_random_chains_sum_their_links() {
     use std::fmt::Write;
     // a chain with side links on fixed and off-path joints and rotated inertial frames
     let mut text = String::from("<robot name=\"r\"><link name=\"b\"/>");
-    let mut rng = robid_runtime::rng::Rng::new(3);
+    let mut rng = robid_core::rng::Rng::new(3);
     let mut parent = "b".to_owned();
     for j in 0..4 {
-        let v = |rng: &mut robid_runtime::rng::Rng| {
+        let v = |rng: &mut robid_core::rng::Rng| {
             format!(
                 "{:?} {:?} {:?}",
                 rng.uniform(-0.5, 0.5),
@@ -167,7 +167,7 @@ fn the_bodies_of_random_chains_sum_their_links() {
                 rng.uniform(-0.5, 0.5)
             )
         };
-        let inertial = |rng: &mut robid_runtime::rng::Rng| {
+        let inertial = |rng: &mut robid_core::rng::Rng| {
             format!(
                 "<inertial><origin xyz=\"{}\" rpy=\"{}\"/><mass value=\"{:?}\"/><inertia ixx=\"0.3\" ixy=\"-0.01\" ixz=\"0.02\" iyy=\"0.2\" iyz=\"0.015\" izz=\"0.25\"/></inertial>",
                 v(rng),

@@ -3,7 +3,7 @@
 //! real files.
 
 use super::*;
-use robid_runtime::rng::Rng;
+use robid_core::rng::Rng;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::fmt::Write;
 

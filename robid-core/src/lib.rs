@@ -1,0 +1,22 @@
+//! The `no_std` vocabulary that robid's symbolic engine and its runtime share, without
+//! dependencies:
+//!
+//! - what a parameter is ([`ParameterId`], [`BaseName`], [`DriveTerm`]), parsed and
+//!   written in one place;
+//! - the table of the programs every robot model has ([`PROGRAMS`]);
+//! - the seeded random generator ([`rng::Rng`]; its normal distribution with the `std`
+//!   feature, which robid-runtime's `std` turns on).
+//!
+//! `robid_runtime::model` and `robid_runtime::rng` re-export all of it, so user code
+//! and generated code name these items through the runtime.
+#![no_std]
+
+#[cfg(any(test, feature = "std"))]
+extern crate std;
+
+mod parameter;
+mod program;
+pub mod rng;
+
+pub use parameter::{BaseName, DriveTerm, Inertial, ParameterId, ParameterKind, ParseNameError};
+pub use program::{Argument, PROGRAMS, ProgramInfo, ProgramKind, Size, Sizes};
