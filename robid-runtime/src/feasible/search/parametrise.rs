@@ -89,4 +89,43 @@ mod tests {
             assert!(pseudo_inertia_min_eigenvalue(&p) > 0.0);
         }
     }
+
+    /// The don't-care values: mid mass, mid box, no rotation, and second moments at half
+    /// the mid moment, so that each principal moment (d_j + d_k) is the range's middle.
+    #[test]
+    fn the_centre_is_mid_box_with_the_mid_moment() {
+        let b = LinkBounds {
+            mass: [1.0, 3.0],
+            com: [[-0.1, 0.3], [0.0, 0.2], [-0.4, 0.0]],
+            inertia: [0.0, 0.5],
+            ..LinkBounds::default()
+        };
+        let x = link_centre(&b);
+        let want = [2.0, 0.1, 0.1, -0.2, 0.125, 0.125, 0.125, 0.0, 0.0, 0.0];
+        for (i, (got, want)) in x.iter().zip(want).enumerate() {
+            assert!((got - want).abs() < 1e-15, "{i}: {got} against {want}");
+        }
+        let l = link_of(&x);
+        for (a, row) in l.inertia.iter().enumerate() {
+            for (c, v) in row.iter().enumerate() {
+                let want = if a == c { 0.25 } else { 0.0 };
+                assert!((v - want).abs() < 1e-15, "I[{a}][{c}] = {v}");
+            }
+        }
+    }
+
+    /// An upper inertia bound below twice the margin still leaves each second moment a
+    /// range whose top is just above twice its bottom (the margin).
+    #[test]
+    fn a_tight_inertia_bound_keeps_the_moment_range_open() {
+        let b = LinkBounds {
+            inertia: [0.0, 1e-7],
+            ..LinkBounds::default()
+        };
+        let (lo, hi) = link_box(&b, 1e-6);
+        for i in 4..7 {
+            assert_eq!(lo[i], 1e-6);
+            assert!(hi[i] > 2e-6 && hi[i] < 2e-6 + 1e-11, "{}", hi[i]);
+        }
+    }
 }
