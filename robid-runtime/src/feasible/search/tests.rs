@@ -607,3 +607,40 @@ fn mass_prior(n: usize, mass: f64, weight: f64) -> AnnealOptions {
         ..quick()
     }
 }
+
+/// Gaz et al.'s first step holds what its fit sees, without the equalities (they are the
+/// second step's): here the fit sees m1 and c1x (M1, MX1) and, through ZZ2, link 2's mass,
+/// c2x, c2y and inertia variables; the step holds the masses and centre coordinates among
+/// them, each at its value in the step's solution, and no inertia variable. The equality
+/// on link 1 would otherwise make all of link 1's variables searched (c1y and c1z held).
+#[test]
+fn gaz_the_gravity_step_holds_the_masses_and_centres_its_fit_sees() {
+    let truth = [one_link(), one_link()].concat();
+    let fit = problem(2, &["M1", "MX1", "ZZ2"], &truth);
+    let options = AnnealOptions {
+        equalities: vec!["I1xz = c1x * c1z * m1".parse().unwrap()],
+        ..quick()
+    };
+    let bounds = Bounds::wide(2);
+    let (solution, held) = solve_gravity_step(&fit, &bounds, &options).unwrap();
+    let names: Vec<String> = held.iter().map(|(v, _)| v.to_string()).collect();
+    assert_eq!(names, ["m1", "c1x", "m2", "c2x", "c2y"]);
+    for (v, value) in &held {
+        let l = solution.links[v.link].as_ref().unwrap();
+        let want = match v.quantity {
+            Quantity::Mass => l.mass,
+            Quantity::Com(a) => l.com[a],
+            Quantity::Inertia(_) => panic!("{v} held"),
+        };
+        assert_eq!(*value, want, "{v}");
+    }
+    // the whole two-step method on the same problem, and a gravity problem of another robot
+    let two = solve_two_step(&fit, &fit, &bounds, &options).unwrap();
+    assert_eq!(two.held, held);
+    let other = problem(1, &["M1"], &one_link());
+    let e = solve_two_step(&other, &fit, &bounds, &options).unwrap_err();
+    assert!(
+        e.to_string().contains("GravityCoefficients::problem"),
+        "{e}"
+    );
+}
