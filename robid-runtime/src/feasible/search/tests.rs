@@ -105,7 +105,7 @@ fn gaz_an_equality_on_the_second_link_holds_there() {
         tensor: [None; 6],
     };
     let bounds = Bounds {
-        links: vec![link.clone(), link],
+        links: vec![link; 2],
         total_mass: None,
         margin: 1e-6,
     };
