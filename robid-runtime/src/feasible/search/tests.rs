@@ -674,3 +674,18 @@ fn gaz_the_gravity_step_holds_the_masses_and_centres_its_fit_sees() {
         "{e}"
     );
 }
+
+/// An equality naming a link the robot does not have is refused before the search, naming
+/// the link (on either side of the equality).
+#[test]
+fn gaz_an_equality_past_the_last_link_is_refused() {
+    let problem = problem(1, &["M1"], &one_link());
+    for equality in ["I2xz = c1x * c1z * m1", "I1xz = c1x * c2z * m1"] {
+        let options = AnnealOptions {
+            equalities: vec![equality.parse().unwrap()],
+            ..quick()
+        };
+        let e = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap_err();
+        assert!(e.to_string().contains("link 2 named"), "{equality}: {e}");
+    }
+}
