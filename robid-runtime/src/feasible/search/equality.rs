@@ -226,6 +226,20 @@ mod tests {
         assert!(e.to_string().contains("empty factor"), "{e}");
         assert!("I7xz c7x".parse::<Equality>().is_err());
         assert!("I7xz = 1e400 * c7x".parse::<Equality>().is_err());
+        // finite but beyond the documented magnitude of an input (limits.rs)
+        assert!("I7xz = 2e6 * c7x".parse::<Equality>().is_err());
+    }
+
+    /// An equality prints as it is written: the coefficient only when it is not 1 or stands
+    /// alone.
+    #[test]
+    fn equalities_print_as_written() {
+        for text in ["I7xz = c7x * c7z * m7", "c6y = -0.5 * c6x", "I2xy = 0.001"] {
+            let e: Equality = text.parse().unwrap();
+            assert_eq!(e.to_string(), text);
+        }
+        let e: Equality = "m1 = 2 * c1x * 0.5".parse().unwrap();
+        assert_eq!(e.to_string(), "m1 = c1x");
     }
 
     #[test]
