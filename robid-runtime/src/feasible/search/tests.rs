@@ -58,22 +58,29 @@ fn quick() -> AnnealOptions {
     }
 }
 
+/// Bounds of `links` links that hold `one_link` inside: 0.5 to 4 kg, a 0.3 m box,
+/// moments up to 0.2 kg m^2.
+fn arm_links(links: usize) -> Bounds {
+    let link = LinkBounds {
+        mass: [0.5, 4.0],
+        com: [[-0.3, 0.3]; 3],
+        inertia: [0.0, 0.2],
+        tensor: [None; 6],
+    };
+    Bounds {
+        links: vec![link; links],
+        total_mass: None,
+        margin: 1e-6,
+    }
+}
+
 #[test]
 fn gaz_an_equality_holds_where_the_fit_is_blind() {
     // The fit sees the mass and first moments only; the equality sets I1xz, which the fit
     // leaves at its don't-care value 0 without it.
     let truth = one_link();
     let problem = problem(1, &["M1", "MX1", "MY1", "MZ1"], &truth);
-    let bounds = Bounds {
-        links: vec![LinkBounds {
-            mass: [0.5, 4.0],
-            com: [[-0.3, 0.3]; 3],
-            inertia: [0.0, 0.2],
-            tensor: [None; 6],
-        }],
-        total_mass: None,
-        margin: 1e-6,
-    };
+    let bounds = arm_links(1);
     let options = AnnealOptions {
         equalities: vec!["I1xz = c1x * c1z * m1".parse().unwrap()],
         ..quick()
@@ -98,17 +105,7 @@ fn gaz_an_equality_on_the_second_link_holds_there() {
     let truth = [one_link(), one_link()].concat();
     let rows = ["M1", "MX1", "MY1", "MZ1", "M2", "MX2", "MY2", "MZ2"];
     let problem = problem(2, &rows, &truth);
-    let link = LinkBounds {
-        mass: [0.5, 4.0],
-        com: [[-0.3, 0.3]; 3],
-        inertia: [0.0, 0.2],
-        tensor: [None; 6],
-    };
-    let bounds = Bounds {
-        links: vec![link; 2],
-        total_mass: None,
-        margin: 1e-6,
-    };
+    let bounds = arm_links(2);
     let options = AnnealOptions {
         equalities: vec!["I2xz = c2x * c2z * m2".parse().unwrap()],
         ..quick()
