@@ -93,27 +93,22 @@ fn check_urdf(path: &Path) {
     assert!(masses.iter().all(|m| *m > 0.0), "{masses:?}");
 }
 
-#[test]
-fn feasible_anneal_writes_consistent_toml_and_urdf_that_fit_the_identified_parameters() {
-    let dir = folder();
-    let toml_path = out(&dir, "anneal.toml");
-    let chi2 = feasible("anneal", &toml_path);
-    // measured 13.91 (the SDP's global optimum: 13.68); bound 2x
-    assert!(chi2 <= 28.0, "chi^2 {chi2}");
-    check_toml(&toml_path);
-    let urdf_path = out(&dir, "anneal.urdf");
-    feasible("anneal", &urdf_path);
-    check_urdf(&urdf_path);
-}
-
+/// Gaz et al.'s search writes consistent links (TOML) that fit the identified parameters.
 /// The default method is the Cholesky fit. With the data alone (`--prior-weight 0`) it
 /// reaches the convex fit's global optimum, so it fits at least as well as the stochastic
-/// search (measured chi^2 13.68 against anneal's 14.08), as the interior-point method does;
-/// the default prior of solid links settles what the data leave free at a small cost in fit
-/// (measured 15.39).
+/// search (measured chi^2 13.68 against anneal's 13.91 and 14.08 in two runs: the parallel
+/// search's path varies), as the interior-point method does; the default prior of solid
+/// links settles what the data leave free at a small cost in fit (measured 15.39). The
+/// fits with the default prior are written as URDF (the output's extension chooses).
+/// One test, so that the search (the dear part) runs once.
 #[test]
-fn feasible_default_cholesky_fits_at_least_as_well_as_anneal() {
+fn feasible_methods_write_consistent_links_and_the_convex_fits_beat_anneal() {
     let dir = folder();
+    let anneal_path = out(&dir, "anneal.toml");
+    let anneal = feasible("anneal", &anneal_path);
+    // measured 13.91 and 14.08; bound 2x
+    assert!(anneal <= 28.0, "chi^2 {anneal}");
+    check_toml(&anneal_path);
     let path = out(&dir, "default.toml");
     let o = robid(&[
         "feasible",
@@ -128,14 +123,15 @@ fn feasible_default_cholesky_fits_at_least_as_well_as_anneal() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).starts_with("cholesky: chi^2 "), "{}", stderr(&o));
     check_toml(&path);
-    let anneal = feasible("anneal", &out(&dir, "anneal_for_default.toml"));
     for method in ["cholesky", "interior-point"] {
         let data_alone = feasible_with(
             method,
             &out(&dir, &format!("{method}_data_alone.toml")),
             &["--prior-weight", "0"],
         );
-        let with_prior = feasible(method, &out(&dir, &format!("{method}_default.toml")));
+        let urdf = out(&dir, &format!("{method}_default.urdf"));
+        let with_prior = feasible(method, &urdf);
+        check_urdf(&urdf);
         assert!(
             data_alone <= anneal * (1.0 + 1e-6),
             "{method} {data_alone}, anneal {anneal}"
