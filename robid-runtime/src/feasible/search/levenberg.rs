@@ -115,4 +115,67 @@ mod tests {
             [0.5, 4.0]
         );
     }
+
+    /// One step on a linear residual is Marquardt's: (H + mu diag H) step = -g with
+    /// mu = 1e-3. On r = 10 (x - 4) from 0 that is 4 / 1.001.
+    #[test]
+    fn one_step_is_marquardts_scaled_damping() {
+        let r = |x: &[f64]| DVector::from_vec(vec![10.0 * (x[0] - 4.0)]);
+        let x = polish(&r, &[0.0], &[10.0], &[0.0], 1);
+        // the forward difference's rounding; measured 1.27e-9
+        assert!((x[0] - 4.0 / 1.001).abs() < 2.5e-9, "{x:?}");
+    }
+
+    /// With one step, a variable counts as at its bound within 1e-12 of its box's width
+    /// (here 4e-12), and only when the gradient pushes it outwards: held, the step is
+    /// solved in the other variable alone; free, the step moves both and the clamp holds
+    /// the first at its bound. Bounds: 2x the largest miss measured (1.64e-10, the
+    /// forward differences' rounding).
+    #[test]
+    fn a_variable_is_held_within_a_width_fraction_of_its_bound() {
+        let (lo, hi) = ([1.0, 0.0], [5.0, 10.0]);
+        // upper bound: r = (x0 - 6, x1 - x0 + 1) from x1 = 5; held, x1 steps to
+        // 5 - 1/1.001; free, to 5 - 0.002 / 1.004
+        let r = |x: &[f64]| DVector::from_vec(vec![x[0] - 6.0, x[1] - x[0] + 1.0]);
+        let x1 = |x0: f64| polish(&r, &lo, &hi, &[x0, 5.0], 1)[1];
+        let (held, free) = (5.0 - 1.0 / 1.001, 5.0 - 0.002 / 1.004002);
+        for (x0, want) in [(5.0, held), (5.0 - 1e-12, held), (5.0 - 5e-12, free)] {
+            assert!(
+                (x1(x0) - want).abs() < 3.5e-10,
+                "x0 {x0}: {} against {want}",
+                x1(x0)
+            );
+        }
+        // lower bound, the mirror image: r = (x0, x1 - x0 - 3) from x1 = 3
+        let r = |x: &[f64]| DVector::from_vec(vec![x[0], x[1] - x[0] - 3.0]);
+        let x1 = |x0: f64| polish(&r, &lo, &hi, &[x0, 3.0], 1)[1];
+        let (held, free) = (3.0 + 1.0 / 1.001, 3.0 + 0.002 / 1.004002);
+        for (x0, want) in [(1.0, held), (1.0 + 1e-12, held), (1.0 + 5e-12, free)] {
+            assert!(
+                (x1(x0) - want).abs() < 3.5e-10,
+                "x0 {x0}: {} against {want}",
+                x1(x0)
+            );
+        }
+        // at the lower bound with a gradient of exactly zero in x0 (r = (x0 - x1 + 1,
+        // x1 - 3) from (0, 1)): free, both move, towards (2, 3)
+        let r = |x: &[f64]| DVector::from_vec(vec![x[0] - x[1] + 1.0, x[1] - 3.0]);
+        let x = polish(&r, &[0.0, 0.0], &[5.0, 10.0], &[0.0, 1.0], 1);
+        let want = [2.0 / 1.004002, 1.0 + 2.002 / 1.004002];
+        assert!(
+            (x[0] - want[0]).abs() < 3.5e-10 && (x[1] - want[1]).abs() < 3.5e-10,
+            "{x:?} against {want:?}"
+        );
+    }
+
+    /// A variable the residual does not see (a zero column, no curvature) still gets a
+    /// positive damping (mu 1e-12), so the step is solved: the seen variable takes its
+    /// Marquardt step, the unseen one stays.
+    #[test]
+    fn a_variable_without_curvature_does_not_stop_the_step() {
+        let r = |x: &[f64]| DVector::from_vec(vec![10.0 * (x[0] - 4.0)]);
+        let x = polish(&r, &[0.0, 0.0], &[10.0, 10.0], &[0.0, 1.0], 1);
+        // as in the one-variable step (measured 1.27e-9 there)
+        assert!((x[0] - 4.0 / 1.001).abs() < 2.5e-9 && x[1] == 1.0, "{x:?}");
+    }
 }
