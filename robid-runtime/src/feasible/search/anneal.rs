@@ -71,6 +71,14 @@ pub(crate) fn reflect(v: f64, lo: f64, hi: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// `iterations` steps, cooling to 1e-6 of the start temperature.
+    fn steps(iterations: usize) -> AnnealSettings {
+        AnnealSettings {
+            iterations,
+            final_ratio: 1e-6,
+        }
+    }
+
     #[test]
     fn finds_the_global_minimum_of_a_multimodal_function() {
         // Rastrigin in 2-D on [-5, 5]^2: many local minima, global at 0.
@@ -80,10 +88,7 @@ mod tests {
                 .sum::<f64>()
         };
         let mut rng = Rng::new(7);
-        let s = AnnealSettings {
-            iterations: 20000,
-            final_ratio: 1e-6,
-        };
+        let s = steps(20000);
         let (x, fx) = anneal(&f, &[-5.0; 2], &[5.0; 2], &[4.0, -4.0], s, &mut rng);
         // every other local minimum has f >= 0.99 (measured 3.1e-8 at the global one)
         assert!(fx < 1e-2, "f = {fx} at {x:?}");
@@ -105,20 +110,14 @@ mod tests {
             calls.set(calls.get() + 1);
             x.iter().map(|v| (v - 0.3).powi(2)).sum::<f64>()
         };
-        let s = AnnealSettings {
-            iterations: 0,
-            final_ratio: 1e-6,
-        };
+        let s = steps(0);
         let mut rng = Rng::new(3);
         assert_eq!(
             anneal(&f, &[0.0], &[1.0], &[0.9], s, &mut rng),
             (vec![0.9], f(&[0.9]))
         );
         let none: [f64; 0] = [];
-        let s = AnnealSettings {
-            iterations: 100,
-            ..s
-        };
+        let s = steps(100);
         assert_eq!(anneal(&f, &none, &none, &none, s, &mut rng), (vec![], 0.0));
         calls.set(0);
         let (x, fx) = anneal(&f, &[0.0; 3], &[1.0; 3], &[0.9; 3], s, &mut rng);
@@ -145,10 +144,7 @@ mod tests {
     /// does not replace it.
     #[test]
     fn a_tie_keeps_the_first_best_point() {
-        let s = AnnealSettings {
-            iterations: 100,
-            final_ratio: 1e-6,
-        };
+        let s = steps(100);
         let (x, fx) = anneal(
             &|_| 1.0,
             &[0.0; 2],
@@ -164,10 +160,7 @@ mod tests {
     /// only goes downhill, and on f = x - 0.2 from its zero at 0.2 it ends near 0.
     #[test]
     fn a_start_of_value_zero_anneals_downhill() {
-        let s = AnnealSettings {
-            iterations: 1000,
-            final_ratio: 1e-6,
-        };
+        let s = steps(1000);
         let (x, fx) = anneal(&|x| x[0] - 0.2, &[0.0], &[1.0], &[0.2], s, &mut Rng::new(5));
         // measured 6.9e-7 (a negative temperature, which accepts every uphill move, ends
         // at 6.3e-3); bound 2x

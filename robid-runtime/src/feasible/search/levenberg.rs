@@ -133,30 +133,30 @@ mod tests {
     /// forward differences' rounding).
     #[test]
     fn a_variable_is_held_within_a_width_fraction_of_its_bound() {
-        let (lo, hi) = ([1.0, 0.0], [5.0, 10.0]);
+        // x1 after one step from (x0, start) on the box [1, 5] x [0, 10]
+        let check = |r: &dyn Fn(&[f64]) -> DVector<f64>, start: f64, cases: [(f64, f64); 3]| {
+            for (x0, want) in cases {
+                let x1 = polish(r, &[1.0, 0.0], &[5.0, 10.0], &[x0, start], 1)[1];
+                assert!((x1 - want).abs() < 3.5e-10, "x0 {x0}: {x1} against {want}");
+            }
+        };
         // upper bound: r = (x0 - 6, x1 - x0 + 1) from x1 = 5; held, x1 steps to
         // 5 - 1/1.001; free, to 5 - 0.002 / 1.004
         let r = |x: &[f64]| DVector::from_vec(vec![x[0] - 6.0, x[1] - x[0] + 1.0]);
-        let x1 = |x0: f64| polish(&r, &lo, &hi, &[x0, 5.0], 1)[1];
         let (held, free) = (5.0 - 1.0 / 1.001, 5.0 - 0.002 / 1.004002);
-        for (x0, want) in [(5.0, held), (5.0 - 1e-12, held), (5.0 - 5e-12, free)] {
-            assert!(
-                (x1(x0) - want).abs() < 3.5e-10,
-                "x0 {x0}: {} against {want}",
-                x1(x0)
-            );
-        }
+        check(
+            &r,
+            5.0,
+            [(5.0, held), (5.0 - 1e-12, held), (5.0 - 5e-12, free)],
+        );
         // lower bound, the mirror image: r = (x0, x1 - x0 - 3) from x1 = 3
         let r = |x: &[f64]| DVector::from_vec(vec![x[0], x[1] - x[0] - 3.0]);
-        let x1 = |x0: f64| polish(&r, &lo, &hi, &[x0, 3.0], 1)[1];
         let (held, free) = (3.0 + 1.0 / 1.001, 3.0 + 0.002 / 1.004002);
-        for (x0, want) in [(1.0, held), (1.0 + 1e-12, held), (1.0 + 5e-12, free)] {
-            assert!(
-                (x1(x0) - want).abs() < 3.5e-10,
-                "x0 {x0}: {} against {want}",
-                x1(x0)
-            );
-        }
+        check(
+            &r,
+            3.0,
+            [(1.0, held), (1.0 + 1e-12, held), (1.0 + 5e-12, free)],
+        );
         // at the lower bound with a gradient of exactly zero in x0 (r = (x0 - x1 + 1,
         // x1 - 3) from (0, 1)): free, both move, towards (2, 3)
         let r = |x: &[f64]| DVector::from_vec(vec![x[0] - x[1] + 1.0, x[1] - 3.0]);
