@@ -13,6 +13,11 @@
 //! singular pseudo-inertia (a link the data push to the boundary, common on real data) is
 //! a finite point, reached at a linear rate. Non-negative drive terms (Ia, Fv, Fc) are
 //! squares of their variables; Fo and extra columns are free.
+//!
+//! Where the data are far firmer than the prior, p (quadratic in the factors) must stay on
+//! what the data fix, a curved valley in the factors, and the steps crawl along it: the
+//! README sequence's KR 6 R900 takes 6 675 steps where the interior-point method takes 497
+//! (docs/experiments.md#cholesky-parametrisation).
 
 use std::time::Instant;
 
