@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# System packages the build needs: OpenBLAS and gfortran's runtime for clarabel's
+# System packages the build needs: OpenBLAS (shared, with LAPACK) for clarabel's
 # semidefinite cones (robid-runtime's `feasible` module with the `sdp` feature,
 # docs/experiments.md#semidefinite-program).
 # Idempotent: installs only what is missing; does nothing when all is present.
 set -euo pipefail
 
-packages=(libopenblas-dev libgfortran-12-dev)
+packages=(libopenblas-dev)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -31,8 +31,10 @@
 //! Bounds come from TOML ([`Bounds`]); the result ([`Solution`]) is written as TOML or as
 //! a complete URDF robot ([`to_toml`], [`to_urdf`]).
 
+// Clarabel's BLAS and LAPACK symbols: the system OpenBLAS (it holds LAPACK too).
 #[cfg(feature = "sdp")]
-use openblas_src as _;
+#[link(name = "openblas")]
+unsafe extern "C" {}
 
 mod bounds;
 mod centre;
