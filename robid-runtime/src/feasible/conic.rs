@@ -278,6 +278,38 @@ mod tests {
         }
     }
 
+    /// A parameter the data barely determine (deviation 10 against 1e-3) follows the
+    /// pull: the least-squares blend (t / std^2 + w p0 / scale^2) / (1 / std^2 + w /
+    /// scale^2) of its identified value t = 0.001 and the pull's target p0 = 0.004.
+    #[test]
+    fn a_barely_identified_parameter_follows_the_pull() {
+        let truth: Vec<f64> = link().into_iter().chain([0.1]).collect();
+        let standard = names();
+        let mut std = vec![1e-3; 11];
+        std[1] = 10.0;
+        let mut values = truth.clone();
+        values[1] = 0.001;
+        let problem = Problem::new(standard.clone(), standard, DMatrix::identity(11, 11))
+            .unwrap()
+            .with_target(&values, &std)
+            .unwrap();
+        let mut target = truth.clone();
+        target[1] = 0.004;
+        let (w, scale) = (1e-2, 0.02);
+        let pull = Pull {
+            target,
+            weight: vec![w; 11],
+            scale: vec![scale; 11],
+        };
+        let a = &problem.whitening * &problem.k;
+        let b = &problem.whitening * &problem.target;
+        let p = solve(&problem, &Bounds::wide(1), &a, &b, &pull).unwrap();
+        let (data, pulled) = (1.0 / 100.0, w / (scale * scale));
+        let want = (0.001 * data + 0.004 * pulled) / (data + pulled);
+        // measured 1.5e-9 (the solver's tolerance); a pull of the wrong sign gives -0.004
+        assert!((p[1] - want).abs() < 3e-9, "{} against {want}", p[1]);
+    }
+
     /// A pull whose weights or targets do not match the parameters is refused.
     #[test]
     fn a_pull_of_the_wrong_length_is_refused() {

@@ -372,6 +372,16 @@ mod tests {
         assert!((s.standard[6] - 0.05 * s.standard[9]).abs() < 2.2e-10);
         let want = (0.1f64 / 1e-3).powi(2) / (1.0 + 0.05 * 0.05);
         assert!((s.chi2 / want - 1.0).abs() < 1e-5, "{}", s.chi2);
+        // the same along z (MZ; XX and YY take the parallel-axis terms): each axis' bound
+        // acts on its own first moment
+        let mut shifted = link();
+        shifted[8] = 0.2;
+        shifted[0] += 2.0 * 0.01;
+        shifted[3] += 2.0 * 0.01;
+        let (s, _) = solve(&target(shifted, 0.1), &|b| b.links[0].com[2] = [-1.0, 0.05]);
+        // measured -2.0e-10 and -5.1e-6 relative in chi^2
+        assert!((s.standard[8] - 0.05 * s.standard[9]).abs() < 4.1e-10);
+        assert!((s.chi2 / want - 1.0).abs() < 1e-5, "{}", s.chi2);
     }
 
     /// On noise-free data the consistent least squares returns the truth (a consistent
