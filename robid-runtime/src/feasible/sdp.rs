@@ -280,6 +280,26 @@ mod tests {
             (
                 SdpOptions {
                     prior: Some(Prior {
+                        standard: Vec::new(),
+                        weight: -1.0,
+                    }),
+                    ..SdpOptions::default()
+                },
+                "prior.weight",
+            ),
+            (
+                SdpOptions {
+                    prior: Some(Prior {
+                        standard: Vec::new(),
+                        weight: 2e12,
+                    }),
+                    ..SdpOptions::default()
+                },
+                "prior.weight",
+            ),
+            (
+                SdpOptions {
+                    prior: Some(Prior {
                         standard: vec![None, Some(2e6)],
                         weight: 1.0,
                     }),
