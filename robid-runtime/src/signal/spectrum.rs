@@ -349,10 +349,11 @@ mod tests {
     /// band; the last bin above a multiple of it is found from the top.
     #[test]
     fn the_floor_is_the_corrected_median_of_the_upper_band() {
-        // upper half: density[3..] = 2, 5, 3, 4: median (the upper middle) 4
+        // upper half: density[3..] = 2, 5, 3, 4: median (the upper middle) 4 (the median
+        // of density[1..] would be 5)
         let sp = Spectrum {
             resolution: 0.5,
-            density: vec![9.0, 10.0, 1.0, 2.0, 5.0, 3.0, 4.0],
+            density: vec![9.0, 10.0, 20.0, 2.0, 5.0, 3.0, 4.0],
             segments: 4,
         };
         let dof: f64 = 1.89 * 4.0;
@@ -361,9 +362,9 @@ mod tests {
         assert_eq!(sp.noise_floor(), floor);
         assert_eq!(sp.noise_rms(), (floor * 0.5 * 6.0).sqrt());
         // the floor is 4.374: above 1.1 times it (4.81) the last is bin 4 (5.0), above 2.2
-        // times (9.62) bin 1 (10.0), above 10 times none
+        // times (9.62) bin 2 (20.0), above 10 times none
         assert_eq!(sp.above_floor(1.1), 2.0);
-        assert_eq!(sp.above_floor(2.2), 0.5);
+        assert_eq!(sp.above_floor(2.2), 1.0);
         assert_eq!(sp.above_floor(10.0), 0.0);
     }
 
