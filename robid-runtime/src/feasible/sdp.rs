@@ -252,6 +252,14 @@ mod tests {
         let mut y_bad = y.clone();
         y_bad[2] = f64::INFINITY;
         assert!(consistent_least_squares(&p, &w, &y_bad, &b, &o).is_err());
+        // a prior without values, of weight w
+        let weighted = |weight: f64| SdpOptions {
+            prior: Some(Prior {
+                standard: Vec::new(),
+                weight,
+            }),
+            ..SdpOptions::default()
+        };
         for (options, key) in [
             (
                 SdpOptions {
@@ -267,36 +275,9 @@ mod tests {
                 },
                 "regularization",
             ),
-            (
-                SdpOptions {
-                    prior: Some(Prior {
-                        standard: Vec::new(),
-                        weight: f64::NAN,
-                    }),
-                    ..SdpOptions::default()
-                },
-                "prior.weight",
-            ),
-            (
-                SdpOptions {
-                    prior: Some(Prior {
-                        standard: Vec::new(),
-                        weight: -1.0,
-                    }),
-                    ..SdpOptions::default()
-                },
-                "prior.weight",
-            ),
-            (
-                SdpOptions {
-                    prior: Some(Prior {
-                        standard: Vec::new(),
-                        weight: 2e12,
-                    }),
-                    ..SdpOptions::default()
-                },
-                "prior.weight",
-            ),
+            (weighted(f64::NAN), "prior.weight"),
+            (weighted(-1.0), "prior.weight"),
+            (weighted(2e12), "prior.weight"),
             (
                 SdpOptions {
                     prior: Some(Prior {
