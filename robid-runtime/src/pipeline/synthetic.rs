@@ -1,7 +1,7 @@
 //! A synthetic 6-joint model for tests and benches: a regressor with the structure of a
 //! serial arm (row j depends on links k >= j, trigonometric terms computed once per
 //! sample, inertia, Coriolis-like, gravity-like, drive and friction columns), not a real
-//! robot. Included by the pipeline tests and by `benches/pipeline.rs`.
+//! robot. Included by the pipeline tests and by the workspace's `benches/pipeline.rs`.
 
 #![allow(dead_code)]
 

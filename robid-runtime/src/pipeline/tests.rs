@@ -8,7 +8,7 @@ use crate::Model;
 use crate::data::{Config, Dataset, load};
 use crate::drive::ExtraColumn;
 use crate::error::Error;
-// used by the synthetic model (a child module, also built by benches/pipeline.rs)
+// used by the synthetic model (a child module, also built by benches/pipeline.rs at the workspace root)
 #[allow(unused_imports)]
 use crate::Real;
 #[allow(unused_imports)]

@@ -2,7 +2,7 @@
 //! reference models (docs/performance.md#what-robid-measures), with a baseline measured in
 //! the same run (6 x (sin + cos) through libm) so figures compare across machines, and the
 //! batched sines and cosines of six angles (`robid_runtime::trig::sin_cos`, vectorised
-//! with AVX2) in the same units. The criterion benches in robots/benches measure the same
+//! with AVX2) in the same units. The criterion benches in the workspace's benches/ measure the same
 //! functions.
 
 use super::{Error, out};

@@ -3,7 +3,7 @@
 # on this machine, in alternating rounds, with each side's own trigonometric baseline.
 # Optional: CI never runs it (docs/performance.md#measured-in-the-same-run).
 #
-#   bash robots/benches/peers/run.sh
+#   bash benches/peers/run.sh
 #
 # What it does:
 #   1. Pinocchio: a Python virtual environment under /tmp (never in the repository) with
@@ -30,7 +30,7 @@
 set -euo pipefail
 
 here="$(cd "$(dirname "$0")" && pwd)"
-root="$(cd "$here/../../.." && pwd)"
+root="$(cd "$here/../.." && pwd)"
 venv="${PEERS_VENV:-/tmp/pinenv}"
 build="${PEERS_BUILD:-/tmp/robid-peers}"
 rounds="${PEERS_ROUNDS:-3}"

@@ -15,7 +15,7 @@ use robid_runtime::model::{LengthError, ProgramKind, check_arguments, check_leng
 use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::validate::Prediction;
 
-#[path = "../src/pipeline/synthetic.rs"]
+#[path = "../robid-runtime/src/pipeline/synthetic.rs"]
 mod synthetic;
 
 fn setup() -> (PathBuf, Config) {

@@ -12,7 +12,7 @@
 //!   the positions, central differences, decimation by 10, rest samples removed).
 //!
 //! The number of cores is the process's: run it once with
-//! `RAYON_NUM_THREADS=1 taskset -c 0 cargo bench -p robots --bench identify` (one core) and
+//! `RAYON_NUM_THREADS=1 taskset -c 0 cargo bench -p robid-benches --bench identify` (one core) and
 //! once plainly (all cores). `load_only` and `identify_only` split the real-log figure.
 
 use std::hint::black_box;

@@ -17,14 +17,17 @@ use robots::interpreted::Interpreted;
 use std::hint::black_box;
 
 fn excite(c: &mut Criterion) {
-    let robot = Robot::from_toml(include_str!("../descriptions/ur5e.toml"), "ur5e.toml")
-        .unwrap()
-        .with_drive(Drive {
-            ia: false,
-            fv: true,
-            fc: true,
-            fo: false,
-        });
+    let robot = Robot::from_toml(
+        include_str!("../robots/descriptions/ur5e.toml"),
+        "ur5e.toml",
+    )
+    .unwrap()
+    .with_drive(Drive {
+        ia: false,
+        fv: true,
+        fc: true,
+        fo: false,
+    });
     let programs = RobotPrograms::derive(&robot).unwrap();
     let model = Interpreted::from_programs(programs.clone()).unwrap();
     let n = model.dof();
