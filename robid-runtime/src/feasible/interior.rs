@@ -203,25 +203,38 @@ fn newton(
         if -slope <= 1e-14 * (1.0 + now.abs()) {
             break;
         }
-        let mut s = 1.0;
-        let accepted = loop {
-            let trial: Vec<f64> = p.iter().zip(step.iter()).map(|(a, d)| a + s * d).collect();
-            if let Some(v) = phi(&trial)
-                && v <= now + 1e-4 * s * slope
-            {
-                break Some(trial);
-            }
-            s *= 0.5;
-            if s < 1e-12 {
-                break None;
-            }
-        };
-        match accepted {
+        match backtrack(&phi, &p, &step, now, slope) {
             Some(trial) => p = trial,
             None => break,
         }
     }
     Ok(p)
+}
+
+/// Backtracking line search along `step` from p, where phi is `now` and its slope along
+/// the step `slope` (< 0): the longest of 1, 1/2, 1/4, ... down to 1e-12 that stays in
+/// phi's domain and decreases phi by at least 1e-4 of the slope's prediction (Armijo);
+/// `None` when none does.
+fn backtrack(
+    phi: &dyn Fn(&[f64]) -> Option<f64>,
+    p: &[f64],
+    step: &DVector<f64>,
+    now: f64,
+    slope: f64,
+) -> Option<Vec<f64>> {
+    let mut s = 1.0;
+    loop {
+        let trial: Vec<f64> = p.iter().zip(step.iter()).map(|(a, d)| a + s * d).collect();
+        if let Some(v) = phi(&trial)
+            && v <= now + 1e-4 * s * slope
+        {
+            return Some(trial);
+        }
+        s *= 0.5;
+        if s < 1e-12 {
+            return None;
+        }
+    }
 }
 
 /// Solves H step = -g by Cholesky, adding a small multiple of the identity when H is not
@@ -357,6 +370,31 @@ mod tests {
     /// A singular Hessian (a direction neither the data, the prior nor the barrier sees)
     /// still gives a finite step: the smallest identity shift that makes it positive
     /// definite, so that the shifted system holds; a positive definite one is solved as is.
+    /// The line search on phi(x) = x^2 from x = 1 along -2 (slope -4): the full step
+    /// reaches x = -1, where phi is back at 1 (no decrease), the half step x = 0 (phi 0)
+    /// is taken. A phi that rises by half the Armijo margin at every step length is
+    /// refused, as is a phi with no finite value anywhere along the step, after the 40
+    /// lengths 1 to 2^-39 (the next, 2^-40 = 9.1e-13, is below 1e-12).
+    #[test]
+    fn the_line_search_takes_the_longest_step_with_enough_decrease() {
+        let step = DVector::from_vec(vec![-2.0]);
+        let square = |x: &[f64]| Some(x[0] * x[0]);
+        assert_eq!(
+            backtrack(&square, &[1.0], &step, 1.0, -4.0),
+            Some(vec![0.0])
+        );
+        // the slope's prediction at length s is -4 s; a rise of half its Armijo share
+        let rise = |x: &[f64]| Some(1.0 + 0.5e-4 * 4.0 * (1.0 - x[0]) / 2.0);
+        assert_eq!(backtrack(&rise, &[1.0], &step, 1.0, -4.0), None);
+        let calls = std::cell::Cell::new(0);
+        let nowhere = |_: &[f64]| {
+            calls.set(calls.get() + 1);
+            None
+        };
+        assert_eq!(backtrack(&nowhere, &[1.0], &step, 1.0, -4.0), None);
+        assert_eq!(calls.get(), 40);
+    }
+
     #[test]
     fn a_singular_hessian_gets_the_smallest_shift_that_works() {
         let g = DVector::from_vec(vec![1.0, -2.0]);
