@@ -11,12 +11,13 @@
 //! leave free is settled by a prior (the user's, else solids along the links). Four
 //! methods find a p that reproduces beta:
 //!
-//! - [`solve_smooth`] (the default): min ||L^-1 (K p - beta)||^2 plus the prior's pull
-//!   over the Cholesky factors of every link's pseudo-inertia (Rucker and Wensing's
-//!   parametrisation without its logarithms), every point consistent, by argmin's
-//!   trust-region Newton method; global optimum, pure Rust.
-//! - [`solve_interior`]: the same objective by a log-barrier interior-point method in p;
-//!   the same optimum, faster where it lies on the boundary of the consistent set.
+//! - [`solve_interior`] (the command line's default): min ||L^-1 (K p - beta)||^2 plus the
+//!   prior's pull by a log-barrier interior-point method in p, every iterate consistent;
+//!   global optimum, pure Rust.
+//! - [`solve_smooth`]: the same objective over the Cholesky factors of every link's
+//!   pseudo-inertia (Rucker and Wensing's parametrisation without its logarithms), every
+//!   point consistent, by argmin's trust-region Newton method; the same optimum, slower
+//!   where it lies on the boundary of the consistent set.
 //! - [`solve_sdp`]: the same fit as a semidefinite program solved with Clarabel (feature
 //!   `sdp`, needs OpenBLAS); [`consistent_least_squares`] applies the same constraints
 //!   directly to the least-squares fit on data.

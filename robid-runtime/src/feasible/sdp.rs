@@ -190,7 +190,7 @@ fn solve(
     bounds.validate()?;
     Err(Error::Feasible(FeasibleError::Unavailable {
         what: "the semidefinite (sdp) method".to_owned(),
-        fix: "install OpenBLAS (`bash .ci/install-deps.sh`) and build with `--features sdp`, or use `--method cholesky` (the default, the same optimum), `interior-point` or `anneal`".to_owned(),
+        fix: "install OpenBLAS (`bash .ci/install-deps.sh`) and build with `--features sdp`, or use `--method interior-point` (the default, the same optimum), `cholesky` or `anneal`".to_owned(),
     }))
 }
 

@@ -16,9 +16,9 @@ pub enum Method {
     Sdp,
     /// Simulated annealing with random restarts and Nelder-Mead (Gaz et al.).
     Anneal,
-    /// Trust-region Newton over the Cholesky factors of the pseudo-inertias (the default).
+    /// Trust-region Newton over the Cholesky factors of the pseudo-inertias.
     Cholesky,
-    /// Interior-point method on the convex fit.
+    /// Interior-point method on the convex fit (the command line's default).
     Interior,
 }
 

@@ -1,5 +1,5 @@
 //! `robid feasible ROBOT.toml --identified RESULT.json [--bounds BOUNDS.toml]
-//! [--method cholesky|interior-point|sdp|anneal] [--prior CAD.toml [--prior-weight W]]
+//! [--method interior-point|cholesky|sdp|anneal] [--prior CAD.toml [--prior-weight W]]
 //! [--restarts N] [--two-step] [--equal EQ]... [--mass-step DELTA] -o OUT`: physically
 //! consistent link parameters that reproduce identified base parameters
 //! (docs/experiments.md#feasible-parameters, docs/command-line.md#robid-feasible). Writes
@@ -64,12 +64,13 @@ pub(crate) struct Args {
     /// Bounds on masses, centres of mass, inertias and the total mass (TOML).
     #[arg(long, long_help = BOUNDS_HELP)]
     bounds: Option<PathBuf>,
-    /// `cholesky` (the convex fit's global optimum over the Cholesky factors of every
-    /// link's pseudo-inertia, so every point is physically consistent, by argmin's trust
-    /// region; needs nothing but the Rust toolchain), `interior-point` (the same optimum by
-    /// a log-barrier method in the parameters, usually faster), `sdp` (the same convex fit
-    /// by Clarabel; needs the `sdp` feature) or `anneal` (Gaz et al.'s global search).
-    #[arg(long, default_value = "cholesky")]
+    /// `interior-point` (the convex fit's global optimum by a log-barrier method in the
+    /// parameters: every iterate physically consistent; needs nothing but the Rust
+    /// toolchain), `cholesky` (the same optimum over the Cholesky factors of every link's
+    /// pseudo-inertia by argmin's trust region, an independent check; slow where the data
+    /// are far firmer than the prior), `sdp` (the same convex fit by Clarabel; needs the
+    /// `sdp` feature) or `anneal` (Gaz et al.'s global search).
+    #[arg(long, default_value = "interior-point")]
     method: String,
     /// Prior standard parameters, e.g. CAD values (a parameter file with a `[standard]`
     /// table; parameters it does not list get the default prior, a solid along each link,
@@ -139,7 +140,7 @@ fn check(args: &Args) -> Result<(), Error> {
     files::refuse(&inputs, &[&args.output])?;
     if !["interior-point", "cholesky", "sdp", "anneal"].contains(&args.method.as_str()) {
         return Err(format!(
-            "--method {}: unknown; use cholesky, interior-point, sdp or anneal",
+            "--method {}: unknown; use interior-point, cholesky, sdp or anneal",
             args.method
         )
         .into());
@@ -321,8 +322,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 regularization: default_weight,
             },
         )?,
-        "interior-point" => solve_interior(&problem, &bounds, &smooth)?,
-        _ => solve_smooth(&problem, &bounds, &smooth)?,
+        "cholesky" => solve_smooth(&problem, &bounds, &smooth)?,
+        _ => solve_interior(&problem, &bounds, &smooth)?,
     };
     check_solution(&solution)?;
     let urdf = matches!(

@@ -94,10 +94,10 @@ fn check_urdf(path: &Path) {
 }
 
 /// Gaz et al.'s search writes consistent links (TOML) that fit the identified parameters.
-/// The default method is the Cholesky fit. With the data alone (`--prior-weight 0`) it
-/// reaches the convex fit's global optimum, so it fits at least as well as the stochastic
+/// The default method is the interior-point fit. With the data alone (`--prior-weight 0`)
+/// it reaches the convex fit's global optimum, so it fits at least as well as the stochastic
 /// search (measured chi^2 13.68 against anneal's 13.91 and 14.08 in two runs: the parallel
-/// search's path varies), as the interior-point method does; the default prior of solid
+/// search's path varies), as the Cholesky fit does; the default prior of solid
 /// links settles what the data leave free at a small cost in fit (measured 15.39). The
 /// fits with the default prior are written as URDF (the output's extension chooses).
 /// One test, so that the search (the dear part) runs once.
@@ -121,7 +121,11 @@ fn feasible_methods_write_consistent_links_and_the_convex_fits_beat_anneal() {
         path.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).starts_with("cholesky: chi^2 "), "{}", stderr(&o));
+    assert!(
+        stderr(&o).starts_with("interior-point: chi^2 "),
+        "{}",
+        stderr(&o)
+    );
     check_toml(&path);
     for method in ["cholesky", "interior-point"] {
         let data_alone = feasible_with(
@@ -453,7 +457,7 @@ fn gaz_feasible_refuses_gaz_options_out_of_place() {
     };
     let e = run(&["--two-step"]);
     assert!(
-        e.contains("--two-step is an option of --method anneal, not of --method cholesky"),
+        e.contains("--two-step is an option of --method anneal, not of --method interior-point"),
         "{e}"
     );
     let e = run(&["--method", "anneal", "--equal", "I7xz = c7x * q7"]);
