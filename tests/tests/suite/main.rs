@@ -19,6 +19,7 @@ mod excitation_torque_limits;
 mod excitation_ur5e;
 mod feasible_bad_input;
 mod feasible_sdp_real_data;
+mod feasible_sdp_tx40_report;
 mod feasible_simulated;
 mod flexible_ur5e;
 mod fuzz_identify;
