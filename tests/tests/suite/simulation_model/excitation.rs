@@ -7,7 +7,7 @@ use robid_runtime::simulate::{Noise, Trajectory};
 use robid_symbolic::Drive;
 use robid_symbolic::robot::DriveTerm;
 
-use super::{Interpreted, expected_error, mean_outcome, reference};
+use super::{Interpreted, expected_error, mean_outcome, reference, validation_records};
 
 /// Duration of every trajectory (s).
 pub(crate) const DURATION: f64 = 30.0;
@@ -129,16 +129,9 @@ impl Setup {
     /// cannot tell a good design from a poor one.
     pub(crate) fn check_identification(&self, random_seeds: &[u64]) {
         let noise = self.noise();
+        let validation = validation_records(&self.model, &self.truth, &self.validation, &noise, 2);
         let run = |tr: &Trajectory| {
-            let o = mean_outcome(
-                &self.model,
-                &self.truth,
-                tr,
-                &self.validation,
-                &noise,
-                "wls",
-                2,
-            );
+            let o = mean_outcome(&self.model, &self.truth, tr, &validation, &noise, "wls");
             (o, expected_error(&self.model, &self.truth, tr, &self.sigma))
         };
         let (opt, opt_expected) = run(&self.optimal);

@@ -67,33 +67,55 @@ pub(crate) struct Outcome {
     pub(crate) noise_floor: f64,
 }
 
-/// Simulates `train` and `valid` with `noise` (seeds `seed` and `seed + 1`), identifies by
-/// `method` ("ols" or "wls") from the first (velocities and accelerations as recorded) and
-/// predicts the second.
+/// A noisy simulated record of `trajectory` (noise `noise`, seed `seed`).
+pub(crate) fn simulated(
+    model: &Interpreted,
+    truth: &[f64],
+    trajectory: &robid_runtime::simulate::Trajectory,
+    noise: &robid_runtime::simulate::Noise,
+    seed: u64,
+) -> robid_runtime::data::Dataset {
+    robid_runtime::simulate::Simulation {
+        noise: noise.clone(),
+        seed,
+        ..robid_runtime::simulate::Simulation::default()
+    }
+    .run(model, truth, trajectory)
+    .expect("simulation")
+    .measured
+    .dataset("sim")
+    .expect("data set")
+}
+
+/// The validation records of [`mean_outcome`] with `seeds` noise seeds: `valid` simulated
+/// with seed 12 + 2 s for s = 0..seeds. The same for every trajectory compared on them, so
+/// they are simulated once (the closed-loop simulation is most of the comparison's time).
+pub(crate) fn validation_records(
+    model: &Interpreted,
+    truth: &[f64],
+    valid: &robid_runtime::simulate::Trajectory,
+    noise: &robid_runtime::simulate::Noise,
+    seeds: u64,
+) -> Vec<robid_runtime::data::Dataset> {
+    (0..seeds)
+        .map(|s| simulated(model, truth, valid, noise, 12 + 2 * s))
+        .collect()
+}
+
+/// Simulates `train` with `noise` (seed `seed`), identifies by `method` ("ols" or "wls")
+/// from it (velocities and accelerations as recorded) and predicts the validation record
+/// `vdata`.
 pub(crate) fn identify_and_validate(
     model: &Interpreted,
     truth: &[f64],
     train: &robid_runtime::simulate::Trajectory,
-    valid: &robid_runtime::simulate::Trajectory,
+    vdata: &robid_runtime::data::Dataset,
     noise: &robid_runtime::simulate::Noise,
     method: &str,
     seed: u64,
 ) -> Outcome {
     use robid_runtime::data::Config;
     use robid_runtime::pipeline::{identify, validate};
-    use robid_runtime::simulate::Simulation;
-    let sim = |tr, seed| {
-        Simulation {
-            noise: noise.clone(),
-            seed,
-            ..Simulation::default()
-        }
-        .run(model, truth, tr)
-        .expect("simulation")
-        .measured
-        .dataset("sim")
-        .expect("data set")
-    };
     let config = Config::from_toml_str(
         &format!(
             "[processing]\nvelocity = \"data\"\nacceleration = \"data\"\n[estimation]\nmethod = \"{method}\"\n"
@@ -101,17 +123,17 @@ pub(crate) fn identify_and_validate(
         std::path::Path::new("simulated.toml"),
     )
     .expect("config");
-    let id = identify(model, &sim(train, seed), &config).expect("identification");
-    let vdata = sim(valid, seed + 1);
+    let data = simulated(model, truth, train, noise, seed);
+    let id = identify(model, &data, &config).expect("identification");
     let error = |beta: &[f64]| {
-        validate(model, &vdata, &config, beta)
+        validate(model, vdata, &config, beta)
             .expect("validation")
             .fit()
             .relative_error
     };
     let values = id.estimate.values.clone();
     let predict = |beta: &[f64]| -> Vec<f64> {
-        validate(model, &vdata, &config, beta)
+        validate(model, vdata, &config, beta)
             .expect("validation")
             .predicted
             .concat()
@@ -129,27 +151,28 @@ pub(crate) fn identify_and_validate(
     }
 }
 
-/// The mean of [`identify_and_validate`] over `seeds` noise seeds: (parameter error, model
-/// error, validation error, noise floor).
+/// The mean of [`identify_and_validate`] over the noise seeds of `validation` (from
+/// [`validation_records`]; training seed 11 + 2 s): (parameter error, model error,
+/// validation error, noise floor).
 pub(crate) fn mean_outcome(
     model: &Interpreted,
     truth: &[f64],
     train: &robid_runtime::simulate::Trajectory,
-    valid: &robid_runtime::simulate::Trajectory,
+    validation: &[robid_runtime::data::Dataset],
     noise: &robid_runtime::simulate::Noise,
     method: &str,
-    seeds: u64,
 ) -> [f64; 4] {
     let mut sum = [0.0; 4];
-    for s in 0..seeds {
-        let o = identify_and_validate(model, truth, train, valid, noise, method, 11 + 2 * s);
+    let seeds = validation.len() as f64;
+    for (s, vdata) in (0..).zip(validation) {
+        let o = identify_and_validate(model, truth, train, vdata, noise, method, 11 + 2 * s);
         for (a, b) in sum.iter_mut().zip([
             o.parameter_error,
             o.model_error,
             o.validation_error,
             o.noise_floor,
         ]) {
-            *a += b / seeds as f64;
+            *a += b / seeds;
         }
     }
     sum
