@@ -2,6 +2,7 @@
 //! by `robot_model!` (`robots::Ur5e`, ...), and the generated code checked in for
 //! review (`generated/`, kept up to date by a test).
 
+pub mod extraction;
 pub mod figaroh;
 pub mod interpreted;
 pub mod models;

@@ -17,12 +17,12 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Equality, GravityCoefficients, LinkShape, Prior, Problem, SdpOptions,
+    AnnealOptions, Bounds, Equality, GravityCoefficients, Prior, Problem, SdpOptions,
     SmoothOptions, Solution, UrdfJoint, solve_anneal, solve_interior, solve_sdp, solve_smooth,
     solve_two_step, to_toml, to_urdf,
 };
+use robid_symbolic::Robot;
 use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
-use robid_symbolic::{Derivation, Robot};
 use serde::Deserialize;
 
 use super::description::{self, DescriptionFlags};
@@ -251,7 +251,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let identified: Identified = serde_json::from_str(&json)
         .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;
     check_identified(&identified, &args.identified)?;
-    let problem = problem(robot)?;
+    let problem = robots::extraction::problem(robot)?;
     // Extra columns of the identification config (no expression, not a base parameter,
     // e.g. a coupled wrist's `Iam6`) are kept as free terms.
     let extra: Vec<String> = identified
@@ -489,39 +489,6 @@ fn urdf_joints(robot: &Robot) -> Result<Vec<UrdfJoint>, Error> {
             effort: joint.limits.torque,
         })
         .collect())
-}
-
-/// K evaluated at the description's geometric values.
-fn problem(robot: &Robot) -> Result<Problem, Error> {
-    let mut derivation = Derivation::new(robot);
-    let base = derivation.base_parameters()?;
-    let mut pairs = Vec::new();
-    for (name, value) in robot.symbols() {
-        let v = value.ok_or_else(|| {
-            format!("geometric symbol `{name}` has no value; give it one in the description")
-        })?;
-        pairs.push((name.as_str(), v));
-    }
-    let values = derivation.arena.values(&pairs);
-    let mut k = vec![vec![0.0; base.standard.len()]; base.base.len()];
-    for (b, bp) in base.base.iter().enumerate() {
-        for &(s, c) in &bp.terms {
-            k[b][s] = derivation
-                .arena
-                .eval(&[c], &values)
-                .map_err(|e| format!("{e:?}"))?[0];
-        }
-    }
-    let standard = base.standard.iter().map(|p| p.to_string()).collect();
-    let names = base.base.iter().map(|b| b.name.to_string()).collect();
-    // The links' segments of the chain give the default prior its solids.
-    let shapes = robot
-        .link_segments()
-        .map_err(|e| e.to_string())?
-        .into_iter()
-        .map(|[from, to]| LinkShape { from, to })
-        .collect();
-    Ok(Problem::from_rows(standard, names, &k)?.with_shapes(shapes)?)
 }
 
 #[cfg(test)]

@@ -2,11 +2,10 @@
 //! (`robots/tests/fixtures/tx40_identified.json`, written by `robid identify
 //! configs/tx40_robot.toml --config configs/tx40.toml --json` on the real log: 61
 //! parameters including the coupled wrist's extra columns `Iam6 fvm6 fsm6`), with the
-//! loose bounds of `robots/tests/fixtures/tx40_bounds.toml` and the problem built as
-//! `robid feasible` builds it (the description's K, its links' solids for the default
-//! prior, the extra columns as free terms). The command line's own tests run the other
-//! methods on the same files; these need the `sdp` feature, and here they need no build of
-//! the `robid` binary.
+//! loose bounds of `robots/tests/fixtures/tx40_bounds.toml` and the problem `robid
+//! feasible` builds (`robots::extraction::problem`, the extra columns as free terms). The
+//! command line's own tests run the other methods on the same files; these need the `sdp`
+//! feature, and here they need no build of the `robid` binary.
 
 #![cfg(feature = "sdp")]
 
@@ -14,11 +13,10 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, LinkShape, Prior, Problem, SdpOptions, SmoothOptions, Solution,
-    solve_anneal, solve_interior, solve_sdp, solve_smooth,
+    AnnealOptions, Bounds, Prior, Problem, SdpOptions, SmoothOptions, Solution, solve_anneal,
+    solve_interior, solve_sdp, solve_smooth,
 };
 use robid_symbolic::Robot;
-use robots::interpreted::model_for;
 
 /// The default prior's weight in `robid feasible` (its `--prior-weight` without `--prior`).
 const DEFAULT_PRIOR_WEIGHT: f64 = 1e-2;
@@ -30,17 +28,7 @@ fn repo(p: &str) -> PathBuf {
 /// The extraction problem of the report, as `robid feasible` sets it up.
 fn problem() -> Problem {
     let robot = Robot::from_file(&repo("robots/configs/tx40_robot.toml")).unwrap();
-    let chosen = model_for(&robot).unwrap();
-    let shapes = robot
-        .link_segments()
-        .unwrap()
-        .into_iter()
-        .map(|[from, to]| LinkShape { from, to })
-        .collect();
-    let problem = Problem::from_model(chosen.model.as_ref())
-        .unwrap()
-        .with_shapes(shapes)
-        .unwrap();
+    let problem = robots::extraction::problem(&robot).unwrap();
     let text = std::fs::read_to_string(repo("robots/tests/fixtures/tx40_identified.json")).unwrap();
     let report: serde_json::Value = serde_json::from_str(&text).unwrap();
     let entries = report["parameters"].as_array().unwrap();
