@@ -6,7 +6,9 @@
 #![allow(dead_code)]
 
 use robid_runtime::Model;
+use robid_runtime::data::Dataset;
 use robid_runtime::excite::JointLimits;
+use robid_runtime::simulate::{Noise, Simulation, Trajectory};
 use robid_symbolic::Drive;
 use robid_symbolic::robot::{DriveTerm, ParameterKind};
 use tests::reference::by_name;
@@ -71,14 +73,14 @@ pub(crate) struct Outcome {
 pub(crate) fn simulated(
     model: &Interpreted,
     truth: &[f64],
-    trajectory: &robid_runtime::simulate::Trajectory,
-    noise: &robid_runtime::simulate::Noise,
+    trajectory: &Trajectory,
+    noise: &Noise,
     seed: u64,
-) -> robid_runtime::data::Dataset {
-    robid_runtime::simulate::Simulation {
+) -> Dataset {
+    Simulation {
         noise: noise.clone(),
         seed,
-        ..robid_runtime::simulate::Simulation::default()
+        ..Simulation::default()
     }
     .run(model, truth, trajectory)
     .expect("simulation")
@@ -93,10 +95,10 @@ pub(crate) fn simulated(
 pub(crate) fn validation_records(
     model: &Interpreted,
     truth: &[f64],
-    valid: &robid_runtime::simulate::Trajectory,
-    noise: &robid_runtime::simulate::Noise,
+    valid: &Trajectory,
+    noise: &Noise,
     seeds: u64,
-) -> Vec<robid_runtime::data::Dataset> {
+) -> Vec<Dataset> {
     (0..seeds)
         .map(|s| simulated(model, truth, valid, noise, 12 + 2 * s))
         .collect()
@@ -108,9 +110,9 @@ pub(crate) fn validation_records(
 pub(crate) fn identify_and_validate(
     model: &Interpreted,
     truth: &[f64],
-    train: &robid_runtime::simulate::Trajectory,
-    vdata: &robid_runtime::data::Dataset,
-    noise: &robid_runtime::simulate::Noise,
+    train: &Trajectory,
+    vdata: &Dataset,
+    noise: &Noise,
     method: &str,
     seed: u64,
 ) -> Outcome {
@@ -157,9 +159,9 @@ pub(crate) fn identify_and_validate(
 pub(crate) fn mean_outcome(
     model: &Interpreted,
     truth: &[f64],
-    train: &robid_runtime::simulate::Trajectory,
-    validation: &[robid_runtime::data::Dataset],
-    noise: &robid_runtime::simulate::Noise,
+    train: &Trajectory,
+    validation: &[Dataset],
+    noise: &Noise,
     method: &str,
 ) -> [f64; 4] {
     let mut sum = [0.0; 4];
@@ -184,7 +186,7 @@ pub(crate) fn mean_outcome(
 pub(crate) fn expected_error(
     model: &Interpreted,
     truth: &[f64],
-    trajectory: &robid_runtime::simulate::Trajectory,
+    trajectory: &Trajectory,
     sigma: &[f64],
 ) -> f64 {
     let weights: Vec<f64> = sigma.iter().map(|s| 1.0 / s).collect();
