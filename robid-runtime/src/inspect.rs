@@ -15,7 +15,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::data::{Config, Cutoff, Dataset, Sampling};
+use crate::data::{Config, Cutoff, Dataset, Record, Sampling};
 use crate::error::{Error, Result};
 use crate::signal::{Signals, Spectrum, butterworth_hz, central_difference};
 
@@ -175,10 +175,10 @@ pub fn suggest_cutoff(data: &Dataset) -> Result<CutoffSuggestion> {
 /// Replaces `cutoff = "auto"` in `config` by the cutoff suggested for `data` and returns
 /// the suggestion (`None` when the config gives a frequency or no low-pass). Resolve it
 /// once on the estimation data so that validation data are filtered the same way.
-pub fn resolve_cutoff(config: &mut Config, data: &Dataset) -> Result<Option<CutoffSuggestion>> {
+pub fn resolve_cutoff(config: &mut Config, data: &dyn Record) -> Result<Option<CutoffSuggestion>> {
     match &mut config.processing.lowpass {
         Some(lp) if lp.cutoff == Cutoff::Auto => {
-            let s = suggest_cutoff(data)?;
+            let s = suggest_cutoff(&*data.read(0, data.samples())?)?;
             lp.cutoff = Cutoff::Hz(s.cutoff);
             Ok(Some(s))
         }

@@ -13,9 +13,10 @@
 //! resident memory (`VmHWM` of /proc/self/status) is its own:
 //!
 //! - `parse`: reading the CSV into a data set (the baseline);
-//! - `identify`: reading it and identifying with the config of a real log (zero-phase
-//!   low-pass of the positions, central differences, decimation by 10, rest samples
-//!   removed, WLS), which streams (`pipeline::stream`);
+//! - `identify`: reading it (`data::load_record`: checked and converted window by window,
+//!   its samples kept in a temporary file) and identifying with the config of a real log
+//!   (zero-phase low-pass of the positions, central differences, decimation by 10, rest
+//!   samples removed, WLS), which streams (`pipeline::stream`) block by block;
 //! - `dense`: the same through the whole observation matrix (`pipeline::observation`,
 //!   `pipeline::estimate`), on a record of the first `min(SECONDS, 300)` seconds of the
 //!   same motion (`panda_300.csv`) only, since the hour does not fit in memory that way;
@@ -29,7 +30,7 @@ use std::process::Command;
 use std::time::Instant;
 
 use robid_runtime::Model;
-use robid_runtime::data::{Config, load};
+use robid_runtime::data::{Config, load, load_record};
 use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::rng::Rng;
 use robots::Panda;
@@ -134,27 +135,33 @@ fn stage(name: &str, path: &Path) {
     let config = Config::from_toml_str(CONFIG, Path::new("hour.toml")).expect("config");
     let model = Panda;
     let start = Instant::now();
-    let data = load(&config, &[path.to_path_buf()], DOF).expect("load");
-    let samples = data.samples();
-    let detail = match name {
-        "parse" => format!("{samples} samples"),
+    let files = [path.to_path_buf()];
+    let (samples, detail) = match name {
+        "parse" => {
+            let data = load(&config, &files, DOF).expect("load");
+            (data.samples(), format!("{} samples", data.samples()))
+        }
         "identify" => {
-            let id = identify(&model, &data, &config).expect("identify");
+            let record = load_record(&config, &files, DOF).expect("load");
+            let id = identify(&model, record.as_ref(), &config).expect("identify");
             let truth = truth(&model);
             let err = relative_error(&id.estimate.values, &truth);
-            format!(
+            let detail = format!(
                 "cond {:.1}, relative parameter error {err:.2e}, NMSE {:.3e}, {} equations",
                 id.estimate.condition_number, id.fit.nmse, id.estimate.rows
-            )
+            );
+            (record.samples(), detail)
         }
         "dense" => {
+            let data = load(&config, &files, DOF).expect("load");
             let (obs, _) = observation(&model, &data, &config).expect("observation");
             let e = estimate(&obs, &config).expect("estimate");
             let err = relative_error(&e.values, &truth(&model));
-            format!(
+            let detail = format!(
                 "cond {:.1}, relative parameter error {err:.2e}, {} equations",
                 e.condition_number, e.rows
-            )
+            );
+            (data.samples(), detail)
         }
         other => panic!("unknown stage {other}"),
     };

@@ -116,14 +116,7 @@ impl Dataset {
     /// Where sample `k` is: `file:line` when the data came from a file, else the data
     /// set's name and the sample (0-based).
     pub fn location(&self, k: usize) -> String {
-        match self
-            .origin
-            .as_ref()
-            .and_then(|o| Some((o, *o.lines.get(k)?)))
-        {
-            Some((o, line)) => format!("{}:{line}", o.path.display()),
-            None => format!("data set `{}`, sample {k}", self.name),
-        }
+        super::Record::location(self, k)
     }
 
     /// Adds measured velocities.

@@ -18,8 +18,8 @@ use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, MAX_SAMPLE_RATE, MIN_SAMPLE_RATE, Quantity, check_size};
 use crate::signal::Signals;
 
-/// The roles a column block can have, in the order of `Loaded::blocks`.
-const ROLES: [&str; 7] = [
+/// The roles a column block can have, in the order of [`assemble`]'s blocks.
+pub(crate) const ROLES: [&str; 7] = [
     "position",
     "velocity",
     "acceleration",
@@ -80,18 +80,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let mut samplings = Vec::new();
 
     for (index, (src, path)) in config.sources.iter().zip(&paths).enumerate() {
-        let mut names = Vec::new();
-        let mut spans = Vec::new();
-        for role in 0..ROLES.len() {
-            if let Some(cols) = role_columns(src, role) {
-                let n = cols.names(dof);
-                spans.push((role, names.len()));
-                names.extend(n);
-            }
-        }
-        if let Some(t) = &config.time_column {
-            names.push(t.clone());
-        }
+        let (names, spans) = source_columns(config, src, dof);
         let mut table = read_columns(path, &names).map_err(|e| match e {
             Error::Data(DataError::MissingColumn {
                 path,
@@ -124,39 +113,15 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
                 hint: "the file needs a header and data rows",
             });
         }
-        for &(role, start) in &spans {
-            for (k, name) in names[start..start + dof].iter().enumerate() {
-                table.check_range(start + k, name, QUANTITIES[role])?;
-            }
-        }
+        check_ranges(&table, &names, &spans, dof)?;
+        let time = take_time(config, &mut table)?;
         let mut columns = std::mem::take(&mut table.columns);
-        let time = match &config.time_column {
-            Some(name) => {
-                let mut t = columns.pop().unwrap_or_default();
-                t.iter_mut().for_each(|v| *v *= config.time_scale);
-                let scaled = Table {
-                    path: path.clone(),
-                    columns: vec![t],
-                    lines: table.lines.clone(),
-                };
-                scaled.check_range(0, name, Quantity::Time)?;
-                let t = scaled.columns.into_iter().next().unwrap_or_default();
-                check_monotonic(&t, &table.lines, path)?;
-                Some(t)
-            }
-            None => None,
-        };
         let sampling = Sampling::of(path.clone(), time.as_deref(), &columns);
-        if let Some(&first) = sampling.stale_rows.first()
-            && sampling.stale_rows.len() as f64 > STALE_SHARE * sampling.rows as f64
-        {
-            warnings.push(Warning::StaleRows {
-                path: path.clone(),
-                stale: sampling.stale_rows.len(),
-                rows: sampling.rows,
-                first_line: table.lines.get(first).copied().unwrap_or(0),
-            });
-        }
+        let first_stale = sampling
+            .stale_rows
+            .first()
+            .and_then(|&k| table.lines.get(k));
+        warnings.extend(stale_warning(&sampling, first_stale.copied()));
         samplings.push(sampling);
         match time {
             Some(t) => match &reference {
@@ -201,15 +166,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let (sample_time, origin) = match (&reference, config.sample_rate) {
         (Some((t, path, lines)), _) => {
             let (step, warning) = regularity(t, path);
-            if !(1.0 / step <= MAX_SAMPLE_RATE && 1.0 / step >= MIN_SAMPLE_RATE) {
-                return Err(config.key_error(
-                    "time_scale",
-                    format!(
-                        "the time stamps of {} are {step:e} s apart on average, a sample rate outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; the time column must be in seconds: convert it, or give its unit with time_scale (1e-3 for ms, 1e-9 for ns)",
-                        path.display()
-                    ),
-                ));
-            }
+            check_step(config, step, path)?;
             if let Some(w) = warning {
                 let grid = uniform_grid(t[0], step, t.len());
                 for b in blocks.iter_mut().flatten() {
@@ -237,6 +194,101 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         }
     };
 
+    check_cutoff(config, sample_time)?;
+    let name = paths
+        .first()
+        .and_then(|p| p.file_name())
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let mut data = assemble(config, dof, name, sample_time, blocks, origin)?;
+    data.warnings = warnings;
+    data.sampling = samplings;
+    Ok(data)
+}
+
+/// The warning about stale rows when there are more than [`STALE_SHARE`] of them
+/// (`first_line`: the file line of the first).
+pub(crate) fn stale_warning(sampling: &Sampling, first_line: Option<u64>) -> Option<Warning> {
+    (!sampling.stale_rows.is_empty()
+        && sampling.stale_rows.len() as f64 > STALE_SHARE * sampling.rows as f64)
+        .then(|| Warning::StaleRows {
+            path: sampling.path.clone(),
+            stale: sampling.stale_rows.len(),
+            rows: sampling.rows,
+            first_line: first_line.unwrap_or(0),
+        })
+}
+
+/// The columns a `[[source]]` reads: each role's columns in [`ROLES`] order (with where
+/// they start), then the time column.
+pub(crate) fn source_columns(
+    config: &Config,
+    src: &Source,
+    dof: usize,
+) -> (Vec<String>, Vec<(usize, usize)>) {
+    let mut names = Vec::new();
+    let mut spans = Vec::new();
+    for role in 0..ROLES.len() {
+        if let Some(cols) = role_columns(src, role) {
+            let n = cols.names(dof);
+            spans.push((role, names.len()));
+            names.extend(n);
+        }
+    }
+    if let Some(t) = &config.time_column {
+        names.push(t.clone());
+    }
+    (names, spans)
+}
+
+/// Checks every role's columns of `table` against the range of its quantity.
+pub(crate) fn check_ranges(
+    table: &Table,
+    names: &[String],
+    spans: &[(usize, usize)],
+    dof: usize,
+) -> Result<()> {
+    for &(role, start) in spans {
+        for (k, name) in names[start..start + dof].iter().enumerate() {
+            table.check_range(start + k, name, QUANTITIES[role])?;
+        }
+    }
+    Ok(())
+}
+
+/// The time column of `table` when the config has one (its last column, taken from
+/// it): scaled to seconds, checked in range and increasing.
+pub(crate) fn take_time(config: &Config, table: &mut Table) -> Result<Option<Vec<f64>>> {
+    let Some(name) = &config.time_column else {
+        return Ok(None);
+    };
+    let mut t = table.columns.pop().unwrap_or_default();
+    t.iter_mut().for_each(|v| *v *= config.time_scale);
+    // checked as a table of its own, whose lines locate an error
+    let mut columns = std::mem::replace(&mut table.columns, vec![t]);
+    let checked = table.check_range(0, name, Quantity::Time);
+    std::mem::swap(&mut table.columns, &mut columns);
+    checked?;
+    let t = columns.pop().unwrap_or_default();
+    check_monotonic(&t, &table.lines, &table.path)?;
+    Ok(Some(t))
+}
+
+/// Checks the mean time step of `path` against the sample rates robid takes.
+pub(crate) fn check_step(config: &Config, step: f64, path: &Path) -> Result<()> {
+    if !(1.0 / step <= MAX_SAMPLE_RATE && 1.0 / step >= MIN_SAMPLE_RATE) {
+        return Err(config.key_error(
+            "time_scale",
+            format!(
+                "the time stamps of {} are {step:e} s apart on average, a sample rate outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; the time column must be in seconds: convert it, or give its unit with time_scale (1e-3 for ms, 1e-9 for ns)",
+                path.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks the low-pass cutoff against the sample time.
+pub(crate) fn check_cutoff(config: &Config, sample_time: f64) -> Result<()> {
     if let Some(cutoff) = config
         .processing
         .lowpass
@@ -259,6 +311,19 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
             ));
         }
     }
+    Ok(())
+}
+
+/// The data set of the columns read for each role (in [`ROLES`] order): angles in
+/// radians, torques scaled, the drive chain applied, every value checked.
+pub(crate) fn assemble(
+    config: &Config,
+    dof: usize,
+    name: String,
+    sample_time: f64,
+    blocks: [Option<Vec<Vec<f64>>>; 7],
+    origin: DataOrigin,
+) -> Result<Dataset> {
     let [q, qd, qdd, tau, motor, temperature, joint_torque] = blocks;
     let missing = |role: &str| {
         config.key_error(
@@ -289,10 +354,6 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
             t.iter_mut().for_each(|v| *v *= s);
         }
     }
-    let name = paths
-        .first()
-        .and_then(|p| p.file_name())
-        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
     let mut data = Dataset::new_at(
         name,
         sample_time,
@@ -322,12 +383,10 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
             "rotor compensation needs motor encoder columns: add motor_position = [...] to a [[source]]",
         ));
     }
-    data.warnings = warnings;
-    data.sampling = samplings;
     Ok(data)
 }
 
-fn source_paths(config: &Config, files: &[PathBuf]) -> Result<Vec<PathBuf>> {
+pub(crate) fn source_paths(config: &Config, files: &[PathBuf]) -> Result<Vec<PathBuf>> {
     if config.sources.is_empty() {
         return Err(config.key_error(
             "source",

@@ -9,6 +9,7 @@ mod error;
 mod keys;
 mod load;
 mod parameters;
+mod record;
 mod sampling;
 mod table;
 mod time;
@@ -25,6 +26,7 @@ pub use keys::KeyMap;
 pub(crate) use load::check_joints;
 pub use load::{load, load_config_files, load_from_config_file, load_runs};
 pub use parameters::{INERTIA_TOLERANCE, PARAMETER_LIMIT, ParameterFile, ParameterTable};
+pub use record::{Record, SpilledRecord, load_record};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};
 pub use table::{
     ColumnMapping, Table, WINDOW, for_each_window, read_columns, read_columns_from, read_header,

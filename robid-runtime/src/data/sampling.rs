@@ -40,22 +40,9 @@ impl Sampling {
     /// The statistics of a file with time stamps `time` (seconds, increasing) and data
     /// `columns` (one vector per column, all of the same length).
     pub fn of(path: PathBuf, time: Option<&[f64]>, columns: &[Vec<f64>]) -> Sampling {
-        let rows = columns.first().map_or(0, Vec::len);
-        let (step, jitter, skipped_ticks) = match time.and_then(step_statistics) {
-            Some(s) => (Some(s.median), Some(s.jitter), s.skipped_ticks),
-            None => (None, None, 0),
-        };
-        Sampling {
-            path,
-            rows,
-            step,
-            jitter,
-            skipped_ticks,
-            repeated_rows: (1..rows)
-                .filter(|&k| columns.iter().all(|c| c[k] == c[k - 1]))
-                .count(),
-            stale_rows: stale_rows(columns),
-        }
+        let mut scan = SamplingScan::new(columns.len());
+        scan.push(time, columns, None);
+        scan.finish(path)
     }
 
     /// One line for people: rows, step and jitter, skipped ticks, stale rows.
@@ -93,10 +80,14 @@ pub(crate) struct Steps {
 /// Median step, jitter of the regular steps and skipped ticks of increasing time stamps
 /// (`None` for fewer than two).
 pub(crate) fn step_statistics(t: &[f64]) -> Option<Steps> {
-    if t.len() < 2 {
+    steps_statistics(t.windows(2).map(|w| w[1] - w[0]).collect())
+}
+
+/// [`step_statistics`] of the steps themselves (`None` for none).
+fn steps_statistics(mut steps: Vec<f64>) -> Option<Steps> {
+    if steps.is_empty() {
         return None;
     }
-    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
     let median = median(&mut steps);
     let (mut sum, mut regular, mut skipped_ticks) = (0.0, 0usize, 0usize);
     for d in &steps {
@@ -119,46 +110,119 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
-/// The rows equal to the previous row in every column, in runs that look like an old
-/// sample written again: some column steps steadily into the run (its last two steps
-/// differ by at most half) and leaves it with the steps the run missed (r + 1 times the
-/// step before for a run of r rows, within half a step, same sign). Quantised slow motion
-/// does not do that: its steps take two neighbouring values, never 0 and 2.
-fn stale_rows(columns: &[Vec<f64>]) -> Vec<usize> {
-    let rows = columns.first().map_or(0, Vec::len);
-    let repeats = |k: usize| columns.iter().all(|c| c[k] == c[k - 1]);
-    let mut stale = Vec::new();
-    let mut k = 3;
-    while k + 1 < rows {
-        if !repeats(k) {
-            k += 1;
-            continue;
+/// [`Sampling`] of a file read in parts, in order: the same statistics as
+/// [`Sampling::of`] on the whole file, holding only the time steps and the rows before a
+/// run of repeated rows.
+///
+/// Stale rows are the rows equal to the previous row in every column, in runs that look
+/// like an old sample written again: some column steps steadily into the run (its last two
+/// steps differ by at most half) and leaves it with the steps the run missed (r + 1 times
+/// the step before for a run of r rows, within half a step, same sign). Quantised slow
+/// motion does not do that: its steps take two neighbouring values, never 0 and 2. A run
+/// that reaches the last row is not stale (nothing catches up), and runs are looked for
+/// from row 3 on (three rows before one are needed).
+#[derive(Debug, Clone)]
+pub(crate) struct SamplingScan {
+    rows: usize,
+    steps: Vec<f64>,
+    last_time: Option<f64>,
+    repeated_rows: usize,
+    stale_rows: Vec<usize>,
+    /// The file line of the first stale row, when lines are given.
+    first_stale_line: Option<u64>,
+    /// The last three rows (oldest first), column by column.
+    recent: Vec<[f64; 3]>,
+    /// The open run of repeated rows: its first row, that row's line, and the three rows
+    /// before it.
+    run: Option<(usize, Option<u64>, Vec<[f64; 3]>)>,
+}
+
+impl SamplingScan {
+    /// A scan of a file with `columns` data columns.
+    pub(crate) fn new(columns: usize) -> Self {
+        Self {
+            rows: 0,
+            steps: Vec::new(),
+            last_time: None,
+            repeated_rows: 0,
+            stale_rows: Vec::new(),
+            first_stale_line: None,
+            recent: vec![[0.0; 3]; columns],
+            run: None,
         }
-        let mut last = k;
-        while last + 1 < rows && repeats(last + 1) {
-            last += 1;
-        }
-        if last + 1 == rows {
-            break;
-        }
-        let run = (last - k + 1) as f64;
-        let catches_up = columns.iter().any(|c| {
-            let (before, earlier, after) = (
-                c[k - 1] - c[k - 2],
-                c[k - 2] - c[k - 3],
-                c[last + 1] - c[last],
-            );
-            let ratio = after / before;
-            before != 0.0
-                && (earlier - before).abs() <= 0.5 * before.abs()
-                && (run + 0.5..=run + 1.5).contains(&ratio)
-        });
-        if catches_up {
-            stale.extend(k..=last);
-        }
-        k = last + 1;
     }
-    stale
+
+    /// The next rows: their time stamps (when the file has a time column), their data
+    /// columns and their file lines (when known).
+    pub(crate) fn push(
+        &mut self,
+        time: Option<&[f64]>,
+        columns: &[Vec<f64>],
+        lines: Option<&[u64]>,
+    ) {
+        if let Some(t) = time {
+            for &v in t {
+                if let Some(last) = self.last_time {
+                    self.steps.push(v - last);
+                }
+                self.last_time = Some(v);
+            }
+        }
+        let n = columns.first().map_or(0, Vec::len);
+        for i in 0..n {
+            let k = self.rows;
+            let repeats = k > 0 && columns.iter().zip(&self.recent).all(|(c, r)| c[i] == r[2]);
+            if repeats {
+                self.repeated_rows += 1;
+                if self.run.is_none() && k >= 3 {
+                    let line = lines.and_then(|l| l.get(i).copied());
+                    self.run = Some((k, line, self.recent.clone()));
+                }
+            } else if let Some((start, line, before)) = self.run.take() {
+                // the run ended on the previous row: does some column catch up?
+                let run = (k - start) as f64;
+                let catches_up = columns.iter().zip(&before).any(|(c, b)| {
+                    let (before, earlier, after) = (b[2] - b[1], b[1] - b[0], c[i] - b[2]);
+                    let ratio = after / before;
+                    before != 0.0
+                        && (earlier - before).abs() <= 0.5 * before.abs()
+                        && (run + 0.5..=run + 1.5).contains(&ratio)
+                });
+                if catches_up {
+                    if self.stale_rows.is_empty() {
+                        self.first_stale_line = line;
+                    }
+                    self.stale_rows.extend(start..k);
+                }
+            }
+            for (c, r) in columns.iter().zip(&mut self.recent) {
+                *r = [r[1], r[2], c[i]];
+            }
+            self.rows += 1;
+        }
+    }
+
+    /// The file line of the first stale row (when lines were given).
+    pub(crate) fn first_stale_line(&self) -> Option<u64> {
+        self.first_stale_line
+    }
+
+    /// The statistics of the rows pushed, for the file `path`.
+    pub(crate) fn finish(self, path: PathBuf) -> Sampling {
+        let (step, jitter, skipped_ticks) = match steps_statistics(self.steps) {
+            Some(s) => (Some(s.median), Some(s.jitter), s.skipped_ticks),
+            None => (None, None, 0),
+        };
+        Sampling {
+            path,
+            rows: self.rows,
+            step,
+            jitter,
+            skipped_ticks,
+            repeated_rows: self.repeated_rows,
+            stale_rows: self.stale_rows,
+        }
+    }
 }
 
 #[cfg(test)]
@@ -216,5 +280,99 @@ mod tests {
         x[8] = 50.0;
         let s = Sampling::of("c.csv".into(), None, std::slice::from_ref(&x));
         assert!(s.stale_rows.is_empty(), "{:?}", s.stale_rows);
+    }
+
+    /// The rows' scan as first written (whole columns, random access): the reference of
+    /// the streaming [`SamplingScan`].
+    fn reference_stale_rows(columns: &[Vec<f64>]) -> Vec<usize> {
+        let rows = columns.first().map_or(0, Vec::len);
+        let repeats = |k: usize| columns.iter().all(|c| c[k] == c[k - 1]);
+        let mut stale = Vec::new();
+        let mut k = 3;
+        while k + 1 < rows {
+            if !repeats(k) {
+                k += 1;
+                continue;
+            }
+            let mut last = k;
+            while last + 1 < rows && repeats(last + 1) {
+                last += 1;
+            }
+            if last + 1 == rows {
+                break;
+            }
+            let run = (last - k + 1) as f64;
+            let catches_up = columns.iter().any(|c| {
+                let (before, earlier, after) = (
+                    c[k - 1] - c[k - 2],
+                    c[k - 2] - c[k - 3],
+                    c[last + 1] - c[last],
+                );
+                let ratio = after / before;
+                before != 0.0
+                    && (earlier - before).abs() <= 0.5 * before.abs()
+                    && (run + 0.5..=run + 1.5).contains(&ratio)
+            });
+            if catches_up {
+                stale.extend(k..=last);
+            }
+            k = last + 1;
+        }
+        stale
+    }
+
+    /// Ramps with stale runs, rests and quantised slow motion, at random: the scan in one
+    /// part, and in parts cut anywhere, finds the reference's stale rows and counts.
+    #[test]
+    fn the_scan_in_parts_is_the_whole_scan() {
+        let mut rng = crate::rng::Rng::new(11);
+        for case in 0..300 {
+            let rows = 2 + (rng.uniform(0.0, 1.0) * 60.0) as usize;
+            let mut a = vec![0.0; rows];
+            let b: Vec<f64> = (0..rows).map(|k| (0.4 * k as f64).floor()).collect();
+            for k in 1..rows {
+                a[k] = a[k - 1]
+                    + if rng.uniform(0.0, 1.0) < 0.8 {
+                        1.0
+                    } else {
+                        0.0
+                    };
+            }
+            // stale runs: rows repeated, then the ramp catches up
+            for _ in 0..3 {
+                let k = (rng.uniform(0.0, 1.0) * rows as f64) as usize;
+                let len = 1 + (rng.uniform(0.0, 1.0) * 3.0) as usize;
+                for r in k..(k + len).min(rows) {
+                    a[r] = a[k.saturating_sub(1)];
+                }
+            }
+            let columns = [a, if case % 2 == 0 { b } else { vec![1.0; rows] }];
+            let t: Vec<f64> = (0..rows).map(|k| 1e-3 * k as f64).collect();
+            let whole = Sampling::of("x.csv".into(), Some(&t), &columns);
+            assert_eq!(
+                whole.stale_rows,
+                reference_stale_rows(&columns),
+                "case {case}"
+            );
+            let cuts = [
+                (rng.uniform(0.0, 1.0) * rows as f64) as usize,
+                (rng.uniform(0.0, 1.0) * rows as f64) as usize,
+            ];
+            let (c0, c1) = (cuts[0].min(cuts[1]), cuts[0].max(cuts[1]));
+            let mut scan = SamplingScan::new(2);
+            for part in [0..c0, c0..c1, c1..rows] {
+                let cols: Vec<Vec<f64>> =
+                    columns.iter().map(|c| c[part.clone()].to_vec()).collect();
+                let lines: Vec<u64> = part.clone().map(|k| k as u64 + 2).collect();
+                scan.push(Some(&t[part]), &cols, Some(&lines));
+            }
+            let first_line = scan.first_stale_line();
+            assert_eq!(first_line, whole.stale_rows.first().map(|&k| k as u64 + 2));
+            assert_eq!(
+                scan.finish("x.csv".into()),
+                whole,
+                "case {case}, cuts {c0} {c1}"
+            );
+        }
     }
 }

@@ -127,6 +127,17 @@ pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
     collect(file, path, names, size)
 }
 
+/// [`for_each_window`] over the file at `path` (refused when larger than
+/// [`MAX_FILE_BYTES`]).
+pub(crate) fn for_each_window_of(
+    path: &Path,
+    names: &[String],
+    window: usize,
+    each: impl FnMut(Table, usize) -> Result<()>,
+) -> Result<()> {
+    for_each_window(open(path)?, path, names, window, each)
+}
+
 /// Opens a CSV file, refusing one larger than [`MAX_FILE_BYTES`].
 fn open(path: &Path) -> Result<std::fs::File> {
     let file = std::fs::File::open(path).map_err(|source| io(path, source))?;

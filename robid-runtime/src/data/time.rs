@@ -111,28 +111,74 @@ pub fn check_monotonic(t: &[f64], lines: &[u64], path: &Path) -> Result<()> {
 /// Mean step and, when some step differs from it by more than [`IRREGULAR_TOLERANCE`],
 /// the warning to issue. Needs at least 2 increasing samples.
 pub fn regularity(t: &[f64], path: &Path) -> (f64, Option<Warning>) {
-    let n = t.len();
-    let step = (t[n - 1] - t[0]) / (n - 1) as f64;
-    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-    for w in t.windows(2) {
-        let d = w[1] - w[0];
-        lo = lo.min(d);
-        hi = hi.max(d);
-    }
-    let irregular = (hi - step).max(step - lo) > IRREGULAR_TOLERANCE * step;
-    let warning = irregular
+    let mut clock = Clock::default();
+    clock.push(t);
+    let step = clock.mean_step();
+    let warning = clock
+        .irregular()
         .then(|| super::sampling::step_statistics(t))
         .flatten()
         .map(|s| Warning::IrregularTime {
             path: path.to_path_buf(),
-            min_step: lo,
-            max_step: hi,
+            min_step: clock.min_step,
+            max_step: clock.max_step,
             step,
             median_step: s.median,
             jitter: s.jitter,
             skipped_ticks: s.skipped_ticks,
         });
     (step, warning)
+}
+
+/// The extent and the extreme steps of time stamps read in parts, in order: what
+/// [`regularity`] decides from.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Clock {
+    first: f64,
+    last: f64,
+    samples: usize,
+    min_step: f64,
+    max_step: f64,
+}
+
+impl Default for Clock {
+    fn default() -> Self {
+        Self {
+            first: 0.0,
+            last: 0.0,
+            samples: 0,
+            min_step: f64::INFINITY,
+            max_step: 0.0,
+        }
+    }
+}
+
+impl Clock {
+    /// The next time stamps.
+    pub(crate) fn push(&mut self, t: &[f64]) {
+        for &v in t {
+            if self.samples == 0 {
+                self.first = v;
+            } else {
+                let d = v - self.last;
+                self.min_step = self.min_step.min(d);
+                self.max_step = self.max_step.max(d);
+            }
+            self.last = v;
+            self.samples += 1;
+        }
+    }
+
+    /// The mean step: the time from the first stamp to the last over the steps.
+    pub(crate) fn mean_step(&self) -> f64 {
+        (self.last - self.first) / self.samples.saturating_sub(1) as f64
+    }
+
+    /// Whether some step differs from the mean by more than [`IRREGULAR_TOLERANCE`].
+    pub(crate) fn irregular(&self) -> bool {
+        let step = self.mean_step();
+        (self.max_step - step).max(step - self.min_step) > IRREGULAR_TOLERANCE * step
+    }
 }
 
 /// Linear interpolation of the samples (`t`, `x`) at the increasing times `at`

@@ -9,7 +9,7 @@ use crate::EstimateError;
 use std::ops::Range;
 
 use crate::Model;
-use crate::data::{Config, Dataset, Method, ParameterFile, Warning, check_joints};
+use crate::data::{Config, Dataset, Method, ParameterFile, Record, Warning, check_joints};
 use crate::error::{Error, Result};
 use crate::estimate::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, KnownParameters, Observation,
@@ -68,7 +68,7 @@ pub(crate) fn checked_prepare(
 /// checks them), for preparing them block by block.
 pub(crate) fn checked_plan(
     model: &dyn Model,
-    data: &Dataset,
+    data: &dyn Record,
     config: &Config,
     rows: Rows,
 ) -> Result<Plan> {
@@ -77,12 +77,12 @@ pub(crate) fn checked_plan(
 }
 
 /// The model's joint count against the limit, the config and the data.
-fn check_data(model: &dyn Model, data: &Dataset, config: &Config) -> Result<()> {
+fn check_data(model: &dyn Model, data: &dyn Record, config: &Config) -> Result<()> {
     check_joints(model.dof())?;
     config.check(model.dof())?;
     if data.dof() != model.dof() {
         return Err(Error::Data(DataError::JointCountMismatch {
-            context: format!("data set {}", data.name),
+            context: format!("data set {}", data.name()),
             expected: model.dof(),
             found: data.dof(),
         }));
@@ -218,15 +218,17 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
 /// methods build it.
 pub fn identify(
     model: &(dyn Model + Sync),
-    data: &Dataset,
+    data: &dyn Record,
     config: &Config,
 ) -> Result<Identification> {
     if streams(config) {
         let plan = checked_plan(model, data, config, Rows::Estimation)?;
         return identify_streaming(model, data, config, &plan);
     }
-    let rows = checked_prepare(model, data, config, Rows::Estimation)?;
-    identify_dense(model, data, config, rows)
+    check_data(model, data, config)?;
+    let whole = data.read(0, data.samples())?;
+    let rows = checked_prepare(model, &whole, config, Rows::Estimation)?;
+    identify_dense(model, &whole, config, rows)
 }
 
 /// [`identify`] through the whole observation matrix (every method; the reference of the
@@ -382,7 +384,7 @@ fn known_parameters(model: &dyn Model, config: &Config) -> Result<Option<KnownPa
 /// the observation matrix is never held, only the measured and predicted torques.
 pub fn validate(
     model: &(dyn Model + Sync),
-    data: &Dataset,
+    data: &dyn Record,
     config: &Config,
     values: &[f64],
 ) -> Result<Prediction> {

@@ -10,7 +10,7 @@
 //! record, the larger of the two counts is dropped there (they overlap, they do not add).
 
 use crate::DataError;
-use crate::data::{Config, Cutoff, Dataset, Derivative, Signal};
+use crate::data::{Config, Cutoff, Dataset, Derivative, Record, Signal};
 use crate::drive::FrictionModel;
 use crate::error::{Error, Result};
 use crate::inspect::{CutoffSuggestion, suggest_cutoff};
@@ -243,11 +243,15 @@ impl Plan {
     /// The plan of `config`'s `[processing]` for `data` with the range `rows`; checks the
     /// settings against the data (derivatives and motor encoders the data must have, the
     /// range and trims).
-    pub(crate) fn new(data: &Dataset, config: &Config, rows: Rows) -> Result<Self> {
+    pub(crate) fn new(data: &dyn Record, config: &Config, rows: Rows) -> Result<Self> {
         let p = &config.processing;
-        let dt = data.sample_time;
+        let dt = data.sample_time();
+        // the signals the record has, from its first sample
+        let head = || data.read(0, 1);
         let auto_cutoff = match &p.lowpass {
-            Some(lp) if lp.cutoff == Cutoff::Auto => Some(suggest_cutoff(data)?),
+            Some(lp) if lp.cutoff == Cutoff::Auto => {
+                Some(suggest_cutoff(&*data.read(0, data.samples())?)?)
+            }
             _ => None,
         };
         let sos = match &p.lowpass {
@@ -284,15 +288,17 @@ impl Plan {
             None => (0, 0, 0),
         };
         let sg = p.differentiation.savitzky_golay()?;
-        if p.velocity == Derivative::Data && data.qd.is_none() {
+        if p.velocity == Derivative::Data && head()?.qd.is_none() {
             return Err(missing("processing.velocity", "velocity"));
         }
-        if p.acceleration == Derivative::Data && data.qdd.is_none() {
+        if p.acceleration == Derivative::Data && head()?.qdd.is_none() {
             return Err(missing("processing.acceleration", "acceleration"));
         }
         let mut friction = None;
         if config.drive.rotor.is_some() || config.uses_rotor_signals() {
-            data.motor.as_ref().ok_or_else(|| no_motor(config))?;
+            if head()?.motor.is_none() {
+                return Err(no_motor(config));
+            }
             if let Some(file) = config
                 .drive
                 .rotor
@@ -316,7 +322,7 @@ impl Plan {
                     rows.key(),
                     format!(
                         "[{a}, {b}] lies outside {}, which has {} samples; choose a range inside the data",
-                        data.name,
+                        data.name(),
                         data.samples()
                     ),
                 ));
@@ -333,7 +339,7 @@ impl Plan {
             return Err(Error::TooFewSamples {
                 context: format!(
                     "{} after trimming {t} samples at each end ({settle} at the record's ends for the low-pass to settle)",
-                    data.name
+                    data.name()
                 ),
                 found: end.saturating_sub(start),
                 required: 2,
@@ -359,18 +365,14 @@ impl Plan {
     /// (the same when the block and its margins reach both ends of the record).
     pub(crate) fn block(
         &self,
-        data: &Dataset,
+        data: &dyn Record,
         config: &Config,
         block: std::ops::Range<usize>,
     ) -> Result<(Prepared, Option<Signals>)> {
         let (start, end) = (self.kept.start + block.start, self.kept.start + block.end);
         let from = start.saturating_sub(self.margin);
         let to = (end + self.margin).min(data.samples());
-        let (prepared, unfiltered) = if from == 0 && to == data.samples() {
-            self.signals(data, config)?
-        } else {
-            self.signals(&data.slice(from, to)?, config)?
-        };
+        let (prepared, unfiltered) = self.signals(&*data.read(from, to)?, config)?;
         self.cut(data, from, prepared, unfiltered, start..end)
     }
 
@@ -378,7 +380,7 @@ impl Plan {
     /// checked finite.
     fn cut(
         &self,
-        data: &Dataset,
+        data: &dyn Record,
         from: usize,
         prepared: Prepared,
         unfiltered: Option<Signals>,

@@ -23,7 +23,7 @@
 use std::ops::Range;
 
 use crate::Model;
-use crate::data::{Config, Dataset, Method};
+use crate::data::{Config, Dataset, Method, Record};
 use crate::error::{Error, Result};
 use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
 use crate::pipeline::identify::checked_plan;
@@ -49,7 +49,7 @@ const BLOCK_BYTES: usize = 64 << 20;
 pub(crate) struct Stream<'a> {
     model: &'a (dyn Model + Sync),
     config: &'a Config,
-    data: &'a Dataset,
+    data: &'a dyn Record,
     plan: &'a Plan,
     names: Vec<String>,
     dec: Decimator,
@@ -63,7 +63,7 @@ impl<'a> Stream<'a> {
     /// removal.
     pub(crate) fn new(
         model: &'a (dyn Model + Sync),
-        data: &'a Dataset,
+        data: &'a dyn Record,
         plan: &'a Plan,
         config: &'a Config,
     ) -> Result<Self> {
@@ -249,7 +249,7 @@ pub(crate) fn streams(config: &Config) -> bool {
 }
 
 /// An error of the observation with its processed sample placed at its data row.
-fn located(e: Error, config: &Config, data: &Dataset, kept: &Range<usize>) -> Error {
+fn located(e: Error, config: &Config, data: &dyn Record, kept: &Range<usize>) -> Error {
     match e {
         Error::Estimate(EstimateError::NonFiniteObservation {
             sample: Some(k),
@@ -282,7 +282,7 @@ fn finish_prediction(parts: PredictionParts, used: &UsedRows, what: &str) -> Res
 /// as the dense path to rounding.
 pub(crate) fn identify_streaming(
     model: &(dyn Model + Sync),
-    data: &Dataset,
+    data: &dyn Record,
     config: &Config,
     plan: &Plan,
 ) -> Result<Identification> {
@@ -291,7 +291,7 @@ pub(crate) fn identify_streaming(
     let stream = Stream::new(model, data, plan, config).map_err(at)?;
     let names = stream.names().to_vec();
     let (dof, cols, factor) = (model.dof(), names.len(), stream.factor());
-    let time = |k: usize| (kept.start + k * factor) as f64 * data.sample_time;
+    let time = |k: usize| (kept.start + k * factor) as f64 * data.sample_time();
     let inside = |k: usize| match &config.processing.pieces {
         Some(pieces) => pieces.iter().any(|[a, b]| (*a..=*b).contains(&time(k))),
         None => true,
@@ -358,11 +358,11 @@ pub(crate) fn identify_streaming(
             share,
         });
     }
-    let dt = data.sample_time * factor as f64;
+    let dt = data.sample_time() * factor as f64;
     let mut parts = stream.prediction(&estimate.values, dt).map_err(at)?;
     parts.prediction = parts
         .prediction
-        .starting_at(kept.start as f64 * data.sample_time);
+        .starting_at(kept.start as f64 * data.sample_time());
     let used = UsedRows::of(data, kept.clone());
     let prediction = finish_prediction(parts, &used, "the estimation data")?;
     Ok(Identification {
@@ -370,7 +370,7 @@ pub(crate) fn identify_streaming(
         fit: prediction.fit(),
         prediction,
         estimate,
-        warnings: data.warnings.clone(),
+        warnings: data.warnings().to_vec(),
         used,
         cutoff: plan.auto_cutoff.clone(),
     })
@@ -379,7 +379,7 @@ pub(crate) fn identify_streaming(
 /// [`validate`](crate::pipeline::validate), streaming.
 pub(crate) fn validate_streaming(
     model: &(dyn Model + Sync),
-    data: &Dataset,
+    data: &dyn Record,
     config: &Config,
     plan: &Plan,
     values: &[f64],
@@ -405,13 +405,13 @@ pub(crate) fn validate_streaming(
             ),
         ));
     }
-    let dt = data.sample_time * stream.factor() as f64;
+    let dt = data.sample_time() * stream.factor() as f64;
     let mut parts = stream
         .prediction(values, dt)
         .map_err(|e| located(e, config, data, kept))?;
     parts.prediction = parts
         .prediction
-        .starting_at(kept.start as f64 * data.sample_time);
+        .starting_at(kept.start as f64 * data.sample_time());
     let used = UsedRows::of(data, kept.clone());
     finish_prediction(parts, &used, "the validation data")
 }

@@ -8,7 +8,7 @@ pub use metrics::{Fit, fit, relative_improvement};
 
 use serde::{Deserialize, Serialize};
 
-use crate::data::Dataset;
+use crate::data::Record;
 use crate::error::{Error, Result};
 use crate::estimate::Observation;
 
@@ -27,17 +27,16 @@ pub struct UsedRows {
 
 impl UsedRows {
     /// The samples `range` of `data`.
-    pub fn of(data: &Dataset, range: std::ops::Range<usize>) -> UsedRows {
-        let lines = data.origin.as_ref().and_then(|o| {
-            let first = *o.lines.get(range.start)?;
-            let last = *o.lines.get(range.end.checked_sub(1)?)?;
+    pub fn of(data: &dyn Record, range: std::ops::Range<usize>) -> UsedRows {
+        let lines = data.file().and_then(|_| {
+            let first = data.line(range.start)?;
+            let last = data.line(range.end.checked_sub(1)?)?;
             Some([first, last])
         });
         UsedRows {
             file: data
-                .origin
-                .as_ref()
-                .map_or_else(|| data.name.clone(), |o| o.path.display().to_string()),
+                .file()
+                .map_or_else(|| data.name().to_string(), |p| p.display().to_string()),
             samples: [range.start, range.end],
             lines,
         }

@@ -12,7 +12,9 @@
 
 use std::path::{Path, PathBuf};
 
-use robid_runtime::data::{Config, EXAMPLE_CONFIG, Method, load, load_runs, read_header};
+use robid_runtime::data::{
+    Config, EXAMPLE_CONFIG, Method, Record, load_record, load_runs, read_header,
+};
 use robid_runtime::inspect::resolve_cutoff;
 use robid_runtime::pipeline::{identify, identify_runs, identify_static, validate};
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
@@ -341,16 +343,24 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         let plots: Vec<&Path> = plots.iter().map(PathBuf::as_path).collect();
         files::refuse(&inputs, &plots)?;
     }
-    let sets = match runs {
-        Some(_) => load_runs(&config, model.dof())?,
-        None => vec![load(&config, &data, model.dof())?],
+    // one record is read from its file block by block (a long log is never held whole);
+    // repeated runs are loaded in memory
+    let (sets, record) = match runs {
+        Some(_) => (load_runs(&config, model.dof())?, None),
+        None => (Vec::new(), Some(load_record(&config, &data, model.dof())?)),
     };
-    for w in sets.iter().flat_map(|d| &d.warnings) {
+    let first: &dyn Record = match (&record, sets.first()) {
+        (Some(r), _) => r.as_ref(),
+        (None, Some(d)) => d,
+        (None, None) => return Err("[runs] lists no files; list the runs' files".into()),
+    };
+    let warnings = sets.iter().flat_map(|d| &d.warnings);
+    for w in warnings.chain(record.iter().flat_map(|r| r.warnings())) {
         out::warn(format_args!("warning: {w}"));
     }
     // "auto" is chosen once, on the estimation data (the first run), and used for the
     // other runs and the validation data too
-    let auto = resolve_cutoff(&mut config, &sets[0]).map_err(|e| config.locate(e))?;
+    let auto = resolve_cutoff(&mut config, first).map_err(|e| config.locate(e))?;
     let reference = match &args.reference {
         Some(path) => Some((path, reference_values(path, model, &config)?)),
         None => None,
@@ -360,21 +370,21 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         let report = Report::from_runs(&id, |n| chosen.expression(n));
         (report, id.prediction, id.estimate.values)
     } else {
-        let id = identify(model, &sets[0], &config)?;
+        let id = identify(model, first, &config)?;
         let report = Report::from_identification(&id, |n| chosen.expression(n));
         (report, id.prediction, id.estimate.values)
     };
     report.cutoff = auto;
     let mut predictions = vec![prediction];
     for group in args.validate.chunks(per_set) {
-        let d = load(&config, group, model.dof())?;
-        for w in &d.warnings {
+        let d = load_record(&config, group, model.dof())?;
+        for w in d.warnings() {
             out::warn(format_args!("warning: {w}"));
         }
-        let p = validate(model, &d, &config, &values)?;
+        let p = validate(model, d.as_ref(), &config, &values)?;
         report = report.with_prediction(&p);
         if let Some((path, values)) = &reference {
-            let fit = validate(model, &d, &config, values)?.fit();
+            let fit = validate(model, d.as_ref(), &config, values)?.fit();
             let index = report.validation.len() - 1;
             report = report.with_reference(index, &path.display().to_string(), &fit);
         }

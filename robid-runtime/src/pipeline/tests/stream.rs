@@ -240,3 +240,50 @@ fn stacked_runs_stream_like_the_dense_path() {
         same_prediction(&ps, &pd);
     }
 }
+
+/// The same log identified and validated from a record kept on disk (read in windows of
+/// 64 KiB, several per block of the stream) and from the data set in memory: the same
+/// estimate, fit and prediction to the bit, since every block holds the same samples.
+#[test]
+fn a_record_on_disk_identifies_as_the_data_set_in_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("run.csv");
+    let noise = [0.05, 0.05, 0.05, 1.0, 1.0, 1.0];
+    std::fs::write(
+        &file,
+        super::synthetic::csv_with_noise(60_000, 1000.0, noise),
+    )
+    .unwrap();
+    let model = Synthetic::default();
+    for method in [Method::Ols, Method::Wls] {
+        let config = with("", method);
+        let files = [file.clone()];
+        let memory = crate::data::load(&config, &files, DOF).unwrap();
+        let disk = crate::data::SpilledRecord::open_in(&config, &files, DOF, 64 << 10)
+            .unwrap()
+            .expect("one file on a regular clock is kept on disk");
+        let (a, b) = (
+            identify(&model, &disk, &config).unwrap(),
+            identify(&model, &memory, &config).unwrap(),
+        );
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(
+            bits(&a.estimate.values),
+            bits(&b.estimate.values),
+            "{method:?}"
+        );
+        assert_eq!(bits(&a.estimate.std), bits(&b.estimate.std));
+        assert_eq!(a.prediction.predicted, b.prediction.predicted);
+        assert_eq!(a.prediction.measured, b.prediction.measured);
+        assert_eq!(
+            (&a.used, a.fit.relative_error),
+            (&b.used, b.fit.relative_error)
+        );
+        let values = &b.estimate.values;
+        let (a, b) = (
+            validate(&model, &disk, &config, values).unwrap(),
+            validate(&model, &memory, &config, values).unwrap(),
+        );
+        assert_eq!((a.predicted, a.used), (b.predicted, b.used));
+    }
+}

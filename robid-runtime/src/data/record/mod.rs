@@ -1,0 +1,430 @@
+//! Records read block by block. The streaming stages (OLS, WLS, validation:
+//! `pipeline::stream`) take a [`Record`]: a [`Dataset`] in memory, or a [`SpilledRecord`]
+//! whose samples wait in a temporary file, so that an hour-long log is never held whole
+//! (docs/identification.md#records-kept-on-disk).
+
+use std::borrow::Cow;
+use std::fs::File;
+use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use crate::DataError;
+use crate::data::dataset::DataOrigin;
+use crate::data::load::{
+    assemble, check_cutoff, check_joints, check_ranges, check_step, load, source_columns,
+    source_paths, stale_warning, take_time,
+};
+use crate::data::sampling::SamplingScan;
+use crate::data::table::for_each_window_of;
+use crate::data::time::Clock;
+use crate::data::{Config, Dataset, Sampling, WINDOW, Warning};
+use crate::error::{Error, Result};
+use crate::signal::Signals;
+
+/// Samples on a uniform time grid that can be read in blocks.
+pub trait Record: Sync {
+    /// Name for reports.
+    fn name(&self) -> &str;
+    /// Sample time in seconds.
+    fn sample_time(&self) -> f64;
+    /// Number of samples.
+    fn samples(&self) -> usize;
+    /// Number of joints.
+    fn dof(&self) -> usize;
+    /// What was repaired while loading.
+    fn warnings(&self) -> &[Warning];
+    /// The file the samples come from, when they come from one.
+    fn file(&self) -> Option<&Path>;
+    /// The file line of sample `k`, when known.
+    fn line(&self, k: usize) -> Option<u64>;
+    /// The samples `start..end` (`end` clamped to the length) as a data set: borrowed when
+    /// they are the whole of a data set in memory. An error when the range is empty.
+    fn read(&self, start: usize, end: usize) -> Result<Cow<'_, Dataset>>;
+
+    /// Where sample `k` is: `file:line` when the data came from a file, else the
+    /// record's name and the sample (0-based).
+    fn location(&self, k: usize) -> String {
+        match self.file().zip(self.line(k)) {
+            Some((path, line)) => format!("{}:{line}", path.display()),
+            None => format!("data set `{}`, sample {k}", self.name()),
+        }
+    }
+}
+
+impl Record for Dataset {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn sample_time(&self) -> f64 {
+        self.sample_time
+    }
+
+    fn samples(&self) -> usize {
+        Dataset::samples(self)
+    }
+
+    fn dof(&self) -> usize {
+        Dataset::dof(self)
+    }
+
+    fn warnings(&self) -> &[Warning] {
+        &self.warnings
+    }
+
+    fn file(&self) -> Option<&Path> {
+        self.origin.as_ref().map(|o| o.path.as_path())
+    }
+
+    fn line(&self, k: usize) -> Option<u64> {
+        self.origin.as_ref()?.lines.get(k).copied()
+    }
+
+    fn read(&self, start: usize, end: usize) -> Result<Cow<'_, Dataset>> {
+        if start == 0 && end >= Dataset::samples(self) && Dataset::samples(self) > 0 {
+            Ok(Cow::Borrowed(self))
+        } else {
+            self.slice(start, end).map(Cow::Owned)
+        }
+    }
+}
+
+/// A data set loaded as [`load`] loads it, whose samples are kept in a temporary file
+/// (deleted when the record is dropped) instead of memory: each block read from it is
+/// the same, value for value, as the same samples of the data set `load` gives.
+///
+/// The file is read once, window by window ([`WINDOW`] bytes of text): each window is
+/// checked and converted as `load` does it (ranges, time stamps, units, the drive chain),
+/// its signals and lines written to the temporary file, and the sampling statistics
+/// gathered on the way. In memory stay the time steps while loading (for their median),
+/// and where each window's samples are.
+#[derive(Debug)]
+pub struct SpilledRecord {
+    name: String,
+    path: PathBuf,
+    sample_time: f64,
+    dof: usize,
+    /// Which of the loader's roles the samples have.
+    roles: [bool; 7],
+    chunks: Vec<Chunk>,
+    samples: usize,
+    spill: Mutex<File>,
+    warnings: Vec<Warning>,
+    sampling: Sampling,
+}
+
+/// Where one window's samples are in the temporary file: every signal the record has
+/// (in the loader's role order (positions, velocities, accelerations, torques, motor positions, temperatures, joint torques), joint by joint, `len` values each), then their `len` file lines.
+#[derive(Debug, Clone, Copy)]
+struct Chunk {
+    start: usize,
+    len: usize,
+    offset: u64,
+}
+
+impl SpilledRecord {
+    /// How the file was sampled.
+    pub fn sampling(&self) -> &Sampling {
+        &self.sampling
+    }
+
+    /// The record of the files `files` (or the config's own) for a `dof`-joint model:
+    /// `None` when it cannot be kept on disk (several sources, which are joined in
+    /// memory; time stamps that need resampling; too few rows). An error is the first
+    /// problem found reading the file window by window, which need not be the one
+    /// [`load`] reports first; [`load_record`] reports `load`'s.
+    pub fn open(config: &Config, files: &[PathBuf], dof: usize) -> Result<Option<Self>> {
+        Self::open_in(config, files, dof, WINDOW)
+    }
+
+    /// [`SpilledRecord::open`] with windows of `window` bytes of text.
+    pub(crate) fn open_in(
+        config: &Config,
+        files: &[PathBuf],
+        dof: usize,
+        window: usize,
+    ) -> Result<Option<Self>> {
+        check_joints(dof)?;
+        config.check(dof)?;
+        let paths = source_paths(config, files)?;
+        let ([source], [path]) = (config.sources.as_slice(), paths.as_slice()) else {
+            return Ok(None);
+        };
+        let (names, spans) = source_columns(config, source, dof);
+        let mut roles = [false; 7];
+        spans.iter().for_each(|&(r, _)| roles[r] = true);
+        let temporary = |source| {
+            Error::Data(DataError::Io {
+                path: std::env::temp_dir(),
+                source,
+            })
+        };
+        let mut spill = BufWriter::with_capacity(1 << 20, tempfile::tempfile().map_err(temporary)?);
+        let mut chunks = Vec::new();
+        let mut offset = 0u64;
+        let mut clock = Clock::default();
+        let mut scan = SamplingScan::new(spans.len() * dof);
+        // the sample time only matters at the end: windows are checked at the config's rate
+        // or at 1 kHz, which the limits always allow
+        let checked_at = config.sample_rate.map_or(1e-3, |fs| 1.0 / fs);
+        for_each_window_of(path, &names, window, |mut table, _| {
+            if table.rows() == 0 {
+                return Ok(());
+            }
+            check_ranges(&table, &names, &spans, dof)?;
+            let time = take_time(config, &mut table)?;
+            let mut columns = std::mem::take(&mut table.columns);
+            // a step back between windows is an irregular step: such a file is then
+            // loaded in memory, where `load` names the line
+            if let Some(t) = &time {
+                clock.push(t);
+            }
+            scan.push(time.as_deref(), &columns, Some(&table.lines));
+            let mut blocks: [Option<Vec<Vec<f64>>>; 7] = Default::default();
+            for &(role, start) in &spans {
+                blocks[role] = Some(
+                    columns[start..start + dof]
+                        .iter_mut()
+                        .map(std::mem::take)
+                        .collect(),
+                );
+            }
+            let origin = DataOrigin {
+                path: path.clone(),
+                lines: std::mem::take(&mut table.lines),
+            };
+            let data = assemble(config, dof, String::new(), checked_at, blocks, origin)?;
+            let len = data.samples();
+            let start = chunks.last().map_or(0, |c: &Chunk| c.start + c.len);
+            chunks.push(Chunk { start, len, offset });
+            let mut write = |values: &mut dyn Iterator<Item = [u8; 8]>| {
+                for v in values {
+                    spill.write_all(&v).map_err(temporary)?;
+                    offset += 8;
+                }
+                Ok::<_, Error>(())
+            };
+            for signals in signals_of(&data).into_iter().flatten() {
+                for x in signals.joints() {
+                    write(&mut x.iter().map(|v| v.to_le_bytes()))?;
+                }
+            }
+            let lines = data.origin.as_ref().map_or(&[][..], |o| &o.lines);
+            write(&mut lines.iter().map(|l| l.to_le_bytes()))
+        })?;
+        let samples = chunks.last().map_or(0, |c| c.start + c.len);
+        if samples < 2 {
+            return Ok(None);
+        }
+        let sample_time = match (&config.time_column, config.sample_rate) {
+            (Some(_), _) if clock.irregular() => return Ok(None),
+            (Some(_), _) => {
+                let step = clock.mean_step();
+                check_step(config, step, path)?;
+                step
+            }
+            (None, Some(fs)) => 1.0 / fs,
+            (None, None) => return Ok(None),
+        };
+        check_cutoff(config, sample_time)?;
+        let first_stale = scan.first_stale_line();
+        let sampling = scan.finish(path.clone());
+        let warnings = stale_warning(&sampling, first_stale).into_iter().collect();
+        let spill = spill.into_inner().map_err(|e| temporary(e.into_error()))?;
+        Ok(Some(Self {
+            name: path
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+            path: path.clone(),
+            sample_time,
+            dof,
+            roles,
+            chunks,
+            samples,
+            spill: Mutex::new(spill),
+            warnings,
+            sampling,
+        }))
+    }
+
+    /// Reads `len` values of 8 bytes at byte `at` of the temporary file.
+    fn values<T>(file: &mut File, at: u64, len: usize, of: fn([u8; 8]) -> T) -> Result<Vec<T>> {
+        let mut bytes = vec![0u8; 8 * len];
+        file.seek(SeekFrom::Start(at))
+            .and_then(|_| file.read_exact(&mut bytes))
+            .map_err(|source| {
+                Error::Data(DataError::Io {
+                    path: std::env::temp_dir(),
+                    source,
+                })
+            })?;
+        Ok(bytes
+            .chunks_exact(8)
+            .map(|b| of(b.try_into().unwrap_or_default()))
+            .collect())
+    }
+
+    /// The chunks holding samples `start..end`, with the part of each.
+    fn parts(&self, start: usize, end: usize) -> impl Iterator<Item = (Chunk, usize, usize)> {
+        let first = self.chunks.partition_point(|c| c.start + c.len <= start);
+        self.chunks[first..]
+            .iter()
+            .take_while(move |c| c.start < end)
+            .map(move |&c| {
+                (
+                    c,
+                    start.max(c.start) - c.start,
+                    end.min(c.start + c.len) - c.start,
+                )
+            })
+    }
+
+    fn roles_kept(&self) -> usize {
+        self.roles.iter().filter(|&&r| r).count()
+    }
+}
+
+/// The data set's signals in the loader's roles order.
+fn signals_of(d: &Dataset) -> [Option<&Signals>; 7] {
+    [
+        Some(&d.q),
+        d.qd.as_ref(),
+        d.qdd.as_ref(),
+        Some(&d.tau),
+        d.motor.as_ref(),
+        d.temperature.as_ref(),
+        d.joint_torque.as_ref(),
+    ]
+}
+
+impl Record for SpilledRecord {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn sample_time(&self) -> f64 {
+        self.sample_time
+    }
+
+    fn samples(&self) -> usize {
+        self.samples
+    }
+
+    fn dof(&self) -> usize {
+        self.dof
+    }
+
+    fn warnings(&self) -> &[Warning] {
+        &self.warnings
+    }
+
+    fn file(&self) -> Option<&Path> {
+        Some(&self.path)
+    }
+
+    fn line(&self, k: usize) -> Option<u64> {
+        let (c, lo, _) = self.parts(k, k + 1).next()?;
+        let at = c.offset + 8 * (self.roles_kept() * self.dof * c.len + lo) as u64;
+        let mut file = self.spill.lock().ok()?;
+        Self::values(&mut file, at, 1, u64::from_le_bytes)
+            .ok()?
+            .first()
+            .copied()
+    }
+
+    fn read(&self, start: usize, end: usize) -> Result<Cow<'_, Dataset>> {
+        let end = end.min(self.samples);
+        if start >= end {
+            return Err(Error::TooFewSamples {
+                context: format!("{} rows {start}..{end}", self.name),
+                found: 0,
+                required: 1,
+                hint: "choose a range inside the data",
+            });
+        }
+        let mut file = self.spill.lock().map_err(|_| {
+            Error::setting(
+                "SpilledRecord",
+                "read",
+                "an earlier read panicked; load the record again".to_string(),
+            )
+        })?;
+        let kept = self.roles_kept();
+        let mut blocks: [Option<Vec<Vec<f64>>>; 7] = Default::default();
+        let mut lines = Vec::with_capacity(end - start);
+        for (role, block) in blocks.iter_mut().enumerate() {
+            if self.roles[role] {
+                *block = Some(vec![Vec::with_capacity(end - start); self.dof]);
+            }
+        }
+        for (c, lo, hi) in self.parts(start, end) {
+            let mut column = 0;
+            for block in blocks.iter_mut().flatten() {
+                for x in block.iter_mut() {
+                    let at = c.offset + 8 * (column * c.len + lo) as u64;
+                    x.extend(Self::values(&mut file, at, hi - lo, f64::from_le_bytes)?);
+                    column += 1;
+                }
+            }
+            let at = c.offset + 8 * (kept * self.dof * c.len + lo) as u64;
+            lines.extend(Self::values(&mut file, at, hi - lo, u64::from_le_bytes)?);
+        }
+        drop(file);
+        let signals = |b: Option<Vec<Vec<f64>>>| b.map(Signals::new).transpose();
+        let [q, qd, qdd, tau, motor, temperature, joint_torque] = blocks.map(signals);
+        let name = format!("{}[{start}..{end}]", self.name);
+        let origin = DataOrigin {
+            path: self.path.clone(),
+            lines,
+        };
+        let (Some(q), Some(tau)) = (q?, tau?) else {
+            return Err(Error::setting(
+                "SpilledRecord",
+                "read",
+                "the record has no positions or torques".to_string(),
+            ));
+        };
+        let mut data = Dataset::new_at(name, self.sample_time, q, tau, Some(origin))?;
+        if let Some(v) = qd? {
+            data = data.with_velocities(v)?;
+        }
+        if let Some(a) = qdd? {
+            data = data.with_accelerations(a)?;
+        }
+        if let Some(m) = motor? {
+            data = data.with_motor_positions(m)?;
+        }
+        if let Some(t) = temperature? {
+            data = data.with_temperatures(t)?;
+        }
+        if let Some(t) = joint_torque? {
+            data = data.with_joint_torques(t)?;
+        }
+        Ok(Cow::Owned(data))
+    }
+}
+
+/// Loads like [`load`], keeping the samples in a temporary file when that is possible
+/// (a [`SpilledRecord`]: one source, a regular clock or `sample_rate`) and in memory
+/// otherwise. Every error is [`load`]'s: when the file cannot be kept on disk for any
+/// reason, [`load`] reads it.
+pub fn load_record(config: &Config, files: &[PathBuf], dof: usize) -> Result<Box<dyn Record>> {
+    load_record_in(config, files, dof, WINDOW)
+}
+
+/// [`load_record`] with windows of `window` bytes of text.
+pub(crate) fn load_record_in(
+    config: &Config,
+    files: &[PathBuf],
+    dof: usize,
+    window: usize,
+) -> Result<Box<dyn Record>> {
+    match SpilledRecord::open_in(config, files, dof, window) {
+        Ok(Some(record)) => Ok(Box::new(record)),
+        _ => Ok(Box::new(load(config, files, dof)?)),
+    }
+}
+
+#[cfg(test)]
+mod tests;

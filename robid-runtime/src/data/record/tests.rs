@@ -1,0 +1,199 @@
+//! A record kept on disk against the data set `load` gives: the same samples to the bit,
+//! the same statistics and warnings, and the same errors.
+
+use std::path::{Path, PathBuf};
+
+use super::*;
+
+/// A 3-joint log of `n` rows at 1 kHz, `t,p1..p3,v1..v3,c1..c3`, with comment and blank
+/// lines inside, and a stale row every 97 rows (repeated, then caught up).
+fn log(n: usize) -> String {
+    let mut out = String::from("# a logger's preamble\nt,p1,p2,p3,v1,v2,v3,c1,c2,c3\n");
+    for k in 0..n {
+        if k % 500 == 250 {
+            out.push_str("# a comment\n\n");
+        }
+        // the stale row: the previous row's values again
+        let s = if k % 97 == 50 { k - 1 } else { k } as f64;
+        let t = k as f64 * 1e-3;
+        let p: Vec<f64> = (1..=3)
+            .map(|j| (0.7 * j as f64 * s * 1e-3).sin() * 30.0)
+            .collect();
+        let v: Vec<f64> = (1..=3)
+            .map(|j| (0.7 * j as f64 * s * 1e-3).cos() * 20.0)
+            .collect();
+        let c: Vec<f64> = (1..=3).map(|j| 0.01 * s + j as f64).collect();
+        out.push_str(&format!(
+            "{t},{},{},{},{},{},{},{},{},{}\n",
+            p[0], p[1], p[2], v[0], v[1], v[2], c[0], c[1], c[2]
+        ));
+    }
+    out
+}
+
+/// Degrees, a torque scale, and motor-side positions and torques through a coupled
+/// drive chain: every conversion `load` makes.
+const CONFIG: &str = r#"
+dof = 3
+time_column = "t"
+[[source]]
+position = "p{}"
+velocity = "v{}"
+torque = "c{}"
+[units]
+angle = "deg"
+torque_scale = [1.5, 2.0, 0.5]
+[drive]
+position_side = "motor"
+torque_side = "motor"
+gear_ratios = [100, -80, 50]
+position_coupling = [[100, 0, 0], [0, -80, 0], [0, 30, 50]]
+[processing]
+lowpass = { cutoff = 20.0, order = 4, signals = ["q"] }
+"#;
+
+fn config(text: &str) -> Config {
+    Config::from_toml_str(text, Path::new("test.toml")).unwrap()
+}
+
+fn file(dir: &tempfile::TempDir, text: &str) -> PathBuf {
+    let path = dir.path().join("log.csv");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Windows of 4 KiB: the 3000 rows are read in about 60 windows, so that stale runs,
+/// comments and time steps fall across their ends.
+const SMALL: usize = 4096;
+
+#[test]
+fn blocks_are_the_loaded_samples_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = file(&dir, &log(3000));
+    let config = config(CONFIG);
+    let data = load(&config, std::slice::from_ref(&path), 3).unwrap();
+    let record = SpilledRecord::open_in(&config, &[path], 3, SMALL)
+        .unwrap()
+        .expect("one regular file is kept on disk");
+    assert!(record.chunks.len() > 40, "{} windows", record.chunks.len());
+    let n = data.samples();
+    assert_eq!(
+        (record.samples(), record.dof(), record.name()),
+        (n, 3, data.name.as_str())
+    );
+    assert_eq!(record.sample_time().to_bits(), data.sample_time.to_bits());
+    assert_eq!(record.sampling(), &data.sampling[0]);
+    assert!(!record.sampling().stale_rows.is_empty());
+    assert_eq!(
+        format!("{:?}", record.warnings()),
+        format!("{:?}", data.warnings)
+    );
+    for (a, b) in [
+        (0, n),
+        (0, 1),
+        (17, 1234),
+        (n - 5, n + 10),
+        (999, 1001),
+        (250, 251),
+    ] {
+        let from_disk = record.read(a, b).unwrap();
+        let in_memory = data.read(a, b).unwrap();
+        let bits = |d: &Dataset| {
+            signals_of(d).map(|s| {
+                s.map(|s| {
+                    s.joints()
+                        .flat_map(|x| x.iter().map(|v| v.to_bits()))
+                        .collect::<Vec<_>>()
+                })
+            })
+        };
+        assert_eq!(bits(&from_disk), bits(&in_memory), "{a}..{b}");
+        assert_eq!(from_disk.origin, in_memory.origin, "{a}..{b}");
+        assert_eq!(
+            from_disk.sample_time.to_bits(),
+            in_memory.sample_time.to_bits()
+        );
+    }
+    for k in [0, 1, 249, 250, 251, 1500, n - 1] {
+        assert_eq!(record.location(k), data.location(k), "sample {k}");
+    }
+    assert!(record.read(n, n + 1).is_err() && record.read(5, 5).is_err());
+    assert_eq!(record.line(n), None);
+}
+
+#[test]
+fn errors_are_those_of_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let rows: Vec<String> = log(2000).lines().map(str::to_string).collect();
+    // the index in `rows` of data row k (after the preamble, header and comments)
+    let data_rows: Vec<usize> = (0..rows.len())
+        .filter(|&i| rows[i].starts_with(|c: char| c.is_ascii_digit()))
+        .collect();
+    let with = |k: usize, row: &str| {
+        let mut r = rows.clone();
+        r[data_rows[k]] = row.to_string();
+        r.join("\n") + "\n"
+    };
+    let mut cases = vec![
+        (CONFIG.to_string(), with(1700, "1.7,0,0,0,0,0,0,0,0,nan")),
+        (CONFIG.to_string(), with(900, "0.9,0,0,0,0,0,0,0,1e300,0")),
+        (CONFIG.to_string(), with(1200, "1.2,0,0,0,0,0,0,0,0")),
+        (CONFIG.replace("cutoff = 20.0", "cutoff = 600.0"), log(2000)),
+        (CONFIG.replace("c{}", "x{}"), log(2000)),
+        (
+            CONFIG.replace(
+                "time_column = \"t\"",
+                "time_column = \"t\"\ntime_scale = 1e-6",
+            ),
+            log(2000),
+        ),
+    ];
+    // time going back at each of 60 rows in a row: some are a window's first
+    for k in 1000..1060 {
+        let (_, rest) = rows[data_rows[k]].split_once(',').unwrap();
+        cases.push((CONFIG.to_string(), with(k, &format!("0,{rest}"))));
+    }
+    for (i, (text, csv)) in cases.into_iter().enumerate() {
+        let config = config(&text);
+        let path = file(&dir, &csv);
+        let Err(dense) = load(&config, std::slice::from_ref(&path), 3) else {
+            panic!("case {i} loads");
+        };
+        let record = load_record_in(&config, &[path], 3, SMALL).err();
+        assert_eq!(
+            record.map(|e| e.to_string()),
+            Some(dense.to_string()),
+            "case {i}"
+        );
+    }
+}
+
+#[test]
+fn irregular_clocks_and_several_sources_stay_in_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    // a 3 ms gap in the time stamps: the samples are resampled in memory
+    let mut rows: Vec<String> = log(1000).lines().map(str::to_string).collect();
+    for r in rows.iter_mut().skip(600) {
+        if let Some((t, rest)) = r.split_once(',')
+            && let Ok(t) = t.parse::<f64>()
+        {
+            *r = format!("{},{rest}", t + 0.003);
+        }
+    }
+    let path = file(&dir, &(rows.join("\n") + "\n"));
+    let config = config(CONFIG);
+    assert!(
+        SpilledRecord::open_in(&config, std::slice::from_ref(&path), 3, SMALL)
+            .unwrap()
+            .is_none()
+    );
+    let dense = load(&config, std::slice::from_ref(&path), 3).unwrap();
+    let record = load_record_in(&config, &[path], 3, SMALL).unwrap();
+    assert!(
+        record
+            .warnings()
+            .iter()
+            .any(|w| matches!(w, Warning::IrregularTime { .. }))
+    );
+    assert_eq!(record.read(0, dense.samples()).unwrap().q, dense.q);
+}
