@@ -247,8 +247,13 @@ fn main() {
             s / n as f64 / parse_per_sample
         )
     };
-    row("parse CSV (baseline)", n, parse_s, parse_mib);
-    row("parse + identify, streaming", n, id_s, id_mib);
+    row("parse CSV into memory (baseline)", n, parse_s, parse_mib);
+    row(
+        "read + identify, streaming, record on disk",
+        n,
+        id_s,
+        id_mib,
+    );
     row(
         &format!("parse CSV, first {dense_limit} s"),
         short_n,
@@ -256,7 +261,7 @@ fn main() {
         short_parse_mib,
     );
     row(
-        &format!("parse + identify, streaming, first {dense_limit} s"),
+        &format!("read + identify, streaming, record on disk, first {dense_limit} s"),
         short_n,
         short_s,
         short_mib,
