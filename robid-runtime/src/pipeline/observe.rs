@@ -247,18 +247,22 @@ impl Observer<'_> {
     }
 
     /// Runs `fill(full row, out)` for the processed samples `lo..hi` in
-    /// parallel, into rows of `width` values; returns the rows, whether a call reported a
-    /// miss, and the first non-finite value reported (sample, channel, value).
+    /// parallel, into `rows` (resized to rows of `width` values; `fill` writes every value
+    /// of its row, so a buffer reused from the last block is not cleared: a block's
+    /// channels are up to 64 MiB, which the allocator would otherwise map and zero
+    /// afresh for every block); returns whether a call reported a miss, and the first
+    /// non-finite value reported (sample, channel, value).
     fn rows_in_parallel(
         &self,
         lo: usize,
         hi: usize,
         width: usize,
+        rows: &mut Vec<f64>,
         fill: impl Fn(&[f64], &mut [f64]) -> (bool, Option<(usize, f64)>) + Sync,
-    ) -> (Vec<f64>, bool, Option<(usize, usize, f64)>) {
+    ) -> (bool, Option<(usize, usize, f64)>) {
         let dof = self.lay.dof;
         let stride = self.lay.stride();
-        let mut rows = vec![0.0; (hi - lo) * width];
+        rows.resize((hi - lo) * width, 0.0);
         let (missed, bad) = rows
             .par_chunks_mut((width * BLOCK).max(1))
             .enumerate()
@@ -283,19 +287,21 @@ impl Observer<'_> {
                 (missed, bad)
             })
             .reduce(|| (false, None), |x, y| (x.0 || y.0, x.1.or(y.1)));
-        (rows, missed, bad)
+        (missed, bad)
     }
 
     /// The samples `lo..hi` of the channels `channels` of every sample row (in parallel),
     /// decimated: `(values, width)` groups of [`GROUP`] channels, row-major, one row per
     /// decimated sample (all channels in one group without decimation). A channel outside
-    /// `channels` that is not zero is a miss (reported as `Ok(None)`).
+    /// `channels` that is not zero is a miss (reported as `Ok(None)`). `rows` is the
+    /// buffer of the channels before decimation.
     fn decimated_channels(
         &self,
         dec: &Decimator,
         lo: usize,
         hi: usize,
         channels: &[usize],
+        rows: &mut Vec<f64>,
     ) -> Result<Option<Vec<Decimated>>> {
         let stride = self.lay.stride();
         let mut inside = vec![false; stride];
@@ -304,7 +310,7 @@ impl Observer<'_> {
         }
         let inactive: Vec<usize> = (0..stride).filter(|&c| !inside[c]).collect();
         let a = channels.len();
-        let (rows, missed, bad) = self.rows_in_parallel(lo, hi, a, |full, out| {
+        let (missed, bad) = self.rows_in_parallel(lo, hi, a, rows, |full, out| {
             for (o, &c) in out.iter_mut().zip(channels) {
                 *o = full[c];
             }
@@ -332,13 +338,15 @@ impl Observer<'_> {
     /// and those near rest (`rest`, per joint) removed. The same equations as [`observe`]
     /// gives for these samples, to the decimation filter's settling tolerance. Channels
     /// that are zero at a few probed samples are assumed zero (checked on every sample,
-    /// then all channels taken if one is not), as in [`observe`].
+    /// then all channels taken if one is not), as in [`observe`]. `rows` is a buffer for
+    /// the channels before decimation, reused from block to block.
     pub(crate) fn window(
         &self,
         dec: &Decimator,
         overlap: usize,
         rest: Option<&[f64]>,
         core: std::ops::Range<usize>,
+        rows: &mut Vec<f64>,
     ) -> Result<Equations> {
         let (lay, dof) = (&self.lay, self.lay.dof);
         let n = self.signals.samples();
@@ -362,11 +370,11 @@ impl Observer<'_> {
             active[lay.qd(j)] = true;
         }
         let mut channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
-        let groups = match self.decimated_channels(dec, lo, hi, &channels)? {
+        let groups = match self.decimated_channels(dec, lo, hi, &channels, rows)? {
             Some(g) => g,
             None => {
                 channels = (0..stride).collect();
-                self.decimated_channels(dec, lo, hi, &channels)?
+                self.decimated_channels(dec, lo, hi, &channels, rows)?
                     .unwrap_or_default()
             }
         };
@@ -442,7 +450,8 @@ impl Observer<'_> {
         let lo = core.start.saturating_sub(overlap);
         let hi = (core.end + overlap).min(n);
         let cols = lay.p + lay.e;
-        let (rows, _, bad) = self.rows_in_parallel(lo, hi, 3 * dof, |full, out| {
+        let mut rows = Vec::new();
+        let (_, bad) = self.rows_in_parallel(lo, hi, 3 * dof, &mut rows, |full, out| {
             for j in 0..dof {
                 out[j] = (0..cols).map(|c| full[lay.column(j, c)] * beta[c]).sum();
                 out[dof + j] = full[lay.tau(j)];
@@ -457,7 +466,7 @@ impl Observer<'_> {
         if let Some((k, c, v)) = bad {
             return Err(self.bad_channel(k, c, v));
         }
-        let groups = decimate_rows(dec, rows, 3 * dof)?;
+        let groups = decimate_rows(dec, &mut rows, 3 * dof)?;
         let value = |i: usize, c: usize| -> f64 {
             let (g, k) = if f == 1 {
                 (0, c)
@@ -490,15 +499,16 @@ type Decimated = (Vec<f64>, usize);
 
 /// Decimates every channel of row-major `rows` (`width` values per row): groups of
 /// [`GROUP`] channels in parallel, each `(values, width)` row-major with one row per
-/// decimated sample; the rows themselves as one group without decimation.
-fn decimate_rows(dec: &Decimator, rows: Vec<f64>, width: usize) -> Result<Vec<Decimated>> {
+/// decimated sample; the rows themselves as one group without decimation (taken from
+/// `rows`).
+fn decimate_rows(dec: &Decimator, rows: &mut Vec<f64>, width: usize) -> Result<Vec<Decimated>> {
     if dec.factor() == 1 {
-        return Ok(vec![(rows, width)]);
+        return Ok(vec![(std::mem::take(rows), width)]);
     }
     let local: Vec<usize> = (0..width).collect();
     local
         .par_chunks(GROUP)
-        .map(|g| Ok((dec.apply_block(&rows, width, g)?, g.len())))
+        .map(|g| Ok((dec.apply_block(rows, width, g)?, g.len())))
         .collect()
 }
 

@@ -146,10 +146,17 @@ impl<'a> Stream<'a> {
     /// parallel); the first error stops it.
     pub(crate) fn run(&self, mut fold: impl FnMut(Equations) -> Result<()>) -> Result<()> {
         let f = self.dec.factor();
+        // the channels before decimation, one buffer for every block
+        let mut rows = Vec::new();
         for b in self.blocks() {
             let eq = self.in_block(&b, |observer, core, lo, _| {
-                let mut eq =
-                    observer.window(&self.dec, self.overlap, self.rest.as_deref(), core)?;
+                let mut eq = observer.window(
+                    &self.dec,
+                    self.overlap,
+                    self.rest.as_deref(),
+                    core,
+                    &mut rows,
+                )?;
                 // `lo` is a multiple of the factor: the decimated samples shift by lo / f
                 eq.sample.iter_mut().for_each(|k| *k += lo / f);
                 Ok(eq)
