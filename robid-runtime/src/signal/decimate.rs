@@ -104,22 +104,20 @@ impl Decimator {
     ) -> Result<Vec<f64>> {
         let g = channels.len();
         let contiguous = channels.windows(2).all(|w| w[1] == w[0] + 1);
+        // the channels with `pad` rows before and after them, which the filter fills (so
+        // the body is written once, not zeroed first)
         let gather = |pad: usize| {
             let n = source.len() / stride.max(1);
-            let mut ext = vec![0.0; (n + 2 * pad) * g];
-            let body = &mut ext[pad * g..(pad + n) * g];
-            for (dst, row) in body
-                .chunks_exact_mut(g.max(1))
-                .zip(source.chunks_exact(stride))
-            {
+            let mut ext = Vec::with_capacity((n + 2 * pad) * g);
+            ext.resize(pad * g, 0.0);
+            for row in source.chunks_exact(stride.max(1)).take(n) {
                 if contiguous && g > 0 {
-                    dst.copy_from_slice(&row[channels[0]..channels[0] + g]);
+                    ext.extend_from_slice(&row[channels[0]..channels[0] + g]);
                 } else {
-                    for (d, &c) in dst.iter_mut().zip(channels) {
-                        *d = row[c];
-                    }
+                    ext.extend(channels.iter().map(|&c| row[c]));
                 }
             }
+            ext.resize((n + 2 * pad) * g, 0.0);
             ext
         };
         let mut block: Option<Vec<f64>> = None;

@@ -6,6 +6,7 @@ use super::synthetic::{DOF, Synthetic};
 use super::{config, dataset_with_noise};
 use crate::data::{Config, Method};
 use crate::estimate::Estimate;
+use crate::model::Model;
 use crate::pipeline::identify::{identify_dense_of, validate_dense};
 use crate::pipeline::prepare::{Plan, Rows, prepare_rows};
 use crate::pipeline::stream::Stream;
@@ -286,4 +287,80 @@ fn a_record_on_disk_identifies_as_the_data_set_in_memory() {
         );
         assert_eq!((a.predicted, a.used), (b.predicted, b.used));
     }
+}
+
+/// The synthetic model with an infinite regressor entry (column `column`, joint 1)
+/// wherever joint 1's position exceeds `above`: a model that overflows on some samples.
+struct Overflowing {
+    inner: Synthetic,
+    column: usize,
+    above: f64,
+}
+
+impl Model for Overflowing {
+    fn name(&self) -> &str {
+        "overflowing"
+    }
+    fn dof(&self) -> usize {
+        self.inner.dof()
+    }
+    fn standard_parameter_count(&self) -> usize {
+        self.inner.standard_parameter_count()
+    }
+    fn standard_parameter_name(&self, index: usize) -> Option<&str> {
+        self.inner.standard_parameter_name(index)
+    }
+    fn base_parameter_count(&self) -> usize {
+        self.inner.base_parameter_count()
+    }
+    fn base_parameter_name(&self, index: usize) -> Option<&str> {
+        self.inner.base_parameter_name(index)
+    }
+    fn run(
+        &self,
+        program: crate::model::ProgramKind,
+        inputs: &[&[f64]],
+        output: &mut [f64],
+    ) -> Result<(), crate::model::LengthError> {
+        self.inner.run(program, inputs, output)?;
+        if program == crate::model::ProgramKind::BaseRegressor && inputs[0][0] > self.above {
+            output[self.column] = f64::INFINITY;
+        }
+        Ok(())
+    }
+}
+
+/// A regressor that overflows is a named error, the same by both paths: the data row of
+/// the first sample where it does, the joint and the parameter, never a NaN estimate.
+#[test]
+fn an_overflowing_regressor_is_named_by_both_paths() {
+    let data = data();
+    let peak = data.q[0].iter().fold(f64::MIN, |m, v| m.max(*v));
+    let model = Overflowing {
+        inner: Synthetic::default(),
+        column: 2,
+        above: peak - 0.01,
+    };
+    let config = with("", Method::Ols);
+    let named = |e: crate::Error| match e {
+        crate::Error::Estimate(crate::estimate::EstimateError::NonFiniteObservation {
+            location,
+            joint,
+            parameter,
+            ..
+        }) => (location, joint, parameter),
+        e => panic!("{e}"),
+    };
+    let streamed = named(identify(&model, &data, &config).unwrap_err());
+    let dense = named(identify_dense_of(&model, &data, &config).unwrap_err());
+    assert_eq!(streamed, dense);
+    assert!(
+        streamed
+            .0
+            .starts_with(data.location(0).split(':').next().unwrap())
+    );
+    assert_eq!(
+        (streamed.1, streamed.2.as_str()),
+        (1, model.base_parameter_name(2).unwrap())
+    );
 }
