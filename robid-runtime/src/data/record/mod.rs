@@ -163,6 +163,7 @@ impl SpilledRecord {
         let mut spill = BufWriter::with_capacity(1 << 20, tempfile::tempfile().map_err(temporary)?);
         let mut chunks = Vec::new();
         let mut offset = 0u64;
+        let mut bytes = Vec::new();
         let mut clock = Clock::default();
         let mut scan = SamplingScan::new(spans.len() * dof);
         // the sample time only matters at the end: windows are checked at the config's rate
@@ -198,12 +199,12 @@ impl SpilledRecord {
             let len = data.samples();
             let start = chunks.last().map_or(0, |c: &Chunk| c.start + c.len);
             chunks.push(Chunk { start, len, offset });
+            // each column's values as bytes, written at once
             let mut write = |values: &mut dyn Iterator<Item = [u8; 8]>| {
-                for v in values {
-                    spill.write_all(&v).map_err(temporary)?;
-                    offset += 8;
-                }
-                Ok::<_, Error>(())
+                bytes.clear();
+                bytes.extend(values.flatten());
+                offset += bytes.len() as u64;
+                spill.write_all(&bytes).map_err(temporary)
             };
             for signals in signals_of(&data).into_iter().flatten() {
                 for x in signals.joints() {
@@ -409,6 +410,16 @@ impl Record for SpilledRecord {
 /// (a [`SpilledRecord`]: one source, a regular clock or `sample_rate`) and in memory
 /// otherwise. Every error is [`load`]'s: when the file cannot be kept on disk for any
 /// reason, [`load`] reads it.
+///
+/// ```no_run
+/// use robid_runtime::data::{Config, Record, load_record};
+///
+/// let config = Config::from_file(std::path::Path::new("identify.toml"))?;
+/// let record = load_record(&config, &[], 6)?;
+/// let first_second = record.read(0, (1.0 / record.sample_time()) as usize)?;
+/// println!("{} samples; the first second: {:?}", record.samples(), first_second.q);
+/// # Ok::<(), robid_runtime::Error>(())
+/// ```
 pub fn load_record(config: &Config, files: &[PathBuf], dof: usize) -> Result<Box<dyn Record>> {
     load_record_in(config, files, dof, WINDOW)
 }
