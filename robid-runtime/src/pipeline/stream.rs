@@ -143,27 +143,38 @@ impl<'a> Stream<'a> {
     }
 
     /// Calls `fold` with each block's equations in record order (each block built in
-    /// parallel); the first error stops it.
-    pub(crate) fn run(&self, mut fold: impl FnMut(Equations) -> Result<()>) -> Result<()> {
+    /// parallel); the first error stops it. A block's equations are folded while the
+    /// next block's are built, so that the sequential parts of both (the least squares
+    /// updates; reading and cutting a block) overlap.
+    pub(crate) fn run(&self, mut fold: impl FnMut(Equations) -> Result<()> + Send) -> Result<()> {
         let f = self.dec.factor();
         // the channels before decimation, one buffer for every block
         let mut rows = Vec::new();
+        let mut pending: Option<Equations> = None;
         for b in self.blocks() {
-            let eq = self.in_block(&b, |observer, core, lo, _| {
-                let mut eq = observer.window(
-                    &self.dec,
-                    self.overlap,
-                    self.rest.as_deref(),
-                    core,
-                    &mut rows,
-                )?;
-                // `lo` is a multiple of the factor: the decimated samples shift by lo / f
-                eq.sample.iter_mut().for_each(|k| *k += lo / f);
-                Ok(eq)
-            })?;
-            fold(eq)?;
+            let (next, folded) = rayon::join(
+                || {
+                    self.in_block(&b, |observer, core, lo, _| {
+                        let mut eq = observer.window(
+                            &self.dec,
+                            self.overlap,
+                            self.rest.as_deref(),
+                            core,
+                            &mut rows,
+                        )?;
+                        // `lo` is a multiple of the factor: the decimated samples shift by
+                        // lo / f
+                        eq.sample.iter_mut().for_each(|k| *k += lo / f);
+                        Ok(eq)
+                    })
+                },
+                || pending.take().map_or(Ok(()), &mut fold),
+            );
+            // the earlier block's error first, as if they had run in turn
+            folded?;
+            pending = Some(next?);
         }
-        Ok(())
+        pending.map_or(Ok(()), fold)
     }
 
     /// Measured and predicted torque per joint with `values` (the decimated sample time
