@@ -173,6 +173,53 @@ impl<'a> Observer<'a> {
     }
 
     /// Fills `row` (`stride` values) with sample k's channels.
+    /// [`Observer::row_at`], with NaN in every channel when the model refuses the sample.
+    fn full_row(&self, k: usize, st: &mut Scratch, row: &mut [f64]) {
+        if self.row_at(k, st, row).is_err() {
+            row.iter_mut().for_each(|v| *v = f64::NAN);
+        }
+    }
+
+    /// The predicted torque `W beta`, the torque and the velocity of each joint at
+    /// processed sample `k` (`out`: three blocks of `dof` values): the model's inverse
+    /// dynamics with the base parameters of `beta`, plus its extra columns, which is the
+    /// row's `W beta` to rounding at half the cost of the whole regressor row.
+    fn prediction_at(
+        &self,
+        k: usize,
+        st: &mut Scratch,
+        beta: &[f64],
+        out: &mut [f64],
+    ) -> std::result::Result<(), crate::LengthError> {
+        let (signals, lay, dof) = (self.signals, &self.lay, self.lay.dof);
+        signals.q.sample_into(k, &mut st.q);
+        signals.qd.sample_into(k, &mut st.qd);
+        signals.qdd.sample_into(k, &mut st.qdd);
+        let (predicted, measured) = out.split_at_mut(dof);
+        self.model
+            .inverse_dynamics_into(&st.q, &st.qd, &st.qdd, &beta[..lay.p], predicted)?;
+        let rotor = signals.rotor.as_ref();
+        if let Some(r) = rotor {
+            r.thetad.sample_into(k, &mut st.thetad);
+            r.thetadd.sample_into(k, &mut st.thetadd);
+        }
+        for (c, x) in self.extra.iter().enumerate() {
+            let r = rotor.map(|_| crate::drive::RotorSample {
+                thetad: &st.thetad,
+                thetadd: &st.thetadd,
+            });
+            x.fill_with_rotor(&st.q, &st.qd, &st.qdd, r, &mut st.col);
+            for (p, v) in predicted.iter_mut().zip(&st.col) {
+                *p += v * beta[lay.p + c];
+            }
+        }
+        for j in 0..dof {
+            measured[j] = signals.tau[j][k];
+            measured[dof + j] = st.qd[j];
+        }
+        Ok(())
+    }
+
     fn row_at(
         &self,
         k: usize,
@@ -246,8 +293,8 @@ impl Observer<'_> {
         })
     }
 
-    /// Runs `fill(full row, out)` for the processed samples `lo..hi` in
-    /// parallel, into `rows` (resized to rows of `width` values; `fill` writes every value
+    /// Runs `fill(sample, scratch, full row, out)` for the processed samples `lo..hi` in
+    /// parallel (`full row`: a buffer of a whole row, [`Observer::row_at`]'s), into `rows` (resized to rows of `width` values; `fill` writes every value
     /// of its row, so a buffer reused from the last block is not cleared: a block's
     /// channels are up to 64 MiB, which the allocator would otherwise map and zero
     /// afresh for every block); returns whether a call reported a miss, and the first
@@ -258,7 +305,8 @@ impl Observer<'_> {
         hi: usize,
         width: usize,
         rows: &mut Vec<f64>,
-        fill: impl Fn(&[f64], &mut [f64]) -> (bool, Option<(usize, f64)>) + Sync,
+        fill: impl Fn(usize, &mut Scratch, &mut [f64], &mut [f64]) -> (bool, Option<(usize, f64)>)
+        + Sync,
     ) -> (bool, Option<(usize, usize, f64)>) {
         let dof = self.lay.dof;
         let stride = self.lay.stride();
@@ -273,10 +321,7 @@ impl Observer<'_> {
                 let mut bad = None;
                 for (i, out) in chunk.chunks_exact_mut(width.max(1)).enumerate() {
                     let k = lo + b * BLOCK + i;
-                    if self.row_at(k, &mut st, &mut full).is_err() {
-                        full.iter_mut().for_each(|v| *v = f64::NAN);
-                    }
-                    let (m, x) = fill(&full, out);
+                    let (m, x) = fill(k, &mut st, &mut full, out);
                     missed |= m;
                     if bad.is_none()
                         && let Some((c, v)) = x
@@ -310,7 +355,8 @@ impl Observer<'_> {
         }
         let inactive: Vec<usize> = (0..stride).filter(|&c| !inside[c]).collect();
         let a = channels.len();
-        let (missed, bad) = self.rows_in_parallel(lo, hi, a, rows, |full, out| {
+        let (missed, bad) = self.rows_in_parallel(lo, hi, a, rows, |k, st, full, out| {
+            self.full_row(k, st, full);
             for (o, &c) in out.iter_mut().zip(channels) {
                 *o = full[c];
             }
@@ -452,13 +498,20 @@ impl Observer<'_> {
         let columns: Vec<Vec<usize>> = (0..dof)
             .map(|j| (0..cols).map(|c| lay.column(j, c)).collect())
             .collect();
-        let (_, bad) = self.rows_in_parallel(lo, hi, 3 * dof, &mut rows, |full, out| {
-            for (j, channels) in columns.iter().enumerate() {
-                out[j] = channels.iter().zip(beta).map(|(&k, b)| full[k] * b).sum();
-                out[dof + j] = full[lay.tau(j)];
-                out[2 * dof + j] = full[lay.qd(j)];
+        let (_, bad) = self.rows_in_parallel(lo, hi, 3 * dof, &mut rows, |k, st, full, out| {
+            match self.prediction_at(k, st, beta, out) {
+                Ok(()) if first_non_finite(out).is_none() => (false, None),
+                // the whole row, as the dense prediction takes it, and the channel to blame
+                _ => {
+                    self.full_row(k, st, full);
+                    for (j, channels) in columns.iter().enumerate() {
+                        out[j] = channels.iter().zip(beta).map(|(&c, b)| full[c] * b).sum();
+                        out[dof + j] = full[lay.tau(j)];
+                        out[2 * dof + j] = full[lay.qd(j)];
+                    }
+                    (false, first_non_finite(full))
+                }
             }
-            (false, first_non_finite(full))
         });
         if let Some((k, c, v)) = bad {
             return Err(self.bad_channel(k, c, v));
