@@ -337,41 +337,79 @@ impl Observer<'_> {
 
     /// The samples `lo..hi` of the channels `channels` of every sample row (in parallel),
     /// decimated: `(values, width)` groups of [`GROUP`] channels, row-major, one row per
-    /// decimated sample (all channels in one group without decimation). A channel outside
-    /// `channels` that is not zero is a miss (reported as `Ok(None)`). `rows` is the
-    /// buffer of the channels before decimation.
+    /// decimated sample. A channel outside `channels` that is not zero is a miss (reported
+    /// as `Ok(None)`). `groups` are the buffers of the groups before decimation, reused
+    /// from block to block: each row's channels are written straight into their group's
+    /// buffer, in the layout the decimator filters in place ([`Decimator::apply_gathered`]),
+    /// so the channels are never copied between the regressor and the filter.
     fn decimated_channels(
         &self,
         dec: &Decimator,
         lo: usize,
         hi: usize,
         channels: &[usize],
-        rows: &mut Vec<f64>,
+        groups: &mut Vec<Vec<f64>>,
     ) -> Result<Option<Vec<Decimated>>> {
-        let stride = self.lay.stride();
+        let (dof, stride) = (self.lay.dof, self.lay.stride());
         let mut inside = vec![false; stride];
         for &c in channels {
             inside[c] = true;
         }
         let inactive: Vec<usize> = (0..stride).filter(|&c| !inside[c]).collect();
-        let a = channels.len();
-        let (missed, bad) = self.rows_in_parallel(lo, hi, a, rows, |k, st, full, out| {
-            self.full_row(k, st, full);
-            for (o, &c) in out.iter_mut().zip(channels) {
-                *o = full[c];
+        let (n, pad) = (hi - lo, dec.first_pad());
+        let sets: Vec<&[usize]> = channels.chunks(GROUP).collect();
+        groups.resize_with(sets.len(), Vec::new);
+        groups.truncate(sets.len());
+        // each group's samples cut into the chunks of rows the threads fill: chunk b holds
+        // rows b * BLOCK.. of every group (the pads are the filter's)
+        let mut chunks: Vec<Vec<&mut [f64]>> = (0..n.div_ceil(BLOCK)).map(|_| Vec::new()).collect();
+        for (buffer, set) in groups.iter_mut().zip(&sets) {
+            let g = set.len();
+            buffer.resize((n + 2 * pad) * g, 0.0);
+            let body = &mut buffer[pad * g..(pad + n) * g];
+            for (chunk, part) in chunks.iter_mut().zip(body.chunks_mut(BLOCK * g)) {
+                chunk.push(part);
             }
-            let bad = first_non_finite(full);
-            // a non-finite inactive channel is found by `bad`
-            let missed = inactive.iter().any(|&c| full[c] != 0.0);
-            (missed, bad)
-        });
+        }
+        let (missed, bad) = chunks
+            .into_par_iter()
+            .enumerate()
+            .map(|(b, mut parts)| {
+                let mut st = Scratch::new(dof);
+                let mut full = vec![0.0; stride];
+                let (mut missed, mut bad) = (false, None);
+                for i in 0..BLOCK.min(n - b * BLOCK) {
+                    let k = lo + b * BLOCK + i;
+                    self.full_row(k, &mut st, &mut full);
+                    for (part, set) in parts.iter_mut().zip(&sets) {
+                        let g = set.len();
+                        for (d, &c) in part[i * g..(i + 1) * g].iter_mut().zip(*set) {
+                            *d = full[c];
+                        }
+                    }
+                    // a non-finite inactive channel is found by `bad`
+                    missed |= inactive.iter().any(|&c| full[c] != 0.0);
+                    if bad.is_none()
+                        && let Some((c, v)) = first_non_finite(&full)
+                    {
+                        bad = Some((k, c, v));
+                    }
+                }
+                (missed, bad)
+            })
+            .reduce(|| (false, None), |x, y| (x.0 || y.0, x.1.or(y.1)));
         if let Some((k, c, v)) = bad {
             return Err(self.bad_channel(k, c, v));
         }
         if missed {
             return Ok(None);
         }
-        decimate_rows(dec, rows, a).map(Some)
+        groups
+            .par_iter_mut()
+            .zip(&sets)
+            .map(|(buffer, set)| Ok((dec.apply_gathered(buffer, set.len())?, set.len())))
+            .collect::<Result<Vec<_>>>()
+            .map(Some)
     }
 
     /// The equations of the decimated samples whose processed samples lie in `core`
@@ -381,7 +419,7 @@ impl Observer<'_> {
     /// and those near rest (`rest`, per joint) removed. The same equations as [`observe`]
     /// gives for these samples, to the decimation filter's settling tolerance. Channels
     /// that are zero at a few probed samples are assumed zero (checked on every sample,
-    /// then all channels taken if one is not), as in [`observe`]. `rows` is a buffer for
+    /// then all channels taken if one is not), as in [`observe`]. `groups` are buffers for
     /// the channels before decimation, reused from block to block.
     pub(crate) fn window(
         &self,
@@ -389,7 +427,7 @@ impl Observer<'_> {
         overlap: usize,
         rest: Option<&[f64]>,
         core: std::ops::Range<usize>,
-        rows: &mut Vec<f64>,
+        groups: &mut Vec<Vec<f64>>,
     ) -> Result<Equations> {
         let (lay, dof) = (&self.lay, self.lay.dof);
         let n = self.signals.samples();
@@ -413,25 +451,21 @@ impl Observer<'_> {
             active[lay.qd(j)] = true;
         }
         let mut channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
-        let groups = match self.decimated_channels(dec, lo, hi, &channels, rows)? {
+        let decimated = match self.decimated_channels(dec, lo, hi, &channels, groups)? {
             Some(g) => g,
             None => {
                 channels = (0..stride).collect();
-                self.decimated_channels(dec, lo, hi, &channels, rows)?
+                self.decimated_channels(dec, lo, hi, &channels, groups)?
                     .unwrap_or_default()
             }
         };
         let mut place: Vec<Option<(usize, usize)>> = vec![None; stride];
         for (i, &c) in channels.iter().enumerate() {
-            place[c] = Some(if f == 1 {
-                (0, i)
-            } else {
-                (i / GROUP, i % GROUP)
-            });
+            place[c] = Some((i / GROUP, i % GROUP));
         }
         let value = |i: usize, c: usize| -> f64 {
             place[c].map_or(0.0, |(g, k)| {
-                let (v, width) = &groups[g];
+                let (v, width) = &decimated[g];
                 v[i * width + k]
             })
         };

@@ -148,8 +148,8 @@ impl<'a> Stream<'a> {
     /// updates; reading and cutting a block) overlap.
     pub(crate) fn run(&self, mut fold: impl FnMut(Equations) -> Result<()> + Send) -> Result<()> {
         let f = self.dec.factor();
-        // the channels before decimation, one buffer for every block
-        let mut rows = Vec::new();
+        // the channels before decimation, one set of buffers for every block
+        let mut groups = Vec::new();
         let mut pending: Option<Equations> = None;
         for b in self.blocks() {
             let (next, folded) = rayon::join(
@@ -160,7 +160,7 @@ impl<'a> Stream<'a> {
                             self.overlap,
                             self.rest.as_deref(),
                             core,
-                            &mut rows,
+                            &mut groups,
                         )?;
                         // `lo` is a multiple of the factor: the decimated samples shift by
                         // lo / f

@@ -104,41 +104,57 @@ impl Decimator {
     ) -> Result<Vec<f64>> {
         let g = channels.len();
         let contiguous = channels.windows(2).all(|w| w[1] == w[0] + 1);
-        // the channels with `pad` rows before and after them, which the filter fills (so
-        // the body is written once, not zeroed first)
-        let gather = |pad: usize| {
-            let n = source.len() / stride.max(1);
-            let mut ext = Vec::with_capacity((n + 2 * pad) * g);
-            ext.resize(pad * g, 0.0);
-            for row in source.chunks_exact(stride.max(1)).take(n) {
-                if contiguous && g > 0 {
-                    ext.extend_from_slice(&row[channels[0]..channels[0] + g]);
-                } else {
-                    ext.extend(channels.iter().map(|&c| row[c]));
-                }
+        // the channels with the first stage's pad rows before and after them, which the
+        // filter fills (so the samples are written once, not zeroed first)
+        let (n, pad) = (source.len() / stride.max(1), self.first_pad());
+        let mut ext = Vec::with_capacity((n + 2 * pad) * g);
+        ext.resize(pad * g, 0.0);
+        for row in source.chunks_exact(stride.max(1)).take(n) {
+            if contiguous && g > 0 {
+                ext.extend_from_slice(&row[channels[0]..channels[0] + g]);
+            } else {
+                ext.extend(channels.iter().map(|&c| row[c]));
             }
-            ext.resize((n + 2 * pad) * g, 0.0);
-            ext
-        };
+        }
+        ext.resize((n + 2 * pad) * g, 0.0);
+        self.apply_gathered(&mut ext, g)
+    }
+
+    /// Rows of padding the first filtering stage needs on each side of a block (0 when no
+    /// stage filters): the layout [`Decimator::apply_gathered`] takes.
+    pub(crate) fn first_pad(&self) -> usize {
+        self.stages
+            .iter()
+            .find_map(|(_, sos)| sos.as_ref().map(Sos::pad_length))
+            .unwrap_or(0)
+    }
+
+    /// [`Decimator::apply_block`] of `g` channels already gathered into `ext`: row-major,
+    /// [`Decimator::first_pad`] rows before and after the samples, which the filter fills
+    /// (their values are not read). The first stage filters `ext` in place, so that its
+    /// buffer can serve the next block; without a filtering stage the samples are taken
+    /// from it as they are.
+    pub(crate) fn apply_gathered(&self, ext: &mut Vec<f64>, g: usize) -> Result<Vec<f64>> {
         let mut block: Option<Vec<f64>> = None;
         for (q, sos) in &self.stages {
             let Some(sos) = sos else { continue };
             let pad = sos.pad_length();
-            let mut ext = match block.take() {
-                None => gather(pad),
+            let mut later;
+            let ext: &mut Vec<f64> = match block.take() {
+                None => ext,
                 Some(b) => {
-                    let mut ext = Vec::with_capacity(b.len() + 2 * pad * g);
-                    ext.resize(pad * g, 0.0);
-                    ext.extend_from_slice(&b);
-                    ext.resize(b.len() + 2 * pad * g, 0.0);
-                    ext
+                    later = Vec::with_capacity(b.len() + 2 * pad * g);
+                    later.resize(pad * g, 0.0);
+                    later.extend_from_slice(&b);
+                    later.resize(b.len() + 2 * pad * g, 0.0);
+                    &mut later
                 }
             };
             if g == 0 {
                 block = Some(Vec::new());
                 continue;
             }
-            sos.filtfilt_extended(&mut ext, g)?;
+            sos.filtfilt_extended(ext, g)?;
             let n = ext.len() / g - 2 * pad;
             block = Some(
                 ext[pad * g..(pad + n) * g]
@@ -149,7 +165,7 @@ impl Decimator {
                     .collect(),
             );
         }
-        Ok(block.unwrap_or_else(|| gather(0)))
+        Ok(block.unwrap_or_else(|| std::mem::take(ext)))
     }
 
     /// Decimates many signals in parallel; signals that are identically zero are
