@@ -470,9 +470,14 @@ impl Observer<'_> {
             })
         };
         let cols = lay.p + lay.e;
+        // at most one equation per joint and decimated sample
+        let most = (core.end.div_ceil(f) - core.start / f) * dof;
         let mut eq = Equations {
             cols,
-            ..Equations::default()
+            w: Vec::with_capacity(most * cols),
+            y: Vec::with_capacity(most),
+            joint: Vec::with_capacity(most),
+            sample: Vec::with_capacity(most),
         };
         let first = lo / f;
         for k in core.start / f..core.end.div_ceil(f) {

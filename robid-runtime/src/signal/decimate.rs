@@ -156,14 +156,11 @@ impl Decimator {
             }
             sos.filtfilt_extended(ext, g)?;
             let n = ext.len() / g - 2 * pad;
-            block = Some(
-                ext[pad * g..(pad + n) * g]
-                    .chunks_exact(g)
-                    .step_by(*q)
-                    .flatten()
-                    .copied()
-                    .collect(),
-            );
+            let mut kept = Vec::with_capacity(n.div_ceil(*q) * g);
+            for row in ext[pad * g..(pad + n) * g].chunks_exact(g).step_by(*q) {
+                kept.extend_from_slice(row);
+            }
+            block = Some(kept);
         }
         Ok(block.unwrap_or_else(|| std::mem::take(ext)))
     }
