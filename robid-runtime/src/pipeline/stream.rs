@@ -182,13 +182,21 @@ impl<'a> Stream<'a> {
     /// order: joint by joint, samples in order; with the decimated samples, and the
     /// torque before filtering at them (before the low-pass when it filters the torque,
     /// before the decimation otherwise; `None` when neither filters it).
-    fn prediction(&self, values: &[f64], dt: f64) -> Result<PredictionParts> {
+    /// `expected`: the number of equations per joint when known (the estimation pass
+    /// counted them), so that the per-equation lists, the one part of the result that
+    /// grows with the record, are allocated once at their size.
+    fn prediction(
+        &self,
+        values: &[f64],
+        dt: f64,
+        expected: Option<&[usize]>,
+    ) -> Result<PredictionParts> {
         let dof = self.model.dof();
         let f = self.dec.factor();
-        let mut measured = vec![Vec::new(); dof];
-        let mut predicted = vec![Vec::new(); dof];
-        let mut samples = vec![Vec::new(); dof];
-        let mut raw = vec![Vec::new(); dof];
+        let size = |j: usize| expected.and_then(|e| e.get(j)).map_or(0, |&n| n);
+        let lists = || -> Vec<Vec<f64>> { (0..dof).map(|j| Vec::with_capacity(size(j))).collect() };
+        let (mut measured, mut predicted, mut raw) = (lists(), lists(), lists());
+        let mut samples: Vec<Vec<usize>> = (0..dof).map(|j| Vec::with_capacity(size(j))).collect();
         let mut has_raw = f > 1;
         for b in self.blocks() {
             self.in_block(&b, |observer, core, lo, unfiltered| {
@@ -316,10 +324,13 @@ pub(crate) fn identify_streaming(
     };
     let mut ls = StreamingLeastSquares::new(names.clone(), dof).map_err(at)?;
     let mut dominance = Dominance::new(cols);
+    // equations per joint, before the pieces: the prediction's
+    let mut per_joint = vec![0; dof];
     stream
         .run(|eq| {
             for i in 0..eq.y.len() {
                 dominance.push(eq.row(i), eq.sample[i]);
+                per_joint[eq.joint[i]] += 1;
             }
             if config.processing.pieces.is_none() {
                 return ls.push_rows(&eq.joint, &eq.w, &eq.y);
@@ -377,7 +388,9 @@ pub(crate) fn identify_streaming(
         });
     }
     let dt = data.sample_time() * factor as f64;
-    let mut parts = stream.prediction(&estimate.values, dt).map_err(at)?;
+    let mut parts = stream
+        .prediction(&estimate.values, dt, Some(&per_joint))
+        .map_err(at)?;
     parts.prediction = parts
         .prediction
         .starting_at(kept.start as f64 * data.sample_time());
@@ -425,7 +438,7 @@ pub(crate) fn validate_streaming(
     }
     let dt = data.sample_time() * stream.factor() as f64;
     let mut parts = stream
-        .prediction(values, dt)
+        .prediction(values, dt, None)
         .map_err(|e| located(e, config, data, kept))?;
     parts.prediction = parts
         .prediction
@@ -487,7 +500,7 @@ pub(crate) fn stacked_streaming(
             samples,
             ..
         } = s
-            .prediction(&estimate.values, dt)
+            .prediction(&estimate.values, dt, None)
             .map_err(|e| located(e, config, d, &plan.kept))?;
         for (j, s) in samples.iter().enumerate() {
             stacked.measured[j].extend(&p.measured[j]);
