@@ -198,12 +198,7 @@ impl Dataset {
     pub fn slice(&self, start: usize, end: usize) -> Result<Self> {
         let end = end.min(self.samples());
         if start >= end {
-            return Err(Error::TooFewSamples {
-                context: format!("{} rows {start}..{end}", self.name),
-                found: 0,
-                required: 1,
-                hint: "choose a range inside the data",
-            });
+            return Err(empty_range(&self.name, start, end));
         }
         let cut = |v: &Signals| v.range(start..end);
         Ok(Self {
@@ -223,6 +218,16 @@ impl Dataset {
                 lines: o.lines.get(start..end).unwrap_or_default().to_vec(),
             }),
         })
+    }
+}
+
+/// The error for the samples `start..end` of the data named `name`, which hold none.
+pub(crate) fn empty_range(name: &str, start: usize, end: usize) -> Error {
+    Error::TooFewSamples {
+        context: format!("{name} rows {start}..{end}"),
+        found: 0,
+        required: 1,
+        hint: "choose a range inside the data",
     }
 }
 

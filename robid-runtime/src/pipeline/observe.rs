@@ -191,30 +191,18 @@ impl<'a> Observer<'a> {
         beta: &[f64],
         out: &mut [f64],
     ) -> std::result::Result<(), crate::LengthError> {
-        let (signals, lay, dof) = (self.signals, &self.lay, self.lay.dof);
-        signals.q.sample_into(k, &mut st.q);
-        signals.qd.sample_into(k, &mut st.qd);
-        signals.qdd.sample_into(k, &mut st.qdd);
+        let (lay, dof) = (&self.lay, self.lay.dof);
+        self.load_sample(k, st);
         let (predicted, measured) = out.split_at_mut(dof);
         self.model
             .inverse_dynamics_into(&st.q, &st.qd, &st.qdd, &beta[..lay.p], predicted)?;
-        let rotor = signals.rotor.as_ref();
-        if let Some(r) = rotor {
-            r.thetad.sample_into(k, &mut st.thetad);
-            r.thetadd.sample_into(k, &mut st.thetadd);
-        }
-        for (c, x) in self.extra.iter().enumerate() {
-            let r = rotor.map(|_| crate::drive::RotorSample {
-                thetad: &st.thetad,
-                thetadd: &st.thetadd,
-            });
-            x.fill_with_rotor(&st.q, &st.qd, &st.qdd, r, &mut st.col);
-            for (p, v) in predicted.iter_mut().zip(&st.col) {
+        self.extra_columns(st, |c, column| {
+            for (p, v) in predicted.iter_mut().zip(column) {
                 *p += v * beta[lay.p + c];
             }
-        }
+        });
         for j in 0..dof {
-            measured[j] = signals.tau[j][k];
+            measured[j] = self.signals.tau[j][k];
             measured[dof + j] = st.qd[j];
         }
         Ok(())
@@ -226,31 +214,46 @@ impl<'a> Observer<'a> {
         st: &mut Scratch,
         row: &mut [f64],
     ) -> std::result::Result<(), crate::LengthError> {
-        let (signals, lay, dof) = (self.signals, &self.lay, self.lay.dof);
+        let (lay, dof) = (&self.lay, self.lay.dof);
+        self.load_sample(k, st);
+        self.model
+            .base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
+        self.extra_columns(st, |c, column| {
+            let start = lay.column(0, lay.p + c);
+            row[start..start + dof].copy_from_slice(column);
+        });
+        for j in 0..dof {
+            row[lay.tau(j)] = self.signals.tau[j][k];
+            row[lay.qd(j)] = st.qd[j];
+        }
+        Ok(())
+    }
+
+    /// Processed sample `k`'s positions, velocities and accelerations (and the reflected
+    /// motor signals, when the data have them) into `st`.
+    fn load_sample(&self, k: usize, st: &mut Scratch) {
+        let signals = self.signals;
         signals.q.sample_into(k, &mut st.q);
         signals.qd.sample_into(k, &mut st.qd);
         signals.qdd.sample_into(k, &mut st.qdd);
-        self.model
-            .base_regressor_into(&st.q, &st.qd, &st.qdd, &mut row[..dof * lay.p])?;
-        let rotor = signals.rotor.as_ref();
-        if let Some(r) = rotor {
+        if let Some(r) = &signals.rotor {
             r.thetad.sample_into(k, &mut st.thetad);
             r.thetadd.sample_into(k, &mut st.thetadd);
         }
+    }
+
+    /// Calls `each(c, values)` with extra column `c`'s value for every joint at the sample
+    /// [`Observer::load_sample`] put in `st`.
+    fn extra_columns(&self, st: &mut Scratch, mut each: impl FnMut(usize, &[f64])) {
+        let rotor = self.signals.rotor.is_some();
         for (c, x) in self.extra.iter().enumerate() {
-            let r = rotor.map(|_| crate::drive::RotorSample {
+            let r = rotor.then_some(crate::drive::RotorSample {
                 thetad: &st.thetad,
                 thetadd: &st.thetadd,
             });
             x.fill_with_rotor(&st.q, &st.qd, &st.qdd, r, &mut st.col);
-            let start = lay.column(0, lay.p + c);
-            row[start..start + dof].copy_from_slice(&st.col);
+            each(c, &st.col);
         }
-        for j in 0..dof {
-            row[lay.tau(j)] = signals.tau[j][k];
-            row[lay.qd(j)] = st.qd[j];
-        }
-        Ok(())
     }
 }
 

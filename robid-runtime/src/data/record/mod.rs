@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use crate::DataError;
-use crate::data::dataset::DataOrigin;
+use crate::data::dataset::{DataOrigin, empty_range};
 use crate::data::load::{
     assemble, check_cutoff, check_joints, check_ranges, check_step, load, source_columns,
     source_paths, stale_warning, take_time,
@@ -337,12 +337,7 @@ impl Record for SpilledRecord {
     fn read(&self, start: usize, end: usize) -> Result<Cow<'_, Dataset>> {
         let end = end.min(self.samples);
         if start >= end {
-            return Err(Error::TooFewSamples {
-                context: format!("{} rows {start}..{end}", self.name),
-                found: 0,
-                required: 1,
-                hint: "choose a range inside the data",
-            });
+            return Err(empty_range(&self.name, start, end));
         }
         let mut file = self.spill.lock().map_err(|_| {
             Error::setting(
