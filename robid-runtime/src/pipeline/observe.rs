@@ -358,9 +358,10 @@ impl Observer<'_> {
         for &c in channels {
             inside[c] = true;
         }
-        let inactive: Vec<usize> = (0..stride).filter(|&c| !inside[c]).collect();
+        let inactive = runs(&(0..stride).filter(|&c| !inside[c]).collect::<Vec<_>>());
         let (n, pad) = (hi - lo, dec.first_pad());
         let sets: Vec<&[usize]> = channels.chunks(GROUP).collect();
+        let set_runs: Vec<Vec<Run>> = sets.iter().map(|set| runs(set)).collect();
         groups.resize_with(sets.len(), Vec::new);
         groups.truncate(sets.len());
         // each group's samples cut into the chunks of rows the threads fill: chunk b holds
@@ -384,14 +385,17 @@ impl Observer<'_> {
                 for i in 0..BLOCK.min(n - b * BLOCK) {
                     let k = lo + b * BLOCK + i;
                     self.full_row(k, &mut st, &mut full);
-                    for (part, set) in parts.iter_mut().zip(&sets) {
-                        let g = set.len();
-                        for (d, &c) in part[i * g..(i + 1) * g].iter_mut().zip(*set) {
-                            *d = full[c];
+                    for ((part, set), set_runs) in parts.iter_mut().zip(&sets).zip(&set_runs) {
+                        let row = &mut part[i * set.len()..(i + 1) * set.len()];
+                        for run in set_runs {
+                            row[run.at..run.at + run.len]
+                                .copy_from_slice(&full[run.from..run.from + run.len]);
                         }
                     }
                     // a non-finite inactive channel is found by `bad`
-                    missed |= inactive.iter().any(|&c| full[c] != 0.0);
+                    missed |= inactive
+                        .iter()
+                        .any(|run| full[run.from..run.from + run.len].iter().any(|&v| v != 0.0));
                     if bad.is_none()
                         && let Some((c, v)) = first_non_finite(&full)
                     {
@@ -583,6 +587,27 @@ impl Observer<'_> {
         }
         Ok(out)
     }
+}
+
+/// Consecutive indices of a list: the `len` values from index `from` go to position
+/// `at` of the list's values, so that they are copied as one slice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Run {
+    from: usize,
+    at: usize,
+    len: usize,
+}
+
+/// The runs of consecutive values of `indices`, in order.
+fn runs(indices: &[usize]) -> Vec<Run> {
+    let mut out: Vec<Run> = Vec::new();
+    for (at, &from) in indices.iter().enumerate() {
+        match out.last_mut() {
+            Some(run) if run.from + run.len == from => run.len += 1,
+            _ => out.push(Run { from, at, len: 1 }),
+        }
+    }
+    out
 }
 
 /// The first non-finite value of `x` with its index. The common case, every value
@@ -800,4 +825,20 @@ pub fn observe(
         }),
         e => e,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Run, runs};
+
+    #[test]
+    fn runs_cover_every_index_once_in_order() {
+        let r = |from, at, len| Run { from, at, len };
+        assert_eq!(runs(&[]), vec![]);
+        assert_eq!(runs(&[4]), vec![r(4, 0, 1)]);
+        assert_eq!(
+            runs(&[0, 1, 2, 5, 6, 9, 3]),
+            vec![r(0, 0, 3), r(5, 3, 2), r(9, 5, 1), r(3, 6, 1)]
+        );
+    }
 }

@@ -99,7 +99,10 @@ const SETTLING_TOLERANCE: f64 = 1e-1;
 
 fn filter_all(sos: Option<&Sos>, pad: usize, x: &Signals) -> Result<Signals> {
     match sos {
-        Some(s) => x.try_map(|v| s.filtfilt_padded(v, pad)),
+        Some(s) => {
+            let joints: Vec<&[f64]> = x.joints().collect();
+            Signals::new(s.filtfilt_padded_all(&joints, pad)?)
+        }
         None => Ok(x.clone()),
     }
 }

@@ -95,6 +95,45 @@ impl Sos {
         Ok(y[pad..pad + n].to_vec())
     }
 
+    /// [`Sos::filtfilt_padded`] of every signal of `x` (all of the same length), the
+    /// signals filtered side by side ([`Sos::filtfilt_extended`]: one vector instruction
+    /// serves several of them), with the same results value for value: each channel goes
+    /// through the same operations as alone.
+    pub fn filtfilt_padded_all(&self, x: &[&[f64]], pad: usize) -> Result<Vec<Vec<f64>>> {
+        let (g, n) = (x.len(), x.first().map_or(0, |v| v.len()));
+        if x.iter().any(|v| v.len() != n) {
+            return Err(Error::DimensionMismatch {
+                what: "samples of each filtered signal".into(),
+                expected: n,
+                found: x.iter().map(|v| v.len()).find(|&l| l != n).unwrap_or(n),
+            });
+        }
+        let pad = pad.max(self.pad_length()).min(n.saturating_sub(1));
+        self.check_length(n)?;
+        if g == 0 {
+            return Ok(Vec::new());
+        }
+        // the odd extension by `pad` of `filtfilt_padded`, between the filter's own pad
+        // rows, which `filtfilt_extended` fills
+        let outer = self.pad_length();
+        let padded = n + 2 * pad;
+        let mut ext = vec![0.0; (padded + 2 * outer) * g];
+        for (c, v) in x.iter().enumerate() {
+            let value = |r: usize| match r {
+                r if r < pad => 2.0 * v[0] - v[pad - r],
+                r if r < pad + n => v[r - pad],
+                r => 2.0 * v[n - 1] - v[n - 1 - (r - pad - n + 1)],
+            };
+            for r in 0..padded {
+                ext[(outer + r) * g + c] = value(r);
+            }
+        }
+        self.filtfilt_extended(&mut ext, g)?;
+        Ok((0..g)
+            .map(|c| (0..n).map(|k| ext[(outer + pad + k) * g + c]).collect())
+            .collect())
+    }
+
     /// Steady-state section states for a unit constant input (scipy's `sosfilt_zi`).
     pub fn steady_state(&self) -> Vec<[f64; 2]> {
         let mut scale = 1.0;
@@ -370,6 +409,36 @@ mod tests {
             sos.filtfilt_channels(&mut vec![0.0; 3 * sos.pad_length()], 3)
                 .is_err()
         );
+    }
+
+    #[test]
+    fn signals_filtered_side_by_side_equal_each_alone() {
+        let sos = crate::signal::butterworth_hz(4, 20.0, 1000.0).unwrap();
+        for (g, n, pad) in [(7, 400, 150), (1, 40, 0), (5, 30, 500), (4, 2000, 1000)] {
+            let x: Vec<Vec<f64>> = (0..g)
+                .map(|c| {
+                    (0..n)
+                        .map(|k| {
+                            ((k * (c + 2)) as f64 * 0.013).sin() * (c as f64 + 0.5) + 0.1 * k as f64
+                        })
+                        .collect()
+                })
+                .collect();
+            let views: Vec<&[f64]> = x.iter().map(Vec::as_slice).collect();
+            let all = sos.filtfilt_padded_all(&views, pad).unwrap();
+            for (c, v) in x.iter().enumerate() {
+                assert_eq!(
+                    all[c],
+                    sos.filtfilt_padded(v, pad).unwrap(),
+                    "g {g} n {n} channel {c}"
+                );
+            }
+        }
+        assert!(
+            sos.filtfilt_padded_all(&[&[0.0; 10][..], &[0.0; 9][..]], 0)
+                .is_err()
+        );
+        assert!(sos.filtfilt_padded_all(&[&[0.0; 5][..]], 0).is_err());
     }
 
     #[test]
