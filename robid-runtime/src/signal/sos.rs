@@ -96,8 +96,8 @@ impl Sos {
     }
 
     /// [`Sos::filtfilt_padded`] of every signal of `x` (all of the same length), the
-    /// signals filtered side by side ([`Sos::filtfilt_extended`]: one vector instruction
-    /// serves several of them), with the same results value for value: each channel goes
+    /// signals filtered side by side (as [`Sos::filtfilt_channels`] does: one vector
+    /// instruction serves several of them), with the same results value for value: each channel goes
     /// through the same operations as alone.
     pub fn filtfilt_padded_all(&self, x: &[&[f64]], pad: usize) -> Result<Vec<Vec<f64>>> {
         let (g, n) = (x.len(), x.first().map_or(0, |v| v.len()));
