@@ -4203,13 +4203,13 @@ impl Lwr4 {
         let c5 = T::from_f64(0.8);
         let mut out = [T::ZERO; 49];
         out[48] = ZZ7;
-        let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
-            q2,
-            q3,
-            q4,
-            q5,
-            q6,
+        let ([t10, t8, t6, t4, t2, t0], [t11, t9, t7, t5, t3, t1]) = T::sin_cos_array([
             q7,
+            q6,
+            q5,
+            q4,
+            q3,
+            q2,
         ]);
         let t12 = t11 * MY7;
         let t13 = t10 * MX7;

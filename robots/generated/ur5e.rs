@@ -3020,12 +3020,12 @@ impl Ur5e {
         let c9 = T::from_f64(0.85);
         let mut out = [T::ZERO; 36];
         out[35] = ZZ6;
-        let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
-            q2,
-            q3,
-            q4,
-            q5,
+        let ([t8, t6, t4, t2, t0], [t9, t7, t5, t3, t1]) = T::sin_cos_array([
             q6,
+            q5,
+            q4,
+            q3,
+            q2,
         ]);
         let t10 = t9 * MY6;
         let t11 = t8 * MX6;

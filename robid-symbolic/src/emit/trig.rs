@@ -91,6 +91,7 @@ impl TrigBatch {
                 }
             };
         }
+        batch.order_by_first_use(program);
         // The instructions the batched angles are computed from.
         let mut stack: Vec<u32> = batch
             .angles
@@ -116,6 +117,41 @@ impl TrigBatch {
     }
 }
 
+impl TrigBatch {
+    /// Puts the angles in the order the arithmetic first needs their sine or cosine (ties
+    /// and unused ones in the order found): the batch evaluates them in that order, so
+    /// that a program whose first steps need the last joint's angle (the mass matrix's
+    /// backward recursion) does not wait for every other angle's sine and cosine first.
+    fn order_by_first_use(&mut self, program: &Program) {
+        let mut first_use = vec![usize::MAX; self.angles.len()];
+        let of_result: std::collections::HashMap<usize, usize> = (0..self.angles.len())
+            .flat_map(|a| {
+                [self.sin[a], self.cos[a]]
+                    .into_iter()
+                    .flatten()
+                    .map(move |i| (i, a))
+            })
+            .collect();
+        for (j, instr) in program.instrs.iter().enumerate() {
+            if self.role[j] != Role::InOrder {
+                continue;
+            }
+            for v in instr.operands() {
+                if let Value::Temp(t) = v
+                    && let Some(&a) = of_result.get(&(t as usize))
+                {
+                    first_use[a] = first_use[a].min(j);
+                }
+            }
+        }
+        let mut order: Vec<usize> = (0..self.angles.len()).collect();
+        order.sort_by_key(|&a| first_use[a]);
+        self.angles = order.iter().map(|&a| self.angles[a]).collect();
+        self.sin = order.iter().map(|&a| self.sin[a]).collect();
+        self.cos = order.iter().map(|&a| self.cos[a]).collect();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::{Role, TrigBatch};
@@ -126,6 +162,24 @@ mod tests {
             instrs,
             ..Program::default()
         }
+    }
+
+    /// The batch takes the angles in the order the arithmetic first needs them: here the
+    /// third angle's cosine, then the first's sine; the second's is never used.
+    #[test]
+    fn angles_are_batched_in_the_order_they_are_first_needed() {
+        let (q1, q2, q3) = (Value::Input(0), Value::Input(1), Value::Input(2));
+        let p = program(vec![
+            Instr::Sin(q1),                             // t0
+            Instr::Sin(q2),                             // t1
+            Instr::Cos(q3),                             // t2
+            Instr::Mul(Value::Temp(2), q1),             // t3: needs q3
+            Instr::Add(Value::Temp(3), Value::Temp(0)), // t4: needs q1
+        ]);
+        let b = TrigBatch::new(&p);
+        assert_eq!(b.angles, vec![q3, q1, q2]);
+        assert_eq!(b.sin, vec![None, Some(0), Some(1)]);
+        assert_eq!(b.cos, vec![Some(2), None, None]);
     }
 
     /// Inputs, constants and temporaries computed without trigonometry are batched (the
