@@ -123,25 +123,27 @@ impl TrigBatch {
     /// that a program whose first steps need the last joint's angle (the mass matrix's
     /// backward recursion) does not wait for every other angle's sine and cosine first.
     fn order_by_first_use(&mut self, program: &Program) {
-        let mut first_use = vec![usize::MAX; self.angles.len()];
-        let of_result: std::collections::HashMap<usize, usize> = (0..self.angles.len())
-            .flat_map(|a| {
-                [self.sin[a], self.cos[a]]
-                    .into_iter()
-                    .flatten()
-                    .map(move |i| (i, a))
-            })
-            .collect();
-        for (j, instr) in program.instrs.iter().enumerate() {
-            if self.role[j] != Role::InOrder {
-                continue;
+        // the angle whose sine or cosine each instruction gives (a copy's as its source's)
+        let mut angle_of: Vec<Option<usize>> = vec![None; program.instrs.len()];
+        for (a, (s, c)) in self.sin.iter().zip(&self.cos).enumerate() {
+            for i in [s, c].into_iter().flatten() {
+                angle_of[*i] = Some(a);
             }
-            for v in instr.operands() {
-                if let Value::Temp(t) = v
-                    && let Some(&a) = of_result.get(&(t as usize))
-                {
-                    first_use[a] = first_use[a].min(j);
+        }
+        let mut first_use = vec![usize::MAX; self.angles.len()];
+        for (j, instr) in program.instrs.iter().enumerate() {
+            match self.role[j] {
+                Role::Copy { of } => angle_of[j] = angle_of[of],
+                Role::InOrder => {
+                    for v in instr.operands() {
+                        if let Value::Temp(t) = v
+                            && let Some(a) = angle_of[t as usize]
+                        {
+                            first_use[a] = first_use[a].min(j);
+                        }
+                    }
                 }
+                Role::Hoisted | Role::Batched => {}
             }
         }
         let mut order: Vec<usize> = (0..self.angles.len()).collect();
@@ -165,7 +167,7 @@ mod tests {
     }
 
     /// The batch takes the angles in the order the arithmetic first needs them: here the
-    /// third angle's cosine, then the first's sine; the second's is never used.
+    /// third angle's cosine, then the second's sine (through a copy), then the first's.
     #[test]
     fn angles_are_batched_in_the_order_they_are_first_needed() {
         let (q1, q2, q3) = (Value::Input(0), Value::Input(1), Value::Input(2));
@@ -174,11 +176,13 @@ mod tests {
             Instr::Sin(q2),                             // t1
             Instr::Cos(q3),                             // t2
             Instr::Mul(Value::Temp(2), q1),             // t3: needs q3
-            Instr::Add(Value::Temp(3), Value::Temp(0)), // t4: needs q1
+            Instr::Sin(q2),                             // t4: a copy of t1
+            Instr::Add(Value::Temp(3), Value::Temp(4)), // t5: needs q2
+            Instr::Add(Value::Temp(5), Value::Temp(0)), // t6: needs q1
         ]);
         let b = TrigBatch::new(&p);
-        assert_eq!(b.angles, vec![q3, q1, q2]);
-        assert_eq!(b.sin, vec![None, Some(0), Some(1)]);
+        assert_eq!(b.angles, vec![q3, q2, q1]);
+        assert_eq!(b.sin, vec![None, Some(1), Some(0)]);
         assert_eq!(b.cos, vec![Some(2), None, None]);
     }
 
