@@ -133,7 +133,7 @@ pub(crate) fn for_each_window_of(
     path: &Path,
     names: &[String],
     window: usize,
-    each: impl FnMut(Table, usize) -> Result<()>,
+    each: impl FnMut(Table, usize) -> Result<()> + Send,
 ) -> Result<()> {
     for_each_window(open(path)?, path, names, window, each)
 }
@@ -186,13 +186,13 @@ pub fn read_header(path: &Path) -> Result<Vec<String>> {
 
 /// Reads the columns `names` from any reader (gzip-compressed or not); `path` is used
 /// in messages.
-pub fn read_columns_from(reader: impl Read, path: &Path, names: &[String]) -> Result<Table> {
+pub fn read_columns_from(reader: impl Read + Send, path: &Path, names: &[String]) -> Result<Table> {
     collect(reader, path, names, 0)
 }
 
 /// The windows of [`for_each_window`] gathered into one table (`size`: the file's size
 /// when known, to allocate the columns once).
-fn collect(reader: impl Read, path: &Path, names: &[String], size: usize) -> Result<Table> {
+fn collect(reader: impl Read + Send, path: &Path, names: &[String], size: usize) -> Result<Table> {
     let mut table = Table {
         path: path.to_path_buf(),
         columns: vec![Vec::new(); names.len()],
@@ -223,111 +223,197 @@ pub const WINDOW: usize = 16 << 20;
 /// about `window` bytes of text (whole lines, in order, lines numbered in the file) and
 /// the bytes of text read up to that window's end. The header must come first; the first
 /// error (of the text or of `each`) stops the reading. A gzip stream (recognised by its
-/// magic number) is decompressed as it is read.
+/// magic number) is decompressed as it is read. Each window is handed to `each` while the
+/// next one is read and parsed (both in parallel), so a slow `each` (a record written to
+/// disk) costs little more than the parsing.
 pub fn for_each_window(
-    reader: impl Read,
+    reader: impl Read + Send,
     path: &Path,
     names: &[String],
     window: usize,
-    mut each: impl FnMut(Table, usize) -> Result<()>,
+    mut each: impl FnMut(Table, usize) -> Result<()> + Send,
 ) -> Result<()> {
-    use std::io::BufRead as _;
-    let mut input = std::io::BufReader::new(reader);
-    let gzip = input
-        .fill_buf()
-        .map_err(|source| io(path, source))?
-        .starts_with(&[0x1f, 0x8b]);
-    let mut source: Box<dyn Read> = if gzip {
-        Box::new(MultiGzDecoder::new(input))
-    } else {
-        Box::new(input)
-    };
-    let mut text = Text {
-        bytes: Vec::new(),
-        read: 0,
-        end: false,
-        gzip,
-        path,
-    };
-    let mut window = window.max(1);
-    let mut header: Option<Header> = None;
-    let mut quoted = false;
-    let rows = AtomicUsize::new(0);
+    let mut windows = Windows::new(reader, path, names, window)?;
+    let mut pending = None;
     loop {
-        text.fill(&mut source, window)?;
-        if header.is_none() {
-            match Header::read(&text.bytes, text.end, path, names)? {
-                Some(h) => {
-                    text.bytes.drain(..h.body_start);
-                    header = Some(h);
-                }
-                // the header line goes past the window: read more
-                None => {
-                    window *= 2;
-                    continue;
-                }
-            }
-        }
-        let Some(h) = header.as_mut() else {
-            continue;
-        };
-        quoted = quoted || text.bytes.contains(&b'"');
-        if quoted {
-            text.fill(&mut source, usize::MAX)?;
-        }
-        let cut = if text.end {
-            text.bytes.len()
-        } else {
-            match text.bytes.iter().rposition(|&b| b == b'\n') {
-                Some(i) => i + 1,
-                // one line longer than the window: read more
-                None => {
-                    window *= 2;
-                    continue;
-                }
-            }
-        };
-        let body = &text.bytes[..cut];
-        let cuts = if quoted {
-            vec![0, body.len()]
-        } else {
-            cuts(body)
-        };
-        let parts: Vec<Part> = cuts
-            .par_windows(2)
-            .map(|w| block(body, w[0], w[1], &h.want, h.fields, &rows))
-            .collect();
-        let total: usize = parts.iter().map(|p| p.lines.len()).sum();
-        let mut table = Table {
-            path: path.to_path_buf(),
-            columns: (0..names.len())
-                .map(|_| Vec::with_capacity(total))
-                .collect(),
-            lines: Vec::with_capacity(total),
-        };
-        for part in parts {
-            if let Some(e) = part.error {
-                return Err(e.locate(path, names, h.base));
-            }
-            for (c, v) in table.columns.iter_mut().zip(part.columns) {
-                c.extend(v);
-            }
-            table.lines.extend(part.lines.iter().map(|l| l + h.base));
-            h.base += part.newlines;
-        }
-        check_size(
-            || format!("{}: data rows", path.display()),
-            rows.load(Ordering::Relaxed) as f64,
-            MAX_ROWS,
-            "split the file",
-        )?;
-        let read = text.read - (text.bytes.len() - cut);
-        text.bytes.drain(..cut);
-        each(table, read)?;
-        if text.end && text.bytes.is_empty() {
-            return Ok(());
+        let (handed, next) = rayon::join(
+            || {
+                pending
+                    .take()
+                    .map_or(Ok(()), |(table, read)| each(table, read))
+            },
+            || windows.next(),
+        );
+        // the earlier window's error first, as if they had run in turn
+        handed?;
+        match next? {
+            Some(w) => pending = Some(w),
+            None => return Ok(()),
         }
     }
+}
+
+/// A file's text read and parsed window by window ([`for_each_window`]).
+struct Windows<'a> {
+    source: Box<dyn Read + Send + 'a>,
+    text: Text<'a>,
+    names: &'a [String],
+    /// Bytes of text wanted per window (doubled while a line does not fit).
+    window: usize,
+    header: Option<Header>,
+    /// A quote was seen: the rest of the file is one block.
+    quoted: bool,
+    /// Data rows parsed so far.
+    rows: AtomicUsize,
+    /// The last window was handed out.
+    done: bool,
+}
+
+impl<'a> Windows<'a> {
+    fn new(
+        reader: impl Read + Send + 'a,
+        path: &'a Path,
+        names: &'a [String],
+        window: usize,
+    ) -> Result<Self> {
+        use std::io::BufRead as _;
+        let mut input = std::io::BufReader::new(reader);
+        let gzip = input
+            .fill_buf()
+            .map_err(|source| io(path, source))?
+            .starts_with(&[0x1f, 0x8b]);
+        let source: Box<dyn Read + Send> = if gzip {
+            Box::new(MultiGzDecoder::new(input))
+        } else {
+            Box::new(input)
+        };
+        Ok(Self {
+            source,
+            text: Text {
+                bytes: Vec::new(),
+                read: 0,
+                end: false,
+                gzip,
+                path,
+            },
+            names,
+            window: window.max(1),
+            header: None,
+            quoted: false,
+            rows: AtomicUsize::new(0),
+            done: false,
+        })
+    }
+
+    /// The next window's rows and the bytes of text read up to its end; `None` after the
+    /// last window (a file with a header and no rows gives one empty window).
+    fn next(&mut self) -> Result<Option<(Table, usize)>> {
+        if self.done {
+            return Ok(None);
+        }
+        let (path, names) = (self.text.path, self.names);
+        let text = &mut self.text;
+        loop {
+            text.fill(&mut self.source, self.window)?;
+            if self.header.is_none() {
+                match Header::read(&text.bytes, text.end, path, names)? {
+                    Some(h) => {
+                        text.bytes.drain(..h.body_start);
+                        self.header = Some(h);
+                    }
+                    // the header line goes past the window: read more
+                    None => {
+                        self.window *= 2;
+                        continue;
+                    }
+                }
+            }
+            let Some(h) = self.header.as_mut() else {
+                continue;
+            };
+            self.quoted = self.quoted || text.bytes.contains(&b'"');
+            if self.quoted {
+                text.fill(&mut self.source, usize::MAX)?;
+            }
+            let cut = if text.end {
+                text.bytes.len()
+            } else {
+                match text.bytes.iter().rposition(|&b| b == b'\n') {
+                    Some(i) => i + 1,
+                    // one line longer than the window: read more
+                    None => {
+                        self.window *= 2;
+                        continue;
+                    }
+                }
+            };
+            let body = &text.bytes[..cut];
+            let cuts = if self.quoted {
+                vec![0, body.len()]
+            } else {
+                cuts(body)
+            };
+            let rows = &self.rows;
+            let parts: Vec<Part> = cuts
+                .par_windows(2)
+                .map(|w| block(body, w[0], w[1], &h.want, h.fields, rows))
+                .collect();
+            let table = join_parts(parts, path, names, h)?;
+            check_size(
+                || format!("{}: data rows", path.display()),
+                rows.load(Ordering::Relaxed) as f64,
+                MAX_ROWS,
+                "split the file",
+            )?;
+            let read = text.read - (text.bytes.len() - cut);
+            text.bytes.drain(..cut);
+            self.done = text.end && text.bytes.is_empty();
+            return Ok(Some((table, read)));
+        }
+    }
+}
+
+/// The parts of a window joined into its table, in file order, the columns side by side
+/// (in parallel); the first part's error instead when a part has one. `h.base` moves to
+/// the line after the window.
+fn join_parts(
+    mut parts: Vec<Part>,
+    path: &Path,
+    names: &[String],
+    h: &mut Header,
+) -> Result<Table> {
+    let mut bases = Vec::with_capacity(parts.len());
+    for part in &mut parts {
+        if let Some(e) = part.error.take() {
+            return Err(e.locate(path, names, h.base));
+        }
+        bases.push(h.base);
+        h.base += part.newlines;
+    }
+    let total: usize = parts.iter().map(|p| p.lines.len()).sum();
+    let mut columns: Vec<Vec<f64>> = (0..names.len())
+        .map(|_| Vec::with_capacity(total))
+        .collect();
+    let mut lines = Vec::with_capacity(total);
+    rayon::join(
+        || {
+            columns.par_iter_mut().enumerate().for_each(|(c, column)| {
+                for part in &parts {
+                    column.extend_from_slice(&part.columns[c]);
+                }
+            })
+        },
+        || {
+            for (part, base) in parts.iter().zip(&bases) {
+                lines.extend(part.lines.iter().map(|l| l + base));
+            }
+        },
+    );
+    Ok(Table {
+        path: path.to_path_buf(),
+        columns,
+        lines,
+    })
 }
 
 /// The text of a file read so far and not yet parsed.
@@ -808,6 +894,42 @@ mod tests {
 
     /// The same text read in parallel blocks (no quotes) and in one block (a quote added in
     /// a comment forces it) gives the same table, lines and errors.
+    #[test]
+    fn an_error_of_each_comes_before_a_later_windows_and_stops_the_reading() {
+        // each window is handed on while the next is parsed: with the bad value in the
+        // second window, the first window's error is the one reported, and `each` is not
+        // called again
+        let mut text = String::from("t,a\n");
+        for k in 0..600 {
+            text.push_str(&format!("{k},{k}\n"));
+        }
+        text.push_str("600,x\n");
+        assert!(text.len() > 4096 && text.len() < 8192);
+        let cols = names(&["a"]);
+        let mut calls = 0;
+        let e = for_each_window(text.as_bytes(), Path::new("m.csv"), &cols, 4096, |_, _| {
+            calls += 1;
+            Err(Error::setting("test", "each", "stop".to_string()))
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains("stop"), "{e}");
+        assert_eq!(calls, 1);
+        // without it, the text's error is reported after the first window was handed on
+        let (mut calls, mut rows) = (0, 0);
+        let e = for_each_window(text.as_bytes(), Path::new("m.csv"), &cols, 4096, |t, _| {
+            calls += 1;
+            rows += t.rows();
+            Ok(())
+        })
+        .unwrap_err();
+        assert!(
+            matches!(e, Error::Data(DataError::NotANumber { line: 602, .. })),
+            "{e}"
+        );
+        assert_eq!(calls, 1);
+        assert!(rows > 400 && rows < 600, "{rows} rows in the first window");
+    }
+
     #[test]
     fn blocks_and_one_block_agree_on_values_lines_and_errors() {
         let mut text = String::from("# made by a test\n t , a,b\r\n");

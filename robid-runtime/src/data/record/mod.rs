@@ -115,7 +115,10 @@ pub struct SpilledRecord {
 }
 
 /// Where one window's samples are in the temporary file: every signal the record has
-/// (in the loader's role order (positions, velocities, accelerations, torques, motor positions, temperatures, joint torques), joint by joint, `len` values each), then their `len` file lines.
+/// (in the loader's role order (positions, velocities, accelerations, torques, motor
+/// positions, temperatures, joint torques), joint by joint, `len` values each), then their
+/// `len` file lines; each value's 8 bytes as they are in memory (the file is this
+/// process's own, written and read on the same machine).
 #[derive(Debug, Clone, Copy)]
 struct Chunk {
     start: usize,
@@ -163,7 +166,6 @@ impl SpilledRecord {
         let mut spill = BufWriter::with_capacity(1 << 20, tempfile::tempfile().map_err(temporary)?);
         let mut chunks = Vec::new();
         let mut offset = 0u64;
-        let mut bytes = Vec::new();
         let mut clock = Clock::default();
         let mut scan = SamplingScan::new(spans.len() * dof);
         // the sample time only matters at the end: windows are checked at the config's rate
@@ -199,20 +201,18 @@ impl SpilledRecord {
             let len = data.samples();
             let start = chunks.last().map_or(0, |c: &Chunk| c.start + c.len);
             chunks.push(Chunk { start, len, offset });
-            // each column's values as bytes, written at once
-            let mut write = |values: &mut dyn Iterator<Item = [u8; 8]>| {
-                bytes.clear();
-                bytes.extend(values.flatten());
+            // each column's values as the bytes they are in memory, written at once
+            let mut write = |bytes: &[u8]| {
                 offset += bytes.len() as u64;
-                spill.write_all(&bytes).map_err(temporary)
+                spill.write_all(bytes).map_err(temporary)
             };
             for signals in signals_of(&data).into_iter().flatten() {
                 for x in signals.joints() {
-                    write(&mut x.iter().map(|v| v.to_le_bytes()))?;
+                    write(bytemuck::cast_slice::<f64, u8>(x))?;
                 }
             }
             let lines = data.origin.as_ref().map_or(&[][..], |o| &o.lines);
-            write(&mut lines.iter().map(|l| l.to_le_bytes()))
+            write(bytemuck::cast_slice::<u64, u8>(lines))
         })?;
         let samples = chunks.last().map_or(0, |c| c.start + c.len);
         if samples < 2 {
@@ -249,21 +249,23 @@ impl SpilledRecord {
         }))
     }
 
-    /// Reads `len` values of 8 bytes at byte `at` of the temporary file.
-    fn values<T>(file: &mut File, at: u64, len: usize, of: fn([u8; 8]) -> T) -> Result<Vec<T>> {
-        let mut bytes = vec![0u8; 8 * len];
+    /// Appends `len` values at byte `at` of the temporary file to `out`.
+    fn read_into<T: bytemuck::Pod>(
+        file: &mut File,
+        at: u64,
+        len: usize,
+        out: &mut Vec<T>,
+    ) -> Result<()> {
+        let old = out.len();
+        out.resize(old + len, T::zeroed());
         file.seek(SeekFrom::Start(at))
-            .and_then(|_| file.read_exact(&mut bytes))
+            .and_then(|_| file.read_exact(bytemuck::cast_slice_mut(&mut out[old..])))
             .map_err(|source| {
                 Error::Data(DataError::Io {
                     path: std::env::temp_dir(),
                     source,
                 })
-            })?;
-        Ok(bytes
-            .chunks_exact(8)
-            .map(|b| of(b.try_into().unwrap_or_default()))
-            .collect())
+            })
     }
 
     /// The chunks holding samples `start..end`, with the part of each.
@@ -328,10 +330,9 @@ impl Record for SpilledRecord {
         let (c, lo, _) = self.parts(k, k + 1).next()?;
         let at = c.offset + 8 * (self.roles_kept() * self.dof * c.len + lo) as u64;
         let mut file = self.spill.lock().ok()?;
-        Self::values(&mut file, at, 1, u64::from_le_bytes)
-            .ok()?
-            .first()
-            .copied()
+        let mut line = Vec::with_capacity(1);
+        Self::read_into::<u64>(&mut file, at, 1, &mut line).ok()?;
+        line.first().copied()
     }
 
     fn read(&self, start: usize, end: usize) -> Result<Cow<'_, Dataset>> {
@@ -359,12 +360,12 @@ impl Record for SpilledRecord {
             for block in blocks.iter_mut().flatten() {
                 for x in block.iter_mut() {
                     let at = c.offset + 8 * (column * c.len + lo) as u64;
-                    x.extend(Self::values(&mut file, at, hi - lo, f64::from_le_bytes)?);
+                    Self::read_into(&mut file, at, hi - lo, x)?;
                     column += 1;
                 }
             }
             let at = c.offset + 8 * (kept * self.dof * c.len + lo) as u64;
-            lines.extend(Self::values(&mut file, at, hi - lo, u64::from_le_bytes)?);
+            Self::read_into(&mut file, at, hi - lo, &mut lines)?;
         }
         drop(file);
         let signals = |b: Option<Vec<Vec<f64>>>| b.map(Signals::new).transpose();
