@@ -16,11 +16,14 @@
 //! outlier check (`Dominance`) rides along. The prediction (measured against predicted
 //! torque, the fit and the report's plots) takes a second pass with the estimated values,
 //! which filters three channels per joint only (the filter is linear: the decimated
-//! `W beta` is the decimated `Y(t) beta`). Memory is the data set, one block of prepared
+//! `W beta` is the decimated `Y(t) beta`), as many blocks at once as there are threads.
+//! Memory is the data set, one block of prepared
 //! signals and of regressor channels, the R factors, and one measured and one predicted
 //! torque per equation: never the prepared record nor the equations' rows.
 
 use std::ops::Range;
+
+use rayon::prelude::*;
 
 use crate::Model;
 use crate::data::{Config, Dataset, Method, Record};
@@ -198,8 +201,10 @@ impl<'a> Stream<'a> {
         let (mut measured, mut predicted, mut raw) = (lists(), lists(), lists());
         let mut samples: Vec<Vec<usize>> = (0..dof).map(|j| Vec::with_capacity(size(j))).collect();
         let mut has_raw = f > 1;
-        for b in self.blocks() {
-            self.in_block(&b, |observer, core, lo, unfiltered| {
+        // (joint, decimated sample, measured, predicted, torque before filtering) of a
+        // block, and whether it filtered the torque
+        let block = |b: &Range<usize>| {
+            self.in_block(b, |observer, core, lo, unfiltered| {
                 let part = observer.window_prediction(
                     &self.dec,
                     self.overlap,
@@ -207,16 +212,30 @@ impl<'a> Stream<'a> {
                     core,
                     values,
                 )?;
-                has_raw |= unfiltered.is_some();
                 let tau = unfiltered.unwrap_or(&observer.signals.tau);
-                for (j, k, y, p) in part {
+                let part: Vec<_> = part
+                    .into_iter()
+                    .map(|(j, k, y, p)| (j, k + lo / f, y, p, tau[j][k * f]))
+                    .collect();
+                Ok((part, unfiltered.is_some()))
+            })
+        };
+        // the blocks are independent: as many at once as there are threads (each block's
+        // own work is parallel too, but reading and preparing it is not), appended in
+        // record order, the earliest block's error first
+        let blocks = self.blocks();
+        for batch in blocks.chunks(rayon::current_num_threads().max(1)) {
+            let parts: Vec<Result<_>> = batch.par_iter().map(block).collect();
+            for part in parts {
+                let (part, filtered) = part?;
+                has_raw |= filtered;
+                for (j, k, y, p, r) in part {
                     measured[j].push(y);
                     predicted[j].push(p);
-                    samples[j].push(k + lo / f);
-                    raw[j].push(tau[j][k * f]);
+                    samples[j].push(k);
+                    raw[j].push(r);
                 }
-                Ok(())
-            })?;
+            }
         }
         let time = samples
             .iter()
