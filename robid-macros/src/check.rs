@@ -70,8 +70,9 @@ impl Ctxt {
 struct Spans {
     name: Span,
     gravity: Option<[Span; 3]>,
-    /// alpha, a, d, theta of each joint.
-    joints: Vec<[Span; 4]>,
+    /// alpha, a, d, theta, gamma, b of each joint (gamma and b: the call's span when not
+    /// written).
+    joints: Vec<[Span; 6]>,
 }
 
 impl Spans {
@@ -96,7 +97,7 @@ impl Spans {
             && let Some(spans) = self.joints.get(j)
         {
             let key = rest.split("].").nth(1).unwrap_or("");
-            let k = ["alpha", "a", "d", "theta"].iter().position(|k| *k == key);
+            let k = JOINT_VALUES.iter().position(|k| *k == key);
             return k.map_or(spans[0], |k| spans[k]);
         }
         Span::call_site()
@@ -454,7 +455,15 @@ fn symbols(cx: &mut Ctxt, e: &Expr) -> Vec<(String, f64, Span)> {
     out
 }
 
-fn joints(cx: &mut Ctxt, e: &Expr, spans: &mut Vec<[Span; 4]>) -> Option<Vec<Joint>> {
+/// A joint's values in the order `Spans::joints` keeps their spans: the four DH values
+/// (positional), then Khalil and Kleinfinger's `gamma` and `b` (named, optional).
+const JOINT_VALUES: [&str; 6] = ["alpha", "a", "d", "theta", "gamma", "b"];
+
+/// The joint syntax, for messages.
+const JOINT_SYNTAX: &str = "`revolute(alpha, a, d, theta)` or `prismatic(alpha, a, d, theta)`, \
+     optionally followed by `gamma = ...` and `b = ...` (modified convention)";
+
+fn joints(cx: &mut Ctxt, e: &Expr, spans: &mut Vec<[Span; 6]>) -> Option<Vec<Joint>> {
     let rows = array(cx, e, "joints `revolute(alpha, a, d, theta)`")?;
     if rows.is_empty() {
         cx.error(
@@ -465,23 +474,70 @@ fn joints(cx: &mut Ctxt, e: &Expr, spans: &mut Vec<[Span; 4]>) -> Option<Vec<Joi
     }
     for r in &rows {
         spans.push(match r {
-            Expr::Call(call) if call.args.len() == 4 => {
-                let s: Vec<Span> = call.args.iter().map(Spanned::span).collect();
-                [s[0], s[1], s[2], s[3]]
+            Expr::Call(call) => {
+                let Arguments {
+                    positional, named, ..
+                } = arguments(call);
+                let mut s = [call.span(); 6];
+                for (k, a) in positional.iter().take(4).enumerate() {
+                    s[k] = a.span();
+                }
+                for (key, value) in named {
+                    if let Some(k) = JOINT_VALUES[4..].iter().position(|n| key == n) {
+                        s[4 + k] = value.span();
+                    }
+                }
+                s
             }
-            other => [other.span(); 4],
+            other => [other.span(); 6],
         });
     }
     let joints: Vec<Option<Joint>> = rows.into_iter().map(|r| joint(cx, r)).collect();
     joints.into_iter().collect()
 }
 
+/// The arguments of a joint's call.
+struct Arguments<'a> {
+    positional: Vec<&'a Expr>,
+    /// `key = value`, in order.
+    named: Vec<(&'a syn::Ident, &'a Expr)>,
+    /// The first positional argument written after a named one.
+    late: Option<&'a Expr>,
+}
+
+/// A joint call's positional arguments and its named ones (`key = value`), in order.
+fn arguments(call: &syn::ExprCall) -> Arguments<'_> {
+    let mut positional = Vec::new();
+    let mut named = Vec::new();
+    let mut late = None;
+    for a in &call.args {
+        let key = match a {
+            Expr::Assign(assign) => match &*assign.left {
+                Expr::Path(p) => p.path.get_ident().map(|key| (key, &*assign.right)),
+                _ => None,
+            },
+            _ => None,
+        };
+        match key {
+            Some(key) => named.push(key),
+            None => {
+                if !named.is_empty() && late.is_none() {
+                    late = Some(a);
+                }
+                positional.push(a);
+            }
+        }
+    }
+    Arguments {
+        positional,
+        named,
+        late,
+    }
+}
+
 fn joint(cx: &mut Ctxt, e: &Expr) -> Option<Joint> {
     let Expr::Call(call) = e else {
-        cx.error(
-            e.span(),
-            "expected a joint `revolute(alpha, a, d, theta)` or `prismatic(alpha, a, d, theta)`",
-        );
+        cx.error(e.span(), format!("expected a joint {JOINT_SYNTAX}"));
         return None;
     };
     let kind = match &*call.func {
@@ -495,19 +551,63 @@ fn joint(cx: &mut Ctxt, e: &Expr) -> Option<Joint> {
             None
         }
     };
-    if call.args.len() != 4 {
+    let Arguments {
+        positional,
+        named,
+        late,
+    } = arguments(call);
+    if let Some(late) = late {
+        cx.error(
+            late.span(),
+            format!("the four DH values come first, then the named ones; write {JOINT_SYNTAX}"),
+        );
+        return None;
+    }
+    if positional.len() != 4 {
         cx.error(
             e.span(),
             format!(
-                "a joint has 4 DH values (alpha, a, d, theta), found {}",
-                call.args.len()
+                "a joint has 4 DH values (alpha, a, d, theta), found {}; write {JOINT_SYNTAX}",
+                positional.len()
             ),
         );
         return None;
     }
-    let v: Vec<Option<Geometry>> = call.args.iter().map(|a| value(cx, a)).collect();
+    let mut extra: [Option<Geometry>; 2] = [None, None];
+    let mut ok = true;
+    for (key, value) in named {
+        let Some(k) = JOINT_VALUES[4..].iter().position(|n| key == n) else {
+            cx.error(
+                key.span(),
+                format!("unknown joint value `{key}`; after the four DH values a joint takes `gamma = ...` and `b = ...`"),
+            );
+            ok = false;
+            continue;
+        };
+        if extra[k].is_some() {
+            cx.error(key.span(), format!("`{key}` is given twice"));
+            ok = false;
+            continue;
+        }
+        match self::value(cx, value) {
+            Some(v) => extra[k] = Some(v),
+            None => ok = false,
+        }
+    }
+    let v: Vec<Option<Geometry>> = positional.iter().map(|a| value(cx, a)).collect();
     let [alpha, a, d, theta] = [v[0].clone()?, v[1].clone()?, v[2].clone()?, v[3].clone()?];
-    Some(Joint::new(kind?, alpha, a, d, theta))
+    let joint = Joint::new(kind?, alpha, a, d, theta);
+    if !ok {
+        return None;
+    }
+    let [gamma, b] = extra;
+    Some(match (gamma, b) {
+        (None, None) => joint,
+        (gamma, b) => joint.with_gamma_b(
+            gamma.unwrap_or_else(Geometry::zero),
+            b.unwrap_or_else(Geometry::zero),
+        ),
+    })
 }
 
 /// A number literal (possibly negated); `None` when `e` is not one.

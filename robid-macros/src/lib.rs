@@ -151,7 +151,42 @@
 //!
 //! Each joint is `revolute(alpha, a, d, theta)` or `prismatic(alpha, a, d,
 //! theta)`, a row of the DH table; a value is a number or a string holding an
-//! exact angle (`"pi/2"`) or an expression in geometric symbols (`"-L3"`).
+//! exact angle (`"pi/2"`) or an expression in geometric symbols (`"-L3"`). In a
+//! modified table a row may add Khalil and Kleinfinger's rotation about and
+//! translation along `z_(j-1)` before it, by name:
+//! `revolute("pi/2", 0.1, 0, 0, gamma = "pi/4", b = 0.05)`
+//! (docs/conventions.md, "Khalil-Kleinfinger general frames"). A base or tool
+//! transform (`[base]`, `[tool]`) needs a description file.
+//!
+//! ```
+//! robid_macros::robot_model! {
+//!     name = "offset_arm",
+//!     convention = "modified",
+//!     joints = [
+//!         revolute(0, 0, 0, 0),
+//!         // joint 2's frame turned by gamma about z1 and moved by b along it first
+//!         revolute(0, 0.5, 0, 0, gamma = "pi/2", b = 0.2),
+//!     ],
+//! }
+//! use robid_runtime::Model;
+//!
+//! // A 1 kg point mass at the origin of frame 2 (0.5 m from axis 1 along the turned x,
+//! // which is y of frame 1): gravity along -z acts on no joint of this vertical-axis arm.
+//! let arm: &dyn Model = &OffsetArm;
+//! let mut standard = vec![0.0; arm.standard_parameter_count()];
+//! standard[19] = 1.0; // M2
+//! let mut base = vec![0.0; arm.base_parameter_count()];
+//! arm.base_from_standard_into(&standard, &mut base)?;
+//! let mut g = [0.0; 2];
+//! arm.gravity_into(&[0.3, -0.7], &base, &mut g)?;
+//! assert!(g.iter().all(|t| t.abs() < 1e-12), "{g:?}");
+//! // accelerating joint 1 alone takes the point mass's inertia about axis 1: m r^2 with
+//! // r = 0.5 m (b moves along the axis, which does not change r)
+//! let mut tau = [0.0; 2];
+//! arm.inverse_dynamics_into(&[0.0; 2], &[0.0; 2], &[1.0, 0.0], &base, &mut tau)?;
+//! assert!((tau[0] - 0.25).abs() < 1e-12, "{tau:?}");
+//! # Ok::<(), robid_runtime::model::LengthError>(())
+//! ```
 //!
 //! Either form defines a type named after the robot (`ur5e` -> `Ur5e`) with
 //! constants (`DOF`, parameter counts and names, base-parameter expressions)

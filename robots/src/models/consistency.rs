@@ -157,6 +157,33 @@ fn symbolic_drive_arm_agrees_with_its_description() {
     );
 }
 
+/// Khalil and Kleinfinger's gamma and b written inline (`gamma = ...`, `b = ...` after a
+/// joint's DH values): the compiled model equals the interpreted programs of the same
+/// robot read from a file, so the macro reads them as the file does (dropping either, or
+/// swapping them, changes every program).
+mod general_frames_arm {
+    robid_macros::robot_model! {
+        name = "general_frames_arm",
+        convention = "modified",
+        gravity = [0, 0, -9.81],
+        drive = [Ia, Fv],
+        joints = [
+            revolute(0, 0, 0.3, 0),
+            revolute("pi/2", 0.1, 0, "pi/2", gamma = "pi/4", b = 0.05),
+            prismatic("-pi/2", 0.2, 0.1, 0, b = -0.08),
+            revolute(0, 0.25, 0, 0, gamma = 0.3),
+        ],
+    }
+}
+
+#[test]
+fn inline_gamma_and_b_agree_with_a_description_file() {
+    check_file(
+        "tests/fixtures/general_frames_arm.toml",
+        &general_frames_arm::GeneralFramesArm,
+    );
+}
+
 /// The symbolic regressor evaluated by the arena equals the compiled one (UR5e).
 #[test]
 fn ur5e_regressor_equals_symbolic_evaluation() {
