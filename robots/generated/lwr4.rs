@@ -186,7 +186,12 @@ impl Lwr4 {
     /// - `qdd`: qdd1 .. qdd7
     ///
     /// Operations: 1018 mul, 601 add, 64 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -2157,7 +2162,12 @@ impl Lwr4 {
     /// - `qdd`: qdd1 .. qdd7
     ///
     /// Operations: 683 mul, 477 add, 35 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -3576,7 +3586,12 @@ impl Lwr4 {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 292 mul, 279 add, 0 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -4184,7 +4199,12 @@ impl Lwr4 {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 184 mul, 147 add, 2 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -4602,7 +4622,12 @@ impl Lwr4 {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 65 mul, 36 add, 0 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -4734,7 +4759,12 @@ impl Lwr4 {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 284 mul, 256 add, 0 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -5308,7 +5338,12 @@ impl Lwr4 {
     /// - `standard`: XX1 .. M7
     ///
     /// Operations: 9 mul, 38 add, 11 neg.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 70],

@@ -186,7 +186,12 @@ impl Panda {
     /// - `qdd`: qdd1 .. qdd7
     ///
     /// Operations: 1128 mul, 723 add, 35 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -2364,7 +2369,12 @@ impl Panda {
     /// - `qdd`: qdd1 .. qdd7
     ///
     /// Operations: 694 mul, 498 add, 30 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -3811,7 +3821,12 @@ impl Panda {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 307 mul, 293 add, 1 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -4450,7 +4465,12 @@ impl Panda {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 204 mul, 169 add, 1 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -4912,7 +4932,12 @@ impl Panda {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 65 mul, 36 add, 0 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -5044,7 +5069,12 @@ impl Panda {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 296 mul, 270 add, 2 neg, 6 sin, 6 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -5647,7 +5677,12 @@ impl Panda {
     /// - `standard`: XX1 .. M7
     ///
     /// Operations: 18 mul, 49 add, 0 neg.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 70],

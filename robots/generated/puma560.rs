@@ -162,7 +162,12 @@ impl Puma560 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 850 mul, 581 add, 31 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -1859,7 +1864,12 @@ impl Puma560 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 397 mul, 291 add, 19 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -2740,7 +2750,12 @@ impl Puma560 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 246 mul, 233 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3254,7 +3269,12 @@ impl Puma560 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 151 mul, 130 add, 1 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3607,7 +3627,12 @@ impl Puma560 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 46 mul, 24 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3706,7 +3731,12 @@ impl Puma560 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 232 mul, 200 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -4172,7 +4202,12 @@ impl Puma560 {
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 19 mul, 46 add, 5 neg.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],

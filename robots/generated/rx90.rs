@@ -172,7 +172,12 @@ impl Rx90 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 693 mul, 416 add, 35 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -1532,7 +1537,12 @@ impl Rx90 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 362 mul, 268 add, 20 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -2355,7 +2365,12 @@ impl Rx90 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 234 mul, 221 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -2844,7 +2859,12 @@ impl Rx90 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 134 mul, 107 add, 1 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3153,7 +3173,12 @@ impl Rx90 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 46 mul, 24 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3252,7 +3277,12 @@ impl Rx90 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 226 mul, 190 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3699,7 +3729,12 @@ impl Rx90 {
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 9 mul, 29 add, 0 neg.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],

@@ -84,7 +84,12 @@ impl Stanford {
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
     /// Operations: 71 mul, 46 add, 12 neg, 1 sin, 1 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -280,7 +285,12 @@ impl Stanford {
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
     /// Operations: 58 mul, 46 add, 8 neg, 1 sin, 1 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -446,7 +456,12 @@ impl Stanford {
     /// - `base`: ZZR1 .. M3
     ///
     /// Operations: 70 mul, 62 add, 0 neg, 1 sin, 1 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -604,7 +619,12 @@ impl Stanford {
     /// - `base`: ZZR1 .. M3
     ///
     /// Operations: 19 mul, 17 add, 2 neg, 1 sin, 1 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -663,7 +683,12 @@ impl Stanford {
     /// - `base`: ZZR1 .. M3
     ///
     /// Operations: 17 mul, 7 add, 1 neg, 1 sin, 1 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -710,7 +735,12 @@ impl Stanford {
     /// - `base`: ZZR1 .. M3
     ///
     /// Operations: 60 mul, 40 add, 2 neg, 1 sin, 1 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -834,7 +864,12 @@ impl Stanford {
     /// - `standard`: XX1 .. M3
     ///
     /// Operations: 2 mul, 11 add, 0 neg.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 30],

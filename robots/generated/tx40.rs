@@ -162,7 +162,12 @@ impl Tx40 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 755 mul, 486 add, 41 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -1662,7 +1667,12 @@ impl Tx40 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 391 mul, 282 add, 24 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -2532,7 +2542,12 @@ impl Tx40 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 241 mul, 228 add, 1 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3036,7 +3051,12 @@ impl Tx40 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 144 mul, 125 add, 3 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3377,7 +3397,12 @@ impl Tx40 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 46 mul, 24 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3476,7 +3501,12 @@ impl Tx40 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 230 mul, 195 add, 1 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3934,7 +3964,12 @@ impl Tx40 {
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 9 mul, 30 add, 0 neg.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],

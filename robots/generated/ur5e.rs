@@ -162,7 +162,12 @@ impl Ur5e {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 784 mul, 498 add, 22 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -1694,7 +1699,12 @@ impl Ur5e {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 345 mul, 259 add, 20 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -2494,7 +2504,12 @@ impl Ur5e {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 241 mul, 226 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -2998,7 +3013,12 @@ impl Ur5e {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 148 mul, 127 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn mass_matrix<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3347,7 +3367,12 @@ impl Ur5e {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 40 mul, 20 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3436,7 +3461,12 @@ impl Ur5e {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 225 mul, 184 add, 0 neg, 5 sin, 5 cos.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -3882,7 +3912,12 @@ impl Ur5e {
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 17 mul, 39 add, 0 neg.
-    #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
     pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],

@@ -202,9 +202,16 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
             [#(#results),*]
         }
     };
+    // the constants are the description's values as literals (cos(pi/4) is written as
+    // 0.7071067811865476, which clippy takes for an approximate FRAC_1_SQRT_2)
     Ok(quote! {
         #(#[doc = #doc_lines])*
-        #[allow(non_snake_case, clippy::too_many_lines, clippy::unreadable_literal)]
+        #[allow(
+            non_snake_case,
+            clippy::too_many_lines,
+            clippy::unreadable_literal,
+            clippy::approx_constant
+        )]
         pub fn #name<T: ::robid_runtime::Real>(&self, #(#args),*) -> [T; #out_len] {
             #(#bindings)*
             #(#constants)*
