@@ -101,14 +101,31 @@ fn limits(place: &Place<'_>, joint: &xml::Joint) -> Result<Limits, DescriptionEr
 fn angle(value: f64) -> Geometry {
     match angle_text(value) {
         Some(text) => Geometry::text(text).unwrap_or_else(|_| Geometry::zero()),
-        None => Geometry::number(value).unwrap_or_else(|_| Geometry::zero()),
+        None => Geometry::number(tidy(value)).unwrap_or_else(|_| Geometry::zero()),
     }
 }
 
 /// A finite length as a geometric value (the rows are checked finite first).
 fn length(value: f64) -> Geometry {
-    Geometry::number(value).unwrap_or_else(|_| Geometry::zero())
+    Geometry::number(tidy(value)).unwrap_or_else(|_| Geometry::zero())
 }
+
+/// The shortest decimal within [`TIDY_ULPS`] units in the last place of `value`, else
+/// `value`: a fitted value is computed from the URDF's own numbers through rotations and
+/// sums, whose rounding would otherwise reach the model (the KUKA iiwa's 0.2045 and 0.2155
+/// gave d = 0.42000000000000004, and the base parameters' expressions then carried
+/// 10500000000000001/12500000000000000 instead of 0.84). A value that needs its digits (more than a few units in the last place from
+/// every shorter decimal) is kept as it is.
+pub(super) fn tidy(value: f64) -> f64 {
+    let tolerance = TIDY_ULPS * value.abs() * f64::EPSILON;
+    (1..=15)
+        .filter_map(|digits| format!("{value:.*e}", digits - 1).parse::<f64>().ok())
+        .find(|short| (short - value).abs() <= tolerance)
+        .unwrap_or(value)
+}
+
+/// How far (in units in the last place) [`tidy`] may move a value.
+const TIDY_ULPS: f64 = 4.0;
 
 /// Gravity in robid frame 0: `[0, 0, -9.81]` in the root link frame, through the fixed
 /// path root -> base (every joint at zero) and frame 0's rotation in the base link frame.
@@ -159,7 +176,7 @@ pub(super) fn robot(
     if !errors.is_empty() {
         return Err(DescriptionError::from_errors(errors));
     }
-    let g = gravity.map(|x| Geometry::number(x).unwrap_or_else(|_| Geometry::zero()));
+    let g = gravity.map(|x| Geometry::number(tidy(x)).unwrap_or_else(|_| Geometry::zero()));
     Robot::new(name, Convention::Modified, Some(g), joints).map_err(|e| {
         let located = e
             .errors()

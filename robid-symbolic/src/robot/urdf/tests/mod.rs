@@ -7,6 +7,7 @@ mod kinematics;
 mod limits_gravity;
 mod pinocchio;
 mod robots;
+mod tidy;
 mod writing;
 
 use super::super::file::Place;

@@ -1,0 +1,55 @@
+//! The fitted DH values carry the URDF's decimals, not the rounding of their sums.
+
+use super::*;
+use crate::robot::urdf::build::tidy;
+
+#[test]
+fn rounding_of_sums_is_dropped_and_needed_digits_are_kept() {
+    assert_eq!(0.1 + 0.2, 0.30000000000000004);
+    assert_eq!(tidy(0.1 + 0.2), 0.3);
+    assert_eq!(tidy(0.42000000000000004), 0.42);
+    assert_eq!(tidy(-(0.1 + 0.2)), -0.3);
+    assert_eq!(tidy(0.3999999999999999), 0.4);
+    assert_eq!(tidy(9.81 * (1.0 + f64::EPSILON)), 9.81);
+    assert_eq!(tidy(0.0), 0.0);
+    // values that need their digits stay as they are
+    for x in [
+        1.0 / 3.0,
+        0.123456789012345,
+        2f64.sqrt(),
+        1e-6 + 1e-19,
+        0.42 + 1e-15,
+    ] {
+        assert_eq!(tidy(x), x, "{x:e}");
+    }
+    // at most four units in the last place: five away stays
+    let ulp = 0.42 * f64::EPSILON;
+    assert_eq!(tidy(0.42 + 3.0 * ulp), 0.42);
+    assert_ne!(tidy(0.42 + 8.0 * ulp), 0.42);
+}
+
+#[test]
+fn a_urdf_whose_lengths_add_up_gives_their_decimal_sum() {
+    // joint 3's origin 0.2045 along y of link 2, then joint 4's 0.2155 along z of link 3,
+    // with right angles written 1 ulp short (the KUKA iiwa 14's, as MuJoCo Menagerie's
+    // URDF writes them): the fitted d is 0.42, not 0.42000000000000004
+    let urdf = "<robot name=\"arm\">
+  <link name=\"base\"/><link name=\"l1\"/><link name=\"l2\"/><link name=\"l3\"/><link name=\"l4\"/>
+  <joint name=\"j1\" type=\"revolute\"><parent link=\"base\"/><child link=\"l1\"/><origin xyz=\"0 0 0.1575\"/><axis xyz=\"0 0 1\"/>
+    <limit lower=\"-2\" upper=\"2\" effort=\"100\" velocity=\"1\"/></joint>
+  <joint name=\"j2\" type=\"revolute\"><parent link=\"l1\"/><child link=\"l2\"/><origin xyz=\"0 0 0.2025\" rpy=\"1.5707963267948963 0 3.141592653589793\"/><axis xyz=\"0 0 1\"/>
+    <limit lower=\"-2\" upper=\"2\" effort=\"100\" velocity=\"1\"/></joint>
+  <joint name=\"j3\" type=\"revolute\"><parent link=\"l2\"/><child link=\"l3\"/><origin xyz=\"0 0.2045 0\" rpy=\"1.5707963267948963 0 3.141592653589793\"/><axis xyz=\"0 0 1\"/>
+    <limit lower=\"-2\" upper=\"2\" effort=\"100\" velocity=\"1\"/></joint>
+  <joint name=\"j4\" type=\"revolute\"><parent link=\"l3\"/><child link=\"l4\"/><origin xyz=\"0 0 0.2155\" rpy=\"1.5707963267948963 0 0\"/><axis xyz=\"0 0 1\"/>
+    <limit lower=\"-2\" upper=\"2\" effort=\"100\" velocity=\"1\"/></joint>
+</robot>";
+    let chain = Robot::from_urdf(urdf, "arm.urdf", &ChainSelection::default()).unwrap();
+    let d: Vec<String> = chain
+        .robot
+        .joints()
+        .iter()
+        .map(|j| j.d.as_str().to_string())
+        .collect();
+    assert!(d.contains(&"0.42".to_string()), "{d:?}");
+}
