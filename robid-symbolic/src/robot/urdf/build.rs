@@ -110,14 +110,15 @@ fn length(value: f64) -> Geometry {
     Geometry::number(tidy(value)).unwrap_or_else(|_| Geometry::zero())
 }
 
-/// The shortest decimal within [`TIDY_ULPS`] units in the last place of `value`, else
-/// `value`: a fitted value is computed from the URDF's own numbers through rotations and
-/// sums, whose rounding would otherwise reach the model (the KUKA iiwa's 0.2045 and 0.2155
-/// gave d = 0.42000000000000004, and the base parameters' expressions then carried
-/// 10500000000000001/12500000000000000 instead of 0.84). A value that needs its digits (more than a few units in the last place from
-/// every shorter decimal) is kept as it is.
+/// The shortest decimal within [`TIDY_ULPS`] units in the last place of `value` or
+/// [`TIDY_FLOOR`] of it, else `value`: a fitted value is computed from the URDF's own
+/// numbers through rotations and sums, whose rounding would otherwise reach the model (the
+/// KUKA iiwa's 0.2045 and 0.2155 gave d = 0.42000000000000004, and the base parameters'
+/// expressions then carried 10500000000000001/12500000000000000 instead of 0.84; Kinova's
+/// Gen3 gave -0.000350099999999999 for 2 x 0.00017505). A value that needs its digits
+/// (farther than that from every shorter decimal) is kept as it is.
 pub(super) fn tidy(value: f64) -> f64 {
-    let tolerance = TIDY_ULPS * value.abs() * f64::EPSILON;
+    let tolerance = (TIDY_ULPS * value.abs() * f64::EPSILON).max(TIDY_FLOOR);
     (1..=15)
         .filter_map(|digits| format!("{value:.*e}", digits - 1).parse::<f64>().ok())
         .find(|short| (short - value).abs() <= tolerance)
@@ -126,6 +127,10 @@ pub(super) fn tidy(value: f64) -> f64 {
 
 /// How far (in units in the last place) [`tidy`] may move a value.
 const TIDY_ULPS: f64 = 4.0;
+
+/// How far (m or rad) [`tidy`] may move any value: the fit's own rounding, a few units of
+/// 2^-52 of the chain's metre-sized numbers, whatever the size of the result.
+const TIDY_FLOOR: f64 = 8.0 * f64::EPSILON;
 
 /// Gravity in robid frame 0: `[0, 0, -9.81]` in the root link frame, through the fixed
 /// path root -> base (every joint at zero) and frame 0's rotation in the base link frame.

@@ -136,6 +136,7 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         place,
         errors: Vec::new(),
         warnings: Vec::new(),
+        printed: Vec::new(),
     };
     if root.tag_name().name() != "robot" {
         return Err(place.invalid(
@@ -159,6 +160,22 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
             _ => {}
         }
     }
+    if let Some((word, at)) = reader.printed.first() {
+        let more = match reader.printed.len() - 1 {
+            0 => String::new(),
+            1 => " and 1 more".to_owned(),
+            n => format!(" and {n} more"),
+        };
+        let w = place.warning(
+            *at,
+            &format!(
+                "`rpy` angles printed to a few decimals of a right angle (`{word}`{more}) are \
+                 taken as that right angle exactly (docs/urdf.md#the-angle-rule); write \
+                 them to 10 decimals or more to say so yourself"
+            ),
+        );
+        reader.warnings.push(w);
+    }
     reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
     reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
     if reader.errors.is_empty() {
@@ -178,6 +195,9 @@ struct Reader<'a> {
     place: &'a Place<'a>,
     errors: Vec<DescriptionError>,
     warnings: Vec<String>,
+    /// The `rpy` values taken as the right angle they print ([`printed_right_angle`]):
+    /// the word and where it is.
+    printed: Vec<(String, usize)>,
 }
 
 /// `<tag name="...">` for messages.
@@ -296,7 +316,19 @@ impl Reader<'_> {
             return Rigid::IDENTITY;
         };
         let xyz = self.vector(node, "xyz").unwrap_or([0.0; 3]);
-        let rpy = self.vector(node, "rpy").unwrap_or([0.0; 3]);
+        let mut rpy = self.vector(node, "rpy").unwrap_or([0.0; 3]);
+        if let Some(attribute) = node.attribute_node("rpy") {
+            let words = attribute.value().split_whitespace();
+            for (angle, word) in rpy.iter_mut().zip(words) {
+                if let Some(exact) = printed_right_angle(word)
+                    && exact != *angle
+                {
+                    *angle = exact;
+                    self.printed
+                        .push((word.to_owned(), attribute.range_value().start));
+                }
+            }
+        }
         Rigid::from_xyz_rpy(xyz, rpy)
     }
 
@@ -415,10 +447,15 @@ impl Reader<'_> {
                 None => Some([1.0, 0.0, 0.0]),
                 Some(attribute) => {
                     let span = attribute.range_value();
+                    let fixed = matches!(kind, Some(JointType::Fixed));
                     self.vector(a, "xyz").and_then(|v| {
                         let length = norm(v);
                         if length > 0.0 && length.is_finite() {
                             Some(scale(v, 1.0 / length))
+                        } else if fixed && length == 0.0 {
+                            // a fixed joint's axis is not used (Kinova's Gen3 URDF writes
+                            // `0 0 0` there)
+                            Some([1.0, 0.0, 0.0])
                         } else {
                             self.error(
                                 span,
@@ -495,3 +532,29 @@ impl Reader<'_> {
         }
     }
 }
+
+/// The nonzero multiple of pi/2 that `word` prints to its own number of decimals, when it
+/// has at least [`PRINTED_DECIMALS`] of them: `1.5708` and `-3.1416` are pi/2 and -pi
+/// written to four decimals (as CAD exports and Kinova's URDFs write them), while
+/// `1.57079` is not pi/2 to five decimals (that would be `1.57080`) and stays what it is.
+pub(super) fn printed_right_angle(word: &str) -> Option<f64> {
+    if word.contains(['e', 'E']) {
+        return None;
+    }
+    let decimals = word.split_once('.')?.1.len();
+    let value: f64 = word.parse().ok()?;
+    if decimals < PRINTED_DECIMALS || !value.is_finite() {
+        return None;
+    }
+    let k = (value / std::f64::consts::FRAC_PI_2).round();
+    if k == 0.0 || k.abs() > 4.0 {
+        return None;
+    }
+    let exact = k * std::f64::consts::FRAC_PI_2;
+    let printed: f64 = format!("{exact:.decimals$}").parse().ok()?;
+    (printed == value).then_some(exact)
+}
+
+/// Fewest decimals of a value [`printed_right_angle`] takes for a right angle: `3.14` or
+/// `1.571` may be meant as written.
+const PRINTED_DECIMALS: usize = 4;

@@ -6,6 +6,7 @@ mod inertials;
 mod kinematics;
 mod limits_gravity;
 mod pinocchio;
+mod printed_angles;
 mod robots;
 mod tidy;
 mod writing;

@@ -12,20 +12,32 @@ fn rounding_of_sums_is_dropped_and_needed_digits_are_kept() {
     assert_eq!(tidy(0.3999999999999999), 0.4);
     assert_eq!(tidy(9.81 * (1.0 + f64::EPSILON)), 9.81);
     assert_eq!(tidy(0.0), 0.0);
+    // small values move by the fit's absolute rounding, not by their own last place
+    assert_eq!(tidy(-0.000350099999999999), -0.0003501);
     // values that need their digits stay as they are
     for x in [
-        1.0 / 3.0,
         0.123456789012345,
         2f64.sqrt(),
-        1e-6 + 1e-19,
-        0.42 + 1e-15,
+        1e-6 + 1e-14,
+        0.42 + 1e-14,
+        123.456789,
     ] {
         assert_eq!(tidy(x), x, "{x:e}");
     }
-    // at most four units in the last place: five away stays
-    let ulp = 0.42 * f64::EPSILON;
-    assert_eq!(tidy(0.42 + 3.0 * ulp), 0.42);
-    assert_ne!(tidy(0.42 + 8.0 * ulp), 0.42);
+    // nothing moves by more than 8 units of 2^-52 or 4 units in its last place
+    let floor = 8.0 * f64::EPSILON;
+    for x in [1.0 / 3.0, 0.1 / 3.0, 2.0 / 3.0, 300.0 / 7.0, -1e-5 / 3.0] {
+        let moved = (tidy(x) - x).abs();
+        assert!(
+            moved <= floor.max(4.0 * x.abs() * f64::EPSILON),
+            "{x:e}: {moved:e}"
+        );
+    }
+    let ulp = 300.0 * f64::EPSILON;
+    assert_eq!(tidy(300.0 + 3.0 * ulp), 300.0);
+    assert_ne!(tidy(300.0 + 8.0 * ulp), 300.0);
+    assert_eq!(tidy(0.42 + 1.5e-15), 0.42);
+    assert_ne!(tidy(0.42 + 2.5e-15), 0.42);
 }
 
 #[test]
