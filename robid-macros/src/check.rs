@@ -8,7 +8,7 @@ use robid_symbolic::robot::DriveTerm;
 use robid_symbolic::robot::Geometry;
 use robid_symbolic::robot::UrdfChain;
 use robid_symbolic::robot::bounds::MAX_DESCRIPTION_LEN;
-use robid_symbolic::{Convention, DescriptionError, Drive, Joint, JointKind, Robot};
+use robid_symbolic::{Convention, DescriptionError, Drive, Joint, JointKind, Robot, Transform};
 use std::path::PathBuf;
 use syn::spanned::Spanned;
 use syn::{Expr, ExprLit, Lit, LitStr, UnOp};
@@ -144,13 +144,11 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
             from_file(&mut cx, &file.value, &chain)
         }
         None => {
-            for k in ["base", "tip"] {
-                if let Some(i) = get(k) {
-                    cx.error(
-                        i.key.span(),
-                        format!("`{k}` chooses the chain of a URDF `file`; an inline description is one chain already"),
-                    );
-                }
+            if let Some(i) = get("tip") {
+                cx.error(
+                    i.key.span(),
+                    "`tip` chooses the chain of a URDF `file`; an inline description is one chain already",
+                );
             }
             inline(&mut cx, &found, name.as_ref())
         }
@@ -367,7 +365,88 @@ fn inline(cx: &mut Ctxt, found: &[&Item], name: Option<&LitStr>) -> Option<Read>
             Err(err) => cx.description(&err, |_| span),
         }
     }
+    // frame 0 in the world, as a file's [base] (gravity is given in the world); a tool
+    // frame ([tool]) places nothing in the compiled model, so it has no inline form
+    if let Some(item) = get("base")
+        && let Some(pose) = pose(cx, &item.value)
+    {
+        match robot.clone().with_base(Some(pose)) {
+            Ok(r) => robot = r,
+            Err(err) => cx.description(&err, |_| item.value.span()),
+        }
+    }
     Some((robot, None, None))
+}
+
+/// The syntax of a pose, for messages.
+const POSE_SYNTAX: &str = "`pose(xyz = [x, y, z], rpy = [roll, pitch, yaw])` (metres and radians, \
+     R = Rz(yaw) Ry(pitch) Rx(roll) as in URDF; either part may be left out)";
+
+/// `pose(xyz = [...], rpy = [...])`: an inline description's `base`.
+fn pose(cx: &mut Ctxt, e: &Expr) -> Option<Transform> {
+    let call = match e {
+        Expr::Call(call) if matches!(&*call.func, Expr::Path(p) if p.path.is_ident("pose")) => call,
+        _ => {
+            cx.error(
+                e.span(),
+                format!(
+                    "`base` of an inline description is {POSE_SYNTAX}; a link name chooses the chain of a URDF `file`"
+                ),
+            );
+            return None;
+        }
+    };
+    let mut pose = Transform::identity();
+    let mut seen = [false; 2];
+    let mut ok = true;
+    for a in &call.args {
+        let named = match a {
+            Expr::Assign(assign) => match &*assign.left {
+                Expr::Path(p) => p.path.get_ident().map(|k| (k, &*assign.right)),
+                _ => None,
+            },
+            _ => None,
+        };
+        let Some((part, value)) = named else {
+            cx.error(a.span(), format!("write {POSE_SYNTAX}"));
+            ok = false;
+            continue;
+        };
+        let k = match part.to_string().as_str() {
+            "xyz" => 0,
+            "rpy" => 1,
+            other => {
+                cx.error(
+                    part.span(),
+                    format!("unknown part `{other}` of a pose; write {POSE_SYNTAX}"),
+                );
+                ok = false;
+                continue;
+            }
+        };
+        if std::mem::replace(&mut seen[k], true) {
+            cx.error(part.span(), format!("`{part}` is given twice"));
+            ok = false;
+            continue;
+        }
+        let values = array(cx, value, "three values")?;
+        if values.len() != 3 {
+            cx.error(
+                value.span(),
+                format!("`{part}` has {} values; give three", values.len()),
+            );
+            ok = false;
+            continue;
+        }
+        let v: Vec<Option<Geometry>> = values.iter().map(|x| self::value(cx, x)).collect();
+        let [x, y, z] = [v[0].clone(), v[1].clone(), v[2].clone()];
+        match (x, y, z) {
+            (Some(x), Some(y), Some(z)) if k == 0 => pose.xyz = [x, y, z],
+            (Some(x), Some(y), Some(z)) => pose.rpy = [x, y, z],
+            _ => ok = false,
+        }
+    }
+    ok.then_some(pose)
 }
 
 fn convention(cx: &mut Ctxt, e: &Expr) -> Option<Convention> {

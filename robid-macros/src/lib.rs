@@ -155,8 +155,12 @@
 //! modified table a row may add Khalil and Kleinfinger's rotation about and
 //! translation along `z_(j-1)` before it, by name:
 //! `revolute("pi/2", 0.1, 0, 0, gamma = "pi/4", b = 0.05)`
-//! (docs/conventions.md, "Khalil-Kleinfinger general frames"). A base or tool
-//! transform (`[base]`, `[tool]`) needs a description file.
+//! (docs/conventions.md, "Khalil-Kleinfinger general frames"). Frame 0's pose in
+//! the world, a file's `[base]`, is
+//! `base = pose(xyz = [x, y, z], rpy = [roll, pitch, yaw])` (either part optional):
+//! gravity stays given in the world and is turned into frame 0. A tool frame places
+//! nothing in the compiled model; it is written in a description file for the command
+//! line.
 //!
 //! ```
 //! robid_macros::robot_model! {

@@ -158,15 +158,16 @@ fn symbolic_drive_arm_agrees_with_its_description() {
 }
 
 /// Khalil and Kleinfinger's gamma and b written inline (`gamma = ...`, `b = ...` after a
-/// joint's DH values): the compiled model equals the interpreted programs of the same
-/// robot read from a file, so the macro reads them as the file does (dropping either, or
-/// swapping them, changes every program).
+/// joint's DH values), and a base pose: the compiled model equals the interpreted
+/// programs of the same robot read from a file, so the macro reads them as the file does
+/// (dropping any of them changes the programs).
 mod general_frames_arm {
     robid_macros::robot_model! {
         name = "general_frames_arm",
         convention = "modified",
         gravity = [0, 0, -9.81],
         drive = [Ia, Fv],
+        base = pose(xyz = [0.1, 0, 0.5], rpy = ["pi/2", 0.3, 0]),
         joints = [
             revolute(0, 0, 0.3, 0),
             revolute("pi/2", 0.1, 0, "pi/2", gamma = "pi/4", b = 0.05),
@@ -177,7 +178,7 @@ mod general_frames_arm {
 }
 
 #[test]
-fn inline_gamma_and_b_agree_with_a_description_file() {
+fn inline_gamma_b_and_base_agree_with_a_description_file() {
     check_file(
         "tests/fixtures/general_frames_arm.toml",
         &general_frames_arm::GeneralFramesArm,
