@@ -398,20 +398,14 @@ fn pose(cx: &mut Ctxt, e: &Expr) -> Option<Transform> {
     };
     let mut pose = Transform::identity();
     let mut seen = [false; 2];
-    let mut ok = true;
-    for a in &call.args {
-        let named = match a {
-            Expr::Assign(assign) => match &*assign.left {
-                Expr::Path(p) => p.path.get_ident().map(|k| (k, &*assign.right)),
-                _ => None,
-            },
-            _ => None,
-        };
-        let Some((part, value)) = named else {
-            cx.error(a.span(), format!("write {POSE_SYNTAX}"));
-            ok = false;
-            continue;
-        };
+    let Arguments {
+        positional, named, ..
+    } = arguments(call);
+    let mut ok = positional.is_empty();
+    for a in positional {
+        cx.error(a.span(), format!("write {POSE_SYNTAX}"));
+    }
+    for (part, value) in named {
         let k = match part.to_string().as_str() {
             "xyz" => 0,
             "rpy" => 1,
