@@ -1007,6 +1007,76 @@ mod tests {
         }
     }
 
+    /// Each window's `read` is the bytes of text up to its end: whole lines, the rows in
+    /// them all handed on so far.
+    #[test]
+    fn each_window_is_handed_the_bytes_read_up_to_its_end() {
+        let mut text = String::from("# a comment longer than the smallest window\nt,a\n");
+        for k in 0..300 {
+            text.push_str(&format!("{k},{}\n", k * 7));
+        }
+        for window in [5, 64, 1000] {
+            let (mut rows, mut ends) = (0, Vec::new());
+            for_each_window(
+                text.as_bytes(),
+                Path::new("m.csv"),
+                &names(&["a"]),
+                window,
+                |t, read| {
+                    rows += t.rows();
+                    ends.push((read, rows));
+                    Ok(())
+                },
+            )
+            .unwrap();
+            assert!(ends.len() > 1, "{window}");
+            for &(read, rows) in &ends {
+                let upto = &text[..read];
+                assert!(upto.ends_with('\n'), "{window}: {read}");
+                // the comment and header lines hold no rows
+                assert_eq!(upto.lines().count() - 2, rows, "{window}: {read}");
+            }
+            assert_eq!(ends.last(), Some(&(text.len(), 300)));
+        }
+    }
+
+    /// A quoted field that holds line ends and is longer than the window, first seen in a
+    /// later window, is read whole: from there on the rest of the text is one block.
+    #[test]
+    fn a_late_quoted_field_longer_than_the_window_is_read_whole() {
+        let mut text = String::from("t,a,note\n");
+        for k in 0..800 {
+            let note = if k == 400 {
+                format!("\"{}\"", "a line, then\n".repeat(300))
+            } else {
+                String::new()
+            };
+            text.push_str(&format!("{k},{},{note}\n", k * 3));
+        }
+        let cols = names(&["t", "a"]);
+        let whole = read_columns_from(text.as_bytes(), Path::new("m.csv"), &cols).unwrap();
+        let a: Vec<f64> = (0..800).map(|k| f64::from(k * 3)).collect();
+        assert_eq!(whole.columns[1], a);
+        for window in [999, 2048] {
+            let mut table = Vec::new();
+            for_each_window(
+                text.as_bytes(),
+                Path::new("m.csv"),
+                &cols,
+                window,
+                |t, _| {
+                    table.push(t);
+                    Ok(())
+                },
+            )
+            .unwrap();
+            assert!(table.len() >= 2, "{window}");
+            let a: Vec<f64> = table.iter().flat_map(|t| t.columns[1].clone()).collect();
+            let lines: Vec<u64> = table.iter().flat_map(|t| t.lines.clone()).collect();
+            assert!(a == whole.columns[1] && lines == whole.lines, "{window}");
+        }
+    }
+
     /// A config that maps one column to two roles reads it twice, with or without quotes
     /// (the two readers of the past disagreed here).
     #[test]
