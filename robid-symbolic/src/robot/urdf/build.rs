@@ -186,17 +186,19 @@ pub(super) fn robot(
         let located = e
             .errors()
             .into_iter()
-            .map(|one| locate(place, urdf, chain, one))
+            .map(|one| locate(place, urdf, chain, gravity, one))
             .collect();
         DescriptionError::from_errors(located)
     })
 }
 
-/// An error of [`Robot::new`] (naming `joints[k]` or gravity) at the URDF joint it concerns.
+/// An error of [`Robot::new`] (naming `joints[k]` or gravity) at the URDF joint it concerns:
+/// gravity's at joint 1, whose axis is frame 0's z.
 fn locate(
     place: &Place<'_>,
     urdf: &Urdf,
     chain: &Chain,
+    gravity: [f64; 3],
     error: &DescriptionError,
 ) -> DescriptionError {
     let DescriptionError::Argument {
@@ -214,6 +216,32 @@ fn locate(
         .and_then(|k| k.parse::<usize>().ok())
         .and_then(|k| chain.joints.get(k))
         .map(|&j| &urdf.joints[j]);
+    if argument.trim_start_matches('`').starts_with("gravity")
+        && let Some(&first) = chain.joints.first()
+    {
+        let j = &urdf.joints[first];
+        let norm = gravity.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let small = gravity
+            .iter()
+            .map(|x| x.abs())
+            .filter(|&x| x > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let tilt = (small / norm).asin();
+        return place.invalid(
+            j.range.clone(),
+            format!(
+                "gravity in robid frame 0, whose z is joint `{}`'s axis, is not accepted ({argument}): {message}",
+                j.name
+            ),
+            format!(
+                "the axis is {tilt:.1e} rad from parallel or perpendicular to the root link's z, \
+                 the direction of gravity: a right angle on the path from the root to this joint \
+                 written a few digits short (`1.57079` for pi/2) does this; write it exactly \
+                 (`1.5707963267948966`) or rounded to at least four decimals (`1.5708`), or tilt \
+                 the joint by a clear angle (docs/urdf.md#gravity)"
+            ),
+        );
+    }
     match joint {
         Some(j) => place.invalid(
             j.range.clone(),

@@ -57,6 +57,13 @@ fn each_mistake_is_named_at_its_place() {
             &["at joint `j2`, a value robid does not accept", "joints[1].a"],
         ),
         (arm(&two.replace("revolute", "fixed")), "the chain's tip link", &["no movable joint lies below link `a`"]),
+        // the SO-100's first joint: pi/2 written 1.57079 turns its axis 6.3e-6 rad off the
+        // horizontal, so gravity in frame 0 has a component of 6.2e-5 m/s^2
+        (
+            arm(&two.replace("<axis xyz=\"0 0 1\"/></joint>\n<joint name=\"j2\"", "<origin rpy=\"1.57079 0 0\"/><axis xyz=\"0 1 0\"/></joint>\n<joint name=\"j2\"")),
+            "t.urdf:5:1:",
+            &["gravity in robid frame 0, whose z is joint `j1`'s axis, is not accepted", "6.2", "e-5", "the axis is 6.3e-6 rad from", "`1.5708`"],
+        ),
     ];
     for (text, place, words) in &cases {
         let message = error_of(text, &ChainSelection::default());
