@@ -34,7 +34,7 @@ struct Case {
     base_parameters: Option<usize>,
 }
 
-const CASES: [Case; 5] = [
+const CASES: [Case; 6] = [
     Case {
         name: "panda",
         text: include_str!("../../../data/example_robot_data/panda/panda.urdf"),
@@ -63,6 +63,12 @@ const CASES: [Case; 5] = [
         name: "skewed_arm",
         text: include_str!("../../reference/urdf/skewed_arm.urdf"),
         tip: Some("payload"),
+        base_parameters: None,
+    },
+    Case {
+        name: "kinova",
+        text: include_str!("../../../data/example_robot_data/kinova/kinova.urdf"),
+        tip: None,
         base_parameters: None,
     },
 ];
@@ -192,7 +198,7 @@ fn urdf_models_equal_the_rnea_on_the_urdf_frames() {
 }
 
 /// The base-parameter counts of the literature (Panda 43, UR 36, LWR4 43, TX40 36 with no
-/// drive terms) and, for the skewed arm, the numeric rank of the standard regressor
+/// drive terms) and, for the skewed arm and the Jaco 2, the numeric rank of the standard regressor
 /// stacked over 30 random states (singular values below 1e-9 of the largest are zero).
 #[test]
 fn urdf_base_parameter_counts_are_the_known_answers() {

@@ -29,6 +29,9 @@ pub(super) const PANDA: &str = "data/example_robot_data/panda/panda.urdf";
 pub(super) const UR5: &str = "data/example_robot_data/ur5/ur5_robot.urdf";
 pub(super) const LWR4: &str = "data/kuka_lwr4/description/kuka_lwr4.urdf";
 pub(super) const TX40: &str = "data/staubli_tx40/description/tx40_mdh_modified.urdf";
+pub(super) const KINOVA: &str = "data/example_robot_data/kinova/kinova.urdf";
+pub(super) const XARM7: &str = "data/example_robot_data/xarm7/xarm7.urdf";
+pub(super) const SO101: &str = "data/example_robot_data/so101/so101.urdf";
 
 pub(super) fn selection(base: Option<&str>, tip: Option<&str>) -> ChainSelection {
     ChainSelection {

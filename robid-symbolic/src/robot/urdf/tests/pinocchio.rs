@@ -47,13 +47,35 @@ fn largest_difference(path: &str, csv: &str) -> f64 {
     worst
 }
 
+/// The chains compared, with the CSV name of their Pinocchio torques.
+const ROBOTS: [(&str, &str); 6] = [
+    (LWR4, "kuka_lwr4"),
+    (UR5, "ur5"),
+    (TX40, "tx40"),
+    (KINOVA, "kinova"),
+    (XARM7, "xarm7"),
+    (SO101, "so101"),
+];
+
 #[test]
 fn torques_equal_pinocchios() {
-    // The LWR4's chain has no rotation written as a rounded right angle: agreement to
-    // rounding. The UR5 and TX40 files write 1.57079632679 (4.9e-12 rad from pi/2), which
-    // robid takes as pi/2 (docs/urdf.md#the-angle-rule) and Pinocchio as written: torques
-    // of up to 57 N m then differ by a few 1e-10 (observed 3.0e-10 and 2.2e-11).
-    assert!(largest_difference(LWR4, "kuka_lwr4") < 1e-12);
-    assert!(largest_difference(UR5, "ur5") < 1e-9);
-    assert!(largest_difference(TX40, "tx40") < 1e-9);
+    // Pinocchio's model of each file as robid reads it (its right angles printed to a few
+    // decimals written exactly, `<robot>_right_angles.csv`): equal to rounding (measured
+    // at most 2.8e-14 N m)
+    for (path, csv) in ROBOTS {
+        let d = largest_difference(path, &format!("{csv}_right_angles"));
+        assert!(d < 1e-12, "{csv}: {d:e} N m");
+    }
+    // the files as written: Pinocchio turns by the printed values, robid by the right
+    // angles (docs/urdf.md#the-angle-rule). The LWR4 prints none; the UR5, TX40 and Kinova
+    // write 1.57079632679 (4.9e-12 rad from pi/2): a few 1e-10 N m (measured 3.0e-10,
+    // 2.2e-11, 3.1e-11); the xArm7's 1.5708 (3.7e-6 rad) and the SO-101's 3.14159
+    // (2.7e-6 rad) of torques up to tens of N m and about 1 N m: 1.1e-4 and 3.0e-6 N m
+    for ((path, csv), most) in ROBOTS
+        .into_iter()
+        .zip([1e-12, 1e-9, 1e-9, 1e-9, 1e-3, 1e-4])
+    {
+        let d = largest_difference(path, csv);
+        assert!(d < most, "{csv}: {d:e} N m");
+    }
 }
