@@ -129,7 +129,7 @@ fn tx40() {
             6
         ],
         total_mass: Some([13.5, 27.0]),
-        margin: 1e-6,
+        margin: Some(1e-6),
     };
     run("TX40", &problem, &bounds, &obs.w, &obs.y);
 }
@@ -185,7 +185,7 @@ fn simulated(name: &str, label: &str) {
     let bounds = Bounds {
         links,
         total_mass: Some([0.9 * total, 1.1 * total]),
-        margin: 1e-7,
+        margin: Some(1e-7),
     };
     // W: the base regressor at 300 random states; y = W beta_true + 1 % noise.
     let n = robot.dof();

@@ -3,7 +3,8 @@
 //!
 //! ```toml
 //! total_mass = [15.0, 17.0]           # optional
-//! margin = 1e-6                       # optional: pseudo-inertia >= margin * I
+//! margin = 1e-6                       # optional: pseudo-inertia >= margin * I (default:
+//!                                     # 1e-6, or 1 % of the prior's smallest eigenvalue)
 //!
 //! [default]                           # every link without its own table
 //! mass = [0.0, 10.0]                  # kg
@@ -79,8 +80,9 @@ pub struct Bounds {
     pub links: Vec<LinkBounds>,
     /// Total mass range, kg.
     pub total_mass: Option<[f64; 2]>,
-    /// Every pseudo-inertia must be at least `margin` times the identity.
-    pub margin: f64,
+    /// Every pseudo-inertia must be at least `margin` times the identity; `None`: the
+    /// default for the robot ([`Bounds::margin_for`]).
+    pub margin: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -120,8 +122,13 @@ struct Raw {
     links: BTreeMap<String, RawLink>,
 }
 
-/// Default pseudo-inertia margin.
+/// Default pseudo-inertia margin (kg, kg m^2) of links of ordinary size.
 pub const DEFAULT_MARGIN: f64 = 1e-6;
+
+/// The default margin is at most this share of the smallest eigenvalue of the prior links'
+/// pseudo-inertias, so that it never holds a small link (a 12 g gripper jaw's is 2.6e-7)
+/// away from a consistent prior.
+const MARGIN_SHARE: f64 = 1e-2;
 
 impl Bounds {
     /// The default bounds ([`LinkBounds::default`]) for `links` links, no total-mass range.
@@ -129,7 +136,7 @@ impl Bounds {
         Bounds {
             links: vec![LinkBounds::default(); links],
             total_mass: None,
-            margin: DEFAULT_MARGIN,
+            margin: None,
         }
     }
 
@@ -183,10 +190,27 @@ impl Bounds {
         let bounds = Bounds {
             links: out,
             total_mass: raw.total_mass,
-            margin: raw.margin.unwrap_or(DEFAULT_MARGIN),
+            margin: raw.margin,
         };
         bounds.validate()?;
         Ok(bounds)
+    }
+
+    /// The margin the solvers impose: the one given, else [`DEFAULT_MARGIN`], lowered to
+    /// 1 % of the smallest eigenvalue of the links' pseudo-inertias in `prior` (standard
+    /// parameters laid out by `layout`) when that is smaller and positive: links of a few
+    /// grams, whose pseudo-inertias are near 1e-6, are not held away from their prior.
+    pub(crate) fn margin_for(&self, layout: &super::Layout, prior: Option<&[f64]>) -> f64 {
+        if let Some(m) = self.margin {
+            return m;
+        }
+        let smallest = prior.map_or(f64::INFINITY, |p| {
+            (0..layout.links.len())
+                .map(|j| super::pseudo_inertia_min_eigenvalue(&layout.link_values(j, p)))
+                .filter(|&e| e > 0.0)
+                .fold(f64::INFINITY, f64::min)
+        });
+        DEFAULT_MARGIN.min(MARGIN_SHARE * smallest)
     }
 
     /// [`Bounds::validate`], and that there are bounds for each of `links` links.
@@ -207,7 +231,7 @@ impl Bounds {
     /// non-negative) and that the total-mass range meets the sum of the link mass ranges.
     pub fn validate(&self) -> Result<()> {
         let bad = |key: String, problem: &str| Error::setting("Bounds", &key, problem);
-        if !(self.margin >= 0.0 && self.margin <= 1.0) {
+        if self.margin.is_some_and(|m| !(0.0..=1.0).contains(&m)) {
             return Err(bad(
                 "margin".into(),
                 "must be a number in [0, 1], e.g. 1e-6",
@@ -361,11 +385,45 @@ mod tests {
         assert!(bad.check_for(3).is_err());
     }
 
+    /// The margin imposed: the one given; else 1e-6, or 1 % of the prior's smallest
+    /// positive pseudo-inertia eigenvalue when smaller (an inconsistent link is ignored).
+    #[test]
+    fn the_default_margin_follows_the_smallest_prior_link() {
+        use crate::feasible::fixture::{link, problem, target};
+        use crate::feasible::{LinkInertial, pseudo_inertia_min_eigenvalue};
+        let layout = problem(&target(link(), 0.0)).layout;
+        let wide = Bounds::wide(1);
+        let ordinary = target(link(), 0.0);
+        assert_eq!(wide.margin_for(&layout, None), DEFAULT_MARGIN);
+        assert_eq!(wide.margin_for(&layout, Some(&ordinary)), DEFAULT_MARGIN);
+        let jaw = LinkInertial {
+            mass: 0.012,
+            com: [0.0; 3],
+            inertia: [[2e-6, 0.0, 0.0], [0.0, 5e-6, 0.0], [0.0, 0.0, 6e-6]],
+        }
+        .to_standard();
+        let small = pseudo_inertia_min_eigenvalue(&jaw);
+        assert!(small < 1e-6);
+        let m = wide.margin_for(&layout, Some(&target(jaw, 0.0)));
+        assert!((m - 1e-2 * small).abs() < 1e-20, "{m} {small}");
+        let mut broken = jaw;
+        broken[0] = -1.0;
+        assert_eq!(
+            wide.margin_for(&layout, Some(&target(broken, 0.0))),
+            DEFAULT_MARGIN
+        );
+        let given = Bounds {
+            margin: Some(0.5),
+            ..Bounds::wide(1)
+        };
+        assert_eq!(given.margin_for(&layout, Some(&target(jaw, 0.0))), 0.5);
+    }
+
     #[test]
     fn the_margin_is_within_zero_and_one() {
         for (margin, ok) in [(0.0, true), (1.0, true), (-1e-9, false), (1.5, false)] {
             let b = Bounds {
-                margin,
+                margin: Some(margin),
                 ..Bounds::wide(2)
             };
             assert_eq!(b.validate().is_ok(), ok, "{margin}");

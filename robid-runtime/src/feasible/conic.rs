@@ -76,6 +76,7 @@ fn solve_stage(
     pull: &Pull,
     settle: Option<(&[f64], &[usize])>,
 ) -> Result<Vec<f64>> {
+    let margin = bounds.margin_for(&problem.layout, Some(&pull.target));
     let layout = &problem.layout;
     let ns = problem.standard_names.len();
     bounds.check_for(layout.links.len())?;
@@ -184,7 +185,7 @@ fn solve_stage(
         ];
         for (coef, diagonal) in entries {
             let neg: Vec<(usize, f64)> = coef.iter().map(|&(j, v)| (j, -v)).collect();
-            c.row(&neg, if diagonal { -bounds.margin } else { 0.0 });
+            c.row(&neg, if diagonal { -margin } else { 0.0 });
         }
         c.cones.push(SupportedConeT::PSDTriangleConeT(4));
     }

@@ -118,13 +118,14 @@ pub fn solve_interior(
     let start = Instant::now();
     let layout = &problem.layout;
     let mut objective = Objective::from_options(problem, bounds, options)?;
-    let mut p = objective.start(bounds.margin)?;
+    let margin = bounds.margin_for(layout, Some(&objective.pull.target));
+    let mut p = objective.start(margin)?;
     let barrier = Barrier {
         links: &layout.links,
         positive: (0..p.len())
             .filter(|&i| objective.non_negative(i))
             .collect(),
-        margin: bounds.margin,
+        margin,
         basis: std::array::from_fn(|k| {
             let mut e = [0.0; PER_LINK];
             e[k] = 1.0;
@@ -471,6 +472,44 @@ mod tests {
         assert!(s.chi2 < 6e-16, "chi2 {}", s.chi2);
     }
 
+    /// A consistent link of 12 g (a gripper jaw; its pseudo-inertia's smallest eigenvalue
+    /// is 5.0e-7, below the margin of ordinary links) measured to 1e-9 is returned as it is
+    /// (chi^2 7e-16 measured): the default margin is 1 % of the prior's smallest eigenvalue.
+    /// The margin of ordinary links, 1e-6, moves it hundreds of standard deviations (chi^2
+    /// 3.1e5 measured).
+    #[test]
+    fn a_small_consistent_link_is_not_held_off_by_the_margin() {
+        let jaw = LinkInertial {
+            mass: 0.012,
+            com: [0.005, -0.01, 0.02],
+            inertia: [[2e-6, 0.0, 0.0], [0.0, 5e-6, 0.0], [0.0, 0.0, 6e-6]],
+        }
+        .to_standard();
+        let t = target(jaw, 1e-7);
+        let names = crate::feasible::fixture::names();
+        let p = Problem::new(names.clone(), names, DMatrix::identity(11, 11))
+            .unwrap()
+            .with_target(&t, &[1e-9; 11])
+            .unwrap();
+        let smallest = crate::feasible::pseudo_inertia_min_eigenvalue(&jaw);
+        assert!(smallest > 4.9e-7 && smallest < 5.1e-7, "{smallest}");
+        let prior = SmoothOptions {
+            prior: Some(crate::feasible::Prior {
+                standard: t.iter().map(|&v| Some(v)).collect(),
+                weight: 1.0,
+            }),
+            ..options()
+        };
+        let s = solve_interior(&p, &Bounds::wide(1), &prior).unwrap();
+        assert!(s.chi2 < 1e-6, "chi2 {}", s.chi2);
+        let given = Bounds {
+            margin: Some(crate::feasible::DEFAULT_MARGIN),
+            ..Bounds::wide(1)
+        };
+        let held = solve_interior(&p, &given, &prior).unwrap();
+        assert!(held.chi2 > 1e4, "chi2 {}", held.chi2);
+    }
+
     /// A negative rotor inertia is held at zero (the barrier of Ia >= 0), the rest kept:
     /// chi^2 = (Ia / std)^2, std with the solvers' floor.
     #[test]
@@ -591,7 +630,7 @@ mod tests {
         let t = target(l, 0.1);
         let s = solve_interior(&problem(&t), &Bounds::wide(1), &options()).unwrap();
         steps(&s, 114);
-        let margin = Bounds::wide(1).margin;
+        let margin = crate::feasible::DEFAULT_MARGIN;
         let e = s.min_eigenvalues[0];
         // measured 1 + 5.5e-6 margins
         assert!(

@@ -415,7 +415,7 @@ mod tests {
         let bounds = Bounds {
             links: vec![tight, tight],
             total_mass: Some([5.0, 6.0]),
-            margin: 1e-6,
+            margin: Some(1e-6),
         };
         let pull = Pull::new(&problem, &bounds, None, 1e-2).unwrap();
         let mut objective = Objective::new(&problem, &bounds, pull, 1e4);

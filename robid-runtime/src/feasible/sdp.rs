@@ -314,7 +314,7 @@ mod tests {
         let e = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()).unwrap_err();
         assert!(e.to_string().contains("--features sdp"), "{e}");
         let mut bad = Bounds::wide(1);
-        bad.margin = 2.0;
+        bad.margin = Some(2.0);
         let e = solve_sdp(&p, &bad, &SdpOptions::default()).unwrap_err();
         assert!(e.to_string().contains("margin"), "{e}");
     }
@@ -362,7 +362,7 @@ mod tests {
         let mut l = link();
         l[0] = 0.05;
         let (s, _) = solve(&target(l, 0.1), &|_| {});
-        let e = s.min_eigenvalues[0] / Bounds::wide(1).margin;
+        let e = s.min_eigenvalues[0] / crate::feasible::DEFAULT_MARGIN;
         assert!((1.0..1.00014).contains(&e), "{e}");
         assert!((s.chi2 - 75.0).abs() < 0.04, "{}", s.chi2);
         let mut shifted = link();

@@ -289,10 +289,11 @@ pub fn solve_smooth(
         }
     }));
     maps.extend(layout.extra.iter().map(|&i| Map::Free(i)));
-    let p0 = objective.start(bounds.margin)?;
+    let margin = bounds.margin_for(layout, Some(&objective.pull.target));
+    let p0 = objective.start(margin)?;
     let mut fit = Fit {
         objective,
-        margin: bounds.margin,
+        margin,
         maps,
         x: DVector::zeros(0),
     };
@@ -578,7 +579,7 @@ mod tests {
         l[0] = 0.05;
         let s = solve(&problem(&target(l, 0.1)), &Bounds::wide(1));
         assert_eq!(s.iterations, 50);
-        let margin = Bounds::wide(1).margin;
+        let margin = crate::feasible::DEFAULT_MARGIN;
         let e = s.min_eigenvalues[0];
         assert!(
             e >= margin * (1.0 - 1e-6) && e < 2.0 * margin,
@@ -610,11 +611,14 @@ mod tests {
         ];
         let mut fit = Fit {
             objective,
-            margin: bounds.margin,
+            margin: crate::feasible::DEFAULT_MARGIN,
             maps,
             x: DVector::zeros(0),
         };
-        let p0 = fit.objective.start(bounds.margin).unwrap();
+        let p0 = fit
+            .objective
+            .start(crate::feasible::DEFAULT_MARGIN)
+            .unwrap();
         let x = fit.variables(&p0).unwrap().map(|v| v * 1.1 + 0.01);
         fit.x = x.clone();
         let n = x.len();

@@ -60,8 +60,9 @@ pub struct Solution {
     /// Bounds that the result does not meet (the SDP cannot impose the upper bound on the
     /// principal moments about the centre of mass, which is not convex).
     pub violations: Vec<String>,
-    /// Values that sit at one of their bounds (within 0.1 % of the range): the data or a
-    /// bound pushed them there, worth a look before the values go into a simulator.
+    /// Values that sit at one of their bounds (within 0.1 % of the range, 1e-6 of it from a
+    /// bound of zero): the data or a bound pushed them there, worth a look before the
+    /// values go into a simulator.
     pub at_bounds: Vec<String>,
     /// Per standard parameter, the share the data determine (1) rather than the prior (0);
     /// empty when not computed.
@@ -111,8 +112,11 @@ impl Solution {
                     v < r[0] - tol * (1.0 + r[0].abs()) || v > r[1] + tol * (1.0 + r[1].abs())
                 };
                 let mut at = |what: String, v: f64, r: [f64; 2]| {
-                    let near = 1e-3 * (r[1] - r[0]).max(1e-12);
+                    let range = (r[1] - r[0]).max(1e-12);
                     for (side, bound) in [("lower", r[0]), ("upper", r[1])] {
+                        // a small value above a zero bound is a small link (a 12 g jaw under
+                        // the default 50 kg range), not one pushed against the bound
+                        let near = if bound == 0.0 { 1e-6 } else { 1e-3 } * range;
                         if (v - bound).abs() <= near {
                             at_bounds.push(format!(
                                 "link {}: {what} {v:.6e} at its {side} bound {bound}",
@@ -296,7 +300,7 @@ mod tests {
         let bounds = Bounds {
             links: vec![tight],
             total_mass: Some([0.0, 1.95]),
-            margin: 0.0,
+            margin: Some(0.0),
         };
         let s = assemble(&t, &bounds).unwrap();
         let v = s.violations.join("\n");
@@ -321,7 +325,7 @@ mod tests {
         let bounds = Bounds {
             links: vec![edge],
             total_mass: Some([2.0 + 0.5e-6, 3.0]),
-            margin: 0.0,
+            margin: Some(0.0),
         };
         let s = assemble(&t, &bounds).unwrap();
         assert!(s.violations.is_empty(), "{:?}", s.violations);
@@ -447,6 +451,24 @@ mod edges {
         // one step further is one
         t[9] = 1.0 + 2e-6;
         assert_eq!(assemble(&t, &b).violations.len(), 1);
+    }
+
+    /// A light link (12 g under the default 0 to 50 kg) is not "at its lower bound 0"; a
+    /// massless one (1e-7 kg, where the data pushed it) is.
+    #[test]
+    fn a_light_link_is_not_at_a_zero_mass_bound() {
+        let at = |mass: f64| {
+            let l = LinkInertial {
+                mass,
+                com: [0.0; 3],
+                inertia: [[2e-6, 0.0, 0.0], [0.0, 5e-6, 0.0], [0.0, 0.0, 6e-6]],
+            };
+            assemble(&target(l.to_standard(), 0.1), &Bounds::wide(1)).at_bounds
+        };
+        assert!(at(0.012).is_empty(), "{:?}", at(0.012));
+        let massless = at(1e-7);
+        assert_eq!(massless.len(), 1, "{massless:?}");
+        assert!(massless[0].contains("mass 1.000000e-7 at its lower bound 0"));
     }
 
     /// A thin link (a principal moment of 1e-4 kg m^2) with a lower bound of zero is not

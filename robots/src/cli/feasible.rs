@@ -36,7 +36,8 @@ Links are numbered from 1; a link's table overrides the keys it gives; without t
 link gets the [default] shown (see docs/command-line.md, \"Bounds file\"):
 
   total_mass = [15.0, 19.0]                       # kg, optional
-  margin = 1e-6                                   # pseudo-inertia >= margin I
+  margin = 1e-6                                   # pseudo-inertia >= margin I (default 1e-6, or
+                                                  # 1 % of the prior's smallest eigenvalue)
   [default]
   mass = [0.0, 50.0]                              # kg
   com = [[-1.0, 1.0], [-1.0, 1.0], [-1.0, 1.0]]   # box in the link frame, m

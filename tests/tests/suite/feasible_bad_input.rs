@@ -49,7 +49,7 @@ fn bounds_that_exclude_every_solution_are_reported() {
             ..LinkBounds::default()
         }],
         total_mass: Some([10.0, 20.0]),
-        margin: 1e-6,
+        margin: Some(1e-6),
     };
     assert!(matches!(
         b.validate(),

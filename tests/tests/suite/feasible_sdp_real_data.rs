@@ -55,7 +55,7 @@ fn bounds(links: usize, weight: f64, reach: f64) -> Bounds {
             links
         ],
         total_mass: Some([0.5 * weight, weight]),
-        margin: 1e-6,
+        margin: Some(1e-6),
     }
 }
 

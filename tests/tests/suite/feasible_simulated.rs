@@ -91,7 +91,7 @@ fn bounds(case: &Case) -> Bounds {
     Bounds {
         links,
         total_mass: Some([0.9 * total, 1.1 * total]),
-        margin: 1e-7,
+        margin: Some(1e-7),
     }
 }
 

@@ -372,11 +372,16 @@ fn search(
             .and_then(|s| s.pseudo_inverse(1e-10).ok())
             .unwrap_or_else(|| DMatrix::zeros(cols.len(), a.nrows()))
     });
+    let pull = match &options.prior {
+        Some(prior) => Some(Pull::new(problem, bounds, Some(prior), 0.0)?),
+        None => None,
+    };
+    let margin = bounds.margin_for(layout, pull.as_ref().map(|p| p.target.as_slice()));
     let mut lo = Vec::with_capacity(nl * PER_LINK);
     let mut hi = Vec::with_capacity(nl * PER_LINK);
     let mut fixed = Vec::with_capacity(nl * PER_LINK);
     for lb in &bounds.links {
-        let (l, h) = link_box(lb, bounds.margin);
+        let (l, h) = link_box(lb, margin);
         lo.extend(l);
         hi.extend(h);
         fixed.extend(link_centre(lb));
@@ -391,10 +396,7 @@ fn search(
         fixed,
         free: (0..nl * PER_LINK).collect(),
         penalty: options.penalty,
-        pull: match &options.prior {
-            Some(prior) => Some(Pull::new(problem, bounds, Some(prior), 0.0)?),
-            None => None,
-        },
+        pull,
         equalities: &options.equalities,
         mass_step: options.mass_step,
         loose: Vec::new(),

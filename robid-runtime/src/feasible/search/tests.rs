@@ -70,7 +70,7 @@ fn arm_links(links: usize) -> Bounds {
     Bounds {
         links: vec![link; links],
         total_mass: None,
-        margin: 1e-6,
+        margin: Some(1e-6),
     }
 }
 
