@@ -140,6 +140,57 @@ impl Bounds {
         }
     }
 
+    /// [`Bounds::wide`] widened for a robot larger than an ordinary arm: each range reaches
+    /// at least twice the largest value among the prior links (the values of `prior`, else
+    /// solids of the density the identified parameters give; see
+    /// docs/command-line.md#robid-feasible): their masses, centre-of-mass coordinates and
+    /// principal moments about the centre of mass. A 250 kg link is not held at 50 kg; an
+    /// ordinary arm keeps the wide bounds.
+    ///
+    /// ```
+    /// use robid_runtime::feasible::{Bounds, Problem};
+    /// use nalgebra::DMatrix;
+    /// let names: Vec<String> = ["XX1", "XY1", "XZ1", "YY1", "YZ1", "ZZ1", "MX1", "MY1", "MZ1", "M1"]
+    ///     .map(String::from)
+    ///     .to_vec();
+    /// let problem = Problem::new(names.clone(), names, DMatrix::identity(10, 10))
+    ///     .unwrap()
+    ///     // 400 kg, centre of mass 0.5 m up z, 10 kg m^2 about it on every axis
+    ///     .with_target(&[110.0, 0.0, 0.0, 110.0, 0.0, 10.0, 0.0, 0.0, 200.0, 400.0], &[1e-3; 10])
+    ///     .unwrap();
+    /// let prior = robid_runtime::feasible::Prior {
+    ///     standard: problem.target.iter().map(|&v| Some(v)).collect(),
+    ///     weight: 1.0,
+    /// };
+    /// let bounds = Bounds::wide_for(&problem, Some(&prior));
+    /// assert_eq!(bounds.links[0].mass, [0.0, 800.0]);
+    /// assert!((bounds.links[0].inertia[1] - 20.0).abs() < 1e-9);
+    /// assert_eq!(bounds.links[0].com, [[-1.0, 1.0]; 3]);
+    /// assert_eq!(Bounds::wide_for(&problem, None), Bounds::wide(1));
+    /// ```
+    pub fn wide_for(problem: &super::Problem, prior: Option<&super::Prior>) -> Bounds {
+        let mut b = LinkBounds::default();
+        let widen = |r: &mut [f64; 2], v: f64| {
+            if v.is_finite() {
+                r[1] = r[1].max((2.0 * v).min(MAX_PARAMETER));
+            }
+        };
+        for l in super::prior::prior_links(problem, prior).iter().flatten() {
+            widen(&mut b.mass, l.mass);
+            for axis in &mut b.com {
+                let far = l.com.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                widen(axis, far);
+                axis[0] = -axis[1];
+            }
+            let top = l.principal_moments().iter().fold(0.0f64, |a, v| a.max(*v));
+            widen(&mut b.inertia, top);
+        }
+        Bounds {
+            links: vec![b; problem.layout.links.len()],
+            ..Bounds::wide(problem.layout.links.len())
+        }
+    }
+
     /// Reads bounds for a robot with `links` links; `path` names the file in errors, which
     /// give a wrong value's key at its file:line:column ([`crate::DataError::ConfigKey`]).
     pub fn from_toml(text: &str, path: &str, links: usize) -> Result<Bounds> {

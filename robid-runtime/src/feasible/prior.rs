@@ -170,28 +170,7 @@ fn solid_prior(problem: &Problem, bounds: &Bounds, shapes: &[LinkShape]) -> (Vec
     let layout = &problem.layout;
     let ns = layout.len();
     let lengths = lengths(shapes);
-    let unit: Vec<LinkInertial> = shapes
-        .iter()
-        .zip(&lengths)
-        .map(|(s, l)| solid(s, *l))
-        .collect();
-    let mut p = vec![0.0; ns];
-    for (idx, link) in layout.links.iter().zip(&unit) {
-        for (s, v) in idx.iter().zip(link.to_standard()) {
-            p[*s] = v;
-        }
-    }
-    // density: minimise || L^-1 (K rho p - beta) || over rho
-    let a = &problem.whitening * (&problem.k * DVector::from_column_slice(&p));
-    let b = &problem.whitening * &problem.target;
-    let rho = a.dot(&b) / a.norm_squared();
-    // a density the data cannot give (a robot without gravity terms, or a poor fit): that
-    // of a hollow aluminium structure
-    let rho = if rho.is_finite() && rho > 0.0 {
-        rho
-    } else {
-        1000.0
-    };
+    let (unit, rho) = unit_solids(problem, shapes);
     let mut target = vec![0.0; ns];
     let mut scale = vec![1.0; ns];
     for (j, idx) in layout.links.iter().enumerate() {
@@ -217,6 +196,67 @@ fn solid_prior(problem: &Problem, bounds: &Bounds, shapes: &[LinkShape]) -> (Vec
         }
     }
     (target, scale)
+}
+
+/// The solids of density 1 along the links ([`solid`]) and the density that fits them to
+/// the identified base parameters (weighted least squares in the density alone).
+fn unit_solids(problem: &Problem, shapes: &[LinkShape]) -> (Vec<LinkInertial>, f64) {
+    let layout = &problem.layout;
+    let lengths = lengths(shapes);
+    let unit: Vec<LinkInertial> = shapes
+        .iter()
+        .zip(&lengths)
+        .map(|(s, l)| solid(s, *l))
+        .collect();
+    let mut p = vec![0.0; layout.len()];
+    for (idx, link) in layout.links.iter().zip(&unit) {
+        for (s, v) in idx.iter().zip(link.to_standard()) {
+            p[*s] = v;
+        }
+    }
+    // density: minimise || L^-1 (K rho p - beta) || over rho
+    let a = &problem.whitening * (&problem.k * DVector::from_column_slice(&p));
+    let b = &problem.whitening * &problem.target;
+    let rho = a.dot(&b) / a.norm_squared();
+    // a density the data cannot give (a robot without gravity terms, or a poor fit): that
+    // of a hollow aluminium structure
+    let rho = if rho.is_finite() && rho > 0.0 {
+        rho
+    } else {
+        1000.0
+    };
+    (unit, rho)
+}
+
+/// Each link as the prior sees it, before any bounds: the values of `prior` where it gives
+/// all ten of the link's, else the solid of the density the data give (when the problem
+/// has shapes); `None` for a link that has neither or whose values are not a body.
+pub(super) fn prior_links(problem: &Problem, prior: Option<&Prior>) -> Vec<Option<LinkInertial>> {
+    let layout = &problem.layout;
+    let solids = problem.shapes.as_ref().map(|shapes| {
+        let (unit, rho) = unit_solids(problem, shapes);
+        unit.into_iter()
+            .map(|l| LinkInertial {
+                mass: rho * l.mass,
+                com: l.com,
+                inertia: l.inertia.map(|row| row.map(|v| v * rho)),
+            })
+            .collect::<Vec<_>>()
+    });
+    (0..layout.links.len())
+        .map(|j| {
+            let given: Option<Vec<f64>> = prior.and_then(|p| {
+                layout.links[j]
+                    .iter()
+                    .map(|&s| p.standard.get(s).copied().flatten())
+                    .collect()
+            });
+            match given {
+                Some(v) => LinkInertial::from_standard(&std::array::from_fn(|k| v[k])),
+                None => solids.as_ref().map(|s| s[j]),
+            }
+        })
+        .collect()
 }
 
 /// The share of each standard parameter that the data determine, in [0, 1]: the diagonal
@@ -295,6 +335,43 @@ mod tests {
     /// A one-link arm whose identified ZZ1 and MX1 are those of a solid of density 500
     /// along its segment: the default prior finds that density, so the link's mass (which
     /// no base parameter holds alone) is the solid's.
+    /// A steel link of 191 kg, known from the data alone (no prior): the default bounds
+    /// are widened to twice its solid's mass, so the solid prior is not clamped to 47.5 kg.
+    #[test]
+    fn the_default_bounds_make_room_for_a_heavy_link() {
+        let names: Vec<String> = crate::model::Inertial::ALL
+            .iter()
+            .map(|s| format!("{}1", s.stem()))
+            .collect();
+        let mut k = nalgebra::DMatrix::zeros(2, 10);
+        k[(0, 5)] = 1.0;
+        k[(1, 6)] = 1.0;
+        let shape = LinkShape {
+            from: [0.0; 3],
+            to: [0.5, 0.0, 0.0],
+        };
+        let p = solid(&shape, 0.5).to_standard();
+        let rho = 7800.0;
+        let problem = Problem::new(names, vec!["ZZ1".into(), "MX1".into()], k)
+            .unwrap()
+            .with_target(&[rho * p[5], rho * p[6]], &[1e-3, 1e-3])
+            .unwrap()
+            .with_shapes(vec![shape])
+            .unwrap();
+        let heavy = rho * p[9];
+        assert!(heavy > 190.0 && heavy < 192.0, "{heavy}");
+        let narrow = Pull::new(&problem, &Bounds::wide(1), None, 1.0).unwrap();
+        assert_eq!(narrow.target[9], 47.5);
+        let bounds = Bounds::wide_for(&problem, None);
+        assert!((bounds.links[0].mass[1] - 2.0 * heavy).abs() < 1e-9 * heavy);
+        let pull = Pull::new(&problem, &bounds, None, 1.0).unwrap();
+        assert!(
+            (pull.target[9] - heavy).abs() < 1e-9 * heavy,
+            "{}",
+            pull.target[9]
+        );
+    }
+
     #[test]
     fn the_default_prior_finds_the_density_of_the_data() {
         let names: Vec<String> = crate::model::Inertial::ALL

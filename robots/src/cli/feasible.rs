@@ -274,12 +274,6 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let problem = problem
         .with_identified(&names, &values, &std)
         .map_err(|e| about(&args.identified, e))?;
-    let links = problem.layout.links.len();
-    let bounds = match &args.bounds {
-        Some(path) => Bounds::from_toml(&read(path)?, &path.display().to_string(), links)
-            .map_err(|e| about(path, e))?,
-        None => Bounds::wide(links),
-    };
     let weight = args.prior_weight.unwrap_or(1.0);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {
@@ -302,6 +296,13 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             })
         }
         (None, None) => None,
+    };
+    let links = problem.layout.links.len();
+    let bounds = match &args.bounds {
+        Some(path) => Bounds::from_toml(&read(path)?, &path.display().to_string(), links)
+            .map_err(|e| about(path, e))?,
+        // wide, and wider for a robot whose prior links are heavier or larger
+        None => Bounds::wide_for(&problem, prior.as_ref()),
     };
     // the default prior's weight: --prior-weight without a prior, else the default
     let default_weight = match (&prior, args.prior_weight) {
