@@ -251,7 +251,22 @@ impl Bounds {
     /// 1 % of the smallest eigenvalue of the links' pseudo-inertias in `prior` (standard
     /// parameters laid out by `layout`) when that is smaller and positive: links of a few
     /// grams, whose pseudo-inertias are near 1e-6, are not held away from their prior.
-    pub(crate) fn margin_for(&self, layout: &super::Layout, prior: Option<&[f64]>) -> f64 {
+    ///
+    /// ```
+    /// use robid_runtime::feasible::{Bounds, DEFAULT_MARGIN, Problem};
+    /// use nalgebra::DMatrix;
+    /// let names: Vec<String> = ["XX1", "XY1", "XZ1", "YY1", "YZ1", "ZZ1", "MX1", "MY1", "MZ1", "M1"]
+    ///     .map(String::from)
+    ///     .to_vec();
+    /// let problem = Problem::new(names.clone(), names, DMatrix::identity(10, 10)).unwrap();
+    /// // a 12 g link, centre of mass at the origin, inertia 1e-6 I: its pseudo-inertia's
+    /// // second moments are tr(I) / 2 - 1e-6 = 0.5e-6, its smallest eigenvalue
+    /// let jaw = [1e-6, 0.0, 0.0, 1e-6, 0.0, 1e-6, 0.0, 0.0, 0.0, 0.012];
+    /// let margin = Bounds::wide(1).margin_for(&problem.layout, Some(&jaw));
+    /// assert!((margin - 0.5e-8).abs() < 1e-20);
+    /// assert_eq!(Bounds::wide(1).margin_for(&problem.layout, None), DEFAULT_MARGIN);
+    /// ```
+    pub fn margin_for(&self, layout: &super::Layout, prior: Option<&[f64]>) -> f64 {
         if let Some(m) = self.margin {
             return m;
         }

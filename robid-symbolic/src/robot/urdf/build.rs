@@ -67,7 +67,10 @@ fn limits(place: &Place<'_>, joint: &xml::Joint) -> Result<Limits, DescriptionEr
             return Err(place.invalid(
                 at(),
                 format!("{describe}: positions [{lower}, {upper}] go beyond ±{MAX_POSITION}"),
-                "positions are in radians (revolute) or metres (prismatic)",
+                format!(
+                    "positions are in radians (revolute) or metres (prismatic); {}",
+                    xml::NO_POSITION_LIMITS
+                ),
             ));
         }
         if lower < upper {

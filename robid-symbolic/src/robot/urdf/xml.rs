@@ -243,13 +243,18 @@ impl Reader<'_> {
             match word.parse::<f64>() {
                 Ok(v) if v.abs() <= MAX_VALUE => values.push(v),
                 Ok(v) if v.is_finite() => {
+                    let help = if node.has_tag_name("limit") && matches!(name, "lower" | "upper") {
+                        NO_POSITION_LIMITS
+                    } else {
+                        "write lengths in m, masses in kg, inertias in kg m^2, angles in rad"
+                    };
                     self.error(
                         span,
                         format!(
                             "`{name}=\"{text}\"` of {}: `{word}` is beyond ±{MAX_VALUE:e}, not a value of a robot",
                             describe(node)
                         ),
-                        "write lengths in m, masses in kg, inertias in kg m^2, angles in rad",
+                        help,
                     );
                     return None;
                 }
@@ -532,6 +537,10 @@ impl Reader<'_> {
         }
     }
 }
+
+/// The fix for position limits written as huge numbers to mean none.
+pub(super) const NO_POSITION_LIMITS: &str = "a joint that turns without end is `type=\"continuous\"`; \
+     leave `lower` and `upper` out (or write them equal) for a joint without position limits";
 
 /// The nonzero multiple of pi/2 that `word` prints to its own number of decimals, when it
 /// has at least [`PRINTED_DECIMALS`] of them: `1.5708` and `-3.1416` are pi/2 and -pi

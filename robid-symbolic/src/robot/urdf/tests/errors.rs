@@ -51,6 +51,9 @@ fn each_mistake_is_named_at_its_place() {
         (arm(&format!("{J1}{}", J2.replace("revolute", "floating"))), "t.urdf:6:1:", &["joint `j2` is floating"]),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit effort=\"1e9\" velocity=\"1\"/></joint>"))), "t.urdf:6:", &["`<limit>` of joint `j2`: effort 1000000000 is not a positive number"]),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"1\" upper=\"-1\"/></joint>"))), "t.urdf:6:", &["lower 1 is above upper -1"]),
+        // huge limits meant as none (an SDF conversion's 1e16): the fix says how to write none
+        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"-1e16\" upper=\"1e16\"/></joint>"))), "t.urdf:6:", &["`-1e16` is beyond", "`type=\"continuous\"`", "leave `lower` and `upper` out"]),
+        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"-2000\" upper=\"2000\"/></joint>"))), "t.urdf:6:", &["go beyond ±1000", "`type=\"continuous\"`"]),
         (
             arm(&format!("{J1}{}", J2.replace("0.5 0 0", "0.0000001 0 0"))),
             "t.urdf:6:1:",
