@@ -478,11 +478,44 @@ mod tests {
             wide.margin_for(&layout, Some(&target(broken, 0.0))),
             DEFAULT_MARGIN
         );
+        // a point mass: its pseudo-inertia's smallest eigenvalue is exactly 0, no scale
+        let mut point = [0.0; 10];
+        point[9] = 1.0;
+        assert_eq!(pseudo_inertia_min_eigenvalue(&point), 0.0);
+        assert_eq!(
+            wide.margin_for(&layout, Some(&target(point, 0.0))),
+            DEFAULT_MARGIN
+        );
         let given = Bounds {
             margin: Some(0.5),
             ..Bounds::wide(1)
         };
         assert_eq!(given.margin_for(&layout, Some(&target(jaw, 0.0))), 0.5);
+    }
+
+    /// Each default range reaches twice the prior's largest value where that is beyond it,
+    /// and is left as it is otherwise.
+    #[test]
+    fn the_default_bounds_reach_twice_the_prior() {
+        use crate::feasible::fixture::{link, problem, target};
+        use crate::feasible::{LinkInertial, Prior};
+        let long = LinkInertial {
+            mass: 80.0,
+            com: [0.0, -0.8, 0.1],
+            inertia: [[6.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 6.0]],
+        }
+        .to_standard();
+        let prior = |l: [f64; 10]| Prior {
+            standard: target(l, 0.0).iter().map(|&v| Some(v)).collect(),
+            weight: 1.0,
+        };
+        let p = problem(&target(long, 0.0));
+        let b = Bounds::wide_for(&p, Some(&prior(long))).links[0];
+        assert_eq!(b.mass, [0.0, 160.0]);
+        assert_eq!(b.com, [[-1.6, 1.6]; 3]);
+        assert!((b.inertia[1] - 12.0).abs() < 1e-12, "{:?}", b.inertia);
+        let ordinary = Bounds::wide_for(&p, Some(&prior(link())));
+        assert_eq!(ordinary, Bounds::wide(1));
     }
 
     #[test]

@@ -364,6 +364,15 @@ mod tests {
         assert_eq!(narrow.target[9], 47.5);
         let bounds = Bounds::wide_for(&problem, None);
         assert!((bounds.links[0].mass[1] - 2.0 * heavy).abs() < 1e-9 * heavy);
+        // its centre of mass, 0.25 m out, fits the default box; its largest moment (across
+        // the cylinder of radius 0.125 m, 4.74 kg m^2) gets twice its value
+        assert_eq!(bounds.links[0].com, [[-1.0, 1.0]; 3]);
+        let across = heavy * (3.0 * 0.125f64.powi(2) + 0.25) / 12.0;
+        assert!(
+            (bounds.links[0].inertia[1] - 2.0 * across).abs() < 1e-9,
+            "{:?}",
+            bounds.links[0].inertia
+        );
         let pull = Pull::new(&problem, &bounds, None, 1.0).unwrap();
         assert!(
             (pull.target[9] - heavy).abs() < 1e-9 * heavy,
