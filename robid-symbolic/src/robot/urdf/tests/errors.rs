@@ -77,6 +77,22 @@ fn each_mistake_is_named_at_its_place() {
     }
 }
 
+/// Only a huge position limit is told how to write none; a huge effort is told its units.
+#[test]
+fn huge_limits_get_the_fix_of_their_kind() {
+    let effort = arm(&format!(
+        "{J1}{}",
+        J2.replace(
+            "</joint>",
+            "<limit effort=\"1e16\" velocity=\"1\"/></joint>"
+        )
+    ));
+    let message = error_of(&effort, &ChainSelection::default());
+    assert!(message.contains("`1e16` is beyond"), "{message}");
+    assert!(message.contains("masses in kg"), "{message}");
+    assert!(!message.contains("continuous"), "{message}");
+}
+
 #[test]
 fn duplicate_links_and_mimics_of_chain_joints_off_the_chain() {
     let text = arm(&format!("{J1}{J2}")).replace(
