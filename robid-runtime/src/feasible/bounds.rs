@@ -177,8 +177,8 @@ impl Bounds {
         };
         for l in super::prior::prior_links(problem, prior).iter().flatten() {
             widen(&mut b.mass, l.mass);
+            let far = l.com.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             for axis in &mut b.com {
-                let far = l.com.iter().fold(0.0f64, |a, v| a.max(v.abs()));
                 widen(axis, far);
                 axis[0] = -axis[1];
             }

@@ -332,13 +332,9 @@ mod tests {
         assert!(s.inertia[0][1].abs() < 1e-18);
     }
 
-    /// A one-link arm whose identified ZZ1 and MX1 are those of a solid of density 500
-    /// along its segment: the default prior finds that density, so the link's mass (which
-    /// no base parameter holds alone) is the solid's.
-    /// A steel link of 191 kg, known from the data alone (no prior): the default bounds
-    /// are widened to twice its solid's mass, so the solid prior is not clamped to 47.5 kg.
-    #[test]
-    fn the_default_bounds_make_room_for_a_heavy_link() {
+    /// A one-link arm along x (0.5 m) whose identified ZZ1 and MX1 (columns 5 and 6) are
+    /// those of a solid of density `rho` along its segment; also that solid.
+    fn solid_arm(rho: f64) -> (Problem, LinkInertial) {
         let names: Vec<String> = crate::model::Inertial::ALL
             .iter()
             .map(|s| format!("{}1", s.stem()))
@@ -350,15 +346,24 @@ mod tests {
             from: [0.0; 3],
             to: [0.5, 0.0, 0.0],
         };
-        let p = solid(&shape, 0.5).to_standard();
-        let rho = 7800.0;
+        let unit = solid(&shape, 0.5);
+        let p = unit.to_standard();
         let problem = Problem::new(names, vec!["ZZ1".into(), "MX1".into()], k)
             .unwrap()
             .with_target(&[rho * p[5], rho * p[6]], &[1e-3, 1e-3])
             .unwrap()
             .with_shapes(vec![shape])
             .unwrap();
-        let heavy = rho * p[9];
+        (problem, unit)
+    }
+
+    /// A steel link of 191 kg, known from the data alone (no prior): the default bounds
+    /// are widened to twice its solid's mass, so the solid prior is not clamped to 47.5 kg.
+    #[test]
+    fn the_default_bounds_make_room_for_a_heavy_link() {
+        let rho = 7800.0;
+        let (problem, unit) = solid_arm(rho);
+        let heavy = rho * unit.mass;
         assert!(heavy > 190.0 && heavy < 192.0, "{heavy}");
         let narrow = Pull::new(&problem, &Bounds::wide(1), None, 1.0).unwrap();
         assert_eq!(narrow.target[9], 47.5);
@@ -381,29 +386,13 @@ mod tests {
         );
     }
 
+    /// A one-link arm whose identified ZZ1 and MX1 are those of a solid of density 500
+    /// along its segment: the default prior finds that density, so the link's mass (which
+    /// no base parameter holds alone) is the solid's.
     #[test]
     fn the_default_prior_finds_the_density_of_the_data() {
-        let names: Vec<String> = crate::model::Inertial::ALL
-            .iter()
-            .map(|s| format!("{}1", s.stem()))
-            .collect();
-        // ZZ1 and MX1 (columns 5 and 6)
-        let mut k = nalgebra::DMatrix::zeros(2, 10);
-        k[(0, 5)] = 1.0;
-        k[(1, 6)] = 1.0;
-        let shape = LinkShape {
-            from: [0.0; 3],
-            to: [0.5, 0.0, 0.0],
-        };
-        let truth = solid(&shape, 0.5);
-        let p = truth.to_standard();
         let rho = 500.0;
-        let problem = Problem::new(names, vec!["ZZ1".into(), "MX1".into()], k)
-            .unwrap()
-            .with_target(&[rho * p[5], rho * p[6]], &[1e-3, 1e-3])
-            .unwrap()
-            .with_shapes(vec![shape])
-            .unwrap();
+        let (problem, truth) = solid_arm(rho);
         let bounds = Bounds::wide(1);
         let pull = Pull::new(&problem, &bounds, None, 1.0).unwrap();
         let mass = pull.target[9];
