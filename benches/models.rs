@@ -1,9 +1,12 @@
 //! Speed of the compiled UR5e model (docs/performance.md#what-robid-measures), with a
 //! baseline measured in the same run: 6 x (sin + cos) through libm, the floor of any model
 //! that evaluates the joint angles' trigonometry; and the batched sines and cosines alone
-//! (`robid_runtime::trig`), vectorised and through libm.
+//! (`robid_runtime::trig`), vectorised and through libm. The `x2` and `x4` figures run
+//! two and four states side by side in one call (`robid_runtime::lanes::Lanes`): divide
+//! them by the states for a per-state cost.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use robid_runtime::lanes::Lanes;
 use robots::Ur5e;
 use std::hint::black_box;
 
@@ -56,6 +59,31 @@ fn ur5e(c: &mut Criterion) {
     });
     c.bench_function("ur5e gravity", |b| {
         b.iter(|| model.gravity(black_box(&q), black_box(&base)))
+    });
+    lanes::<2>(c, "x2");
+    lanes::<4>(c, "x4");
+}
+
+/// The inverse dynamics and the base regressor of `W` states in one call: the state of
+/// [`state`] with each angle moved by 0.1 rad per lane.
+fn lanes<const W: usize>(c: &mut Criterion, label: &str) {
+    let (q, qd, qdd, base) = state();
+    let spread = |x: [f64; 6]| x.map(|v| Lanes::<W>(std::array::from_fn(|l| v + 0.1 * l as f64)));
+    let (q, qd, qdd) = (spread(q), spread(qd), spread(qdd));
+    let base = base.map(|v| Lanes::<W>([v; W]));
+    let model = Ur5e;
+    c.bench_function(&format!("ur5e inverse_dynamics {label}"), |b| {
+        b.iter(|| {
+            model.inverse_dynamics(
+                black_box(&q),
+                black_box(&qd),
+                black_box(&qdd),
+                black_box(&base),
+            )
+        })
+    });
+    c.bench_function(&format!("ur5e base_regressor {label}"), |b| {
+        b.iter(|| model.base_regressor(black_box(&q), black_box(&qd), black_box(&qdd)))
     });
 }
 

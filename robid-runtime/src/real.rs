@@ -3,7 +3,8 @@
 use core::fmt::Debug;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
-/// A real scalar for generated straight-line code: `f64` and `f32`.
+/// A real scalar for generated straight-line code: `f64`, `f32`, and
+/// [`Lanes`](crate::lanes::Lanes) of `f64` (several argument sets at once).
 ///
 /// Only what the emitted code needs: arithmetic, the trigonometric functions of
 /// joint angles, `sign` for Coulomb friction and `sqrt`. In `no_std` builds the
@@ -12,7 +13,6 @@ pub trait Real:
     Copy
     + Debug
     + PartialEq
-    + PartialOrd
     + Add<Output = Self>
     + Sub<Output = Self>
     + Mul<Output = Self>
@@ -25,8 +25,6 @@ pub trait Real:
     const ONE: Self;
     /// Converts a literal from the generated code (rounded to the nearest value for `f32`).
     fn from_f64(value: f64) -> Self;
-    /// Converts to `f64`.
-    fn to_f64(self) -> f64;
     /// Sine.
     fn sin(self) -> Self;
     /// Cosine.
@@ -75,10 +73,6 @@ macro_rules! impl_real {
             #[inline(always)]
             fn from_f64(value: f64) -> Self {
                 value as $t
-            }
-            #[inline(always)]
-            fn to_f64(self) -> f64 {
-                self as f64
             }
             #[inline(always)]
             fn sin(self) -> Self {

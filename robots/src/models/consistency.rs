@@ -142,6 +142,144 @@ fn check_file(path: &str, model: &dyn Model) {
     }
 }
 
+/// Every generated function of `$ty` run with `Lanes<3>` (three argument sets side by
+/// side, the second with zero velocities so that Coulomb friction's sign(0) is taken)
+/// gives each lane what the `f64` function gives that lane's arguments, to the bit.
+macro_rules! lanes_equal_f64 {
+    ($model:expr, $ty:ty) => {{
+        use robid_runtime::lanes::Lanes;
+        const N: usize = <$ty>::DOF;
+        const NB: usize = <$ty>::BASE_PARAMETERS;
+        const NS: usize = <$ty>::STANDARD_PARAMETERS;
+        let m = $model;
+        let mut rng = Rng::from_state(7);
+        let mut sets = |n: usize, scale: f64, zero: bool| -> [Vec<f64>; 3] {
+            core::array::from_fn(|l| {
+                let v = random(&mut rng, n, scale);
+                if zero && l == 1 { vec![0.0; n] } else { v }
+            })
+        };
+        let wide = |v: &[Vec<f64>; 3]| -> Vec<Lanes<3>> {
+            (0..v[0].len())
+                .map(|i| Lanes([v[0][i], v[1][i], v[2][i]]))
+                .collect()
+        };
+        let (q, qd, qdd) = (sets(N, 3.0, false), sets(N, 2.0, true), sets(N, 4.0, false));
+        let (base, standard) = (sets(NB, 1.0, false), sets(NS, 1.0, false));
+        let (wq, wqd, wqdd, wb, ws) = (
+            wide(&q),
+            wide(&qd),
+            wide(&qdd),
+            wide(&base),
+            wide(&standard),
+        );
+        let a = |v: &Vec<Lanes<3>>| v.clone();
+        for l in 0..3 {
+            let f = |v: &[Vec<f64>; 3]| v[l].clone();
+            let outputs: [(&str, Vec<f64>, Vec<Lanes<3>>); 7] = [
+                (
+                    "standard_regressor",
+                    m.standard_regressor(
+                        &f(&q).try_into().unwrap(),
+                        &f(&qd).try_into().unwrap(),
+                        &f(&qdd).try_into().unwrap(),
+                    )
+                    .to_vec(),
+                    m.standard_regressor(
+                        &a(&wq).try_into().unwrap(),
+                        &a(&wqd).try_into().unwrap(),
+                        &a(&wqdd).try_into().unwrap(),
+                    )
+                    .to_vec(),
+                ),
+                (
+                    "base_regressor",
+                    m.base_regressor(
+                        &f(&q).try_into().unwrap(),
+                        &f(&qd).try_into().unwrap(),
+                        &f(&qdd).try_into().unwrap(),
+                    )
+                    .to_vec(),
+                    m.base_regressor(
+                        &a(&wq).try_into().unwrap(),
+                        &a(&wqd).try_into().unwrap(),
+                        &a(&wqdd).try_into().unwrap(),
+                    )
+                    .to_vec(),
+                ),
+                (
+                    "inverse_dynamics",
+                    m.inverse_dynamics(
+                        &f(&q).try_into().unwrap(),
+                        &f(&qd).try_into().unwrap(),
+                        &f(&qdd).try_into().unwrap(),
+                        &f(&base).try_into().unwrap(),
+                    )
+                    .to_vec(),
+                    m.inverse_dynamics(
+                        &a(&wq).try_into().unwrap(),
+                        &a(&wqd).try_into().unwrap(),
+                        &a(&wqdd).try_into().unwrap(),
+                        &a(&wb).try_into().unwrap(),
+                    )
+                    .to_vec(),
+                ),
+                (
+                    "mass_matrix",
+                    m.mass_matrix(&f(&q).try_into().unwrap(), &f(&base).try_into().unwrap())
+                        .to_vec(),
+                    m.mass_matrix(&a(&wq).try_into().unwrap(), &a(&wb).try_into().unwrap())
+                        .to_vec(),
+                ),
+                (
+                    "gravity",
+                    m.gravity(&f(&q).try_into().unwrap(), &f(&base).try_into().unwrap())
+                        .to_vec(),
+                    m.gravity(&a(&wq).try_into().unwrap(), &a(&wb).try_into().unwrap())
+                        .to_vec(),
+                ),
+                (
+                    "coriolis",
+                    m.coriolis(
+                        &f(&q).try_into().unwrap(),
+                        &f(&qd).try_into().unwrap(),
+                        &f(&base).try_into().unwrap(),
+                    )
+                    .to_vec(),
+                    m.coriolis(
+                        &a(&wq).try_into().unwrap(),
+                        &a(&wqd).try_into().unwrap(),
+                        &a(&wb).try_into().unwrap(),
+                    )
+                    .to_vec(),
+                ),
+                (
+                    "base_from_standard",
+                    m.base_from_standard(&f(&standard).try_into().unwrap())
+                        .to_vec(),
+                    m.base_from_standard(&a(&ws).try_into().unwrap()).to_vec(),
+                ),
+            ];
+            for (name, narrow, wide) in outputs {
+                assert_eq!(narrow.len(), wide.len());
+                for (e, (x, w)) in narrow.iter().zip(&wide).enumerate() {
+                    assert_eq!(x.to_bits(), w.0[l].to_bits(), "{name} lane {l} value {e}");
+                }
+            }
+        }
+    }};
+}
+
+#[test]
+fn lanes_equal_f64_ur5e() {
+    lanes_equal_f64!(Ur5e, Ur5e);
+}
+
+#[test]
+fn lanes_equal_f64_panda() {
+    lanes_equal_f64!(Panda, Panda);
+}
+
 /// An arm with a symbolic twist and length, a prismatic joint and every drive term: the
 /// paths of the emitted code that no reference robot reaches (sine and cosine computed as
 /// a pair, non-zero constants among the outputs of a matrix).
@@ -154,6 +292,10 @@ fn symbolic_drive_arm_agrees_with_its_description() {
     check_file(
         "tests/fixtures/symbolic_drive_arm.toml",
         &symbolic_drive_arm::SymbolicDriveArm::default(),
+    );
+    lanes_equal_f64!(
+        symbolic_drive_arm::SymbolicDriveArm::default(),
+        symbolic_drive_arm::SymbolicDriveArm
     );
 }
 
