@@ -6,11 +6,15 @@
 //! them by the states for a per-state cost.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use robid_runtime::Real;
 use robid_runtime::lanes::Lanes;
 use robots::Ur5e;
 use std::hint::black_box;
 
-fn state() -> ([f64; 6], [f64; 6], [f64; 6], [f64; 36]) {
+/// The UR5e's arguments: q, qd, qdd, base parameters.
+type State<T> = ([T; 6], [T; 6], [T; 6], [T; 36]);
+
+fn state() -> State<f64> {
     let q = [0.3, -1.2, 0.8, 0.4, -0.7, 1.9];
     let qd = [0.5, -0.3, 0.9, -1.1, 0.2, 0.7];
     let qdd = [1.5, -0.4, 0.2, 0.8, -1.3, 0.6];
@@ -41,38 +45,22 @@ fn ur5e(c: &mut Criterion) {
     c.bench_function("trig::sin_cos_libm of 6 angles", |b| {
         b.iter(|| robid_runtime::trig::sin_cos_libm(black_box(q)))
     });
-    c.bench_function("ur5e inverse_dynamics", |b| {
-        b.iter(|| {
-            model.inverse_dynamics(
-                black_box(&q),
-                black_box(&qd),
-                black_box(&qdd),
-                black_box(&base),
-            )
-        })
-    });
-    c.bench_function("ur5e base_regressor", |b| {
-        b.iter(|| model.base_regressor(black_box(&q), black_box(&qd), black_box(&qdd)))
-    });
+    dynamics(c, "", (q, qd, qdd, base));
     c.bench_function("ur5e mass_matrix", |b| {
         b.iter(|| model.mass_matrix(black_box(&q), black_box(&base)))
     });
     c.bench_function("ur5e gravity", |b| {
         b.iter(|| model.gravity(black_box(&q), black_box(&base)))
     });
-    lanes::<2>(c, "x2");
-    lanes::<4>(c, "x4");
+    lanes::<2>(c, " x2");
+    lanes::<4>(c, " x4");
 }
 
-/// The inverse dynamics and the base regressor of `W` states in one call: the state of
-/// [`state`] with each angle moved by 0.1 rad per lane.
-fn lanes<const W: usize>(c: &mut Criterion, label: &str) {
-    let (q, qd, qdd, base) = state();
-    let spread = |x: [f64; 6]| x.map(|v| Lanes::<W>(std::array::from_fn(|l| v + 0.1 * l as f64)));
-    let (q, qd, qdd) = (spread(q), spread(qd), spread(qdd));
-    let base = base.map(|v| Lanes::<W>([v; W]));
+/// The UR5e's inverse dynamics and base regressor at one state of scalar `T` (`label`
+/// after their names).
+fn dynamics<T: Real>(c: &mut Criterion, label: &str, (q, qd, qdd, base): State<T>) {
     let model = Ur5e;
-    c.bench_function(&format!("ur5e inverse_dynamics {label}"), |b| {
+    c.bench_function(&format!("ur5e inverse_dynamics{label}"), |b| {
         b.iter(|| {
             model.inverse_dynamics(
                 black_box(&q),
@@ -82,9 +70,18 @@ fn lanes<const W: usize>(c: &mut Criterion, label: &str) {
             )
         })
     });
-    c.bench_function(&format!("ur5e base_regressor {label}"), |b| {
+    c.bench_function(&format!("ur5e base_regressor{label}"), |b| {
         b.iter(|| model.base_regressor(black_box(&q), black_box(&qd), black_box(&qdd)))
     });
+}
+
+/// [`dynamics`] of `W` states in one call: the state of [`state`] with each value moved
+/// by 0.1 per lane (the base parameters the same in every lane).
+fn lanes<const W: usize>(c: &mut Criterion, label: &str) {
+    let (q, qd, qdd, base) = state();
+    let spread = |x: [f64; 6]| x.map(|v| Lanes::<W>(std::array::from_fn(|l| v + 0.1 * l as f64)));
+    let base = base.map(|v| Lanes::<W>([v; W]));
+    dynamics(c, label, (spread(q), spread(qd), spread(qdd), base));
 }
 
 criterion_group!(benches, ur5e);
