@@ -6,7 +6,9 @@
 //! A failed or killed run therefore leaves an existing file exactly as it was, and a
 //! reader never sees half a file. [`refuse_inputs`] is called before any work starts,
 //! so that `robid excite robot.toml -o robot.toml` fails instead of replacing the
-//! description.
+//! description, or two outputs of one run on the same file. A target that is not a
+//! regular file (a pipe, `/dev/stdout`, a terminal, a device) is written into directly:
+//! it cannot be replaced, and replacing it would destroy it.
 //!
 //! ```
 //! # let dir = tempfile::tempdir().unwrap();
@@ -24,7 +26,9 @@ use crate::error::{Error, Result};
 /// replaces `path` (keeping its permissions) only when `write` and the flush succeed.
 ///
 /// A symbolic link is followed, so the file it points to is replaced and the link
-/// kept. On any error the temporary file is removed and `path` is left untouched.
+/// kept. On any error the temporary file is removed and `path` is left untouched. A
+/// target that exists and is neither a file nor a folder (a pipe, `/dev/stdout`, a
+/// device) is opened and written into, as a shell's `>` would.
 pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
@@ -41,10 +45,20 @@ pub fn write_atomically(
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    if target.is_dir() {
+    let metadata = std::fs::metadata(&target).ok();
+    if metadata.as_ref().is_some_and(std::fs::Metadata::is_dir) {
         return Err(err(&"it is a folder; give a file name"));
     }
-    let existing = std::fs::metadata(&target).ok().map(|m| m.permissions());
+    if metadata.as_ref().is_some_and(|m| !m.is_file()) {
+        let file = std::fs::OpenOptions::new()
+            .write(true)
+            .open(&target)
+            .map_err(|e| err(&e))?;
+        let mut w = std::io::BufWriter::new(file);
+        write(&mut w).map_err(|e| err(&e))?;
+        return w.flush().map_err(|e| err(&e));
+    }
+    let existing = metadata.map(|m| m.permissions());
     let mut temp = temp_builder()
         .prefix(".robid-")
         .suffix(".tmp")
@@ -92,20 +106,66 @@ pub fn create_folder(dir: &Path) -> Result<()> {
 }
 
 /// Refuses, before any work, an output that is the same file as an input (the same
-/// file under another name or through a link included). Outputs that do not exist
-/// yet cannot be an input and pass.
+/// file under another name or through a link included), and two outputs that are the
+/// same file (one would silently replace the other). Outputs that do not exist yet
+/// cannot be an input and pass. No file is opened (opening a pipe would wait for its
+/// writer).
 pub fn refuse_inputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
-    for output in outputs {
-        for input in inputs {
-            if same_file::is_same_file(output, input).unwrap_or(false) {
-                return Err(Error::Output(OutputError::OutputIsInput {
-                    output: output.to_path_buf(),
-                    input: input.to_path_buf(),
-                }));
-            }
+    let inputs: Vec<(&Path, Option<FileId>)> = inputs.iter().map(|p| (*p, file_id(p))).collect();
+    let outputs: Vec<(&Path, Option<FileId>)> = outputs.iter().map(|p| (*p, file_id(p))).collect();
+    for (k, (output, id)) in outputs.iter().enumerate() {
+        let Some(id) = id else { continue };
+        if let Some((input, _)) = inputs.iter().find(|(_, i)| i.as_ref() == Some(id)) {
+            return Err(Error::Output(OutputError::OutputIsInput {
+                output: output.to_path_buf(),
+                input: input.to_path_buf(),
+            }));
+        }
+        if let Some((other, _)) = outputs[..k].iter().find(|(_, i)| i.as_ref() == Some(id)) {
+            return Err(Error::Output(OutputError::TwoOutputs {
+                first: other.to_path_buf(),
+                second: output.to_path_buf(),
+            }));
         }
     }
     Ok(())
+}
+
+/// Which file a path names, found without opening it.
+#[derive(Debug, PartialEq)]
+enum FileId {
+    /// An existing file: its device and inode (its canonical path where there are none).
+    Existing(u64, u64, PathBuf),
+    /// A file not created yet: its folder's canonical path and its name.
+    New(PathBuf),
+}
+
+/// The [`FileId`] of `path`, or `None` when neither it nor its folder can be resolved
+/// (writing there fails later with its own error).
+fn file_id(path: &Path) -> Option<FileId> {
+    match std::fs::metadata(path) {
+        Ok(m) => {
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::MetadataExt;
+                Some(FileId::Existing(m.dev(), m.ino(), PathBuf::new()))
+            }
+            #[cfg(not(unix))]
+            {
+                let _ = m;
+                Some(FileId::Existing(0, 0, std::fs::canonicalize(path).ok()?))
+            }
+        }
+        Err(_) => {
+            let dir = match path.parent() {
+                Some(d) if !d.as_os_str().is_empty() => d,
+                _ => Path::new("."),
+            };
+            Some(FileId::New(
+                std::fs::canonicalize(dir).ok()?.join(path.file_name()?),
+            ))
+        }
+    }
 }
 
 /// An output cannot be written.
@@ -119,6 +179,16 @@ pub enum OutputError {
         path: PathBuf,
         /// What the writer reported.
         reason: String,
+    },
+    /// Two outputs of one run are the same file.
+    #[error(
+        "{first} and {second} are the same file, so one output would replace the other; give them different names"
+    )]
+    TwoOutputs {
+        /// The first output, as given.
+        first: PathBuf,
+        /// The second output, as given.
+        second: PathBuf,
     },
     /// An output would replace one of the run's inputs.
     #[error("{output} is also an input of this run ({input}); write the output to another file")]
@@ -212,5 +282,48 @@ mod tests {
             std::os::unix::fs::symlink(&input, &link).unwrap();
             assert!(refuse_inputs(&[&input], &[&link]).is_err());
         }
+    }
+
+    /// Two outputs on one file are refused whether the file exists or not, under any
+    /// spelling; distinct outputs pass.
+    #[test]
+    fn two_outputs_on_one_file_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let new = dir.path().join("report.html");
+        let same_new = dir.path().join(".").join("report.html");
+        let other = dir.path().join("result.json");
+        let two = |a: &Path, b: &Path| refuse_inputs(&[], &[a, b]);
+        assert!(matches!(
+            two(&new, &same_new),
+            Err(Error::Output(OutputError::TwoOutputs { .. }))
+        ));
+        assert!(two(&new, &other).is_ok());
+        std::fs::write(&new, "x").unwrap();
+        assert!(two(&same_new, &new).is_err());
+        assert!(two(&new, &other).is_ok());
+    }
+
+    /// A pipe is written into, not replaced, and never opened for reading: checking it
+    /// against the inputs does not wait for a writer.
+    #[test]
+    #[cfg(unix)]
+    fn a_pipe_is_written_into() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("out.fifo");
+        let status = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !status.is_ok_and(|s| s.success()) {
+            return; // no mkfifo on this system
+        }
+        let input = dir.path().join("in.toml");
+        std::fs::write(&input, "x").unwrap();
+        refuse_inputs(&[&input], &[&fifo]).unwrap();
+        let reader = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
+        };
+        write_bytes(&fifo, b"through the pipe").unwrap();
+        assert_eq!(reader.join().unwrap(), "through the pipe");
+        let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+        assert!(std::os::unix::fs::FileTypeExt::is_fifo(&kind));
     }
 }

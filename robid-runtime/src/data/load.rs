@@ -12,6 +12,7 @@ use crate::data::dataset::DataOrigin;
 use crate::data::time::{check_monotonic, interpolate, regularity, uniform_grid};
 use crate::data::{
     AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_columns,
+    read_header,
 };
 use crate::drive::DriveChain;
 use crate::error::{Error, Result};
@@ -80,6 +81,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let mut samplings = Vec::new();
 
     for (index, (src, path)) in config.sources.iter().zip(&paths).enumerate() {
+        check_surplus_joint(config, src, index, path, dof)?;
         let (names, spans) = source_columns(config, src, dof);
         let mut table = read_columns(path, &names).map_err(|e| match e {
             Error::Data(DataError::MissingColumn {
@@ -238,6 +240,62 @@ pub(crate) fn source_columns(
         names.push(t.clone());
     }
     (names, spans)
+}
+
+/// Refuses a `[[source]]` (number `index`, from 0) whose file `path` has a column for one
+/// joint more than the model's `dof`, by a template of the source (`q7` for a 6-joint
+/// model read through `"q{}"`): the data and the description are then of different
+/// robots, and reading the first columns only would identify nonsense without a word. A
+/// source that lists its columns has chosen them and is not checked.
+pub(crate) fn check_surplus_joint(
+    config: &Config,
+    src: &Source,
+    index: usize,
+    path: &Path,
+    dof: usize,
+) -> Result<()> {
+    let templates: Vec<(usize, &str)> = (0..ROLES.len())
+        .filter_map(|r| match role_columns(src, r) {
+            Some(crate::data::Columns::Template(t)) if t.contains("{}") => Some((r, t.as_str())),
+            _ => None,
+        })
+        .collect();
+    if templates.is_empty() {
+        return Ok(());
+    }
+    let header = read_header(path)?;
+    for (role, template) in templates {
+        if let Some(column) = surplus_joint(&header, template, dof) {
+            let key = format!("source[{}].{}", index + 1, ROLES[role]);
+            return Err(config.key_error(
+                &key,
+                format!(
+                    "{}: has a column `{column}`, for joint {} of a model with {dof} joints; \
+                     give the description of the robot that recorded the data, or list the \
+                     {dof} columns to read ({} = [\"{}\", ...])",
+                    path.display(),
+                    dof + 1,
+                    ROLES[role],
+                    template.replace("{}", "1"),
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The column of `header` that `template` (`"q{}"`) names for joint `dof + 1`, if any:
+/// a sign that the file holds more joints than a `dof`-joint model.
+///
+/// ```
+/// use robid_runtime::data::surplus_joint;
+/// let header = ["t", "q1", "q2", "q3"].map(String::from);
+/// assert_eq!(surplus_joint(&header, "q{}", 2), Some("q3".to_string()));
+/// assert_eq!(surplus_joint(&header, "q{}", 3), None);
+/// ```
+pub fn surplus_joint(header: &[String], template: &str, dof: usize) -> Option<String> {
+    let next = template.replace("{}", &(dof + 1).to_string());
+    header.contains(&next).then_some(next)
 }
 
 /// Checks every role's columns of `table` against the range of its quantity.

@@ -24,7 +24,7 @@ pub use dataset::{DataOrigin, Dataset};
 pub use error::DataError;
 pub use keys::KeyMap;
 pub(crate) use load::check_joints;
-pub use load::{load, load_config_files, load_from_config_file, load_runs};
+pub use load::{load, load_config_files, load_from_config_file, load_runs, surplus_joint};
 pub use parameters::{INERTIA_TOLERANCE, PARAMETER_LIMIT, ParameterFile, ParameterTable};
 pub use record::{Record, SpilledRecord, load_record};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};

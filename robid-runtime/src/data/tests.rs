@@ -85,6 +85,30 @@ fn joint_count_mismatch_is_an_error() {
     );
 }
 
+/// A file with a column for one joint more than the model's, read through a template,
+/// is another robot's: refused at the source's key, by the in-memory and the streaming
+/// reader alike; a source listing its columns reads them and passes.
+#[test]
+fn a_column_for_one_joint_more_is_refused() {
+    let d = Dir::new();
+    let a = d.file("pos.csv", "q1,q2,q3\n0,0,0\n1,1,1\n");
+    let config = cfg(TWO_FILES);
+    let e = load(&config, &[a.clone(), a.clone()], 2).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            Error::Data(DataError::ConfigKey { line: Some(4), key, .. }) if key == "source[1].position"
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("column `q3`, for joint 3"), "{e}");
+    let one = cfg("sample_rate = 10.0\n[[source]]\nposition = \"q{}\"\ntorque = \"q{}\"\n");
+    assert!(SpilledRecord::open(&one, std::slice::from_ref(&a), 2).is_err());
+    assert!(load(&one, std::slice::from_ref(&a), 3).is_ok());
+    let listed = cfg(&TWO_FILES.replace("\"q{}\"", "[\"q1\", \"q2\"]"));
+    assert!(load(&listed, &[a.clone(), a], 2).is_ok());
+}
+
 #[test]
 fn missing_sample_rate_and_roles_are_errors() {
     let d = Dir::new();

@@ -50,7 +50,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))
         .collect();
-    let table = super::states::read(&args.data, &names)?;
+    let table = super::states::read(&args.data, &names, n)?;
     let samples: Vec<JointSample> = (0..table.lines.len())
         .map(|k| {
             let block = |b: usize| (0..n).map(|j| table.columns[b * n + j][k]).collect();

@@ -113,7 +113,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     log_settings(args, n)?;
     let base = description.base_parameters(args.parameters.as_deref(), &model)?;
-    super::states::read(&args.trajectory, &Trajectory::header(n))?;
+    super::states::read(&args.trajectory, &Trajectory::header(n), n)?;
     let reference = Trajectory::read_csv(&args.trajectory, n)?;
     check_bandwidth(args.bandwidth, &reference, &args.trajectory)?;
     let every = every_sample(args.rate, &reference, &args.trajectory)?;

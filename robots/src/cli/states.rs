@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use robid_runtime::data::{Table, read_columns};
+use robid_runtime::data::{Table, read_columns, read_header, surplus_joint};
 
 use super::Error;
 
@@ -14,8 +14,19 @@ use super::Error;
 pub(crate) const STATE_LIMIT: f64 = 1e6;
 
 /// Reads the columns `names` of `path` (the runtime's CSV reader: numbers, finite) and
-/// checks the state columns (`q*`, `qd*`, `qdd*`) against [`STATE_LIMIT`].
-pub(crate) fn read(path: &Path, names: &[String]) -> Result<Table, Error> {
+/// checks the state columns (`q*`, `qd*`, `qdd*`) against [`STATE_LIMIT`]. A file with a
+/// position column for one joint more than the robot's `dof` is refused: it holds the
+/// states of another robot.
+pub(crate) fn read(path: &Path, names: &[String], dof: usize) -> Result<Table, Error> {
+    if let Some(column) = surplus_joint(&read_header(path)?, "q{}", dof) {
+        return Err(format!(
+            "{}: has a column `{column}`, for joint {} of a robot with {dof} joints; give \
+             the description of the robot these states are of",
+            path.display(),
+            dof + 1
+        )
+        .into());
+    }
     let table = read_columns(path, names)?;
     check(&table, names)?;
     Ok(table)

@@ -49,7 +49,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))
         .collect();
-    let table = super::states::read(&args.states, &names)?;
+    let table = super::states::read(&args.states, &names, n)?;
     let text = torques(model, &base, &table)?;
     match &args.output {
         Some(p) => files::write(p, &text)?,

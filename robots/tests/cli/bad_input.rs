@@ -452,6 +452,40 @@ fn states_out_of_range_are_named_by_line_and_column() {
     assert!(stdout(&o).is_empty(), "{}", stdout(&o));
 }
 
+/// States or a log of a robot with more joints than the description's (a six-joint log
+/// given a three-joint robot) are refused naming the first surplus column, by `torques`
+/// and `identify` alike, instead of reading the first columns only.
+#[test]
+fn data_of_a_robot_with_more_joints_is_refused() {
+    let dir = folder();
+    let states = ur5e_states(dir.path(), 20);
+    let o = robid(&[
+        "torques",
+        "descriptions/stanford.toml",
+        "--parameters",
+        "parameters/stanford.toml",
+        "--states",
+        states.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &["states.csv: has a column `q4`", "robot with 3 joints"],
+    );
+    let mut log = String::from("t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n");
+    for k in 0..50 {
+        let x = 0.01 * k as f64;
+        log.push_str(&format!("{x},{x},0,0.1,0,0,0,1,2,0,0,0,0\n"));
+    }
+    let log = write(dir.path(), "log.csv", &log);
+    let o = robid(&[
+        "identify",
+        "descriptions/stanford.toml",
+        "--data",
+        log.to_str().unwrap(),
+    ]);
+    fails_with(&o, &["has a column `q4`", "model with 3 joints"]);
+}
+
 /// The identified JSON of `feasible`: a value of 1e308 (it used to give "chi^2 = 0"), or a
 /// standard deviation of zero, or a name given twice, is named by entry; nothing is written.
 #[test]

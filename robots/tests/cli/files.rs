@@ -346,3 +346,75 @@ fn a_failed_or_killed_write_leaves_the_old_file_whole() {
         2001
     );
 }
+
+/// Two outputs of one run on the same file (under any spelling) are refused before any
+/// work: one would silently replace the other.
+#[test]
+fn two_outputs_on_one_file_are_refused() {
+    let inputs = Inputs::new();
+    let dir = inputs.dir.path();
+    let both = |first: &str, second: &str, out: &str| {
+        let identify = [
+            "identify",
+            "{robot.toml}",
+            "--config",
+            "{config.toml}",
+            "--data",
+            "{data.csv}",
+            first,
+            "{out}",
+            second,
+            out,
+        ];
+        let args = inputs.args(&identify, "result.out");
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        robid_in(dir, &args)
+    };
+    for out in ["result.out", "./result.out"] {
+        let o = both("--json", "--report", out);
+        fails_with(&o, &["are the same file", "give them different names"]);
+        assert!(!dir.join("result.out").exists());
+    }
+    let o = robid_in(
+        dir,
+        &[
+            "excite",
+            "robot.toml",
+            "-o",
+            "trajectory.csv",
+            "--pieces",
+            "./trajectory.csv",
+        ],
+    );
+    fails_with(&o, &["are the same file"]);
+}
+
+/// An output that is a pipe is written into, not replaced by a file, and checking it
+/// against the inputs does not wait for a writer (it is never opened for reading).
+#[test]
+#[cfg(unix)]
+fn a_pipe_is_written_into() {
+    let dir = folder();
+    let fifo = dir.path().join("code.fifo");
+    if !std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        return; // no mkfifo here
+    }
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
+    };
+    let o = robid(&[
+        "emit",
+        "descriptions/ur5e.toml",
+        "-o",
+        fifo.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(reader.join().unwrap().contains("pub struct Ur5e;"));
+    let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+    assert!(std::os::unix::fs::FileTypeExt::is_fifo(&kind));
+}

@@ -12,8 +12,8 @@ use std::sync::Mutex;
 use crate::DataError;
 use crate::data::dataset::{DataOrigin, empty_range};
 use crate::data::load::{
-    assemble, check_cutoff, check_joints, check_ranges, check_step, load, source_columns,
-    source_paths, stale_warning, take_time,
+    assemble, check_cutoff, check_joints, check_ranges, check_step, check_surplus_joint, load,
+    source_columns, source_paths, stale_warning, take_time,
 };
 use crate::data::sampling::SamplingScan;
 use crate::data::table::for_each_window_of;
@@ -154,6 +154,7 @@ impl SpilledRecord {
         let ([source], [path]) = (config.sources.as_slice(), paths.as_slice()) else {
             return Ok(None);
         };
+        check_surplus_joint(config, source, 0, path, dof)?;
         let (names, spans) = source_columns(config, source, dof);
         let mut roles = [false; 7];
         spans.iter().for_each(|&(r, _)| roles[r] = true);
