@@ -7,7 +7,8 @@
 //! user's own file with its chain links' `<inertial>` elements replaced; for a DH
 //! description, a complete URDF in the DH frames.
 //! Identified parameters with an empty expression that are not base parameters of the
-//! description (the extra columns of an identification config) are kept as free terms.
+//! description (the extra columns of an identification config) are kept as free terms,
+//! at most [`MAX_FREE_TERMS`] of them.
 //!
 //! RESULT.json is checked before use: every value finite and within +-[`VALUE_LIMIT`],
 //! every standard deviation finite, positive and at most [`VALUE_LIMIT`], each entry
@@ -51,6 +52,12 @@ const DEFAULT_PRIOR_WEIGHT: f64 = 1e-2;
 
 /// The largest magnitude of an identified value or standard deviation in RESULT.json.
 pub(crate) const VALUE_LIMIT: f64 = 1e6;
+
+/// The most entries of RESULT.json kept as free terms (not base parameters of the
+/// description, no expression): each is a variable of the solvers, whose time grows
+/// with the cube of their count (100 take about a second, 1000 minutes), and so many
+/// mean a result of another robot rather than extra columns.
+pub(crate) const MAX_FREE_TERMS: usize = 100;
 
 /// Arguments of `robid feasible`.
 #[derive(Debug, clap::Args)]
@@ -261,6 +268,19 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .filter(|p| p.expression.is_empty() && !problem.base_names.contains(&p.name))
         .map(|p| p.name.clone())
         .collect();
+    if extra.len() > MAX_FREE_TERMS {
+        return Err(format!(
+            "{}: {} entries are not base parameters of {} (`{}`, `{}`, ...), more than the \
+             {MAX_FREE_TERMS} extra columns kept as free terms; give the description (and \
+             --drive) the result was identified with",
+            args.identified.display(),
+            extra.len(),
+            args.robot.display(),
+            extra[0],
+            extra[1]
+        )
+        .into());
+    }
     let problem = problem
         .with_extra_columns(&extra)
         .map_err(|e| about(&args.identified, e))?;

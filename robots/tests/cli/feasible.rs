@@ -9,7 +9,7 @@ use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{folder, robid, stderr};
+use common::{asset, fails_with, folder, robid, stderr};
 
 /// A path in a test's fresh output folder.
 fn out(dir: &tempfile::TempDir, name: &str) -> PathBuf {
@@ -181,6 +181,44 @@ fn feasible_rejects_an_unknown_method_and_a_foreign_result() {
         stderr(&o).contains("identify with the same robot description"),
         "{}",
         stderr(&o)
+    );
+}
+
+/// A result with more entries foreign to the description than extra columns are kept for
+/// as free terms is refused at once, naming the count and the first names (1000 of them
+/// used to run for minutes, each a variable of the solvers); a few are kept.
+#[test]
+fn feasible_refuses_a_result_with_too_many_foreign_entries() {
+    let dir = folder();
+    let fixture = asset("tests/fixtures/tx40_identified.json");
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fixture).unwrap()).unwrap();
+    let run = |json: &serde_json::Value, name: &str| {
+        let identified = dir.path().join(name);
+        std::fs::write(&identified, json.to_string()).unwrap();
+        robid(&[
+            "feasible",
+            "configs/tx40_robot.toml",
+            "--identified",
+            identified.to_str().unwrap(),
+            "-o",
+            out(&dir, "out.toml").to_str().unwrap(),
+        ])
+    };
+    let entry = |i: usize| {
+        serde_json::json!({"name": format!("x{i}"), "expression": "", "value": 0.1, "std": 0.01})
+    };
+    let parameters = json["parameters"].as_array_mut().unwrap();
+    parameters.extend((0..2).map(entry));
+    let o = run(&json, "two.json");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let parameters = json["parameters"].as_array_mut().unwrap();
+    // the fixture's own three extra columns (a coupled wrist's) and 98 foreign names
+    parameters.extend((2..98).map(entry));
+    let o = run(&json, "many.json");
+    fails_with(
+        &o,
+        &["101 entries are not base parameters", "(`Iam6`, ", "100 extra columns"],
     );
 }
 
