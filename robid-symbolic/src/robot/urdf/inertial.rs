@@ -11,6 +11,12 @@ pub(super) fn tensor(i: &[f64; 6]) -> Mat3 {
     [[i[0], i[1], i[2]], [i[1], i[3], i[4]], [i[2], i[4], i[5]]]
 }
 
+/// The smallest eigenvalue of the symmetric tensor `ixx ixy ixz iyy iyz izz`.
+pub(super) fn lowest_eigenvalue(i: &[f64; 6]) -> f64 {
+    let m = nalgebra::Matrix3::new(i[0], i[1], i[2], i[1], i[3], i[4], i[2], i[4], i[5]);
+    m.symmetric_eigenvalues().min()
+}
+
 /// Standard parameters `[XX XY XZ YY YZ ZZ MX MY MZ M]` of one `<inertial>` of a link whose
 /// frame is `link` in the target frame.
 pub(super) fn parameters(link: &Rigid, inertial: &Inertial) -> [f64; 10] {

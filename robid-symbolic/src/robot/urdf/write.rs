@@ -4,7 +4,7 @@
 use super::super::DescriptionError;
 use super::super::file::Place;
 use super::UrdfChain;
-use super::inertial::{moved, parameters, physical, sum};
+use super::inertial::{lowest_eigenvalue, moved, parameters, physical, sum};
 use super::rigid::Rigid;
 use super::xml::{self, Link};
 
@@ -25,8 +25,7 @@ enum Body {
 }
 
 fn positive_semidefinite(i: &[f64; 6], tolerance: f64) -> bool {
-    let m = nalgebra::Matrix3::new(i[0], i[1], i[2], i[1], i[3], i[4], i[2], i[4], i[5]);
-    m.symmetric_eigenvalues().iter().all(|&e| e >= -tolerance)
+    lowest_eigenvalue(i) >= -tolerance
 }
 
 fn classify(p: &[f64; 10], scale: f64) -> Body {

@@ -38,6 +38,10 @@ impl JointType {
     }
 }
 
+/// How far below zero an `<inertia>`'s smallest eigenvalue may be, relative to its largest
+/// entry, for rounded published values (as for parameter files).
+const INERTIA_TOLERANCE: f64 = 1e-6;
+
 /// `<inertial>`: the centre of mass frame, the mass, the inertia about the centre of mass in
 /// that frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -387,6 +391,21 @@ impl Reader<'_> {
                         Some(v) => values[k] = v,
                         None => complete = false,
                     }
+                }
+                let lowest = super::inertial::lowest_eigenvalue(&values);
+                let scale = values.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+                if complete && lowest < -INERTIA_TOLERANCE * scale {
+                    self.error(
+                        i.range(),
+                        format!(
+                            "the inertia about the centre of mass is not positive semidefinite \
+                             (smallest eigenvalue {lowest:.4e} kg m^2), so no mass distribution \
+                             has it"
+                        ),
+                        "check the values and the signs of the products of inertia (`ixy` is \
+                         the tensor's entry, -sum m x y)",
+                    );
+                    return None;
                 }
                 complete.then_some(values)
             }

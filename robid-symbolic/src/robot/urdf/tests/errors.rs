@@ -47,6 +47,17 @@ fn each_mistake_is_named_at_its_place() {
             "t.urdf:4:",
             &["has no `<inertia"],
         ),
+        // a negative moment, and products of inertia too large for the moments
+        (
+            arm(&format!("{J1}{J2}")).replace("<link name=\"c\"/>", "<link name=\"c\"><inertial><mass value=\"1\"/><inertia ixx=\"-5\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"),
+            "t.urdf:4:",
+            &["the inertia about the centre of mass is not positive semidefinite", "-5.0000e0", "signs of the products"],
+        ),
+        (
+            arm(&format!("{J1}{J2}")).replace("<link name=\"c\"/>", "<link name=\"c\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"2\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"),
+            "t.urdf:4:",
+            &["not positive semidefinite", "-1.0000e0"],
+        ),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<mimic joint=\"j1\"/></joint>"))), "t.urdf:6:", &["joint `j2` of the chain mimics joint `j1`"]),
         (arm(&format!("{J1}{}", J2.replace("revolute", "floating"))), "t.urdf:6:1:", &["joint `j2` is floating"]),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit effort=\"1e9\" velocity=\"1\"/></joint>"))), "t.urdf:6:", &["`<limit>` of joint `j2`: effort 1000000000 is not a positive number"]),
