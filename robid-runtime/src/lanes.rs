@@ -112,6 +112,12 @@ impl<const W: usize> Real for Lanes<W> {
     fn sign(self) -> Self {
         self.map(Real::sign)
     }
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        Self(core::array::from_fn(|l| {
+            Real::mul_add(self.0[l], a.0[l], b.0[l])
+        }))
+    }
 }
 
 #[cfg(test)]
@@ -132,6 +138,8 @@ mod tests {
             assert_eq!((x / y).0[l].to_bits(), (a[l] / b[l]).to_bits());
             assert_eq!((-x).0[l].to_bits(), (-a[l]).to_bits());
             assert_eq!(x.sign().0[l], Real::sign(a[l]));
+            let fused = Real::mul_add(x, y, x).0[l];
+            assert_eq!(fused.to_bits(), Real::mul_add(a[l], b[l], a[l]).to_bits());
             let root = Lanes(b.map(f64::abs)).sqrt().0[l];
             assert_eq!(root.to_bits(), Real::sqrt(b[l].abs()).to_bits());
             assert_eq!(x.sin().0[l], Real::sin(a[l]));

@@ -16,7 +16,7 @@ pub mod trig;
 pub mod wrench;
 
 pub use model::{LengthError, Model};
-pub use real::Real;
+pub use real::{FUSED_MUL_ADD, Real};
 
 #[cfg(feature = "std")]
 pub mod data;

@@ -63,7 +63,41 @@ pub trait Real:
     }
     /// Sign for Coulomb friction: -1, 0 or 1 (0 at exactly zero, unlike `f64::signum`).
     fn sign(self) -> Self;
+    /// `self * a + b`: what generated code writes for a product used only by a sum.
+    ///
+    /// For `f64` and `f32`, rounded once (a fused multiply-add instruction) when
+    /// [`FUSED_MUL_ADD`] says the build targets one, so one instruction replaces two;
+    /// otherwise the product and the sum, each rounded, the same values to the bit as
+    /// `self * a + b`. Rust never fuses operations by itself.
+    ///
+    /// ```
+    /// use robid_runtime::{FUSED_MUL_ADD, Real};
+    /// let x = 1.0 + f64::EPSILON;
+    /// // x * x = 1 + 2 eps + eps^2: the eps^2 survives only a single rounding
+    /// let r = Real::mul_add(x, x, -(1.0 + 2.0 * f64::EPSILON));
+    /// assert_eq!(r, if FUSED_MUL_ADD { f64::EPSILON * f64::EPSILON } else { 0.0 });
+    /// ```
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        self * a + b
+    }
 }
+
+/// Whether [`Real::mul_add`] of `f64` and `f32` rounds once: in `std` builds for
+/// x86-64 (or x86) with the `fma` target feature (`-C target-cpu=native` on a CPU that
+/// has it, `-C target-feature=+fma`), and for AArch64, where the instruction is always
+/// there. Elsewhere a fused multiply-add would be a slow software routine, so the product
+/// and the sum are rounded each; `no_std` builds always are (`core` has no `mul_add`).
+pub const FUSED_MUL_ADD: bool = cfg!(all(
+    feature = "std",
+    any(
+        target_arch = "aarch64",
+        all(
+            any(target_arch = "x86_64", target_arch = "x86"),
+            target_feature = "fma"
+        )
+    )
+));
 
 macro_rules! impl_real {
     ($t:ty, $sin:path, $cos:path, $sincos:path, $sqrt:path $(, $array:path)?) => {
@@ -96,6 +130,14 @@ macro_rules! impl_real {
                     $array(x)
                 }
             )?
+            #[inline(always)]
+            fn mul_add(self, a: Self, b: Self) -> Self {
+                #[cfg(feature = "std")]
+                if FUSED_MUL_ADD {
+                    return <$t>::mul_add(self, a, b);
+                }
+                self * a + b
+            }
             #[inline(always)]
             fn sign(self) -> Self {
                 if self > 0.0 {

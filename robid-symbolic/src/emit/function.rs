@@ -1,6 +1,7 @@
 //! One program as a generic straight-line function.
 
 use super::EmitError;
+use super::fuse::{Fused, Fusion};
 use super::names::{ident, value_ident, value_name};
 use super::trig::{Role, TrigBatch};
 use crate::program::{Instr, Program, Value};
@@ -130,8 +131,17 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
         let ks = stores_of[i].iter().map(|&k| Literal::usize_unsuffixed(k));
         quote! { #(out[#ks] = #id;)* }
     };
+    let fusion = Fusion::new(program, &batch.role);
     let emit = |i: usize, instr: &Instr| {
         let id = format_ident!("t{}", i);
+        if fusion.absorbed[i] {
+            return None;
+        }
+        if let Some(fused) = fusion.fused[i] {
+            let rhs = fused_tokens(program, fused);
+            let st = store(i);
+            return Some(quote! { let #id = #rhs; #st });
+        }
         match (pair_of[i], instr) {
             (Some(k), _) if k < i => None,
             (Some(k), Instr::Sin(x) | Instr::Cos(x)) => {
@@ -318,6 +328,25 @@ fn result_tokens(program: &Program, v: Value) -> TokenStream {
             }
         },
         other => value_tokens(program, other),
+    }
+}
+
+/// `T::mul_add(a, b, c)` for a sum that absorbed its product (`fuse.rs`).
+fn fused_tokens(program: &Program, fused: Fused) -> TokenStream {
+    let v = |x: Value| value_tokens(program, x);
+    match fused {
+        Fused::Plus { a, b, c } => {
+            let (a, b, c) = (v(a), v(b), v(c));
+            quote!(T::mul_add(#a, #b, #c))
+        }
+        Fused::Minus { a, b, c } => {
+            let (a, b, c) = (v(a), v(b), v(c));
+            quote!(T::mul_add(#a, #b, -#c))
+        }
+        Fused::From { a, b, c } => {
+            let (a, b, c) = (v(a), v(b), v(c));
+            quote!(T::mul_add(-#a, #b, #c))
+        }
     }
 }
 

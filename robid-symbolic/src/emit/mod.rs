@@ -4,7 +4,8 @@
 //! with fixed-size array arguments and result (`function.rs`): the inputs are
 //! destructured into named values (`q1`, `ZZR1`), constants are bound once
 //! with `T::from_f64`, the sines and cosines come from one `T::sin_cos_array`
-//! call (`trig.rs`), every other temporary is one `let`, and the doc comment
+//! call (`trig.rs`), every other temporary is one `let` (a product used only by a sum
+//! folded into it as `T::mul_add`, `fuse.rs`), and the doc comment
 //! states the operation count. `robot.rs` wraps the functions of a robot into a type
 //! with its constants, `model.rs` implements the runtime's slice-based
 //! `Model` trait, and `stub.rs` emits the placeholder `robot_model!` produces
@@ -13,6 +14,7 @@
 
 mod c;
 mod function;
+mod fuse;
 mod model;
 mod names;
 mod robot;
