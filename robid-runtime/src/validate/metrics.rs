@@ -15,8 +15,10 @@ pub struct Fit {
     pub nmse: f64,
     /// Madsen et al.'s NMSE exactly as their eq. 22 writes it, on their scale (N m):
     /// sum over joints and samples of (tau - tauhat)^2 / |tau|. Samples whose measured
-    /// torque is exactly zero are left out (they would divide by zero); samples near zero
-    /// weigh heavily, as in the paper. Default 0 in reports written before it existed.
+    /// torque is zero are left out (they would divide by zero), and so are those within
+    /// [`EQ22_ZERO`] of the joint's largest (no sensor resolves them: 2e-308 N m in a log
+    /// made the sum infinite); samples near zero otherwise weigh heavily, as in the paper.
+    /// Default 0 in reports written before it existed.
     #[serde(default)]
     pub nmse_eq22: f64,
 }
@@ -43,6 +45,10 @@ impl Fit {
     }
 }
 
+/// Measured torques at most this fraction of their joint's largest magnitude count as
+/// zero in [`Fit::nmse_eq22`], which divides by them.
+pub const EQ22_ZERO: f64 = 1e-12;
+
 /// Computes the metrics from per-joint measured and predicted torques (same lengths).
 /// Joints with no samples contribute nothing; the relative error is infinite when every
 /// measured torque is zero ([`Fit::check`] reports it).
@@ -57,10 +63,11 @@ pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
         }
         let e2: f64 = m.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum();
         let mean_abs = m.iter().map(|a| a.abs()).sum::<f64>() / n as f64;
+        let zero = EQ22_ZERO * m.iter().fold(0.0_f64, |x, a| x.max(a.abs()));
         nmse_eq22 += m
             .iter()
             .zip(p)
-            .filter(|(a, _)| **a != 0.0)
+            .filter(|(a, _)| a.abs() > zero)
             .map(|(a, b)| (a - b) * (a - b) / a.abs())
             .sum::<f64>();
         err2 += e2;
@@ -106,6 +113,9 @@ mod tests {
         assert!((f.nmse - (0.25 / 1.5 + 0.125 / 0.5)).abs() < 1e-12);
         // eq. 22: 1^2 / |-2| + 0.5^2 / |0.5|, per sample
         assert!((f.nmse_eq22 - (0.5 + 0.5)).abs() < 1e-12);
+        // a torque no sensor resolves counts as zero there, not as a divisor of 1e300
+        let tiny = fit(&[vec![2.0, 2.2e-308, 1e-11]], &[vec![1.0, 1.0, 0.0]]);
+        assert!((tiny.nmse_eq22 - (0.5 + 1e-11)).abs() < 1e-15, "{tiny:?}");
         assert_eq!(fit(&m, &m).relative_error, 0.0);
     }
 

@@ -4,7 +4,7 @@
 
 mod metrics;
 
-pub use metrics::{Fit, fit, relative_improvement};
+pub use metrics::{EQ22_ZERO, Fit, fit, relative_improvement};
 
 use serde::{Deserialize, Serialize};
 
