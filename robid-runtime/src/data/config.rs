@@ -60,7 +60,7 @@
 //! | key | accepted |
 //! |---|---|
 //! | `dof` | the model's joint count |
-//! | `sample_rate` | 1e-3 Hz <= rate <= 1e7 Hz (also a rate derived from the time column) |
+//! | `sample_rate` | 1e-3 Hz <= rate <= 1e7 Hz (also a rate derived from the time column); not with `time_column` |
 //! | `time_scale` | 1e-12 <= scale <= 1e6 |
 //! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, magnitude 1e-12 to 1e6 |
 //! | `drive.position_coupling`, `drive.torque_coupling` | finite, magnitude <= 1e6, invertible |
@@ -71,7 +71,7 @@
 //! | `processing.differentiation` | `method` `"central"` or `"savitzky-golay"`; for the latter `window` odd, 3 to 1,001, and `order` 2 to 10, below the window |
 //! | `processing.trim` | <= 50,000,000 |
 //! | `processing.rest_velocity` | 0 <= v <= 1e6 |
-//! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end |
+//! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end <= the samples of the data |
 //! | `processing.pieces` | windows `[start, end]` in s, 0 <= start < end; not with the energy method |
 //! | `estimation.rank_tolerance` | 0 < tol < 1 |
 //! | `estimation.forgetting` | 0 < lambda <= 1 |
@@ -825,6 +825,14 @@ impl Config {
                 ),
             );
         }
+        if self.sample_rate.is_some() && self.time_column.is_some() {
+            return bad(
+                "sample_rate",
+                "is given with time_column, whose time stamps set the rate; keep one of them \
+                 (time_column for a log with time stamps)"
+                    .to_owned(),
+            );
+        }
         if let Some(fs) = self.sample_rate
             && !(MIN_SAMPLE_RATE..=MAX_SAMPLE_RATE).contains(&fs)
         {
@@ -846,6 +854,8 @@ impl Config {
             );
         }
         for (i, s) in self.sources.iter().enumerate() {
+            // each column read by one role of the source: (name, role)
+            let mut read: Vec<(String, &str)> = Vec::new();
             for (role, c) in [
                 ("position", &s.position),
                 ("velocity", &s.velocity),
@@ -856,7 +866,25 @@ impl Config {
                 ("joint_torque", &s.joint_torque),
             ] {
                 if let Some(c) = c {
-                    let n = c.names(dof).len();
+                    let names = c.names(dof);
+                    let n = names.len();
+                    for name in names {
+                        if let Some((_, first)) = read.iter().find(|(r, _)| *r == name) {
+                            let also = if *first == role {
+                                "twice".to_owned()
+                            } else {
+                                format!("as source[{}].{first} does", i + 1)
+                            };
+                            return bad(
+                                &format!("source[{}].{role}", i + 1),
+                                format!(
+                                    "reads column `{name}` {also}: a column holds one \
+                                     quantity of one joint; name the {role} columns"
+                                ),
+                            );
+                        }
+                        read.push((name, role));
+                    }
                     if n != dof {
                         return bad(
                             &format!("source[{}].{role}", i + 1),

@@ -102,11 +102,36 @@ fn a_column_for_one_joint_more_is_refused() {
         "{e}"
     );
     assert!(e.to_string().contains("column `q3`, for joint 3"), "{e}");
-    let one = cfg("sample_rate = 10.0\n[[source]]\nposition = \"q{}\"\ntorque = \"q{}\"\n");
-    assert!(SpilledRecord::open(&one, std::slice::from_ref(&a), 2).is_err());
-    assert!(load(&one, std::slice::from_ref(&a), 3).is_ok());
+    let both = d.file(
+        "both.csv",
+        "q1,q2,q3,tau1,tau2,tau3\n0,0,0,1,1,1\n1,1,1,1,1,1\n",
+    );
+    let one = cfg("sample_rate = 10.0\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n");
+    assert!(SpilledRecord::open(&one, std::slice::from_ref(&both), 2).is_err());
+    assert!(load(&one, std::slice::from_ref(&both), 3).is_ok());
     let listed = cfg(&TWO_FILES.replace("\"q{}\"", "[\"q1\", \"q2\"]"));
     assert!(load(&listed, &[a.clone(), a], 2).is_ok());
+}
+
+/// Settings that contradict each other are refused at their key: a sample rate beside a
+/// time column (which sets the rate), and one column read by two roles of a source or
+/// twice by one (the positions read again as torques).
+#[test]
+fn contradicting_settings_are_refused_at_their_key() {
+    let check = |text: &str| cfg(text).check(2).unwrap_err().to_string();
+    let e = check("sample_rate = 100.0\ntime_column = \"t\"\n");
+    assert!(
+        e.contains("`sample_rate`: is given with time_column"),
+        "{e}"
+    );
+    let e = check("sample_rate = 1.0\n[[source]]\nposition = \"q{}\"\ntorque = \"q{}\"\n");
+    assert!(
+        e.contains("`source[1].torque`: reads column `q1` as source[1].position does"),
+        "{e}"
+    );
+    let e = check("sample_rate = 1.0\n[[source]]\nposition = [\"a\", \"a\"]\n");
+    assert!(e.contains("reads column `a` twice"), "{e}");
+    assert!(cfg(TWO_FILES).check(2).is_ok());
 }
 
 #[test]

@@ -318,14 +318,16 @@ impl Plan {
             Rows::Validation => p.validation_range,
         };
         let (lo, hi) = match range {
-            Some([a, b]) if a < b && a < data.samples() => (a, b.min(data.samples())),
+            Some([a, b]) if a < b && b <= data.samples() => (a, b),
             Some([a, b]) => {
                 return Err(Error::setting(
                     "Config",
                     rows.key(),
                     format!(
-                        "[{a}, {b}] lies outside {}, which has {} samples; choose a range inside the data",
+                        "[{a}, {b}] does not lie inside {}, which has {} samples; choose a \
+                         range inside the data (the end is exclusive: at most {})",
                         data.name(),
+                        data.samples(),
                         data.samples()
                     ),
                 ));

@@ -95,6 +95,14 @@ fn a_validation_range_selects_the_validation_rows() {
             .iter()
             .all(|w| w.kind != "validation_repeats_estimation")
     );
+    // an estimation range that ends beyond the file is named, not cut short in silence
+    let (_tmp, config, run1, _) = setup("range = [0, 501]\n");
+    let data = load(&config, std::slice::from_ref(&run1), 6).unwrap();
+    let e = identify(&Ur5e, &data, &config).unwrap_err().to_string();
+    assert!(
+        e.contains("`processing.range`") && e.contains("which has 500 samples"),
+        "{e}"
+    );
     // a validation range outside a file is named by its key
     let (_tmp, config, _, run2) = setup("validation_range = [600, 700]\n");
     let other = load(&config, &[run2], 6).unwrap();
