@@ -205,9 +205,7 @@ fn feasible_refuses_a_result_with_too_many_foreign_entries() {
             out(&dir, "out.toml").to_str().unwrap(),
         ])
     };
-    let entry = |i: usize| {
-        serde_json::json!({"name": format!("x{i}"), "expression": "", "value": 0.1, "std": 0.01})
-    };
+    let entry = |i: usize| serde_json::json!({"name": format!("x{i}"), "expression": "", "value": 0.1, "std": 0.01});
     let parameters = json["parameters"].as_array_mut().unwrap();
     parameters.extend((0..2).map(entry));
     let o = run(&json, "two.json");
@@ -218,7 +216,11 @@ fn feasible_refuses_a_result_with_too_many_foreign_entries() {
     let o = run(&json, "many.json");
     fails_with(
         &o,
-        &["101 entries are not base parameters", "(`Iam6`, ", "100 extra columns"],
+        &[
+            "101 entries are not base parameters",
+            "(`Iam6`, ",
+            "100 extra columns",
+        ],
     );
 }
 
