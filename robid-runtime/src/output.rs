@@ -134,8 +134,12 @@ pub fn refuse_inputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
 /// Which file a path names, found without opening it.
 #[derive(Debug, PartialEq)]
 enum FileId {
-    /// An existing file: its device and inode (its canonical path where there are none).
-    Existing(u64, u64, PathBuf),
+    /// An existing file: its device and inode, shared by all its names and links.
+    #[cfg(unix)]
+    Inode(u64, u64),
+    /// An existing file: its canonical path (links resolved).
+    #[cfg(not(unix))]
+    Canonical(PathBuf),
     /// A file not created yet: its folder's canonical path and its name.
     New(PathBuf),
 }
@@ -144,18 +148,13 @@ enum FileId {
 /// (writing there fails later with its own error).
 fn file_id(path: &Path) -> Option<FileId> {
     match std::fs::metadata(path) {
+        #[cfg(unix)]
         Ok(m) => {
-            #[cfg(unix)]
-            {
-                use std::os::unix::fs::MetadataExt;
-                Some(FileId::Existing(m.dev(), m.ino(), PathBuf::new()))
-            }
-            #[cfg(not(unix))]
-            {
-                let _ = m;
-                Some(FileId::Existing(0, 0, std::fs::canonicalize(path).ok()?))
-            }
+            use std::os::unix::fs::MetadataExt;
+            Some(FileId::Inode(m.dev(), m.ino()))
         }
+        #[cfg(not(unix))]
+        Ok(_) => Some(FileId::Canonical(std::fs::canonicalize(path).ok()?)),
         Err(_) => {
             let dir = match path.parent() {
                 Some(d) if !d.as_os_str().is_empty() => d,
