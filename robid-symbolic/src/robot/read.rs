@@ -322,6 +322,11 @@ impl<'a> Reader<'a> {
                 continue;
             };
             match name.parse::<DriveTerm>() {
+                Ok(t) if d.has(t) => self.error(
+                    term.span(),
+                    format!("the drive term `{name}` is named twice"),
+                    "name each drive term once",
+                ),
                 Ok(t) => d.add(t),
                 Err(e) => self.error(
                     term.span(),

@@ -121,14 +121,16 @@ pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {
     if names.is_empty() {
         return Ok(None);
     }
-    let d = names
-        .iter()
-        .map(|n| {
-            n.trim()
-                .parse::<DriveTerm>()
-                .map_err(|e| format!("--drive: unknown term `{}`; {}", n.trim(), e.expected))
-        })
-        .collect::<Result<Drive, _>>()?;
+    let mut d = Drive::NONE;
+    for n in names.iter().map(|n| n.trim()) {
+        let term = n
+            .parse::<DriveTerm>()
+            .map_err(|e| format!("--drive: unknown term `{n}`; {}", e.expected))?;
+        if d.has(term) {
+            return Err(format!("--drive: `{n}` is named twice; name each term once").into());
+        }
+        d.add(term);
+    }
     Ok(Some(d))
 }
 

@@ -1,7 +1,7 @@
 //! `--drive` on every subcommand that reads a description, and the warning about a `drive`
 //! key that TOML gave to the last joint.
 
-use crate::common::{folder, robid, stderr, stdout, write};
+use crate::common::{fails_with, folder, robid, stderr, stdout, write};
 
 /// Two joints; the `drive` line at the end belongs to joint 2 in TOML.
 const STRAY: &str = "name = \"arm\"\nconvention = \"modified\"\ngravity = [0, 0, 0]\n\
@@ -38,6 +38,18 @@ fn a_stray_drive_key_is_warned_about_and_drive_replaces_it() {
         "{}",
         stderr(&o)
     );
+    // a term named twice, on the command line or in a description, is a slip
+    let o = robid(&["model", robot, "--drive", "Fv,Ia,Fv"]);
+    fails_with(&o, &["--drive: `Fv` is named twice"]);
+    let dir = folder();
+    let twice = write(
+        dir.path(),
+        "twice.toml",
+        "name = \"arm\"\nconvention = \"modified\"\ndrive = [\"Ia\", \"Ia\"]\n\
+         [[joints]]\nalpha = 0\na = 0\nd = 0\n",
+    );
+    let o = robid(&["model", twice.to_str().unwrap()]);
+    fails_with(&o, &["twice.toml:3:", "the drive term `Ia` is named twice"]);
 }
 
 /// `torques --drive Fv` computes tau = Fv qd for a robot without gravity or mass: the
