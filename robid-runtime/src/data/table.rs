@@ -158,8 +158,10 @@ fn io(path: &Path, source: std::io::Error) -> Error {
     })
 }
 
-/// The column names of a CSV file (gzip-compressed or not): its first line that is not a
-/// `#` comment, split at commas and trimmed; reads no further.
+/// The column names of a CSV file (gzip-compressed or not), as the reader of its columns
+/// sees them: the first record after blank and `#` comment lines, quotes removed, fields
+/// trimmed (a quoted header or a blank first line once gave other names here than there,
+/// and so another default mapping). Reads at most the first MiB of text.
 pub fn read_header(path: &Path) -> Result<Vec<String>> {
     use std::io::BufRead as _;
     let io = |source| {
@@ -170,18 +172,21 @@ pub fn read_header(path: &Path) -> Result<Vec<String>> {
     };
     let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
     let gzip = file.fill_buf().map_err(io)?.starts_with(&[0x1f, 0x8b]);
-    let reader: Box<dyn std::io::BufRead> = if gzip {
-        Box::new(std::io::BufReader::new(MultiGzDecoder::new(file)))
+    let reader: Box<dyn Read> = if gzip {
+        Box::new(MultiGzDecoder::new(file))
     } else {
         Box::new(file)
     };
-    for line in reader.take(1 << 20).lines() {
-        let line = line.map_err(io)?;
-        if !line.trim_start().starts_with('#') {
-            return Ok(line.split(',').map(|n| n.trim().to_string()).collect());
-        }
+    let mut text = Vec::new();
+    reader.take(1 << 20).read_to_end(&mut text).map_err(io)?;
+    let text = text.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&text);
+    let mut records = Records::new(text);
+    if records.next_record().is_none() {
+        return Ok(Vec::new());
     }
-    Ok(Vec::new())
+    Ok((0..records.len())
+        .map(|i| String::from_utf8_lossy(records.field(i)).into_owned())
+        .collect())
 }
 
 /// Reads the columns `names` from any reader (gzip-compressed or not); `path` is used

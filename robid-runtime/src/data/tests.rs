@@ -134,6 +134,39 @@ fn contradicting_settings_are_refused_at_their_key() {
     assert!(cfg(TWO_FILES).check(2).is_ok());
 }
 
+/// The header names are those the column reader sees, whatever the file's dialect: quoted
+/// names, a blank first line, comment lines, a byte-order mark, CRLF, gzip. (A quoted
+/// header once gave `"qd1"` with its quotes, so the default mapping missed the
+/// velocities and differentiated the positions instead.)
+#[test]
+fn header_names_are_the_readers_in_every_dialect() {
+    let d = Dir::new();
+    let want: Vec<String> = ["t", "q1", "qd1"].map(String::from).into();
+    for (name, text) in [
+        ("plain.csv", "t,q1,qd1\n0,1,2\n"),
+        ("quoted.csv", "\"t\",\"q1\",\"qd1\"\n0,1,2\n"),
+        ("blank.csv", "\n\nt,q1,qd1\n0,1,2\n"),
+        ("comment.csv", "# logger v2\nt, q1 ,qd1\r\n0,1,2\r\n"),
+        ("bom.csv", "\u{feff}t,q1,qd1\n0,1,2\n"),
+        ("last.csv", "t,q1,qd1"),
+    ] {
+        assert_eq!(read_header(&d.file(name, text)).unwrap(), want, "{name}");
+        let columns = read_columns(&d.file(name, text), &want);
+        if name != "last.csv" {
+            assert_eq!(
+                columns.unwrap().columns,
+                vec![vec![0.0], vec![1.0], vec![2.0]]
+            );
+        }
+    }
+    let gz = d.0.path().join("log.csv.gz");
+    let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    std::io::Write::write_all(&mut e, b"\"t\",q1,qd1\n0,1,2\n").unwrap();
+    std::fs::write(&gz, e.finish().unwrap()).unwrap();
+    assert_eq!(read_header(&gz).unwrap(), want);
+    assert!(read_header(&d.file("empty.csv", "")).unwrap().is_empty());
+}
+
 #[test]
 fn missing_sample_rate_and_roles_are_errors() {
     let d = Dir::new();
