@@ -56,6 +56,19 @@ pub enum QualityWarning {
         /// The validation file (or data set).
         file: String,
     },
+    /// The fit on the estimation data is worse than no model at all (relative error above
+    /// 100 %: predicting zero torque would do better): the estimate is not usable, as a
+    /// recursive estimate that diverged (a forgetting factor too small for the noise).
+    PoorFit {
+        /// The relative error of the fit (1 = 100 %).
+        relative_error: f64,
+    },
+    /// A joint none of whose equations was kept (every sample excluded, for instance by
+    /// `processing.rest_velocity`): its fit figures say nothing.
+    JointWithoutEquations {
+        /// The joint, from 1.
+        joint: usize,
+    },
     /// A parameter's column is dominated by a few equations (the largest
     /// [`OUTLIER_ROWS`] hold more than [`OUTLIER_SHARE`] of its squared norm): an outlier
     /// in the data, which the fit follows instead of the rest of the record.
@@ -81,7 +94,8 @@ pub const OUTLIER_SHARE: f64 = 0.9;
 
 impl QualityWarning {
     /// A short machine-readable name (`ill_conditioned`, `energy_ill_conditioned`,
-    /// `uncertain`, `outlier`, `validation_repeats_estimation`).
+    /// `uncertain`, `outlier`, `validation_repeats_estimation`, `poor_fit`,
+    /// `joint_without_equations`).
     pub fn kind(&self) -> &'static str {
         match self {
             QualityWarning::IllConditioned { .. } => "ill_conditioned",
@@ -89,6 +103,8 @@ impl QualityWarning {
             QualityWarning::Uncertain { .. } => "uncertain",
             QualityWarning::ValidationRepeatsEstimation { .. } => "validation_repeats_estimation",
             QualityWarning::Outlier { .. } => "outlier",
+            QualityWarning::PoorFit { .. } => "poor_fit",
+            QualityWarning::JointWithoutEquations { .. } => "joint_without_equations",
         }
     }
 
@@ -158,6 +174,20 @@ impl fmt::Display for QualityWarning {
                 f,
                 "column `{parameter}` is dominated by a few equations ({:.1} % of its squared norm, the largest from {location}): an outlier in the data; repair or remove that row (check its velocities and accelerations)",
                 100.0 * share
+            ),
+            QualityWarning::PoorFit { relative_error } => write!(
+                f,
+                "the fit on the estimation data is worse than no model (relative error {:.3e} %, \
+                 above 100 %): the estimate is not usable; with estimation.method = \"rls\", \
+                 bring estimation.forgetting closer to 1, else check the torque columns, their \
+                 units and signs",
+                100.0 * relative_error
+            ),
+            QualityWarning::JointWithoutEquations { joint } => write!(
+                f,
+                "joint {joint} has no equations (every sample of it was excluded, for instance \
+                 by processing.rest_velocity): its fit figures (RMS 0) say nothing; check the \
+                 exclusions"
             ),
             QualityWarning::ValidationRepeatsEstimation { file } => write!(
                 f,

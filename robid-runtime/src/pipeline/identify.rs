@@ -313,6 +313,7 @@ pub(crate) fn identify_dense(
     with_unfiltered(&mut prediction, &obs, &rows, factor);
     prediction.check(&format!("the estimation data ({used})"))?;
     prediction.used = Some(used.clone());
+    estimate.warnings.extend(prediction.warnings());
     Ok(Identification {
         robot: model.name().to_string(),
         fit: prediction.fit(),

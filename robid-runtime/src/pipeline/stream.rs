@@ -415,6 +415,7 @@ pub(crate) fn identify_streaming(
         .starting_at(kept.start as f64 * data.sample_time());
     let used = UsedRows::of(data, kept.clone());
     let prediction = finish_prediction(parts, &used, "the estimation data")?;
+    estimate.warnings.extend(prediction.warnings());
     Ok(Identification {
         robot: model.name().to_string(),
         fit: prediction.fit(),

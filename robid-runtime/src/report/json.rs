@@ -16,7 +16,8 @@ use crate::validate::{Fit, Prediction, UsedRows, relative_improvement};
 /// person reads (also what a command line prints on stderr).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ReportWarning {
-    /// `ill_conditioned`, `uncertain`, `outlier` or `validation_repeats_estimation`.
+    /// [`QualityWarning::kind`](crate::estimate::QualityWarning::kind): `ill_conditioned`,
+    /// `uncertain`, `outlier`, `validation_repeats_estimation`, `poor_fit`, ...
     pub kind: String,
     /// The parameters concerned (empty for a warning about the whole run).
     pub parameters: Vec<String>,

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::Record;
 use crate::error::{Error, Result};
-use crate::estimate::Observation;
+use crate::estimate::{Observation, QualityWarning};
 
 /// Which rows of which file a fit or a validation used.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -135,6 +135,24 @@ impl Prediction {
         self.fit().check(what)
     }
 
+    /// What the fit says about the estimate it comes from: a fit worse than no model, and
+    /// joints without equations ([`QualityWarning::PoorFit`],
+    /// [`QualityWarning::JointWithoutEquations`]).
+    pub fn warnings(&self) -> Vec<QualityWarning> {
+        let mut out: Vec<QualityWarning> = self
+            .measured
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.is_empty())
+            .map(|(j, _)| QualityWarning::JointWithoutEquations { joint: j + 1 })
+            .collect();
+        let relative_error = self.fit().relative_error;
+        if relative_error > 1.0 {
+            out.push(QualityWarning::PoorFit { relative_error });
+        }
+        out
+    }
+
     /// The prediction with its times moved by `start` seconds: the pipeline places them on
     /// the log's own time axis (from its first sample), not from the first sample used.
     pub fn starting_at(mut self, start: f64) -> Self {
@@ -174,6 +192,33 @@ mod tests {
         p.predicted[1][0] = f64::INFINITY;
         let e = p.check("run.csv").unwrap_err().to_string();
         assert!(e.contains("joint 2") && e.contains("run.csv"), "{e}");
+    }
+
+    /// A fit worse than predicting zero, and a joint with no equation, are warned about;
+    /// a good fit of every joint gives no warning.
+    #[test]
+    fn a_useless_fit_and_a_joint_without_equations_are_warned_about() {
+        let kinds = |measured: Vec<Vec<f64>>, predicted: Vec<Vec<f64>>| {
+            let time = measured.iter().map(|m| vec![0.0; m.len()]).collect();
+            let p = Prediction {
+                measured,
+                predicted,
+                time,
+                unfiltered: None,
+                used: None,
+            };
+            p.warnings().iter().map(|w| w.kind()).collect::<Vec<_>>()
+        };
+        let good = kinds(vec![vec![1.0, 2.0]; 2], vec![vec![1.1, 2.0]; 2]);
+        assert!(good.is_empty(), "{good:?}");
+        // exactly as bad as no model: not yet warned
+        assert!(kinds(vec![vec![1.0, -1.0]], vec![vec![0.0, 0.0]]).is_empty());
+        assert_eq!(
+            kinds(vec![vec![1.0, -1.0]], vec![vec![-1.0, 1.0]]),
+            ["poor_fit"]
+        );
+        let dropped = kinds(vec![vec![1.0, 2.0], vec![]], vec![vec![1.0, 2.0], vec![]]);
+        assert_eq!(dropped, ["joint_without_equations"]);
     }
 
     fn rows(file: &str, samples: [usize; 2], lines: Option<[u64; 2]>) -> UsedRows {
