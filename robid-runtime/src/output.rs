@@ -316,12 +316,13 @@ mod tests {
         let input = dir.path().join("in.toml");
         std::fs::write(&input, "x").unwrap();
         refuse_inputs(&[&input], &[&fifo]).unwrap();
-        let reader = {
-            let fifo = fifo.clone();
-            std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
-        };
+        let (sent, read) = std::sync::mpsc::channel();
+        let reader = fifo.clone();
+        std::thread::spawn(move || sent.send(std::fs::read_to_string(reader).unwrap()));
         write_bytes(&fifo, b"through the pipe").unwrap();
-        assert_eq!(reader.join().unwrap(), "through the pipe");
+        // a writer that never opens the pipe fails the test instead of hanging it
+        let text = read.recv_timeout(std::time::Duration::from_secs(20));
+        assert_eq!(text.as_deref(), Ok("through the pipe"));
         let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
         assert!(std::os::unix::fs::FileTypeExt::is_fifo(&kind));
     }

@@ -77,10 +77,7 @@ pub trait Real:
     /// let r = Real::mul_add(x, x, -(1.0 + 2.0 * f64::EPSILON));
     /// assert_eq!(r, if FUSED_MUL_ADD { f64::EPSILON * f64::EPSILON } else { 0.0 });
     /// ```
-    #[inline(always)]
-    fn mul_add(self, a: Self, b: Self) -> Self {
-        self * a + b
-    }
+    fn mul_add(self, a: Self, b: Self) -> Self;
 }
 
 /// Whether [`Real::mul_add`] of `f64` and `f32` rounds once: in `std` builds for

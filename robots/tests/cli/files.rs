@@ -403,10 +403,9 @@ fn a_pipe_is_written_into() {
     {
         return; // no mkfifo here
     }
-    let reader = {
-        let fifo = fifo.clone();
-        std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
-    };
+    let (sent, read) = std::sync::mpsc::channel();
+    let reader = fifo.clone();
+    std::thread::spawn(move || sent.send(std::fs::read_to_string(reader).unwrap()));
     let o = robid(&[
         "emit",
         "descriptions/ur5e.toml",
@@ -414,7 +413,11 @@ fn a_pipe_is_written_into() {
         fifo.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(reader.join().unwrap().contains("pub struct Ur5e;"));
+    // a writer that never opens the pipe fails the test instead of hanging it
+    let code = read
+        .recv_timeout(std::time::Duration::from_secs(60))
+        .unwrap();
+    assert!(code.contains("pub struct Ur5e;"));
     let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
     assert!(std::os::unix::fs::FileTypeExt::is_fifo(&kind));
 }
