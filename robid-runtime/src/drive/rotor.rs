@@ -19,7 +19,7 @@ use std::path::PathBuf;
 
 use super::{FrictionModel, Residual};
 use crate::data::PerJoint;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::signal::Signals;
 
 /// The `[drive.rotor]` table: known rotor inertias and rotor friction estimate.
@@ -50,9 +50,10 @@ pub struct RotorConfig {
 }
 
 impl RotorConfig {
-    /// Checks the sizes, and that the friction is given once.
+    /// Checks the sizes, that the inertias are not negative, and that the friction is given
+    /// once.
     pub fn check(&self, dof: usize) -> Result<()> {
-        self.inertia.values(dof, "drive.rotor.inertia")?;
+        self.inertias(dof)?;
         if self.friction.is_some() {
             for (key, given) in [("viscous", &self.viscous), ("coulomb", &self.coulomb)] {
                 if given.is_some() {
@@ -78,10 +79,36 @@ impl RotorConfig {
         Ok(())
     }
 
+    /// B, one per joint. An inertia is a mass times a squared length, so a negative one is
+    /// a typing error (a lost sign), not a drive: subtracting it would add the rotor's
+    /// torque instead, and the identified inertias would absorb the difference without a
+    /// warning. It is refused at the entry (`drive.rotor.inertia[j]`, or the key for one
+    /// number for all joints).
+    fn inertias(&self, dof: usize) -> Result<Vec<f64>> {
+        let key = "drive.rotor.inertia";
+        let b = self.inertia.values(dof, key)?;
+        match b.iter().position(|x| *x < 0.0) {
+            Some(j) => Err(Error::setting(
+                "Config",
+                &match self.inertia {
+                    PerJoint::All(_) => key.to_owned(),
+                    PerJoint::Each(_) => format!("{key}[{}]", j + 1),
+                },
+                format!(
+                    "joint {} has {} kg m^2, but an inertia cannot be negative; write the \
+                     rotor inertia reflected to the link side (0 for none)",
+                    j + 1,
+                    num(b[j])
+                ),
+            )),
+            None => Ok(b),
+        }
+    }
+
     /// Subtracts B thetaddot + fhat(thetadot) from the torques in place (per joint signals).
     pub fn compensate(&self, tau: &mut Signals, thetad: &Signals, thetadd: &Signals) -> Result<()> {
         let dof = tau.dof();
-        let b = self.inertia.values(dof, "drive.rotor.inertia")?;
+        let b = self.inertias(dof)?;
         let fv = match &self.viscous {
             Some(v) => v.values(dof, "drive.rotor.viscous")?,
             None => vec![0.0; dof],
@@ -118,7 +145,7 @@ impl RotorConfig {
         temperature: Option<&Signals>,
     ) -> Result<()> {
         let dof = tau.dof();
-        let b = self.inertia.values(dof, "drive.rotor.inertia")?;
+        let b = self.inertias(dof)?;
         for (key, given) in [("viscous", &self.viscous), ("coulomb", &self.coulomb)] {
             if given.is_some() {
                 return Err(Error::setting(
@@ -212,6 +239,41 @@ mod tests {
             assert!(t.iter().zip(e).all(|(a, b)| (a - b).abs() < 1e-12), "{t:?}");
         }
         assert!(cfg.check(3).is_err());
+    }
+
+    /// A negative rotor inertia is refused at its entry (it used to be subtracted with its
+    /// sign, adding the rotor's torque); zero (no rotor) is accepted.
+    #[test]
+    fn a_negative_rotor_inertia_is_refused_at_its_entry() {
+        let with = |inertia| RotorConfig {
+            inertia,
+            viscous: None,
+            coulomb: None,
+            friction: None,
+            residual: None,
+        };
+        with(PerJoint::Each(vec![0.0, 0.5])).check(2).unwrap();
+        let e = with(PerJoint::Each(vec![0.5, -0.13])).check(2).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "Config `drive.rotor.inertia[2]`: joint 2 has -0.13 kg m^2, but an inertia cannot \
+             be negative; write the rotor inertia reflected to the link side (0 for none)"
+        );
+        let e = with(PerJoint::All(-1e-300))
+            .check(2)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("Config `drive.rotor.inertia`: joint 1 has -1e-300 kg m^2"),
+            "{e}"
+        );
+        let signals = |x: [f64; 2]| Signals::new(x.map(|v| vec![v]).to_vec()).unwrap();
+        let mut tau = signals([1.0, 1.0]);
+        assert!(
+            with(PerJoint::Each(vec![0.5, -0.13]))
+                .compensate(&mut tau, &signals([0.0, 0.0]), &signals([1.0, 1.0]))
+                .is_err()
+        );
     }
 
     #[test]

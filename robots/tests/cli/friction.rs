@@ -258,5 +258,16 @@ fn incomplete_input_is_a_clear_error() {
         e.contains("no column `m1`") && e.contains("source[1].motor_position"),
         "{e}"
     );
+    // a negative rotor inertia, at its entry, by friction and identify alike (friction
+    // used to accept it and write a model)
+    let negative = config(false, true).replace("inertia = [0.4, 0.2]", "inertia = [0.4, -0.2]");
+    let negative = write(dir.path(), "negative.toml", &negative);
+    let negative = negative.to_str().unwrap();
+    let e = run(negative, &[]);
+    let at = format!("{negative}:14:17: `drive.rotor.inertia[2]`: joint 2 has -0.2 kg m^2");
+    assert!(e.contains(&at) && e.contains("cannot be negative"), "{e}");
+    let o = robid(&["identify", &robot, "--config", negative]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains(&at), "{}", stderr(&o));
     assert!(!out.exists(), "nothing is written on an error");
 }
