@@ -115,6 +115,19 @@ pub enum Error {
         /// What to change.
         hint: &'static str,
     },
+    /// A problem that arose from the data of one of several runs (`[runs]` of a config,
+    /// [`crate::pipeline::identify_runs`], [`crate::data::load_runs`]): `error` is what it
+    /// would be for that run alone, `run` names the run, so that a rank-deficient or too
+    /// short run among ten can be found.
+    #[error("{run}: {error}")]
+    Run {
+        /// The run: its entry `runs.files[i]` at file:line:column and its files for a
+        /// config file with `[runs]`, else its number (from 1) and its data set's name.
+        run: String,
+        /// The problem itself.
+        #[source]
+        error: Box<Error>,
+    },
     /// A command-line argument is out of range or inconsistent: a front end's flag, named
     /// as the user wrote it (a setting of the library given through a flag is first an
     /// [`Error::Setting`], which the front end maps with [`Error::on_flags`]).

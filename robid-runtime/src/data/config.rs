@@ -89,7 +89,7 @@ use serde::{Deserialize, Serialize};
 use crate::data::ColumnMapping;
 use crate::data::keys::KeyMap;
 use crate::drive::{DriveConfig, ExtraColumn};
-use crate::error::{Error, Result, num};
+use crate::error::{Error, Result, num, place};
 use crate::limits::{
     MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
     MIN_FACTOR, MIN_SAMPLE_RATE,
@@ -759,6 +759,42 @@ impl Config {
         match &self.base_dir {
             Some(dir) if file.is_relative() => dir.join(file),
             _ => file.to_path_buf(),
+        }
+    }
+
+    /// `e`, which arose from the data of run `index` (from 0) alone, as an [`Error::Run`]
+    /// naming the run: its entry `runs.files[i]` (at file:line:column for a config file)
+    /// and its files, or, when the config lists no runs, its number and `name` (the run's
+    /// data set). Without it an error of one run among ten (rank-deficient data, too few
+    /// samples) would not say which run to repeat.
+    pub fn run_error(&self, index: usize, name: &str, e: Error) -> Error {
+        if matches!(e, Error::Run { .. }) {
+            return e;
+        }
+        let key = format!("runs.files[{}]", index + 1);
+        let listed = self.runs.as_ref().and_then(|r| r.files.get(index));
+        let run = match (listed, &self.origin) {
+            (Some(files), origin) => {
+                let files: Vec<String> = files
+                    .paths()
+                    .iter()
+                    .map(|f| f.display().to_string())
+                    .collect();
+                let files = files.join(", ");
+                match origin {
+                    ConfigOrigin::File { path, keys } => {
+                        let at = keys.find(&key);
+                        let at = place(path, at.map(|a| a.0), at.map(|a| a.1));
+                        format!("{at}: `{key}` ({files})")
+                    }
+                    _ => format!("Config `{key}` ({files})"),
+                }
+            }
+            (None, _) => format!("run {} ({name})", index + 1),
+        };
+        Error::Run {
+            run,
+            error: Box::new(e),
         }
     }
 

@@ -507,9 +507,10 @@ pub fn load_runs(config: &Config, dof: usize) -> Result<Vec<Dataset>> {
     config.check(dof)?;
     runs.files
         .iter()
-        .map(|r| {
+        .enumerate()
+        .map(|(i, r)| {
             let files: Vec<PathBuf> = r.paths().iter().map(|f| config.resolve(f)).collect();
-            load(config, &files, dof)
+            load(config, &files, dof).map_err(|e| config.run_error(i, "", e))
         })
         .collect()
 }

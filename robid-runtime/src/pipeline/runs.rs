@@ -65,7 +65,8 @@ pub struct RepeatedIdentification {
 
 /// Identifies repeated acquisitions `runs` of one trajectory with `config` (its `[runs]
 /// mode`, stacked when the config has no `[runs]`): every run alone, then all together,
-/// with the spread across the runs. At least two runs.
+/// with the spread across the runs. At least two runs. An error of one run's data is an
+/// [`Error::Run`] naming the run ([`Config::run_error`]).
 pub fn identify_runs(
     model: &(dyn Model + Sync),
     runs: &[Dataset],
@@ -83,7 +84,8 @@ pub fn identify_runs(
     let mode = config.runs.as_ref().map(|r| r.mode).unwrap_or_default();
     let each = runs
         .iter()
-        .map(|d| identify(model, d, config))
+        .enumerate()
+        .map(|(i, d)| identify(model, d, config).map_err(|e| config.run_error(i, &d.name, e)))
         .collect::<Result<Vec<_>>>()?;
     let spread = spread(&each, runs)?;
     let robot = model.name().to_string();
@@ -133,8 +135,8 @@ pub(crate) fn stacked_dense(
     config: &Config,
 ) -> Result<(Estimate, Prediction)> {
     let mut parts = Vec::with_capacity(runs.len());
-    for d in runs {
-        parts.push(observation(model, d, config)?);
+    for (i, d) in runs.iter().enumerate() {
+        parts.push(observation(model, d, config).map_err(|e| config.run_error(i, &d.name, e))?);
     }
     let dt = parts.first().map_or(1.0, |p| p.1);
     let obs = stack(parts.into_iter().map(|p| p.0).collect())?;

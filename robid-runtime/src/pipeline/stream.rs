@@ -476,14 +476,20 @@ pub(crate) fn stacked_streaming(
     runs: &[Dataset],
     config: &Config,
 ) -> Result<(Estimate, Prediction)> {
+    let in_run = |i: usize, d: &Dataset, e: Error| config.run_error(i, &d.name, e);
     let plans = runs
         .iter()
-        .map(|d| checked_plan(model, d, config, Rows::Estimation))
+        .enumerate()
+        .map(|(i, d)| checked_plan(model, d, config, Rows::Estimation).map_err(|e| in_run(i, d, e)))
         .collect::<Result<Vec<_>>>()?;
     let streams = plans
         .iter()
         .zip(runs)
-        .map(|(p, d)| Stream::new(model, d, p, config).map_err(|e| located(e, config, d, &p.kept)))
+        .enumerate()
+        .map(|(i, (p, d))| {
+            Stream::new(model, d, p, config)
+                .map_err(|e| in_run(i, d, located(e, config, d, &p.kept)))
+        })
         .collect::<Result<Vec<_>>>()?;
     let Some(first) = streams.first() else {
         return Err(Error::TooFewSamples {
@@ -495,9 +501,9 @@ pub(crate) fn stacked_streaming(
     };
     let dof = model.dof();
     let mut ls = StreamingLeastSquares::new(first.names().to_vec(), dof)?;
-    for ((s, p), d) in streams.iter().zip(&plans).zip(runs) {
+    for (i, ((s, p), d)) in streams.iter().zip(&plans).zip(runs).enumerate() {
         s.run(|eq| ls.push_rows(&eq.joint, &eq.w, &eq.y))
-            .map_err(|e| located(e, config, d, &p.kept))?;
+            .map_err(|e| in_run(i, d, located(e, config, d, &p.kept)))?;
     }
     let tolerance = config.estimation.rank_tolerance;
     let estimate = match config.estimation.method {
@@ -514,14 +520,14 @@ pub(crate) fn stacked_streaming(
         used: None,
     };
     let mut offset = 0;
-    for ((s, plan), d) in streams.iter().zip(&plans).zip(runs) {
+    for (i, ((s, plan), d)) in streams.iter().zip(&plans).zip(runs).enumerate() {
         let PredictionParts {
             prediction: p,
             samples,
             ..
         } = s
             .prediction(&estimate.values, dt, None)
-            .map_err(|e| located(e, config, d, &plan.kept))?;
+            .map_err(|e| in_run(i, d, located(e, config, d, &plan.kept)))?;
         for (j, s) in samples.iter().enumerate() {
             stacked.measured[j].extend(&p.measured[j]);
             stacked.predicted[j].extend(&p.predicted[j]);

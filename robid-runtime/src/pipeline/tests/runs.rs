@@ -214,3 +214,44 @@ fn milella_runs_bad_input() {
     let e = identify_runs(&Synthetic::default(), &data[..1], &config).unwrap_err();
     assert!(e.to_string().contains("at least two"), "{e}");
 }
+
+/// An error that arises from one run's data names the run, its entry `runs.files[i]` at its
+/// line and column and its file, whichever way the runs are combined (a short run among
+/// long ones used to give "rank-deficient data" alone); an error of loading does too.
+#[test]
+fn an_error_of_one_run_names_the_run() {
+    // `files = [...]` is the last line of the config; "run3.csv" its third entry
+    let named = |e: &Error, dir: &tempfile::TempDir| {
+        let text = std::fs::read_to_string(dir.path().join("runs.toml")).unwrap();
+        let line = text.lines().count();
+        let column = text.lines().last().unwrap().find("\"run3.csv\"").unwrap() + 1;
+        let at = format!("runs.toml:{line}:{column}: `runs.files[3]` (run3.csv): ");
+        matches!(e, Error::Run { error, .. } if !matches!(**error, Error::Run { .. }))
+            && e.to_string().contains(&at)
+    };
+    // too short to excite every parameter alone, not in the stack
+    let (config, dir) = runs_config(&[20_000, 20_000, 600], "stacked");
+    let data = load_runs(&config, DOF).unwrap();
+    let e = identify_runs(&Synthetic::default(), &data, &config).unwrap_err();
+    assert!(named(&e, &dir), "{e}");
+    let Error::Run { error, .. } = &e else {
+        unreachable!()
+    };
+    // the run's own error is kept, for programs that act on its kind
+    assert!(error.to_string().starts_with("rank-deficient data"), "{e}");
+    // too short for the trim: the stacked equations alone, dense and streaming
+    let (config, dir) = runs_config(&[20_000, 20_000, 300], "stacked");
+    let data = load_runs(&config, DOF).unwrap();
+    let e = crate::pipeline::runs::stacked_dense(&Synthetic::default(), &data, &config)
+        .err()
+        .unwrap();
+    assert!(named(&e, &dir), "{e}");
+    let e = crate::pipeline::stream::stacked_streaming(&Synthetic::default(), &data, &config)
+        .err()
+        .unwrap();
+    assert!(named(&e, &dir), "{e}");
+    // loading: a run whose file is not there
+    std::fs::remove_file(dir.path().join("run3.csv")).unwrap();
+    let e = load_runs(&config, DOF).unwrap_err();
+    assert!(named(&e, &dir), "{e}");
+}
