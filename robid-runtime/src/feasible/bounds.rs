@@ -222,6 +222,14 @@ impl Bounds {
                 reason: e.to_string(),
             })
         })?;
+        // each table's ranges at their own keys first: a mistake in [default] is not a
+        // mistake of the first link that inherits it
+        if let Some(d) = &raw.default {
+            d.check("default", d.tensor())?;
+        }
+        for (key, link) in &raw.links {
+            link.check(&format!("links.{key}"), link.tensor())?;
+        }
         let base = merge(LinkBounds::default(), raw.default.as_ref());
         let mut out = vec![base; links];
         for (key, link) in &raw.links {
@@ -296,52 +304,24 @@ impl Bounds {
     /// [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER), ordered, masses and moments
     /// non-negative) and that the total-mass range meets the sum of the link mass ranges.
     pub fn validate(&self) -> Result<()> {
-        let bad = |key: String, problem: &str| Error::setting("Bounds", &key, problem);
         if self.margin.is_some_and(|m| !(0.0..=1.0).contains(&m)) {
-            return Err(bad(
-                "margin".into(),
+            return Err(Error::setting(
+                "Bounds",
+                "margin",
                 "must be a number in [0, 1], e.g. 1e-6",
             ));
         }
-        let check = |key: String, r: [f64; 2], non_negative: bool| -> Result<()> {
-            if !(r[0].abs() <= MAX_PARAMETER && r[1].abs() <= MAX_PARAMETER) {
-                return Err(bad(
-                    key,
-                    "holds NaN, an infinite value or a magnitude above 1e6; write finite numbers",
-                ));
-            }
-            if r[0] > r[1] {
-                return Err(bad(
-                    key,
-                    "lower bound above the upper bound; write [low, high]",
-                ));
-            }
-            if non_negative && r[0] < 0.0 {
-                return Err(bad(key, "must not be negative"));
-            }
-            Ok(())
-        };
         for (j, l) in self.links.iter().enumerate() {
-            check(format!("links.{}.mass", j + 1), l.mass, true)?;
-            check(format!("links.{}.inertia", j + 1), l.inertia, true)?;
-            for (a, r) in l.com.iter().enumerate() {
-                check(format!("links.{}.com[{a}]", j + 1), *r, false)?;
-            }
-            for (r, (name, row, column)) in l.tensor.iter().zip(TENSOR_ELEMENTS) {
-                if let Some(r) = r {
-                    let key = format!("links.{}.inertia_tensor.{name}", j + 1);
-                    check(key, *r, row == column)?;
-                }
-            }
-            if l.mass[1] <= 0.0 {
-                return Err(bad(
-                    format!("links.{}.mass", j + 1),
-                    "the upper bound must be positive (a link has mass)",
-                ));
-            }
+            let given = RawLink {
+                mass: Some(l.mass),
+                com: Some(l.com),
+                inertia: Some(l.inertia),
+                inertia_tensor: None,
+            };
+            given.check(&format!("links.{}", j + 1), l.tensor)?;
         }
         if let Some(t) = self.total_mass {
-            check("total_mass".into(), t, true)?;
+            check_range("total_mass".into(), t, true)?;
             let lo: f64 = self.links.iter().map(|l| l.mass[0]).sum();
             let hi: f64 = self.links.iter().map(|l| l.mass[1]).sum();
             if t[1] < lo || t[0] > hi {
@@ -357,13 +337,65 @@ impl Bounds {
     }
 }
 
+impl RawLink {
+    /// The inertia tensor elements given, in the order of [`TENSOR_ELEMENTS`].
+    fn tensor(&self) -> [Option<[f64; 2]>; 6] {
+        self.inertia_tensor
+            .as_ref()
+            .map(RawTensor::elements)
+            .unwrap_or_default()
+    }
+
+    /// Checks the ranges given (with `tensor` for the inertia tensor's elements), named
+    /// under `table` (`default`, `links.2`): finite with magnitude at most
+    /// [`MAX_PARAMETER`], ordered, masses and moments not negative, and a mass that can
+    /// be positive.
+    fn check(&self, table: &str, tensor: [Option<[f64; 2]>; 6]) -> Result<()> {
+        if let Some(m) = self.mass {
+            let key = format!("{table}.mass");
+            check_range(key.clone(), m, true)?;
+            if m[1] <= 0.0 {
+                return Err(Error::setting(
+                    "Bounds",
+                    &key,
+                    "the upper bound must be positive (a link has mass)",
+                ));
+            }
+        }
+        if let Some(i) = self.inertia {
+            check_range(format!("{table}.inertia"), i, true)?;
+        }
+        for (a, r) in self.com.iter().flatten().enumerate() {
+            check_range(format!("{table}.com[{}]", a + 1), *r, false)?;
+        }
+        for (r, (name, row, column)) in tensor.iter().zip(TENSOR_ELEMENTS) {
+            if let Some(r) = r {
+                check_range(format!("{table}.inertia_tensor.{name}"), *r, row == column)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Checks one range `[low, high]` named `key`: finite with magnitude at most
+/// [`MAX_PARAMETER`], ordered, and not negative when `non_negative`.
+fn check_range(key: String, r: [f64; 2], non_negative: bool) -> Result<()> {
+    let bad = |problem: &str| Err(Error::setting("Bounds", &key, problem));
+    if !(r[0].abs() <= MAX_PARAMETER && r[1].abs() <= MAX_PARAMETER) {
+        return bad("holds NaN, an infinite value or a magnitude above 1e6; write finite numbers");
+    }
+    if r[0] > r[1] {
+        return bad("lower bound above the upper bound; write [low, high]");
+    }
+    if non_negative && r[0] < 0.0 {
+        return bad("must not be negative");
+    }
+    Ok(())
+}
+
 fn merge(base: LinkBounds, raw: Option<&RawLink>) -> LinkBounds {
     let Some(raw) = raw else { return base };
-    let given = raw
-        .inertia_tensor
-        .as_ref()
-        .map(RawTensor::elements)
-        .unwrap_or_default();
+    let given = raw.tensor();
     LinkBounds {
         mass: raw.mass.unwrap_or(base.mass),
         com: raw.com.unwrap_or(base.com),
@@ -397,6 +429,49 @@ mod tests {
             e.to_string().starts_with("b.toml:4:1: `links.2.mass`"),
             "{e}"
         );
+    }
+
+    /// A mistake in `[default]` is named there, at its line and column, not as the first
+    /// link that inherits it (it was `links.1.mass` with no line); one in a link's table
+    /// over a sound default is named in that table, and a centre-of-mass axis by its
+    /// element (1-based, as the key map counts).
+    #[test]
+    fn errors_name_the_table_the_value_is_written_in() {
+        for (text, at) in [
+            (
+                "[default]\nmass = [5.0, 1.0]\n",
+                "b.toml:2:1: `default.mass`: lower bound",
+            ),
+            (
+                "[default]\nmass = [0, inf]\n",
+                "b.toml:2:1: `default.mass`: holds NaN",
+            ),
+            (
+                "[default]\nmass = [-1, 0]\n",
+                "b.toml:2:1: `default.mass`: must not",
+            ),
+            (
+                "[default]\nmass = [0, 0]\n",
+                "b.toml:2:1: `default.mass`: the upper bound",
+            ),
+            (
+                "[default]\ninertia_tensor = { zz = [-1, 1] }\n",
+                "b.toml:2:20: `default.inertia_tensor.zz`: must not",
+            ),
+            (
+                "[default]\ncom = [[0, 1], [2, 1], [0, 1]]\n[links.2]\nmass = [0, 1]\n",
+                "b.toml:2:16: `default.com[2]`: lower bound",
+            ),
+            (
+                "[default]\nmass = [0, 5]\n[links.3]\ninertia = [1, nan]\n",
+                "b.toml:4:1: `links.3.inertia`: holds NaN",
+            ),
+        ] {
+            let e = Bounds::from_toml(text, "b.toml", 3)
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with(at), "{text}: {e}");
+        }
     }
 
     #[test]

@@ -573,12 +573,19 @@ fn identify_warns_on_stderr_about_poorly_determined_parameters() {
 }
 
 /// Files that are not configs are not called "config": the identified JSON of another
-/// robot, a bounds file with a link the robot lacks, and `identify` without `--config`.
+/// robot, a bounds file with a link the robot lacks, and `identify` without `--config`. A
+/// mistake in a bounds file's `[default]` is named there at its line and column (it was
+/// named `links.1.mass`, without a line).
 #[test]
 fn inputs_are_named_by_their_kind_never_config() {
     let dir = folder();
     let out = dir.path().join("links.toml");
     let bounds = write(dir.path(), "bounds.toml", "[links.9]\nmass = [1.0, 2.0]\n");
+    let default = write(
+        dir.path(),
+        "default.toml",
+        "[default]\ncom = [[-1, 1], [-1, 1], [-1, 1]]\nmass = [5.0, 1.0]\n",
+    );
     for (args, expected) in [
         (
             vec!["descriptions/ur5e.toml", "--method", "anneal"],
@@ -596,6 +603,14 @@ fn inputs_are_named_by_their_kind_never_config() {
                 bounds.to_str().unwrap(),
             ],
             &["bounds.toml:1:8: `links.9`: not a link number; write 1 to 6"],
+        ),
+        (
+            vec![
+                "configs/tx40_robot.toml",
+                "--bounds",
+                default.to_str().unwrap(),
+            ],
+            &["default.toml:3:1: `default.mass`: lower bound above the upper bound"],
         ),
     ] {
         let mut all = vec![
