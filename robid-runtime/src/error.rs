@@ -192,14 +192,17 @@ pub(crate) fn place(path: &std::path::Path, line: Option<usize>, column: Option<
     }
 }
 
-/// A number for a message: plain while short, else in scientific notation (so that 1e308
-/// does not print as 309 digits).
-pub(crate) fn num(x: f64) -> String {
-    if x == 0.0 || (x.abs() >= 1e-4 && x.abs() < 1e15) || !x.is_finite() {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
+/// A number for a message, as [`Num`](crate::Num) writes it: `0.5`, `100`, `1e308`,
+/// `1e-320` (never 309 or 320 digits).
+///
+/// ```
+/// use robid_runtime::num;
+/// assert_eq!(num(0.5), "0.5");
+/// assert_eq!(num(1e-320), "1e-320");
+/// assert_eq!(num(-1e308), "-1e308");
+/// ```
+pub fn num(x: f64) -> String {
+    crate::Num(x).to_string()
 }
 
 /// A count for a message: exact while it is an integer of reasonable size.
@@ -213,3 +216,64 @@ fn count(x: f64) -> String {
 
 /// The crate's result type.
 pub type Result<T> = std::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    use super::{DataError, Error, SimulateError, num};
+
+    /// Ordinary values read as written; very large and very small ones in exponent form,
+    /// every value in at most 24 characters and reading back exactly.
+    #[test]
+    fn num_is_short_and_exact() {
+        for (x, text) in [
+            (0.0, "0"),
+            (0.5, "0.5"),
+            (100.0, "100"),
+            (1e-3, "0.001"),
+            (-0.13, "-0.13"),
+            (123456.789, "123456.789"),
+            (1e-300, "1e-300"),
+            (1e-320, "1e-320"),
+            (1e30, "1e30"),
+            (1e308, "1e308"),
+            (-f64::MAX, "-1.7976931348623157e308"),
+            (f64::NAN, "NaN"),
+            (f64::INFINITY, "inf"),
+        ] {
+            assert_eq!(num(x), text);
+        }
+        let mut x = f64::MIN_POSITIVE / 3.0;
+        while x < f64::MAX / 3.0 {
+            for v in [x, -x / 7.0] {
+                let t = num(v);
+                assert!(t.len() <= 24, "{t}");
+                assert_eq!(t.parse::<f64>().unwrap(), v, "{t}");
+            }
+            x *= 3.7;
+        }
+    }
+
+    /// Messages that show a value from the input write it short: a time stamp of 1e-320
+    /// printed as 0.000...0001 with 320 digits.
+    #[test]
+    fn messages_write_extreme_values_short() {
+        let e = Error::Data(DataError::NonMonotonicTime {
+            path: "log.csv".into(),
+            line: 3,
+            previous: 1e-320,
+            value: 0.0,
+        });
+        assert_eq!(
+            e.to_string(),
+            "log.csv:3: time 0 does not increase (previous 1e-320); sort the rows by time or \
+             remove duplicates"
+        );
+        let e = Error::Simulate(SimulateError::Diverged {
+            time: 2.5,
+            sample: 250,
+            reason: "r".into(),
+            fix: "f".into(),
+        });
+        assert!(e.to_string().contains("at t = 2.5 s"), "{e}");
+    }
+}

@@ -15,7 +15,10 @@ pub use robid_core::rng;
 pub mod trig;
 pub mod wrench;
 
+mod number;
+
 pub use model::{LengthError, Model};
+pub use number::Num;
 pub use real::{FUSED_MUL_ADD, Real};
 
 #[cfg(feature = "std")]
@@ -53,5 +56,5 @@ pub mod validate;
 
 #[cfg(feature = "std")]
 pub use error::{
-    DataError, Error, EstimateError, FeasibleError, OutputError, Result, SimulateError,
+    DataError, Error, EstimateError, FeasibleError, OutputError, Result, SimulateError, num,
 };

@@ -57,13 +57,14 @@ impl fmt::Display for OnlineRlsError {
         match self {
             Self::Forgetting(l) => write!(
                 f,
-                "the forgetting factor {l} must satisfy 0 < lambda <= 1 (1 keeps every equation)"
+                "the forgetting factor {} must satisfy 0 < lambda <= 1 (1 keeps every equation)",
+                crate::Num(*l)
             ),
             Self::InitialCovariance(p) => write!(
                 f,
                 "P(0) = p0 I needs p0 > 0 and finite, not {p0}; a large p0 (1e6 to 1e8 times \
                  1 / |phi|^2) trusts the data over the zero start",
-                p0 = p
+                p0 = crate::Num(*p)
             ),
             Self::NonFinite { what, index } => write!(
                 f,
@@ -71,8 +72,9 @@ impl fmt::Display for OnlineRlsError {
             ),
             Self::Denominator(d) => write!(
                 f,
-                "lambda + phi' P phi = {d} is not positive: P lost its positive definiteness \
-                 to rounding; reset the estimator"
+                "lambda + phi' P phi = {} is not positive: P lost its positive definiteness \
+                 to rounding; reset the estimator",
+                crate::Num(*d)
             ),
             Self::WindUp(p) => write!(
                 f,

@@ -2,6 +2,7 @@
 //! named by file, line and column (or config key) with the fix.
 
 use super::ColumnMapping;
+use crate::Num;
 use crate::error::place;
 use std::path::PathBuf;
 
@@ -121,7 +122,9 @@ pub enum DataError {
     },
     /// Time stamps do not increase.
     #[error(
-        "{path}:{line}: time {value} does not increase (previous {previous}); sort the rows by time or remove duplicates"
+        "{path}:{line}: time {} does not increase (previous {}); sort the rows by time or remove duplicates",
+        Num(*value),
+        Num(*previous)
     )]
     NonMonotonicTime {
         /// The file.

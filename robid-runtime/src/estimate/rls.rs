@@ -127,7 +127,8 @@ pub(crate) fn recursion(
         return Err(Error::NonFiniteResult {
             what: "the recursive least-squares state".into(),
             cause: format!(
-                "it overflowed with the forgetting factor {lambda}: the data do not excite every parameter all the time; set estimation.forgetting closer to 1 or use ols or wls"
+                "it overflowed with the forgetting factor {}: the data do not excite every parameter all the time; set estimation.forgetting closer to 1 or use ols or wls",
+                crate::Num(lambda)
             ),
         });
     }

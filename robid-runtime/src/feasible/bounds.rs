@@ -26,7 +26,7 @@ use serde::Deserialize;
 
 use crate::data::KeyMap;
 use crate::limits::MAX_PARAMETER;
-use crate::{Error, Result};
+use crate::{Error, Result, num};
 
 /// Bounds of one link.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -327,8 +327,11 @@ impl Bounds {
             if t[1] < lo || t[0] > hi {
                 return Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
                     reason: format!(
-                        "the total mass range [{}, {}] kg does not meet the sum of the link mass ranges [{lo}, {hi}] kg; widen one of them",
-                        t[0], t[1]
+                        "the total mass range [{}, {}] kg does not meet the sum of the link mass ranges [{}, {}] kg; widen one of them",
+                        num(t[0]),
+                        num(t[1]),
+                        num(lo),
+                        num(hi)
                     ),
                 }));
             }

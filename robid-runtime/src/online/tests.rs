@@ -77,6 +77,9 @@ fn zomaya_online_rls_refuses_bad_input_and_keeps_its_state() {
         Err(OnlineRlsError::Forgetting(0.0))
     );
     assert!(OnlineRls::<2>::new(1.5, 1.0).is_err());
+    // an extreme value is written short, not with its 300 digits
+    let e = OnlineRls::<2>::new(-1e-300, 1.0).unwrap_err().to_string();
+    assert!(e.starts_with("the forgetting factor -1e-300 must"), "{e}");
     assert!(OnlineRls::<2>::new(f64::NAN, 1.0).is_err());
     assert_eq!(
         OnlineRls::<2>::new(1.0, -1.0),

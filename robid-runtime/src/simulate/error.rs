@@ -7,7 +7,8 @@ pub enum SimulateError {
     /// A closed-loop simulation left the reference trajectory (tracking error or torque
     /// ran away, or a state became non-finite).
     #[error(
-        "the simulation diverged at t = {time} s (trajectory sample {sample}): {reason}; {fix}"
+        "the simulation diverged at t = {} s (trajectory sample {sample}): {reason}; {fix}",
+        crate::Num(*time)
     )]
     Diverged {
         /// Time stamp of the reference sample where it was detected.

@@ -37,7 +37,7 @@ use crate::Model;
 use crate::SimulateError;
 use crate::data::{DataError, KeyMap};
 use crate::drive::{FrictionModel, JointFriction};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::excite::check_parameters;
 use crate::limits::{MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
 use crate::rng::Rng;
@@ -177,12 +177,18 @@ impl Row {
         ];
         for (field, x, limit) in positive {
             if !(x > 0.0 && x <= limit) {
-                return Some((field, format!("{x} must be positive, at most {limit:e}")));
+                return Some((
+                    field,
+                    format!("{} must be positive, at most {limit:e}", num(x)),
+                ));
             }
         }
         for (field, x) in [("hardening", self.hardening), ("damping", self.damping)] {
             if !(0.0..=1e15).contains(&x) {
-                return Some((field, format!("{x} must be zero or positive, at most 1e15")));
+                return Some((
+                    field,
+                    format!("{} must be zero or positive, at most 1e15", num(x)),
+                ));
             }
         }
         if !(self.gear_ratio.is_finite() && self.gear_ratio.abs() >= 1e-3)
@@ -192,7 +198,7 @@ impl Row {
                 "gear_ratio",
                 format!(
                     "{} must be a number of magnitude 1e-3 to 1e6 (motor angle per joint angle)",
-                    self.gear_ratio
+                    num(self.gear_ratio)
                 ),
             ));
         }
@@ -239,14 +245,14 @@ impl Flexibility {
             if !(-100.0..=300.0).contains(&x) {
                 return Err(at(
                     format!("temperature.{field}"),
-                    format!("{x} deg C must lie in [-100, 300]"),
+                    format!("{} deg C must lie in [-100, 300]", num(x)),
                 ));
             }
         }
         if !(t.time_constant > 0.0 && t.time_constant <= 1e9) {
             return Err(at(
                 "temperature.time_constant".into(),
-                format!("{} s must be positive, at most 1e9", t.time_constant),
+                format!("{} s must be positive, at most 1e9", num(t.time_constant)),
             ));
         }
         let n = file.joint.len();

@@ -9,10 +9,10 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use robid_runtime::Model;
 use robid_runtime::data::ParameterFile;
 use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, assess};
 use robid_runtime::simulate::Trajectory;
+use robid_runtime::{Model, num};
 
 use super::description::{self, DescriptionFlags};
 use super::flags::{check_samples, closed, count, only_for, positive, real};
@@ -278,8 +278,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             if (periods - periods.round()).abs() > 1e-9 || periods.round() < 1.0 {
                 return Err(format!(
                     "--duration {} s is not a whole number of periods of {} s; choose a multiple of 1 / --base-frequency so the trajectory ends at rest",
-                    args.duration,
-                    1.0 / base_frequency
+                    num(args.duration),
+                    num(1.0 / base_frequency)
                 )
                 .into());
             }

@@ -20,6 +20,19 @@ fn refused_flag(o: &Output, flag: &str, why: &str) {
     assert!(!e.contains("config") && !e.contains("panicked"), "{e}");
 }
 
+/// A base frequency of 1e-300 Hz: the period in the message is in exponent form, not 300 digits.
+#[test]
+fn excite_writes_an_extreme_period_short() {
+    let dir = folder();
+    let o = excite(dir.path(), &["--base-frequency", "1e-300"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(
+        e.contains("--duration 30 s is not a whole number of periods of 9.999999999999999e299 s;"),
+        "{e}"
+    );
+}
+
 /// `robid excite` on the UR5e writing into `dir`, with `extra` arguments.
 fn excite(dir: &Path, extra: &[&str]) -> Output {
     let out = dir.join("traj.csv");
