@@ -65,7 +65,7 @@
 //! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, magnitude 1e-12 to 1e6 |
 //! | `drive.position_coupling`, `drive.torque_coupling` | finite, magnitude <= 1e6, invertible |
 //! | `drive.rotor.*`, `extra_column[i].terms[k].coefficient` | finite, magnitude <= 1e6 |
-//! | `drive.rotor.inertia` | also >= 0 (0 for no rotor) |
+//! | `drive.rotor.inertia`, `drive.rotor.viscous`, `drive.rotor.coulomb` | also >= 0 (0 for no rotor or no friction) |
 //! | `processing.lowpass.cutoff` | 0 < cutoff < the Nyquist frequency of the data, or `"auto"` |
 //! | `processing.lowpass.order` | 1 to 20 |
 //! | `processing.decimation` | factors >= 1, product <= 10,000 |

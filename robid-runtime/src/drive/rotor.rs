@@ -61,7 +61,9 @@ impl RotorConfig {
                         "Config",
                         "drive.rotor.friction",
                         format!(
-                            "is given with `drive.rotor.{key}`: the friction model holds the                              rotor friction, which would be subtracted twice; remove                              `drive.rotor.{key}`"
+                            "is given with `drive.rotor.{key}`: the friction model holds the \
+                             rotor friction, which would be subtracted twice; remove \
+                             `drive.rotor.{key}`"
                         ),
                     ));
                 }
@@ -70,53 +72,45 @@ impl RotorConfig {
         if let Some(r) = &self.residual {
             r.terms(dof)?;
         }
-        if let Some(v) = &self.viscous {
-            v.values(dof, "drive.rotor.viscous")?;
-        }
-        if let Some(c) = &self.coulomb {
-            c.values(dof, "drive.rotor.coulomb")?;
-        }
+        self.friction(dof)?;
         Ok(())
     }
 
     /// B, one per joint. An inertia is a mass times a squared length, so a negative one is
     /// a typing error (a lost sign), not a drive: subtracting it would add the rotor's
     /// torque instead, and the identified inertias would absorb the difference without a
-    /// warning. It is refused at the entry (`drive.rotor.inertia[j]`, or the key for one
-    /// number for all joints).
+    /// warning.
     fn inertias(&self, dof: usize) -> Result<Vec<f64>> {
-        let key = "drive.rotor.inertia";
-        let b = self.inertia.values(dof, key)?;
-        match b.iter().position(|x| *x < 0.0) {
-            Some(j) => Err(Error::setting(
-                "Config",
-                &match self.inertia {
-                    PerJoint::All(_) => key.to_owned(),
-                    PerJoint::Each(_) => format!("{key}[{}]", j + 1),
-                },
-                format!(
-                    "joint {} has {} kg m^2, but an inertia cannot be negative; write the \
-                     rotor inertia reflected to the link side (0 for none)",
-                    j + 1,
-                    num(b[j])
+        let what = "kg m^2, but an inertia cannot be negative; write the rotor inertia \
+                    reflected to the link side (0 for none)";
+        non_negative(&self.inertia, dof, "drive.rotor.inertia", what)
+    }
+
+    /// The viscous and Coulomb coefficients of the rotor friction (0 when not given). A
+    /// negative one would be friction that drives the rotor, which no bearing does.
+    fn friction(&self, dof: usize) -> Result<[Vec<f64>; 2]> {
+        let coefficient = |given: &Option<PerJoint>, key: &str, unit: &str| match given {
+            Some(v) => non_negative(
+                v,
+                dof,
+                key,
+                &format!(
+                    "{unit}, but friction cannot drive the rotor; write its size (0 for none)"
                 ),
-            )),
-            None => Ok(b),
-        }
+            ),
+            None => Ok(vec![0.0; dof]),
+        };
+        Ok([
+            coefficient(&self.viscous, "drive.rotor.viscous", "N m s/rad")?,
+            coefficient(&self.coulomb, "drive.rotor.coulomb", "N m")?,
+        ])
     }
 
     /// Subtracts B thetaddot + fhat(thetadot) from the torques in place (per joint signals).
     pub fn compensate(&self, tau: &mut Signals, thetad: &Signals, thetadd: &Signals) -> Result<()> {
         let dof = tau.dof();
         let b = self.inertias(dof)?;
-        let fv = match &self.viscous {
-            Some(v) => v.values(dof, "drive.rotor.viscous")?,
-            None => vec![0.0; dof],
-        };
-        let fc = match &self.coulomb {
-            Some(v) => v.values(dof, "drive.rotor.coulomb")?,
-            None => vec![0.0; dof],
-        };
+        let [fv, fc] = self.friction(dof)?;
         for (j, tj) in tau.joints_mut().enumerate() {
             for ((t, w), a) in tj.iter_mut().zip(&thetad[j]).zip(&thetadd[j]) {
                 *t -= b[j] * a + fv[j] * w + fc[j] * crate::Real::sign(*w);
@@ -213,6 +207,23 @@ impl RotorConfig {
     }
 }
 
+/// The values of `given` for `dof` joints, refused at the entry of the first negative one
+/// (`key[j]`, or `key` for one number for all joints) with "joint j has VALUE `what`".
+fn non_negative(given: &PerJoint, dof: usize, key: &str, what: &str) -> Result<Vec<f64>> {
+    let values = given.values(dof, key)?;
+    match values.iter().position(|x| *x < 0.0) {
+        Some(j) => Err(Error::setting(
+            "Config",
+            &match given {
+                PerJoint::All(_) => key.to_owned(),
+                PerJoint::Each(_) => format!("{key}[{}]", j + 1),
+            },
+            format!("joint {} has {} {what}", j + 1, num(values[j])),
+        )),
+        None => Ok(values),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -273,6 +284,31 @@ mod tests {
             with(PerJoint::Each(vec![0.5, -0.13]))
                 .compensate(&mut tau, &signals([0.0, 0.0]), &signals([1.0, 1.0]))
                 .is_err()
+        );
+        // and so are negative friction coefficients, which would drive the rotor
+        let rubbing = |viscous, coulomb| RotorConfig {
+            viscous,
+            coulomb,
+            ..with(PerJoint::All(0.1))
+        };
+        rubbing(Some(PerJoint::All(0.0)), Some(PerJoint::All(0.2)))
+            .check(2)
+            .unwrap();
+        let e = rubbing(Some(PerJoint::Each(vec![0.1, -2.0])), None)
+            .check(2)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("Config `drive.rotor.viscous[2]`: joint 2 has -2 N m s/rad"),
+            "{e}"
+        );
+        let e = rubbing(None, Some(PerJoint::All(-0.5)))
+            .check(2)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("Config `drive.rotor.coulomb`: joint 1 has -0.5 N m, but friction"),
+            "{e}"
         );
     }
 
