@@ -565,11 +565,15 @@ pub(super) const NO_POSITION_LIMITS: &str = "a joint that turns without end is `
 /// has at least [`PRINTED_DECIMALS`] of them: `1.5708` and `-3.1416` are pi/2 and -pi
 /// written to four decimals (as CAD exports and Kinova's URDFs write them), while
 /// `1.57079` is not pi/2 to five decimals (that would be `1.57080`) and stays what it is.
+/// The decimals are those of the value however it is written: `1.5708E+00` (C's `%E`),
+/// `0.15708e1` and `15708e-4` have four, like `1.5708`.
 pub(super) fn printed_right_angle(word: &str) -> Option<f64> {
-    if word.contains(['e', 'E']) {
-        return None;
-    }
-    let decimals = word.split_once('.')?.1.len();
+    let (mantissa, exponent) = match word.split_once(['e', 'E']) {
+        Some((m, e)) => (m, e.parse::<i64>().ok()?),
+        None => (word, 0),
+    };
+    let fraction = mantissa.split_once('.').map_or(0, |(_, f)| f.len());
+    let decimals = usize::try_from(i64::try_from(fraction).ok()? - exponent).ok()?;
     let value: f64 = word.parse().ok()?;
     if decimals < PRINTED_DECIMALS || !value.is_finite() {
         return None;
