@@ -297,6 +297,15 @@ mod tests {
             Err(Error::Output(OutputError::TwoOutputs { .. }))
         ));
         assert!(two(&new, &other).is_ok());
+        // the same name in two folders is two files
+        for sub in ["a", "b"] {
+            std::fs::create_dir(dir.path().join(sub)).unwrap();
+        }
+        let (a, b) = (dir.path().join("a/r.csv"), dir.path().join("b/r.csv"));
+        assert!(two(&a, &b).is_ok());
+        // a bare name is a file of the working folder, as `./` and the name
+        let bare = Path::new("robid-test-never-written.out");
+        assert!(two(bare, &Path::new(".").join(bare)).is_err());
         std::fs::write(&new, "x").unwrap();
         assert!(two(&same_new, &new).is_err());
         assert!(two(&new, &other).is_ok());

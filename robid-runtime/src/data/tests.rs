@@ -109,6 +109,10 @@ fn a_column_for_one_joint_more_is_refused() {
     let one = cfg("sample_rate = 10.0\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n");
     assert!(SpilledRecord::open(&one, std::slice::from_ref(&both), 2).is_err());
     assert!(load(&one, std::slice::from_ref(&both), 3).is_ok());
+    // a template without `{}` names one column, its own, never a surplus joint
+    let single = d.file("one.csv", "angle,torque\n0,1\n1,1\n");
+    let named = cfg("sample_rate = 10.0\n[[source]]\nposition = \"angle\"\ntorque = \"torque\"\n");
+    assert!(load(&named, std::slice::from_ref(&single), 1).is_ok());
     let listed = cfg(&TWO_FILES.replace("\"q{}\"", "[\"q1\", \"q2\"]"));
     assert!(load(&listed, &[a.clone(), a], 2).is_ok());
 }

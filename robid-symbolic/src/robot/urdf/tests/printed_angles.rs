@@ -26,8 +26,18 @@ fn a_right_angle_printed_to_its_decimals_is_that_angle() {
     }
     // too few decimals to tell, not the rounding of a right angle, zero, or no decimals
     for word in [
-        "1.571", "3.14", "1.57079", "1.5709", "0.7854", "0.0000", "2", "7.8540", "1.571E+00",
-        "0.15708e2", "15708e-3", "1.5708e99999999999999999999",
+        "1.571",
+        "3.14",
+        "1.57079",
+        "1.5709",
+        "0.7854",
+        "0.0000",
+        "2",
+        "7.8540",
+        "1.571E+00",
+        "0.15708e2",
+        "15708e-3",
+        "1.5708e99999999999999999999",
     ] {
         assert_eq!(printed_right_angle(word), None, "{word}");
     }
