@@ -212,14 +212,32 @@ fn describe(node: Node<'_, '_>) -> String {
     }
 }
 
-fn first_child<'a, 'i>(node: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
-    node.children()
-        .find(|c| c.is_element() && c.tag_name().name() == tag)
-}
-
 impl Reader<'_> {
     fn error(&mut self, span: Range<usize>, message: String, help: impl Into<String>) {
         self.errors.push(self.place.invalid(span, message, help));
+    }
+
+    /// The first `<tag>` child of `node`, as URDF parsers take it, with a warning at the
+    /// second when there are several (a second `<inertial>` or `<axis>` is otherwise
+    /// ignored without a word).
+    fn child<'a, 'i>(&mut self, node: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
+        let mut all = node
+            .children()
+            .filter(|c| c.is_element() && c.tag_name().name() == tag);
+        let first = all.next();
+        if let Some(second) = all.next() {
+            let w = self.place.warning(
+                second.range().start,
+                &format!(
+                    "{} has {} `<{tag}>` elements: the first is used, as URDF parsers do; \
+                     remove the others",
+                    describe(node),
+                    2 + all.count()
+                ),
+            );
+            self.warnings.push(w);
+        }
+        first
     }
 
     /// A required attribute and where its value is.
@@ -343,7 +361,7 @@ impl Reader<'_> {
 
     fn link(&mut self, node: Node<'_, '_>) -> Option<Link> {
         let (name, _) = self.required(node, "name")?;
-        let inertial = first_child(node, "inertial").and_then(|i| self.inertial(i));
+        let inertial = self.child(node, "inertial").and_then(|i| self.inertial(i));
         let text = &self.place.text[node.range()];
         Some(Link {
             name,
@@ -354,8 +372,10 @@ impl Reader<'_> {
     }
 
     fn inertial(&mut self, node: Node<'_, '_>) -> Option<Inertial> {
-        let origin = self.origin(first_child(node, "origin"));
-        let mass = match first_child(node, "mass") {
+        let origin = self.child(node, "origin");
+        let origin = self.origin(origin);
+        let mass_node = self.child(node, "mass");
+        let mass = match mass_node {
             Some(m) => self.required_scalar(m, "value"),
             None => {
                 self.error(
@@ -366,7 +386,7 @@ impl Reader<'_> {
                 None
             }
         };
-        if let (Some(m), Some(mass_node)) = (mass, first_child(node, "mass"))
+        if let (Some(m), Some(mass_node)) = (mass, mass_node)
             && m < 0.0
         {
             let span = mass_node
@@ -379,7 +399,7 @@ impl Reader<'_> {
             );
             return None;
         }
-        let inertia = match first_child(node, "inertia") {
+        let inertia = match self.child(node, "inertia") {
             Some(i) => {
                 let mut values = [0.0; 6];
                 let mut complete = true;
@@ -448,24 +468,9 @@ impl Reader<'_> {
         });
         let parent = self.link_reference(node, "parent");
         let child = self.link_reference(node, "child");
-        let origins: Vec<Node<'_, '_>> = node
-            .children()
-            .filter(|c| c.is_element() && c.tag_name().name() == "origin")
-            .collect();
-        if origins.len() > 1 {
-            let w = self.place.warning(
-                origins[1].range().start,
-                &format!(
-                    "{} has {} `<origin>` elements: the first is used, as URDF parsers do; \
-                     remove the others",
-                    describe(node),
-                    origins.len()
-                ),
-            );
-            self.warnings.push(w);
-        }
-        let origin = self.origin(origins.first().copied());
-        let axis = match first_child(node, "axis") {
+        let origin = self.child(node, "origin");
+        let origin = self.origin(origin);
+        let axis = match self.child(node, "axis") {
             None => Some([1.0, 0.0, 0.0]),
             Some(a) => match a.attribute_node("xyz") {
                 None => Some([1.0, 0.0, 0.0]),
@@ -492,15 +497,17 @@ impl Reader<'_> {
                 }
             },
         };
-        let limit = first_child(node, "limit").map(|l| Limit {
+        let limit = self.child(node, "limit").map(|l| Limit {
             lower: self.scalar(l, "lower"),
             upper: self.scalar(l, "upper"),
             effort: self.scalar(l, "effort"),
             velocity: self.scalar(l, "velocity"),
             range: l.range(),
         });
-        let mimic = first_child(node, "mimic").and_then(|m| self.required(m, "joint"));
-        let dynamics = first_child(node, "dynamics").map(|d| d.range());
+        let mimic = self
+            .child(node, "mimic")
+            .and_then(|m| self.required(m, "joint"));
+        let dynamics = self.child(node, "dynamics").map(|d| d.range());
         let (name, _) = name?;
         let (parent, parent_at) = parent?;
         let (child, child_at) = child?;
@@ -522,7 +529,7 @@ impl Reader<'_> {
 
     /// `<parent link="...">` or `<child link="...">`.
     fn link_reference(&mut self, joint: Node<'_, '_>, tag: &str) -> Option<(String, Range<usize>)> {
-        match first_child(joint, tag) {
+        match self.child(joint, tag) {
             Some(node) => self.required(node, "link"),
             None => {
                 self.error(

@@ -214,3 +214,49 @@ fn truncated_and_garbled_files_are_errors_not_panics() {
     // measured 352 of the 400 (seeded)
     assert!(errors > 176, "{errors}");
 }
+
+/// A repeated element of a link, an inertial or a joint is warned about at the second
+/// one, and the first is used, as URDF parsers do (a second `<inertial>` or `<axis>`
+/// used to be dropped without a word).
+#[test]
+fn repeated_elements_are_warned_about_and_the_first_used() {
+    let inertial = "<inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>";
+    let two = format!("{J1}{J2}");
+    for (text, tag, place) in [
+        (
+            arm(&two).replace(
+                "<link name=\"c\"/>",
+                &format!("<link name=\"c\">{inertial}{inertial}</link>"),
+            ),
+            "`<link name=\"c\">` has 2 `<inertial>` elements",
+            "t.urdf:4:",
+        ),
+        (
+            arm(&two).replace(
+                "<link name=\"c\"/>",
+                &format!(
+                    "<link name=\"c\">{}</link>",
+                    inertial.replace("<inertia ", "<mass value=\"5\"/><inertia ")
+                ),
+            ),
+            "`<inertial>` has 2 `<mass>` elements",
+            "t.urdf:4:",
+        ),
+        (
+            arm(&format!(
+                "{J1}{}",
+                J2.replace("</joint>", "<axis xyz=\"1 0 0\"/></joint>")
+            )),
+            "`<joint name=\"j2\">` has 2 `<axis>` elements",
+            "t.urdf:6:",
+        ),
+    ] {
+        let chain = Robot::from_urdf(&text, "t.urdf", &ChainSelection::default()).unwrap();
+        let w = chain.warnings.iter().find(|w| w.contains(tag));
+        assert!(
+            w.is_some_and(|w| w.starts_with(place) && w.contains("the first is used")),
+            "{:?}",
+            chain.warnings
+        );
+    }
+}
