@@ -149,9 +149,10 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut stdout = out::Stdout::new();
     writeln!(
         stdout,
-        "{}: {} samples simulated, written to {}",
+        "{}: {} samples simulated, {}written to {}",
         model.name(),
         reference.samples(),
+        written(reference.samples(), every),
         args.output.display()
     )?;
     stdout.flush()?;
@@ -193,10 +194,11 @@ fn run_flexible(
     writeln!(
         stdout,
         "{}: {} samples simulated with flexible joints (largest deflection per joint [{}] rad), \
-         written to {}",
+         {}written to {}",
         model.name(),
         reference.samples(),
         deflection.join(" "),
+        written(reference.samples(), every),
         args.output.display()
     )?;
     stdout.flush()?;
@@ -249,6 +251,16 @@ fn log_settings(args: &Args, n: usize) -> Result<(), Error> {
         .into());
     }
     Ok(())
+}
+
+/// `"N rows "` when `--rate` writes every `every`-th of the `samples` (the first
+/// included), else nothing: the count the output file has.
+fn written(samples: usize, every: usize) -> String {
+    if every > 1 {
+        format!("{} rows ", samples.div_ceil(every))
+    } else {
+        String::new()
+    }
 }
 
 /// Every how many trajectory samples one is written for `--rate`: the rate must be a

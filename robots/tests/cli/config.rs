@@ -210,6 +210,12 @@ fn simulate_writes_a_log_of_positions_and_currents() {
         "log.csv",
     );
     assert!(o.status.success(), "{}", stderr(&o));
+    // the message counts the rows the file has, not only the samples simulated
+    assert!(
+        stdout(&o).contains("2001 samples simulated, 501 rows written to"),
+        "{}",
+        stdout(&o)
+    );
     let header = std::fs::read_to_string(&log).unwrap();
     assert!(header.starts_with("t,q1,i1\n"), "{}", &header[..20]);
     let (all, log) = (rows(&all), rows(&log));
