@@ -7,6 +7,7 @@
 // Range checks are written `!(lo < x && x <= hi)` so that NaN fails them too.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod fused;
 pub mod lanes;
 pub mod model;
 pub mod online;

@@ -95,6 +95,27 @@ pub fn sin_cos<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     sin_cos_libm(x)
 }
 
+/// [`sin_cos`] for code compiled with AVX2 and FMA, where the vector path inlines whole
+/// (the models' AVX2 instances: [`Fused`](crate::fused::Fused)); the same choice and the
+/// same results. Elsewhere it is slower than [`sin_cos`].
+#[inline(always)]
+pub(crate) fn sin_cos_inlined<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    #[cfg(target_arch = "x86_64")]
+    if N >= VECTOR_FROM && vector_available() {
+        // SAFETY: `vector_available` has confirmed that the CPU executes AVX2 and FMA.
+        return unsafe { avx2::sin_cos_inlined(x) };
+    }
+    sin_cos_libm_cold(x)
+}
+
+/// [`sin_cos_libm`] kept out of line: the path [`sin_cos_inlined`] does not expect, whose
+/// calls would otherwise make the caller keep its values on the stack.
+#[cold]
+#[inline(never)]
+fn sin_cos_libm_cold<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    sin_cos_libm(x)
+}
+
 /// What [`Real::sin_cos_array`](crate::Real::sin_cos_array) computes for `f64`: the
 /// vector path when the build enables AVX2 and FMA (`-C target-cpu=native` or
 /// `-C target-feature=+avx2,+fma`), where it inlines into the generated code; libm for
@@ -193,13 +214,26 @@ fn detected() -> bool {
     use core::sync::atomic::{AtomicU8, Ordering};
     static STATE: AtomicU8 = AtomicU8::new(0);
     match STATE.load(Ordering::Relaxed) {
-        0 => {
-            let yes = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
-            STATE.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
-            yes
-        }
+        0 => ask(&STATE),
         state => state == 2,
     }
+}
+
+/// The first call's question to the CPU, out of line (once per process).
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx2", target_feature = "fma")),
+    feature = "std"
+))]
+#[cold]
+#[inline(never)]
+fn ask(state: &core::sync::atomic::AtomicU8) -> bool {
+    let yes = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
+    state.store(
+        if yes { 2 } else { 1 },
+        core::sync::atomic::Ordering::Relaxed,
+    );
+    yes
 }
 
 #[cfg(test)]

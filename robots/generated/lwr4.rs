@@ -186,20 +186,28 @@ impl Lwr4 {
     /// - `qdd`: qdd1 .. qdd7
     ///
     /// Operations: 1018 mul, 601 add, 64 neg, 6 sin, 6 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         qd: &[T; 7],
         qdd: &[T; 7],
     ) -> [T; 490] {
+        self.standard_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn standard_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        qd: &[T; 7],
+        qdd: &[T; 7],
+    ) -> [T; 490] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.4);
@@ -218,6 +226,7 @@ impl Lwr4 {
             q6,
             q7,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
         let t3 = t0 * qdd1;
         let t4 = t1 * qdd1;
         let t5 = t0 * c0;
@@ -1656,6 +1665,26 @@ impl Lwr4 {
         out[487] = t1694;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn standard_regressor_avx2(
+        &self,
+        q: &[f64; 7],
+        qd: &[f64; 7],
+        qdd: &[f64; 7],
+        out: &mut [f64; 490],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .standard_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
     /// Returns `out`: joints x base parameters, row-major (301 values).
@@ -1665,20 +1694,28 @@ impl Lwr4 {
     /// - `qdd`: qdd1 .. qdd7
     ///
     /// Operations: 683 mul, 477 add, 35 neg, 6 sin, 6 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         qd: &[T; 7],
         qdd: &[T; 7],
     ) -> [T; 301] {
+        self.base_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn base_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        qd: &[T; 7],
+        qdd: &[T; 7],
+    ) -> [T; 301] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.4);
@@ -1696,6 +1733,7 @@ impl Lwr4 {
             q6,
             q7,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t0 * qdd1;
@@ -2696,6 +2734,26 @@ impl Lwr4 {
         out[300] = t1206;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_regressor_avx2(
+        &self,
+        q: &[f64; 7],
+        qd: &[f64; 7],
+        qdd: &[f64; 7],
+        out: &mut [f64; 301],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
     /// Returns `tau`: one entry per joint (7 values).
@@ -2706,12 +2764,6 @@ impl Lwr4 {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 292 mul, 279 add, 0 neg, 6 sin, 6 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -2719,13 +2771,23 @@ impl Lwr4 {
         qdd: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn inverse_dynamics_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        qd: &[T; 7],
+        qdd: &[T; 7],
+        base: &[T; 43],
+    ) -> [T; 7] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
-        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
-        let [ZZR1, XXR2, XYR2, XZR2, YZR2, ZZR2, MX2, MYR2, XXR3, XYR3, XZR3, YZR3, ZZR3,
-        MX3, MYR3, XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5,
-        MX5, MYR5, XXR6, XYR6, XZR6, YZR6, ZZR6, MX6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7,
-        MX7, MY7] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.4);
         let c2 = T::from_f64(0.39);
@@ -2738,6 +2800,12 @@ impl Lwr4 {
             q6,
             q7,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
+        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
+        let [ZZR1, XXR2, XYR2, XZR2, YZR2, ZZR2, MX2, MYR2, XXR3, XYR3, XZR3, YZR3, ZZR3,
+        MX3, MYR3, XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5,
+        MX5, MYR5, XXR6, XYR6, XZR6, YZR6, ZZR6, MX6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7,
+        MX7, MY7] = *base;
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t0 * qdd1;
@@ -3164,6 +3232,28 @@ impl Lwr4 {
         let t582 = T::mul_add(qdd1, ZZR1, t581);
         [t582, t577, t528, t471, t403, t339, t287]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn inverse_dynamics_avx2(
+        &self,
+        q: &[f64; 7],
+        qd: &[f64; 7],
+        qdd: &[f64; 7],
+        base: &[f64; 43],
+        out: &mut [f64; 7],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .inverse_dynamics_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Joint-space inertia matrix M(q), rotor inertias included.
     ///
     /// Returns `out`: joints x joints, row-major (49 values).
@@ -3172,13 +3262,21 @@ impl Lwr4 {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 184 mul, 147 add, 2 neg, 6 sin, 6 cos.
+    pub fn mass_matrix<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        base: &[T; 43],
+    ) -> [T; 49] {
+        self.mass_matrix_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn mass_matrix<T: ::robid_runtime::Real>(
+    fn mass_matrix_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         base: &[T; 43],
@@ -3502,6 +3600,19 @@ impl Lwr4 {
         out[44] = t344;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn mass_matrix_avx2(&self, q: &[f64; 7], base: &[f64; 43], out: &mut [f64; 49]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .mass_matrix_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Gravity torques g(q).
     ///
     /// Returns `out`: one entry per joint (7 values).
@@ -3510,21 +3621,26 @@ impl Lwr4 {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 65 mul, 36 add, 0 neg, 6 sin, 6 cos.
+    pub fn gravity<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        base: &[T; 43],
+    ) -> [T; 7] {
+        self.gravity_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn gravity<T: ::robid_runtime::Real>(
+    fn gravity_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [_, _, _, _, _, _, MX2, MYR2, _, _, _, _, _, MX3, MYR3, _, _, _, _, _, MX4,
-        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MYR6, _, _, _, _, _, MX7, MY7,
-        ] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
         let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
@@ -3535,6 +3651,9 @@ impl Lwr4 {
             q6,
             q7,
         ]);
+        let [_, _, _, _, _, _, MX2, MYR2, _, _, _, _, _, MX3, MYR3, _, _, _, _, _, MX4,
+        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MYR6, _, _, _, _, _, MX7, MY7,
+        ] = *base;
         let t12 = t0 * t3;
         let t13 = t0 * t2;
         let t14 = t5 * t12;
@@ -3606,6 +3725,19 @@ impl Lwr4 {
         let t112 = t41 * c1;
         [t106, t107, t108, t109, t110, t111, t112]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn gravity_avx2(&self, q: &[f64; 7], base: &[f64; 43], out: &mut [f64; 7]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .gravity_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
     /// Returns `out`: one entry per joint (7 values).
@@ -3615,23 +3747,28 @@ impl Lwr4 {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 284 mul, 256 add, 0 neg, 6 sin, 6 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         qd: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
+        self.coriolis_inlined::<T>(q, qd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn coriolis_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        qd: &[T; 7],
+        base: &[T; 43],
+    ) -> [T; 7] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
-        let [_, XXR2, XYR2, XZR2, YZR2, _, _, _, XXR3, XYR3, XZR3, YZR3, ZZR3, MX3, MYR3,
-        XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5, MX5, MYR5,
-        XXR6, XYR6, XZR6, YZR6, ZZR6, MX6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7, MY7] = *base;
         let c0 = T::from_f64(0.4);
         let c1 = T::from_f64(0.8);
         let c2 = T::from_f64(0.39);
@@ -3645,6 +3782,10 @@ impl Lwr4 {
             q6,
             q7,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
+        let [_, XXR2, XYR2, XZR2, YZR2, _, _, _, XXR3, XYR3, XZR3, YZR3, ZZR3, MX3, MYR3,
+        XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5, MX5, MYR5,
+        XXR6, XYR6, XZR6, YZR6, ZZR6, MX6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7, MY7] = *base;
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t13 * qd2;
@@ -4046,6 +4187,26 @@ impl Lwr4 {
         let t551 = T::mul_add(t1, t545, t549);
         [t551, t548, t507, t448, t380, t316, t264]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn coriolis_avx2(
+        &self,
+        q: &[f64; 7],
+        qd: &[f64; 7],
+        base: &[f64; 43],
+        out: &mut [f64; 7],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .coriolis_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Base parameters from standard parameters: base = K * standard.
     ///
     /// Returns `base`: one entry per base parameter (43 values).
@@ -4053,13 +4214,20 @@ impl Lwr4 {
     /// - `standard`: XX1 .. M7
     ///
     /// Operations: 9 mul, 38 add, 11 neg.
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
+        &self,
+        standard: &[T; 70],
+    ) -> [T; 43] {
+        self.base_from_standard_inlined::<T>(standard)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn base_from_standard<T: ::robid_runtime::Real>(
+    fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 70],
     ) -> [T; 43] {
@@ -4175,6 +4343,16 @@ impl Lwr4 {
         out[32] = t57;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_from_standard_avx2(&self, standard: &[f64; 70], out: &mut [f64; 43]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_from_standard_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(::robid_runtime::fused::as_array(standard)),
+        );
+    }
 }
 impl ::robid_runtime::Model for Lwr4 {
     fn name(&self) -> &str {
@@ -4210,15 +4388,16 @@ impl ::robid_runtime::Model for Lwr4 {
                         found: inputs.len(),
                     });
                 };
-                let value = Lwr4::standard_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Lwr4::standard_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Lwr4::standard_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -4228,15 +4407,16 @@ impl ::robid_runtime::Model for Lwr4 {
                         found: inputs.len(),
                     });
                 };
-                let value = Lwr4::base_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Lwr4::base_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Lwr4::base_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -4246,16 +4426,17 @@ impl ::robid_runtime::Model for Lwr4 {
                         found: inputs.len(),
                     });
                 };
-                let value = Lwr4::inverse_dynamics::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("tau", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Lwr4::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Lwr4::inverse_dynamics::<f64>(self, q, qd, qdd, base);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -4265,14 +4446,15 @@ impl ::robid_runtime::Model for Lwr4 {
                         found: inputs.len(),
                     });
                 };
-                let value = Lwr4::mass_matrix::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Lwr4::mass_matrix_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Lwr4::mass_matrix::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -4282,14 +4464,15 @@ impl ::robid_runtime::Model for Lwr4 {
                         found: inputs.len(),
                     });
                 };
-                let value = Lwr4::gravity::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Lwr4::gravity_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Lwr4::gravity::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -4299,15 +4482,16 @@ impl ::robid_runtime::Model for Lwr4 {
                         found: inputs.len(),
                     });
                 };
-                let value = Lwr4::coriolis::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Lwr4::coriolis_avx2(self, q, qd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Lwr4::coriolis::<f64>(self, q, qd, base);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -4317,10 +4501,14 @@ impl ::robid_runtime::Model for Lwr4 {
                         found: inputs.len(),
                     });
                 };
-                let value = Lwr4::base_from_standard::<
-                    f64,
-                >(self, ::robid_runtime::model::fixed("standard", standard)?);
-                *::robid_runtime::model::fixed_mut("base", output)? = value;
+                let standard = ::robid_runtime::model::fixed("standard", standard)?;
+                let out = ::robid_runtime::model::fixed_mut("base", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Lwr4::base_from_standard_avx2(self, standard, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Lwr4::base_from_standard::<f64>(self, standard);
             }
         }
         ::core::result::Result::Ok(())

@@ -186,20 +186,28 @@ impl Panda {
     /// - `qdd`: qdd1 .. qdd7
     ///
     /// Operations: 1128 mul, 723 add, 35 neg, 6 sin, 6 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         qd: &[T; 7],
         qdd: &[T; 7],
     ) -> [T; 490] {
+        self.standard_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn standard_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        qd: &[T; 7],
+        qdd: &[T; 7],
+    ) -> [T; 490] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.316);
@@ -221,6 +229,7 @@ impl Panda {
             q6,
             q7,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
         let t3 = t0 * qdd1;
         let t4 = t1 * qdd1;
         let t5 = t0 * c0;
@@ -1798,6 +1807,26 @@ impl Panda {
         out[487] = t1897;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn standard_regressor_avx2(
+        &self,
+        q: &[f64; 7],
+        qd: &[f64; 7],
+        qdd: &[f64; 7],
+        out: &mut [f64; 490],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .standard_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
     /// Returns `out`: joints x base parameters, row-major (301 values).
@@ -1807,20 +1836,28 @@ impl Panda {
     /// - `qdd`: qdd1 .. qdd7
     ///
     /// Operations: 694 mul, 498 add, 30 neg, 6 sin, 6 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         qd: &[T; 7],
         qdd: &[T; 7],
     ) -> [T; 301] {
+        self.base_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn base_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        qd: &[T; 7],
+        qdd: &[T; 7],
+    ) -> [T; 301] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.316);
@@ -1839,6 +1876,7 @@ impl Panda {
             q6,
             q7,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t0 * qdd1;
@@ -2858,6 +2896,26 @@ impl Panda {
         out[300] = t1233;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_regressor_avx2(
+        &self,
+        q: &[f64; 7],
+        qd: &[f64; 7],
+        qdd: &[f64; 7],
+        out: &mut [f64; 301],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
     /// Returns `tau`: one entry per joint (7 values).
@@ -2868,12 +2926,6 @@ impl Panda {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 307 mul, 293 add, 1 neg, 6 sin, 6 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
@@ -2881,13 +2933,23 @@ impl Panda {
         qdd: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn inverse_dynamics_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        qd: &[T; 7],
+        qdd: &[T; 7],
+        base: &[T; 43],
+    ) -> [T; 7] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
-        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
-        let [ZZR1, XXR2, XY2, XZ2, YZ2, ZZR2, MX2, MYR2, XXR3, XYR3, XZ3, YZ3, ZZR3,
-        MXR3, MYR3, XXR4, XYR4, XZ4, YZ4, ZZR4, MXR4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5,
-        MX5, MYR5, XXR6, XYR6, XZ6, YZ6, ZZR6, MXR6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7,
-        MY7] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.316);
         let c2 = T::from_f64(0.0825);
@@ -2901,6 +2963,12 @@ impl Panda {
             q6,
             q7,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
+        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
+        let [ZZR1, XXR2, XY2, XZ2, YZ2, ZZR2, MX2, MYR2, XXR3, XYR3, XZ3, YZ3, ZZR3,
+        MXR3, MYR3, XXR4, XYR4, XZ4, YZ4, ZZR4, MXR4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5,
+        MX5, MYR5, XXR6, XYR6, XZ6, YZ6, ZZR6, MXR6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7,
+        MY7] = *base;
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t0 * qdd1;
@@ -3347,6 +3415,28 @@ impl Panda {
         let t612 = -t301;
         [t611, t606, t557, t493, t421, t357, t612]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn inverse_dynamics_avx2(
+        &self,
+        q: &[f64; 7],
+        qd: &[f64; 7],
+        qdd: &[f64; 7],
+        base: &[f64; 43],
+        out: &mut [f64; 7],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .inverse_dynamics_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Joint-space inertia matrix M(q), rotor inertias included.
     ///
     /// Returns `out`: joints x joints, row-major (49 values).
@@ -3355,13 +3445,21 @@ impl Panda {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 204 mul, 169 add, 1 neg, 6 sin, 6 cos.
+    pub fn mass_matrix<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        base: &[T; 43],
+    ) -> [T; 49] {
+        self.mass_matrix_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn mass_matrix<T: ::robid_runtime::Real>(
+    fn mass_matrix_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         base: &[T; 43],
@@ -3719,6 +3817,19 @@ impl Panda {
         out[42] = t385;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn mass_matrix_avx2(&self, q: &[f64; 7], base: &[f64; 43], out: &mut [f64; 49]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .mass_matrix_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Gravity torques g(q).
     ///
     /// Returns `out`: one entry per joint (7 values).
@@ -3727,21 +3838,26 @@ impl Panda {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 65 mul, 36 add, 0 neg, 6 sin, 6 cos.
+    pub fn gravity<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        base: &[T; 43],
+    ) -> [T; 7] {
+        self.gravity_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn gravity<T: ::robid_runtime::Real>(
+    fn gravity_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [_, _, _, _, _, _, MX2, MYR2, _, _, _, _, _, MXR3, MYR3, _, _, _, _, _, MXR4,
-        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MXR6, MYR6, _, _, _, _, _, MX7,
-        MY7] = *base;
         let c0 = T::from_f64(-9.81);
         let c1 = T::from_f64(9.81);
         let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
@@ -3752,6 +3868,9 @@ impl Panda {
             q6,
             q7,
         ]);
+        let [_, _, _, _, _, _, MX2, MYR2, _, _, _, _, _, MXR3, MYR3, _, _, _, _, _, MXR4,
+        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MXR6, MYR6, _, _, _, _, _, MX7,
+        MY7] = *base;
         let t12 = t0 * t3;
         let t13 = t0 * t2;
         let t14 = t5 * t12;
@@ -3823,6 +3942,19 @@ impl Panda {
         let t112 = t41 * c0;
         [t106, t107, t108, t109, t110, t111, t112]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn gravity_avx2(&self, q: &[f64; 7], base: &[f64; 43], out: &mut [f64; 7]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .gravity_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
     /// Returns `out`: one entry per joint (7 values).
@@ -3832,23 +3964,28 @@ impl Panda {
     /// - `base`: ZZR1 .. MY7
     ///
     /// Operations: 296 mul, 270 add, 2 neg, 6 sin, 6 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 7],
         qd: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
+        self.coriolis_inlined::<T>(q, qd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn coriolis_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 7],
+        qd: &[T; 7],
+        base: &[T; 43],
+    ) -> [T; 7] {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
-        let [_, XXR2, XY2, XZ2, YZ2, _, _, _, XXR3, XYR3, XZ3, YZ3, ZZR3, MXR3, MYR3,
-        XXR4, XYR4, XZ4, YZ4, ZZR4, MXR4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
-        XXR6, XYR6, XZ6, YZ6, ZZR6, MXR6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7, MY7] = *base;
         let c0 = T::from_f64(0.316);
         let c1 = T::from_f64(0.632);
         let c2 = T::from_f64(0.0825);
@@ -3863,6 +4000,10 @@ impl Panda {
             q6,
             q7,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6, qd7] = *qd;
+        let [_, XXR2, XY2, XZ2, YZ2, _, _, _, XXR3, XYR3, XZ3, YZ3, ZZR3, MXR3, MYR3,
+        XXR4, XYR4, XZ4, YZ4, ZZR4, MXR4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
+        XXR6, XYR6, XZ6, YZ6, ZZR6, MXR6, MYR6, XXR7, XY7, XZ7, YZ7, ZZ7, MX7, MY7] = *base;
         let t12 = t0 * qd1;
         let t13 = t1 * qd1;
         let t14 = t13 * qd2;
@@ -4282,6 +4423,26 @@ impl Panda {
         let t579 = -t277;
         [t578, t574, t533, t469, t397, t333, t579]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn coriolis_avx2(
+        &self,
+        q: &[f64; 7],
+        qd: &[f64; 7],
+        base: &[f64; 43],
+        out: &mut [f64; 7],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .coriolis_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Base parameters from standard parameters: base = K * standard.
     ///
     /// Returns `base`: one entry per base parameter (43 values).
@@ -4289,13 +4450,20 @@ impl Panda {
     /// - `standard`: XX1 .. M7
     ///
     /// Operations: 18 mul, 49 add, 0 neg.
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
+        &self,
+        standard: &[T; 70],
+    ) -> [T; 43] {
+        self.base_from_standard_inlined::<T>(standard)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn base_from_standard<T: ::robid_runtime::Real>(
+    fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 70],
     ) -> [T; 43] {
@@ -4418,6 +4586,16 @@ impl Panda {
         out[0] = t66;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_from_standard_avx2(&self, standard: &[f64; 70], out: &mut [f64; 43]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_from_standard_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(::robid_runtime::fused::as_array(standard)),
+        );
+    }
 }
 impl ::robid_runtime::Model for Panda {
     fn name(&self) -> &str {
@@ -4453,15 +4631,16 @@ impl ::robid_runtime::Model for Panda {
                         found: inputs.len(),
                     });
                 };
-                let value = Panda::standard_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Panda::standard_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Panda::standard_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -4471,15 +4650,16 @@ impl ::robid_runtime::Model for Panda {
                         found: inputs.len(),
                     });
                 };
-                let value = Panda::base_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Panda::base_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Panda::base_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -4489,16 +4669,17 @@ impl ::robid_runtime::Model for Panda {
                         found: inputs.len(),
                     });
                 };
-                let value = Panda::inverse_dynamics::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("tau", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Panda::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Panda::inverse_dynamics::<f64>(self, q, qd, qdd, base);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -4508,14 +4689,15 @@ impl ::robid_runtime::Model for Panda {
                         found: inputs.len(),
                     });
                 };
-                let value = Panda::mass_matrix::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Panda::mass_matrix_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Panda::mass_matrix::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -4525,14 +4707,15 @@ impl ::robid_runtime::Model for Panda {
                         found: inputs.len(),
                     });
                 };
-                let value = Panda::gravity::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Panda::gravity_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Panda::gravity::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -4542,15 +4725,16 @@ impl ::robid_runtime::Model for Panda {
                         found: inputs.len(),
                     });
                 };
-                let value = Panda::coriolis::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Panda::coriolis_avx2(self, q, qd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Panda::coriolis::<f64>(self, q, qd, base);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -4560,10 +4744,14 @@ impl ::robid_runtime::Model for Panda {
                         found: inputs.len(),
                     });
                 };
-                let value = Panda::base_from_standard::<
-                    f64,
-                >(self, ::robid_runtime::model::fixed("standard", standard)?);
-                *::robid_runtime::model::fixed_mut("base", output)? = value;
+                let standard = ::robid_runtime::model::fixed("standard", standard)?;
+                let out = ::robid_runtime::model::fixed_mut("base", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Panda::base_from_standard_avx2(self, standard, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Panda::base_from_standard::<f64>(self, standard);
             }
         }
         ::core::result::Result::Ok(())

@@ -162,20 +162,28 @@ impl Puma560 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 850 mul, 581 add, 31 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 360] {
+        self.standard_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn standard_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+    ) -> [T; 360] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.4318);
@@ -202,6 +210,7 @@ impl Puma560 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let t2 = t0 * qdd1;
         out[72] = t2;
         let t3 = t1 * qdd1;
@@ -1431,6 +1440,26 @@ impl Puma560 {
         out[357] = t1471;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn standard_regressor_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        out: &mut [f64; 360],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .standard_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
     /// Returns `out`: joints x base parameters, row-major (216 values).
@@ -1440,20 +1469,28 @@ impl Puma560 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 397 mul, 291 add, 19 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 216] {
+        self.base_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn base_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+    ) -> [T; 216] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(0.4318);
         let c1 = T::from_f64(0.15005);
@@ -1470,6 +1507,7 @@ impl Puma560 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2109,6 +2147,26 @@ impl Puma560 {
         out[215] = t716;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_regressor_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        out: &mut [f64; 216],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
     /// Returns `tau`: one entry per joint (6 values).
@@ -2119,12 +2177,6 @@ impl Puma560 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 246 mul, 233 add, 0 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -2132,12 +2184,23 @@ impl Puma560 {
         qdd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn inverse_dynamics_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
-        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
-        let [ZZR1, XXR2, XYR2, XZR2, YZ2, ZZR2, MXR2, MY2, XXR3, XYR3, XZR3, YZR3, ZZR3,
-        MXR3, MYR3, XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5,
-        ZZR5, MX5, MYR5, XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let c0 = T::from_f64(0.4318);
         let c1 = T::from_f64(0.15005);
         let c2 = T::from_f64(9.81);
@@ -2149,6 +2212,11 @@ impl Puma560 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
+        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
+        let [ZZR1, XXR2, XYR2, XZR2, YZ2, ZZR2, MXR2, MY2, XXR3, XYR3, XZR3, YZR3, ZZR3,
+        MXR3, MYR3, XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5,
+        ZZR5, MX5, MYR5, XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2511,6 +2579,28 @@ impl Puma560 {
         let t488 = T::mul_add(t51, t429, t487);
         [t488, t481, t434, t365, t301, t249]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn inverse_dynamics_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        base: &[f64; 36],
+        out: &mut [f64; 6],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .inverse_dynamics_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Joint-space inertia matrix M(q), rotor inertias included.
     ///
     /// Returns `out`: joints x joints, row-major (36 values).
@@ -2519,13 +2609,21 @@ impl Puma560 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 151 mul, 130 add, 1 neg, 5 sin, 5 cos.
+    pub fn mass_matrix<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 36] {
+        self.mass_matrix_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn mass_matrix<T: ::robid_runtime::Real>(
+    fn mass_matrix_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         base: &[T; 36],
@@ -2798,6 +2896,19 @@ impl Puma560 {
         out[34] = t291;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn mass_matrix_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 36]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .mass_matrix_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Gravity torques g(q).
     ///
     /// Returns `out`: one entry per joint (6 values).
@@ -2806,20 +2917,26 @@ impl Puma560 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 46 mul, 24 add, 0 neg, 5 sin, 5 cos.
+    pub fn gravity<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
+        self.gravity_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn gravity<T: ::robid_runtime::Real>(
+    fn gravity_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MXR3, MYR3, _, _, _, _, _, MX4,
-        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
         let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
@@ -2829,6 +2946,8 @@ impl Puma560 {
             q5,
             q6,
         ]);
+        let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MXR3, MYR3, _, _, _, _, _, MX4,
+        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let t10 = t0 * t3;
         let t12 = t0 * t2;
         let t14 = T::mul_add(t1, t2, t10);
@@ -2880,6 +2999,19 @@ impl Puma560 {
         let t79 = t33 * c1;
         [t74, t75, t76, t77, t78, t79]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn gravity_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 6]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .gravity_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
     /// Returns `out`: one entry per joint (6 values).
@@ -2889,23 +3021,28 @@ impl Puma560 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 232 mul, 200 add, 0 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
+        self.coriolis_inlined::<T>(q, qd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn coriolis_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
-        let [_, XXR2, XYR2, XZR2, YZ2, _, _, _, XXR3, XYR3, XZR3, YZR3, _, MXR3, MYR3,
-        XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5, MX5, MYR5,
-        XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let c0 = T::from_f64(0.8636);
         let c1 = T::from_f64(0.15005);
         let c2 = T::from_f64(0.0203);
@@ -2919,6 +3056,10 @@ impl Puma560 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
+        let [_, XXR2, XYR2, XZR2, YZ2, _, _, _, XXR3, XYR3, XZR3, YZR3, _, MXR3, MYR3,
+        XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5, MX5, MYR5,
+        XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t11 * qd2;
@@ -3239,6 +3380,26 @@ impl Puma560 {
         let t441 = T::mul_add(t33, t392, t440);
         [t441, t436, t397, t331, t267, t215]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn coriolis_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        base: &[f64; 36],
+        out: &mut [f64; 6],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .coriolis_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Base parameters from standard parameters: base = K * standard.
     ///
     /// Returns `base`: one entry per base parameter (36 values).
@@ -3246,13 +3407,20 @@ impl Puma560 {
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 19 mul, 46 add, 5 neg.
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
+        &self,
+        standard: &[T; 60],
+    ) -> [T; 36] {
+        self.base_from_standard_inlined::<T>(standard)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn base_from_standard<T: ::robid_runtime::Real>(
+    fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
@@ -3369,6 +3537,16 @@ impl Puma560 {
         out[25] = t69;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_from_standard_avx2(&self, standard: &[f64; 60], out: &mut [f64; 36]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_from_standard_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(::robid_runtime::fused::as_array(standard)),
+        );
+    }
 }
 impl ::robid_runtime::Model for Puma560 {
     fn name(&self) -> &str {
@@ -3404,15 +3582,16 @@ impl ::robid_runtime::Model for Puma560 {
                         found: inputs.len(),
                     });
                 };
-                let value = Puma560::standard_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Puma560::standard_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Puma560::standard_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -3422,15 +3601,16 @@ impl ::robid_runtime::Model for Puma560 {
                         found: inputs.len(),
                     });
                 };
-                let value = Puma560::base_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Puma560::base_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Puma560::base_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -3440,16 +3620,19 @@ impl ::robid_runtime::Model for Puma560 {
                         found: inputs.len(),
                     });
                 };
-                let value = Puma560::inverse_dynamics::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("tau", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe {
+                        Puma560::inverse_dynamics_avx2(self, q, qd, qdd, base, out)
+                    };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Puma560::inverse_dynamics::<f64>(self, q, qd, qdd, base);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -3459,14 +3642,15 @@ impl ::robid_runtime::Model for Puma560 {
                         found: inputs.len(),
                     });
                 };
-                let value = Puma560::mass_matrix::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Puma560::mass_matrix_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Puma560::mass_matrix::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -3476,14 +3660,15 @@ impl ::robid_runtime::Model for Puma560 {
                         found: inputs.len(),
                     });
                 };
-                let value = Puma560::gravity::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Puma560::gravity_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Puma560::gravity::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -3493,15 +3678,16 @@ impl ::robid_runtime::Model for Puma560 {
                         found: inputs.len(),
                     });
                 };
-                let value = Puma560::coriolis::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Puma560::coriolis_avx2(self, q, qd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Puma560::coriolis::<f64>(self, q, qd, base);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -3511,10 +3697,14 @@ impl ::robid_runtime::Model for Puma560 {
                         found: inputs.len(),
                     });
                 };
-                let value = Puma560::base_from_standard::<
-                    f64,
-                >(self, ::robid_runtime::model::fixed("standard", standard)?);
-                *::robid_runtime::model::fixed_mut("base", output)? = value;
+                let standard = ::robid_runtime::model::fixed("standard", standard)?;
+                let out = ::robid_runtime::model::fixed_mut("base", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Puma560::base_from_standard_avx2(self, standard, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Puma560::base_from_standard::<f64>(self, standard);
             }
         }
         ::core::result::Result::Ok(())

@@ -172,20 +172,28 @@ impl Rx90 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 693 mul, 416 add, 35 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 360] {
+        self.standard_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn standard_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+    ) -> [T; 360] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
@@ -201,6 +209,7 @@ impl Rx90 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let t2 = t0 * qdd1;
         out[72] = t2;
         let t3 = t1 * qdd1;
@@ -1190,6 +1199,26 @@ impl Rx90 {
         out[357] = t1153;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn standard_regressor_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        out: &mut [f64; 360],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .standard_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
     /// Returns `out`: joints x base parameters, row-major (216 values).
@@ -1199,20 +1228,28 @@ impl Rx90 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 362 mul, 268 add, 20 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 216] {
+        self.base_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn base_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+    ) -> [T; 216] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
@@ -1228,6 +1265,7 @@ impl Rx90 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -1829,6 +1867,26 @@ impl Rx90 {
         out[215] = t659;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_regressor_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        out: &mut [f64; 216],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
     /// Returns `tau`: one entry per joint (6 values).
@@ -1839,12 +1897,6 @@ impl Rx90 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 234 mul, 221 add, 0 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -1852,12 +1904,23 @@ impl Rx90 {
         qdd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn inverse_dynamics_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
-        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
-        let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, MXR2, MY2, XXR3, XY3, XZ3, YZ3, ZZR3, MX3,
-        MYR3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
-        XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(9.81);
@@ -1868,6 +1931,11 @@ impl Rx90 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
+        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
+        let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, MXR2, MY2, XXR3, XY3, XZ3, YZ3, ZZR3, MX3,
+        MYR3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
+        XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2210,6 +2278,28 @@ impl Rx90 {
         let t464 = T::mul_add(t44, t414, t463);
         [t464, t457, t417, t352, t288, t236]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn inverse_dynamics_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        base: &[f64; 36],
+        out: &mut [f64; 6],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .inverse_dynamics_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Joint-space inertia matrix M(q), rotor inertias included.
     ///
     /// Returns `out`: joints x joints, row-major (36 values).
@@ -2218,13 +2308,21 @@ impl Rx90 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 134 mul, 107 add, 1 neg, 5 sin, 5 cos.
+    pub fn mass_matrix<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 36] {
+        self.mass_matrix_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn mass_matrix<T: ::robid_runtime::Real>(
+    fn mass_matrix_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         base: &[T; 36],
@@ -2460,6 +2558,19 @@ impl Rx90 {
         out[34] = t251;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn mass_matrix_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 36]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .mass_matrix_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Gravity torques g(q).
     ///
     /// Returns `out`: one entry per joint (6 values).
@@ -2468,20 +2579,26 @@ impl Rx90 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 46 mul, 24 add, 0 neg, 5 sin, 5 cos.
+    pub fn gravity<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
+        self.gravity_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn gravity<T: ::robid_runtime::Real>(
+    fn gravity_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MX3, MYR3, _, _, _, _, _, MX4,
-        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
         let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
@@ -2491,6 +2608,8 @@ impl Rx90 {
             q5,
             q6,
         ]);
+        let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MX3, MYR3, _, _, _, _, _, MX4,
+        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let t10 = t0 * t3;
         let t12 = t0 * t2;
         let t14 = T::mul_add(t1, t2, t10);
@@ -2542,6 +2661,19 @@ impl Rx90 {
         let t79 = t33 * c1;
         [t74, t75, t76, t77, t78, t79]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn gravity_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 6]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .gravity_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
     /// Returns `out`: one entry per joint (6 values).
@@ -2551,23 +2683,28 @@ impl Rx90 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 226 mul, 190 add, 0 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
+        self.coriolis_inlined::<T>(q, qd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn coriolis_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
-        let [_, XXR2, XY2, XZR2, YZ2, _, _, _, XXR3, XY3, XZ3, YZ3, _, MX3, MYR3, XXR4,
-        XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5, XXR6, XY6,
-        XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(2.0);
@@ -2578,6 +2715,10 @@ impl Rx90 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
+        let [_, XXR2, XY2, XZR2, YZ2, _, _, _, XXR3, XY3, XZ3, YZ3, _, MX3, MYR3, XXR4,
+        XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5, XXR6, XY6,
+        XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t11 * qd2;
@@ -2886,6 +3027,26 @@ impl Rx90 {
         let t425 = T::mul_add(t32, t385, t424);
         [t425, t420, t388, t324, t260, t208]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn coriolis_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        base: &[f64; 36],
+        out: &mut [f64; 6],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .coriolis_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Base parameters from standard parameters: base = K * standard.
     ///
     /// Returns `base`: one entry per base parameter (36 values).
@@ -2893,13 +3054,20 @@ impl Rx90 {
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 9 mul, 29 add, 0 neg.
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
+        &self,
+        standard: &[T; 60],
+    ) -> [T; 36] {
+        self.base_from_standard_inlined::<T>(standard)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn base_from_standard<T: ::robid_runtime::Real>(
+    fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
@@ -2984,6 +3152,16 @@ impl Rx90 {
         out[0] = t37;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_from_standard_avx2(&self, standard: &[f64; 60], out: &mut [f64; 36]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_from_standard_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(::robid_runtime::fused::as_array(standard)),
+        );
+    }
 }
 impl ::robid_runtime::Model for Rx90 {
     fn name(&self) -> &str {
@@ -3019,15 +3197,16 @@ impl ::robid_runtime::Model for Rx90 {
                         found: inputs.len(),
                     });
                 };
-                let value = Rx90::standard_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Rx90::standard_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Rx90::standard_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -3037,15 +3216,16 @@ impl ::robid_runtime::Model for Rx90 {
                         found: inputs.len(),
                     });
                 };
-                let value = Rx90::base_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Rx90::base_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Rx90::base_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -3055,16 +3235,17 @@ impl ::robid_runtime::Model for Rx90 {
                         found: inputs.len(),
                     });
                 };
-                let value = Rx90::inverse_dynamics::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("tau", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Rx90::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Rx90::inverse_dynamics::<f64>(self, q, qd, qdd, base);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -3074,14 +3255,15 @@ impl ::robid_runtime::Model for Rx90 {
                         found: inputs.len(),
                     });
                 };
-                let value = Rx90::mass_matrix::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Rx90::mass_matrix_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Rx90::mass_matrix::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -3091,14 +3273,15 @@ impl ::robid_runtime::Model for Rx90 {
                         found: inputs.len(),
                     });
                 };
-                let value = Rx90::gravity::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Rx90::gravity_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Rx90::gravity::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -3108,15 +3291,16 @@ impl ::robid_runtime::Model for Rx90 {
                         found: inputs.len(),
                     });
                 };
-                let value = Rx90::coriolis::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Rx90::coriolis_avx2(self, q, qd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Rx90::coriolis::<f64>(self, q, qd, base);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -3126,10 +3310,14 @@ impl ::robid_runtime::Model for Rx90 {
                         found: inputs.len(),
                     });
                 };
-                let value = Rx90::base_from_standard::<
-                    f64,
-                >(self, ::robid_runtime::model::fixed("standard", standard)?);
-                *::robid_runtime::model::fixed_mut("base", output)? = value;
+                let standard = ::robid_runtime::model::fixed("standard", standard)?;
+                let out = ::robid_runtime::model::fixed_mut("base", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Rx90::base_from_standard_avx2(self, standard, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Rx90::base_from_standard::<f64>(self, standard);
             }
         }
         ::core::result::Result::Ok(())

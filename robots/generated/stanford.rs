@@ -84,20 +84,28 @@ impl Stanford {
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
     /// Operations: 71 mul, 46 add, 12 neg, 1 sin, 1 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
         qd: &[T; 3],
         qdd: &[T; 3],
     ) -> [T; 90] {
+        self.standard_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn standard_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 3],
+        qd: &[T; 3],
+        qdd: &[T; 3],
+    ) -> [T; 90] {
         let [_, q2, q3] = *q;
-        let [qd1, qd2, qd3] = *qd;
         let [qdd1, qdd2, qdd3] = *qdd;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
@@ -107,6 +115,7 @@ impl Stanford {
         out[45] = qdd2;
         out[53] = qdd2;
         let ([t0], [t1]) = T::sin_cos_array([q2]);
+        let [qd1, qd2, qd3] = *qd;
         let t2 = t0 * qdd1;
         let t3 = t1 * qdd1;
         out[54] = t3;
@@ -250,6 +259,26 @@ impl Stanford {
         out[88] = t130;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn standard_regressor_avx2(
+        &self,
+        q: &[f64; 3],
+        qd: &[f64; 3],
+        qdd: &[f64; 3],
+        out: &mut [f64; 90],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .standard_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
     /// Returns `out`: joints x base parameters, row-major (36 values).
@@ -259,20 +288,28 @@ impl Stanford {
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
     /// Operations: 58 mul, 46 add, 8 neg, 1 sin, 1 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
         qd: &[T; 3],
         qdd: &[T; 3],
     ) -> [T; 36] {
+        self.base_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn base_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 3],
+        qd: &[T; 3],
+        qdd: &[T; 3],
+    ) -> [T; 36] {
         let [_, q2, q3] = *q;
-        let [qd1, qd2, qd3] = *qd;
         let [qdd1, qdd2, qdd3] = *qdd;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
@@ -281,6 +318,7 @@ impl Stanford {
         out[0] = qdd1;
         out[17] = qdd2;
         let ([t0], [t1]) = T::sin_cos_array([q2]);
+        let [qd1, qd2, qd3] = *qd;
         let t2 = qd1 * qd1;
         let t3 = t1 * qdd1;
         let t4 = t0 * qdd1;
@@ -395,6 +433,26 @@ impl Stanford {
         out[23] = t113;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_regressor_avx2(
+        &self,
+        q: &[f64; 3],
+        qd: &[f64; 3],
+        qdd: &[f64; 3],
+        out: &mut [f64; 36],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
     /// Returns `tau`: one entry per joint (3 values).
@@ -405,12 +463,6 @@ impl Stanford {
     /// - `base`: ZZR1 .. M3
     ///
     /// Operations: 70 mul, 62 add, 0 neg, 1 sin, 1 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -418,14 +470,30 @@ impl Stanford {
         qdd: &[T; 3],
         base: &[T; 12],
     ) -> [T; 3] {
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn inverse_dynamics_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 3],
+        qd: &[T; 3],
+        qdd: &[T; 3],
+        base: &[T; 12],
+    ) -> [T; 3] {
         let [_, q2, q3] = *q;
-        let [qd1, qd2, qd3] = *qd;
-        let [qdd1, qdd2, qdd3] = *qdd;
-        let [ZZR1, XXR2, XYR2, XZR2, YZR2, ZZR2, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
         let c2 = T::from_f64(2.0);
         let ([t0], [t1]) = T::sin_cos_array([q2]);
+        let [qd1, qd2, qd3] = *qd;
+        let [qdd1, qdd2, qdd3] = *qdd;
+        let [ZZR1, XXR2, XYR2, XZR2, YZR2, ZZR2, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let t2 = qd1 * qd1;
         let t3 = t1 * qdd1;
         let t4 = t0 * qdd1;
@@ -523,6 +591,28 @@ impl Stanford {
         let t133 = T::mul_add(-t127, c0, t131);
         [t133, t123, t65]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn inverse_dynamics_avx2(
+        &self,
+        q: &[f64; 3],
+        qd: &[f64; 3],
+        qdd: &[f64; 3],
+        base: &[f64; 12],
+        out: &mut [f64; 3],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .inverse_dynamics_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Joint-space inertia matrix M(q), rotor inertias included.
     ///
     /// Returns `out`: joints x joints, row-major (9 values).
@@ -531,13 +621,21 @@ impl Stanford {
     /// - `base`: ZZR1 .. M3
     ///
     /// Operations: 19 mul, 17 add, 2 neg, 1 sin, 1 cos.
+    pub fn mass_matrix<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 3],
+        base: &[T; 12],
+    ) -> [T; 9] {
+        self.mass_matrix_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn mass_matrix<T: ::robid_runtime::Real>(
+    fn mass_matrix_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
         base: &[T; 12],
@@ -577,6 +675,19 @@ impl Stanford {
         let t39 = -MX3;
         [t37, t25, t38, t25, t15, t39, t38, t39, M3]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn mass_matrix_avx2(&self, q: &[f64; 3], base: &[f64; 12], out: &mut [f64; 9]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .mass_matrix_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Gravity torques g(q).
     ///
     /// Returns `out`: one entry per joint (3 values).
@@ -585,22 +696,30 @@ impl Stanford {
     /// - `base`: ZZR1 .. M3
     ///
     /// Operations: 17 mul, 7 add, 1 neg, 1 sin, 1 cos.
+    pub fn gravity<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 3],
+        base: &[T; 12],
+    ) -> [T; 3] {
+        self.gravity_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn gravity<T: ::robid_runtime::Real>(
+    fn gravity_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
         base: &[T; 12],
     ) -> [T; 3] {
         let [_, q2, q3] = *q;
-        let [_, _, _, _, _, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(1.51074);
         let ([t0], [t1]) = T::sin_cos_array([q2]);
+        let [_, _, _, _, _, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let t2 = t0 * M3;
         let t3 = t1 * M3;
         let t4 = t1 * MY3;
@@ -622,6 +741,19 @@ impl Stanford {
         let t26 = t3 * c0;
         [t24, t25, t26]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn gravity_avx2(&self, q: &[f64; 3], base: &[f64; 12], out: &mut [f64; 3]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .gravity_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
     /// Returns `out`: one entry per joint (3 values).
@@ -631,24 +763,33 @@ impl Stanford {
     /// - `base`: ZZR1 .. M3
     ///
     /// Operations: 60 mul, 40 add, 2 neg, 1 sin, 1 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
         qd: &[T; 3],
         base: &[T; 12],
     ) -> [T; 3] {
+        self.coriolis_inlined::<T>(q, qd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn coriolis_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 3],
+        qd: &[T; 3],
+        base: &[T; 12],
+    ) -> [T; 3] {
         let [_, q2, q3] = *q;
-        let [qd1, qd2, qd3] = *qd;
-        let [_, XXR2, XYR2, XZR2, YZR2, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(2.0);
         let ([t0], [t1]) = T::sin_cos_array([q2]);
+        let [qd1, qd2, qd3] = *qd;
+        let [_, XXR2, XYR2, XZR2, YZR2, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let t2 = qd1 * qd1;
         let t3 = t0 * qd1;
         let t4 = t1 * qd1;
@@ -724,6 +865,26 @@ impl Stanford {
         let t103 = -t43;
         [t102, t93, t103]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn coriolis_avx2(
+        &self,
+        q: &[f64; 3],
+        qd: &[f64; 3],
+        base: &[f64; 12],
+        out: &mut [f64; 3],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .coriolis_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Base parameters from standard parameters: base = K * standard.
     ///
     /// Returns `base`: one entry per base parameter (12 values).
@@ -731,13 +892,20 @@ impl Stanford {
     /// - `standard`: XX1 .. M3
     ///
     /// Operations: 2 mul, 11 add, 0 neg.
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
+        &self,
+        standard: &[T; 30],
+    ) -> [T; 12] {
+        self.base_from_standard_inlined::<T>(standard)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn base_from_standard<T: ::robid_runtime::Real>(
+    fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 30],
     ) -> [T; 12] {
@@ -758,6 +926,16 @@ impl Stanford {
         let t11 = t10 + ZZ3;
         let t12 = t9 + t11;
         [t12, t6, t0, t1, t2, t3, MX2, MY2, MX3, MY3, MZ3, M3]
+    }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_from_standard_avx2(&self, standard: &[f64; 30], out: &mut [f64; 12]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_from_standard_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(::robid_runtime::fused::as_array(standard)),
+        );
     }
 }
 impl ::robid_runtime::Model for Stanford {
@@ -794,15 +972,16 @@ impl ::robid_runtime::Model for Stanford {
                         found: inputs.len(),
                     });
                 };
-                let value = Stanford::standard_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Stanford::standard_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Stanford::standard_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -812,15 +991,16 @@ impl ::robid_runtime::Model for Stanford {
                         found: inputs.len(),
                     });
                 };
-                let value = Stanford::base_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Stanford::base_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Stanford::base_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -830,16 +1010,19 @@ impl ::robid_runtime::Model for Stanford {
                         found: inputs.len(),
                     });
                 };
-                let value = Stanford::inverse_dynamics::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("tau", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe {
+                        Stanford::inverse_dynamics_avx2(self, q, qd, qdd, base, out)
+                    };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Stanford::inverse_dynamics::<f64>(self, q, qd, qdd, base);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -849,14 +1032,15 @@ impl ::robid_runtime::Model for Stanford {
                         found: inputs.len(),
                     });
                 };
-                let value = Stanford::mass_matrix::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Stanford::mass_matrix_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Stanford::mass_matrix::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -866,14 +1050,15 @@ impl ::robid_runtime::Model for Stanford {
                         found: inputs.len(),
                     });
                 };
-                let value = Stanford::gravity::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Stanford::gravity_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Stanford::gravity::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -883,15 +1068,16 @@ impl ::robid_runtime::Model for Stanford {
                         found: inputs.len(),
                     });
                 };
-                let value = Stanford::coriolis::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Stanford::coriolis_avx2(self, q, qd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Stanford::coriolis::<f64>(self, q, qd, base);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -901,10 +1087,14 @@ impl ::robid_runtime::Model for Stanford {
                         found: inputs.len(),
                     });
                 };
-                let value = Stanford::base_from_standard::<
-                    f64,
-                >(self, ::robid_runtime::model::fixed("standard", standard)?);
-                *::robid_runtime::model::fixed_mut("base", output)? = value;
+                let standard = ::robid_runtime::model::fixed("standard", standard)?;
+                let out = ::robid_runtime::model::fixed_mut("base", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Stanford::base_from_standard_avx2(self, standard, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Stanford::base_from_standard::<f64>(self, standard);
             }
         }
         ::core::result::Result::Ok(())

@@ -162,20 +162,28 @@ impl Tx40 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 755 mul, 486 add, 41 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 360] {
+        self.standard_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn standard_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+    ) -> [T; 360] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.225);
@@ -193,6 +201,7 @@ impl Tx40 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let t2 = t0 * qdd1;
         out[72] = t2;
         let t3 = t1 * qdd1;
@@ -1295,6 +1304,26 @@ impl Tx40 {
         out[353] = t1291;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn standard_regressor_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        out: &mut [f64; 360],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .standard_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
     /// Returns `out`: joints x base parameters, row-major (216 values).
@@ -1304,20 +1333,28 @@ impl Tx40 {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 391 mul, 282 add, 24 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 216] {
+        self.base_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn base_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+    ) -> [T; 216] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(0.225);
         let c1 = T::from_f64(0.035);
@@ -1333,6 +1370,7 @@ impl Tx40 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -1966,6 +2004,26 @@ impl Tx40 {
         out[179] = t706;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_regressor_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        out: &mut [f64; 216],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
     /// Returns `tau`: one entry per joint (6 values).
@@ -1976,12 +2034,6 @@ impl Tx40 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 241 mul, 228 add, 1 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -1989,12 +2041,23 @@ impl Tx40 {
         qdd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn inverse_dynamics_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
-        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
-        let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, MXR2, MY2, XXR3, XY3, XZ3, YZ3, ZZR3, MX3,
-        MYR3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
-        XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let c0 = T::from_f64(0.225);
         let c1 = T::from_f64(0.035);
         let c2 = T::from_f64(9.81);
@@ -2005,6 +2068,11 @@ impl Tx40 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
+        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
+        let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, MXR2, MY2, XXR3, XY3, XZ3, YZ3, ZZR3, MX3,
+        MYR3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
+        XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2359,6 +2427,28 @@ impl Tx40 {
         let t479 = -t243;
         [t478, t471, t424, t359, t295, t479]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn inverse_dynamics_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        base: &[f64; 36],
+        out: &mut [f64; 6],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .inverse_dynamics_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Joint-space inertia matrix M(q), rotor inertias included.
     ///
     /// Returns `out`: joints x joints, row-major (36 values).
@@ -2367,13 +2457,21 @@ impl Tx40 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 144 mul, 125 add, 3 neg, 5 sin, 5 cos.
+    pub fn mass_matrix<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 36] {
+        self.mass_matrix_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn mass_matrix<T: ::robid_runtime::Real>(
+    fn mass_matrix_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         base: &[T; 36],
@@ -2640,6 +2738,19 @@ impl Tx40 {
         out[34] = t281;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn mass_matrix_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 36]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .mass_matrix_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Gravity torques g(q).
     ///
     /// Returns `out`: one entry per joint (6 values).
@@ -2648,20 +2759,26 @@ impl Tx40 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 46 mul, 24 add, 0 neg, 5 sin, 5 cos.
+    pub fn gravity<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
+        self.gravity_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn gravity<T: ::robid_runtime::Real>(
+    fn gravity_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MX3, MYR3, _, _, _, _, _, MX4,
-        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(-9.81);
         let c1 = T::from_f64(9.81);
         let ([t1, t3, t4, t6, t8], [t0, t2, t5, t7, t9]) = T::sin_cos_array([
@@ -2671,6 +2788,8 @@ impl Tx40 {
             q5,
             q6,
         ]);
+        let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MX3, MYR3, _, _, _, _, _, MX4,
+        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let t10 = t0 * t3;
         let t12 = t0 * t2;
         let t14 = T::mul_add(t1, t2, t10);
@@ -2722,6 +2841,19 @@ impl Tx40 {
         let t79 = t33 * c1;
         [t74, t75, t76, t77, t78, t79]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn gravity_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 6]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .gravity_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
     /// Returns `out`: one entry per joint (6 values).
@@ -2731,23 +2863,28 @@ impl Tx40 {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 230 mul, 195 add, 1 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
+        self.coriolis_inlined::<T>(q, qd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn coriolis_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
-        let [_, XXR2, XY2, XZR2, YZ2, _, _, _, XXR3, XY3, XZ3, YZ3, _, MX3, MYR3, XXR4,
-        XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5, XXR6, XY6,
-        XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let c0 = T::from_f64(0.45);
         let c1 = T::from_f64(0.035);
         let c2 = T::from_f64(0.225);
@@ -2759,6 +2896,10 @@ impl Tx40 {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
+        let [_, XXR2, XY2, XZR2, YZ2, _, _, _, XXR3, XY3, XZ3, YZ3, _, MX3, MYR3, XXR4,
+        XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5, XXR6, XY6,
+        XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t11 * qd2;
@@ -3075,6 +3216,26 @@ impl Tx40 {
         let t435 = -t209;
         [t434, t429, t390, t327, t261, t435]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn coriolis_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        base: &[f64; 36],
+        out: &mut [f64; 6],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .coriolis_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Base parameters from standard parameters: base = K * standard.
     ///
     /// Returns `base`: one entry per base parameter (36 values).
@@ -3082,13 +3243,20 @@ impl Tx40 {
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 9 mul, 30 add, 0 neg.
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
+        &self,
+        standard: &[T; 60],
+    ) -> [T; 36] {
+        self.base_from_standard_inlined::<T>(standard)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn base_from_standard<T: ::robid_runtime::Real>(
+    fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
@@ -3175,6 +3343,16 @@ impl Tx40 {
         out[0] = t38;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_from_standard_avx2(&self, standard: &[f64; 60], out: &mut [f64; 36]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_from_standard_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(::robid_runtime::fused::as_array(standard)),
+        );
+    }
 }
 impl ::robid_runtime::Model for Tx40 {
     fn name(&self) -> &str {
@@ -3210,15 +3388,16 @@ impl ::robid_runtime::Model for Tx40 {
                         found: inputs.len(),
                     });
                 };
-                let value = Tx40::standard_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Tx40::standard_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Tx40::standard_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -3228,15 +3407,16 @@ impl ::robid_runtime::Model for Tx40 {
                         found: inputs.len(),
                     });
                 };
-                let value = Tx40::base_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Tx40::base_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Tx40::base_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -3246,16 +3426,17 @@ impl ::robid_runtime::Model for Tx40 {
                         found: inputs.len(),
                     });
                 };
-                let value = Tx40::inverse_dynamics::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("tau", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Tx40::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Tx40::inverse_dynamics::<f64>(self, q, qd, qdd, base);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -3265,14 +3446,15 @@ impl ::robid_runtime::Model for Tx40 {
                         found: inputs.len(),
                     });
                 };
-                let value = Tx40::mass_matrix::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Tx40::mass_matrix_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Tx40::mass_matrix::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -3282,14 +3464,15 @@ impl ::robid_runtime::Model for Tx40 {
                         found: inputs.len(),
                     });
                 };
-                let value = Tx40::gravity::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Tx40::gravity_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Tx40::gravity::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -3299,15 +3482,16 @@ impl ::robid_runtime::Model for Tx40 {
                         found: inputs.len(),
                     });
                 };
-                let value = Tx40::coriolis::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Tx40::coriolis_avx2(self, q, qd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Tx40::coriolis::<f64>(self, q, qd, base);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -3317,10 +3501,14 @@ impl ::robid_runtime::Model for Tx40 {
                         found: inputs.len(),
                     });
                 };
-                let value = Tx40::base_from_standard::<
-                    f64,
-                >(self, ::robid_runtime::model::fixed("standard", standard)?);
-                *::robid_runtime::model::fixed_mut("base", output)? = value;
+                let standard = ::robid_runtime::model::fixed("standard", standard)?;
+                let out = ::robid_runtime::model::fixed_mut("base", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Tx40::base_from_standard_avx2(self, standard, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Tx40::base_from_standard::<f64>(self, standard);
             }
         }
         ::core::result::Result::Ok(())

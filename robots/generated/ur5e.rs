@@ -162,20 +162,28 @@ impl Ur5e {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 784 mul, 498 add, 22 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 360] {
+        self.standard_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn standard_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+    ) -> [T; 360] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.425);
@@ -200,6 +208,7 @@ impl Ur5e {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let t2 = t0 * qdd1;
         out[72] = t2;
         let t3 = t1 * qdd1;
@@ -1296,6 +1305,26 @@ impl Ur5e {
         out[357] = t1313;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn standard_regressor_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        out: &mut [f64; 360],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .standard_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
     ///
     /// Returns `out`: joints x base parameters, row-major (216 values).
@@ -1305,20 +1334,28 @@ impl Ur5e {
     /// - `qdd`: qdd1 .. qdd6
     ///
     /// Operations: 345 mul, 259 add, 20 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 216] {
+        self.base_regressor_inlined::<T>(q, qd, qdd)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn base_regressor_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+    ) -> [T; 216] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.425);
@@ -1337,6 +1374,7 @@ impl Ur5e {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -1921,6 +1959,26 @@ impl Ur5e {
         out[215] = t633;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_regressor_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        out: &mut [f64; 216],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_regressor_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                ),
+        );
+    }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
     ///
     /// Returns `tau`: one entry per joint (6 values).
@@ -1931,12 +1989,6 @@ impl Ur5e {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 241 mul, 226 add, 0 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn inverse_dynamics<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -1944,12 +1996,23 @@ impl Ur5e {
         qdd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn inverse_dynamics_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        qdd: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
-        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
-        let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, MXR2, MY2, XXR3, XY3, XZR3, YZ3, ZZR3,
-        MXR3, MY3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5,
-        MYR5, XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.425);
         let c2 = T::from_f64(0.3922);
@@ -1963,6 +2026,11 @@ impl Ur5e {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
+        let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
+        let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, MXR2, MY2, XXR3, XY3, XZR3, YZ3, ZZR3,
+        MXR3, MY3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5,
+        MYR5, XXR6, XY6, XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t0 * qdd1;
@@ -2315,6 +2383,28 @@ impl Ur5e {
         let t476 = t473 + t475;
         [t476, t467, t427, t364, t299, t247]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn inverse_dynamics_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        qdd: &[f64; 6],
+        base: &[f64; 36],
+        out: &mut [f64; 6],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .inverse_dynamics_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(qdd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Joint-space inertia matrix M(q), rotor inertias included.
     ///
     /// Returns `out`: joints x joints, row-major (36 values).
@@ -2323,13 +2413,21 @@ impl Ur5e {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 148 mul, 127 add, 0 neg, 5 sin, 5 cos.
+    pub fn mass_matrix<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 36] {
+        self.mass_matrix_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn mass_matrix<T: ::robid_runtime::Real>(
+    fn mass_matrix_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         base: &[T; 36],
@@ -2596,6 +2694,19 @@ impl Ur5e {
         out[0] = t284;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn mass_matrix_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 36]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .mass_matrix_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Gravity torques g(q).
     ///
     /// Returns `out`: one entry per joint (6 values).
@@ -2604,20 +2715,26 @@ impl Ur5e {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 40 mul, 20 add, 0 neg, 5 sin, 5 cos.
+    pub fn gravity<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
+        self.gravity_inlined::<T>(q, base)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn gravity<T: ::robid_runtime::Real>(
+    fn gravity_inlined<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MXR3, MY3, _, _, _, _, _, MX4,
-        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
         let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
@@ -2627,6 +2744,8 @@ impl Ur5e {
             q5,
             q6,
         ]);
+        let [_, _, _, _, _, _, MXR2, MY2, _, _, _, _, _, MXR3, MY3, _, _, _, _, _, MX4,
+        MYR4, _, _, _, _, _, MX5, MYR5, _, _, _, _, _, MX6, MY6] = *base;
         let t10 = t0 * t3;
         let t12 = t0 * t2;
         let t14 = T::mul_add(t1, t2, t10);
@@ -2672,6 +2791,19 @@ impl Ur5e {
         let t69 = t33 * c0;
         [t64, t65, t66, t67, t68, t69]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn gravity_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 6]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .gravity_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
     ///
     /// Returns `out`: one entry per joint (6 values).
@@ -2681,23 +2813,28 @@ impl Ur5e {
     /// - `base`: ZZR1 .. MY6
     ///
     /// Operations: 225 mul, 184 add, 0 neg, 5 sin, 5 cos.
-    #[allow(
-        non_snake_case,
-        clippy::too_many_lines,
-        clippy::unreadable_literal,
-        clippy::approx_constant
-    )]
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
         qd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
+        self.coriolis_inlined::<T>(q, qd, base)
+    }
+    #[inline(always)]
+    #[allow(
+        non_snake_case,
+        clippy::too_many_lines,
+        clippy::unreadable_literal,
+        clippy::approx_constant
+    )]
+    fn coriolis_inlined<T: ::robid_runtime::Real>(
+        &self,
+        q: &[T; 6],
+        qd: &[T; 6],
+        base: &[T; 36],
+    ) -> [T; 6] {
         let [_, q2, q3, q4, q5, q6] = *q;
-        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
-        let [_, XXR2, XY2, XZR2, YZ2, _, _, _, XXR3, XY3, XZR3, YZ3, _, MXR3, MY3, XXR4,
-        XY4, XZ4, YZ4, _, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5, XXR6, XY6,
-        XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let c0 = T::from_f64(0.7844);
         let c1 = T::from_f64(0.1333);
         let c2 = T::from_f64(0.425);
@@ -2714,6 +2851,10 @@ impl Ur5e {
             q5,
             q6,
         ]);
+        let [qd1, qd2, qd3, qd4, qd5, qd6] = *qd;
+        let [_, XXR2, XY2, XZR2, YZ2, _, _, _, XXR3, XY3, XZR3, YZ3, _, MXR3, MY3, XXR4,
+        XY4, XZ4, YZ4, _, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5, XXR6, XY6,
+        XZ6, YZ6, ZZ6, MX6, MY6] = *base;
         let t10 = t0 * qd1;
         let t11 = t1 * qd1;
         let t12 = t11 * qd2;
@@ -3012,6 +3153,26 @@ impl Ur5e {
         let t418 = t415 + t417;
         [t418, t411, t379, t319, t257, t205]
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn coriolis_avx2(
+        &self,
+        q: &[f64; 6],
+        qd: &[f64; 6],
+        base: &[f64; 36],
+        out: &mut [f64; 6],
+    ) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .coriolis_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(
+                    ::robid_runtime::fused::as_array(q),
+                    ::robid_runtime::fused::as_array(qd),
+                    ::robid_runtime::fused::as_array(base),
+                ),
+        );
+    }
     /// Base parameters from standard parameters: base = K * standard.
     ///
     /// Returns `base`: one entry per base parameter (36 values).
@@ -3019,13 +3180,20 @@ impl Ur5e {
     /// - `standard`: XX1 .. M6
     ///
     /// Operations: 17 mul, 39 add, 0 neg.
+    pub fn base_from_standard<T: ::robid_runtime::Real>(
+        &self,
+        standard: &[T; 60],
+    ) -> [T; 36] {
+        self.base_from_standard_inlined::<T>(standard)
+    }
+    #[inline(always)]
     #[allow(
         non_snake_case,
         clippy::too_many_lines,
         clippy::unreadable_literal,
         clippy::approx_constant
     )]
-    pub fn base_from_standard<T: ::robid_runtime::Real>(
+    fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
@@ -3132,6 +3300,16 @@ impl Ur5e {
         out[0] = t55;
         out
     }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn base_from_standard_avx2(&self, standard: &[f64; 60], out: &mut [f64; 36]) {
+        *out = ::robid_runtime::fused::into_array(
+            self
+                .base_from_standard_inlined::<
+                    ::robid_runtime::fused::Fused,
+                >(::robid_runtime::fused::as_array(standard)),
+        );
+    }
 }
 impl ::robid_runtime::Model for Ur5e {
     fn name(&self) -> &str {
@@ -3167,15 +3345,16 @@ impl ::robid_runtime::Model for Ur5e {
                         found: inputs.len(),
                     });
                 };
-                let value = Ur5e::standard_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Ur5e::standard_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Ur5e::standard_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -3185,15 +3364,16 @@ impl ::robid_runtime::Model for Ur5e {
                         found: inputs.len(),
                     });
                 };
-                let value = Ur5e::base_regressor::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Ur5e::base_regressor_avx2(self, q, qd, qdd, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Ur5e::base_regressor::<f64>(self, q, qd, qdd);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -3203,16 +3383,17 @@ impl ::robid_runtime::Model for Ur5e {
                         found: inputs.len(),
                     });
                 };
-                let value = Ur5e::inverse_dynamics::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("qdd", qdd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("tau", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let qdd = ::robid_runtime::model::fixed("qdd", qdd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("tau", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Ur5e::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Ur5e::inverse_dynamics::<f64>(self, q, qd, qdd, base);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -3222,14 +3403,15 @@ impl ::robid_runtime::Model for Ur5e {
                         found: inputs.len(),
                     });
                 };
-                let value = Ur5e::mass_matrix::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Ur5e::mass_matrix_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Ur5e::mass_matrix::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -3239,14 +3421,15 @@ impl ::robid_runtime::Model for Ur5e {
                         found: inputs.len(),
                     });
                 };
-                let value = Ur5e::gravity::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Ur5e::gravity_avx2(self, q, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Ur5e::gravity::<f64>(self, q, base);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -3256,15 +3439,16 @@ impl ::robid_runtime::Model for Ur5e {
                         found: inputs.len(),
                     });
                 };
-                let value = Ur5e::coriolis::<
-                    f64,
-                >(
-                    self,
-                    ::robid_runtime::model::fixed("q", q)?,
-                    ::robid_runtime::model::fixed("qd", qd)?,
-                    ::robid_runtime::model::fixed("base", base)?,
-                );
-                *::robid_runtime::model::fixed_mut("out", output)? = value;
+                let q = ::robid_runtime::model::fixed("q", q)?;
+                let qd = ::robid_runtime::model::fixed("qd", qd)?;
+                let base = ::robid_runtime::model::fixed("base", base)?;
+                let out = ::robid_runtime::model::fixed_mut("out", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Ur5e::coriolis_avx2(self, q, qd, base, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Ur5e::coriolis::<f64>(self, q, qd, base);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -3274,10 +3458,14 @@ impl ::robid_runtime::Model for Ur5e {
                         found: inputs.len(),
                     });
                 };
-                let value = Ur5e::base_from_standard::<
-                    f64,
-                >(self, ::robid_runtime::model::fixed("standard", standard)?);
-                *::robid_runtime::model::fixed_mut("base", output)? = value;
+                let standard = ::robid_runtime::model::fixed("standard", standard)?;
+                let out = ::robid_runtime::model::fixed_mut("base", output)?;
+                #[cfg(target_arch = "x86_64")]
+                if ::robid_runtime::fused::dispatch() {
+                    unsafe { Ur5e::base_from_standard_avx2(self, standard, out) };
+                    return ::core::result::Result::Ok(());
+                }
+                *out = Ur5e::base_from_standard::<f64>(self, standard);
             }
         }
         ::core::result::Result::Ok(())

@@ -2,7 +2,7 @@
 //! described in the parent module).
 
 use core::arch::x86_64::{
-    __m256d, _CMP_EQ_OQ, _CMP_LT_OQ, _CMP_NEQ_OQ, _CMP_NLE_UQ, _mm256_add_epi64, _mm256_add_pd,
+    _CMP_EQ_OQ, _CMP_LT_OQ, _CMP_NEQ_OQ, _CMP_NLE_UQ, _mm256_add_epi64, _mm256_add_pd,
     _mm256_and_pd, _mm256_and_si256, _mm256_blendv_pd, _mm256_castpd_si256, _mm256_castsi256_pd,
     _mm256_cmp_pd, _mm256_fmadd_pd, _mm256_fnmadd_pd, _mm256_loadu_pd, _mm256_movemask_pd,
     _mm256_mul_pd, _mm256_or_pd, _mm256_set1_epi64x, _mm256_set1_pd, _mm256_setzero_pd,
@@ -56,6 +56,20 @@ const C6: f64 = -1.13596475577881948265e-11;
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 pub(super) unsafe fn sin_cos<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    // SAFETY: the caller guarantees AVX2 and FMA.
+    unsafe { sin_cos_inlined(x) }
+}
+
+/// [`sin_cos`] without its target features, always inlined: in a function compiled with
+/// AVX2 and FMA (the models' AVX2 instances, `crate::fused`) the whole vector path inlines,
+/// as Rust allows no `#[inline(always)]` on a function with target features. Elsewhere its
+/// intrinsics stay calls, slow but right.
+///
+/// # Safety
+///
+/// The CPU must support AVX2 and FMA.
+#[inline(always)]
+pub(super) unsafe fn sin_cos_inlined<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
     let mut to_libm = false;
@@ -65,29 +79,30 @@ pub(super) unsafe fn sin_cos<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]
         let mut lanes = [0.0; 4];
         lanes[..n].copy_from_slice(&x[i..i + n]);
         let (mut ls, mut lc) = ([0.0; 4], [0.0; 4]);
-        // SAFETY: the caller guarantees AVX2 and FMA; the loads and stores are
-        // unaligned ones from and to arrays of four doubles.
-        let outside = unsafe {
-            let (vs, vc, outside) = sin_cos4(_mm256_loadu_pd(lanes.as_ptr()));
-            _mm256_storeu_pd(ls.as_mut_ptr(), vs);
-            _mm256_storeu_pd(lc.as_mut_ptr(), vc);
-            outside
-        };
+        // SAFETY: the caller guarantees AVX2 and FMA.
+        let outside = unsafe { sin_cos4(&lanes, &mut ls, &mut lc) };
         to_libm |= outside != 0;
         s[i..i + n].copy_from_slice(&ls[..n]);
         c[i..i + n].copy_from_slice(&lc[..n]);
         i += n;
     }
     if to_libm {
-        // Rare: redo the angles the vector path does not take (libm's results are
-        // within its accuracy anyway, so all of them).
-        for i in 0..N {
-            if !in_range(x[i]) {
-                (s[i], c[i]) = libm::sincos(x[i]);
-            }
-        }
+        redo_outside(&x, &mut s, &mut c);
     }
     (s, c)
+}
+
+/// Rare: redoes through libm the angles the vector path does not take (libm's results are
+/// within its accuracy anyway, so all of them). Out of line, so that its calls do not make
+/// the inlining caller keep its values on the stack.
+#[cold]
+#[inline(never)]
+fn redo_outside<const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) {
+    for i in 0..N {
+        if !in_range(x[i]) {
+            (s[i], c[i]) = libm::sincos(x[i]);
+        }
+    }
 }
 
 /// Whether the vector path computes the sine and cosine of `x`: `|x| <= LIMIT`, and `x`
@@ -103,20 +118,20 @@ fn in_range(x: f64) -> bool {
 /// Below this, a reduced argument `x - k P1` with `k != 0` goes to libm (see [`sin_cos4`]).
 const TINY: f64 = 1.4551915228366852e-11; // 2^-36
 
-/// Sine and cosine of four angles, and the mask (bit `l` for lane `l`) of the lanes whose
-/// results are not valid and must come from libm: `|x| > LIMIT`, NaN, and angles within
-/// `2^-36` of a nonzero multiple of pi/2.
+/// Sine and cosine of four angles into `s` and `c`, and the mask (bit `l` for lane `l`) of
+/// the lanes whose results are not valid and must come from libm: `|x| > LIMIT`, NaN, and
+/// angles within `2^-36` of a nonzero multiple of pi/2. Arrays, not vector registers, in
+/// and out: a function without target features cannot pass `__m256d` by value.
 ///
 /// # Safety
 ///
 /// The CPU must support AVX2 and FMA.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn sin_cos4(x: __m256d) -> (__m256d, __m256d, i32) {
-    // SAFETY: register-only AVX2/FMA arithmetic; the caller guarantees the CPU has it.
-    // (The block is needed before Rust 1.87, which made these intrinsics safe here.)
-    #[allow(unused_unsafe)]
+#[inline(always)]
+unsafe fn sin_cos4(x: &[f64; 4], s: &mut [f64; 4], c: &mut [f64; 4]) -> i32 {
+    // SAFETY: AVX2/FMA arithmetic, which the caller guarantees the CPU has; unaligned
+    // loads and stores from and to arrays of four doubles.
     unsafe {
+        let x = _mm256_loadu_pd(x.as_ptr());
         let splat = |v: f64| _mm256_set1_pd(v);
         let abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX));
         // 1. k = round(x * 2/pi), its bits in the low mantissa of `t`.
@@ -183,10 +198,8 @@ unsafe fn sin_cos4(x: __m256d) -> (__m256d, __m256d, i32) {
         );
         // sin(±0) = ±0 (x + (+0) would be +0 for -0).
         let zero = _mm256_cmp_pd::<_CMP_EQ_OQ>(x, _mm256_setzero_pd());
-        (
-            _mm256_blendv_pd(sin_q, x, zero),
-            cos_q,
-            _mm256_movemask_pd(outside),
-        )
+        _mm256_storeu_pd(s.as_mut_ptr(), _mm256_blendv_pd(sin_q, x, zero));
+        _mm256_storeu_pd(c.as_mut_ptr(), cos_q);
+        _mm256_movemask_pd(outside)
     }
 }

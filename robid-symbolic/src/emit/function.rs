@@ -5,7 +5,7 @@ use super::fuse::{Fused, Fusion};
 use super::names::{ident, value_ident, value_name};
 use super::trig::{Role, TrigBatch};
 use crate::program::{Instr, Program, Value};
-use proc_macro2::{Literal, TokenStream};
+use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
 /// The name of the input group holding geometric symbols; it is read from
@@ -13,7 +13,11 @@ use quote::{format_ident, quote};
 pub(crate) const GEOMETRY: &str = "geometry";
 
 /// `pub fn name<T: Real>(&self, q: &[T; 6], ...) -> [T; N]` computing `program`
-/// (its first output group), with `doc` as the first lines of its doc comment.
+/// (its first output group), with `doc` as the first lines of its doc comment, and its
+/// two private instances: `name_inlined`, the body, which the public function and the
+/// other instance inline, and for x86-64 `name_avx2`, the body for
+/// `robid_runtime::fused::Fused` compiled with AVX2 and FMA, which `Model::run` calls
+/// when `robid_runtime::fused::dispatch()` allows ([`instance_names`]).
 ///
 /// Fails, instead of emitting code that does not compile, when a name is not
 /// an identifier, a constant is not finite or an operand reads a value that
@@ -25,7 +29,32 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
         name: name.to_owned(),
     })?;
     let mut args = Vec::new();
+    let mut arg_names = Vec::new();
+    let mut lens = Vec::new();
     let mut bindings = Vec::new();
+    // The sines and cosines of the angles that need no trigonometry themselves come
+    // from one batched call before the rest (`trig.rs`). The inputs it does not read are
+    // bound after it: bound before, they would live across its calls (libm's), which
+    // clobber every vector register, and be copied to the stack and back.
+    let batch = TrigBatch::new(program);
+    let mut before_batch = vec![batch.angles.is_empty(); program.input_len()];
+    let hoisted = program
+        .instrs
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| batch.role[i] == Role::Hoisted)
+        .flat_map(|(_, instr)| instr.operands());
+    // (and the outputs that are inputs, which a matrix stores before everything)
+    let outputs = program
+        .outputs
+        .iter()
+        .flat_map(|o| o.values.iter().copied());
+    for v in hoisted.chain(batch.angles.iter().copied()).chain(outputs) {
+        if let Value::Input(k) = v {
+            before_batch[k as usize] = true;
+        }
+    }
+    let mut after_batch = Vec::new();
     let mut doc_lines: Vec<String> = doc.lines().map(|l| format!(" {l}")).collect();
     doc_lines.push(String::new());
     for (g, group) in program.inputs.iter().enumerate() {
@@ -51,6 +80,8 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
         let len = Literal::usize_unsuffixed(group.len());
         let arg_name = if used { quote!(#arg) } else { quote!(_) };
         args.push(quote! { #arg_name: &[T; #len] });
+        arg_names.push(arg.clone());
+        lens.push(len.clone());
         doc_lines.push(format!(
             " - `{}`: {}",
             group.name,
@@ -66,7 +97,16 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
                     quote!(_)
                 }
             });
-            bindings.push(quote! { let [#(#names),*] = *#arg; });
+            let early = (0..group.len()).any(|k| match input_value(program, g, k) {
+                Value::Input(i) => before_batch[i as usize],
+                _ => false,
+            });
+            let binding = quote! { let [#(#names),*] = *#arg; };
+            if early {
+                bindings.push(binding);
+            } else {
+                after_batch.push(binding);
+            }
         }
     }
     let Some(output) = program.outputs.first() else {
@@ -89,10 +129,8 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
             quote! { let #id = T::from_f64(#lit); }
         })
     });
-    // The sines and cosines of the angles that need no trigonometry themselves come
-    // from one batched call before the rest (`trig.rs`). Of the others, sin(x) and
-    // cos(x) of the same x are computed together, where the first of the two is.
-    let batch = TrigBatch::new(program);
+    // Of the sines and cosines not batched, sin(x) and cos(x) of the same x are computed
+    // together, where the first of the two is.
     let mut pair_of: Vec<Option<usize>> = vec![None; program.instrs.len()];
     for (i, instr) in program.instrs.iter().enumerate() {
         if batch.role[i] != Role::InOrder {
@@ -188,6 +226,7 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
         lets.push(quote! {
             let ([#(#sins),*], [#(#coss),*]) = T::sin_cos_array([#(#angles),*]);
             #(#stores)*
+            #(#after_batch)*
         });
         for (i, role) in batch.role.iter().enumerate() {
             if let Role::Copy { of } = *role {
@@ -214,20 +253,48 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
     };
     // the constants are the description's values as literals (cos(pi/4) is written as
     // 0.7071067811865476, which clippy takes for an approximate FRAC_1_SQRT_2)
+    let (inlined, avx2) = instance_names(&name);
     Ok(quote! {
         #(#[doc = #doc_lines])*
+        pub fn #name<T: ::robid_runtime::Real>(
+            &self,
+            #(#arg_names: &[T; #lens]),*
+        ) -> [T; #out_len] {
+            self.#inlined::<T>(#(#arg_names),*)
+        }
+
+        #[inline(always)]
         #[allow(
             non_snake_case,
             clippy::too_many_lines,
             clippy::unreadable_literal,
             clippy::approx_constant
         )]
-        pub fn #name<T: ::robid_runtime::Real>(&self, #(#args),*) -> [T; #out_len] {
+        fn #inlined<T: ::robid_runtime::Real>(&self, #(#args),*) -> [T; #out_len] {
             #(#bindings)*
             #(#constants)*
             #body
         }
+
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx2,fma")]
+        fn #avx2(&self, #(#arg_names: &[f64; #lens],)* out: &mut [f64; #out_len]) {
+            *out = ::robid_runtime::fused::into_array(
+                self.#inlined::<::robid_runtime::fused::Fused>(
+                    #(::robid_runtime::fused::as_array(#arg_names)),*
+                ),
+            );
+        }
     })
+}
+
+/// The private instances of the emitted function `name`: its body, always inlined, and
+/// its AVX2 instance (x86-64 only).
+pub(crate) fn instance_names(name: &Ident) -> (Ident, Ident) {
+    (
+        format_ident!("{name}_inlined"),
+        format_ident!("{name}_avx2"),
+    )
 }
 
 /// The checks of [`function_tokens`].

@@ -3,27 +3,28 @@
 //! `run` has one arm per entry of the program table
 //! ([`PROGRAMS`](robid_core::PROGRAMS)): it checks the number of inputs,
 //! turns each slice into the fixed-size array of the generic function (a wrong length
-//! is a `LengthError`, returned before the output is touched), calls it with `f64` and
+//! is a `LengthError`, returned before the output is touched), calls it with `f64` (or,
+//! on a processor with AVX2 and FMA, its instance for them: `robid_runtime::fused`) and
 //! stores the result.
 
+use super::function::instance_names;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 use robid_core::{PROGRAMS, ProgramInfo};
 
-/// The `run` arm of one program: `ProgramKind::X => { .. }`.
+/// The `run` arm of one program: `ProgramKind::X => { .. }`. On x86-64 it calls the
+/// function's AVX2 instance when `robid_runtime::fused::dispatch()` allows.
 fn arm(ty: &Ident, p: &ProgramInfo) -> TokenStream {
     let kind = format_ident!("{}", format!("{:?}", p.kind));
     let function = format_ident!("{}", p.name);
+    let (_, avx2) = instance_names(&function);
     let count = p.inputs.len();
     let names: Vec<Ident> = p
         .inputs
         .iter()
         .map(|a| format_ident!("{}", a.name))
         .collect();
-    let calls = p.inputs.iter().zip(&names).map(|(a, id)| {
-        let name = a.name;
-        quote!(::robid_runtime::model::fixed(#name, #id)?)
-    });
+    let argument = p.inputs.iter().map(|a| a.name);
     let output = p.output.name;
     quote! {
         ::robid_runtime::model::ProgramKind::#kind => {
@@ -34,8 +35,15 @@ fn arm(ty: &Ident, p: &ProgramInfo) -> TokenStream {
                     found: inputs.len(),
                 });
             };
-            let value = #ty::#function::<f64>(self, #(#calls),*);
-            *::robid_runtime::model::fixed_mut(#output, output)? = value;
+            #(let #names = ::robid_runtime::model::fixed(#argument, #names)?;)*
+            let out = ::robid_runtime::model::fixed_mut(#output, output)?;
+            #[cfg(target_arch = "x86_64")]
+            if ::robid_runtime::fused::dispatch() {
+                // SAFETY: `dispatch` has confirmed that the processor executes AVX2 and FMA
+                unsafe { #ty::#avx2(self, #(#names,)* out) };
+                return ::core::result::Result::Ok(());
+            }
+            *out = #ty::#function::<f64>(self, #(#names),*);
         }
     }
 }

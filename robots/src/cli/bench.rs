@@ -2,7 +2,9 @@
 //! reference models (docs/performance.md#what-robid-measures), with a baseline measured in
 //! the same run (6 x (sin + cos) through libm) so figures compare across machines, and the
 //! batched sines and cosines of six angles (`robid_runtime::trig::sin_cos`, vectorised
-//! with AVX2) in the same units. The criterion benches in the workspace's benches/ measure the same
+//! with AVX2) in the same units. Where `Model::run` takes the models' AVX2 instances
+//! (`robid_runtime::fused`), each program is also timed through the plain `f64` code, in
+//! turn with them. The criterion benches in the workspace's benches/ measure the same
 //! functions.
 
 use super::{Error, out};
@@ -28,8 +30,14 @@ pub(crate) struct Args {
 #[derive(Debug, Serialize)]
 struct Timing {
     robot: &'static str,
-    /// Per program of the table, by name.
+    /// Per program of the table, by name, as `Model::run` calls it.
     programs: BTreeMap<&'static str, f64>,
+    /// Whether `Model::run` called the AVX2 instances (`robid_runtime::fused::dispatch`).
+    avx2_instances: bool,
+    /// With the AVX2 instances, the same programs through the plain `f64` code (what a
+    /// processor without AVX2 runs), timed in turn with them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    plain: Option<BTreeMap<&'static str, f64>>,
     baseline_trig_ns: f64,
     /// `robid_runtime::trig::sin_cos` of six angles.
     batched_trig_ns: f64,
@@ -92,34 +100,44 @@ fn batched() -> f64 {
 }
 
 /// Times every program of the table on `model` through [`Model::run`] (the slice
-/// interface: the length checks are part of the figure).
+/// interface: the length checks are part of the figure); where it takes the AVX2
+/// instances, each program again through the plain `f64` code right after.
 fn time_robot<M: Model + ?Sized>(
     robot: &'static str,
     model: &M,
     (baseline, batched): (f64, f64),
 ) -> Timing {
     let sizes = model.sizes();
-    let programs = PROGRAMS
-        .iter()
-        .map(|p| {
-            let inputs: Vec<Vec<f64>> = p
-                .inputs
-                .iter()
-                .enumerate()
-                .map(|(i, a)| filled(a.size.len(sizes), 0.7 + 0.3 * i as f64))
-                .collect();
-            let inputs: Vec<&[f64]> = inputs.iter().map(Vec::as_slice).collect();
-            let mut out = vec![0.0; p.output.size.len(sizes)];
-            let ns = median_ns(|| {
+    let avx2 = robid_runtime::fused::dispatch();
+    let mut programs = BTreeMap::new();
+    let mut plain = BTreeMap::new();
+    for p in &PROGRAMS {
+        let inputs: Vec<Vec<f64>> = p
+            .inputs
+            .iter()
+            .enumerate()
+            .map(|(i, a)| filled(a.size.len(sizes), 0.7 + 0.3 * i as f64))
+            .collect();
+        let inputs: Vec<&[f64]> = inputs.iter().map(Vec::as_slice).collect();
+        let mut out = vec![0.0; p.output.size.len(sizes)];
+        let mut time = || {
+            median_ns(|| {
                 let result = model.run(p.kind, black_box(&inputs), black_box(&mut out));
                 black_box(result).ok();
-            });
-            (p.name, ns)
-        })
-        .collect();
+            })
+        };
+        programs.insert(p.name, time());
+        if avx2 {
+            robid_runtime::fused::set_enabled(false);
+            plain.insert(p.name, time());
+            robid_runtime::fused::set_enabled(true);
+        }
+    }
     Timing {
         robot,
         programs,
+        avx2_instances: avx2,
+        plain: avx2.then_some(plain),
         baseline_trig_ns: baseline,
         batched_trig_ns: batched,
         vector_trig: robid_runtime::trig::vector_available(),
@@ -172,12 +190,23 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     writeln!(stdout)?;
     for t in &timings {
-        write!(stdout, "{:<10}", t.robot)?;
-        for p in &PROGRAMS {
-            let ns = t.programs.get(p.name).copied().unwrap_or(f64::NAN);
-            write!(stdout, " {:>w$.1}", ns, w = p.name.len().max(8))?;
+        let rows = std::iter::once((t.robot, &t.programs))
+            .chain(t.plain.as_ref().map(|plain| ("  plain", plain)));
+        for (label, programs) in rows {
+            write!(stdout, "{label:<10}")?;
+            for p in &PROGRAMS {
+                let ns = programs.get(p.name).copied().unwrap_or(f64::NAN);
+                write!(stdout, " {:>w$.1}", ns, w = p.name.len().max(8))?;
+            }
+            writeln!(stdout)?;
         }
-        writeln!(stdout)?;
+    }
+    if timings.iter().any(|t| t.avx2_instances) {
+        writeln!(
+            stdout,
+            "(the models' AVX2 and FMA instances, which robid calls on this processor; \
+             `plain`: the same programs through the f64 code a processor without them runs)"
+        )?;
     }
     if cfg!(debug_assertions) {
         writeln!(
