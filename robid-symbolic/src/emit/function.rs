@@ -17,7 +17,7 @@ pub(crate) const GEOMETRY: &str = "geometry";
 /// two private instances: `name_inlined`, the body, which the public function and the
 /// other instance inline, and for x86-64 `name_avx2`, the body for
 /// `robid_runtime::fused::Fused` compiled with AVX2 and FMA, which `Model::run` calls
-/// when `robid_runtime::fused::dispatch()` allows ([`instance_names`]).
+/// when `robid_runtime::fused::dispatch()` allows.
 ///
 /// Fails, instead of emitting code that does not compile, when a name is not
 /// an identifier, a constant is not finite or an operand reads a value that
