@@ -11,7 +11,8 @@
 //!   error, but for the `[[links]]` summary that `robid feasible` writes after its
 //!   `[standard]` table (mass, centre of mass and inertia per link, for people), which is
 //!   read over;
-//! - every value is a number, finite and within +-[`PARAMETER_LIMIT`].
+//! - every value is a number, finite and within +-[`PARAMETER_LIMIT`];
+//! - no key or table is given twice (a TOML error, which names the key at its second place).
 //!
 //! When its values are taken for a model ([`ParameterFile::base_parameters`],
 //! [`ParameterFile::prior`], [`ParameterFile::known`]):
@@ -403,7 +404,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
     };
     let doc = DeTable::parse(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
-        located(offset, format!("not valid TOML: {}", e.message().trim()))
+        located(offset, syntax_message(text, &e))
     })?;
     let mut found: Option<(ParameterTable, Vec<(String, Entry)>)> = None;
     for (key, value) in doc.get_ref() {
@@ -487,6 +488,31 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
     })
 }
 
+/// The message of a TOML syntax error. toml says only "duplicate key" for a key or table
+/// given twice; its span holds the key, so the message names it and says what to do.
+fn syntax_message(text: &str, e: &toml::de::Error) -> String {
+    let message = e.message().trim();
+    let key = e
+        .span()
+        .filter(|_| message == "duplicate key")
+        .and_then(|span| Some((text.get(span.clone())?, span.start)));
+    let Some((key, start)) = key else {
+        return format!("not valid TOML: {message}");
+    };
+    let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+    if text[line_start..start].trim_start().starts_with('[') {
+        format!(
+            "not valid TOML: the table [{key}] is given a second time; a parameter file holds \
+             one table: merge the two into one"
+        )
+    } else {
+        format!(
+            "not valid TOML: `{key}` is given a second time in this table; each parameter may \
+             be given once: delete the one not meant"
+        )
+    }
+}
+
 /// The number a TOML value holds (`None` for a string, a table, ..).
 fn number(v: &DeValue<'_>) -> Option<f64> {
     match v {
@@ -549,6 +575,32 @@ mod tests {
                 .to_string()
                 .contains("unknown table or key `links`")
         );
+    }
+
+    /// A parameter or table given twice is named at its second place; toml itself says
+    /// only "duplicate key".
+    #[test]
+    fn a_key_given_twice_is_named_at_its_place() {
+        let error = |text: &str| {
+            ParameterFile::parse(text, "p.toml".as_ref())
+                .unwrap_err()
+                .to_string()
+        };
+        let e = error("[standard]\nM1 = 2\nMX1 = 0.1\nM1 = 3\n");
+        assert!(
+            e.starts_with("p.toml:4:1: not valid TOML: `M1` is given a second time in this table"),
+            "{e}"
+        );
+        let e = error("[standard]\nM1 = 2\n[standard]\nM2 = 3\n");
+        assert!(
+            e.starts_with(
+                "p.toml:3:2: not valid TOML: the table [standard] is given a second time"
+            ),
+            "{e}"
+        );
+        // other syntax errors keep toml's message
+        let e = error("[standard]\nM1 = \n");
+        assert!(e.starts_with("p.toml:2:6: not valid TOML: "), "{e}");
     }
 
     #[test]

@@ -35,7 +35,9 @@
 //! expressions within the reader's limits (4096 bytes, 64 levels of
 //! parentheses, calls and signs, exponents within ±64).
 //!
-//! A TOML syntax error stops the reading (it is reported alone); every other
+//! A TOML syntax error stops the reading (it is reported alone; a key or table
+//! given twice is named at its second place, e.g. `` `d` is given a second time in
+//! this table ``); every other
 //! mistake (unknown keys, wrong types, missing keys, values out of range,
 //! unused symbols) is reported together with the others.
 
@@ -109,6 +111,31 @@ fn warnings(place: &Place<'_>, spans: &Spans) -> Vec<String> {
         ));
     }
     out
+}
+
+/// The message of a TOML syntax error. toml says only "duplicate key" for a key or table
+/// given twice; its span holds the key, so the message names it and says what to do.
+fn syntax_message(text: &str, e: &toml::de::Error) -> String {
+    let message = e.message().trim();
+    let key = e
+        .span()
+        .filter(|_| message == "duplicate key")
+        .and_then(|span| Some((text.get(span.clone())?, span.start)));
+    let Some((key, start)) = key else {
+        return message.to_owned();
+    };
+    let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+    if text[line_start..start].trim_start().starts_with('[') {
+        format!(
+            "the table `{key}` is given a second time; TOML allows each table once: merge \
+             the two into one (a list of joints is written `[[joints]]`, each header one joint)"
+        )
+    } else {
+        format!(
+            "`{key}` is given a second time in this table; TOML allows each key once per table \
+             (each `[[joints]]` header starts the next joint's): delete the one not meant"
+        )
+    }
 }
 
 /// Errors of the checks, located through the spans the reader kept.
@@ -204,7 +231,7 @@ impl Robot {
                 file: file.to_owned(),
                 line,
                 column,
-                message: e.message().trim().to_owned(),
+                message: syntax_message(text, &e),
             }
         })?;
         let mut reader = Reader::new(&place);

@@ -567,3 +567,43 @@ fn general_frames_base_and_tool_are_checked() {
         "{e}"
     );
 }
+
+/// A key or table given twice is a TOML error that names the key at its second place, with
+/// the fix; toml itself says only "duplicate key".
+#[test]
+fn a_key_given_twice_is_named_at_its_place() {
+    let joint = "[[joints]]\nalpha = 0\nd = 0.1\n";
+    for (text, at, says) in [
+        (
+            format!("{HEAD}{joint}{joint}d = 0.2\n"),
+            "9:1",
+            "`d` is given a second time in this table",
+        ),
+        (
+            format!("{HEAD}name = \"other\"\n{joint}"),
+            "3:1",
+            "`name` is given a second time",
+        ),
+        (
+            format!("{HEAD}[base]\nxyz = [0, 0, 0]\n[base]\nrpy = [0, 0, 0]\n{joint}"),
+            "5:2",
+            "the table `base` is given a second time",
+        ),
+        (
+            format!("{HEAD}{joint}limits = {{ torque = 1, torque = 2 }}\n"),
+            "6:24",
+            "`torque` is given a second time",
+        ),
+    ] {
+        let all = errors(&text);
+        assert_eq!(all.len(), 1, "{text}\n{all:#?}");
+        assert!(
+            all[0].starts_with(&format!("arm.toml:{at}: {says}")),
+            "{all:?}"
+        );
+        assert!(
+            all[0].contains("delete") || all[0].contains("merge"),
+            "{all:?}"
+        );
+    }
+}

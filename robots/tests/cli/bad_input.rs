@@ -339,7 +339,11 @@ fn parameter_file_mistakes_are_located_by_line_and_column() {
         ),
         (
             "[standard]\nM1 = 1.0\nM1 = 2.0\n",
-            &["params.toml:3:1:", "not valid TOML"],
+            &[
+                "params.toml:3:1:",
+                "not valid TOML",
+                "`M1` is given a second time",
+            ],
         ),
         ("[standard\n", &["params.toml:1:", "not valid TOML"]),
     ] {
