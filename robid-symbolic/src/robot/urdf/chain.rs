@@ -313,6 +313,36 @@ pub(super) fn choose(
             "choose a tip that revolute, continuous or prismatic joints move".to_owned(),
         ));
     }
+    // A floating or planar joint between the base and the chain lets the chain's support
+    // move; taking it as fixed would be a fixed-base model of a floating robot, which is
+    // wrong. Choosing a base below it (or above it, a revolute joint alike) states that
+    // the support stands still, so only this part of the path is checked.
+    let support = path.iter().take_while(|&&j| !movable(j));
+    if let Some(&j) = support
+        .filter(|&&j| matches!(urdf.joints[j].kind, JointType::Floating | JointType::Planar))
+        .last()
+    {
+        let joint = &urdf.joints[j];
+        let kind = if joint.kind == JointType::Floating {
+            "floating"
+        } else {
+            "planar"
+        };
+        return Err(place.invalid(
+            joint.range.clone(),
+            format!(
+                "joint `{}` is {kind}: the chain hangs from link `{}`, which it lets move, \
+                 and robid models a fixed base (a fixed-base model of a moving base is wrong)",
+                joint.name, joint.child
+            ),
+            format!(
+                "if the base is bolted down, make the joint `type=\"fixed\"`; to model the \
+                 chain as if link `{0}` stood still during the experiments, choose `{0}` as \
+                 the chain's base (`--base {0}`, `base = \"{0}\"` in robot_model!)",
+                joint.child
+            ),
+        ));
+    }
     // body of every link below the base: 0 the fixed base, j robid joint j
     let position: HashMap<usize, usize> = joints.iter().enumerate().map(|(k, &j)| (j, k)).collect();
     let mut body = vec![usize::MAX; urdf.links.len()];

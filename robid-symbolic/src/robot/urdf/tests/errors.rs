@@ -124,6 +124,53 @@ fn duplicate_links_and_mimics_of_chain_joints_off_the_chain() {
     );
 }
 
+/// A robot attached to the world by a floating or planar joint is not taken as fixed-base
+/// without a word: the error names the joint at its line and both fixes. A base chosen
+/// below the joint is the user's statement that it stands still; a floating joint beside
+/// the chain (an object in the world) does not carry it.
+#[test]
+fn a_floating_or_planar_support_is_refused() {
+    let world = |kind: &str| {
+        arm(&format!(
+            "<joint name=\"mount\" type=\"{kind}\"><parent link=\"world\"/><child link=\"a\"/></joint>\n{J1}{J2}"
+        ))
+        .replace("<link name=\"a\"/>", "<link name=\"world\"/>\n<link name=\"a\"/>")
+    };
+    for kind in ["floating", "planar"] {
+        let text = world(kind);
+        let message = error_of(&text, &ChainSelection::default());
+        assert!(
+            message.starts_with(&format!(
+                "t.urdf:6:1: joint `mount` is {kind}: the chain hangs from link `a`"
+            )),
+            "{message}"
+        );
+        for w in [
+            "robid models a fixed base",
+            "make the joint `type=\"fixed\"`",
+            "`--base a`",
+        ] {
+            assert!(message.contains(w), "{message}\nexpected {w:?}");
+        }
+        // also with the world chosen as the base explicitly
+        assert_eq!(error_of(&text, &selection(Some("world"), None)), message);
+        // the link below it chosen as the base: the chain of a fixed `a`
+        let chain = Robot::from_urdf(&text, "t.urdf", &selection(Some("a"), None)).unwrap();
+        assert_eq!(chain.robot.dof(), 2);
+        // fixed: the same chain
+        let fixed = world("fixed");
+        let chain = Robot::from_urdf(&fixed, "t.urdf", &ChainSelection::default()).unwrap();
+        assert_eq!(chain.robot.dof(), 2);
+        // an object floating beside the chain does not carry it
+        let beside = fixed.replace(
+            "</robot>",
+            &format!("<link name=\"box\"/><joint name=\"loose\" type=\"{kind}\"><parent link=\"world\"/><child link=\"box\"/></joint>\n</robot>"),
+        );
+        let chain = Robot::from_urdf(&beside, "t.urdf", &selection(None, Some("c"))).unwrap();
+        assert_eq!(chain.robot.dof(), 2);
+    }
+}
+
 #[test]
 fn bad_selections_name_the_nearest_links() {
     let text = arm(&format!("{J1}{J2}"));
