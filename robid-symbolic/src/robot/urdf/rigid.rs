@@ -19,6 +19,22 @@ pub(super) fn right_angle_multiple(angle: f64) -> Option<i64> {
     ((angle - k * FRAC_PI_2).abs() <= SNAP && k.abs() < 1e6).then_some(k as i64)
 }
 
+/// How close (rad) an `rpy` value must be to a multiple of pi/2 to be taken as that
+/// multiple with a warning (docs/urdf.md#the-angle-rule): right angles computed from pi
+/// printed to 8 decimals (xacro's `pi = 3.14159265` in ROS-Industrial's UR files gives
+/// `1.570796325`, 1.8e-9 rad short) are within 7.2e-9 rad up to 2 pi. A real skew this
+/// small is a thousand times below what a calibration resolves (the 1e-5 rad of
+/// `bounds::ANGLE_RESOLUTION`), while 2e-8 rad already is not such a rounding.
+pub(super) const NEAR_RIGHT_ANGLE: f64 = 1e-8;
+
+/// The multiple k of pi/2 within [`NEAR_RIGHT_ANGLE`] of `angle` (|k| at most 4) but not
+/// within [`SNAP`], and the distance to it.
+pub(super) fn near_right_angle(angle: f64) -> Option<(i64, f64)> {
+    let k = (angle / FRAC_PI_2).round();
+    let off = (angle - k * FRAC_PI_2).abs();
+    (off > SNAP && off <= NEAR_RIGHT_ANGLE && k.abs() <= 4.0).then_some((k as i64, off))
+}
+
 /// Sine and cosine, exact (0, ±1) for an angle within [`SNAP`] of a multiple of pi/2.
 pub(super) fn sin_cos(angle: f64) -> (f64, f64) {
     match right_angle_multiple(angle) {
@@ -175,6 +191,15 @@ mod tests {
         assert_eq!(sin_cos(1.57079), 1.57079_f64.sin_cos());
         assert_eq!(sin_cos(3.14159265359), (0.0, -1.0));
         assert_eq!(sin_cos(-1.5707963267948966), (-1.0, 0.0));
+        // within 1e-8 rad: the multiple and how far; within 1e-9 or beyond 1e-8: none
+        let (k, off) = near_right_angle(1.570796325).unwrap();
+        assert_eq!(k, 1);
+        assert!((off - 1.7949e-9).abs() < 1e-13, "{off}");
+        assert_eq!(near_right_angle(-3.14159265).map(|n| n.0), Some(-2));
+        assert_eq!(near_right_angle(4e-9), Some((0, 4e-9)));
+        assert_eq!(near_right_angle(1.57079632679), None);
+        assert_eq!(near_right_angle(1.5707963468), None);
+        assert_eq!(near_right_angle(10.0 * FRAC_PI_2 + 5e-9), None);
         let r = Rigid::from_xyz_rpy([0.0; 3], [FRAC_PI_2, 0.0, 0.0]);
         assert_eq!(r.r, [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]);
     }

@@ -9,7 +9,7 @@
 use super::super::DescriptionError;
 use super::super::bounds::MAX_DESCRIPTION_LEN;
 use super::super::file::Place;
-use super::rigid::{Rigid, norm, scale};
+use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, scale};
 use roxmltree::{Document, Node};
 use std::ops::Range;
 
@@ -141,6 +141,7 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         errors: Vec::new(),
         warnings: Vec::new(),
         printed: Vec::new(),
+        near: Vec::new(),
     };
     if root.tag_name().name() != "robot" {
         return Err(place.invalid(
@@ -180,6 +181,28 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         );
         reader.warnings.push(w);
     }
+    if let Some((word, at, k, off)) = reader.near.first() {
+        let more = match reader.near.len() - 1 {
+            0 => String::new(),
+            n => {
+                let farthest = reader.near.iter().map(|n| n.3).fold(0.0, f64::max);
+                format!(", and {n} more, none farther than {farthest:.1e} rad")
+            }
+        };
+        let w = place.warning(
+            *at,
+            &format!(
+                "`rpy` angles within {NEAR_RIGHT_ANGLE:e} rad of a right angle (`{word}`, \
+                 {off:.1e} rad from {}{more}) are taken as that right angle exactly \
+                 (docs/urdf.md#the-angle-rule): right angles computed from a rounded pi, such \
+                 as xacro's `pi = 3.14159265`, are that far off, and no calibration resolves \
+                 a skew this small; write them exactly (`1.5707963267948966` for pi/2) to \
+                 say so yourself",
+                multiple_text(*k)
+            ),
+        );
+        reader.warnings.push(w);
+    }
     reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
     reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
     if reader.errors.is_empty() {
@@ -202,6 +225,9 @@ struct Reader<'a> {
     /// The `rpy` values taken as the right angle they print ([`printed_right_angle`]):
     /// the word and where it is.
     printed: Vec<(String, usize)>,
+    /// The `rpy` values taken as the right angle within [`NEAR_RIGHT_ANGLE`] of them
+    /// ([`near_right_angle`]): the word, where it is, the multiple of pi/2 and the distance.
+    near: Vec<(String, usize, i64, f64)>,
 }
 
 /// `<tag name="...">` for messages.
@@ -347,12 +373,15 @@ impl Reader<'_> {
         if let Some(attribute) = node.attribute_node("rpy") {
             let words = attribute.value().split_whitespace();
             for (angle, word) in rpy.iter_mut().zip(words) {
+                let at = attribute.range_value().start;
                 if let Some(exact) = printed_right_angle(word)
                     && exact != *angle
                 {
                     *angle = exact;
-                    self.printed
-                        .push((word.to_owned(), attribute.range_value().start));
+                    self.printed.push((word.to_owned(), at));
+                } else if let Some((k, off)) = near_right_angle(*angle) {
+                    *angle = k as f64 * std::f64::consts::FRAC_PI_2;
+                    self.near.push((word.to_owned(), at, k, off));
                 }
             }
         }
@@ -592,6 +621,21 @@ pub(super) fn printed_right_angle(word: &str) -> Option<f64> {
     let exact = k * std::f64::consts::FRAC_PI_2;
     let printed: f64 = format!("{exact:.decimals$}").parse().ok()?;
     (printed == value).then_some(exact)
+}
+
+/// `k pi/2` for messages: `0`, `pi/2`, `-pi`, `3*pi/2`.
+fn multiple_text(k: i64) -> String {
+    match k {
+        0 => "0".to_owned(),
+        1 => "pi/2".to_owned(),
+        -1 => "-pi/2".to_owned(),
+        k if k % 2 == 0 => match k / 2 {
+            1 => "pi".to_owned(),
+            -1 => "-pi".to_owned(),
+            m => format!("{m}*pi"),
+        },
+        k => format!("{k}*pi/2"),
+    }
 }
 
 /// Fewest decimals of a value [`printed_right_angle`] takes for a right angle: `3.14` or

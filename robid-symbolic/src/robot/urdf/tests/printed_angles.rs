@@ -97,3 +97,79 @@ fn a_makers_urdf_with_four_decimal_right_angles_is_read_as_written_exactly() {
     assert!(printed[0].contains("`3.1416` and 2 more"), "{}", printed[0]);
     assert!(written.warnings.iter().all(|w| !w.contains("printed")));
 }
+
+/// The UR5 of example-robot-data as its `ur*_gripper` files write it: right angles computed
+/// by xacro from `pi = 3.14159265` (`1.570796325`, 1.8e-9 rad short of pi/2; `-3.14159265`
+/// is pi rounded to 8 decimals, a printed right angle).
+#[test]
+fn right_angles_of_a_rounded_pi_are_those_angles_with_a_warning() {
+    let exact = repository_file(UR5);
+    let gripper = exact
+        .replace("1.57079632679", "1.570796325")
+        .replace("3.14159265359", "3.14159265");
+    assert_ne!(gripper, exact);
+    let chain = Robot::from_urdf(&gripper, "ur5_gripper.urdf", &ChainSelection::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let written = Robot::from_urdf(&exact, "ur5.urdf", &ChainSelection::default()).unwrap();
+    assert_eq!(chain.robot.gravity(), written.robot.gravity());
+    for (a, b) in chain.robot.joints().iter().zip(written.robot.joints()) {
+        assert_eq!(
+            [&a.alpha, &a.a, &a.d, &a.theta].map(|g| g.as_str().to_string()),
+            [&b.alpha, &b.a, &b.d, &b.theta].map(|g| g.as_str().to_string())
+        );
+    }
+    let near: Vec<&String> = chain
+        .warnings
+        .iter()
+        .filter(|w| w.contains("rad of a right angle"))
+        .collect();
+    assert_eq!(near.len(), 1, "{:?}", chain.warnings);
+    assert!(
+        near[0]
+            .starts_with("ur5_gripper.urdf:86:18: `rpy` angles within 1e-8 rad of a right angle"),
+        "{}",
+        near[0]
+    );
+    assert!(
+        near[0].contains("`1.570796325`, 1.8e-9 rad from pi/2, and 3 more"),
+        "{}",
+        near[0]
+    );
+    assert!(
+        written
+            .warnings
+            .iter()
+            .all(|w| !w.contains("rad of a right angle"))
+    );
+}
+
+/// A right angle off by more than the rounding of pi (2e-8 rad) is not taken for one: a
+/// DH angle that close to a right angle is refused at its joint, as in a description.
+#[test]
+fn an_angle_further_from_a_right_angle_is_not_snapped() {
+    let exact = repository_file(UR5);
+    for (word, snapped) in [
+        ("1.570796332", true),   // 5.3e-9 rad beyond pi/2
+        ("1.5707963468", false), // 2.0e-8
+        ("1.57079635", false),   // 2.3e-8, and not pi/2 rounded to 8 decimals
+    ] {
+        let text = exact.replacen("1.57079632679", word, 1);
+        match Robot::from_urdf(&text, "ur5.urdf", &ChainSelection::default()) {
+            Ok(chain) => {
+                assert!(snapped, "{word} was snapped");
+                assert!(
+                    chain
+                        .warnings
+                        .iter()
+                        .any(|w| w.contains(&format!("`{word}`"))),
+                    "{word}: {:?}",
+                    chain.warnings
+                );
+            }
+            Err(e) => {
+                assert!(!snapped, "{word}: {e}");
+                assert!(e.to_string().starts_with("ur5.urdf:"), "{e}");
+            }
+        }
+    }
+}
