@@ -2,10 +2,12 @@
 //! condition number (or D-optimality) of the stacked base regressor within the description's
 //! joint limits, either a finite Fourier series (`--method fourier`, Swevers et al. 1997) or
 //! optimal points joined by 7th-order polynomials (`--method points`, Milella); it
-//! starts and ends at rest at `--start` (default: the middle of the position limits). Prints
+//! starts and ends at rest at `--start` (default: the middle of the position limits; a
+//! URDF's continuous joint, which has none, stays within ±pi of its start). Prints
 //! the condition number and the margin to every limit. The trajectory has the header
 //! `t,q1..,qd1..,qdd1..`.
 
+use std::f64::consts::PI;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -39,7 +41,8 @@ pub(crate) struct Args {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Start (and end) position `q1,..,qn`, at rest, inside the position limits (default:
-    /// the middle of the position limits).
+    /// the middle of the position limits; a URDF's continuous joint, which has none, is
+    /// kept within ±pi of its start, default 0).
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true,
           value_parser = real(closed(-1e6, 1e6, "rad")))]
     start: Vec<f64>,
@@ -185,6 +188,26 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             .into());
         }
     };
+    if !args.start.is_empty() && args.start.len() != n {
+        return Err(format!(
+            "--start has {} values but {} has {n} joints; give q1,..,q{n}",
+            args.start.len(),
+            args.robot.display()
+        )
+        .into());
+    }
+    // A URDF's continuous joint has no position limits (URDF ignores the lower and upper of
+    // its <limit>). Its dynamics repeat every turn, so one turn around its start holds
+    // every pose it has: the design keeps it there instead of asking for limits that a
+    // continuous joint cannot carry.
+    let continuous = |j: usize| {
+        description
+            .urdf
+            .as_ref()
+            .and_then(|chain| chain.links.get(j))
+            .filter(|link| link.continuous)
+    };
+    let mut turning = Vec::new();
     let limits = model
         .programs()
         .robot
@@ -200,9 +223,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                     args.robot.display(),
                     j + 1
                 ),
+                (Some(_), "position") => format!(
+                    "{}: joint {} has no position limits; add `lower` and `upper` to its \
+                     <limit> element",
+                    args.robot.display(),
+                    j + 1
+                ),
                 (Some(_), _) => format!(
-                    "{}: joint {} has no {what} limit; add `lower`/`upper` and `velocity` to \
-                     its <limit> element",
+                    "{}: joint {} has no {what} limit; add `{what}` to its <limit> element",
                     args.robot.display(),
                     j + 1
                 ),
@@ -212,8 +240,17 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                     j + 1
                 ),
             };
+            let position = match (l.position, continuous(j)) {
+                (Some(position), _) => position,
+                (None, Some(link)) => {
+                    let centre = args.start.get(j).copied().unwrap_or(0.0);
+                    turning.push(format!("{} (`{}`)", j + 1, link.joint));
+                    [centre - PI, centre + PI]
+                }
+                (None, None) => return Err(missing("position")),
+            };
             Ok(JointLimits {
-                position: l.position.ok_or_else(|| missing("position"))?,
+                position,
                 velocity: l.velocity.ok_or_else(|| missing("velocity"))?,
                 acceleration: accelerations[j]
                     .or(l.acceleration)
@@ -226,18 +263,27 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Some(p) => Some(ParameterFile::read(p)?.base_parameters(&model)?),
         None => description.urdf_base_parameters(&model)?,
     };
+    if let Some((last, first)) = turning.split_last() {
+        let (joints, are) = if first.is_empty() {
+            (format!("joint {last} is"), "it")
+        } else {
+            (
+                format!("joints {} and {last} are", first.join(", ")),
+                "each",
+            )
+        };
+        out::warn(format_args!(
+            "warning: {joints} continuous, without position limits: the design keeps {are} \
+             within ±pi of its start (--start, default 0), one turn, which holds every pose \
+             of its dynamics; for another range make the joint `type=\"revolute\"` with \
+             `lower` and `upper` in its <limit> (URDF ignores them for a continuous joint)"
+        ));
+    }
     let start_pose = if args.start.is_empty() {
         limits
             .iter()
             .map(|l| 0.5 * (l.position[0] + l.position[1]))
             .collect()
-    } else if args.start.len() != n {
-        return Err(format!(
-            "--start has {} values but {} has {n} joints; give q1,..,q{n}",
-            args.start.len(),
-            args.robot.display()
-        )
-        .into());
     } else {
         for (j, (q, l)) in args.start.iter().zip(&limits).enumerate() {
             if !(l.position[0] < *q && *q < l.position[1]) {

@@ -2,6 +2,7 @@
 //! `--drive`, `--base` and `--tip`"): the chain flags, the URDF's own inertials where no
 //! parameters are given, and `robid feasible` writing the user's URDF back.
 
+use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use robid_runtime::Model;
@@ -244,4 +245,102 @@ fn feasible_writes_the_users_urdf_back() {
             assert!((p - 1.2 * q).abs() <= 1e-4 * scale, "{p} vs 1.2 x {q}");
         }
     }
+}
+
+/// Kinova's Jaco 2 of example-robot-data (joints 1, 4 and 6 continuous).
+const KINOVA: &str = "../data/example_robot_data/kinova/kinova.urdf";
+
+/// The lowest and highest value of each column `q1..q6` of a trajectory file.
+fn position_ranges(path: &Path) -> Vec<[f64; 2]> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut ranges = vec![[f64::INFINITY, f64::NEG_INFINITY]; 6];
+    for line in text.lines().skip(1) {
+        let row: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        for (r, q) in ranges.iter_mut().zip(&row[1..7]) {
+            *r = [r[0].min(*q), r[1].max(*q)];
+        }
+    }
+    ranges
+}
+
+/// `robid excite` on a URDF with continuous joints, whose `<limit>` lower and upper URDF
+/// ignores: each stays within ±pi of its start, with a warning that says so and how to
+/// choose another range, instead of advice to add limits the file already has.
+#[test]
+fn excite_keeps_continuous_joints_within_a_turn_of_their_start() {
+    let dir = folder();
+    let design = [
+        "--acceleration-limits",
+        "2",
+        "--duration",
+        "10",
+        "--rate",
+        "20",
+        "--restarts",
+        "1",
+        "--evaluations",
+        "20",
+    ];
+    let excite = |start: &[&str], output: &str| {
+        let output = dir.path().join(output);
+        let mut args = vec!["excite", KINOVA, "-o", output.to_str().unwrap()];
+        args.extend(design);
+        args.extend(start);
+        (robid(&args), output)
+    };
+    let (o, output) = excite(&[], "centred.csv");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    let warned: Vec<&str> = err.lines().filter(|l| l.contains("continuous")).collect();
+    assert_eq!(warned.len(), 1, "{err}");
+    assert!(
+        warned[0].starts_with(
+            "warning: joints 1 (`j2s6s200_joint_1`), 4 (`j2s6s200_joint_4`) and 6 \
+             (`j2s6s200_joint_6`) are continuous, without position limits: the design keeps \
+             each within ±pi of its start"
+        ),
+        "{}",
+        warned[0]
+    );
+    assert!(warned[0].contains("`type=\"revolute\"`"), "{}", warned[0]);
+    let ranges = position_ranges(&output);
+    for j in [0, 3, 5] {
+        let [lo, hi] = ranges[j];
+        assert!(
+            -PI <= lo && hi <= PI && hi - lo > 0.1,
+            "q{}: {lo} {hi}",
+            j + 1
+        );
+    }
+    // a start beyond ±pi is a start like any other for a joint that turns without end
+    let (o, output) = excite(&["--start", "4,3,3,-4,3,7"], "turned.csv");
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (j, centre) in [(0, 4.0), (3, -4.0), (5, 7.0)] {
+        let [lo, hi] = position_ranges(&output)[j];
+        assert!(
+            centre - PI <= lo && hi <= centre + PI,
+            "q{}: {lo} {hi}",
+            j + 1
+        );
+    }
+    // a limit a continuous joint does carry is asked for as it is
+    let text = std::fs::read_to_string(asset(KINOVA)).unwrap().replacen(
+        " velocity=\"0.628318530718\"",
+        "",
+        1,
+    );
+    let urdf = write(dir.path(), "kinova.urdf", &text);
+    let o = robid(&[
+        "excite",
+        urdf.to_str().unwrap(),
+        "-o",
+        dir.path().join("no.csv").to_str().unwrap(),
+        "--acceleration-limits",
+        "2",
+    ]);
+    fails_with(
+        &o,
+        &["joint 1 has no velocity limit; add `velocity` to its <limit> element"],
+    );
+    assert!(!stderr(&o).contains("lower"), "{}", stderr(&o));
 }

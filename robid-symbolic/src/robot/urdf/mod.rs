@@ -69,6 +69,9 @@ impl UrdfChain {
 pub struct ChainLink {
     /// The URDF joint (robid joint j).
     pub joint: String,
+    /// Whether that joint is `continuous`: it turns without end, and URDF ignores the
+    /// `lower` and `upper` of its `<limit>`, so the robot has no position limits for it.
+    pub continuous: bool,
     /// The URDF link it moves.
     pub link: String,
     /// That URDF link's frame in robid frame j.
@@ -117,6 +120,7 @@ impl Robot {
     /// let chain = Robot::from_urdf(urdf, "arm.urdf", &ChainSelection::default())?;
     /// assert_eq!(chain.robot.dof(), 2);
     /// assert_eq!(chain.links[1].joint, "elbow");
+    /// assert!(chain.links[1].continuous && chain.robot.joints()[1].limits.position.is_none());
     /// assert_eq!(chain.links[0].inertial[9], 2.0);
     /// # Ok::<(), robid_symbolic::DescriptionError>(())
     /// ```
@@ -162,8 +166,10 @@ impl Robot {
                         parameters = inertial::sum(parameters, p);
                     }
                 }
+                let joint = &urdf.joints[chain.joints[k]];
                 ChainLink {
-                    joint: urdf.joints[chain.joints[k]].name.clone(),
+                    joint: joint.name.clone(),
+                    continuous: joint.kind == xml::JointType::Continuous,
                     link: urdf.links[link].name.clone(),
                     frame: to_frame.then(&chain.in_base[link]).pose(),
                     attached: body[1..]
