@@ -28,7 +28,8 @@ pub fn to_toml(solution: &Solution, robot: &str) -> String {
     if !solution.dont_care.is_empty() {
         let _ = writeln!(
             s,
-            "# No effect on the dynamics (don't-care values): {}.",
+            "# Not from the data (no effect on the dynamics), values {}: {}.",
+            solution.method.dont_care_source(),
             solution.dont_care.join(" ")
         );
     }
@@ -281,7 +282,7 @@ mod tests {
         for want in [
             "# Physically consistent link parameters of arm (method interior-point).\n".to_string(),
             format!("# chi^2 = {:.6e} over 11 base parameters, max |z| = {z:.4} (|z| <= 1: within one std); 0.250 s.\n", s.chi2),
-            "# No effect on the dynamics (don't-care values): XY1 YZ1.\n".into(),
+            "# Not from the data (no effect on the dynamics), values from the prior: XY1 YZ1.\n".into(),
             "# bound not met: link 1: mass 2 outside [0.0, 1.9]\n".into(),
             "# at a bound: link 1: mass 2 at its upper bound 2\n".into(),
             "# Share determined by the data (1) rather than the prior (0), per link:\n".into(),
@@ -307,7 +308,7 @@ mod tests {
         bare.links[0] = None;
         let text = to_toml(&bare, "arm");
         for absent in [
-            "don't-care",
+            "Not from the data",
             "bound not met",
             "at a bound",
             "Share",

@@ -3,7 +3,9 @@
 //! a solid cylinder along its segment of the kinematic chain ([`LinkShape`]), all links of
 //! one density fitted to the identified base parameters, so that a link the data cannot
 //! weigh (the first link of most arms) gets the mass of a solid of its size at the density
-//! the other links show; without shapes it is the centre of the bounds.
+//! the other links show. Without shapes, or with shapes that give the solids no sensible
+//! size ([`Unsized`]: a chain without length, or lengths far too short for the identified
+//! inertias), it is the centre of the bounds.
 //! (docs/experiments.md#feasible-parameters)
 
 use nalgebra::DVector;
@@ -42,10 +44,63 @@ pub struct LinkShape {
 /// A segment shorter than this share of the whole chain's length is given that length
 /// (a wrist link whose frames coincide is still a body).
 const MIN_LENGTH_SHARE: f64 = 0.1;
+/// A chain shorter than this (m) gives the solids no size: a one-joint robot with
+/// a = d = 0 had specks of 1 mm, whose density the identified ZZ1 blew up to 8e15 kg/m^3
+/// and the link's mass to 9.5e5 kg.
+const MIN_CHAIN_LENGTH: f64 = 1e-3;
+/// The densest solids the default prior takes, kg/m^3: four times osmium's, room for a
+/// link bulkier than its cylinder. A denser fit means the links are too short for the
+/// identified inertias, and the masses it gives are not a body's.
+pub const MAX_DENSITY: f64 = 1e5;
 /// The default prior's weight on a drive term, relative to its weight on link parameters.
 const DRIVE_WEIGHT_SHARE: f64 = 1e-4;
 /// Radius of the solid, relative to its length.
 const RADIUS_SHARE: f64 = 0.25;
+
+/// Why the default prior cannot size the links from their shapes
+/// ([`Problem::unsized_links`]); they then take the centre of their bounds, as without
+/// shapes. `Display` says why, without the fix (the caller knows what can be given).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Unsized {
+    /// The whole chain is shorter than 1 mm: the joints' frames lie at one point and no
+    /// tool extends the last link (a single joint with a = d = 0).
+    NoLength,
+    /// Solids along the links would need this density (kg/m^3), above [`MAX_DENSITY`], to
+    /// have the identified inertias: the links are too short for them.
+    Density(f64),
+}
+
+impl std::fmt::Display for Unsized {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Unsized::NoLength => write!(
+                f,
+                "the robot's links have no length (every joint frame at one point, no tool), so \
+                 the default prior's solid links have no size"
+            ),
+            Unsized::Density(rho) => write!(
+                f,
+                "solid links along the description's segments would need a density of {rho:.1e} \
+                 kg/m^3 (more than {MAX_DENSITY:e}) to have the identified inertias: the links \
+                 are too short for them (check the description's lengths, in m), so the default \
+                 prior's solids have no sensible size"
+            ),
+        }
+    }
+}
+
+impl Problem {
+    /// Why the default prior cannot size this problem's links from their shapes, if it
+    /// cannot (`None` also without shapes: the prior is then the centre of the bounds by
+    /// the caller's choice). Callers that can ask for bounds or a prior should: the centre
+    /// of default bounds is no knowledge of the robot.
+    pub fn unsized_links(&self) -> Option<Unsized> {
+        self.shapes
+            .as_deref()
+            .and_then(|shapes| Solids::of(self, shapes).err())
+    }
+}
 
 /// The pull on each standard parameter: towards `target`, with `weight` per unit of
 /// `scale`.
@@ -70,8 +125,12 @@ impl Pull {
     ) -> Result<Pull> {
         let layout = &problem.layout;
         let ns = layout.len();
-        let (mut target, scale) = match &problem.shapes {
-            Some(shapes) => solid_prior(problem, bounds, shapes),
+        let solids = problem
+            .shapes
+            .as_deref()
+            .and_then(|shapes| Solids::of(problem, shapes).ok());
+        let (mut target, scale) = match solids {
+            Some(solids) => solid_prior(problem, bounds, &solids),
             None => (centre(layout, bounds), bounds_scales(layout, bounds)),
         };
         let mut weight = vec![default_weight; ns];
@@ -117,9 +176,10 @@ impl Pull {
     }
 }
 
-/// The length of a link for the default prior: its segment, at least
-/// [`MIN_LENGTH_SHARE`] of the chain's total.
-fn lengths(shapes: &[LinkShape]) -> Vec<f64> {
+/// The length of each link for the default prior: its segment, at least
+/// [`MIN_LENGTH_SHARE`] of the chain's total; `None` for a chain shorter than
+/// [`MIN_CHAIN_LENGTH`], which sizes nothing.
+fn lengths(shapes: &[LinkShape]) -> Option<Vec<f64>> {
     let raw: Vec<f64> = shapes
         .iter()
         .map(|s| {
@@ -130,8 +190,11 @@ fn lengths(shapes: &[LinkShape]) -> Vec<f64> {
         })
         .collect();
     let total: f64 = raw.iter().sum();
-    let floor = (MIN_LENGTH_SHARE * total).max(1e-3);
-    raw.iter().map(|l| l.max(floor)).collect()
+    if !(total >= MIN_CHAIN_LENGTH) {
+        return None;
+    }
+    let floor = MIN_LENGTH_SHARE * total;
+    Some(raw.iter().map(|l| l.max(floor)).collect())
 }
 
 /// A solid cylinder of density 1 along a link's segment (a zero segment: along z about
@@ -162,30 +225,27 @@ fn solid(shape: &LinkShape, length: f64) -> LinkInertial {
     }
 }
 
-/// The default prior from the link shapes: solids of one density, fitted to the identified
-/// base parameters (weighted least squares in the density alone), each link's mass and
-/// centre of mass then held inside its bounds; drive terms zero. Also the scales of the
-/// pull: per link its prior mass, mass times length and mass times length squared.
-fn solid_prior(problem: &Problem, bounds: &Bounds, shapes: &[LinkShape]) -> (Vec<f64>, Vec<f64>) {
+/// The default prior from the link solids: each link's mass and centre of mass held
+/// inside its bounds; drive terms zero. Also the scales of the pull: per link its prior
+/// mass, mass times length and mass times length squared.
+fn solid_prior(problem: &Problem, bounds: &Bounds, solids: &Solids) -> (Vec<f64>, Vec<f64>) {
     let layout = &problem.layout;
     let ns = layout.len();
-    let lengths = lengths(shapes);
-    let (unit, rho) = unit_solids(problem, shapes);
     let mut target = vec![0.0; ns];
     let mut scale = vec![1.0; ns];
     for (j, idx) in layout.links.iter().enumerate() {
         let b = &bounds.links[j];
-        let link = unit[j];
+        let link = solids.unit[j];
         let inside = |v: f64, r: [f64; 2]| {
             let pad = 0.05 * (r[1] - r[0]);
             v.clamp(r[0] + pad, r[1] - pad)
         };
-        let mass = inside(rho * link.mass, b.mass);
+        let mass = inside(solids.density * link.mass, b.mass);
         let com = std::array::from_fn(|i| inside(link.com[i], b.com[i]));
         let ratio = mass / link.mass;
         let inertia = link.inertia.map(|row| row.map(|v| v * ratio));
         let prior = LinkInertial { mass, com, inertia };
-        let l = lengths[j];
+        let l = solids.lengths[j];
         for (k, (s, v)) in idx.iter().zip(prior.to_standard()).enumerate() {
             target[*s] = v;
             scale[*s] = match k {
@@ -198,51 +258,76 @@ fn solid_prior(problem: &Problem, bounds: &Bounds, shapes: &[LinkShape]) -> (Vec
     (target, scale)
 }
 
-/// The solids of density 1 along the links ([`solid`]) and the density that fits them to
-/// the identified base parameters (weighted least squares in the density alone).
-fn unit_solids(problem: &Problem, shapes: &[LinkShape]) -> (Vec<LinkInertial>, f64) {
-    let layout = &problem.layout;
-    let lengths = lengths(shapes);
-    let unit: Vec<LinkInertial> = shapes
-        .iter()
-        .zip(&lengths)
-        .map(|(s, l)| solid(s, *l))
-        .collect();
-    let mut p = vec![0.0; layout.len()];
-    for (idx, link) in layout.links.iter().zip(&unit) {
-        for (s, v) in idx.iter().zip(link.to_standard()) {
-            p[*s] = v;
+/// The solids of the default prior: per link a solid of density 1 along its segment
+/// ([`solid`]) and its length, and the one density that fits them to the identified base
+/// parameters.
+struct Solids {
+    unit: Vec<LinkInertial>,
+    lengths: Vec<f64>,
+    density: f64,
+}
+
+impl Solids {
+    /// The solids along `shapes` with the density of the data (weighted least squares in
+    /// the density alone), or why they have no sensible size.
+    fn of(problem: &Problem, shapes: &[LinkShape]) -> std::result::Result<Solids, Unsized> {
+        let layout = &problem.layout;
+        let lengths = lengths(shapes).ok_or(Unsized::NoLength)?;
+        let unit: Vec<LinkInertial> = shapes
+            .iter()
+            .zip(&lengths)
+            .map(|(s, l)| solid(s, *l))
+            .collect();
+        let mut p = vec![0.0; layout.len()];
+        for (idx, link) in layout.links.iter().zip(&unit) {
+            for (s, v) in idx.iter().zip(link.to_standard()) {
+                p[*s] = v;
+            }
         }
+        // density: minimise || L^-1 (K rho p - beta) || over rho
+        let a = &problem.whitening * (&problem.k * DVector::from_column_slice(&p));
+        let b = &problem.whitening * &problem.target;
+        let rho = a.dot(&b) / a.norm_squared();
+        if rho > MAX_DENSITY {
+            return Err(Unsized::Density(rho));
+        }
+        // a density the data cannot give (a robot without gravity terms, or a poor fit):
+        // that of a hollow aluminium structure
+        let density = if rho.is_finite() && rho > 0.0 {
+            rho
+        } else {
+            1000.0
+        };
+        Ok(Solids {
+            unit,
+            lengths,
+            density,
+        })
     }
-    // density: minimise || L^-1 (K rho p - beta) || over rho
-    let a = &problem.whitening * (&problem.k * DVector::from_column_slice(&p));
-    let b = &problem.whitening * &problem.target;
-    let rho = a.dot(&b) / a.norm_squared();
-    // a density the data cannot give (a robot without gravity terms, or a poor fit): that
-    // of a hollow aluminium structure
-    let rho = if rho.is_finite() && rho > 0.0 {
-        rho
-    } else {
-        1000.0
-    };
-    (unit, rho)
 }
 
 /// Each link as the prior sees it, before any bounds: the values of `prior` where it gives
 /// all ten of the link's, else the solid of the density the data give (when the problem
-/// has shapes); `None` for a link that has neither or whose values are not a body.
+/// has shapes that size it); `None` for a link that has neither or whose values are not a
+/// body.
 pub(super) fn prior_links(problem: &Problem, prior: Option<&Prior>) -> Vec<Option<LinkInertial>> {
     let layout = &problem.layout;
-    let solids = problem.shapes.as_ref().map(|shapes| {
-        let (unit, rho) = unit_solids(problem, shapes);
-        unit.into_iter()
-            .map(|l| LinkInertial {
-                mass: rho * l.mass,
-                com: l.com,
-                inertia: l.inertia.map(|row| row.map(|v| v * rho)),
-            })
-            .collect::<Vec<_>>()
-    });
+    let solids = problem
+        .shapes
+        .as_deref()
+        .and_then(|shapes| Solids::of(problem, shapes).ok())
+        .map(|solids| {
+            let rho = solids.density;
+            solids
+                .unit
+                .into_iter()
+                .map(|l| LinkInertial {
+                    mass: rho * l.mass,
+                    com: l.com,
+                    inertia: l.inertia.map(|row| row.map(|v| v * rho)),
+                })
+                .collect::<Vec<_>>()
+        });
     (0..layout.links.len())
         .map(|j| {
             let given: Option<Vec<f64>> = prior.and_then(|p| {
@@ -419,13 +504,91 @@ mod tests {
         );
     }
 
+    /// A one-link arm whose link has the segment `to` and whose identified ZZ1 (the only
+    /// base parameter, as for one joint about the vertical with a = d = 0) is `zz`.
+    fn spinning_link(to: [f64; 3], zz: f64) -> Problem {
+        let names: Vec<String> = crate::model::Inertial::ALL
+            .iter()
+            .map(|s| format!("{}1", s.stem()))
+            .collect();
+        let mut k = nalgebra::DMatrix::zeros(1, 10);
+        k[(0, 5)] = 1.0;
+        Problem::new(names, vec!["ZZ1".into()], k)
+            .unwrap()
+            .with_target(&[zz], &[1e-4])
+            .unwrap()
+            .with_shapes(vec![LinkShape { from: [0.0; 3], to }])
+            .unwrap()
+    }
+
+    /// A chain without length sizes no solid: the link takes the centre of its bounds (and
+    /// the default bounds are not widened by it). Specks of 1 mm used to get the density
+    /// the identified ZZ1 asks of them, 8e15 kg/m^3, and the link 9.5e5 kg.
+    #[test]
+    fn a_chain_without_length_gives_the_centre_of_the_bounds() {
+        let problem = spinning_link([0.0; 3], 0.05);
+        assert_eq!(problem.unsized_links(), Some(Unsized::NoLength));
+        let wide = Bounds::wide_for(&problem, None);
+        assert_eq!(wide, Bounds::wide(1));
+        let pull = Pull::new(&problem, &wide, None, 1e-2).unwrap();
+        assert_eq!(pull.target, centre(&problem.layout, &wide));
+        assert_eq!(pull.target[9], 25.0);
+        assert_eq!(pull.scale, bounds_scales(&problem.layout, &wide));
+        assert_eq!(prior_links(&problem, None), [None]);
+        // given bounds: their centre
+        let mut bounds = Bounds::wide(1);
+        bounds.links[0].mass = [1.0, 3.0];
+        let pull = Pull::new(&problem, &bounds, None, 1e-2).unwrap();
+        assert_eq!(pull.target[9], 2.0);
+        // the same link 1 mm long (the shortest chain that sizes) is a solid again, with an
+        // inertia its size can hold (6e-15 kg m^2: 980 kg/m^3)
+        assert_eq!(spinning_link([0.0, 0.0, 1e-3], 6e-15).unsized_links(), None);
+        assert_eq!(
+            spinning_link([0.0, 0.0, 0.999e-3], 6e-15).unsized_links(),
+            Some(Unsized::NoLength)
+        );
+        let text = Unsized::NoLength.to_string();
+        assert!(text.contains("links have no length"), "{text}");
+    }
+
+    /// Solids denser than MAX_DENSITY are refused as a size: a link 1 cm long with the
+    /// identified ZZ1 of 0.05 kg m^2 needs 8.1e10 kg/m^3 (it would weigh 1.6e4 kg) and takes
+    /// the centre of its bounds; a 0.5 m link along x has a believable one (350 kg/m^3 for
+    /// 0.75 kg m^2).
+    #[test]
+    fn solids_too_dense_to_be_a_body_size_nothing() {
+        let problem = spinning_link([0.0, 0.0, 0.01], 0.05);
+        // along z: ZZ1 about the axis, m r^2 / 2 of the unit solid
+        let unit = solid(&problem.shapes.as_ref().unwrap()[0], 0.01);
+        let rho = 0.05 / unit.inertia[2][2];
+        assert!(rho > 8e10 && rho < 8.2e10, "{rho}");
+        match problem.unsized_links() {
+            Some(Unsized::Density(d)) => assert!((d / rho - 1.0).abs() < 1e-12, "{d}"),
+            other => panic!("{other:?}"),
+        }
+        let pull = Pull::new(&problem, &Bounds::wide(1), None, 1e-2).unwrap();
+        assert_eq!(pull.target[9], 25.0);
+        assert_eq!(prior_links(&problem, None), [None]);
+        let text = Unsized::Density(rho).to_string();
+        assert!(text.contains("8.1e10 kg/m^3 (more than 1e5)"), "{text}");
+        // 0.5 m along x: ZZ1 across the cylinder, m (3 r^2 + L^2) / 12 + m (L/2)^2; an
+        // identified 0.75 kg m^2 is a solid of 350 kg/m^3, 8.6 kg
+        let problem = spinning_link([0.5, 0.0, 0.0], 0.75);
+        assert_eq!(problem.unsized_links(), None);
+        let pull = Pull::new(&problem, &Bounds::wide(1), None, 1e-2).unwrap();
+        let unit = solid(&problem.shapes.as_ref().unwrap()[0], 0.5);
+        let mass = 0.75 / unit.to_standard()[5] * unit.mass;
+        assert!(mass > 8.5 && mass < 8.7, "{mass}");
+        assert!((pull.target[9] - mass).abs() < 1e-12, "{}", pull.target[9]);
+    }
+
     #[test]
     fn short_links_get_a_share_of_the_chain() {
         let seg = |l: f64| LinkShape {
             from: [0.0; 3],
             to: [0.0, 0.0, l],
         };
-        let l = lengths(&[seg(1.0), seg(0.0), seg(0.5)]);
+        let l = lengths(&[seg(1.0), seg(0.0), seg(0.5)]).unwrap();
         assert_eq!(l[0], 1.0);
         assert!((l[1] - 0.15).abs() < 1e-15 && l[2] == 0.5, "{l:?}");
     }
@@ -541,8 +704,14 @@ mod tests {
         assert!((s.inertia[2][2] - along).abs() < 1e-15);
         assert!((s.inertia[0][0] - across).abs() < 1e-15 && s.inertia[0][2] == 0.0);
         assert_eq!(s.com, [0.2; 3]);
-        // a chain of zero length: every link 1 mm
-        assert_eq!(lengths(&[point, point]), [1e-3, 1e-3]);
+        // a chain of zero length sizes nothing
+        assert_eq!(lengths(&[point, point]), None);
+    }
+
+    /// The default prior of a problem whose shapes size its solids.
+    fn solids_prior(problem: &Problem, bounds: &Bounds) -> (Vec<f64>, Vec<f64>) {
+        let shapes = problem.shapes.as_deref().unwrap();
+        solid_prior(problem, bounds, &Solids::of(problem, shapes).unwrap())
     }
 
     /// The solid's mass and centre of mass are held 5 % of their ranges inside the bounds
@@ -568,7 +737,7 @@ mod tests {
         // at 0.1 - 0.05 x 0.2 m
         bounds.links[0].mass = [1.0, 2.0];
         bounds.links[0].com[2] = [-0.1, 0.1];
-        let (target, scale) = solid_prior(&with_target(1000.0), &bounds, &[shape]);
+        let (target, scale) = solids_prior(&with_target(1000.0), &bounds);
         assert_eq!(target[9], 1.95);
         assert!((target[8] - 1.95 * 0.09).abs() < 1e-15, "{}", target[8]);
         let ratio = 1.95 / unit.mass;
@@ -584,13 +753,13 @@ mod tests {
         assert_eq!(target[10], 0.0);
         // from below: a density of 1 kg/m^3 is held at 1 + 0.05 kg, the centre at 0.3 + 0.01 m
         bounds.links[0].com[2] = [0.3, 0.5];
-        let (target, _) = solid_prior(&with_target(1.0), &bounds, &[shape]);
+        let (target, _) = solids_prior(&with_target(1.0), &bounds);
         assert_eq!(target[9], 1.05);
         assert!((target[8] - 1.05 * 0.31).abs() < 1e-15, "{}", target[8]);
         // a negative weighing or none at all (a zero density): the default density
         let wide = Bounds::wide(1);
         for rho in [-1.0, 0.0] {
-            let (target, _) = solid_prior(&with_target(rho), &wide, &[shape]);
+            let (target, _) = solids_prior(&with_target(rho), &wide);
             assert!(
                 (target[9] - 1000.0 * unit.mass).abs() < 1e-12,
                 "{}",
@@ -598,7 +767,7 @@ mod tests {
             );
         }
         // the fitted density, unclamped in wide bounds
-        let (target, _) = solid_prior(&with_target(300.0), &wide, &[shape]);
+        let (target, _) = solids_prior(&with_target(300.0), &wide);
         assert!(
             (target[9] - 300.0 * unit.mass).abs() < 1e-12,
             "{}",

@@ -32,6 +32,18 @@ impl Method {
             Method::Interior => "interior-point",
         }
     }
+
+    /// Where the values of the parameters the data do not see ([`Solution::dont_care`])
+    /// come from, for messages: the prior (the user's, else the default one), or for
+    /// `anneal`, which has no default prior, the search within the bounds.
+    pub fn dont_care_source(self) -> &'static str {
+        match self {
+            Method::Anneal => {
+                "from the prior if one is given, else from the search within the bounds"
+            }
+            Method::Sdp | Method::Cholesky | Method::Interior => "from the prior",
+        }
+    }
 }
 
 /// A complete, physically consistent set of link parameters.

@@ -18,9 +18,9 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Equality, GravityCoefficients, Prior, Problem, SdpOptions,
-    SmoothOptions, Solution, UrdfJoint, solve_anneal, solve_interior, solve_sdp, solve_smooth,
-    solve_two_step, to_toml, to_urdf,
+    AnnealOptions, Bounds, Equality, GravityCoefficients, LinkBounds, Prior, Problem, SdpOptions,
+    SmoothOptions, Solution, Unsized, UrdfJoint, solve_anneal, solve_interior, solve_sdp,
+    solve_smooth, solve_two_step, to_toml, to_urdf,
 };
 use robid_symbolic::Robot;
 use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
@@ -334,6 +334,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         default_weight,
         ..SmoothOptions::default()
     };
+    // anneal has no default prior: its stated values are the centre of the bounds anyway
+    if args.method != "anneal"
+        && let Some(reason) = problem.unsized_links()
+    {
+        unsized_links(args, &problem, &bounds, prior.as_ref(), reason)?;
+    }
     let solution = match args.method.as_str() {
         "anneal" => anneal(args, robot, &problem, &bounds, prior, extra.is_empty())?,
         "sdp" => solve_sdp(
@@ -378,8 +384,68 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             format!("; bounds not met: {}", solution.violations.join("; "))
         }
     ));
+    if !solution.dont_care.is_empty() {
+        out::warn(format_args!(
+            "not from the data (no effect on the torques), values {}: {}",
+            solution.method.dont_care_source(),
+            solution.dont_care.join(" ")
+        ));
+    }
     for at in &solution.at_bounds {
         out::warn(format_args!("warning: {at}"));
+    }
+    Ok(())
+}
+
+/// Where the default prior cannot size the links ([`Unsized`]), the links it would settle
+/// (those `prior` does not give in full) take the centre of their bounds: refused, naming
+/// the bounds entries to write, for a link whose bounds are the defaults (their centre,
+/// 25 kg, is no knowledge of the robot; a robot without length got 9.5e5 kg from specks of
+/// solid before), else said on standard error.
+fn unsized_links(
+    args: &Args,
+    problem: &Problem,
+    bounds: &Bounds,
+    prior: Option<&Prior>,
+    reason: Unsized,
+) -> Result<(), Error> {
+    let open: Vec<usize> = (0..problem.layout.links.len())
+        .filter(|&j| {
+            problem.layout.links[j]
+                .iter()
+                .any(|&s| prior.is_none_or(|p| p.standard[s].is_none()))
+        })
+        .collect();
+    let list = |links: &[usize]| {
+        let numbers: Vec<String> = links.iter().map(|j| (j + 1).to_string()).collect();
+        format!(
+            "link{} {}",
+            if links.len() == 1 { "" } else { "s" },
+            numbers.join(", ")
+        )
+    };
+    let blind: Vec<usize> = open
+        .iter()
+        .copied()
+        .filter(|&j| args.bounds.is_none() || bounds.links[j] == LinkBounds::default())
+        .collect();
+    if let Some(&first) = blind.first() {
+        return Err(format!(
+            "{}: {reason}; give ranges for {} in --bounds (e.g. `[links.{}]` with `mass = \
+             [lo, hi]`, `com = [[x0, x1], [y0, y1], [z0, z1]]`, `inertia = [lo, hi]`: the prior \
+             is their centre) or values in --prior",
+            args.robot.display(),
+            list(&blind),
+            first + 1
+        )
+        .into());
+    }
+    if let (false, Some(path)) = (open.is_empty(), &args.bounds) {
+        out::warn(format_args!(
+            "warning: {reason}; the prior of {} is the centre of the bounds in {}",
+            list(&open),
+            path.display()
+        ));
     }
     Ok(())
 }

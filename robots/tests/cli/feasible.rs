@@ -546,3 +546,111 @@ fn feasible_urdf_places_the_base_and_the_tool() {
         "{model}"
     );
 }
+
+/// One revolute joint about the vertical with a = d = 0: the link has no length and the
+/// data see only ZZ1. The default prior's solids have no size then; it used to make a speck
+/// of 1 mm at the density ZZ1 asks of it and wrote M1 = 9.5e5 kg (chi^2 5e-16). Now every
+/// convex method refuses, naming the bounds entries to give, and writes nothing; with
+/// bounds (not the defaults) or a prior for the link the run goes through, the link's
+/// prior the centre of its bounds, and the parameters the data do not see are said to
+/// come from the prior. A tool 1 cm out is a length, but far too short for the identified
+/// inertia (solids of 8.1e10 kg/m^3, 1.6e4 kg): refused the same way.
+#[test]
+fn feasible_asks_for_bounds_where_the_links_have_no_length() {
+    let dir = folder();
+    let joint = "name = \"spindle\"\nconvention = \"modified\"\ngravity = [0, 0, -9.81]\n\n\
+                 [[joints]]\nalpha = 0\na = 0\nd = 0\nlimits = { position = [-2.9, 2.9] }\n";
+    let robot = common::write(dir.path(), "spindle.toml", joint);
+    let identified = common::write(
+        dir.path(),
+        "spindle.json",
+        r#"{"parameters": [{"name": "ZZ1", "expression": "ZZ1", "value": 0.05, "std": 1e-4}]}"#,
+    );
+    let output = out(&dir, "links.toml");
+    let run = |robot: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "feasible",
+            robot.to_str().unwrap(),
+            "--identified",
+            identified.to_str().unwrap(),
+            "-o",
+            output.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        robid(&args)
+    };
+    let refusal = [
+        "spindle.toml: the robot's links have no length",
+        "give ranges for link 1 in --bounds (e.g. `[links.1]` with `mass = [lo, hi]`",
+        "or values in --prior",
+    ];
+    for method in ["interior-point", "cholesky"] {
+        fails_with(&run(&robot, &["--method", method]), &refusal);
+        assert!(!output.exists(), "{method}");
+    }
+    // a bounds file that leaves link 1 at the default ranges says nothing of its size
+    let loose = common::write(dir.path(), "loose.toml", "total_mass = [0.0, 100.0]\n");
+    fails_with(
+        &run(&robot, &["--bounds", loose.to_str().unwrap()]),
+        &refusal,
+    );
+    let bounds = common::write(
+        dir.path(),
+        "bounds.toml",
+        "[links.1]\nmass = [1.0, 3.0]\ncom = [[-0.05, 0.05], [-0.05, 0.05], [-0.05, 0.05]]\n\
+         inertia = [0.0, 0.1]\n",
+    );
+    let o = run(&robot, &["--bounds", bounds.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("; the prior of link 1 is the centre of the bounds in ")
+            && err.contains("bounds.toml"),
+        "{err}"
+    );
+    let unseen = "not from the data (no effect on the torques), values from the prior: XX1 XY1 \
+                  XZ1 YY1 YZ1 MX1 MY1 MZ1 M1";
+    assert!(err.contains(unseen), "{err}");
+    let text = std::fs::read_to_string(&output).unwrap();
+    assert!(
+        text.contains(
+            "# Not from the data (no effect on the dynamics), values from the prior: XX1 XY1 \
+             XZ1 YY1 YZ1 MX1 MY1 MZ1 M1."
+        ),
+        "{text}"
+    );
+    let v: toml::Value = toml::from_str(&text).unwrap();
+    let zz = v["standard"]["ZZ1"].as_float().unwrap();
+    assert!((zz - 0.05).abs() < 1e-6, "{zz}");
+    // the centre of the mass range (measured 2.0000006 kg)
+    let mass = masses(&output)[0];
+    assert!((mass - 2.0).abs() < 1e-3, "{mass}");
+    // a prior with all the link's values needs no bounds
+    std::fs::remove_file(&output).unwrap();
+    let prior = common::write(
+        dir.path(),
+        "prior.toml",
+        "[standard]\nXX1 = 0.04\nXY1 = 0.0\nXZ1 = 0.0\nYY1 = 0.04\nYZ1 = 0.0\nZZ1 = 0.05\n\
+         MX1 = 0.0\nMY1 = 0.0\nMZ1 = 0.0\nM1 = 1.5\n",
+    );
+    let o = run(&robot, &["--prior", prior.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mass = masses(&output)[0];
+    assert!((mass - 1.5).abs() < 1e-3, "{mass}");
+    // a tool 1 cm out: a length, too short for 0.05 kg m^2
+    let tooled = common::write(
+        dir.path(),
+        "tooled.toml",
+        &format!("{joint}\n[tool]\nxyz = [0, 0, 0.01]\n"),
+    );
+    std::fs::remove_file(&output).unwrap();
+    fails_with(
+        &run(&tooled, &[]),
+        &[
+            "tooled.toml: solid links along the description's segments would need a density \
+             of 8.1e10 kg/m^3 (more than 1e5)",
+            "give ranges for link 1 in --bounds",
+        ],
+    );
+    assert!(!output.exists());
+}
