@@ -16,6 +16,7 @@
 
 use std::path::{Path, PathBuf};
 
+use robid_runtime::Num;
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
     AnnealOptions, Bounds, Equality, GravityCoefficients, LinkBounds, Prior, Problem, SdpOptions,
@@ -237,8 +238,10 @@ fn check_solution(solution: &Solution) -> Result<(), Error> {
         .iter()
         .zip(&solution.standard)
         .find(|(_, x)| !x.is_finite())
-        .map(|(n, x)| format!("{n} = {x}"))
-        .or_else(|| (!solution.chi2.is_finite()).then(|| format!("chi^2 = {}", solution.chi2)));
+        .map(|(n, x)| format!("{n} = {}", Num(*x)))
+        .or_else(|| {
+            (!solution.chi2.is_finite()).then(|| format!("chi^2 = {}", Num(solution.chi2)))
+        });
     match bad {
         Some(what) => Err(format!(
             "the {} solution has {what}, not a finite number; nothing was written: check the \
@@ -303,8 +306,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         // a URDF's own inertials are its CAD values
         (None, Some(_)) => {
             out::warn(format_args!(
-                "prior: the URDF's own <inertial> elements (weight {weight}; --prior FILE \
-                 replaces them, --prior-weight 0 leaves the fit to the data)"
+                "prior: the URDF's own <inertial> elements (weight {}; --prior FILE \
+                 replaces them, --prior-weight 0 leaves the fit to the data)",
+                Num(weight)
             ));
             Some(Prior {
                 standard: problem
