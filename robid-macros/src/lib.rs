@@ -196,7 +196,7 @@
 //! constants (`DOF`, parameter counts and names, base-parameter expressions)
 //! and the functions `standard_regressor`, `base_regressor`,
 //! `inverse_dynamics`, `mass_matrix`, `gravity`, `coriolis` and
-//! `base_parameters`, each generic over the scalar and on fixed-size arrays.
+//! `base_from_standard`, each generic over the scalar and on fixed-size arrays.
 //! For x86-64 each also gets a private instance compiled with AVX2 and FMA, which
 //! the type's `Model::run` calls on a processor that has both (fused multiply-adds,
 //! vectorised sines and cosines; `robid_runtime::fused`); the generic functions
