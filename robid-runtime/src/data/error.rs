@@ -94,7 +94,8 @@ pub enum DataError {
     },
     /// A finite value outside the documented range of its quantity (see [`crate::limits`]).
     #[error(
-        "{location}: {what} is {value:e}, outside the accepted range |{quantity}| <= {limit:e}; repair or remove this row (a value this large is a logging, unit or export error, not a measurement)"
+        "{location}: {what} is {}, outside the accepted range |{quantity}| <= {limit:e}; repair or remove this row (a value this large is a logging, unit or export error, not a measurement)",
+        Num(*value)
     )]
     OutOfRange {
         /// Where: `file:line` of a data file, or the data set and sample.

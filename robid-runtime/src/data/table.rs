@@ -1176,6 +1176,15 @@ mod tests {
             "{text}"
         );
         assert!(t.check_range(0, "t", Quantity::Time).is_ok());
+        // the value as typed, not `2.5e3` (`{:e}`); the limit, a constant, as a power of ten
+        let t = read("T1\n20\n2500\n", &["T1"]).unwrap();
+        let e = t.check_range(0, "T1", Quantity::Temperature).unwrap_err();
+        assert!(
+            e.to_string().starts_with(
+                "mem.csv:3: column `T1` is 2500, outside the accepted range |temperature| <= 1e3;"
+            ),
+            "{e}"
+        );
     }
 
     #[test]

@@ -109,7 +109,11 @@ fn a_bad_trajectory_row_is_named_by_its_row_not_blamed_on_the_parameters() {
     }
     let e = Trajectory::read_csv(&tmp.write("traj.csv", &text), 6).unwrap_err();
     let msg = e.to_string();
-    assert!(msg.contains("traj.csv:79: column `qdd2` is 5e8"), "{msg}");
+    // as the file has it (`{}` of 5e8), not in exponent form
+    assert!(
+        msg.contains("traj.csv:79: column `qdd2` is 500000000,"),
+        "{msg}"
+    );
     // built in code: the sample and its time
     let [q, qd, mut qdd, _] = m.signals.clone();
     qdd[2][17] = f64::NAN;
