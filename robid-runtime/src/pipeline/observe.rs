@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use crate::Model;
 use crate::data::{Config, Decimation};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::estimate::{Observation, check_names};
 use crate::pipeline::Prepared;
 use crate::signal::{Decimator, Signals, moving_samples};
@@ -271,6 +271,76 @@ pub(crate) struct Equations {
     pub(crate) joint: Vec<usize>,
     /// Decimated sample of each equation.
     pub(crate) sample: Vec<usize>,
+    /// The equations before the removal of those near rest, and the fastest velocity.
+    pub(crate) rest: RestCount,
+}
+
+/// A predicted equation: joint, decimated sample, measured and predicted torque.
+pub(crate) type Predicted = (usize, usize, f64, f64);
+
+/// What removing the equations near rest (`processing.rest_velocity`) left of a record's
+/// equations: summed over blocks, checked once at the end ([`RestCount::check`]).
+#[derive(Debug, Default, Clone, Copy, PartialEq)]
+pub(crate) struct RestCount {
+    /// Equations (joint and decimated sample) before the removal.
+    pub(crate) before: usize,
+    /// Equations kept.
+    pub(crate) kept: usize,
+    /// The largest |velocity| of any joint at any decimated sample.
+    pub(crate) fastest: f64,
+}
+
+impl RestCount {
+    /// The counts of both together.
+    pub(crate) fn add(self, other: RestCount) -> RestCount {
+        RestCount {
+            before: self.before + other.before,
+            kept: self.kept + other.kept,
+            fastest: self.fastest.max(other.fastest),
+        }
+    }
+
+    /// An error naming `processing.rest_velocity` (thresholds `rest` per joint, `None`
+    /// without the removal) when the removal is why fewer than `needed` equations are
+    /// left (`purpose`: what they are for, e.g. "the 4 parameters"). Without it, the least
+    /// squares said "0 samples, at least 4 are needed" and blamed the record's length.
+    pub(crate) fn check(&self, rest: Option<&[f64]>, needed: usize, purpose: &str) -> Result<()> {
+        let Some(rest) = rest else { return Ok(()) };
+        if self.kept >= needed || self.before < needed {
+            return Ok(());
+        }
+        let value = match rest.split_first() {
+            Some((first, others)) if others.iter().all(|v| v == first) => num(*first),
+            _ => format!(
+                "[{}]",
+                rest.iter().map(|&v| num(v)).collect::<Vec<_>>().join(", ")
+            ),
+        };
+        Err(Error::setting(
+            "Config",
+            "processing.rest_velocity",
+            format!(
+                "{value} rad/s removes {} of the {} equations (a joint's samples where its \
+                 |velocity| is below it), leaving {}, fewer than {purpose}; the fastest joint \
+                 velocity is {} rad/s: lower rest_velocity below the joints' speeds, check the \
+                 velocity columns and their units (joint side, rad/s or m/s: units.angle, the \
+                 drive chain), or use a record in which the joints move",
+                self.before - self.kept,
+                self.before,
+                self.kept,
+                num(three_digits(self.fastest)),
+            ),
+        ))
+    }
+}
+
+/// `x` rounded to three significant digits: a measured value for a message.
+fn three_digits(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(2 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
 }
 
 impl Equations {
@@ -485,13 +555,17 @@ impl Observer<'_> {
             y: Vec::with_capacity(most),
             joint: Vec::with_capacity(most),
             sample: Vec::with_capacity(most),
+            rest: RestCount::default(),
         };
         let first = lo / f;
         for k in core.start / f..core.end.div_ceil(f) {
             let i = k - first;
             for j in 0..dof {
+                let speed = value(i, lay.qd(j)).abs();
+                eq.rest.before += 1;
+                eq.rest.fastest = eq.rest.fastest.max(speed);
                 if let Some(t) = rest
-                    && !(value(i, lay.qd(j)).abs() >= t[j])
+                    && !(speed >= t[j])
                 {
                     continue;
                 }
@@ -517,6 +591,7 @@ impl Observer<'_> {
                 eq.sample.push(k);
             }
         }
+        eq.rest.kept = eq.y.len();
         Ok(eq)
     }
 
@@ -524,7 +599,8 @@ impl Observer<'_> {
     /// parameter values `beta`, as [`window`](Self::window) would give them (`y` and
     /// `W beta`) but cheaper: the decimation filter is linear, so the prediction is the
     /// decimated `Y(t) beta`, and only three channels per joint (prediction, torque,
-    /// velocity) are filtered. Returns `(joint, decimated sample, measured, predicted)`.
+    /// velocity) are filtered. Returns `(joint, decimated sample, measured, predicted)`,
+    /// and what the removal of the equations near rest left.
     pub(crate) fn window_prediction(
         &self,
         dec: &Decimator,
@@ -532,7 +608,7 @@ impl Observer<'_> {
         rest: Option<&[f64]>,
         core: std::ops::Range<usize>,
         beta: &[f64],
-    ) -> Result<Vec<(usize, usize, f64, f64)>> {
+    ) -> Result<(Vec<Predicted>, RestCount)> {
         let (lay, dof) = (&self.lay, self.lay.dof);
         let n = self.signals.samples();
         let f = dec.factor();
@@ -574,18 +650,23 @@ impl Observer<'_> {
         };
         let first = lo / f;
         let mut out = Vec::new();
+        let mut count = RestCount::default();
         for k in core.start / f..core.end.div_ceil(f) {
             let i = k - first;
             for j in 0..dof {
+                let speed = value(i, 2 * dof + j).abs();
+                count.before += 1;
+                count.fastest = count.fastest.max(speed);
                 if let Some(t) = rest
-                    && !(value(i, 2 * dof + j).abs() >= t[j])
+                    && !(speed >= t[j])
                 {
                     continue;
                 }
                 out.push((j, k, value(i, dof + j), value(i, j)));
             }
         }
-        Ok(out)
+        count.kept = out.len();
+        Ok((out, count))
     }
 }
 
@@ -777,12 +858,22 @@ pub fn observe(
             })
             .collect(),
     )?;
-    let keep: Vec<Vec<usize>> = match &config.processing.rest_velocity {
-        Some(t) => moving_samples(&qd_dec, &t.values(dof, "processing.rest_velocity")?),
+    let rest = match &config.processing.rest_velocity {
+        Some(t) => Some(t.values(dof, "processing.rest_velocity")?),
+        None => None,
+    };
+    let keep: Vec<Vec<usize>> = match &rest {
+        Some(t) => moving_samples(&qd_dec, t),
         None => vec![(0..m).collect(); dof],
     };
     let total: usize = keep.iter().map(Vec::len).sum();
     let cols = lay.p + lay.e;
+    RestCount {
+        before: m * dof,
+        kept: total,
+        fastest: qd_dec.joints().flatten().fold(0.0, |a, v| a.max(v.abs())),
+    }
+    .check(rest.as_deref(), cols, &format!("the {cols} parameters"))?;
     let mut w = DMatrix::zeros(total, cols);
     let mut y = DVector::zeros(total);
     let mut joint_rows = Vec::with_capacity(dof);

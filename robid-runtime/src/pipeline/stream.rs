@@ -30,7 +30,7 @@ use crate::data::{Config, Dataset, Method, Record};
 use crate::error::{Error, Result};
 use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
 use crate::pipeline::identify::checked_plan;
-use crate::pipeline::observe::{Equations, Observer};
+use crate::pipeline::observe::{Equations, Observer, RestCount};
 use crate::pipeline::prepare::{Plan, Rows};
 use crate::pipeline::{Identification, decimator};
 use crate::signal::Decimator;
@@ -114,6 +114,11 @@ impl<'a> Stream<'a> {
     /// The total decimation factor.
     pub(crate) fn factor(&self) -> usize {
         self.dec.factor()
+    }
+
+    /// The thresholds of `processing.rest_velocity` per joint, if the config has them.
+    pub(crate) fn rest(&self) -> Option<&[f64]> {
+        self.rest.as_deref()
     }
 
     /// The blocks of processed samples, in record order.
@@ -205,7 +210,7 @@ impl<'a> Stream<'a> {
         // block, and whether it filtered the torque
         let block = |b: &Range<usize>| {
             self.in_block(b, |observer, core, lo, unfiltered| {
-                let part = observer.window_prediction(
+                let (part, count) = observer.window_prediction(
                     &self.dec,
                     self.overlap,
                     self.rest.as_deref(),
@@ -217,18 +222,20 @@ impl<'a> Stream<'a> {
                     .into_iter()
                     .map(|(j, k, y, p)| (j, k + lo / f, y, p, tau[j][k * f]))
                     .collect();
-                Ok((part, unfiltered.is_some()))
+                Ok((part, unfiltered.is_some(), count))
             })
         };
         // the blocks are independent: as many at once as there are threads (each block's
         // own work is parallel too, but reading and preparing it is not), appended in
         // record order, the earliest block's error first
         let blocks = self.blocks();
+        let mut rest = RestCount::default();
         for batch in blocks.chunks(rayon::current_num_threads().max(1)) {
             let parts: Vec<Result<_>> = batch.par_iter().map(block).collect();
             for part in parts {
-                let (part, filtered) = part?;
+                let (part, filtered, count) = part?;
                 has_raw |= filtered;
+                rest = rest.add(count);
                 for (j, k, y, p, r) in part {
                     measured[j].push(y);
                     predicted[j].push(p);
@@ -251,6 +258,7 @@ impl<'a> Stream<'a> {
             },
             samples,
             raw: has_raw.then_some(raw),
+            rest,
         })
     }
 }
@@ -262,6 +270,8 @@ struct PredictionParts {
     samples: Vec<Vec<usize>>,
     /// The torque before filtering at each, per joint.
     raw: Option<Vec<Vec<f64>>>,
+    /// What the removal of the equations near rest left.
+    rest: RestCount,
 }
 
 /// An error of a block whose prepared samples start at processed sample `lo`, placed
@@ -345,8 +355,10 @@ pub(crate) fn identify_streaming(
     let mut dominance = Dominance::new(cols);
     // equations per joint, before the pieces: the prediction's
     let mut per_joint = vec![0; dof];
+    let mut rest = RestCount::default();
     stream
         .run(|eq| {
+            rest = rest.add(eq.rest);
             for i in 0..eq.y.len() {
                 dominance.push(eq.row(i), eq.sample[i]);
                 per_joint[eq.joint[i]] += 1;
@@ -363,6 +375,8 @@ pub(crate) fn identify_streaming(
             let y: Vec<f64> = keep.iter().map(|&i| eq.y[i]).collect();
             ls.push_rows(&joint, &w, &y)
         })
+        .map_err(at)?;
+    rest.check(stream.rest(), cols, &format!("the {cols} parameters"))
         .map_err(at)?;
     if config.processing.pieces.is_some() && ls.rows() < cols {
         return Err(config.key_error(
@@ -459,6 +473,14 @@ pub(crate) fn validate_streaming(
     let dt = data.sample_time() * stream.factor() as f64;
     let mut parts = stream
         .prediction(values, dt, None)
+        .map_err(|e| located(e, config, data, kept))?;
+    parts
+        .rest
+        .check(
+            stream.rest(),
+            1,
+            &format!("the one a prediction of {} needs", data.name()),
+        )
         .map_err(|e| located(e, config, data, kept))?;
     parts.prediction = parts
         .prediction

@@ -155,6 +155,62 @@ fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
     }
 }
 
+/// A data set of `n` samples at 1 kHz in which no joint moves.
+fn at_rest(n: usize) -> Dataset {
+    let q = Signals::from_fn(DOF, n, |j, _| 0.1 * j as f64);
+    Dataset::new("still", 1e-3, q, Signals::from_fn(DOF, n, |_, _| 1.0)).unwrap()
+}
+
+/// A `processing.rest_velocity` above every joint's speed removes every equation: the
+/// error names the key at its line, its value, the count and the fix, the same in the
+/// streaming (OLS) and the dense (RLS) path, and for validation data at rest; it used to
+/// be the least squares' "0 samples, at least 48 are needed" with no place.
+#[test]
+fn rest_removal_of_every_equation_names_rest_velocity() {
+    let model = Synthetic::default();
+    let data = dataset(3000, 1000.0, 0.0);
+    let cfg = config("");
+    let text = CONFIG.replace("rest_velocity = 0.02", "rest_velocity = 1000.0");
+    let high = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("rest_velocity"))
+        .unwrap()
+        + 1;
+    let mut rls = high.clone();
+    rls.estimation.method = crate::data::Method::Rls;
+    let streamed = identify(&model, &data, &high).unwrap_err();
+    let dense = identify(&model, &data, &rls).unwrap_err();
+    let reference = crate::pipeline::identify::identify_dense_of(&model, &data, &high).unwrap_err();
+    for e in [&streamed, &dense, &reference] {
+        assert!(
+            matches!(e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
+                if key == "processing.rest_velocity" && *l == line),
+            "{e}"
+        );
+        let text = e.to_string();
+        for part in [
+            "1000 rad/s removes 1560 of the 1560 equations",
+            "leaving 0, fewer than the 48 parameters",
+            "lower rest_velocity",
+            "units.angle",
+        ] {
+            assert!(text.contains(part), "`{part}` in {text}");
+        }
+    }
+    assert_eq!(streamed.to_string(), reference.to_string());
+    // validation data in which no joint moves
+    let values = identify(&model, &data, &cfg).unwrap().estimate.values;
+    let e = validate(&model, &at_rest(3000), &cfg, &values).unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.contains("`processing.rest_velocity`: 0.02 rad/s removes")
+            && text.contains("a prediction of still needs")
+            && text.contains("leaving 0"),
+        "{text}"
+    );
+}
+
 #[test]
 fn extra_coupled_wrist_columns_are_identified() {
     // torque with TX40-style coupled-wrist terms added on joints 5 and 6

@@ -250,6 +250,18 @@ fn an_error_of_one_run_names_the_run() {
         .err()
         .unwrap();
     assert!(named(&e, &dir), "{e}");
+    // a run in which no joint moves: every equation removed by processing.rest_velocity
+    let mut still = data.clone();
+    let q = crate::signal::Signals::from_fn(DOF, 3000, |j, _| 0.1 * j as f64);
+    let tau = crate::signal::Signals::from_fn(DOF, 3000, |_, _| 1.0);
+    still[2] = crate::data::Dataset::new("run3.csv", 1e-3, q, tau).unwrap();
+    let e = identify_runs(&Synthetic::default(), &still, &config).unwrap_err();
+    assert!(named(&e, &dir), "{e}");
+    assert!(
+        e.to_string()
+            .contains("`processing.rest_velocity`: 0.02 rad/s removes"),
+        "{e}"
+    );
     // loading: a run whose file is not there
     std::fs::remove_file(dir.path().join("run3.csv")).unwrap();
     let e = load_runs(&config, DOF).unwrap_err();
