@@ -980,7 +980,10 @@ impl Config {
         if total > MAX_DECIMATION as f64 {
             return bad(
                 "processing.decimation",
-                format!("a total factor of {total:e} is more than the limit of {MAX_DECIMATION}"),
+                format!(
+                    "a total factor of {} is more than the limit of {MAX_DECIMATION}",
+                    num(total)
+                ),
             );
         }
         if let Some(r) = &p.rest_velocity {
@@ -1211,6 +1214,17 @@ method = "wls"
             e.to_string().starts_with(
                 "c.toml:13:1: `processing.rest_velocity`: 1 values for a model of 2 joints"
             ),
+            "{e}"
+        );
+        // the factor as written, not 2e4
+        let bad = EXAMPLE.replace("decimation = [2, 2]", "decimation = [100, 200]");
+        let e = Config::from_toml_str(&bad, Path::new("c.toml"))
+            .unwrap()
+            .check(2)
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("a total factor of 20000 is more than the limit of 10000"),
             "{e}"
         );
         // a config built in code is named by its fields, never as a file

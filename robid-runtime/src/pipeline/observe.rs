@@ -89,6 +89,55 @@ pub fn decimator(config: &Config) -> Result<Decimator> {
     }
 }
 
+/// The decimation configured in `[processing]` for a record of `n` samples (after
+/// `processing.range` and the trims) of `dof` joints that must give at least `needed`
+/// equations: an error at `processing.decimation` when its filters need more samples or
+/// it leaves fewer equations, with the largest factor that fits. Without it the
+/// anti-alias filter of the last stage said "3 samples, at least 28 are needed", or the
+/// least squares "3 samples, at least 4", with no key. A record too short for `needed`
+/// equations even without decimation is left to the error of what it is too short for.
+pub(crate) fn decimator_for(
+    config: &Config,
+    n: usize,
+    dof: usize,
+    needed: usize,
+) -> Result<Decimator> {
+    let dec = decimator(config)?;
+    let enough = |d: &Decimator| d.output_len(n) * dof >= needed;
+    let filtered = dec.min_len() <= n;
+    if filtered && (enough(&dec) || n * dof < needed) {
+        return Ok(dec);
+    }
+    // the largest total factor that fits (1, no filter, always filters)
+    let fits = |t: usize| {
+        Decimator::with_total(t).is_ok_and(|d| d.min_len() <= n && (enough(&d) || t == 1))
+    };
+    let best = (1..dec.factor()).rev().find(|&t| fits(t)).unwrap_or(1);
+    let problem = if filtered {
+        let m = dec.output_len(n);
+        format!(
+            "leaves {m} of the {n} samples used (after processing.range and the trims): {} \
+             equations, fewer than the {needed} parameters",
+            m * dof
+        )
+    } else {
+        format!(
+            "needs at least {} samples for its anti-alias filters, but {n} are used (after \
+             processing.range and the trims)",
+            dec.min_len()
+        )
+    };
+    Err(Error::setting(
+        "Config",
+        "processing.decimation",
+        format!(
+            "a total factor of {} {problem}; lower the factor (at most {best} for this record) \
+             or use a longer record",
+            dec.factor()
+        ),
+    ))
+}
+
 /// What building the rows of a record needs, checked once: the model, the prepared
 /// signals, the extra columns, the channel layout and the parameter names. Shared by the
 /// dense observation ([`observe`]) and the streaming one (`pipeline::stream`).
@@ -823,7 +872,7 @@ pub fn observe(
 
     // decimated channels: row-major groups (`width` channels per row, one row per
     // decimated sample); without decimation the regressor rows are used as they are
-    let dec = decimator(config)?;
+    let dec = decimator_for(config, n, dof, lay.p + lay.e)?;
     let (groups, width, m) = if dec.factor() == 1 {
         (vec![rows], a, n)
     } else {

@@ -29,10 +29,10 @@ use crate::Model;
 use crate::data::{Config, Dataset, Method, Record};
 use crate::error::{Error, Result};
 use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
+use crate::pipeline::Identification;
 use crate::pipeline::identify::checked_plan;
-use crate::pipeline::observe::{Equations, Observer, RestCount};
+use crate::pipeline::observe::{Equations, Observer, RestCount, decimator_for};
 use crate::pipeline::prepare::{Plan, Rows};
-use crate::pipeline::{Identification, decimator};
 use crate::signal::Decimator;
 use crate::validate::{Prediction, UsedRows};
 
@@ -63,18 +63,21 @@ pub(crate) struct Stream<'a> {
 
 impl<'a> Stream<'a> {
     /// The blocks of `data`'s samples kept by `plan`, with `config`'s decimation and rest
-    /// removal.
+    /// removal; `estimating`: the equations are for an estimate (at least one per
+    /// parameter), else for a prediction.
     pub(crate) fn new(
         model: &'a (dyn Model + Sync),
         data: &'a dyn Record,
         plan: &'a Plan,
         config: &'a Config,
+        estimating: bool,
     ) -> Result<Self> {
         // the parameters and channels, and the checks of the signals against the model and
         // the config, on the first sample
         let (first, _) = plan.block(data, config, 0..1)?;
         let observer = Observer::new(model, &first, config)?;
-        let dec = decimator(config)?;
+        let needed = if estimating { observer.names.len() } else { 1 };
+        let dec = decimator_for(config, plan.kept.len(), model.dof(), needed)?;
         let f = dec.factor();
         let overlap = if f == 1 {
             0
@@ -343,7 +346,7 @@ pub(crate) fn identify_streaming(
 ) -> Result<Identification> {
     let kept = &plan.kept;
     let at = |e: Error| located(e, config, data, kept);
-    let stream = Stream::new(model, data, plan, config).map_err(at)?;
+    let stream = Stream::new(model, data, plan, config, true).map_err(at)?;
     let names = stream.names().to_vec();
     let (dof, cols, factor) = (model.dof(), names.len(), stream.factor());
     let time = |k: usize| (kept.start + k * factor) as f64 * data.sample_time();
@@ -450,8 +453,8 @@ pub(crate) fn validate_streaming(
     values: &[f64],
 ) -> Result<Prediction> {
     let kept = &plan.kept;
-    let stream =
-        Stream::new(model, data, plan, config).map_err(|e| located(e, config, data, kept))?;
+    let stream = Stream::new(model, data, plan, config, false)
+        .map_err(|e| located(e, config, data, kept))?;
     let names = stream.names();
     if values.len() != names.len() {
         return Err(Error::DimensionMismatch {
@@ -509,7 +512,7 @@ pub(crate) fn stacked_streaming(
         .zip(runs)
         .enumerate()
         .map(|(i, (p, d))| {
-            Stream::new(model, d, p, config)
+            Stream::new(model, d, p, config, true)
                 .map_err(|e| in_run(i, d, located(e, config, d, &p.kept)))
         })
         .collect::<Result<Vec<_>>>()?;

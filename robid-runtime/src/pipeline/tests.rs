@@ -211,6 +211,52 @@ fn rest_removal_of_every_equation_names_rest_velocity() {
     );
 }
 
+/// A decimation too large for the record is an error at `processing.decimation` with
+/// the largest factor that fits, in the streaming (OLS) and the dense (RLS) path: when
+/// its anti-alias filters need more samples (it was "zero-phase filter: 3 samples, at
+/// least 28 are needed") and when it leaves fewer equations than parameters (it was the
+/// least squares' "36 samples, at least 48").
+#[test]
+fn a_decimation_too_large_for_the_record_names_its_key() {
+    let model = Synthetic::default();
+    let data = dataset(3000, 1000.0, 0.0);
+    for (factor, samples, expected) in [
+        (
+            "5000",
+            3000,
+            "a total factor of 5000 needs at least 27001 samples for its anti-alias filters, \
+             but 2600 are used (after processing.range and the trims); lower the factor (at \
+             most 360 for this record)",
+        ),
+        (
+            "100",
+            1000,
+            "a total factor of 100 leaves 6 of the 600 samples used (after processing.range \
+             and the trims): 36 equations, fewer than the 48 parameters; lower the factor (at \
+             most 81 for this record)",
+        ),
+    ] {
+        let data = data.slice(0, samples).unwrap();
+        let text = CONFIG.replace("decimation = 10", &format!("decimation = {factor}"));
+        let line = text
+            .lines()
+            .position(|l| l.starts_with("decimation"))
+            .unwrap()
+            + 1;
+        let mut config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+        for method in [crate::data::Method::Ols, crate::data::Method::Rls] {
+            config.estimation.method = method;
+            let e = identify(&model, &data, &config).unwrap_err();
+            assert!(
+                matches!(&e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
+                    if key == "processing.decimation" && *l == line),
+                "{e}"
+            );
+            assert!(e.to_string().contains(expected), "{method:?}: {e}");
+        }
+    }
+}
+
 #[test]
 fn extra_coupled_wrist_columns_are_identified() {
     // torque with TX40-style coupled-wrist terms added on joints 5 and 6

@@ -25,7 +25,8 @@ impl Decimator {
                 "Config",
                 "processing.decimation",
                 format!(
-                    "a total factor of {total:e} is more than the limit of {}",
+                    "a total factor of {} is more than the limit of {}",
+                    crate::num(total),
                     crate::limits::MAX_DECIMATION
                 ),
             ));
@@ -53,6 +54,21 @@ impl Decimator {
     /// The total factor.
     pub fn factor(&self) -> usize {
         self.stages.iter().map(|s| s.0).product()
+    }
+
+    /// The fewest input samples the stages can filter: a stage after stages of total
+    /// factor `r` filters `ceil(n / r)` samples, which must be more than its filter's pad
+    /// length ([`Sos::pad_length`]). 1 when no stage filters.
+    pub fn min_len(&self) -> usize {
+        let mut rate = 1;
+        let mut needed = 1;
+        for (q, sos) in &self.stages {
+            if let Some(sos) = sos {
+                needed = needed.max(sos.pad_length() * rate + 1);
+            }
+            rate *= q;
+        }
+        needed
     }
 
     /// Length of the output for an input of `n` samples.
@@ -219,6 +235,18 @@ mod tests {
                 (0.05 * k).sin() + 0.3 * (2.1 * k).sin() + 0.001 * k
             })
             .collect()
+    }
+
+    /// `min_len` is the shortest record every stage filters: one sample less fails.
+    #[test]
+    fn min_len_is_the_shortest_record_the_stages_filter() {
+        for factors in [&[10][..], &[10, 10], &[5, 1, 4]] {
+            let d = Decimator::new(factors).unwrap();
+            let n = d.min_len();
+            assert!(d.apply(&vec![1.0; n]).is_ok(), "{factors:?}");
+            assert!(d.apply(&vec![1.0; n - 1]).is_err(), "{factors:?}");
+        }
+        assert_eq!(Decimator::new(&[1]).unwrap().min_len(), 1);
     }
 
     // scipy 1.17.1: scipy.signal.decimate(x, 10) and decimate(x, 3)

@@ -133,7 +133,7 @@ fn the_blocks_hold_the_dense_equations() {
         let rows = prepare_rows(&data, &config, Rows::Estimation).unwrap();
         let dense = observe(&model, &rows.prepared, &config).unwrap();
         let plan = Plan::new(&data, &config, Rows::Estimation).unwrap();
-        let stream = Stream::new(&model, &data, &plan, &config).unwrap();
+        let stream = Stream::new(&model, &data, &plan, &config, true).unwrap();
         let mut eqs: Vec<(usize, usize, Vec<f64>, f64)> = Vec::new();
         let mut blocks = 0;
         stream
