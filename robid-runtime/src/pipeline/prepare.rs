@@ -12,7 +12,7 @@
 use crate::DataError;
 use crate::data::{Config, Cutoff, Dataset, Derivative, Record, Signal};
 use crate::drive::FrictionModel;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::inspect::{CutoffSuggestion, suggest_cutoff};
 use crate::signal::{SavitzkyGolay, Signals, Sos, butterworth_hz, central_difference};
 
@@ -257,12 +257,15 @@ impl Plan {
             }
             _ => None,
         };
-        let sos = match &p.lowpass {
-            Some(lp) => Some({
-                let cutoff = auto_cutoff
-                    .as_ref()
-                    .map_or(lp.cutoff.hz(), |s| Some(s.cutoff));
-                let cutoff = cutoff.unwrap_or_default();
+        // the low-pass's cutoff in Hz, chosen by "auto" or given
+        let cutoff = p.lowpass.as_ref().map(|lp| {
+            auto_cutoff
+                .as_ref()
+                .map_or(lp.cutoff.hz(), |s| Some(s.cutoff))
+                .unwrap_or_default()
+        });
+        let sos = match (&p.lowpass, cutoff) {
+            (Some(lp), Some(cutoff)) => Some({
                 butterworth_hz(lp.order, cutoff, 1.0 / dt).map_err(|e| match e {
                     Error::Setting { key, problem, .. } => Error::setting(
                         "Config",
@@ -280,7 +283,7 @@ impl Plan {
                     e => e,
                 })?
             }),
-            None => None,
+            _ => None,
         };
         let (pad, settle, tail) = match &sos {
             Some(s) => (
@@ -341,14 +344,58 @@ impl Plan {
         let start = (lo + t).max(settle);
         let end = hi.saturating_sub(t).min(total.saturating_sub(settle));
         if end <= start + 1 {
+            let found = end.saturating_sub(start);
+            // a Butterworth filter settles fastest near half the Nyquist frequency, and
+            // ever more slowly towards 0 and towards the Nyquist frequency: which way
+            // to move the cutoff depends on its side (it used to say "raise" always)
+            let nyquist = 0.5 / dt;
+            if let Some(c) = cutoff
+                && hi.saturating_sub(t) > lo + t + 1
+            {
+                // the trims alone leave samples: the low-pass's settling takes them
+                let (way, side) = if c > 0.5 * nyquist {
+                    ("lower", "close to the Nyquist frequency")
+                } else {
+                    ("raise", "far below the Nyquist frequency")
+                };
+                let chosen = if auto_cutoff.is_some() {
+                    format!("\"auto\" chose {} Hz, which", num(c))
+                } else {
+                    format!("{} Hz", num(c))
+                };
+                return Err(Error::setting(
+                    "Config",
+                    "processing.lowpass.cutoff",
+                    format!(
+                        "{chosen} settles over {settle} samples at each end of the record (a \
+                         cutoff {side}, {} Hz, settles slowly), which leaves {found} of the {} \
+                         samples of {} (at least 2 are needed); {way} it: the filter settles \
+                         fastest near half the Nyquist frequency, {} Hz; or use a longer record",
+                        num(nyquist),
+                        hi - lo,
+                        data.name(),
+                        num(0.5 * nyquist)
+                    ),
+                ));
+            }
             return Err(Error::TooFewSamples {
                 context: format!(
                     "{} after trimming {t} samples at each end ({settle} at the record's ends for the low-pass to settle)",
                     data.name()
                 ),
-                found: end.saturating_sub(start),
+                found,
                 required: 2,
-                hint: "reduce processing.trim, raise the low-pass cutoff or use a longer record",
+                // the trims and the range alone leave too few: the cutoff is not the cause
+                hint: match (range, rows) {
+                    (Some(_), Rows::Estimation) => {
+                        "reduce processing.trim, widen processing.range or use a longer record"
+                    }
+                    (Some(_), Rows::Validation) => {
+                        "reduce processing.trim, widen processing.validation_range or use a \
+                         longer record"
+                    }
+                    (None, _) => "reduce processing.trim or use a longer record",
+                },
             });
         }
         // the filter's memory, two differentiations (or a Savitzky-Golay window) after it

@@ -257,6 +257,52 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
     }
 }
 
+/// A low-pass whose settling takes the whole record is an error at its cutoff that says
+/// which way to move it: down for a cutoff near the Nyquist frequency (499.9 Hz at 1 kHz
+/// used to be told to "raise the low-pass cutoff", which the Nyquist frequency forbids),
+/// up for a very low one.
+#[test]
+fn a_cutoff_that_settles_over_the_record_is_moved_the_right_way() {
+    let model = Synthetic::default();
+    let data = dataset(3000, 1000.0, 0.0);
+    for (cutoff, expected) in [
+        (
+            "499.9",
+            "(a cutoff close to the Nyquist frequency, 500 Hz, settles slowly), which leaves 0 \
+             of the 3000 samples of run.csv (at least 2 are needed); lower it: the filter \
+             settles fastest near half the Nyquist frequency, 250 Hz",
+        ),
+        (
+            "0.01",
+            "(a cutoff far below the Nyquist frequency, 500 Hz, settles slowly)",
+        ),
+    ] {
+        let text = CONFIG.replace("cutoff = 20.0", &format!("cutoff = {cutoff}"));
+        let line = text.lines().position(|l| l.starts_with("lowpass")).unwrap() + 1;
+        let config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+        let e = identify(&model, &data, &config).unwrap_err();
+        assert!(
+            matches!(&e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
+                if key == "processing.lowpass.cutoff" && *l == line),
+            "{e}"
+        );
+        let text = e.to_string();
+        assert!(
+            text.contains(&format!(
+                "`processing.lowpass.cutoff`: {cutoff} Hz settles over "
+            )),
+            "{text}"
+        );
+        assert!(text.contains(expected), "{text}");
+        let way = if cutoff == "0.01" {
+            "raise it"
+        } else {
+            "lower it"
+        };
+        assert!(text.contains(way), "{text}");
+    }
+}
+
 #[test]
 fn extra_coupled_wrist_columns_are_identified() {
     // torque with TX40-style coupled-wrist terms added on joints 5 and 6
