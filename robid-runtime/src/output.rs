@@ -50,13 +50,21 @@ pub fn write_atomically(
         return Err(err(&"it is a folder; give a file name"));
     }
     if metadata.as_ref().is_some_and(|m| !m.is_file()) {
+        // a reader that stops early (`-o /dev/stdout | head`) closes a pipe: not a
+        // problem of the path, so not `Write`'s "check that the folder exists"
+        let failed = |e: std::io::Error| match e.kind() {
+            std::io::ErrorKind::BrokenPipe => Error::Output(OutputError::Closed {
+                path: path.to_path_buf(),
+            }),
+            _ => err(&e),
+        };
         let file = std::fs::OpenOptions::new()
             .write(true)
             .open(&target)
-            .map_err(|e| err(&e))?;
+            .map_err(failed)?;
         let mut w = std::io::BufWriter::new(file);
-        write(&mut w).map_err(|e| err(&e))?;
-        return w.flush().map_err(|e| err(&e));
+        write(&mut w).map_err(failed)?;
+        return w.flush().map_err(failed);
     }
     let existing = metadata.map(|m| m.permissions());
     let mut temp = temp_builder()
@@ -178,6 +186,14 @@ pub enum OutputError {
         path: PathBuf,
         /// What the writer reported.
         reason: String,
+    },
+    /// The output is a pipe (`-o /dev/stdout | head -1`) whose reader closed it before
+    /// the output was complete: the end of the conversation, not a fault of the path. A
+    /// command line ends quietly on it, as on a closed standard output.
+    #[error("{path}: output closed early by its reader (a broken pipe)")]
+    Closed {
+        /// The output, as given.
+        path: PathBuf,
     },
     /// Two outputs of one run are the same file.
     #[error(
@@ -309,6 +325,47 @@ mod tests {
         std::fs::write(&new, "x").unwrap();
         assert!(two(&same_new, &new).is_err());
         assert!(two(&new, &other).is_ok());
+    }
+
+    /// A pipe whose reader has gone is an output closed early, not a folder to check.
+    #[test]
+    #[cfg(unix)]
+    fn a_pipe_closed_by_its_reader_is_an_output_closed_early() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("out.fifo");
+        let status = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !status.is_ok_and(|s| s.success()) {
+            return; // no mkfifo on this system
+        }
+        // a reader that takes one byte and closes the pipe; the Rust runtime ignores
+        // SIGPIPE, so the writer sees EPIPE
+        let reader = fifo.clone();
+        let read = std::thread::spawn(move || {
+            use std::io::Read;
+            let mut byte = [0u8; 1];
+            let mut f = std::fs::File::open(reader).unwrap();
+            f.read_exact(&mut byte).unwrap();
+        });
+        let e = write_atomically(&fifo, |w| {
+            // more than a pipe's buffer, written until the reader has gone
+            let line = [b'x'; 4096];
+            for _ in 0..100_000 {
+                w.write_all(&line)?;
+            }
+            Ok(())
+        })
+        .unwrap_err();
+        read.join().unwrap();
+        assert!(
+            matches!(&e, Error::Output(OutputError::Closed { path }) if *path == fifo),
+            "{e}"
+        );
+        let text = e.to_string();
+        assert!(
+            text.ends_with("output closed early by its reader (a broken pipe)"),
+            "{text}"
+        );
+        assert!(!text.contains("folder"), "{text}");
     }
 
     /// A pipe is written into, not replaced, and never opened for reading: checking it

@@ -5,7 +5,9 @@
 //! failures are a [`StdoutError`]. [`stdout_failure`] turns them into the end of the program:
 //! a closed pipe (`robid torques .. | head -1`) ends it quietly with the conventional
 //! status 141 (128 + SIGPIPE), any other failure (a full disk) with a one-line message
-//! naming standard output and status 1. Messages for the user go to standard error
+//! naming standard output and status 1. An output file that is a pipe closed by its reader
+//! (`-o /dev/stdout | head -1`, `--report /dev/stdout | head`: `OutputError::Closed`)
+//! ends the same quiet way. Messages for the user go to standard error
 //! through [`warn`] and [`error`], which never fail: there is nowhere left to report
 //! a failing standard error.
 
@@ -76,8 +78,28 @@ pub(crate) fn error(e: &(dyn std::error::Error + 'static)) -> ExitCode {
     if let Some(StdoutError(io)) = e.downcast_ref::<StdoutError>() {
         return stdout_failure(io);
     }
+    if closed_early(e) {
+        return ExitCode::from(BROKEN_PIPE);
+    }
     warn(format_args!("error: {e}"));
     ExitCode::FAILURE
+}
+
+/// Whether `e` (or an error it wraps, e.g. of one run) is an output pipe closed by its
+/// reader.
+fn closed_early(e: &(dyn std::error::Error + 'static)) -> bool {
+    let mut next = Some(e);
+    while let Some(e) = next {
+        let output = match e.downcast_ref::<robid_runtime::Error>() {
+            Some(robid_runtime::Error::Output(o)) => Some(o),
+            _ => e.downcast_ref::<robid_runtime::OutputError>(),
+        };
+        if matches!(output, Some(robid_runtime::OutputError::Closed { .. })) {
+            return true;
+        }
+        next = e.source();
+    }
+    false
 }
 
 /// The exit status after standard output failed with `e` (see [`error`]).

@@ -52,6 +52,35 @@ fn a_closed_pipe_ends_the_program_quietly_with_status_141() {
     }
 }
 
+/// An output file that is the closed pipe (`-o /dev/stdout | head -1`) ends the program
+/// the same quiet way; it used to say "/dev/stdout: cannot write: Broken pipe (os error
+/// 32); check that the folder exists and is writable".
+#[cfg(target_os = "linux")]
+#[test]
+fn an_output_file_on_a_closed_pipe_ends_the_program_quietly() {
+    let dir = folder();
+    let states = ur5e_states(dir.path(), 5000);
+    let mut child = command(&[
+        "torques",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--states",
+        states.to_str().unwrap(),
+        "-o",
+        "/dev/stdout",
+    ])
+    .stdout(Stdio::piped())
+    .stderr(Stdio::piped())
+    .spawn()
+    .expect("robid starts");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("robid ends");
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(141), "{e}");
+    assert!(e.is_empty(), "a closed pipe is not an error to report: {e}");
+}
+
 #[cfg(target_os = "linux")]
 #[test]
 fn a_full_disk_is_one_line_naming_standard_output_and_status_1() {
