@@ -32,7 +32,10 @@ impl fmt::Display for Range {
     }
 }
 
-/// `x` as people write limits: `0`, `0.5`, `200`, `1e6`, `1e-9`.
+/// `x` as people write limits: `0`, `0.5`, `200`, `1e6`, `1e-9`. Not
+/// `robid_runtime::Num`, which writes a value as typed (`1000000` for 1e6, plain up to
+/// 1e15): the ranges in messages must read as in each flag's `--help` and the docs
+/// (`[0, 1e6] N m`).
 pub(crate) fn short(x: f64) -> String {
     if x == 0.0 || (1e-3..1e4).contains(&x.abs()) {
         format!("{x}")
