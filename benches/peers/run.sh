@@ -46,9 +46,13 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 # pin: the library; cmeel-eigen and cmeel-urdfdom-headers: headers pin's own wheels need
 # only to compile against it (build dependencies, not installed with pin).
-if ! "$venv/bin/pip" show pin cmeel-eigen cmeel-urdfdom-headers > /dev/null 2>&1; then
-  "$venv/bin/pip" install --quiet pin cmeel-eigen cmeel-urdfdom-headers
-fi
+# (one `pip show` per package: given several, it succeeds when any one is installed)
+for package in pin cmeel-eigen cmeel-urdfdom-headers; do
+  if ! "$venv/bin/pip" show "$package" > /dev/null 2>&1; then
+    "$venv/bin/pip" install --quiet pin cmeel-eigen cmeel-urdfdom-headers
+    break
+  fi
+done
 prefix="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/cmeel.prefix"
 pin_version="$("$venv/bin/pip" show pin | sed -n 's/^Version: //p')"
 [ -f "$prefix/include/pinocchio/algorithm/rnea.hpp" ] || {
