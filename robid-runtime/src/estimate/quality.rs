@@ -161,7 +161,7 @@ impl fmt::Display for QualityWarning {
                 write!(
                     f,
                     "{} parameter(s) with a relative standard deviation above {threshold_percent} % \
-                     (known to worse than their own size): {}",
+                     (each uncertain by more than its own size): {}",
                     parameters.len(),
                     list.join(", ")
                 )

@@ -169,7 +169,7 @@ impl Trajectory {
                 hint: "a trajectory needs at least two time stamps",
             });
         }
-        let at = |k: usize| format!("{what}, sample {k} (t = {})", self.t[k]);
+        let at = |k: usize| format!("{what}, sample {k} (t = {})", crate::Num(self.t[k]));
         if let Some(k) = Quantity::Time.first_outside(&self.t) {
             return Err(Error::Data(DataError::OutOfRange {
                 location: format!("{what}, sample {k}"),
@@ -186,7 +186,7 @@ impl Trajectory {
                 format!(
                     "{}: time does not increase (previous {})",
                     at(k),
-                    self.t[k - 1]
+                    crate::Num(self.t[k - 1])
                 ),
             ));
         }
