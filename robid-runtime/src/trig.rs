@@ -65,7 +65,6 @@ mod avx2;
 ///
 /// One angle costs the same through either (one libm `sincos` is about as dear as a
 /// call to the vector code, which cannot be inlined into code compiled without AVX2).
-#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 const VECTOR_FROM: usize = 2;
 
 /// Angles up to this magnitude take the vector path; beyond (and NaN), libm.
@@ -100,8 +99,12 @@ pub fn sin_cos<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
 /// same results. Elsewhere it is slower than [`sin_cos`].
 #[inline(always)]
 pub(crate) fn sin_cos_inlined<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    if N < VECTOR_FROM {
+        // one angle: libm's call is as cheap, and expected
+        return sin_cos_libm(x);
+    }
     #[cfg(target_arch = "x86_64")]
-    if N >= VECTOR_FROM && vector_available() {
+    if vector_available() {
         // SAFETY: `vector_available` has confirmed that the CPU executes AVX2 and FMA.
         return unsafe { avx2::sin_cos_inlined(x) };
     }
