@@ -189,3 +189,47 @@ pub fn dispatch() -> bool {
         false
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Fused, from_array, into_array};
+    use crate::Real;
+    use crate::rng::Rng;
+
+    /// The instances' sines and cosines are `trig::sin_cos`'s to the bit: the vector path
+    /// where the processor has it (which differs from libm in some last bits), libm else.
+    #[test]
+    fn sines_and_cosines_are_those_of_trig_sin_cos() {
+        let mut rng = Rng::from_state(3);
+        for _ in 0..300 {
+            let x: [f64; 5] = core::array::from_fn(|_| rng.uniform(-10.0, 10.0));
+            let (s, c) = Fused::sin_cos_array(from_array(x));
+            let (ts, tc) = crate::trig::sin_cos(x);
+            assert_eq!(into_array(s).map(f64::to_bits), ts.map(f64::to_bits));
+            assert_eq!(into_array(c).map(f64::to_bits), tc.map(f64::to_bits));
+        }
+        // one angle: libm's
+        let ([s], [c]) = Fused::sin_cos_array([Fused(0.7)]);
+        assert_eq!((s.0, c.0), libm::sincos(0.7));
+    }
+
+    #[test]
+    fn arithmetic_is_that_of_f64() {
+        let (a, b) = (Fused(1.5), Fused(-0.25));
+        assert_eq!(
+            (a + b, a - b, a * b, a / b, -a),
+            (
+                Fused(1.25),
+                Fused(1.75),
+                Fused(-0.375),
+                Fused(-6.0),
+                Fused(-1.5)
+            )
+        );
+        assert_eq!(
+            (Fused(-2.0).sign(), Fused(0.0).sign()),
+            (Fused(-1.0), Fused(0.0))
+        );
+        assert_eq!(Fused(4.0).sqrt(), Fused(2.0));
+    }
+}

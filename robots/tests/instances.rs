@@ -13,6 +13,11 @@ use robid_runtime::rng::Rng;
 #[test]
 fn avx2_instances_agree_with_the_plain_code() {
     let avx2 = fused::dispatch();
+    // taken wherever the processor has AVX2 and FMA and the build does not target them
+    let expected = cfg!(target_arch = "x86_64")
+        && !cfg!(all(target_feature = "avx2", target_feature = "fma"))
+        && robid_runtime::trig::vector_available();
+    assert_eq!(avx2, expected, "fused::dispatch()");
     let mut rng = Rng::from_state(7);
     for reference in &robots::REFERENCES {
         let model = reference.model();
