@@ -227,24 +227,85 @@ impl Problem {
             }
             cov[(i, i)] = s * s;
         }
-        self.with_covariance(values, &cov)
+        self.floored(values, cov)
     }
 
     /// Sets the identified values and their full covariance (symmetric positive definite).
     ///
-    /// Each variance gets a floor at the solvers' precision,
+    /// A variance that is not positive, an asymmetric matrix and a singular one (exactly
+    /// dependent parameters) are refused as given; then each variance gets a floor at the solvers' precision,
     /// (1e-5 |beta_i| + 1e-8 max |beta| + 1e-12)^2: values from noise-free data (std at rounding level) would otherwise make
     /// the whitened problem too ill-conditioned to solve, and a misfit below that precision
     /// meaningless. Values must be finite with magnitude at most
     /// [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER) (a larger identified value is not a
     /// physical parameter: check the identification and its warnings).
-    pub fn with_covariance(mut self, values: &[f64], covariance: &DMatrix<f64>) -> Result<Problem> {
+    pub fn with_covariance(self, values: &[f64], covariance: &DMatrix<f64>) -> Result<Problem> {
+        let nb = self.base_names.len();
+        if covariance.shape() != (nb, nb) {
+            return Err(dims("covariance entries", nb * nb, covariance.len()));
+        }
+        if covariance
+            .iter()
+            .any(|v| !(v.abs() <= MAX_PARAMETER * MAX_PARAMETER))
+        {
+            return Err(singular());
+        }
+        // The floor makes any covariance factorable, so what it would hide is refused first,
+        // on the covariance as given: a variance that is not positive (an exact value, as
+        // `with_target` refuses a zero deviation), two triangles that differ (the factor
+        // reads one), and exactly dependent parameters, decided on the correlations so that
+        // units do not matter.
+        let name = |i: usize| &self.base_names[i];
+        if let Some(i) = (0..nb).find(|&i| !(covariance[(i, i)] > 0.0)) {
+            return Err(Error::setting(
+                "Problem::with_covariance",
+                "covariance",
+                format!(
+                    "the variance of `{}` is {}; it must be positive (a zero variance would claim an exact value)",
+                    name(i),
+                    crate::error::num(covariance[(i, i)])
+                ),
+            ));
+        }
+        let spread = covariance.diagonal().map(f64::sqrt);
+        let correlation =
+            DMatrix::from_fn(nb, nb, |i, k| covariance[(i, k)] / (spread[i] * spread[k]));
+        for i in 0..nb {
+            for k in 0..i {
+                if (correlation[(i, k)] - correlation[(k, i)]).abs() > 1e-9 {
+                    return Err(Error::setting(
+                        "Problem::with_covariance",
+                        "covariance",
+                        format!(
+                            "not symmetric: ({}, {}) is {}, ({}, {}) {}; give the covariance matrix itself",
+                            name(k),
+                            name(i),
+                            crate::error::num(covariance[(k, i)]),
+                            name(i),
+                            name(k),
+                            crate::error::num(covariance[(i, k)])
+                        ),
+                    ));
+                }
+            }
+        }
+        if correlation.cholesky().is_none() {
+            return Err(Error::Singular {
+                what: "the covariance of the identified base parameters".to_owned(),
+                hint: "it must be positive definite: no combination of the parameters can be \
+                       known exactly; check how the covariance was computed",
+            });
+        }
+        self.floored(values, covariance.clone())
+    }
+
+    /// The identified values and a checked covariance (a full one, or the squares of
+    /// positive deviations, which may underflow to 0: the floor is for those), each
+    /// variance with its floor, and the whitening.
+    fn floored(mut self, values: &[f64], mut covariance: DMatrix<f64>) -> Result<Problem> {
         let nb = self.base_names.len();
         if values.len() != nb {
             return Err(dims("identified base values", nb, values.len()));
-        }
-        if covariance.shape() != (nb, nb) {
-            return Err(dims("covariance entries", nb * nb, covariance.len()));
         }
         if let Some(i) = values.iter().position(|v| !(v.abs() <= MAX_PARAMETER)) {
             return Err(Error::setting(
@@ -257,18 +318,7 @@ impl Problem {
                 ),
             ));
         }
-        let singular = || Error::Singular {
-            what: "the covariance of the identified base parameters".to_owned(),
-            hint: "every base parameter needs a positive, finite variance",
-        };
-        if covariance
-            .iter()
-            .any(|v| !(v.abs() <= MAX_PARAMETER * MAX_PARAMETER))
-        {
-            return Err(singular());
-        }
         let largest = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let mut covariance = covariance.clone();
         for (i, v) in values.iter().enumerate() {
             covariance[(i, i)] += (1e-5 * v.abs() + 1e-8 * largest + 1e-12).powi(2);
         }
@@ -299,6 +349,14 @@ impl Problem {
         (0..self.k.ncols())
             .filter(|&s| self.k.column(s).iter().all(|v| v.abs() < 1e-12))
             .collect()
+    }
+}
+
+/// A covariance that cannot be factored.
+fn singular() -> Error {
+    Error::Singular {
+        what: "the covariance of the identified base parameters".to_owned(),
+        hint: "every base parameter needs a positive, finite variance",
     }
 }
 
@@ -548,6 +606,38 @@ mod tests {
                 ..
             })
         ));
+        // the floor would make these factorable, so they are refused as given: a zero
+        // variance (an exact value, the floor's 4e-8 its deviation), two parameters
+        // exactly tied (correlation 1), and a matrix whose two triangles differ (the
+        // factor would read one of them)
+        let mut zero = cov.clone();
+        zero[(5, 5)] = 0.0;
+        let e = p.clone().with_covariance(&values, &zero).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("the variance of `ZZ1` is 0; it must be positive"),
+            "{e}"
+        );
+        let mut tied = cov.clone();
+        tied[(0, 1)] = 1e-4;
+        tied[(1, 0)] = 1e-4;
+        assert!(matches!(
+            p.clone().with_covariance(&values, &tied),
+            Err(Error::Singular { .. })
+        ));
+        let mut lopsided = cov.clone();
+        lopsided[(1, 0)] = 0.0;
+        let e = p.clone().with_covariance(&values, &lopsided).unwrap_err();
+        assert!(e.to_string().contains("not symmetric: (XX1, XY1)"), "{e}");
+        // a deviation of 1e-300 is positive, though its square underflows to 0: the floor
+        // takes it (4e-8 here)
+        let tiny = p.clone().with_target(&values, &[1e-300; 11]).unwrap();
+        assert_eq!(tiny.std[5], floor(0.0).sqrt());
+        // nearly tied is a covariance (correlation 1 - 1e-9)
+        let mut close = cov.clone();
+        close[(0, 1)] = 1e-4 * (1.0 - 1e-9);
+        close[(1, 0)] = close[(0, 1)];
+        assert!(p.clone().with_covariance(&values, &close).is_ok());
         // variances up to MAX_PARAMETER^2 (a deviation of 1e6), not beyond
         let wide = DMatrix::identity(11, 11) * 1e11;
         assert!(p.clone().with_covariance(&values, &wide).is_ok());
