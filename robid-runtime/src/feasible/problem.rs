@@ -206,7 +206,9 @@ impl Problem {
         self.with_target(&v, &s)
     }
 
-    /// Sets the identified values and their standard deviations, in base order.
+    /// Sets the identified values and their standard deviations, in base order. A
+    /// deviation of 0 is a parameter known exactly (`robid identify`'s `[known]`
+    /// parameters): it keeps the floor of [`with_covariance`](Problem::with_covariance).
     pub fn with_target(self, values: &[f64], std: &[f64]) -> Result<Problem> {
         let nb = self.base_names.len();
         let mut cov = DMatrix::zeros(nb, nb);
@@ -214,12 +216,12 @@ impl Problem {
             return Err(dims("standard deviations", nb, std.len()));
         }
         for (i, &s) in std.iter().enumerate() {
-            if !(s > 0.0 && s <= MAX_PARAMETER) {
+            if !(0.0..=MAX_PARAMETER).contains(&s) {
                 return Err(Error::setting(
                     "Problem::with_target",
                     "std",
                     format!(
-                        "the standard deviation of `{}` is {}; it must be positive and at most {MAX_PARAMETER:e} (a zero deviation would claim an exact value)",
+                        "the standard deviation of `{}` is {}; it must be at least 0 (0 for a parameter known exactly) and at most {MAX_PARAMETER:e}",
                         self.base_names[i],
                         crate::error::num(s)
                     ),
@@ -230,10 +232,14 @@ impl Problem {
         self.floored(values, cov)
     }
 
-    /// Sets the identified values and their full covariance (symmetric positive definite).
+    /// Sets the identified values and their full covariance (symmetric positive
+    /// semidefinite, singular only where a parameter is known exactly).
     ///
-    /// A variance that is not positive, an asymmetric matrix and a singular one (exactly
-    /// dependent parameters) are refused as given; then each variance gets a floor at the solvers' precision,
+    /// A parameter whose variance, row and column are all 0 is known exactly (`robid
+    /// identify`'s `[known]` parameters) and keeps just the floor below. Otherwise a
+    /// negative variance, an asymmetric matrix and a singular coupling of the other
+    /// parameters (a zero variance with nonzero covariances, exactly tied parameters) are
+    /// refused as given; then each variance gets a floor at the solvers' precision,
     /// (1e-5 |beta_i| + 1e-8 max |beta| + 1e-12)^2: values from noise-free data (std at rounding level) would otherwise make
     /// the whitened problem too ill-conditioned to solve, and a misfit below that precision
     /// meaningless. Values must be finite with magnitude at most
@@ -251,48 +257,71 @@ impl Problem {
             return Err(singular());
         }
         // The floor makes any covariance factorable, so what it would hide is refused first,
-        // on the covariance as given: a variance that is not positive (an exact value, as
-        // `with_target` refuses a zero deviation), two triangles that differ (the factor
-        // reads one), and exactly dependent parameters, decided on the correlations so that
-        // units do not matter.
+        // on the covariance as given: a negative variance, two triangles that differ (the
+        // factor reads one), and a combination of parameters known exactly though they are
+        // not (a zero variance with covariances, tied parameters), decided on the
+        // correlations so that units do not matter. A zero row and column is a parameter
+        // known exactly, which the floor is right for.
         let name = |i: usize| &self.base_names[i];
-        if let Some(i) = (0..nb).find(|&i| !(covariance[(i, i)] > 0.0)) {
-            return Err(Error::setting(
-                "Problem::with_covariance",
-                "covariance",
-                format!(
-                    "the variance of `{}` is {}; it must be positive (a zero variance would claim an exact value)",
-                    name(i),
-                    crate::error::num(covariance[(i, i)])
-                ),
-            ));
+        let setting =
+            |problem: String| Error::setting("Problem::with_covariance", "covariance", problem);
+        if let Some(i) = (0..nb).find(|&i| !(covariance[(i, i)] >= 0.0)) {
+            return Err(setting(format!(
+                "the variance of `{}` is {}; a variance is at least 0 (0 for a parameter known exactly)",
+                name(i),
+                crate::error::num(covariance[(i, i)])
+            )));
+        }
+        let known =
+            |i: usize| (0..nb).all(|k| covariance[(i, k)] == 0.0 && covariance[(k, i)] == 0.0);
+        let free: Vec<usize> = (0..nb).filter(|&i| !known(i)).collect();
+        if let Some(&i) = free.iter().find(|&&i| covariance[(i, i)] == 0.0) {
+            let k = (0..nb)
+                .find(|&k| covariance[(i, k)] != 0.0 || covariance[(k, i)] != 0.0)
+                .unwrap_or(i);
+            let c = if covariance[(i, k)] != 0.0 {
+                covariance[(i, k)]
+            } else {
+                covariance[(k, i)]
+            };
+            return Err(setting(format!(
+                "the variance of `{}` is 0 but its covariance with `{}` is {}; a parameter known exactly has no covariance (its row and column are 0), else its variance is positive",
+                name(i),
+                name(k),
+                crate::error::num(c)
+            )));
         }
         let spread = covariance.diagonal().map(f64::sqrt);
-        let correlation =
-            DMatrix::from_fn(nb, nb, |i, k| covariance[(i, k)] / (spread[i] * spread[k]));
-        for i in 0..nb {
-            for k in 0..i {
-                if (correlation[(i, k)] - correlation[(k, i)]).abs() > 1e-9 {
-                    return Err(Error::setting(
-                        "Problem::with_covariance",
-                        "covariance",
-                        format!(
-                            "not symmetric: ({}, {}) is {}, ({}, {}) {}; give the covariance matrix itself",
-                            name(k),
-                            name(i),
-                            crate::error::num(covariance[(k, i)]),
-                            name(i),
-                            name(k),
-                            crate::error::num(covariance[(i, k)])
-                        ),
-                    ));
+        let n = free.len();
+        let correlation = DMatrix::from_fn(n, n, |a, b| {
+            let (i, k) = (free[a], free[b]);
+            covariance[(i, k)] / (spread[i] * spread[k])
+        });
+        for a in 0..n {
+            for b in 0..a {
+                if (correlation[(a, b)] - correlation[(b, a)]).abs() > 1e-9 {
+                    let (i, k) = (free[a], free[b]);
+                    return Err(setting(format!(
+                        "not symmetric: ({}, {}) is {}, ({}, {}) {}; give the covariance matrix itself",
+                        name(k),
+                        name(i),
+                        crate::error::num(covariance[(k, i)]),
+                        name(i),
+                        name(k),
+                        crate::error::num(covariance[(i, k)])
+                    )));
                 }
             }
         }
-        if correlation.cholesky().is_none() {
+        if let Some(a) = first_tied(&correlation) {
             return Err(Error::Singular {
-                what: "the covariance of the identified base parameters".to_owned(),
-                hint: "it must be positive definite: no combination of the parameters can be \
+                what: format!(
+                    "the covariance of the identified base parameters (`{}` and the ones \
+                     before it have a combination of variance 0 or less)",
+                    name(free[a])
+                ),
+                hint: "apart from parameters known exactly (variance, row and column 0) it \
+                       must be positive definite: no combination of the parameters can be \
                        known exactly; check how the covariance was computed",
             });
         }
@@ -300,7 +329,7 @@ impl Problem {
     }
 
     /// The identified values and a checked covariance (a full one, or the squares of
-    /// positive deviations, which may underflow to 0: the floor is for those), each
+    /// deviations: 0 for a parameter known exactly, or a tiny one's underflow), each
     /// variance with its floor, and the whitening.
     fn floored(mut self, values: &[f64], mut covariance: DMatrix<f64>) -> Result<Problem> {
         let nb = self.base_names.len();
@@ -352,11 +381,34 @@ impl Problem {
     }
 }
 
+/// The first row of a correlation matrix that the rows before it determine: a
+/// combination of variance 0 leaves the last of its rows a Cholesky pivot of 0, or of
+/// rounding size (1e-8) when computed; a pivot below 1e-6 (a correlation of 1 - 5e-13
+/// with the rows before) is taken for 0, and so is a negative one's (not positive
+/// semidefinite).
+fn first_tied(correlation: &DMatrix<f64>) -> Option<usize> {
+    let n = correlation.nrows();
+    let mut l = DMatrix::<f64>::zeros(n, n);
+    for j in 0..n {
+        let pivot = correlation[(j, j)] - l.row(j).columns(0, j).norm_squared();
+        if !(pivot >= 1e-12) {
+            return Some(j);
+        }
+        l[(j, j)] = pivot.sqrt();
+        for i in j + 1..n {
+            let dot = l.row(i).columns(0, j).dot(&l.row(j).columns(0, j));
+            l[(i, j)] = (correlation[(i, j)] - dot) / l[(j, j)];
+        }
+    }
+    None
+}
+
 /// A covariance that cannot be factored.
 fn singular() -> Error {
     Error::Singular {
         what: "the covariance of the identified base parameters".to_owned(),
-        hint: "every base parameter needs a positive, finite variance",
+        hint: "every variance and covariance must be finite, of magnitude at most 1e12 (a \
+               deviation of at most 1e6)",
     }
 }
 
@@ -553,12 +605,13 @@ mod tests {
         );
     }
 
-    /// Deviations must be positive and finite; the variance gets the solvers' floor
-    /// (1e-5 |beta_i| + 1e-8 max |beta| + 1e-12)^2 and the whitening is the inverse factor.
+    /// Deviations must be finite, positive or 0 (known exactly); the variance gets the
+    /// solvers' floor (1e-5 |beta_i| + 1e-8 max |beta| + 1e-12)^2 and the whitening is the
+    /// inverse factor.
     #[test]
     fn the_covariance_gets_its_floor_and_whitens() {
         let p = problem(&[0.0; 11]);
-        for bad in [0.0, -1.0, f64::NAN, 2e6] {
+        for bad in [-1.0, f64::NAN, 2e6] {
             assert!(
                 p.clone().with_target(&[0.0; 11], &[bad; 11]).is_err(),
                 "{bad}"
@@ -606,18 +659,65 @@ mod tests {
                 ..
             })
         ));
-        // the floor would make these factorable, so they are refused as given: a zero
-        // variance (an exact value, the floor's 4e-8 its deviation), two parameters
-        // exactly tied (correlation 1), and a matrix whose two triangles differ (the
-        // factor would read one of them)
-        let mut zero = cov.clone();
-        zero[(5, 5)] = 0.0;
-        let e = p.clone().with_covariance(&values, &zero).unwrap_err();
+        // the floor would make these factorable, so they are refused as given: a negative
+        // variance, a zero variance with a covariance (an exact value that is not known
+        // exactly), two parameters exactly tied (correlation 1), and a matrix whose two
+        // triangles differ (the factor would read one of them)
+        let mut negative = cov.clone();
+        negative[(5, 5)] = -1e-4;
+        let e = p.clone().with_covariance(&values, &negative).unwrap_err();
         assert!(
             e.to_string()
-                .contains("the variance of `ZZ1` is 0; it must be positive"),
+                .contains("the variance of `ZZ1` is -0.0001; a variance is at least 0"),
             "{e}"
         );
+        let mut coupled = cov.clone();
+        coupled[(5, 5)] = 0.0;
+        coupled[(5, 6)] = 1e-6;
+        coupled[(6, 5)] = 1e-6;
+        let e = p.clone().with_covariance(&values, &coupled).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("the variance of `ZZ1` is 0 but its covariance with `MX1` is 1e-6"),
+            "{e}"
+        );
+        // a combination known exactly with no variance 0 nor correlation 1: XZ1 = XX1 - XY1
+        // (correlations 1/sqrt 2 and -1/sqrt 2), its pivot 0 but for rounding
+        let mut combination = cov.clone();
+        combination[(2, 2)] = 2e-4;
+        combination[(0, 1)] = 0.0;
+        combination[(1, 0)] = 0.0;
+        combination[(0, 2)] = 1e-4;
+        combination[(2, 0)] = 1e-4;
+        combination[(1, 2)] = -1e-4;
+        combination[(2, 1)] = -1e-4;
+        let e = p
+            .clone()
+            .with_covariance(&values, &combination)
+            .unwrap_err();
+        assert!(matches!(e, Error::Singular { .. }), "{e}");
+        assert!(
+            e.to_string().contains("`XZ1` and the ones before it"),
+            "{e}"
+        );
+        // a zero variance, row and column is a parameter known exactly (`robid identify`'s
+        // [known]): the floor is its deviation, here 4e-8, and the others are whitened
+        // as before
+        let mut known = cov.clone();
+        known[(5, 5)] = 0.0;
+        let got = p.clone().with_covariance(&values, &known).unwrap();
+        assert_eq!(got.std[5], floor(0.0).sqrt());
+        assert_eq!(got.std[0], (1e-4 + floor(4.0)).sqrt());
+        let mut floored = known.clone();
+        for i in 0..11 {
+            floored[(i, i)] += floor(values[i].abs());
+        }
+        let white = &got.whitening * floored * got.whitening.transpose();
+        assert!((white - DMatrix::identity(11, 11)).amax() < 1e-9);
+        let mut std = [1e-2; 11];
+        std[5] = 0.0;
+        let got = p.clone().with_target(&values, &std).unwrap();
+        assert_eq!(got.std[5], floor(0.0).sqrt());
         let mut tied = cov.clone();
         tied[(0, 1)] = 1e-4;
         tied[(1, 0)] = 1e-4;

@@ -11,8 +11,9 @@
 //! at most [`MAX_FREE_TERMS`] of them.
 //!
 //! RESULT.json is checked before use: every value finite and within +-[`VALUE_LIMIT`],
-//! every standard deviation finite, positive and at most [`VALUE_LIMIT`], each entry
-//! named in the error. The solution is checked before it is written (every value finite).
+//! every standard deviation finite, positive and at most [`VALUE_LIMIT`] (0 for an entry
+//! marked `known`: fixed by `[known]` parameters, an exact value), each entry named in the
+//! error. The solution is checked before it is written (every value finite).
 
 use std::path::{Path, PathBuf};
 
@@ -133,6 +134,9 @@ struct IdentifiedParameter {
     expression: String,
     value: f64,
     std: f64,
+    /// Fixed by known standard parameters (`estimation.known`): std 0, an exact value.
+    #[serde(default)]
+    known: bool,
 }
 
 fn read(path: &Path) -> Result<String, Error> {
@@ -191,9 +195,16 @@ fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
                 "value {} is outside +-{VALUE_LIMIT:e}",
                 short(p.value)
             ))
-        } else if !(p.std > 0.0 && p.std <= VALUE_LIMIT) {
+        } else if p.std == 0.0 && !p.known {
+            Some(
+                "std 0 claims an exact value, but the entry is not `\"known\": true` (a \
+                 parameter `robid identify` fixed by [known] values); give its deviation"
+                    .to_owned(),
+            )
+        } else if !(p.std >= 0.0 && p.std <= VALUE_LIMIT) {
             Some(format!(
-                "std {} is outside (0, {VALUE_LIMIT:e}]; a standard deviation is positive",
+                "std {} is outside [0, {VALUE_LIMIT:e}]; a standard deviation is positive (0 \
+                 for a known parameter)",
                 short(p.std)
             ))
         } else {

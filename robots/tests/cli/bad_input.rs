@@ -504,7 +504,7 @@ fn data_of_a_robot_with_more_joints_is_refused() {
 }
 
 /// The identified JSON of `feasible`: a value of 1e308 (it used to give "chi^2 = 0"), or a
-/// standard deviation of zero, or a name given twice, is named by entry; nothing is written.
+/// standard deviation of zero for an entry not marked `known`, or a negative one, or a name given twice, is named by entry; nothing is written.
 #[test]
 fn identified_values_out_of_range_are_named() {
     let dir = folder();
@@ -533,8 +533,19 @@ fn identified_values_out_of_range_are_named() {
     json["parameters"][4]["value"] = serde_json::json!(-0.46);
     json["parameters"][2]["std"] = serde_json::json!(0.0);
     let o = run(&json);
-    fails_with(&o, &["parameters[2] `Fc1`: std 0 is outside (0, 1e6]"]);
+    fails_with(
+        &o,
+        &[
+            "parameters[2] `Fc1`: std 0 claims an exact value",
+            "not `\"known\": true`",
+        ],
+    );
+    json["parameters"][2]["std"] = serde_json::json!(-0.1);
+    json["parameters"][2]["known"] = serde_json::json!(true);
+    let o = run(&json);
+    fails_with(&o, &["parameters[2] `Fc1`: std -0.1 is outside [0, 1e6]"]);
     json["parameters"][2]["std"] = serde_json::json!(0.1);
+    json["parameters"][2]["known"] = serde_json::json!(false);
     json["parameters"][7]["name"] = serde_json::json!("Fv1");
     let o = run(&json);
     fails_with(&o, &["parameters[7] `Fv1`: the name is also entry 1"]);

@@ -9,7 +9,7 @@ use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{asset, fails_with, folder, robid, stderr};
+use common::{asset, fails_with, folder, robid, stderr, write};
 
 /// A path in a test's fresh output folder.
 fn out(dir: &tempfile::TempDir, name: &str) -> PathBuf {
@@ -653,4 +653,102 @@ fn feasible_asks_for_bounds_where_the_links_have_no_length() {
         ],
     );
     assert!(!output.exists());
+}
+
+/// The workflow with known parameters (docs/identification.md, "Known parameters"): the
+/// Stanford arm simulated with torque noise, identified with `M2` and `M3` in a `[known]`
+/// file, then `feasible` on its JSON. The base parameter `M3` has no unknown term left, so
+/// the report gives it std 0 and `"known": true`: an exact value, which `feasible` reproduces
+/// (it used to refuse the entry: "std 0 ... a standard deviation is positive").
+#[test]
+fn feasible_takes_an_identification_with_known_parameters() {
+    let dir = folder();
+    let d = dir.path();
+    let mut trajectory = String::from("t,q1,q2,q3,qd1,qd2,qd3,qdd1,qdd2,qdd3\n");
+    let (w, a, c) = ([1.1, 1.7, 1.3], [1.0, 0.8, 0.2], [0.0, 0.0, 0.55]);
+    for k in 0..2000 {
+        let t = k as f64 * 5e-3;
+        let (mut q, mut qd, mut qdd) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+        for j in 0..3 {
+            let (w1, w2, phase) = (w[j], 2.9 * w[j], w[j] * t);
+            let (s1, s2) = (phase.sin(), (w2 * t + 1.0).sin());
+            let (c1, c2) = (phase.cos(), (w2 * t + 1.0).cos());
+            q[j] = c[j] + a[j] * (s1 + 0.3 * s2);
+            qd[j] = a[j] * (w1 * c1 + 0.3 * w2 * c2);
+            qdd[j] = -a[j] * (w1 * w1 * s1 + 0.3 * w2 * w2 * s2);
+        }
+        let row: Vec<String> = std::iter::once(t)
+            .chain(q)
+            .chain(qd)
+            .chain(qdd)
+            .map(|v| format!("{v:e}"))
+            .collect();
+        trajectory.push_str(&row.join(","));
+        trajectory.push('\n');
+    }
+    let trajectory = write(d, "trajectory.csv", &trajectory);
+    let data = d.join("data.csv");
+    let o = robid(&[
+        "simulate",
+        "descriptions/stanford.toml",
+        "--parameters",
+        "parameters/stanford.toml",
+        "--trajectory",
+        trajectory.to_str().unwrap(),
+        "--torque-noise",
+        "0.05",
+        "-o",
+        data.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    write(d, "known.toml", "[known]\nM2 = 5.01\nM3 = 4.25\n");
+    let config = write(
+        d,
+        "config.toml",
+        "dof = 3\ntime_column = \"t\"\n[[source]]\nposition = \"q{}\"\n\
+         velocity = \"qd{}\"\nacceleration = \"qdd{}\"\ntorque = \"tau{}\"\n\
+         [estimation]\nknown = \"known.toml\"\n",
+    );
+    let result = d.join("result.json");
+    let o = robid(&[
+        "identify",
+        "descriptions/stanford.toml",
+        "--config",
+        config.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--json",
+        result.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&result).unwrap()).unwrap();
+    let m3 = json["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "M3")
+        .expect("M3 is a base parameter");
+    assert_eq!(m3["std"], 0.0, "{m3}");
+    assert_eq!(m3["known"], true, "{m3}");
+    let links = d.join("links.toml");
+    for method in ["interior-point", "cholesky"] {
+        let o = robid(&[
+            "feasible",
+            "descriptions/stanford.toml",
+            "--identified",
+            result.to_str().unwrap(),
+            "--prior",
+            "parameters/stanford.toml",
+            "--method",
+            method,
+            "-o",
+            links.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{method}: {}", stderr(&o));
+        let v: toml::Value = toml::from_str(&std::fs::read_to_string(&links).unwrap()).unwrap();
+        let m3 = v["standard"]["M3"].as_float().unwrap();
+        // the known value within the floor of its variance, 1e-5 of it
+        assert!((m3 - 4.25).abs() < 1e-4, "{method}: M3 {m3}");
+    }
 }

@@ -78,10 +78,13 @@ fn feasible_inputs_and_outputs_are_checked() {
         text.contains(&format!("`{}` is 1e308", p.base_names[3])) && text.contains("1e6"),
         "{text}"
     );
-    // deviations: zero and infinite are refused, a tiny one is handled by the documented floor
+    // deviations: negative and infinite are refused; zero (a parameter known exactly) and a
+    // tiny one are handled by the documented floor
     let mut std = vec![0.01; n];
-    std[5] = 0.0;
+    std[5] = -0.01;
     assert!(p.clone().with_target(&base, &std).is_err());
+    std[5] = 0.0;
+    assert!(p.clone().with_target(&base, &std).is_ok());
     std[5] = f64::INFINITY;
     assert!(p.clone().with_target(&base, &std).is_err());
     std[5] = 1e-300;

@@ -26,7 +26,9 @@ fn nan_and_wrong_counts_are_rejected() {
             .with_target(&[f64::NAN, 1.0], &[0.1, 0.1])
             .is_err()
     );
-    assert!(p.clone().with_target(&[1.0, 1.0], &[0.1, 0.0]).is_err());
+    assert!(p.clone().with_target(&[1.0, 1.0], &[0.1, -0.1]).is_err());
+    // a deviation of 0 is a parameter known exactly
+    assert!(p.clone().with_target(&[1.0, 1.0], &[0.1, 0.0]).is_ok());
     assert!(matches!(
         p.clone().with_target(&[1.0], &[0.1]),
         Err(Error::DimensionMismatch { .. })
