@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::bounds::{Bounds, TENSOR_ELEMENTS};
 use super::inertial::{LinkInertial, pseudo_inertia_min_eigenvalue};
 use super::problem::Problem;
+use crate::Num;
 
 /// How the parameters were found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -87,6 +88,11 @@ pub struct Solution {
     pub iterations: usize,
 }
 
+/// A bound's range in a message, each end written short.
+fn range(r: [f64; 2]) -> String {
+    format!("[{}, {}]", Num(r[0]), Num(r[1]))
+}
+
 impl Solution {
     /// Assembles the result and its checks; a non-finite number in it is an error.
     pub(crate) fn assemble(
@@ -131,8 +137,9 @@ impl Solution {
                         let near = if bound == 0.0 { 1e-6 } else { 1e-3 } * range;
                         if (v - bound).abs() <= near {
                             at_bounds.push(format!(
-                                "link {}: {what} {v:.6e} at its {side} bound {bound}",
-                                j + 1
+                                "link {}: {what} {v:.6e} at its {side} bound {}",
+                                j + 1,
+                                Num(bound)
                             ));
                         }
                     }
@@ -150,37 +157,42 @@ impl Solution {
                 }
                 if out(l.mass, b.mass) {
                     violations.push(format!(
-                        "link {}: mass {} outside {:?}",
+                        "link {}: mass {} outside {}",
                         j + 1,
-                        l.mass,
-                        b.mass
+                        Num(l.mass),
+                        range(b.mass)
                     ));
                 }
                 for a in 0..3 {
                     if out(l.com[a], b.com[a]) {
                         violations.push(format!(
-                            "link {}: com[{a}] {} outside {:?}",
+                            "link {}: com[{a}] {} outside {}",
                             j + 1,
-                            l.com[a],
-                            b.com[a]
+                            Num(l.com[a]),
+                            range(b.com[a])
                         ));
                     }
                 }
-                for (range, (name, row, column)) in b.tensor.iter().zip(TENSOR_ELEMENTS) {
-                    let Some(r) = *range else { continue };
+                for (given, (name, row, column)) in b.tensor.iter().zip(TENSOR_ELEMENTS) {
+                    let Some(r) = *given else { continue };
                     let v = l.inertia[row][column];
                     at(format!("inertia {name}"), v, r);
                     if out(v, r) {
-                        violations
-                            .push(format!("link {}: inertia {name} {v} outside {r:?}", j + 1));
+                        violations.push(format!(
+                            "link {}: inertia {name} {} outside {}",
+                            j + 1,
+                            Num(v),
+                            range(r)
+                        ));
                     }
                 }
                 for (a, m) in l.principal_moments().iter().enumerate() {
                     if out(*m, b.inertia) {
                         violations.push(format!(
-                            "link {}: principal moment {a} {m} outside {:?}",
+                            "link {}: principal moment {a} {} outside {}",
                             j + 1,
-                            b.inertia
+                            Num(*m),
+                            range(b.inertia)
                         ));
                     }
                 }
@@ -192,7 +204,7 @@ impl Solution {
                 .map(|j| standard[layout.links[j][9]])
                 .sum();
             if total < t[0] - tol || total > t[1] + tol {
-                violations.push(format!("total mass {total} outside {t:?}"));
+                violations.push(format!("total mass {} outside {}", Num(total), range(t)));
             }
         }
         let dont_care = problem
@@ -317,16 +329,29 @@ mod tests {
         let s = assemble(&t, &bounds).unwrap();
         let v = s.violations.join("\n");
         for want in [
-            "link 1: mass 2 outside [0.0, 1.9]",
+            "link 1: mass 2 outside [0, 1.9]",
             "link 1: com[0] 0 outside [0.01, 0.5]",
             "link 1: inertia xy 0 outside [0.001, 0.01]",
             "link 1: principal moment",
-            "total mass 2 outside [0.0, 1.95]",
+            "total mass 2 outside [0, 1.95]",
         ] {
             assert!(v.contains(want), "{want} not in\n{v}");
         }
         // the moments are 0.03, 0.02, 0.015: only 0.03 is above 0.025
         assert_eq!(s.violations.len(), 5, "{v}");
+        // values are written short (a mass of 1e20 had its 21 digits)
+        let mut heavy = t;
+        heavy[9] = 1e20;
+        let mut far = Bounds::wide(1);
+        far.total_mass = Some([1e-300, 50.0]);
+        let s = assemble(&heavy, &far).unwrap();
+        let v = s.violations.join("\n");
+        for want in [
+            "link 1: mass 1e20 outside [",
+            "total mass 1e20 outside [1e-300, 50]",
+        ] {
+            assert!(v.contains(want), "{want} not in\n{v}");
+        }
         // just inside the tolerance, at the bounds
         let edge = LinkBounds {
             mass: [0.0, 2.0 - 1e-6],
