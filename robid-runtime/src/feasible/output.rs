@@ -136,7 +136,9 @@ fn xyz_rpy(pose: &[[f64; 4]; 4]) -> String {
 /// `<inertial>` (mass, centre of mass, inertia about it, placed by the link's DH frame)
 /// and the joints from the description's geometry (`joints`, one per link), with the
 /// limits it gives. A revolute joint without position limits is `continuous`; a prismatic
-/// one without them gets +-1e9 m, said in a comment. The first joint's origin is in
+/// one without them has a `<limit>` without `lower` and `upper` (URDF's default 0 and 0,
+/// which robid's reader takes for no limits; a range such as +-1e9 m would be refused
+/// by it), said in a comment. The first joint's origin is in
 /// `base_link`, the world frame (the description's base transform is part of it). With
 /// `tool`, the pose of the description's tool frame in the last joint's frame
 /// (`robid_symbolic::Robot::tool_placement`), a massless link `tool` hangs from the last
@@ -214,7 +216,7 @@ pub fn to_urdf(
             ("prismatic", None) => {
                 let _ = writeln!(
                     s,
-                    "    <!-- the description gives no position limits -->\n    <limit lower=\"-1e9\" upper=\"1e9\" effort=\"{effort:e}\" velocity=\"{velocity:e}\"/>"
+                    "    <!-- the description gives no position limits: lower and upper are left out (0 and 0, no limits for robid) -->\n    <limit effort=\"{effort:e}\" velocity=\"{velocity:e}\"/>"
                 );
             }
             _ if joint.effort.is_some() || joint.velocity.is_some() => {
@@ -386,7 +388,7 @@ mod tests {
             "<joint name=\"joint2\" type=\"continuous\">\n    <parent link=\"link1\"/>",
             "<!-- 0: the description gives no torque or no velocity limit -->\n    <limit effort=\"0e0\" velocity=\"3e0\"/>",
             "<joint name=\"joint3\" type=\"prismatic\">\n    <parent link=\"link2\"/>",
-            "<!-- the description gives no position limits -->\n    <limit lower=\"-1e9\" upper=\"1e9\" effort=\"4e1\" velocity=\"3e0\"/>",
+            "<!-- the description gives no position limits: lower and upper are left out (0 and 0, no limits for robid) -->\n    <limit effort=\"4e1\" velocity=\"3e0\"/>",
             "<joint name=\"tool_joint\" type=\"fixed\">\n    <parent link=\"link3\"/>\n    <child link=\"tool\"/>\n    <origin xyz=\"0e0 0e0 1e-1\"",
         ] {
             assert!(urdf.contains(want), "{want:?} not in\n{urdf}");

@@ -630,4 +630,37 @@ mod tests {
             .to_string();
         assert!(e.contains("chi^2 = inf"), "{e}");
     }
+
+    /// The URDF written for a DH description reads back with robid's own reader, each
+    /// joint with its kind and limits: a prismatic joint without position limits had
+    /// lower="-1e9" upper="1e9", which the reader refuses (beyond +-1000).
+    #[test]
+    fn the_urdf_of_a_description_reads_back() {
+        use robid_runtime::feasible::LinkInertial;
+        use robid_symbolic::robot::ChainSelection;
+        let text = "name = \"rrp\"\nconvention = \"modified\"\ngravity = [0, 0, -9.81]\n\
+                    [[joints]]\nalpha = 0\nd = 0.4\nlimits = { position = [-2.5, 2.5], torque = 50 }\n\
+                    [[joints]]\nalpha = \"-pi/2\"\nd = 0.15\n\
+                    [[joints]]\ntype = \"prismatic\"\nalpha = \"pi/2\"\ntheta = 0\n\
+                    limits = { velocity = 0.5 }\n";
+        let robot = Robot::from_toml(text, "rrp.toml").unwrap();
+        let body = LinkInertial {
+            mass: 2.0,
+            com: [0.0, 0.0, 0.1],
+            inertia: [[0.02, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.01]],
+        };
+        let mut s = solution(Vec::new(), 0.0);
+        s.links = vec![Some(body); 3];
+        let urdf = to_urdf(&s, robot.name(), &urdf_joints(&robot).unwrap(), None);
+        let back = Robot::from_urdf(&urdf, "rrp.urdf", &ChainSelection::default())
+            .unwrap_or_else(|e| panic!("{e}\n{urdf}"));
+        let joints = back.robot.joints();
+        assert_eq!(joints.len(), 3);
+        assert_eq!(joints[2].kind, robid_symbolic::JointKind::Prismatic);
+        assert!(back.links[1].continuous);
+        for (read, written) in joints.iter().zip(robot.joints()) {
+            assert_eq!(read.limits, written.limits);
+        }
+        assert_eq!(back.links[2].inertial[9], 2.0);
+    }
 }
