@@ -53,6 +53,8 @@ pub mod signal;
 #[cfg(feature = "std")]
 pub mod simulate;
 #[cfg(feature = "std")]
+mod toml_syntax;
+#[cfg(feature = "std")]
 pub mod validate;
 
 #[cfg(feature = "std")]

@@ -368,12 +368,8 @@ impl FrictionModel {
     /// joint from 1 to the largest once; `smoothing` may be left out); `path` names the
     /// text in errors, which give file:line:column.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<FrictionModel> {
-        let file: File = toml::from_str(text).map_err(|e| {
-            Error::Data(DataError::ConfigSyntax {
-                path: path.to_path_buf(),
-                reason: e.to_string(),
-            })
-        })?;
+        let file: File =
+            toml::from_str(text).map_err(|e| crate::toml_syntax::syntax_error(text, path, &e))?;
         let keys = KeyMap::parse(text);
         let at = |position: usize, field: &str, problem: String| {
             let key = format!("friction[{position}].{field}");

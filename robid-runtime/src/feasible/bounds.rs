@@ -216,12 +216,8 @@ impl Bounds {
     }
 
     fn parse(text: &str, path: &str, links: usize) -> Result<Bounds> {
-        let raw: Raw = toml::from_str(text).map_err(|e| {
-            Error::Data(DataError::ConfigSyntax {
-                path: path.into(),
-                reason: e.to_string(),
-            })
-        })?;
+        let raw: Raw = toml::from_str(text)
+            .map_err(|e| crate::toml_syntax::syntax_error(text, path.as_ref(), &e))?;
         // each table's ranges at their own keys first: a mistake in [default] is not a
         // mistake of the first link that inherits it
         if let Some(d) = &raw.default {

@@ -223,12 +223,8 @@ impl Flexibility {
 
     /// Reads the text of a joint-flexibility file, naming it `path` in errors.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Flexibility> {
-        let file: File = toml::from_str(text).map_err(|e| {
-            Error::Data(DataError::ConfigSyntax {
-                path: path.to_path_buf(),
-                reason: e.to_string(),
-            })
-        })?;
+        let file: File =
+            toml::from_str(text).map_err(|e| crate::toml_syntax::syntax_error(text, path, &e))?;
         let keys = KeyMap::parse(text);
         let at = |key: String, problem: String| {
             let (line, column) = keys.find(&key).unzip();

@@ -1,0 +1,179 @@
+//! TOML syntax errors of robid's own files (friction, flexibility, bounds) said for people:
+//! toml's message for a key or table given twice is only "duplicate key", so it is named
+//! at its second place with what to do.
+
+use std::path::Path;
+
+use crate::{DataError, Error};
+
+/// A key or table header given a second time in a TOML text, read from toml's error.
+/// (`data::parameters` has its own copy of this, with its own wording, to join here.)
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Duplicate<'a> {
+    /// The key as written at its second place (`viscous`, `links.2`).
+    pub(crate) key: &'a str,
+    /// A table header (`[default]`) rather than a key.
+    pub(crate) table: bool,
+    /// Byte offset of the second place.
+    pub(crate) offset: usize,
+}
+
+impl Duplicate<'_> {
+    /// What is wrong and what to do, after the key.
+    pub(crate) fn problem(&self) -> &'static str {
+        if self.table {
+            "this table is given a second time; TOML allows each table once: merge the two \
+             into one"
+        } else {
+            "given a second time in this table; each key may be given once: delete the one \
+             not meant"
+        }
+    }
+}
+
+/// The key or table that toml's error `e` on `text` finds given twice, if that is the error.
+pub(crate) fn duplicate<'a>(text: &'a str, e: &toml::de::Error) -> Option<Duplicate<'a>> {
+    if e.message().trim() != "duplicate key" {
+        return None;
+    }
+    let span = e.span()?;
+    let key = text.get(span.clone())?;
+    let line_start = text.get(..span.start)?.rfind('\n').map_or(0, |i| i + 1);
+    let before = &text[line_start..span.start];
+    if !before.trim_start().starts_with('[') {
+        return Some(Duplicate {
+            key,
+            table: false,
+            offset: span.start,
+        });
+    }
+    // the span of a dotted header ([links.2]) is its last part: the header is named whole
+    let start = line_start + before.find('[')? + 1;
+    let end = start + text[start..].find(']')?;
+    let header = &text[start..end];
+    Some(Duplicate {
+        key: header.trim(),
+        table: true,
+        offset: start + (header.len() - header.trim_start().len()),
+    })
+}
+
+/// 1-based line and column (in characters) of byte `offset` of `text`.
+pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = text.get(..offset).unwrap_or(text);
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    (line, before[start..].chars().count() + 1)
+}
+
+/// The error of the TOML file `path` (its text `text`) that toml could not read: a key or
+/// table given twice is named at its second place with the fix (`friction.toml:4:1:
+/// `viscous`: given a second time in this table; ..`); anything else keeps toml's message,
+/// which has its line and column.
+pub(crate) fn syntax_error(text: &str, path: &Path, e: &toml::de::Error) -> Error {
+    match duplicate(text, e) {
+        Some(d) => {
+            let (line, column) = line_column(text, d.offset);
+            Error::Data(DataError::ConfigKey {
+                path: path.to_path_buf(),
+                line: Some(line),
+                column: Some(column),
+                key: if d.table {
+                    format!("[{}]", d.key)
+                } else {
+                    d.key.to_owned()
+                },
+                problem: d.problem().to_owned(),
+            })
+        }
+        None => Error::Data(DataError::ConfigSyntax {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error(text: &str) -> toml::de::Error {
+        toml::from_str::<toml::Table>(text).unwrap_err()
+    }
+
+    /// A key or a table given twice is found at its second place; other errors are not
+    /// duplicates.
+    #[test]
+    fn a_key_or_table_given_twice_is_found_at_its_second_place() {
+        let text = "[default]\nmass = [0, 1]\ninertia = [0, 1]\nmass = [0, 2]\n";
+        let d = duplicate(text, &error(text)).unwrap();
+        assert_eq!((d.key, d.table), ("mass", false));
+        assert_eq!(line_column(text, d.offset), (4, 1));
+        let e = syntax_error(text, "b.toml".as_ref(), &error(text)).to_string();
+        assert_eq!(
+            e,
+            "b.toml:4:1: `mass`: given a second time in this table; each key may be given \
+             once: delete the one not meant"
+        );
+        let text = "[links.2]\nmass = [0, 1]\n[links.2]\ncom = [0, 1]\n";
+        let d = duplicate(text, &error(text)).unwrap();
+        assert!(d.table, "{d:?}");
+        let e = syntax_error(text, "b.toml".as_ref(), &error(text)).to_string();
+        assert!(
+            e.starts_with("b.toml:3:")
+                && e.contains("`[links.2]`: this table is given a second time"),
+            "{e}"
+        );
+        let text = "[default]\nmass = \n";
+        assert_eq!(duplicate(text, &error(text)), None);
+        let e = syntax_error(text, "b.toml".as_ref(), &error(text)).to_string();
+        assert!(
+            e.starts_with("b.toml: invalid config: TOML parse error at line 2"),
+            "{e}"
+        );
+        let text = "a = 1\nµb = 2\n";
+        assert_eq!(line_column(text, text.find('b').unwrap()), (2, 2));
+    }
+
+    /// Each file read through [`syntax_error`] names a key given twice at its place (they
+    /// showed toml's bare "duplicate key").
+    #[test]
+    fn robids_files_name_a_key_given_twice() {
+        use crate::drive::FrictionModel;
+        use crate::feasible::Bounds;
+        use crate::simulate::Flexibility;
+        let friction = "[[friction]]\njoint = 1\ncoulomb = 1.0\nload = 0.0\nstribeck = 0.0\n\
+                        stribeck_velocity = 1.0\nviscous = 0.5\ncoulomb_temperature = 0.0\n\
+                        viscous_temperature = 0.0\nviscous = 0.7\nreference_temperature = 25.0\n";
+        let flexibility = "[temperature]\nstart = 25.0\nend = 40.0\ntime_constant = 600.0\n\
+                           [[joint]]\njoint = 1\ngear_ratio = 101.0\nrotor_inertia = 0.2\n\
+                           torque_constant = 0.12\nstiffness = 3.0e4\nhardening = 2.0e9\n\
+                           damping = 30.0\nfriction = { coulomb = 4.0, load = 0.02, \
+                           stribeck = 1.0, stribeck_velocity = 0.05, viscous = 6.0, \
+                           coulomb_temperature = 0.005, viscous_temperature = 0.01, \
+                           reference_temperature = 25.0, viscous = 7.0 }\n";
+        let bounds = "[default]\nmass = [0.0, 1.0]\n[links.1]\nmass = [0.0, 2.0]\n\
+                      [default]\ninertia = [0.0, 1.0]\n";
+        let cases: [(&str, Error, &str); 3] = [
+            (
+                "friction",
+                FrictionModel::from_toml_str(friction, "f.toml".as_ref()).unwrap_err(),
+                "f.toml:10:1: `viscous`: given a second time in this table",
+            ),
+            (
+                "flexibility",
+                Flexibility::from_toml_str(flexibility, "flex.toml".as_ref()).unwrap_err(),
+                "flex.toml:13:186: `viscous`: given a second time in this table",
+            ),
+            (
+                "bounds",
+                Bounds::from_toml(bounds, "b.toml", 1).unwrap_err(),
+                "b.toml:5:2: `[default]`: this table is given a second time",
+            ),
+        ];
+        for (file, e, want) in cases {
+            let e = e.to_string();
+            assert!(e.starts_with(want), "{file}: {e}");
+        }
+    }
+}
