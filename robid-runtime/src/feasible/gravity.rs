@@ -209,7 +209,10 @@ impl GravityCoefficients {
         let gl = &self.map * l;
         let covariance = &gl * gl.transpose();
         let target: Vec<f64> = (&self.map * &full.target).iter().copied().collect();
-        let problem = problem.with_covariance(&target, &covariance)?;
+        // G Sigma G' of a floored covariance is positive definite, though as ill-conditioned
+        // as Sigma (a parameter known exactly has the floor's variance beside deviations of
+        // 1e3): with_covariance's test for exact combinations is for covariances as given
+        let problem = problem.floored(&target, covariance)?;
         match &full.shapes {
             Some(shapes) => problem.with_shapes(shapes.clone()),
             None => Ok(problem),
@@ -407,6 +410,23 @@ mod tests {
             p.std
         );
         assert!(p.shapes.is_some());
+        // parameters known exactly (deviation 0, the floor's variance) beside a loose one:
+        // the coefficients A + B and A + 2 C are correlated to 1 - 1e-16, yet a covariance
+        let loose = Problem::new(
+            p.standard_names.clone(),
+            ["A", "B", "C"].map(String::from).to_vec(),
+            k.rows(0, 3).into_owned(),
+        )
+        .unwrap()
+        .with_target(&[1.0, 0.5, -2.0], &[1e3, 0.0, 0.0])
+        .unwrap();
+        let tied = GravityCoefficients {
+            names: vec!["A".into(), "A2".into()],
+            kept: vec![0, 0],
+            map: DMatrix::from_row_slice(2, 3, &[1.0, 1.0, 0.0, 1.0, 0.0, 2.0]),
+        };
+        let p = tied.problem(&loose).unwrap();
+        assert!((p.target[0] - 1.5).abs() < 1e-12 && (p.target[1] + 3.0).abs() < 1e-12);
         let wrong = problem(&[0.0; 11]);
         assert!(matches!(
             g.problem(&wrong),

@@ -328,10 +328,14 @@ impl Problem {
         self.floored(values, covariance.clone())
     }
 
-    /// The identified values and a checked covariance (a full one, or the squares of
-    /// deviations: 0 for a parameter known exactly, or a tiny one's underflow), each
-    /// variance with its floor, and the whitening.
-    fn floored(mut self, values: &[f64], mut covariance: DMatrix<f64>) -> Result<Problem> {
+    /// The identified values and a checked covariance (a full one, the squares of
+    /// deviations: 0 for a parameter known exactly, or a tiny one's underflow, or one mapped
+    /// from a floored covariance), each variance with its floor, and the whitening.
+    pub(crate) fn floored(
+        mut self,
+        values: &[f64],
+        mut covariance: DMatrix<f64>,
+    ) -> Result<Problem> {
         let nb = self.base_names.len();
         if values.len() != nb {
             return Err(dims("identified base values", nb, values.len()));
