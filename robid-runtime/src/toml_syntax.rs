@@ -1,13 +1,13 @@
-//! TOML syntax errors of robid's own files (friction, flexibility, bounds) said for people:
-//! toml's message for a key or table given twice is only "duplicate key", so it is named
-//! at its second place with what to do.
+//! TOML syntax errors of robid's own files (friction, flexibility, bounds, parameters) said
+//! for people: toml's message for a key or table given twice is only "duplicate key", so
+//! it is named at its second place with what to do.
 
 use std::path::Path;
 
 use crate::{DataError, Error};
 
-/// A key or table header given a second time in a TOML text, read from toml's error.
-/// (`data::parameters` has its own copy of this, with its own wording, to join here.)
+/// A key or table header given a second time in a TOML text, read from toml's error
+/// (parameter files word their message in their own terms from it).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Duplicate<'a> {
     /// The key as written at its second place (`viscous`, `links.2`).

@@ -488,28 +488,21 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
     })
 }
 
-/// The message of a TOML syntax error. toml says only "duplicate key" for a key or table
-/// given twice; its span holds the key, so the message names it and says what to do.
+/// The message of a TOML syntax error: a key or table given twice is named with what to
+/// do ([`crate::toml_syntax::duplicate`]), toml saying only "duplicate key".
 fn syntax_message(text: &str, e: &toml::de::Error) -> String {
-    let message = e.message().trim();
-    let key = e
-        .span()
-        .filter(|_| message == "duplicate key")
-        .and_then(|span| Some((text.get(span.clone())?, span.start)));
-    let Some((key, start)) = key else {
-        return format!("not valid TOML: {message}");
-    };
-    let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
-    if text[line_start..start].trim_start().starts_with('[') {
-        format!(
-            "not valid TOML: the table [{key}] is given a second time; a parameter file holds \
-             one table: merge the two into one"
-        )
-    } else {
-        format!(
-            "not valid TOML: `{key}` is given a second time in this table; each parameter may \
-             be given once: delete the one not meant"
-        )
+    match crate::toml_syntax::duplicate(text, e) {
+        Some(d) if d.table => format!(
+            "not valid TOML: the table [{}] is given a second time; a parameter file holds \
+             one table: merge the two into one",
+            d.key
+        ),
+        Some(d) => format!(
+            "not valid TOML: `{}` is given a second time in this table; each parameter may \
+             be given once: delete the one not meant",
+            d.key
+        ),
+        None => format!("not valid TOML: {}", e.message().trim()),
     }
 }
 
