@@ -97,10 +97,8 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
                     quote!(_)
                 }
             });
-            let early = (0..group.len()).any(|k| match input_value(program, g, k) {
-                Value::Input(i) => before_batch[i as usize],
-                _ => false,
-            });
+            let first: usize = program.inputs[..g].iter().map(|g| g.len()).sum();
+            let early = before_batch[first..first + group.len()].contains(&true);
             let binding = quote! { let [#(#names),*] = *#arg; };
             if early {
                 bindings.push(binding);
