@@ -34,8 +34,9 @@ pub(crate) struct Args {
     /// Duration x rate is at most 1e6 samples.
     #[arg(long, default_value_t = 30.0, value_parser = real(positive(1e6, "s")))]
     duration: f64,
-    /// Sample rate of the output in (0, 1e6] Hz.
-    #[arg(long, default_value_t = 500.0, value_parser = real(positive(1e6, "Hz")))]
+    /// Sample rate of the output in [0.001, 1e6] Hz. Duration x rate is at least 2 (three
+    /// samples: both ends and one between).
+    #[arg(long, default_value_t = 500.0, value_parser = real(closed(1e-3, 1e6, "Hz")))]
     rate: f64,
     /// Seed of the random starts (0 to 2^64 - 1).
     #[arg(long, default_value_t = 1)]
@@ -129,10 +130,11 @@ fn check(args: &Args) -> Result<(), Error> {
                 * args.base_frequency.unwrap_or(BASE_FREQUENCY);
             if 2.0 * highest >= args.rate {
                 return Err(format!(
-                    "--rate {} Hz is too low for the highest harmonic ({highest} Hz = --harmonics \
+                    "--rate {} Hz is too low for the highest harmonic ({} Hz = --harmonics \
                      x --base-frequency): sample at more than twice its frequency, or lower \
                      --harmonics or --base-frequency",
-                    args.rate
+                    num(args.rate),
+                    num(highest)
                 )
                 .into());
             }

@@ -6,6 +6,8 @@
 
 use std::fmt;
 
+use robid_runtime::num;
+
 use super::Error;
 
 /// The most samples `robid excite` writes (`--duration` x `--rate`): a million rows of
@@ -112,19 +114,35 @@ pub(crate) fn count(
     }
 }
 
-/// Refuses a sampling of `duration` s at `rate` Hz with more than [`MAX_SAMPLES`]
-/// samples, before anything is allocated.
+/// The fewest samples of a trajectory `robid excite` writes: both ends, at rest, and one
+/// between (`robid_runtime::excite`'s sampling asks for as many).
+pub(crate) const MIN_SAMPLES: f64 = 3.0;
+
+/// Refuses a sampling of `duration` s at `rate` Hz (t = 0, 1/rate, .., duration: the
+/// rounded product plus one samples) with more than [`MAX_SAMPLES`] samples, before
+/// anything is allocated, or with fewer than [`MIN_SAMPLES`], before the design is
+/// optimised for a trajectory that cannot be written.
 pub(crate) fn check_samples(duration: f64, rate: f64) -> Result<(), Error> {
     let samples = duration * rate;
-    if samples.is_finite() && samples <= MAX_SAMPLES {
-        return Ok(());
+    let (d, r) = (num(duration), num(rate));
+    if !(samples.is_finite() && samples <= MAX_SAMPLES) {
+        return Err(format!(
+            "--duration {d} s at --rate {r} Hz gives {} samples, more than the limit of \
+             {MAX_SAMPLES:e}; shorten --duration or lower --rate",
+            short(samples)
+        )
+        .into());
     }
-    Err(format!(
-        "--duration {duration} s at --rate {rate} Hz gives {} samples, more than the \
-         limit of {MAX_SAMPLES:e}; shorten --duration or lower --rate",
-        short(samples)
-    )
-    .into())
+    let count = samples.round() + 1.0;
+    if count < MIN_SAMPLES {
+        return Err(format!(
+            "--duration {d} s at --rate {r} Hz gives {count} samples (t = 0, 1 / rate, .., \
+             duration), fewer than the {MIN_SAMPLES} a trajectory needs; lengthen --duration \
+             or raise --rate so that their product is at least 2"
+        )
+        .into());
+    }
+    Ok(())
 }
 
 /// Refuses `flag` when it was given but belongs to another method than `method`.
@@ -170,5 +188,23 @@ mod tests {
         assert!(e.contains("--duration") && e.contains("--rate"), "{e}");
         assert!(check_samples(30.0, 1e9).is_err());
         assert!(check_samples(1e6, 1e6).is_err());
+    }
+
+    /// Fewer than three samples are refused here, before the design: the sampling after
+    /// it refused them only once the optimisation had run (minutes with --method points).
+    #[test]
+    fn too_few_samples_are_refused_before_the_design() {
+        assert!(check_samples(2.0, 1.0).is_ok());
+        let e = check_samples(1.0, 1.0).unwrap_err().to_string();
+        assert!(
+            e.contains("--duration 1 s at --rate 1 Hz gives 2 samples")
+                && e.contains("fewer than the 3 a trajectory needs"),
+            "{e}"
+        );
+        let e = check_samples(1e-300, 500.0).unwrap_err().to_string();
+        assert!(
+            e.contains("--duration 1e-300 s at --rate 500 Hz gives 1 samples"),
+            "{e}"
+        );
     }
 }

@@ -53,7 +53,7 @@ fn excite_values_out_of_range_are_refused_naming_the_flag() {
         (
             &["--rate", "1e9"][..],
             "--rate",
-            "1e9 is outside (0, 1e6] Hz",
+            "1e9 is outside [0.001, 1e6] Hz",
         ),
         (
             &["--duration", "1e9"],
@@ -109,6 +109,35 @@ fn excite_refuses_too_many_samples_before_allocating() {
     // just below the limit passes this check (the design then meets the period check)
     let o = excite(dir.path(), &["--duration", "1999", "--rate", "500"]);
     fails_with(&o, &["--duration 1999 s is not a whole number of periods"]);
+}
+
+/// Fewer than three samples (duration x rate below 1.5) are refused before the design is
+/// optimised: `--method points --duration 1 --rate 1` ran its whole optimisation (seconds,
+/// minutes with many intervals) before the sampling refused "trajectory: 2 samples". A
+/// rate below robid's lowest (1e-3 Hz) is refused by the flag; 1e-300 passed it and was
+/// written with 300 digits in the harmonic check.
+#[test]
+fn excite_refuses_too_few_samples_before_the_design() {
+    let dir = folder();
+    let started = std::time::Instant::now();
+    let o = excite(
+        dir.path(),
+        &["--method", "points", "--duration", "1", "--rate", "1"],
+    );
+    fails_with(
+        &o,
+        &[
+            "--duration 1 s at --rate 1 Hz gives 2 samples",
+            "fewer than the 3 a trajectory needs",
+        ],
+    );
+    assert!(started.elapsed().as_secs() < 5, "{:?}", started.elapsed());
+    refused_flag(
+        &excite(dir.path(), &["--rate", "1e-300"]),
+        "--rate",
+        "1e-300 is outside [0.001, 1e6] Hz",
+    );
+    assert!(!dir.path().join("traj.csv").exists());
 }
 
 #[test]
@@ -675,7 +704,13 @@ fn help_states_the_ranges_that_are_checked() {
     let (excite_help, simulate_help, feasible_help) =
         (help("excite"), help("simulate"), help("feasible"));
     for (text, sub, args, flag, range) in [
-        (&excite_help, "excite", "--rate=0", "--rate", "(0, 1e6] Hz"),
+        (
+            &excite_help,
+            "excite",
+            "--rate=0",
+            "--rate",
+            "[0.001, 1e6] Hz",
+        ),
         (
             &excite_help,
             "excite",
