@@ -11,8 +11,8 @@
 
 use std::path::{Path, PathBuf};
 
-use robid_runtime::Model;
 use robid_runtime::simulate::{Flexibility, Noise, Record, Simulation, Trajectory};
+use robid_runtime::{Model, num};
 use robots::interpreted::Interpreted;
 
 use super::description::{self, DescriptionFlags};
@@ -272,10 +272,28 @@ fn every_sample(rate: Option<f64>, reference: &Trajectory, path: &Path) -> Resul
     let every = (own / rate).round();
     if every < 1.0 || (own / rate - every).abs() > 1e-6 * every {
         return Err(format!(
-            "--rate {rate} Hz is not a whole fraction of the rate of {} ({own:.6} Hz); \
+            "--rate {} Hz is not a whole fraction of the rate of {} ({own:.6} Hz); \
              choose {own:.6} Hz divided by a whole number, or design the trajectory at a \
-             multiple of {rate} Hz",
-            path.display()
+             multiple of {} Hz",
+            num(rate),
+            path.display(),
+            num(rate)
+        )
+        .into());
+    }
+    // A factor as large as the record leaves its first sample alone: a log of one row,
+    // which nothing reads (every reader needs two time stamps at least).
+    let samples = t.len() as f64;
+    if every >= samples {
+        return Err(format!(
+            "--rate {} Hz keeps one of every {} samples of {}, which has {}: the log would \
+             hold 1 row, and a log needs at least 2; raise --rate to at least {} Hz (one row \
+             at each end), or simulate a longer trajectory",
+            num(rate),
+            num(every),
+            path.display(),
+            t.len(),
+            num(own / (samples - 1.0))
         )
         .into());
     }
@@ -391,6 +409,25 @@ mod tests {
         assert!(e.contains("at t = 0.1 s, q1 is 1.500e0 away"), "{e}");
         assert!(e.contains("lower --bandwidth"), "{e}");
         assert!(check_result(&r, &reference, f64::INFINITY).is_ok());
+    }
+
+    /// A --rate so low that one row would be written (1e-300 Hz of a 100 Hz trajectory was
+    /// a factor of 1e302, saturated to usize::MAX, and wrote a log of one row) is refused,
+    /// with the lowest rate that writes two.
+    #[test]
+    fn a_rate_that_writes_one_row_is_refused() {
+        let reference = Trajectory::zeros(1, vec![0.0, 0.01, 0.02, 0.03, 0.04]);
+        let path = Path::new("t.csv");
+        assert_eq!(every_sample(Some(25.0), &reference, path).unwrap(), 4);
+        for rate in [20.0, 1e-300] {
+            let e = every_sample(Some(rate), &reference, path)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("the log would hold 1 row") && e.contains("at least 25 Hz"),
+                "{e}"
+            );
+        }
     }
 
     #[test]
