@@ -7,6 +7,7 @@
 use std::path::Path;
 
 use robid_runtime::data::{Table, read_columns, read_header, surplus_joint};
+use robid_runtime::limits::MAX_TORQUE;
 
 use super::Error;
 
@@ -32,21 +33,31 @@ pub(crate) fn read(path: &Path, names: &[String], dof: usize) -> Result<Table, E
     Ok(table)
 }
 
-/// Checks the state columns of `table` (columns in the order of `names`).
+/// Checks the state columns of `table` (columns in the order of `names`), and the torque
+/// columns (`tau*`, `robid payload`'s data) against the torque limit of every data file,
+/// [`MAX_TORQUE`]: a torque of 1e308 was read and ended the weighted fit with "the WLS
+/// weights is not finite", naming neither the row nor the column.
 pub(crate) fn check(table: &Table, names: &[String]) -> Result<(), Error> {
     for (column, name) in table.columns.iter().zip(names) {
-        if !name.starts_with('q') {
+        let (limit, range) = if name.starts_with("tau") {
+            (MAX_TORQUE, "of a joint torque (+-1e7 N m or N)")
+        } else if name.starts_with('q') {
+            (
+                STATE_LIMIT,
+                "of a joint state (+-1e6 rad, rad/s, rad/s^2 or m, m/s, m/s^2)",
+            )
+        } else {
             continue;
-        }
+        };
         if let Some((k, x)) = column
             .iter()
             .enumerate()
-            .find(|(_, x)| !x.is_finite() || x.abs() > STATE_LIMIT)
+            .find(|(_, x)| !x.is_finite() || x.abs() > limit)
         {
             let line = table.lines.get(k).copied().unwrap_or(0);
             return Err(format!(
-                "{}:{line}: column `{name}` is {x:e}, outside the range of a joint state \
-                 (+-{STATE_LIMIT:e} rad, rad/s, rad/s^2 or m, m/s, m/s^2); repair or remove this row",
+                "{}:{line}: column `{name}` is {x:e}, outside the range {range}; repair or \
+                 remove this row",
                 table.path.display()
             )
             .into());

@@ -139,3 +139,43 @@ fn payload_from_a_robot_at_rest_is_an_error_naming_the_unexcited_parameters() {
     fails_with(&o, &["rest.csv", "not excited", "XX"]);
     assert!(!out.exists());
 }
+
+/// A torque beyond the data files' limit (1e7 N m) is named at its row and column, as
+/// `robid identify` names it, before the fit: a 1e308 went into it (in exciting data it
+/// ended with "the WLS weights is not finite: the OLS residual overflowed", without a
+/// place; in these data at rest, with the rank deficiency).
+#[test]
+fn payload_names_a_torque_out_of_range_at_its_row() {
+    let dir = folder();
+    let mut text = String::from("t");
+    for p in ["q", "qd", "qdd", "tau"] {
+        for j in 1..=6 {
+            text.push_str(&format!(",{p}{j}"));
+        }
+    }
+    text.push('\n');
+    for k in 0..50 {
+        let tau2 = if k == 7 { "1e308" } else { "2" };
+        text.push_str(&format!(
+            "{},0.1,-1,1,0,0.5,0,0,0,0,0,0,0,0,0,0,0,0,0,1,{tau2},3,0.1,0.1,0.1\n",
+            0.01 * k as f64
+        ));
+    }
+    let data = write(dir.path(), "huge.csv", &text);
+    let out = dir.path().join("payload.toml");
+    let o = robid(&[
+        "payload",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--data",
+        data.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &["huge.csv:9: column `tau2` is 1e308, outside the range of a joint torque"],
+    );
+    assert!(!out.exists());
+}
