@@ -407,7 +407,12 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         located(offset, syntax_message(text, &e))
     })?;
     let mut found: Option<(ParameterTable, Vec<(String, Entry)>)> = None;
-    for (key, value) in doc.get_ref() {
+    // The tables in the order of the file (the parsed table is sorted by name): the second
+    // of two tables is the one named, at its own place, whichever way round they are written.
+    let mut tables: Vec<_> = doc.get_ref().iter().collect();
+    tables.sort_by_key(|(key, _)| key.span().start);
+    let mut first: Option<(&str, usize)> = None;
+    for (key, value) in tables {
         let name: &str = key.get_ref();
         let at = key.span().start;
         let table = match name {
@@ -429,15 +434,16 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         let DeValue::Table(items) = value.get_ref() else {
             return Err(located(at, format!("`{name}` must be a table [{name}]")));
         };
-        if found.is_some() {
+        if let Some((before, line)) = first {
             return Err(located(
                 at,
                 format!(
-                    "a second table [{name}]; a parameter file needs exactly one of the tables \
-                     [standard], [base] or [known]"
+                    "a second table [{name}], after [{before}] on line {line}; a parameter file \
+                     needs exactly one of the tables [standard], [base] or [known]: keep one"
                 ),
             ));
         }
+        first = Some((name, line_column(text, at).0));
         let mut entries = Vec::with_capacity(items.len());
         for (k, v) in items {
             let key: &str = k.get_ref();
@@ -594,6 +600,33 @@ mod tests {
         // other syntax errors keep toml's message
         let e = error("[standard]\nM1 = \n");
         assert!(e.starts_with("p.toml:2:6: not valid TOML: "), "{e}");
+    }
+
+    /// Two tables: the second in the file is named at its place, with the first. The
+    /// tables were taken in the order of their names, so `[standard]` then `[base]` was
+    /// reported as "p.toml:1:2: a second table [standard]", at the first table.
+    #[test]
+    fn the_second_of_two_tables_is_named_at_its_place() {
+        let error = |text: &str| {
+            ParameterFile::parse(text, "p.toml".as_ref())
+                .unwrap_err()
+                .to_string()
+        };
+        let e = error("[standard]\nM1 = 1\n[base]\nZZR1 = 1\n");
+        assert!(
+            e.starts_with("p.toml:3:2: a second table [base], after [standard] on line 1;"),
+            "{e}"
+        );
+        let e = error("[base]\nZZR1 = 1\n[standard]\nM1 = 1\n");
+        assert!(
+            e.starts_with("p.toml:3:2: a second table [standard], after [base] on line 1;"),
+            "{e}"
+        );
+        let e = error("[standard]\nM1 = 1\n\n[known]\nM2 = 1\n");
+        assert!(
+            e.starts_with("p.toml:4:2: a second table [known], after [standard] on line 1;"),
+            "{e}"
+        );
     }
 
     #[test]
