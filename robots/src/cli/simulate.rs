@@ -311,15 +311,25 @@ fn check_bandwidth(bandwidth: f64, reference: &Trajectory, path: &Path) -> Resul
     // (a relative margin for time stamps such as 0.01 k, whose steps differ by rounding)
     if bandwidth > limit * (1.0 + 1e-9) {
         return Err(format!(
-            "--bandwidth {bandwidth} Hz is above a quarter of the sample rate of {} ({:.4} Hz at \
-             its largest time step {step:e} s), the fastest loop the reference can drive; lower \
-             --bandwidth to at most {limit:.4} Hz or resample the trajectory finer",
+            "--bandwidth {} Hz is above a quarter of the sample rate of {} ({} Hz at its \
+             largest time step {} s), the fastest loop the reference can drive; lower \
+             --bandwidth to at most {} Hz or resample the trajectory finer",
+            num(bandwidth),
             path.display(),
-            1.0 / step
+            rounded(1.0 / step),
+            rounded(step),
+            rounded(limit)
         )
         .into());
     }
     Ok(())
+}
+
+/// `x` to six significant digits, written short: a rate or step derived from time stamps
+/// (24.999999999996 Hz for steps of 0.01 s) as people read it, and a slow one (2.5e-7 Hz)
+/// not as 0.0000.
+fn rounded(x: f64) -> String {
+    num(format!("{x:.5e}").parse().unwrap_or(x))
 }
 
 /// Refuses a record with a non-finite value, or whose positions leave the reference by more
@@ -439,7 +449,17 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("--bandwidth 13 Hz") && e.contains("12.5000 Hz"),
+            e.contains("--bandwidth 13 Hz")
+                && e.contains("(50 Hz at its largest time step 0.02 s)")
+                && e.contains("at most 12.5 Hz"),
+            "{e}"
+        );
+        // a trajectory with steps of 1e6 s: the limit was written "at most 0.0000 Hz"
+        let slow = Trajectory::zeros(1, vec![0.0, 1e6, 2e6]);
+        let e = check_bandwidth(10.0, &slow, path).unwrap_err().to_string();
+        assert!(
+            e.contains("(1e-6 Hz at its largest time step 1000000 s)")
+                && e.contains("at most 2.5e-7 Hz"),
             "{e}"
         );
     }
