@@ -2,6 +2,7 @@
 //! the URDF's joint limits and gravity (docs/urdf.md#the-robot).
 
 use super::super::bounds::{MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use super::super::check::show;
 use super::super::file::Place;
 use super::super::{
     Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem,
@@ -59,14 +60,23 @@ fn limits(place: &Place<'_>, joint: &xml::Joint) -> Result<Limits, DescriptionEr
         if lower > upper {
             return Err(place.invalid(
                 at(),
-                format!("{describe}: lower {lower} is above upper {upper}"),
+                format!(
+                    "{describe}: lower {} is above upper {}",
+                    show(lower),
+                    show(upper)
+                ),
                 "write lower < upper (rad for revolute, m for prismatic joints)",
             ));
         }
         if lower.abs().max(upper.abs()) > MAX_POSITION {
             return Err(place.invalid(
                 at(),
-                format!("{describe}: positions [{lower}, {upper}] go beyond ±{MAX_POSITION}"),
+                format!(
+                    "{describe}: positions [{}, {}] go beyond ±{}",
+                    show(lower),
+                    show(upper),
+                    show(MAX_POSITION)
+                ),
                 format!(
                     "positions are in radians (revolute) or metres (prismatic); {}",
                     xml::NO_POSITION_LIMITS
@@ -87,7 +97,11 @@ fn limits(place: &Place<'_>, joint: &xml::Joint) -> Result<Limits, DescriptionEr
         if !(x > 0.0 && x <= max) {
             return Err(place.invalid(
                 at(),
-                format!("{describe}: {key} {x} is not a positive number up to {max}"),
+                format!(
+                    "{describe}: {key} {} is not a positive number up to {}",
+                    show(x),
+                    show(max)
+                ),
                 format!("{key} is a maximum absolute value in {unit}"),
             ));
         }

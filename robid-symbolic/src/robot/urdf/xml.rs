@@ -8,6 +8,7 @@
 
 use super::super::DescriptionError;
 use super::super::bounds::MAX_DESCRIPTION_LEN;
+use super::super::check::show;
 use super::super::file::Place;
 use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, scale};
 use roxmltree::{Document, Node};
@@ -423,7 +424,7 @@ impl Reader<'_> {
                 .map_or(mass_node.range(), |a| a.range_value());
             self.error(
                 span,
-                format!("the mass {m} is negative"),
+                format!("the mass {} is negative", show(m)),
                 "a mass is positive or zero (kg)",
             );
             return None;

@@ -60,7 +60,7 @@ fn each_mistake_is_named_at_its_place() {
         ),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<mimic joint=\"j1\"/></joint>"))), "t.urdf:6:", &["joint `j2` of the chain mimics joint `j1`"]),
         (arm(&format!("{J1}{}", J2.replace("revolute", "floating"))), "t.urdf:6:1:", &["joint `j2` is floating"]),
-        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit effort=\"1e9\" velocity=\"1\"/></joint>"))), "t.urdf:6:", &["`<limit>` of joint `j2`: effort 1000000000 is not a positive number"]),
+        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit effort=\"1e9\" velocity=\"1\"/></joint>"))), "t.urdf:6:", &["`<limit>` of joint `j2`: effort 1e9 is not a positive number up to 1e7"]),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"1\" upper=\"-1\"/></joint>"))), "t.urdf:6:", &["lower 1 is above upper -1"]),
         // huge limits meant as none (an SDF conversion's 1e16): the fix says how to write none
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"-1e16\" upper=\"1e16\"/></joint>"))), "t.urdf:6:", &["`-1e16` is beyond", "`type=\"continuous\"`", "leave `lower` and `upper` out"]),
@@ -85,6 +85,47 @@ fn each_mistake_is_named_at_its_place() {
         for w in *words {
             assert!(message.contains(w), "{message}\nexpected {w:?}");
         }
+    }
+}
+
+/// A value read from the URDF is shown short in the message, as the rest of robid writes
+/// numbers: a subnormal limit or mass is `1e-320`, not a decimal of 320 digits.
+#[test]
+fn values_read_are_shown_short() {
+    let limit = |attributes: &str| {
+        arm(&format!(
+            "{J1}{}",
+            J2.replace("</joint>", &format!("<limit {attributes}/></joint>"))
+        ))
+    };
+    let cases = [
+        (
+            limit("lower=\"-1e-320\" upper=\"-2e-320\""),
+            "`<limit>` of joint `j2`: lower -1e-320 is above upper -2e-320; ",
+        ),
+        (
+            limit("lower=\"-999999999.5\" upper=\"1\""),
+            "`<limit>` of joint `j2`: positions [-9.999999995e8, 1] go beyond ±1000; ",
+        ),
+        (
+            limit("effort=\"1\" velocity=\"-1e-320\""),
+            "`<limit>` of joint `j2`: velocity -1e-320 is not a positive number up to 10000; ",
+        ),
+        (
+            arm(&format!("{J1}{J2}")).replace(
+                "<link name=\"c\"/>",
+                "<link name=\"c\"><inertial><mass value=\"-1e-320\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>",
+            ),
+            "the mass -1e-320 is negative; ",
+        ),
+    ];
+    for (text, expected) in &cases {
+        let message = error_of(text, &ChainSelection::default());
+        assert!(
+            message.contains(expected),
+            "{message}\nexpected {expected:?}"
+        );
+        assert!(message.len() < 400, "{message}");
     }
 }
 
