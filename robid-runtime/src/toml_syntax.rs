@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use crate::data::TomlFile;
 use crate::{DataError, Error};
 
 /// A key or table header given a second time in a TOML text, read from toml's error
@@ -66,11 +67,12 @@ pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
     (line, before[start..].chars().count() + 1)
 }
 
-/// The error of the TOML file `path` (its text `text`) that toml could not read: a key or
-/// table given twice is named at its second place with the fix (`friction.toml:4:1:
-/// `viscous`: given a second time in this table; ..`); anything else keeps toml's message,
-/// which has its line and column.
-pub(crate) fn syntax_error(text: &str, path: &Path, e: &toml::de::Error) -> Error {
+/// The error of the TOML file `path` (its text `text`, a file of kind `kind`) that toml
+/// could not read: a key or table given twice is named at its second place with the fix
+/// (`friction.toml:4:1: `viscous`: given a second time in this table; ..`); anything else
+/// keeps toml's message, which has its line and column, after the kind of file
+/// (`friction.toml: invalid friction file: TOML parse error at line 3, ..`).
+pub(crate) fn syntax_error(text: &str, path: &Path, kind: TomlFile, e: &toml::de::Error) -> Error {
     match duplicate(text, e) {
         Some(d) => {
             let (line, column) = line_column(text, d.offset);
@@ -88,6 +90,7 @@ pub(crate) fn syntax_error(text: &str, path: &Path, e: &toml::de::Error) -> Erro
         }
         None => Error::Data(DataError::ConfigSyntax {
             path: path.to_path_buf(),
+            kind,
             reason: e.to_string(),
         }),
     }
@@ -109,7 +112,7 @@ mod tests {
         let d = duplicate(text, &error(text)).unwrap();
         assert_eq!((d.key, d.table), ("mass", false));
         assert_eq!(line_column(text, d.offset), (4, 1));
-        let e = syntax_error(text, "b.toml".as_ref(), &error(text)).to_string();
+        let e = syntax_error(text, "b.toml".as_ref(), TomlFile::Bounds, &error(text)).to_string();
         assert_eq!(
             e,
             "b.toml:4:1: `mass`: given a second time in this table; each key may be given \
@@ -118,7 +121,7 @@ mod tests {
         let text = "[links.2]\nmass = [0, 1]\n[links.2]\ncom = [0, 1]\n";
         let d = duplicate(text, &error(text)).unwrap();
         assert!(d.table, "{d:?}");
-        let e = syntax_error(text, "b.toml".as_ref(), &error(text)).to_string();
+        let e = syntax_error(text, "b.toml".as_ref(), TomlFile::Bounds, &error(text)).to_string();
         assert!(
             e.starts_with("b.toml:3:")
                 && e.contains("`[links.2]`: this table is given a second time"),
@@ -126,13 +129,52 @@ mod tests {
         );
         let text = "[default]\nmass = \n";
         assert_eq!(duplicate(text, &error(text)), None);
-        let e = syntax_error(text, "b.toml".as_ref(), &error(text)).to_string();
+        let e = syntax_error(text, "b.toml".as_ref(), TomlFile::Bounds, &error(text)).to_string();
         assert!(
-            e.starts_with("b.toml: invalid config: TOML parse error at line 2"),
+            e.starts_with("b.toml: invalid bounds file: TOML parse error at line 2"),
             "{e}"
         );
         let text = "a = 1\nµb = 2\n";
         assert_eq!(line_column(text, text.find('b').unwrap()), (2, 2));
+    }
+
+    /// A file that is not TOML is named by its kind, not as the identification config
+    /// (friction, joint-flexibility and bounds files said "invalid config"); the config
+    /// keeps its wording.
+    #[test]
+    fn a_syntax_error_names_the_kind_of_file() {
+        use crate::data::Config;
+        use crate::drive::FrictionModel;
+        use crate::feasible::Bounds;
+        use crate::simulate::Flexibility;
+        let text = "[[friction]]\njoint = 1\ncoulomb = \n";
+        let cases: [(Error, &str); 4] = [
+            (
+                FrictionModel::from_toml_str(text, "f.toml".as_ref()).unwrap_err(),
+                "f.toml: invalid friction file: TOML parse error at line 3, column 11",
+            ),
+            (
+                Flexibility::from_toml_str(text, "flex.toml".as_ref()).unwrap_err(),
+                "flex.toml: invalid joint-flexibility file: TOML parse error at line 3, column 11",
+            ),
+            (
+                Bounds::from_toml(text, "b.toml", 1).unwrap_err(),
+                "b.toml: invalid bounds file: TOML parse error at line 3, column 11",
+            ),
+            (
+                Config::from_toml_str(text, "c.toml".as_ref()).unwrap_err(),
+                "c.toml: invalid config: TOML parse error at line 3, column 11",
+            ),
+        ];
+        for (e, want) in cases {
+            let e = e.to_string();
+            assert!(e.starts_with(want), "{e}\nexpected {want:?}");
+        }
+        // a file of the right syntax but the wrong shape is named the same way
+        let e = FrictionModel::from_toml_str("[[friction]]\njoint = \"one\"\n", "f.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("f.toml: invalid friction file: "), "{e}");
     }
 
     /// Each file read through [`syntax_error`] names a key given twice at its place (they

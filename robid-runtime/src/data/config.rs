@@ -87,6 +87,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::data::ColumnMapping;
+use crate::data::TomlFile;
 use crate::data::keys::KeyMap;
 use crate::drive::{DriveConfig, ExtraColumn};
 use crate::error::{Error, Result, num, place};
@@ -668,6 +669,7 @@ impl Config {
         let mut cfg: Config = toml::from_str(text).map_err(|e| {
             Error::Data(DataError::ConfigSyntax {
                 path: path.to_path_buf(),
+                kind: TomlFile::Config,
                 reason: e.to_string(),
             })
         })?;

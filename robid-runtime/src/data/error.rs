@@ -6,6 +6,31 @@ use crate::Num;
 use crate::error::place;
 use std::path::PathBuf;
 
+/// Which of robid's TOML files an error is about, as its message names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum TomlFile {
+    /// The identification config ([`crate::data::Config`]): "config".
+    Config,
+    /// A friction file ([`crate::drive::FrictionModel`]): "friction file".
+    Friction,
+    /// A joint-flexibility file ([`crate::simulate::Flexibility`]): "joint-flexibility file".
+    Flexibility,
+    /// A bounds file ([`crate::feasible::Bounds`]): "bounds file".
+    Bounds,
+}
+
+impl std::fmt::Display for TomlFile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            TomlFile::Config => "config",
+            TomlFile::Friction => "friction file",
+            TomlFile::Flexibility => "joint-flexibility file",
+            TomlFile::Bounds => "bounds file",
+        })
+    }
+}
+
 /// A data file, a config file or a parameter file cannot be used.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -163,11 +188,15 @@ pub enum DataError {
         /// Its rows.
         second_rows: usize,
     },
-    /// The config file is not valid TOML or does not match the expected format.
-    #[error("{path}: invalid config: {reason}")]
+    /// A TOML file of robid's (the identification config, a friction, joint-flexibility or
+    /// bounds file) is not valid TOML or does not match its format; the message names the
+    /// kind of file (`f.toml: invalid friction file: ..`).
+    #[error("{path}: invalid {kind}: {reason}")]
     ConfigSyntax {
-        /// The config file.
+        /// The file.
         path: PathBuf,
+        /// Which kind of file it is.
+        kind: TomlFile,
         /// The parser's message (with line and column).
         reason: String,
     },

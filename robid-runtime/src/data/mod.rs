@@ -21,7 +21,7 @@ pub use config::{
     RunFiles, RunMode, Runs, Signal, Source, Units,
 };
 pub use dataset::{DataOrigin, Dataset};
-pub use error::DataError;
+pub use error::{DataError, TomlFile};
 pub use keys::KeyMap;
 pub(crate) use load::check_joints;
 pub use load::{load, load_config_files, load_from_config_file, load_runs, surplus_joint};

@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::data::{DataError, KeyMap};
+use crate::data::{DataError, KeyMap, TomlFile};
 use crate::error::{Error, Result, num};
 
 pub use fit::{
@@ -368,8 +368,8 @@ impl FrictionModel {
     /// joint from 1 to the largest once; `smoothing` may be left out); `path` names the
     /// text in errors, which give file:line:column.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<FrictionModel> {
-        let file: File =
-            toml::from_str(text).map_err(|e| crate::toml_syntax::syntax_error(text, path, &e))?;
+        let file: File = toml::from_str(text)
+            .map_err(|e| crate::toml_syntax::syntax_error(text, path, TomlFile::Friction, &e))?;
         let keys = KeyMap::parse(text);
         let at = |position: usize, field: &str, problem: String| {
             let key = format!("friction[{position}].{field}");

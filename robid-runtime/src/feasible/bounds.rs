@@ -24,7 +24,7 @@ use std::collections::BTreeMap;
 
 use serde::Deserialize;
 
-use crate::data::KeyMap;
+use crate::data::{KeyMap, TomlFile};
 use crate::limits::MAX_PARAMETER;
 use crate::{Error, Result, num};
 
@@ -216,8 +216,9 @@ impl Bounds {
     }
 
     fn parse(text: &str, path: &str, links: usize) -> Result<Bounds> {
-        let raw: Raw = toml::from_str(text)
-            .map_err(|e| crate::toml_syntax::syntax_error(text, path.as_ref(), &e))?;
+        let raw: Raw = toml::from_str(text).map_err(|e| {
+            crate::toml_syntax::syntax_error(text, path.as_ref(), TomlFile::Bounds, &e)
+        })?;
         // each table's ranges at their own keys first: a mistake in [default] is not a
         // mistake of the first link that inherits it
         if let Some(d) = &raw.default {

@@ -35,7 +35,7 @@ use super::run::{MAX_SPLIT, RK4_REACH, quintic, rk4_step};
 use super::{ForwardDynamics, Simulation, Trajectory};
 use crate::Model;
 use crate::SimulateError;
-use crate::data::{DataError, KeyMap};
+use crate::data::{DataError, KeyMap, TomlFile};
 use crate::drive::{FrictionModel, JointFriction};
 use crate::error::{Error, Result, num};
 use crate::excite::check_parameters;
@@ -223,8 +223,8 @@ impl Flexibility {
 
     /// Reads the text of a joint-flexibility file, naming it `path` in errors.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Flexibility> {
-        let file: File =
-            toml::from_str(text).map_err(|e| crate::toml_syntax::syntax_error(text, path, &e))?;
+        let file: File = toml::from_str(text)
+            .map_err(|e| crate::toml_syntax::syntax_error(text, path, TomlFile::Flexibility, &e))?;
         let keys = KeyMap::parse(text);
         let at = |key: String, problem: String| {
             let (line, column) = keys.find(&key).unzip();

@@ -229,14 +229,12 @@ fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
 }
 
 /// A runtime error about the content of `path` (the identified result or the bounds),
-/// named as that file: the runtime reports such keys as "config" keys.
+/// named as that file: the runtime reports such keys as settings given in code. (A bounds
+/// file that is not TOML is named by the runtime: "invalid bounds file".)
 fn about(path: &Path, e: robid_runtime::Error) -> Error {
     match e {
         robid_runtime::Error::Setting { key, problem, .. } => {
             format!("{}: `{key}`: {problem}", path.display()).into()
-        }
-        robid_runtime::Error::Data(robid_runtime::DataError::ConfigSyntax { reason, .. }) => {
-            format!("{}: {reason}", path.display()).into()
         }
         other => other.into(),
     }

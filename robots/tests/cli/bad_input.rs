@@ -630,9 +630,10 @@ fn identify_warns_on_stderr_about_poorly_determined_parameters() {
 }
 
 /// Files that are not configs are not called "config": the identified JSON of another
-/// robot, a bounds file with a link the robot lacks, and `identify` without `--config`. A
-/// mistake in a bounds file's `[default]` is named there at its line and column (it was
-/// named `links.1.mass`, without a line).
+/// robot, a bounds file with a link the robot lacks, a bounds file that is not TOML (named
+/// "invalid bounds file"; the command line used to strip the runtime's "invalid config"),
+/// and `identify` without `--config`. A mistake in a bounds file's `[default]` is named
+/// there at its line and column (it was named `links.1.mass`, without a line).
 #[test]
 fn inputs_are_named_by_their_kind_never_config() {
     let dir = folder();
@@ -643,6 +644,7 @@ fn inputs_are_named_by_their_kind_never_config() {
         "default.toml",
         "[default]\ncom = [[-1, 1], [-1, 1], [-1, 1]]\nmass = [5.0, 1.0]\n",
     );
+    let broken = write(dir.path(), "broken.toml", "[default]\nmass = [0, 1\n");
     for (args, expected) in [
         (
             vec!["descriptions/ur5e.toml", "--method", "anneal"],
@@ -668,6 +670,14 @@ fn inputs_are_named_by_their_kind_never_config() {
                 default.to_str().unwrap(),
             ],
             &["default.toml:3:1: `default.mass`: lower bound above the upper bound"],
+        ),
+        (
+            vec![
+                "configs/tx40_robot.toml",
+                "--bounds",
+                broken.to_str().unwrap(),
+            ],
+            &["broken.toml: invalid bounds file: TOML parse error at line 2, column 13"],
         ),
     ] {
         let mut all = vec![
