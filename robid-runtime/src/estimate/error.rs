@@ -23,6 +23,21 @@ pub enum EstimateError {
         /// The parameters no axis determines.
         parameters: Vec<String>,
     },
+    /// Per-axis identification: a joint has fewer equations than the parameters of its own
+    /// equation while another joint has more, so its equations were removed, not the record
+    /// too short (in the pipeline by `processing.rest_velocity`, where the joint is at rest
+    /// or slower than the threshold).
+    #[error("per-axis identification: {}", lacks_equations(*joint, *found, *required, *most))]
+    AxisLacksEquations {
+        /// The joint (1-based).
+        joint: usize,
+        /// Its equations.
+        found: usize,
+        /// The parameters of its equation (at least 1).
+        required: usize,
+        /// The most equations any joint has.
+        most: usize,
+    },
     /// One or a few equations dominate the column of a parameter the data do not otherwise
     /// determine: an outlier in the data, not a poor trajectory.
     #[error(
@@ -53,4 +68,27 @@ pub enum EstimateError {
         /// The value found.
         value: f64,
     },
+}
+
+/// The message of [`EstimateError::AxisLacksEquations`], after "per-axis identification: ".
+fn lacks_equations(joint: usize, found: usize, required: usize, most: usize) -> String {
+    let what = if found == 0 {
+        format!(
+            "joint {joint} has no equations, while another joint has {most}: all of them were \
+             removed, as processing.rest_velocity removes a joint's equations where its \
+             |velocity| is below it (the joint is at rest in the whole record, or slower than \
+             that)"
+        )
+    } else {
+        format!(
+            "joint {joint} has {found} equations, fewer than the {required} parameters of its \
+             own equation, while another joint has {most}: the others were removed, as \
+             processing.rest_velocity removes a joint's equations where its |velocity| is \
+             below it"
+        )
+    };
+    format!(
+        "{what}; each joint's equations are solved on their own: move joint {joint} in the \
+         trajectory, or lower processing.rest_velocity for it"
+    )
 }

@@ -90,9 +90,12 @@ struct AxisSolution {
 pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
     check_tolerance(tolerance)?;
     let n = obs.cols();
+    // an axis with too few equations while another has more lost its equations (to
+    // processing.rest_velocity): the record is not too short
+    let most = obs.joint_rows.iter().map(|r| r.len()).max().unwrap_or(0);
     let mut solutions = Vec::with_capacity(obs.joint_rows.len());
     for (j, rows) in obs.joint_rows.iter().enumerate().rev() {
-        solutions.push(solve_axis(obs, j, rows.clone(), tolerance)?);
+        solutions.push(solve_axis(obs, j, rows.clone(), tolerance, most)?);
     }
     // each parameter from the axis with the smallest relative deviation
     let mut best: Vec<Option<(f64, f64, usize)>> = vec![None; n];
@@ -187,12 +190,14 @@ pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
     })
 }
 
-/// The rank-revealing least squares of axis `j` (rows `rows` of `obs`).
+/// The rank-revealing least squares of axis `j` (rows `rows` of `obs`; `most`: the most
+/// rows any axis has).
 fn solve_axis(
     obs: &Observation,
     j: usize,
     rows: std::ops::Range<usize>,
     tolerance: f64,
+    most: usize,
 ) -> Result<AxisSolution> {
     let w = obs.w.rows(rows.start, rows.len()).into_owned();
     let y = obs.y.rows(rows.start, rows.len()).into_owned();
@@ -216,6 +221,14 @@ fn solve_axis(
         .filter(|&c| !zero(c) && norms[c] > ABSENT * largest)
         .collect();
     let k = present.len();
+    if rows.len() < k.max(1) && rows.len() < most {
+        return Err(Error::Estimate(EstimateError::AxisLacksEquations {
+            joint: j + 1,
+            found: rows.len(),
+            required: k.max(1),
+            most,
+        }));
+    }
     if rows.len() < k.max(1) {
         return Err(Error::TooFewSamples {
             context: format!("the per-axis identification of joint {}", j + 1),

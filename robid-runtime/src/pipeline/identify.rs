@@ -10,7 +10,7 @@ use std::ops::Range;
 
 use crate::Model;
 use crate::data::{Config, Dataset, Method, ParameterFile, Record, Warning, check_joints};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::estimate::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, KnownParameters, Observation,
     QualityWarning, dominated_columns, energy, link_by_link, model_energy_observation, ols,
@@ -198,7 +198,9 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
         Method::Ols => ols(obs, e.rank_tolerance),
         Method::Wls => wls(obs, e.rank_tolerance),
         Method::Rls => rls(obs, e.forgetting, e.rank_tolerance),
-        Method::PerAxis => per_axis(obs, e.rank_tolerance).map(|p| p.estimate),
+        Method::PerAxis => per_axis(obs, e.rank_tolerance)
+            .map(|p| p.estimate)
+            .map_err(|e| rest_removed(e, config, obs.joint_rows.len())),
         Method::LinkByLink => link_by_link(obs, e.forgetting, e.rank_tolerance),
         Method::Energy => Err(Error::setting(
             "Config",
@@ -207,6 +209,69 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
         )),
     };
     result.map_err(|e| config.locate(e))
+}
+
+/// Per-axis identification's [`EstimateError::AxisLacksEquations`] said as the
+/// `processing.rest_velocity` that removed the joint's equations (`dof` joints), with its
+/// value for that joint and the list that keeps them all; other errors as they are.
+fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
+    let Error::Estimate(EstimateError::AxisLacksEquations {
+        joint,
+        found,
+        required,
+        ..
+    }) = e
+    else {
+        return e;
+    };
+    let key = "processing.rest_velocity";
+    let Some(Ok(mut values)) = config
+        .processing
+        .rest_velocity
+        .as_ref()
+        .map(|r| r.values(dof, key))
+    else {
+        return e;
+    };
+    let Some(v) = joint.checked_sub(1).and_then(|j| values.get_mut(j)) else {
+        return e;
+    };
+    let threshold = num(*v);
+    *v = 0.0;
+    let list = values
+        .iter()
+        .map(|&x| num(x))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let (what, fix) = if found == 0 {
+        (
+            format!(
+                "{threshold} rad/s removes every equation of joint {joint}: its |velocity| \
+                 stays below it in the whole record"
+            ),
+            format!(
+                "move joint {joint} in the trajectory (at rest in the whole record, it leaves \
+                 parameters undetermined whatever rest_velocity), or, if it moves slower than \
+                 {threshold} rad/s, lower rest_velocity for it"
+            ),
+        )
+    } else {
+        (
+            format!(
+                "{threshold} rad/s leaves joint {joint} {found} equations (where its |velocity| \
+                 reaches it), fewer than the {required} parameters of its own equation"
+            ),
+            format!("move joint {joint} more in the trajectory, or lower rest_velocity for it"),
+        )
+    };
+    Error::setting(
+        "Config",
+        key,
+        format!(
+            "{what}, and per-axis identification solves each joint's equations on their own: \
+             {fix} (`rest_velocity = [{list}]` keeps all its equations)"
+        ),
+    )
 }
 
 /// The whole pipeline: observation matrix from `data`, estimation, fit. With the energy

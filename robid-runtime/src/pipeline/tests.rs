@@ -115,10 +115,9 @@ fn validation_on_other_data_predicts_well() {
     ));
 }
 
-/// A joint that never moves leaves its drive and link terms unexcited.
-#[test]
-fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
-    let n = 6000;
+/// `n` samples at 1 kHz of the exciting trajectory with joint `still` (0-based) held at
+/// 0.3 rad, noise-free torques.
+fn with_joint_at_rest(n: usize, still: usize) -> Dataset {
     let (mut q, mut qd, mut qdd) = ([0.0; DOF], [0.0; DOF], [0.0; DOF]);
     let mut qs = Signals::zeros(DOF, n);
     let mut taus = Signals::zeros(DOF, n);
@@ -126,9 +125,9 @@ fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
     let beta = true_parameters();
     for k in 0..n {
         trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
-        q[5] = 0.3;
-        qd[5] = 0.0;
-        qdd[5] = 0.0;
+        q[still] = 0.3;
+        qd[still] = 0.0;
+        qdd[still] = 0.0;
         let mut tau = [0.0; DOF];
         model
             .inverse_dynamics_into(&q, &qd, &qdd, &beta, &mut tau)
@@ -138,7 +137,14 @@ fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
             taus[j][k] = tau[j];
         }
     }
-    let data = Dataset::new("still6", 1e-3, qs, taus).unwrap();
+    Dataset::new(format!("still{}", still + 1), 1e-3, qs, taus).unwrap()
+}
+
+/// A joint that never moves leaves its drive and link terms unexcited.
+#[test]
+fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
+    let model = Synthetic::default();
+    let data = with_joint_at_rest(6000, 5);
     let mut cfg = config("");
     cfg.processing.rest_velocity = None;
     match identify(&model, &data, &cfg) {
@@ -209,6 +215,60 @@ fn rest_removal_of_every_equation_names_rest_velocity() {
             && text.contains("leaving 0"),
         "{text}"
     );
+}
+
+/// Per-axis identification with a joint whose equations `processing.rest_velocity` all
+/// removes (the joint at rest in the whole record) names the joint, the key at its line
+/// and the fixes, and so when it leaves the joint fewer equations than its own equation's
+/// parameters; it was "the per-axis identification of joint 3: 0 samples, at least 1 are
+/// needed; use more data or less decimation", which blamed the record's length.
+#[test]
+fn per_axis_names_a_joint_whose_equations_rest_velocity_removes() {
+    let model = Synthetic::default();
+    let text = format!("{CONFIG}[estimation]\nmethod = \"per-axis\"\n");
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("rest_velocity"))
+        .unwrap()
+        + 1;
+    let per_axis = |text: &str| Config::from_toml_str(text, Path::new("synthetic.toml")).unwrap();
+    let at_the_key = |e: &Error| {
+        matches!(e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
+            if key == "processing.rest_velocity" && *l == line)
+    };
+    // joint 3 at rest in the whole record
+    let e = identify(&model, &with_joint_at_rest(3000, 2), &per_axis(&text)).unwrap_err();
+    assert!(at_the_key(&e), "{e}");
+    let message = e.to_string();
+    for part in [
+        "0.02 rad/s removes every equation of joint 3: its |velocity| stays below it in the \
+         whole record",
+        "per-axis identification solves each joint's equations on their own",
+        "move joint 3 in the trajectory",
+        "lower rest_velocity for it (`rest_velocity = [0.02, 0.02, 0, 0.02, 0.02, 0.02]` \
+         keeps all its equations)",
+    ] {
+        assert!(message.contains(part), "`{part}` in {message}");
+    }
+    assert!(!message.contains("more data"), "{message}");
+    // joint 2 moving, but faster than 0.83 rad/s in a few samples only
+    let data = dataset(3000, 1000.0, 0.0);
+    let slow = text.replace(
+        "rest_velocity = 0.02",
+        "rest_velocity = [0.02, 0.83, 0.02, 0.02, 0.02, 0.02]",
+    );
+    let e = identify(&model, &data, &per_axis(&slow)).unwrap_err();
+    assert!(at_the_key(&e), "{e}");
+    let message = e.to_string();
+    assert!(
+        message.contains("0.83 rad/s leaves joint 2 ")
+            && message.contains("equations (where its |velocity| reaches it), fewer than the")
+            && message.contains("move joint 2 more in the trajectory")
+            && message.contains("`rest_velocity = [0.02, 0, 0.02, 0.02, 0.02, 0.02]`"),
+        "{message}"
+    );
+    // the same data identify per axis when every joint keeps its equations
+    identify(&model, &data, &per_axis(&text)).unwrap();
 }
 
 /// A decimation too large for the record is an error at `processing.decimation` with

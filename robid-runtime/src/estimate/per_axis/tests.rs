@@ -142,3 +142,92 @@ fn milella_per_axis_keeps_only_what_an_axis_determines() {
         "{e}"
     );
 }
+
+/// The serial structure of [`serial`] with `rows[j]` equations on axis j + 1 (noise-free).
+fn uneven(rows: [usize; 3]) -> Observation {
+    let mut rng = Rng::new(11);
+    let total: usize = rows.iter().sum();
+    let mut w = DMatrix::zeros(total, 3);
+    let mut blocks = Vec::new();
+    let mut start = 0;
+    for (j, &n) in rows.iter().enumerate() {
+        for i in start..start + n {
+            for c in j..3 {
+                w[(i, c)] = rng.uniform(-1.0, 1.0);
+            }
+        }
+        blocks.push(start..start + n);
+        start += n;
+    }
+    let y = &w * DVector::from_vec(vec![1.5, -0.7, 0.4]);
+    let samples = blocks.iter().flat_map(|b| 0..b.len()).collect();
+    Observation::new(
+        w,
+        y,
+        blocks,
+        samples,
+        vec!["a".into(), "b".into(), "c".into()],
+    )
+    .unwrap()
+}
+
+/// An axis with too few equations while another has more lost them (to
+/// processing.rest_velocity): the error names the joint and the fixes, not the record's
+/// length, which it used to blame ("0 samples, at least 1 are needed; use more data or less
+/// decimation"); a record too short for every axis keeps that hint.
+#[test]
+fn an_axis_whose_equations_were_removed_is_named() {
+    use crate::EstimateError;
+    use crate::error::Error;
+    for (rows, joint, found, required) in [([200, 0, 200], 2, 0, 1), ([2, 200, 200], 1, 2, 3)] {
+        let e = per_axis(&uneven(rows), 1e-10).unwrap_err();
+        assert!(
+            matches!(e, Error::Estimate(EstimateError::AxisLacksEquations { joint: j, found: f, required: r, most: 200 })
+                if (j, f, r) == (joint, found, required)),
+            "{e:?}"
+        );
+        let message = e.to_string();
+        assert!(!message.contains("more data"), "{message}");
+        assert!(
+            message.contains(&format!(
+                "move joint {joint} in the trajectory, or lower processing.rest_velocity for it"
+            )),
+            "{message}"
+        );
+    }
+    let message = per_axis(&uneven([200, 0, 200]), 1e-10)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.starts_with(
+            "per-axis identification: joint 2 has no equations, while another joint has 200: \
+             all of them were removed, as processing.rest_velocity removes a joint's equations \
+             where its |velocity| is below it (the joint is at rest in the whole record"
+        ),
+        "{message}"
+    );
+    let message = per_axis(&uneven([2, 200, 200]), 1e-10)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.starts_with(
+            "per-axis identification: joint 1 has 2 equations, fewer than the 3 parameters of \
+             its own equation, while another joint has 200: the others were removed"
+        ),
+        "{message}"
+    );
+    // every axis as short: the record is too short
+    let message = per_axis(&uneven([2, 2, 2]), 1e-10).unwrap_err().to_string();
+    assert_eq!(
+        message,
+        "the per-axis identification of joint 1: 2 samples, at least 3 are needed; use more \
+         data or less decimation"
+    );
+    // enough equations on each axis, however uneven: solved
+    let p = per_axis(&uneven([3, 50, 200]), 1e-10).unwrap();
+    assert!(
+        (p.estimate.values[0] - 1.5).abs() < 1e-12,
+        "{:?}",
+        p.estimate
+    );
+}
