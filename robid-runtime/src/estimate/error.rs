@@ -23,17 +23,21 @@ pub enum EstimateError {
         /// The parameters no axis determines.
         parameters: Vec<String>,
     },
-    /// Per-axis identification: a joint has fewer equations than the parameters of its own
-    /// equation while another joint has more, so its equations were removed, not the record
-    /// too short (in the pipeline by `processing.rest_velocity`, where the joint is at rest
-    /// or slower than the threshold).
-    #[error("per-axis identification: {}", lacks_equations(*joint, *found, *required, *most))]
+    /// Per-axis or link-by-link identification, which solve joint by joint: a joint has
+    /// fewer equations than the parameters it is solved for while another joint has more,
+    /// so its equations were removed, not the record too short (in the pipeline by
+    /// `processing.rest_velocity`, where the joint is at rest or slower than the threshold).
+    #[error("{} identification: {}", method.name(), lacks_equations(*method, *joint, *found, *required, *most))]
     AxisLacksEquations {
+        /// The method ([`Estimator::PerAxis`](crate::estimate::Estimator::PerAxis) or
+        /// [`Estimator::LinkByLink`](crate::estimate::Estimator::LinkByLink)).
+        method: crate::estimate::Estimator,
         /// The joint (1-based).
         joint: usize,
         /// Its equations.
         found: usize,
-        /// The parameters of its equation (at least 1).
+        /// The parameters it is solved for (per axis: of its own equation; link by link:
+        /// of its step; at least 1).
         required: usize,
         /// The most equations any joint has.
         most: usize,
@@ -70,8 +74,34 @@ pub enum EstimateError {
     },
 }
 
+/// What a joint's equations are solved for by `method` (per axis or link by link), after
+/// "fewer than the 3".
+pub(crate) fn own_parameters(method: crate::estimate::Estimator) -> &'static str {
+    match method {
+        crate::estimate::Estimator::LinkByLink => "parameters its step estimates",
+        _ => "parameters of its own equation",
+    }
+}
+
+/// How `method` (per axis or link by link) uses each joint's equations, after
+/// "per-axis identification ".
+pub(crate) fn solves_alone(method: crate::estimate::Estimator) -> &'static str {
+    match method {
+        crate::estimate::Estimator::LinkByLink => {
+            "estimates each link's parameters from its own joint's equations"
+        }
+        _ => "solves each joint's equations on their own",
+    }
+}
+
 /// The message of [`EstimateError::AxisLacksEquations`], after "per-axis identification: ".
-fn lacks_equations(joint: usize, found: usize, required: usize, most: usize) -> String {
+fn lacks_equations(
+    method: crate::estimate::Estimator,
+    joint: usize,
+    found: usize,
+    required: usize,
+    most: usize,
+) -> String {
     let what = if found == 0 {
         format!(
             "joint {joint} has no equations, while another joint has {most}: all of them were \
@@ -81,14 +111,15 @@ fn lacks_equations(joint: usize, found: usize, required: usize, most: usize) -> 
         )
     } else {
         format!(
-            "joint {joint} has {found} equations, fewer than the {required} parameters of its \
-             own equation, while another joint has {most}: the others were removed, as \
-             processing.rest_velocity removes a joint's equations where its |velocity| is \
-             below it"
+            "joint {joint} has {found} equations, fewer than the {required} {}, while another \
+             joint has {most}: the others were removed, as processing.rest_velocity removes a \
+             joint's equations where its |velocity| is below it",
+            own_parameters(method)
         )
     };
     format!(
-        "{what}; each joint's equations are solved on their own: move joint {joint} in the \
-         trajectory, or lower processing.rest_velocity for it"
+        "{what}; it {}: move joint {joint} in the trajectory, or lower \
+         processing.rest_velocity for it",
+        solves_alone(method)
     )
 }

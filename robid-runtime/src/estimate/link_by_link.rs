@@ -79,11 +79,39 @@ pub fn link_by_link_steps(obs: &Observation, tolerance: f64) -> Result<Vec<Vec<u
 /// the pipeline's observation does). A step whose parameters its joint's rows do not
 /// excite is a rank-deficiency error naming them, even when the whole system would not be.
 ///
+/// A joint with fewer equations than its step's parameters while another joint has more
+/// lost them (in the pipeline to `processing.rest_velocity`): that is
+/// [`EstimateError::AxisLacksEquations`] naming the joint, as is a joint with none when
+/// parameters are left unseen, rather than "too few samples" or a rank deficiency.
+///
 /// The statistics are those of the whole system at the combined estimate (residual,
 /// sigma^2, condition number); the standard deviations take each step's estimates of the
 /// later links as exact, so they understate the uncertainty of the first links.
 pub fn link_by_link(obs: &Observation, lambda: f64, tolerance: f64) -> Result<Estimate> {
-    let steps = link_by_link_steps(obs, tolerance)?;
+    // a joint with too few equations while another has more lost its equations (to
+    // processing.rest_velocity): the record is not too short, nor the trajectory poor
+    let most = obs.joint_rows.iter().map(|r| r.len()).max().unwrap_or(0);
+    let lacks = |joint: usize, found: usize, required: usize| {
+        Error::Estimate(EstimateError::AxisLacksEquations {
+            method: Estimator::LinkByLink,
+            joint,
+            found,
+            required,
+            most,
+        })
+    };
+    let steps = link_by_link_steps(obs, tolerance).map_err(|e| {
+        // the parameters only an empty joint's equations would see are left unseen
+        match obs.joint_rows.iter().rposition(|r| r.is_empty()) {
+            Some(j)
+                if most > 0
+                    && matches!(e, Error::Estimate(EstimateError::RankDeficient { .. })) =>
+            {
+                lacks(j + 1, 0, 1)
+            }
+            _ => e,
+        }
+    })?;
     let cols = obs.cols();
     let mut beta = DVector::<f64>::zeros(cols);
     let mut p = DMatrix::zeros(cols, cols);
@@ -93,6 +121,9 @@ pub fn link_by_link(obs: &Observation, lambda: f64, tolerance: f64) -> Result<Es
             continue;
         }
         let rows: Vec<usize> = obs.joint_rows[j].clone().collect();
+        if rows.len() < unknown.len() && rows.len() < most {
+            return Err(lacks(j + 1, rows.len(), unknown.len()));
+        }
         let w = obs.w.select_rows(&rows);
         let mut y = DVector::from_iterator(rows.len(), rows.iter().map(|&r| obs.y[r]));
         for &c in &known {

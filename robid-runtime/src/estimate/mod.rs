@@ -5,7 +5,7 @@
 //! equations.
 
 mod energy;
-mod error;
+pub(crate) mod error;
 mod known;
 mod least_squares;
 mod link_by_link;

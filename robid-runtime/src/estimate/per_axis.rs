@@ -223,6 +223,7 @@ fn solve_axis(
     let k = present.len();
     if rows.len() < k.max(1) && rows.len() < most {
         return Err(Error::Estimate(EstimateError::AxisLacksEquations {
+            method: Estimator::PerAxis,
             joint: j + 1,
             found: rows.len(),
             required: k.max(1),

@@ -6,6 +6,7 @@
 
 use crate::DataError;
 use crate::EstimateError;
+use crate::estimate::error::{own_parameters, solves_alone};
 use std::ops::Range;
 
 use crate::Model;
@@ -201,7 +202,8 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
         Method::PerAxis => per_axis(obs, e.rank_tolerance)
             .map(|p| p.estimate)
             .map_err(|e| rest_removed(e, config, obs.joint_rows.len())),
-        Method::LinkByLink => link_by_link(obs, e.forgetting, e.rank_tolerance),
+        Method::LinkByLink => link_by_link(obs, e.forgetting, e.rank_tolerance)
+            .map_err(|e| rest_removed(e, config, obs.joint_rows.len())),
         Method::Energy => Err(Error::setting(
             "Config",
             "estimation.method",
@@ -211,11 +213,12 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
     result.map_err(|e| config.locate(e))
 }
 
-/// Per-axis identification's [`EstimateError::AxisLacksEquations`] said as the
-/// `processing.rest_velocity` that removed the joint's equations (`dof` joints), with its
-/// value for that joint and the list that keeps them all; other errors as they are.
+/// [`EstimateError::AxisLacksEquations`] of per-axis or link-by-link identification said as
+/// the `processing.rest_velocity` that removed the joint's equations (`dof` joints), with
+/// its value for that joint and the list that keeps them all; other errors as they are.
 fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
     let Error::Estimate(EstimateError::AxisLacksEquations {
+        method,
         joint,
         found,
         required,
@@ -259,7 +262,8 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
         (
             format!(
                 "{threshold} rad/s leaves joint {joint} {found} equations (where its |velocity| \
-                 reaches it), fewer than the {required} parameters of its own equation"
+                 reaches it), fewer than the {required} {}",
+                own_parameters(method)
             ),
             format!("move joint {joint} more in the trajectory, or lower rest_velocity for it"),
         )
@@ -268,8 +272,10 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
         "Config",
         key,
         format!(
-            "{what}, and per-axis identification solves each joint's equations on their own: \
-             {fix} (`rest_velocity = [{list}]` keeps all its equations)"
+            "{what}, and {} identification {}: {fix} (`rest_velocity = [{list}]` keeps all its \
+             equations)",
+            method.name(),
+            solves_alone(method)
         ),
     )
 }

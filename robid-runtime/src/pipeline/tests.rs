@@ -217,58 +217,78 @@ fn rest_removal_of_every_equation_names_rest_velocity() {
     );
 }
 
-/// Per-axis identification with a joint whose equations `processing.rest_velocity` all
-/// removes (the joint at rest in the whole record) names the joint, the key at its line
-/// and the fixes, and so when it leaves the joint fewer equations than its own equation's
-/// parameters; it was "the per-axis identification of joint 3: 0 samples, at least 1 are
-/// needed; use more data or less decimation", which blamed the record's length.
+/// Per-axis and link-by-link identification, which solve joint by joint, with a joint
+/// whose equations `processing.rest_velocity` all removes (the joint at rest in the whole
+/// record) name the joint, the key at its line and the fixes, and so when it leaves the
+/// joint fewer equations than the parameters it is solved for. Per axis it was "the
+/// per-axis identification of joint 3: 0 samples, at least 1 are needed; use more data or
+/// less decimation", which blamed the record's length; link by link "least squares with 8
+/// parameters: 2 samples, at least 8 are needed; use more data, less decimation, or fewer
+/// parameters" (or, for a joint at rest, a rank deficiency that did not say its equations
+/// were removed).
 #[test]
-fn per_axis_names_a_joint_whose_equations_rest_velocity_removes() {
+fn joint_by_joint_methods_name_a_joint_whose_equations_rest_velocity_removes() {
     let model = Synthetic::default();
-    let text = format!("{CONFIG}[estimation]\nmethod = \"per-axis\"\n");
-    let line = text
-        .lines()
-        .position(|l| l.starts_with("rest_velocity"))
-        .unwrap()
-        + 1;
-    let per_axis = |text: &str| Config::from_toml_str(text, Path::new("synthetic.toml")).unwrap();
-    let at_the_key = |e: &Error| {
-        matches!(e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
-            if key == "processing.rest_velocity" && *l == line)
-    };
-    // joint 3 at rest in the whole record
-    let e = identify(&model, &with_joint_at_rest(3000, 2), &per_axis(&text)).unwrap_err();
-    assert!(at_the_key(&e), "{e}");
-    let message = e.to_string();
-    for part in [
-        "0.02 rad/s removes every equation of joint 3: its |velocity| stays below it in the \
-         whole record",
-        "per-axis identification solves each joint's equations on their own",
-        "move joint 3 in the trajectory",
-        "lower rest_velocity for it (`rest_velocity = [0.02, 0.02, 0, 0.02, 0.02, 0.02]` \
-         keeps all its equations)",
+    for (method, solves, own) in [
+        (
+            "per-axis",
+            "per-axis identification solves each joint's equations on their own",
+            "parameters of its own equation",
+        ),
+        (
+            "link-by-link",
+            "link-by-link identification estimates each link's parameters from its own \
+             joint's equations",
+            "parameters its step estimates",
+        ),
     ] {
-        assert!(message.contains(part), "`{part}` in {message}");
+        let text = format!("{CONFIG}[estimation]\nmethod = \"{method}\"\n");
+        let line = text
+            .lines()
+            .position(|l| l.starts_with("rest_velocity"))
+            .unwrap()
+            + 1;
+        let with = |text: &str| Config::from_toml_str(text, Path::new("synthetic.toml")).unwrap();
+        let at_the_key = |e: &Error| {
+            matches!(e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
+                if key == "processing.rest_velocity" && *l == line)
+        };
+        // joint 3 at rest in the whole record
+        let e = identify(&model, &with_joint_at_rest(3000, 2), &with(&text)).unwrap_err();
+        assert!(at_the_key(&e), "{method}: {e}");
+        let message = e.to_string();
+        for part in [
+            "0.02 rad/s removes every equation of joint 3: its |velocity| stays below it in \
+             the whole record",
+            solves,
+            "move joint 3 in the trajectory",
+            "lower rest_velocity for it (`rest_velocity = [0.02, 0.02, 0, 0.02, 0.02, 0.02]` \
+             keeps all its equations)",
+        ] {
+            assert!(message.contains(part), "`{part}` in {message}");
+        }
+        assert!(!message.contains("more data"), "{message}");
+        // joint 2 moving, but faster than 0.83 rad/s in a few samples only
+        let data = dataset(3000, 1000.0, 0.0);
+        let slow = text.replace(
+            "rest_velocity = 0.02",
+            "rest_velocity = [0.02, 0.83, 0.02, 0.02, 0.02, 0.02]",
+        );
+        let e = identify(&model, &data, &with(&slow)).unwrap_err();
+        assert!(at_the_key(&e), "{method}: {e}");
+        let message = e.to_string();
+        assert!(
+            message.contains("0.83 rad/s leaves joint 2 ")
+                && message.contains("equations (where its |velocity| reaches it), fewer than the")
+                && message.contains(own)
+                && message.contains(solves)
+                && message.contains("move joint 2 more in the trajectory")
+                && message.contains("`rest_velocity = [0.02, 0, 0.02, 0.02, 0.02, 0.02]`"),
+            "{message}"
+        );
+        // the same data identify when every joint keeps its equations
+        identify(&model, &data, &with(&text)).unwrap();
     }
-    assert!(!message.contains("more data"), "{message}");
-    // joint 2 moving, but faster than 0.83 rad/s in a few samples only
-    let data = dataset(3000, 1000.0, 0.0);
-    let slow = text.replace(
-        "rest_velocity = 0.02",
-        "rest_velocity = [0.02, 0.83, 0.02, 0.02, 0.02, 0.02]",
-    );
-    let e = identify(&model, &data, &per_axis(&slow)).unwrap_err();
-    assert!(at_the_key(&e), "{e}");
-    let message = e.to_string();
-    assert!(
-        message.contains("0.83 rad/s leaves joint 2 ")
-            && message.contains("equations (where its |velocity| reaches it), fewer than the")
-            && message.contains("move joint 2 more in the trajectory")
-            && message.contains("`rest_velocity = [0.02, 0, 0.02, 0.02, 0.02, 0.02]`"),
-        "{message}"
-    );
-    // the same data identify per axis when every joint keeps its equations
-    identify(&model, &data, &per_axis(&text)).unwrap();
 }
 
 /// A decimation too large for the record is an error at `processing.decimation` with

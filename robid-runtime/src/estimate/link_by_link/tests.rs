@@ -69,3 +69,76 @@ fn zomaya_link_by_link_names_what_a_step_cannot_see() {
     assert!(link_by_link(&obs, 0.0, 1e-10).is_err());
     assert!(link_by_link(&obs, 1.0, f64::NAN).is_err());
 }
+
+/// Two joints with `rows[j]` equations: `a` in joint 1's only, `b` in both, `d` in joint
+/// 2's only (exact data).
+fn uneven(rows: [usize; 2]) -> Observation {
+    let total = rows[0] + rows[1];
+    let mut w = DMatrix::zeros(total, 3);
+    for s in 0..rows[0] {
+        let x = (s + 1) as f64 * 0.37;
+        w[(s, 0)] = x.sin();
+        w[(s, 1)] = (1.3 * x).cos();
+    }
+    for s in 0..rows[1] {
+        let x = s as f64 * 0.37;
+        w[(rows[0] + s, 1)] = (0.7 * x).sin() + 0.2;
+        w[(rows[0] + s, 2)] = 1.0;
+    }
+    let y = &w * DVector::from_column_slice(&[1.0, -2.0, 0.5]);
+    Observation::new(
+        w,
+        y,
+        vec![0..rows[0], rows[0]..total],
+        (0..rows[0]).chain(0..rows[1]).collect(),
+        vec!["a".into(), "b".into(), "d".into()],
+    )
+    .unwrap()
+}
+
+/// A joint left with too few equations while another has more lost them (in the pipeline
+/// to processing.rest_velocity): the error names the joint and the fix; it was the step's
+/// "least squares with 2 parameters: 1 samples, at least 2 are needed; use more data, less
+/// decimation, or fewer parameters", or with none "rank-deficient data: .. not excited: d;
+/// use a richer trajectory". A record too short for every joint keeps the old hint.
+#[test]
+fn zomaya_link_by_link_names_a_joint_whose_equations_were_removed() {
+    use crate::estimate::Estimator;
+    for (rows, found, required) in [([200, 0], 0, 1), ([200, 1], 1, 2)] {
+        let e = link_by_link(&uneven(rows), 1.0, 1e-10).unwrap_err();
+        assert!(
+            matches!(e, Error::Estimate(EstimateError::AxisLacksEquations {
+                method: Estimator::LinkByLink, joint: 2, found: f, required: r, most: 200 })
+                if (f, r) == (found, required)),
+            "{e:?}"
+        );
+        let message = e.to_string();
+        assert!(
+            message.starts_with("link-by-link identification: joint 2 has ")
+                && message.contains(
+                    "it estimates each link's parameters from its own joint's equations: move \
+                     joint 2 in the trajectory, or lower processing.rest_velocity for it"
+                ),
+            "{message}"
+        );
+        assert!(!message.contains("more data"), "{message}");
+    }
+    let message = link_by_link(&uneven([200, 1]), 1.0, 1e-10)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains(
+            "joint 2 has 1 equations, fewer than the 2 parameters its step estimates, while \
+             another joint has 200"
+        ),
+        "{message}"
+    );
+    // every joint as short: the record is too short
+    let message = link_by_link(&uneven([1, 1]), 1.0, 1e-10)
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("use more data"), "{message}");
+    // enough on each joint, however uneven: solved
+    let e = link_by_link(&uneven([200, 3]), 1.0, 1e-10).unwrap();
+    assert!((e.values[2] - 0.5).abs() < 1e-6, "{:?}", e.values);
+}

@@ -4,7 +4,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::per_axis;
-use crate::estimate::Observation;
+use crate::estimate::{Estimator, Observation};
 use crate::rng::Rng;
 
 /// Three axes of a serial-like structure: axis 3 sees c, axis 2 sees b and c, axis 1 sees
@@ -182,7 +182,7 @@ fn an_axis_whose_equations_were_removed_is_named() {
     for (rows, joint, found, required) in [([200, 0, 200], 2, 0, 1), ([2, 200, 200], 1, 2, 3)] {
         let e = per_axis(&uneven(rows), 1e-10).unwrap_err();
         assert!(
-            matches!(e, Error::Estimate(EstimateError::AxisLacksEquations { joint: j, found: f, required: r, most: 200 })
+            matches!(e, Error::Estimate(EstimateError::AxisLacksEquations { method: Estimator::PerAxis, joint: j, found: f, required: r, most: 200 })
                 if (j, f, r) == (joint, found, required)),
             "{e:?}"
         );
