@@ -100,14 +100,32 @@ pub struct Inspection {
     pub rest_velocity: Vec<f64>,
 }
 
-/// The spectrum of one signal, or the error naming it.
-fn spectrum(x: &[f64], rate: f64, what: &str, joint: usize) -> Result<Spectrum> {
-    Spectrum::welch(x, rate).ok_or_else(|| Error::TooFewSamples {
-        context: format!("the spectrum of the {what} of joint {joint}"),
+/// The spectrum of one signal of `data`, or the error naming it and the data's files.
+fn spectrum(data: &Dataset, x: &[f64], what: &str, joint: usize) -> Result<Spectrum> {
+    Spectrum::welch(x, 1.0 / data.sample_time).ok_or_else(|| Error::TooFewSamples {
+        context: format!(
+            "{}: the spectrum of the {what} of joint {joint}",
+            files(data)
+        ),
         found: x.len(),
         required: crate::signal::MIN_SPECTRUM_SAMPLES,
-        hint: "a spectrum needs a longer record",
+        hint: "a spectrum needs a longer record: record a longer trajectory",
     })
+}
+
+/// The files of `data` (each source's, joined), else its name.
+fn files(data: &Dataset) -> String {
+    if data.sampling.is_empty() {
+        return data.file().map_or_else(
+            || format!("data set `{}`", data.name),
+            |p| p.display().to_string(),
+        );
+    }
+    data.sampling
+        .iter()
+        .map(|s| s.path.display().to_string())
+        .collect::<Vec<_>>()
+        .join(" + ")
 }
 
 /// The suggested low-pass cutoff for the positions of `data` (see the module's rule).
@@ -116,7 +134,7 @@ pub fn suggest_cutoff(data: &Dataset) -> Result<CutoffSuggestion> {
     let mut widest: Option<(f64, usize)> = None;
     let mut noisiest: Option<(f64, usize)> = None;
     for (j, q) in data.q.joints().enumerate() {
-        let s = spectrum(q, rate, "position", j + 1)?;
+        let s = spectrum(data, q, "position", j + 1)?;
         if !moves(&s) {
             continue;
         }
@@ -253,10 +271,9 @@ fn joint_report(
     rest: f64,
     limit: Option<f64>,
 ) -> Result<JointReport> {
-    let rate = 1.0 / data.sample_time;
     let (q, tau) = (&data.q[j], &data.tau[j]);
-    let sq = spectrum(q, rate, "position", j + 1)?;
-    let st = spectrum(tau, rate, "torque", j + 1)?;
+    let sq = spectrum(data, q, "position", j + 1)?;
+    let st = spectrum(data, tau, "torque", j + 1)?;
     let n = q.len() as f64;
     let (lo, hi) = q
         .iter()
@@ -435,6 +452,40 @@ mod tests {
         .unwrap();
         let e = suggest_cutoff(&d).unwrap_err().to_string();
         assert!(e.contains("no joint of still moves"), "{e}");
+    }
+
+    /// A record shorter than a spectrum needs names its file and says to record longer; it
+    /// was "the spectrum of the position of joint 1: 2 samples, at least 64 are needed; a
+    /// spectrum needs a longer record", with no file.
+    #[test]
+    fn a_record_too_short_for_a_spectrum_names_its_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("two.csv");
+        std::fs::write(&file, "t,q1,qd1,qdd1,tau1\n0,0.1,1,0,2\n0.001,0.2,1,0,2\n").unwrap();
+        let config = Config::default_mapping();
+        let data = crate::data::load(&config, std::slice::from_ref(&file), 1).unwrap();
+        let e = inspect(&data, &config, &[None]).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "{}: the spectrum of the position of joint 1: 2 samples, at least 64 are \
+                 needed; a spectrum needs a longer record: record a longer trajectory",
+                file.display()
+            )
+        );
+        // a data set not from a file is named as such
+        let d = Dataset::new(
+            "short",
+            0.01,
+            Signals::new(vec![vec![0.3; 5]]).unwrap(),
+            Signals::new(vec![vec![1.0; 5]]).unwrap(),
+        )
+        .unwrap();
+        let e = suggest_cutoff(&d).unwrap_err().to_string();
+        assert!(
+            e.starts_with("data set `short`: the spectrum of the position of joint 1: 5 samples"),
+            "{e}"
+        );
     }
 
     #[test]
