@@ -7,6 +7,7 @@
 use crate::DataError;
 use crate::EstimateError;
 use crate::estimate::error::{own_parameters, solves_alone};
+use crate::pipeline::observe::long_enough;
 use std::ops::Range;
 
 use crate::Model;
@@ -339,6 +340,10 @@ pub(crate) fn identify_dense(
         }
     };
     let (obs, dt) = torque_observation(model, prepared, config, data, kept)?;
+    if config.estimation.method != Method::Energy {
+        let known = known.as_ref().map_or(0, |k| k.known_names().len());
+        long_enough(data, kept, model.dof(), obs.cols().saturating_sub(known))?;
+    }
     let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
     // the data row of an equation
     let location = |row: usize| {

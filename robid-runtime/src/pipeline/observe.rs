@@ -138,6 +138,42 @@ pub(crate) fn decimator_for(
     ))
 }
 
+/// An error naming the record `data` (its file and the rows used) when its samples `kept`
+/// (after `processing.range` and the trims) of `dof` joints give fewer equations than the
+/// `needed` parameters to estimate, one per joint and sample, whatever the decimation and
+/// the rest removal (which [`decimator_for`] and [`RestCount::check`] name when they are
+/// why). Without it the least squares said "least squares with 36 parameters: 12 samples,
+/// at least 36 are needed", counting equations as samples, with no file.
+pub(crate) fn long_enough(
+    data: &dyn crate::data::Record,
+    kept: &std::ops::Range<usize>,
+    dof: usize,
+    needed: usize,
+) -> Result<()> {
+    let n = kept.len();
+    if dof == 0 || n.saturating_mul(dof) >= needed {
+        return Ok(());
+    }
+    let trimmed = if n < data.samples() {
+        format!(
+            ", after processing.range and the trims of its {} samples,",
+            data.samples()
+        )
+    } else {
+        String::new()
+    };
+    Err(Error::TooFewSamples {
+        context: format!(
+            "{}: too short{trimmed} for the {needed} parameters of the model (each sample \
+             gives {dof} equations, one per joint)",
+            crate::validate::UsedRows::of(data, kept.clone()),
+        ),
+        found: n,
+        required: needed.div_ceil(dof),
+        hint: "record a longer trajectory",
+    })
+}
+
 /// What building the rows of a record needs, checked once: the model, the prepared
 /// signals, the extra columns, the channel layout and the parameter names. Shared by the
 /// dense observation ([`observe`]) and the streaming one (`pipeline::stream`).

@@ -31,7 +31,7 @@ use crate::error::{Error, Result};
 use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
 use crate::pipeline::Identification;
 use crate::pipeline::identify::checked_plan;
-use crate::pipeline::observe::{Equations, Observer, RestCount, decimator_for};
+use crate::pipeline::observe::{Equations, Observer, RestCount, decimator_for, long_enough};
 use crate::pipeline::prepare::{Plan, Rows};
 use crate::signal::Decimator;
 use crate::validate::{Prediction, UsedRows};
@@ -349,6 +349,7 @@ pub(crate) fn identify_streaming(
     let stream = Stream::new(model, data, plan, config, true).map_err(at)?;
     let names = stream.names().to_vec();
     let (dof, cols, factor) = (model.dof(), names.len(), stream.factor());
+    long_enough(data, kept, dof, cols)?;
     let time = |k: usize| (kept.start + k * factor) as f64 * data.sample_time();
     let inside = |k: usize| match &config.processing.pieces {
         Some(pieces) => pieces.iter().any(|[a, b]| (*a..=*b).contains(&time(k))),

@@ -771,3 +771,70 @@ fn rotor_side_residuals_after_the_nonlinear_compensation() {
         "{e}"
     );
 }
+
+/// A record with fewer samples than the parameters need (one equation per joint and
+/// sample) names its file and rows, the parameters and the samples needed, the same with
+/// every method that solves the torque equations, in the streaming (OLS) and the dense
+/// path; it was the least squares' "least squares with 48 parameters: 30 samples, at least
+/// 48 are needed; use more data, less decimation, or fewer parameters" (equations counted
+/// as samples, no file), or per axis "the per-axis identification of joint 6: ..".
+#[test]
+fn a_record_too_short_for_the_parameters_names_its_file() {
+    let model = Synthetic::default();
+    let plain = CONFIG.split("[processing]").next().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("short.csv");
+    let mut messages = Vec::new();
+    for method in ["ols", "rls", "per-axis", "link-by-link"] {
+        let text = format!("{plain}[estimation]\nmethod = \"{method}\"\n");
+        let cfg = Config::from_toml_str(&text, Path::new("short.toml")).unwrap();
+        std::fs::write(&file, csv_with_noise(5, 1000.0, [0.0; DOF])).unwrap();
+        let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
+        let e = identify(&model, &data, &cfg).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::TooFewSamples {
+                    found: 5,
+                    required: 8,
+                    ..
+                }
+            ),
+            "{method}: {e}"
+        );
+        messages.push(e.to_string());
+        // trimmed to 5 of 9 samples
+        let trimmed =
+            format!("{plain}[processing]\ntrim = 2\n[estimation]\nmethod = \"{method}\"\n");
+        let cfg = Config::from_toml_str(&trimmed, Path::new("short.toml")).unwrap();
+        std::fs::write(&file, csv_with_noise(9, 1000.0, [0.0; DOF])).unwrap();
+        let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
+        let e = identify(&model, &data, &cfg).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                ": too short, after processing.range and the trims of its 9 samples, for \
+                 the 48 parameters of the model"
+            ) && e.contains("5 samples, at least 8 are needed; record a longer trajectory"),
+            "{method}: {e}"
+        );
+    }
+    assert_eq!(
+        messages[0],
+        format!(
+            "{} lines 2-6 (samples 0..5): too short for the 48 parameters of the model (each \
+             sample gives 6 equations, one per joint): 5 samples, at least 8 are needed; record \
+             a longer trajectory",
+            file.display()
+        )
+    );
+    for m in &messages[1..] {
+        assert_eq!(m, &messages[0]);
+    }
+    // 8 samples: no longer too short for the parameters (the data then lack excitation)
+    std::fs::write(&file, csv_with_noise(8, 1000.0, [0.0; DOF])).unwrap();
+    let cfg = Config::from_toml_str(plain, Path::new("short.toml")).unwrap();
+    let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
+    if let Err(e) = identify(&model, &data, &cfg) {
+        assert!(!matches!(e, Error::TooFewSamples { .. }), "{e}");
+    }
+}
