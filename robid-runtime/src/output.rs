@@ -47,7 +47,9 @@ pub fn write_atomically(
     };
     let metadata = std::fs::metadata(&target).ok();
     if metadata.as_ref().is_some_and(std::fs::Metadata::is_dir) {
-        return Err(err(&"it is a folder; give a file name"));
+        return Err(Error::Output(OutputError::Folder {
+            path: path.to_path_buf(),
+        }));
     }
     if metadata.as_ref().is_some_and(|m| !m.is_file()) {
         // a reader that stops early (`-o /dev/stdout | head`) closes a pipe: not a
@@ -187,6 +189,12 @@ pub enum OutputError {
         /// What the writer reported.
         reason: String,
     },
+    /// The output is an existing folder (`-o /tmp`): a file in it was meant.
+    #[error("{path}: is a folder; give a file name, e.g. {}", path.join("out").display())]
+    Folder {
+        /// The output, as given.
+        path: PathBuf,
+    },
     /// The output is a pipe (`-o /dev/stdout | head -1`) whose reader closed it before
     /// the output was complete: the end of the conversation, not a fault of the path. A
     /// command line ends quietly on it, as on a closed standard output.
@@ -270,13 +278,23 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&real).unwrap(), "b");
     }
 
+    /// A folder is named as one, with a file in it as the fix, not "check that the folder
+    /// exists".
     #[test]
     fn a_folder_is_not_a_target() {
         let dir = tempfile::tempdir().unwrap();
-        assert!(matches!(
-            write_bytes(dir.path(), b"x"),
-            Err(Error::Output(OutputError::Write { .. }))
-        ));
+        let e = write_bytes(dir.path(), b"x").unwrap_err();
+        assert!(
+            matches!(&e, Error::Output(OutputError::Folder { path }) if path == dir.path()),
+            "{e:?}"
+        );
+        let expected = format!(
+            "{}: is a folder; give a file name, e.g. {}",
+            dir.path().display(),
+            dir.path().join("out").display()
+        );
+        assert_eq!(e.to_string(), expected);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
     }
 
     #[test]

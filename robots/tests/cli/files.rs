@@ -421,3 +421,109 @@ fn a_pipe_is_written_into() {
     let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
     assert!(std::os::unix::fs::FileTypeExt::is_fifo(&kind));
 }
+
+/// One run of every writer that reaches its write, with the output `out`: emit, torques,
+/// excite (a short design), simulate, identify --json and feasible. The trajectory and
+/// the simulated data they need are written into `dir` first.
+fn writers(dir: &Path, out: &str) -> Vec<Vec<String>> {
+    let trajectory = dir.join("trajectory.csv").display().to_string();
+    let simulated = dir.join("simulated.csv").display().to_string();
+    let excite = |out: &str| {
+        [
+            "excite",
+            "descriptions/ur5e.toml",
+            "--duration",
+            "10",
+            "--rate",
+            "50",
+            "--harmonics",
+            "2",
+            "--restarts",
+            "1",
+            "--evaluations",
+            "50",
+            "-o",
+            out,
+        ]
+        .map(String::from)
+        .to_vec()
+    };
+    let simulate = |out: &str| {
+        [
+            "simulate",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e.toml",
+            "--trajectory",
+            &trajectory,
+            "-o",
+            out,
+        ]
+        .map(String::from)
+        .to_vec()
+    };
+    if !Path::new(&simulated).exists() {
+        for args in [excite(&trajectory), simulate(&simulated)] {
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            let o = robid(&args);
+            assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        }
+    }
+    let states = ur5e_states(dir, 20).display().to_string();
+    let rest: [&[&str]; 4] = [
+        &["emit", "descriptions/ur5e.toml", "-o", out],
+        &[
+            "torques",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e.toml",
+            "--states",
+            &states,
+            "-o",
+            out,
+        ],
+        &[
+            "identify",
+            "descriptions/ur5e.toml",
+            "--data",
+            &simulated,
+            "--json",
+            out,
+        ],
+        &[
+            "feasible",
+            "configs/tx40_robot.toml",
+            "--identified",
+            "tests/fixtures/tx40_identified.json",
+            "--bounds",
+            "tests/fixtures/tx40_bounds.toml",
+            "-o",
+            out,
+        ],
+    ];
+    let mut runs = vec![excite(out), simulate(out)];
+    runs.extend(
+        rest.iter()
+            .map(|a| a.iter().map(|s| s.to_string()).collect()),
+    );
+    runs
+}
+
+/// An output that is a folder (`-o /tmp/results`) is named as one, with a file in it as
+/// the fix, by every writer; it used to end "cannot write: it is a folder; give a file
+/// name; check that the folder exists and is writable".
+#[test]
+fn a_folder_as_output_is_named_as_one_by_every_writer() {
+    let dir = folder();
+    let target = dir.path().join("results");
+    std::fs::create_dir(&target).unwrap();
+    let out = target.display().to_string();
+    let expected = format!("error: {out}: is a folder; give a file name, e.g. {out}/out\n");
+    for args in writers(dir.path(), &out) {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = robid(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert_eq!(stderr(&o), expected, "{args:?}");
+        assert_eq!(std::fs::read_dir(&target).unwrap().count(), 0, "{args:?}");
+    }
+}
