@@ -68,12 +68,18 @@ pub fn write_atomically(
         write(&mut w).map_err(failed)?;
         return w.flush().map_err(failed);
     }
+    check_folder(path, &dir)?;
     let existing = metadata.map(|m| m.permissions());
+    // the error names the temporary file ("at path \"dir/.robid-Z2mU1l.tmp\""), which
+    // the user never asked for: name the folder instead
     let mut temp = temp_builder()
         .prefix(".robid-")
         .suffix(".tmp")
         .tempfile_in(&dir)
-        .map_err(|e| err(&e))?;
+        .map_err(|e| {
+            let reason = format!("cannot create a file in {}: {}", dir.display(), e.kind());
+            err(&reason)
+        })?;
     {
         let mut w = std::io::BufWriter::new(temp.as_file_mut());
         write(&mut w).map_err(|e| err(&e))?;
@@ -85,6 +91,31 @@ pub fn write_atomically(
     }
     temp.persist(&target).map_err(|e| err(&e.error))?;
     Ok(())
+}
+
+/// Refuses an output whose folder `dir` does not exist or is a file, naming the output
+/// `path` as given and the folder.
+fn check_folder(path: &Path, dir: &Path) -> Result<()> {
+    let missing = |e: OutputError| Err(Error::Output(e));
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => missing(OutputError::NoFolder {
+            path: path.to_path_buf(),
+            folder: dir.to_path_buf(),
+        }),
+        Ok(_) => missing(OutputError::NotAFolder {
+            path: path.to_path_buf(),
+            folder: dir.to_path_buf(),
+        }),
+        Err(e) if e.kind() == std::io::ErrorKind::NotADirectory => {
+            missing(OutputError::NotAFolder {
+                path: path.to_path_buf(),
+                folder: dir.to_path_buf(),
+            })
+        }
+        // anything else (no permission to look) is reported by the write itself
+        Err(_) => Ok(()),
+    }
 }
 
 /// New files get the permissions an ordinary file would (0o666 less the umask), not
@@ -195,6 +226,25 @@ pub enum OutputError {
         /// The output, as given.
         path: PathBuf,
     },
+    /// The folder of the output does not exist (`-o /nonexistent/dir/f.toml`); robid
+    /// creates no folders for a file.
+    #[error("{path}: the folder {folder} does not exist; create it first")]
+    NoFolder {
+        /// The output, as given.
+        path: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+    },
+    /// The folder of the output is a file, or lies under one (`-o notes.txt/f.toml`).
+    #[error(
+        "{path}: {folder} is not a folder (it, or one above it, is a file); give a path in an existing folder"
+    )]
+    NotAFolder {
+        /// The output, as given.
+        path: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+    },
     /// The output is a pipe (`-o /dev/stdout | head -1`) whose reader closed it before
     /// the output was complete: the end of the conversation, not a fault of the path. A
     /// command line ends quietly on it, as on a closed standard output.
@@ -295,6 +345,98 @@ mod tests {
         );
         assert_eq!(e.to_string(), expected);
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    /// An output in a folder that does not exist names the output and its folder, never
+    /// the temporary file (it used to end "No such file or directory (os error 2) at path
+    /// \"/nonexistent/dir/.robid-Z2mU1l.tmp\"; check that the folder exists and is
+    /// writable").
+    #[test]
+    fn a_missing_folder_is_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let folder = dir.path().join("missing").join("dir");
+        let path = folder.join("f.toml");
+        let e = write_bytes(&path, b"x").unwrap_err();
+        assert!(
+            matches!(&e, Error::Output(OutputError::NoFolder { path: p, folder: f })
+                if *p == path && *f == folder),
+            "{e:?}"
+        );
+        let expected = format!(
+            "{}: the folder {} does not exist; create it first",
+            path.display(),
+            folder.display()
+        );
+        assert_eq!(e.to_string(), expected);
+        assert!(!dir.path().join("missing").exists());
+        // a relative path names the folder as given
+        let e = write_bytes(Path::new("robid-no-such-folder/f.csv"), b"x").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "robid-no-such-folder/f.csv: the folder robid-no-such-folder does not exist; \
+             create it first"
+        );
+    }
+
+    /// A file where the folder should be is named as not a folder.
+    #[test]
+    fn a_file_as_the_folder_is_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("notes.txt");
+        std::fs::write(&file, "x").unwrap();
+        for folder in [file.clone(), file.join("sub")] {
+            let path = folder.join("f.toml");
+            let e = write_bytes(&path, b"x").unwrap_err();
+            assert!(
+                matches!(&e, Error::Output(OutputError::NotAFolder { folder: f, .. }) if *f == folder),
+                "{e:?}"
+            );
+            let text = e.to_string();
+            assert!(text.starts_with(&format!("{}: ", path.display())), "{text}");
+            assert!(!text.contains(".robid-"), "{text}");
+        }
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "x");
+    }
+
+    /// A folder no file can be created in is named, not the temporary file (whoever runs
+    /// the test).
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn a_folder_that_takes_no_file_is_named() {
+        let e = write_bytes(Path::new("/proc/robid-never-written.csv"), b"x").unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.starts_with(
+                "/proc/robid-never-written.csv: cannot write: cannot create a file in /proc: "
+            ),
+            "{text}"
+        );
+        assert!(!text.contains(".robid-"), "{text}");
+    }
+
+    /// A folder robid may not write into is named, not the temporary file.
+    #[test]
+    #[cfg(unix)]
+    fn a_folder_without_permission_is_named() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let locked = dir.path().join("locked");
+        std::fs::create_dir(&locked).unwrap();
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o555)).unwrap();
+        let path = locked.join("f.csv");
+        let result = write_bytes(&path, b"x");
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o755)).unwrap();
+        if result.is_ok() {
+            return; // run as root: every folder is writable
+        }
+        let text = result.unwrap_err().to_string();
+        let start = format!(
+            "{}: cannot write: cannot create a file in {}: permission denied",
+            path.display(),
+            locked.display()
+        );
+        assert!(text.starts_with(&start), "{text}");
+        assert!(!text.contains(".robid-"), "{text}");
     }
 
     #[test]

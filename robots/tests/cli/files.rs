@@ -527,3 +527,25 @@ fn a_folder_as_output_is_named_as_one_by_every_writer() {
         assert_eq!(std::fs::read_dir(&target).unwrap().count(), 0, "{args:?}");
     }
 }
+
+/// An output in a folder that does not exist names the output as given and its folder,
+/// by every writer; it used to name the temporary file: "/nonexistent/dir/f.toml: cannot
+/// write: No such file or directory (os error 2) at path
+/// \"/nonexistent/dir/.robid-2MkxLu.tmp\"; check that the folder exists and is writable".
+#[test]
+fn a_missing_folder_is_named_by_every_writer() {
+    let dir = folder();
+    let missing = dir.path().join("missing").join("dir");
+    let out = missing.join("f.toml").display().to_string();
+    let expected = format!(
+        "error: {out}: the folder {} does not exist; create it first\n",
+        missing.display()
+    );
+    for args in writers(dir.path(), &out) {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = robid(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert_eq!(stderr(&o), expected, "{args:?}");
+    }
+    assert!(!dir.path().join("missing").exists());
+}
