@@ -60,7 +60,7 @@
 //! | key | accepted |
 //! |---|---|
 //! | `dof` | the model's joint count |
-//! | `sample_rate` | 1e-3 Hz <= rate <= 1e7 Hz (also a rate derived from the time column); not with `time_column` |
+//! | `sample_rate` | 1e-3 Hz <= rate <= 1e7 Hz (also a rate derived from the time column); not with `time_column`; within 1 % of the rate of a time column the file has but the config does not read (`data::time_name`) |
 //! | `time_scale` | 1e-12 <= scale <= 1e6 |
 //! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, magnitude 1e-12 to 1e6 |
 //! | `drive.position_coupling`, `drive.torque_coupling` | finite, magnitude <= 1e6, invertible |

@@ -9,10 +9,11 @@ use crate::DataError;
 use std::path::{Path, PathBuf};
 
 use crate::data::dataset::DataOrigin;
+use crate::data::rate::{RATE_CHECK_ROWS, Steps, UnreadTime, check_rate, unread_time_column};
+use crate::data::table::{Optional, read_columns_in};
 use crate::data::time::{check_monotonic, interpolate, regularity, uniform_grid};
 use crate::data::{
-    AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_columns,
-    read_header,
+    AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
 };
 use crate::drive::DriveChain;
 use crate::error::{Error, Result};
@@ -81,9 +82,13 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let mut samplings = Vec::new();
 
     for (index, (src, path)) in config.sources.iter().zip(&paths).enumerate() {
-        check_surplus_joint(config, src, index, path, dof)?;
-        let (names, spans) = source_columns(config, src, dof);
-        let mut table = read_columns(path, &names).map_err(|e| match e {
+        let SourceColumns {
+            names,
+            spans,
+            unread_time,
+        } = plan_source(config, src, index, path, dof)?;
+        let optional = unread_time_rows(&names, unread_time.as_ref());
+        let mut table = read_columns_in(path, &names, optional).map_err(|e| match e {
             Error::Data(DataError::MissingColumn {
                 path,
                 column,
@@ -117,6 +122,11 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         }
         check_ranges(&table, &names, &spans, dof)?;
         let time = take_time(config, &mut table)?;
+        if let Some(column) = &unread_time {
+            let mut steps = Steps::default();
+            steps.push(&table.columns.pop().unwrap_or_default());
+            check_rate(config, path, column, steps)?;
+        }
         let mut columns = std::mem::take(&mut table.columns);
         let sampling = Sampling::of(path.clone(), time.as_deref(), &columns);
         let first_stale = sampling
@@ -220,6 +230,59 @@ pub(crate) fn stale_warning(sampling: &Sampling, first_line: Option<u64>) -> Opt
         })
 }
 
+/// What a `[[source]]` reads from its file.
+pub(crate) struct SourceColumns {
+    /// The columns: each role's in [`ROLES`] order, then the time column, then the
+    /// unread time column (an optional column: NaN where it is not a number).
+    pub(crate) names: Vec<String>,
+    /// Each role and where its columns start in `names`.
+    pub(crate) spans: Vec<(usize, usize)>,
+    /// The time column that the config does not read, checked against `sample_rate`
+    /// ([`unread_time_column`]): the last of `names` when there is one.
+    pub(crate) unread_time: Option<UnreadTime>,
+}
+
+/// The columns `[[source]]` `src` (number `index`, from 0) reads from its file `path`,
+/// after the checks of the file's header ([`check_surplus_joint`]). The header is read
+/// (its first MiB) when a template or the time-column check needs it.
+pub(crate) fn plan_source(
+    config: &Config,
+    src: &Source,
+    index: usize,
+    path: &Path,
+    dof: usize,
+) -> Result<SourceColumns> {
+    let rate_check = config.sample_rate.is_some() && config.time_column.is_none();
+    let header = if rate_check || !templates(src).is_empty() {
+        read_header(path)?
+    } else {
+        Vec::new()
+    };
+    check_surplus_joint(config, src, index, path, &header, dof)?;
+    let (mut names, spans) = source_columns(config, src, dof);
+    let unread_time = unread_time_column(config, &header, &names);
+    if let Some(t) = &unread_time {
+        names.push(t.name.clone());
+    }
+    Ok(SourceColumns {
+        names,
+        spans,
+        unread_time,
+    })
+}
+
+/// The rows in which the columns `names` of a source are read: all of them, the unread
+/// time column (when there is one, the last) in the first [`RATE_CHECK_ROWS`] only.
+pub(crate) fn unread_time_rows(names: &[String], unread_time: Option<&UnreadTime>) -> Optional {
+    match unread_time {
+        Some(_) => Optional {
+            from: names.len() - 1,
+            rows: RATE_CHECK_ROWS,
+        },
+        None => Optional::none(names),
+    }
+}
+
 /// The columns a `[[source]]` reads: each role's columns in [`ROLES`] order (with where
 /// they start), then the time column.
 pub(crate) fn source_columns(
@@ -246,26 +309,18 @@ pub(crate) fn source_columns(
 /// joint more than the model's `dof`, by a template of the source (`q7` for a 6-joint
 /// model read through `"q{}"`): the data and the description are then of different
 /// robots, and reading the first columns only would identify nonsense without a word. A
-/// source that lists its columns has chosen them and is not checked.
-pub(crate) fn check_surplus_joint(
+/// source that lists its columns has chosen them and is not checked. `header`: the
+/// file's column names.
+fn check_surplus_joint(
     config: &Config,
     src: &Source,
     index: usize,
     path: &Path,
+    header: &[String],
     dof: usize,
 ) -> Result<()> {
-    let templates: Vec<(usize, &str)> = (0..ROLES.len())
-        .filter_map(|r| match role_columns(src, r) {
-            Some(crate::data::Columns::Template(t)) if t.contains("{}") => Some((r, t.as_str())),
-            _ => None,
-        })
-        .collect();
-    if templates.is_empty() {
-        return Ok(());
-    }
-    let header = read_header(path)?;
-    for (role, template) in templates {
-        if let Some(column) = surplus_joint(&header, template, dof) {
+    for (role, template) in templates(src) {
+        if let Some(column) = surplus_joint(header, template, dof) {
             let key = format!("source[{}].{}", index + 1, ROLES[role]);
             return Err(config.key_error(
                 &key,
@@ -282,6 +337,16 @@ pub(crate) fn check_surplus_joint(
         }
     }
     Ok(())
+}
+
+/// The templates with a joint number (`"q{}"`) of a `[[source]]`, with their roles.
+fn templates(src: &Source) -> Vec<(usize, &str)> {
+    (0..ROLES.len())
+        .filter_map(|r| match role_columns(src, r) {
+            Some(crate::data::Columns::Template(t)) if t.contains("{}") => Some((r, t.as_str())),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The column of `header` that `template` (`"q{}"`) names for joint `dof + 1`, if any:

@@ -122,20 +122,52 @@ impl ColumnMapping {
 /// Reads the columns `names` from a CSV file. A file whose first bytes are the gzip
 /// magic number is decompressed. See the module documentation for the format.
 pub fn read_columns(path: &Path, names: &[String]) -> Result<Table> {
+    read_columns_in(path, names, Optional::none(names))
+}
+
+/// Which of the requested columns are optional, and in how many rows they are read.
+///
+/// The columns from `from` on are optional: read in the first `rows` data rows of the
+/// file only (a table's optional column holds its values for those of its rows, and is
+/// empty past them, so that a long file parses them in its first window or two only),
+/// each value the field's number where it is a finite number and NaN where it is not (a
+/// field that is text, empty, NaN or infinite; a column missing from the header or named
+/// twice), never an error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Optional {
+    /// The first optional column.
+    pub(crate) from: usize,
+    /// The data rows in which optional columns are read.
+    pub(crate) rows: usize,
+}
+
+impl Optional {
+    /// Every one of `names` required.
+    pub(crate) fn none(names: &[String]) -> Optional {
+        Optional {
+            from: names.len(),
+            rows: 0,
+        }
+    }
+}
+
+/// [`read_columns`] with optional columns (see [`Optional`]).
+pub(crate) fn read_columns_in(path: &Path, names: &[String], optional: Optional) -> Result<Table> {
     let file = open(path)?;
     let size = file.metadata().map_or(0, |m| m.len() as usize);
-    collect(file, path, names, size)
+    collect(file, path, names, optional, size)
 }
 
 /// [`for_each_window`] over the file at `path` (refused when larger than
-/// [`MAX_FILE_BYTES`]).
+/// [`MAX_FILE_BYTES`]), with optional columns (see [`Optional`]).
 pub(crate) fn for_each_window_of(
     path: &Path,
     names: &[String],
+    optional: Optional,
     window: usize,
     each: impl FnMut(Table, usize) -> Result<()> + Send,
 ) -> Result<()> {
-    for_each_window(open(path)?, path, names, window, each)
+    windows_of(open(path)?, path, names, optional, window, each)
 }
 
 /// Opens a CSV file, refusing one larger than [`MAX_FILE_BYTES`].
@@ -192,25 +224,34 @@ pub fn read_header(path: &Path) -> Result<Vec<String>> {
 /// Reads the columns `names` from any reader (gzip-compressed or not); `path` is used
 /// in messages.
 pub fn read_columns_from(reader: impl Read + Send, path: &Path, names: &[String]) -> Result<Table> {
-    collect(reader, path, names, 0)
+    collect(reader, path, names, Optional::none(names), 0)
 }
 
 /// The windows of [`for_each_window`] gathered into one table (`size`: the file's size
-/// when known, to allocate the columns once).
-fn collect(reader: impl Read + Send, path: &Path, names: &[String], size: usize) -> Result<Table> {
+/// when known, to allocate the required columns once; `optional`: see [`Optional`]).
+fn collect(
+    reader: impl Read + Send,
+    path: &Path,
+    names: &[String],
+    optional: Optional,
+    size: usize,
+) -> Result<Table> {
     let mut table = Table {
         path: path.to_path_buf(),
         columns: vec![Vec::new(); names.len()],
         lines: Vec::new(),
     };
     let mut first = true;
-    for_each_window(reader, path, names, WINDOW, |part, read| {
+    windows_of(reader, path, names, optional, WINDOW, |part, read| {
         if std::mem::take(&mut first) && size > read && read > 0 {
             // the whole file at the first window's bytes per row, and a little more
             let rows = part.rows() as f64 * (size as f64 / read as f64) * 1.02;
             let rows = (rows as usize).min(MAX_ROWS);
             table.lines.reserve(rows);
-            table.columns.iter_mut().for_each(|c| c.reserve(rows));
+            let required = optional.from.min(names.len());
+            table.columns[..required]
+                .iter_mut()
+                .for_each(|c| c.reserve(rows));
         }
         table.lines.extend(&part.lines);
         for (c, v) in table.columns.iter_mut().zip(part.columns) {
@@ -236,9 +277,21 @@ pub fn for_each_window(
     path: &Path,
     names: &[String],
     window: usize,
+    each: impl FnMut(Table, usize) -> Result<()> + Send,
+) -> Result<()> {
+    windows_of(reader, path, names, Optional::none(names), window, each)
+}
+
+/// [`for_each_window`] with optional columns (see [`Optional`]).
+fn windows_of(
+    reader: impl Read + Send,
+    path: &Path,
+    names: &[String],
+    optional: Optional,
+    window: usize,
     mut each: impl FnMut(Table, usize) -> Result<()> + Send,
 ) -> Result<()> {
-    let mut windows = Windows::new(reader, path, names, window)?;
+    let mut windows = Windows::new(reader, path, names, optional, window)?;
     let mut pending = None;
     loop {
         let (handed, next) = rayon::join(
@@ -263,6 +316,8 @@ struct Windows<'a> {
     source: Box<dyn Read + Send + 'a>,
     text: Text<'a>,
     names: &'a [String],
+    /// Which of `names` are optional, and in how many rows they are read.
+    optional: Optional,
     /// Bytes of text wanted per window (doubled while a line does not fit).
     window: usize,
     header: Option<Header>,
@@ -279,6 +334,7 @@ impl<'a> Windows<'a> {
         reader: impl Read + Send + 'a,
         path: &'a Path,
         names: &'a [String],
+        optional: Optional,
         window: usize,
     ) -> Result<Self> {
         use std::io::BufRead as _;
@@ -302,6 +358,10 @@ impl<'a> Windows<'a> {
                 path,
             },
             names,
+            optional: Optional {
+                from: optional.from.min(names.len()),
+                rows: optional.rows,
+            },
             window: window.max(1),
             header: None,
             quoted: false,
@@ -321,7 +381,7 @@ impl<'a> Windows<'a> {
         loop {
             text.fill(&mut self.source, self.window)?;
             if self.header.is_none() {
-                match Header::read(&text.bytes, text.end, path, names)? {
+                match Header::read(&text.bytes, text.end, path, names, self.optional.from)? {
                     Some(h) => {
                         text.bytes.drain(..h.body_start);
                         self.header = Some(h);
@@ -359,11 +419,19 @@ impl<'a> Windows<'a> {
                 cuts(body)
             };
             let rows = &self.rows;
+            // the optional columns are read while the rows before the window are fewer
+            // than their rows, and cut to them
+            let before = rows.load(Ordering::Relaxed);
+            let optional = before < self.optional.rows;
             let parts: Vec<Part> = cuts
                 .par_windows(2)
-                .map(|w| block(body, w[0], w[1], &h.want, h.fields, rows))
+                .map(|w| block(body, w[0], w[1], h, optional, rows))
                 .collect();
-            let table = join_parts(parts, path, names, h)?;
+            let mut table = join_parts(parts, path, names, h)?;
+            let keep = self.optional.rows.saturating_sub(before);
+            for column in table.columns.iter_mut().skip(h.required) {
+                column.truncate(keep);
+            }
             check_size(
                 || format!("{}: data rows", path.display()),
                 rows.load(Ordering::Relaxed) as f64,
@@ -476,8 +544,11 @@ impl Text<'_> {
 
 /// The header of a file: where each requested column is, and where the body starts.
 struct Header {
-    /// Field index of each requested column.
+    /// Field index of each requested column (`usize::MAX` for an optional column that is
+    /// not in the header once).
     want: Vec<usize>,
+    /// The requested columns before this one are required, the others optional.
+    required: usize,
     /// Fields per row.
     fields: usize,
     /// Bytes of the text before the body (byte-order mark, comments, header).
@@ -489,7 +560,13 @@ struct Header {
 impl Header {
     /// The header at the start of `text` (`None`: its line is not complete yet and more
     /// text follows).
-    fn read(text: &[u8], end: bool, path: &Path, names: &[String]) -> Result<Option<Header>> {
+    fn read(
+        text: &[u8],
+        end: bool,
+        path: &Path,
+        names: &[String],
+        required: usize,
+    ) -> Result<Option<Header>> {
         let bom = if text.starts_with(b"\xEF\xBB\xBF") {
             3
         } else {
@@ -532,9 +609,10 @@ impl Header {
         let header: Vec<String> = (0..records.len())
             .map(|i| String::from_utf8_lossy(records.field(i)).into_owned())
             .collect();
-        let want = wanted(&header, names, path, text, header_line)?;
+        let want = wanted(&header, names, required, path, text, header_line)?;
         Ok(Some(Header {
             want,
+            required,
             fields: header.len(),
             body_start: bom + body_start,
             base: header_line + 1,
@@ -669,20 +747,23 @@ fn number(b: &[u8]) -> Option<f64> {
 }
 
 /// Field index of every requested name; a missing, duplicated or badly separated header
-/// is an error.
+/// is an error for the first `required` names, `usize::MAX` (no field) for the others.
 fn wanted(
     header: &[String],
     names: &[String],
+    required: usize,
     path: &Path,
     text: &[u8],
     header_line: u64,
 ) -> Result<Vec<usize>> {
     names
         .iter()
-        .map(|name| {
+        .enumerate()
+        .map(|(k, name)| {
             let mut at = header.iter().enumerate().filter(|(_, h)| *h == name);
             match (at.next(), at.next()) {
                 (Some((i, _)), None) => Ok(i),
+                _ if k >= required => Ok(usize::MAX),
                 (Some((i, _)), Some((k, _))) => Err(Error::Data(DataError::DuplicateColumn {
                     path: path.to_path_buf(),
                     column: name.clone(),
@@ -807,20 +888,27 @@ impl BlockError {
     }
 }
 
-/// Parses the records of `body[from..to]` (whole lines, or the whole body).
+/// Parses the records of `body[from..to]` (whole lines, or the whole body): the
+/// columns of `header`, the optional ones when `optional` (NaN where they are not a
+/// finite number; left empty otherwise).
 fn block(
     body: &[u8],
     from: usize,
     to: usize,
-    want: &[usize],
-    fields: usize,
+    header: &Header,
+    optional: bool,
     rows: &AtomicUsize,
 ) -> Part {
+    let fields = header.fields;
+    let (want, optional_want) = header.want.split_at(header.required);
+    let optional_want = if optional { optional_want } else { &[] };
     let text = &body[from..to];
     let estimate = text.len() / (fields.max(1) * 8) + 1;
+    let read = want.len() + optional_want.len();
     let mut part = Part {
-        columns: (0..want.len())
-            .map(|_| Vec::with_capacity(estimate))
+        // a column not read is left empty
+        columns: (0..header.want.len())
+            .map(|k| Vec::with_capacity(if k < read { estimate } else { 0 }))
             .collect(),
         lines: Vec::with_capacity(estimate),
         newlines: 0,
@@ -830,6 +918,7 @@ fn block(
         part.error = Some(BlockError::Rows);
         return part;
     }
+    let (columns, optional_columns) = part.columns.split_at_mut(want.len());
     let mut records = Records::new(text);
     while let Some(line) = records.next_record() {
         // 0-based line within the block
@@ -845,7 +934,7 @@ fn block(
             break;
         }
         let text = records.text();
-        for (k, (&i, col)) in want.iter().zip(part.columns.iter_mut()).enumerate() {
+        for (k, (&i, col)) in want.iter().zip(columns.iter_mut()).enumerate() {
             let parsed = match text.and_then(|t| records.field_str(t, i)) {
                 Some(field) => field.parse::<f64>().ok(),
                 None => number(records.field(i)),
@@ -870,6 +959,11 @@ fn block(
                     return part;
                 }
             }
+        }
+        // (not through `field_str`, whose one call above is inlined into the loop)
+        for (&i, col) in optional_want.iter().zip(optional_columns.iter_mut()) {
+            let parsed = number(records.field(i)).filter(|v| v.is_finite());
+            col.push(parsed.unwrap_or(f64::NAN));
         }
         part.lines.push(line);
     }
@@ -1093,6 +1187,74 @@ mod tests {
                 vec![vec![1.0, 3.0], vec![2.0, 4.0], vec![1.0, 3.0]]
             );
             assert_eq!(t.lines, vec![2, 3]);
+        }
+    }
+
+    /// An optional column is NaN where it holds no finite number, and where it is
+    /// missing or named twice; the required columns' errors stay.
+    #[test]
+    fn optional_columns_are_nan_where_they_are_not_numbers() {
+        let text = "a,t,b,b\n1,0.5,2,2\n3,x,4,4\n5,inf,6,6\n7,,8,8\n";
+        let read = |cols: &[&str], from: usize| {
+            let optional = Optional { from, rows: 10 };
+            collect(
+                text.as_bytes(),
+                Path::new("m.csv"),
+                &names(cols),
+                optional,
+                0,
+            )
+        };
+        let t = read(&["a", "t", "none", "b"], 1).unwrap();
+        assert_eq!(t.columns[0], [1.0, 3.0, 5.0, 7.0]);
+        assert_eq!(t.columns[1][0], 0.5);
+        assert!(t.columns[1][1..].iter().all(|v| v.is_nan()));
+        assert!(t.columns[2..].iter().all(|c| c.len() == 4));
+        assert!(t.columns[2..].iter().flatten().all(|v| v.is_nan()));
+        assert!(matches!(
+            read(&["t", "a"], 1).unwrap_err(),
+            Error::Data(DataError::NotANumber { line: 3, .. })
+        ));
+        assert!(matches!(
+            read(&["none", "a"], 1).unwrap_err(),
+            Error::Data(DataError::MissingColumn { .. })
+        ));
+    }
+
+    /// An optional column is read in its first rows only, whatever the windows, and a
+    /// window past them does not parse it: a field that is not a number there is not
+    /// seen.
+    #[test]
+    fn optional_columns_are_read_in_their_first_rows() {
+        let mut text = String::from("t,a\n");
+        for k in 0..3000 {
+            text.push_str(&format!("{k},{}\n", 2 * k));
+        }
+        let cols = names(&["a", "t"]);
+        let optional = Optional {
+            from: 1,
+            rows: 1234,
+        };
+        for window in [64, 1000, 4096, WINDOW] {
+            let (mut a, mut t, mut calls) = (Vec::<f64>::new(), Vec::<f64>::new(), 0);
+            windows_of(
+                text.as_bytes(),
+                Path::new("m.csv"),
+                &cols,
+                optional,
+                window,
+                |p, _| {
+                    calls += 1;
+                    assert!(p.columns[1].len() <= p.rows());
+                    a.extend(&p.columns[0]);
+                    t.extend(&p.columns[1]);
+                    Ok(())
+                },
+            )
+            .unwrap();
+            assert_eq!(a.len(), 3000, "{window}");
+            assert!(t.iter().copied().eq((0..1234).map(f64::from)), "{window}");
+            assert!(window == WINDOW || calls > 5, "{window}: {calls} windows");
         }
     }
 

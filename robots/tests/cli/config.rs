@@ -1,7 +1,7 @@
 //! `robid identify` with a config: `--example-config` prints a config that works, and the
 //! `file` of each `[[source]]` is read (relative to the config) when `--data` is not given.
 
-use crate::common::{folder, robid, stderr, stdout, write};
+use crate::common::{fails_with, folder, robid, stderr, stdout, write};
 
 /// One revolute joint about a horizontal axis (gravity along x of the base).
 const PENDULUM: &str = "name = \"pendulum\"\nconvention = \"modified\"\n\
@@ -78,6 +78,42 @@ fn the_sources_files_are_read_relative_to_the_config() {
         "{}",
         stderr(&o)
     );
+}
+
+/// A config's `sample_rate` is checked against a time column of the log that it does not
+/// read: `identify` and `inspect` refuse 1000 Hz for the log stamped every 2 ms, naming
+/// the key, the file, the column, both rates and the fixes, and take 500 Hz.
+#[test]
+fn a_sample_rate_that_the_logs_time_column_contradicts_is_refused() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let data = write(d, "run.csv", &log());
+    let config =
+        |rate: &str| CONFIG.replace("time_column = \"time\"", &format!("sample_rate = {rate}"));
+    let wrong = write(d, "wrong.toml", &config("1000"));
+    let right = write(d, "right.toml", &config("500"));
+    let (robot, wrong, right, data) = (
+        robot.to_str().unwrap(),
+        wrong.to_str().unwrap(),
+        right.to_str().unwrap(),
+        data.to_str().unwrap(),
+    );
+    for command in ["identify", "inspect"] {
+        let o = robid(&[command, robot, "--config", wrong, "--data", data]);
+        fails_with(
+            &o,
+            &[&format!(
+                "{wrong}:2:1: `sample_rate`: 1000 Hz, but the time column `time` of {data} \
+                 steps at 500 Hz (median step 0.002 s, read as seconds): every derivative and \
+                 filter would be off by a factor of 2; replace `sample_rate` by \
+                 `time_column = \"time\"` to use the time stamps, or correct `sample_rate` (to \
+                 500 if the time stamps are right)"
+            )],
+        );
+        let o = robid(&[command, robot, "--config", right, "--data", data]);
+        assert!(o.status.success(), "{command}: {}", stderr(&o));
+    }
 }
 
 /// The printed example is a working config for a six-joint robot's log.

@@ -12,9 +12,10 @@ use std::sync::Mutex;
 use crate::DataError;
 use crate::data::dataset::{DataOrigin, empty_range};
 use crate::data::load::{
-    assemble, check_cutoff, check_joints, check_ranges, check_step, check_surplus_joint, load,
-    source_columns, source_paths, stale_warning, take_time,
+    SourceColumns, assemble, check_cutoff, check_joints, check_ranges, check_step, load,
+    plan_source, source_paths, stale_warning, take_time, unread_time_rows,
 };
+use crate::data::rate::{Steps, check_rate};
 use crate::data::sampling::SamplingScan;
 use crate::data::table::for_each_window_of;
 use crate::data::time::Clock;
@@ -154,8 +155,15 @@ impl SpilledRecord {
         let ([source], [path]) = (config.sources.as_slice(), paths.as_slice()) else {
             return Ok(None);
         };
-        check_surplus_joint(config, source, 0, path, dof)?;
-        let (names, spans) = source_columns(config, source, dof);
+        let SourceColumns {
+            names,
+            spans,
+            unread_time,
+        } = plan_source(config, source, 0, path, dof)?;
+        let optional = unread_time_rows(&names, unread_time.as_ref());
+        // the steps of a time column the config does not read, in its first rows
+        // (checked against `sample_rate`)
+        let mut steps = Steps::default();
         let mut roles = [false; 7];
         spans.iter().for_each(|&(r, _)| roles[r] = true);
         let temporary = |source| {
@@ -172,12 +180,15 @@ impl SpilledRecord {
         // the sample time only matters at the end: windows are checked at the config's rate
         // or at 1 kHz, which the limits always allow
         let checked_at = config.sample_rate.map_or(1e-3, |fs| 1.0 / fs);
-        for_each_window_of(path, &names, window, |mut table, _| {
+        for_each_window_of(path, &names, optional, window, |mut table, _| {
             if table.rows() == 0 {
                 return Ok(());
             }
             check_ranges(&table, &names, &spans, dof)?;
             let time = take_time(config, &mut table)?;
+            if unread_time.is_some() {
+                steps.push(&table.columns.pop().unwrap_or_default());
+            }
             let mut columns = std::mem::take(&mut table.columns);
             // a step back between windows is an irregular step: such a file is then
             // loaded in memory, where `load` names the line
@@ -229,6 +240,9 @@ impl SpilledRecord {
             (None, Some(fs)) => 1.0 / fs,
             (None, None) => return Ok(None),
         };
+        if let Some(column) = &unread_time {
+            check_rate(config, path, column, steps)?;
+        }
         check_cutoff(config, sample_time)?;
         let first_stale = scan.first_stale_line();
         let sampling = scan.finish(path.clone());

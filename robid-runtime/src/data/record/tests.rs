@@ -197,3 +197,171 @@ fn irregular_clocks_and_several_sources_stay_in_memory() {
     );
     assert_eq!(record.read(0, dense.samples()).unwrap().q, dense.q);
 }
+
+/// [`CONFIG`] with `sample_rate = rate` instead of its time column (line 3).
+fn at_rate(rate: &str) -> String {
+    CONFIG.replace("time_column = \"t\"", &format!("sample_rate = {rate}"))
+}
+
+/// `log(n)` with the time column `t` written by `stamp(k)` for row k (`None`: no time
+/// column), its header renamed `name`.
+fn stamped(n: usize, name: &str, stamp: Option<&dyn Fn(usize) -> String>) -> String {
+    let mut k = 0;
+    log(n)
+        .lines()
+        .map(|line| {
+            let Some((first, rest)) = line.split_once(',') else {
+                return format!("{line}\n");
+            };
+            if first == "t" {
+                return match stamp {
+                    Some(_) => format!("{name},{rest}\n"),
+                    None => format!("{rest}\n"),
+                };
+            }
+            if line.starts_with('#') {
+                return format!("{line}\n");
+            }
+            let row = match stamp {
+                Some(s) => format!("{},{rest}\n", s(k)),
+                None => format!("{rest}\n"),
+            };
+            k += 1;
+            row
+        })
+        .collect()
+}
+
+/// A config's `sample_rate` is checked against a time column of the file that it does
+/// not read: a log at 500 Hz with `sample_rate = 1000` is refused, by `load`, by the
+/// record on disk (read in windows) and by `load_record`, with one message; at 500 it
+/// loads, on disk as in memory, and so does a file without a time column.
+#[test]
+fn a_time_column_at_another_rate_than_sample_rate_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = file(
+        &dir,
+        &stamped(3000, "t", Some(&|k| format!("{}", k as f64 * 2e-3))),
+    );
+    let files = std::slice::from_ref(&path);
+    let wrong = config(&at_rate("1000.0"));
+    let dense = load(&wrong, files, 3).unwrap_err();
+    assert_eq!(
+        dense.to_string(),
+        format!(
+            "test.toml:3:1: `sample_rate`: 1000 Hz, but the time column `t` of {} steps at \
+             500 Hz (median step 0.002 s, read as seconds): every derivative and filter would \
+             be off by a factor of 2; replace `sample_rate` by `time_column = \"t\"` to use \
+             the time stamps, or correct `sample_rate` (to 500 if the time stamps are right)",
+            path.display()
+        )
+    );
+    let disk = SpilledRecord::open_in(&wrong, files, 3, SMALL).unwrap_err();
+    assert_eq!(disk.to_string(), dense.to_string());
+    let record = load_record_in(&wrong, files, 3, SMALL).err();
+    assert_eq!(record.map(|e| e.to_string()), Some(dense.to_string()));
+    // the right rate: loaded, kept on disk, the same samples
+    let right = config(&at_rate("500.0"));
+    let data = load(&right, files, 3).unwrap();
+    let record = SpilledRecord::open_in(&right, files, 3, SMALL)
+        .unwrap()
+        .expect("kept on disk");
+    assert_eq!(record.read(0, data.samples()).unwrap().q, data.q);
+    assert_eq!(data.sample_time, 2e-3);
+    // no time column: nothing to check
+    let plain = file(&dir, &stamped(3000, "t", None));
+    assert!(!std::fs::read_to_string(&plain).unwrap().contains("\nt,"));
+    let plain = std::slice::from_ref(&plain);
+    assert!(load(&wrong, plain, 3).is_ok());
+    assert!(
+        SpilledRecord::open_in(&wrong, plain, 3, SMALL)
+            .unwrap()
+            .is_some()
+    );
+}
+
+/// Where the time column is not a clock, or its unit makes it agree, nothing is said; a
+/// unit in the column's name is used, and named in the fix.
+#[test]
+fn a_time_column_that_is_not_a_clock_is_not_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let wrong = config(&at_rate("1000.0"));
+    let loads = |csv: String| {
+        let path = file(&dir, &csv);
+        let files = std::slice::from_ref(&path);
+        let dense = load(&wrong, files, 3)
+            .map(|_| ())
+            .map_err(|e| e.to_string());
+        let record = load_record_in(&wrong, files, 3, SMALL)
+            .map(|_| ())
+            .map_err(|e| e.to_string());
+        assert_eq!(dense, record);
+        dense
+    };
+    let at = |step: f64| move |k: usize| format!("{}", k as f64 * step);
+    for (case, csv) in [
+        // a stamp repeated, then going back
+        (
+            "repeated",
+            stamped(3000, "t", Some(&|k| format!("{}", (k / 2) as f64 * 2e-3))),
+        ),
+        (
+            "back",
+            stamped(
+                3000,
+                "time",
+                Some(&|k| format!("{}", ((k * 7) % 3000) as f64 * 2e-3)),
+            ),
+        ),
+        // irregular steps: the square of the row number
+        (
+            "irregular",
+            stamped(3000, "t", Some(&|k| format!("{}", (k * k) as f64 * 1e-6))),
+        ),
+        // text, not numbers: a date
+        (
+            "text",
+            stamped(
+                3000,
+                "timestamp",
+                Some(&|k| format!("2024-05-01T12:00:{k}")),
+            ),
+        ),
+        // milliseconds at the config's rate, and sample numbers, in a column without unit
+        ("ms", stamped(3000, "t", Some(&at(1.0)))),
+        // not a time name
+        ("name", stamped(3000, "tick", Some(&at(2e-3)))),
+        ("T", stamped(3000, "T", Some(&at(2e-3)))),
+        // within 1 %
+        ("close", stamped(3000, "time_s", Some(&at(1.009e-3)))),
+    ] {
+        assert_eq!(loads(csv), Ok(()), "{case}");
+    }
+    // sample numbers (or milliseconds at 1 kHz: not told apart) with `sample_rate = 500`
+    let path = file(&dir, &stamped(3000, "t", Some(&|k| format!("{}", 7 + k))));
+    assert!(load(&config(&at_rate("500.0")), &[path], 3).is_ok());
+    // a unit in the name: milliseconds at 500 Hz
+    let e = loads(stamped(3000, "time_ms", Some(&at(2.0)))).unwrap_err();
+    assert!(
+        e.contains("the time column `time_ms` of")
+            && e.contains("steps at 500 Hz (median step 0.002 s):")
+            && e.contains("`time_column = \"time_ms\"` and `time_scale = 0.001` to use"),
+        "{e}"
+    );
+    // 2 % apart is refused
+    let e = loads(stamped(3000, "time_s", Some(&at(1.02e-3)))).unwrap_err();
+    assert!(
+        e.contains("steps at 980.4 Hz (median step 0.00102 s)"),
+        "{e}"
+    );
+    // two time columns: which one is the clock is not guessed
+    let two: String = stamped(3000, "t", Some(&at(2e-3)))
+        .lines()
+        .map(|l| match l.split_once(',') {
+            Some(("t", rest)) => format!("t,time,{rest}\n"),
+            Some((t, rest)) if !l.starts_with('#') => format!("{t},{t},{rest}\n"),
+            _ => format!("{l}\n"),
+        })
+        .collect();
+    assert_eq!(loads(two), Ok(()));
+}
