@@ -28,3 +28,113 @@ impl fmt::Display for Num {
         }
     }
 }
+
+impl Num {
+    /// A computed value for a message: `x` rounded to `digits` significant digits (1 to
+    /// 17), written as [`Num`] writes it. A result carries every digit of its arithmetic
+    /// (a span of 0.32323208000000037 K, a mass of -4.7123414472056454e-11 kg), which
+    /// says nothing more than `0.323` or `-4.71e-11` does. Zero and non-finite values are
+    /// kept as they are.
+    ///
+    /// ```
+    /// use robid_runtime::Num;
+    /// assert_eq!(Num::rounded(0.32323208000000037, 3).to_string(), "0.323");
+    /// assert_eq!(Num::rounded(-4.7123414472056454e-11, 3).to_string(), "-4.71e-11");
+    /// assert_eq!(Num::rounded(2.5, 6).to_string(), "2.5");
+    /// ```
+    pub fn rounded(x: f64, digits: usize) -> Num {
+        if x == 0.0 || !x.is_finite() {
+            return Num(x);
+        }
+        // `{:.*e}` rounds the exact decimal expansion; parsing gives the double nearest
+        // the rounded decimal, which `Num` writes as that decimal
+        let mut text = Text::default();
+        let digits = digits.clamp(1, 17);
+        if fmt::Write::write_fmt(&mut text, format_args!("{:.*e}", digits - 1, x)).is_err() {
+            return Num(x);
+        }
+        match text.as_str().parse::<f64>() {
+            // -1.8e308, rounded from -f64::MAX, is beyond every double
+            Ok(r) if r.is_finite() => Num(r),
+            _ => Num(x),
+        }
+    }
+
+    /// [`Num::rounded`] to `digits` significant digits, or to the fewest more that still
+    /// pass `keep`: a value shown next to a bound it is compared with must not round onto
+    /// it (a span of 0.99996 K "less than 1 K" is written 0.99996, not 1). `x` itself when
+    /// no rounding passes.
+    ///
+    /// ```
+    /// use robid_runtime::Num;
+    /// assert_eq!(Num::rounded_keeping(0.323232, 3, |s| s < 1.0).to_string(), "0.323");
+    /// assert_eq!(Num::rounded_keeping(0.99996, 3, |s| s < 1.0).to_string(), "0.99996");
+    /// ```
+    pub fn rounded_keeping(x: f64, digits: usize, keep: impl Fn(f64) -> bool) -> Num {
+        (digits.clamp(1, 17)..=17)
+            .map(|d| Num::rounded(x, d))
+            .find(|r| keep(r.0))
+            .unwrap_or(Num(x))
+    }
+}
+
+/// Room for one number in exponent form (a sign, 17 digits, the point and `e-308`),
+/// without allocating.
+#[derive(Default)]
+struct Text {
+    bytes: [u8; 32],
+    len: usize,
+}
+
+impl Text {
+    fn as_str(&self) -> &str {
+        core::str::from_utf8(&self.bytes[..self.len]).unwrap_or("")
+    }
+}
+
+impl fmt::Write for Text {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let end = self.len + s.len();
+        self.bytes
+            .get_mut(self.len..end)
+            .ok_or(fmt::Error)?
+            .copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
+    }
+}
+
+#[cfg(all(test, feature = "std"))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rounded_keeps_the_digits_asked_for() {
+        let is = |x: f64, d: usize, want: &str| {
+            assert_eq!(Num::rounded(x, d).to_string(), want, "{x:e} to {d}");
+        };
+        is(0.32323208000000037, 3, "0.323");
+        is(-4.7123414472056454e-11, 3, "-4.71e-11");
+        is(-0.00014373054988615016, 7, "-0.0001437305");
+        is(0.1002665123456789, 7, "0.1002665");
+        is(1234567.0, 2, "1200000");
+        is(9.9996, 3, "10");
+        is(5e-324, 3, "5e-324");
+        is(2.5, 17, "2.5");
+        is(0.1 + 0.2, 17, "0.30000000000000004");
+        is(0.1 + 0.2, 40, "0.30000000000000004");
+        is(0.123, 0, "0.1");
+        is(0.0, 3, "0");
+        is(f64::NAN, 3, "NaN");
+        is(f64::NEG_INFINITY, 3, "-inf");
+        // rounding up beyond the largest double keeps the value
+        is(-f64::MAX, 3, "-1.7976931348623157e308");
+        // the rounding never reaches the bound it is compared with
+        assert_eq!(Num::rounded_keeping(0.99996, 3, |s| s < 1.0).0, 0.99996);
+        assert_eq!(
+            Num::rounded_keeping(10.0000001, 2, |v| v > 10.0).0,
+            10.0000001
+        );
+        assert_eq!(Num::rounded_keeping(0.323232, 3, |s| s < 1.0).0, 0.323);
+    }
+}

@@ -3,11 +3,16 @@
 //! inequalities (equivalently, the pseudo-inertia positive semidefinite:
 //! docs/experiments.md#physical-consistency-and-the-pseudo-inertia).
 
+use crate::Num;
 use crate::feasible::{LinkInertial, pseudo_inertia_min_eigenvalue};
 
 /// Relative slack of the checks, against the largest principal moment: rounding of an
 /// exactly flat or point-like body must not make it inconsistent.
 const SLACK: f64 = 1e-9;
+
+/// Significant digits of the values in [`Consistency::problems`]: computed values, which
+/// carry every digit of their arithmetic (a mass of -4.7123414472056454e-11 kg).
+const DIGITS: usize = 4;
 
 /// The physical reading of ten standard values and its verdict.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,22 +37,27 @@ impl Consistency {
         let physical = LinkInertial::from_standard(p);
         let principal_moments = physical.as_ref().map(LinkInertial::principal_moments);
         match principal_moments {
-            None => problems.push(format!("the mass {} kg is not positive", p[9])),
+            None => problems.push(format!(
+                "the mass {} kg is not positive",
+                Num::rounded(p[9], DIGITS)
+            )),
             Some(d) => {
                 let slack = SLACK * d[2].abs();
                 if !(d[0] >= -slack) {
                     problems.push(format!(
                         "the inertia about the centre of mass has a negative principal moment \
-                         ({:e} kg m^2)",
-                        d[0]
+                         ({} kg m^2)",
+                        Num::rounded(d[0], DIGITS)
                     ));
                 }
                 // Ascending order: only the largest can exceed the sum of the other two.
                 if !(d[2] <= d[0] + d[1] + slack) {
+                    // the excess too: rounded, the moments may seem to keep the inequality
+                    let [a, b, c] = d.map(|m| Num::rounded(m, DIGITS));
                     problems.push(format!(
-                        "the principal moments {:e}, {:e}, {:e} kg m^2 break the triangle \
-                         inequality (the largest exceeds the sum of the other two)",
-                        d[0], d[1], d[2]
+                        "the principal moments {a}, {b}, {c} kg m^2 break the triangle \
+                         inequality (the largest exceeds the sum of the other two by {} kg m^2)",
+                        Num::rounded(d[2] - d[0] - d[1], 2)
                     ));
                 }
             }
@@ -92,5 +102,55 @@ mod tests {
         let c = Consistency::of(&thin.to_standard());
         assert!(c.problems[0].contains("triangle"), "{:?}", c.problems);
         assert!(c.pseudo_inertia_min_eigenvalue < 0.0);
+    }
+
+    /// The values in the problems are written to four digits: they used to carry every
+    /// digit ("the mass -0.000000000047123414472056454 kg is not positive", "the
+    /// principal moments 2.0000000000000004e-2, ..").
+    #[test]
+    fn the_problems_write_values_short() {
+        let solid = LinkInertial {
+            mass: 1.0,
+            com: [0.0, 0.0, 0.1],
+            inertia: [[0.02, 0.0, 0.0], [0.0, 0.03, 0.0], [0.0, 0.0, 0.04]],
+        };
+        let mut p = solid.to_standard();
+        p[9] = -4.7123414472056454e-11;
+        assert_eq!(
+            Consistency::of(&p).problems,
+            ["the mass -4.712e-11 kg is not positive"]
+        );
+        let negative = LinkInertial {
+            inertia: [
+                [-0.0012345678901234, 0.0, 0.0],
+                [0.0, 0.03, 0.0],
+                [0.0, 0.0, 0.02],
+            ],
+            ..solid
+        };
+        assert_eq!(
+            Consistency::of(&negative.to_standard()).problems,
+            [
+                "the inertia about the centre of mass has a negative principal moment \
+                 (-0.001235 kg m^2)",
+                "the principal moments -0.001235, 0.02, 0.03 kg m^2 break the triangle \
+                 inequality (the largest exceeds the sum of the other two by 0.011 kg m^2)"
+            ]
+        );
+        let thin = LinkInertial {
+            inertia: [
+                [0.02000000001, 0.0, 0.0],
+                [0.0, 0.03, 0.0],
+                [0.0, 0.0, 0.0500001234],
+            ],
+            ..solid
+        };
+        assert_eq!(
+            Consistency::of(&thin.to_standard()).problems,
+            [
+                "the principal moments 0.02, 0.03, 0.05 kg m^2 break the triangle inequality \
+                 (the largest exceeds the sum of the other two by 1.2e-7 kg m^2)"
+            ]
+        );
     }
 }

@@ -8,6 +8,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
+use robid_runtime::Num;
 use robid_runtime::data::ParameterFile;
 use robid_runtime::model::Inertial;
 use robid_runtime::payload::{JointSample, Payload, PayloadOptions, from_torques};
@@ -88,7 +89,13 @@ fn summary(p: &Payload) -> String {
         let _ = writeln!(s, "  {name:<3} {:>14.6e} +- {:.2e}", e.values[k], e.std[k]);
     }
     let c = &p.consistency;
-    let _ = writeln!(s, "mass: {:.6} +- {:.2e} kg", c.mass, e.std[9]);
+    // the digits of the table's M: six decimals wrote -0.000000 for a mass of -8.1e-11
+    let _ = writeln!(
+        s,
+        "mass: {} +- {:.2e} kg",
+        Num::rounded(c.mass, 7),
+        e.std[9]
+    );
     if let Some(l) = &c.physical {
         let _ = writeln!(
             s,

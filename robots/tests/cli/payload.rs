@@ -2,6 +2,8 @@
 //! (its reference parameters with the payload added to link 6), then `robid payload` with
 //! the reference parameters recovers the payload's mass.
 
+use std::path::Path;
+
 use robid_runtime::feasible::LinkInertial;
 
 use crate::common::{asset, fails_with, folder, robid, stderr, stdout, write};
@@ -178,4 +180,88 @@ fn payload_names_a_torque_out_of_range_at_its_row() {
         &["huge.csv:9: column `tau2` is 1e308, outside the range of a joint torque"],
     );
     assert!(!out.exists());
+}
+
+/// The significant digits of the numbers in `text` (the most of any one): a number is a
+/// word that parses as one, after the punctuation around it.
+fn most_digits(text: &str) -> (usize, String) {
+    let mut most = (0, String::new());
+    for word in text.split(|c: char| c.is_whitespace() || "[],;:()".contains(c)) {
+        if word.parse::<f64>().is_err() {
+            continue;
+        }
+        let mantissa = word.split(['e', 'E']).next().unwrap_or("");
+        let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+        let count = digits.trim_start_matches('0').len();
+        if count > most.0 {
+            most = (count, word.to_string());
+        }
+    }
+    most
+}
+
+/// A payload of data without one: what is printed is written to the table's seven
+/// significant digits at most. The mass line used to read "mass: -0.000144 +- 8.20e-4 kg"
+/// (-0.000000 for a smaller mass), and the verdict "the mass -0.00014373054988615016 kg
+/// is not positive".
+#[test]
+fn payload_messages_write_computed_values_short() {
+    let dir = folder();
+    let traj = write(dir.path(), "trajectory.csv", &trajectory());
+    let data = dir.path().join("data.csv");
+    let o = robid(&[
+        "simulate",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--trajectory",
+        traj.to_str().unwrap(),
+        "--torque-noise",
+        "0.2,0.2,0.1,0.05,0.05,0.02",
+        "-o",
+        data.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let payload = |data: &Path| {
+        let o = robid(&[
+            "payload",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e.toml",
+            "--data",
+            data.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stdout(&o)
+    };
+    let text = payload(&data);
+    let verdict = text
+        .lines()
+        .find(|l| l.starts_with("physically consistent: no: "))
+        .unwrap_or_else(|| panic!("no payload is not a body: {text}"));
+    let (count, number) = most_digits(&text);
+    assert!(count <= 7, "{number} has {count} digits: {text}");
+    // the verdict gives four digits
+    let (count, number) = most_digits(verdict);
+    assert!(count <= 4, "{number}: {verdict}");
+    // without noise the mass is a rounding error (measured -8e-11 kg): written as one, not
+    // as -0.000000
+    let exact = write(dir.path(), "exact.csv", "");
+    let o = robid(&[
+        "simulate",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--trajectory",
+        traj.to_str().unwrap(),
+        "-o",
+        exact.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = payload(&exact);
+    let mass = text.lines().find(|l| l.starts_with("mass: ")).unwrap();
+    let value: f64 = mass.split_whitespace().nth(1).unwrap().parse().unwrap();
+    assert!(value != 0.0 && value.abs() < 1e-6, "{mass}");
+    let (count, number) = most_digits(&text);
+    assert!(count <= 7, "{number} has {count} digits: {text}");
 }
