@@ -27,6 +27,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use crate::Num;
 use crate::data::{DataError, KeyMap, TomlFile};
 use crate::error::{Error, Result, num};
 
@@ -123,8 +124,23 @@ impl JointFriction {
         tau.is_finite().then_some(tau)
     }
 
-    /// The first value out of range, as `(field, problem)`.
+    /// The first value out of range, as `(field, problem)`, each value as read (`Num`).
     pub(crate) fn problem(&self) -> Option<(&'static str, String)> {
+        self.problem_shown(|v, _| Num(v))
+    }
+
+    /// [`JointFriction::problem`] of fitted values, which carry every digit of their
+    /// arithmetic: each to four significant digits, or more where four would round it
+    /// into its range (a `load` of 1.00000002 is not written 1).
+    pub(crate) fn fitted_problem(&self) -> Option<(&'static str, String)> {
+        self.problem_shown(|v, out| Num::rounded_keeping(v, 4, out))
+    }
+
+    /// The first value out of range, each written by `show(value, out_of_range)`.
+    fn problem_shown(
+        &self,
+        show: impl Fn(f64, &dyn Fn(f64) -> bool) -> Num,
+    ) -> Option<(&'static str, String)> {
         let fields = [
             ("coulomb", self.coulomb),
             ("load", self.load),
@@ -149,18 +165,19 @@ impl JointFriction {
                     name,
                     format!(
                         "{} {unit} is negative; friction opposes the motion, give 0 or more",
-                        num(v)
+                        show(v, &|r| r < 0.0)
                     ),
                 ));
             }
         }
-        if !(0.0..1.0).contains(&self.load) {
+        let outside = |r: f64| !(0.0..1.0).contains(&r);
+        if outside(self.load) {
             return Some((
                 "load",
                 format!(
                     "{} must lie in [0, 1) (N m of Coulomb friction per N m of load torque; \
                      real gears are near 0.01)",
-                    num(self.load)
+                    show(self.load, &outside)
                 ),
             ));
         }
@@ -169,20 +186,24 @@ impl JointFriction {
             ("smoothing", self.smoothing),
         ] {
             if v <= 0.0 {
-                return Some((name, format!("{} rad/s must be positive", num(v))));
+                return Some((
+                    name,
+                    format!("{} rad/s must be positive", show(v, &|r| r <= 0.0)),
+                ));
             }
         }
+        let beyond = |r: f64| r.abs() > TEMPERATURE_COEFFICIENT_LIMIT;
         for (name, v) in [
             ("coulomb_temperature", self.coulomb_temperature),
             ("viscous_temperature", self.viscous_temperature),
         ] {
-            if v.abs() > TEMPERATURE_COEFFICIENT_LIMIT {
+            if beyond(v) {
                 return Some((
                     name,
                     format!(
                         "{} 1/K is beyond +-{TEMPERATURE_COEFFICIENT_LIMIT} 1/K; give the \
                          coefficient per Kelvin (lubricants are near 0.01/K)",
-                        num(v)
+                        show(v, &beyond)
                     ),
                 ));
             }
@@ -352,14 +373,19 @@ impl FrictionModel {
         f.joint_torque(y, w, temperature)
             .ok_or_else(|| Error::NonFiniteResult {
                 what: format!(
-                    "the joint torque of joint {} at {temperature} deg C",
-                    joint + 1
+                    "the joint torque of joint {} at {} deg C",
+                    joint + 1,
+                    num(temperature)
                 ),
                 cause: format!(
                     "the load slope Fl exp(-kc (T - T0)) = {} exp({}) is not below 1 here; check \
                  `load` and `coulomb_temperature` of the friction model and the temperature",
                     num(f.load),
-                    num(-f.coulomb_temperature * (temperature - f.reference_temperature))
+                    // computed: every digit of -0.30000000000000004 says no more than -0.3
+                    Num::rounded(
+                        -f.coulomb_temperature * (temperature - f.reference_temperature),
+                        4
+                    )
                 ),
             })
     }
@@ -538,6 +564,68 @@ pub(super) mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("joint 1") && e.contains("load slope"), "{e}");
+        // the exponent, computed, to four digits (it was -0.30000000000000004 here); the
+        // temperature as given
+        let warm = JointFriction {
+            load: 0.99,
+            coulomb_temperature: -0.1,
+            reference_temperature: 0.1,
+            ..f
+        };
+        let e = FrictionModel::new(vec![warm])
+            .unwrap()
+            .joint_torque(0, 10.0, 1.0, 3.1)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("of joint 1 at 3.1 deg C") && e.contains("= 0.99 exp(0.3) is not below 1"),
+            "{e}"
+        );
+    }
+
+    /// Values read are written as read; fitted ones to four digits, but never rounded into
+    /// their range.
+    #[test]
+    fn a_fitted_value_out_of_range_is_written_short() {
+        let good = truth();
+        let load = JointFriction {
+            load: 1.0123456789012344,
+            ..good
+        };
+        assert_eq!(
+            load.problem().unwrap().1,
+            "1.0123456789012344 must lie in [0, 1) (N m of Coulomb friction per N m of load \
+             torque; real gears are near 0.01)"
+        );
+        assert!(
+            load.fitted_problem()
+                .unwrap()
+                .1
+                .starts_with("1.012 must lie")
+        );
+        let hot = JointFriction {
+            coulomb_temperature: 1.000000012345679,
+            ..good
+        };
+        assert!(
+            hot.fitted_problem()
+                .unwrap()
+                .1
+                .starts_with("1.00000001 1/K is beyond +-1 1/K"),
+            "{:?}",
+            hot.fitted_problem()
+        );
+        let negative = JointFriction {
+            viscous: -0.0123456789,
+            ..good
+        };
+        assert!(
+            negative
+                .fitted_problem()
+                .unwrap()
+                .1
+                .starts_with("-0.01235 N m s/rad")
+        );
     }
 
     #[test]

@@ -12,6 +12,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use robid_runtime::Num;
 use robid_runtime::data::{Config, ParameterFile, load};
 use robid_runtime::drive::{
     FrictionFit, FrictionFitOptions, FrictionModel, FrictionParameter, identify_friction,
@@ -142,11 +143,12 @@ fn table(fits: &[FrictionFit], source: JointTorqueSource, temperature: bool) -> 
             "reference_temperature", f.reference_temperature
         );
         for h in &fit.fixed {
+            // the seven digits of the table above
             let _ = writeln!(
                 s,
                 "  held {} = {}: {}",
                 h.parameter.name(),
-                h.value,
+                Num::rounded(h.value, 7),
                 h.reason
             );
         }

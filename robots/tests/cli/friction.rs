@@ -4,9 +4,10 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use robid_runtime::Num;
 use robid_runtime::drive::{FrictionModel, JointFriction};
 
-use crate::common::{folder, robid, stderr, stdout, write};
+use crate::common::{folder, most_digits, robid, stderr, stdout, write};
 
 /// Two joints, no gravity (the model is read but tau_J comes from the sensor columns).
 const ROBOT: &str = "name = \"arm\"\nconvention = \"modified\"\ngravity = [0, 0, 0]\n\
@@ -53,21 +54,21 @@ fn motion(j: usize, t: f64) -> ([f64; 3], [f64; 3]) {
 }
 
 /// A log of `n` samples at 500 Hz: link positions, motor encoder positions (motor side),
-/// motor currents, joint-torque sensor, and temperatures when `temperature`. The currents
+/// motor currents, joint-torque sensor, and temperatures rising from 30 deg C by
+/// `temperature` K when it is given. The currents
 /// are Madsen's eq. 14 solved for them: `N K i = tau_J + B thetaddot + f(thetadot, tau_J, T)`.
-fn log(n: usize, temperature: bool) -> String {
+fn log(n: usize, temperature: Option<f64>) -> String {
     let model = truth();
     let mut text = String::from("t,q1,q2,m1,m2,i1,i2,tj1,tj2");
-    if temperature {
+    if temperature.is_some() {
         text.push_str(",T1,T2");
     }
     text.push('\n');
     for k in 0..n {
         let t = k as f64 / 500.0;
-        let temp = if temperature {
-            30.0 + 20.0 * k as f64 / n as f64
-        } else {
-            25.0
+        let temp = match temperature {
+            Some(span) => 30.0 + span * k as f64 / n as f64,
+            None => 25.0,
         };
         // columns by group: q, m, i, tj, T
         let mut groups = vec![String::new(); 5];
@@ -82,7 +83,7 @@ fn log(n: usize, temperature: bool) -> String {
                 let _ = write!(g, ",{v}");
             }
         }
-        if !temperature {
+        if temperature.is_none() {
             groups.pop();
         }
         let _ = writeln!(text, "{t}{}", groups.concat());
@@ -111,7 +112,7 @@ fn config(temperature: bool, rotor: bool) -> String {
 
 fn setup(dir: &Path, temperature: bool, rotor: bool) -> (String, String) {
     let robot = write(dir, "arm.toml", ROBOT);
-    write(dir, "log.csv", &log(5000, temperature));
+    write(dir, "log.csv", &log(5000, temperature.then_some(20.0)));
     let cfg = write(dir, "cfg.toml", &config(temperature, rotor));
     (
         robot.to_str().unwrap().to_string(),
@@ -202,6 +203,45 @@ fn without_temperatures_the_coefficients_are_held_and_said() {
     let e = curve_error(&fitted, &truth(), [25.0, 25.0]);
     // measured 1.9e-4 of the largest friction
     assert!(e < 0.01, "friction curve off by {e}\n{text}");
+}
+
+/// A temperature span too small to tell its coefficients: the table says so with the
+/// span to three digits, and every number printed has the table's seven digits at most.
+/// It used to read "held coulomb_temperature = 0: the temperature spans
+/// 0.32316743358400046 K, less than 1 K".
+#[test]
+fn what_is_held_is_written_short() {
+    let dir = folder();
+    let (robot, cfg) = setup(dir.path(), true, true);
+    // 30 + 0.32323208 k / n: the span is computed, 0.32316743358400046 K
+    write(dir.path(), "log.csv", &log(5000, Some(0.32323208)));
+    let out = dir.path().join("friction.toml");
+    let o = robid(&[
+        "friction",
+        &robot,
+        "--config",
+        &cfg,
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(
+        text.contains(
+            "  held coulomb_temperature = 0: the temperature spans 0.323 K, less than 1 K: its \
+             effect cannot be told from the Coulomb and viscous levels\n"
+        ),
+        "{text}"
+    );
+    let (count, number) = most_digits(&text);
+    assert!(count <= 7, "{number} has {count} digits: {text}");
+    // the file keeps every digit: the reference temperature is the mean of the log's
+    let fitted = FrictionModel::read(&out).unwrap();
+    let t0 = fitted.joints()[0].reference_temperature;
+    assert!(
+        t0 > 30.16 && t0 < 30.17 && Num::rounded(t0, 7).0 != t0,
+        "{t0}"
+    );
 }
 
 #[test]

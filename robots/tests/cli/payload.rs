@@ -6,7 +6,7 @@ use std::path::Path;
 
 use robid_runtime::feasible::LinkInertial;
 
-use crate::common::{asset, fails_with, folder, robid, stderr, stdout, write};
+use crate::common::{asset, fails_with, folder, most_digits, robid, stderr, stdout, write};
 
 /// A 1.5 kg tool, centre of mass 5 cm out along the flange axis.
 fn tool() -> [f64; 10] {
@@ -180,24 +180,6 @@ fn payload_names_a_torque_out_of_range_at_its_row() {
         &["huge.csv:9: column `tau2` is 1e308, outside the range of a joint torque"],
     );
     assert!(!out.exists());
-}
-
-/// The significant digits of the numbers in `text` (the most of any one): a number is a
-/// word that parses as one, after the punctuation around it.
-fn most_digits(text: &str) -> (usize, String) {
-    let mut most = (0, String::new());
-    for word in text.split(|c: char| c.is_whitespace() || "[],;:()".contains(c)) {
-        if word.parse::<f64>().is_err() {
-            continue;
-        }
-        let mantissa = word.split(['e', 'E']).next().unwrap_or("");
-        let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
-        let count = digits.trim_start_matches('0').len();
-        if count > most.0 {
-            most = (count, word.to_string());
-        }
-    }
-    most
 }
 
 /// A payload of data without one: what is printed is written to the table's seven

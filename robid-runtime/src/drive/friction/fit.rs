@@ -20,6 +20,7 @@ use argmin::solver::trustregion::{Steihaug, TrustRegion};
 use nalgebra::{DMatrix, DVector, Matrix4, Vector4};
 
 use super::{DEFAULT_SMOOTHING, JointFriction};
+use crate::Num;
 use crate::error::{Error, Result, num};
 
 /// The temperature span (K) below which `kc` and `kv` are fixed at 0: over less than a
@@ -338,7 +339,7 @@ pub fn identify_friction(
                 reason: format!(
                     "the temperature spans {} K, less than {TEMPERATURE_SPREAD} K: its effect \
                      cannot be told from the Coulomb and viscous levels",
-                    num(t_high - t_low)
+                    Num::rounded_keeping(t_high - t_low, 3, |s| s < TEMPERATURE_SPREAD)
                 ),
             });
         }
@@ -351,7 +352,7 @@ pub fn identify_friction(
             reason: format!(
                 "|load torque| spans {} N m, less than {LOAD_SPREAD} N m: Fl |tl| cannot be \
                  told from Fc",
-                num(l_high - l_low)
+                Num::rounded_keeping(l_high - l_low, 3, |s| s < LOAD_SPREAD)
             ),
         });
     }
@@ -380,7 +381,7 @@ pub fn identify_friction(
             value: 0.0,
             reason: format!(
                 "the data pull it below 0 (to {}), which friction cannot be; held at 0",
-                num(x[i])
+                Num::rounded(x[i], 3)
             ),
         });
         if parameter == FrictionParameter::Stribeck {
@@ -392,7 +393,7 @@ pub fn identify_friction(
         }
     }
     let friction = friction_of(&x, t0, eps);
-    if let Some((field, problem)) = friction.problem() {
+    if let Some((field, problem)) = friction.fitted_problem() {
         return Err(Error::setting(
             "identify_friction",
             "samples",
@@ -476,7 +477,8 @@ fn check_samples(samples: &[FrictionSample], eps: f64) -> Result<()> {
                 "no velocity reversal: {forward} samples move forward and {backward} backward \
                  (faster than {} rad/s); friction from one direction cannot be told from a \
                  torque offset, record motion in both directions",
-                num(moving)
+                // ten times the smoothing: 0.011000000000000001 for 0.0011
+                Num::rounded(moving, 6)
             ),
         ));
     }
@@ -821,6 +823,47 @@ mod tests {
         assert!(fit.rms < 1e-9, "{}", fit.rms);
     }
 
+    /// The spans in the reasons are written to three digits (they were written with
+    /// every digit of the subtraction: "spans 0.32323208000000037 K"), or more where three
+    /// would reach the limit they fall short of.
+    #[test]
+    fn the_spans_are_written_short() {
+        let truth = truth();
+        let reasons = |temperature: f64, load: f64| {
+            let mut samples = synthetic(&truth, 400, 0.0, 41);
+            for (k, s) in samples.iter_mut().enumerate() {
+                let end = (k % 2) as f64;
+                s.temperature = 30.0 + temperature * end;
+                s.load = 12.0 + load * end;
+                s.friction = truth.evaluate(s.velocity, s.load, s.temperature);
+            }
+            let fit = identify_friction(&samples, &FrictionFitOptions::default()).unwrap();
+            fit.fixed
+                .iter()
+                .map(|f| f.reason.clone())
+                .collect::<Vec<_>>()
+        };
+        // 30 + 0.32323208 - 30 = 0.32323208000000037
+        let r = reasons(0.32323208, 0.0323232);
+        assert!(
+            r[0].starts_with("the temperature spans 0.323 K, less than 1 K"),
+            "{r:?}"
+        );
+        assert!(
+            r[2].starts_with("|load torque| spans 0.0323 N m, less than 0.1 N m"),
+            "{r:?}"
+        );
+        let r = reasons(0.99996, 0.099996);
+        assert!(
+            r[0].starts_with("the temperature spans 0.99996 K, less"),
+            "{r:?}"
+        );
+        assert!(
+            r[2].starts_with("|load torque| spans 0.099996 N m, less"),
+            "{r:?}"
+        );
+    }
+
     #[test]
     fn friction_pulled_below_zero_is_held_at_zero() {
         // no Stribeck term in the data, and noise: Fs came out at -0.055 and is held at 0
@@ -833,6 +876,23 @@ mod tests {
         let fit = identify_friction(&samples, &FrictionFitOptions::default()).unwrap();
         assert!(fit.is_fixed(FrictionParameter::Stribeck), "{:?}", fit.fixed);
         assert!(fit.is_fixed(FrictionParameter::StribeckVelocity));
+        // the value it was pulled to, to three digits (it had every digit; measured
+        // -0.0548)
+        let held = &fit.fixed[0];
+        assert_eq!(held.parameter, FrictionParameter::Stribeck);
+        let to = held
+            .reason
+            .strip_prefix("the data pull it below 0 (to ")
+            .and_then(|r| r.split_once(')'))
+            .map(|(v, _)| v)
+            .unwrap_or_else(|| panic!("{}", held.reason));
+        let digits = to.trim_start_matches(['-', '0', '.']).len();
+        let value: f64 = to.parse().unwrap();
+        assert!(
+            digits <= 3 && (-0.06..-0.05).contains(&value),
+            "{}",
+            held.reason
+        );
         assert_eq!(fit.friction.stribeck, 0.0);
         assert!(fit.friction.coulomb >= 0.0 && fit.friction.viscous >= 0.0);
         assert!(
@@ -873,6 +933,12 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("no velocity reversal"), "{e}");
+        let fine = FrictionFitOptions {
+            smoothing: 0.0011,
+            ..options
+        };
+        let e = identify_friction(&forward, &fine).unwrap_err().to_string();
+        assert!(e.contains("(faster than 0.011 rad/s)"), "{e}");
         let one_speed: Vec<FrictionSample> = good
             .iter()
             .map(|s| FrictionSample {

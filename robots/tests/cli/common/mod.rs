@@ -80,3 +80,21 @@ pub(crate) fn fails_with(o: &Output, expected: &[&str]) {
         assert!(e.contains(x), "expected `{x}` in: {e}");
     }
 }
+
+/// The significant digits of the numbers in `text` (the most of any one): a number is a
+/// word that parses as one, after the punctuation around it.
+pub(crate) fn most_digits(text: &str) -> (usize, String) {
+    let mut most = (0, String::new());
+    for word in text.split(|c: char| c.is_whitespace() || "[],;:()".contains(c)) {
+        if word.parse::<f64>().is_err() {
+            continue;
+        }
+        let mantissa = word.split(['e', 'E']).next().unwrap_or("");
+        let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+        let count = digits.trim_start_matches('0').len();
+        if count > most.0 {
+            most = (count, word.to_string());
+        }
+    }
+    most
+}
