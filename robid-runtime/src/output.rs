@@ -96,26 +96,15 @@ pub fn write_atomically(
 /// Refuses an output whose folder `dir` does not exist or is a file, naming the output
 /// `path` as given and the folder.
 fn check_folder(path: &Path, dir: &Path) -> Result<()> {
-    let missing = |e: OutputError| Err(Error::Output(e));
-    match std::fs::metadata(dir) {
-        Ok(m) if m.is_dir() => Ok(()),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => missing(OutputError::NoFolder {
-            path: path.to_path_buf(),
-            folder: dir.to_path_buf(),
-        }),
-        Ok(_) => missing(OutputError::NotAFolder {
-            path: path.to_path_buf(),
-            folder: dir.to_path_buf(),
-        }),
-        Err(e) if e.kind() == std::io::ErrorKind::NotADirectory => {
-            missing(OutputError::NotAFolder {
-                path: path.to_path_buf(),
-                folder: dir.to_path_buf(),
-            })
-        }
-        // anything else (no permission to look) is reported by the write itself
-        Err(_) => Ok(()),
-    }
+    use std::io::ErrorKind::{NotADirectory, NotFound};
+    let (path, folder) = (path.to_path_buf(), dir.to_path_buf());
+    let problem = match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => return Ok(()),
+        Err(e) if e.kind() == NotFound => OutputError::NoFolder { path, folder },
+        Err(e) if e.kind() != NotADirectory => return Ok(()), // the writer says what failed
+        _ => OutputError::NotAFolder { path, folder },
+    };
+    Err(Error::Output(problem))
 }
 
 /// New files get the permissions an ordinary file would (0o666 less the umask), not
