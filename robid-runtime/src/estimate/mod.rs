@@ -32,7 +32,7 @@ pub(crate) use quality::assess;
 pub(crate) use quality::dominated_columns;
 pub use quality::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, OUTLIER_ROWS, OUTLIER_SHARE, QualityWarning,
-    REL_STD_WARNING,
+    REL_STD_WARNING, ROUNDING_EFFECT,
 };
 pub use result::{Estimate, Estimator, error_bound};
 pub use rls::{Rls, rls};

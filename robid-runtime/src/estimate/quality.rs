@@ -5,6 +5,8 @@
 
 use std::fmt;
 
+use nalgebra::{DMatrix, DVector};
+
 use serde::{Deserialize, Serialize};
 
 /// Condition number of the observation matrix W above which an identification is reported
@@ -16,6 +18,14 @@ pub const CONDITION_WARNING: f64 = 1e4;
 /// Relative standard deviation (percent) above which a parameter is reported as poorly
 /// identified: its uncertainty is larger than its value.
 pub const REL_STD_WARNING: f64 = 100.0;
+
+/// A parameter whose standard deviation moves the torques by less than this fraction of
+/// their norm (`std_i ||W_i|| / ||y||`) is known to the data's rounding, and its relative
+/// standard deviation, however large, is no warning: in noise-free data (`robid simulate`
+/// without noise) a parameter whose value is about 0 has a standard deviation of about
+/// 1e-11 and so a relative one of 100 % or more. Measured data are 1e4 times or more above
+/// it (docs/identification.md#quality-warnings).
+pub const ROUNDING_EFFECT: f64 = 1e-9;
 
 /// Something a caller should tell the user about an identification that succeeded.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -30,7 +40,8 @@ pub enum QualityWarning {
         threshold: f64,
     },
     /// Parameters whose relative standard deviation is above [`REL_STD_WARNING`] percent
-    /// (or whose value is exactly zero).
+    /// (or whose value is exactly zero), unless their standard deviation is at the data's
+    /// rounding ([`ROUNDING_EFFECT`]).
     Uncertain {
         /// Their names, in parameter order.
         parameters: Vec<String>,
@@ -240,9 +251,30 @@ fn top_share(x: impl Iterator<Item = f64>, scale: f64) -> (usize, f64) {
     (top[0].1, top.iter().map(|t| t.0).sum::<f64>() / total)
 }
 
+/// `||W_i|| / ||y||` of every column of `w` (each norm taken scaled by the largest entry,
+/// so that neither overflows); infinite when `y` is zero.
+pub(crate) fn relative_column_norms(w: &DMatrix<f64>, y: &DVector<f64>) -> Vec<f64> {
+    let big = w.iter().chain(y.iter()).fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(big > 0.0 && big.is_finite()) {
+        return vec![f64::INFINITY; w.ncols()];
+    }
+    let norm = |x: &mut dyn Iterator<Item = &f64>| x.map(|v| (v / big).powi(2)).sum::<f64>().sqrt();
+    let y_norm = norm(&mut y.iter());
+    w.column_iter()
+        .map(|c| norm(&mut c.iter()) / y_norm)
+        .collect()
+}
+
 /// The warnings of an estimate with condition number `condition` and relative standard
-/// deviations `rel` (percent, infinite for a zero value) of the parameters `names`.
-pub(crate) fn assess(condition: f64, names: &[String], rel: &[f64]) -> Vec<QualityWarning> {
+/// deviations `rel` (percent, infinite for a zero value) of the parameters `names`, whose
+/// standard deviations move the torques by `effect` of their norm ([`ROUNDING_EFFECT`];
+/// infinite or NaN where unknown).
+pub(crate) fn assess(
+    condition: f64,
+    names: &[String],
+    rel: &[f64],
+    effect: &[f64],
+) -> Vec<QualityWarning> {
     let mut out = Vec::new();
     if condition > CONDITION_WARNING {
         out.push(QualityWarning::IllConditioned {
@@ -253,8 +285,9 @@ pub(crate) fn assess(condition: f64, names: &[String], rel: &[f64]) -> Vec<Quali
     let poor: Vec<(String, Option<f64>)> = names
         .iter()
         .zip(rel)
-        .filter(|(_, r)| **r > REL_STD_WARNING)
-        .map(|(n, r)| (n.clone(), Some(*r).filter(|r| r.is_finite())))
+        .zip(effect.iter().chain(std::iter::repeat(&f64::INFINITY)))
+        .filter(|((_, r), e)| **r > REL_STD_WARNING && !(**e < ROUNDING_EFFECT))
+        .map(|((n, r), _)| (n.clone(), Some(*r).filter(|r| r.is_finite())))
         .collect();
     if !poor.is_empty() {
         let (parameters, rel_std_percent) = poor.into_iter().unzip();
@@ -322,13 +355,37 @@ mod tests {
     #[test]
     fn thresholds_decide_and_name_the_parameters() {
         let names: Vec<String> = ["a", "b", "c"].iter().map(|s| s.to_string()).collect();
-        assert!(assess(CONDITION_WARNING, &names, &[1.0, 100.0, 5.0]).is_empty());
-        let w = assess(6.9e9, &names, &[1.0, 45.5, 250.0]);
+        let unknown = [f64::INFINITY; 3];
+        assert!(assess(CONDITION_WARNING, &names, &[1.0, 100.0, 5.0], &unknown).is_empty());
+        let w = assess(6.9e9, &names, &[1.0, 45.5, 250.0], &unknown);
         assert_eq!(w.len(), 2);
         assert_eq!(w[0].kind(), "ill_conditioned");
         assert_eq!(w[1].parameters(), vec!["c"]);
         assert!(w[1].to_string().contains("c (250 %)"), "{}", w[1]);
-        let w = assess(10.0, &names, &[f64::INFINITY, 1.0, 1.0]);
+        let w = assess(10.0, &names, &[f64::INFINITY, 1.0, 1.0], &unknown);
         assert!(w[0].to_string().contains("a (value 0)"), "{}", w[0]);
+    }
+
+    /// A parameter whose standard deviation is at the data's rounding is no warning,
+    /// whatever its relative one; one just above it is.
+    #[test]
+    fn uncertainty_at_the_rounding_level_is_no_warning() {
+        let names: Vec<String> = ["a", "b", "c"].iter().map(|s| s.to_string()).collect();
+        let rel = [250.0, 250.0, f64::INFINITY];
+        let w = assess(10.0, &names, &rel, &[0.5e-9, 2e-9, 1e-12]);
+        assert_eq!(w.len(), 1);
+        assert_eq!(w[0].parameters(), vec!["b"]);
+        // unknown effects keep the rule on the relative deviation alone
+        let w = assess(10.0, &names, &rel, &[f64::NAN, f64::INFINITY, f64::NAN]);
+        assert_eq!(w[0].parameters(), vec!["a", "b", "c"]);
+    }
+
+    #[test]
+    fn column_norms_are_relative_to_the_torques_and_do_not_overflow() {
+        let w = DMatrix::from_row_slice(2, 2, &[3e300, 0.0, 4e300, 1e-300]);
+        let y = DVector::from_column_slice(&[0.0, 1e300]);
+        let r = relative_column_norms(&w, &y);
+        assert!((r[0] - 5.0).abs() < 1e-12 && r[1] < 1e-300, "{r:?}");
+        assert!(relative_column_norms(&w, &DVector::zeros(2))[0].is_infinite());
     }
 }

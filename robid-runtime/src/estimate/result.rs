@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::estimate::Observation;
-use crate::estimate::quality::{QualityWarning, assess};
+use crate::estimate::quality::{QualityWarning, assess, relative_column_norms};
 
 /// Which estimator produced a result: the config's estimation method, one list for both
 /// (the names in reports are its [`Method::name`](crate::data::Method::name)).
@@ -81,6 +81,7 @@ pub(crate) fn assemble(
     let r = &solved.y - &solved.w * &beta;
     let residual_rms = original.residual_rms(&beta);
     let bound = error_bound(condition_number, &r, &solved.y);
+    let relative_column_norms = relative_column_norms(&solved.w, &solved.y);
     assemble_parts(
         method,
         original.names.clone(),
@@ -92,6 +93,7 @@ pub(crate) fn assemble(
             rows: m,
             per_joint_rms: residual_rms,
             error_bound: bound,
+            relative_column_norms,
         },
     )
 }
@@ -107,6 +109,8 @@ pub(crate) struct Residual {
     pub(crate) per_joint_rms: Vec<f64>,
     /// [`error_bound`] of the solved system.
     pub(crate) error_bound: f64,
+    /// `||W_i|| / ||y||` of each column of the solved system (for [`ROUNDING_EFFECT`](crate::estimate::ROUNDING_EFFECT)).
+    pub(crate) relative_column_norms: Vec<f64>,
 }
 
 /// The statistics of a solution from its residual: sigma^2, the standard deviations, the
@@ -173,7 +177,12 @@ pub(crate) fn assemble_parts(
             "the torques are negligible next to the residual: check the data's units",
         ));
     }
-    let warnings = assess(condition_number, &names, &rel);
+    let effect: Vec<f64> = std
+        .iter()
+        .zip(&residual.relative_column_norms)
+        .map(|(s, c)| s * c)
+        .collect();
+    let warnings = assess(condition_number, &names, &rel, &effect);
     Ok(Estimate {
         method,
         names,

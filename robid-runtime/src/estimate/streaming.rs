@@ -416,6 +416,10 @@ impl StreamingLeastSquares {
             })
             .collect();
         let solved_norm = sy * top * rho;
+        // ||W_j|| / ||y|| (the scales' common `top` cancels)
+        let relative_column_norms = (0..n)
+            .map(|j| (col_norm(j) / y_norm) * (divisor(common[j]) / sy))
+            .collect();
         assemble_parts(
             method,
             self.names.clone(),
@@ -427,6 +431,7 @@ impl StreamingLeastSquares {
                 rows: m,
                 per_joint_rms,
                 error_bound,
+                relative_column_norms,
             },
         )
     }

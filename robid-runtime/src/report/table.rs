@@ -137,6 +137,7 @@ mod tests {
                 1019.0,
                 &["MXR2".into(), "Fv1".into()],
                 &[100.0 * 0.04 / 2.24, f64::INFINITY],
+                &[f64::INFINITY; 2],
             ),
             known: Vec::new(),
         };
@@ -269,7 +270,7 @@ mod tests {
             residual_rms: vec![1.0],
             rows: 100,
             weights: None,
-            warnings: crate::estimate::assess(6.9e9, &names, &[0.83, 45.45]),
+            warnings: crate::estimate::assess(6.9e9, &names, &[0.83, 45.45], &[f64::INFINITY; 2]),
             known: Vec::new(),
         };
         let fit = Fit {
@@ -291,7 +292,7 @@ mod tests {
         // a parameter known to worse than its size is named
         let e2 = Estimate {
             rel_std_percent: vec![0.83, 145.0],
-            warnings: crate::estimate::assess(10.0, &names, &[0.83, 145.0]),
+            warnings: crate::estimate::assess(10.0, &names, &[0.83, 145.0], &[f64::INFINITY; 2]),
             ..e
         };
         let r = Report::new("x", &e2, &fit, |_| None);
