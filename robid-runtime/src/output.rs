@@ -6,7 +6,9 @@
 //! A failed or killed run therefore leaves an existing file exactly as it was, and a
 //! reader never sees half a file. [`refuse_inputs`] is called before any work starts,
 //! so that `robid excite robot.toml -o robot.toml` fails instead of replacing the
-//! description, or two outputs of one run on the same file. A target that is not a
+//! description, or two outputs of one run on the same file; and so are [`check_file`]
+//! and [`check_folder`], so that an output the writer would refuse (a folder, a missing
+//! folder) is refused before a long run rather than after it. A target that is not a
 //! regular file (a pipe, `/dev/stdout`, a terminal, a device) is written into directly:
 //! it cannot be replaced, and replacing it would destroy it.
 //!
@@ -39,37 +41,30 @@ pub fn write_atomically(
             reason: e.to_string(),
         })
     };
-    // Write beside the file a link points to, so the rename replaces that file.
-    let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-    let dir = match target.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
+    let (target, dir, existing) = match target(path)? {
+        Target::Special(target) => {
+            // a reader that stops early (`-o /dev/stdout | head`) closes a pipe: not a
+            // problem of the path, so not `Write`'s "check that the folder exists"
+            let failed = |e: std::io::Error| match e.kind() {
+                std::io::ErrorKind::BrokenPipe => Error::Output(OutputError::Closed {
+                    path: path.to_path_buf(),
+                }),
+                _ => err(&e),
+            };
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(&target)
+                .map_err(failed)?;
+            let mut w = std::io::BufWriter::new(file);
+            write(&mut w).map_err(failed)?;
+            return w.flush().map_err(failed);
+        }
+        Target::File {
+            target,
+            dir,
+            permissions,
+        } => (target, dir, permissions),
     };
-    let metadata = std::fs::metadata(&target).ok();
-    if metadata.as_ref().is_some_and(std::fs::Metadata::is_dir) {
-        return Err(Error::Output(OutputError::Folder {
-            path: path.to_path_buf(),
-        }));
-    }
-    if metadata.as_ref().is_some_and(|m| !m.is_file()) {
-        // a reader that stops early (`-o /dev/stdout | head`) closes a pipe: not a
-        // problem of the path, so not `Write`'s "check that the folder exists"
-        let failed = |e: std::io::Error| match e.kind() {
-            std::io::ErrorKind::BrokenPipe => Error::Output(OutputError::Closed {
-                path: path.to_path_buf(),
-            }),
-            _ => err(&e),
-        };
-        let file = std::fs::OpenOptions::new()
-            .write(true)
-            .open(&target)
-            .map_err(failed)?;
-        let mut w = std::io::BufWriter::new(file);
-        write(&mut w).map_err(failed)?;
-        return w.flush().map_err(failed);
-    }
-    check_folder(path, &dir)?;
-    let existing = metadata.map(|m| m.permissions());
     // the error names the temporary file ("at path \"dir/.robid-Z2mU1l.tmp\""), which
     // the user never asked for: name the folder instead
     let mut temp = temp_builder()
@@ -93,9 +88,91 @@ pub fn write_atomically(
     Ok(())
 }
 
+/// Refuses, before any work, a file output that its writer ([`write_atomically`]) would
+/// refuse, with the writer's message: an existing folder ([`OutputError::Folder`]), a
+/// path whose folder does not exist ([`OutputError::NoFolder`]) or is a file
+/// ([`OutputError::NotAFolder`]). A pipe, `/dev/stdout` or another special file passes.
+/// Nothing is created or opened; the writer checks again (the folder may go meanwhile).
+///
+/// ```
+/// use robid_runtime::{Error, OutputError, output::check_file};
+/// # let dir = tempfile::tempdir().unwrap();
+/// assert!(check_file(&dir.path().join("out.csv")).is_ok());
+/// let e = check_file(&dir.path().join("missing/out.csv")).unwrap_err();
+/// assert!(matches!(e, Error::Output(OutputError::NoFolder { .. })));
+/// ```
+pub fn check_file(path: &Path) -> Result<()> {
+    target(path).map(|_| ())
+}
+
+/// Refuses, before any work, a folder output ([`create_folder`]: created with its
+/// parents when missing, files written into it) that cannot be one: an existing file
+/// ([`OutputError::FileNotFolder`]) or a path through a file ([`OutputError::NotAFolder`]).
+/// A missing folder passes. Nothing is created; [`create_folder`] checks again.
+pub fn check_folder(dir: &Path) -> Result<()> {
+    let problem = match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => return Ok(()),
+        Ok(_) => OutputError::FileNotFolder {
+            path: dir.to_path_buf(),
+        },
+        // a missing path whose every existing part is a folder: created with its parents
+        Err(e) if e.kind() != std::io::ErrorKind::NotADirectory => return Ok(()),
+        Err(_) => OutputError::NotAFolder {
+            path: dir.to_path_buf(),
+            folder: folder_of(dir).to_path_buf(),
+        },
+    };
+    Err(Error::Output(problem))
+}
+
+/// Where [`write_atomically`] writes an output.
+enum Target {
+    /// An existing file that is neither a regular file nor a folder (a pipe,
+    /// `/dev/stdout`, a device), links resolved: written into.
+    Special(PathBuf),
+    /// A regular file, existing or new, links resolved: replaced by a temporary file
+    /// written in `dir`, which gets the old file's permissions.
+    File {
+        target: PathBuf,
+        dir: PathBuf,
+        permissions: Option<std::fs::Permissions>,
+    },
+}
+
+/// Where `path` is written, or why it cannot be: it is a folder, or its folder does not
+/// exist or is a file. Looks, never creates or opens.
+fn target(path: &Path) -> Result<Target> {
+    // Write beside the file a link points to, so the rename replaces that file.
+    let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let metadata = std::fs::metadata(&target).ok();
+    if metadata.as_ref().is_some_and(std::fs::Metadata::is_dir) {
+        return Err(Error::Output(OutputError::Folder {
+            path: path.to_path_buf(),
+        }));
+    }
+    if metadata.as_ref().is_some_and(|m| !m.is_file()) {
+        return Ok(Target::Special(target));
+    }
+    let dir = folder_of(&target).to_path_buf();
+    check_parent(path, &dir)?;
+    Ok(Target::File {
+        target,
+        dir,
+        permissions: metadata.map(|m| m.permissions()),
+    })
+}
+
+/// The folder `path` lies in: its parent, or `.` for a bare name.
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    }
+}
+
 /// Refuses an output whose folder `dir` does not exist or is a file, naming the output
 /// `path` as given and the folder.
-fn check_folder(path: &Path, dir: &Path) -> Result<()> {
+fn check_parent(path: &Path, dir: &Path) -> Result<()> {
     use std::io::ErrorKind::{NotADirectory, NotFound};
     let (path, folder) = (path.to_path_buf(), dir.to_path_buf());
     let problem = match std::fs::metadata(dir) {
@@ -125,8 +202,10 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomically(path, |w| w.write_all(bytes))
 }
 
-/// Creates the folder `dir` (and its parents) for outputs.
+/// Creates the folder `dir` (and its parents) for outputs; an existing folder is kept,
+/// and a file there is refused as in [`check_folder`].
 pub fn create_folder(dir: &Path) -> Result<()> {
+    check_folder(dir)?;
     std::fs::create_dir_all(dir).map_err(|e| {
         Error::Output(OutputError::Write {
             path: dir.to_path_buf(),
@@ -212,6 +291,14 @@ pub enum OutputError {
     /// The output is an existing folder (`-o /tmp`): a file in it was meant.
     #[error("{path}: is a folder; give a file name, e.g. {}", path.join("out").display())]
     Folder {
+        /// The output, as given.
+        path: PathBuf,
+    },
+    /// A folder output (files are written into it) is a file (`--plot results.svg`).
+    #[error(
+        "{path}: is a file, not a folder; give the path of a folder (a missing one is created), or move the file away"
+    )]
+    FileNotFolder {
         /// The output, as given.
         path: PathBuf,
     },
@@ -426,6 +513,74 @@ mod tests {
         );
         assert!(text.starts_with(&start), "{text}");
         assert!(!text.contains(".robid-"), "{text}");
+    }
+
+    /// The check before the work refuses what the writer refuses, with the same message,
+    /// and creates nothing.
+    #[test]
+    fn the_check_before_the_work_gives_the_writers_message() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("notes.txt");
+        std::fs::write(&file, "x").unwrap();
+        let bad = [
+            dir.path().to_path_buf(),
+            dir.path().join("missing/dir/f.csv"),
+            file.join("f.csv"),
+            file.join("sub/f.csv"),
+        ];
+        for path in &bad {
+            let before = check_file(path).unwrap_err().to_string();
+            let at_write = write_bytes(path, b"x").unwrap_err().to_string();
+            assert_eq!(before, at_write, "{}", path.display());
+        }
+        for good in [dir.path().join("new.csv"), file.clone()] {
+            check_file(&good).unwrap();
+        }
+        #[cfg(unix)]
+        check_file(Path::new("/dev/null")).unwrap();
+        assert!(!dir.path().join("missing").exists());
+        assert!(!dir.path().join("new.csv").exists());
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "x");
+    }
+
+    /// A folder output may be missing (it is created with its parents) but not a file or
+    /// under one; the check creates nothing, and `create_folder` says the same.
+    #[test]
+    fn a_folder_output_is_checked_before_the_work() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("plots.svg");
+        std::fs::write(&file, "x").unwrap();
+        check_folder(dir.path()).unwrap();
+        check_folder(&dir.path().join("new/plots")).unwrap();
+        assert!(!dir.path().join("new").exists());
+        let e = check_folder(&file).unwrap_err();
+        assert!(
+            matches!(&e, Error::Output(OutputError::FileNotFolder { path }) if *path == file),
+            "{e:?}"
+        );
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "{}: is a file, not a folder; give the path of a folder (a missing one is \
+                 created), or move the file away",
+                file.display()
+            )
+        );
+        assert_eq!(create_folder(&file).unwrap_err().to_string(), e.to_string());
+        for under in [file.join("sub"), file.join("a/b")] {
+            let e = check_folder(&under).unwrap_err();
+            assert!(
+                matches!(&e, Error::Output(OutputError::NotAFolder { .. })),
+                "{e:?}"
+            );
+            assert_eq!(
+                create_folder(&under).unwrap_err().to_string(),
+                e.to_string()
+            );
+        }
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "x");
+        create_folder(&dir.path().join("new/plots")).unwrap();
+        assert!(dir.path().join("new/plots").is_dir());
     }
 
     #[test]
