@@ -12,7 +12,7 @@ use flate2::read::MultiGzDecoder;
 use robid_runtime::data::{Config, Dataset, read_columns_from};
 use robid_runtime::drive::DriveChain;
 use robid_runtime::estimate::Estimate;
-use robid_runtime::output::create_folder;
+use robid_runtime::output::{check_folder, create_folder};
 use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
 use robid_runtime::signal::Signals;
@@ -36,6 +36,8 @@ const HELD_OUT: (usize, usize) = (29250, 45000);
 /// Runs the demo.
 pub(crate) fn run() -> Result<(), Error> {
     let start = Instant::now();
+    // a file named like the report's folder is refused now, not after the work
+    check_folder(Path::new(OUTPUT))?;
     let robot = Robot::from_toml(ROBOT, "robots/configs/tx40_robot.toml")?;
     let chosen = model_for(&robot)?;
     let config = Config::from_toml_str(CONFIG, Path::new("robots/configs/tx40.toml"))?;

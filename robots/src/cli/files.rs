@@ -2,17 +2,51 @@
 //! temporary file beside the target, renamed into place when complete), so a failed or
 //! killed run leaves an existing file exactly as it was; and an output that is the same
 //! file as an input of the run (the same path, another spelling of it, a hard or
-//! symbolic link) is refused before any work starts.
+//! symbolic link) is refused before any work starts, and so is an output its writer would
+//! refuse (an existing folder, a missing folder, a path through a file), with the
+//! writer's message: a long run does not end in that error. The writer checks again.
 
 use std::path::{Path, PathBuf};
 
-use robid_runtime::output::{refuse_inputs, write_bytes};
+use robid_runtime::output::{check_file, check_folder, refuse_inputs, write_bytes};
+use robid_runtime::{Error as RuntimeError, OutputError};
 
 use super::Error;
 
-/// Refuses every output that is the same file as one of the inputs.
+/// Refuses, before any work, every file output that is the same file as one of the
+/// inputs or as another output, or that cannot be written where it is given.
 pub(crate) fn refuse(inputs: &[&Path], outputs: &[&Path]) -> Result<(), Error> {
-    Ok(refuse_inputs(inputs, outputs)?)
+    refuse_with_folders(inputs, outputs, &[])
+}
+
+/// [`refuse`], with folder outputs too: `(flag, folder)`, a folder that files are
+/// written into (`identify --plot`), created if missing, refused when it is a file or
+/// lies under one.
+pub(crate) fn refuse_with_folders(
+    inputs: &[&Path],
+    outputs: &[&Path],
+    folders: &[(&str, &Path)],
+) -> Result<(), Error> {
+    let mut all = outputs.to_vec();
+    all.extend(folders.iter().map(|(_, dir)| *dir));
+    refuse_inputs(inputs, &all)?;
+    for path in outputs {
+        check_file(path)?;
+    }
+    for (flag, dir) in folders {
+        check_folder(dir).map_err(|e| match e {
+            RuntimeError::Output(OutputError::FileNotFolder { path }) => RuntimeError::Argument {
+                flag: flag.to_string(),
+                problem: format!(
+                    "{} is a file, but {flag} takes a folder to write its files into (a \
+                     missing one is created); give the path of a folder, or move the file away",
+                    path.display()
+                ),
+            },
+            e => e,
+        })?;
+    }
+    Ok(())
 }
 
 /// Writes `text` to `path` atomically.

@@ -311,9 +311,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     inputs.extend(args.reference.as_deref());
     let mut outputs: Vec<&Path> = Vec::new();
     outputs.extend(args.json.as_deref());
-    outputs.extend(args.plot.as_deref());
     outputs.extend(args.report.as_deref());
-    files::refuse(&inputs, &outputs)?;
+    let plot: Vec<(&str, &Path)> = args.plot.iter().map(|d| ("--plot", d.as_path())).collect();
+    files::refuse_with_folders(&inputs, &outputs, &plot)?;
     let chosen = robot_model(robot, &args.description)?;
     let model = chosen.model.as_ref();
     if let Some(m) = args.method {
@@ -341,7 +341,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     if let Some(dir) = &args.plot {
         let plots = files::plot_files(dir, &prefixes, model.dof());
         let plots: Vec<&Path> = plots.iter().map(PathBuf::as_path).collect();
-        files::refuse(&inputs, &plots)?;
+        // only against the inputs: the folder may not exist yet (it is created)
+        robid_runtime::output::refuse_inputs(&inputs, &plots)?;
     }
     // one record is read from its file block by block (a long log is never held whole);
     // repeated runs are loaded in memory
