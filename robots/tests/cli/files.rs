@@ -1,13 +1,15 @@
 //! Files `robid` writes: an output that is the same file as an input is refused before
 //! any work (the same path, the path spelt with `./`, a hard link, a symbolic link), for
-//! every subcommand that writes; and a failed or killed write leaves an existing file
-//! exactly as it was (every output goes through a temporary file and a rename).
+//! every subcommand that writes; so is an output that cannot be written where it is
+//! given (a missing folder, an existing folder, a path through a file, a `--plot` folder
+//! that is a file); and a failed or killed write leaves an existing file exactly as it
+//! was (every output goes through a temporary file and a rename).
 
 use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{asset, fails_with, folder, robid, robid_in, stderr, ur5e_states, write};
+use common::{asset, fails_with, folder, robid, robid_in, stderr, stdout, ur5e_states, write};
 
 /// The inputs of the cases, copied into a fresh folder.
 struct Inputs {
@@ -548,4 +550,289 @@ fn a_missing_folder_is_named_by_every_writer() {
         assert_eq!(stderr(&o), expected, "{args:?}");
     }
     assert!(!dir.path().join("missing").exists());
+}
+
+/// Every writer of a file, with its output `{out}` (for [`Inputs::args`]): `-o` of each
+/// subcommand (C code too), `--json` and `--report` of identify, `--json` of
+/// `identify --static`, `--pieces` of excite.
+fn file_outputs() -> Vec<Vec<&'static str>> {
+    let identify = |flag: &'static str| {
+        vec![
+            "identify",
+            "{robot.toml}",
+            "--config",
+            "{config.toml}",
+            "--data",
+            "{data.csv}",
+            flag,
+            "{out}",
+        ]
+    };
+    vec![
+        vec!["emit", "{robot.toml}", "-o", "{out}"],
+        vec!["emit", "{robot.toml}", "--lang", "c", "-o", "{out}"],
+        vec![
+            "torques",
+            "{robot.toml}",
+            "--parameters",
+            "{params.toml}",
+            "--states",
+            "{states.csv}",
+            "-o",
+            "{out}",
+        ],
+        vec![
+            "excite",
+            "{robot.toml}",
+            "--parameters",
+            "{params.toml}",
+            "-o",
+            "{out}",
+        ],
+        vec![
+            "excite",
+            "{robot.toml}",
+            "--method",
+            "points",
+            "-o",
+            "trajectory.csv",
+            "--pieces",
+            "{out}",
+        ],
+        vec![
+            "simulate",
+            "{robot.toml}",
+            "--parameters",
+            "{params.toml}",
+            "--trajectory",
+            "{states.csv}",
+            "-o",
+            "{out}",
+        ],
+        identify("--json"),
+        identify("--report"),
+        vec![
+            "identify",
+            "{robot.toml}",
+            "--static",
+            "{data.csv}",
+            "--json",
+            "{out}",
+        ],
+        vec![
+            "feasible",
+            "{tx40.toml}",
+            "--identified",
+            "{identified.json}",
+            "--bounds",
+            "{bounds.toml}",
+            "--prior",
+            "{prior.toml}",
+            "-o",
+            "{out}",
+        ],
+        vec![
+            "payload",
+            "{robot.toml}",
+            "--parameters",
+            "{params.toml}",
+            "--data",
+            "{data.csv}",
+            "-o",
+            "{out}",
+        ],
+        vec![
+            "friction",
+            "{robot.toml}",
+            "--config",
+            "{config.toml}",
+            "--data",
+            "{data.csv}",
+            "-o",
+            "{out}",
+        ],
+    ]
+}
+
+/// `inputs` with every input a run reads after checking its outputs made unreadable (the
+/// config stays: identify and friction read it to find their data files): a run that
+/// started its work would fail on the first of them.
+fn broken(inputs: &Inputs) {
+    for name in [
+        "robot.toml",
+        "params.toml",
+        "states.csv",
+        "data.csv",
+        "validation.csv",
+        "tx40.toml",
+        "identified.json",
+        "bounds.toml",
+        "prior.toml",
+    ] {
+        write(inputs.dir.path(), name, "[broken\n");
+    }
+}
+
+/// The names in `dir` and in its folders, sorted.
+fn listing(dir: &Path) -> Vec<PathBuf> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            names.extend(listing(&path));
+        }
+        names.push(path);
+    }
+    names.sort();
+    names
+}
+
+/// An output its writer would refuse (in a folder that does not exist, an existing folder,
+/// under a file) is refused before any work, with the writer's message, by every writer:
+/// with every input broken, the message is about the output, not the first input read
+/// (it used to be refused only when written, after the work: an excite design of ten
+/// seconds, a simulation, an identification), and nothing is written.
+#[test]
+fn a_bad_output_is_refused_before_any_work_by_every_writer() {
+    let inputs = Inputs::new();
+    broken(&inputs);
+    let dir = inputs.dir.path();
+    let notes = write(dir, "notes.txt", "mine\n");
+    // `.c`: `emit --lang c` takes no other name
+    let results = dir.join("results.c");
+    std::fs::create_dir(&results).unwrap();
+    let missing = dir.join("missing").join("dir");
+    let (out, folder) = (missing.join("out.c"), missing.display());
+    let under = notes.join("out.c");
+    let bad = [
+        (
+            out.display().to_string(),
+            format!("the folder {folder} does not exist; create it first"),
+        ),
+        (
+            results.display().to_string(),
+            format!(
+                "is a folder; give a file name, e.g. {}/out",
+                results.display()
+            ),
+        ),
+        (
+            under.display().to_string(),
+            format!(
+                "{} is not a folder (it, or one above it, is a file); give a path in an \
+                 existing folder",
+                notes.display()
+            ),
+        ),
+    ];
+    let before = listing(dir);
+    for template in file_outputs() {
+        for (out, problem) in &bad {
+            let args = inputs.args(&template, out);
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            let o = robid_in(dir, &args);
+            assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+            assert_eq!(stderr(&o), format!("error: {out}: {problem}\n"), "{args:?}");
+            assert_eq!(listing(dir), before, "{args:?}");
+        }
+    }
+    assert_eq!(std::fs::read_to_string(&notes).unwrap(), "mine\n");
+}
+
+/// `identify --plot` takes a folder: a missing one is created (not refused: the run goes
+/// on to the data), while an existing file, or a path under one, is refused before any
+/// work; a file says plainly that --plot takes a folder (it used to say "cannot write:
+/// cannot create the folder: File exists (os error 17)", after the identification).
+#[test]
+fn a_plot_folder_that_cannot_be_one_is_refused_before_any_work() {
+    let inputs = Inputs::new();
+    broken(&inputs);
+    let dir = inputs.dir.path();
+    let notes = write(dir, "plots.svg", "mine\n");
+    let identify = [
+        "identify",
+        "{robot.toml}",
+        "--config",
+        "{config.toml}",
+        "--data",
+        "{data.csv}",
+        "--plot",
+        "{out}",
+    ];
+    let run = |out: &Path| {
+        let args = inputs.args(&identify, &out.display().to_string());
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        robid_in(dir, &args)
+    };
+    let before = listing(dir);
+    let o = run(&notes);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "error: --plot: {} is a file, but --plot takes a folder to write its files into \
+             (a missing one is created); give the path of a folder, or move the file away\n",
+            notes.display()
+        )
+    );
+    let under = notes.join("plots");
+    let o = run(&under);
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "error: {}: {} is not a folder (it, or one above it, is a file); give a path in \
+             an existing folder\n",
+            under.display(),
+            notes.display()
+        )
+    );
+    assert_eq!(listing(dir), before);
+    assert_eq!(std::fs::read_to_string(&notes).unwrap(), "mine\n");
+    // a missing folder passes the check: the run fails on the data it reads next
+    let o = run(&dir.join("new").join("plots"));
+    fails_with(&o, &["robot.toml"]);
+    assert!(!stderr(&o).contains("plots"), "{}", stderr(&o));
+}
+
+/// A real design whose trajectory cannot be written: refused before the design, so that
+/// `--pieces` (written first, after minutes of design with real settings) is not written
+/// either.
+#[test]
+fn an_excite_design_with_a_bad_output_writes_nothing() {
+    let dir = folder();
+    let pieces = dir.path().join("pieces.toml");
+    let output = dir.path().join("missing").join("p.csv");
+    let o = robid(&[
+        "excite",
+        "descriptions/ur5e.toml",
+        "--method",
+        "points",
+        "--intervals",
+        "6",
+        "--duration",
+        "12",
+        "--rate",
+        "100",
+        "--restarts",
+        "1",
+        "--sweeps",
+        "1",
+        "--evaluations",
+        "20",
+        "--pieces",
+        pieces.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "error: {}: the folder {} does not exist; create it first\n",
+            output.display(),
+            dir.path().join("missing").display()
+        )
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    assert!(stdout(&o).is_empty(), "{}", stdout(&o));
 }
