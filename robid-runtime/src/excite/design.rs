@@ -17,12 +17,12 @@ use rayon::prelude::*;
 use crate::Model;
 use crate::error::{Error, Result, num};
 use crate::excite::limits::{TorquePenalty, check_reference};
-use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Fourier, Information, JointLimits, JointSeries, check_limits};
 use crate::excite::{
     MAX_BASE_FREQUENCY, MAX_EVALUATIONS, MAX_HARMONICS, MAX_POINTS, MAX_RESTARTS, MAX_WEIGHT,
 };
 use crate::nelder_mead::NelderMead;
+use crate::progress::Progress;
 use crate::rng::Rng;
 
 /// Settings of a Fourier design.
@@ -49,7 +49,8 @@ pub struct FourierDesign {
     pub safety: f64,
     /// Fixed start position; `None` lets the optimiser choose it.
     pub start: Option<Vec<f64>>,
-    /// Show a progress bar on a terminal.
+    /// Show the progress on standard error: a bar on a terminal, else a line every 10 s
+    /// ([`crate::progress`]).
     pub progress: bool,
 }
 
@@ -220,10 +221,13 @@ impl FourierDesign {
         let cost =
             |x: &[f64], scratch: &mut Scratch<'_>| self.cost(model, &decoder.decode(x), scratch);
         let m = decoder.per_joint();
+        // evaluations; a run that stops before its budget counts the whole budget, so
+        // that the share shown is the share of the work done
         let progress = Progress::new(
             self.progress,
-            (self.restarts + 1) * self.evaluations,
-            "fourier design",
+            "excite: fourier design",
+            ((self.restarts + 1) * self.evaluations) as u64,
+            "evaluations",
         );
         let nm = NelderMead {
             max_evaluations: self.evaluations,
@@ -231,27 +235,28 @@ impl FourierDesign {
             absolute_tolerance: 1e-10,
             step: vec![0.4],
         };
+        let run = |x0: &[f64], scratch: &mut Scratch<'_>| -> Result<crate::nelder_mead::Minimum> {
+            let counter = progress.counter();
+            let found = nm.minimize(x0, |x| {
+                counter.tick();
+                cost(x, scratch)
+            })?;
+            counter.add(self.evaluations.saturating_sub(found.evaluations) as u64);
+            Ok(found)
+        };
         let root = Rng::new(self.seed);
         let runs: Vec<crate::nelder_mead::Minimum> = (0..self.restarts)
             .into_par_iter()
             .map(|r| {
                 let x0 = self.start_point(&mut root.fork(r as u64), n * m, m);
-                let mut scratch = self.scratch(model, limits, torque, &basis);
-                nm.minimize(&x0, |x| {
-                    progress.tick();
-                    cost(x, &mut scratch)
-                })
+                run(&x0, &mut self.scratch(model, limits, torque, &basis))
             })
             .collect::<Result<_>>()?;
         let best = runs
             .iter()
             .min_by(|a, b| a.value.total_cmp(&b.value))
             .ok_or_else(|| Error::setting("FourierDesign", "restarts", "no start was run"))?;
-        let mut scratch = self.scratch(model, limits, torque, &basis);
-        let polished = nm.minimize(&best.x, |x| {
-            progress.tick();
-            cost(x, &mut scratch)
-        })?;
+        let polished = run(&best.x, &mut self.scratch(model, limits, torque, &basis))?;
         progress.finish();
         let evaluations = runs.iter().map(|r| r.evaluations).sum::<usize>() + polished.evaluations;
         let x = if polished.value <= best.value {

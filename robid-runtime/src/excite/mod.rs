@@ -23,7 +23,6 @@ mod pieces;
 mod point_design;
 mod points;
 mod polynomial;
-mod progress;
 
 pub use assess::{Assessment, assess};
 pub use criterion::{Criterion, Information};

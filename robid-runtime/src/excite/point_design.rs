@@ -36,11 +36,11 @@ use crate::error::{Error, Result};
 use crate::excite::design::{check_count, check_design_cost, check_joint_vectors};
 use crate::excite::limits::{TorquePenalty, check_reference};
 use crate::excite::polynomial::{Knot, Septic};
-use crate::excite::progress::Progress;
 use crate::excite::{Criterion, Information, JointLimits, Points, check_limits};
 use crate::excite::{MAX_EVALUATIONS, MAX_POINTS, MAX_RESTARTS};
 use crate::limits::MAX_SAMPLES;
 use crate::nelder_mead::NelderMead;
+use crate::progress::Progress;
 use crate::rng::Rng;
 
 /// Settings of a point-based design.
@@ -75,7 +75,8 @@ pub struct PointDesign {
     pub safety: f64,
     /// Fixed start (and end) position; `None` lets the optimiser choose it.
     pub start: Option<Vec<f64>>,
-    /// Show a progress bar on a terminal.
+    /// Show the progress on standard error: a bar on a terminal, else a line every 10 s
+    /// ([`crate::progress`]).
     pub progress: bool,
 }
 
@@ -170,10 +171,13 @@ impl PointDesign {
         };
         let interior = self.intervals - 1;
         let blocks = interior + usize::from(self.start.is_none());
+        // evaluations; a run that stops before its budget counts the whole budget, so
+        // that the share shown is the share of the work done
         let progress = Progress::new(
             self.progress,
-            self.restarts * self.sweeps * blocks * self.evaluations,
-            "point design",
+            "excite: point design",
+            (self.restarts * self.sweeps * blocks * self.evaluations) as u64,
+            "evaluations",
         );
         let nm = NelderMead {
             max_evaluations: self.evaluations,
@@ -188,6 +192,7 @@ impl PointDesign {
                 let mut x = decoder.start_point(&mut root.fork(r as u64), n * m);
                 let initial = cost(&x);
                 let (mut value, mut evaluations) = (initial, 1);
+                let counter = progress.counter();
                 for _ in 0..self.sweeps {
                     for b in 0..blocks {
                         // the variables of point b of every joint (or the start offsets)
@@ -204,12 +209,13 @@ impl PointDesign {
                         let x0: Vec<f64> = index.iter().map(|&i| x[i]).collect();
                         let mut trial = x.clone();
                         let found = nm.minimize(&x0, |y| {
-                            progress.tick();
+                            counter.tick();
                             for (&i, &v) in index.iter().zip(y) {
                                 trial[i] = v;
                             }
                             cost(&trial)
                         })?;
+                        counter.add(self.evaluations.saturating_sub(found.evaluations) as u64);
                         evaluations += found.evaluations;
                         if found.value < value {
                             value = found.value;
