@@ -492,6 +492,7 @@ fn anneal(
         restarts: args.restarts.unwrap_or(AnnealOptions::default().restarts),
         equalities,
         mass_step: args.mass_step,
+        progress: true,
         ..AnnealOptions::default()
     };
     if !args.two_step {

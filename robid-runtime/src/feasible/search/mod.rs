@@ -37,6 +37,7 @@ use super::prior::{Prior, Pull};
 use super::problem::Problem;
 use super::solution::{Method, Solution};
 use crate::nelder_mead::NelderMead;
+use crate::progress::Progress;
 use crate::rng::Rng;
 use crate::{Error, Result};
 use anneal::{AnnealSettings, reflect};
@@ -79,6 +80,9 @@ pub struct AnnealOptions {
     /// is added to the cost when the total mass is outside its range, instead of the
     /// penalty proportional to the excess. `None`: the proportional penalty.
     pub mass_step: Option<f64>,
+    /// Show the progress on standard error, in restarts: a bar on a terminal, else a line
+    /// every 10 s ([`crate::progress`]).
+    pub progress: bool,
 }
 
 impl Default for AnnealOptions {
@@ -96,6 +100,7 @@ impl Default for AnnealOptions {
             fixed: Vec::new(),
             equalities: Vec::new(),
             mass_step: None,
+            progress: false,
         }
     }
 }
@@ -339,14 +344,16 @@ pub fn solve_anneal(
     bounds: &Bounds,
     options: &AnnealOptions,
 ) -> Result<Solution> {
-    search(problem, bounds, options).map(|(solution, _)| solution)
+    search(problem, bounds, options, "feasible: anneal").map(|(solution, _)| solution)
 }
 
-/// [`solve_anneal`], and the searched variables (indices into the full variable vector).
+/// [`solve_anneal`], and the searched variables (indices into the full variable vector);
+/// `title` names the search in its progress.
 fn search(
     problem: &Problem,
     bounds: &Bounds,
     options: &AnnealOptions,
+    title: &str,
 ) -> Result<(Solution, Vec<usize>)> {
     let start = Instant::now();
     let layout = &problem.layout;
@@ -467,9 +474,13 @@ fn search(
         step: lo.iter().zip(&hi).map(|(l, h)| 0.05 * (h - l)).collect(),
     };
 
+    // in restarts, each counted when it ends (or is skipped); its evaluations are beats,
+    // so that a line falls due during a restart
+    let progress = Progress::new(options.progress, title, options.restarts as u64, "restarts");
     let runs: Vec<(Vec<f64>, f64)> = (0..options.restarts)
         .into_par_iter()
-        .filter_map(|k| {
+        .map(|k| {
+            let counter = progress.counter();
             if done.load(Ordering::Relaxed) {
                 return None;
             }
@@ -479,7 +490,10 @@ fn search(
                 .zip(&hi)
                 .map(|(l, h)| rng.uniform(*l, *h))
                 .collect();
-            let f = |y: &[f64]| objective.value(y);
+            let f = |y: &[f64]| {
+                counter.beat();
+                objective.value(y)
+            };
             let (xa, _) = anneal::anneal(&f, &lo, &hi, &x0, settings, &mut rng);
             // Nelder-Mead on the box: evaluate at the reflected point.
             let g = |y: &[f64]| {
@@ -488,6 +502,7 @@ fn search(
                     .enumerate()
                     .map(|(i, v)| reflect(*v, lo[i], hi[i]))
                     .collect();
+                counter.beat();
                 objective.value(&z)
             };
             let found = match local.minimize(&xa, g) {
@@ -500,7 +515,10 @@ fn search(
                 .enumerate()
                 .map(|(i, v)| reflect(*v, lo[i], hi[i]))
                 .collect();
-            let r = |y: &[f64]| objective.residual(y);
+            let r = |y: &[f64]| {
+                counter.beat();
+                objective.residual(y)
+            };
             let mut xn = levenberg::polish(&r, &lo, &hi, &xn, options.polish_iterations);
             let mut fx = objective.value(&xn);
             for &link in searched_links.iter().cycle().take(options.hops) {
@@ -527,7 +545,10 @@ fn search(
             }
             Some(Ok((xn, fx)))
         })
+        .inspect(|_| progress.tick())
+        .flatten()
         .collect::<Result<_>>()?;
+    progress.finish();
     let restarts_run = runs.len();
     let (best, _) = runs
         .into_iter()

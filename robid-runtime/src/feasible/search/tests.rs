@@ -446,7 +446,7 @@ fn gaz_the_searched_variables_are_those_the_fit_or_an_equality_sees() {
     let bounds = Bounds::wide(1);
     let free = |rows: &[&str], options: AnnealOptions| {
         let problem = problem(1, rows, &truth);
-        search(&problem, &bounds, &options).unwrap().1
+        search(&problem, &bounds, &options, "test").unwrap().1
     };
     assert_eq!(free(&["M1", "MX1"], quick()), [0, 1]);
     assert_eq!(free(&["MY1"], quick()), [0, 2]);
@@ -471,7 +471,7 @@ fn gaz_the_searched_variables_are_those_the_fit_or_an_equality_sees() {
         equalities: vec!["I2xy = 0.001".parse().unwrap()],
         ..quick()
     };
-    let (_, free) = search(&problem, &Bounds::wide(2), &options).unwrap();
+    let (_, free) = search(&problem, &Bounds::wide(2), &options, "test").unwrap();
     assert_eq!(free, [0, 2, 14, 15, 16, 17, 18, 19]);
 }
 

@@ -68,7 +68,7 @@ pub fn solve_two_step(
     let (solution, held) = solve_gravity_step(gravity, bounds, options)?;
     let mut second = options.clone();
     second.fixed.extend(held.iter().copied());
-    let (full, _) = search(problem, bounds, &second)?;
+    let (full, _) = search(problem, bounds, &second, "feasible: anneal, second step")?;
     Ok(TwoStep {
         gravity: solution,
         held,
@@ -88,7 +88,7 @@ pub fn solve_gravity_step(
         equalities: Vec::new(),
         ..options.clone()
     };
-    let (solution, searched) = search(gravity, bounds, &first)?;
+    let (solution, searched) = search(gravity, bounds, &first, "feasible: anneal, gravity step")?;
     let mut held = Vec::new();
     for i in searched {
         let (link, slot) = (i / PER_LINK, i % PER_LINK);
