@@ -18,6 +18,7 @@ use robid_runtime::drive::{
     FrictionFit, FrictionFitOptions, FrictionModel, FrictionParameter, identify_friction,
 };
 use robid_runtime::pipeline::{JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
+use robid_runtime::progress::Progress;
 
 use super::description::DescriptionFlags;
 use super::{Error, files, out};
@@ -79,11 +80,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             .map(|b| (model as &dyn robid_runtime::Model, b)),
     )?;
     let mut fits = Vec::with_capacity(found.samples.len());
+    let progress = Progress::new(true, "friction: fit", fits.capacity() as u64, "joints");
     for (j, samples) in found.samples.iter().enumerate() {
         let fit = identify_friction(samples, &FrictionFitOptions::default())
             .map_err(|e| format!("joint {}: {e}", j + 1))?;
         fits.push(fit);
+        progress.tick();
     }
+    progress.finish();
     let text = table(&fits, found.joint_torque, found.temperature_measured);
     let friction = FrictionModel::new(fits.iter().map(|f| f.friction).collect())?;
     friction.write(&args.output)?;
