@@ -69,10 +69,7 @@ impl Dataset {
         origin: Option<DataOrigin>,
     ) -> Result<Self> {
         let name = name.into();
-        let rate = 1.0 / sample_time;
-        if !(sample_time > 0.0
-            && (crate::limits::MIN_SAMPLE_RATE..=crate::limits::MAX_SAMPLE_RATE).contains(&rate))
-        {
+        if !super::sample_time_accepted(sample_time) {
             return Err(Error::setting(
                 "Dataset::new",
                 "sample_time",

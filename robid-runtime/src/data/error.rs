@@ -4,6 +4,7 @@
 use super::ColumnMapping;
 use crate::Num;
 use crate::error::place;
+use crate::limits::{MAX_SAMPLE_RATE, MIN_SAMPLE_RATE};
 use std::path::PathBuf;
 
 /// Which of robid's TOML files an error is about, as its message names it.
@@ -161,6 +162,22 @@ pub enum DataError {
         previous: f64,
         /// This time stamp.
         value: f64,
+    },
+    /// Time stamps whose mean step gives a sample rate outside the rates robid takes,
+    /// [[`MIN_SAMPLE_RATE`], [`MAX_SAMPLE_RATE`]] Hz (a time column in other units than
+    /// seconds, or absurd stamps).
+    #[error(
+        "{what}: time stamps {} s apart on average, a sample rate of {} Hz, outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; {fix}",
+        Num::rounded_keeping(*step, 4, |s| !super::time::sample_time_accepted(s)),
+        Num::rounded_keeping(1.0 / *step, 4, |r| !(MIN_SAMPLE_RATE..=MAX_SAMPLE_RATE).contains(&r))
+    )]
+    SampleRate {
+        /// The time stamps: their file, or what holds them.
+        what: String,
+        /// The mean step (s).
+        step: f64,
+        /// What to do.
+        fix: &'static str,
     },
     /// The number of joints in the data does not match the model.
     #[error(

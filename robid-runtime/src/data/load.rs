@@ -11,13 +11,15 @@ use std::path::{Path, PathBuf};
 use crate::data::dataset::DataOrigin;
 use crate::data::rate::{RATE_CHECK_ROWS, Steps, UnreadTime, check_rate, unread_time_column};
 use crate::data::table::{Optional, read_columns_in};
-use crate::data::time::{check_monotonic, interpolate, regularity, uniform_grid};
+use crate::data::time::{
+    check_monotonic, check_sample_time, interpolate, regularity, uniform_grid,
+};
 use crate::data::{
     AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
 };
 use crate::drive::DriveChain;
 use crate::error::{Error, Result};
-use crate::limits::{MAX_JOINTS, MAX_SAMPLE_RATE, MIN_SAMPLE_RATE, Quantity, check_size};
+use crate::limits::{MAX_JOINTS, Quantity, check_size};
 use crate::signal::Signals;
 
 /// The roles a column block can have, in the order of [`assemble`]'s blocks.
@@ -396,18 +398,16 @@ pub(crate) fn take_time(config: &Config, table: &mut Table) -> Result<Option<Vec
     Ok(Some(t))
 }
 
-/// Checks the mean time step of `path` against the sample rates robid takes.
+/// Checks the mean time step of `path` against the sample rates robid takes
+/// ([`check_sample_time`], the rule trajectories share), at the `time_scale` key.
 pub(crate) fn check_step(config: &Config, step: f64, path: &Path) -> Result<()> {
-    if !(1.0 / step <= MAX_SAMPLE_RATE && 1.0 / step >= MIN_SAMPLE_RATE) {
-        return Err(config.key_error(
-            "time_scale",
-            format!(
-                "the time stamps of {} are {step:e} s apart on average, a sample rate outside [{MIN_SAMPLE_RATE:e}, {MAX_SAMPLE_RATE:e}] Hz; the time column must be in seconds: convert it, or give its unit with time_scale (1e-3 for ms, 1e-9 for ns)",
-                path.display()
-            ),
-        ));
-    }
-    Ok(())
+    check_sample_time(
+        step,
+        || path.display().to_string(),
+        "the time column must be in seconds: convert it, or give its unit with time_scale \
+         (1e-3 for ms, 1e-9 for ns)",
+    )
+    .map_err(|e| config.key_error("time_scale", e.to_string()))
 }
 
 /// Checks the low-pass cutoff against the sample time.

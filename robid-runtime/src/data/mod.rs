@@ -36,6 +36,7 @@ pub use table::{
 pub use time::{
     IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,
 };
+pub(crate) use time::{check_time_stamps, sample_time_accepted};
 
 #[cfg(test)]
 mod tests;

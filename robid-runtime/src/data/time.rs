@@ -6,6 +6,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+use crate::limits::{MAX_SAMPLE_RATE, MIN_SAMPLE_RATE};
 
 /// Something that was repaired while loading, and the caller should know about.
 #[derive(Debug, Clone, PartialEq)]
@@ -106,6 +107,49 @@ pub fn check_monotonic(t: &[f64], lines: &[u64], path: &Path) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Whether a sample time of `step` seconds gives a sample rate robid takes, within
+/// [[`MIN_SAMPLE_RATE`], [`MAX_SAMPLE_RATE`]] Hz: the one rule for a sample time, taken
+/// from time stamps ([`check_sample_time`]) or given ([`crate::data::Dataset::new`]).
+pub(crate) fn sample_time_accepted(step: f64) -> bool {
+    step > 0.0 && (MIN_SAMPLE_RATE..=MAX_SAMPLE_RATE).contains(&(1.0 / step))
+}
+
+/// Checks the mean step `step` of time stamps (from the first to the last over the
+/// steps, [`Clock::mean_step`]) against the sample rates robid takes
+/// ([`sample_time_accepted`]): the rule of every reader of time stamps, the loader of
+/// identification data (in memory and window by window) and the trajectories of
+/// simulation ([`crate::simulate::Trajectory`]), so that `robid simulate` does not run on
+/// a time column that `robid identify` would refuse. `what` names the time stamps (their
+/// file); `fix` ends the message ([`DataError::SampleRate`]).
+pub(crate) fn check_sample_time(
+    step: f64,
+    what: impl FnOnce() -> String,
+    fix: &'static str,
+) -> Result<()> {
+    if sample_time_accepted(step) {
+        return Ok(());
+    }
+    Err(Error::Data(DataError::SampleRate {
+        what: what(),
+        step,
+        fix,
+    }))
+}
+
+/// [`check_sample_time`] of increasing time stamps `t` (at least two): their mean step,
+/// when accepted.
+pub(crate) fn check_time_stamps(
+    t: &[f64],
+    what: impl FnOnce() -> String,
+    fix: &'static str,
+) -> Result<f64> {
+    let mut clock = Clock::default();
+    clock.push(t);
+    let step = clock.mean_step();
+    check_sample_time(step, what, fix)?;
+    Ok(step)
 }
 
 /// Mean step and, when some step differs from it by more than [`IRREGULAR_TOLERANCE`],

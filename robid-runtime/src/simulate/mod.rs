@@ -31,8 +31,8 @@ pub(crate) mod tests;
 pub(crate) mod run_tests {
     use super::tests::Pendulum;
     use super::*;
-    use crate::Model;
     use crate::signal::Signals;
+    use crate::{DataError, Error, Model};
 
     /// A smooth reference starting at rest.
     pub(crate) fn reference(seconds: f64, rate: f64) -> Trajectory {
@@ -133,5 +133,62 @@ pub(crate) mod run_tests {
         // value, plus the parse's rounding (measured 4.8e-11 of 0.0202)
         assert!((back.q[1][7] - r.q[1][7]).abs() < 6e-10 * r.q[1][7].abs());
         assert!(Trajectory::read_csv(&f, 3).is_err());
+    }
+
+    /// A trajectory's time stamps follow the rule of identification data: a mean step
+    /// giving a rate outside [1e-3, 1e7] Hz is refused, by the reader naming the file and
+    /// by `Simulation::run` naming the trajectory, exactly when the loader refuses the
+    /// same file as data (steps of 1e6 s used to be simulated, or diverge, and write data
+    /// that `robid identify` refuses).
+    #[test]
+    fn time_stamps_at_a_rate_identification_refuses_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = Pendulum::default();
+        let header = "t,q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2";
+        // mean steps: the last two accepted, the others not
+        for (steps, accepted) in [
+            (vec![1e6; 4], false),
+            (vec![1e-9; 4], false),
+            // regular steps with one gap of 1e6 s: a mean step of 2e5 s
+            (vec![0.01, 0.01, 0.01, 0.01, 1e6], false),
+            (vec![1e3 + 1.0; 3], false),
+            (vec![1e3; 3], true),
+            (vec![0.001, 0.004, 0.002], true),
+        ] {
+            let t: Vec<f64> = std::iter::once(0.0)
+                .chain(steps.iter().scan(0.0, |t, d| {
+                    *t += d;
+                    Some(*t)
+                }))
+                .collect();
+            let f = dir.path().join("traj.csv");
+            let rows: Vec<String> = t.iter().map(|t| format!("{t},0,0,0,0,0,0,0,0")).collect();
+            std::fs::write(&f, format!("{header}\n{}\n", rows.join("\n"))).unwrap();
+            let read = Trajectory::read_csv(&f, 2);
+            let loaded = crate::data::load(
+                &crate::data::Config::default_mapping(),
+                std::slice::from_ref(&f),
+                2,
+            );
+            assert_eq!(read.is_ok(), accepted, "{steps:?}: {read:?}");
+            assert_eq!(loaded.is_ok(), accepted, "{steps:?}: {:?}", loaded.err());
+            if accepted {
+                continue;
+            }
+            let run = Simulation::default().run(&p, &p.base(), &Trajectory::zeros(2, t));
+            for (e, place) in [
+                (read.unwrap_err(), f.display().to_string()),
+                (run.unwrap_err(), "reference trajectory".to_string()),
+            ] {
+                let text = e.to_string();
+                assert!(
+                    matches!(e, Error::Data(DataError::SampleRate { .. }))
+                        && text.starts_with(&format!("{place}: time stamps "))
+                        && text.contains("outside [1e-3, 1e7] Hz")
+                        && text.contains("`t` must be in seconds"),
+                    "{text}"
+                );
+            }
+        }
     }
 }

@@ -33,6 +33,12 @@ pub struct Record {
     pub tau: Signals,
 }
 
+/// The end of the message about time stamps at a sample rate robid does not take (the
+/// rule of identification data, `crate::data::check_sample_time`).
+const TIME_FIX: &str = "`t` must be in seconds, at a rate identification takes (the data \
+     simulated from it would be refused): convert it to seconds, or sample the trajectory at a \
+     rate in that range";
+
 /// Header names `prefix1..prefixn`.
 fn names(prefix: &str, n: usize) -> impl Iterator<Item = String> + '_ {
     (1..=n).map(move |j| format!("{prefix}{j}"))
@@ -77,7 +83,9 @@ impl Trajectory {
     }
 
     /// Reads a trajectory CSV of `dof` joints (header `t,q1..,qd1..,qdd1..`, any column order,
-    /// extra columns ignored); time must increase and there must be at least 2 samples.
+    /// extra columns ignored); time must increase and there must be at least 2 samples,
+    /// whose mean step gives a sample rate that identification takes (the loader's rule,
+    /// [`crate::limits::MIN_SAMPLE_RATE`] to [`crate::limits::MAX_SAMPLE_RATE`]).
     /// Every value must lie within the range of its quantity ([`crate::limits`]); an error
     /// names the file, line and column.
     pub fn read_csv(path: &Path, dof: usize) -> Result<Self> {
@@ -119,6 +127,7 @@ impl Trajectory {
             });
         }
         crate::data::check_monotonic(&t, &table.lines, path)?;
+        crate::data::check_time_stamps(&t, || path.display().to_string(), TIME_FIX)?;
         let mut take = || Signals::new((0..dof).map(|_| cols.next().unwrap_or_default()).collect());
         let (q, qd, qdd) = (take()?, take()?, take()?);
         Ok(Self { t, q, qd, qdd })
@@ -140,7 +149,8 @@ impl Trajectory {
         Ok(())
     }
 
-    /// Checks a trajectory given as input: shapes consistent, time increasing, every value
+    /// Checks a trajectory given as input: shapes consistent, time increasing at a sample
+    /// rate that identification takes (as [`Trajectory::read_csv`]), every value
     /// finite and within the range of its quantity ([`crate::limits`]). `what` names it in
     /// errors, which give the sample and its time.
     pub fn check(&self, what: &str) -> Result<()> {
@@ -190,6 +200,7 @@ impl Trajectory {
                 ),
             ));
         }
+        crate::data::check_time_stamps(&self.t, || what.to_string(), TIME_FIX)?;
         for (name, block, quantity) in [
             ("q", &self.q, Quantity::Position),
             ("qd", &self.qd, Quantity::Velocity),

@@ -282,6 +282,49 @@ fn simulate_values_out_of_range_are_refused_naming_the_flag() {
     }));
 }
 
+/// `simulate` refuses a trajectory whose time stamps `identify` would refuse as data (a
+/// sample rate outside [1e-3, 1e7] Hz: `t` in other units than seconds), naming the file,
+/// before any work and without writing: steps of 1e6 s used to end in "lower --bandwidth
+/// to at most 2.5e-7 Hz" or a divergence, and steps of 1e-9 s were simulated and written.
+#[test]
+fn simulate_refuses_time_stamps_identify_would_refuse() {
+    let dir = folder();
+    let text = std::fs::read_to_string(trajectory(dir.path())).unwrap();
+    let out = dir.path().join("data.csv");
+    for (scale, step, rate) in [
+        (1e8, "1000000 s", "1e-6 Hz"),
+        (1e-7, "1e-9 s", "1000000000 Hz"),
+    ] {
+        let mut scaled = text.lines().next().unwrap().to_string() + "\n";
+        for line in text.lines().skip(1) {
+            let (t, rest) = line.split_once(',').unwrap();
+            scaled += &format!("{},{rest}\n", t.parse::<f64>().unwrap() * scale);
+        }
+        let traj = write(dir.path(), "scaled.csv", &scaled);
+        let o = robid(&[
+            "simulate",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e.toml",
+            "--trajectory",
+            traj.to_str().unwrap(),
+            "--bandwidth",
+            "1e-7",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        fails_with(
+            &o,
+            &[
+                &format!("{}: time stamps {step} apart on average", traj.display()),
+                &format!("a sample rate of {rate}, outside [1e-3, 1e7] Hz"),
+                "`t` must be in seconds",
+            ],
+        );
+        assert!(!out.exists());
+    }
+}
+
 /// `robid torques` of the UR5e with a parameter file of `text` (written as `params.toml`).
 fn torques(dir: &Path, text: &str) -> Output {
     torques_of("descriptions/ur5e.toml", dir, text)
