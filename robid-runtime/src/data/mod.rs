@@ -28,6 +28,7 @@ pub(crate) use load::check_joints;
 pub use load::{load, load_config_files, load_from_config_file, load_runs, surplus_joint};
 pub use parameters::{INERTIA_TOLERANCE, PARAMETER_LIMIT, ParameterFile, ParameterTable};
 pub use rate::{RATE_CHECK_ROWS, RATE_TOLERANCE, REGULAR_SHARE, REGULAR_SPREAD, time_name};
+pub(crate) use record::joined_with;
 pub use record::{Record, SpilledRecord, load_record};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};
 pub use table::{

@@ -138,7 +138,8 @@ pub(crate) fn decimator_for(
     ))
 }
 
-/// An error naming the record `data` (its file and the rows used) when its samples `kept`
+/// An error naming the record `data` (its file and the rows used, and the files joined to
+/// it, which used to be left out) when its samples `kept`
 /// (after `processing.range` and the trims) of `dof` joints give fewer equations than the
 /// `needed` parameters to estimate, one per joint and sample, whatever the decimation and
 /// the rest removal (which [`decimator_for`] and [`RestCount::check`] name when they are
@@ -164,9 +165,10 @@ pub(crate) fn long_enough(
     };
     Err(Error::TooFewSamples {
         context: format!(
-            "{}: too short{trimmed} for the {needed} parameters of the model (each sample \
+            "{}{}: too short{trimmed} for the {needed} parameters of the model (each sample \
              gives {dof} equations, one per joint)",
             crate::validate::UsedRows::of(data, kept.clone()),
+            crate::data::joined_with(data),
         ),
         found: n,
         required: needed.div_ceil(dof),

@@ -10,7 +10,7 @@
 //! record, the larger of the two counts is dropped there (they overlap, they do not add).
 
 use crate::DataError;
-use crate::data::{Config, Cutoff, Dataset, Derivative, Record, Signal};
+use crate::data::{Config, Cutoff, Dataset, Derivative, Record, Signal, joined_with};
 use crate::drive::FrictionModel;
 use crate::error::{Error, Result, num};
 use crate::inspect::{CutoffSuggestion, suggest_cutoff};
@@ -327,9 +327,10 @@ impl Plan {
                     "Config",
                     rows.key(),
                     format!(
-                        "[{a}, {b}] does not lie inside {}, which has {} samples; choose a \
+                        "[{a}, {b}] does not lie inside {}{}, which has {} samples; choose a \
                          range inside the data (the end is exclusive: at most {})",
                         data.name(),
+                        joined_with(data),
                         data.samples(),
                         data.samples()
                     ),
@@ -369,19 +370,24 @@ impl Plan {
                     format!(
                         "{chosen} settles over {settle} samples at each end of the record (a \
                          cutoff {side}, {} Hz, settles slowly), which leaves {found} of the {} \
-                         samples of {} (at least 2 are needed); {way} it: the filter settles \
+                         samples of {}{} (at least 2 are needed); {way} it: the filter settles \
                          fastest near half the Nyquist frequency, {} Hz; or use a longer record",
                         num(nyquist),
                         hi - lo,
                         data.name(),
+                        joined_with(data),
                         num(0.5 * nyquist)
                     ),
                 ));
             }
             return Err(Error::TooFewSamples {
                 context: format!(
-                    "{} after trimming {t} samples at each end ({settle} at the record's ends for the low-pass to settle)",
-                    data.name()
+                    "{}{} after trimming {t} samples at each end ({settle} at the record's ends for the low-pass to settle)",
+                    data.name(),
+                    // "a.csv, joined with b.csv, after trimming"
+                    Some(joined_with(data))
+                        .filter(|j| !j.is_empty())
+                        .map_or_else(String::new, |j| j + ","),
                 ),
                 found,
                 required: 2,

@@ -838,3 +838,68 @@ fn a_record_too_short_for_the_parameters_names_its_file() {
         assert!(!matches!(e, Error::TooFewSamples { .. }), "{e}");
     }
 }
+
+/// A record joined from several `[[source]]` files that is too short names every file,
+/// not only the first (the positions' file was named, the torques' file left out): for
+/// the parameters, and for the trims.
+#[test]
+fn a_joined_record_too_short_names_all_its_files() {
+    let model = Synthetic::default();
+    let dir = tempfile::tempdir().unwrap();
+    let (pos, tau) = (dir.path().join("pos.csv"), dir.path().join("tau.csv"));
+    let text = csv_with_noise(5, 1000.0, [0.0; DOF]);
+    // the columns t,q1..q6 and t,tau1..tau6 of the same rows
+    let columns = |range: std::ops::Range<usize>| -> String {
+        text.lines()
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                std::iter::once(f[0])
+                    .chain(f[range.clone()].iter().copied())
+                    .collect::<Vec<_>>()
+                    .join(",")
+                    + "\n"
+            })
+            .collect()
+    };
+    std::fs::write(&pos, columns(1..7)).unwrap();
+    std::fs::write(&tau, columns(7..13)).unwrap();
+    let two = "dof = 6\ntime_column = \"t\"\n[[source]]\nposition = \"q{}\"\n\
+               [[source]]\ntorque = \"tau{}\"\n";
+    let files = [pos.clone(), tau.clone()];
+    let cfg = Config::from_toml_str(two, Path::new("two.toml")).unwrap();
+    let data = load(&cfg, &files, DOF).unwrap();
+    let e = identify(&model, &data, &cfg).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::TooFewSamples {
+                found: 5,
+                required: 8,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "{} lines 2-6 (samples 0..5), joined with {}: too short for the 48 parameters of \
+             the model (each sample gives 6 equations, one per joint): 5 samples, at least 8 \
+             are needed; record a longer trajectory",
+            pos.display(),
+            tau.display()
+        )
+    );
+    let trimmed = format!("{two}[processing]\ntrim = 3\n");
+    let cfg = Config::from_toml_str(&trimmed, Path::new("two.toml")).unwrap();
+    let e = identify(&model, &load(&cfg, &files, DOF).unwrap(), &cfg)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with(&format!(
+            "pos.csv, joined with {}, after trimming 3 samples at each end",
+            tau.display()
+        )),
+        "{e}"
+    );
+}

@@ -39,6 +39,12 @@ pub trait Record: Sync {
     fn file(&self) -> Option<&Path>;
     /// The file line of sample `k`, when known.
     fn line(&self, k: usize) -> Option<u64>;
+    /// Every file the samples were read from: [`Record::file`] first, then the files
+    /// joined to it (several `[[source]]` files, by time or row by row). Empty when the
+    /// samples do not come from files.
+    fn files(&self) -> Vec<&Path> {
+        self.file().into_iter().collect()
+    }
     /// The samples `start..end` (`end` clamped to the length) as a data set: borrowed when
     /// they are the whole of a data set in memory. An error when the range is empty.
     fn read(&self, start: usize, end: usize) -> Result<Cow<'_, Dataset>>;
@@ -82,12 +88,39 @@ impl Record for Dataset {
         self.origin.as_ref()?.lines.get(k).copied()
     }
 
+    fn files(&self) -> Vec<&Path> {
+        let mut files: Vec<&Path> = self.file().into_iter().collect();
+        for s in &self.sampling {
+            if !files.contains(&s.path.as_path()) {
+                files.push(&s.path);
+            }
+        }
+        files
+    }
+
     fn read(&self, start: usize, end: usize) -> Result<Cow<'_, Dataset>> {
         if start == 0 && end >= Dataset::samples(self) && Dataset::samples(self) > 0 {
             Ok(Cow::Borrowed(self))
         } else {
             self.slice(start, end).map(Cow::Owned)
         }
+    }
+}
+
+/// `", joined with b.csv and c.csv"` when the samples of `data` were joined from several
+/// files (the files after its [`Record::file`]), else nothing: what a message about the
+/// record's length adds to the first file it names, so that none of the files is left out.
+pub(crate) fn joined_with(data: &dyn Record) -> String {
+    let others: Vec<String> = data
+        .files()
+        .iter()
+        .skip(1)
+        .map(|p| p.display().to_string())
+        .collect();
+    match others.split_last() {
+        None => String::new(),
+        Some((last, [])) => format!(", joined with {last}"),
+        Some((last, rest)) => format!(", joined with {} and {last}", rest.join(", ")),
     }
 }
 
