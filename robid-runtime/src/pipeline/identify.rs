@@ -433,6 +433,18 @@ fn pieces_of(
 
 /// The regrouping with the standard parameters of `estimation.known` fixed, if the config
 /// names a file (resolved against the config's folder).
+/// The parameters the torque equations estimate for `model` with `config`: the base
+/// parameters and the extra columns, less those `estimation.known` fixes (what
+/// `long_enough` counts); 0 for the energy model, whose equations are not the torques'.
+pub(crate) fn estimated_parameters(model: &dyn Model, config: &Config) -> Result<usize> {
+    if config.estimation.method == Method::Energy {
+        return Ok(0);
+    }
+    let known = known_parameters(model, config)?.map_or(0, |k| k.known_names().len());
+    let columns = model.base_parameter_count() + config.extra_columns_for(model.dof())?.len();
+    Ok(columns.saturating_sub(known))
+}
+
 fn known_parameters(model: &dyn Model, config: &Config) -> Result<Option<KnownParameters>> {
     let Some(file) = &config.estimation.known else {
         return Ok(None);

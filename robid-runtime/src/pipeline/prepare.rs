@@ -236,6 +236,169 @@ pub(crate) struct Plan {
     margin: usize,
 }
 
+/// The first and the end of the samples kept of a record of `total` samples: the range
+/// `lo..hi`, less `trim` at each end of it and at least `settle` (the low-pass's settling)
+/// from the record's ends; nothing is kept when `end <= start`. What [`Plan::new`] keeps
+/// and [`samples_needed`] counts on.
+fn kept_bounds(
+    total: usize,
+    (lo, hi): (usize, usize),
+    trim: usize,
+    settle: usize,
+) -> (usize, usize) {
+    (
+        lo.saturating_add(trim).max(settle),
+        hi.saturating_sub(trim).min(total.saturating_sub(settle)),
+    )
+}
+
+/// The fewest samples a record needs for the processing of a config, and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Need {
+    /// Samples.
+    pub(crate) samples: usize,
+    /// What takes them: the ends (trims, the low-pass's settling, `processing.range`),
+    /// then what the samples kept between them must give.
+    pub(crate) why: String,
+}
+
+/// The fewest samples `data` needs for the processing of `config` to keep enough of them
+/// to estimate `parameters` parameters from its torque equations (0: none counted): the
+/// trims, the low-pass's settling (from the record's ends) and `processing.range`
+/// ([`kept_bounds`], as [`Plan::new`] keeps them), at least 2 samples kept between them,
+/// as many as the decimation's anti-alias filters need and as give one equation per
+/// parameter after the decimation ([`crate::pipeline::decimator`]), and as many as the
+/// zero-phase filter and a Savitzky-Golay window take. A lower bound of what the
+/// identification needs (the rest removal and `processing.pieces` drop more, a cutoff of
+/// "auto" is chosen from the data): a record this long may still be too short, a shorter
+/// one always is. `None` when the config cannot be read so (its own errors say why) or no
+/// length is enough (the range and the trims leave nothing).
+pub(crate) fn samples_needed(data: &Dataset, config: &Config, parameters: usize) -> Option<Need> {
+    let p = &config.processing;
+    let dof = data.dof().max(1);
+    let sos = p
+        .lowpass
+        .as_ref()
+        .and_then(|lp| butterworth_hz(lp.order, lp.cutoff.hz()?, 1.0 / data.sample_time).ok());
+    let settle = sos
+        .as_ref()
+        .map_or(0, |s| s.settling_samples(SETTLING_TOLERANCE, 1 << 20));
+    let dec = crate::pipeline::decimator(config).ok()?;
+    let factor = dec.factor();
+    // equations: one per joint and sample left by the decimation, which keeps one in
+    // `factor` (rounded up)
+    let per_joint = parameters.div_ceil(dof);
+    let for_parameters = per_joint
+        .saturating_sub(1)
+        .saturating_mul(factor)
+        .saturating_add(usize::from(per_joint > 0));
+    let kept = 2.max(dec.min_len()).max(for_parameters);
+    let enough = |n: usize| {
+        let (lo, hi) = match p.range {
+            Some([a, b]) if b <= n => (a, b),
+            Some(_) => return false,
+            None => (0, n),
+        };
+        let (start, end) = kept_bounds(n, (lo, hi), p.trim, settle);
+        end >= start.saturating_add(kept)
+    };
+    // the fewest samples that keep enough: `enough` holds from some length on (the
+    // config's values unchecked, saturating: a range of any size is refused, not a panic)
+    let most = [
+        kept,
+        p.trim,
+        p.trim,
+        settle,
+        settle,
+        p.range.map_or(0, |r| r[1]),
+        1,
+    ]
+    .into_iter()
+    .fold(0usize, usize::saturating_add);
+    if !enough(most) {
+        return None;
+    }
+    let (mut lo, mut hi) = (0, most);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if enough(mid) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    let mut why = Vec::new();
+    match p.range {
+        Some([a, b]) => why.push(format!(
+            "processing.range [{a}, {b}] less {} samples at each end of it",
+            p.trim.max(settle)
+        )),
+        None if p.trim >= settle && p.trim > 0 => why.push(format!(
+            "{} samples at each end (processing.trim, within which the low-pass settles in \
+             {settle})",
+            p.trim
+        )),
+        None if settle > 0 => why.push(format!(
+            "{settle} samples at each end for the low-pass to settle"
+        )),
+        None => {}
+    }
+    why.push(if kept == for_parameters {
+        let decimated = if factor > 1 {
+            format!(", one sample in {factor} kept by processing.decimation")
+        } else {
+            String::new()
+        };
+        format!(
+            "{kept} between them for the {parameters} parameters at {} equations per sample{decimated}",
+            data.dof()
+        )
+    } else if kept == dec.min_len() && kept > 2 {
+        format!("{kept} between them for the anti-alias filters of processing.decimation")
+    } else {
+        format!("{kept} between them")
+    });
+    let mut samples = lo;
+    // the zero-phase filter of the whole record (q and tau are always filtered)
+    if let Some(s) = sos.as_ref().filter(|_| {
+        p.lowpass.as_ref().is_some_and(|lp| {
+            lp.signals
+                .iter()
+                .any(|s| matches!(s, Signal::Q | Signal::Tau))
+        })
+    }) && s.pad_length() >= samples
+    {
+        samples = s.pad_length() + 1;
+        why.push(format!(
+            "{samples} in all for the low-pass's zero-phase filter"
+        ));
+    }
+    // a Savitzky-Golay window over the whole record, when something is differentiated
+    let measured = |d: Derivative, has: bool| d != Derivative::Differentiate && has;
+    let differentiates = !measured(p.velocity, data.qd.is_some())
+        || !measured(p.acceleration, data.qdd.is_some())
+        || config.drive.rotor.is_some()
+        || config.uses_rotor_signals();
+    if let Some(w) = p
+        .differentiation
+        .savitzky_golay()
+        .ok()
+        .flatten()
+        .map(|g| g.window())
+        && differentiates
+        && w > samples
+    {
+        samples = w;
+        why.push(format!(
+            "{w} in all for the Savitzky-Golay window of processing.differentiation"
+        ));
+    }
+    Some(Need {
+        samples,
+        why: why.join(" and "),
+    })
+}
+
 /// Share of the low-pass's impulse response left beyond a block's margin: the block's
 /// edges change its kept samples by about this much of the signal, below the filter's own
 /// rounding (about 1e-16 of the signal), which two differentiations amplify by 1 / dt^2
@@ -341,9 +504,7 @@ impl Plan {
         // processing.trim inside the range, and at least one settling time from the
         // record's real ends (where the filter saw no data)
         let t = p.trim;
-        let total = data.samples();
-        let start = (lo + t).max(settle);
-        let end = hi.saturating_sub(t).min(total.saturating_sub(settle));
+        let (start, end) = kept_bounds(data.samples(), (lo, hi), t, settle);
         if end <= start + 1 {
             let found = end.saturating_sub(start);
             // a Butterworth filter settles fastest near half the Nyquist frequency, and

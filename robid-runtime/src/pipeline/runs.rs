@@ -8,10 +8,12 @@
 //! ten acquisitions of each trajectory and their maximum variations (Fig. 3).
 
 use crate::Model;
-use crate::data::{Config, Dataset, RunMode};
+use crate::data::{Config, Dataset, RunMode, joined_with};
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation};
 use crate::inspect::CutoffSuggestion;
+use crate::pipeline::identify::estimated_parameters;
+use crate::pipeline::prepare::samples_needed;
 use crate::pipeline::stream::{stacked_streaming, streams};
 use crate::pipeline::{Identification, estimate, identify, observation};
 use crate::signal::Signals;
@@ -82,6 +84,7 @@ pub fn identify_runs(
         ));
     }
     let mode = config.runs.as_ref().map(|r| r.mode).unwrap_or_default();
+    check_lengths(model, runs, config)?;
     let each = runs
         .iter()
         .enumerate()
@@ -124,6 +127,41 @@ pub fn identify_runs(
             }
         }
     })
+}
+
+/// Refuses, before any run is identified, a run shorter than the processing of every run
+/// needs ([`samples_needed`]: the trims, the low-pass's settling, the decimation, the
+/// samples for the parameters): an [`Error::Run`] naming the run, its file with its rows,
+/// and the samples needed with what takes them. Without it a short run among long ones
+/// failed when its turn came, after the runs before it were identified, by whichever
+/// step ran out first ("0 samples, at least 2 are needed" of the trims, or advice to
+/// raise the cutoff), naming neither its length nor the length needed.
+fn check_lengths(model: &(dyn Model + Sync), runs: &[Dataset], config: &Config) -> Result<()> {
+    config.check(model.dof())?;
+    // a config that cannot say (a known-parameter file that cannot be read) is named by
+    // the identification itself
+    let parameters = estimated_parameters(model, config).unwrap_or(0);
+    for (i, d) in runs.iter().enumerate() {
+        let Some(need) = samples_needed(d, config, parameters) else {
+            continue;
+        };
+        if d.samples() < need.samples {
+            let e = Error::TooFewSamples {
+                context: format!(
+                    "{}{}: too short for the processing of every run, which takes {}",
+                    UsedRows::of(d, 0..d.samples()),
+                    joined_with(d),
+                    need.why
+                ),
+                found: d.samples(),
+                required: need.samples,
+                hint: "remove the run from runs.files or record it in full (all runs are \
+                       processed alike)",
+            };
+            return Err(config.run_error(i, &d.name, e));
+        }
+    }
+    Ok(())
 }
 
 /// The stacked runs' estimate and prediction through the whole stacked observation

@@ -903,3 +903,98 @@ fn a_joined_record_too_short_names_all_its_files() {
         "{e}"
     );
 }
+
+/// The samples a run needs ([`super::prepare::samples_needed`], checked for every run of
+/// `[runs]` before any is identified) are what the pipeline needs: one sample fewer
+/// fails with an error about the length (the trims, the low-pass, the decimation, the
+/// range, the parameters), that many does not, whatever the setting that takes most.
+#[test]
+fn the_samples_a_run_needs_are_what_the_pipeline_needs() {
+    let model = Synthetic::default();
+    let plain = CONFIG.split("[processing]").next().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("run.csv");
+    let length_keys = [
+        "processing.trim",
+        "processing.range",
+        "processing.decimation",
+        "processing.lowpass.cutoff",
+        "processing.differentiation.window",
+    ];
+    let about_length = |e: &Error| match e {
+        Error::TooFewSamples { .. } => true,
+        Error::Data(DataError::ConfigKey { key, .. }) => length_keys.contains(&key.as_str()),
+        _ => false,
+    };
+    for (processing, takes) in [
+        // the trims, then the parameters after decimation
+        (
+            "lowpass = { cutoff = 20.0, order = 4 }\ntrim = 200\ndecimation = 10",
+            "trim",
+        ),
+        // the low-pass's settling
+        ("lowpass = { cutoff = 2.0, order = 4 }", "settle"),
+        // the parameters after a decimation in two stages
+        ("decimation = [10, 10]", "decimation"),
+        // the parameters alone
+        ("", "parameters"),
+        // the range, which the record must contain
+        (
+            "lowpass = { cutoff = 20.0, order = 4 }\ntrim = 10\nrange = [100, 400]",
+            "range",
+        ),
+        // a Savitzky-Golay window longer than the rest
+        (
+            "differentiation = { method = \"savitzky-golay\", window = 31, order = 3 }",
+            "window",
+        ),
+    ] {
+        let text = format!("{plain}[processing]\n{processing}\n");
+        let cfg = Config::from_toml_str(&text, Path::new("run.toml")).unwrap();
+        std::fs::write(&file, csv_with_noise(3000, 1000.0, [0.5; DOF])).unwrap();
+        let long = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
+        let parameters = super::identify::estimated_parameters(&model, &cfg).unwrap();
+        assert_eq!(parameters, 48);
+        let need = super::prepare::samples_needed(&long, &cfg, parameters).unwrap();
+        let n = need.samples;
+        for (samples, short) in [(n - 1, true), (n, false)] {
+            std::fs::write(&file, csv_with_noise(samples, 1000.0, [0.5; DOF])).unwrap();
+            let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
+            assert_eq!(
+                super::prepare::samples_needed(&data, &cfg, parameters),
+                Some(need.clone())
+            );
+            match identify(&model, &data, &cfg) {
+                Err(e) => assert_eq!(about_length(&e), short, "{takes}, {samples} samples: {e}"),
+                Ok(_) => assert!(!short, "{takes}: {samples} samples identified"),
+            }
+        }
+        let expected = match takes {
+            "trim" => "200 samples at each end (processing.trim",
+            "settle" => "samples at each end for the low-pass to settle and 8 between them",
+            "decimation" => {
+                "701 between them for the 48 parameters at 6 equations per sample, \
+                             one sample in 100 kept by processing.decimation"
+            }
+            "parameters" => "8 between them for the 48 parameters at 6 equations per sample",
+            "range" => "processing.range [100, 400] less",
+            _ => "31 in all for the Savitzky-Golay window",
+        };
+        assert!(need.why.contains(expected), "{takes}: {n}: {}", need.why);
+    }
+    // settings at their extremes give an answer, never an overflow
+    let data = dataset(100, 1000.0, 0.0);
+    for processing in [
+        "range = [18446744073709551614, 18446744073709551615]",
+        "range = [0, 18446744073709551615]\ntrim = 50000000",
+        "trim = 50000000\ndecimation = 10000",
+    ] {
+        let text = format!("{plain}[processing]\n{processing}\n");
+        let cfg = Config::from_toml_str(&text, Path::new("run.toml")).unwrap();
+        let need = super::prepare::samples_needed(&data, &cfg, usize::MAX);
+        assert!(
+            need.as_ref().is_none_or(|n| n.samples > 100),
+            "{processing}: {need:?}"
+        );
+    }
+}

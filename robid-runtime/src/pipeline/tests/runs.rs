@@ -267,3 +267,54 @@ fn an_error_of_one_run_names_the_run() {
     let e = load_runs(&config, DOF).unwrap_err();
     assert!(named(&e, &dir), "{e}");
 }
+
+/// A run too short for the processing among long ones is refused before any run is
+/// identified, named with its file and rows and the samples the processing needs (and
+/// what takes them), in both modes. It used to fail only when its turn came, after the
+/// runs before it, by the first step that ran out ("run3.csv after trimming 200 samples
+/// at each end ...: 0 samples, at least 2 are needed"), or here by the first run's
+/// rank deficiency.
+#[test]
+fn a_run_too_short_for_the_processing_is_named_with_its_rows_first() {
+    // run 1 is too short to excite every parameter (an error of its identification),
+    // run 3 too short for the processing
+    for mode in ["stacked", "averaged"] {
+        let (config, dir) = runs_config(&[600, 20_000, 3], mode);
+        let data = load_runs(&config, DOF).unwrap();
+        let e = identify_runs(&Synthetic::default(), &data, &config).unwrap_err();
+        let Error::Run { error, .. } = &e else {
+            panic!("{e}")
+        };
+        // 200 trimmed at each end (the 20 Hz low-pass settles in fewer), then 8 samples
+        // of 6 equations for 48 parameters, one in 10 kept by the decimation: 71
+        assert!(
+            matches!(
+                **error,
+                Error::TooFewSamples {
+                    found: 3,
+                    required: 471,
+                    ..
+                }
+            ),
+            "{mode}: {e}"
+        );
+        let file = dir.path().join("run3.csv");
+        let expected = format!(
+            "`runs.files[3]` (run3.csv): {} lines 2-4 (samples 0..3): too short for the \
+             processing of every run, which takes 200 samples at each end (processing.trim, \
+             within which the low-pass settles in ",
+            file.display()
+        );
+        let text = e.to_string();
+        assert!(text.contains(&expected), "{mode}: {text}");
+        assert!(
+            text.ends_with(
+                ") and 71 between them for the 48 parameters at 6 equations per sample, one \
+                 sample in 10 kept by processing.decimation: 3 samples, at least 471 are \
+                 needed; remove the run from runs.files or record it in full (all runs are \
+                 processed alike)"
+            ),
+            "{mode}: {text}"
+        );
+    }
+}
