@@ -10,7 +10,7 @@ use super::super::DescriptionError;
 use super::super::bounds::MAX_DESCRIPTION_LEN;
 use super::super::check::show;
 use super::super::file::Place;
-use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, scale};
+use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, right_angle_multiple, scale};
 use roxmltree::{Document, Node};
 use std::ops::Range;
 
@@ -223,8 +223,9 @@ struct Reader<'a> {
     place: &'a Place<'a>,
     errors: Vec<DescriptionError>,
     warnings: Vec<String>,
-    /// The `rpy` values taken as the right angle they print ([`printed_right_angle`]):
-    /// the word and where it is.
+    /// The `rpy` values taken as the right angle they print ([`printed_right_angle`])
+    /// that the 1e-9 rule alone would not take (`1.5708`, not `1.57079632679`): the word
+    /// and where it is.
     printed: Vec<(String, usize)>,
     /// The `rpy` values taken as the right angle within [`NEAR_RIGHT_ANGLE`] of them
     /// ([`near_right_angle`]): the word, where it is, the multiple of pi/2 and the distance.
@@ -375,9 +376,10 @@ impl Reader<'_> {
             let words = attribute.value().split_whitespace();
             for (angle, word) in rpy.iter_mut().zip(words) {
                 let at = attribute.range_value().start;
-                if let Some(exact) = printed_right_angle(word)
-                    && exact != *angle
-                {
+                if right_angle_multiple(*angle).is_some() {
+                    // the 1e-9 rule takes it as the right angle (`1.57079632679`,
+                    // `3.14159265358979`): as written, nothing to warn about
+                } else if let Some(exact) = printed_right_angle(word) {
                     *angle = exact;
                     self.printed.push((word.to_owned(), at));
                 } else if let Some((k, off)) = near_right_angle(*angle) {

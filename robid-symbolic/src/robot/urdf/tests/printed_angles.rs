@@ -173,3 +173,59 @@ fn an_angle_further_from_a_right_angle_is_not_snapped() {
         }
     }
 }
+
+/// Right angles printed to nine decimals or more (`1.57079632679` of every UR and
+/// ROS-Industrial file, `3.14159265358979`) are within 1e-9 rad of the right angle, so the
+/// 1e-9 rule takes them as written: no warning, which used to tell such files to write "10
+/// decimals or more". A right angle printed to four decimals still gets it.
+#[test]
+fn right_angles_the_1e9_rule_takes_are_not_warned_about() {
+    let arm = |rpy: &str| {
+        format!(
+            r#"<robot name="b01">
+  <link name="base"/>
+  <link name="l1"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="l2"><inertial><origin xyz="0.2 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
+    <origin xyz="0 0 0.3" rpy="{rpy} 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/></joint>
+</robot>"#
+        )
+    };
+    let printed = |text: &str| {
+        let chain = Robot::from_urdf(text, "t.urdf", &ChainSelection::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+        let alpha = chain.robot.joints()[1].alpha.as_str().to_string();
+        let warned = chain
+            .warnings
+            .iter()
+            .any(|w| w.contains("printed to a few decimals"));
+        (alpha, warned)
+    };
+    for (rpy, alpha) in [
+        ("1.57079632679", "pi/2"),
+        ("3.14159265358979", "pi"),
+        ("-1.570796327", "-pi/2"),
+        ("4.7123889804", "-pi/2"),
+        ("1.5707963267948966", "pi/2"),
+    ] {
+        assert_eq!(printed(&arm(rpy)), (alpha.to_owned(), false), "{rpy}");
+    }
+    for (rpy, alpha) in [("1.5708", "pi/2"), ("3.1416", "pi"), ("-1.57080", "-pi/2")] {
+        assert_eq!(printed(&arm(rpy)), (alpha.to_owned(), true), "{rpy}");
+    }
+    // the repository's UR5, whose right angles are `1.57079632679` and `3.14159265359`
+    let ur5 = Robot::from_urdf(
+        &repository_file(UR5),
+        "ur5.urdf",
+        &ChainSelection::default(),
+    )
+    .unwrap();
+    assert!(
+        ur5.warnings.iter().all(|w| !w.contains("right angle")),
+        "{:?}",
+        ur5.warnings
+    );
+}
