@@ -2,8 +2,100 @@
 //! every URDF link of the body, its centre of mass c and inertia I_c moved into robid's
 //! frame j, summed as J_O += R I_c R' + m (c'c I3 - c c'), MS += m c, M += m.
 
+use super::super::DescriptionError;
+use super::super::check::show;
+use super::super::file::Place;
+use super::chain::Chain;
 use super::rigid::{Mat3, Rigid, dot, mul, transpose};
-use super::xml::Inertial;
+use super::xml::{Inertial, Urdf};
+use std::ops::Range;
+
+/// How far below zero an `<inertia>`'s smallest eigenvalue may be, relative to its largest
+/// entry, for rounded published values (as for parameter files).
+const INERTIA_TOLERANCE: f64 = 1e-6;
+
+/// What makes an `<inertial>` impossible, if anything: a negative mass, or an inertia about
+/// the centre of mass that is not positive semidefinite. The place, what and the fix.
+fn impossible(i: &Inertial) -> Option<(Range<usize>, String, &'static str)> {
+    if i.mass < 0.0 {
+        return Some((
+            i.mass_at.clone(),
+            format!("the mass {} is negative", show(i.mass)),
+            "a mass is positive or zero (kg)",
+        ));
+    }
+    let lowest = lowest_eigenvalue(&i.inertia);
+    let scale = i.inertia.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    (lowest < -INERTIA_TOLERANCE * scale).then(|| {
+        (
+            i.inertia_at.clone(),
+            format!(
+                "the inertia about the centre of mass is not positive semidefinite (smallest \
+                 eigenvalue {lowest:.4e} kg m^2), so no mass distribution has it"
+            ),
+            "check the values and the signs of the products of inertia (`ixy` is the \
+             tensor's entry, -sum m x y)",
+        )
+    })
+}
+
+/// Checks the inertials the model uses, those of the links of the chain's bodies: an
+/// impossible one is an error naming its link. The other links' inertials (the fixed base,
+/// links beside or above the base) are not used, so an impossible one there gets one
+/// warning (docs/urdf.md#inertials): TIAGo's antennas, fixed to its base, have products of
+/// inertia too large for their moments.
+pub(super) fn check(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    chain: &Chain,
+    warnings: &mut Vec<String>,
+) -> Result<(), DescriptionError> {
+    let mut used = vec![false; urdf.links.len()];
+    for &l in chain.bodies.iter().flatten() {
+        used[l] = true;
+    }
+    let mut errors = Vec::new();
+    let mut unused = Vec::new();
+    for (link, &used) in urdf.links.iter().zip(&used) {
+        let Some((at, what, help)) = link.inertial.as_ref().and_then(impossible) else {
+            continue;
+        };
+        if used {
+            errors.push(place.invalid(at, format!("link `{}`: {what}", link.name), help));
+        } else {
+            unused.push((link, at, what));
+        }
+    }
+    if !errors.is_empty() {
+        return Err(DescriptionError::from_errors(errors));
+    }
+    if let Some((first, at, what)) = unused.first() {
+        let others = if unused.len() > 1 {
+            let names: Vec<String> = unused[1..]
+                .iter()
+                .map(|(l, ..)| format!("`{}`", l.name))
+                .collect();
+            format!(
+                " ({} {} {} an impossible inertial too, also unused)",
+                if names.len() == 1 { "link" } else { "links" },
+                names.join(", "),
+                if names.len() == 1 { "has" } else { "have" }
+            )
+        } else {
+            String::new()
+        };
+        warnings.push(place.warning(
+            at.start,
+            &format!(
+                "link `{}`: {what}; the link is fixed to the base or lies outside the chain, \
+                 so the model does not use its inertial; correct it where the file is used \
+                 with that link{others}",
+                first.name
+            ),
+        ));
+    }
+    Ok(())
+}
 
 /// The inertia tensor of a URDF `<inertia>` (`ixy` is the tensor entry, as robid's `XY`,
 /// docs/conventions.md#standard-parameters).

@@ -134,6 +134,7 @@ impl Robot {
         let mut warnings = urdf.warnings.clone();
         let tree = chain::tree(&place, &urdf)?;
         let chain = chain::choose(&place, &urdf, &tree, selection, &mut warnings)?;
+        inertial::check(&place, &urdf, &chain, &mut warnings)?;
         let axes: Vec<Axis> = chain
             .joints
             .iter()

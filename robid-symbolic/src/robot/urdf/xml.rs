@@ -8,7 +8,6 @@
 
 use super::super::DescriptionError;
 use super::super::bounds::MAX_DESCRIPTION_LEN;
-use super::super::check::show;
 use super::super::file::Place;
 use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, right_angle_multiple, scale};
 use roxmltree::{Document, Node};
@@ -39,10 +38,6 @@ impl JointType {
     }
 }
 
-/// How far below zero an `<inertia>`'s smallest eigenvalue may be, relative to its largest
-/// entry, for rounded published values (as for parameter files).
-const INERTIA_TOLERANCE: f64 = 1e-6;
-
 /// `<inertial>`: the centre of mass frame, the mass, the inertia about the centre of mass in
 /// that frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -54,6 +49,10 @@ pub(super) struct Inertial {
     pub(super) inertia: [f64; 6],
     /// The element's bytes.
     pub(super) range: Range<usize>,
+    /// The `<mass>`'s `value`.
+    pub(super) mass_at: Range<usize>,
+    /// The `<inertia>` element.
+    pub(super) inertia_at: Range<usize>,
 }
 
 /// `<link>`.
@@ -418,19 +417,13 @@ impl Reader<'_> {
                 None
             }
         };
-        if let (Some(m), Some(mass_node)) = (mass, mass_node)
-            && m < 0.0
-        {
-            let span = mass_node
-                .attribute_node("value")
-                .map_or(mass_node.range(), |a| a.range_value());
-            self.error(
-                span,
-                format!("the mass {} is negative", show(m)),
-                "a mass is positive or zero (kg)",
-            );
-            return None;
-        }
+        // a negative mass and an inertia that is not positive semidefinite are checked
+        // only for the links of the chain's bodies (`inertial::check`)
+        let mass_at = mass_node.map_or(node.range(), |m| {
+            m.attribute_node("value")
+                .map_or(m.range(), |a| a.range_value())
+        });
+        let mut inertia_at = node.range();
         let inertia = match self.child(node, "inertia") {
             Some(i) => {
                 let mut values = [0.0; 6];
@@ -444,21 +437,7 @@ impl Reader<'_> {
                         None => complete = false,
                     }
                 }
-                let lowest = super::inertial::lowest_eigenvalue(&values);
-                let scale = values.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-                if complete && lowest < -INERTIA_TOLERANCE * scale {
-                    self.error(
-                        i.range(),
-                        format!(
-                            "the inertia about the centre of mass is not positive semidefinite \
-                             (smallest eigenvalue {lowest:.4e} kg m^2), so no mass distribution \
-                             has it"
-                        ),
-                        "check the values and the signs of the products of inertia (`ixy` is \
-                         the tensor's entry, -sum m x y)",
-                    );
-                    return None;
-                }
+                inertia_at = i.range();
                 complete.then_some(values)
             }
             None => {
@@ -475,6 +454,8 @@ impl Reader<'_> {
             mass: mass?,
             inertia: inertia?,
             range: node.range(),
+            mass_at,
+            inertia_at,
         })
     }
 

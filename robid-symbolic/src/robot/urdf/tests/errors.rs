@@ -40,7 +40,7 @@ fn each_mistake_is_named_at_its_place() {
         (
             arm(&format!("{J1}{J2}")).replace("<link name=\"c\"/>", "<link name=\"c\"><inertial><mass value=\"-1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"),
             "t.urdf:4:",
-            &["the mass -1 is negative"],
+            &["link `c`: the mass -1 is negative"],
         ),
         (
             arm(&format!("{J1}{J2}")).replace("<link name=\"c\"/>", "<link name=\"c\"><inertial><mass value=\"1\"/></inertial></link>"),
@@ -51,7 +51,7 @@ fn each_mistake_is_named_at_its_place() {
         (
             arm(&format!("{J1}{J2}")).replace("<link name=\"c\"/>", "<link name=\"c\"><inertial><mass value=\"1\"/><inertia ixx=\"-5\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"),
             "t.urdf:4:",
-            &["the inertia about the centre of mass is not positive semidefinite", "-5.0000e0", "signs of the products"],
+            &["link `c`: the inertia about the centre of mass is not positive semidefinite", "-5.0000e0", "signs of the products"],
         ),
         (
             arm(&format!("{J1}{J2}")).replace("<link name=\"c\"/>", "<link name=\"c\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"2\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"),
@@ -347,4 +347,74 @@ fn repeated_elements_are_warned_about_and_the_first_used() {
             chain.warnings
         );
     }
+}
+
+/// An impossible inertial (here TIAGo's antenna: products of inertia too large for its
+/// moments) on a link the model does not use, fixed to the base, is warned about once,
+/// naming the link; the file is read. The same inertial on a link of a body (fixed to a
+/// moving link) is an error naming the link, as is a negative mass.
+#[test]
+fn impossible_inertials_are_errors_only_on_the_chains_bodies() {
+    let antenna = r#"<robot name="b03">
+  <link name="base"/>
+  <link name="antenna"><inertial><mass value="0.000001"/>
+    <inertia ixx="0.00000002371" ixy="0.00000006119" ixz="0.00000001179" iyy="0.00000002833" iyz="0.00000000774" izz="0.00000003849"/></inertial></link>
+  <joint name="antenna_joint" type="fixed"><parent link="base"/><child link="antenna"/><origin xyz="-0.2 0.1 0.2"/></joint>
+  <link name="l1"><inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="l1"/><origin xyz="0 0 0.3" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/>
+  </joint>
+</robot>"#;
+    let chain = Robot::from_urdf(antenna, "t.urdf", &ChainSelection::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(chain.robot.dof(), 1);
+    assert_eq!(chain.links[0].inertial[9], 1.0);
+    let warned: Vec<&String> = chain
+        .warnings
+        .iter()
+        .filter(|w| w.contains("not positive semidefinite"))
+        .collect();
+    assert_eq!(warned.len(), 1, "{:?}", chain.warnings);
+    for w in [
+        "t.urdf:4:5: link `antenna`: the inertia about the centre of mass",
+        "the model does not use its inertial",
+    ] {
+        assert!(warned[0].contains(w), "{}\nexpected {w:?}", warned[0]);
+    }
+    // a second one, with a negative mass, is counted in the same warning
+    let two = antenna.replace(
+        "</robot>",
+        "<link name=\"antenna2\"><inertial><mass value=\"-1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>\n<joint name=\"a2\" type=\"fixed\"><parent link=\"base\"/><child link=\"antenna2\"/></joint>\n</robot>",
+    );
+    let chain = Robot::from_urdf(&two, "t.urdf", &ChainSelection::default()).unwrap();
+    assert!(
+        chain
+            .warnings
+            .iter()
+            .any(|w| w.contains("(link `antenna2` has an impossible inertial too, also unused)")),
+        "{:?}",
+        chain.warnings
+    );
+    // fixed to the moving link l1: part of its body, so an error at the link
+    let on_body = antenna.replace(
+        "<parent link=\"base\"/><child link=\"antenna\"/>",
+        "<parent link=\"l1\"/><child link=\"antenna\"/>",
+    );
+    let message = error_of(&on_body, &ChainSelection::default());
+    assert!(
+        message.starts_with("t.urdf:4:5: link `antenna`: the inertia about the centre of mass is not positive semidefinite"),
+        "{message}"
+    );
+    let message = error_of(
+        &two.replace(
+            "<parent link=\"base\"/><child link=\"antenna2\"/>",
+            "<parent link=\"l1\"/><child link=\"antenna2\"/>",
+        ),
+        &ChainSelection::default(),
+    );
+    assert!(
+        message.contains("link `antenna2`: the mass -1 is negative"),
+        "{message}"
+    );
 }
