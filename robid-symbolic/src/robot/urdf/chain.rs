@@ -267,23 +267,53 @@ pub(super) fn choose(
             });
             match ends.last() {
                 Some(&last) if single => last,
-                _ => {
+                Some(_) => {
+                    // the leaves a chain can end at: those below a movable joint (not
+                    // the antennas or sensors fixed to the base)
                     let leaves: Vec<String> = below
                         .iter()
                         .filter(|&&l| tree.children[l].is_empty())
+                        .filter(|&&l| {
+                            tree.path(base, l)
+                                .is_some_and(|p| p.into_iter().any(movable))
+                        })
                         .map(|&l| format!("`{}`", names[l]))
                         .collect();
                     return Err(argument(
                         "tip",
-                        if ends.is_empty() {
-                            format!("no movable joint lies below link `{}`", names[base])
-                        } else {
-                            format!(
-                                "the movable joints below link `{}` do not form a single path, so the chain's tip must be chosen",
-                                names[base]
-                            )
-                        },
+                        format!(
+                            "the movable joints below link `{}` do not form a single path, so the chain's tip must be chosen",
+                            names[base]
+                        ),
                         format!("choose the tip among the leaves {}", leaves.join(", ")),
+                    ));
+                }
+                None if !urdf.joints.iter().any(|j| j.kind.movable()) => {
+                    return Err(place.invalid(
+                        urdf.name_at.clone(),
+                        format!(
+                            "the URDF has no revolute, continuous or prismatic joint ({}), so it has no chain to model",
+                            if urdf.joints.is_empty() {
+                                "it has no joint".to_owned()
+                            } else {
+                                "its joints are fixed, floating or planar".to_owned()
+                            }
+                        ),
+                        "give the URDF of a robot whose joints move, or make the joints that move \
+                         `type=\"revolute\"`, `\"continuous\"` or `\"prismatic\"`",
+                    ));
+                }
+                None => {
+                    return Err(argument(
+                        "base",
+                        format!(
+                            "no movable (revolute, continuous or prismatic) joint lies below link `{}`",
+                            names[base]
+                        ),
+                        format!(
+                            "choose a base above the joints to model, such as the root link `{}` (the default)",
+                            names[tree.root]
+                        ),
                     ));
                 }
             }

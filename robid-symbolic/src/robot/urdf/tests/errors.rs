@@ -70,7 +70,7 @@ fn each_mistake_is_named_at_its_place() {
             "t.urdf:6:1:",
             &["at joint `j2`, a value robid does not accept", "joints[1].a"],
         ),
-        (arm(&two.replace("revolute", "fixed")), "the chain's tip link", &["no movable joint lies below link `a`"]),
+        (arm(&two.replace("revolute", "fixed")), "t.urdf:1:14:", &["the URDF has no revolute, continuous or prismatic joint (its joints are fixed, floating or planar)", "make the joints that move"]),
         // the SO-100's first joint: pi/2 written 1.57079 turns its axis 6.3e-6 rad off the
         // horizontal, so gravity in frame 0 has a component of 6.2e-5 m/s^2
         (
@@ -416,5 +416,56 @@ fn impossible_inertials_are_errors_only_on_the_chains_bodies() {
     assert!(
         message.contains("link `antenna2`: the mass -1 is negative"),
         "{message}"
+    );
+}
+
+/// When no tip is given, a chain-selection error says what is wrong with the file or the
+/// base, not with a tip: a URDF without movable joints is the file's error; a base with no
+/// movable joint below it is the base's. A tree's candidate tips are the leaves below a
+/// movable joint, not a sensor fixed to the base.
+#[test]
+fn chain_errors_without_a_tip_name_what_is_wrong() {
+    let fixed = r#"<robot name="mini">
+  <link name="base"/>
+  <link name="l1"/>
+  <link name="l2"/>
+  <joint name="j1" type="fixed"><parent link="base"/><child link="l1"/><origin xyz="0 0 0.3"/></joint>
+  <joint name="j2" type="fixed"><parent link="l1"/><child link="l2"/><origin xyz="0.4 0 0"/></joint>
+</robot>"#;
+    let message = error_of(fixed, &ChainSelection::default());
+    assert!(
+        message.starts_with(
+            "t.urdf:1:14: the URDF has no revolute, continuous or prismatic joint (its joints are fixed, floating or planar), so it has no chain to model; "
+        ),
+        "{message}"
+    );
+    assert!(!message.contains("tip"), "{message}");
+    let lone = "<robot name=\"one\"><link name=\"base\"/></robot>";
+    let message = error_of(lone, &ChainSelection::default());
+    assert!(message.contains("(it has no joint)"), "{message}");
+    // a ROS-Industrial `base` frame, fixed below `base_link`, chosen as the base
+    let text = arm(&format!("{J1}{J2}")).replace(
+        "</robot>",
+        "<link name=\"base\"/><joint name=\"frame\" type=\"fixed\"><parent link=\"a\"/><child link=\"base\"/></joint>\n</robot>",
+    );
+    let message = error_of(&text, &selection(Some("base"), None));
+    assert_eq!(
+        message,
+        "the chain's base link (`ChainSelection::base`): no movable (revolute, continuous or \
+         prismatic) joint lies below link `base`; choose a base above the joints to model, such \
+         as the root link `a` (the default)"
+    );
+    // two branches and a sensor fixed to the base: the sensor is no candidate tip
+    let tree = text.replace(
+        "</robot>",
+        "<link name=\"d\"/><joint name=\"side\" type=\"revolute\"><parent link=\"b\"/><child link=\"d\"/><axis xyz=\"0 1 0\"/></joint>\n\
+         <link name=\"e\"/><joint name=\"tcp\" type=\"fixed\"><parent link=\"c\"/><child link=\"e\"/></joint>\n</robot>",
+    );
+    let message = error_of(&tree, &ChainSelection::default());
+    assert_eq!(
+        message,
+        "the chain's tip link (`ChainSelection::tip`): the movable joints below link `a` do not \
+         form a single path, so the chain's tip must be chosen; choose the tip among the leaves \
+         `e`, `d`"
     );
 }
