@@ -5,7 +5,7 @@
 use super::super::DescriptionError;
 use super::super::check::distance;
 use super::super::file::Place;
-use super::rigid::Rigid;
+use super::rigid::{Rigid, scale};
 use super::xml::{JointType, Urdf};
 use std::collections::HashMap;
 
@@ -163,12 +163,20 @@ pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionEr
             "a URDF describes links connected by joints",
         ));
     };
+    let held = held(place, urdf)?;
     let mut at_zero = vec![Rigid::IDENTITY; n];
     let mut stack = vec![root];
     while let Some(l) = stack.pop() {
         for &j in &children[l] {
             let c = ends[j].1;
-            at_zero[c] = at_zero[l].then(&urdf.joints[j].origin);
+            let joint = &urdf.joints[j];
+            at_zero[c] = at_zero[l].then(&joint.origin);
+            if held[j] != 0.0 {
+                at_zero[c] = at_zero[c].then(&match joint.kind {
+                    JointType::Prismatic => Rigid::translation(scale(joint.axis, held[j])),
+                    _ => Rigid::rotation(joint.axis, held[j]),
+                });
+            }
             stack.push(c);
         }
     }
@@ -179,6 +187,66 @@ pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionEr
         root,
         at_zero,
     })
+}
+
+/// Per joint, the value it is held at when it is not one of robid's joints: 0, but for a
+/// revolute, continuous or prismatic joint with `<mimic>`, where its relation puts it,
+/// `multiplier * (the followed joint's value) + offset` (`offset` when that joint is held
+/// at 0). A joint named by no joint counts as held at 0; joints following each other in a
+/// cycle are an error.
+fn held(place: &Place<'_>, urdf: &Urdf) -> Result<Vec<f64>, DescriptionError> {
+    let index: HashMap<&str, usize> = urdf
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(k, j)| (j.name.as_str(), k))
+        .collect();
+    let followed = |j: usize| {
+        let joint = &urdf.joints[j];
+        let mimic = joint.mimic.as_ref().filter(|_| joint.kind.movable())?;
+        Some((mimic, index.get(mimic.joint.as_str()).copied()))
+    };
+    let mut held: Vec<Option<f64>> = vec![None; urdf.joints.len()];
+    for start in 0..urdf.joints.len() {
+        // the joints from `start` to one whose value is known or that follows no joint
+        let mut walk = vec![start];
+        let mut at = start;
+        while held[at].is_none() {
+            let Some((_, Some(next))) = followed(at) else {
+                break;
+            };
+            if let Some(k) = walk.iter().position(|&j| j == next) {
+                let names: Vec<String> = walk[k..]
+                    .iter()
+                    .map(|&j| format!("`{}`", urdf.joints[j].name))
+                    .collect();
+                let mimic = followed(at).map_or(0..0, |(m, _)| m.at.clone());
+                return Err(place.invalid(
+                    mimic,
+                    format!(
+                        "the joints {} follow each other through `<mimic>` in a cycle",
+                        names.join(", ")
+                    ),
+                    "a mimic joint follows a joint that moves on its own: remove one `<mimic>`",
+                ));
+            }
+            walk.push(next);
+            at = next;
+        }
+        for &j in walk.iter().rev() {
+            if held[j].is_some() {
+                continue;
+            }
+            held[j] = Some(match followed(j) {
+                Some((mimic, master)) => {
+                    let master = master.and_then(|m| held[m]).unwrap_or(0.0);
+                    mimic.multiplier * master + mimic.offset
+                }
+                None => 0.0,
+            });
+        }
+    }
+    Ok(held.into_iter().map(|v| v.unwrap_or(0.0)).collect())
 }
 
 fn argument(which: &str, message: String, help: String) -> DescriptionError {
@@ -410,11 +478,12 @@ pub(super) fn choose(
         };
         let joint = &urdf.joints[j];
         let on_path = path_names.contains_key(joint.name.as_str());
-        if let Some((mimicked, at)) = &joint.mimic
-            && (on_path || path_names.contains_key(mimicked.as_str()))
+        if let Some(mimic) = &joint.mimic
+            && (on_path || path_names.contains_key(mimic.joint.as_str()))
         {
+            let mimicked = &mimic.joint;
             errors.push(place.invalid(
-                    at.clone(),
+                    mimic.at.clone(),
                     if on_path {
                         format!("joint `{}` of the chain mimics joint `{mimicked}`", joint.name)
                     } else {

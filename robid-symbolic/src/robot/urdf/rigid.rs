@@ -115,10 +115,10 @@ impl Rigid {
         }
     }
 
-    /// A rotation about unit axis `u` by `angle` (Rodrigues), no translation.
-    #[cfg(test)]
+    /// A rotation about unit axis `u` by `angle` (Rodrigues), no translation; sine and
+    /// cosine by [`sin_cos`].
     pub(super) fn rotation(u: [f64; 3], angle: f64) -> Rigid {
-        let (s, c) = angle.sin_cos();
+        let (s, c) = sin_cos(angle);
         let k = 1.0 - c;
         let [x, y, z] = u;
         Rigid {
@@ -132,7 +132,6 @@ impl Rigid {
     }
 
     /// A translation by `v`.
-    #[cfg(test)]
     pub(super) fn translation(v: [f64; 3]) -> Rigid {
         Rigid { r: I3, p: v }
     }

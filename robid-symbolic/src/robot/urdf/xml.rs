@@ -76,6 +76,19 @@ pub(super) struct Limit {
     pub(super) range: Range<usize>,
 }
 
+/// `<mimic joint multiplier offset>`: the joint is `multiplier * joint + offset`.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Mimic {
+    /// The joint followed.
+    pub(super) joint: String,
+    /// Where its name is.
+    pub(super) at: Range<usize>,
+    /// Default 1.
+    pub(super) multiplier: f64,
+    /// Default 0.
+    pub(super) offset: f64,
+}
+
 /// `<joint>`.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct Joint {
@@ -94,8 +107,8 @@ pub(super) struct Joint {
     /// The unit axis in the joint frame.
     pub(super) axis: [f64; 3],
     pub(super) limit: Option<Limit>,
-    /// The joint named by `<mimic>` and where.
-    pub(super) mimic: Option<(String, Range<usize>)>,
+    /// `<mimic>`: the joint this one follows.
+    pub(super) mimic: Option<Mimic>,
     /// Where `<dynamics>` is.
     pub(super) dynamics: Option<Range<usize>>,
 }
@@ -517,9 +530,17 @@ impl Reader<'_> {
             velocity: self.scalar(l, "velocity"),
             range: l.range(),
         });
-        let mimic = self
-            .child(node, "mimic")
-            .and_then(|m| self.required(m, "joint"));
+        let mimic = self.child(node, "mimic").and_then(|m| {
+            let multiplier = self.scalar(m, "multiplier").unwrap_or(1.0);
+            let offset = self.scalar(m, "offset").unwrap_or(0.0);
+            let (joint, at) = self.required(m, "joint")?;
+            Some(Mimic {
+                joint,
+                at,
+                multiplier,
+                offset,
+            })
+        });
         let dynamics = self.child(node, "dynamics").map(|d| d.range());
         let (name, _) = name?;
         let (parent, parent_at) = parent?;

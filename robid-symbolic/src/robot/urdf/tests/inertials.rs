@@ -205,3 +205,86 @@ fn the_bodies_of_random_chains_sum_their_links() {
     let (urdf, robid) = check_bodies(&text, &chain, "b");
     assert!((urdf.m - robid.m).abs() < 1e-12);
 }
+
+/// A hand whose second finger mimics the first (`f2 = f1 + 0.8`): off the chain, the first
+/// finger is held at 0 and the second where the relation puts it, 0.8 rad (it used to be
+/// held at 0). A third joint following the second (`f3 = 2 f2 + 0.1`, prismatic) is at
+/// 1.7 m.
+const MIMIC_HAND: &str = r#"<robot name="b06">
+  <link name="base"/>
+  <link name="hand"><inertial><origin xyz="0.05 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="hand"/><origin xyz="0 0 0.3" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/>
+  </joint>
+  <link name="finger1"><inertial><origin xyz="0.1 0 0"/><mass value="0.5"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial></link>
+  <link name="finger2"><inertial><origin xyz="0.1 0 0"/><mass value="0.5"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial></link>
+  <link name="slider"><inertial><origin xyz="0 0.1 0"/><mass value="0.25"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.002" iyz="0" izz="0.003"/></inertial></link>
+  <joint name="f1" type="revolute">
+    <parent link="hand"/><child link="finger1"/><origin xyz="0.1 0.02 0"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="2"/>
+  </joint>
+  <joint name="f2" type="revolute">
+    <parent link="hand"/><child link="finger2"/><origin xyz="0.1 -0.02 0"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="2"/>
+    <mimic joint="f1" multiplier="1" offset="0.8"/>
+  </joint>
+  <joint name="f3" type="prismatic">
+    <parent link="finger2"/><child link="slider"/><axis xyz="1 0 0"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/>
+    <mimic joint="f2" multiplier="2" offset="0.1"/>
+  </joint>
+</robot>"#;
+
+#[test]
+fn mimic_joints_off_the_chain_are_held_where_their_relation_puts_them() {
+    let chain = Robot::from_urdf(MIMIC_HAND, "t.urdf", &selection(None, Some("hand"))).unwrap();
+    // the same hand with the fingers placed by hand: f2 turned by 0.8 rad in its origin,
+    // the slider moved by 1.7 m along x of finger2
+    let placed = MIMIC_HAND
+        .replace(
+            "<origin xyz=\"0.1 -0.02 0\"/>",
+            "<origin xyz=\"0.1 -0.02 0\" rpy=\"0 0 0.8\"/>",
+        )
+        .replace(
+            "<child link=\"slider\"/>",
+            "<child link=\"slider\"/><origin xyz=\"1.7 0 0\"/>",
+        )
+        .replace("<mimic joint=\"f1\" multiplier=\"1\" offset=\"0.8\"/>", "")
+        .replace("<mimic joint=\"f2\" multiplier=\"2\" offset=\"0.1\"/>", "");
+    let expected = Robot::from_urdf(&placed, "t.urdf", &selection(None, Some("hand"))).unwrap();
+    let worst = chain.links[0]
+        .inertial
+        .iter()
+        .zip(&expected.links[0].inertial)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(worst < 1e-15, "{worst:e}");
+    for (a, b) in chain.links[0]
+        .attached
+        .iter()
+        .zip(&expected.links[0].attached)
+    {
+        assert_eq!(a.name, b.name);
+        assert!(difference(&a.frame, &b.frame) < 1e-15, "{}", a.name);
+    }
+    // held at 0, the first moment of the hand's body would differ by the fingers' turn
+    let at_zero = MIMIC_HAND
+        .replace(" offset=\"0.8\"", "")
+        .replace(" offset=\"0.1\"", "");
+    let zero = Robot::from_urdf(&at_zero, "t.urdf", &selection(None, Some("hand"))).unwrap();
+    assert!((zero.links[0].inertial[7] - chain.links[0].inertial[7]).abs() > 1e-3);
+    // joints following each other in a cycle: an error at the `<mimic>`
+    let cycle = MIMIC_HAND.replace(
+        "<limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"2\"/>\n  </joint>\n  <joint name=\"f2\"",
+        "<limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"2\"/><mimic joint=\"f3\"/>\n  </joint>\n  <joint name=\"f2\"",
+    );
+    assert_ne!(cycle, MIMIC_HAND);
+    let message = Robot::from_urdf(&cycle, "t.urdf", &selection(None, Some("hand")))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message
+            .contains("the joints `f1`, `f3`, `f2` follow each other through `<mimic>` in a cycle"),
+        "{message}"
+    );
+}
