@@ -65,8 +65,8 @@ fn nearest(names: &[&str], wanted: &str) -> String {
         .join(", ")
 }
 
-/// Builds the tree: every parent and child names a link, every link has at most one
-/// parent, there is no cycle and there is one root.
+/// Builds the tree: every parent and child names a link, every `<mimic>` a joint, every
+/// link has at most one parent, there is no cycle and there is one root.
 pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionError> {
     let names: Vec<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
     let index: HashMap<&str, usize> = names.iter().enumerate().map(|(i, &n)| (n, i)).collect();
@@ -115,6 +115,24 @@ pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionEr
         }
         parent[c] = Some(k);
         children[p].push(k);
+    }
+    let joint_names: Vec<&str> = urdf.joints.iter().map(|j| j.name.as_str()).collect();
+    for joint in &urdf.joints {
+        if let Some(mimic) = &joint.mimic
+            && !joint_names.contains(&mimic.joint.as_str())
+        {
+            errors.push(place.invalid(
+                mimic.at.clone(),
+                format!(
+                    "joint `{}` mimics joint `{}`, which is no `<joint>` of the robot",
+                    joint.name, mimic.joint
+                ),
+                format!(
+                    "the nearest joint names are {}",
+                    nearest(&joint_names, &mimic.joint)
+                ),
+            ));
+        }
     }
     if !errors.is_empty() {
         return Err(DescriptionError::from_errors(errors));
@@ -192,8 +210,8 @@ pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionEr
 /// Per joint, the value it is held at when it is not one of robid's joints: 0, but for a
 /// revolute, continuous or prismatic joint with `<mimic>`, where its relation puts it,
 /// `multiplier * (the followed joint's value) + offset` (`offset` when that joint is held
-/// at 0). A joint named by no joint counts as held at 0; joints following each other in a
-/// cycle are an error.
+/// at 0; `tree` has checked that it names a joint). Joints following each other in a cycle
+/// are an error.
 fn held(place: &Place<'_>, urdf: &Urdf) -> Result<Vec<f64>, DescriptionError> {
     let index: HashMap<&str, usize> = urdf
         .joints

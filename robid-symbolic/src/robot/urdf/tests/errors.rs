@@ -469,3 +469,42 @@ fn chain_errors_without_a_tip_name_what_is_wrong() {
          `e`, `d`"
     );
 }
+
+/// A `<mimic>` naming no joint is the file's error, at its place with the nearest joint
+/// names, whether the joint is on the chain or off it (off it, it used to be accepted
+/// without a word; on it, the message spoke of coupled joints).
+#[test]
+fn a_mimic_of_no_joint_is_named_at_its_place() {
+    let off = r#"<robot name="b07">
+  <link name="base"/>
+  <link name="hand"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="hand"/><origin xyz="0 0 0.3"/><axis xyz="0 0 1"/>
+  </joint>
+  <link name="finger1"/>
+  <link name="finger2"/>
+  <joint name="finger_joint" type="revolute">
+    <parent link="hand"/><child link="finger1"/><origin xyz="0.1 0.02 0"/><axis xyz="0 0 1"/>
+  </joint>
+  <joint name="f2" type="revolute">
+    <parent link="hand"/><child link="finger2"/><origin xyz="0.1 -0.02 0"/><axis xyz="0 0 1"/>
+    <mimic joint="finger_joint_that_does_not_exist"/>
+  </joint>
+</robot>"#;
+    let message = error_of(off, &selection(None, Some("hand")));
+    assert_eq!(
+        message,
+        "t.urdf:14:19: joint `f2` mimics joint `finger_joint_that_does_not_exist`, which is no \
+         `<joint>` of the robot; the nearest joint names are `finger_joint`, `f2`, `j1`"
+    );
+    let on = arm(&format!(
+        "{J1}{}",
+        J2.replace("</joint>", "<mimic joint=\"nope\"/></joint>")
+    ));
+    let message = error_of(&on, &ChainSelection::default());
+    assert!(
+        message.starts_with("t.urdf:6:")
+            && message.contains("joint `j2` mimics joint `nope`, which is no `<joint>`"),
+        "{message}"
+    );
+}
