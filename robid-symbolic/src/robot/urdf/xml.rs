@@ -137,18 +137,40 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         ));
     }
     let doc = Document::parse(place.text).map_err(|e| {
+        if matches!(e, roxmltree::Error::DtdDetected) {
+            // well-formed, but a DTD can define entities that expand without bound
+            let at = place.text.find("<!DOCTYPE").unwrap_or(0);
+            return place.invalid(
+                at..at,
+                "the URDF has a document type declaration (`<!DOCTYPE ...>`), and robid does \
+                 not read DTDs (their entities can expand without bound)"
+                    .to_owned(),
+                "remove the `<!DOCTYPE ...>`: a URDF needs none (write out any entity it \
+                 defines where the file uses it)",
+            );
+        }
         let pos = e.pos();
         DescriptionError::Invalid {
             file: place.file.to_owned(),
             line: pos.row as usize,
             column: pos.col as usize,
             message: format!("the URDF is not well-formed XML: {e}"),
-            help: "fix the XML at this place (every tag closed, attribute values quoted)"
-                .to_owned(),
+            help: if looks_like_xacro(place.text) {
+                format!("this looks like an unexpanded xacro file: {EXPAND_XACRO}")
+            } else {
+                "fix the XML at this place (every tag closed, attribute values quoted)".to_owned()
+            },
             span: None,
         }
     })?;
     let root = doc.root_element();
+    if let Some((at, what)) = xacro_left(root) {
+        return Err(place.invalid(
+            at,
+            format!("the URDF is an unexpanded xacro file ({what})"),
+            EXPAND_XACRO,
+        ));
+    }
     let mut reader = Reader {
         place,
         errors: Vec::new(),
@@ -242,6 +264,45 @@ struct Reader<'a> {
     /// The `rpy` values taken as the right angle within [`NEAR_RIGHT_ANGLE`] of them
     /// ([`near_right_angle`]): the word, where it is, the multiple of pi/2 and the distance.
     near: Vec<(String, usize, i64, f64)>,
+}
+
+/// The fix for an unexpanded xacro file.
+const EXPAND_XACRO: &str = "expand it with xacro first (`xacro robot.urdf.xacro > \
+     robot.urdf`) and give robid the URDF it writes";
+
+/// Whether a text that is not well-formed XML looks like a xacro file: `xacro:` elements
+/// whose namespace is not declared, or `${...}` expressions.
+fn looks_like_xacro(text: &str) -> bool {
+    text.contains("<xacro:") || text.contains("${")
+}
+
+/// The first trace of xacro in a parsed file, where and what: an element of the xacro
+/// namespace (`<xacro:property>`, `<xacro:macro>`) anywhere, or a `${...}` expression in an
+/// attribute of a `<link>` or `<joint>`. A declaration `xmlns:xacro` alone is not one:
+/// xacro keeps it in the URDFs it writes.
+fn xacro_left(root: Node<'_, '_>) -> Option<(Range<usize>, String)> {
+    for node in root.descendants().filter(Node::is_element) {
+        if node
+            .tag_name()
+            .namespace()
+            .is_some_and(|ns| ns.contains("xacro"))
+        {
+            return Some((
+                node.range(),
+                format!("`<xacro:{}>`", node.tag_name().name()),
+            ));
+        }
+        let inside = node
+            .ancestors()
+            .any(|a| a.has_tag_name("link") || a.has_tag_name("joint"));
+        if let Some(a) = node
+            .attributes()
+            .find(|a| inside && a.value().contains("${"))
+        {
+            return Some((a.range_value(), format!("`{}=\"{}\"`", a.name(), a.value())));
+        }
+    }
+    None
 }
 
 /// `<tag name="...">` for messages.

@@ -508,3 +508,72 @@ fn a_mimic_of_no_joint_is_named_at_its_place() {
         "{message}"
     );
 }
+
+/// A `<!DOCTYPE>` is well-formed XML: the error says that robid does not read DTDs and to
+/// remove it (it used to say "not well-formed XML ... every tag closed"). An unexpanded
+/// xacro file is told to be expanded with xacro first, whether its `xacro:` prefix is
+/// declared or not; the `xmlns:xacro` declaration that xacro leaves in its output is fine.
+#[test]
+fn doctypes_and_xacro_files_are_told_what_to_do() {
+    let two = arm(&format!("{J1}{J2}"));
+    let doctype = format!("<?xml version=\"1.0\"?>\n<!DOCTYPE robot>\n{two}");
+    let message = error_of(&doctype, &ChainSelection::default());
+    assert!(
+        message.starts_with(
+            "t.urdf:2:1: the URDF has a document type declaration (`<!DOCTYPE ...>`), and robid \
+             does not read DTDs"
+        ),
+        "{message}"
+    );
+    assert!(message.contains("remove the `<!DOCTYPE ...>`"), "{message}");
+    assert!(!message.contains("well-formed"), "{message}");
+    let entities = format!(
+        "<!DOCTYPE robot [<!ENTITY a \"&b;&b;\"><!ENTITY b \"xx\">]>\n{}",
+        two.replace("0.5 0 0", "&a; 0 0")
+    );
+    let message = error_of(&entities, &ChainSelection::default());
+    assert!(
+        message.starts_with("t.urdf:1:1: the URDF has a document type"),
+        "{message}"
+    );
+    let expand = "expand it with xacro first";
+    // an undeclared prefix: not well-formed XML, but the help says what the file is
+    let undeclared = two.replace(
+        "</robot>",
+        "<xacro:property name=\"a\" value=\"1\"/>\n</robot>",
+    );
+    let message = error_of(&undeclared, &ChainSelection::default());
+    assert!(
+        message.starts_with(
+            "t.urdf:7:2: the URDF is not well-formed XML: an unknown namespace prefix 'xacro'"
+        ) && message.contains(expand),
+        "{message}"
+    );
+    let declared = undeclared.replace(
+        "<robot name=\"arm\">",
+        "<robot name=\"arm\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">",
+    );
+    let message = error_of(&declared, &ChainSelection::default());
+    assert_eq!(
+        message,
+        format!(
+            "t.urdf:7:1: the URDF is an unexpanded xacro file (`<xacro:property>`); {expand} \
+             (`xacro robot.urdf.xacro > robot.urdf`) and give robid the URDF it writes"
+        )
+    );
+    let expression = two.replace("0.5 0 0", "${l} 0 0");
+    let message = error_of(&expression, &ChainSelection::default());
+    assert!(
+        message.starts_with("t.urdf:6:")
+            && message.contains("an unexpanded xacro file (`xyz=\"${l} 0 0\"`)")
+            && message.contains(expand),
+        "{message}"
+    );
+    // xacro's output keeps the declaration
+    let expanded = two.replace(
+        "<robot name=\"arm\">",
+        "<robot name=\"arm\" xmlns:xacro=\"http://wiki.ros.org/xacro\">",
+    );
+    let chain = Robot::from_urdf(&expanded, "t.urdf", &ChainSelection::default()).unwrap();
+    assert_eq!(chain.robot.dof(), 2);
+}
