@@ -270,16 +270,39 @@ impl PartialOrd for Num {
     }
 }
 
+/// The largest denominator written as a fraction (`1/3`, `51/280`): regrouping's exact
+/// coefficients have at most 10,000 (`regroup/exact.rs`), and products of two of them
+/// stay readable. A number with a larger one that is no short decimal is written as the
+/// shortest decimal of its float (docs/regrouping.md).
+const LONG_DENOMINATOR: i128 = 1_000_000;
+
+/// Written re-readably: an integer, a decimal that reads back as the same number, a short
+/// fraction, or for a longer fraction the shortest decimal of its float (which reads back
+/// as that float, not as the same fraction); a float as the shortest decimal.
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Num::Rational(n, 1) => write!(f, "{n}"),
-            // Decimal form when the denominator is a product of 2s and 5s (a DH length).
             Num::Rational(n, d) => {
                 let x = n as f64 / d as f64;
-                match Num::from_f64(x) {
-                    Some(back) if back == *self => write!(f, "{x}"),
-                    _ => write!(f, "{n}/{d}"),
+                // Decimal form when the number is the shortest decimal of a float (a DH
+                // length, 0.425 = 17/40): it reads back as this number exactly. With more
+                // than 53 bits in n or d, n/d in floats can be an ulp or two from that
+                // float, so its neighbours are tried too.
+                let step = |x: f64, k: i64| f64::from_bits(x.to_bits().wrapping_add_signed(k));
+                if let Some(exact) = [0, 1, -1, 2, -2]
+                    .map(|k| step(x, k))
+                    .into_iter()
+                    .find(|&c| c.is_finite() && Num::from_f64(c) == Some(*self))
+                {
+                    write!(f, "{exact}")
+                } else if d > LONG_DENOMINATOR {
+                    // a product of long decimals (2030920000000007937933343401/
+                    // 40000000000000000000000000000): the shortest decimal of its float,
+                    // which is what every computation uses
+                    write!(f, "{x:?}")
+                } else {
+                    write!(f, "{n}/{d}")
                 }
             }
             Num::Float(x) => write!(f, "{x:?}"),
@@ -348,5 +371,49 @@ mod tests {
     fn display_prefers_decimals() {
         assert_eq!(Num::from_f64(0.425).unwrap().to_string(), "0.425");
         assert_eq!(Num::ratio(1, 3).unwrap().to_string(), "1/3");
+    }
+
+    /// A long fraction (the square of a URDF's fitted length 0.225328648866495, times 1)
+    /// is written as the shortest decimal of its float, not with 29 digits; short
+    /// fractions stay fractions; nothing changes its value.
+    #[test]
+    fn long_fractions_are_written_as_the_decimal_of_their_float() {
+        let a = Num::from_f64(0.225328648866495).unwrap();
+        let square = a * a;
+        assert_eq!(
+            square,
+            Num::Rational(2030920000000007937933343401, 40000000000000000000000000000)
+        );
+        assert_eq!(square.to_string(), "0.05077300000000021");
+        let text: f64 = square.to_string().parse().unwrap();
+        assert_eq!(text, square.to_f64());
+        assert_eq!((-square).to_string(), "-0.05077300000000021");
+        assert_eq!(
+            Num::ratio(7624390023667207, 6250000000000000000)
+                .unwrap()
+                .to_string(),
+            "0.001219902403786753"
+        );
+        for (n, d, text) in [
+            (1, 3, "1/3"),
+            (51, 280, "51/280"),
+            (-100, 981, "-100/981"),
+            (1, 999_983, "1/999983"),
+        ] {
+            assert_eq!(Num::ratio(n, d).unwrap().to_string(), text);
+        }
+        // a number read from a decimal is written as that decimal, which reads back as
+        // the same number, also when n/d in floats is an ulp from its float
+        let mut rng = robid_core::rng::Rng::new(7);
+        for _ in 0..20_000 {
+            let x = (rng.unit() - 0.5) * 10f64.powi(rng.below(12) as i32 - 6);
+            let exact = Num::from_f64(x).unwrap();
+            assert!(matches!(exact, Num::Rational(..)), "{x:e}");
+            assert_eq!(Num::parse_decimal(&exact.to_string()), Some(exact), "{x:e}");
+        }
+        assert_eq!(
+            Num::from_f64(0.36870638165021724).unwrap().to_string(),
+            "0.36870638165021724"
+        );
     }
 }

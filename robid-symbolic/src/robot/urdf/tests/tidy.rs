@@ -65,3 +65,31 @@ fn a_urdf_whose_lengths_add_up_gives_their_decimal_sum() {
         .collect();
     assert!(d.contains(&"0.42".to_string()), "{d:?}");
 }
+
+/// Unitree Z1's joint offset `a = sqrt(0.218^2 + 0.057^2) = 0.225328648866495`: its square
+/// in the base parameters is the decimal of its float, `0.05077300000000021`, not
+/// `2030920000000007937933343401/40000000000000000000000000000`.
+#[test]
+fn base_parameters_of_a_long_length_are_written_as_decimals() {
+    let urdf = r#"<robot name="b09">
+  <link name="base"/>
+  <link name="l1"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="l2"><inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="l3"><inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="10" velocity="2"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0 0.3"/><axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="10" velocity="2"/></joint>
+  <joint name="j3" type="revolute"><parent link="l2"/><child link="l3"/><origin xyz="0.218 0 0.057"/><axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="10" velocity="2"/></joint>
+</robot>"#;
+    let chain = Robot::from_urdf(urdf, "b09.urdf", &ChainSelection::default()).unwrap();
+    let programs = crate::program::RobotPrograms::derive(&chain.robot).unwrap();
+    let text: Vec<String> = programs
+        .base
+        .iter()
+        .map(|b| format!("{} = {}", b.name, b.expression))
+        .collect();
+    assert!(
+        text.contains(&"ZZR2 = ZZ2 + 0.05077300000000021*M3".to_owned()),
+        "{text:?}"
+    );
+    assert!(text.iter().all(|t| !t.contains('/')), "{text:?}");
+}
