@@ -57,6 +57,11 @@ pub(crate) struct Args {
     /// the description's (a URDF states none).
     #[arg(long, value_delimiter = ',', value_parser = real(positive(1e6, "rad/s^2")))]
     acceleration_limits: Vec<f64>,
+    /// Velocity limits `v1,..,vn` (or one for every joint), each in (0, 1e4] (m/s for a
+    /// prismatic joint): replace the description's, or give those it lacks (a URDF joint
+    /// without `velocity` in a `<limit>`, e.g. a continuous joint without `<limit>`).
+    #[arg(long, value_delimiter = ',', value_parser = real(positive(1e4, "rad/s")))]
+    velocity_limits: Vec<f64>,
     /// Intervals between optimised points, 2 to 200 (`--method points` only; default 12).
     #[arg(long, value_parser = count(2, 200))]
     intervals: Option<usize>,
@@ -171,25 +176,30 @@ const DESIGN_FLAGS: &[(&str, &str)] = &[
     ("rate", "--rate"),
 ];
 
+/// The values of a per-joint limit flag (`--acceleration-limits`, `--velocity-limits`) for
+/// `n` joints: none, one for every joint, or one per joint.
+fn per_joint(flag: &str, values: &[f64], n: usize, args: &Args) -> Result<Vec<Option<f64>>, Error> {
+    let letter = &flag[2..3];
+    match values {
+        [] => Ok(vec![None; n]),
+        [v] => Ok(vec![Some(*v); n]),
+        many if many.len() == n => Ok(many.iter().copied().map(Some).collect()),
+        many => Err(format!(
+            "{flag} has {} values but {} has {n} joints; give one value or {letter}1,..,{letter}{n}",
+            many.len(),
+            args.robot.display()
+        )
+        .into()),
+    }
+}
+
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
     let description = description::load(&args.robot, &args.description)?;
     let model = Interpreted::new(&description.robot)?;
     let n = model.dof();
-    let accelerations = match args.acceleration_limits.as_slice() {
-        [] => vec![None; n],
-        [a] => vec![Some(*a); n],
-        many if many.len() == n => many.iter().copied().map(Some).collect(),
-        many => {
-            return Err(format!(
-                "--acceleration-limits has {} values but {} has {n} joints; give one value or \
-                 a1,..,a{n}",
-                many.len(),
-                args.robot.display()
-            )
-            .into());
-        }
-    };
+    let accelerations = per_joint("--acceleration-limits", &args.acceleration_limits, n, args)?;
+    let velocities = per_joint("--velocity-limits", &args.velocity_limits, n, args)?;
     if !args.start.is_empty() && args.start.len() != n {
         return Err(format!(
             "--start has {} values but {} has {n} joints; give q1,..,q{n}",
@@ -218,29 +228,52 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .enumerate()
         .map(|(j, joint)| {
             let l = &joint.limits;
-            let missing = |what: &str| match (&description.urdf, what) {
-                (Some(_), "acceleration") => format!(
-                    "{}: joint {} has no acceleration limit (a URDF states none); give \
-                     --acceleration-limits a1,..,an (rad/s^2 or m/s^2)",
-                    args.robot.display(),
-                    j + 1
-                ),
-                (Some(_), "position") => format!(
-                    "{}: joint {} has no position limits; add `lower` and `upper` to its \
-                     <limit> element",
-                    args.robot.display(),
-                    j + 1
-                ),
-                (Some(_), _) => format!(
-                    "{}: joint {} has no {what} limit; add `{what}` to its <limit> element",
-                    args.robot.display(),
-                    j + 1
-                ),
-                (None, _) => format!(
-                    "{}: joint {} has no {what} limit; add `limits = {{ position = [lo, hi], velocity = .., acceleration = .. }}`",
-                    args.robot.display(),
-                    j + 1
-                ),
+            let missing = |what: &str| {
+                let file = args.robot.display();
+                let flag = |unit: &str| {
+                    format!(
+                        "give --{what}-limits {}1,..,{}n ({unit}; or one value for every joint)",
+                        &what[..1],
+                        &what[..1]
+                    )
+                };
+                match &description.urdf {
+                    // a URDF joint by its name: the robid number is not in the file
+                    Some(chain) => {
+                        let joint = format!(
+                            "{file}: joint {} (`{}`)",
+                            j + 1,
+                            chain.links.get(j).map_or("?", |link| link.joint.as_str())
+                        );
+                        match what {
+                            "acceleration" => format!(
+                                "{joint} has no acceleration limit (a URDF states none); {}",
+                                flag("rad/s^2 or m/s^2")
+                            ),
+                            "velocity" => format!(
+                                "{joint} has no velocity limit (no `velocity` in a <limit> \
+                                 element); {}, or write <limit velocity=\"..\"> in the joint",
+                                flag("rad/s or m/s")
+                            ),
+                            _ => format!(
+                                "{joint} has no position limits; add `lower` and `upper` to \
+                                 its <limit> element"
+                            ),
+                        }
+                    }
+                    None => {
+                        let fix = match what {
+                            "acceleration" => format!(", or {}", flag("rad/s^2 or m/s^2")),
+                            "velocity" => format!(", or {}", flag("rad/s or m/s")),
+                            _ => String::new(),
+                        };
+                        format!(
+                            "{file}: joint {} has no {what} limit; add `limits = {{ position = \
+                             [lo, hi], velocity = .., acceleration = .. }}`{fix}",
+                            j + 1
+                        )
+                    }
+                }
             };
             let position = match (l.position, continuous(j)) {
                 (Some(position), _) => position,
@@ -253,7 +286,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             };
             Ok(JointLimits {
                 position,
-                velocity: l.velocity.ok_or_else(|| missing("velocity"))?,
+                velocity: velocities[j]
+                    .or(l.velocity)
+                    .ok_or_else(|| missing("velocity"))?,
                 acceleration: accelerations[j]
                     .or(l.acceleration)
                     .ok_or_else(|| missing("acceleration"))?,

@@ -340,7 +340,144 @@ fn excite_keeps_continuous_joints_within_a_turn_of_their_start() {
     ]);
     fails_with(
         &o,
-        &["joint 1 has no velocity limit; add `velocity` to its <limit> element"],
+        &[
+            "kinova.urdf: joint 1 (`j2s6s200_joint_1`) has no velocity limit",
+            "--velocity-limits",
+        ],
     );
     assert!(!stderr(&o).contains("lower"), "{}", stderr(&o));
+}
+
+/// A continuous joint without `<limit>` (valid URDF: Bravo 7, SCARA quills) has no velocity
+/// limit. `robid excite` names the joint and the file and points to `--velocity-limits`,
+/// which supplies it (one value for every joint, or one per joint, in range); it used to
+/// ask for a `velocity` in a `<limit>` element the joint does not have, with no way out
+/// but editing the file.
+#[test]
+fn excite_takes_velocity_limits_a_urdf_lacks() {
+    let dir = folder();
+    let urdf = write(
+        dir.path(),
+        "arm.urdf",
+        r#"<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base"/>
+  <link name="l1"><inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="l2"><inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="l1"/><origin xyz="0 0 0.3" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/>
+  </joint>
+  <joint name="wrist_roll" type="continuous">
+    <parent link="l1"/><child link="l2"/><origin xyz="0.4 0 0" rpy="0 1.5707963267948966 0"/><axis xyz="0 0 1"/>
+  </joint>
+</robot>
+"#,
+    );
+    let output = dir.path().join("traj.csv");
+    let excite = |extra: &[&str]| {
+        let mut args = vec![
+            "excite",
+            urdf.to_str().unwrap(),
+            "-o",
+            output.to_str().unwrap(),
+            "--acceleration-limits",
+            "5",
+            "--duration",
+            "10",
+            "--rate",
+            "20",
+            "--restarts",
+            "1",
+            "--evaluations",
+            "20",
+        ];
+        args.extend(extra);
+        robid(&args)
+    };
+    let o = excite(&[]);
+    fails_with(
+        &o,
+        &[
+            "arm.urdf: joint 2 (`wrist_roll`) has no velocity limit",
+            "give --velocity-limits v1,..,vn",
+        ],
+    );
+    assert!(!output.exists());
+    // one value for every joint, or one per joint: the given one is the limit
+    for limits in ["1.5", "2,1.5"] {
+        let o = excite(&["--velocity-limits", limits]);
+        assert!(o.status.success(), "{limits}: {}", stderr(&o));
+        let text = std::fs::read_to_string(&output).unwrap();
+        let peak = |column: usize| {
+            text.lines()
+                .skip(1)
+                .map(|line| {
+                    line.split(',')
+                        .nth(column)
+                        .unwrap()
+                        .parse::<f64>()
+                        .unwrap()
+                        .abs()
+                })
+                .fold(0.0, f64::max)
+        };
+        let (qd1, qd2) = (peak(3), peak(4));
+        assert!(0.0 < qd2 && qd2 <= 1.5, "{limits}: qd2 peaks at {qd2}");
+        // the flag replaces the URDF's own 2 rad/s of joint 1 too
+        let limit = if limits == "1.5" { 1.5 } else { 2.0 };
+        assert!(0.0 < qd1 && qd1 <= limit, "{limits}: qd1 peaks at {qd1}");
+    }
+    // a wrong count names the joints; a value out of range is refused by the parser
+    fails_with(
+        &excite(&["--velocity-limits", "1,2,3"]),
+        &[
+            "--velocity-limits has 3 values but",
+            "has 2 joints; give one value or v1,..,v2",
+        ],
+    );
+    let o = excite(&["--velocity-limits", "0"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("0 is outside (0, 1e4] rad/s"),
+        "{}",
+        stderr(&o)
+    );
+    let o = excite(&["--velocity-limits", "1e5"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    // a TOML description without velocity limits: the same way out
+    let toml = write(
+        dir.path(),
+        "planar.toml",
+        "name = \"planar\"\nconvention = \"modified\"\ngravity = [0, -9.81, 0]\n\
+         [[joints]]\nalpha = 0\na = 0\nd = 0\nlimits = { position = [-3, 3], acceleration = 10 }\n\
+         [[joints]]\nalpha = 0\na = 0.5\nd = 0\nlimits = { position = [-3, 3], acceleration = 10 }\n",
+    );
+    let design = [
+        "--duration",
+        "10",
+        "--rate",
+        "20",
+        "--restarts",
+        "1",
+        "--evaluations",
+        "20",
+    ];
+    let mut args = vec![
+        "excite",
+        toml.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ];
+    args.extend(design);
+    fails_with(
+        &robid(&args),
+        &[
+            "planar.toml: joint 1 has no velocity limit",
+            "or give --velocity-limits v1,..,vn",
+        ],
+    );
+    args.extend(["--velocity-limits", "1"]);
+    let o = robid(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
 }
