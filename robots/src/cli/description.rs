@@ -12,6 +12,19 @@ use robid_symbolic::{DescriptionError, Drive, Robot};
 
 use super::{Error, out};
 
+/// The help of every subcommand's description argument, one text for all of them (each
+/// subcommand reads TOML and URDF alike, see [`load`]): `#[arg(help = robot_help!())]`, or
+/// `robot_help!("what the subcommand reads from it")`.
+macro_rules! robot_help {
+    () => {
+        "Robot description file (TOML, or URDF by its extension)"
+    };
+    ($what:literal) => {
+        concat!($crate::cli::description::robot_help!(), ": ", $what)
+    };
+}
+pub(crate) use robot_help;
+
 /// The flags of every subcommand that reads a description: `--drive`, and for a URDF the
 /// chain (`--base`, `--tip`).
 #[derive(Debug, Clone, Default, clap::Args)]

@@ -30,7 +30,7 @@ pub(crate) enum Scalar {
 /// Arguments of `robid emit`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML, or URDF by its extension).
+    #[arg(help = description::robot_help!())]
     robot: PathBuf,
     #[command(flatten)]
     description: DescriptionFlags,

@@ -24,7 +24,7 @@ use robots::interpreted::Interpreted;
 /// Arguments of `robid excite`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description (TOML) with joint limits.
+    #[arg(help = description::robot_help!("the robot and its joint limits"))]
     robot: PathBuf,
     /// Design method: `fourier` (finite Fourier series, Swevers et al.) or `points` (optimal
     /// position, velocity and acceleration points with 7th-order polynomials, Milella).

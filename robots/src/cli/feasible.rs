@@ -64,7 +64,7 @@ pub(crate) const MAX_FREE_TERMS: usize = 100;
 /// Arguments of `robid feasible`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// The robot description (TOML).
+    #[arg(help = description::robot_help!())]
     robot: PathBuf,
     #[command(flatten)]
     description: DescriptionFlags,

@@ -20,13 +20,13 @@ use robid_runtime::drive::{
 use robid_runtime::pipeline::{JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 use robid_runtime::progress::Progress;
 
-use super::description::DescriptionFlags;
+use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
 
 /// Arguments of `robid friction`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML, or URDF by its extension).
+    #[arg(help = description::robot_help!())]
     robot: PathBuf,
     #[command(flatten)]
     description: DescriptionFlags,

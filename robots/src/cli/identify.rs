@@ -29,8 +29,7 @@ use super::{Error, files, out};
 /// Arguments of `robid identify`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML, or URDF by its extension), with the drive terms to identify.
-    #[arg(required_unless_present = "example_config")]
+    #[arg(required_unless_present = "example_config", help = description::robot_help!("the robot, with the drive terms to identify"))]
     robot: Option<PathBuf>,
     #[command(flatten)]
     description: DescriptionFlags,

@@ -16,7 +16,7 @@ use super::{Error, out};
 /// Arguments of `robid inspect`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML, or URDF by its extension): the joint count and the torque limits.
+    #[arg(help = description::robot_help!("the joint count and the torque limits"))]
     robot: PathBuf,
     #[command(flatten)]
     description: DescriptionFlags,

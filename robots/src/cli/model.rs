@@ -17,7 +17,7 @@ use std::path::PathBuf;
 /// Arguments of `robid model`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML, or URDF by its extension).
+    #[arg(help = description::robot_help!())]
     robot: PathBuf,
     #[command(flatten)]
     description: DescriptionFlags,

@@ -13,13 +13,13 @@ use robid_runtime::data::ParameterFile;
 use robid_runtime::model::Inertial;
 use robid_runtime::payload::{JointSample, Payload, PayloadOptions, from_torques};
 
-use super::description::DescriptionFlags;
+use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
 
 /// Arguments of `robid payload`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description file (TOML, or URDF by its extension).
+    #[arg(help = description::robot_help!())]
     robot: PathBuf,
     #[command(flatten)]
     description: DescriptionFlags,

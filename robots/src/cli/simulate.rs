@@ -26,7 +26,7 @@ pub(crate) const TRACKING_LIMIT: f64 = 1.0;
 /// Arguments of `robid simulate`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Args {
-    /// Robot description (TOML).
+    #[arg(help = description::robot_help!())]
     robot: PathBuf,
     /// Parameter file with a `[standard]` (missing names are 0) or a `[base]` table
     /// (values within +-1e6, see README "Parameter files"); default for a URDF: its own

@@ -20,6 +20,36 @@ fn emit_prints_the_checked_in_code() {
     );
 }
 
+/// Every subcommand that reads a description reads TOML and URDF alike, and its `--help`
+/// (short and long) says so in the same words; `excite`, `simulate` and `feasible` used to
+/// say "(TOML)" alone.
+#[test]
+fn every_description_argument_says_toml_or_urdf() {
+    let subcommands = [
+        "model", "emit", "torques", "simulate", "excite", "identify", "feasible", "inspect",
+        "friction", "payload",
+    ];
+    for sub in subcommands {
+        for flag in ["-h", "--help"] {
+            let o = robid(&[sub, flag]);
+            assert!(o.status.success(), "{sub} {flag}: {}", stderr(&o));
+            let help = stdout(&o);
+            let arguments = help
+                .split_once("Arguments:")
+                .and_then(|(_, rest)| rest.split_once("Options:"))
+                .map(|(arguments, _)| arguments)
+                .unwrap_or_else(|| panic!("{sub} {flag}: no Arguments section in {help}"));
+            assert!(
+                (arguments.contains("<ROBOT>") || arguments.contains("[ROBOT]"))
+                    && arguments
+                        .contains("Robot description file (TOML, or URDF by its extension)"),
+                "{sub} {flag}: {arguments}"
+            );
+            assert!(!arguments.contains("(TOML)"), "{sub} {flag}: {arguments}");
+        }
+    }
+}
+
 /// `--lang c` writes FILE.c and FILE.h (compiled and checked against the Rust models in
 /// tests/tests/suite/emit_c.rs); its misuses are errors naming the flag.
 #[test]
