@@ -20,4 +20,52 @@ pub enum SimulateError {
         /// The likely cause and what to change.
         fix: String,
     },
+    /// The mass matrix is singular because joints move no mass or inertia (a zero diagonal
+    /// entry of M(q)): the parameters leave the bodies they move empty, as a URDF's links
+    /// without `<inertial>` are, and no torque accelerates them. Not a question of
+    /// physical consistency.
+    #[error("{}", no_inertia(what, joints, *dof))]
+    NoInertia {
+        /// The mass matrix: of which model, at which state.
+        what: String,
+        /// The joints that move nothing, numbered from 1.
+        joints: Vec<usize>,
+        /// The model's number of joints.
+        dof: usize,
+    },
+}
+
+/// `joint 2` or `joints 1, 2 and 3`.
+pub(crate) fn joint_list(joints: &[usize]) -> String {
+    match joints {
+        [j] => format!("joint {j}"),
+        [first @ .., last] => {
+            let first: Vec<String> = first.iter().map(usize::to_string).collect();
+            format!("joints {} and {last}", first.join(", "))
+        }
+        [] => "no joint".to_owned(),
+    }
+}
+
+/// The message of [`SimulateError::NoInertia`].
+fn no_inertia(what: &str, joints: &[usize], dof: usize) -> String {
+    let one = joints.len() == 1;
+    let entries: Vec<String> = joints.iter().map(|j| format!("M{j}{j}")).collect();
+    let lowest = joints.first().copied().unwrap_or(1);
+    let (links, those) = if lowest == dof {
+        (format!("link {dof} (the last)"), "that link its")
+    } else {
+        (format!("links {lowest} to {dof}"), "those links their")
+    };
+    format!(
+        "{what} is singular: {} {} no mass or inertia ({} = 0), so no torque accelerates {} \
+         and the robot cannot be simulated; the parameters give {links} no mass, or none \
+         about {} axis: give {those} mass and inertia (in a URDF, `<inertial>` \
+         elements; in a parameter file, their values)",
+        joint_list(joints),
+        if one { "moves" } else { "move" },
+        entries.join(" = "),
+        if one { "it" } else { "them" },
+        if one { "its" } else { "their" },
+    )
 }

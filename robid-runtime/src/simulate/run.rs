@@ -26,7 +26,8 @@
 //! 1 to [`MAX_SUBSTEPS`] substeps, at most [`MAX_SIMULATION_STEPS`] integration steps in
 //! all), the base parameters (finite, magnitude at most
 //! [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER); M(q) positive definite at the
-//! reference's first state, else the parameters are blamed), the reference (finite and
+//! reference's first state, else a joint that moves no mass or inertia is named
+//! ([`crate::SimulateError::NoInertia`]) or the parameters are blamed), the reference (finite and
 //! within the ranges of [`crate::limits`], a bad sample named by its index and time). At
 //! every reference sample the run is checked for divergence: a non-finite state, a
 //! tracking error above [`DIVERGENCE_FACTOR`] times (the joint's reference range + 1 rad),
@@ -107,6 +108,7 @@ pub const MAX_SIMULATION_STEPS: usize = 200_000_000;
 pub const DIVERGENCE_FACTOR: f64 = 10.0;
 use crate::rng::Rng;
 use crate::signal::Signals;
+use crate::simulate::forward;
 use crate::simulate::{ForwardDynamics, Record, Trajectory};
 
 /// Measurement noise and quantization.
@@ -277,14 +279,15 @@ impl Simulation {
             .cholesky()
             .is_none()
         {
-            return Err(Error::Singular {
-                what: format!(
+            return Err(forward::singular(
+                format!(
                     "the mass matrix M(q) of {} at the reference's first state q = {:?}",
                     model.name(),
                     r0[0]
                 ),
-                hint: "the parameters are not physically consistent; use a feasible parameter set (robid feasible)",
-            });
+                &m,
+                n,
+            ));
         }
         let wn = std::f64::consts::TAU * self.bandwidth;
         let (kp, kd) = (wn * wn, 2.0 * self.damping * wn);
@@ -417,6 +420,16 @@ impl Simulation {
                 ),
                 hint: "the parameters are not physically consistent at this state (M(q) was positive definite at the start); use a feasible parameter set (robid feasible)",
             },
+            Error::Simulate(SimulateError::NoInertia { what, joints, dof }) => {
+                Error::Simulate(SimulateError::NoInertia {
+                    what: format!(
+                        "{what} (reached at reference sample {k}, t = {} s)",
+                        reference.t[k]
+                    ),
+                    joints,
+                    dof,
+                })
+            }
             e => e,
         };
         for k in 0..samples {
@@ -544,9 +557,12 @@ fn damping_rate<M: Model + ?Sized>(model: &M, base: &[f64], q: &[f64], qd: &[f64
     }
     let chol = nalgebra::DMatrix::from_row_slice(n, n, &m)
         .cholesky()
-        .ok_or_else(|| Error::Singular {
-            what: format!("mass matrix M(q) of {} at q = {q:?}", model.name()),
-            hint: "the parameters are not physically consistent; use a feasible parameter set",
+        .ok_or_else(|| {
+            forward::singular(
+                format!("the mass matrix M(q) of {} at q = {q:?}", model.name()),
+                &m,
+                n,
+            )
         })?;
     let b = chol.solve(&d);
     Ok((0..n)

@@ -11,11 +11,11 @@
 
 use std::path::{Path, PathBuf};
 
-use robid_runtime::simulate::{Flexibility, Noise, Record, Simulation, Trajectory};
+use robid_runtime::simulate::{Flexibility, Noise, Record, SimulateError, Simulation, Trajectory};
 use robid_runtime::{Model, num};
 use robots::interpreted::Interpreted;
 
-use super::description::{self, DescriptionFlags};
+use super::description::{self, Description, DescriptionFlags};
 use super::flags::{self, closed, positive, real};
 use super::{Error, files, out};
 
@@ -129,11 +129,20 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         ..Simulation::default()
     };
     if let Some(path) = &args.flexible {
-        return run_flexible(args, path, &model, &base, &reference, &sim, every);
+        return run_flexible(
+            args,
+            &description,
+            path,
+            &model,
+            &base,
+            &reference,
+            &sim,
+            every,
+        );
     }
     let result = sim
         .run(&model, &base, &reference)
-        .map_err(|e| e.on_flags(SIMULATION_FLAGS))?;
+        .map_err(|e| refused(args, &description, e))?;
     let tolerance = TRACKING_LIMIT + 10.0 * (args.position_noise + args.quantization);
     check_result(&result.truth, &reference, tolerance)?;
     check_result(&result.measured, &reference, f64::INFINITY)?;
@@ -159,10 +168,86 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     Ok(())
 }
 
+/// The error of a simulation run as the user should read it: a run refused because
+/// joints move no mass or inertia ([`SimulateError::NoInertia`]) with a URDF's own
+/// inertials as the parameters names those joints and their links as the URDF does, and
+/// the ways out (the links' `<inertial>` elements, or `--parameters`). ROS-Industrial
+/// support packages leave every `<inertial>` out.
+fn refused(args: &Args, description: &Description, e: robid_runtime::Error) -> Error {
+    let (
+        Some(chain),
+        None,
+        robid_runtime::Error::Simulate(SimulateError::NoInertia { joints, .. }),
+    ) = (&description.urdf, &args.parameters, &e)
+    else {
+        return e.on_flags(SIMULATION_FLAGS).into();
+    };
+    let Some(lowest) = joints
+        .first()
+        .filter(|&&j| (1..=chain.links.len()).contains(&j))
+    else {
+        return e.into();
+    };
+    let one = joints.len() == 1;
+    let named: Vec<String> = joints
+        .iter()
+        .map(|&j| {
+            format!(
+                "{j} (`{}`)",
+                chain.links.get(j - 1).map_or("?", |l| l.joint.as_str())
+            )
+        })
+        .collect();
+    let named = match named.split_last() {
+        Some((last, [])) => format!("joint {last}"),
+        Some((last, first)) => format!("joints {} and {last}", first.join(", ")),
+        None => String::new(),
+    };
+    // the bodies the lowest of them moves: its own and every one after it
+    let (mut all, mut empty) = (Vec::new(), Vec::new());
+    for link in &chain.links[lowest - 1..] {
+        let names = std::iter::once(&link.link)
+            .chain(link.attached.iter().map(|a| &a.name))
+            .map(|name| format!("`{name}`"));
+        if link.inertial.iter().all(|&v| v == 0.0) {
+            empty.extend(names.clone());
+        }
+        all.extend(names);
+    }
+    let file = args.robot.display();
+    let (it, its, moves) = if one {
+        ("it", "its", "moves")
+    } else {
+        ("them", "their", "move")
+    };
+    let cause = if empty.len() == all.len() {
+        format!(
+            "{named} of {file} {moves} only links without mass or inertia: {} (no \
+             `<inertial>` element, or an empty one)",
+            all.join(", ")
+        )
+    } else {
+        format!(
+            "{named} of {file} {moves} no mass or inertia about {its} axis: the links {it} \
+             {moves} ({}) carry none about it in the URDF",
+            all.join(", ")
+        )
+    };
+    format!(
+        "{cause}, so no torque accelerates {it} and the robot cannot be simulated with the \
+         URDF's own inertials (the mass matrix is singular); give these links `<inertial>` \
+         elements with their mass and inertia, or give --parameters PARAMS.toml (a \
+         [standard] or [base] parameter file)"
+    )
+    .into()
+}
+
 /// `--flexible`: the two-encoder log of a robot with flexible joints, and the largest
 /// deflection per joint on standard output.
+#[allow(clippy::too_many_arguments)]
 fn run_flexible(
     args: &Args,
+    description: &Description,
     path: &Path,
     model: &Interpreted,
     base: &[f64],
@@ -183,7 +268,7 @@ fn run_flexible(
     }
     let log = sim
         .run_flexible(model, base, &flex, reference)
-        .map_err(|e| e.on_flags(SIMULATION_FLAGS))?;
+        .map_err(|e| refused(args, description, e))?;
     log.write_csv(&args.output, every, args.joint_torque)?;
     let deflection: Vec<String> = log
         .largest_deflection()

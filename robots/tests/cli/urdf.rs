@@ -481,3 +481,109 @@ fn excite_takes_velocity_limits_a_urdf_lacks() {
     let o = robid(&args);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// Two joints; `flange`, which joint 2 moves, has no `<inertial>` (as every link of
+/// ROS-Industrial's support packages), and `tool0` hangs from it on a fixed joint.
+const MASSLESS_FLANGE: &str = r#"<?xml version="1.0"?>
+<robot name="flanged">
+  <link name="base"/>
+  <link name="l1"><inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="flange"/>
+  <link name="tool0"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="l1"/><origin xyz="0 0 0.3"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/>
+  </joint>
+  <joint name="j2" type="revolute">
+    <parent link="l1"/><child link="flange"/><origin xyz="0.4 0 0" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/>
+  </joint>
+  <joint name="flange-tool0" type="fixed">
+    <parent link="flange"/><child link="tool0"/><origin xyz="0 0 0.1"/>
+  </joint>
+</robot>
+"#;
+
+/// `robid simulate` of a URDF whose joint moves only links without `<inertial>` (legal
+/// URDF): the mass matrix is singular because that joint moves nothing, so the joint and
+/// its links are named with the two ways out, instead of "the parameters are not
+/// physically consistent; use robid feasible" (they are consistent, and feasible needs an
+/// identification the user does not have). A parameter file that leaves a link empty is
+/// told the same way, by joint number.
+#[test]
+fn simulate_names_a_joint_that_moves_only_massless_links() {
+    let dir = folder();
+    let urdf = write(dir.path(), "flanged.urdf", MASSLESS_FLANGE);
+    let mut trajectory = String::from("t,q1,q2,qd1,qd2,qdd1,qdd2\n");
+    for k in 0..20 {
+        trajectory.push_str(&format!("{},0,0,0,0,0,0\n", 0.01 * k as f64));
+    }
+    let trajectory = write(dir.path(), "traj.csv", &trajectory);
+    let output = dir.path().join("data.csv");
+    let simulate = |urdf: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            urdf.to_str().unwrap(),
+            "--trajectory",
+            trajectory.to_str().unwrap(),
+            "-o",
+            output.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        robid(&args)
+    };
+    let not_blamed = |o: &std::process::Output| {
+        let e = stderr(o);
+        assert!(
+            !e.contains("physically consistent") && !e.contains("robid feasible"),
+            "{e}"
+        );
+        assert!(!output.exists());
+    };
+    let o = simulate(&urdf, &[]);
+    fails_with(
+        &o,
+        &[
+            "error: joint 2 (`j2`) of ",
+            "flanged.urdf moves only links without mass or inertia: `flange`, `tool0` (no \
+             `<inertial>` element",
+            "so no torque accelerates it",
+            "give these links `<inertial>` elements with their mass and inertia, or give \
+             --parameters PARAMS.toml",
+        ],
+    );
+    not_blamed(&o);
+    // no inertial at all: every joint, every link
+    let bare = write(
+        dir.path(),
+        "bare.urdf",
+        &MASSLESS_FLANGE.replace(
+            r#"<inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"#,
+            "",
+        ),
+    );
+    let o = simulate(&bare, &[]);
+    fails_with(
+        &o,
+        &[
+            "error: joints 1 (`j1`) and 2 (`j2`) of ",
+            "move only links without mass or inertia: `l1`, `flange`, `tool0`",
+        ],
+    );
+    not_blamed(&o);
+    // a parameter file that leaves link 2 empty: the joint by its number
+    let parameters = write(
+        dir.path(),
+        "link1.toml",
+        "[standard]\nXX1 = 0.01\nYY1 = 0.02\nZZ1 = 0.02\nMX1 = 0.1\nM1 = 1\n",
+    );
+    let o = simulate(&urdf, &["--parameters", parameters.to_str().unwrap()]);
+    fails_with(
+        &o,
+        &[
+            "is singular: joint 2 moves no mass or inertia (M22 = 0)",
+            "give that link its mass and inertia",
+        ],
+    );
+    not_blamed(&o);
+}
