@@ -6,7 +6,7 @@ use crate::check::{Failed, check};
 use crate::input::Input;
 use proc_macro2::{Span, TokenStream};
 use quote::quote;
-use robid_symbolic::emit::{robot_tokens, stub_tokens};
+use robid_symbolic::emit::{model_tokens, stub_tokens};
 use robid_symbolic::program::RobotPrograms;
 
 /// Expands the macro; never panics.
@@ -26,22 +26,11 @@ pub(crate) fn expand(input: Input) -> TokenStream {
         Ok(p) => p,
         Err(err) => return fail(&err),
     };
-    let model = match robot_tokens(&programs) {
+    // the type, and a URDF's own inertials: the code `robid emit` prints
+    let model = match model_tokens(&programs, checked.urdf_standard.as_deref()) {
         Ok(m) => m,
         Err(err) => return fail(&err),
     };
-    let urdf = checked.urdf_standard.map(|values| {
-        let ty = syn::Ident::new(&robid_symbolic::emit::type_name(&name), Span::call_site());
-        let n = values.len();
-        quote! {
-            impl #ty {
-                /// The URDF's own `<inertial>` elements as this model's standard parameters
-                /// (per link `XX XY XZ YY YZ ZZ MX MY MZ M` in robid's frames, drive terms
-                /// 0): pass them to `base_from_standard` for the URDF's rigid-body dynamics.
-                pub const URDF_STANDARD_PARAMETERS: [f64; #n] = [#(#values),*];
-            }
-        }
-    });
     let track = checked.tracked.map(|path| {
         let path = path.to_string_lossy().into_owned();
         quote! { const _: &str = ::core::include_str!(#path); }
@@ -49,7 +38,6 @@ pub(crate) fn expand(input: Input) -> TokenStream {
     quote! {
         #track
         #model
-        #urdf
     }
 }
 

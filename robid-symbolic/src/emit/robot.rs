@@ -145,6 +145,50 @@ pub fn robot_tokens(p: &RobotPrograms) -> Result<TokenStream, EmitError> {
     })
 }
 
+/// A URDF's own `<inertial>` elements as the associated constant
+/// `URDF_STANDARD_PARAMETERS` of the robot's type (`standard`: the values of
+/// `p.standard`, drive terms 0), what `robot_model!(file = "x.urdf")` and `robid emit
+/// x.urdf` add to the model.
+pub fn urdf_parameters_tokens(
+    p: &RobotPrograms,
+    standard: &[f64],
+) -> Result<TokenStream, EmitError> {
+    let ty = ident(&type_name(p.robot.name())).ok_or_else(|| EmitError::Name {
+        what: "the robot's type name".to_owned(),
+        name: type_name(p.robot.name()),
+    })?;
+    if standard.len() != p.standard.len() {
+        return Err(EmitError::Program {
+            function: "URDF_STANDARD_PARAMETERS".to_owned(),
+            problem: format!(
+                "{} values for {} standard parameters",
+                standard.len(),
+                p.standard.len()
+            ),
+        });
+    }
+    if let Some((name, &value)) = p
+        .standard
+        .iter()
+        .zip(standard)
+        .find(|(_, v)| !v.is_finite())
+    {
+        return Err(EmitError::NotFinite {
+            what: format!("the URDF's value of `{name}`"),
+            value,
+        });
+    }
+    let n = Literal::usize_unsuffixed(standard.len());
+    Ok(quote! {
+        impl #ty {
+            /// The URDF's own `<inertial>` elements as this model's standard parameters
+            /// (per link `XX XY XZ YY YZ ZZ MX MY MZ M` in robid's frames, drive terms
+            /// 0): pass them to `base_from_standard` for the URDF's rigid-body dynamics.
+            pub const URDF_STANDARD_PARAMETERS: [f64; #n] = [#(#standard),*];
+        }
+    })
+}
+
 /// The documentation of a generated function: the table's summary and the output's shape.
 pub(crate) fn function_doc(info: &ProgramInfo, sizes: Sizes) -> String {
     let output = info.output;

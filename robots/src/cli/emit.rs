@@ -1,11 +1,12 @@
 //! `robid emit ROBOT.toml [--lang rust|c] [--scalar double|float] [-o FILE]`: the
 //! generated code of a robot. Rust (the default): the pretty-printed module that
-//! `robot_model!` compiles and that is checked into robots/generated/ for the reference
-//! robots. C: a C99 header and source with the same functions and operation counts.
+//! `robot_model!` compiles (for a URDF with `URDF_STANDARD_PARAMETERS`, the file's own
+//! inertials, through the same `robid_symbolic::emit::model_tokens`) and that is checked
+//! into robots/generated/ for the reference robots. C: a C99 header and source with the same functions and operation counts.
 
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
-use robid_symbolic::emit::{CScalar, emit_c, emit_programs};
+use robid_symbolic::emit::{CScalar, emit_c, emit_model};
 use robid_symbolic::program::RobotPrograms;
 use std::path::{Path, PathBuf};
 
@@ -61,8 +62,14 @@ fn rust(args: &Args) -> Result<(), Error> {
     if let Some(path) = &args.output {
         files::refuse(&[&args.robot], &[path])?;
     }
-    let robot = description::read(&args.robot, &args.description)?;
-    let code = emit_programs(&RobotPrograms::derive(&robot)?)?;
+    let description = description::load(&args.robot, &args.description)?;
+    // a URDF's own inertials, as `robot_model!(file = "x.urdf")` adds them
+    let urdf_standard = description
+        .urdf
+        .as_ref()
+        .map(|chain| chain.standard_values(&description.robot));
+    let programs = RobotPrograms::derive(&description.robot)?;
+    let code = emit_model(&programs, urdf_standard.as_deref())?;
     match &args.output {
         Some(path) => files::write(path, &code)?,
         None => out::print(&code)?,

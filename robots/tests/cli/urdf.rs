@@ -587,3 +587,44 @@ fn simulate_names_a_joint_that_moves_only_massless_links() {
     );
     not_blamed(&o);
 }
+
+/// The URDF's own inertials as the values of its chain's standard parameters (names and
+/// values), as `robot_model!` and the reader give them.
+fn urdf_standard(path: &str) -> (Vec<String>, Vec<f64>) {
+    let chain = chain(path, None);
+    let names = chain
+        .robot
+        .standard_parameters()
+        .iter()
+        .map(|p| p.to_string())
+        .collect();
+    (names, chain.standard_values(&chain.robot))
+}
+
+/// `robid emit` of a URDF prints the code `robot_model!(file = "x.urdf")` compiles (both
+/// through `robid_symbolic::emit::model_tokens`), `URDF_STANDARD_PARAMETERS` included: the
+/// file's own inertials, which it used to leave out.
+#[test]
+fn urdf_emit_holds_the_urdf_standard_parameters() {
+    let (names, expected) = urdf_standard(UR5);
+    assert_eq!(names.len(), 60);
+    let o = robid(&["emit", UR5]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let code = stdout(&o);
+    let (_, array) = code
+        .split_once("pub const URDF_STANDARD_PARAMETERS: [f64; 60] = [")
+        .unwrap_or_else(|| panic!("no URDF_STANDARD_PARAMETERS in {code}"));
+    let emitted: Vec<f64> = array
+        .split_once("];")
+        .unwrap()
+        .0
+        .split(',')
+        .map(str::trim)
+        .filter(|v| !v.is_empty())
+        .map(|v| v.trim_end_matches("f64").parse().unwrap())
+        .collect();
+    assert_eq!(emitted, expected);
+    // a TOML description has no URDF inertials
+    let o = robid(&["emit", "descriptions/ur5e.toml"]);
+    assert!(!stdout(&o).contains("URDF_STANDARD_PARAMETERS"));
+}
