@@ -1,18 +1,20 @@
 //! `robid model ROBOT.toml [--json]`: the robot, its standard and base
 //! parameters with expressions, the unidentifiable parameters and the
 //! operation counts of the derived programs; with `--schedule P`, the parallel schedule of
-//! one program (`schedule.rs`).
+//! one program (`schedule.rs`); with `--standard-parameters FILE`, a URDF's own inertials
+//! written as a `[standard]` parameter file.
 
 use super::description::{self, DescriptionFlags};
-use super::{Error, flags, out, schedule};
+use super::{Error, files, flags, out, schedule};
 use robid_runtime::model::ProgramKind;
 use robid_symbolic::program::Operations;
 use robid_symbolic::program::RobotPrograms;
 use robid_symbolic::program::schedule::MAX_PROCESSORS;
+use robid_symbolic::robot::UrdfChain;
 use robid_symbolic::{Derivation, Robot};
 use serde::Serialize;
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `robid model`.
 #[derive(Debug, clap::Args)]
@@ -31,6 +33,11 @@ pub(crate) struct Args {
     /// The program `--schedule` analyses.
     #[arg(long, value_name = "NAME")]
     schedule_program: Option<String>,
+    /// URDF only: also write the file's own `<inertial>` elements, as the chain's standard
+    /// parameters, to this `[standard]` parameter file (for `--parameters` of `torques`,
+    /// `simulate` and `excite`, `--prior` of `feasible`, `--reference` of `identify`).
+    #[arg(long, value_name = "FILE")]
+    standard_parameters: Option<PathBuf>,
 }
 
 #[derive(Serialize)]
@@ -114,8 +121,24 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
         (None, None) => None,
     };
+    if let Some(path) = &args.standard_parameters {
+        files::refuse(&[&args.robot], &[path])?;
+        if !description::is_urdf(&args.robot) {
+            return Err(format!(
+                "--standard-parameters writes a URDF's own <inertial> elements, but {} is a \
+                 TOML description, which carries no inertial values; give the robot's .urdf \
+                 file, or write the [standard] table by hand (docs/command-line.md, \
+                 \"Parameter files\")",
+                args.robot.display()
+            )
+            .into());
+        }
+    }
     let description = description::load(&args.robot, &args.description)?;
     let mut text = render(&description.robot, args.json, scheduled)?;
+    if let (Some(path), Some(chain)) = (&args.standard_parameters, &description.urdf) {
+        files::write(path, &standard_file(chain, &args.robot))?;
+    }
     if let (false, Some(chain)) = (args.json, &description.urdf) {
         // which URDF joint each row is, and what its link carries
         let mut names = String::from(
@@ -142,6 +165,54 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     out::print(&text)?;
     Ok(())
+}
+
+/// A URDF chain's own inertials as a `[standard]` parameter file
+/// (robid_runtime::data::ParameterFile reads it): every inertial parameter of every chain
+/// link, in robid's frames, each link under a comment naming its URDF joint and links.
+/// Values are written in the shortest form that reads back to the same `f64`.
+fn standard_file(chain: &UrdfChain, path: &Path) -> String {
+    let robot = &chain.robot;
+    let mut text = format!(
+        "# The standard parameters of `{}` from the <inertial> elements of {} (robid link j:\n\
+         # the body its joint j moves, docs/urdf.md#inertials): XX..ZZ (kg m^2) the inertia about\n\
+         # the origin of robid frame j, MX MY MZ (kg m) the first moments, M (kg) the mass, in\n\
+         # frame j. For `robid torques --parameters`, `simulate`, `excite`, `feasible --prior` and\n\
+         # `identify --reference`, with the same description and --base/--tip.\n\n[standard]\n",
+        robot.name(),
+        path.display()
+    );
+    let standard = robot.standard_parameters();
+    for (j, link) in chain.links.iter().enumerate() {
+        let attached: Vec<String> = link
+            .attached
+            .iter()
+            .map(|a| format!("`{}`", a.name))
+            .collect();
+        let _ = writeln!(
+            text,
+            "# link {}: joint `{}` moves `{}`{}{}",
+            j + 1,
+            link.joint,
+            link.link,
+            if attached.is_empty() {
+                String::new()
+            } else {
+                format!(" with {} attached", attached.join(", "))
+            },
+            if link.inertial.iter().all(|&v| v == 0.0) {
+                " (no mass: no <inertial>, or an empty one)"
+            } else {
+                ""
+            }
+        );
+        for &id in standard.iter().filter(|id| id.link == j) {
+            if let Some(value) = chain.inertial_value(id) {
+                let _ = writeln!(text, "{id} = {value:e}");
+            }
+        }
+    }
+    text
 }
 
 /// The model of `robot` as text or JSON, with the schedule of a program on a number of

@@ -628,3 +628,81 @@ fn urdf_emit_holds_the_urdf_standard_parameters() {
     let o = robid(&["emit", "descriptions/ur5e.toml"]);
     assert!(!stdout(&o).contains("URDF_STANDARD_PARAMETERS"));
 }
+/// `robid model ROBOT.urdf --standard-parameters FILE` writes the URDF's own inertials as
+/// a `[standard]` parameter file (the values of `URDF_STANDARD_PARAMETERS`, which no
+/// subcommand used to write), which `torques --parameters` and `feasible --prior` read:
+/// the torques are those of the URDF as written, to the last bit.
+#[test]
+fn urdf_standard_parameters_are_written_as_a_parameter_file() {
+    let dir = folder();
+    let (names, expected) = urdf_standard(UR5);
+    let file = dir.path().join("ur5_standard.toml");
+    let o = robid(&[
+        "model",
+        UR5,
+        "--standard-parameters",
+        file.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("base parameters"), "{}", stdout(&o));
+    let text = std::fs::read_to_string(&file).unwrap();
+    let table = text.split_once("\n[standard]\n").unwrap().1;
+    let written: Vec<(String, f64)> = table
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            let (name, value) = l.split_once(" = ").unwrap();
+            (name.to_owned(), value.parse().unwrap())
+        })
+        .collect();
+    let wanted: Vec<(String, f64)> = names.into_iter().zip(expected).collect();
+    assert_eq!(written, wanted);
+    assert!(
+        text.contains("# link 1: joint `shoulder_pan_joint` moves `shoulder_link`"),
+        "{text}"
+    );
+    // read by torques: the URDF's own torques
+    let states = states(dir.path());
+    let states = states.to_str().unwrap();
+    let own = robid(&["torques", UR5, "--states", states]);
+    let read = robid(&[
+        "torques",
+        UR5,
+        "--states",
+        states,
+        "--parameters",
+        file.to_str().unwrap(),
+    ]);
+    assert!(read.status.success(), "{}", stderr(&read));
+    assert_eq!(stdout(&read), stdout(&own));
+    // read by feasible as the prior
+    let identified = identified(dir.path());
+    let out = dir.path().join("feasible.toml");
+    let o = robid(&[
+        "feasible",
+        UR5,
+        "--identified",
+        identified.to_str().unwrap(),
+        "--prior",
+        file.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // a TOML description has no inertials to write
+    let none = dir.path().join("none.toml");
+    let o = robid(&[
+        "model",
+        "descriptions/ur5e.toml",
+        "--standard-parameters",
+        none.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &[
+            "--standard-parameters writes a URDF's own <inertial> elements, but \
+             descriptions/ur5e.toml is a TOML description",
+        ],
+    );
+    assert!(!none.exists());
+}
