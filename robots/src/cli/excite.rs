@@ -256,8 +256,10 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                                 flag("rad/s or m/s")
                             ),
                             _ => format!(
-                                "{joint} has no position limits; add `lower` and `upper` to \
-                                 its <limit> element"
+                                "{joint} has no position limits; give the joint \
+                                 `lower` and `upper` in its <limit> element (<limit \
+                                 lower=\"..\" upper=\"..\" velocity=\"..\" effort=\"..\"/>, \
+                                 which a revolute or prismatic joint needs in URDF)"
                             ),
                         }
                     }

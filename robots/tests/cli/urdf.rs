@@ -480,6 +480,33 @@ fn excite_takes_velocity_limits_a_urdf_lacks() {
     args.extend(["--velocity-limits", "1"]);
     let o = robid(&args);
     assert!(o.status.success(), "{}", stderr(&o));
+    // a revolute joint without <limit> (urdfdom refuses it, robid reads it): named, and
+    // told what to write, not to change a <limit> element it does not have
+    let revolute = write(
+        dir.path(),
+        "revolute.urdf",
+        &std::fs::read_to_string(&urdf)
+            .unwrap()
+            .replace(r#"type="continuous""#, r#"type="revolute""#),
+    );
+    let mut args = vec![
+        "excite",
+        revolute.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+        "--acceleration-limits",
+        "5",
+        "--velocity-limits",
+        "1",
+    ];
+    args.extend(design);
+    fails_with(
+        &robid(&args),
+        &[
+            "revolute.urdf: joint 2 (`wrist_roll`) has no position limits; give the joint \
+             `lower` and `upper` in its <limit> element (<limit lower=\"..\" upper=\"..\"",
+        ],
+    );
 }
 
 /// Two joints; `flange`, which joint 2 moves, has no `<inertial>` (as every link of
