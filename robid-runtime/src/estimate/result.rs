@@ -261,6 +261,40 @@ mod tests {
         assert!(e.to_string().contains("residual of the fit"), "{e}");
     }
 
+    /// The same fit with its noise scaled has about the same relative standard deviations
+    /// (670 and 673 %), but only the one whose deviations move the torques by more than the data's rounding
+    /// (`ROUNDING_EFFECT`) warns about them (dense least squares).
+    #[test]
+    fn the_same_relative_deviation_warns_only_above_the_rounding() {
+        let n = 200;
+        let w = DMatrix::from_fn(n, 2, |i, j| match j {
+            0 => (0.1 * i as f64).sin(),
+            _ => (0.37 * i as f64).cos(),
+        });
+        let fit = |noise: f64| {
+            let y = DVector::from_fn(n, |i, _| {
+                2.0 * w[(i, 0)] + noise * (1.3 * i as f64 + 0.5).sin()
+            });
+            let names = vec!["a".into(), "b".into()];
+            let obs = Observation::new(
+                w.clone(),
+                y,
+                std::iter::once(0..n).collect(),
+                (0..n).collect(),
+                names,
+            )
+            .unwrap();
+            crate::estimate::ols(&obs, 1e-12).unwrap()
+        };
+        let (quiet, noisy) = (fit(1e-11), fit(1e-3));
+        let rel = |e: &super::Estimate| e.rel_std_percent[1];
+        assert!(rel(&quiet) > 100.0, "{}", rel(&quiet));
+        assert!(rel(&noisy) > 100.0, "{}", rel(&noisy));
+        assert!(quiet.warnings.is_empty(), "{:?}", quiet.warnings);
+        assert_eq!(noisy.warnings.len(), 1, "{:?}", noisy.warnings);
+        assert_eq!(noisy.warnings[0].parameters(), vec!["b"]);
+    }
+
     /// Milella's bound on a system small enough to compute by hand: cond(W) from the
     /// singular values, the residual from the normal equations, against what `ols` reports.
     #[test]
