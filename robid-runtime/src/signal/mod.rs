@@ -4,6 +4,7 @@
 mod decimate;
 mod design;
 mod diff;
+mod passes;
 mod rest;
 mod savgol;
 mod signals;

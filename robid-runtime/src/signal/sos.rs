@@ -185,25 +185,12 @@ impl Sos {
                 found: out.len(),
             });
         }
+        // the layout of `filtfilt_extended`: free pad rows before and after the samples
         work.clear();
-        work.reserve(n + 2 * pad);
-        let (first, last) = (x[0], x[n - 1]);
-        work.extend((1..=pad).rev().map(|i| 2.0 * first - x[i]));
-        work.extend_from_slice(x);
-        work.extend((1..=pad).map(|i| 2.0 * last - x[n - 1 - i]));
-        let zi = self.steady_state();
-        let mut state: Vec<[f64; 2]> = zi
-            .iter()
-            .map(|z| [z[0] * work[0], z[1] * work[0]])
-            .collect();
-        self.filter_in_place(work, &mut state);
-        work.reverse();
-        let y0 = work[0];
-        let mut state: Vec<[f64; 2]> = zi.iter().map(|z| [z[0] * y0, z[1] * y0]).collect();
-        self.filter_in_place(work, &mut state);
-        for (o, w) in out.iter_mut().zip(work[pad..pad + n].iter().rev()) {
-            *o = *w;
-        }
+        work.resize(n + 2 * pad, 0.0);
+        work[pad..pad + n].copy_from_slice(x);
+        self.filtfilt_extended(work, 1)?;
+        out.copy_from_slice(&work[pad..pad + n]);
         Ok(())
     }
 }
@@ -264,65 +251,9 @@ impl Sos {
             }
         }
         let zi = self.steady_state();
-        #[cfg(target_arch = "x86_64")]
-        if crate::trig::vector_available() {
-            // SAFETY: the CPU has AVX2 and FMA, the features `passes_avx2` is compiled for.
-            unsafe { passes_avx2(&self.sections, &zi, ext, g) };
-            return Ok(());
-        }
-        passes(&self.sections, &zi, ext, g);
+        super::passes::passes(&self.sections, &zi, ext, g);
         Ok(())
     }
-}
-
-/// The forward and the backward pass over `g` channels of the row-major `ext`, each
-/// started from the steady state of its first row.
-#[inline(always)]
-fn passes(sections: &[[f64; 6]], zi: &[[f64; 2]], ext: &mut [f64], g: usize) {
-    let rows = ext.len() / g;
-    let ns = sections.len();
-    let mut z0 = vec![0.0; ns * g];
-    let mut z1 = vec![0.0; ns * g];
-    let init = |z0: &mut [f64], z1: &mut [f64], row: &[f64]| {
-        for (s, z) in zi.iter().enumerate() {
-            for c in 0..g {
-                z0[s * g + c] = z[0] * row[c];
-                z1[s * g + c] = z[1] * row[c];
-            }
-        }
-    };
-    let step = |z0: &mut [f64], z1: &mut [f64], row: &mut [f64]| {
-        for (s, sec) in sections.iter().enumerate() {
-            let (b0, b1, b2, a1, a2) = (sec[0], sec[1], sec[2], sec[4], sec[5]);
-            let z0 = &mut z0[s * g..(s + 1) * g];
-            let z1 = &mut z1[s * g..(s + 1) * g];
-            for ((x, p), q) in row.iter_mut().zip(z0.iter_mut()).zip(z1.iter_mut()) {
-                let cur = *x;
-                let out = b0 * cur + *p;
-                *p = b1 * cur - a1 * out + *q;
-                *q = b2 * cur - a2 * out;
-                *x = out;
-            }
-        }
-    };
-    init(&mut z0, &mut z1, &ext[..g]);
-    for row in ext.chunks_exact_mut(g) {
-        step(&mut z0, &mut z1, row);
-    }
-    init(&mut z0, &mut z1, &ext[(rows - 1) * g..]);
-    for row in ext.chunks_exact_mut(g).rev() {
-        step(&mut z0, &mut z1, row);
-    }
-}
-
-/// [`passes`] compiled for AVX2 and FMA (4 channels per instruction), chosen at run time.
-///
-/// # Safety
-/// The CPU must support AVX2 and FMA.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn passes_avx2(sections: &[[f64; 6]], zi: &[[f64; 2]], ext: &mut [f64], g: usize) {
-    passes(sections, zi, ext, g);
 }
 
 #[cfg(test)]

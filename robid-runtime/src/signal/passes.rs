@@ -1,0 +1,329 @@
+//! The forward and backward passes of zero-phase filtering over channels side by side
+//! (a row-major block, one row per sample), the inner loop of the decimation of the
+//! regressor channels and of the positions' low-pass.
+//!
+//! On x86-64 processors with AVX2 and FMA (four channels per instruction) or AVX-512
+//! (eight), the passes hold a lane of channels' section states in registers and carry
+//! the lane through every section for a tile of rows, then the next lane over the same
+//! rows while they are in the first-level cache; their multiplications and additions are
+//! fused. Elsewhere they go section by section over every channel of a row, unfused, as
+//! [`Sos::filtfilt`](super::Sos::filtfilt) does. Every channel goes through the same
+//! operations whatever the lane it falls in, so on one processor a channel's values do
+//! not depend on the channels filtered beside it; the fused instances differ from the
+//! unfused code by rounding only (docs/performance.md#streaming-identification).
+
+/// Bytes of a tile of rows, which the lanes take in turn: they stay in the first-level
+/// cache (64 rows of a group of 32 channels).
+const TILE_BYTES: usize = 16 * 1024;
+
+/// The forward pass from the steady state of the first row, then the backward pass from
+/// that of the last, over `g` channels of the row-major `ext`, in place. `zi` is the
+/// cascade's steady state per unit input.
+pub(super) fn passes(sections: &[[f64; 6]], zi: &[[f64; 2]], ext: &mut [f64], g: usize) {
+    #[cfg(all(target_arch = "x86_64", feature = "std"))]
+    if std::is_x86_feature_detected!("avx512f") && crate::trig::vector_available() {
+        // SAFETY: the CPU has AVX-512F, AVX2 and FMA, the features of `passes_avx512`.
+        unsafe { passes_avx512(sections, zi, ext, g) };
+        return;
+    }
+    #[cfg(target_arch = "x86_64")]
+    if crate::trig::vector_available() {
+        // SAFETY: the CPU has AVX2 and FMA, the features `passes_avx2` is compiled for.
+        unsafe { passes_avx2(sections, zi, ext, g) };
+        return;
+    }
+    by_section::<false>(sections, zi, ext, g);
+}
+
+/// The tiled passes in lanes of four channels, fused.
+///
+/// # Safety
+/// The CPU must support AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn passes_avx2(sections: &[[f64; 6]], zi: &[[f64; 2]], ext: &mut [f64], g: usize) {
+    tiled::<4>(sections, zi, ext, g);
+}
+
+/// The tiled passes in lanes of eight channels, fused.
+///
+/// # Safety
+/// The CPU must support AVX-512F, AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", feature = "std"))]
+#[target_feature(enable = "avx512f,avx2,fma")]
+unsafe fn passes_avx512(sections: &[[f64; 6]], zi: &[[f64; 2]], ext: &mut [f64], g: usize) {
+    tiled::<8>(sections, zi, ext, g);
+}
+
+#[cfg(target_arch = "x86_64")]
+/// The tiled passes in lanes of `W` channels, for cascades of up to four sections (eighth
+/// order: every decimation filter); longer cascades and a single channel go section by
+/// section, fused too.
+#[inline(always)]
+fn tiled<const W: usize>(sections: &[[f64; 6]], zi: &[[f64; 2]], ext: &mut [f64], g: usize) {
+    if g == 1 {
+        // one channel is a lane of one: the sections' latency bounds it either way
+        return by_section::<true>(sections, zi, ext, g);
+    }
+    match sections.len() {
+        1 => tiled_sections::<1, W>(sections, zi, ext, g),
+        2 => tiled_sections::<2, W>(sections, zi, ext, g),
+        3 => tiled_sections::<3, W>(sections, zi, ext, g),
+        4 => tiled_sections::<4, W>(sections, zi, ext, g),
+        _ => by_section::<true>(sections, zi, ext, g),
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+/// [`tiled`] for `S` sections: the channels `0..g` in lanes of `W`, the last one padded
+/// when `W` does not divide `g`.
+#[inline(always)]
+fn tiled_sections<const S: usize, const W: usize>(
+    sections: &[[f64; 6]],
+    zi: &[[f64; 2]],
+    ext: &mut [f64],
+    g: usize,
+) {
+    let sections: &[[f64; 6]; S] = sections.try_into().expect("S sections");
+    let zi: &[[f64; 2]; S] = zi.try_into().expect("S steady states");
+    let lanes: Vec<Lane> = (0..g)
+        .step_by(W)
+        .map(|c| Lane {
+            first: c,
+            width: W.min(g - c),
+        })
+        .collect();
+    let (full, partial) = lanes.split_at(g / W);
+    tiled_lanes::<S, W, false>(sections, zi, ext, g, full);
+    tiled_lanes::<S, W, true>(sections, zi, ext, g, partial);
+}
+
+/// Channels `first..first + width` of a group, filtered together.
+#[derive(Clone, Copy)]
+struct Lane {
+    first: usize,
+    width: usize,
+}
+
+#[cfg(target_arch = "x86_64")]
+/// Both passes of `lanes` (each of `W` channels, or fewer when `PARTIAL`), tile by tile
+/// of rows, each lane's section states kept between tiles. A partial lane's tile is
+/// copied into a buffer of full lanes, padded with zeros, filtered there and copied back.
+#[inline(always)]
+fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
+    sections: &[[f64; 6]; S],
+    zi: &[[f64; 2]; S],
+    ext: &mut [f64],
+    g: usize,
+    lanes: &[Lane],
+) {
+    let rows = ext.len() / g;
+    if lanes.is_empty() || rows == 0 {
+        return;
+    }
+    let tile = (TILE_BYTES / (8 * g.max(W))).max(1);
+    let mut buffer = vec![0.0; if PARTIAL { tile * W } else { 0 }];
+    // per lane: the first and the second state of each section
+    let mut states = vec![[[[0.0; W]; S]; 2]; lanes.len()];
+    for backward in [false, true] {
+        let row = |i: usize| if backward { rows - 1 - i } else { i };
+        for ([p, q], lane) in states.iter_mut().zip(lanes) {
+            let x = &ext[row(0) * g + lane.first..][..lane.width];
+            for s in 0..S {
+                for (l, x) in x.iter().enumerate() {
+                    p[s][l] = zi[s][0] * x;
+                    q[s][l] = zi[s][1] * x;
+                }
+            }
+        }
+        for start in (0..rows).step_by(tile) {
+            let end = (start + tile).min(rows);
+            for (state, lane) in states.iter_mut().zip(lanes) {
+                if PARTIAL {
+                    let (from, to) = (lane.first, lane.first + lane.width);
+                    for (i, b) in (start..end).zip(buffer.chunks_exact_mut(W)) {
+                        for (b, x) in b.iter_mut().zip(&ext[row(i) * g..][from..to]) {
+                            *b = *x;
+                        }
+                    }
+                    let buffer = &mut buffer[..(end - start) * W];
+                    lane_rows::<S, W>(sections, state, buffer, W, 0, 0..end - start);
+                    for (i, b) in (start..end).zip(buffer.chunks_exact(W)) {
+                        for (x, b) in ext[row(i) * g..][from..to].iter_mut().zip(b) {
+                            *x = *b;
+                        }
+                    }
+                } else {
+                    lane_rows::<S, W>(sections, state, ext, g, lane.first, (start..end).map(row));
+                }
+            }
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+/// One pass of the channels `c..c + W` of `ext` (`g` per row) over `rows`, in their
+/// order, from and to the section states `state`, fused.
+#[inline(always)]
+fn lane_rows<const S: usize, const W: usize>(
+    sections: &[[f64; 6]; S],
+    state: &mut [[[f64; W]; S]; 2],
+    ext: &mut [f64],
+    g: usize,
+    c: usize,
+    rows: impl Iterator<Item = usize>,
+) {
+    let [mut p, mut q] = *state;
+    for r in rows {
+        let x: &mut [f64; W] = (&mut ext[r * g + c..r * g + c + W])
+            .try_into()
+            .expect("W channels");
+        let mut v = *x;
+        for s in 0..S {
+            for l in 0..W {
+                v[l] = section::<true>(&sections[s], v[l], &mut p[s][l], &mut q[s][l]);
+            }
+        }
+        *x = v;
+    }
+    *state = [p, q];
+}
+
+/// The passes section by section over every channel of a row (any number of sections),
+/// fused or not (unfused, the operations of [`Sos::filtfilt`](super::Sos::filtfilt)).
+#[inline(always)]
+fn by_section<const FUSED: bool>(
+    sections: &[[f64; 6]],
+    zi: &[[f64; 2]],
+    ext: &mut [f64],
+    g: usize,
+) {
+    let rows = ext.len() / g;
+    let ns = sections.len();
+    let mut z0 = vec![0.0; ns * g];
+    let mut z1 = vec![0.0; ns * g];
+    let init = |z0: &mut [f64], z1: &mut [f64], row: &[f64]| {
+        for (s, z) in zi.iter().enumerate() {
+            for c in 0..g {
+                z0[s * g + c] = z[0] * row[c];
+                z1[s * g + c] = z[1] * row[c];
+            }
+        }
+    };
+    let step = |z0: &mut [f64], z1: &mut [f64], row: &mut [f64]| {
+        for (s, sec) in sections.iter().enumerate() {
+            let z0 = &mut z0[s * g..(s + 1) * g];
+            let z1 = &mut z1[s * g..(s + 1) * g];
+            for ((x, p), q) in row.iter_mut().zip(z0.iter_mut()).zip(z1.iter_mut()) {
+                *x = section::<FUSED>(sec, *x, p, q);
+            }
+        }
+    };
+    init(&mut z0, &mut z1, &ext[..g]);
+    for row in ext.chunks_exact_mut(g) {
+        step(&mut z0, &mut z1, row);
+    }
+    init(&mut z0, &mut z1, &ext[(rows - 1) * g..]);
+    for row in ext.chunks_exact_mut(g).rev() {
+        step(&mut z0, &mut z1, row);
+    }
+}
+
+/// One sample `x` through one section `[b0, b1, b2, 1, a1, a2]` in transposed direct form
+/// II with the states `p`, `q`: the filtered sample. Fused, each state's update rounds
+/// once per operation pair.
+#[inline(always)]
+fn section<const FUSED: bool>(section: &[f64; 6], x: f64, p: &mut f64, q: &mut f64) -> f64 {
+    let [b0, b1, b2, _, a1, a2] = *section;
+    if FUSED {
+        let out = b0.mul_add(x, *p);
+        *p = b1.mul_add(x, (-a1).mul_add(out, *q));
+        *q = b2.mul_add(x, -a2 * out);
+        out
+    } else {
+        let out = b0 * x + *p;
+        *p = b1 * x - a1 * out + *q;
+        *q = b2 * x - a2 * out;
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::signal::{butterworth, chebyshev1};
+
+    /// A block of `rows x g` channels of different sines and offsets.
+    fn block(rows: usize, g: usize) -> Vec<f64> {
+        (0..rows * g)
+            .map(|i| {
+                let (r, c) = ((i / g) as f64, (i % g) as f64);
+                (0.01 * r * (c + 1.0)).sin() + 0.3 * (0.37 * r + c).cos() + c
+            })
+            .collect()
+    }
+
+    /// Each instance this processor has filters every channel as the fused passes
+    /// section by section do, to the bit, whatever the number of channels (full and
+    /// partial lanes), of rows (tiles cut anywhere) and of sections; and the unfused
+    /// passes to rounding.
+    #[test]
+    fn every_instance_filters_as_section_by_section() {
+        let cascades = [
+            chebyshev1(8, 0.05, 0.08).unwrap(),
+            butterworth(2, 0.2).unwrap(),
+            butterworth(5, 0.1).unwrap(),
+            butterworth(6, 0.3).unwrap(),
+            butterworth(10, 0.2).unwrap(),
+        ];
+        let mut instances: Vec<(&str, fn(&[[f64; 6]], &[[f64; 2]], &mut [f64], usize))> =
+            vec![("dispatched", passes)];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if crate::trig::vector_available() {
+                // SAFETY: the CPU has AVX2 and FMA
+                instances.push(("avx2", |s, z, e, g| unsafe { passes_avx2(s, z, e, g) }));
+            }
+            if std::is_x86_feature_detected!("avx512f") && crate::trig::vector_available() {
+                // SAFETY: the CPU has AVX-512F, AVX2 and FMA
+                instances.push(("avx512", |s, z, e, g| unsafe { passes_avx512(s, z, e, g) }));
+            }
+        }
+        let fused_dispatch = cfg!(target_arch = "x86_64") && crate::trig::vector_available();
+        for sos in &cascades {
+            let (sections, zi) = (sos.sections(), sos.steady_state());
+            for (rows, g) in [
+                (3, 2),
+                (700, 1),
+                (700, 7),
+                (2100, 32),
+                (601, 13),
+                (300, 202),
+            ] {
+                let x = block(rows, g);
+                let mut fused = x.clone();
+                by_section::<true>(sections, &zi, &mut fused, g);
+                let mut plain = x.clone();
+                by_section::<false>(sections, &zi, &mut plain, g);
+                let scale = plain.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+                for (a, b) in fused.iter().zip(&plain) {
+                    assert!((a - b).abs() < 1e-12 * scale, "{a} vs {b}");
+                }
+                for (name, f) in &instances {
+                    let mut y = x.clone();
+                    f(sections, &zi, &mut y, g);
+                    let expected = if *name == "dispatched" && !fused_dispatch {
+                        &plain
+                    } else {
+                        &fused
+                    };
+                    assert!(
+                        y == *expected,
+                        "{name}, {} sections, {rows} rows of {g} channels",
+                        sections.len()
+                    );
+                }
+            }
+        }
+    }
+}
