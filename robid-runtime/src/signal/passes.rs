@@ -253,6 +253,9 @@ mod tests {
     use super::*;
     use crate::signal::{butterworth, chebyshev1};
 
+    /// The passes' signature, of every instance.
+    type Passes = fn(&[[f64; 6]], &[[f64; 2]], &mut [f64], usize);
+
     /// A block of `rows x g` channels of different sines and offsets.
     fn block(rows: usize, g: usize) -> Vec<f64> {
         (0..rows * g)
@@ -276,8 +279,7 @@ mod tests {
             butterworth(6, 0.3).unwrap(),
             butterworth(10, 0.2).unwrap(),
         ];
-        let mut instances: Vec<(&str, fn(&[[f64; 6]], &[[f64; 2]], &mut [f64], usize))> =
-            vec![("dispatched", passes)];
+        let mut instances: Vec<(&str, Passes)> = vec![("dispatched", passes)];
         #[cfg(target_arch = "x86_64")]
         {
             if crate::trig::vector_available() {
