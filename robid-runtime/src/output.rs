@@ -8,7 +8,8 @@
 //! so that `robid excite robot.toml -o robot.toml` fails instead of replacing the
 //! description, or two outputs of one run on the same file; and so are [`check_file`]
 //! and [`check_folder`], so that an output the writer would refuse (a folder, a missing
-//! folder) is refused before a long run rather than after it. A target that is not a
+//! folder, a folder that takes no new file) is refused before a long run rather than
+//! after it. A target that is not a
 //! regular file (a pipe, `/dev/stdout`, a terminal, a device) is written into directly:
 //! it cannot be replaced, and replacing it would destroy it.
 //!
@@ -71,10 +72,7 @@ pub fn write_atomically(
         .prefix(".robid-")
         .suffix(".tmp")
         .tempfile_in(&dir)
-        .map_err(|e| {
-            let reason = format!("cannot create a file in {}: {}", dir.display(), e.kind());
-            err(&reason)
-        })?;
+        .map_err(|e| not_writable(path, &dir, &e))?;
     {
         let mut w = std::io::BufWriter::new(temp.as_file_mut());
         write(&mut w).map_err(|e| err(&e))?;
@@ -90,9 +88,12 @@ pub fn write_atomically(
 
 /// Refuses, before any work, a file output that its writer ([`write_atomically`]) would
 /// refuse, with the writer's message: an existing folder ([`OutputError::Folder`]), a
-/// path whose folder does not exist ([`OutputError::NoFolder`]) or is a file
-/// ([`OutputError::NotAFolder`]). A pipe, `/dev/stdout` or another special file passes.
-/// Nothing is created or opened; the writer checks again (the folder may go meanwhile).
+/// path whose folder does not exist ([`OutputError::NoFolder`]), is a file
+/// ([`OutputError::NotAFolder`]) or takes no new file ([`OutputError::NotWritable`]: no
+/// permission, a read-only file system). A pipe, `/dev/stdout` or another special file
+/// passes. The target is never created or opened; whether the folder takes a file is
+/// tried by creating a temporary file in it, removed at once. The writer checks again
+/// (the folder may change meanwhile).
 ///
 /// ```
 /// use robid_runtime::{Error, OutputError, output::check_file};
@@ -102,21 +103,58 @@ pub fn write_atomically(
 /// assert!(matches!(e, Error::Output(OutputError::NoFolder { .. })));
 /// ```
 pub fn check_file(path: &Path) -> Result<()> {
-    target(path).map(|_| ())
+    match target(path)? {
+        Target::Special(_) => Ok(()),
+        Target::File { dir, .. } => probe(path, &dir),
+    }
+}
+
+/// Refuses output `path` when no file can be created in `dir`, as the writer would find:
+/// a temporary file is created there and removed.
+fn probe(path: &Path, dir: &Path) -> Result<()> {
+    let temp = tempfile::Builder::new()
+        .prefix(".robid-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .map_err(|e| not_writable(path, dir, &e))?;
+    // removed now, not at the end of the run; a failure to remove it is not the output's
+    temp.close().ok();
+    Ok(())
+}
+
+/// The error of output `path` whose folder `dir` takes no new file.
+fn not_writable(path: &Path, dir: &Path, e: &std::io::Error) -> Error {
+    Error::Output(OutputError::NotWritable {
+        path: path.to_path_buf(),
+        folder: dir.to_path_buf(),
+        // the kind, not the error: that names the temporary file, which the user never
+        // asked for
+        reason: e.kind().to_string(),
+    })
 }
 
 /// Refuses, before any work, a folder output ([`create_folder`]: created with its
 /// parents when missing, files written into it) that cannot be one: an existing file
-/// ([`OutputError::FileNotFolder`]) or a path through a file ([`OutputError::NotAFolder`]).
-/// A missing folder passes. Nothing is created; [`create_folder`] checks again.
+/// ([`OutputError::FileNotFolder`]), a path through a file ([`OutputError::NotAFolder`]),
+/// or a folder that takes no new file, or for a missing one the nearest existing folder
+/// above it ([`OutputError::NotWritable`]). A missing folder passes otherwise. No folder
+/// is created; whether a folder takes a file is tried by creating a temporary file in
+/// it, removed at once. [`create_folder`] checks again.
 pub fn check_folder(dir: &Path) -> Result<()> {
     let problem = match std::fs::metadata(dir) {
-        Ok(m) if m.is_dir() => return Ok(()),
+        Ok(m) if m.is_dir() => return probe(dir, dir),
         Ok(_) => OutputError::FileNotFolder {
             path: dir.to_path_buf(),
         },
         // a missing path whose every existing part is a folder: created with its parents
-        Err(e) if e.kind() != std::io::ErrorKind::NotADirectory => return Ok(()),
+        // in the nearest existing one
+        Err(e) if e.kind() != std::io::ErrorKind::NotADirectory => {
+            return match dir.ancestors().skip(1).find(|a| a.is_dir()) {
+                Some(existing) => probe(dir, existing),
+                // a relative path, which is created in the working folder
+                None => probe(dir, Path::new(".")),
+            };
+        }
         Err(_) => OutputError::NotAFolder {
             path: dir.to_path_buf(),
             folder: folder_of(dir).to_path_buf(),
@@ -311,6 +349,20 @@ pub enum OutputError {
         /// Its folder.
         folder: PathBuf,
     },
+    /// The folder of the output exists but takes no new file (`-o /proc/f.csv`, a folder
+    /// without write permission, a read-only file system); for a folder output, the
+    /// nearest existing folder above it, where it would be created.
+    #[error(
+        "{path}: cannot create a file in the folder {folder} ({reason}); give a path in a folder you may write into, or make this one writable"
+    )]
+    NotWritable {
+        /// The output, as given.
+        path: PathBuf,
+        /// The folder that takes no file.
+        folder: PathBuf,
+        /// Why, as the system says it (`permission denied`).
+        reason: String,
+    },
     /// The folder of the output is a file, or lies under one (`-o notes.txt/f.toml`).
     #[error(
         "{path}: {folder} is not a folder (it, or one above it, is a file); give a path in an existing folder"
@@ -475,19 +527,35 @@ mod tests {
     }
 
     /// A folder no file can be created in is named, not the temporary file (whoever runs
-    /// the test).
+    /// the test), by the writer and by the checks before the work, and a folder output
+    /// there is refused too, existing or to be created.
     #[test]
     #[cfg(target_os = "linux")]
     fn a_folder_that_takes_no_file_is_named() {
-        let e = write_bytes(Path::new("/proc/robid-never-written.csv"), b"x").unwrap_err();
+        if !Path::new("/proc/self").is_dir() {
+            return; // no procfs here
+        }
+        let path = Path::new("/proc/robid-never-written.csv");
+        let e = write_bytes(path, b"x").unwrap_err();
         let text = e.to_string();
-        assert!(
-            text.starts_with(
-                "/proc/robid-never-written.csv: cannot write: cannot create a file in /proc: "
-            ),
-            "{text}"
+        assert_eq!(
+            text,
+            "/proc/robid-never-written.csv: cannot create a file in the folder /proc (entity \
+             not found); give a path in a folder you may write into, or make this one writable"
         );
-        assert!(!text.contains(".robid-"), "{text}");
+        assert_eq!(check_file(path).unwrap_err().to_string(), text);
+        for dir in ["/proc", "/proc/robid-never-written/plots"] {
+            let e = check_folder(Path::new(dir)).unwrap_err();
+            assert!(
+                matches!(&e, Error::Output(OutputError::NotWritable { path, folder, .. })
+                    if path == Path::new(dir) && folder == Path::new("/proc")),
+                "{e:?}"
+            );
+            assert_eq!(
+                create_folder(Path::new(dir)).unwrap_err().to_string(),
+                e.to_string()
+            );
+        }
     }
 
     /// A folder robid may not write into is named, not the temporary file.
@@ -501,18 +569,28 @@ mod tests {
         std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o555)).unwrap();
         let path = locked.join("f.csv");
         let result = write_bytes(&path, b"x");
+        let checked = check_file(&path);
+        let folder = check_folder(&locked.join("plots"));
+        let left = std::fs::read_dir(&locked).unwrap().count();
         std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o755)).unwrap();
         if result.is_ok() {
             return; // run as root: every folder is writable
         }
         let text = result.unwrap_err().to_string();
-        let start = format!(
-            "{}: cannot write: cannot create a file in {}: permission denied",
+        let expected = format!(
+            "{}: cannot create a file in the folder {} (permission denied); give a path in a \
+             folder you may write into, or make this one writable",
             path.display(),
             locked.display()
         );
-        assert!(text.starts_with(&start), "{text}");
-        assert!(!text.contains(".robid-"), "{text}");
+        assert_eq!(text, expected);
+        assert_eq!(checked.unwrap_err().to_string(), expected);
+        assert!(
+            matches!(&folder, Err(Error::Output(OutputError::NotWritable { folder, .. }))
+                if *folder == locked),
+            "{folder:?}"
+        );
+        assert_eq!(left, 0);
     }
 
     /// The check before the work refuses what the writer refuses, with the same message,
@@ -536,6 +614,8 @@ mod tests {
         for good in [dir.path().join("new.csv"), file.clone()] {
             check_file(&good).unwrap();
         }
+        // the check of the folder leaves nothing in it
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
         #[cfg(unix)]
         check_file(Path::new("/dev/null")).unwrap();
         assert!(!dir.path().join("missing").exists());

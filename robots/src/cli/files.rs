@@ -3,8 +3,9 @@
 //! killed run leaves an existing file exactly as it was; and an output that is the same
 //! file as an input of the run (the same path, another spelling of it, a hard or
 //! symbolic link) is refused before any work starts, and so is an output its writer would
-//! refuse (an existing folder, a missing folder, a path through a file), with the
-//! writer's message: a long run does not end in that error. The writer checks again.
+//! refuse (an existing folder, a missing folder, a path through a file, a folder that
+//! takes no new file: no permission, a read-only file system), with the writer's message:
+//! a long run does not end in that error. The writer checks again.
 
 use std::path::{Path, PathBuf};
 
@@ -20,8 +21,8 @@ pub(crate) fn refuse(inputs: &[&Path], outputs: &[&Path]) -> Result<(), Error> {
 }
 
 /// [`refuse`], with folder outputs too: `(flag, folder)`, a folder that files are
-/// written into (`identify --plot`), created if missing, refused when it is a file or
-/// lies under one.
+/// written into (`identify --plot`), created if missing, refused when it is a file, lies
+/// under one, or takes no new file (or, when missing, the folder it would be created in).
 pub(crate) fn refuse_with_folders(
     inputs: &[&Path],
     outputs: &[&Path],

@@ -1,8 +1,8 @@
 //! Files `robid` writes: an output that is the same file as an input is refused before
 //! any work (the same path, the path spelt with `./`, a hard link, a symbolic link), for
 //! every subcommand that writes; so is an output that cannot be written where it is
-//! given (a missing folder, an existing folder, a path through a file, a `--plot` folder
-//! that is a file); and a failed or killed write leaves an existing file exactly as it
+//! given (a missing folder, an existing folder, a path through a file, a folder that
+//! takes no new file, a `--plot` folder that is a file); and a failed or killed write leaves an existing file exactly as it
 //! was (every output goes through a temporary file and a rename).
 
 use crate::common;
@@ -796,4 +796,100 @@ fn an_excite_design_with_a_bad_output_writes_nothing() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
     assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+}
+
+/// The message of an output in `folder`, a folder no file can be created in.
+fn not_writable(out: &str, folder: &str, reason: &str) -> String {
+    format!(
+        "error: {out}: cannot create a file in the folder {folder} ({reason}); give a path in a \
+         folder you may write into, or make this one writable\n"
+    )
+}
+
+/// An output in a folder that exists but takes no file (/proc, even for root) is refused
+/// before any work by every writer, naming the output and the folder; it used to be found
+/// only at the write, after the work ("cannot write: cannot create a file in /proc: entity
+/// not found; check that the folder exists and is writable"). A `--plot` folder there,
+/// existing or to be created, likewise. Nothing is left in the inputs' folder.
+#[test]
+#[cfg(target_os = "linux")]
+fn an_output_in_a_folder_that_takes_no_file_is_refused_before_any_work() {
+    if !Path::new("/proc/self").is_dir() {
+        return; // no procfs here
+    }
+    let inputs = Inputs::new();
+    broken(&inputs);
+    let dir = inputs.dir.path();
+    let before = listing(dir);
+    // `.c`: `emit --lang c` takes no other name
+    let out = "/proc/robid-never-written.c";
+    for template in file_outputs() {
+        let args = inputs.args(&template, out);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = robid_in(dir, &args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert_eq!(
+            stderr(&o),
+            not_writable(out, "/proc", "entity not found"),
+            "{args:?}"
+        );
+        assert_eq!(listing(dir), before, "{args:?}");
+    }
+    for plot in ["/proc", "/proc/robid-never-written/plots"] {
+        let args = inputs.args(
+            &[
+                "identify",
+                "{robot.toml}",
+                "--config",
+                "{config.toml}",
+                "--data",
+                "{data.csv}",
+                "--plot",
+                plot,
+            ],
+            "",
+        );
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = robid_in(dir, &args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert_eq!(
+            stderr(&o),
+            not_writable(plot, "/proc", "entity not found"),
+            "{args:?}"
+        );
+    }
+    assert_eq!(listing(dir), before);
+}
+
+/// A folder without write permission is refused before any work, naming the output and
+/// the folder, and nothing is left in it (skipped as root, whom permissions do not stop).
+#[test]
+#[cfg(unix)]
+fn an_output_in_a_read_only_folder_is_refused_before_any_work() {
+    use std::os::unix::fs::PermissionsExt;
+    let inputs = Inputs::new();
+    broken(&inputs);
+    let dir = inputs.dir.path();
+    let locked = dir.join("locked");
+    std::fs::create_dir(&locked).unwrap();
+    std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let writable = std::fs::File::create(locked.join("probe")).is_ok();
+    if writable {
+        return; // run as root: every folder is writable
+    }
+    let out = locked.join("out.c").display().to_string();
+    let folder = locked.display().to_string();
+    for template in file_outputs() {
+        let args = inputs.args(&template, &out);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = robid_in(dir, &args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert_eq!(
+            stderr(&o),
+            not_writable(&out, &folder, "permission denied"),
+            "{args:?}"
+        );
+    }
+    assert_eq!(std::fs::read_dir(&locked).unwrap().count(), 0);
+    std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o755)).unwrap();
 }
