@@ -6,6 +6,7 @@
 
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
+use robid_runtime::{Error as RuntimeError, OutputError};
 use robid_symbolic::emit::{CScalar, emit_c, emit_model};
 use robid_symbolic::program::RobotPrograms;
 use std::path::{Path, PathBuf};
@@ -93,7 +94,9 @@ fn c(args: &Args) -> Result<(), Error> {
         .into());
     }
     let header = source.with_extension("h");
-    files::refuse(&[&args.robot], &[source, &header])?;
+    files::refuse(&[&args.robot], &[source])?;
+    files::refuse(&[&args.robot], &[source, &header])
+        .map_err(|e| header_error(source, &header, e))?;
     let robot = description::read(&args.robot, &args.description)?;
     let scalar = match args.scalar {
         Some(Scalar::Float) => CScalar::Float,
@@ -104,6 +107,26 @@ fn c(args: &Args) -> Result<(), Error> {
     files::write(&header, &code.header)?;
     files::write(source, &code.source)?;
     Ok(())
+}
+
+/// The error `e` of the header path `header` of the C source `source`: a name the user did
+/// not type, named as the header of `-o source`, with a fix that holds for it.
+fn header_error(source: &Path, header: &Path, e: Error) -> Error {
+    let (s, h) = (source.display(), header.display());
+    match e.downcast_ref::<RuntimeError>() {
+        Some(RuntimeError::Output(OutputError::Folder { .. })) => format!(
+            "{h}: is a folder, and `-o {s}` writes the C header there; give `-o` another \
+             name, or move {h} away"
+        )
+        .into(),
+        Some(RuntimeError::Output(OutputError::OutputIsInput { input, .. })) => format!(
+            "{h}, the C header that `-o {s}` writes, is also an input of this run ({}); give \
+             `-o` another name",
+            input.display()
+        )
+        .into(),
+        _ => format!("{e} (the C header that `-o {s}` writes)").into(),
+    }
 }
 
 fn file_name(path: &Path) -> String {

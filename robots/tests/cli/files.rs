@@ -893,3 +893,42 @@ fn an_output_in_a_read_only_folder_is_refused_before_any_work() {
     assert_eq!(std::fs::read_dir(&locked).unwrap().count(), 0);
     std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o755)).unwrap();
 }
+
+/// `emit --lang c -o x.c` also writes `x.h`, a name the user did not type: a header path
+/// that cannot be written is refused before any work naming it as the header of `-o x.c`,
+/// with a fix that holds for it (another `-o`, or moving it away), not "give a file name,
+/// e.g. x.h/out" nor an input that seems to be the output. A missing folder names the
+/// folder and the source as given, once.
+#[test]
+fn the_c_header_is_named_as_the_header_of_the_source() {
+    let dir = folder();
+    let d = dir.path();
+    std::fs::create_dir(d.join("y.h")).unwrap();
+    std::fs::copy(asset("descriptions/ur5e.toml"), d.join("z.h")).unwrap();
+    let ur5e = asset("descriptions/ur5e.toml");
+    let before = listing(d);
+    let cases = [
+        (
+            vec!["emit", &ur5e, "--lang", "c", "-o", "y.c"],
+            "error: y.h: is a folder, and `-o y.c` writes the C header there; give `-o` \
+             another name, or move y.h away\n"
+                .to_string(),
+        ),
+        (
+            vec!["emit", "z.h", "--lang", "c", "-o", "z.c"],
+            "error: z.h, the C header that `-o z.c` writes, is also an input of this run \
+             (z.h); give `-o` another name\n"
+                .to_string(),
+        ),
+        (
+            vec!["emit", &ur5e, "--lang", "c", "-o", "missing/x.c"],
+            "error: missing/x.c: the folder missing does not exist; create it first\n".to_string(),
+        ),
+    ];
+    for (args, expected) in cases {
+        let o = robid_in(d, &args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert_eq!(stderr(&o), expected, "{args:?}");
+        assert_eq!(listing(d), before, "{args:?}");
+    }
+}
