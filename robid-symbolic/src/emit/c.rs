@@ -93,6 +93,40 @@ pub fn emit_c(
     scalar: CScalar,
     header_file: &str,
 ) -> Result<CCode, EmitError> {
+    emit_c_model(programs, scalar, header_file, None)
+}
+
+/// [`emit_c`], with for a URDF `urdf_standard`, the file's own inertials as the values of
+/// the standard parameters (what the Rust code holds as `URDF_STANDARD_PARAMETERS`,
+/// [`emit_model`](super::emit_model)): the array `NAME_urdf_standard_parameters`, in the
+/// order of `NAME_standard_parameter_names`, declared in the header and defined in the
+/// source, to pass to `NAME_base_from_standard`.
+///
+/// ```
+/// use robid_symbolic::Robot;
+/// use robid_symbolic::emit::{CScalar, emit_c_model};
+/// use robid_symbolic::program::RobotPrograms;
+/// use robid_symbolic::robot::ChainSelection;
+/// let urdf = r#"<robot name="arm">
+///   <link name="base"/>
+///   <link name="upper"><inertial><mass value="2"/>
+///     <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.05"/></inertial></link>
+///   <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+///     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+/// </robot>"#;
+/// let chain = Robot::from_urdf(urdf, "arm.urdf", &ChainSelection::default()).unwrap();
+/// let programs = RobotPrograms::derive(&chain.robot).unwrap();
+/// let values = chain.standard_values(&chain.robot);
+/// let c = emit_c_model(&programs, CScalar::Double, "arm.h", Some(&values)).unwrap();
+/// assert!(c.header.contains("extern const double arm_urdf_standard_parameters[10];"));
+/// assert!(c.source.contains("const double arm_urdf_standard_parameters[10] = {"));
+/// ```
+pub fn emit_c_model(
+    programs: &RobotPrograms,
+    scalar: CScalar,
+    header_file: &str,
+    urdf_standard: Option<&[f64]>,
+) -> Result<CCode, EmitError> {
     let robot = &programs.robot;
     let prefix = robot.name().to_lowercase();
     let upper = robot.name().to_uppercase();
@@ -158,6 +192,21 @@ pub fn emit_c(
         "extern const char *const {prefix}_base_parameter_names[{}];\n",
         sizes.base
     );
+    if let Some(values) = urdf_standard {
+        check_urdf_standard(programs, values)?;
+        let _ = writeln!(
+            h,
+            "/* The URDF's own <inertial> elements as the standard parameters, in the order of\n   \
+             {prefix}_standard_parameter_names (per link XX XY XZ YY YZ ZZ MX MY MZ M in robid's\n   \
+             frames, drive terms 0): pass them to {prefix}_base_from_standard for the URDF's\n   \
+             rigid-body dynamics. */"
+        );
+        let _ = writeln!(
+            h,
+            "extern const {real} {prefix}_urdf_standard_parameters[{}];\n",
+            sizes.standard
+        );
+    }
     if !programs.geometry.is_empty() {
         let _ = writeln!(
             h,
@@ -202,6 +251,15 @@ pub fn emit_c(
         sizes.base,
         names(programs.base.iter().map(|b| b.name.to_string()).collect())
     );
+    if let Some(values) = urdf_standard {
+        let values: Vec<String> = values.iter().map(|&x| scalar.literal(x)).collect();
+        let _ = writeln!(
+            c,
+            "const {real} {prefix}_urdf_standard_parameters[{}] = {{{}}};",
+            sizes.standard,
+            values.join(", ")
+        );
+    }
 
     for (info, program) in programs.iter() {
         let signature = signature(&prefix, info, sizes, real, &geometry_arg);
@@ -223,6 +281,32 @@ pub fn emit_c(
         header: h,
         source: c,
     })
+}
+
+/// Refuses URDF values that are not one finite number per standard parameter.
+fn check_urdf_standard(programs: &RobotPrograms, values: &[f64]) -> Result<(), EmitError> {
+    if values.len() != programs.standard.len() {
+        return Err(EmitError::Program {
+            function: "urdf_standard_parameters".to_owned(),
+            problem: format!(
+                "{} values for {} standard parameters",
+                values.len(),
+                programs.standard.len()
+            ),
+        });
+    }
+    match programs
+        .standard
+        .iter()
+        .zip(values)
+        .find(|(_, v)| !v.is_finite())
+    {
+        Some((name, &value)) => Err(EmitError::NotFinite {
+            what: format!("the URDF's value of `{name}`"),
+            value,
+        }),
+        None => Ok(()),
+    }
 }
 
 /// `void ur5e_gravity(const double q[6], const double base[36], double out[6])`.

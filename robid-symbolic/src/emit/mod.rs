@@ -21,7 +21,7 @@ mod robot;
 mod stub;
 mod trig;
 
-pub use c::{CCode, CScalar, emit_c};
+pub use c::{CCode, CScalar, emit_c, emit_c_model};
 pub use function::function_tokens;
 pub use names::type_name;
 pub use robot::{robot_tokens, urdf_parameters_tokens};

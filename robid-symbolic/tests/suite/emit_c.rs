@@ -337,3 +337,43 @@ fn a_negated_negative_constant_compiles() {
         .unwrap();
     assert!(relative(&out[gravity], &reference[gravity]) <= 1e-15);
 }
+
+/// URDF values for the C array must be one finite number per standard parameter: a wrong
+/// count or a NaN is refused naming the array or the parameter, never emitted.
+#[test]
+fn urdf_values_that_do_not_fit_are_refused() {
+    use robid_symbolic::emit::{EmitError, emit_c_model};
+    let text = "name = \"arm\"\nconvention = \"modified\"\n[[joints]]\nalpha = \"pi/2\"\n";
+    let programs = RobotPrograms::derive(&Robot::from_toml(text, "arm.toml").unwrap()).unwrap();
+    let n = programs.standard.len();
+    let ok = emit_c_model(&programs, CScalar::Float, "arm.h", Some(&vec![0.5; n])).unwrap();
+    assert!(
+        ok.header
+            .contains("extern const float arm_urdf_standard_parameters[")
+    );
+    assert!(
+        ok.source
+            .contains("arm_urdf_standard_parameters[10] = {0.5f, 0.5f")
+    );
+    match emit_c_model(&programs, CScalar::Double, "arm.h", Some(&vec![0.0; n - 1])) {
+        Err(EmitError::Program { function, problem }) => {
+            assert_eq!(function, "urdf_standard_parameters");
+            assert_eq!(
+                problem,
+                format!("{} values for {n} standard parameters", n - 1)
+            );
+        }
+        other => panic!("{:?}", other.map(|_| ())),
+    }
+    let mut values = vec![0.0; n];
+    values[9] = f64::NAN;
+    match emit_c_model(&programs, CScalar::Double, "arm.h", Some(&values)) {
+        Err(EmitError::NotFinite { what, .. }) => {
+            assert_eq!(
+                what,
+                format!("the URDF's value of `{}`", programs.standard[9])
+            );
+        }
+        other => panic!("{:?}", other.map(|_| ())),
+    }
+}

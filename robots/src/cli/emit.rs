@@ -2,12 +2,14 @@
 //! generated code of a robot. Rust (the default): the pretty-printed module that
 //! `robot_model!` compiles (for a URDF with `URDF_STANDARD_PARAMETERS`, the file's own
 //! inertials, through the same `robid_symbolic::emit::model_tokens`) and that is checked
-//! into robots/generated/ for the reference robots. C: a C99 header and source with the same functions and operation counts.
+//! into robots/generated/ for the reference robots. C: a C99 header and source with the
+//! same functions and operation counts (for a URDF with `NAME_urdf_standard_parameters`,
+//! the same values).
 
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
 use robid_runtime::{Error as RuntimeError, OutputError};
-use robid_symbolic::emit::{CScalar, emit_c, emit_model};
+use robid_symbolic::emit::{CScalar, emit_c_model, emit_model};
 use robid_symbolic::program::RobotPrograms;
 use std::path::{Path, PathBuf};
 
@@ -97,13 +99,19 @@ fn c(args: &Args) -> Result<(), Error> {
     files::refuse(&[&args.robot], &[source])?;
     files::refuse(&[&args.robot], &[source, &header])
         .map_err(|e| header_error(source, &header, e))?;
-    let robot = description::read(&args.robot, &args.description)?;
+    let description = description::load(&args.robot, &args.description)?;
+    // a URDF's own inertials, as the Rust code holds them
+    let urdf_standard = description
+        .urdf
+        .as_ref()
+        .map(|chain| chain.standard_values(&description.robot));
     let scalar = match args.scalar {
         Some(Scalar::Float) => CScalar::Float,
         Some(Scalar::Double) | None => CScalar::Double,
     };
     let header_name = file_name(&header);
-    let code = emit_c(&RobotPrograms::derive(&robot)?, scalar, &header_name)?;
+    let programs = RobotPrograms::derive(&description.robot)?;
+    let code = emit_c_model(&programs, scalar, &header_name, urdf_standard.as_deref())?;
     files::write(&header, &code.header)?;
     files::write(source, &code.source)?;
     Ok(())

@@ -655,6 +655,151 @@ fn urdf_emit_holds_the_urdf_standard_parameters() {
     let o = robid(&["emit", "descriptions/ur5e.toml"]);
     assert!(!stdout(&o).contains("URDF_STANDARD_PARAMETERS"));
 }
+/// The values of `URDF_STANDARD_PARAMETERS` in the Rust code `robid emit` prints for
+/// `path`, as written.
+fn rust_urdf_standard(path: &str) -> Vec<f64> {
+    let o = robid(&["emit", path]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let code = stdout(&o);
+    let (_, array) = code
+        .split_once("pub const URDF_STANDARD_PARAMETERS: [f64; ")
+        .and_then(|(_, rest)| rest.split_once("] = ["))
+        .unwrap_or_else(|| panic!("no URDF_STANDARD_PARAMETERS in {code}"));
+    array
+        .split_once("];")
+        .unwrap()
+        .0
+        .split(',')
+        .map(str::trim)
+        .filter(|v| !v.is_empty())
+        .map(|v| v.trim_end_matches("f64").parse().unwrap())
+        .collect()
+}
+
+/// The C compiler, if there is one (`$CC`, else `cc`).
+fn c_compiler() -> Option<String> {
+    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".to_owned());
+    std::process::Command::new(&cc)
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+        .then_some(cc)
+}
+
+/// `robid emit ROBOT.urdf --lang c` holds the URDF's own inertials as
+/// `NAME_urdf_standard_parameters`, as the Rust code holds `URDF_STANDARD_PARAMETERS` (it
+/// used to leave them out): compiled warning-free (C99, -Wall -Wextra -pedantic) with a
+/// program that prints them and passes them to `NAME_base_from_standard`, the values are
+/// the Rust constant's to the last bit (with `--scalar float`, rounded to float) and the
+/// base parameters those of the interpreter. A TOML description has no such array.
+#[test]
+fn urdf_emit_c_holds_the_urdf_standard_parameters() {
+    let Some(cc) = c_compiler() else {
+        eprintln!("skipped: no C compiler (set CC or install cc)");
+        return;
+    };
+    let chain = chain(UR5, None);
+    let prefix = chain.robot.name().to_lowercase();
+    let rust = rust_urdf_standard(UR5);
+    assert_eq!(rust, chain.standard_values(&chain.robot));
+    let model = Interpreted::new(&chain.robot).unwrap();
+    let base = urdf_base(&chain, &model);
+    let (n, nb) = (rust.len(), base.len());
+    let dir = folder();
+    let d = dir.path();
+    for real in ["double", "float"] {
+        let source = d.join(format!("arm_{real}.c"));
+        let o = robid(&[
+            "emit",
+            UR5,
+            "--lang",
+            "c",
+            "--scalar",
+            real,
+            "-o",
+            source.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let header = std::fs::read_to_string(d.join(format!("arm_{real}.h"))).unwrap();
+        assert!(
+            header.contains(&format!(
+                "extern const {real} {prefix}_urdf_standard_parameters[{n}];"
+            )),
+            "{header}"
+        );
+        assert!(
+            header.contains(&format!(
+                "in the order of\n   {prefix}_standard_parameter_names"
+            )),
+            "{header}"
+        );
+        let main = format!(
+            "#include <stdio.h>\n#include \"arm_{real}.h\"\n\nint main(void)\n{{\n    \
+             {real} base[{nb}];\n    int i;\n    \
+             for (i = 0; i < {n}; i++) printf(\"%.17g \", (double){prefix}_urdf_standard_parameters[i]);\n    \
+             printf(\"\\n\");\n    \
+             {prefix}_base_from_standard({prefix}_urdf_standard_parameters, base);\n    \
+             for (i = 0; i < {nb}; i++) printf(\"%.17g \", (double)base[i]);\n    \
+             printf(\"\\n\");\n    return 0;\n}}\n"
+        );
+        write(d, &format!("main_{real}.c"), &main);
+        let exe = d.join(format!("main_{real}"));
+        let built = std::process::Command::new(&cc)
+            .current_dir(d)
+            .args(["-std=c99", "-Wall", "-Wextra", "-pedantic", "-Werror"])
+            .args(["-Wno-unused-but-set-variable", "-o"])
+            .arg(&exe)
+            .args([
+                format!("main_{real}.c"),
+                format!("arm_{real}.c"),
+                "-lm".into(),
+            ])
+            .output()
+            .unwrap();
+        assert!(
+            built.status.success(),
+            "{real}: {}",
+            String::from_utf8_lossy(&built.stderr)
+        );
+        let ran = std::process::Command::new(&exe).output().unwrap();
+        assert!(ran.status.success());
+        let text = String::from_utf8(ran.stdout).unwrap();
+        let lines: Vec<Vec<f64>> = text
+            .lines()
+            .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+            .collect();
+        let (values, c_base) = (&lines[0], &lines[1]);
+        if real == "double" {
+            assert_eq!(values, &rust);
+        } else {
+            let rounded: Vec<f64> = rust.iter().map(|&x| f64::from(x as f32)).collect();
+            assert_eq!(values, &rounded);
+        }
+        let tolerance = if real == "double" { 1e-12 } else { 1e-5 };
+        let scale = base.iter().fold(1e-300_f64, |m, x| m.max(x.abs()));
+        for (k, (c, r)) in c_base.iter().zip(&base).enumerate() {
+            assert!(
+                (c - r).abs() <= tolerance * scale,
+                "{real}: base parameter {k}: C {c}, interpreter {r}"
+            );
+        }
+    }
+    let toml = d.join("ur5e.c");
+    let o = robid(&[
+        "emit",
+        "descriptions/ur5e.toml",
+        "--lang",
+        "c",
+        "-o",
+        toml.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for file in ["ur5e.c", "ur5e.h"] {
+        let text = std::fs::read_to_string(d.join(file)).unwrap();
+        assert!(!text.contains("urdf_standard_parameters"), "{file}");
+    }
+}
+
 /// `robid model ROBOT.urdf --standard-parameters FILE` writes the URDF's own inertials as
 /// a `[standard]` parameter file (the values of `URDF_STANDARD_PARAMETERS`, which no
 /// subcommand used to write), which `torques --parameters` and `feasible --prior` read:
