@@ -77,6 +77,77 @@ impl Description {
         }
     }
 
+    /// With a URDF's own inertials, the joints (numbered from 1) whose torque they leave
+    /// out: `empty`, those that move only links without mass or inertia (their torque is 0
+    /// at every state), and `massless`, the others that move only links without mass
+    /// (their torque holds no gravity). Each is a run of joints up to the last, since a
+    /// joint moves every link after it. Both empty for a TOML description.
+    pub(crate) fn urdf_unloaded(&self) -> Unloaded {
+        let Some(chain) = &self.urdf else {
+            return Unloaded::default();
+        };
+        // the first joint of the run up to the last whose links all have `holds`
+        let first = |holds: &dyn Fn(&[f64; 10]) -> bool| {
+            let n = chain.links.len();
+            let after = chain
+                .links
+                .iter()
+                .rposition(|link| !holds(&link.inertial))
+                .map_or(0, |k| k + 1);
+            (after < n).then_some(after + 1)
+        };
+        let empty_from = first(&|i| i.iter().all(|&v| v == 0.0));
+        let massless_from = first(&|i| i[9] == 0.0);
+        let n = chain.links.len();
+        let empty: Vec<usize> = empty_from.map_or(Vec::new(), |j| (j..=n).collect());
+        let massless = massless_from.map_or(Vec::new(), |j| {
+            (j..=n).filter(|j| !empty.contains(j)).collect()
+        });
+        Unloaded { empty, massless }
+    }
+
+    /// `joint 2 (`j2`) of FILE moves only links without mass or inertia: `flange`, `tool0`
+    /// (no `<inertial>` element, or an empty one)`: `joints` (numbered from 1, not empty)
+    /// of the URDF `file` and the links the lowest of them moves, all `empty` (without mass
+    /// or inertia) or all without mass.
+    pub(crate) fn unloaded_cause(&self, file: &Path, joints: &[usize], empty: bool) -> String {
+        let Some(chain) = &self.urdf else {
+            return String::new();
+        };
+        let named: Vec<String> = joints
+            .iter()
+            .map(|&j| {
+                let name = chain.links.get(j - 1).map_or("?", |l| l.joint.as_str());
+                format!("{j} (`{name}`)")
+            })
+            .collect();
+        let (named, moves) = match named.split_last() {
+            Some((last, [])) => (format!("joint {last}"), "moves"),
+            Some((last, first)) => (format!("joints {} and {last}", first.join(", ")), "move"),
+            None => (String::new(), "moves"),
+        };
+        let lowest = joints.first().copied().unwrap_or(1).max(1);
+        let links: Vec<String> = chain
+            .links
+            .iter()
+            .skip(lowest - 1)
+            .flat_map(|link| {
+                std::iter::once(&link.link).chain(link.attached.iter().map(|a| &a.name))
+            })
+            .map(|name| format!("`{name}`"))
+            .collect();
+        let file = file.display();
+        let links = links.join(", ");
+        if empty {
+            format!(
+                "{named} of {file} {moves} only links without mass or inertia: {links} (no \
+                 `<inertial>` element, or an empty one)"
+            )
+        } else {
+            format!("{named} of {file} {moves} only links without mass: {links}")
+        }
+    }
+
     /// The base parameters of `model` (this description's model) from the URDF's own
     /// `<inertial>` elements, drive terms 0; `None` for a TOML description.
     pub(crate) fn urdf_base_parameters(
@@ -99,6 +170,25 @@ impl Description {
         let mut base = vec![0.0; model.base_parameter_count()];
         model.base_from_standard_into(&standard, &mut base)?;
         Ok(Some(base))
+    }
+}
+
+/// The joints whose torque a URDF's own inertials leave out ([`Description::urdf_unloaded`]).
+#[derive(Debug, Default, PartialEq, Eq)]
+pub(crate) struct Unloaded {
+    /// Joints that move only links without mass or inertia: their torque is 0.
+    pub(crate) empty: Vec<usize>,
+    /// The other joints that move only links without mass: their torque holds no gravity.
+    pub(crate) massless: Vec<usize>,
+}
+
+/// `tau2` or `tau1 and tau2`, the torques of `joints` (numbered from 1).
+pub(crate) fn torque_names(joints: &[usize]) -> String {
+    let names: Vec<String> = joints.iter().map(|j| format!("tau{j}")).collect();
+    match names.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, first)) => format!("{} and {last}", first.join(", ")),
+        None => String::new(),
     }
 }
 

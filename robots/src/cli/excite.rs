@@ -176,6 +176,48 @@ const DESIGN_FLAGS: &[(&str, &str)] = &[
     ("rate", "--rate"),
 ];
 
+/// With a URDF's own inertials as the reference: warns about the joints with a torque
+/// limit that move only links without mass or inertia, whose torque the reference gives
+/// as 0, so that the limit constrains nothing. Nothing else of such a joint matters: the
+/// criterion is that of the regressor, which does not depend on the parameters, and a
+/// joint without a torque limit is not checked against the reference at all.
+fn warn_unloaded(args: &Args, description: &description::Description, limits: &[JointLimits]) {
+    let limited: Vec<usize> = description
+        .urdf_unloaded()
+        .empty
+        .into_iter()
+        .filter(|&j| limits.get(j - 1).is_some_and(|l| l.torque.is_some()))
+        .collect();
+    if limited.is_empty() {
+        return;
+    }
+    let one = limited.len() == 1;
+    let (it, its, limit, constrains, margin) = if one {
+        (
+            "it",
+            "its",
+            "its torque limit",
+            "constrains",
+            "its torque margin below is the whole limit",
+        )
+    } else {
+        (
+            "them",
+            "their",
+            "their torque limits",
+            "constrain",
+            "their torque margins below are the whole limits",
+        )
+    };
+    out::warn(format_args!(
+        "warning: {}, so the URDF's own inertials give {it} no torque: {limit} (the `effort` \
+         of {its} <limit>) {constrains} nothing in the design, and {margin}; give these links \
+         `<inertial>` elements with their mass and inertia, or give --parameters PARAMS.toml \
+         (the design's criterion does not depend on them)",
+        description.unloaded_cause(&args.robot, &limited, true)
+    ));
+}
+
 /// The values of a per-joint limit flag (`--acceleration-limits`, `--velocity-limits`) for
 /// `n` joints: none, one for every joint, or one per joint.
 fn per_joint(flag: &str, values: &[f64], n: usize, args: &Args) -> Result<Vec<Option<f64>>, Error> {
@@ -300,7 +342,10 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .collect::<Result<Vec<_>, String>>()?;
     let reference = match &args.parameters {
         Some(p) => Some(ParameterFile::read(p)?.base_parameters(&model)?),
-        None => description.urdf_base_parameters(&model)?,
+        None => {
+            warn_unloaded(args, &description, &limits);
+            description.urdf_base_parameters(&model)?
+        }
     };
     if let Some((last, first)) = turning.split_last() {
         let (joints, are) = if first.is_empty() {

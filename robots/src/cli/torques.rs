@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use robid_runtime::Model;
 use robid_runtime::data::Table;
 
-use super::description::{self, DescriptionFlags};
+use super::description::{self, Description, DescriptionFlags, torque_names};
 use super::{Error, files, out};
 
 /// Arguments of `robid torques`.
@@ -45,6 +45,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let model = chosen.model.as_ref();
     let n = model.dof();
     let base = description.base_parameters(args.parameters.as_deref(), model)?;
+    if args.parameters.is_none() {
+        warn_unloaded(args, &description);
+    }
     let names: Vec<String> = ["q", "qd", "qdd"]
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))
@@ -56,6 +59,45 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         None => out::print(&text)?,
     }
     Ok(())
+}
+
+/// With a URDF's own inertials: warns about the joints whose torque they leave 0 (they
+/// move only links without mass or inertia) or without gravity (links without mass).
+/// The torques are written all the same: they are those of the URDF as written.
+fn warn_unloaded(args: &Args, description: &Description) {
+    let unloaded = description.urdf_unloaded();
+    let fix = "or give --parameters PARAMS.toml (a [standard] or [base] parameter file)";
+    if !unloaded.massless.is_empty() {
+        let joints = &unloaded.massless;
+        let (its, is) = its_is(joints);
+        let holds = if is == "is" { "holds" } else { "hold" };
+        out::warn(format_args!(
+            "warning: {}, so with the URDF's own inertials {its} {} {holds} no gravity, only \
+             the inertia of these links; give them their masses in their `<inertial>` \
+             elements, {fix}",
+            description.unloaded_cause(&args.robot, joints, false),
+            torque_names(joints)
+        ));
+    }
+    if !unloaded.empty.is_empty() {
+        let joints = &unloaded.empty;
+        let (its, is) = its_is(joints);
+        out::warn(format_args!(
+            "warning: {}, so with the URDF's own inertials {its} {} {is} 0 in every row; give \
+             these links `<inertial>` elements with their mass and inertia, {fix}",
+            description.unloaded_cause(&args.robot, joints, true),
+            torque_names(joints)
+        ));
+    }
+}
+
+/// `("its torque", "is")` for one joint, `("their torques", "are")` for more.
+fn its_is(joints: &[usize]) -> (&'static str, &'static str) {
+    if joints.len() == 1 {
+        ("its torque", "is")
+    } else {
+        ("their torques", "are")
+    }
 }
 
 /// The torques of every row of `table` (columns `q1..qn,qd1..qdn,qdd1..qddn`) as CSV

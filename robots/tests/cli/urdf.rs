@@ -615,6 +615,175 @@ fn simulate_names_a_joint_that_moves_only_massless_links() {
     not_blamed(&o);
 }
 
+/// The inertial of `l1` in [`MASSLESS_FLANGE`].
+const L1_INERTIAL: &str = r#"<inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"#;
+
+/// A parameter file for [`MASSLESS_FLANGE`] that gives both links mass and inertia.
+const FLANGED_PARAMETERS: &str = "[standard]\nXX1 = 0.01\nYY1 = 0.02\nZZ1 = 0.02\nMX1 = 0.1\n\
+    M1 = 1\nXX2 = 0.01\nYY2 = 0.01\nZZ2 = 0.01\nMZ2 = 0.05\nM2 = 0.5\n";
+
+/// `robid torques` with a URDF's own inertials, where a joint moves only links without
+/// `<inertial>`: that joint's torque is 0 in every row, which used to be written without
+/// a word; it is warned about naming the joint, its links and the ways out (the output is
+/// still written: it is the URDF as written). A joint that moves links with inertia but
+/// no mass is told that its torque holds no gravity. A parameter file, or a URDF whose
+/// every joint moves mass, gives no such warning.
+#[test]
+fn torques_warn_about_a_joint_that_moves_only_massless_links() {
+    let dir = folder();
+    let urdf = write(dir.path(), "flanged.urdf", MASSLESS_FLANGE);
+    let mut text = String::from("q1,q2,qd1,qd2,qdd1,qdd2\n");
+    for k in 0..5 {
+        let x = 0.2 * k as f64;
+        text.push_str(&format!("{x},{},{},0.5,1,{}\n", 1.0 - x, 0.3 + x, 2.0 - x));
+    }
+    let rows = write(dir.path(), "rows.csv", &text);
+    let torques = |urdf: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "torques",
+            urdf.to_str().unwrap(),
+            "--states",
+            rows.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let o = robid(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        o
+    };
+    let column = |o: &std::process::Output, j: usize| -> Vec<f64> {
+        stdout(o)
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(j).unwrap().parse().unwrap())
+            .collect()
+    };
+    let o = torques(&urdf, &[]);
+    let warning = format!(
+        "warning: joint 2 (`j2`) of {} moves only links without mass or inertia: `flange`, \
+         `tool0` (no `<inertial>` element, or an empty one), so with the URDF's own inertials \
+         its torque tau2 is 0 in every row; give these links `<inertial>` elements with their \
+         mass and inertia, or give --parameters PARAMS.toml (a [standard] or [base] parameter \
+         file)\n",
+        urdf.display()
+    );
+    assert!(stderr(&o).ends_with(&warning), "{}", stderr(&o));
+    assert!(column(&o, 1).iter().all(|&t| t == 0.0), "{}", stdout(&o));
+    assert!(column(&o, 0).iter().all(|&t| t != 0.0), "{}", stdout(&o));
+    // no inertial at all: every joint, every link
+    let bare = write(
+        dir.path(),
+        "bare.urdf",
+        &MASSLESS_FLANGE.replace(L1_INERTIAL, ""),
+    );
+    let o = torques(&bare, &[]);
+    assert!(
+        stderr(&o).contains("warning: joints 1 (`j1`) and 2 (`j2`) of ",)
+            && stderr(&o).contains(
+                "move only links without mass or inertia: `l1`, `flange`, `tool0` (no \
+             `<inertial>` element, or an empty one), so with the URDF's own inertials their \
+             torques tau1 and tau2 are 0 in every row"
+            ),
+        "{}",
+        stderr(&o)
+    );
+    // inertia without mass: no gravity in joint 2's torque, which is not 0
+    let spinning = write(
+        dir.path(),
+        "spinning.urdf",
+        &MASSLESS_FLANGE.replace(
+            r#"<link name="flange"/>"#,
+            r#"<link name="flange"><inertial><mass value="0"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.02"/></inertial></link>"#,
+        ),
+    );
+    let o = torques(&spinning, &[]);
+    let warning = format!(
+        "warning: joint 2 (`j2`) of {} moves only links without mass: `flange`, `tool0`, so \
+         with the URDF's own inertials its torque tau2 holds no gravity, only the inertia of \
+         these links; give them their masses in their `<inertial>` elements, or give \
+         --parameters PARAMS.toml (a [standard] or [base] parameter file)\n",
+        spinning.display()
+    );
+    assert!(stderr(&o).ends_with(&warning), "{}", stderr(&o));
+    assert!(column(&o, 1).iter().any(|&t| t != 0.0), "{}", stdout(&o));
+    // a parameter file gives joint 2 its mass: no warning
+    let parameters = write(dir.path(), "params.toml", FLANGED_PARAMETERS);
+    let o = torques(&urdf, &["--parameters", parameters.to_str().unwrap()]);
+    assert!(!stderr(&o).contains("moves only links"), "{}", stderr(&o));
+    assert!(column(&o, 1).iter().all(|&t| t != 0.0), "{}", stdout(&o));
+    // a URDF whose every joint moves mass: no warning
+    let states = states(dir.path());
+    let o = robid(&["torques", UR5, "--states", states.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("without mass"), "{}", stderr(&o));
+}
+
+/// `robid excite` with a URDF's own inertials, where a joint moves only links without
+/// `<inertial>`: the design's criterion uses the regressor, which does not depend on the
+/// parameters, so that is no matter for it; but the torque limit of such a joint (its
+/// `effort`) is checked against a torque that is 0, so it constrains nothing and its
+/// margin is the whole limit. That is warned about naming the joint; without a torque limit
+/// on it (effort 0: none), or with --parameters, nothing is said.
+#[test]
+fn excite_warns_when_a_massless_joint_has_a_torque_limit() {
+    let dir = folder();
+    let out = dir.path().join("trajectory.csv");
+    let excite = |urdf: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "excite",
+            urdf.to_str().unwrap(),
+            "--acceleration-limits",
+            "10",
+            "--duration",
+            "10",
+            "--rate",
+            "50",
+            "--harmonics",
+            "2",
+            "--restarts",
+            "1",
+            "--evaluations",
+            "50",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let o = robid(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        o
+    };
+    let urdf = write(dir.path(), "flanged.urdf", MASSLESS_FLANGE);
+    let o = excite(&urdf, &[]);
+    let warning = format!(
+        "warning: joint 2 (`j2`) of {} moves only links without mass or inertia: `flange`, \
+         `tool0` (no `<inertial>` element, or an empty one), so the URDF's own inertials give \
+         it no torque: its torque limit (the `effort` of its <limit>) constrains \
+         nothing in the design, and its torque margin below is the whole limit; give these \
+         links `<inertial>` elements with their mass and inertia, or give --parameters \
+         PARAMS.toml (the design's criterion does not depend on them)\n",
+        urdf.display()
+    );
+    assert!(stderr(&o).contains(&warning), "{}", stderr(&o));
+    // no torque limit on joint 2: the criterion is that of the regressor, unaffected
+    let free = write(
+        dir.path(),
+        "free.urdf",
+        &MASSLESS_FLANGE.replace(
+            r#"<limit lower="-2" upper="2" effort="10" velocity="2"/>
+  </joint>
+  <joint name="flange-tool0""#,
+            r#"<limit lower="-2" upper="2" effort="0" velocity="2"/>
+  </joint>
+  <joint name="flange-tool0""#,
+        ),
+    );
+    assert_ne!(std::fs::read_to_string(&free).unwrap(), MASSLESS_FLANGE);
+    let o = excite(&free, &[]);
+    assert!(!stderr(&o).contains("without mass"), "{}", stderr(&o));
+    let parameters = write(dir.path(), "params.toml", FLANGED_PARAMETERS);
+    let o = excite(&urdf, &["--parameters", parameters.to_str().unwrap()]);
+    assert!(!stderr(&o).contains("without mass"), "{}", stderr(&o));
+}
+
 /// The URDF's own inertials as the values of its chain's standard parameters (names and
 /// values), as `robot_model!` and the reader give them.
 fn urdf_standard(path: &str) -> (Vec<String>, Vec<f64>) {
