@@ -27,7 +27,9 @@ pub use error::DescriptionError;
 pub use geometry::{Expression, Geometry, GeometryError, Number};
 pub use parameters::{DriveTerm, Inertial, ParameterId, ParameterKind};
 pub use transform::Transform;
-pub use urdf::{AttachedLink, ChainLink, ChainSelection, UrdfChain, write_inertials};
+pub use urdf::{
+    AttachedLink, ChainLink, ChainSelection, UnphysicalInertial, UrdfChain, write_inertials,
+};
 
 pub(crate) use check::name_problem;
 use check::{Code, Parts};

@@ -784,6 +784,60 @@ fn excite_warns_when_a_massless_joint_has_a_torque_limit() {
     assert!(!stderr(&o).contains("without mass"), "{}", stderr(&o));
 }
 
+/// `robid simulate` without `--parameters` simulates a URDF whose chain has an inertial of
+/// no body (here principal moments 1, 1, 100, which break the triangle inequality; M(q) is
+/// positive definite with them), after the reader's warning naming the link and the
+/// values: real vendor files have such inertials, and their torques are still worth
+/// simulating; with `--parameters` no warning is needed for the parameters.
+#[test]
+fn simulate_warns_about_a_urdfs_inertials_of_no_body() {
+    let dir = folder();
+    let urdf = write(
+        dir.path(),
+        "placeholder.urdf",
+        &MASSLESS_FLANGE.replace(
+            r#"<link name="flange"/>"#,
+            r#"<link name="flange"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="100" iyz="0" izz="1"/></inertial></link>"#,
+        ),
+    );
+    let mut trajectory = String::from("t,q1,q2,qd1,qd2,qdd1,qdd2\n");
+    for k in 0..20 {
+        trajectory.push_str(&format!("{},0,0,0,0,0,0\n", 0.01 * k as f64));
+    }
+    let trajectory = write(dir.path(), "traj.csv", &trajectory);
+    let output = dir.path().join("data.csv");
+    let simulate = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            urdf.to_str().unwrap(),
+            "--trajectory",
+            trajectory.to_str().unwrap(),
+            "-o",
+            output.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        robid(&args)
+    };
+    let o = simulate(&[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("warning: ") && stderr(&o).contains("link `flange`: the principal"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(output.exists());
+    std::fs::remove_file(&output).unwrap();
+    let parameters = write(
+        dir.path(),
+        "physical.toml",
+        "[standard]\nXX1 = 0.01\nYY1 = 0.02\nZZ1 = 0.02\nMX1 = 0.1\nM1 = 1\n\
+         XX2 = 0.01\nYY2 = 0.01\nZZ2 = 0.01\nM2 = 1\n",
+    );
+    let o = simulate(&["--parameters", parameters.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(output.exists());
+}
+
 /// The URDF's own inertials as the values of its chain's standard parameters (names and
 /// values), as `robot_model!` and the reader give them.
 fn urdf_standard(path: &str) -> (Vec<String>, Vec<f64>) {

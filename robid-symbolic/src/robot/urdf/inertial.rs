@@ -39,17 +39,105 @@ fn impossible(i: &Inertial) -> Option<(Range<usize>, String, &'static str)> {
     })
 }
 
+/// How far the largest principal moment of an `<inertia>` may exceed the sum of the other
+/// two, relative to their sum (the trace), before the triangle inequality counts as
+/// broken: the tolerance of [`INERTIA_TOLERANCE`], so that a flat body's moments, which
+/// sit on the bound, printed to six digits are not flagged.
+const TRIANGLE_TOLERANCE: f64 = 1e-6;
+
+/// The two kinds of `<inertial>` that no body has but that robid reads with a warning
+/// ([`unphysical`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Unphysical {
+    /// A zero mass with a nonzero inertia.
+    MasslessInertia,
+    /// Principal moments breaking the triangle inequality.
+    Triangle,
+}
+
+/// A value computed from a URDF's numbers, to four significant digits.
+fn short(v: f64) -> String {
+    show(format!("{v:.3e}").parse().unwrap_or(v))
+}
+
+/// What makes a possible `<inertial>` (no negative mass, inertia positive semidefinite, see
+/// [`impossible`]) that of no body, if anything: a zero mass with a nonzero inertia, or
+/// principal moments of the inertia about the centre of mass that break the triangle
+/// inequality (the largest exceeds the sum of the other two by more than
+/// [`TRIANGLE_TOLERANCE`] of the trace). The kind, where, and what, with the values.
+fn unphysical(i: &Inertial) -> Option<(Unphysical, Range<usize>, String)> {
+    let [ixx, ixy, ixz, iyy, iyz, izz] = i.inertia;
+    if i.mass == 0.0 && i.inertia.iter().any(|&x| x != 0.0) {
+        return Some((
+            Unphysical::MasslessInertia,
+            i.mass_at.clone(),
+            format!(
+                "the mass is 0 but the inertia is not (ixx {}, ixy {}, ixz {}, iyy {}, iyz \
+                 {}, izz {} kg m^2)",
+                show(ixx),
+                show(ixy),
+                show(ixz),
+                show(iyy),
+                show(iyz),
+                show(izz)
+            ),
+        ));
+    }
+    let m = nalgebra::Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz);
+    let mut d: Vec<f64> = m.symmetric_eigenvalues().iter().copied().collect();
+    d.sort_by(f64::total_cmp);
+    let excess = d[2] - d[0] - d[1];
+    let trace = d[0] + d[1] + d[2];
+    (excess > TRIANGLE_TOLERANCE * trace).then(|| {
+        let diagonal = [ixy, ixz, iyz].iter().all(|&x| x == 0.0);
+        (
+            Unphysical::Triangle,
+            i.inertia_at.clone(),
+            format!(
+                "the principal moments {}, {}, {} kg m^2 of the inertia about the centre of \
+                 mass break the triangle inequality: the largest exceeds the sum of the other \
+                 two by {} kg m^2{}",
+                short(d[0]),
+                short(d[1]),
+                short(d[2]),
+                short(excess),
+                if diagonal {
+                    ""
+                } else {
+                    " (the moments of `ixx` to `izz` with the products of inertia)"
+                }
+            ),
+        )
+    })
+}
+
+/// A URDF link of the chain's bodies whose `<inertial>` no body has: a zero mass with a
+/// nonzero inertia, or principal moments that break the triangle inequality. The model's
+/// kinematics and identification do not use a URDF's inertials, so robid reads such a file
+/// with a warning (docs/urdf.md#inertials); where the inertials are the parameters, a
+/// simulation must not use them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UnphysicalInertial {
+    /// The URDF link.
+    pub link: String,
+    /// What is wrong, with the values: "the mass is 0 but the inertia is not (...)".
+    pub problem: String,
+}
+
 /// Checks the inertials the model uses, those of the links of the chain's bodies: an
-/// impossible one is an error naming its link. The other links' inertials (the fixed base,
-/// links beside or above the base) are not used, so an impossible one there gets one
-/// warning (docs/urdf.md#inertials): TIAGo's antennas, fixed to its base, have products of
-/// inertia too large for their moments.
+/// impossible one (a negative mass, an inertia that is not positive semidefinite) is an
+/// error naming its link; one that is possible but no body's (a zero mass with an inertia,
+/// moments breaking the triangle inequality) is warned about, one warning per kind naming
+/// the links, and returned. The other links' inertials (the fixed base, links beside or
+/// above the base) are not used, so an impossible one there gets one warning
+/// (docs/urdf.md#inertials): TIAGo's antennas, fixed to its base, have products of inertia
+/// too large for their moments.
 pub(super) fn check(
     place: &Place<'_>,
     urdf: &Urdf,
     chain: &Chain,
     warnings: &mut Vec<String>,
-) -> Result<(), DescriptionError> {
+) -> Result<Vec<UnphysicalInertial>, DescriptionError> {
     let mut used = vec![false; urdf.links.len()];
     for &l in chain.bodies.iter().flatten() {
         used[l] = true;
@@ -68,6 +156,54 @@ pub(super) fn check(
     }
     if !errors.is_empty() {
         return Err(DescriptionError::from_errors(errors));
+    }
+    let mut found = Vec::new();
+    for kind in [Unphysical::MasslessInertia, Unphysical::Triangle] {
+        let links: Vec<(&str, Range<usize>, String)> = urdf
+            .links
+            .iter()
+            .zip(&used)
+            .filter(|&(_, &used)| used)
+            .filter_map(|(link, _)| {
+                let (k, at, what) = link.inertial.as_ref().and_then(unphysical)?;
+                (k == kind).then_some((link.name.as_str(), at, what))
+            })
+            .collect();
+        let Some((first, at, what)) = links.first() else {
+            continue;
+        };
+        let fix = match kind {
+            Unphysical::MasslessInertia => {
+                "give the link its mass, or write its inertia as zeros (a massless link)"
+            }
+            Unphysical::Triangle => {
+                "correct the `<inertia>` (no principal moment of a body exceeds the sum of the \
+                 other two; a placeholder such as 1, 100, 1 breaks it)"
+            }
+        };
+        let others = match &links[1..] {
+            [] => String::new(),
+            [(name, ..)] => format!(" (link `{name}` has such an inertial too)"),
+            rest => {
+                let names: Vec<String> =
+                    rest.iter().map(|(name, ..)| format!("`{name}`")).collect();
+                format!(" (links {} have such inertials too)", names.join(", "))
+            }
+        };
+        warnings.push(place.warning(
+            at.start,
+            &format!(
+                "link `{first}`: {what}, so no body has this inertial; robid's kinematics and \
+                 identification do not use it, but where the URDF's inertials are the \
+                 parameters (`robid torques` and `excite` without --parameters, the prior of \
+                 `robid feasible`) it is used as written, and `robid simulate` refuses it; \
+                 {fix}, or give parameters of your own{others}"
+            ),
+        ));
+        found.extend(links.iter().map(|(name, _, what)| UnphysicalInertial {
+            link: (*name).to_owned(),
+            problem: what.clone(),
+        }));
     }
     if let Some((first, at, what)) = unused.first() {
         let others = if unused.len() > 1 {
@@ -94,7 +230,7 @@ pub(super) fn check(
             ),
         ));
     }
-    Ok(())
+    Ok(found)
 }
 
 /// The inertia tensor of a URDF `<inertia>` (`ixy` is the tensor entry, as robid's `XY`,

@@ -18,6 +18,7 @@ mod xml;
 mod tests;
 
 pub use chain::ChainSelection;
+pub use inertial::UnphysicalInertial;
 
 use super::bounds::MAX_DESCRIPTION_LEN;
 use super::file::Place;
@@ -39,6 +40,10 @@ pub struct UrdfChain {
     pub tool: Pose,
     /// What is valid but worth knowing: `file:line:column: what; what to do`.
     pub warnings: Vec<String>,
+    /// The links of the chain's bodies whose `<inertial>` no body has (a zero mass with an
+    /// inertia, moments breaking the triangle inequality), each also in a warning: the
+    /// URDF's standard parameters are then no real robot's (docs/urdf.md#inertials).
+    pub unphysical: Vec<UnphysicalInertial>,
 }
 
 impl UrdfChain {
@@ -134,7 +139,7 @@ impl Robot {
         let mut warnings = urdf.warnings.clone();
         let tree = chain::tree(&place, &urdf)?;
         let chain = chain::choose(&place, &urdf, &tree, selection, &mut warnings)?;
-        inertial::check(&place, &urdf, &chain, &mut warnings)?;
+        let unphysical = inertial::check(&place, &urdf, &chain, &mut warnings)?;
         let axes: Vec<Axis> = chain
             .joints
             .iter()
@@ -194,6 +199,7 @@ impl Robot {
                 .then(&chain.in_base[chain.tip])
                 .pose(),
             warnings,
+            unphysical,
         })
     }
 

@@ -577,3 +577,97 @@ fn doctypes_and_xacro_files_are_told_what_to_do() {
     let chain = Robot::from_urdf(&expanded, "t.urdf", &ChainSelection::default()).unwrap();
     assert_eq!(chain.robot.dof(), 2);
 }
+
+/// An inertial that is possible as a tensor but no body's, on a link of the chain's bodies,
+/// is read with one warning per kind naming the link, its values and the fix, and listed in
+/// `UrdfChain::unphysical` (they used to be accepted without a word): principal moments
+/// that break the triangle inequality (the eavr SCARA's placeholder 1, 100, 1), and a zero
+/// mass with a nonzero inertia. Moments that sit on the bound (a flat plate) printed
+/// rounded, a point mass (a mass without inertia), a massless link, and such an inertial
+/// on a link the model does not use are not warned about.
+#[test]
+fn inertials_of_no_body_are_warned_about_on_the_chains_bodies() {
+    let with = |b: &str, c: &str| {
+        let inertial =
+            |m: &str, i: &str| format!("<inertial><mass value=\"{m}\"/><inertia {i}/></inertial>");
+        let tensor = |xx: &str, xy: &str, yy: &str, zz: &str| {
+            format!("ixx=\"{xx}\" ixy=\"{xy}\" ixz=\"0\" iyy=\"{yy}\" iyz=\"0\" izz=\"{zz}\"")
+        };
+        let link = |spec: &str| match spec {
+            "triangle" => inertial("1", &tensor("1", "0", "100", "1")),
+            // the same moments 1, 1, 100 about axes turned 45 degrees about z
+            "turned" => inertial("1", &tensor("50.5", "49.5", "50.5", "1")),
+            "massless inertia" => inertial("0", &tensor("0.01", "0", "0.01", "0.01")),
+            // a flat plate: izz = ixx + iyy (0.3580245), printed to seven digits
+            "plate" => inertial("2", &tensor("0.1234567", "0", "0.2345678", "0.3580246")),
+            "point" => inertial("2", &tensor("0", "0", "0", "0")),
+            "none" => inertial("0", &tensor("0", "0", "0", "0")),
+            _ => inertial("1", &tensor("0.02", "0", "0.03", "0.04")),
+        };
+        arm(&format!("{J1}{J2}"))
+            .replace(
+                "<link name=\"b\"/>",
+                &format!("<link name=\"b\">{}</link>", link(b)),
+            )
+            .replace(
+                "<link name=\"c\"/>",
+                &format!("<link name=\"c\">{}</link>", link(c)),
+            )
+    };
+    let read = |text: &str| {
+        Robot::from_urdf(text, "t.urdf", &ChainSelection::default())
+            .unwrap_or_else(|e| panic!("{e}\n{text}"))
+    };
+    let chain = read(&with("solid", "triangle"));
+    assert_eq!(chain.warnings.len(), 1, "{:?}", chain.warnings);
+    let w = &chain.warnings[0];
+    for part in [
+        "t.urdf:4:",
+        "link `c`: the principal moments 1, 1, 100 kg m^2 of the inertia about the centre of mass break the triangle inequality: the largest exceeds the sum of the other two by 98 kg m^2, so no body has this inertial",
+        "`robid simulate` refuses it",
+        "correct the `<inertia>`",
+        "give parameters of your own",
+    ] {
+        assert!(w.contains(part), "{w}\nexpected {part:?}");
+    }
+    assert_eq!(chain.unphysical.len(), 1);
+    assert_eq!(chain.unphysical[0].link, "c");
+    assert!(chain.unphysical[0].problem.contains("1, 1, 100"));
+    // the inertial is used as written: the model reads the file
+    assert_eq!(chain.links[1].inertial[9], 1.0);
+    let chain = read(&with("turned", "triangle"));
+    assert_eq!(chain.warnings.len(), 1, "{:?}", chain.warnings);
+    let w = &chain.warnings[0];
+    assert!(
+        w.starts_with("t.urdf:3:")
+            && w.contains("link `b`: the principal moments 1, 1, 100 kg m^2")
+            && w.contains("(the moments of `ixx` to `izz` with the products of inertia)")
+            && w.contains("(link `c` has such an inertial too)"),
+        "{w}"
+    );
+    assert_eq!(chain.unphysical.len(), 2);
+    let chain = read(&with("massless inertia", "solid"));
+    assert_eq!(chain.warnings.len(), 1, "{:?}", chain.warnings);
+    let w = &chain.warnings[0];
+    assert!(
+        w.starts_with("t.urdf:3:")
+            && w.contains("link `b`: the mass is 0 but the inertia is not (ixx 0.01, ixy 0, ixz 0, iyy 0.01, iyz 0, izz 0.01 kg m^2), so no body has this inertial")
+            && w.contains("give the link its mass, or write its inertia as zeros"),
+        "{w}"
+    );
+    assert_eq!(chain.unphysical[0].link, "b");
+    for (b, c) in [("plate", "point"), ("none", "solid")] {
+        let chain = read(&with(b, c));
+        assert!(chain.warnings.is_empty(), "{b}, {c}: {:?}", chain.warnings);
+        assert!(chain.unphysical.is_empty());
+    }
+    // on a link fixed to the base, which the model does not use: nothing to say
+    let beside = with("solid", "solid").replace(
+        "</robot>",
+        "<link name=\"d\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"100\" iyz=\"0\" izz=\"1\"/></inertial></link>\n\
+         <joint name=\"sensor\" type=\"fixed\"><parent link=\"a\"/><child link=\"d\"/></joint>\n</robot>",
+    );
+    let chain = read(&beside);
+    assert!(chain.warnings.is_empty(), "{:?}", chain.warnings);
+    assert!(chain.unphysical.is_empty());
+}
