@@ -209,8 +209,78 @@ pub(super) fn robot(
     })
 }
 
+/// Largest angle (rad) by which an origin's rotation or joint 1's axis may be off a
+/// right angle to be named as the cause of a gravity component too small to accept: such
+/// a component (below `MIN_GRAVITY`, 1e-3 m/s^2) comes from a tilt below 1e-4 rad, and
+/// several tilts may add up.
+const TILT_SUSPECT: f64 = 1e-3;
+
+/// How far (rad) `r` is from the nearest rotation by right angles (a signed permutation
+/// matrix), when it is near one at all (its entries round to one).
+fn off_right_angles(r: &super::rigid::Mat3) -> Option<f64> {
+    let p = r.map(|row| row.map(f64::round));
+    let signed_permutation = (0..3).all(|i| {
+        p[i].iter().map(|x| x.abs()).sum::<f64>() == 1.0
+            && (0..3).map(|k| p[k][i].abs()).sum::<f64>() == 1.0
+    });
+    if !signed_permutation {
+        return None;
+    }
+    // a rotation by theta is 2 sqrt(2) sin(theta / 2) from the identity (Frobenius norm)
+    let distance = (0..3)
+        .flat_map(|i| (0..3).map(move |k| (i, k)))
+        .map(|(i, k)| (r[i][k] - p[i][k]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    Some(
+        2.0 * (distance / (2.0 * std::f64::consts::SQRT_2))
+            .min(1.0)
+            .asin(),
+    )
+}
+
+/// The elements that tilt joint 1's axis by a few µrad from the root's axes: the origins
+/// of the joints from the root to joint 1 (joint 1's included) whose rotation is a little
+/// off a right-angle rotation, and joint 1's `<axis>` when it is a little off a coordinate
+/// axis. Each with its joint's place, what it is and its angle; empty when no single
+/// element is near but not at a right angle (several larger angles that almost cancel).
+fn tilted(urdf: &Urdf, chain: &Chain) -> Vec<(std::ops::Range<usize>, String, f64)> {
+    let suspect = |angle: f64| angle > 1e-12 && angle <= TILT_SUSPECT;
+    let mut out = Vec::new();
+    let first = chain.joints[0];
+    for &j in chain.above.iter().chain([&first]) {
+        let joint = &urdf.joints[j];
+        if let Some(angle) = off_right_angles(&joint.origin.r).filter(|&a| suspect(a)) {
+            let kind = match joint.kind {
+                JointType::Fixed => "fixed joint",
+                _ => "joint",
+            };
+            out.push((
+                joint.range.clone(),
+                format!("the `<origin>` rotation of {kind} `{}`", joint.name),
+                angle,
+            ));
+        }
+    }
+    // the sine of the axis's angle to the nearest coordinate axis: its two smaller
+    // components (the unit axis's largest is near 1, where 1 - x^2 loses the digits)
+    let mut axis = urdf.joints[first].axis.map(f64::abs);
+    axis.sort_by(f64::total_cmp);
+    let angle = axis[0].hypot(axis[1]).min(1.0).asin();
+    if suspect(angle) {
+        let joint = &urdf.joints[first];
+        out.push((
+            joint.range.clone(),
+            format!("the `<axis>` of joint `{}`", joint.name),
+            angle,
+        ));
+    }
+    out
+}
+
 /// An error of [`Robot::new`] (naming `joints[k]` or gravity) at the URDF joint it concerns:
-/// gravity's at joint 1, whose axis is frame 0's z.
+/// gravity's at the origin or axis that tilts joint 1's axis a few µrad off the root's
+/// vertical, when one does, else at joint 1, whose axis is frame 0's z.
 fn locate(
     place: &Place<'_>,
     urdf: &Urdf,
@@ -244,6 +314,38 @@ fn locate(
             .filter(|&x| x > 0.0)
             .fold(f64::INFINITY, f64::min);
         let tilt = (small / norm).asin();
+        let tilted = tilted(urdf, chain);
+        if let Some((at, _, _)) = tilted.first() {
+            let elements: Vec<String> = tilted
+                .iter()
+                .map(|(_, what, angle)| format!("{what} is {angle:.1e} rad from a right angle"))
+                .collect();
+            let (them, are, angles) = if tilted.len() == 1 {
+                ("it", "is", "a right angle")
+            } else {
+                ("them", "are", "right angles")
+            };
+            return place.invalid(
+                at.clone(),
+                format!(
+                    "gravity in robid frame 0, whose z is joint `{}`'s axis, is not accepted \
+                     ({argument}): {message}",
+                    j.name
+                ),
+                format!(
+                    "{}, which turns the axis {tilt:.1e} rad from parallel or perpendicular to \
+                     the root link's z, the direction of gravity, too little for the \
+                     identification to tell from none; if {them} {are} meant as {angles} (a \
+                     level mounting, a right angle printed short such as `1.57079` for \
+                     pi/2), write {them} exactly \
+                     (`0`, `1.5707963267948966`) or rounded to at least four decimals \
+                     (`1.5708`); a measured mounting tilt this small changes the gravity \
+                     torques by less than 1e-4 of their size, so write the mounting level \
+                     (docs/urdf.md#gravity)",
+                    elements.join(", and ")
+                ),
+            );
+        }
         return place.invalid(
             j.range.clone(),
             format!(

@@ -47,6 +47,9 @@ pub(super) struct Chain {
     pub(super) bodies: Vec<Vec<usize>>,
     /// Per link, its pose in the base link's frame with every joint at zero.
     pub(super) in_base: Vec<Rigid>,
+    /// The joints from the root link down to joint 1's parent link, root first: those
+    /// whose origins, with joint 1's, turn joint 1's axis against the root's vertical.
+    pub(super) above: Vec<usize>,
 }
 
 fn nearest(names: &[&str], wanted: &str) -> String {
@@ -545,11 +548,15 @@ pub(super) fn choose(
     }
     let to_base = tree.at_zero[base].inverse();
     let in_base = tree.at_zero.iter().map(|t| to_base.then(t)).collect();
+    let above = tree
+        .path(tree.root, tree.ends[joints[0]].0)
+        .unwrap_or_default();
     Ok(Chain {
         base,
         tip,
         joints,
         bodies,
         in_base,
+        above,
     })
 }

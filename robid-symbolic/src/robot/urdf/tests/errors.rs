@@ -76,7 +76,7 @@ fn each_mistake_is_named_at_its_place() {
         (
             arm(&two.replace("<axis xyz=\"0 0 1\"/></joint>\n<joint name=\"j2\"", "<origin rpy=\"1.57079 0 0\"/><axis xyz=\"0 1 0\"/></joint>\n<joint name=\"j2\"")),
             "t.urdf:5:1:",
-            &["gravity in robid frame 0, whose z is joint `j1`'s axis, is not accepted", "6.2", "e-5", "the axis is 6.3e-6 rad from", "`1.5708`"],
+            &["gravity in robid frame 0, whose z is joint `j1`'s axis, is not accepted", "6.2", "e-5", "the `<origin>` rotation of joint `j1` is 6.3e-6 rad from a right angle", "turns the axis 6.3e-6 rad from", "`1.5708`"],
         ),
     ];
     for (text, place, words) in &cases {

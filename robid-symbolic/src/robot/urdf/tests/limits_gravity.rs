@@ -60,3 +60,92 @@ fn limits_come_from_the_limit_elements() {
     assert_eq!(first.position, Some([-6.28318530718, 6.28318530718]));
     assert_eq!((first.velocity, first.torque), (Some(3.15), Some(150.0)));
 }
+
+/// A chain hung from `world` through a fixed `mount` (line 3) and a fixed `adapter`
+/// (line 4) between the base and joint 1 (line 5).
+const MOUNTED: &str = "<robot name=\"mounted\">
+  <link name=\"world\"/><link name=\"base\"/><link name=\"plate\"/><link name=\"a\"/><link name=\"b\"/>
+  <joint name=\"mount\" type=\"fixed\"><parent link=\"world\"/><child link=\"base\"/><origin rpy=\"MOUNT\"/></joint>
+  <joint name=\"adapter\" type=\"fixed\"><parent link=\"base\"/><child link=\"plate\"/><origin xyz=\"0 0 0.1\" rpy=\"ADAPTER\"/></joint>
+  <joint name=\"j1\" type=\"revolute\"><parent link=\"plate\"/><child link=\"a\"/><origin xyz=\"0 0 0.3\"/><axis xyz=\"AXIS\"/></joint>
+  <joint name=\"j2\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><origin xyz=\"0.4 0 0\" rpy=\"1.5707963267948966 0 0\"/><axis xyz=\"0 0 1\"/></joint>
+</robot>";
+
+/// A mounting tilt of 1e-5 to 1e-4 rad gives gravity components below what robid accepts:
+/// the error is placed at the element that tilts joint 1's axis, the fixed joint above or
+/// below the base or joint 1's own axis, and names it with its angle (it used to be placed
+/// at joint 1 whatever the cause). Tilts that only add up to a small one (no element near
+/// a right angle) keep the error at joint 1.
+#[test]
+fn a_small_tilt_is_placed_at_the_element_that_tilts() {
+    let text = |mount: &str, adapter: &str, axis: &str| {
+        MOUNTED
+            .replace("MOUNT", mount)
+            .replace("ADAPTER", adapter)
+            .replace("AXIS", axis)
+    };
+    let error = |text: &str, base: Option<&str>| match Robot::from_urdf(
+        text,
+        "t.urdf",
+        &selection(base, None),
+    ) {
+        Ok(_) => panic!("no error for\n{text}"),
+        Err(e) => e.to_string(),
+    };
+    let level = "0 0 0";
+    let up = "0 0 1";
+    assert!(
+        Robot::from_urdf(
+            &text(level, level, up),
+            "t.urdf",
+            &ChainSelection::default()
+        )
+        .is_ok()
+    );
+    for (text, base, place, named) in [
+        (
+            text("1e-5 0 0", level, up),
+            None,
+            "t.urdf:3:",
+            "the `<origin>` rotation of fixed joint `mount` is 1.0e-5 rad from a right angle",
+        ),
+        // chosen as the base, `base` is still tilted by `mount` against the root's gravity
+        (
+            text("1e-5 0 0", level, up),
+            Some("base"),
+            "t.urdf:3:",
+            "fixed joint `mount` is 1.0e-5 rad",
+        ),
+        (
+            text(level, "0 3e-5 1.5707963267948966", up),
+            None,
+            "t.urdf:4:",
+            "the `<origin>` rotation of fixed joint `adapter` is 3.0e-5 rad from a right angle",
+        ),
+        (
+            text(level, level, "0 2e-5 1"),
+            None,
+            "t.urdf:5:",
+            "the `<axis>` of joint `j1` is 2.0e-5 rad from a right angle",
+        ),
+    ] {
+        let message = error(&text, base);
+        for part in [
+            place,
+            named,
+            "gravity in robid frame 0, whose z is joint `j1`'s axis, is not accepted",
+            "too little for the identification to tell from none",
+            "write the mounting level",
+        ] {
+            assert!(message.contains(part), "{message}\nexpected {part:?}");
+        }
+        assert!(message.starts_with(place), "{message}");
+    }
+    // two tilts of 0.3 rad that leave 1e-5 rad between them: no element to blame
+    let message = error(&text("0.3 0 0", "-0.30001 0 0", up), None);
+    assert!(
+        message.starts_with("t.urdf:5:")
+            && message.contains("a right angle on the path from the root"),
+        "{message}"
+    );
+}
