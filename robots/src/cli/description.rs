@@ -193,7 +193,7 @@ pub(crate) fn torque_names(joints: &[usize]) -> String {
 }
 
 /// A URDF error about the chain's choice, told in terms of `--base` and `--tip` (the
-/// library names its `ChainSelection` fields); any other error as it is.
+/// library names its `ChainSelection` fields, one or both); any other error as it is.
 fn as_flags(e: DescriptionError) -> Error {
     match e {
         DescriptionError::Argument {
@@ -201,10 +201,13 @@ fn as_flags(e: DescriptionError) -> Error {
             message,
             help,
         } if argument.contains("ChainSelection::") => {
-            let flag = if argument.contains("ChainSelection::tip") {
-                "--tip"
-            } else {
-                "--base"
+            let flag = match (
+                argument.contains("ChainSelection::base"),
+                argument.contains("ChainSelection::tip"),
+            ) {
+                (true, true) => "--base and --tip",
+                (_, true) => "--tip",
+                _ => "--base",
             };
             format!("{flag}: {message}; {help}").into()
         }

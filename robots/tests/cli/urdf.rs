@@ -122,6 +122,17 @@ fn urdf_chain_flags() {
     );
     let o = robid(&["model", PANDA, "--tip", "panda_hnd"]);
     fails_with(&o, &["--tip:", "no link `panda_hnd`", "panda_hand"]);
+    // nothing movable between the two links given: both flags, both links (it used to
+    // blame --tip alone)
+    let o = robid(&["model", UR5, "--base", "wrist_3_link", "--tip", "tool0"]);
+    fails_with(
+        &o,
+        &[
+            "error: --base and --tip: no movable (revolute, continuous or prismatic) joint lies \
+           between the base link `wrist_3_link` and the tip link `tool0`; choose a base and a \
+           tip below it",
+        ],
+    );
     let o = robid(&["model", "descriptions/ur5e.toml", "--base", "base_link"]);
     fails_with(
         &o,

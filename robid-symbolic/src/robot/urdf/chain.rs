@@ -422,6 +422,25 @@ pub(super) fn choose(
         ));
     };
     let joints: Vec<usize> = path.iter().copied().filter(|&j| movable(j)).collect();
+    if joints.is_empty() && selection.base.is_some() {
+        // both links were chosen (a base without a tip ends at a movable joint, or fails
+        // above): the pair is at fault, not one of them
+        return Err(DescriptionError::Argument {
+            argument: "the chain's base and tip links (`ChainSelection::base` and \
+                       `ChainSelection::tip`)"
+                .to_owned(),
+            message: format!(
+                "no movable (revolute, continuous or prismatic) joint lies between the base \
+                 link `{}` and the tip link `{}`",
+                names[base], names[tip]
+            ),
+            help: format!(
+                "choose a base and a tip below it with the joints to model between them (the \
+                 base may be the root link `{}`, the default)",
+                names[tree.root]
+            ),
+        });
+    }
     if joints.is_empty() {
         return Err(argument(
             "tip",

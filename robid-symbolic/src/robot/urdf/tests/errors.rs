@@ -231,6 +231,24 @@ fn bad_selections_name_the_nearest_links() {
         message.contains("link `a` is not below the base link `b`"),
         "{message}"
     );
+    // nothing movable between the two links chosen: the pair is named, not the tip alone
+    let fixed_tip = text.replace(
+        "</robot>",
+        "<link name=\"tcp\"/><joint name=\"flange\" type=\"fixed\"><parent link=\"c\"/><child link=\"tcp\"/></joint>\n</robot>",
+    );
+    assert_eq!(
+        error_of(&fixed_tip, &selection(Some("c"), Some("tcp"))),
+        "the chain's base and tip links (`ChainSelection::base` and `ChainSelection::tip`): no \
+         movable (revolute, continuous or prismatic) joint lies between the base link `c` and \
+         the tip link `tcp`; choose a base and a tip below it with the joints to model between \
+         them (the base may be the root link `a`, the default)"
+    );
+    // a tip alone is the tip's fault (the base is the root)
+    let message = error_of(&text, &selection(None, Some("a")));
+    assert!(
+        message.starts_with("the chain's tip link (`ChainSelection::tip`): no movable joint lies between links `a` and `a`"),
+        "{message}"
+    );
 }
 
 #[test]
