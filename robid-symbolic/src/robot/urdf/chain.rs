@@ -3,7 +3,7 @@
 //! moves (docs/urdf.md#choosing-the-chain).
 
 use super::super::DescriptionError;
-use super::super::check::distance;
+use super::super::check::{distance, show};
 use super::super::file::Place;
 use super::rigid::{Rigid, scale};
 use super::xml::{JointType, Urdf};
@@ -34,6 +34,8 @@ pub(super) struct Tree {
     pub(super) root: usize,
     /// Per link, its pose in the root link's frame with every joint at zero.
     pub(super) at_zero: Vec<Rigid>,
+    /// Per joint, the value it is held at when it is not one of robid's joints ([`held`]).
+    pub(super) held: Vec<f64>,
 }
 
 /// The chain robid models.
@@ -207,6 +209,7 @@ pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionEr
         ends,
         root,
         at_zero,
+        held,
     })
 }
 
@@ -268,6 +271,53 @@ fn held(place: &Place<'_>, urdf: &Urdf) -> Result<Vec<f64>, DescriptionError> {
         }
     }
     Ok(held.into_iter().map(|v| v.unwrap_or(0.0)).collect())
+}
+
+/// A warning when joint `j`, a revolute or prismatic joint with `<mimic>` held off the
+/// chain, is held (where its relation puts it) outside its own `<limit>`'s `lower` and
+/// `upper`: the URDF places the links it moves where the joint cannot go. robid places
+/// them there all the same, as the URDF's own tools do, so the file is read.
+fn mimic_beyond_limits(place: &Place<'_>, urdf: &Urdf, tree: &Tree, j: usize) -> Option<String> {
+    let joint = &urdf.joints[j];
+    let mimic = joint.mimic.as_ref()?;
+    let limit = joint.limit.as_ref()?;
+    if !matches!(joint.kind, JointType::Revolute | JointType::Prismatic) {
+        return None;
+    }
+    // as the robot's limits are read: missing values are 0, equal ones mean none
+    let (lower, upper) = (limit.lower.unwrap_or(0.0), limit.upper.unwrap_or(0.0));
+    let value = tree.held[j];
+    if lower >= upper || (lower..=upper).contains(&value) {
+        return None;
+    }
+    let followed = urdf.joints.iter().position(|m| m.name == mimic.joint)?;
+    // computed values: to six digits (0.1 * 3 + 0.8 is 1.1, not 1.1000000000000001)
+    let short = |v: f64| show(format!("{v:.5e}").parse().unwrap_or(v));
+    let unit = if joint.kind == JointType::Prismatic {
+        "m"
+    } else {
+        "rad"
+    };
+    Some(place.warning(
+        mimic.at.start,
+        &format!(
+            "joint `{}`, off the chain, follows joint `{}` through `<mimic>` (multiplier {}, \
+             offset {}), which holds it at {} {unit} where joint `{}` is held at {}, outside \
+             its own `<limit>` [{}, {}]: robid places the links it moves there, as the URDF's \
+             relation says (docs/urdf.md#choosing-the-chain), though the joint cannot go \
+             there; check the mimic's `offset` and `multiplier` against the joint's `lower` \
+             and `upper`",
+            joint.name,
+            mimic.joint,
+            show(mimic.multiplier),
+            show(mimic.offset),
+            short(value),
+            mimic.joint,
+            short(tree.held[followed]),
+            show(lower),
+            show(upper)
+        ),
+    ))
 }
 
 fn argument(which: &str, message: String, help: String) -> DescriptionError {
@@ -556,6 +606,19 @@ pub(super) fn choose(
     }
     if !errors.is_empty() {
         return Err(DescriptionError::from_errors(errors));
+    }
+    // the mimic joints held off the chain where the model uses them: in a body, or
+    // between the root and the base (they turn gravity)
+    let held_joints = below
+        .iter()
+        .filter(|&&l| l != base && body[l] > 0)
+        .filter_map(|&l| tree.parent[l])
+        .filter(|j| !path_names.contains_key(urdf.joints[*j].name.as_str()))
+        .chain(tree.path(tree.root, base).unwrap_or_default());
+    for j in held_joints {
+        if let Some(w) = mimic_beyond_limits(place, urdf, tree, j) {
+            warnings.push(w);
+        }
     }
     if let Some(at) = dynamics {
         warnings.push(place.warning(

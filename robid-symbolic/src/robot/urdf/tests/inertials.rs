@@ -288,3 +288,77 @@ fn mimic_joints_off_the_chain_are_held_where_their_relation_puts_them() {
         "{message}"
     );
 }
+
+/// A mimic joint held off the chain outside its own `<limit>` (the relation's offset
+/// beyond the joint's range) is warned about at its `<mimic>`, naming the joint, the
+/// relation, the value and the limits; the links are placed as the relation says all the
+/// same. Inside its limits, without limits, or in the fixed base (not used), nothing is
+/// said.
+#[test]
+fn a_mimic_joint_held_outside_its_limits_is_warned_about() {
+    let read = |text: &str| {
+        Robot::from_urdf(text, "t.urdf", &selection(None, Some("hand")))
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let mimic_warnings = |chain: &UrdfChain| -> Vec<String> {
+        chain
+            .warnings
+            .iter()
+            .filter(|w| w.contains("<mimic>"))
+            .cloned()
+            .collect()
+    };
+    assert!(mimic_warnings(&read(MIMIC_HAND)).is_empty());
+    let f2_limit =
+        "<limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"2\"/>\n    <mimic joint=\"f1\"";
+    let narrow = MIMIC_HAND.replace(
+        f2_limit,
+        "<limit lower=\"-0.5\" upper=\"0.5\" effort=\"10\" velocity=\"2\"/>\n    <mimic joint=\"f1\"",
+    );
+    assert_ne!(narrow, MIMIC_HAND);
+    let chain = read(&narrow);
+    let warned = mimic_warnings(&chain);
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    assert_eq!(
+        warned[0],
+        "t.urdf:18:19: joint `f2`, off the chain, follows joint `f1` through `<mimic>` \
+         (multiplier 1, offset 0.8), which holds it at 0.8 rad where joint `f1` is held at 0, \
+         outside its own `<limit>` [-0.5, 0.5]: robid places the links it moves there, as the \
+         URDF's relation says (docs/urdf.md#choosing-the-chain), though the joint cannot go \
+         there; check the mimic's `offset` and `multiplier` against the joint's `lower` and \
+         `upper`"
+    );
+    // placed as the relation says all the same
+    assert_eq!(chain.links[0].inertial, read(MIMIC_HAND).links[0].inertial);
+    // the prismatic f3 = 2 f2 + 0.1 at 1.7 m, beyond [0, 1]
+    let short = MIMIC_HAND.replace(
+        "<limit lower=\"-2\" upper=\"2\" effort=\"10\" velocity=\"2\"/>\n    <mimic joint=\"f2\"",
+        "<limit lower=\"0\" upper=\"1\" effort=\"10\" velocity=\"2\"/>\n    <mimic joint=\"f2\"",
+    );
+    let warned = mimic_warnings(&read(&short));
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    assert!(
+        warned[0].contains("joint `f3`, off the chain, follows joint `f2` through `<mimic>` (multiplier 2, offset 0.1), which holds it at 1.7 m where joint `f2` is held at 0.8, outside its own `<limit>` [0, 1]"),
+        "{}",
+        warned[0]
+    );
+    // without a <limit>, or equal lower and upper (no position limits): nothing to check
+    for text in [
+        MIMIC_HAND.replace(f2_limit, "<mimic joint=\"f1\""),
+        MIMIC_HAND.replace(
+            f2_limit,
+            "<limit lower=\"0\" upper=\"0\" effort=\"10\" velocity=\"2\"/>\n    <mimic joint=\"f1\"",
+        ),
+    ] {
+        assert!(mimic_warnings(&read(&text)).is_empty());
+    }
+    // a flap fixed to the base's side, which the model does not use
+    let flap = MIMIC_HAND.replace(
+        "</robot>",
+        "<link name=\"flap\"/><joint name=\"flap\" type=\"revolute\"><parent link=\"base\"/><child link=\"flap\"/>\
+         <limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"f1\" offset=\"5\"/></joint>\n</robot>",
+    );
+    let chain = Robot::from_urdf(&flap, "t.urdf", &selection(Some("base"), Some("hand")))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(mimic_warnings(&chain).is_empty(), "{:?}", chain.warnings);
+}
