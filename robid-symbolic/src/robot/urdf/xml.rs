@@ -238,6 +238,9 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         );
         reader.warnings.push(w);
     }
+    if let Some(w) = without_limits(place, &joints) {
+        reader.warnings.push(w);
+    }
     reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
     reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
     if reader.errors.is_empty() {
@@ -657,6 +660,46 @@ impl Reader<'_> {
             }
         }
     }
+}
+
+/// One warning for the revolute and prismatic joints without `<limit>`, at the first,
+/// naming it and the others: robid reads them without limits, but the URDF format requires
+/// the element there, and urdfdom (the parser of ROS tools and Pinocchio) refuses the file.
+/// A continuous joint needs none.
+fn without_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
+    let bare: Vec<&Joint> = joints
+        .iter()
+        .filter(|j| matches!(j.kind, JointType::Revolute | JointType::Prismatic))
+        .filter(|j| j.limit.is_none())
+        .collect();
+    let (first, rest) = bare.split_first()?;
+    let kind = |j: &Joint| {
+        if j.kind == JointType::Prismatic {
+            "prismatic"
+        } else {
+            "revolute"
+        }
+    };
+    let others = match rest {
+        [] => String::new(),
+        [one] => format!(" (joint `{}` has none either)", one.name),
+        more => {
+            let names: Vec<String> = more.iter().map(|j| format!("`{}`", j.name)).collect();
+            format!(" (joints {} have none either)", names.join(", "))
+        }
+    };
+    Some(place.warning(
+        first.range.start,
+        &format!(
+            "joint `{}` is {} but has no `<limit>`: robid reads it without position, velocity \
+             or torque limits, but the URDF format requires the element for revolute and \
+             prismatic joints, and urdfdom, the parser of ROS tools and Pinocchio, refuses \
+             the file; add `<limit lower=\"..\" upper=\"..\" effort=\"..\" velocity=\"..\"/>`, \
+             or make a joint that turns without end `type=\"continuous\"`{others}",
+            first.name,
+            kind(first)
+        ),
+    ))
 }
 
 /// The fix for position limits written as huge numbers to mean none.

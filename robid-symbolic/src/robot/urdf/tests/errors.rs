@@ -622,7 +622,9 @@ fn inertials_of_no_body_are_warned_about_on_the_chains_bodies() {
             "none" => inertial("0", &tensor("0", "0", "0", "0")),
             _ => inertial("1", &tensor("0.02", "0", "0.03", "0.04")),
         };
-        arm(&format!("{J1}{J2}"))
+        // with limits: a joint without is warned about too
+        let limit = "<limit effort=\"1\" velocity=\"1\"/></joint>";
+        arm(&format!("{J1}{J2}").replace("</joint>", limit))
             .replace(
                 "<link name=\"b\"/>",
                 &format!("<link name=\"b\">{}</link>", link(b)),
@@ -688,4 +690,66 @@ fn inertials_of_no_body_are_warned_about_on_the_chains_bodies() {
     let chain = read(&beside);
     assert!(chain.warnings.is_empty(), "{:?}", chain.warnings);
     assert!(chain.unphysical.is_empty());
+}
+
+/// A revolute or prismatic joint without `<limit>` (which urdfdom, and so ROS tools and
+/// Pinocchio, refuse) is read without limits and warned about once, at the first, naming
+/// the others (it used to be accepted without a word); a continuous joint needs none.
+#[test]
+fn revolute_and_prismatic_joints_without_limits_are_warned_about() {
+    let limit = "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>";
+    let limited = arm(&format!("{J1}{J2}").replace("</joint>", limit));
+    let read = |text: &str| {
+        Robot::from_urdf(text, "t.urdf", &ChainSelection::default())
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let about_limits = |chain: &UrdfChain| -> Vec<String> {
+        chain
+            .warnings
+            .iter()
+            .filter(|w| w.contains("<limit>"))
+            .cloned()
+            .collect()
+    };
+    assert!(about_limits(&read(&limited)).is_empty());
+    let continuous = arm(&format!("{J1}{}", J2.replace("</joint>", limit)).replace(
+        "revolute\"><parent link=\"a\"",
+        "continuous\"><parent link=\"a\"",
+    ));
+    assert!(continuous.contains("continuous"));
+    assert!(about_limits(&read(&continuous)).is_empty());
+    let chain = read(&arm(&format!("{J1}{}", J2.replace("</joint>", limit))));
+    assert_eq!(
+        about_limits(&chain),
+        [
+            "t.urdf:5:1: joint `j1` is revolute but has no `<limit>`: robid reads it without \
+          position, velocity or torque limits, but the URDF format requires the element for \
+          revolute and prismatic joints, and urdfdom, the parser of ROS tools and Pinocchio, \
+          refuses the file; add `<limit lower=\"..\" upper=\"..\" effort=\"..\" \
+          velocity=\"..\"/>`, or make a joint that turns without end `type=\"continuous\"`"
+        ]
+    );
+    assert!(chain.robot.joints()[0].limits.position.is_none());
+    let chain = read(&arm(&format!(
+        "{J1}{}",
+        J2.replace("revolute", "prismatic")
+    )));
+    let warned = about_limits(&chain);
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    assert!(
+        warned[0].starts_with("t.urdf:5:1: joint `j1` is revolute but has no `<limit>`")
+            && warned[0].ends_with("(joint `j2` has none either)"),
+        "{}",
+        warned[0]
+    );
+    let chain = read(&arm(&format!(
+        "{}{J1}",
+        J2.replace("revolute", "prismatic")
+    )));
+    assert!(
+        about_limits(&chain)[0]
+            .starts_with("t.urdf:5:1: joint `j2` is prismatic but has no `<limit>`"),
+        "{:?}",
+        chain.warnings
+    );
 }
