@@ -179,6 +179,31 @@ pub enum DataError {
         /// What to do.
         fix: &'static str,
     },
+    /// A step between two time stamps longer than [`crate::data::GAP_RATIO`] times the
+    /// median step: the recording stopped there, and interpolating across the gap would
+    /// invent the motion.
+    #[error(
+        "{location}: the time stamps jump from {} s to {} s, a gap of {} s, {} times the median step of {} s (more than {} is a gap, not jitter): the recording stopped there, and no motion can be interpolated across it; {fix}",
+        Num(*from),
+        Num(*to),
+        Num::rounded(*to - *from, 6),
+        Num::rounded_keeping((*to - *from) / *median, 3, |r| r > crate::data::GAP_RATIO),
+        Num::rounded(*median, 6),
+        crate::data::GAP_RATIO
+    )]
+    TimeGap {
+        /// Where: `file:line` of the sample after the gap, or the sample of what holds the
+        /// time stamps.
+        location: String,
+        /// The time stamp before the gap (s).
+        from: f64,
+        /// The time stamp after it (s).
+        to: f64,
+        /// The median step (s).
+        median: f64,
+        /// What to do.
+        fix: &'static str,
+    },
     /// The number of joints in the data does not match the model.
     #[error(
         "{context}: {found} joints, the model has {expected}; list exactly one column per joint"

@@ -12,7 +12,7 @@ use crate::data::dataset::DataOrigin;
 use crate::data::rate::{RATE_CHECK_ROWS, Steps, UnreadTime, check_rate, unread_time_column};
 use crate::data::table::{Optional, read_columns_in};
 use crate::data::time::{
-    check_monotonic, check_sample_time, interpolate, regularity, uniform_grid,
+    check_gaps, check_monotonic, check_sample_time, interpolate, regularity, uniform_grid,
 };
 use crate::data::{
     AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
@@ -124,6 +124,11 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         }
         check_ranges(&table, &names, &spans, dof)?;
         let time = take_time(config, &mut table)?;
+        // a file kept on disk (`SpilledRecord`) with a gap is loaded here instead: its
+        // clock is irregular
+        if let Some(t) = &time {
+            check_gaps(t, |k| table.location(k), GAP_FIX)?;
+        }
         if let Some(column) = &unread_time {
             let mut steps = Steps::default();
             steps.push(&table.columns.pop().unwrap_or_default());
@@ -397,6 +402,11 @@ pub(crate) fn take_time(config: &Config, table: &mut Table) -> Result<Option<Vec
     check_monotonic(&t, &table.lines, &table.path)?;
     Ok(Some(t))
 }
+
+/// The end of the message about a gap in a data file's time stamps.
+const GAP_FIX: &str = "split the file at this line into two files, each recorded without a \
+     pause, and give them as runs (`[runs] files = [\"before.csv\", \"after.csv\"]`, \
+     identified one by one and together), or delete the rows on one side of the gap";
 
 /// Checks the mean time step of `path` against the sample rates robid takes
 /// ([`check_sample_time`], the rule trajectories share), at the `time_scale` key.

@@ -35,9 +35,9 @@ pub use table::{
     ColumnMapping, Table, WINDOW, for_each_window, read_columns, read_columns_from, read_header,
 };
 pub use time::{
-    IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,
+    GAP_RATIO, IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,
 };
-pub(crate) use time::{check_time_stamps, sample_time_accepted};
+pub(crate) use time::{check_gaps, check_time_stamps, sample_time_accepted};
 
 #[cfg(test)]
 mod tests;

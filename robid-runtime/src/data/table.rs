@@ -46,6 +46,15 @@ impl Table {
         self.lines.len()
     }
 
+    /// `file:line` of row `k` (0-based), for messages.
+    pub fn location(&self, k: usize) -> String {
+        format!(
+            "{}:{}",
+            self.path.display(),
+            self.lines.get(k).copied().unwrap_or(0)
+        )
+    }
+
     /// Checks that column `index` (named `name` in messages) lies within the range of
     /// `quantity` ([`Quantity::limit`]); the error names the file, line and column.
     pub fn check_range(&self, index: usize, name: &str, quantity: Quantity) -> Result<()> {
@@ -55,11 +64,7 @@ impl Table {
         match quantity.first_outside(column) {
             None => Ok(()),
             Some(k) => Err(Error::Data(DataError::OutOfRange {
-                location: format!(
-                    "{}:{}",
-                    self.path.display(),
-                    self.lines.get(k).copied().unwrap_or(0)
-                ),
+                location: self.location(k),
                 what: format!("column `{name}`"),
                 quantity: quantity.name(),
                 value: column[k],

@@ -222,6 +222,68 @@ fn irregular_time_is_resampled_with_a_warning() {
     }
 }
 
+/// A 1 kHz log of `rows` rows, `t,q1,tau1`, whose clock pauses for `pause` seconds
+/// after row `at` and jitters by up to `jitter` of a step.
+fn paused_log(rows: usize, at: usize, pause: f64, jitter: f64) -> String {
+    let mut csv = String::from("t,q1,tau1\n");
+    for k in 0..rows {
+        let wobble = jitter * 1e-3 * ((k * 7919) % 13) as f64 / 12.0;
+        let t = k as f64 * 1e-3 + wobble + if k > at { pause } else { 0.0 };
+        csv.push_str(&format!("{t},{},1\n", (3.0 * t).sin()));
+    }
+    csv
+}
+
+/// A log whose clock pauses (the logger stopped 30 s in the middle of a 1 kHz record)
+/// is refused, naming the line after the gap, both time stamps, the gap against the
+/// median step, and the fix; it used to be resampled onto a grid of the mean step (20 ms)
+/// with a warning, the 30 s bridged by a straight line. Jitter and a few lost ticks
+/// still load, with the warning about irregular steps.
+#[test]
+fn a_gap_in_the_time_stamps_is_refused_with_its_line() {
+    let d = Dir::new();
+    let text = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"";
+    let a = d.file("paused.csv", &paused_log(3000, 1499, 30.0, 0.0));
+    let e = load(&cfg(text), std::slice::from_ref(&a), 1).unwrap_err();
+    assert!(
+        matches!(&e, Error::Data(DataError::TimeGap { location, .. })
+            if *location == format!("{}:1502", a.display())),
+        "{e}"
+    );
+    let message = e.to_string();
+    for part in [
+        "the time stamps jump from 1.499 s to 31.5 s, a gap of 30.001 s, 30000 times the \
+         median step of 0.001 s (more than 10 is a gap, not jitter)",
+        "split the file at this line into two files",
+        "[runs] files = [",
+        "or delete the rows on one side of the gap",
+    ] {
+        assert!(message.contains(part), "{part}: {message}");
+    }
+    // just above the threshold, on the second source too
+    let b = d.file("q.csv", &paused_log(300, 100, 0.0095, 0.0));
+    let c = d.file("tau.csv", &paused_log(300, 200, 0.0, 0.0));
+    let e = load(&cfg(TIMED), &[c, b.clone()], 1)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with(&format!("{}:103: ", b.display())) && e.contains("10.5 times"),
+        "{e}"
+    );
+    // just below it: a hole of 9.5 steps is resampled with the warning
+    let b = d.file("q.csv", &paused_log(300, 100, 0.0085, 0.0));
+    let data = load(&cfg(text), std::slice::from_ref(&b), 1).unwrap();
+    assert!(
+        matches!(data.warnings[0], Warning::IrregularTime { .. }),
+        "{:?}",
+        data.warnings
+    );
+    // jitter of 40 % of a step and a lost tick load as before
+    let b = d.file("q.csv", &paused_log(3000, 700, 0.001, 0.4));
+    let data = load(&cfg(text), std::slice::from_ref(&b), 1).unwrap();
+    assert!(matches!(data.warnings[0], Warning::IrregularTime { .. }));
+}
+
 #[test]
 fn non_monotonic_time_names_the_line() {
     let d = Dir::new();

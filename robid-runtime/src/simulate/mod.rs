@@ -191,4 +191,49 @@ pub(crate) mod run_tests {
             }
         }
     }
+
+    /// A trajectory whose time stamps pause (a step of more than `GAP_RATIO` median
+    /// steps) is refused, by the reader naming the file and line and by `Simulation::run`
+    /// naming the sample, exactly when the loader refuses the same file as data: the data
+    /// simulated across the gap used to be written, for `robid identify` to refuse.
+    #[test]
+    fn time_stamps_with_a_gap_are_refused_as_identification_refuses_them() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = Pendulum::default();
+        let header = "t,q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2";
+        for (gap, accepted) in [(0.2, false), (0.11, false), (0.09, true)] {
+            // 30 steps of 10 ms, the 21st replaced by the gap
+            let t: Vec<f64> = (0..=30)
+                .map(|k| 0.01 * k as f64 + if k > 20 { gap - 0.01 } else { 0.0 })
+                .collect();
+            let f = dir.path().join("traj.csv");
+            let rows: Vec<String> = t.iter().map(|t| format!("{t},0,0,0,0,0,0,0,0")).collect();
+            std::fs::write(&f, format!("{header}\n{}\n", rows.join("\n"))).unwrap();
+            let read = Trajectory::read_csv(&f, 2);
+            let loaded = crate::data::load(
+                &crate::data::Config::default_mapping(),
+                std::slice::from_ref(&f),
+                2,
+            );
+            assert_eq!(read.is_ok(), accepted, "{gap}: {read:?}");
+            assert_eq!(loaded.is_ok(), accepted, "{gap}: {:?}", loaded.err());
+            if accepted {
+                continue;
+            }
+            let run = Simulation::default().run(&p, &p.base(), &Trajectory::zeros(2, t));
+            for (e, place) in [
+                (read.unwrap_err(), format!("{}:23", f.display())),
+                (run.unwrap_err(), "reference trajectory, sample 21 (t = ".to_string()),
+            ] {
+                let text = e.to_string();
+                assert!(
+                    matches!(e, Error::Data(DataError::TimeGap { .. }))
+                        && text.starts_with(&place)
+                        && text.contains("the time stamps jump from 0.2 s to ")
+                        && text.contains("split it at the gap into two trajectories"),
+                    "{text}"
+                );
+            }
+        }
+    }
 }

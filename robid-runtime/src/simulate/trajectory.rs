@@ -39,6 +39,12 @@ const TIME_FIX: &str = "`t` must be in seconds, at a rate identification takes (
      simulated from it would be refused): convert it to seconds, or sample the trajectory at a \
      rate in that range";
 
+/// The end of the message about a gap in a trajectory's time stamps: the data simulated
+/// across it would be refused by identification.
+const GAP_FIX: &str = "the data simulated from it would be refused: sample the trajectory \
+     without the gap (robid excite writes one on a uniform grid), or split it at the gap into \
+     two trajectories";
+
 /// Header names `prefix1..prefixn`.
 fn names(prefix: &str, n: usize) -> impl Iterator<Item = String> + '_ {
     (1..=n).map(move |j| format!("{prefix}{j}"))
@@ -128,6 +134,7 @@ impl Trajectory {
         }
         crate::data::check_monotonic(&t, &table.lines, path)?;
         crate::data::check_time_stamps(&t, || path.display().to_string(), TIME_FIX)?;
+        crate::data::check_gaps(&t, |k| table.location(k), GAP_FIX)?;
         let mut take = || Signals::new((0..dof).map(|_| cols.next().unwrap_or_default()).collect());
         let (q, qd, qdd) = (take()?, take()?, take()?);
         Ok(Self { t, q, qd, qdd })
@@ -201,6 +208,7 @@ impl Trajectory {
             ));
         }
         crate::data::check_time_stamps(&self.t, || what.to_string(), TIME_FIX)?;
+        crate::data::check_gaps(&self.t, at, GAP_FIX)?;
         for (name, block, quantity) in [
             ("q", &self.q, Quantity::Position),
             ("qd", &self.qd, Quantity::Velocity),

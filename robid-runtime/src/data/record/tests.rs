@@ -365,3 +365,39 @@ fn a_time_column_that_is_not_a_clock_is_not_checked() {
         .collect();
     assert_eq!(loads(two), Ok(()));
 }
+
+/// A log whose clock pauses is refused as `load` refuses it, also when it would be kept
+/// on disk: its clock is irregular, so it is loaded in memory, where the gap is named.
+#[test]
+fn a_paused_clock_is_refused_as_load_refuses_it() {
+    let dir = tempfile::tempdir().unwrap();
+    // the logger stopped for 30 s after row 1800
+    let mut rows: Vec<String> = log(3000).lines().map(str::to_string).collect();
+    let header = rows.iter().position(|r| r.starts_with("t,")).unwrap();
+    let mut data_rows = 0;
+    for r in rows.iter_mut().skip(header + 1) {
+        if let Some((t, rest)) = r.split_once(',')
+            && let Ok(t) = t.parse::<f64>()
+        {
+            if data_rows > 1800 {
+                *r = format!("{},{rest}", t + 30.0);
+            }
+            data_rows += 1;
+        }
+    }
+    let path = file(&dir, &(rows.join("\n") + "\n"));
+    let config = config(CONFIG);
+    assert!(
+        SpilledRecord::open_in(&config, std::slice::from_ref(&path), 3, SMALL)
+            .unwrap()
+            .is_none()
+    );
+    let dense = load(&config, std::slice::from_ref(&path), 3).unwrap_err();
+    let record = load_record_in(&config, &[path], 3, SMALL).err().unwrap();
+    assert!(
+        matches!(&record, Error::Data(DataError::TimeGap { .. })),
+        "{record}"
+    );
+    assert_eq!(record.to_string(), dense.to_string());
+    assert!(record.to_string().contains("the time stamps jump from 1.8 s to 31.801 s"), "{record}");
+}
