@@ -18,6 +18,7 @@ use crate::data::{
     AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
 };
 use crate::drive::DriveChain;
+use crate::Num;
 use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, Quantity, check_size};
 use crate::signal::Signals;
@@ -433,12 +434,14 @@ pub(crate) fn check_cutoff(config: &Config, sample_time: f64) -> Result<()> {
         if !(cutoff < nyquist && cutoff >= min) {
             return Err(config.key_error(
                 "processing.lowpass.cutoff",
+                // the cutoff as typed; the bounds, computed from a sample time that may
+                // be measured from time stamps, rounded, but never onto the cutoff
                 format!(
                     "{} Hz is outside [{}, {}) Hz for data sampled at {} Hz (below the Nyquist frequency, above {:e} of it so that the filter can be represented); choose a cutoff in that range",
                     crate::error::num(cutoff),
-                    crate::error::num(min),
-                    crate::error::num(nyquist),
-                    crate::error::num(1.0 / sample_time),
+                    Num::rounded_keeping(min, 6, |m| (cutoff < m) == (cutoff < min)),
+                    Num::rounded_keeping(nyquist, 6, |n| (cutoff < n) == (cutoff < nyquist)),
+                    Num::rounded(1.0 / sample_time, 6),
                     crate::signal::MIN_CUTOFF
                 ),
             ));

@@ -12,6 +12,7 @@
 use crate::DataError;
 use crate::data::{Config, Cutoff, Dataset, Derivative, Record, Signal, joined_with};
 use crate::drive::FrictionModel;
+use crate::Num;
 use crate::error::{Error, Result, num};
 use crate::inspect::{CutoffSuggestion, suggest_cutoff};
 use crate::signal::{SavitzkyGolay, Signals, Sos, butterworth_hz, central_difference};
@@ -438,9 +439,9 @@ impl Plan {
                             "processing.lowpass.cutoff"
                         },
                         format!(
-                            "{problem} (cutoff {} Hz, data sampled at {:.6} Hz)",
-                            cutoff,
-                            1.0 / dt
+                            "{problem} (cutoff {} Hz, data sampled at {} Hz)",
+                            num(cutoff),
+                            Num::rounded(1.0 / dt, 6)
                         ),
                     ),
                     e => e,
@@ -520,11 +521,15 @@ impl Plan {
                 } else {
                     ("raise", "far below the Nyquist frequency")
                 };
+                // the cutoff as typed, or as chosen; the Nyquist frequency of a sample
+                // time measured from time stamps rounded (499.9999879160976 Hz from Unix
+                // time stamps at 1 kHz), but never onto the cutoff below it
                 let chosen = if auto_cutoff.is_some() {
-                    format!("\"auto\" chose {} Hz, which", num(c))
+                    format!("\"auto\" chose {} Hz, which", Num::rounded(c, 6))
                 } else {
                     format!("{} Hz", num(c))
                 };
+                let nyquist_shown = Num::rounded_keeping(nyquist, 6, |n| n > c);
                 return Err(Error::setting(
                     "Config",
                     "processing.lowpass.cutoff",
@@ -533,11 +538,11 @@ impl Plan {
                          cutoff {side}, {} Hz, settles slowly), which leaves {found} of the {} \
                          samples of {}{} (at least 2 are needed); {way} it: the filter settles \
                          fastest near half the Nyquist frequency, {} Hz; or use a longer record",
-                        num(nyquist),
+                        nyquist_shown,
                         hi - lo,
                         data.name(),
                         joined_with(data),
-                        num(0.5 * nyquist)
+                        Num::rounded(0.5 * nyquist, 6)
                     ),
                 ));
             }

@@ -337,6 +337,49 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
     }
 }
 
+/// The message about a cutoff that settles over the record writes the Nyquist frequency
+/// of a sample time measured from time stamps rounded, as the other messages do: from
+/// Unix time stamps at 1 kHz (`1.7e9 + k / 1000`, whose mean step is 1 ms to 1e-8) it
+/// wrote "499.9999879160976 Hz" and "249.9999939580488 Hz". So does the load's message
+/// about a cutoff beyond the Nyquist frequency.
+#[test]
+fn the_settling_message_writes_the_nyquist_frequency_rounded() {
+    let model = Synthetic::default();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("unix.csv");
+    let text = csv_with_noise(3000, 1000.0, [0.0; DOF]);
+    let mut lines = text.lines();
+    let mut csv = lines.next().unwrap().to_string() + "\n";
+    for line in lines {
+        let (t, rest) = line.split_once(',').unwrap();
+        let t: f64 = t.parse().unwrap();
+        csv += &format!("{},{rest}\n", 1.7e9 + t);
+    }
+    std::fs::write(&file, csv).unwrap();
+    for cutoff in ["0.01", "499.9"] {
+        let text = CONFIG.replace("cutoff = 20.0", &format!("cutoff = {cutoff}"));
+        let config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+        let data = load(&config, std::slice::from_ref(&file), DOF).unwrap();
+        assert_ne!(0.5 / data.sample_time, 500.0);
+        let e = identify(&model, &data, &config).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("`processing.lowpass.cutoff`: {cutoff} Hz settles over "))
+                && e.contains("the Nyquist frequency, 500 Hz, settles slowly")
+                && e.contains("settles fastest near half the Nyquist frequency, 250 Hz;"),
+            "{e}"
+        );
+    }
+    let text = CONFIG.replace("cutoff = 20.0", "cutoff = 600");
+    let config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+    let e = load(&config, std::slice::from_ref(&file), DOF)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("600 Hz is outside [0.005, 500) Hz for data sampled at 1000 Hz"),
+        "{e}"
+    );
+}
+
 /// A low-pass whose settling takes the whole record is an error at its cutoff that says
 /// which way to move it: down for a cutoff near the Nyquist frequency (499.9 Hz at 1 kHz
 /// used to be told to "raise the low-pass cutoff", which the Nyquist frequency forbids),
