@@ -10,9 +10,9 @@
 //! record, the larger of the two counts is dropped there (they overlap, they do not add).
 
 use crate::DataError;
+use crate::Num;
 use crate::data::{Config, Cutoff, Dataset, Derivative, Record, Signal, joined_with};
 use crate::drive::FrictionModel;
-use crate::Num;
 use crate::error::{Error, Result, num};
 use crate::inspect::{CutoffSuggestion, suggest_cutoff};
 use crate::signal::{SavitzkyGolay, Signals, Sos, butterworth_hz, central_difference};

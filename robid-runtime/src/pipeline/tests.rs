@@ -363,8 +363,9 @@ fn the_settling_message_writes_the_nyquist_frequency_rounded() {
         assert_ne!(0.5 / data.sample_time, 500.0);
         let e = identify(&model, &data, &config).unwrap_err().to_string();
         assert!(
-            e.contains(&format!("`processing.lowpass.cutoff`: {cutoff} Hz settles over "))
-                && e.contains("the Nyquist frequency, 500 Hz, settles slowly")
+            e.contains(&format!(
+                "`processing.lowpass.cutoff`: {cutoff} Hz settles over "
+            )) && e.contains("the Nyquist frequency, 500 Hz, settles slowly")
                 && e.contains("settles fastest near half the Nyquist frequency, 250 Hz;"),
             "{e}"
         );

@@ -223,7 +223,10 @@ pub(crate) mod run_tests {
             let run = Simulation::default().run(&p, &p.base(), &Trajectory::zeros(2, t));
             for (e, place) in [
                 (read.unwrap_err(), format!("{}:23", f.display())),
-                (run.unwrap_err(), "reference trajectory, sample 21 (t = ".to_string()),
+                (
+                    run.unwrap_err(),
+                    "reference trajectory, sample 21 (t = ".to_string(),
+                ),
             ] {
                 let text = e.to_string();
                 assert!(

@@ -399,5 +399,10 @@ fn a_paused_clock_is_refused_as_load_refuses_it() {
         "{record}"
     );
     assert_eq!(record.to_string(), dense.to_string());
-    assert!(record.to_string().contains("the time stamps jump from 1.8 s to 31.801 s"), "{record}");
+    assert!(
+        record
+            .to_string()
+            .contains("the time stamps jump from 1.8 s to 31.801 s"),
+        "{record}"
+    );
 }
