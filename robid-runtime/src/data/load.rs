@@ -8,6 +8,7 @@
 use crate::DataError;
 use std::path::{Path, PathBuf};
 
+use crate::Num;
 use crate::data::dataset::DataOrigin;
 use crate::data::rate::{RATE_CHECK_ROWS, Steps, UnreadTime, check_rate, unread_time_column};
 use crate::data::table::{Optional, read_columns_in};
@@ -18,7 +19,6 @@ use crate::data::{
     AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
 };
 use crate::drive::DriveChain;
-use crate::Num;
 use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, Quantity, check_size};
 use crate::signal::Signals;
@@ -83,6 +83,8 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     let mut rows: Option<(usize, PathBuf, Vec<u64>)> = None;
     let mut warnings = Vec::new();
     let mut samplings = Vec::new();
+    // the samples of the reference that every file joined to it by time covers
+    let mut overlap = 0..usize::MAX;
 
     for (index, (src, path)) in config.sources.iter().zip(&paths).enumerate() {
         let SourceColumns {
@@ -146,12 +148,19 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         match time {
             Some(t) => match &reference {
                 None => reference = Some((t, path.clone(), table.lines.clone())),
-                Some((tref, _, _)) => {
+                Some((tref, first, _)) => {
                     columns = columns.iter().map(|x| interpolate(&t, x, tref)).collect();
-                    let dropped = tref
-                        .iter()
-                        .filter(|&&s| s < t[0] || s > t[t.len() - 1])
-                        .count();
+                    // the samples of the reference within this file's time stamps: outside
+                    // them the interpolation holds its first or last value, which is no
+                    // measurement, so they are dropped below
+                    let (t0, t1) = (t[0], t[t.len() - 1]);
+                    let covered =
+                        tref.partition_point(|&s| s < t0)..tref.partition_point(|&s| s <= t1);
+                    overlap = overlap.start.max(covered.start)..overlap.end.min(covered.end);
+                    if overlap.len() < 2 {
+                        return Err(no_overlap(path, (t0, t1), first, tref, overlap.len()));
+                    }
+                    let dropped = tref.len() - covered.len();
                     if dropped > 0 {
                         warnings.push(Warning::PartialOverlap {
                             path: path.clone(),
@@ -183,6 +192,21 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         }
     }
 
+    if let Some((t, _, lines)) = &mut reference
+        && overlap.end < usize::MAX
+        && overlap.len() < t.len()
+    {
+        let n = t.len();
+        // blocks of files joined row by row have the reference's rows, else `assemble`
+        // names the mismatch
+        for x in blocks.iter_mut().flatten().flatten() {
+            if x.len() == n {
+                *x = x[overlap.clone()].to_vec();
+            }
+        }
+        *t = t[overlap.clone()].to_vec();
+        *lines = lines[overlap.clone()].to_vec();
+    }
     let (sample_time, origin) = match (&reference, config.sample_rate) {
         (Some((t, path, lines)), _) => {
             let (step, warning) = regularity(t, path);
@@ -223,6 +247,28 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     data.warnings = warnings;
     data.sampling = samplings;
     Ok(data)
+}
+
+/// The error for a file `path` whose time stamps, from `span.0` to `span.1`, leave fewer
+/// than 2 (`found`) samples of the first file joined by time, `first`, whose time
+/// stamps are `tref`, with every file joined to it.
+fn no_overlap(path: &Path, span: (f64, f64), first: &Path, tref: &[f64], found: usize) -> Error {
+    Error::TooFewSamples {
+        context: format!(
+            "{} (time stamps {} s to {} s) joined by time with {} ({} s to {} s), in the \
+             time every file covers",
+            path.display(),
+            Num(span.0),
+            Num(span.1),
+            first.display(),
+            Num(tref[0]),
+            Num(tref[tref.len() - 1])
+        ),
+        found,
+        required: 2,
+        hint: "join files recorded at the same time, with time stamps of one clock (the same \
+               origin and unit)",
+    }
 }
 
 /// The warning about stale rows when there are more than [`STALE_SHARE`] of them

@@ -284,6 +284,69 @@ fn a_gap_in_the_time_stamps_is_refused_with_its_line() {
     assert!(matches!(data.warnings[0], Warning::IrregularTime { .. }));
 }
 
+/// Files joined by time that overlap only partly give the overlap, as the warning says:
+/// the samples of the first file outside the second file's time stamps are dropped
+/// (they were kept, with the second file's first or last value held there: torques
+/// frozen while the positions move). Files that do not overlap are refused.
+#[test]
+fn files_joined_by_time_keep_only_their_overlap() {
+    let d = Dir::new();
+    // q = 2 t from 0 to 1 s, tau = 10 t from 0.3 s to 0.8 s
+    let mut q = String::from("t,q1\n");
+    for k in 0..=100 {
+        let t = 0.01 * k as f64;
+        q += &format!("{t},{}\n", 2.0 * t);
+    }
+    let mut tau = String::from("t,tau1\n");
+    for k in 30..=80 {
+        let t = 0.01 * k as f64;
+        tau += &format!("{t},{}\n", 10.0 * t);
+    }
+    let a = d.file("q.csv", &q);
+    let b = d.file("tau.csv", &tau);
+    let data = load(&cfg(TIMED), &[a.clone(), b.clone()], 1).unwrap();
+    assert_eq!(data.samples(), 51);
+    for k in 0..51 {
+        let t = 0.3 + 0.01 * k as f64;
+        assert!((data.q[0][k] - 2.0 * t).abs() < 1e-9, "{k}");
+        assert!((data.tau[0][k] - 10.0 * t).abs() < 1e-9, "{k}");
+    }
+    // the first sample is line 32 of q.csv (t = 0.3 s)
+    assert_eq!(crate::data::Record::line(&data, 0), Some(32));
+    assert_eq!(data.warnings.len(), 1, "{:?}", data.warnings);
+    let w = data.warnings[0].to_string();
+    assert!(
+        matches!(
+            data.warnings[0],
+            Warning::PartialOverlap { dropped: 50, .. }
+        ) && w.contains("50 samples of")
+            && w.contains("were dropped"),
+        "{w}"
+    );
+    // the other way round: the record is the overlap too
+    let reversed = "time_column = \"t\"\n[[source]]\ntorque = \"tau{}\"\n\
+                    [[source]]\nposition = \"q{}\"\n";
+    let data = load(&cfg(reversed), &[b, a.clone()], 1).unwrap();
+    assert_eq!(data.samples(), 51);
+    assert!(data.warnings.is_empty(), "{:?}", data.warnings);
+    // no overlap: an error naming both files and their time ranges
+    let mut late = String::from("t,tau1\n");
+    for k in 0..=10 {
+        late += &format!("{},1\n", 2.0 + 0.01 * k as f64);
+    }
+    let c = d.file("late.csv", &late);
+    let e = load(&cfg(TIMED), &[a.clone(), c.clone()], 1)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(&format!("{}", c.display()))
+            && e.contains(&format!("{}", a.display()))
+            && e.contains("2 s to 2.1 s")
+            && e.contains("0 s to 1 s"),
+        "{e}"
+    );
+}
+
 #[test]
 fn non_monotonic_time_names_the_line() {
     let d = Dir::new();

@@ -41,11 +41,13 @@ pub enum Warning {
         /// The file line of the first.
         first_line: u64,
     },
-    /// Files joined by time only overlap partly; samples outside the overlap were dropped.
+    /// Files joined by time only overlap partly: the samples of the first file outside
+    /// the time stamps of this one were dropped (the record is the time every file
+    /// covers).
     PartialOverlap {
         /// The file that was interpolated.
         path: PathBuf,
-        /// Samples of the reference dropped.
+        /// Samples of the first file outside this file's time stamps.
         dropped: usize,
     },
 }
@@ -84,7 +86,7 @@ impl fmt::Display for Warning {
             ),
             Warning::PartialOverlap { path, dropped } => write!(
                 f,
-                "{}: covers only part of the time range; {dropped} samples outside the overlap were dropped",
+                "{}: covers only part of the time range of the first file joined by time: the {dropped} samples of that file outside the time stamps of this one were dropped, keeping the time both cover",
                 path.display()
             ),
         }
