@@ -160,6 +160,12 @@ pub struct Config {
     /// Where this config came from (file, default mapping or code).
     #[serde(skip)]
     pub origin: ConfigOrigin,
+    /// Show the progress of the long steps of identification on standard error
+    /// ([`crate::progress`]): reading a record kept on disk ([`crate::data::load_record`])
+    /// and the passes of streaming least squares and of validation over it. Not a key of
+    /// the file: false (silent) unless set in code, as `robid identify` does.
+    #[serde(skip)]
+    pub progress: bool,
 }
 
 impl Default for Config {
@@ -179,6 +185,7 @@ impl Default for Config {
             runs: None,
             base_dir: None,
             origin: ConfigOrigin::Code,
+            progress: false,
         }
     }
 }
@@ -1183,6 +1190,23 @@ method = "wls"
             serde_json::to_string(&empty).unwrap()
         );
         default.check(6).unwrap();
+    }
+
+    /// Showing progress is a setting of the caller, not a key of the file: silent by
+    /// default and from any file, and `progress = true` in a file is an unknown key.
+    #[test]
+    fn progress_is_not_a_key_of_the_file() {
+        assert!(!Config::default().progress);
+        assert!(
+            !Config::from_toml_str(EXAMPLE, Path::new("a.toml"))
+                .unwrap()
+                .progress
+        );
+        let err = Config::from_toml_str("progress = true", Path::new("a.toml")).unwrap_err();
+        assert!(
+            err.to_string().contains("unknown field `progress`"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -33,6 +33,7 @@ use crate::pipeline::Identification;
 use crate::pipeline::identify::checked_plan;
 use crate::pipeline::observe::{Equations, Observer, RestCount, decimator_for, long_enough};
 use crate::pipeline::prepare::{Plan, Rows};
+use crate::progress::Progress;
 use crate::signal::Decimator;
 use crate::validate::{Prediction, UsedRows};
 
@@ -59,6 +60,8 @@ pub(crate) struct Stream<'a> {
     overlap: usize,
     block: usize,
     rest: Option<Vec<f64>>,
+    /// The equations are for an estimate (else for a validation's prediction).
+    estimating: bool,
 }
 
 impl<'a> Stream<'a> {
@@ -106,7 +109,19 @@ impl<'a> Stream<'a> {
             overlap,
             block,
             rest,
+            estimating,
         })
+    }
+
+    /// The progress of a pass over the kept samples titled `what` (shown when the config
+    /// asks for it: [`Config::progress`]).
+    fn progress(&self, what: &str) -> Progress {
+        Progress::new(
+            self.config.progress,
+            format!("identify: {what} of {}", self.data.name()),
+            self.plan.kept.len() as u64,
+            "samples",
+        )
     }
 
     /// Parameter names (base parameters, then extra columns).
@@ -162,6 +177,7 @@ impl<'a> Stream<'a> {
         // the channels before decimation, one set of buffers for every block
         let mut groups = Vec::new();
         let mut pending: Option<Equations> = None;
+        let progress = self.progress("least squares");
         for b in self.blocks() {
             let (next, folded) = rayon::join(
                 || {
@@ -184,6 +200,7 @@ impl<'a> Stream<'a> {
             // the earlier block's error first, as if they had run in turn
             folded?;
             pending = Some(next?);
+            progress.add(b.len() as u64);
         }
         pending.map_or(Ok(()), fold)
     }
@@ -233,8 +250,14 @@ impl<'a> Stream<'a> {
         // record order, the earliest block's error first
         let blocks = self.blocks();
         let mut rest = RestCount::default();
+        let progress = self.progress(if self.estimating {
+            "prediction"
+        } else {
+            "validation"
+        });
         for batch in blocks.chunks(rayon::current_num_threads().max(1)) {
             let parts: Vec<Result<_>> = batch.par_iter().map(block).collect();
+            progress.add(batch.iter().map(|b| b.len() as u64).sum());
             for part in parts {
                 let (part, filtered, count) = part?;
                 has_raw |= filtered;

@@ -343,6 +343,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         // only against the inputs: the folder may not exist yet (it is created)
         robid_runtime::output::refuse_inputs(&inputs, &plots)?;
     }
+    // the progress of reading a long log and of the streaming passes over it, as excite
+    // shows its design's
+    config.progress = true;
     // one record is read from its file block by block (a long log is never held whole);
     // repeated runs are loaded in memory
     let (sets, record) = match runs {

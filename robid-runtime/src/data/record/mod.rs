@@ -21,6 +21,7 @@ use crate::data::table::for_each_window_of;
 use crate::data::time::Clock;
 use crate::data::{Config, Dataset, Sampling, WINDOW, Warning};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::signal::Signals;
 
 /// Samples on a uniform time grid that can be read in blocks.
@@ -213,7 +214,17 @@ impl SpilledRecord {
         // the sample time only matters at the end: windows are checked at the config's rate
         // or at 1 kHz, which the limits always allow
         let checked_at = config.sample_rate.map_or(1e-3, |fs| 1.0 / fs);
-        for_each_window_of(path, &names, optional, window, |mut table, _| {
+        let progress = Progress::new(
+            config.progress,
+            format!("identify: reading {}", path.display()),
+            text_megabytes(path),
+            "MB",
+        );
+        let mut megabytes = 0;
+        for_each_window_of(path, &names, optional, window, |mut table, read| {
+            let read = (read / 1_000_000) as u64;
+            progress.add(read.saturating_sub(megabytes));
+            megabytes = megabytes.max(read);
             if table.rows() == 0 {
                 return Ok(());
             }
@@ -259,6 +270,7 @@ impl SpilledRecord {
             let lines = data.origin.as_ref().map_or(&[][..], |o| &o.lines);
             write(bytemuck::cast_slice::<u64, u8>(lines))
         })?;
+        progress.finish();
         let samples = chunks.last().map_or(0, |c| c.start + c.len);
         if samples < 2 {
             return Ok(None);
@@ -333,6 +345,20 @@ impl SpilledRecord {
 
     fn roles_kept(&self) -> usize {
         self.roles.iter().filter(|&&r| r).count()
+    }
+}
+
+/// The megabytes (1e6 bytes) of text in the file at `path`: its size when it is not
+/// compressed, else 0 (not known before it is read: [`Progress`] then counts without a
+/// total).
+fn text_megabytes(path: &Path) -> u64 {
+    let mut magic = [0u8; 2];
+    let gzip = File::open(path)
+        .and_then(|mut f| f.read_exact(&mut magic))
+        .is_ok_and(|()| magic == [0x1f, 0x8b]);
+    match std::fs::metadata(path) {
+        Ok(m) if !gzip => m.len().div_ceil(1_000_000),
+        _ => 0,
     }
 }
 

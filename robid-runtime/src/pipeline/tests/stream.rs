@@ -245,6 +245,8 @@ fn stacked_runs_stream_like_the_dense_path() {
 /// The same log identified and validated from a record kept on disk (read in windows of
 /// 64 KiB, several per block of the stream) and from the data set in memory: the same
 /// estimate, fit and prediction to the bit, since every block holds the same samples.
+/// The record on disk is read and identified with the progress shown (`Config::progress`,
+/// as `robid identify` sets it), which changes nothing in the results.
 #[test]
 fn a_record_on_disk_identifies_as_the_data_set_in_memory() {
     let dir = tempfile::tempdir().unwrap();
@@ -258,13 +260,18 @@ fn a_record_on_disk_identifies_as_the_data_set_in_memory() {
     let model = Synthetic::default();
     for method in [Method::Ols, Method::Wls] {
         let config = with("", method);
+        assert!(!config.progress, "a library call is silent");
+        let shown = Config {
+            progress: true,
+            ..config.clone()
+        };
         let files = [file.clone()];
         let memory = crate::data::load(&config, &files, DOF).unwrap();
-        let disk = crate::data::SpilledRecord::open_in(&config, &files, DOF, 64 << 10)
+        let disk = crate::data::SpilledRecord::open_in(&shown, &files, DOF, 64 << 10)
             .unwrap()
             .expect("one file on a regular clock is kept on disk");
         let (a, b) = (
-            identify(&model, &disk, &config).unwrap(),
+            identify(&model, &disk, &shown).unwrap(),
             identify(&model, &memory, &config).unwrap(),
         );
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
@@ -282,7 +289,7 @@ fn a_record_on_disk_identifies_as_the_data_set_in_memory() {
         );
         let values = &b.estimate.values;
         let (a, b) = (
-            validate(&model, &disk, &config, values).unwrap(),
+            validate(&model, &disk, &shown, values).unwrap(),
             validate(&model, &memory, &config, values).unwrap(),
         );
         assert_eq!((a.predicted, a.used), (b.predicted, b.used));
