@@ -181,11 +181,12 @@ pub enum DataError {
     },
     /// A step between two time stamps longer than [`crate::data::GAP_RATIO`] times the
     /// median step: the recording stopped there, and interpolating across the gap would
-    /// invent the motion.
+    /// invent the motion. The time stamps are written to 15 significant digits (those of
+    /// a time column in ms, scaled to seconds, end in rounding digits).
     #[error(
         "{location}: the time stamps jump from {} s to {} s, a gap of {} s, {} times the median step of {} s (more than {} is a gap, not jitter): the recording stopped there, and no motion can be interpolated across it; {fix}",
-        Num(*from),
-        Num(*to),
+        Num::rounded(*from, 15),
+        Num::rounded(*to, 15),
         Num::rounded(*to - *from, 6),
         Num::rounded_keeping((*to - *from) / *median, 3, |r| r > crate::data::GAP_RATIO),
         Num::rounded(*median, 6),

@@ -258,11 +258,11 @@ fn no_overlap(path: &Path, span: (f64, f64), first: &Path, tref: &[f64], found: 
             "{} (time stamps {} s to {} s) joined by time with {} ({} s to {} s), in the \
              time every file covers",
             path.display(),
-            Num(span.0),
-            Num(span.1),
+            Num::rounded(span.0, 15),
+            Num::rounded(span.1, 15),
             first.display(),
-            Num(tref[0]),
-            Num(tref[tref.len() - 1])
+            Num::rounded(tref[0], 15),
+            Num::rounded(tref[tref.len() - 1], 15)
         ),
         found,
         required: 2,

@@ -278,6 +278,21 @@ fn a_gap_in_the_time_stamps_is_refused_with_its_line() {
         "{:?}",
         data.warnings
     );
+    // a time column in ms, scaled to seconds (9 ms is 0.009000000000000001 s): the stamps
+    // are written without the rounding digits
+    let mut ms = String::from("t,q1,tau1\n");
+    for k in 0..300 {
+        let t = if k > 9 { k + 30_000 } else { k };
+        ms += &format!("{t},{},1\n", 0.01 * k as f64);
+    }
+    let b = d.file("ms.csv", &ms);
+    let e = load(&cfg(&format!("time_scale = 1e-3\n{text}")), &[b], 1)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("jump from 0.009 s to 30.01 s, a gap of 30.001 s"),
+        "{e}"
+    );
     // jitter of 40 % of a step and a lost tick load as before
     let b = d.file("q.csv", &paused_log(3000, 700, 0.001, 0.4));
     let data = load(&cfg(text), std::slice::from_ref(&b), 1).unwrap();
