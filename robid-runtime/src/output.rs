@@ -180,9 +180,18 @@ enum Target {
 /// Where `path` is written, or why it cannot be: it is a folder, or its folder does not
 /// exist or is a file. Looks, never creates or opens.
 fn target(path: &Path) -> Result<Target> {
-    // Write beside the file a link points to, so the rename replaces that file.
-    let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-    let metadata = std::fs::metadata(&target).ok();
+    let metadata = std::fs::metadata(path).ok();
+    // Write beside the file a link points to, so the rename replaces that file, or
+    // creates it when the link points to no file yet: replacing the link itself would
+    // lose it.
+    let (target, link) = if metadata.is_some() {
+        let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        (target, false)
+    } else if is_link(path) {
+        (follow_links(path)?, true)
+    } else {
+        (path.to_path_buf(), false)
+    };
     if metadata.as_ref().is_some_and(std::fs::Metadata::is_dir) {
         return Err(Error::Output(OutputError::Folder {
             path: path.to_path_buf(),
@@ -192,12 +201,46 @@ fn target(path: &Path) -> Result<Target> {
         return Ok(Target::Special(target));
     }
     let dir = folder_of(&target).to_path_buf();
-    check_parent(path, &dir)?;
+    check_parent(path, link.then_some(target.as_path()), &dir)?;
     Ok(Target::File {
         target,
         dir,
         permissions: metadata.map(|m| m.permissions()),
     })
+}
+
+/// The longest chain of symbolic links followed, as Linux's own limit: a longer one is
+/// taken for a loop.
+const MAX_LINKS: usize = 40;
+
+/// Whether `path` is a symbolic link (which may point to nothing).
+fn is_link(path: &Path) -> bool {
+    std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink())
+}
+
+/// The path that the symbolic link `path` leads to: each link of a chain replaced by its
+/// target, taken from the link's folder when relative, up to a path that is not a link
+/// (for a link that points to nothing, the file to create). Nothing is created or
+/// opened; the path is not simplified (`a/../b` is left to the system, which follows a
+/// link `a` before `..`). A chain longer than [`MAX_LINKS`] (a loop) is refused.
+fn follow_links(path: &Path) -> Result<PathBuf> {
+    let mut at = path.to_path_buf();
+    for _ in 0..=MAX_LINKS {
+        if !is_link(&at) {
+            return Ok(at);
+        }
+        let to = std::fs::read_link(&at).map_err(|e| {
+            Error::Output(OutputError::Write {
+                path: path.to_path_buf(),
+                reason: format!("cannot read the symbolic link {}: {e}", at.display()),
+            })
+        })?;
+        // an absolute target replaces the folder; a bare name's folder is left unsaid
+        at = at.parent().unwrap_or(Path::new("")).join(to);
+    }
+    Err(Error::Output(OutputError::LinkLoop {
+        path: path.to_path_buf(),
+    }))
 }
 
 /// The folder `path` lies in: its parent, or `.` for a bare name.
@@ -209,15 +252,30 @@ fn folder_of(path: &Path) -> &Path {
 }
 
 /// Refuses an output whose folder `dir` does not exist or is a file, naming the output
-/// `path` as given and the folder.
-fn check_parent(path: &Path, dir: &Path) -> Result<()> {
+/// `path` as given, the folder, and for a symbolic link to no file yet the file it
+/// points to, `link`.
+fn check_parent(path: &Path, link: Option<&Path>, dir: &Path) -> Result<()> {
     use std::io::ErrorKind::{NotADirectory, NotFound};
     let (path, folder) = (path.to_path_buf(), dir.to_path_buf());
-    let problem = match std::fs::metadata(dir) {
+    let missing = match std::fs::metadata(dir) {
         Ok(m) if m.is_dir() => return Ok(()),
-        Err(e) if e.kind() == NotFound => OutputError::NoFolder { path, folder },
+        Err(e) if e.kind() == NotFound => true,
         Err(e) if e.kind() != NotADirectory => return Ok(()), // the writer says what failed
-        _ => OutputError::NotAFolder { path, folder },
+        _ => false,
+    };
+    let problem = match (link, missing) {
+        (None, true) => OutputError::NoFolder { path, folder },
+        (None, false) => OutputError::NotAFolder { path, folder },
+        (Some(target), true) => OutputError::LinkNoFolder {
+            path,
+            target: target.to_path_buf(),
+            folder,
+        },
+        (Some(target), false) => OutputError::LinkNotAFolder {
+            path,
+            target: target.to_path_buf(),
+            folder,
+        },
     };
     Err(Error::Output(problem))
 }
@@ -303,12 +361,12 @@ fn file_id(path: &Path) -> Option<FileId> {
         #[cfg(not(unix))]
         Ok(_) => Some(FileId::Canonical(std::fs::canonicalize(path).ok()?)),
         Err(_) => {
-            let dir = match path.parent() {
-                Some(d) if !d.as_os_str().is_empty() => d,
-                _ => Path::new("."),
-            };
+            // a symbolic link to no file yet is the file it would create
+            let path = follow_links(path).ok()?;
             Some(FileId::New(
-                std::fs::canonicalize(dir).ok()?.join(path.file_name()?),
+                std::fs::canonicalize(folder_of(&path))
+                    .ok()?
+                    .join(path.file_name()?),
             ))
         }
     }
@@ -372,6 +430,41 @@ pub enum OutputError {
         path: PathBuf,
         /// Its folder.
         folder: PathBuf,
+    },
+    /// The output is a symbolic link to a file that does not exist yet (which the writer
+    /// would create, keeping the link), in a folder that does not exist.
+    #[error(
+        "{path}: is a symbolic link to {target}, whose folder {folder} does not exist; create the folder, or remove the link to write a file in its place"
+    )]
+    LinkNoFolder {
+        /// The output, as given.
+        path: PathBuf,
+        /// The file the link points to, through every link of a chain.
+        target: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+    },
+    /// The output is a symbolic link to a file that does not exist yet, in a folder that
+    /// is a file or lies under one.
+    #[error(
+        "{path}: is a symbolic link to {target}, but {folder} is not a folder (it, or one above it, is a file); remove the link to write a file in its place, or point it into a folder"
+    )]
+    LinkNotAFolder {
+        /// The output, as given.
+        path: PathBuf,
+        /// The file the link points to, through every link of a chain.
+        target: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+    },
+    /// The output is a symbolic link that leads back to itself (`a -> b`, `b -> a`), or
+    /// a chain of more than 40 links.
+    #[error(
+        "{path}: is a symbolic link that leads back to itself (a loop of links, or a chain of more than 40); remove the link, or give another path"
+    )]
+    LinkLoop {
+        /// The output, as given.
+        path: PathBuf,
     },
     /// The output is a pipe (`-o /dev/stdout | head -1`) whose reader closed it before
     /// the output was complete: the end of the conversation, not a fault of the path. A
@@ -454,6 +547,149 @@ mod tests {
         write_bytes(&link, b"b").unwrap();
         assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
         assert_eq!(std::fs::read_to_string(&real).unwrap(), "b");
+    }
+
+    /// A link to a file that does not exist yet (`w.h -> ../include/q.h`) creates that
+    /// file and stays a link, whether its target is absolute or relative (to the link's
+    /// folder), and through a chain of links; before, the link was replaced by a file.
+    /// The check before the work passes it, and it is the same output as its target.
+    #[test]
+    #[cfg(unix)]
+    fn a_link_to_no_file_yet_creates_its_target_and_is_kept() {
+        use std::os::unix::fs::symlink;
+        let dir = tempfile::tempdir().unwrap();
+        let (here, there) = (dir.path().join("here"), dir.path().join("there"));
+        std::fs::create_dir(&here).unwrap();
+        std::fs::create_dir(&there).unwrap();
+        let absolute = here.join("absolute.h");
+        symlink(there.join("a.h"), &absolute).unwrap();
+        let relative = here.join("relative.h");
+        symlink("../there/r.h", &relative).unwrap();
+        // chain.h -> middle.h -> ../there/c.h
+        let chain = here.join("chain.h");
+        symlink("middle.h", &chain).unwrap();
+        symlink(
+            Path::new("..").join("there").join("c.h"),
+            here.join("middle.h"),
+        )
+        .unwrap();
+        for (link, file) in [(&absolute, "a.h"), (&relative, "r.h"), (&chain, "c.h")] {
+            check_file(link).unwrap();
+            let fresh = there.join(file);
+            assert!(matches!(
+                refuse_inputs(&[], &[link, &fresh]),
+                Err(Error::Output(OutputError::TwoOutputs { .. }))
+            ));
+            write_bytes(link, file.as_bytes()).unwrap();
+            assert!(is_link(link), "{}", link.display());
+            assert_eq!(std::fs::read_to_string(there.join(file)).unwrap(), file);
+            // written again: the file is replaced, the link still kept
+            write_bytes(link, b"again").unwrap();
+            assert!(is_link(link), "{}", link.display());
+            assert_eq!(std::fs::read_to_string(there.join(file)).unwrap(), "again");
+        }
+        // no temporary file left, no file created beside the links
+        assert_eq!(std::fs::read_dir(&here).unwrap().count(), 4);
+        assert_eq!(std::fs::read_dir(&there).unwrap().count(), 3);
+    }
+
+    /// A link to no file yet in a folder that does not exist, or that is a file, is
+    /// refused naming the link, the file it points to and the folder, before the work and
+    /// by the writer; the link is kept and nothing is created.
+    #[test]
+    #[cfg(unix)]
+    fn a_link_into_no_folder_is_refused() {
+        use std::os::unix::fs::symlink;
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::write(d.join("notes.txt"), "x").unwrap();
+        symlink(d.join("missing").join("q.h"), d.join("missing.h")).unwrap();
+        symlink("notes.txt/q.h", d.join("file.h")).unwrap();
+        // a chain whose last link points into a missing folder
+        symlink("missing.h", d.join("chain.h")).unwrap();
+        let cases = [
+            (
+                "missing.h",
+                d.join("missing/q.h"),
+                "does not exist; create the folder, or remove the link to write a file in \
+                 its place",
+            ),
+            (
+                "file.h",
+                d.join("notes.txt/q.h"),
+                "is not a folder (it, or one above it, is a file); remove the link to write \
+                 a file in its place, or point it into a folder",
+            ),
+            (
+                "chain.h",
+                d.join("missing/q.h"),
+                "does not exist; create the folder, or remove the link to write a file in \
+                 its place",
+            ),
+        ];
+        for (name, target, end) in cases {
+            let link = d.join(name);
+            let e = write_bytes(&link, b"x").unwrap_err();
+            assert!(
+                matches!(&e,
+                    Error::Output(OutputError::LinkNoFolder { path, target: t, .. }
+                        | OutputError::LinkNotAFolder { path, target: t, .. })
+                    if *path == link && *t == target),
+                "{e:?}"
+            );
+            let folder = target.parent().unwrap();
+            let text = e.to_string();
+            let start = format!(
+                "{}: is a symbolic link to {}, ",
+                link.display(),
+                target.display()
+            );
+            assert!(text.starts_with(&start), "{text}");
+            assert!(text.contains(&format!(" {} ", folder.display())), "{text}");
+            assert!(text.ends_with(end), "{text}");
+            assert_eq!(check_file(&link).unwrap_err().to_string(), text);
+            assert!(is_link(&link));
+        }
+        assert!(!d.join("missing").exists());
+        assert_eq!(std::fs::read_to_string(d.join("notes.txt")).unwrap(), "x");
+        assert_eq!(std::fs::read_dir(d).unwrap().count(), 4);
+    }
+
+    /// A loop of links is refused as one, and kept; a link to a folder is a folder.
+    #[test]
+    #[cfg(unix)]
+    fn a_loop_of_links_and_a_link_to_a_folder_are_refused() {
+        use std::os::unix::fs::symlink;
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        symlink("b.h", d.join("a.h")).unwrap();
+        symlink("a.h", d.join("b.h")).unwrap();
+        let link = d.join("a.h");
+        let e = write_bytes(&link, b"x").unwrap_err();
+        assert!(
+            matches!(&e, Error::Output(OutputError::LinkLoop { path }) if *path == link),
+            "{e:?}"
+        );
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "{}: is a symbolic link that leads back to itself (a loop of links, or a chain \
+                 of more than 40); remove the link, or give another path",
+                link.display()
+            )
+        );
+        assert_eq!(check_file(&link).unwrap_err().to_string(), e.to_string());
+        assert!(is_link(&link) && is_link(&d.join("b.h")));
+        std::fs::create_dir(d.join("sub")).unwrap();
+        symlink("sub", d.join("out")).unwrap();
+        let e = write_bytes(&d.join("out"), b"x").unwrap_err();
+        assert!(
+            matches!(&e, Error::Output(OutputError::Folder { .. })),
+            "{e:?}"
+        );
+        assert!(is_link(&d.join("out")));
+        assert_eq!(std::fs::read_dir(d.join("sub")).unwrap().count(), 0);
+        assert_eq!(std::fs::read_dir(d).unwrap().count(), 4);
     }
 
     /// A folder is named as one, with a file in it as the fix, not "check that the folder

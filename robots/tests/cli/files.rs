@@ -932,3 +932,42 @@ fn the_c_header_is_named_as_the_header_of_the_source() {
         assert_eq!(listing(d), before, "{args:?}");
     }
 }
+
+/// An output that is a symbolic link to a file not created yet (`x.h -> include/q.h`, as a
+/// build tree links a generated header into place) is written through the link, which is
+/// kept: the C header of `emit --lang c` and the source alike, with a relative target
+/// taken from the link's folder. A link into a folder that does not exist is refused
+/// before any work, naming the link, its target and the folder (it used to be replaced by
+/// a file, the link lost).
+#[test]
+#[cfg(unix)]
+fn a_link_to_a_file_not_created_yet_is_written_through() {
+    use std::os::unix::fs::symlink;
+    let dir = folder();
+    let d = dir.path();
+    std::fs::create_dir(d.join("include")).unwrap();
+    std::fs::create_dir(d.join("src")).unwrap();
+    symlink("include/q.h", d.join("x.h")).unwrap();
+    symlink(d.join("src/q.c"), d.join("x.c")).unwrap();
+    let ur5e = asset("descriptions/ur5e.toml");
+    let o = robid_in(d, &["emit", &ur5e, "--lang", "c", "-o", "x.c"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    for (link, file) in [("x.h", "include/q.h"), ("x.c", "src/q.c")] {
+        let kind = std::fs::symlink_metadata(d.join(link)).unwrap().file_type();
+        assert!(kind.is_symlink(), "{link} is no longer a link");
+        let text = std::fs::read_to_string(d.join(file)).unwrap();
+        assert!(text.contains("ur5e"), "{file}: {text}");
+    }
+    // into a folder that does not exist: refused before any work, nothing created
+    symlink("missing/q.h", d.join("y.h")).unwrap();
+    let before = listing(d);
+    let o = robid_in(d, &["emit", &ur5e, "--lang", "c", "-o", "y.c"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        "error: y.h: is a symbolic link to missing/q.h, whose folder missing does not exist; \
+         create the folder, or remove the link to write a file in its place (the C header \
+         that `-o y.c` writes)\n"
+    );
+    assert_eq!(listing(d), before);
+}
