@@ -9,17 +9,26 @@ impl Arena {
     }
 
     /// The derivatives of several roots with respect to one symbol, sharing work.
+    ///
+    /// Only the nodes reachable from `roots` are visited, children first, so the cost
+    /// grows with the expressions, not with the arena: the regrouping takes thousands of
+    /// derivatives of small expressions in an arena of a whole derivation.
     pub fn diff_all(&mut self, roots: &[Id], symbol: Symbol) -> Vec<Id> {
-        let seen = self.reachable(roots);
+        let order = self.reachable_sorted(roots);
         let zero = self.zero();
-        let mut d: Vec<Id> = vec![zero; seen.len()];
-        for index in (0..seen.len()).filter(|&i| seen[i]) {
-            let node = self.nodes[index].clone();
-            let children_zero = node.children().iter().all(|c| d[c.index()] == zero);
+        // d[k]: the derivative of node order[k]
+        let mut d: Vec<Id> = vec![zero; order.len()];
+        let at = |id: Id| order.binary_search(&id).expect("a child of a reached node");
+        for (k, &id) in order.iter().enumerate() {
+            let node = self.nodes[id.index()].clone();
+            let derivative = |c: &Id| d[at(*c)];
+            let children_zero = node.children().iter().all(|c| derivative(c) == zero);
             if children_zero && !matches!(node, Node::Sym(_)) {
                 continue;
             }
-            d[index] = match node {
+            let d_of: Vec<Id> = node.children().iter().map(derivative).collect();
+            let d_x = d_of.first().copied().unwrap_or(zero);
+            d[k] = match node {
                 Node::Num(_) | Node::Pi | Node::Sign(_) => zero,
                 Node::Sym(s) => {
                     if s == symbol {
@@ -28,14 +37,10 @@ impl Arena {
                         zero
                     }
                 }
-                Node::Add(terms) => {
-                    let dt: Vec<Id> = terms.iter().map(|t| d[t.index()]).collect();
-                    self.add(&dt)
-                }
+                Node::Add(_) => self.add(&d_of),
                 Node::Mul(factors) => {
                     let mut sum = Vec::new();
-                    for (i, f) in factors.iter().enumerate() {
-                        let df = d[f.index()];
+                    for (i, &df) in d_of.iter().enumerate() {
                         if df == zero {
                             continue;
                         }
@@ -54,26 +59,26 @@ impl Arena {
                         }
                     };
                     let c = self.num(Num::int(n as i64));
-                    self.mul(&[c, power, d[x.index()]])
+                    self.mul(&[c, power, d_x])
                 }
                 Node::Sin(x) => {
                     let c = self.cos(x);
-                    self.mul2(c, d[x.index()])
+                    self.mul2(c, d_x)
                 }
                 Node::Cos(x) => {
                     let s = self.sin(x);
-                    let ds = self.mul2(s, d[x.index()]);
+                    let ds = self.mul2(s, d_x);
                     self.neg(ds)
                 }
                 Node::Sqrt(x) => {
                     let root = self.intern(Node::Sqrt(x));
                     let inv = self.pow(root, -1);
                     let half = self.num(Num::ratio(1, 2).expect("nonzero"));
-                    self.mul(&[half, inv, d[x.index()]])
+                    self.mul(&[half, inv, d_x])
                 }
             };
         }
-        roots.iter().map(|r| d[r.index()]).collect()
+        roots.iter().map(|r| d[at(*r)]).collect()
     }
 }
 
@@ -98,6 +103,38 @@ mod tests {
             let (ge, gx) = (a.display(got), a.display(expected));
             let diff = a.sub(got, expected);
             assert!(a.is_zero(diff), "d/dq {f}: got {ge}, expected {gx}");
+        }
+    }
+
+    /// A derivative taken in a large arena (the walk visits only the expression's nodes)
+    /// equals the one taken in an arena of its own, and several roots share one walk.
+    #[test]
+    fn derivatives_in_a_large_arena_are_those_of_a_small_one() {
+        let mut big = Arena::new();
+        // unrelated nodes before and between the expressions: thousands of ids
+        for k in 0..3000 {
+            big.parse(&format!("sin(x{k}) * q + {k}")).unwrap();
+        }
+        let texts = [
+            "L*cos(q)*sin(q)^3 + q^2",
+            "sqrt(1 + q^2) - cos(2*q)",
+            "x7 * q",
+        ];
+        let roots: Vec<_> = texts.iter().map(|t| big.parse(t).unwrap()).collect();
+        for k in 3000..3100 {
+            big.parse(&format!("cos(y{k}) + q")).unwrap();
+        }
+        let q = big.symbol("q");
+        let together = big.diff_all(&roots, q);
+        for (text, d) in texts.iter().zip(together) {
+            let mut small = Arena::new();
+            let e = small.parse(text).unwrap();
+            let q = small.symbol("q");
+            let expected = small.diff(e, q);
+            // the same expression, its terms maybe in another order (they follow ids)
+            let expected = big.parse(&small.display(expected)).unwrap();
+            let difference = big.sub(d, expected);
+            assert!(big.is_zero(difference), "d/dq {text}: {}", big.display(d));
         }
     }
 }

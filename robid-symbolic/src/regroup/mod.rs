@@ -318,6 +318,7 @@ impl Derivation {
         let names: Vec<String> = (1..=n)
             .flat_map(|j| [format!("q{j}"), format!("qd{j}"), format!("qdd{j}")])
             .collect();
+        let mut points = Vec::with_capacity(states);
         for _ in 0..states {
             let mut pairs: Vec<(&str, f64)> = names
                 .iter()
@@ -340,11 +341,14 @@ impl Derivation {
                     .map(|s| s.as_str())
                     .zip(values.iter().copied()),
             );
-            let v = self.arena.values(&pairs);
-            let result = self
-                .arena
-                .eval(&entries, &v)
-                .expect("every symbol of a regressor column is bound");
+            points.push(self.arena.values(&pairs));
+        }
+        // one walk of the columns' nodes for every state
+        let results = self
+            .arena
+            .eval_points(&entries, &points)
+            .expect("every symbol of a regressor column is bound");
+        for result in results {
             for (c, column) in out.iter_mut().enumerate() {
                 column.extend_from_slice(&result[c * n..(c + 1) * n]);
             }
