@@ -139,17 +139,20 @@ fn not_writable(path: &Path, dir: &Path, e: &std::io::Error) -> Error {
 /// or a folder that takes no new file, or for a missing one the nearest existing folder
 /// above it ([`OutputError::NotWritable`]). A missing folder passes otherwise. No folder
 /// is created; whether a folder takes a file is tried by creating a temporary file in
-/// it, removed at once. [`create_folder`] checks again.
+/// it, removed at once. [`create_folder`] checks again. A symbolic link to a folder not
+/// created yet stands for the folder it points to, which is checked (and created) in its
+/// place, the link kept.
 pub fn check_folder(dir: &Path) -> Result<()> {
-    let problem = match std::fs::metadata(dir) {
-        Ok(m) if m.is_dir() => return probe(dir, dir),
+    let target = folder_target(dir)?;
+    let problem = match std::fs::metadata(&target) {
+        Ok(m) if m.is_dir() => return probe(dir, &target),
         Ok(_) => OutputError::FileNotFolder {
             path: dir.to_path_buf(),
         },
         // a missing path whose every existing part is a folder: created with its parents
         // in the nearest existing one
         Err(e) if e.kind() != std::io::ErrorKind::NotADirectory => {
-            return match dir.ancestors().skip(1).find(|a| a.is_dir()) {
+            return match target.ancestors().skip(1).find(|a| a.is_dir()) {
                 Some(existing) => probe(dir, existing),
                 // a relative path, which is created in the working folder
                 None => probe(dir, Path::new(".")),
@@ -157,10 +160,20 @@ pub fn check_folder(dir: &Path) -> Result<()> {
         }
         Err(_) => OutputError::NotAFolder {
             path: dir.to_path_buf(),
-            folder: folder_of(dir).to_path_buf(),
+            folder: folder_of(&target).to_path_buf(),
         },
     };
     Err(Error::Output(problem))
+}
+
+/// The folder that folder output `dir` names: for a symbolic link to nothing yet, the
+/// path it points to (see [`follow_links`]), else `dir` itself.
+fn folder_target(dir: &Path) -> Result<PathBuf> {
+    if std::fs::metadata(dir).is_err() && is_link(dir) {
+        follow_links(dir)
+    } else {
+        Ok(dir.to_path_buf())
+    }
 }
 
 /// Where [`write_atomically`] writes an output.
@@ -299,10 +312,11 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
 }
 
 /// Creates the folder `dir` (and its parents) for outputs; an existing folder is kept,
-/// and a file there is refused as in [`check_folder`].
+/// and a file there is refused as in [`check_folder`]. A symbolic link to a folder not
+/// created yet is kept, and the folder it points to created.
 pub fn create_folder(dir: &Path) -> Result<()> {
     check_folder(dir)?;
-    std::fs::create_dir_all(dir).map_err(|e| {
+    std::fs::create_dir_all(folder_target(dir)?).map_err(|e| {
         Error::Output(OutputError::Write {
             path: dir.to_path_buf(),
             reason: format!("cannot create the folder: {e}"),
@@ -690,6 +704,47 @@ mod tests {
         assert!(is_link(&d.join("out")));
         assert_eq!(std::fs::read_dir(d.join("sub")).unwrap().count(), 0);
         assert_eq!(std::fs::read_dir(d).unwrap().count(), 4);
+    }
+
+    /// A folder output (`--plot DIR`) that is a link to a folder not created yet: the
+    /// folder it points to is created (with its parents), the link kept, and files are
+    /// written into it through the link; before, creating it failed after the work ("File
+    /// exists"). A link into a file is refused before the work.
+    #[test]
+    #[cfg(unix)]
+    fn a_link_to_a_folder_not_created_yet_is_created_through() {
+        use std::os::unix::fs::symlink;
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::create_dir(d.join("runs")).unwrap();
+        symlink("runs/today/plots", d.join("plots")).unwrap();
+        let plots = d.join("plots");
+        check_folder(&plots).unwrap();
+        assert!(!d.join("runs/today").exists());
+        create_folder(&plots).unwrap();
+        assert!(is_link(&plots));
+        assert!(d.join("runs/today/plots").is_dir());
+        write_bytes(&plots.join("fit_joint1.svg"), b"<svg/>").unwrap();
+        assert_eq!(
+            std::fs::read_to_string(d.join("runs/today/plots/fit_joint1.svg")).unwrap(),
+            "<svg/>"
+        );
+        // created again: kept as it is
+        create_folder(&plots).unwrap();
+        std::fs::write(d.join("notes.txt"), "x").unwrap();
+        symlink("notes.txt/plots", d.join("into-a-file")).unwrap();
+        let e = check_folder(&d.join("into-a-file")).unwrap_err();
+        assert!(
+            matches!(&e, Error::Output(OutputError::NotAFolder { folder, .. })
+                if *folder == d.join("notes.txt")),
+            "{e:?}"
+        );
+        assert_eq!(
+            create_folder(&d.join("into-a-file"))
+                .unwrap_err()
+                .to_string(),
+            e.to_string()
+        );
     }
 
     /// A folder is named as one, with a file in it as the fix, not "check that the folder
