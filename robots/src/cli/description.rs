@@ -106,10 +106,10 @@ impl Description {
         Unloaded { empty, massless }
     }
 
-    /// `joint 2 (`j2`) of FILE moves only links without mass or inertia: `flange`, `tool0`
-    /// (no `<inertial>` element, or an empty one)`: `joints` (numbered from 1, not empty)
-    /// of the URDF `file` and the links the lowest of them moves, all `empty` (without mass
-    /// or inertia) or all without mass.
+    /// The cause, as in "joint 2 (`j2`) of FILE moves only links without mass or inertia:
+    /// `flange`, `tool0` (no `<inertial>` element, or an empty one)": `joints` (numbered
+    /// from 1, not empty) of the URDF `file` and the links the lowest of them moves, all
+    /// `empty` (without mass or inertia) or all without mass.
     pub(crate) fn unloaded_cause(&self, file: &Path, joints: &[usize], empty: bool) -> String {
         let Some(chain) = &self.urdf else {
             return String::new();
