@@ -144,7 +144,6 @@ pub(crate) mod run_tests {
     fn time_stamps_at_a_rate_identification_refuses_are_refused() {
         let dir = tempfile::tempdir().unwrap();
         let p = Pendulum::default();
-        let header = "t,q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2";
         // mean steps: the last two accepted, the others not
         for (steps, accepted) in [
             (vec![1e6; 4], false),
@@ -161,15 +160,7 @@ pub(crate) mod run_tests {
                     Some(*t)
                 }))
                 .collect();
-            let f = dir.path().join("traj.csv");
-            let rows: Vec<String> = t.iter().map(|t| format!("{t},0,0,0,0,0,0,0,0")).collect();
-            std::fs::write(&f, format!("{header}\n{}\n", rows.join("\n"))).unwrap();
-            let read = Trajectory::read_csv(&f, 2);
-            let loaded = crate::data::load(
-                &crate::data::Config::default_mapping(),
-                std::slice::from_ref(&f),
-                2,
-            );
+            let (f, read, loaded) = read_both_ways(dir.path(), &t);
             assert_eq!(read.is_ok(), accepted, "{steps:?}: {read:?}");
             assert_eq!(loaded.is_ok(), accepted, "{steps:?}: {:?}", loaded.err());
             if accepted {
@@ -192,6 +183,29 @@ pub(crate) mod run_tests {
         }
     }
 
+    /// A still two-joint trajectory at the times `t` written to `traj.csv` in `dir`, read
+    /// as a trajectory and loaded as data: (its path, the trajectory, the data set).
+    fn read_both_ways(
+        dir: &std::path::Path,
+        t: &[f64],
+    ) -> (
+        std::path::PathBuf,
+        crate::Result<Trajectory>,
+        crate::Result<crate::data::Dataset>,
+    ) {
+        let f = dir.join("traj.csv");
+        let rows: Vec<String> = t.iter().map(|t| format!("{t},0,0,0,0,0,0,0,0")).collect();
+        let header = "t,q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2";
+        std::fs::write(&f, format!("{header}\n{}\n", rows.join("\n"))).unwrap();
+        let read = Trajectory::read_csv(&f, 2);
+        let loaded = crate::data::load(
+            &crate::data::Config::default_mapping(),
+            std::slice::from_ref(&f),
+            2,
+        );
+        (f, read, loaded)
+    }
+
     /// A trajectory whose time stamps pause (a step of more than `GAP_RATIO` median
     /// steps) is refused, by the reader naming the file and line and by `Simulation::run`
     /// naming the sample, exactly when the loader refuses the same file as data: the data
@@ -200,21 +214,12 @@ pub(crate) mod run_tests {
     fn time_stamps_with_a_gap_are_refused_as_identification_refuses_them() {
         let dir = tempfile::tempdir().unwrap();
         let p = Pendulum::default();
-        let header = "t,q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2";
         for (gap, accepted) in [(0.2, false), (0.11, false), (0.09, true)] {
             // 30 steps of 10 ms, the 21st replaced by the gap
             let t: Vec<f64> = (0..=30)
                 .map(|k| 0.01 * k as f64 + if k > 20 { gap - 0.01 } else { 0.0 })
                 .collect();
-            let f = dir.path().join("traj.csv");
-            let rows: Vec<String> = t.iter().map(|t| format!("{t},0,0,0,0,0,0,0,0")).collect();
-            std::fs::write(&f, format!("{header}\n{}\n", rows.join("\n"))).unwrap();
-            let read = Trajectory::read_csv(&f, 2);
-            let loaded = crate::data::load(
-                &crate::data::Config::default_mapping(),
-                std::slice::from_ref(&f),
-                2,
-            );
+            let (f, read, loaded) = read_both_ways(dir.path(), &t);
             assert_eq!(read.is_ok(), accepted, "{gap}: {read:?}");
             assert_eq!(loaded.is_ok(), accepted, "{gap}: {:?}", loaded.err());
             if accepted {
