@@ -10,8 +10,8 @@
 //! magnitude one. A memo of instructions merges identical operations that
 //! the arena keeps as different nodes (e.g. the products inside two sums).
 
-use super::dce;
 use super::{Group, Instr, Output, Program, ProgramError, Value};
+use super::{dce, factor};
 use crate::expr::{Arena, Id, Node};
 use std::collections::HashMap;
 
@@ -166,8 +166,19 @@ impl<'a> Lowering<'a> {
         out
     }
 
-    /// The program with these outputs, dead code removed.
+    /// The program with these outputs, dead code removed and common factors taken out of
+    /// its sums (`factor.rs`).
     pub(super) fn finish(self, inputs: Vec<Group>, outputs: Vec<(Group, Vec<Value>)>) -> Program {
+        factor::factor_all(self.finish_unfactored(inputs, outputs))
+    }
+
+    /// The program with these outputs, dead code removed, its sums as the lowering
+    /// wrote them.
+    pub(super) fn finish_unfactored(
+        self,
+        inputs: Vec<Group>,
+        outputs: Vec<(Group, Vec<Value>)>,
+    ) -> Program {
         let program = Program {
             inputs,
             constants: self.constants,

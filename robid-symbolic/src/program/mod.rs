@@ -18,6 +18,7 @@
 mod count;
 mod customised;
 mod dce;
+mod factor;
 mod interpret;
 mod lower;
 pub mod robot;
