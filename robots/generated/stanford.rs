@@ -695,7 +695,7 @@ impl Stanford {
     /// - `q`: q1, q2, q3
     /// - `base`: ZZR1 .. M3
     ///
-    /// Operations: 17 mul, 7 add, 1 neg, 1 sin, 1 cos.
+    /// Operations: 15 mul, 7 add, 1 neg, 1 sin, 1 cos.
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -723,23 +723,22 @@ impl Stanford {
         let t2 = t0 * M3;
         let t3 = t1 * M3;
         let t4 = t1 * MY3;
-        let t5 = t0 * MZ3;
-        let t7 = T::mul_add(t1, MX3, t5);
-        let t8 = t0 * MY3;
-        let t9 = t1 * MX2;
-        let t11 = T::mul_add(t0, MY2, -t9);
-        let t13 = T::mul_add(t2, q3, t7);
-        let t14 = t11 - t13;
-        let t15 = t1 * t2;
-        let t17 = T::mul_add(t0, t3, -t15);
-        let t18 = t0 * t4;
-        let t20 = T::mul_add(-t1, t8, t18);
-        let t21 = t20 * c0;
-        let t23 = T::mul_add(t17, c1, t21);
-        let t24 = -t23;
-        let t25 = t14 * c0;
-        let t26 = t3 * c0;
-        [t24, t25, t26]
+        let t5 = t0 * MY3;
+        let t6 = t2 * q3;
+        let t7 = MY2 - MZ3;
+        let t9 = MX2 + MX3;
+        let t11 = T::mul_add(t1, t9, t6);
+        let t12 = T::mul_add(t0, t7, -t11);
+        let t13 = t1 * t2;
+        let t15 = T::mul_add(t0, t3, -t13);
+        let t16 = t0 * t4;
+        let t18 = T::mul_add(-t1, t5, t16);
+        let t19 = t18 * c0;
+        let t21 = T::mul_add(t15, c1, t19);
+        let t22 = -t21;
+        let t23 = t12 * c0;
+        let t24 = t3 * c0;
+        [t22, t23, t24]
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -762,7 +761,7 @@ impl Stanford {
     /// - `qd`: qd1, qd2, qd3
     /// - `base`: ZZR1 .. M3
     ///
-    /// Operations: 60 mul, 40 add, 2 neg, 1 sin, 1 cos.
+    /// Operations: 59 mul, 40 add, 2 neg, 1 sin, 1 cos.
     pub fn coriolis<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -806,64 +805,63 @@ impl Stanford {
         let t15 = t12 * q3;
         let t16 = t5 * q3;
         let t17 = t2 * c0;
-        let t19 = T::mul_add(t16, c1, -t17);
-        let t20 = qd2 * qd3;
-        let t21 = t3 * qd3;
-        let t23 = T::mul_add(t20, c1, -t14);
-        let t25 = T::mul_add(t21, c1, t19);
-        let t29 = t10 * MX3;
-        let t31 = T::mul_add(t11, MZ3, t29);
-        let t32 = t6 * MX3;
-        let t33 = t13 * MY3;
-        let t35 = T::mul_add(t5, MZ3, -t32);
-        let t37 = T::mul_add(t35, c1, -t33);
-        let t38 = t11 * MX3;
-        let t40 = T::mul_add(t12, MZ3, t38);
-        let t41 = T::mul_add(t23, M3, -t31);
-        let t42 = T::mul_add(t25, M3, t37);
-        let t43 = T::mul_add(t15, M3, t40);
-        let t44 = t15 * MY3;
-        let t46 = T::mul_add(t25, MZ3, t44);
-        let t47 = t23 * MZ3;
-        let t49 = T::mul_add(t15, MX3, t47);
-        let t50 = t25 * MX3;
-        let t52 = T::mul_add(-t23, MY3, t50);
-        let t53 = t10 * MX2;
-        let t55 = T::mul_add(t11, MY2, -t53);
-        let t56 = t11 * MX2;
-        let t58 = T::mul_add(-t12, MY2, t56);
-        let t60 = t6 * XYR2;
-        let t61 = t11 * XZR2;
-        let t62 = t8 - t9;
-        let t64 = T::mul_add(t62, YZR2, t61);
-        let t65 = T::mul_add(-t5, XXR2, t64);
-        let t67 = T::mul_add(t60, c1, t65);
-        let t69 = t5 * XYR2;
-        let t70 = t9 - t7;
-        let t71 = t70 * XZR2;
-        let t73 = T::mul_add(-t6, XXR2, t71);
-        let t74 = T::mul_add(-t11, YZR2, t73);
-        let t76 = T::mul_add(-t69, c1, t74);
-        let t77 = t7 - t8;
-        let t78 = t77 * XYR2;
-        let t80 = T::mul_add(-t11, XXR2, t78);
-        let t83 = T::mul_add(-t17, MY2, t67);
-        let t84 = T::mul_add(t17, MX2, t76);
-        let t87 = t41 + t55;
-        let t88 = t43 + t58;
-        let t89 = T::mul_add(t42, q3, t46);
-        let t90 = t83 - t89;
-        let t91 = t84 - t52;
-        let t92 = T::mul_add(t41, q3, t49);
-        let t93 = t80 + t92;
-        let t94 = t1 * t87;
-        let t96 = T::mul_add(-t0, t88, t94);
-        let t97 = t0 * t90;
-        let t99 = T::mul_add(t1, t91, t97);
-        let t101 = T::mul_add(t96, c0, t99);
-        let t102 = -t101;
-        let t103 = -t43;
-        [t102, t93, t103]
+        let t18 = qd2 * qd3;
+        let t21 = T::mul_add(t18, c1, -t14);
+        let t22 = T::mul_add(t3, qd3, t16);
+        let t24 = T::mul_add(c1, t22, -t17);
+        let t28 = t10 * MX3;
+        let t30 = T::mul_add(t11, MZ3, t28);
+        let t31 = t6 * MX3;
+        let t32 = t13 * MY3;
+        let t34 = T::mul_add(t5, MZ3, -t31);
+        let t36 = T::mul_add(t34, c1, -t32);
+        let t37 = t11 * MX3;
+        let t39 = T::mul_add(t12, MZ3, t37);
+        let t40 = T::mul_add(t21, M3, -t30);
+        let t41 = T::mul_add(t24, M3, t36);
+        let t42 = T::mul_add(t15, M3, t39);
+        let t43 = t15 * MY3;
+        let t45 = T::mul_add(t24, MZ3, t43);
+        let t46 = t21 * MZ3;
+        let t48 = T::mul_add(t15, MX3, t46);
+        let t49 = t24 * MX3;
+        let t51 = T::mul_add(-t21, MY3, t49);
+        let t52 = t10 * MX2;
+        let t54 = T::mul_add(t11, MY2, -t52);
+        let t55 = t11 * MX2;
+        let t57 = T::mul_add(-t12, MY2, t55);
+        let t59 = t6 * XYR2;
+        let t60 = t11 * XZR2;
+        let t61 = t8 - t9;
+        let t63 = T::mul_add(t61, YZR2, t60);
+        let t64 = T::mul_add(-t5, XXR2, t63);
+        let t66 = T::mul_add(t59, c1, t64);
+        let t68 = t5 * XYR2;
+        let t69 = t9 - t7;
+        let t70 = t69 * XZR2;
+        let t72 = T::mul_add(-t6, XXR2, t70);
+        let t73 = T::mul_add(-t11, YZR2, t72);
+        let t75 = T::mul_add(-t68, c1, t73);
+        let t76 = t7 - t8;
+        let t77 = t76 * XYR2;
+        let t79 = T::mul_add(-t11, XXR2, t77);
+        let t82 = T::mul_add(-t17, MY2, t66);
+        let t83 = T::mul_add(t17, MX2, t75);
+        let t86 = t40 + t54;
+        let t87 = t42 + t57;
+        let t88 = T::mul_add(t41, q3, t45);
+        let t89 = t82 - t88;
+        let t90 = t83 - t51;
+        let t91 = T::mul_add(t40, q3, t48);
+        let t92 = t79 + t91;
+        let t93 = t1 * t86;
+        let t95 = T::mul_add(-t0, t87, t93);
+        let t96 = t0 * t89;
+        let t98 = T::mul_add(t1, t90, t96);
+        let t100 = T::mul_add(t95, c0, t98);
+        let t101 = -t100;
+        let t102 = -t42;
+        [t101, t92, t102]
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
