@@ -241,6 +241,9 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
     if let Some(w) = without_limits(place, &joints) {
         reader.warnings.push(w);
     }
+    if let Some(w) = incomplete_limits(place, &joints) {
+        reader.warnings.push(w);
+    }
     reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
     reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
     if reader.errors.is_empty() {
@@ -698,6 +701,64 @@ fn without_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
              or make a joint that turns without end `type=\"continuous\"`{others}",
             first.name,
             kind(first)
+        ),
+    ))
+}
+
+/// One warning for the joints robid can move (revolute, continuous, prismatic) whose
+/// `<limit>` lacks `effort` or `velocity`, at the first such `<limit>`, naming the joints and
+/// what each lacks: robid reads a missing value as no limit (as it reads `0`), but the URDF
+/// format requires both attributes, and urdfdom (the parser of ROS tools and Pinocchio)
+/// refuses the file. Vendor files omit them, so this is a warning, not an error.
+fn incomplete_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
+    let lacking: Vec<(&Joint, &Limit, &str)> = joints
+        .iter()
+        .filter(|j| j.kind.movable())
+        .filter_map(|j| {
+            let limit = j.limit.as_ref()?;
+            let what = match (limit.effort.is_none(), limit.velocity.is_none()) {
+                (true, true) => "`effort` or `velocity`",
+                (true, false) => "`effort`",
+                (false, true) => "`velocity`",
+                (false, false) => return None,
+            };
+            Some((j, limit, what))
+        })
+        .collect();
+    let ((joint, limit, what), rest) = lacking.split_first()?;
+    let others = if rest.is_empty() {
+        String::new()
+    } else {
+        let named: Vec<String> = rest
+            .iter()
+            .map(|(j, _, what)| format!("joint `{}` has no {what}", j.name))
+            .collect();
+        format!(" (also: {})", named.join(", "))
+    };
+    let missing = |key: &str| lacking.iter().any(|(_, _, what)| what.contains(key));
+    let assumed = match (missing("effort"), missing("velocity")) {
+        (true, true) => {
+            "a missing `effort` as no torque limit and a missing `velocity` as no velocity \
+             limit (`robid excite` then leaves the torque unbounded and asks for \
+             --velocity-limits)"
+        }
+        (true, false) => {
+            "a missing `effort` as no torque limit (`robid excite` then leaves the torque \
+             unbounded)"
+        }
+        _ => {
+            "a missing `velocity` as no velocity limit (`robid excite` then asks for \
+             --velocity-limits)"
+        }
+    };
+    Some(place.warning(
+        limit.range.start,
+        &format!(
+            "the `<limit>` of joint `{}` has no {what}{others}: robid takes {assumed}, but the \
+             URDF format requires `effort` and `velocity` in every `<limit>`, and urdfdom, the \
+             parser of ROS tools and Pinocchio, refuses the file; add the robot's values \
+             (`effort` in N m or N, `velocity` in rad/s or m/s)",
+            joint.name
         ),
     ))
 }

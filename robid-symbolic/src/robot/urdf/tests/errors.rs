@@ -753,3 +753,96 @@ fn revolute_and_prismatic_joints_without_limits_are_warned_about() {
         chain.warnings
     );
 }
+
+/// A `<limit>` without `effort` or `velocity` (which urdfdom, and so ROS tools and Pinocchio,
+/// refuse) on a joint robid can move is read as no torque or velocity limit and warned
+/// about once, at the first such `<limit>`, naming each joint and what it lacks (it used to
+/// be accepted without a word); a fixed joint's `<limit>` is not robid's concern.
+#[test]
+fn limits_without_effort_or_velocity_are_warned_about() {
+    let read = |text: &str| {
+        Robot::from_urdf(text, "t.urdf", &ChainSelection::default())
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let about = |chain: &UrdfChain| -> Vec<String> {
+        chain
+            .warnings
+            .iter()
+            .filter(|w| w.contains("in every `<limit>`"))
+            .cloned()
+            .collect()
+    };
+    let with = |first: &str, second: &str| {
+        arm(&format!(
+            "{}{}",
+            J1.replace("</joint>", &format!("<limit {first}/></joint>")),
+            J2.replace("</joint>", &format!("<limit {second}/></joint>"))
+        ))
+    };
+    let whole = "lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"";
+    assert!(about(&read(&with(whole, whole))).is_empty());
+    // effort="0" is a value (robid's "none"); urdfdom reads it
+    let zero = "lower=\"-1\" upper=\"1\" effort=\"0\" velocity=\"0\"";
+    assert!(about(&read(&with(zero, zero))).is_empty());
+    let chain = read(&with(whole, "lower=\"-1\" upper=\"1\" effort=\"2\""));
+    assert_eq!(
+        about(&chain),
+        [
+            "t.urdf:6:111: the `<limit>` of joint `j2` has no `velocity`: robid takes a missing \
+             `velocity` as no velocity limit (`robid excite` then asks for --velocity-limits), \
+             but the URDF format requires `effort` and `velocity` in every `<limit>`, and \
+             urdfdom, the parser of ROS tools and Pinocchio, refuses the file; add the robot's \
+             values (`effort` in N m or N, `velocity` in rad/s or m/s)"
+        ]
+    );
+    let joint = &chain.robot.joints()[1];
+    assert_eq!(
+        (joint.limits.torque, joint.limits.velocity),
+        (Some(2.0), None)
+    );
+    // both joints, one message at the first, naming the second and what it lacks
+    let chain = read(&with(
+        "lower=\"-1\" upper=\"1\" velocity=\"1\"",
+        "lower=\"-1\" upper=\"1\"",
+    ));
+    let warned = about(&chain);
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    assert!(
+        warned[0].starts_with("t.urdf:5:88: ")
+            && warned[0].contains(
+                "the `<limit>` of joint `j1` has no `effort` (also: joint `j2` has no `effort` or \
+             `velocity`): robid takes a missing `effort` as no torque limit and a missing \
+             `velocity` as no velocity limit"
+            ),
+        "{}",
+        warned[0]
+    );
+    assert_eq!(chain.robot.joints()[0].limits.torque, None);
+    // a continuous joint's <limit> needs them too; a fixed joint's is not read
+    let continuous = with("effort=\"1\"", whole).replacen("revolute", "continuous", 1);
+    let warned = about(&read(&continuous));
+    assert!(
+        warned.len() == 1 && warned[0].contains("joint `j1` has no `velocity`"),
+        "{warned:?}"
+    );
+    let fixed = arm(&format!(
+        "{}{J1}",
+        J2.replace("revolute", "fixed")
+            .replace("</joint>", "<limit lower=\"0\" upper=\"0\"/></joint>")
+    ));
+    let chain = read(&fixed.replace(
+        "</joint>\n</robot>",
+        "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n</robot>",
+    ));
+    assert!(about(&chain).is_empty(), "{:?}", chain.warnings);
+    // a joint without <limit> has the other warning only
+    let bare = read(&arm(&format!(
+        "{J1}{}",
+        J2.replace("</joint>", &format!("<limit {whole}/></joint>"))
+    )));
+    assert!(
+        about(&bare).is_empty() && bare.warnings.len() == 1,
+        "{:?}",
+        bare.warnings
+    );
+}
