@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use crate::Num;
 use crate::data::dataset::DataOrigin;
-use crate::data::rate::{RATE_CHECK_ROWS, Steps, UnreadTime, check_rate, unread_time_column};
+use crate::data::rate::{Steps, UnreadTime, check_rate, unread_time_column};
 use crate::data::table::{Optional, read_columns_in};
 use crate::data::time::{
     check_gaps, check_monotonic, check_sample_time, interpolate, regularity, uniform_grid,
@@ -134,7 +134,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         }
         if let Some(column) = &unread_time {
             let mut steps = Steps::default();
-            steps.push(&table.columns.pop().unwrap_or_default());
+            steps.push(&table.columns.pop().unwrap_or_default(), &table.lines);
             check_rate(config, path, column, steps)?;
         }
         let mut columns = std::mem::take(&mut table.columns);
@@ -325,13 +325,13 @@ pub(crate) fn plan_source(
     })
 }
 
-/// The rows in which the columns `names` of a source are read: all of them, the unread
-/// time column (when there is one, the last) in the first [`RATE_CHECK_ROWS`] only.
+/// How the columns `names` of a source are read: the unread time column (when there is
+/// one, the last) as an optional column (NaN where a field is not a number), in every row.
 pub(crate) fn unread_time_rows(names: &[String], unread_time: Option<&UnreadTime>) -> Optional {
     match unread_time {
         Some(_) => Optional {
             from: names.len() - 1,
-            rows: RATE_CHECK_ROWS,
+            rows: usize::MAX,
         },
         None => Optional::none(names),
     }

@@ -4,22 +4,27 @@
 //! A config that gives `sample_rate` reads no time column, and a log that carries one at
 //! another rate would make every derivative and filter wrong by the ratio without a word.
 //! So a file with exactly one column named as a time ([`time_name`]) that the config does
-//! not read has that column read beside the others in its first [`RATE_CHECK_ROWS`] rows
-//! (in the same pass, as an optional column: a field that is not a number is no error),
-//! and its median step is compared with `1 / sample_rate`: more than [`RATE_TOLERANCE`]
-//! apart is an error at the `sample_rate` key naming the file, the column, both rates and
-//! the fixes. A column that is not a clock (a step that is zero, negative or not a number,
-//! or fewer than [`REGULAR_SHARE`] of the steps within [`REGULAR_SPREAD`] of the median)
-//! says nothing.
+//! not read has that column read beside the others (in the same pass, as an optional
+//! column: a field that is not a number is no error), and judged in blocks of
+//! [`RATE_CHECK_ROWS`] steps, from the first row to the last: a block whose median step is
+//! more than [`RATE_TOLERANCE`] from `1 / sample_rate` is an error at the `sample_rate` key
+//! naming the file, the column, both rates and the fixes (and, after blocks at the rate,
+//! the block's lines: the file changed its rate there), and a step longer than
+//! [`GAP_RATIO`] median steps (a paused logger, which `sample_rate` would bridge as one
+//! step) is a [`DataError::TimeGap`](crate::DataError::TimeGap) naming the line, the two
+//! stamps and the fix. A block that is not a clock (a step that is zero, negative or not
+//! a number, or fewer than [`REGULAR_SHARE`] of the steps within [`REGULAR_SPREAD`] of the
+//! median) says nothing.
 
 use std::path::Path;
 
-use crate::data::Config;
-use crate::error::{Result, num};
+use crate::DataError;
+use crate::data::{Config, GAP_RATIO};
+use crate::error::{Error, Result, num};
 
-/// The data rows of a file whose time stamps are compared with `sample_rate`: the median
-/// step of so many is the clock's, and a long record parses the column in its first
-/// window or two only.
+/// The steps of a time column judged together against `sample_rate` and for gaps: the
+/// median step of so many is the clock's, and a record kept on disk holds no more of
+/// them at a time.
 pub const RATE_CHECK_ROWS: usize = 100_000;
 /// Relative difference between the time column's median step and `1 / sample_rate`
 /// above which the config's rate is refused.
@@ -123,105 +128,279 @@ pub(crate) fn unread_time_column(
     })
 }
 
-/// The steps of a time column read in parts, in order (at most [`RATE_CHECK_ROWS`]
-/// rows of it): what [`Steps::median`] decides from.
-#[derive(Debug, Clone, Default)]
+/// The steps of a time column read in parts, in order, judged block by block: every
+/// [`RATE_CHECK_ROWS`] steps make a [`Block`], so that the whole column is checked in
+/// bounded memory (a record kept on disk reads it window by window).
+#[derive(Debug, Clone)]
 pub(crate) struct Steps {
-    last: Option<f64>,
-    steps: Vec<f64>,
-    /// Not a clock: a step that is not a positive number.
+    /// Steps per block: [`RATE_CHECK_ROWS`] (fewer in tests).
+    size: usize,
+    /// The last stamp and its file line.
+    last: Option<(f64, u64)>,
+    /// The steps of the current block: the stamps before and after each, and the line of
+    /// the later.
+    steps: Vec<Step>,
+    /// Not a clock: a step of the current block that is not a positive number.
     unusable: bool,
+    /// The file line of the current block's first stamp.
+    start: u64,
+    /// The blocks judged so far.
+    blocks: Vec<Block>,
+}
+
+/// A step between two stamps of the column.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Step {
+    from: f64,
+    to: f64,
+    /// The file line of `to`.
+    line: u64,
+}
+
+impl Step {
+    fn length(&self) -> f64 {
+        self.to - self.from
+    }
+}
+
+/// What a block of steps says of the column.
+#[derive(Debug, Clone, PartialEq)]
+struct Block {
+    /// The file lines of the block's first and last stamps.
+    lines: [u64; 2],
+    /// Its median step when it is a clock ([`Steps::median`]); `None` otherwise, and for
+    /// a short last block ([`MIN_TAIL`]), judged by the block before.
+    median: Option<f64>,
+    /// Its first gap, a step longer than [`GAP_RATIO`] median steps, with that median.
+    gap: Option<(Step, f64)>,
+}
+
+/// A last block of fewer steps than this (or than half a block) has too few for a median
+/// of its own: its gaps are judged against the median of the block before, its rate is not
+/// judged again.
+const MIN_TAIL: usize = 1000;
+
+impl Default for Steps {
+    fn default() -> Self {
+        Steps::in_blocks(RATE_CHECK_ROWS)
+    }
 }
 
 impl Steps {
-    /// The next time stamps of the column (NaN where a field was not a number).
-    pub(crate) fn push(&mut self, t: &[f64]) {
-        if self.unusable {
-            return;
-        }
-        for &v in t {
-            if let Some(last) = self.last {
-                let d = v - last;
-                if !(d > 0.0 && d.is_finite()) {
-                    self.unusable = true;
-                    self.steps = Vec::new();
-                    return;
-                }
-                self.steps.push(d);
-            }
-            self.last = Some(v);
+    /// Steps judged in blocks of `size`.
+    fn in_blocks(size: usize) -> Self {
+        Steps {
+            size: size.max(1),
+            last: None,
+            steps: Vec::new(),
+            unusable: false,
+            start: 0,
+            blocks: Vec::new(),
         }
     }
 
-    /// The median step when the column is a clock: strictly increasing, at least
+    /// The next time stamps of the column (NaN where a field was not a number), at the
+    /// file lines `lines` (0 where not given).
+    pub(crate) fn push(&mut self, t: &[f64], lines: &[u64]) {
+        for (k, &v) in t.iter().enumerate() {
+            let line = lines.get(k).copied().unwrap_or(0);
+            if let Some((last, last_line)) = self.last {
+                if !(v - last > 0.0 && (v - last).is_finite()) {
+                    self.unusable = true;
+                }
+                if self.steps.is_empty() {
+                    self.start = last_line;
+                }
+                self.steps.push(Step {
+                    from: last,
+                    to: v,
+                    line,
+                });
+                if self.steps.len() >= self.size {
+                    self.close_block();
+                }
+            }
+            self.last = Some((v, line));
+        }
+    }
+
+    /// Judges the current block and starts the next.
+    fn close_block(&mut self) {
+        let Some(last) = self.steps.last() else {
+            return;
+        };
+        let lines = [self.start, last.line];
+        let unusable = std::mem::take(&mut self.unusable);
+        let short_tail = self.steps.len() < MIN_TAIL.min(self.size / 2) && !self.blocks.is_empty();
+        let median = if unusable || short_tail {
+            None
+        } else {
+            Steps::median(&self.steps)
+        };
+        let reference = match (unusable, short_tail) {
+            (true, _) => None,
+            (false, true) => self.blocks.last().and_then(|b| b.median),
+            (false, false) => median,
+        };
+        let gap = reference.and_then(|m| {
+            self.steps
+                .iter()
+                .find(|s| s.length() > GAP_RATIO * m)
+                .map(|s| (*s, m))
+        });
+        self.blocks.push(Block { lines, median, gap });
+        self.steps.clear();
+    }
+
+    /// The median step of `steps` when they are a clock: strictly increasing, at least
     /// [`REGULAR_SHARE`] of its steps within [`REGULAR_SPREAD`] of the median. `None`
     /// otherwise, or without steps.
-    pub(crate) fn median(mut self) -> Option<f64> {
-        if self.unusable || self.steps.is_empty() {
+    fn median(steps: &[Step]) -> Option<f64> {
+        if steps.is_empty() {
             return None;
         }
-        self.steps.sort_by(f64::total_cmp);
-        // as `sampling`'s median
-        let median = self.steps[self.steps.len() / 2];
-        let regular = self
-            .steps
+        let mut lengths: Vec<f64> = steps.iter().map(Step::length).collect();
+        // as `sampling`'s median (the upper one of an even count)
+        let middle = lengths.len() / 2;
+        let median = *lengths.select_nth_unstable_by(middle, f64::total_cmp).1;
+        let regular = lengths
             .iter()
             .filter(|&&d| (d / median - 1.0).abs() <= REGULAR_SPREAD)
             .count();
-        (regular as f64 >= REGULAR_SHARE * self.steps.len() as f64).then_some(median)
+        (regular as f64 >= REGULAR_SHARE * lengths.len() as f64).then_some(median)
+    }
+
+    /// Every block, the last one closed.
+    fn finish(mut self) -> Vec<Block> {
+        self.close_block();
+        self.blocks
     }
 }
 
+/// The fix for a gap in a time column that the config does not read.
+const UNREAD_GAP_FIX: &str = "with `sample_rate`, the rows on either side would be taken \
+     for one sample apart; split the file at this line into two files, each recorded without a \
+     pause, and give them as runs (`[runs] files = [\"before.csv\", \"after.csv\"]`, \
+     identified one by one and together), or delete the rows on one side of the gap";
+
 /// Checks the config's `sample_rate` against the time column `column` of the file
-/// `path`, whose steps are `steps`: an error at the `sample_rate` key when its median
-/// step differs from `1 / sample_rate` by more than [`RATE_TOLERANCE`]. Nothing is said
-/// when the column is not a clock ([`Steps::median`]), nor, for a column whose unit
+/// `path`, whose steps are `steps`, block by block ([`Steps`]), in file order: an error at
+/// the `sample_rate` key when a block's median step differs from `1 / sample_rate` by more
+/// than [`RATE_TOLERANCE`] (a later block's error names its lines), and a
+/// [`DataError::TimeGap`](crate::DataError::TimeGap) at the line after a step longer than
+/// [`GAP_RATIO`] median steps (the stamps in seconds, in the column's unit). Nothing is
+/// said of a block that is not a clock ([`Steps::median`]), nor, for a column whose unit
 /// neither its name nor `time_scale` gives, when it agrees with the rate read in ms, µs
-/// or ns, or counts samples (a median step of exactly 1).
+/// or ns, or counts samples (a median step of exactly 1); the unit the first clock block
+/// agrees in is the unit of the rest.
 pub(crate) fn check_rate(
     config: &Config,
     path: &Path,
     column: &UnreadTime,
     steps: Steps,
 ) -> Result<()> {
-    let (Some(fs), Some(median)) = (config.sample_rate, steps.median()) else {
+    let Some(fs) = config.sample_rate else {
         return Ok(());
     };
-    let agrees = |scale: f64| (median * scale * fs - 1.0).abs() <= RATE_TOLERANCE;
-    let consistent = match column.scale {
-        Some(scale) => agrees(scale),
-        None => median == 1.0 || [1.0, 1e-3, 1e-6, 1e-9].into_iter().any(agrees),
-    };
-    if consistent {
-        return Ok(());
+    let mut unit = column.scale;
+    // whether a block before agreed with the rate: then a block that does not is where
+    // the file changes its rate
+    let mut agreed_before = false;
+    for block in &steps.finish() {
+        if let Some(median) = block.median {
+            let agrees = |scale: f64| (median * scale * fs - 1.0).abs() <= RATE_TOLERANCE;
+            let agreed = match unit {
+                Some(scale) => agrees(scale).then_some(scale),
+                None => [1.0, 1e-3, 1e-6, 1e-9]
+                    .into_iter()
+                    .find(|&s| agrees(s))
+                    .or((median == 1.0).then_some(1.0 / fs)),
+            };
+            match agreed {
+                Some(scale) => {
+                    unit = Some(scale);
+                    agreed_before = true;
+                }
+                None => {
+                    let later = agreed_before.then_some(block.lines);
+                    return Err(rate_error(config, path, column, median, unit, later));
+                }
+            }
+        }
+        if let Some((step, median)) = block.gap {
+            let scale = unit.unwrap_or(1.0);
+            return Err(Error::Data(DataError::TimeGap {
+                location: format!(
+                    "{}:{}, column `{}` (not read: the config gives `sample_rate`)",
+                    path.display(),
+                    step.line,
+                    column.name
+                ),
+                from: step.from * scale,
+                to: step.to * scale,
+                median: median * scale,
+                fix: UNREAD_GAP_FIX,
+            }));
+        }
     }
-    let step = median * column.scale.unwrap_or(1.0);
+    Ok(())
+}
+
+/// The error of a block of the time column `column` whose median step `median` does not
+/// agree with the config's rate, read in `unit` (seconds per unit, when known): the first
+/// block judged offers to correct `sample_rate`; a block `later` (its first and last
+/// lines), after blocks at the rate, is where the file changed its rate.
+fn rate_error(
+    config: &Config,
+    path: &Path,
+    column: &UnreadTime,
+    median: f64,
+    unit: Option<f64>,
+    later: Option<[u64; 2]>,
+) -> Error {
+    let fs = config.sample_rate.unwrap_or(1.0);
+    let step = median * unit.unwrap_or(1.0);
     let rate = 1.0 / step;
     let name = &column.name;
     let scale = match column.scale {
         Some(s) if s != 1.0 => format!(" and `time_scale = {}`", num(s)),
         _ => String::new(),
     };
-    let read_as = if column.scale.is_none() {
+    let read_as = if unit.is_none() {
         ", read as seconds"
     } else {
         ""
     };
-    Err(config.key_error(
+    let (lines, fix) = match later {
+        None => (
+            String::new(),
+            format!(
+                "replace `sample_rate` by `time_column = \"{name}\"`{scale} to use the time \
+                 stamps, or correct `sample_rate` (to {} if the time stamps are right)",
+                num(short(rate))
+            ),
+        ),
+        Some([first, last]) => (
+            format!(" in lines {first}-{last}"),
+            format!(
+                "the rate of the file changes before these lines: replace `sample_rate` by \
+                 `time_column = \"{name}\"`{scale} to use the time stamps (a record at two \
+                 rates is resampled onto one), or split the file where its rate changes"
+            ),
+        ),
+    };
+    config.key_error(
         "sample_rate",
         format!(
-            "{} Hz, but the time column `{name}` of {} steps at {} Hz (median step {} s{read_as}): \
-             every derivative and filter would be off by a factor of {}; replace `sample_rate` \
-             by `time_column = \"{name}\"`{scale} to use the time stamps, or correct \
-             `sample_rate` (to {} if the time stamps are right)",
+            "{} Hz, but the time column `{name}` of {} steps at {} Hz{lines} (median step {} \
+             s{read_as}): every derivative and filter would be off by a factor of {}; {fix}",
             num(fs),
             path.display(),
             num(short(rate)),
             num(short(step)),
             num(short((rate / fs).max(fs / rate))),
-            num(short(rate)),
         ),
-    ))
+    )
 }
 
 /// `x` rounded to four significant digits (a rate or a step measured from time stamps,
@@ -234,10 +413,16 @@ fn short(x: f64) -> f64 {
 mod tests {
     use super::*;
 
-    fn steps(t: &[f64]) -> Steps {
+    /// The file lines of `n` stamps: from line 2, after the header.
+    fn lines(n: usize) -> Vec<u64> {
+        (2..2 + n as u64).collect()
+    }
+
+    /// The median step of `t` as one block.
+    fn median(t: &[f64]) -> Option<f64> {
         let mut s = Steps::default();
-        s.push(t);
-        s
+        s.push(t, &lines(t.len()));
+        s.finish().first().and_then(|b| b.median)
     }
 
     #[test]
@@ -270,20 +455,64 @@ mod tests {
         }
     }
 
-    /// The steps read in parts, cut anywhere, are the steps of the whole column.
+    /// The steps read in parts, cut anywhere, are judged as the whole column, in blocks
+    /// whatever the parts.
     #[test]
     fn steps_in_parts_are_the_whole_steps() {
         let t: Vec<f64> = (0..1000).map(|k| 12.5 + 0.002 * k as f64).collect();
-        let whole = steps(&t);
-        let median = whole.clone().median().unwrap();
+        let at = lines(t.len());
+        let mut whole = Steps::in_blocks(300);
+        whole.push(&t, &at);
+        let whole = whole.finish();
+        assert_eq!(whole.len(), 4);
+        assert_eq!(whole[0].lines, [2, 302]);
+        assert_eq!(whole[3].lines, [902, 1001]);
+        let median = whole[0].median.unwrap();
         assert!((median - 0.002).abs() < 1e-15, "{median}");
         for cuts in [[1, 2], [0, 999], [317, 318], [500, 1000]] {
-            let mut s = Steps::default();
-            for part in [&t[..cuts[0]], &t[cuts[0]..cuts[1]], &t[cuts[1]..]] {
-                s.push(part);
+            let mut s = Steps::in_blocks(300);
+            for part in [0..cuts[0], cuts[0]..cuts[1], cuts[1]..t.len()] {
+                s.push(&t[part.clone()], &at[part]);
             }
-            assert_eq!(s.steps, whole.steps, "{cuts:?}");
+            assert_eq!(s.finish(), whole, "{cuts:?}");
         }
+    }
+
+    /// Every block is judged: a gap in a later block, at its line with its stamps and the
+    /// block's median; in a short last block, against the median of the block before; a
+    /// block that is not a clock has neither median nor gap, and the blocks after it are
+    /// judged again.
+    #[test]
+    fn every_block_is_judged_for_gaps() {
+        let gapped = |at: usize, size: usize| {
+            let t: Vec<f64> = (0..1000)
+                .map(|k| 0.001 * k as f64 + if k >= at { 0.5 } else { 0.0 })
+                .collect();
+            let mut s = Steps::in_blocks(size);
+            s.push(&t, &lines(t.len()));
+            s.finish()
+        };
+        let blocks = gapped(750, 300);
+        assert_eq!(blocks.len(), 4);
+        assert!(blocks[..2].iter().all(|b| b.gap.is_none()));
+        let (step, median) = blocks[2].gap.unwrap();
+        assert_eq!(step.line, 751 + 1);
+        assert!((step.from - 0.749).abs() < 1e-12 && (step.to - 1.25).abs() < 1e-12);
+        assert!((median - 0.001).abs() < 1e-12);
+        // the last block holds 9 steps: judged with the median before it
+        let blocks = gapped(995, 110);
+        let last = blocks.last().unwrap();
+        assert_eq!((last.median, last.lines), (None, [992, 1001]));
+        assert_eq!(last.gap.unwrap().0.line, 996 + 1);
+        // a stamp going back in the second block: nothing said of it, the third is judged
+        let mut t: Vec<f64> = (0..900).map(|k| 0.001 * k as f64).collect();
+        t[400] = 0.0;
+        let mut s = Steps::in_blocks(300);
+        s.push(&t, &lines(t.len()));
+        let blocks = s.finish();
+        assert_eq!(blocks.len(), 3);
+        assert!(blocks[1].median.is_none() && blocks[1].gap.is_none());
+        assert!(blocks[0].median.is_some() && blocks[2].median.is_some());
     }
 
     /// A column that is not a clock gives no median: a repeated or decreasing stamp, a
@@ -291,24 +520,24 @@ mod tests {
     /// leave it a clock.
     #[test]
     fn only_a_clock_has_a_median() {
-        assert_eq!(steps(&[0.0, 0.1, 0.1, 0.2]).median(), None);
-        assert_eq!(steps(&[0.0, 0.1, 0.05, 0.2]).median(), None);
-        assert_eq!(steps(&[0.0, f64::NAN, 0.2]).median(), None);
-        assert_eq!(steps(&[0.0]).median(), None);
+        assert_eq!(median(&[0.0, 0.1, 0.1, 0.2]), None);
+        assert_eq!(median(&[0.0, 0.1, 0.05, 0.2]), None);
+        assert_eq!(median(&[0.0, f64::NAN, 0.2]), None);
+        assert_eq!(median(&[0.0]), None);
         let mut rng = crate::rng::Rng::new(3);
         let mut t = vec![0.0];
         for _ in 0..1000 {
             t.push(t.last().unwrap() + rng.uniform(0.001, 0.01));
         }
-        assert_eq!(steps(&t).median(), None);
+        assert_eq!(median(&t), None);
         // 5 % of the ticks skipped, the rest with 2 % jitter
         let mut t = vec![0.0];
         for k in 0..1000 {
             let step = if k % 20 == 0 { 0.002 } else { 0.001 };
             t.push(t.last().unwrap() + step * rng.uniform(0.98, 1.02));
         }
-        let median = steps(&t).median().unwrap();
-        assert!((median / 0.001 - 1.0).abs() < 0.02, "{median}");
+        let m = median(&t).unwrap();
+        assert!((m / 0.001 - 1.0).abs() < 0.02, "{m}");
     }
 
     #[test]

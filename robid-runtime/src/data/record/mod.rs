@@ -195,8 +195,8 @@ impl SpilledRecord {
             unread_time,
         } = plan_source(config, source, 0, path, dof)?;
         let optional = unread_time_rows(&names, unread_time.as_ref());
-        // the steps of a time column the config does not read, in its first rows
-        // (checked against `sample_rate`)
+        // the steps of a time column the config does not read (checked against
+        // `sample_rate`, block by block)
         let mut steps = Steps::default();
         let mut roles = [false; 7];
         spans.iter().for_each(|&(r, _)| roles[r] = true);
@@ -231,7 +231,7 @@ impl SpilledRecord {
             check_ranges(&table, &names, &spans, dof)?;
             let time = take_time(config, &mut table)?;
             if unread_time.is_some() {
-                steps.push(&table.columns.pop().unwrap_or_default());
+                steps.push(&table.columns.pop().unwrap_or_default(), &table.lines);
             }
             let mut columns = std::mem::take(&mut table.columns);
             // a step back between windows is an irregular step: such a file is then

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::*;
+use crate::data::RATE_CHECK_ROWS;
 
 /// A 3-joint log of `n` rows at 1 kHz, `t,p1..p3,v1..v3,c1..c3`, with comment and blank
 /// lines inside, and a stale row every 97 rows (repeated, then caught up).
@@ -404,5 +405,91 @@ fn a_paused_clock_is_refused_as_load_refuses_it() {
             .to_string()
             .contains("the time stamps jump from 1.8 s to 31.801 s"),
         "{record}"
+    );
+}
+
+/// The time column that a config with `sample_rate` does not read is checked over its
+/// whole length, not only in its first [`RATE_CHECK_ROWS`] rows: a pause of the logger
+/// (a gap, [`crate::data::GAP_RATIO`]) anywhere, or a rate that changes after the first rows, is
+/// refused, by `load` and by the record on disk alike, naming the line, the two stamps
+/// (or the lines at the other rate) and the fix. Both used to load without a word.
+#[test]
+fn a_gap_or_another_rate_anywhere_in_an_unread_time_column_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let rate = config(&at_rate("1000.0"));
+    let n = RATE_CHECK_ROWS + RATE_CHECK_ROWS / 2;
+    let later = RATE_CHECK_ROWS + 20_000;
+    let errors = |csv: String| {
+        let path = file(&dir, &csv);
+        let files = std::slice::from_ref(&path);
+        let dense = load(&rate, files, 3).map(|_| ()).map_err(|e| e.to_string());
+        let disk = SpilledRecord::open_in(&rate, files, 3, 1 << 20)
+            .map(|_| ())
+            .map_err(|e| e.to_string());
+        assert_eq!(dense, disk);
+        (dense, path)
+    };
+    // at the rate throughout: loads
+    let (ok, _) = errors(stamped(n, "t", Some(&|k| format!("{}", k as f64 * 1e-3))));
+    assert_eq!(ok, Ok(()));
+    // the logger paused 2 s after row `later`
+    let paused = |k: usize| {
+        let t = k as f64 * 1e-3;
+        format!("{}", if k > later { t + 2.0 } else { t })
+    };
+    let (e, path) = errors(stamped(n, "t", Some(&paused)));
+    let e = e.unwrap_err();
+    // the file line of row k: the preamble, the header, a comment and a blank line every
+    // 500 rows
+    let line_of = |k: usize| 3 + k + 2 * ((k + 250) / 500);
+    let line = line_of(later + 1);
+    assert!(
+        e.starts_with(&format!(
+            "{}:{line}, column `t` (not read: the config gives `sample_rate`): the time \
+             stamps jump from 120 s to 122.001 s, a gap of 2.001 s, 2000 times the median \
+             step of 0.001 s",
+            path.display()
+        )) && e.contains("split the file at this line into two files"),
+        "{e}"
+    );
+    // and in the first rows too
+    let early = |k: usize| {
+        format!(
+            "{}",
+            if k > 1000 {
+                k as f64 * 1e-3 + 2.0
+            } else {
+                k as f64 * 1e-3
+            }
+        )
+    };
+    let (e, _) = errors(stamped(3000, "t", Some(&early)));
+    assert!(
+        e.unwrap_err()
+            .contains("the time stamps jump from 1 s to 3.001 s")
+    );
+    // the rate halves after row `later`: the block of steps it shares with the rate before
+    // is no clock, the next is named by its lines
+    let slower = |k: usize| {
+        let t = if k > later {
+            later as f64 * 1e-3 + (k - later) as f64 * 2e-3
+        } else {
+            k as f64 * 1e-3
+        };
+        format!("{t}")
+    };
+    let (e, path) = errors(stamped(n + RATE_CHECK_ROWS, "t", Some(&slower)));
+    let e = e.unwrap_err();
+    assert!(
+        e.starts_with(&format!(
+            "test.toml:3:1: `sample_rate`: 1000 Hz, but the time column `t` of {} steps at \
+             500 Hz in lines {}-{} (median step 0.002 s): every derivative and filter would \
+             be off by a factor of 2; the rate of the file changes before these lines: \
+             replace `sample_rate` by `time_column = \"t\"` to use the time stamps",
+            path.display(),
+            line_of(2 * RATE_CHECK_ROWS),
+            line_of(n + RATE_CHECK_ROWS - 1),
+        )),
+        "{e}"
     );
 }
