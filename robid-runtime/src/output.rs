@@ -201,7 +201,14 @@ fn target(path: &Path) -> Result<Target> {
         let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
         (target, false)
     } else if is_link(path) {
-        (follow_links(path)?, true)
+        let target = follow_links(path)?;
+        if names_folder(&target) {
+            return Err(Error::Output(OutputError::LinkToFolder {
+                path: path.to_path_buf(),
+                target,
+            }));
+        }
+        (target, true)
     } else {
         (path.to_path_buf(), false)
     };
@@ -254,6 +261,18 @@ fn follow_links(path: &Path) -> Result<PathBuf> {
     Err(Error::Output(OutputError::LinkLoop {
         path: path.to_path_buf(),
     }))
+}
+
+/// Whether the text of `path` names a folder: it ends in a separator, or its last part is
+/// `.` or `..` (which `Path` would drop or take for a name: `results/` has the file name
+/// `results`, yet no file can be created by that name).
+fn names_folder(path: &Path) -> bool {
+    let text = path.as_os_str().as_encoded_bytes();
+    let last = text
+        .rsplit(|&b| b.is_ascii() && std::path::is_separator(char::from(b)))
+        .next()
+        .unwrap_or_default();
+    last.is_empty() || last == b"." || last == b".."
 }
 
 /// The folder `path` lies in: its parent, or `.` for a bare name.
@@ -471,6 +490,18 @@ pub enum OutputError {
         /// Its folder.
         folder: PathBuf,
     },
+    /// The output is a symbolic link to nothing whose target names a folder (it ends in
+    /// `/`, or in `/.` or `/..`: `out.csv -> results/`, `results` missing): no file can be
+    /// created there.
+    #[error(
+        "{path}: is a symbolic link to {target}, which names a folder, and that folder does not exist; point the link to a file (or create the folder and give the path of a file in it), or remove the link to write a file in its place"
+    )]
+    LinkToFolder {
+        /// The output, as given.
+        path: PathBuf,
+        /// What the link points to, through every link of a chain.
+        target: PathBuf,
+    },
     /// The output is a symbolic link that leads back to itself (`a -> b`, `b -> a`), or
     /// a chain of more than 40 links.
     #[error(
@@ -667,6 +698,51 @@ mod tests {
         assert!(!d.join("missing").exists());
         assert_eq!(std::fs::read_to_string(d.join("notes.txt")).unwrap(), "x");
         assert_eq!(std::fs::read_dir(d).unwrap().count(), 4);
+    }
+
+    /// A link to nothing whose target names a folder (`out.csv -> results/`, `results`
+    /// missing) is refused naming the link and its target, before the work and by the
+    /// writer, the link kept and nothing created; it used to pass the check and fail only
+    /// when the finished file was renamed onto the target. A folder output through such a
+    /// link is still created there.
+    #[test]
+    #[cfg(unix)]
+    fn a_link_to_a_missing_folder_is_refused_as_a_file_output() {
+        use std::os::unix::fs::symlink;
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        symlink(d.join("results/"), d.join("out.csv")).unwrap();
+        symlink("results/.", d.join("dot.csv")).unwrap();
+        symlink("out.csv", d.join("chain.csv")).unwrap();
+        for (name, target) in [
+            ("out.csv", format!("{}/results/", d.display())),
+            ("dot.csv", format!("{}/results/.", d.display())),
+            ("chain.csv", format!("{}/results/", d.display())),
+        ] {
+            let link = d.join(name);
+            let e = check_file(&link).unwrap_err();
+            assert!(
+                matches!(&e, Error::Output(OutputError::LinkToFolder { path, target: t })
+                    if *path == link && t.as_os_str() == target.as_str()),
+                "{e:?}"
+            );
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "{}: is a symbolic link to {target}, which names a folder, and that folder \
+                     does not exist; point the link to a file (or create the folder and give \
+                     the path of a file in it), or remove the link to write a file in its place",
+                    link.display()
+                )
+            );
+            let written = write_bytes(&link, b"x").unwrap_err();
+            assert_eq!(written.to_string(), e.to_string());
+            assert!(is_link(&link));
+        }
+        assert_eq!(std::fs::read_dir(d).unwrap().count(), 3);
+        // as a folder output, the folder it points to is created, the link kept
+        create_folder(&d.join("out.csv")).unwrap();
+        assert!(d.join("results").is_dir() && is_link(&d.join("out.csv")));
     }
 
     /// A loop of links is refused as one, and kept; a link to a folder is a folder.
