@@ -734,7 +734,41 @@ fn torques_warn_about_a_joint_that_moves_only_massless_links() {
     let parameters = write(dir.path(), "params.toml", FLANGED_PARAMETERS);
     let o = torques(&urdf, &["--parameters", parameters.to_str().unwrap()]);
     assert!(!stderr(&o).contains("moves only links"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("no mass or inertia"), "{}", stderr(&o));
     assert!(column(&o, 1).iter().all(|&t| t != 0.0), "{}", stdout(&o));
+    // a parameter file that leaves link 2 empty: joint 2's torque is 0 in every row, told
+    // as for the URDF's own inertials (it used to be written without a word)
+    let link1 = write(
+        dir.path(),
+        "link1.toml",
+        "[standard]\nXX1 = 0.01\nYY1 = 0.02\nZZ1 = 0.02\nMX1 = 0.1\nM1 = 1\n",
+    );
+    let o = torques(&urdf, &["--parameters", link1.to_str().unwrap()]);
+    let e = stderr(&o);
+    assert!(
+        e.starts_with(&format!(
+            "warning: with the parameters of {}, joint 2 (`j2`) of {} moves no mass or \
+             inertia: every base parameter its torque depends on (",
+            link1.display(),
+            urdf.display()
+        )) && e.ends_with(&format!(
+            ") is 0, so its torque tau2 is 0 in every row; give the links from link 2 on \
+             their masses and inertias in {} (a standard parameter it does not name counts \
+             as 0)\n",
+            link1.display()
+        )),
+        "{e}"
+    );
+    assert!(column(&o, 1).iter().all(|&t| t == 0.0), "{}", stdout(&o));
+    // an empty [standard] table: every joint
+    let nothing = write(dir.path(), "nothing.toml", "[standard]\n");
+    let o = torques(&urdf, &["--parameters", nothing.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("joints 1 (`j1`) and 2 (`j2`) of ")
+            && stderr(&o).contains("so their torques tau1 and tau2 are 0 in every row"),
+        "{}",
+        stderr(&o)
+    );
     // a URDF whose every joint moves mass: no warning
     let states = states(dir.path());
     let o = robid(&["torques", UR5, "--states", states.to_str().unwrap()]);
