@@ -55,15 +55,41 @@ impl Ctxt {
 
     /// Every problem of a description error, each at the span `at` gives it.
     fn description(&mut self, err: &DescriptionError, at: impl Fn(&DescriptionError) -> Span) {
+        self.description_spanning(err, |e| (at(e), None));
+    }
+
+    /// [`Ctxt::description`] where `at` may give a range: from its first span to its
+    /// second, when it has one (both of two arguments at fault, and what lies between).
+    fn description_spanning(
+        &mut self,
+        err: &DescriptionError,
+        at: impl Fn(&DescriptionError) -> (Span, Option<Span>),
+    ) {
         for e in err.errors() {
             let message = match e {
                 // The span says which argument: the message and the fix suffice.
                 DescriptionError::Argument { message, help, .. } => format!("{message}; {help}"),
                 other => other.to_string(),
             };
-            self.error(at(e), message);
+            match at(e) {
+                (span, None) => self.error(span, message),
+                (start, Some(end)) => self.errors.push(spanning(start, end, message)),
+            }
         }
     }
+}
+
+/// An error whose span runs from `start` to `end`: syn places an error made from tokens
+/// from the first token's span to the last's, which a compiler without `Span::join`
+/// (stable Rust) still shows as one range.
+fn spanning(start: Span, end: Span, message: impl std::fmt::Display) -> syn::Error {
+    let tokens: proc_macro2::TokenStream = [
+        proc_macro2::TokenTree::Ident(proc_macro2::Ident::new("start", start)),
+        proc_macro2::TokenTree::Ident(proc_macro2::Ident::new("end", end)),
+    ]
+    .into_iter()
+    .collect();
+    syn::Error::new_spanned(tokens, message)
 }
 
 /// Where the parts of an inline description were written.
@@ -137,9 +163,16 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
                     );
                 }
             }
+            // both links chosen: from the first key written to the last value
+            let at = |k: &str| found.iter().position(|i| i.key == k);
+            let both = at("base").zip(at("tip")).map(|(b, t)| {
+                let (first, last) = (found[b.min(t)], found[b.max(t)]);
+                (first.key.span(), last.value.span())
+            });
             let chain = ChainSelection {
                 base: get("base").and_then(|i| string(&mut cx, &i.value, "the base link")),
                 tip: get("tip").and_then(|i| string(&mut cx, &i.value, "the tip link")),
+                both,
             };
             from_file(&mut cx, &file.value, &chain)
         }
@@ -214,6 +247,8 @@ fn string(cx: &mut Ctxt, e: &Expr, what: &str) -> Option<LitStr> {
 struct ChainSelection {
     base: Option<LitStr>,
     tip: Option<LitStr>,
+    /// With both: from the first of the two keys written to the last of the two values.
+    both: Option<(Span, Span)>,
 }
 
 fn from_file(cx: &mut Ctxt, e: &Expr, chain: &ChainSelection) -> Option<Read> {
@@ -285,19 +320,31 @@ fn from_file(cx: &mut Ctxt, e: &Expr, chain: &ChainSelection) -> Option<Read> {
     match read {
         Ok((robot, inertials)) => Some((robot, Some(path), inertials)),
         Err(err) => {
-            // an error about the chain's choice at `base = ..` or `tip = ..`, the rest at the path
-            cx.description(&err, |e| match e {
+            // an error about the chain's choice at `base = ..` or `tip = ..` (about both,
+            // from one to the other), the rest at the path
+            cx.description_spanning(&err, |e| match e {
                 DescriptionError::Argument { argument, .. } => {
-                    let given = if argument.contains("ChainSelection::tip") {
-                        &chain.tip
-                    } else if argument.contains("ChainSelection::base") {
-                        &chain.base
-                    } else {
-                        &None
+                    let (base, tip) = (
+                        argument.contains("ChainSelection::base"),
+                        argument.contains("ChainSelection::tip"),
+                    );
+                    if base
+                        && tip
+                        && let Some((start, end)) = chain.both
+                    {
+                        return (start, Some(end));
+                    }
+                    let given = match (base, tip) {
+                        (_, true) => &chain.tip,
+                        (true, false) => &chain.base,
+                        (false, false) => &None,
                     };
-                    given.as_ref().map_or_else(|| lit.span(), LitStr::span)
+                    (
+                        given.as_ref().map_or_else(|| lit.span(), LitStr::span),
+                        None,
+                    )
                 }
-                _ => lit.span(),
+                _ => (lit.span(), None),
             });
             None
         }
