@@ -371,4 +371,90 @@ mod tests {
         let after = factor_all(before.clone());
         assert_eq!(after, before);
     }
+
+    /// Random programs of sums, differences, products and negations (products sharing
+    /// factors, sums read twice, products read elsewhere, squares, constants), at
+    /// integer inputs small enough that every value is exact in f64: the factored
+    /// program gives exactly the values of the program as written, in topological
+    /// order, with no operation more.
+    #[test]
+    fn random_programs_keep_their_values() {
+        let mut rng = Rng::from_state(11);
+        for case in 0..3000 {
+            let inputs = 5;
+            let constants = [2.0, -3.0, 0.5];
+            let pick = |rng: &mut Rng, temps: usize| -> Value {
+                match rng.below(10) {
+                    0..=3 if temps > 0 => Value::Temp((temps - 1 - rng.below(temps.min(6))) as u32),
+                    4..=5 if temps > 0 => Value::Temp(rng.below(temps) as u32),
+                    6 => Value::Const(rng.below(constants.len()) as u32),
+                    _ => Value::Input(rng.below(inputs) as u32),
+                }
+            };
+            let n = 2 + rng.below(40);
+            let mut instrs = Vec::new();
+            for i in 0..n {
+                let (a, b) = (pick(&mut rng, i), pick(&mut rng, i));
+                instrs.push(match rng.below(9) {
+                    0..=2 => Instr::Add(a, b),
+                    3..=4 => Instr::Sub(a, b),
+                    5..=7 => Instr::Mul(a, b),
+                    _ => Instr::Neg(a),
+                });
+            }
+            let mut values = vec![Value::Temp(n as u32 - 1)];
+            for _ in 0..rng.below(4) {
+                values.push(Value::Temp(rng.below(n) as u32));
+            }
+            let names = (0..inputs).map(|k| format!("x{k}")).collect();
+            let outs = (0..values.len()).map(|k| format!("o{k}")).collect();
+            let before = Program {
+                inputs: vec![Group::new("in", names)],
+                constants: constants.to_vec(),
+                instrs,
+                outputs: vec![Output {
+                    group: Group::new("out", outs),
+                    values,
+                }],
+            };
+            // a bound of every value of both programs (each a sum of the same
+            // products): below 2^50, integer arithmetic is exact
+            let bound = |v: Value, b: &[f64]| match v {
+                Value::Temp(t) => b[t as usize],
+                Value::Input(_) => 3.0,
+                Value::Const(k) => constants[k as usize].abs(),
+            };
+            let mut b: Vec<f64> = Vec::new();
+            for instr in &before.instrs {
+                let x = match *instr {
+                    Instr::Add(p, q) | Instr::Sub(p, q) => bound(p, &b) + bound(q, &b),
+                    Instr::Mul(p, q) => bound(p, &b) * bound(q, &b),
+                    Instr::Neg(p) => bound(p, &b),
+                    _ => unreachable!(),
+                };
+                b.push(x);
+            }
+            if b.iter().any(|&x| x > 2f64.powi(40)) {
+                continue;
+            }
+            let after = factor_all(before.clone());
+            for (i, instr) in after.instrs.iter().enumerate() {
+                for v in instr.operands() {
+                    if let Value::Temp(t) = v {
+                        assert!((t as usize) < i, "case {case}: {after}");
+                    }
+                }
+            }
+            let (ob, oa) = (before.operations(), after.operations());
+            assert!(
+                oa.mul <= ob.mul && oa.add <= ob.add && oa.neg <= ob.neg,
+                "case {case}:\n{before}\n->\n{after}"
+            );
+            for _ in 0..5 {
+                let x: Vec<f64> = (0..inputs).map(|_| rng.below(7) as f64 - 3.0).collect();
+                let (u, v) = (before.eval(&[&x]).unwrap(), after.eval(&[&x]).unwrap());
+                assert_eq!(u, v, "case {case} at {x:?}:\n{before}\n->\n{after}");
+            }
+        }
+    }
 }
