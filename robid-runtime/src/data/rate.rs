@@ -12,9 +12,12 @@
 //! the block's lines: the file changed its rate there), and a step longer than
 //! [`GAP_RATIO`] median steps (a paused logger, which `sample_rate` would bridge as one
 //! step) is a [`DataError::TimeGap`](crate::DataError::TimeGap) naming the line, the two
-//! stamps and the fix. A block that is not a clock (a step that is zero, negative or not
-//! a number, or fewer than [`REGULAR_SHARE`] of the steps within [`REGULAR_SPREAD`] of the
-//! median) says nothing.
+//! stamps and the fix. A block that is not a clock (a stamp going back, or fewer than
+//! [`REGULAR_SHARE`] of its steps within [`REGULAR_SPREAD`] of the median of its positive
+//! steps, a repeated stamp counting against it) says nothing, nor does the step after a
+//! stamp going back in the next block (it starts from a stamp out of order). A field that
+//! is not a number is left out (the step spans it): neither it nor a repeated stamp hides
+//! the gaps of its block.
 
 use std::path::Path;
 
@@ -137,10 +140,12 @@ pub(crate) struct Steps {
     size: usize,
     /// The last stamp and its file line.
     last: Option<(f64, u64)>,
+    /// Whether the last step went back: the next starts from a stamp out of order.
+    back: bool,
     /// The steps of the current block: the stamps before and after each, and the line of
     /// the later.
     steps: Vec<Step>,
-    /// Not a clock: a step of the current block that is not a positive number.
+    /// Not a clock: a step of the current block goes back.
     unusable: bool,
     /// The file line of the current block's first stamp.
     start: u64,
@@ -155,6 +160,8 @@ struct Step {
     to: f64,
     /// The file line of `to`.
     line: u64,
+    /// Whether the step before went back: `from` is out of order, and the step no gap.
+    after_back: bool,
 }
 
 impl Step {
@@ -169,7 +176,7 @@ struct Block {
     /// The file lines of the block's first and last stamps.
     lines: [u64; 2],
     /// Its median step when it is a clock ([`Steps::median`]); `None` otherwise, and for
-    /// a short last block ([`MIN_TAIL`]), judged by the block before.
+    /// a short last block ([`MIN_TAIL`]), judged for gaps by the block before.
     median: Option<f64>,
     /// Its first gap, a step longer than [`GAP_RATIO`] median steps, with that median.
     gap: Option<(Step, f64)>,
@@ -192,6 +199,7 @@ impl Steps {
         Steps {
             size: size.max(1),
             last: None,
+            back: false,
             steps: Vec::new(),
             unusable: false,
             start: 0,
@@ -200,14 +208,15 @@ impl Steps {
     }
 
     /// The next time stamps of the column (NaN where a field was not a number), at the
-    /// file lines `lines` (0 where not given).
+    /// file lines `lines` (0 where not given). A stamp that is not a finite number is
+    /// left out, as a field that is not there: the step spans it.
     pub(crate) fn push(&mut self, t: &[f64], lines: &[u64]) {
         for (k, &v) in t.iter().enumerate() {
+            if !v.is_finite() {
+                continue;
+            }
             let line = lines.get(k).copied().unwrap_or(0);
             if let Some((last, last_line)) = self.last {
-                if !(v - last > 0.0 && (v - last).is_finite()) {
-                    self.unusable = true;
-                }
                 if self.steps.is_empty() {
                     self.start = last_line;
                 }
@@ -215,7 +224,10 @@ impl Steps {
                     from: last,
                     to: v,
                     line,
+                    after_back: self.back,
                 });
+                self.back = v < last;
+                self.unusable |= self.back;
                 if self.steps.len() >= self.size {
                     self.close_block();
                 }
@@ -245,21 +257,26 @@ impl Steps {
         let gap = reference.and_then(|m| {
             self.steps
                 .iter()
-                .find(|s| s.length() > GAP_RATIO * m)
+                .find(|s| !s.after_back && s.length() > GAP_RATIO * m)
                 .map(|s| (*s, m))
         });
         self.blocks.push(Block { lines, median, gap });
         self.steps.clear();
     }
 
-    /// The median step of `steps` when they are a clock: strictly increasing, at least
-    /// [`REGULAR_SHARE`] of its steps within [`REGULAR_SPREAD`] of the median. `None`
-    /// otherwise, or without steps.
+    /// The median of the positive steps of `steps` when they are a clock: at least
+    /// [`REGULAR_SHARE`] of all its steps within [`REGULAR_SPREAD`] of that median (a
+    /// step that is zero or negative is not). `None` otherwise, or without positive
+    /// steps. (A block with a step back has no median: [`Steps::close_block`].)
     fn median(steps: &[Step]) -> Option<f64> {
-        if steps.is_empty() {
+        let mut lengths: Vec<f64> = steps
+            .iter()
+            .map(Step::length)
+            .filter(|&d| d > 0.0)
+            .collect();
+        if lengths.is_empty() {
             return None;
         }
-        let mut lengths: Vec<f64> = steps.iter().map(Step::length).collect();
         // as `sampling`'s median (the upper one of an even count)
         let middle = lengths.len() / 2;
         let median = *lengths.select_nth_unstable_by(middle, f64::total_cmp).1;
@@ -267,7 +284,7 @@ impl Steps {
             .iter()
             .filter(|&&d| (d / median - 1.0).abs() <= REGULAR_SPREAD)
             .count();
-        (regular as f64 >= REGULAR_SHARE * lengths.len() as f64).then_some(median)
+        (regular as f64 >= REGULAR_SHARE * steps.len() as f64).then_some(median)
     }
 
     /// Every block, the last one closed.
@@ -515,14 +532,48 @@ mod tests {
         assert!(blocks[0].median.is_some() && blocks[2].median.is_some());
     }
 
-    /// A column that is not a clock gives no median: a repeated or decreasing stamp, a
-    /// field that was not a number, steps scattered; a few skipped ticks and some jitter
-    /// leave it a clock.
+    /// A stamp repeated or a field that is not a number in a block leaves it a clock,
+    /// whose gap is found (each hid every gap of its block); the step back to the clock
+    /// after a stamp going back as a block's last is no gap in the next block, as it is
+    /// none in its own (it was taken for one).
+    #[test]
+    fn a_stamp_out_of_order_hides_no_gap() {
+        let gapped = |t: &mut Vec<f64>| {
+            for v in &mut t[600..] {
+                *v += 0.5;
+            }
+        };
+        for case in ["repeated", "not a number"] {
+            let mut t: Vec<f64> = (0..900).map(|k| 0.001 * k as f64).collect();
+            t[10] = if case == "repeated" { t[9] } else { f64::NAN };
+            gapped(&mut t);
+            let mut s = Steps::in_blocks(1000);
+            s.push(&t, &lines(t.len()));
+            let blocks = s.finish();
+            let (step, median) = blocks[0].gap.unwrap_or_else(|| panic!("{case}"));
+            assert_eq!(step.line, 600 + 2, "{case}");
+            assert!((median - 0.001).abs() < 1e-12, "{case}");
+        }
+        // a stamp going back as the last of a block: the step after it starts the next
+        // block, and is no gap
+        let mut t: Vec<f64> = (0..900).map(|k| 0.001 * k as f64).collect();
+        t[300] = 0.1;
+        let mut s = Steps::in_blocks(300);
+        s.push(&t, &lines(t.len()));
+        let blocks = s.finish();
+        assert_eq!(blocks.len(), 3);
+        assert!(blocks.iter().all(|b| b.gap.is_none()), "{blocks:?}");
+        assert!(blocks[0].median.is_none() && blocks[1].median.is_some());
+    }
+
+    /// A column that is not a clock gives no median: a stamp repeated in few steps, a
+    /// decreasing stamp, fields that were not numbers, steps scattered; a few skipped
+    /// ticks and some jitter leave it a clock.
     #[test]
     fn only_a_clock_has_a_median() {
         assert_eq!(median(&[0.0, 0.1, 0.1, 0.2]), None);
         assert_eq!(median(&[0.0, 0.1, 0.05, 0.2]), None);
-        assert_eq!(median(&[0.0, f64::NAN, 0.2]), None);
+        assert_eq!(median(&[0.0, f64::NAN, f64::INFINITY]), None);
         assert_eq!(median(&[0.0]), None);
         let mut rng = crate::rng::Rng::new(3);
         let mut t = vec![0.0];

@@ -412,7 +412,8 @@ fn a_paused_clock_is_refused_as_load_refuses_it() {
 /// whole length, not only in its first [`RATE_CHECK_ROWS`] rows: a pause of the logger
 /// (a gap, [`crate::data::GAP_RATIO`]) anywhere, or a rate that changes after the first rows, is
 /// refused, by `load` and by the record on disk alike, naming the line, the two stamps
-/// (or the lines at the other rate) and the fix. Both used to load without a word.
+/// (or the lines at the other rate) and the fix, also beside a repeated stamp or a field
+/// that is not a number. Both used to load without a word.
 #[test]
 fn a_gap_or_another_rate_anywhere_in_an_unread_time_column_is_refused() {
     let dir = tempfile::tempdir().unwrap();
@@ -464,6 +465,18 @@ fn a_gap_or_another_rate_anywhere_in_an_unread_time_column_is_refused() {
         )
     };
     let (e, _) = errors(stamped(3000, "t", Some(&early)));
+    assert!(
+        e.unwrap_err()
+            .contains("the time stamps jump from 1 s to 3.001 s")
+    );
+    // a stamp repeated and a field that is not a number in the block of the pause
+    // hide it no more (each hid every gap of its block)
+    let glitches = |k: usize| match k {
+        10 => early(9),
+        20 => String::new(),
+        _ => early(k),
+    };
+    let (e, _) = errors(stamped(3000, "t", Some(&glitches)));
     assert!(
         e.unwrap_err()
             .contains("the time stamps jump from 1 s to 3.001 s")
