@@ -380,27 +380,37 @@ mod tests {
     #[test]
     fn random_programs_keep_their_values() {
         let mut rng = Rng::from_state(11);
+        let mut factored = 0;
         for case in 0..3000 {
             let inputs = 5;
             let constants = [2.0, -3.0, 0.5];
-            let pick = |rng: &mut Rng, temps: usize| -> Value {
-                match rng.below(10) {
-                    0..=3 if temps > 0 => Value::Temp((temps - 1 - rng.below(temps.min(6))) as u32),
-                    4..=5 if temps > 0 => Value::Temp(rng.below(temps) as u32),
-                    6 => Value::Const(rng.below(constants.len()) as u32),
-                    _ => Value::Input(rng.below(inputs) as u32),
+            // a factor: mostly one of few inputs or a constant, so that products share it
+            let factor = |rng: &mut Rng, temps: usize| -> Value {
+                match rng.below(8) {
+                    0 if temps > 0 => Value::Temp(rng.below(temps) as u32),
+                    1 => Value::Const(rng.below(constants.len()) as u32),
+                    k => Value::Input((k % 3) as u32 + rng.below(2) as u32),
                 }
             };
-            let n = 2 + rng.below(40);
+            let n = 2 + rng.below(60);
             let mut instrs = Vec::new();
+            // values not read yet: sums take two of them, so that most sums are trees
+            // of terms read once, and some are read again
+            let mut open: Vec<Value> = Vec::new();
             for i in 0..n {
-                let (a, b) = (pick(&mut rng, i), pick(&mut rng, i));
-                instrs.push(match rng.below(9) {
-                    0..=2 => Instr::Add(a, b),
-                    3..=4 => Instr::Sub(a, b),
-                    5..=7 => Instr::Mul(a, b),
-                    _ => Instr::Neg(a),
-                });
+                let take = |rng: &mut Rng, open: &mut Vec<Value>| match open.len() {
+                    0 => Value::Input(rng.below(inputs) as u32),
+                    k if rng.below(8) == 0 => open[rng.below(k)],
+                    k => open.swap_remove(rng.below(k)),
+                };
+                let instr = match rng.below(10) {
+                    0..=4 => Instr::Mul(factor(&mut rng, i), factor(&mut rng, i)),
+                    5..=6 => Instr::Add(take(&mut rng, &mut open), take(&mut rng, &mut open)),
+                    7..=8 => Instr::Sub(take(&mut rng, &mut open), take(&mut rng, &mut open)),
+                    _ => Instr::Neg(take(&mut rng, &mut open)),
+                };
+                instrs.push(instr);
+                open.push(Value::Temp(i as u32));
             }
             let mut values = vec![Value::Temp(n as u32 - 1)];
             for _ in 0..rng.below(4) {
@@ -438,6 +448,7 @@ mod tests {
                 continue;
             }
             let after = factor_all(before.clone());
+            factored += usize::from(after.operations().mul < before.operations().mul);
             for (i, instr) in after.instrs.iter().enumerate() {
                 for v in instr.operands() {
                     if let Value::Temp(t) = v {
@@ -456,5 +467,7 @@ mod tests {
                 assert_eq!(u, v, "case {case} at {x:?}:\n{before}\n->\n{after}");
             }
         }
+        // the pass has work in many of them
+        assert!(factored > 500, "{factored} programs factored");
     }
 }
