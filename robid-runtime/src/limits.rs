@@ -20,6 +20,7 @@
 //! | temperature (deg C) | magnitude at most [`MAX_TEMPERATURE`] = 1e3 deg C |
 //! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
 //! | parameter values and standard deviations given as input | magnitude at most [`MAX_PARAMETER`] = 1e6 |
+//! | a joint's limits for an excitation design | velocity, acceleration and torque limits, and the span of the position limits, at least [`MIN_JOINT_LIMIT`] = 1e-6 |
 //! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | magnitude at most [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants) also magnitude at least [`MIN_FACTOR`] = 1e-12 |
 //!
 //! Sizes are checked before anything of that size is allocated:
@@ -62,6 +63,11 @@ pub const MAX_FACTOR: f64 = 1e6;
 /// Smallest |factor| of a unit or drive-chain setting that scales a signal (`time_scale`,
 /// `torque_scale`, gear ratios, torque constants): a smaller one erases the signal.
 pub const MIN_FACTOR: f64 = 1e-12;
+/// Smallest velocity, acceleration or torque limit of a joint, and smallest span of its
+/// position limits, that an excitation design takes: below it the joint cannot move or
+/// push enough for its trajectory to excite anything (a limit of 1e-320 gave a criterion
+/// that is not finite and an error naming no joint).
+pub const MIN_JOINT_LIMIT: f64 = 1e-6;
 /// Largest |value| and standard deviation of a base or standard parameter given as input
 /// (identified values for the feasible search, reference parameters of a simulation or a
 /// design): kg, kg m, kg m^2, N m s/rad, N m.

@@ -1,7 +1,9 @@
 //! Joint limits and the margins a trajectory keeps to them.
 
 use crate::error::{Error, Result, num};
-use crate::limits::{MAX_ACCELERATION, MAX_PARAMETER, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use crate::limits::{
+    MAX_ACCELERATION, MAX_PARAMETER, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY, MIN_JOINT_LIMIT,
+};
 use crate::simulate::Trajectory;
 use crate::{LengthError, Model};
 
@@ -20,7 +22,8 @@ pub struct JointLimits {
 
 impl JointLimits {
     /// Checks that the limits are finite, ordered, positive and within the ranges of
-    /// [`crate::limits`]; `joint` is 1-based.
+    /// [`crate::limits`] (at least [`MIN_JOINT_LIMIT`]: a joint held to less cannot be
+    /// excited); `joint` is 1-based.
     pub fn check(&self, joint: usize) -> Result<()> {
         let [lo, hi] = self.position;
         let bad = |what: &str, problem: String| {
@@ -30,11 +33,12 @@ impl JointLimits {
                 format!("joint {joint}: {problem}"),
             ))
         };
-        if !(lo.abs() <= MAX_POSITION && hi.abs() <= MAX_POSITION && lo < hi) {
+        if !(lo.abs() <= MAX_POSITION && hi.abs() <= MAX_POSITION && hi - lo >= MIN_JOINT_LIMIT) {
             return bad(
                 "position",
                 format!(
-                    "[{}, {}] must be finite within +-{MAX_POSITION:e}, with low < high",
+                    "[{}, {}] must be finite within +-{MAX_POSITION:e}, with high - low at \
+                     least {MIN_JOINT_LIMIT:e}",
                     num(lo),
                     num(hi)
                 ),
@@ -45,8 +49,15 @@ impl JointLimits {
             ("acceleration", self.acceleration, MAX_ACCELERATION),
             ("torque", self.torque.unwrap_or(1.0), MAX_TORQUE),
         ] {
-            if !(x > 0.0 && x <= limit) {
-                return bad(what, format!("{} must lie in (0, {limit:e}]", num(x)));
+            if !(x >= MIN_JOINT_LIMIT && x <= limit) {
+                return bad(
+                    what,
+                    format!(
+                        "{} must lie in [{MIN_JOINT_LIMIT:e}, {limit:e}] (a smaller limit leaves \
+                         the joint nothing to excite)",
+                        num(x)
+                    ),
+                );
             }
         }
         Ok(())
@@ -245,4 +256,47 @@ pub fn margins<M: Model + ?Sized>(
             }
         })
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn joint() -> JointLimits {
+        JointLimits {
+            position: [-1.0, 1.0],
+            velocity: 2.0,
+            acceleration: 5.0,
+            torque: Some(10.0),
+        }
+    }
+
+    /// Limits too small to excite anything (a denormal velocity gave a criterion that is
+    /// not finite and an error naming no joint) are refused naming the joint and the
+    /// limit; the floor itself is accepted.
+    #[test]
+    fn limits_below_the_floor_are_refused_by_joint() {
+        assert!(joint().check(1).is_ok());
+        type Edit = fn(&mut JointLimits, f64);
+        let edits: [(&str, Edit); 4] = [
+            ("velocity", |l, x| l.velocity = x),
+            ("acceleration", |l, x| l.acceleration = x),
+            ("torque", |l, x| l.torque = Some(x)),
+            ("position", |l, x| l.position = [0.5, 0.5 + x]),
+        ];
+        for (what, edit) in edits {
+            for tiny in [1e-320, 1e-9, 0.0] {
+                let mut l = joint();
+                edit(&mut l, tiny);
+                let e = l.check(3).unwrap_err().to_string();
+                assert!(
+                    e.contains(what) && e.contains("joint 3"),
+                    "{what} {tiny}: {e}"
+                );
+            }
+            let mut l = joint();
+            edit(&mut l, 2.0 * MIN_JOINT_LIMIT);
+            assert!(l.check(3).is_ok(), "{what} at the floor");
+        }
+    }
 }
