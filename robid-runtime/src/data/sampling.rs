@@ -37,6 +37,15 @@ pub struct Sampling {
 }
 
 impl Sampling {
+    /// The statistics of the time steps (`None` without a time column).
+    pub(crate) fn steps(&self) -> Option<Steps> {
+        Some(Steps {
+            median: self.step?,
+            jitter: self.jitter?,
+            skipped_ticks: self.skipped_ticks,
+        })
+    }
+
     /// The statistics of a file with time stamps `time` (seconds, increasing) and data
     /// `columns` (one vector per column, all of the same length).
     pub fn of(path: PathBuf, time: Option<&[f64]>, columns: &[Vec<f64>]) -> Sampling {

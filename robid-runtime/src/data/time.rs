@@ -217,21 +217,12 @@ pub(crate) fn check_gaps(
 pub fn regularity(t: &[f64], path: &Path) -> (f64, Option<Warning>) {
     let mut clock = Clock::default();
     clock.push(t);
-    let step = clock.mean_step();
     let warning = clock
         .irregular()
         .then(|| super::sampling::step_statistics(t))
         .flatten()
-        .map(|s| Warning::IrregularTime {
-            path: path.to_path_buf(),
-            min_step: clock.min_step,
-            max_step: clock.max_step,
-            step,
-            median_step: s.median,
-            jitter: s.jitter,
-            skipped_ticks: s.skipped_ticks,
-        });
-    (step, warning)
+        .map(|s| clock.irregular_warning(&s, path));
+    (clock.mean_step(), warning)
 }
 
 /// The extent and the extreme steps of time stamps read in parts, in order: what
@@ -282,6 +273,32 @@ impl Clock {
     pub(crate) fn irregular(&self) -> bool {
         let step = self.mean_step();
         (self.max_step - step).max(step - self.min_step) > IRREGULAR_TOLERANCE * step
+    }
+
+    /// Whether the stamps can be resampled: they increase strictly and no step is a gap
+    /// (longer than [`GAP_RATIO`] times `median`, the median step, as [`find_gap`] finds
+    /// one).
+    pub(crate) fn resamplable(&self, median: f64) -> bool {
+        self.min_step > 0.0 && !(self.max_step > GAP_RATIO * median)
+    }
+
+    /// The first stamp.
+    pub(crate) fn first(&self) -> f64 {
+        self.first
+    }
+
+    /// The warning that the stamps of `path`, whose steps have the statistics `steps`,
+    /// were resampled onto the uniform grid of the mean step.
+    pub(crate) fn irregular_warning(&self, steps: &super::sampling::Steps, path: &Path) -> Warning {
+        Warning::IrregularTime {
+            path: path.to_path_buf(),
+            min_step: self.min_step,
+            max_step: self.max_step,
+            step: self.mean_step(),
+            median_step: steps.median,
+            jitter: steps.jitter,
+            skipped_ticks: steps.skipped_ticks,
+        }
     }
 }
 

@@ -18,11 +18,10 @@ use crate::data::load::{
 use crate::data::rate::{Steps, check_rate};
 use crate::data::sampling::SamplingScan;
 use crate::data::table::for_each_window_of;
-use crate::data::time::Clock;
+use crate::data::time::{Clock, interpolate};
 use crate::data::{Config, Dataset, Sampling, WINDOW, Warning};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
-use crate::signal::Signals;
 
 /// Samples on a uniform time grid that can be read in blocks.
 pub trait Record: Sync {
@@ -131,9 +130,11 @@ pub(crate) fn joined_with(data: &dyn Record) -> String {
 ///
 /// The file is read once, window by window ([`WINDOW`] bytes of text): each window is
 /// checked and converted as `load` does it (ranges, time stamps, units, the drive chain),
-/// its signals and lines written to the temporary file, and the sampling statistics
-/// gathered on the way. In memory stay the time steps while loading (for their median),
-/// and where each window's samples are.
+/// its signals, lines and time stamps written to the temporary file, and the sampling
+/// statistics gathered on the way. In memory stay the time steps while loading (for their
+/// median), and where each window's samples are. Irregular time stamps (jitter, a few lost
+/// ticks: what `load` resamples) are resampled as each block is read: the block's grid
+/// times interpolated between the same two stamps as `load` interpolates them.
 #[derive(Debug)]
 pub struct SpilledRecord {
     name: String,
@@ -144,6 +145,11 @@ pub struct SpilledRecord {
     roles: [bool; 7],
     chunks: Vec<Chunk>,
     samples: usize,
+    /// The first time stamp when the stamps are irregular: the samples are then those of
+    /// the uniform grid from it with the mean step, interpolated when a block is read.
+    grid_start: Option<f64>,
+    /// The config: units and the drive chain, applied to each block read.
+    config: Config,
     spill: Mutex<File>,
     warnings: Vec<Warning>,
     sampling: Sampling,
@@ -152,13 +158,17 @@ pub struct SpilledRecord {
 /// Where one window's samples are in the temporary file: every signal the record has
 /// (in the loader's role order (positions, velocities, accelerations, torques, motor
 /// positions, temperatures, joint torques), joint by joint, `len` values each), then their
-/// `len` file lines; each value's 8 bytes as they are in memory (the file is this
-/// process's own, written and read on the same machine).
+/// `len` file lines, then their `len` time stamps when the file has a time column; each
+/// value's 8 bytes as they are in memory (the file is this process's own, written and
+/// read on the same machine).
 #[derive(Debug, Clone, Copy)]
 struct Chunk {
     start: usize,
     len: usize,
     offset: u64,
+    /// The window's first and last time stamps (0 without a time column).
+    first_time: f64,
+    last_time: f64,
 }
 
 impl SpilledRecord {
@@ -169,7 +179,8 @@ impl SpilledRecord {
 
     /// The record of the files `files` (or the config's own) for a `dof`-joint model:
     /// `None` when it cannot be kept on disk (several sources, which are joined in
-    /// memory; time stamps that need resampling; too few rows). An error is the first
+    /// memory; time stamps that go back or pause, which `load` refuses naming the line;
+    /// too few rows). An error is the first
     /// problem found reading the file window by window, which need not be the one
     /// [`load`] reports first; [`load_record`] reports `load`'s.
     pub fn open(config: &Config, files: &[PathBuf], dof: usize) -> Result<Option<Self>> {
@@ -249,37 +260,62 @@ impl SpilledRecord {
                         .collect(),
                 );
             }
-            let origin = DataOrigin {
-                path: path.clone(),
-                lines: std::mem::take(&mut table.lines),
-            };
-            let data = assemble(config, dof, String::new(), checked_at, blocks, origin)?;
-            let len = data.samples();
+            let lines = std::mem::take(&mut table.lines);
+            let stamps = time.as_deref().unwrap_or_default();
             let start = chunks.last().map_or(0, |c: &Chunk| c.start + c.len);
-            chunks.push(Chunk { start, len, offset });
-            // each column's values as the bytes they are in memory, written at once
+            chunks.push(Chunk {
+                start,
+                len: lines.len(),
+                offset,
+                first_time: stamps.first().copied().unwrap_or_default(),
+                last_time: stamps.last().copied().unwrap_or_default(),
+            });
+            // each column's values as read (units and the drive chain are applied to each
+            // block read, after the resampling of an irregular clock, as `load` applies
+            // them), as the bytes they are in memory, written at once
             let mut write = |bytes: &[u8]| {
                 offset += bytes.len() as u64;
                 spill.write_all(bytes).map_err(temporary)
             };
-            for signals in signals_of(&data).into_iter().flatten() {
-                for x in signals.joints() {
-                    write(bytemuck::cast_slice::<f64, u8>(x))?;
-                }
+            for x in blocks.iter().flatten().flatten() {
+                write(bytemuck::cast_slice::<f64, u8>(x))?;
             }
-            let lines = data.origin.as_ref().map_or(&[][..], |o| &o.lines);
-            write(bytemuck::cast_slice::<u64, u8>(lines))
+            write(bytemuck::cast_slice::<u64, u8>(&lines))?;
+            write(bytemuck::cast_slice::<f64, u8>(stamps))?;
+            // every value checked as `load` checks it
+            let origin = DataOrigin {
+                path: path.clone(),
+                lines,
+            };
+            assemble(config, dof, String::new(), checked_at, blocks, origin).map(drop)
         })?;
         progress.finish();
         let samples = chunks.last().map_or(0, |c| c.start + c.len);
         if samples < 2 {
             return Ok(None);
         }
+        let first_stale = scan.first_stale_line();
+        let sampling = scan.finish(path.clone());
+        let mut warnings: Vec<Warning> =
+            stale_warning(&sampling, first_stale).into_iter().collect();
+        let mut grid_start = None;
         let sample_time = match (&config.time_column, config.sample_rate) {
-            (Some(_), _) if clock.irregular() => return Ok(None),
             (Some(_), _) => {
                 let step = clock.mean_step();
-                check_step(config, step, path)?;
+                if clock.irregular() {
+                    // a stamp going back between windows, or a gap: `load` names the line
+                    let Some(steps) = sampling.steps() else {
+                        return Ok(None);
+                    };
+                    if !clock.resamplable(steps.median) {
+                        return Ok(None);
+                    }
+                    check_step(config, step, path)?;
+                    warnings.push(clock.irregular_warning(&steps, path));
+                    grid_start = Some(clock.first());
+                } else {
+                    check_step(config, step, path)?;
+                }
                 step
             }
             (None, Some(fs)) => 1.0 / fs,
@@ -289,9 +325,6 @@ impl SpilledRecord {
             check_rate(config, path, column, steps)?;
         }
         check_cutoff(config, sample_time)?;
-        let first_stale = scan.first_stale_line();
-        let sampling = scan.finish(path.clone());
-        let warnings = stale_warning(&sampling, first_stale).into_iter().collect();
         let spill = spill.into_inner().map_err(|e| temporary(e.into_error()))?;
         Ok(Some(Self {
             name: path
@@ -303,6 +336,8 @@ impl SpilledRecord {
             roles,
             chunks,
             samples,
+            grid_start,
+            config: config.clone(),
             spill: Mutex::new(spill),
             warnings,
             sampling,
@@ -346,6 +381,85 @@ impl SpilledRecord {
     fn roles_kept(&self) -> usize {
         self.roles.iter().filter(|&&r| r).count()
     }
+
+    /// Appends values `lo..hi` of column `column` of chunk `c` (see [`Chunk`]: the
+    /// signals' columns, then the lines', then the time stamps') to `out`.
+    fn read_column<T: bytemuck::Pod>(
+        file: &mut File,
+        c: Chunk,
+        column: usize,
+        (lo, hi): (usize, usize),
+        out: &mut Vec<T>,
+    ) -> Result<()> {
+        Self::read_into(
+            file,
+            c.offset + 8 * (column * c.len + lo) as u64,
+            hi - lo,
+            out,
+        )
+    }
+
+    /// The signals of samples `start..end` as written (before any resampling), in the
+    /// loader's roles, and their file lines when `lines` is given.
+    fn read_samples(
+        &self,
+        file: &mut File,
+        start: usize,
+        end: usize,
+        mut lines: Option<&mut Vec<u64>>,
+    ) -> Result<[Option<Vec<Vec<f64>>>; 7]> {
+        let mut blocks: [Option<Vec<Vec<f64>>>; 7] = Default::default();
+        for (role, block) in blocks.iter_mut().enumerate() {
+            if self.roles[role] {
+                *block = Some(vec![Vec::with_capacity(end - start); self.dof]);
+            }
+        }
+        for (c, lo, hi) in self.parts(start, end) {
+            let mut column = 0;
+            for x in blocks.iter_mut().flatten().flatten() {
+                Self::read_column(file, c, column, (lo, hi), x)?;
+                column += 1;
+            }
+            if let Some(lines) = lines.as_mut() {
+                Self::read_column(file, c, column, (lo, hi), lines)?;
+            }
+        }
+        Ok(blocks)
+    }
+
+    /// The column of a chunk that holds the time stamps (after the signals and lines).
+    fn stamps_column(&self) -> usize {
+        self.roles_kept() * self.dof + 1
+    }
+
+    /// The time stamps of chunk `c`.
+    fn stamps(&self, file: &mut File, c: Chunk) -> Result<Vec<f64>> {
+        let mut t = Vec::with_capacity(c.len);
+        Self::read_column(file, c, self.stamps_column(), (0, c.len), &mut t)?;
+        Ok(t)
+    }
+
+    /// The samples `a..=b` whose stamps bracket the times `s0..=s1` as [`interpolate`]
+    /// brackets them over the whole record: `a` the last sample stamped before `s0` (the
+    /// first sample when none is), `b` the first stamped after `s1` (the last when none
+    /// is). Between them, every time of `s0..=s1` falls between the same two stamps as
+    /// in the whole record, and only at the record's ends is a value held.
+    fn bracket(&self, file: &mut File, s0: f64, s1: f64) -> Result<(usize, usize)> {
+        let before = self.chunks.partition_point(|c| c.first_time < s0);
+        let a = match before.checked_sub(1) {
+            None => 0,
+            Some(i) => {
+                let c = self.chunks[i];
+                c.start + self.stamps(file, c)?.partition_point(|&t| t < s0) - 1
+            }
+        };
+        let after = self.chunks.partition_point(|c| c.last_time <= s1);
+        let b = match self.chunks.get(after) {
+            None => self.samples - 1,
+            Some(&c) => c.start + self.stamps(file, c)?.partition_point(|&t| t <= s1),
+        };
+        Ok((a, b))
+    }
 }
 
 /// The megabytes (1e6 bytes) of text in the file at `path`: its size when it is not
@@ -360,19 +474,6 @@ fn text_megabytes(path: &Path) -> u64 {
         Ok(m) if !gzip => m.len().div_ceil(1_000_000),
         _ => 0,
     }
-}
-
-/// The data set's signals in the loader's roles order.
-fn signals_of(d: &Dataset) -> [Option<&Signals>; 7] {
-    [
-        Some(&d.q),
-        d.qd.as_ref(),
-        d.qdd.as_ref(),
-        Some(&d.tau),
-        d.motor.as_ref(),
-        d.temperature.as_ref(),
-        d.joint_torque.as_ref(),
-    ]
 }
 
 impl Record for SpilledRecord {
@@ -421,63 +522,52 @@ impl Record for SpilledRecord {
                 "an earlier read panicked; load the record again".to_string(),
             )
         })?;
-        let kept = self.roles_kept();
-        let mut blocks: [Option<Vec<Vec<f64>>>; 7] = Default::default();
         let mut lines = Vec::with_capacity(end - start);
-        for (role, block) in blocks.iter_mut().enumerate() {
-            if self.roles[role] {
-                *block = Some(vec![Vec::with_capacity(end - start); self.dof]);
-            }
-        }
-        for (c, lo, hi) in self.parts(start, end) {
-            let mut column = 0;
-            for block in blocks.iter_mut().flatten() {
-                for x in block.iter_mut() {
-                    let at = c.offset + 8 * (column * c.len + lo) as u64;
-                    Self::read_into(&mut file, at, hi - lo, x)?;
-                    column += 1;
+        let blocks = match self.grid_start {
+            None => self.read_samples(&mut file, start, end, Some(&mut lines))?,
+            Some(first) => {
+                // `load`'s grid (`uniform_grid`), and each signal interpolated onto it
+                // from the samples around it; sample k keeps the line of row k
+                let at: Vec<f64> = (start..end)
+                    .map(|k| first + self.sample_time * k as f64)
+                    .collect();
+                let (a, b) = self.bracket(&mut file, at[0], at[at.len() - 1])?;
+                let mut blocks = self.read_samples(&mut file, a, b + 1, None)?;
+                let mut t = Vec::with_capacity(b + 1 - a);
+                for (c, lo, hi) in self.parts(a, b + 1) {
+                    Self::read_column(&mut file, c, self.stamps_column(), (lo, hi), &mut t)?;
                 }
+                for x in blocks.iter_mut().flatten().flatten() {
+                    *x = interpolate(&t, x, &at);
+                }
+                let column = self.roles_kept() * self.dof;
+                for (c, lo, hi) in self.parts(start, end) {
+                    Self::read_column(&mut file, c, column, (lo, hi), &mut lines)?;
+                }
+                blocks
             }
-            let at = c.offset + 8 * (kept * self.dof * c.len + lo) as u64;
-            Self::read_into(&mut file, at, hi - lo, &mut lines)?;
-        }
+        };
         drop(file);
-        let signals = |b: Option<Vec<Vec<f64>>>| b.map(Signals::new).transpose();
-        let [q, qd, qdd, tau, motor, temperature, joint_torque] = blocks.map(signals);
         let name = format!("{}[{start}..{end}]", self.name);
         let origin = DataOrigin {
             path: self.path.clone(),
             lines,
         };
-        let (Some(q), Some(tau)) = (q?, tau?) else {
-            return Err(Error::setting(
-                "SpilledRecord",
-                "read",
-                "the record has no positions or torques".to_string(),
-            ));
-        };
-        let mut data = Dataset::new_at(name, self.sample_time, q, tau, Some(origin))?;
-        if let Some(v) = qd? {
-            data = data.with_velocities(v)?;
-        }
-        if let Some(a) = qdd? {
-            data = data.with_accelerations(a)?;
-        }
-        if let Some(m) = motor? {
-            data = data.with_motor_positions(m)?;
-        }
-        if let Some(t) = temperature? {
-            data = data.with_temperatures(t)?;
-        }
-        if let Some(t) = joint_torque? {
-            data = data.with_joint_torques(t)?;
-        }
+        let data = assemble(
+            &self.config,
+            self.dof,
+            name,
+            self.sample_time,
+            blocks,
+            origin,
+        )?;
         Ok(Cow::Owned(data))
     }
 }
 
 /// Loads like [`load`], keeping the samples in a temporary file when that is possible
-/// (a [`SpilledRecord`]: one source, a regular clock or `sample_rate`) and in memory
+/// (a [`SpilledRecord`]: one source, with `sample_rate` or time stamps that increase without a
+/// gap, resampled as `load` resamples them when irregular) and in memory
 /// otherwise. Every error is [`load`]'s: when the file cannot be kept on disk for any
 /// reason, [`load`] reads it.
 ///

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::*;
 use crate::data::RATE_CHECK_ROWS;
+use crate::signal::Signals;
 
 /// A 3-joint log of `n` rows at 1 kHz, `t,p1..p3,v1..v3,c1..c3`, with comment and blank
 /// lines inside, and a stale row every 97 rows (repeated, then caught up).
@@ -52,6 +53,19 @@ position_coupling = [[100, 0, 0], [0, -80, 0], [0, 30, 50]]
 [processing]
 lowpass = { cutoff = 20.0, order = 4, signals = ["q"] }
 "#;
+
+/// The data set's signals in the loader's roles order.
+fn signals_of(d: &Dataset) -> [Option<&Signals>; 7] {
+    [
+        Some(&d.q),
+        d.qd.as_ref(),
+        d.qdd.as_ref(),
+        Some(&d.tau),
+        d.motor.as_ref(),
+        d.temperature.as_ref(),
+        d.joint_torque.as_ref(),
+    ]
+}
 
 fn config(text: &str) -> Config {
     Config::from_toml_str(text, Path::new("test.toml")).unwrap()
@@ -169,34 +183,99 @@ fn errors_are_those_of_load() {
     }
 }
 
+/// `log(n)` with the time stamp of data row k replaced by `stamp(k)`.
+fn restamped(n: usize, stamp: impl Fn(usize) -> f64) -> String {
+    let mut k = 0;
+    log(n)
+        .lines()
+        .map(|line| match line.split_once(',') {
+            Some((t, rest)) if t.parse::<f64>().is_ok() => {
+                k += 1;
+                format!("{},{rest}\n", stamp(k - 1))
+            }
+            _ => format!("{line}\n"),
+        })
+        .collect()
+}
+
+/// Irregular time stamps (what `load` resamples) are kept on disk and resampled as each
+/// block is read, to the same values as `load`'s, bit for bit: a jittered clock with lost
+/// ticks, a clock whose rate drifts, so that the grid runs up to 15 samples away from
+/// the rows (across the ends of the 4 KiB windows), and a clock on the grid but for a
+/// late stamp every 100 rows (a block's ends then fall on stamps). They used to be loaded in memory,
+/// however long: a real logger's clock always jitters.
 #[test]
-fn irregular_clocks_and_several_sources_stay_in_memory() {
+fn irregular_clocks_are_resampled_on_disk_bit_for_bit() {
     let dir = tempfile::tempdir().unwrap();
-    // a 3 ms gap in the time stamps: the samples are resampled in memory
-    let mut rows: Vec<String> = log(1000).lines().map(str::to_string).collect();
-    for r in rows.iter_mut().skip(600) {
-        if let Some((t, rest)) = r.split_once(',')
-            && let Ok(t) = t.parse::<f64>()
-        {
-            *r = format!("{},{rest}", t + 0.003);
-        }
-    }
-    let path = file(&dir, &(rows.join("\n") + "\n"));
+    let n = 3000;
+    // up to 0.2 ms either way, two ticks lost after row 1500 and one after 2200
+    let jittered = |k: usize| {
+        let jitter = ((k * 7919) % 41) as f64 / 40.0 - 0.5;
+        let lost = if k > 2200 {
+            3e-3
+        } else if k > 1500 {
+            2e-3
+        } else {
+            0.0
+        };
+        k as f64 * 1e-3 + 0.4e-3 * jitter + lost
+    };
+    // steps from 1 ms to 1.04 ms
+    let drifting = |k: usize| k as f64 * 1e-3 * (1.0 + 0.02 * k as f64 / n as f64);
+    // on the grid but every 100th stamp, 0.3 ms late: most grid times fall on a stamp
+    let late = |k: usize| k as f64 * 1e-3 + if k % 100 == 50 { 0.3e-3 } else { 0.0 };
     let config = config(CONFIG);
-    assert!(
-        SpilledRecord::open_in(&config, std::slice::from_ref(&path), 3, SMALL)
+    for (name, csv) in [
+        ("jittered", restamped(n, jittered)),
+        ("drifting", restamped(n, drifting)),
+        ("on the grid", restamped(n, late)),
+    ] {
+        let path = file(&dir, &csv);
+        let data = load(&config, std::slice::from_ref(&path), 3).unwrap();
+        assert!(
+            data.warnings
+                .iter()
+                .any(|w| matches!(w, Warning::IrregularTime { .. })),
+            "{name}: {:?}",
+            data.warnings
+        );
+        let record = SpilledRecord::open_in(&config, std::slice::from_ref(&path), 3, SMALL)
             .unwrap()
-            .is_none()
-    );
-    let dense = load(&config, std::slice::from_ref(&path), 3).unwrap();
-    let record = load_record_in(&config, &[path], 3, SMALL).unwrap();
-    assert!(
-        record
-            .warnings()
-            .iter()
-            .any(|w| matches!(w, Warning::IrregularTime { .. }))
-    );
-    assert_eq!(record.read(0, dense.samples()).unwrap().q, dense.q);
+            .unwrap_or_else(|| panic!("{name}: kept on disk"));
+        assert!(
+            record.chunks.len() > 40,
+            "{name}: {} windows",
+            record.chunks.len()
+        );
+        assert_eq!(record.samples(), data.samples(), "{name}");
+        assert_eq!(record.sample_time().to_bits(), data.sample_time.to_bits());
+        assert_eq!(record.sampling(), &data.sampling[0], "{name}");
+        assert_eq!(
+            format!("{:?}", record.warnings()),
+            format!("{:?}", data.warnings),
+            "{name}"
+        );
+        let bits = |d: &Dataset| {
+            signals_of(d).map(|s| {
+                s.map(|s| {
+                    s.joints()
+                        .flat_map(|x| x.iter().map(|v| v.to_bits()))
+                        .collect::<Vec<_>>()
+                })
+            })
+        };
+        let mut ranges = vec![(0, n), (0, 1), (n - 1, n), (n - 5, n + 10), (1490, 1520)];
+        ranges.extend((0..40).map(|i| (i * 71, i * 71 + 1 + (i * 37) % 200)));
+        for (a, b) in ranges {
+            let from_disk = record.read(a, b).unwrap();
+            let in_memory = data.read(a, b).unwrap();
+            assert_eq!(bits(&from_disk), bits(&in_memory), "{name}: {a}..{b}");
+            assert_eq!(from_disk.origin, in_memory.origin, "{name}: {a}..{b}");
+        }
+        // `load_record` keeps it on disk: its warnings are the record's
+        let loaded = load_record_in(&config, &[path], 3, SMALL).unwrap();
+        assert_eq!(loaded.read(0, n).unwrap().q, data.q, "{name}");
+    }
 }
 
 /// [`CONFIG`] with `sample_rate = rate` instead of its time column (line 3).
