@@ -1,15 +1,15 @@
 //! The validated [`Robot`] of a fitted chain: its name, the DH rows as geometric values,
 //! the URDF's joint limits and gravity (docs/urdf.md#the-robot).
 
-use super::super::bounds::{MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use super::super::bounds::{MAX_LENGTH, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
 use super::super::check::show;
 use super::super::file::Place;
 use super::super::{
     Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem,
 };
 use super::chain::Chain;
-use super::frames::{Fit, angle_text};
-use super::rigid::{mat_vec, transpose};
+use super::frames::{Fit, PARALLEL, angle_text};
+use super::rigid::{cross, dot, mat_vec, norm, transpose};
 use super::xml::{self, JointType, Urdf};
 
 /// Gravity components (m/s^2) smaller than this are rounding of a rotation by a multiple
@@ -188,6 +188,31 @@ pub(super) fn robot(
         } else {
             JointKind::Revolute
         };
+        // one error for a run of far frames: they have one cause, a pair of axes
+        let far = fit.reach[k] > MAX_LENGTH;
+        if far && k > 0 && fit.reach[k - 1] > MAX_LENGTH {
+            continue;
+        }
+        if far {
+            let help = nearly_parallel(urdf, chain, fit, k).unwrap_or_else(|| {
+                "check the origins and axes of the chain's joints (are two axes almost \
+                 parallel?)"
+                    .to_owned()
+            });
+            errors.push(place.invalid(
+                urdf_joint.range.clone(),
+                format!(
+                    "the DH frame robid fits at joint `{}` lies {} m from the joint along its \
+                     axis, beyond the ±{} m of a DH length: the link parameters about its \
+                     origin would lose their digits",
+                    urdf_joint.name,
+                    show(format!("{:.4e}", fit.reach[k]).parse().unwrap_or(fit.reach[k])),
+                    show(MAX_LENGTH),
+                ),
+                help,
+            ));
+            continue;
+        }
         let mut joint = Joint::new(kind, angle(alpha), length(a), length(d), angle(theta));
         match limits(place, urdf_joint) {
             Ok(l) => joint.limits = l,
@@ -203,10 +228,52 @@ pub(super) fn robot(
         let located = e
             .errors()
             .into_iter()
-            .map(|one| locate(place, urdf, chain, gravity, one))
+            .map(|one| locate(place, urdf, chain, fit, gravity, one))
             .collect();
         DescriptionError::from_errors(located)
     })
+}
+
+/// Largest angle (rad) between two consecutive joint axes, not parallel within the angle
+/// rule, that is named as the cause of a DH value robid refuses at either joint: axes
+/// `theta` from parallel and a distance `L` apart have their common normal about `L /
+/// theta` from the joints, beyond the 1 km of a DH length for `L` up to 10 m.
+const NEAR_PARALLEL: f64 = 1e-2;
+
+/// The cause and fix of a DH value refused at chain joint `k` when its axis and a
+/// neighbour's are nearly parallel (docs/urdf.md#fitting-the-dh-table): the pair, their
+/// angle, and how to write them. `None` when no neighbour is that close to parallel.
+fn nearly_parallel(urdf: &Urdf, chain: &Chain, fit: &Fit, k: usize) -> Option<String> {
+    // the axis of chain joint i is the z of frame i + 1
+    let axis = |i: usize| {
+        let r = &fit.frames[i + 1].r;
+        [r[0][2], r[1][2], r[2][2]]
+    };
+    let off = |i: usize| {
+        let (a, b) = (axis(i), axis(i + 1));
+        norm(cross(a, b)).atan2(dot(a, b).abs())
+    };
+    let pairs = [k.checked_sub(1), (k + 1 < chain.joints.len()).then_some(k)];
+    let (i, angle) = pairs
+        .into_iter()
+        .flatten()
+        .map(|i| (i, off(i)))
+        .filter(|&(_, angle)| angle > PARALLEL && angle < NEAR_PARALLEL)
+        .min_by(|x, y| x.1.total_cmp(&y.1))?;
+    let (first, second) = (
+        &urdf.joints[chain.joints[i]].name,
+        &urdf.joints[chain.joints[i + 1]].name,
+    );
+    Some(format!(
+        "the axes of joints `{first}` and `{second}` are {angle:.1e} rad from parallel, and \
+         robid's DH table holds two axes that close to parallel only when they are parallel \
+         within 1e-9 rad (between them it runs along their common normal, which lies about \
+         their distance divided by that angle from the joints, and an angle below 1e-5 rad \
+         is not told from 0): if they are meant to be parallel (a skew this small, such as a \
+         calibration's, changes the torques by about {angle:.0e} of their size), write the \
+         `<origin>` rotations and `<axis>` elements of the chain up to `{second}` so that the \
+         two axes are exactly parallel (docs/urdf.md#fitting-the-dh-table)"
+    ))
 }
 
 /// Largest angle (rad) by which an origin's rotation or joint 1's axis may be off a
@@ -285,6 +352,7 @@ fn locate(
     place: &Place<'_>,
     urdf: &Urdf,
     chain: &Chain,
+    fit: &Fit,
     gravity: [f64; 3],
     error: &DescriptionError,
 ) -> DescriptionError {
@@ -296,13 +364,13 @@ fn locate(
     else {
         return error.clone();
     };
-    let joint = argument
+    let index = argument
         .split("joints[")
         .nth(1)
         .and_then(|rest| rest.split(']').next())
         .and_then(|k| k.parse::<usize>().ok())
-        .and_then(|k| chain.joints.get(k))
-        .map(|&j| &urdf.joints[j]);
+        .filter(|&k| k < chain.joints.len());
+    let joint = index.map(|k| &urdf.joints[chain.joints[k]]);
     if argument.trim_start_matches('`').starts_with("gravity")
         && let Some(&first) = chain.joints.first()
     {
@@ -361,6 +429,13 @@ fn locate(
             ),
         );
     }
+    let skew = index
+        .filter(|_| {
+            [".alpha`", ".a`", ".d`"]
+                .iter()
+                .any(|v| argument.ends_with(v))
+        })
+        .and_then(|k| nearly_parallel(urdf, chain, fit, k));
     match joint {
         Some(j) => place.invalid(
             j.range.clone(),
@@ -368,10 +443,13 @@ fn locate(
                 "the DH table robid fits to the URDF has, at joint `{}`, a value robid does not accept ({argument}): {message}",
                 j.name
             ),
-            format!(
-                "{help}; a URDF's lengths and angles are used as written (docs/urdf.md#the-angle-rule): \
-                 write right angles to within 1e-9 rad and offsets of at least 1 µm or exactly 0"
-            ),
+            match skew {
+                Some(skew) => format!("{help}; {skew}"),
+                None => format!(
+                    "{help}; a URDF's lengths and angles are used as written (docs/urdf.md#the-angle-rule): \
+                     write right angles to within 1e-9 rad and offsets of at least 1 µm or exactly 0"
+                ),
+            },
         ),
         None => place.invalid(
             urdf.name_at.clone(),

@@ -10,7 +10,7 @@ use std::f64::consts::FRAC_PI_2;
 
 /// Below this sine of the angle between two axes (the angle rule's 1e-9 rad,
 /// docs/urdf.md#the-angle-rule), they are parallel.
-const PARALLEL: f64 = 1e-9;
+pub(super) const PARALLEL: f64 = 1e-9;
 
 /// Shorter lengths (m) are zero: axes closer than this meet.
 pub(super) const ZERO_LENGTH: f64 = 1e-12;
@@ -30,6 +30,10 @@ pub(super) struct Axis {
 pub(super) struct Fit {
     pub(super) frames: Vec<Rigid>,
     pub(super) rows: Vec<[f64; 4]>,
+    /// How far (m) the origin of frame j lies from joint j's own point (its URDF joint
+    /// origin), for joints 1..n: far only where two consecutive axes are nearly parallel,
+    /// whose common normal meets them far away.
+    pub(super) reach: Vec<f64>,
 }
 
 fn unit(v: [f64; 3]) -> [f64; 3] {
@@ -129,7 +133,16 @@ pub(super) fn fit(axes: &[Axis]) -> Fit {
     let rows = (1..=n)
         .map(|j| row(&frames[j - 1].inverse().then(&frames[j])))
         .collect();
-    Fit { frames, rows }
+    let reach = origins
+        .iter()
+        .zip(axes)
+        .map(|(&origin, axis)| norm(sub(origin, axis.point)))
+        .collect();
+    Fit {
+        frames,
+        rows,
+        reach,
+    }
 }
 
 /// `[alpha, a, d, theta]` of Rx(alpha) Tx(a) Rz(theta) Tz(d) = `t`.

@@ -846,3 +846,59 @@ fn limits_without_effort_or_velocity_are_warned_about() {
         bare.warnings
     );
 }
+
+/// Two consecutive axes a little off parallel (a calibrated UR's shoulder and elbow, 1e-4
+/// rad, 0.4 m apart): their common normal, along which the DH table runs, lies 4 km from
+/// the joints; the frames there are refused in one error that names the pair, their angle
+/// and how to write them. As the first two joints of a chain (where no DH length grows:
+/// frame 0 sits on frame 1) they were read, and the link parameters about origins 4 km
+/// away gave torques 3e-9 of their size from Pinocchio's (2e-7 at 1e-5 rad).
+#[test]
+fn nearly_parallel_axes_are_named_and_their_far_frames_refused() {
+    let joint = |name: &str, parent: &str, child: &str, origin: &str| {
+        format!(
+            "<joint name=\"{name}\" type=\"revolute\"><parent link=\"{parent}\"/><child link=\"{child}\"/><origin {origin}/><axis xyz=\"0 0 1\"/></joint>\n"
+        )
+    };
+    let text = |j3: &str| {
+        format!(
+            "<robot name=\"arm\">\n<link name=\"a\"/>\n<link name=\"b\"/>\n<link name=\"c\"/>\n<link name=\"d\"/>\n{}{}{}</robot>\n",
+            joint(
+                "j1",
+                "a",
+                "b",
+                "xyz=\"0 0 0.1\" rpy=\"1.5707963267948966 0 0\""
+            ),
+            joint("j2", "b", "c", "xyz=\"0 0 0.1\""),
+            joint("j3", "c", "d", j3),
+        )
+    };
+    let skewed = text("xyz=\"0.4 0 0\" rpy=\"0 1e-4 0\"");
+    let first_two = skewed.replacen("type=\"revolute\"", "type=\"fixed\"", 1);
+    for text in [&skewed, &first_two] {
+        let message = error_of(text, &ChainSelection::default());
+        for w in [
+            "t.urdf:7:1: the DH frame robid fits at joint `j2` lies 4000 m from the joint",
+            "the axes of joints `j2` and `j3` are 1.0e-4 rad from parallel",
+            "exactly parallel",
+        ] {
+            assert!(message.contains(w), "{message}\nexpected {w:?}");
+        }
+        assert!(!message.contains("t.urdf:8:"), "{message}");
+    }
+    // intersecting axes 1e-6 rad apart: the angle is refused, and the pair named
+    let message = error_of(
+        &text("xyz=\"0 0 0.3\" rpy=\"0 1e-6 0\""),
+        &ChainSelection::default(),
+    );
+    for w in [
+        "(`joints[2].alpha`)",
+        "the axes of joints `j2` and `j3` are 1.0e-6 rad from parallel",
+    ] {
+        assert!(message.contains(w), "{message}\nexpected {w:?}");
+    }
+    // exactly parallel axes 0.1 µm apart: a refused length keeps the general advice
+    let message = error_of(&text("xyz=\"0.0000001 0 0\""), &ChainSelection::default());
+    assert!(!message.contains("from parallel"), "{message}");
+    assert!(message.contains("offsets of at least 1 µm"), "{message}");
+}
