@@ -8,7 +8,7 @@
 //! `t,q1..,qd1..,qdd1..`.
 
 use std::f64::consts::PI;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use robid_runtime::data::ParameterFile;
@@ -18,6 +18,7 @@ use robid_runtime::{Model, num};
 
 use super::description::{self, DescriptionFlags};
 use super::flags::{check_samples, closed, count, only_for, positive, real};
+use super::idle::Idle;
 use super::{Error, files, out};
 use robots::interpreted::Interpreted;
 
@@ -218,6 +219,46 @@ fn warn_unloaded(args: &Args, description: &description::Description, limits: &[
     ));
 }
 
+/// With a parameter file as the reference: warns about the joints with a torque limit
+/// whose torque its parameters leave 0 at every state ([`Idle::find`], the check of `robid
+/// torques --parameters`), so that the limit constrains nothing, as [`warn_unloaded`] does
+/// for a URDF's own inertials. A joint without a torque limit is not checked against the
+/// reference at all, so nothing is said about it.
+fn warn_idle(
+    args: &Args,
+    description: &description::Description,
+    file: &Path,
+    model: &dyn Model,
+    base: &[f64],
+    limits: &[JointLimits],
+) -> Result<(), Error> {
+    let limited = |j: usize| limits.get(j - 1).is_some_and(|l| l.torque.is_some());
+    let idle = Idle::find(model, base, &limited)?;
+    if idle.joints.is_empty() {
+        return Ok(());
+    }
+    out::warn(format_args!(
+        "warning: {}, so the reference gives {}; {}",
+        idle.cause(description, &args.robot, file),
+        no_torque(idle.joints.len() == 1),
+        idle.fix(file)
+    ));
+    Ok(())
+}
+
+/// What a reference that gives one joint (`one`) or several no torque means for the
+/// design: "it no torque: its torque limit constrains nothing in the design, and its torque
+/// margin below is the whole limit".
+fn no_torque(one: bool) -> &'static str {
+    if one {
+        "it no torque: its torque limit constrains nothing in the design, and its torque \
+         margin below is the whole limit"
+    } else {
+        "them no torque: their torque limits constrain nothing in the design, and their \
+         torque margins below are the whole limits"
+    }
+}
+
 /// The values of a per-joint limit flag (`--acceleration-limits`, `--velocity-limits`) for
 /// `n` joints: none, one for every joint, or one per joint.
 fn per_joint(flag: &str, values: &[f64], n: usize, args: &Args) -> Result<Vec<Option<f64>>, Error> {
@@ -341,7 +382,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         })
         .collect::<Result<Vec<_>, String>>()?;
     let reference = match &args.parameters {
-        Some(p) => Some(ParameterFile::read(p)?.base_parameters(&model)?),
+        Some(p) => {
+            let base = ParameterFile::read(p)?.base_parameters(&model)?;
+            warn_idle(args, &description, p, &model, &base, &limits)?;
+            Some(base)
+        }
         None => {
             warn_unloaded(args, &description, &limits);
             description.urdf_base_parameters(&model)?

@@ -11,6 +11,7 @@ mod files;
 mod flags;
 mod friction;
 mod identify;
+mod idle;
 mod inspect;
 mod model;
 mod out;

@@ -12,6 +12,7 @@ use robid_runtime::Model;
 use robid_runtime::data::Table;
 
 use super::description::{self, Description, DescriptionFlags, torque_names};
+use super::idle::Idle;
 use super::{Error, files, out};
 
 /// Arguments of `robid torques`.
@@ -93,9 +94,8 @@ fn warn_unloaded(args: &Args, description: &Description) {
 }
 
 /// With a parameter file: warns about the joints whose torque its parameters leave 0 at
-/// every state ([`idle_joints`]: every base parameter in the joint's row of the regressor
-/// is 0), as [`warn_unloaded`] does for a URDF's own inertials. The torques are written
-/// all the same: they are those of the file as written.
+/// every state ([`Idle::find`]), as [`warn_unloaded`] does for a URDF's own inertials. The
+/// torques are written all the same: they are those of the file as written.
 fn warn_idle(
     args: &Args,
     description: &Description,
@@ -103,102 +103,18 @@ fn warn_idle(
     model: &dyn Model,
     base: &[f64],
 ) -> Result<(), Error> {
-    let (joints, parameters) = idle_joints(model, base)?;
-    let Some(&lowest) = joints.first() else {
+    let idle = Idle::find(model, base, &|_| true)?;
+    if idle.joints.is_empty() {
         return Ok(());
-    };
-    let named: Vec<String> = joints
-        .iter()
-        .map(|&j| {
-            let urdf = description.urdf.as_ref();
-            match urdf.and_then(|c| c.links.get(j - 1)) {
-                Some(link) => format!("{j} (`{}`)", link.joint),
-                None => j.to_string(),
-            }
-        })
-        .collect();
-    let (its, is) = its_is(&joints);
-    let (named, moves, depends) = match named.split_last() {
-        Some((last, [])) => (format!("joint {last}"), "moves", "depends"),
-        Some((last, first)) => (
-            format!("joints {} and {last}", first.join(", ")),
-            "move",
-            "depend",
-        ),
-        None => (String::new(), "moves", "depends"),
-    };
-    // the base parameters, at most SHOWN of them
-    const SHOWN: usize = 8;
-    let list = match parameters.len() {
-        0 => String::new(),
-        k if k <= SHOWN => format!(" ({})", parameters.join(", ")),
-        k => format!(
-            " ({} and {} more)",
-            parameters[..SHOWN].join(", "),
-            k - SHOWN
-        ),
-    };
-    let file = file.display();
+    }
+    let (its, is) = its_is(&idle.joints);
     out::warn(format_args!(
-        "warning: with the parameters of {file}, {named} of {} {moves} no mass or inertia: \
-         every base parameter {its} {depends} on{list} is 0, so {its} {} {is} 0 in every \
-         row; give the links from link {lowest} on their masses and inertias in {file} (a \
-         standard parameter it does not name counts as 0)",
-        args.robot.display(),
-        torque_names(&joints),
+        "warning: {}, so {its} {} {is} 0 in every row; {}",
+        idle.cause(description, &args.robot, file),
+        torque_names(&idle.joints),
+        idle.fix(file)
     ));
     Ok(())
-}
-
-/// The joints (numbered from 1) whose torque is 0 at every state with the base parameters
-/// `base`, and the names of the base parameters their torques depend on: a joint's
-/// torque is its row of the base regressor times `base`, so it is 0 at every state when
-/// every base parameter with a nonzero entry in that row is 0. The rows are taken at a
-/// few states of no special pose (every entry that is not structurally zero is nonzero
-/// there), entries below 1e-10 of the row's largest counting as zero. The criterion
-/// holds for every source of parameters (a URDF's inertials, a `[standard]` or `[base]`
-/// table) and counts drive terms: a joint with friction has a torque.
-fn idle_joints(model: &dyn Model, base: &[f64]) -> Result<(Vec<usize>, Vec<String>), Error> {
-    let (n, b) = (model.dof(), model.base_parameter_count());
-    // the largest magnitude of each entry of the regressor over the states
-    let mut largest = vec![0.0f64; n * b];
-    let mut y = vec![0.0; n * b];
-    for state in 0..3 {
-        let value = |kind: usize, j: usize| {
-            let x = (1 + j + 7 * kind + 31 * state) as f64;
-            0.3 + 0.6 * (1.618_033_988_75 * x).fract()
-        };
-        let q: Vec<f64> = (0..n).map(|j| value(0, j)).collect();
-        let qd: Vec<f64> = (0..n).map(|j| value(1, j)).collect();
-        let qdd: Vec<f64> = (0..n).map(|j| value(2, j)).collect();
-        model
-            .base_regressor_into(&q, &qd, &qdd, &mut y)
-            .map_err(robid_runtime::Error::from)?;
-        for (l, v) in largest.iter_mut().zip(&y) {
-            *l = l.max(v.abs());
-        }
-    }
-    let mut joints = Vec::new();
-    let mut parameters: Vec<usize> = Vec::new();
-    for j in 0..n {
-        let row = &largest[j * b..(j + 1) * b];
-        let top = row.iter().copied().fold(0.0, f64::max);
-        let used: Vec<usize> = (0..b).filter(|&k| row[k] > 1e-10 * top).collect();
-        if used.iter().all(|&k| base.get(k) == Some(&0.0)) {
-            joints.push(j + 1);
-            for k in used {
-                if !parameters.contains(&k) {
-                    parameters.push(k);
-                }
-            }
-        }
-    }
-    parameters.sort_unstable();
-    let names = parameters
-        .into_iter()
-        .map(|k| model.base_parameter_name(k).unwrap_or("?").to_owned())
-        .collect();
-    Ok((joints, names))
 }
 
 /// `("its torque", "is")` for one joint, `("their torques", "are")` for more.
@@ -266,37 +182,6 @@ mod tests {
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines[0], "tau1,tau2,tau3,tau4,tau5,tau6");
         assert_eq!(lines.len(), 3);
-    }
-
-    /// The joints whose torque is 0 at every state are found from the regressor, for
-    /// parameters from any source: standard parameters of the last two links all 0 leave
-    /// joints 5 and 6 nothing to move (and name only their base parameters), all 0 every
-    /// joint, none 0 no joint.
-    #[test]
-    fn joints_with_nothing_to_move_are_found_from_the_regressor() {
-        use robid_runtime::model::standard_parameter_names;
-        let model = robots::Ur5e;
-        let names = standard_parameter_names(&model);
-        let base_of = |value: &dyn Fn(&str) -> f64| {
-            let standard: Vec<f64> = names.iter().map(|n| value(n)).collect();
-            let mut base = vec![0.0; model.base_parameter_count()];
-            model.base_from_standard_into(&standard, &mut base).unwrap();
-            base
-        };
-        let last_two_empty = base_of(&|n: &str| {
-            if n.ends_with(['5', '6']) { 0.0 } else { 0.1 }
-        });
-        let (joints, parameters) = idle_joints(&model, &last_two_empty).unwrap();
-        assert_eq!(joints, [5, 6]);
-        assert!(!parameters.is_empty());
-        assert!(
-            parameters.iter().all(|p| p.ends_with(['5', '6'])),
-            "{parameters:?}"
-        );
-        let (joints, _) = idle_joints(&model, &base_of(&|_: &str| 0.1)).unwrap();
-        assert!(joints.is_empty());
-        let (joints, _) = idle_joints(&model, &base_of(&|_: &str| 0.0)).unwrap();
-        assert_eq!(joints, [1, 2, 3, 4, 5, 6]);
     }
 
     /// States and parameters that overflow f64 (1e300 each) give no output but the row.

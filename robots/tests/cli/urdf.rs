@@ -781,7 +781,9 @@ fn torques_warn_about_a_joint_that_moves_only_massless_links() {
 /// parameters, so that is no matter for it; but the torque limit of such a joint (its
 /// `effort`) is checked against a torque that is 0, so it constrains nothing and its
 /// margin is the whole limit. That is warned about naming the joint; without a torque limit
-/// on it (effort 0: none), or with --parameters, nothing is said.
+/// on it (effort 0: none), or with --parameters that give it a torque, nothing is said. A
+/// parameter file that leaves its torque 0 is warned about as `robid torques --parameters`
+/// warns (it used to be taken without a word), but only for a joint with a torque limit.
 #[test]
 fn excite_warns_when_a_massless_joint_has_a_torque_limit() {
     let dir = folder();
@@ -841,6 +843,33 @@ fn excite_warns_when_a_massless_joint_has_a_torque_limit() {
     let parameters = write(dir.path(), "params.toml", FLANGED_PARAMETERS);
     let o = excite(&urdf, &["--parameters", parameters.to_str().unwrap()]);
     assert!(!stderr(&o).contains("without mass"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("no mass or inertia"), "{}", stderr(&o));
+    // a parameter file that leaves link 2 empty: joint 2's torque limit constrains nothing
+    let link1 = write(
+        dir.path(),
+        "link1.toml",
+        "[standard]\nXX1 = 0.01\nYY1 = 0.02\nZZ1 = 0.02\nMX1 = 0.1\nM1 = 1\n",
+    );
+    let o = excite(&urdf, &["--parameters", link1.to_str().unwrap()]);
+    let e = stderr(&o);
+    assert!(
+        e.contains(&format!(
+            "warning: with the parameters of {}, joint 2 (`j2`) of {} moves no mass or \
+             inertia: every base parameter its torque depends on (",
+            link1.display(),
+            urdf.display()
+        )) && e.contains(&format!(
+            ") is 0, so the reference gives it no torque: its torque limit constrains nothing \
+             in the design, and its torque margin below is the whole limit; give the links \
+             from link 2 on their masses and inertias in {} (a standard parameter it does \
+             not name counts as 0)\n",
+            link1.display()
+        )),
+        "{e}"
+    );
+    // the same file with no torque limit on joint 2: nothing to say
+    let o = excite(&free, &["--parameters", link1.to_str().unwrap()]);
+    assert!(!stderr(&o).contains("no mass or inertia"), "{}", stderr(&o));
 }
 
 /// `robid simulate` without `--parameters` simulates a URDF whose chain has an inertial of
