@@ -240,22 +240,31 @@ fn warn_idle(
     out::warn(format_args!(
         "warning: {}, so the reference gives {}; {}",
         idle.cause(description, &args.robot, file),
-        no_torque(idle.joints.len() == 1),
+        no_torque(idle.joints.len() == 1, idle.exact),
         idle.fix(file)
     ));
     Ok(())
 }
 
-/// What a reference that gives one joint (`one`) or several no torque means for the
-/// design: "it no torque: its torque limit constrains nothing in the design, and its torque
-/// margin below is the whole limit".
-fn no_torque(one: bool) -> &'static str {
-    if one {
-        "it no torque: its torque limit constrains nothing in the design, and its torque \
-         margin below is the whole limit"
+/// What a reference that gives one joint (`one`) or several no torque (`exact`, else a
+/// negligible one) means for the design: "it no torque: its torque limit constrains nothing
+/// in the design, and its torque margin below is the whole limit".
+fn no_torque(one: bool, exact: bool) -> String {
+    let torque = if exact {
+        "no torque"
     } else {
-        "them no torque: their torque limits constrain nothing in the design, and their \
-         torque margins below are the whole limits"
+        "no torque to speak of"
+    };
+    if one {
+        format!(
+            "it {torque}: its torque limit constrains nothing in the design, and its torque \
+             margin below is the whole limit"
+        )
+    } else {
+        format!(
+            "them {torque}: their torque limits constrain nothing in the design, and their \
+             torque margins below are the whole limits"
+        )
     }
 }
 

@@ -109,9 +109,10 @@ fn warn_idle(
     }
     let (its, is) = its_is(&idle.joints);
     out::warn(format_args!(
-        "warning: {}, so {its} {} {is} 0 in every row; {}",
+        "warning: {}, so {its} {} {is} {} in every row; {}",
         idle.cause(description, &args.robot, file),
         torque_names(&idle.joints),
+        idle.zero(),
         idle.fix(file)
     ));
     Ok(())

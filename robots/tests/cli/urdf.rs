@@ -760,6 +760,35 @@ fn torques_warn_about_a_joint_that_moves_only_massless_links() {
         "{e}"
     );
     assert!(column(&o, 1).iter().all(|&t| t == 0.0), "{}", stdout(&o));
+    // link 2 at 1e-320 (denormal torques, which used to pass as a load): the same, told
+    // as negligible
+    let denormal = write(
+        dir.path(),
+        "denormal.toml",
+        &format!(
+            "{}XX2 = 1e-320\nYY2 = 1e-320\nZZ2 = 1e-320\nM2 = 1e-320\n",
+            std::fs::read_to_string(&link1).unwrap()
+        ),
+    );
+    let o = torques(&urdf, &["--parameters", denormal.to_str().unwrap()]);
+    let e = stderr(&o);
+    assert!(
+        e.contains(&format!(
+            "joint 2 (`j2`) of {} moves no mass or inertia to speak of: every base parameter \
+             its torque depends on (",
+            urdf.display()
+        )) && e.contains(
+            ") is 0 or negligible: its torque stays below 1e-12 of the largest joint's, or \
+             below 1e-15 N m, so its torque tau2 is 0 or negligible in every row; give the \
+             links from link 2 on"
+        ),
+        "{e}"
+    );
+    assert!(
+        column(&o, 1).iter().all(|&t| t.abs() < 1e-300),
+        "{}",
+        stdout(&o)
+    );
     // an empty [standard] table: every joint
     let nothing = write(dir.path(), "nothing.toml", "[standard]\n");
     let o = torques(&urdf, &["--parameters", nothing.to_str().unwrap()]);
