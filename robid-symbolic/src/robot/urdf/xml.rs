@@ -244,6 +244,9 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
     if let Some(w) = incomplete_limits(place, &joints) {
         reader.warnings.push(w);
     }
+    if let Some(w) = zero_limits(place, &joints) {
+        reader.warnings.push(w);
+    }
     reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
     reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
     if reader.errors.is_empty() {
@@ -758,6 +761,69 @@ fn incomplete_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
              URDF format requires `effort` and `velocity` in every `<limit>`, and urdfdom, the \
              parser of ROS tools and Pinocchio, refuses the file; add the robot's values \
              (`effort` in N m or N, `velocity` in rad/s or m/s)",
+            joint.name
+        ),
+    ))
+}
+
+/// One warning for the joints robid can move (revolute, continuous, prismatic) whose
+/// `<limit>` writes `effort="0"` or `velocity="0"`, at the first such `<limit>`, naming the
+/// joints and which of the two each has at 0: robid reads 0 as no limit (URDF's default),
+/// but exporters write 0 as a placeholder for a limit they do not know, so a robot that
+/// has limits probably lost them; the fix is the real values in the URDF, or for the
+/// velocity `robid excite --velocity-limits`. The format allows 0 (urdfdom reads it), so
+/// this is a warning, not an error.
+fn zero_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
+    let zero = |value: Option<f64>| value == Some(0.0);
+    let zeros: Vec<(&Joint, &Limit, &str)> = joints
+        .iter()
+        .filter(|j| j.kind.movable())
+        .filter_map(|j| {
+            let limit = j.limit.as_ref()?;
+            let what = match (zero(limit.effort), zero(limit.velocity)) {
+                (true, true) => "`effort=\"0\"` and `velocity=\"0\"`",
+                (true, false) => "`effort=\"0\"`",
+                (false, true) => "`velocity=\"0\"`",
+                (false, false) => return None,
+            };
+            Some((j, limit, what))
+        })
+        .collect();
+    let ((joint, limit, what), rest) = zeros.split_first()?;
+    let others = if rest.is_empty() {
+        String::new()
+    } else {
+        let named: Vec<String> = rest
+            .iter()
+            .map(|(j, _, what)| format!("joint `{}` has {what}", j.name))
+            .collect();
+        format!(" (also: {})", named.join(", "))
+    };
+    let effort = zeros.iter().any(|(_, _, what)| what.contains("effort"));
+    let velocity = zeros.iter().any(|(_, _, what)| what.contains("velocity"));
+    let (taken, fix) = match (effort, velocity) {
+        (true, true) => (
+            "no torque limit and no velocity limit (`robid excite` then leaves the torque \
+             unbounded and asks for --velocity-limits)",
+            "write the robot's limits in the URDF (`effort` in N m or N, `velocity` in rad/s \
+             or m/s), or give the velocity limits to `robid excite` as --velocity-limits",
+        ),
+        (true, false) => (
+            "no torque limit (`robid excite` then leaves the torque unbounded)",
+            "write the robot's torque limits in the URDF (`effort` in N m or N)",
+        ),
+        _ => (
+            "no velocity limit (`robid excite` then asks for --velocity-limits)",
+            "write the robot's limits in the URDF (`velocity` in rad/s or m/s), or give them \
+             to `robid excite` as --velocity-limits",
+        ),
+    };
+    Some(place.warning(
+        limit.range.start,
+        &format!(
+            "the `<limit>` of joint `{}` has {what}{others}: robid takes 0 as {taken}, but \
+             URDF exporters write 0 where they do not know a limit; if the robot has limits, \
+             {fix}",
             joint.name
         ),
     ))

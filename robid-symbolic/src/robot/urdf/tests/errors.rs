@@ -754,6 +754,98 @@ fn revolute_and_prismatic_joints_without_limits_are_warned_about() {
     );
 }
 
+/// `effort="0"` or `velocity="0"` on a joint robid can move is read as no torque or velocity
+/// limit (URDF's default), but exporters write 0 as a placeholder for a limit they do not
+/// know: it is warned about once, at the first such `<limit>`, naming each joint, which of
+/// the two it has at 0, what robid takes and the fix (it used to be taken as no limit
+/// without a word); a fixed joint's `<limit>` (Kinova's URDF writes zeros there) and
+/// nonzero limits are not warned about.
+#[test]
+fn zero_effort_or_velocity_limits_are_warned_about() {
+    let read = |text: &str| {
+        Robot::from_urdf(text, "t.urdf", &ChainSelection::default())
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let about = |chain: &UrdfChain| -> Vec<String> {
+        chain
+            .warnings
+            .iter()
+            .filter(|w| w.contains("robid takes 0 as"))
+            .cloned()
+            .collect()
+    };
+    let with = |first: &str, second: &str| {
+        arm(&format!(
+            "{}{}",
+            J1.replace("</joint>", &format!("<limit {first}/></joint>")),
+            J2.replace("</joint>", &format!("<limit {second}/></joint>"))
+        ))
+    };
+    let whole = "lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"";
+    assert!(about(&read(&with(whole, whole))).is_empty());
+    let chain = read(&with(
+        whole,
+        "lower=\"-1\" upper=\"1\" effort=\"0\" velocity=\"2\"",
+    ));
+    assert_eq!(
+        about(&chain),
+        [
+            "t.urdf:6:111: the `<limit>` of joint `j2` has `effort=\"0\"`: robid takes 0 as no \
+             torque limit (`robid excite` then leaves the torque unbounded), but URDF exporters \
+             write 0 where they do not know a limit; if the robot has limits, write the \
+             robot's torque limits in the URDF (`effort` in N m or N)"
+        ]
+    );
+    let joint = &chain.robot.joints()[1];
+    assert_eq!(
+        (joint.limits.torque, joint.limits.velocity),
+        (None, Some(2.0))
+    );
+    // both joints, one message at the first, naming the second and what it has at 0
+    let chain = read(&with(
+        "lower=\"-1\" upper=\"1\" effort=\"3\" velocity=\"0\"",
+        "lower=\"-1\" upper=\"1\" effort=\"0\" velocity=\"0\"",
+    ));
+    let warned = about(&chain);
+    assert_eq!(
+        warned,
+        [
+            "t.urdf:5:88: the `<limit>` of joint `j1` has `velocity=\"0\"` (also: joint `j2` \
+             has `effort=\"0\"` and `velocity=\"0\"`): robid takes 0 as no torque limit and \
+             no velocity limit (`robid excite` then leaves the torque unbounded and asks for \
+             --velocity-limits), but URDF exporters write 0 where they do not know a limit; \
+             if the robot has limits, write the robot's limits in the URDF (`effort` in N m \
+             or N, `velocity` in rad/s or m/s), or give the velocity limits to `robid \
+             excite` as --velocity-limits"
+        ]
+    );
+    assert_eq!(chain.robot.joints()[0].limits.velocity, None);
+    // a velocity of 0 alone points to --velocity-limits; a continuous joint is warned too
+    let continuous =
+        with("effort=\"1\" velocity=\"0\"", whole).replacen("revolute", "continuous", 1);
+    let warned = about(&read(&continuous));
+    assert!(
+        warned.len() == 1
+            && warned[0]
+                .contains("joint `j1` has `velocity=\"0\"`: robid takes 0 as no velocity limit")
+            && warned[0].ends_with("or give them to `robid excite` as --velocity-limits"),
+        "{warned:?}"
+    );
+    // a fixed joint's zeros are not robid's concern
+    let fixed = arm(&format!(
+        "{}{J1}",
+        J2.replace("revolute", "fixed").replace(
+            "</joint>",
+            "<limit effort=\"0\" lower=\"0\" upper=\"0\" velocity=\"0\"/></joint>"
+        )
+    ));
+    let chain = read(&fixed.replace(
+        "</joint>\n</robot>",
+        &format!("<limit {whole}/></joint>\n</robot>"),
+    ));
+    assert!(about(&chain).is_empty(), "{:?}", chain.warnings);
+}
+
 /// A `<limit>` without `effort` or `velocity` (which urdfdom, and so ROS tools and Pinocchio,
 /// refuse) on a joint robid can move is read as no torque or velocity limit and warned
 /// about once, at the first such `<limit>`, naming each joint and what it lacks (it used to
