@@ -42,7 +42,7 @@ pub fn write_atomically(
             reason: e.to_string(),
         })
     };
-    let (target, dir, existing) = match target(path)? {
+    let (target, dir, existing, link) = match target(path)? {
         Target::Special(target) => {
             // a reader that stops early (`-o /dev/stdout | head`) closes a pipe: not a
             // problem of the path, so not `Write`'s "check that the folder exists"
@@ -64,7 +64,8 @@ pub fn write_atomically(
             target,
             dir,
             permissions,
-        } => (target, dir, permissions),
+            link,
+        } => (target, dir, permissions, link),
     };
     // the error names the temporary file ("at path \"dir/.robid-Z2mU1l.tmp\""), which
     // the user never asked for: name the folder instead
@@ -72,7 +73,7 @@ pub fn write_atomically(
         .prefix(".robid-")
         .suffix(".tmp")
         .tempfile_in(&dir)
-        .map_err(|e| not_writable(path, &dir, &e))?;
+        .map_err(|e| not_writable(path, link.then_some(target.as_path()), &dir, &e))?;
     {
         let mut w = std::io::BufWriter::new(temp.as_file_mut());
         write(&mut w).map_err(|e| err(&e))?;
@@ -90,7 +91,10 @@ pub fn write_atomically(
 /// refuse, with the writer's message: an existing folder ([`OutputError::Folder`]), a
 /// path whose folder does not exist ([`OutputError::NoFolder`]), is a file
 /// ([`OutputError::NotAFolder`]) or takes no new file ([`OutputError::NotWritable`]: no
-/// permission, a read-only file system). A pipe, `/dev/stdout` or another special file
+/// permission, a read-only file system, /proc; [`OutputError::LinkNotWritable`] for an
+/// output that is a link), or is reached through a link that loops or points to nothing
+/// ([`OutputError::FolderLinkLoop`], [`OutputError::FolderLinkMissing`]). A pipe,
+/// `/dev/stdout` or another special file
 /// passes. The target is never created or opened; whether the folder takes a file is
 /// tried by creating a temporary file in it, removed at once. The writer checks again
 /// (the folder may change meanwhile).
@@ -105,32 +109,64 @@ pub fn write_atomically(
 pub fn check_file(path: &Path) -> Result<()> {
     match target(path)? {
         Target::Special(_) => Ok(()),
-        Target::File { dir, .. } => probe(path, &dir),
+        Target::File {
+            dir, target, link, ..
+        } => probe(path, link.then_some(target.as_path()), &dir),
     }
 }
 
 /// Refuses output `path` when no file can be created in `dir`, as the writer would find:
-/// a temporary file is created there and removed.
-fn probe(path: &Path, dir: &Path) -> Result<()> {
+/// a temporary file is created there and removed. `link` is the file that `path`, a
+/// symbolic link, points to.
+fn probe(path: &Path, link: Option<&Path>, dir: &Path) -> Result<()> {
     let temp = tempfile::Builder::new()
         .prefix(".robid-")
         .suffix(".tmp")
         .tempfile_in(dir)
-        .map_err(|e| not_writable(path, dir, &e))?;
+        .map_err(|e| not_writable(path, link, dir, &e))?;
     // removed now, not at the end of the run; a failure to remove it is not the output's
     temp.close().ok();
     Ok(())
 }
 
-/// The error of output `path` whose folder `dir` takes no new file.
-fn not_writable(path: &Path, dir: &Path, e: &std::io::Error) -> Error {
-    Error::Output(OutputError::NotWritable {
-        path: path.to_path_buf(),
-        folder: dir.to_path_buf(),
-        // the kind, not the error: that names the temporary file, which the user never
-        // asked for
-        reason: e.kind().to_string(),
+/// The error of output `path` whose folder `dir` takes no new file; `link` is the file
+/// that `path`, a symbolic link, points to (in `dir`).
+fn not_writable(path: &Path, link: Option<&Path>, dir: &Path, e: &std::io::Error) -> Error {
+    // the kind, not the error: that names the temporary file, which the user never asked
+    // for
+    let reason = match e.kind() {
+        // a folder that exists yet has no room for a name: a file system of the kernel
+        std::io::ErrorKind::NotFound if dir.is_dir() => NO_NEW_FILES.to_owned(),
+        kind => kind.to_string(),
+    };
+    let (path, folder) = (path.to_path_buf(), dir.to_path_buf());
+    Error::Output(match link {
+        Some(target) => OutputError::LinkNotWritable {
+            path,
+            target: target.to_path_buf(),
+            folder,
+            reason,
+        },
+        None => OutputError::NotWritable {
+            path,
+            folder,
+            reason,
+        },
     })
+}
+
+/// The reason given for an existing folder in which creating a file fails with "not
+/// found": the kernel's /proc and /sys take no file that the kernel does not make.
+const NO_NEW_FILES: &str = "the system refuses new files there, as in /proc and /sys";
+
+/// The fix of an output whose folder takes no new file for `reason`: making the folder
+/// writable is a fix for a permission or a read-only mount, not for /proc.
+fn not_writable_fix(reason: &str) -> &'static str {
+    if reason == NO_NEW_FILES {
+        "give a path in a folder you may write into"
+    } else {
+        "give a path in a folder you may write into, or make this one writable"
+    }
 }
 
 /// Refuses, before any work, a folder output ([`create_folder`]: created with its
@@ -145,17 +181,26 @@ fn not_writable(path: &Path, dir: &Path, e: &std::io::Error) -> Error {
 pub fn check_folder(dir: &Path) -> Result<()> {
     let target = folder_target(dir)?;
     let problem = match std::fs::metadata(&target) {
-        Ok(m) if m.is_dir() => return probe(dir, &target),
+        Ok(m) if m.is_dir() => return probe(dir, None, &target),
         Ok(_) => OutputError::FileNotFolder {
             path: dir.to_path_buf(),
         },
+        // a link on the way that loops or points to nothing: no folder can be made there
+        Err(e)
+            if e.kind() != std::io::ErrorKind::NotADirectory
+                && broken_link(dir, &target).is_some() =>
+        {
+            broken_link(dir, &target).unwrap_or(OutputError::LinkLoop {
+                path: dir.to_path_buf(),
+            })
+        }
         // a missing path whose every existing part is a folder: created with its parents
         // in the nearest existing one
         Err(e) if e.kind() != std::io::ErrorKind::NotADirectory => {
             return match target.ancestors().skip(1).find(|a| a.is_dir()) {
-                Some(existing) => probe(dir, existing),
+                Some(existing) => probe(dir, None, existing),
                 // a relative path, which is created in the working folder
-                None => probe(dir, Path::new(".")),
+                None => probe(dir, None, Path::new(".")),
             };
         }
         Err(_) => OutputError::NotAFolder {
@@ -187,6 +232,8 @@ enum Target {
         target: PathBuf,
         dir: PathBuf,
         permissions: Option<std::fs::Permissions>,
+        /// Whether the output is a symbolic link (to `target`).
+        link: bool,
     },
 }
 
@@ -226,6 +273,8 @@ fn target(path: &Path) -> Result<Target> {
         target,
         dir,
         permissions: metadata.map(|m| m.permissions()),
+        // an existing file through a link too: the folder named is the target's
+        link: is_link(path),
     })
 }
 
@@ -288,13 +337,21 @@ fn folder_of(path: &Path) -> &Path {
 /// points to, `link`.
 fn check_parent(path: &Path, link: Option<&Path>, dir: &Path) -> Result<()> {
     use std::io::ErrorKind::{NotADirectory, NotFound};
-    let (path, folder) = (path.to_path_buf(), dir.to_path_buf());
     let missing = match std::fs::metadata(dir) {
         Ok(m) if m.is_dir() => return Ok(()),
-        Err(e) if e.kind() == NotFound => true,
+        Err(e) if e.kind() == NotFound || is_loop(&e) => {
+            if let Some(problem) = broken_link(path, dir) {
+                return Err(Error::Output(problem));
+            }
+            if e.kind() != NotFound {
+                return Ok(()); // the writer says what failed
+            }
+            true
+        }
         Err(e) if e.kind() != NotADirectory => return Ok(()), // the writer says what failed
         _ => false,
     };
+    let (path, folder) = (path.to_path_buf(), dir.to_path_buf());
     let problem = match (link, missing) {
         (None, true) => OutputError::NoFolder { path, folder },
         (None, false) => OutputError::NotAFolder { path, folder },
@@ -310,6 +367,75 @@ fn check_parent(path: &Path, link: Option<&Path>, dir: &Path) -> Result<()> {
         },
     };
     Err(Error::Output(problem))
+}
+
+/// Whether `e` says that a path leads through a loop of symbolic links (or a chain longer
+/// than the system follows). `ErrorKind::FilesystemLoop` is not stable, so the kind is
+/// told by its name, the same on every system.
+fn is_loop(e: &std::io::Error) -> bool {
+    format!("{:?}", e.kind()) == "FilesystemLoop"
+}
+
+/// Why the folder `dir` of output `path`, which cannot be reached, is not there, when a
+/// symbolic link on its way is the cause: the first folder on the way (from the root)
+/// that is a link leading back to itself ([`OutputError::FolderLinkLoop`]) or to nothing
+/// ([`OutputError::FolderLinkMissing`]). `None` when every link on the way leads to a
+/// folder (a plain folder is missing).
+fn broken_link(path: &Path, dir: &Path) -> Option<OutputError> {
+    let mut at = PathBuf::new();
+    for part in dir.components() {
+        at.push(part);
+        match std::fs::metadata(&at) {
+            Ok(m) if m.is_dir() => continue,
+            // a file (not a folder, told by the caller), or a plain folder missing
+            Ok(_) => return None,
+            Err(_) if !is_link(&at) => return None,
+            Err(e) if is_loop(&e) => {
+                return Some(OutputError::FolderLinkLoop {
+                    path: path.to_path_buf(),
+                    folder: dir.to_path_buf(),
+                    link: at,
+                });
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                let target = match follow_links(&at) {
+                    Ok(target) => target,
+                    Err(_) => {
+                        return Some(OutputError::FolderLinkLoop {
+                            path: path.to_path_buf(),
+                            folder: dir.to_path_buf(),
+                            link: at,
+                        });
+                    }
+                };
+                return Some(OutputError::FolderLinkMissing {
+                    path: path.to_path_buf(),
+                    folder: dir.to_path_buf(),
+                    link: at,
+                    target,
+                });
+            }
+            Err(_) => return None,
+        }
+    }
+    None
+}
+
+/// "the folder F is a symbolic link that WHAT", or for a folder under the link "the
+/// folder F lies under L, a symbolic link that WHAT".
+fn through_link(folder: &Path, link: &Path, what: &str) -> String {
+    if folder == link {
+        format!(
+            "the folder {} is a symbolic link that {what}",
+            folder.display()
+        )
+    } else {
+        format!(
+            "the folder {} lies under {}, a symbolic link that {what}",
+            folder.display(),
+            link.display()
+        )
+    }
 }
 
 /// New files get the permissions an ordinary file would (0o666 less the umask), not
@@ -444,7 +570,8 @@ pub enum OutputError {
     /// without write permission, a read-only file system); for a folder output, the
     /// nearest existing folder above it, where it would be created.
     #[error(
-        "{path}: cannot create a file in the folder {folder} ({reason}); give a path in a folder you may write into, or make this one writable"
+        "{path}: cannot create a file in the folder {folder} ({reason}); {}",
+        not_writable_fix(reason)
     )]
     NotWritable {
         /// The output, as given.
@@ -453,6 +580,58 @@ pub enum OutputError {
         folder: PathBuf,
         /// Why, as the system says it (`permission denied`).
         reason: String,
+    },
+    /// The output is a symbolic link to a file (existing or not) in a folder that takes no
+    /// new file (`v.txt -> /proc/version`): the writer writes a new file there to replace
+    /// or create the file it points to.
+    #[error(
+        "{path}: is a symbolic link to {target}, which robid would replace (or create) by writing a new file in its folder {folder}, but that folder takes no new file ({reason}); remove the link to write a file in its place, or give another path"
+    )]
+    LinkNotWritable {
+        /// The output, as given.
+        path: PathBuf,
+        /// The file the link points to, through every link of a chain.
+        target: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+        /// Why, as the system says it (`permission denied`).
+        reason: String,
+    },
+    /// The folder of the output is, or lies under, a symbolic link that leads back to
+    /// itself (`loopdir -> loopdir`, `-o loopdir/out.csv`), or a chain of more than the
+    /// system follows.
+    #[error(
+        "{path}: {}; point the link to a folder, or give another path",
+        through_link(
+            folder,
+            link,
+            "leads back to itself (a loop of links, or a chain of more than 40)"
+        )
+    )]
+    FolderLinkLoop {
+        /// The output, as given.
+        path: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+        /// The link on the way to the folder that loops.
+        link: PathBuf,
+    },
+    /// The folder of the output is, or lies under, a symbolic link to something that does
+    /// not exist (`dang -> missing`, `-o dang/out.csv`).
+    #[error(
+        "{path}: {}; create the folder {}, or point the link to an existing folder",
+        through_link(folder, link, &format!("points to {}, which does not exist", target.display())),
+        target.display()
+    )]
+    FolderLinkMissing {
+        /// The output, as given.
+        path: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+        /// The link on the way to the folder that points to nothing.
+        link: PathBuf,
+        /// What it points to, through every link of a chain.
+        target: PathBuf,
     },
     /// The folder of the output is a file, or lies under one (`-o notes.txt/f.toml`).
     #[error(
@@ -907,8 +1086,9 @@ mod tests {
         let text = e.to_string();
         assert_eq!(
             text,
-            "/proc/robid-never-written.csv: cannot create a file in the folder /proc (entity \
-             not found); give a path in a folder you may write into, or make this one writable"
+            "/proc/robid-never-written.csv: cannot create a file in the folder /proc (the \
+             system refuses new files there, as in /proc and /sys); give a path in a folder \
+             you may write into"
         );
         assert_eq!(check_file(path).unwrap_err().to_string(), text);
         for dir in ["/proc", "/proc/robid-never-written/plots"] {
@@ -923,6 +1103,135 @@ mod tests {
                 e.to_string()
             );
         }
+    }
+
+    /// An output that is a link to a file in /proc, existing or not, names the link, the
+    /// file and the folder, with a fix that holds (remove the link, another path): it used
+    /// to end in "make this one writable", which /proc cannot be. The link is kept.
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn a_link_into_a_folder_that_takes_no_file_is_named() {
+        use std::os::unix::fs::symlink;
+        if !Path::new("/proc/version").is_file() {
+            return; // no procfs here
+        }
+        let dir = tempfile::tempdir().unwrap();
+        for (name, target) in [
+            ("v.txt", "/proc/version"),
+            ("new.csv", "/proc/robid-never-written.csv"),
+        ] {
+            let link = dir.path().join(name);
+            symlink(target, &link).unwrap();
+            let e = write_bytes(&link, b"x").unwrap_err();
+            assert!(
+                matches!(&e, Error::Output(OutputError::LinkNotWritable { path, folder, .. })
+                    if *path == link && folder == Path::new("/proc")),
+                "{e:?}"
+            );
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "{}: is a symbolic link to {target}, which robid would replace (or create) \
+                     by writing a new file in its folder /proc, but that folder takes no new \
+                     file (the system refuses new files there, as in /proc and /sys); remove \
+                     the link to write a file in its place, or give another path",
+                    link.display()
+                )
+            );
+            assert_eq!(check_file(&link).unwrap_err().to_string(), e.to_string());
+            assert!(is_link(&link));
+        }
+    }
+
+    /// A folder that is a link leading back to itself (`loopdir -> loopdir`) or to nothing
+    /// (`dang -> missing`), or that lies under one, is named as such with the link and what
+    /// it points to, by the writer, the check before the work and the folder check: they
+    /// used to say "cannot create a file in the folder loopdir (filesystem loop ..); .. make
+    /// this one writable" and "the folder dang does not exist; create it first" (it is a
+    /// link). Nothing is created.
+    #[test]
+    #[cfg(unix)]
+    fn a_folder_through_a_broken_link_is_named() {
+        use std::os::unix::fs::symlink;
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        symlink("loopdir", d.join("loopdir")).unwrap();
+        symlink("missing", d.join("dang")).unwrap();
+        let (looping, dangling) = (d.join("loopdir"), d.join("dang"));
+        let loop_text = |folder: &Path, under: bool| {
+            let place = if under {
+                format!(
+                    "the folder {} lies under {}, a symbolic link",
+                    folder.display(),
+                    looping.display()
+                )
+            } else {
+                format!("the folder {} is a symbolic link", looping.display())
+            };
+            format!(
+                "{place} that leads back to itself (a loop of links, or a chain of more than \
+                 40); point the link to a folder, or give another path"
+            )
+        };
+        let missing_text = |folder: &Path, under: bool| {
+            let place = if under {
+                format!(
+                    "the folder {} lies under {}, a symbolic link",
+                    folder.display(),
+                    dangling.display()
+                )
+            } else {
+                format!("the folder {} is a symbolic link", dangling.display())
+            };
+            format!(
+                "{place} that points to {}, which does not exist; create the folder {}, or \
+                 point the link to an existing folder",
+                d.join("missing").display(),
+                d.join("missing").display()
+            )
+        };
+        for (folder, under, text) in [
+            (looping.clone(), false, loop_text(&looping, false)),
+            (
+                looping.join("sub"),
+                true,
+                loop_text(&looping.join("sub"), true),
+            ),
+            (dangling.clone(), false, missing_text(&dangling, false)),
+            (
+                dangling.join("sub"),
+                true,
+                missing_text(&dangling.join("sub"), true),
+            ),
+        ] {
+            let out = folder.join("out.csv");
+            let e = write_bytes(&out, b"x").unwrap_err();
+            assert_eq!(
+                e.to_string(),
+                format!("{}: {text}", out.display()),
+                "{under}"
+            );
+            assert!(
+                matches!(
+                    &e,
+                    Error::Output(
+                        OutputError::FolderLinkLoop { .. } | OutputError::FolderLinkMissing { .. }
+                    )
+                ),
+                "{e:?}"
+            );
+            assert_eq!(check_file(&out).unwrap_err().to_string(), e.to_string());
+            if under {
+                // a folder output under the link: refused the same way, not created
+                let e = check_folder(&folder).unwrap_err();
+                assert_eq!(e.to_string(), format!("{}: {text}", folder.display()));
+                assert_eq!(
+                    create_folder(&folder).unwrap_err().to_string(),
+                    e.to_string()
+                );
+            }
+        }
+        assert_eq!(std::fs::read_dir(d).unwrap().count(), 2);
     }
 
     /// A folder robid may not write into is named, not the temporary file.

@@ -798,13 +798,22 @@ fn an_excite_design_with_a_bad_output_writes_nothing() {
     assert!(stdout(&o).is_empty(), "{}", stdout(&o));
 }
 
-/// The message of an output in `folder`, a folder no file can be created in.
+/// The message of an output in `folder`, a folder no file can be created in for `reason`:
+/// making it writable is a fix for a permission, not for /proc.
 fn not_writable(out: &str, folder: &str, reason: &str) -> String {
+    let fix = if reason == PROC {
+        ""
+    } else {
+        ", or make this one writable"
+    };
     format!(
         "error: {out}: cannot create a file in the folder {folder} ({reason}); give a path in a \
-         folder you may write into, or make this one writable\n"
+         folder you may write into{fix}\n"
     )
 }
+
+/// Why /proc takes no new file, as a message says it.
+const PROC: &str = "the system refuses new files there, as in /proc and /sys";
 
 /// An output in a folder that exists but takes no file (/proc, even for root) is refused
 /// before any work by every writer, naming the output and the folder; it used to be found
@@ -828,11 +837,7 @@ fn an_output_in_a_folder_that_takes_no_file_is_refused_before_any_work() {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let o = robid_in(dir, &args);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
-        assert_eq!(
-            stderr(&o),
-            not_writable(out, "/proc", "entity not found"),
-            "{args:?}"
-        );
+        assert_eq!(stderr(&o), not_writable(out, "/proc", PROC), "{args:?}");
         assert_eq!(listing(dir), before, "{args:?}");
     }
     for plot in ["/proc", "/proc/robid-never-written/plots"] {
@@ -852,11 +857,7 @@ fn an_output_in_a_folder_that_takes_no_file_is_refused_before_any_work() {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let o = robid_in(dir, &args);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
-        assert_eq!(
-            stderr(&o),
-            not_writable(plot, "/proc", "entity not found"),
-            "{args:?}"
-        );
+        assert_eq!(stderr(&o), not_writable(plot, "/proc", PROC), "{args:?}");
     }
     assert_eq!(listing(dir), before);
 }
