@@ -29,7 +29,9 @@ use crate::error::{Error, Result};
 /// replaces `path` (keeping its permissions) only when `write` and the flush succeed.
 ///
 /// A symbolic link is followed, so the file it points to is replaced and the link
-/// kept. On any error the temporary file is removed and `path` is left untouched. A
+/// kept. On any error the temporary file is removed and `path` is left untouched. After a
+/// write, the temporary files that killed runs left in the folder are removed once they
+/// are [`STALE_TEMPORARY`] old (on Unix; nothing else is touched). A
 /// target that exists and is neither a file nor a folder (a pipe, `/dev/stdout`, a
 /// device) is opened and written into, as a shell's `>` would.
 pub fn write_atomically(
@@ -83,8 +85,76 @@ pub fn write_atomically(
     if let Some(p) = existing {
         temp.as_file().set_permissions(p).map_err(|e| err(&e))?;
     }
+    #[cfg(unix)]
+    let owner = {
+        use std::os::unix::fs::MetadataExt;
+        temp.as_file().metadata().map(|m| m.uid()).ok()
+    };
     temp.persist(&target).map_err(|e| err(&e.error))?;
+    #[cfg(unix)]
+    if let Some(owner) = owner {
+        sweep(&dir, owner);
+    }
     Ok(())
+}
+
+/// How old a temporary file of robid's (`.robid-XXXXXX.tmp`) must be for
+/// [`write_atomically`] to remove it from the folder it writes into: a run killed while
+/// writing (SIGKILL, a power cut) leaves its temporary file there, as no code of its
+/// runs again. A write takes seconds and touches its file all along, so a day without a
+/// change means the run is gone, and a run suspended for that long (`kill -STOP`) is
+/// not the concern of a later one.
+pub const STALE_TEMPORARY: std::time::Duration = std::time::Duration::from_secs(24 * 3600);
+
+/// Whether `name` is that of a temporary file of robid's: `.robid-`, the six letters
+/// or digits `tempfile` draws, `.tmp`.
+fn is_temporary_name(name: &std::ffi::OsStr) -> bool {
+    let name = name.as_encoded_bytes();
+    name.len() == 17
+        && name.starts_with(b".robid-")
+        && name.ends_with(b".tmp")
+        && name[7..13].iter().all(u8::is_ascii_alphanumeric)
+}
+
+/// Removes from `dir`, once per process, the temporary files that killed runs of robid
+/// left there: a regular file (not a link, not a folder) named as robid names them
+/// ([`is_temporary_name`]), of the same owner as this run's own temporary file, unchanged
+/// for [`STALE_TEMPORARY`]. Nothing else is touched; a file that cannot be read or
+/// removed is left as it is (not the output's concern).
+#[cfg(unix)]
+fn sweep(dir: &Path, owner: u32) {
+    use std::os::unix::fs::MetadataExt;
+    static SWEPT: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+    {
+        let Ok(mut swept) = SWEPT.lock() else {
+            return;
+        };
+        if swept.iter().any(|d| d == dir) {
+            return;
+        }
+        swept.push(dir.to_path_buf());
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let now = std::time::SystemTime::now();
+    for entry in entries.flatten() {
+        if !is_temporary_name(&entry.file_name()) {
+            continue;
+        }
+        let path = entry.path();
+        let Ok(m) = std::fs::symlink_metadata(&path) else {
+            continue;
+        };
+        let stale = m
+            .modified()
+            .ok()
+            .and_then(|t| now.duration_since(t).ok())
+            .is_some_and(|age| age >= STALE_TEMPORARY);
+        if m.file_type().is_file() && m.uid() == owner && stale {
+            std::fs::remove_file(&path).ok();
+        }
+    }
 }
 
 /// Refuses, before any work, a file output that its writer ([`write_atomically`]) would
@@ -1232,6 +1302,64 @@ mod tests {
             }
         }
         assert_eq!(std::fs::read_dir(d).unwrap().count(), 2);
+    }
+
+    /// Temporary files that killed runs left in an output's folder break no later write
+    /// (each write draws a new name), and those unchanged for a day are removed by the
+    /// next write there, once per process; nothing that is not unmistakably one is
+    /// touched: another name, a fresh one (a run may be writing it), a folder or a link
+    /// of that name. They used to stay for ever.
+    #[test]
+    #[cfg(unix)]
+    fn temporary_files_left_by_killed_runs_are_removed_when_stale() {
+        use std::os::unix::fs::symlink;
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let old = std::time::SystemTime::now() - STALE_TEMPORARY * 2;
+        let age = |path: &Path| {
+            std::fs::File::open(path)
+                .unwrap()
+                .set_modified(old)
+                .unwrap();
+        };
+        let stale = [".robid-AbC123.tmp", ".robid-zzzzzz.tmp"];
+        let kept = [
+            ".robid-AbC12.tmp",
+            ".robid-AbC1234.tmp",
+            ".robid-AbC-23.tmp",
+            "robid-AbC123.tmp",
+            ".robid-AbC123.tmp.csv",
+        ];
+        for name in stale.iter().chain(&kept) {
+            std::fs::write(d.join(name), "left").unwrap();
+            age(&d.join(name));
+        }
+        std::fs::write(d.join(".robid-FrEsH1.tmp"), "being written").unwrap();
+        std::fs::create_dir(d.join(".robid-FoLdEr.tmp")).unwrap();
+        age(&d.join(".robid-FoLdEr.tmp"));
+        symlink("robid-AbC123.tmp", d.join(".robid-LiNk00.tmp")).unwrap();
+        let out = d.join("out.csv");
+        write_bytes(&out, b"x").unwrap();
+        assert_eq!(std::fs::read_to_string(&out).unwrap(), "x");
+        for name in stale {
+            assert!(!d.join(name).exists(), "{name} is still there");
+        }
+        for name in kept.iter().chain(&[
+            ".robid-FrEsH1.tmp",
+            ".robid-FoLdEr.tmp",
+            ".robid-LiNk00.tmp",
+        ]) {
+            assert!(
+                std::fs::symlink_metadata(d.join(name)).is_ok(),
+                "{name} was removed"
+            );
+        }
+        // once per process: a stale file left now stays until the next run
+        std::fs::write(d.join(".robid-later1.tmp"), "left").unwrap();
+        age(&d.join(".robid-later1.tmp"));
+        write_bytes(&out, b"y").unwrap();
+        assert!(d.join(".robid-later1.tmp").exists());
+        assert_eq!(std::fs::read_to_string(&out).unwrap(), "y");
     }
 
     /// A folder robid may not write into is named, not the temporary file.

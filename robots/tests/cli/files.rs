@@ -229,7 +229,9 @@ fn the_refusal_comes_before_any_work() {
 /// `robid torques` with a file size limit (`ulimit -f`) far below its output: killed by
 /// SIGXFSZ in the middle of writing, or (with the signal ignored) stopped by the write
 /// error, it leaves the previous output exactly as it was; with the error, also no
-/// temporary file. (The old writer left the first 512 bytes of the new output.)
+/// temporary file. (The old writer left the first 512 bytes of the new output.) The killed
+/// run's temporary file breaks no later run, and once a day old it is removed by the next
+/// write into its folder (it used to stay for ever).
 #[cfg(unix)]
 #[test]
 fn a_failed_or_killed_write_leaves_the_old_file_whole() {
@@ -290,7 +292,17 @@ fn a_failed_or_killed_write_leaves_the_old_file_whole() {
         after_kill,
         "the failed write removes its temporary file"
     );
-    // Without the limit the output is replaced as a whole.
+    assert_eq!(after_kill, 1);
+    // a day later, without the limit, the output is replaced as a whole and the killed
+    // run's temporary file removed
+    let day_ago = std::time::SystemTime::now() - std::time::Duration::from_secs(25 * 3600);
+    for entry in std::fs::read_dir(dir.path()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.to_string_lossy().ends_with(".tmp") {
+            let file = std::fs::File::open(&path).unwrap();
+            file.set_modified(day_ago).unwrap();
+        }
+    }
     let o = robid(&[
         "torques",
         "descriptions/ur5e.toml",
@@ -306,6 +318,7 @@ fn a_failed_or_killed_write_leaves_the_old_file_whole() {
         std::fs::read_to_string(&output).unwrap().lines().count(),
         2001
     );
+    assert_eq!(temporary(), 0, "the stale temporary file is removed");
 }
 
 /// Two outputs of one run on the same file (under any spelling) are refused before any
