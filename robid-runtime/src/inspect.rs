@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::{Config, Cutoff, Dataset, Record, Sampling};
 use crate::error::{Error, Result};
-use crate::signal::{Signals, Spectrum, butterworth_hz, central_difference};
+use crate::signal::{Signals, Spectrum, Welch, butterworth_hz, central_difference};
 
 /// Share of the positions' power that defines the motion's bandwidth.
 pub const MOTION_SHARE: f64 = 0.999;
@@ -102,39 +102,68 @@ pub struct Inspection {
 
 /// The spectrum of one signal of `data`, or the error naming it and the data's files.
 fn spectrum(data: &Dataset, x: &[f64], what: &str, joint: usize) -> Result<Spectrum> {
-    Spectrum::welch(x, 1.0 / data.sample_time).ok_or_else(|| Error::TooFewSamples {
+    Spectrum::welch(x, 1.0 / data.sample_time).ok_or_else(|| no_spectrum(data, what, joint))
+}
+
+/// The error for a signal of `data` that has no spectrum: too short, or not finite.
+fn no_spectrum(data: &dyn Record, what: &str, joint: usize) -> Error {
+    Error::TooFewSamples {
         context: format!(
             "{}: the spectrum of the {what} of joint {joint}",
             files(data)
         ),
-        found: x.len(),
+        found: data.samples(),
         required: crate::signal::MIN_SPECTRUM_SAMPLES,
         hint: "a spectrum needs a longer record: record a longer trajectory",
-    })
+    }
 }
 
 /// The files of `data` (each source's, joined), else its name.
-fn files(data: &Dataset) -> String {
-    if data.sampling.is_empty() {
-        return data.file().map_or_else(
-            || format!("data set `{}`", data.name),
-            |p| p.display().to_string(),
-        );
+fn files(data: &dyn Record) -> String {
+    let files = data.files();
+    if files.is_empty() {
+        return format!("data set `{}`", data.name());
     }
-    data.sampling
+    files
         .iter()
-        .map(|s| s.path.display().to_string())
+        .map(|p| p.display().to_string())
         .collect::<Vec<_>>()
         .join(" + ")
 }
 
-/// The suggested low-pass cutoff for the positions of `data` (see the module's rule).
-pub fn suggest_cutoff(data: &Dataset) -> Result<CutoffSuggestion> {
-    let rate = 1.0 / data.sample_time;
+/// Samples read at a time for the position spectra of [`suggest_cutoff`].
+const SPECTRUM_BLOCK: usize = 1 << 16;
+
+/// The spectrum of each joint's position in `data`, read block by block ([`Welch`]), so
+/// that a record kept on disk is never held whole.
+fn position_spectra(data: &dyn Record) -> Result<Vec<Spectrum>> {
+    let (n, rate) = (data.samples(), 1.0 / data.sample_time());
+    let mut welch = (0..data.dof())
+        .map(|j| Welch::new(n, rate).ok_or_else(|| no_spectrum(data, "position", j + 1)))
+        .collect::<Result<Vec<_>>>()?;
+    for start in (0..n).step_by(SPECTRUM_BLOCK) {
+        let block = data.read(start, start + SPECTRUM_BLOCK)?;
+        for (w, q) in welch.iter_mut().zip(block.q.joints()) {
+            w.push(q);
+        }
+    }
+    welch
+        .into_iter()
+        .enumerate()
+        .map(|(j, w)| {
+            w.finish()
+                .ok_or_else(|| no_spectrum(data, "position", j + 1))
+        })
+        .collect()
+}
+
+/// The suggested low-pass cutoff for the positions of `data` (see the module's rule),
+/// read block by block.
+pub fn suggest_cutoff(data: &dyn Record) -> Result<CutoffSuggestion> {
+    let rate = 1.0 / data.sample_time();
     let mut widest: Option<(f64, usize)> = None;
     let mut noisiest: Option<(f64, usize)> = None;
-    for (j, q) in data.q.joints().enumerate() {
-        let s = spectrum(data, q, "position", j + 1)?;
+    for (j, s) in position_spectra(data)?.into_iter().enumerate() {
         if !moves(&s) {
             continue;
         }
@@ -153,7 +182,7 @@ pub fn suggest_cutoff(data: &Dataset) -> Result<CutoffSuggestion> {
             "processing.lowpass.cutoff",
             format!(
                 "\"auto\" needs motion, and no joint of {} moves beyond its noise; give the cutoff in Hz",
-                data.name
+                data.name()
             ),
         ));
     };
@@ -196,7 +225,7 @@ pub fn suggest_cutoff(data: &Dataset) -> Result<CutoffSuggestion> {
 pub fn resolve_cutoff(config: &mut Config, data: &dyn Record) -> Result<Option<CutoffSuggestion>> {
     match &mut config.processing.lowpass {
         Some(lp) if lp.cutoff == Cutoff::Auto => {
-            let s = suggest_cutoff(&*data.read(0, data.samples())?)?;
+            let s = suggest_cutoff(data)?;
             lp.cutoff = Cutoff::Hz(s.cutoff);
             Ok(Some(s))
         }

@@ -416,9 +416,7 @@ impl Plan {
         // the signals the record has, from its first sample
         let head = || data.read(0, 1);
         let auto_cutoff = match &p.lowpass {
-            Some(lp) if lp.cutoff == Cutoff::Auto => {
-                Some(suggest_cutoff(&*data.read(0, data.samples())?)?)
-            }
+            Some(lp) if lp.cutoff == Cutoff::Auto => Some(suggest_cutoff(data)?),
             _ => None,
         };
         // the low-pass's cutoff in Hz, chosen by "auto" or given

@@ -18,4 +18,4 @@ pub use rest::moving_samples;
 pub use savgol::SavitzkyGolay;
 pub use signals::Signals;
 pub use sos::Sos;
-pub use spectrum::{MIN_SPECTRUM_SAMPLES, Spectrum};
+pub use spectrum::{MIN_SPECTRUM_SAMPLES, Spectrum, Welch};

@@ -37,51 +37,9 @@ impl Spectrum {
     /// assert!((s.power() - 0.5).abs() < 0.01);
     /// ```
     pub fn welch(x: &[f64], rate: f64) -> Option<Spectrum> {
-        if x.len() < MIN_SPECTRUM_SAMPLES || !x.iter().all(|v| v.is_finite()) || rate <= 0.0 {
-            return None;
-        }
-        let len = 1usize << (x.len() / 4).max(16).ilog2();
-        let hop = len / 2;
-        let window: Vec<f64> = (0..len)
-            .map(|k| 0.5 - 0.5 * (2.0 * std::f64::consts::PI * k as f64 / len as f64).cos())
-            .collect();
-        let window_power: f64 = window.iter().map(|w| w * w).sum();
-        let fft = RealFftPlanner::<f64>::new().plan_fft_forward(len);
-        let mut input = fft.make_input_vec();
-        let mut output = fft.make_output_vec();
-        let mut density = vec![0.0; len / 2 + 1];
-        let mut segments = 0;
-        let mut start = 0;
-        while start + len <= x.len() {
-            detrended(&x[start..start + len], &mut input);
-            for (v, w) in input.iter_mut().zip(&window) {
-                *v *= w;
-            }
-            // the lengths are the planner's own: this cannot fail
-            if fft.process(&mut input, &mut output).is_err() {
-                return None;
-            }
-            for (d, c) in density.iter_mut().zip(&output) {
-                *d += c.norm_sqr();
-            }
-            segments += 1;
-            start += hop;
-        }
-        // one-sided density: |X|^2 / (rate * sum w^2), doubled except at 0 and Nyquist
-        let scale = 1.0 / (rate * window_power * segments as f64);
-        let last = density.len() - 1;
-        for (k, d) in density.iter_mut().enumerate() {
-            *d *= if k == 0 || k == last {
-                scale
-            } else {
-                2.0 * scale
-            };
-        }
-        Some(Spectrum {
-            resolution: rate / len as f64,
-            density,
-            segments,
-        })
+        let mut welch = Welch::new(x.len(), rate)?;
+        welch.push(x);
+        welch.finish()
     }
 
     /// The frequency of bin `k` (Hz).
@@ -136,6 +94,144 @@ impl Spectrum {
             .iter()
             .rposition(|d| *d > ratio * floor)
             .map_or(0.0, |k| self.frequency(k))
+    }
+}
+
+/// [`Spectrum::welch`] of a signal given in parts, in order (a record read block by
+/// block): it holds one segment's samples, not the signal, and gives the same spectrum to
+/// the bit (the same segments, transformed and summed in the same order).
+///
+/// ```
+/// use robid_runtime::signal::{Spectrum, Welch};
+/// let x: Vec<f64> = (0..5000).map(|k| (0.05 * k as f64).sin()).collect();
+/// let mut welch = Welch::new(x.len(), 100.0).unwrap();
+/// x.chunks(777).for_each(|part| welch.push(part));
+/// assert_eq!(welch.finish(), Spectrum::welch(&x, 100.0));
+/// ```
+pub struct Welch {
+    rate: f64,
+    len: usize,
+    hop: usize,
+    window: Vec<f64>,
+    window_power: f64,
+    fft: std::sync::Arc<dyn realfft::RealToComplex<f64>>,
+    input: Vec<f64>,
+    output: Vec<realfft::num_complex::Complex<f64>>,
+    density: Vec<f64>,
+    segments: usize,
+    /// The samples from the next segment's start that no segment has taken yet.
+    held: Vec<f64>,
+    finite: bool,
+    failed: bool,
+}
+
+impl std::fmt::Debug for Welch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Welch")
+            .field("rate", &self.rate)
+            .field("len", &self.len)
+            .field("segments", &self.segments)
+            .field("held", &self.held.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Welch {
+    /// The estimate of a signal of `samples` samples at `rate` Hz, with segments of the
+    /// largest power of two at most a quarter of it; `None` for fewer than
+    /// [`MIN_SPECTRUM_SAMPLES`] samples or a rate that is not positive.
+    pub fn new(samples: usize, rate: f64) -> Option<Welch> {
+        if samples < MIN_SPECTRUM_SAMPLES || !(rate > 0.0) {
+            return None;
+        }
+        let len = 1usize << (samples / 4).max(16).ilog2();
+        let window: Vec<f64> = (0..len)
+            .map(|k| 0.5 - 0.5 * (2.0 * std::f64::consts::PI * k as f64 / len as f64).cos())
+            .collect();
+        let window_power: f64 = window.iter().map(|w| w * w).sum();
+        let fft = RealFftPlanner::<f64>::new().plan_fft_forward(len);
+        Some(Welch {
+            rate,
+            len,
+            hop: len / 2,
+            window,
+            window_power,
+            input: fft.make_input_vec(),
+            output: fft.make_output_vec(),
+            fft,
+            density: vec![0.0; len / 2 + 1],
+            segments: 0,
+            held: Vec::new(),
+            finite: true,
+            failed: false,
+        })
+    }
+
+    /// The signal's next samples.
+    pub fn push(&mut self, mut part: &[f64]) {
+        self.finite &= part.iter().all(|v| v.is_finite());
+        if !self.finite {
+            return;
+        }
+        while self.held.len() + part.len() >= self.len {
+            if self.held.is_empty() {
+                // whole segments straight from the part
+                while part.len() >= self.len {
+                    self.segment(&part[..self.len]);
+                    part = &part[self.hop..];
+                }
+                break;
+            }
+            // a segment that starts in the held samples
+            let need = self.len - self.held.len();
+            let mut held = std::mem::take(&mut self.held);
+            held.extend_from_slice(&part[..need]);
+            part = &part[need..];
+            self.segment(&held);
+            held.drain(..self.hop);
+            self.held = held;
+        }
+        self.held.extend_from_slice(part);
+    }
+
+    /// Adds the density of one segment.
+    fn segment(&mut self, x: &[f64]) {
+        detrended(x, &mut self.input);
+        for (v, w) in self.input.iter_mut().zip(&self.window) {
+            *v *= w;
+        }
+        // the lengths are the planner's own: this cannot fail
+        if self.fft.process(&mut self.input, &mut self.output).is_err() {
+            self.failed = true;
+            return;
+        }
+        for (d, c) in self.density.iter_mut().zip(&self.output) {
+            *d += c.norm_sqr();
+        }
+        self.segments += 1;
+    }
+
+    /// The spectrum; `None` when a sample was not finite (or no segment was complete).
+    pub fn finish(self) -> Option<Spectrum> {
+        if !self.finite || self.failed || self.segments == 0 {
+            return None;
+        }
+        let mut density = self.density;
+        // one-sided density: |X|^2 / (rate * sum w^2), doubled except at 0 and Nyquist
+        let scale = 1.0 / (self.rate * self.window_power * self.segments as f64);
+        let last = density.len() - 1;
+        for (k, d) in density.iter_mut().enumerate() {
+            *d *= if k == 0 || k == last {
+                scale
+            } else {
+                2.0 * scale
+            };
+        }
+        Some(Spectrum {
+            resolution: self.rate / self.len as f64,
+            density,
+            segments: self.segments,
+        })
     }
 }
 
@@ -225,6 +321,47 @@ mod tests {
         assert!((b - 40.0).abs() < 2.0 * sp.resolution, "{b}");
         let top = sp.above_floor(100.0);
         assert!((top - 40.0).abs() < 5.0 * sp.resolution, "{top}");
+    }
+
+    /// The estimate of a signal given in parts equals that of the whole, bit for bit,
+    /// however it is cut (parts shorter and longer than a segment, cut at and next to the
+    /// segments' starts); a value that is not finite in any part, or too few samples, give
+    /// none.
+    #[test]
+    fn welch_in_parts_is_welch_of_the_whole() {
+        let mut rng = Rng::new(5);
+        for n in [64, 100, 3000, 10_007] {
+            let x: Vec<f64> = (0..n)
+                .map(|k| (0.01 * k as f64).sin() + 0.01 * k as f64 + 0.1 * rng.normal())
+                .collect();
+            let whole = Spectrum::welch(&x, 250.0).unwrap();
+            let len = 2 * (whole.density.len() - 1);
+            for part in [
+                1,
+                7,
+                len / 2 - 1,
+                len / 2,
+                len - 1,
+                len,
+                len + 1,
+                3 * len / 2,
+                n,
+            ] {
+                let mut welch = Welch::new(n, 250.0).unwrap();
+                x.chunks(part).for_each(|p| welch.push(p));
+                let parts = welch.finish().unwrap();
+                assert_eq!(parts.segments, whole.segments, "{n} in parts of {part}");
+                assert_eq!(parts.resolution.to_bits(), whole.resolution.to_bits());
+                let bits = |s: &Spectrum| s.density.iter().map(|d| d.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&parts), bits(&whole), "{n} in parts of {part}");
+            }
+            let mut bad = Welch::new(n, 250.0).unwrap();
+            bad.push(&x[..n / 2]);
+            bad.push(&[f64::NAN]);
+            bad.push(&x[n / 2..]);
+            assert!(bad.finish().is_none(), "{n}");
+        }
+        assert!(Welch::new(63, 250.0).is_none() && Welch::new(64, 0.0).is_none());
     }
 
     /// Welch's density against a direct computation from its definition: each

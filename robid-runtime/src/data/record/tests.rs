@@ -585,3 +585,21 @@ fn a_gap_or_another_rate_anywhere_in_an_unread_time_column_is_refused() {
         "{e}"
     );
 }
+
+/// `cutoff = "auto"` reads a record kept on disk block by block: the suggestion is the
+/// one its data set in memory gets (the position spectra are the same to the bit).
+#[test]
+fn the_suggested_cutoff_of_a_record_on_disk_is_its_data_sets() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = file(&dir, &log(3000));
+    let config = config(CONFIG);
+    let data = load(&config, std::slice::from_ref(&path), 3).unwrap();
+    let record = SpilledRecord::open_in(&config, &[path], 3, SMALL)
+        .unwrap()
+        .unwrap();
+    let (a, b) = (
+        crate::inspect::suggest_cutoff(&record).unwrap(),
+        crate::inspect::suggest_cutoff(&data).unwrap(),
+    );
+    assert_eq!(format!("{a:?}"), format!("{b:?}"));
+}
