@@ -171,7 +171,7 @@ pub(super) fn robot(
     let mut errors = Vec::new();
     for (k, &j) in chain.joints.iter().enumerate() {
         let urdf_joint = &urdf.joints[j];
-        let [alpha, a, d, theta] = fit.rows[k];
+        let [alpha, a, d, theta, b] = fit.rows[k];
         if !fit.rows[k].iter().all(|x| x.is_finite()) {
             errors.push(place.invalid(
                 urdf_joint.range.clone(),
@@ -188,7 +188,9 @@ pub(super) fn robot(
         } else {
             JointKind::Revolute
         };
-        // one error for a run of far frames: they have one cause, a pair of axes
+        // the next row's b and d reach the foot of the common normal (frame k's origin
+        // stays near the joint, docs/urdf.md#fitting-the-dh-table); one error for a run of
+        // such joints: they have one cause, a pair of axes
         let far = fit.reach[k] > MAX_LENGTH;
         if far && k > 0 && fit.reach[k - 1] > MAX_LENGTH {
             continue;
@@ -202,9 +204,9 @@ pub(super) fn robot(
             errors.push(place.invalid(
                 urdf_joint.range.clone(),
                 format!(
-                    "the DH frame robid fits at joint `{}` lies {} m from the joint along its \
-                     axis, beyond the ±{} m of a DH length: the link parameters about its \
-                     origin would lose their digits",
+                    "the common normal from joint `{}`'s axis to the next lies {} m from the \
+                     joint along its axis, and the next DH row passes through it (its `b` and \
+                     `d` are about that long), beyond the ±{} m of a DH length",
                     urdf_joint.name,
                     show(format!("{:.4e}", fit.reach[k]).parse().unwrap_or(fit.reach[k])),
                     show(MAX_LENGTH),
@@ -214,6 +216,9 @@ pub(super) fn robot(
             continue;
         }
         let mut joint = Joint::new(kind, angle(alpha), length(a), length(d), angle(theta));
+        if b != 0.0 {
+            joint = joint.with_gamma_b(Geometry::zero(), length(b));
+        }
         match limits(place, urdf_joint) {
             Ok(l) => joint.limits = l,
             Err(e) => errors.push(e),
@@ -431,7 +436,7 @@ fn locate(
     }
     let skew = index
         .filter(|_| {
-            [".alpha`", ".a`", ".d`"]
+            [".alpha`", ".a`", ".d`", ".b`"]
                 .iter()
                 .any(|v| argument.ends_with(v))
         })

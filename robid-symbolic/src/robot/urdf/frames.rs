@@ -3,7 +3,10 @@
 //! Frame j (Khalil-Kleinfinger / Craig) has z_j along joint j's axis with its sign and x_j
 //! along the common normal from axis j to axis j+1; frame 0 is frame 1 at q = 0 and frame
 //! n keeps x_(n-1)'s direction. Any serial chain of revolute and prismatic joints has such
-//! a table: consecutive frames are Rx(alpha_j) Tx(a_j) Rz(theta_j) Tz(d_j).
+//! a table: consecutive frames are Rx(alpha_j) Tx(a_j) Rz(theta_j) Tz(d_j). Where the
+//! common normal's foot lies farther from the joint than the chain is long (nearly parallel
+//! axes), the origin stays near the joint and the next row's Khalil-Kleinfinger `b` goes
+//! back to the foot.
 
 use super::rigid::{Rigid, add, cross, dot, norm, right_angle_multiple, scale, sub};
 use std::f64::consts::FRAC_PI_2;
@@ -15,6 +18,11 @@ pub(super) const PARALLEL: f64 = 1e-9;
 /// Shorter lengths (m) are zero: axes closer than this meet.
 pub(super) const ZERO_LENGTH: f64 = 1e-12;
 
+/// A foot of a common normal this close (m) to its joint is never moved, whatever the
+/// chain's length (`bounds::MIN_LENGTH`: a chain whose joints' points coincide has its feet
+/// there, up to rounding).
+const NEAR: f64 = 1e-6;
+
 /// One joint axis at q = 0: unit direction and a point, in the base link frame.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Axis {
@@ -25,14 +33,17 @@ pub(super) struct Axis {
 }
 
 /// The fitted table: frames 0..n in the base link frame at q = 0 and the rows
-/// `[alpha, a, d, theta]` of joints 1..n, angles within the angle rule of k pi/2 made
-/// exact, lengths below [`ZERO_LENGTH`] made 0.
+/// `[alpha, a, d, theta, b]` of joints 1..n (Khalil-Kleinfinger's `b` along z_(j-1) in
+/// front of the DH row, nonzero only after a frame moved off the common normal's foot),
+/// angles within the angle rule of k pi/2 made exact, lengths below [`ZERO_LENGTH`] made 0.
 pub(super) struct Fit {
     pub(super) frames: Vec<Rigid>,
-    pub(super) rows: Vec<[f64; 4]>,
-    /// How far (m) the origin of frame j lies from joint j's own point (its URDF joint
-    /// origin), for joints 1..n: far only where two consecutive axes are nearly parallel,
-    /// whose common normal meets them far away.
+    pub(super) rows: Vec<[f64; 5]>,
+    /// How far (m) the foot of the common normal from axis j to axis j+1 lies from joint
+    /// j's own point (its URDF joint origin), for joints 1..n (0 for the last joint and
+    /// parallel axes): far only where two consecutive axes are nearly parallel. Row j+1
+    /// passes through that foot (its `b` and `d` are about that long) whether or not frame
+    /// j's origin is there.
     pub(super) reach: Vec<f64>,
 }
 
@@ -72,8 +83,11 @@ fn frame(x: [f64; 3], z: [f64; 3], origin: [f64; 3]) -> Rigid {
 /// The DH frames and table of a chain with these axes (at least one).
 pub(super) fn fit(axes: &[Axis]) -> Fit {
     let n = axes.len();
-    let mut origins = Vec::with_capacity(n);
+    let size = chain_size(axes);
+    let mut origins: Vec<[f64; 3]> = Vec::with_capacity(n);
     let mut xs: Vec<[f64; 3]> = Vec::with_capacity(n);
+    let mut moved = vec![false; n];
+    let mut reach = vec![0.0; n];
     for j in 0..n {
         let z = axes[j].direction;
         let previous_x = xs.last().copied();
@@ -107,16 +121,29 @@ pub(super) fn fit(axes: &[Axis]) -> Fit {
                     let here = add(axes[j].point, scale(z, s));
                     let there = add(next.point, scale(w, t));
                     let gap = sub(there, here);
-                    if norm(gap) > ZERO_LENGTH {
-                        (here, unit(gap))
+                    reach[j] = norm(sub(here, axes[j].point));
+                    let x = if norm(gap) > ZERO_LENGTH {
+                        unit(gap)
                     } else {
                         let x = unit(normal);
                         let reference = previous_x.unwrap_or(axes[j].hint);
-                        let x = if dot(x, reference) < 0.0 {
+                        if dot(x, reference) < 0.0 {
                             scale(x, -1.0)
                         } else {
                             x
+                        }
+                    };
+                    if reach[j] > size.max(NEAR) {
+                        // nearly parallel axes: the foot is about their distance over
+                        // their angle away; keep the origin near the joint
+                        moved[j] = true;
+                        let near = if norm(sub(foot, axes[j].point)) <= size {
+                            foot
+                        } else {
+                            axes[j].point
                         };
+                        (near, x)
+                    } else {
                         (here, x)
                     }
                 }
@@ -131,18 +158,46 @@ pub(super) fn fit(axes: &[Axis]) -> Fit {
         frames.push(frame(xs[j], axes[j].direction, origins[j]));
     }
     let rows = (1..=n)
-        .map(|j| row(&frames[j - 1].inverse().then(&frames[j])))
-        .collect();
-    let reach = origins
-        .iter()
-        .zip(axes)
-        .map(|(&origin, axis)| norm(sub(origin, axis.point)))
+        .map(|j| {
+            let t = frames[j - 1].inverse().then(&frames[j]);
+            if j >= 2 && moved[j - 2] {
+                general_row(&t)
+            } else {
+                let [alpha, a, d, theta] = row(&t);
+                [alpha, a, d, theta, 0.0]
+            }
+        })
         .collect();
     Fit {
         frames,
         rows,
         reach,
     }
+}
+
+/// The length of the chain: the sum of the distances between consecutive joints' points
+/// (m). A frame origin farther than this from its joint is moved to it.
+fn chain_size(axes: &[Axis]) -> f64 {
+    axes.windows(2)
+        .map(|pair| norm(sub(pair[1].point, pair[0].point)))
+        .sum()
+}
+
+/// `[alpha, a, d, theta, b]` of Tz(b) Rx(alpha) Tx(a) Rz(theta) Tz(d) = `t`, for a frame
+/// j-1 whose origin was moved off the foot of the common normal: `b` takes it back there
+/// along z_(j-1), `d` comes from the foot on axis j to frame j's origin.
+fn general_row(t: &Rigid) -> [f64; 5] {
+    let alpha = snap(f64::atan2(-t.r[1][2], t.r[2][2]));
+    let theta = snap(f64::atan2(-t.r[0][1], t.r[0][0]));
+    let (s, c) = super::rigid::sin_cos(alpha);
+    let a = t.p[0];
+    if s == 0.0 {
+        // parallel after all (within the angle rule): all of it along z
+        return [alpha, zero_small(a), zero_small(t.p[2] * c), theta, 0.0];
+    }
+    let d = -t.p[1] / s;
+    let b = t.p[2] - c * d;
+    [alpha, zero_small(a), zero_small(d), theta, zero_small(b)]
 }
 
 /// `[alpha, a, d, theta]` of Rx(alpha) Tx(a) Rz(theta) Tz(d) = `t`.

@@ -941,10 +941,10 @@ fn limits_without_effort_or_velocity_are_warned_about() {
 
 /// Two consecutive axes a little off parallel (a calibrated UR's shoulder and elbow, 1e-4
 /// rad, 0.4 m apart): their common normal, along which the DH table runs, lies 4 km from
-/// the joints; the frames there are refused in one error that names the pair, their angle
-/// and how to write them. As the first two joints of a chain (where no DH length grows:
-/// frame 0 sits on frame 1) they were read, and the link parameters about origins 4 km
-/// away gave torques 3e-9 of their size from Pinocchio's (2e-7 at 1e-5 rad).
+/// the joints; the frames keep their origins near the joints, but the row between them has
+/// `b` and `d` of 4 km, beyond a DH length, refused in one error that names the pair, their
+/// angle and how to write them, also as the first two joints of a chain. (1e-3 rad, 400 m,
+/// is read: `nearly_parallel.rs`.)
 #[test]
 fn nearly_parallel_axes_are_named_and_their_far_frames_refused() {
     let joint = |name: &str, parent: &str, child: &str, origin: &str| {
@@ -970,7 +970,7 @@ fn nearly_parallel_axes_are_named_and_their_far_frames_refused() {
     for text in [&skewed, &first_two] {
         let message = error_of(text, &ChainSelection::default());
         for w in [
-            "t.urdf:7:1: the DH frame robid fits at joint `j2` lies 4000 m from the joint",
+            "t.urdf:7:1: the common normal from joint `j2`'s axis to the next lies 4000 m from the joint",
             "the axes of joints `j2` and `j3` are 1.0e-4 rad from parallel",
             "exactly parallel",
         ] {

@@ -5,6 +5,7 @@ mod errors;
 mod inertials;
 mod kinematics;
 mod limits_gravity;
+mod nearly_parallel;
 mod pinocchio;
 mod printed_angles;
 mod robots;
@@ -107,16 +108,28 @@ pub(super) fn direct_poses(
 
 /// `[alpha, a, d, theta]` of each joint of a robot.
 pub(super) fn rows(robot: &Robot) -> Vec<[f64; 4]> {
+    general_rows(robot)
+        .into_iter()
+        .map(|[alpha, a, d, theta, _]| [alpha, a, d, theta])
+        .collect()
+}
+
+/// `[alpha, a, d, theta, b]` of each joint of a robot (its `gamma` is 0: the reader does
+/// not write one).
+pub(super) fn general_rows(robot: &Robot) -> Vec<[f64; 5]> {
     let mut arena = Arena::new();
     let mut ids = Vec::new();
     for joint in robot.joints() {
-        for g in [&joint.alpha, &joint.a, &joint.d, &joint.theta] {
+        assert_eq!(joint.gamma.as_str(), "0");
+        for g in [&joint.alpha, &joint.a, &joint.d, &joint.theta, &joint.b] {
             ids.push(g.to_expr(&mut arena));
         }
     }
     let values = arena.values(&[]);
     let v = arena.eval(&ids, &values).unwrap();
-    v.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect()
+    v.chunks(5)
+        .map(|c| [c[0], c[1], c[2], c[3], c[4]])
+        .collect()
 }
 
 fn rot_x(angle: f64) -> Rigid {
@@ -127,18 +140,23 @@ fn rot_z(angle: f64) -> Rigid {
     Rigid::rotation([0.0, 0.0, 1.0], angle)
 }
 
-/// robid frames 1..n in the base link frame at `q`: `base` Rx(alpha) Tx(a) Rz(theta + q)
-/// Tz(d) ... (d + q for a prismatic joint).
+/// robid frames 1..n in the base link frame at `q`: `base` Tz(b) Rx(alpha) Tx(a)
+/// Rz(theta + q) Tz(d) ... (d + q for a prismatic joint).
 pub(super) fn dh_frames(chain: &UrdfChain, q: &[f64]) -> Vec<Rigid> {
     let mut at = Rigid::from_pose(&chain.base);
     let mut out = Vec::new();
-    for ((row, joint), &qj) in rows(&chain.robot).iter().zip(chain.robot.joints()).zip(q) {
-        let [alpha, a, d, theta] = *row;
+    for ((row, joint), &qj) in general_rows(&chain.robot)
+        .iter()
+        .zip(chain.robot.joints())
+        .zip(q)
+    {
+        let [alpha, a, d, theta, b] = *row;
         let (theta, d) = match joint.kind {
             JointKind::Revolute => (theta + qj, d),
             JointKind::Prismatic => (theta, d + qj),
         };
         at = at
+            .then(&Rigid::translation([0.0, 0.0, b]))
             .then(&rot_x(alpha))
             .then(&Rigid::translation([a, 0.0, 0.0]))
             .then(&rot_z(theta))
