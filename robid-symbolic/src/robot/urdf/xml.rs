@@ -375,11 +375,7 @@ impl Reader<'_> {
             match word.parse::<f64>() {
                 Ok(v) if v.abs() <= MAX_VALUE => values.push(v),
                 Ok(v) if v.is_finite() => {
-                    let help = if node.has_tag_name("limit") && matches!(name, "lower" | "upper") {
-                        NO_POSITION_LIMITS
-                    } else {
-                        "write lengths in m, masses in kg, inertias in kg m^2, angles in rad"
-                    };
+                    let help = unit_help(node.tag_name().name(), name);
                     self.error(
                         span,
                         format!(
@@ -877,3 +873,24 @@ fn multiple_text(k: i64) -> String {
 /// Fewest decimals of a value [`printed_right_angle`] takes for a right angle: `3.14` or
 /// `1.571` may be meant as written.
 const PRINTED_DECIMALS: usize = 4;
+
+/// The fix for a value of attribute `name` of an element `tag` too large for a robot:
+/// the unit robid reads it in.
+fn unit_help(tag: &str, name: &str) -> &'static str {
+    match (tag, name) {
+        ("limit", "lower" | "upper") => NO_POSITION_LIMITS,
+        ("limit", "velocity") => {
+            "write the joint's velocity limit in rad/s (m/s for a prismatic joint), or leave \
+             `velocity` out for no limit"
+        }
+        ("limit", "effort") => {
+            "write the joint's effort limit in N m (N for a prismatic joint), or leave \
+             `effort` out for no limit"
+        }
+        ("mass", _) => "write the link's mass in kg",
+        ("inertia", _) => "write the inertia about the centre of mass in kg m^2",
+        ("origin", "xyz") => "write the position in m",
+        ("origin", "rpy") => "write the angles in rad",
+        _ => "write lengths in m, masses in kg, inertias in kg m^2, angles in rad",
+    }
+}

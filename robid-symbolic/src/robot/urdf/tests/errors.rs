@@ -29,6 +29,10 @@ fn each_mistake_is_named_at_its_place() {
         (arm(&J1.replace("0 0 1", "0 x 1")), "t.urdf:5:", &["`x` is not a number"]),
         (arm(&J1.replace("0 0 1", "0 inf 1")), "t.urdf:5:", &["is not finite", "write finite numbers"]),
         (arm(&J1.replace("0 0 1", "0 1e300 1")), "t.urdf:5:", &["`1e300` is beyond ±1e9, not a value of a robot"]),
+        // the fix gives the unit of the attribute at fault
+        (arm(&J1.replace("<axis", "<limit effort=\"10\" velocity=\"1e30\"/><axis")), "t.urdf:5:", &["`1e30` is beyond ±1e9", "velocity limit in rad/s"]),
+        (arm(&J1.replace("<axis", "<limit effort=\"1e30\" velocity=\"1\"/><axis")), "t.urdf:5:", &["`1e30` is beyond ±1e9", "effort limit in N m"]),
+        (arm(&J1.replace("<axis", "<origin xyz=\"0 0 1e10\"/><axis")), "t.urdf:5:", &["`1e10` is beyond ±1e9", "position in m"]),
         (arm(&J1.replace("0 0 1", "0 1")), "t.urdf:5:", &["has 2 numbers", "write 3 numbers"]),
         (arm(&J1.replace("0 0 1", "0 0 0")), "t.urdf:5:", &["the axis of `<joint name=\"j1\">` has no direction"]),
         (arm(&J1.replace("revolute", "hinge")), "t.urdf:5:", &["unknown joint type `hinge`", "revolute, continuous, prismatic"]),
@@ -129,7 +133,8 @@ fn values_read_are_shown_short() {
     }
 }
 
-/// Only a huge position limit is told how to write none; a huge effort is told its units.
+/// Only a huge position limit is told to use a continuous joint; a huge effort is told
+/// its unit (it was told "masses in kg").
 #[test]
 fn huge_limits_get_the_fix_of_their_kind() {
     let effort = arm(&format!(
@@ -141,7 +146,7 @@ fn huge_limits_get_the_fix_of_their_kind() {
     ));
     let message = error_of(&effort, &ChainSelection::default());
     assert!(message.contains("`1e16` is beyond"), "{message}");
-    assert!(message.contains("masses in kg"), "{message}");
+    assert!(message.contains("effort limit in N m"), "{message}");
     assert!(!message.contains("continuous"), "{message}");
 }
 
