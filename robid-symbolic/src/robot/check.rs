@@ -294,7 +294,10 @@ impl Parts {
             error(
                 Item::Joints,
                 format!("the robot has {} joints", self.joints.len()),
-                &format!("robid derives serial chains of at most {MAX_JOINTS} joints"),
+                &format!(
+                    "robid derives serial chains of at most {MAX_JOINTS} joints: describe a \
+                     part of the robot with at most {MAX_JOINTS} rows"
+                ),
             );
         }
         let values = self.values();

@@ -1,7 +1,7 @@
 //! The validated [`Robot`] of a fitted chain: its name, the DH rows as geometric values,
 //! the URDF's joint limits and gravity (docs/urdf.md#the-robot).
 
-use super::super::bounds::{MAX_LENGTH, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use super::super::bounds::{MAX_JOINTS, MAX_LENGTH, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
 use super::super::check::show;
 use super::super::file::Place;
 use super::super::{
@@ -459,7 +459,16 @@ fn locate(
         None => place.invalid(
             urdf.name_at.clone(),
             format!("the robot robid builds from the URDF is not accepted ({argument}): {message}"),
-            help.clone(),
+            // too many joints: the chain is the user's choice
+            if argument == "`joints`" && chain.joints.len() > MAX_JOINTS {
+                format!(
+                    "robid derives serial chains of at most {MAX_JOINTS} joints: choose a part \
+                     of the robot with at most {MAX_JOINTS} movable joints with --base LINK \
+                     and --tip LINK"
+                )
+            } else {
+                help.clone()
+            },
         ),
     }
 }

@@ -1,6 +1,7 @@
 //! Every mistake the reader names, with its place and wording; no panic on garbage.
 
 use super::*;
+use crate::robot::bounds::MAX_JOINTS;
 
 /// A two-joint arm with `joints` replacing its joints (links a, b, c).
 fn arm(joints: &str) -> String {
@@ -998,4 +999,42 @@ fn nearly_parallel_axes_are_named_and_their_far_frames_refused() {
     let message = error_of(&text("xyz=\"0.0000001 0 0\""), &ChainSelection::default());
     assert!(!message.contains("from parallel"), "{message}");
     assert!(message.contains("offsets of at least 1 µm"), "{message}");
+}
+
+/// A chain longer than robid derives is told how to take a part of it: `--base` and
+/// `--tip` for a URDF, fewer rows for a table (both used to say only the limit).
+#[test]
+fn too_many_joints_are_told_how_to_take_a_part() {
+    let n = MAX_JOINTS + 1;
+    let links: String = (0..=n)
+        .map(|i| format!("<link name=\"l{i}\"/>\n"))
+        .collect();
+    let joints: String = (0..n)
+        .map(|i| {
+            format!(
+                "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
+                 <origin xyz=\"0.1 0 0\"/><axis xyz=\"0 {} {}\"/></joint>\n",
+                i + 1,
+                i % 2,
+                1 - i % 2
+            )
+        })
+        .collect();
+    let urdf = format!("<robot name=\"long\">\n{links}{joints}</robot>\n");
+    let message = error_of(&urdf, &ChainSelection::default());
+    assert!(
+        message.contains(&format!("the robot has {n} joints")),
+        "{message}"
+    );
+    assert!(message.contains("--base LINK and --tip LINK"), "{message}");
+    let rows = "[[joints]]\nalpha = \"pi/2\"\na = 0.1\nd = 0\n".repeat(n);
+    let table =
+        format!("name = \"long\"\nconvention = \"modified\"\ngravity = [0, 0, -9.81]\n{rows}");
+    let message = Robot::from_toml(&table, "long.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains(&format!("at most {MAX_JOINTS} rows")),
+        "{message}"
+    );
 }
