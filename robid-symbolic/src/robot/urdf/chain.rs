@@ -245,14 +245,21 @@ fn held(place: &Place<'_>, urdf: &Urdf) -> Result<Vec<f64>, DescriptionError> {
                     .map(|&j| format!("`{}`", urdf.joints[j].name))
                     .collect();
                 let mimic = followed(at).map_or(0..0, |(m, _)| m.at.clone());
-                return Err(place.invalid(
-                    mimic,
-                    format!(
-                        "the joints {} follow each other through `<mimic>` in a cycle",
-                        names.join(", ")
+                let (what, fix) = match names.as_slice() {
+                    [one] => (
+                        format!("the joint {one} follows itself through `<mimic>`"),
+                        "a mimic joint follows another joint that moves on its own: name that \
+                         joint in `<mimic joint=...>`, or remove the `<mimic>`",
                     ),
-                    "a mimic joint follows a joint that moves on its own: remove one `<mimic>`",
-                ));
+                    _ => (
+                        format!(
+                            "the joints {} follow each other through `<mimic>` in a cycle",
+                            names.join(", ")
+                        ),
+                        "a mimic joint follows a joint that moves on its own: remove one `<mimic>`",
+                    ),
+                };
+                return Err(place.invalid(mimic, what, fix));
             }
             walk.push(next);
             at = next;

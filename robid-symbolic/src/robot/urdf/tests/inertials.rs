@@ -287,6 +287,17 @@ fn mimic_joints_off_the_chain_are_held_where_their_relation_puts_them() {
             .contains("the joints `f1`, `f3`, `f2` follow each other through `<mimic>` in a cycle"),
         "{message}"
     );
+    // a joint that follows itself is told so (it read "the joints `f2` follow each other")
+    let itself = MIMIC_HAND.replace("<mimic joint=\"f2\"", "<mimic joint=\"f3\"");
+    assert_ne!(itself, MIMIC_HAND);
+    let message = Robot::from_urdf(&itself, "t.urdf", &selection(None, Some("hand")))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("the joint `f3` follows itself through `<mimic>`")
+            && message.contains("name that joint in `<mimic joint=...>`"),
+        "{message}"
+    );
 }
 
 /// A mimic joint held off the chain outside its own `<limit>` (the relation's offset
