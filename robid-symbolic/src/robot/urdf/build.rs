@@ -8,7 +8,7 @@ use super::super::{
     Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem,
 };
 use super::chain::Chain;
-use super::frames::{Fit, PARALLEL, angle_text};
+use super::frames::{Fit, NEAR_PARALLEL, PARALLEL, angle_text};
 use super::rigid::{cross, dot, mat_vec, norm, transpose};
 use super::xml::{self, JointType, Urdf};
 
@@ -238,12 +238,6 @@ pub(super) fn robot(
         DescriptionError::from_errors(located)
     })
 }
-
-/// Largest angle (rad) between two consecutive joint axes, not parallel within the angle
-/// rule, that is named as the cause of a DH value robid refuses at either joint: axes
-/// `theta` from parallel and a distance `L` apart have their common normal about `L /
-/// theta` from the joints, beyond the 1 km of a DH length for `L` up to 10 m.
-const NEAR_PARALLEL: f64 = 1e-2;
 
 /// The cause and fix of a DH value refused at chain joint `k` when its axis and a
 /// neighbour's are nearly parallel (docs/urdf.md#fitting-the-dh-table): the pair, their

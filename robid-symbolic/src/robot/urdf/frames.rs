@@ -18,6 +18,16 @@ pub(super) const PARALLEL: f64 = 1e-9;
 /// Shorter lengths (m) are zero: axes closer than this meet.
 pub(super) const ZERO_LENGTH: f64 = 1e-12;
 
+/// Largest angle (rad, as the sine of it) between two consecutive joint axes, not parallel
+/// within [`PARALLEL`], that counts as nearly parallel: such a pair's frame keeps its origin
+/// near its joint when the common normal's foot is farther than the chain is long, and is
+/// named as the cause of a DH value robid refuses at either joint. Axes `theta` from
+/// parallel and a distance `L` apart have their common normal about `L / theta` from the
+/// joints, beyond the 1 km of a DH length for `L` up to 10 m; axes farther from parallel
+/// have their feet within `1 / theta` (100) times the chain's length of the joints, where
+/// the link parameters keep their digits, and are fitted at the feet.
+pub(super) const NEAR_PARALLEL: f64 = 1e-2;
+
 /// A foot of a common normal this close (m) to its joint is never moved, whatever the
 /// chain's length (`bounds::MIN_LENGTH`: a chain whose joints' points coincide has its feet
 /// there, up to rounding).
@@ -133,7 +143,7 @@ pub(super) fn fit(axes: &[Axis]) -> Fit {
                             x
                         }
                     };
-                    if reach[j] > size.max(NEAR) {
+                    if norm(normal) < NEAR_PARALLEL && reach[j] > size.max(NEAR) {
                         // nearly parallel axes: the foot is about their distance over
                         // their angle away; keep the origin near the joint
                         moved[j] = true;

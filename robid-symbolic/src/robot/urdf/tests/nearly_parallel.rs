@@ -205,3 +205,54 @@ fn the_direct_newton_euler_agrees_on_the_nominal_arm() {
     // frames at the common normals (no b): the direct computation is the reference
     check(0.0);
 }
+
+/// Skew axes at an ordinary angle (5 to 45 degrees, 0.1 m apart) whose common normal's foot
+/// lies farther from the first joint than a short chain is long (joint 2's point placed
+/// off the normal) are fitted as always: frames at the common normal's feet, no `b`. The
+/// move of a frame origin off its foot is for nearly parallel axes only (within
+/// `NEAR_PARALLEL`); it used to apply to any pair whose foot was beyond the chain's
+/// length, so that a 20-degree pair got a `b` and link parameters about another origin.
+#[test]
+fn ordinary_skew_axes_keep_their_frames_at_the_feet() {
+    let limit = r#"<limit lower="-3" upper="3" effort="100" velocity="2"/>"#;
+    for degrees in [5.0f64, 10.0, 20.0, 45.0] {
+        for third in [false, true] {
+            let mut text = format!(
+                r#"<robot name="skew"><link name="base"/><link name="l1">{INERTIAL}</link><link name="l2">{INERTIAL}</link>
+<joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>{limit}</joint>
+<joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0.1 -0.05 0" rpy="{} 0 0"/><axis xyz="0 0 1"/>{limit}</joint>"#,
+                -degrees.to_radians()
+            );
+            if third {
+                text += &format!(
+                    r#"<link name="l3">{INERTIAL}</link><joint name="j3" type="revolute"><parent link="l2"/><child link="l3"/><origin xyz="0.05 0 0"/><axis xyz="1 0 0"/>{limit}</joint>"#
+                );
+            }
+            text += "</robot>";
+            let chain = Robot::from_urdf(&text, "skew.urdf", &ChainSelection::default())
+                .unwrap_or_else(|e| panic!("{degrees} degrees: {e}"));
+            let rows = general_rows(&chain.robot);
+            assert!(
+                rows.iter().all(|r| r[4] == 0.0),
+                "{degrees} degrees, third joint {third}: {rows:?}"
+            );
+            // frame 1 (and frame 0 on it) at the foot, 0.05 cot(angle) up axis 1
+            let frames = dh_frames(&chain, &[0.0; 3][..rows.len()]);
+            let foot = 0.05 / degrees.to_radians().tan();
+            assert!(
+                (frames[0].p[2] - foot).abs() < 1e-12,
+                "{degrees} degrees: frame 1 at {:?}, foot at z = {foot}",
+                frames[0].p
+            );
+            let q = [0.3, -0.7, 1.1];
+            check_kinematics(
+                &text,
+                &chain,
+                "base",
+                if third { "l3" } else { "l2" },
+                &q[..rows.len()],
+                1e-12,
+            );
+        }
+    }
+}
