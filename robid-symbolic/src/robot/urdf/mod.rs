@@ -139,6 +139,9 @@ impl Robot {
         let mut warnings = urdf.warnings.clone();
         let tree = chain::tree(&place, &urdf)?;
         let chain = chain::choose(&place, &urdf, &tree, selection, &mut warnings)?;
+        if let Some(w) = xml::zero_limits(&place, chain.joints.iter().map(|&j| &urdf.joints[j])) {
+            warnings.push(w);
+        }
         let unphysical = inertial::check(&place, &urdf, &chain, &mut warnings)?;
         let axes: Vec<Axis> = chain
             .joints

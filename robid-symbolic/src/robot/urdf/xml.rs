@@ -244,9 +244,6 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
     if let Some(w) = incomplete_limits(place, &joints) {
         reader.warnings.push(w);
     }
-    if let Some(w) = zero_limits(place, &joints) {
-        reader.warnings.push(w);
-    }
     reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
     reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
     if reader.errors.is_empty() {
@@ -762,17 +759,21 @@ fn incomplete_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
     ))
 }
 
-/// One warning for the joints robid can move (revolute, continuous, prismatic) whose
-/// `<limit>` writes `effort="0"` or `velocity="0"`, at the first such `<limit>`, naming the
+/// One warning for the joints of the chain robid moves (revolute, continuous, prismatic:
+/// `joints`, in the chain's order; a joint off the chain, such as a gripper's finger left
+/// out by `--tip`, is none of robid's concern) whose `<limit>` writes `effort="0"` or `velocity="0"`, at the first such `<limit>`, naming the
 /// joints and which of the two each has at 0: robid reads 0 as no limit (URDF's default),
 /// but exporters write 0 as a placeholder for a limit they do not know, so a robot that
 /// has limits probably lost them; the fix is the real values in the URDF, or for the
 /// velocity `robid excite --velocity-limits`. The format allows 0 (urdfdom reads it), so
 /// this is a warning, not an error.
-fn zero_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
+pub(super) fn zero_limits<'a>(
+    place: &Place<'_>,
+    joints: impl IntoIterator<Item = &'a Joint>,
+) -> Option<String> {
     let zero = |value: Option<f64>| value == Some(0.0);
     let zeros: Vec<(&Joint, &Limit, &str)> = joints
-        .iter()
+        .into_iter()
         .filter(|j| j.kind.movable())
         .filter_map(|j| {
             let limit = j.limit.as_ref()?;

@@ -852,6 +852,41 @@ fn zero_effort_or_velocity_limits_are_warned_about() {
     assert!(about(&chain).is_empty(), "{:?}", chain.warnings);
 }
 
+/// `effort="0"` and `velocity="0"` on a joint off the chain robid moves (a gripper's finger
+/// that `--tip` leaves out: exporters write zeros there) are not warned about: robid takes
+/// no limit of it. The same finger on the chain is. The warning used to name every movable
+/// joint of the file, the finger left out included.
+#[test]
+fn zero_limits_off_the_chain_are_not_warned_about() {
+    let limit = "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>";
+    let text = format!(
+        "<robot name=\"arm\">\n<link name=\"a\"/>\n<link name=\"b\"/>\n<link name=\"c\"/>\n\
+         <link name=\"finger\"/>\n<link name=\"tool\"/>\n{}{}\
+         <joint name=\"finger_joint\" type=\"prismatic\"><parent link=\"c\"/><child \
+         link=\"finger\"/><axis xyz=\"1 0 0\"/><limit lower=\"0\" upper=\"0.04\" \
+         effort=\"0\" velocity=\"0\"/></joint>\n\
+         <joint name=\"tool_joint\" type=\"fixed\"><parent link=\"c\"/><child \
+         link=\"tool\"/><origin xyz=\"0 0 0.1\"/></joint>\n</robot>\n",
+        J1.replace("</joint>", &format!("{limit}</joint>")),
+        J2.replace("</joint>", &format!("{limit}</joint>")),
+    );
+    let warned = |tip: &str| -> Vec<String> {
+        Robot::from_urdf(&text, "t.urdf", &selection(None, Some(tip)))
+            .unwrap_or_else(|e| panic!("{e}"))
+            .warnings
+            .into_iter()
+            .filter(|w| w.contains("robid takes 0 as"))
+            .collect()
+    };
+    assert_eq!(warned("tool"), Vec::<String>::new());
+    let on_chain = warned("finger");
+    assert!(
+        on_chain.len() == 1
+            && on_chain[0].contains("the `<limit>` of joint `finger_joint` has `effort=\"0\"` and"),
+        "{on_chain:?}"
+    );
+}
+
 /// A `<limit>` without `effort` or `velocity` (which urdfdom, and so ROS tools and Pinocchio,
 /// refuse) on a joint robid can move is read as no torque or velocity limit and warned
 /// about once, at the first such `<limit>`, naming each joint and what it lacks (it used to
