@@ -603,3 +603,227 @@ fn the_suggested_cutoff_of_a_record_on_disk_is_its_data_sets() {
     );
     assert_eq!(format!("{a:?}"), format!("{b:?}"));
 }
+
+/// Each signal's values as bits, in the loader's roles order.
+fn bits(d: &Dataset) -> [Option<Vec<u64>>; 7] {
+    signals_of(d).map(|s| {
+        s.map(|s| {
+            s.joints()
+                .flat_map(|x| x.iter().map(|v| v.to_bits()))
+                .collect::<Vec<_>>()
+        })
+    })
+}
+
+/// ms stamps, degrees, motor positions through a coupled chain, temperatures, joint torques.
+const EVERY_ROLE: &str = r#"
+dof = 2
+time_column = "t"
+time_scale = 1e-3
+[[source]]
+position = "p{}"
+torque = "c{}"
+motor_position = "m{}"
+temperature = "T{}"
+joint_torque = "j{}"
+[units]
+angle = "deg"
+torque_scale = [1.5, 0.5]
+[drive]
+position_side = "motor"
+torque_side = "motor"
+gear_ratios = [100, -80]
+position_coupling = [[100, 0], [30, -80]]
+"#;
+
+fn every_role(n: usize, stamp: &dyn Fn(usize) -> String) -> String {
+    let mut out = String::from("t,p1,p2,m1,m2,T1,T2,j1,j2,c1,c2\n");
+    for k in 0..n {
+        let s = k as f64;
+        let f = |a: f64| format!("{}", (a * s * 1e-2).sin() * 37.3 + a);
+        out.push_str(&format!(
+            "{},{},{},{},{},{},{},{},{},{},{}\n",
+            stamp(k),
+            f(0.7),
+            f(1.3),
+            f(2.1),
+            f(0.4),
+            f(0.05),
+            f(0.06),
+            f(1.9),
+            f(2.7),
+            f(3.1),
+            f(0.9)
+        ));
+    }
+    out
+}
+
+/// The record of `path` kept on disk (windows of `window` bytes) against `load`: the same
+/// samples to the bit over many ranges (every range with `all`), lines, statistics and
+/// warnings; or, when it is not kept on disk, `load_record`'s outcome is `load`'s.
+/// Whether it was kept on disk.
+fn same_as_load(name: &str, config: &Config, path: &Path, window: usize, all: bool) -> bool {
+    let dense = load(config, &[path.to_path_buf()], 2);
+    let record = match SpilledRecord::open_in(config, &[path.to_path_buf()], 2, window) {
+        Ok(Some(r)) => r,
+        Ok(None) => {
+            let loaded = load_record_in(config, &[path.to_path_buf()], 2, window);
+            match (&dense, &loaded) {
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
+                (Ok(_), Ok(_)) => {}
+                _ => panic!(
+                    "{name}: load {:?} vs load_record {:?}",
+                    dense.is_ok(),
+                    loaded.is_ok()
+                ),
+            }
+            return false;
+        }
+        Err(e) => {
+            let d = dense.err().map(|e| e.to_string());
+            assert!(d.is_some(), "{name}: open refuses ({e}) what load takes");
+            let loaded = load_record_in(config, &[path.to_path_buf()], 2, window).err();
+            assert_eq!(loaded.map(|e| e.to_string()), d, "{name}");
+            return false;
+        }
+    };
+    let data = dense.unwrap_or_else(|e| panic!("{name}: load refuses ({e}) a record kept on disk"));
+    let n = data.samples();
+    assert_eq!(record.samples(), n, "{name}");
+    assert_eq!(
+        record.sample_time().to_bits(),
+        data.sample_time.to_bits(),
+        "{name}"
+    );
+    assert_eq!(record.sampling(), &data.sampling[0], "{name}");
+    assert_eq!(
+        format!("{:?}", record.warnings()),
+        format!("{:?}", data.warnings),
+        "{name}"
+    );
+    let mut ranges = Vec::new();
+    if all {
+        for a in 0..n {
+            for b in a + 1..=n {
+                ranges.push((a, b));
+            }
+        }
+    } else {
+        ranges.extend([(0, n), (0, 1), (n - 1, n), (n - 2, n), (0, 2)]);
+        ranges.extend((0..200).map(|i| {
+            let a = (i * 7919) % n;
+            (a, (a + 1 + (i * 37) % 300).min(n))
+        }));
+    }
+    for (a, b) in ranges {
+        let d = record
+            .read(a, b)
+            .unwrap_or_else(|e| panic!("{name}: {a}..{b}: {e}"));
+        let m = data.read(a, b).unwrap();
+        assert_eq!(bits(&d), bits(&m), "{name}: {a}..{b}");
+        assert_eq!(d.origin, m.origin, "{name}: {a}..{b}");
+    }
+    for k in [0, n / 2, n - 1] {
+        assert_eq!(record.location(k), data.location(k), "{name}: {k}");
+    }
+    true
+}
+
+fn write_log(dir: &tempfile::TempDir, text: &str) -> PathBuf {
+    let path = dir.path().join("log.csv");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A number in [0, 1) drawn from `k`.
+fn unit(k: usize) -> f64 {
+    ((k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Irregular clocks at their edges, kept on disk and resampled block by block, equal
+/// `load` to the bit with every role (motor positions, temperatures, joint torques), stamps
+/// in ms (`time_scale`), degrees and a coupled drive chain, in files of 64 to 131 rows read in
+/// windows of a few rows (a last window of one row among them): stamps 0.5 to 1.5 steps
+/// apart, on the grid but for some (grid times on stamps), a clock drifting to twice its
+/// rate, a step of exactly 10 median steps (resampled) and just above (refused as `load`
+/// refuses it), a stamp going back or repeated (`load`'s error).
+#[test]
+fn irregular_clocks_at_their_edges_are_resampled_as_load_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = config(EVERY_ROLE);
+    type Stamp = Box<dyn Fn(usize) -> String>;
+    let stamps: Vec<(&str, Stamp, bool)> = vec![
+        (
+            "jitter",
+            Box::new(|k| format!("{}", k as f64 + 0.3 * (unit(k) - 0.5))),
+            true,
+        ),
+        (
+            "steps of 0.5 to 1.5",
+            Box::new(|k| format!("{}", (0..k).map(|i| 0.5 + unit(i + 17)).sum::<f64>())),
+            true,
+        ),
+        (
+            "on the grid, some late",
+            Box::new(|k| {
+                if k % 5 == 2 {
+                    format!("{k}.25")
+                } else {
+                    format!("{k}")
+                }
+            }),
+            true,
+        ),
+        (
+            "drifting",
+            Box::new(|k| format!("{}", k as f64 * (1.0 + k as f64 / 100.0))),
+            true,
+        ),
+        (
+            "gap of 10",
+            Box::new(|k| format!("{}", if k >= 30 { k + 9 } else { k })),
+            true,
+        ),
+        (
+            "gap above 10",
+            Box::new(|k| {
+                if k >= 30 {
+                    format!("{}", k as f64 + 9.000001)
+                } else {
+                    format!("{k}")
+                }
+            }),
+            false,
+        ),
+        (
+            "back",
+            Box::new(|k| {
+                if k == 40 {
+                    "38.5".into()
+                } else {
+                    format!("{k}")
+                }
+            }),
+            false,
+        ),
+        (
+            "repeated",
+            Box::new(|k| if k == 40 { "39".into() } else { format!("{k}") }),
+            false,
+        ),
+    ];
+    for n in [64, 131] {
+        for (name, stamp, kept) in &stamps {
+            let path = write_log(&dir, &every_role(n, stamp.as_ref()));
+            for window in [180, 333, 1 << 20] {
+                let label = format!("{name}, {n} rows, windows of {window} bytes");
+                assert_eq!(
+                    same_as_load(&label, &config, &path, window, n == 64),
+                    *kept,
+                    "{label}"
+                );
+            }
+        }
+    }
+}
