@@ -117,9 +117,9 @@ fn is_temporary_name(name: &std::ffi::OsStr) -> bool {
 }
 
 /// Removes from `dir`, once per process, the temporary files that killed runs of robid
-/// left there: a regular file (not a link, not a folder) named as robid names them
-/// ([`is_temporary_name`]), of the same owner as this run's own temporary file, unchanged
-/// for [`STALE_TEMPORARY`]. Nothing else is touched; a file that cannot be read or
+/// left there: a regular file (not a link, not a folder, with no other name) named as
+/// robid names them ([`is_temporary_name`]), of the same owner as this run's own temporary
+/// file, unchanged for [`STALE_TEMPORARY`]. Nothing else is touched; a file that cannot be read or
 /// removed is left as it is (not the output's concern).
 #[cfg(unix)]
 fn sweep(dir: &Path, owner: u32) {
@@ -151,7 +151,8 @@ fn sweep(dir: &Path, owner: u32) {
             .ok()
             .and_then(|t| now.duration_since(t).ok())
             .is_some_and(|age| age >= STALE_TEMPORARY);
-        if m.file_type().is_file() && m.uid() == owner && stale {
+        // one name only: a hard link named like a temporary is some other file's too
+        if m.file_type().is_file() && m.nlink() == 1 && m.uid() == owner && stale {
             std::fs::remove_file(&path).ok();
         }
     }
@@ -1338,6 +1339,8 @@ mod tests {
         std::fs::create_dir(d.join(".robid-FoLdEr.tmp")).unwrap();
         age(&d.join(".robid-FoLdEr.tmp"));
         symlink("robid-AbC123.tmp", d.join(".robid-LiNk00.tmp")).unwrap();
+        // a second name of a user's file
+        std::fs::hard_link(d.join("robid-AbC123.tmp"), d.join(".robid-HaRd00.tmp")).unwrap();
         let out = d.join("out.csv");
         write_bytes(&out, b"x").unwrap();
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "x");
@@ -1348,6 +1351,7 @@ mod tests {
             ".robid-FrEsH1.tmp",
             ".robid-FoLdEr.tmp",
             ".robid-LiNk00.tmp",
+            ".robid-HaRd00.tmp",
         ]) {
             assert!(
                 std::fs::symlink_metadata(d.join(name)).is_ok(),
