@@ -34,13 +34,15 @@ pub enum ModelError {
     },
     /// A geometric symbol has no value, so the model cannot be evaluated numerically.
     #[error(
-        "robot `{robot}`: geometric symbol `{symbol}` has no value; give it one in the description's [symbols] table"
+        "robot `{robot}`: geometric symbol `{symbol}`{used} has no value; give it one in the description's [symbols] table (`{symbol} = 0.3`, in m or rad)"
     )]
     UnboundSymbol {
         /// Robot name.
         robot: String,
         /// The symbol.
         symbol: String,
+        /// Where the description uses it, as ` (joint 2's `d`)`, or nothing.
+        used: String,
     },
 }
 
@@ -79,6 +81,7 @@ impl Interpreted {
                 v.ok_or_else(|| ModelError::UnboundSymbol {
                     robot: programs.robot.name().to_owned(),
                     symbol: s.clone(),
+                    used: used_by(&programs.robot, s),
                 })
             })
             .collect::<Result<_, _>>()?;
@@ -223,9 +226,47 @@ pub fn model_for(robot: &Robot) -> Result<Chosen, ModelError> {
     })
 }
 
+/// Where `robot`'s DH table first uses `symbol`, as ` (joint 2's `d`)`; nothing when only
+/// the gravity or a base or tool transform does.
+fn used_by(robot: &Robot, symbol: &str) -> String {
+    robot
+        .joints()
+        .iter()
+        .enumerate()
+        .find_map(|(j, joint)| {
+            [
+                ("gamma", &joint.gamma),
+                ("b", &joint.b),
+                ("alpha", &joint.alpha),
+                ("a", &joint.a),
+                ("d", &joint.d),
+                ("theta", &joint.theta),
+            ]
+            .into_iter()
+            .find(|(_, g)| g.symbols().iter().any(|s| s == symbol))
+            .map(|(name, _)| format!(" (joint {}'s `{name}`)", j + 1))
+        })
+        .unwrap_or_default()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A symbol left without a value is named with the joint and value that use it.
+    #[test]
+    fn an_unbound_symbol_is_named_where_it_is_used() {
+        let text = "name = \"s\"\nconvention = \"modified\"\ngravity = [0, 0, -9.81]\n\
+                    [[joints]]\nalpha = 0\na = 0\nd = 0\n\
+                    [[joints]]\nalpha = \"pi/2\"\na = 0\nd = \"L2\"\n";
+        let robot = Robot::from_toml(text, "s.toml").unwrap();
+        let message = Interpreted::new(&robot).unwrap_err().to_string();
+        assert!(
+            message.contains("geometric symbol `L2` (joint 2's `d`) has no value")
+                && message.contains("`L2 = 0.3`"),
+            "{message}"
+        );
+    }
 
     #[test]
     fn interpreted_equals_compiled() {
