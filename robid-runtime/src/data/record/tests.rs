@@ -113,15 +113,6 @@ fn blocks_are_the_loaded_samples_bit_for_bit() {
     ] {
         let from_disk = record.read(a, b).unwrap();
         let in_memory = data.read(a, b).unwrap();
-        let bits = |d: &Dataset| {
-            signals_of(d).map(|s| {
-                s.map(|s| {
-                    s.joints()
-                        .flat_map(|x| x.iter().map(|v| v.to_bits()))
-                        .collect::<Vec<_>>()
-                })
-            })
-        };
         assert_eq!(bits(&from_disk), bits(&in_memory), "{a}..{b}");
         assert_eq!(from_disk.origin, in_memory.origin, "{a}..{b}");
         assert_eq!(
@@ -255,15 +246,6 @@ fn irregular_clocks_are_resampled_on_disk_bit_for_bit() {
             format!("{:?}", data.warnings),
             "{name}"
         );
-        let bits = |d: &Dataset| {
-            signals_of(d).map(|s| {
-                s.map(|s| {
-                    s.joints()
-                        .flat_map(|x| x.iter().map(|v| v.to_bits()))
-                        .collect::<Vec<_>>()
-                })
-            })
-        };
         let mut ranges = vec![(0, n), (0, 1), (n - 1, n), (n - 5, n + 10), (1490, 1520)];
         ranges.extend((0..40).map(|i| (i * 71, i * 71 + 1 + (i * 37) % 200)));
         for (a, b) in ranges {

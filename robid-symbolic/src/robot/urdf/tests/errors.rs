@@ -768,25 +768,9 @@ fn revolute_and_prismatic_joints_without_limits_are_warned_about() {
 /// nonzero limits are not warned about.
 #[test]
 fn zero_effort_or_velocity_limits_are_warned_about() {
-    let read = |text: &str| {
-        Robot::from_urdf(text, "t.urdf", &ChainSelection::default())
-            .unwrap_or_else(|e| panic!("{e}"))
-    };
-    let about = |chain: &UrdfChain| -> Vec<String> {
-        chain
-            .warnings
-            .iter()
-            .filter(|w| w.contains("robid takes 0 as"))
-            .cloned()
-            .collect()
-    };
-    let with = |first: &str, second: &str| {
-        arm(&format!(
-            "{}{}",
-            J1.replace("</joint>", &format!("<limit {first}/></joint>")),
-            J2.replace("</joint>", &format!("<limit {second}/></joint>"))
-        ))
-    };
+    let read = read_ok;
+    let about = |chain: &UrdfChain| warned(chain, "robid takes 0 as");
+    let with = limited;
     let whole = "lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"";
     assert!(about(&read(&with(whole, whole))).is_empty());
     let chain = read(&with(
@@ -893,25 +877,9 @@ fn zero_limits_off_the_chain_are_not_warned_about() {
 /// be accepted without a word); a fixed joint's `<limit>` is not robid's concern.
 #[test]
 fn limits_without_effort_or_velocity_are_warned_about() {
-    let read = |text: &str| {
-        Robot::from_urdf(text, "t.urdf", &ChainSelection::default())
-            .unwrap_or_else(|e| panic!("{e}"))
-    };
-    let about = |chain: &UrdfChain| -> Vec<String> {
-        chain
-            .warnings
-            .iter()
-            .filter(|w| w.contains("in every `<limit>`"))
-            .cloned()
-            .collect()
-    };
-    let with = |first: &str, second: &str| {
-        arm(&format!(
-            "{}{}",
-            J1.replace("</joint>", &format!("<limit {first}/></joint>")),
-            J2.replace("</joint>", &format!("<limit {second}/></joint>"))
-        ))
-    };
+    let read = read_ok;
+    let about = |chain: &UrdfChain| warned(chain, "in every `<limit>`");
+    let with = limited;
     let whole = "lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"";
     assert!(about(&read(&with(whole, whole))).is_empty());
     // effort="0" is a value (robid's "none"); urdfdom reads it
@@ -1072,4 +1040,28 @@ fn too_many_joints_are_told_how_to_take_a_part() {
         message.contains(&format!("at most {MAX_JOINTS} rows")),
         "{message}"
     );
+}
+
+/// The chain of a URDF that must be read.
+fn read_ok(text: &str) -> UrdfChain {
+    Robot::from_urdf(text, "t.urdf", &ChainSelection::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The warnings of `chain` that contain `marker`.
+fn warned(chain: &UrdfChain, marker: &str) -> Vec<String> {
+    chain
+        .warnings
+        .iter()
+        .filter(|w| w.contains(marker))
+        .cloned()
+        .collect()
+}
+
+/// The two-joint arm with `<limit first/>` on j1 and `<limit second/>` on j2.
+fn limited(first: &str, second: &str) -> String {
+    arm(&format!(
+        "{}{}",
+        J1.replace("</joint>", &format!("<limit {first}/></joint>")),
+        J2.replace("</joint>", &format!("<limit {second}/></joint>"))
+    ))
 }

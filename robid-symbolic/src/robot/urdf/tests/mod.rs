@@ -210,3 +210,35 @@ pub(super) fn check_kinematics(
     assert!(worst <= tolerance, "poses differ by {worst:e} at q = {q:?}");
     worst
 }
+
+/// robid's torques of `chain` with the URDF's own inertials, from its symbolic inverse
+/// dynamics evaluated at a state (`q`, `qd`, `qdd`; joints in chain order): what the
+/// cross-checks against independent torques compare.
+pub(super) fn own_inertials_torques(
+    chain: &UrdfChain,
+) -> impl FnMut(&[f64], &[f64], &[f64]) -> Vec<f64> {
+    let mut d = crate::Derivation::new(&chain.robot);
+    let symbols = d.parameter_symbols();
+    let tau = d.inverse_dynamics(&symbols);
+    let names: Vec<String> = d
+        .standard_parameters()
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+    let parameters: Vec<f64> = chain.links.iter().flat_map(|l| l.inertial).collect();
+    move |q, qd, qdd| {
+        let mut pairs: Vec<(String, f64)> = names
+            .iter()
+            .cloned()
+            .zip(parameters.iter().copied())
+            .collect();
+        for (p, values) in [("q", q), ("qd", qd), ("qdd", qdd)] {
+            for (j, &v) in values.iter().enumerate() {
+                pairs.push((format!("{p}{}", j + 1), v));
+            }
+        }
+        let refs: Vec<(&str, f64)> = pairs.iter().map(|(a, b)| (a.as_str(), *b)).collect();
+        let values = d.arena.values(&refs);
+        d.arena.eval(&tau, &values).unwrap()
+    }
+}

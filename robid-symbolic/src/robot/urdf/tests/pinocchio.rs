@@ -3,20 +3,11 @@
 //! compared: Pinocchio moves its finger joints, which robid holds at zero.
 
 use super::*;
-use crate::Derivation;
 
 /// The largest difference between robid's torques and Pinocchio's over the file's states.
 fn largest_difference(path: &str, csv: &str) -> f64 {
     let chain = Robot::from_urdf(&repository_file(path), path, &ChainSelection::default()).unwrap();
-    let mut d = Derivation::new(&chain.robot);
-    let symbols = d.parameter_symbols();
-    let tau = d.inverse_dynamics(&symbols);
-    let names: Vec<String> = d
-        .standard_parameters()
-        .iter()
-        .map(ToString::to_string)
-        .collect();
-    let parameters: Vec<f64> = chain.links.iter().flat_map(|l| l.inertial).collect();
+    let mut torques = own_inertials_torques(&chain);
     let text = repository_file(&format!("tests/reference/urdf/{csv}.csv"));
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
@@ -25,19 +16,14 @@ fn largest_difference(path: &str, csv: &str) -> f64 {
     for line in lines {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         let get = |key: String| v[header.iter().position(|h| *h == key).unwrap()];
-        let mut pairs: Vec<(String, f64)> = names
-            .iter()
-            .cloned()
-            .zip(parameters.iter().copied())
-            .collect();
-        for (j, l) in chain.links.iter().enumerate() {
-            for p in ["q", "qd", "qdd"] {
-                pairs.push((format!("{p}{}", j + 1), get(format!("{p}:{}", l.joint))));
-            }
-        }
-        let refs: Vec<(&str, f64)> = pairs.iter().map(|(a, b)| (a.as_str(), *b)).collect();
-        let values = d.arena.values(&refs);
-        let got = d.arena.eval(&tau, &values).unwrap();
+        let state = |p: &str| -> Vec<f64> {
+            chain
+                .links
+                .iter()
+                .map(|l| get(format!("{p}:{}", l.joint)))
+                .collect()
+        };
+        let got = torques(&state("q"), &state("qd"), &state("qdd"));
         for (j, l) in chain.links.iter().enumerate() {
             worst = worst.max((got[j] - get(format!("tau:{}", l.joint))).abs());
         }
