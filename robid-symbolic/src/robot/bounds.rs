@@ -11,8 +11,8 @@
 //!
 //! | what | accepted |
 //! |---|---|
-//! | DH lengths `a`, `d` | 0, or [`MIN_LENGTH`] (1 µm) to [`MAX_LENGTH`] (1 km) in magnitude, in metres |
-//! | DH angles `alpha`, `theta` | at most [`MAX_ANGLE`] (one turn) in magnitude, in radians; exactly `k pi/2` (as `"pi/2"`, `0`) or at least [`ANGLE_RESOLUTION`] away from every such angle |
+//! | DH lengths `a`, `d`, `b` | 0, or [`MIN_LENGTH`] (1 µm) to [`MAX_LENGTH`] (1 km) in magnitude, in metres; `b` and `d` of a [calibrated pair](calibrated_pair) up to [`MAX_CALIBRATED_LENGTH`] (1e9 m) |
+//! | DH angles `alpha`, `theta` | at most [`MAX_ANGLE`] (one turn) in magnitude, in radians; exactly `k pi/2` (as `"pi/2"`, `0`) or at least [`ANGLE_RESOLUTION`] away from every such angle, but for the `alpha` of a [calibrated pair](calibrated_pair) |
 //! | gravity components | 0, or [`MIN_GRAVITY`] to [`MAX_GRAVITY`] m/s^2 in magnitude |
 //! | a value with symbols | the above at the `[symbols]` values when all its symbols have one, and at most [`MAX_SAMPLED`] in magnitude for any symbol values in [`SYMBOL_SAMPLES`] |
 //! | `[symbols]` values | finite |
@@ -49,6 +49,40 @@ pub const MAX_ANGLE: f64 = 2.0 * std::f64::consts::PI;
 /// approximation of a right angle that would make axes almost, not exactly,
 /// perpendicular (write `"pi/2"`).
 pub const ANGLE_RESOLUTION: f64 = 1e-5;
+
+/// Largest magnitude of the `b` and `d` of a [calibrated pair](calibrated_pair) (m): f64
+/// keeps their sum to 2^-52 of them, 2.2e-7 m, below [`MIN_LENGTH`].
+pub const MAX_CALIBRATED_LENGTH: f64 = 1e9;
+
+/// Whether a modified-DH row with these numeric `alpha`, `b` and `d` is a calibrated pair of
+/// nearly parallel axes: a twist within 1e-2 rad of 0 or pi (its sine below 1e-2), `b` and `d`
+/// both beyond [`MAX_LENGTH`] and at most [`MAX_CALIBRATED_LENGTH`] in magnitude, nearly
+/// cancelling, so that the row's frame origin lies within [`MAX_LENGTH`] of the previous
+/// one (`|b + d cos(alpha)|` and `|d sin(alpha)|`). Two axes `theta` rad from parallel and
+/// `L` apart have their common normal about `L / theta` from the joints, so a calibration
+/// of an arm's parallel axes (skews of 1e-6 to 1e-3 rad, as a URDF fitted to a measured
+/// robot writes them) has such rows; robid fits them from a URDF
+/// (docs/urdf.md#fitting-the-dh-table). Their `b` and `d` may reach
+/// [`MAX_CALIBRATED_LENGTH`], and their `alpha` may be nearer 0 or pi than
+/// [`ANGLE_RESOLUTION`]: it is measured, not a rounded right angle.
+///
+/// ```
+/// use robid_symbolic::robot::bounds::calibrated_pair;
+/// // axes 0.4 m apart and 1e-6 rad from parallel: the common normal 4e5 m away
+/// assert!(calibrated_pair(1e-6, -4e5, 4e5 + 0.05));
+/// // a length typed in millimetres is no pair
+/// assert!(!calibrated_pair(0.0, 0.0, 425.0e1));
+/// assert!(!calibrated_pair(1e-6, 4e5, 4e5));
+/// ```
+pub fn calibrated_pair(alpha: f64, b: f64, d: f64) -> bool {
+    let (s, c) = alpha.sin_cos();
+    let long = |x: f64| x.abs() > MAX_LENGTH && x.abs() <= MAX_CALIBRATED_LENGTH;
+    s.abs() < 1e-2
+        && long(b)
+        && long(d)
+        && (b + d * c).abs() <= MAX_LENGTH
+        && (d * s).abs() <= MAX_LENGTH
+}
 
 /// Largest magnitude of a gravity component (m/s^2) (100 g).
 pub const MAX_GRAVITY: f64 = 1e3;

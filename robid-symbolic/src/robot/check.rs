@@ -4,9 +4,9 @@
 //! a library call ([`Code`]).
 
 use super::bounds::{
-    ANGLE_RESOLUTION, MAX_ACCELERATION, MAX_ANGLE, MAX_GRAVITY, MAX_JOINTS, MAX_LENGTH,
-    MAX_POSITION, MAX_SAMPLED, MAX_SYMBOLS, MAX_TORQUE, MAX_VELOCITY, MIN_GRAVITY, MIN_LENGTH,
-    SYMBOL_SAMPLES,
+    ANGLE_RESOLUTION, MAX_ACCELERATION, MAX_ANGLE, MAX_CALIBRATED_LENGTH, MAX_GRAVITY, MAX_JOINTS,
+    MAX_LENGTH, MAX_POSITION, MAX_SAMPLED, MAX_SYMBOLS, MAX_TORQUE, MAX_VELOCITY, MIN_GRAVITY,
+    MIN_LENGTH, SYMBOL_SAMPLES, calibrated_pair,
 };
 use super::interval::magnitude_bound;
 use super::{Convention, DescriptionError, Geometry, Joint, Limits, Robot, Transform};
@@ -342,8 +342,20 @@ impl Parts {
                 .map(|&(_, v)| v)
                 .filter(|v| v.is_finite())
         };
+        let pairs: Vec<Pair> = self
+            .joints
+            .iter()
+            .map(|joint| match self.convention {
+                Convention::Modified => Pair::of(joint),
+                Convention::Standard => Pair::None,
+            })
+            .collect();
         for (item, g, role) in &values {
-            if let Some((message, help)) = value_problem(*item, g, *role, &given) {
+            let pair = match item {
+                Item::Value(j, Dh::Alpha | Dh::B | Dh::D) => pairs[*j],
+                _ => Pair::None,
+            };
+            if let Some((message, help)) = value_problem(*item, g, *role, &given, pair) {
                 error(*item, message, &help);
             }
         }
@@ -480,13 +492,51 @@ pub(super) fn show(v: f64) -> String {
     }
 }
 
-/// Why a geometric value does not suit its role (message, help), if it does not.
+/// What a modified-DH row's `alpha`, `b` and `d` are (numbers only).
+#[derive(Clone, Copy)]
+enum Pair {
+    /// A [calibrated pair](calibrated_pair): its values are measured.
+    Calibrated,
+    /// A twist within 1e-2 rad of 0 or pi and `b` and `d` beyond [`MAX_LENGTH`] that do not
+    /// make a calibrated pair: the row's frame origin is this far (m) from the previous one.
+    Broken(f64),
+    /// Anything else.
+    None,
+}
+
+impl Pair {
+    fn of(joint: &Joint) -> Pair {
+        let number = |g: &Geometry| match g {
+            Geometry::Number(n) => Some(n.value()),
+            Geometry::Expression(_) => None,
+        };
+        let (Some(alpha), Some(b), Some(d)) =
+            (number(&joint.alpha), number(&joint.b), number(&joint.d))
+        else {
+            return Pair::None;
+        };
+        let (s, c) = alpha.sin_cos();
+        if calibrated_pair(alpha, b, d) {
+            Pair::Calibrated
+        } else if s.abs() < 1e-2 && b.abs() > MAX_LENGTH && d.abs() > MAX_LENGTH {
+            Pair::Broken((b + d * c).hypot(d * s))
+        } else {
+            Pair::None
+        }
+    }
+}
+
+/// Why a geometric value does not suit its role (message, help), if it does not. The
+/// `alpha`, `b` and `d` of a [calibrated pair](calibrated_pair) are bounded by the pair's
+/// own rule and its twist is measured; `b` and `d` of a broken one are told the rule.
 fn value_problem(
     item: Item<'_>,
     g: &Geometry,
     role: Role,
     given: &dyn Fn(&str) -> Option<f64>,
+    pair: Pair,
 ) -> Option<(String, String)> {
+    let measured = matches!(pair, Pair::Calibrated);
     let what = format!("{} = {}", describe(item), quoted(g));
     let mut arena = Arena::new();
     let id = g.to_expr(&mut arena);
@@ -526,9 +576,19 @@ fn value_problem(
         format!("{what} is {} at the [symbols] values,", show(v))
     };
     match role {
-        Role::Length if v.abs() > MAX_LENGTH => Some((
+        Role::Length if v.abs() > MAX_LENGTH && !measured => Some((
             format!("{is} beyond ±{} m", show(MAX_LENGTH)),
-            "DH lengths are in metres; robid accepts lengths up to 1 km".to_owned(),
+            match pair {
+                Pair::Broken(away) => format!(
+                    "DH lengths are in metres; robid accepts lengths up to 1 km, and a longer \
+                     `b` and `d` only as a calibrated pair of nearly parallel axes: nearly \
+                     opposite, so that the row's frame lies within 1 km of the previous one \
+                     (here {} m), each at most {} m",
+                    show(format!("{away:.4e}").parse().unwrap_or(away)),
+                    show(MAX_CALIBRATED_LENGTH)
+                ),
+                _ => "DH lengths are in metres; robid accepts lengths up to 1 km".to_owned(),
+            },
         )),
         Role::Length if v != 0.0 && v.abs() < MIN_LENGTH => Some((
             format!("{is} shorter than {} m but not zero", show(MIN_LENGTH)),
@@ -546,7 +606,7 @@ fn value_problem(
             format!("{is} more than a turn (2 pi rad)"),
             "DH angles are in radians: write \"pi/2\" for 90 degrees".to_owned(),
         )),
-        Role::Angle if pairs.is_empty() && g.quarter_turns().is_none() => {
+        Role::Angle if pairs.is_empty() && g.quarter_turns().is_none() && !measured => {
             let k = (v / FRAC_PI_2).round();
             let off = (v - k * FRAC_PI_2).abs();
             (off < ANGLE_RESOLUTION).then(|| {

@@ -607,3 +607,56 @@ fn a_key_given_twice_is_named_at_its_place() {
         );
     }
 }
+
+/// A calibrated pair of nearly parallel axes (`bounds::calibrated_pair`), as a calibration
+/// of an arm writes it (UR controllers' own DH tables have such rows): `b` and `d` beyond
+/// 1 km but nearly opposite, the frame within 1 km of the previous one, a twist of 1e-6 rad.
+/// Accepted, and its kinematics are the pair's; anything else stays refused.
+#[test]
+fn a_calibrated_pair_of_nearly_parallel_axes_is_accepted_and_nothing_else() {
+    let row = |alpha: &str, b: &str, d: &str| {
+        format!(
+            "{HEAD}[[joints]]\nalpha = \"pi/2\"\n[[joints]]\nalpha = {alpha}\na = 0.425\nd = {d}\nb = {b}\n"
+        )
+    };
+    // axes 1e-6 rad from parallel, 0.1 m apart across the plane of the normal
+    let robot = Robot::from_toml(&row("1e-6", "-100000.05", "100000"), "arm.toml")
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(robot.joints()[1].b.as_str(), "-100000.05");
+    // near pi too (b and d then have the same sign)
+    assert!(Robot::from_toml(&row("3.1415916535897934", "1e5", "1e5"), "arm.toml").is_ok());
+    let refused = |text: &str, says: &[&str]| {
+        let all = errors(text).join("\n");
+        for part in says {
+            assert!(all.contains(part), "`{part}` not in {all}");
+        }
+    };
+    // the same lengths not cancelling: the frame 200 km away; each value told
+    refused(
+        &row("1e-6", "100000", "100000"),
+        &[
+            "arm.toml:6:9: joint 2 `alpha` = 1e-6 is only 1.0e-6 rad from 0",
+            "arm.toml:8:5: joint 2 `d` = 100000 is beyond ±1000 m",
+            "arm.toml:9:5: joint 2 `b` = 100000 is beyond ±1000 m",
+            "only as a calibrated pair of nearly parallel axes",
+            "(here 200000 m), each at most 1e9 m",
+        ],
+    );
+    // long b and d at an ordinary twist: the frame 48 km off; no pair to tell of
+    let all = errors(&row("0.5", "-100000", "100000")).join("\n");
+    assert!(
+        all.contains("8:5: joint 2 `d` = 100000 is beyond ±1000 m"),
+        "{all}"
+    );
+    assert!(!all.contains("calibrated pair"), "{all}");
+    // a twist of 1e-6 rad without the long pair is a rounded 0, as always
+    single(&row("1e-6", "-0.05", "0.1"), "6:9", &["from 0"]);
+    // beyond what f64 keeps the sum of to 1 µm
+    refused(
+        &row("1e-10", "-2e9", "2e9"),
+        &[
+            "8:5: joint 2 `d` = 2e9 is beyond ±1000 m",
+            "each at most 1e9 m",
+        ],
+    );
+}

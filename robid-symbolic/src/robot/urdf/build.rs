@@ -1,7 +1,9 @@
 //! The validated [`Robot`] of a fitted chain: its name, the DH rows as geometric values,
 //! the URDF's joint limits and gravity (docs/urdf.md#the-robot).
 
-use super::super::bounds::{MAX_JOINTS, MAX_LENGTH, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use super::super::bounds::{
+    MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
+};
 use super::super::check::show;
 use super::super::file::Place;
 use super::super::{
@@ -191,8 +193,8 @@ pub(super) fn robot(
         // the next row's b and d reach the foot of the common normal (frame k's origin
         // stays near the joint, docs/urdf.md#fitting-the-dh-table); one error for a run of
         // such joints: they have one cause, a pair of axes
-        let far = fit.reach[k] > MAX_LENGTH;
-        if far && k > 0 && fit.reach[k - 1] > MAX_LENGTH {
+        let far = fit.reach[k] > MAX_CALIBRATED_LENGTH;
+        if far && k > 0 && fit.reach[k - 1] > MAX_CALIBRATED_LENGTH {
             continue;
         }
         if far {
@@ -206,10 +208,10 @@ pub(super) fn robot(
                 format!(
                     "the common normal from joint `{}`'s axis to the next lies {} m from the \
                      joint along its axis, and the next DH row passes through it (its `b` and \
-                     `d` are about that long), beyond the ±{} m of a DH length",
+                     `d` are about that long), beyond the ±{} m that robid keeps the digits of",
                     urdf_joint.name,
                     show(format!("{:.4e}", fit.reach[k]).parse().unwrap_or(fit.reach[k])),
-                    show(MAX_LENGTH),
+                    show(MAX_CALIBRATED_LENGTH),
                 ),
                 help,
             ));
@@ -264,13 +266,13 @@ fn nearly_parallel(urdf: &Urdf, chain: &Chain, fit: &Fit, k: usize) -> Option<St
         &urdf.joints[chain.joints[i + 1]].name,
     );
     Some(format!(
-        "the axes of joints `{first}` and `{second}` are {angle:.1e} rad from parallel, and \
-         robid's DH table holds two axes that close to parallel only when they are parallel \
-         within 1e-9 rad (between them it runs along their common normal, which lies about \
-         their distance divided by that angle from the joints, and an angle below 1e-5 rad \
-         is not told from 0): if they are meant to be parallel (a skew this small, such as a \
-         calibration's, changes the torques by about {angle:.0e} of their size), write the \
-         `<origin>` rotations and `<axis>` elements of the chain up to `{second}` so that the \
+        "the axes of joints `{first}` and `{second}` are {angle:.1e} rad from parallel; \
+         robid's DH table follows such a pair along its common normal, about their distance \
+         divided by that angle from the joints, and holds it when that normal lies within \
+         1e9 m of them and, for an angle below 1e-5 rad, farther than 1 km (nearer, the \
+         angle is not told from 0): if they are meant to be parallel (a skew this small \
+         changes the torques by about {angle:.0e} of their size), write the `<origin>` \
+         rotations and `<axis>` elements of the chain up to `{second}` so that the \
          two axes are exactly parallel (docs/urdf.md#fitting-the-dh-table)"
     ))
 }

@@ -974,13 +974,21 @@ fn nearly_parallel_axes_are_named_and_their_far_frames_refused() {
             joint("j3", "c", "d", j3),
         )
     };
-    let skewed = text("xyz=\"0.4 0 0\" rpy=\"0 1e-4 0\"");
+    // 2 m apart and 1.6e-9 rad from parallel (the angle rule's 1e-9 rad is parallel; an
+    // axis, as `rpy` values this small are taken as 0): the common normal 1.25e9 m away,
+    // beyond what robid keeps the digits of
+    let skewed = text("xyz=\"2 0 0\"").replacen(
+        "<axis xyz=\"0 0 1\"/></joint>\n</robot>",
+        "<axis xyz=\"1.6e-9 0 1\"/></joint>\n</robot>",
+        1,
+    );
     let first_two = skewed.replacen("type=\"revolute\"", "type=\"fixed\"", 1);
     for text in [&skewed, &first_two] {
         let message = error_of(text, &ChainSelection::default());
         for w in [
-            "t.urdf:7:1: the common normal from joint `j2`'s axis to the next lies 4000 m from the joint",
-            "the axes of joints `j2` and `j3` are 1.0e-4 rad from parallel",
+            "t.urdf:7:1: the common normal from joint `j2`'s axis to the next lies 1.25e9 m from the joint",
+            "beyond the ±1e9 m that robid keeps the digits of",
+            "the axes of joints `j2` and `j3` are 1.6e-9 rad from parallel",
             "exactly parallel",
         ] {
             assert!(message.contains(w), "{message}\nexpected {w:?}");
