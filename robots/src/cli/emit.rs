@@ -6,7 +6,7 @@
 //! same functions and operation counts (for a URDF with `NAME_urdf_standard_parameters`,
 //! the same values).
 
-use super::description::{self, DescriptionFlags};
+use super::description::{self, Description, DescriptionFlags};
 use super::{Error, files, out};
 use robid_runtime::{Error as RuntimeError, OutputError};
 use robid_symbolic::emit::{CScalar, emit_c_model, emit_model};
@@ -66,6 +66,7 @@ fn rust(args: &Args) -> Result<(), Error> {
         files::refuse(&[&args.robot], &[path])?;
     }
     let description = description::load(&args.robot, &args.description)?;
+    warn_unloaded(args, &description, "URDF_STANDARD_PARAMETERS");
     // a URDF's own inertials, as `robot_model!(file = "x.urdf")` adds them
     let urdf_standard = description
         .urdf
@@ -100,6 +101,11 @@ fn c(args: &Args) -> Result<(), Error> {
     files::refuse(&[&args.robot], &[source, &header])
         .map_err(|e| header_error(source, &header, e))?;
     let description = description::load(&args.robot, &args.description)?;
+    let constant = format!(
+        "{}_urdf_standard_parameters",
+        description.robot.name().to_lowercase()
+    );
+    warn_unloaded(args, &description, &constant);
     // a URDF's own inertials, as the Rust code holds them
     let urdf_standard = description
         .urdf
@@ -115,6 +121,45 @@ fn c(args: &Args) -> Result<(), Error> {
     files::write(&header, &code.header)?;
     files::write(source, &code.source)?;
     Ok(())
+}
+
+/// With a URDF: warns about the joints whose torque the file's own inertials, which the
+/// code holds as `constant`, leave 0 at every state (they move only links without mass or
+/// inertia) or without gravity (links without mass), as `robid torques` does; the code is
+/// written all the same, since its functions take any parameters.
+fn warn_unloaded(args: &Args, description: &Description, constant: &str) {
+    let unloaded = description.urdf_unloaded();
+    let fix = "or give the generated functions parameters of your own";
+    for (joints, empty) in [(&unloaded.empty, true), (&unloaded.massless, false)] {
+        if joints.is_empty() {
+            continue;
+        }
+        let (its, is) = if joints.len() == 1 {
+            ("its torque", "is")
+        } else {
+            ("their torques", "are")
+        };
+        let (consequence, link_fix) = if empty {
+            (
+                format!("{is} 0 at every state"),
+                "give these links `<inertial>` elements with their mass and inertia",
+            )
+        } else {
+            (
+                format!(
+                    "{} no gravity, only the inertia of these links",
+                    if is == "is" { "holds" } else { "hold" }
+                ),
+                "give them their masses in their `<inertial>` elements",
+            )
+        };
+        out::warn(format_args!(
+            "warning: {}, so with the URDF's own inertials (`{constant}` in the code) {its} {} \
+             {consequence}; {link_fix}, {fix}",
+            description.unloaded_cause(&args.robot, joints, empty),
+            description::torque_names(joints),
+        ));
+    }
 }
 
 /// The error `e` of the header path `header` of the C source `source`: a name the user did

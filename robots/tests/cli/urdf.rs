@@ -1218,3 +1218,51 @@ fn urdf_standard_parameters_are_written_as_a_parameter_file() {
     );
     assert!(!none.exists());
 }
+
+/// `robid emit` of a URDF whose links after a joint have no mass or inertia warns that the
+/// URDF's own inertials held in the code leave that joint's torque 0, in Rust and in C (it
+/// wrote the all-zero values without a word); the code is written all the same, and a URDF
+/// with every inertial gets no warning.
+#[test]
+fn urdf_emit_warns_when_the_urdf_inertials_leave_a_torque_out() {
+    let dir = folder();
+    let urdf = write(dir.path(), "flanged.urdf", MASSLESS_FLANGE);
+    let cause = format!(
+        "warning: joint 2 (`j2`) of {} moves only links without mass or inertia: `flange`, \
+         `tool0` (no `<inertial>` element, or an empty one), so with the URDF's own inertials",
+        urdf.display()
+    );
+    let o = robid(&["emit", urdf.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("URDF_STANDARD_PARAMETERS"));
+    let e = stderr(&o);
+    assert!(e.contains(&cause), "{e}");
+    assert!(
+        e.contains(
+            "(`URDF_STANDARD_PARAMETERS` in the code) its torque tau2 is 0 at every state; \
+             give these links `<inertial>` elements with their mass and inertia, or give the \
+             generated functions parameters of your own"
+        ),
+        "{e}"
+    );
+    let source = dir.path().join("arm.c");
+    let o = robid(&[
+        "emit",
+        urdf.to_str().unwrap(),
+        "--lang",
+        "c",
+        "-o",
+        source.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(source.exists());
+    let e = stderr(&o);
+    assert!(
+        e.contains(&cause)
+            && e.contains("_urdf_standard_parameters` in the code) its torque tau2 is 0"),
+        "{e}"
+    );
+    let o = robid(&["emit", UR5]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("own inertials"), "{}", stderr(&o));
+}
