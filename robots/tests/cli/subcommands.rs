@@ -413,3 +413,41 @@ fn excite_points_writes_pieces_for_the_config() {
         robid_runtime::data::Config::from_toml_str(&config, "c.toml".as_ref()).unwrap();
     assert_eq!(config.processing.pieces.unwrap().len(), 5);
 }
+
+/// `robid bench --json` gives every program's time and its multiple of the baseline timed
+/// in turn with it, consistent with each other (a ratio is a time over a baseline near the
+/// run's median one), and the same names in both; an unknown robot is refused.
+#[test]
+fn bench_json_has_each_program_with_its_ratio() {
+    let o = robid(&["bench", "--robot", "stanford", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    let (programs, ratios) = (&v["programs"], &v["ratios"]);
+    let base = v["baseline_trig_ns"].as_f64().unwrap();
+    assert!(base > 0.0, "{v}");
+    let names: Vec<&String> = programs.as_object().unwrap().keys().collect();
+    assert_eq!(names.len(), 7, "{v}");
+    assert_eq!(
+        names,
+        ratios.as_object().unwrap().keys().collect::<Vec<_>>(),
+        "{v}"
+    );
+    for name in names {
+        let (ns, ratio) = (
+            programs[name].as_f64().unwrap(),
+            ratios[name].as_f64().unwrap(),
+        );
+        assert!(ns > 0.0 && ratio > 0.0, "{name}: {v}");
+        // medians of different batches: equal to a factor of a few under any load
+        let implied = ns / ratio;
+        assert!(implied / base < 4.0 && base / implied < 4.0, "{name}: {v}");
+    }
+    assert!(v["batched_trig_ratio"].as_f64().unwrap() > 0.0, "{v}");
+    let o = robid(&["bench", "--robot", "nope"]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("no compiled robot `nope`"),
+        "{}",
+        stderr(&o)
+    );
+}
