@@ -265,8 +265,9 @@ impl Lowering<'_> {
     /// wd = wd_p + qdd z + w_p x qd z, vd = vd_p + U_p P (the acceleration of O_n) and
     /// U of those. With alpha in {0, +-pi/2} and gamma = 0, z is a coordinate axis and
     /// none of this rotates anything: the last link's w, wd and vd and its wrench are
-    /// not rotated (only its inertia and MS are, [`Lowering::rotate_inertia`]), and
-    /// its squares and products of w are mostly its parent's.
+    /// not rotated (only its inertia and MS are, [`Lowering::rotate_inertia`]), its
+    /// squares and products of w are mostly its parent's, and so are the entries U_ak
+    /// (a != k) of U about the axis k.
     fn tip(&mut self, f: &Frame, parent: KinLink, qd: E, qdd: E) -> Tip {
         let (w_p, wd_p, vd_p, u_p) = parent;
         let z = self.rotate(f, [ZERO, ZERO, number(1.0)]);
@@ -277,7 +278,15 @@ impl Lowering<'_> {
         let wd = self.add3(&[wd_p, z_qdd, w_x_z]);
         let up = self.mat_vec(&u_p, f.p);
         let vd = self.add3(&[vd_p, up]);
-        let u = self.u_matrix(w, wd);
+        let mut u = self.u_matrix(w, wd);
+        // U = U_p + qdd skew(z) + 2 qd z w_p' + qd^2 z z' - (2 qd w_p . z + qd^2) I, so
+        // where z is the coordinate axis k the entries U_ak (a != k) are the parent's.
+        let zero = |x: E| x.c == 0.0;
+        if let [k] = *(0..3).filter(|&i| !zero(z[i])).collect::<Vec<_>>() {
+            for a in (0..3).filter(|&a| a != k) {
+                u[a][k] = u_p[a][k];
+            }
+        }
         Tip { z, w, wd, vd, u }
     }
 

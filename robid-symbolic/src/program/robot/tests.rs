@@ -145,14 +145,14 @@ fn composite_rigid_body_is_no_dearer_for_reference_robots() {
 /// matrix and Coriolis programs of every reference robot (robots/descriptions), in that
 /// order: the figures of today (docs/performance.md#operation-counts).
 const REFERENCE_FLOPS: [(&str, [usize; 5]); 8] = [
-    ("kr6r900", [519, 721, 69, 281, 440]),
-    ("lwr4", [570, 1195, 100, 333, 536]),
-    ("panda", [601, 1222, 100, 374, 566]),
-    ("puma560", [478, 706, 69, 282, 428]),
-    ("rx90", [454, 650, 69, 242, 410]),
+    ("kr6r900", [517, 721, 69, 281, 438]),
+    ("lwr4", [568, 1195, 100, 333, 534]),
+    ("panda", [599, 1222, 100, 374, 564]),
+    ("puma560", [476, 706, 69, 282, 426]),
+    ("rx90", [452, 650, 69, 242, 408]),
     ("stanford", [132, 112, 23, 38, 101]),
-    ("tx40", [469, 697, 69, 272, 421]),
-    ("ur5e", [466, 624, 59, 275, 405]),
+    ("tx40", [467, 697, 69, 272, 419]),
+    ("ur5e", [464, 624, 59, 275, 403]),
 ];
 
 /// No reference robot's program costs more flops than [`REFERENCE_FLOPS`] says, and none
