@@ -170,9 +170,20 @@ impl Context {
         let frames = frame_exprs(&mut self.d.arena, &self.d.robot, &q);
         let inputs = self.inputs(groups);
         // The last link's wrench in its own frame or in its parent's
-        // (`Lowering::tip`): whichever program is the cheaper, so no robot pays for it.
+        // (`Lowering::tip`), and for a single run the scaled accelerations reused or
+        // not: whichever program is the cheapest, so no robot pays for either.
+        // Reusing scaled accelerations saves a few multiplications but made the 7-run
+        // Panda mass matrix ~3 % slower (compiled code, when the mass matrix was built
+        // this way): single runs only.
+        let reuses: &[bool] = match runs.len() {
+            1 => &[true, false],
+            _ => &[false],
+        };
         let mut best: Option<Program> = None;
-        for tip in [false, true] {
+        for (tip, &reuse) in [false, true]
+            .into_iter()
+            .flat_map(|tip| reuses.iter().map(move |r| (tip, r)))
+        {
             let mut l = Lowering::new(&self.d.arena, &inputs);
             let mut torques = Vec::with_capacity(runs.len());
             for run in runs {
@@ -181,10 +192,7 @@ impl Context {
                     qdd: &run.qdd,
                     gravity: run.gravity,
                 };
-                // Reusing scaled accelerations saves a few multiplications but
-                // made the 7-run Panda mass matrix ~3 % slower (compiled code, when the
-                // mass matrix was built this way): single runs only.
-                let tau = l.newton_euler(&frames, &run_inputs, &links, runs.len() == 1, tip)?;
+                let tau = l.newton_euler(&frames, &run_inputs, &links, reuse, tip)?;
                 let mut values = Vec::with_capacity(tau.len());
                 for t in tau {
                     values.push(l.output(t));
