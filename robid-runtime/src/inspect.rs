@@ -17,7 +17,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::{Config, Cutoff, Dataset, Record, Sampling};
 use crate::error::{Error, Result};
-use crate::signal::{Signals, Spectrum, Welch, butterworth_hz, central_difference};
+use crate::signal::{Spectrum, Welch, butterworth_hz};
+
+mod rest;
 
 /// Share of the positions' power that defines the motion's bandwidth.
 pub const MOTION_SHARE: f64 = 0.999;
@@ -100,11 +102,6 @@ pub struct Inspection {
     pub rest_velocity: Vec<f64>,
 }
 
-/// The spectrum of one signal of `data`, or the error naming it and the data's files.
-fn spectrum(data: &Dataset, x: &[f64], what: &str, joint: usize) -> Result<Spectrum> {
-    Spectrum::welch(x, 1.0 / data.sample_time).ok_or_else(|| no_spectrum(data, what, joint))
-}
-
 /// The error for a signal of `data` that has no spectrum: too short, or not finite.
 fn no_spectrum(data: &dyn Record, what: &str, joint: usize) -> Error {
     Error::TooFewSamples {
@@ -160,11 +157,16 @@ fn position_spectra(data: &dyn Record) -> Result<Vec<Spectrum>> {
 /// The suggested low-pass cutoff for the positions of `data` (see the module's rule),
 /// read block by block.
 pub fn suggest_cutoff(data: &dyn Record) -> Result<CutoffSuggestion> {
+    cutoff_of(data, &position_spectra(data)?)
+}
+
+/// The suggested low-pass cutoff for `data` from the spectra of its positions.
+fn cutoff_of(data: &dyn Record, spectra: &[Spectrum]) -> Result<CutoffSuggestion> {
     let rate = 1.0 / data.sample_time();
     let mut widest: Option<(f64, usize)> = None;
     let mut noisiest: Option<(f64, usize)> = None;
-    for (j, s) in position_spectra(data)?.into_iter().enumerate() {
-        if !moves(&s) {
+    for (j, s) in spectra.iter().enumerate() {
+        if !moves(s) {
             continue;
         }
         let b = s.bandwidth(MOTION_SHARE);
@@ -251,91 +253,179 @@ fn two_digits(x: f64) -> f64 {
 
 /// The diagnostics of `data`; `config` gives the rest velocity (default
 /// [`DEFAULT_REST_VELOCITY`]), `torque_limits` the description's limits where it has them.
+/// [`inspect_record`] of a data set in memory, with its sampling.
 pub fn inspect(
     data: &Dataset,
     config: &Config,
     torque_limits: &[Option<f64>],
 ) -> Result<Inspection> {
-    let rate = 1.0 / data.sample_time;
-    let dof = data.dof();
+    inspect_record(data, data.sampling.clone(), config, torque_limits)
+}
+
+/// Samples read at a time by [`inspect_record`].
+const INSPECT_BLOCK: usize = SPECTRUM_BLOCK;
+
+/// The diagnostics of `data` read block by block, so that a record kept on disk
+/// ([`crate::data::SpilledRecord`]) is never held whole: the same as [`inspect`] of the
+/// same samples in memory, to the bit. `sampling` is each file's sampling (what the
+/// report shows of them); `config` gives the rest velocity (default
+/// [`DEFAULT_REST_VELOCITY`]), `torque_limits` the description's limits where it has them.
+///
+/// The record is read two or three times: once for the spectra, the ranges and the
+/// torque at its limit, once for the torque at its extremes (which needs the torque's
+/// range) and, when the data have no velocities, the low-pass's forward pass, and once
+/// more, from the last block to the first, for its backward pass (the time at rest from
+/// the velocities of the low-passed positions).
+pub fn inspect_record(
+    data: &dyn Record,
+    sampling: Vec<Sampling>,
+    config: &Config,
+    torque_limits: &[Option<f64>],
+) -> Result<Inspection> {
+    inspect_in(data, sampling, config, torque_limits, INSPECT_BLOCK)
+}
+
+/// What the first pass gathers of one joint.
+struct Gathered {
+    position: Welch,
+    torque: Welch,
+    /// Smallest and largest position, and torque.
+    position_range: (f64, f64),
+    torque_range: (f64, f64),
+    /// Samples whose torque is at 98 % of the limit or beyond.
+    at_limit: usize,
+    /// Samples at rest by the measured velocity.
+    at_rest: usize,
+}
+
+/// `range` widened to the values of `x`, in order.
+fn widen(range: &mut (f64, f64), x: &[f64]) {
+    *range = x.iter().fold(*range, |(a, b), v| (a.min(*v), b.max(*v)));
+}
+
+/// [`inspect_record`] reading `block` samples at a time.
+fn inspect_in(
+    data: &dyn Record,
+    sampling: Vec<Sampling>,
+    config: &Config,
+    torque_limits: &[Option<f64>],
+    block: usize,
+) -> Result<Inspection> {
+    let (n, dof) = (data.samples(), data.dof());
+    let rate = 1.0 / data.sample_time();
+    let block = block.max(1);
     let rest_velocity = match &config.processing.rest_velocity {
         Some(v) => v.values(dof, "processing.rest_velocity")?,
         None => vec![DEFAULT_REST_VELOCITY; dof],
     };
-    let cutoff = suggest_cutoff(data)?;
-    let velocity = match &data.qd {
-        Some(v) => v.clone(),
-        None => {
-            let sos = butterworth_hz(4, cutoff.cutoff, rate)?;
-            data.q
-                .try_map(|q| Ok(central_difference(&sos.filtfilt(q)?, data.sample_time)))?
+    let limit = |j: usize| torque_limits.get(j).copied().flatten();
+    let welch = |what, j| Welch::new(n, rate).ok_or_else(|| no_spectrum(data, what, j + 1));
+    let position = (0..dof)
+        .map(|j| welch("position", j))
+        .collect::<Result<Vec<_>>>()?;
+    let mut joints = position
+        .into_iter()
+        .enumerate()
+        .map(|(j, position)| {
+            Ok(Gathered {
+                position,
+                torque: welch("torque", j)?,
+                position_range: (f64::INFINITY, f64::NEG_INFINITY),
+                torque_range: (f64::INFINITY, f64::NEG_INFINITY),
+                at_limit: 0,
+                at_rest: 0,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    // the first pass: spectra, ranges, the torque at its limit, rest by measured velocity
+    let mut measured = false;
+    for start in (0..n).step_by(block) {
+        let part = data.read(start, start + block)?;
+        measured = part.qd.is_some();
+        for (j, g) in joints.iter_mut().enumerate() {
+            let (q, tau) = (&part.q[j], &part.tau[j]);
+            g.position.push(q);
+            g.torque.push(tau);
+            widen(&mut g.position_range, q);
+            widen(&mut g.torque_range, tau);
+            if let Some(l) = limit(j) {
+                g.at_limit += tau.iter().filter(|v| v.abs() >= 0.98 * l).count();
+            }
+            if let Some(qd) = &part.qd {
+                g.at_rest += qd[j].iter().filter(|v| v.abs() < rest_velocity[j]).count();
+            }
+        }
+    }
+    let (mut positions, mut torques) = (Vec::with_capacity(dof), Vec::with_capacity(dof));
+    let mut ranges = Vec::with_capacity(dof);
+    let mut counts = Vec::with_capacity(dof);
+    for (j, g) in joints.into_iter().enumerate() {
+        positions.push(
+            g.position
+                .finish()
+                .ok_or_else(|| no_spectrum(data, "position", j + 1))?,
+        );
+        torques.push(g.torque.finish());
+        ranges.push((g.position_range, g.torque_range));
+        counts.push((g.at_limit, g.at_rest));
+    }
+    let cutoff = cutoff_of(data, &positions)?;
+    // the second pass (and the third, backwards, for velocities from the positions): the
+    // torque at its extremes, which needs the torque's range
+    let mut at_extremes = vec![0usize; dof];
+    let mut extremes = |part: &Dataset| {
+        for (j, count) in at_extremes.iter_mut().enumerate() {
+            let (tlo, thi) = ranges[j].1;
+            let span = (thi - tlo).max(f64::MIN_POSITIVE);
+            *count += part.tau[j]
+                .iter()
+                .filter(|v| {
+                    (thi - **v) <= EXTREME_TOLERANCE * span
+                        || (**v - tlo) <= EXTREME_TOLERANCE * span
+                })
+                .count();
         }
     };
-    let joints = (0..dof)
-        .map(|j| {
-            joint_report(
-                data,
-                &velocity,
-                j,
-                rest_velocity[j],
-                torque_limits.get(j).copied().flatten(),
-            )
+    let at_rest = if measured {
+        for start in (0..n).step_by(block) {
+            extremes(&*data.read(start, start + block)?);
+        }
+        counts.iter().map(|c| c.1).collect()
+    } else {
+        let sos = butterworth_hz(4, cutoff.cutoff, rate)?;
+        rest::rest_counts(data, &sos, &rest_velocity, block, extremes)?
+    };
+    let count = n as f64;
+    let joints = positions
+        .into_iter()
+        .zip(torques)
+        .enumerate()
+        .map(|(j, (sq, st))| {
+            let st = st.ok_or_else(|| no_spectrum(data, "torque", j + 1))?;
+            let ((lo, hi), _) = ranges[j];
+            Ok(JointReport {
+                joint: j + 1,
+                moves: moves(&sq),
+                position_range: [lo, hi],
+                position_bandwidth: sq.bandwidth(MOTION_SHARE),
+                position_signal_top: sq.above_floor(NOISE_RATIO),
+                position_noise: sq.noise_rms(),
+                torque_bandwidth: st.bandwidth(TORQUE_SHARE),
+                torque_noise: st.noise_rms(),
+                torque_at_extremes: at_extremes[j] as f64 / count,
+                torque_at_limit: limit(j).map(|_| counts[j].0 as f64 / count),
+                at_rest: at_rest[j] as f64 / count,
+            })
         })
         .collect::<Result<_>>()?;
     Ok(Inspection {
-        name: data.name.clone(),
+        name: data.name().to_string(),
         sample_rate: rate,
-        samples: data.samples(),
-        sampling: data.sampling.clone(),
+        samples: n,
+        sampling,
         joints,
         cutoff,
         rest_velocity,
-    })
-}
-
-fn joint_report(
-    data: &Dataset,
-    velocity: &Signals,
-    j: usize,
-    rest: f64,
-    limit: Option<f64>,
-) -> Result<JointReport> {
-    let (q, tau) = (&data.q[j], &data.tau[j]);
-    let sq = spectrum(data, q, "position", j + 1)?;
-    let st = spectrum(data, tau, "torque", j + 1)?;
-    let n = q.len() as f64;
-    let (lo, hi) = q
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(*v), b.max(*v))
-        });
-    let (tlo, thi) = tau
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(*v), b.max(*v))
-        });
-    let span = (thi - tlo).max(f64::MIN_POSITIVE);
-    let at_extremes = tau
-        .iter()
-        .filter(|v| {
-            (thi - **v) <= EXTREME_TOLERANCE * span || (**v - tlo) <= EXTREME_TOLERANCE * span
-        })
-        .count() as f64
-        / n;
-    let at_limit = limit.map(|l| tau.iter().filter(|v| v.abs() >= 0.98 * l).count() as f64 / n);
-    let at_rest = velocity[j].iter().filter(|v| v.abs() < rest).count() as f64 / n;
-    Ok(JointReport {
-        joint: j + 1,
-        moves: moves(&sq),
-        position_range: [lo, hi],
-        position_bandwidth: sq.bandwidth(MOTION_SHARE),
-        position_signal_top: sq.above_floor(NOISE_RATIO),
-        position_noise: sq.noise_rms(),
-        torque_bandwidth: st.bandwidth(TORQUE_SHARE),
-        torque_noise: st.noise_rms(),
-        torque_at_extremes: at_extremes,
-        torque_at_limit: at_limit,
-        at_rest,
     })
 }
 
@@ -388,6 +478,7 @@ impl Inspection {
 mod tests {
     use super::*;
     use crate::rng::Rng;
+    use crate::signal::Signals;
 
     /// Two joints: one moving (0.5 and 2 Hz, plus weak vibrations from 3 to 30 Hz that
     /// hold 3e-7 of the power) with white noise of standard deviation `noise`, one at rest
@@ -524,3 +615,6 @@ mod tests {
         assert_eq!(two_digits(1234.0), 1200.0);
     }
 }
+
+#[cfg(test)]
+mod stream_tests;

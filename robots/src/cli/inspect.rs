@@ -2,12 +2,14 @@
 //! what a log holds before identifying from it (robid_runtime::inspect): per file the
 //! sampling (median step, jitter, skipped ticks, stale rows), per joint the bandwidth and
 //! noise of positions and torques, torque saturation and time at rest, and a suggested
-//! low-pass cutoff with its reason (what `cutoff = "auto"` uses).
+//! low-pass cutoff with its reason (what `cutoff = "auto"` uses). A single-file log is kept
+//! on disk and read block by block (`data::SpilledRecord`), as `robid identify` reads it,
+//! so an hour-long log is never held in memory.
 
 use std::path::PathBuf;
 
-use robid_runtime::data::load;
-use robid_runtime::inspect::inspect;
+use robid_runtime::data::{Record, Sampling, SpilledRecord, load};
+use robid_runtime::inspect::inspect_record;
 
 use super::description::{self, DescriptionFlags};
 use super::identify::{config_for, data_files};
@@ -37,12 +39,26 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let robot = description::read(&args.robot, &args.description)?;
     let config = config_for(args.config.as_deref(), &args.data)?;
     let files = data_files(&args.data, args.config.as_deref(), &config)?;
-    let data = load(&config, &files, robot.dof())?;
-    for w in &data.warnings {
+    // on disk when it can be (as `data::load_record` keeps it), with its sampling; else
+    // loaded in memory, whose errors are the ones reported
+    let (data, sampling): (Box<dyn Record>, Vec<Sampling>) =
+        match SpilledRecord::open(&config, &files, robot.dof()) {
+            Ok(Some(record)) => {
+                let sampling = vec![record.sampling().clone()];
+                (Box::new(record), sampling)
+            }
+            _ => {
+                let data = load(&config, &files, robot.dof())?;
+                let sampling = data.sampling.clone();
+                (Box::new(data), sampling)
+            }
+        };
+    for w in data.warnings() {
         out::warn(format_args!("warning: {w}"));
     }
     let limits: Vec<Option<f64>> = robot.joints().iter().map(|j| j.limits.torque).collect();
-    let inspection = inspect(&data, &config, &limits).map_err(|e| config.locate(e))?;
+    let inspection =
+        inspect_record(data.as_ref(), sampling, &config, &limits).map_err(|e| config.locate(e))?;
     let text = if args.json {
         serde_json::to_string_pretty(&inspection)? + "\n"
     } else {
