@@ -17,9 +17,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::{Config, Cutoff, Dataset, Record, Sampling};
 use crate::error::{Error, Result};
-use crate::signal::{Spectrum, Welch, butterworth_hz};
+use crate::signal::{Spectrum, butterworth_hz};
 
 mod rest;
+mod spectra;
+
+use spectra::Spectra;
 
 /// Share of the positions' power that defines the motion's bandwidth.
 pub const MOTION_SHARE: f64 = 0.999;
@@ -131,26 +134,23 @@ fn files(data: &dyn Record) -> String {
 /// Samples read at a time for the position spectra of [`suggest_cutoff`].
 const SPECTRUM_BLOCK: usize = 1 << 16;
 
-/// The spectrum of each joint's position in `data`, read block by block ([`Welch`]), so
-/// that a record kept on disk is never held whole.
+/// The spectrum of each joint's position in `data`, read block by block ([`Spectra`]: the
+/// spectra of [`crate::signal::Welch`] to the bit), so that a record kept on disk is never held whole.
 fn position_spectra(data: &dyn Record) -> Result<Vec<Spectrum>> {
     let (n, rate) = (data.samples(), 1.0 / data.sample_time());
-    let mut welch = (0..data.dof())
-        .map(|j| Welch::new(n, rate).ok_or_else(|| no_spectrum(data, "position", j + 1)))
-        .collect::<Result<Vec<_>>>()?;
+    let mut spectra =
+        Spectra::new(data.dof(), n, rate).ok_or_else(|| no_spectrum(data, "position", 1))?;
     for start in (0..n).step_by(SPECTRUM_BLOCK) {
         let block = data.read(start, start + SPECTRUM_BLOCK)?;
-        for (w, q) in welch.iter_mut().zip(block.q.joints()) {
-            w.push(q);
+        for (j, q) in block.q.joints().enumerate() {
+            spectra.push(j, q);
         }
     }
-    welch
+    spectra
+        .finish()
         .into_iter()
         .enumerate()
-        .map(|(j, w)| {
-            w.finish()
-                .ok_or_else(|| no_spectrum(data, "position", j + 1))
-        })
+        .map(|(j, s)| s.ok_or_else(|| no_spectrum(data, "position", j + 1)))
         .collect()
 }
 
@@ -285,10 +285,8 @@ pub fn inspect_record(
     inspect_in(data, sampling, config, torque_limits, INSPECT_BLOCK)
 }
 
-/// What the first pass gathers of one joint.
+/// What the first pass gathers of one joint besides its spectra.
 struct Gathered {
-    position: Welch,
-    torque: Welch,
     /// Smallest and largest position, and torque.
     position_range: (f64, f64),
     torque_range: (f64, f64),
@@ -319,24 +317,17 @@ fn inspect_in(
         None => vec![DEFAULT_REST_VELOCITY; dof],
     };
     let limit = |j: usize| torque_limits.get(j).copied().flatten();
-    let welch = |what, j| Welch::new(n, rate).ok_or_else(|| no_spectrum(data, what, j + 1));
-    let position = (0..dof)
-        .map(|j| welch("position", j))
-        .collect::<Result<Vec<_>>>()?;
-    let mut joints = position
-        .into_iter()
-        .enumerate()
-        .map(|(j, position)| {
-            Ok(Gathered {
-                position,
-                torque: welch("torque", j)?,
-                position_range: (f64::INFINITY, f64::NEG_INFINITY),
-                torque_range: (f64::INFINITY, f64::NEG_INFINITY),
-                at_limit: 0,
-                at_rest: 0,
-            })
+    // the spectra of the positions (0..dof), then of the torques
+    let mut spectra =
+        Spectra::new(2 * dof, n, rate).ok_or_else(|| no_spectrum(data, "position", 1))?;
+    let mut joints: Vec<Gathered> = (0..dof)
+        .map(|_| Gathered {
+            position_range: (f64::INFINITY, f64::NEG_INFINITY),
+            torque_range: (f64::INFINITY, f64::NEG_INFINITY),
+            at_limit: 0,
+            at_rest: 0,
         })
-        .collect::<Result<Vec<_>>>()?;
+        .collect();
     // the first pass: spectra, ranges, the torque at its limit, rest by measured velocity
     let mut measured = false;
     for start in (0..n).step_by(block) {
@@ -344,8 +335,8 @@ fn inspect_in(
         measured = part.qd.is_some();
         for (j, g) in joints.iter_mut().enumerate() {
             let (q, tau) = (&part.q[j], &part.tau[j]);
-            g.position.push(q);
-            g.torque.push(tau);
+            spectra.push(j, q);
+            spectra.push(dof + j, tau);
             widen(&mut g.position_range, q);
             widen(&mut g.torque_range, tau);
             if let Some(l) = limit(j) {
@@ -356,19 +347,17 @@ fn inspect_in(
             }
         }
     }
-    let (mut positions, mut torques) = (Vec::with_capacity(dof), Vec::with_capacity(dof));
-    let mut ranges = Vec::with_capacity(dof);
-    let mut counts = Vec::with_capacity(dof);
-    for (j, g) in joints.into_iter().enumerate() {
-        positions.push(
-            g.position
-                .finish()
-                .ok_or_else(|| no_spectrum(data, "position", j + 1))?,
-        );
-        torques.push(g.torque.finish());
-        ranges.push((g.position_range, g.torque_range));
-        counts.push((g.at_limit, g.at_rest));
-    }
+    let mut torques = spectra.finish();
+    let positions = torques
+        .drain(..dof)
+        .enumerate()
+        .map(|(j, s)| s.ok_or_else(|| no_spectrum(data, "position", j + 1)))
+        .collect::<Result<Vec<_>>>()?;
+    let ranges: Vec<_> = joints
+        .iter()
+        .map(|g| (g.position_range, g.torque_range))
+        .collect();
+    let counts: Vec<_> = joints.iter().map(|g| (g.at_limit, g.at_rest)).collect();
     let cutoff = cutoff_of(data, &positions)?;
     // the second pass (and the third, backwards, for velocities from the positions): the
     // torque at its extremes, which needs the torque's range
