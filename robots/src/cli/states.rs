@@ -19,6 +19,15 @@ pub(crate) const STATE_LIMIT: f64 = 1e6;
 /// position column for one joint more than the robot's `dof` is refused: it holds the
 /// states of another robot.
 pub(crate) fn read(path: &Path, names: &[String], dof: usize) -> Result<Table, Error> {
+    refuse_surplus(path, dof)?;
+    let table = read_columns(path, names)?;
+    check(&table, names)?;
+    Ok(table)
+}
+
+/// Refuses a file with a position column for one joint more than the robot's `dof` (what
+/// [`read`] checks first): it holds the states of another robot.
+pub(crate) fn refuse_surplus(path: &Path, dof: usize) -> Result<(), Error> {
     if let Some(column) = surplus_joint(&read_header(path)?, "q{}", dof) {
         return Err(format!(
             "{}: has a column `{column}`, for joint {} of a robot with {dof} joints; give \
@@ -28,9 +37,7 @@ pub(crate) fn read(path: &Path, names: &[String], dof: usize) -> Result<Table, E
         )
         .into());
     }
-    let table = read_columns(path, names)?;
-    check(&table, names)?;
-    Ok(table)
+    Ok(())
 }
 
 /// Checks the state columns of `table` (columns in the order of `names`), and the torque
@@ -38,7 +45,16 @@ pub(crate) fn read(path: &Path, names: &[String], dof: usize) -> Result<Table, E
 /// [`MAX_TORQUE`]: a torque of 1e308 was read and ended the weighted fit with "the WLS
 /// weights is not finite", naming neither the row nor the column.
 pub(crate) fn check(table: &Table, names: &[String]) -> Result<(), Error> {
-    for (column, name) in table.columns.iter().zip(names) {
+    match out_of_range(table, names) {
+        Some((_, _, e)) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// The first value of `table` outside its range, in the first column that has one (the
+/// error of [`check`]), with its column and row.
+pub(crate) fn out_of_range(table: &Table, names: &[String]) -> Option<(usize, usize, Error)> {
+    for (c, (column, name)) in table.columns.iter().zip(names).enumerate() {
         let (limit, range) = if name.starts_with("tau") {
             (MAX_TORQUE, "of a joint torque (+-1e7 N m or N)")
         } else if name.starts_with('q') {
@@ -55,13 +71,17 @@ pub(crate) fn check(table: &Table, names: &[String]) -> Result<(), Error> {
             .find(|(_, x)| !x.is_finite() || x.abs() > limit)
         {
             let line = table.lines.get(k).copied().unwrap_or(0);
-            return Err(format!(
-                "{}:{line}: column `{name}` is {x:e}, outside the range {range}; repair or \
-                 remove this row",
-                table.path.display()
-            )
-            .into());
+            return Some((
+                c,
+                k,
+                format!(
+                    "{}:{line}: column `{name}` is {x:e}, outside the range {range}; repair or \
+                     remove this row",
+                    table.path.display()
+                )
+                .into(),
+            ));
         }
     }
-    Ok(())
+    None
 }
