@@ -330,6 +330,9 @@ mod tests {
         assert!(e.contains("too large for f64"), "{e}");
     }
 
+    /// A change to the fields of a row of a states file, given the row.
+    type Edit = dyn Fn(usize, &mut Vec<String>);
+
     /// The UR5e's state names.
     fn names() -> Vec<String> {
         ["q", "qd", "qdd"]
@@ -387,7 +390,7 @@ mod tests {
         for window in [1, 300, 1000, 4096, 1 << 20] {
             assert_eq!(streamed(&good, window, &base), Ok(want.clone()), "{window}");
         }
-        let cases: Vec<(&str, Box<dyn Fn(usize, &mut Vec<String>)>, Vec<f64>)> = vec![
+        let cases: Vec<(&str, Box<Edit>, Vec<f64>)> = vec![
             (
                 "a later row in an earlier column",
                 Box::new(|r, f| match r {
