@@ -148,6 +148,42 @@ impl Description {
         }
     }
 
+    /// With a URDF: warns about the joints whose torque its own inertials leave without
+    /// gravity (they move only links without mass) or 0 (links without mass or inertia),
+    /// naming the joints, the links and the fix, for the runs that use those inertials
+    /// (`torques`, `emit`): "warning: CAUSE, so {inertials} its torque tau2 is 0 {when};
+    /// give these links `<inertial>` elements with their mass and inertia, {fix}". Nothing
+    /// for a TOML description.
+    pub(crate) fn warn_unloaded(&self, file: &Path, inertials: &str, when: &str, fix: &str) {
+        let unloaded = self.urdf_unloaded();
+        for (joints, empty) in [(&unloaded.massless, false), (&unloaded.empty, true)] {
+            if joints.is_empty() {
+                continue;
+            }
+            let one = joints.len() == 1;
+            let its = if one { "its torque" } else { "their torques" };
+            let (consequence, link_fix) = if empty {
+                (
+                    format!("{} 0 {when}", if one { "is" } else { "are" }),
+                    "give these links `<inertial>` elements with their mass and inertia",
+                )
+            } else {
+                (
+                    format!(
+                        "{} no gravity, only the inertia of these links",
+                        if one { "holds" } else { "hold" }
+                    ),
+                    "give them their masses in their `<inertial>` elements",
+                )
+            };
+            super::out::warn(format_args!(
+                "warning: {}, so {inertials} {its} {} {consequence}; {link_fix}, {fix}",
+                self.unloaded_cause(file, joints, empty),
+                torque_names(joints),
+            ));
+        }
+    }
+
     /// The base parameters of `model` (this description's model) from the URDF's own
     /// `<inertial>` elements, drive terms 0; `None` for a TOML description.
     pub(crate) fn urdf_base_parameters(

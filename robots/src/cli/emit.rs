@@ -124,42 +124,15 @@ fn c(args: &Args) -> Result<(), Error> {
 }
 
 /// With a URDF: warns about the joints whose torque the file's own inertials, which the
-/// code holds as `constant`, leave 0 at every state (they move only links without mass or
-/// inertia) or without gravity (links without mass), as `robid torques` does; the code is
-/// written all the same, since its functions take any parameters.
+/// code holds as `constant`, leave 0 or without gravity ([`Description::warn_unloaded`]);
+/// the code is written all the same, since its functions take any parameters.
 fn warn_unloaded(args: &Args, description: &Description, constant: &str) {
-    let unloaded = description.urdf_unloaded();
-    let fix = "or give the generated functions parameters of your own";
-    for (joints, empty) in [(&unloaded.empty, true), (&unloaded.massless, false)] {
-        if joints.is_empty() {
-            continue;
-        }
-        let (its, is) = if joints.len() == 1 {
-            ("its torque", "is")
-        } else {
-            ("their torques", "are")
-        };
-        let (consequence, link_fix) = if empty {
-            (
-                format!("{is} 0 at every state"),
-                "give these links `<inertial>` elements with their mass and inertia",
-            )
-        } else {
-            (
-                format!(
-                    "{} no gravity, only the inertia of these links",
-                    if is == "is" { "holds" } else { "hold" }
-                ),
-                "give them their masses in their `<inertial>` elements",
-            )
-        };
-        out::warn(format_args!(
-            "warning: {}, so with the URDF's own inertials (`{constant}` in the code) {its} {} \
-             {consequence}; {link_fix}, {fix}",
-            description.unloaded_cause(&args.robot, joints, empty),
-            description::torque_names(joints),
-        ));
-    }
+    description.warn_unloaded(
+        &args.robot,
+        &format!("with the URDF's own inertials (`{constant}` in the code)"),
+        "at every state",
+        "or give the generated functions parameters of your own",
+    );
 }
 
 /// The error `e` of the header path `header` of the C source `source`: a name the user did

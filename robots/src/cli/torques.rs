@@ -52,7 +52,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let n = model.dof();
     let base = description.base_parameters(args.parameters.as_deref(), model)?;
     match &args.parameters {
-        None => warn_unloaded(args, &description),
+        None => description.warn_unloaded(
+            &args.robot,
+            "with the URDF's own inertials",
+            "in every row",
+            "or give --parameters PARAMS.toml (a [standard] or [base] parameter file)",
+        ),
         Some(file) => warn_idle(args, &description, file, model, &base)?,
     }
     let names: Vec<String> = ["q", "qd", "qdd"]
@@ -199,38 +204,9 @@ fn stream(
     }
 }
 
-/// With a URDF's own inertials: warns about the joints whose torque they leave 0 (they
-/// move only links without mass or inertia) or without gravity (links without mass).
-/// The torques are written all the same: they are those of the URDF as written.
-fn warn_unloaded(args: &Args, description: &Description) {
-    let unloaded = description.urdf_unloaded();
-    let fix = "or give --parameters PARAMS.toml (a [standard] or [base] parameter file)";
-    if !unloaded.massless.is_empty() {
-        let joints = &unloaded.massless;
-        let (its, is) = its_is(joints);
-        let holds = if is == "is" { "holds" } else { "hold" };
-        out::warn(format_args!(
-            "warning: {}, so with the URDF's own inertials {its} {} {holds} no gravity, only \
-             the inertia of these links; give them their masses in their `<inertial>` \
-             elements, {fix}",
-            description.unloaded_cause(&args.robot, joints, false),
-            torque_names(joints)
-        ));
-    }
-    if !unloaded.empty.is_empty() {
-        let joints = &unloaded.empty;
-        let (its, is) = its_is(joints);
-        out::warn(format_args!(
-            "warning: {}, so with the URDF's own inertials {its} {} {is} 0 in every row; give \
-             these links `<inertial>` elements with their mass and inertia, {fix}",
-            description.unloaded_cause(&args.robot, joints, true),
-            torque_names(joints)
-        ));
-    }
-}
-
 /// With a parameter file: warns about the joints whose torque its parameters leave 0 at
-/// every state ([`Idle::find`]), as [`warn_unloaded`] does for a URDF's own inertials. The
+/// every state ([`Idle::find`]), as [`Description::warn_unloaded`] does for a URDF's own
+/// inertials. The
 /// torques are written all the same: they are those of the file as written.
 fn warn_idle(
     args: &Args,
