@@ -17,12 +17,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::{Config, Cutoff, Dataset, Record, Sampling};
 use crate::error::{Error, Result};
-use crate::signal::{Spectrum, butterworth_hz};
+use crate::signal::{Spectrum, Welch, butterworth_hz};
 
 mod rest;
-mod spectra;
-
-use spectra::Spectra;
 
 /// Share of the positions' power that defines the motion's bandwidth.
 pub const MOTION_SHARE: f64 = 0.999;
@@ -134,12 +131,12 @@ fn files(data: &dyn Record) -> String {
 /// Samples read at a time for the position spectra of [`suggest_cutoff`].
 const SPECTRUM_BLOCK: usize = 1 << 16;
 
-/// The spectrum of each joint's position in `data`, read block by block ([`Spectra`]: the
-/// spectra of [`crate::signal::Welch`] to the bit), so that a record kept on disk is never held whole.
+/// The spectrum of each joint's position in `data`, read block by block ([`Welch`]), so
+/// that a record kept on disk is never held whole.
 fn position_spectra(data: &dyn Record) -> Result<Vec<Spectrum>> {
     let (n, rate) = (data.samples(), 1.0 / data.sample_time());
     let mut spectra =
-        Spectra::new(data.dof(), n, rate).ok_or_else(|| no_spectrum(data, "position", 1))?;
+        Welch::new(data.dof(), n, rate).ok_or_else(|| no_spectrum(data, "position", 1))?;
     for start in (0..n).step_by(SPECTRUM_BLOCK) {
         let block = data.read(start, start + SPECTRUM_BLOCK)?;
         for (j, q) in block.q.joints().enumerate() {
@@ -319,7 +316,7 @@ fn inspect_in(
     let limit = |j: usize| torque_limits.get(j).copied().flatten();
     // the spectra of the positions (0..dof), then of the torques
     let mut spectra =
-        Spectra::new(2 * dof, n, rate).ok_or_else(|| no_spectrum(data, "position", 1))?;
+        Welch::new(2 * dof, n, rate).ok_or_else(|| no_spectrum(data, "position", 1))?;
     let mut joints: Vec<Gathered> = (0..dof)
         .map(|_| Gathered {
             position_range: (f64::INFINITY, f64::NEG_INFINITY),
