@@ -8,6 +8,7 @@
 //! accuracy for larger single factors.
 
 use crate::error::{Error, Result};
+use crate::signal::passes::Kept;
 use crate::signal::{Signals, Sos, chebyshev1};
 
 /// A chain of decimation stages.
@@ -170,7 +171,12 @@ impl Decimator {
                 block = Some(Vec::new());
                 continue;
             }
-            sos.filtfilt_extended(ext, g)?;
+            // the rows this stage keeps: every q-th of the samples after the pad
+            let kept = Kept {
+                every: *q,
+                first: pad % *q,
+            };
+            sos.filtfilt_extended(ext, g, kept)?;
             let n = ext.len() / g - 2 * pad;
             let mut kept = Vec::with_capacity(n.div_ceil(*q) * g);
             for row in ext[pad * g..(pad + n) * g].chunks_exact(g).step_by(*q) {

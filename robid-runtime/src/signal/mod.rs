@@ -4,7 +4,7 @@
 mod decimate;
 mod design;
 mod diff;
-mod passes;
+pub(crate) mod passes;
 mod rest;
 mod savgol;
 mod signals;

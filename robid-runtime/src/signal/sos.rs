@@ -6,6 +6,7 @@
 //! sample, transposed direct form II in each section.
 
 use crate::error::{Error, Result};
+use crate::signal::passes::Kept;
 
 /// A cascade of second-order sections, each `[b0, b1, b2, a0, a1, a2]` with `a0 = 1`.
 #[derive(Debug, Clone, PartialEq)]
@@ -120,7 +121,7 @@ impl Sos {
                 ext[(outer + r) * g + c] = value(r);
             }
         }
-        self.filtfilt_extended(&mut ext, g)?;
+        self.filtfilt_extended(&mut ext, g, Kept::ALL)?;
         Ok((0..g)
             .map(|c| (0..n).map(|k| ext[(outer + pad + k) * g + c]).collect())
             .collect())
@@ -189,7 +190,7 @@ impl Sos {
         work.clear();
         work.resize(n + 2 * pad, 0.0);
         work[pad..pad + n].copy_from_slice(x);
-        self.filtfilt_extended(work, 1)?;
+        self.filtfilt_extended(work, 1, Kept::ALL)?;
         out.copy_from_slice(&work[pad..pad + n]);
         Ok(())
     }
@@ -208,7 +209,7 @@ impl Sos {
         let pad = self.check_length(n)?;
         let mut ext = vec![0.0; (n + 2 * pad) * g];
         ext[pad * g..(pad + n) * g].copy_from_slice(block);
-        self.filtfilt_extended(&mut ext, g)?;
+        self.filtfilt_extended(&mut ext, g, Kept::ALL)?;
         block.copy_from_slice(&ext[pad * g..(pad + n) * g]);
         Ok(())
     }
@@ -229,8 +230,9 @@ impl Sos {
 
     /// Zero-phase filtering of `g` channels held in `ext` (row-major) with
     /// [`Sos::pad_length`] free rows before and after the data rows: the pads are
-    /// filled with the odd extension, then filtered forward and backward in place.
-    pub(crate) fn filtfilt_extended(&self, ext: &mut [f64], g: usize) -> Result<()> {
+    /// filled with the odd extension, then filtered forward and backward in place (the
+    /// backward pass stores the rows `kept` only: the others are left forward-filtered).
+    pub(crate) fn filtfilt_extended(&self, ext: &mut [f64], g: usize, kept: Kept) -> Result<()> {
         let pad = self.pad_length();
         let rows = ext.len() / g;
         let n = rows.saturating_sub(2 * pad);
@@ -251,7 +253,7 @@ impl Sos {
             }
         }
         let zi = self.steady_state();
-        super::passes::passes(&self.sections, &zi, ext, g);
+        super::passes::passes(&self.sections, &zi, ext, g, kept);
         Ok(())
     }
 }
