@@ -10,10 +10,8 @@
 //! the same values) and backward from the state the later blocks left. The odd
 //! extensions at both ends are [`Sos::filtfilt`]'s own (its `pad_length` samples).
 //!
-//! The passes repeat the arithmetic of `signal::passes` for one channel (fused
-//! multiply-adds where that module uses them, on x86-64 with AVX2 and FMA), since
-//! `signal` has no public pass from a given state; the test
-//! `inspect::tests::streamed_inspection_equals_the_whole_record_s` holds them equal.
+//! Each pass is [`Sos::pass`], the operations of [`Sos::filtfilt`] on this processor
+//! carried from block to block.
 //!
 //! [`central_difference`]: crate::signal::central_difference
 
@@ -24,80 +22,10 @@ use crate::signal::Sos;
 /// The section states of a cascade, each `[p, q]` of the transposed direct form II.
 type State = Vec<[f64; 2]>;
 
-/// One joint's cascade and its passes.
-struct Cascade<'a> {
-    sections: &'a [[f64; 6]],
-    zi: &'a [[f64; 2]],
-    fused: bool,
-}
-
-impl Cascade<'_> {
-    /// The steady state for a constant input `x` (where each pass starts).
-    fn steady(&self, x: f64) -> State {
-        self.zi.iter().map(|z| [z[0] * x, z[1] * x]).collect()
-    }
-
-    /// `x` filtered in place in the order of its samples (`backward`: from its last one),
-    /// from and to `state`.
-    fn run(&self, state: &mut State, x: &mut [f64], backward: bool) {
-        #[cfg(target_arch = "x86_64")]
-        if self.fused {
-            // SAFETY: `fused` is set only when the CPU has AVX2 and FMA
-            // (`crate::trig::vector_available`), the features `run_fused` is compiled for.
-            unsafe { run_fused(self.sections, state, x, backward) };
-            return;
-        }
-        run_with::<false>(self.sections, state, x, backward);
-    }
-}
-
-/// [`run_with`] fused, compiled for AVX2 and FMA (as `signal::passes` filters one channel).
-///
-/// # Safety
-/// The CPU must support AVX2 and FMA.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn run_fused(sections: &[[f64; 6]], state: &mut State, x: &mut [f64], backward: bool) {
-    run_with::<true>(sections, state, x, backward);
-}
-
-/// The samples of `x` through every section in turn, in order or from the last.
-#[inline(always)]
-fn run_with<const FUSED: bool>(
-    sections: &[[f64; 6]],
-    state: &mut State,
-    x: &mut [f64],
-    backward: bool,
-) {
-    let mut step = |v: &mut f64| {
-        let mut cur = *v;
-        for (s, [p, q]) in sections.iter().zip(state.iter_mut()) {
-            cur = section::<FUSED>(s, cur, p, q);
-        }
-        *v = cur;
-    };
-    if backward {
-        x.iter_mut().rev().for_each(&mut step);
-    } else {
-        x.iter_mut().for_each(&mut step);
-    }
-}
-
-/// One sample through one section, as `signal::passes::section` computes it.
-#[inline(always)]
-fn section<const FUSED: bool>(section: &[f64; 6], x: f64, p: &mut f64, q: &mut f64) -> f64 {
-    let [b0, b1, b2, _, a1, a2] = *section;
-    if FUSED {
-        let out = b0.mul_add(x, *p);
-        *p = b1.mul_add(x, (-a1).mul_add(out, *q));
-        *q = b2.mul_add(x, -a2 * out);
-        out
-    } else {
-        let out = b0 * x + *p;
-        *p = b1 * x - a1 * out + *q;
-        *q = b2 * x - a2 * out;
-        out
-    }
+/// The steady state of the cascade whose per-unit steady state is `zi`, for a constant
+/// input `x` (where each pass starts).
+fn steady(zi: &[[f64; 2]], x: f64) -> State {
+    zi.iter().map(|z| [z[0] * x, z[1] * x]).collect()
 }
 
 /// Per joint, the samples of `data` whose velocity (the positions through `sos` forward
@@ -145,11 +73,6 @@ pub(super) fn velocities(
     }
     let block = block.max(1);
     let zi = sos.steady_state();
-    let cascade = Cascade {
-        sections: sos.sections(),
-        zi: &zi,
-        fused: cfg!(target_arch = "x86_64") && crate::trig::vector_available(),
-    };
     // the odd extensions at both ends, as `Sos::filtfilt_extended` writes them
     let head = data.read(0, pad + 1)?;
     let tail = data.read(n - pad - 1, n)?;
@@ -170,15 +93,15 @@ pub(super) fn velocities(
     let starts: Vec<usize> = (0..n).step_by(block).collect();
     // the forward pass: each joint's state at each block's start
     let mut states: Vec<Vec<State>> = Vec::with_capacity(starts.len());
-    let mut forward: Vec<State> = front.iter().map(|f| cascade.steady(f[0])).collect();
+    let mut forward: Vec<State> = front.iter().map(|f| steady(&zi, f[0])).collect();
     for (f, s) in front.iter().zip(forward.iter_mut()) {
-        cascade.run(s, &mut f.clone(), false);
+        sos.pass(s, &mut f.clone(), false);
     }
     for &start in &starts {
         states.push(forward.clone());
         let part = data.read(start, start + block)?;
         for (x, s) in part.q.joints().zip(forward.iter_mut()) {
-            cascade.run(s, &mut x.to_vec(), false);
+            sos.pass(s, &mut x.to_vec(), false);
         }
         visit(&part);
     }
@@ -186,9 +109,9 @@ pub(super) fn velocities(
     let mut backward: Vec<State> = Vec::with_capacity(dof);
     for (b, s) in back.iter().zip(forward.iter_mut()) {
         let mut b = b.clone();
-        cascade.run(s, &mut b, false);
-        let mut state = cascade.steady(b[pad - 1]);
-        cascade.run(&mut state, &mut b, true);
+        sos.pass(s, &mut b, false);
+        let mut state = steady(&zi, b[pad - 1]);
+        sos.pass(&mut state, &mut b, true);
         backward.push(state);
     }
     // the blocks from the last: filtered, then differentiated where both neighbours are
@@ -200,8 +123,8 @@ pub(super) fn velocities(
         let part = data.read(start, start + block)?;
         for (j, (x, mut s)) in part.q.joints().zip(state).enumerate() {
             let mut y = x.to_vec();
-            cascade.run(&mut s, &mut y, false);
-            cascade.run(&mut backward[j], &mut y, true);
+            sos.pass(&mut s, &mut y, false);
+            sos.pass(&mut backward[j], &mut y, true);
             let len = y.len();
             y.extend_from_slice(&later[j]);
             // sample start + k for k in 1..=len, where it exists (central_difference)

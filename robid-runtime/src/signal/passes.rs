@@ -271,6 +271,53 @@ fn lane_rows<const S: usize, const W: usize>(
     *state = [p, q];
 }
 
+/// One channel `x` through the cascade `sections` from and to the section states
+/// `state` (each `[p, q]`), in the order of its samples or from the last (`backward`), in
+/// place: the operations [`passes`] applies to each channel on this processor (fused where
+/// it fuses them), so that a zero-phase filter run block by block, its states carried from
+/// block to block, gives [`Sos::filtfilt`](super::Sos::filtfilt)'s values to the bit.
+pub(crate) fn pass(sections: &[[f64; 6]], state: &mut [[f64; 2]], x: &mut [f64], backward: bool) {
+    #[cfg(target_arch = "x86_64")]
+    if crate::trig::vector_available() {
+        // SAFETY: the CPU has AVX2 and FMA, the features `pass_fused` is compiled for.
+        unsafe { pass_fused(sections, state, x, backward) };
+        return;
+    }
+    pass_with::<false>(sections, state, x, backward);
+}
+
+/// [`pass_with`] fused, compiled for AVX2 and FMA.
+///
+/// # Safety
+/// The CPU must support AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn pass_fused(sections: &[[f64; 6]], state: &mut [[f64; 2]], x: &mut [f64], backward: bool) {
+    pass_with::<true>(sections, state, x, backward);
+}
+
+/// The samples of `x` through every section in turn, in order or from the last.
+#[inline(always)]
+fn pass_with<const FUSED: bool>(
+    sections: &[[f64; 6]],
+    state: &mut [[f64; 2]],
+    x: &mut [f64],
+    backward: bool,
+) {
+    let mut step = |v: &mut f64| {
+        let mut cur = *v;
+        for (s, [p, q]) in sections.iter().zip(state.iter_mut()) {
+            cur = section::<FUSED>(s, cur, p, q);
+        }
+        *v = cur;
+    };
+    if backward {
+        x.iter_mut().rev().for_each(&mut step);
+    } else {
+        x.iter_mut().for_each(&mut step);
+    }
+}
+
 /// The passes section by section over every channel of a row (any number of sections),
 /// fused or not (unfused, the operations of [`Sos::filtfilt`](super::Sos::filtfilt)).
 #[inline(always)]

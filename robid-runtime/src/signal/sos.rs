@@ -158,6 +158,15 @@ impl Sos {
         }
     }
 
+    /// One pass of a zero-phase filter over `x` in place, from and to the section states
+    /// `state` ([`Sos::steady_state`] times the first sample where a pass starts), in the
+    /// order of its samples or from the last (`backward`): the operations of
+    /// [`Sos::filtfilt`] on this processor, so that a filter run block by block with its
+    /// states carried gives its values to the bit.
+    pub(crate) fn pass(&self, state: &mut [[f64; 2]], x: &mut [f64], backward: bool) {
+        super::passes::pass(&self.sections, state, x, backward);
+    }
+
     /// Zero-phase filtering (as `scipy.signal.sosfiltfilt`); `x` needs more than
     /// [`Sos::pad_length`] samples.
     pub fn filtfilt(&self, x: &[f64]) -> Result<Vec<f64>> {
