@@ -132,7 +132,13 @@ pub(super) fn fit(axes: &[Axis]) -> Fit {
                     let there = add(next.point, scale(w, t));
                     let gap = sub(there, here);
                     reach[j] = norm(sub(here, axes[j].point));
-                    let x = if norm(gap) > ZERO_LENGTH {
+                    // the feet lie |s| and |t| from the joints' points, and their
+                    // difference keeps only that many ulps: a gap within them is axes that
+                    // meet (nearly parallel ones far away), not a direction
+                    let rounding = 16.0
+                        * f64::EPSILON
+                        * (s.abs() + t.abs() + norm(axes[j].point) + norm(next.point));
+                    let x = if norm(gap) > ZERO_LENGTH.max(rounding) {
                         unit(gap)
                     } else {
                         let x = unit(normal);
@@ -171,7 +177,7 @@ pub(super) fn fit(axes: &[Axis]) -> Fit {
         .map(|j| {
             let t = frames[j - 1].inverse().then(&frames[j]);
             if j >= 2 && moved[j - 2] {
-                general_row(&t)
+                general_row(&t, reach[j - 2])
             } else {
                 let [alpha, a, d, theta] = row(&t);
                 [alpha, a, d, theta, 0.0]
@@ -195,8 +201,10 @@ fn chain_size(axes: &[Axis]) -> f64 {
 
 /// `[alpha, a, d, theta, b]` of Tz(b) Rx(alpha) Tx(a) Rz(theta) Tz(d) = `t`, for a frame
 /// j-1 whose origin was moved off the foot of the common normal: `b` takes it back there
-/// along z_(j-1), `d` comes from the foot on axis j to frame j's origin.
-fn general_row(t: &Rigid) -> [f64; 5] {
+/// along z_(j-1), `d` comes from the foot on axis j to frame j's origin. The feet lie
+/// `reach` (m) from the joints, and `a`, the common normal's length, keeps only about 2^-52
+/// times that: below 16 times that it is the 0 of axes that meet.
+fn general_row(t: &Rigid, reach: f64) -> [f64; 5] {
     let alpha = snap(f64::atan2(-t.r[1][2], t.r[2][2]));
     let theta = snap(f64::atan2(-t.r[0][1], t.r[0][0]));
     let (s, c) = super::rigid::sin_cos(alpha);
@@ -207,7 +215,12 @@ fn general_row(t: &Rigid) -> [f64; 5] {
     }
     let d = -t.p[1] / s;
     let b = t.p[2] - c * d;
-    [alpha, zero_small(a), zero_small(d), theta, zero_small(b)]
+    let a = if a.abs() < 16.0 * f64::EPSILON * reach {
+        0.0
+    } else {
+        zero_small(a)
+    };
+    [alpha, a, zero_small(d), theta, zero_small(b)]
 }
 
 /// `[alpha, a, d, theta]` of Rx(alpha) Tx(a) Rz(theta) Tz(d) = `t`.

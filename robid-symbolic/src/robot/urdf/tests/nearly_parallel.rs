@@ -12,8 +12,10 @@ const INERTIAL: &str = r#"<inertial><origin xyz="0.1 0.02 0.03" rpy="0.1 0.2 0.3
 /// A UR-like arm: shoulder pan, then shoulder lift, elbow and wrist 1 parallel as a
 /// nominal UR's, but the elbow rolled by `skew` rad and placed 5 mm off the lift axis's
 /// plane, as a calibration writes it (the common normal of the lift and elbow axes then
-/// lies about 0.005 / `skew` m from them), then wrist 2 at a right angle.
-fn calibrated(skew: f64) -> String {
+/// lies about 0.005 / `skew` m from them), then wrist 2 at a right angle. With `meeting`,
+/// the elbow is instead pitched by `skew` towards the lift axis, in their plane, as the UR5
+/// of example-robot-data with its elbow rolled: the two axes meet about 0.4 / `skew` m away.
+fn calibrated(skew: f64, meeting: bool) -> String {
     let limit = r#"<limit lower="-3" upper="3" effort="100" velocity="2"/>"#;
     let joint = |name: &str, parent: &str, child: &str, origin: &str| {
         format!(
@@ -24,7 +26,13 @@ fn calibrated(skew: f64) -> String {
     for l in 1..=5 {
         text += &format!(r#"<link name="l{l}">{INERTIAL}</link>"#);
     }
-    text += &joint("pan", "base", "l1", r#"xyz="0 0 0.1""#);
+    // where the axes meet, the arm turned on its base by no right angle, so that no
+    // direction is exact
+    let pan = match meeting {
+        false => r#"xyz="0 0 0.1""#,
+        true => r#"xyz="0 0 0.1" rpy="0.3 -0.2 0.1""#,
+    };
+    text += &joint("pan", "base", "l1", pan);
     text += &joint(
         "lift",
         "l1",
@@ -35,7 +43,10 @@ fn calibrated(skew: f64) -> String {
         "elbow",
         "l2",
         "l3",
-        &format!(r#"xyz="0.4 0.005 0" rpy="{skew} 0 0""#),
+        &match meeting {
+            false => format!(r#"xyz="0.4 0.005 0" rpy="{skew} 0 0""#),
+            true => format!(r#"xyz="0.4 0 0" rpy="0 {skew} 0""#),
+        },
     );
     text += &joint(
         "wrist_1",
@@ -128,11 +139,13 @@ const NAMES: [&str; 5] = ["pan", "lift", "elbow", "wrist_1", "wrist_2"];
 /// those origins) equal the direct ones to 1e-12 of the largest, or where the common normal
 /// lies farther than 1 km, to 16 x 2^-52 of its distance over a metre (measured: 4e-13 at
 /// 1e-6 rad, 3.7e-11 at 1e-7 rad, 3.4e-11 at 2e-8 rad).
-fn check(skew: f64) -> f64 {
-    // the elbow row's b and d are about the common normal's distance, 0.005 / skew m, and
-    // f64 keeps their sum to 2^-52 of it (docs/urdf.md#fitting-the-dh-table)
-    let digits = 1e-12_f64.max(8.0 * f64::EPSILON * 0.005 / skew);
-    let text = calibrated(skew);
+fn check(skew: f64, meeting: bool) -> f64 {
+    // the elbow row's b and d are about the common normal's distance, 0.005 / skew m (0.4 /
+    // skew m where the axes meet), and f64 keeps their sum to 2^-52 of it
+    // (docs/urdf.md#fitting-the-dh-table)
+    let far = if meeting { 0.4 } else { 0.005 } / skew;
+    let digits = 1e-12_f64.max(8.0 * f64::EPSILON * far);
+    let text = calibrated(skew, meeting);
     let chain = Robot::from_urdf(&text, "calibrated.urdf", &ChainSelection::default())
         .unwrap_or_else(|e| panic!("skew {skew}: {e}"));
     let joints = direct_joints(&text);
@@ -184,7 +197,22 @@ fn a_calibrated_arm_keeps_its_frames_near_its_joints_and_its_torques() {
     // (bounds::ANGLE_RESOLUTION) the elbow row is a calibrated pair (bounds::calibrated_pair),
     // down to 2e-8 rad (`rpy` values below 1e-8 rad are taken as 0, the angle rule)
     for skew in [2e-5, 1.0000001e-5, 1e-6, 1e-7, 2e-8] {
-        check(skew);
+        check(skew, false);
+    }
+}
+
+/// The same arm with the lift and elbow axes meeting far away (the common normal of zero
+/// length there): the feet of the normal on both axes are computed about 0.4 / `skew` m
+/// from the joints, so their difference is rounding of about 2^-52 times that, not a
+/// direction. Taken as one once (x along that rounding, nearly along the axes), it gave the
+/// elbow row an `a` and `d` of 1e-9 to 8e-7 m, refused as shorter than 1 µm, at 10 of 31
+/// skews between 1e-8 and 1e-4 rad of the UR5's elbow.
+#[test]
+fn a_calibrated_arm_whose_nearly_parallel_axes_meet_far_away() {
+    for skew in [
+        5.412e-5, 1.848e-6, 2.512e-6, 2.929e-7, 3.981e-7, 5.412e-7, 7.356e-7, 1e-7, 5e-8,
+    ] {
+        check(skew, true);
     }
 }
 
@@ -192,7 +220,7 @@ fn a_calibrated_arm_keeps_its_frames_near_its_joints_and_its_torques() {
 fn the_direct_newton_euler_agrees_on_the_nominal_arm() {
     // the same check with the axes exactly parallel, which robid always fitted with
     // frames at the common normals (no b): the direct computation is the reference
-    check(0.0);
+    check(0.0, false);
 }
 
 /// Skew axes at an ordinary angle (5 to 45 degrees, 0.1 m apart) whose common normal's foot
