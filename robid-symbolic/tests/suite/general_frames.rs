@@ -5,7 +5,8 @@
 //! the standard regressor and regrouped torques equal the unregrouped ones; the interpreted
 //! customised programs (inverse dynamics, base regressor, mass matrix, gravity, Coriolis)
 //! equal the Lagrange-Euler expressions; a wall mount equals a rotated gravity; explicit
-//! zeros change nothing.
+//! zeros change nothing; random tables of either convention, with symbols, whose last link
+//! is written in its parent's frame, give the Lagrange-Euler model.
 
 use robid_core::ProgramKind;
 use robid_core::rng::Rng;
@@ -410,6 +411,125 @@ fn symbolic_gamma_b_and_base() {
         let id = run(&programs[ProgramKind::InverseDynamics], &inputs);
         for j in 0..n {
             close(id[j], tau[j], &format!("joint {j}: inverse dynamics"));
+        }
+    }
+}
+
+/// A random table of 2 or 3 joints in either convention whose last joint is revolute about
+/// a coordinate axis of its parent's frame (the case where the customised Newton-Euler
+/// writes the last link in its parent's frame and takes entries of its `U` from the
+/// parent's, docs/dynamics.md#customised-newton-euler), the joint before it prismatic now
+/// and then, lengths numbers or symbols, every drive term but `Fo`.
+fn random_tip(seed: u64) -> String {
+    let mut rng = Rng::from_state(seed);
+    let convention = ["modified", "standard"][rng.below(2)];
+    let quarter = |rng: &mut Rng| ["0", "\"pi/2\"", "\"-pi/2\"", "\"pi\""][rng.below(4)];
+    let mut symbols = String::new();
+    let mut length = |rng: &mut Rng, name: String| match rng.below(3) {
+        0 => "0".to_owned(),
+        1 => format!("{:.3}", rng.uniform(-0.5, 0.5)),
+        _ => {
+            symbols += &format!("{name} = {:.3}\n", rng.uniform(0.2, 0.8));
+            format!("\"{name}\"")
+        }
+    };
+    let dof = 2 + rng.below(2);
+    let mut rows = String::new();
+    for j in 1..=dof {
+        let kind = if j + 1 == dof && rng.below(2) == 0 {
+            "prismatic"
+        } else {
+            "revolute"
+        };
+        let alpha = if j == dof || rng.below(2) == 0 {
+            quarter(&mut rng).to_owned()
+        } else {
+            format!("{:.3}", rng.uniform(-3.0, 3.0))
+        };
+        let (a, d) = (
+            length(&mut rng, format!("A{j}")),
+            length(&mut rng, format!("D{j}")),
+        );
+        let theta = quarter(&mut rng);
+        rows += &format!(
+            "[[joints]]\ntype = \"{kind}\"\nalpha = {alpha}\na = {a}\nd = {d}\ntheta = {theta}\n"
+        );
+    }
+    format!(
+        "name = \"tip\"\nconvention = \"{convention}\"\ndrive = [\"Ia\", \"Fv\", \"Fc\"]\n\
+         gravity = [0.5, -1.0, -9.81]\n{rows}[symbols]\n{symbols}"
+    )
+}
+
+/// The interpreted programs of [`random_tip`] robots equal the Lagrange-Euler model.
+#[test]
+fn last_links_in_their_parents_frame_equal_lagrange_euler() {
+    for seed in 0..40 {
+        let text = random_tip(seed);
+        let robot = Robot::from_toml(&text, "tip.toml").unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let programs = RobotPrograms::derive(&robot).unwrap();
+        let geometry: Vec<f64> = robot.symbols().iter().map(|(_, v)| v.unwrap()).collect();
+        let mut d = Derivation::new(&robot);
+        let symbols = d.parameter_symbols();
+        let le = d.lagrange(&symbols);
+        let n = robot.dof();
+        let mut rng = Rng::from_state(seed ^ 0x71B);
+        for _ in 0..3 {
+            let p: Vec<f64> = (0..symbols.len()).map(|_| rng.uniform(-1.0, 1.0)).collect();
+            let mut names: Vec<(String, f64)> = Vec::new();
+            let (mut q, mut qd, mut qdd) = (Vec::new(), Vec::new(), Vec::new());
+            for j in 1..=n {
+                q.push(rng.uniform(-3.0, 3.0));
+                qd.push(rng.uniform(0.2, 2.0) * [-1.0, 1.0][rng.below(2)]);
+                qdd.push(rng.uniform(-3.0, 3.0));
+                names.push((format!("q{j}"), q[j - 1]));
+                names.push((format!("qd{j}"), qd[j - 1]));
+                names.push((format!("qdd{j}"), qdd[j - 1]));
+            }
+            for (id, v) in robot.standard_parameters().iter().zip(&p) {
+                names.push((id.to_string(), *v));
+            }
+            for (s, v) in robot.symbols() {
+                names.push((s.clone(), v.unwrap()));
+            }
+            let pairs: Vec<(&str, f64)> = names.iter().map(|(s, v)| (s.as_str(), *v)).collect();
+            let values = d.arena.values(&pairs);
+            let mut roots = le.torques.clone();
+            roots.extend(le.mass_matrix.iter().flatten());
+            roots.extend(&le.gravity);
+            roots.extend(&le.coriolis);
+            let v = d.arena.eval(&roots, &values).unwrap();
+            let (tau, rest) = v.split_at(n);
+            let (mass, rest) = rest.split_at(n * n);
+            let (gravity, coriolis) = rest.split_at(n);
+            let base = run(
+                &programs[ProgramKind::BaseFromStandard],
+                &[("standard", &p), ("geometry", &geometry)],
+            );
+            let inputs: [(&str, &[f64]); 5] = [
+                ("q", &q),
+                ("qd", &qd),
+                ("qdd", &qdd),
+                ("base", &base),
+                ("geometry", &geometry),
+            ];
+            let id = run(&programs[ProgramKind::InverseDynamics], &inputs);
+            let yb = run(&programs[ProgramKind::BaseRegressor], &inputs);
+            let m = run(&programs[ProgramKind::MassMatrix], &inputs);
+            let g = run(&programs[ProgramKind::Gravity], &inputs);
+            let c = run(&programs[ProgramKind::Coriolis], &inputs);
+            let nb = base.len();
+            for j in 0..n {
+                let what = |w: &str| format!("seed {seed}, joint {j}: {w}\n{text}");
+                close(id[j], tau[j], &what("inverse dynamics"));
+                let ybb: f64 = (0..nb).map(|k| yb[j * nb + k] * base[k]).sum();
+                close(ybb, tau[j], &what("base regressor times base"));
+                close(g[j], gravity[j], &what("gravity"));
+                close(c[j], coriolis[j], &what("Coriolis"));
+                for k in 0..n {
+                    close(m[j * n + k], mass[j * n + k], &what("mass matrix"));
+                }
+            }
         }
     }
 }
