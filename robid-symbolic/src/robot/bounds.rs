@@ -55,10 +55,11 @@ pub const ANGLE_RESOLUTION: f64 = 1e-5;
 pub const MAX_CALIBRATED_LENGTH: f64 = 1e9;
 
 /// Whether a modified-DH row with these numeric `alpha`, `b` and `d` is a calibrated pair of
-/// nearly parallel axes: a twist within 1e-2 rad of 0 or pi (its sine below 1e-2), `b` and `d`
-/// both beyond [`MAX_LENGTH`] and at most [`MAX_CALIBRATED_LENGTH`] in magnitude, nearly
+/// nearly parallel axes: a twist within 1e-2 rad of 0 or pi (its sine below 1e-2), `b` or `d`
+/// beyond [`MAX_LENGTH`] and both at most [`MAX_CALIBRATED_LENGTH`] in magnitude, nearly
 /// cancelling, so that the row's frame origin lies within [`MAX_LENGTH`] of the previous
-/// one (`|b + d cos(alpha)|` and `|d sin(alpha)|`). Two axes `theta` rad from parallel and
+/// one (`|b + d cos(alpha)|` and `|d sin(alpha)|`; one of them may then be just within
+/// [`MAX_LENGTH`], by the frame's offset along the axes). Two axes `theta` rad from parallel and
 /// `L` apart have their common normal about `L / theta` from the joints, so a calibration
 /// of an arm's parallel axes (skews of 1e-6 to 1e-3 rad, as a URDF fitted to a measured
 /// robot writes them) has such rows; robid fits them from a URDF
@@ -76,10 +77,11 @@ pub const MAX_CALIBRATED_LENGTH: f64 = 1e9;
 /// ```
 pub fn calibrated_pair(alpha: f64, b: f64, d: f64) -> bool {
     let (s, c) = alpha.sin_cos();
-    let long = |x: f64| x.abs() > MAX_LENGTH && x.abs() <= MAX_CALIBRATED_LENGTH;
+    let kept = |x: f64| x.abs() <= MAX_CALIBRATED_LENGTH;
     s.abs() < 1e-2
-        && long(b)
-        && long(d)
+        && (b.abs() > MAX_LENGTH || d.abs() > MAX_LENGTH)
+        && kept(b)
+        && kept(d)
         && (b + d * c).abs() <= MAX_LENGTH
         && (d * s).abs() <= MAX_LENGTH
 }

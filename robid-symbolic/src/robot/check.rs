@@ -497,7 +497,7 @@ pub(super) fn show(v: f64) -> String {
 enum Pair {
     /// A [calibrated pair](calibrated_pair): its values are measured.
     Calibrated,
-    /// A twist within 1e-2 rad of 0 or pi and `b` and `d` beyond [`MAX_LENGTH`] that do not
+    /// A twist within 1e-2 rad of 0 or pi and `b` or `d` beyond [`MAX_LENGTH`] that do not
     /// make a calibrated pair: the row's frame origin is this far (m) from the previous one.
     Broken(f64),
     /// Anything else.
@@ -518,7 +518,7 @@ impl Pair {
         let (s, c) = alpha.sin_cos();
         if calibrated_pair(alpha, b, d) {
             Pair::Calibrated
-        } else if s.abs() < 1e-2 && b.abs() > MAX_LENGTH && d.abs() > MAX_LENGTH {
+        } else if s.abs() < 1e-2 && (b.abs() > MAX_LENGTH || d.abs() > MAX_LENGTH) {
             Pair::Broken((b + d * c).hypot(d * s))
         } else {
             Pair::None

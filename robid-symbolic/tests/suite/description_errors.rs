@@ -625,12 +625,25 @@ fn a_calibrated_pair_of_nearly_parallel_axes_is_accepted_and_nothing_else() {
     assert_eq!(robot.joints()[1].b.as_str(), "-100000.05");
     // near pi too (b and d then have the same sign)
     assert!(Robot::from_toml(&row("3.1415916535897934", "1e5", "1e5"), "arm.toml").is_ok());
+    // the frame 0.05 m along the axes: at 1e-4 rad near pi, d is just beyond 1 km and b
+    // just within it (both were asked to be beyond, and near 0 the same arm was accepted)
+    for (alpha, b, d) in [
+        ("3.141492653589793", "-999.9500016666", "-1000.0000016666"),
+        ("1e-4", "1000.0500001666", "-1000.0000001666"),
+    ] {
+        Robot::from_toml(&row(alpha, b, d), "arm.toml").unwrap_or_else(|e| panic!("{e}"));
+    }
     let refused = |text: &str, says: &[&str]| {
         let all = errors(text).join("\n");
         for part in says {
             assert!(all.contains(part), "`{part}` not in {all}");
         }
     };
+    // only one long length, the frame 5 km away: told the rule
+    refused(
+        &row("1e-6", "0", "5000"),
+        &["8:5: joint 2 `d` = 5000 is beyond ±1000 m", "(here 5000 m)"],
+    );
     // the same lengths not cancelling: the frame 200 km away; each value told
     refused(
         &row("1e-6", "100000", "100000"),
