@@ -8,7 +8,7 @@ use std::path::Path;
 use robid_runtime::Model;
 use robid_runtime::data::ParameterFile;
 use robid_symbolic::robot::{ChainSelection, DriveTerm, UrdfChain};
-use robid_symbolic::{DescriptionError, Drive, Robot};
+use robid_symbolic::{DescriptionError, Drive, JointKind, Robot};
 
 use super::{Error, out};
 
@@ -79,9 +79,11 @@ impl Description {
 
     /// With a URDF's own inertials, the joints (numbered from 1) whose torque they leave
     /// out: `empty`, those that move only links without mass or inertia (their torque is 0
-    /// at every state), and `massless`, the others that move only links without mass
-    /// (their torque holds no gravity). Each is a run of joints up to the last, since a
-    /// joint moves every link after it. Both empty for a TOML description.
+    /// at every state), `sliding`, the other prismatic joints that move only links without
+    /// mass (their force is 0 at every state: it holds only the masses it moves), and
+    /// `massless`, the other revolute joints that move only links without mass (their
+    /// torque holds no gravity). Each is a run of joints up to the last, since a joint
+    /// moves every link after it. All empty for a TOML description.
     pub(crate) fn urdf_unloaded(&self) -> Unloaded {
         let Some(chain) = &self.urdf else {
             return Unloaded::default();
@@ -100,10 +102,17 @@ impl Description {
         let massless_from = first(&|i| i[9] == 0.0);
         let n = chain.links.len();
         let empty: Vec<usize> = empty_from.map_or(Vec::new(), |j| (j..=n).collect());
-        let massless = massless_from.map_or(Vec::new(), |j| {
-            (j..=n).filter(|j| !empty.contains(j)).collect()
-        });
-        Unloaded { empty, massless }
+        let (sliding, massless) = massless_from
+            .map_or(Vec::new(), |j| {
+                (j..=n).filter(|j| !empty.contains(j)).collect()
+            })
+            .into_iter()
+            .partition(|&j| self.robot.joints()[j - 1].kind == JointKind::Prismatic);
+        Unloaded {
+            empty,
+            sliding,
+            massless,
+        }
     }
 
     /// The cause, as in "joint 2 (`j2`) of FILE moves only links without mass or inertia:
@@ -156,26 +165,40 @@ impl Description {
     /// for a TOML description.
     pub(crate) fn warn_unloaded(&self, file: &Path, inertials: &str, when: &str, fix: &str) {
         let unloaded = self.urdf_unloaded();
-        for (joints, empty) in [(&unloaded.massless, false), (&unloaded.empty, true)] {
+        let kinds = [
+            (&unloaded.massless, Kind::Massless),
+            (&unloaded.sliding, Kind::Sliding),
+            (&unloaded.empty, Kind::Empty),
+        ];
+        for (joints, kind) in kinds {
             if joints.is_empty() {
                 continue;
             }
             let one = joints.len() == 1;
-            let its = if one { "its torque" } else { "their torques" };
-            let (consequence, link_fix) = if empty {
-                (
-                    format!("{} 0 {when}", if one { "is" } else { "are" }),
+            let is = if one { "is" } else { "are" };
+            let (its, consequence, link_fix) = match kind {
+                Kind::Empty => (
+                    if one { "its torque" } else { "their torques" },
+                    format!("{is} 0 {when}"),
                     "give these links `<inertial>` elements with their mass and inertia",
-                )
-            } else {
-                (
+                ),
+                Kind::Sliding => (
+                    if one { "its force" } else { "their forces" },
+                    format!(
+                        "{is} 0 {when} (a sliding joint's force holds only the masses it moves)"
+                    ),
+                    "give them their masses in their `<inertial>` elements",
+                ),
+                Kind::Massless => (
+                    if one { "its torque" } else { "their torques" },
                     format!(
                         "{} no gravity, only the inertia of these links",
                         if one { "holds" } else { "hold" }
                     ),
                     "give them their masses in their `<inertial>` elements",
-                )
+                ),
             };
+            let empty = kind == Kind::Empty;
             super::out::warn(format_args!(
                 "warning: {}, so {inertials} {its} {} {consequence}; {link_fix}, {fix}",
                 self.unloaded_cause(file, joints, empty),
@@ -209,12 +232,23 @@ impl Description {
     }
 }
 
+/// Which of [`Unloaded`]'s lists a warning is about.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Empty,
+    Sliding,
+    Massless,
+}
+
 /// The joints whose torque a URDF's own inertials leave out ([`Description::urdf_unloaded`]).
 #[derive(Debug, Default, PartialEq, Eq)]
 pub(crate) struct Unloaded {
     /// Joints that move only links without mass or inertia: their torque is 0.
     pub(crate) empty: Vec<usize>,
-    /// The other joints that move only links without mass: their torque holds no gravity.
+    /// The other prismatic joints that move only links without mass: their force is 0.
+    pub(crate) sliding: Vec<usize>,
+    /// The other (revolute) joints that move only links without mass: their torque holds
+    /// no gravity.
     pub(crate) massless: Vec<usize>,
 }
 

@@ -178,20 +178,40 @@ const DESIGN_FLAGS: &[(&str, &str)] = &[
 ];
 
 /// With a URDF's own inertials as the reference: warns about the joints with a torque
-/// limit that move only links without mass or inertia, whose torque the reference gives
-/// as 0, so that the limit constrains nothing. Nothing else of such a joint matters: the
+/// limit that move only links without mass or inertia, or prismatic ones that move only
+/// links without mass, whose torque or force the reference gives as 0, so that the limit
+/// constrains nothing. Nothing else of such a joint matters: the
 /// criterion is that of the regressor, which does not depend on the parameters, and a
 /// joint without a torque limit is not checked against the reference at all.
 fn warn_unloaded(args: &Args, description: &description::Description, limits: &[JointLimits]) {
-    let limited: Vec<usize> = description
-        .urdf_unloaded()
-        .empty
-        .into_iter()
-        .filter(|&j| limits.get(j - 1).is_some_and(|l| l.torque.is_some()))
-        .collect();
-    if limited.is_empty() {
-        return;
+    let unloaded = description.urdf_unloaded();
+    let limited = |joints: Vec<usize>| -> Vec<usize> {
+        joints
+            .into_iter()
+            .filter(|&j| limits.get(j - 1).is_some_and(|l| l.torque.is_some()))
+            .collect()
+    };
+    // a sliding joint's force is 0 when the links it moves have no mass, whatever their
+    // inertia
+    for (limited, empty) in [
+        (limited(unloaded.empty), true),
+        (limited(unloaded.sliding), false),
+    ] {
+        if !limited.is_empty() {
+            warn_limited(args, description, &limited, empty);
+        }
     }
+}
+
+/// The warning of [`warn_unloaded`] for the joints `limited` (with torque limits) that move
+/// only links without mass or inertia (`empty`), or prismatic ones that move only links
+/// without mass.
+fn warn_limited(
+    args: &Args,
+    description: &description::Description,
+    limited: &[usize],
+    empty: bool,
+) {
     let one = limited.len() == 1;
     let (it, its, limit, constrains, margin) = if one {
         (
@@ -215,7 +235,7 @@ fn warn_unloaded(args: &Args, description: &description::Description, limits: &[
          of {its} <limit>) {constrains} nothing in the design, and {margin}; give these links \
          `<inertial>` elements with their mass and inertia, or give --parameters PARAMS.toml \
          (the design's criterion does not depend on them)",
-        description.unloaded_cause(&args.robot, &limited, true)
+        description.unloaded_cause(&args.robot, limited, empty)
     ));
 }
 

@@ -1266,3 +1266,79 @@ fn urdf_emit_warns_when_the_urdf_inertials_leave_a_torque_out() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stderr(&o).contains("own inertials"), "{}", stderr(&o));
 }
+
+/// A prismatic joint that moves only links with inertia but no mass has a force of 0 at
+/// every state (it holds only the masses it moves): `robid torques` and `robid emit` say
+/// so, where they said it "holds no gravity, only the inertia of these links", and `robid
+/// excite` warns that its force limit constrains nothing.
+#[test]
+fn a_sliding_joint_moving_only_massless_links_is_told_its_force_is_0() {
+    let dir = folder();
+    let urdf = write(
+        dir.path(),
+        "slider.urdf",
+        r#"<?xml version="1.0"?>
+<robot name="slider">
+  <link name="base"/>
+  <link name="l1"><inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="carriage"><inertial><mass value="0"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.03"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><origin xyz="0 0 0.1" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+  <joint name="j2" type="prismatic"><parent link="l1"/><child link="carriage"/><origin xyz="0.3 0 0"/><axis xyz="1 0 0"/><limit lower="-0.2" upper="0.2" effort="50" velocity="1"/></joint>
+</robot>
+"#,
+    );
+    let rows = write(
+        dir.path(),
+        "rows.csv",
+        "q1,q2,qd1,qd2,qdd1,qdd2\n0.3,0.1,0.5,0.2,1,2\n-0.7,-0.05,-1,0.3,2,-1\n",
+    );
+    let o = robid(&[
+        "torques",
+        urdf.to_str().unwrap(),
+        "--states",
+        rows.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("joint 2 (`j2`) of ")
+            && e.contains(
+                "slider.urdf moves only links without mass: `carriage`, so with the URDF's own \
+                 inertials its force tau2 is 0 in every row (a sliding joint's force holds \
+                 only the masses it moves)"
+            ),
+        "{e}"
+    );
+    assert!(!e.contains("no gravity"), "{e}");
+    for line in stdout(&o).lines().skip(1) {
+        let tau2: f64 = line.split(',').nth(1).unwrap().parse().unwrap();
+        assert_eq!(tau2, 0.0, "{}", stdout(&o));
+    }
+    let o = robid(&["emit", urdf.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("its force tau2 is 0 at every state"),
+        "{}",
+        stderr(&o)
+    );
+    let traj = dir.path().join("traj.csv");
+    let o = robid(&[
+        "excite",
+        urdf.to_str().unwrap(),
+        "-o",
+        traj.to_str().unwrap(),
+        "--acceleration-limits",
+        "5",
+        "--duration",
+        "4",
+        "--restarts",
+        "1",
+        "--evaluations",
+        "50",
+    ]);
+    assert!(
+        stderr(&o).contains("slider.urdf moves only links without mass: `carriage`, so the URDF's own inertials give it no torque"),
+        "{}",
+        stderr(&o)
+    );
+}
