@@ -204,6 +204,49 @@ fn run(program: &Program, inputs: &[(&str, &[f64])]) -> Vec<f64> {
     program.eval(&groups).unwrap().remove(0)
 }
 
+/// Every customised program of `programs`, interpreted at the state `[q, qd, qdd]` with the
+/// standard parameters `p` (and the inputs `extra`, such as run-time geometry), against the
+/// Lagrange-Euler values `le`: the torques, the mass matrix row by row, gravity, Coriolis.
+fn check_programs(
+    programs: &RobotPrograms,
+    le: &[f64],
+    p: &[f64],
+    extra: &[(&str, &[f64])],
+    [q, qd, qdd]: [&[f64]; 3],
+    what: &dyn Fn(usize, &str) -> String,
+) {
+    let n = q.len();
+    let (tau, rest) = le.split_at(n);
+    let (mass, rest) = rest.split_at(n * n);
+    let (gravity, coriolis) = rest.split_at(n);
+    let mut standard = vec![("standard", p)];
+    standard.extend_from_slice(extra);
+    let base = run(&programs[ProgramKind::BaseFromStandard], &standard);
+    let mut inputs = vec![
+        ("q", q),
+        ("qd", qd),
+        ("qdd", qdd),
+        ("base", base.as_slice()),
+    ];
+    inputs.extend_from_slice(extra);
+    let id = run(&programs[ProgramKind::InverseDynamics], &inputs);
+    let yb = run(&programs[ProgramKind::BaseRegressor], &inputs);
+    let m = run(&programs[ProgramKind::MassMatrix], &inputs);
+    let g = run(&programs[ProgramKind::Gravity], &inputs);
+    let c = run(&programs[ProgramKind::Coriolis], &inputs);
+    let nb = base.len();
+    for j in 0..n {
+        close(id[j], tau[j], &what(j, "inverse dynamics"));
+        let ybb: f64 = (0..nb).map(|k| yb[j * nb + k] * base[k]).sum();
+        close(ybb, tau[j], &what(j, "base regressor times base"));
+        close(g[j], gravity[j], &what(j, "gravity"));
+        close(c[j], coriolis[j], &what(j, "Coriolis"));
+        for k in 0..n {
+            close(m[j * n + k], mass[j * n + k], &what(j, "mass matrix"));
+        }
+    }
+}
+
 /// The customised programs, interpreted, equal the Lagrange-Euler model. Without the
 /// constant offsets Fo: with a prismatic joint along gravity an offset's column is a mass's
 /// (docs/regrouping.md#special-geometry), so the gravity program, which leaves the drive
@@ -229,9 +272,6 @@ fn programs_equal_lagrange_euler() {
             roots.extend(&le.gravity);
             roots.extend(&le.coriolis);
             let v = d.arena.eval(&roots, &values).unwrap();
-            let (tau, rest) = v.split_at(n);
-            let (mass, rest) = rest.split_at(n * n);
-            let (gravity, coriolis) = rest.split_at(n);
             let mut joint = |name: &str| -> Vec<f64> {
                 (1..=n)
                     .map(|j| {
@@ -241,29 +281,8 @@ fn programs_equal_lagrange_euler() {
                     .collect()
             };
             let (q, qd, qdd) = (joint("q"), joint("qd"), joint("qdd"));
-            let base = run(
-                &programs[ProgramKind::BaseFromStandard],
-                &[("standard", &p)],
-            );
-            let inputs: [(&str, &[f64]); 4] =
-                [("q", &q), ("qd", &qd), ("qdd", &qdd), ("base", &base)];
-            let id = run(&programs[ProgramKind::InverseDynamics], &inputs);
-            let yb = run(&programs[ProgramKind::BaseRegressor], &inputs);
-            let m = run(&programs[ProgramKind::MassMatrix], &inputs);
-            let g = run(&programs[ProgramKind::Gravity], &inputs);
-            let c = run(&programs[ProgramKind::Coriolis], &inputs);
-            let nb = base.len();
-            for j in 0..n {
-                let what = |w: &str| format!("seed {seed}, joint {j}: {w}");
-                close(id[j], tau[j], &what("inverse dynamics"));
-                let ybb: f64 = (0..nb).map(|k| yb[j * nb + k] * base[k]).sum();
-                close(ybb, tau[j], &what("base regressor times base"));
-                close(g[j], gravity[j], &what("gravity"));
-                close(c[j], coriolis[j], &what("Coriolis"));
-                for k in 0..n {
-                    close(m[j * n + k], mass[j * n + k], &what("mass matrix"));
-                }
-            }
+            let what = |j: usize, w: &str| format!("seed {seed}, joint {j}: {w}");
+            check_programs(&programs, &v, &p, &[], [&q, &qd, &qdd], &what);
         }
     }
 }
@@ -499,37 +518,9 @@ fn last_links_in_their_parents_frame_equal_lagrange_euler() {
             roots.extend(&le.gravity);
             roots.extend(&le.coriolis);
             let v = d.arena.eval(&roots, &values).unwrap();
-            let (tau, rest) = v.split_at(n);
-            let (mass, rest) = rest.split_at(n * n);
-            let (gravity, coriolis) = rest.split_at(n);
-            let base = run(
-                &programs[ProgramKind::BaseFromStandard],
-                &[("standard", &p), ("geometry", &geometry)],
-            );
-            let inputs: [(&str, &[f64]); 5] = [
-                ("q", &q),
-                ("qd", &qd),
-                ("qdd", &qdd),
-                ("base", &base),
-                ("geometry", &geometry),
-            ];
-            let id = run(&programs[ProgramKind::InverseDynamics], &inputs);
-            let yb = run(&programs[ProgramKind::BaseRegressor], &inputs);
-            let m = run(&programs[ProgramKind::MassMatrix], &inputs);
-            let g = run(&programs[ProgramKind::Gravity], &inputs);
-            let c = run(&programs[ProgramKind::Coriolis], &inputs);
-            let nb = base.len();
-            for j in 0..n {
-                let what = |w: &str| format!("seed {seed}, joint {j}: {w}\n{text}");
-                close(id[j], tau[j], &what("inverse dynamics"));
-                let ybb: f64 = (0..nb).map(|k| yb[j * nb + k] * base[k]).sum();
-                close(ybb, tau[j], &what("base regressor times base"));
-                close(g[j], gravity[j], &what("gravity"));
-                close(c[j], coriolis[j], &what("Coriolis"));
-                for k in 0..n {
-                    close(m[j * n + k], mass[j * n + k], &what("mass matrix"));
-                }
-            }
+            let what = |j: usize, w: &str| format!("seed {seed}, joint {j}: {w}\n{text}");
+            let geometry = [("geometry", geometry.as_slice())];
+            check_programs(&programs, &v, &p, &geometry, [&q, &qd, &qdd], &what);
         }
     }
 }
