@@ -12,7 +12,7 @@
 //! | what | accepted |
 //! |---|---|
 //! | DH lengths `a`, `d`, `b` | 0, or [`MIN_LENGTH`] (1 µm) to [`MAX_LENGTH`] (1 km) in magnitude, in metres; `b` and `d` of a [calibrated pair](calibrated_pair) up to [`MAX_CALIBRATED_LENGTH`] (1e9 m) |
-//! | DH angles `alpha`, `theta` | at most [`MAX_ANGLE`] (one turn) in magnitude, in radians; exactly `k pi/2` (as `"pi/2"`, `0`) or at least [`ANGLE_RESOLUTION`] away from every such angle, but for the `alpha` of a [calibrated pair](calibrated_pair) |
+//! | DH angles `alpha`, `theta` | at most [`MAX_ANGLE`] (one turn) in magnitude, in radians; exactly `k pi/2` (as `"pi/2"`, `0`) or at least [`ANGLE_RESOLUTION`] away from every such angle, but for the `alpha` of a [calibrated pair](calibrated_pair) and the `theta` of a revolute joint (an offset of its variable, which changes no base parameter: any value) |
 //! | gravity components | 0, or [`MIN_GRAVITY`] to [`MAX_GRAVITY`] m/s^2 in magnitude |
 //! | a value with symbols | the above at the `[symbols]` values when all its symbols have one, and at most [`MAX_SAMPLED`] in magnitude for any symbol values in [`SYMBOL_SAMPLES`] |
 //! | `[symbols]` values | finite |
@@ -47,7 +47,9 @@ pub const MAX_ANGLE: f64 = 2.0 * std::f64::consts::PI;
 /// Smallest distance (rad) between a DH angle that is not exactly `k pi/2` and
 /// the nearest `k pi/2`. `1.5707963` is 2.7e-8 rad from `pi/2`: an
 /// approximation of a right angle that would make axes almost, not exactly,
-/// perpendicular (write `"pi/2"`).
+/// perpendicular (write `"pi/2"`). Not for the `theta` of a revolute joint, which only
+/// shifts its variable (a description file warns when one is this near a nonzero right
+/// angle).
 pub const ANGLE_RESOLUTION: f64 = 1e-5;
 
 /// Largest magnitude of the `b` and `d` of a [calibrated pair](calibrated_pair) (m): f64

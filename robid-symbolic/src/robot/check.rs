@@ -9,7 +9,7 @@ use super::bounds::{
     MIN_LENGTH, SYMBOL_SAMPLES, calibrated_pair,
 };
 use super::interval::magnitude_bound;
-use super::{Convention, DescriptionError, Geometry, Joint, Limits, Robot, Transform};
+use super::{Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, Transform};
 use crate::emit::type_name;
 use crate::expr::Arena;
 use std::f64::consts::FRAC_PI_2;
@@ -67,10 +67,11 @@ impl Dh {
         }
     }
 
-    fn role(self) -> Role {
-        match self {
-            Dh::Alpha | Dh::Theta | Dh::Gamma => Role::Angle,
-            Dh::A | Dh::D | Dh::B => Role::Length,
+    fn role(self, kind: JointKind) -> Role {
+        match (self, kind) {
+            (Dh::Theta, JointKind::Revolute) => Role::Offset,
+            (Dh::Alpha | Dh::Theta | Dh::Gamma, _) => Role::Angle,
+            (Dh::A | Dh::D | Dh::B, _) => Role::Length,
         }
     }
 }
@@ -271,6 +272,11 @@ pub(crate) fn name_problem(name: &str) -> Option<(String, String)> {
 enum Role {
     Length,
     Angle,
+    /// The `theta` of a revolute joint: an offset of its variable, which shifts the
+    /// regressor's columns along `q` without changing what they span, so the base
+    /// parameters are the same at any value; a calibration's few microradians from a
+    /// right angle are taken as written.
+    Offset,
     Gravity,
 }
 
@@ -404,7 +410,11 @@ impl Parts {
         let mut out = Vec::with_capacity(6 * self.joints.len() + 15);
         for (j, joint) in self.joints.iter().enumerate() {
             for dh in Dh::ALL {
-                out.push((Item::Value(j, dh), dh.of(joint).clone(), dh.role()));
+                out.push((
+                    Item::Value(j, dh),
+                    dh.of(joint).clone(),
+                    dh.role(joint.kind),
+                ));
             }
         }
         for (i, g) in self.gravity.iter().enumerate() {
@@ -602,7 +612,7 @@ fn value_problem(
             format!("{is} smaller than {} m/s^2 but not zero", show(MIN_GRAVITY)),
             "write 0: the regrouping cannot tell a component this small from zero".to_owned(),
         )),
-        Role::Angle if v.abs() > MAX_ANGLE => Some((
+        Role::Angle | Role::Offset if v.abs() > MAX_ANGLE => Some((
             format!("{is} more than a turn (2 pi rad)"),
             "DH angles are in radians: write \"pi/2\" for 90 degrees".to_owned(),
         )),
@@ -622,6 +632,22 @@ fn value_problem(
         }
         _ => None,
     }
+}
+
+/// How far (rad) a numeric angle without symbols lies from the nonzero multiple of pi/2
+/// it nearly is (that multiple as text), when that is less than [`ANGLE_RESOLUTION`]
+/// but not 0: `1.5707963` typed for `"pi/2"`.
+pub(super) fn near_right_angle(g: &Geometry) -> Option<(f64, String)> {
+    if !g.symbols().is_empty() || g.quarter_turns().is_some() {
+        return None;
+    }
+    let mut arena = Arena::new();
+    let id = g.to_expr(&mut arena);
+    let values = arena.values(&[]);
+    let v = arena.eval(&[id], &values).ok()?.first().copied()?;
+    let k = (v / FRAC_PI_2).round();
+    let off = (v - k * FRAC_PI_2).abs();
+    (k != 0.0 && off < ANGLE_RESOLUTION).then(|| (off, quarter_text(k)))
 }
 
 /// `k pi/2` as text.

@@ -42,9 +42,9 @@
 //! unused symbols) is reported together with the others.
 
 use super::bounds::MAX_DESCRIPTION_LEN;
-use super::check::{Item, Locate};
+use super::check::{Dh, Item, Locate, near_right_angle};
 use super::read::{Reader, Spans};
-use super::{DescriptionError, Robot};
+use super::{DescriptionError, JointKind, Robot};
 use std::io::Read;
 use std::ops::Range;
 use toml::de::DeTable;
@@ -97,8 +97,32 @@ impl Place<'_> {
 }
 
 /// What is valid but probably not meant, each with its place and what to do.
-fn warnings(place: &Place<'_>, spans: &Spans) -> Vec<String> {
+fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
     let mut out = Vec::new();
+    // A revolute joint's theta is taken as written (an offset of its variable, see
+    // check.rs `Role::Offset`); one typed for a right angle is told once.
+    let near: Vec<(usize, f64, String)> = robot
+        .joints()
+        .iter()
+        .enumerate()
+        .filter(|(_, joint)| joint.kind == JointKind::Revolute)
+        .filter_map(|(j, joint)| near_right_angle(&joint.theta).map(|(off, k)| (j, off, k)))
+        .collect();
+    if let Some((j, off, exact)) = near.first() {
+        let (line, column) = place.line_column(spans.of(Item::Value(*j, Dh::Theta)).start);
+        let more = match near.len() - 1 {
+            0 => String::new(),
+            1 => " (and 1 more joint)".to_owned(),
+            m => format!(" (and {m} more joints)"),
+        };
+        out.push(format!(
+            "{}:{line}:{column}: joint {} `theta` is {off:.1e} rad from {exact}{more}: taken \
+             as written, an offset of the joint's zero; write \"{exact}\" if the right angle \
+             is meant (its sine and cosine then fold into the model)",
+            place.file,
+            j + 1
+        ));
+    }
     if let Some(span) = spans.stray_drive() {
         let (line, column) = place.line_column(span.start);
         let joint = spans.joint_count();
@@ -242,7 +266,10 @@ impl Robot {
             spans: &spans,
         });
         match checked {
-            Ok(robot) if errors.is_empty() => return Ok((robot, warnings(&place, &spans))),
+            Ok(robot) if errors.is_empty() => {
+                let warnings = warnings(&place, &spans, &robot);
+                return Ok((robot, warnings));
+            }
             Ok(_) => {}
             Err(more) => errors.extend(more),
         }

@@ -5,6 +5,7 @@
 //! outside a range are refused (see `description_errors.rs`); before the
 //! ranges, `d = 1e200` gave no base parameter at all.
 
+use robid_core::rng::Rng;
 use robid_symbolic::robot::bounds::{
     ANGLE_RESOLUTION, MAX_GRAVITY, MAX_LENGTH, MIN_GRAVITY, MIN_LENGTH,
 };
@@ -167,6 +168,69 @@ fn angles_near_quarter_turns_count_as_generic() {
                 counts(&with(0.3), name),
                 "{name}: alpha {exact} + 1.001e-5 against {exact} + 0.3"
             );
+        }
+    }
+}
+
+/// A revolute joint's `theta` is an offset of its variable, taken as written at any
+/// value: the TX40 with each `theta` moved off its quarter turn by a calibration's few
+/// microradians (or `1.5707963` typed for pi/2) has the nominal base parameters, and its
+/// base regressor at `q` is the nominal one at `q + offset`.
+#[test]
+fn revolute_theta_offsets_keep_the_base_parameters() {
+    let text = ROBOTS[3].1;
+    let offsets = [1.4e-7, -2.7e-8, 3e-6, -9.9e-6, 5e-7, 2e-8];
+    let mut k = 0;
+    let shifted_text = edit(text, |key, v| {
+        (key == "theta").then(|| {
+            let exact: f64 = match v.trim_matches('"') {
+                "0" => 0.0,
+                "pi/2" => std::f64::consts::FRAC_PI_2,
+                "-pi/2" => -std::f64::consts::FRAC_PI_2,
+                "pi" => std::f64::consts::PI,
+                other => panic!("TX40 theta {other}"),
+            };
+            k += 1;
+            format!("{:.17e}", exact + offsets[k - 1])
+        })
+    });
+    assert_eq!(k, 6, "every TX40 joint has its theta line");
+    let nominal = Robot::from_toml(text, "tx40").unwrap();
+    let shifted = Robot::from_toml(&shifted_text, "tx40 shifted").unwrap_or_else(|e| panic!("{e}"));
+    let (mut dn, mut ds) = (Derivation::new(&nominal), Derivation::new(&shifted));
+    let (bn, bs) = (dn.base_parameters().unwrap(), ds.base_parameters().unwrap());
+    let names = |b: &robid_symbolic::regroup::BaseParameters| {
+        b.base
+            .iter()
+            .map(|p| p.name.to_string())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(names(&bs), names(&bn));
+    let mut rng = Rng::new(11);
+    for _ in 0..5 {
+        let state: Vec<[f64; 3]> = (0..6)
+            .map(|_| [0; 3].map(|_| rng.uniform(-2.0, 2.0)))
+            .collect();
+        let pairs = |shift: bool| -> Vec<(String, f64)> {
+            let mut out = Vec::new();
+            for (j, [q, qd, qdd]) in state.iter().enumerate() {
+                let q = if shift { q + offsets[j] } else { *q };
+                out.push((format!("q{}", j + 1), q));
+                out.push((format!("qd{}", j + 1), *qd));
+                out.push((format!("qdd{}", j + 1), *qdd));
+            }
+            out
+        };
+        let eval = |d: &mut Derivation, b: &robid_symbolic::regroup::BaseParameters, shift| {
+            let owned = pairs(shift);
+            let refs: Vec<(&str, f64)> = owned.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+            let values = d.arena.values(&refs);
+            d.arena.eval(&b.columns.concat(), &values).unwrap()
+        };
+        let (yn, ys) = (eval(&mut dn, &bn, true), eval(&mut ds, &bs, false));
+        let scale = yn.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        for (a, b) in yn.iter().zip(&ys) {
+            assert!((a - b).abs() <= 1e-12 * scale, "{a} vs {b}");
         }
     }
 }

@@ -49,7 +49,7 @@ limits = { position = [1, 2, 3], velocity = -1 }
 alpha = \"pi/\"
 a = \"L2\"
 d = 1e-9
-theta = \"1.5707963\"
+theta = \"3*pi\"
 
 [[joints]]
 a = \"2^1024\"
@@ -77,10 +77,7 @@ tpye = \"revolute\"
             "18:5",
             "joint 2 `d` = 1e-9 is shorter than 1e-6 m but not zero",
         ),
-        (
-            "19:9",
-            "joint 2 `theta` = \"1.5707963\" is only 2.7e-8 rad from pi/2",
-        ),
+        ("19:9", "joint 2 `theta` = \"3*pi\" is more than a turn"),
         ("22:8", "the exponent 1024 is beyond ±64"),
         ("23:5", "joint 3 `d` is NaN, not a finite number"),
         ("24:1", "unknown key `tpye`; did you mean `type`?"),
@@ -142,8 +139,8 @@ fn magnitudes_that_broke_the_derivation_are_errors() {
     );
     single(&joint("a = \"1e300*1e300\""), "4:17", &["out of the range"]);
     single(&joint("a = -1e-7"), "4:5", &["shorter than 1e-6 m"]);
-    single(&joint("theta = \"pi/2 + 1e-7\""), "4:9", &["from pi/2"]);
-    single(&joint("theta = 3.1415926"), "4:9", &["from pi", "\"pi\""]);
+    single(&joint("alpha = \"pi/2 + 1e-7\""), "4:9", &["from pi/2"]);
+    single(&joint("gamma = 3.1415926"), "4:9", &["from pi", "\"pi\""]);
     single(&joint("alpha = 1e-9"), "4:9", &["from 0"]);
     // A symbol's value is checked where it is used.
     single(
@@ -671,5 +668,39 @@ fn a_calibrated_pair_of_nearly_parallel_axes_is_accepted_and_nothing_else() {
             "8:5: joint 2 `d` = 2e9 is beyond ±1000 m",
             "each at most 1e9 m",
         ],
+    );
+}
+
+/// A revolute joint's `theta` offsets its variable and changes no base parameter, so a
+/// value a few microradians from a right angle (a calibrated offset, or `1.5707963` typed
+/// for pi/2) is taken as written; one near a nonzero right angle is told once, with the
+/// exact form. A prismatic joint's `theta` turns its link for good and keeps the rule.
+#[test]
+fn a_revolute_theta_near_a_right_angle_is_taken_as_an_offset() {
+    let text = format!(
+        "{HEAD}[[joints]]\nd = 0.3\ntheta = 1.4e-7\n\n[[joints]]\nalpha = \"pi/2\"\n\
+         theta = 1.5707963\n\n[[joints]]\na = 0.4\ntheta = \"-3.1415926\"\n"
+    );
+    let (robot, warnings) = Robot::from_toml_with_warnings(&text, "arm.toml").unwrap();
+    assert_eq!(robot.joints()[0].theta.as_str(), "0.00000014");
+    assert_eq!(warnings.len(), 1, "{warnings:#?}");
+    for part in [
+        "arm.toml:9:9: joint 2 `theta` is 2.7e-8 rad from pi/2 (and 1 more joint)",
+        "write \"pi/2\" if the right angle is meant",
+    ] {
+        assert!(
+            warnings[0].contains(part),
+            "`{part}` not in {}",
+            warnings[0]
+        );
+    }
+    // a calibrated offset near 0 is no typed right angle: no warning
+    let calibrated = format!("{HEAD}[[joints]]\nd = 0.3\ntheta = -7.2e-7\n");
+    let (_, warnings) = Robot::from_toml_with_warnings(&calibrated, "arm.toml").unwrap();
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    single(
+        &format!("{HEAD}[[joints]]\ntype = \"prismatic\"\ntheta = 1.5707963\n"),
+        "5:9",
+        &["joint 1 `theta` = 1.5707963 is only 2.7e-8 rad from pi/2"],
     );
 }

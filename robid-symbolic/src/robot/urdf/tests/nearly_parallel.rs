@@ -210,7 +210,8 @@ fn a_calibrated_arm_keeps_its_frames_near_its_joints_and_its_torques() {
 #[test]
 fn a_calibrated_arm_whose_nearly_parallel_axes_meet_far_away() {
     for skew in [
-        5.412e-5, 1.848e-6, 2.512e-6, 2.929e-7, 3.981e-7, 5.412e-7, 7.356e-7, 1e-7, 5e-8,
+        5.412e-5, 1.848e-6, 2.512e-6, 2.929e-7, 3.981e-7, 5.412e-7, 7.356e-7, 1e-7, 5e-8, 2e-8,
+        1.2e-8,
     ] {
         check(skew, true);
     }
