@@ -29,6 +29,10 @@ pub(super) struct Parts {
     /// The words of values that could not be read (their symbols are
     /// unknown): a value given to one of them is not reported as unused.
     pub(super) unread_words: Vec<String>,
+    /// Whether the DH values were measured (fitted to a URDF's origins and axes) rather
+    /// than typed: an angle near a right angle is then what was measured, not a typed
+    /// approximation, and is not refused for it.
+    pub(super) measured: bool,
 }
 
 /// A geometric value of a joint: the DH row and Khalil and Kleinfinger's `gamma` and `b`.
@@ -361,7 +365,12 @@ impl Parts {
                 Item::Value(j, Dh::Alpha | Dh::B | Dh::D) => pairs[*j],
                 _ => Pair::None,
             };
-            if let Some((message, help)) = value_problem(*item, g, *role, &given, pair) {
+            let measured = match (item, role) {
+                (_, _) if matches!(pair, Pair::Calibrated) => Measured::Pair,
+                (Item::Value(..), Role::Angle) if self.measured => Measured::Angle,
+                _ => Measured::No,
+            };
+            if let Some((message, help)) = value_problem(*item, g, *role, &given, pair, measured) {
                 error(*item, message, &help);
             }
         }
@@ -402,6 +411,7 @@ impl Parts {
             base: self.base,
             tool: self.tool,
             symbols,
+            measured: self.measured,
         })
     }
 
@@ -536,6 +546,18 @@ impl Pair {
     }
 }
 
+/// What of a geometric value was measured rather than typed.
+#[derive(Clone, Copy, PartialEq)]
+enum Measured {
+    /// Nothing: typed values keep every rule.
+    No,
+    /// The `alpha`, `b` and `d` of a [calibrated pair](calibrated_pair): bounded by the
+    /// pair's own rule, its twist measured.
+    Pair,
+    /// An angle fitted to a URDF: taken at any distance from a right angle.
+    Angle,
+}
+
 /// Why a geometric value does not suit its role (message, help), if it does not. The
 /// `alpha`, `b` and `d` of a [calibrated pair](calibrated_pair) are bounded by the pair's
 /// own rule and its twist is measured; `b` and `d` of a broken one are told the rule.
@@ -545,8 +567,8 @@ fn value_problem(
     role: Role,
     given: &dyn Fn(&str) -> Option<f64>,
     pair: Pair,
+    measured: Measured,
 ) -> Option<(String, String)> {
-    let measured = matches!(pair, Pair::Calibrated);
     let what = format!("{} = {}", describe(item), quoted(g));
     let mut arena = Arena::new();
     let id = g.to_expr(&mut arena);
@@ -586,7 +608,7 @@ fn value_problem(
         format!("{what} is {} at the [symbols] values,", show(v))
     };
     match role {
-        Role::Length if v.abs() > MAX_LENGTH && !measured => Some((
+        Role::Length if v.abs() > MAX_LENGTH && measured != Measured::Pair => Some((
             format!("{is} beyond ±{} m", show(MAX_LENGTH)),
             match pair {
                 Pair::Broken(away) => format!(
@@ -616,7 +638,9 @@ fn value_problem(
             format!("{is} more than a turn (2 pi rad)"),
             "DH angles are in radians: write \"pi/2\" for 90 degrees".to_owned(),
         )),
-        Role::Angle if pairs.is_empty() && g.quarter_turns().is_none() && !measured => {
+        Role::Angle
+            if pairs.is_empty() && g.quarter_turns().is_none() && measured == Measured::No =>
+        {
             let k = (v / FRAC_PI_2).round();
             let off = (v - k * FRAC_PI_2).abs();
             (off < ANGLE_RESOLUTION).then(|| {

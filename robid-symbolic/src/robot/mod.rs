@@ -248,6 +248,8 @@ pub struct Robot {
     base: Option<Transform>,
     tool: Option<Transform>,
     symbols: Vec<(String, Option<f64>)>,
+    /// Whether its DH values were fitted to a URDF (see `check::Parts::measured`).
+    measured: bool,
 }
 
 impl Robot {
@@ -268,6 +270,28 @@ impl Robot {
             tool: None,
             values: Vec::new(),
             unread_words: Vec::new(),
+            measured: false,
+        };
+        parts.check(&Code).map_err(DescriptionError::from_errors)
+    }
+
+    /// [`Robot::new`] for DH values fitted to a URDF: measured, so an angle a few
+    /// microradians from a right angle is taken as written (a typed one is refused).
+    pub(crate) fn new_measured(
+        name: &str,
+        gravity: [Geometry; 3],
+        joints: Vec<Joint>,
+    ) -> Result<Robot, DescriptionError> {
+        let parts = Parts {
+            name: name.to_owned(),
+            convention: Convention::Modified,
+            gravity,
+            joints,
+            base: None,
+            tool: None,
+            values: Vec::new(),
+            unread_words: Vec::new(),
+            measured: true,
         };
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
@@ -434,6 +458,7 @@ impl Robot {
                 .filter_map(|(s, v)| Some((s, v?)))
                 .collect(),
             unread_words: Vec::new(),
+            measured: self.measured,
         }
     }
 }

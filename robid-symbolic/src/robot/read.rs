@@ -179,6 +179,7 @@ impl<'a> Reader<'a> {
             tool,
             values: symbols,
             unread_words: std::mem::take(&mut self.unread_words),
+            measured: false,
         }
     }
 

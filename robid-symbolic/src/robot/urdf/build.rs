@@ -2,17 +2,16 @@
 //! the URDF's joint limits and gravity (docs/urdf.md#the-robot).
 
 use super::super::bounds::{
-    MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
+    ANGLE_RESOLUTION, MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
 };
 use super::super::check::show;
 use super::super::file::Place;
-use super::super::{
-    Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem,
-};
+use super::super::{DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem};
 use super::chain::Chain;
 use super::frames::{Fit, NEAR_PARALLEL, PARALLEL, angle_text};
 use super::rigid::{cross, dot, mat_vec, norm, transpose};
 use super::xml::{self, JointType, Urdf};
+use std::f64::consts::FRAC_PI_2;
 
 /// Gravity components (m/s^2) smaller than this are rounding of a rotation by a multiple
 /// of pi/2 (docs/urdf.md#gravity) and are zero.
@@ -231,7 +230,7 @@ pub(super) fn robot(
         return Err(DescriptionError::from_errors(errors));
     }
     let g = gravity.map(|x| Geometry::number(tidy(x)).unwrap_or_else(|_| Geometry::zero()));
-    Robot::new(name, Convention::Modified, Some(g), joints).map_err(|e| {
+    Robot::new_measured(name, g, joints).map_err(|e| {
         let located = e
             .errors()
             .into_iter()
@@ -467,4 +466,54 @@ fn locate(
             },
         ),
     }
+}
+
+/// The warning for the twists fitted within [`ANGLE_RESOLUTION`] of a right angle but
+/// not at it (within 1e-9 rad they are the right angle): measured, so taken as written,
+/// but where the exact angle would let the regrouping fold more, the base parameters
+/// then hold combinations that only the small angle separates.
+pub(super) fn measured_twists(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    chain: &Chain,
+    fit: &Fit,
+) -> Option<String> {
+    let near: Vec<(usize, f64, bool)> = fit
+        .rows
+        .iter()
+        .enumerate()
+        .filter_map(|(k, row)| {
+            let quarter = (row[0] / FRAC_PI_2).round();
+            let off = (row[0] - quarter * FRAC_PI_2).abs();
+            (off > 0.0 && off < ANGLE_RESOLUTION).then_some((k, off, quarter as i64 % 2 == 0))
+        })
+        .collect();
+    let (&(k, off, parallel), rest) = near.split_first()?;
+    let joint = &urdf.joints[chain.joints[k]];
+    let more = match rest.len() {
+        0 => String::new(),
+        1 => " (and 1 more joint)".to_owned(),
+        m => format!(" (and {m} more joints)"),
+    };
+    Some(place.warning(
+        joint.range.start,
+        &format!(
+            "joint `{}`'s axis is {off:.1e} rad from {} the previous one's{more}: taken as \
+             measured; where {} axes let the regrouping fold more parameters, the base \
+             parameters then hold combinations that only this angle separates, which data \
+             determine poorly (large standard deviations); to identify the nominal set, \
+             write the origins and axes so that the angle is exact",
+            joint.name,
+            if parallel {
+                "parallel to"
+            } else {
+                "perpendicular to"
+            },
+            if parallel {
+                "parallel"
+            } else {
+                "perpendicular"
+            },
+        ),
+    ))
 }

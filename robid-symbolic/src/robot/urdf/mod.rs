@@ -160,6 +160,7 @@ impl Robot {
         let name = build::robot_name(&place, &urdf, &mut warnings);
         let gravity = build::gravity(&tree.at_zero[chain.base], &fit);
         let robot = build::robot(&place, &urdf, &chain, &fit, gravity, &name)?;
+        warnings.extend(build::measured_twists(&place, &urdf, &chain, &fit));
         let links = chain
             .bodies
             .iter()

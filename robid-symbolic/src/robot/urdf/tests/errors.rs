@@ -995,16 +995,26 @@ fn nearly_parallel_axes_are_named_and_their_far_frames_refused() {
         }
         assert!(!message.contains("t.urdf:8:"), "{message}");
     }
-    // intersecting axes 1e-6 rad apart: the angle is refused, and the pair named
-    let message = error_of(
+    // intersecting axes 1e-6 rad apart: the twist is measured, taken as written (it was
+    // refused as near a right angle), and the consequence for the base parameters told
+    let chain = Robot::from_urdf(
         &text("xyz=\"0 0 0.3\" rpy=\"0 1e-6 0\""),
+        "t.urdf",
         &ChainSelection::default(),
-    );
+    )
+    .unwrap();
+    assert_eq!(chain.robot.joints()[2].alpha.as_str(), "0.000001");
+    let told: Vec<&String> = chain
+        .warnings
+        .iter()
+        .filter(|w| w.contains("taken as measured"))
+        .collect();
+    assert_eq!(told.len(), 1, "{:?}", chain.warnings);
     for w in [
-        "(`joints[2].alpha`)",
-        "the axes of joints `j2` and `j3` are 1.0e-6 rad from parallel",
+        "t.urdf:8:1: joint `j3`'s axis is 1.0e-6 rad from parallel to the previous one's:",
+        "to identify the nominal set, write the origins and axes so that the angle is exact",
     ] {
-        assert!(message.contains(w), "{message}\nexpected {w:?}");
+        assert!(told[0].contains(w), "{}\nexpected {w:?}", told[0]);
     }
     // exactly parallel axes 0.1 µm apart: a refused length keeps the general advice
     let message = error_of(&text("xyz=\"0.0000001 0 0\""), &ChainSelection::default());

@@ -145,8 +145,8 @@ fn right_angles_of_a_rounded_pi_are_those_angles_with_a_warning() {
 
 /// A right angle off by more than the rounding of pi (2e-8 rad) is not taken for one: it
 /// is used as written. The UR5's shoulder pitch becomes joint 2's `theta`, an offset of
-/// a revolute joint's variable, which is taken at any value (a twist that close to a
-/// right angle is refused at its joint, as in a description: `tests/errors.rs`).
+/// a revolute joint's variable, which is taken at any value (a fitted twist that close to
+/// a right angle is measured too, taken with a warning: `tests/errors.rs`).
 #[test]
 fn an_angle_further_from_a_right_angle_is_not_snapped() {
     let exact = repository_file(UR5);
