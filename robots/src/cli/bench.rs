@@ -32,6 +32,10 @@ pub(crate) struct Args {
 #[derive(Debug, Serialize)]
 struct Timing {
     robot: &'static str,
+    /// The same times as `programs`, flat as `<program>_ns` (`inverse_dynamics_ns`,
+    /// `mass_matrix_ns`, ...): the stable form scripts read (docs/command-line.md).
+    #[serde(flatten)]
+    flat_ns: BTreeMap<String, f64>,
     /// Per program of the table, by name, as `Model::run` calls it.
     programs: BTreeMap<&'static str, f64>,
     /// The same as multiples of the baseline timed in turn with each.
@@ -181,6 +185,10 @@ fn time_robot<M: Model + ?Sized>(
     }
     Timing {
         robot,
+        flat_ns: programs
+            .iter()
+            .map(|(name, &ns)| (format!("{name}_ns"), ns))
+            .collect(),
         programs,
         ratios,
         avx2_instances: avx2,

@@ -416,7 +416,8 @@ fn excite_points_writes_pieces_for_the_config() {
 
 /// `robid bench --json` gives every program's time and its multiple of the baseline timed
 /// in turn with it, consistent with each other (a ratio is a time over a baseline near the
-/// run's median one), and the same names in both; an unknown robot is refused.
+/// run's median one), and the same names in both, each time also flat as `<program>_ns`;
+/// an unknown robot is refused.
 #[test]
 fn bench_json_has_each_program_with_its_ratio() {
     let o = robid(&["bench", "--robot", "stanford", "--json"]);
@@ -438,6 +439,8 @@ fn bench_json_has_each_program_with_its_ratio() {
             ratios[name].as_f64().unwrap(),
         );
         assert!(ns > 0.0 && ratio > 0.0, "{name}: {v}");
+        // the flat form scripts read: `inverse_dynamics_ns`, ...
+        assert_eq!(v[format!("{name}_ns")].as_f64(), Some(ns), "{name}: {v}");
         // medians of different batches: equal to a factor of a few under any load
         let implied = ns / ratio;
         assert!(implied / base < 4.0 && base / implied < 4.0, "{name}: {v}");
