@@ -3,6 +3,7 @@
 //! frame j, summed as J_O += R I_c R' + m (c'c I3 - c c'), MS += m c, M += m.
 
 use super::super::DescriptionError;
+use super::super::bounds::MIN_LENGTH;
 use super::super::check::show;
 use super::super::file::Place;
 use super::chain::Chain;
@@ -13,6 +14,14 @@ use std::ops::Range;
 /// How far below zero an `<inertia>`'s smallest eigenvalue may be, relative to its largest
 /// entry, for rounded published values (as for parameter files).
 const INERTIA_TOLERANCE: f64 = 1e-6;
+
+/// Below this an inertia's entries and moments are printing noise of zero (kg m^2): the
+/// inertia of the body's mass at [`MIN_LENGTH`] (1 µm) from its centre, below what any
+/// description resolves. iCub's `head` writes `ixz="2.40741e-35"` and every other entry 0,
+/// an indefinite tensor only by that noise.
+fn noise(i: &Inertial) -> f64 {
+    i.mass * MIN_LENGTH * MIN_LENGTH
+}
 
 /// What makes an `<inertial>` impossible, if anything: a negative mass, or an inertia about
 /// the centre of mass that is not positive semidefinite. The place, what and the fix.
@@ -26,7 +35,7 @@ fn impossible(i: &Inertial) -> Option<(Range<usize>, String, &'static str)> {
     }
     let lowest = lowest_eigenvalue(&i.inertia);
     let scale = i.inertia.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    (lowest < -INERTIA_TOLERANCE * scale).then(|| {
+    (lowest < -(INERTIA_TOLERANCE * scale).max(noise(i))).then(|| {
         (
             i.inertia_at.clone(),
             format!(
@@ -64,7 +73,7 @@ fn short(v: f64) -> String {
 /// [`impossible`]) that of no body, if anything: a zero mass with a nonzero inertia, or
 /// principal moments of the inertia about the centre of mass that break the triangle
 /// inequality (the largest exceeds the sum of the other two by more than
-/// [`TRIANGLE_TOLERANCE`] of the trace). The kind, where, and what, with the values.
+/// [`TRIANGLE_TOLERANCE`] of the trace, and more than the [`noise`]). The kind, where, and what, with the values.
 fn unphysical(i: &Inertial) -> Option<(Unphysical, Range<usize>, String)> {
     let [ixx, ixy, ixz, iyy, iyz, izz] = i.inertia;
     if i.mass == 0.0 && i.inertia.iter().any(|&x| x != 0.0) {
@@ -88,7 +97,7 @@ fn unphysical(i: &Inertial) -> Option<(Unphysical, Range<usize>, String)> {
     d.sort_by(f64::total_cmp);
     let excess = d[2] - d[0] - d[1];
     let trace = d[0] + d[1] + d[2];
-    (excess > TRIANGLE_TOLERANCE * trace).then(|| {
+    (excess > (TRIANGLE_TOLERANCE * trace).max(noise(i))).then(|| {
         let diagonal = [ixy, ixz, iyz].iter().all(|&x| x == 0.0);
         (
             Unphysical::Triangle,

@@ -1083,3 +1083,29 @@ fn limited(first: &str, second: &str) -> String {
         J2.replace("</joint>", &format!("<limit {second}/></joint>"))
     ))
 }
+
+/// An inertia indefinite only by printing noise (iCub's `head`: every entry 0 but
+/// `ixz="2.40741e-35"`, eigenvalues ±2.4e-35 kg m^2) is read without an error or a
+/// warning: below the inertia of its mass at 1 µm from its centre, it is zero. A real
+/// error of sign of the same tensor's size scale is still refused.
+#[test]
+fn an_inertia_indefinite_only_by_noise_is_read() {
+    let text = |ixz: &str| {
+        arm(&format!("{J1}{J2}")).replace(
+            "<link name=\"c\"/>",
+            &format!(
+                "<link name=\"c\"><inertial><origin xyz=\"0.0185 -0.1108 0\"/><mass value=\"1.33687\"/><inertia ixx=\"0\" ixy=\"0\" ixz=\"{ixz}\" iyy=\"0\" iyz=\"0\" izz=\"0\"/></inertial></link>"
+            ),
+        )
+    };
+    let chain = Robot::from_urdf(&text("2.40741e-35"), "t.urdf", &ChainSelection::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        chain.warnings.iter().all(|w| w.contains("no `<limit>`")),
+        "{:?}",
+        chain.warnings
+    );
+    assert_eq!(chain.links[1].inertial[9], 1.33687);
+    let message = error_of(&text("0.01"), &ChainSelection::default());
+    assert!(message.contains("not positive semidefinite"), "{message}");
+}
