@@ -55,7 +55,7 @@ fn limits(place: &Place<'_>, joint: &xml::Joint) -> Result<Limits, DescriptionEr
     };
     let at = || limit.range.clone();
     let describe = format!("`<limit>` of joint `{}`", joint.name);
-    if joint.kind != JointType::Continuous {
+    if joint.kind != JointType::Continuous && !limit.unbounded {
         let lower = limit.lower.unwrap_or(0.0);
         let upper = limit.upper.unwrap_or(0.0);
         if lower > upper {

@@ -71,6 +71,9 @@ pub(super) struct Link {
 pub(super) struct Limit {
     pub(super) lower: Option<f64>,
     pub(super) upper: Option<f64>,
+    /// Whether `lower` or `upper` is beyond ±[`MAX_VALUE`] (ROS and Gazebo files write
+    /// ±1e16 for none): the joint has no position limits.
+    pub(super) unbounded: bool,
     pub(super) effort: Option<f64>,
     pub(super) velocity: Option<f64>,
     pub(super) range: Range<usize>,
@@ -177,6 +180,7 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         warnings: Vec::new(),
         printed: Vec::new(),
         near: Vec::new(),
+        unbounded: Vec::new(),
     };
     if root.tag_name().name() != "robot" {
         return Err(place.invalid(
@@ -238,6 +242,22 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         );
         reader.warnings.push(w);
     }
+    if let Some((written, at, joint)) = reader.unbounded.first() {
+        let more = match reader.unbounded.len() - 1 {
+            0 => String::new(),
+            1 => " (and 1 more such value)".to_owned(),
+            n => format!(" (and {n} more such values)"),
+        };
+        let w = place.warning(
+            *at,
+            &format!(
+                "`{written}` of joint `{joint}`{more} is beyond ±{MAX_VALUE:e}: taken as no \
+                 position limit, as ROS and Gazebo files mean it (the joint is read as if \
+                 `lower` and `upper` were left out); write the joint's real range if it has one"
+            ),
+        );
+        reader.warnings.push(w);
+    }
     if let Some(w) = without_limits(place, &joints) {
         reader.warnings.push(w);
     }
@@ -270,6 +290,9 @@ struct Reader<'a> {
     /// The `rpy` values taken as the right angle within [`NEAR_RIGHT_ANGLE`] of them
     /// ([`near_right_angle`]): the word, where it is, the multiple of pi/2 and the distance.
     near: Vec<(String, usize, i64, f64)>,
+    /// The `lower` and `upper` values beyond ±[`MAX_VALUE`] ([`Reader::position_bound`]):
+    /// the attribute as written, where it is, and the joint.
+    unbounded: Vec<(String, usize, String)>,
 }
 
 /// The fix for an unexpanded xacro file.
@@ -426,6 +449,21 @@ impl Reader<'_> {
 
     fn scalar(&mut self, node: Node<'_, '_>, name: &str) -> Option<f64> {
         self.numbers(node, name, 1).map(|v| v[0])
+    }
+
+    /// `lower` or `upper` of a `<limit>`: a number beyond ±[`MAX_VALUE`], infinities
+    /// included, is no bound (`(None, true)`), noted for one warning.
+    fn position_bound(&mut self, l: Node<'_, '_>, name: &str, joint: &str) -> (Option<f64>, bool) {
+        if let Some(a) = l.attribute_node(name)
+            && let Ok(v) = a.value().trim().parse::<f64>()
+            && v.abs() > MAX_VALUE
+        {
+            let written = format!("{name}=\"{}\"", a.value());
+            self.unbounded
+                .push((written, a.range_value().start, joint.to_owned()));
+            return (None, true);
+        }
+        (self.scalar(l, name), false)
     }
 
     fn required_scalar(&mut self, node: Node<'_, '_>, name: &str) -> Option<f64> {
@@ -586,12 +624,18 @@ impl Reader<'_> {
                 }
             },
         };
-        let limit = self.child(node, "limit").map(|l| Limit {
-            lower: self.scalar(l, "lower"),
-            upper: self.scalar(l, "upper"),
-            effort: self.scalar(l, "effort"),
-            velocity: self.scalar(l, "velocity"),
-            range: l.range(),
+        let joint_name = name.as_ref().map_or("", |(n, _)| n.as_str()).to_owned();
+        let limit = self.child(node, "limit").map(|l| {
+            let (lower, below) = self.position_bound(l, "lower", &joint_name);
+            let (upper, above) = self.position_bound(l, "upper", &joint_name);
+            Limit {
+                lower,
+                upper,
+                unbounded: below || above,
+                effort: self.scalar(l, "effort"),
+                velocity: self.scalar(l, "velocity"),
+                range: l.range(),
+            }
         });
         let mimic = self.child(node, "mimic").and_then(|m| {
             let multiplier = self.scalar(m, "multiplier").unwrap_or(1.0);

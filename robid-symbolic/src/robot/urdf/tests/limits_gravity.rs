@@ -61,6 +61,32 @@ fn limits_come_from_the_limit_elements() {
     assert_eq!((first.velocity, first.torque), (Some(3.15), Some(150.0)));
 }
 
+/// A `lower` or `upper` beyond ±1e9 (ROS and Gazebo files write ±1e16, the iris drone's
+/// rotors of example-robot-data) or infinite is no position limit, told once; the other
+/// limits stay. It was an error ("not a value of a robot"), and one such side alone would
+/// have been read as 0.
+#[test]
+fn an_unbounded_position_limit_is_none() {
+    for (lower, upper) in [("-1e+16", "1e+16"), ("-inf", "0.5"), ("-1", "1e300")] {
+        let text = TILTED.replace(
+            "<limit lower=\"-2\" upper=\"1.5\"",
+            &format!("<limit lower=\"{lower}\" upper=\"{upper}\""),
+        );
+        let chain = Robot::from_urdf(&text, "t.urdf", &selection(Some("base"), None))
+            .unwrap_or_else(|e| panic!("{lower} {upper}: {e}"));
+        let j2 = &chain.robot.joints()[1].limits;
+        assert_eq!(j2.position, None, "{lower} {upper}");
+        assert_eq!(j2.velocity, Some(4.0));
+        let told: Vec<&String> = chain
+            .warnings
+            .iter()
+            .filter(|w| w.contains("taken as no position limit"))
+            .collect();
+        assert_eq!(told.len(), 1, "{:?}", chain.warnings);
+        assert!(told[0].contains("of joint `j2`"), "{}", told[0]);
+    }
+}
+
 /// A chain hung from `world` through a fixed `mount` (line 3) and a fixed `adapter`
 /// (line 4) between the base and joint 1 (line 5).
 const MOUNTED: &str = "<robot name=\"mounted\">
