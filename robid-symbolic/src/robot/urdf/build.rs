@@ -3,6 +3,7 @@
 
 use super::super::bounds::{
     ANGLE_RESOLUTION, MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
+    MIN_LENGTH,
 };
 use super::super::check::show;
 use super::super::file::Place;
@@ -167,12 +168,15 @@ pub(super) fn robot(
     fit: &Fit,
     gravity: [f64; 3],
     name: &str,
+    warnings: &mut Vec<String>,
 ) -> Result<Robot, DescriptionError> {
     let mut joints = Vec::new();
     let mut errors = Vec::new();
+    // DH lengths below MIN_LENGTH: (joint, key, value), taken as 0
+    let mut tiny: Vec<(usize, &str, f64)> = Vec::new();
     for (k, &j) in chain.joints.iter().enumerate() {
         let urdf_joint = &urdf.joints[j];
-        let [alpha, a, d, theta, b] = fit.rows[k];
+        let [alpha, mut a, mut d, theta, mut b] = fit.rows[k];
         if !fit.rows[k].iter().all(|x| x.is_finite()) {
             errors.push(place.invalid(
                 urdf_joint.range.clone(),
@@ -216,6 +220,12 @@ pub(super) fn robot(
             ));
             continue;
         }
+        for (key, value) in [("a", &mut a), ("d", &mut d), ("b", &mut b)] {
+            if *value != 0.0 && value.abs() < MIN_LENGTH {
+                tiny.push((k, key, *value));
+                *value = 0.0;
+            }
+        }
         let mut joint = Joint::new(kind, angle(alpha), length(a), length(d), angle(theta));
         if b != 0.0 {
             joint = joint.with_gamma_b(Geometry::zero(), length(b));
@@ -228,6 +238,26 @@ pub(super) fn robot(
     }
     if !errors.is_empty() {
         return Err(DescriptionError::from_errors(errors));
+    }
+    if let Some(&(k, key, value)) = tiny.first() {
+        let more = match tiny.len() - 1 {
+            0 => String::new(),
+            1 => " (and 1 more)".to_owned(),
+            n => format!(" (and {n} more)"),
+        };
+        let joint = &urdf.joints[chain.joints[k]];
+        warnings.push(place.warning(
+            joint.range.start,
+            &format!(
+                "the DH table robid fits has, at joint `{}`, `{key}` = {} m{more}: taken as \
+                 0, a length below {} m is no robot's geometry but the rounding of the file's \
+                 printed values (the torques change by about that length over the links' \
+                 size); write the origins so that the offset is exactly 0 to say so yourself",
+                joint.name,
+                show(format!("{value:.4e}").parse().unwrap_or(value)),
+                show(MIN_LENGTH)
+            ),
+        ));
     }
     let g = gravity.map(|x| Geometry::number(tidy(x)).unwrap_or_else(|_| Geometry::zero()));
     Robot::new_measured(name, g, joints).map_err(|e| {

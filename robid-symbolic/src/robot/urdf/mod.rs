@@ -159,7 +159,7 @@ impl Robot {
         let fit = frames::fit(&axes);
         let name = build::robot_name(&place, &urdf, &mut warnings);
         let gravity = build::gravity(&tree.at_zero[chain.base], &fit);
-        let robot = build::robot(&place, &urdf, &chain, &fit, gravity, &name)?;
+        let robot = build::robot(&place, &urdf, &chain, &fit, gravity, &name, &mut warnings)?;
         warnings.extend(build::measured_twists(&place, &urdf, &chain, &fit));
         let links = chain
             .bodies
