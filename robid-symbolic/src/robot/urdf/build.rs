@@ -3,7 +3,7 @@
 
 use super::super::bounds::{
     ANGLE_RESOLUTION, MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
-    MIN_LENGTH,
+    MIN_GRAVITY, MIN_LENGTH,
 };
 use super::super::check::show;
 use super::super::file::Place;
@@ -159,6 +159,87 @@ pub(super) fn gravity(base_in_root: &super::rigid::Rigid, fit: &Fit) -> [f64; 3]
     g.map(|x| if x.abs() < ZERO_GRAVITY { 0.0 } else { x })
 }
 
+/// `gravity` with its components below [`MIN_GRAVITY`] taken as 0, with one warning: joint
+/// 1's axis (frame 0's z) a few µrad off the root's vertical or horizontal is a right angle
+/// printed short (the SO-100's `1.57079` for pi/2: 6.3e-6 rad, a component of 6.2e-5 m/s^2),
+/// which would give link 1's first moments a gravity torque through that tilt alone, one
+/// no data determine; a real mounting tilt that small changes the gravity torques by less
+/// than 1e-4 of their size. The warning names the element that tilts the axis when one
+/// does ([`tilted`]), else joint 1.
+pub(super) fn level(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    chain: &Chain,
+    gravity: [f64; 3],
+    warnings: &mut Vec<String>,
+) -> [f64; 3] {
+    let small = |x: f64| x != 0.0 && x.abs() < MIN_GRAVITY;
+    let Some(&first) = chain.joints.first() else {
+        return gravity;
+    };
+    let Some(smallest) = gravity
+        .iter()
+        .map(|x| x.abs())
+        .filter(|&x| small(x))
+        .reduce(f64::max)
+    else {
+        return gravity;
+    };
+    let j = &urdf.joints[first];
+    let norm = gravity.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let tilt = (smallest / norm).asin();
+    let tilted = tilted(urdf, chain);
+    let (at, cause) = match tilted.first() {
+        Some((at, _, _)) => {
+            let elements: Vec<String> = tilted
+                .iter()
+                .map(|(_, what, angle)| format!("{what} is {angle:.1e} rad from a right angle"))
+                .collect();
+            let them = if tilted.len() == 1 { "it" } else { "them" };
+            (
+                at.start,
+                format!(
+                    "{}; write {them} exactly (`0`, `1.5707963267948966`) or rounded to at \
+                     least four decimals (`1.5708`) to say so yourself",
+                    elements.join(", and ")
+                ),
+            )
+        }
+        None => (
+            j.range.start,
+            "a right angle on the path from the root to this joint written a few digits \
+             short does this; write it exactly (`1.5707963267948966`) or rounded to at least \
+             four decimals (`1.5708`) to say so yourself"
+                .to_owned(),
+        ),
+    };
+    let axes = ["x", "y", "z"];
+    let components: Vec<String> = (0..3)
+        .filter(|&k| small(gravity[k]))
+        .map(|k| {
+            format!(
+                "{} = {} m/s^2",
+                axes[k],
+                show(format!("{:.4e}", gravity[k]).parse().unwrap_or(gravity[k]))
+            )
+        })
+        .collect();
+    warnings.push(place.warning(
+        at,
+        &format!(
+            "gravity in robid frame 0, whose z is joint `{}`'s axis, has {} below {} m/s^2: \
+             taken as 0, the axis as exactly parallel or perpendicular to the root link's z \
+             (it is {tilt:.1e} rad from that, too little for any data to tell from none, and \
+             a measured mounting tilt this small changes the gravity torques by less than \
+             1e-4 of their size); {cause} (docs/urdf.md#gravity)",
+            j.name,
+            components.join(" and "),
+            show(MIN_GRAVITY)
+        ),
+    ));
+    gravity.map(|x| if small(x) { 0.0 } else { x })
+}
+
 /// The robot: modified DH, numeric, no drive terms, the URDF's limits. A DH value or
 /// gravity outside robid's bounds is an error at the joint (or the robot name).
 pub(super) fn robot(
@@ -264,7 +345,7 @@ pub(super) fn robot(
         let located = e
             .errors()
             .into_iter()
-            .map(|one| locate(place, urdf, chain, fit, gravity, one))
+            .map(|one| locate(place, urdf, chain, fit, one))
             .collect();
         DescriptionError::from_errors(located)
     })
@@ -375,15 +456,12 @@ fn tilted(urdf: &Urdf, chain: &Chain) -> Vec<(std::ops::Range<usize>, String, f6
     out
 }
 
-/// An error of [`Robot::new`] (naming `joints[k]` or gravity) at the URDF joint it concerns:
-/// gravity's at the origin or axis that tilts joint 1's axis a few µrad off the root's
-/// vertical, when one does, else at joint 1, whose axis is frame 0's z.
+/// An error of [`Robot::new`] (naming `joints[k]`) at the URDF joint it concerns.
 fn locate(
     place: &Place<'_>,
     urdf: &Urdf,
     chain: &Chain,
     fit: &Fit,
-    gravity: [f64; 3],
     error: &DescriptionError,
 ) -> DescriptionError {
     let DescriptionError::Argument {
@@ -401,64 +479,6 @@ fn locate(
         .and_then(|k| k.parse::<usize>().ok())
         .filter(|&k| k < chain.joints.len());
     let joint = index.map(|k| &urdf.joints[chain.joints[k]]);
-    if argument.trim_start_matches('`').starts_with("gravity")
-        && let Some(&first) = chain.joints.first()
-    {
-        let j = &urdf.joints[first];
-        let norm = gravity.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let small = gravity
-            .iter()
-            .map(|x| x.abs())
-            .filter(|&x| x > 0.0)
-            .fold(f64::INFINITY, f64::min);
-        let tilt = (small / norm).asin();
-        let tilted = tilted(urdf, chain);
-        if let Some((at, _, _)) = tilted.first() {
-            let elements: Vec<String> = tilted
-                .iter()
-                .map(|(_, what, angle)| format!("{what} is {angle:.1e} rad from a right angle"))
-                .collect();
-            let (them, are, angles) = if tilted.len() == 1 {
-                ("it", "is", "a right angle")
-            } else {
-                ("them", "are", "right angles")
-            };
-            return place.invalid(
-                at.clone(),
-                format!(
-                    "gravity in robid frame 0, whose z is joint `{}`'s axis, is not accepted \
-                     ({argument}): {message}",
-                    j.name
-                ),
-                format!(
-                    "{}, which turns the axis {tilt:.1e} rad from parallel or perpendicular to \
-                     the root link's z, the direction of gravity, too little for the \
-                     identification to tell from none; if {them} {are} meant as {angles} (a \
-                     level mounting, a right angle printed short such as `1.57079` for \
-                     pi/2), write {them} exactly \
-                     (`0`, `1.5707963267948966`) or rounded to at least four decimals \
-                     (`1.5708`); a measured mounting tilt this small changes the gravity \
-                     torques by less than 1e-4 of their size, so write the mounting level \
-                     (docs/urdf.md#gravity)",
-                    elements.join(", and ")
-                ),
-            );
-        }
-        return place.invalid(
-            j.range.clone(),
-            format!(
-                "gravity in robid frame 0, whose z is joint `{}`'s axis, is not accepted ({argument}): {message}",
-                j.name
-            ),
-            format!(
-                "the axis is {tilt:.1e} rad from parallel or perpendicular to the root link's z, \
-                 the direction of gravity: a right angle on the path from the root to this joint \
-                 written a few digits short (`1.57079` for pi/2) does this; write it exactly \
-                 (`1.5707963267948966`) or rounded to at least four decimals (`1.5708`), or tilt \
-                 the joint by a clear angle (docs/urdf.md#gravity)"
-            ),
-        );
-    }
     let skew = index
         .filter(|_| {
             [".alpha`", ".a`", ".d`", ".b`"]

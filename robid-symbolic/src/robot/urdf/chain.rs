@@ -6,7 +6,7 @@ use super::super::DescriptionError;
 use super::super::check::{distance, show};
 use super::super::file::Place;
 use super::rigid::{Rigid, scale};
-use super::xml::{JointType, Urdf};
+use super::xml::{Joint, JointType, Mimic, Urdf};
 use std::collections::HashMap;
 
 /// Which part of a URDF robid models: the chain from `base` to `tip`.
@@ -70,9 +70,14 @@ fn nearest(names: &[&str], wanted: &str) -> String {
         .join(", ")
 }
 
-/// Builds the tree: every parent and child names a link, every `<mimic>` a joint, every
-/// link has at most one parent, there is no cycle and there is one root.
-pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionError> {
+/// Builds the tree: every parent and child names a link, every link has at most one
+/// parent, there is no cycle and there is one root. A `<mimic>` naming no joint is told in
+/// `warnings` (the joint is then held at its `offset` off the chain, and refused on it).
+pub(super) fn tree(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    warnings: &mut Vec<String>,
+) -> Result<Tree, DescriptionError> {
     let names: Vec<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
     let index: HashMap<&str, usize> = names.iter().enumerate().map(|(i, &n)| (n, i)).collect();
     let mut errors = Vec::new();
@@ -122,22 +127,29 @@ pub(super) fn tree(place: &Place<'_>, urdf: &Urdf) -> Result<Tree, DescriptionEr
         children[p].push(k);
     }
     let joint_names: Vec<&str> = urdf.joints.iter().map(|j| j.name.as_str()).collect();
-    for joint in &urdf.joints {
-        if let Some(mimic) = &joint.mimic
-            && !joint_names.contains(&mimic.joint.as_str())
-        {
-            errors.push(place.invalid(
-                mimic.at.clone(),
-                format!(
-                    "joint `{}` mimics joint `{}`, which is no `<joint>` of the robot",
-                    joint.name, mimic.joint
-                ),
-                format!(
-                    "the nearest joint names are {}",
-                    nearest(&joint_names, &mimic.joint)
-                ),
-            ));
-        }
+    let unknown: Vec<(&Joint, &Mimic)> = urdf
+        .joints
+        .iter()
+        .filter_map(|j| Some((j, j.mimic.as_ref()?)))
+        .filter(|(_, m)| !joint_names.contains(&m.joint.as_str()))
+        .collect();
+    if let Some((joint, mimic)) = unknown.first() {
+        let more = match unknown.len() - 1 {
+            0 => String::new(),
+            1 => " (and 1 more `<mimic>` naming no joint)".to_owned(),
+            n => format!(" (and {n} more `<mimic>` naming no joint)"),
+        };
+        warnings.push(place.warning(
+            mimic.at.start,
+            &format!(
+                "joint `{}` mimics joint `{}`, which is no `<joint>` of the robot{more}: off the \
+                 chain it is held at its `offset`, as if that joint were at 0, and on the chain \
+                 it is refused; the nearest joint names are {}",
+                joint.name,
+                mimic.joint,
+                nearest(&joint_names, &mimic.joint)
+            ),
+        ));
     }
     if !errors.is_empty() {
         return Err(DescriptionError::from_errors(errors));
@@ -579,9 +591,16 @@ pub(super) fn choose(
             && (on_path || path_names.contains_key(mimic.joint.as_str()))
         {
             let mimicked = &mimic.joint;
+            let exists = urdf.joints.iter().any(|j| &j.name == mimicked);
             errors.push(place.invalid(
                     mimic.at.clone(),
-                    if on_path {
+                    if on_path && !exists {
+                        format!(
+                            "joint `{}` of the chain mimics joint `{mimicked}`, which is no \
+                             `<joint>` of the robot",
+                            joint.name
+                        )
+                    } else if on_path {
                         format!("joint `{}` of the chain mimics joint `{mimicked}`", joint.name)
                     } else {
                         format!(

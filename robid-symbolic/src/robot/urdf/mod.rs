@@ -137,7 +137,7 @@ impl Robot {
         let place = Place { file, text };
         let urdf = xml::read(&place)?;
         let mut warnings = urdf.warnings.clone();
-        let tree = chain::tree(&place, &urdf)?;
+        let tree = chain::tree(&place, &urdf, &mut warnings)?;
         let chain = chain::choose(&place, &urdf, &tree, selection, &mut warnings)?;
         if let Some(w) = xml::zero_limits(&place, chain.joints.iter().map(|&j| &urdf.joints[j])) {
             warnings.push(w);
@@ -159,6 +159,7 @@ impl Robot {
         let fit = frames::fit(&axes);
         let name = build::robot_name(&place, &urdf, &mut warnings);
         let gravity = build::gravity(&tree.at_zero[chain.base], &fit);
+        let gravity = build::level(&place, &urdf, &chain, gravity, &mut warnings);
         let robot = build::robot(&place, &urdf, &chain, &fit, gravity, &name, &mut warnings)?;
         warnings.extend(build::measured_twists(&place, &urdf, &chain, &fit));
         let links = chain
