@@ -117,8 +117,8 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
         };
         out.push(format!(
             "{}:{line}:{column}: joint {} `theta` is {off:.1e} rad from {exact}{more}: taken \
-             as written, an offset of the joint's zero; write \"{exact}\" if the right angle \
-             is meant (its sine and cosine then fold into the model)",
+             as written, an offset of the joint's zero; write \"{exact}\" if {exact} is \
+             meant (its sine and cosine then fold into the model)",
             place.file,
             j + 1
         ));

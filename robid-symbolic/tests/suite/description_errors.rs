@@ -686,7 +686,7 @@ fn a_revolute_theta_near_a_right_angle_is_taken_as_an_offset() {
     assert_eq!(warnings.len(), 1, "{warnings:#?}");
     for part in [
         "arm.toml:9:9: joint 2 `theta` is 2.7e-8 rad from pi/2 (and 1 more joint)",
-        "write \"pi/2\" if the right angle is meant",
+        "write \"pi/2\" if pi/2 is meant",
     ] {
         assert!(
             warnings[0].contains(part),
