@@ -6,7 +6,7 @@
 use super::bounds::{
     ANGLE_RESOLUTION, MAX_ACCELERATION, MAX_ANGLE, MAX_CALIBRATED_LENGTH, MAX_GRAVITY, MAX_JOINTS,
     MAX_LENGTH, MAX_POSITION, MAX_SAMPLED, MAX_SYMBOLS, MAX_TORQUE, MAX_VELOCITY, MIN_GRAVITY,
-    MIN_LENGTH, SYMBOL_SAMPLES, calibrated_pair,
+    MIN_LENGTH, RIGHT_ANGLE_SNAP, SYMBOL_SAMPLES, calibrated_pair,
 };
 use super::interval::magnitude_bound;
 use super::{Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, Transform};
@@ -286,7 +286,8 @@ enum Role {
 
 impl Parts {
     /// The robot, or every problem found.
-    pub(super) fn check(self, locate: &dyn Locate) -> Result<Robot, Vec<DescriptionError>> {
+    pub(super) fn check(mut self, locate: &dyn Locate) -> Result<Robot, Vec<DescriptionError>> {
+        self.snap_right_angles();
         let mut errors = Vec::new();
         let mut error = |item: Item<'_>, message: String, help: &str| {
             errors.push(locate.error(item, message, help.to_owned()));
@@ -415,6 +416,33 @@ impl Parts {
         })
     }
 
+    /// Numeric angles (DH angles, `rpy` of `[base]` and `[tool]`) within
+    /// [`RIGHT_ANGLE_SNAP`] of a multiple of pi/2 become that multiple exactly: how programs
+    /// print right angles (`1.5707963267948966`, Python's `math.pi / 2`, is 6e-17 rad from
+    /// pi/2; `1.57079632679` 4.9e-12), which were refused as "0.0e0 rad from pi/2".
+    fn snap_right_angles(&mut self) {
+        let snap = |g: &mut Geometry| {
+            let Geometry::Number(n) = g else { return };
+            let v = n.value();
+            let k = (v / FRAC_PI_2).round();
+            if k.abs() <= 4.0 && (v - k * FRAC_PI_2).abs() <= RIGHT_ANGLE_SNAP {
+                *g = if k == 0.0 {
+                    Geometry::zero()
+                } else {
+                    Geometry::text(&quarter_text(k)).unwrap_or_else(|_| g.clone())
+                };
+            }
+        };
+        for joint in &mut self.joints {
+            for g in [&mut joint.alpha, &mut joint.theta, &mut joint.gamma] {
+                snap(g);
+            }
+        }
+        for t in [&mut self.base, &mut self.tool].into_iter().flatten() {
+            t.rpy.iter_mut().for_each(snap);
+        }
+    }
+
     /// Every geometric value with its item and role, joints first.
     fn values(&self) -> Vec<(Item<'static>, Geometry, Role)> {
         let mut out = Vec::with_capacity(6 * self.joints.len() + 15);
@@ -528,7 +556,8 @@ impl Pair {
     fn of(joint: &Joint) -> Pair {
         let number = |g: &Geometry| match g {
             Geometry::Number(n) => Some(n.value()),
-            Geometry::Expression(_) => None,
+            // a right angle written (or snapped to) `pi`, `-pi/2`, ...
+            Geometry::Expression(_) => g.quarter_turns().map(|k| k as f64 * FRAC_PI_2),
         };
         let (Some(alpha), Some(b), Some(d)) =
             (number(&joint.alpha), number(&joint.b), number(&joint.d))

@@ -408,8 +408,11 @@ impl Robot {
     /// let pose = robot.base_pose()?;
     /// assert_eq!(pose[2][3], 1.0);
     /// assert!((pose[2][1] - 1.0).abs() < 1e-15); // y_0 points up
-    /// // an angle a hair from pi/2 is refused: write "pi/2"
-    /// let near = Transform::numbers([0.0; 3], [std::f64::consts::FRAC_PI_2, 0.0, 0.0])?;
+    /// // the f64 nearest pi/2 is pi/2 exactly; an angle 1e-6 rad from it is refused
+    /// let exact = Transform::numbers([0.0; 3], [std::f64::consts::FRAC_PI_2, 0.0, 0.0])?;
+    /// let same = robot.clone().with_base(Some(exact))?;
+    /// assert_eq!(same.base().unwrap().rpy[0].as_str(), "pi/2");
+    /// let near = Transform::numbers([0.0; 3], [std::f64::consts::FRAC_PI_2 + 1e-6, 0.0, 0.0])?;
     /// assert!(robot.with_base(Some(near)).is_err());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```

@@ -141,7 +141,7 @@ fn magnitudes_that_broke_the_derivation_are_errors() {
     single(&joint("a = -1e-7"), "4:5", &["shorter than 1e-6 m"]);
     single(&joint("alpha = \"pi/2 + 1e-7\""), "4:9", &["from pi/2"]);
     single(&joint("gamma = 3.1415926"), "4:9", &["from pi", "\"pi\""]);
-    single(&joint("alpha = 1e-9"), "4:9", &["from 0"]);
+    single(&joint("alpha = 2e-9"), "4:9", &["from 0"]);
     // A symbol's value is checked where it is used.
     single(
         &format!("{HEAD}[symbols]\nL = 5000\n[[joints]]\na = \"L\"\n"),
@@ -702,5 +702,32 @@ fn a_revolute_theta_near_a_right_angle_is_taken_as_an_offset() {
         &format!("{HEAD}[[joints]]\ntype = \"prismatic\"\ntheta = 1.5707963\n"),
         "5:9",
         &["joint 1 `theta` = 1.5707963 is only 2.7e-8 rad from pi/2"],
+    );
+}
+
+/// A right angle printed by a program is that right angle: `1.5707963267948966`
+/// (Python's `math.pi / 2`, 6e-17 rad from pi/2) and `1.57079632679` (4.9e-12) were
+/// refused as "only 0.0e0 rad from pi/2", so every DH table a script wrote (Corke's
+/// Robotics Toolbox models, exported) was; within 1e-9 rad an angle is the multiple of
+/// pi/2 exactly, in `[base]` and `[tool]` too, while 2e-9 rad is still refused.
+#[test]
+fn right_angles_printed_by_programs_are_exact() {
+    let text = format!(
+        "{HEAD}[base]\nrpy = [3.141592653589793, 0, 0]\n\n[[joints]]\nalpha = 1.5707963267948966\n\
+         theta = -1.5707963267948966\n\n[[joints]]\nalpha = -1.57079632679\na = 0.4\n\
+         theta = 6.123233995736766e-17\n"
+    );
+    let robot = Robot::from_toml(&text, "arm.toml").unwrap_or_else(|e| panic!("{e}"));
+    let j = robot.joints();
+    let shown: Vec<&str> = [&j[0].alpha, &j[0].theta, &j[1].alpha, &j[1].theta]
+        .iter()
+        .map(|g| g.as_str())
+        .collect();
+    assert_eq!(shown, ["pi/2", "-pi/2", "-pi/2", "0"]);
+    assert_eq!(robot.base().unwrap().rpy[0].as_str(), "pi");
+    single(
+        &format!("{HEAD}[[joints]]\nalpha = 1.570796324794897\n"),
+        "4:9",
+        &["is only 2.0e-9 rad from pi/2"],
     );
 }

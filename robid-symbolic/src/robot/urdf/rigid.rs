@@ -8,10 +8,9 @@ use std::f64::consts::FRAC_PI_2;
 /// A 3 x 3 matrix, row-major.
 pub(super) type Mat3 = [[f64; 3]; 3];
 
-/// How close (rad) an angle must be to a multiple of pi/2 to be that multiple
-/// (docs/urdf.md#the-angle-rule): rounding of a printed pi/2 (`1.57079632679` is 4.9e-12
-/// away), nothing coarser (`1.57079` is not pi/2).
-pub(super) const SNAP: f64 = 1e-9;
+/// How close (rad) an angle must be to a multiple of pi/2 to be that multiple: the rule
+/// of descriptions (`bounds::RIGHT_ANGLE_SNAP`).
+pub(super) const SNAP: f64 = super::super::bounds::RIGHT_ANGLE_SNAP;
 
 /// The multiple k of pi/2 that `angle` is within [`SNAP`] of, if any.
 pub(super) fn right_angle_multiple(angle: f64) -> Option<i64> {
