@@ -11,7 +11,7 @@
 //!
 //! | what | accepted |
 //! |---|---|
-//! | DH lengths `a`, `d`, `b` | 0, or [`MIN_LENGTH`] (1 µm) to [`MAX_LENGTH`] (1 km) in magnitude, in metres; `b` and `d` of a [calibrated pair](calibrated_pair) up to [`MAX_CALIBRATED_LENGTH`] (1e9 m) |
+//! | DH lengths `a`, `d`, `b` | 0 (or a number below [`LENGTH_SNAP`], taken as 0), or [`MIN_LENGTH`] (1 µm) to [`MAX_LENGTH`] (1 km) in magnitude, in metres; `b` and `d` of a [calibrated pair](calibrated_pair) up to [`MAX_CALIBRATED_LENGTH`] (1e9 m) |
 //! | DH angles `alpha`, `theta` | at most [`MAX_ANGLE`] (one turn) in magnitude, in radians; exactly `k pi/2` (as `"pi/2"`, `0`, or a number within [`RIGHT_ANGLE_SNAP`] of it, which is taken as it) or at least [`ANGLE_RESOLUTION`] away from every such angle, but for the `alpha` of a [calibrated pair](calibrated_pair), the `theta` of a revolute joint (an offset of its variable, which changes no base parameter: any value) and the angles fitted to a URDF (measured, not typed) |
 //! | gravity components | 0, or [`MIN_GRAVITY`] to [`MAX_GRAVITY`] m/s^2 in magnitude |
 //! | a value with symbols | the above at the `[symbols]` values when all its symbols have one, and at most [`MAX_SAMPLED`] in magnitude for any symbol values in [`SYMBOL_SAMPLES`] |
@@ -57,6 +57,11 @@ pub const ANGLE_RESOLUTION: f64 = 1e-5;
 /// printed by a program (`1.5707963267948966` is 6e-17 rad from pi/2, the ROS-Industrial
 /// files' `1.57079632679` 4.9e-12), nothing coarser (`1.57079` is not pi/2).
 pub const RIGHT_ANGLE_SNAP: f64 = 1e-9;
+
+/// Lengths (m) shorter than this are 0, in a description as in a URDF: the rounding of a
+/// computed zero (`4.440892098500626e-17` from a script's frame arithmetic), which
+/// [`MIN_LENGTH`] would otherwise refuse.
+pub const LENGTH_SNAP: f64 = 1e-12;
 
 /// Largest magnitude of the `b` and `d` of a [calibrated pair](calibrated_pair) (m): f64
 /// keeps their sum to 2^-52 of them, 2.2e-7 m, below [`MIN_LENGTH`].

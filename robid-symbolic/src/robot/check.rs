@@ -4,9 +4,9 @@
 //! a library call ([`Code`]).
 
 use super::bounds::{
-    ANGLE_RESOLUTION, MAX_ACCELERATION, MAX_ANGLE, MAX_CALIBRATED_LENGTH, MAX_GRAVITY, MAX_JOINTS,
-    MAX_LENGTH, MAX_POSITION, MAX_SAMPLED, MAX_SYMBOLS, MAX_TORQUE, MAX_VELOCITY, MIN_GRAVITY,
-    MIN_LENGTH, RIGHT_ANGLE_SNAP, SYMBOL_SAMPLES, calibrated_pair,
+    ANGLE_RESOLUTION, LENGTH_SNAP, MAX_ACCELERATION, MAX_ANGLE, MAX_CALIBRATED_LENGTH, MAX_GRAVITY,
+    MAX_JOINTS, MAX_LENGTH, MAX_POSITION, MAX_SAMPLED, MAX_SYMBOLS, MAX_TORQUE, MAX_VELOCITY,
+    MIN_GRAVITY, MIN_LENGTH, RIGHT_ANGLE_SNAP, SYMBOL_SAMPLES, calibrated_pair,
 };
 use super::interval::magnitude_bound;
 use super::{Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, Transform};
@@ -287,7 +287,7 @@ enum Role {
 impl Parts {
     /// The robot, or every problem found.
     pub(super) fn check(mut self, locate: &dyn Locate) -> Result<Robot, Vec<DescriptionError>> {
-        self.snap_right_angles();
+        self.snap_roundings();
         let mut errors = Vec::new();
         let mut error = |item: Item<'_>, message: String, help: &str| {
             errors.push(locate.error(item, message, help.to_owned()));
@@ -419,8 +419,17 @@ impl Parts {
     /// Numeric angles (DH angles, `rpy` of `[base]` and `[tool]`) within
     /// [`RIGHT_ANGLE_SNAP`] of a multiple of pi/2 become that multiple exactly: how programs
     /// print right angles (`1.5707963267948966`, Python's `math.pi / 2`, is 6e-17 rad from
-    /// pi/2; `1.57079632679` 4.9e-12), which were refused as "0.0e0 rad from pi/2".
-    fn snap_right_angles(&mut self) {
+    /// pi/2; `1.57079632679` 4.9e-12), which were refused as "0.0e0 rad from pi/2". Numeric
+    /// lengths below [`LENGTH_SNAP`] become 0 (a script's computed zero).
+    fn snap_roundings(&mut self) {
+        let zero = |g: &mut Geometry| {
+            if let Geometry::Number(n) = g
+                && n.value() != 0.0
+                && n.value().abs() < LENGTH_SNAP
+            {
+                *g = Geometry::zero();
+            }
+        };
         let snap = |g: &mut Geometry| {
             let Geometry::Number(n) = g else { return };
             let v = n.value();
@@ -437,9 +446,13 @@ impl Parts {
             for g in [&mut joint.alpha, &mut joint.theta, &mut joint.gamma] {
                 snap(g);
             }
+            for g in [&mut joint.a, &mut joint.d, &mut joint.b] {
+                zero(g);
+            }
         }
         for t in [&mut self.base, &mut self.tool].into_iter().flatten() {
             t.rpy.iter_mut().for_each(snap);
+            t.xyz.iter_mut().for_each(zero);
         }
     }
 

@@ -709,13 +709,14 @@ fn a_revolute_theta_near_a_right_angle_is_taken_as_an_offset() {
 /// (Python's `math.pi / 2`, 6e-17 rad from pi/2) and `1.57079632679` (4.9e-12) were
 /// refused as "only 0.0e0 rad from pi/2", so every DH table a script wrote (Corke's
 /// Robotics Toolbox models, exported) was; within 1e-9 rad an angle is the multiple of
-/// pi/2 exactly, in `[base]` and `[tool]` too, while 2e-9 rad is still refused.
+/// pi/2 exactly, in `[base]` and `[tool]` too, while 2e-9 rad is still refused; a length
+/// below 1e-12 m (a computed zero) is 0.
 #[test]
 fn right_angles_printed_by_programs_are_exact() {
     let text = format!(
         "{HEAD}[base]\nrpy = [3.141592653589793, 0, 0]\n\n[[joints]]\nalpha = 1.5707963267948966\n\
-         theta = -1.5707963267948966\n\n[[joints]]\nalpha = -1.57079632679\na = 0.4\n\
-         theta = 6.123233995736766e-17\n"
+         theta = -1.5707963267948966\nd = 4.440892098500626e-17\n\n[[joints]]\n\
+         alpha = -1.57079632679\na = 0.4\ntheta = 6.123233995736766e-17\n"
     );
     let robot = Robot::from_toml(&text, "arm.toml").unwrap_or_else(|e| panic!("{e}"));
     let j = robot.joints();
@@ -724,6 +725,8 @@ fn right_angles_printed_by_programs_are_exact() {
         .map(|g| g.as_str())
         .collect();
     assert_eq!(shown, ["pi/2", "-pi/2", "-pi/2", "0"]);
+    // a script's computed zero length is 0
+    assert_eq!(j[0].d.as_str(), "0");
     assert_eq!(robot.base().unwrap().rpy[0].as_str(), "pi");
     single(
         &format!("{HEAD}[[joints]]\nalpha = 1.570796324794897\n"),

@@ -15,8 +15,9 @@ use std::f64::consts::FRAC_PI_2;
 /// docs/urdf.md#the-angle-rule), they are parallel.
 pub(super) const PARALLEL: f64 = 1e-9;
 
-/// Shorter lengths (m) are zero: axes closer than this meet.
-pub(super) const ZERO_LENGTH: f64 = 1e-12;
+/// Shorter lengths (m) are zero: axes closer than this meet (the rule of descriptions,
+/// `bounds::LENGTH_SNAP`).
+pub(super) const ZERO_LENGTH: f64 = super::super::bounds::LENGTH_SNAP;
 
 /// Largest angle (rad, as the sine of it) between two consecutive joint axes, not parallel
 /// within [`PARALLEL`], that counts as nearly parallel: such a pair's frame keeps its origin
