@@ -144,6 +144,9 @@ fn stage(name: &str, path: &Path) {
         "identify" => {
             let record = load_record(&config, &files, DOF).expect("load");
             let id = identify(&model, record.as_ref(), &config).expect("identify");
+            if let Some(out) = std::env::var_os("HOUR_ESTIMATE") {
+                dump(&id, Path::new(&out)).expect("write the estimate");
+            }
             let truth = truth(&model);
             let err = relative_error(&id.estimate.values, &truth);
             let detail = format!(
@@ -167,6 +170,33 @@ fn stage(name: &str, path: &Path) {
     };
     let elapsed = start.elapsed().as_secs_f64();
     println!("{name} {elapsed} {samples} {} {detail}", peak_mib());
+}
+
+/// Writes the estimate's values, standard deviations, weights, residuals and fit, one
+/// number a line with its name (`HOUR_ESTIMATE=FILE` in the identify stage): the figures
+/// two builds must agree on.
+fn dump(id: &robid_runtime::pipeline::Identification, path: &Path) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    let e = &id.estimate;
+    for (i, name) in e.names.iter().enumerate() {
+        writeln!(out, "value {name} {:e}", e.values[i])?;
+        writeln!(out, "std {name} {:e}", e.std[i])?;
+    }
+    for (j, r) in e.residual_rms.iter().enumerate() {
+        writeln!(out, "residual_rms {j} {r:e}")?;
+    }
+    for (j, w) in e.weights.iter().flatten().enumerate() {
+        writeln!(out, "weight {j} {w:e}")?;
+    }
+    writeln!(out, "sigma2 - {:e}", e.sigma2)?;
+    writeln!(out, "condition - {:e}", e.condition_number)?;
+    writeln!(out, "rows - {}", e.rows)?;
+    writeln!(out, "nmse - {:e}", id.fit.nmse)?;
+    writeln!(out, "relative_error - {:e}", id.fit.relative_error)?;
+    for (j, r) in id.fit.rms_per_joint.iter().enumerate() {
+        writeln!(out, "fit_rms {j} {r:e}")?;
+    }
+    out.flush()
 }
 
 fn relative_error(values: &[f64], truth: &[f64]) -> f64 {
