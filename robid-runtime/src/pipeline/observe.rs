@@ -11,6 +11,7 @@ use crate::data::{Config, Decimation};
 use crate::error::{Error, Result, num};
 use crate::estimate::{Observation, check_names};
 use crate::pipeline::Prepared;
+use crate::signal::passes::Forward;
 use crate::signal::{Decimator, Signals, moving_samples};
 
 /// Samples per parallel work item when evaluating the regressor.
@@ -344,6 +345,32 @@ impl<'a> Observer<'a> {
     }
 }
 
+/// The decimation filter's forward states carried from one block of a stream to the
+/// next ([`Observer::window`], [`Decimator::apply_gathered_from`]).
+#[derive(Debug)]
+pub(crate) struct Carry {
+    /// Sections of the filter.
+    sections: usize,
+    /// `sections` pairs per channel of a sample row, the states before the next block's
+    /// first sample; none before the first block.
+    states: Vec<[f64; 2]>,
+}
+
+impl Carry {
+    /// No states yet, for a filter of `sections` sections.
+    pub(crate) fn new(sections: usize) -> Self {
+        Self {
+            sections,
+            states: Vec::new(),
+        }
+    }
+
+    /// Whether a block has handed its states on.
+    pub(crate) fn started(&self) -> bool {
+        !self.states.is_empty()
+    }
+}
+
 /// The equations of some decimated samples, in sample order (for each sample, the joints
 /// that move at it, in joint order).
 #[derive(Debug, Default)]
@@ -502,6 +529,11 @@ impl Observer<'_> {
     /// from block to block: each row's channels are written straight into their group's
     /// buffer, in the layout the decimator filters in place ([`Decimator::apply_gathered`]),
     /// so the channels are never copied between the regressor and the filter.
+    ///
+    /// With `carry`, the filter's forward pass goes on from the states `carry` holds (from
+    /// the first of the samples when it holds none yet), and the states before sample
+    /// `hand` (counted from `lo`) replace them: a channel outside `channels` is zero
+    /// throughout, and so are its states.
     fn decimated_channels(
         &self,
         dec: &Decimator,
@@ -509,6 +541,7 @@ impl Observer<'_> {
         hi: usize,
         channels: &[usize],
         groups: &mut Vec<Vec<f64>>,
+        carry: Option<(&mut Carry, usize)>,
     ) -> Result<Option<Vec<Decimated>>> {
         let (dof, stride) = (self.lay.dof, self.lay.stride());
         let mut inside = vec![false; stride];
@@ -568,12 +601,55 @@ impl Observer<'_> {
         if missed {
             return Ok(None);
         }
-        groups
+        let Some((carry, hand)) = carry else {
+            return groups
+                .par_iter_mut()
+                .zip(&sets)
+                .map(|(buffer, set)| Ok((dec.apply_gathered(buffer, set.len())?, set.len())))
+                .collect::<Result<Vec<_>>>()
+                .map(Some);
+        };
+        // each group's states: those carried, and a buffer for those handed on
+        let ns = carry.sections;
+        let started = carry.started();
+        let starts: Vec<Vec<[f64; 2]>> = sets
+            .iter()
+            .map(|set| {
+                set.iter()
+                    .filter(|_| started)
+                    .flat_map(|&c| carry.states[c * ns..(c + 1) * ns].iter().copied())
+                    .collect()
+            })
+            .collect();
+        let mut handed: Vec<Vec<[f64; 2]>> = sets
+            .iter()
+            .map(|set| vec![[0.0; 2]; set.len() * ns])
+            .collect();
+        let decimated = groups
             .par_iter_mut()
             .zip(&sets)
-            .map(|(buffer, set)| Ok((dec.apply_gathered(buffer, set.len())?, set.len())))
-            .collect::<Result<Vec<_>>>()
-            .map(Some)
+            .zip(&starts)
+            .zip(&mut handed)
+            .map(|(((buffer, set), start), out)| {
+                let forward = Forward {
+                    from: if started { pad } else { 0 },
+                    start: started.then_some(start.as_slice()),
+                    hand: Some((pad + hand, out.as_mut_slice())),
+                };
+                Ok((
+                    dec.apply_gathered_from(buffer, set.len(), forward)?,
+                    set.len(),
+                ))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        carry.states.clear();
+        carry.states.resize(stride * ns, [0.0; 2]);
+        for (set, out) in sets.iter().zip(&handed) {
+            for (&c, states) in set.iter().zip(out.chunks_exact(ns)) {
+                carry.states[c * ns..(c + 1) * ns].copy_from_slice(states);
+            }
+        }
+        Ok(Some(decimated))
     }
 
     /// The equations of the decimated samples whose processed samples lie in `core`
@@ -585,6 +661,12 @@ impl Observer<'_> {
     /// that are zero at a few probed samples are assumed zero (checked on every sample,
     /// then all channels taken if one is not), as in [`observe`]. `groups` are buffers for
     /// the channels before decimation, reused from block to block.
+    ///
+    /// With `carry` (a decimator with one filtering stage: [`Decimator::carried_sections`]),
+    /// the decimation filter's forward pass goes on from the states the previous block
+    /// handed on, with no overlap on the left (the samples start at `core.start`), and
+    /// hands its states before `core.end` on to the next block; the first block (`carry`
+    /// holds no states yet) starts as without it.
     pub(crate) fn window(
         &self,
         dec: &Decimator,
@@ -592,11 +674,16 @@ impl Observer<'_> {
         rest: Option<&[f64]>,
         core: std::ops::Range<usize>,
         groups: &mut Vec<Vec<f64>>,
+        mut carry: Option<&mut Carry>,
     ) -> Result<Equations> {
         let (lay, dof) = (&self.lay, self.lay.dof);
         let n = self.signals.samples();
         let f = dec.factor();
-        let lo = core.start.saturating_sub(overlap);
+        let lo = if carry.as_ref().is_some_and(|c| c.started()) {
+            core.start
+        } else {
+            core.start.saturating_sub(overlap)
+        };
         let hi = (core.end + overlap).min(n);
         let stride = lay.stride();
         let mut st = Scratch::new(dof);
@@ -615,11 +702,20 @@ impl Observer<'_> {
             active[lay.qd(j)] = true;
         }
         let mut channels: Vec<usize> = (0..stride).filter(|&c| active[c]).collect();
-        let decimated = match self.decimated_channels(dec, lo, hi, &channels, groups)? {
+        let hand = core.end - lo;
+        let first = self.decimated_channels(
+            dec,
+            lo,
+            hi,
+            &channels,
+            groups,
+            carry.as_deref_mut().map(|c| (c, hand)),
+        )?;
+        let decimated = match first {
             Some(g) => g,
             None => {
                 channels = (0..stride).collect();
-                self.decimated_channels(dec, lo, hi, &channels, groups)?
+                self.decimated_channels(dec, lo, hi, &channels, groups, carry.map(|c| (c, hand)))?
                     .unwrap_or_default()
             }
         };

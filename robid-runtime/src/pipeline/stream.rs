@@ -31,7 +31,7 @@ use crate::error::{Error, Result};
 use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
 use crate::pipeline::Identification;
 use crate::pipeline::identify::checked_plan;
-use crate::pipeline::observe::{Equations, Observer, RestCount, decimator_for, long_enough};
+use crate::pipeline::observe::{Carry, Equations, Observer, RestCount, decimator_for, long_enough};
 use crate::pipeline::prepare::{Plan, Rows};
 use crate::progress::Progress;
 use crate::signal::Decimator;
@@ -147,12 +147,14 @@ impl<'a> Stream<'a> {
             .collect()
     }
 
-    /// Calls `with` with the observer of block `b`'s prepared samples and overlap, the
+    /// Calls `with` with the observer of block `b`'s prepared samples and overlap (`left`
+    /// samples of it on the left, [`Stream::overlap`] on the right), the
     /// block's place among them, the first processed sample they hold, and the torque
     /// before the low-pass when it filters the torque.
     fn in_block<T>(
         &self,
         b: &Range<usize>,
+        left: usize,
         with: impl FnOnce(
             &Observer<'_>,
             Range<usize>,
@@ -160,7 +162,7 @@ impl<'a> Stream<'a> {
             Option<&crate::signal::Signals>,
         ) -> Result<T>,
     ) -> Result<T> {
-        let lo = b.start.saturating_sub(self.overlap);
+        let lo = b.start.saturating_sub(left);
         let hi = (b.end + self.overlap).min(self.plan.kept.len());
         let (prepared, unfiltered) = self.plan.block(self.data, self.config, lo..hi)?;
         let observer = Observer::new(self.model, &prepared, self.config)?;
@@ -178,16 +180,25 @@ impl<'a> Stream<'a> {
         let mut groups = Vec::new();
         let mut pending: Option<Equations> = None;
         let progress = self.progress("least squares");
+        // the decimation filter's forward states from block to block, when it has one
+        // filtering stage: no overlap on the left of a block but the first's
+        let mut carry = self.dec.carried_sections().map(Carry::new);
         for b in self.blocks() {
+            let left = if carry.as_ref().is_some_and(Carry::started) {
+                0
+            } else {
+                self.overlap
+            };
             let (next, folded) = rayon::join(
                 || {
-                    self.in_block(&b, |observer, core, lo, _| {
+                    self.in_block(&b, left, |observer, core, lo, _| {
                         let mut eq = observer.window(
                             &self.dec,
                             self.overlap,
                             self.rest.as_deref(),
                             core,
                             &mut groups,
+                            carry.as_mut(),
                         )?;
                         // `lo` is a multiple of the factor: the decimated samples shift by
                         // lo / f
@@ -229,7 +240,7 @@ impl<'a> Stream<'a> {
         // (joint, decimated sample, measured, predicted, torque before filtering) of a
         // block, and whether it filtered the torque
         let block = |b: &Range<usize>| {
-            self.in_block(b, |observer, core, lo, unfiltered| {
+            self.in_block(b, self.overlap, |observer, core, lo, unfiltered| {
                 let (part, count) = observer.window_prediction(
                     &self.dec,
                     self.overlap,

@@ -40,30 +40,66 @@ impl Kept {
     pub(crate) const ALL: Kept = Kept { every: 1, first: 0 };
 }
 
+/// Where the forward pass starts and the section states it hands on: a decimation run
+/// block by block over a record carries its forward states from each block to the next
+/// instead of filtering an overlap on the left of every block again
+/// (docs/performance.md#streaming-identification).
+pub(crate) struct Forward<'a> {
+    /// The first row both passes filter; the rows before it are neither read nor written.
+    pub(crate) from: usize,
+    /// The section states before row `from`, `S` pairs per channel (channel after
+    /// channel, the sections in order); `None`: the steady state of row `from`'s values.
+    pub(crate) start: Option<&'a [[f64; 2]]>,
+    /// A row and a buffer (`S` pairs per channel, laid out as `start`) for the forward
+    /// pass's states before that row (a row past the last: its states after the last).
+    pub(crate) hand: Option<(usize, &'a mut [[f64; 2]])>,
+}
+
+impl Forward<'_> {
+    /// Every row, from the steady state of the first, nothing handed on.
+    pub(crate) fn whole<'b>() -> Forward<'b> {
+        Forward {
+            from: 0,
+            start: None,
+            hand: None,
+        }
+    }
+}
+
 /// The forward pass from the steady state of the first row, then the backward pass from
 /// that of the last, over `g` channels of the row-major `ext`, in place; the backward
 /// pass stores the rows `kept` only (the others hold the forward pass's values). `zi` is
-/// the cascade's steady state per unit input.
-pub(super) fn passes(
+/// the cascade's steady state per unit input. The rows, the forward pass's first states
+/// and the states it hands on are `forward`'s ([`Forward::whole`]: every row); a
+/// channel's values are the same to the bit as when the forward pass runs over the rows
+/// before `forward.from` in the same call and hands its states on there.
+pub(super) fn passes_from(
     sections: &[[f64; 6]],
     zi: &[[f64; 2]],
     ext: &mut [f64],
     g: usize,
     kept: Kept,
+    mut forward: Forward<'_>,
 ) {
+    if let Some(start) = forward.start {
+        assert_eq!(start.len(), g * sections.len(), "starting states");
+    }
+    if let Some((_, out)) = &forward.hand {
+        assert_eq!(out.len(), g * sections.len(), "handed states");
+    }
     #[cfg(all(target_arch = "x86_64", feature = "std"))]
     if std::is_x86_feature_detected!("avx512f") && crate::trig::vector_available() {
         // SAFETY: the CPU has AVX-512F, AVX2 and FMA, the features of `passes_avx512`.
-        unsafe { passes_avx512(sections, zi, ext, g, kept) };
+        unsafe { passes_avx512(sections, zi, ext, g, kept, &mut forward) };
         return;
     }
     #[cfg(target_arch = "x86_64")]
     if crate::trig::vector_available() {
         // SAFETY: the CPU has AVX2 and FMA, the features `passes_avx2` is compiled for.
-        unsafe { passes_avx2(sections, zi, ext, g, kept) };
+        unsafe { passes_avx2(sections, zi, ext, g, kept, &mut forward) };
         return;
     }
-    by_section::<false>(sections, zi, ext, g);
+    by_section::<false>(sections, zi, ext, g, &mut forward);
 }
 
 /// The tiled passes in lanes of eight channels (two vectors of four side by side), fused.
@@ -78,8 +114,9 @@ unsafe fn passes_avx2(
     ext: &mut [f64],
     g: usize,
     kept: Kept,
+    forward: &mut Forward<'_>,
 ) {
-    tiled::<8>(sections, zi, ext, g, kept);
+    tiled::<8>(sections, zi, ext, g, kept, forward);
 }
 
 /// The tiled passes in lanes of sixteen channels (two vectors of eight side by side: the
@@ -96,8 +133,9 @@ unsafe fn passes_avx512(
     ext: &mut [f64],
     g: usize,
     kept: Kept,
+    forward: &mut Forward<'_>,
 ) {
-    tiled::<16>(sections, zi, ext, g, kept);
+    tiled::<16>(sections, zi, ext, g, kept, forward);
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -111,17 +149,18 @@ fn tiled<const W: usize>(
     ext: &mut [f64],
     g: usize,
     kept: Kept,
+    forward: &mut Forward<'_>,
 ) {
     if g == 1 {
         // one channel is a lane of one: the sections' latency bounds it either way
-        return by_section::<true>(sections, zi, ext, g);
+        return by_section::<true>(sections, zi, ext, g, forward);
     }
     match sections.len() {
-        1 => tiled_sections::<1, W>(sections, zi, ext, g, kept),
-        2 => tiled_sections::<2, W>(sections, zi, ext, g, kept),
-        3 => tiled_sections::<3, W>(sections, zi, ext, g, kept),
-        4 => tiled_sections::<4, W>(sections, zi, ext, g, kept),
-        _ => by_section::<true>(sections, zi, ext, g),
+        1 => tiled_sections::<1, W>(sections, zi, ext, g, kept, forward),
+        2 => tiled_sections::<2, W>(sections, zi, ext, g, kept, forward),
+        3 => tiled_sections::<3, W>(sections, zi, ext, g, kept, forward),
+        4 => tiled_sections::<4, W>(sections, zi, ext, g, kept, forward),
+        _ => by_section::<true>(sections, zi, ext, g, forward),
     }
 }
 
@@ -135,6 +174,7 @@ fn tiled_sections<const S: usize, const W: usize>(
     ext: &mut [f64],
     g: usize,
     kept: Kept,
+    forward: &mut Forward<'_>,
 ) {
     let sections: &[[f64; 6]; S] = sections.try_into().expect("S sections");
     let zi: &[[f64; 2]; S] = zi.try_into().expect("S steady states");
@@ -146,8 +186,8 @@ fn tiled_sections<const S: usize, const W: usize>(
         })
         .collect();
     let (full, partial) = lanes.split_at(g / W);
-    tiled_lanes::<S, W, false>(sections, zi, ext, g, full, kept);
-    tiled_lanes::<S, W, true>(sections, zi, ext, g, partial, kept);
+    tiled_lanes::<S, W, false>(sections, zi, ext, g, full, kept, forward);
+    tiled_lanes::<S, W, true>(sections, zi, ext, g, partial, kept, forward);
 }
 
 /// Channels `first..first + width` of a group, filtered together.
@@ -160,8 +200,9 @@ struct Lane {
 #[cfg(target_arch = "x86_64")]
 /// Both passes of `lanes` (each of `W` channels, or fewer when `PARTIAL`), tile by tile
 /// of rows, each lane's section states kept between tiles; the backward pass stores the
-/// rows `kept` only. A partial lane's tile is copied into a buffer of full lanes, padded
-/// with zeros, filtered there and copied back.
+/// rows `kept` only; the rows, first states and handed states of `forward`. A partial
+/// lane's tile is copied into a buffer of full lanes, padded with zeros, filtered there
+/// and copied back.
 #[inline(always)]
 fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
     sections: &[[f64; 6]; S],
@@ -170,55 +211,93 @@ fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
     g: usize,
     lanes: &[Lane],
     kept: Kept,
+    forward: &mut Forward<'_>,
 ) {
     let rows = ext.len() / g;
-    if lanes.is_empty() || rows == 0 {
+    let from = forward.from.min(rows);
+    let n = rows - from;
+    if lanes.is_empty() || n == 0 {
         return;
     }
     let tile = (TILE_BYTES / (8 * g.max(W))).max(1);
     let mut buffer = vec![0.0; if PARTIAL { tile * W } else { 0 }];
     // per lane: the first and the second state of each section
     let mut states = vec![[[[0.0; W]; S]; 2]; lanes.len()];
+    // the forward pass's rows before the handed states, counted from `from`
+    let cut = forward
+        .hand
+        .as_ref()
+        .map_or(n, |(r, _)| r.saturating_sub(from).min(n));
     for backward in [false, true] {
-        let row = |i: usize| if backward { rows - 1 - i } else { i };
+        let row = |i: usize| if backward { rows - 1 - i } else { from + i };
         for ([p, q], lane) in states.iter_mut().zip(lanes) {
-            let x = &ext[row(0) * g + lane.first..][..lane.width];
-            for s in 0..S {
-                for (l, x) in x.iter().enumerate() {
-                    p[s][l] = zi[s][0] * x;
-                    q[s][l] = zi[s][1] * x;
+            match forward.start.filter(|_| !backward) {
+                Some(start) => {
+                    for l in 0..lane.width {
+                        for s in 0..S {
+                            [p[s][l], q[s][l]] = start[(lane.first + l) * S + s];
+                        }
+                    }
+                }
+                None => {
+                    let x = &ext[row(0) * g + lane.first..][..lane.width];
+                    for s in 0..S {
+                        for (l, x) in x.iter().enumerate() {
+                            p[s][l] = zi[s][0] * x;
+                            q[s][l] = zi[s][1] * x;
+                        }
+                    }
                 }
             }
         }
-        for start in (0..rows).step_by(tile) {
-            let end = (start + tile).min(rows);
-            for (state, lane) in states.iter_mut().zip(lanes) {
-                if PARTIAL {
-                    let (from, to) = (lane.first, lane.first + lane.width);
-                    for (i, b) in (start..end).zip(buffer.chunks_exact_mut(W)) {
-                        for (b, x) in b.iter_mut().zip(&ext[row(i) * g..][from..to]) {
-                            *b = *x;
+        let parts = if backward {
+            [0..n, n..n]
+        } else {
+            [0..cut, cut..n]
+        };
+        for (part, range) in parts.into_iter().enumerate() {
+            for start in range.clone().step_by(tile) {
+                let end = (start + tile).min(range.end);
+                for (state, lane) in states.iter_mut().zip(lanes) {
+                    if PARTIAL {
+                        let (from, to) = (lane.first, lane.first + lane.width);
+                        for (i, b) in (start..end).zip(buffer.chunks_exact_mut(W)) {
+                            for (b, x) in b.iter_mut().zip(&ext[row(i) * g..][from..to]) {
+                                *b = *x;
+                            }
+                        }
+                        let buffer = &mut buffer[..(end - start) * W];
+                        lane_rows::<S, W>(sections, state, buffer, W, 0, 0..end - start, (0, None));
+                        for (i, b) in (start..end).zip(buffer.chunks_exact(W)) {
+                            for (x, b) in ext[row(i) * g..][from..to].iter_mut().zip(b) {
+                                *x = *b;
+                            }
+                        }
+                    } else {
+                        let ahead = (PREFETCH_ROWS * g) as isize;
+                        let ahead = if backward { -ahead } else { ahead };
+                        lane_rows::<S, W>(
+                            sections,
+                            state,
+                            ext,
+                            g,
+                            lane.first,
+                            (start..end).map(row),
+                            (ahead, backward.then_some(kept)),
+                        );
+                    }
+                }
+            }
+            if !backward
+                && part == 0
+                && let Some((_, out)) = forward.hand.as_mut()
+            {
+                for ([p, q], lane) in states.iter().zip(lanes) {
+                    for l in 0..lane.width {
+                        for s in 0..S {
+                            out[(lane.first + l) * S + s] = [p[s][l], q[s][l]];
                         }
                     }
-                    let buffer = &mut buffer[..(end - start) * W];
-                    lane_rows::<S, W>(sections, state, buffer, W, 0, 0..end - start, (0, None));
-                    for (i, b) in (start..end).zip(buffer.chunks_exact(W)) {
-                        for (x, b) in ext[row(i) * g..][from..to].iter_mut().zip(b) {
-                            *x = *b;
-                        }
-                    }
-                } else {
-                    let ahead = (PREFETCH_ROWS * g) as isize;
-                    let ahead = if backward { -ahead } else { ahead };
-                    lane_rows::<S, W>(
-                        sections,
-                        state,
-                        ext,
-                        g,
-                        lane.first,
-                        (start..end).map(row),
-                        (ahead, backward.then_some(kept)),
-                    );
                 }
             }
         }
@@ -319,15 +398,21 @@ fn pass_with<const FUSED: bool>(
 }
 
 /// The passes section by section over every channel of a row (any number of sections),
-/// fused or not (unfused, the operations of [`Sos::filtfilt`](super::Sos::filtfilt)).
+/// fused or not (unfused, the operations of [`Sos::filtfilt`](super::Sos::filtfilt)),
+/// over the rows, from the states and handing on the states of `forward`.
 #[inline(always)]
 fn by_section<const FUSED: bool>(
     sections: &[[f64; 6]],
     zi: &[[f64; 2]],
     ext: &mut [f64],
     g: usize,
+    forward: &mut Forward<'_>,
 ) {
     let rows = ext.len() / g;
+    let from = forward.from.min(rows);
+    if from == rows {
+        return;
+    }
     let ns = sections.len();
     let mut z0 = vec![0.0; ns * g];
     let mut z1 = vec![0.0; ns * g];
@@ -348,12 +433,37 @@ fn by_section<const FUSED: bool>(
             }
         }
     };
-    init(&mut z0, &mut z1, &ext[..g]);
-    for row in ext.chunks_exact_mut(g) {
+    match forward.start {
+        Some(start) => {
+            for c in 0..g {
+                for s in 0..ns {
+                    [z0[s * g + c], z1[s * g + c]] = start[c * ns + s];
+                }
+            }
+        }
+        None => init(&mut z0, &mut z1, &ext[from * g..(from + 1) * g]),
+    }
+    let cut = forward.hand.as_ref().map(|(r, _)| (*r).max(from));
+    let mut hand = |z0: &[f64], z1: &[f64]| {
+        if let Some((_, out)) = forward.hand.as_mut() {
+            for c in 0..g {
+                for s in 0..ns {
+                    out[c * ns + s] = [z0[s * g + c], z1[s * g + c]];
+                }
+            }
+        }
+    };
+    for (r, row) in ext.chunks_exact_mut(g).enumerate().skip(from) {
+        if cut == Some(r) {
+            hand(&z0, &z1);
+        }
         step(&mut z0, &mut z1, row);
     }
+    if cut.is_some_and(|c| c >= rows) {
+        hand(&z0, &z1);
+    }
     init(&mut z0, &mut z1, &ext[(rows - 1) * g..]);
-    for row in ext.chunks_exact_mut(g).rev() {
+    for row in ext[from * g..].chunks_exact_mut(g).rev() {
         step(&mut z0, &mut z1, row);
     }
 }
@@ -383,7 +493,28 @@ mod tests {
     use crate::signal::{butterworth, chebyshev1};
 
     /// The passes' signature, of every instance.
-    type Passes = fn(&[[f64; 6]], &[[f64; 2]], &mut [f64], usize, Kept);
+    type Passes = for<'a> fn(&[[f64; 6]], &[[f64; 2]], &mut [f64], usize, Kept, Forward<'a>);
+
+    /// Every instance of the passes this processor has, named.
+    fn instances() -> Vec<(&'static str, Passes)> {
+        let mut instances: Vec<(&str, Passes)> = vec![("dispatched", passes_from)];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if crate::trig::vector_available() {
+                // SAFETY: the CPU has AVX2 and FMA
+                instances.push(("avx2", |s, z, e, g, k, mut f| unsafe {
+                    passes_avx2(s, z, e, g, k, &mut f)
+                }));
+            }
+            if std::is_x86_feature_detected!("avx512f") && crate::trig::vector_available() {
+                // SAFETY: the CPU has AVX-512F, AVX2 and FMA
+                instances.push(("avx512", |s, z, e, g, k, mut f| unsafe {
+                    passes_avx512(s, z, e, g, k, &mut f)
+                }));
+            }
+        }
+        instances
+    }
 
     /// A block of `rows x g` channels of different sines and offsets.
     fn block(rows: usize, g: usize) -> Vec<f64> {
@@ -408,22 +539,7 @@ mod tests {
             butterworth(6, 0.3).unwrap(),
             butterworth(10, 0.2).unwrap(),
         ];
-        let mut instances: Vec<(&str, Passes)> = vec![("dispatched", passes)];
-        #[cfg(target_arch = "x86_64")]
-        {
-            if crate::trig::vector_available() {
-                // SAFETY: the CPU has AVX2 and FMA
-                instances.push(("avx2", |s, z, e, g, k| unsafe {
-                    passes_avx2(s, z, e, g, k)
-                }));
-            }
-            if std::is_x86_feature_detected!("avx512f") && crate::trig::vector_available() {
-                // SAFETY: the CPU has AVX-512F, AVX2 and FMA
-                instances.push(("avx512", |s, z, e, g, k| unsafe {
-                    passes_avx512(s, z, e, g, k)
-                }));
-            }
-        }
+        let instances = instances();
         let fused_dispatch = cfg!(target_arch = "x86_64") && crate::trig::vector_available();
         for sos in &cascades {
             let (sections, zi) = (sos.sections(), sos.steady_state());
@@ -437,16 +553,16 @@ mod tests {
             ] {
                 let x = block(rows, g);
                 let mut fused = x.clone();
-                by_section::<true>(sections, &zi, &mut fused, g);
+                by_section::<true>(sections, &zi, &mut fused, g, &mut Forward::whole());
                 let mut plain = x.clone();
-                by_section::<false>(sections, &zi, &mut plain, g);
+                by_section::<false>(sections, &zi, &mut plain, g, &mut Forward::whole());
                 let scale = plain.iter().fold(1.0f64, |m, v| m.max(v.abs()));
                 for (a, b) in fused.iter().zip(&plain) {
                     assert!((a - b).abs() < 1e-12 * scale, "{a} vs {b}");
                 }
                 for (name, f) in &instances {
                     let mut y = x.clone();
-                    f(sections, &zi, &mut y, g, Kept::ALL);
+                    f(sections, &zi, &mut y, g, Kept::ALL, Forward::whole());
                     let expected = if *name == "dispatched" && !fused_dispatch {
                         &plain
                     } else {
@@ -466,13 +582,122 @@ mod tests {
                         Kept { every: 3, first: 0 },
                     ] {
                         let mut y = x.clone();
-                        f(sections, &zi, &mut y, g, kept);
+                        f(sections, &zi, &mut y, g, kept, Forward::whole());
                         for r in (kept.first..rows).step_by(kept.every) {
                             assert!(
                                 y[r * g..(r + 1) * g] == expected[r * g..(r + 1) * g],
                                 "{name}, {kept:?}, row {r} of {rows}, {g} channels"
                             );
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    /// A record filtered in two calls, the forward states of the first handed to the
+    /// second (which starts there), gives the whole record's values to the bit from that
+    /// row on, with every instance and section by section, fused or not; handing the
+    /// states on changes nothing of the first call's values. Also with the states handed
+    /// on after the last row, and rows kept by a decimation.
+    #[test]
+    fn forward_states_handed_on_continue_the_record() {
+        let cascades = [
+            chebyshev1(8, 0.05, 0.08).unwrap(),
+            butterworth(2, 0.2).unwrap(),
+            butterworth(10, 0.2).unwrap(),
+        ];
+        let mut all = instances();
+        all.push(("by section, fused", |s, z, e, g, _, mut f| {
+            by_section::<true>(s, z, e, g, &mut f)
+        }));
+        all.push(("by section", |s, z, e, g, _, mut f| {
+            by_section::<false>(s, z, e, g, &mut f)
+        }));
+        for sos in &cascades {
+            let (sections, zi) = (sos.sections(), sos.steady_state());
+            let ns = sections.len();
+            for (rows, g, at, ahead) in [
+                (700, 1, 300, 100),
+                (2100, 32, 1000, 500),
+                (601, 13, 200, 400),
+                (300, 202, 150, 150),
+                (500, 7, 0, 300),
+            ] {
+                let x = block(rows, g);
+                for (name, f) in &all {
+                    for kept in [
+                        Kept::ALL,
+                        Kept {
+                            every: 10,
+                            first: 3,
+                        },
+                    ] {
+                        let what =
+                            format!("{name}, {ns} sections, {rows} x {g}, at {at}, {kept:?}");
+                        let mut whole = x.clone();
+                        f(sections, &zi, &mut whole, g, kept, Forward::whole());
+                        // the first part: the record up to `at + ahead`, its states at `at`
+                        let first_rows = (at + ahead).min(rows);
+                        let mut states = vec![[f64::NAN; 2]; g * ns];
+                        let mut first = x[..first_rows * g].to_vec();
+                        f(
+                            sections,
+                            &zi,
+                            &mut first,
+                            g,
+                            kept,
+                            Forward {
+                                from: 0,
+                                start: None,
+                                hand: Some((at, &mut states)),
+                            },
+                        );
+                        let mut alone = x[..first_rows * g].to_vec();
+                        f(sections, &zi, &mut alone, g, kept, Forward::whole());
+                        assert!(first == alone, "{what}: handing on changed the values");
+                        assert!(states.iter().flatten().all(|v| v.is_finite()), "{what}");
+                        let mut second = x.clone();
+                        f(
+                            sections,
+                            &zi,
+                            &mut second,
+                            g,
+                            kept,
+                            Forward {
+                                from: at,
+                                start: Some(&states),
+                                hand: None,
+                            },
+                        );
+                        assert!(
+                            second[..at * g] == x[..at * g],
+                            "{what}: rows before `from`"
+                        );
+                        for r in
+                            (at..rows).filter(|r| kept.every == 1 || r % kept.every == kept.first)
+                        {
+                            assert!(
+                                second[r * g..(r + 1) * g] == whole[r * g..(r + 1) * g],
+                                "{what}: row {r}"
+                            );
+                        }
+                        // handed on after the last row: the states a next block starts from
+                        let mut end = vec![[f64::NAN; 2]; g * ns];
+                        let mut y = x.clone();
+                        f(
+                            sections,
+                            &zi,
+                            &mut y,
+                            g,
+                            kept,
+                            Forward {
+                                from: 0,
+                                start: None,
+                                hand: Some((rows, &mut end)),
+                            },
+                        );
+                        assert!(end.iter().flatten().all(|v| v.is_finite()), "{what}");
                     }
                 }
             }

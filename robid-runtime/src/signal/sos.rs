@@ -6,7 +6,7 @@
 //! sample, transposed direct form II in each section.
 
 use crate::error::{Error, Result};
-use crate::signal::passes::Kept;
+use crate::signal::passes::{Forward, Kept};
 
 /// A cascade of second-order sections, each `[b0, b1, b2, a0, a1, a2]` with `a0 = 1`.
 #[derive(Debug, Clone, PartialEq)]
@@ -242,17 +242,33 @@ impl Sos {
     /// filled with the odd extension, then filtered forward and backward in place (the
     /// backward pass stores the rows `kept` only: the others are left forward-filtered).
     pub(crate) fn filtfilt_extended(&self, ext: &mut [f64], g: usize, kept: Kept) -> Result<()> {
+        self.filtfilt_extended_from(ext, g, kept, Forward::whole())
+    }
+
+    /// [`Sos::filtfilt_extended`] with the rows, first states and handed states of
+    /// `forward` ([`Forward`]: a block of a stream whose forward pass goes on from the
+    /// previous block's); the front pad is filled and filtered only when the forward pass
+    /// starts from the first row.
+    pub(crate) fn filtfilt_extended_from(
+        &self,
+        ext: &mut [f64],
+        g: usize,
+        kept: Kept,
+        forward: Forward<'_>,
+    ) -> Result<()> {
         let pad = self.pad_length();
         let rows = ext.len() / g;
         let n = rows.saturating_sub(2 * pad);
         self.check_length(n)?;
         for i in 0..pad {
             // front: 2 x[0] - x[pad - i]; back: 2 x[n-1] - x[n-2-i]
-            let (head, tail) = ext.split_at_mut(pad * g);
-            let first = &tail[..g];
-            let src = &tail[(pad - i) * g..(pad - i + 1) * g];
-            for ((d, s), f) in head[i * g..(i + 1) * g].iter_mut().zip(src).zip(first) {
-                *d = 2.0 * f - s;
+            if forward.from == 0 {
+                let (head, tail) = ext.split_at_mut(pad * g);
+                let first = &tail[..g];
+                let src = &tail[(pad - i) * g..(pad - i + 1) * g];
+                for ((d, s), f) in head[i * g..(i + 1) * g].iter_mut().zip(src).zip(first) {
+                    *d = 2.0 * f - s;
+                }
             }
             let (body, back) = ext.split_at_mut((pad + n) * g);
             let last = &body[(pad + n - 1) * g..];
@@ -262,7 +278,7 @@ impl Sos {
             }
         }
         let zi = self.steady_state();
-        super::passes::passes(&self.sections, &zi, ext, g, kept);
+        super::passes::passes_from(&self.sections, &zi, ext, g, kept, forward);
         Ok(())
     }
 }
