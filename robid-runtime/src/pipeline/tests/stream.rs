@@ -169,7 +169,7 @@ fn the_blocks_hold_the_dense_equations() {
         // Each block's positions are low-passed apart from the whole record's, so they
         // differ by the recursive filter's rounding (measured: 8.4e-15 of q), which the two
         // differences of the accelerations divide by dt^2 = 1e-6: about 1e-8 of the
-        // columns (measured: 1.3e-10 without decimation, 3.0e-11 and 2.1e-14 with; 1e-14
+        // columns (measured: 1.3e-10 without decimation, 1.9e-11 and 2.1e-14 with; 1e-14
         // when the blocks shared the whole record's preparation).
         assert!(worst < 1e-8, "{decimation}: {worst:e}");
     }
