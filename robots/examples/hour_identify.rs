@@ -145,7 +145,7 @@ fn stage(name: &str, path: &Path) {
             let record = load_record(&config, &files, DOF).expect("load");
             let id = identify(&model, record.as_ref(), &config).expect("identify");
             if let Some(out) = std::env::var_os("HOUR_ESTIMATE") {
-                dump(&id, Path::new(&out)).expect("write the estimate");
+                dump(&id.estimate, Some(&id.fit), Path::new(&out)).expect("write the estimate");
             }
             let truth = truth(&model);
             let err = relative_error(&id.estimate.values, &truth);
@@ -159,6 +159,9 @@ fn stage(name: &str, path: &Path) {
             let data = load(&config, &files, DOF).expect("load");
             let (obs, _) = observation(&model, &data, &config).expect("observation");
             let e = estimate(&obs, &config).expect("estimate");
+            if let Some(out) = std::env::var_os("HOUR_ESTIMATE") {
+                dump(&e, None, Path::new(&out)).expect("write the estimate");
+            }
             let err = relative_error(&e.values, &truth(&model));
             let detail = format!(
                 "cond {:.1}, relative parameter error {err:.2e}, {} equations",
@@ -172,12 +175,15 @@ fn stage(name: &str, path: &Path) {
     println!("{name} {elapsed} {samples} {} {detail}", peak_mib());
 }
 
-/// Writes the estimate's values, standard deviations, weights, residuals and fit, one
-/// number a line with its name (`HOUR_ESTIMATE=FILE` in the identify stage): the figures
-/// two builds must agree on.
-fn dump(id: &robid_runtime::pipeline::Identification, path: &Path) -> std::io::Result<()> {
+/// Writes the estimate's values, standard deviations, weights, residuals and the fit
+/// (when there is one), one number a line with its name (`HOUR_ESTIMATE=FILE` in the
+/// identify and dense stages): the figures two builds must agree on.
+fn dump(
+    e: &robid_runtime::estimate::Estimate,
+    fit: Option<&robid_runtime::validate::Fit>,
+    path: &Path,
+) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    let e = &id.estimate;
     for (i, name) in e.names.iter().enumerate() {
         writeln!(out, "value {name} {:e}", e.values[i])?;
         writeln!(out, "std {name} {:e}", e.std[i])?;
@@ -191,10 +197,12 @@ fn dump(id: &robid_runtime::pipeline::Identification, path: &Path) -> std::io::R
     writeln!(out, "sigma2 - {:e}", e.sigma2)?;
     writeln!(out, "condition - {:e}", e.condition_number)?;
     writeln!(out, "rows - {}", e.rows)?;
-    writeln!(out, "nmse - {:e}", id.fit.nmse)?;
-    writeln!(out, "relative_error - {:e}", id.fit.relative_error)?;
-    for (j, r) in id.fit.rms_per_joint.iter().enumerate() {
-        writeln!(out, "fit_rms {j} {r:e}")?;
+    if let Some(fit) = fit {
+        writeln!(out, "nmse - {:e}", fit.nmse)?;
+        writeln!(out, "relative_error - {:e}", fit.relative_error)?;
+        for (j, r) in fit.rms_per_joint.iter().enumerate() {
+            writeln!(out, "fit_rms {j} {r:e}")?;
+        }
     }
     out.flush()
 }
