@@ -9,7 +9,10 @@
 //! decimated as a block, and the block's own decimated samples kept: the same equations as
 //! the dense observation's, to the filters' settling tolerances. Blocks are taken in
 //! record order, each built in parallel (regressor rows, channel groups of the filter,
-//! joints' factors).
+//! joints' factors). With one filtering stage the estimation pass carries the filter's
+//! forward states from block to block ([`Carry`]), so that a block after the first is
+//! evaluated and filtered from its first sample on (its overlap on the left is only
+//! prepared) and only the overlap on the right is evaluated twice.
 //!
 //! OLS and WLS take one pass: each block's equations go into one
 //! [`StreamingLeastSquares`] (per-joint R factors, the joints updated in parallel); the
