@@ -352,9 +352,9 @@ fn lane_rows<const S: usize, const W: usize>(
 
 /// One channel `x` through the cascade `sections` from and to the section states
 /// `state` (each `[p, q]`), in the order of its samples or from the last (`backward`), in
-/// place: the operations [`passes_from`] applies to each channel on this processor (fused where
-/// it fuses them), so that a zero-phase filter run block by block, its states carried from
-/// block to block, gives [`Sos::filtfilt`](super::Sos::filtfilt)'s values to the bit.
+/// place: the operations [`passes_from`] applies to each channel on this processor (fused
+/// where it fuses them), so that a zero-phase filter run block by block, its states carried
+/// from block to block, gives [`Sos::filtfilt`](super::Sos::filtfilt)'s values to the bit.
 pub(crate) fn pass(sections: &[[f64; 6]], state: &mut [[f64; 2]], x: &mut [f64], backward: bool) {
     #[cfg(target_arch = "x86_64")]
     if crate::trig::vector_available() {
