@@ -20,8 +20,9 @@
 //! | temperature (deg C) | magnitude at most [`MAX_TEMPERATURE`] = 1e3 deg C |
 //! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
 //! | parameter values and standard deviations given as input | magnitude at most [`MAX_PARAMETER`] = 1e6 |
+//! | encoder resolution of a simulation (`Noise::quantization`) | 0, or [`MIN_RESOLUTION`] = 1e-12 to [`MAX_POSITION`] |
 //! | a joint's limits for an excitation design | velocity, acceleration and torque limits, and the span of the position limits, at least [`MIN_JOINT_LIMIT`] = 1e-6 |
-//! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | magnitude at most [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants) also magnitude at least [`MIN_FACTOR`] = 1e-12 |
+//! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | magnitude at most [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants, also those of a joint-flexibility file) also magnitude at least [`MIN_FACTOR`] = 1e-12 |
 //!
 //! Sizes are checked before anything of that size is allocated:
 //!
@@ -68,6 +69,12 @@ pub const MIN_FACTOR: f64 = 1e-12;
 /// push enough for its trajectory to excite anything (a limit of 1e-320 gave a criterion
 /// that is not finite and an error naming no joint).
 pub const MIN_JOINT_LIMIT: f64 = 1e-6;
+/// Smallest encoder resolution (rad or m per count) a simulation quantizes to; 0 turns
+/// quantization off. The finest encoders count about 2^32 per turn (1.5e-9 rad); a
+/// resolution of 1e-320, meant as 0, overflowed `q / resolution` and made the simulation
+/// "diverge" at its first sample. From 1e-12 on, `q / resolution` stays below 1e18 for every
+/// position within [`MAX_POSITION`].
+pub const MIN_RESOLUTION: f64 = 1e-12;
 /// Largest |value| and standard deviation of a base or standard parameter given as input
 /// (identified values for the feasible search, reference parameters of a simulation or a
 /// design): kg, kg m, kg m^2, N m s/rad, N m.

@@ -121,6 +121,32 @@ pub(crate) mod run_tests {
         assert!(bad.run(&p, &p.base(), &r).is_err());
     }
 
+    /// An encoder resolution below `MIN_RESOLUTION` (1e-320, meant as 0) is refused naming
+    /// the setting; it used to overflow `q / resolution` and end the run as "diverged" at
+    /// its first sample. 0 and the smallest accepted resolution run.
+    #[test]
+    fn a_resolution_too_fine_for_any_encoder_is_refused() {
+        let p = Pendulum::default();
+        let r = reference(0.1, 100.0);
+        let with = |quantization: f64| Simulation {
+            noise: Noise {
+                quantization,
+                ..Noise::default()
+            },
+            ..Simulation::default()
+        };
+        for tiny in [1e-320, 1e-300, 1e-13] {
+            let e = with(tiny).run(&p, &p.base(), &r).unwrap_err().to_string();
+            assert!(
+                e.contains("`noise.quantization`") && e.contains("must be 0 or at least 1e-12"),
+                "{e}"
+            );
+        }
+        for fine in [0.0, crate::limits::MIN_RESOLUTION] {
+            with(fine).run(&p, &p.base(), &r).unwrap();
+        }
+    }
+
     #[test]
     fn csv_round_trip() {
         let r = reference(0.2, 100.0);

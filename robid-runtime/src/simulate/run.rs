@@ -40,7 +40,7 @@ use crate::Model;
 use crate::SimulateError;
 use crate::error::{Error, Result, num};
 use crate::excite::check_parameters;
-use crate::limits::{MAX_ACCELERATION, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use crate::limits::{MAX_ACCELERATION, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY, MIN_RESOLUTION};
 
 /// The reference at the fraction `s` of an interval of `interval` seconds between the
 /// samples `a` and `b` (each `[q, qd, qdd]`): quintic Hermite interpolation, exact for
@@ -232,6 +232,17 @@ impl Simulation {
                     format!("{} must be zero or positive, at most {limit:e}", num(x)),
                 ));
             }
+        }
+        if n.quantization > 0.0 && n.quantization < MIN_RESOLUTION {
+            return Err(invalid(
+                "noise.quantization",
+                format!(
+                    "{} must be 0 or at least {MIN_RESOLUTION:e} rad per count (a finer \
+                     resolution than any encoder's, and a position divided by it overflows); \
+                     write 0 for no quantization",
+                    num(n.quantization)
+                ),
+            ));
         }
         Ok(())
     }

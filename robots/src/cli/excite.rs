@@ -13,6 +13,7 @@ use std::time::Instant;
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, assess};
+use robid_runtime::limits::MIN_JOINT_LIMIT;
 use robid_runtime::simulate::Trajectory;
 use robid_runtime::{Model, num};
 
@@ -54,14 +55,16 @@ pub(crate) struct Args {
     sigma: Vec<f64>,
     #[command(flatten)]
     description: DescriptionFlags,
-    /// Acceleration limits `a1,..,an` (or one for every joint), each in (0, 1e6]: replace
+    /// Acceleration limits `a1,..,an` (or one for every joint), each in [1e-6, 1e6]: replace
     /// the description's (a URDF states none).
-    #[arg(long, value_delimiter = ',', value_parser = real(positive(1e6, "rad/s^2")))]
+    #[arg(long, value_delimiter = ',',
+          value_parser = real(closed(MIN_JOINT_LIMIT, 1e6, "rad/s^2")))]
     acceleration_limits: Vec<f64>,
-    /// Velocity limits `v1,..,vn` (or one for every joint), each in (0, 1e4] (m/s for a
+    /// Velocity limits `v1,..,vn` (or one for every joint), each in [1e-6, 1e4] (m/s for a
     /// prismatic joint): replace the description's, or give those it lacks (a URDF joint
     /// without `velocity` in a `<limit>`, e.g. a continuous joint without `<limit>`).
-    #[arg(long, value_delimiter = ',', value_parser = real(positive(1e4, "rad/s")))]
+    #[arg(long, value_delimiter = ',',
+          value_parser = real(closed(MIN_JOINT_LIMIT, 1e4, "rad/s")))]
     velocity_limits: Vec<f64>,
     /// Intervals between optimised points, 2 to 200 (`--method points` only; default 12).
     #[arg(long, value_parser = count(2, 200))]
@@ -73,8 +76,9 @@ pub(crate) struct Args {
     /// harmonics x base frequency, must lie below --rate / 2.
     #[arg(long, value_parser = count(2, 50))]
     harmonics: Option<usize>,
-    /// Base frequency in (0, 100] Hz (`--method fourier` only; default 0.1).
-    #[arg(long, value_parser = real(positive(100.0, "Hz")))]
+    /// Base frequency in [1e-6, 100] Hz (`--method fourier` only; default 0.1): a lower one
+    /// has a period longer than the longest --duration, 1e6 s.
+    #[arg(long, value_parser = real(closed(1e-6, 100.0, "Hz")))]
     base_frequency: Option<f64>,
     /// Criterion: `cond` (condition number) or `d` (D-optimality).
     #[arg(long, value_enum, default_value_t = CriterionArg::Cond)]
@@ -305,6 +309,46 @@ fn per_joint(flag: &str, values: &[f64], n: usize, args: &Args) -> Result<Vec<Op
     }
 }
 
+/// Refuses a joint's limit that a design cannot take (`JointLimits::check`: below
+/// `MIN_JOINT_LIMIT`, such as a description's `velocity = 1e-320`), naming the description
+/// and the joint (a URDF joint also by its name) and the ways out, before the design: the
+/// design's own check named the library's type (``JointLimits `velocity`: joint 1: ...``).
+/// A limit given on the command line is in range already (its flag's parser).
+fn check_limits(
+    args: &Args,
+    description: &description::Description,
+    limits: &[JointLimits],
+) -> Result<(), Error> {
+    for (j, l) in limits.iter().enumerate() {
+        let Err(e) = l.check(j + 1) else { continue };
+        let robid_runtime::Error::Setting { key, problem, .. } = e else {
+            return Err(e.into());
+        };
+        let problem = problem
+            .strip_prefix(&format!("joint {}: ", j + 1))
+            .unwrap_or(&problem);
+        let joint = match description.urdf.as_ref().and_then(|c| c.links.get(j)) {
+            Some(link) => format!("joint {} (`{}`)", j + 1, link.joint),
+            None => format!("joint {}", j + 1),
+        };
+        let what = if key == "position" {
+            "position limits".to_owned()
+        } else {
+            format!("{key} limit")
+        };
+        let flag = match key.as_str() {
+            "velocity" | "acceleration" => format!(", or give --{key}-limits"),
+            _ => String::new(),
+        };
+        return Err(format!(
+            "{}: {joint}: the {what} {problem}; correct it in the description{flag}",
+            args.robot.display()
+        )
+        .into());
+    }
+    Ok(())
+}
+
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
     let description = description::load(&args.robot, &args.description)?;
@@ -410,6 +454,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
+    check_limits(args, &description, &limits)?;
     let reference = match &args.parameters {
         Some(p) => {
             let base = ParameterFile::read(p)?.base_parameters(&model)?;

@@ -14,18 +14,23 @@ use super::Error;
 /// `t,q,qd,qdd` (e.g. 1000 s at 1 kHz), about 180 MB in memory for seven joints.
 pub(crate) const MAX_SAMPLES: f64 = 1e6;
 
-/// A range of real numbers `lo..=hi` (`lo` excluded when `open`), in `unit`.
+/// A range of real numbers `lo..=hi` (`lo` excluded when `open`; 0 also accepted when
+/// `zero`), in `unit`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Range {
     lo: f64,
     hi: f64,
     open: bool,
+    zero: bool,
     unit: &'static str,
 }
 
 impl fmt::Display for Range {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let open = if self.open { '(' } else { '[' };
+        if self.zero {
+            write!(f, "0 or ")?;
+        }
         write!(f, "{open}{}, {}]", short(self.lo), short(self.hi))?;
         if !self.unit.is_empty() {
             write!(f, " {}", self.unit)?;
@@ -48,7 +53,8 @@ pub(crate) fn short(x: f64) -> String {
 
 impl Range {
     fn contains(&self, x: f64) -> bool {
-        (if self.open { x > self.lo } else { x >= self.lo }) && x <= self.hi
+        (self.zero && x == 0.0)
+            || (if self.open { x > self.lo } else { x >= self.lo }) && x <= self.hi
     }
 
     /// Parses one value.
@@ -76,6 +82,20 @@ pub(crate) const fn closed(lo: f64, hi: f64, unit: &'static str) -> Range {
         lo,
         hi,
         open: false,
+        zero: false,
+        unit,
+    }
+}
+
+/// 0, or real numbers in `[lo, hi]`, in `unit`: a setting that 0 turns off, and that a
+/// positive value below `lo` would break rather than turn off (an encoder resolution of
+/// 1e-320 rad overflows `q / resolution`).
+pub(crate) const fn zero_or(lo: f64, hi: f64, unit: &'static str) -> Range {
+    Range {
+        lo,
+        hi,
+        open: false,
+        zero: true,
         unit,
     }
 }
@@ -86,6 +106,7 @@ pub(crate) const fn positive(hi: f64, unit: &'static str) -> Range {
         lo: 0.0,
         hi,
         open: true,
+        zero: false,
         unit,
     }
 }

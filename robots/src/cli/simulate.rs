@@ -11,12 +11,13 @@
 
 use std::path::{Path, PathBuf};
 
+use robid_runtime::limits::{MIN_RESOLUTION, MIN_SAMPLE_RATE};
 use robid_runtime::simulate::{Flexibility, Noise, Record, SimulateError, Simulation, Trajectory};
 use robid_runtime::{Model, num};
 use robots::interpreted::Interpreted;
 
 use super::description::{self, Description, DescriptionFlags};
-use super::flags::{self, closed, positive, real};
+use super::flags::{self, closed, positive, real, zero_or};
 use super::{Error, files, out};
 
 /// How far (rad or m) the simulated positions may leave the reference before the run
@@ -46,8 +47,9 @@ pub(crate) struct Args {
     /// Position noise standard deviation in [0, 1] rad (m for a prismatic joint).
     #[arg(long, default_value_t = 0.0, value_parser = real(closed(0.0, 1.0, "rad")))]
     position_noise: f64,
-    /// Encoder resolution in [0, 1] rad per count; 0 for none.
-    #[arg(long, default_value_t = 0.0, value_parser = real(closed(0.0, 1.0, "rad")))]
+    /// Encoder resolution per count: 0 or [1e-12, 1] rad (0: none).
+    #[arg(long, default_value_t = 0.0,
+          value_parser = real(zero_or(MIN_RESOLUTION, 1.0, "rad")))]
     quantization: f64,
     /// PD loop bandwidth in (0, 1e4] Hz, at most a quarter of the trajectory's sample rate.
     #[arg(long, default_value_t = 10.0, value_parser = real(positive(1e4, "Hz")))]
@@ -60,9 +62,9 @@ pub(crate) struct Args {
     /// [default: all]
     #[arg(long, value_enum)]
     columns: Option<Columns>,
-    /// Write every sample at this rate in Hz (a whole fraction of the trajectory's rate;
-    /// default: the trajectory's rate). `--columns positions` only.
-    #[arg(long, value_parser = real(positive(1e6, "Hz")))]
+    /// Write every sample at this rate, in [0.001, 1e6] Hz (a whole fraction of the
+    /// trajectory's rate; default: the trajectory's rate). `--columns positions` only.
+    #[arg(long, value_parser = real(closed(MIN_SAMPLE_RATE, 1e6, "Hz")))]
     rate: Option<f64>,
     /// Write motor currents `i1..in` instead of torques: the torque per ampere at each
     /// joint (torque constant times gear ratio), `k1,..,kn` in [1e-6, 1e6] N m/A.

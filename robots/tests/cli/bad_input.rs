@@ -20,17 +20,26 @@ fn refused_flag(o: &Output, flag: &str, why: &str) {
     assert!(!e.contains("config") && !e.contains("panicked"), "{e}");
 }
 
-/// A base frequency of 1e-300 Hz: the period in the message is in exponent form, not 300 digits.
+/// A base frequency whose period no --duration holds (1e6 s at most) is refused by the
+/// flag: 1e-300 Hz was taken and written as a period of 9.999999999999999e299 s, and
+/// 1e-320 Hz as a period of "inf s". The lowest accepted frequency, 1e-6 Hz, is told its
+/// period as typed.
 #[test]
-fn excite_writes_an_extreme_period_short() {
+fn excite_refuses_a_period_longer_than_any_duration() {
     let dir = folder();
-    let o = excite(dir.path(), &["--base-frequency", "1e-300"]);
-    assert_eq!(o.status.code(), Some(1));
-    let e = stderr(&o);
-    assert!(
-        e.contains("--duration 30 s is not a whole number of periods of 9.999999999999999e299 s;"),
-        "{e}"
+    for tiny in ["1e-300", "1e-320", "9e-7"] {
+        refused_flag(
+            &excite(dir.path(), &["--base-frequency", tiny]),
+            "--base-frequency",
+            &format!("{tiny} is outside [1e-6, 100] Hz"),
+        );
+    }
+    let o = excite(dir.path(), &["--base-frequency", "1e-6"]);
+    fails_with(
+        &o,
+        &["--duration 30 s is not a whole number of periods of 1000000 s;"],
     );
+    assert!(!stderr(&o).contains("inf"), "{}", stderr(&o));
 }
 
 /// `robid excite` on the UR5e writing into `dir`, with `extra` arguments.
@@ -89,10 +98,71 @@ fn excite_values_out_of_range_are_refused_naming_the_flag() {
             "1e300 is outside [-1e6, 1e6] rad",
         ),
         (&["--seed=-1"], "--seed", "invalid digit"),
+        // below the smallest limit a design takes (`MIN_JOINT_LIMIT`): the flag is named,
+        // not the library's `JointLimits` type
+        (
+            &["--acceleration-limits", "1e-320"],
+            "--acceleration-limits",
+            "1e-320 is outside [1e-6, 1e6] rad/s^2",
+        ),
+        (
+            &["--velocity-limits", "1,1,1,1,1,1e-7"],
+            "--velocity-limits",
+            "1e-7 is outside [1e-6, 1e4] rad/s",
+        ),
     ] {
         refused_flag(&excite(dir.path(), args), flag, why);
     }
     assert!(!dir.path().join("traj.csv").exists());
+}
+
+/// A description's limit that a design cannot take (below 1e-6, such as 1e-320 written to
+/// mean "none") is named by the description and joint, with the fix, before the design; it
+/// was named by the library's type (``JointLimits `velocity`: joint 1: ...``).
+#[test]
+fn excite_names_a_description_limit_a_design_cannot_take() {
+    let dir = folder();
+    let arm = |limits: &str| {
+        write(
+            dir.path(),
+            "arm.toml",
+            &format!(
+                "name = \"arm\"\nconvention = \"modified\"\n[[joints]]\nalpha = 0\na = 0.3\n\
+                 d = 0\nlimits = {{ {limits} }}\n"
+            ),
+        )
+    };
+    for (limits, told) in [
+        (
+            "position = [-1, 1], velocity = 1e-320, acceleration = 5",
+            "the velocity limit 1e-320 must lie in [1e-6, 1e6]",
+        ),
+        (
+            "position = [1e-320, 2e-320], velocity = 1, acceleration = 5",
+            "the position limits [1e-320, 2e-320] must be finite within +-1e6, with high - \
+             low at least 1e-6",
+        ),
+    ] {
+        let robot = arm(limits);
+        let out = dir.path().join("traj.csv");
+        let o = robid(&[
+            "excite",
+            robot.to_str().unwrap(),
+            "--duration",
+            "10",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        fails_with(
+            &o,
+            &[
+                &format!("{}: joint 1: {told}", robot.display()),
+                "correct it in the description",
+            ],
+        );
+        assert!(!stderr(&o).contains("JointLimits"), "{}", stderr(&o));
+        assert!(!out.exists());
+    }
 }
 
 /// Samples = duration x rate are checked against the documented limit (1e6) before
@@ -253,7 +323,21 @@ fn simulate_values_out_of_range_are_refused_naming_the_flag() {
         (
             &["--quantization", "2"],
             "--quantization",
-            "2 is outside [0, 1] rad",
+            "2 is outside 0 or [1e-12, 1] rad",
+        ),
+        // a resolution of 1e-320, meant as 0, overflowed q / resolution: the run ended as
+        // "diverged at t = 0 s", blaming the trajectory
+        (
+            &["--quantization", "1e-320"],
+            "--quantization",
+            "1e-320 is outside 0 or [1e-12, 1] rad",
+        ),
+        // a rate below robid's lowest sample rate: the message said "keeps one of every
+        // inf samples"
+        (
+            &["--columns", "positions", "--rate", "1e-320"],
+            "--rate",
+            "1e-320 is outside [0.001, 1e6] Hz",
         ),
     ] {
         refused_flag(&simulate(args), flag, why);
@@ -783,7 +867,21 @@ fn help_states_the_ranges_that_are_checked() {
             "excite",
             "--base-frequency=0",
             "--base-frequency",
-            "(0, 100] Hz",
+            "[1e-6, 100] Hz",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--velocity-limits=0",
+            "--velocity-limits",
+            "[1e-6, 1e4]",
+        ),
+        (
+            &excite_help,
+            "excite",
+            "--acceleration-limits=0",
+            "--acceleration-limits",
+            "[1e-6, 1e6]",
         ),
         (
             &excite_help,
@@ -846,7 +944,14 @@ fn help_states_the_ranges_that_are_checked() {
             "simulate",
             "--quantization=-1",
             "--quantization",
-            "[0, 1] rad",
+            "0 or [1e-12, 1] rad",
+        ),
+        (
+            &simulate_help,
+            "simulate",
+            "--rate=0",
+            "--rate",
+            "[0.001, 1e6] Hz",
         ),
         (
             &feasible_help,

@@ -450,7 +450,7 @@ fn excite_takes_velocity_limits_a_urdf_lacks() {
     let o = excite(&["--velocity-limits", "0"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
-        stderr(&o).contains("0 is outside (0, 1e4] rad/s"),
+        stderr(&o).contains("0 is outside [1e-6, 1e4] rad/s"),
         "{}",
         stderr(&o)
     );
