@@ -39,7 +39,7 @@ use crate::data::{DataError, KeyMap, TomlFile};
 use crate::drive::{FrictionModel, JointFriction};
 use crate::error::{Error, Result, num};
 use crate::excite::check_parameters;
-use crate::limits::{MAX_POSITION, MAX_TORQUE, MAX_VELOCITY};
+use crate::limits::{MAX_POSITION, MAX_TORQUE, MAX_VELOCITY, MIN_FACTOR};
 use crate::rng::Rng;
 use crate::signal::Signals;
 
@@ -182,6 +182,19 @@ impl Row {
                     format!("{} must be positive, at most {limit:e}", num(x)),
                 ));
             }
+        }
+        // the currents are torques divided by (gear ratio x torque constant): a constant of
+        // 1e-320 made them infinite, written as `inf` in every row
+        if self.torque_constant < MIN_FACTOR {
+            return Some((
+                "torque_constant",
+                format!(
+                    "{} must be at least {MIN_FACTOR:e} N m/A, as every factor that scales a \
+                     signal (a smaller one makes the currents, torque / (gear ratio x \
+                     torque constant), overflow)",
+                    num(self.torque_constant)
+                ),
+            ));
         }
         for (field, x) in [("hardening", self.hardening), ("damping", self.damping)] {
             if !(0.0..=1e15).contains(&x) {

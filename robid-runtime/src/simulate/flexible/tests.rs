@@ -227,6 +227,17 @@ fn flexible_file_errors_name_the_key() {
         e.contains("flex.toml:10") && e.contains("joint[1].stiffness"),
         "{e}"
     );
+    // a torque constant too small to divide by: the currents were written as `inf`
+    let tiny = text("2e4", "").replace("torque_constant = 0.1", "torque_constant = 1e-320");
+    let e = Flexibility::from_toml_str(&tiny, path)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("flex.toml:9")
+            && e.contains("joint[1].torque_constant")
+            && e.contains("1e-320 must be at least 1e-12 N m/A"),
+        "{e}"
+    );
     let twice = "[[joint]]\njoint = 1\ngear_ratio = 1.0\nrotor_inertia = 1.0\n\
                  torque_constant = 1.0\nstiffness = 1.0\nfriction = { coulomb = 1.0, \
                  load = 0.0, stribeck = 0.0, stribeck_velocity = 0.1, viscous = 1.0, \
