@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use crate::data::TomlFile;
+use crate::error::num;
 use crate::{DataError, Error};
 
 /// A key or table header given a second time in a TOML text, read from toml's error
@@ -91,9 +92,32 @@ pub(crate) fn syntax_error(text: &str, path: &Path, kind: TomlFile, e: &toml::de
         None => Error::Data(DataError::ConfigSyntax {
             path: path.to_path_buf(),
             kind,
-            reason: e.to_string(),
+            reason: short_numbers(&e.to_string()),
         }),
     }
+}
+
+/// toml's message with every number it quotes in backticks written short ([`num`]): serde
+/// writes a value of the wrong type in full, and `range = [1e-320, 1]` was told as
+/// "invalid type: floating point `0.000...01`, expected usize" with 320 digits. Only
+/// quoted numbers longer than 24 characters are rewritten; the rest is toml's.
+fn short_numbers(reason: &str) -> String {
+    let mut out = String::with_capacity(reason.len());
+    let mut rest = reason;
+    while let Some(open) = rest.find('`') {
+        out.push_str(&rest[..=open]);
+        rest = &rest[open + 1..];
+        let Some(close) = rest.find('`') else { break };
+        let quoted = &rest[..close];
+        match quoted.parse::<f64>() {
+            Ok(x) if quoted.len() > 24 => out.push_str(&num(x)),
+            _ => out.push_str(quoted),
+        }
+        out.push('`');
+        rest = &rest[close + 1..];
+    }
+    out.push_str(rest);
+    out
 }
 
 #[cfg(test)]
@@ -134,6 +158,20 @@ mod tests {
             e.starts_with("b.toml: invalid bounds file: TOML parse error at line 2"),
             "{e}"
         );
+        // a number of the wrong type is quoted short, not with its 320 digits
+        #[derive(Debug, serde::Deserialize)]
+        #[allow(dead_code)]
+        struct Range {
+            range: Vec<usize>,
+        }
+        let text = "range = [1e-320, 1e300]\n";
+        let e = toml::from_str::<Range>(text).unwrap_err();
+        let e = syntax_error(text, "c.toml".as_ref(), TomlFile::Config, &e).to_string();
+        assert!(
+            e.contains("invalid type: floating point `1e-320`, expected usize") && e.len() < 400,
+            "{e}"
+        );
+        assert_eq!(short_numbers("`12` and `x` and `"), "`12` and `x` and `");
         let text = "a = 1\nµb = 2\n";
         assert_eq!(line_column(text, text.find('b').unwrap()), (2, 2));
     }
