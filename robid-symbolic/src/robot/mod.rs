@@ -28,7 +28,8 @@ pub use geometry::{Expression, Geometry, GeometryError, Number};
 pub use parameters::{DriveTerm, Inertial, ParameterId, ParameterKind};
 pub use transform::Transform;
 pub use urdf::{
-    AttachedLink, ChainLink, ChainSelection, UnphysicalInertial, UrdfChain, write_inertials,
+    AttachedLink, ChainLink, ChainSelection, NEGLIGIBLE_SHARE, UnphysicalInertial, UrdfChain,
+    negligible, write_inertials,
 };
 
 pub(crate) use check::name_problem;

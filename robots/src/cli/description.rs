@@ -83,23 +83,21 @@ impl Description {
     /// mass (their force is 0 at every state: it holds only the masses it moves), and
     /// `massless`, the other revolute joints that move only links without mass (their
     /// torque holds no gravity). Each is a run of joints up to the last, since a joint
-    /// moves every link after it. All empty for a TOML description.
+    /// moves every link after it. A mass or inertia counts as none when it is 0 or
+    /// negligible beside the chain's largest (`UrdfChain::massless` and `empty`: a mass of
+    /// 1e-320 kg, written to mean 0, is none). All empty for a TOML description.
     pub(crate) fn urdf_unloaded(&self) -> Unloaded {
         let Some(chain) = &self.urdf else {
             return Unloaded::default();
         };
         // the first joint of the run up to the last whose links all have `holds`
-        let first = |holds: &dyn Fn(&[f64; 10]) -> bool| {
+        let first = |holds: &dyn Fn(usize) -> bool| {
             let n = chain.links.len();
-            let after = chain
-                .links
-                .iter()
-                .rposition(|link| !holds(&link.inertial))
-                .map_or(0, |k| k + 1);
+            let after = (0..n).rposition(|k| !holds(k)).map_or(0, |k| k + 1);
             (after < n).then_some(after + 1)
         };
-        let empty_from = first(&|i| i.iter().all(|&v| v == 0.0));
-        let massless_from = first(&|i| i[9] == 0.0);
+        let empty_from = first(&|k| chain.empty(k));
+        let massless_from = first(&|k| chain.massless(k));
         let n = chain.links.len();
         let empty: Vec<usize> = empty_from.map_or(Vec::new(), |j| (j..=n).collect());
         let (sliding, massless) = massless_from
@@ -147,13 +145,34 @@ impl Description {
             .collect();
         let file = file.display();
         let links = links.join(", ");
-        if empty {
-            format!(
+        let exact = chain.exactly_zero(lowest - 1, !empty);
+        let share = robid_symbolic::robot::NEGLIGIBLE_SHARE;
+        match (empty, exact) {
+            (true, true) => format!(
                 "{named} of {file} {moves} only links without mass or inertia: {links} (no \
                  `<inertial>` element, or an empty one)"
-            )
-        } else {
-            format!("{named} of {file} {moves} only links without mass: {links}")
+            ),
+            (true, false) => format!(
+                "{named} of {file} {moves} only links without mass or inertia: {links} (no \
+                 `<inertial>` element, an empty one, or values negligible beside the chain's \
+                 largest: below {share:e} of it, or subnormal such as 1e-320)"
+            ),
+            (false, true) => format!("{named} of {file} {moves} only links without mass: {links}"),
+            (false, false) => format!(
+                "{named} of {file} {moves} only links without mass: {links} (masses 0 or \
+                 negligible beside the chain's largest: below {share:e} of it, or subnormal \
+                 such as 1e-320)"
+            ),
+        }
+    }
+
+    /// "0", or "0 or negligible" when the links of `joints` (the lowest's and those after
+    /// it) are not all exactly 0 in what makes them unloaded (their masses, or everything).
+    fn zero(&self, joints: &[usize], mass_only: bool) -> &'static str {
+        let lowest = joints.first().copied().unwrap_or(1).max(1);
+        match &self.urdf {
+            Some(chain) if !chain.exactly_zero(lowest - 1, mass_only) => "0 or negligible",
+            _ => "0",
         }
     }
 
@@ -179,13 +198,14 @@ impl Description {
             let (its, consequence, link_fix) = match kind {
                 Kind::Empty => (
                     if one { "its torque" } else { "their torques" },
-                    format!("{is} 0 {when}"),
+                    format!("{is} {} {when}", self.zero(joints, false)),
                     "give these links `<inertial>` elements with their mass and inertia",
                 ),
                 Kind::Sliding => (
                     if one { "its force" } else { "their forces" },
                     format!(
-                        "{is} 0 {when} (a sliding joint's force holds only the masses it moves)"
+                        "{is} {} {when} (a sliding joint's force holds only the masses it moves)",
+                        self.zero(joints, true)
                     ),
                     "give them their masses in their `<inertial>` elements",
                 ),

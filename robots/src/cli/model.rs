@@ -202,6 +202,8 @@ fn standard_file(chain: &UrdfChain, path: &Path) -> String {
             },
             if link.inertial.iter().all(|&v| v == 0.0) {
                 " (no mass: no <inertial>, or an empty one)"
+            } else if chain.empty(j) {
+                " (no mass: values negligible beside the chain's largest)"
             } else {
                 ""
             }

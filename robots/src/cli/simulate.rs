@@ -130,6 +130,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         },
         ..Simulation::default()
     };
+    unloaded(args, &description)?;
     if let Some(path) = &args.flexible {
         return run_flexible(
             args,
@@ -184,54 +185,74 @@ fn refused(args: &Args, description: &Description, e: robid_runtime::Error) -> E
     else {
         return e.on_flags(SIMULATION_FLAGS).into();
     };
-    let Some(lowest) = joints
+    if !joints
         .first()
-        .filter(|&&j| (1..=chain.links.len()).contains(&j))
-    else {
+        .is_some_and(|&j| (1..=chain.links.len()).contains(&j))
+    {
         return e.into();
-    };
-    let one = joints.len() == 1;
-    let named: Vec<String> = joints
-        .iter()
-        .map(|&j| {
-            format!(
-                "{j} (`{}`)",
-                chain.links.get(j - 1).map_or("?", |l| l.joint.as_str())
-            )
-        })
-        .collect();
-    let named = match named.split_last() {
-        Some((last, [])) => format!("joint {last}"),
-        Some((last, first)) => format!("joints {} and {last}", first.join(", ")),
-        None => String::new(),
-    };
-    // the bodies the lowest of them moves: its own and every one after it
-    let (mut all, mut empty) = (Vec::new(), Vec::new());
-    for link in &chain.links[lowest - 1..] {
-        let names = std::iter::once(&link.link)
-            .chain(link.attached.iter().map(|a| &a.name))
-            .map(|name| format!("`{name}`"));
-        if link.inertial.iter().all(|&v| v == 0.0) {
-            empty.extend(names.clone());
-        }
-        all.extend(names);
     }
-    let file = args.robot.display();
+    no_inertia(args, description, joints)
+}
+
+/// The joints (numbered from 1) that a URDF's own inertials leave without mass or inertia,
+/// when they are the parameters (no `--parameters`): 0 or negligible beside the chain's
+/// largest (`Description::urdf_unloaded`). Such a robot is refused before the run, as a
+/// singular mass matrix would refuse it: a mass of 1e-320 kg left M(q) nonsingular in
+/// name, and the run wrote torques of 1e-321 N m (no digits) as data.
+fn unloaded(args: &Args, description: &Description) -> Result<(), Error> {
+    if args.parameters.is_some() {
+        return Ok(());
+    }
+    let empty = description.urdf_unloaded().empty;
+    if empty.is_empty() {
+        return Ok(());
+    }
+    Err(no_inertia(args, description, &empty))
+}
+
+/// The error of `joints` (numbered from 1, within the chain, not empty) of a URDF that
+/// move no mass or inertia with its own inertials: the joints and their links as the URDF
+/// names them, and the ways out.
+fn no_inertia(args: &Args, description: &Description, joints: &[usize]) -> Error {
+    let Some(chain) = &description.urdf else {
+        return "the robot moves no mass or inertia; give --parameters PARAMS.toml".into();
+    };
+    let lowest = joints.first().copied().unwrap_or(1).max(1);
+    let one = joints.len() == 1;
     let (it, its, moves) = if one {
         ("it", "its", "moves")
     } else {
         ("them", "their", "move")
     };
-    let cause = if empty.len() == all.len() {
-        format!(
-            "{named} of {file} {moves} only links without mass or inertia: {} (no \
-             `<inertial>` element, or an empty one)",
-            all.join(", ")
-        )
+    // the bodies the lowest of them moves: its own and every one after it
+    let cause = if (lowest - 1..chain.links.len()).all(|k| chain.empty(k)) {
+        description.unloaded_cause(&args.robot, joints, true)
     } else {
+        let named: Vec<String> = joints
+            .iter()
+            .map(|&j| {
+                format!(
+                    "{j} (`{}`)",
+                    chain.links.get(j - 1).map_or("?", |l| l.joint.as_str())
+                )
+            })
+            .collect();
+        let named = match named.split_last() {
+            Some((last, [])) => format!("joint {last}"),
+            Some((last, first)) => format!("joints {} and {last}", first.join(", ")),
+            None => String::new(),
+        };
+        let all: Vec<String> = chain.links[lowest - 1..]
+            .iter()
+            .flat_map(|link| {
+                std::iter::once(&link.link).chain(link.attached.iter().map(|a| &a.name))
+            })
+            .map(|name| format!("`{name}`"))
+            .collect();
         format!(
-            "{named} of {file} {moves} no mass or inertia about {its} axis: the links {it} \
+            "{named} of {} {moves} no mass or inertia about {its} axis: the links {it} \
              {moves} ({}) carry none about it in the URDF",
+            args.robot.display(),
             all.join(", ")
         )
     };

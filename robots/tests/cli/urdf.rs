@@ -640,6 +640,96 @@ fn simulate_names_a_joint_that_moves_only_massless_links() {
     not_blamed(&o);
 }
 
+/// A URDF whose flange's values are written as 1e-320 to mean 0 (or lie below 1e-12 of the
+/// chain's largest) is told as one whose flange is empty: `torques` warns that joint 2's
+/// torque is "0 or negligible", `simulate` refuses the run naming the joint and links, as
+/// for a flange without `<inertial>`, and a flange with inertia but a negligible mass gets
+/// the warning of a massless link. Only exact zeros counted: the run wrote torques of
+/// 1e-321 N m (no digits) as data, and no warning was given.
+#[test]
+fn negligible_inertials_count_as_none() {
+    let dir = folder();
+    let flange = |m: &str, i: &str| {
+        MASSLESS_FLANGE.replace(
+            r#"<link name="flange"/>"#,
+            &format!(
+                r#"<link name="flange"><inertial><mass value="{m}"/><inertia ixx="{i}" ixy="0" ixz="0" iyy="{i}" iyz="0" izz="{i}"/></inertial></link>"#
+            ),
+        )
+    };
+    let rows = write(
+        dir.path(),
+        "rows.csv",
+        "q1,q2,qd1,qd2,qdd1,qdd2\n0.1,0.2,0.3,0.4,0.5,0.6\n1,1,1,1,1,1\n",
+    );
+    let mut trajectory = String::from("t,q1,q2,qd1,qd2,qdd1,qdd2\n");
+    for k in 0..20 {
+        trajectory.push_str(&format!("{},0,0,0,0,0,0\n", 0.01 * k as f64));
+    }
+    let trajectory = write(dir.path(), "traj.csv", &trajectory);
+    let output = dir.path().join("data.csv");
+    for (m, i) in [("1e-320", "1e-320"), ("1e-14", "1e-15")] {
+        let urdf = write(dir.path(), "tiny.urdf", &flange(m, i));
+        let o = robid(&[
+            "torques",
+            urdf.to_str().unwrap(),
+            "--states",
+            rows.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains(&format!(
+                "warning: joint 2 (`j2`) of {} moves only links without mass or inertia: \
+                 `flange`, `tool0` (no `<inertial>` element, an empty one, or values \
+                 negligible beside the chain's largest: below 1e-12 of it, or subnormal such as \
+                 1e-320), so with the URDF's own inertials its torque tau2 is 0 or negligible \
+                 in every row",
+                urdf.display()
+            )),
+            "{m}: {e}"
+        );
+        let o = robid(&[
+            "simulate",
+            urdf.to_str().unwrap(),
+            "--trajectory",
+            trajectory.to_str().unwrap(),
+            "-o",
+            output.to_str().unwrap(),
+        ]);
+        fails_with(
+            &o,
+            &[
+                "error: joint 2 (`j2`) of ",
+                "tiny.urdf moves only links without mass or inertia: `flange`, `tool0`",
+                "so no torque accelerates it",
+                "or give --parameters PARAMS.toml",
+            ],
+        );
+        assert!(!output.exists());
+    }
+    // inertia with a mass of 1e-320: the warning of a link without mass
+    let urdf = write(dir.path(), "spinning.urdf", &flange("1e-320", "0.01"));
+    let o = robid(&[
+        "torques",
+        urdf.to_str().unwrap(),
+        "--states",
+        rows.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    for part in [
+        "link `flange`: the mass 1e-320 kg is negligible (below 1e-12 of the chain's largest, 1 \
+         kg, or subnormal), as good as 0, but the inertia is not",
+        "joint 2 (`j2`) of ",
+        "spinning.urdf moves only links without mass: `flange`, `tool0` (masses 0 or negligible \
+         beside the chain's largest: below 1e-12 of it, or subnormal such as 1e-320), so with \
+         the URDF's own inertials its torque tau2 holds no gravity",
+    ] {
+        assert!(e.contains(part), "expected {part:?} in {e}");
+    }
+}
+
 /// The inertial of `l1` in [`MASSLESS_FLANGE`].
 const L1_INERTIAL: &str = r#"<inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"#;
 

@@ -54,6 +54,41 @@ fn impossible(i: &Inertial) -> Option<(Range<usize>, String, &'static str)> {
 /// sit on the bound, printed to six digits are not flagged.
 const TRIANGLE_TOLERANCE: f64 = 1e-6;
 
+/// A mass or inertia of a URDF's chain counts as 0 below this share of the largest of its
+/// kind among the chain's links ([`negligible`]): 1e-12 is far below any real ratio
+/// between the links of one robot (a gripper's finger beside a shoulder is about 1e-3 to
+/// 1e-4 of its mass), and far above the rounding of f64 (1e-16), so that a value written
+/// as 1e-320 or 1e-20 to mean 0 next to real ones is told as 0, as an exact 0 is. The same
+/// share as the torques of `robid torques --parameters` (docs/robustness.md).
+pub const NEGLIGIBLE_SHARE: f64 = 1e-12;
+
+/// Whether `x` counts as 0 beside `largest`, the largest magnitude of its kind (masses,
+/// inertias) among the chain's links: below [`NEGLIGIBLE_SHARE`] of it, or a subnormal
+/// number (below 2.2e-308, `f64::MIN_POSITIVE`), which carries no digits, whatever the
+/// others are. Relative, so that a robot given in other units, or a small one, is judged
+/// alike; 0 is negligible.
+pub fn negligible(x: f64, largest: f64) -> bool {
+    let x = x.abs();
+    x < f64::MIN_POSITIVE || x < NEGLIGIBLE_SHARE * largest.abs()
+}
+
+/// The largest mass and the largest magnitude of an `<inertia>` entry among `inertials`:
+/// what [`negligible`] compares a link's values with.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Largest {
+    mass: f64,
+    inertia: f64,
+}
+
+impl Largest {
+    fn of<'a>(inertials: impl Iterator<Item = &'a Inertial>) -> Largest {
+        inertials.fold(Largest::default(), |l, i| Largest {
+            mass: l.mass.max(i.mass.abs()),
+            inertia: i.inertia.iter().fold(l.inertia, |m, x| m.max(x.abs())),
+        })
+    }
+}
+
 /// The two kinds of `<inertial>` that no body has but that robid reads with a warning
 /// ([`unphysical`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,19 +105,33 @@ fn short(v: f64) -> String {
 }
 
 /// What makes a possible `<inertial>` (no negative mass, inertia positive semidefinite, see
-/// [`impossible`]) that of no body, if anything: a zero mass with a nonzero inertia, or
-/// principal moments of the inertia about the centre of mass that break the triangle
-/// inequality (the largest exceeds the sum of the other two by more than
-/// [`TRIANGLE_TOLERANCE`] of the trace, and more than the [`noise`]). The kind, where, and what, with the values.
-fn unphysical(i: &Inertial) -> Option<(Unphysical, Range<usize>, String)> {
+/// [`impossible`]) that of no body, if anything: a zero mass with a nonzero inertia (each
+/// judged by [`negligible`] beside the `largest` of the chain: a mass of 1e-320 with an
+/// inertia of 0.01 kg m^2 is one), or principal moments of the inertia about the centre of
+/// mass that break the triangle inequality (the largest exceeds the sum of the other two by
+/// more than [`TRIANGLE_TOLERANCE`] of the trace, and more than the [`noise`]). The kind,
+/// where, and what, with the values.
+fn unphysical(i: &Inertial, largest: Largest) -> Option<(Unphysical, Range<usize>, String)> {
     let [ixx, ixy, ixz, iyy, iyz, izz] = i.inertia;
-    if i.mass == 0.0 && i.inertia.iter().any(|&x| x != 0.0) {
+    if negligible(i.mass, largest.mass)
+        && i.inertia.iter().any(|&x| !negligible(x, largest.inertia))
+    {
+        let mass = if i.mass == 0.0 {
+            "the mass is 0".to_owned()
+        } else {
+            format!(
+                "the mass {} kg is negligible (below {NEGLIGIBLE_SHARE:e} of the chain's \
+                 largest, {} kg, or subnormal), as good as 0,",
+                show(i.mass),
+                show(largest.mass)
+            )
+        };
         return Some((
             Unphysical::MasslessInertia,
             i.mass_at.clone(),
             format!(
-                "the mass is 0 but the inertia is not (ixx {}, ixy {}, ixz {}, iyy {}, iyz \
-                 {}, izz {} kg m^2)",
+                "{mass} but the inertia is not (ixx {}, ixy {}, ixz {}, iyy {}, iyz {}, izz {} \
+                 kg m^2)",
                 show(ixx),
                 show(ixy),
                 show(ixz),
@@ -166,6 +215,13 @@ pub(super) fn check(
     if !errors.is_empty() {
         return Err(DescriptionError::from_errors(errors));
     }
+    let largest = Largest::of(
+        urdf.links
+            .iter()
+            .zip(&used)
+            .filter(|&(_, &used)| used)
+            .filter_map(|(link, _)| link.inertial.as_ref()),
+    );
     let mut found = Vec::new();
     for kind in [Unphysical::MasslessInertia, Unphysical::Triangle] {
         let links: Vec<(&str, Range<usize>, String)> = urdf
@@ -174,7 +230,7 @@ pub(super) fn check(
             .zip(&used)
             .filter(|&(_, &used)| used)
             .filter_map(|(link, _)| {
-                let (k, at, what) = link.inertial.as_ref().and_then(unphysical)?;
+                let (k, at, what) = unphysical(link.inertial.as_ref()?, largest)?;
                 (k == kind).then_some((link.name.as_str(), at, what))
             })
             .collect();
@@ -204,9 +260,10 @@ pub(super) fn check(
             &format!(
                 "link `{first}`: {what}, so no body has this inertial; robid's kinematics and \
                  identification do not use it, but where the URDF's inertials are the \
-                 parameters (`robid torques` and `excite` without --parameters, the prior of \
-                 `robid feasible`) it is used as written, and `robid simulate` refuses it; \
-                 {fix}, or give parameters of your own{others}"
+                 parameters (`robid torques`, `excite` and `simulate` without --parameters, \
+                 the prior of `robid feasible`) it is used as written, and their results are \
+                 those of the file, not of a robot; {fix}, or give parameters of your \
+                 own{others}"
             ),
         ));
         found.extend(links.iter().map(|(name, _, what)| UnphysicalInertial {

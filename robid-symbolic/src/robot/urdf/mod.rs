@@ -18,7 +18,7 @@ mod xml;
 mod tests;
 
 pub use chain::ChainSelection;
-pub use inertial::UnphysicalInertial;
+pub use inertial::{NEGLIGIBLE_SHARE, UnphysicalInertial, negligible};
 
 use super::bounds::MAX_DESCRIPTION_LEN;
 use super::file::Place;
@@ -56,6 +56,57 @@ impl UrdfChain {
         };
         let k = Inertial::ALL.iter().position(|&i| i == inertial)?;
         Some(self.links.get(id.link)?.inertial[k])
+    }
+
+    /// The largest magnitude of each kind of standard parameter among the chain's bodies:
+    /// inertia entries, first moments, mass.
+    fn largest(&self) -> [f64; 3] {
+        self.links.iter().fold([0.0; 3], |[j, ms, m], link| {
+            let p = &link.inertial;
+            let top = |r: std::ops::Range<usize>, from: f64| {
+                p[r].iter().fold(from, |a: f64, x| a.max(x.abs()))
+            };
+            [top(0..6, j), top(6..9, ms), m.max(p[9].abs())]
+        })
+    }
+
+    /// Whether the body of robid link `j` (0-based; `links[j].inertial`) has no mass: its
+    /// mass is 0 or [`negligible`] beside the largest of the chain's bodies (a mass of
+    /// 1e-320 kg, written to mean 0, next to real ones; docs/urdf.md#inertials).
+    pub fn massless(&self, j: usize) -> bool {
+        self.links
+            .get(j)
+            .is_none_or(|link| negligible(link.inertial[9], self.largest()[2]))
+    }
+
+    /// Whether the body of robid link `j` (0-based) has neither mass nor inertia: each of
+    /// its standard parameters is 0 or [`negligible`] beside the largest of its kind among
+    /// the chain's bodies (inertia entries, first moments, masses).
+    pub fn empty(&self, j: usize) -> bool {
+        let largest = self.largest();
+        self.links.get(j).is_none_or(|link| {
+            link.inertial.iter().enumerate().all(|(k, &x)| {
+                let kind = match k {
+                    0..6 => 0,
+                    6..9 => 1,
+                    _ => 2,
+                };
+                negligible(x, largest[kind])
+            })
+        })
+    }
+
+    /// Whether the bodies of robid links `from..` (0-based) are all exactly 0 where
+    /// [`UrdfChain::massless`] (`mass_only`) or [`UrdfChain::empty`] find them so, rather
+    /// than only negligible: the messages say "0" then, and "0 or negligible" otherwise.
+    pub fn exactly_zero(&self, from: usize, mass_only: bool) -> bool {
+        self.links.iter().skip(from).all(|link| {
+            if mass_only {
+                link.inertial[9] == 0.0
+            } else {
+                link.inertial.iter().all(|&x| x == 0.0)
+            }
+        })
     }
 
     /// The URDF's inertials as the values of `robot.standard_parameters()`, drive terms 0

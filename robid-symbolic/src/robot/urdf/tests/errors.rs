@@ -677,7 +677,7 @@ fn inertials_of_no_body_are_warned_about_on_the_chains_bodies() {
     for part in [
         "t.urdf:4:",
         "link `c`: the principal moments 1, 1, 100 kg m^2 of the inertia about the centre of mass break the triangle inequality: the largest exceeds the sum of the other two by 98 kg m^2, so no body has this inertial",
-        "`robid simulate` refuses it",
+        "(`robid torques`, `excite` and `simulate` without --parameters, the prior of `robid feasible`) it is used as written, and their results are those of the file, not of a robot",
         "correct the `<inertia>`",
         "give parameters of your own",
     ] {
@@ -723,6 +723,66 @@ fn inertials_of_no_body_are_warned_about_on_the_chains_bodies() {
     let chain = read(&beside);
     assert!(chain.warnings.is_empty(), "{:?}", chain.warnings);
     assert!(chain.unphysical.is_empty());
+}
+
+/// A mass or inertia written as 1e-320, or far below the chain's largest, to mean 0 is
+/// judged as 0 (`negligible`: below 1e-12 of the largest of its kind, or subnormal): a
+/// mass of 1e-320 kg with an inertia of 0.01 kg m^2 is warned about as a zero mass with an
+/// inertia (it used to pass, as only an exact 0 was checked), the body counts as massless
+/// (`UrdfChain::massless`), and a body whose every value is 1e-320 as empty
+/// (`UrdfChain::empty`). 1e-11 of the largest mass is a mass.
+#[test]
+fn negligible_masses_and_inertias_count_as_zero() {
+    let with = |b: &str, c: &str| {
+        let link = |name: &str, (m, i): (&str, &str)| {
+            format!(
+                "<link name=\"{name}\"><inertial><mass value=\"{m}\"/><inertia ixx=\"{i}\" \
+                 ixy=\"0\" ixz=\"0\" iyy=\"{i}\" iyz=\"0\" izz=\"{i}\"/></inertial></link>"
+            )
+        };
+        let limit = "<limit effort=\"1\" velocity=\"1\"/></joint>";
+        let spec = |s: &str| match s {
+            "denormal mass" => ("1e-320", "0.01"),
+            "denormal" => ("1e-320", "1e-320"),
+            "tiny mass" => ("1e-13", "0.01"),
+            "small mass" => ("1e-11", "0.01"),
+            _ => ("1", "0.02"),
+        };
+        arm(&format!("{J1}{J2}").replace("</joint>", limit))
+            .replace("<link name=\"b\"/>", &link("b", spec(b)))
+            .replace("<link name=\"c\"/>", &link("c", spec(c)))
+    };
+    let read = |text: &str| {
+        Robot::from_urdf(text, "t.urdf", &ChainSelection::default())
+            .unwrap_or_else(|e| panic!("{e}\n{text}"))
+    };
+    for (c, told) in [
+        ("denormal mass", "the mass 1e-320 kg is negligible"),
+        ("tiny mass", "the mass 1e-13 kg is negligible"),
+    ] {
+        let chain = read(&with("solid", c));
+        assert_eq!(chain.warnings.len(), 1, "{c}: {:?}", chain.warnings);
+        let w = &chain.warnings[0];
+        assert!(
+            w.starts_with("t.urdf:4:")
+                && w.contains(&format!("link `c`: {told} (below 1e-12 of the chain's largest, 1 kg, or subnormal), as good as 0, but the inertia is not (ixx 0.01"))
+                && w.contains("give the link its mass, or write its inertia as zeros"),
+            "{w}"
+        );
+        assert_eq!(chain.unphysical.len(), 1);
+        assert!(!chain.massless(0) && chain.massless(1), "{c}");
+        assert!(!chain.empty(1) && !chain.exactly_zero(1, true), "{c}");
+    }
+    let chain = read(&with("solid", "small mass"));
+    assert!(chain.warnings.is_empty(), "{:?}", chain.warnings);
+    assert!(!chain.massless(1));
+    // every value 1e-320: both bodies are empty, whatever the other's values
+    let chain = read(&with("denormal", "denormal"));
+    assert!(chain.warnings.is_empty(), "{:?}", chain.warnings);
+    assert!(chain.empty(0) && chain.empty(1));
+    assert!(!chain.exactly_zero(0, false));
+    let chain = read(&with("solid", "denormal"));
+    assert!(!chain.empty(0) && chain.empty(1) && chain.massless(1));
 }
 
 /// A revolute or prismatic joint without `<limit>` (which urdfdom, and so ROS tools and
