@@ -34,9 +34,12 @@ pub enum ModelError {
     },
     /// A geometric symbol has no value, so the model cannot be evaluated numerically.
     #[error(
-        "robot `{robot}`: geometric symbol `{symbol}`{used} has no value; give it one in the description's [symbols] table (`{symbol} = 0.3`, in m or rad)"
+        "{place}robot `{robot}`: geometric symbol `{symbol}`{used} has no value; give it one in the description's [symbols] table (`{symbol} = 0.3`, in m or rad)"
     )]
     UnboundSymbol {
+        /// Where the description file first uses it, as `file:line:column: `
+        /// (`Robot::symbol_place`), or nothing for a robot built in code.
+        place: String,
         /// Robot name.
         robot: String,
         /// The symbol.
@@ -79,6 +82,10 @@ impl Interpreted {
             .iter()
             .map(|(s, v)| {
                 v.ok_or_else(|| ModelError::UnboundSymbol {
+                    place: programs
+                        .robot
+                        .symbol_place(s)
+                        .map_or_else(String::new, |place| format!("{place}: ")),
                     robot: programs.robot.name().to_owned(),
                     symbol: s.clone(),
                     used: used_by(&programs.robot, s),
@@ -262,10 +269,29 @@ mod tests {
         let robot = Robot::from_toml(text, "s.toml").unwrap();
         let message = Interpreted::new(&robot).unwrap_err().to_string();
         assert!(
-            message.contains("geometric symbol `L2` (joint 2's `d`) has no value")
-                && message.contains("`L2 = 0.3`"),
+            message.starts_with(
+                "s.toml:11:5: robot `s`: geometric symbol `L2` (joint 2's `d`) has no value"
+            ) && message.contains("`L2 = 0.3`"),
             "{message}"
         );
+        // the place survives the changes the command line makes (--drive), and a symbol
+        // used only by gravity or [base], which no joint names, has its place too
+        let drive = robid_symbolic::Drive::NONE;
+        let message = Interpreted::new(&robot.with_drive(drive))
+            .unwrap_err()
+            .to_string();
+        assert!(message.starts_with("s.toml:11:5: "), "{message}");
+        let text = "name = \"s\"\nconvention = \"modified\"\ngravity = [0, 0, \"-g\"]\n\
+                    [[joints]]\nalpha = 0\na = 0\nd = 0\n";
+        let robot = Robot::from_toml(text, "g.toml").unwrap();
+        let message = Interpreted::new(&robot).unwrap_err().to_string();
+        assert!(
+            message.starts_with("g.toml:3:18: robot `s`: geometric symbol `g` has no value"),
+            "{message}"
+        );
+        // a robot built in code has no place to name
+        let robot = robot.with_symbol_value("g", 9.81).unwrap();
+        assert!(Interpreted::new(&robot).is_ok());
     }
 
     #[test]

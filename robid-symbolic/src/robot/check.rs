@@ -33,6 +33,9 @@ pub(super) struct Parts {
     /// than typed: an angle near a right angle is then what was measured, not a typed
     /// approximation, and is not refused for it.
     pub(super) measured: bool,
+    /// Where a description file first used each symbol (`file:line:column`), kept from a
+    /// robot read from a file through its `with_*` changes ([`Robot::symbol_place`]).
+    pub(super) uses: Vec<(String, String)>,
 }
 
 /// A geometric value of a joint: the DH row and Khalil and Kleinfinger's `gamma` and `b`.
@@ -166,6 +169,11 @@ pub(super) enum Item<'a> {
 /// Makes an error located where `item` was written.
 pub(super) trait Locate {
     fn error(&self, item: Item<'_>, message: String, help: String) -> DescriptionError;
+
+    /// Where `item` was written, as `file:line:column`, when it was read from a file.
+    fn place(&self, _item: Item<'_>) -> Option<String> {
+        None
+    }
 }
 
 /// Items given in code: errors name the argument.
@@ -313,12 +321,20 @@ impl Parts {
         }
         let values = self.values();
         let mut symbols: Vec<String> = Vec::new();
+        let mut uses: Vec<(String, String)> = Vec::new();
         for (item, g, _) in &values {
             for s in g.symbols() {
                 if symbols.contains(s) {
                     continue;
                 }
                 symbols.push(s.clone());
+                let place = locate.place(*item).or_else(|| {
+                    let kept = self.uses.iter().find(|(name, _)| name == s);
+                    kept.map(|(_, place)| place.clone())
+                });
+                if let Some(place) = place {
+                    uses.push((s.clone(), place));
+                }
                 if symbols.len() == MAX_SYMBOLS + 1 {
                     error(
                         *item,
@@ -413,6 +429,7 @@ impl Parts {
             tool: self.tool,
             symbols,
             measured: self.measured,
+            uses: super::SymbolUses(uses),
         })
     }
 

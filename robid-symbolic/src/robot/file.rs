@@ -172,6 +172,11 @@ impl Locate for FileLocator<'_> {
     fn error(&self, item: Item<'_>, message: String, help: String) -> DescriptionError {
         self.place.invalid(self.spans.of(item), message, help)
     }
+
+    fn place(&self, item: Item<'_>) -> Option<String> {
+        let (line, column) = self.place.line_column(self.spans.of(item).start);
+        Some(format!("{}:{line}:{column}", self.place.file))
+    }
 }
 
 impl Robot {

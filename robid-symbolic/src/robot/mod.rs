@@ -251,6 +251,19 @@ pub struct Robot {
     symbols: Vec<(String, Option<f64>)>,
     /// Whether its DH values were fitted to a URDF (see `check::Parts::measured`).
     measured: bool,
+    uses: SymbolUses,
+}
+
+/// Where a description file first uses each geometric symbol, as `file:line:column`
+/// ([`Robot::symbol_place`]); empty for a robot built in code. Where a robot was written is
+/// not part of what it is: two robots that differ only here are equal.
+#[derive(Clone, Debug, Default)]
+struct SymbolUses(Vec<(String, String)>);
+
+impl PartialEq for SymbolUses {
+    fn eq(&self, _: &SymbolUses) -> bool {
+        true
+    }
 }
 
 impl Robot {
@@ -272,6 +285,7 @@ impl Robot {
             values: Vec::new(),
             unread_words: Vec::new(),
             measured: false,
+            uses: Vec::new(),
         };
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
@@ -293,6 +307,7 @@ impl Robot {
             values: Vec::new(),
             unread_words: Vec::new(),
             measured: true,
+            uses: Vec::new(),
         };
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
@@ -335,6 +350,27 @@ impl Robot {
     /// description (`None`: a run-time input of the generated model).
     pub fn symbols(&self) -> &[(String, Option<f64>)] {
         &self.symbols
+    }
+
+    /// Where the description file first uses geometric symbol `symbol`, as
+    /// `file:line:column` (the value that uses it), so that a message about the symbol (it
+    /// has no value where values are needed) can point there; `None` for a robot built in
+    /// code or a symbol it does not use.
+    ///
+    /// ```
+    /// use robid_symbolic::Robot;
+    /// let text = "name = \"arm\"\nconvention = \"modified\"\n\
+    ///             [[joints]]\nalpha = 0\n[[joints]]\nalpha = 0\na = \"L2\"\n";
+    /// let robot = Robot::from_toml(text, "arm.toml").unwrap();
+    /// assert_eq!(robot.symbol_place("L2"), Some("arm.toml:7:5"));
+    /// assert_eq!(robot.symbol_place("L3"), None);
+    /// ```
+    pub fn symbol_place(&self, symbol: &str) -> Option<&str> {
+        self.uses
+            .0
+            .iter()
+            .find(|(s, _)| s == symbol)
+            .map(|(_, place)| place.as_str())
     }
 
     /// The geometric symbols without a value: run-time inputs of the models
@@ -463,6 +499,7 @@ impl Robot {
                 .collect(),
             unread_words: Vec::new(),
             measured: self.measured,
+            uses: self.uses.0,
         }
     }
 }

@@ -180,6 +180,7 @@ impl<'a> Reader<'a> {
             values: symbols,
             unread_words: std::mem::take(&mut self.unread_words),
             measured: false,
+            uses: Vec::new(),
         }
     }
 
