@@ -463,6 +463,10 @@ fn unsized_links(
     Ok(())
 }
 
+/// The settings of `AnnealOptions` that flags fill, and their flags: an equality naming a
+/// link beyond the robot is told as `--equal: ...`, not as the library's type.
+const ANNEAL_FLAGS: &[(&str, &str)] = &[("equalities", "--equal"), ("restarts", "--restarts")];
+
 /// The `anneal` method with its options, in one step or in Gaz et al.'s two.
 fn anneal(
     args: &Args,
@@ -496,7 +500,8 @@ fn anneal(
         ..AnnealOptions::default()
     };
     if !args.two_step {
-        return Ok(solve_anneal(problem, bounds, &options)?);
+        return solve_anneal(problem, bounds, &options)
+            .map_err(|e| e.on_flags(ANNEAL_FLAGS).into());
     }
     if !no_extra {
         return Err(format!(
@@ -527,7 +532,8 @@ fn anneal(
                 .into(),
         );
     }
-    let result = solve_two_step(&gravity.problem(problem)?, problem, bounds, &options)?;
+    let result = solve_two_step(&gravity.problem(problem)?, problem, bounds, &options)
+        .map_err(|e| e.on_flags(ANNEAL_FLAGS))?;
     out::warn(format_args!(
         "gravity step: chi^2 {:.3e} over {} gravity coefficients ({}); holds {}",
         result.gravity.chi2,

@@ -408,18 +408,26 @@ fn search(
         mass_step: options.mass_step,
         loose: Vec::new(),
     };
-    let named = options
-        .fixed
-        .iter()
-        .map(|(v, _)| v.link)
-        .chain(options.equalities.iter().flat_map(Equality::links));
-    for link in named {
-        if link >= nl {
+    // a link beyond the robot, named by its own setting (`robid feasible` tells an
+    // equality's as its --equal flag)
+    if let Some((v, _)) = options.fixed.iter().find(|(v, _)| v.link >= nl) {
+        return Err(Error::setting(
+            "AnnealOptions",
+            "fixed",
+            format!(
+                "link {} named in a fixed value: the robot has {nl} links",
+                v.link + 1
+            ),
+        ));
+    }
+    for equality in &options.equalities {
+        if let Some(link) = equality.links().find(|&link| link >= nl) {
             return Err(Error::setting(
                 "AnnealOptions",
-                "fixed",
+                "equalities",
                 format!(
-                    "link {} named in a fixed value or an equality: the robot has {nl} links",
+                    "`{equality}` names link {}, but the robot has {nl} links; number the \
+                     links from 1 to {nl}",
                     link + 1
                 ),
             ));

@@ -675,7 +675,9 @@ fn gaz_the_gravity_step_holds_the_masses_and_centres_its_fit_sees() {
 }
 
 /// An equality naming a link the robot does not have is refused before the search, naming
-/// the link (on either side of the equality).
+/// the equality and the link (on either side of it), under the setting `equalities` (so
+/// that `robid feasible` names it as its --equal flag; it was `fixed`, "link 2 named in a
+/// fixed value or an equality").
 #[test]
 fn gaz_an_equality_past_the_last_link_is_refused() {
     let problem = problem(1, &["M1"], &one_link());
@@ -685,7 +687,13 @@ fn gaz_an_equality_past_the_last_link_is_refused() {
             ..quick()
         };
         let e = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap_err();
-        assert!(e.to_string().contains("link 2 named"), "{equality}: {e}");
+        assert!(
+            matches!(&e, Error::Setting { key, .. } if key == "equalities")
+                && e.to_string().contains(&format!(
+                    "`{equality}` names link 2, but the robot has 1 links"
+                )),
+            "{equality}: {e}"
+        );
     }
 }
 
