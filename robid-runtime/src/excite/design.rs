@@ -16,6 +16,7 @@ use rayon::prelude::*;
 
 use crate::Model;
 use crate::error::{Error, Result, num};
+use crate::estimate::SIGMA_FLOOR;
 use crate::excite::limits::{TorquePenalty, check_reference};
 use crate::excite::{Criterion, Fourier, Information, JointLimits, JointSeries, check_limits};
 use crate::excite::{
@@ -523,17 +524,21 @@ pub(crate) fn check_joint_vectors(
 }
 
 /// Regressor-row weights 1 / sigma_j from the expected torque noise `sigma` of each joint
-/// (N m): what weighted least squares will see. A sigma must be positive and finite: a
-/// joint without noise would get an infinite weight (and one with a sigma below
+/// (N m): what weighted least squares will see, so each sigma is floored, as there, at
+/// [`SIGMA_FLOOR`] (1e-6) of the largest. Without the floor, sigmas each in range but 1e8
+/// apart (`robid excite --sigma 1,1,1,1,1,1e-8`) made every trajectory's criterion
+/// infinite, and the design ended blaming the joint limits. A sigma must be positive and
+/// finite: a joint without noise would get an infinite weight (and one with a sigma below
 /// 1 / [`MAX_WEIGHT`] a weight beyond the limit). `owner` and `key` name the setting in
 /// the error (e.g. `"excite"`, `"sigma"`).
 pub fn weights_from_sigma(sigma: &[f64], owner: &str, key: &str) -> Result<Vec<f64>> {
+    let largest = sigma.iter().copied().fold(0.0, f64::max);
     sigma
         .iter()
         .enumerate()
         .map(|(j, &s)| {
             if s > 0.0 && s.is_finite() && 1.0 / s <= MAX_WEIGHT {
-                Ok(1.0 / s)
+                Ok(1.0 / s.max(SIGMA_FLOOR * largest))
             } else {
                 Err(Error::setting(
                     owner,
@@ -560,5 +565,21 @@ pub(crate) fn check_design_cost(cost: f64, criterion: Criterion) -> Result<()> {
             what: format!("the design criterion ({criterion:?}) of the best trajectory"),
             cause: "every trajectory tried leaves some base parameter unexcited (or exceeds the torque limits without bound): check the joint limits (a joint with almost no range cannot excite its parameters), or give the search more restarts and evaluations".into(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::weights_from_sigma;
+
+    /// Sigmas are floored at 1e-6 of the largest, as weighted least squares floors them: a
+    /// sigma of 1e-8 beside 1 weighs 1e6, not 1e8 (which made every trajectory's criterion
+    /// infinite); sigmas within the floor keep 1 / sigma.
+    #[test]
+    fn weights_floor_a_sigma_as_least_squares_does() {
+        let w = weights_from_sigma(&[1.0, 1e-8, 0.5], "excite", "sigma").unwrap();
+        assert_eq!(w, vec![1.0, 1e6, 2.0]);
+        let w = weights_from_sigma(&[1e-6, 1.0], "excite", "sigma").unwrap();
+        assert_eq!(w, vec![1e6, 1.0]);
     }
 }

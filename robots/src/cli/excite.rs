@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use robid_runtime::data::ParameterFile;
-use robid_runtime::excite::{Criterion, FourierDesign, JointLimits, PointDesign, assess};
+use robid_runtime::excite::{
+    Criterion, FourierDesign, JointLimits, PointDesign, assess, weights_from_sigma,
+};
 use robid_runtime::limits::MIN_JOINT_LIMIT;
 use robid_runtime::simulate::Trajectory;
 use robid_runtime::{Model, num};
@@ -506,7 +508,10 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     };
     let weights = match args.sigma.len() {
         0 => None,
-        k if k == n => Some(args.sigma.iter().map(|s| 1.0 / s).collect()),
+        k if k == n => Some(
+            weights_from_sigma(&args.sigma, "excite", "sigma")
+                .map_err(|e| e.on_flags(&[("sigma", "--sigma")]))?,
+        ),
         k => {
             return Err(format!(
                 "--sigma has {k} values but {} has {n} joints; give s1,..,s{n}",

@@ -116,6 +116,31 @@ fn excite_values_out_of_range_are_refused_naming_the_flag() {
     assert!(!dir.path().join("traj.csv").exists());
 }
 
+/// `--sigma` values each in range but far apart are floored at 1e-6 of the largest, as
+/// weighted least squares floors them: `--sigma 1,1,1,1,1,1e-8` ended "the design criterion
+/// (Condition) of the best trajectory is not finite", blaming the joint limits.
+#[test]
+fn excite_floors_a_sigma_far_below_the_others() {
+    let dir = folder();
+    let o = excite(
+        dir.path(),
+        &[
+            "--duration",
+            "10",
+            "--rate",
+            "50",
+            "--restarts",
+            "1",
+            "--evaluations",
+            "30",
+            "--sigma",
+            "1,1,1,1,1,1e-8",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(dir.path().join("traj.csv").exists());
+}
+
 /// A description's limit that a design cannot take (below 1e-6, such as 1e-320 written to
 /// mean "none") is named by the description and joint, with the fix, before the design; it
 /// was named by the library's type (``JointLimits `velocity`: joint 1: ...``).
