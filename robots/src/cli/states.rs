@@ -6,7 +6,9 @@
 
 use std::path::Path;
 
-use robid_runtime::data::{Table, read_columns, read_header, surplus_joint};
+use robid_runtime::data::{
+    ColumnMapping, DataError, Table, read_columns, read_header, surplus_joint,
+};
 use robid_runtime::limits::MAX_TORQUE;
 
 use super::Error;
@@ -20,9 +22,65 @@ pub(crate) const STATE_LIMIT: f64 = 1e6;
 /// states of another robot.
 pub(crate) fn read(path: &Path, names: &[String], dof: usize) -> Result<Table, Error> {
     refuse_surplus(path, dof)?;
-    let table = read_columns(path, names)?;
+    let table = read_columns(path, names).map_err(|e| with_header(e, names))?;
     check(&table, names)?;
     Ok(table)
+}
+
+/// A column missing from a states file, told with the header the file needs
+/// (`q1..q6,qd1..qd6,qdd1..qdd6`): the reader's own advice, "pass the names of the file's
+/// columns", is for a caller in code, and no flag of `robid` passes column names.
+pub(crate) fn with_header(e: robid_runtime::Error, names: &[String]) -> robid_runtime::Error {
+    match e {
+        robid_runtime::Error::Data(DataError::MissingColumn {
+            path,
+            column,
+            available,
+            ..
+        }) => robid_runtime::Error::Data(DataError::MissingColumn {
+            path,
+            column,
+            available,
+            mapping: Box::new(ColumnMapping::Header {
+                expected: header_pattern(names),
+            }),
+        }),
+        e => e,
+    }
+}
+
+/// `names` written short: each run `q1, q2, .., q6` as `q1..q6`, joined by commas.
+fn header_pattern(names: &[String]) -> String {
+    // a name's prefix and joint number, when it ends in one
+    let split = |name: &str| {
+        let digits = name.len() - name.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+        let (prefix, number) = name.split_at(name.len() - digits);
+        Some((prefix.to_owned(), number.parse::<usize>().ok()?))
+    };
+    let mut parts: Vec<String> = Vec::new();
+    let mut k = 0;
+    while k < names.len() {
+        let Some((prefix, first)) = split(&names[k]) else {
+            parts.push(names[k].clone());
+            k += 1;
+            continue;
+        };
+        let mut last = k;
+        while names
+            .get(last + 1)
+            .and_then(|n| split(n))
+            .is_some_and(|(p, j)| p == prefix && j == first + (last + 1 - k))
+        {
+            last += 1;
+        }
+        parts.push(if last > k {
+            format!("{}..{}", names[k], names[last])
+        } else {
+            names[k].clone()
+        });
+        k = last + 1;
+    }
+    parts.join(",")
 }
 
 /// Refuses a file with a position column for one joint more than the robot's `dof` (what

@@ -195,7 +195,7 @@ fn stream(
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
     });
-    read.map_err(input)?;
+    read.map_err(|e| input(super::states::with_header(e, names)))?;
     match (range, torque, output) {
         (Some((_, e)), _, _) => Err(Failure::Input(e)),
         (None, Some(e), _) => Err(Failure::Input(e)),

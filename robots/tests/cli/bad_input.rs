@@ -141,6 +141,56 @@ fn excite_floors_a_sigma_far_below_the_others() {
     assert!(dir.path().join("traj.csv").exists());
 }
 
+/// A states file without a column the robot needs is told the header it needs, for
+/// `torques` (to standard output and with -o) and `payload`: the advice was "pass the
+/// names of the file's columns", which no flag of robid does.
+#[test]
+fn a_states_file_missing_a_column_is_told_the_header_it_needs() {
+    let dir = folder();
+    let full = std::fs::read_to_string(ur5e_states(dir.path(), 3)).unwrap();
+    let cut: String = full
+        .lines()
+        .map(|l| l.rsplit_once(',').unwrap().0.to_owned() + "\n")
+        .collect();
+    let states = write(dir.path(), "cut.csv", &cut);
+    let out = dir.path().join("tau.csv");
+    let torques = |extra: &[&str]| {
+        let mut args = vec![
+            "torques",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e.toml",
+            "--states",
+            states.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        robid(&args)
+    };
+    for o in [torques(&[]), torques(&["-o", out.to_str().unwrap()])] {
+        fails_with(
+            &o,
+            &[
+                "no column `qdd6` in the header",
+                "this file needs the header q1..q6,qd1..qd6,qdd1..qdd6; rename its columns",
+            ],
+        );
+        assert!(!stderr(&o).contains("pass the names"), "{}", stderr(&o));
+    }
+    assert!(!out.exists());
+    let o = robid(&[
+        "payload",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--data",
+        states.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &["this file needs the header q1..q6,qd1..qd6,qdd1..qdd6,tau1..tau6"],
+    );
+}
+
 /// A description's limit that a design cannot take (below 1e-6, such as 1e-320 written to
 /// mean "none") is named by the description and joint, with the fix, before the design; it
 /// was named by the library's type (``JointLimits `velocity`: joint 1: ...``).
