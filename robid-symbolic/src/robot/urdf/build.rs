@@ -3,7 +3,7 @@
 
 use super::super::bounds::{
     ANGLE_RESOLUTION, MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
-    MIN_GRAVITY, MIN_LENGTH,
+    MIN_GRAVITY, MIN_LENGTH, RIGHT_ANGLE_SNAP,
 };
 use super::super::check::show;
 use super::super::file::Place;
@@ -535,7 +535,11 @@ pub(super) fn measured_twists(
         .filter_map(|(k, row)| {
             let quarter = (row[0] / FRAC_PI_2).round();
             let off = (row[0] - quarter * FRAC_PI_2).abs();
-            (off > 0.0 && off < ANGLE_RESOLUTION).then_some((k, off, quarter as i64 % 2 == 0))
+            (off > RIGHT_ANGLE_SNAP && off < ANGLE_RESOLUTION).then_some((
+                k,
+                off,
+                quarter as i64 % 2 == 0,
+            ))
         })
         .collect();
     let (&(k, off, parallel), rest) = near.split_first()?;
