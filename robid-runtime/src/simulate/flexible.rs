@@ -681,8 +681,9 @@ impl Simulation {
             let f = &g.friction;
             let level = f.coulomb + f.load * tau[j].abs() + f.stribeck;
             let sech = 1.0 / (slowest[j] / f.smoothing).cosh();
-            let slope =
-                level * sech * sech / f.smoothing + f.viscous + f.stribeck / f.stribeck_velocity;
+            let slope = level * sech * sech / f.smoothing
+                + f.viscous
+                + f.stribeck * stribeck_slope(f.stribeck_velocity, slowest[j]);
             rate = rate.max(
                 (stiffness * compliance).sqrt()
                     + g.damping * compliance
@@ -691,6 +692,23 @@ impl Simulation {
             );
         }
         Ok(rate + std::f64::consts::TAU * self.bandwidth)
+    }
+}
+
+/// A bound on `|d exp(-(w / ws)^2) / dw| = 2 |w| / ws^2 exp(-(w / ws)^2)` over rotor speeds
+/// `|w| >= slowest`: its peak `sqrt(2 / e) / ws` at `|w| = ws / sqrt(2)` when `slowest` is
+/// below that, else its value at `slowest` (it falls beyond the peak). Taken at the slowest
+/// speed the substep can reach, as the smooth sign's slope is: bounded by `1 / ws` at every
+/// speed, it made a run split every substep to the cap when `ws` was small (a Stribeck
+/// velocity of 1e-6 rad/s ran for minutes), though the term changes only near a reversal.
+fn stribeck_slope(ws: f64, slowest: f64) -> f64 {
+    let w = slowest.max(ws / std::f64::consts::SQRT_2);
+    let r = w / ws;
+    // exp(-r^2) is 0 in f64 long before r = 30, where 2 r / ws could overflow
+    if r > 30.0 {
+        0.0
+    } else {
+        2.0 * r * (-r * r).exp() / ws
     }
 }
 

@@ -258,3 +258,29 @@ fn flexible_file_errors_name_the_key() {
         .to_string();
     assert!(e.contains("joint-flexibility file"), "{e}");
 }
+
+/// The Stribeck term's slope bound holds over every speed at or above the slowest one, is
+/// its peak sqrt(2/e)/ws through a reversal, and vanishes far from one (it was 1/ws at any
+/// speed, which split every substep to the cap for a small ws).
+#[test]
+fn stribeck_slope_bounds_the_term_beyond_the_slowest_speed() {
+    for ws in [0.05, 1e-3, 1e-6] {
+        let term = |w: f64| (-(w / ws) * (w / ws)).exp();
+        for slowest in [0.0, 0.3 * ws, ws, 3.0 * ws, 10.0 * ws] {
+            let bound = stribeck_slope(ws, slowest);
+            for k in 0..2000 {
+                let w = slowest + k as f64 * ws / 200.0;
+                let h = ws * 1e-6;
+                let slope = ((term(w + h) - term(w - h)) / (2.0 * h)).abs();
+                assert!(
+                    slope <= bound * (1.0 + 1e-6),
+                    "ws {ws} slowest {slowest} w {w}: {slope} > {bound}"
+                );
+            }
+        }
+        let peak = (2.0 / std::f64::consts::E).sqrt() / ws;
+        assert!((stribeck_slope(ws, 0.0) - peak).abs() < 1e-12 * peak);
+        assert_eq!(stribeck_slope(ws, 40.0 * ws), 0.0);
+    }
+    assert!(stribeck_slope(1e-6, 0.1) < 1e-300);
+}
