@@ -90,12 +90,7 @@ fn a_right_angle_printed_short_on_the_first_axis_levels_gravity() {
         "<origin rpy=\"1.57079 0 0\"/><axis xyz=\"0 1 0\"/></joint>\n<joint name=\"j2\"",
     ));
     let chain = Robot::from_urdf(&text, "t.urdf", &ChainSelection::default()).unwrap();
-    let told: Vec<&String> = chain
-        .warnings
-        .iter()
-        .filter(|w| w.contains("gravity in robid frame 0"))
-        .collect();
-    assert_eq!(told.len(), 1, "{:?}", chain.warnings);
+    let told = one_warning(&chain, "gravity in robid frame 0");
     for w in [
         "t.urdf:5:1: gravity in robid frame 0, whose z is joint `j1`'s axis, has",
         "6.2",
@@ -103,7 +98,7 @@ fn a_right_angle_printed_short_on_the_first_axis_levels_gravity() {
         "the `<origin>` rotation of joint `j1` is 6.3e-6 rad from a right angle",
         "`1.5708`",
     ] {
-        assert!(told[0].contains(w), "{}\nexpected {w:?}", told[0]);
+        assert!(told.contains(w), "{}\nexpected {w:?}", told);
     }
     let g: Vec<&str> = chain.robot.gravity().iter().map(|g| g.as_str()).collect();
     assert_eq!(g.iter().filter(|g| **g == "0").count(), 2, "{g:?}");
@@ -533,19 +528,14 @@ fn a_mimic_of_no_joint_is_named_at_its_place() {
   </joint>
 </robot>"#;
     let chain = Robot::from_urdf(off, "t.urdf", &selection(None, Some("hand"))).unwrap();
-    let told: Vec<&String> = chain
-        .warnings
-        .iter()
-        .filter(|w| w.contains("mimics"))
-        .collect();
-    assert_eq!(told.len(), 1, "{:?}", chain.warnings);
+    let told = one_warning(&chain, "mimics");
     assert!(
-        told[0].starts_with(
+        told.starts_with(
             "t.urdf:14:19: joint `f2` mimics joint `finger_joint_that_does_not_exist`, which is \
              no `<joint>` of the robot: off the chain it is held at its `offset`"
-        ) && told[0].ends_with("the nearest joint names are `finger_joint`, `f2`, `j1`"),
+        ) && told.ends_with("the nearest joint names are `finger_joint`, `f2`, `j1`"),
         "{}",
-        told[0]
+        told
     );
     let on = arm(&format!(
         "{J1}{}",
@@ -1091,17 +1081,12 @@ fn nearly_parallel_axes_are_named_and_their_far_frames_refused() {
     )
     .unwrap();
     assert_eq!(chain.robot.joints()[2].alpha.as_str(), "0.000001");
-    let told: Vec<&String> = chain
-        .warnings
-        .iter()
-        .filter(|w| w.contains("taken as measured"))
-        .collect();
-    assert_eq!(told.len(), 1, "{:?}", chain.warnings);
+    let told = one_warning(&chain, "taken as measured");
     for w in [
         "t.urdf:8:1: joint `j3`'s axis is 1.0e-6 rad from parallel to the previous one's:",
         "to identify the nominal set, write the origins and axes so that the angle is exact",
     ] {
-        assert!(told[0].contains(w), "{}\nexpected {w:?}", told[0]);
+        assert!(told.contains(w), "{}\nexpected {w:?}", told);
     }
     // exactly parallel axes 0.1 µm apart: a length below 1 µm is rounding, taken as 0 and
     // told (it was refused; romeo_laas_small of example-robot-data has two, 1.1e-8 m)
@@ -1112,16 +1097,11 @@ fn nearly_parallel_axes_are_named_and_their_far_frames_refused() {
     )
     .unwrap();
     assert_eq!(chain.robot.joints()[2].a.as_str(), "0");
-    let told: Vec<&String> = chain
-        .warnings
-        .iter()
-        .filter(|w| w.contains("taken as 0"))
-        .collect();
-    assert_eq!(told.len(), 1, "{:?}", chain.warnings);
+    let told = one_warning(&chain, "taken as 0");
     assert!(
-        told[0].contains("at joint `j3`, `a` = 1e-7 m: taken as 0"),
+        told.contains("at joint `j3`, `a` = 1e-7 m: taken as 0"),
         "{}",
-        told[0]
+        told
     );
 }
 

@@ -77,13 +77,8 @@ fn an_unbounded_position_limit_is_none() {
         let j2 = &chain.robot.joints()[1].limits;
         assert_eq!(j2.position, None, "{lower} {upper}");
         assert_eq!(j2.velocity, Some(4.0));
-        let told: Vec<&String> = chain
-            .warnings
-            .iter()
-            .filter(|w| w.contains("taken as no position limit"))
-            .collect();
-        assert_eq!(told.len(), 1, "{:?}", chain.warnings);
-        assert!(told[0].contains("of joint `j2`"), "{}", told[0]);
+        let told = one_warning(&chain, "taken as no position limit");
+        assert!(told.contains("of joint `j2`"), "{}", told);
     }
 }
 
@@ -114,14 +109,9 @@ fn a_small_tilt_is_placed_at_the_element_that_tilts() {
     let warning = |text: &str, base: Option<&str>| {
         let chain = Robot::from_urdf(text, "t.urdf", &selection(base, None))
             .unwrap_or_else(|e| panic!("{e}"));
-        let told: Vec<&String> = chain
-            .warnings
-            .iter()
-            .filter(|w| w.contains("gravity in robid frame 0"))
-            .collect();
-        assert_eq!(told.len(), 1, "{:?}", chain.warnings);
+        let told = one_warning(&chain, "gravity in robid frame 0");
         let g: Vec<f64> = chain.robot.gravity().iter().map(value).collect();
-        (told[0].clone(), g)
+        (told.to_owned(), g)
     };
     let level = "0 0 0";
     let up = "0 0 1";

@@ -34,6 +34,13 @@ pub(super) const KINOVA: &str = "data/example_robot_data/kinova/kinova.urdf";
 pub(super) const XARM7: &str = "data/example_robot_data/xarm7/xarm7.urdf";
 pub(super) const SO101: &str = "data/example_robot_data/so101/so101.urdf";
 
+/// The one warning of `chain` that contains `what` (fails unless there is exactly one).
+pub(super) fn one_warning<'a>(chain: &'a UrdfChain, what: &str) -> &'a str {
+    let told: Vec<&String> = chain.warnings.iter().filter(|w| w.contains(what)).collect();
+    assert_eq!(told.len(), 1, "{:?}", chain.warnings);
+    told[0]
+}
+
 pub(super) fn selection(base: Option<&str>, tip: Option<&str>) -> ChainSelection {
     ChainSelection {
         base: base.map(str::to_owned),
