@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use syn::spanned::Spanned;
 use syn::{Expr, ExprLit, Lit, LitStr, UnOp};
 
-const KEYS: [&str; 9] = [
+const KEYS: [&str; 10] = [
     "file",
     "base",
     "tip",
@@ -23,6 +23,7 @@ const KEYS: [&str; 9] = [
     "drive",
     "symbols",
     "joints",
+    "calibrated",
 ];
 
 /// A checked input: the robot and the file to track, if it came from one.
@@ -155,7 +156,7 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
     let drive = get("drive").map(|i| drive(&mut cx, &i.value));
     let result = match get("file") {
         Some(file) => {
-            for k in ["convention", "gravity", "symbols", "joints"] {
+            for k in ["convention", "gravity", "symbols", "joints", "calibrated"] {
                 if let Some(i) = get(k) {
                     cx.error(
                         i.key.span(),
@@ -232,6 +233,19 @@ fn literal(e: &Expr) -> Option<&LitStr> {
             lit: Lit::Str(s), ..
         }) => Some(s),
         _ => None,
+    }
+}
+
+/// `true` or `false`.
+fn boolean(cx: &mut Ctxt, e: &Expr, what: &str) -> Option<bool> {
+    match e {
+        Expr::Lit(ExprLit {
+            lit: Lit::Bool(b), ..
+        }) => Some(b.value),
+        _ => {
+            cx.error(e.span(), format!("expected `true` or `false` for {what}"));
+            None
+        }
     }
 }
 
@@ -394,12 +408,22 @@ fn inline(cx: &mut Ctxt, found: &[&Item], name: Option<&LitStr>) -> Option<Read>
         Some(i) => joints(cx, &i.value, &mut spans.joints),
     };
     let symbols = get("symbols").map(|i| symbols(cx, &i.value));
-    let (name, convention, joints) = (name?, convention?, joints?);
+    let calibrated = match get("calibrated") {
+        Some(i) => boolean(cx, &i.value, "`calibrated`"),
+        None => Some(false),
+    };
+    let (name, convention, joints, calibrated) = (name?, convention?, joints?, calibrated?);
     let gravity = match gravity {
         Some(g) => Some(g?),
         None => None,
     };
-    let mut robot = match Robot::new(&name.value(), convention, gravity, joints) {
+    // a table measured by a calibration: its angles near right angles as written
+    let new = if calibrated {
+        Robot::new_calibrated
+    } else {
+        Robot::new
+    };
+    let mut robot = match new(&name.value(), convention, gravity, joints) {
         Ok(r) => r,
         Err(err) => {
             cx.description(&err, |e| spans.of(e));

@@ -117,6 +117,7 @@
 //!     gravity = [0, -9.81, 0],        // optional, default [0, 0, -9.81]
 //!     drive = [Ia, Fv],               // optional drive terms of every joint
 //!     symbols = [L1 = 0.5],           // optional values of geometric symbols
+//!     calibrated = false,             // optional: true for a measured table (angles as written)
 //!     joints = [
 //!         //       alpha   a     d  theta
 //!         revolute(0,      0,    0, 0),

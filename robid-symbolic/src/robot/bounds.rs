@@ -12,7 +12,7 @@
 //! | what | accepted |
 //! |---|---|
 //! | DH lengths `a`, `d`, `b` | 0 (or a number below [`LENGTH_SNAP`], taken as 0), or [`MIN_LENGTH`] (1 µm) to [`MAX_LENGTH`] (1 km) in magnitude, in metres; `b` and `d` of a [calibrated pair](calibrated_pair) up to [`MAX_CALIBRATED_LENGTH`] (1e9 m) |
-//! | DH angles `alpha`, `theta` | at most [`MAX_ANGLE`] (one turn) in magnitude, in radians; exactly `k pi/2` (as `"pi/2"`, `0`, or a number within [`RIGHT_ANGLE_SNAP`] of it, which is taken as it) or at least [`ANGLE_RESOLUTION`] away from every such angle, but for the `alpha` of a [calibrated pair](calibrated_pair), the `theta` of a revolute joint (an offset of its variable, which changes no base parameter: any value) and the angles fitted to a URDF (measured, not typed) |
+//! | DH angles `alpha`, `theta` | at most [`MAX_ANGLE`] (one turn) in magnitude, in radians; exactly `k pi/2` (as `"pi/2"`, `0`, or a number within [`RIGHT_ANGLE_SNAP`] of it, which is taken as it) or at least [`ANGLE_RESOLUTION`] away from every such angle, but for the `alpha` of a [calibrated pair](calibrated_pair), the `theta` of a revolute joint (an offset of its variable, which changes no base parameter: any value) and the angles fitted to a URDF or of a description marked `calibrated = true` (measured, not typed) |
 //! | gravity components | 0, or [`MIN_GRAVITY`] to [`MAX_GRAVITY`] m/s^2 in magnitude |
 //! | a value with symbols | the above at the `[symbols]` values when all its symbols have one, and at most [`MAX_SAMPLED`] in magnitude for any symbol values in [`SYMBOL_SAMPLES`] |
 //! | `[symbols]` values | finite |

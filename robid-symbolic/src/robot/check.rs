@@ -29,9 +29,9 @@ pub(super) struct Parts {
     /// The words of values that could not be read (their symbols are
     /// unknown): a value given to one of them is not reported as unused.
     pub(super) unread_words: Vec<String>,
-    /// Whether the DH values were measured (fitted to a URDF's origins and axes) rather
-    /// than typed: an angle near a right angle is then what was measured, not a typed
-    /// approximation, and is not refused for it.
+    /// Whether the DH values were measured (fitted to a URDF's origins and axes, or a
+    /// description's `calibrated = true`) rather than typed: an angle near a right angle is
+    /// then what was measured, not a typed approximation, and is not refused for it.
     pub(super) measured: bool,
     /// Where a description file first used each symbol (`file:line:column`), kept from a
     /// robot read from a file through its `with_*` changes ([`Robot::symbol_place`]).
@@ -707,7 +707,7 @@ fn value_problem(
                 (
                     format!("{is} only {off:.1e} rad from {exact}"),
                     format!(
-                        "write \"{exact}\" for the exact angle, or an angle at least {} rad from every multiple of pi/2",
+                        "write \"{exact}\" for the exact angle, or an angle at least {} rad from every multiple of pi/2; a table measured by a calibration is taken as written with `calibrated = true` at the top of its description",
                         show(ANGLE_RESOLUTION)
                     ),
                 )
@@ -717,10 +717,10 @@ fn value_problem(
     }
 }
 
-/// How far (rad) a numeric angle without symbols lies from the nonzero multiple of pi/2
-/// it nearly is (that multiple as text), when that is less than [`ANGLE_RESOLUTION`]
-/// but not 0: `1.5707963` typed for `"pi/2"`.
-pub(super) fn near_right_angle(g: &Geometry) -> Option<(f64, String)> {
+/// How far (rad) a numeric angle without symbols lies from the multiple k of pi/2 it
+/// nearly is (k, and that multiple as text), when that is less than [`ANGLE_RESOLUTION`]
+/// but not 0: `1.5707963` typed for `"pi/2"`; k = 0 only `with_zero`.
+pub(super) fn near_right_angle(g: &Geometry, with_zero: bool) -> Option<(f64, i64, String)> {
     if !g.symbols().is_empty() || g.quarter_turns().is_some() {
         return None;
     }
@@ -730,7 +730,23 @@ pub(super) fn near_right_angle(g: &Geometry) -> Option<(f64, String)> {
     let v = arena.eval(&[id], &values).ok()?.first().copied()?;
     let k = (v / FRAC_PI_2).round();
     let off = (v - k * FRAC_PI_2).abs();
-    (k != 0.0 && off < ANGLE_RESOLUTION).then(|| (off, quarter_text(k)))
+    ((with_zero || k != 0.0) && off > 0.0 && off < ANGLE_RESOLUTION)
+        .then(|| (off, k as i64, quarter_text(k)))
+}
+
+/// What taking a measured twist near a right angle means, for the warnings of URDFs and
+/// calibrated descriptions: `parallel` when the right angle is 0 or pi.
+pub(super) fn measured_twist_consequence(parallel: bool) -> String {
+    let axes = if parallel {
+        "parallel"
+    } else {
+        "perpendicular"
+    };
+    format!(
+        "where {axes} axes let the regrouping fold more parameters, the base parameters then \
+         hold combinations that only this angle separates, which data determine poorly (large \
+         standard deviations)"
+    )
 }
 
 /// `k pi/2` as text.

@@ -6,6 +6,7 @@
 //! convention = "modified"        # or "standard"
 //! gravity = [0, 0, -9.81]        # optional, world frame (frame 0 without [base]), m/s^2
 //! drive = ["Ia", "Fv", "Fc"]     # optional default drive terms of every joint
+//! calibrated = true              # optional: the table was measured; angles near right angles as written
 //! [symbols]                      # optional values of geometric symbols
 //! L3 = 0.425
 //! [base]                         # optional: frame 0 in the world frame (gravity is in the world)
@@ -42,7 +43,7 @@
 //! unused symbols) is reported together with the others.
 
 use super::bounds::MAX_DESCRIPTION_LEN;
-use super::check::{Dh, Item, Locate, near_right_angle};
+use super::check::{Dh, Item, Locate, measured_twist_consequence, near_right_angle};
 use super::read::{Reader, Spans};
 use super::{DescriptionError, JointKind, Robot};
 use std::io::Read;
@@ -106,7 +107,9 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
         .iter()
         .enumerate()
         .filter(|(_, joint)| joint.kind == JointKind::Revolute)
-        .filter_map(|(j, joint)| near_right_angle(&joint.theta).map(|(off, k)| (j, off, k)))
+        .filter_map(|(j, joint)| {
+            near_right_angle(&joint.theta, false).map(|(off, _, exact)| (j, off, exact))
+        })
         .collect();
     if let Some((j, off, exact)) = near.first() {
         let (line, column) = place.line_column(spans.of(Item::Value(*j, Dh::Theta)).start);
@@ -121,6 +124,44 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
              meant (its sine and cosine then fold into the model)",
             place.file,
             j + 1
+        ));
+    }
+    // A calibrated table's twists near a right angle are taken as measured
+    // (check.rs `Measured::Angle`); what that does to the base parameters is told once.
+    let twists: Vec<(usize, Dh, f64, i64, String)> = if robot.measured {
+        robot
+            .joints()
+            .iter()
+            .enumerate()
+            .flat_map(|(j, joint)| {
+                let theta =
+                    (joint.kind == JointKind::Prismatic).then_some((Dh::Theta, &joint.theta));
+                [(Dh::Alpha, &joint.alpha), (Dh::Gamma, &joint.gamma)]
+                    .into_iter()
+                    .chain(theta)
+                    .filter_map(move |(dh, g)| {
+                        near_right_angle(g, true).map(|(off, k, exact)| (j, dh, off, k, exact))
+                    })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if let Some((j, dh, off, k, exact)) = twists.first() {
+        let (line, column) = place.line_column(spans.of(Item::Value(*j, *dh)).start);
+        let more = match twists.len() - 1 {
+            0 => String::new(),
+            1 => " (and 1 more angle)".to_owned(),
+            m => format!(" (and {m} more angles)"),
+        };
+        let parallel = k % 2 == 0;
+        out.push(format!(
+            "{}:{line}:{column}: joint {} `{}` is {off:.1e} rad from {exact}{more}: taken as \
+             measured (`calibrated = true`); {}; to identify the nominal set, write \"{exact}\"",
+            place.file,
+            j + 1,
+            dh.key(),
+            measured_twist_consequence(parallel),
         ));
     }
     if let Some(span) = spans.stray_drive() {

@@ -249,7 +249,8 @@ pub struct Robot {
     base: Option<Transform>,
     tool: Option<Transform>,
     symbols: Vec<(String, Option<f64>)>,
-    /// Whether its DH values were fitted to a URDF (see `check::Parts::measured`).
+    /// Whether its DH values were measured: fitted to a URDF or calibrated (see
+    /// `check::Parts::measured`).
     measured: bool,
     uses: SymbolUses,
 }
@@ -290,17 +291,34 @@ impl Robot {
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
 
-    /// [`Robot::new`] for DH values fitted to a URDF: measured, so an angle a few
-    /// microradians from a right angle is taken as written (a typed one is refused).
-    pub(crate) fn new_measured(
+    /// [`Robot::new`] for a table measured by a calibration (a description's
+    /// `calibrated = true`): a numeric angle a few microradians from a right angle is
+    /// taken as written, where a typed one is refused as the right angle mistyped. Exact
+    /// right angles (`"pi/2"`, or a number within 1e-9 rad of one) stay exact.
+    ///
+    /// # Examples
+    /// ```
+    /// use robid_symbolic::{Convention, Joint, Robot};
+    /// // a twist measured 3.2 microradians off pi/2
+    /// let joints = vec![
+    ///     Joint::revolute("0", 0.0, 0.0, "0")?,
+    ///     Joint::revolute("1.5707995267948966", 0.0, 0.0, "0")?,
+    /// ];
+    /// assert!(Robot::new("arm", Convention::Modified, None, joints.clone()).is_err());
+    /// let robot = Robot::new_calibrated("arm", Convention::Modified, None, joints)?;
+    /// assert_eq!(robot.dof(), 2);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn new_calibrated(
         name: &str,
-        gravity: [Geometry; 3],
+        convention: Convention,
+        gravity: Option<[Geometry; 3]>,
         joints: Vec<Joint>,
     ) -> Result<Robot, DescriptionError> {
         let parts = Parts {
             name: name.to_owned(),
-            convention: Convention::Modified,
-            gravity,
+            convention,
+            gravity: gravity.unwrap_or_else(default_gravity),
             joints,
             base: None,
             tool: None,

@@ -90,7 +90,7 @@ pub(super) struct Reader<'a> {
     convention: Convention,
 }
 
-const ROBOT_KEYS: [&str; 8] = [
+const ROBOT_KEYS: [&str; 9] = [
     "name",
     "convention",
     "gravity",
@@ -99,6 +99,7 @@ const ROBOT_KEYS: [&str; 8] = [
     "joints",
     "base",
     "tool",
+    "calibrated",
 ];
 const JOINT_KEYS: [&str; 9] = [
     "type", "alpha", "a", "d", "theta", "drive", "limits", "gamma", "b",
@@ -170,6 +171,7 @@ impl<'a> Reader<'a> {
         };
         let base = values[6].map(|v| self.transform(Mount::Base, v));
         let tool = values[7].map(|v| self.transform(Mount::Tool, v));
+        let calibrated = values[8].is_some_and(|v| self.boolean(v, "`calibrated`"));
         Parts {
             name: name.unwrap_or_else(|| "robot".to_owned()),
             convention,
@@ -179,7 +181,7 @@ impl<'a> Reader<'a> {
             tool,
             values: symbols,
             unread_words: std::mem::take(&mut self.unread_words),
-            measured: false,
+            measured: calibrated,
             uses: Vec::new(),
         }
     }
@@ -235,6 +237,17 @@ impl<'a> Reader<'a> {
             _ => {
                 self.type_error(v, what, "a string in double quotes");
                 None
+            }
+        }
+    }
+
+    /// `true` or `false`; anything else is an error (and `false`).
+    fn boolean(&mut self, v: &Value<'_>, what: &str) -> bool {
+        match v.get_ref() {
+            DeValue::Boolean(b) => *b,
+            _ => {
+                self.type_error(v, what, "`true` or `false`");
+                false
             }
         }
     }

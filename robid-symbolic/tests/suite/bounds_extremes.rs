@@ -234,3 +234,61 @@ fn revolute_theta_offsets_keep_the_base_parameters() {
         }
     }
 }
+
+/// A twist a calibration measured a few microradians off a right angle is refused as a
+/// typo in a typed table, with the way out in the help, and taken as written (measured)
+/// in one marked `calibrated = true`: one warning at its line, and the base parameters of
+/// a generic angle, as an angle far from the right angle gives.
+#[test]
+fn calibrated_descriptions_take_measured_twists() {
+    let text = ROBOTS[0].1;
+    let twist = |value: f64| {
+        let mut done = false;
+        edit(text, |key, v| {
+            (key == "alpha" && v == "\"pi/2\"" && !std::mem::replace(&mut done, true))
+                .then(|| format!("{value:?}"))
+        })
+    };
+    let measured = std::f64::consts::FRAC_PI_2 + 3.2e-6;
+    let typed = twist(measured);
+    let error = Robot::from_toml(&typed, "ur5e.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("ur5e.toml:14:"), "{error}");
+    assert!(error.contains("`calibrated = true`"), "{error}");
+    let calibrated = format!("calibrated = true\n{typed}");
+    let (robot, warnings) =
+        Robot::from_toml_with_warnings(&calibrated, "ur5e.toml").unwrap_or_else(|e| panic!("{e}"));
+    let told: Vec<&String> = warnings.iter().filter(|w| w.contains("measured")).collect();
+    assert_eq!(told.len(), 1, "{warnings:?}");
+    assert!(
+        told[0].starts_with("ur5e.toml:15:")
+            && told[0].contains("joint 2 `alpha` is 3.2e-6 rad from pi/2"),
+        "{}",
+        told[0]
+    );
+    assert_eq!(robot.joints()[1].alpha.as_str(), format!("{measured:?}"));
+    let generic = format!(
+        "calibrated = true\n{}",
+        twist(std::f64::consts::FRAC_PI_2 + 0.3)
+    );
+    assert_eq!(
+        counts(&calibrated, "calibrated"),
+        counts(&generic, "generic")
+    );
+    assert_ne!(counts(&calibrated, "calibrated"), counts(text, "nominal"));
+    // An exact right angle stays exact in a calibrated table, and nothing is told.
+    let (_, warnings) =
+        Robot::from_toml_with_warnings(&format!("calibrated = true\n{text}"), "ur5e.toml").unwrap();
+    assert!(
+        warnings.iter().all(|w| !w.contains("measured")),
+        "{warnings:?}"
+    );
+    let wrong = Robot::from_toml(&format!("calibrated = \"yes\"\n{text}"), "ur5e.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        wrong.contains("ur5e.toml:1:") && wrong.contains("`true` or `false`"),
+        "{wrong}"
+    );
+}

@@ -327,6 +327,34 @@ fn inline_gamma_b_and_base_agree_with_a_description_file() {
     );
 }
 
+/// A calibrated table written inline (`calibrated = true`, twists a few microradians off
+/// their right angles): the compiled model equals the interpreted programs of the same
+/// table read from a file, so the macro takes the measured twists as the file does
+/// (without the key, both refuse them).
+mod calibrated_arm {
+    robid_macros::robot_model! {
+        name = "calibrated_arm",
+        convention = "modified",
+        calibrated = true,
+        gravity = [0, 0, -9.81],
+        drive = [Ia, Fv],
+        joints = [
+            revolute(0, 0, 0.3, 0),
+            revolute(1.5707995267948966, 0, 0, 0),
+            revolute(4.1e-6, 0.4, 0, 0),
+            revolute("-pi/2", 0.05, 0.35, 0),
+        ],
+    }
+}
+
+#[test]
+fn inline_calibrated_table_agrees_with_a_description_file() {
+    check_file(
+        "tests/fixtures/calibrated_arm.toml",
+        &calibrated_arm::CalibratedArm,
+    );
+}
+
 /// The symbolic regressor evaluated by the arena equals the compiled one (UR5e).
 #[test]
 fn ur5e_regressor_equals_symbolic_evaluation() {

@@ -5,7 +5,7 @@ use super::super::bounds::{
     ANGLE_RESOLUTION, MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
     MIN_GRAVITY, MIN_LENGTH, RIGHT_ANGLE_SNAP,
 };
-use super::super::check::show;
+use super::super::check::{measured_twist_consequence, show};
 use super::super::file::Place;
 use super::super::{DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem};
 use super::chain::Chain;
@@ -341,7 +341,7 @@ pub(super) fn robot(
         ));
     }
     let g = gravity.map(|x| Geometry::number(tidy(x)).unwrap_or_else(|_| Geometry::zero()));
-    Robot::new_measured(name, g, joints).map_err(|e| {
+    Robot::new_calibrated(name, super::super::Convention::Modified, Some(g), joints).map_err(|e| {
         let located = e
             .errors()
             .into_iter()
@@ -553,21 +553,15 @@ pub(super) fn measured_twists(
         joint.range.start,
         &format!(
             "joint `{}`'s axis is {off:.1e} rad from {} the previous one's{more}: taken as \
-             measured; where {} axes let the regrouping fold more parameters, the base \
-             parameters then hold combinations that only this angle separates, which data \
-             determine poorly (large standard deviations); to identify the nominal set, \
-             write the origins and axes so that the angle is exact",
+             measured; {}; to identify the nominal set, write the origins and axes so that \
+             the angle is exact",
             joint.name,
             if parallel {
                 "parallel to"
             } else {
                 "perpendicular to"
             },
-            if parallel {
-                "parallel"
-            } else {
-                "perpendicular"
-            },
+            measured_twist_consequence(parallel),
         ),
     ))
 }
