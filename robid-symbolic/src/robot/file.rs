@@ -101,12 +101,13 @@ impl Place<'_> {
 fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
     let mut out = Vec::new();
     // A revolute joint's theta is taken as written (an offset of its variable, see
-    // check.rs `Role::Offset`); one typed for a right angle is told once.
+    // check.rs `Role::Offset`); one typed for a right angle is told once (in a
+    // calibrated table such offsets are what was measured).
     let near: Vec<(usize, f64, String)> = robot
         .joints()
         .iter()
         .enumerate()
-        .filter(|(_, joint)| joint.kind == JointKind::Revolute)
+        .filter(|(_, joint)| joint.kind == JointKind::Revolute && !robot.measured)
         .filter_map(|(j, joint)| {
             near_right_angle(&joint.theta, false).map(|(off, _, exact)| (j, off, exact))
         })

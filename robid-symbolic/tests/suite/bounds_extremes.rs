@@ -250,7 +250,13 @@ fn calibrated_descriptions_take_measured_twists() {
         })
     };
     let measured = std::f64::consts::FRAC_PI_2 + 3.2e-6;
-    let typed = twist(measured);
+    // and a measured offset of joint 3 near pi/2, which a typed table is told about
+    let offset = format!(
+        "a = -0.425\ntheta = {:?}\n",
+        std::f64::consts::FRAC_PI_2 - 4e-6
+    );
+    let typed = twist(measured).replacen("a = -0.425\n", &offset, 1);
+    assert!(typed.contains("theta = 1.57079"));
     let error = Robot::from_toml(&typed, "ur5e.toml")
         .unwrap_err()
         .to_string();
@@ -261,6 +267,20 @@ fn calibrated_descriptions_take_measured_twists() {
         Robot::from_toml_with_warnings(&calibrated, "ur5e.toml").unwrap_or_else(|e| panic!("{e}"));
     let told: Vec<&String> = warnings.iter().filter(|w| w.contains("measured")).collect();
     assert_eq!(told.len(), 1, "{warnings:?}");
+    assert_eq!(
+        warnings.len(),
+        1,
+        "no offset warning in a calibrated table: {warnings:?}"
+    );
+    let (_, typed_warnings) = Robot::from_toml_with_warnings(
+        &typed.replacen(&format!("{measured:?}"), "\"pi/2\"", 1),
+        "t",
+    )
+    .unwrap();
+    assert!(
+        typed_warnings.iter().any(|w| w.contains("joint 3 `theta`")),
+        "{typed_warnings:?}"
+    );
     assert!(
         told[0].starts_with("ur5e.toml:15:")
             && told[0].contains("joint 2 `alpha` is 3.2e-6 rad from pi/2"),
