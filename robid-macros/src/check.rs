@@ -158,9 +158,17 @@ pub(crate) fn check(input: &Input) -> Result<Checked, Failed> {
         Some(file) => {
             for k in ["convention", "gravity", "symbols", "joints", "calibrated"] {
                 if let Some(i) = get(k) {
+                    let urdf = literal(&file.value)
+                        .is_some_and(|f| f.value().to_ascii_lowercase().ends_with(".urdf"));
+                    let fix = match k {
+                        "calibrated" if urdf => {
+                            "a URDF's angles are taken as measured already: leave it out"
+                        }
+                        _ => "write it in the file",
+                    };
                     cx.error(
                         i.key.span(),
-                        format!("`{k}` cannot be combined with `file`; write it in the file"),
+                        format!("`{k}` cannot be combined with `file`; {fix}"),
                     );
                 }
             }
