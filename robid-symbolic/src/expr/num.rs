@@ -26,6 +26,28 @@ fn gcd(a: i128, b: i128) -> u128 {
     a
 }
 
+/// `n / d` rounded once, through its decimal form, when `d` (> 0) is 2^a 5^b: the
+/// standard library's parsing rounds a decimal to the nearest float.
+fn decimal_to_f64(n: i128, d: i128) -> Option<f64> {
+    let (mut rest, mut twos, mut fives) = (d, 0u32, 0u32);
+    while rest % 2 == 0 {
+        rest /= 2;
+        twos += 1;
+    }
+    while rest % 5 == 0 {
+        rest /= 5;
+        fives += 1;
+    }
+    if rest != 1 {
+        return None;
+    }
+    let k = twos.max(fives);
+    let factor = 2_i128
+        .checked_pow(k - twos)?
+        .checked_mul(5_i128.checked_pow(k - fives)?)?;
+    format!("{}e-{k}", n.checked_mul(factor)?).parse().ok()
+}
+
 impl Num {
     /// Zero.
     pub const ZERO: Num = Num::Rational(0, 1);
@@ -106,10 +128,21 @@ impl Num {
         }
     }
 
-    /// The value as a float.
+    /// The value as a float: the nearest one when the numerator and denominator are
+    /// exact floats (at most 2^53) or the number is a decimal (a denominator 2^a 5^b: a
+    /// float's own 17 digits, `1.5707995267948966`, whose numerator is not exact and
+    /// whose quotient rounded twice was one ulp off, so `from_f64(x).to_f64()` is `x`),
+    /// else within an ulp or two of it.
     pub fn to_f64(self) -> f64 {
         match self {
-            Num::Rational(n, d) => n as f64 / d as f64,
+            Num::Rational(n, d) => {
+                const EXACT: u128 = 1 << 53;
+                if n.unsigned_abs() <= EXACT && d.unsigned_abs() <= EXACT {
+                    n as f64 / d as f64
+                } else {
+                    decimal_to_f64(n, d).unwrap_or(n as f64 / d as f64)
+                }
+            }
             Num::Float(x) => x,
         }
     }
@@ -284,11 +317,12 @@ impl fmt::Display for Num {
         match *self {
             Num::Rational(n, 1) => write!(f, "{n}"),
             Num::Rational(n, d) => {
-                let x = n as f64 / d as f64;
+                let x = self.to_f64();
                 // Decimal form when the number is the shortest decimal of a float (a DH
                 // length, 0.425 = 17/40): it reads back as this number exactly. With more
-                // than 53 bits in n or d, n/d in floats can be an ulp or two from that
-                // float, so its neighbours are tried too.
+                // than 53 bits in n or d and a denominator that is not 2^a 5^b, n/d in
+                // floats can be an ulp or two from that float, so its neighbours are
+                // tried too.
                 let step = |x: f64, k: i64| f64::from_bits(x.to_bits().wrapping_add_signed(k));
                 if let Some(exact) = [0, 1, -1, 2, -2]
                     .map(|k| step(x, k))
@@ -320,6 +354,40 @@ mod tests {
         assert_eq!(Num::parse_decimal("-0.3922"), Num::ratio(-3922, 10000));
         assert_eq!(Num::parse_decimal("1.5e-3"), Num::ratio(3, 2000));
         assert_eq!(Num::from_f64(f64::NAN), None);
+    }
+
+    /// A float read exactly gives back itself: its 17-digit decimal's numerator is not
+    /// an exact float, and dividing the two rounded twice (one ulp off for
+    /// 1.5707995267948966).
+    #[test]
+    fn floats_read_exactly_convert_back_to_themselves() {
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut checked = 0;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = f64::from_bits(x);
+            if !v.is_finite() || v.abs() > 1e30 || v.abs() < 1e-30 {
+                continue;
+            }
+            let back = Num::from_f64(v).unwrap().to_f64();
+            assert_eq!(back.to_bits(), v.to_bits(), "{v:e}");
+            checked += 1;
+        }
+        assert!(checked > 10_000, "{checked}");
+        for v in [
+            1.5707995267948966,
+            0.36870638165021724,
+            -0.1333,
+            1e-7,
+            123456.789,
+        ] {
+            assert_eq!(Num::from_f64(v).unwrap().to_f64(), v);
+        }
+        // a rational that is not a decimal stays within an ulp
+        let third = Num::ratio(1, 3).unwrap().to_f64();
+        assert_eq!(third, 1.0 / 3.0);
     }
 
     #[test]
@@ -384,10 +452,12 @@ mod tests {
             square,
             Num::Rational(2030920000000007937933343401, 40000000000000000000000000000)
         );
-        assert_eq!(square.to_string(), "0.05077300000000021");
+        // the float nearest 0.0507730000000001984483335850...: rounded once (the
+        // numerator and denominator each rounded first gave 0.05077300000000021)
+        assert_eq!(square.to_string(), "0.0507730000000002");
         let text: f64 = square.to_string().parse().unwrap();
         assert_eq!(text, square.to_f64());
-        assert_eq!((-square).to_string(), "-0.05077300000000021");
+        assert_eq!((-square).to_string(), "-0.0507730000000002");
         assert_eq!(
             Num::ratio(7624390023667207, 6250000000000000000)
                 .unwrap()

@@ -21,6 +21,7 @@ mod parameters;
 mod read;
 mod transform;
 mod urdf;
+mod write;
 
 pub use dh::{FrameRow, JointPlacement, Pose};
 pub use error::DescriptionError;

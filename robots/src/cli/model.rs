@@ -2,7 +2,8 @@
 //! parameters with expressions, the unidentifiable parameters and the
 //! operation counts of the derived programs; with `--schedule P`, the parallel schedule of
 //! one program (`schedule.rs`); with `--standard-parameters FILE`, a URDF's own inertials
-//! written as a `[standard]` parameter file.
+//! written as a `[standard]` parameter file; with `--write-description FILE`, the robot
+//! (a URDF's fitted DH table) as a description file.
 
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, flags, out, schedule};
@@ -38,6 +39,11 @@ pub(crate) struct Args {
     /// `simulate` and `excite`, `--prior` of `feasible`, `--reference` of `identify`).
     #[arg(long, value_name = "FILE")]
     standard_parameters: Option<PathBuf>,
+    /// Also write the robot as a description file (TOML) that reads back to the same
+    /// model: for a URDF, the DH table robid fitted to its chain (with its limits, base
+    /// and tool frames, `calibrated = true`), to read, edit or give to any subcommand.
+    #[arg(long, value_name = "FILE")]
+    write_description: Option<PathBuf>,
 }
 
 #[derive(Serialize)]
@@ -121,8 +127,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
         (None, None) => None,
     };
-    if let Some(path) = &args.standard_parameters {
-        files::refuse(&[&args.robot], &[path])?;
+    let outputs: Vec<&Path> = [&args.standard_parameters, &args.write_description]
+        .into_iter()
+        .filter_map(Option::as_deref)
+        .collect();
+    files::refuse(&[&args.robot], &outputs)?;
+    if args.standard_parameters.is_some() {
         if !description::is_urdf(&args.robot) {
             return Err(format!(
                 "--standard-parameters writes a URDF's own <inertial> elements, but {} is a \
@@ -135,6 +145,16 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
     }
     let description = description::load(&args.robot, &args.description)?;
+    if let Some(path) = &args.write_description {
+        let source = match &description.urdf {
+            Some(_) => format!(
+                "# The DH table robid fitted to the chain of {} (docs/urdf.md), as a description\n",
+                args.robot.display()
+            ),
+            None => format!("# {} as robid reads it\n", args.robot.display()),
+        };
+        files::write(path, &(source + &description.robot.to_toml()))?;
+    }
     let mut text = render(&description.robot, args.json, scheduled)?;
     if let (Some(path), Some(chain)) = (&args.standard_parameters, &description.urdf) {
         files::write(path, &standard_file(chain, &args.robot))?;

@@ -1309,6 +1309,58 @@ fn urdf_standard_parameters_are_written_as_a_parameter_file() {
     assert!(!none.exists());
 }
 
+/// `robid model ROBOT.urdf --write-description FILE` writes the DH table fitted to the
+/// chain as a description file: given to `torques` with the URDF's own inertials it gives
+/// the URDF's torques byte for byte, and it names the file it came from; the same path
+/// for both outputs is refused and neither is written.
+#[test]
+fn urdf_chain_is_written_as_a_description() {
+    let dir = folder();
+    let description = dir.path().join("ur5.toml");
+    let standard = dir.path().join("ur5_standard.toml");
+    let o = robid(&[
+        "model",
+        UR5,
+        "--write-description",
+        description.to_str().unwrap(),
+        "--standard-parameters",
+        standard.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&description).unwrap();
+    assert!(
+        text.starts_with("# The DH table robid fitted to the chain of ")
+            && text.contains("ur5_robot.urdf")
+            && text.contains("calibrated = true")
+            && text.contains("alpha = \"-pi/2\""),
+        "{text}"
+    );
+    let states = states(dir.path());
+    let states = states.to_str().unwrap();
+    let own = robid(&["torques", UR5, "--states", states]);
+    let written = robid(&[
+        "torques",
+        description.to_str().unwrap(),
+        "--states",
+        states,
+        "--parameters",
+        standard.to_str().unwrap(),
+    ]);
+    assert!(written.status.success(), "{}", stderr(&written));
+    assert_eq!(stdout(&written), stdout(&own));
+    let same = dir.path().join("same.toml");
+    let o = robid(&[
+        "model",
+        UR5,
+        "--write-description",
+        same.to_str().unwrap(),
+        "--standard-parameters",
+        same.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(!same.exists(), "{}", stderr(&o));
+}
+
 /// `robid emit` of a URDF whose links after a joint have no mass or inertia warns that the
 /// URDF's own inertials held in the code leave that joint's torque 0, in Rust and in C (it
 /// wrote the all-zero values without a word); the code is written all the same, and a URDF

@@ -67,7 +67,8 @@ fn a_urdf_whose_lengths_add_up_gives_their_decimal_sum() {
 }
 
 /// Unitree Z1's joint offset `a = sqrt(0.218^2 + 0.057^2) = 0.225328648866495`: its square
-/// in the base parameters is the decimal of its float, `0.05077300000000021`, not
+/// in the base parameters is the decimal of its float, `0.0507730000000002` (the float
+/// nearest the exact square, 0.050773000000000198448...), not
 /// `2030920000000007937933343401/40000000000000000000000000000`.
 #[test]
 fn base_parameters_of_a_long_length_are_written_as_decimals() {
@@ -88,7 +89,7 @@ fn base_parameters_of_a_long_length_are_written_as_decimals() {
         .map(|b| format!("{} = {}", b.name, b.expression))
         .collect();
     assert!(
-        text.contains(&"ZZR2 = ZZ2 + 0.05077300000000021*M3".to_owned()),
+        text.contains(&"ZZR2 = ZZ2 + 0.0507730000000002*M3".to_owned()),
         "{text:?}"
     );
     assert!(text.iter().all(|t| !t.contains('/')), "{text:?}");
