@@ -132,17 +132,15 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .filter_map(Option::as_deref)
         .collect();
     files::refuse(&[&args.robot], &outputs)?;
-    if args.standard_parameters.is_some() {
-        if !description::is_urdf(&args.robot) {
-            return Err(format!(
-                "--standard-parameters writes a URDF's own <inertial> elements, but {} is a \
-                 TOML description, which carries no inertial values; give the robot's .urdf \
-                 file, or write the [standard] table by hand (docs/command-line.md, \
-                 \"Parameter files\")",
-                args.robot.display()
-            )
-            .into());
-        }
+    if args.standard_parameters.is_some() && !description::is_urdf(&args.robot) {
+        return Err(format!(
+            "--standard-parameters writes a URDF's own <inertial> elements, but {} is a \
+             TOML description, which carries no inertial values; give the robot's .urdf \
+             file, or write the [standard] table by hand (docs/command-line.md, \
+             \"Parameter files\")",
+            args.robot.display()
+        )
+        .into());
     }
     let description = description::load(&args.robot, &args.description)?;
     if let Some(path) = &args.write_description {
