@@ -67,7 +67,10 @@ fn limits(place: &Place<'_>, joint: &xml::Joint) -> Result<Limits, DescriptionEr
                     show(lower),
                     show(upper)
                 ),
-                "write lower < upper (rad for revolute, m for prismatic joints)",
+                "write lower < upper (rad for revolute, m for prismatic joints); PyBullet \
+                 reads lower > upper as no limit, which robid does not guess (swapped limits \
+                 would lift the bounds an exciting trajectory keeps): for a joint without \
+                 position limits leave `lower` and `upper` out, or make it `continuous`",
             ));
         }
         if lower.abs().max(upper.abs()) > MAX_POSITION {

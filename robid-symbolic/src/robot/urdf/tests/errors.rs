@@ -66,7 +66,7 @@ fn each_mistake_is_named_at_its_place() {
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<mimic joint=\"j1\"/></joint>"))), "t.urdf:6:", &["joint `j2` of the chain mimics joint `j1`"]),
         (arm(&format!("{J1}{}", J2.replace("revolute", "floating"))), "t.urdf:6:1:", &["joint `j2` is floating"]),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit effort=\"1e9\" velocity=\"1\"/></joint>"))), "t.urdf:6:", &["`<limit>` of joint `j2`: effort 1e9 is not a positive number up to 1e7"]),
-        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"1\" upper=\"-1\"/></joint>"))), "t.urdf:6:", &["lower 1 is above upper -1"]),
+        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"1\" upper=\"-1\"/></joint>"))), "t.urdf:6:", &["lower 1 is above upper -1", "PyBullet reads lower > upper as no limit", "leave `lower` and `upper` out"]),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"-2000\" upper=\"2000\"/></joint>"))), "t.urdf:6:", &["go beyond ±1000", "`type=\"continuous\"`"]),
         (arm(&two.replace("revolute", "fixed")), "t.urdf:1:14:", &["the URDF has no revolute, continuous or prismatic joint (its joints are fixed, floating or planar)", "make the joints that move"]),
     ];
