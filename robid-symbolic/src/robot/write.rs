@@ -134,7 +134,7 @@ fn limits(l: &Limits) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use crate::robot::urdf::ChainSelection;
-    use crate::robot::{Drive, Robot};
+    use crate::robot::{Drive, Geometry, Robot, Transform};
     use std::path::Path;
 
     fn repository(path: &str) -> std::path::PathBuf {
@@ -172,6 +172,23 @@ mod tests {
             round_trip(&robot, &what);
             round_trip(&robot.clone().with_drive(Drive::ALL), &what);
         }
+        // a tool frame (no reference robot has one), with an exact angle and a number
+        let ur5e = Robot::from_file(&repository("robots/descriptions/ur5e.toml")).unwrap();
+        let tool = Transform {
+            xyz: [0.0, 0.02, 0.1].map(|v| Geometry::number(v).unwrap()),
+            rpy: [
+                Geometry::text("pi/2").unwrap(),
+                Geometry::zero(),
+                Geometry::number(0.3).unwrap(),
+            ],
+        };
+        let tooled = ur5e.with_tool(Some(tool)).unwrap();
+        assert!(
+            tooled
+                .to_toml()
+                .contains("[tool]\nxyz = [0.0, 0.02, 0.1]\nrpy = [\"pi/2\", 0.0, 0.3]")
+        );
+        round_trip(&tooled, "ur5e with a tool");
     }
 
     /// The DH tables fitted to the repository's URDFs read back equal, `calibrated = true`
