@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use super::run::{MAX_SPLIT, RK4_REACH, quintic, rk4_step};
+use super::run::{MAX_SPLIT, RK4_REACH, StepBudget, quintic, rk4_step};
 use super::{ForwardDynamics, Simulation, Trajectory};
 use crate::Model;
 use crate::SimulateError;
@@ -162,6 +162,11 @@ struct Row {
     damping: f64,
     friction: JointFriction,
 }
+
+/// What makes a flexible plant stiff, for the error of the step cap ([`StepBudget`]).
+const STIFF_FLEXIBLE: &str = "a rotor inertia far below the robot's, a stiff transmission on a \
+     light link, or a controller bandwidth far above the motion; check the joint-flexibility \
+     file, lower the bandwidth (--bandwidth)";
 
 /// The largest transmission stiffness accepted, N m/rad (a rigid joint is simulated
 /// without `--flexible`).
@@ -564,6 +569,7 @@ impl Simulation {
         let mut r1 = r0.clone();
         let mut r = r0.clone();
         let mut stage = new_reference();
+        let mut budget = StepBudget::new();
         for k in 0..samples {
             {
                 let [a, b, c] = &mut r0;
@@ -637,6 +643,7 @@ impl Simulation {
                 let rate =
                     self.fastest_rate(model, base, joints, &x, &slowest, &tau, &kd, &inertia)?;
                 let split = (h * rate / RK4_REACH).ceil().clamp(1.0, MAX_SPLIT) as usize;
+                budget.take(split, rate, k, samples, reference.t[k], STIFF_FLEXIBLE)?;
                 for part in 0..split {
                     let mut f = |c: f64, x: &[f64], v: &[f64], acc: &mut [f64]| -> Result<()> {
                         let s =
