@@ -188,8 +188,8 @@ impl Row {
                 false,
                 [MIN_FACTOR, 1e6],
                 "kg m^2",
-                "the rotor's inertia reflected to the link side (the rotor's own times the \
-                 gear ratio squared); its acceleration divides by it",
+                "the rotor's inertia reflected to the link side, its own times the gear \
+                 ratio squared; its acceleration divides by it",
             ),
             (
                 "torque_constant",
