@@ -37,6 +37,10 @@ pub const MOVING_RATIO: f64 = 10.0;
 pub const EXTREME_TOLERANCE: f64 = 1e-3;
 /// The least standard deviation of a moving position (rad or m).
 pub const MIN_MOTION: f64 = 1e-9;
+/// The low-pass of the positions whose velocities give the time at rest (a log without
+/// velocity columns) when no joint moves, so that no cutoff follows from the motion: this
+/// share of the Nyquist frequency.
+pub const STILL_CUTOFF_SHARE: f64 = 0.1;
 /// Velocity below which a joint is at rest when the config gives none (rad/s or m/s).
 pub const DEFAULT_REST_VELOCITY: f64 = 0.05;
 
@@ -96,8 +100,10 @@ pub struct Inspection {
     pub sampling: Vec<Sampling>,
     /// Per joint.
     pub joints: Vec<JointReport>,
-    /// The suggested low-pass cutoff.
-    pub cutoff: CutoffSuggestion,
+    /// The suggested low-pass cutoff; `None` when no joint moves beyond its noise (the
+    /// cutoff follows the motion: with none there is nothing to suggest, and
+    /// `cutoff = "auto"` refuses the data). Everything else is reported all the same.
+    pub cutoff: Option<CutoffSuggestion>,
     /// The rest velocity used (rad/s or m/s per joint).
     pub rest_velocity: Vec<f64>,
 }
@@ -154,11 +160,21 @@ fn position_spectra(data: &dyn Record) -> Result<Vec<Spectrum>> {
 /// The suggested low-pass cutoff for the positions of `data` (see the module's rule),
 /// read block by block.
 pub fn suggest_cutoff(data: &dyn Record) -> Result<CutoffSuggestion> {
-    cutoff_of(data, &position_spectra(data)?)
+    cutoff_of(data, &position_spectra(data)?).ok_or_else(|| {
+        Error::setting(
+            "Config",
+            "processing.lowpass.cutoff",
+            format!(
+                "\"auto\" needs motion, and no joint of {} moves beyond its noise; give the cutoff in Hz",
+                data.name()
+            ),
+        )
+    })
 }
 
-/// The suggested low-pass cutoff for `data` from the spectra of its positions.
-fn cutoff_of(data: &dyn Record, spectra: &[Spectrum]) -> Result<CutoffSuggestion> {
+/// The suggested low-pass cutoff for `data` from the spectra of its positions; `None` when
+/// no joint moves beyond its noise.
+fn cutoff_of(data: &dyn Record, spectra: &[Spectrum]) -> Option<CutoffSuggestion> {
     let rate = 1.0 / data.sample_time();
     let mut widest: Option<(f64, usize)> = None;
     let mut noisiest: Option<(f64, usize)> = None;
@@ -175,16 +191,7 @@ fn cutoff_of(data: &dyn Record, spectra: &[Spectrum]) -> Result<CutoffSuggestion
             noisiest = Some((top, j + 1));
         }
     }
-    let Some((motion, joint)) = widest else {
-        return Err(Error::setting(
-            "Config",
-            "processing.lowpass.cutoff",
-            format!(
-                "\"auto\" needs motion, and no joint of {} moves beyond its noise; give the cutoff in Hz",
-                data.name()
-            ),
-        ));
-    };
+    let (motion, joint) = widest?;
     let nyquist = rate / 2.0;
     let mut cutoff = MOTION_MARGIN * motion;
     let mut reason = format!(
@@ -210,7 +217,7 @@ fn cutoff_of(data: &dyn Record, spectra: &[Spectrum]) -> Result<CutoffSuggestion
         );
     }
     let lowest = crate::signal::MIN_CUTOFF * nyquist * 1.01;
-    Ok(CutoffSuggestion {
+    Some(CutoffSuggestion {
         cutoff: two_digits(cutoff).max(lowest),
         motion_bandwidth: motion,
         joint,
@@ -355,7 +362,9 @@ fn inspect_in(
         .map(|g| (g.position_range, g.torque_range))
         .collect();
     let counts: Vec<_> = joints.iter().map(|g| (g.at_limit, g.at_rest)).collect();
-    let cutoff = cutoff_of(data, &positions)?;
+    // a log where nothing moves is reported (sampling, noise, ranges, time at rest), with
+    // no cutoff: inspecting it once ended in the error of `cutoff = "auto"`
+    let cutoff = cutoff_of(data, &positions);
     // the second pass (and the third, backwards, for velocities from the positions): the
     // torque at its extremes, which needs the torque's range
     let mut at_extremes = vec![0usize; dof];
@@ -378,7 +387,10 @@ fn inspect_in(
         }
         counts.iter().map(|c| c.1).collect()
     } else {
-        let sos = butterworth_hz(4, cutoff.cutoff, rate)?;
+        let at = cutoff
+            .as_ref()
+            .map_or(STILL_CUTOFF_SHARE * rate / 2.0, |c| c.cutoff);
+        let sos = butterworth_hz(4, at, rate)?;
         rest::rest_counts(data, &sos, &rest_velocity, block, extremes)?
     };
     let count = n as f64;
@@ -451,11 +463,19 @@ impl Inspection {
                 100.0 * r.at_rest
             );
         }
-        let _ = writeln!(
-            s,
-            "\nsuggested low-pass cutoff: {} Hz ({})",
-            self.cutoff.cutoff, self.cutoff.reason
-        );
+        let _ = match &self.cutoff {
+            Some(c) => writeln!(
+                s,
+                "\nsuggested low-pass cutoff: {} Hz ({})",
+                c.cutoff, c.reason
+            ),
+            None => writeln!(
+                s,
+                "\nno joint moves beyond its noise: no low-pass cutoff to suggest (it follows \
+                 the motion; cutoff = \"auto\" refuses these data), and identification needs \
+                 motion: record a trajectory that moves the joints (robid excite designs one)"
+            ),
+        };
         s
     }
 }
@@ -493,6 +513,37 @@ mod tests {
             Signals::new(tau).unwrap(),
         )
         .unwrap()
+    }
+
+    /// A log where no joint moves is reported, not refused: every joint said not to move
+    /// and at rest, no cutoff suggested and the text saying why (it failed with the error
+    /// of `cutoff = "auto"`, "auto needs motion"), while the suggestion `"auto"` asks for
+    /// is still refused.
+    #[test]
+    fn a_log_where_nothing_moves_is_reported() {
+        let moving = data(1e-5);
+        let still = Dataset::new(
+            "still",
+            moving.sample_time,
+            Signals::new(vec![moving.q[1].to_vec(), moving.q[1].to_vec()]).unwrap(),
+            moving.tau.clone(),
+        )
+        .unwrap();
+        let i = inspect(&still, &Config::default(), &[None, None]).unwrap();
+        assert!(i.cutoff.is_none(), "{:?}", i.cutoff);
+        assert!(
+            i.joints.iter().all(|j| !j.moves && j.at_rest > 0.99),
+            "{:?}",
+            i.joints
+        );
+        assert!(i.joints[0].torque_noise > 0.0);
+        let text = i.text();
+        assert!(
+            text.contains("no joint moves beyond its noise: no low-pass cutoff to suggest"),
+            "{text}"
+        );
+        let e = suggest_cutoff(&still).unwrap_err().to_string();
+        assert!(e.contains("\"auto\" needs motion"), "{e}");
     }
 
     /// The widest motion is the moving joint's; the vibrations stand above the noise up to

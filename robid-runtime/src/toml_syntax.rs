@@ -74,6 +74,9 @@ pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
 /// keeps toml's message, which has its line and column, after the kind of file
 /// (`friction.toml: invalid friction file: TOML parse error at line 3, ..`).
 pub(crate) fn syntax_error(text: &str, path: &Path, kind: TomlFile, e: &toml::de::Error) -> Error {
+    if let Some(e) = too_deep(text, path, e) {
+        return e;
+    }
     match duplicate(text, e) {
         Some(d) => {
             let (line, column) = line_column(text, d.offset);
@@ -95,6 +98,43 @@ pub(crate) fn syntax_error(text: &str, path: &Path, kind: TomlFile, e: &toml::de
             reason: short_numbers(&e.to_string()),
         }),
     }
+}
+
+/// What a value nested deeper than toml's reader follows is told: toml's own message
+/// ("cannot recurse further; max recursion depth met") came after the whole line, 5,000
+/// brackets of it, in toml's multi-line form.
+pub(crate) const TOO_DEEP: &str = "arrays or inline tables are nested deeper than the TOML \
+     reader follows; a robid file nests them two or three deep (`friction = { coulomb = 1.0 \
+     }`, `position = [-3, 3]`): close the brackets this value opens";
+
+/// The error of a value nested deeper than toml reads (toml's limit on its recursion):
+/// `path:line:column: `key`: ...` ([`TOO_DEEP`]), the key being the one the line assigns,
+/// the place where toml stopped.
+fn too_deep(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
+    if !e.message().contains("recursion depth") {
+        return None;
+    }
+    let offset = e.span().map_or(0, |s| s.start);
+    let (line, column) = line_column(text, offset);
+    let line_start = text
+        .get(..offset)
+        .unwrap_or(text)
+        .rfind('\n')
+        .map_or(0, |i| i + 1);
+    let assigned = text.get(line_start..offset).and_then(|l| l.split_once('='));
+    let key = match assigned {
+        Some((key, _)) if !key.trim().is_empty() && !key.trim_start().starts_with('[') => {
+            key.trim().trim_matches('"').to_owned()
+        }
+        _ => "(value)".to_owned(),
+    };
+    Some(Error::Data(DataError::ConfigKey {
+        path: path.to_path_buf(),
+        line: Some(line),
+        column: Some(column),
+        key,
+        problem: TOO_DEEP.to_owned(),
+    }))
 }
 
 /// toml's message with every number it quotes in backticks written short ([`num`]): serde
@@ -254,6 +294,41 @@ mod tests {
         for (file, e, want) in cases {
             let e = e.to_string();
             assert!(e.starts_with(want), "{file}: {e}");
+        }
+    }
+
+    /// A value nested 5,000 deep is told at its file:line:column with its key and what to
+    /// do, in each file read through [`syntax_error`] (it was toml's "cannot recurse
+    /// further; max recursion depth met" after the whole line of brackets).
+    #[test]
+    fn robids_files_name_a_value_nested_too_deep() {
+        use crate::drive::FrictionModel;
+        use crate::feasible::Bounds;
+        use crate::simulate::Flexibility;
+        let deep = format!("\ncoulomb = {}{}\n", "[".repeat(5000), "]".repeat(5000));
+        let cases: [(Error, &str); 3] = [
+            (
+                FrictionModel::from_toml_str(&format!("[[friction]]{deep}"), "f.toml".as_ref())
+                    .unwrap_err(),
+                "f.toml:2:",
+            ),
+            (
+                Flexibility::from_toml_str(&format!("[temperature]{deep}"), "flex.toml".as_ref())
+                    .unwrap_err(),
+                "flex.toml:2:",
+            ),
+            (
+                Bounds::from_toml(&format!("[default]{deep}"), "b.toml", 1).unwrap_err(),
+                "b.toml:2:",
+            ),
+        ];
+        for (e, want) in cases {
+            let e = e.to_string();
+            assert!(
+                e.starts_with(want) && e.ends_with(&format!("`coulomb`: {TOO_DEEP}")),
+                "{e}"
+            );
+            assert!(!e.contains("[[[[") && !e.contains("recurse"), "{e}");
         }
     }
 }

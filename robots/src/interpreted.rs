@@ -34,7 +34,8 @@ pub enum ModelError {
     },
     /// A geometric symbol has no value, so the model cannot be evaluated numerically.
     #[error(
-        "{place}robot `{robot}`: geometric symbol `{symbol}`{used} has no value; give it one in the description's [symbols] table (`{symbol} = 0.3`, in m or rad)"
+        "{place}robot `{robot}`: geometric symbol `{symbol}`{used} has no value; give it one in the description's [symbols] table (`{symbol} = {}`, in {unit})",
+        example(unit)
     )]
     UnboundSymbol {
         /// Where the description file first uses it, as `file:line:column: `
@@ -46,6 +47,9 @@ pub enum ModelError {
         symbol: String,
         /// Where the description uses it, as ` (joint 2's `d`)`, or nothing.
         used: String,
+        /// Its unit, by the value that first uses it: `m` (a DH length, a `xyz`), `rad` (a
+        /// DH angle, a `rpy`), `m/s^2` (gravity).
+        unit: &'static str,
     },
 }
 
@@ -89,6 +93,7 @@ impl Interpreted {
                     robot: programs.robot.name().to_owned(),
                     symbol: s.clone(),
                     used: used_by(&programs.robot, s),
+                    unit: unit_of(&programs.robot, s),
                 })
             })
             .collect::<Result<_, _>>()?;
@@ -233,6 +238,47 @@ pub fn model_for(robot: &Robot) -> Result<Chosen, ModelError> {
     })
 }
 
+/// A value of a symbol of unit `unit` for the hint: `9.81` for gravity, `0.3` for a length
+/// or an angle.
+fn example(unit: &str) -> &'static str {
+    if unit == "m/s^2" { "9.81" } else { "0.3" }
+}
+
+/// The unit of `symbol` by the first value of `robot` that uses it, in the order the
+/// derivation reads them: the joints' DH values (`gamma`, `b`, `alpha`, `a`, `d`, `theta`:
+/// lengths in m, angles in rad), gravity (m/s^2), then the `[base]` and `[tool]` transforms
+/// (`xyz` in m, `rpy` in rad). The hint once said "in m or rad" of every symbol, gravity's
+/// `g` included.
+fn unit_of(robot: &Robot, symbol: &str) -> &'static str {
+    let uses = |g: &robid_symbolic::robot::Geometry| g.symbols().iter().any(|s| s == symbol);
+    for joint in robot.joints() {
+        for (g, unit) in [
+            (&joint.gamma, "rad"),
+            (&joint.b, "m"),
+            (&joint.alpha, "rad"),
+            (&joint.a, "m"),
+            (&joint.d, "m"),
+            (&joint.theta, "rad"),
+        ] {
+            if uses(g) {
+                return unit;
+            }
+        }
+    }
+    if robot.gravity().iter().any(uses) {
+        return "m/s^2";
+    }
+    for t in [robot.base(), robot.tool()].into_iter().flatten() {
+        if t.xyz.iter().any(uses) {
+            return "m";
+        }
+        if t.rpy.iter().any(uses) {
+            return "rad";
+        }
+    }
+    "m or rad"
+}
+
 /// Where `robot`'s DH table first uses `symbol`, as ` (joint 2's `d`)`; nothing when only
 /// the gravity or a base or tool transform does.
 fn used_by(robot: &Robot, symbol: &str) -> String {
@@ -271,7 +317,7 @@ mod tests {
         assert!(
             message.starts_with(
                 "s.toml:11:5: robot `s`: geometric symbol `L2` (joint 2's `d`) has no value"
-            ) && message.contains("`L2 = 0.3`"),
+            ) && message.contains("(`L2 = 0.3`, in m)"),
             "{message}"
         );
         // the place survives the changes the command line makes (--drive), and a symbol
@@ -289,6 +335,18 @@ mod tests {
             message.starts_with("g.toml:3:18: robot `s`: geometric symbol `g` has no value"),
             "{message}"
         );
+        // each symbol's hint in its own unit: gravity's in m/s^2 (it said "in m or rad"),
+        // a length's in m, an angle's in rad
+        assert!(message.ends_with("(`g = 9.81`, in m/s^2)"), "{message}");
+        let angle = Robot::from_toml(
+            &text
+                .replace("\"-g\"", "-9.81")
+                .replace("alpha = 0", "alpha = \"t\""),
+            "t.toml",
+        )
+        .unwrap();
+        let message = Interpreted::new(&angle).unwrap_err().to_string();
+        assert!(message.ends_with("(`t = 0.3`, in rad)"), "{message}");
         // a robot built in code has no place to name
         let robot = robot.with_symbol_value("g", 9.81).unwrap();
         assert!(Interpreted::new(&robot).is_ok());

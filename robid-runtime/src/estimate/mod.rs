@@ -35,6 +35,6 @@ pub use quality::{
     REL_STD_WARNING, ROUNDING_EFFECT,
 };
 pub use result::{Estimate, Estimator, error_bound};
-pub use rls::{Rls, rls};
+pub use rls::{MIN_FORGETTING, Rls, check_forgetting, rls};
 pub(crate) use streaming::Dominance;
 pub use streaming::StreamingLeastSquares;

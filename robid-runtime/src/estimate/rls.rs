@@ -18,6 +18,32 @@ use crate::estimate::lstsq::{column_scales, condition_number, solve};
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation};
 
+/// The smallest forgetting factor accepted (`estimation.forgetting`): the recursion keeps
+/// about `1 / (1 - lambda)` equations in memory, so below 0.5 it keeps fewer than two and
+/// forgets each equation before the next arrives, whatever the parameter count; every
+/// update also divides `P` by `lambda`, and a factor written as `1e-320` (meant as 0, or a
+/// unit mistake) made the state overflow at the first equation. Practical factors lie
+/// between 0.95 and 1.
+pub const MIN_FORGETTING: f64 = 0.5;
+
+/// Checks a forgetting factor against `[MIN_FORGETTING, 1]`; the error names the config
+/// key `estimation.forgetting` (an [`Error::Setting`] of `Config`, which
+/// [`crate::data::Config::locate`] places at its file:line).
+pub fn check_forgetting(lambda: f64) -> Result<()> {
+    if (MIN_FORGETTING..=1.0).contains(&lambda) {
+        return Ok(());
+    }
+    Err(Error::setting(
+        "Config",
+        "estimation.forgetting",
+        format!(
+            "{} is outside [{MIN_FORGETTING}, 1]; the recursion keeps about 1 / (1 - lambda) \
+             equations in memory (1 keeps every equation; 0.95 to 0.999 track slow changes)",
+            crate::Num(lambda)
+        ),
+    ))
+}
+
 /// Recursive least-squares state.
 #[derive(Debug, Clone)]
 pub struct Rls {
@@ -28,15 +54,10 @@ pub struct Rls {
 }
 
 impl Rls {
-    /// `n` parameters starting at zero with P = p0 I.
+    /// `n` parameters starting at zero with P = p0 I; `lambda` within
+    /// [`MIN_FORGETTING`, 1] ([`check_forgetting`]).
     pub fn new(n: usize, lambda: f64, p0: f64) -> Result<Self> {
-        if !(lambda > 0.0 && lambda <= 1.0) {
-            return Err(Error::setting(
-                "Config",
-                "estimation.forgetting",
-                format!("{lambda} must satisfy 0 < lambda <= 1"),
-            ));
-        }
+        check_forgetting(lambda)?;
         if !(p0 > 0.0 && p0.is_finite()) {
             return Err(Error::setting(
                 "Rls::new",
@@ -98,6 +119,7 @@ pub(crate) fn recursion(
     lambda: f64,
     tolerance: f64,
 ) -> Result<(DVector<f64>, DMatrix<f64>)> {
+    check_forgetting(lambda)?;
     check_tolerance(tolerance)?;
     // the batch solution checks the rank
     solve(&obs.w, &obs.y, &obs.names, tolerance)?;
@@ -188,5 +210,15 @@ mod tests {
         assert!(Rls::new(2, 0.0, 1.0).is_err());
         assert!(Rls::new(2, 1.1, 1.0).is_err());
         assert!(Rls::new(2, 1.0, -1.0).is_err());
+        // tiny and subnormal factors overflowed the state at the first equation: refused
+        // by their key, with the range
+        for lambda in [1e-320, 1e-300, 1e-3, 0.49] {
+            let e = Rls::new(2, lambda, 1.0).unwrap_err().to_string();
+            assert!(
+                e.contains("estimation.forgetting") && e.contains("is outside [0.5, 1]"),
+                "{e}"
+            );
+        }
+        assert!(Rls::new(2, 0.5, 1.0).is_ok());
     }
 }

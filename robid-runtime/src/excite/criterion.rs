@@ -14,6 +14,7 @@
 use nalgebra::DMatrix;
 use nalgebra::linalg::SymmetricTridiagonal;
 
+use crate::estimate::SIGMA_FLOOR;
 use crate::simulate::Trajectory;
 use crate::{LengthError, Model};
 
@@ -40,6 +41,35 @@ pub struct Information {
     weights: Option<Vec<f64>>,
 }
 
+/// Row weights `1 / sigma_j` with each sigma floored at [`SIGMA_FLOOR`] of the largest:
+/// each weight at most `1 / SIGMA_FLOOR` times the smallest positive finite weight (the
+/// others are left for the design's check to refuse). The floor of weighted least squares
+/// and of [`crate::excite::weights_from_sigma`], applied where weights enter W'W, so a
+/// design given weights in code (`FourierDesign::weights`, `PointDesign::weights`, each in
+/// (0, 1e9], so up to 1e9 apart or more) weighs its rows as the command line and the
+/// estimator do: weights 1e9 apart made the criterion of every trajectory infinite.
+///
+/// ```
+/// use robid_runtime::excite::floor_weights;
+/// assert_eq!(floor_weights(&[1e9, 1.0, 2.0]), vec![1e6, 1.0, 2.0]);
+/// assert_eq!(floor_weights(&[3.0, 1.0]), vec![3.0, 1.0]);
+/// ```
+pub fn floor_weights(weights: &[f64]) -> Vec<f64> {
+    let smallest = weights
+        .iter()
+        .copied()
+        .filter(|w| *w > 0.0 && w.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    if !smallest.is_finite() {
+        return weights.to_vec();
+    }
+    let cap = smallest / SIGMA_FLOOR;
+    weights
+        .iter()
+        .map(|&w| if w > cap && w.is_finite() { cap } else { w })
+        .collect()
+}
+
 impl Information {
     /// An empty accumulator for a model.
     pub fn new<M: Model + ?Sized>(model: &M) -> Self {
@@ -54,9 +84,12 @@ impl Information {
     }
 
     /// Scales the rows of joint j by `weights[j]` (e.g. 1 / the joint's torque noise sigma,
-    /// so that W'W is the information weighted least squares sees).
+    /// so that W'W is the information weighted least squares sees), each weight at most
+    /// 1 / [`SIGMA_FLOOR`] times the smallest ([`floor_weights`]), as weighted least squares
+    /// and `robid excite --sigma` ([`crate::excite::weights_from_sigma`]) floor a sigma at
+    /// [`SIGMA_FLOOR`] of the largest.
     pub fn with_weights(mut self, weights: &[f64]) -> Self {
-        self.weights = Some(weights.to_vec());
+        self.weights = Some(floor_weights(weights));
         self
     }
 

@@ -25,7 +25,7 @@ mod points;
 mod polynomial;
 
 pub use assess::{Assessment, assess};
-pub use criterion::{Criterion, Information};
+pub use criterion::{Criterion, Information, floor_weights};
 pub use design::{FourierDesign, FourierResult, weights_from_sigma};
 pub use fourier::{Fourier, JointSeries};
 pub(crate) use limits::check_parameters;

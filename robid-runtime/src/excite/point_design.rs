@@ -440,6 +440,60 @@ mod tests {
         ]
     }
 
+    /// Weights given in code are floored as the command line floors sigmas (each weight at
+    /// most 1e6 times the smallest, `floor_weights`): a point design and a Fourier design
+    /// weighted 1e9 to 1 are those weighted as the command line weighs sigmas 1e-9 and 1
+    /// (1e6 to 1), to the bit.
+    #[test]
+    fn design_weights_given_in_code_are_floored_as_the_command_line_floors_them() {
+        use crate::excite::{FourierDesign, weights_from_sigma};
+        let p = Pendulum::default();
+        let points = |weights: Vec<f64>| PointDesign {
+            duration: 8.0,
+            intervals: 4,
+            restarts: 1,
+            sweeps: 1,
+            evaluations: 40,
+            weights: Some(weights),
+            ..PointDesign::default()
+        };
+        let fourier = |weights: Vec<f64>| FourierDesign {
+            restarts: 1,
+            evaluations: 40,
+            points: 30,
+            weights: Some(weights),
+            ..FourierDesign::default()
+        };
+        let cli = weights_from_sigma(&[1e-9, 1.0], "excite", "sigma").unwrap();
+        assert_eq!(cli, vec![1e6, 1.0]);
+        let floored = points(cli.clone()).optimize(&p, &limits(), None).unwrap();
+        let apart = points(vec![1e9, 1.0])
+            .optimize(&p, &limits(), None)
+            .unwrap();
+        assert_eq!(
+            apart.cost.to_bits(),
+            floored.cost.to_bits(),
+            "{} {}",
+            apart.cost,
+            floored.cost
+        );
+        // (the Fourier search on this pendulum weighted 1e6 to 1 on its first joint finds
+        // no finite criterion in 40 evaluations, floored or not: the second joint is
+        // weighted here)
+        let cli = weights_from_sigma(&[1.0, 1e-9], "excite", "sigma").unwrap();
+        let floored = fourier(cli).optimize(&p, &limits(), None).unwrap();
+        let apart = fourier(vec![1.0, 1e9])
+            .optimize(&p, &limits(), None)
+            .unwrap();
+        assert_eq!(
+            apart.cost.to_bits(),
+            floored.cost.to_bits(),
+            "{} {}",
+            apart.cost,
+            floored.cost
+        );
+    }
+
     #[test]
     fn random_points_respect_every_limit_by_construction() {
         for seed in 0..20 {

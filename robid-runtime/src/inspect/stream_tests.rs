@@ -79,7 +79,7 @@ fn whole(data: &Dataset, config: &Config, torque_limits: &[Option<f64>]) -> Insp
         samples: data.samples(),
         sampling: data.sampling.clone(),
         joints,
-        cutoff,
+        cutoff: Some(cutoff),
         rest_velocity,
     }
 }
@@ -203,9 +203,13 @@ fn streamed_inspection_equals_the_whole_record_s() {
             .unwrap();
             same(&s, &reference, &format!("on disk, blocks of {block}"));
         }
-        let pad = butterworth_hz(4, reference.cutoff.cutoff, 1.0 / data.sample_time)
-            .unwrap()
-            .pad_length();
+        let pad = butterworth_hz(
+            4,
+            reference.cutoff.as_ref().unwrap().cutoff,
+            1.0 / data.sample_time,
+        )
+        .unwrap()
+        .pad_length();
         for block in [1, 2, pad, pad + 1, 999, SAMPLES - 1, SAMPLES + 5] {
             let s = inspect_in(&data, data.sampling.clone(), &config, &limits, block).unwrap();
             same(&s, &reference, &format!("in memory, blocks of {block}"));

@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use super::run::{MAX_SPLIT, RK4_REACH, quintic, rk4_step};
+use super::run::{MAX_SPLIT, RK4_REACH, StepBudget, quintic, rk4_step};
 use super::{ForwardDynamics, Simulation, Trajectory};
 use crate::Model;
 use crate::SimulateError;
@@ -163,6 +163,11 @@ struct Row {
     friction: JointFriction,
 }
 
+/// What makes a flexible plant stiff, for the error of the step cap ([`StepBudget`]).
+const STIFF_FLEXIBLE: &str = "a rotor inertia far below the robot's, a stiff transmission on a \
+     light link, or a controller bandwidth far above the motion; check the joint-flexibility \
+     file, lower the bandwidth (--bandwidth)";
+
 /// The largest transmission stiffness accepted, N m/rad (a rigid joint is simulated
 /// without `--flexible`).
 const MAX_STIFFNESS: f64 = 1e9;
@@ -170,31 +175,63 @@ const MAX_STIFFNESS: f64 = 1e9;
 impl Row {
     /// The first value out of range, as `(field, problem)`.
     fn problem(&self) -> Option<(&'static str, String)> {
-        let positive = [
-            ("rotor_inertia", self.rotor_inertia, 1e6),
-            ("torque_constant", self.torque_constant, 1e6),
-            ("stiffness", self.stiffness, MAX_STIFFNESS),
-        ];
-        for (field, x, limit) in positive {
-            if !(x > 0.0 && x <= limit) {
-                return Some((
-                    field,
-                    format!("{} must be positive, at most {limit:e}", num(x)),
-                ));
-            }
-        }
-        // the currents are torques divided by (gear ratio x torque constant): a constant of
-        // 1e-320 made them infinite, written as `inf` in every row
-        if self.torque_constant < MIN_FACTOR {
-            return Some((
+        // Every factor the simulation divides by or scales with, in one table: a magnitude
+        // range (the gear ratio has a sign) with its unit and why it ends there. The floor
+        // is that of every factor that scales a signal (`MIN_FACTOR`): a rotor inertia of
+        // 1e-320 made the rotor's acceleration infinite at the first step ("diverged",
+        // naming no key), a torque constant of 1e-320 wrote `inf` as every current, a
+        // stiffness of 1e-320 made the deflection under any torque infinite.
+        let factors = [
+            (
+                "rotor_inertia",
+                self.rotor_inertia,
+                false,
+                [MIN_FACTOR, 1e6],
+                "kg m^2",
+                "the rotor's inertia reflected to the link side, its own times the gear \
+                 ratio squared; its acceleration divides by it",
+            ),
+            (
                 "torque_constant",
-                format!(
-                    "{} must be at least {MIN_FACTOR:e} N m/A, as every factor that scales a \
-                     signal (a smaller one makes the currents, torque / (gear ratio x \
-                     torque constant), overflow)",
-                    num(self.torque_constant)
-                ),
-            ));
+                self.torque_constant,
+                false,
+                [MIN_FACTOR, 1e6],
+                "N m/A",
+                "the currents, torque / (gear ratio x torque constant), divide by it",
+            ),
+            (
+                "stiffness",
+                self.stiffness,
+                false,
+                [MIN_FACTOR, MAX_STIFFNESS],
+                "N m/rad",
+                "the deflection under a torque divides by it; a rigid joint is simulated \
+                 without --flexible",
+            ),
+            (
+                "gear_ratio",
+                self.gear_ratio,
+                true,
+                [1e-3, 1e6],
+                "",
+                "motor angle per joint angle, with its sign",
+            ),
+        ];
+        for (field, x, signed, [low, high], unit, why) in factors {
+            let magnitude = if signed { x.abs() } else { x };
+            if !(low..=high).contains(&magnitude) {
+                let unit = if unit.is_empty() {
+                    String::new()
+                } else {
+                    format!(" {unit}")
+                };
+                let range = if signed {
+                    format!("must be of magnitude {low:e} to {high:e}")
+                } else {
+                    format!("must lie in [{low:e}, {high:e}]{unit}")
+                };
+                return Some((field, format!("{}{unit} {range} ({why})", num(x))));
+            }
         }
         for (field, x) in [("hardening", self.hardening), ("damping", self.damping)] {
             if !(0.0..=1e15).contains(&x) {
@@ -203,17 +240,6 @@ impl Row {
                     format!("{} must be zero or positive, at most 1e15", num(x)),
                 ));
             }
-        }
-        if !(self.gear_ratio.is_finite() && self.gear_ratio.abs() >= 1e-3)
-            || self.gear_ratio.abs() > 1e6
-        {
-            return Some((
-                "gear_ratio",
-                format!(
-                    "{} must be a number of magnitude 1e-3 to 1e6 (motor angle per joint angle)",
-                    num(self.gear_ratio)
-                ),
-            ));
         }
         self.friction
             .problem()
@@ -543,6 +569,7 @@ impl Simulation {
         let mut r1 = r0.clone();
         let mut r = r0.clone();
         let mut stage = new_reference();
+        let mut budget = StepBudget::new();
         for k in 0..samples {
             {
                 let [a, b, c] = &mut r0;
@@ -616,6 +643,7 @@ impl Simulation {
                 let rate =
                     self.fastest_rate(model, base, joints, &x, &slowest, &tau, &kd, &inertia)?;
                 let split = (h * rate / RK4_REACH).ceil().clamp(1.0, MAX_SPLIT) as usize;
+                budget.take(split, rate, k, samples, reference.t[k], STIFF_FLEXIBLE)?;
                 for part in 0..split {
                     let mut f = |c: f64, x: &[f64], v: &[f64], acc: &mut [f64]| -> Result<()> {
                         let s =

@@ -121,6 +121,38 @@ pub(crate) mod run_tests {
         assert!(bad.run(&p, &p.base(), &r).is_err());
     }
 
+    /// The step cap counts the Runge-Kutta splits of every substep: a plant whose second
+    /// link has a viscous friction of 1e6 N m s/rad on 0.3 kg m^2 splits every substep
+    /// hundreds of times, and a run the check before it allows (samples x substeps within
+    /// the cap) ran that many times longer than the check bounds (up to 1,000: hours).
+    /// Here the cap is lowered to 1e5 for this thread so that the run that crosses it stops
+    /// at once: 400 samples x 10 substeps pass the check before the run, their splits do
+    /// not (without the count the run ends, after more than a million steps). The stiff
+    /// plant is named with the fix; 10 samples of it run.
+    #[test]
+    fn the_step_cap_counts_the_splits_of_a_stiff_plant() {
+        let p = Pendulum::default();
+        let mut stiff = p.base();
+        stiff[8] = 1e6;
+        let r = reference(0.8, 500.0);
+        let cap = 100_000;
+        run::STEP_CAP.with(|c| c.set(cap));
+        let result = Simulation::default().run(&p, &stiff, &r);
+        // a plant as stiff, but for a run within the cap: it runs
+        let short = Simulation::default().run(&p, &stiff, &reference(0.02, 500.0));
+        run::STEP_CAP.with(|c| c.set(MAX_SIMULATION_STEPS));
+        assert!(short.is_ok(), "{short:?}");
+        let e = result.unwrap_err().to_string();
+        assert!(
+            e.starts_with("Runge-Kutta steps of the simulation, reached after reference sample ")
+                && e.contains("splits each substep into")
+                && e.contains(&format!("is more than the limit of {cap}"))
+                && e.contains("a large viscous friction")
+                && e.contains("lower the bandwidth (--bandwidth)"),
+            "{e}"
+        );
+    }
+
     /// An encoder resolution below `MIN_RESOLUTION` (1e-320, meant as 0) is refused naming
     /// the setting; it used to overflow `q / resolution` and end the run as "diverged" at
     /// its first sample. 0 and the smallest accepted resolution run.

@@ -101,8 +101,15 @@ pub(super) fn quintic(
 pub const MAX_BANDWIDTH: f64 = 1e6;
 /// Largest number of substeps per reference interval.
 pub const MAX_SUBSTEPS: usize = 10_000;
-/// Largest number of integration steps of a run (reference samples x substeps).
+/// Largest number of integration steps of a run: reference samples x substeps before it
+/// starts, and the Runge-Kutta steps it takes, each substep's splits for a stiff plant
+/// included (up to 1,000 per substep), while it runs.
 pub const MAX_SIMULATION_STEPS: usize = 200_000_000;
+
+/// What makes a rigid plant stiff, for the error of the step cap ([`StepBudget`]).
+const STIFF_RIGID: &str = "a link with little inertia and a large viscous friction (its \
+     `Fv` over its inertia is the rate), or a controller bandwidth far above the motion; \
+     check the parameters, lower the bandwidth (--bandwidth)";
 /// A tracking error above this many times (the joint's reference range + 1 rad or m) is a
 /// diverged simulation.
 pub const DIVERGENCE_FACTOR: f64 = 10.0;
@@ -443,6 +450,7 @@ impl Simulation {
             }
             e => e,
         };
+        let mut budget = StepBudget::new();
         for k in 0..samples {
             let [a, b, c] = &mut r0;
             reference.state(k, a, b, c);
@@ -474,6 +482,7 @@ impl Simulation {
                     + wn;
                 let split = (h * rate / RK4_REACH).ceil().clamp(1.0, MAX_SPLIT) as usize;
                 for i in 0..self.substeps {
+                    budget.take(split, rate, k, samples, reference.t[k], STIFF_RIGID)?;
                     if i > 0 {
                         draw(&mut rng, &mut noise);
                     }
@@ -544,6 +553,65 @@ impl Simulation {
 pub(super) const RK4_REACH: f64 = 2.5;
 /// The most Runge-Kutta steps one substep is split into.
 pub(super) const MAX_SPLIT: f64 = 1000.0;
+
+/// The Runge-Kutta steps a run has taken, counted against [`MAX_SIMULATION_STEPS`] with
+/// the splits of every substep: the check before a run counts samples x substeps, and a
+/// stiff plant splits each substep up to [`MAX_SPLIT`] times, so a run that check allowed
+/// could take 1,000 times as long (hours).
+pub(super) struct StepBudget {
+    used: usize,
+    cap: usize,
+}
+
+#[cfg(test)]
+thread_local! {
+    /// The cap of the runs of this test thread: a test of the cap lowers it, so that a run
+    /// that would take hours stops in milliseconds.
+    pub(crate) static STEP_CAP: std::cell::Cell<usize> =
+        const { std::cell::Cell::new(MAX_SIMULATION_STEPS) };
+}
+
+impl StepBudget {
+    pub(super) fn new() -> StepBudget {
+        #[cfg(test)]
+        let cap = STEP_CAP.with(std::cell::Cell::get);
+        #[cfg(not(test))]
+        let cap = MAX_SIMULATION_STEPS;
+        StepBudget { used: 0, cap }
+    }
+
+    /// Takes the `split` steps of one substep of the interval after reference sample `k`
+    /// (of `samples`, at time `t`), where the plant's fastest rate is `rate`; refused, before
+    /// any is taken, when they pass the cap: the error names the sample, the rate and the
+    /// split, and `cause` (what makes this plant stiff, and what to change).
+    pub(super) fn take(
+        &mut self,
+        split: usize,
+        rate: f64,
+        k: usize,
+        samples: usize,
+        t: f64,
+        cause: &str,
+    ) -> Result<()> {
+        self.used = self.used.saturating_add(split);
+        if self.used <= self.cap {
+            return Ok(());
+        }
+        Err(Error::TooLarge {
+            what: format!(
+                "Runge-Kutta steps of the simulation, reached after reference sample {k} of \
+                 {samples} (t = {} s), where the plant's fastest rate, {rate:.3e} 1/s, splits \
+                 each substep into {split} steps",
+                crate::Num(t)
+            ),
+            found: self.used as f64,
+            limit: self.cap,
+            fix: format!(
+                "the plant is far stiffer than its motion: {cause}, or shorten the trajectory"
+            ),
+        })
+    }
+}
 
 /// A bound on the damping rates of the plant at (q, qd): the infinity norm of
 /// M^-1 dh/dqd, with dh/dqd by one-sided differences away from zero velocity (so that a

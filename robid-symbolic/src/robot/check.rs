@@ -36,6 +36,9 @@ pub(super) struct Parts {
     /// Where a description file first used each symbol (`file:line:column`), kept from a
     /// robot read from a file through its `with_*` changes ([`Robot::symbol_place`]).
     pub(super) uses: Vec<(String, String)>,
+    /// Where a description file wrote each joint's table (`file:line:column`), kept like
+    /// `uses` ([`Robot::joint_place`]).
+    pub(super) joint_places: Vec<String>,
 }
 
 /// A geometric value of a joint: the DH row and Khalil and Kleinfinger's `gamma` and `b`.
@@ -155,6 +158,8 @@ impl Limit {
 pub(super) enum Item<'a> {
     Name,
     Joints,
+    /// The table of joint `j` (0-based).
+    Joint(usize),
     /// A DH value of joint `j` (0-based).
     Value(usize, Dh),
     /// Gravity component `i`.
@@ -184,6 +189,7 @@ impl Locate for Code {
         let argument = match item {
             Item::Name => "the robot name".to_owned(),
             Item::Joints => "`joints`".to_owned(),
+            Item::Joint(j) => format!("`joints[{j}]`"),
             Item::Value(j, dh) => format!("`joints[{j}].{}`", dh.key()),
             Item::Gravity(i) => format!("`gravity[{i}]`"),
             Item::Limit(j, l) => format!("`joints[{j}].limits.{}`", l.key()),
@@ -420,6 +426,15 @@ impl Parts {
                 (s, v)
             })
             .collect();
+        // read from a file: each joint's table; changed in code: the places kept
+        let read: Vec<String> = (0..self.joints.len())
+            .filter_map(|j| locate.place(Item::Joint(j)))
+            .collect();
+        let joint_places = if read.len() == self.joints.len() {
+            read
+        } else {
+            self.joint_places
+        };
         Ok(Robot {
             name: self.name,
             convention: self.convention,
@@ -430,6 +445,7 @@ impl Parts {
             symbols,
             measured: self.measured,
             uses: super::SymbolUses(uses),
+            joint_places: super::JointPlaces(joint_places),
         })
     }
 
@@ -557,6 +573,7 @@ fn describe(item: Item<'_>) -> String {
         Item::Transform(m, p, i) => format!("[{}] {} {}", m.key(), p.key(), p.component(i)),
         Item::Name => "the name".to_owned(),
         Item::Joints => "the joints".to_owned(),
+        Item::Joint(j) => format!("joint {}", j + 1),
         Item::Symbol(s) => format!("symbol `{s}`"),
     }
 }

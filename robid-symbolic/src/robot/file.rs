@@ -183,6 +183,14 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
 /// given twice; its span holds the key, so the message names it and says what to do.
 fn syntax_message(text: &str, e: &toml::de::Error) -> String {
     let message = e.message().trim();
+    if message.contains("recursion depth") {
+        // toml's "cannot recurse further; max recursion depth met" said what the reader
+        // did, not what is wrong with the file
+        return "arrays or inline tables are nested deeper than the TOML reader follows; a \
+                description nests them two deep (`limits = { position = [-3, 3] }`): close \
+                the brackets this value opens"
+            .to_owned();
+    }
     let key = e
         .span()
         .filter(|_| message == "duplicate key")

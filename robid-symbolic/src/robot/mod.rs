@@ -254,6 +254,7 @@ pub struct Robot {
     /// `check::Parts::measured`).
     measured: bool,
     uses: SymbolUses,
+    joint_places: JointPlaces,
 }
 
 /// Where a description file first uses each geometric symbol, as `file:line:column`
@@ -264,6 +265,18 @@ struct SymbolUses(Vec<(String, String)>);
 
 impl PartialEq for SymbolUses {
     fn eq(&self, _: &SymbolUses) -> bool {
+        true
+    }
+}
+
+/// Where a description file wrote each joint's `[[joints]]` table, as `file:line:column`
+/// ([`Robot::joint_place`]); empty for a robot built in code. Like [`SymbolUses`], not part
+/// of what the robot is.
+#[derive(Clone, Debug, Default)]
+struct JointPlaces(Vec<String>);
+
+impl PartialEq for JointPlaces {
+    fn eq(&self, _: &JointPlaces) -> bool {
         true
     }
 }
@@ -288,6 +301,7 @@ impl Robot {
             unread_words: Vec::new(),
             measured: false,
             uses: Vec::new(),
+            joint_places: Vec::new(),
         };
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
@@ -327,6 +341,7 @@ impl Robot {
             unread_words: Vec::new(),
             measured: true,
             uses: Vec::new(),
+            joint_places: Vec::new(),
         };
         parts.check(&Code).map_err(DescriptionError::from_errors)
     }
@@ -390,6 +405,23 @@ impl Robot {
             .iter()
             .find(|(s, _)| s == symbol)
             .map(|(_, place)| place.as_str())
+    }
+
+    /// Where the description file wrote joint `joint`'s table (0-based, as in
+    /// [`Robot::joints`]), as `file:line:column`, so that a message about the joint (it has
+    /// no position limit where a design needs one) can point there; `None` for a robot
+    /// built in code.
+    ///
+    /// ```
+    /// use robid_symbolic::Robot;
+    /// let text = "name = \"arm\"\nconvention = \"modified\"\n\
+    ///             [[joints]]\nalpha = 0\n[[joints]]\nalpha = 0\n";
+    /// let robot = Robot::from_toml(text, "arm.toml").unwrap();
+    /// assert_eq!(robot.joint_place(1), Some("arm.toml:5:1"));
+    /// assert_eq!(robot.joint_place(2), None);
+    /// ```
+    pub fn joint_place(&self, joint: usize) -> Option<&str> {
+        self.joint_places.0.get(joint).map(String::as_str)
     }
 
     /// The geometric symbols without a value: run-time inputs of the models
@@ -519,6 +551,7 @@ impl Robot {
             unread_words: Vec::new(),
             measured: self.measured,
             uses: self.uses.0,
+            joint_places: self.joint_places.0,
         }
     }
 }

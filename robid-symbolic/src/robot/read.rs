@@ -42,6 +42,7 @@ impl Spans {
         let found = match item {
             Item::Name => self.name.clone(),
             Item::Joints => self.joints.clone(),
+            Item::Joint(j) => joint(j),
             Item::Value(j, dh) => self.values.get(&(j, dh)).cloned().or_else(|| joint(j)),
             Item::Limit(j, l) => self.limits.get(&(j, l)).cloned().or_else(|| joint(j)),
             Item::Gravity(i) => self
@@ -183,6 +184,7 @@ impl<'a> Reader<'a> {
             unread_words: std::mem::take(&mut self.unread_words),
             measured: calibrated,
             uses: Vec::new(),
+            joint_places: Vec::new(),
         }
     }
 

@@ -605,6 +605,29 @@ fn a_key_given_twice_is_named_at_its_place() {
     }
 }
 
+/// A value nested deeper than the TOML reader follows is told at its place with what is
+/// wrong and what to do: toml's "cannot recurse further; max recursion depth met" said what
+/// the reader did.
+#[test]
+fn a_value_nested_too_deep_is_told_what_to_do() {
+    for (open, close) in [("[", "]"), ("{ a = ", "}")] {
+        let text = format!(
+            "{HEAD}[[joints]]\nalpha = 0\nlimits = {}1{}\n",
+            open.repeat(5000),
+            close.repeat(5000)
+        );
+        let all = errors(&text);
+        assert_eq!(all.len(), 1, "{all:?}");
+        assert!(
+            all[0].starts_with("arm.toml:5:")
+                && all[0].contains("nested deeper than the TOML reader follows")
+                && all[0].ends_with("close the brackets this value opens")
+                && !all[0].contains("recurse"),
+            "{all:?}"
+        );
+    }
+}
+
 /// A calibrated pair of nearly parallel axes (`bounds::calibrated_pair`), as a calibration
 /// of an arm writes it (UR controllers' own DH tables have such rows): `b` and `d` beyond
 /// 1 km but nearly opposite, the frame within 1 km of the previous one, a twist of 1e-6 rad.

@@ -378,9 +378,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             .filter(|link| link.continuous)
     };
     let mut turning = Vec::new();
-    let limits = model
-        .programs()
-        .robot
+    let robot = &model.programs().robot;
+    let limits = robot
         .joints()
         .iter()
         .enumerate()
@@ -427,8 +426,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                             "velocity" => format!(", or {}", flag("rad/s or m/s")),
                             _ => String::new(),
                         };
+                        // the joint's table, where the limits go (file:line:column)
+                        let at = robot
+                            .joint_place(j)
+                            .map_or_else(|| file.to_string(), str::to_owned);
                         format!(
-                            "{file}: joint {} has no {what} limit; add `limits = {{ position = \
+                            "{at}: joint {} has no {what} limit; add `limits = {{ position = \
                              [lo, hi], velocity = .., acceleration = .. }}`{fix}",
                             j + 1
                         )

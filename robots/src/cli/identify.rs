@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 use robid_runtime::data::{
     Config, EXAMPLE_CONFIG, Method, Record, load_record, load_runs, read_header,
 };
+use robid_runtime::estimate::check_forgetting;
 use robid_runtime::inspect::resolve_cutoff;
 use robid_runtime::pipeline::{identify, identify_runs, identify_static, validate};
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
@@ -215,7 +216,13 @@ fn compiled_reference(robot: &Robot) -> Option<Chosen> {
 /// `Config::default_mapping_for`).
 pub(crate) fn config_for(path: Option<&Path>, data: &[PathBuf]) -> Result<Config, Error> {
     Ok(match (path, data) {
-        (Some(p), _) => Config::from_file(p)?,
+        (Some(p), _) => {
+            let config = Config::from_file(p)?;
+            // the config's own check takes any factor in (0, 1]; a tiny one (1e-320) passed
+            // it and overflowed the recursion after the processing, without file:line
+            check_forgetting(config.estimation.forgetting).map_err(|e| config.locate(e))?;
+            config
+        }
         (None, [file]) => Config::default_mapping_for(&read_header(file)?),
         // none or several files: the count check says what to give
         (None, _) => Config::default_mapping(),

@@ -49,6 +49,20 @@ pub(crate) fn with_header(e: robid_runtime::Error, names: &[String]) -> robid_ru
     }
 }
 
+/// A states file without a row of states, `why` (empty, or its header alone): both told
+/// the same way, with the header the file needs. `robid torques` needs one row; an empty
+/// file was told "0 samples, at least 2 are needed" while a header alone was taken, and
+/// wrote a header without torques.
+pub(crate) fn no_rows(path: &Path, names: &[String], why: &str) -> Error {
+    format!(
+        "{}: no rows of joint states ({why}); write the header {} and one row per state \
+         below it",
+        path.display(),
+        header_pattern(names)
+    )
+    .into()
+}
+
 /// `names` written short: each run `q1, q2, .., q6` as `q1..q6`, joined by commas.
 fn header_pattern(names: &[String]) -> String {
     // a name's prefix and joint number, when it ends in one

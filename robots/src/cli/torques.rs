@@ -160,6 +160,7 @@ fn stream(
     let mut range: Option<(usize, Error)> = None;
     let mut torque: Option<Error> = None;
     let mut output = None;
+    let mut rows = 0;
     let mut text = String::new();
     // the windows are read and parsed on another thread (the reader's work is Send, the
     // model and the output need not be) and handed over one at a time
@@ -173,6 +174,7 @@ fn stream(
             })
         });
         for table in received {
+            rows += table.rows();
             if let Some((c, _, e)) = super::states::out_of_range(&table, names)
                 && range.as_ref().is_none_or(|(first, _)| c < *first)
             {
@@ -195,7 +197,21 @@ fn stream(
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
     });
-    read.map_err(|e| input(super::states::with_header(e, names)))?;
+    read.map_err(|e| match e {
+        // the reader asks for two samples of any file (a data set's least); a states file
+        // needs one row, and one without any is told as one with its header alone is
+        RuntimeError::TooFewSamples { found: 0, .. } => {
+            Failure::Input(super::states::no_rows(path, names, "the file is empty"))
+        }
+        e => input(super::states::with_header(e, names)),
+    })?;
+    if rows == 0 {
+        return Err(Failure::Input(super::states::no_rows(
+            path,
+            names,
+            "the file has its header alone",
+        )));
+    }
     match (range, torque, output) {
         (Some((_, e)), _, _) => Err(Failure::Input(e)),
         (None, Some(e), _) => Err(Failure::Input(e)),
@@ -407,5 +423,28 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A states file without a row is told the same way whether it is empty or holds its
+    /// header alone (the empty one was "0 samples, at least 2 are needed", the header alone
+    /// gave a header of torques and no row), with the header it needs; one row is enough.
+    #[test]
+    fn a_states_file_without_rows_is_told_so_empty_or_not() {
+        let dir = tempfile::tempdir().unwrap();
+        let base = vec![0.5; robots::Ur5e::BASE_PARAMETERS];
+        let header = states(dir.path(), 0, |_, _| {});
+        let e = streamed(&header, 1 << 20, &base).unwrap_err();
+        let wanted = "no rows of joint states (the file has its header alone); write the \
+                      header q1..q6,qd1..qd6,qdd1..qdd6 and one row per state below it";
+        assert!(e.ends_with(wanted), "{e}");
+        let empty = dir.path().join("empty.csv");
+        std::fs::write(&empty, "").unwrap();
+        let e = streamed(&empty, 1 << 20, &base).unwrap_err();
+        assert!(
+            e.ends_with(&wanted.replace("the file has its header alone", "the file is empty")),
+            "{e}"
+        );
+        let one = states(dir.path(), 1, |_, _| {});
+        assert_eq!(streamed(&one, 1 << 20, &base).unwrap().lines().count(), 2);
     }
 }

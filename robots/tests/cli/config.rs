@@ -116,6 +116,44 @@ fn a_sample_rate_that_the_logs_time_column_contradicts_is_refused() {
     }
 }
 
+/// A forgetting factor too small to keep two equations in memory (1e-320, a subnormal
+/// meant as 0, passed the config's check `0 < lambda <= 1` and overflowed the recursion
+/// after the processing, naming the key but not the place) is refused with the key at its
+/// file:line and the range, before any data are read.
+#[test]
+fn a_tiny_forgetting_factor_is_refused_at_its_key() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let data = write(d, "run.csv", &log());
+    let (robot, data) = (robot.to_str().unwrap(), data.to_str().unwrap());
+    for (lambda, shown) in [("1e-320", "1e-320"), ("1e-3", "0.001"), ("0.4", "0.4")] {
+        let text = format!("{CONFIG}[estimation]\nmethod = \"rls\"\nforgetting = {lambda}\n");
+        let config = write(d, "rls.toml", &text);
+        let config = config.to_str().unwrap();
+        for command in ["identify", "inspect"] {
+            let o = robid(&[command, robot, "--config", config, "--data", data]);
+            fails_with(
+                &o,
+                &[&format!(
+                    "{config}:10:1: `estimation.forgetting`: {shown} is outside [0.5, 1]"
+                )],
+            );
+        }
+    }
+    let text = format!("{CONFIG}[estimation]\nmethod = \"rls\"\nforgetting = 0.99\n");
+    let config = write(d, "rls.toml", &text);
+    let o = robid(&[
+        "identify",
+        robot,
+        "--config",
+        config.to_str().unwrap(),
+        "--data",
+        data,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
 /// The printed example is a working config for a six-joint robot's log.
 #[test]
 fn the_example_config_is_printed_and_works() {

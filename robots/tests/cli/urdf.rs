@@ -484,13 +484,27 @@ fn excite_takes_velocity_limits_a_urdf_lacks() {
     fails_with(
         &robid(&args),
         &[
-            "planar.toml: joint 1 has no velocity limit",
+            // the joint's table, by its line (it named the file alone)
+            "planar.toml:4:1: joint 1 has no velocity limit",
             "or give --velocity-limits v1,..,vn",
         ],
     );
     args.extend(["--velocity-limits", "1"]);
     let o = robid(&args);
     assert!(o.status.success(), "{}", stderr(&o));
+    // a joint without position limits: its table's line too
+    let unlimited = write(
+        dir.path(),
+        "unlimited.toml",
+        "name = \"planar\"\nconvention = \"modified\"\ngravity = [0, -9.81, 0]\n\
+         [[joints]]\nalpha = 0\na = 0\nd = 0\nlimits = { position = [-3, 3], acceleration = 10 }\n\
+         \n[[joints]]\nalpha = 0\na = 0.5\nd = 0\n",
+    );
+    args[1] = unlimited.to_str().unwrap();
+    fails_with(
+        &robid(&args),
+        &["unlimited.toml:10:1: joint 2 has no position limit; add `limits = {"],
+    );
     // a revolute joint without <limit> (urdfdom refuses it, robid reads it): named, and
     // told what to write, not to change a <limit> element it does not have
     let revolute = write(

@@ -235,9 +235,50 @@ fn flexible_file_errors_name_the_key() {
     assert!(
         e.contains("flex.toml:9")
             && e.contains("joint[1].torque_constant")
-            && e.contains("1e-320 must be at least 1e-12 N m/A"),
+            && e.contains("1e-320 N m/A must lie in [1e-12, 1e6] N m/A"),
         "{e}"
     );
+    // every factor the simulation divides by has the same floor, through the same table:
+    // a rotor inertia of 1e-320 ended the run as "diverged" at its first sample, naming
+    // no key; a stiffness of 1e-320 made every deflection infinite
+    for (line, key, written, told) in [
+        (
+            8,
+            "rotor_inertia = 0.3",
+            "rotor_inertia = 1e-320",
+            "1e-320 kg m^2 must lie in [1e-12, 1e6] kg m^2",
+        ),
+        (
+            8,
+            "rotor_inertia = 0.3",
+            "rotor_inertia = 1e-13",
+            "1e-13 kg m^2 must lie in",
+        ),
+        (
+            10,
+            "stiffness = 2e4",
+            "stiffness = 1e-320",
+            "1e-320 N m/rad must lie in [1e-12, 1e9] N m/rad",
+        ),
+        (
+            7,
+            "gear_ratio = 100.0",
+            "gear_ratio = -1e-320",
+            "-1e-320 must be of magnitude 1e-3 to 1e6",
+        ),
+    ] {
+        let bad = text("2e4", "").replace(key, written);
+        let e = Flexibility::from_toml_str(&bad, path)
+            .unwrap_err()
+            .to_string();
+        let field = key.split(' ').next().unwrap();
+        assert!(
+            e.starts_with(&format!(
+                "flex.toml:{line}:1: `joint[1].{field}`: joint 1: {told}"
+            )),
+            "{e}"
+        );
+    }
     let twice = "[[joint]]\njoint = 1\ngear_ratio = 1.0\nrotor_inertia = 1.0\n\
                  torque_constant = 1.0\nstiffness = 1.0\nfriction = { coulomb = 1.0, \
                  load = 0.0, stribeck = 0.0, stribeck_velocity = 0.1, viscous = 1.0, \
