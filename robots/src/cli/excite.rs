@@ -342,9 +342,13 @@ fn check_limits(
             "velocity" | "acceleration" => format!(", or give --{key}-limits"),
             _ => String::new(),
         };
+        // the joint's table, where the limit is written (file:line:column)
+        let at = description
+            .robot
+            .joint_place(j)
+            .map_or_else(|| args.robot.display().to_string(), str::to_owned);
         return Err(format!(
-            "{}: {joint}: the {what} {problem}; correct it in the description{flag}",
-            args.robot.display()
+            "{at}: {joint}: the {what} {problem}; correct it in the description{flag}"
         )
         .into());
     }

@@ -231,7 +231,8 @@ fn excite_names_a_description_limit_a_design_cannot_take() {
         fails_with(
             &o,
             &[
-                &format!("{}: joint 1: {told}", robot.display()),
+                // at the joint's [[joints]] table (line 3)
+                &format!("{}:3:1: joint 1: {told}", robot.display()),
                 "correct it in the description",
             ],
         );
