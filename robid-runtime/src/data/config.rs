@@ -38,7 +38,7 @@
 //! [estimation]
 //! method = "wls"                 # "ols", "wls", "rls", "link-by-link", "energy" or "per-axis"
 //! rank_tolerance = 1e-10         # singular values below this times the largest are zero
-//! forgetting = 1.0               # RLS forgetting factor, 0 < lambda <= 1
+//! forgetting = 1.0               # RLS forgetting factor, 0.5 <= lambda <= 1
 //! energy_window = 0.05           # s, one energy-model equation per window
 //! known = "masses.toml"          # optional: a [known] table of standard parameters known
 //!                                # beforehand (not estimated; their torques move to the
@@ -75,7 +75,7 @@
 //! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end <= the samples of the data |
 //! | `processing.pieces` | windows `[start, end]` in s, 0 <= start < end; not with the energy method |
 //! | `estimation.rank_tolerance` | 0 < tol < 1 |
-//! | `estimation.forgetting` | 0 < lambda <= 1 |
+//! | `estimation.forgetting` | 0.5 <= lambda <= 1 |
 //! | `estimation.energy_window` | 0 < window <= 1e6 s |
 //! | `estimation.known` | a parameter file with a `[known]` table, its names standard parameters of the robot |
 //! | `extra_column` | at most 1,000 |
@@ -1051,10 +1051,16 @@ impl Config {
             }
         }
         let e = &self.estimation;
-        if !(e.forgetting > 0.0 && e.forgetting <= 1.0) {
+        if !(crate::estimate::MIN_FORGETTING..=1.0).contains(&e.forgetting) {
             return bad(
                 "estimation.forgetting",
-                format!("{} must satisfy 0 < lambda <= 1", num(e.forgetting)),
+                format!(
+                    "{} must lie in [{}, 1]: the recursion keeps about 1 / (1 - lambda) \
+                     equations in memory (1 keeps every equation; 0.95 to 0.999 track slow \
+                     changes)",
+                    num(e.forgetting),
+                    crate::estimate::MIN_FORGETTING
+                ),
             );
         }
         if !(e.energy_window > 0.0 && e.energy_window <= MAX_FACTOR) {
@@ -1233,6 +1239,16 @@ method = "wls"
             matches!(&e, Error::Data(DataError::ConfigKey { line: Some(15), key, .. }) if key == "estimation.forgetting"),
             "{e}"
         );
+        // below the floor: the config's own check, as the recursion's (1e-320 passed it)
+        for tiny in ["1e-320", "0.3"] {
+            let bad = EXAMPLE.replace("method = \"wls\"", &format!("forgetting = {tiny}"));
+            let cfg = Config::from_toml_str(&bad, Path::new("c.toml")).unwrap();
+            let e = cfg.check(2).unwrap_err().to_string();
+            assert!(
+                e.starts_with("c.toml:15:1: `estimation.forgetting`") && e.contains("[0.5, 1]"),
+                "{e}"
+            );
+        }
         let bad = EXAMPLE.replace("rest_velocity = 0.1", "rest_velocity = [0.1]");
         let cfg = Config::from_toml_str(&bad, Path::new("c.toml")).unwrap();
         let e = cfg.check(2).unwrap_err();
