@@ -144,14 +144,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     let description = description::load(&args.robot, &args.description)?;
     if let Some(path) = &args.write_description {
-        let source = match &description.urdf {
-            Some(_) => format!(
-                "# The DH table robid fitted to the chain of {} (docs/urdf.md), as a description\n",
-                args.robot.display()
-            ),
-            None => format!("# {} as robid reads it\n", args.robot.display()),
-        };
-        files::write(path, &(source + &description.robot.to_toml()))?;
+        files::write(path, &description_file(&description, &args.robot))?;
     }
     let mut text = render(&description.robot, args.json, scheduled)?;
     if let (Some(path), Some(chain)) = (&args.standard_parameters, &description.urdf) {
@@ -183,6 +176,41 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     out::print(&text)?;
     Ok(())
+}
+
+/// The robot as a description file (`Robot::to_toml`) under a comment naming its source;
+/// for a URDF, each joint's table under a comment naming its URDF joint and link.
+fn description_file(description: &description::Description, path: &Path) -> String {
+    let Some(chain) = &description.urdf else {
+        return format!(
+            "# {} as robid reads it\n{}",
+            path.display(),
+            description.robot.to_toml()
+        );
+    };
+    let mut text = format!(
+        "# The DH table robid fitted to the chain of {} (docs/urdf.md), as a description\n",
+        path.display()
+    );
+    let mut tables = description.robot.to_toml();
+    for (j, link) in chain.links.iter().enumerate().rev() {
+        let Some(at) = tables
+            .match_indices("[[joints]]\n")
+            .nth(j)
+            .map(|(at, _)| at)
+        else {
+            continue;
+        };
+        let note = format!(
+            "# joint {}: URDF joint `{}` moves `{}`\n",
+            j + 1,
+            link.joint,
+            link.link
+        );
+        tables.insert_str(at, &note);
+    }
+    text.push_str(&tables);
+    text
 }
 
 /// A URDF chain's own inertials as a `[standard]` parameter file

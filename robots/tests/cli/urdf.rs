@@ -1346,7 +1346,10 @@ fn urdf_chain_is_written_as_a_description() {
         text.starts_with("# The DH table robid fitted to the chain of ")
             && text.contains("ur5_robot.urdf")
             && text.contains("calibrated = true")
-            && text.contains("alpha = \"-pi/2\""),
+            && text.contains("alpha = \"-pi/2\"")
+            && text.contains(
+                "# joint 2: URDF joint `shoulder_lift_joint` moves `upper_arm_link`\n[[joints]]\n"
+            ),
         "{text}"
     );
     let states = states(dir.path());
