@@ -273,7 +273,8 @@ impl<'a> Observer<'a> {
     }
 
     /// The predicted torque `W beta`, the torque and the velocity of each joint at
-    /// processed sample `k` (`out`: three blocks of `dof` values): the model's inverse
+    /// processed sample `k` (`out`: three blocks of `dof` values, or one for the predicted
+    /// torque alone): the model's inverse
     /// dynamics with the base parameters of `beta`, plus its extra columns, which is the
     /// row's `W beta` to rounding at half the cost of the whole regressor row.
     fn prediction_at(
@@ -293,9 +294,11 @@ impl<'a> Observer<'a> {
                 *p += v * beta[lay.p + c];
             }
         });
-        for j in 0..dof {
-            measured[j] = self.signals.tau[j][k];
-            measured[dof + j] = st.qd[j];
+        if !measured.is_empty() {
+            for j in 0..dof {
+                measured[j] = self.signals.tau[j][k];
+                measured[dof + j] = st.qd[j];
+            }
         }
         Ok(())
     }
@@ -796,46 +799,10 @@ impl Observer<'_> {
         core: std::ops::Range<usize>,
         beta: &[f64],
     ) -> Result<(Vec<Predicted>, RestCount)> {
-        let (lay, dof) = (&self.lay, self.lay.dof);
-        let n = self.signals.samples();
+        let dof = self.lay.dof;
         let f = dec.factor();
-        let lo = core.start.saturating_sub(overlap);
-        let hi = (core.end + overlap).min(n);
-        let cols = lay.p + lay.e;
-        let mut rows = Vec::new();
-        // each joint's channels of the parameters, in the parameters' order
-        let columns: Vec<Vec<usize>> = (0..dof)
-            .map(|j| (0..cols).map(|c| lay.column(j, c)).collect())
-            .collect();
-        let (_, bad) = self.rows_in_parallel(lo, hi, 3 * dof, &mut rows, |k, st, full, out| {
-            match self.prediction_at(k, st, beta, out) {
-                Ok(()) if first_non_finite(out).is_none() => (false, None),
-                // the whole row, as the dense prediction takes it, and the channel to blame
-                _ => {
-                    self.full_row(k, st, full);
-                    for (j, channels) in columns.iter().enumerate() {
-                        out[j] = channels.iter().zip(beta).map(|(&c, b)| full[c] * b).sum();
-                        out[dof + j] = full[lay.tau(j)];
-                        out[2 * dof + j] = full[lay.qd(j)];
-                    }
-                    (false, first_non_finite(full))
-                }
-            }
-        });
-        if let Some((k, c, v)) = bad {
-            return Err(self.bad_channel(k, c, v));
-        }
-        let groups = decimate_rows(dec, &mut rows, 3 * dof)?;
-        let value = |i: usize, c: usize| -> f64 {
-            let (g, k) = if f == 1 {
-                (0, c)
-            } else {
-                (c / GROUP, c % GROUP)
-            };
-            let (v, width) = &groups[g];
-            v[i * width + k]
-        };
-        let first = lo / f;
+        let (groups, first) = self.prediction_channels(dec, overlap, &core, beta, true)?;
+        let value = |i: usize, c: usize| group_value(&groups, f, i, c);
         let mut out = Vec::new();
         let mut count = RestCount::default();
         for k in core.start / f..core.end.div_ceil(f) {
@@ -855,6 +822,90 @@ impl Observer<'_> {
         count.kept = out.len();
         Ok((out, count))
     }
+
+    /// The predicted torques with the parameter values `beta` of the equations an
+    /// estimation pass kept among the decimated samples of `core` (`kept(joint, decimated
+    /// sample)`): [`window_prediction`](Self::window_prediction)'s, but the measured
+    /// torques and the removal of the equations near rest are the estimation's (its `y`
+    /// and its equations, as the dense prediction takes them from the observation), so
+    /// that only the predicted channel of each joint is filtered. Returns `(joint,
+    /// decimated sample, predicted)`.
+    pub(crate) fn window_predicted(
+        &self,
+        dec: &Decimator,
+        overlap: usize,
+        core: std::ops::Range<usize>,
+        beta: &[f64],
+        kept: impl Fn(usize, usize) -> bool,
+    ) -> Result<Vec<(usize, usize, f64)>> {
+        let dof = self.lay.dof;
+        let f = dec.factor();
+        let (groups, first) = self.prediction_channels(dec, overlap, &core, beta, false)?;
+        let mut out = Vec::new();
+        for k in core.start / f..core.end.div_ceil(f) {
+            for j in (0..dof).filter(|&j| kept(j, k)) {
+                out.push((j, k, group_value(&groups, f, k - first, j)));
+            }
+        }
+        Ok(out)
+    }
+
+    /// The channels of the prediction over the samples of `core` and `overlap` on each
+    /// side, decimated: the predicted torque of each joint, then, `measured`, its torque
+    /// and its velocity; and the first decimated sample they hold.
+    fn prediction_channels(
+        &self,
+        dec: &Decimator,
+        overlap: usize,
+        core: &std::ops::Range<usize>,
+        beta: &[f64],
+        measured: bool,
+    ) -> Result<(Vec<Decimated>, usize)> {
+        let (lay, dof) = (&self.lay, self.lay.dof);
+        let n = self.signals.samples();
+        let f = dec.factor();
+        let lo = core.start.saturating_sub(overlap);
+        let hi = (core.end + overlap).min(n);
+        let cols = lay.p + lay.e;
+        let width = if measured { 3 * dof } else { dof };
+        let mut rows = Vec::new();
+        // each joint's channels of the parameters, in the parameters' order
+        let columns: Vec<Vec<usize>> = (0..dof)
+            .map(|j| (0..cols).map(|c| lay.column(j, c)).collect())
+            .collect();
+        let (_, bad) = self.rows_in_parallel(lo, hi, width, &mut rows, |k, st, full, out| {
+            match self.prediction_at(k, st, beta, out) {
+                Ok(()) if first_non_finite(out).is_none() => (false, None),
+                // the whole row, as the dense prediction takes it, and the channel to blame
+                _ => {
+                    self.full_row(k, st, full);
+                    for (j, channels) in columns.iter().enumerate() {
+                        out[j] = channels.iter().zip(beta).map(|(&c, b)| full[c] * b).sum();
+                        if measured {
+                            out[dof + j] = full[lay.tau(j)];
+                            out[2 * dof + j] = full[lay.qd(j)];
+                        }
+                    }
+                    (false, first_non_finite(full))
+                }
+            }
+        });
+        if let Some((k, c, v)) = bad {
+            return Err(self.bad_channel(k, c, v));
+        }
+        Ok((decimate_rows(dec, &mut rows, width)?, lo / f))
+    }
+}
+
+/// Channel `c` of decimated sample `i` of [`decimate_rows`]'s groups (total factor `f`).
+fn group_value(groups: &[Decimated], f: usize, i: usize, c: usize) -> f64 {
+    let (g, k) = if f == 1 {
+        (0, c)
+    } else {
+        (c / GROUP, c % GROUP)
+    };
+    let (v, width) = &groups[g];
+    v[i * width + k]
 }
 
 /// Consecutive indices of a list: the `len` values from index `from` go to position
