@@ -592,7 +592,7 @@ impl Observer<'_> {
                     // a non-finite inactive channel is found by `bad`
                     missed |= inactive
                         .iter()
-                        .any(|run| full[run.from..run.from + run.len].iter().any(|&v| v != 0.0));
+                        .any(|run| any_nonzero(&full[run.from..run.from + run.len]));
                     if bad.is_none()
                         && let Some((c, v)) = first_non_finite(&full)
                     {
@@ -929,6 +929,16 @@ fn runs(indices: &[usize]) -> Vec<Run> {
     out
 }
 
+/// Whether a value of `x` is not zero (`v != 0.0`: NaN is not zero, -0 is), as one pass
+/// of integer ORs, which the compiler vectorises: the check that the channels taken as
+/// zero are zero, for every sample row of a block (an early exit per value, which the
+/// compiler does not vectorise, took a quarter of the fill's own time in a profile of
+/// the hour).
+fn any_nonzero(x: &[f64]) -> bool {
+    // the bits but the sign: zero for +0 and -0 only
+    x.iter().fold(0u64, |any, v| any | (v.to_bits() << 1)) != 0
+}
+
 /// The first non-finite value of `x` with its index. The common case, every value
 /// finite, is one pass of integer ORs, which the compiler vectorises.
 fn first_non_finite(x: &[f64]) -> Option<(usize, f64)> {
@@ -1159,6 +1169,26 @@ pub fn observe(
 #[cfg(test)]
 mod tests {
     use super::{Run, runs};
+
+    /// `any_nonzero` is `any(|v| v != 0.0)`: -0 is zero, NaN and the smallest subnormal
+    /// are not, wherever they are in a slice.
+    #[test]
+    fn any_nonzero_is_any_value_unequal_to_zero() {
+        for odd in [0.0, -0.0, f64::NAN, 5e-324, -5e-324, 1.0, f64::INFINITY] {
+            for len in [1, 2, 7, 33] {
+                for at in 0..len {
+                    let mut x = vec![-0.0; len];
+                    x[at] = odd;
+                    assert_eq!(
+                        super::any_nonzero(&x),
+                        x.iter().any(|&v| v != 0.0),
+                        "{odd} at {at} of {len}"
+                    );
+                }
+            }
+        }
+        assert!(!super::any_nonzero(&[]));
+    }
 
     #[test]
     fn runs_cover_every_index_once_in_order() {
