@@ -61,7 +61,7 @@ impl Table {
         let Some(column) = self.columns.get(index) else {
             return Ok(());
         };
-        match quantity.first_outside(column) {
+        match crate::data::dataset::first_outside(quantity, column) {
             None => Ok(()),
             Some(k) => Err(Error::Data(DataError::OutOfRange {
                 location: self.location(k),
