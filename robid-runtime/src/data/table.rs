@@ -61,7 +61,7 @@ impl Table {
         let Some(column) = self.columns.get(index) else {
             return Ok(());
         };
-        match quantity.first_outside(column) {
+        match crate::data::dataset::first_outside(quantity, column) {
             None => Ok(()),
             Some(k) => Err(Error::Data(DataError::OutOfRange {
                 location: self.location(k),
@@ -746,9 +746,53 @@ fn trim(mut b: &[u8]) -> &[u8] {
     b
 }
 
-/// A number field (the standard library's parser: correctly rounded).
+/// A number field (the standard library's parser: correctly rounded). A plain decimal of
+/// at most 15 significant digits and 22 decimals (`-12.345678`, a log's usual field)
+/// takes the exact fast path first: its digits as an integer `m < 2^53` and `10^d`
+/// are exact doubles, so `m / 10^d`, rounded once, is the correctly rounded value, the
+/// standard library's to the bit (Clinger's fast path, which the standard library takes
+/// too, after checking the text as UTF-8 and as any float syntax: reading the hour's CSV
+/// spent 6 % of the identification's time there).
 fn number(b: &[u8]) -> Option<f64> {
-    std::str::from_utf8(b).ok()?.parse::<f64>().ok()
+    plain_decimal(b).or_else(|| std::str::from_utf8(b).ok()?.parse::<f64>().ok())
+}
+
+/// `[+-]digits[.digits]` with at least one digit, at most 15 of them in all and at most
+/// 22 after the point, as the correctly rounded double; `None` for anything else.
+fn plain_decimal(b: &[u8]) -> Option<f64> {
+    const POWERS: [f64; 23] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+    ];
+    let (negative, rest) = match b.split_first() {
+        Some((b'-', rest)) => (true, rest),
+        Some((b'+', rest)) => (false, rest),
+        _ => (false, b),
+    };
+    // the digits before the point, then those after it (wrapping: more than 15 digits
+    // are refused below)
+    let mut m = 0u64;
+    let digits = |from: usize, m: &mut u64| {
+        let mut i = from;
+        while let Some(&c) = rest.get(i).filter(|c| c.is_ascii_digit()) {
+            *m = m.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
+            i += 1;
+        }
+        i
+    };
+    let point = digits(0, &mut m);
+    let end = match rest.get(point) {
+        Some(b'.') => digits(point + 1, &mut m),
+        _ => point,
+    };
+    let decimals = end.saturating_sub(point + 1);
+    let total = point + decimals;
+    if end != rest.len() || total == 0 || total > 15 || decimals >= POWERS.len() {
+        return None;
+    }
+    // m < 10^15 < 2^53 and 10^decimals are exact: one rounding, the correct one
+    let v = m as f64 / POWERS[decimals];
+    Some(if negative { -v } else { v })
 }
 
 /// Field index of every requested name; a missing, duplicated or badly separated header
@@ -941,7 +985,7 @@ fn block(
         let text = records.text();
         for (k, (&i, col)) in want.iter().zip(columns.iter_mut()).enumerate() {
             let parsed = match text.and_then(|t| records.field_str(t, i)) {
-                Some(field) => field.parse::<f64>().ok(),
+                Some(field) => number(field.as_bytes()),
                 None => number(records.field(i)),
             };
             match parsed {
@@ -979,6 +1023,78 @@ fn block(
 
 #[cfg(test)]
 mod tests {
+    /// The fast path of `number` gives the standard library's value to the bit, on a log's
+    /// fields (3 to 8 decimals, signs, zeros) and on the edges of the fast path (15 and
+    /// 16 digits, 22 and 23 decimals, a lone point, exponents, words), which fall back.
+    #[test]
+    fn plain_decimals_parse_as_the_standard_library() {
+        let mut fields: Vec<String> = [
+            "0",
+            "-0",
+            "+0",
+            "0.0",
+            "-0.0",
+            "1.",
+            ".5",
+            "-.5",
+            "+.5",
+            ".",
+            "-",
+            "+",
+            "",
+            "1e3",
+            "1.5E-3",
+            "inf",
+            "-inf",
+            "NaN",
+            "1..2",
+            "1.2.3",
+            " 1",
+            "0x10",
+            "1_0",
+            "999999999999999",
+            "9999999999999999",
+            "123456789012345.6",
+            "0.000000000000000000001",
+            "0.0000000000000000000001",
+            "0.00000000000000000000001",
+            "0.1",
+            "0.2",
+            "0.3",
+            "-1.57079633",
+            "12.34500",
+            "00000000000012.5",
+            "3600.000",
+            "-0.00000001",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let mut rng = crate::rng::Rng::new(7);
+        for _ in 0..200_000 {
+            let scale = 10f64.powi(rng.below(12) as i32 - 4);
+            let v = (rng.unit() - 0.5) * scale;
+            let decimals = rng.below(12);
+            fields.push(format!("{v:.decimals$}"));
+        }
+        let mut fast = 0;
+        for f in &fields {
+            let expected = f.parse::<f64>().ok();
+            let got = super::number(f.as_bytes());
+            assert_eq!(
+                got.map(f64::to_bits),
+                expected.map(f64::to_bits),
+                "{f:?}: {got:?} vs {expected:?}"
+            );
+            if let Some(v) = super::plain_decimal(f.as_bytes()) {
+                assert_eq!(Some(v.to_bits()), expected.map(f64::to_bits), "{f:?}");
+                fast += 1;
+            }
+        }
+        // most of them take the fast path
+        assert!(fast > 150_000, "{fast} of {}", fields.len());
+    }
+
     use super::*;
 
     fn names(v: &[&str]) -> Vec<String> {

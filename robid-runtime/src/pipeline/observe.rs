@@ -273,7 +273,8 @@ impl<'a> Observer<'a> {
     }
 
     /// The predicted torque `W beta`, the torque and the velocity of each joint at
-    /// processed sample `k` (`out`: three blocks of `dof` values): the model's inverse
+    /// processed sample `k` (`out`: three blocks of `dof` values, or one for the predicted
+    /// torque alone): the model's inverse
     /// dynamics with the base parameters of `beta`, plus its extra columns, which is the
     /// row's `W beta` to rounding at half the cost of the whole regressor row.
     fn prediction_at(
@@ -293,9 +294,11 @@ impl<'a> Observer<'a> {
                 *p += v * beta[lay.p + c];
             }
         });
-        for j in 0..dof {
-            measured[j] = self.signals.tau[j][k];
-            measured[dof + j] = st.qd[j];
+        if !measured.is_empty() {
+            for j in 0..dof {
+                measured[j] = self.signals.tau[j][k];
+                measured[dof + j] = st.qd[j];
+            }
         }
         Ok(())
     }
@@ -589,7 +592,7 @@ impl Observer<'_> {
                     // a non-finite inactive channel is found by `bad`
                     missed |= inactive
                         .iter()
-                        .any(|run| full[run.from..run.from + run.len].iter().any(|&v| v != 0.0));
+                        .any(|run| any_nonzero(&full[run.from..run.from + run.len]));
                     if bad.is_none()
                         && let Some((c, v)) = first_non_finite(&full)
                     {
@@ -796,46 +799,10 @@ impl Observer<'_> {
         core: std::ops::Range<usize>,
         beta: &[f64],
     ) -> Result<(Vec<Predicted>, RestCount)> {
-        let (lay, dof) = (&self.lay, self.lay.dof);
-        let n = self.signals.samples();
+        let dof = self.lay.dof;
         let f = dec.factor();
-        let lo = core.start.saturating_sub(overlap);
-        let hi = (core.end + overlap).min(n);
-        let cols = lay.p + lay.e;
-        let mut rows = Vec::new();
-        // each joint's channels of the parameters, in the parameters' order
-        let columns: Vec<Vec<usize>> = (0..dof)
-            .map(|j| (0..cols).map(|c| lay.column(j, c)).collect())
-            .collect();
-        let (_, bad) = self.rows_in_parallel(lo, hi, 3 * dof, &mut rows, |k, st, full, out| {
-            match self.prediction_at(k, st, beta, out) {
-                Ok(()) if first_non_finite(out).is_none() => (false, None),
-                // the whole row, as the dense prediction takes it, and the channel to blame
-                _ => {
-                    self.full_row(k, st, full);
-                    for (j, channels) in columns.iter().enumerate() {
-                        out[j] = channels.iter().zip(beta).map(|(&c, b)| full[c] * b).sum();
-                        out[dof + j] = full[lay.tau(j)];
-                        out[2 * dof + j] = full[lay.qd(j)];
-                    }
-                    (false, first_non_finite(full))
-                }
-            }
-        });
-        if let Some((k, c, v)) = bad {
-            return Err(self.bad_channel(k, c, v));
-        }
-        let groups = decimate_rows(dec, &mut rows, 3 * dof)?;
-        let value = |i: usize, c: usize| -> f64 {
-            let (g, k) = if f == 1 {
-                (0, c)
-            } else {
-                (c / GROUP, c % GROUP)
-            };
-            let (v, width) = &groups[g];
-            v[i * width + k]
-        };
-        let first = lo / f;
+        let (groups, first) = self.prediction_channels(dec, overlap, &core, beta, true)?;
+        let value = |i: usize, c: usize| group_value(&groups, f, i, c);
         let mut out = Vec::new();
         let mut count = RestCount::default();
         for k in core.start / f..core.end.div_ceil(f) {
@@ -855,6 +822,90 @@ impl Observer<'_> {
         count.kept = out.len();
         Ok((out, count))
     }
+
+    /// The predicted torques with the parameter values `beta` of the equations an
+    /// estimation pass kept among the decimated samples of `core` (`kept(joint, decimated
+    /// sample)`): [`window_prediction`](Self::window_prediction)'s, but the measured
+    /// torques and the removal of the equations near rest are the estimation's (its `y`
+    /// and its equations, as the dense prediction takes them from the observation), so
+    /// that only the predicted channel of each joint is filtered. Returns `(joint,
+    /// decimated sample, predicted)`.
+    pub(crate) fn window_predicted(
+        &self,
+        dec: &Decimator,
+        overlap: usize,
+        core: std::ops::Range<usize>,
+        beta: &[f64],
+        kept: impl Fn(usize, usize) -> bool,
+    ) -> Result<Vec<(usize, usize, f64)>> {
+        let dof = self.lay.dof;
+        let f = dec.factor();
+        let (groups, first) = self.prediction_channels(dec, overlap, &core, beta, false)?;
+        let mut out = Vec::new();
+        for k in core.start / f..core.end.div_ceil(f) {
+            for j in (0..dof).filter(|&j| kept(j, k)) {
+                out.push((j, k, group_value(&groups, f, k - first, j)));
+            }
+        }
+        Ok(out)
+    }
+
+    /// The channels of the prediction over the samples of `core` and `overlap` on each
+    /// side, decimated: the predicted torque of each joint, then, `measured`, its torque
+    /// and its velocity; and the first decimated sample they hold.
+    fn prediction_channels(
+        &self,
+        dec: &Decimator,
+        overlap: usize,
+        core: &std::ops::Range<usize>,
+        beta: &[f64],
+        measured: bool,
+    ) -> Result<(Vec<Decimated>, usize)> {
+        let (lay, dof) = (&self.lay, self.lay.dof);
+        let n = self.signals.samples();
+        let f = dec.factor();
+        let lo = core.start.saturating_sub(overlap);
+        let hi = (core.end + overlap).min(n);
+        let cols = lay.p + lay.e;
+        let width = if measured { 3 * dof } else { dof };
+        let mut rows = Vec::new();
+        // each joint's channels of the parameters, in the parameters' order
+        let columns: Vec<Vec<usize>> = (0..dof)
+            .map(|j| (0..cols).map(|c| lay.column(j, c)).collect())
+            .collect();
+        let (_, bad) = self.rows_in_parallel(lo, hi, width, &mut rows, |k, st, full, out| {
+            match self.prediction_at(k, st, beta, out) {
+                Ok(()) if first_non_finite(out).is_none() => (false, None),
+                // the whole row, as the dense prediction takes it, and the channel to blame
+                _ => {
+                    self.full_row(k, st, full);
+                    for (j, channels) in columns.iter().enumerate() {
+                        out[j] = channels.iter().zip(beta).map(|(&c, b)| full[c] * b).sum();
+                        if measured {
+                            out[dof + j] = full[lay.tau(j)];
+                            out[2 * dof + j] = full[lay.qd(j)];
+                        }
+                    }
+                    (false, first_non_finite(full))
+                }
+            }
+        });
+        if let Some((k, c, v)) = bad {
+            return Err(self.bad_channel(k, c, v));
+        }
+        Ok((decimate_rows(dec, &mut rows, width)?, lo / f))
+    }
+}
+
+/// Channel `c` of decimated sample `i` of [`decimate_rows`]'s groups (total factor `f`).
+fn group_value(groups: &[Decimated], f: usize, i: usize, c: usize) -> f64 {
+    let (g, k) = if f == 1 {
+        (0, c)
+    } else {
+        (c / GROUP, c % GROUP)
+    };
+    let (v, width) = &groups[g];
+    v[i * width + k]
 }
 
 /// Consecutive indices of a list: the `len` values from index `from` go to position
@@ -876,6 +927,16 @@ fn runs(indices: &[usize]) -> Vec<Run> {
         }
     }
     out
+}
+
+/// Whether a value of `x` is not zero (`v != 0.0`: NaN is not zero, -0 is), as one pass
+/// of integer ORs, which the compiler vectorises: the check that the channels taken as
+/// zero are zero, for every sample row of a block (an early exit per value, which the
+/// compiler does not vectorise, took a quarter of the fill's own time in a profile of
+/// the hour).
+fn any_nonzero(x: &[f64]) -> bool {
+    // the bits but the sign: zero for +0 and -0 only
+    x.iter().fold(0u64, |any, v| any | (v.to_bits() << 1)) != 0
 }
 
 /// The first non-finite value of `x` with its index. The common case, every value
@@ -1108,6 +1169,26 @@ pub fn observe(
 #[cfg(test)]
 mod tests {
     use super::{Run, runs};
+
+    /// `any_nonzero` is `any(|v| v != 0.0)`: -0 is zero, NaN and the smallest subnormal
+    /// are not, wherever they are in a slice.
+    #[test]
+    fn any_nonzero_is_any_value_unequal_to_zero() {
+        for odd in [0.0, -0.0, f64::NAN, 5e-324, -5e-324, 1.0, f64::INFINITY] {
+            for len in [1, 2, 7, 33] {
+                for at in 0..len {
+                    let mut x = vec![-0.0; len];
+                    x[at] = odd;
+                    assert_eq!(
+                        super::any_nonzero(&x),
+                        x.iter().any(|&v| v != 0.0),
+                        "{odd} at {at} of {len}"
+                    );
+                }
+            }
+        }
+        assert!(!super::any_nonzero(&[]));
+    }
 
     #[test]
     fn runs_cover_every_index_once_in_order() {

@@ -18,8 +18,11 @@
 //! [`StreamingLeastSquares`] (per-joint R factors, the joints updated in parallel); the
 //! outlier check (`Dominance`) rides along. The prediction (measured against predicted
 //! torque, the fit and the report's plots) takes a second pass with the estimated values,
-//! which filters three channels per joint only (the filter is linear: the decimated
-//! `W beta` is the decimated `Y(t) beta`), as many blocks at once as there are threads.
+//! which filters the predicted torque of each joint only (the filter is linear: the
+//! decimated `W beta` is the decimated `Y(t) beta`; the equations kept and their measured
+//! torques are the estimation pass's, as the dense prediction takes the observation's),
+//! as many blocks at once as there are threads. A validation's prediction filters the
+//! torque and the velocity too, and removes the equations near rest itself.
 //! Memory is the data set, one block of prepared
 //! signals and of regressor channels, the R factors, and one measured and one predicted
 //! torque per equation: never the prepared record nor the equations' rows.
@@ -224,36 +227,66 @@ impl<'a> Stream<'a> {
     /// before the decimation otherwise; `None` when neither filters it).
     /// `expected`: the number of equations per joint when known (the estimation pass
     /// counted them), so that the per-equation lists, the one part of the result that
-    /// grows with the record, are allocated once at their size.
+    /// grows with the record, are allocated once at their size. `estimated`: the
+    /// equations the estimation pass kept and their measured torques, which the
+    /// prediction then takes (only the predicted torque of each joint is filtered again,
+    /// one channel per joint instead of three); `None`: the pass filters the torque and the
+    /// velocity too and removes the equations near rest itself (a validation).
     fn prediction(
         &self,
         values: &[f64],
         dt: f64,
         expected: Option<&[usize]>,
+        estimated: Option<Estimated>,
     ) -> Result<PredictionParts> {
         let dof = self.model.dof();
         let f = self.dec.factor();
         let size = |j: usize| expected.and_then(|e| e.get(j)).map_or(0, |&n| n);
         let lists = || -> Vec<Vec<f64>> { (0..dof).map(|j| Vec::with_capacity(size(j))).collect() };
-        let (mut measured, mut predicted, mut raw) = (lists(), lists(), lists());
+        let (kept, given) = match estimated {
+            Some(Estimated { kept, measured }) => (Some(kept), Some(measured)),
+            None => (None, None),
+        };
+        let mut measured = given.unwrap_or_else(&lists);
+        let (mut predicted, mut raw) = (lists(), lists());
         let mut samples: Vec<Vec<usize>> = (0..dof).map(|j| Vec::with_capacity(size(j))).collect();
         let mut has_raw = f > 1;
-        // (joint, decimated sample, measured, predicted, torque before filtering) of a
-        // block, and whether it filtered the torque
+        // (joint, decimated sample, measured (unless the estimation's), predicted, torque
+        // before filtering) of a block, and whether it filtered the torque
         let block = |b: &Range<usize>| {
             self.in_block(b, |observer, core, lo, unfiltered| {
-                let (part, count) = observer.window_prediction(
-                    &self.dec,
-                    self.overlap,
-                    self.rest.as_deref(),
-                    core,
-                    values,
-                )?;
                 let tau = unfiltered.unwrap_or(&observer.signals.tau);
-                let part: Vec<_> = part
-                    .into_iter()
-                    .map(|(j, k, y, p)| (j, k + lo / f, y, p, tau[j][k * f]))
-                    .collect();
+                let (part, count) = match &kept {
+                    // the estimation's equations: only the prediction is filtered
+                    Some(kept) => {
+                        let part = observer.window_predicted(
+                            &self.dec,
+                            self.overlap,
+                            core,
+                            values,
+                            |j, k| kept[(k + lo / f) * dof + j],
+                        )?;
+                        let part: Vec<_> = part
+                            .into_iter()
+                            .map(|(j, k, p)| (j, k + lo / f, None, p, tau[j][k * f]))
+                            .collect();
+                        (part, RestCount::default())
+                    }
+                    None => {
+                        let (part, count) = observer.window_prediction(
+                            &self.dec,
+                            self.overlap,
+                            self.rest.as_deref(),
+                            core,
+                            values,
+                        )?;
+                        let part: Vec<_> = part
+                            .into_iter()
+                            .map(|(j, k, y, p)| (j, k + lo / f, Some(y), p, tau[j][k * f]))
+                            .collect();
+                        (part, count)
+                    }
+                };
                 Ok((part, unfiltered.is_some(), count))
             })
         };
@@ -275,7 +308,9 @@ impl<'a> Stream<'a> {
                 has_raw |= filtered;
                 rest = rest.add(count);
                 for (j, k, y, p, r) in part {
-                    measured[j].push(y);
+                    if let Some(y) = y {
+                        measured[j].push(y);
+                    }
                     predicted[j].push(p);
                     samples[j].push(k);
                     raw[j].push(r);
@@ -299,6 +334,14 @@ impl<'a> Stream<'a> {
             rest,
         })
     }
+}
+
+/// What the estimation pass keeps for the prediction ([`Stream::prediction`]): the
+/// equations it kept (joint j of decimated sample k at `k * dof + j`) and their measured
+/// torques, per joint in sample order.
+struct Estimated {
+    kept: Vec<bool>,
+    measured: Vec<Vec<f64>>,
 }
 
 /// What [`Stream::prediction`] gives.
@@ -392,15 +435,25 @@ pub(crate) fn identify_streaming(
     };
     let mut ls = StreamingLeastSquares::new(names.clone(), dof).map_err(at)?;
     let mut dominance = Dominance::new(cols);
-    // equations per joint, before the pieces: the prediction's
+    // equations per joint, before the pieces: the prediction's, which takes their
+    // measured torques and which equations are kept from here, as the dense prediction
+    // takes them from the observation (only the predicted torque is then filtered again)
     let mut per_joint = vec![0; dof];
+    let decimated = kept.len().div_ceil(factor);
+    let mut estimated = Estimated {
+        kept: vec![false; decimated * dof],
+        measured: (0..dof).map(|_| Vec::with_capacity(decimated)).collect(),
+    };
     let mut rest = RestCount::default();
     stream
         .run(|eq| {
             rest = rest.add(eq.rest);
             for i in 0..eq.y.len() {
+                let j = eq.joint[i];
                 dominance.push(eq.row(i), eq.sample[i]);
-                per_joint[eq.joint[i]] += 1;
+                per_joint[j] += 1;
+                estimated.kept[eq.sample[i] * dof + j] = true;
+                estimated.measured[j].push(eq.y[i]);
             }
             if config.processing.pieces.is_none() {
                 return ls.push_rows(&eq.joint, &eq.w, &eq.y);
@@ -461,7 +514,7 @@ pub(crate) fn identify_streaming(
     }
     let dt = data.sample_time() * factor as f64;
     let mut parts = stream
-        .prediction(&estimate.values, dt, Some(&per_joint))
+        .prediction(&estimate.values, dt, Some(&per_joint), Some(estimated))
         .map_err(at)?;
     parts.prediction = parts
         .prediction
@@ -511,7 +564,7 @@ pub(crate) fn validate_streaming(
     }
     let dt = data.sample_time() * stream.factor() as f64;
     let mut parts = stream
-        .prediction(values, dt, None)
+        .prediction(values, dt, None, None)
         .map_err(|e| located(e, config, data, kept))?;
     parts
         .rest
@@ -587,7 +640,7 @@ pub(crate) fn stacked_streaming(
             samples,
             ..
         } = s
-            .prediction(&estimate.values, dt, None)
+            .prediction(&estimate.values, dt, None, None)
             .map_err(|e| in_run(i, d, located(e, config, d, &plan.kept)))?;
         for (j, s) in samples.iter().enumerate() {
             stacked.measured[j].extend(&p.measured[j]);
@@ -598,4 +651,73 @@ pub(crate) fn stacked_streaming(
     }
     stacked.check("the stacked runs")?;
     Ok((estimate, stacked))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::load;
+    use crate::pipeline::identify;
+    use crate::pipeline::prepare::Rows;
+    use crate::pipeline::tests::synthetic::{CONFIG, DOF, Synthetic, csv_with_noise};
+
+    /// The identification's prediction holds the estimation pass's equations, as the
+    /// dense prediction holds the observation's: per joint the same equations (decimated
+    /// samples) and their measured torques to the bit (the equations' `y`, not the torque
+    /// filtered again by the prediction pass, which differs by rounding), and predicted
+    /// torques equal to each equation's row times the values to rounding. Several blocks,
+    /// with the removal of the equations near rest.
+    #[test]
+    fn the_prediction_takes_the_estimations_equations() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("run.csv");
+        std::fs::write(&file, csv_with_noise(60_000, 1000.0, [0.05; DOF])).unwrap();
+        let text = format!("{CONFIG}[estimation]\nmethod = \"wls\"\n");
+        let config = Config::from_toml_str(&text, std::path::Path::new("s.toml")).unwrap();
+        assert!(config.processing.rest_velocity.is_some());
+        let data = load(&config, &[file], DOF).unwrap();
+        let model = Synthetic::default();
+        let plan = Plan::new(&data, &config, Rows::Estimation).unwrap();
+        let stream = Stream::new(&model, &data, &plan, &config, true).unwrap();
+        // (decimated sample, y, row) of each joint's equations
+        let mut equations: Vec<Vec<(usize, f64, Vec<f64>)>> = vec![Vec::new(); DOF];
+        let mut blocks = 0;
+        stream
+            .run(|eq| {
+                blocks += 1;
+                for i in 0..eq.y.len() {
+                    equations[eq.joint[i]].push((eq.sample[i], eq.y[i], eq.row(i).to_vec()));
+                }
+                Ok(())
+            })
+            .unwrap();
+        assert!(blocks >= 2, "{blocks} blocks");
+        let id = identify(&model, &data, &config).unwrap();
+        let (p, values) = (&id.prediction, &id.estimate.values);
+        let dt = data.sample_time * stream.factor() as f64;
+        let start = plan.kept.start as f64 * data.sample_time;
+        let mut removed = 0;
+        for (j, eqs) in equations.iter().enumerate() {
+            removed += plan.kept.len().div_ceil(stream.factor()) - eqs.len();
+            let y: Vec<f64> = eqs.iter().map(|e| e.1).collect();
+            assert!(p.measured[j] == y, "joint {j}: measured torques");
+            let time: Vec<f64> = eqs.iter().map(|e| start + e.0 as f64 * dt).collect();
+            assert_eq!(p.time[j].len(), time.len(), "joint {j}");
+            for (a, b) in p.time[j].iter().zip(&time) {
+                assert!(
+                    (a - b).abs() <= 1e-9 * b.abs().max(1.0),
+                    "joint {j}: {a} vs {b}"
+                );
+            }
+            let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for ((e, predicted), i) in eqs.iter().zip(&p.predicted[j]).zip(0..) {
+                let w: f64 = e.2.iter().zip(values).map(|(a, b)| a * b).sum();
+                assert!(
+                    (predicted - w).abs() <= 1e-9 * scale,
+                    "joint {j}, equation {i}: {predicted} vs {w}"
+                );
+            }
+        }
+        assert!(removed > 0, "no equation removed near rest");
+    }
 }
