@@ -464,19 +464,16 @@ mod tests {
             weights: Some(weights),
             ..FourierDesign::default()
         };
+        let same = |apart: f64, floored: f64| {
+            assert_eq!(apart.to_bits(), floored.to_bits(), "{apart} {floored}");
+        };
         let cli = weights_from_sigma(&[1e-9, 1.0], "excite", "sigma").unwrap();
         assert_eq!(cli, vec![1e6, 1.0]);
         let floored = points(cli.clone()).optimize(&p, &limits(), None).unwrap();
         let apart = points(vec![1e9, 1.0])
             .optimize(&p, &limits(), None)
             .unwrap();
-        assert_eq!(
-            apart.cost.to_bits(),
-            floored.cost.to_bits(),
-            "{} {}",
-            apart.cost,
-            floored.cost
-        );
+        same(apart.cost, floored.cost);
         // (the Fourier search on this pendulum weighted 1e6 to 1 on its first joint finds
         // no finite criterion in 40 evaluations, floored or not: the second joint is
         // weighted here)
@@ -485,13 +482,7 @@ mod tests {
         let apart = fourier(vec![1.0, 1e9])
             .optimize(&p, &limits(), None)
             .unwrap();
-        assert_eq!(
-            apart.cost.to_bits(),
-            floored.cost.to_bits(),
-            "{} {}",
-            apart.cost,
-            floored.cost
-        );
+        same(apart.cost, floored.cost);
     }
 
     #[test]
