@@ -766,6 +766,17 @@ pub(super) fn measured_twist_consequence(parallel: bool) -> String {
     )
 }
 
+/// What a warning about its first place adds for the `n` others: `" (and 1 more joint)"`,
+/// `" (and 3 more joints)"` (`one` and `many` each with a leading space, or empty), nothing
+/// for none.
+pub(super) fn and_more(n: usize, one: &str, many: &str) -> String {
+    match n {
+        0 => String::new(),
+        1 => format!(" (and 1 more{one})"),
+        n => format!(" (and {n} more{many})"),
+    }
+}
+
 /// `k pi/2` as text.
 fn quarter_text(k: f64) -> String {
     match k as i64 {
@@ -845,7 +856,16 @@ fn limit_problems(limits: &Limits) -> Vec<(Limit, String, String)> {
 
 #[cfg(test)]
 mod tests {
-    use super::{distance, name_problem, quarter_text, show};
+    use super::{and_more, distance, name_problem, quarter_text, show};
+
+    /// The count of a warning's other places, singular and plural, nothing for none.
+    #[test]
+    fn the_other_places_of_a_warning() {
+        assert_eq!(and_more(0, " joint", " joints"), "");
+        assert_eq!(and_more(1, " joint", " joints"), " (and 1 more joint)");
+        assert_eq!(and_more(3, " joint", " joints"), " (and 3 more joints)");
+        assert_eq!(and_more(2, "", ""), " (and 2 more)");
+    }
 
     #[test]
     fn names_that_cannot_name_a_type() {

@@ -43,7 +43,7 @@
 //! unused symbols) is reported together with the others.
 
 use super::bounds::MAX_DESCRIPTION_LEN;
-use super::check::{Dh, Item, Locate, measured_twist_consequence, near_right_angle};
+use super::check::{Dh, Item, Locate, and_more, measured_twist_consequence, near_right_angle};
 use super::read::{Reader, Spans};
 use super::{DescriptionError, JointKind, Robot};
 use std::io::Read;
@@ -114,11 +114,7 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
         .collect();
     if let Some((j, off, exact)) = near.first() {
         let (line, column) = place.line_column(spans.of(Item::Value(*j, Dh::Theta)).start);
-        let more = match near.len() - 1 {
-            0 => String::new(),
-            1 => " (and 1 more joint)".to_owned(),
-            m => format!(" (and {m} more joints)"),
-        };
+        let more = and_more(near.len() - 1, " joint", " joints");
         out.push(format!(
             "{}:{line}:{column}: joint {} `theta` is {off:.1e} rad from {exact}{more}: taken \
              as written, an offset of the joint's zero; write \"{exact}\" if {exact} is \
@@ -150,11 +146,7 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
     };
     if let Some((j, dh, off, k, exact)) = twists.first() {
         let (line, column) = place.line_column(spans.of(Item::Value(*j, *dh)).start);
-        let more = match twists.len() - 1 {
-            0 => String::new(),
-            1 => " (and 1 more angle)".to_owned(),
-            m => format!(" (and {m} more angles)"),
-        };
+        let more = and_more(twists.len() - 1, " angle", " angles");
         let parallel = k % 2 == 0;
         out.push(format!(
             "{}:{line}:{column}: joint {} `{}` is {off:.1e} rad from {exact}{more}: taken as \

@@ -5,7 +5,7 @@ use super::super::bounds::{
     ANGLE_RESOLUTION, MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
     MIN_GRAVITY, MIN_LENGTH, RIGHT_ANGLE_SNAP,
 };
-use super::super::check::{measured_twist_consequence, show};
+use super::super::check::{and_more, measured_twist_consequence, show};
 use super::super::file::Place;
 use super::super::{DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem};
 use super::chain::Chain;
@@ -324,11 +324,7 @@ pub(super) fn robot(
         return Err(DescriptionError::from_errors(errors));
     }
     if let Some(&(k, key, value)) = tiny.first() {
-        let more = match tiny.len() - 1 {
-            0 => String::new(),
-            1 => " (and 1 more)".to_owned(),
-            n => format!(" (and {n} more)"),
-        };
+        let more = and_more(tiny.len() - 1, "", "");
         let joint = &urdf.joints[chain.joints[k]];
         warnings.push(place.warning(
             joint.range.start,
@@ -547,11 +543,7 @@ pub(super) fn measured_twists(
         .collect();
     let (&(k, off, parallel), rest) = near.split_first()?;
     let joint = &urdf.joints[chain.joints[k]];
-    let more = match rest.len() {
-        0 => String::new(),
-        1 => " (and 1 more joint)".to_owned(),
-        m => format!(" (and {m} more joints)"),
-    };
+    let more = and_more(rest.len(), " joint", " joints");
     Some(place.warning(
         joint.range.start,
         &format!(

@@ -3,7 +3,7 @@
 //! moves (docs/urdf.md#choosing-the-chain).
 
 use super::super::DescriptionError;
-use super::super::check::{distance, show};
+use super::super::check::{and_more, distance, show};
 use super::super::file::Place;
 use super::rigid::{Rigid, scale};
 use super::xml::{Joint, JointType, Mimic, Urdf};
@@ -134,11 +134,8 @@ pub(super) fn tree(
         .filter(|(_, m)| !joint_names.contains(&m.joint.as_str()))
         .collect();
     if let Some((joint, mimic)) = unknown.first() {
-        let more = match unknown.len() - 1 {
-            0 => String::new(),
-            1 => " (and 1 more `<mimic>` naming no joint)".to_owned(),
-            n => format!(" (and {n} more `<mimic>` naming no joint)"),
-        };
+        let naming = " `<mimic>` naming no joint";
+        let more = and_more(unknown.len() - 1, naming, naming);
         warnings.push(place.warning(
             mimic.at.start,
             &format!(

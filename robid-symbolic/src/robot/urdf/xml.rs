@@ -8,6 +8,7 @@
 
 use super::super::DescriptionError;
 use super::super::bounds::MAX_DESCRIPTION_LEN;
+use super::super::check::and_more;
 use super::super::file::Place;
 use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, right_angle_multiple, scale};
 use roxmltree::{Document, Node};
@@ -243,11 +244,7 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         reader.warnings.push(w);
     }
     if let Some((written, at, joint)) = reader.unbounded.first() {
-        let more = match reader.unbounded.len() - 1 {
-            0 => String::new(),
-            1 => " (and 1 more such value)".to_owned(),
-            n => format!(" (and {n} more such values)"),
-        };
+        let more = and_more(reader.unbounded.len() - 1, " such value", " such values");
         let w = place.warning(
             *at,
             &format!(
