@@ -157,9 +157,12 @@ impl Num {
         matches!(self, Num::Rational(1, 1)) || matches!(self, Num::Float(x) if x == 1.0)
     }
 
-    /// True when negative.
+    /// True when negative (a rational by its numerator: the denominator is positive).
     pub fn is_negative(self) -> bool {
-        self.to_f64() < 0.0
+        match self {
+            Num::Rational(n, _) => n < 0,
+            Num::Float(x) => x < 0.0,
+        }
     }
 
     /// The integer value, when it is one.
