@@ -93,7 +93,7 @@ impl Interpreted {
                     robot: programs.robot.name().to_owned(),
                     symbol: s.clone(),
                     used: used_by(&programs.robot, s),
-                    unit: unit_of(&programs.robot, s),
+                    unit: programs.robot.symbol_unit(s).unwrap_or("m or rad"),
                 })
             })
             .collect::<Result<_, _>>()?;
@@ -242,41 +242,6 @@ pub fn model_for(robot: &Robot) -> Result<Chosen, ModelError> {
 /// or an angle.
 fn example(unit: &str) -> &'static str {
     if unit == "m/s^2" { "9.81" } else { "0.3" }
-}
-
-/// The unit of `symbol` by the first value of `robot` that uses it, in the order the
-/// derivation reads them: the joints' DH values (`gamma`, `b`, `alpha`, `a`, `d`, `theta`:
-/// lengths in m, angles in rad), gravity (m/s^2), then the `[base]` and `[tool]` transforms
-/// (`xyz` in m, `rpy` in rad). The hint once said "in m or rad" of every symbol, gravity's
-/// `g` included.
-fn unit_of(robot: &Robot, symbol: &str) -> &'static str {
-    let uses = |g: &robid_symbolic::robot::Geometry| g.symbols().iter().any(|s| s == symbol);
-    for joint in robot.joints() {
-        for (g, unit) in [
-            (&joint.gamma, "rad"),
-            (&joint.b, "m"),
-            (&joint.alpha, "rad"),
-            (&joint.a, "m"),
-            (&joint.d, "m"),
-            (&joint.theta, "rad"),
-        ] {
-            if uses(g) {
-                return unit;
-            }
-        }
-    }
-    if robot.gravity().iter().any(uses) {
-        return "m/s^2";
-    }
-    for t in [robot.base(), robot.tool()].into_iter().flatten() {
-        if t.xyz.iter().any(uses) {
-            return "m";
-        }
-        if t.rpy.iter().any(uses) {
-            return "rad";
-        }
-    }
-    "m or rad"
 }
 
 /// Where `robot`'s DH table first uses `symbol`, as ` (joint 2's `d`)`; nothing when only

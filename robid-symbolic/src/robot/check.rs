@@ -298,6 +298,17 @@ enum Role {
     Gravity,
 }
 
+impl Role {
+    /// The unit of a value in this role (and of a symbol whose first use it is).
+    fn unit(self) -> &'static str {
+        match self {
+            Role::Length => "m",
+            Role::Angle | Role::Offset => "rad",
+            Role::Gravity => "m/s^2",
+        }
+    }
+}
+
 impl Parts {
     /// The robot, or every problem found.
     pub(super) fn check(mut self, locate: &dyn Locate) -> Result<Robot, Vec<DescriptionError>> {
@@ -328,12 +339,15 @@ impl Parts {
         let values = self.values();
         let mut symbols: Vec<String> = Vec::new();
         let mut uses: Vec<(String, String)> = Vec::new();
-        for (item, g, _) in &values {
+        // each symbol's unit, by the value that first uses it
+        let mut units: Vec<&'static str> = Vec::new();
+        for (item, g, role) in &values {
             for s in g.symbols() {
                 if symbols.contains(s) {
                     continue;
                 }
                 symbols.push(s.clone());
+                units.push(role.unit());
                 let place = locate.place(*item).or_else(|| {
                     let kept = self.uses.iter().find(|(name, _)| name == s);
                     kept.map(|(_, place)| place.clone())
@@ -443,6 +457,7 @@ impl Parts {
             base: self.base,
             tool: self.tool,
             symbols,
+            symbol_units: units,
             measured: self.measured,
             uses: super::SymbolUses(uses),
             joint_places: super::JointPlaces(joint_places),

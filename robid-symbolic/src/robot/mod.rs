@@ -250,6 +250,8 @@ pub struct Robot {
     base: Option<Transform>,
     tool: Option<Transform>,
     symbols: Vec<(String, Option<f64>)>,
+    /// Each symbol's unit, as `symbols` (see [`Robot::symbol_unit`]).
+    symbol_units: Vec<&'static str>,
     /// Whether its DH values were measured: fitted to a URDF or calibrated (see
     /// `check::Parts::measured`).
     measured: bool,
@@ -405,6 +407,25 @@ impl Robot {
             .iter()
             .find(|(s, _)| s == symbol)
             .map(|(_, place)| place.as_str())
+    }
+
+    /// The unit of geometric symbol `symbol`, by the value that first uses it: `"m"` (a DH
+    /// length, an `xyz`), `"rad"` (a DH angle, an `rpy`) or `"m/s^2"` (gravity); `None` for
+    /// a symbol the robot does not use.
+    ///
+    /// ```
+    /// use robid_symbolic::Robot;
+    /// let text = "name = \"arm\"\nconvention = \"modified\"\ngravity = [0, 0, \"-g\"]\n\
+    ///             [[joints]]\nalpha = \"t\"\na = \"L2\"\n";
+    /// let robot = Robot::from_toml(text, "arm.toml").unwrap();
+    /// assert_eq!(robot.symbol_unit("L2"), Some("m"));
+    /// assert_eq!(robot.symbol_unit("t"), Some("rad"));
+    /// assert_eq!(robot.symbol_unit("g"), Some("m/s^2"));
+    /// assert_eq!(robot.symbol_unit("L3"), None);
+    /// ```
+    pub fn symbol_unit(&self, symbol: &str) -> Option<&'static str> {
+        let at = self.symbols.iter().position(|(s, _)| s == symbol)?;
+        self.symbol_units.get(at).copied()
     }
 
     /// Where the description file wrote joint `joint`'s table (0-based, as in
