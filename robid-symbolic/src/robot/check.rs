@@ -66,7 +66,7 @@ impl Dh {
         }
     }
 
-    fn of(self, joint: &Joint) -> &Geometry {
+    pub(super) fn of(self, joint: &Joint) -> &Geometry {
         match self {
             Dh::Alpha => &joint.alpha,
             Dh::A => &joint.a,

@@ -2,6 +2,7 @@
 //! back to an equal robot: the way to keep the DH table robid fitted to a URDF, or a
 //! robot built in code, as a description.
 
+use super::check::Dh;
 use super::{Geometry, JointKind, Limits, Robot, Transform};
 use std::fmt::Write;
 
@@ -63,18 +64,13 @@ impl Robot {
                 JointKind::Prismatic => "prismatic",
             };
             let _ = writeln!(out, "type = \"{kind}\"");
-            for (key, g) in [("gamma", &joint.gamma), ("b", &joint.b)] {
-                if !g.is_zero() {
-                    let _ = writeln!(out, "{key} = {}", value(g));
+            for dh in Dh::ALL {
+                let g = dh.of(joint);
+                // gamma and b only where a row has them (a plain DH row has neither)
+                if matches!(dh, Dh::Gamma | Dh::B) && g.is_zero() {
+                    continue;
                 }
-            }
-            for (key, g) in [
-                ("alpha", &joint.alpha),
-                ("a", &joint.a),
-                ("d", &joint.d),
-                ("theta", &joint.theta),
-            ] {
-                let _ = writeln!(out, "{key} = {}", value(g));
+                let _ = writeln!(out, "{} = {}", dh.key(), value(g));
             }
             let terms: Vec<String> = joint
                 .drive
