@@ -3,12 +3,12 @@
 
 use super::super::bounds::{
     ANGLE_RESOLUTION, MAX_CALIBRATED_LENGTH, MAX_JOINTS, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY,
-    MIN_GRAVITY, MIN_LENGTH, RIGHT_ANGLE_SNAP,
+    MIN_GRAVITY, MIN_LENGTH, RIGHT_ANGLE_SNAP, calibrated_pair,
 };
 use super::super::check::{and_more, measured_twist_consequence, show};
 use super::super::file::Place;
 use super::super::{DescriptionError, Geometry, Joint, JointKind, Limits, Robot, name_problem};
-use super::chain::Chain;
+use super::chain::{Chain, Tree};
 use super::frames::{Fit, NEAR_PARALLEL, PARALLEL, angle_text};
 use super::rigid::{cross, dot, mat_vec, norm, transpose};
 use super::xml::{self, JointType, Urdf};
@@ -422,10 +422,22 @@ fn off_right_angles(r: &super::rigid::Mat3) -> Option<f64> {
 /// axis. Each with its joint's place, what it is and its angle; empty when no single
 /// element is near but not at a right angle (several larger angles that almost cancel).
 fn tilted(urdf: &Urdf, chain: &Chain) -> Vec<(std::ops::Range<usize>, String, f64)> {
+    let first = chain.joints[0];
+    let path: Vec<usize> = chain.above.iter().copied().chain([first]).collect();
+    tilting(urdf, &path, &[first])
+}
+
+/// The elements among the `<origin>` rotations of the joints of `path` and the `<axis>`
+/// of the joints of `axes` that are a little off a right angle (at most
+/// [`TILT_SUSPECT`]), each with its joint's place, what it is and its angle.
+fn tilting(
+    urdf: &Urdf,
+    path: &[usize],
+    axes: &[usize],
+) -> Vec<(std::ops::Range<usize>, String, f64)> {
     let suspect = |angle: f64| angle > 1e-12 && angle <= TILT_SUSPECT;
     let mut out = Vec::new();
-    let first = chain.joints[0];
-    for &j in chain.above.iter().chain([&first]) {
+    for &j in path {
         let joint = &urdf.joints[j];
         if let Some(angle) = off_right_angles(&joint.origin.r).filter(|&a| suspect(a)) {
             let kind = match joint.kind {
@@ -439,20 +451,89 @@ fn tilted(urdf: &Urdf, chain: &Chain) -> Vec<(std::ops::Range<usize>, String, f6
             ));
         }
     }
-    // the sine of the axis's angle to the nearest coordinate axis: its two smaller
-    // components (the unit axis's largest is near 1, where 1 - x^2 loses the digits)
-    let mut axis = urdf.joints[first].axis.map(f64::abs);
-    axis.sort_by(f64::total_cmp);
-    let angle = axis[0].hypot(axis[1]).min(1.0).asin();
-    if suspect(angle) {
-        let joint = &urdf.joints[first];
-        out.push((
-            joint.range.clone(),
-            format!("the `<axis>` of joint `{}`", joint.name),
-            angle,
-        ));
+    for &j in axes {
+        // the sine of the axis's angle to the nearest coordinate axis: its two smaller
+        // components (the unit axis's largest is near 1, where 1 - x^2 loses the digits)
+        let mut axis = urdf.joints[j].axis.map(f64::abs);
+        axis.sort_by(f64::total_cmp);
+        let angle = axis[0].hypot(axis[1]).min(1.0).asin();
+        if suspect(angle) {
+            let joint = &urdf.joints[j];
+            out.push((
+                joint.range.clone(),
+                format!("the `<axis>` of joint `{}`", joint.name),
+                angle,
+            ));
+        }
     }
     out
+}
+
+/// The warning for the calibrated pairs of the fitted table
+/// ([`calibrated_pair`], docs/urdf.md#fitting-the-dh-table): two consecutive axes so
+/// near parallel that their common normal lies beyond [`MAX_LENGTH`](super::super::bounds::MAX_LENGTH) of the joints. Such a
+/// pair is exact (the torques are the file's), but it is what a calibration writes, or a
+/// right angle mistyped on the way from one axis to the other (the Minitaur's `1.57075`
+/// for pi/2, 4.6e-5 rad off): the warning names the pair, its angle and distance, what it
+/// does to the base parameters, and the elements between the two axes that are a little
+/// off a right angle, if any. One warning, at the first pair.
+pub(super) fn calibrated_pairs(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    tree: &Tree,
+    chain: &Chain,
+    fit: &Fit,
+) -> Option<String> {
+    let pairs: Vec<usize> = (1..fit.rows.len())
+        .filter(|&k| {
+            let [alpha, _, d, _, b] = fit.rows[k];
+            calibrated_pair(alpha, b, d)
+        })
+        .collect();
+    let (&k, rest) = pairs.split_first()?;
+    let (before, joint) = (chain.joints[k - 1], chain.joints[k]);
+    let alpha = fit.rows[k][0];
+    let angle = alpha.sin().abs().min(1.0).asin();
+    let parallel = if alpha.cos() > 0.0 {
+        "parallel"
+    } else {
+        "antiparallel"
+    };
+    let path = tree
+        .path(tree.ends[before].1, tree.ends[joint].1)
+        .unwrap_or_default();
+    let elements: Vec<String> = tilting(urdf, &path, &[before, joint])
+        .iter()
+        .map(|(_, what, angle)| format!("{what} is {angle:.1e} rad from a right angle"))
+        .collect();
+    let fix = match elements.len() {
+        0 => "write the `<origin>` rotations and `<axis>` elements between them so that the \
+              axes are exactly parallel"
+            .to_owned(),
+        n => format!(
+            "{}; write {} exactly (`0`, `1.5707963267948966`) or rounded to at least four \
+             decimals (`1.5708`)",
+            elements.join(", and "),
+            if n == 1 { "it" } else { "them" }
+        ),
+    };
+    let reach = fit.reach[k - 1];
+    let more = and_more(rest.len(), " pair", " pairs");
+    Some(place.warning(
+        urdf.joints[joint].range.start,
+        &format!(
+            "the axes of joints `{}` and `{}` are {angle:.1e} rad from {parallel}{more}: \
+             their common normal lies {} m from the joints, and robid's DH table holds them \
+             as a calibrated pair (`b` and `d` about that long at joint `{}`: exact, the \
+             torques are the file's); {}; if this is a calibration, nothing is wrong; if the \
+             axes are meant to be {parallel}, {fix} (docs/urdf.md#fitting-the-dh-table)",
+            urdf.joints[before].name,
+            urdf.joints[joint].name,
+            show(format!("{reach:.4e}").parse().unwrap_or(reach)),
+            urdf.joints[joint].name,
+            measured_twist_consequence(true),
+        ),
+    ))
 }
 
 /// An error of [`Robot::new`] (naming `joints[k]`) at the URDF joint it concerns.
@@ -531,6 +612,8 @@ pub(super) fn measured_twists(
         .rows
         .iter()
         .enumerate()
+        // a calibrated pair's twist is told by `calibrated_pairs`
+        .filter(|(_, row)| !calibrated_pair(row[0], row[4], row[2]))
         .filter_map(|(k, row)| {
             let quarter = (row[0] / FRAC_PI_2).round();
             let off = (row[0] - quarter * FRAC_PI_2).abs();

@@ -357,7 +357,7 @@ impl Tree {
     }
 
     /// The joints from `top` down to `link`, top first (`None`: `link` is not below `top`).
-    fn path(&self, top: usize, link: usize) -> Option<Vec<usize>> {
+    pub(super) fn path(&self, top: usize, link: usize) -> Option<Vec<usize>> {
         let mut out = Vec::new();
         let mut at = link;
         while at != top {

@@ -213,6 +213,7 @@ impl Robot {
         let gravity = build::level(&place, &urdf, &chain, gravity, &mut warnings);
         let robot = build::robot(&place, &urdf, &chain, &fit, gravity, &name, &mut warnings)?;
         warnings.extend(build::measured_twists(&place, &urdf, &chain, &fit));
+        warnings.extend(build::calibrated_pairs(&place, &urdf, &tree, &chain, &fit));
         let links = chain
             .bodies
             .iter()

@@ -274,3 +274,64 @@ fn ordinary_skew_axes_keep_their_frames_at_the_feet() {
         }
     }
 }
+
+/// A leg as the Minitaur's of PyBullet writes it: a motor axis, a fixed joint whose
+/// `rpy` is a right angle mistyped (`-1.57075`, 4.6e-5 rad off), and a knee axis 1 cm away
+/// that the typo turns 4.6e-5 rad off antiparallel to the motor's: a calibrated pair whose
+/// common normal lies 2.5 km away. It is read (exactly), and the warning names the pair,
+/// their angle and the element that tilts them; with the right angle written exactly there
+/// is no pair and no warning.
+#[test]
+fn a_mistyped_right_angle_between_two_axes_is_named_with_their_calibrated_pair() {
+    let leg = |rpy: &str| {
+        format!(
+            r#"<robot name="leg"><link name="body"/>
+<link name="motor">{INERTIAL}</link><link name="upper"/><link name="lower">{INERTIAL}</link>
+<joint name="motor_joint" type="continuous"><parent link="body"/><child link="motor"/><origin rpy="1.5707963267948966 0 0" xyz="0.21 -0.025 0"/><axis xyz="0 0 1"/></joint>
+<joint name="hip" type="fixed"><parent link="motor"/><child link="upper"/><origin rpy="{rpy} 0 0" xyz="0 0.06 -0.015"/></joint>
+<joint name="knee" type="continuous"><parent link="upper"/><child link="lower"/><origin xyz="0 0.01 0.055"/><axis xyz="0 1 0"/></joint>
+</robot>"#
+        )
+    };
+    let chain = Robot::from_urdf(&leg("-1.57075"), "t.urdf", &ChainSelection::default()).unwrap();
+    let told = one_warning(&chain, "calibrated pair");
+    for part in [
+        "t.urdf:5:",
+        "joints `motor_joint` and `knee` are 4.6e-5 rad from antiparallel",
+        "lies 2482",
+        "fixed joint `hip` is 4.6e-5 rad from a right angle",
+        "`1.5708`",
+    ] {
+        assert!(told.contains(part), "{part}: {told}");
+    }
+    let exact = Robot::from_urdf(
+        &leg("-1.5707963267948966"),
+        "t.urdf",
+        &ChainSelection::default(),
+    )
+    .unwrap();
+    assert!(
+        exact
+            .warnings
+            .iter()
+            .all(|w| !w.contains("calibrated pair")),
+        "{:?}",
+        exact.warnings
+    );
+    // a calibration's roll of the elbow by 1e-6 rad: its origin named
+    let calibrated = Robot::from_urdf(
+        &calibrated(1e-6, false),
+        "t.urdf",
+        &ChainSelection::default(),
+    )
+    .unwrap();
+    let told = one_warning(&calibrated, "calibrated pair");
+    assert!(
+        told.contains("joints `lift` and `elbow` are 1.0e-6 rad from parallel"),
+        "{told}"
+    );
+    assert!(
+        told.contains("the `<origin>` rotation of joint `elbow` is 1.0e-6 rad"),
+        "{told}"
+    );
+}
