@@ -7,7 +7,7 @@
 //!
 //! [[source]]                     # one table per file, in the order the files are given
 //! file = "data/pos.csv.gz"       # optional, relative to the config file
-//! position = "Joint_{}"          # "{}" = joint number 1..dof, or a list of names
+//! position = "Joint_{}"          # "{}" = joint number 1..dof ("{0}": 0..dof-1), or a list
 //! [[source]]
 //! file = "data/cur.csv.gz"
 //! torque = ["Joint_1", "Joint_2", "Joint_3", "Joint_4", "Joint_5", "Joint_6"]
@@ -214,11 +214,13 @@ pub struct Source {
     pub joint_torque: Option<Columns>,
 }
 
-/// Column names for one signal: a template with `{}` for the joint number, or a list.
+/// Column names for one signal: a template with `{}` for the joint number (from 1) or
+/// `{0}` for the joint's index (from 0, as UR's RTDE recorder numbers `actual_q_0` ..),
+/// or a list.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum Columns {
-    /// e.g. `"q{}"` -> q1, q2, ...
+    /// e.g. `"q{}"` -> q1, q2, ...; `"actual_q_{0}"` -> actual_q_0, actual_q_1, ...
     Template(String),
     /// One name per joint.
     List(Vec<String>),
@@ -226,10 +228,21 @@ pub enum Columns {
 
 impl Columns {
     /// The column names for `dof` joints.
+    ///
+    /// ```
+    /// use robid_runtime::data::Columns;
+    /// let q = Columns::Template("q{}".into());
+    /// assert_eq!(q.names(2), ["q1", "q2"]);
+    /// let rtde = Columns::Template("actual_q_{0}".into());
+    /// assert_eq!(rtde.names(2), ["actual_q_0", "actual_q_1"]);
+    /// ```
     pub fn names(&self, dof: usize) -> Vec<String> {
         match self {
             Columns::Template(t) if t.contains("{}") => {
                 (1..=dof).map(|j| t.replace("{}", &j.to_string())).collect()
+            }
+            Columns::Template(t) if t.contains("{0}") => {
+                (0..dof).map(|j| t.replace("{0}", &j.to_string())).collect()
             }
             Columns::Template(t) => vec![t.clone()],
             Columns::List(v) => v.clone(),

@@ -64,9 +64,9 @@ pub enum DataError {
         /// What the CSV reader reported.
         reason: String,
     },
-    /// The file separates its fields with something other than a comma.
+    /// The file separates its fields with something robid does not read (`|`).
     #[error(
-        "{path}: the header `{header}` is separated by {separator}; robid reads comma-separated files (fields separated by `,`, optionally quoted with `\"`, `#` starts a comment line): convert the file to commas (with `.` as the decimal point)"
+        "{path}: the header `{header}` is separated by {separator}; robid reads fields separated by `,`, or by the one of `;`, a tab or a single space that the header uses (optionally quoted with `\"`, `#` starts a comment line): convert the file to commas (with `.` as the decimal point)"
     )]
     UnsupportedSeparator {
         /// The file.
@@ -136,7 +136,7 @@ pub enum DataError {
         limit: f64,
     },
     /// A column named by the column mapping is not in the file's header.
-    #[error("{path}: no column `{column}` in the header (found: {}); {}", available.join(", "), mapping.fix())]
+    #[error("{path}: no column `{column}` in the header (found: {}); {}{}", available.join(", "), mapping.fix(), numbered_from_zero(column, available))]
     MissingColumn {
         /// The file.
         path: PathBuf,
@@ -272,4 +272,23 @@ pub enum DataError {
         /// What is wrong and what to write instead.
         problem: String,
     },
+}
+
+/// What a missing column `stem<n>` adds when the header numbers the same columns from 0
+/// (`stem0` .. `stem<n-1>`, as UR's RTDE recorder writes `actual_q_0` .. `actual_q_5`):
+/// the config's template for that, `stem{0}`. Empty otherwise.
+fn numbered_from_zero(column: &str, available: &[String]) -> String {
+    let stem = column.trim_end_matches(|c: char| c.is_ascii_digit());
+    let Ok(n) = column[stem.len()..].parse::<usize>() else {
+        return String::new();
+    };
+    let has = |k: usize| available.iter().any(|a| *a == format!("{stem}{k}"));
+    if n == 0 || !(0..n).all(has) {
+        return String::new();
+    }
+    format!(
+        "; the file numbers these columns from 0 (`{stem}0` to `{stem}{}`): a config's \
+         template `\"{stem}{{0}}\"` names them so (`{{}}` counts from 1)",
+        n - 1
+    )
 }

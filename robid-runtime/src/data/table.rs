@@ -1,8 +1,9 @@
 //! Reading selected columns of a CSV file (with header, optionally gzip-compressed).
 //!
 //! One reader for every file, `csv_core` (the parser of the `csv` crate, driven over the
-//! text in memory): fields separated by `,`, optionally quoted
-//! with `"`, surrounding spaces trimmed, lines that start with `#` are comments, empty lines
+//! text in memory): fields separated by `,` (or by the one separator the header line uses
+//! instead: `;`, a tab or a single space, as UR's RTDE recorder writes, [`separator`]),
+//! optionally quoted with `"`, surrounding spaces trimmed, lines that start with `#` are comments, empty lines
 //! are skipped, `\n` or `\r\n` line ends, and a UTF-8 byte-order mark is ignored.
 //!
 //! The text is read in windows of [`WINDOW`] bytes cut at a line end, so that a long record
@@ -217,7 +218,7 @@ pub fn read_header(path: &Path) -> Result<Vec<String>> {
     let mut text = Vec::new();
     reader.take(1 << 20).read_to_end(&mut text).map_err(io)?;
     let text = text.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&text);
-    let mut records = Records::new(text);
+    let mut records = Records::new(text, separator(text));
     if records.next_record().is_none() {
         return Ok(Vec::new());
     }
@@ -552,6 +553,8 @@ struct Header {
     /// Field index of each requested column (`usize::MAX` for an optional column that is
     /// not in the header once).
     want: Vec<usize>,
+    /// The field separator ([`separator`]).
+    separator: u8,
     /// The requested columns before this one are required, the others optional.
     required: usize,
     /// Fields per row.
@@ -578,7 +581,10 @@ impl Header {
             0
         };
         let text = &text[bom..];
-        let mut records = Records::new(text);
+        // (a separator chosen from a header line not yet whole is not used: the line's
+        // end is waited for below)
+        let separator = separator(text);
+        let mut records = Records::new(text, separator);
         let Some(header_line) = records.next_record() else {
             if !end {
                 return Ok(None);
@@ -617,6 +623,7 @@ impl Header {
         let want = wanted(&header, names, required, path, text, header_line)?;
         Ok(Some(Header {
             want,
+            separator,
             required,
             fields: header.len(),
             body_start: bom + body_start,
@@ -628,10 +635,30 @@ impl Header {
 /// Bytes per parallel block of an unquoted body.
 const CHUNK: usize = 1 << 20;
 
+/// The field separator of a file whose text starts with `text`, from its header line (the
+/// first line that is neither blank nor a `#` comment): `,` when that line holds one, else
+/// `;`, else a tab, else a space (UR's RTDE recorder separates its fields by single
+/// spaces), else `,` (one column). A header names its columns once, so the separator it
+/// uses is not a guess; the data rows must use the same.
+fn separator(text: &[u8]) -> u8 {
+    let line = text
+        .split(|&b| b == b'\n')
+        .map(trim)
+        .find(|l| !l.is_empty() && !l.starts_with(b"#"))
+        .unwrap_or_default();
+    SEPARATORS
+        .into_iter()
+        .find(|s| line.contains(s))
+        .unwrap_or(b',')
+}
+
+/// The separators a file may use, in the order [`separator`] looks for them.
+const SEPARATORS: [u8; 4] = [b',', b';', b'\t', b' '];
+
 /// The csv reader over text in memory: records as fields, with the line each ends on.
-/// It is `csv_core`, the state machine of the `csv` crate, with the crate's defaults (`,`
-/// separator, `"` quotes, `\n` or `\r\n` line ends) and `#` comment lines, driven over the
-/// slice directly (no buffer copy).
+/// It is `csv_core`, the state machine of the `csv` crate, with the crate's defaults (`"`
+/// quotes, `\n` or `\r\n` line ends), the file's separator and `#` comment lines, driven
+/// over the slice directly (no buffer copy).
 struct Records<'a> {
     core: csv_core::Reader,
     input: &'a [u8],
@@ -642,9 +669,12 @@ struct Records<'a> {
 }
 
 impl<'a> Records<'a> {
-    fn new(input: &'a [u8]) -> Self {
+    fn new(input: &'a [u8], separator: u8) -> Self {
         Self {
-            core: csv_core::ReaderBuilder::new().comment(Some(b'#')).build(),
+            core: csv_core::ReaderBuilder::new()
+                .delimiter(separator)
+                .comment(Some(b'#'))
+                .build(),
             input,
             consumed: 0,
             out: vec![0; 4096],
@@ -825,8 +855,9 @@ fn wanted(
         .collect()
 }
 
-/// The error for a name that is not in the header: a separator other than `,` when the
-/// header splits into the name with one, else a missing column.
+/// The error for a name that is not in the header: a separator robid does not read when
+/// the header splits into the name with one (`|`, or `;` or a tab beside the commas it is
+/// read by), else a missing column.
 fn missing(header: &[String], name: &str, path: &Path, text: &[u8], header_line: u64) -> Error {
     let line = text
         .split(|&b| b == b'\n')
@@ -842,14 +873,6 @@ fn missing(header: &[String], name: &str, path: &Path, text: &[u8], header_line:
                 separator: described.into(),
             });
         }
-    }
-    if header.len() == 1 && line.split_whitespace().any(|f| f == name) {
-        let shown: String = line.chars().take(60).collect();
-        return Error::Data(DataError::UnsupportedSeparator {
-            path: path.to_path_buf(),
-            header: shown,
-            separator: "spaces".into(),
-        });
     }
     Error::Data(DataError::MissingColumn {
         path: path.to_path_buf(),
@@ -968,15 +991,23 @@ fn block(
         return part;
     }
     let (columns, optional_columns) = part.columns.split_at_mut(want.len());
-    let mut records = Records::new(text);
+    let mut records = Records::new(text, header.separator);
     while let Some(line) = records.next_record() {
         // 0-based line within the block
         let line = line - 1;
         if records.len() != fields {
+            // a space separates one field from the next: aligned columns split into
+            // empty fields where their widths change
+            let spaces = if header.separator == b' ' {
+                " (the header separates its fields by single spaces, so each space in a row \
+                 separates two fields: write one space between values, or commas)"
+            } else {
+                ""
+            };
             part.error = Some(BlockError::Csv {
                 line,
                 reason: format!(
-                    "found a row with {} fields, but the header has {fields} fields",
+                    "found a row with {} fields, but the header has {fields} fields{spaces}",
                     records.len()
                 ),
             });
@@ -1405,19 +1436,58 @@ mod tests {
         assert!(read("t,x,x\n0,1,2\n", &["t"]).is_ok());
     }
 
+    /// The separator the header uses is the file's: `;`, a tab or single spaces (UR's RTDE
+    /// recorder: `timestamp actual_q_0 ...`, `\r\n` line ends) read as commas are, after
+    /// comment and blank lines; `,` first where a header has several.
+    #[test]
+    fn the_header_line_sets_the_separator() {
+        let commas = read(
+            "# log\n\nt,q1,q 2\n0,1.5,-2\n0.001,1.25,-2e-3\n",
+            &["q1", "t", "q 2"],
+        )
+        .unwrap();
+        for text in [
+            "# log\n\nt;q1;q 2\n0;1.5;-2\n0.001;1.25;-2e-3\n",
+            "# log\n\nt\tq1\tq 2\n0\t1.5\t-2\n0.001\t1.25\t-2e-3\n",
+            "# log, with a comma\r\n\r\nt q1 \"q 2\"\r\n0 1.5 -2\r\n0.001 1.25 -2e-3\r\n",
+        ] {
+            let t = read(text, &["q1", "t", "q 2"]).unwrap();
+            assert_eq!(t.columns, commas.columns, "{text:?}");
+            assert_eq!(t.lines, commas.lines, "{text:?}");
+        }
+        assert_eq!(
+            read("a,b;c\n1,2\n", &["b;c"]).unwrap().columns,
+            [[2.0]].map(Vec::from)
+        );
+        // a header line longer than the first window is read whole before its separator
+        // is chosen (its first 16 bytes hold none)
+        let text = "timestamp_in_seconds;q1\n0;1\n0.001;2\n";
+        let mut got = Vec::new();
+        let names = ["q1".to_owned()];
+        for_each_window(text.as_bytes(), Path::new("t.csv"), &names, 16, |t, _| {
+            got.extend(t.columns[0].clone());
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(got, [1.0, 2.0]);
+        // columns aligned by runs of spaces are told as such
+        let e = read("t q1\n0 1\n0.001  2\n", &["q1"]).unwrap_err();
+        assert!(e.to_string().contains("single spaces"), "{e}");
+        assert!(e.to_string().contains(":3"), "{e}");
+    }
+
     #[test]
     fn other_separators_say_what_is_supported() {
-        for (text, sep) in [
-            ("t;q1\n0;1\n", "`;`"),
-            ("t\tq1\n0\t1\n", "tabs"),
-            ("t q1\n0 1\n", "spaces"),
+        for (text, name, sep) in [
+            ("t|q1\n0|1\n", "q1", "`|`"),
+            ("t,q1\tq2\n0,1\t2\n", "q2", "tabs"),
         ] {
-            let e = read(text, &["q1"]).unwrap_err();
+            let e = read(text, &[name]).unwrap_err();
             assert!(
                 matches!(&e, Error::Data(DataError::UnsupportedSeparator { separator, .. }) if separator == sep),
                 "{e}"
             );
-            assert!(e.to_string().contains("comma-separated"), "{e}");
+            assert!(e.to_string().contains("convert the file to commas"), "{e}");
         }
     }
 

@@ -153,6 +153,9 @@ fn header_names_are_the_readers_in_every_dialect() {
         ("comment.csv", "# logger v2\nt, q1 ,qd1\r\n0,1,2\r\n"),
         ("bom.csv", "\u{feff}t,q1,qd1\n0,1,2\n"),
         ("last.csv", "t,q1,qd1"),
+        ("semicolons.csv", "t;q1;qd1\n0;1;2\n"),
+        ("tabs.csv", "# a, b\nt\tq1\tqd1\n0\t1\t2\n"),
+        ("rtde.csv", "t q1 qd1\r\n0 1 2\r\n"),
     ] {
         assert_eq!(read_header(&d.file(name, text)).unwrap(), want, "{name}");
         let columns = read_columns(&d.file(name, text), &want);
@@ -493,4 +496,36 @@ fn method_names_are_the_config_names() {
         let written = toml::to_string(&std::collections::BTreeMap::from([("m", m)])).unwrap();
         assert_eq!(written.trim(), format!("m = \"{}\"", m.name()));
     }
+}
+
+/// A log as UR's RTDE recorder writes it (single spaces, `\r\n`, columns numbered from 0)
+/// loads through a config with `{0}` templates; a `{}` template on it names the file's
+/// numbering and the template that reads it.
+#[test]
+fn an_rtde_log_loads_with_zero_based_templates() {
+    let d = Dir::new();
+    let mut text =
+        String::from("timestamp actual_q_0 actual_q_1 target_moment_0 target_moment_1\r\n");
+    for k in 0..5 {
+        let t = k as f64 * 0.002;
+        text += &format!("{t} {} {} {} {}\r\n", 0.1 * t, -0.2 * t, 1.5 + t, -2.0 + t);
+    }
+    let path = d.file("robot_data.csv", &text);
+    let config = |q: &str| {
+        cfg(&format!(
+            "time_column = \"timestamp\"\n[[source]]\nposition = \"actual_q_{q}\"\ntorque = \"target_moment_{q}\"\n"
+        ))
+    };
+    let data = load(&config("{0}"), std::slice::from_ref(&path), 2).unwrap();
+    assert_eq!(data.q[1].len(), 5);
+    assert!((data.q[1][4] + 0.2 * 0.008).abs() < 1e-15);
+    assert!((data.tau[0][2] - 1.504).abs() < 1e-15);
+    assert!((data.sample_time - 0.002).abs() < 1e-12);
+    let e = load(&config("{}"), &[path], 2).unwrap_err().to_string();
+    assert!(e.contains("no column `actual_q_2`"), "{e}");
+    assert!(
+        e.contains("numbers these columns from 0 (`actual_q_0` to `actual_q_1`)"),
+        "{e}"
+    );
+    assert!(e.contains("`\"actual_q_{0}\"`"), "{e}");
 }
