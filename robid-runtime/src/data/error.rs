@@ -92,7 +92,8 @@ pub enum DataError {
     },
     /// A field is not a number.
     #[error(
-        "{path}:{line}: column `{column}` holds `{text}`, which is not a number; write a decimal number such as 1.5e-3"
+        "{path}:{line}: column `{column}` holds `{text}`, which is not a number; write a decimal number such as 1.5e-3{}",
+        decimal_comma(text)
     )]
     NotANumber {
         /// The file.
@@ -291,4 +292,15 @@ fn numbered_from_zero(column: &str, available: &[String]) -> String {
          template `\"{stem}{{0}}\"` names them so (`{{}}` counts from 1)",
         n - 1
     )
+}
+
+/// What a field that is a number with a decimal comma (`1,5`, as a spreadsheet in many
+/// locales writes with `;` between fields) adds to its error: the decimal point is `.`.
+fn decimal_comma(text: &str) -> &'static str {
+    let one_comma = text.matches(',').count() == 1;
+    if one_comma && text.replacen(',', ".", 1).parse::<f64>().is_ok() {
+        " (the decimal point is `.`, not `,`: export the file with `.` as the decimal separator)"
+    } else {
+        ""
+    }
 }

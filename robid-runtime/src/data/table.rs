@@ -1470,6 +1470,14 @@ mod tests {
         })
         .unwrap();
         assert_eq!(got, [1.0, 2.0]);
+        // a decimal comma (a spreadsheet's `;`-separated export) is told as such
+        let e = read("t;q1\n0;1,5\n", &["q1"]).unwrap_err().to_string();
+        assert!(
+            e.contains("mem.csv:2") && e.contains("decimal point is `.`"),
+            "{e}"
+        );
+        let e = read("t;q1\n0;abc\n", &["q1"]).unwrap_err().to_string();
+        assert!(!e.contains("decimal point"), "{e}");
         // columns aligned by runs of spaces are told as such
         let e = read("t q1\n0 1\n0.001  2\n", &["q1"]).unwrap_err();
         assert!(e.to_string().contains("single spaces"), "{e}");
