@@ -1,6 +1,7 @@
-//! TOML syntax errors of robid's own files (friction, flexibility, bounds, parameters) said
-//! for people: toml's message for a key or table given twice is only "duplicate key", so
-//! it is named at its second place with what to do.
+//! TOML syntax errors of robid's own files (identification configs, friction, flexibility,
+//! bounds, parameters) said for people: toml's message for a key or table given twice is
+//! only "duplicate key", so it is named at its second place with what to do; a value nested
+//! deeper than toml reads is named at its place with its key (as the descriptions do).
 
 use std::path::Path;
 
@@ -110,7 +111,7 @@ pub(crate) const TOO_DEEP: &str = "arrays or inline tables are nested deeper tha
 /// The error of a value nested deeper than toml reads (toml's limit on its recursion):
 /// `path:line:column: `key`: ...` ([`TOO_DEEP`]), the key being the one the line assigns,
 /// the place where toml stopped.
-fn too_deep(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
+pub(crate) fn too_deep(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
     if !e.message().contains("recursion depth") {
         return None;
     }
@@ -274,7 +275,14 @@ mod tests {
                            reference_temperature = 25.0, viscous = 7.0 }\n";
         let bounds = "[default]\nmass = [0.0, 1.0]\n[links.1]\nmass = [0.0, 2.0]\n\
                       [default]\ninertia = [0.0, 1.0]\n";
-        let cases: [(&str, Error, &str); 3] = [
+        let config = "dof = 2\nsample_rate = 500\n[processing]\nlowpass = { cutoff = 5.0 }\n\
+                      lowpass = { cutoff = 6.0 }\n";
+        let cases: [(&str, Error, &str); 4] = [
+            (
+                "config",
+                crate::data::Config::from_toml_str(config, "c.toml".as_ref()).unwrap_err(),
+                "c.toml:5:1: `lowpass`: given a second time in this table",
+            ),
             (
                 "friction",
                 FrictionModel::from_toml_str(friction, "f.toml".as_ref()).unwrap_err(),
@@ -298,15 +306,26 @@ mod tests {
     }
 
     /// A value nested 5,000 deep is told at its file:line:column with its key and what to
-    /// do, in each file read through [`syntax_error`] (it was toml's "cannot recurse
-    /// further; max recursion depth met" after the whole line of brackets).
+    /// do, in each file read through [`syntax_error`] or [`too_deep`] (it was toml's "cannot
+    /// recurse further; max recursion depth met" after the whole line of brackets; the
+    /// identification config and the parameter files said so until they were read
+    /// through them too).
     #[test]
     fn robids_files_name_a_value_nested_too_deep() {
+        use crate::data::{Config, ParameterFile};
         use crate::drive::FrictionModel;
         use crate::feasible::Bounds;
         use crate::simulate::Flexibility;
         let deep = format!("\ncoulomb = {}{}\n", "[".repeat(5000), "]".repeat(5000));
-        let cases: [(Error, &str); 3] = [
+        let cases: [(Error, &str); 5] = [
+            (
+                Config::from_toml_str(&format!("dof = 2{deep}"), "c.toml".as_ref()).unwrap_err(),
+                "c.toml:2:",
+            ),
+            (
+                ParameterFile::parse(&format!("[standard]{deep}"), "p.toml".as_ref()).unwrap_err(),
+                "p.toml:2:",
+            ),
             (
                 FrictionModel::from_toml_str(&format!("[[friction]]{deep}"), "f.toml".as_ref())
                     .unwrap_err(),

@@ -673,13 +673,11 @@ impl Config {
     /// Parses a config from TOML text; `path` names it in errors and its folder resolves
     /// relative file paths.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Self> {
-        let mut cfg: Config = toml::from_str(text).map_err(|e| {
-            Error::Data(DataError::ConfigSyntax {
-                path: path.to_path_buf(),
-                kind: TomlFile::Config,
-                reason: e.to_string(),
-            })
-        })?;
+        // the reader of robid's other TOML files (friction, flexibility, bounds): a key
+        // given twice and a value nested too deep are named at their file:line:column
+        // with what to do, not in toml's words
+        let mut cfg: Config = toml::from_str(text)
+            .map_err(|e| crate::toml_syntax::syntax_error(text, path, TomlFile::Config, &e))?;
         cfg.base_dir = path.parent().map(Path::to_path_buf);
         cfg.origin = ConfigOrigin::File {
             path: path.to_path_buf(),
@@ -1051,7 +1049,7 @@ impl Config {
             }
         }
         let e = &self.estimation;
-        if !(crate::estimate::MIN_FORGETTING..=1.0).contains(&e.forgetting) {
+        if !crate::online::forgetting_in_range(e.forgetting) {
             return bad(
                 "estimation.forgetting",
                 format!(

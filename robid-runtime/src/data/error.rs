@@ -54,6 +54,18 @@ pub enum DataError {
         /// What the decoder reported.
         reason: String,
     },
+    /// A CSV file without a header line (empty, or blank and `#` comment lines only). No
+    /// count of rows is said: how many a file needs is its reader's to say (a states file
+    /// one, a data set two, a trajectory three), each of which tells a header without rows
+    /// with its own count; the CSV reader once said "0 samples, at least 2 are needed"
+    /// whatever the caller needed.
+    #[error(
+        "{path}: the file is empty (no header line, only blank or `#` comment lines if any); it needs a header line and data rows below it"
+    )]
+    EmptyFile {
+        /// The file.
+        path: PathBuf,
+    },
     /// The CSV structure is broken (e.g. a row with a different number of fields).
     #[error("{path}:{line}: malformed CSV: {reason}; every row needs as many fields as the header")]
     Csv {

@@ -403,6 +403,11 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         })
     };
     let doc = DeTable::parse(text).map_err(|e| {
+        // a value nested too deep is told as in robid's other TOML files
+        // (`path:line:column: `key`: ...`), not in toml's words
+        if let Some(deep) = crate::toml_syntax::too_deep(text, path, &e) {
+            return deep;
+        }
         let offset = e.span().map_or(0, |s| s.start);
         located(offset, syntax_message(text, &e))
     })?;

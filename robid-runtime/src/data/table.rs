@@ -583,12 +583,10 @@ impl Header {
             if !end {
                 return Ok(None);
             }
-            return Err(Error::TooFewSamples {
-                context: path.display().to_string(),
-                found: 0,
-                required: 2,
-                hint: "the file is empty; it needs a header line and data rows",
-            });
+            // no count: how many rows a file needs is the caller's to say
+            return Err(Error::Data(DataError::EmptyFile {
+                path: path.to_path_buf(),
+            }));
         };
         // the body starts on the line after the header's
         let after = records.consumed;
@@ -1482,10 +1480,15 @@ mod tests {
             matches!(e, Error::Data(DataError::Csv { line: 3, .. })),
             "{e}"
         );
-        let e = read("", &["a"]).unwrap_err();
-        assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
-        let e = read("# only a comment\n", &["a"]).unwrap_err();
-        assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
+        // an empty file is told so without a count of rows, which is the caller's
+        for text in ["", "# only a comment\n", "\n\n"] {
+            let e = read(text, &["a"]).unwrap_err();
+            assert!(
+                matches!(e, Error::Data(DataError::EmptyFile { .. })),
+                "{text:?}: {e}"
+            );
+            assert!(!e.to_string().contains("at least"), "{e}");
+        }
     }
 
     #[test]
