@@ -474,9 +474,6 @@ mod tests {
             .optimize(&p, &limits(), None)
             .unwrap();
         same(apart.cost, floored.cost);
-        // (the Fourier search on this pendulum weighted 1e6 to 1 on its first joint finds
-        // no finite criterion in 40 evaluations, floored or not: the second joint is
-        // weighted here)
         let cli = weights_from_sigma(&[1.0, 1e-9], "excite", "sigma").unwrap();
         let floored = fourier(cli).optimize(&p, &limits(), None).unwrap();
         let apart = fourier(vec![1.0, 1e9])
