@@ -1,4 +1,4 @@
-//! Recursive least squares with a forgetting factor 0 < lambda <= 1.
+//! Recursive least squares with a forgetting factor 0.5 <= lambda <= 1 ([`MIN_FORGETTING`]).
 //!
 //! For each equation (phi, y): L = P phi / (lambda + phi' P phi),
 //! beta += L (y - phi' beta), P = (I - L phi') P / lambda.
