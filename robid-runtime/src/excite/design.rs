@@ -138,13 +138,14 @@ impl Decoder<'_> {
                     vmax = vmax.max(gd.abs());
                     amax = amax.max(gdd.abs());
                 }
-                let (room_hi, room_lo) = (mid + half - s.q0, s.q0 - (mid - half));
+                let (room_lo, room_hi) =
+                    crate::excite::limits::position_room(l.position, d.safety, s.q0);
                 let mut smax = f64::INFINITY;
                 for (limit, peak) in [
                     (d.safety * l.velocity, vmax),
                     (d.safety * l.acceleration, amax),
-                    (room_hi.max(0.0), gmax),
-                    (room_lo.max(0.0), -gmin),
+                    (room_hi, gmax),
+                    (room_lo, -gmin),
                 ] {
                     if peak > 0.0 {
                         smax = smax.min(limit / peak);
@@ -563,7 +564,7 @@ pub(crate) fn check_design_cost(cost: f64, criterion: Criterion) -> Result<()> {
     } else {
         Err(Error::NonFiniteResult {
             what: format!("the design criterion ({criterion:?}) of the best trajectory"),
-            cause: "every trajectory tried leaves some base parameter unexcited (or exceeds the torque limits without bound): check the joint limits (a joint with almost no range cannot excite its parameters), or give the search more restarts and evaluations".into(),
+            cause: "every trajectory tried leaves some base parameter unexcited (or exceeds the torque limits without bound): check the joint limits (a joint with almost no range cannot excite its parameters) and the start position (one at the edge of a joint's range leaves it no room to move), or give the search more restarts and evaluations".into(),
         })
     }
 }
@@ -596,6 +597,68 @@ mod tests {
             .svd(false, false)
             .singular_values;
         s.max() / s.min()
+    }
+
+    /// A start inside the limits but in their outer 2 % (outside the band of `safety` =
+    /// 0.98 times the half range around the middle) left no room on that side: no
+    /// trajectory moved and both designs failed with an infinite criterion. Now each
+    /// designs a trajectory that moves and keeps every limit, from the start at rest (a
+    /// start a hair from its limit still cannot move that way: that error now names the
+    /// start).
+    #[test]
+    fn a_start_near_a_limit_still_gets_a_design() {
+        use crate::excite::{PointDesign, margins};
+        let p = Pendulum::default();
+        let limits = vec![
+            JointLimits {
+                position: [-1.0, 2.0],
+                velocity: 1.5,
+                acceleration: 4.0,
+                torque: None,
+            };
+            2
+        ];
+        for start in [[1.995, 0.5], [-0.99, 1.99]] {
+            let fourier = FourierDesign {
+                restarts: 1,
+                evaluations: 60,
+                points: 30,
+                start: Some(start.to_vec()),
+                ..FourierDesign::default()
+            };
+            let r = fourier.optimize(&p, &limits, None).unwrap();
+            let tr = r.fourier.sample(10.0, 100.0).unwrap();
+            let points = PointDesign {
+                duration: 8.0,
+                intervals: 4,
+                restarts: 1,
+                sweeps: 1,
+                evaluations: 40,
+                start: Some(start.to_vec()),
+                ..PointDesign::default()
+            };
+            let rp = points.optimize(&p, &limits, None).unwrap();
+            let tp = rp.points.sample(100.0).unwrap();
+            for (what, tr, cost) in [("fourier", &tr, r.cost), ("points", &tp, rp.cost)] {
+                assert!(cost.is_finite(), "{what} {start:?}");
+                let m = margins::<Pendulum>(tr, &limits, None).unwrap();
+                assert!(m.iter().all(|m| m.respected()), "{what} {start:?}: {m:?}");
+                for j in 0..2 {
+                    assert_eq!(tr.q[j][0], start[j], "{what} {start:?}");
+                    let (lo, hi) = tr.q[j]
+                        .iter()
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), q| {
+                            (a.min(*q), b.max(*q))
+                        });
+                    // a motion of its own, not a hair's breadth
+                    assert!(
+                        hi - lo > 0.1,
+                        "{what} {start:?}: joint {j} moves {}",
+                        hi - lo
+                    );
+                }
+            }
+        }
     }
 
     /// Weights 1e6 to 1 on the first joint of the pendulum (`--sigma 1e-6,1`): the weighted
