@@ -215,7 +215,22 @@ pub fn read_header(path: &Path) -> Result<Vec<String>> {
         Box::new(file)
     };
     let mut text = Vec::new();
-    reader.take(1 << 20).read_to_end(&mut text).map_err(io)?;
+    // a gzip stream that does not decode is a damaged file, as for the columns: "cannot
+    // read: incomplete deflate stream; check the path and permissions" sent the user to
+    // the permissions
+    reader
+        .take(1 << 20)
+        .read_to_end(&mut text)
+        .map_err(|source| {
+            if gzip {
+                Error::Data(DataError::Corrupt {
+                    path: path.to_path_buf(),
+                    reason: format!("gzip: {source}"),
+                })
+            } else {
+                io(source)
+            }
+        })?;
     let text = text.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&text);
     let mut records = Records::new(text);
     if records.next_record().is_none() {
@@ -1514,6 +1529,17 @@ mod tests {
         let e = read_columns(&cut, &names(&["q"])).unwrap_err();
         assert!(matches!(e, Error::Data(DataError::Corrupt { .. })), "{e}");
         assert!(e.to_string().contains("truncated or corrupt"), "{e}");
+        // the header reader (the default column mapping's) says the same, as does a file
+        // of the gzip magic number alone; they were "cannot read: ..; check the path and
+        // permissions"
+        let magic = dir.path().join("magic.csv");
+        std::fs::write(&magic, [0x1f, 0x8b]).unwrap();
+        for file in [&cut, &magic] {
+            let e = read_header(file).unwrap_err();
+            assert!(matches!(e, Error::Data(DataError::Corrupt { .. })), "{e}");
+            let e = read_columns(file, &names(&["q"])).unwrap_err();
+            assert!(matches!(e, Error::Data(DataError::Corrupt { .. })), "{e}");
+        }
         let e = read_columns(&dir.path().join("none.csv"), &names(&["q"])).unwrap_err();
         assert!(matches!(e, Error::Data(DataError::Io { .. })));
     }
