@@ -104,7 +104,8 @@ pub enum DataError {
     },
     /// A field is not a number.
     #[error(
-        "{path}:{line}: column `{column}` holds `{text}`, which is not a number; write a decimal number such as 1.5e-3"
+        "{path}:{line}: column `{column}` holds `{}`, which is not a number; write a decimal number such as 1.5e-3",
+        visible(text)
     )]
     NotANumber {
         /// The file.
@@ -284,4 +285,18 @@ pub enum DataError {
         /// What is wrong and what to write instead.
         problem: String,
     },
+}
+
+/// `text` with its control characters escaped (`\0`, `\u{1b}`, ..): a field holding a NUL
+/// byte was quoted as "`2.848129118e-3`, which is not a number", the NUL invisible.
+fn visible(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }

@@ -1485,6 +1485,14 @@ mod tests {
 
     #[test]
     fn text_ragged_and_empty_are_errors() {
+        // a control character is shown escaped: a NUL inside a number was invisible, the
+        // field quoted as a number that "is not a number"
+        let e = read("a,b\n1,2.5\x00e-3\n", &["b"]).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("column `b` holds `2.5\\u{0}e-3`, which is not a number"),
+            "{e}"
+        );
         let e = read("a,b\n1,x\n", &["b"]).unwrap_err();
         assert!(
             matches!(e, Error::Data(DataError::NotANumber { line: 2, .. })),
