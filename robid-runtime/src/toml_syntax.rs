@@ -7,7 +7,47 @@ use std::path::Path;
 
 use crate::data::TomlFile;
 use crate::error::num;
+use crate::limits::MAX_TEXT_BYTES;
 use crate::{DataError, Error};
+
+/// The text of a file read whole (a config, a parameter, friction, joint-flexibility or
+/// bounds file, an identification result), at most [`MAX_TEXT_BYTES`] bytes: `what` names
+/// the kind of file in the error of a longer one (`/dev/zero: size in bytes (read no
+/// further): 67108865 is more than the limit of 67108864; parameter files have
+/// kilobytes: ..`), which is read no further: a device or a pipe that never ends once filled the
+/// memory. A file that is not UTF-8 is named with the offset of its first
+/// invalid byte.
+pub fn read_text(path: &Path, what: &str) -> crate::Result<String> {
+    use std::io::Read as _;
+    let io = |source| {
+        Error::Data(DataError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_TEXT_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() > MAX_TEXT_BYTES {
+        return Err(Error::TooLarge {
+            what: format!("{}: size in bytes (read no further)", path.display()),
+            found: bytes.len() as f64,
+            limit: MAX_TEXT_BYTES,
+            fix: format!("{what}s have kilobytes: give the path of the {what}"),
+        });
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "it is not UTF-8 text (invalid byte at offset {}); save it as UTF-8",
+                e.utf8_error().valid_up_to()
+            ),
+        ))
+    })
+}
 
 /// A key or table header given a second time in a TOML text, read from toml's error
 /// (parameter files word their message in their own terms from it).
@@ -303,6 +343,49 @@ mod tests {
             let e = e.to_string();
             assert!(e.starts_with(want), "{file}: {e}");
         }
+    }
+
+    /// A device that never ends (`--parameters /dev/zero`) is read to [`MAX_TEXT_BYTES`]
+    /// and no further by every reader of a whole text file: it took 8 to 14 GB of memory
+    /// and did not end. A file that is not UTF-8 is named with its first bad byte.
+    #[cfg(unix)]
+    #[test]
+    fn a_text_file_is_read_to_its_limit_and_no_further() {
+        use crate::data::{Config, ParameterFile};
+        use crate::drive::FrictionModel;
+        use crate::simulate::Flexibility;
+        let zero = Path::new("/dev/zero");
+        if !zero.exists() {
+            return;
+        }
+        let errors = [
+            ("config", Config::from_file(zero).unwrap_err()),
+            ("parameter file", ParameterFile::read(zero).unwrap_err()),
+            ("friction file", FrictionModel::read(zero).unwrap_err()),
+            (
+                "joint-flexibility file",
+                Flexibility::read(zero).unwrap_err(),
+            ),
+        ];
+        for (what, e) in errors {
+            assert!(matches!(e, Error::TooLarge { limit, .. } if limit == MAX_TEXT_BYTES));
+            let e = e.to_string();
+            assert!(
+                e.starts_with("/dev/zero: size in bytes (read no further): 67108865 is more")
+                    && e.ends_with(&format!(
+                        "{what}s have kilobytes: give the path of the {what}"
+                    )),
+                "{e}"
+            );
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let latin = dir.path().join("p.toml");
+        std::fs::write(&latin, b"[base]\nM\xfc1 = 1\n").unwrap();
+        let e = ParameterFile::read(&latin).unwrap_err().to_string();
+        assert!(
+            e.contains("it is not UTF-8 text (invalid byte at offset 8); save it as UTF-8"),
+            "{e}"
+        );
     }
 
     /// A value nested 5,000 deep is told at its file:line:column with its key and what to

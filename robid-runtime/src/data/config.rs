@@ -689,12 +689,7 @@ impl Config {
     /// Reads and parses a config file.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            Error::Data(DataError::Io {
-                path: path.to_path_buf(),
-                source,
-            })
-        })?;
+        let text = crate::data::read_text(path, "config")?;
         Self::from_toml_str(&text, path)
     }
 

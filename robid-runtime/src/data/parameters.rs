@@ -102,12 +102,7 @@ pub struct ParameterFile {
 impl ParameterFile {
     /// Reads the file at `path` (see the module documentation for the checks).
     pub fn read(path: &Path) -> Result<ParameterFile> {
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            Error::Data(DataError::Io {
-                path: path.to_owned(),
-                source,
-            })
-        })?;
+        let text = crate::data::read_text(path, "parameter file")?;
         ParameterFile::parse(&text, path)
     }
 
