@@ -6,8 +6,9 @@
 //! and accurate to many digits while cond(W) is far below 1e8, the only range that matters
 //! for a design, and so for every design without row weights. Columns are not scaled.
 //!
-//! Beyond that range, where the eigenvalues of W'W are known only to about eps lambda_max,
-//! the criteria are computed on the equilibrated matrix A = D^-1 W'W D^-1 (D = the column
+//! From cond(W) = 1e5 on ([`DIRECT`]), where the eigenvalues of W'W, known to about
+//! eps lambda_max, give lambda_min to worse than 2e-6 of itself (and nothing above about
+//! 3e7), the criteria are computed on the equilibrated matrix A = D^-1 W'W D^-1 (D = the column
 //! norms of W, [`scaled_criteria`]): W = B D with the columns of B of unit norm, and the
 //! eigenvalues of D A D are set by the entries of W'W to a relative accuracy of about
 //! eps cond(A) (Demmel and Veselić 1992), however different the columns' scales. Regressor
@@ -475,9 +476,9 @@ pub(crate) struct Scaled {
 /// Otherwise A = L L' (Cholesky), lambda_min(W'W) = 1 / lambda_max(D^-1 A^-1 D^-1), the
 /// largest eigenvalue being resolved where the smallest is not, and log det(W'W) =
 /// 2 sum log L_ii + 2 sum log D_ii: both to a relative accuracy of about eps cond(A),
-/// whatever the spread of the column scales (the module documentation). Used only where
-/// the direct computation cannot resolve lambda_min, so the criteria of every other
-/// design are unchanged to the bit.
+/// whatever the spread of the column scales (the module documentation). Used only from
+/// cond(W) = 1e5 on ([`DIRECT`]), so the criteria of every better-conditioned candidate
+/// (every good design) are unchanged to the bit.
 pub(crate) fn scaled_criteria(gram: &DMatrix<f64>, samples: usize) -> Option<Scaled> {
     let p = gram.ncols();
     let scale: Vec<f64> = (0..p).map(|i| gram[(i, i)].sqrt()).collect();
