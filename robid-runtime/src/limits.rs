@@ -82,6 +82,13 @@ pub const MAX_PARAMETER: f64 = 1e6;
 
 /// Largest file read (bytes, after decompression).
 pub const MAX_FILE_BYTES: u64 = 4 << 30;
+
+/// Largest text file read whole (bytes): identification configs, parameter, friction,
+/// joint-flexibility and bounds files, and identification results (JSON) given back to
+/// `robid feasible`. Such a file has kilobytes; the limit keeps a device or a pipe that
+/// never ends (`--parameters /dev/zero`) from filling the memory: it took 8 to 14 GB and
+/// did not end ([`crate::data::read_text`]).
+pub const MAX_TEXT_BYTES: usize = 64 << 20;
 /// Largest number of fields in a CSV header.
 pub const MAX_COLUMNS: usize = 10_000;
 /// Largest number of data rows in a CSV file.

@@ -10,7 +10,9 @@
 //! P    = (P - L (P phi)') / lambda          kept symmetric
 //! ```
 //!
-//! with `0 < lambda <= 1` the forgetting factor and `P(0) = p0 I`, `p0 > 0`.
+//! with `MIN_FORGETTING = 0.5 <= lambda <= 1` the forgetting factor (the bound of the
+//! batch estimator and of the config's `estimation.forgetting`, [`MIN_FORGETTING`]) and
+//! `P(0) = p0 I`, `p0 > 0`.
 //!
 //! ## Reference
 //! A. Y. Zomaya, "Extraction and computation of identifiable parameters in robot dynamic
@@ -20,6 +22,30 @@
 use core::fmt;
 
 use crate::model::LengthError;
+
+/// The smallest forgetting factor accepted, by [`OnlineRls::new`], by the batch estimator
+/// (`estimate::Rls`, which re-exports it as `estimate::MIN_FORGETTING`) and by the config's
+/// `estimation.forgetting`: the one bound of every recursive least squares of robid. The
+/// recursion keeps about `1 / (1 - lambda)` equations in memory, so below 0.5 it keeps
+/// fewer than two and forgets each equation before the next arrives, whatever the parameter
+/// count; every update also divides `P` by `lambda`, and a factor written as `1e-320` (meant
+/// as 0, or a unit mistake) made the state overflow at the first equation (on line, it winds
+/// up to [`P_LIMIT`] within a few updates and stops). Practical factors lie between 0.95 and
+/// 1.
+pub const MIN_FORGETTING: f64 = 0.5;
+
+/// Whether `lambda` is a forgetting factor robid accepts: `MIN_FORGETTING <= lambda <= 1`
+/// (NaN is not). The one check behind [`OnlineRls::new`], `estimate::check_forgetting` and
+/// the config's `estimation.forgetting`.
+///
+/// ```
+/// use robid_runtime::online::forgetting_in_range;
+/// assert!(forgetting_in_range(1.0) && forgetting_in_range(0.5));
+/// assert!(!forgetting_in_range(0.3) && !forgetting_in_range(1.5) && !forgetting_in_range(f64::NAN));
+/// ```
+pub fn forgetting_in_range(lambda: f64) -> bool {
+    (MIN_FORGETTING..=1.0).contains(&lambda)
+}
 
 /// The largest diagonal entry of `P` an update may produce. `P` after an update is at most
 /// `P / lambda` (in the order of positive semidefinite matrices), so an update whose
@@ -31,7 +57,7 @@ pub const P_LIMIT: f64 = 1e150;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum OnlineRlsError {
-    /// The forgetting factor is not in `(0, 1]`.
+    /// The forgetting factor is not in `[MIN_FORGETTING, 1]` ([`MIN_FORGETTING`] = 0.5).
     Forgetting(f64),
     /// `p0` is not positive and finite.
     InitialCovariance(f64),
@@ -57,7 +83,9 @@ impl fmt::Display for OnlineRlsError {
         match self {
             Self::Forgetting(l) => write!(
                 f,
-                "the forgetting factor {} must satisfy 0 < lambda <= 1 (1 keeps every equation)",
+                "the forgetting factor {} must satisfy {MIN_FORGETTING} <= lambda <= 1: the \
+                 recursion keeps about 1 / (1 - lambda) equations in memory (1 keeps every \
+                 equation; 0.95 to 0.999 track slow changes)",
                 crate::Num(*l)
             ),
             Self::InitialCovariance(p) => write!(
@@ -139,9 +167,12 @@ pub struct OnlineRls<const N: usize> {
 }
 
 impl<const N: usize> OnlineRls<N> {
-    /// `beta = 0`, `P = p0 I`, forgetting factor `lambda` in `(0, 1]`.
+    /// `beta = 0`, `P = p0 I`, forgetting factor `lambda` in `[MIN_FORGETTING, 1]`
+    /// ([`forgetting_in_range`]; [`OnlineRlsError::Forgetting`] otherwise, as the batch
+    /// estimator and the config refuse it), `p0` in `(0, P_LIMIT]`
+    /// ([`OnlineRlsError::InitialCovariance`] otherwise).
     pub fn new(lambda: f64, p0: f64) -> Result<Self, OnlineRlsError> {
-        if !(lambda > 0.0 && lambda <= 1.0) {
+        if !forgetting_in_range(lambda) {
             return Err(OnlineRlsError::Forgetting(lambda));
         }
         if !(p0 > 0.0 && p0 <= P_LIMIT) {

@@ -1,12 +1,53 @@
-//! TOML syntax errors of robid's own files (friction, flexibility, bounds, parameters) said
-//! for people: toml's message for a key or table given twice is only "duplicate key", so
-//! it is named at its second place with what to do.
+//! TOML syntax errors of robid's own files (identification configs, friction, flexibility,
+//! bounds, parameters) said for people: toml's message for a key or table given twice is
+//! only "duplicate key", so it is named at its second place with what to do; a value nested
+//! deeper than toml reads is named at its place with its key (as the descriptions do).
 
 use std::path::Path;
 
 use crate::data::TomlFile;
 use crate::error::num;
+use crate::limits::MAX_TEXT_BYTES;
 use crate::{DataError, Error};
+
+/// The text of a file read whole (a config, a parameter, friction, joint-flexibility or
+/// bounds file, an identification result), at most [`MAX_TEXT_BYTES`] bytes: `what` names
+/// the kind of file in the error of a longer one (`/dev/zero: size in bytes (read no
+/// further): 67108865 is more than the limit of 67108864; parameter files have
+/// kilobytes: ..`), which is read no further: a device or a pipe that never ends once filled the
+/// memory. A file that is not UTF-8 is named with the offset of its first
+/// invalid byte.
+pub fn read_text(path: &Path, what: &str) -> crate::Result<String> {
+    use std::io::Read as _;
+    let io = |source| {
+        Error::Data(DataError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_TEXT_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() > MAX_TEXT_BYTES {
+        return Err(Error::TooLarge {
+            what: format!("{}: size in bytes (read no further)", path.display()),
+            found: bytes.len() as f64,
+            limit: MAX_TEXT_BYTES,
+            fix: format!("{what}s have kilobytes: give the path of the {what}"),
+        });
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "it is not UTF-8 text (invalid byte at offset {}); save it as UTF-8",
+                e.utf8_error().valid_up_to()
+            ),
+        ))
+    })
+}
 
 /// A key or table header given a second time in a TOML text, read from toml's error
 /// (parameter files word their message in their own terms from it).
@@ -110,7 +151,7 @@ pub(crate) const TOO_DEEP: &str = "arrays or inline tables are nested deeper tha
 /// The error of a value nested deeper than toml reads (toml's limit on its recursion):
 /// `path:line:column: `key`: ...` ([`TOO_DEEP`]), the key being the one the line assigns,
 /// the place where toml stopped.
-fn too_deep(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
+pub(crate) fn too_deep(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
     if !e.message().contains("recursion depth") {
         return None;
     }
@@ -274,7 +315,14 @@ mod tests {
                            reference_temperature = 25.0, viscous = 7.0 }\n";
         let bounds = "[default]\nmass = [0.0, 1.0]\n[links.1]\nmass = [0.0, 2.0]\n\
                       [default]\ninertia = [0.0, 1.0]\n";
-        let cases: [(&str, Error, &str); 3] = [
+        let config = "dof = 2\nsample_rate = 500\n[processing]\nlowpass = { cutoff = 5.0 }\n\
+                      lowpass = { cutoff = 6.0 }\n";
+        let cases: [(&str, Error, &str); 4] = [
+            (
+                "config",
+                crate::data::Config::from_toml_str(config, "c.toml".as_ref()).unwrap_err(),
+                "c.toml:5:1: `lowpass`: given a second time in this table",
+            ),
             (
                 "friction",
                 FrictionModel::from_toml_str(friction, "f.toml".as_ref()).unwrap_err(),
@@ -297,16 +345,70 @@ mod tests {
         }
     }
 
+    /// A device that never ends (`--parameters /dev/zero`) is read to [`MAX_TEXT_BYTES`]
+    /// and no further by every reader of a whole text file: it took 8 to 14 GB of memory
+    /// and did not end. A file that is not UTF-8 is named with its first bad byte.
+    #[cfg(unix)]
+    #[test]
+    fn a_text_file_is_read_to_its_limit_and_no_further() {
+        use crate::data::{Config, ParameterFile};
+        use crate::drive::FrictionModel;
+        use crate::simulate::Flexibility;
+        let zero = Path::new("/dev/zero");
+        if !zero.exists() {
+            return;
+        }
+        let errors = [
+            ("config", Config::from_file(zero).unwrap_err()),
+            ("parameter file", ParameterFile::read(zero).unwrap_err()),
+            ("friction file", FrictionModel::read(zero).unwrap_err()),
+            (
+                "joint-flexibility file",
+                Flexibility::read(zero).unwrap_err(),
+            ),
+        ];
+        for (what, e) in errors {
+            assert!(matches!(e, Error::TooLarge { limit, .. } if limit == MAX_TEXT_BYTES));
+            let e = e.to_string();
+            assert!(
+                e.starts_with("/dev/zero: size in bytes (read no further): 67108865 is more")
+                    && e.ends_with(&format!(
+                        "{what}s have kilobytes: give the path of the {what}"
+                    )),
+                "{e}"
+            );
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let latin = dir.path().join("p.toml");
+        std::fs::write(&latin, b"[base]\nM\xfc1 = 1\n").unwrap();
+        let e = ParameterFile::read(&latin).unwrap_err().to_string();
+        assert!(
+            e.contains("it is not UTF-8 text (invalid byte at offset 8); save it as UTF-8"),
+            "{e}"
+        );
+    }
+
     /// A value nested 5,000 deep is told at its file:line:column with its key and what to
-    /// do, in each file read through [`syntax_error`] (it was toml's "cannot recurse
-    /// further; max recursion depth met" after the whole line of brackets).
+    /// do, in each file read through [`syntax_error`] or [`too_deep`] (it was toml's "cannot
+    /// recurse further; max recursion depth met" after the whole line of brackets; the
+    /// identification config and the parameter files said so until they were read
+    /// through them too).
     #[test]
     fn robids_files_name_a_value_nested_too_deep() {
+        use crate::data::{Config, ParameterFile};
         use crate::drive::FrictionModel;
         use crate::feasible::Bounds;
         use crate::simulate::Flexibility;
         let deep = format!("\ncoulomb = {}{}\n", "[".repeat(5000), "]".repeat(5000));
-        let cases: [(Error, &str); 3] = [
+        let cases: [(Error, &str); 5] = [
+            (
+                Config::from_toml_str(&format!("dof = 2{deep}"), "c.toml".as_ref()).unwrap_err(),
+                "c.toml:2:",
+            ),
+            (
+                ParameterFile::parse(&format!("[standard]{deep}"), "p.toml".as_ref()).unwrap_err(),
+                "p.toml:2:",
+            ),
             (
                 FrictionModel::from_toml_str(&format!("[[friction]]{deep}"), "f.toml".as_ref())
                     .unwrap_err(),

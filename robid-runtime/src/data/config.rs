@@ -686,13 +686,11 @@ impl Config {
     /// Parses a config from TOML text; `path` names it in errors and its folder resolves
     /// relative file paths.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Self> {
-        let mut cfg: Config = toml::from_str(text).map_err(|e| {
-            Error::Data(DataError::ConfigSyntax {
-                path: path.to_path_buf(),
-                kind: TomlFile::Config,
-                reason: e.to_string(),
-            })
-        })?;
+        // the reader of robid's other TOML files (friction, flexibility, bounds): a key
+        // given twice and a value nested too deep are named at their file:line:column
+        // with what to do, not in toml's words
+        let mut cfg: Config = toml::from_str(text)
+            .map_err(|e| crate::toml_syntax::syntax_error(text, path, TomlFile::Config, &e))?;
         cfg.base_dir = path.parent().map(Path::to_path_buf);
         cfg.origin = ConfigOrigin::File {
             path: path.to_path_buf(),
@@ -704,12 +702,7 @@ impl Config {
     /// Reads and parses a config file.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            Error::Data(DataError::Io {
-                path: path.to_path_buf(),
-                source,
-            })
-        })?;
+        let text = crate::data::read_text(path, "config")?;
         Self::from_toml_str(&text, path)
     }
 
@@ -1064,7 +1057,7 @@ impl Config {
             }
         }
         let e = &self.estimation;
-        if !(crate::estimate::MIN_FORGETTING..=1.0).contains(&e.forgetting) {
+        if !crate::online::forgetting_in_range(e.forgetting) {
             return bad(
                 "estimation.forgetting",
                 format!(

@@ -54,6 +54,18 @@ pub enum DataError {
         /// What the decoder reported.
         reason: String,
     },
+    /// A CSV file without a header line (empty, or blank and `#` comment lines only). No
+    /// count of rows is said: how many a file needs is its reader's to say (a states file
+    /// one, a data set two, a trajectory three), each of which tells a header without rows
+    /// with its own count; the CSV reader once said "0 samples, at least 2 are needed"
+    /// whatever the caller needed.
+    #[error(
+        "{path}: the file is empty (no header line, only blank or `#` comment lines if any); it needs a header line and data rows below it"
+    )]
+    EmptyFile {
+        /// The file.
+        path: PathBuf,
+    },
     /// The CSV structure is broken (e.g. a row with a different number of fields).
     #[error("{path}:{line}: malformed CSV: {reason}; every row needs as many fields as the header")]
     Csv {
@@ -92,7 +104,8 @@ pub enum DataError {
     },
     /// A field is not a number.
     #[error(
-        "{path}:{line}: column `{column}` holds `{text}`, which is not a number; write a decimal number such as 1.5e-3{}",
+        "{path}:{line}: column `{column}` holds `{}`, which is not a number; write a decimal number such as 1.5e-3{}",
+        visible(text),
         decimal_comma(text)
     )]
     NotANumber {
@@ -303,4 +316,18 @@ fn decimal_comma(text: &str) -> &'static str {
     } else {
         ""
     }
+}
+
+/// `text` with its control characters escaped (`\0`, `\u{1b}`, ..): a field holding a NUL
+/// byte was quoted as "`2.848129118e-3`, which is not a number", the NUL invisible.
+fn visible(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }

@@ -15,6 +15,7 @@ mod sampling;
 mod table;
 mod time;
 
+pub use crate::toml_syntax::read_text;
 pub(crate) use config::nonzero;
 pub use config::{
     AngleUnit, Columns, Config, ConfigOrigin, Cutoff, Decimation, Derivative, Differentiation,

@@ -102,12 +102,7 @@ pub struct ParameterFile {
 impl ParameterFile {
     /// Reads the file at `path` (see the module documentation for the checks).
     pub fn read(path: &Path) -> Result<ParameterFile> {
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            Error::Data(DataError::Io {
-                path: path.to_owned(),
-                source,
-            })
-        })?;
+        let text = crate::data::read_text(path, "parameter file")?;
         ParameterFile::parse(&text, path)
     }
 
@@ -403,6 +398,11 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         })
     };
     let doc = DeTable::parse(text).map_err(|e| {
+        // a value nested too deep is told as in robid's other TOML files
+        // (`path:line:column: `key`: ...`), not in toml's words
+        if let Some(deep) = crate::toml_syntax::too_deep(text, path, &e) {
+            return deep;
+        }
         let offset = e.span().map_or(0, |s| s.start);
         located(offset, syntax_message(text, &e))
     })?;
@@ -448,7 +448,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         for (k, v) in items {
             let key: &str = k.get_ref();
             let (line, column) = line_column(text, k.span().start);
-            let source = text.get(v.span()).unwrap_or("?").trim();
+            let source = short_source(text.get(v.span()).unwrap_or("?").trim());
             let value = number(v.get_ref())
                 .filter(|x| x.is_finite())
                 .ok_or_else(|| {
@@ -516,11 +516,42 @@ fn syntax_message(text: &str, e: &toml::de::Error) -> String {
 fn number(v: &DeValue<'_>) -> Option<f64> {
     match v {
         DeValue::Float(f) => f.as_str().parse().ok(),
-        DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix())
-            .ok()
-            .map(|i| i as f64),
+        DeValue::Integer(i) => {
+            let (text, radix) = (i.as_str(), i.radix());
+            i64::from_str_radix(text, radix)
+                .ok()
+                .map(|i| i as f64)
+                .or_else(|| integer_beyond_i64(text, radix))
+        }
         _ => None,
     }
+}
+
+/// The value of a TOML integer beyond i64 (TOML allows any number of digits): as a float,
+/// so that the range check names it as out of range rather than "not a finite number"
+/// (`ZZ1 = 99999999999999999999` was told so).
+fn integer_beyond_i64(text: &str, radix: u32) -> Option<f64> {
+    let (sign, digits) = match text.strip_prefix('-') {
+        Some(rest) => (-1.0, rest),
+        None => (1.0, text.strip_prefix('+').unwrap_or(text)),
+    };
+    digits
+        .chars()
+        .filter(|c| *c != '_')
+        .try_fold(0.0f64, |acc, c| {
+            Some(acc * f64::from(radix) + f64::from(c.to_digit(radix)?))
+        })
+        .map(|v| sign * v)
+}
+
+/// A value as written, for a message: at most 40 characters (a 1 MB string or array was
+/// quoted whole).
+fn short_source(source: &str) -> String {
+    if source.chars().count() <= 40 {
+        return source.to_owned();
+    }
+    let head: String = source.chars().take(32).collect();
+    format!("{head}.. ({} characters)", source.chars().count())
 }
 
 /// The name of `names` closest to `key`: the same but for case, or one edit away.
@@ -625,6 +656,38 @@ mod tests {
         let e = error("[standard]\nM1 = 1\n\n[known]\nM2 = 1\n");
         assert!(
             e.starts_with("p.toml:4:2: a second table [known], after [standard] on line 1;"),
+            "{e}"
+        );
+    }
+
+    /// An integer beyond i64 is out of range, not "not a finite number"; a long value is
+    /// quoted short.
+    #[test]
+    fn a_value_is_told_by_its_size_and_quoted_short() {
+        let error = |text: &str| {
+            ParameterFile::parse(text, "p.toml".as_ref())
+                .unwrap_err()
+                .to_string()
+        };
+        for big in [
+            "99999999999999999999",
+            "-99999999999999999999",
+            "0xffffffffffffffffff",
+        ] {
+            let e = error(&format!("[base]\nZZ1 = {big}\n"));
+            assert_eq!(
+                e,
+                format!(
+                    "p.toml:2:1: [base] `ZZ1` = {big} is outside +-1e6; give it in SI units \
+                     (kg, m, kg m^2, N m)"
+                )
+            );
+        }
+        assert_eq!(integer_beyond_i64("1_000", 10), Some(1000.0));
+        assert_eq!(integer_beyond_i64("+ff", 16), Some(255.0));
+        let e = error(&format!("[base]\nZZ1 = \"{}\"\n", "a".repeat(100_000)));
+        assert!(
+            e.ends_with("`ZZ1` = \"aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa.. (100002 characters) is not a finite number"),
             "{e}"
         );
     }

@@ -216,7 +216,22 @@ pub fn read_header(path: &Path) -> Result<Vec<String>> {
         Box::new(file)
     };
     let mut text = Vec::new();
-    reader.take(1 << 20).read_to_end(&mut text).map_err(io)?;
+    // a gzip stream that does not decode is a damaged file, as for the columns: "cannot
+    // read: incomplete deflate stream; check the path and permissions" sent the user to
+    // the permissions
+    reader
+        .take(1 << 20)
+        .read_to_end(&mut text)
+        .map_err(|source| {
+            if gzip {
+                Error::Data(DataError::Corrupt {
+                    path: path.to_path_buf(),
+                    reason: format!("gzip: {source}"),
+                })
+            } else {
+                io(source)
+            }
+        })?;
     let text = text.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&text);
     let mut records = Records::new(text, separator(text));
     if records.next_record().is_none() {
@@ -589,12 +604,10 @@ impl Header {
             if !end {
                 return Ok(None);
             }
-            return Err(Error::TooFewSamples {
-                context: path.display().to_string(),
-                found: 0,
-                required: 2,
-                hint: "the file is empty; it needs a header line and data rows",
-            });
+            // no count: how many rows a file needs is the caller's to say
+            return Err(Error::Data(DataError::EmptyFile {
+                path: path.to_path_buf(),
+            }));
         };
         // the body starts on the line after the header's
         let after = records.consumed;
@@ -1550,6 +1563,14 @@ mod tests {
 
     #[test]
     fn text_ragged_and_empty_are_errors() {
+        // a control character is shown escaped: a NUL inside a number was invisible, the
+        // field quoted as a number that "is not a number"
+        let e = read("a,b\n1,2.5\x00e-3\n", &["b"]).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("column `b` holds `2.5\\u{0}e-3`, which is not a number"),
+            "{e}"
+        );
         let e = read("a,b\n1,x\n", &["b"]).unwrap_err();
         assert!(
             matches!(e, Error::Data(DataError::NotANumber { line: 2, .. })),
@@ -1560,10 +1581,15 @@ mod tests {
             matches!(e, Error::Data(DataError::Csv { line: 3, .. })),
             "{e}"
         );
-        let e = read("", &["a"]).unwrap_err();
-        assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
-        let e = read("# only a comment\n", &["a"]).unwrap_err();
-        assert!(matches!(e, Error::TooFewSamples { .. }), "{e}");
+        // an empty file is told so without a count of rows, which is the caller's
+        for text in ["", "# only a comment\n", "\n\n"] {
+            let e = read(text, &["a"]).unwrap_err();
+            assert!(
+                matches!(e, Error::Data(DataError::EmptyFile { .. })),
+                "{text:?}: {e}"
+            );
+            assert!(!e.to_string().contains("at least"), "{e}");
+        }
     }
 
     #[test]
@@ -1589,6 +1615,17 @@ mod tests {
         let e = read_columns(&cut, &names(&["q"])).unwrap_err();
         assert!(matches!(e, Error::Data(DataError::Corrupt { .. })), "{e}");
         assert!(e.to_string().contains("truncated or corrupt"), "{e}");
+        // the header reader (the default column mapping's) says the same, as does a file
+        // of the gzip magic number alone; they were "cannot read: ..; check the path and
+        // permissions"
+        let magic = dir.path().join("magic.csv");
+        std::fs::write(&magic, [0x1f, 0x8b]).unwrap();
+        for file in [&cut, &magic] {
+            let e = read_header(file).unwrap_err();
+            assert!(matches!(e, Error::Data(DataError::Corrupt { .. })), "{e}");
+            let e = read_columns(file, &names(&["q"])).unwrap_err();
+            assert!(matches!(e, Error::Data(DataError::Corrupt { .. })), "{e}");
+        }
         let e = read_columns(&dir.path().join("none.csv"), &names(&["q"])).unwrap_err();
         assert!(matches!(e, Error::Data(DataError::Io { .. })));
     }

@@ -23,7 +23,7 @@
 
 mod fit;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
@@ -479,12 +479,7 @@ impl FrictionModel {
 
     /// Reads a friction file (see [`FrictionModel::from_toml_str`]).
     pub fn read(path: &Path) -> Result<FrictionModel> {
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            Error::Data(DataError::Io {
-                path: PathBuf::from(path),
-                source,
-            })
-        })?;
+        let text = crate::data::read_text(path, "friction file")?;
         FrictionModel::from_toml_str(&text, path)
     }
 

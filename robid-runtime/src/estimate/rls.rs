@@ -1,4 +1,4 @@
-//! Recursive least squares with a forgetting factor 0 < lambda <= 1.
+//! Recursive least squares with a forgetting factor 0.5 <= lambda <= 1 ([`MIN_FORGETTING`]).
 //!
 //! For each equation (phi, y): L = P phi / (lambda + phi' P phi),
 //! beta += L (y - phi' beta), P = (I - L phi') P / lambda.
@@ -18,19 +18,16 @@ use crate::estimate::lstsq::{column_scales, condition_number, solve};
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation};
 
-/// The smallest forgetting factor accepted (`estimation.forgetting`): the recursion keeps
-/// about `1 / (1 - lambda)` equations in memory, so below 0.5 it keeps fewer than two and
-/// forgets each equation before the next arrives, whatever the parameter count; every
-/// update also divides `P` by `lambda`, and a factor written as `1e-320` (meant as 0, or a
-/// unit mistake) made the state overflow at the first equation. Practical factors lie
-/// between 0.95 and 1.
-pub const MIN_FORGETTING: f64 = 0.5;
+/// The smallest forgetting factor accepted (`estimation.forgetting`): defined with the
+/// on-line estimator ([`crate::online::MIN_FORGETTING`]), so that every recursive least
+/// squares of robid takes the same factors.
+pub use crate::online::MIN_FORGETTING;
 
 /// Checks a forgetting factor against `[MIN_FORGETTING, 1]`; the error names the config
 /// key `estimation.forgetting` (an [`Error::Setting`] of `Config`, which
 /// [`crate::data::Config::locate`] places at its file:line).
 pub fn check_forgetting(lambda: f64) -> Result<()> {
-    if (MIN_FORGETTING..=1.0).contains(&lambda) {
+    if crate::online::forgetting_in_range(lambda) {
         return Ok(());
     }
     Err(Error::setting(

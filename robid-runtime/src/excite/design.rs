@@ -138,13 +138,14 @@ impl Decoder<'_> {
                     vmax = vmax.max(gd.abs());
                     amax = amax.max(gdd.abs());
                 }
-                let (room_hi, room_lo) = (mid + half - s.q0, s.q0 - (mid - half));
+                let (room_lo, room_hi) =
+                    crate::excite::limits::position_room(l.position, d.safety, s.q0);
                 let mut smax = f64::INFINITY;
                 for (limit, peak) in [
                     (d.safety * l.velocity, vmax),
                     (d.safety * l.acceleration, amax),
-                    (room_hi.max(0.0), gmax),
-                    (room_lo.max(0.0), -gmin),
+                    (room_hi, gmax),
+                    (room_lo, -gmin),
                 ] {
                     if peak > 0.0 {
                         smax = smax.min(limit / peak);
@@ -563,14 +564,145 @@ pub(crate) fn check_design_cost(cost: f64, criterion: Criterion) -> Result<()> {
     } else {
         Err(Error::NonFiniteResult {
             what: format!("the design criterion ({criterion:?}) of the best trajectory"),
-            cause: "every trajectory tried leaves some base parameter unexcited (or exceeds the torque limits without bound): check the joint limits (a joint with almost no range cannot excite its parameters), or give the search more restarts and evaluations".into(),
+            cause: "every trajectory tried leaves some base parameter unexcited (or exceeds the torque limits without bound): check the joint limits (a joint with almost no range cannot excite its parameters) and the start position (one at the edge of a joint's range leaves it no room to move), or give the search more restarts and evaluations".into(),
         })
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::weights_from_sigma;
+    use super::*;
+    use crate::simulate::tests::Pendulum;
+
+    /// The condition number of the weighted W of `fourier` on its design grid, from the
+    /// SVD of W itself.
+    fn weighted_condition(p: &Pendulum, fourier: &Fourier, points: usize, w: &[f64]) -> f64 {
+        let (n, b) = (p.dof(), p.base_parameter_count());
+        let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut y = vec![0.0; n * b];
+        let mut rows = Vec::new();
+        for k in 0..points {
+            fourier.state(
+                k as f64 * fourier.period() / points as f64,
+                &mut q,
+                &mut qd,
+                &mut qdd,
+            );
+            p.base_regressor_into(&q, &qd, &qdd, &mut y).unwrap();
+            for (j, row) in y.chunks(b).enumerate() {
+                rows.extend(row.iter().map(|v| v * w[j]));
+            }
+        }
+        let s = nalgebra::DMatrix::from_row_slice(points * n, b, &rows)
+            .svd(false, false)
+            .singular_values;
+        s.max() / s.min()
+    }
+
+    /// A start inside the limits but in their outer 2 % (outside the band of `safety` =
+    /// 0.98 times the half range around the middle) left no room on that side: no
+    /// trajectory moved and both designs failed with an infinite criterion. Now each
+    /// designs a trajectory that moves and keeps every limit, from the start at rest (a
+    /// start a hair from its limit still cannot move that way: that error now names the
+    /// start).
+    #[test]
+    fn a_start_near_a_limit_still_gets_a_design() {
+        use crate::excite::{PointDesign, margins};
+        let p = Pendulum::default();
+        let limits = vec![
+            JointLimits {
+                position: [-1.0, 2.0],
+                velocity: 1.5,
+                acceleration: 4.0,
+                torque: None,
+            };
+            2
+        ];
+        for start in [[1.995, 0.5], [-0.99, 1.99]] {
+            let fourier = FourierDesign {
+                restarts: 1,
+                evaluations: 60,
+                points: 30,
+                start: Some(start.to_vec()),
+                ..FourierDesign::default()
+            };
+            let r = fourier.optimize(&p, &limits, None).unwrap();
+            let tr = r.fourier.sample(10.0, 100.0).unwrap();
+            let points = PointDesign {
+                duration: 8.0,
+                intervals: 4,
+                restarts: 1,
+                sweeps: 1,
+                evaluations: 40,
+                start: Some(start.to_vec()),
+                ..PointDesign::default()
+            };
+            let rp = points.optimize(&p, &limits, None).unwrap();
+            let tp = rp.points.sample(100.0).unwrap();
+            for (what, tr, cost) in [("fourier", &tr, r.cost), ("points", &tp, rp.cost)] {
+                assert!(cost.is_finite(), "{what} {start:?}");
+                let m = margins::<Pendulum>(tr, &limits, None).unwrap();
+                assert!(m.iter().all(|m| m.respected()), "{what} {start:?}: {m:?}");
+                for j in 0..2 {
+                    assert_eq!(tr.q[j][0], start[j], "{what} {start:?}");
+                    let (lo, hi) = tr.q[j]
+                        .iter()
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), q| {
+                            (a.min(*q), b.max(*q))
+                        });
+                    // a motion of its own, not a hair's breadth
+                    assert!(
+                        hi - lo > 0.1,
+                        "{what} {start:?}: joint {j} moves {}",
+                        hi - lo
+                    );
+                }
+            }
+        }
+    }
+
+    /// Weights 1e6 to 1 on the first joint of the pendulum (`--sigma 1e-6,1`): the weighted
+    /// W has a condition number near 1e8 whatever the trajectory, beyond what the eigenvalues
+    /// of W'W resolve, so every criterion was infinite and the design failed ("no finite
+    /// criterion in 40 evaluations") while the unweighted one takes cond 35. The criteria
+    /// now go through the equilibrated W'W there: the design succeeds with either
+    /// criterion, and its cost is the condition number of the weighted W by its SVD.
+    #[test]
+    fn a_design_weighted_far_apart_finds_a_finite_criterion() {
+        let p = Pendulum::default();
+        let limits = vec![
+            JointLimits {
+                position: [-1.0, 2.0],
+                velocity: 1.5,
+                acceleration: 4.0,
+                torque: None,
+            };
+            2
+        ];
+        let weights = vec![1e6, 1.0];
+        for criterion in [Criterion::Condition, Criterion::DOptimal] {
+            let design = FourierDesign {
+                restarts: 1,
+                evaluations: 40,
+                points: 30,
+                criterion,
+                weights: Some(weights.clone()),
+                ..FourierDesign::default()
+            };
+            let r = design.optimize(&p, &limits, None).unwrap();
+            assert!(r.cost.is_finite(), "{criterion:?}");
+            let cond = weighted_condition(&p, &r.fourier, design.points, &weights);
+            eprintln!("{criterion:?}: cost {:e}, cond(W) by SVD {cond:e}", r.cost);
+            // measured: cond 2.5e7 (condition) and 2.9e7 (D-optimality), where the
+            // direct computation gave up
+            assert!(cond > 1e7, "{cond}");
+            if criterion == Criterion::Condition {
+                // measured: 4e-16 relative (the grid's sines from a table there, from
+                // sin_cos here)
+                assert!((r.cost - cond).abs() < 1e-6 * cond, "{} vs {cond}", r.cost);
+            }
+        }
+    }
 
     /// Sigmas are floored at 1e-6 of the largest, as weighted least squares floors them: a
     /// sigma of 1e-8 beside 1 weighs 1e6, not 1e8 (which made every trajectory's criterion

@@ -64,6 +64,27 @@ impl JointLimits {
     }
 }
 
+/// The room (below, above) a design's position may use on either side of its start `q0`
+/// within the position limits `[lo, hi]`: the band of `safety` times the half range around
+/// the middle, and, on the side of the nearer limit, at least `safety` times the distance
+/// from the start to that limit. A start in the outer (1 - safety) of the range (accepted:
+/// it lies strictly inside the limits, e.g. `robid excite --start 6.2` on a UR5e joint of
+/// range ±6.2832) left the band no room on that side: every trajectory shape, which moves
+/// both ways from the start, was scaled to nothing, and both designs failed with an
+/// infinite criterion blaming the limits. A start at the middle keeps the band to the bit.
+pub(crate) fn position_room(position: [f64; 2], safety: f64, q0: f64) -> (f64, f64) {
+    let [lo, hi] = position;
+    let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo) * safety);
+    let mut below = (q0 - (mid - half)).max(0.0);
+    let mut above = (mid + half - q0).max(0.0);
+    if q0 > mid {
+        above = above.max(safety * (hi - q0));
+    } else if q0 < mid {
+        below = below.max(safety * (q0 - lo));
+    }
+    (below, above)
+}
+
 /// Checks a set of limits against the model's joint count.
 pub fn check_limits(limits: &[JointLimits], dof: usize) -> Result<()> {
     if limits.len() != dof {

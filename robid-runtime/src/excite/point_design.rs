@@ -384,7 +384,7 @@ impl<'a> Decoder<'a> {
                 for i in 1..=interior {
                     k[i][3] = (k[i + 1][2] - k[i - 1][2]) / (self.times[i + 1] - self.times[i - 1]);
                 }
-                let scale = self.scale(&k, l, q0, mid, half);
+                let scale = self.scale(&k, l, q0);
                 k.iter()
                     .map(|k| [q0 + scale * k[0], scale * k[1], scale * k[2], scale * k[3]])
                     .collect()
@@ -394,7 +394,7 @@ impl<'a> Decoder<'a> {
     }
 
     /// The largest factor <= 1 that keeps the interpolated excursions `k` within the limits.
-    fn scale(&self, k: &[Knot], l: &JointLimits, q0: f64, mid: f64, half: f64) -> f64 {
+    fn scale(&self, k: &[Knot], l: &JointLimits, q0: f64) -> f64 {
         let d = self.design;
         let (mut gmax, mut gmin, mut vmax, mut amax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         for (w, t) in k.windows(2).zip(self.times.windows(2)) {
@@ -407,12 +407,13 @@ impl<'a> Decoder<'a> {
                 amax = amax.max(gdd.abs());
             }
         }
+        let (below, above) = crate::excite::limits::position_room(l.position, d.safety, q0);
         let mut scale = 1.0f64;
         for (room, peak) in [
             (d.safety * l.velocity, vmax),
             (d.safety * l.acceleration, amax),
-            ((mid + half - q0).max(0.0), gmax),
-            ((q0 - (mid - half)).max(0.0), -gmin),
+            (above, gmax),
+            (below, -gmin),
         ] {
             if peak > 0.0 {
                 scale = scale.min(room / peak);
@@ -474,9 +475,6 @@ mod tests {
             .optimize(&p, &limits(), None)
             .unwrap();
         same(apart.cost, floored.cost);
-        // (the Fourier search on this pendulum weighted 1e6 to 1 on its first joint finds
-        // no finite criterion in 40 evaluations, floored or not: the second joint is
-        // weighted here)
         let cli = weights_from_sigma(&[1.0, 1e-9], "excite", "sigma").unwrap();
         let floored = fourier(cli).optimize(&p, &limits(), None).unwrap();
         let apart = fourier(vec![1.0, 1e9])

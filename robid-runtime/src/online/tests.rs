@@ -70,6 +70,46 @@ fn zomaya_online_rls_is_least_squares_for_lambda_one() {
     }
 }
 
+/// The on-line estimator takes the forgetting factors the batch estimator and the config
+/// take, `[0.5, 1]`, and no others: it took any in (0, 1], so a factor of 0.1 (or 1e-300)
+/// refused by `estimation.forgetting` ran on line and wound up to `P_LIMIT` within a few
+/// hundred updates.
+#[test]
+fn zomaya_online_rls_takes_the_forgetting_factors_of_the_batch_estimator() {
+    for lambda in [
+        0.0,
+        1e-300,
+        0.1,
+        0.49,
+        f64::from_bits(MIN_FORGETTING.to_bits() - 1),
+        0.5,
+        0.97,
+        1.0,
+        1.0 + f64::EPSILON,
+        f64::NAN,
+    ] {
+        let online = OnlineRls::<2>::new(lambda, 1.0);
+        let batch = crate::estimate::check_forgetting(lambda);
+        assert_eq!(online.is_ok(), batch.is_ok(), "lambda {lambda}");
+        assert_eq!(
+            online.is_ok(),
+            forgetting_in_range(lambda),
+            "lambda {lambda}"
+        );
+        assert_eq!(
+            online.is_ok(),
+            (0.5..=1.0).contains(&lambda),
+            "lambda {lambda}"
+        );
+        if let Err(e) = online {
+            assert!(matches!(e, OnlineRlsError::Forgetting(l) if l.to_bits() == lambda.to_bits()));
+            let e = e.to_string();
+            assert!(e.contains("must satisfy 0.5 <= lambda <= 1"), "{e}");
+        }
+    }
+    assert_eq!(crate::estimate::MIN_FORGETTING, MIN_FORGETTING);
+}
+
 #[test]
 fn zomaya_online_rls_refuses_bad_input_and_keeps_its_state() {
     assert_eq!(

@@ -251,12 +251,7 @@ impl Row {
 impl Flexibility {
     /// Reads a joint-flexibility file.
     pub fn read(path: &Path) -> Result<Flexibility> {
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            Error::Data(DataError::Io {
-                path: path.to_owned(),
-                source,
-            })
-        })?;
+        let text = crate::data::read_text(path, "joint-flexibility file")?;
         Flexibility::from_toml_str(&text, path)
     }
 

@@ -637,6 +637,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         )?;
     }
     stdout.flush()?;
+    warn_barely_exciting(a.condition_number);
     if !a.within_limits() {
         let exceeded: Vec<String> = a
             .margins
@@ -669,6 +670,27 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .into());
     }
     Ok(())
+}
+
+/// The condition number above which a designed trajectory is told to excite some base
+/// parameter barely: good designs have tens to hundreds; this is a thousand times more.
+const BARELY_EXCITING: f64 = 1e5;
+
+/// Warns when the written trajectory's condition number (unweighted, as printed) is above
+/// [`BARELY_EXCITING`] or not finite: the design found nothing better within the limits
+/// (`--velocity-limits 1e-6` gave cond 3e7 without a word beyond the figure), and
+/// least squares on its data would hardly see some parameter.
+fn warn_barely_exciting(condition: f64) {
+    if condition <= BARELY_EXCITING {
+        return;
+    }
+    out::warn(format_args!(
+        "warning: condition number {condition:.3e}: the trajectory barely excites some base parameter \
+         (good designs have tens to hundreds), so its identification would be poor; give \
+         the joints more room to move (their position range, velocity and acceleration \
+         limits: --velocity-limits, --acceleration-limits, a --start away from the limits) \
+         or the search more work (--restarts, --evaluations)"
+    ));
 }
 
 /// Refuses a sampled trajectory with a value that is not finite.

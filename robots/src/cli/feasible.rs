@@ -139,9 +139,10 @@ struct IdentifiedParameter {
     known: bool,
 }
 
-fn read(path: &Path) -> Result<String, Error> {
-    std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()).into())
+/// The text of `path`, a `what` (at most `robid_runtime::limits::MAX_TEXT_BYTES`: an
+/// endless device such as `--identified /dev/zero` filled the memory).
+fn read(path: &Path, what: &str) -> Result<String, Error> {
+    Ok(robid_runtime::data::read_text(path, what)?)
 }
 
 /// Refuses, before any work, an output that is an input, an unknown method and options
@@ -267,7 +268,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
     let description = description::load(&args.robot, &args.description)?;
     let robot = &description.robot;
-    let json = read(&args.identified)?;
+    let json = read(&args.identified, "identification result")?;
     let identified: Identified = serde_json::from_str(&json)
         .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;
     check_identified(&identified, &args.identified)?;
@@ -332,8 +333,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     };
     let links = problem.layout.links.len();
     let bounds = match &args.bounds {
-        Some(path) => Bounds::from_toml(&read(path)?, &path.display().to_string(), links)
-            .map_err(|e| about(path, e))?,
+        Some(path) => Bounds::from_toml(
+            &read(path, "bounds file")?,
+            &path.display().to_string(),
+            links,
+        )
+        .map_err(|e| about(path, e))?,
         // wide, and wider for a robot whose prior links are heavier or larger
         None => Bounds::wide_for(&problem, prior.as_ref()),
     };
@@ -560,7 +565,7 @@ fn problem_of(e: robid_runtime::Error) -> String {
 /// The user's URDF with each chain link's `<inertial>` replaced by the solution's, in the
 /// URDF's own link frames, every other byte as it was (docs/urdf.md#inertials-both-ways).
 fn urdf_written_back(path: &Path, chain: &UrdfChain, solution: &Solution) -> Result<String, Error> {
-    let text = read(path)?;
+    let text = read(path, "URDF")?;
     let mut inertials = vec![[0.0; 10]; chain.links.len()];
     for (name, value) in solution.names.iter().zip(&solution.standard) {
         if let Ok(ParameterId {

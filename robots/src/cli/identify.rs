@@ -218,8 +218,9 @@ pub(crate) fn config_for(path: Option<&Path>, data: &[PathBuf]) -> Result<Config
     Ok(match (path, data) {
         (Some(p), _) => {
             let config = Config::from_file(p)?;
-            // the config's own check takes any factor in (0, 1]; a tiny one (1e-320) passed
-            // it and overflowed the recursion after the processing, without file:line
+            // a factor outside [0.5, 1] (`online::forgetting_in_range`, which the config's
+            // own check also applies) at its file:line before anything is read: a tiny one
+            // (1e-320) once overflowed the recursion after the processing, without file:line
             check_forgetting(config.estimation.forgetting).map_err(|e| config.locate(e))?;
             config
         }

@@ -198,9 +198,9 @@ fn stream(
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
     });
     read.map_err(|e| match e {
-        // the reader asks for two samples of any file (a data set's least); a states file
-        // needs one row, and one without any is told as one with its header alone is
-        RuntimeError::TooFewSamples { found: 0, .. } => {
+        // a states file needs one row, and one without any is told as one with its header
+        // alone is
+        RuntimeError::Data(DataError::EmptyFile { .. }) => {
             Failure::Input(super::states::no_rows(path, names, "the file is empty"))
         }
         e => input(super::states::with_header(e, names)),

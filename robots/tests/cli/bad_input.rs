@@ -141,6 +141,103 @@ fn excite_floors_a_sigma_far_below_the_others() {
     assert!(dir.path().join("traj.csv").exists());
 }
 
+/// Design weights 1e6 to 1 (`--sigma 1e-6,1`) on a 2-joint pendulum with friction: the
+/// weighted regressor's condition number is near 1e8 whatever the motion, which the design
+/// criterion took for rank deficiency, so the Fourier design failed for half the seeds
+/// ("the design criterion (Condition) of the best trajectory is not finite", blaming the
+/// joint limits) while the point design and the unweighted one succeeded (the D-optimal
+/// one ran on an eigenvalue lost in roundoff).
+#[test]
+fn excite_designs_with_weights_far_apart() {
+    let dir = folder();
+    let out = dir.path().join("traj.csv");
+    for (seed, sigma, criterion) in [
+        ("4", "1e-6,1", "cond"),
+        ("6", "1e-6,1", "cond"),
+        ("8", "1e-6,1", "d"),
+        ("4", "1,1e-6", "cond"),
+    ] {
+        let o = robid(&[
+            "excite",
+            "tests/fixtures/pendulum2.toml",
+            "-o",
+            out.to_str().unwrap(),
+            "--duration",
+            "10",
+            "--rate",
+            "50",
+            "--restarts",
+            "1",
+            "--evaluations",
+            "40",
+            "--seed",
+            seed,
+            "--sigma",
+            sigma,
+            "--criterion",
+            criterion,
+        ]);
+        assert!(
+            o.status.success(),
+            "seed {seed}, --sigma {sigma}: {}",
+            stderr(&o)
+        );
+        assert!(stdout(&o).contains("condition number"), "{}", stdout(&o));
+        std::fs::remove_file(&out).unwrap();
+    }
+}
+
+/// `--start` inside the limits but in their outer 2 % (outside the band of 0.98 times the
+/// half range the design used): no trajectory could move, and both methods failed with
+/// "the design criterion (Condition) of the best trajectory is not finite", blaming the
+/// limits. A design that barely excites a parameter (`--velocity-limits 1e-6`: cond 3e7)
+/// was written without a word beyond the figure: it is warned about.
+#[test]
+fn excite_designs_from_a_start_near_a_limit_and_warns_of_a_poor_design() {
+    let dir = folder();
+    let out = dir.path().join("traj.csv");
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "excite",
+            "tests/fixtures/pendulum2.toml",
+            "-o",
+            out.to_str().unwrap(),
+            "--duration",
+            "10",
+            "--rate",
+            "50",
+            "--restarts",
+            "1",
+            "--evaluations",
+            "40",
+        ];
+        args.extend_from_slice(extra);
+        robid(&args)
+    };
+    for method in [
+        &["--method", "fourier"][..],
+        &["--method", "points", "--sweeps", "1"],
+    ] {
+        let o = run(&[&["--start", "1.99,-0.99"][..], method].concat());
+        assert!(o.status.success(), "{method:?}: {}", stderr(&o));
+        assert!(
+            !stderr(&o).contains("warning"),
+            "{method:?}: {}",
+            stderr(&o)
+        );
+        std::fs::remove_file(&out).unwrap();
+    }
+    let o = run(&["--velocity-limits", "1e-6"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.starts_with("warning: condition number ")
+            && e.contains("the trajectory barely excites some base parameter")
+            && e.contains("--velocity-limits"),
+        "{e}"
+    );
+}
+
 /// A states file without a column the robot needs is told the header it needs, for
 /// `torques` (to standard output and with -o) and `payload`: the advice was "pass the
 /// names of the file's columns", which no flag of robid does.
