@@ -89,6 +89,11 @@ pub const MAX_FILE_BYTES: u64 = 4 << 30;
 /// never ends (`--parameters /dev/zero`) from filling the memory: it took 8 to 14 GB and
 /// did not end ([`crate::data::read_text`]).
 pub const MAX_TEXT_BYTES: usize = 64 << 20;
+/// Longest line of a CSV file (bytes): the windows of its text grow to hold a line whole,
+/// and a device or a binary file without line ends (`--states /dev/zero`) took 8 GB
+/// before the file limit stopped it. A log's line of [`MAX_COLUMNS`] fields has a few
+/// hundred kB.
+pub const MAX_LINE_BYTES: usize = 16 << 20;
 /// Largest number of fields in a CSV header.
 pub const MAX_COLUMNS: usize = 10_000;
 /// Largest number of data rows in a CSV file.

@@ -76,6 +76,19 @@ pub enum DataError {
         /// What the CSV reader reported.
         reason: String,
     },
+    /// A line longer than [`MAX_LINE_BYTES`](crate::limits::MAX_LINE_BYTES) without its
+    /// end: no log's line (a device that never ends, `/dev/zero`, or a binary file).
+    #[error(
+        "{path}:{line}: no line end in the {limit} bytes read of this line; a log's line holds at most a few hundred kB of text: is this a CSV file (a binary file or a device such as /dev/zero is not)?"
+    )]
+    LineTooLong {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// The bytes read without a line end.
+        limit: usize,
+    },
     /// The file separates its fields with something robid does not read (`|`).
     #[error(
         "{path}: the header `{header}` is separated by {separator}; robid reads fields separated by `,`, or by the one of `;`, a tab or a single space that the header uses (optionally quoted with `\"`, `#` starts a comment line): convert the file to commas (with `.` as the decimal point)"

@@ -28,7 +28,7 @@ use flate2::read::MultiGzDecoder;
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
-use crate::limits::{MAX_COLUMNS, MAX_FILE_BYTES, MAX_ROWS, Quantity, check_size};
+use crate::limits::{MAX_COLUMNS, MAX_FILE_BYTES, MAX_LINE_BYTES, MAX_ROWS, Quantity, check_size};
 
 /// Selected columns of one CSV file, with the file line of every row.
 #[derive(Debug, Clone)]
@@ -409,7 +409,8 @@ impl<'a> Windows<'a> {
                     }
                     // the header line goes past the window: read more
                     None => {
-                        self.window *= 2;
+                        let line = line_ends(&text.bytes) + 1;
+                        grow(&mut self.window, text, line)?;
                         continue;
                     }
                 }
@@ -428,7 +429,7 @@ impl<'a> Windows<'a> {
                     Some(i) => i + 1,
                     // one line longer than the window: read more
                     None => {
-                        self.window *= 2;
+                        grow(&mut self.window, text, h.base)?;
                         continue;
                     }
                 }
@@ -465,6 +466,25 @@ impl<'a> Windows<'a> {
             return Ok(Some((table, read)));
         }
     }
+}
+
+/// Doubles `window` for a line (1-based `line`) that has not ended in `text`, or refuses
+/// a line that has not ended in [`MAX_LINE_BYTES`].
+fn grow(window: &mut usize, text: &Text<'_>, line: u64) -> Result<()> {
+    if text.bytes.len() >= MAX_LINE_BYTES {
+        return Err(Error::Data(DataError::LineTooLong {
+            path: text.path.to_path_buf(),
+            line,
+            limit: text.bytes.len(),
+        }));
+    }
+    *window = (*window * 2).min(MAX_LINE_BYTES);
+    Ok(())
+}
+
+/// Line ends in `bytes`.
+fn line_ends(bytes: &[u8]) -> u64 {
+    bytes.iter().filter(|&&b| b == b'\n').count() as u64
 }
 
 /// The parts of a window joined into its table, in file order, the columns side by side
@@ -1495,6 +1515,27 @@ mod tests {
         let e = read("t q1\n0 1\n0.001  2\n", &["q1"]).unwrap_err();
         assert!(e.to_string().contains("single spaces"), "{e}");
         assert!(e.to_string().contains(":3"), "{e}");
+    }
+
+    /// Text without line ends (a device such as /dev/zero, a binary file) is refused once a
+    /// line has run [`MAX_LINE_BYTES`] without ending, in the header or after it (it was
+    /// read to the 4 GiB file limit: 8 GB of memory). The inputs stop at 48 MiB, so
+    /// that a reader without the limit ends too, with another error.
+    #[test]
+    fn a_line_without_end_is_refused_at_the_line_limit() {
+        let endless = |head: &'static [u8]| head.chain(std::io::repeat(0).take(48 << 20));
+        let names = ["q1".to_owned()];
+        for (head, line) in [(&b""[..], 1), (b"# a log\nt,q1\n0,1\n", 4)] {
+            let e = for_each_window(endless(head), Path::new("zero"), &names, WINDOW, |_, _| {
+                Ok(())
+            })
+            .unwrap_err();
+            assert!(
+                matches!(&e, Error::Data(DataError::LineTooLong { line: l, limit, .. }) if *l == line && *limit >= MAX_LINE_BYTES && *limit < 2 * MAX_LINE_BYTES),
+                "{e}"
+            );
+            assert!(e.to_string().contains("is this a CSV file"), "{e}");
+        }
     }
 
     #[test]
