@@ -695,7 +695,7 @@ impl Stanford {
     /// - `q`: q1, q2, q3
     /// - `base`: ZZR1 .. M3
     ///
-    /// Operations: 15 mul, 7 add, 1 neg, 1 sin, 1 cos.
+    /// Operations: 7 mul, 4 add, 0 neg, 1 sin, 1 cos.
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -717,28 +717,18 @@ impl Stanford {
     ) -> [T; 3] {
         let [_, q2, q3] = *q;
         let c0 = T::from_f64(9.81);
-        let c1 = T::from_f64(1.51074);
         let ([t0], [t1]) = T::sin_cos_array([q2]);
-        let [_, _, _, _, _, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
+        let [_, _, _, _, _, _, MX2, MY2, MX3, _, MZ3, M3] = *base;
         let t2 = t0 * M3;
         let t3 = t1 * M3;
-        let t4 = t1 * MY3;
-        let t5 = t0 * MY3;
-        let t6 = t2 * q3;
-        let t7 = MY2 - MZ3;
-        let t9 = MX2 + MX3;
-        let t11 = T::mul_add(t1, t9, t6);
-        let t12 = T::mul_add(t0, t7, -t11);
-        let t13 = t1 * t2;
-        let t15 = T::mul_add(t0, t3, -t13);
-        let t16 = t0 * t4;
-        let t18 = T::mul_add(-t1, t5, t16);
-        let t19 = t18 * c0;
-        let t21 = T::mul_add(t15, c1, t19);
-        let t22 = -t21;
-        let t23 = t12 * c0;
-        let t24 = t3 * c0;
-        [t22, t23, t24]
+        let t4 = t2 * q3;
+        let t5 = MY2 - MZ3;
+        let t7 = MX2 + MX3;
+        let t9 = T::mul_add(t1, t7, t4);
+        let t10 = T::mul_add(t0, t5, -t9);
+        let t11 = t10 * c0;
+        let t12 = t3 * c0;
+        [T::ZERO, t11, t12]
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]

@@ -2711,7 +2711,7 @@ impl Ur5e {
     /// - `q`: q1 .. q6
     /// - `base`: ZZR1 .. MY6
     ///
-    /// Operations: 39 mul, 20 add, 0 neg, 5 sin, 5 cos.
+    /// Operations: 34 mul, 18 add, 0 neg, 5 sin, 5 cos.
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 6],
@@ -2767,26 +2767,21 @@ impl Ur5e {
         let t41 = T::mul_add(t23, t39, t36);
         let t42 = t21 * MX4;
         let t44 = T::mul_add(-t20, MYR4, t42);
-        let t45 = t7 * t37;
-        let t47 = t6 * t37;
-        let t49 = T::mul_add(t6, t38, t45);
-        let t50 = T::mul_add(t7, t38, -t47);
-        let t51 = t44 + t50;
-        let t52 = t15 * MXR3;
-        let t54 = T::mul_add(-t14, MY3, t52);
-        let t55 = t20 * t49;
-        let t57 = t51 + t54;
-        let t58 = t1 * MXR2;
-        let t60 = T::mul_add(-t0, MY2, t58);
-        let t61 = t57 + t60;
-        let t62 = T::mul_add(t21, t41, -t55);
-        let t63 = t62 * c0;
-        let t64 = t61 * c0;
-        let t65 = t57 * c0;
-        let t66 = t51 * c0;
-        let t67 = t41 * c1;
-        let t68 = t33 * c0;
-        [t63, t64, t65, t66, t67, t68]
+        let t45 = t6 * t37;
+        let t47 = T::mul_add(t7, t38, -t45);
+        let t48 = t44 + t47;
+        let t49 = t15 * MXR3;
+        let t51 = T::mul_add(-t14, MY3, t49);
+        let t52 = t48 + t51;
+        let t53 = t1 * MXR2;
+        let t55 = T::mul_add(-t0, MY2, t53);
+        let t56 = t52 + t55;
+        let t57 = t56 * c0;
+        let t58 = t52 * c0;
+        let t59 = t48 * c0;
+        let t60 = t41 * c1;
+        let t61 = t33 * c0;
+        [T::ZERO, t57, t58, t59, t60, t61]
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
