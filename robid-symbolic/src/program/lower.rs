@@ -167,9 +167,9 @@ impl<'a> Lowering<'a> {
     }
 
     /// The program with these outputs, dead code removed and common factors taken out of
-    /// its sums (`factor.rs`).
+    /// its sums (`factor.rs`), a sum that this writes twice computed once.
     pub(super) fn finish(self, inputs: Vec<Group>, outputs: Vec<(Group, Vec<Value>)>) -> Program {
-        factor::factor_all(self.finish_unfactored(inputs, outputs))
+        dce::merge_identical(factor::factor_all(self.finish_unfactored(inputs, outputs)))
     }
 
     /// The program with these outputs, dead code removed, its sums as the lowering
