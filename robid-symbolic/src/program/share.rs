@@ -18,6 +18,35 @@ enum Item {
     Pair(usize),
 }
 
+/// A pair of items and whether they have opposite signs (the lesser item first).
+type Key = (Item, Item, bool);
+
+/// Adds `delta` to the count of every pair of `sum`, keeping in `shared` the pairs
+/// counted at least twice.
+fn recount(
+    sum: &[(Item, bool)],
+    delta: isize,
+    counts: &mut HashMap<Key, usize>,
+    shared: &mut HashMap<Key, usize>,
+) {
+    for (i, &(x, sx)) in sum.iter().enumerate() {
+        for &(y, sy) in sum[i + 1..].iter().filter(|t| t.0 != x) {
+            let key = match x < y {
+                true => (x, y, sx != sy),
+                false => (y, x, sx != sy),
+            };
+            let c = counts.entry(key).or_insert(0);
+            *c = c
+                .checked_add_signed(delta)
+                .expect("a pair counted where it was");
+            match *c >= 2 {
+                true => shared.insert(key, *c),
+                false => shared.remove(&key),
+            };
+        }
+    }
+}
+
 /// The program with partial sums shared between its sums, dead code removed.
 pub(super) fn share_pairs(program: Program) -> Program {
     let n = program.instrs.len();
@@ -61,33 +90,30 @@ pub(super) fn share_pairs(program: Program) -> Program {
             t.into_iter().map(|(v, s)| (Item::Old(v), s)).collect()
         })
         .collect();
-    // Pairs (x, y, x and y of opposite signs), greedily, the most shared first (the
-    // first of equals in term order, for determinism).
-    let mut pairs: Vec<(Item, Item, bool)> = Vec::new();
-    loop {
-        let mut counts: HashMap<(Item, Item, bool), (usize, usize)> = HashMap::new();
-        for (k, sum) in terms.iter().enumerate() {
-            for (i, &(x, sx)) in sum.iter().enumerate() {
-                for &(y, sy) in sum[i + 1..].iter().filter(|t| t.0 != x) {
-                    let key = if x < y {
-                        (x, y, sx != sy)
-                    } else {
-                        (y, x, sx != sy)
-                    };
-                    counts.entry(key).or_insert((0, k)).0 += 1;
-                }
-            }
+    // Pairs (x, y, x and y of opposite signs), greedily, the most shared first (of
+    // equals the least by the order of items, for determinism). The counts are kept up to
+    // date as sums change; most pairs occur once, so the ones that occur more are few.
+    let mut counts: HashMap<Key, usize> = HashMap::new();
+    let mut shared: HashMap<Key, usize> = HashMap::new();
+    let mut holders: HashMap<Item, Vec<usize>> = HashMap::new();
+    for (k, sum) in terms.iter().enumerate() {
+        recount(sum, 1, &mut counts, &mut shared);
+        for t in sum {
+            holders.entry(t.0).or_default().push(k);
         }
-        let Some((&(x, y, opposite), _)) = counts
-            .iter()
-            .filter(|(_, c)| c.0 >= 2)
-            .max_by_key(|(key, c)| (c.0, std::cmp::Reverse(c.1), std::cmp::Reverse(**key)))
-        else {
-            break;
-        };
+    }
+    let mut pairs: Vec<Key> = Vec::new();
+    while let Some((&(x, y, opposite), _)) = shared
+        .iter()
+        .max_by_key(|(key, c)| (**c, std::cmp::Reverse(**key)))
+    {
         let p = Item::Pair(pairs.len());
         pairs.push((x, y, opposite));
-        for sum in &mut terms {
+        let mut sums = holders.get(&x).cloned().unwrap_or_default();
+        sums.sort_unstable();
+        sums.dedup();
+        for k in sums {
+            let sum = &terms[k];
             let (Some(i), Some(j)) = (
                 sum.iter().position(|t| t.0 == x),
                 sum.iter().position(|t| t.0 == y),
@@ -97,11 +123,15 @@ pub(super) fn share_pairs(program: Program) -> Program {
             if (sum[i].1 != sum[j].1) != opposite {
                 continue;
             }
+            recount(&terms[k], -1, &mut counts, &mut shared);
+            let sum = &mut terms[k];
             // x + y (or x - y) with the sign of x
             let sign = sum[i].1;
             let (first, second) = (i.min(j), i.max(j));
             sum.remove(second);
             sum[first] = (p, sign);
+            recount(&terms[k], 1, &mut counts, &mut shared);
+            holders.entry(p).or_default().push(k);
         }
     }
     if pairs.is_empty() {
