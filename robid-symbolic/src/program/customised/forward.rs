@@ -23,7 +23,7 @@ pub(in crate::program) struct Kinematics {
     pub(super) qd: Vec<E>,
     pub(super) qdd: Vec<E>,
     pub(super) kin: Vec<KinLink>,
-    /// The acceleration of the base, minus gravity in frame 0.
+    /// The base's acceleration as the links feel it, `vd_0 = -g` in frame 0.
     pub(super) vd0: V3,
 }
 

@@ -135,9 +135,10 @@ struct Link {
     fo: E,
 }
 
-/// The choices of the customised Newton-Euler algorithm that are not always the
-/// cheaper ([`Lowering::newton_euler`]); a program is built with several and the
-/// cheapest kept (docs/dynamics.md#customised-newton-euler).
+/// The choices of the customised Newton-Euler algorithm ([`Lowering::newton_euler`],
+/// docs/dynamics.md#customised-newton-euler): `tip` and `reuse` are not always the
+/// cheaper, so a program is built with each and the cheapest kept; the others are
+/// always taken, none ever costing flops (`every_other_choice_pays`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(in crate::program) struct Choices {
     /// An acceleration component `a x` whose product the next link's acceleration
