@@ -83,7 +83,7 @@ impl Stanford {
     /// - `qd`: qd1, qd2, qd3
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
-    /// Operations: 71 mul, 46 add, 12 neg, 1 sin, 1 cos.
+    /// Operations: 71 mul, 44 add, 13 neg, 1 sin, 1 cos.
     pub fn standard_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -146,9 +146,9 @@ impl Stanford {
         let t31 = qd2 * qd3;
         let t33 = qd1 * qd3;
         let t34 = t0 * t33;
-        let t36 = T::mul_add(t4, t19, t9);
-        let t37 = T::mul_add(t31, c2, t29);
-        let t38 = t37 - t36;
+        let t36 = T::mul_add(t31, c2, t29);
+        let t37 = T::mul_add(t4, t19, t9);
+        let t38 = t36 - t37;
         let t39 = T::mul_add(t16, q3, t28);
         let t40 = T::mul_add(t34, c2, -t5);
         let t41 = t39 + t40;
@@ -189,28 +189,27 @@ impl Stanford {
         let t76 = t75 * c0;
         out[16] = t76;
         let t77 = t21 + t50;
-        let t79 = t0 * t77;
-        let t80 = t69 - t79;
+        let t80 = T::mul_add(-t0, t77, t69);
         let t81 = T::mul_add(t0, t4, t80);
         let t82 = t81 * c0;
         out[17] = t82;
         let t84 = T::mul_add(t71, q3, t44);
-        let t86 = t1 * t41;
-        let t88 = T::mul_add(t74, c0, t86);
-        let t89 = T::mul_add(-t18, t55, t88);
+        let t85 = t18 * t55;
+        let t88 = T::mul_add(t74, c0, -t85);
+        let t89 = T::mul_add(t1, t41, t88);
         out[26] = t89;
         let t90 = q3 * qdd1;
         let t91 = t1 * t90;
         let t92 = t24 + t44;
         let t94 = t1 * t38;
-        let t95 = t6 - t94;
-        let t96 = T::mul_add(-t0, t92, t95);
+        let t95 = T::mul_add(t0, t92, t94);
+        let t96 = t6 - t95;
         out[27] = t96;
         let t99 = T::mul_add(t57, q3, t41);
         let t100 = T::mul_add(t67, q3, t38);
         out[58] = t100;
         let t101 = t0 * t99;
-        let t102 = t79 - t69;
+        let t102 = -t80;
         let t104 = T::mul_add(t102, c0, t101);
         out[28] = t104;
         let t105 = t38 * q3;
@@ -221,42 +220,40 @@ impl Stanford {
         out[29] = t110;
         let t112 = T::mul_add(t1, t17, t48);
         let t113 = t0 * t12;
-        let t114 = t1 * t9;
-        let t115 = t6 + t114;
-        let t116 = t113 + t115;
+        let t115 = T::mul_add(t1, t9, t113);
+        let t116 = t115 + t6;
         out[18] = t116;
-        let t117 = t113 + t114;
-        let t118 = t117 * c0;
-        out[19] = t118;
-        let t119 = -t65;
-        out[12] = t119;
-        out[21] = t119;
-        let t120 = -t112;
-        out[13] = t120;
-        out[25] = t120;
-        let t121 = -t70;
-        out[14] = t121;
-        let t122 = -t60;
-        out[22] = t122;
-        let t123 = -t46;
-        out[40] = t123;
-        out[50] = t123;
-        let t124 = -t2;
-        out[42] = t124;
-        out[51] = t124;
-        out[87] = t124;
-        let t125 = -t3;
-        out[44] = t125;
-        let t126 = -t53;
-        out[52] = t126;
-        let t127 = -t84;
-        out[56] = t127;
-        let t128 = -t91;
-        out[57] = t128;
-        let t129 = -t62;
-        out[86] = t129;
-        let t130 = -t77;
-        out[88] = t130;
+        let t117 = t115 * c0;
+        out[19] = t117;
+        let t118 = -t65;
+        out[12] = t118;
+        out[21] = t118;
+        let t119 = -t112;
+        out[13] = t119;
+        out[25] = t119;
+        let t120 = -t70;
+        out[14] = t120;
+        let t121 = -t60;
+        out[22] = t121;
+        let t122 = -t46;
+        out[40] = t122;
+        out[50] = t122;
+        let t123 = -t2;
+        out[42] = t123;
+        out[51] = t123;
+        out[87] = t123;
+        let t124 = -t3;
+        out[44] = t124;
+        let t125 = -t53;
+        out[52] = t125;
+        let t126 = -t84;
+        out[56] = t126;
+        let t127 = -t91;
+        out[57] = t127;
+        let t128 = -t62;
+        out[86] = t128;
+        let t129 = -t77;
+        out[88] = t129;
         out
     }
     #[cfg(target_arch = "x86_64")]
@@ -287,7 +284,7 @@ impl Stanford {
     /// - `qd`: qd1, qd2, qd3
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
-    /// Operations: 58 mul, 46 add, 8 neg, 1 sin, 1 cos.
+    /// Operations: 58 mul, 43 add, 9 neg, 1 sin, 1 cos.
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -346,19 +343,19 @@ impl Stanford {
         let t26 = t17 + t18;
         let t27 = t14 + t16;
         let t28 = t16 - t14;
-        let t31 = t25 * q3;
-        let t32 = T::mul_add(t22, q3, t7);
-        let t33 = T::mul_add(t24, q3, t10);
-        let t35 = T::mul_add(-t2, c0, t31);
-        let t36 = qd2 * qd3;
-        let t37 = t11 * qd3;
-        let t39 = T::mul_add(t36, c2, -t32);
-        let t41 = T::mul_add(t37, c2, t35);
-        let t42 = qdd3 - t33;
+        let t32 = t2 * c0;
+        let t33 = qd2 * qd3;
+        let t34 = t11 * qd3;
+        let t36 = T::mul_add(t22, q3, t7);
+        let t37 = T::mul_add(t33, c2, -t36);
+        let t39 = T::mul_add(t34, c2, -t32);
+        let t40 = T::mul_add(t25, q3, t39);
+        let t41 = T::mul_add(t24, q3, t10);
+        let t42 = qdd3 - t41;
         out[35] = t42;
         let t43 = t13 - t15;
         out[33] = t43;
-        let t44 = qdd2 - t21;
+        let t44 = -t22;
         let t45 = t0 * q3;
         let t46 = t18 - t19;
         let t47 = t19 - t17;
@@ -385,9 +382,8 @@ impl Stanford {
         out[16] = t64;
         let t66 = T::mul_add(t0, t13, -t50);
         out[5] = t66;
-        let t67 = t1 * t20;
-        let t69 = T::mul_add(-t1, t2, t56);
-        let t70 = t67 + t69;
+        let t69 = T::mul_add(t1, t20, t56);
+        let t70 = T::mul_add(-t1, t2, t69);
         let t71 = t70 * c0;
         out[6] = t71;
         let t73 = t0 * t24;
@@ -396,41 +392,39 @@ impl Stanford {
         let t76 = t75 * c0;
         out[7] = t76;
         let t77 = t27 * t45;
-        let t79 = t56 + t67;
-        let t80 = T::mul_add(t1, t41, -t77);
-        let t82 = T::mul_add(t79, c0, t80);
-        out[8] = t82;
-        let t84 = T::mul_add(t20, q3, t42);
-        let t85 = -t84;
-        out[20] = t85;
-        let t86 = -t23;
-        out[32] = t86;
-        let t87 = t0 * t42;
-        let t88 = t1 * t28;
-        let t90 = t1 * t39;
-        let t92 = T::mul_add(t26, t45, t90);
-        let t93 = t87 + t92;
-        let t94 = T::mul_add(t0, t43, t88);
-        let t96 = T::mul_add(t94, c0, t93);
-        let t97 = t28 * q3;
-        out[21] = t97;
-        let t98 = -t96;
-        out[9] = t98;
-        let t99 = t0 * t41;
-        let t102 = T::mul_add(t25, t45, t99);
-        let t103 = T::mul_add(-t1, t44, t73);
-        let t105 = T::mul_add(t103, c0, t102);
-        out[10] = t105;
-        let t107 = T::mul_add(t44, q3, t39);
-        out[22] = t107;
-        let t108 = -t24;
-        out[34] = t108;
-        let t109 = t41 * t45;
-        let t110 = t87 + t90;
-        let t112 = T::mul_add(-t110, c0, t109);
-        out[11] = t112;
-        let t113 = t39 * q3;
-        out[23] = t113;
+        let t80 = T::mul_add(t69, c0, -t77);
+        let t81 = T::mul_add(t1, t40, t80);
+        out[8] = t81;
+        let t83 = T::mul_add(t20, q3, t42);
+        let t84 = -t83;
+        out[20] = t84;
+        let t85 = -t23;
+        out[32] = t85;
+        let t86 = t0 * t42;
+        let t87 = t1 * t28;
+        let t88 = t26 * t45;
+        let t91 = T::mul_add(t0, t43, t87);
+        let t93 = T::mul_add(t1, t37, t86);
+        let t94 = T::mul_add(t91, c0, t88);
+        let t95 = t93 + t94;
+        let t96 = t28 * q3;
+        out[21] = t96;
+        let t97 = -t95;
+        out[9] = t97;
+        let t100 = t25 * t45;
+        let t101 = T::mul_add(-t1, t44, t73);
+        let t103 = T::mul_add(t101, c0, t100);
+        let t104 = T::mul_add(t0, t40, t103);
+        out[10] = t104;
+        let t106 = T::mul_add(t44, q3, t37);
+        out[22] = t106;
+        let t107 = -t24;
+        out[34] = t107;
+        let t108 = t40 * t45;
+        let t110 = T::mul_add(-t93, c0, t108);
+        out[11] = t110;
+        let t111 = t37 * q3;
+        out[23] = t111;
         out
     }
     #[cfg(target_arch = "x86_64")]
@@ -695,7 +689,7 @@ impl Stanford {
     /// - `q`: q1, q2, q3
     /// - `base`: ZZR1 .. M3
     ///
-    /// Operations: 15 mul, 7 add, 1 neg, 1 sin, 1 cos.
+    /// Operations: 7 mul, 4 add, 0 neg, 1 sin, 1 cos.
     pub fn gravity<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -717,28 +711,18 @@ impl Stanford {
     ) -> [T; 3] {
         let [_, q2, q3] = *q;
         let c0 = T::from_f64(9.81);
-        let c1 = T::from_f64(1.51074);
         let ([t0], [t1]) = T::sin_cos_array([q2]);
-        let [_, _, _, _, _, _, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
+        let [_, _, _, _, _, _, MX2, MY2, MX3, _, MZ3, M3] = *base;
         let t2 = t0 * M3;
         let t3 = t1 * M3;
-        let t4 = t1 * MY3;
-        let t5 = t0 * MY3;
-        let t6 = t2 * q3;
-        let t7 = MY2 - MZ3;
-        let t9 = MX2 + MX3;
-        let t11 = T::mul_add(t1, t9, t6);
-        let t12 = T::mul_add(t0, t7, -t11);
-        let t13 = t1 * t2;
-        let t15 = T::mul_add(t0, t3, -t13);
-        let t16 = t0 * t4;
-        let t18 = T::mul_add(-t1, t5, t16);
-        let t19 = t18 * c0;
-        let t21 = T::mul_add(t15, c1, t19);
-        let t22 = -t21;
-        let t23 = t12 * c0;
-        let t24 = t3 * c0;
-        [t22, t23, t24]
+        let t4 = t2 * q3;
+        let t5 = MY2 - MZ3;
+        let t7 = MX2 + MX3;
+        let t9 = T::mul_add(t1, t7, t4);
+        let t10 = T::mul_add(t0, t5, -t9);
+        let t11 = t10 * c0;
+        let t12 = t3 * c0;
+        [T::ZERO, t11, t12]
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -889,7 +873,7 @@ impl Stanford {
     ///
     /// - `standard`: XX1 .. M3
     ///
-    /// Operations: 2 mul, 11 add, 0 neg.
+    /// Operations: 2 mul, 10 add, 0 neg.
     pub fn base_from_standard<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 30],
@@ -915,15 +899,14 @@ impl Stanford {
         let t1 = XZ2 + XY3;
         let t2 = YZ2 - YZ3;
         let t3 = ZZ2 + YY3;
-        let t4 = XX2 + XX3;
-        let t5 = YY2 + ZZ3;
-        let t6 = t4 - t5;
+        let t4 = YY2 + ZZ3;
+        let t5 = XX3 - t4;
+        let t6 = XX2 + t5;
         let t7 = MZ2 * c0;
-        let t9 = ZZ1 + YY2;
+        let t9 = ZZ1 + t4;
         let t10 = T::mul_add(M2, c1, t7);
-        let t11 = t10 + ZZ3;
-        let t12 = t9 + t11;
-        [t12, t6, t0, t1, t2, t3, MX2, MY2, MX3, MY3, MZ3, M3]
+        let t11 = t9 + t10;
+        [t11, t6, t0, t1, t2, t3, MX2, MY2, MX3, MY3, MZ3, M3]
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]

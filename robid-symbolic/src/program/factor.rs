@@ -21,7 +21,7 @@
 use super::{Instr, Program, Value, dce};
 
 /// A term of a sum: a value and whether it is subtracted.
-type Term = (Value, bool);
+pub(super) type Term = (Value, bool);
 
 /// The program with common factors taken out of its sums until none is left (taking
 /// some out can leave two products of a new sum sharing another), dead code removed.
@@ -123,7 +123,7 @@ fn factor_sums(program: Program) -> Program {
     })
 }
 
-fn mapped(map: &[Value], v: Value) -> Value {
+pub(super) fn mapped(map: &[Value], v: Value) -> Value {
     match v {
         Value::Temp(t) => map[t as usize],
         other => other,
@@ -206,7 +206,13 @@ fn factored(instrs: &[Instr], uses: &[usize], root: usize) -> Option<Vec<Rebuilt
 }
 
 /// The terms of the sum tree at `at`, with signs, into `terms`.
-fn flatten(instrs: &[Instr], uses: &[usize], at: usize, negative: bool, terms: &mut Vec<Term>) {
+pub(super) fn flatten(
+    instrs: &[Instr],
+    uses: &[usize],
+    at: usize,
+    negative: bool,
+    terms: &mut Vec<Term>,
+) {
     let (a, b, sub) = match instrs[at] {
         Instr::Add(a, b) => (a, b, false),
         Instr::Sub(a, b) => (a, b, true),
@@ -255,7 +261,7 @@ fn write_sum(instrs: &mut Vec<Instr>, terms: Vec<Rebuilt>) -> Value {
 }
 
 /// The pairwise sum of signed terms: its value and whether it is the negative of it.
-fn pairwise(
+pub(super) fn pairwise(
     instrs: &mut Vec<Instr>,
     terms: &[Term],
     emit: &mut impl FnMut(&mut Vec<Instr>, Instr) -> Value,

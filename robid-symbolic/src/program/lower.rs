@@ -11,7 +11,7 @@
 //! the arena keeps as different nodes (e.g. the products inside two sums).
 
 use super::{Group, Instr, Output, Program, ProgramError, Value};
-use super::{dce, factor};
+use super::{dce, factor, share};
 use crate::expr::{Arena, Id, Node};
 use std::collections::HashMap;
 
@@ -167,9 +167,10 @@ impl<'a> Lowering<'a> {
     }
 
     /// The program with these outputs, dead code removed and common factors taken out of
-    /// its sums (`factor.rs`).
+    /// its sums (`factor.rs`), a sum that this writes twice computed once.
     pub(super) fn finish(self, inputs: Vec<Group>, outputs: Vec<(Group, Vec<Value>)>) -> Program {
-        factor::factor_all(self.finish_unfactored(inputs, outputs))
+        let factored = factor::factor_all(self.finish_unfactored(inputs, outputs));
+        share::share_pairs(dce::merge_identical(factored))
     }
 
     /// The program with these outputs, dead code removed, its sums as the lowering

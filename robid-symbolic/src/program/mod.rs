@@ -23,6 +23,7 @@ mod interpret;
 mod lower;
 pub mod robot;
 pub mod schedule;
+mod share;
 mod text;
 
 #[cfg(test)]

@@ -13,7 +13,7 @@
 //! folded away. Should a name not map to a slot, that parameter's part falls
 //! back to its column times the parameter.
 
-use super::customised::{RunInputs, frame_exprs};
+use super::customised::{Choices, RunInputs, frame_exprs};
 use super::lower::Lowering;
 use super::{Group, Program, ProgramError, Value};
 use crate::dynamics::{Derivation, JointInputs, LinkParameters};
@@ -165,25 +165,47 @@ impl Context {
         friction: bool,
         assemble: impl Fn(&[Vec<Value>]) -> Vec<Value>,
     ) -> Result<Program, ProgramError> {
-        let links = self.slots(friction);
-        let q = self.d.inputs.q.clone();
-        let frames = frame_exprs(&mut self.d.arena, &self.d.robot, &q);
-        let inputs = self.inputs(groups);
         // The last link's wrench in its own frame or in its parent's
         // (`Lowering::tip`), and for a single run the scaled accelerations reused or
         // not: whichever program is the cheapest, so no robot pays for either.
         // Reusing scaled accelerations saves a few multiplications but made the 7-run
         // Panda mass matrix ~3 % slower (compiled code, when the mass matrix was built
-        // this way): single runs only.
+        // this way): single runs only. The other choices are taken always: left out,
+        // none makes a reference robot's program cheaper (`every_other_choice_pays`).
         let reuses: &[bool] = match runs.len() {
             1 => &[true, false],
             _ => &[false],
         };
-        let mut best: Option<Program> = None;
-        for (tip, &reuse) in [false, true]
+        let variants: Vec<Choices> = [false, true]
             .into_iter()
-            .flat_map(|tip| reuses.iter().map(move |r| (tip, r)))
-        {
+            .flat_map(|tip| {
+                reuses.iter().map(move |&reuse| Choices {
+                    tip,
+                    reuse,
+                    ..Choices::ALL
+                })
+            })
+            .collect();
+        self.newton_euler_variants(groups, name, runs, friction, assemble, &variants)
+    }
+
+    /// [`Context::newton_euler_program`] built with each of `variants`, the cheapest
+    /// kept (the first of equals).
+    fn newton_euler_variants(
+        &mut self,
+        groups: &[&str],
+        name: &str,
+        runs: &[JointInputs],
+        friction: bool,
+        assemble: impl Fn(&[Vec<Value>]) -> Vec<Value>,
+        variants: &[Choices],
+    ) -> Result<Program, ProgramError> {
+        let links = self.slots(friction);
+        let q = self.d.inputs.q.clone();
+        let frames = frame_exprs(&mut self.d.arena, &self.d.robot, &q);
+        let inputs = self.inputs(groups);
+        let mut best: Option<Program> = None;
+        for &choices in variants {
             let mut l = Lowering::new(&self.d.arena, &inputs);
             let mut torques = Vec::with_capacity(runs.len());
             for run in runs {
@@ -192,7 +214,7 @@ impl Context {
                     qdd: &run.qdd,
                     gravity: run.gravity,
                 };
-                let tau = l.newton_euler(&frames, &run_inputs, &links, reuse, tip)?;
+                let tau = l.newton_euler(&frames, &run_inputs, &links, choices)?;
                 let mut values = Vec::with_capacity(tau.len());
                 for t in tau {
                     values.push(l.output(t));

@@ -6,7 +6,7 @@
 
 use super::super::ProgramError;
 use super::forward::{KinLink, Kinematics};
-use super::{E, Frame, FrameExprs, Link, Lowering, RunInputs, V3, ZERO, neg, number};
+use super::{Choices, E, Frame, FrameExprs, Link, Lowering, RunInputs, V3, ZERO, neg, number};
 use crate::dynamics::LinkParameters;
 use crate::robot::JointKind;
 
@@ -39,9 +39,9 @@ impl Lowering<'_> {
         frames: &[FrameExprs],
         inputs: &RunInputs<'_>,
         links: &[LinkParameters],
-        reuse: bool,
-        tip: bool,
+        choices: Choices,
     ) -> Result<Vec<E>, ProgramError> {
+        let Choices { reuse, tip, .. } = choices;
         let n = frames.len();
         let links: Vec<Link> = links
             .iter()
@@ -52,10 +52,17 @@ impl Lowering<'_> {
             qd,
             qdd,
             kin,
-        } = self.forward(frames, inputs)?;
+            vd0,
+        } = self.forward_with(frames, inputs, choices.plane)?;
         self.mark(|| "backward: projection axes, shift".to_owned());
-        let projection = self.projection(&frames);
-        let shift = self.shift(&frames, &kin, &links);
+        let projection = match choices.projection {
+            true => self.projection(&frames),
+            false => None,
+        };
+        let shift = match choices.shift {
+            true => self.shift(&frames, &kin, &links),
+            false => None,
+        };
         // Not where the projection reaches the last link (its moment is projected in
         // its own frame there).
         let tip = tip
@@ -161,6 +168,17 @@ impl Lowering<'_> {
             tau[j] = self.add(&[axis, ia, fv, fc, l.fo]);
             f_next = f;
             n_next = m;
+        }
+        // At rest, a revolute joint whose axis is vertical whatever q (it and every
+        // joint before it parallel to z_0, and gravity along z_0) does no work against
+        // gravity (turning about a vertical axis moves no mass up or down): its torque is
+        // its constant drive term alone, where the sums above only cancel numerically.
+        let zero = |x: &E| x.c == 0.0;
+        if qd.iter().chain(&qdd).all(zero) && zero(&vd0[0]) && zero(&vd0[1]) {
+            let vertical = frames.iter().take_while(|f| zero(&f.sa)).count();
+            for j in (0..vertical).filter(|&j| frames[j].kind == JointKind::Revolute) {
+                tau[j] = links[j].fo;
+            }
         }
         Ok(tau)
     }

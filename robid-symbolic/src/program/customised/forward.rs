@@ -23,6 +23,8 @@ pub(in crate::program) struct Kinematics {
     pub(super) qd: Vec<E>,
     pub(super) qdd: Vec<E>,
     pub(super) kin: Vec<KinLink>,
+    /// The base's acceleration as the links feel it, `vd_0 = -g` in frame 0.
+    pub(super) vd0: V3,
 }
 
 /// w, wd, vd and U of a link.
@@ -60,6 +62,16 @@ impl Lowering<'_> {
         frames: &[FrameExprs],
         inputs: &RunInputs<'_>,
     ) -> Result<Kinematics, ProgramError> {
+        self.forward_with(frames, inputs, true)
+    }
+
+    /// [`Lowering::forward`], with the planar form of the angular motion or without.
+    pub(in crate::program) fn forward_with(
+        &mut self,
+        frames: &[FrameExprs],
+        inputs: &RunInputs<'_>,
+        planar: bool,
+    ) -> Result<Kinematics, ProgramError> {
         let n = frames.len();
         self.mark(|| "frames".to_owned());
         let frames: Vec<Frame> = frames
@@ -89,7 +101,10 @@ impl Lowering<'_> {
             self.mark(|| format!("forward {}: w, wd", j + 1));
             let w_in = self.rotate_back(f, w);
             let wd_in = self.rotate_back(f, wd);
-            plane = self.plane(f, plane, w, wd);
+            plane = match planar {
+                true => self.plane(f, plane, w, wd),
+                false => None,
+            };
             let wy_qd = self.mul(w_in[1], qd[j]);
             let wx_qd = self.mul(w_in[0], qd[j]);
             let (w_z, wd_z) = match f.kind {
@@ -136,6 +151,7 @@ impl Lowering<'_> {
             qd,
             qdd,
             kin,
+            vd0: g,
         })
     }
 

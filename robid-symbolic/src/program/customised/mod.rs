@@ -135,6 +135,36 @@ struct Link {
     fo: E,
 }
 
+/// The choices of the customised Newton-Euler algorithm ([`Lowering::newton_euler`],
+/// docs/dynamics.md#customised-newton-euler): `tip` and `reuse` are not always the
+/// cheaper, so a program is built with each and the cheapest kept; the others are
+/// always taken, none ever costing flops (`every_other_choice_pays`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(in crate::program) struct Choices {
+    /// An acceleration component `a x` whose product the next link's acceleration
+    /// computed already enters `MS x vd` as that product.
+    pub reuse: bool,
+    /// The last link's wrench written in its parent's frame ([`Lowering::tip`]).
+    pub tip: bool,
+    /// Planar angular motion carried as a rotated unit vector (`forward.rs`).
+    pub plane: bool,
+    /// The moments after a perpendicular joint projected instead of rotated back.
+    pub projection: bool,
+    /// The last link's moment taken about its parent's origin when that is on its axis.
+    pub shift: bool,
+}
+
+impl Choices {
+    /// Every choice taken.
+    pub(in crate::program) const ALL: Choices = Choices {
+        reuse: true,
+        tip: true,
+        plane: true,
+        projection: true,
+        shift: true,
+    };
+}
+
 /// Joint inputs of one run: velocities, accelerations, gravity (expressions).
 pub(in crate::program) struct RunInputs<'a> {
     /// Joint velocities.

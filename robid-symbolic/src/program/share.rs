@@ -1,0 +1,342 @@
+//! Partial sums shared between sums: where two sums (trees of additions and
+//! subtractions, as in `factor.rs`) both add `x + y` (or both `x - y`, either sign of the
+//! whole), `x +- y` is computed once and each reads it. The pair found in the most sums
+//! is taken first, then the next (a pair may hold a pair), until no two sums share one;
+//! each pair found in k sums saves k - 1 additions. A sum whose terms all end up
+//! subtracted is negated, which costs what the pair saved in it, so no program gets
+//! dearer; the pass keeps the program as it was if it would (it never does on the
+//! reference robots).
+
+use super::factor::{Term, flatten, mapped, pairwise};
+use super::{Instr, Program, Value, dce};
+use std::collections::HashMap;
+
+/// A term of a rewritten sum: a value of the old program or a shared pair.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+enum Item {
+    Old(Value),
+    Pair(usize),
+}
+
+/// A pair of items and whether they have opposite signs (the lesser item first).
+type Key = (Item, Item, bool);
+
+/// Adds `delta` to the count of every pair of `sum`, keeping in `shared` the pairs
+/// counted at least twice.
+fn recount(
+    sum: &[(Item, bool)],
+    delta: isize,
+    counts: &mut HashMap<Key, usize>,
+    shared: &mut HashMap<Key, usize>,
+) {
+    for (i, &(x, sx)) in sum.iter().enumerate() {
+        for &(y, sy) in sum[i + 1..].iter().filter(|t| t.0 != x) {
+            let key = match x < y {
+                true => (x, y, sx != sy),
+                false => (y, x, sx != sy),
+            };
+            let c = counts.entry(key).or_insert(0);
+            *c = c
+                .checked_add_signed(delta)
+                .expect("a pair counted where it was");
+            match *c >= 2 {
+                true => shared.insert(key, *c),
+                false => shared.remove(&key),
+            };
+        }
+    }
+}
+
+/// The program with partial sums shared between its sums, dead code removed.
+pub(super) fn share_pairs(program: Program) -> Program {
+    let n = program.instrs.len();
+    let mut uses = vec![0usize; n];
+    let mut count = |v: Value| {
+        if let Value::Temp(t) = v {
+            uses[t as usize] += 1;
+        }
+    };
+    program
+        .instrs
+        .iter()
+        .flat_map(Instr::operands)
+        .for_each(&mut count);
+    program
+        .outputs
+        .iter()
+        .flat_map(|o| o.values.iter().copied())
+        .for_each(&mut count);
+    let is_sum = |i: &Instr| matches!(i, Instr::Add(..) | Instr::Sub(..));
+    let mut inner = vec![false; n];
+    for instr in program.instrs.iter().filter(|i| is_sum(i)) {
+        for v in instr.operands() {
+            if let Value::Temp(t) = v
+                && uses[t as usize] == 1
+                && is_sum(&program.instrs[t as usize])
+            {
+                inner[t as usize] = true;
+            }
+        }
+    }
+    // The sums (roots of sum trees) and their signed terms.
+    let roots: Vec<usize> = (0..n)
+        .filter(|&i| is_sum(&program.instrs[i]) && !inner[i])
+        .collect();
+    let mut terms: Vec<Vec<(Item, bool)>> = roots
+        .iter()
+        .map(|&r| {
+            let mut t: Vec<Term> = Vec::new();
+            flatten(&program.instrs, &uses, r, false, &mut t);
+            t.into_iter().map(|(v, s)| (Item::Old(v), s)).collect()
+        })
+        .collect();
+    // Pairs (x, y, x and y of opposite signs), greedily, the most shared first (of
+    // equals the least by the order of items, for determinism). The counts are kept up to
+    // date as sums change; most pairs occur once, so the ones that occur more are few.
+    let mut counts: HashMap<Key, usize> = HashMap::new();
+    let mut shared: HashMap<Key, usize> = HashMap::new();
+    let mut holders: HashMap<Item, Vec<usize>> = HashMap::new();
+    for (k, sum) in terms.iter().enumerate() {
+        recount(sum, 1, &mut counts, &mut shared);
+        for t in sum {
+            holders.entry(t.0).or_default().push(k);
+        }
+    }
+    let mut pairs: Vec<Key> = Vec::new();
+    while let Some((&(x, y, opposite), _)) = shared
+        .iter()
+        .max_by_key(|(key, c)| (**c, std::cmp::Reverse(**key)))
+    {
+        let p = Item::Pair(pairs.len());
+        pairs.push((x, y, opposite));
+        let mut sums = holders.get(&x).cloned().unwrap_or_default();
+        sums.sort_unstable();
+        sums.dedup();
+        for k in sums {
+            let sum = &terms[k];
+            let (Some(i), Some(j)) = (
+                sum.iter().position(|t| t.0 == x),
+                sum.iter().position(|t| t.0 == y),
+            ) else {
+                continue;
+            };
+            if (sum[i].1 != sum[j].1) != opposite {
+                continue;
+            }
+            recount(&terms[k], -1, &mut counts, &mut shared);
+            let sum = &mut terms[k];
+            // x + y (or x - y) with the sign of x
+            let sign = sum[i].1;
+            let (first, second) = (i.min(j), i.max(j));
+            sum.remove(second);
+            sum[first] = (p, sign);
+            recount(&terms[k], 1, &mut counts, &mut shared);
+            holders.entry(p).or_default().push(k);
+        }
+    }
+    if pairs.is_empty() {
+        return program;
+    }
+    // The program again, each rewritten sum at its root's place, each pair written before
+    // the first sum that reads it.
+    let mut instrs: Vec<Instr> = Vec::with_capacity(n);
+    let mut map: Vec<Value> = Vec::with_capacity(n);
+    let mut written: Vec<Option<Value>> = vec![None; pairs.len()];
+    let mut root_terms: HashMap<usize, Vec<(Item, bool)>> = roots.into_iter().zip(terms).collect();
+    let mut emit = |instrs: &mut Vec<Instr>, i: Instr| {
+        instrs.push(i);
+        Value::Temp(instrs.len() as u32 - 1)
+    };
+    for (i, &instr) in program.instrs.iter().enumerate() {
+        let value = match root_terms.remove(&i) {
+            Some(sum) => {
+                let flat: Vec<Term> = sum
+                    .into_iter()
+                    .map(|(item, s)| (item_value(item, &pairs, &mut written, &map, &mut instrs), s))
+                    .collect();
+                // an added term first, so that the sum needs no negation where it has one
+                let mut flat = flat;
+                if let Some(k) = flat.iter().position(|t| !t.1) {
+                    let t = flat.remove(k);
+                    flat.insert(0, t);
+                }
+                let (v, negative) = pairwise(&mut instrs, &flat, &mut emit);
+                match negative {
+                    true => emit(&mut instrs, Instr::Neg(v)),
+                    false => v,
+                }
+            }
+            None => emit(&mut instrs, instr.map(|v| mapped(&map, v))),
+        };
+        map.push(value);
+    }
+    let outputs = program
+        .outputs
+        .iter()
+        .map(|o| super::Output {
+            group: o.group.clone(),
+            values: o.values.iter().map(|&v| mapped(&map, v)).collect(),
+        })
+        .collect();
+    let shared = dce::remove_dead_code(Program {
+        inputs: program.inputs.clone(),
+        constants: program.constants.clone(),
+        instrs,
+        outputs,
+    });
+    match shared.operations().flops() < program.operations().flops() {
+        true => shared,
+        false => program,
+    }
+}
+
+/// The value of `item` in the new program, writing the pairs it needs first.
+fn item_value(
+    item: Item,
+    pairs: &[(Item, Item, bool)],
+    written: &mut [Option<Value>],
+    map: &[Value],
+    instrs: &mut Vec<Instr>,
+) -> Value {
+    match item {
+        Item::Old(v) => mapped(map, v),
+        Item::Pair(k) => {
+            if let Some(v) = written[k] {
+                return v;
+            }
+            let (x, y, opposite) = pairs[k];
+            let a = item_value(x, pairs, written, map, instrs);
+            let b = item_value(y, pairs, written, map, instrs);
+            instrs.push(match opposite {
+                true => Instr::Sub(a, b),
+                false => Instr::Add(a, b),
+            });
+            let v = Value::Temp(instrs.len() as u32 - 1);
+            written[k] = Some(v);
+            v
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Group, Instr, Output, Program, Value};
+    use super::share_pairs;
+    use robid_core::rng::Rng;
+
+    const X: Value = Value::Input(0);
+    const Y: Value = Value::Input(1);
+    const Z: Value = Value::Input(2);
+    const W: Value = Value::Input(3);
+    const T: fn(u32) -> Value = Value::Temp;
+
+    /// A program of inputs `x y z w` with these instructions and outputs.
+    fn program(instrs: Vec<Instr>, outputs: Vec<Value>) -> Program {
+        let names = ["x", "y", "z", "w"].map(str::to_owned).to_vec();
+        let out = (0..outputs.len()).map(|k| format!("out{k}")).collect();
+        Program {
+            inputs: vec![Group::new("in", names)],
+            constants: vec![],
+            instrs,
+            outputs: vec![Output {
+                group: Group::new("out", out),
+                values: outputs,
+            }],
+        }
+    }
+
+    /// Both programs give the same outputs at random inputs.
+    fn same_values(a: &Program, b: &Program) {
+        let mut rng = Rng::from_state(5);
+        for _ in 0..20 {
+            let x: Vec<f64> = (0..4).map(|_| rng.uniform(-2.0, 2.0)).collect();
+            let (u, v) = (a.eval(&[&x]).unwrap(), b.eval(&[&x]).unwrap());
+            for (p, q) in u[0].iter().zip(&v[0]) {
+                assert!((p - q).abs() <= 1e-14 * (1.0 + p.abs()), "{p} vs {q}");
+            }
+        }
+    }
+
+    /// `x + y + z` and `w - x - y` share `x + y` (added in one, subtracted in the other):
+    /// 3 additions instead of 4, the same values; and `x - z` in `x - z + w` and
+    /// `y + x - z` (a pair of opposite signs) is shared the same way.
+    #[test]
+    fn a_pair_in_two_sums_is_added_once() {
+        let before = program(
+            vec![
+                Instr::Add(X, Y),    // t0
+                Instr::Add(T(0), Z), // t1 = x + y + z
+                Instr::Sub(W, X),    // t2
+                Instr::Sub(T(2), Y), // t3 = w - x - y
+            ],
+            vec![T(1), T(3)],
+        );
+        let after = share_pairs(before.clone());
+        assert_eq!(before.operations().add, 4);
+        assert_eq!(after.operations().add, 3, "{after}");
+        assert_eq!(after.operations().neg, 0);
+        same_values(&before, &after);
+        let before = program(
+            vec![
+                Instr::Sub(X, Z),    // t0
+                Instr::Add(T(0), W), // t1 = x - z + w
+                Instr::Add(Y, X),    // t2
+                Instr::Sub(T(2), Z), // t3 = y + x - z
+            ],
+            vec![T(1), T(3)],
+        );
+        let after = share_pairs(before.clone());
+        assert_eq!(after.operations().add, 3, "{after}");
+        same_values(&before, &after);
+    }
+
+    /// Sums that share no pair, or share one with the other relative sign (`x + y` and
+    /// `x - y`), are left as they are.
+    #[test]
+    fn sums_without_a_common_pair_are_unchanged() {
+        let before = program(
+            vec![
+                Instr::Add(X, Y),    // t0
+                Instr::Add(T(0), Z), // t1 = x + y + z
+                Instr::Sub(X, Y),    // t2
+                Instr::Add(T(2), W), // t3 = x - y + w
+            ],
+            vec![T(1), T(3)],
+        );
+        assert_eq!(share_pairs(before.clone()), before);
+    }
+
+    /// Random sums of random signed terms: the same values, never more operations.
+    #[test]
+    fn shared_pairs_keep_values_and_never_cost() {
+        let mut rng = Rng::from_state(8);
+        let inputs = [X, Y, Z, W];
+        let mut saved = 0;
+        for _ in 0..200 {
+            let mut instrs = Vec::new();
+            let mut outputs = Vec::new();
+            for _ in 0..1 + rng.below(4) {
+                // a sum of 2 to 4 distinct inputs with random signs, added left to right
+                let mut pick = inputs.to_vec();
+                let k = 2 + rng.below(3);
+                let mut acc = pick.remove(rng.below(pick.len()));
+                for _ in 1..k {
+                    let v = pick.remove(rng.below(pick.len()));
+                    instrs.push(match rng.below(2) {
+                        0 => Instr::Add(acc, v),
+                        _ => Instr::Sub(acc, v),
+                    });
+                    acc = T(instrs.len() as u32 - 1);
+                }
+                outputs.push(acc);
+            }
+            let before = program(instrs, outputs);
+            let after = share_pairs(before.clone());
+            same_values(&before, &after);
+            let (b, a) = (before.operations().flops(), after.operations().flops());
+            assert!(a <= b, "{before}\n{after}");
+            saved += b - a;
+        }
+        assert!(saved > 50, "{saved}");
+    }
+}
