@@ -479,6 +479,9 @@ pub(crate) struct Dominance {
 struct ColumnTop {
     /// Power-of-two scale of the squares (0: only zeros so far).
     scale: f64,
+    /// 1 / scale (exact: a power of two), which each value is multiplied by instead of
+    /// divided by `scale`: the same value, without a division per entry.
+    inverse: f64,
     /// Sum of (v / scale)^2.
     sum: f64,
     /// The largest |v| with their tags, largest first.
@@ -491,6 +494,7 @@ impl Dominance {
             columns: vec![
                 ColumnTop {
                     scale: 0.0,
+                    inverse: 0.0,
                     sum: 0.0,
                     top: [(0.0, 0); OUTLIER_ROWS],
                 };
@@ -512,9 +516,10 @@ impl Dominance {
                     c.sum *= f * f;
                 }
                 c.scale = s;
+                c.inverse = 1.0 / s;
             }
             if a > 0.0 {
-                let t = a / c.scale;
+                let t = a * c.inverse;
                 c.sum += t * t;
             }
             if a > c.top[OUTLIER_ROWS - 1].0 {
