@@ -335,3 +335,46 @@ fn bulk_pushes_equal_single_ones() {
     assert!(bulk.push_rows(&[0], &[1.0; 10], &[1.0, 2.0]).is_err());
     assert_eq!(bulk.rows(), before, "nothing added");
 }
+
+/// The structured fold keeps `R' R = [R; B]' [R; B]` and `R` upper triangular, with rows
+/// whose leading columns are zero (a late joint's equations, whose reflections are
+/// skipped), and a column zero in the first rows (a zero on the factor's diagonal when
+/// the next rows reach it).
+#[test]
+fn the_fold_keeps_the_gram_matrix() {
+    let n = 9;
+    let mut rng = Rng::new(5);
+    // a factor: the R of some rows (column 4 never non-zero, like an unused parameter)
+    let entry = |rng: &mut Rng, c: usize| if c == 4 { 0.0 } else { rng.normal() };
+    let mut r = DMatrix::<f64>::zeros(n, n);
+    let first: Vec<f64> = (0..20 * n).map(|i| entry(&mut rng, i % n)).collect();
+    fold_rows(&mut r, &mut first.clone(), n);
+    let mut gram = DMatrix::<f64>::zeros(n, n);
+    let add = |gram: &mut DMatrix<f64>, rows: &[f64]| {
+        for row in rows.chunks_exact(n) {
+            let v = DVector::from_column_slice(row);
+            *gram += &v * v.transpose();
+        }
+    };
+    add(&mut gram, &first);
+    for lead in [0, 3, 6, 8] {
+        let rows: Vec<f64> = (0..13 * n)
+            .map(|i| if i % n < lead { 0.0 } else { rng.normal() })
+            .collect();
+        fold_rows(&mut r, &mut rows.clone(), n);
+        add(&mut gram, &rows);
+        for i in 0..n {
+            for j in 0..i {
+                assert_eq!(r[(i, j)], 0.0, "below the diagonal at ({i}, {j})");
+            }
+        }
+        let rtr = r.transpose() * &r;
+        let scale = gram.amax();
+        for (a, b) in rtr.iter().zip(gram.iter()) {
+            assert!(
+                (a - b).abs() <= 1e-13 * scale,
+                "{a} vs {b}, leading zeros {lead}"
+            );
+        }
+    }
+}
