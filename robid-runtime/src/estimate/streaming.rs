@@ -543,6 +543,16 @@ impl StreamingLeastSquares {
 #[derive(Debug, Clone)]
 pub(crate) struct Dominance {
     columns: Vec<ColumnTop>,
+    /// Per column: sum of (v / scale)^2.
+    sum: Vec<f64>,
+    /// Per column: 1 / scale (exact: a power of two), which each value is multiplied by
+    /// instead of divided by the scale: the same value, without a division per entry.
+    inverse: Vec<f64>,
+    /// Per column: the largest magnitude that changes neither the scale nor the top
+    /// entries. A row within every column's floor (nearly all of them) only adds to the
+    /// sums, in one pass that the compiler vectorises; any other row takes the pass that
+    /// checks each entry. The same sums either way: an entry of 0 adds 0.
+    floor: Vec<f64>,
     rows: usize,
 }
 
@@ -550,11 +560,6 @@ pub(crate) struct Dominance {
 struct ColumnTop {
     /// Power-of-two scale of the squares (0: only zeros so far).
     scale: f64,
-    /// 1 / scale (exact: a power of two), which each value is multiplied by instead of
-    /// divided by `scale`: the same value, without a division per entry.
-    inverse: f64,
-    /// Sum of (v / scale)^2.
-    sum: f64,
     /// The largest |v| with their tags, largest first.
     top: [(f64, usize); OUTLIER_ROWS],
 }
@@ -565,12 +570,13 @@ impl Dominance {
             columns: vec![
                 ColumnTop {
                     scale: 0.0,
-                    inverse: 0.0,
-                    sum: 0.0,
                     top: [(0.0, 0); OUTLIER_ROWS],
                 };
                 columns
             ],
+            sum: vec![0.0; columns],
+            inverse: vec![0.0; columns],
+            floor: vec![0.0; columns],
             rows: 0,
         }
     }
@@ -578,25 +584,37 @@ impl Dominance {
     /// Adds one row (finite values) with its tag.
     pub(crate) fn push(&mut self, row: &[f64], tag: usize) {
         self.rows += 1;
-        for (c, v) in self.columns.iter_mut().zip(row) {
+        let rare = row
+            .iter()
+            .zip(&self.floor)
+            .fold(false, |r, (v, f)| r | (v.abs() > *f));
+        if !rare {
+            for ((s, v), inv) in self.sum.iter_mut().zip(row).zip(&self.inverse) {
+                let t = v.abs() * inv;
+                *s += t * t;
+            }
+            return;
+        }
+        for (i, (c, v)) in self.columns.iter_mut().zip(row).enumerate() {
             let a = v.abs();
             if a > c.scale {
                 let s = pow2_above(a);
                 if c.scale > 0.0 {
                     let f = c.scale / s;
-                    c.sum *= f * f;
+                    self.sum[i] *= f * f;
                 }
                 c.scale = s;
-                c.inverse = 1.0 / s;
+                self.inverse[i] = 1.0 / s;
             }
             if a > 0.0 {
-                let t = a * c.inverse;
-                c.sum += t * t;
+                let t = a * self.inverse[i];
+                self.sum[i] += t * t;
             }
             if a > c.top[OUTLIER_ROWS - 1].0 {
                 c.top[OUTLIER_ROWS - 1] = (a, tag);
                 c.top.sort_by(|x, y| y.0.total_cmp(&x.0));
             }
+            self.floor[i] = c.scale.min(c.top[OUTLIER_ROWS - 1].0);
         }
     }
 
@@ -611,7 +629,7 @@ impl Dominance {
             .enumerate()
             .filter_map(|(j, c)| {
                 let top: f64 = c.top.iter().map(|t| (t.0 / divisor(c.scale)).powi(2)).sum();
-                let share = top / c.sum;
+                let share = top / self.sum[j];
                 (share > OUTLIER_SHARE).then_some((j, c.top[0].1, share))
             })
             .collect()

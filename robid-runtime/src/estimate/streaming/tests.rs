@@ -310,6 +310,45 @@ fn dominance_equals_dominated_columns() {
     assert_eq!(few.dominated().len(), 1);
 }
 
+/// The rows that change neither a scale nor the top entries (added in one vectorised pass)
+/// give the sums, to the bit, of checking every entry: a reference of the per-entry pass
+/// (each |v| divided by its column's power-of-two scale, squared and added when not zero)
+/// on rows whose magnitudes grow now and then, with zeros and a column of zeros.
+#[test]
+fn dominance_sums_are_those_of_every_entry_checked() {
+    let mut rng = crate::rng::Rng::new(5);
+    let n = 9;
+    let mut d = Dominance::new(n);
+    let (mut scale, mut sum) = (vec![0.0f64; n], vec![0.0f64; n]);
+    for i in 0..5000 {
+        let row: Vec<f64> = (0..n)
+            .map(|c| match c {
+                0 => 0.0,
+                1 if i % 7 == 0 => 0.0,
+                _ => rng.normal() * (1.0 + (i / 1000) as f64) * 10f64.powi(c as i32 - 4),
+            })
+            .collect();
+        d.push(&row, i);
+        for c in 0..n {
+            let a = row[c].abs();
+            if a > scale[c] {
+                let s = pow2_above(a);
+                if scale[c] > 0.0 {
+                    sum[c] *= (scale[c] / s) * (scale[c] / s);
+                }
+                scale[c] = s;
+            }
+            if a > 0.0 {
+                sum[c] += (a / scale[c]) * (a / scale[c]);
+            }
+        }
+    }
+    for c in 0..n {
+        assert_eq!(d.sum[c].to_bits(), sum[c].to_bits(), "column {c}");
+        assert_eq!(d.columns[c].scale, scale[c], "column {c}");
+    }
+}
+
 /// Equations pushed in bulk (groups updated in parallel) give the result of pushing them
 /// one by one; a bad equation anywhere refuses the whole bulk with the error `push` gives.
 #[test]
