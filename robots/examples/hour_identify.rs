@@ -162,6 +162,14 @@ fn stage(name: &str, path: &Path) {
             if let Some(out) = std::env::var_os("HOUR_ESTIMATE") {
                 dump(&e, None, Path::new(&out)).expect("write the estimate");
             }
+            if let Some(out) = std::env::var_os("HOUR_FOLDED") {
+                dump(
+                    &folded(&obs, config.estimation.rank_tolerance),
+                    None,
+                    Path::new(&out),
+                )
+                .expect("write the estimate");
+            }
             let err = relative_error(&e.values, &truth(&model));
             let detail = format!(
                 "cond {:.1}, relative parameter error {err:.2e}, {} equations",
@@ -205,6 +213,29 @@ fn dump(
         }
     }
     out.flush()
+}
+
+/// The dense observation's equations through the streaming least squares (WLS, the
+/// joints' factors folded as the streaming path folds them, one block of equations per
+/// joint): against the dense estimate it shows what the fold order alone moves, against
+/// the streaming estimate what the streaming equations (the filters' settling at the
+/// blocks' edges) move (`HOUR_FOLDED=FILE` in the dense stage).
+fn folded(
+    obs: &robid_runtime::estimate::Observation,
+    tolerance: f64,
+) -> robid_runtime::estimate::Estimate {
+    let mut ls = robid_runtime::estimate::StreamingLeastSquares::new(
+        obs.names.clone(),
+        obs.joint_rows.len(),
+    )
+    .expect("names");
+    for (j, rows) in obs.joint_rows.iter().enumerate() {
+        for i in rows.clone() {
+            let row: Vec<f64> = obs.w.row(i).iter().copied().collect();
+            ls.push(j, &row, obs.y[i]).expect("finite equations");
+        }
+    }
+    ls.wls(tolerance).expect("the folded estimate")
 }
 
 fn relative_error(values: &[f64], truth: &[f64]) -> f64 {

@@ -55,6 +55,9 @@ const BLOCK: usize = 16_384;
 /// one block, with no overlap at all.
 const BLOCK_BYTES: usize = 64 << 20;
 
+/// Blocks per thread the prediction pass takes at once.
+const PREDICTION_BATCH: usize = 4;
+
 /// A record's kept samples cut into blocks of equations.
 pub(crate) struct Stream<'a> {
     model: &'a (dyn Model + Sync),
@@ -292,7 +295,10 @@ impl<'a> Stream<'a> {
         };
         // the blocks are independent: as many at once as there are threads (each block's
         // own work is parallel too, but reading and preparing it is not), appended in
-        // record order, the earliest block's error first
+        // record order, the earliest block's error first. A batch holds four blocks per
+        // thread, so that a thread done with its blocks takes another of the batch instead
+        // of waiting for the slowest (what a batch holds until it is appended is small: a
+        // few values per equation)
         let blocks = self.blocks();
         let mut rest = RestCount::default();
         let progress = self.progress(if self.estimating {
@@ -300,7 +306,7 @@ impl<'a> Stream<'a> {
         } else {
             "validation"
         });
-        for batch in blocks.chunks(rayon::current_num_threads().max(1)) {
+        for batch in blocks.chunks(PREDICTION_BATCH * rayon::current_num_threads().max(1)) {
             let parts: Vec<Result<_>> = batch.par_iter().map(block).collect();
             progress.add(batch.iter().map(|b| b.len() as u64).sum());
             for part in parts {

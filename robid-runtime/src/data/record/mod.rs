@@ -23,6 +23,9 @@ use crate::data::{Config, Dataset, Sampling, WINDOW, Warning};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 
+mod stored;
+use stored::Stored;
+
 /// Samples on a uniform time grid that can be read in blocks.
 pub trait Record: Sync {
     /// Name for reports.
@@ -159,13 +162,15 @@ pub struct SpilledRecord {
 /// (in the loader's role order (positions, velocities, accelerations, torques, motor
 /// positions, temperatures, joint torques), joint by joint, `len` values each), then their
 /// `len` file lines, then their `len` time stamps when the file has a time column; each
+/// column as its decimal digits when they give its values back to the bit, else each
 /// value's 8 bytes as they are in memory (the file is this process's own, written and
-/// read on the same machine).
-#[derive(Debug, Clone, Copy)]
+/// read on the same machine; [`stored`]).
+#[derive(Debug, Clone)]
 struct Chunk {
     start: usize,
     len: usize,
-    offset: u64,
+    /// Each column's place and form in the file.
+    columns: Vec<Stored>,
     /// The window's first and last time stamps (0 without a time column).
     first_time: f64,
     last_time: f64,
@@ -220,6 +225,7 @@ impl SpilledRecord {
         let mut spill = BufWriter::with_capacity(1 << 20, tempfile::tempfile().map_err(temporary)?);
         let mut chunks = Vec::new();
         let mut offset = 0u64;
+        let mut digits = Vec::new();
         let mut clock = Clock::default();
         let mut scan = SamplingScan::new(spans.len() * dof);
         // the sample time only matters at the end: windows are checked at the config's rate
@@ -263,25 +269,29 @@ impl SpilledRecord {
             let lines = std::mem::take(&mut table.lines);
             let stamps = time.as_deref().unwrap_or_default();
             let start = chunks.last().map_or(0, |c: &Chunk| c.start + c.len);
+            // each column's values as read (units and the drive chain are applied to each
+            // block read, after the resampling of an irregular clock, as `load` applies
+            // them), as their digits or the bytes they are in memory, written at once
+            let mut out = Spill {
+                file: &mut spill,
+                offset: &mut offset,
+                digits: &mut digits,
+            };
+            let mut stored = Vec::with_capacity(spans.len() * dof + 2);
+            for x in blocks.iter().flatten().flatten() {
+                stored.push(out.values(x).map_err(temporary)?);
+            }
+            stored.push(out.lines(&lines).map_err(temporary)?);
+            if time.is_some() {
+                stored.push(out.values(stamps).map_err(temporary)?);
+            }
             chunks.push(Chunk {
                 start,
                 len: lines.len(),
-                offset,
+                columns: stored,
                 first_time: stamps.first().copied().unwrap_or_default(),
                 last_time: stamps.last().copied().unwrap_or_default(),
             });
-            // each column's values as read (units and the drive chain are applied to each
-            // block read, after the resampling of an irregular clock, as `load` applies
-            // them), as the bytes they are in memory, written at once
-            let mut write = |bytes: &[u8]| {
-                offset += bytes.len() as u64;
-                spill.write_all(bytes).map_err(temporary)
-            };
-            for x in blocks.iter().flatten().flatten() {
-                write(bytemuck::cast_slice::<f64, u8>(x))?;
-            }
-            write(bytemuck::cast_slice::<u64, u8>(&lines))?;
-            write(bytemuck::cast_slice::<f64, u8>(stamps))?;
             // every value checked as `load` checks it
             let origin = DataOrigin {
                 path: path.clone(),
@@ -364,12 +374,12 @@ impl SpilledRecord {
     }
 
     /// The chunks holding samples `start..end`, with the part of each.
-    fn parts(&self, start: usize, end: usize) -> impl Iterator<Item = (Chunk, usize, usize)> {
+    fn parts(&self, start: usize, end: usize) -> impl Iterator<Item = (&Chunk, usize, usize)> {
         let first = self.chunks.partition_point(|c| c.start + c.len <= start);
         self.chunks[first..]
             .iter()
             .take_while(move |c| c.start < end)
-            .map(move |&c| {
+            .map(move |c| {
                 (
                     c,
                     start.max(c.start) - c.start,
@@ -383,20 +393,43 @@ impl SpilledRecord {
     }
 
     /// Appends values `lo..hi` of column `column` of chunk `c` (see [`Chunk`]: the
-    /// signals' columns, then the lines', then the time stamps') to `out`.
-    fn read_column<T: bytemuck::Pod>(
+    /// signals' columns, then the time stamps') to `out`.
+    fn read_column(
         file: &mut File,
-        c: Chunk,
+        c: &Chunk,
         column: usize,
         (lo, hi): (usize, usize),
-        out: &mut Vec<T>,
+        out: &mut Vec<f64>,
     ) -> Result<()> {
-        Self::read_into(
-            file,
-            c.offset + 8 * (column * c.len + lo) as u64,
-            hi - lo,
-            out,
-        )
+        match c.columns[column] {
+            Stored::Raw { at } => Self::read_into(file, at + 8 * lo as u64, hi - lo, out),
+            Stored::Decimal { at, places } => {
+                let mut digits = Vec::new();
+                Self::read_into::<i32>(file, at + 4 * lo as u64, hi - lo, &mut digits)?;
+                stored::values(&digits, places, out);
+                Ok(())
+            }
+            // only lines are stored so
+            Stored::Consecutive { .. } => unreachable!("a column of values"),
+        }
+    }
+
+    /// Appends lines `lo..hi` of chunk `c` to `out`.
+    fn read_lines(
+        &self,
+        file: &mut File,
+        c: &Chunk,
+        (lo, hi): (usize, usize),
+        out: &mut Vec<u64>,
+    ) -> Result<()> {
+        match c.columns[self.lines_column()] {
+            Stored::Consecutive { first } => {
+                out.extend((lo..hi).map(|k| first + k as u64));
+                Ok(())
+            }
+            Stored::Raw { at } => Self::read_into(file, at + 8 * lo as u64, hi - lo, out),
+            Stored::Decimal { .. } => unreachable!("lines are integers"),
+        }
     }
 
     /// The signals of samples `start..end` as written (before any resampling), in the
@@ -415,25 +448,28 @@ impl SpilledRecord {
             }
         }
         for (c, lo, hi) in self.parts(start, end) {
-            let mut column = 0;
-            for x in blocks.iter_mut().flatten().flatten() {
+            for (column, x) in blocks.iter_mut().flatten().flatten().enumerate() {
                 Self::read_column(file, c, column, (lo, hi), x)?;
-                column += 1;
             }
             if let Some(lines) = lines.as_mut() {
-                Self::read_column(file, c, column, (lo, hi), lines)?;
+                self.read_lines(file, c, (lo, hi), lines)?;
             }
         }
         Ok(blocks)
     }
 
+    /// The column of a chunk that holds the file lines (after the signals).
+    fn lines_column(&self) -> usize {
+        self.roles_kept() * self.dof
+    }
+
     /// The column of a chunk that holds the time stamps (after the signals and lines).
     fn stamps_column(&self) -> usize {
-        self.roles_kept() * self.dof + 1
+        self.lines_column() + 1
     }
 
     /// The time stamps of chunk `c`.
-    fn stamps(&self, file: &mut File, c: Chunk) -> Result<Vec<f64>> {
+    fn stamps(&self, file: &mut File, c: &Chunk) -> Result<Vec<f64>> {
         let mut t = Vec::with_capacity(c.len);
         Self::read_column(file, c, self.stamps_column(), (0, c.len), &mut t)?;
         Ok(t)
@@ -449,16 +485,59 @@ impl SpilledRecord {
         let a = match before.checked_sub(1) {
             None => 0,
             Some(i) => {
-                let c = self.chunks[i];
+                let c = &self.chunks[i];
                 c.start + self.stamps(file, c)?.partition_point(|&t| t < s0) - 1
             }
         };
         let after = self.chunks.partition_point(|c| c.last_time <= s1);
         let b = match self.chunks.get(after) {
             None => self.samples - 1,
-            Some(&c) => c.start + self.stamps(file, c)?.partition_point(|&t| t <= s1),
+            Some(c) => c.start + self.stamps(file, c)?.partition_point(|&t| t <= s1),
         };
         Ok((a, b))
+    }
+}
+
+/// The temporary file being written, the bytes written so far, and a buffer for a
+/// column's digits.
+struct Spill<'a> {
+    file: &'a mut BufWriter<File>,
+    offset: &'a mut u64,
+    digits: &'a mut Vec<i32>,
+}
+
+impl Spill<'_> {
+    /// Writes `bytes`, returning where they start.
+    fn write(&mut self, bytes: &[u8]) -> std::io::Result<u64> {
+        let at = *self.offset;
+        self.file.write_all(bytes)?;
+        *self.offset += bytes.len() as u64;
+        Ok(at)
+    }
+
+    /// Writes a column of values: its digits when they give them back, else their bytes.
+    fn values(&mut self, x: &[f64]) -> std::io::Result<Stored> {
+        match stored::digits(x, self.digits) {
+            Some(places) => {
+                let digits = std::mem::take(self.digits);
+                let at = self.write(bytemuck::cast_slice::<i32, u8>(&digits));
+                *self.digits = digits;
+                Ok(Stored::Decimal { at: at?, places })
+            }
+            None => Ok(Stored::Raw {
+                at: self.write(bytemuck::cast_slice::<f64, u8>(x))?,
+            }),
+        }
+    }
+
+    /// Writes a column of file lines: nothing when they follow each other.
+    fn lines(&mut self, lines: &[u64]) -> std::io::Result<Stored> {
+        Ok(match stored::consecutive(lines) {
+            Some(first) => Stored::Consecutive { first },
+            None => Stored::Raw {
+                at: self.write(bytemuck::cast_slice::<u64, u8>(lines))?,
+            },
+        })
     }
 }
 
@@ -503,10 +582,10 @@ impl Record for SpilledRecord {
 
     fn line(&self, k: usize) -> Option<u64> {
         let (c, lo, _) = self.parts(k, k + 1).next()?;
-        let at = c.offset + 8 * (self.roles_kept() * self.dof * c.len + lo) as u64;
         let mut file = self.spill.lock().ok()?;
         let mut line = Vec::with_capacity(1);
-        Self::read_into::<u64>(&mut file, at, 1, &mut line).ok()?;
+        self.read_lines(&mut file, c, (lo, lo + 1), &mut line)
+            .ok()?;
         line.first().copied()
     }
 
@@ -540,9 +619,8 @@ impl Record for SpilledRecord {
                 for x in blocks.iter_mut().flatten().flatten() {
                     *x = interpolate(&t, x, &at);
                 }
-                let column = self.roles_kept() * self.dof;
                 for (c, lo, hi) in self.parts(start, end) {
-                    Self::read_column(&mut file, c, column, (lo, hi), &mut lines)?;
+                    self.read_lines(&mut file, c, (lo, hi), &mut lines)?;
                 }
                 blocks
             }

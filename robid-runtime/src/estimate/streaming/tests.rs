@@ -310,6 +310,45 @@ fn dominance_equals_dominated_columns() {
     assert_eq!(few.dominated().len(), 1);
 }
 
+/// The rows that change neither a scale nor the top entries (added in one vectorised pass)
+/// give the sums, to the bit, of checking every entry: a reference of the per-entry pass
+/// (each |v| divided by its column's power-of-two scale, squared and added when not zero)
+/// on rows whose magnitudes grow now and then, with zeros and a column of zeros.
+#[test]
+fn dominance_sums_are_those_of_every_entry_checked() {
+    let mut rng = crate::rng::Rng::new(5);
+    let n = 9;
+    let mut d = Dominance::new(n);
+    let (mut scale, mut sum) = (vec![0.0f64; n], vec![0.0f64; n]);
+    for i in 0..5000 {
+        let row: Vec<f64> = (0..n)
+            .map(|c| match c {
+                0 => 0.0,
+                1 if i % 7 == 0 => 0.0,
+                _ => rng.normal() * (1.0 + (i / 1000) as f64) * 10f64.powi(c as i32 - 4),
+            })
+            .collect();
+        d.push(&row, i);
+        for c in 0..n {
+            let a = row[c].abs();
+            if a > scale[c] {
+                let s = pow2_above(a);
+                if scale[c] > 0.0 {
+                    sum[c] *= (scale[c] / s) * (scale[c] / s);
+                }
+                scale[c] = s;
+            }
+            if a > 0.0 {
+                sum[c] += (a / scale[c]) * (a / scale[c]);
+            }
+        }
+    }
+    for c in 0..n {
+        assert_eq!(d.sum[c].to_bits(), sum[c].to_bits(), "column {c}");
+        assert_eq!(d.columns[c].scale, scale[c], "column {c}");
+    }
+}
+
 /// Equations pushed in bulk (groups updated in parallel) give the result of pushing them
 /// one by one; a bad equation anywhere refuses the whole bulk with the error `push` gives.
 #[test]
@@ -334,4 +373,47 @@ fn bulk_pushes_equal_single_ones() {
     assert!(bulk.push_rows(&[0, 9], &[1.0; 10], &[1.0, 2.0]).is_err());
     assert!(bulk.push_rows(&[0], &[1.0; 10], &[1.0, 2.0]).is_err());
     assert_eq!(bulk.rows(), before, "nothing added");
+}
+
+/// The structured fold keeps `R' R = [R; B]' [R; B]` and `R` upper triangular, with rows
+/// whose leading columns are zero (a late joint's equations, whose reflections are
+/// skipped), and a column zero in the first rows (a zero on the factor's diagonal when
+/// the next rows reach it).
+#[test]
+fn the_fold_keeps_the_gram_matrix() {
+    let n = 9;
+    let mut rng = Rng::new(5);
+    // a factor: the R of some rows (column 4 never non-zero, like an unused parameter)
+    let entry = |rng: &mut Rng, c: usize| if c == 4 { 0.0 } else { rng.normal() };
+    let mut r = DMatrix::<f64>::zeros(n, n);
+    let first: Vec<f64> = (0..20 * n).map(|i| entry(&mut rng, i % n)).collect();
+    fold_rows(&mut r, &mut first.clone(), n);
+    let mut gram = DMatrix::<f64>::zeros(n, n);
+    let add = |gram: &mut DMatrix<f64>, rows: &[f64]| {
+        for row in rows.chunks_exact(n) {
+            let v = DVector::from_column_slice(row);
+            *gram += &v * v.transpose();
+        }
+    };
+    add(&mut gram, &first);
+    for lead in [0, 3, 6, 8] {
+        let rows: Vec<f64> = (0..13 * n)
+            .map(|i| if i % n < lead { 0.0 } else { rng.normal() })
+            .collect();
+        fold_rows(&mut r, &mut rows.clone(), n);
+        add(&mut gram, &rows);
+        for i in 0..n {
+            for j in 0..i {
+                assert_eq!(r[(i, j)], 0.0, "below the diagonal at ({i}, {j})");
+            }
+        }
+        let rtr = r.transpose() * &r;
+        let scale = gram.amax();
+        for (a, b) in rtr.iter().zip(gram.iter()) {
+            assert!(
+                (a - b).abs() <= 1e-13 * scale,
+                "{a} vs {b}, leading zeros {lead}"
+            );
+        }
+    }
 }
