@@ -308,13 +308,7 @@ fn last_link_in_its_parents_frame_changes_no_torque() {
             let slices: Vec<&[f64]> = values.iter().map(|v| v.as_slice()).collect();
             let a = &parent.eval(&slices).unwrap()[0];
             let b = &own.eval(&slices).unwrap()[0];
-            let scale = b.iter().fold(1.0f64, |s, x| s.max(x.abs()));
-            for (j, (x, y)) in a.iter().zip(b).enumerate() {
-                assert!(
-                    (x - y).abs() <= 1e-12 * scale,
-                    "seed {seed}, joint {j}: {x} vs {y}\n{text}"
-                );
-            }
+            assert_torques_agree(a, b, || format!("seed {seed}\n{text}"));
         }
     }
     assert!(differ * 3 >= seeds, "{differ} of {seeds}");
@@ -433,15 +427,22 @@ fn gravity_is_the_inverse_dynamics_at_rest() {
             }
             let g = &gravity.eval(&g_in).unwrap()[0];
             let t = &id.eval(&t_in).unwrap()[0];
-            let scale = t.iter().fold(1.0f64, |s, x| s.max(x.abs()));
-            for (j, (x, y)) in g.iter().zip(t).enumerate() {
-                assert!(
-                    (x - y).abs() <= 1e-12 * scale,
-                    "seed {seed}, joint {j}: {x} vs {y}\n{text}"
-                );
-            }
+            assert_torques_agree(g, t, || format!("seed {seed}\n{text}"));
         }
     }
     // measured 41 of 60, seeded
     assert!(vertical * 3 >= seeds, "{vertical} of {seeds}");
+}
+
+/// `a` and `b` equal to 1e-12 of the larger of 1 and `b`'s largest magnitude, joint by
+/// joint; `context` says which case failed.
+fn assert_torques_agree(a: &[f64], b: &[f64], context: impl Fn() -> String) {
+    let scale = b.iter().fold(1.0f64, |s, x| s.max(x.abs()));
+    for (j, (x, y)) in a.iter().zip(b).enumerate() {
+        assert!(
+            (x - y).abs() <= 1e-12 * scale,
+            "joint {j}: {x} vs {y}, {}",
+            context()
+        );
+    }
 }
