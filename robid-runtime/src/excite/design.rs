@@ -599,19 +599,6 @@ mod tests {
         s.max() / s.min()
     }
 
-    /// The pendulum's limits of the tests below: an asymmetric range, every joint alike.
-    fn pendulum_limits() -> Vec<JointLimits> {
-        vec![
-            JointLimits {
-                position: [-1.0, 2.0],
-                velocity: 1.5,
-                acceleration: 4.0,
-                torque: None,
-            };
-            2
-        ]
-    }
-
     /// A start inside the limits but in their outer 2 % (outside the band of `safety` =
     /// 0.98 times the half range around the middle) left no room on that side: no
     /// trajectory moved and both designs failed with an infinite criterion. Now each
@@ -622,7 +609,7 @@ mod tests {
     fn a_start_near_a_limit_still_gets_a_design() {
         use crate::excite::{PointDesign, margins};
         let p = Pendulum::default();
-        let limits = pendulum_limits();
+        let limits = crate::simulate::tests::pendulum_limits();
         for start in [[1.995, 0.5], [-0.99, 1.99]] {
             let fourier = FourierDesign {
                 restarts: 1,
@@ -675,7 +662,7 @@ mod tests {
     #[test]
     fn a_design_weighted_far_apart_finds_a_finite_criterion() {
         let p = Pendulum::default();
-        let limits = pendulum_limits();
+        let limits = crate::simulate::tests::pendulum_limits();
         let weights = vec![1e6, 1.0];
         for criterion in [Criterion::Condition, Criterion::DOptimal] {
             let design = FourierDesign {

@@ -429,17 +429,7 @@ mod tests {
     use crate::excite::margins;
     use crate::simulate::tests::Pendulum;
 
-    fn limits() -> Vec<JointLimits> {
-        vec![
-            JointLimits {
-                position: [-1.0, 2.0],
-                velocity: 1.5,
-                acceleration: 4.0,
-                torque: None,
-            };
-            2
-        ]
-    }
+    use crate::simulate::tests::pendulum_limits as limits;
 
     /// Weights given in code are floored as the command line floors sigmas (each weight at
     /// most 1e6 times the smallest, `floor_weights`): a point design and a Fourier design

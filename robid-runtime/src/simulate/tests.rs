@@ -8,6 +8,19 @@ use crate::model::{LengthError, ProgramKind, check_arguments, check_length};
 /// Gravity (m/s^2).
 const G0: f64 = 9.81;
 
+/// The limits the `excite` tests give the pendulum: an asymmetric range, both joints alike.
+pub(crate) fn pendulum_limits() -> Vec<crate::excite::JointLimits> {
+    vec![
+        crate::excite::JointLimits {
+            position: [-1.0, 2.0],
+            velocity: 1.5,
+            acceleration: 4.0,
+            torque: None,
+        };
+        2
+    ]
+}
+
 /// The planar 2R arm; `l1` is the first link's length.
 #[derive(Debug)]
 pub(crate) struct Pendulum {

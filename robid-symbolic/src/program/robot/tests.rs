@@ -110,13 +110,7 @@ fn composite_rigid_body_equals_newton_euler_columns() {
 /// of the inverse dynamics is printed (docs/performance.md#mass-matrix-counts).
 #[test]
 fn composite_rigid_body_is_no_dearer_for_reference_robots() {
-    let dir = format!("{}/../robots/descriptions", env!("CARGO_MANIFEST_DIR"));
-    let mut paths: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    paths.sort();
+    let paths = reference_descriptions();
     assert!(paths.len() >= 8, "{paths:?}");
     eprintln!("| robot | mass matrix before | mass matrix after | inverse dynamics |");
     for path in paths {
@@ -167,13 +161,7 @@ fn reference_robot_counts_are_the_recorded_floor() {
         ProgramKind::MassMatrix,
         ProgramKind::Coriolis,
     ];
-    let dir = format!("{}/../robots/descriptions", env!("CARGO_MANIFEST_DIR"));
-    let mut paths: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    paths.sort();
+    let paths = reference_descriptions();
     assert_eq!(paths.len(), REFERENCE_FLOPS.len(), "{paths:?}");
     eprintln!("| robot | inverse dynamics | base regressor | gravity | mass matrix | Coriolis |");
     let mut mismatches = Vec::new();
@@ -323,13 +311,7 @@ fn last_link_in_its_parents_frame_changes_no_torque() {
 #[test]
 fn every_other_choice_pays() {
     use super::super::customised::Choices;
-    let dir = format!("{}/../robots/descriptions", env!("CARGO_MANIFEST_DIR"));
-    let mut paths: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    paths.sort();
+    let paths = reference_descriptions();
     eprintln!("| robot | program | all | no plane | no projection | no shift |");
     for path in paths {
         let robot = Robot::from_file(&path).unwrap();
@@ -445,4 +427,16 @@ fn assert_torques_agree(a: &[f64], b: &[f64], context: impl Fn() -> String) {
             context()
         );
     }
+}
+
+/// The reference descriptions (robots/descriptions/*.toml), sorted by name.
+fn reference_descriptions() -> Vec<std::path::PathBuf> {
+    let dir = format!("{}/../robots/descriptions", env!("CARGO_MANIFEST_DIR"));
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    paths
 }
