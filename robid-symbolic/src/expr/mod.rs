@@ -1,8 +1,8 @@
 //! Expressions: a hash-consed DAG in one arena.
 //!
-//! Nodes live in a `Vec`, children before parents, and a memo maps each node to
-//! its `Id`, so equal subexpressions are one node (egg's `language.rs` without the
-//! union-find). The smart constructors in `build.rs` run the simplification
+//! Nodes live in a `Vec`, children before parents, and a memo (a hash table of ids,
+//! hashed by their nodes, so each node is stored once) finds a node's `Id`, so equal
+//! subexpressions are one node (egg's `language.rs` without the union-find). The smart constructors in `build.rs` run the simplification
 //! passes of `simplify/` on every node they create; `intern` stores a node as is.
 //!
 //! Text is read by [`Arena::parse`] within documented limits
@@ -26,7 +26,9 @@ pub use eval::{Unbound, Values};
 pub use num::Num;
 pub use parse::{MAX_EXPONENT, MAX_EXPRESSION_LEN, MAX_NESTING, ParseError};
 
-use std::collections::HashMap;
+use hashbrown::HashTable;
+use rustc_hash::FxHashMap;
+use std::hash::BuildHasher;
 
 /// Index of a node in an [`Arena`]. Children always have smaller ids than parents.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -92,9 +94,15 @@ impl Node {
 #[derive(Debug, Default, Clone)]
 pub struct Arena {
     nodes: Vec<Node>,
-    memo: HashMap<Node, Id>,
+    /// The ids of `nodes`, hashed by their node.
+    memo: HashTable<Id>,
     symbols: Vec<String>,
-    symbol_ids: HashMap<String, Symbol>,
+    symbol_ids: FxHashMap<String, Symbol>,
+}
+
+/// The memo's hash of a node (Fx: nodes are small integers and slices of them).
+fn node_hash(node: &Node) -> u64 {
+    rustc_hash::FxBuildHasher.hash_one(node)
 }
 
 impl Arena {
@@ -131,19 +139,28 @@ impl Arena {
 
     /// Stores a node as it is (no simplification) and returns its id.
     pub fn intern(&mut self, node: Node) -> Id {
-        if let Some(&id) = self.memo.get(&node) {
+        let hash = node_hash(&node);
+        if let Some(id) = self.find(hash, &node) {
             return id;
         }
         debug_assert!(node.children().iter().all(|c| c.index() < self.nodes.len()));
         let id = Id(u32::try_from(self.nodes.len()).expect("arena exceeds 2^32 nodes"));
-        self.nodes.push(node.clone());
-        self.memo.insert(node, id);
+        self.nodes.push(node);
+        let nodes = &self.nodes;
+        self.memo
+            .insert_unique(hash, id, |id| node_hash(&nodes[id.index()]));
         id
     }
 
     /// The id of a node if it already exists, without creating it.
     pub fn lookup(&self, node: &Node) -> Option<Id> {
-        self.memo.get(node).copied()
+        self.find(node_hash(node), node)
+    }
+
+    fn find(&self, hash: u64, node: &Node) -> Option<Id> {
+        self.memo
+            .find(hash, |id| self.nodes[id.index()] == *node)
+            .copied()
     }
 
     /// The symbol with this name, created on first use.

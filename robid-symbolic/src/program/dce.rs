@@ -3,14 +3,14 @@
 //! of instructions that compute the same operation on the same operands.
 
 use super::{Instr, Program, Value};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// The program with each instruction that repeats an earlier one (the same operation
 /// on the same operands, commutative ones in either order) replaced by that one, dead
 /// code removed. The lowering's memo merges these as it writes them; a pass that
 /// rewrites sums afterwards (`factor.rs`) can write one again.
 pub(super) fn merge_identical(program: Program) -> Program {
-    let mut seen: HashMap<Instr, Value> = HashMap::new();
+    let mut seen: FxHashMap<Instr, Value> = FxHashMap::default();
     let mut map: Vec<Value> = Vec::with_capacity(program.instrs.len());
     let mut merged = false;
     let mapped = |map: &[Value], v: Value| match v {

@@ -9,7 +9,7 @@
 
 use super::factor::{Term, flatten, mapped, pairwise};
 use super::{Instr, Program, Value, dce};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// A term of a rewritten sum: a value of the old program or a shared pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -26,8 +26,8 @@ type Key = (Item, Item, bool);
 fn recount(
     sum: &[(Item, bool)],
     delta: isize,
-    counts: &mut HashMap<Key, usize>,
-    shared: &mut HashMap<Key, usize>,
+    counts: &mut FxHashMap<Key, usize>,
+    shared: &mut FxHashMap<Key, usize>,
 ) {
     for (i, &(x, sx)) in sum.iter().enumerate() {
         for &(y, sy) in sum[i + 1..].iter().filter(|t| t.0 != x) {
@@ -93,9 +93,9 @@ pub(super) fn share_pairs(program: Program) -> Program {
     // Pairs (x, y, x and y of opposite signs), greedily, the most shared first (of
     // equals the least by the order of items, for determinism). The counts are kept up to
     // date as sums change; most pairs occur once, so the ones that occur more are few.
-    let mut counts: HashMap<Key, usize> = HashMap::new();
-    let mut shared: HashMap<Key, usize> = HashMap::new();
-    let mut holders: HashMap<Item, Vec<usize>> = HashMap::new();
+    let mut counts: FxHashMap<Key, usize> = FxHashMap::default();
+    let mut shared: FxHashMap<Key, usize> = FxHashMap::default();
+    let mut holders: FxHashMap<Item, Vec<usize>> = FxHashMap::default();
     for (k, sum) in terms.iter().enumerate() {
         recount(sum, 1, &mut counts, &mut shared);
         for t in sum {
@@ -142,7 +142,8 @@ pub(super) fn share_pairs(program: Program) -> Program {
     let mut instrs: Vec<Instr> = Vec::with_capacity(n);
     let mut map: Vec<Value> = Vec::with_capacity(n);
     let mut written: Vec<Option<Value>> = vec![None; pairs.len()];
-    let mut root_terms: HashMap<usize, Vec<(Item, bool)>> = roots.into_iter().zip(terms).collect();
+    let mut root_terms: FxHashMap<usize, Vec<(Item, bool)>> =
+        roots.into_iter().zip(terms).collect();
     let mut emit = |instrs: &mut Vec<Instr>, i: Instr| {
         instrs.push(i);
         Value::Temp(instrs.len() as u32 - 1)

@@ -3,7 +3,7 @@
 //! their exponents (x * x^2 = x^3).
 
 use crate::expr::{Arena, Id, Node, Num};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// Operands with nested operations of the same kind spliced in.
 pub(crate) fn flatten(
@@ -23,7 +23,8 @@ pub(crate) fn flatten(
 
 /// Groups terms by monomial, summing coefficients; first-seen order.
 pub(crate) fn like_terms(arena: &mut Arena, terms: &[Id]) -> Vec<(Num, Option<Id>)> {
-    let mut index: HashMap<Option<Id>, usize> = HashMap::with_capacity(terms.len());
+    let mut index: FxHashMap<Option<Id>, usize> =
+        FxHashMap::with_capacity_and_hasher(terms.len(), Default::default());
     let mut out: Vec<(Num, Option<Id>)> = Vec::with_capacity(terms.len());
     for &t in terms {
         let (c, m) = arena.split_term(t);
@@ -40,7 +41,8 @@ pub(crate) fn like_terms(arena: &mut Arena, terms: &[Id]) -> Vec<(Num, Option<Id
 
 /// Groups factors by base, summing exponents; first-seen order.
 pub(crate) fn like_factors(arena: &mut Arena, factors: &[Id]) -> Vec<Id> {
-    let mut index: HashMap<Id, usize> = HashMap::with_capacity(factors.len());
+    let mut index: FxHashMap<Id, usize> =
+        FxHashMap::with_capacity_and_hasher(factors.len(), Default::default());
     let mut grouped: Vec<(Id, i32)> = Vec::with_capacity(factors.len());
     for &f in factors {
         let (base, exponent) = match arena.node(f) {
