@@ -273,6 +273,11 @@ mod tests {
     /// A program of inputs `x y z w` with these instructions and outputs.
     fn program(instrs: Vec<Instr>, outputs: Vec<Value>) -> Program {
         let names = ["x", "y", "z", "w"].map(str::to_owned).to_vec();
+        program_of(names, instrs, outputs)
+    }
+
+    /// A program of these inputs, instructions and outputs.
+    fn program_of(names: Vec<String>, instrs: Vec<Instr>, outputs: Vec<Value>) -> Program {
         let out = (0..outputs.len()).map(|k| format!("out{k}")).collect();
         Program {
             inputs: vec![Group::new("in", names)],
@@ -411,17 +416,7 @@ mod tests {
                 }
                 outputs.push(acc);
             }
-            let names = (0..8).map(|k| format!("x{k}")).collect();
-            let out = (0..outputs.len()).map(|k| format!("out{k}")).collect();
-            let before = Program {
-                inputs: vec![Group::new("in", names)],
-                constants: vec![],
-                instrs,
-                outputs: vec![Output {
-                    group: Group::new("out", out),
-                    values: outputs,
-                }],
-            };
+            let before = program_of((0..8).map(|k| format!("x{k}")).collect(), instrs, outputs);
             let (fast, full) = (share(before.clone(), true), share(before.clone(), false));
             assert_eq!(fast.to_string(), full.to_string(), "{before}");
             same_values(&before, &fast);
