@@ -10,6 +10,8 @@
 use super::factor::{Term, flatten, mapped, pairwise};
 use super::{Instr, Program, Value, dce};
 use rustc_hash::FxHashMap;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 /// A term of a rewritten sum: a value of the old program or a shared pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -22,11 +24,15 @@ enum Item {
 type Key = (Item, Item, bool);
 
 /// The pair counts of the sums: the number of sums holding each pair, and the pairs held
-/// by at least two.
+/// by at least two, most held first.
 #[derive(Default)]
 struct Counts {
     all: FxHashMap<Key, usize>,
-    shared: FxHashMap<Key, usize>,
+    /// Every count of two or more a pair reached, the largest first (of equal counts the
+    /// least pair): those that are still the pair's count are the pairs to share. A heap
+    /// with stale entries instead of a scan of all shared pairs for each one taken (which
+    /// was half of a 20-joint chain's derivation).
+    most: BinaryHeap<(usize, Reverse<Key>)>,
     /// Items of the old program found once in all the sums: a pair of two of them can
     /// never be counted twice (a pair replaces its items, so an old item is never found
     /// more often than at first; a pair with an item found twice in one sum, `x + y + x`,
@@ -35,26 +41,81 @@ struct Counts {
     lone: rustc_hash::FxHashSet<Item>,
 }
 
-/// Adds `delta` to the count of every pair of `sum`, keeping in `shared` the pairs
-/// counted at least twice.
-fn recount(sum: &[(Item, bool)], delta: isize, counts: &mut Counts) {
-    let Counts { all, shared, lone } = counts;
-    let (single, held): (Vec<_>, Vec<_>) = sum.iter().partition(|t| lone.contains(&t.0));
-    for (i, &&(x, sx)) in held.iter().enumerate() {
-        for &&(y, sy) in held[i + 1..].iter().chain(&single).filter(|t| t.0 != x) {
+impl Counts {
+    /// Adds `delta` to the count of every pair of `sum`.
+    fn recount(&mut self, sum: &[(Item, bool)], delta: isize) {
+        for at in 0..sum.len() {
+            self.count_pairs_with(sum, at, at + 1..sum.len(), delta);
+        }
+    }
+
+    /// Adds `delta` to the count of the pair of `sum[at]` with each term at `others`
+    /// (but itself): each pair of two terms is counted once, unless they are one item or
+    /// both lone.
+    fn count_pairs_with(
+        &mut self,
+        sum: &[(Item, bool)],
+        at: usize,
+        others: impl Iterator<Item = usize>,
+        delta: isize,
+    ) {
+        let (x, sx) = sum[at];
+        let x_lone = self.lone.contains(&x);
+        for m in others.filter(|&m| m != at) {
+            let (y, sy) = sum[m];
+            if y == x || (x_lone && self.lone.contains(&y)) {
+                continue;
+            }
             let key = match x < y {
                 true => (x, y, sx != sy),
                 false => (y, x, sx != sy),
             };
-            let c = all.entry(key).or_insert(0);
+            let c = self.all.entry(key).or_insert(0);
             *c = c
                 .checked_add_signed(delta)
                 .expect("a pair counted where it was");
-            match *c >= 2 {
-                true => shared.insert(key, *c),
-                false => shared.remove(&key),
-            };
+            match *c {
+                0 => _ = self.all.remove(&key),
+                1 => {}
+                c => self.most.push((c, Reverse(key))),
+            }
         }
+    }
+
+    /// Replaces the terms at `i` and `j` of `sum` by `pair` (with the sign of the one at
+    /// `i`), counting only the pairs that change: those of the two terms, then those of
+    /// the pair.
+    fn replace(&mut self, sum: &mut Vec<(Item, bool)>, i: usize, j: usize, pair: Item) {
+        self.count_pairs_with(sum, i, 0..sum.len(), -1);
+        self.count_pairs_with(sum, j, (0..sum.len()).filter(|&m| m != i), -1);
+        let sign = sum[i].1;
+        let (first, second) = (i.min(j), i.max(j));
+        sum.remove(second);
+        sum[first] = (pair, sign);
+        self.count_pairs_with(sum, first, 0..sum.len(), 1);
+    }
+
+    /// The unit tests' check: the counts kept up to date are those of the sums now.
+    #[cfg(test)]
+    fn check(&self, terms: &[Vec<(Item, bool)>]) {
+        let mut fresh = Counts {
+            lone: self.lone.clone(),
+            ..Counts::default()
+        };
+        for sum in terms {
+            fresh.recount(sum, 1);
+        }
+        assert_eq!(fresh.all, self.all);
+    }
+
+    /// The pair held by the most sums (at least two; of equals the least pair).
+    fn take_most_shared(&mut self) -> Option<Key> {
+        while let Some((c, Reverse(key))) = self.most.pop() {
+            if self.all.get(&key) == Some(&c) {
+                return Some(key);
+            }
+        }
+        None
     }
 }
 
@@ -125,14 +186,10 @@ fn share(program: Program, skip_lone: bool) -> Program {
         ..Counts::default()
     };
     for sum in &terms {
-        recount(sum, 1, &mut counts);
+        counts.recount(sum, 1);
     }
     let mut pairs: Vec<Key> = Vec::new();
-    while let Some((&(x, y, opposite), _)) = counts
-        .shared
-        .iter()
-        .max_by_key(|(key, c)| (**c, std::cmp::Reverse(**key)))
-    {
+    while let Some((x, y, opposite)) = counts.take_most_shared() {
         let p = Item::Pair(pairs.len());
         pairs.push((x, y, opposite));
         let mut sums = holders.get(&x).cloned().unwrap_or_default();
@@ -156,21 +213,16 @@ fn share(program: Program, skip_lone: bool) -> Program {
                 continue;
             };
             replaced = true;
-            recount(&terms[k], -1, &mut counts);
-            let sum = &mut terms[k];
             // x + y (or x - y) with the sign of x
-            let sign = sum[i].1;
-            let (first, second) = (i.min(j), i.max(j));
-            sum.remove(second);
-            sum[first] = (p, sign);
-            recount(&terms[k], 1, &mut counts);
+            counts.replace(&mut terms[k], i, j, p);
             holders.entry(p).or_default().push(k);
+            #[cfg(test)]
+            counts.check(&terms);
         }
         if !replaced {
             // cannot happen while the counts are right; never loop on a pair
             debug_assert!(false, "pair {:?} counted but in no sum", pairs.last());
             pairs.pop();
-            counts.shared.remove(&(x, y, opposite));
         }
     }
     if pairs.is_empty() {
