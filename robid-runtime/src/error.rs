@@ -40,7 +40,7 @@ pub enum Error {
     #[error(transparent)]
     Feasible(#[from] FeasibleError),
     /// Not enough samples for the requested processing.
-    #[error("{context}: {found} samples, at least {required} are needed; {hint}")]
+    #[error("{context}: {}, at least {required} {} needed; {hint}", crate::Count(*found, "sample"), if *required == 1 { "is" } else { "are" })]
     TooFewSamples {
         /// Which data (file or processing step).
         context: String,

@@ -17,7 +17,7 @@ use robid_runtime::excite::{
 };
 use robid_runtime::limits::MIN_JOINT_LIMIT;
 use robid_runtime::simulate::Trajectory;
-use robid_runtime::{Model, num};
+use robid_runtime::{Count, Model, Series, num};
 
 use super::description::{self, DescriptionFlags};
 use super::flags::{check_samples, closed, count, only_for, positive, real};
@@ -297,15 +297,21 @@ fn no_torque(one: bool, exact: bool) -> String {
 /// The values of a per-joint limit flag (`--acceleration-limits`, `--velocity-limits`) for
 /// `n` joints: none, one for every joint, or one per joint.
 fn per_joint(flag: &str, values: &[f64], n: usize, args: &Args) -> Result<Vec<Option<f64>>, Error> {
-    let letter = &flag[2..3];
+    let letter = if flag.starts_with("--acceleration") {
+        "a"
+    } else {
+        "v"
+    };
     match values {
         [] => Ok(vec![None; n]),
         [v] => Ok(vec![Some(*v); n]),
         many if many.len() == n => Ok(many.iter().copied().map(Some).collect()),
         many => Err(format!(
-            "{flag} has {} values but {} has {n} joints; give one value or {letter}1,..,{letter}{n}",
-            many.len(),
-            args.robot.display()
+            "{flag} has {} but {} has {}; give one value or {}",
+            Count(many.len(), "value"),
+            args.robot.display(),
+            Count(n, "joint"),
+            Series(letter, n)
         )
         .into()),
     }
@@ -364,9 +370,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let velocities = per_joint("--velocity-limits", &args.velocity_limits, n, args)?;
     if !args.start.is_empty() && args.start.len() != n {
         return Err(format!(
-            "--start has {} values but {} has {n} joints; give q1,..,q{n}",
-            args.start.len(),
-            args.robot.display()
+            "--start has {} but {} has {}; give {}",
+            Count(args.start.len(), "value"),
+            args.robot.display(),
+            Count(n, "joint"),
+            Series("q", n)
         )
         .into());
     }
@@ -393,9 +401,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 let file = args.robot.display();
                 let flag = |unit: &str| {
                     format!(
-                        "give --{what}-limits {}1,..,{}n ({unit}; or one value for every joint)",
-                        &what[..1],
-                        &what[..1]
+                        "give --{what}-limits {} ({unit}; or one value for every joint)",
+                        Series(if what == "velocity" { "v" } else { "a" }, n)
                     )
                 };
                 match &description.urdf {
@@ -521,8 +528,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         ),
         k => {
             return Err(format!(
-                "--sigma has {k} values but {} has {n} joints; give s1,..,s{n}",
-                args.robot.display()
+                "--sigma has {} but {} has {}; give {}",
+                Count(k, "value"),
+                args.robot.display(),
+                Count(n, "joint"),
+                Series("s", n)
             )
             .into());
         }

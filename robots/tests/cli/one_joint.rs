@@ -1,0 +1,144 @@
+//! A robot of one joint (`tests/fixtures/pendulum1.toml`) through the command line: every
+//! message that counts joints or lists per-joint values says "1 joint" and "give s1" (they
+//! said "1 joints" and "give s1,..,s1", each message writing its own plural).
+
+use std::path::Path;
+
+use crate::common::{fails_with, folder, robid, stderr, write};
+
+const ONE: &str = "tests/fixtures/pendulum1.toml";
+
+/// `robid ARGS` fails with every one of `expected`, and with no plural or range written
+/// for several joints ("1 joints", "s1,..,s1").
+#[track_caller]
+fn refused(args: &[&str], expected: &[&str]) {
+    let o = robid(args);
+    fails_with(&o, expected);
+    let e = stderr(&o);
+    assert!(!e.contains("1 joints") && !e.contains(",..,"), "{e}");
+}
+
+/// A trajectory `t,q1,qd1,qdd1` of one joint: a sine of 0.5 rad at 0.5 Hz, 4 s at 50 Hz.
+fn trajectory(dir: &Path) -> String {
+    let mut text = String::from("t,q1,qd1,qdd1\n");
+    let w = std::f64::consts::PI;
+    for k in 0..=200 {
+        let t = 0.02 * k as f64;
+        let (s, c) = (w * t).sin_cos();
+        text.push_str(&format!(
+            "{t},{},{},{}\n",
+            0.5 * s,
+            0.5 * w * c,
+            -0.5 * w * w * s
+        ));
+    }
+    write(dir, "traj.csv", &text).display().to_string()
+}
+
+/// The pendulum's parameters: 2 kg, centre of mass 0.3 m out along x.
+fn parameters(dir: &Path) -> String {
+    write(
+        dir,
+        "params.toml",
+        "[standard]\nXX1 = 0.01\nYY1 = 0.2\nZZ1 = 0.2\nMX1 = 0.6\nM1 = 2\n",
+    )
+    .display()
+    .to_string()
+}
+
+#[test]
+fn one_joint_messages_count_one_joint() {
+    let dir = folder();
+    let out = dir.path().join("out.csv").display().to_string();
+    let excite = |extra: &[&str]| {
+        let mut args = vec![
+            "excite",
+            ONE,
+            "-o",
+            &out,
+            "--duration",
+            "10",
+            "--rate",
+            "20",
+        ];
+        args.extend(extra);
+        args.into_iter().map(str::to_owned).collect::<Vec<_>>()
+    };
+    let run = |args: Vec<String>, expected: &[&str]| {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        refused(&args, expected);
+    };
+    run(
+        excite(&["--sigma", "1,2"]),
+        &[
+            "--sigma has 2 values but",
+            "pendulum1.toml has 1 joint; give s1",
+        ],
+    );
+    run(
+        excite(&["--start", "0.1,0.2"]),
+        &["--start has 2 values but", "has 1 joint; give q1"],
+    );
+    run(
+        excite(&["--velocity-limits", "1,2"]),
+        &[
+            "--velocity-limits has 2 values but",
+            "has 1 joint; give one value or v1",
+        ],
+    );
+    run(
+        excite(&["--acceleration-limits", "1,2"]),
+        &["has 1 joint; give one value or a1"],
+    );
+    let traj = trajectory(dir.path());
+    let params = parameters(dir.path());
+    let simulate = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            ONE,
+            "--parameters",
+            &params,
+            "--trajectory",
+            &traj,
+            "-o",
+            &out,
+        ];
+        args.extend(extra);
+        args.into_iter().map(str::to_owned).collect::<Vec<_>>()
+    };
+    run(
+        simulate(&["--torque-noise", "0.1,0.2"]),
+        &[
+            "--torque-noise has 2 values but",
+            "has 1 joint; give one value or s1",
+        ],
+    );
+    run(
+        simulate(&["--columns", "positions", "--currents", "1,2"]),
+        &["--currents has 2 values but", "has 1 joint; give k1"],
+    );
+    run(
+        simulate(&["--flexible", "drives/ur5e_flexible.toml"]),
+        &[
+            "has 6 [[joint]] tables but",
+            "has 1 joint; give one per joint",
+        ],
+    );
+    // states of a robot with more joints
+    let states = write(
+        dir.path(),
+        "states.csv",
+        "q1,q2,qd1,qd2,qdd1,qdd2\n0,0,0,0,0,0\n",
+    );
+    run(
+        vec![
+            "torques".into(),
+            ONE.into(),
+            "--parameters".into(),
+            params.clone(),
+            "--states".into(),
+            states.display().to_string(),
+        ],
+        &["has a column `q2`, for joint 2 of a robot with 1 joint"],
+    );
+}
