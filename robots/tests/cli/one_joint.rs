@@ -1,6 +1,7 @@
 //! A robot of one joint (`tests/fixtures/pendulum1.toml`) through the command line: every
 //! message that counts joints or lists per-joint values says "1 joint" and "give s1" (they
-//! said "1 joints" and "give s1,..,s1", each message writing its own plural).
+//! said "1 joints" and "give s1,..,s1", each message writing its own plural), and a static
+//! sample too few is named by its file with a fix that applies.
 
 use std::path::Path;
 
@@ -141,4 +142,29 @@ fn one_joint_messages_count_one_joint() {
         ],
         &["has a column `q2`, for joint 2 of a robot with 1 joint"],
     );
+}
+
+/// One static pose of gravity torque for the two combinations (`MX1`, `MY1`) that gravity
+/// torques of a pendulum determine: named by the file, with a fix that applies to static
+/// samples. It was "least squares with 2 parameters: 1 samples, at least 2 are needed; use
+/// more data, less decimation, or fewer parameters", without the file, and decimation is
+/// not a setting of static samples.
+#[test]
+fn one_joint_static_samples_too_few_name_the_file() {
+    let dir = folder();
+    let csv = write(dir.path(), "gravity.csv", "q1,g1\n0.3,5.6\n");
+    let o = robid(&["identify", ONE, "--static", csv.to_str().unwrap()]);
+    fails_with(
+        &o,
+        &[
+            "gravity.csv: static samples, 1 equation per pose, for the 2 combinations of base \
+             parameters that gravity torques determine: 1 sample, at least 2 are needed; add \
+             rows to the file, each at a pose unlike the others",
+        ],
+    );
+    assert!(!stderr(&o).contains("decimation"), "{}", stderr(&o));
+    // two poses are enough
+    let csv = write(dir.path(), "gravity.csv", "q1,g1\n0.3,5.6\n1.1,2.6\n");
+    let o = robid(&["identify", ONE, "--static", csv.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
 }
