@@ -1,7 +1,8 @@
 //! A robot of one joint (`tests/fixtures/pendulum1.toml`) through the command line: every
 //! message that counts joints or lists per-joint values says "1 joint" and "give s1" (they
-//! said "1 joints" and "give s1,..,s1", each message writing its own plural), and a static
-//! sample too few is named by its file with a fix that applies.
+//! said "1 joints" and "give s1,..,s1", each message writing its own plural), a static
+//! sample too few is named by its file with a fix that applies, and a payload that its one
+//! joint torque cannot determine gets advice that can be followed.
 
 use std::path::Path;
 
@@ -167,4 +168,47 @@ fn one_joint_static_samples_too_few_name_the_file() {
     let csv = write(dir.path(), "gravity.csv", "q1,g1\n0.3,5.6\n1.1,2.6\n");
     let o = robid(&["identify", ONE, "--static", csv.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
+}
+
+/// The joint torque of one revolute joint sees at most three of the payload's ten
+/// parameters (`ZZ`, `MX`, `MY`) whatever the motion: the advice was "use a richer
+/// trajectory or remove these parameters", which no motion and no flag can follow.
+#[test]
+fn one_joint_payload_gets_advice_that_can_be_followed() {
+    let dir = folder();
+    let params = parameters(dir.path());
+    let mut text = String::from("q1,qd1,qdd1,tau1\n");
+    for k in 0..100 {
+        let t = 0.05 * k as f64;
+        let q = (1.3 * t).sin();
+        text.push_str(&format!(
+            "{q},{},{},{}\n",
+            1.3 * (1.3 * t).cos(),
+            -1.69 * q,
+            3.0 * q
+        ));
+    }
+    let data = write(dir.path(), "data.csv", &text);
+    let o = robid(&[
+        "payload",
+        ONE,
+        "--parameters",
+        &params,
+        "--data",
+        data.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &[
+            "data.csv: rank-deficient data: rank 3 of the payload's 10 parameters; not excited:",
+            "the joint torques of `pendulum1` (1 joint) determine at most 3 combinations of \
+             the ten whatever the motion",
+            "force-torque sensor",
+        ],
+    );
+    assert!(
+        !stderr(&o).contains("remove these parameters"),
+        "{}",
+        stderr(&o)
+    );
 }
