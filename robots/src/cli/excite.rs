@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::excite::{
-    Criterion, FourierDesign, JointLimits, PointDesign, assess, weights_from_sigma,
+    Criterion, FourierDesign, Information, JointLimits, PointDesign, assess, weights_from_sigma,
 };
 use robid_runtime::limits::MIN_JOINT_LIMIT;
 use robid_runtime::simulate::Trajectory;
@@ -558,7 +558,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 harmonics: args.harmonics.unwrap_or(HARMONICS),
                 base_frequency,
                 criterion,
-                weights,
+                weights: weights.clone(),
                 restarts: args.restarts.unwrap_or(8),
                 evaluations: args.evaluations.unwrap_or(3000),
                 seed: args.seed,
@@ -582,7 +582,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 duration: args.duration,
                 intervals: args.intervals.unwrap_or(12),
                 criterion,
-                weights,
+                weights: weights.clone(),
                 restarts: args.restarts.unwrap_or(4),
                 sweeps: args.sweeps.unwrap_or(4),
                 evaluations: args.evaluations.unwrap_or(120),
@@ -618,10 +618,24 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         args.rate,
         args.output.display()
     )?;
+    // with --sigma the design weighed the rows by 1 / sigma: its figure is the weighted
+    // one (the unweighted one, printed alone, was not what it optimised)
+    let unweighted = condition(a.condition_number);
+    let figure = match &weights {
+        None => format!("condition number {unweighted} ("),
+        Some(w) => {
+            let mut info = Information::new(&model).with_weights(w);
+            info.add_trajectory(&model, &trajectory, 1)?;
+            format!(
+                "condition number {} weighted by 1 / --sigma, as the design weighed the rows \
+                 (unweighted {unweighted}; ",
+                condition(info.condition_number())
+            )
+        }
+    };
     writeln!(
         stdout,
-        "condition number {:.2} ({} samples stacked); optimised in {:.1} s ({} evaluations)",
-        a.condition_number,
+        "{figure}{} samples stacked); optimised in {:.1} s ({} evaluations)",
         a.samples,
         elapsed.as_secs_f64(),
         evaluations
@@ -690,6 +704,16 @@ const BARELY_EXCITING: f64 = 1e5;
 /// [`BARELY_EXCITING`] or not finite: the design found nothing better within the limits
 /// (`--velocity-limits 1e-6` gave cond 3e7 without a word beyond the figure), and
 /// least squares on its data would hardly see some parameter.
+/// A condition number as printed: two decimals (`41.93`), in exponent form from 1e5 on
+/// (`3.210e7`, which weights 1e6 apart give: `32099193.94`).
+fn condition(c: f64) -> String {
+    if c < 1e5 {
+        format!("{c:.2}")
+    } else {
+        format!("{c:.3e}")
+    }
+}
+
 fn warn_barely_exciting(condition: f64) {
     if condition <= BARELY_EXCITING {
         return;
