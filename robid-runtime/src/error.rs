@@ -33,6 +33,20 @@ pub enum Error {
     /// The observation matrix cannot be solved as given.
     #[error(transparent)]
     Estimate(#[from] EstimateError),
+    /// The data of a payload's identification ([`crate::payload`]) do not determine all
+    /// ten of its parameters. A payload has exactly ten, none of which can be left out, so
+    /// the fix is in the data or in what is measured (the estimator's own
+    /// [`EstimateError::RankDeficient`] advised to "remove these parameters").
+    #[error("rank-deficient data: rank {rank} of the payload's 10 parameters; not excited: {}; {fix}", unexcited.join(", "))]
+    PayloadNotExcited {
+        /// Numerical rank found.
+        rank: usize,
+        /// The parameters that make up the unexcited directions, most affected first.
+        unexcited: Vec<String>,
+        /// What to do: a richer motion, or, when the robot's joint torques cannot
+        /// determine them whatever the motion, another measurement.
+        fix: String,
+    },
     /// A closed-loop simulation failed.
     #[error(transparent)]
     Simulate(#[from] SimulateError),
@@ -40,7 +54,7 @@ pub enum Error {
     #[error(transparent)]
     Feasible(#[from] FeasibleError),
     /// Not enough samples for the requested processing.
-    #[error("{context}: {found} samples, at least {required} are needed; {hint}")]
+    #[error("{context}: {}, at least {required} {} needed; {hint}", crate::Count(*found, "sample"), if *required == 1 { "is" } else { "are" })]
     TooFewSamples {
         /// Which data (file or processing step).
         context: String,

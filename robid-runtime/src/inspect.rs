@@ -66,8 +66,11 @@ pub struct JointReport {
     pub moves: bool,
     /// Smallest and largest position (rad or m).
     pub position_range: [f64; 2],
-    /// Where the detrended position holds [`MOTION_SHARE`] of its power (Hz).
-    pub position_bandwidth: f64,
+    /// Where the detrended position holds [`MOTION_SHARE`] of its power (Hz); `None` for a
+    /// joint that does not move (`moves` false): a joint at rest has no bandwidth (a
+    /// constant position has no power, and the cumulative share ran to the Nyquist
+    /// frequency, reported as its bandwidth; noise alone fills the band as well).
+    pub position_bandwidth: Option<f64>,
     /// The highest frequency where the position spectrum is [`NOISE_RATIO`] times its
     /// noise floor (Hz).
     pub position_signal_top: f64,
@@ -246,6 +249,11 @@ fn moves(s: &Spectrum) -> bool {
     spread > MOVING_RATIO * s.noise_rms() && spread > MIN_MOTION
 }
 
+/// The bandwidth of a position's motion, `None` when the joint does not move ([`moves`]).
+fn position_bandwidth(s: &Spectrum) -> Option<f64> {
+    moves(s).then(|| s.bandwidth(MOTION_SHARE))
+}
+
 /// `x` rounded to two significant digits (the double nearest the decimal, so that it
 /// prints as written: 2.9, not 2.9000000000000004).
 fn two_digits(x: f64) -> f64 {
@@ -405,7 +413,7 @@ fn inspect_in(
                 joint: j + 1,
                 moves: moves(&sq),
                 position_range: [lo, hi],
-                position_bandwidth: sq.bandwidth(MOTION_SHARE),
+                position_bandwidth: position_bandwidth(&sq),
                 position_signal_top: sq.above_floor(NOISE_RATIO),
                 position_noise: sq.noise_rms(),
                 torque_bandwidth: st.bandwidth(TORQUE_SHARE),
@@ -446,14 +454,18 @@ impl Inspection {
             let limit = r
                 .torque_at_limit
                 .map_or_else(|| "-".to_string(), |v| format!("{:.1} %", 100.0 * v));
+            // a joint that does not move has no bandwidth: said so, in the column's width
+            let bandwidth = r
+                .position_bandwidth
+                .map_or_else(|| "at rest".to_string(), |b| format!("{b:.2} Hz"));
             let _ = writeln!(
                 s,
-                "{:>3}  {:<5}  [{:>8.3}, {:>8.3}]  {:>7.2} Hz  {:>7.1} Hz  {:>9.2e}  {:>7.1} Hz  {:>11.2e}  {:>9.1} %  {:>8}  {:>5.1} %",
+                "{:>3}  {:<5}  [{:>8.3}, {:>8.3}]  {:>10}  {:>7.1} Hz  {:>9.2e}  {:>7.1} Hz  {:>11.2e}  {:>9.1} %  {:>8}  {:>5.1} %",
                 r.joint,
                 if r.moves { "yes" } else { "no" },
                 r.position_range[0],
                 r.position_range[1],
-                r.position_bandwidth,
+                bandwidth,
                 r.position_signal_top,
                 r.position_noise,
                 r.torque_bandwidth,
@@ -544,6 +556,38 @@ mod tests {
         );
         let e = suggest_cutoff(&still).unwrap_err().to_string();
         assert!(e.contains("\"auto\" needs motion"), "{e}");
+    }
+
+    /// A joint that does not move has no bandwidth: a constant position (no power at all)
+    /// and a noisy one alike are reported at rest, in the JSON as `null`, while the moving
+    /// joint keeps its bandwidth. The constant joint's was the Nyquist frequency, "250.00
+    /// Hz", the noisy one's near it.
+    #[test]
+    fn a_joint_at_rest_has_no_bandwidth() {
+        let moving = data(1e-5);
+        let n = moving.q[0].len();
+        for (what, rest) in [("constant", vec![0.3; n]), ("noisy", moving.q[1].to_vec())] {
+            let d = Dataset::new(
+                "rest",
+                moving.sample_time,
+                Signals::new(vec![moving.q[0].to_vec(), rest]).unwrap(),
+                moving.tau.clone(),
+            )
+            .unwrap();
+            let i = inspect(&d, &Config::default(), &[None, None]).unwrap();
+            let b = i.joints[0].position_bandwidth.unwrap();
+            assert!((b - 2.0).abs() < 0.25, "{what}: {b}");
+            assert_eq!(i.joints[1].position_bandwidth, None, "{what}");
+            let text = i.text();
+            let row = text
+                .lines()
+                .find(|l| l.starts_with("  2  no"))
+                .unwrap_or_else(|| panic!("{what}: {text}"));
+            assert!(row.contains("]     at rest  "), "{what}: {row}");
+            assert!(!row.contains("250.00"), "{what}: {row}");
+            let json = serde_json::to_value(&i).unwrap();
+            assert!(json["joints"][1]["position_bandwidth"].is_null(), "{what}");
+        }
     }
 
     /// The widest motion is the moving joint's; the vibrations stand above the noise up to

@@ -19,7 +19,7 @@ pub mod wrench;
 mod number;
 
 pub use model::{LengthError, Model};
-pub use number::Num;
+pub use number::{Count, Num, Series};
 pub use real::{FUSED_MUL_ADD, Real};
 
 #[cfg(feature = "std")]

@@ -78,6 +78,68 @@ impl Num {
     }
 }
 
+/// A count and what it counts, for a message (`{}` of `Count(n, "joint")`): `1 joint`,
+/// `0 joints`, `6 joints`; a noun ending in a consonant and `y` takes `ies` (`1 entry`,
+/// `2 entries`). Every message that counts joints, values, rows or tables writes the count
+/// so: `"{n} joints"` said "1 joints" of a one-joint robot. The noun may be several words,
+/// the last one counted (`Count(1, "[[joint]] table")`).
+///
+/// ```
+/// use robid_runtime::Count;
+/// assert_eq!(Count(1, "joint").to_string(), "1 joint");
+/// assert_eq!(Count(2, "value").to_string(), "2 values");
+/// assert_eq!(Count(3, "entry").to_string(), "3 entries");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Count(pub usize, pub &'static str);
+
+impl fmt::Display for Count {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Count(n, noun) = *self;
+        if n == 1 {
+            return write!(f, "{n} {noun}");
+        }
+        let bytes = noun.as_bytes();
+        match bytes {
+            [.., c, b'y'] if !b"aeiou".contains(c) => {
+                write!(f, "{n} {}ies", &noun[..noun.len() - 1])
+            }
+            _ => write!(f, "{n} {noun}s"),
+        }
+    }
+}
+
+/// The values of one flag or list for `n` joints, for a message (`{}` of
+/// `Series("s", n)`), as they are typed: `s1` for one joint, `s1,s2` and `s1,s2,s3` for two
+/// and three, `s1,..,s6` for more. `"s1,..,s{n}"` told a one-joint robot to "give
+/// s1,..,s1".
+///
+/// ```
+/// use robid_runtime::Series;
+/// assert_eq!(Series("s", 1).to_string(), "s1");
+/// assert_eq!(Series("q", 2).to_string(), "q1,q2");
+/// assert_eq!(Series("k", 6).to_string(), "k1,..,k6");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Series(pub &'static str, pub usize);
+
+impl fmt::Display for Series {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Series(letter, n) = *self;
+        match n {
+            0 => f.write_str("nothing"),
+            1..=3 => {
+                for i in 1..=n {
+                    let comma = if i > 1 { "," } else { "" };
+                    write!(f, "{comma}{letter}{i}")?;
+                }
+                Ok(())
+            }
+            _ => write!(f, "{letter}1,..,{letter}{n}"),
+        }
+    }
+}
+
 /// Room for one number in exponent form (a sign, 17 digits, the point and `e-308`),
 /// without allocating.
 #[derive(Default)]
@@ -136,5 +198,22 @@ mod tests {
             10.0000001
         );
         assert_eq!(Num::rounded_keeping(0.323232, 3, |s| s < 1.0).0, 0.323);
+    }
+
+    #[test]
+    fn counts_and_series_are_written_for_one_joint_too() {
+        let count = |n: usize, noun: &'static str| Count(n, noun).to_string();
+        assert_eq!(count(1, "joint"), "1 joint");
+        assert_eq!(count(0, "joint"), "0 joints");
+        assert_eq!(count(7, "[[joint]] table"), "7 [[joint]] tables");
+        assert_eq!(count(1, "entry"), "1 entry");
+        assert_eq!(count(2, "entry"), "2 entries");
+        assert_eq!(count(2, "key"), "2 keys");
+        let series = |letter: &'static str, n: usize| Series(letter, n).to_string();
+        assert_eq!(series("s", 1), "s1");
+        assert_eq!(series("s", 2), "s1,s2");
+        assert_eq!(series("s", 3), "s1,s2,s3");
+        assert_eq!(series("q", 4), "q1,..,q4");
+        assert_eq!(series("q", 0), "nothing");
     }
 }

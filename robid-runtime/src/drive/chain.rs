@@ -8,6 +8,7 @@
 use nalgebra::DMatrix;
 use serde::{Deserialize, Serialize};
 
+use crate::Count;
 use crate::data::PerJoint;
 use crate::drive::RotorConfig;
 use crate::error::{Error, Result};
@@ -90,8 +91,9 @@ impl DriveConfig {
                 return bad(
                     key,
                     format!(
-                        "{} rows for a model of {dof} joints; give a {dof} x {dof} matrix",
-                        rows.len()
+                        "{} for a model of {}; give a {dof} x {dof} matrix",
+                        Count(rows.len(), "row"),
+                        Count(dof, "joint")
                     ),
                 );
             }

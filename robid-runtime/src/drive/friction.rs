@@ -27,9 +27,9 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::Num;
 use crate::data::{DataError, KeyMap, TomlFile};
 use crate::error::{Error, Result, num};
+use crate::{Count, Num};
 
 pub use fit::{
     FixedParameter, FrictionFit, FrictionFitOptions, FrictionParameter, FrictionSample,
@@ -364,9 +364,9 @@ impl FrictionModel {
                 "FrictionModel::joint_torque",
                 "joint",
                 format!(
-                    "joint {} is not in the model of {} joints",
+                    "joint {} is not in the model of {}",
                     joint + 1,
-                    self.joints.len()
+                    Count(self.joints.len(), "joint")
                 ),
             )
         })?;

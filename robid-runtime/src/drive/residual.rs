@@ -20,6 +20,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{ExtraColumn, ExtraTerm, TermSignal};
+use crate::Count;
 use crate::error::{Error, Result};
 
 /// The config key of the shorthand.
@@ -81,9 +82,10 @@ impl Residual {
                     "Config",
                     KEY,
                     format!(
-                        "{} lists for a model of {dof} joints; give one list for all joints \
+                        "{} for a model of {}; give one list for all joints \
                          ([\"Fc\", \"Fv\"]) or one per joint ([[\"Fc\"], [], ..])",
-                        t.len()
+                        Count(t.len(), "list"),
+                        Count(dof, "joint")
                     ),
                 ));
             }

@@ -14,6 +14,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use rayon::prelude::*;
 
+use crate::Count;
 use crate::Model;
 use crate::error::{Error, Result, num};
 use crate::estimate::SIGMA_FLOOR;
@@ -504,8 +505,9 @@ pub(crate) fn check_joint_vectors(
                 owner,
                 key,
                 format!(
-                    "{} values for a model of {dof} joints; give one per joint",
-                    v.len()
+                    "{} for a model of {}; give one per joint",
+                    Count(v.len(), "value"),
+                    Count(dof, "joint")
                 ),
             ));
         }

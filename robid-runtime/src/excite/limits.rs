@@ -1,5 +1,6 @@
 //! Joint limits and the margins a trajectory keeps to them.
 
+use crate::Count;
 use crate::error::{Error, Result, num};
 use crate::limits::{
     MAX_ACCELERATION, MAX_PARAMETER, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY, MIN_JOINT_LIMIT,
@@ -91,7 +92,11 @@ pub fn check_limits(limits: &[JointLimits], dof: usize) -> Result<()> {
         return Err(Error::setting(
             "design",
             "limits",
-            format!("{} joint limits for a model of {dof} joints", limits.len()),
+            format!(
+                "{} for a model of {}; give one per joint",
+                Count(limits.len(), "joint limit"),
+                Count(dof, "joint")
+            ),
         ));
     }
     limits

@@ -62,7 +62,7 @@ fn whole(data: &Dataset, config: &Config, torque_limits: &[Option<f64>]) -> Insp
                 joint: j + 1,
                 moves: moves(&sq),
                 position_range: [lo, hi],
-                position_bandwidth: sq.bandwidth(MOTION_SHARE),
+                position_bandwidth: position_bandwidth(&sq),
                 position_signal_top: sq.above_floor(NOISE_RATIO),
                 position_noise: sq.noise_rms(),
                 torque_bandwidth: st.bandwidth(TORQUE_SHARE),

@@ -32,9 +32,9 @@ impl fmt::Display for LengthError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "`{}` has {} entries but the model needs {}; pass one entry per {}",
+            "`{}` has {} but the model needs {}; pass one entry per {}",
             self.argument,
-            self.found,
+            crate::Count(self.found, "entry"),
             self.expected,
             match self.argument {
                 "q" | "qd" | "qdd" | "tau" => "joint",

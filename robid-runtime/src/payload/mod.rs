@@ -24,7 +24,7 @@ use nalgebra::DMatrix;
 use nalgebra::DVector;
 use std::ops::Range;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, EstimateError, Result};
 use crate::estimate::{Estimate, Observation, ols, wls};
 use crate::model::Inertial;
 
@@ -75,19 +75,33 @@ fn names() -> Vec<String> {
     Inertial::ALL.iter().map(|p| p.stem().to_string()).collect()
 }
 
-/// Solves the stacked system and checks the result.
+/// Solves the stacked system and checks the result; rank-deficient data are an
+/// [`Error::PayloadNotExcited`] whose advice `fix` gives.
 fn estimate(
     w: DMatrix<f64>,
     y: DVector<f64>,
     groups: Vec<Range<usize>>,
     sample_of_row: Vec<usize>,
     options: &PayloadOptions,
+    fix: impl FnOnce() -> Result<String>,
 ) -> Result<Payload> {
     let obs = Observation::new(w, y, groups, sample_of_row, names())?;
-    let estimate = if options.weighted {
-        wls(&obs, options.rank_tolerance)?
+    let solved = if options.weighted {
+        wls(&obs, options.rank_tolerance)
     } else {
-        ols(&obs, options.rank_tolerance)?
+        ols(&obs, options.rank_tolerance)
+    };
+    let estimate = match solved {
+        Err(Error::Estimate(EstimateError::RankDeficient {
+            rank, unexcited, ..
+        })) => {
+            return Err(Error::PayloadNotExcited {
+                rank,
+                unexcited,
+                fix: fix()?,
+            });
+        }
+        other => other?,
     };
     if let Some(k) = estimate.values.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFiniteResult {

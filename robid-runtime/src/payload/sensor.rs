@@ -71,5 +71,18 @@ pub fn from_wrenches(samples: &[WrenchSample], options: &PayloadOptions) -> Resu
         }
     }
     let sample_of_row = (0..6 * n).map(|i| (i % (3 * n)) / 3).collect();
-    estimate(w, y, vec![0..3 * n, 3 * n..6 * n], sample_of_row, options)
+    estimate(
+        w,
+        y,
+        vec![0..3 * n, 3 * n..6 * n],
+        sample_of_row,
+        options,
+        || {
+            Ok(
+                "use a richer motion of the sensor: turn it about every axis and accelerate \
+                it in every direction"
+                    .to_owned(),
+            )
+        },
+    )
 }

@@ -6,6 +6,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::{Payload, PayloadOptions, estimate};
+use crate::Count;
 use crate::error::{Error, Result};
 use crate::model::{Inertial, Model};
 
@@ -107,5 +108,54 @@ pub fn from_torques(
     }
     let groups = (0..dof).map(|j| j * n..(j + 1) * n).collect();
     let sample_of_row = (0..dof * n).map(|i| i % n.max(1)).collect();
-    estimate(w, y, groups, sample_of_row, options)
+    estimate(w, y, groups, sample_of_row, options, || {
+        let rank = rank_of_torques(model, &columns)?;
+        Ok(if rank == 10 {
+            "use a richer trajectory: move the last joints through their range with varied \
+             velocities and accelerations (robid excite designs one)"
+                .to_owned()
+        } else {
+            format!(
+                "the joint torques of `{}` ({}) determine at most {rank} combinations of \
+                 the ten whatever the motion, so no trajectory gives them all (and a payload \
+                 has no parameter to leave out): measure the payload with a force-torque \
+                 sensor at the wrist (robid_runtime::payload::from_wrenches), or identify \
+                 the robot with the payload on (robid identify), whose base parameters hold \
+                 the {rank} combinations",
+                model.name(),
+                Count(dof, "joint")
+            )
+        })
+    })
+}
+
+/// How many combinations of the payload's ten parameters (the last link's standard
+/// parameters at `columns`) the joint torques of `model` determine under any motion: the
+/// rank of their columns of the map from standard to base parameters (a direction of the
+/// ten that no base parameter holds acts on no torque). Ten for a robot whose wrist turns
+/// about three axes; three (`ZZ`, `MX`, `MY`) for one revolute joint under gravity across
+/// its axis.
+fn rank_of_torques(model: &dyn Model, columns: &[usize; 10]) -> Result<usize> {
+    let (count, nb) = (
+        model.standard_parameter_count(),
+        model.base_parameter_count(),
+    );
+    let mut k = DMatrix::zeros(nb, 10);
+    let mut standard = vec![0.0; count];
+    let mut base = vec![0.0; nb];
+    for (c, &col) in columns.iter().enumerate() {
+        standard.fill(0.0);
+        standard[col] = 1.0;
+        model
+            .base_from_standard_into(&standard, &mut base)
+            .map_err(|e| Error::DimensionMismatch {
+                what: format!("payload: `{}` of the base from standard map", e.argument),
+                expected: e.expected,
+                found: e.found,
+            })?;
+        k.column_mut(c).copy_from_slice(&base);
+    }
+    let s = k.singular_values();
+    let largest = s.max();
+    Ok(s.iter().filter(|&&v| v > 1e-9 * largest).count())
 }

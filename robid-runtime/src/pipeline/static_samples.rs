@@ -15,7 +15,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::data::{read_columns, read_header};
 use crate::estimate::{Estimate, Observation, ols};
 use crate::feasible::GravityCoefficients;
-use crate::{Error, Model, Result};
+use crate::{Count, Error, Model, Result};
 
 /// What the samples hold.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,6 +141,27 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
     let (rows, nb) = (table.rows(), model.base_parameter_count());
     let per = values.len();
     let nc = determined.kept.len();
+    // too few poses for the combinations: said by the file, with its fix (the least
+    // squares said "1 samples, at least 2 are needed; use more data, less decimation",
+    // which named no file and a setting static samples do not have)
+    if rows * per < nc {
+        return Err(Error::TooFewSamples {
+            context: format!(
+                "{}: static samples, {} per pose, for the {} of base parameters that {} \
+                 determine",
+                path.display(),
+                Count(per, "equation"),
+                Count(nc, "combination"),
+                match kind {
+                    StaticKind::Gravity => "gravity torques",
+                    StaticKind::MassMatrix => "mass matrices",
+                }
+            ),
+            found: rows,
+            required: nc.div_ceil(per),
+            hint: "add rows to the file, each at a pose unlike the others",
+        });
+    }
     let mut w = DMatrix::zeros(rows * per, nc);
     let mut y = DVector::zeros(rows * per);
     for r in 0..rows {

@@ -35,6 +35,7 @@
 //! [`crate::SimulateError::Diverged`], which says whether the controller is too fast for the integration
 //! step.
 
+use crate::Count;
 use crate::DataError;
 use crate::Model;
 use crate::SimulateError;
@@ -219,8 +220,9 @@ impl Simulation {
             return Err(invalid(
                 "noise.torque",
                 format!(
-                    "{} values for a model of {dof} joints; give one value or one per joint",
-                    n.torque.len()
+                    "{} for a model of {}; give one value or one per joint",
+                    Count(n.torque.len(), "value"),
+                    Count(dof, "joint")
                 ),
             ));
         }

@@ -398,13 +398,31 @@ fn element_names(prefix: &str, count: usize) -> Vec<String> {
 }
 
 impl RobotPrograms {
+    /// The stages [`RobotPrograms::derive_reporting`] reports: the base parameters, then
+    /// every program.
+    pub const STAGES: usize = 1 + PROGRAMS.len();
+
     /// Derives the base parameters and every program of `robot`.
     pub fn derive(robot: &Robot) -> Result<RobotPrograms, DeriveError> {
+        Self::derive_reporting(robot, &mut |_| {})
+    }
+
+    /// [`RobotPrograms::derive`], calling `done` after each of its
+    /// [`RobotPrograms::STAGES`] stages with the stage's name: the kinematics and base
+    /// parameters (`"base parameters"`), then each program in the order of
+    /// [`ProgramKind::ALL`] (its name, `"inverse_dynamics"`). A front end shows its
+    /// progress so: a chain of 32 joints with general twists takes tens of seconds.
+    pub fn derive_reporting(
+        robot: &Robot,
+        done: &mut dyn FnMut(&str),
+    ) -> Result<RobotPrograms, DeriveError> {
         let n = robot.dof();
         let mut cx = Context::new(robot)?;
+        done("base parameters");
         let mut built = Vec::with_capacity(PROGRAMS.len());
         for kind in ProgramKind::ALL {
             let program = cx.build(kind)?;
+            done(kind.info().name);
             debug_assert_eq!(
                 program.outputs[0].values.len(),
                 kind.info().output.size.len(Sizes {

@@ -13,11 +13,11 @@ use std::time::Instant;
 
 use robid_runtime::data::ParameterFile;
 use robid_runtime::excite::{
-    Criterion, FourierDesign, JointLimits, PointDesign, assess, weights_from_sigma,
+    Criterion, FourierDesign, Information, JointLimits, PointDesign, assess, weights_from_sigma,
 };
 use robid_runtime::limits::MIN_JOINT_LIMIT;
 use robid_runtime::simulate::Trajectory;
-use robid_runtime::{Model, num};
+use robid_runtime::{Count, Model, Series, num};
 
 use super::description::{self, DescriptionFlags};
 use super::flags::{check_samples, closed, count, only_for, positive, real};
@@ -297,15 +297,21 @@ fn no_torque(one: bool, exact: bool) -> String {
 /// The values of a per-joint limit flag (`--acceleration-limits`, `--velocity-limits`) for
 /// `n` joints: none, one for every joint, or one per joint.
 fn per_joint(flag: &str, values: &[f64], n: usize, args: &Args) -> Result<Vec<Option<f64>>, Error> {
-    let letter = &flag[2..3];
+    let letter = if flag.starts_with("--acceleration") {
+        "a"
+    } else {
+        "v"
+    };
     match values {
         [] => Ok(vec![None; n]),
         [v] => Ok(vec![Some(*v); n]),
         many if many.len() == n => Ok(many.iter().copied().map(Some).collect()),
         many => Err(format!(
-            "{flag} has {} values but {} has {n} joints; give one value or {letter}1,..,{letter}{n}",
-            many.len(),
-            args.robot.display()
+            "{flag} has {} but {} has {}; give one value or {}",
+            Count(many.len(), "value"),
+            args.robot.display(),
+            Count(n, "joint"),
+            Series(letter, n)
         )
         .into()),
     }
@@ -364,9 +370,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let velocities = per_joint("--velocity-limits", &args.velocity_limits, n, args)?;
     if !args.start.is_empty() && args.start.len() != n {
         return Err(format!(
-            "--start has {} values but {} has {n} joints; give q1,..,q{n}",
-            args.start.len(),
-            args.robot.display()
+            "--start has {} but {} has {}; give {}",
+            Count(args.start.len(), "value"),
+            args.robot.display(),
+            Count(n, "joint"),
+            Series("q", n)
         )
         .into());
     }
@@ -393,9 +401,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 let file = args.robot.display();
                 let flag = |unit: &str| {
                     format!(
-                        "give --{what}-limits {}1,..,{}n ({unit}; or one value for every joint)",
-                        &what[..1],
-                        &what[..1]
+                        "give --{what}-limits {} ({unit}; or one value for every joint)",
+                        Series(if what == "velocity" { "v" } else { "a" }, n)
                     )
                 };
                 match &description.urdf {
@@ -521,8 +528,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         ),
         k => {
             return Err(format!(
-                "--sigma has {k} values but {} has {n} joints; give s1,..,s{n}",
-                args.robot.display()
+                "--sigma has {} but {} has {}; give {}",
+                Count(k, "value"),
+                args.robot.display(),
+                Count(n, "joint"),
+                Series("s", n)
             )
             .into());
         }
@@ -548,7 +558,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 harmonics: args.harmonics.unwrap_or(HARMONICS),
                 base_frequency,
                 criterion,
-                weights,
+                weights: weights.clone(),
                 restarts: args.restarts.unwrap_or(8),
                 evaluations: args.evaluations.unwrap_or(3000),
                 seed: args.seed,
@@ -572,7 +582,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 duration: args.duration,
                 intervals: args.intervals.unwrap_or(12),
                 criterion,
-                weights,
+                weights: weights.clone(),
                 restarts: args.restarts.unwrap_or(4),
                 sweeps: args.sweeps.unwrap_or(4),
                 evaluations: args.evaluations.unwrap_or(120),
@@ -608,10 +618,24 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         args.rate,
         args.output.display()
     )?;
+    // with --sigma the design weighed the rows by 1 / sigma: its figure is the weighted
+    // one (the unweighted one, printed alone, was not what it optimised)
+    let unweighted = condition(a.condition_number);
+    let figure = match &weights {
+        None => format!("condition number {unweighted} ("),
+        Some(w) => {
+            let mut info = Information::new(&model).with_weights(w);
+            info.add_trajectory(&model, &trajectory, 1)?;
+            format!(
+                "condition number {} weighted by 1 / --sigma, as the design weighed the rows \
+                 (unweighted {unweighted}; ",
+                condition(info.condition_number())
+            )
+        }
+    };
     writeln!(
         stdout,
-        "condition number {:.2} ({} samples stacked); optimised in {:.1} s ({} evaluations)",
-        a.condition_number,
+        "{figure}{} samples stacked); optimised in {:.1} s ({} evaluations)",
         a.samples,
         elapsed.as_secs_f64(),
         evaluations
@@ -680,6 +704,16 @@ const BARELY_EXCITING: f64 = 1e5;
 /// [`BARELY_EXCITING`] or not finite: the design found nothing better within the limits
 /// (`--velocity-limits 1e-6` gave cond 3e7 without a word beyond the figure), and
 /// least squares on its data would hardly see some parameter.
+/// A condition number as printed: two decimals (`41.93`), in exponent form from 1e5 on
+/// (`3.210e7`, which weights 1e6 apart give: `32099193.94`).
+fn condition(c: f64) -> String {
+    if c < 1e5 {
+        format!("{c:.2}")
+    } else {
+        format!("{c:.3e}")
+    }
+}
+
 fn warn_barely_exciting(condition: f64) {
     if condition <= BARELY_EXCITING {
         return;

@@ -6,7 +6,7 @@
 
 use std::fmt;
 
-use robid_runtime::num;
+use robid_runtime::{Count, num};
 
 use super::Error;
 
@@ -157,9 +157,11 @@ pub(crate) fn check_samples(duration: f64, rate: f64) -> Result<(), Error> {
     let count = samples.round() + 1.0;
     if count < MIN_SAMPLES {
         return Err(format!(
-            "--duration {d} s at --rate {r} Hz gives {count} samples (t = 0, 1 / rate, .., \
+            "--duration {d} s at --rate {r} Hz gives {} (t = 0, 1 / rate, .., \
              duration), fewer than the {MIN_SAMPLES} a trajectory needs; lengthen --duration \
-             or raise --rate so that their product is at least 2"
+             or raise --rate so that their product is at least 2",
+            // below MIN_SAMPLES: 1 or 2
+            Count(count as usize, "sample")
         )
         .into());
     }
@@ -224,7 +226,7 @@ mod tests {
         );
         let e = check_samples(1e-300, 500.0).unwrap_err().to_string();
         assert!(
-            e.contains("--duration 1e-300 s at --rate 500 Hz gives 1 samples"),
+            e.contains("--duration 1e-300 s at --rate 500 Hz gives 1 sample ("),
             "{e}"
         );
     }

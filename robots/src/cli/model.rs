@@ -8,6 +8,7 @@
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, flags, out, schedule};
 use robid_runtime::model::ProgramKind;
+use robid_runtime::progress::Progress;
 use robid_symbolic::program::Operations;
 use robid_symbolic::program::RobotPrograms;
 use robid_symbolic::program::schedule::MAX_PROCESSORS;
@@ -283,6 +284,17 @@ pub(crate) fn render(
 }
 
 fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Report, Error> {
+    // a stage at a time, as other long commands show theirs (robid_runtime::progress): a
+    // chain of 32 joints with general twists and symbolic lengths takes 15 s of CPU, and
+    // showed nothing. The base parameters with their terms, then RobotPrograms' stages
+    // (which derive the base parameters again; the standard regressor's program is about
+    // two thirds of the time, one stage).
+    let progress = Progress::new(
+        true,
+        "model: derivation",
+        1 + RobotPrograms::STAGES as u64,
+        "stages",
+    );
     let mut d = Derivation::new(robot);
     let b = d.base_parameters()?;
     let mut base_parameters = Vec::with_capacity(b.base.len());
@@ -315,7 +327,13 @@ fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Repo
             terms,
         });
     }
-    let programs = RobotPrograms::derive(robot)?;
+    // the arena of these terms is not needed by the programs, which derive in their own:
+    // freed before they start (a chain of 32 joints with general twists and symbolic
+    // lengths peaked at 1.75 GB with it kept, 1.61 GB without)
+    drop(d);
+    progress.tick();
+    let programs = RobotPrograms::derive_reporting(robot, &mut |_| progress.tick())?;
+    progress.finish();
     let mut operations = serde_json::Map::new();
     for (info, program) in programs.iter() {
         operations.insert(

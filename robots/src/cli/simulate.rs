@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::limits::{MIN_RESOLUTION, MIN_SAMPLE_RATE};
 use robid_runtime::simulate::{Flexibility, Noise, Record, SimulateError, Simulation, Trajectory};
-use robid_runtime::{Model, num};
+use robid_runtime::{Count, Model, Series, num};
 use robots::interpreted::Interpreted;
 
 use super::description::{self, Description, DescriptionFlags};
@@ -107,9 +107,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let n = model.dof();
     if args.torque_noise.len() != 1 && args.torque_noise.len() != n {
         return Err(format!(
-            "--torque-noise has {} values but {} has {n} joints; give one value or s1,..,s{n}",
-            args.torque_noise.len(),
-            args.robot.display()
+            "--torque-noise has {} but {} has {}; give one value or {}",
+            Count(args.torque_noise.len(), "value"),
+            args.robot.display(),
+            Count(n, "joint"),
+            Series("s", n)
         )
         .into());
     }
@@ -281,11 +283,11 @@ fn run_flexible(
     let flex = Flexibility::read(path)?;
     if flex.joints.len() != model.dof() {
         return Err(format!(
-            "{} has {} [[joint]] tables but {} has {} joints; give one per joint",
+            "{} has {} but {} has {}; give one per joint",
             path.display(),
-            flex.joints.len(),
+            Count(flex.joints.len(), "[[joint]] table"),
             args.robot.display(),
-            model.dof()
+            Count(model.dof(), "joint")
         )
         .into());
     }
@@ -352,9 +354,11 @@ fn log_settings(args: &Args, n: usize) -> Result<(), Error> {
     }
     if !args.currents.is_empty() && args.currents.len() != n {
         return Err(format!(
-            "--currents has {} values but {} has {n} joints; give k1,..,k{n}",
-            args.currents.len(),
-            args.robot.display()
+            "--currents has {} but {} has {}; give {}",
+            Count(args.currents.len(), "value"),
+            args.robot.display(),
+            Count(n, "joint"),
+            Series("k", n)
         )
         .into());
     }

@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use robid_runtime::Count;
 use robid_runtime::data::{
     ColumnMapping, DataError, Table, read_columns, read_header, surplus_joint,
 };
@@ -102,10 +103,11 @@ fn header_pattern(names: &[String]) -> String {
 pub(crate) fn refuse_surplus(path: &Path, dof: usize) -> Result<(), Error> {
     if let Some(column) = surplus_joint(&read_header(path)?, "q{}", dof) {
         return Err(format!(
-            "{}: has a column `{column}`, for joint {} of a robot with {dof} joints; give \
+            "{}: has a column `{column}`, for joint {} of a robot with {}; give \
              the description of the robot these states are of",
             path.display(),
-            dof + 1
+            dof + 1,
+            Count(dof, "joint")
         )
         .into());
     }

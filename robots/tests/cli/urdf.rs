@@ -411,7 +411,7 @@ fn excite_takes_velocity_limits_a_urdf_lacks() {
         &o,
         &[
             "arm.urdf: joint 2 (`wrist_roll`) has no velocity limit",
-            "give --velocity-limits v1,..,vn",
+            "give --velocity-limits v1,v2 (",
         ],
     );
     assert!(!output.exists());
@@ -444,7 +444,7 @@ fn excite_takes_velocity_limits_a_urdf_lacks() {
         &excite(&["--velocity-limits", "1,2,3"]),
         &[
             "--velocity-limits has 3 values but",
-            "has 2 joints; give one value or v1,..,v2",
+            "has 2 joints; give one value or v1,v2",
         ],
     );
     let o = excite(&["--velocity-limits", "0"]);
@@ -486,7 +486,7 @@ fn excite_takes_velocity_limits_a_urdf_lacks() {
         &[
             // the joint's table, by its line (it named the file alone)
             "planar.toml:4:1: joint 1 has no velocity limit",
-            "or give --velocity-limits v1,..,vn",
+            "or give --velocity-limits v1,v2 (",
         ],
     );
     args.extend(["--velocity-limits", "1"]);

@@ -500,7 +500,16 @@ fn gaz_static_samples_identify_the_coefficients_they_determine() {
     let e = identify_static(&lwr.model, &path, 1e-10)
         .unwrap_err()
         .to_string();
-    assert!(e.contains("7 samples, at least 12 are needed"), "{e}");
+    // by the file, in poses (the least squares said "7 samples, at least 12 are needed",
+    // counting equations as samples, and advised less decimation)
+    assert!(
+        e.contains(
+            "bad.csv: static samples, 7 equations per pose, for the 12 combinations of base \
+             parameters that gravity torques determine: 1 sample, at least 2 are needed; add \
+             rows to the file"
+        ),
+        "{e}"
+    );
     // one pose three times: enough rows, too alike
     let text = std::fs::read_to_string(&path).unwrap();
     let (head, row) = (text.lines().next().unwrap(), text.lines().nth(1).unwrap());

@@ -440,3 +440,23 @@ fn reference_descriptions() -> Vec<std::path::PathBuf> {
     paths.sort();
     paths
 }
+
+/// `derive_reporting` reports each of its `STAGES` stages once, in order (the base
+/// parameters, then every program as `ProgramKind::ALL` lists them), and derives what
+/// `derive` does: `robid model` shows a long chain's progress from it.
+#[test]
+fn derive_reports_every_stage_in_order() {
+    let robot = Robot::from_toml(&random_description(11), "random.toml").unwrap();
+    let mut stages = Vec::new();
+    let reported =
+        super::RobotPrograms::derive_reporting(&robot, &mut |s| stages.push(s.to_owned())).unwrap();
+    let mut expected = vec!["base parameters".to_owned()];
+    expected.extend(ProgramKind::ALL.iter().map(|k| k.info().name.to_owned()));
+    assert_eq!(stages, expected);
+    assert_eq!(stages.len(), super::RobotPrograms::STAGES);
+    let plain = super::RobotPrograms::derive(&robot).unwrap();
+    assert_eq!(reported.base, plain.base);
+    for ((a, p), (b, q)) in reported.iter().zip(plain.iter()) {
+        assert_eq!((a.name, p.operations()), (b.name, q.operations()));
+    }
+}
