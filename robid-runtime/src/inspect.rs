@@ -41,8 +41,9 @@ pub const MIN_MOTION: f64 = 1e-9;
 /// velocity columns) when no joint moves, so that no cutoff follows from the motion: this
 /// share of the Nyquist frequency.
 pub const STILL_CUTOFF_SHARE: f64 = 0.1;
-/// Velocity below which a joint is at rest when the config gives none (rad/s or m/s).
-pub const DEFAULT_REST_VELOCITY: f64 = 0.05;
+/// Velocity below which a joint is at rest when the config gives none (rad/s or m/s):
+/// the threshold identification uses then.
+pub const DEFAULT_REST_VELOCITY: f64 = crate::data::DEFAULT_REST_VELOCITY;
 
 /// A suggested low-pass cutoff and why.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -324,10 +325,7 @@ fn inspect_in(
     let (n, dof) = (data.samples(), data.dof());
     let rate = 1.0 / data.sample_time();
     let block = block.max(1);
-    let rest_velocity = match &config.processing.rest_velocity {
-        Some(v) => v.values(dof, "processing.rest_velocity")?,
-        None => vec![DEFAULT_REST_VELOCITY; dof],
-    };
+    let rest_velocity = config.processing.rest_velocities(dof)?;
     let limit = |j: usize| torque_limits.get(j).copied().flatten();
     // the spectra of the positions (0..dof), then of the torques
     let mut spectra =

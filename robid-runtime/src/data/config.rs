@@ -525,7 +525,9 @@ pub struct Processing {
     /// Low-pass + decimation of every regressor column and of the torque.
     #[serde(default)]
     pub decimation: Decimation,
-    /// Equations of joint j are dropped where |qd_j| is below this (rad/s).
+    /// Equations of joint j are dropped where |qd_j| is below this (rad/s or m/s);
+    /// [`DEFAULT_REST_VELOCITY`] when absent ([`Processing::rest_velocities`]), 0 keeps
+    /// every equation.
     pub rest_velocity: Option<PerJoint>,
     /// Sample range used for estimation, `[start, end)`, cut after filtering and
     /// differentiation (so a split of one record has no filter transients at its ends),
@@ -540,6 +542,23 @@ pub struct Processing {
     /// designs them) enter the estimation; the fit is still reported on the whole range.
     #[serde(default)]
     pub pieces: Option<Vec<[f64; 2]>>,
+}
+
+/// Velocity below which a joint's equations are dropped when the config gives no
+/// `processing.rest_velocity` (rad/s or m/s): Coulomb friction `Fc sign(qd)` is
+/// undefined at rest and wrong near it, where a velocity differentiated from noisy or
+/// quantised positions has either sign.
+pub const DEFAULT_REST_VELOCITY: f64 = 0.05;
+
+impl Processing {
+    /// The thresholds of `processing.rest_velocity`, one per joint of a `dof`-joint model:
+    /// the config's, else [`DEFAULT_REST_VELOCITY`] for every joint.
+    pub fn rest_velocities(&self, dof: usize) -> Result<Vec<f64>> {
+        match &self.rest_velocity {
+            Some(r) => r.values(dof, "processing.rest_velocity"),
+            None => Ok(vec![DEFAULT_REST_VELOCITY; dof]),
+        }
+    }
 }
 
 /// How repeated acquisitions of one trajectory are combined (`runs.mode`).

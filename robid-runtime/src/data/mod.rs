@@ -18,9 +18,9 @@ mod time;
 pub use crate::toml_syntax::read_text;
 pub(crate) use config::nonzero;
 pub use config::{
-    AngleUnit, Columns, Config, ConfigOrigin, Cutoff, Decimation, Derivative, Differentiation,
-    DifferentiationMethod, EXAMPLE_CONFIG, Estimation, Lowpass, Method, PerJoint, Processing,
-    RunFiles, RunMode, Runs, Signal, Source, Units,
+    AngleUnit, Columns, Config, ConfigOrigin, Cutoff, DEFAULT_REST_VELOCITY, Decimation,
+    Derivative, Differentiation, DifferentiationMethod, EXAMPLE_CONFIG, Estimation, Lowpass,
+    Method, PerJoint, Processing, RunFiles, RunMode, Runs, Signal, Source, Units,
 };
 pub use dataset::{DataOrigin, Dataset};
 pub use error::{DataError, TomlFile};

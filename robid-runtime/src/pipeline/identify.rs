@@ -229,12 +229,7 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
         return e;
     };
     let key = "processing.rest_velocity";
-    let Some(Ok(mut values)) = config
-        .processing
-        .rest_velocity
-        .as_ref()
-        .map(|r| r.values(dof, key))
-    else {
+    let Ok(mut values) = config.processing.rest_velocities(dof) else {
         return e;
     };
     let Some(v) = joint.checked_sub(1).and_then(|j| values.get_mut(j)) else {

@@ -1106,10 +1106,7 @@ pub fn observe(
             })
             .collect(),
     )?;
-    let rest = match &config.processing.rest_velocity {
-        Some(t) => Some(t.values(dof, "processing.rest_velocity")?),
-        None => None,
-    };
+    let rest = Some(config.processing.rest_velocities(dof)?);
     let keep: Vec<Vec<usize>> = match &rest {
         Some(t) => moving_samples(&qd_dec, t),
         None => vec![(0..m).collect(); dof],

@@ -104,10 +104,7 @@ impl<'a> Stream<'a> {
         } else {
             block
         };
-        let rest = match &config.processing.rest_velocity {
-            Some(t) => Some(t.values(model.dof(), "processing.rest_velocity")?),
-            None => None,
-        };
+        let rest = Some(config.processing.rest_velocities(model.dof())?);
         Ok(Self {
             model,
             config,

@@ -140,13 +140,50 @@ fn with_joint_at_rest(n: usize, still: usize) -> Dataset {
     Dataset::new(format!("still{}", still + 1), 1e-3, qs, taus).unwrap()
 }
 
+/// A config without `processing.rest_velocity` drops the equations near rest at
+/// [`DEFAULT_REST_VELOCITY`](crate::data::DEFAULT_REST_VELOCITY), as the example config
+/// says; 0 keeps them all. They were all kept: a positions-only log of pybullet's cart-pole
+/// (Coulomb friction 5 N on the cart, a trajectory that comes to rest twice) had the cart's
+/// torque fitted to 3 times its noise and Fc 6 standard deviations off.
+#[test]
+fn rest_velocity_defaults_to_the_documented_threshold() {
+    let data = dataset(20_000, 1000.0, 0.0);
+    let model = Synthetic::default();
+    let without = CONFIG.replace("rest_velocity = 0.02\n", "");
+    assert_ne!(without, CONFIG);
+    let cfg = |text: &str| Config::from_toml_str(text, Path::new("synthetic.toml")).unwrap();
+    let default = crate::data::DEFAULT_REST_VELOCITY;
+    let absent = identify(&model, &data, &cfg(&without)).unwrap();
+    let given = identify(
+        &model,
+        &data,
+        &cfg(&format!("{without}rest_velocity = {default}\n")),
+    );
+    let zero = identify(
+        &model,
+        &data,
+        &cfg(&format!("{without}rest_velocity = 0\n")),
+    )
+    .unwrap();
+    let given = given.unwrap();
+    assert_eq!(absent.estimate.rows, given.estimate.rows);
+    assert_eq!(absent.estimate.values, given.estimate.values);
+    assert!(
+        absent.estimate.rows < zero.estimate.rows,
+        "{} equations without the key, {} with 0",
+        absent.estimate.rows,
+        zero.estimate.rows
+    );
+}
+
 /// A joint that never moves leaves its drive and link terms unexcited.
 #[test]
 fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
     let model = Synthetic::default();
     let data = with_joint_at_rest(6000, 5);
     let mut cfg = config("");
-    cfg.processing.rest_velocity = None;
+    // every equation kept (the default threshold would remove all of joint 6's)
+    cfg.processing.rest_velocity = Some(crate::data::PerJoint::All(0.0));
     match identify(&model, &data, &cfg) {
         Err(Error::Estimate(EstimateError::RankDeficient {
             unexcited,

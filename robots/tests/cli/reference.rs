@@ -99,13 +99,14 @@ fn identify_reference_gives_madsen_nmse_and_the_relative_improvement() {
     }
     let (data, check) = (path("fit.csv"), path("check.csv"));
     // the simulator's columns, and an extra column (an offset on joint 1), which the
-    // reference model does not have: zero in its prediction
+    // reference model does not have: zero in its prediction; every equation kept
+    // (`rest_velocity = 0`), so that the validation's rows are all the states
     let config = path("config.toml");
     std::fs::write(
         &config,
         "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\nvelocity = \"qd{}\"\n\
-         acceleration = \"qdd{}\"\ntorque = \"tau{}\"\n[[extra_column]]\nname = \"offset1\"\n\
-         terms = [{ row = 1, signal = \"constant\" }]\n",
+         acceleration = \"qdd{}\"\ntorque = \"tau{}\"\n[processing]\nrest_velocity = 0\n\
+         [[extra_column]]\nname = \"offset1\"\nterms = [{ row = 1, signal = \"constant\" }]\n",
     )
     .unwrap();
     let report = |reference: &str| {

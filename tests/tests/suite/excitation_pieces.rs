@@ -10,7 +10,7 @@
 
 use nalgebra::DMatrix;
 use robid_runtime::Model;
-use robid_runtime::data::{Config, Derivative};
+use robid_runtime::data::{Config, Derivative, PerJoint};
 use robid_runtime::excite::{JointLimits, PieceDesign, PointDesign};
 use robid_runtime::pipeline::identify;
 use robid_runtime::simulate::{Noise, Simulation};
@@ -122,6 +122,8 @@ fn milella_pieces_lower_the_parameter_error_of_the_points_alone() {
     let mut config = Config::default();
     config.processing.velocity = Derivative::Data;
     config.processing.acceleration = Derivative::Data;
+    // every equation in the pieces, the rows counted below
+    config.processing.rest_velocity = Some(PerJoint::All(0.0));
     let run = |windows: Vec<[f64; 2]>| {
         let mut c = config.clone();
         c.processing.pieces = Some(windows);

@@ -117,12 +117,13 @@ fn dataset(record: &FlexibleRecord, flex: &Flexibility) -> Dataset {
         .unwrap()
 }
 
-/// The config: positions differentiated after a 10 Hz zero-phase low-pass, WLS, and
-/// `rest` (the rotor or link-side drive terms) appended.
+/// The config: positions differentiated after a 10 Hz zero-phase low-pass, WLS, every
+/// equation (the figures below were measured so), and `rest` (the rotor or link-side
+/// drive terms) appended.
 fn config(dir: &std::path::Path, rest: &str) -> Config {
     let text = format!(
         "[processing]\nlowpass = {{ cutoff = 10.0, order = 4, signals = [\"q\", \"tau\"] }}\n\
-         decimation = 8\n[estimation]\nmethod = \"wls\"\n{rest}"
+         decimation = 8\nrest_velocity = 0\n[estimation]\nmethod = \"wls\"\n{rest}"
     );
     Config::from_toml_str(&text, &dir.join("flexible.toml")).unwrap()
 }
