@@ -373,6 +373,28 @@ impl SpilledRecord {
             })
     }
 
+    /// The `len` bytes at byte `at` of the temporary file (read into space not zeroed
+    /// first).
+    fn read_bytes(file: &mut File, at: u64, len: usize) -> Result<Vec<u8>> {
+        let mut bytes = Vec::with_capacity(len);
+        file.seek(SeekFrom::Start(at))
+            .and_then(|_| (&mut *file).take(len as u64).read_to_end(&mut bytes))
+            .and_then(|read| {
+                if read == len {
+                    Ok(())
+                } else {
+                    Err(std::io::ErrorKind::UnexpectedEof.into())
+                }
+            })
+            .map_err(|source| {
+                Error::Data(DataError::Io {
+                    path: std::env::temp_dir(),
+                    source,
+                })
+            })?;
+        Ok(bytes)
+    }
+
     /// The chunks holding samples `start..end`, with the part of each.
     fn parts(&self, start: usize, end: usize) -> impl Iterator<Item = (&Chunk, usize, usize)> {
         let first = self.chunks.partition_point(|c| c.start + c.len <= start);
@@ -404,8 +426,7 @@ impl SpilledRecord {
         match c.columns[column] {
             Stored::Raw { at } => Self::read_into(file, at + 8 * lo as u64, hi - lo, out),
             Stored::Decimal { at, places } => {
-                let mut digits = Vec::new();
-                Self::read_into::<i32>(file, at + 4 * lo as u64, hi - lo, &mut digits)?;
+                let digits = Self::read_bytes(file, at + 4 * lo as u64, 4 * (hi - lo))?;
                 stored::values(&digits, places, out);
                 Ok(())
             }
