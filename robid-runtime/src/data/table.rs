@@ -348,6 +348,11 @@ struct Windows<'a> {
     rows: AtomicUsize,
     /// The last window was handed out.
     done: bool,
+    /// The buffer of the text before the last window's, kept for the next window's text.
+    spare: Vec<u8>,
+    /// The error of reading ahead the next window's text, given where that reading would
+    /// have been (at the next window).
+    ahead_error: Option<Error>,
 }
 
 impl<'a> Windows<'a> {
@@ -388,6 +393,8 @@ impl<'a> Windows<'a> {
             quoted: false,
             rows: AtomicUsize::new(0),
             done: false,
+            spare: Vec::new(),
+            ahead_error: None,
         })
     }
 
@@ -396,6 +403,9 @@ impl<'a> Windows<'a> {
     fn next(&mut self) -> Result<Option<(Table, usize)>> {
         if self.done {
             return Ok(None);
+        }
+        if let Some(e) = self.ahead_error.take() {
+            return Err(e);
         }
         let (path, names) = (self.text.path, self.names);
         let text = &mut self.text;
@@ -445,10 +455,31 @@ impl<'a> Windows<'a> {
             // than their rows, and cut to them
             let before = rows.load(Ordering::Relaxed);
             let optional = before < self.optional.rows;
-            let parts: Vec<Part> = cuts
-                .par_windows(2)
-                .map(|w| block(body, w[0], w[1], h, optional, rows))
-                .collect();
+            let read = text.read - (text.bytes.len() - cut);
+            self.done = text.end && text.bytes.len() == cut;
+            // the next window's text (the rest of this one's, then read) is read while
+            // this one is parsed, into the buffer before this one's; a quoted file is
+            // read whole above
+            let mut next = std::mem::take(&mut self.spare);
+            next.clear();
+            next.extend_from_slice(&text.bytes[cut..]);
+            let mut ahead = Text {
+                bytes: next,
+                read: text.read,
+                end: text.end,
+                gzip: text.gzip,
+                path,
+            };
+            let source = &mut self.source;
+            let window = self.window;
+            let (parts, filled) = rayon::join(
+                || -> Vec<Part> {
+                    cuts.par_windows(2)
+                        .map(|w| block(body, w[0], w[1], h, optional, rows))
+                        .collect()
+                },
+                || ahead.fill(source, window),
+            );
             let mut table = join_parts(parts, path, names, h)?;
             let keep = self.optional.rows.saturating_sub(before);
             for column in table.columns.iter_mut().skip(h.required) {
@@ -460,9 +491,9 @@ impl<'a> Windows<'a> {
                 MAX_ROWS,
                 "split the file",
             )?;
-            let read = text.read - (text.bytes.len() - cut);
-            text.bytes.drain(..cut);
-            self.done = text.end && text.bytes.is_empty();
+            self.ahead_error = filled.err();
+            (text.read, text.end) = (ahead.read, ahead.end);
+            self.spare = std::mem::replace(&mut text.bytes, ahead.bytes);
             return Ok(Some((table, read)));
         }
     }
@@ -692,6 +723,12 @@ const SEPARATORS: [u8; 4] = [b',', b';', b'\t', b' '];
 /// It is `csv_core`, the state machine of the `csv` crate, with the crate's defaults (`"`
 /// quotes, `\n` or `\r\n` line ends), the file's separator and `#` comment lines, driven
 /// over the slice directly (no buffer copy).
+///
+/// A reader made by [`Records::plain`] first splits the lines itself: a line without a
+/// quote, a carriage return or a `#` is split at each separator (its fields are the
+/// same bytes `csv_core` gives, taken from the text in place) and an empty line is skipped,
+/// as `csv_core` skips it. From the first line with one of those bytes on, `csv_core`
+/// reads the rest (it starts at a record's start, where its state is its first).
 struct Records<'a> {
     core: csv_core::Reader,
     input: &'a [u8],
@@ -699,6 +736,13 @@ struct Records<'a> {
     out: Vec<u8>,
     ends: Vec<usize>,
     fields: usize,
+    separator: u8,
+    /// Lines are split here (not yet handed to `csv_core`).
+    plain: bool,
+    /// The last record's start in `input` (when split here).
+    start: usize,
+    /// Line ends before `csv_core` took over (all of them while lines are split here).
+    base: u64,
 }
 
 impl<'a> Records<'a> {
@@ -713,11 +757,31 @@ impl<'a> Records<'a> {
             out: vec![0; 4096],
             ends: vec![0; 64],
             fields: 0,
+            separator,
+            plain: false,
+            start: 0,
+            base: 0,
+        }
+    }
+
+    /// A reader that splits plain lines itself (see [`Records`]): the same records, lines
+    /// and fields.
+    fn plain(input: &'a [u8], separator: u8) -> Self {
+        Self {
+            plain: true,
+            ..Self::new(input, separator)
         }
     }
 
     /// Reads the next record; returns the 1-based line (in `input`) it ends on.
     fn next_record(&mut self) -> Option<u64> {
+        if self.plain {
+            match self.next_plain() {
+                Some(line) => return line,
+                // a line `csv_core` must read: from its start on
+                None => self.plain = false,
+            }
+        }
         use csv_core::ReadRecordResult as R;
         let (mut outlen, mut endlen) = (0, 0);
         loop {
@@ -744,10 +808,55 @@ impl<'a> Records<'a> {
                     self.fields = endlen;
                     let consumed_newline =
                         self.consumed > 0 && self.input[self.consumed - 1] == b'\n';
-                    return Some(self.core.line() - u64::from(consumed_newline));
+                    return Some(self.base + self.core.line() - u64::from(consumed_newline));
                 }
                 R::End => return None,
             }
+        }
+    }
+
+    /// The next record of plain lines (see [`Records`]; `Some(None)` at their end):
+    /// `None` at a line that is not plain, nothing consumed of it.
+    fn next_plain(&mut self) -> Option<Option<u64>> {
+        let sep = self.separator;
+        loop {
+            let rest = &self.input[self.consumed..];
+            if rest.is_empty() {
+                return Some(None);
+            }
+            // the field ends (offsets in the line), up to the line's end
+            let mut n = 0;
+            let mut end = rest.len();
+            for (i, &b) in rest.iter().enumerate() {
+                if b == sep {
+                    if n == self.ends.len() {
+                        self.ends.push(0);
+                    }
+                    self.ends[n] = i;
+                    n += 1;
+                } else if b == b'\n' {
+                    end = i;
+                    break;
+                } else if b == b'"' || b == b'\r' || b == b'#' {
+                    return None;
+                }
+            }
+            let newline = end < rest.len();
+            if end == 0 {
+                // an empty line: skipped
+                self.consumed += 1;
+                self.base += 1;
+                continue;
+            }
+            if n == self.ends.len() {
+                self.ends.push(0);
+            }
+            self.ends[n] = end;
+            self.fields = n + 1;
+            self.start = self.consumed;
+            self.consumed += end + usize::from(newline);
+            self.base += u64::from(newline);
+            return Some(Some(if newline { self.base } else { self.base + 1 }));
         }
     }
 
@@ -756,23 +865,35 @@ impl<'a> Records<'a> {
         self.fields
     }
 
+    /// The bytes of the last record's fields, and where field `i` lies in them.
+    fn bounds(&self, i: usize) -> (&[u8], usize, usize) {
+        if self.plain {
+            let start = if i == 0 { 0 } else { self.ends[i - 1] + 1 };
+            (&self.input[self.start..], start, self.ends[i])
+        } else {
+            let start = if i == 0 { 0 } else { self.ends[i - 1] };
+            (&self.out, start, self.ends[i])
+        }
+    }
+
     /// Field `i` of the last record (trimmed of ASCII whitespace).
     fn field(&self, i: usize) -> &[u8] {
         if i >= self.fields {
             return &[];
         }
-        let start = if i == 0 { 0 } else { self.ends[i - 1] };
-        trim(&self.out[start..self.ends[i]])
+        let (bytes, start, end) = self.bounds(i);
+        trim(&bytes[start..end])
     }
 
     /// The last record's fields as text, when it is valid UTF-8 (one check per record).
     fn text(&self) -> Option<&str> {
-        let end = if self.fields == 0 {
-            0
+        let (bytes, end) = if self.fields == 0 {
+            (&self.out[..], 0)
         } else {
-            self.ends[self.fields - 1]
+            let (bytes, _, end) = self.bounds(self.fields - 1);
+            (bytes, end)
         };
-        std::str::from_utf8(&self.out[..end]).ok()
+        std::str::from_utf8(&bytes[..end]).ok()
     }
 
     /// Field `i` of [`Records::text`] (trimmed): a field lies between ASCII delimiters,
@@ -781,16 +902,20 @@ impl<'a> Records<'a> {
         if i >= self.fields {
             return Some("");
         }
-        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        let (_, start, end) = self.bounds(i);
         Some(
-            text.get(start..self.ends[i])?
+            text.get(start..end)?
                 .trim_matches(|c: char| c.is_ascii_whitespace()),
         )
     }
 
     /// Line ends read so far.
     fn newlines(&self) -> u64 {
-        self.core.line() - 1
+        if self.plain {
+            self.base
+        } else {
+            self.base + self.core.line() - 1
+        }
     }
 }
 
@@ -1024,7 +1149,7 @@ fn block(
         return part;
     }
     let (columns, optional_columns) = part.columns.split_at_mut(want.len());
-    let mut records = Records::new(text, header.separator);
+    let mut records = Records::plain(text, header.separator);
     while let Some(line) = records.next_record() {
         // 0-based line within the block
         let line = line - 1;
@@ -1167,6 +1292,77 @@ mod tests {
 
     fn read(text: &str, cols: &[&str]) -> Result<Table> {
         read_columns_from(text.as_bytes(), Path::new("mem.csv"), &names(cols))
+    }
+
+    /// A record as the tests compare it: its line, its fields as bytes and as text.
+    type Seen = (u64, Vec<Vec<u8>>, Option<Vec<String>>);
+
+    /// Every record, line and field a reader gives, and its line ends at the end.
+    fn all_records(mut records: Records<'_>) -> (Vec<Seen>, u64) {
+        let mut all = Vec::new();
+        while let Some(line) = records.next_record() {
+            let fields = (0..records.len() + 1)
+                .map(|i| records.field(i).to_vec())
+                .collect();
+            let text = records.text().map(|t| {
+                (0..records.len() + 1)
+                    .map(|i| records.field_str(t, i).unwrap_or("?").to_string())
+                    .collect()
+            });
+            all.push((line, fields, text));
+        }
+        (all, records.newlines())
+    }
+
+    /// Texts of separators, digits, spaces, empty lines, line ends of both kinds, quotes,
+    /// `#` and non-ASCII bytes at random: the reader that splits plain lines itself gives
+    /// `csv_core`'s records, lines, fields and line count.
+    #[test]
+    fn plain_lines_split_as_csv_core_reads_them() {
+        let mut rng = crate::rng::Rng::new(17);
+        let alphabet: [&[u8]; 14] = [
+            b"1",
+            b"2.5",
+            b"-",
+            b",",
+            b",",
+            b";",
+            b" ",
+            b"\t",
+            b"\n",
+            b"\n",
+            b"\r\n",
+            b"\"",
+            b"#",
+            "\u{e9}".as_bytes(),
+        ];
+        for case in 0..4000 {
+            // mostly plain text, with a rarer byte of the others now and then
+            let len = (rng.uniform(0.0, 1.0) * 80.0) as usize;
+            let rare = rng.uniform(0.0, 1.0) < 0.5;
+            let mut text = Vec::new();
+            for _ in 0..len {
+                let pick = (rng.uniform(0.0, 1.0) * alphabet.len() as f64) as usize;
+                let pick = pick.min(alphabet.len() - 1);
+                if !rare && pick >= 10 {
+                    text.extend_from_slice(b"3");
+                } else {
+                    text.extend_from_slice(alphabet[pick]);
+                }
+            }
+            if case % 7 == 0 {
+                text.push(0xff);
+            }
+            for sep in [b',', b';', b'\t', b' '] {
+                assert_eq!(
+                    all_records(Records::plain(&text, sep)),
+                    all_records(Records::new(&text, sep)),
+                    "case {case}, separator {:?}: {:?}",
+                    sep as char,
+                    String::from_utf8_lossy(&text)
+                );
+            }
+        }
     }
 
     #[test]
