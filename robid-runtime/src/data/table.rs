@@ -723,12 +723,6 @@ const SEPARATORS: [u8; 4] = [b',', b';', b'\t', b' '];
 /// It is `csv_core`, the state machine of the `csv` crate, with the crate's defaults (`"`
 /// quotes, `\n` or `\r\n` line ends), the file's separator and `#` comment lines, driven
 /// over the slice directly (no buffer copy).
-///
-/// A reader made by [`Records::plain`] first splits the lines itself: a line without a
-/// quote, a carriage return or a `#` is split at each separator (its fields are the
-/// same bytes `csv_core` gives, taken from the text in place) and an empty line is skipped,
-/// as `csv_core` skips it. From the first line with one of those bytes on, `csv_core`
-/// reads the rest (it starts at a record's start, where its state is its first).
 struct Records<'a> {
     core: csv_core::Reader,
     input: &'a [u8],
@@ -736,13 +730,6 @@ struct Records<'a> {
     out: Vec<u8>,
     ends: Vec<usize>,
     fields: usize,
-    separator: u8,
-    /// Lines are split here (not yet handed to `csv_core`).
-    plain: bool,
-    /// The last record's start in `input` (when split here).
-    start: usize,
-    /// Line ends before `csv_core` took over (all of them while lines are split here).
-    base: u64,
 }
 
 impl<'a> Records<'a> {
@@ -757,31 +744,11 @@ impl<'a> Records<'a> {
             out: vec![0; 4096],
             ends: vec![0; 64],
             fields: 0,
-            separator,
-            plain: false,
-            start: 0,
-            base: 0,
-        }
-    }
-
-    /// A reader that splits plain lines itself (see [`Records`]): the same records, lines
-    /// and fields.
-    fn plain(input: &'a [u8], separator: u8) -> Self {
-        Self {
-            plain: true,
-            ..Self::new(input, separator)
         }
     }
 
     /// Reads the next record; returns the 1-based line (in `input`) it ends on.
     fn next_record(&mut self) -> Option<u64> {
-        if self.plain {
-            match self.next_plain() {
-                Some(line) => return line,
-                // a line `csv_core` must read: from its start on
-                None => self.plain = false,
-            }
-        }
         use csv_core::ReadRecordResult as R;
         let (mut outlen, mut endlen) = (0, 0);
         loop {
@@ -808,55 +775,10 @@ impl<'a> Records<'a> {
                     self.fields = endlen;
                     let consumed_newline =
                         self.consumed > 0 && self.input[self.consumed - 1] == b'\n';
-                    return Some(self.base + self.core.line() - u64::from(consumed_newline));
+                    return Some(self.core.line() - u64::from(consumed_newline));
                 }
                 R::End => return None,
             }
-        }
-    }
-
-    /// The next record of plain lines (see [`Records`]; `Some(None)` at their end):
-    /// `None` at a line that is not plain, nothing consumed of it.
-    fn next_plain(&mut self) -> Option<Option<u64>> {
-        let sep = self.separator;
-        loop {
-            let rest = &self.input[self.consumed..];
-            if rest.is_empty() {
-                return Some(None);
-            }
-            // the field ends (offsets in the line), up to the line's end
-            let mut n = 0;
-            let mut end = rest.len();
-            for (i, &b) in rest.iter().enumerate() {
-                if b == sep {
-                    if n == self.ends.len() {
-                        self.ends.push(0);
-                    }
-                    self.ends[n] = i;
-                    n += 1;
-                } else if b == b'\n' {
-                    end = i;
-                    break;
-                } else if b == b'"' || b == b'\r' || b == b'#' {
-                    return None;
-                }
-            }
-            let newline = end < rest.len();
-            if end == 0 {
-                // an empty line: skipped
-                self.consumed += 1;
-                self.base += 1;
-                continue;
-            }
-            if n == self.ends.len() {
-                self.ends.push(0);
-            }
-            self.ends[n] = end;
-            self.fields = n + 1;
-            self.start = self.consumed;
-            self.consumed += end + usize::from(newline);
-            self.base += u64::from(newline);
-            return Some(Some(if newline { self.base } else { self.base + 1 }));
         }
     }
 
@@ -865,57 +787,18 @@ impl<'a> Records<'a> {
         self.fields
     }
 
-    /// The bytes of the last record's fields, and where field `i` lies in them.
-    fn bounds(&self, i: usize) -> (&[u8], usize, usize) {
-        if self.plain {
-            let start = if i == 0 { 0 } else { self.ends[i - 1] + 1 };
-            (&self.input[self.start..], start, self.ends[i])
-        } else {
-            let start = if i == 0 { 0 } else { self.ends[i - 1] };
-            (&self.out, start, self.ends[i])
-        }
-    }
-
     /// Field `i` of the last record (trimmed of ASCII whitespace).
     fn field(&self, i: usize) -> &[u8] {
         if i >= self.fields {
             return &[];
         }
-        let (bytes, start, end) = self.bounds(i);
-        trim(&bytes[start..end])
-    }
-
-    /// The last record's fields as text, when it is valid UTF-8 (one check per record).
-    fn text(&self) -> Option<&str> {
-        let (bytes, end) = if self.fields == 0 {
-            (&self.out[..], 0)
-        } else {
-            let (bytes, _, end) = self.bounds(self.fields - 1);
-            (bytes, end)
-        };
-        std::str::from_utf8(&bytes[..end]).ok()
-    }
-
-    /// Field `i` of [`Records::text`] (trimmed): a field lies between ASCII delimiters,
-    /// so its bounds are character boundaries of valid text.
-    fn field_str<'t>(&self, text: &'t str, i: usize) -> Option<&'t str> {
-        if i >= self.fields {
-            return Some("");
-        }
-        let (_, start, end) = self.bounds(i);
-        Some(
-            text.get(start..end)?
-                .trim_matches(|c: char| c.is_ascii_whitespace()),
-        )
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        trim(&self.out[start..self.ends[i]])
     }
 
     /// Line ends read so far.
     fn newlines(&self) -> u64 {
-        if self.plain {
-            self.base
-        } else {
-            self.base + self.core.line() - 1
-        }
+        self.core.line() - 1
     }
 }
 
@@ -1149,7 +1032,7 @@ fn block(
         return part;
     }
     let (columns, optional_columns) = part.columns.split_at_mut(want.len());
-    let mut records = Records::plain(text, header.separator);
+    let mut records = Records::new(text, header.separator);
     while let Some(line) = records.next_record() {
         // 0-based line within the block
         let line = line - 1;
@@ -1171,13 +1054,8 @@ fn block(
             });
             break;
         }
-        let text = records.text();
         for (k, (&i, col)) in want.iter().zip(columns.iter_mut()).enumerate() {
-            let parsed = match text.and_then(|t| records.field_str(t, i)) {
-                Some(field) => number(field.as_bytes()),
-                None => number(records.field(i)),
-            };
-            match parsed {
+            match number(records.field(i)) {
                 Some(v) if v.is_finite() => col.push(v),
                 Some(value) => {
                     part.error = Some(BlockError::NotFinite {
@@ -1198,7 +1076,6 @@ fn block(
                 }
             }
         }
-        // (not through `field_str`, whose one call above is inlined into the loop)
         for (&i, col) in optional_want.iter().zip(optional_columns.iter_mut()) {
             let parsed = number(records.field(i)).filter(|v| v.is_finite());
             col.push(parsed.unwrap_or(f64::NAN));
@@ -1294,77 +1171,6 @@ mod tests {
         read_columns_from(text.as_bytes(), Path::new("mem.csv"), &names(cols))
     }
 
-    /// A record as the tests compare it: its line, its fields as bytes and as text.
-    type Seen = (u64, Vec<Vec<u8>>, Option<Vec<String>>);
-
-    /// Every record, line and field a reader gives, and its line ends at the end.
-    fn all_records(mut records: Records<'_>) -> (Vec<Seen>, u64) {
-        let mut all = Vec::new();
-        while let Some(line) = records.next_record() {
-            let fields = (0..records.len() + 1)
-                .map(|i| records.field(i).to_vec())
-                .collect();
-            let text = records.text().map(|t| {
-                (0..records.len() + 1)
-                    .map(|i| records.field_str(t, i).unwrap_or("?").to_string())
-                    .collect()
-            });
-            all.push((line, fields, text));
-        }
-        (all, records.newlines())
-    }
-
-    /// Texts of separators, digits, spaces, empty lines, line ends of both kinds, quotes,
-    /// `#` and non-ASCII bytes at random: the reader that splits plain lines itself gives
-    /// `csv_core`'s records, lines, fields and line count.
-    #[test]
-    fn plain_lines_split_as_csv_core_reads_them() {
-        let mut rng = crate::rng::Rng::new(17);
-        let alphabet: [&[u8]; 14] = [
-            b"1",
-            b"2.5",
-            b"-",
-            b",",
-            b",",
-            b";",
-            b" ",
-            b"\t",
-            b"\n",
-            b"\n",
-            b"\r\n",
-            b"\"",
-            b"#",
-            "\u{e9}".as_bytes(),
-        ];
-        for case in 0..4000 {
-            // mostly plain text, with a rarer byte of the others now and then
-            let len = (rng.uniform(0.0, 1.0) * 80.0) as usize;
-            let rare = rng.uniform(0.0, 1.0) < 0.5;
-            let mut text = Vec::new();
-            for _ in 0..len {
-                let pick = (rng.uniform(0.0, 1.0) * alphabet.len() as f64) as usize;
-                let pick = pick.min(alphabet.len() - 1);
-                if !rare && pick >= 10 {
-                    text.extend_from_slice(b"3");
-                } else {
-                    text.extend_from_slice(alphabet[pick]);
-                }
-            }
-            if case % 7 == 0 {
-                text.push(0xff);
-            }
-            for sep in [b',', b';', b'\t', b' '] {
-                assert_eq!(
-                    all_records(Records::plain(&text, sep)),
-                    all_records(Records::new(&text, sep)),
-                    "case {case}, separator {:?}: {:?}",
-                    sep as char,
-                    String::from_utf8_lossy(&text)
-                );
-            }
-        }
-    }
-
     #[test]
     fn reads_selected_columns_in_order() {
         let t = read("# comment\na,b,c\n1,2,3\n4, 5 ,6e0\n", &["c", "a"]).unwrap();
@@ -1408,6 +1214,74 @@ mod tests {
         );
         assert_eq!(calls, 1);
         assert!(rows > 400 && rows < 600, "{rows} rows in the first window");
+    }
+
+    /// A reader that gives `text`, then fails.
+    struct FailsAfter<'a>(&'a [u8]);
+
+    impl Read for FailsAfter<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            if self.0.is_empty() {
+                return Err(std::io::Error::other("the disk went away"));
+            }
+            let n = buf.len().min(self.0.len());
+            buf[..n].copy_from_slice(&self.0[..n]);
+            self.0 = &self.0[n..];
+            Ok(n)
+        }
+    }
+
+    /// The next window's text is read while a window is parsed: an error of that reading
+    /// comes after the window's own error and after the window was handed on, as when the
+    /// text was read at the next window; the windows and the bytes read up to each end are
+    /// those of reading in turn.
+    #[test]
+    fn the_text_read_ahead_fails_where_reading_it_in_turn_would() {
+        let mut text = String::from("t,a\n");
+        for k in 0..2000 {
+            text.push_str(&format!("{k},{k}\n"));
+        }
+        let cols = names(&["a"]);
+        let mut handed = Vec::new();
+        let e = for_each_window(
+            FailsAfter(text.as_bytes()),
+            Path::new("m.csv"),
+            &cols,
+            4096,
+            |t, read| {
+                handed.push((t.rows(), t.lines[0], read));
+                Ok(())
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(e, Error::Data(DataError::Io { .. })), "{e}");
+        // the windows whose text was read before the failure were handed on, in order
+        // (the rows after the last line end read are in none)
+        let rows: usize = handed.iter().map(|h| h.0).sum();
+        assert!(handed.len() >= 2 && rows > 1000 && rows < 2000, "{handed:?}");
+        for w in handed.windows(2) {
+            assert_eq!(w[1].1, w[0].1 + w[0].0 as u64, "{handed:?}");
+            assert!(w[1].2 > w[0].2, "{handed:?}");
+        }
+        // a bad value in the first window is reported before the failed read of the next
+        let bad = text.replacen("7,7\n", "7,x\n", 1);
+        let mut calls = 0;
+        let e = for_each_window(
+            FailsAfter(bad.as_bytes()),
+            Path::new("m.csv"),
+            &cols,
+            4096,
+            |_, _| {
+                calls += 1;
+                Ok(())
+            },
+        )
+        .unwrap_err();
+        assert!(
+            matches!(e, Error::Data(DataError::NotANumber { line: 9, .. })),
+            "{e}"
+        );
+        assert_eq!(calls, 0);
     }
 
     #[test]
