@@ -1258,7 +1258,10 @@ mod tests {
         // the windows whose text was read before the failure were handed on, in order
         // (the rows after the last line end read are in none)
         let rows: usize = handed.iter().map(|h| h.0).sum();
-        assert!(handed.len() >= 2 && rows > 1000 && rows < 2000, "{handed:?}");
+        assert!(
+            handed.len() >= 2 && rows > 1000 && rows < 2000,
+            "{handed:?}"
+        );
         for w in handed.windows(2) {
             assert_eq!(w[1].1, w[0].1 + w[0].0 as u64, "{handed:?}");
             assert!(w[1].2 > w[0].2, "{handed:?}");
