@@ -204,8 +204,8 @@ impl StepCounts {
 }
 
 /// [`Sampling`] of a file read in parts, in order: the same statistics as
-/// [`Sampling::of`] on the whole file, holding only the time steps and the rows before a
-/// run of repeated rows.
+/// [`Sampling::of`] on the whole file, holding only the time steps (counted per value,
+/// [`StepCounts`]) and the rows before a run of repeated rows.
 ///
 /// Stale rows are the rows equal to the previous row in every column, in runs that look
 /// like an old sample written again: some column steps steadily into the run (its last two
