@@ -89,39 +89,123 @@ pub(crate) struct Steps {
 /// Median step, jitter of the regular steps and skipped ticks of increasing time stamps
 /// (`None` for fewer than two).
 pub(crate) fn step_statistics(t: &[f64]) -> Option<Steps> {
-    steps_statistics(t.windows(2).map(|w| w[1] - w[0]).collect())
+    let mut steps = StepCounts::default();
+    for w in t.windows(2) {
+        steps.push(w[1] - w[0]);
+    }
+    steps.statistics()
 }
 
-/// [`step_statistics`] of the steps themselves (`None` for none).
-fn steps_statistics(mut steps: Vec<f64>) -> Option<Steps> {
-    if steps.is_empty() {
-        return None;
-    }
-    let median = median(&mut steps);
-    let (mut sum, mut regular, mut skipped_ticks) = (0.0, 0usize, 0usize);
-    for d in &steps {
-        if *d >= SKIP_RATIO * median {
-            skipped_ticks += ((d / median).round() as usize).saturating_sub(1);
+/// Distinct steps counted before they are kept one by one instead.
+const DISTINCT_STEPS: usize = 64;
+
+/// The time steps of a file, as the statistics need them: their values in any order (the
+/// statistics sort them). A clock's steps take few distinct values (the hour's 3.6 M
+/// steps at 1 kHz, written with three decimals, take 21), so they are counted per value
+/// (its bits) while there are at most [`DISTINCT_STEPS`] of them; past that every step is
+/// kept.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct StepCounts {
+    /// Each distinct step's bits and count (empty once `all` is used).
+    counts: Vec<(u64, usize)>,
+    /// The index in `counts` of the last step (the next is often the same).
+    last: usize,
+    /// Every step, once there were too many distinct ones to count.
+    all: Vec<f64>,
+    /// Whether `all` holds the steps.
+    listed: bool,
+}
+
+impl StepCounts {
+    /// Counts one more step.
+    pub(crate) fn push(&mut self, d: f64) {
+        if self.listed {
+            self.all.push(d);
+            return;
+        }
+        let bits = d.to_bits();
+        if let Some(c) = self.counts.get_mut(self.last)
+            && c.0 == bits
+        {
+            c.1 += 1;
+            return;
+        }
+        if let Some(i) = self.counts.iter().position(|c| c.0 == bits) {
+            self.counts[i].1 += 1;
+            self.last = i;
+        } else if self.counts.len() < DISTINCT_STEPS {
+            self.last = self.counts.len();
+            self.counts.push((bits, 1));
         } else {
-            sum += (d - median).powi(2);
-            regular += 1;
+            let n = self.counts.iter().map(|c| c.1).sum::<usize>();
+            self.all.reserve(2 * n + 1);
+            for &(bits, count) in &self.counts {
+                self.all
+                    .extend(std::iter::repeat_n(f64::from_bits(bits), count));
+            }
+            self.all.push(d);
+            self.counts = Vec::new();
+            self.listed = true;
         }
     }
-    Some(Steps {
-        median,
-        jitter: (sum / regular.max(1) as f64).sqrt(),
-        skipped_ticks,
-    })
-}
 
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    /// The median step, the jitter of the regular steps and the skipped ticks (`None`
+    /// without steps): the steps sorted (`f64::total_cmp`), the median the one at half
+    /// their count, and the jitter's sum taken over them in that order, whether they were
+    /// counted per value or kept (each value's count of equal terms in turn: the same
+    /// additions in the same order, so the same bits).
+    pub(crate) fn statistics(mut self) -> Option<Steps> {
+        let sorted: Vec<(f64, usize)> = if self.listed {
+            // steps equal under `total_cmp` have the same bits: any sort gives the same order
+            self.all.sort_unstable_by(f64::total_cmp);
+            self.all
+                .chunk_by(|a, b| a.to_bits() == b.to_bits())
+                .map(|run| (run[0], run.len()))
+                .collect()
+        } else {
+            let mut v: Vec<(f64, usize)> = self
+                .counts
+                .iter()
+                .map(|&(bits, count)| (f64::from_bits(bits), count))
+                .collect();
+            v.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+            v
+        };
+        let n: usize = sorted.iter().map(|s| s.1).sum();
+        if n == 0 {
+            return None;
+        }
+        let (mut seen, mut median) = (0, f64::NAN);
+        for &(d, count) in &sorted {
+            seen += count;
+            if seen > n / 2 {
+                median = d;
+                break;
+            }
+        }
+        let (mut sum, mut regular, mut skipped_ticks) = (0.0, 0usize, 0usize);
+        for &(d, count) in &sorted {
+            if d >= SKIP_RATIO * median {
+                skipped_ticks += count * ((d / median).round() as usize).saturating_sub(1);
+            } else {
+                let square = (d - median).powi(2);
+                for _ in 0..count {
+                    sum += square;
+                }
+                regular += count;
+            }
+        }
+        Some(Steps {
+            median,
+            jitter: (sum / regular.max(1) as f64).sqrt(),
+            skipped_ticks,
+        })
+    }
 }
 
 /// [`Sampling`] of a file read in parts, in order: the same statistics as
-/// [`Sampling::of`] on the whole file, holding only the time steps and the rows before a
-/// run of repeated rows.
+/// [`Sampling::of`] on the whole file, holding only the time steps (counted per value,
+/// [`StepCounts`]) and the rows before a run of repeated rows.
 ///
 /// Stale rows are the rows equal to the previous row in every column, in runs that look
 /// like an old sample written again: some column steps steadily into the run (its last two
@@ -133,7 +217,7 @@ fn median(v: &mut [f64]) -> f64 {
 #[derive(Debug, Clone)]
 pub(crate) struct SamplingScan {
     rows: usize,
-    steps: Vec<f64>,
+    steps: StepCounts,
     last_time: Option<f64>,
     repeated_rows: usize,
     stale_rows: Vec<usize>,
@@ -151,7 +235,7 @@ impl SamplingScan {
     pub(crate) fn new(columns: usize) -> Self {
         Self {
             rows: 0,
-            steps: Vec::new(),
+            steps: StepCounts::default(),
             last_time: None,
             repeated_rows: 0,
             stale_rows: Vec::new(),
@@ -218,7 +302,7 @@ impl SamplingScan {
 
     /// The statistics of the rows pushed, for the file `path`.
     pub(crate) fn finish(self, path: PathBuf) -> Sampling {
-        let (step, jitter, skipped_ticks) = match steps_statistics(self.steps) {
+        let (step, jitter, skipped_ticks) = match self.steps.statistics() {
             Some(s) => (Some(s.median), Some(s.jitter), s.skipped_ticks),
             None => (None, None, 0),
         };
@@ -261,6 +345,77 @@ mod tests {
         // every row of the constant column repeats, but only row 8 of both columns
         assert_eq!(s.repeated_rows, 1);
         assert!(s.summary().contains("2 skipped ticks") && s.summary().contains("1 of them stale"));
+    }
+
+    /// The statistics as first written: every step kept, sorted, the median at half their
+    /// count and the jitter summed in sorted order.
+    fn reference_steps(mut steps: Vec<f64>) -> Option<Steps> {
+        if steps.is_empty() {
+            return None;
+        }
+        steps.sort_by(f64::total_cmp);
+        let median = steps[steps.len() / 2];
+        let (mut sum, mut regular, mut skipped_ticks) = (0.0, 0usize, 0usize);
+        for d in &steps {
+            if *d >= SKIP_RATIO * median {
+                skipped_ticks += ((d / median).round() as usize).saturating_sub(1);
+            } else {
+                sum += (d - median).powi(2);
+                regular += 1;
+            }
+        }
+        Some(Steps {
+            median,
+            jitter: (sum / regular.max(1) as f64).sqrt(),
+            skipped_ticks,
+        })
+    }
+
+    /// Time stamps of a clock (few distinct steps, counted per value), of a jittered clock
+    /// (many, kept one by one) and of one that turns jittered late, with skipped ticks:
+    /// the median, jitter and skipped ticks are the reference's to the bit.
+    #[test]
+    fn step_statistics_are_the_sorted_steps_to_the_bit() {
+        let mut rng = crate::rng::Rng::new(5);
+        for case in 0..60 {
+            let rows = 2 + (rng.uniform(0.0, 1.0) * 20_000.0) as usize;
+            let (jitter, from) = match case % 3 {
+                0 => (0.0, rows),
+                1 => (3e-5, 0),
+                _ => (2e-5, rows - rows / 50),
+            };
+            let mut t = Vec::with_capacity(rows);
+            let mut k = 0usize;
+            for r in 0..rows {
+                if rng.uniform(0.0, 1.0) < 0.01 {
+                    k += 1 + (rng.uniform(0.0, 1.0) * 3.0) as usize;
+                }
+                let wobble = if r >= from {
+                    (rng.uniform(-jitter, jitter) * 1e6).round() / 1e6
+                } else {
+                    0.0
+                };
+                // written with three or six decimals and read back
+                t.push(((k as f64 * 1e-3 + wobble) * 1e6).round() / 1e6 + 1e3 * (case % 2) as f64);
+                k += 1;
+            }
+            let steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+            let (got, want) = (step_statistics(&t), reference_steps(steps));
+            let bits = |s: Option<Steps>| {
+                s.map(|s| (s.median.to_bits(), s.jitter.to_bits(), s.skipped_ticks))
+            };
+            assert_eq!(
+                bits(got),
+                bits(want),
+                "case {case}: {got:?} against {want:?}"
+            );
+        }
+        assert_eq!(step_statistics(&[1.0]), None);
+        let constant = step_statistics(&[0.0, 0.5, 1.0]).unwrap();
+        assert_eq!(
+            (constant.median, constant.jitter, constant.skipped_ticks),
+            (0.5, 0.0, 0)
+        );
     }
 
     /// A robot at rest, or quantised slow motion (steps of 0 and 1 count, or 1 and 2),

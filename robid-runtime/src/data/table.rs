@@ -348,6 +348,11 @@ struct Windows<'a> {
     rows: AtomicUsize,
     /// The last window was handed out.
     done: bool,
+    /// The buffer of the text before the last window's, kept for the next window's text.
+    spare: Vec<u8>,
+    /// The error of reading ahead the next window's text, given where that reading would
+    /// have been (at the next window).
+    ahead_error: Option<Error>,
 }
 
 impl<'a> Windows<'a> {
@@ -388,6 +393,8 @@ impl<'a> Windows<'a> {
             quoted: false,
             rows: AtomicUsize::new(0),
             done: false,
+            spare: Vec::new(),
+            ahead_error: None,
         })
     }
 
@@ -396,6 +403,9 @@ impl<'a> Windows<'a> {
     fn next(&mut self) -> Result<Option<(Table, usize)>> {
         if self.done {
             return Ok(None);
+        }
+        if let Some(e) = self.ahead_error.take() {
+            return Err(e);
         }
         let (path, names) = (self.text.path, self.names);
         let text = &mut self.text;
@@ -445,10 +455,31 @@ impl<'a> Windows<'a> {
             // than their rows, and cut to them
             let before = rows.load(Ordering::Relaxed);
             let optional = before < self.optional.rows;
-            let parts: Vec<Part> = cuts
-                .par_windows(2)
-                .map(|w| block(body, w[0], w[1], h, optional, rows))
-                .collect();
+            let read = text.read - (text.bytes.len() - cut);
+            self.done = text.end && text.bytes.len() == cut;
+            // the next window's text (the rest of this one's, then read) is read while
+            // this one is parsed, into the buffer before this one's; a quoted file is
+            // read whole above
+            let mut next = std::mem::take(&mut self.spare);
+            next.clear();
+            next.extend_from_slice(&text.bytes[cut..]);
+            let mut ahead = Text {
+                bytes: next,
+                read: text.read,
+                end: text.end,
+                gzip: text.gzip,
+                path,
+            };
+            let source = &mut self.source;
+            let window = self.window;
+            let (parts, filled) = rayon::join(
+                || -> Vec<Part> {
+                    cuts.par_windows(2)
+                        .map(|w| block(body, w[0], w[1], h, optional, rows))
+                        .collect()
+                },
+                || ahead.fill(source, window),
+            );
             let mut table = join_parts(parts, path, names, h)?;
             let keep = self.optional.rows.saturating_sub(before);
             for column in table.columns.iter_mut().skip(h.required) {
@@ -460,9 +491,9 @@ impl<'a> Windows<'a> {
                 MAX_ROWS,
                 "split the file",
             )?;
-            let read = text.read - (text.bytes.len() - cut);
-            text.bytes.drain(..cut);
-            self.done = text.end && text.bytes.is_empty();
+            self.ahead_error = filled.err();
+            (text.read, text.end) = (ahead.read, ahead.end);
+            self.spare = std::mem::replace(&mut text.bytes, ahead.bytes);
             return Ok(Some((table, read)));
         }
     }
@@ -765,29 +796,6 @@ impl<'a> Records<'a> {
         trim(&self.out[start..self.ends[i]])
     }
 
-    /// The last record's fields as text, when it is valid UTF-8 (one check per record).
-    fn text(&self) -> Option<&str> {
-        let end = if self.fields == 0 {
-            0
-        } else {
-            self.ends[self.fields - 1]
-        };
-        std::str::from_utf8(&self.out[..end]).ok()
-    }
-
-    /// Field `i` of [`Records::text`] (trimmed): a field lies between ASCII delimiters,
-    /// so its bounds are character boundaries of valid text.
-    fn field_str<'t>(&self, text: &'t str, i: usize) -> Option<&'t str> {
-        if i >= self.fields {
-            return Some("");
-        }
-        let start = if i == 0 { 0 } else { self.ends[i - 1] };
-        Some(
-            text.get(start..self.ends[i])?
-                .trim_matches(|c: char| c.is_ascii_whitespace()),
-        )
-    }
-
     /// Line ends read so far.
     fn newlines(&self) -> u64 {
         self.core.line() - 1
@@ -1046,13 +1054,8 @@ fn block(
             });
             break;
         }
-        let text = records.text();
         for (k, (&i, col)) in want.iter().zip(columns.iter_mut()).enumerate() {
-            let parsed = match text.and_then(|t| records.field_str(t, i)) {
-                Some(field) => number(field.as_bytes()),
-                None => number(records.field(i)),
-            };
-            match parsed {
+            match number(records.field(i)) {
                 Some(v) if v.is_finite() => col.push(v),
                 Some(value) => {
                     part.error = Some(BlockError::NotFinite {
@@ -1073,7 +1076,6 @@ fn block(
                 }
             }
         }
-        // (not through `field_str`, whose one call above is inlined into the loop)
         for (&i, col) in optional_want.iter().zip(optional_columns.iter_mut()) {
             let parsed = number(records.field(i)).filter(|v| v.is_finite());
             col.push(parsed.unwrap_or(f64::NAN));
@@ -1212,6 +1214,77 @@ mod tests {
         );
         assert_eq!(calls, 1);
         assert!(rows > 400 && rows < 600, "{rows} rows in the first window");
+    }
+
+    /// A reader that gives `text`, then fails.
+    struct FailsAfter<'a>(&'a [u8]);
+
+    impl Read for FailsAfter<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            if self.0.is_empty() {
+                return Err(std::io::Error::other("the disk went away"));
+            }
+            let n = buf.len().min(self.0.len());
+            buf[..n].copy_from_slice(&self.0[..n]);
+            self.0 = &self.0[n..];
+            Ok(n)
+        }
+    }
+
+    /// The next window's text is read while a window is parsed: an error of that reading
+    /// comes after the window's own error and after the window was handed on, as when the
+    /// text was read at the next window; the windows and the bytes read up to each end are
+    /// those of reading in turn.
+    #[test]
+    fn the_text_read_ahead_fails_where_reading_it_in_turn_would() {
+        let mut text = String::from("t,a\n");
+        for k in 0..2000 {
+            text.push_str(&format!("{k},{k}\n"));
+        }
+        let cols = names(&["a"]);
+        let mut handed = Vec::new();
+        let e = for_each_window(
+            FailsAfter(text.as_bytes()),
+            Path::new("m.csv"),
+            &cols,
+            4096,
+            |t, read| {
+                handed.push((t.rows(), t.lines[0], read));
+                Ok(())
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(e, Error::Data(DataError::Io { .. })), "{e}");
+        // the windows whose text was read before the failure were handed on, in order
+        // (the rows after the last line end read are in none)
+        let rows: usize = handed.iter().map(|h| h.0).sum();
+        assert!(
+            handed.len() >= 2 && rows > 1000 && rows < 2000,
+            "{handed:?}"
+        );
+        for w in handed.windows(2) {
+            assert_eq!(w[1].1, w[0].1 + w[0].0 as u64, "{handed:?}");
+            assert!(w[1].2 > w[0].2, "{handed:?}");
+        }
+        // a bad value in the first window is reported before the failed read of the next
+        let bad = text.replacen("7,7\n", "7,x\n", 1);
+        let mut calls = 0;
+        let e = for_each_window(
+            FailsAfter(bad.as_bytes()),
+            Path::new("m.csv"),
+            &cols,
+            4096,
+            |_, _| {
+                calls += 1;
+                Ok(())
+            },
+        )
+        .unwrap_err();
+        assert!(
+            matches!(e, Error::Data(DataError::NotANumber { line: 9, .. })),
+            "{e}"
+        );
+        assert_eq!(calls, 0);
     }
 
     #[test]

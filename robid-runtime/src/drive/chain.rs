@@ -215,7 +215,11 @@ impl DriveChain {
 }
 
 /// out_i = sum_j m_ij * scale_j * x_j, skipping zero entries; a diagonal map works in
-/// place (a long record is not copied), with the same values as the sum (`0 + c x`).
+/// place (a long record is not copied), with the same values as the sum (`0 + c x`), and
+/// leaves a joint whose factor is 1 as it is (the common chain, none configured, is the
+/// identity: every block read would otherwise be passed over for nothing). The one value
+/// that differs from the sum is a `-0` read from a file, which `0 + 1 * -0` made `+0`: it
+/// stays `-0`, equal to `0` in every comparison.
 fn apply(m: &DMatrix<f64>, x: Signals, scale: Option<&[f64]>) -> Signals {
     let c = |i: usize, j: usize| m[(i, j)] * scale.map_or(1.0, |s| s[j]);
     let n = m.nrows();
@@ -225,6 +229,9 @@ fn apply(m: &DMatrix<f64>, x: Signals, scale: Option<&[f64]>) -> Signals {
         let mut x = x;
         for (i, xi) in x.joints_mut().enumerate() {
             let ci = c(i, i);
+            if ci == 1.0 {
+                continue;
+            }
             for v in xi.iter_mut() {
                 *v = if ci != 0.0 { 0.0 + ci * *v } else { 0.0 };
             }
@@ -319,6 +326,42 @@ mod tests {
         let expect = [64.0, 32.0, 45.0, -48.0, 22.5 + 64.0, 64.0];
         for (a, e) in tau.joints().zip(expect) {
             assert!((a[0] - e).abs() < 1e-12, "{a:?} vs {e}");
+        }
+    }
+
+    /// No chain configured is the identity: the values are left as read, to the bit (a
+    /// `-0` too, which the sum `0 + 1 * x` would make `+0`); a joint whose factor is 1 in a
+    /// diagonal chain is left so as well, the others scaled.
+    #[test]
+    fn the_identity_leaves_the_values_as_read() {
+        let chain = DriveChain::new(&DriveConfig::default(), 3).unwrap();
+        let x = Signals::from_fn(3, 4, |j, k| match (j, k) {
+            (0, 1) => -0.0,
+            (2, 3) => f64::MIN_POSITIVE / 4.0,
+            _ => (k as f64 - 1.5) * (j + 1) as f64 * 0.1,
+        });
+        let bits =
+            |s: &Signals| -> Vec<u64> { s.joints().flatten().map(|v| v.to_bits()).collect() };
+        for y in [
+            chain.joint_positions(x.clone()),
+            chain.joint_torques(x.clone()),
+        ] {
+            assert_eq!(bits(&y), bits(&x));
+        }
+        let diagonal = DriveConfig {
+            gear_ratios: Some(vec![1.0, 2.0, 1.0]),
+            torque_side: Side::Motor,
+            ..Default::default()
+        };
+        let tau = DriveChain::new(&diagonal, 3)
+            .unwrap()
+            .joint_torques(x.clone());
+        let (got, read): (Vec<&[f64]>, Vec<&[f64]>) =
+            (tau.joints().collect(), x.joints().collect());
+        assert_eq!(got[0][1].to_bits(), (-0.0f64).to_bits());
+        assert_eq!(got[2], read[2]);
+        for (a, b) in got[1].iter().zip(read[1]) {
+            assert_eq!(*a, 2.0 * b);
         }
     }
 

@@ -7,16 +7,15 @@
 /// Returns an empty vector for an empty input and zeros for a single sample.
 pub fn central_difference(x: &[f64], dt: f64) -> Vec<f64> {
     let n = x.len();
-    let mut d = vec![0.0; n];
     if n < 2 {
-        return d;
+        return vec![0.0; n];
     }
-    d[0] = (x[1] - x[0]) / dt;
-    d[n - 1] = (x[n - 1] - x[n - 2]) / dt;
+    // appended, not written over zeros (a block's derivatives are a few MB)
+    let mut d = Vec::with_capacity(n);
+    d.push((x[1] - x[0]) / dt);
     let h = 0.5 / dt;
-    for k in 1..n - 1 {
-        d[k] = (x[k + 1] - x[k - 1]) * h;
-    }
+    d.extend(x[2..].iter().zip(&x[..n - 2]).map(|(a, b)| (a - b) * h));
+    d.push((x[n - 1] - x[n - 2]) / dt);
     d
 }
 

@@ -110,21 +110,32 @@ impl Sos {
         // rows, which `filtfilt_extended` fills
         let outer = self.pad_length();
         let padded = n + 2 * pad;
-        let mut ext = vec![0.0; (padded + 2 * outer) * g];
-        for (c, v) in x.iter().enumerate() {
-            let value = |r: usize| match r {
-                r if r < pad => 2.0 * v[0] - v[pad - r],
-                r if r < pad + n => v[r - pad],
-                r => 2.0 * v[n - 1] - v[n - 1 - (r - pad - n + 1)],
-            };
-            for r in 0..padded {
-                ext[(outer + r) * g + c] = value(r);
+        // row by row (the signals side by side), each row appended: the outer rows zero,
+        // then the odd extension on the left, the signals, the odd extension on the right
+        let mut ext = Vec::with_capacity((padded + 2 * outer) * g);
+        ext.resize(outer * g, 0.0);
+        for r in 0..pad {
+            ext.extend(x.iter().map(|v| 2.0 * v[0] - v[pad - r]));
+        }
+        for k in 0..n {
+            ext.extend(x.iter().map(|v| v[k]));
+        }
+        for r in pad + n..padded {
+            ext.extend(
+                x.iter()
+                    .map(|v| 2.0 * v[n - 1] - v[n - 1 - (r - pad - n + 1)]),
+            );
+        }
+        ext.resize((padded + 2 * outer) * g, 0.0);
+        self.filtfilt_extended(&mut ext, g, Kept::ALL)?;
+        // taken out row by row too
+        let mut out: Vec<Vec<f64>> = (0..g).map(|_| Vec::with_capacity(n)).collect();
+        for row in ext[(outer + pad) * g..(outer + pad + n) * g].chunks_exact(g) {
+            for (o, &v) in out.iter_mut().zip(row) {
+                o.push(v);
             }
         }
-        self.filtfilt_extended(&mut ext, g, Kept::ALL)?;
-        Ok((0..g)
-            .map(|c| (0..n).map(|k| ext[(outer + pad + k) * g + c]).collect())
-            .collect())
+        Ok(out)
     }
 
     /// Steady-state section states for a unit constant input (scipy's `sosfilt_zi`).

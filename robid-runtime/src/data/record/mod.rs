@@ -373,6 +373,28 @@ impl SpilledRecord {
             })
     }
 
+    /// The `len` bytes at byte `at` of the temporary file, read into `scratch` (grown,
+    /// and so zeroed, only when it is shorter: one buffer serves every column of a block).
+    fn read_bytes<'s>(
+        file: &mut File,
+        at: u64,
+        len: usize,
+        scratch: &'s mut Vec<u8>,
+    ) -> Result<&'s [u8]> {
+        if scratch.len() < len {
+            scratch.resize(len, 0);
+        }
+        file.seek(SeekFrom::Start(at))
+            .and_then(|_| file.read_exact(&mut scratch[..len]))
+            .map_err(|source| {
+                Error::Data(DataError::Io {
+                    path: std::env::temp_dir(),
+                    source,
+                })
+            })?;
+        Ok(&scratch[..len])
+    }
+
     /// The chunks holding samples `start..end`, with the part of each.
     fn parts(&self, start: usize, end: usize) -> impl Iterator<Item = (&Chunk, usize, usize)> {
         let first = self.chunks.partition_point(|c| c.start + c.len <= start);
@@ -400,13 +422,13 @@ impl SpilledRecord {
         column: usize,
         (lo, hi): (usize, usize),
         out: &mut Vec<f64>,
+        scratch: &mut Vec<u8>,
     ) -> Result<()> {
         match c.columns[column] {
             Stored::Raw { at } => Self::read_into(file, at + 8 * lo as u64, hi - lo, out),
             Stored::Decimal { at, places } => {
-                let mut digits = Vec::new();
-                Self::read_into::<i32>(file, at + 4 * lo as u64, hi - lo, &mut digits)?;
-                stored::values(&digits, places, out);
+                let digits = Self::read_bytes(file, at + 4 * lo as u64, 4 * (hi - lo), scratch)?;
+                stored::values(digits, places, out);
                 Ok(())
             }
             // only lines are stored so
@@ -447,9 +469,10 @@ impl SpilledRecord {
                 *block = Some(vec![Vec::with_capacity(end - start); self.dof]);
             }
         }
+        let mut scratch = Vec::new();
         for (c, lo, hi) in self.parts(start, end) {
             for (column, x) in blocks.iter_mut().flatten().flatten().enumerate() {
-                Self::read_column(file, c, column, (lo, hi), x)?;
+                Self::read_column(file, c, column, (lo, hi), x, &mut scratch)?;
             }
             if let Some(lines) = lines.as_mut() {
                 self.read_lines(file, c, (lo, hi), lines)?;
@@ -471,7 +494,14 @@ impl SpilledRecord {
     /// The time stamps of chunk `c`.
     fn stamps(&self, file: &mut File, c: &Chunk) -> Result<Vec<f64>> {
         let mut t = Vec::with_capacity(c.len);
-        Self::read_column(file, c, self.stamps_column(), (0, c.len), &mut t)?;
+        Self::read_column(
+            file,
+            c,
+            self.stamps_column(),
+            (0, c.len),
+            &mut t,
+            &mut Vec::new(),
+        )?;
         Ok(t)
     }
 
@@ -614,7 +644,14 @@ impl Record for SpilledRecord {
                 let mut blocks = self.read_samples(&mut file, a, b + 1, None)?;
                 let mut t = Vec::with_capacity(b + 1 - a);
                 for (c, lo, hi) in self.parts(a, b + 1) {
-                    Self::read_column(&mut file, c, self.stamps_column(), (lo, hi), &mut t)?;
+                    Self::read_column(
+                        &mut file,
+                        c,
+                        self.stamps_column(),
+                        (lo, hi),
+                        &mut t,
+                        &mut Vec::new(),
+                    )?;
                 }
                 for x in blocks.iter_mut().flatten().flatten() {
                     *x = interpolate(&t, x, &at);

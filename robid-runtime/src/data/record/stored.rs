@@ -98,26 +98,28 @@ unsafe fn encode_avx2(x: &[f64], p: f64, out: &mut [i32]) -> bool {
     encode_all(x, p, out)
 }
 
-/// Appends the values of `digits` at `places` to `out`.
-pub(super) fn values(digits: &[i32], places: u8, out: &mut Vec<f64>) {
+/// Appends the values of the digits in `bytes` (each an `i32`'s native bytes, as written
+/// from `digits`) at `places` to `out`, without first zeroing the space they take.
+pub(super) fn values(bytes: &[u8], places: u8, out: &mut Vec<f64>) {
     let p = POWERS[usize::from(places)];
-    let old = out.len();
-    out.resize(old + digits.len(), 0.0);
+    out.reserve(bytes.len() / 4);
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2, which `decode_avx2` is compiled for.
-        unsafe { decode_avx2(digits, p, &mut out[old..]) };
+        unsafe { decode_avx2(bytes, p, out) };
         return;
     }
-    decode_all(digits, p, &mut out[old..]);
+    decode_all(bytes, p, out);
 }
 
-/// Writes the value of each of `digits` at the power of ten `p` to `out`.
+/// Appends the value of each digits in `bytes` at the power of ten `p` to `out`.
 #[inline(always)]
-fn decode_all(digits: &[i32], p: f64, out: &mut [f64]) {
-    for (v, &d) in out.iter_mut().zip(digits) {
-        *v = decode(d, p);
-    }
+fn decode_all(bytes: &[u8], p: f64, out: &mut Vec<f64>) {
+    out.extend(
+        bytes
+            .chunks_exact(4)
+            .map(|d| decode(i32::from_ne_bytes(d.try_into().expect("four bytes")), p)),
+    );
 }
 
 /// [`decode_all`] in vectors of four (the same operations: the same values).
@@ -126,8 +128,8 @@ fn decode_all(digits: &[i32], p: f64, out: &mut [f64]) {
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn decode_avx2(digits: &[i32], p: f64, out: &mut [f64]) {
-    decode_all(digits, p, out);
+unsafe fn decode_avx2(bytes: &[u8], p: f64, out: &mut Vec<f64>) {
+    decode_all(bytes, p, out);
 }
 
 /// The first line when `lines` follow each other.
@@ -149,7 +151,7 @@ mod tests {
         let mut d = Vec::new();
         let places = digits(x, &mut d)?;
         let mut back = Vec::new();
-        values(&d, places, &mut back);
+        values(bytemuck::cast_slice(&d), places, &mut back);
         let bits = |v: &[f64]| v.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&back), bits(x), "values given back to the bit");
         Some(places)
@@ -201,9 +203,10 @@ mod tests {
             assert_eq!((exact, places.is_some()), (bad.is_none(), bad.is_none()));
             if let Some(places) = places {
                 assert_eq!(scalar, d);
-                let (mut a, mut b) = (Vec::new(), vec![0.0; d.len()]);
-                values(&d, places, &mut a);
-                decode_all(&d, POWERS[5], &mut b);
+                let (mut a, mut b) = (Vec::new(), Vec::new());
+                values(bytemuck::cast_slice(&d), places, &mut a);
+                decode_all(bytemuck::cast_slice(&d), POWERS[5], &mut b);
+                assert_eq!(a.len(), d.len());
                 assert!(a.iter().zip(&b).all(|(a, b)| a.to_bits() == b.to_bits()));
             }
         }
