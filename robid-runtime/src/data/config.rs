@@ -274,8 +274,9 @@ impl PerJoint {
                     "Config",
                     key,
                     format!(
-                        "{} values for a model of {dof} joints; give one number for all joints or one per joint",
-                        v.len()
+                        "{} for a model of {}; give one number for all joints or one per joint",
+                        crate::Count(v.len(), "value"),
+                        crate::Count(dof, "joint")
                     ),
                 ));
             }
@@ -892,7 +893,8 @@ impl Config {
             return bad(
                 "dof",
                 format!(
-                    "{n} joints, but the model has {dof}; write dof = {dof} or use the matching robot description"
+                    "{}, but the model has {dof}; write dof = {dof} or use the matching robot description",
+                    crate::Count(n, "joint")
                 ),
             );
         }
@@ -960,7 +962,9 @@ impl Config {
                         return bad(
                             &format!("source[{}].{role}", i + 1),
                             format!(
-                                "{n} column names for a model of {dof} joints; list one per joint or write a template such as \"{role}{{}}\""
+                                "{} for a model of {}; list one per joint or write a template such as \"{role}{{}}\"",
+                                crate::Count(n, "column name"),
+                                crate::Count(dof, "joint")
                             ),
                         );
                     }

@@ -234,7 +234,8 @@ pub enum DataError {
     },
     /// The number of joints in the data does not match the model.
     #[error(
-        "{context}: {found} joints, the model has {expected}; list exactly one column per joint"
+        "{context}: {}, the model has {expected}; list exactly one column per joint",
+        crate::Count(*found, "joint")
     )]
     JointCountMismatch {
         /// Where the count was found.

@@ -379,11 +379,13 @@ fn check_surplus_joint(
             return Err(config.key_error(
                 &key,
                 format!(
-                    "{}: has a column `{column}`, for joint {} of a model with {dof} joints; \
+                    "{}: has a column `{column}`, for joint {} of a model with {}; \
                      give the description of the robot that recorded the data, or list the \
-                     {dof} columns to read ({} = [\"{}\", ...])",
+                     {} to read ({} = [\"{}\", ...])",
                     path.display(),
                     dof + 1,
+                    crate::Count(dof, "joint"),
+                    crate::Count(dof, "column"),
                     ROLES[role],
                     template.replace("{}", "1"),
                 ),

@@ -736,9 +736,10 @@ fn friction_model(config: &Config, file: &std::path::Path, dof: usize) -> Result
             "Config",
             "drive.rotor.friction",
             format!(
-                "{} has {} [[friction]] tables, but the data have {dof} joints; give one table per joint (robid friction writes them)",
+                "{} has {}, but the data have {}; give one table per joint (robid friction writes them)",
                 path.display(),
-                model.dof()
+                crate::Count(model.dof(), "[[friction]] table"),
+                crate::Count(dof, "joint")
             ),
         ));
     }

@@ -258,9 +258,9 @@ pub fn average(runs: &[Dataset]) -> Result<Dataset> {
             return Err(bad(
                 i,
                 format!(
-                    "{} has {} joints, {} has {}",
+                    "{} has {}, {} has {}",
                     d.name,
-                    d.dof(),
+                    crate::Count(d.dof(), "joint"),
                     first.name,
                     first.dof()
                 ),

@@ -143,6 +143,35 @@ fn one_joint_messages_count_one_joint() {
         ],
         &["has a column `q2`, for joint 2 of a robot with 1 joint"],
     );
+    // identification: a data file with a second joint, a per-joint setting of two values
+    let data = write(
+        dir.path(),
+        "data.csv",
+        "t,q1,q2,tau1,tau2\n0,0,0,0,0\n0.01,0,0,0,0\n",
+    );
+    let identify = |config: &str| {
+        let config = write(dir.path(), "config.toml", config);
+        vec![
+            "identify".to_owned(),
+            ONE.to_owned(),
+            "--data".to_owned(),
+            data.display().to_string(),
+            "--config".to_owned(),
+            config.display().to_string(),
+        ]
+    };
+    run(
+        identify("[processing]\nrest_velocity = [0.1, 0.2]\n"),
+        &["2 values for a model of 1 joint; give one number for all joints"],
+    );
+    run(identify("dof = 2\n"), &["2 joints, but the model has 1"]);
+    run(
+        identify("time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n"),
+        &[
+            "has a column `q2`, for joint 2 of a model with 1 joint",
+            "list the 1 column to read",
+        ],
+    );
 }
 
 /// One static pose of gravity torque for the two combinations (`MX1`, `MY1`) that gravity
