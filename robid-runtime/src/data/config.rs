@@ -1283,7 +1283,7 @@ method = "wls"
         let e = cfg.check(2).unwrap_err();
         assert!(
             e.to_string().starts_with(
-                "c.toml:13:1: `processing.rest_velocity`: 1 values for a model of 2 joints"
+                "c.toml:13:1: `processing.rest_velocity`: 1 value for a model of 2 joints"
             ),
             "{e}"
         );

@@ -80,7 +80,7 @@ fn joint_count_mismatch_is_an_error() {
     );
     assert!(
         e.to_string()
-            .contains("1 column names for a model of 2 joints"),
+            .contains("1 column name for a model of 2 joints"),
         "{e}"
     );
 }

@@ -825,7 +825,7 @@ fn rotor_side_residuals_after_the_nonlinear_compensation() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("drive.rotor.friction") && e.contains("1 [[friction]] tables"),
+        e.contains("drive.rotor.friction") && e.contains("1 [[friction]] table,"),
         "{e}"
     );
     let e = identify(
