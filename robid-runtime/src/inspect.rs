@@ -77,8 +77,10 @@ pub struct JointReport {
     pub position_signal_top: f64,
     /// RMS of the position noise, from the spectrum's floor (rad or m).
     pub position_noise: f64,
-    /// Where the detrended torque holds [`TORQUE_SHARE`] of its power (Hz).
-    pub torque_bandwidth: f64,
+    /// Where the detrended torque holds [`TORQUE_SHARE`] of its power (Hz); `None` for a
+    /// constant torque (a column of zeros, a joint that carries no load), whose residue
+    /// of rounding spreads over every frequency and used to be reported near Nyquist.
+    pub torque_bandwidth: Option<f64>,
     /// RMS of the torque noise, from the spectrum's floor (N m or N).
     pub torque_noise: f64,
     /// Share of samples whose torque lies within [`EXTREME_TOLERANCE`] of the largest
@@ -255,6 +257,15 @@ fn position_bandwidth(s: &Spectrum) -> Option<f64> {
     moves(s).then(|| s.bandwidth(MOTION_SHARE))
 }
 
+/// Spread (RMS of the detrended torque, N m or N) below which a torque is constant:
+/// rounding leaves about 1e-15 of its value.
+pub const MIN_TORQUE_SPREAD: f64 = 1e-9;
+
+/// The bandwidth of a torque, `None` when it is constant.
+fn torque_bandwidth(s: &Spectrum) -> Option<f64> {
+    (s.power().sqrt() > MIN_TORQUE_SPREAD).then(|| s.bandwidth(TORQUE_SHARE))
+}
+
 /// `x` rounded to two significant digits (the double nearest the decimal, so that it
 /// prints as written: 2.9, not 2.9000000000000004).
 fn two_digits(x: f64) -> f64 {
@@ -414,7 +425,7 @@ fn inspect_in(
                 position_bandwidth: position_bandwidth(&sq),
                 position_signal_top: sq.above_floor(NOISE_RATIO),
                 position_noise: sq.noise_rms(),
-                torque_bandwidth: st.bandwidth(TORQUE_SHARE),
+                torque_bandwidth: torque_bandwidth(&st),
                 torque_noise: st.noise_rms(),
                 torque_at_extremes: at_extremes[j] as f64 / count,
                 torque_at_limit: limit(j).map(|_| counts[j].0 as f64 / count),
@@ -456,9 +467,13 @@ impl Inspection {
             let bandwidth = r
                 .position_bandwidth
                 .map_or_else(|| "at rest".to_string(), |b| format!("{b:.2} Hz"));
+            // nor a constant torque
+            let torque_bandwidth = r
+                .torque_bandwidth
+                .map_or_else(|| "constant".to_string(), |b| format!("{b:.1} Hz"));
             let _ = writeln!(
                 s,
-                "{:>3}  {:<5}  [{:>8.3}, {:>8.3}]  {:>10}  {:>7.1} Hz  {:>9.2e}  {:>7.1} Hz  {:>11.2e}  {:>9.1} %  {:>8}  {:>5.1} %",
+                "{:>3}  {:<5}  [{:>8.3}, {:>8.3}]  {:>10}  {:>7.1} Hz  {:>9.2e}  {:>10}  {:>11.2e}  {:>9.1} %  {:>8}  {:>5.1} %",
                 r.joint,
                 if r.moves { "yes" } else { "no" },
                 r.position_range[0],
@@ -466,7 +481,7 @@ impl Inspection {
                 bandwidth,
                 r.position_signal_top,
                 r.position_noise,
-                r.torque_bandwidth,
+                torque_bandwidth,
                 r.torque_noise,
                 100.0 * r.torque_at_extremes,
                 limit,
@@ -586,6 +601,29 @@ mod tests {
             let json = serde_json::to_value(&i).unwrap();
             assert!(json["joints"][1]["position_bandwidth"].is_null(), "{what}");
         }
+    }
+
+    /// A constant torque (here a column of zeros) has no bandwidth either: "constant", in
+    /// the JSON `null`; it was reported near the Nyquist frequency.
+    #[test]
+    fn a_constant_torque_has_no_bandwidth() {
+        let moving = data(1e-5);
+        let n = moving.q[0].len();
+        let d = Dataset::new(
+            "still torque",
+            moving.sample_time,
+            moving.q.clone(),
+            Signals::new(vec![moving.tau[0].to_vec(), vec![0.0; n]]).unwrap(),
+        )
+        .unwrap();
+        let i = inspect(&d, &Config::default(), &[None, None]).unwrap();
+        assert!(i.joints[0].torque_bandwidth.is_some());
+        assert_eq!(i.joints[1].torque_bandwidth, None);
+        let text = i.text();
+        let row = text.lines().find(|l| l.starts_with("  2  ")).unwrap();
+        assert!(row.contains("    constant  "), "{row}");
+        let json = serde_json::to_value(&i).unwrap();
+        assert!(json["joints"][1]["torque_bandwidth"].is_null());
     }
 
     /// The widest motion is the moving joint's; the vibrations stand above the noise up to

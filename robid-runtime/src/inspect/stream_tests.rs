@@ -65,7 +65,7 @@ fn whole(data: &Dataset, config: &Config, torque_limits: &[Option<f64>]) -> Insp
                 position_bandwidth: position_bandwidth(&sq),
                 position_signal_top: sq.above_floor(NOISE_RATIO),
                 position_noise: sq.noise_rms(),
-                torque_bandwidth: st.bandwidth(TORQUE_SHARE),
+                torque_bandwidth: torque_bandwidth(&st),
                 torque_noise: st.noise_rms(),
                 torque_at_extremes: at_extremes,
                 torque_at_limit: at_limit,
