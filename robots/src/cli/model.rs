@@ -372,35 +372,47 @@ fn text(robot: &Robot, r: &Report) -> String {
         .joints()
         .iter()
         .any(|j| !j.gamma.is_zero() || !j.b.is_zero());
-    let _ = writeln!(
-        out,
-        "\n  j  type       {}alpha        a            d            theta",
-        if general {
-            "gamma        b            "
-        } else {
-            ""
-        }
-    );
+    // each column as wide as its widest entry: a URDF's fitted values print in full
+    // (`0.289486614543747`) and used to push the columns after them out of line
+    let mut header = vec!["j", "type"];
+    if general {
+        header.extend(["gamma", "b"]);
+    }
+    header.extend(["alpha", "a", "d", "theta"]);
+    let mut rows: Vec<Vec<String>> = vec![header.iter().map(|h| h.to_string()).collect()];
     for (j, joint) in robot.joints().iter().enumerate() {
         let kind = match joint.kind {
             robid_symbolic::JointKind::Revolute => "revolute",
             robid_symbolic::JointKind::Prismatic => "prismatic",
         };
-        let extra = if general {
-            format!("{:<12} {:<12} ", joint.gamma.as_str(), joint.b.as_str())
-        } else {
-            String::new()
-        };
-        let _ = writeln!(
-            out,
-            "  {:<2} {:<10} {extra}{:<12} {:<12} {:<12} {}",
-            j + 1,
-            kind,
-            joint.alpha.as_str(),
-            joint.a.as_str(),
-            joint.d.as_str(),
-            joint.theta.as_str()
-        );
+        let mut row = vec![(j + 1).to_string(), kind.to_string()];
+        if general {
+            row.extend([
+                joint.gamma.as_str().to_string(),
+                joint.b.as_str().to_string(),
+            ]);
+        }
+        for value in [&joint.alpha, &joint.a, &joint.d, &joint.theta] {
+            row.push(value.as_str().to_string());
+        }
+        rows.push(row);
+    }
+    // the widths the table always had (2, 10, then 12), wider where an entry is (with a
+    // space more, so that two spaces part it from the next)
+    let widths: Vec<usize> = (0..rows[0].len())
+        .map(|c| {
+            let least = [2, 10].get(c).copied().unwrap_or(12);
+            rows.iter()
+                .map(|r| r[c].chars().count())
+                .fold(least, |w, len| if len < least { w } else { w.max(len + 1) })
+        })
+        .collect();
+    for (k, row) in rows.iter().enumerate() {
+        let mut line = String::from(if k == 0 { "\n " } else { " " });
+        for (c, cell) in row.iter().enumerate() {
+            line.push_str(&format!(" {cell:<w$}", w = widths[c]));
+        }
+        let _ = writeln!(out, "{}", line.trim_end());
     }
     for (what, mount) in [
         ("base (frame 0 in the world)", &r.base),

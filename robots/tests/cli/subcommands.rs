@@ -454,3 +454,34 @@ fn bench_json_has_each_program_with_its_ratio() {
         stderr(&o)
     );
 }
+
+/// The model table's columns line up whatever their values' lengths: a URDF's fitted
+/// lengths print in full (SO-101's `a3 = 0.116000021120688`) and pushed the columns after
+/// them out of line; each column now starts where its heading does, in every row.
+#[test]
+fn model_table_columns_line_up_with_long_values() {
+    let o = robid(&["model", "../data/example_robot_data/so101/so101.urdf"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let mut lines = text
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("j  type"));
+    let header = lines.next().expect("the DH table");
+    let rows: Vec<&str> = lines.take_while(|l| !l.is_empty()).collect();
+    assert_eq!(rows.len(), 6, "{text}");
+    assert!(
+        rows.iter().any(|r| r.contains("0.116000021120688")),
+        "{text}"
+    );
+    for heading in [" alpha", " a ", " d ", " theta"] {
+        let at = header.find(heading).expect(heading) + 1;
+        for row in &rows {
+            let (before, after) = row.split_at(at);
+            assert!(
+                before.ends_with(' ') && !after.starts_with(' '),
+                "column `{}` at {at}:\n{header}\n{row}",
+                heading.trim()
+            );
+        }
+    }
+}
