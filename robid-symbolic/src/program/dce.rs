@@ -2,6 +2,7 @@
 //! temporaries and constants in their original (topological) order; and the merging
 //! of instructions that compute the same operation on the same operands.
 
+use super::factor::{mapped, mapped_outputs};
 use super::{Instr, Program, Value};
 use rustc_hash::FxHashMap;
 
@@ -13,10 +14,6 @@ pub(super) fn merge_identical(program: Program) -> Program {
     let mut seen: FxHashMap<Instr, Value> = FxHashMap::default();
     let mut map: Vec<Value> = Vec::with_capacity(program.instrs.len());
     let mut merged = false;
-    let mapped = |map: &[Value], v: Value| match v {
-        Value::Temp(t) => map[t as usize],
-        other => other,
-    };
     for (t, instr) in program.instrs.iter().enumerate() {
         let key = match instr.map(|v| mapped(&map, v)) {
             Instr::Add(a, b) if b < a => Instr::Add(b, a),
@@ -35,14 +32,7 @@ pub(super) fn merge_identical(program: Program) -> Program {
         .iter()
         .map(|i| i.map(|v| mapped(&map, v)))
         .collect();
-    let outputs = program
-        .outputs
-        .iter()
-        .map(|o| super::Output {
-            group: o.group.clone(),
-            values: o.values.iter().map(|&v| mapped(&map, v)).collect(),
-        })
-        .collect();
+    let outputs = mapped_outputs(&program.outputs, &map);
     remove_dead_code(Program {
         inputs: program.inputs,
         constants: program.constants,

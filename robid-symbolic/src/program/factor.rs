@@ -107,14 +107,7 @@ fn factor_sums(program: Program) -> Program {
     if !changed {
         return program;
     }
-    let outputs = program
-        .outputs
-        .iter()
-        .map(|o| super::Output {
-            group: o.group.clone(),
-            values: o.values.iter().map(|&v| mapped(&map, v)).collect(),
-        })
-        .collect();
+    let outputs = mapped_outputs(&program.outputs, &map);
     dce::remove_dead_code(Program {
         inputs: program.inputs,
         constants: program.constants,
@@ -128,6 +121,17 @@ pub(super) fn mapped(map: &[Value], v: Value) -> Value {
         Value::Temp(t) => map[t as usize],
         other => other,
     }
+}
+
+/// The outputs with each temporary replaced by its value in the rewritten program.
+pub(super) fn mapped_outputs(outputs: &[super::Output], map: &[Value]) -> Vec<super::Output> {
+    outputs
+        .iter()
+        .map(|o| super::Output {
+            group: o.group.clone(),
+            values: o.values.iter().map(|&v| mapped(map, v)).collect(),
+        })
+        .collect()
 }
 
 /// A term of the rewritten sum: a term of the old one, or a factor times the sum of

@@ -7,7 +7,7 @@
 //! dearer; the pass keeps the program as it was if it would (it never does on the
 //! reference robots).
 
-use super::factor::{Term, flatten, mapped, pairwise};
+use super::factor::{Term, flatten, mapped, mapped_outputs, pairwise};
 use super::{Instr, Program, Value, dce};
 use rustc_hash::FxHashMap;
 use std::cmp::Reverse;
@@ -262,14 +262,7 @@ fn share(program: Program, skip_lone: bool) -> Program {
         };
         map.push(value);
     }
-    let outputs = program
-        .outputs
-        .iter()
-        .map(|o| super::Output {
-            group: o.group.clone(),
-            values: o.values.iter().map(|&v| mapped(&map, v)).collect(),
-        })
-        .collect();
+    let outputs = mapped_outputs(&program.outputs, &map);
     let shared = dce::remove_dead_code(Program {
         inputs: program.inputs.clone(),
         constants: program.constants.clone(),
