@@ -91,7 +91,7 @@ pub enum DataError {
     },
     /// The file separates its fields with something robid does not read (`|`).
     #[error(
-        "{path}: the header `{header}` is separated by {separator}; robid reads fields separated by `,`, or by the one of `;`, a tab or a single space that the header uses (optionally quoted with `\"`, `#` starts a comment line): convert the file to commas (with `.` as the decimal point)"
+        "{path}: the header `{header}` is separated by {separator}; robid reads fields separated by `,`, or by the one of `;`, a tab or spaces that the header uses (optionally quoted with `\"`, `#` starts a comment line): convert the file to commas (with `.` as the decimal point)"
     )]
     UnsupportedSeparator {
         /// The file.

@@ -2,9 +2,9 @@
 //!
 //! One reader for every file, `csv_core` (the parser of the `csv` crate, driven over the
 //! text in memory): fields separated by `,` (or by the one separator the header line uses
-//! instead: `;`, a tab or a single space, as UR's RTDE recorder writes, [`separator`]),
-//! optionally quoted with `"`, surrounding spaces trimmed, lines that start with `#` are comments, empty lines
-//! are skipped, `\n` or `\r\n` line ends, and a UTF-8 byte-order mark is ignored.
+//! instead: `;`, a tab or spaces, single as UR's RTDE recorder writes them or in runs that
+//! align columns, [`separator`]), optionally quoted with `"`, surrounding spaces trimmed,
+//! lines that start with `#` are comments, empty lines are skipped, `\n` or `\r\n` line ends, and a UTF-8 byte-order mark is ignored.
 //!
 //! The text is read in windows of [`WINDOW`] bytes cut at a line end, so that a long record
 //! is never held as text beside its values ([`for_each_window`] hands each window's rows on
@@ -27,6 +27,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use flate2::read::MultiGzDecoder;
 use rayon::prelude::*;
 
+use crate::Count;
 use crate::error::{Error, Result};
 use crate::limits::{MAX_COLUMNS, MAX_FILE_BYTES, MAX_LINE_BYTES, MAX_ROWS, Quantity, check_size};
 
@@ -702,7 +703,7 @@ const CHUNK: usize = 1 << 20;
 /// The field separator of a file whose text starts with `text`, from its header line (the
 /// first line that is neither blank nor a `#` comment): `,` when that line holds one, else
 /// `;`, else a tab, else a space (UR's RTDE recorder separates its fields by single
-/// spaces), else `,` (one column). A header names its columns once, so the separator it
+/// spaces; runs of them align columns, [`Records`]), else `,` (one column). A header names its columns once, so the separator it
 /// uses is not a guess; the data rows must use the same.
 fn separator(text: &[u8]) -> u8 {
     let line = text
@@ -722,7 +723,11 @@ const SEPARATORS: [u8; 4] = [b',', b';', b'\t', b' '];
 /// The csv reader over text in memory: records as fields, with the line each ends on.
 /// It is `csv_core`, the state machine of the `csv` crate, with the crate's defaults (`"`
 /// quotes, `\n` or `\r\n` line ends), the file's separator and `#` comment lines, driven
-/// over the slice directly (no buffer copy).
+/// over the slice directly (no buffer copy). Where the separator is a space, a run of
+/// spaces is one separator and spaces before the first field or after the last are none
+/// (columns aligned by a text export or `printf`): the empty fields they give are dropped,
+/// and a line of spaces alone is a blank line. A space-separated file cannot express an
+/// empty field, so none is lost.
 struct Records<'a> {
     core: csv_core::Reader,
     input: &'a [u8],
@@ -730,6 +735,8 @@ struct Records<'a> {
     out: Vec<u8>,
     ends: Vec<usize>,
     fields: usize,
+    /// Runs of spaces separate fields ([`Records`]).
+    collapse: bool,
 }
 
 impl<'a> Records<'a> {
@@ -744,6 +751,7 @@ impl<'a> Records<'a> {
             out: vec![0; 4096],
             ends: vec![0; 64],
             fields: 0,
+            collapse: separator == b' ',
         }
     }
 
@@ -773,6 +781,14 @@ impl<'a> Records<'a> {
                 }
                 R::Record => {
                     self.fields = endlen;
+                    if self.collapse {
+                        self.drop_empty_fields();
+                        if self.fields == 0 {
+                            // a line of spaces
+                            (outlen, endlen) = (0, 0);
+                            continue;
+                        }
+                    }
                     let consumed_newline =
                         self.consumed > 0 && self.input[self.consumed - 1] == b'\n';
                     return Some(self.core.line() - u64::from(consumed_newline));
@@ -780,6 +796,23 @@ impl<'a> Records<'a> {
                 R::End => return None,
             }
         }
+    }
+
+    /// Removes the last record's empty fields (the ends of the fields kept, in order).
+    fn drop_empty_fields(&mut self) {
+        let mut kept = 0;
+        let mut start = 0;
+        for i in 0..self.fields {
+            let end = self.ends[i];
+            if !trim(&self.out[start..end]).is_empty() {
+                // the field keeps its start: the previous kept end, or a dropped field's
+                // (empty after trimming, so the same trimmed text)
+                self.ends[kept] = end;
+                kept += 1;
+            }
+            start = end;
+        }
+        self.fields = kept;
     }
 
     /// Fields of the last record.
@@ -1037,19 +1070,12 @@ fn block(
         // 0-based line within the block
         let line = line - 1;
         if records.len() != fields {
-            // a space separates one field from the next: aligned columns split into
-            // empty fields where their widths change
-            let spaces = if header.separator == b' ' {
-                " (the header separates its fields by single spaces, so each space in a row \
-                 separates two fields: write one space between values, or commas)"
-            } else {
-                ""
-            };
             part.error = Some(BlockError::Csv {
                 line,
                 reason: format!(
-                    "found a row with {} fields, but the header has {fields} fields{spaces}",
-                    records.len()
+                    "found a row with {}, but the header has {}",
+                    Count(records.len(), "field"),
+                    Count(fields, "field")
                 ),
             });
             break;
@@ -1584,10 +1610,32 @@ mod tests {
         );
         let e = read("t;q1\n0;abc\n", &["q1"]).unwrap_err().to_string();
         assert!(!e.contains("decimal point"), "{e}");
-        // columns aligned by runs of spaces are told as such
-        let e = read("t q1\n0 1\n0.001  2\n", &["q1"]).unwrap_err();
-        assert!(e.to_string().contains("single spaces"), "{e}");
-        assert!(e.to_string().contains(":3"), "{e}");
+    }
+
+    /// Columns aligned by runs of spaces (a text export, `printf` widths), with spaces
+    /// before the first field and lines of spaces alone, read as single spaces are; a row
+    /// short of a field is still told by its line.
+    #[test]
+    fn runs_of_spaces_separate_aligned_columns() {
+        let single = read(
+            "t q1 \"q 2\"\n0 1.5 -2\n0.001 1.25 -2e-3\n",
+            &["q1", "t", "q 2"],
+        )
+        .unwrap();
+        for text in [
+            "    t      q1   \"q 2\"\n    0     1.5      -2\n0.001    1.25  -2e-3  \n",
+            "t  q1  \"q 2\"\r\n0  1.5  -2\r\n   \r\n0.001  1.25  -2e-3\r\n",
+        ] {
+            let t = read(text, &["q1", "t", "q 2"]).unwrap();
+            assert_eq!(t.columns, single.columns, "{text:?}");
+        }
+        let e = read("t   q1\n0   1\n0.001\n", &["q1"])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("mem.csv:3") && e.contains("a row with 1 field,"),
+            "{e}"
+        );
     }
 
     /// Text without line ends (a device such as /dev/zero, a binary file) is refused once a

@@ -136,15 +136,21 @@ fn duplicate_column_names_are_an_error_naming_both() {
     assert!(e.to_string().contains("`q2` twice (fields 3 and 4)"), "{e}");
 }
 
-/// A log separated by `;`, tabs or single spaces loads as its comma version does (the
-/// header line's separator is the file's); `|` is refused with what is read.
+/// A log separated by `;`, tabs, single spaces or runs of spaces (aligned columns) loads
+/// as its comma version does (the header line's separator is the file's); `|` is refused
+/// with what is read.
 #[test]
 fn other_separators_load_or_say_what_is_supported() {
     let tmp = Scratch::new();
     let plain = fuzz_data::motion_csv(&fuzz_data::motion(50));
     let config = Config::default_mapping();
     let commas = load(&config, &[tmp.write("commas.csv", &plain)], 6).unwrap();
-    for (name, sep) in [("semi.csv", ";"), ("tab.csv", "\t"), ("space.csv", " ")] {
+    for (name, sep) in [
+        ("semi.csv", ";"),
+        ("tab.csv", "\t"),
+        ("space.csv", " "),
+        ("aligned.csv", "   "),
+    ] {
         let data = load(&config, &[tmp.write(name, &plain.replace(',', sep))], 6).unwrap();
         assert_eq!(data.q, commas.q, "{name}");
         assert_eq!(data.tau, commas.tau, "{name}");
