@@ -12,8 +12,9 @@ use robid_runtime::progress::Progress;
 use robid_symbolic::program::Operations;
 use robid_symbolic::program::RobotPrograms;
 use robid_symbolic::program::schedule::MAX_PROCESSORS;
+use robid_symbolic::regroup::BaseParameters;
 use robid_symbolic::robot::UrdfChain;
-use robid_symbolic::{Derivation, Robot};
+use robid_symbolic::{Arena, Robot};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -285,55 +286,27 @@ pub(crate) fn render(
 
 fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Report, Error> {
     // a stage at a time, as other long commands show theirs (robid_runtime::progress): a
-    // chain of 32 joints with general twists and symbolic lengths takes 15 s of CPU, and
-    // showed nothing. The base parameters with their terms, then RobotPrograms' stages
-    // (which derive the base parameters again; the standard regressor's program is about
-    // two thirds of the time, one stage).
+    // chain of 32 joints with general twists and symbolic lengths takes seconds of CPU,
+    // and showed nothing (the standard regressor's program is about two thirds of the
+    // time, one stage)
     let progress = Progress::new(
         true,
         "model: derivation",
-        1 + RobotPrograms::STAGES as u64,
+        RobotPrograms::STAGES as u64,
         "stages",
     );
-    let mut d = Derivation::new(robot);
-    let b = d.base_parameters()?;
-    let mut base_parameters = Vec::with_capacity(b.base.len());
-    for p in &b.base {
-        let mut terms = Vec::with_capacity(p.terms.len());
-        for &(s, c) in &p.terms {
-            let parameter = b.standard[s].to_string();
-            let coefficient = match d.arena.as_num(c) {
-                Some(n) if !n.to_f64().is_finite() => {
-                    return Err(format!(
-                        "the coefficient of {parameter} in base parameter {} is {}: the \
-                         description's geometric values are beyond the range of f64 (about \
-                         1.8e308) in this product; use values in metres and radians",
-                        p.name,
-                        n.to_f64()
-                    )
-                    .into());
-                }
-                Some(n) => serde_json::json!(n.to_f64()),
-                None => serde_json::json!(d.arena.display(c)),
-            };
-            terms.push(Term {
-                parameter,
-                coefficient,
-            });
-        }
-        base_parameters.push(Base {
-            name: p.name.to_string(),
-            expression: d.arena.display(p.expression),
-            terms,
-        });
-    }
-    // the arena of these terms is not needed by the programs, which derive in their own:
-    // freed before they start (a chain of 32 joints with general twists and symbolic
-    // lengths peaked at 1.75 GB with it kept, 1.61 GB without)
-    drop(d);
-    progress.tick();
-    let programs = RobotPrograms::derive_reporting(robot, &mut |_| progress.tick())?;
+    // the base parameters' terms as the programs' derivation finds them (a derivation of
+    // their own cost a quarter of the time on long chains)
+    let mut shown = None;
+    let programs =
+        RobotPrograms::derive_showing(robot, &mut |_| progress.tick(), &mut |arena, b| {
+            shown = Some(base_parameters(arena, b))
+        })?;
     progress.finish();
+    let Some(shown) = shown else {
+        unreachable!("derive_showing hands the base parameters on before it succeeds")
+    };
+    let parameters = shown?;
     let mut operations = serde_json::Map::new();
     for (info, program) in programs.iter() {
         operations.insert(
@@ -351,15 +324,59 @@ fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Repo
         convention: robot.convention().as_str(),
         base: Mount::of(robot.base()),
         tool: Mount::of(robot.tool()),
-        standard_parameters: b.standard.iter().map(|p| p.to_string()).collect(),
-        base_parameters,
-        unidentifiable: b
-            .unidentifiable
-            .iter()
-            .map(|&s| b.standard[s].to_string())
-            .collect(),
+        standard_parameters: parameters.standard,
+        base_parameters: parameters.base,
+        unidentifiable: parameters.unidentifiable,
         operations,
         schedule,
+    })
+}
+
+/// The parameters of the report.
+struct Parameters {
+    standard: Vec<String>,
+    base: Vec<Base>,
+    unidentifiable: Vec<String>,
+}
+
+/// The standard parameters' names, the base parameters with their terms and the
+/// unidentifiable parameters' names.
+fn base_parameters(arena: &Arena, b: &BaseParameters) -> Result<Parameters, Error> {
+    let mut base_parameters = Vec::with_capacity(b.base.len());
+    for p in &b.base {
+        let mut terms = Vec::with_capacity(p.terms.len());
+        for &(s, c) in &p.terms {
+            let parameter = b.standard[s].to_string();
+            let coefficient = match arena.as_num(c) {
+                Some(n) if !n.to_f64().is_finite() => {
+                    return Err(format!(
+                        "the coefficient of {parameter} in base parameter {} is {}: the \
+                         description's geometric values are beyond the range of f64 (about \
+                         1.8e308) in this product; use values in metres and radians",
+                        p.name,
+                        n.to_f64()
+                    )
+                    .into());
+                }
+                Some(n) => serde_json::json!(n.to_f64()),
+                None => serde_json::json!(arena.display(c)),
+            };
+            terms.push(Term {
+                parameter,
+                coefficient,
+            });
+        }
+        base_parameters.push(Base {
+            name: p.name.to_string(),
+            expression: arena.display(p.expression),
+            terms,
+        });
+    }
+    let names = |i: &[usize]| i.iter().map(|&s| b.standard[s].to_string()).collect();
+    Ok(Parameters {
+        standard: b.standard.iter().map(|p| p.to_string()).collect(),
+        base: base_parameters,
+        unidentifiable: names(&b.unidentifiable),
     })
 }
 

@@ -460,3 +460,41 @@ fn derive_reports_every_stage_in_order() {
         assert_eq!((a.name, p.operations()), (b.name, q.operations()));
     }
 }
+
+/// `derive_showing` hands on, once and before the first program, the base parameters a
+/// derivation of their own gives (their terms, expressions and the unidentifiable ones):
+/// `robid model` reports them from it.
+#[test]
+fn derive_shows_the_base_parameters_of_a_derivation() {
+    let robot = Robot::from_toml(&random_description(7), "random.toml").unwrap();
+    let mut own = crate::Derivation::new(&robot);
+    let expected = own.base_parameters().unwrap();
+    let text = |arena: &crate::Arena, b: &crate::regroup::BaseParameters| {
+        let base: Vec<_> = b
+            .base
+            .iter()
+            .map(|p| {
+                let terms: Vec<_> = p
+                    .terms
+                    .iter()
+                    .map(|&(s, c)| (s, arena.display(c)))
+                    .collect();
+                (p.name.to_string(), arena.display(p.expression), terms)
+            })
+            .collect();
+        (b.standard.clone(), base, b.unidentifiable.clone())
+    };
+    let expected = text(&own.arena, &expected);
+    let stages = std::cell::Cell::new(0);
+    let mut shown = Vec::new();
+    super::RobotPrograms::derive_showing(
+        &robot,
+        &mut |_| stages.set(stages.get() + 1),
+        &mut |arena, b| {
+            assert_eq!(stages.get(), 0, "shown after a stage");
+            shown.push(text(arena, b));
+        },
+    )
+    .unwrap();
+    assert_eq!(shown, [expected]);
+}
