@@ -175,6 +175,9 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
 /// given twice; its span holds the key, so the message names it and says what to do.
 fn syntax_message(text: &str, e: &toml::de::Error) -> String {
     let message = e.message().trim();
+    if let Some(what) = other_format(text) {
+        return format!("{message}; {what}");
+    }
     if message.contains("recursion depth") {
         // toml's "cannot recurse further; max recursion depth met" said what the reader
         // did, not what is wrong with the file
@@ -202,6 +205,38 @@ fn syntax_message(text: &str, e: &toml::de::Error) -> String {
              (each `[[joints]]` header starts the next joint's): delete the one not meant"
         )
     }
+}
+
+/// What a file that is not TOML holds instead, when it says so by its first line: a URDF
+/// or other XML (read as TOML because of its extension), or a CSV data file given where
+/// the description goes (the first argument of every subcommand).
+fn other_format(text: &str) -> Option<&'static str> {
+    let first = text
+        .trim_start_matches('\u{feff}')
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !l.starts_with('#'))?;
+    if first.starts_with('<') {
+        return Some(
+            "the file is XML, not a TOML description: robid reads a URDF by its `.urdf` \
+             extension (give the file that name; expand a xacro file first, `xacro \
+             robot.urdf.xacro > robot.urdf`)",
+        );
+    }
+    // a CSV header: names separated by commas, `;` or tabs, or three or more plain names
+    // separated by spaces (`name "arm"` is a TOML slip), and no TOML key or table
+    let separated = first.split([',', ';', '\t']).count() > 1;
+    let plain = |w: &str| {
+        w.chars()
+            .all(|c| c.is_alphanumeric() || "_-.()[]".contains(c))
+    };
+    let spaced = first.split_whitespace().count() > 2 && first.split_whitespace().all(plain);
+    let csv = (separated || spaced) && !first.contains('=') && !first.starts_with('[');
+    csv.then_some(
+        "the file looks like a CSV data file, not a robot description: the description \
+         (TOML or URDF) is the first argument and the data come after it (`--data`, or \
+         the files of `--config`)",
+    )
 }
 
 /// Errors of the checks, located through the spans the reader kept.
@@ -249,6 +284,14 @@ impl Robot {
             return Err(read_error(format!(
                 "it is longer than {MAX_DESCRIPTION_LEN} bytes, the most a description may have; is it a description?"
             )));
+        }
+        if bytes.starts_with(&[0x1f, 0x8b]) {
+            return Err(read_error(
+                "it is gzip-compressed, not a description (a compressed data file?): the \
+                 description (TOML or URDF text) is the first argument and the data come after \
+                 it (`--data`, or the files of `--config`)"
+                    .to_owned(),
+            ));
         }
         let text = String::from_utf8(bytes).map_err(|e| {
             read_error(format!(

@@ -757,3 +757,37 @@ fn right_angles_printed_by_programs_are_exact() {
         &["is only 2.0e-9 rad from pi/2"],
     );
 }
+
+/// A file that is not TOML says what it looks like: XML (a URDF read as TOML because of
+/// its name), a CSV data file given where the description goes (commas, or aligned
+/// columns), gzip; a TOML slip that looks like neither says nothing more.
+#[test]
+fn a_file_of_another_format_says_what_it_looks_like() {
+    let xml = "<?xml version=\"1.0\"?>\n<robot name=\"arm\">\n</robot>\n";
+    single(xml, "1:7", &["the file is XML", "`.urdf` extension"]);
+    for csv in [
+        "t,q1,q2\n0,1,2\n",
+        "\u{feff}# log\ntime;q1\n0;1\n",
+        "     t        q1        q2\n   0.000   0.1   0.2\n",
+    ] {
+        let all = errors(csv);
+        assert!(
+            all.len() == 1
+                && all[0].contains("looks like a CSV data file")
+                && all[0].contains("first argument"),
+            "{csv:?}: {all:?}"
+        );
+    }
+    for slip in ["name \"arm\"\n", "name arm\n"] {
+        let all = errors(slip);
+        assert!(
+            all.len() == 1 && !all[0].contains("CSV") && !all[0].contains("XML"),
+            "{all:?}"
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let gz = dir.path().join("log.csv.gz");
+    std::fs::write(&gz, [0x1f, 0x8b, 8, 0, 0, 0, 0, 0, 0, 3]).unwrap();
+    let e = Robot::from_file(&gz).unwrap_err().to_string();
+    assert!(e.contains("gzip-compressed, not a description"), "{e}");
+}
