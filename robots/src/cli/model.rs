@@ -59,6 +59,10 @@ struct Base {
     name: String,
     expression: String,
     terms: Vec<Term>,
+    /// Its value from a URDF's own inertials (none for a TOML description, or when a
+    /// term is a drive term, which a URDF does not give).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    value: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -148,7 +152,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     if let Some(path) = &args.write_description {
         files::write(path, &description_file(&description, &args.robot))?;
     }
-    let mut text = render(&description.robot, args.json, scheduled)?;
+    let mut text = render(&description, args.json, scheduled)?;
     if let (Some(path), Some(chain)) = (&args.standard_parameters, &description.urdf) {
         files::write(path, &standard_file(chain, &args.robot))?;
     }
@@ -265,14 +269,20 @@ fn standard_file(chain: &UrdfChain, path: &Path) -> String {
     text
 }
 
-/// The model of `robot` as text or JSON, with the schedule of a program on a number of
-/// processors when asked.
-pub(crate) fn render(
-    robot: &Robot,
+/// The model of `description` as text or JSON, with the schedule of a program on a number
+/// of processors when asked; for a URDF, the base parameters' values from its inertials.
+fn render(
+    description: &description::Description,
     json: bool,
     scheduled: Option<(usize, ProgramKind)>,
 ) -> Result<String, Error> {
-    let report = derive(robot, scheduled)?;
+    let robot = &description.robot;
+    let mut report = derive(robot, scheduled)?;
+    if description.urdf.is_some() {
+        for b in &mut report.base_parameters {
+            b.value = urdf_value(description, &b.terms);
+        }
+    }
     Ok(if json {
         serde_json::to_string_pretty(&report)? + "\n"
     } else {
@@ -332,6 +342,15 @@ fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Repo
     })
 }
 
+/// The value of a base parameter with `terms` from a URDF's inertials: the sum of its
+/// terms, each coefficient (a number: a URDF's geometry has no symbols) times the
+/// standard parameter's value; `None` when a term has no value (a drive term).
+fn urdf_value(description: &description::Description, terms: &[Term]) -> Option<f64> {
+    terms.iter().try_fold(0.0, |sum, t| {
+        Some(sum + t.coefficient.as_f64()? * description.urdf_inertial(&t.parameter)?)
+    })
+}
+
 /// The parameters of the report.
 struct Parameters {
     standard: Vec<String>,
@@ -370,6 +389,7 @@ fn base_parameters(arena: &Arena, b: &BaseParameters) -> Result<Parameters, Erro
             name: p.name.to_string(),
             expression: arena.display(p.expression),
             terms,
+            value: None,
         });
     }
     let names = |i: &[usize]| i.iter().map(|&s| b.standard[s].to_string()).collect();
@@ -461,6 +481,20 @@ fn text(robot: &Robot, r: &Report) -> String {
         .unwrap_or(0);
     for b in &r.base_parameters {
         let _ = writeln!(out, "  {:<width$} = {}", b.name, b.expression);
+    }
+    if r.base_parameters.iter().any(|b| b.value.is_some()) {
+        let _ = writeln!(
+            out,
+            "\nbase parameters from the URDF's inertials (6 digits; all of them in --json):"
+        );
+        for b in &r.base_parameters {
+            let value = b
+                .value
+                .map_or("(a drive term: not in a URDF)".to_owned(), |v| {
+                    robid_runtime::Num::rounded(v, 6).to_string()
+                });
+            let _ = writeln!(out, "  {:<width$} = {value}", b.name);
+        }
     }
     let _ = writeln!(
         out,

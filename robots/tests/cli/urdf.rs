@@ -1501,3 +1501,52 @@ fn a_sliding_joint_moving_only_massless_links_is_told_its_force_is_0() {
         stderr(&o)
     );
 }
+
+/// `robid model ROBOT.urdf` gives each base parameter's value from the URDF's own
+/// inertials (JSON `value`, and a block of the text), the values the model's own map from
+/// the standard parameters gives; a drive term has none, and a TOML description none.
+#[test]
+fn model_gives_the_base_parameters_of_the_urdf_inertials() {
+    let chain = chain(UR5, None);
+    let model = Interpreted::new(&chain.robot).unwrap();
+    let expected = urdf_base(&chain, &model);
+    let o = robid(&["model", UR5, "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let values: Vec<f64> = report["base_parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["value"].as_f64().unwrap())
+        .collect();
+    assert_eq!(values.len(), expected.len());
+    for (i, (v, e)) in values.iter().zip(&expected).enumerate() {
+        assert!(
+            (v - e).abs() <= 1e-12 * e.abs().max(1.0),
+            "{i}: {v} against {e}"
+        );
+    }
+    let text = stdout(&robid(&["model", UR5]));
+    assert!(
+        text.contains("base parameters from the URDF's inertials"),
+        "{text}"
+    );
+    // a drive term has no value in a URDF
+    let o = robid(&["model", UR5, "--drive", "Fv", "--json"]);
+    let report: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let fv = report["base_parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|b| b["name"] == "Fv1")
+        .unwrap();
+    assert!(fv.get("value").is_none(), "{fv}");
+    let text = stdout(&robid(&["model", UR5, "--drive", "Fv"]));
+    assert!(
+        text.lines().any(|l| l.trim_start().starts_with("Fv1 ")
+            && l.ends_with("= (a drive term: not in a URDF)")),
+        "{text}"
+    );
+    let toml = stdout(&robid(&["model", "descriptions/ur5e.toml", "--json"]));
+    assert!(!toml.contains("\"value\""), "{toml}");
+}
