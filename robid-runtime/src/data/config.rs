@@ -166,6 +166,13 @@ pub struct Config {
     /// the file: false (silent) unless set in code, as `robid identify` does.
     #[serde(skip)]
     pub progress: bool,
+    /// The joints whose positions are lengths, the robot's prismatic joints (one flag per
+    /// joint, from the first; missing ones are revolute): `units.angle = "deg"` converts
+    /// the positions, velocities and accelerations of every other joint, and the motor
+    /// positions of all (a motor turns, whatever its joint does). Not a key of the file:
+    /// the robot's, set in code, as every `robid` subcommand does from its description.
+    #[serde(skip)]
+    pub prismatic: Vec<bool>,
 }
 
 impl Default for Config {
@@ -186,6 +193,7 @@ impl Default for Config {
             base_dir: None,
             origin: ConfigOrigin::Code,
             progress: false,
+            prismatic: Vec::new(),
         }
     }
 }
@@ -310,7 +318,9 @@ pub enum AngleUnit {
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Units {
-    /// Angle unit.
+    /// Angle unit of the revolute joints' positions, velocities and accelerations and of
+    /// motor positions; a prismatic joint's are metres whatever it says
+    /// ([`Config::prismatic`]).
     #[serde(default)]
     pub angle: AngleUnit,
     /// Factor applied to the torque columns (e.g. to N m from mN m).

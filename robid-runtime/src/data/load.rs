@@ -520,18 +520,23 @@ pub(crate) fn assemble(
         tau.ok_or_else(|| missing("torque"))?,
     );
     let chain = DriveChain::new(&config.drive, dof)?;
-    // columns of one role to signals in radians
-    let angle = |x: Vec<Vec<f64>>| {
+    // columns of one role to signals in radians; a prismatic joint's are lengths, unless
+    // they are a motor's (`turns`)
+    let angle_of = |x: Vec<Vec<f64>>, turns: bool| {
         Signals::new(match config.units.angle {
             AngleUnit::Rad => x,
             AngleUnit::Deg => {
                 let mut x = x;
-                x.iter_mut()
-                    .for_each(|v| v.iter_mut().for_each(|a| *a = a.to_radians()));
+                for (j, v) in x.iter_mut().enumerate() {
+                    if turns || !config.prismatic.get(j).copied().unwrap_or(false) {
+                        v.iter_mut().for_each(|a| *a = a.to_radians());
+                    }
+                }
                 x
             }
         })
     };
+    let angle = |x| angle_of(x, false);
     let mut tau = tau;
     if let Some(s) = &config.units.torque_scale {
         for (t, s) in tau.iter_mut().zip(s.values(dof, "units.torque_scale")?) {
@@ -552,7 +557,7 @@ pub(crate) fn assemble(
         data = data.with_accelerations(chain.joint_positions(angle(a)?))?;
     }
     if let Some(m) = motor {
-        data = data.with_motor_positions(chain.reflected_motor_positions(angle(m)?))?;
+        data = data.with_motor_positions(chain.reflected_motor_positions(angle_of(m, true)?))?;
     }
     // temperatures and joint torques are used as read: deg C and link-side N m
     if let Some(t) = temperature {

@@ -46,6 +46,57 @@ fn joins_two_files_row_by_row() {
     assert!(data.warnings.is_empty());
 }
 
+/// `units.angle = "deg"` converts a revolute joint's positions, velocities and
+/// accelerations, not a prismatic joint's (lengths: its 0.2 m stroke became 0.0035 m and
+/// identification called the data rank-deficient), and every motor position (a motor
+/// turns); in memory and on the record kept on disk alike.
+#[test]
+fn degrees_leave_a_prismatic_joint_in_metres() {
+    let d = Dir::new();
+    let file = d.file(
+        "log.csv",
+        "q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2,m1,m2
+\
+         180,0.2,90,0.1,45,0.05,1,2,360,720\n\
+         90,0.1,90,0.1,45,0.05,1,2,360,720\n",
+    );
+    let mut config = cfg(
+        "sample_rate = 10.0\n[[source]]\nposition = \"q{}\"\nvelocity = \"qd{}\"\n\
+         acceleration = \"qdd{}\"\ntorque = \"tau{}\"\nmotor_position = \"m{}\"\n\
+         [units]\nangle = \"deg\"\n",
+    );
+    config.prismatic = vec![false, true];
+    let data = load(&config, std::slice::from_ref(&file), 2).unwrap();
+    let pi = std::f64::consts::PI;
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+    assert!(
+        close(data.q[0][0], pi) && close(data.q[1][0], 0.2),
+        "{:?}",
+        data.q
+    );
+    let qd = data.qd.as_ref().unwrap();
+    assert!(close(qd[0][0], pi / 2.0) && close(qd[1][0], 0.1), "{qd:?}");
+    let qdd = data.qdd.as_ref().unwrap();
+    assert!(
+        close(qdd[0][0], pi / 4.0) && close(qdd[1][0], 0.05),
+        "{qdd:?}"
+    );
+    let motor = data.motor.as_ref().unwrap();
+    assert!(
+        close(motor[0][0], 2.0 * pi) && close(motor[1][0], 4.0 * pi),
+        "{motor:?}"
+    );
+    let record = SpilledRecord::open(&config, std::slice::from_ref(&file), 2)
+        .unwrap()
+        .unwrap();
+    let read = record.read(0, 2).unwrap();
+    assert!(
+        close(read.q[0][0], pi) && close(read.q[1][0], 0.2),
+        "{:?}",
+        read.q
+    );
+}
+
 #[test]
 fn row_count_mismatch_is_an_error() {
     let d = Dir::new();

@@ -305,6 +305,17 @@ fn as_flags(e: DescriptionError) -> Error {
     }
 }
 
+/// Which joints of `robot` are prismatic, for a config's `prismatic`
+/// (`robid_runtime::data::Config::prismatic`): their columns are lengths, which
+/// `units.angle` leaves as read.
+pub(crate) fn prismatic(robot: &Robot) -> Vec<bool> {
+    robot
+        .joints()
+        .iter()
+        .map(|j| j.kind == JointKind::Prismatic)
+        .collect()
+}
+
 /// Whether `path` names a URDF (by its extension, `.urdf` in any case).
 pub(crate) fn is_urdf(path: &Path) -> bool {
     path.extension()

@@ -48,7 +48,7 @@ pub(crate) struct Args {
 
 /// Identifies, prints and writes the friction model.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
-    let config = Config::from_file(&args.config)?;
+    let mut config = Config::from_file(&args.config)?;
     let data = super::identify::data_files(&args.data, Some(&args.config), &config)?;
     let mut inputs: Vec<&Path> = vec![&args.robot, &args.config];
     inputs.extend(data.iter().map(PathBuf::as_path));
@@ -63,7 +63,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             )
             .into());
     }
-    let chosen = super::identify::robot_model(&args.robot, &args.description)?;
+    let description = super::description::read(&args.robot, &args.description)?;
+    config.prismatic = super::description::prismatic(&description);
+    let chosen = super::identify::model_of(&description)?;
     let model = chosen.model.as_ref();
     let base = match &args.parameters {
         Some(p) => Some(ParameterFile::read(p)?.base_parameters(model)?),

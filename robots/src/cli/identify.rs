@@ -321,7 +321,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     outputs.extend(args.report.as_deref());
     let plot: Vec<(&str, &Path)> = args.plot.iter().map(|d| ("--plot", d.as_path())).collect();
     files::refuse_with_folders(&inputs, &outputs, &plot)?;
-    let chosen = robot_model(robot, &args.description)?;
+    let description = description::read(robot, &args.description)?;
+    config.prismatic = description::prismatic(&description);
+    let chosen = model_of(&description)?;
     let model = chosen.model.as_ref();
     if let Some(m) = args.method {
         config.estimation.method = match m {

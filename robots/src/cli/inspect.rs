@@ -37,7 +37,8 @@ pub(crate) struct Args {
 /// Runs the subcommand.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let robot = description::read(&args.robot, &args.description)?;
-    let config = config_for(args.config.as_deref(), &args.data)?;
+    let mut config = config_for(args.config.as_deref(), &args.data)?;
+    config.prismatic = description::prismatic(&robot);
     let files = data_files(&args.data, args.config.as_deref(), &config)?;
     // on disk when it can be (as `data::load_record` keeps it), with its sampling; else
     // loaded in memory, whose errors are the ones reported

@@ -455,3 +455,135 @@ fn milella_identify_repeated_runs_end_to_end() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("[runs]"), "{}", stderr(&o));
 }
+
+/// A revolute joint and a prismatic one (a slider on a turning arm).
+const SLIDER: &str = "name = \"slider\"\nconvention = \"modified\"\ngravity = [0, 0, -9.81]\n\
+                      drive = [\"Fv\"]\n[[joints]]\nalpha = \"pi/2\"\n[[joints]]\n\
+                      type = \"prismatic\"\nalpha = \"-pi/2\"\n";
+
+/// `units.angle = "deg"` converts the revolute joints' columns, not a prismatic joint's
+/// (metres): a simulated log with joint 1 written in degrees identifies to the same
+/// parameters as the log in radians, through `identify`, `inspect` (the ranges) alike. The
+/// prismatic joint's 0.1 m motion was divided by 57.3 and its equations dropped as at rest.
+#[test]
+fn degrees_convert_the_revolute_joints_only() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "slider.toml", SLIDER);
+    let mut trajectory = String::from("t,q1,q2,qd1,qd2,qdd1,qdd2\n");
+    for k in 0..2000 {
+        let t = k as f64 * 0.005;
+        let (s1, c1, s2, c2) = (
+            (1.3 * t).sin(),
+            (1.3 * t).cos(),
+            (2.1 * t).sin(),
+            (2.1 * t).cos(),
+        );
+        let row = [0.3 + 0.1 * s2, 1.3 * c1, 0.21 * c2, -1.69 * s1, -0.441 * s2];
+        trajectory.push_str(&format!(
+            "{t},{s1},{}\n",
+            row.map(|x| x.to_string()).join(",")
+        ));
+    }
+    let trajectory = write(d, "trajectory.csv", &trajectory);
+    let parameters = write(
+        d,
+        "parameters.toml",
+        "[standard]\nZZ1 = 0.2\nXX2 = 0.1\nYY2 = 0.1\nZZ2 = 0.02\nMZ2 = 0.3\nM2 = 2.0\nFv1 = 0.5\nFv2 = 3.0\n",
+    );
+    let radians = d.join("radians.csv");
+    let o = robid(&[
+        "simulate",
+        robot.to_str().unwrap(),
+        "--parameters",
+        parameters.to_str().unwrap(),
+        "--trajectory",
+        trajectory.to_str().unwrap(),
+        "-o",
+        radians.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // joint 1's columns in degrees
+    let text = std::fs::read_to_string(&radians).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    let names: Vec<&str> = header.split(',').collect();
+    let mut degrees = format!("{header}\n");
+    for line in lines {
+        let row: Vec<String> = line
+            .split(',')
+            .zip(&names)
+            .map(|(v, name)| match *name {
+                "q1" | "qd1" | "qdd1" => v.parse::<f64>().unwrap().to_degrees().to_string(),
+                _ => v.to_owned(),
+            })
+            .collect();
+        degrees.push_str(&(row.join(",") + "\n"));
+    }
+    let degrees = write(d, "degrees.csv", &degrees);
+    let config = |angle: &str| {
+        write(
+            d,
+            &format!("{angle}.toml"),
+            &format!(
+                "dof = 2\ntime_column = \"t\"\n[[source]]\nposition = \"q{{}}\"\n\
+                 velocity = \"qd{{}}\"\nacceleration = \"qdd{{}}\"\ntorque = \"tau{{}}\"\n\
+                 [units]\nangle = \"{angle}\"\n"
+            ),
+        )
+    };
+    let identified = |config: &std::path::Path, data: &std::path::Path| {
+        let report = d.join("report.json");
+        let o = robid(&[
+            "identify",
+            robot.to_str().unwrap(),
+            "--config",
+            config.to_str().unwrap(),
+            "--data",
+            data.to_str().unwrap(),
+            "--json",
+            report.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
+        report["parameters"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                (
+                    p["name"].as_str().unwrap().to_owned(),
+                    p["value"].as_f64().unwrap(),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let (rad, deg) = (config("rad"), config("deg"));
+    let expected = identified(&rad, &radians);
+    let got = identified(&deg, &degrees);
+    for ((name, e), (_, g)) in expected.iter().zip(&got) {
+        assert!(
+            (e - g).abs() <= 1e-6 * e.abs().max(1.0),
+            "{name}: {g} against {e}"
+        );
+    }
+    let m2 = expected.iter().find(|(n, _)| n == "M2").unwrap().1;
+    assert!((m2 - 2.0).abs() < 1e-6, "{m2}");
+    let o = robid(&[
+        "inspect",
+        robot.to_str().unwrap(),
+        "--config",
+        deg.to_str().unwrap(),
+        "--data",
+        degrees.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let range = |j: usize| json["joints"][j]["position_range"][1].as_f64().unwrap();
+    assert!(
+        (range(0) - 1.0).abs() < 1e-3 && (range(1) - 0.4).abs() < 1e-3,
+        "{json}"
+    );
+}
