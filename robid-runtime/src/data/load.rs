@@ -10,7 +10,9 @@ use std::path::{Path, PathBuf};
 
 use crate::Num;
 use crate::data::dataset::DataOrigin;
-use crate::data::rate::{Steps, UnreadTime, check_rate, unread_time_column};
+use crate::data::rate::{
+    Steps, UnreadTime, check_rate, unread_time_column, with_found_time_column,
+};
 use crate::data::table::{Optional, read_columns_in};
 use crate::data::time::{
     check_gaps, check_monotonic, check_sample_time, interpolate, regularity, uniform_grid,
@@ -78,6 +80,7 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     check_joints(dof)?;
     config.check(dof)?;
     let paths = source_paths(config, files)?;
+    let config = &*with_found_time_column(config, &paths, dof)?;
     let mut blocks: [Option<Vec<Vec<f64>>>; 7] = Default::default();
     let mut reference: Option<(Vec<f64>, PathBuf, Vec<u64>)> = None;
     let mut rows: Option<(usize, PathBuf, Vec<u64>)> = None;

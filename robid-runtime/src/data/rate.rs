@@ -104,6 +104,49 @@ fn unit_scale(unit: &str) -> Option<f64> {
     }
 }
 
+/// `config` with the time column of its files when it gives neither `sample_rate` nor
+/// `time_column`: the one column of each source's file (`paths`) whose name is a time
+/// name ([`time_name`]) and that the source does not read, the same in every file, with
+/// the unit its name gives as `time_scale` (when the config leaves that at 1). A config
+/// that says nothing of time so reads a log with a `t` column as the example config
+/// shows, where it was refused as having no time column; `config` itself otherwise
+/// (none such column, or several, or files that differ).
+pub(crate) fn with_found_time_column<'a>(
+    config: &'a Config,
+    paths: &[std::path::PathBuf],
+    dof: usize,
+) -> crate::error::Result<std::borrow::Cow<'a, Config>> {
+    use std::borrow::Cow;
+    if config.sample_rate.is_some() || config.time_column.is_some() || paths.is_empty() {
+        return Ok(Cow::Borrowed(config));
+    }
+    let mut found: Option<(String, Option<f64>)> = None;
+    for (source, path) in config.sources.iter().zip(paths) {
+        let header = super::table::read_header(path)?;
+        let (read, _) = super::load::source_columns(config, source, dof);
+        let mut names = header
+            .iter()
+            .filter(|h| !read.contains(h))
+            .filter_map(|h| time_name(h).map(|unit| (h.clone(), unit)));
+        let (Some(this), None) = (names.next(), names.next()) else {
+            return Ok(Cow::Borrowed(config));
+        };
+        match &found {
+            Some(first) if *first != this => return Ok(Cow::Borrowed(config)),
+            _ => found = Some(this),
+        }
+    }
+    let Some((name, unit)) = found else {
+        return Ok(Cow::Borrowed(config));
+    };
+    let mut config = config.clone();
+    config.time_column = Some(name);
+    if let (Some(scale), true) = (unit, config.time_scale == 1.0) {
+        config.time_scale = scale;
+    }
+    Ok(Cow::Owned(config))
+}
+
 /// The time column of `header` to check against the config's `sample_rate`: `None`
 /// unless the config gives `sample_rate` (and no `time_column`) and exactly one column of
 /// `header` is a time name ([`time_name`]) that is not among the columns `read`.

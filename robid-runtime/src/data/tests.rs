@@ -97,6 +97,38 @@ fn degrees_leave_a_prismatic_joint_in_metres() {
     );
 }
 
+/// A config that gives neither `sample_rate` nor `time_column` reads the file's time
+/// column, found by its name with its unit (`time_ms`), in memory and on disk alike (it
+/// was refused as "no time column", though the example config shows `time_column = "t"`
+/// among the defaults); two time columns, or none, leave it to the config.
+#[test]
+fn without_time_keys_the_time_column_is_found_by_name() {
+    let d = Dir::new();
+    let mut text = String::from("time_ms,q1,tau1\n");
+    for k in 0..50 {
+        text.push_str(&format!("{},{},1\n", 2 * k, f64::from(k).sin()));
+    }
+    let file = d.file("log.csv", &text);
+    let config = cfg("[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n");
+    let data = load(&config, std::slice::from_ref(&file), 1).unwrap();
+    assert!(
+        (data.sample_time - 2e-3).abs() < 1e-15,
+        "{}",
+        data.sample_time
+    );
+    let record = SpilledRecord::open(&config, std::slice::from_ref(&file), 1)
+        .unwrap()
+        .unwrap();
+    assert!((record.sample_time() - 2e-3).abs() < 1e-15);
+    let mut two = String::from("t,time,q1,tau1\n");
+    for k in 0..50 {
+        two.push_str(&format!("{k},{k},{},1\n", f64::from(k).sin()));
+    }
+    let two = d.file("two.csv", &two);
+    let e = load(&config, &[two], 1).unwrap_err().to_string();
+    assert!(e.contains("no time column"), "{e}");
+}
+
 #[test]
 fn row_count_mismatch_is_an_error() {
     let d = Dir::new();

@@ -202,6 +202,7 @@ impl SpilledRecord {
         check_joints(dof)?;
         config.check(dof)?;
         let paths = source_paths(config, files)?;
+        let config = &*crate::data::rate::with_found_time_column(config, &paths, dof)?;
         let ([source], [path]) = (config.sources.as_slice(), paths.as_slice()) else {
             return Ok(None);
         };
