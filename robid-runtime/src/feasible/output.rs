@@ -2,6 +2,7 @@
 //! reads, plus per link mass, centre of mass and inertia about it) and URDF `<inertial>`
 //! elements.
 
+use std::f64::consts::PI;
 use std::fmt::Write;
 
 use nalgebra::{Matrix3, Rotation3};
@@ -142,12 +143,17 @@ fn xyz_rpy(pose: &[[f64; 4]; 4]) -> String {
 /// `base_link`, the world frame (the description's base transform is part of it). With
 /// `tool`, the pose of the description's tool frame in the last joint's frame
 /// (`robid_symbolic::Robot::tool_placement`), a massless link `tool` hangs from the last
-/// link on a fixed joint `tool_joint`.
+/// link on a fixed joint `tool_joint`. `gravity` is the description's, in the world frame:
+/// a URDF has none of its own, its readers take -z of the root link, so gravity along
+/// another direction puts a root link `world` above `base_link`, on a fixed joint turning
+/// that direction to -z (a robot on a wall, or a planar arm with gravity in its plane, kept
+/// its gravity only for robid; read back, it lost it).
 pub fn to_urdf(
     solution: &Solution,
     robot: &str,
     joints: &[UrdfJoint],
     tool: Option<&[[f64; 4]; 4]>,
+    gravity: [f64; 3],
 ) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "<?xml version=\"1.0\"?>");
@@ -158,6 +164,28 @@ pub fn to_urdf(
         solution.method.name()
     );
     let _ = writeln!(s, "<robot name=\"{robot}\">");
+    if let Some(turn) = gravity_turn(gravity) {
+        let _ = writeln!(
+            s,
+            "  <!-- the description's gravity [{:e}, {:e}, {:e}] m/s^2 in base_link: this \
+             fixed joint turns it to -z of `world`, where URDF readers put gravity -->",
+            gravity[0], gravity[1], gravity[2]
+        );
+        let _ = writeln!(s, "  <link name=\"world\"/>");
+        let _ = writeln!(s, "  <joint name=\"world_joint\" type=\"fixed\">");
+        let _ = writeln!(s, "    <parent link=\"world\"/>");
+        let _ = writeln!(s, "    <child link=\"base_link\"/>");
+        let _ = writeln!(s, "    <origin {}/>", xyz_rpy(&turn));
+        let _ = writeln!(s, "  </joint>");
+    }
+    let magnitude = gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
+    if (magnitude - STANDARD_GRAVITY).abs() > 1e-9 * STANDARD_GRAVITY {
+        let _ = writeln!(
+            s,
+            "  <!-- the description's gravity is {magnitude:e} m/s^2; a URDF reader applies \
+             its own (robid's URDF reader {STANDARD_GRAVITY}) -->"
+        );
+    }
     let _ = writeln!(s, "  <link name=\"base_link\"/>");
     for (j, link) in solution.links.iter().enumerate() {
         let (m, c, i) = match link {
@@ -244,6 +272,34 @@ pub fn to_urdf(
     s
 }
 
+/// The gravity robid's URDF reader (and most others) applies, m/s^2.
+const STANDARD_GRAVITY: f64 = 9.81;
+
+/// The pose of `base_link` in a root frame whose -z is along `gravity` (given in
+/// `base_link`): the smallest turn taking its direction to -z, a half turn about x when it
+/// points up; `None` when it is along -z already, or zero.
+fn gravity_turn(gravity: [f64; 3]) -> Option<[[f64; 4]; 4]> {
+    let g = nalgebra::Vector3::from(gravity);
+    let norm = g.norm();
+    if norm == 0.0 || !norm.is_finite() {
+        return None;
+    }
+    let down = -nalgebra::Vector3::z();
+    let u = g / norm;
+    if (u - down).norm() <= 1e-12 {
+        return None;
+    }
+    let turn = Rotation3::rotation_between(&u, &down)
+        .unwrap_or_else(|| Rotation3::from_axis_angle(&nalgebra::Vector3::x_axis(), PI));
+    let mut pose = IDENTITY;
+    for (i, row) in pose.iter_mut().enumerate().take(3) {
+        for (k, x) in row.iter_mut().enumerate().take(3) {
+            *x = turn[(i, k)];
+        }
+    }
+    Some(pose)
+}
+
 const IDENTITY: [[f64; 4]; 4] = [
     [1.0, 0.0, 0.0, 0.0],
     [0.0, 1.0, 0.0, 0.0],
@@ -256,6 +312,9 @@ mod tests {
     use super::*;
     use crate::feasible::fixture::{link, problem, target};
     use crate::feasible::{Bounds, LinkInertial, Method};
+
+    /// Gravity along -z, where a URDF reader puts it.
+    const G: [f64; 3] = [0.0, 0.0, -9.81];
 
     fn solution() -> Solution {
         let t = target(link(), 0.1);
@@ -376,7 +435,7 @@ mod tests {
             },
         ];
         let tool = pose(0.0, [0.0, 0.0, 0.1]);
-        let urdf = to_urdf(&s, "arm", &joints, Some(&tool));
+        let urdf = to_urdf(&s, "arm", &joints, Some(&tool), G);
         for want in [
             "<robot name=\"arm\">\n  <link name=\"base_link\"/>\n  <link name=\"link1\">\n",
             // the centre of mass (0.1, 0, 0) of the link frame turned by 90 degrees: y
@@ -402,15 +461,43 @@ mod tests {
             velocity: None,
             ..joint
         };
-        let urdf = to_urdf(&s, "arm", &[free], None);
+        let urdf = to_urdf(&s, "arm", &[free], None, G);
         assert!(!urdf.contains("<limit") && !urdf.contains("tool"), "{urdf}");
         assert_eq!(urdf.matches("<joint ").count(), 1);
         // no joints: the inertials stay in their own frames
-        let urdf = to_urdf(&s, "arm", &[], Some(&tool));
+        let urdf = to_urdf(&s, "arm", &[], Some(&tool), G);
         assert!(
             urdf.contains("<origin xyz=\"1e-1 0e0 0e0\" rpy=\"0e0 -0e0 0e0\"/>"),
             "{urdf}"
         );
         assert!(!urdf.contains("<joint") && !urdf.contains("tool"), "{urdf}");
+    }
+
+    /// Gravity off -z puts a root `world` above `base_link`, turned so that the gravity is
+    /// -z of it (a quarter turn about x for -y, a half turn for +z); along -z, or zero,
+    /// nothing; a magnitude other than 9.81 m/s^2 is said in a comment.
+    #[test]
+    fn gravity_off_the_vertical_turns_a_root_link() {
+        for (g, angle) in [([0.0, -9.81, 0.0], PI / 2.0), ([0.0, 0.0, 9.81], PI)] {
+            let turn = gravity_turn(g).unwrap();
+            let r = Matrix3::from_fn(|i, k| turn[i][k]);
+            let down = r * nalgebra::Vector3::from(g);
+            assert!(
+                (down - nalgebra::Vector3::new(0.0, 0.0, -9.81)).norm() < 1e-12,
+                "{g:?}"
+            );
+            let rotation = Rotation3::from_matrix_unchecked(r);
+            assert!((rotation.angle() - angle).abs() < 1e-12, "{g:?}");
+        }
+        assert!(gravity_turn(G).is_none() && gravity_turn([0.0; 3]).is_none());
+        let s = solution();
+        let urdf = to_urdf(&s, "arm", &[], None, [0.0, -1.62, 0.0]);
+        assert!(urdf.contains("<link name=\"world\"/>"), "{urdf}");
+        assert!(urdf.contains("gravity is 1.62e0 m/s^2"), "{urdf}");
+        let plain = to_urdf(&s, "arm", &[], None, G);
+        assert!(
+            !plain.contains("world") && !plain.contains("gravity"),
+            "{plain}"
+        );
     }
 }

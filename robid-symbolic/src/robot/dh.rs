@@ -231,6 +231,19 @@ impl Robot {
         Ok(Some(product(&[last.unwrap_or(IDENTITY), tool])))
     }
 
+    /// The gravity vector in the world frame (the description's `gravity`) at its symbol
+    /// values.
+    pub fn gravity_values(&self) -> Result<[f64; 3], Unbound> {
+        let mut arena = Arena::new();
+        let ids: Vec<_> = self
+            .gravity()
+            .iter()
+            .map(|g| g.to_expr(&mut arena))
+            .collect();
+        let v = self.evaluate(&mut arena, &ids)?;
+        Ok([v[0], v[1], v[2]])
+    }
+
     /// A transform at the description's symbol values.
     fn pose_of(&self, t: &Transform) -> Result<Pose, Unbound> {
         let mut arena = Arena::new();

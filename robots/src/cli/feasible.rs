@@ -380,7 +380,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         urdf_written_back(&args.robot, chain, &solution)?
     } else if urdf {
         let tool = robot.tool_placement().map_err(|e| e.to_string())?;
-        to_urdf(&solution, robot.name(), &urdf_joints(robot)?, tool.as_ref())
+        let gravity = robot.gravity_values().map_err(|e| e.to_string())?;
+        to_urdf(
+            &solution,
+            robot.name(),
+            &urdf_joints(robot)?,
+            tool.as_ref(),
+            gravity,
+        )
     } else {
         to_toml(&solution, robot.name())
     };
@@ -661,7 +668,13 @@ mod tests {
         };
         let mut s = solution(Vec::new(), 0.0);
         s.links = vec![Some(body); 3];
-        let urdf = to_urdf(&s, robot.name(), &urdf_joints(&robot).unwrap(), None);
+        let urdf = to_urdf(
+            &s,
+            robot.name(),
+            &urdf_joints(&robot).unwrap(),
+            None,
+            [0.0, 0.0, -9.81],
+        );
         let back = Robot::from_urdf(&urdf, "rrp.urdf", &ChainSelection::default())
             .unwrap_or_else(|e| panic!("{e}\n{urdf}"));
         let joints = back.robot.joints();

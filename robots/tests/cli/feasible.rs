@@ -758,3 +758,89 @@ fn feasible_takes_an_identification_with_known_parameters() {
         assert!((m3 - 4.25).abs() < 1e-4, "{method}: M3 {m3}");
     }
 }
+
+/// Gravity along another direction than -z (here up: the robot hangs from a ceiling)
+/// reaches the URDF as a root link `world` on a fixed joint that turns it to -z, where URDF
+/// readers put gravity: the URDF's torques are the description's with the same links, to
+/// rounding. They lost gravity (or turned it over) before.
+#[test]
+fn feasible_urdf_carries_a_gravity_off_the_vertical() {
+    let dir = folder();
+    let text = std::fs::read_to_string(common::asset("configs/tx40_robot.toml")).unwrap();
+    let hanging = text.replace("gravity = [0, 0, -9.81]", "gravity = [0, 0, 9.81]");
+    assert_ne!(hanging, text);
+    let description = common::write(dir.path(), "tx40_hanging.toml", &hanging);
+    let mut written = Vec::new();
+    for name in ["hanging.urdf", "hanging.toml"] {
+        let output = out(&dir, name);
+        let o = robid(&[
+            "feasible",
+            description.to_str().unwrap(),
+            "--identified",
+            "tests/fixtures/tx40_identified.json",
+            "--bounds",
+            "tests/fixtures/tx40_bounds.toml",
+            "-o",
+            output.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        written.push(output);
+    }
+    let urdf = std::fs::read_to_string(&written[0]).unwrap();
+    assert!(
+        urdf.contains("<link name=\"world\"/>") && urdf.contains("<child link=\"base_link\"/>"),
+        "{urdf}"
+    );
+    check_urdf(&written[0]);
+    // the rigid links alone on both sides: the URDF carries no drive terms
+    let rigid: String = hanging
+        .lines()
+        .filter(|l| !l.starts_with("drive"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let rigid = common::write(dir.path(), "rigid.toml", &rigid);
+    let links: String = std::fs::read_to_string(&written[1])
+        .unwrap()
+        .lines()
+        .filter(|l| {
+            // the inertial parameters (XX1 .. M6), not the drive's or the config's columns
+            let key = l.split(" = ").next().unwrap_or_default();
+            let stem = key.trim_end_matches(|c: char| c.is_ascii_digit());
+            !l.contains(" = ")
+                || (stem.len() < key.len()
+                    && ["XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"].contains(&stem))
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let links = common::write(dir.path(), "links.toml", &links);
+    let states = common::ur5e_states(dir.path(), 5);
+    let torques = |args: &[&str]| -> Vec<f64> {
+        let o = robid(args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        common::stdout(&o)
+            .lines()
+            .skip(1)
+            .flat_map(|l| {
+                l.split(',')
+                    .map(|v| v.parse::<f64>().unwrap())
+                    .collect::<Vec<_>>()
+            })
+            .collect()
+    };
+    let states = states.to_str().unwrap();
+    let from_urdf = torques(&["torques", written[0].to_str().unwrap(), "--states", states]);
+    let from_toml = torques(&[
+        "torques",
+        rigid.to_str().unwrap(),
+        "--parameters",
+        links.to_str().unwrap(),
+        "--states",
+        states,
+    ]);
+    assert_eq!(from_urdf.len(), from_toml.len());
+    let largest = from_toml.iter().fold(0.0f64, |m, t| m.max(t.abs()));
+    assert!(largest > 1.0, "{from_toml:?}");
+    for (u, t) in from_urdf.iter().zip(&from_toml) {
+        assert!((u - t).abs() <= 1e-9 * largest, "{u} against {t}");
+    }
+}
