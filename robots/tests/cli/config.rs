@@ -587,3 +587,53 @@ fn degrees_convert_the_revolute_joints_only() {
         "{json}"
     );
 }
+
+/// `inspect` warns of positions far beyond the description's limits, naming the joint,
+/// both ranges and the likely cause (degrees read as radians); within them it says nothing.
+#[test]
+fn inspect_warns_of_positions_beyond_the_limits() {
+    let dir = folder();
+    let d = dir.path();
+    let limited = PENDULUM.replace(
+        "alpha = 0\n",
+        "alpha = 0\nlimits = { position = [-2, 2] }\n",
+    );
+    let robot = write(d, "pendulum.toml", &limited);
+    let config = write(d, "config.toml", CONFIG);
+    let radians = write(d, "radians.csv", &log());
+    let degrees: String = log()
+        .lines()
+        .enumerate()
+        .map(|(k, l)| {
+            if k == 0 {
+                return format!("{l}\n");
+            }
+            let f: Vec<&str> = l.split(',').collect();
+            let q: f64 = f[1].parse().unwrap();
+            format!("{},{},{}\n", f[0], q.to_degrees(), f[2])
+        })
+        .collect();
+    let degrees = write(d, "degrees.csv", &degrees);
+    let inspect = |data: &std::path::Path| {
+        robid(&[
+            "inspect",
+            robot.to_str().unwrap(),
+            "--config",
+            config.to_str().unwrap(),
+            "--data",
+            data.to_str().unwrap(),
+        ])
+    };
+    let o = inspect(&radians);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("beyond its limits"), "{}", stderr(&o));
+    let o = inspect(&degrees);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("joint 1's positions span [")
+            && e.contains("beyond its limits [-2, 2] rad")
+            && e.contains("angle = \"deg\""),
+        "{e}"
+    );
+}
