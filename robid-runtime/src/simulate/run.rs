@@ -364,16 +364,23 @@ impl Simulation {
         let (mut tau, mut qdd) = (vec![0.0; n], vec![0.0; n]);
         let mut r = r0.clone();
         let sigma_tau = |j: usize| self.noise.torque[j.min(self.noise.torque.len() - 1)];
-        // the control law, tau = feedforward + M(q) servo: the feed-forward of the reference,
-        // and the servo acceleration from the measured error (`noise` is the position noise
-        // of the measurement, held over a step)
-        let feedforward = |r: &[Vec<f64>; 3], tau: &mut [f64]| {
-            if self.feedforward {
-                model.inverse_dynamics_into(&r[0], &r[1], &r[2], base, tau)
-            } else {
+        // the Coulomb terms apart: the feed-forward takes them at the joint's own velocity
+        let coulomb = Coulomb::new(model, base)?;
+        // the control law, tau = feedforward + M(q) servo: the feed-forward of the reference
+        // with the Coulomb friction at the velocity qd (`friction`: scratch space), and the
+        // servo acceleration from the measured error (`noise` is the position noise of the
+        // measurement, held over a step)
+        let feedforward = |r: &[Vec<f64>; 3], qd: &[f64], tau: &mut [f64], friction: &mut [f64]| {
+            if !self.feedforward {
                 tau.iter_mut().for_each(|t| *t = 0.0);
-                Ok(())
+                return Ok(());
             }
+            model.inverse_dynamics_into(&r[0], &r[1], &r[2], &coulomb.smooth, tau)?;
+            if coulomb.levels.is_some() {
+                coulomb.torques(model, &r[0], qd, friction)?;
+                tau.iter_mut().zip(friction.iter()).for_each(|(t, f)| *t += f);
+            }
+            Ok::<(), crate::LengthError>(())
         };
         let servo = |r: &[Vec<f64>; 3], q: &[f64], qd: &[f64], noise: &[f64], pd: &mut [f64]| {
             for j in 0..n {
@@ -382,9 +389,10 @@ impl Simulation {
             }
         };
         // the torque at a sample, recorded
+        let mut friction = vec![0.0; n];
         let mut control =
             |r: &[Vec<f64>; 3], q: &[f64], qd: &[f64], noise: &[f64], tau: &mut [f64]| {
-                feedforward(r, tau)?;
+                feedforward(r, qd, tau, &mut friction)?;
                 servo(r, q, qd, noise, &mut pd);
                 model.mass_matrix_into(q, base, &mut mass)?;
                 for i in 0..n {
@@ -393,6 +401,7 @@ impl Simulation {
                 Ok::<(), crate::LengthError>(())
             };
         let mut stage_pd = vec![0.0; n];
+        let mut stage_friction = vec![0.0; n];
         let mut noise = vec![0.0; n];
         let draw = |rng: &mut Rng, noise: &mut [f64]| {
             noise
@@ -497,7 +506,7 @@ impl Simulation {
                                 quintic(s, interval, &r0, &r1, &mut r);
                                 // M^-1 (feedforward + M servo - h) = M^-1 (feedforward - h)
                                 // + servo: one mass matrix per stage
-                                feedforward(&r, &mut tau)?;
+                                feedforward(&r, qd, &mut tau, &mut stage_friction)?;
                                 servo(&r, q, qd, &noise, &mut stage_pd);
                                 fd.accelerations(q, qd, &tau, acc)?;
                                 acc.iter_mut().zip(&stage_pd).for_each(|(a, s)| *a += s);
@@ -612,6 +621,93 @@ impl StepBudget {
                 "the plant is far stiffer than its motion: {cause}, or shorten the trajectory"
             ),
         })
+    }
+}
+
+/// The Coulomb friction of a model apart from its other terms, for the feed-forward that
+/// takes it at the joint's own velocity (see [`Simulation::run`]).
+struct Coulomb {
+    /// The base parameters with the Coulomb levels set to zero.
+    smooth: Vec<f64>,
+    /// The Coulomb levels alone (every other base parameter zero), when one is not zero.
+    levels: Option<Vec<f64>>,
+    /// Per Coulomb level, its joint (from 0) and value: `Fcj` is `Fc_j sign(qd_j)` in row
+    /// j (docs/conventions.md), so the friction torques need no inverse dynamics; `None`
+    /// when the model's own inverse dynamics with `levels` does not agree (then it computes
+    /// them).
+    joints: Option<Vec<(usize, f64)>>,
+}
+
+impl Coulomb {
+    /// The Coulomb levels of `model` with base parameters `base`: those named `Fc1`,
+    /// `Fc2`, ...
+    fn new<M: Model + ?Sized>(model: &M, base: &[f64]) -> Result<Coulomb> {
+        let n = model.dof();
+        let mut smooth = base.to_vec();
+        let mut levels = vec![0.0; base.len()];
+        let mut joints = Vec::new();
+        for (i, value) in base.iter().enumerate() {
+            let joint = model
+                .base_parameter_name(i)
+                .and_then(|name| name.strip_prefix("Fc"))
+                .filter(|j| j.bytes().all(|b| b.is_ascii_digit()))
+                .and_then(|j| j.parse::<usize>().ok())
+                .filter(|j| (1..=n).contains(j));
+            if let Some(j) = joint {
+                (smooth[i], levels[i]) = (0.0, *value);
+                joints.push((j - 1, *value));
+            }
+        }
+        if levels.iter().all(|&c| c == 0.0) {
+            return Ok(Coulomb {
+                smooth: base.to_vec(),
+                levels: None,
+                joints: None,
+            });
+        }
+        let mut coulomb = Coulomb {
+            smooth,
+            levels: Some(levels),
+            joints: Some(joints),
+        };
+        // the direct torques checked against the model's at velocities of either sign and 0
+        let (mut direct, mut own) = (vec![0.0; n], vec![0.0; n]);
+        let probe: Vec<f64> = (0..n).map(|j| [0.7, -1.3, 0.0][j % 3]).collect();
+        coulomb.torques(model, &probe, &probe, &mut direct)?;
+        let joints = coulomb.joints.take();
+        coulomb.torques(model, &probe, &probe, &mut own)?;
+        let scale = base.iter().fold(1.0, |m, v| v.abs().max(m));
+        let agree = direct
+            .iter()
+            .zip(&own)
+            .all(|(a, b)| (a - b).abs() <= 1e-12 * scale);
+        coulomb.joints = joints.filter(|_| agree);
+        Ok(coulomb)
+    }
+
+    /// The Coulomb friction torques at the velocities `qd` (and positions `q`, on which
+    /// they do not depend) into `out`.
+    fn torques<M: Model + ?Sized>(
+        &self,
+        model: &M,
+        q: &[f64],
+        qd: &[f64],
+        out: &mut [f64],
+    ) -> std::result::Result<(), crate::LengthError> {
+        out.iter_mut().for_each(|t| *t = 0.0);
+        match (&self.joints, &self.levels) {
+            (Some(joints), _) => {
+                for &(j, level) in joints {
+                    out[j] += level * crate::Real::sign(qd[j]);
+                }
+            }
+            (None, Some(levels)) => {
+                let zero = vec![0.0; q.len()];
+                model.inverse_dynamics_into(q, qd, &zero, levels, out)?;
+            }
+            (None, None) => {}
+        }
+        Ok(())
     }
 }
 
