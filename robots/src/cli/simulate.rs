@@ -414,12 +414,8 @@ fn every_sample(rate: Option<f64>, reference: &Trajectory, path: &Path) -> Resul
 
 /// Refuses a bandwidth above a quarter of the trajectory's sample rate at its largest step.
 fn check_bandwidth(bandwidth: f64, reference: &Trajectory, path: &Path) -> Result<(), Error> {
-    let step = reference
-        .t
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .fold(0.0, f64::max);
-    let limit = 0.25 / step;
+    let limit = bandwidth_limit(reference);
+    let step = 0.25 / limit;
     // (a relative margin for time stamps such as 0.01 k, whose steps differ by rounding)
     if bandwidth > limit * (1.0 + 1e-9) {
         return Err(format!(
@@ -460,6 +456,7 @@ fn check_result(record: &Record, reference: &Trajectory, tolerance: f64) -> Resu
                 return Err(diverged(
                     &format!("{name}{} is {}", j + 1, signal[k]),
                     reference.t.get(k).copied().unwrap_or(f64::NAN),
+                    bandwidth_limit(reference),
                 ));
             }
         }
@@ -475,19 +472,38 @@ fn check_result(record: &Record, reference: &Trajectory, tolerance: f64) -> Resu
             return Err(diverged(
                 &format!("q{} is {e:.3e} away from the reference", j + 1),
                 reference.t.get(k).copied().unwrap_or(f64::NAN),
+                bandwidth_limit(reference),
             ));
         }
     }
     Ok(())
 }
 
-fn diverged(what: &str, t: f64) -> Error {
+/// A diverged run at time `t` (`what`: which value), with the way out. The loop's bandwidth
+/// is at most a quarter of the sample rate ([`check_bandwidth`]), which the integration
+/// follows: a joint that leaves its reference was too slow to hold it (an arm under
+/// gravity falls away from a slow loop), so the advice is to raise the bandwidth, up to
+/// `limit` Hz (it said "lower --bandwidth", which made it worse).
+fn diverged(what: &str, t: f64, limit: f64) -> Error {
     format!(
-        "the simulation diverged: at t = {t} s, {what}; lower --bandwidth, or check the \
-         parameters (a nearly singular mass matrix, a joint with almost no inertia, cannot be \
-         controlled)"
+        "the simulation diverged: at t = {t} s, {what}; raise --bandwidth (a slower loop \
+         lets a joint fall away from its reference; at most {} Hz, a quarter of the \
+         trajectory's sample rate), or check the trajectory (its velocities and accelerations \
+         must be the derivatives of its positions) and the parameters (a nearly singular mass \
+         matrix cannot be controlled)",
+        rounded(limit)
     )
     .into()
+}
+
+/// The largest bandwidth [`check_bandwidth`] accepts for `reference` (Hz).
+fn bandwidth_limit(reference: &Trajectory) -> f64 {
+    let step = reference
+        .t
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(0.0, f64::max);
+    0.25 / step
 }
 
 /// The settings of `Simulation` that flags fill, and their flags.
@@ -529,7 +545,12 @@ mod tests {
         r.trajectory.q[0][1] = -1.5;
         let e = check_result(&r, &reference, 1.0).unwrap_err().to_string();
         assert!(e.contains("at t = 0.1 s, q1 is 1.500e0 away"), "{e}");
-        assert!(e.contains("lower --bandwidth"), "{e}");
+        // the loop is within the integration's reach (at most 2.5 Hz on 10 Hz samples):
+        // raising it is the way out (the message said to lower it)
+        assert!(
+            e.contains("raise --bandwidth") && e.contains("at most 2.5 Hz"),
+            "{e}"
+        );
         assert!(check_result(&r, &reference, f64::INFINITY).is_ok());
     }
 
