@@ -19,6 +19,17 @@ pub struct DataOrigin {
     pub lines: Vec<u64>,
 }
 
+/// Whether the values given to a data set are checked against the ranges of
+/// [`crate::limits`] as it is made (the joint counts and lengths always are).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Values {
+    /// Each value finite and within the range of its quantity.
+    Check,
+    /// Taken as they are: the very values were checked before (a block read back from a
+    /// record's temporary file, whose samples were checked as they were loaded).
+    Checked,
+}
+
 /// Joint-side signals on a uniform time grid.
 #[derive(Debug, Clone)]
 pub struct Dataset {
@@ -68,6 +79,18 @@ impl Dataset {
         tau: Signals,
         origin: Option<DataOrigin>,
     ) -> Result<Self> {
+        Self::new_with(name, sample_time, q, tau, origin, Values::Check)
+    }
+
+    /// [`Dataset::new_at`], the values checked as `values` says.
+    pub(crate) fn new_with(
+        name: impl Into<String>,
+        sample_time: f64,
+        q: Signals,
+        tau: Signals,
+        origin: Option<DataOrigin>,
+        values: Values,
+    ) -> Result<Self> {
         let name = name.into();
         if !super::sample_time_accepted(sample_time) {
             return Err(Error::setting(
@@ -103,8 +126,8 @@ impl Dataset {
             origin,
         };
         let dof = q.dof();
-        data.check_block("torque", Quantity::Torque, &tau, dof, n)?;
-        data.check_block("position", Quantity::Position, &q, dof, n)?;
+        data.check_block("torque", Quantity::Torque, &tau, dof, n, values)?;
+        data.check_block("position", Quantity::Position, &q, dof, n, values)?;
         data.q = q;
         data.tau = tau;
         Ok(data)
@@ -117,65 +140,107 @@ impl Dataset {
     }
 
     /// Adds measured velocities.
-    pub fn with_velocities(mut self, qd: Signals) -> Result<Self> {
+    pub fn with_velocities(self, qd: Signals) -> Result<Self> {
+        self.with_velocities_as(qd, Values::Check)
+    }
+
+    /// [`Dataset::with_velocities`], the values checked as `values` says.
+    pub(crate) fn with_velocities_as(mut self, qd: Signals, values: Values) -> Result<Self> {
         self.check_block(
             "velocity",
             Quantity::Velocity,
             &qd,
             self.dof(),
             self.samples(),
+            values,
         )?;
         self.qd = Some(qd);
         Ok(self)
     }
 
     /// Adds measured accelerations.
-    pub fn with_accelerations(mut self, qdd: Signals) -> Result<Self> {
+    pub fn with_accelerations(self, qdd: Signals) -> Result<Self> {
+        self.with_accelerations_as(qdd, Values::Check)
+    }
+
+    /// [`Dataset::with_accelerations`], the values checked as `values` says.
+    pub(crate) fn with_accelerations_as(mut self, qdd: Signals, values: Values) -> Result<Self> {
         self.check_block(
             "acceleration",
             Quantity::Acceleration,
             &qdd,
             self.dof(),
             self.samples(),
+            values,
         )?;
         self.qdd = Some(qdd);
         Ok(self)
     }
 
     /// Adds motor encoder positions (link side).
-    pub fn with_motor_positions(mut self, motor: Signals) -> Result<Self> {
+    pub fn with_motor_positions(self, motor: Signals) -> Result<Self> {
+        self.with_motor_positions_as(motor, Values::Check)
+    }
+
+    /// [`Dataset::with_motor_positions`], the values checked as `values` says.
+    pub(crate) fn with_motor_positions_as(
+        mut self,
+        motor: Signals,
+        values: Values,
+    ) -> Result<Self> {
         self.check_block(
             "motor position",
             Quantity::Position,
             &motor,
             self.dof(),
             self.samples(),
+            values,
         )?;
         self.motor = Some(motor);
         Ok(self)
     }
 
     /// Adds drive temperatures (deg C).
-    pub fn with_temperatures(mut self, temperature: Signals) -> Result<Self> {
+    pub fn with_temperatures(self, temperature: Signals) -> Result<Self> {
+        self.with_temperatures_as(temperature, Values::Check)
+    }
+
+    /// [`Dataset::with_temperatures`], the values checked as `values` says.
+    pub(crate) fn with_temperatures_as(
+        mut self,
+        temperature: Signals,
+        values: Values,
+    ) -> Result<Self> {
         self.check_block(
             "temperature",
             Quantity::Temperature,
             &temperature,
             self.dof(),
             self.samples(),
+            values,
         )?;
         self.temperature = Some(temperature);
         Ok(self)
     }
 
     /// Adds link-side joint torques measured by a joint-torque sensor (N m).
-    pub fn with_joint_torques(mut self, joint_torque: Signals) -> Result<Self> {
+    pub fn with_joint_torques(self, joint_torque: Signals) -> Result<Self> {
+        self.with_joint_torques_as(joint_torque, Values::Check)
+    }
+
+    /// [`Dataset::with_joint_torques`], the values checked as `values` says.
+    pub(crate) fn with_joint_torques_as(
+        mut self,
+        joint_torque: Signals,
+        values: Values,
+    ) -> Result<Self> {
         self.check_block(
             "joint torque",
             Quantity::Torque,
             &joint_torque,
             self.dof(),
             self.samples(),
+            values,
         )?;
         self.joint_torque = Some(joint_torque);
         Ok(self)
@@ -230,7 +295,8 @@ pub(crate) fn empty_range(name: &str, start: usize, end: usize) -> Error {
 
 impl Dataset {
     /// Checks a block of signals: `dof` joints of `n` samples, each value finite and within
-    /// the range of `quantity`; errors name the file line when known.
+    /// the range of `quantity` (unless `values` says they were checked); errors name the
+    /// file line when known.
     fn check_block(
         &self,
         what: &str,
@@ -238,6 +304,7 @@ impl Dataset {
         x: &Signals,
         dof: usize,
         n: usize,
+        values: Values,
     ) -> Result<()> {
         let name = &self.name;
         if x.dof() != dof {
@@ -253,6 +320,9 @@ impl Dataset {
                 expected: n,
                 found: x.samples(),
             });
+        }
+        if values == Values::Checked {
+            return Ok(());
         }
         for (j, v) in x.joints().enumerate() {
             if let Some(k) = first_outside(quantity, v) {
@@ -387,5 +457,31 @@ mod tests {
         let s = d.slice(1, 3).unwrap();
         assert_eq!(s.samples(), 2);
         assert!(d.slice(4, 2).is_err());
+    }
+
+    /// Values made `Values::Checked` (a block read back from a record's temporary file,
+    /// whose values were checked as they were loaded) are taken as they are; made
+    /// `Values::Check`, the same values are refused; the joint counts and lengths are
+    /// checked either way.
+    #[test]
+    fn values_checked_before_are_not_checked_again() {
+        let q = || s(vec![vec![0.1, 0.2], vec![0.3, f64::NAN]]);
+        let tau = || s(vec![vec![1.0, 2.0], vec![3.0, 4.0]]);
+        let far = || s(vec![vec![1.0, 1e300], vec![3.0, 4.0]]);
+        let made = |values| Dataset::new_with("d", 0.01, q(), tau(), None, values);
+        assert!(made(Values::Check).is_err());
+        let d = made(Values::Checked).unwrap();
+        assert!(d.q[1][1].is_nan());
+        assert!(d.clone().with_velocities_as(far(), Values::Check).is_err());
+        let d = d.with_velocities_as(far(), Values::Checked).unwrap();
+        assert_eq!(d.qd.as_ref().unwrap()[0][1], 1e300);
+        let short = s(vec![vec![1.0], vec![3.0]]);
+        assert!(
+            d.clone()
+                .with_accelerations_as(short, Values::Checked)
+                .is_err()
+        );
+        let one = s(vec![vec![1.0, 2.0]]);
+        assert!(d.with_joint_torques_as(one, Values::Checked).is_err());
     }
 }

@@ -9,7 +9,7 @@ use crate::DataError;
 use std::path::{Path, PathBuf};
 
 use crate::Num;
-use crate::data::dataset::DataOrigin;
+use crate::data::dataset::{DataOrigin, Values};
 use crate::data::rate::{
     Steps, UnreadTime, check_rate, unread_time_column, with_found_time_column,
 };
@@ -246,7 +246,15 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         .first()
         .and_then(|p| p.file_name())
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    let mut data = assemble(config, dof, name, sample_time, blocks, origin)?;
+    let mut data = assemble(
+        config,
+        dof,
+        name,
+        sample_time,
+        blocks,
+        origin,
+        Values::Check,
+    )?;
     data.warnings = warnings;
     data.sampling = samplings;
     Ok(data)
@@ -502,7 +510,8 @@ pub(crate) fn check_cutoff(config: &Config, sample_time: f64) -> Result<()> {
 }
 
 /// The data set of the columns read for each role (in [`ROLES`] order): angles in
-/// radians, torques scaled, the drive chain applied, every value checked.
+/// radians, torques scaled, the drive chain applied, every value checked (unless
+/// `values` says the same values were checked before).
 pub(crate) fn assemble(
     config: &Config,
     dof: usize,
@@ -510,6 +519,7 @@ pub(crate) fn assemble(
     sample_time: f64,
     blocks: [Option<Vec<Vec<f64>>>; 7],
     origin: DataOrigin,
+    values: Values,
 ) -> Result<Dataset> {
     let [q, qd, qdd, tau, motor, temperature, joint_torque] = blocks;
     let missing = |role: &str| {
@@ -546,28 +556,30 @@ pub(crate) fn assemble(
             t.iter_mut().for_each(|v| *v *= s);
         }
     }
-    let mut data = Dataset::new_at(
+    let mut data = Dataset::new_with(
         name,
         sample_time,
         chain.joint_positions(angle(q)?),
         chain.joint_torques(Signals::new(tau)?),
         Some(origin),
+        values,
     )?;
     if let Some(v) = qd {
-        data = data.with_velocities(chain.joint_positions(angle(v)?))?;
+        data = data.with_velocities_as(chain.joint_positions(angle(v)?), values)?;
     }
     if let Some(a) = qdd {
-        data = data.with_accelerations(chain.joint_positions(angle(a)?))?;
+        data = data.with_accelerations_as(chain.joint_positions(angle(a)?), values)?;
     }
     if let Some(m) = motor {
-        data = data.with_motor_positions(chain.reflected_motor_positions(angle_of(m, true)?))?;
+        data = data
+            .with_motor_positions_as(chain.reflected_motor_positions(angle_of(m, true)?), values)?;
     }
     // temperatures and joint torques are used as read: deg C and link-side N m
     if let Some(t) = temperature {
-        data = data.with_temperatures(Signals::new(t)?)?;
+        data = data.with_temperatures_as(Signals::new(t)?, values)?;
     }
     if let Some(t) = joint_torque {
-        data = data.with_joint_torques(Signals::new(t)?)?;
+        data = data.with_joint_torques_as(Signals::new(t)?, values)?;
     }
     if config.drive.rotor.is_some() && data.motor.is_none() {
         return Err(config.key_error(

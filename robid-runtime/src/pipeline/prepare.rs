@@ -9,6 +9,8 @@
 //! drops samples at each end of the used range; where the range reaches a real end of the
 //! record, the larger of the two counts is dropped there (they overlap, they do not add).
 
+use std::borrow::Cow;
+
 use crate::DataError;
 use crate::Num;
 use crate::data::{Config, Cutoff, Dataset, Derivative, Record, Signal, joined_with};
@@ -209,7 +211,7 @@ impl Rows {
 pub(crate) fn prepare_rows(data: &Dataset, config: &Config, rows: Rows) -> Result<PreparedRows> {
     let plan = Plan::new(data, config, rows)?;
     let kept = plan.kept.clone();
-    let (prepared, unfiltered_tau) = plan.signals(data, config)?;
+    let (prepared, unfiltered_tau) = plan.signals(Cow::Borrowed(data), config)?;
     let (prepared, unfiltered_tau) = plan.cut(data, 0, prepared, unfiltered_tau, kept.clone())?;
     Ok(PreparedRows {
         prepared,
@@ -594,7 +596,7 @@ impl Plan {
         let (start, end) = (self.kept.start + block.start, self.kept.start + block.end);
         let from = start.saturating_sub(self.margin);
         let to = (end + self.margin).min(data.samples());
-        let (prepared, unfiltered) = self.signals(&*data.read(from, to)?, config)?;
+        let (prepared, unfiltered) = self.signals(data.read(from, to)?, config)?;
         self.cut(data, from, prepared, unfiltered, start..end)
     }
 
@@ -651,8 +653,14 @@ impl Plan {
     }
 
     /// Every sample of `data` prepared (low-pass, derivatives, rotor compensation), and
-    /// the torque before the low-pass when the low-pass filters it.
-    fn signals(&self, data: &Dataset, config: &Config) -> Result<(Prepared, Option<Signals>)> {
+    /// the torque before the low-pass when the low-pass filters it. The torque the
+    /// low-pass leaves as it is is moved out of `data` when it is owned (a block read from
+    /// a record), not copied.
+    fn signals(
+        &self,
+        mut data: Cow<'_, Dataset>,
+        config: &Config,
+    ) -> Result<(Prepared, Option<Signals>)> {
         let p = &config.processing;
         let dt = data.sample_time;
         let pad = self.pad;
@@ -679,7 +687,10 @@ impl Plan {
             _ if qd_measured => differentiate(&qd, dt, sg)?,
             _ => differentiate_twice(&q, &qd, dt, sg)?,
         };
-        let mut tau = filter_all(on(Signal::Tau), pad, &data.tau)?;
+        let mut tau = match (on(Signal::Tau), &mut data) {
+            (None, Cow::Owned(d)) => std::mem::take(&mut d.tau),
+            (sos, d) => filter_all(sos, pad, &d.tau)?,
+        };
         let mut unfiltered_tau = on(Signal::Tau).map(|_| data.tau.clone());
         let mut rotor_states = None;
         if config.drive.rotor.is_some() || config.uses_rotor_signals() {

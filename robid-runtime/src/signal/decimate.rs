@@ -8,7 +8,7 @@
 //! accuracy for larger single factors.
 
 use crate::error::{Error, Result};
-use crate::signal::passes::{Forward, Kept};
+use crate::signal::passes::{Forward, Kept, Take};
 use crate::signal::{Signals, Sos, chebyshev1};
 
 /// A chain of decimation stages.
@@ -120,21 +120,57 @@ impl Decimator {
         channels: &[usize],
     ) -> Result<Vec<f64>> {
         let g = channels.len();
+        let (block, width) = self.apply_block_padded(source, stride, channels)?;
+        if width == g {
+            return Ok(block);
+        }
+        Ok(block
+            .chunks_exact(width)
+            .flat_map(|row| &row[..g])
+            .copied()
+            .collect())
+    }
+
+    /// [`Decimator::apply_block`] with each row of the result padded with channels of
+    /// zeros to [`Decimator::padded_width`] of the channels: `(values, row width)`.
+    pub(crate) fn apply_block_padded(
+        &self,
+        source: &[f64],
+        stride: usize,
+        channels: &[usize],
+    ) -> Result<(Vec<f64>, usize)> {
+        let g = channels.len();
+        let width = self.padded_width(g);
+        let zeros = std::iter::repeat_n(0.0, width - g);
         let contiguous = channels.windows(2).all(|w| w[1] == w[0] + 1);
         // the channels with the first stage's pad rows before and after them, which the
         // filter fills (so the samples are written once, not zeroed first)
         let (n, pad) = (source.len() / stride.max(1), self.first_pad());
-        let mut ext = Vec::with_capacity((n + 2 * pad) * g);
-        ext.resize(pad * g, 0.0);
+        let mut ext = Vec::with_capacity((n + 2 * pad) * width);
+        ext.resize(pad * width, 0.0);
         for row in source.chunks_exact(stride.max(1)).take(n) {
             if contiguous && g > 0 {
                 ext.extend_from_slice(&row[channels[0]..channels[0] + g]);
             } else {
                 ext.extend(channels.iter().map(|&c| row[c]));
             }
+            ext.extend(zeros.clone());
         }
-        ext.resize((n + 2 * pad) * g, 0.0);
-        self.apply_gathered(&mut ext, g)
+        ext.resize((n + 2 * pad) * width, 0.0);
+        Ok((self.apply_gathered(&mut ext, width)?, width))
+    }
+
+    /// The row width to lay `g` channels out in for [`Decimator::apply_gathered`]: `g`
+    /// padded with channels of zeros to whole lanes of the filter's passes on this
+    /// processor (which then copy no partial lane into a buffer and back row by row);
+    /// the zeros stay zeros and the other channels' values are the same to the bit.
+    pub(crate) fn padded_width(&self, g: usize) -> usize {
+        self.stages
+            .iter()
+            .find_map(|(_, sos)| sos.as_ref())
+            .map_or(g, |sos| {
+                crate::signal::passes::padded_width(g, sos.sections().len())
+            })
     }
 
     /// Rows of padding the first filtering stage needs on each side of a block (0 when no
@@ -181,46 +217,91 @@ impl Decimator {
         g: usize,
         forward: Forward<'_>,
     ) -> Result<Vec<f64>> {
+        let range = self.apply_gathered_in(ext, g, forward)?;
+        if range == (0..ext.len()) {
+            return Ok(std::mem::take(ext));
+        }
+        Ok(ext[range].to_vec())
+    }
+
+    /// [`Decimator::apply_gathered_from`], the decimated rows left in `ext` instead of a
+    /// vector of their own: they are `ext[range]` for the range returned (row-major, `g`
+    /// values a row), so that a buffer reused from block to block is not copied out (the
+    /// rest of `ext` holds what the filter left there).
+    pub(crate) fn apply_gathered_in(
+        &self,
+        ext: &mut Vec<f64>,
+        g: usize,
+        forward: Forward<'_>,
+    ) -> Result<std::ops::Range<usize>> {
         let carried = forward.from != 0 || forward.start.is_some() || forward.hand.is_some();
         assert!(
             !carried || self.carried_sections().is_some(),
             "a decimation of several filtering stages carries no forward states"
         );
+        if g == 0 {
+            return Ok(0..0);
+        }
         let mut forward = Some(forward);
+        // where the last stage's rows are: in `ext`, or in a vector of their own after a
+        // later stage
+        let mut range = 0..ext.len();
         let mut block: Option<Vec<f64>> = None;
+        let mut first = true;
         for (q, sos) in &self.stages {
             let Some(sos) = sos else { continue };
             let pad = sos.pad_length();
             let mut later;
-            let ext: &mut Vec<f64> = match block.take() {
-                None => ext,
-                Some(b) => {
-                    later = Vec::with_capacity(b.len() + 2 * pad * g);
-                    later.resize(pad * g, 0.0);
-                    later.extend_from_slice(&b);
-                    later.resize(b.len() + 2 * pad * g, 0.0);
-                    &mut later
-                }
+            let in_later = !first;
+            let ext: &mut Vec<f64> = if first {
+                first = false;
+                &mut *ext
+            } else {
+                let b = block.take().unwrap_or_else(|| ext[range.clone()].to_vec());
+                later = Vec::with_capacity(b.len() + 2 * pad * g);
+                later.resize(pad * g, 0.0);
+                later.extend_from_slice(&b);
+                later.resize(b.len() + 2 * pad * g, 0.0);
+                &mut later
             };
-            if g == 0 {
-                block = Some(Vec::new());
-                continue;
-            }
             // the rows this stage keeps: every q-th of the samples after the pad
             let kept = Kept {
                 every: *q,
                 first: pad % *q,
             };
             let forward = forward.take().unwrap_or_else(Forward::whole);
-            sos.filtfilt_extended_from(ext, g, kept, forward)?;
-            let n = ext.len() / g - 2 * pad;
-            let mut kept = Vec::with_capacity(n.div_ceil(*q) * g);
-            for row in ext[pad * g..(pad + n) * g].chunks_exact(g).step_by(*q) {
-                kept.extend_from_slice(row);
+            // the rows kept, packed at the end of `ext` by the backward pass (each read
+            // from its place afterwards, long gone from the cache, took 1.7 % of the
+            // hour's identification), or moved to its front from their places when the
+            // passes cannot pack them
+            let rows = ext.len() / g;
+            let n = rows.saturating_sub(2 * pad);
+            let m = n.div_ceil(*q);
+            let take = Take {
+                rows: pad..pad + n,
+                at: rows - m,
+            };
+            let packed = take.at * g..rows * g;
+            let kept_at = if sos.filtfilt_extended_taking(ext, g, kept, forward, Some(take))? {
+                packed
+            } else {
+                for (i, r) in (pad..pad + n).step_by(*q).enumerate() {
+                    ext.copy_within(r * g..(r + 1) * g, i * g);
+                }
+                0..m * g
+            };
+            if in_later {
+                block = Some(ext[kept_at].to_vec());
+            } else {
+                range = kept_at;
             }
-            block = Some(kept);
         }
-        Ok(block.unwrap_or_else(|| std::mem::take(ext)))
+        if let Some(b) = block {
+            ext.clear();
+            ext.extend_from_slice(&b);
+            range = 0..ext.len();
+        }
+        Ok(range)
     }
 
     /// Decimates many signals in parallel; signals that are identically zero are

@@ -40,6 +40,29 @@ impl Kept {
     pub(crate) const ALL: Kept = Kept { every: 1, first: 0 };
 }
 
+/// Where the backward pass may store the rows it keeps among `rows`, packed: row
+/// `rows.start + i * every` goes to row `at + i` of the block instead of its own, so that
+/// a decimation takes them as one slice, written last (in the cache), instead of reading
+/// each from its place, long since gone from the cache (1.7 % of the hour's
+/// identification). The backward pass goes down the rows: row `at + i` must be at or
+/// after row `rows.start + i * every` (already filtered when written). `rows.start` must
+/// be a kept row; rows the pass keeps outside `rows` are stored at their own rows, those
+/// among `at..` overwritten.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Take {
+    /// The rows of the block whose kept rows are packed.
+    pub(crate) rows: std::ops::Range<usize>,
+    /// The row the first of them goes to.
+    pub(crate) at: usize,
+}
+
+impl Take {
+    /// The number of rows kept among `rows`, one in `every`.
+    pub(crate) fn count(&self, every: usize) -> usize {
+        self.rows.len().div_ceil(every)
+    }
+}
+
 /// Where the forward pass starts and the section states it hands on: a decimation run
 /// block by block over a record carries its forward states from each block to the next
 /// instead of filtering an overlap on the left of every block again
@@ -66,6 +89,43 @@ impl Forward<'_> {
     }
 }
 
+/// The channels a block of `g` channels filtered side by side by a cascade of `sections`
+/// sections is best laid out with: `g` rounded up to a multiple of 8, the channels added
+/// being zeros, which stay zeros and leave the others' values as they are (every channel
+/// goes through the same operations whatever the lane it falls in), so that the passes
+/// take whole lanes (8 channels with AVX2; 16 with AVX-512, or 8 when 16 do not divide
+/// the block); `g` itself where the passes take no lanes (one channel, more than four
+/// sections, no AVX2). A partial lane is copied row by row into a buffer of full lanes
+/// and back, two calls of `memcpy` per row and pass, which cost the hour's identification
+/// 2 to 3 % of its time (the last group of its regressor channels, the positions'
+/// low-pass, the prediction's torques); a lane of 16 for 7 channels would double the
+/// bytes of the block the passes go through (a lane of seven channels is bound by its
+/// sections' latency, not by its width).
+pub(crate) fn padded_width(g: usize, sections: usize) -> usize {
+    if g <= 1 || lane_width(sections) <= 1 {
+        g
+    } else {
+        g.next_multiple_of(8)
+    }
+}
+
+/// The channels of the widest lane of [`passes_taking`] on this processor for a cascade
+/// of `sections` sections (1: it takes no lanes).
+fn lane_width(sections: usize) -> usize {
+    if !(1..=4).contains(&sections) {
+        return 1;
+    }
+    #[cfg(all(target_arch = "x86_64", feature = "std"))]
+    if std::is_x86_feature_detected!("avx512f") && crate::trig::vector_available() {
+        return 16;
+    }
+    #[cfg(target_arch = "x86_64")]
+    if crate::trig::vector_available() {
+        return 8;
+    }
+    1
+}
+
 /// The forward pass from the steady state of the first row, then the backward pass from
 /// that of the last, over `g` channels of the row-major `ext`, in place; the backward
 /// pass stores the rows `kept` only (the others hold the forward pass's values). `zi` is
@@ -73,14 +133,36 @@ impl Forward<'_> {
 /// and the states it hands on are `forward`'s ([`Forward::whole`]: every row); a
 /// channel's values are the same to the bit as when the forward pass runs over the rows
 /// before `forward.from` in the same call and hands its states on there.
-pub(super) fn passes_from(
+///
+/// With `take`, the backward pass packs the rows it keeps among `take.rows` from row
+/// `take.at` on ([`Take`]) when it can, and returns whether it did (else they are at their
+/// own rows). It can with lanes of channels (AVX2 or AVX-512, up to four sections) and no
+/// partial lane ([`padded_width`]); the values are the same to the bit either way.
+pub(super) fn passes_taking(
     sections: &[[f64; 6]],
     zi: &[[f64; 2]],
     ext: &mut [f64],
     g: usize,
     kept: Kept,
     mut forward: Forward<'_>,
-) {
+    mut take: Option<Take>,
+) -> bool {
+    if let Some(t) = &take {
+        let m = t.count(kept.every);
+        assert!(
+            kept.every > 0 && t.rows.start % kept.every == kept.first,
+            "the rows taken start at a kept row"
+        );
+        // row at + i at or after row rows.start + i * every, for every i below m
+        assert!(
+            m == 0
+                || (t.at >= t.rows.start + (m - 1) * (kept.every - 1)
+                    && (t.at + m) * g <= ext.len()
+                    && t.rows.end * g <= ext.len()),
+            "the rows taken go to rows already filtered: {t:?}, {m} rows, {} rows in all",
+            ext.len() / g.max(1)
+        );
+    }
     if let Some(start) = forward.start {
         assert_eq!(start.len(), g * sections.len(), "starting states");
     }
@@ -90,16 +172,15 @@ pub(super) fn passes_from(
     #[cfg(all(target_arch = "x86_64", feature = "std"))]
     if std::is_x86_feature_detected!("avx512f") && crate::trig::vector_available() {
         // SAFETY: the CPU has AVX-512F, AVX2 and FMA, the features of `passes_avx512`.
-        unsafe { passes_avx512(sections, zi, ext, g, kept, &mut forward) };
-        return;
+        return unsafe { passes_avx512(sections, zi, ext, g, kept, &mut forward, &mut take) };
     }
     #[cfg(target_arch = "x86_64")]
     if crate::trig::vector_available() {
         // SAFETY: the CPU has AVX2 and FMA, the features `passes_avx2` is compiled for.
-        unsafe { passes_avx2(sections, zi, ext, g, kept, &mut forward) };
-        return;
+        return unsafe { passes_avx2(sections, zi, ext, g, kept, &mut forward, &mut take) };
     }
     by_section::<false>(sections, zi, ext, g, &mut forward);
+    false
 }
 
 /// The tiled passes in lanes of eight channels (two vectors of four side by side), fused.
@@ -115,8 +196,9 @@ unsafe fn passes_avx2(
     g: usize,
     kept: Kept,
     forward: &mut Forward<'_>,
-) {
-    tiled::<8>(sections, zi, ext, g, kept, forward);
+    take: &mut Option<Take>,
+) -> bool {
+    tiled::<8>(sections, zi, ext, g, kept, forward, take)
 }
 
 /// The tiled passes in lanes of sixteen channels (two vectors of eight side by side: the
@@ -134,8 +216,15 @@ unsafe fn passes_avx512(
     g: usize,
     kept: Kept,
     forward: &mut Forward<'_>,
-) {
-    tiled::<16>(sections, zi, ext, g, kept, forward);
+    take: &mut Option<Take>,
+) -> bool {
+    // a block of whole lanes of 8 but not of 16 (7 channels padded to 8: the positions'
+    // low-pass, the prediction's torques) in lanes of 8, not a partial lane of 16
+    if !g.is_multiple_of(16) && g.is_multiple_of(8) {
+        tiled::<8>(sections, zi, ext, g, kept, forward, take)
+    } else {
+        tiled::<16>(sections, zi, ext, g, kept, forward, take)
+    }
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -150,23 +239,29 @@ fn tiled<const W: usize>(
     g: usize,
     kept: Kept,
     forward: &mut Forward<'_>,
-) {
+    take: &mut Option<Take>,
+) -> bool {
     if g == 1 {
         // one channel is a lane of one: the sections' latency bounds it either way
-        return by_section::<true>(sections, zi, ext, g, forward);
+        by_section::<true>(sections, zi, ext, g, forward);
+        return false;
     }
     match sections.len() {
-        1 => tiled_sections::<1, W>(sections, zi, ext, g, kept, forward),
-        2 => tiled_sections::<2, W>(sections, zi, ext, g, kept, forward),
-        3 => tiled_sections::<3, W>(sections, zi, ext, g, kept, forward),
-        4 => tiled_sections::<4, W>(sections, zi, ext, g, kept, forward),
-        _ => by_section::<true>(sections, zi, ext, g, forward),
+        1 => tiled_sections::<1, W>(sections, zi, ext, g, kept, forward, take),
+        2 => tiled_sections::<2, W>(sections, zi, ext, g, kept, forward, take),
+        3 => tiled_sections::<3, W>(sections, zi, ext, g, kept, forward, take),
+        4 => tiled_sections::<4, W>(sections, zi, ext, g, kept, forward, take),
+        _ => {
+            by_section::<true>(sections, zi, ext, g, forward);
+            false
+        }
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 /// [`tiled`] for `S` sections: the channels `0..g` in lanes of `W`, the last one padded
-/// when `W` does not divide `g`.
+/// when `W` does not divide `g`; the kept rows stored into `take` when there is no such
+/// partial lane (returns whether they were).
 #[inline(always)]
 fn tiled_sections<const S: usize, const W: usize>(
     sections: &[[f64; 6]],
@@ -175,7 +270,8 @@ fn tiled_sections<const S: usize, const W: usize>(
     g: usize,
     kept: Kept,
     forward: &mut Forward<'_>,
-) {
+    take: &mut Option<Take>,
+) -> bool {
     let sections: &[[f64; 6]; S] = sections.try_into().expect("S sections");
     let zi: &[[f64; 2]; S] = zi.try_into().expect("S steady states");
     let lanes: Vec<Lane> = (0..g)
@@ -186,8 +282,11 @@ fn tiled_sections<const S: usize, const W: usize>(
         })
         .collect();
     let (full, partial) = lanes.split_at(g / W);
-    tiled_lanes::<S, W, false>(sections, zi, ext, g, full, kept, forward);
-    tiled_lanes::<S, W, true>(sections, zi, ext, g, partial, kept, forward);
+    let taking = partial.is_empty() && take.is_some();
+    let take = if taking { take } else { &mut None };
+    tiled_lanes::<S, W, false>(sections, zi, ext, g, full, kept, forward, take);
+    tiled_lanes::<S, W, true>(sections, zi, ext, g, partial, kept, forward, &mut None);
+    taking
 }
 
 /// Channels `first..first + width` of a group, filtered together.
@@ -200,9 +299,10 @@ struct Lane {
 #[cfg(target_arch = "x86_64")]
 /// Both passes of `lanes` (each of `W` channels, or fewer when `PARTIAL`), tile by tile
 /// of rows, each lane's section states kept between tiles; the backward pass stores the
-/// rows `kept` only; the rows, first states and handed states of `forward`. A partial
-/// lane's tile is copied into a buffer of full lanes, padded with zeros, filtered there
-/// and copied back.
+/// rows `kept` only (those among `take`'s rows into `take`, when full lanes); the rows,
+/// first states and handed states of `forward`. A partial lane's tile is copied into a
+/// buffer of full lanes, padded with zeros, filtered there and copied back.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
     sections: &[[f64; 6]; S],
@@ -212,6 +312,7 @@ fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
     lanes: &[Lane],
     kept: Kept,
     forward: &mut Forward<'_>,
+    take: &mut Option<Take>,
 ) {
     let rows = ext.len() / g;
     let from = forward.from.min(rows);
@@ -267,7 +368,16 @@ fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
                             }
                         }
                         let buffer = &mut buffer[..(end - start) * W];
-                        lane_rows::<S, W>(sections, state, buffer, W, 0, 0..end - start, (0, None));
+                        lane_rows::<S, W>(
+                            sections,
+                            state,
+                            buffer,
+                            W,
+                            0,
+                            0..end - start,
+                            (0, None),
+                            None,
+                        );
                         for (i, b) in (start..end).zip(buffer.chunks_exact(W)) {
                             for (x, b) in ext[row(i) * g..][from..to].iter_mut().zip(b) {
                                 *x = *b;
@@ -284,6 +394,7 @@ fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
                             lane.first,
                             (start..end).map(row),
                             (ahead, backward.then_some(kept)),
+                            take.as_mut().filter(|_| backward),
                         );
                     }
                 }
@@ -308,7 +419,9 @@ fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
 /// One pass of the channels `c..c + W` of `ext` (`g` per row) over `rows`, in their
 /// order, from and to the section states `state`, fused; each row's lane prefetched
 /// `ahead` entries before it is read (0: none); only the rows `kept` stored (`None`:
-/// every row; `Some`: `rows` must go down one by one, as the backward pass does).
+/// every row; `Some`: `rows` must go down one by one, as the backward pass does), those
+/// among `take`'s rows into `take` (with `kept` only).
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn lane_rows<const S: usize, const W: usize>(
     sections: &[[f64; 6]; S],
@@ -318,6 +431,7 @@ fn lane_rows<const S: usize, const W: usize>(
     c: usize,
     rows: impl Iterator<Item = usize>,
     (ahead, kept): (isize, Option<Kept>),
+    take: Option<&mut Take>,
 ) {
     let [mut p, mut q] = *state;
     // the row's remainder modulo `every`, counted down with the rows (a division per row
@@ -325,6 +439,9 @@ fn lane_rows<const S: usize, const W: usize>(
     let mut rows = rows.peekable();
     let (every, first) = kept.map_or((1, 0), |k| (k.every, k.first));
     let mut phase = rows.peek().map_or(0, |&r| r % every);
+    // the row the next kept row among `take`'s goes to, once one went (the rows go down:
+    // one less at each)
+    let mut slot: Option<usize> = None;
     for r in rows {
         if ahead != 0 {
             let at = ext.as_ptr().wrapping_offset((r * g + c) as isize + ahead);
@@ -333,7 +450,7 @@ fn lane_rows<const S: usize, const W: usize>(
                 core::arch::x86_64::_mm_prefetch::<{ core::arch::x86_64::_MM_HINT_T0 }>(at.cast())
             };
         }
-        let x: &mut [f64; W] = (&mut ext[r * g + c..r * g + c + W])
+        let x: &[f64; W] = (&ext[r * g + c..r * g + c + W])
             .try_into()
             .expect("W channels");
         let mut v = *x;
@@ -342,8 +459,25 @@ fn lane_rows<const S: usize, const W: usize>(
                 v[l] = section::<true>(&sections[s], v[l], &mut p[s][l], &mut q[s][l]);
             }
         }
-        if kept.is_none() || phase == first {
-            *x = v;
+        let to = if kept.is_none() {
+            Some(r)
+        } else if phase == first {
+            match take.as_ref().filter(|t| t.rows.contains(&r)) {
+                Some(t) => {
+                    let to = slot.unwrap_or_else(|| t.at + (r - t.rows.start) / every);
+                    slot = to.checked_sub(1);
+                    Some(to)
+                }
+                None => Some(r),
+            }
+        } else {
+            None
+        };
+        if let Some(to) = to {
+            let out: &mut [f64; W] = (&mut ext[to * g + c..to * g + c + W])
+                .try_into()
+                .expect("W channels");
+            *out = v;
         }
         phase = if phase == 0 { every - 1 } else { phase - 1 };
     }
@@ -352,7 +486,7 @@ fn lane_rows<const S: usize, const W: usize>(
 
 /// One channel `x` through the cascade `sections` from and to the section states
 /// `state` (each `[p, q]`), in the order of its samples or from the last (`backward`), in
-/// place: the operations [`passes_from`] applies to each channel on this processor (fused
+/// place: the operations [`passes_taking`] applies to each channel on this processor (fused
 /// where it fuses them), so that a zero-phase filter run block by block, its states carried
 /// from block to block, gives [`Sos::filtfilt`](super::Sos::filtfilt)'s values to the bit.
 pub(crate) fn pass(sections: &[[f64; 6]], state: &mut [[f64; 2]], x: &mut [f64], backward: bool) {
@@ -492,6 +626,18 @@ mod tests {
     use super::*;
     use crate::signal::{butterworth, chebyshev1};
 
+    /// The passes without packing the kept rows.
+    fn passes_from(
+        sections: &[[f64; 6]],
+        zi: &[[f64; 2]],
+        ext: &mut [f64],
+        g: usize,
+        kept: Kept,
+        forward: Forward<'_>,
+    ) {
+        passes_taking(sections, zi, ext, g, kept, forward, None);
+    }
+
     /// The passes' signature, of every instance.
     type Passes = for<'a> fn(&[[f64; 6]], &[[f64; 2]], &mut [f64], usize, Kept, Forward<'a>);
 
@@ -503,13 +649,13 @@ mod tests {
             if crate::trig::vector_available() {
                 // SAFETY: the CPU has AVX2 and FMA
                 instances.push(("avx2", |s, z, e, g, k, mut f| unsafe {
-                    passes_avx2(s, z, e, g, k, &mut f)
+                    passes_avx2(s, z, e, g, k, &mut f, &mut None);
                 }));
             }
             if std::is_x86_feature_detected!("avx512f") && crate::trig::vector_available() {
                 // SAFETY: the CPU has AVX-512F, AVX2 and FMA
                 instances.push(("avx512", |s, z, e, g, k, mut f| unsafe {
-                    passes_avx512(s, z, e, g, k, &mut f)
+                    passes_avx512(s, z, e, g, k, &mut f, &mut None);
                 }));
             }
         }
@@ -698,6 +844,140 @@ mod tests {
                             },
                         );
                         assert!(end.iter().flatten().all(|v| v.is_finite()), "{what}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// A block padded with channels of zeros to [`padded_width`] filters its own channels
+    /// to the bit as the block alone does, the zeros stay zeros, and the padded width is a
+    /// whole number of the processor's lanes (or the block's own width).
+    #[test]
+    fn channels_of_zeros_change_nothing() {
+        for sos in [
+            chebyshev1(8, 0.05, 0.08).unwrap(),
+            butterworth(4, 0.04).unwrap(),
+            butterworth(10, 0.2).unwrap(),
+        ] {
+            let (sections, zi) = (sos.sections(), sos.steady_state());
+            let lane = lane_width(sections.len());
+            for (rows, g) in [
+                (700, 7),
+                (601, 13),
+                (300, 10),
+                (500, 3),
+                (400, 16),
+                (300, 1),
+            ] {
+                let width = padded_width(g, sections.len());
+                assert!(
+                    width == g || (width > g && width.is_multiple_of(8)),
+                    "{g} -> {width}"
+                );
+                assert!(
+                    lane == 1 || g == 1 || width.is_multiple_of(8),
+                    "{g} -> {width}"
+                );
+                let x = block(rows, g);
+                let mut alone = x.clone();
+                passes_from(sections, &zi, &mut alone, g, Kept::ALL, Forward::whole());
+                let mut padded: Vec<f64> = x
+                    .chunks_exact(g)
+                    .flat_map(|r| r.iter().copied().chain(std::iter::repeat_n(0.0, width - g)))
+                    .collect();
+                passes_from(
+                    sections,
+                    &zi,
+                    &mut padded,
+                    width,
+                    Kept::ALL,
+                    Forward::whole(),
+                );
+                for (a, b) in alone.chunks_exact(g).zip(padded.chunks_exact(width)) {
+                    assert!(a == &b[..g], "{rows} x {g} padded to {width}");
+                    assert!(b[g..].iter().all(|v| *v == 0.0), "{rows} x {g}");
+                }
+            }
+        }
+    }
+
+    /// The rows the backward pass keeps, stored into a [`Take`] instead of the block: the
+    /// same values to the bit as it leaves in the block, the kept rows outside the taken
+    /// ones left in the block; with a partial lane, one channel or no lanes on this
+    /// processor they all stay in the block, and `passes_taking` says so.
+    #[test]
+    fn kept_rows_taken_are_those_left_in_the_block() {
+        let kept = Kept {
+            every: 10,
+            first: 3,
+        };
+        for sos in [
+            chebyshev1(8, 0.05, 0.08).unwrap(),
+            butterworth(2, 0.2).unwrap(),
+            butterworth(10, 0.2).unwrap(),
+        ] {
+            let (sections, zi) = (sos.sections(), sos.steady_state());
+            let ns = sections.len();
+            for (rows, g) in [
+                (700, 16),
+                (2100, 32),
+                (601, 13),
+                (300, 8),
+                (500, 1),
+                (333, 7),
+            ] {
+                let x = block(rows, g);
+                let mut whole = x.clone();
+                passes_from(sections, &zi, &mut whole, g, kept, Forward::whole());
+                let lanes = lane_width(ns) > 1 && g > 1 && padded_width(g, ns) == g;
+                // the decimation's: the rows between pads, packed at the end
+                let (pad, end) = (23, rows - 30);
+                let packed = |t: std::ops::Range<usize>| {
+                    let at = rows - t.len().div_ceil(10);
+                    Take { rows: t, at }
+                };
+                for take in [
+                    packed(pad..end),
+                    packed(3..rows),
+                    packed(13..rows - 7),
+                    packed(23..24),
+                    Take { rows: 3..3, at: 0 },
+                    // the fewest rows ahead of each: row at + i is row 3 + 10 i's ninth
+                    // successor
+                    Take {
+                        rows: 3..rows - 30,
+                        at: 3 + ((rows - 33).div_ceil(10) - 1) * 9,
+                    },
+                ] {
+                    let mut y = x.clone();
+                    let took = passes_taking(
+                        sections,
+                        &zi,
+                        &mut y,
+                        g,
+                        kept,
+                        Forward::whole(),
+                        Some(take.clone()),
+                    );
+                    let what = format!("{ns} sections, {rows} x {g}, {take:?}");
+                    assert_eq!(took, lanes, "{what}");
+                    for (i, r) in take.rows.clone().step_by(10).enumerate() {
+                        let at = if took { take.at + i } else { r };
+                        assert!(
+                            y[at * g..(at + 1) * g] == whole[r * g..(r + 1) * g],
+                            "{what}: row {r}"
+                        );
+                    }
+                    let packed = take.at..take.at + take.count(10);
+                    for r in (3..rows)
+                        .step_by(10)
+                        .filter(|r| !(take.rows.contains(r) || took && packed.contains(r)))
+                    {
+                        assert!(
+                            y[r * g..(r + 1) * g] == whole[r * g..(r + 1) * g],
+                            "{what}: row {r} left at its place"
+                        );
                     }
                 }
             }

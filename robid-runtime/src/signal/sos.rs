@@ -6,7 +6,7 @@
 //! sample, transposed direct form II in each section.
 
 use crate::error::{Error, Result};
-use crate::signal::passes::{Forward, Kept};
+use crate::signal::passes::{Forward, Kept, Take};
 
 /// A cascade of second-order sections, each `[b0, b1, b2, a0, a1, a2]` with `a0 = 1`.
 #[derive(Debug, Clone, PartialEq)]
@@ -110,27 +110,34 @@ impl Sos {
         // rows, which `filtfilt_extended` fills
         let outer = self.pad_length();
         let padded = n + 2 * pad;
+        // each row padded with channels of zeros to whole lanes of the passes (no partial
+        // lane, which would be copied row by row into a buffer and back)
+        let width = super::passes::padded_width(g, self.sections.len());
+        let zeros = std::iter::repeat_n(0.0, width - g);
         // row by row (the signals side by side), each row appended: the outer rows zero,
         // then the odd extension on the left, the signals, the odd extension on the right
-        let mut ext = Vec::with_capacity((padded + 2 * outer) * g);
-        ext.resize(outer * g, 0.0);
+        let mut ext = Vec::with_capacity((padded + 2 * outer) * width);
+        ext.resize(outer * width, 0.0);
         for r in 0..pad {
             ext.extend(x.iter().map(|v| 2.0 * v[0] - v[pad - r]));
+            ext.extend(zeros.clone());
         }
         for k in 0..n {
             ext.extend(x.iter().map(|v| v[k]));
+            ext.extend(zeros.clone());
         }
         for r in pad + n..padded {
             ext.extend(
                 x.iter()
                     .map(|v| 2.0 * v[n - 1] - v[n - 1 - (r - pad - n + 1)]),
             );
+            ext.extend(zeros.clone());
         }
-        ext.resize((padded + 2 * outer) * g, 0.0);
-        self.filtfilt_extended(&mut ext, g, Kept::ALL)?;
+        ext.resize((padded + 2 * outer) * width, 0.0);
+        self.filtfilt_extended(&mut ext, width, Kept::ALL)?;
         // taken out row by row too
         let mut out: Vec<Vec<f64>> = (0..g).map(|_| Vec::with_capacity(n)).collect();
-        for row in ext[(outer + pad) * g..(outer + pad + n) * g].chunks_exact(g) {
+        for row in ext[(outer + pad) * width..(outer + pad + n) * width].chunks_exact(width) {
             for (o, &v) in out.iter_mut().zip(row) {
                 o.push(v);
             }
@@ -267,6 +274,21 @@ impl Sos {
         kept: Kept,
         forward: Forward<'_>,
     ) -> Result<()> {
+        self.filtfilt_extended_taking(ext, g, kept, forward, None)
+            .map(drop)
+    }
+
+    /// [`Sos::filtfilt_extended_from`], the backward pass packing the rows it keeps among
+    /// `take`'s rows at its row `take.at` when the passes can
+    /// ([`passes_taking`](super::passes::passes_taking)): returns whether they did.
+    pub(crate) fn filtfilt_extended_taking(
+        &self,
+        ext: &mut [f64],
+        g: usize,
+        kept: Kept,
+        forward: Forward<'_>,
+        take: Option<Take>,
+    ) -> Result<bool> {
         let pad = self.pad_length();
         let rows = ext.len() / g;
         let n = rows.saturating_sub(2 * pad);
@@ -289,8 +311,15 @@ impl Sos {
             }
         }
         let zi = self.steady_state();
-        super::passes::passes_from(&self.sections, &zi, ext, g, kept, forward);
-        Ok(())
+        Ok(super::passes::passes_taking(
+            &self.sections,
+            &zi,
+            ext,
+            g,
+            kept,
+            forward,
+            take,
+        ))
     }
 }
 

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use crate::DataError;
-use crate::data::dataset::{DataOrigin, empty_range};
+use crate::data::dataset::{DataOrigin, Values, empty_range};
 use crate::data::load::{
     SourceColumns, assemble, check_cutoff, check_joints, check_ranges, check_step, load,
     plan_source, source_paths, stale_warning, take_time, unread_time_rows,
@@ -298,7 +298,16 @@ impl SpilledRecord {
                 path: path.clone(),
                 lines,
             };
-            assemble(config, dof, String::new(), checked_at, blocks, origin).map(drop)
+            assemble(
+                config,
+                dof,
+                String::new(),
+                checked_at,
+                blocks,
+                origin,
+                Values::Check,
+            )
+            .map(drop)
         })?;
         progress.finish();
         let samples = chunks.last().map_or(0, |c| c.start + c.len);
@@ -633,6 +642,13 @@ impl Record for SpilledRecord {
             )
         })?;
         let mut lines = Vec::with_capacity(end - start);
+        // the samples as they were loaded are the values checked then: the same units and
+        // drive chain give the same values, which are not checked again; resampled ones
+        // are new values
+        let values = match self.grid_start {
+            None => Values::Checked,
+            Some(_) => Values::Check,
+        };
         let blocks = match self.grid_start {
             None => self.read_samples(&mut file, start, end, Some(&mut lines))?,
             Some(first) => {
@@ -676,6 +692,7 @@ impl Record for SpilledRecord {
             self.sample_time,
             blocks,
             origin,
+            values,
         )?;
         Ok(Cow::Owned(data))
     }
