@@ -148,8 +148,21 @@ impl ParameterFile {
             let hint = match nearest(key, names) {
                 Some(n) if same_but_case || !drive => format!("did you mean `{n}`?"),
                 _ if drive => format!(
-                    "`{key}` is a drive term, which this robot does not model: add it to the \
-                     description's `drive` key (or --drive where the subcommand has it)"
+                    "`{key}` is a drive term, which this robot does not model: {}",
+                    crate::model::drive_terms_mismatch(
+                        "the file",
+                        &self
+                            .entries
+                            .iter()
+                            .map(|(n, _)| n.as_str())
+                            .collect::<Vec<_>>(),
+                        names,
+                    )
+                    .unwrap_or_else(|| {
+                        "add it to the description's `drive` key (or --drive \
+                                         where the subcommand has it)"
+                            .to_owned()
+                    })
                 ),
                 _ => format!("they are: {}", names.join(", ")),
             };
@@ -195,7 +208,17 @@ impl ParameterFile {
                     .zip(&names)
                     .map(|(v, n)| {
                         v.ok_or_else(|| {
-                            self.whole(format!("[base] has no `{n}`; list every base parameter"))
+                            let keys: Vec<&str> =
+                                self.entries.iter().map(|(k, _)| k.as_str()).collect();
+                            self.whole(
+                                match crate::model::drive_terms_mismatch("the file", &keys, &names)
+                                {
+                                    Some(fix) => format!("[base] has no `{n}`: {fix}"),
+                                    None => {
+                                        format!("[base] has no `{n}`; list every base parameter")
+                                    }
+                                },
+                            )
                         })
                     })
                     .collect()
@@ -403,6 +426,14 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         if let Some(deep) = crate::toml_syntax::too_deep(text, path, &e) {
             return deep;
         }
+        // JSON (robid identify's report, most likely) given where TOML goes: said so, with
+        // what to give instead, not as toml's "invalid key-value pair"
+        if let Some(brace) = text
+            .find(|c: char| !c.is_whitespace())
+            .filter(|&i| text[i..].starts_with('{'))
+        {
+            return located(brace, json_message(text, path));
+        }
         let offset = e.span().map_or(0, |s| s.start);
         located(offset, syntax_message(text, &e))
     })?;
@@ -496,6 +527,26 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
 
 /// The message of a TOML syntax error: a key or table given twice is named with what to
 /// do ([`crate::toml_syntax::duplicate`]), toml saying only "duplicate key".
+/// What a JSON file given as a parameter file is and what to give instead: for `robid
+/// identify`'s report (a `"parameters"` list with `"method"`), its base parameters as a
+/// `[base]` table (a `jq` line) or physically consistent ones from `robid feasible`.
+fn json_message(text: &str, path: &Path) -> String {
+    let report = text.contains("\"parameters\"") && text.contains("\"method\"");
+    let what = "a parameter file is TOML with one table, [standard] or [base] \
+                (docs/command-line.md#parameter-files)";
+    if !report {
+        return format!("the file is JSON, not a parameter file: {what}");
+    }
+    let name = path.display();
+    format!(
+        "the file is JSON: `robid identify`'s report (--json), not a parameter file: {what}; \
+         its identified base parameters as a [base] file: `jq -r '\"[base]\", (.parameters[] \
+         | \"\\(.name) = \\(.value)\")' {name} > base.toml` (with the --drive it was \
+         identified with), or physically consistent [standard] parameters from them: `robid \
+         feasible ROBOT --identified {name} -o params.toml`"
+    )
+}
+
 fn syntax_message(text: &str, e: &toml::de::Error) -> String {
     match crate::toml_syntax::duplicate(text, e) {
         Some(d) if d.table => format!(
@@ -604,6 +655,57 @@ mod tests {
                 .unwrap_err()
                 .to_string()
                 .contains("unknown table or key `links`")
+        );
+    }
+
+    /// JSON given as a parameter file is said to be JSON, and `robid identify`'s report
+    /// with what to give instead; toml said "invalid key-value pair, expected key".
+    #[test]
+    fn json_is_named_and_identify_s_report_told_what_to_give() {
+        let report = "\n  {\"robot\": \"ur5e\", \"method\": \"wls\", \"parameters\": []}";
+        let e = ParameterFile::parse(report, "id.json".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("id.json:2:3: the file is JSON: `robid identify`'s report (--json)"),
+            "{e}"
+        );
+        for fix in [
+            "[standard] or [base] (docs/command-line.md#parameter-files)",
+            "(.parameters[] | \"\\(.name) = \\(.value)\")' id.json > base.toml",
+            "`robid feasible ROBOT --identified id.json -o params.toml`",
+        ] {
+            assert!(e.contains(fix), "{e}");
+        }
+        let e = ParameterFile::parse("{\"M1\": 1}", "p.json".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with(
+                "p.json:1:1: the file is JSON, not a parameter file: a parameter file is TOML"
+            ),
+            "{e}"
+        );
+        assert!(!e.contains("identify"), "{e}");
+    }
+
+    /// A drive term the model lacks names the `--drive` of the file's terms.
+    #[test]
+    fn drive_terms_the_model_lacks_name_the_drive_to_give() {
+        let file = ParameterFile::parse(
+            "[standard]\nM1 = 1\nFv1 = 0.1\nFc1 = 0.2\n",
+            "p.toml".as_ref(),
+        )
+        .unwrap();
+        let names: Vec<String> = ["M1", "MX1"].map(String::from).to_vec();
+        let e = file.values(&names).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "`Fv1` is a drive term, which this robot does not model: the file has the \
+                 drive terms Fv, Fc (`Fv1`, `Fc1`, ...), the robot none (no --drive, no `drive` \
+                 key): give `--drive Fv,Fc`"
+            ),
+            "{e}"
         );
     }
 

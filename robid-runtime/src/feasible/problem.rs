@@ -177,6 +177,8 @@ impl Problem {
                 values.len().min(std.len()),
             ));
         }
+        // drive terms that differ (identify run with other --drive): say which to give
+        let drive = || crate::model::drive_terms_mismatch("it", names, &self.standard_names);
         let mut v = Vec::with_capacity(self.base_names.len());
         let mut s = Vec::with_capacity(self.base_names.len());
         for b in &self.base_names {
@@ -184,7 +186,10 @@ impl Problem {
                 Error::setting(
                     "Problem::with_identified",
                     "names",
-                    format!("base parameter `{b}` is missing from the identified result; identify with the same robot description"),
+                    match drive() {
+                        Some(fix) => format!("base parameter `{b}` is missing from the identified result: {fix}"),
+                        None => format!("base parameter `{b}` is missing from the identified result; identify with the same robot description"),
+                    },
                 )
             })?;
             v.push(values[i]);
@@ -196,10 +201,14 @@ impl Problem {
                 "Problem::with_identified",
                 "names",
                 format!(
-                    "the identified result has {} parameters (e.g. `{}`), the model {} base parameters; identify with the same robot description",
+                    "the identified result has {} parameters (e.g. `{}`), the model {} base parameters{}",
                     names.len(),
                     extra.cloned().unwrap_or_default(),
-                    self.base_names.len()
+                    self.base_names.len(),
+                    drive().map_or_else(
+                        || "; identify with the same robot description".to_owned(),
+                        |fix| format!(": {fix}")
+                    )
                 ),
             ));
         }
@@ -606,6 +615,42 @@ mod tests {
         assert!(
             p.with_identified(&["A".into(), "B".into()], &[1.0], &[0.1; 2])
                 .is_err()
+        );
+    }
+
+    /// A result identified with other drive terms (identify given `--drive Fv,Fc`,
+    /// feasible not) names the terms and the `--drive` to give; it said "identify with the
+    /// same robot description", which would not have helped.
+    #[test]
+    fn other_drive_terms_name_the_drive_to_give() {
+        let n = names();
+        let p = Problem::new(n.clone(), n.clone(), DMatrix::identity(11, 11)).unwrap();
+        let mut more = n.clone();
+        more.extend(["Fv1".to_string(), "Fc1".into()]);
+        let e = p
+            .clone()
+            .with_identified(&more, &[1.0; 13], &[0.1; 13])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(
+                "the model 11 base parameters: it has the drive terms Ia, Fv, Fc (`Ia1`, \
+                 `Fv1`, `Fc1`, ...), the robot Ia: give `--drive Ia,Fv,Fc`"
+            ),
+            "{e}"
+        );
+        assert!(!e.contains("same robot description"), "{e}");
+        // fewer: identified without Ia
+        let e = p
+            .with_identified(&n[..10], &[1.0; 10], &[0.1; 10])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(
+                "base parameter `Ia1` is missing from the identified result: it has no drive \
+                 terms, the robot Ia: give no --drive, and no `drive` key in the description"
+            ),
+            "{e}"
         );
     }
 

@@ -324,6 +324,99 @@ pub fn standard_parameter_names<M: Model + ?Sized>(model: &M) -> Vec<String> {
         .collect()
 }
 
+/// When the parameter names of a file (`file`: a parameter file's keys, the names of an
+/// identified result) and of a model (`model`: its standard or base parameter names)
+/// differ in drive terms, what differs and the fix: e.g. "it has the drive terms Fv, Fc
+/// (`Fv1`, ...), the robot none: give `--drive Fv,Fc` ...". `what` names the file
+/// ("the identified result"). `None` when both have the same kinds of drive terms, or
+/// when `file` has a name that is neither a drive term nor one of `model`'s (a file of
+/// another robot or description: other drive terms are not what is wrong).
+///
+/// The kinds are compared, not the joints: `--drive` and a description's `drive` key give
+/// every joint the same terms (a term regrouped into a link's parameter, such as joint
+/// 1's `Ia1`, has no name of its own, and the other joints name it).
+#[cfg(feature = "std")]
+pub fn drive_terms_mismatch<S: AsRef<str>, T: AsRef<str>>(
+    what: &str,
+    file: &[S],
+    model: &[T],
+) -> Option<String> {
+    use std::collections::BTreeSet;
+    let kinds = |names: &mut dyn Iterator<Item = &str>| -> (BTreeSet<DriveTerm>, Vec<String>) {
+        let mut kinds = BTreeSet::new();
+        let mut examples = Vec::new();
+        for name in names {
+            if let Ok(ParameterId {
+                kind: ParameterKind::Drive(term),
+                ..
+            }) = name.parse::<ParameterId>()
+                && kinds.insert(term)
+            {
+                examples.push(name.to_owned());
+            }
+        }
+        (kinds, examples)
+    };
+    let (in_file, examples) = kinds(&mut file.iter().map(AsRef::as_ref));
+    let (in_model, _) = kinds(&mut model.iter().map(AsRef::as_ref));
+    if in_file == in_model {
+        return None;
+    }
+    // the file's other names are the model's: else it is of another robot (or description)
+    let drive = |name: &str| {
+        matches!(
+            name.parse::<ParameterId>(),
+            Ok(ParameterId {
+                kind: ParameterKind::Drive(_),
+                ..
+            })
+        )
+    };
+    if file
+        .iter()
+        .map(AsRef::as_ref)
+        .any(|n| !drive(n) && !model.iter().any(|m| m.as_ref() == n))
+    {
+        return None;
+    }
+    let list = |set: &BTreeSet<DriveTerm>| -> String {
+        if set.is_empty() {
+            "none".to_owned()
+        } else {
+            set.iter().map(|t| t.stem()).collect::<Vec<_>>().join(", ")
+        }
+    };
+    let had = if in_file.is_empty() {
+        format!("{what} has no drive terms")
+    } else {
+        format!(
+            "{what} has the drive terms {} (`{}`, ...)",
+            list(&in_file),
+            examples.join("`, `")
+        )
+    };
+    let fix = if in_file.is_empty() {
+        "give no --drive, and no `drive` key in the description".to_owned()
+    } else {
+        format!(
+            "give `--drive {}` to model them (or a `drive` key with them in the description)",
+            in_file
+                .iter()
+                .map(|t| t.stem())
+                .collect::<Vec<_>>()
+                .join(",")
+        )
+    };
+    Some(format!(
+        "{had}, the robot {}: {fix}",
+        if in_model.is_empty() {
+            "none (no --drive, no `drive` key)".to_owned()
+        } else {
+            list(&in_model)
+        }
+    ))
+}
+
 #[cfg(feature = "std")]
 impl From<LengthError> for crate::Error {
     fn from(e: LengthError) -> Self {
@@ -338,6 +431,31 @@ impl From<LengthError> for crate::Error {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Drive terms that differ are named with the `--drive` to give; a file with names of
+    /// another robot is not told about drive terms.
+    #[test]
+    fn drive_terms_that_differ_name_the_drive_to_give() {
+        let model = ["ZZR1", "MX2", "Fv1", "Fv2"];
+        let file = ["ZZR1", "MX2", "Fv1", "Fc1", "Fv2", "Fc2"];
+        assert_eq!(
+            drive_terms_mismatch("it", &file, &model).as_deref(),
+            Some(
+                "it has the drive terms Fv, Fc (`Fv1`, `Fc1`, ...), the robot Fv: give \
+                 `--drive Fv,Fc` to model them (or a `drive` key with them in the description)"
+            )
+        );
+        assert_eq!(
+            drive_terms_mismatch("it", &["ZZR1", "MX2"], &model).as_deref(),
+            Some(
+                "it has no drive terms, the robot Fv: give no --drive, and no `drive` key in \
+                 the description"
+            )
+        );
+        assert_eq!(drive_terms_mismatch("it", &model, &model), None);
+        // another robot's names
+        assert_eq!(drive_terms_mismatch("it", &["XXR3", "Fc1"], &model), None);
+    }
 
     #[test]
     fn fixed_checks_the_length() {

@@ -7,7 +7,7 @@
 use crate::DataError;
 use crate::EstimateError;
 use crate::estimate::error::{own_parameters, solves_alone};
-use crate::pipeline::observe::long_enough;
+use crate::pipeline::observe::{RestCount, long_enough, observe_counted};
 use std::ops::Range;
 
 use crate::Model;
@@ -21,7 +21,7 @@ use crate::estimate::{
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::prepare::{Plan, PreparedRows, Rows, prepare_rows};
 use crate::pipeline::stream::{identify_streaming, streams, validate_streaming};
-use crate::pipeline::{Prepared, decimator, observe};
+use crate::pipeline::{Prepared, decimator};
 use crate::validate::{Fit, Prediction, UsedRows};
 
 /// The result of [`identify`].
@@ -53,7 +53,7 @@ pub fn observation(
     config: &Config,
 ) -> Result<(Observation, f64)> {
     let rows = checked_prepare(model, data, config, Rows::Estimation)?;
-    torque_observation(model, &rows.prepared, config, data, &rows.kept)
+    torque_observation(model, &rows.prepared, config, data, &rows.kept).map(|(o, dt, _)| (o, dt))
 }
 
 pub(crate) fn checked_prepare(
@@ -100,8 +100,8 @@ fn torque_observation(
     config: &Config,
     data: &Dataset,
     kept: &Range<usize>,
-) -> Result<(Observation, f64)> {
-    let obs = observe(model, prepared, config).map_err(|e| match e {
+) -> Result<(Observation, f64, RestCount)> {
+    let (obs, rest) = observe_counted(model, prepared, config).map_err(|e| match e {
         Error::Estimate(EstimateError::NonFiniteObservation {
             sample: Some(k),
             joint,
@@ -119,7 +119,7 @@ fn torque_observation(
     })?;
     let dt =
         prepared.sample_time * decimator(config).map_err(|e| config.locate(e))?.factor() as f64;
-    Ok((obs, dt))
+    Ok((obs, dt, rest))
 }
 
 /// The energy model's observation of prepared signals (windows of
@@ -276,6 +276,17 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
     )
 }
 
+/// A rank deficiency said as the removal of the equations near rest when it took (nearly)
+/// all of a joint's ([`RestCount::rank_cause`]); other errors as they are.
+pub(crate) fn rest_cause(rest: &RestCount, config: &Config, dof: usize, e: Error) -> Error {
+    let thresholds = config.processing.rest_velocities(dof).ok();
+    let in_file = !matches!(
+        config.mapping("processing.rest_velocity"),
+        crate::data::ColumnMapping::Default | crate::data::ColumnMapping::Code
+    );
+    rest.rank_cause(thresholds.as_deref(), e, in_file)
+}
+
 /// The whole pipeline: observation matrix from `data`, estimation, fit. With the energy
 /// method the parameters come from the energy observation and the fit is still the
 /// torque prediction of the (filtered, decimated) torque observation.
@@ -334,7 +345,7 @@ pub(crate) fn identify_dense(
             None => solve(system),
         }
     };
-    let (obs, dt) = torque_observation(model, prepared, config, data, kept)?;
+    let (obs, dt, rest) = torque_observation(model, prepared, config, data, kept)?;
     if config.estimation.method != Method::Energy {
         let known = known.as_ref().map_or(0, |k| k.known_names().len());
         long_enough(data, kept, model.dof(), obs.cols().saturating_sub(known))?;
@@ -358,7 +369,7 @@ pub(crate) fn identify_dense(
                     parameter: obs.names[c].clone(),
                     share,
                 }),
-                None => e,
+                None => config.locate(rest_cause(&rest, config, model.dof(), e)),
             }
         }
         e => e,
@@ -498,7 +509,7 @@ pub(crate) fn validate_dense(
     values: &[f64],
 ) -> Result<Prediction> {
     let rows = checked_prepare(model, data, config, Rows::Validation)?;
-    let (obs, dt) = torque_observation(model, &rows.prepared, config, data, &rows.kept)?;
+    let (obs, dt, _) = torque_observation(model, &rows.prepared, config, data, &rows.kept)?;
     if values.len() != obs.cols() {
         return Err(Error::DimensionMismatch {
             what: "parameter values".into(),

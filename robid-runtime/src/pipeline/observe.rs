@@ -401,7 +401,7 @@ pub(crate) type Predicted = (usize, usize, f64, f64);
 
 /// What removing the equations near rest (`processing.rest_velocity`) left of a record's
 /// equations: summed over blocks, checked once at the end ([`RestCount::check`]).
-#[derive(Debug, Default, Clone, Copy, PartialEq)]
+#[derive(Debug, Default, Clone, PartialEq)]
 pub(crate) struct RestCount {
     /// Equations (joint and decimated sample) before the removal.
     pub(crate) before: usize,
@@ -409,16 +409,148 @@ pub(crate) struct RestCount {
     pub(crate) kept: usize,
     /// The largest |velocity| of any joint at any decimated sample.
     pub(crate) fastest: f64,
+    /// Per joint (0-based; empty when not counted): its equations before the removal,
+    /// those kept and its largest |velocity| ([`RestCount::rank_cause`]).
+    pub(crate) joints: Vec<JointRest>,
 }
 
+/// What the removal of the equations near rest left of one joint's.
+#[derive(Debug, Default, Clone, Copy, PartialEq)]
+pub(crate) struct JointRest {
+    /// Equations before the removal.
+    pub(crate) before: usize,
+    /// Equations kept.
+    pub(crate) kept: usize,
+    /// The largest |velocity| at any decimated sample.
+    pub(crate) fastest: f64,
+}
+
+/// The share of a joint's equations the removal near rest may leave for it to be named as
+/// the cause of a rank deficiency ("all or nearly all removed"): 5 %.
+const NEARLY_ALL_REMOVED: f64 = 0.05;
+
 impl RestCount {
-    /// The counts of both together.
-    pub(crate) fn add(self, other: RestCount) -> RestCount {
-        RestCount {
-            before: self.before + other.before,
-            kept: self.kept + other.kept,
-            fastest: self.fastest.max(other.fastest),
+    /// Adds `other`'s counts to these.
+    pub(crate) fn add(&mut self, other: &RestCount) {
+        self.before += other.before;
+        self.kept += other.kept;
+        self.fastest = self.fastest.max(other.fastest);
+        if self.joints.len() < other.joints.len() {
+            self.joints.resize(other.joints.len(), JointRest::default());
         }
+        for (a, b) in self.joints.iter_mut().zip(&other.joints) {
+            a.before += b.before;
+            a.kept += b.kept;
+            a.fastest = a.fastest.max(b.fastest);
+        }
+    }
+
+    /// Counts joint `j`'s equation of one decimated sample at |velocity| `speed`, kept or
+    /// not.
+    pub(crate) fn count(&mut self, j: usize, speed: f64, kept: bool) {
+        self.before += 1;
+        self.fastest = self.fastest.max(speed);
+        if self.joints.len() <= j {
+            self.joints.resize(j + 1, JointRest::default());
+        }
+        let joint = &mut self.joints[j];
+        joint.before += 1;
+        joint.fastest = joint.fastest.max(speed);
+        if kept {
+            self.kept += 1;
+            joint.kept += 1;
+        }
+    }
+
+    /// A rank deficiency `e` ([`EstimateError::RankDeficient`]) said as the removal of the
+    /// equations near rest (thresholds `rest` per joint) when it removed all or nearly all
+    /// ([`NEARLY_ALL_REMOVED`]) of a joint's equations while others kept theirs: a joint
+    /// slower than the threshold (a prismatic joint in m/s under the default 0.05, which is
+    /// in rad/s for a revolute one) loses the equations that determine its parameters, and
+    /// the least squares' "use a richer trajectory or remove these parameters" named
+    /// neither the threshold nor the joint. Other errors, and rank deficiencies the removal
+    /// does not explain, as they are.
+    /// `in_file`: the config is a file (else the default column mapping, and the fix says
+    /// how to write one).
+    pub(crate) fn rank_cause(&self, rest: Option<&[f64]>, e: Error, in_file: bool) -> Error {
+        let (
+            Some(rest),
+            Error::Estimate(EstimateError::RankDeficient {
+                rank,
+                columns,
+                unexcited,
+            }),
+        ) = (rest, &e)
+        else {
+            return e;
+        };
+        let starved: Vec<(usize, &JointRest)> = self
+            .joints
+            .iter()
+            .enumerate()
+            .filter(|(j, c)| {
+                // a joint that never moves is not the threshold's doing
+                rest.get(*j).is_some_and(|&t| t > 0.0)
+                    && c.before > 0
+                    && c.fastest > 0.0
+                    && (c.kept as f64) <= NEARLY_ALL_REMOVED * c.before as f64
+            })
+            .collect();
+        // a record in which every joint is (nearly) at rest is a poor record, not a
+        // threshold for one joint (RestCount::check tells too few equations overall)
+        if starved.is_empty() || starved.len() == self.joints.len() {
+            return e;
+        }
+        let lowered: Vec<String> = rest
+            .iter()
+            .enumerate()
+            .map(|(j, &t)| match starved.iter().find(|(s, _)| *s == j) {
+                // a tenth of the joint's largest speed keeps most of its equations
+                Some((_, c)) => num(three_digits(c.fastest / 10.0)),
+                None => num(t),
+            })
+            .collect();
+        let joints: Vec<String> = starved
+            .iter()
+            .map(|(j, c)| {
+                format!(
+                    "joint {} keeps {} of its {} equations (its |velocity| reaches at most {}; \
+                     its threshold {})",
+                    j + 1,
+                    c.kept,
+                    c.before,
+                    num(three_digits(c.fastest)),
+                    num(rest[*j])
+                )
+            })
+            .collect();
+        Error::setting(
+            "Config",
+            "processing.rest_velocity",
+            format!(
+                "rank-deficient data (rank {rank} of {columns} parameters; not excited: {}) \
+                 because rest_velocity removed all or nearly all of {} equations: {}; the threshold \
+                 is in rad/s for a revolute joint and in m/s for a prismatic one (default \
+                 0.05): lower `rest_velocity` in the config's [processing] for {}, e.g. \
+                 `rest_velocity = [{}]`, or 0 to keep every equation (a joint that does not \
+                 move in the record needs a trajectory that moves it instead){}",
+                unexcited.join(", "),
+                if starved.len() == 1 {
+                    "a joint's"
+                } else {
+                    "some joints'"
+                },
+                joints.join("; "),
+                if starved.len() == 1 { "it" } else { "them" },
+                lowered.join(", "),
+                if in_file {
+                    ""
+                } else {
+                    " (without --config the defaults apply: `robid identify --example-config` \
+                     prints a config with every key, to give with --config)"
+                }
+            ),
+        )
     }
 
     /// An error naming `processing.rest_velocity` (thresholds `rest` per joint, `None`
@@ -775,11 +907,9 @@ impl Observer<'_> {
             let i = k - first;
             for j in 0..dof {
                 let speed = value(i, lay.qd(j)).abs();
-                eq.rest.before += 1;
-                eq.rest.fastest = eq.rest.fastest.max(speed);
-                if let Some(t) = rest
-                    && !(speed >= t[j])
-                {
+                let moving = rest.is_none_or(|t| speed >= t[j]);
+                eq.rest.count(j, speed, moving);
+                if !moving {
                     continue;
                 }
                 let y = value(i, lay.tau(j));
@@ -804,7 +934,6 @@ impl Observer<'_> {
                 eq.sample.push(k);
             }
         }
-        eq.rest.kept = eq.y.len();
         Ok(eq)
     }
 
@@ -832,17 +961,13 @@ impl Observer<'_> {
             let i = k - first;
             for j in 0..dof {
                 let speed = value(i, 2 * dof + j).abs();
-                count.before += 1;
-                count.fastest = count.fastest.max(speed);
-                if let Some(t) = rest
-                    && !(speed >= t[j])
-                {
-                    continue;
+                let moving = rest.is_none_or(|t| speed >= t[j]);
+                count.count(j, speed, moving);
+                if moving {
+                    out.push((j, k, value(i, dof + j), value(i, j)));
                 }
-                out.push((j, k, value(i, dof + j), value(i, j)));
             }
         }
-        count.kept = out.len();
         Ok((out, count))
     }
 
@@ -1014,6 +1139,15 @@ pub fn observe(
     signals: &Prepared,
     config: &Config,
 ) -> Result<Observation> {
+    observe_counted(model, signals, config).map(|(obs, _)| obs)
+}
+
+/// [`observe`], with what the removal of the equations near rest left of each joint's.
+pub(crate) fn observe_counted(
+    model: &(dyn Model + Sync),
+    signals: &Prepared,
+    config: &Config,
+) -> Result<(Observation, RestCount)> {
     let observer = Observer::new(model, signals, config)?;
     let (lay, names) = (&observer.lay, &observer.names);
     let dof = lay.dof;
@@ -1149,12 +1283,22 @@ pub fn observe(
     };
     let total: usize = keep.iter().map(Vec::len).sum();
     let cols = lay.p + lay.e;
-    RestCount {
+    let fastest = |v: &[f64]| v.iter().fold(0.0, |a: f64, x| a.max(x.abs()));
+    let count = RestCount {
         before: m * dof,
         kept: total,
-        fastest: qd_dec.joints().flatten().fold(0.0, |a, v| a.max(v.abs())),
-    }
-    .check(rest.as_deref(), cols, &format!("the {cols} parameters"))?;
+        fastest: qd_dec.joints().map(fastest).fold(0.0, f64::max),
+        joints: qd_dec
+            .joints()
+            .zip(&keep)
+            .map(|(v, k)| JointRest {
+                before: m,
+                kept: k.len(),
+                fastest: fastest(v),
+            })
+            .collect(),
+    };
+    count.check(rest.as_deref(), cols, &format!("the {cols} parameters"))?;
     let mut w = DMatrix::zeros(total, cols);
     let mut y = DVector::zeros(total);
     let mut joint_rows = Vec::with_capacity(dof);
@@ -1180,23 +1324,25 @@ pub fn observe(
         joint_rows.push(start..start + ks.len());
         start += ks.len();
     }
-    Observation::new(w, y, joint_rows, sample_of_row, names.clone()).map_err(|e| match e {
-        // a decimated sample k is processed sample k * factor
-        Error::Estimate(EstimateError::NonFiniteObservation {
-            sample: Some(k),
-            joint,
-            parameter,
-            value,
-            ..
-        }) => Error::Estimate(EstimateError::NonFiniteObservation {
-            location: format!("processed sample {}", k * dec.factor()),
-            sample: Some(k * dec.factor()),
-            joint,
-            parameter,
-            value,
-        }),
-        e => e,
-    })
+    let obs =
+        Observation::new(w, y, joint_rows, sample_of_row, names.clone()).map_err(|e| match e {
+            // a decimated sample k is processed sample k * factor
+            Error::Estimate(EstimateError::NonFiniteObservation {
+                sample: Some(k),
+                joint,
+                parameter,
+                value,
+                ..
+            }) => Error::Estimate(EstimateError::NonFiniteObservation {
+                location: format!("processed sample {}", k * dec.factor()),
+                sample: Some(k * dec.factor()),
+                joint,
+                parameter,
+                value,
+            }),
+            e => e,
+        })?;
+    Ok((obs, count))
 }
 
 #[cfg(test)]

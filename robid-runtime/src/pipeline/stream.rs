@@ -309,7 +309,7 @@ impl<'a> Stream<'a> {
             for part in parts {
                 let (part, filtered, count) = part?;
                 has_raw |= filtered;
-                rest = rest.add(count);
+                rest.add(&count);
                 for (j, k, y, p, r) in part {
                     if let Some(y) = y {
                         measured[j].push(y);
@@ -450,7 +450,7 @@ pub(crate) fn identify_streaming(
     let mut rest = RestCount::default();
     stream
         .run(|eq| {
-            rest = rest.add(eq.rest);
+            rest.add(&eq.rest);
             for i in 0..eq.y.len() {
                 let j = eq.joint[i];
                 dominance.push(eq.row(i), eq.sample[i]);
@@ -503,7 +503,7 @@ pub(crate) fn identify_streaming(
                     parameter: names[c].clone(),
                     share,
                 }),
-                None => e,
+                None => config.locate(crate::pipeline::identify::rest_cause(&rest, config, dof, e)),
             }
         }
         e => e,

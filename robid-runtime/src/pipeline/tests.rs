@@ -254,6 +254,60 @@ fn rest_removal_of_every_equation_names_rest_velocity() {
     );
 }
 
+/// A rank deficiency because `processing.rest_velocity` removed (nearly) all equations of
+/// a joint that moves slower than its threshold (a slow prismatic joint under the default
+/// 0.05, which is m/s for it) names the key at its line, the joint, its largest speed and
+/// the fix, in the streaming (OLS) and the dense (RLS) path; it was the least squares'
+/// "use a richer trajectory or remove these parameters". A joint that does not move at all
+/// is no threshold's doing: its rank deficiency is told as before.
+#[test]
+fn a_rank_deficiency_from_rest_velocity_names_it() {
+    let model = Synthetic::default();
+    let data = dataset(3000, 1000.0, 0.0);
+    // joint 2 moves at up to about 2 rad/s: a threshold of 100 for it removes its equations
+    let text = CONFIG.replace(
+        "rest_velocity = 0.02",
+        "rest_velocity = [0.02, 100, 0.02, 0.02, 0.02, 0.02]",
+    );
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("rest_velocity"))
+        .unwrap()
+        + 1;
+    let high = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+    let mut rls = high.clone();
+    rls.estimation.method = crate::data::Method::Rls;
+    let streamed = identify(&model, &data, &high).unwrap_err();
+    let dense = identify(&model, &data, &rls).unwrap_err();
+    for e in [&streamed, &dense] {
+        assert!(
+            matches!(e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
+                if key == "processing.rest_velocity" && *l == line),
+            "{e}"
+        );
+        let message = e.to_string();
+        for part in [
+            "rank-deficient data (rank ",
+            "because rest_velocity removed all or nearly all of a joint's equations: joint 2 \
+             keeps 0 of its ",
+            "its threshold 100)",
+            "lower `rest_velocity` in the config's [processing] for it, e.g. `rest_velocity = \
+             [0.02, 0.",
+            "or 0 to keep every equation",
+        ] {
+            assert!(message.contains(part), "`{part}` in {message}");
+        }
+        assert!(!message.contains("remove these parameters"), "{message}");
+        assert!(!message.contains("without --config"), "{message}");
+    }
+    // joint 3 at rest in the whole record: the least squares' own message
+    let e = identify(&model, &with_joint_at_rest(3000, 2), &config("")).unwrap_err();
+    assert!(
+        matches!(e, Error::Estimate(EstimateError::RankDeficient { .. })),
+        "{e}"
+    );
+}
+
 /// Per-axis and link-by-link identification, which solve joint by joint, with a joint
 /// whose equations `processing.rest_velocity` all removes (the joint at rest in the whole
 /// record) name the joint, the key at its line and the fixes, and so when it leaves the

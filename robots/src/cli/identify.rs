@@ -51,7 +51,9 @@ pub(crate) struct Args {
     /// sheet, an earlier identification): each --validate file is also predicted with it,
     /// and the report gives both NMSEs of Madsen et al.'s eq. 22 and the relative
     /// improvement (their Table 5). Extra columns of the config are zero in the reference.
-    #[arg(long, requires = "validate")]
+    /// Needs --validate.
+    // checked in `run`, to say why (clap's `requires` said only "required arguments")
+    #[arg(long)]
     reference: Option<PathBuf>,
     /// Estimator (overrides the config's `[estimation] method`).
     #[arg(long, value_enum)]
@@ -285,6 +287,16 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         return Ok(out::print(EXAMPLE_CONFIG)?);
     }
     let robot = args.robot.as_deref().ok_or("give the robot description")?;
+    if args.reference.is_some() && args.validate.is_empty() {
+        return Err(
+            "--reference: the reference model is compared with the identified one on \
+                    validation data (each --validate data set is predicted with both, and the \
+                    report gives both NMSEs), so it needs --validate: give --validate FILE... \
+                    (data not used for the identification, as many files per data set as \
+                    --data), or drop --reference"
+                .into(),
+        );
+    }
     if let Some(samples) = &args.static_samples {
         return run_static(args, robot, samples);
     }

@@ -51,7 +51,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))
         .collect();
-    let table = super::states::read(&args.data, &names, n)?;
+    // a log of positions and torques: `identify` differentiates it (with the payload on,
+    // the last link's parameters then hold the payload's)
+    let remedy = "; or identify the robot with the payload on from this log: `robid identify` \
+                  differentiates `t,q1..,tau1..` itself (docs/command-line.md#robid-identify), \
+                  and the last link's parameters then include the payload's";
+    let table = super::states::read_with(&args.data, &names, n, remedy)?;
     let samples: Vec<JointSample> = (0..table.lines.len())
         .map(|k| {
             let block = |b: usize| (0..n).map(|j| table.columns[b * n + j][k]).collect();

@@ -22,32 +22,106 @@ pub(crate) const STATE_LIMIT: f64 = 1e6;
 /// position column for one joint more than the robot's `dof` is refused: it holds the
 /// states of another robot.
 pub(crate) fn read(path: &Path, names: &[String], dof: usize) -> Result<Table, Error> {
+    read_with(path, names, dof, "")
+}
+
+/// [`read`], with `remedy` for a file of positions alone (see [`with_header`]).
+pub(crate) fn read_with(
+    path: &Path,
+    names: &[String],
+    dof: usize,
+    remedy: &str,
+) -> Result<Table, Error> {
     refuse_surplus(path, dof)?;
-    let table = read_columns(path, names).map_err(|e| with_header(e, names))?;
+    let table = read_columns(path, names).map_err(|e| with_header(e, names, remedy))?;
     check(&table, names)?;
     Ok(table)
 }
 
 /// A column missing from a states file, told with the header the file needs
 /// (`q1..q6,qd1..qd6,qdd1..qdd6`): the reader's own advice, "pass the names of the file's
-/// columns", is for a caller in code, and no flag of `robid` passes column names.
-pub(crate) fn with_header(e: robid_runtime::Error, names: &[String]) -> robid_runtime::Error {
+/// columns", is for a caller in code, and no flag of `robid` passes column names. A file
+/// with positions and no velocities or accelerations at all (a log of positions) is told
+/// so, not to "rename its columns": this command reads them and does not differentiate;
+/// `remedy` (empty, or "; ..." ) adds the command's other way.
+pub(crate) fn with_header(e: robid_runtime::Error, names: &[String], remedy: &str) -> Error {
     match e {
         robid_runtime::Error::Data(DataError::MissingColumn {
             path,
             column,
             available,
             ..
-        }) => robid_runtime::Error::Data(DataError::MissingColumn {
-            path,
-            column,
-            available,
-            mapping: Box::new(ColumnMapping::Header {
-                expected: header_pattern(names),
-            }),
-        }),
-        e => e,
+        }) => match no_derivatives(&path, &column, &available, names, remedy) {
+            Some(message) => message.into(),
+            None => robid_runtime::Error::Data(DataError::MissingColumn {
+                path,
+                column,
+                available,
+                mapping: Box::new(ColumnMapping::Header {
+                    expected: header_pattern(names),
+                }),
+            })
+            .into(),
+        },
+        e => e.into(),
     }
+}
+
+/// The message of [`with_header`] for a missing velocity or acceleration column `column`
+/// when the file has position columns and no column of that kind at all.
+fn no_derivatives(
+    path: &Path,
+    column: &str,
+    available: &[String],
+    names: &[String],
+    remedy: &str,
+) -> Option<String> {
+    // whether the header has a column `{stem}{number}`
+    let has = |stem: &str| {
+        available.iter().any(|a| {
+            a.strip_prefix(stem)
+                .is_some_and(|r| !r.is_empty() && r.chars().all(|c| c.is_ascii_digit()))
+        })
+    };
+    let stem = column.trim_end_matches(|c: char| c.is_ascii_digit());
+    if !matches!(stem, "qd" | "qdd") || !has("q") || has(stem) {
+        return None;
+    }
+    let lacking = match (has("qd"), has("qdd")) {
+        (false, false) => "velocities (`qd1`..) or accelerations (`qdd1`..)",
+        (true, _) => "accelerations (`qdd1`..)",
+        (false, true) => "velocities (`qd1`..)",
+    };
+    // columns that might hold them under other names
+    let known = |a: &str| {
+        a == "t"
+            || ["q", "qd", "qdd", "tau"].iter().any(|s| {
+                a.strip_prefix(s)
+                    .is_some_and(|r| !r.is_empty() && r.chars().all(|c| c.is_ascii_digit()))
+            })
+    };
+    let others: Vec<String> = available
+        .iter()
+        .filter(|a| !known(a))
+        .map(|a| format!("`{a}`"))
+        .collect();
+    let rename = if others.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; if its columns {} hold them, rename them to these names",
+            others.join(", ")
+        )
+    };
+    Some(format!(
+        "{}: no column `{column}`: the file has joint positions but no {lacking} (found: {}); \
+         this command reads them from the file, it does not differentiate positions: add \
+         them, computed from the positions (e.g. central differences of the positions \
+         low-passed above the motion's frequencies), under the header {}{remedy}{rename}",
+        path.display(),
+        available.join(", "),
+        header_pattern(names)
+    ))
 }
 
 /// A states file without a row of states, `why` (empty, or its header alone): both told

@@ -203,7 +203,7 @@ fn stream(
         RuntimeError::Data(DataError::EmptyFile { .. }) => {
             Failure::Input(super::states::no_rows(path, names, "the file is empty"))
         }
-        e => input(super::states::with_header(e, names)),
+        e => Failure::Input(super::states::with_header(e, names, "")),
     })?;
     if rows == 0 {
         return Err(Failure::Input(super::states::no_rows(

@@ -304,6 +304,120 @@ fn a_states_file_missing_a_column_is_told_the_header_it_needs() {
     );
 }
 
+/// A log of positions and torques (`t,q1..,tau1..`, no velocities or accelerations) given
+/// to `torques` or `payload`, which read them and do not differentiate, is told so, with
+/// how to get them (and, for `payload`, identify's way); it was told to "rename its
+/// columns", which were not there. A file that has velocities but no accelerations says
+/// which are missing; columns that may hold them under other names are named.
+#[test]
+fn a_log_of_positions_is_told_it_lacks_velocities_and_accelerations() {
+    let dir = folder();
+    let mut text = String::from("t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n");
+    for k in 0..3 {
+        text.push_str(&format!(
+            "{},0.1,0.2,0.3,0.4,0.5,0.6,1,2,3,4,5,6\n",
+            0.01 * k as f64
+        ));
+    }
+    let log = write(dir.path(), "log.csv", &text);
+    let o = robid(&[
+        "torques",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--states",
+        log.to_str().unwrap(),
+    ]);
+    let common = [
+        "log.csv: no column `qd1`: the file has joint positions but no velocities (`qd1`..) or \
+         accelerations (`qdd1`..)",
+        "this command reads them from the file, it does not differentiate positions: add them, \
+         computed from the positions",
+    ];
+    fails_with(&o, &common);
+    assert!(!stderr(&o).contains("rename"), "{}", stderr(&o));
+    let o = robid(&[
+        "payload",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--data",
+        log.to_str().unwrap(),
+    ]);
+    fails_with(&o, &common);
+    fails_with(
+        &o,
+        &[
+            "under the header q1..q6,qd1..qd6,qdd1..qdd6,tau1..tau6; or identify the robot with \
+             the payload on from this log: `robid identify` differentiates",
+        ],
+    );
+    // velocities under other names: those named as what to rename
+    let renamed = write(
+        dir.path(),
+        "dq.csv",
+        &text
+            .replace("tau1,", "dq1,tau1,")
+            .replace(",1,2,3,4,5,6\n", ",0,1,2,3,4,5,6\n"),
+    );
+    let o = robid(&[
+        "torques",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--states",
+        renamed.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &["if its columns `dq1` hold them, rename them to these names"],
+    );
+}
+
+/// `identify --reference` without `--validate` says what the reference is compared on and
+/// what to give; clap said only "the following required arguments were not provided".
+#[test]
+fn a_reference_without_validation_data_says_what_it_needs() {
+    let o = robid(&[
+        "identify",
+        "descriptions/ur5e.toml",
+        "--data",
+        "absent.csv",
+        "--reference",
+        "parameters/ur5e.toml",
+    ]);
+    fails_with(
+        &o,
+        &[
+            "--reference: the reference model is compared with the identified one on \
+             validation data",
+            "so it needs --validate: give --validate FILE...",
+            "or drop --reference",
+        ],
+    );
+    assert!(!stderr(&o).contains("required arguments"), "{}", stderr(&o));
+}
+
+/// `robid identify`'s JSON report given as a parameter file is named as such, with what
+/// to give instead (toml said "invalid key-value pair, expected key").
+#[test]
+fn identify_s_json_given_as_parameters_says_what_to_give() {
+    let dir = folder();
+    let o = torques(
+        dir.path(),
+        "{\"robot\": \"ur5e\", \"method\": \"wls\", \"parameters\": [{\"name\": \"ZZR1\"}]}",
+    );
+    fails_with(
+        &o,
+        &[
+            "params.toml:1:1: the file is JSON: `robid identify`'s report (--json), not a \
+             parameter file",
+            "robid feasible ROBOT --identified",
+        ],
+    );
+    assert!(!stderr(&o).contains("not valid TOML"), "{}", stderr(&o));
+}
+
 /// A description's limit that a design cannot take (below 1e-6, such as 1e-320 written to
 /// mean "none") is named by the description and joint, with the fix, before the design; it
 /// was named by the library's type (``JointLimits `velocity`: joint 1: ...``).
@@ -779,7 +893,8 @@ fn a_drive_term_without_the_drive_is_named() {
         &o,
         &[
             "params.toml:3:1:",
-            "`Fc2` is a drive term, which this robot does not model",
+            "`Fc2` is a drive term, which this robot does not model: the file has the drive \
+             terms Fc (`Fc2`, ...), the robot none (no --drive, no `drive` key): give `--drive Fc`",
         ],
     );
 }

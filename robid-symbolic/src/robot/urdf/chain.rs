@@ -336,6 +336,150 @@ fn mimic_beyond_limits(place: &Place<'_>, urdf: &Urdf, tree: &Tree, j: usize) ->
     ))
 }
 
+/// The help of the error for a tree without a tip: the tips that give a chain robid
+/// models. Per leaf below a movable joint (not the antennas or sensors fixed to the base)
+/// the leaf itself, or when its chain fails (a `<mimic>` joint in it or moving with it, a
+/// floating joint) the deepest link moved by a joint of its path whose chain does not;
+/// then the link above the branches (moved by the last movable joint above the links
+/// where the movable joints' paths part), each once per set of joints. Leaves that fail
+/// are named with the first reason.
+fn tips(
+    place: &Place<'_>,
+    urdf: &Urdf,
+    tree: &Tree,
+    base: usize,
+    below: &[usize],
+    ends: &[usize],
+    names: &[&str],
+) -> String {
+    let movable = |j: usize| urdf.joints[j].kind.movable();
+    let joints_to = |l: usize| -> Vec<usize> {
+        tree.path(base, l)
+            .unwrap_or_default()
+            .into_iter()
+            .filter(|&j| movable(j))
+            .collect()
+    };
+    // why a chain from the base to `l` fails, if it does
+    let fails = |l: usize| -> Option<String> {
+        let selection = ChainSelection {
+            base: Some(names[base].to_owned()),
+            tip: Some(names[l].to_owned()),
+        };
+        let error = choose(place, urdf, tree, &selection, &mut Vec::new()).err()?;
+        let first = error.errors()[0];
+        Some(match first {
+            DescriptionError::Invalid { message, .. }
+            | DescriptionError::Argument { message, .. } => message.clone(),
+            other => other.to_string(),
+        })
+    };
+    let leaves: Vec<usize> = below
+        .iter()
+        .copied()
+        .filter(|&l| tree.children[l].is_empty() && !joints_to(l).is_empty())
+        .collect();
+    let mut good: Vec<(usize, Vec<usize>)> = Vec::new();
+    let add = |l: usize, good: &mut Vec<(usize, Vec<usize>)>| {
+        let joints = joints_to(l);
+        if !good.iter().any(|(_, g)| *g == joints) {
+            good.push((l, joints));
+        }
+    };
+    let mut failing: Vec<usize> = Vec::new();
+    let mut reason: Option<(usize, String)> = None;
+    for &leaf in &leaves {
+        match fails(leaf) {
+            None => add(leaf, &mut good),
+            Some(why) => {
+                failing.push(leaf);
+                reason.get_or_insert((leaf, why));
+                // the deepest link moved by a joint of the path whose chain is modelled
+                let path = joints_to(leaf);
+                if let Some(l) = path
+                    .iter()
+                    .rev()
+                    .map(|&j| tree.ends[j].1)
+                    .find(|&l| fails(l).is_none())
+                {
+                    add(l, &mut good);
+                }
+            }
+        }
+    }
+    // the link above the branches: moved by the last movable joint on the path that the
+    // paths to the last moved links (no movable joint below them) share
+    let last_moved = ends
+        .iter()
+        .filter(|&&e| !ends.iter().any(|&o| o != e && tree.path(e, o).is_some()));
+    let shared = last_moved
+        .map(|&l| tree.path(base, l).unwrap_or_default())
+        .reduce(|a, b| {
+            a.into_iter()
+                .zip(b)
+                .take_while(|(x, y)| x == y)
+                .map(|(x, _)| x)
+                .collect()
+        });
+    let branch = shared
+        .unwrap_or_default()
+        .into_iter()
+        .rev()
+        .find(|&j| movable(j))
+        .map(|j| tree.ends[j].1)
+        .filter(|&l| fails(l).is_none());
+    let quoted = |ls: &[usize]| -> String {
+        ls.iter()
+            .map(|&l| format!("`{}`", names[l]))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut help = if good.is_empty() {
+        format!(
+            "no leaf below link `{}` ends a chain robid models",
+            names[base]
+        )
+    } else {
+        let listed: Vec<usize> = good.iter().map(|(l, _)| *l).collect();
+        let mut text = if listed.len() == 1 {
+            format!("choose the tip `{}`", names[listed[0]])
+        } else {
+            format!("choose the tip among {}", quoted(&listed))
+        };
+        if let Some(b) = branch {
+            if listed == [b] {
+                text += ", where the chain branches (the joints below it are held)";
+            } else if listed.contains(&b) {
+                text += &format!(" (`{}`: where the chain branches)", names[b]);
+            } else if !good.iter().any(|(_, g)| *g == joints_to(b)) {
+                text += &format!(
+                    ", or `{}`, where the chain branches (the joints below it are held)",
+                    names[b]
+                );
+            }
+        }
+        text
+    };
+    if let Some((leaf, why)) = reason {
+        let coupled = if why.contains(" mimics ") {
+            " (robid models independent joints)"
+        } else {
+            ""
+        };
+        help += &format!(
+            "; not {} {}: with `{}` as the tip, {why}{coupled}",
+            if failing.len() == 1 {
+                "the leaf"
+            } else {
+                "the leaves"
+            },
+            quoted(&failing),
+            names[leaf]
+        );
+    }
+    help
+}
+
 fn argument(which: &str, message: String, help: String) -> DescriptionError {
     DescriptionError::Argument {
         argument: format!("the chain's {which} link (`ChainSelection::{which}`)"),
@@ -423,24 +567,13 @@ pub(super) fn choose(
             match ends.last() {
                 Some(&last) if single => last,
                 Some(_) => {
-                    // the leaves a chain can end at: those below a movable joint (not
-                    // the antennas or sensors fixed to the base)
-                    let leaves: Vec<String> = below
-                        .iter()
-                        .filter(|&&l| tree.children[l].is_empty())
-                        .filter(|&&l| {
-                            tree.path(base, l)
-                                .is_some_and(|p| p.into_iter().any(movable))
-                        })
-                        .map(|&l| format!("`{}`", names[l]))
-                        .collect();
                     return Err(argument(
                         "tip",
                         format!(
                             "the movable joints below link `{}` do not form a single path, so the chain's tip must be chosen",
                             names[base]
                         ),
-                        format!("choose the tip among the leaves {}", leaves.join(", ")),
+                        tips(place, urdf, tree, base, &below, &ends, &names),
                     ));
                 }
                 None if !urdf.joints.iter().any(|j| j.kind.movable()) => {

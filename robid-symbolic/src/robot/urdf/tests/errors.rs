@@ -500,9 +500,46 @@ fn chain_errors_without_a_tip_name_what_is_wrong() {
     assert_eq!(
         message,
         "the chain's tip link (`ChainSelection::tip`): the movable joints below link `a` do not \
-         form a single path, so the chain's tip must be chosen; choose the tip among the leaves \
-         `e`, `d`"
+         form a single path, so the chain's tip must be chosen; choose the tip among `e`, `d`, \
+         or `b`, where the chain branches (the joints below it are held)"
     );
+}
+
+/// A gripper of mimic joints (as xArm's): every leaf's chain holds a mimic joint, so the
+/// leaves alone were suggested, each refused when chosen; the link where the chain
+/// branches, which works, was never named. It is now, and the leaves are named with why.
+#[test]
+fn a_gripper_of_mimic_joints_suggests_the_link_above_it() {
+    let joint = |name: &str, parent: &str, child: &str, mimic: &str| {
+        format!(
+            "<link name=\"{child}\"/><joint name=\"{name}\" type=\"revolute\"><parent \
+             link=\"{parent}\"/><child link=\"{child}\"/><origin xyz=\"0.1 0 0\"/><axis \
+             xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>{mimic}</joint>\n"
+        )
+    };
+    let gripper = format!(
+        "<link name=\"g\"/><joint name=\"fix\" type=\"fixed\"><parent link=\"c\"/><child \
+         link=\"g\"/></joint>\n{}{}{}",
+        joint("drive", "g", "l1", ""),
+        joint("l2j", "l1", "l2", "<mimic joint=\"drive\"/>"),
+        joint("r1j", "g", "r1", "<mimic joint=\"drive\"/>")
+    );
+    let text = arm(&format!("{J1}{J2}{gripper}"));
+    let message = error_of(&text, &ChainSelection::default());
+    assert!(
+        message.contains("choose the tip `c`, where the chain branches"),
+        "{message}"
+    );
+    assert!(
+        message.contains(
+            "not the leaves `l2`, `r1`: with `l2` as the tip, joint `l2j` of the chain mimics \
+             joint `drive` (robid models independent joints)"
+        ),
+        "{message}"
+    );
+    // the suggestion works
+    let chain = Robot::from_urdf(&text, "t.urdf", &selection(None, Some("c"))).unwrap();
+    assert_eq!(chain.robot.dof(), 2);
 }
 
 /// A `<mimic>` naming no joint is told at its place with the nearest joint names: off the

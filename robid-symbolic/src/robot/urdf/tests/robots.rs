@@ -95,13 +95,18 @@ fn panda_without_a_tip_lists_the_leaves() {
     let e = Robot::from_urdf(&text, PANDA, &ChainSelection::default()).unwrap_err();
     let message = e.to_string();
     assert!(message.contains("do not form a single path"), "{message}");
-    for leaf in [
-        "`panda_leftfinger`",
-        "`panda_rightfinger`",
-        "`panda_hand_tcp`",
-    ] {
-        assert!(message.contains(leaf), "{message}");
-    }
+    // the fingers' chains hold the mimic finger joint: named as what does not work
+    assert!(
+        message.contains(
+            "choose the tip `panda_hand_tcp`; not the leaves `panda_leftfinger`, \
+             `panda_rightfinger`: "
+        ),
+        "{message}"
+    );
+    assert!(
+        message.contains("mimics joint `panda_finger_joint1`"),
+        "{message}"
+    );
 }
 
 #[test]
