@@ -155,6 +155,33 @@ pub enum Error {
 }
 
 impl Error {
+    /// A non-finite observation found at sample `k` of a part (a block, the decimated
+    /// samples) placed in the whole: `to(k)` gives its sample there and where that is
+    /// (`file:line`, or "processed sample N"); `Err` with any other error, as it is.
+    pub(crate) fn placed(self, to: impl FnOnce(usize) -> (usize, String)) -> Result<Error> {
+        match self {
+            Error::Estimate(crate::EstimateError::NonFiniteObservation {
+                sample: Some(k),
+                joint,
+                parameter,
+                value,
+                ..
+            }) => {
+                let (sample, location) = to(k);
+                Ok(Error::Estimate(
+                    crate::EstimateError::NonFiniteObservation {
+                        location,
+                        sample: Some(sample),
+                        joint,
+                        parameter,
+                        value,
+                    },
+                ))
+            }
+            e => Err(e),
+        }
+    }
+
     /// An [`Error::Setting`] for the setting `key` of `owner`.
     pub fn setting(owner: &str, key: &str, problem: impl Into<String>) -> Error {
         Error::Setting {

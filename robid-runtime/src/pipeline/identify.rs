@@ -101,21 +101,9 @@ fn torque_observation(
     data: &Dataset,
     kept: &Range<usize>,
 ) -> Result<(Observation, f64, RestCount)> {
-    let (obs, rest) = observe_counted(model, prepared, config).map_err(|e| match e {
-        Error::Estimate(EstimateError::NonFiniteObservation {
-            sample: Some(k),
-            joint,
-            parameter,
-            value,
-            ..
-        }) => Error::Estimate(EstimateError::NonFiniteObservation {
-            location: data.location(kept.start + k),
-            sample: Some(kept.start + k),
-            joint,
-            parameter,
-            value,
-        }),
-        e => config.locate(e),
+    let (obs, rest) = observe_counted(model, prepared, config).map_err(|e| {
+        e.placed(|k| (kept.start + k, data.location(kept.start + k)))
+            .unwrap_or_else(|e| config.locate(e))
     })?;
     let dt =
         prepared.sample_time * decimator(config).map_err(|e| config.locate(e))?.factor() as f64;

@@ -1324,24 +1324,12 @@ pub(crate) fn observe_counted(
         joint_rows.push(start..start + ks.len());
         start += ks.len();
     }
-    let obs =
-        Observation::new(w, y, joint_rows, sample_of_row, names.clone()).map_err(|e| match e {
-            // a decimated sample k is processed sample k * factor
-            Error::Estimate(EstimateError::NonFiniteObservation {
-                sample: Some(k),
-                joint,
-                parameter,
-                value,
-                ..
-            }) => Error::Estimate(EstimateError::NonFiniteObservation {
-                location: format!("processed sample {}", k * dec.factor()),
-                sample: Some(k * dec.factor()),
-                joint,
-                parameter,
-                value,
-            }),
-            e => e,
-        })?;
+    let obs = Observation::new(w, y, joint_rows, sample_of_row, names.clone()).map_err(|e| {
+        // a decimated sample k is processed sample k * factor
+        let at = |k: usize| k * dec.factor();
+        e.placed(|k| (at(k), format!("processed sample {}", at(k))))
+            .unwrap_or_else(|e| e)
+    })?;
     Ok((obs, count))
 }
 

@@ -361,22 +361,8 @@ struct PredictionParts {
 /// An error of a block whose prepared samples start at processed sample `lo`, placed
 /// among the record's processed samples.
 fn shifted(e: Error, lo: usize) -> Error {
-    match e {
-        Error::Estimate(EstimateError::NonFiniteObservation {
-            sample: Some(k),
-            joint,
-            parameter,
-            value,
-            ..
-        }) => Error::Estimate(EstimateError::NonFiniteObservation {
-            location: format!("processed sample {}", k + lo),
-            sample: Some(k + lo),
-            joint,
-            parameter,
-            value,
-        }),
-        e => e,
-    }
+    e.placed(|k| (k + lo, format!("processed sample {}", k + lo)))
+        .unwrap_or_else(|e| e)
 }
 
 /// Whether [`identify`](crate::pipeline::identify) streams: OLS or WLS without known
@@ -389,22 +375,8 @@ pub(crate) fn streams(config: &Config) -> bool {
 
 /// An error of the observation with its processed sample placed at its data row.
 fn located(e: Error, config: &Config, data: &dyn Record, kept: &Range<usize>) -> Error {
-    match e {
-        Error::Estimate(EstimateError::NonFiniteObservation {
-            sample: Some(k),
-            joint,
-            parameter,
-            value,
-            ..
-        }) => Error::Estimate(EstimateError::NonFiniteObservation {
-            location: data.location(kept.start + k),
-            sample: Some(kept.start + k),
-            joint,
-            parameter,
-            value,
-        }),
-        e => config.locate(e),
-    }
+    e.placed(|k| (kept.start + k, data.location(kept.start + k)))
+        .unwrap_or_else(|e| config.locate(e))
 }
 
 /// The prediction with the torque before filtering (as `identify::with_unfiltered`),
