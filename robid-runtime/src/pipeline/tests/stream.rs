@@ -370,4 +370,19 @@ fn an_overflowing_regressor_is_named_by_both_paths() {
         (streamed.1, streamed.2.as_str()),
         (1, model.base_parameter_name(2).unwrap())
     );
+    // late in the record, in a later block of the stream: placed there by both paths (the
+    // block's own sample, not shifted by where the block starts, passed unnoticed)
+    let mut late = data;
+    if let Some(q1) = late.q.joints_mut().next() {
+        q1[50_000..50_100].fill(peak + 1.0);
+    }
+    let model = Overflowing {
+        above: peak + 0.5,
+        ..model
+    };
+    let streamed = named(identify(&model, &late, &config).unwrap_err());
+    let dense = named(identify_dense_of(&model, &late, &config).unwrap_err());
+    assert_eq!(streamed, dense);
+    let line: usize = streamed.0.rsplit(':').next().unwrap().parse().unwrap();
+    assert!((49_000..50_100).contains(&line), "{streamed:?}");
 }
