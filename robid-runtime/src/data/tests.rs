@@ -129,6 +129,56 @@ fn without_time_keys_the_time_column_is_found_by_name() {
     assert!(e.contains("no time column"), "{e}");
 }
 
+/// The time column found by name must be the same in every source's file: positions and
+/// torques in two files, each with `time_ms`, are read at 2 ms; files whose time columns
+/// differ (`t` in one, `time_ms` in the other) leave it to the config, which then has
+/// none. A config that names its time column keeps it, even beside another column called
+/// `t` (a controller's tick count here, at another step).
+#[test]
+fn the_time_column_found_by_name_is_each_files_and_never_the_configs() {
+    let d = Dir::new();
+    let two_sources = "[[source]]\nposition = \"q{}\"\n[[source]]\ntorque = \"tau{}\"\n";
+    let column = |time: &str, name: &str, step: f64| {
+        let mut text = format!("{time},{name}\n");
+        for k in 0..50 {
+            text.push_str(&format!("{},{}\n", step * f64::from(k), f64::from(k).sin()));
+        }
+        text
+    };
+    let q = d.file("q.csv", &column("time_ms", "q1", 2.0));
+    let tau = d.file("tau.csv", &column("time_ms", "tau1", 2.0));
+    let data = load(&cfg(two_sources), &[q.clone(), tau], 1).unwrap();
+    assert!(
+        (data.sample_time - 2e-3).abs() < 1e-15,
+        "{}",
+        data.sample_time
+    );
+    let other = d.file("other.csv", &column("t", "tau1", 0.002));
+    let e = load(&cfg(two_sources), &[q, other], 1)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no time column"), "{e}");
+
+    let mut text = String::from("clock,t,q1,tau1\n");
+    for k in 0..50 {
+        text.push_str(&format!(
+            "{},{},{},1\n",
+            1e-3 * f64::from(k),
+            4 * k,
+            f64::from(k).sin()
+        ));
+    }
+    let file = d.file("ticks.csv", &text);
+    let named =
+        cfg("time_column = \"clock\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n");
+    let data = load(&named, std::slice::from_ref(&file), 1).unwrap();
+    assert!(
+        (data.sample_time - 1e-3).abs() < 1e-15,
+        "{}",
+        data.sample_time
+    );
+}
+
 #[test]
 fn row_count_mismatch_is_an_error() {
     let d = Dir::new();
