@@ -128,7 +128,8 @@ pub struct Config {
     pub dof: Option<usize>,
     /// Sample rate in Hz when there is no time column.
     pub sample_rate: Option<f64>,
-    /// Name of the time column (in seconds unless `time_scale` says otherwise).
+    /// Name of the time column (in seconds unless `time_scale` or a unit in its name,
+    /// such as `t_ms`, says otherwise).
     pub time_column: Option<String>,
     /// Factor from the time column's unit to seconds.
     #[serde(default = "one")]

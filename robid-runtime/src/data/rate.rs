@@ -111,13 +111,28 @@ fn unit_scale(unit: &str) -> Option<f64> {
 /// that says nothing of time so reads a log with a `t` column as the example config
 /// shows, where it was refused as having no time column; `config` itself otherwise
 /// (none such column, or several, or files that differ).
+///
+/// A `time_column` the config names takes the unit its name gives (`t_ms`, `time [us]`)
+/// when `time_scale` is left at 1, as a column found by name does: `time_column =
+/// "t_ms"` alone read the milliseconds as seconds, a 1 kHz log as 1 Hz, and the error
+/// that followed pointed at the rest velocity and the angle units.
 pub(crate) fn with_found_time_column<'a>(
     config: &'a Config,
     paths: &[std::path::PathBuf],
     dof: usize,
 ) -> crate::error::Result<std::borrow::Cow<'a, Config>> {
     use std::borrow::Cow;
-    if config.sample_rate.is_some() || config.time_column.is_some() || paths.is_empty() {
+    if let Some(name) = &config.time_column {
+        return Ok(match time_name(name) {
+            Some(Some(scale)) if scale != 1.0 && config.time_scale == 1.0 => {
+                let mut config = config.clone();
+                config.time_scale = scale;
+                Cow::Owned(config)
+            }
+            _ => Cow::Borrowed(config),
+        });
+    }
+    if config.sample_rate.is_some() || paths.is_empty() {
         return Ok(Cow::Borrowed(config));
     }
     let mut found: Option<(String, Option<f64>)> = None;

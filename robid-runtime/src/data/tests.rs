@@ -179,6 +179,45 @@ fn the_time_column_found_by_name_is_each_files_and_never_the_configs() {
     );
 }
 
+/// A time column the config names takes the unit its name gives when `time_scale` is
+/// left at 1 (`time_column = "t_ms"` read milliseconds as seconds: a 500 Hz log as
+/// 0.5 Hz), in memory and on disk; a `time_scale` the config gives is kept.
+#[test]
+fn a_named_time_column_takes_the_unit_of_its_name() {
+    let d = Dir::new();
+    let mut text = String::from("t_ms,q1,tau1\n");
+    for k in 0..50 {
+        text.push_str(&format!("{},{},1\n", 2 * k, f64::from(k).sin()));
+    }
+    let file = d.file("log.csv", &text);
+    let source = "[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n";
+    let config = cfg(&format!("time_column = \"t_ms\"\n{source}"));
+    let data = load(&config, std::slice::from_ref(&file), 1).unwrap();
+    assert!(
+        (data.sample_time - 2e-3).abs() < 1e-15,
+        "{}",
+        data.sample_time
+    );
+    let record = SpilledRecord::open(&config, std::slice::from_ref(&file), 1)
+        .unwrap()
+        .unwrap();
+    assert!(
+        (record.sample_time() - 2e-3).abs() < 1e-15,
+        "{}",
+        record.sample_time()
+    );
+    // the config's own scale wins (here a clock in tenths of a millisecond)
+    let config = cfg(&format!(
+        "time_column = \"t_ms\"\ntime_scale = 1e-4\n{source}"
+    ));
+    let data = load(&config, std::slice::from_ref(&file), 1).unwrap();
+    assert!(
+        (data.sample_time - 2e-4).abs() < 1e-15,
+        "{}",
+        data.sample_time
+    );
+}
+
 #[test]
 fn row_count_mismatch_is_an_error() {
     let d = Dir::new();
