@@ -287,14 +287,19 @@ pub fn identify(
     data: &dyn Record,
     config: &Config,
 ) -> Result<Identification> {
-    if streams(config) {
+    let mut id = if streams(config) {
         let plan = checked_plan(model, data, config, Rows::Estimation)?;
-        return identify_streaming(model, data, config, &plan);
-    }
-    check_data(model, data, config)?;
-    let whole = data.read(0, data.samples())?;
-    let rows = checked_prepare(model, &whole, config, Rows::Estimation)?;
-    identify_dense(model, &whole, config, rows)
+        identify_streaming(model, data, config, &plan)?
+    } else {
+        check_data(model, data, config)?;
+        let whole = data.read(0, data.samples())?;
+        let rows = checked_prepare(model, &whole, config, Rows::Estimation)?;
+        identify_dense(model, &whole, config, rows)?
+    };
+    id.estimate
+        .warnings
+        .extend(super::advice::processing_warnings(config, data)?);
+    Ok(id)
 }
 
 /// [`identify`] through the whole observation matrix (every method; the reference of the

@@ -2,6 +2,7 @@
 //! estimate -> fit (docs/identification.md#pipeline-overview). Regressor rows and filtering
 //! run in parallel (rayon).
 
+mod advice;
 mod friction;
 mod identify;
 mod observe;
