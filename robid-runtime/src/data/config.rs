@@ -553,6 +553,26 @@ pub struct Processing {
     /// designs them) enter the estimation; the fit is still reported on the whole range.
     #[serde(default)]
     pub pieces: Option<Vec<[f64; 2]>>,
+    /// What a gap in a file's time stamps does (a step of more than
+    /// [`crate::data::GAP_RATIO`] median steps): refused (the default) or the record cut
+    /// there into continuous segments ([`Gaps::Split`], [`crate::data::load_segments`]).
+    #[serde(default)]
+    pub gaps: Gaps,
+}
+
+/// `processing.gaps`: what a gap in the time stamps does
+/// (docs/identification.md#gaps-in-the-time-stamps).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Gaps {
+    /// A gap is an error naming its line ([`crate::DataError::TimeGap`]).
+    #[default]
+    Refuse,
+    /// The record is cut at every gap into continuous segments, each processed on its own
+    /// (filters, derivatives, decimation, trims never cross a gap), their equations
+    /// stacked into one estimate; a segment too short for the processing is left out with
+    /// a warning.
+    Split,
 }
 
 /// Velocity below which a joint's equations are dropped when the config gives no
