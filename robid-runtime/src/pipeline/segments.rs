@@ -342,3 +342,187 @@ pub fn validate_loaded(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::data::{Config, load, load_segments};
+    use crate::pipeline::tests::synthetic::{CONFIG, DOF, Synthetic, csv_with_noise};
+
+    /// The synthetic trajectory at 1 kHz (60 s, torque noise 0.5 N m) without the data
+    /// rows `cut` (0-based ranges), written to `dir/name`.
+    fn without_rows(dir: &Path, name: &str, cut: &[std::ops::Range<usize>]) -> std::path::PathBuf {
+        let text = csv_with_noise(60_000, 1000.0, [0.5; DOF]);
+        let mut lines = text.lines();
+        let mut out = format!("{}\n", lines.next().unwrap());
+        for (k, l) in lines.enumerate() {
+            if !cut.iter().any(|c| c.contains(&k)) {
+                out.push_str(l);
+                out.push('\n');
+            }
+        }
+        let path = dir.join(name);
+        std::fs::write(&path, out).unwrap();
+        path
+    }
+
+    fn config(method: &str, gaps: &str) -> Config {
+        let text = format!("{CONFIG}gaps = \"{gaps}\"\n[estimation]\nmethod = \"{method}\"\n");
+        Config::from_toml_str(&text, Path::new("gaps.toml")).unwrap()
+    }
+
+    /// Largest difference between two estimates' values, relative to each value (at least
+    /// its standard deviation).
+    fn difference(a: &crate::estimate::Estimate, b: &crate::estimate::Estimate) -> f64 {
+        assert_eq!(a.names, b.names);
+        (0..a.values.len())
+            .map(|i| (a.values[i] - b.values[i]).abs() / a.values[i].abs().max(a.std[i]))
+            .fold(0.0, f64::max)
+    }
+
+    /// A 2 s gap in the middle: the record is cut there, each side processed on its own
+    /// and their equations stacked, the same estimate to 1e-10 as the two sides given by
+    /// hand as two data sets and stacked (streaming WLS and dense RLS), with the same
+    /// equations; the truth lies within 3 of the stated standard deviations.
+    #[test]
+    fn a_gap_cuts_the_record_into_segments_stacked_as_two_data_sets() {
+        let dir = tempfile::tempdir().unwrap();
+        let gapped = without_rows(dir.path(), "gapped.csv", &[30_000..32_000]);
+        let before = without_rows(dir.path(), "before.csv", &[30_000..60_000]);
+        let after = without_rows(dir.path(), "after.csv", &[0..32_000]);
+        let model = Synthetic::default();
+        for method in ["wls", "rls"] {
+            let config = config(method, "split");
+            let segments = load_segments(&config, &[gapped.clone()], DOF).unwrap();
+            assert_eq!(segments.gaps, vec![[29.999, 32.0]]);
+            let lines: Vec<[u64; 2]> = segments.spans.iter().map(|s| s.lines).collect();
+            assert_eq!(lines, vec![[2, 30_001], [30_002, 58_001]]);
+            let id = identify_segments(&model, &segments, &config).unwrap();
+            assert!(id.segments.dropped.is_empty());
+            assert_eq!(id.segments.used.len(), 2);
+            let by_hand = [
+                load(&config, &[before.clone()], DOF).unwrap(),
+                load(&config, &[after.clone()], DOF).unwrap(),
+            ];
+            let (stacked, prediction) = if streams(&config) {
+                stacked_streaming(&model, &by_hand, &config).unwrap()
+            } else {
+                stacked_dense(&model, &by_hand, &config).unwrap()
+            };
+            let e = &id.identification.estimate;
+            let d = difference(e, &stacked);
+            eprintln!("{method}: segments against two data sets stacked: {d:.2e}");
+            assert!(d < 1e-10, "{method}: {d}");
+            assert_eq!(e.rows, stacked.rows);
+            assert!(
+                id.identification.prediction.measured == prediction.measured,
+                "{method}: the predictions' measured torques differ"
+            );
+            let truth = crate::pipeline::tests::synthetic::true_parameters();
+            let outside = (0..truth.len())
+                .filter(|&i| (e.values[i] - truth[i]).abs() > 3.0 * e.std[i])
+                .count();
+            assert!(
+                outside <= truth.len() / 20,
+                "{method}: {outside} outside 3 std"
+            );
+        }
+    }
+
+    /// A third segment shorter than the processing takes is left out, said with its lines
+    /// and why, and the estimate is the other two's; with every segment too short, an
+    /// error names them.
+    #[test]
+    fn a_short_segment_is_left_out_and_said() {
+        let dir = tempfile::tempdir().unwrap();
+        let three = without_rows(dir.path(), "three.csv", &[30_000..32_000, 50_000..59_700]);
+        let two = without_rows(dir.path(), "two.csv", &[30_000..32_000, 50_000..60_000]);
+        let model = Synthetic::default();
+        let config = config("wls", "split");
+        let segments = load_segments(&config, &[three], DOF).unwrap();
+        assert_eq!(segments.segments.len(), 3);
+        let id = identify_segments(&model, &segments, &config).unwrap();
+        assert_eq!(id.segments.used.len(), 2);
+        let [dropped] = &id.segments.dropped[..] else {
+            panic!("{:?}", id.segments.dropped)
+        };
+        assert_eq!(dropped.span.lines, [48_002, 48_301]);
+        assert_eq!(dropped.span.samples, [48_000, 48_300]);
+        assert!(dropped.needed > 300, "{dropped}");
+        let warning = id.segments.dropped_warning().unwrap();
+        assert!(
+            warning.contains("1 of the 3 segments between its gaps left out: lines 48002 to 48301 (59.7 to 59.999 s, 300 samples): 300 samples, fewer than the"),
+            "{warning}"
+        );
+        let reference = load_segments(&config, &[two], DOF).unwrap();
+        let reference = identify_segments(&model, &reference, &config).unwrap();
+        let d = difference(
+            &id.identification.estimate,
+            &reference.identification.estimate,
+        );
+        assert!(d < 1e-12, "{d}");
+        let report = crate::report::Report::from_segments(&id, |_| None);
+        assert!(
+            report
+                .warnings
+                .iter()
+                .any(|w| w.kind == "segments_left_out")
+        );
+        let json: serde_json::Value = serde_json::from_str(&report.to_json()).unwrap();
+        assert_eq!(json["segments"]["dropped"][0]["lines"][0], 48_002);
+        assert_eq!(json["segments"]["used"][1]["seconds"][0], 32.0);
+        let text = crate::report::text_table(&report);
+        assert!(
+            text.contains("estimation segments of") && text.contains("left out lines 48002"),
+            "{text}"
+        );
+
+        // only short segments
+        let short = without_rows(dir.path(), "short.csv", &[300..30_000, 30_300..60_000]);
+        let segments = load_segments(&config, &[short], DOF).unwrap();
+        let e = identify_segments(&model, &segments, &config).unwrap_err();
+        assert!(matches!(e, Error::TooFewSamples { .. }), "{e:?}");
+        let e = e.to_string();
+        assert!(
+            e.contains("every segment between its 1 gaps is too short for the identification")
+                && e.contains("lines 2 to 301")
+                && e.contains("lines 302 to 601"),
+            "{e}"
+        );
+    }
+
+    /// A validation record with a gap is predicted segment by segment, at the times of
+    /// the record (the gap stays a gap), as the two sides predicted alone.
+    #[test]
+    fn a_validation_record_with_a_gap_is_predicted_by_segments() {
+        let dir = tempfile::tempdir().unwrap();
+        let gapped = without_rows(dir.path(), "gapped.csv", &[30_000..32_000]);
+        let before = without_rows(dir.path(), "before.csv", &[30_000..60_000]);
+        let model = Synthetic::default();
+        let config = config("wls", "split");
+        let values = crate::pipeline::tests::synthetic::true_parameters();
+        let segments = load_segments(&config, &[gapped], DOF).unwrap();
+        let (p, used) = validate_segments(&model, &segments, &config, &values).unwrap();
+        assert_eq!(used.used.len(), 2);
+        let alone = validate(
+            &model,
+            &load(&config, &[before], DOF).unwrap(),
+            &config,
+            &values,
+        )
+        .unwrap();
+        let n = alone.measured[0].len();
+        assert!(
+            p.measured[0][..n] == alone.measured[0][..],
+            "the first segment's torques differ from its own file's"
+        );
+        assert!(
+            p.time[0][..n] == alone.time[0][..],
+            "the first segment's times differ from its own file's"
+        );
+        // the second segment's times start after the gap
+        assert!(p.time[0][n] > 32.0, "{}", p.time[0][n]);
+    }
+}
