@@ -243,3 +243,128 @@ pub fn load_or_split(config: &Config, files: &[PathBuf], dof: usize) -> Result<L
     }
     Ok(Loaded::Segments(s))
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::DataError;
+    use crate::data::load;
+    use crate::error::Error;
+
+    const SPLIT: &str = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n[processing]\ngaps = \"split\"\n";
+
+    fn cfg(text: &str) -> Config {
+        Config::from_toml_str(text, Path::new("c.toml")).unwrap()
+    }
+
+    /// A 1 kHz log `t,q1,tau1` of the times `t` (ms, jittered by `jitter` of a step at
+    /// every row).
+    fn log(times: impl Iterator<Item = usize>, jitter: f64) -> String {
+        let mut csv = String::from("t,q1,tau1\n");
+        for k in times {
+            let wobble = jitter * ((k * 7919) % 13) as f64 / 12.0;
+            let t = (k as f64 + wobble) * 1e-3;
+            csv.push_str(&format!("{t},{},{}\n", (3.0 * t).sin(), 2.0 * t));
+        }
+        csv
+    }
+
+    /// Gaps cut the record: each segment a data set of its own with its file lines, a
+    /// clock jittered by 3 % resampled onto each segment's own grid (from its first stamp,
+    /// its own mean step: nothing interpolated across a gap), a lone sample between two
+    /// gaps set apart; the default refuses the same file naming the setting, and a file
+    /// without a gap is the data set `load` gives.
+    #[test]
+    fn gaps_cut_the_record_into_segments_each_resampled_on_its_own() {
+        let dir = tempfile::tempdir().unwrap();
+        let times = (0..1000).chain(3000..3001).chain(5000..5600);
+        let file = dir.path().join("paused.csv");
+        std::fs::write(&file, log(times, 0.03)).unwrap();
+        let s = load_segments(&cfg(SPLIT), std::slice::from_ref(&file), 1).unwrap();
+        assert_eq!(s.gaps.len(), 2);
+        assert_eq!(s.segments.len(), 2);
+        let lines: Vec<[u64; 2]> = s.spans.iter().map(|s| s.lines).collect();
+        assert_eq!(lines, vec![[2, 1001], [1003, 1602]]);
+        let [single] = &s.single[..] else {
+            panic!("{:?}", s.single)
+        };
+        assert_eq!((single.lines, single.samples), ([1002, 1002], [1000, 1001]));
+        for (d, span) in s.segments.iter().zip(&s.spans) {
+            let n = span.samples[1] - span.samples[0];
+            assert_eq!(d.samples(), n);
+            let step = (span.seconds[1] - span.seconds[0]) / (n - 1) as f64;
+            assert!((d.sample_time - step).abs() < 1e-15, "{}", d.sample_time);
+            assert!(matches!(d.warnings[..], [Warning::IrregularTime { .. }]));
+            // tau = 2 t: on the segment's grid from its first stamp, not across the gap
+            for k in [0, n / 2, n - 1] {
+                let t = span.seconds[0] + k as f64 * d.sample_time;
+                assert!((d.tau[0][k] - 2.0 * t).abs() < 1e-12, "{k}");
+            }
+        }
+        assert_eq!(s.all_warnings().len(), 2);
+        // the default refuses it, naming the setting
+        let refuse = SPLIT.replace("gaps = \"split\"", "");
+        let e = load(&cfg(&refuse), std::slice::from_ref(&file), 1).unwrap_err();
+        assert!(matches!(e, Error::Data(DataError::TimeGap { .. })), "{e}");
+        assert!(e.to_string().contains("set `gaps = \"split\"`"), "{e}");
+        // `load` (one continuous record) with the setting says where it applies
+        let e = load(&cfg(SPLIT), std::slice::from_ref(&file), 1)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("applies to the data of `robid identify`"), "{e}");
+        // without a gap: one segment, `load`'s data set
+        let plain = dir.path().join("plain.csv");
+        std::fs::write(&plain, log(0..500, 0.03)).unwrap();
+        let s = load_segments(&cfg(SPLIT), std::slice::from_ref(&plain), 1).unwrap();
+        let whole = load(&cfg(SPLIT), std::slice::from_ref(&plain), 1).unwrap();
+        assert!(s.gaps.is_empty() && s.single.is_empty());
+        assert_eq!(s.segments[0].tau, whole.tau);
+        assert_eq!(s.spans[0].lines, [2, 501]);
+        assert_eq!(s.spans[0].seconds[0], 0.0);
+        assert!(matches!(
+            load_or_split(&cfg(SPLIT), &[plain], 1).unwrap(),
+            Loaded::Record(_)
+        ));
+        assert!(matches!(
+            load_or_split(&cfg(SPLIT), &[file], 1).unwrap(),
+            Loaded::Segments(_)
+        ));
+    }
+
+    /// A gap in a file joined by time to the first is refused, naming what the setting
+    /// cuts; gaps in the first file are cut with the other file interpolated in each
+    /// segment.
+    #[test]
+    fn a_gap_in_a_file_joined_by_time_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let write = |name: &str, times: Vec<usize>, column: &str| {
+            let mut csv = format!("t,{column}\n");
+            for k in times {
+                let t = k as f64 * 1e-3;
+                csv.push_str(&format!("{t},{}\n", 2.0 * t));
+            }
+            let path = dir.path().join(name);
+            std::fs::write(&path, csv).unwrap();
+            path
+        };
+        let text = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\n[[source]]\ntorque = \"tau{}\"\n[processing]\ngaps = \"split\"\n";
+        let whole: Vec<usize> = (0..2000).collect();
+        let paused: Vec<usize> = (0..800).chain(1200..2000).collect();
+        let q = write("q.csv", paused.clone(), "q1");
+        let tau = write("tau.csv", whole, "tau1");
+        let s = load_segments(&cfg(text), &[q.clone(), tau.clone()], 1).unwrap();
+        assert_eq!(s.segments.len(), 2);
+        assert!((s.segments[1].tau[0][0] - 2.4).abs() < 1e-12);
+        let tau_paused = write("tau2.csv", paused, "tau1");
+        let q_whole = write("q2.csv", (0..2000).collect(), "q1");
+        let e = load_segments(&cfg(text), &[q_whole, tau_paused], 1)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("cuts the first file joined by time at its gaps"),
+            "{e}"
+        );
+    }
+}
