@@ -34,6 +34,8 @@
 //! validation_range = [0, 15750]  # optional sample range of each validation file (default: all)
 //! pieces = [[1.2, 1.9], [2.6, 3.3]]  # optional: estimate on these windows only (s from the
 //!                                # first sample; Milella's piece-wise identification)
+//! gaps = "split"                 # or "refuse" (default): a gap in the time stamps cuts the
+//!                                # record into segments processed on their own, stacked
 //!
 //! [estimation]
 //! method = "wls"                 # "ols", "wls", "rls", "link-by-link", "energy" or "per-axis"
@@ -74,6 +76,7 @@
 //! | `processing.rest_velocity` | 0 <= v <= 1e6 |
 //! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end <= the samples of the data |
 //! | `processing.pieces` | windows `[start, end]` in s, 0 <= start < end; not with the energy method |
+//! | `processing.gaps` | `"refuse"` or `"split"`; with `"split"` and a record with gaps, not with `range`, `validation_range`, `pieces` or the energy method |
 //! | `estimation.rank_tolerance` | 0 < tol < 1 |
 //! | `estimation.forgetting` | 0.5 <= lambda <= 1 |
 //! | `estimation.energy_window` | 0 < window <= 1e6 s |
