@@ -352,13 +352,13 @@ mod tests {
     use crate::pipeline::tests::synthetic::{CONFIG, DOF, Synthetic, csv_with_noise};
 
     /// The synthetic trajectory at 1 kHz (60 s, torque noise 0.5 N m) without the data
-    /// rows `cut` (0-based ranges), written to `dir/name`.
-    fn without_rows(dir: &Path, name: &str, cut: &[std::ops::Range<usize>]) -> std::path::PathBuf {
+    /// rows `cut` (0-based `[start, end)`), written to `dir/name`.
+    fn without_rows(dir: &Path, name: &str, cut: &[[usize; 2]]) -> std::path::PathBuf {
         let text = csv_with_noise(60_000, 1000.0, [0.5; DOF]);
         let mut lines = text.lines();
         let mut out = format!("{}\n", lines.next().unwrap());
         for (k, l) in lines.enumerate() {
-            if !cut.iter().any(|c| c.contains(&k)) {
+            if !cut.iter().any(|[a, b]| (*a..*b).contains(&k)) {
                 out.push_str(l);
                 out.push('\n');
             }
@@ -389,13 +389,13 @@ mod tests {
     #[test]
     fn a_gap_cuts_the_record_into_segments_stacked_as_two_data_sets() {
         let dir = tempfile::tempdir().unwrap();
-        let gapped = without_rows(dir.path(), "gapped.csv", &[30_000..32_000]);
-        let before = without_rows(dir.path(), "before.csv", &[30_000..60_000]);
-        let after = without_rows(dir.path(), "after.csv", &[0..32_000]);
+        let gapped = without_rows(dir.path(), "gapped.csv", &[[30_000, 32_000]]);
+        let before = without_rows(dir.path(), "before.csv", &[[30_000, 60_000]]);
+        let after = without_rows(dir.path(), "after.csv", &[[0, 32_000]]);
         let model = Synthetic::default();
         for method in ["wls", "rls"] {
             let config = config(method, "split");
-            let segments = load_segments(&config, &[gapped.clone()], DOF).unwrap();
+            let segments = load_segments(&config, std::slice::from_ref(&gapped), DOF).unwrap();
             assert_eq!(segments.gaps, vec![[29.999, 32.0]]);
             let lines: Vec<[u64; 2]> = segments.spans.iter().map(|s| s.lines).collect();
             assert_eq!(lines, vec![[2, 30_001], [30_002, 58_001]]);
@@ -403,8 +403,8 @@ mod tests {
             assert!(id.segments.dropped.is_empty());
             assert_eq!(id.segments.used.len(), 2);
             let by_hand = [
-                load(&config, &[before.clone()], DOF).unwrap(),
-                load(&config, &[after.clone()], DOF).unwrap(),
+                load(&config, std::slice::from_ref(&before), DOF).unwrap(),
+                load(&config, std::slice::from_ref(&after), DOF).unwrap(),
             ];
             let (stacked, prediction) = if streams(&config) {
                 stacked_streaming(&model, &by_hand, &config).unwrap()
@@ -437,8 +437,12 @@ mod tests {
     #[test]
     fn a_short_segment_is_left_out_and_said() {
         let dir = tempfile::tempdir().unwrap();
-        let three = without_rows(dir.path(), "three.csv", &[30_000..32_000, 50_000..59_700]);
-        let two = without_rows(dir.path(), "two.csv", &[30_000..32_000, 50_000..60_000]);
+        let three = without_rows(
+            dir.path(),
+            "three.csv",
+            &[[30_000, 32_000], [50_000, 59_700]],
+        );
+        let two = without_rows(dir.path(), "two.csv", &[[30_000, 32_000], [50_000, 60_000]]);
         let model = Synthetic::default();
         let config = config("wls", "split");
         let segments = load_segments(&config, &[three], DOF).unwrap();
@@ -480,7 +484,7 @@ mod tests {
         );
 
         // only short segments
-        let short = without_rows(dir.path(), "short.csv", &[300..30_000, 30_300..60_000]);
+        let short = without_rows(dir.path(), "short.csv", &[[300, 30_000], [30_300, 60_000]]);
         let segments = load_segments(&config, &[short], DOF).unwrap();
         let e = identify_segments(&model, &segments, &config).unwrap_err();
         assert!(matches!(e, Error::TooFewSamples { .. }), "{e:?}");
@@ -498,8 +502,8 @@ mod tests {
     #[test]
     fn a_validation_record_with_a_gap_is_predicted_by_segments() {
         let dir = tempfile::tempdir().unwrap();
-        let gapped = without_rows(dir.path(), "gapped.csv", &[30_000..32_000]);
-        let before = without_rows(dir.path(), "before.csv", &[30_000..60_000]);
+        let gapped = without_rows(dir.path(), "gapped.csv", &[[30_000, 32_000]]);
+        let before = without_rows(dir.path(), "before.csv", &[[30_000, 60_000]]);
         let model = Synthetic::default();
         let config = config("wls", "split");
         let values = crate::pipeline::tests::synthetic::true_parameters();
