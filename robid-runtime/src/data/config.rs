@@ -34,6 +34,8 @@
 //! validation_range = [0, 15750]  # optional sample range of each validation file (default: all)
 //! pieces = [[1.2, 1.9], [2.6, 3.3]]  # optional: estimate on these windows only (s from the
 //!                                # first sample; Milella's piece-wise identification)
+//! gaps = "split"                 # or "refuse" (default): a gap in the time stamps cuts the
+//!                                # record into segments processed on their own, stacked
 //!
 //! [estimation]
 //! method = "wls"                 # "ols", "wls", "rls", "link-by-link", "energy" or "per-axis"
@@ -74,6 +76,7 @@
 //! | `processing.rest_velocity` | 0 <= v <= 1e6 |
 //! | `processing.range`, `processing.validation_range` | `[start, end]` with start < end <= the samples of the data |
 //! | `processing.pieces` | windows `[start, end]` in s, 0 <= start < end; not with the energy method |
+//! | `processing.gaps` | `"refuse"` or `"split"`; with `"split"` and a record with gaps, not with `range`, `validation_range`, `pieces` or the energy method |
 //! | `estimation.rank_tolerance` | 0 < tol < 1 |
 //! | `estimation.forgetting` | 0.5 <= lambda <= 1 |
 //! | `estimation.energy_window` | 0 < window <= 1e6 s |
@@ -554,6 +557,26 @@ pub struct Processing {
     /// designs them) enter the estimation; the fit is still reported on the whole range.
     #[serde(default)]
     pub pieces: Option<Vec<[f64; 2]>>,
+    /// What a gap in a file's time stamps does (a step of more than
+    /// [`crate::data::GAP_RATIO`] median steps): refused (the default) or the record cut
+    /// there into continuous segments ([`Gaps::Split`], [`crate::data::load_segments`]).
+    #[serde(default)]
+    pub gaps: Gaps,
+}
+
+/// `processing.gaps`: what a gap in the time stamps does
+/// (docs/identification.md#gaps-in-the-time-stamps).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Gaps {
+    /// A gap is an error naming its line ([`crate::DataError::TimeGap`]).
+    #[default]
+    Refuse,
+    /// The record is cut at every gap into continuous segments, each processed on its own
+    /// (filters, derivatives, decimation, trims never cross a gap), their equations
+    /// stacked into one estimate; a segment too short for the processing is left out with
+    /// a warning.
+    Split,
 }
 
 /// Velocity below which a joint's equations are dropped when the config gives no

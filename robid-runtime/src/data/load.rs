@@ -6,6 +6,7 @@
 //! name its keys at their file:line ([`Config::locate`]).
 
 use crate::DataError;
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use crate::Num;
@@ -18,7 +19,7 @@ use crate::data::time::{
     check_gaps, check_monotonic, check_sample_time, interpolate, regularity, uniform_grid,
 };
 use crate::data::{
-    AngleUnit, Config, Dataset, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
+    AngleUnit, Config, Dataset, Gaps, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
 };
 use crate::drive::DriveChain;
 use crate::error::{Error, Result};
@@ -77,10 +78,43 @@ pub(crate) fn check_joints(dof: usize) -> Result<()> {
 }
 
 fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Dataset> {
+    let (config, read) = read_sources(config, files, dof, Gaps::Refuse)?;
+    finish(&config, dof, read)
+}
+
+/// The columns of every `[[source]]` read and joined, on the first file's time stamps
+/// (when it has them), before they are made uniform: what [`load`] makes a data set of
+/// ([`finish`]), or `load_segments` cuts at its gaps first.
+pub(crate) struct ReadSources {
+    /// Each role's columns (in [`ROLES`] order).
+    pub(crate) blocks: [Option<Vec<Vec<f64>>>; 7],
+    /// The time stamps of the first file joined by time, the file and its lines.
+    pub(crate) reference: Option<(Vec<f64>, PathBuf, Vec<u64>)>,
+    /// The rows, the first file and its lines of files joined row by row.
+    pub(crate) rows: Option<(usize, PathBuf, Vec<u64>)>,
+    /// What was repaired.
+    pub(crate) warnings: Vec<Warning>,
+    /// The sampling of each file.
+    pub(crate) samplings: Vec<Sampling>,
+    /// The name of the data set: the first file's.
+    pub(crate) name: String,
+}
+
+/// Reads the files of `config`'s sources (see [`load`]) for a `dof`-joint model, with the
+/// config that reads them (a time column found in the files). With [`Gaps::Split`], the
+/// time stamps of the first file joined by time may have gaps (the caller cuts there);
+/// a gap elsewhere is refused.
+pub(crate) fn read_sources<'a>(
+    config: &'a Config,
+    files: &[PathBuf],
+    dof: usize,
+    gaps: Gaps,
+) -> Result<(Cow<'a, Config>, ReadSources)> {
     check_joints(dof)?;
     config.check(dof)?;
     let paths = source_paths(config, files)?;
-    let config = &*with_found_time_column(config, &paths, dof)?;
+    let found = with_found_time_column(config, &paths, dof)?;
+    let config = &*found;
     let mut blocks: [Option<Vec<Vec<f64>>>; 7] = Default::default();
     let mut reference: Option<(Vec<f64>, PathBuf, Vec<u64>)> = None;
     let mut rows: Option<(usize, PathBuf, Vec<u64>)> = None;
@@ -133,7 +167,17 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         // a file kept on disk (`SpilledRecord`) with a gap is loaded here instead: its
         // clock is irregular
         if let Some(t) = &time {
-            check_gaps(t, |k| table.location(k), GAP_FIX)?;
+            match (gaps, &reference) {
+                (Gaps::Split, None) => {}
+                (Gaps::Split, Some(_)) => check_gaps(t, |k| table.location(k), GAP_FIX_JOINED)?,
+                (Gaps::Refuse, _) => {
+                    let fix = match config.processing.gaps {
+                        Gaps::Split => GAP_FIX_WHOLE,
+                        Gaps::Refuse => GAP_FIX,
+                    };
+                    check_gaps(t, |k| table.location(k), fix)?
+                }
+            }
         }
         if let Some(column) = &unread_time {
             let mut steps = Steps::default();
@@ -210,6 +254,32 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
         *t = t[overlap.clone()].to_vec();
         *lines = lines[overlap.clone()].to_vec();
     }
+    let name = paths
+        .first()
+        .and_then(|p| p.file_name())
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let read = ReadSources {
+        blocks,
+        reference,
+        rows,
+        warnings,
+        samplings,
+        name,
+    };
+    Ok((found, read))
+}
+
+/// The data set of the sources `read` with `config`: the time stamps checked and, when
+/// irregular, resampled onto a uniform grid; units and the drive chain applied.
+pub(crate) fn finish(config: &Config, dof: usize, read: ReadSources) -> Result<Dataset> {
+    let ReadSources {
+        mut blocks,
+        reference,
+        rows,
+        mut warnings,
+        samplings,
+        name,
+    } = read;
     let (sample_time, origin) = match (&reference, config.sample_rate) {
         (Some((t, path, lines)), _) => {
             let (step, warning) = regularity(t, path);
@@ -242,10 +312,6 @@ fn load_checked(config: &Config, files: &[PathBuf], dof: usize) -> Result<Datase
     };
 
     check_cutoff(config, sample_time)?;
-    let name = paths
-        .first()
-        .and_then(|p| p.file_name())
-        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
     let mut data = assemble(
         config,
         dof,
@@ -464,9 +530,23 @@ pub(crate) fn take_time(config: &Config, table: &mut Table) -> Result<Option<Vec
 }
 
 /// The end of the message about a gap in a data file's time stamps.
-const GAP_FIX: &str = "split the file at this line into two files, each recorded without a \
-     pause, and give them as runs (`[runs] files = [\"before.csv\", \"after.csv\"]`, \
-     identified one by one and together), or delete the rows on one side of the gap";
+const GAP_FIX: &str = "set `gaps = \"split\"` in [processing] to cut the record at every gap \
+     and identify from the continuous segments together (each processed on its own), or \
+     delete the rows on one side of the gap";
+
+/// The end of the message about a gap in a data file's time stamps read where
+/// `gaps = "split"` does not apply.
+const GAP_FIX_WHOLE: &str = "`gaps = \"split\"` applies to the data of `robid identify` (the \
+     estimation record and each --validate record), not to the runs of [runs] nor to the \
+     commands that read one continuous record: split the file at this line into files \
+     recorded without a pause, or delete the rows on one side of the gap";
+
+/// The end of the message about a gap in the time stamps of a file joined by time to
+/// the first file, which `gaps = "split"` does not cut.
+const GAP_FIX_JOINED: &str = "`gaps = \"split\"` cuts the first file joined by time at its \
+     gaps, not the files interpolated onto its time stamps: give the file with the gaps \
+     first among the [[source]] tables if the others have the same gaps, or delete the rows \
+     on one side of the gap in every file";
 
 /// Checks the mean time step of `path` against the sample rates robid takes
 /// ([`check_sample_time`], the rule trajectories share), at the `time_scale` key.

@@ -12,6 +12,7 @@ mod parameters;
 mod rate;
 mod record;
 mod sampling;
+mod segments;
 mod table;
 mod time;
 
@@ -19,7 +20,7 @@ pub use crate::toml_syntax::read_text;
 pub(crate) use config::nonzero;
 pub use config::{
     AngleUnit, Columns, Config, ConfigOrigin, Cutoff, DEFAULT_REST_VELOCITY, Decimation,
-    Derivative, Differentiation, DifferentiationMethod, EXAMPLE_CONFIG, Estimation, Lowpass,
+    Derivative, Differentiation, DifferentiationMethod, EXAMPLE_CONFIG, Estimation, Gaps, Lowpass,
     Method, PerJoint, Processing, RunFiles, RunMode, Runs, Signal, Source, Units,
 };
 pub use dataset::{DataOrigin, Dataset};
@@ -32,6 +33,7 @@ pub use rate::{RATE_CHECK_ROWS, RATE_TOLERANCE, REGULAR_SHARE, REGULAR_SPREAD, t
 pub(crate) use record::joined_with;
 pub use record::{Record, SpilledRecord, load_record};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};
+pub use segments::{Loaded, SegmentSpan, Segments, load_or_split, load_segments};
 pub use table::{
     ColumnMapping, Table, WINDOW, for_each_window, read_columns, read_columns_from, read_header,
 };

@@ -354,9 +354,10 @@ impl Steps {
 
 /// The fix for a gap in a time column that the config does not read.
 const UNREAD_GAP_FIX: &str = "with `sample_rate`, the rows on either side would be taken \
-     for one sample apart; split the file at this line into two files, each recorded without a \
-     pause, and give them as runs (`[runs] files = [\"before.csv\", \"after.csv\"]`, \
-     identified one by one and together), or delete the rows on one side of the gap";
+     for one sample apart; read the time column instead of `sample_rate` (`time_column`) and \
+     set `gaps = \"split\"` in [processing] to identify from the continuous segments between \
+     the gaps, or split the file at this line into two files, or delete the rows on one side \
+     of the gap";
 
 /// Checks the config's `sample_rate` against the time column `column` of the file
 /// `path`, whose steps are `steps`, block by block ([`Steps`]), in file order: an error at

@@ -429,8 +429,7 @@ fn a_gap_in_the_time_stamps_is_refused_with_its_line() {
     for part in [
         "the time stamps jump from 1.499 s to 31.5 s, a gap of 30.001 s, 30000 times the \
          median step of 0.001 s (more than 10 is a gap, not jitter)",
-        "split the file at this line into two files",
-        "[runs] files = [",
+        "set `gaps = \"split\"` in [processing] to cut the record at every gap",
         "or delete the rows on one side of the gap",
     ] {
         assert!(message.contains(part), "{part}: {message}");

@@ -192,6 +192,17 @@ pub(crate) fn find_gap(t: &[f64]) -> Option<(usize, f64)> {
     Some((k, median))
 }
 
+/// Every gap of increasing time stamps `t` ([`find_gap`]: a step longer than
+/// [`GAP_RATIO`] median steps): the indices of the samples after them, in order.
+pub(crate) fn find_gaps(t: &[f64]) -> Vec<usize> {
+    match find_gap(t) {
+        None => Vec::new(),
+        Some((first, median)) => (first..t.len())
+            .filter(|&k| t[k] - t[k - 1] > GAP_RATIO * median)
+            .collect(),
+    }
+}
+
 /// Refuses increasing time stamps `t` with a gap ([`find_gap`]): a
 /// [`DataError::TimeGap`] at `at(k)`, the place of sample `k` after the gap (its file
 /// line), ending with `fix`.

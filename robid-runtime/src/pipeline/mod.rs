@@ -8,6 +8,7 @@ mod identify;
 mod observe;
 mod prepare;
 mod runs;
+mod segments;
 mod static_samples;
 mod stream;
 
@@ -18,6 +19,10 @@ pub use identify::{
 pub use observe::{decimator, observe};
 pub use prepare::{Prepared, RotorStates, automatic_trim, prepare};
 pub use runs::{RepeatedIdentification, RunSpread, average, identify_runs, stack};
+pub use segments::{
+    DroppedSegment, SegmentUse, SegmentedIdentification, identify_segments, validate_loaded,
+    validate_segments,
+};
 pub use static_samples::{StaticFit, StaticKind, identify_static, static_rows};
 
 #[cfg(test)]

@@ -110,6 +110,9 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
     if let Some(rows) = &report.estimation {
         let _ = writeln!(h, "<p>Estimation rows: {}.</p>", escape(&rows.to_string()));
     }
+    if let Some(g) = &report.segments {
+        h.push_str(&g.html("Estimation"));
+    }
     if let Some(c) = &report.cutoff {
         let _ = writeln!(
             h,
@@ -139,6 +142,11 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
         figures_row(&mut h, &format!("validation {name}"), &f);
     }
     h.push_str("</table>\n");
+    for v in &report.validation {
+        if let Some(g) = &v.segments {
+            h.push_str(&g.html("Validation"));
+        }
+    }
     reference_table(&mut h, report);
     if !report.warnings.is_empty() {
         h.push_str("<h2>Warnings</h2>\n<ul>\n");
@@ -222,6 +230,7 @@ mod tests {
                 message: "a & b".into(),
             }],
             runs: None,
+            segments: None,
         }
     }
 

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::estimate::{Estimate, QualityWarning};
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::Identification;
-use crate::report::RunsEntry;
+use crate::report::{RunsEntry, SegmentsEntry};
 use crate::validate::{Fit, Prediction, UsedRows, relative_improvement};
 
 /// A warning in the report: machine-readable kind and parameters, and the message a
@@ -103,6 +103,10 @@ pub struct ValidationEntry {
     /// As [`FitEntry::unfiltered_relative_error`].
     #[serde(default)]
     pub unfiltered_relative_error: Option<f64>,
+    /// The file's segments when its time stamps have gaps and the config cuts it there
+    /// (`gaps = "split"`); absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub segments: Option<SegmentsEntry>,
 }
 
 /// A validation file predicted by a reference model (parameters from CAD, a data sheet or
@@ -175,6 +179,10 @@ pub struct Report {
     /// for one data set).
     #[serde(default)]
     pub runs: Option<RunsEntry>,
+    /// The estimation record's segments when its time stamps have gaps and the config cuts
+    /// it there (`gaps = "split"`); absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub segments: Option<SegmentsEntry>,
 }
 
 impl From<&Fit> for FitEntry {
@@ -222,6 +230,7 @@ impl Report {
             cutoff: None,
             warnings: estimate.warnings.iter().map(ReportWarning::from).collect(),
             runs: None,
+            segments: None,
         }
     }
 
@@ -249,6 +258,7 @@ impl Report {
             reference: None,
             torque: None,
             unfiltered_relative_error: None,
+            segments: None,
         });
         self
     }
@@ -279,6 +289,7 @@ impl Report {
             reference: None,
             torque: fit.torque,
             unfiltered_relative_error: fit.unfiltered_relative_error,
+            segments: None,
         });
         self
     }
@@ -313,6 +324,13 @@ impl Report {
         }
         if !self.error_bound_percent.is_finite() {
             return bad("the report's bound on the relative estimation error".into());
+        }
+        let segments = self.segments.iter();
+        if segments
+            .chain(self.validation.iter().flat_map(|v| &v.segments))
+            .any(|s| !s.is_finite())
+        {
+            return bad("the report's segments of a record with gaps".into());
         }
         if self.runs.as_ref().is_some_and(|r| !r.is_finite()) {
             return bad("the report's figures of the repeated runs".into());

@@ -6,10 +6,12 @@ mod html;
 mod json;
 mod plot;
 mod runs;
+mod segments;
 mod table;
 
 pub use html::{html_report, write_html};
 pub use json::{FitEntry, ParameterEntry, ReferenceFit, Report, ReportWarning, ValidationEntry};
 pub use plot::{plot_torques, torque_svg};
 pub use runs::{RunEntry, RunParameterEntry, RunsEntry};
+pub use segments::SegmentsEntry;
 pub use table::text_table;

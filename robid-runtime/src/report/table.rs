@@ -25,6 +25,9 @@ pub fn text_table(report: &Report) -> String {
     if let Some(rows) = &report.estimation {
         let _ = writeln!(s, "estimation rows: {rows}");
     }
+    if let Some(g) = &report.segments {
+        s.push_str(&g.text("estimation"));
+    }
     let width = name_width(report.parameters.iter().map(|p| p.name.as_str()));
     let _ = writeln!(
         s,
@@ -76,6 +79,9 @@ pub fn text_table(report: &Report) -> String {
             v.nmse_eq22,
             joints(&v.rms_per_joint)
         );
+        if let Some(g) = &v.segments {
+            s.push_str(&g.text("  validation"));
+        }
         if let Some(r) = &v.reference {
             let improvement = r.relative_improvement_percent.map_or_else(
                 || "none (the reference predicts these data exactly)".to_string(),

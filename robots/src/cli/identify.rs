@@ -13,11 +13,13 @@
 use std::path::{Path, PathBuf};
 
 use robid_runtime::data::{
-    Config, EXAMPLE_CONFIG, Method, Record, load_record, load_runs, read_header,
+    Config, EXAMPLE_CONFIG, Loaded, Method, Record, load_or_split, load_runs, read_header,
 };
 use robid_runtime::estimate::check_forgetting;
 use robid_runtime::inspect::resolve_cutoff;
-use robid_runtime::pipeline::{identify, identify_runs, identify_static, validate};
+use robid_runtime::pipeline::{
+    identify, identify_runs, identify_segments, identify_static, validate_loaded,
+};
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
 use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
@@ -369,18 +371,21 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     // shows its design's
     config.progress = true;
     // one record is read from its file block by block (a long log is never held whole);
-    // repeated runs are loaded in memory
+    // repeated runs, and a record cut at its gaps (`gaps = "split"`), are loaded in memory
     let (sets, record) = match runs {
         Some(_) => (load_runs(&config, model.dof())?, None),
-        None => (Vec::new(), Some(load_record(&config, &data, model.dof())?)),
+        None => (
+            Vec::new(),
+            Some(load_or_split(&config, &data, model.dof())?),
+        ),
     };
-    let first: &dyn Record = match (&record, sets.first()) {
-        (Some(r), _) => r.as_ref(),
+    let first: &dyn Record = match (record.as_ref().and_then(Loaded::longest), sets.first()) {
+        (Some(r), _) => r,
         (None, Some(d)) => d,
         (None, None) => return Err("[runs] lists no files; list the runs' files".into()),
     };
-    let warnings = sets.iter().flat_map(|d| &d.warnings);
-    for w in warnings.chain(record.iter().flat_map(|r| r.warnings())) {
+    let warnings = sets.iter().flat_map(|d| d.warnings.clone());
+    for w in warnings.chain(record.iter().flat_map(Loaded::warnings)) {
         out::warn(format_args!("warning: {w}"));
     }
     // "auto" is chosen once, on the estimation data (the first run), and used for the
@@ -394,6 +399,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         let id = identify_runs(model, &sets, &config)?;
         let report = Report::from_runs(&id, |n| chosen.expression(n));
         (report, id.prediction, id.estimate.values)
+    } else if let Some(Loaded::Segments(segments)) = &record {
+        let s = identify_segments(model, segments, &config)?;
+        let report = Report::from_segments(&s, |n| chosen.expression(n));
+        let id = s.identification;
+        (report, id.prediction, id.estimate.values)
     } else {
         let id = identify(model, first, &config)?;
         let report = Report::from_identification(&id, |n| chosen.expression(n));
@@ -402,14 +412,17 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     report.cutoff = auto;
     let mut predictions = vec![prediction];
     for group in args.validate.chunks(per_set) {
-        let d = load_record(&config, group, model.dof())?;
+        let d = load_or_split(&config, group, model.dof())?;
         for w in d.warnings() {
             out::warn(format_args!("warning: {w}"));
         }
-        let p = validate(model, d.as_ref(), &config, &values)?;
+        let (p, segments) = validate_loaded(model, &d, &config, &values)?;
         report = report.with_prediction(&p);
+        if let Some(u) = &segments {
+            report = report.with_validation_segments(u);
+        }
         if let Some((path, values)) = &reference {
-            let fit = validate(model, d.as_ref(), &config, values)?.fit();
+            let fit = validate_loaded(model, &d, &config, values)?.0.fit();
             let index = report.validation.len() - 1;
             report = report.with_reference(index, &path.display().to_string(), &fit);
         }

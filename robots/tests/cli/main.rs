@@ -11,6 +11,7 @@ mod feasible;
 mod files;
 mod flexible;
 mod friction;
+mod gaps;
 mod one_joint;
 mod payload;
 mod reference;

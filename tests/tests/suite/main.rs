@@ -27,6 +27,7 @@ mod gaz_lwr;
 mod general_frames;
 mod identify_bad_input;
 mod identify_energy;
+mod identify_gaps;
 mod identify_known;
 mod identify_lwr4;
 mod identify_per_axis;
