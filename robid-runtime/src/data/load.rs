@@ -16,7 +16,7 @@ use crate::data::rate::{
 };
 use crate::data::table::{Optional, read_columns_in};
 use crate::data::time::{
-    check_gaps, check_monotonic, check_sample_time, interpolate, regularity, uniform_grid,
+    check_gaps, check_monotonic, check_sample_time, interpolate, nearest_lines, regularity,
 };
 use crate::data::{
     AngleUnit, Config, Dataset, Gaps, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
@@ -282,20 +282,22 @@ pub(crate) fn finish(config: &Config, dof: usize, read: ReadSources) -> Result<D
     } = read;
     let (sample_time, origin) = match (&reference, config.sample_rate) {
         (Some((t, path, lines)), _) => {
-            let (step, warning) = regularity(t, path);
+            let (step, resampled) = regularity(t, path);
             check_step(config, step, path)?;
-            if let Some(w) = warning {
-                let grid = uniform_grid(t[0], step, t.len());
+            let mut lines = lines.clone();
+            if let Some((grid, w)) = resampled {
+                let at = grid.times(0..grid.samples);
                 for b in blocks.iter_mut().flatten() {
-                    *b = b.iter().map(|x| interpolate(t, x, &grid)).collect();
+                    *b = b.iter().map(|x| interpolate(t, x, &at)).collect();
                 }
+                lines = nearest_lines(t, &lines, &at);
                 warnings.push(w);
             }
             (
                 step,
                 DataOrigin {
                     path: path.clone(),
-                    lines: lines.clone(),
+                    lines,
                 },
             )
         }

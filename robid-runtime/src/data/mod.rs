@@ -38,7 +38,8 @@ pub use table::{
     ColumnMapping, Table, WINDOW, for_each_window, read_columns, read_columns_from, read_header,
 };
 pub use time::{
-    GAP_RATIO, IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, regularity, uniform_grid,
+    GAP_RATIO, Grid, IRREGULAR_TOLERANCE, Warning, check_monotonic, interpolate, nearest_lines,
+    regularity,
 };
 pub(crate) use time::{check_gaps, check_time_stamps, sample_time_accepted};
 

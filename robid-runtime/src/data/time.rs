@@ -223,17 +223,46 @@ pub(crate) fn check_gaps(
     }
 }
 
-/// Mean step and, when some step differs from it by more than [`IRREGULAR_TOLERANCE`],
-/// the warning to issue. Needs at least 2 increasing samples.
-pub fn regularity(t: &[f64], path: &Path) -> (f64, Option<Warning>) {
+/// The sample time of increasing time stamps `t` (at least 2) and, when some step differs
+/// from their mean step by more than [`IRREGULAR_TOLERANCE`], the [`Grid`] to resample
+/// them onto with the warning to issue.
+pub fn regularity(t: &[f64], path: &Path) -> (f64, Option<(Grid, Warning)>) {
     let mut clock = Clock::default();
     clock.push(t);
-    let warning = clock
+    let resampled = clock
         .irregular()
         .then(|| super::sampling::step_statistics(t))
         .flatten()
-        .map(|s| clock.irregular_warning(&s, path));
-    (clock.mean_step(), warning)
+        .map(|s| {
+            let grid = clock.grid(&s);
+            (grid, clock.irregular_warning(&s, &grid, path))
+        });
+    let step = resampled.as_ref().map_or(clock.mean_step(), |r| r.0.step);
+    (step, resampled)
+}
+
+/// The uniform grid that irregular time stamps are resampled onto: the clock's tick from
+/// the first stamp to the last, each tick a skipped one filled ([`Clock::grid`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    /// The first time stamp (s).
+    pub start: f64,
+    /// The step (s).
+    pub step: f64,
+    /// Its samples: the last is the last stamp.
+    pub samples: usize,
+}
+
+impl Grid {
+    /// The time of sample `k` (s).
+    pub fn time(&self, k: usize) -> f64 {
+        self.start + self.step * k as f64
+    }
+
+    /// The times of samples `range`.
+    pub fn times(&self, range: std::ops::Range<usize>) -> Vec<f64> {
+        range.map(|k| self.time(k)).collect()
+    }
 }
 
 /// The extent and the extreme steps of time stamps read in parts, in order: what
@@ -293,19 +322,37 @@ impl Clock {
         self.min_step > 0.0 && !(self.max_step > GAP_RATIO * median)
     }
 
-    /// The first stamp.
-    pub(crate) fn first(&self) -> f64 {
-        self.first
+    /// The grid that the stamps, whose steps have the statistics `steps`, are resampled
+    /// onto: from the first stamp to the last in as many ticks as the stamps span, each
+    /// step counting one tick and each step of at least [`SKIP_RATIO`](super::SKIP_RATIO)
+    /// median steps the ticks it skips ([`Steps::skipped_ticks`](super::sampling::Steps)).
+    /// Stamps of a regular clock with lost ticks fall on it, and keep their values: on the
+    /// grid of their mean step, longer by the lost ticks' share, every sample would be
+    /// interpolated between two, which halves its noise's variance at mid-step (a 2/3
+    /// share on average: standard deviations 18 % too small) and smooths the motion.
+    /// Jitter alone (no skipped tick) gives the mean step.
+    pub(crate) fn grid(&self, steps: &super::sampling::Steps) -> Grid {
+        let ticks = self.samples.saturating_sub(1) + steps.skipped_ticks;
+        Grid {
+            start: self.first,
+            step: (self.last - self.first) / ticks.max(1) as f64,
+            samples: ticks + 1,
+        }
     }
 
     /// The warning that the stamps of `path`, whose steps have the statistics `steps`,
-    /// were resampled onto the uniform grid of the mean step.
-    pub(crate) fn irregular_warning(&self, steps: &super::sampling::Steps, path: &Path) -> Warning {
+    /// were resampled onto `grid`.
+    pub(crate) fn irregular_warning(
+        &self,
+        steps: &super::sampling::Steps,
+        grid: &Grid,
+        path: &Path,
+    ) -> Warning {
         Warning::IrregularTime {
             path: path.to_path_buf(),
             min_step: self.min_step,
             max_step: self.max_step,
-            step: self.mean_step(),
+            step: grid.step,
             median_step: steps.median,
             jitter: steps.jitter,
             skipped_ticks: steps.skipped_ticks,
@@ -334,9 +381,19 @@ pub fn interpolate(t: &[f64], x: &[f64], at: &[f64]) -> Vec<f64> {
     out
 }
 
-/// A uniform grid from `start` with `step`, `n` samples.
-pub fn uniform_grid(start: f64, step: f64, n: usize) -> Vec<f64> {
-    (0..n).map(|k| start + step * k as f64).collect()
+/// The line of the sample nearest in time to each of the increasing times `at`, of the
+/// samples at the increasing times `t` with the file lines `lines`: where a resampled
+/// sample comes from, for messages.
+pub fn nearest_lines(t: &[f64], lines: &[u64], at: &[f64]) -> Vec<u64> {
+    let mut k = 0;
+    at.iter()
+        .map(|&s| {
+            while k + 1 < t.len() && (t[k + 1] - s).abs() <= (t[k] - s).abs() {
+                k += 1;
+            }
+            lines.get(k).copied().unwrap_or(0)
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -361,7 +418,7 @@ mod tests {
         j[50] += 0.001;
         let (step, w) = regularity(&j, Path::new("x"));
         assert!((step - 0.005).abs() < 1e-12);
-        assert!(w.unwrap().to_string().contains("resampled"));
+        assert!(w.unwrap().1.to_string().contains("resampled"));
     }
 
     #[test]

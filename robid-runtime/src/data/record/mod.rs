@@ -18,7 +18,7 @@ use crate::data::load::{
 use crate::data::rate::{Steps, check_rate};
 use crate::data::sampling::SamplingScan;
 use crate::data::table::for_each_window_of;
-use crate::data::time::{Clock, interpolate};
+use crate::data::time::{Clock, Grid, interpolate, nearest_lines};
 use crate::data::{Config, Dataset, Sampling, WINDOW, Warning};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
@@ -147,10 +147,13 @@ pub struct SpilledRecord {
     /// Which of the loader's roles the samples have.
     roles: [bool; 7],
     chunks: Vec<Chunk>,
+    /// The rows kept (the chunks' samples, as written).
+    rows: usize,
+    /// The record's samples: the rows, or the samples of `grid`.
     samples: usize,
-    /// The first time stamp when the stamps are irregular: the samples are then those of
-    /// the uniform grid from it with the mean step, interpolated when a block is read.
-    grid_start: Option<f64>,
+    /// The grid of irregular stamps ([`Clock::grid`]): the samples are then its samples,
+    /// interpolated when a block is read.
+    grid: Option<Grid>,
     /// The config: units and the drive chain, applied to each block read.
     config: Config,
     spill: Mutex<File>,
@@ -310,18 +313,17 @@ impl SpilledRecord {
             .map(drop)
         })?;
         progress.finish();
-        let samples = chunks.last().map_or(0, |c| c.start + c.len);
-        if samples < 2 {
+        let rows = chunks.last().map_or(0, |c| c.start + c.len);
+        if rows < 2 {
             return Ok(None);
         }
         let first_stale = scan.first_stale_line();
         let sampling = scan.finish(path.clone());
         let mut warnings: Vec<Warning> =
             stale_warning(&sampling, first_stale).into_iter().collect();
-        let mut grid_start = None;
+        let mut grid = None;
         let sample_time = match (&config.time_column, config.sample_rate) {
             (Some(_), _) => {
-                let step = clock.mean_step();
                 if clock.irregular() {
                     // a stamp going back between windows, or a gap: `load` names the line
                     let Some(steps) = sampling.steps() else {
@@ -330,13 +332,16 @@ impl SpilledRecord {
                     if !clock.resamplable(steps.median) {
                         return Ok(None);
                     }
-                    check_step(config, step, path)?;
-                    warnings.push(clock.irregular_warning(&steps, path));
-                    grid_start = Some(clock.first());
+                    let resampled = clock.grid(&steps);
+                    check_step(config, resampled.step, path)?;
+                    warnings.push(clock.irregular_warning(&steps, &resampled, path));
+                    grid = Some(resampled);
+                    resampled.step
                 } else {
+                    let step = clock.mean_step();
                     check_step(config, step, path)?;
+                    step
                 }
-                step
             }
             (None, Some(fs)) => 1.0 / fs,
             (None, None) => return Ok(None),
@@ -355,8 +360,9 @@ impl SpilledRecord {
             dof,
             roles,
             chunks,
-            samples,
-            grid_start,
+            rows,
+            samples: grid.map_or(rows, |g| g.samples),
+            grid,
             config: config.clone(),
             spill: Mutex::new(spill),
             warnings,
@@ -515,6 +521,41 @@ impl SpilledRecord {
         Ok(t)
     }
 
+    /// Samples `start..end` of `grid` (`load`'s grid, [`Clock::grid`]): each signal
+    /// interpolated onto it from the rows around it, and, when `lines` is given, the line
+    /// of the row nearest each sample ([`nearest_lines`], as `load` gives).
+    fn resampled(
+        &self,
+        file: &mut File,
+        grid: &Grid,
+        start: usize,
+        end: usize,
+        lines: Option<&mut Vec<u64>>,
+    ) -> Result<[Option<Vec<Vec<f64>>>; 7]> {
+        let at = grid.times(start..end);
+        let (a, b) = self.bracket(file, at[0], at[at.len() - 1])?;
+        let mut rows = Vec::with_capacity(b + 1 - a);
+        let mut blocks = self.read_samples(file, a, b + 1, Some(&mut rows))?;
+        let mut t = Vec::with_capacity(b + 1 - a);
+        for (c, lo, hi) in self.parts(a, b + 1) {
+            Self::read_column(
+                file,
+                c,
+                self.stamps_column(),
+                (lo, hi),
+                &mut t,
+                &mut Vec::new(),
+            )?;
+        }
+        for x in blocks.iter_mut().flatten().flatten() {
+            *x = interpolate(&t, x, &at);
+        }
+        if let Some(lines) = lines {
+            lines.extend(nearest_lines(&t, &rows, &at));
+        }
+        Ok(blocks)
+    }
+
     /// The samples `a..=b` whose stamps bracket the times `s0..=s1` as [`interpolate`]
     /// brackets them over the whole record: `a` the last sample stamped before `s0` (the
     /// first sample when none is), `b` the first stamped after `s1` (the last when none
@@ -531,7 +572,7 @@ impl SpilledRecord {
         };
         let after = self.chunks.partition_point(|c| c.last_time <= s1);
         let b = match self.chunks.get(after) {
-            None => self.samples - 1,
+            None => self.rows - 1,
             Some(c) => c.start + self.stamps(file, c)?.partition_point(|&t| t <= s1),
         };
         Ok((a, b))
@@ -621,11 +662,22 @@ impl Record for SpilledRecord {
     }
 
     fn line(&self, k: usize) -> Option<u64> {
-        let (c, lo, _) = self.parts(k, k + 1).next()?;
+        if k >= self.samples {
+            return None;
+        }
         let mut file = self.spill.lock().ok()?;
         let mut line = Vec::with_capacity(1);
-        self.read_lines(&mut file, c, (lo, lo + 1), &mut line)
-            .ok()?;
+        match self.grid {
+            None => {
+                let (c, lo, _) = self.parts(k, k + 1).next()?;
+                self.read_lines(&mut file, c, (lo, lo + 1), &mut line)
+                    .ok()?;
+            }
+            Some(grid) => {
+                self.resampled(&mut file, &grid, k, k + 1, Some(&mut line))
+                    .ok()?;
+            }
+        }
         line.first().copied()
     }
 
@@ -645,39 +697,15 @@ impl Record for SpilledRecord {
         // the samples as they were loaded are the values checked then: the same units and
         // drive chain give the same values, which are not checked again; resampled ones
         // are new values
-        let values = match self.grid_start {
-            None => Values::Checked,
-            Some(_) => Values::Check,
-        };
-        let blocks = match self.grid_start {
-            None => self.read_samples(&mut file, start, end, Some(&mut lines))?,
-            Some(first) => {
-                // `load`'s grid (`uniform_grid`), and each signal interpolated onto it
-                // from the samples around it; sample k keeps the line of row k
-                let at: Vec<f64> = (start..end)
-                    .map(|k| first + self.sample_time * k as f64)
-                    .collect();
-                let (a, b) = self.bracket(&mut file, at[0], at[at.len() - 1])?;
-                let mut blocks = self.read_samples(&mut file, a, b + 1, None)?;
-                let mut t = Vec::with_capacity(b + 1 - a);
-                for (c, lo, hi) in self.parts(a, b + 1) {
-                    Self::read_column(
-                        &mut file,
-                        c,
-                        self.stamps_column(),
-                        (lo, hi),
-                        &mut t,
-                        &mut Vec::new(),
-                    )?;
-                }
-                for x in blocks.iter_mut().flatten().flatten() {
-                    *x = interpolate(&t, x, &at);
-                }
-                for (c, lo, hi) in self.parts(start, end) {
-                    self.read_lines(&mut file, c, (lo, hi), &mut lines)?;
-                }
-                blocks
-            }
+        let (blocks, values) = match &self.grid {
+            None => (
+                self.read_samples(&mut file, start, end, Some(&mut lines))?,
+                Values::Checked,
+            ),
+            Some(grid) => (
+                self.resampled(&mut file, grid, start, end, Some(&mut lines))?,
+                Values::Check,
+            ),
         };
         drop(file);
         let name = format!("{}[{start}..{end}]", self.name);

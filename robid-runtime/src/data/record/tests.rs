@@ -246,7 +246,9 @@ fn irregular_clocks_are_resampled_on_disk_bit_for_bit() {
             format!("{:?}", data.warnings),
             "{name}"
         );
-        let mut ranges = vec![(0, n), (0, 1), (n - 1, n), (n - 5, n + 10), (1490, 1520)];
+        // the grid's samples: the rows and the lost ticks
+        let m = data.samples();
+        let mut ranges = vec![(0, m), (0, 1), (m - 1, m), (m - 5, m + 10), (1490, 1520)];
         ranges.extend((0..40).map(|i| (i * 71, i * 71 + 1 + (i * 37) % 200)));
         for (a, b) in ranges {
             let from_disk = record.read(a, b).unwrap();
@@ -256,7 +258,13 @@ fn irregular_clocks_are_resampled_on_disk_bit_for_bit() {
         }
         // `load_record` keeps it on disk: its warnings are the record's
         let loaded = load_record_in(&config, &[path], 3, SMALL).unwrap();
-        assert_eq!(loaded.read(0, n).unwrap().q, data.q, "{name}");
+        assert_eq!(loaded.read(0, m).unwrap().q, data.q, "{name}");
+        // each sample's line, read alone, is the one read with its block
+        for k in [0, 1, 1501, 1502, 2203, m - 1] {
+            let lines = &data.origin.as_ref().unwrap().lines;
+            assert_eq!(record.line(k), Some(lines[k]), "{name}: {k}");
+        }
+        assert_eq!(record.line(m), None, "{name}");
     }
 }
 
