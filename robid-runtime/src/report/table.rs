@@ -15,7 +15,8 @@ pub fn text_table(report: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "robot {}  method {}  equations {}  cond(W) {:.1}  error bound {:.1} %",
+        "robot {}  method {}  equations {}  cond(W) {:.1}  error bound {:.1} % (worst case: \
+         cond(W) x relative residual)",
         report.robot,
         report.method,
         report.samples,
@@ -240,7 +241,10 @@ mod tests {
         // Milella's bound, as a percentage, in the JSON and the table
         assert_eq!(v["error_bound_percent"], 25.0);
         assert!(v["runs"].is_null());
-        assert!(text_table(&report()).contains("cond(W) 1019.0  error bound 25.0 %"));
+        // the bound is said to be a worst case (a headline of 15686 % read as the error)
+        assert!(text_table(&report()).contains(
+            "cond(W) 1019.0  error bound 25.0 % (worst case: cond(W) x relative residual)\n"
+        ));
         let mut bad = report();
         bad.error_bound_percent = f64::INFINITY;
         assert!(bad.check().is_err());
