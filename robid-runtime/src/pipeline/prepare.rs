@@ -741,10 +741,26 @@ impl Plan {
 /// checked against the data's joint count.
 fn friction_model(config: &Config, file: &std::path::Path, dof: usize) -> Result<FrictionModel> {
     let path = config.resolve(file);
-    let model = FrictionModel::read(&path)?;
+    let model = FrictionModel::read(&path).map_err(|e| match e {
+        // the file the key names is missing: the key is what to look at, not the path alone
+        Error::Data(crate::DataError::Io { ref source, .. })
+            if source.kind() == std::io::ErrorKind::NotFound =>
+        {
+            config.key_error(
+                "drive.rotor.friction",
+                format!(
+                    "the friction file {} does not exist (a relative path is read from the \
+                     config's folder); `robid friction` writes it from a log with joint-torque \
+                     sensors (docs/identification.md#nonlinear-rotor-friction), or remove the \
+                     line to identify viscous and Coulomb friction instead",
+                    path.display()
+                ),
+            )
+        }
+        e => e,
+    })?;
     if model.dof() != dof {
-        return Err(Error::setting(
-            "Config",
+        return Err(config.key_error(
             "drive.rotor.friction",
             format!(
                 "{} has {}, but the data have {}; give one table per joint (robid friction writes them)",

@@ -882,6 +882,22 @@ fn rotor_side_residuals_after_the_nonlinear_compensation() {
         e.contains("drive.rotor.friction") && e.contains("1 [[friction]] table,"),
         "{e}"
     );
+    // a friction file that is not there: the key, its place in the config and the fix
+    let mut missing = two_encoder_config(dir, &friction, "");
+    if let Some(rotor) = missing.drive.rotor.as_mut() {
+        rotor.friction = Some("absent.toml".into());
+    }
+    let e = identify(&rotor_model, &data, &missing)
+        .unwrap_err()
+        .to_string();
+    for part in [
+        "drive.rotor.friction",
+        "absent.toml does not exist",
+        "`robid friction` writes it",
+        "remove the line",
+    ] {
+        assert!(e.contains(part), "{part}: {e}");
+    }
     let e = identify(
         &rotor_model,
         &data,
