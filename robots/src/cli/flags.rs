@@ -15,13 +15,14 @@ use super::Error;
 pub(crate) const MAX_SAMPLES: f64 = 1e6;
 
 /// A range of real numbers `lo..=hi` (`lo` excluded when `open`; 0 also accepted when
-/// `zero`), in `unit`.
+/// `zero`; the negatives of the range too when `signed`), in `unit`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Range {
     lo: f64,
     hi: f64,
     open: bool,
     zero: bool,
+    signed: bool,
     unit: &'static str,
 }
 
@@ -30,6 +31,10 @@ impl fmt::Display for Range {
         let open = if self.open { '(' } else { '[' };
         if self.zero {
             write!(f, "0 or ")?;
+        }
+        if self.signed {
+            let close = if self.open { ')' } else { ']' };
+            write!(f, "[{}, {}{close} or ", short(-self.hi), short(-self.lo))?;
         }
         write!(f, "{open}{}, {}]", short(self.lo), short(self.hi))?;
         if !self.unit.is_empty() {
@@ -53,6 +58,7 @@ pub(crate) fn short(x: f64) -> String {
 
 impl Range {
     fn contains(&self, x: f64) -> bool {
+        let x = if self.signed { x.abs() } else { x };
         (self.zero && x == 0.0)
             || (if self.open { x > self.lo } else { x >= self.lo }) && x <= self.hi
     }
@@ -83,7 +89,17 @@ pub(crate) const fn closed(lo: f64, hi: f64, unit: &'static str) -> Range {
         hi,
         open: false,
         zero: false,
+        signed: false,
         unit,
+    }
+}
+
+/// Real numbers of either sign whose magnitude is in `[lo, hi]`, in `unit`: a factor whose
+/// sign is the wiring's (a torque constant of a motor wired the other way round).
+pub(crate) const fn either_sign(lo: f64, hi: f64, unit: &'static str) -> Range {
+    Range {
+        signed: true,
+        ..closed(lo, hi, unit)
     }
 }
 
@@ -96,6 +112,7 @@ pub(crate) const fn zero_or(lo: f64, hi: f64, unit: &'static str) -> Range {
         hi,
         open: false,
         zero: true,
+        signed: false,
         unit,
     }
 }
@@ -107,6 +124,7 @@ pub(crate) const fn positive(hi: f64, unit: &'static str) -> Range {
         hi,
         open: true,
         zero: false,
+        signed: false,
         unit,
     }
 }

@@ -17,7 +17,7 @@ use robid_runtime::{Count, Model, Series, num};
 use robots::interpreted::Interpreted;
 
 use super::description::{self, Description, DescriptionFlags};
-use super::flags::{self, closed, positive, real, zero_or};
+use super::flags::{self, closed, either_sign, positive, real, zero_or};
 use super::{Error, files, out};
 
 /// How far (rad or m) the simulated positions may leave the reference before the run
@@ -67,9 +67,15 @@ pub(crate) struct Args {
     #[arg(long, value_parser = real(closed(MIN_SAMPLE_RATE, 1e6, "Hz")))]
     rate: Option<f64>,
     /// Write motor currents `i1..in` instead of torques: the torque per ampere at each
-    /// joint (torque constant times gear ratio), `k1,..,kn` in [1e-6, 1e6] N m/A.
+    /// joint (torque constant times gear ratio), `k1,..,kn` of magnitude in [1e-6, 1e6]
+    /// N m/A, negative for a motor wired the other way round (`--currents=-2,3`).
     /// `--columns positions` only.
-    #[arg(long, value_delimiter = ',', value_parser = real(closed(1e-6, 1e6, "N m/A")))]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        value_parser = real(either_sign(1e-6, 1e6, "N m/A"))
+    )]
     currents: Vec<f64>,
     /// Joint-flexibility file (TOML: per joint the transmission's stiffness, hardening and
     /// damping, rotor inertia, gear ratio, torque constant and rotor friction; the drives'

@@ -322,6 +322,19 @@ fn simulate_writes_a_log_of_positions_and_currents() {
         "{}",
         stderr(&o)
     );
+    // a motor wired the other way round: a negative torque constant, the current's sign
+    // flipped; 0 is refused with the range
+    let (o, flipped) = run(&["--columns", "positions", "--currents=-2"], "flipped.csv");
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (row, full) in rows(&flipped).iter().zip(&all) {
+        assert!((row[2] + full[4] / 2.0).abs() <= 1e-9 * full[4].abs().max(1.0));
+    }
+    let (o, _) = run(&["--columns", "positions", "--currents", "0"], "bad.csv");
+    assert!(
+        stderr(&o).contains("0 is outside [-1e6, -1e-6] or [1e-6, 1e6] N m/A"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// `identify --report` writes one self-contained HTML page; when a Chromium is installed
