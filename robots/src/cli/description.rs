@@ -29,8 +29,8 @@ pub(crate) use robot_help;
 /// chain (`--base`, `--tip`).
 #[derive(Debug, Clone, Default, clap::Args)]
 pub(crate) struct DescriptionFlags {
-    /// Drive terms of every joint, e.g. `Ia,Fv,Fc,Fo` (replaces the description's; give the
-    /// same terms to every subcommand of one job).
+    /// Drive terms of every joint, e.g. `Ia,Fv,Fc,Fo`, or `none` for the rigid bodies alone
+    /// (replaces the description's; give the same terms to every subcommand of one job).
     #[arg(long, value_delimiter = ',')]
     pub(crate) drive: Vec<String>,
     /// URDF only: the link the chain starts from (default: the root link).
@@ -323,16 +323,32 @@ pub(crate) fn is_urdf(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
 }
 
-/// The drive terms named on the command line (`Ia`, `Fv`, `Fc`, `Fo`); `None` when none.
+/// The drive terms named on the command line (`Ia`, `Fv`, `Fc`, `Fo`, or `none` alone: no
+/// drive term, whatever the description has); `None` without `--drive`.
 pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {
     if names.is_empty() {
         return Ok(None);
     }
     let mut d = Drive::NONE;
+    if let [only] = names
+        && only.trim() == "none"
+    {
+        return Ok(Some(d));
+    }
     for n in names.iter().map(|n| n.trim()) {
-        let term = n
-            .parse::<DriveTerm>()
-            .map_err(|e| format!("--drive: unknown term `{n}`; {}", e.expected))?;
+        if n == "none" {
+            return Err(
+                "--drive: `none` is alone or not at all (none removes every drive term); \
+                 name the terms, or give none"
+                    .into(),
+            );
+        }
+        let term = n.parse::<DriveTerm>().map_err(|e| {
+            format!(
+                "--drive: unknown term `{n}`; {}, or `none` alone for no drive term",
+                e.expected
+            )
+        })?;
         if d.has(term) {
             return Err(format!("--drive: `{n}` is named twice; name each term once").into());
         }

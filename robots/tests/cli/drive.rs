@@ -38,6 +38,12 @@ fn a_stray_drive_key_is_warned_about_and_drive_replaces_it() {
         "{}",
         stderr(&o)
     );
+    // `none` removes the description's terms (and its stray key's warning); not with others
+    let o = robid(&["model", robot, "--drive", "none"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stdout(&o).contains("Fv") && !stderr(&o).contains("warning"));
+    let o = robid(&["model", robot, "--drive", "Fv,none"]);
+    fails_with(&o, &["--drive: `none` is alone or not at all"]);
     // a term named twice, on the command line or in a description, is a slip
     let o = robid(&["model", robot, "--drive", "Fv,Ia,Fv"]);
     fails_with(&o, &["--drive: `Fv` is named twice"]);
