@@ -1,15 +1,17 @@
-//! `robid payload ROBOT.toml --parameters PARAMS.toml --data DATA.csv [-o PAYLOAD.toml]`:
-//! the ten inertial parameters of a payload on the last link from joint torques, the
-//! robot's model without the payload being known (docs/command-line.md#robid-payload).
-//! DATA.csv has the columns `q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` (`robid simulate`
-//! writes them, with `t`, which is not used); PARAMS.toml holds the model's `[standard]`
-//! or `[base]` table, as for `robid torques`.
+//! `robid payload ROBOT.toml --parameters PARAMS.toml --data DATA.csv [--config C.toml]
+//! [-o PAYLOAD.toml]`: the ten inertial parameters of a payload on the last link from joint
+//! torques, the robot's model without the payload being known
+//! (docs/command-line.md#robid-payload). Without a config DATA.csv has the columns
+//! `q1..qn,qd1..qdn,qdd1..qddn,tau1..taun` (`robid simulate` writes them, with `t`, which
+//! is not used); with one, any log that `robid identify` reads with it (its columns, units,
+//! drive chain, low-pass and derivatives). PARAMS.toml holds the model's `[standard]` or
+//! `[base]` table, as for `robid torques`.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use robid_runtime::Num;
-use robid_runtime::data::ParameterFile;
+use robid_runtime::data::{Config, ParameterFile};
 use robid_runtime::model::Inertial;
 use robid_runtime::payload::{JointSample, Payload, PayloadOptions, from_torques};
 
@@ -26,9 +28,15 @@ pub(crate) struct Args {
     /// The robot's parameters without the payload: a `[standard]` or a `[base]` table.
     #[arg(long)]
     parameters: PathBuf,
-    /// Samples with the payload on, header q1..qn,qd1..qdn,qdd1..qddn,tau1..taun.
+    /// Samples with the payload on, header q1..qn,qd1..qdn,qdd1..qddn,tau1..taun; with
+    /// --config, one file per `[[source]]` (default: the config's `file`s).
+    #[arg(long, num_args = 1..)]
+    data: Vec<PathBuf>,
+    /// Identification config (`robid identify --example-config`): the data are read,
+    /// converted and processed as `identify` does (columns, units, drive chain, range,
+    /// low-pass, derivatives), so a real log of positions and torques or currents serves.
     #[arg(long)]
-    data: PathBuf,
+    config: Option<PathBuf>,
     /// Ordinary least squares instead of weighted (per-joint weights).
     #[arg(long)]
     ols: bool,
@@ -40,24 +48,62 @@ pub(crate) struct Args {
 
 /// Identifies the payload, prints it and writes it when asked.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
+    let config = match &args.config {
+        Some(path) => Some(super::identify::config_for(Some(path), &args.data)?),
+        None => None,
+    };
+    let data = match &config {
+        Some(c) => super::identify::data_files(&args.data, args.config.as_deref(), c)?,
+        None => match &args.data[..] {
+            [file] => vec![file.clone()],
+            _ => {
+                return Err(format!(
+                    "--data: {} files given; without --config give one file with the columns \
+                     q1..,qd1..,qdd1..,tau1.. (or a --config with one [[source]] per file)",
+                    args.data.len()
+                )
+                .into());
+            }
+        },
+    };
     if let Some(output) = &args.output {
-        files::refuse(&[&args.robot, &args.parameters, &args.data], &[output])?;
+        let mut inputs: Vec<&Path> = vec![&args.robot, &args.parameters];
+        inputs.extend(args.config.as_deref());
+        inputs.extend(data.iter().map(PathBuf::as_path));
+        files::refuse(&inputs, &[output])?;
     }
     let chosen = super::identify::robot_model(&args.robot, &args.description)?;
     let model = chosen.model.as_ref();
-    let n = model.dof();
     let base = ParameterFile::read(&args.parameters)?.base_parameters(model)?;
+    let samples = match &config {
+        Some(config) => processed_samples(config, &data, model.dof())?,
+        None => state_samples(&data[0], model.dof())?,
+    };
+    let options = PayloadOptions {
+        weighted: !args.ols,
+        ..PayloadOptions::default()
+    };
+    let payload = from_torques(model, &base, &samples, &options)
+        .map_err(|e| format!("{}: {e}", data[0].display()))?;
+    out::print(&summary(&payload))?;
+    if let Some(p) = &args.output {
+        files::write(p, &toml(&payload))?;
+    }
+    Ok(())
+}
+
+/// The samples of a file of states and torques, `q1..,qd1..,qdd1..,tau1..` (`n` joints).
+fn state_samples(file: &Path, n: usize) -> Result<Vec<JointSample>, Error> {
     let names: Vec<String> = ["q", "qd", "qdd", "tau"]
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))
         .collect();
-    // a log of positions and torques: `identify` differentiates it (with the payload on,
-    // the last link's parameters then hold the payload's)
-    let remedy = "; or identify the robot with the payload on from this log: `robid identify` \
-                  differentiates `t,q1..,tau1..` itself (docs/command-line.md#robid-identify), \
-                  and the last link's parameters then include the payload's";
-    let table = super::states::read_with(&args.data, &names, n, remedy)?;
-    let samples: Vec<JointSample> = (0..table.lines.len())
+    // a log of positions and torques: a config processes it as `identify` does
+    let remedy = "; or give a --config (robid identify --example-config) to differentiate a \
+                  log of `t,q1..,tau1..` as `robid identify` does, with its units and drive \
+                  chain (docs/command-line.md#robid-payload)";
+    let table = super::states::read_with(file, &names, n, remedy)?;
+    Ok((0..table.lines.len())
         .map(|k| {
             let block = |b: usize| (0..n).map(|j| table.columns[b * n + j][k]).collect();
             JointSample {
@@ -67,18 +113,30 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 tau: block(3),
             }
         })
-        .collect();
-    let options = PayloadOptions {
-        weighted: !args.ols,
-        ..PayloadOptions::default()
-    };
-    let payload = from_torques(model, &base, &samples, &options)
-        .map_err(|e| format!("{}: {e}", args.data.display()))?;
-    out::print(&summary(&payload))?;
-    if let Some(p) = &args.output {
-        files::write(p, &toml(&payload))?;
+        .collect())
+}
+
+/// The samples of the data `files` read and processed with `config` as `robid identify`
+/// reads and processes them (`data::load`, `pipeline::prepare`), warning of what loading
+/// repaired.
+fn processed_samples(
+    config: &Config,
+    files: &[PathBuf],
+    n: usize,
+) -> Result<Vec<JointSample>, Error> {
+    let data = robid_runtime::data::load(config, files, n)?;
+    for w in &data.warnings {
+        out::warn(format_args!("warning: {w}"));
     }
-    Ok(())
+    let p = robid_runtime::pipeline::prepare(&data, config)?;
+    Ok((0..p.samples())
+        .map(|k| JointSample {
+            q: p.q.sample(k),
+            qd: p.qd.sample(k),
+            qdd: p.qdd.sample(k),
+            tau: p.tau.sample(k),
+        })
+        .collect())
 }
 
 /// What is printed: the ten values with their deviations, then the physical reading.

@@ -110,6 +110,95 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     assert!(toml.contains("consistent = true"), "{toml}");
 }
 
+/// A real log holds positions and torques (or currents) alone: with a config, `payload`
+/// reads and processes it as `identify` does (here currents scaled to torques,
+/// positions low-passed and differentiated) and recovers the payload; without
+/// one it refuses the log, pointing to `--config`.
+#[test]
+fn payload_from_a_log_of_positions_and_currents_with_a_config() {
+    let dir = folder();
+    let d = dir.path();
+    let params = write(d, "truth.toml", &with_payload(&tool()));
+    let traj = write(d, "trajectory.csv", &trajectory());
+    let data = d.join("log.csv");
+    let o = robid(&[
+        "simulate",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        params.to_str().unwrap(),
+        "--trajectory",
+        traj.to_str().unwrap(),
+        "--columns",
+        "positions",
+        "--currents",
+        "10,10,10,5,5,5",
+        "--position-noise",
+        "1e-5",
+        "--torque-noise",
+        "0.2,0.2,0.1,0.05,0.05,0.02",
+        "-o",
+        data.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = robid(&[
+        "payload",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--data",
+        data.to_str().unwrap(),
+    ]);
+    fails_with(&o, &["log.csv", "--config"]);
+    let config = write(
+        d,
+        "log.toml",
+        "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"i{}\"\n\
+         [units]\ntorque_scale = [10, 10, 10, 5, 5, 5]\n\
+         [processing]\nlowpass = { cutoff = 3.0, order = 4, signals = [\"q\"] }\n",
+    );
+    let out = d.join("payload.toml");
+    let o = robid(&[
+        "payload",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--data",
+        data.to_str().unwrap(),
+        "--config",
+        config.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    println!("{text}");
+    let line = text.lines().find(|l| l.starts_with("mass: ")).unwrap();
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let (mass, std): (f64, f64) = (words[1].parse().unwrap(), words[3].parse().unwrap());
+    assert!((mass - 1.5).abs() <= 3.0 * std, "{line}");
+    assert!(std < 2e-3, "{line}");
+    assert!(out.exists());
+    // the config is an input: not overwritten by -o
+    let o = robid(&[
+        "payload",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--config",
+        config.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "-o",
+        config.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        std::fs::read_to_string(&config)
+            .unwrap()
+            .contains("torque_scale")
+    );
+}
+
 #[test]
 fn payload_from_a_robot_at_rest_is_an_error_naming_the_unexcited_parameters() {
     let dir = folder();
