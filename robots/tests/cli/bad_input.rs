@@ -348,8 +348,9 @@ fn a_log_of_positions_is_told_it_lacks_velocities_and_accelerations() {
     fails_with(
         &o,
         &[
-            "under the header q1..q6,qd1..qd6,qdd1..qdd6,tau1..tau6; or identify the robot with \
-             the payload on from this log: `robid identify` differentiates",
+            "under the header q1..q6,qd1..qd6,qdd1..qdd6,tau1..tau6; or give a --config \
+             (robid identify --example-config) to differentiate a log of `t,q1..,tau1..` as \
+             `robid identify` does",
         ],
     );
     // velocities under other names: those named as what to rename
