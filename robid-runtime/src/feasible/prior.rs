@@ -1,5 +1,6 @@
 //! What settles the directions the identified base parameters leave free: a user's prior
-//! (CAD values) where given, else the default prior. The default prior models each link as
+//! (CAD values) where given, weighed on each link's own prior mass ([`Prior::weight`],
+//! docs/experiments.md#priors), else the default prior. The default prior models each link as
 //! a solid cylinder along its segment of the kinematic chain ([`LinkShape`]), all links of
 //! one density fitted to the identified base parameters, so that a link the data cannot
 //! weigh (the first link of most arms) gets the mass of a solid of its size at the density
