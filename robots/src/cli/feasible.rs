@@ -90,11 +90,14 @@ pub(crate) struct Args {
     prior: Option<PathBuf>,
     /// Weight in [0, 1e6] of the pull towards the prior: a deviation of one parameter
     /// scale (a link's mass, its mass times its size, times its size squared) costs this
-    /// many chi^2 units. With `--prior`, the weight of that prior (default 1: it settles
-    /// what the data barely determine and leaves what they determine; 100 overrides
-    /// data); without, the weight of the default prior of solid links (default 0.01: it
-    /// settles what the data leave free; 0 leaves the fit to the data alone). Not with
-    /// `anneal`, which has no default prior.
+    /// many chi^2 units, so the prior counts as a measurement to 1 / sqrt(W) of each
+    /// scale. With `--prior` or a URDF's inertials, the scales are each link's prior mass
+    /// (at least 1 % of the heaviest link's) and the weight that prior's (default 100:
+    /// each link trusted to 10 % of its own values, CAD's usual accuracy; the data decide
+    /// what they determine better, the prior holds the rest; 0 leaves the fit to the data);
+    /// without, the weight of the default prior of solid links (default 0.01: it settles
+    /// what the data leave free; 0 leaves the fit to the data alone). Not with `anneal`
+    /// without a prior (`--prior` or a URDF's): it has no default prior.
     #[arg(long, value_parser = real(closed(0.0, 1e6, "")))]
     prior_weight: Option<f64>,
     /// `anneal`: random restarts, each annealing then a local search (default 8; Gaz et al.
@@ -307,7 +310,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let problem = problem
         .with_identified(&names, &values, &std)
         .map_err(|e| about(&args.identified, e))?;
-    let weight = args.prior_weight.unwrap_or(1.0);
+    let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {
             standard: ParameterFile::read(path)?.prior(&problem.standard_names)?,

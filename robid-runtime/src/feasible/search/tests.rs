@@ -538,8 +538,8 @@ fn gaz_drive_terms_are_solved_for_and_clamped() {
 fn gaz_a_user_prior_settles_what_the_data_leave_free() {
     let truth = one_link();
     let problem = problem(1, &["MX1", "MY1", "MZ1"], &truth);
-    // the default target (1e-3 chi^2 per base parameter) would stop the search within 2.7
-    // mg of the prior (a pull of weight 1e6 per 50 kg, the wide bounds' mass scale)
+    // the default target (1e-3 chi^2 per base parameter) would stop the search within 0.14
+    // mg of the prior (a pull of weight 1e6 per 2.5 kg, the prior's own mass)
     let options = mass_prior(10, 2.5, 1e6);
     let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
     let l = s.links[0].unwrap();
@@ -606,17 +606,17 @@ fn gaz_restarts_stop_at_the_target() {
 }
 
 /// A firm user prior competes with the data in units of the parameter's scale: the data
-/// weigh the mass at 2 kg (std 1e-3), the prior says 3 kg with a weight of 2.5e9 per
-/// scale (50 kg with the wide bounds), as firm as the data, so the optimum is half-way.
+/// weigh the mass at 2 kg (std 1e-3), the prior says 3 kg with a weight of 9e6 per scale
+/// (the prior's own mass, 3 kg), as firm as the data, so the optimum is half-way.
 #[test]
 fn gaz_a_firm_prior_and_the_data_share_the_mass() {
     let truth = crate::feasible::fixture::target(crate::feasible::fixture::link(), 0.1);
     let problem = crate::feasible::fixture::problem(&truth);
-    let options = mass_prior(11, 3.0, 2.5e9);
+    let options = mass_prior(11, 3.0, 9e6);
     let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
     let m = s.links[0].unwrap().mass;
-    // the data's weight 1 / std^2 with the solvers' floor on std, the prior's 2.5e9 / 50^2
-    let (data, pull) = (problem.std[9].powi(-2), 2.5e9 / 2500.0);
+    // the data's weight 1 / std^2 with the solvers' floor on std, the prior's 9e6 / 3^2
+    let (data, pull) = (problem.std[9].powi(-2), 9e6 / 9.0);
     let want = 2.0 + pull / (data + pull);
     // the search's own precision: measured 1.0e-12
     assert!((m - want).abs() < 2e-12, "{m} vs {want}");
