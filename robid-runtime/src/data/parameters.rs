@@ -9,8 +9,9 @@
 //! fix. When the file is read:
 //! - exactly one table, `[standard]`, `[base]` or `[known]`; any other table or key is an
 //!   error, but for the `[[links]]` summary that `robid feasible` writes after its
-//!   `[standard]` table (mass, centre of mass and inertia per link, for people), which is
-//!   read over;
+//!   `[standard]` table (mass, centre of mass and inertia per link, for people) and its
+//!   `[extra]` table (the values of an identification config's extra columns, which are
+//!   not the robot's parameters), which are read over;
 //! - every value is a number, finite and within +-[`PARAMETER_LIMIT`];
 //! - no key or table is given twice (a TOML error, which names the key at its second place).
 //!
@@ -452,6 +453,9 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
             "known" => ParameterTable::Known,
             // robid feasible's per-link summary: the [standard] table holds the same values
             "links" if matches!(value.get_ref(), DeValue::Array(_)) => continue,
+            // robid feasible's values of an identification config's extra columns: not the
+            // robot's parameters
+            "extra" if matches!(value.get_ref(), DeValue::Table(_)) => continue,
             other => {
                 return Err(located(
                     at,

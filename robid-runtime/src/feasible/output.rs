@@ -73,9 +73,26 @@ pub fn to_toml(solution: &Solution, robot: &str) -> String {
             );
         }
     }
+    let (standard, extra): (Vec<_>, Vec<_>) = solution
+        .names
+        .iter()
+        .zip(&solution.standard)
+        .partition(|(n, _)| solution.is_chain_parameter(n));
     let _ = writeln!(s, "\n[standard]");
-    for (n, v) in solution.names.iter().zip(&solution.standard) {
+    for (n, v) in standard {
         let _ = writeln!(s, "{n} = {v:e}");
+    }
+    if !extra.is_empty() {
+        // not the description's parameters: a [standard] table with them is refused by
+        // every reader of the robot's parameters
+        let _ = writeln!(
+            s,
+            "\n# The identification config's extra columns (not parameters of the description;\n\
+             # readers of this file take [standard] and pass over this table).\n[extra]"
+        );
+        for (n, v) in extra {
+            let _ = writeln!(s, "{n} = {v:e}");
+        }
     }
     for (j, link) in solution.links.iter().enumerate() {
         let _ = writeln!(s, "\n[[links]]\nlink = {}", j + 1);

@@ -94,6 +94,13 @@ fn range(r: [f64; 2]) -> String {
 }
 
 impl Solution {
+    /// Whether `name` is a standard parameter of the chain (an inertial parameter or a drive
+    /// term of one of its links), not an extra column of the identification config.
+    pub fn is_chain_parameter(&self, name: &str) -> bool {
+        name.parse::<robid_core::ParameterId>()
+            .is_ok_and(|id| id.link < self.links.len())
+    }
+
     /// Assembles the result and its checks; a non-finite number in it is an error.
     pub(crate) fn assemble(
         problem: &Problem,

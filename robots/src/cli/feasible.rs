@@ -395,6 +395,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         to_toml(&solution, robot.name())
     };
     files::write(&args.output, &text)?;
+    if urdf {
+        warn_not_in_urdf(&args.output, &solution);
+    }
     out::warn(format_args!(
         "{}: chi^2 {:.3e}, max |z| {:.3}, smallest pseudo-inertia eigenvalue {:.3e}, {:.3} s{}",
         solution.method.name(),
@@ -569,6 +572,39 @@ fn problem_of(e: robid_runtime::Error) -> String {
     match e {
         robid_runtime::Error::Setting { problem, .. } => problem,
         other => other.to_string(),
+    }
+}
+
+/// Says which values of `solution` the URDF `output` cannot hold: a URDF has `<inertial>`
+/// elements only, so the drive terms and the extra columns are left out (a URDF's
+/// `<dynamics>` damping and friction are not the identified terms' model, and robid does
+/// not read them).
+fn warn_not_in_urdf(output: &Path, solution: &Solution) {
+    let left: Vec<&str> = solution
+        .names
+        .iter()
+        .filter(|n| {
+            !solution.is_chain_parameter(n)
+                || !matches!(
+                    n.parse::<ParameterId>(),
+                    Ok(ParameterId {
+                        kind: ParameterKind::Inertial(_),
+                        ..
+                    })
+                )
+        })
+        .map(String::as_str)
+        .collect();
+    if !left.is_empty() {
+        let stem = output.with_extension("toml");
+        out::warn(format_args!(
+            "warning: {} holds the links' inertials only, not {} ({}): a URDF has no place \
+             for drive terms or extra columns; write them with -o {} as well",
+            output.display(),
+            robid_runtime::Count(left.len(), "identified value"),
+            left.join(" "),
+            stem.display()
+        ));
     }
 }
 

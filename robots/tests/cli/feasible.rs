@@ -58,21 +58,55 @@ fn feasible_summary(method: &str, output: &Path, extra: &[&str]) -> (f64, f64) {
             .unwrap_or_else(|| panic!("no {label}in the summary: {err}"))
     };
     eprintln!("{err}");
+    // the fixture has drive terms and extra columns, which a URDF cannot hold: said
+    if output.extension().is_some_and(|e| e == "urdf") {
+        for part in [
+            "holds the links' inertials only, not 27 identified values (Ia1 Fv1 Fc1 Fo1 ",
+            " Iam6 fvm6 fsm6): a URDF has no place for drive terms or extra columns",
+        ] {
+            assert!(err.contains(part), "{part}: {err}");
+        }
+    }
     (after("chi^2 "), after("max |z| "))
 }
 
-/// The TOML output: every standard parameter (extra columns included), six links, each
-/// with a positive mass and a positive definite pseudo-inertia, total mass in its range.
+/// The TOML output: every standard parameter in `[standard]` and the extra columns in
+/// `[extra]`, six links, each with a positive mass and a positive definite pseudo-inertia,
+/// total mass in its range; `robid torques` reads it as the robot's parameters (the extra
+/// columns in `[standard]` made it refuse the file, advising to rename them).
 fn check_toml(path: &Path) {
     let text = std::fs::read_to_string(path).unwrap();
     let v: toml::Value = toml::from_str(&text).expect("the output is TOML");
     let standard = v["standard"].as_table().unwrap();
-    for name in [
-        "XX1", "ZZ6", "M6", "Ia1", "Fv6", "Fo3", "Iam6", "fvm6", "fsm6",
-    ] {
+    for name in ["XX1", "ZZ6", "M6", "Ia1", "Fv6", "Fo3"] {
         assert!(standard.contains_key(name), "{name} missing");
     }
-    assert_eq!(standard.len(), 6 * 14 + 3);
+    assert_eq!(standard.len(), 6 * 14);
+    let extra = v["extra"].as_table().unwrap();
+    assert_eq!(
+        extra.keys().collect::<Vec<_>>(),
+        ["Iam6", "fsm6", "fvm6"],
+        "{text}"
+    );
+    let states = path.with_extension("states.csv");
+    let header: Vec<String> = ["q", "qd", "qdd"]
+        .iter()
+        .flat_map(|p| (1..=6).map(move |j| format!("{p}{j}")))
+        .collect();
+    std::fs::write(
+        &states,
+        header.join(",") + "\n" + &["0.1"; 18].join(",") + "\n",
+    )
+    .unwrap();
+    let o = robid(&[
+        "torques",
+        "configs/tx40_robot.toml",
+        "--parameters",
+        path.to_str().unwrap(),
+        "--states",
+        states.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
     let links = v["links"].as_array().unwrap();
     assert_eq!(links.len(), 6);
     let mut total = 0.0;
