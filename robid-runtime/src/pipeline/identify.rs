@@ -7,7 +7,7 @@
 use crate::DataError;
 use crate::EstimateError;
 use crate::estimate::error::{own_parameters, solves_alone};
-use crate::pipeline::observe::{RestCount, long_enough, observe_counted};
+use crate::pipeline::observe::{RestCount, long_enough, observe_counted, speed_unit};
 use std::ops::Range;
 
 use crate::Model;
@@ -223,7 +223,7 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
     let Some(v) = joint.checked_sub(1).and_then(|j| values.get_mut(j)) else {
         return e;
     };
-    let threshold = num(*v);
+    let threshold = format!("{} {}", num(*v), speed_unit(&config.prismatic, joint - 1));
     *v = 0.0;
     let list = values
         .iter()
@@ -233,19 +233,19 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
     let (what, fix) = if found == 0 {
         (
             format!(
-                "{threshold} rad/s removes every equation of joint {joint}: its |velocity| \
+                "{threshold} removes every equation of joint {joint}: its |velocity| \
                  stays below it in the whole record"
             ),
             format!(
                 "move joint {joint} in the trajectory (at rest in the whole record, it leaves \
                  parameters undetermined whatever rest_velocity), or, if it moves slower than \
-                 {threshold} rad/s, lower rest_velocity for it"
+                 {threshold}, lower rest_velocity for it"
             ),
         )
     } else {
         (
             format!(
-                "{threshold} rad/s leaves joint {joint} {found} equations (where its |velocity| \
+                "{threshold} leaves joint {joint} {found} equations (where its |velocity| \
                  reaches it), fewer than the {required} {}",
                 own_parameters(method)
             ),
@@ -272,7 +272,7 @@ pub(crate) fn rest_cause(rest: &RestCount, config: &Config, dof: usize, e: Error
         config.mapping("processing.rest_velocity"),
         crate::data::ColumnMapping::Default | crate::data::ColumnMapping::Code
     );
-    rest.rank_cause(thresholds.as_deref(), e, in_file)
+    rest.rank_cause(thresholds.as_deref(), e, in_file, &config.prismatic)
 }
 
 /// The whole pipeline: observation matrix from `data`, estimation, fit. With the energy

@@ -443,8 +443,13 @@ pub(crate) fn identify_streaming(
             ls.push_rows(&joint, &w, &y)
         })
         .map_err(at)?;
-    rest.check(stream.rest(), cols, &format!("the {cols} parameters"))
-        .map_err(at)?;
+    rest.check(
+        stream.rest(),
+        &config.prismatic,
+        cols,
+        &format!("the {cols} parameters"),
+    )
+    .map_err(at)?;
     if config.processing.pieces.is_some() && ls.rows() < cols {
         return Err(config.key_error(
             "processing.pieces",
@@ -545,6 +550,7 @@ pub(crate) fn validate_streaming(
         .rest
         .check(
             stream.rest(),
+            &config.prismatic,
             1,
             &format!("the one a prediction of {} needs", data.name()),
         )
