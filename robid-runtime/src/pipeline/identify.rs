@@ -52,8 +52,18 @@ pub fn observation(
     data: &Dataset,
     config: &Config,
 ) -> Result<(Observation, f64)> {
+    observation_counted(model, data, config).map(|(o, dt, _)| (o, dt))
+}
+
+/// [`observation`] with what the removal of the equations near rest left of them
+/// ([`RestCount`], for [`rest_cause`]).
+pub(crate) fn observation_counted(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+) -> Result<(Observation, f64, RestCount)> {
     let rows = checked_prepare(model, data, config, Rows::Estimation)?;
-    torque_observation(model, &rows.prepared, config, data, &rows.kept).map(|(o, dt, _)| (o, dt))
+    torque_observation(model, &rows.prepared, config, data, &rows.kept)
 }
 
 pub(crate) fn checked_prepare(
@@ -265,7 +275,8 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
 }
 
 /// A rank deficiency said as the removal of the equations near rest when it took (nearly)
-/// all of a joint's ([`RestCount::rank_cause`]); other errors as they are.
+/// all of a joint's ([`RestCount::rank_cause`]); other errors as they are. One record's
+/// equations, or the stacked runs' (`rest` summed over the runs).
 pub(crate) fn rest_cause(rest: &RestCount, config: &Config, dof: usize, e: Error) -> Error {
     let thresholds = config.processing.rest_velocities(dof).ok();
     let in_file = !matches!(
