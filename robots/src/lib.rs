@@ -6,5 +6,6 @@ pub mod extraction;
 pub mod figaroh;
 pub mod interpreted;
 pub mod models;
+pub mod positions;
 
 pub use models::{Lwr4, Panda, Puma560, REFERENCES, Reference, Rx90, Stanford, Tx40, Ur5e};

@@ -57,6 +57,10 @@ pub struct Dataset {
     pub sampling: Vec<super::Sampling>,
     /// The file and lines the samples come from (`None` for a data set built in code).
     pub origin: Option<DataOrigin>,
+    /// Per joint the smallest and largest position (rad or m, joint side), gathered as the
+    /// data were loaded ([`crate::data::load`]); empty for a data set built in code and
+    /// for a slice. What `robid identify` compares with the description's position limits.
+    pub position_ranges: Vec<[f64; 2]>,
 }
 
 impl Dataset {
@@ -124,6 +128,7 @@ impl Dataset {
             warnings: Vec::<Warning>::new(),
             sampling: Vec::new(),
             origin,
+            position_ranges: Vec::new(),
         };
         let dof = q.dof();
         data.check_block("torque", Quantity::Torque, &tau, dof, n, values)?;
@@ -279,7 +284,18 @@ impl Dataset {
                 path: o.path.clone(),
                 lines: o.lines.get(start..end).unwrap_or_default().to_vec(),
             }),
+            // the whole record's, not the slice's
+            position_ranges: Vec::new(),
         })
+    }
+}
+
+/// `ranges` (per joint the smallest and largest value so far; empty before the first
+/// block) widened to the values of `x`, a block of the same joints.
+pub(crate) fn widen_ranges(ranges: &mut Vec<[f64; 2]>, x: &Signals) {
+    ranges.resize(x.dof(), [f64::INFINITY, f64::NEG_INFINITY]);
+    for (r, v) in ranges.iter_mut().zip(x.joints()) {
+        *r = v.iter().fold(*r, |[lo, hi], &a| [lo.min(a), hi.max(a)]);
     }
 }
 

@@ -10,7 +10,7 @@ use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use crate::Num;
-use crate::data::dataset::{DataOrigin, Values};
+use crate::data::dataset::{DataOrigin, Values, widen_ranges};
 use crate::data::rate::{
     Steps, UnreadTime, check_rate, unread_time_column, with_found_time_column,
 };
@@ -325,6 +325,10 @@ pub(crate) fn finish(config: &Config, dof: usize, read: ReadSources) -> Result<D
     )?;
     data.warnings = warnings;
     data.sampling = samplings;
+    // the joint-side positions' extremes, while they are at hand (`Record::position_ranges`)
+    let mut ranges = Vec::new();
+    widen_ranges(&mut ranges, &data.q);
+    data.position_ranges = ranges;
     Ok(data)
 }
 

@@ -216,6 +216,29 @@ impl Loaded {
         }
     }
 
+    /// Per joint the smallest and largest position (joint side) the loader kept
+    /// ([`Record::position_ranges`]): the record's, or over every segment (a segment of a
+    /// single sample, no data set, is not counted).
+    pub fn position_ranges(&self) -> Vec<[f64; 2]> {
+        match self {
+            Loaded::Record(r) => r.position_ranges().to_vec(),
+            Loaded::Segments(s) => {
+                let mut ranges: Vec<[f64; 2]> = Vec::new();
+                for d in &s.segments {
+                    let r = d.position_ranges();
+                    ranges.resize(
+                        r.len().max(ranges.len()),
+                        [f64::INFINITY, f64::NEG_INFINITY],
+                    );
+                    for (a, b) in ranges.iter_mut().zip(r) {
+                        *a = [a[0].min(b[0]), a[1].max(b[1])];
+                    }
+                }
+                ranges
+            }
+        }
+    }
+
     /// The record, or the longest segment: the data to choose `cutoff = "auto"` from.
     pub fn longest(&self) -> Option<&dyn Record> {
         match self {

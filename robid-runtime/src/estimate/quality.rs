@@ -181,9 +181,14 @@ impl fmt::Display for QualityWarning {
                     .collect();
                 write!(
                     f,
-                    "{} parameter(s) with a relative standard deviation above {threshold_percent} % \
-                     (each uncertain by more than its own size): {}",
-                    parameters.len(),
+                    "{} with a relative standard deviation above {threshold_percent} % \
+                     ({} by more than its own size): {}",
+                    crate::Count(parameters.len(), "parameter"),
+                    if parameters.len() == 1 {
+                        "uncertain"
+                    } else {
+                        "each uncertain"
+                    },
                     list.join(", ")
                 )
             }
@@ -406,5 +411,33 @@ mod tests {
         let r = relative_column_norms(&w, &y);
         assert!((r[0] - 5.0).abs() < 1e-12 && r[1] < 1e-300, "{r:?}");
         assert!(relative_column_norms(&w, &DVector::zeros(2))[0].is_infinite());
+    }
+
+    /// The uncertain parameters are counted in words: "1 parameter ... (uncertain by more
+    /// than its own size)", "2 parameters ... (each uncertain ...)"; it was "1 parameter(s)"
+    /// whatever the count.
+    #[test]
+    fn uncertain_parameters_are_counted_in_words() {
+        let warning = |names: &[&str]| QualityWarning::Uncertain {
+            parameters: names.iter().map(|n| n.to_string()).collect(),
+            rel_std_percent: names.iter().map(|_| Some(250.0)).collect(),
+            threshold_percent: REL_STD_WARNING,
+        };
+        let one = warning(&["ZZR1"]).to_string();
+        assert!(
+            one.starts_with(
+                "1 parameter with a relative standard deviation above 100 % \
+                             (uncertain by more than its own size): ZZR1 (250 %)"
+            ),
+            "{one}"
+        );
+        let two = warning(&["ZZR1", "MXR2"]).to_string();
+        assert!(
+            two.starts_with(
+                "2 parameters with a relative standard deviation above 100 % \
+                             (each uncertain by more than its own size): ZZR1 (250 %), MXR2"
+            ),
+            "{two}"
+        );
     }
 }

@@ -7,7 +7,7 @@
 use crate::DataError;
 use crate::EstimateError;
 use crate::estimate::error::{own_parameters, solves_alone};
-use crate::pipeline::observe::{RestCount, long_enough, observe_counted};
+use crate::pipeline::observe::{RestCount, long_enough, observe_counted, speed_unit};
 use std::ops::Range;
 
 use crate::Model;
@@ -52,8 +52,18 @@ pub fn observation(
     data: &Dataset,
     config: &Config,
 ) -> Result<(Observation, f64)> {
+    observation_counted(model, data, config).map(|(o, dt, _)| (o, dt))
+}
+
+/// [`observation`] with what the removal of the equations near rest left of them
+/// ([`RestCount`], for [`rest_cause`]).
+pub(crate) fn observation_counted(
+    model: &(dyn Model + Sync),
+    data: &Dataset,
+    config: &Config,
+) -> Result<(Observation, f64, RestCount)> {
     let rows = checked_prepare(model, data, config, Rows::Estimation)?;
-    torque_observation(model, &rows.prepared, config, data, &rows.kept).map(|(o, dt, _)| (o, dt))
+    torque_observation(model, &rows.prepared, config, data, &rows.kept)
 }
 
 pub(crate) fn checked_prepare(
@@ -223,7 +233,7 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
     let Some(v) = joint.checked_sub(1).and_then(|j| values.get_mut(j)) else {
         return e;
     };
-    let threshold = num(*v);
+    let threshold = format!("{} {}", num(*v), speed_unit(&config.prismatic, joint - 1));
     *v = 0.0;
     let list = values
         .iter()
@@ -233,19 +243,19 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
     let (what, fix) = if found == 0 {
         (
             format!(
-                "{threshold} rad/s removes every equation of joint {joint}: its |velocity| \
+                "{threshold} removes every equation of joint {joint}: its |velocity| \
                  stays below it in the whole record"
             ),
             format!(
                 "move joint {joint} in the trajectory (at rest in the whole record, it leaves \
                  parameters undetermined whatever rest_velocity), or, if it moves slower than \
-                 {threshold} rad/s, lower rest_velocity for it"
+                 {threshold}, lower rest_velocity for it"
             ),
         )
     } else {
         (
             format!(
-                "{threshold} rad/s leaves joint {joint} {found} equations (where its |velocity| \
+                "{threshold} leaves joint {joint} {found} equations (where its |velocity| \
                  reaches it), fewer than the {required} {}",
                 own_parameters(method)
             ),
@@ -265,14 +275,15 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
 }
 
 /// A rank deficiency said as the removal of the equations near rest when it took (nearly)
-/// all of a joint's ([`RestCount::rank_cause`]); other errors as they are.
+/// all of a joint's ([`RestCount::rank_cause`]); other errors as they are. One record's
+/// equations, or the stacked runs' (`rest` summed over the runs).
 pub(crate) fn rest_cause(rest: &RestCount, config: &Config, dof: usize, e: Error) -> Error {
     let thresholds = config.processing.rest_velocities(dof).ok();
     let in_file = !matches!(
         config.mapping("processing.rest_velocity"),
         crate::data::ColumnMapping::Default | crate::data::ColumnMapping::Code
     );
-    rest.rank_cause(thresholds.as_deref(), e, in_file)
+    rest.rank_cause(thresholds.as_deref(), e, in_file, &config.prismatic)
 }
 
 /// The whole pipeline: observation matrix from `data`, estimation, fit. With the energy

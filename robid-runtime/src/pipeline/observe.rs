@@ -472,7 +472,15 @@ impl RestCount {
     /// does not explain, as they are.
     /// `in_file`: the config is a file (else the default column mapping, and the fix says
     /// how to write one).
-    pub(crate) fn rank_cause(&self, rest: Option<&[f64]>, e: Error, in_file: bool) -> Error {
+    /// `prismatic`: which joints are prismatic ([`Config::prismatic`](crate::data::Config)),
+    /// whose speeds and thresholds are in m/s (the others' in rad/s).
+    pub(crate) fn rank_cause(
+        &self,
+        rest: Option<&[f64]>,
+        e: Error,
+        in_file: bool,
+        prismatic: &[bool],
+    ) -> Error {
         let (
             Some(rest),
             Error::Estimate(EstimateError::RankDeficient {
@@ -513,9 +521,10 @@ impl RestCount {
         let joints: Vec<String> = starved
             .iter()
             .map(|(j, c)| {
+                let unit = speed_unit(prismatic, *j);
                 format!(
-                    "joint {} keeps {} of its {} equations (its |velocity| reaches at most {}; \
-                     its threshold {})",
+                    "joint {} keeps {} of its {} equations (its |velocity| reaches at most {} \
+                     {unit}; its threshold {} {unit})",
                     j + 1,
                     c.kept,
                     c.before,
@@ -529,9 +538,8 @@ impl RestCount {
             "processing.rest_velocity",
             format!(
                 "rank-deficient data (rank {rank} of {columns} parameters; not excited: {}) \
-                 because rest_velocity removed all or nearly all of {} equations: {}; the threshold \
-                 is in rad/s for a revolute joint and in m/s for a prismatic one (default \
-                 0.05): lower `rest_velocity` in the config's [processing] for {}, e.g. \
+                 because rest_velocity removed all or nearly all of {} equations: {}; lower \
+                 `rest_velocity` (default 0.05) in the config's [processing] for {}, e.g. \
                  `rest_velocity = [{}]`, or 0 to keep every equation (a joint that does not \
                  move in the record needs a trajectory that moves it instead){}",
                 unexcited.join(", "),
@@ -557,33 +565,74 @@ impl RestCount {
     /// without the removal) when the removal is why fewer than `needed` equations are
     /// left (`purpose`: what they are for, e.g. "the 4 parameters"). Without it, the least
     /// squares said "0 samples, at least 4 are needed" and blamed the record's length.
-    pub(crate) fn check(&self, rest: Option<&[f64]>, needed: usize, purpose: &str) -> Result<()> {
+    /// `prismatic`: which joints are prismatic, whose thresholds and speeds are in m/s (the
+    /// others' in rad/s).
+    pub(crate) fn check(
+        &self,
+        rest: Option<&[f64]>,
+        prismatic: &[bool],
+        needed: usize,
+        purpose: &str,
+    ) -> Result<()> {
         let Some(rest) = rest else { return Ok(()) };
         if self.kept >= needed || self.before < needed {
             return Ok(());
         }
-        let value = match rest.split_first() {
-            Some((first, others)) if others.iter().all(|v| v == first) => num(*first),
+        let units: Vec<&str> = (0..rest.len()).map(|j| speed_unit(prismatic, j)).collect();
+        let value = match (rest.split_first(), units.split_first()) {
+            (Some((first, others)), Some((unit, kinds)))
+                if others.iter().all(|v| v == first) && kinds.iter().all(|u| u == unit) =>
+            {
+                format!("{} {unit}", num(*first))
+            }
             _ => format!(
                 "[{}]",
-                rest.iter().map(|&v| num(v)).collect::<Vec<_>>().join(", ")
+                rest.iter()
+                    .zip(&units)
+                    .map(|(&v, unit)| format!("{} {unit}", num(v)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ),
         };
+        // the fastest joint, whose speed is told in its unit
+        let fastest = self
+            .joints
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.fastest.total_cmp(&b.1.fastest))
+            .map_or(0, |(j, _)| j);
         Err(Error::setting(
             "Config",
             "processing.rest_velocity",
             format!(
-                "{value} rad/s removes {} of the {} equations (a joint's samples where its \
+                "{value} removes {} of the {} equations (a joint's samples where its \
                  |velocity| is below it), leaving {}, fewer than {purpose}; the fastest joint \
-                 velocity is {} rad/s: lower rest_velocity below the joints' speeds, check the \
-                 velocity columns and their units (joint side, rad/s or m/s: units.angle, the \
-                 drive chain), or use a record in which the joints move",
+                 velocity is {} {}: lower rest_velocity below the joints' speeds, check the \
+                 velocity columns and their units (joint side, {}: units.angle, the drive \
+                 chain), or use a record in which the joints move",
                 self.before - self.kept,
                 self.before,
                 self.kept,
                 num(three_digits(self.fastest)),
+                speed_unit(prismatic, fastest),
+                match (units.contains(&"rad/s"), units.contains(&"m/s")) {
+                    (true, true) => "rad/s or m/s",
+                    (false, true) => "m/s",
+                    _ => "rad/s",
+                },
             ),
         ))
+    }
+}
+
+/// The unit of joint `j`'s (0-based) velocity and of its `rest_velocity`: m/s for a
+/// prismatic joint (`prismatic[j]`, [`Config::prismatic`](crate::data::Config)), rad/s for
+/// a revolute one (a joint not listed).
+pub(crate) fn speed_unit(prismatic: &[bool], j: usize) -> &'static str {
+    if prismatic.get(j).copied().unwrap_or(false) {
+        "m/s"
+    } else {
+        "rad/s"
     }
 }
 
@@ -1298,7 +1347,12 @@ pub(crate) fn observe_counted(
             })
             .collect(),
     };
-    count.check(rest.as_deref(), cols, &format!("the {cols} parameters"))?;
+    count.check(
+        rest.as_deref(),
+        &config.prismatic,
+        cols,
+        &format!("the {cols} parameters"),
+    )?;
     let mut w = DMatrix::zeros(total, cols);
     let mut y = DVector::zeros(total);
     let mut joint_rows = Vec::with_capacity(dof);

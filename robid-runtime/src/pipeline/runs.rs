@@ -12,10 +12,11 @@ use crate::data::{Config, Dataset, RunMode, joined_with};
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation};
 use crate::inspect::CutoffSuggestion;
-use crate::pipeline::identify::estimated_parameters;
+use crate::pipeline::identify::{estimated_parameters, observation_counted, rest_cause};
+use crate::pipeline::observe::RestCount;
 use crate::pipeline::prepare::samples_needed;
 use crate::pipeline::stream::{stacked_streaming, streams};
-use crate::pipeline::{Identification, estimate, identify, observation};
+use crate::pipeline::{Identification, estimate, identify};
 use crate::signal::Signals;
 use crate::validate::{Fit, Prediction, UsedRows};
 
@@ -173,12 +174,19 @@ pub(crate) fn stacked_dense(
     config: &Config,
 ) -> Result<(Estimate, Prediction)> {
     let mut parts = Vec::with_capacity(runs.len());
+    // what the removal of the equations near rest left, over the runs: a rank deficiency
+    // it explains is said as `processing.rest_velocity`'s, as for one record
+    let mut rest = RestCount::default();
     for (i, d) in runs.iter().enumerate() {
-        parts.push(observation(model, d, config).map_err(|e| config.run_error(i, &d.name, e))?);
+        let (obs, dt, counted) =
+            observation_counted(model, d, config).map_err(|e| config.run_error(i, &d.name, e))?;
+        rest.add(&counted);
+        parts.push((obs, dt));
     }
     let dt = parts.first().map_or(1.0, |p| p.1);
     let obs = stack(parts.into_iter().map(|p| p.0).collect())?;
-    let estimate = estimate(&obs, config)?;
+    let estimate = estimate(&obs, config)
+        .map_err(|e| config.locate(rest_cause(&rest, config, model.dof(), e)))?;
     let prediction = Prediction::new(&obs, &estimate.values, dt);
     prediction.check("the stacked runs")?;
     Ok((estimate, prediction))

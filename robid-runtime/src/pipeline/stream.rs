@@ -36,7 +36,7 @@ use crate::data::{Config, Dataset, Method, Record};
 use crate::error::{Error, Result};
 use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
 use crate::pipeline::Identification;
-use crate::pipeline::identify::checked_plan;
+use crate::pipeline::identify::{checked_plan, rest_cause};
 use crate::pipeline::observe::{Carry, Equations, Observer, RestCount, decimator_for, long_enough};
 use crate::pipeline::prepare::{Plan, Rows};
 use crate::progress::Progress;
@@ -443,8 +443,13 @@ pub(crate) fn identify_streaming(
             ls.push_rows(&joint, &w, &y)
         })
         .map_err(at)?;
-    rest.check(stream.rest(), cols, &format!("the {cols} parameters"))
-        .map_err(at)?;
+    rest.check(
+        stream.rest(),
+        &config.prismatic,
+        cols,
+        &format!("the {cols} parameters"),
+    )
+    .map_err(at)?;
     if config.processing.pieces.is_some() && ls.rows() < cols {
         return Err(config.key_error(
             "processing.pieces",
@@ -475,7 +480,7 @@ pub(crate) fn identify_streaming(
                     parameter: names[c].clone(),
                     share,
                 }),
-                None => config.locate(crate::pipeline::identify::rest_cause(&rest, config, dof, e)),
+                None => config.locate(rest_cause(&rest, config, dof, e)),
             }
         }
         e => e,
@@ -545,6 +550,7 @@ pub(crate) fn validate_streaming(
         .rest
         .check(
             stream.rest(),
+            &config.prismatic,
             1,
             &format!("the one a prediction of {} needs", data.name()),
         )
@@ -590,16 +596,22 @@ pub(crate) fn stacked_streaming(
     };
     let dof = model.dof();
     let mut ls = StreamingLeastSquares::new(first.names().to_vec(), dof)?;
+    // what the removal of the equations near rest left, over the runs (as the dense
+    // stacked path counts it)
+    let mut rest = RestCount::default();
     for (i, ((s, p), d)) in streams.iter().zip(&plans).zip(runs).enumerate() {
-        s.run(|eq| ls.push_rows(&eq.joint, &eq.w, &eq.y))
-            .map_err(|e| in_run(i, d, located(e, config, d, &p.kept)))?;
+        s.run(|eq| {
+            rest.add(&eq.rest);
+            ls.push_rows(&eq.joint, &eq.w, &eq.y)
+        })
+        .map_err(|e| in_run(i, d, located(e, config, d, &p.kept)))?;
     }
     let tolerance = config.estimation.rank_tolerance;
     let estimate = match config.estimation.method {
         Method::Wls => ls.wls(tolerance),
         _ => ls.ols(tolerance),
     }
-    .map_err(|e| config.locate(e))?;
+    .map_err(|e| config.locate(rest_cause(&rest, config, dof, e)))?;
     let dt = runs[0].sample_time * first.factor() as f64;
     let mut stacked = Prediction {
         measured: vec![Vec::new(); dof],

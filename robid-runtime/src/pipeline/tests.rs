@@ -242,6 +242,30 @@ fn rest_removal_of_every_equation_names_rest_velocity() {
         }
     }
     assert_eq!(streamed.to_string(), reference.to_string());
+    // every joint prismatic: each threshold and the fastest speed in m/s; one of them
+    // prismatic: each threshold in its joint's unit
+    for (prismatic, value) in [
+        (vec![true; DOF], "1000 m/s removes"),
+        (
+            vec![false, true],
+            "[1000 rad/s, 1000 m/s, 1000 rad/s, 1000 rad/s, 1000 rad/s, 1000 rad/s] removes",
+        ),
+    ] {
+        let mut high = high.clone();
+        high.prismatic = prismatic.clone();
+        let mut rls = rls.clone();
+        rls.prismatic = prismatic.clone();
+        for e in [
+            identify(&model, &data, &high).unwrap_err(),
+            identify(&model, &data, &rls).unwrap_err(),
+        ] {
+            let text = e.to_string();
+            assert!(text.contains(value), "`{value}` in {text}");
+            if prismatic.iter().all(|&p| p) {
+                assert!(!text.contains("rad/s"), "{text}");
+            }
+        }
+    }
     // validation data in which no joint moves
     let values = identify(&model, &data, &cfg).unwrap().estimate.values;
     let e = validate(&model, &at_rest(3000), &cfg, &values).unwrap_err();
@@ -277,28 +301,36 @@ fn a_rank_deficiency_from_rest_velocity_names_it() {
     let high = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
     let mut rls = high.clone();
     rls.estimation.method = crate::data::Method::Rls;
-    let streamed = identify(&model, &data, &high).unwrap_err();
-    let dense = identify(&model, &data, &rls).unwrap_err();
-    for e in [&streamed, &dense] {
-        assert!(
-            matches!(e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
-                if key == "processing.rest_velocity" && *l == line),
-            "{e}"
-        );
-        let message = e.to_string();
-        for part in [
-            "rank-deficient data (rank ",
-            "because rest_velocity removed all or nearly all of a joint's equations: joint 2 \
-             keeps 0 of its ",
-            "its threshold 100)",
-            "lower `rest_velocity` in the config's [processing] for it, e.g. `rest_velocity = \
-             [0.02, 0.",
-            "or 0 to keep every equation",
-        ] {
-            assert!(message.contains(part), "`{part}` in {message}");
+    // each speed in its joint's unit: rad/s, or m/s when joint 2 is prismatic
+    for (prismatic, unit) in [(false, "rad/s"), (true, "m/s")] {
+        let (mut high, mut rls) = (high.clone(), rls.clone());
+        high.prismatic = vec![false, prismatic];
+        rls.prismatic = high.prismatic.clone();
+        let streamed = identify(&model, &data, &high).unwrap_err();
+        let dense = identify(&model, &data, &rls).unwrap_err();
+        for e in [&streamed, &dense] {
+            assert!(
+                matches!(e, Error::Data(DataError::ConfigKey { key, line: Some(l), .. })
+                    if key == "processing.rest_velocity" && *l == line),
+                "{e}"
+            );
+            let message = e.to_string();
+            for part in [
+                "rank-deficient data (rank ",
+                "because rest_velocity removed all or nearly all of a joint's equations: \
+                 joint 2 keeps 0 of its ",
+                &format!(" {unit}; its threshold 100 {unit})"),
+                "lower `rest_velocity` (default 0.05) in the config's [processing] for it, \
+                 e.g. `rest_velocity = [0.02, 0.",
+                "or 0 to keep every equation",
+            ] {
+                assert!(message.contains(part), "`{part}` in {message}");
+            }
+            assert!(!message.contains("remove these parameters"), "{message}");
+            assert!(!message.contains("without --config"), "{message}");
+            let other = if prismatic { "rad/s" } else { "m/s" };
+            assert!(!message.contains(other), "{message}");
         }
-        assert!(!message.contains("remove these parameters"), "{message}");
-        assert!(!message.contains("without --config"), "{message}");
     }
     // joint 3 at rest in the whole record: the least squares' own message
     let e = identify(&model, &with_joint_at_rest(3000, 2), &config("")).unwrap_err();
@@ -359,6 +391,17 @@ fn joint_by_joint_methods_name_a_joint_whose_equations_rest_velocity_removes() {
             assert!(message.contains(part), "`{part}` in {message}");
         }
         assert!(!message.contains("more data"), "{message}");
+        // joint 3 prismatic: its threshold in m/s
+        let mut prismatic = with(&text);
+        prismatic.prismatic = vec![false, false, true];
+        let e = identify(&model, &with_joint_at_rest(3000, 2), &prismatic).unwrap_err();
+        let message = e.to_string();
+        assert!(
+            message.contains("0.02 m/s removes every equation of joint 3")
+                && message.contains("if it moves slower than 0.02 m/s, lower")
+                && !message.contains("rad/s"),
+            "{method}: {message}"
+        );
         // joint 2 moving, but faster than 0.83 rad/s in a few samples only
         let data = dataset(3000, 1000.0, 0.0);
         let slow = text.replace(

@@ -25,6 +25,7 @@ use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
 use robots::Reference;
 use robots::interpreted::{Chosen, model_for};
+use robots::positions::beyond_limits;
 
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
@@ -388,6 +389,28 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for w in warnings.chain(record.iter().flat_map(Loaded::warnings)) {
         out::warn(format_args!("warning: {w}"));
     }
+    // positions beyond the description's limits (degrees read as radians, mm as m, another
+    // robot's log), from the extremes the loader kept, as `robid inspect` warns of them
+    match &record {
+        Some(r) => {
+            for w in beyond_limits(&description, &r.position_ranges(), robot) {
+                out::warn(format_args!("warning: {w}"));
+            }
+        }
+        None => {
+            for (i, d) in sets.iter().enumerate() {
+                let files = d.files();
+                let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+                for w in beyond_limits(&description, d.position_ranges(), robot) {
+                    out::warn(format_args!(
+                        "warning: run {} ({}): {w}",
+                        i + 1,
+                        files.join(", ")
+                    ));
+                }
+            }
+        }
+    }
     // "auto" is chosen once, on the estimation data (the first run), and used for the
     // other runs and the validation data too
     let auto = resolve_cutoff(&mut config, first).map_err(|e| config.locate(e))?;
@@ -415,6 +438,13 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         let d = load_or_split(&config, group, model.dof())?;
         for w in d.warnings() {
             out::warn(format_args!("warning: {w}"));
+        }
+        let files: Vec<String> = group.iter().map(|f| f.display().to_string()).collect();
+        for w in beyond_limits(&description, &d.position_ranges(), robot) {
+            out::warn(format_args!(
+                "warning: --validate {}: {w}",
+                files.join(", ")
+            ));
         }
         let (p, segments) = validate_loaded(model, &d, &config, &values)?;
         report = report.with_prediction(&p);

@@ -6,13 +6,11 @@
 //! on disk and read block by block (`data::SpilledRecord`), as `robid identify` reads it,
 //! so an hour-long log is never held in memory.
 
-use std::path::{Path, PathBuf};
-
-use robid_runtime::Num;
-use robid_symbolic::JointKind;
+use std::path::PathBuf;
 
 use robid_runtime::data::{Record, Sampling, SpilledRecord, load};
 use robid_runtime::inspect::inspect_record;
+use robots::positions::beyond_limits;
 
 use super::description::{self, DescriptionFlags};
 use super::identify::{config_for, data_files};
@@ -63,11 +61,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let limits: Vec<Option<f64>> = robot.joints().iter().map(|j| j.limits.torque).collect();
     let inspection =
         inspect_record(data.as_ref(), sampling, &config, &limits).map_err(|e| config.locate(e))?;
-    for j in &inspection.joints {
-        let joint = &robot.joints()[j.joint - 1];
-        if let Some(w) = beyond_limits(j.joint, joint, j.position_range, &args.robot) {
-            out::warn(format_args!("warning: {w}"));
-        }
+    let ranges: Vec<[f64; 2]> = inspection.joints.iter().map(|j| j.position_range).collect();
+    for w in beyond_limits(&robot, &ranges, &args.robot) {
+        out::warn(format_args!("warning: {w}"));
     }
     let text = if args.json {
         serde_json::to_string_pretty(&inspection)? + "\n"
@@ -75,39 +71,4 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         inspection.text()
     };
     Ok(out::print(&text)?)
-}
-
-/// A warning when joint `number`'s positions (`range`, as read) pass its position limits in
-/// the description `file` by more than a tenth of their span: data of another unit (a
-/// revolute joint's in degrees read as radians, a prismatic one's in mm read as m) or of
-/// another robot, which identification takes as they are and fits without a word.
-fn beyond_limits(
-    number: usize,
-    joint: &robid_symbolic::Joint,
-    range: [f64; 2],
-    file: &Path,
-) -> Option<String> {
-    let [lower, upper] = joint.limits.position?;
-    let margin = 0.1 * (upper - lower);
-    if range[0] >= lower - margin && range[1] <= upper + margin {
-        return None;
-    }
-    let prismatic = joint.kind == JointKind::Prismatic;
-    let (unit, hint) = if prismatic {
-        ("m", "positions in mm? they are read in metres")
-    } else {
-        (
-            "rad",
-            "positions in degrees? set `angle = \"deg\"` in the config's [units]",
-        )
-    };
-    Some(format!(
-        "joint {number}'s positions span [{}, {}] {unit}, beyond its limits [{}, {}] {unit} in {}: \
-         {hint}; or the data are another robot's",
-        Num::rounded(range[0], 4),
-        Num::rounded(range[1], 4),
-        Num(lower),
-        Num(upper),
-        file.display()
-    ))
 }

@@ -123,7 +123,13 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     log_settings(args, n)?;
     let base = description.base_parameters(args.parameters.as_deref(), &model)?;
-    super::states::read(&args.trajectory, &Trajectory::header(n), n)?;
+    // a log of positions given as the reference (a recorded run): it needs the velocities
+    // and accelerations the PD loop follows, which `robid excite` writes with the positions
+    let remedy = format!(
+        "; or design a reference trajectory with them: `robid excite {} -o TRAJ.csv`",
+        args.robot.display()
+    );
+    super::states::read_with(&args.trajectory, &Trajectory::header(n), n, &remedy)?;
     let reference = Trajectory::read_csv(&args.trajectory, n)?;
     check_bandwidth(args.bandwidth, &reference, &args.trajectory)?;
     let every = every_sample(args.rate, &reference, &args.trajectory)?;

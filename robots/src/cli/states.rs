@@ -20,12 +20,8 @@ pub(crate) const STATE_LIMIT: f64 = 1e6;
 /// Reads the columns `names` of `path` (the runtime's CSV reader: numbers, finite) and
 /// checks the state columns (`q*`, `qd*`, `qdd*`) against [`STATE_LIMIT`]. A file with a
 /// position column for one joint more than the robot's `dof` is refused: it holds the
-/// states of another robot.
-pub(crate) fn read(path: &Path, names: &[String], dof: usize) -> Result<Table, Error> {
-    read_with(path, names, dof, "")
-}
-
-/// [`read`], with `remedy` for a file of positions alone (see [`with_header`]).
+/// states of another robot. `remedy` (empty, or "; ...") ends the message for a file of
+/// positions alone with the command's own way (see [`with_header`]).
 pub(crate) fn read_with(
     path: &Path,
     names: &[String],
@@ -173,7 +169,7 @@ fn header_pattern(names: &[String]) -> String {
 }
 
 /// Refuses a file with a position column for one joint more than the robot's `dof` (what
-/// [`read`] checks first): it holds the states of another robot.
+/// [`read_with`] checks first): it holds the states of another robot.
 pub(crate) fn refuse_surplus(path: &Path, dof: usize) -> Result<(), Error> {
     if let Some(column) = surplus_joint(&read_header(path)?, "q{}", dof) {
         return Err(format!(

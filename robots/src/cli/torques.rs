@@ -361,7 +361,8 @@ mod tests {
     /// The torques of the file read whole (as `robid torques` computed them before it
     /// streamed): the text, or the error.
     fn whole(path: &Path, base: &[f64]) -> Result<String, String> {
-        let table = crate::cli::states::read(path, &names(), 6).map_err(|e| e.to_string())?;
+        let table =
+            crate::cli::states::read_with(path, &names(), 6, "").map_err(|e| e.to_string())?;
         let mut text = "tau1,tau2,tau3,tau4,tau5,tau6\n".to_string();
         torques(&robots::Ur5e, base, &table, &mut text).map_err(|e| e.to_string())?;
         Ok(text)

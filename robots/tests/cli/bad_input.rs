@@ -305,8 +305,9 @@ fn a_states_file_missing_a_column_is_told_the_header_it_needs() {
 }
 
 /// A log of positions and torques (`t,q1..,tau1..`, no velocities or accelerations) given
-/// to `torques` or `payload`, which read them and do not differentiate, is told so, with
-/// how to get them (and, for `payload`, identify's way); it was told to "rename its
+/// to `torques`, `payload` or `simulate --trajectory`, which read them and do not
+/// differentiate, is told so, with how to get them (for `payload`, identify's way; for
+/// `simulate`, a reference designed by `robid excite`); it was told to "rename its
 /// columns", which were not there. A file that has velocities but no accelerations says
 /// which are missing; columns that may hold them under other names are named.
 #[test]
@@ -353,6 +354,26 @@ fn a_log_of_positions_is_told_it_lacks_velocities_and_accelerations() {
              `robid identify` does",
         ],
     );
+    // `simulate --trajectory`: the reference needs them too; `robid excite` writes one
+    let o = robid(&[
+        "simulate",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--trajectory",
+        log.to_str().unwrap(),
+        "-o",
+        dir.path().join("sim.csv").to_str().unwrap(),
+    ]);
+    fails_with(&o, &common);
+    fails_with(
+        &o,
+        &[
+            "under the header t,q1..q6,qd1..qd6,qdd1..qdd6; or design a reference trajectory \
+             with them: `robid excite descriptions/ur5e.toml -o TRAJ.csv`",
+        ],
+    );
+    assert!(!dir.path().join("sim.csv").exists());
     // velocities under other names: those named as what to rename
     let renamed = write(
         dir.path(),

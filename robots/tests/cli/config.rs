@@ -651,6 +651,128 @@ fn inspect_warns_of_positions_beyond_the_limits() {
     );
 }
 
+/// `identify` warns of positions far beyond the description's limits as `inspect` does
+/// (the same words), from the extremes the loader keeps: the record kept on disk (one
+/// file), a record cut at its gaps (`gaps = "split"`, over its segments), each run of
+/// `[runs]` (loaded in memory, named with its file) and each `--validate` data set; the
+/// identification goes on. Within the limits it says nothing.
+#[test]
+fn identify_warns_of_positions_beyond_the_limits() {
+    let dir = folder();
+    let d = dir.path();
+    let limited = PENDULUM.replace(
+        "alpha = 0\n",
+        "alpha = 0\nlimits = { position = [-2, 2] }\n",
+    );
+    let robot = write(d, "pendulum.toml", &limited);
+    let config = write(d, "config.toml", CONFIG);
+    let radians = write(d, "radians.csv", &log());
+    let degrees: String = log()
+        .lines()
+        .enumerate()
+        .map(|(k, l)| {
+            if k == 0 {
+                return format!("{l}\n");
+            }
+            let f: Vec<&str> = l.split(',').collect();
+            let q: f64 = f[1].parse().unwrap();
+            format!("{},{},{}\n", f[0], q.to_degrees(), f[2])
+        })
+        .collect();
+    let degrees = write(d, "degrees.csv", &degrees);
+    write(
+        d,
+        "degrees2.csv",
+        &std::fs::read_to_string(&degrees).unwrap(),
+    );
+    let runs = write(
+        d,
+        "runs.toml",
+        &format!("{CONFIG}[runs]\nfiles = [\"radians.csv\", \"degrees2.csv\"]\n"),
+    );
+    let (robot, config, radians, degrees, runs) = (
+        robot.to_str().unwrap(),
+        config.to_str().unwrap(),
+        radians.to_str().unwrap(),
+        degrees.to_str().unwrap(),
+        runs.to_str().unwrap(),
+    );
+    let warned = |e: &str| {
+        e.contains("joint 1's positions span [")
+            && e.contains("beyond its limits [-2, 2] rad in ")
+            && e.contains("angle = \"deg\"")
+    };
+    let o = robid(&["identify", robot, "--config", config, "--data", radians]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("beyond its limits"), "{}", stderr(&o));
+    // the record kept on disk
+    let o = robid(&["identify", robot, "--config", config, "--data", degrees]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        warned(&e) && e.contains("warning: joint 1's positions"),
+        "{e}"
+    );
+    assert_eq!(e.matches("beyond its limits").count(), 1, "{e}");
+    // validation data
+    let o = robid(&[
+        "identify",
+        robot,
+        "--config",
+        config,
+        "--data",
+        radians,
+        "--validate",
+        degrees,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        warned(&e) && e.contains(&format!("warning: --validate {degrees}: joint 1's")),
+        "{e}"
+    );
+    assert_eq!(e.matches("beyond its limits").count(), 1, "{e}");
+    // a record cut at its gaps (`gaps = "split"`): over its segments
+    let gapped: String = std::fs::read_to_string(degrees)
+        .unwrap()
+        .lines()
+        .enumerate()
+        .filter(|(k, _)| !(1001..1401).contains(k))
+        .map(|(_, l)| format!("{l}\n"))
+        .collect();
+    let gapped = write(d, "gapped.csv", &gapped);
+    let split = write(
+        d,
+        "split.toml",
+        &CONFIG.replace("[processing]\n", "[processing]\ngaps = \"split\"\n"),
+    );
+    let o = robid(&[
+        "identify",
+        robot,
+        "--config",
+        split.to_str().unwrap(),
+        "--data",
+        gapped.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        warned(&e) && e.contains("warning: joint 1's positions"),
+        "{e}"
+    );
+    assert_eq!(e.matches("beyond its limits").count(), 1, "{e}");
+    assert!(stdout(&o).contains("segment"), "{}", stdout(&o));
+    // the second of two runs
+    let o = robid(&["identify", robot, "--config", runs]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        warned(&e) && e.contains("warning: run 2 (") && e.contains("degrees2.csv): joint 1's"),
+        "{e}"
+    );
+    assert_eq!(e.matches("beyond its limits").count(), 1, "{e}");
+}
+
 /// `simulate` keeps a light link with Coulomb friction on its reference: the planar 2R
 /// pendulum (`tests/fixtures/pendulum2.toml`) whose second link is a gripper's jaw (12 g,
 /// 1.6e-5 kg m^2 about its joint, `Fc2` 0.07 N m, as the SO-101's), both joints out and back

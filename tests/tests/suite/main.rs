@@ -37,6 +37,7 @@ mod mass_matrix_spd;
 mod model_equation;
 mod ne_equals_le;
 mod payload_identify;
+mod positions_beyond_limits;
 mod power_balance;
 mod reference_files;
 mod rnea_agrees;

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use crate::DataError;
-use crate::data::dataset::{DataOrigin, Values, empty_range};
+use crate::data::dataset::{DataOrigin, Values, empty_range, widen_ranges};
 use crate::data::load::{
     SourceColumns, assemble, check_cutoff, check_joints, check_ranges, check_step, load,
     plan_source, source_paths, stale_warning, take_time, unread_time_rows,
@@ -40,6 +40,12 @@ pub trait Record: Sync {
     fn warnings(&self) -> &[Warning];
     /// The file the samples come from, when they come from one.
     fn file(&self) -> Option<&Path>;
+    /// Per joint the smallest and largest position (rad or m, joint side), gathered by the
+    /// loader as it read the samples (no pass of its own over them); empty when the
+    /// samples were not loaded from files. For positions resampled onto a uniform grid,
+    /// those of the record kept on disk are of the samples as read, which the resampled
+    /// ones lie between.
+    fn position_ranges(&self) -> &[[f64; 2]];
     /// The file line of sample `k`, when known.
     fn line(&self, k: usize) -> Option<u64>;
     /// Every file the samples were read from: [`Record::file`] first, then the files
@@ -85,6 +91,10 @@ impl Record for Dataset {
 
     fn file(&self) -> Option<&Path> {
         self.origin.as_ref().map(|o| o.path.as_path())
+    }
+
+    fn position_ranges(&self) -> &[[f64; 2]] {
+        &self.position_ranges
     }
 
     fn line(&self, k: usize) -> Option<u64> {
@@ -159,6 +169,8 @@ pub struct SpilledRecord {
     spill: Mutex<File>,
     warnings: Vec<Warning>,
     sampling: Sampling,
+    /// Per joint the smallest and largest position of the samples as read (joint side).
+    position_ranges: Vec<[f64; 2]>,
 }
 
 /// Where one window's samples are in the temporary file: every signal the record has
@@ -232,6 +244,7 @@ impl SpilledRecord {
         let mut digits = Vec::new();
         let mut clock = Clock::default();
         let mut scan = SamplingScan::new(spans.len() * dof);
+        let mut position_ranges = Vec::new();
         // the sample time only matters at the end: windows are checked at the config's rate
         // or at 1 kHz, which the limits always allow
         let checked_at = config.sample_rate.map_or(1e-3, |fs| 1.0 / fs);
@@ -296,12 +309,13 @@ impl SpilledRecord {
                 first_time: stamps.first().copied().unwrap_or_default(),
                 last_time: stamps.last().copied().unwrap_or_default(),
             });
-            // every value checked as `load` checks it
+            // every value checked as `load` checks it, and the joint-side positions'
+            // extremes kept
             let origin = DataOrigin {
                 path: path.clone(),
                 lines,
             };
-            assemble(
+            let window = assemble(
                 config,
                 dof,
                 String::new(),
@@ -309,8 +323,9 @@ impl SpilledRecord {
                 blocks,
                 origin,
                 Values::Check,
-            )
-            .map(drop)
+            )?;
+            widen_ranges(&mut position_ranges, &window.q);
+            Ok(())
         })?;
         progress.finish();
         let rows = chunks.last().map_or(0, |c| c.start + c.len);
@@ -367,6 +382,7 @@ impl SpilledRecord {
             spill: Mutex::new(spill),
             warnings,
             sampling,
+            position_ranges,
         }))
     }
 
@@ -659,6 +675,10 @@ impl Record for SpilledRecord {
 
     fn file(&self) -> Option<&Path> {
         Some(&self.path)
+    }
+
+    fn position_ranges(&self) -> &[[f64; 2]] {
+        &self.position_ranges
     }
 
     fn line(&self, k: usize) -> Option<u64> {

@@ -127,6 +127,45 @@ fn blocks_are_the_loaded_samples_bit_for_bit() {
     assert_eq!(record.line(n), None);
 }
 
+/// The loader keeps per joint the extremes of the joint-side positions (after the units
+/// and the drive chain) as it reads them: on disk window by window and in memory, both
+/// the data set's own, to the bit. A slice (a block read) does not claim the record's.
+#[test]
+fn the_loader_keeps_the_positions_extremes() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = file(&dir, &log(3000));
+    let config = config(CONFIG);
+    let data = load(&config, std::slice::from_ref(&path), 3).unwrap();
+    let record = SpilledRecord::open_in(&config, &[path], 3, SMALL)
+        .unwrap()
+        .expect("one regular file is kept on disk");
+    let extremes: Vec<[u64; 2]> = data
+        .q
+        .joints()
+        .map(|q| {
+            let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            [lo.to_bits(), hi.to_bits()]
+        })
+        .collect();
+    let bits = |r: &[[f64; 2]]| -> Vec<[u64; 2]> {
+        r.iter().map(|[a, b]| [a.to_bits(), b.to_bits()]).collect()
+    };
+    assert_eq!(extremes.len(), 3);
+    assert_eq!(bits(Record::position_ranges(&data)), extremes);
+    assert_eq!(bits(record.position_ranges()), extremes);
+    // joint side: 30 degrees of the motors through gear ratios of 50 and more (and the
+    // coupling), in radians
+    assert!(
+        data.position_ranges
+            .iter()
+            .all(|[lo, hi]| lo < hi && hi.abs().max(lo.abs()) < 0.02),
+        "{:?}",
+        data.position_ranges
+    );
+    assert!(data.slice(0, 10).unwrap().position_ranges.is_empty());
+}
+
 #[test]
 fn errors_are_those_of_load() {
     let dir = tempfile::tempdir().unwrap();

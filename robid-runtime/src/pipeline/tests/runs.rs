@@ -318,3 +318,65 @@ fn a_run_too_short_for_the_processing_is_named_with_its_rows_first() {
         );
     }
 }
+
+/// Stacked runs whose equations `processing.rest_velocity` removes (nearly) all of a
+/// moving joint's are told as the single-run path tells them (`rest_cause`): the key at
+/// its line, the joint, the equations it kept over the runs, its top speed and a
+/// per-joint `rest_velocity` that keeps them, in the dense (RLS) and the streaming (OLS)
+/// stacked path; it was the least squares' plain "rank-deficient data: ...; use a richer
+/// trajectory or remove these parameters". Each speed in its joint's unit: m/s for a
+/// prismatic joint (`Config::prismatic`).
+#[test]
+fn stacked_runs_name_the_rest_velocity_that_removed_a_joints_equations() {
+    let (config, dir) = runs_config(&[3000, 3000], "stacked");
+    let path = dir.path().join("runs.toml");
+    // joint 2 moves at up to 0.843 rad/s: a threshold of 100 for it removes its equations
+    let text = std::fs::read_to_string(&path).unwrap().replace(
+        "rest_velocity = 0.02",
+        "rest_velocity = [0.02, 100, 0.02, 0.02, 0.02, 0.02]",
+    );
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("rest_velocity"))
+        .unwrap()
+        + 1;
+    drop(config);
+    let ols = Config::from_toml_str(&text, &path).unwrap();
+    let data = load_runs(&ols, DOF).unwrap();
+    let mut rls = ols.clone();
+    rls.estimation.method = crate::data::Method::Rls;
+    let model = Synthetic::default();
+    for prismatic in [false, true] {
+        let (mut ols, mut rls) = (ols.clone(), rls.clone());
+        ols.prismatic = vec![false, prismatic];
+        rls.prismatic = ols.prismatic.clone();
+        let unit = if prismatic { "m/s" } else { "rad/s" };
+        let streamed = crate::pipeline::stream::stacked_streaming(&model, &data, &ols)
+            .err()
+            .unwrap();
+        let dense = crate::pipeline::runs::stacked_dense(&model, &data, &rls)
+            .err()
+            .unwrap();
+        for e in [&streamed, &dense] {
+            assert!(
+                matches!(e, Error::Data(crate::DataError::ConfigKey { key, line: Some(l), .. })
+                    if key == "processing.rest_velocity" && *l == line),
+                "{e}"
+            );
+            let message = e.to_string();
+            for part in [
+                "rank-deficient data (rank 44 of 48 parameters; not excited: ",
+                "because rest_velocity removed all or nearly all of a joint's equations: \
+                 joint 2 keeps 0 of its 520 equations (its |velocity| reaches at most 0.843 ",
+                &format!("{unit}; its threshold 100 {unit})"),
+                "lower `rest_velocity` (default 0.05) in the config's [processing] for it, \
+                 e.g. `rest_velocity = [0.02, 0.0843, 0.02, 0.02, 0.02, 0.02]`",
+            ] {
+                assert!(message.contains(part), "`{part}` in {message}");
+            }
+            assert!(!message.contains("remove these parameters"), "{message}");
+            let other = if prismatic { "rad/s" } else { "m/s" };
+            assert!(!message.contains(other), "{message}");
+        }
+    }
+}

@@ -1,0 +1,83 @@
+//! A log whose positions are in degrees, read as radians (the default `angle = "rad"`),
+//! passes the description's position limits many times over, and identification fits it
+//! without a word. The loader keeps per joint the extremes of the positions as it reads
+//! them (`Record::position_ranges`, no pass of its own), and `robots::positions::
+//! beyond_limits` (what `robid identify` and `robid inspect` warn with) names each joint
+//! beyond its limits: for the record kept on disk (`load_record`, one file), the data set
+//! in memory (`load`) and each run of `[runs]` (`load_runs`). The same log in radians
+//! gives no warning.
+
+use std::path::Path;
+
+use robid_runtime::data::{Config, Record, load, load_record, load_runs};
+use robots::positions::beyond_limits;
+use tests::fuzz_data::{self, Motion};
+use tests::scratch::Scratch;
+
+/// The UR5e's motion (within its limits in radians) with its positions in degrees.
+fn in_degrees(mut m: Motion) -> Motion {
+    for joint in m.signals[0].joints_mut() {
+        joint.iter_mut().for_each(|q| *q = q.to_degrees());
+    }
+    m
+}
+
+const CONFIG: &str = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\n\
+                      velocity = \"qd{}\"\nacceleration = \"qdd{}\"\ntorque = \"tau{}\"\n";
+
+#[test]
+fn a_log_in_degrees_read_as_radians_is_named_beyond_the_limits() {
+    let tmp = Scratch::new();
+    let radians = fuzz_data::motion(600);
+    let degrees = in_degrees(fuzz_data::motion(600));
+    let rad = tmp.write("radians.csv", &fuzz_data::motion_csv(&radians));
+    let deg = tmp.write("degrees.csv", &fuzz_data::motion_csv(&degrees));
+    let robot = robots::Reference::named("ur5e").unwrap().robot();
+    let description = Path::new("ur5e.toml");
+    // the largest excursion in radians, and so in degrees
+    let top: Vec<f64> = radians.signals[0]
+        .joints()
+        .map(|q| q.iter().fold(0.0f64, |a, v| a.max(v.abs())))
+        .collect();
+    assert!(top.iter().all(|&t| (0.5..1.2).contains(&t)), "{top:?}");
+    let config = Config::from_toml_str(CONFIG, &tmp.path("c.toml")).unwrap();
+    let warnings =
+        |record: &dyn Record| beyond_limits(&robot, record.position_ranges(), description);
+    // every joint beyond its limits ([-6.2832, 6.2832] rad, joint 3 [-3.1416, 3.1416]):
+    // its excursion of 30 to 70 degrees read as radians
+    let check = |w: Vec<String>, how: &str| {
+        assert_eq!(w.len(), 6, "{how}: {w:?}");
+        for (j, w) in w.iter().enumerate() {
+            assert!(
+                w.starts_with(&format!("joint {}'s positions span [", j + 1))
+                    && w.contains("rad, beyond its limits [")
+                    && w.contains("in ur5e.toml: positions in degrees? set `angle = \"deg\"`"),
+                "{how}: {w}"
+            );
+        }
+        // the span is the log's: joint 1's largest position in degrees, to 4 digits
+        let hi = degrees.signals[0][0]
+            .iter()
+            .fold(f64::MIN, |a, &v| a.max(v));
+        let told = format!("{}]", robid_runtime::Num::rounded(hi, 4));
+        assert!(w[0].contains(&told), "{how}: `{told}` in {}", w[0]);
+    };
+    // the record kept on disk, read window by window
+    let record = load_record(&config, std::slice::from_ref(&deg), 6).unwrap();
+    assert!(record.samples() == 600 && record.as_ref().position_ranges().len() == 6);
+    check(warnings(record.as_ref()), "on disk");
+    // in memory
+    check(
+        warnings(&load(&config, std::slice::from_ref(&deg), 6).unwrap()),
+        "in memory",
+    );
+    // in radians: nothing
+    let record = load_record(&config, std::slice::from_ref(&rad), 6).unwrap();
+    assert_eq!(warnings(record.as_ref()), Vec::<String>::new());
+    // runs: the second one in degrees
+    let runs = format!("{CONFIG}[runs]\nfiles = [\"radians.csv\", \"degrees.csv\"]\n");
+    let config = Config::from_toml_str(&runs, &tmp.path("runs.toml")).unwrap();
+    let sets = load_runs(&config, 6).unwrap();
+    assert_eq!(warnings(&sets[0]), Vec::<String>::new());
+    check(warnings(&sets[1]), "run 2");
+}
