@@ -5,7 +5,7 @@
 pub mod extraction;
 pub mod figaroh;
 pub mod interpreted;
+pub mod limits;
 pub mod models;
-pub mod positions;
 
 pub use models::{Lwr4, Panda, Puma560, REFERENCES, Reference, Rx90, Stanford, Tx40, Ur5e};

@@ -57,10 +57,10 @@ pub struct Dataset {
     pub sampling: Vec<super::Sampling>,
     /// The file and lines the samples come from (`None` for a data set built in code).
     pub origin: Option<DataOrigin>,
-    /// Per joint the smallest and largest position (rad or m, joint side), gathered as the
+    /// Per joint the extremes of the positions and torques (joint side), gathered as the
     /// data were loaded ([`crate::data::load`]); empty for a data set built in code and
-    /// for a slice. What `robid identify` compares with the description's position limits.
-    pub position_ranges: Vec<[f64; 2]>,
+    /// for a slice. What `robid identify` compares with the description's limits.
+    pub extremes: Extremes,
 }
 
 impl Dataset {
@@ -128,7 +128,7 @@ impl Dataset {
             warnings: Vec::<Warning>::new(),
             sampling: Vec::new(),
             origin,
-            position_ranges: Vec::new(),
+            extremes: Extremes::default(),
         };
         let dof = q.dof();
         data.check_block("torque", Quantity::Torque, &tau, dof, n, values)?;
@@ -285,17 +285,46 @@ impl Dataset {
                 lines: o.lines.get(start..end).unwrap_or_default().to_vec(),
             }),
             // the whole record's, not the slice's
-            position_ranges: Vec::new(),
+            extremes: Extremes::default(),
         })
     }
 }
 
-/// `ranges` (per joint the smallest and largest value so far; empty before the first
-/// block) widened to the values of `x`, a block of the same joints.
-pub(crate) fn widen_ranges(ranges: &mut Vec<[f64; 2]>, x: &Signals) {
-    ranges.resize(x.dof(), [f64::INFINITY, f64::NEG_INFINITY]);
-    for (r, v) in ranges.iter_mut().zip(x.joints()) {
-        *r = v.iter().fold(*r, |[lo, hi], &a| [lo.min(a), hi.max(a)]);
+/// Per joint the smallest and largest joint-side position (rad or m) and torque (N m or N,
+/// after the drive chain) of a record, gathered by the loader as it read the samples (no
+/// pass of its own over them): what the description's limits are checked against (data in
+/// another unit, of another robot). Empty when the samples were not loaded from files.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Extremes {
+    /// `[smallest, largest]` position per joint.
+    pub position: Vec<[f64; 2]>,
+    /// `[smallest, largest]` torque per joint.
+    pub torque: Vec<[f64; 2]>,
+}
+
+impl Extremes {
+    /// Widened to the positions `q` and torques `tau` of a block of the same joints.
+    pub(crate) fn widen(&mut self, q: &Signals, tau: &Signals) {
+        for (ranges, x) in [(&mut self.position, q), (&mut self.torque, tau)] {
+            ranges.resize(x.dof(), [f64::INFINITY, f64::NEG_INFINITY]);
+            for (r, v) in ranges.iter_mut().zip(x.joints()) {
+                *r = v.iter().fold(*r, |[lo, hi], &a| [lo.min(a), hi.max(a)]);
+            }
+        }
+    }
+
+    /// Widened to `other`'s extremes (those of another part of the same record).
+    pub fn join(&mut self, other: &Extremes) {
+        for (mine, theirs) in [
+            (&mut self.position, &other.position),
+            (&mut self.torque, &other.torque),
+        ] {
+            let joints = mine.len().max(theirs.len());
+            mine.resize(joints, [f64::INFINITY, f64::NEG_INFINITY]);
+            for (a, b) in mine.iter_mut().zip(theirs) {
+                *a = [a[0].min(b[0]), a[1].max(b[1])];
+            }
+        }
     }
 }
 

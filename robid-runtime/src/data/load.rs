@@ -10,7 +10,7 @@ use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use crate::Num;
-use crate::data::dataset::{DataOrigin, Values, widen_ranges};
+use crate::data::dataset::{DataOrigin, Extremes, Values};
 use crate::data::rate::{
     Steps, UnreadTime, check_rate, unread_time_column, with_found_time_column,
 };
@@ -325,10 +325,10 @@ pub(crate) fn finish(config: &Config, dof: usize, read: ReadSources) -> Result<D
     )?;
     data.warnings = warnings;
     data.sampling = samplings;
-    // the joint-side positions' extremes, while they are at hand (`Record::position_ranges`)
-    let mut ranges = Vec::new();
-    widen_ranges(&mut ranges, &data.q);
-    data.position_ranges = ranges;
+    // the joint-side extremes, while they are at hand (`Record::extremes`)
+    let mut extremes = Extremes::default();
+    extremes.widen(&data.q, &data.tau);
+    data.extremes = extremes;
     Ok(data)
 }
 

@@ -23,7 +23,7 @@ pub use config::{
     Derivative, Differentiation, DifferentiationMethod, EXAMPLE_CONFIG, Estimation, Gaps, Lowpass,
     Method, PerJoint, Processing, RunFiles, RunMode, Runs, Signal, Source, Units,
 };
-pub use dataset::{DataOrigin, Dataset};
+pub use dataset::{DataOrigin, Dataset, Extremes};
 pub use error::{DataError, TomlFile};
 pub use keys::KeyMap;
 pub(crate) use load::check_joints;

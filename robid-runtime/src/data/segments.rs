@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::load::{ReadSources, finish, read_sources};
 use crate::data::time::find_gaps;
-use crate::data::{Config, Dataset, Gaps, Record, SpilledRecord, Warning, load_record};
+use crate::data::{Config, Dataset, Extremes, Gaps, Record, SpilledRecord, Warning, load_record};
 use crate::error::Result;
 
 /// Where a segment is in its file.
@@ -216,25 +216,18 @@ impl Loaded {
         }
     }
 
-    /// Per joint the smallest and largest position (joint side) the loader kept
-    /// ([`Record::position_ranges`]): the record's, or over every segment (a segment of a
-    /// single sample, no data set, is not counted).
-    pub fn position_ranges(&self) -> Vec<[f64; 2]> {
+    /// Per joint the extremes of the positions and torques the loader kept
+    /// ([`Record::extremes`]): the record's, or over every segment (a segment of a single
+    /// sample, no data set, is not counted).
+    pub fn extremes(&self) -> Extremes {
         match self {
-            Loaded::Record(r) => r.position_ranges().to_vec(),
+            Loaded::Record(r) => r.extremes().clone(),
             Loaded::Segments(s) => {
-                let mut ranges: Vec<[f64; 2]> = Vec::new();
+                let mut all = Extremes::default();
                 for d in &s.segments {
-                    let r = d.position_ranges();
-                    ranges.resize(
-                        r.len().max(ranges.len()),
-                        [f64::INFINITY, f64::NEG_INFINITY],
-                    );
-                    for (a, b) in ranges.iter_mut().zip(r) {
-                        *a = [a[0].min(b[0]), a[1].max(b[1])];
-                    }
+                    all.join(&d.extremes);
                 }
-                ranges
+                all
             }
         }
     }

@@ -25,7 +25,7 @@ use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
 use robots::Reference;
 use robots::interpreted::{Chosen, model_for};
-use robots::positions::beyond_limits;
+use robots::limits::beyond_limits;
 
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
@@ -389,11 +389,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for w in warnings.chain(record.iter().flat_map(Loaded::warnings)) {
         out::warn(format_args!("warning: {w}"));
     }
-    // positions beyond the description's limits (degrees read as radians, mm as m, another
-    // robot's log), from the extremes the loader kept, as `robid inspect` warns of them
+    // data beyond the description's limits (degrees read as radians, mm as m, mN m as N m,
+    // another robot's log), from the extremes the loader kept, as `robid inspect` warns
+    // of them
     match &record {
         Some(r) => {
-            for w in beyond_limits(&description, &r.position_ranges(), robot) {
+            for w in beyond_limits(&description, &r.extremes(), robot) {
                 out::warn(format_args!("warning: {w}"));
             }
         }
@@ -401,7 +402,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             for (i, d) in sets.iter().enumerate() {
                 let files = d.files();
                 let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-                for w in beyond_limits(&description, d.position_ranges(), robot) {
+                for w in beyond_limits(&description, &d.extremes, robot) {
                     out::warn(format_args!(
                         "warning: run {} ({}): {w}",
                         i + 1,
@@ -440,7 +441,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             out::warn(format_args!("warning: {w}"));
         }
         let files: Vec<String> = group.iter().map(|f| f.display().to_string()).collect();
-        for w in beyond_limits(&description, &d.position_ranges(), robot) {
+        for w in beyond_limits(&description, &d.extremes(), robot) {
             out::warn(format_args!(
                 "warning: --validate {}: {w}",
                 files.join(", ")

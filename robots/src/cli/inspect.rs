@@ -10,7 +10,7 @@ use std::path::PathBuf;
 
 use robid_runtime::data::{Record, Sampling, SpilledRecord, load};
 use robid_runtime::inspect::inspect_record;
-use robots::positions::beyond_limits;
+use robots::limits::beyond_limits;
 
 use super::description::{self, DescriptionFlags};
 use super::identify::{config_for, data_files};
@@ -61,8 +61,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let limits: Vec<Option<f64>> = robot.joints().iter().map(|j| j.limits.torque).collect();
     let inspection =
         inspect_record(data.as_ref(), sampling, &config, &limits).map_err(|e| config.locate(e))?;
-    let ranges: Vec<[f64; 2]> = inspection.joints.iter().map(|j| j.position_range).collect();
-    for w in beyond_limits(&robot, &ranges, &args.robot) {
+    for w in beyond_limits(&robot, data.extremes(), &args.robot) {
         out::warn(format_args!("warning: {w}"));
     }
     let text = if args.json {

@@ -1,7 +1,7 @@
 //! A log whose positions are in degrees, read as radians (the default `angle = "rad"`),
 //! passes the description's position limits many times over, and identification fits it
 //! without a word. The loader keeps per joint the extremes of the positions as it reads
-//! them (`Record::position_ranges`, no pass of its own), and `robots::positions::
+//! them (`Record::extremes`, no pass of its own), and `robots::limits::
 //! beyond_limits` (what `robid identify` and `robid inspect` warn with) names each joint
 //! beyond its limits: for the record kept on disk (`load_record`, one file), the data set
 //! in memory (`load`) and each run of `[runs]` (`load_runs`). The same log in radians
@@ -10,7 +10,7 @@
 use std::path::Path;
 
 use robid_runtime::data::{Config, Record, load, load_record, load_runs};
-use robots::positions::beyond_limits;
+use robots::limits::beyond_limits;
 use tests::fuzz_data::{self, Motion};
 use tests::scratch::Scratch;
 
@@ -41,8 +41,7 @@ fn a_log_in_degrees_read_as_radians_is_named_beyond_the_limits() {
         .collect();
     assert!(top.iter().all(|&t| (0.5..1.2).contains(&t)), "{top:?}");
     let config = Config::from_toml_str(CONFIG, &tmp.path("c.toml")).unwrap();
-    let warnings =
-        |record: &dyn Record| beyond_limits(&robot, record.position_ranges(), description);
+    let warnings = |record: &dyn Record| beyond_limits(&robot, record.extremes(), description);
     // every joint beyond its limits ([-6.2832, 6.2832] rad, joint 3 [-3.1416, 3.1416]):
     // its excursion of 30 to 70 degrees read as radians
     let check = |w: Vec<String>, how: &str| {
@@ -64,7 +63,7 @@ fn a_log_in_degrees_read_as_radians_is_named_beyond_the_limits() {
     };
     // the record kept on disk, read window by window
     let record = load_record(&config, std::slice::from_ref(&deg), 6).unwrap();
-    assert!(record.samples() == 600 && record.as_ref().position_ranges().len() == 6);
+    assert!(record.samples() == 600 && record.as_ref().extremes().position.len() == 6);
     check(warnings(record.as_ref()), "on disk");
     // in memory
     check(
@@ -80,4 +79,58 @@ fn a_log_in_degrees_read_as_radians_is_named_beyond_the_limits() {
     let sets = load_runs(&config, 6).unwrap();
     assert_eq!(warnings(&sets[0]), Vec::<String>::new());
     check(warnings(&sets[1]), "run 2");
+}
+
+/// The same motion's torques in mN m, read as N m (the default `torque_scale = 1`): every
+/// joint whose torque passes five times its limit (the UR5e's 150, 150, 150, 28, 28, 28
+/// N m) is named with its peak and the settings to look at, in memory and on disk; the
+/// torques in N m give no warning, nor does the log in mN m with `torque_scale = 1e-3`.
+#[test]
+fn torques_in_millinewton_metres_read_as_newton_metres_are_named_beyond_the_limits() {
+    let tmp = Scratch::new();
+    let mut milli = fuzz_data::motion(600);
+    for joint in milli.signals[3].joints_mut() {
+        joint.iter_mut().for_each(|tau| *tau *= 1e3);
+    }
+    let newton = fuzz_data::motion(600);
+    // the joints whose torque in mN m passes five times the limit
+    let limits = [150.0, 150.0, 150.0, 28.0, 28.0, 28.0];
+    let expected: Vec<usize> = (0..6)
+        .filter(|&j| {
+            let peak = milli.signals[3][j]
+                .iter()
+                .fold(0.0f64, |a, v| a.max(v.abs()));
+            peak > 5.0 * limits[j]
+        })
+        .collect();
+    assert!(expected.len() >= 3, "{expected:?}");
+    let path = tmp.write("milli.csv", &fuzz_data::motion_csv(&milli));
+    let plain = tmp.write("newton.csv", &fuzz_data::motion_csv(&newton));
+    let robot = robots::Reference::named("ur5e").unwrap().robot();
+    let description = Path::new("ur5e.toml");
+    let config = Config::from_toml_str(CONFIG, &tmp.path("c.toml")).unwrap();
+    let warnings = |record: &dyn Record| beyond_limits(&robot, record.extremes(), description);
+    let check = |w: Vec<String>, how: &str| {
+        assert_eq!(w.len(), expected.len(), "{how}: {w:?}");
+        for (w, &j) in w.iter().zip(&expected) {
+            assert!(
+                w.starts_with(&format!("joint {}'s torques reach ", j + 1))
+                    && w.contains(&format!("times its limit {} N m in ur5e.toml", limits[j]))
+                    && w.contains("set `torque_scale` in the config's [units]"),
+                "{how}: {w}"
+            );
+        }
+    };
+    let record = load_record(&config, std::slice::from_ref(&path), 6).unwrap();
+    check(warnings(record.as_ref()), "on disk");
+    check(
+        warnings(&load(&config, std::slice::from_ref(&path), 6).unwrap()),
+        "in memory",
+    );
+    let record = load_record(&config, std::slice::from_ref(&plain), 6).unwrap();
+    assert_eq!(warnings(record.as_ref()), Vec::<String>::new());
+    let scaled = format!("{CONFIG}[units]\ntorque_scale = 1e-3\n");
+    let config = Config::from_toml_str(&scaled, &tmp.path("s.toml")).unwrap();
+    let record = load_record(&config, &[path], 6).unwrap();
+    assert_eq!(warnings(record.as_ref()), Vec::<String>::new());
 }

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use crate::DataError;
-use crate::data::dataset::{DataOrigin, Values, empty_range, widen_ranges};
+use crate::data::dataset::{DataOrigin, Extremes, Values, empty_range};
 use crate::data::load::{
     SourceColumns, assemble, check_cutoff, check_joints, check_ranges, check_step, load,
     plan_source, source_paths, stale_warning, take_time, unread_time_rows,
@@ -40,12 +40,11 @@ pub trait Record: Sync {
     fn warnings(&self) -> &[Warning];
     /// The file the samples come from, when they come from one.
     fn file(&self) -> Option<&Path>;
-    /// Per joint the smallest and largest position (rad or m, joint side), gathered by the
-    /// loader as it read the samples (no pass of its own over them); empty when the
-    /// samples were not loaded from files. For positions resampled onto a uniform grid,
-    /// those of the record kept on disk are of the samples as read, which the resampled
-    /// ones lie between.
-    fn position_ranges(&self) -> &[[f64; 2]];
+    /// Per joint the extremes of the positions and torques ([`Extremes`]), gathered by the
+    /// loader as it read the samples; empty when the samples were not loaded from files.
+    /// For samples resampled onto a uniform grid, those of the record kept on disk are of
+    /// the samples as read, which the resampled ones lie between.
+    fn extremes(&self) -> &Extremes;
     /// The file line of sample `k`, when known.
     fn line(&self, k: usize) -> Option<u64>;
     /// Every file the samples were read from: [`Record::file`] first, then the files
@@ -93,8 +92,8 @@ impl Record for Dataset {
         self.origin.as_ref().map(|o| o.path.as_path())
     }
 
-    fn position_ranges(&self) -> &[[f64; 2]] {
-        &self.position_ranges
+    fn extremes(&self) -> &Extremes {
+        &self.extremes
     }
 
     fn line(&self, k: usize) -> Option<u64> {
@@ -170,7 +169,7 @@ pub struct SpilledRecord {
     warnings: Vec<Warning>,
     sampling: Sampling,
     /// Per joint the smallest and largest position of the samples as read (joint side).
-    position_ranges: Vec<[f64; 2]>,
+    extremes: Extremes,
 }
 
 /// Where one window's samples are in the temporary file: every signal the record has
@@ -244,7 +243,7 @@ impl SpilledRecord {
         let mut digits = Vec::new();
         let mut clock = Clock::default();
         let mut scan = SamplingScan::new(spans.len() * dof);
-        let mut position_ranges = Vec::new();
+        let mut extremes = Extremes::default();
         // the sample time only matters at the end: windows are checked at the config's rate
         // or at 1 kHz, which the limits always allow
         let checked_at = config.sample_rate.map_or(1e-3, |fs| 1.0 / fs);
@@ -324,7 +323,7 @@ impl SpilledRecord {
                 origin,
                 Values::Check,
             )?;
-            widen_ranges(&mut position_ranges, &window.q);
+            extremes.widen(&window.q, &window.tau);
             Ok(())
         })?;
         progress.finish();
@@ -382,7 +381,7 @@ impl SpilledRecord {
             spill: Mutex::new(spill),
             warnings,
             sampling,
-            position_ranges,
+            extremes,
         }))
     }
 
@@ -677,8 +676,8 @@ impl Record for SpilledRecord {
         Some(&self.path)
     }
 
-    fn position_ranges(&self) -> &[[f64; 2]] {
-        &self.position_ranges
+    fn extremes(&self) -> &Extremes {
+        &self.extremes
     }
 
     fn line(&self, k: usize) -> Option<u64> {

@@ -127,11 +127,12 @@ fn blocks_are_the_loaded_samples_bit_for_bit() {
     assert_eq!(record.line(n), None);
 }
 
-/// The loader keeps per joint the extremes of the joint-side positions (after the units
-/// and the drive chain) as it reads them: on disk window by window and in memory, both
-/// the data set's own, to the bit. A slice (a block read) does not claim the record's.
+/// The loader keeps per joint the extremes of the joint-side positions and torques (after
+/// the units and the drive chain) as it reads them: on disk window by window and in
+/// memory, both the data set's own, to the bit. A slice (a block read) does not claim the
+/// record's.
 #[test]
-fn the_loader_keeps_the_positions_extremes() {
+fn the_loader_keeps_the_extremes() {
     let dir = tempfile::tempdir().unwrap();
     let path = file(&dir, &log(3000));
     let config = config(CONFIG);
@@ -139,31 +140,34 @@ fn the_loader_keeps_the_positions_extremes() {
     let record = SpilledRecord::open_in(&config, &[path], 3, SMALL)
         .unwrap()
         .expect("one regular file is kept on disk");
-    let extremes: Vec<[u64; 2]> = data
-        .q
-        .joints()
-        .map(|q| {
-            let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            [lo.to_bits(), hi.to_bits()]
-        })
-        .collect();
+    let extremes = |x: &crate::signal::Signals| -> Vec<[u64; 2]> {
+        x.joints()
+            .map(|v| {
+                let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                [lo.to_bits(), hi.to_bits()]
+            })
+            .collect()
+    };
     let bits = |r: &[[f64; 2]]| -> Vec<[u64; 2]> {
         r.iter().map(|[a, b]| [a.to_bits(), b.to_bits()]).collect()
     };
-    assert_eq!(extremes.len(), 3);
-    assert_eq!(bits(Record::position_ranges(&data)), extremes);
-    assert_eq!(bits(record.position_ranges()), extremes);
+    let (q, tau) = (extremes(&data.q), extremes(&data.tau));
+    assert_eq!(q.len(), 3);
+    for kept in [Record::extremes(&data), record.extremes()] {
+        assert_eq!(bits(&kept.position), q);
+        assert_eq!(bits(&kept.torque), tau);
+    }
     // joint side: 30 degrees of the motors through gear ratios of 50 and more (and the
     // coupling), in radians
+    let position = &data.extremes.position;
     assert!(
-        data.position_ranges
+        position
             .iter()
             .all(|[lo, hi]| lo < hi && hi.abs().max(lo.abs()) < 0.02),
-        "{:?}",
-        data.position_ranges
+        "{position:?}"
     );
-    assert!(data.slice(0, 10).unwrap().position_ranges.is_empty());
+    assert_eq!(data.slice(0, 10).unwrap().extremes, Extremes::default());
 }
 
 #[test]

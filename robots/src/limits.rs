@@ -1,0 +1,121 @@
+//! A log beyond a description's limits: positions past the position limits, torques far
+//! past the torque limits. What `robid inspect` and `robid identify` warn of
+//! (docs/command-line.md#robid-inspect), from the per-joint extremes the loader keeps
+//! ([`robid_runtime::data::Record::extremes`]).
+
+use std::path::Path;
+
+use robid_runtime::Num;
+use robid_runtime::data::Extremes;
+use robid_symbolic::{Joint, JointKind, Robot};
+
+/// How many times its limit a joint's torque may reach before the data are taken for
+/// another unit: a description's torque limit is a drive's peak (or its rated torque,
+/// which a peak passes by about 2 to 3), while a unit slip is a factor of 1000 (mN m read
+/// as N m) or a torque constant or gear ratio off by tens.
+pub const TORQUE_LIMIT_FACTOR: f64 = 5.0;
+
+/// A warning for each joint of `robot` whose data (`extremes`, joint side, as the loader
+/// read them) leave its limits in the description `file`: positions past the position
+/// limits by more than a tenth of their span (a revolute joint's degrees read as radians, a
+/// prismatic one's mm read as m), torques above [`TORQUE_LIMIT_FACTOR`] times the torque
+/// limit (mN m read as N m, a missing or wrong `torque_scale`, torque constant or gear
+/// ratio), or data of another robot: identification takes them as they are and fits them
+/// without a word. Joints without limits, and joints `extremes` does not cover, are not
+/// checked.
+///
+/// ```
+/// use robid_runtime::data::Extremes;
+/// use robid_symbolic::Robot;
+/// let robot: Robot = robots::Reference::named("ur5e").unwrap().robot();
+/// let file = std::path::Path::new("ur5e.toml");
+/// // joint 3 (limits [-3.1416, 3.1416] rad) at 90: degrees read as radians; joint 2's
+/// // torque (limit 150 N m) at 80000: mN m read as N m
+/// let extremes = Extremes {
+///     position: vec![[-1.0, 1.0], [-1.0, 1.0], [-90.0, 90.0]],
+///     torque: vec![[-10.0, 10.0], [-80000.0, 2000.0], [-5.0, 5.0]],
+/// };
+/// let warnings = robots::limits::beyond_limits(&robot, &extremes, file);
+/// assert_eq!(warnings.len(), 2);
+/// assert!(warnings[0].starts_with("joint 2's torques reach -80000 N m"));
+/// assert!(warnings[1].starts_with("joint 3's positions span [-90, 90] rad"));
+/// ```
+pub fn beyond_limits(robot: &Robot, extremes: &Extremes, file: &Path) -> Vec<String> {
+    let mut warnings = Vec::new();
+    for (j, joint) in robot.joints().iter().enumerate() {
+        if let Some(&range) = extremes.torque.get(j) {
+            warnings.extend(torque_beyond_limit(j + 1, joint, range, file));
+        }
+        if let Some(&range) = extremes.position.get(j) {
+            warnings.extend(position_beyond_limits(j + 1, joint, range, file));
+        }
+    }
+    warnings
+}
+
+/// [`beyond_limits`] for the positions of joint `number`, `joint`, which span `range`.
+fn position_beyond_limits(
+    number: usize,
+    joint: &Joint,
+    range: [f64; 2],
+    file: &Path,
+) -> Option<String> {
+    let [lower, upper] = joint.limits.position?;
+    let margin = 0.1 * (upper - lower);
+    if range[0] >= lower - margin && range[1] <= upper + margin {
+        return None;
+    }
+    let prismatic = joint.kind == JointKind::Prismatic;
+    let (unit, hint) = if prismatic {
+        ("m", "positions in mm? they are read in metres")
+    } else {
+        (
+            "rad",
+            "positions in degrees? set `angle = \"deg\"` in the config's [units]",
+        )
+    };
+    Some(format!(
+        "joint {number}'s positions span [{}, {}] {unit}, beyond its limits [{}, {}] {unit} in {}: \
+         {hint}; or the data are another robot's",
+        Num::rounded(range[0], 4),
+        Num::rounded(range[1], 4),
+        Num(lower),
+        Num(upper),
+        file.display()
+    ))
+}
+
+/// [`beyond_limits`] for the torques of joint `number`, `joint`, which span `range`.
+fn torque_beyond_limit(
+    number: usize,
+    joint: &Joint,
+    range: [f64; 2],
+    file: &Path,
+) -> Option<String> {
+    let limit = joint.limits.torque?;
+    // the larger magnitude, with its sign
+    let peak = if range[0].abs() > range[1].abs() {
+        range[0]
+    } else {
+        range[1]
+    };
+    // the loader keeps finite values only
+    if peak.abs() <= TORQUE_LIMIT_FACTOR * limit {
+        return None;
+    }
+    let unit = if joint.kind == JointKind::Prismatic {
+        "N"
+    } else {
+        "N m"
+    };
+    Some(format!(
+        "joint {number}'s torques reach {} {unit}, {} times its limit {} {unit} in {}: \
+         torques in another unit (mN m, or currents)? set `torque_scale` in the config's \
+         [units], or the drive chain's `torque_constants` and `gear_ratios`; or the data are \
+         another robot's",
+        Num::rounded(peak, 4),
+        Num::rounded(peak.abs() / limit, 3),
+        Num(limit),
+        file.display()
+    ))
+}
