@@ -63,6 +63,26 @@ fn trajectory() -> String {
     text
 }
 
+/// `robid payload` of the UR5e with its reference parameters, and `args`.
+fn payload(args: &[&str]) -> std::process::Output {
+    let mut all = vec![
+        "payload",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+    ];
+    all.extend_from_slice(args);
+    robid(&all)
+}
+
+/// The mass and its standard deviation that `robid payload` printed, and their line
+/// ("mass: 1.500123 +- 4.44e-4 kg").
+fn printed_mass(text: &str) -> (f64, f64, &str) {
+    let line = text.lines().find(|l| l.starts_with("mass: ")).unwrap();
+    let words: Vec<&str> = line.split_whitespace().collect();
+    (words[1].parse().unwrap(), words[3].parse().unwrap(), line)
+}
+
 #[test]
 fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     let dir = folder();
@@ -83,11 +103,7 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = dir.path().join("payload.toml");
-    let o = robid(&[
-        "payload",
-        "descriptions/ur5e.toml",
-        "--parameters",
-        "parameters/ur5e.toml",
+    let o = payload(&[
         "--data",
         data.to_str().unwrap(),
         "-o",
@@ -96,10 +112,7 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     assert!(o.status.success(), "{}", stderr(&o));
     let text = stdout(&o);
     println!("{text}");
-    // "mass: 1.500123 +- 4.44e-4 kg"
-    let line = text.lines().find(|l| l.starts_with("mass: ")).unwrap();
-    let words: Vec<&str> = line.split_whitespace().collect();
-    let (mass, std): (f64, f64) = (words[1].parse().unwrap(), words[3].parse().unwrap());
+    let (mass, std, line) = printed_mass(&text);
     // Measured: 1.500123 +- 4.44e-4 kg (WLS, 12006 equations, condition number 8.8), the
     // centre of mass (-0.00004, 0.00999, 0.05002) m. Bounds: 3 sigma, twice the measured sigma.
     assert!((mass - 1.5).abs() <= 3.0 * std, "{line}");
@@ -140,14 +153,7 @@ fn payload_from_a_log_of_positions_and_currents_with_a_config() {
         data.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = robid(&[
-        "payload",
-        "descriptions/ur5e.toml",
-        "--parameters",
-        "parameters/ur5e.toml",
-        "--data",
-        data.to_str().unwrap(),
-    ]);
+    let o = payload(&["--data", data.to_str().unwrap()]);
     fails_with(&o, &["log.csv", "--config"]);
     let config = write(
         d,
@@ -157,40 +163,24 @@ fn payload_from_a_log_of_positions_and_currents_with_a_config() {
          [processing]\nlowpass = { cutoff = 3.0, order = 4, signals = [\"q\"] }\n",
     );
     let out = d.join("payload.toml");
-    let o = robid(&[
-        "payload",
-        "descriptions/ur5e.toml",
-        "--parameters",
-        "parameters/ur5e.toml",
+    let (data, config) = (data.to_str().unwrap(), config.to_str().unwrap());
+    let o = payload(&[
         "--data",
-        data.to_str().unwrap(),
+        data,
         "--config",
-        config.to_str().unwrap(),
+        config,
         "-o",
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = stdout(&o);
     println!("{text}");
-    let line = text.lines().find(|l| l.starts_with("mass: ")).unwrap();
-    let words: Vec<&str> = line.split_whitespace().collect();
-    let (mass, std): (f64, f64) = (words[1].parse().unwrap(), words[3].parse().unwrap());
+    let (mass, std, line) = printed_mass(&text);
     assert!((mass - 1.5).abs() <= 3.0 * std, "{line}");
     assert!(std < 2e-3, "{line}");
     assert!(out.exists());
     // the config is an input: not overwritten by -o
-    let o = robid(&[
-        "payload",
-        "descriptions/ur5e.toml",
-        "--parameters",
-        "parameters/ur5e.toml",
-        "--config",
-        config.to_str().unwrap(),
-        "--data",
-        data.to_str().unwrap(),
-        "-o",
-        config.to_str().unwrap(),
-    ]);
+    let o = payload(&["--config", config, "--data", data, "-o", config]);
     assert!(!o.status.success());
     assert!(
         std::fs::read_to_string(&config)
@@ -217,11 +207,7 @@ fn payload_from_a_robot_at_rest_is_an_error_naming_the_unexcited_parameters() {
     }
     let data = write(dir.path(), "rest.csv", &text);
     let out = dir.path().join("payload.toml");
-    let o = robid(&[
-        "payload",
-        "descriptions/ur5e.toml",
-        "--parameters",
-        "parameters/ur5e.toml",
+    let o = payload(&[
         "--data",
         data.to_str().unwrap(),
         "-o",
@@ -254,11 +240,7 @@ fn payload_names_a_torque_out_of_range_at_its_row() {
     }
     let data = write(dir.path(), "huge.csv", &text);
     let out = dir.path().join("payload.toml");
-    let o = robid(&[
-        "payload",
-        "descriptions/ur5e.toml",
-        "--parameters",
-        "parameters/ur5e.toml",
+    let o = payload(&[
         "--data",
         data.to_str().unwrap(),
         "-o",
@@ -293,19 +275,12 @@ fn payload_messages_write_computed_values_short() {
         data.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let payload = |data: &Path| {
-        let o = robid(&[
-            "payload",
-            "descriptions/ur5e.toml",
-            "--parameters",
-            "parameters/ur5e.toml",
-            "--data",
-            data.to_str().unwrap(),
-        ]);
+    let printed = |data: &Path| {
+        let o = payload(&["--data", data.to_str().unwrap()]);
         assert!(o.status.success(), "{}", stderr(&o));
         stdout(&o)
     };
-    let text = payload(&data);
+    let text = printed(&data);
     let verdict = text
         .lines()
         .find(|l| l.starts_with("physically consistent: no: "))
@@ -329,9 +304,8 @@ fn payload_messages_write_computed_values_short() {
         exact.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let text = payload(&exact);
-    let mass = text.lines().find(|l| l.starts_with("mass: ")).unwrap();
-    let value: f64 = mass.split_whitespace().nth(1).unwrap().parse().unwrap();
+    let text = printed(&exact);
+    let (value, _, mass) = printed_mass(&text);
     assert!(value != 0.0 && value.abs() < 1e-6, "{mass}");
     let (count, number) = most_digits(&text);
     assert!(count <= 7, "{number} has {count} digits: {text}");
