@@ -183,7 +183,7 @@ fn payload_from_a_log_of_positions_and_currents_with_a_config() {
     let o = payload(&["--config", config, "--data", data, "-o", config]);
     assert!(!o.status.success());
     assert!(
-        std::fs::read_to_string(&config)
+        std::fs::read_to_string(config)
             .unwrap()
             .contains("torque_scale")
     );
