@@ -66,13 +66,22 @@ fn position_beyond_limits(
         return None;
     }
     let prismatic = joint.kind == JointKind::Prismatic;
-    let (unit, hint) = if prismatic {
-        ("m", "positions in mm? they are read in metres")
+    // the unit slip that the range fits: degrees read as radians, mm as m; else none known
+    let (unit, per_unit) = if prismatic {
+        ("m", 1e-3)
     } else {
-        (
-            "rad",
-            "positions in degrees? set `angle = \"deg\"` in the config's [units]",
-        )
+        ("rad", std::f64::consts::PI / 180.0)
+    };
+    let fits =
+        |scale: f64| range[0] * scale >= lower - margin && range[1] * scale <= upper + margin;
+    let hint = match (prismatic, fits(per_unit)) {
+        (true, true) => "positions in mm? they are read in metres",
+        (false, true) => "positions in degrees? set `angle = \"deg\"` in the config's [units]",
+        // neither degrees nor mm: counts, a wrong gear ratio, or an offset
+        (_, false) => {
+            "positions in another unit (encoder counts, motor side: see [drive] \
+             position_side and gear_ratios) or off by an offset?"
+        }
     };
     Some(format!(
         "joint {number}'s positions span [{}, {}] {unit}, beyond its limits [{}, {}] {unit} in {}: \
@@ -118,4 +127,34 @@ fn torque_beyond_limit(
         Num(limit),
         file.display()
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The hint names the slip the range fits: degrees read as radians when the range in
+    /// degrees fits the limits, mm read as m likewise; positions that fit neither (encoder
+    /// counts, a motor-side angle) are not told to be degrees.
+    #[test]
+    fn the_hint_is_the_unit_slip_the_range_fits() {
+        let robot = crate::Reference::named("ur5e").unwrap().robot();
+        let file = Path::new("ur5e.toml");
+        let warn = |position: Vec<[f64; 2]>| {
+            let extremes = Extremes {
+                position,
+                torque: Vec::new(),
+            };
+            beyond_limits(&robot, &extremes, file)
+        };
+        // joint 3's limits: [-3.1416, 3.1416] rad; 170 degrees fit them
+        let degrees = warn(vec![[0.0, 1.0], [0.0, 1.0], [-170.0, 170.0]]);
+        assert!(degrees[0].contains("positions in degrees?"), "{degrees:?}");
+        // 40000 counts do not fit as degrees
+        let counts = warn(vec![[0.0, 1.0], [0.0, 1.0], [-40000.0, 40000.0]]);
+        assert!(
+            counts[0].contains("another unit (encoder counts") && !counts[0].contains("degrees"),
+            "{counts:?}"
+        );
+    }
 }

@@ -1168,8 +1168,8 @@ impl Config {
                 "Config",
                 "runs.files",
                 format!(
-                    "{} run(s): repeated acquisitions need at least two; list one entry per run or remove [runs]",
-                    runs.files.len()
+                    "{}: repeated acquisitions need at least two; list one entry per run or remove [runs]",
+                    crate::Count(runs.files.len(), "run")
                 ),
             ));
         }

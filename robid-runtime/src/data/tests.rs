@@ -756,3 +756,16 @@ fn an_rtde_log_loads_with_zero_based_templates() {
     );
     assert!(e.contains("`\"actual_q_{0}\"`"), "{e}");
 }
+
+/// `[runs]` with one file is refused in words, "1 run: ..." (it was "1 run(s)").
+#[test]
+fn one_run_is_counted_in_words() {
+    let text = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n\
+                [runs]\nfiles = [\"a.csv\"]\n";
+    let config = Config::from_toml_str(text, Path::new("runs.toml")).unwrap();
+    let e = load_runs(&config, 1).unwrap_err().to_string();
+    assert!(
+        e.contains("1 run: repeated acquisitions need at least two; list one entry per run"),
+        "{e}"
+    );
+}

@@ -79,8 +79,8 @@ pub fn identify_runs(
         return Err(config.key_error(
             "runs.files",
             format!(
-                "{} run(s): repeated acquisitions need at least two",
-                runs.len()
+                "{}: repeated acquisitions need at least two",
+                crate::Count(runs.len(), "run")
             ),
         ));
     }
