@@ -246,9 +246,7 @@ pub enum DataError {
         found: usize,
     },
     /// Two files to be joined sample by sample have different lengths.
-    #[error(
-        "{first} has {first_rows} rows but {second} has {second_rows}; give both files the same rows, or a time column in each so they can be joined by time"
-    )]
+    #[error("{first} has {first_rows} rows but {second} has {second_rows}; {fix}")]
     RowCountMismatch {
         /// First file.
         first: PathBuf,
@@ -258,6 +256,8 @@ pub enum DataError {
         second: PathBuf,
         /// Its rows.
         second_rows: usize,
+        /// What to do.
+        fix: String,
     },
     /// A TOML file of robid's (the identification config, a friction, joint-flexibility or
     /// bounds file) is not valid TOML or does not match its format; the message names the

@@ -12,7 +12,8 @@ use std::path::{Path, PathBuf};
 use crate::Num;
 use crate::data::dataset::{DataOrigin, Extremes, Values};
 use crate::data::rate::{
-    Steps, UnreadTime, check_rate, unread_time_column, with_found_time_column,
+    Steps, UnreadTime, check_rate, differing_time_columns, unread_time_column,
+    with_found_time_column,
 };
 use crate::data::table::{Optional, read_columns_in};
 use crate::data::time::{
@@ -216,7 +217,23 @@ pub(crate) fn read_sources<'a>(
                     }
                 }
             },
-            None => check_rows(&mut rows, &table)?,
+            None => check_rows(&mut rows, &table).map_err(|e| match e {
+                // each file has a time column, under different names: none was read
+                Error::Data(DataError::RowCountMismatch {
+                    first,
+                    first_rows,
+                    second,
+                    second_rows,
+                    fix,
+                }) => Error::Data(DataError::RowCountMismatch {
+                    first,
+                    first_rows,
+                    second,
+                    second_rows,
+                    fix: differing_time_columns(config, &paths, dof).unwrap_or(fix),
+                }),
+                e => e,
+            })?,
         }
         for (role, start) in spans {
             if blocks[role].is_some() {
@@ -720,6 +737,9 @@ fn check_rows(rows: &mut Option<(usize, PathBuf, Vec<u64>)>, table: &Table) -> R
                 first_rows: *n,
                 second: table.path.clone(),
                 second_rows: table.rows(),
+                fix: "give both files the same rows, or a time column in each so they can \
+                      be joined by time"
+                    .into(),
             }));
         }
         _ => {}

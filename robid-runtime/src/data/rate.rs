@@ -104,6 +104,64 @@ fn unit_scale(unit: &str) -> Option<f64> {
     }
 }
 
+/// A column whose name is a time name, and the seconds per unit its name gives.
+type TimeColumn = (String, Option<f64>);
+
+/// Per source's file (`paths`), its one column whose name is a time name ([`time_name`])
+/// and that the source does not read, with the unit its name gives; `None` for a file with
+/// none or several.
+fn time_like_columns(
+    config: &Config,
+    paths: &[std::path::PathBuf],
+    dof: usize,
+) -> crate::error::Result<Vec<Option<TimeColumn>>> {
+    let mut columns = Vec::new();
+    for (source, path) in config.sources.iter().zip(paths) {
+        let header = super::table::read_header(path)?;
+        let (read, _) = super::load::source_columns(config, source, dof);
+        let mut names = header
+            .iter()
+            .filter(|h| !read.contains(h))
+            .filter_map(|h| time_name(h).map(|unit| (h.clone(), unit)));
+        columns.push(match (names.next(), names.next()) {
+            (Some(this), None) => Some(this),
+            _ => None,
+        });
+    }
+    Ok(columns)
+}
+
+/// When `config` names no time column and no sample rate and every source's file has a
+/// time column under a different name (`t` in one, `time` in another), so that none was
+/// read and the files were joined row by row: what to do, naming each file's column.
+pub(crate) fn differing_time_columns(
+    config: &Config,
+    paths: &[std::path::PathBuf],
+    dof: usize,
+) -> Option<String> {
+    if config.time_column.is_some() || config.sample_rate.is_some() || paths.len() < 2 {
+        return None;
+    }
+    let columns: Vec<TimeColumn> = time_like_columns(config, paths, dof)
+        .ok()?
+        .into_iter()
+        .collect::<Option<_>>()?;
+    if columns.iter().all(|c| c.0 == columns[0].0) {
+        return None;
+    }
+    let each: Vec<String> = columns
+        .iter()
+        .zip(paths)
+        .map(|(c, p)| format!("`{}` in {}", c.0, p.display()))
+        .collect();
+    Some(format!(
+        "the files' time columns have different names ({}), so none was read and the files \
+         were joined row by row: give the time column one name in every file (robid finds \
+         it by that name, or set `time_column`) so that they are joined by time",
+        each.join(", ")
+    ))
+}
+
 /// `config` with the time column of its files when it gives neither `sample_rate` nor
 /// `time_column`: the one column of each source's file (`paths`) whose name is a time
 /// name ([`time_name`]) and that the source does not read, the same in every file, with
@@ -135,25 +193,14 @@ pub(crate) fn with_found_time_column<'a>(
     if config.sample_rate.is_some() || paths.is_empty() {
         return Ok(Cow::Borrowed(config));
     }
-    let mut found: Option<(String, Option<f64>)> = None;
-    for (source, path) in config.sources.iter().zip(paths) {
-        let header = super::table::read_header(path)?;
-        let (read, _) = super::load::source_columns(config, source, dof);
-        let mut names = header
-            .iter()
-            .filter(|h| !read.contains(h))
-            .filter_map(|h| time_name(h).map(|unit| (h.clone(), unit)));
-        let (Some(this), None) = (names.next(), names.next()) else {
-            return Ok(Cow::Borrowed(config));
-        };
-        match &found {
-            Some(first) if *first != this => return Ok(Cow::Borrowed(config)),
-            _ => found = Some(this),
-        }
-    }
-    let Some((name, unit)) = found else {
+    let columns = time_like_columns(config, paths, dof)?;
+    let Some(Some(first)) = columns.first() else {
         return Ok(Cow::Borrowed(config));
     };
+    if columns.iter().any(|c| c.as_ref() != Some(first)) {
+        return Ok(Cow::Borrowed(config));
+    }
+    let (name, unit) = first.clone();
     let mut config = config.clone();
     config.time_column = Some(name);
     if let (Some(scale), true) = (unit, config.time_scale == 1.0) {

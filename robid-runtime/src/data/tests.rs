@@ -237,6 +237,31 @@ fn row_count_mismatch_is_an_error() {
     );
 }
 
+/// Files that each have a time column, under different names (`t` and `time`), are joined
+/// row by row (no time column was read), and a row count that differs says why: it said
+/// to give each file a time column, which each had.
+#[test]
+fn a_row_count_mismatch_names_time_columns_of_different_names() {
+    let d = Dir::new();
+    let a = d.file("pos.csv", "t,q1,q2\n0,0,0\n0.1,1,1\n0.2,2,2\n");
+    let b = d.file("tau.csv", "time,q1,q2\n0,1,2\n0.1,3,4\n");
+    // no sample rate: the time is the files'
+    let config = cfg(&TWO_FILES.replace("sample_rate = 10.0\n", ""));
+    let e = load(&config, &[a.clone(), b.clone()], 2)
+        .unwrap_err()
+        .to_string();
+    let names = format!(
+        "the files' time columns have different names (`t` in {}, `time` in {}), so none \
+         was read and the files were joined row by row",
+        a.display(),
+        b.display()
+    );
+    assert!(e.contains(&names), "{e}");
+    // the same names: joined by time, no mismatch
+    let b = d.file("tau.csv", "t,q1,q2\n0,1,2\n0.2,3,4\n");
+    assert!(load(&config, &[a, b], 2).is_ok());
+}
+
 #[test]
 fn joint_count_mismatch_is_an_error() {
     let d = Dir::new();

@@ -242,7 +242,7 @@ pub fn regularity(t: &[f64], path: &Path) -> (f64, Option<(Grid, Warning)>) {
 }
 
 /// The uniform grid that irregular time stamps are resampled onto: the clock's tick from
-/// the first stamp to the last, each tick a skipped one filled ([`Clock::grid`]).
+/// the first stamp to the last, each skipped tick filled (see [`regularity`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Grid {
     /// The first time stamp (s).
