@@ -217,22 +217,14 @@ pub(crate) fn read_sources<'a>(
                     }
                 }
             },
-            None => check_rows(&mut rows, &table).map_err(|e| match e {
+            None => check_rows(&mut rows, &table).map_err(|mut e| {
                 // each file has a time column, under different names: none was read
-                Error::Data(DataError::RowCountMismatch {
-                    first,
-                    first_rows,
-                    second,
-                    second_rows,
-                    fix,
-                }) => Error::Data(DataError::RowCountMismatch {
-                    first,
-                    first_rows,
-                    second,
-                    second_rows,
-                    fix: differing_time_columns(config, &paths, dof).unwrap_or(fix),
-                }),
-                e => e,
+                if let Error::Data(DataError::RowCountMismatch { fix, .. }) = &mut e
+                    && let Some(names) = differing_time_columns(config, &paths, dof)
+                {
+                    *fix = names;
+                }
+                e
             })?,
         }
         for (role, start) in spans {

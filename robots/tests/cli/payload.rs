@@ -83,13 +83,13 @@ fn printed_mass(text: &str) -> (f64, f64, &str) {
     (words[1].parse().unwrap(), words[3].parse().unwrap(), line)
 }
 
-#[test]
-fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
-    let dir = folder();
-    let params = write(dir.path(), "truth.toml", &with_payload(&tool()));
-    let traj = write(dir.path(), "trajectory.csv", &trajectory());
-    let data = dir.path().join("data.csv");
-    let o = robid(&[
+/// `robid simulate` of the UR5e carrying [`tool`] along [`trajectory`], with torque noise
+/// and `args`, written to `dir`'s `name`.
+fn simulate_with_tool(dir: &Path, name: &str, args: &[&str]) -> std::path::PathBuf {
+    let params = write(dir, "truth.toml", &with_payload(&tool()));
+    let traj = write(dir, "trajectory.csv", &trajectory());
+    let data = dir.join(name);
+    let mut all = vec![
         "simulate",
         "descriptions/ur5e.toml",
         "--parameters",
@@ -100,8 +100,17 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
         "0.2,0.2,0.1,0.05,0.05,0.02",
         "-o",
         data.to_str().unwrap(),
-    ]);
+    ];
+    all.extend_from_slice(args);
+    let o = robid(&all);
     assert!(o.status.success(), "{}", stderr(&o));
+    data
+}
+
+#[test]
+fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
+    let dir = folder();
+    let data = simulate_with_tool(dir.path(), "data.csv", &[]);
     let out = dir.path().join("payload.toml");
     let o = payload(&[
         "--data",
@@ -131,28 +140,18 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
 fn payload_from_a_log_of_positions_and_currents_with_a_config() {
     let dir = folder();
     let d = dir.path();
-    let params = write(d, "truth.toml", &with_payload(&tool()));
-    let traj = write(d, "trajectory.csv", &trajectory());
-    let data = d.join("log.csv");
-    let o = robid(&[
-        "simulate",
-        "descriptions/ur5e.toml",
-        "--parameters",
-        params.to_str().unwrap(),
-        "--trajectory",
-        traj.to_str().unwrap(),
-        "--columns",
-        "positions",
-        "--currents",
-        "10,10,10,5,5,5",
-        "--position-noise",
-        "1e-5",
-        "--torque-noise",
-        "0.2,0.2,0.1,0.05,0.05,0.02",
-        "-o",
-        data.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let data = simulate_with_tool(
+        d,
+        "log.csv",
+        &[
+            "--columns",
+            "positions",
+            "--currents",
+            "10,10,10,5,5,5",
+            "--position-noise",
+            "1e-5",
+        ],
+    );
     let o = payload(&["--data", data.to_str().unwrap()]);
     fails_with(&o, &["log.csv", "--config"]);
     let config = write(
