@@ -74,13 +74,19 @@ fn position_beyond_limits(
     };
     let fits =
         |scale: f64| range[0] * scale >= lower - margin && range[1] * scale <= upper + margin;
-    let hint = match (prismatic, fits(per_unit)) {
-        (true, true) => "positions in mm? they are read in metres",
-        (false, true) => "positions in degrees? set `angle = \"deg\"` in the config's [units]",
-        // neither degrees nor mm: counts, a wrong gear ratio, or an offset
-        (_, false) => {
+    // a range no wider than the limits' fits them once shifted
+    let shifted = range[1] - range[0] <= upper - lower + 2.0 * margin;
+    let hint = match (prismatic, fits(per_unit), shifted) {
+        (true, true, _) => "positions in mm? they are read in metres",
+        (false, true, _) => "positions in degrees? set `angle = \"deg\"` in the config's [units]",
+        (_, false, true) => {
+            "positions off by an offset (the encoders' zero elsewhere than the model's)? \
+             set `position_offset` in the config's [units]"
+        }
+        // wider than the limits, and neither degrees nor mm: counts, a wrong gear ratio
+        (_, false, false) => {
             "positions in another unit (encoder counts, motor side: see [drive] \
-             position_side and gear_ratios) or off by an offset?"
+             position_side and gear_ratios)?"
         }
     };
     Some(format!(
@@ -134,8 +140,9 @@ mod tests {
     use super::*;
 
     /// The hint names the slip the range fits: degrees read as radians when the range in
-    /// degrees fits the limits, mm read as m likewise; positions that fit neither (encoder
-    /// counts, a motor-side angle) are not told to be degrees.
+    /// degrees fits the limits, mm read as m likewise, an offset when the range fits
+    /// shifted; positions that fit none (encoder counts, a motor-side angle) are not told
+    /// to be degrees.
     #[test]
     fn the_hint_is_the_unit_slip_the_range_fits() {
         let robot = crate::Reference::named("ur5e").unwrap().robot();
@@ -155,6 +162,13 @@ mod tests {
         assert!(
             counts[0].contains("another unit (encoder counts") && !counts[0].contains("degrees"),
             "{counts:?}"
+        );
+        // 400 to 405 rad: not degrees (7 to 7.1 rad), but 5 rad wide, within the 6.3 rad
+        // the limits span
+        let shifted = warn(vec![[0.0, 1.0], [0.0, 1.0], [400.0, 405.0]]);
+        assert!(
+            shifted[0].contains("off by an offset") && shifted[0].contains("position_offset"),
+            "{shifted:?}"
         );
     }
 }

@@ -17,6 +17,7 @@
 //! [units]
 //! angle = "rad"                  # or "deg": positions, velocities, accelerations
 //! torque_scale = 1.0             # number or one per joint
+//! position_offset = [0.0, -1.5708, 0.0, 0.0, 0.0, 0.0]  # rad (m) added to the positions
 //!
 //! [drive]                        # see `DriveConfig`
 //! [[extra_column]]               # see `ExtraColumn`
@@ -65,6 +66,7 @@
 //! | `sample_rate` | 1e-3 Hz <= rate <= 1e7 Hz (also a rate derived from the time column); not with `time_column`; within 1 % of the rate of a time column the file has but the config does not read (`data::time_name`) |
 //! | `time_scale` | 1e-12 <= scale <= 1e6 |
 //! | `units.torque_scale`, `drive.gear_ratios`, `drive.torque_constants` | finite, magnitude 1e-12 to 1e6 |
+//! | `units.position_offset` | finite, magnitude <= 1e6 |
 //! | `drive.position_coupling`, `drive.torque_coupling` | finite, magnitude <= 1e6, invertible |
 //! | `drive.rotor.*`, `extra_column[i].terms[k].coefficient` | finite, magnitude <= 1e6 |
 //! | `drive.rotor.inertia`, `drive.rotor.viscous`, `drive.rotor.coulomb` | also >= 0 (0 for no rotor or no friction) |
@@ -329,6 +331,11 @@ pub struct Units {
     pub angle: AngleUnit,
     /// Factor applied to the torque columns (e.g. to N m from mN m).
     pub torque_scale: Option<PerJoint>,
+    /// Added to each joint's position once converted (to radians, or metres for a
+    /// prismatic joint, whatever `angle` says) and taken to the joint side: the model's
+    /// zero where the encoder's is elsewhere (`q_model = q_read + offset`). Velocities,
+    /// accelerations and motor positions are not changed.
+    pub position_offset: Option<PerJoint>,
 }
 
 /// Which signal a low-pass filter is applied to.
@@ -1007,6 +1014,9 @@ impl Config {
         }
         if let Some(s) = &self.units.torque_scale {
             nonzero(s.values(dof, "units.torque_scale")?, "units.torque_scale")?;
+        }
+        if let Some(o) = &self.units.position_offset {
+            o.values(dof, "units.position_offset")?;
         }
         let p = &self.processing;
         if let Some(lp) = &p.lowpass {

@@ -651,10 +651,19 @@ pub(crate) fn assemble(
             t.iter_mut().for_each(|v| *v *= s);
         }
     }
+    let mut q = chain.joint_positions(angle(q)?);
+    if let Some(o) = &config.units.position_offset {
+        // (a joint without an offset left as read: no pass over a long record)
+        for (x, o) in q.joints_mut().zip(o.values(dof, "units.position_offset")?) {
+            if o != 0.0 {
+                x.iter_mut().for_each(|v| *v += o);
+            }
+        }
+    }
     let mut data = Dataset::new_with(
         name,
         sample_time,
-        chain.joint_positions(angle(q)?),
+        q,
         chain.joint_torques(Signals::new(tau)?),
         Some(origin),
         values,

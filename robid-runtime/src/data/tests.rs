@@ -97,6 +97,68 @@ fn degrees_leave_a_prismatic_joint_in_metres() {
     );
 }
 
+/// `units.position_offset` is added to the positions once they are radians (metres for a
+/// prismatic joint) on the joint side, whatever unit and side the columns are in; the
+/// velocities, accelerations and motor positions stay as read. In memory and on disk alike.
+#[test]
+fn a_position_offset_moves_the_joint_positions_only() {
+    let d = Dir::new();
+    let file = d.file(
+        "log.csv",
+        "q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2,m1,m2\n\
+         18000,0.2,9000,0.1,4500,0.05,1,2,36000,720\n\
+         9000,0.1,9000,0.1,4500,0.05,1,2,36000,720\n",
+    );
+    let mut config = cfg(
+        "sample_rate = 10.0\n[[source]]\nposition = \"q{}\"\nvelocity = \"qd{}\"\n\
+         acceleration = \"qdd{}\"\ntorque = \"tau{}\"\nmotor_position = \"m{}\"\n\
+         [units]\nangle = \"deg\"\nposition_offset = [-1.5, 0.25]\n\
+         [drive]\nposition_side = \"motor\"\ngear_ratios = [100, 1]\n",
+    );
+    config.prismatic = vec![false, true];
+    let pi = std::f64::consts::PI;
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+    let data = load(&config, std::slice::from_ref(&file), 2).unwrap();
+    let spilled = SpilledRecord::open(&config, std::slice::from_ref(&file), 2)
+        .unwrap()
+        .unwrap();
+    let record = spilled.read(0, 2).unwrap();
+    for data in [&data, &*record] {
+        let q = [data.q[0][0], data.q[0][1], data.q[1][0], data.q[1][1]];
+        assert!(
+            close(q[0], pi - 1.5) && close(q[1], pi / 2.0 - 1.5),
+            "{q:?}"
+        );
+        assert!(close(q[2], 0.45) && close(q[3], 0.35), "{q:?}");
+        let qd = data.qd.as_ref().unwrap();
+        assert!(close(qd[0][0], pi / 2.0) && close(qd[1][0], 0.1), "{qd:?}");
+        let qdd = data.qdd.as_ref().unwrap();
+        assert!(close(qdd[0][0], pi / 4.0), "{qdd:?}");
+        let motor = data.motor.as_ref().unwrap();
+        assert!(close(motor[0][0], 2.0 * pi), "{motor:?}");
+    }
+    // one value for every joint, or one per joint, each finite
+    let bad = |offset: &str| {
+        let text = format!(
+            "sample_rate = 10.0\n[[source]]\nposition = \"q{{}}\"\ntorque = \"tau{{}}\"\n\
+             [units]\nposition_offset = {offset}\n"
+        );
+        load(&cfg(&text), std::slice::from_ref(&file), 2)
+            .unwrap_err()
+            .to_string()
+    };
+    let e = bad("[0.1, 0.2, 0.3]");
+    assert!(
+        e.contains("units.position_offset") && e.contains("3 values for a model of 2 joints"),
+        "{e}"
+    );
+    let e = bad("1e7");
+    assert!(
+        e.contains("test.toml:6:1") && e.contains("10000000 is not a finite number"),
+        "{e}"
+    );
+}
+
 /// A config that gives neither `sample_rate` nor `time_column` reads the file's time
 /// column, found by its name with its unit (`time_ms`), in memory and on disk alike (it
 /// was refused as "no time column", though the example config shows `time_column = "t"`
