@@ -36,8 +36,8 @@ pub enum EstimateError {
         joint: usize,
         /// Its equations.
         found: usize,
-        /// The parameters it is solved for (per axis: of its own equation; link by link:
-        /// of its step; at least 1).
+        /// The parameters it is solved for (per axis: of its own equation, which needs
+        /// more equations than them; link by link: of its step, at least as many).
         required: usize,
         /// The most equations any joint has.
         most: usize,
@@ -72,6 +72,16 @@ pub enum EstimateError {
         /// The value found.
         value: f64,
     },
+}
+
+/// How `found` equations fall short of `required` parameters: fewer, or as many (which
+/// fit any data exactly, leaving no residual for the standard deviations), before "the 3".
+pub(crate) fn short_of(found: usize, required: usize) -> &'static str {
+    if found < required {
+        "fewer than"
+    } else {
+        "only as many as"
+    }
 }
 
 /// What a joint's equations are solved for by `method` (per axis or link by link), after
@@ -111,9 +121,10 @@ fn lacks_equations(
         )
     } else {
         format!(
-            "joint {joint} has {found} equations, fewer than the {required} {}, while another \
+            "joint {joint} has {found} equations, {} the {required} {}, while another \
              joint has {most}: the others were removed, as processing.rest_velocity removes a \
              joint's equations where its |velocity| is below it",
+            short_of(found, required),
             own_parameters(method)
         )
     };

@@ -154,11 +154,13 @@ pub(crate) fn solve(
     tolerance: f64,
 ) -> Result<Solution> {
     let (m, n) = w.shape();
-    if m < n || n == 0 {
+    // as many equations as parameters fit any data exactly: no residual is left for the
+    // standard deviations
+    if m <= n || n == 0 {
         return Err(Error::TooFewSamples {
             context: format!("least squares with {n} parameters"),
             found: m,
-            required: n.max(1),
+            required: n + 1,
             hint: "use more data, less decimation, or fewer parameters",
         });
     }
@@ -405,9 +407,14 @@ mod tests {
 
     #[test]
     fn rank_deficiency_names_the_unexcited_parameters() {
-        // column 3 is never excited, columns 1 and 2 are fine
-        let w = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0]);
-        let y = DVector::from_vec(vec![1.0, 2.0, 3.0]);
+        // column 3 is never excited, columns 1 and 2 are fine (one equation more than
+        // parameters: as many are refused before the rank is known)
+        let w = DMatrix::from_row_slice(
+            4,
+            3,
+            &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 2.0, 1.0, 0.0],
+        );
+        let y = DVector::from_vec(vec![1.0, 2.0, 3.0, 4.0]);
         match solve(&w, &y, &names(3), 1e-10) {
             Err(Error::Estimate(EstimateError::RankDeficient {
                 rank: 2,
@@ -417,7 +424,7 @@ mod tests {
             other => panic!("{other:?}"),
         }
         // two identical columns: both named
-        let w = DMatrix::from_row_slice(3, 2, &[1.0, 1.0, 2.0, 2.0, 3.0, 3.0]);
+        let w = DMatrix::from_row_slice(4, 2, &[1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0]);
         match solve(&w, &y, &names(2), 1e-10) {
             Err(Error::Estimate(EstimateError::RankDeficient { unexcited, .. })) => {
                 assert_eq!(unexcited.len(), 2)
@@ -426,7 +433,11 @@ mod tests {
         }
         // a zero column and two dependent ones: rank 1 of 3, all three named (zero columns
         // alone would give rank 2 and name only the zero one)
-        let w = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 2.0, 2.0, 0.0, 4.0, 3.0, 0.0, 6.0]);
+        let w = DMatrix::from_row_slice(
+            4,
+            3,
+            &[1.0, 0.0, 2.0, 2.0, 0.0, 4.0, 3.0, 0.0, 6.0, 4.0, 0.0, 8.0],
+        );
         match solve(&w, &y, &names(3), 1e-10) {
             Err(Error::Estimate(EstimateError::RankDeficient {
                 rank,
@@ -443,12 +454,13 @@ mod tests {
 
     /// The rank tolerance is relative to the largest singular value: two unit columns at
     /// an angle t have singular values sqrt(1 +- cos t), and the system is refused exactly
-    /// when the smaller one falls below tolerance x the larger.
+    /// when the smaller one falls below tolerance x the larger (a third, zero equation
+    /// changes neither).
     #[test]
     fn the_rank_tolerance_is_relative_to_the_largest_singular_value() {
         let t: f64 = 1e-3;
-        let w = DMatrix::from_row_slice(2, 2, &[1.0, t.cos(), 0.0, t.sin()]);
-        let y = DVector::from_vec(vec![1.0, 2.0]);
+        let w = DMatrix::from_row_slice(3, 2, &[1.0, t.cos(), 0.0, t.sin(), 0.0, 0.0]);
+        let y = DVector::from_vec(vec![1.0, 2.0, 0.0]);
         let ratio = ((1.0 - t.cos()) / (1.0 + t.cos())).sqrt();
         assert!(solve(&w, &y, &names(2), 0.8 * ratio).is_ok());
         assert!(matches!(

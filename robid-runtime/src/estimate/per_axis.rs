@@ -79,10 +79,15 @@ struct AxisSolution {
 /// use nalgebra::{DMatrix, DVector};
 /// use robid_runtime::estimate::{Observation, per_axis};
 ///
-/// // axis 1 sees a and b, axis 2 sees b alone
-/// let w = DMatrix::from_row_slice(4, 2, &[1.0, 0.5, 2.0, -1.0, 0.0, 1.0, 0.0, 3.0]);
+/// // axis 1 sees a and b, axis 2 sees b alone (each with more equations than parameters)
+/// let w = DMatrix::from_row_slice(
+///     5,
+///     2,
+///     &[1.0, 0.5, 2.0, -1.0, 1.0, 1.0, 0.0, 1.0, 0.0, 3.0],
+/// );
 /// let y = &w * DVector::from_vec(vec![2.0, -1.0]);
-/// let obs = Observation::new(w, y, vec![0..2, 2..4], vec![0, 1, 0, 1], vec!["a".into(), "b".into()]).unwrap();
+/// let names = vec!["a".into(), "b".into()];
+/// let obs = Observation::new(w, y, vec![0..3, 3..5], vec![0, 1, 2, 0, 1], names).unwrap();
 /// let p = per_axis(&obs, 1e-10).unwrap();
 /// assert!((p.estimate.values[0] - 2.0).abs() < 1e-12);
 /// assert_eq!(p.axes[0].joint, 2);
@@ -226,7 +231,10 @@ fn solve_axis(
         .filter(|&c| !zero(c) && norms[c] > ABSENT * largest)
         .collect();
     let k = present.len();
-    if rows.len() < k.max(1) && rows.len() < most {
+    // one equation more than parameters at least: as many fit any data exactly, leaving no
+    // residual for the axis's standard deviations
+    let required = k + 1;
+    if rows.len() < required && rows.len() < most {
         return Err(Error::Estimate(EstimateError::AxisLacksEquations {
             method: Estimator::PerAxis,
             joint: j + 1,
@@ -235,11 +243,11 @@ fn solve_axis(
             most,
         }));
     }
-    if rows.len() < k.max(1) {
+    if rows.len() < required {
         return Err(Error::TooFewSamples {
             context: format!("the per-axis identification of joint {}", j + 1),
             found: rows.len(),
-            required: k.max(1),
+            required,
             hint: "use more data or less decimation",
         });
     }

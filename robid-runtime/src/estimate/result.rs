@@ -124,8 +124,21 @@ pub(crate) fn assemble_parts(
     residual: Residual,
 ) -> Result<Estimate> {
     let (m, n) = (residual.rows, beta.len());
-    let dof = m.saturating_sub(n).max(1);
-    let sigma2 = residual.squared_norm / dof as f64;
+    // as many equations as parameters fit any data exactly: sigma^2 would be the rounding
+    // error's, and every standard deviation a thousandth of a percent of nonsense
+    if m <= n {
+        return Err(Error::TooFewSamples {
+            context: format!(
+                "the standard deviations of the {} estimate of {} (counted in equations)",
+                method.name(),
+                crate::Count(n, "parameter")
+            ),
+            found: m,
+            required: n + 1,
+            hint: "as many equations as parameters fit any data exactly and leave no residual to estimate the noise from; use a longer record",
+        });
+    }
+    let sigma2 = residual.squared_norm / (m - n) as f64;
     let std: Vec<f64> = (0..n)
         .map(|i| (sigma2 * inverse_gram[(i, i)].max(0.0)).sqrt())
         .collect();
@@ -259,6 +272,36 @@ mod tests {
         assert!(fine.is_ok());
         let e = assemble(Estimator::Wls, &solved, &original, beta, &gram, 1.0).unwrap_err();
         assert!(e.to_string().contains("residual of the fit"), "{e}");
+    }
+
+    /// As many equations as parameters fit any data exactly: the statistics are refused
+    /// (sigma^2 was the rounding error over one degree of freedom, and every standard
+    /// deviation 0.00 % of values a thousand times the truth), by every estimator that
+    /// assembles them, RLS included; one equation more gives them.
+    #[test]
+    fn no_more_equations_than_parameters_leave_no_statistics() {
+        let one = observation(&[2.0]);
+        let gram = DMatrix::from_element(1, 1, 1.0);
+        let beta = DVector::from_vec(vec![2.0]);
+        let e = assemble(Estimator::Ols, &one, &one, beta, &gram, 1.0).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                crate::Error::TooFewSamples {
+                    found: 1,
+                    required: 2,
+                    ..
+                }
+            ) && e
+                .to_string()
+                .contains("no residual to estimate the noise from"),
+            "{e}"
+        );
+        assert!(crate::estimate::rls(&one, 1.0, 1e-10).is_err());
+        let two = observation(&[2.0, 2.5]);
+        let e = crate::estimate::ols(&two, 1e-10).unwrap();
+        // sigma^2 = (0.25^2 + 0.25^2) / 1, std = sigma / sqrt(2)
+        assert!((e.std[0] - 0.25).abs() < 1e-15, "{:?}", e.std);
     }
 
     /// The same fit with its noise scaled has about the same relative standard deviations

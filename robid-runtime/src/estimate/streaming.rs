@@ -406,11 +406,13 @@ impl StreamingLeastSquares {
     fn solve(&self, method: Estimator, weights: &[f64], tolerance: f64) -> Result<Estimate> {
         let n = self.names.len();
         let m = self.rows();
-        if m < n {
+        // as many equations as parameters fit any data exactly: no residual is left for
+        // the standard deviations
+        if m <= n {
             return Err(Error::TooFewSamples {
                 context: format!("least squares with {n} parameters"),
                 found: m,
-                required: n.max(1),
+                required: n + 1,
                 hint: "use more data, less decimation, or fewer parameters",
             });
         }

@@ -256,7 +256,8 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
         (
             format!(
                 "{threshold} leaves joint {joint} {found} equations (where its |velocity| \
-                 reaches it), fewer than the {required} {}",
+                 reaches it), {} the {required} {}",
+                crate::estimate::error::short_of(found, required),
                 own_parameters(method)
             ),
             format!("move joint {joint} more in the trajectory, or lower rest_velocity for it"),
@@ -426,11 +427,11 @@ fn pieces_of(
     let time = |k: usize| (start + k * factor) as f64 * data.sample_time;
     let inside = |k: usize| pieces.iter().any(|[a, b]| (*a..=*b).contains(&time(k)));
     let selected = obs.select_samples(inside)?;
-    if selected.rows() < obs.cols() {
+    if selected.rows() <= obs.cols() {
         return Err(config.key_error(
             "processing.pieces",
             format!(
-                "the pieces hold {} equations of the estimation range, fewer than the {} \
+                "the pieces hold {} equations of the estimation range, no more than the {} \
                  parameters; check that they are in seconds from the record's first sample \
                  and inside processing.range",
                 selected.rows(),

@@ -95,9 +95,9 @@ pub fn decimator(config: &Config) -> Result<Decimator> {
 }
 
 /// The decimation configured in `[processing]` for a record of `n` samples (after
-/// `processing.range` and the trims) of `dof` joints that must give at least `needed`
-/// equations: an error at `processing.decimation` when its filters need more samples or
-/// it leaves fewer equations, with the largest factor that fits. Without it the
+/// `processing.range` and the trims) of `dof` joints that must give more equations than
+/// the `needed` parameters: an error at `processing.decimation` when its filters need more
+/// samples or it leaves no more equations, with the largest factor that fits. Without it the
 /// anti-alias filter of the last stage said "3 samples, at least 28 are needed", or the
 /// least squares "3 samples, at least 4", with no key. A record too short for `needed`
 /// equations even without decimation is left to the error of what it is too short for.
@@ -108,9 +108,9 @@ pub(crate) fn decimator_for(
     needed: usize,
 ) -> Result<Decimator> {
     let dec = decimator(config)?;
-    let enough = |d: &Decimator| d.output_len(n) * dof >= needed;
+    let enough = |d: &Decimator| d.output_len(n) * dof > needed;
     let filtered = dec.min_len() <= n;
-    if filtered && (enough(&dec) || n * dof < needed) {
+    if filtered && (enough(&dec) || n * dof <= needed) {
         return Ok(dec);
     }
     // the largest total factor that fits (1, no filter, always filters)
@@ -122,8 +122,9 @@ pub(crate) fn decimator_for(
         let m = dec.output_len(n);
         format!(
             "leaves {m} of the {n} samples used (after processing.range and the trims): {} \
-             equations, fewer than the {needed} parameters",
-            m * dof
+             equations, {} the {needed} parameters",
+            m * dof,
+            crate::estimate::error::short_of(m * dof, needed)
         )
     } else {
         format!(
@@ -145,8 +146,9 @@ pub(crate) fn decimator_for(
 
 /// An error naming the record `data` (its file and the rows used, and the files joined to
 /// it, which used to be left out) when its samples `kept`
-/// (after `processing.range` and the trims) of `dof` joints give fewer equations than the
-/// `needed` parameters to estimate, one per joint and sample, whatever the decimation and
+/// (after `processing.range` and the trims) of `dof` joints give no more equations than
+/// the `needed` parameters to estimate, one per joint and sample (as many fit any data
+/// exactly, leaving no residual for the standard deviations), whatever the decimation and
 /// the rest removal (which [`decimator_for`] and [`RestCount::check`] name when they are
 /// why). Without it the least squares said "least squares with 36 parameters: 12 samples,
 /// at least 36 are needed", counting equations as samples, with no file.
@@ -157,7 +159,7 @@ pub(crate) fn long_enough(
     needed: usize,
 ) -> Result<()> {
     let n = kept.len();
-    if dof == 0 || n.saturating_mul(dof) >= needed {
+    if dof == 0 || n.saturating_mul(dof) > needed {
         return Ok(());
     }
     let trimmed = if n < data.samples() {
@@ -171,12 +173,13 @@ pub(crate) fn long_enough(
     Err(Error::TooFewSamples {
         context: format!(
             "{}{}: too short{trimmed} for the {needed} parameters of the model (each sample \
-             gives {dof} equations, one per joint)",
+             gives {dof} equations, one per joint, and the fit needs more equations than \
+             parameters)",
             crate::validate::UsedRows::of(data, kept.clone()),
             crate::data::joined_with(data),
         ),
         found: n,
-        required: needed.div_ceil(dof),
+        required: (needed + 1).div_ceil(dof),
         hint: "record a longer trajectory",
     })
 }
@@ -1350,8 +1353,8 @@ pub(crate) fn observe_counted(
     count.check(
         rest.as_deref(),
         &config.prismatic,
-        cols,
-        &format!("the {cols} parameters"),
+        cols + 1,
+        &format!("the {} equations the {cols} parameters need", cols + 1),
     )?;
     let mut w = DMatrix::zeros(total, cols);
     let mut y = DVector::zeros(total);

@@ -288,9 +288,9 @@ pub(crate) fn samples_needed(data: &Dataset, config: &Config, parameters: usize)
         .map_or(0, |s| s.settling_samples(SETTLING_TOLERANCE, 1 << 20));
     let dec = crate::pipeline::decimator(config).ok()?;
     let factor = dec.factor();
-    // equations: one per joint and sample left by the decimation, which keeps one in
-    // `factor` (rounded up)
-    let per_joint = parameters.div_ceil(dof);
+    // equations, one per joint and sample left by the decimation (which keeps one in
+    // `factor`, rounded up): one more than the parameters, so that a residual is left
+    let per_joint = parameters.saturating_add(1).div_ceil(dof);
     let for_parameters = per_joint
         .saturating_sub(1)
         .saturating_mul(factor)
@@ -353,7 +353,8 @@ pub(crate) fn samples_needed(data: &Dataset, config: &Config, parameters: usize)
             String::new()
         };
         format!(
-            "{kept} between them for the {parameters} parameters at {} equations per sample{decimated}",
+            "{kept} between them for more equations than the {parameters} parameters at {} \
+             equations per sample{decimated}",
             data.dof()
         )
     } else if kept == dec.min_len() && kept > 2 {

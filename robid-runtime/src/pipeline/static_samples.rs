@@ -143,12 +143,13 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
     let nc = determined.kept.len();
     // too few poses for the combinations: said by the file, with its fix (the least
     // squares said "1 samples, at least 2 are needed; use more data, less decimation",
-    // which named no file and a setting static samples do not have)
-    if rows * per < nc {
+    // which named no file and a setting static samples do not have); as many equations as
+    // combinations fit any poses exactly, leaving no residual for the deviations
+    if rows * per <= nc {
         return Err(Error::TooFewSamples {
             context: format!(
                 "{}: static samples, {} per pose, for the {} of base parameters that {} \
-                 determine",
+                 determine (and one equation more)",
                 path.display(),
                 Count(per, "equation"),
                 Count(nc, "combination"),
@@ -158,7 +159,7 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
                 }
             ),
             found: rows,
-            required: nc.div_ceil(per),
+            required: (nc + 1).div_ceil(per),
             hint: "add rows to the file, each at a pose unlike the others",
         });
     }

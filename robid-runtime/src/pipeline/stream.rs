@@ -446,15 +446,15 @@ pub(crate) fn identify_streaming(
     rest.check(
         stream.rest(),
         &config.prismatic,
-        cols,
-        &format!("the {cols} parameters"),
+        cols + 1,
+        &format!("the {} equations the {cols} parameters need", cols + 1),
     )
     .map_err(at)?;
-    if config.processing.pieces.is_some() && ls.rows() < cols {
+    if config.processing.pieces.is_some() && ls.rows() <= cols {
         return Err(config.key_error(
             "processing.pieces",
             format!(
-                "the pieces hold {} equations of the estimation range, fewer than the {} \
+                "the pieces hold {} equations of the estimation range, no more than the {} \
                  parameters; check that they are in seconds from the record's first sample \
                  and inside processing.range",
                 ls.rows(),

@@ -234,7 +234,7 @@ fn rest_removal_of_every_equation_names_rest_velocity() {
         let text = e.to_string();
         for part in [
             "1000 rad/s removes 1560 of the 1560 equations",
-            "leaving 0, fewer than the 48 parameters",
+            "leaving 0, fewer than the 49 equations the 48 parameters need",
             "lower rest_velocity",
             "units.angle",
         ] {
@@ -440,14 +440,14 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
             3000,
             "a total factor of 5000 needs at least 27001 samples for its anti-alias filters, \
              but 2600 are used (after processing.range and the trims); lower the factor (at \
-             most 360 for this record)",
+             most 324 for this record)",
         ),
         (
             "100",
             1000,
             "a total factor of 100 leaves 6 of the 600 samples used (after processing.range \
              and the trims): 36 equations, fewer than the 48 parameters; lower the factor (at \
-             most 81 for this record)",
+             most 72 for this record)",
         ),
     ] {
         let data = data.slice(0, samples).unwrap();
@@ -990,7 +990,7 @@ fn a_record_too_short_for_the_parameters_names_its_file() {
                 e,
                 Error::TooFewSamples {
                     found: 5,
-                    required: 8,
+                    required: 9,
                     ..
                 }
             ),
@@ -1008,7 +1008,7 @@ fn a_record_too_short_for_the_parameters_names_its_file() {
             e.contains(
                 ": too short, after processing.range and the trims of its 9 samples, for \
                  the 48 parameters of the model"
-            ) && e.contains("5 samples, at least 8 are needed; record a longer trajectory"),
+            ) && e.contains("5 samples, at least 9 are needed; record a longer trajectory"),
             "{method}: {e}"
         );
     }
@@ -1016,17 +1016,33 @@ fn a_record_too_short_for_the_parameters_names_its_file() {
         messages[0],
         format!(
             "{} lines 2-6 (samples 0..5): too short for the 48 parameters of the model (each \
-             sample gives 6 equations, one per joint): 5 samples, at least 8 are needed; record \
-             a longer trajectory",
+             sample gives 6 equations, one per joint, and the fit needs more equations than \
+             parameters): 5 samples, at least 9 are needed; record a longer trajectory",
             file.display()
         )
     );
     for m in &messages[1..] {
         assert_eq!(m, &messages[0]);
     }
-    // 8 samples: no longer too short for the parameters (the data then lack excitation)
-    std::fs::write(&file, csv_with_noise(8, 1000.0, [0.0; DOF])).unwrap();
+    // 8 samples: 48 equations for the 48 parameters fit any data exactly, with no
+    // residual for the standard deviations (they were a rounding error's, 0.00 %)
     let cfg = Config::from_toml_str(plain, Path::new("short.toml")).unwrap();
+    std::fs::write(&file, csv_with_noise(8, 1000.0, [0.0; DOF])).unwrap();
+    let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
+    let e = identify(&model, &data, &cfg).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::TooFewSamples {
+                found: 8,
+                required: 9,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    // 9 samples: no longer too short for the parameters (the data then lack excitation)
+    std::fs::write(&file, csv_with_noise(9, 1000.0, [0.0; DOF])).unwrap();
     let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
     if let Err(e) = identify(&model, &data, &cfg) {
         assert!(!matches!(e, Error::TooFewSamples { .. }), "{e}");
@@ -1068,7 +1084,7 @@ fn a_joined_record_too_short_names_all_its_files() {
             e,
             Error::TooFewSamples {
                 found: 5,
-                required: 8,
+                required: 9,
                 ..
             }
         ),
@@ -1078,8 +1094,9 @@ fn a_joined_record_too_short_names_all_its_files() {
         e.to_string(),
         format!(
             "{} lines 2-6 (samples 0..5), joined with {}: too short for the 48 parameters of \
-             the model (each sample gives 6 equations, one per joint): 5 samples, at least 8 \
-             are needed; record a longer trajectory",
+             the model (each sample gives 6 equations, one per joint, and the fit needs more \
+             equations than parameters): 5 samples, at least 9 are needed; record a longer \
+             trajectory",
             pos.display(),
             tau.display()
         )
@@ -1165,12 +1182,15 @@ fn the_samples_a_run_needs_are_what_the_pipeline_needs() {
         }
         let expected = match takes {
             "trim" => "200 samples at each end (processing.trim",
-            "settle" => "samples at each end for the low-pass to settle and 8 between them",
+            "settle" => "samples at each end for the low-pass to settle and 9 between them",
             "decimation" => {
-                "701 between them for the 48 parameters at 6 equations per sample, \
-                             one sample in 100 kept by processing.decimation"
+                "801 between them for more equations than the 48 parameters at 6 \
+                 equations per sample, one sample in 100 kept by processing.decimation"
             }
-            "parameters" => "8 between them for the 48 parameters at 6 equations per sample",
+            "parameters" => {
+                "9 between them for more equations than the 48 parameters at 6 equations per \
+                 sample"
+            }
             "range" => "processing.range [100, 400] less",
             _ => "31 in all for the Savitzky-Golay window",
         };

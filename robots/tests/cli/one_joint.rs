@@ -188,13 +188,25 @@ fn one_joint_static_samples_too_few_name_the_file() {
         &o,
         &[
             "gravity.csv: static samples, 1 equation per pose, for the 2 combinations of base \
-             parameters that gravity torques determine: 1 sample, at least 2 are needed; add \
-             rows to the file, each at a pose unlike the others",
+             parameters that gravity torques determine (and one equation more): 1 sample, at \
+             least 3 are needed; add rows to the file, each at a pose unlike the others",
         ],
     );
     assert!(!stderr(&o).contains("decimation"), "{}", stderr(&o));
-    // two poses are enough
+    // two poses fit any torques exactly, with no residual for the deviations
     let csv = write(dir.path(), "gravity.csv", "q1,g1\n0.3,5.6\n1.1,2.6\n");
+    let o = robid(&["identify", ONE, "--static", csv.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("2 samples, at least 3 are needed"),
+        "{}",
+        stderr(&o)
+    );
+    // three poses are enough
+    let csv = write(
+        dir.path(),
+        "gravity.csv",
+        "q1,g1\n0.3,5.6\n1.1,2.6\n-0.4,-3.5\n",
+    );
     let o = robid(&["identify", ONE, "--static", csv.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
 }

@@ -505,8 +505,8 @@ fn gaz_static_samples_identify_the_coefficients_they_determine() {
     assert!(
         e.contains(
             "bad.csv: static samples, 7 equations per pose, for the 12 combinations of base \
-             parameters that gravity torques determine: 1 sample, at least 2 are needed; add \
-             rows to the file"
+             parameters that gravity torques determine (and one equation more): 1 sample, at \
+             least 2 are needed; add rows to the file"
         ),
         "{e}"
     );

@@ -179,7 +179,7 @@ fn uneven(rows: [usize; 3]) -> Observation {
 fn an_axis_whose_equations_were_removed_is_named() {
     use crate::EstimateError;
     use crate::error::Error;
-    for (rows, joint, found, required) in [([200, 0, 200], 2, 0, 1), ([2, 200, 200], 1, 2, 3)] {
+    for (rows, joint, found, required) in [([200, 0, 200], 2, 0, 1), ([3, 200, 200], 1, 3, 3)] {
         let e = per_axis(&uneven(rows), 1e-10).unwrap_err();
         assert!(
             matches!(e, Error::Estimate(EstimateError::AxisLacksEquations { method: Estimator::PerAxis, joint: j, found: f, required: r, most: 200 })
@@ -216,15 +216,16 @@ fn an_axis_whose_equations_were_removed_is_named() {
         ),
         "{message}"
     );
-    // every axis as short: the record is too short
+    // every axis as short: the record is too short (joints 1 and 2 have no more equations
+    // than parameters; the axes are solved from the last)
     let message = per_axis(&uneven([2, 2, 2]), 1e-10).unwrap_err().to_string();
     assert_eq!(
         message,
-        "the per-axis identification of joint 1: 2 samples, at least 3 are needed; use more \
+        "the per-axis identification of joint 2: 2 samples, at least 3 are needed; use more \
          data or less decimation"
     );
-    // enough equations on each axis, however uneven: solved
-    let p = per_axis(&uneven([3, 50, 200]), 1e-10).unwrap();
+    // enough equations on each axis (one more than its parameters), however uneven: solved
+    let p = per_axis(&uneven([4, 50, 200]), 1e-10).unwrap();
     assert!(
         (p.estimate.values[0] - 1.5).abs() < 1e-12,
         "{:?}",

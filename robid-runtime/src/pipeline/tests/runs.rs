@@ -285,14 +285,14 @@ fn a_run_too_short_for_the_processing_is_named_with_its_rows_first() {
         let Error::Run { error, .. } = &e else {
             panic!("{e}")
         };
-        // 200 trimmed at each end (the 20 Hz low-pass settles in fewer), then 8 samples
-        // of 6 equations for 48 parameters, one in 10 kept by the decimation: 71
+        // 200 trimmed at each end (the 20 Hz low-pass settles in fewer), then 9 samples
+        // of 6 equations for more than 48 parameters, one in 10 kept by the decimation: 81
         assert!(
             matches!(
                 **error,
                 Error::TooFewSamples {
                     found: 3,
-                    required: 471,
+                    required: 481,
                     ..
                 }
             ),
@@ -309,8 +309,9 @@ fn a_run_too_short_for_the_processing_is_named_with_its_rows_first() {
         assert!(text.contains(&expected), "{mode}: {text}");
         assert!(
             text.ends_with(
-                ") and 71 between them for the 48 parameters at 6 equations per sample, one \
-                 sample in 10 kept by processing.decimation: 3 samples, at least 471 are \
+                ") and 81 between them for more equations than the 48 parameters at 6 \
+                 equations per sample, one sample in 10 kept by processing.decimation: 3 \
+                 samples, at least 481 are \
                  needed; remove the run from runs.files or record it in full (all runs are \
                  processed alike)"
             ),
