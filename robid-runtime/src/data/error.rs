@@ -162,8 +162,20 @@ pub enum DataError {
         /// The largest accepted magnitude.
         limit: f64,
     },
+    /// A header line that is not text (control characters, bytes that are not UTF-8): a
+    /// binary file, or one compressed otherwise than by gzip. Its bytes are not echoed
+    /// (they could be a terminal's escape sequences).
+    #[error(
+        "{path}:{line}: the header line is not text (it holds control characters or bytes that are not UTF-8): is this a CSV file? A binary log, or a file compressed otherwise than by gzip, is not; export it as CSV"
+    )]
+    NotText {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line of the header.
+        line: u64,
+    },
     /// A column named by the column mapping is not in the file's header.
-    #[error("{path}: no column `{column}` in the header (found: {}); {}{}", available.join(", "), mapping.fix(), numbered_from_zero(column, available))]
+    #[error("{path}: no column `{column}` in the header (found: {}); {}{}", listed(available), mapping.fix(), numbered_from_zero(column, available))]
     MissingColumn {
         /// The file.
         path: PathBuf,
@@ -300,6 +312,24 @@ pub enum DataError {
         /// What is wrong and what to write instead.
         problem: String,
     },
+}
+
+/// The header's names for a message: the first [`LISTED`] (each cut to 40 characters),
+/// then how many more; a header of thousands of columns was written out in full.
+fn listed(names: &[String]) -> String {
+    const LISTED: usize = 30;
+    let mut shown: Vec<String> = names
+        .iter()
+        .take(LISTED)
+        .map(|n| match n.char_indices().nth(40) {
+            Some((cut, _)) => format!("{}...", &n[..cut]),
+            None => n.clone(),
+        })
+        .collect();
+    if names.len() > LISTED {
+        shown.push(format!("and {} more", names.len() - LISTED));
+    }
+    shown.join(", ")
 }
 
 /// What a missing column `stem<n>` adds when the header numbers the same columns from 0

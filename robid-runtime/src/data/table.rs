@@ -933,11 +933,18 @@ fn wanted(
 /// the header splits into the name with one (`|`, or `;` or a tab beside the commas it is
 /// read by), else a missing column.
 fn missing(header: &[String], name: &str, path: &Path, text: &[u8], header_line: u64) -> Error {
-    let line = text
+    let raw = text
         .split(|&b| b == b'\n')
         .nth(header_line.saturating_sub(1) as usize)
-        .map(|l| String::from_utf8_lossy(l).trim().to_string())
         .unwrap_or_default();
+    let control = |b: &u8| b.is_ascii_control() && !matches!(b, b'\t' | b'\r');
+    if std::str::from_utf8(raw).is_err() || raw.iter().any(control) {
+        return Error::Data(DataError::NotText {
+            path: path.to_path_buf(),
+            line: header_line,
+        });
+    }
+    let line = String::from_utf8_lossy(raw).trim().to_string();
     for (sep, described) in [(';', "`;`"), ('\t', "tabs"), ('|', "`|`")] {
         if line.contains(sep) && line.split(sep).any(|f| f.trim().trim_matches('"') == name) {
             let shown: String = line.chars().take(60).collect();
@@ -1679,6 +1686,39 @@ mod tests {
         let e = read("a,b\n1,2\n", &["q1"]).unwrap_err();
         assert!(matches!(e, Error::Data(DataError::MissingColumn { .. })));
         assert!(e.to_string().contains("found: a, b"), "{e}");
+        // a header of many columns, or of long names, is listed in part
+        let header: Vec<String> = (0..100).map(|i| format!("c{i}")).collect();
+        let long = "x".repeat(50);
+        let text = format!("{},{long}\n", header.join(","));
+        let e = read(&text, &["q1"]).unwrap_err().to_string();
+        assert!(
+            e.contains("found: c0, c1,") && e.contains("c29, and 71 more)") && !e.contains("c30"),
+            "{e}"
+        );
+        let e = read(&format!("{long},a\n1,2\n"), &["q1"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(&format!("found: {}..., a)", &long[..40])), "{e}");
+    }
+
+    /// A binary file's first line is not echoed (its bytes reached the terminal, escape
+    /// sequences included): the error says the file is not text.
+    #[test]
+    fn a_header_that_is_not_text_is_not_echoed() {
+        for text in ["\x1b[2J\x07garbage,x\n1,2\n", "a\u{0},b\n1,2\n"] {
+            let e = read(text, &["q1"]).unwrap_err();
+            assert!(
+                matches!(e, Error::Data(DataError::NotText { line: 1, .. })),
+                "{e}"
+            );
+            assert!(
+                !e.to_string().contains('\x1b') && e.to_string().contains("not text"),
+                "{e}"
+            );
+        }
+        let bytes = b"\xff\xfe q,\x80\n1,2\n";
+        let e = read_columns_from(&bytes[..], Path::new("b.csv"), &["q1".to_string()]).unwrap_err();
+        assert!(matches!(e, Error::Data(DataError::NotText { .. })), "{e}");
     }
 
     #[test]
