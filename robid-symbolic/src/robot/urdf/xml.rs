@@ -153,14 +153,33 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
                  defines where the file uses it)",
             );
         }
-        let pos = e.pos();
+        // a file that ends too soon is told at its end, where the parser gives no place
+        // (it said 1:1 of a file cut in its fourth line)
+        let cut = matches!(
+            e,
+            roxmltree::Error::UnexpectedEndOfStream | roxmltree::Error::UnclosedRootNode
+        );
+        let (line, column) = if cut {
+            let text = place.text.trim_end();
+            let last = text.rfind('\n').map_or(0, |i| i + 1);
+            (
+                text.matches('\n').count() + 1,
+                text[last..].chars().count() + 1,
+            )
+        } else {
+            (e.pos().row as usize, e.pos().col as usize)
+        };
         DescriptionError::Invalid {
             file: place.file.to_owned(),
-            line: pos.row as usize,
-            column: pos.col as usize,
+            line,
+            column,
             message: format!("the URDF is not well-formed XML: {e}"),
             help: if looks_like_xacro(place.text) {
                 format!("this looks like an unexpanded xacro file: {EXPAND_XACRO}")
+            } else if cut {
+                "the file ends here, before its elements are closed: is it cut short? Copy it \
+                 again whole"
+                    .to_owned()
             } else {
                 "fix the XML at this place (every tag closed, attribute values quoted)".to_owned()
             },
@@ -602,10 +621,13 @@ impl Reader<'_> {
                     let span = attribute.range_value();
                     let fixed = matches!(kind, Some(JointType::Fixed));
                     self.vector(a, "xyz").and_then(|v| {
-                        let length = norm(v);
-                        if length > 0.0 && length.is_finite() {
-                            Some(scale(v, 1.0 / length))
-                        } else if fixed && length == 0.0 {
+                        // over its largest component first: the norm of `0 0 1e-200`
+                        // underflows to zero, that of `3e300 4e300 0` overflows
+                        let largest = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                        if largest > 0.0 && largest.is_finite() {
+                            let u = scale(v, 1.0 / largest);
+                            Some(scale(u, 1.0 / norm(u)))
+                        } else if fixed && largest == 0.0 {
                             // a fixed joint's axis is not used (Kinova's Gen3 URDF writes
                             // `0 0 0` there)
                             Some([1.0, 0.0, 0.0])

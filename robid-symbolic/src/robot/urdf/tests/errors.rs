@@ -1229,3 +1229,42 @@ fn an_inertia_indefinite_only_by_noise_is_read() {
     let message = error_of(&text("0.01"), &ChainSelection::default());
     assert!(message.contains("not positive semidefinite"), "{message}");
 }
+
+/// A file cut short is told at its end, where it stops (the parser gives no place: it was
+/// 1:1 of a file cut in its fourth line), with the likely cause.
+#[test]
+fn a_file_cut_short_is_told_at_its_end() {
+    let whole = arm(&format!("{J1}{J2}"));
+    for cut in [whole.find("</joint>").unwrap() + 3, whole.len() - 9] {
+        let text = &whole[..cut];
+        let last = text.trim_end();
+        let line = last.matches('\n').count() + 1;
+        let column = last.len() - last.rfind('\n').unwrap();
+        let message = error_of(text, &ChainSelection::default());
+        assert!(
+            message.starts_with(&format!(
+                "t.urdf:{line}:{column}: the URDF is not well-formed XML"
+            )) && message.contains("is it cut short?"),
+            "{message}"
+        );
+    }
+}
+
+/// An axis of tiny components is a direction like any other: its norm underflowed to zero
+/// (`0 0 1e-200`) and it was refused as having none.
+#[test]
+fn an_axis_of_tiny_components_has_a_direction() {
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    for (xyz, unit) in [
+        ("0 0 1e-200", [0.0, 0.0, 1.0]),
+        ("1e-170 -1e-170 0", [half, -half, 0.0]),
+        ("0 -3e8 4e8", [0.0, -0.6, 0.8]),
+    ] {
+        let text = arm(&format!("{J1}{J2}").replacen("0 0 1", xyz, 1));
+        let axis = direct_joints(&text)[0].axis;
+        assert!(
+            axis.iter().zip(unit).all(|(a, u)| (a - u).abs() < 1e-15),
+            "{xyz}: {axis:?}"
+        );
+    }
+}
