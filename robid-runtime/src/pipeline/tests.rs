@@ -978,32 +978,24 @@ fn a_record_too_short_for_the_parameters_names_its_file() {
     let plain = CONFIG.split("[processing]").next().unwrap();
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("short.csv");
+    // the identification of a record of `samples` with the config `text`
+    let identified = |text: &str, samples: usize| {
+        let cfg = Config::from_toml_str(text, Path::new("short.toml")).unwrap();
+        std::fs::write(&file, csv_with_noise(samples, 1000.0, [0.0; DOF])).unwrap();
+        let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
+        identify(&model, &data, &cfg)
+    };
+    let too_short = |e: &Error, samples: usize| matches!(e, Error::TooFewSamples { found, required: 9, .. } if *found == samples);
     let mut messages = Vec::new();
     for method in ["ols", "rls", "per-axis", "link-by-link"] {
-        let text = format!("{plain}[estimation]\nmethod = \"{method}\"\n");
-        let cfg = Config::from_toml_str(&text, Path::new("short.toml")).unwrap();
-        std::fs::write(&file, csv_with_noise(5, 1000.0, [0.0; DOF])).unwrap();
-        let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
-        let e = identify(&model, &data, &cfg).unwrap_err();
-        assert!(
-            matches!(
-                e,
-                Error::TooFewSamples {
-                    found: 5,
-                    required: 9,
-                    ..
-                }
-            ),
-            "{method}: {e}"
-        );
+        let e =
+            identified(&format!("{plain}[estimation]\nmethod = \"{method}\"\n"), 5).unwrap_err();
+        assert!(too_short(&e, 5), "{method}: {e}");
         messages.push(e.to_string());
         // trimmed to 5 of 9 samples
         let trimmed =
             format!("{plain}[processing]\ntrim = 2\n[estimation]\nmethod = \"{method}\"\n");
-        let cfg = Config::from_toml_str(&trimmed, Path::new("short.toml")).unwrap();
-        std::fs::write(&file, csv_with_noise(9, 1000.0, [0.0; DOF])).unwrap();
-        let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
-        let e = identify(&model, &data, &cfg).unwrap_err().to_string();
+        let e = identified(&trimmed, 9).unwrap_err().to_string();
         assert!(
             e.contains(
                 ": too short, after processing.range and the trims of its 9 samples, for \
@@ -1026,25 +1018,10 @@ fn a_record_too_short_for_the_parameters_names_its_file() {
     }
     // 8 samples: 48 equations for the 48 parameters fit any data exactly, with no
     // residual for the standard deviations (they were a rounding error's, 0.00 %)
-    let cfg = Config::from_toml_str(plain, Path::new("short.toml")).unwrap();
-    std::fs::write(&file, csv_with_noise(8, 1000.0, [0.0; DOF])).unwrap();
-    let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
-    let e = identify(&model, &data, &cfg).unwrap_err();
-    assert!(
-        matches!(
-            e,
-            Error::TooFewSamples {
-                found: 8,
-                required: 9,
-                ..
-            }
-        ),
-        "{e}"
-    );
+    let e = identified(plain, 8).unwrap_err();
+    assert!(too_short(&e, 8), "{e}");
     // 9 samples: no longer too short for the parameters (the data then lack excitation)
-    std::fs::write(&file, csv_with_noise(9, 1000.0, [0.0; DOF])).unwrap();
-    let data = load(&cfg, std::slice::from_ref(&file), DOF).unwrap();
-    if let Err(e) = identify(&model, &data, &cfg) {
+    if let Err(e) = identified(plain, 9) {
         assert!(!matches!(e, Error::TooFewSamples { .. }), "{e}");
     }
 }
