@@ -204,9 +204,11 @@ impl fmt::Display for QualityWarning {
             QualityWarning::PoorFit { relative_error } => write!(
                 f,
                 "the fit on the estimation data is worse than no model (relative error {:.3e} %, \
-                 above 100 %): the estimate is not usable; with estimation.method = \"rls\", \
-                 bring estimation.forgetting closer to 1, else check the torque columns, their \
-                 units and signs",
+                 above 100 %): the estimate is not usable; if the observation matrix is \
+                 ill-conditioned (its own warning), the data do not separate the parameters: \
+                 excite the robot more or estimate fewer (drive) parameters; with \
+                 estimation.method = \"rls\", bring estimation.forgetting closer to 1; else \
+                 check the torque columns, their units and signs",
                 100.0 * relative_error
             ),
             QualityWarning::JointWithoutEquations { joint } => write!(
