@@ -9,7 +9,8 @@
 //! [default]                           # every link without its own table
 //! mass = [0.0, 10.0]                  # kg
 //! com = [[-0.5, 0.5], [-0.5, 0.5], [-0.5, 0.5]]   # box in the link frame, m
-//! inertia = [0.0, 1.0]                # principal moments about the centre of mass, kg m^2
+//! inertia = [0.0, 1.0]                # inertia about the centre of mass, kg m^2: its diagonal
+//!                                     # (imposed), its principal moments (checked)
 //!
 //! [links.3]                           # link 3 (1-based); missing keys come from [default]
 //! mass = [2.0, 4.0]
@@ -35,7 +36,10 @@ pub struct LinkBounds {
     pub mass: [f64; 2],
     /// Centre-of-mass box in the link frame, per axis, m.
     pub com: [[f64; 2]; 3],
-    /// Range of the principal moments of inertia about the centre of mass, kg m^2.
+    /// Range of the inertia about the centre of mass, kg m^2: the solvers impose it on the
+    /// diagonal elements in the link frame; the principal moments are checked against it
+    /// after the solve (the largest can exceed the largest diagonal element), and one
+    /// outside is reported as a bound not met.
     pub inertia: [f64; 2],
     /// Ranges of the elements of the inertia tensor about the centre of mass, in the link
     /// frame, in the order of [`TENSOR_ELEMENTS`] (kg m^2); `None`: not bounded.
