@@ -160,12 +160,7 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
             roxmltree::Error::UnexpectedEndOfStream | roxmltree::Error::UnclosedRootNode
         );
         let (line, column) = if cut {
-            let text = place.text.trim_end();
-            let last = text.rfind('\n').map_or(0, |i| i + 1);
-            (
-                text.matches('\n').count() + 1,
-                text[last..].chars().count() + 1,
-            )
+            place.line_column(place.text.trim_end().len())
         } else {
             (e.pos().row as usize, e.pos().col as usize)
         };
