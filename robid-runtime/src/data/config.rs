@@ -544,7 +544,9 @@ pub struct Processing {
     /// record in any case: there the larger of the two counts applies (they do not add).
     #[serde(default)]
     pub trim: usize,
-    /// Low-pass + decimation of every regressor column and of the torque.
+    /// Low-pass + decimation of every regressor column and of the torque; the decimated
+    /// samples at each end that its filter does not settle are left out
+    /// ([`crate::signal::Decimator::settled`]).
     #[serde(default)]
     pub decimation: Decimation,
     /// Equations of joint j are dropped where |qd_j| is below this (rad/s or m/s);

@@ -136,8 +136,21 @@ pub fn energy_observation_of(
             ),
         ));
     }
-    let window = (config.estimation.energy_window / prepared.sample_time).round() as usize;
-    model_energy_observation(model, prepared, window.max(1))
+    let seconds = config.estimation.energy_window;
+    let window = (seconds / prepared.sample_time).round() as usize;
+    if window == 0 {
+        // it was taken as one sample: 10 000 windows of one step each, fit 132 %
+        return Err(config.key_error(
+            "estimation.energy_window",
+            format!(
+                "{} s is less than half of the sample time ({} s): a window spans at least \
+                 one step (the default is 0.05 s)",
+                crate::num(seconds),
+                crate::num(prepared.sample_time)
+            ),
+        ));
+    }
+    model_energy_observation(model, prepared, window)
 }
 
 /// Replaces the generic ill-conditioning warning of an energy estimate by one that compares

@@ -108,7 +108,10 @@ pub(crate) fn decimator_for(
     needed: usize,
 ) -> Result<Decimator> {
     let dec = decimator(config)?;
-    let enough = |d: &Decimator| d.output_len(n) * dof > needed;
+    // the settled decimated samples ([`Decimator::settled`]), counted when the factor
+    // leaves enough at all
+    let enough =
+        |d: &Decimator| d.output_len(n) * dof > needed && d.settled(n).len() * dof > needed;
     let filtered = dec.min_len() <= n;
     if filtered && (enough(&dec) || n * dof <= needed) {
         return Ok(dec);
@@ -119,10 +122,11 @@ pub(crate) fn decimator_for(
     };
     let best = (1..dec.factor()).rev().find(|&t| fits(t)).unwrap_or(1);
     let problem = if filtered {
-        let m = dec.output_len(n);
+        let (all, m, ends) = (dec.output_len(n), dec.settled(n).len(), dec.unsettled());
         format!(
-            "leaves {m} of the {n} samples used (after processing.range and the trims): {} \
-             equations, {} the {needed} parameters",
+            "keeps {all} of the {n} samples used (after processing.range and the trims), {m} \
+             without the {ends} at each end that its filter does not settle (they carry an end \
+             sample's noise whole): {} equations, {} the {needed} parameters",
             m * dof,
             crate::estimate::error::short_of(m * dof, needed)
         )
@@ -568,12 +572,13 @@ impl RestCount {
     /// without the removal) when the removal is why fewer than `needed` equations are
     /// left (`purpose`: what they are for, e.g. "the 4 parameters"). Without it, the least
     /// squares said "0 samples, at least 4 are needed" and blamed the record's length.
-    /// `prismatic`: which joints are prismatic, whose thresholds and speeds are in m/s (the
-    /// others' in rad/s).
+    /// `config` says which joints are prismatic (their thresholds and speeds in m/s, the
+    /// others' in rad/s), whether the thresholds are its own or the default, and the
+    /// decimation, named too when it left few equations before the removal.
     pub(crate) fn check(
         &self,
+        config: &Config,
         rest: Option<&[f64]>,
-        prismatic: &[bool],
         needed: usize,
         purpose: &str,
     ) -> Result<()> {
@@ -581,6 +586,24 @@ impl RestCount {
         if self.kept >= needed || self.before < needed {
             return Ok(());
         }
+        let prismatic = &config.prismatic;
+        let default = if config.processing.rest_velocity.is_none() {
+            " (the default: the config sets no rest_velocity)"
+        } else {
+            ""
+        };
+        // a decimation that left barely enough equations before the removal is the larger
+        // cause
+        let factor = decimator(config).map_or(1, |d| d.factor());
+        let decimation = if factor > 1 && self.before < 2 * needed {
+            format!(
+                ", or lower processing.decimation (its factor of {factor} leaves {} equations \
+                 before the removal)",
+                self.before
+            )
+        } else {
+            String::new()
+        };
         let units: Vec<&str> = (0..rest.len()).map(|j| speed_unit(prismatic, j)).collect();
         let value = match (rest.split_first(), units.split_first()) {
             (Some((first, others)), Some((unit, kinds)))
@@ -608,11 +631,11 @@ impl RestCount {
             "Config",
             "processing.rest_velocity",
             format!(
-                "{value} removes {} of the {} equations (a joint's samples where its \
+                "{value}{default} removes {} of the {} equations (a joint's samples where its \
                  |velocity| is below it), leaving {}, fewer than {purpose}; the fastest joint \
                  velocity is {} {}: lower rest_velocity below the joints' speeds, check the \
                  velocity columns and their units (joint side, {}: units.angle, the drive \
-                 chain), or use a record in which the joints move",
+                 chain), or use a record in which the joints move{decimation}",
                 self.before - self.kept,
                 self.before,
                 self.kept,
@@ -1294,8 +1317,8 @@ pub(crate) fn observe_counted(
     // decimated channels: row-major groups (`width` channels per row, one row per
     // decimated sample); without decimation the regressor rows are used as they are
     let dec = decimator_for(config, n, dof, lay.p + lay.e)?;
-    let (groups, width, m) = if dec.factor() == 1 {
-        (vec![rows], a, n)
+    let (groups, width) = if dec.factor() == 1 {
+        (vec![rows], a)
     } else {
         let local: Vec<usize> = (0..a).collect();
         let groups: Vec<Vec<f64>> = local
@@ -1303,7 +1326,7 @@ pub(crate) fn observe_counted(
             .map(|g| dec.apply_block(&rows, a, g))
             .collect::<Result<_>>()?;
         drop(rows);
-        (groups, GROUP, dec.output_len(n))
+        (groups, GROUP)
     };
     // where each channel is: (group, index in group, group width); None = all zero
     let mut place: Vec<Option<(usize, usize, usize)>> = vec![None; stride];
@@ -1320,15 +1343,26 @@ pub(crate) fn observe_counted(
         place[ch].map(|(g, k, w)| (groups[g].as_slice(), k, w))
     };
 
+    // the decimated samples the anti-alias filter settled ([`Decimator::settled`]): those
+    // at the record's ends carry an end sample's noise whole; `first` is the first
+    let settled = dec.settled(n);
+    let (first, m) = (settled.start, settled.len());
     let qd_dec = Signals::new(
         (0..dof)
             .map(|j| match series(lay.qd(j)) {
-                Some((v, k, w)) => v.iter().skip(k).step_by(w).take(m).copied().collect(),
+                Some((v, k, w)) => v
+                    .iter()
+                    .skip(k + first * w)
+                    .step_by(w)
+                    .take(m)
+                    .copied()
+                    .collect(),
                 None => vec![0.0; m],
             })
             .collect(),
     )?;
     let rest = Some(config.processing.rest_velocities(dof)?);
+    // decimated samples counted from `first`
     let keep: Vec<Vec<usize>> = match &rest {
         Some(t) => moving_samples(&qd_dec, t),
         None => vec![(0..m).collect(); dof],
@@ -1351,8 +1385,8 @@ pub(crate) fn observe_counted(
             .collect(),
     };
     count.check(
+        config,
         rest.as_deref(),
-        &config.prismatic,
         cols + 1,
         &format!("the {} equations the {cols} parameters need", cols + 1),
     )?;
@@ -1369,7 +1403,7 @@ pub(crate) fn observe_counted(
             .collect();
         let tau = series(lay.tau(j));
         for (r, &k) in ks.iter().enumerate() {
-            let row = start + r;
+            let (row, k) = (start + r, first + k);
             if let Some((v, i, wd)) = tau {
                 y[row] = v[k * wd + i];
             }

@@ -289,9 +289,11 @@ pub(crate) fn samples_needed(data: &Dataset, config: &Config, parameters: usize)
     let dec = crate::pipeline::decimator(config).ok()?;
     let factor = dec.factor();
     // equations, one per joint and sample left by the decimation (which keeps one in
-    // `factor`, rounded up): one more than the parameters, so that a residual is left
+    // `factor`, rounded up, less those its filter leaves unsettled at each end:
+    // [`Decimator::settled`]): one more than the parameters, so that a residual is left
     let per_joint = parameters.saturating_add(1).div_ceil(dof);
     let for_parameters = per_joint
+        .saturating_add(2 * dec.unsettled())
         .saturating_sub(1)
         .saturating_mul(factor)
         .saturating_add(usize::from(per_joint > 0));
@@ -348,7 +350,11 @@ pub(crate) fn samples_needed(data: &Dataset, config: &Config, parameters: usize)
     }
     why.push(if kept == for_parameters {
         let decimated = if factor > 1 {
-            format!(", one sample in {factor} kept by processing.decimation")
+            format!(
+                ", one sample in {factor} kept by processing.decimation less {} at each end \
+                 that its filter does not settle",
+                dec.unsettled()
+            )
         } else {
             String::new()
         };

@@ -68,6 +68,8 @@ pub(crate) struct Stream<'a> {
     dec: Decimator,
     overlap: usize,
     block: usize,
+    /// The decimated samples the decimation filter settled ([`Decimator::settled`]).
+    settled: Range<usize>,
     rest: Option<Vec<f64>>,
     /// The equations are for an estimate (else for a validation's prediction).
     estimating: bool,
@@ -105,6 +107,7 @@ impl<'a> Stream<'a> {
             block
         };
         let rest = Some(config.processing.rest_velocities(model.dof())?);
+        let settled = dec.settled(n);
         Ok(Self {
             model,
             config,
@@ -114,6 +117,7 @@ impl<'a> Stream<'a> {
             dec,
             overlap,
             block,
+            settled,
             rest,
             estimating,
         })
@@ -125,7 +129,7 @@ impl<'a> Stream<'a> {
         Progress::new(
             self.config.progress,
             format!("identify: {what} of {}", self.data.name()),
-            self.plan.kept.len() as u64,
+            self.blocks().iter().map(|b| b.len() as u64).sum(),
             "samples",
         )
     }
@@ -145,11 +149,15 @@ impl<'a> Stream<'a> {
         self.rest.as_deref()
     }
 
-    /// The blocks of processed samples, in record order.
+    /// The blocks of processed samples, in record order: those of the decimated samples
+    /// the decimation filter settled ([`Decimator::settled`]; its first is a multiple of the
+    /// factor, and so is every block's start). A block's overlap reaches beyond them.
     fn blocks(&self) -> Vec<Range<usize>> {
-        let n = self.plan.kept.len();
-        (0..n.div_ceil(self.block))
-            .map(|i| i * self.block..((i + 1) * self.block).min(n))
+        let (n, f) = (self.plan.kept.len(), self.dec.factor());
+        let (start, end) = (self.settled.start * f, (self.settled.end * f).min(n));
+        (start..end)
+            .step_by(self.block)
+            .map(|b| b..(b + self.block).min(end))
             .collect()
     }
 
@@ -444,8 +452,8 @@ pub(crate) fn identify_streaming(
         })
         .map_err(at)?;
     rest.check(
+        config,
         stream.rest(),
-        &config.prismatic,
         cols + 1,
         &format!("the {} equations the {cols} parameters need", cols + 1),
     )
@@ -549,8 +557,8 @@ pub(crate) fn validate_streaming(
     parts
         .rest
         .check(
+            config,
             stream.rest(),
-            &config.prismatic,
             1,
             &format!("the one a prediction of {} needs", data.name()),
         )
