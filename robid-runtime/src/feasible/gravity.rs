@@ -167,6 +167,43 @@ impl GravityCoefficients {
         Ok(GravityCoefficients { names, kept, map })
     }
 
+    /// The terms of combination `i`: (base parameter, coefficient), the one that leads it
+    /// first (coefficient 1), then those of the base parameters it absorbs, in order;
+    /// coefficients within 1e-9 of zero (the numeric fit's rounding) left out.
+    pub fn terms(&self, i: usize) -> Vec<(usize, f64)> {
+        let lead = self.kept[i];
+        std::iter::once((lead, 1.0))
+            .chain(
+                (0..self.map.ncols())
+                    .filter(|&b| b != lead)
+                    .map(|b| (b, self.map[(i, b)]))
+                    .filter(|(_, c)| c.abs() > 1e-9),
+            )
+            .collect()
+    }
+
+    /// Combination `i` as text with the base parameters named by `name`, e.g. `MY2 - MZ3`
+    /// or `MX2 + 0.425 M3`: a coefficient within 1e-9 of 1 in size is a sign, others have
+    /// six significant digits.
+    pub fn expression(&self, i: usize, name: impl Fn(usize) -> String) -> String {
+        let mut text = String::new();
+        for (k, (b, c)) in self.terms(i).into_iter().enumerate() {
+            let sign = if c < 0.0 { "-" } else { "+" };
+            let size = if (c.abs() - 1.0).abs() <= 1e-9 {
+                String::new()
+            } else {
+                let rounded: f64 = format!("{:.5e}", c.abs()).parse().unwrap_or(c.abs());
+                format!("{} ", crate::num(rounded))
+            };
+            text += &match (k, sign) {
+                (0, "+") => format!("{size}{}", name(b)),
+                (0, _) => format!("-{size}{}", name(b)),
+                _ => format!(" {sign} {size}{}", name(b)),
+            };
+        }
+        text
+    }
+
     /// The coefficients G beta of base parameters `base`.
     pub fn values(&self, base: &[f64]) -> Result<Vec<f64>> {
         if base.len() != self.map.ncols() {
@@ -323,6 +360,28 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    /// A combination's terms and text: its leading parameter, then those it absorbs with
+    /// their coefficients (a coefficient of one in size a sign, rounding left out).
+    #[test]
+    fn a_combination_is_written_with_the_parameters_it_absorbs() {
+        let hand = Hand::new(false);
+        let g = GravityCoefficients::of_model(&hand).unwrap();
+        let name = |b: usize| hand.names[b].clone();
+        let terms = g.terms(0);
+        assert_eq!(terms.iter().map(|t| t.0).collect::<Vec<_>>(), [0, 1]);
+        assert!((terms[0].1 - 1.0).abs() < 1e-12 && (terms[1].1 - 2.0).abs() < 1e-12);
+        assert_eq!(
+            [0, 1, 2].map(|i| g.expression(i, name)),
+            ["A + 2 B", "C", "E"]
+        );
+        let fitted = GravityCoefficients {
+            names: vec!["A".into()],
+            kept: vec![0],
+            map: DMatrix::from_row_slice(1, 5, &[1.0, -1.0 + 1e-13, 1e-12, 0.4250000001, -3.0]),
+        };
+        assert_eq!(fitted.expression(0, name), "A - B + 0.425 D - 3 E");
     }
 
     #[test]

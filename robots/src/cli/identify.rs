@@ -103,19 +103,25 @@ fn run_static(args: &Args, robot: &Path, samples: &Path) -> Result<(), Error> {
     if let Some(bad) = e.values.iter().chain(&e.std).find(|v| !v.is_finite()) {
         return Err(format!("the static fit gave {bad}; nothing was written").into());
     }
+    // each combination's base parameters: its name is only the one that leads it
+    let name = |b: usize| model.base_parameter_name(b).unwrap_or("?").to_owned();
+    let expressions: Vec<String> = (0..e.names.len())
+        .map(|i| fit.determined.expression(i, name))
+        .collect();
     let mut table = format!(
-        "{} samples: {} equations, condition number {:.3e}\n{:<10} {:>14} {:>12} {:>8}\n",
+        "{} samples: {} equations, condition number {:.3e}\n{:<10} {:>14} {:>12} {:>8}  {}\n",
         fit.kind.name(),
         e.rows,
         e.condition_number,
         "parameter",
         "value",
         "std",
-        "std %"
+        "std %",
+        "combination"
     );
-    for i in 0..e.names.len() {
+    for (i, expression) in expressions.iter().enumerate() {
         table += &format!(
-            "{:<10} {:>14.6e} {:>12.3e} {:>8.2}\n",
+            "{:<10} {:>14.6e} {:>12.3e} {:>8.2}  {expression}\n",
             e.names[i], e.values[i], e.std[i], e.rel_std_percent[i]
         );
     }
@@ -136,11 +142,19 @@ fn run_static(args: &Args, robot: &Path, samples: &Path) -> Result<(), Error> {
     if let Some(path) = &args.json {
         let parameters: Vec<serde_json::Value> = (0..e.names.len())
             .map(|i| {
+                let terms: Vec<serde_json::Value> = fit
+                    .determined
+                    .terms(i)
+                    .into_iter()
+                    .map(|(b, c)| serde_json::json!({"parameter": name(b), "coefficient": c}))
+                    .collect();
                 serde_json::json!({
                     "name": e.names[i],
                     "value": e.values[i],
                     "std": e.std[i],
                     "rel_std_percent": e.rel_std_percent[i],
+                    "expression": expressions[i],
+                    "terms": terms,
                 })
             })
             .collect();

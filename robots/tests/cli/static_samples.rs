@@ -15,11 +15,13 @@ const LWR: &str = "tests/fixtures/lwr4_gaz2016.toml";
 
 /// Writes `poses` gravity samples for base parameters `beta`; returns the path.
 fn samples(dir: &Path, model: &dyn Model, beta: &[f64], poses: usize) -> PathBuf {
-    let mut text = "q1,q2,q3,q4,q5,q6,q7,g1,g2,g3,g4,g5,g6,g7\n".to_owned();
+    let n = model.dof();
+    let names = |x: &'static str| (1..=n).map(move |i| format!("{x}{i}"));
+    let mut text = names("q").chain(names("g")).collect::<Vec<_>>().join(",") + "\n";
     let mut rng = Rng::new(2016);
     for _ in 0..poses {
-        let q: Vec<f64> = (0..7).map(|_| rng.uniform(-2.9, 2.9)).collect();
-        let mut g = vec![0.0; 7];
+        let q: Vec<f64> = (0..n).map(|_| rng.uniform(-2.9, 2.9)).collect();
+        let mut g = vec![0.0; n];
         model.gravity_into(&q, beta, &mut g).unwrap();
         let row: Vec<String> = q.iter().chain(&g).map(|v| format!("{v:e}")).collect();
         text += &(row.join(",") + "\n");
@@ -67,6 +69,21 @@ fn gaz_identify_static_gravity_samples_give_the_gravity_coefficients() {
         // exact samples written to full precision: rounding only (the library test
         // measured 6.0e-16 relative)
         assert!((value - x).abs() < 1e-10, "{name}: {value} against {x}");
+        // the combination's terms give its value from the base parameters, led by its name
+        let base = |n: &str| (0..nb).find(|&b| model.base_parameter_name(b) == Some(n));
+        let terms = p["terms"].as_array().unwrap();
+        assert_eq!(terms[0]["parameter"].as_str(), Some(name.as_str()));
+        let sum: f64 = terms
+            .iter()
+            .map(|t| {
+                let b = base(t["parameter"].as_str().unwrap()).unwrap();
+                t["coefficient"].as_f64().unwrap() * beta[b]
+            })
+            .sum();
+        assert!((sum - x).abs() < 1e-9, "{name}: {sum} against {x}");
+        let expression = p["expression"].as_str().unwrap();
+        assert!(expression.starts_with(name.as_str()), "{expression}");
+        assert!(out.contains(expression), "{expression} in {out}");
     }
 }
 
@@ -88,4 +105,48 @@ fn gaz_identify_static_refuses_bad_columns_and_other_data() {
     ]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("cannot be used with"), "{}", stderr(&o));
+}
+
+/// A combination that absorbs other base parameters is written with them, in the table and
+/// the JSON: the Stanford arm's gravity determines `MY2 - MZ3` (it was given as `MY2` alone,
+/// whose value, 1.0245 for the reference parameters, is not MY2's).
+#[test]
+fn a_static_combination_is_written_with_the_parameters_it_absorbs() {
+    let dir = folder();
+    let stanford = "descriptions/stanford.toml";
+    let robot = robid_symbolic::Robot::from_file(Path::new(stanford)).unwrap();
+    let model = robots::interpreted::Interpreted::new(&robot).unwrap();
+    let nb = model.base_parameter_count();
+    let mut rng = Rng::new(3);
+    let beta: Vec<f64> = (0..nb).map(|_| rng.uniform(-1.0, 1.0)).collect();
+    let csv = samples(dir.path(), &model, &beta, 10);
+    let json = dir.path().join("static.json");
+    let o = robid(&[
+        "identify",
+        stanford,
+        "--static",
+        csv.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    let out = stdout(&o);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let row = out
+        .lines()
+        .find(|l| l.starts_with("MY2 "))
+        .unwrap_or_default();
+    assert!(row.ends_with("  MY2 - MZ3"), "{out}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let my2 = v["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "MY2")
+        .unwrap();
+    assert_eq!(my2["expression"], "MY2 - MZ3");
+    let terms = my2["terms"].as_array().unwrap();
+    assert_eq!(terms.len(), 2);
+    assert_eq!(terms[1]["parameter"], "MZ3");
+    assert!((terms[1]["coefficient"].as_f64().unwrap() + 1.0).abs() < 1e-9);
 }
