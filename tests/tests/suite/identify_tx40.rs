@@ -148,7 +148,8 @@ fn tx40_temporal_split_predicts_held_out_rows() {
         100.0 * v.relative_error,
         v.rms_per_joint
     );
-    // measured: train 4.65 %, held out 7.40 %
+    // measured: train 4.62 %, held out 7.53 % (4.65 % and 7.40 % with the decimated samples
+    // at the cut ends, which carry one sample's noise whole, in the equations)
     assert!(fit.relative_error <= 0.055, "{}", fit.relative_error);
     // the held-out part is predicted nearly as well as the whole run is fitted
     assert!(v.relative_error <= 0.08, "{}", v.relative_error);
