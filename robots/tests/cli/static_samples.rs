@@ -31,19 +31,29 @@ fn samples(dir: &Path, model: &dyn Model, beta: &[f64], poses: usize) -> PathBuf
     path
 }
 
-#[test]
-fn gaz_identify_static_gravity_samples_give_the_gravity_coefficients() {
+/// What `robid identify ROBOT --static` made of `poses` gravity samples of random base
+/// parameters (seeded by `seed`): the model, the parameters, stdout, stderr and the JSON.
+struct Static {
+    model: robots::interpreted::Interpreted,
+    beta: Vec<f64>,
+    out: String,
+    err: String,
+    json: serde_json::Value,
+}
+
+fn identify_static(robot: &str, seed: u64, poses: usize) -> Static {
     let dir = folder();
-    let robot = robid_symbolic::Robot::from_file(Path::new(LWR)).unwrap();
-    let model = robots::interpreted::Interpreted::new(&robot).unwrap();
-    let nb = model.base_parameter_count();
-    let mut rng = Rng::new(7);
-    let beta: Vec<f64> = (0..nb).map(|_| rng.uniform(-1.0, 1.0)).collect();
-    let csv = samples(dir.path(), &model, &beta, 30);
+    let description = robid_symbolic::Robot::from_file(Path::new(robot)).unwrap();
+    let model = robots::interpreted::Interpreted::new(&description).unwrap();
+    let mut rng = Rng::new(seed);
+    let beta: Vec<f64> = (0..model.base_parameter_count())
+        .map(|_| rng.uniform(-1.0, 1.0))
+        .collect();
+    let csv = samples(dir.path(), &model, &beta, poses);
     let json = dir.path().join("static.json");
     let o = robid(&[
         "identify",
-        LWR,
+        robot,
         "--static",
         csv.to_str().unwrap(),
         "--json",
@@ -51,13 +61,31 @@ fn gaz_identify_static_gravity_samples_give_the_gravity_coefficients() {
     ]);
     let (out, err) = (stdout(&o), stderr(&o));
     assert!(o.status.success(), "{err}");
+    let json = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    Static {
+        model,
+        beta,
+        out,
+        err,
+        json,
+    }
+}
+
+#[test]
+fn gaz_identify_static_gravity_samples_give_the_gravity_coefficients() {
+    let Static {
+        model,
+        beta,
+        out,
+        err,
+        json: v,
+    } = identify_static(LWR, 7, 30);
+    let nb = model.base_parameter_count();
     assert!(out.starts_with("gravity samples: 210 equations"), "{out}");
     assert!(
         err.contains("gravity samples determine 12 of the 43 base parameters"),
         "{err}"
     );
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let truth = GravityCoefficients::of_model(&model).unwrap();
     let expected = truth.values(&beta).unwrap();
     let parameters = v["parameters"].as_array().unwrap();
@@ -112,32 +140,12 @@ fn gaz_identify_static_refuses_bad_columns_and_other_data() {
 /// whose value, 1.0245 for the reference parameters, is not MY2's).
 #[test]
 fn a_static_combination_is_written_with_the_parameters_it_absorbs() {
-    let dir = folder();
-    let stanford = "descriptions/stanford.toml";
-    let robot = robid_symbolic::Robot::from_file(Path::new(stanford)).unwrap();
-    let model = robots::interpreted::Interpreted::new(&robot).unwrap();
-    let nb = model.base_parameter_count();
-    let mut rng = Rng::new(3);
-    let beta: Vec<f64> = (0..nb).map(|_| rng.uniform(-1.0, 1.0)).collect();
-    let csv = samples(dir.path(), &model, &beta, 10);
-    let json = dir.path().join("static.json");
-    let o = robid(&[
-        "identify",
-        stanford,
-        "--static",
-        csv.to_str().unwrap(),
-        "--json",
-        json.to_str().unwrap(),
-    ]);
-    let out = stdout(&o);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let Static { out, json: v, .. } = identify_static("descriptions/stanford.toml", 3, 10);
     let row = out
         .lines()
         .find(|l| l.starts_with("MY2 "))
         .unwrap_or_default();
     assert!(row.ends_with("  MY2 - MZ3"), "{out}");
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let my2 = v["parameters"]
         .as_array()
         .unwrap()
