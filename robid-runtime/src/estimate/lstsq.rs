@@ -156,7 +156,7 @@ pub(crate) fn solve(
     let (m, n) = w.shape();
     // as many equations as parameters fit any data exactly: no residual is left for the
     // standard deviations
-    if m <= n || n == 0 {
+    if m < super::equations_needed(n) || n == 0 {
         return Err(Error::TooFewSamples {
             context: format!("least squares with {n} parameters"),
             found: m,

@@ -38,3 +38,10 @@ pub use result::{Estimate, Estimator, error_bound};
 pub use rls::{MIN_FORGETTING, Rls, check_forgetting, rls};
 pub(crate) use streaming::Dominance;
 pub use streaming::StreamingLeastSquares;
+
+/// The equations a least-squares fit of `parameters` needs: one more than the parameters,
+/// so that a residual is left for the standard deviations (as many fit any data exactly,
+/// whatever the noise). Every check of a fit's size counts with it.
+pub(crate) const fn equations_needed(parameters: usize) -> usize {
+    parameters.saturating_add(1)
+}

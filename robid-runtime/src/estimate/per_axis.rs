@@ -233,7 +233,7 @@ fn solve_axis(
     let k = present.len();
     // one equation more than parameters at least: as many fit any data exactly, leaving no
     // residual for the axis's standard deviations
-    let required = k + 1;
+    let required = super::equations_needed(k);
     if rows.len() < required && rows.len() < most {
         return Err(Error::Estimate(EstimateError::AxisLacksEquations {
             method: Estimator::PerAxis,

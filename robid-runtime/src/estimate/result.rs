@@ -126,7 +126,7 @@ pub(crate) fn assemble_parts(
     let (m, n) = (residual.rows, beta.len());
     // as many equations as parameters fit any data exactly: sigma^2 would be the rounding
     // error's, and every standard deviation a thousandth of a percent of nonsense
-    if m <= n {
+    if m < super::equations_needed(n) {
         return Err(Error::TooFewSamples {
             context: format!(
                 "the standard deviations of the {} estimate of {} (counted in equations)",

@@ -408,7 +408,7 @@ impl StreamingLeastSquares {
         let m = self.rows();
         // as many equations as parameters fit any data exactly: no residual is left for
         // the standard deviations
-        if m <= n {
+        if m < super::equations_needed(n) {
             return Err(Error::TooFewSamples {
                 context: format!("least squares with {n} parameters"),
                 found: m,

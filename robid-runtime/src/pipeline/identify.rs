@@ -111,7 +111,7 @@ fn torque_observation(
     data: &Dataset,
     kept: &Range<usize>,
 ) -> Result<(Observation, f64, RestCount)> {
-    let (obs, rest) = observe_counted(model, prepared, config).map_err(|e| {
+    let (obs, rest) = observe_counted(model, prepared, config, data.name()).map_err(|e| {
         e.placed(|k| (kept.start + k, data.location(kept.start + k)))
             .unwrap_or_else(|e| config.locate(e))
     })?;
@@ -440,7 +440,7 @@ fn pieces_of(
     let time = |k: usize| (start + k * factor) as f64 * data.sample_time;
     let inside = |k: usize| pieces.iter().any(|[a, b]| (*a..=*b).contains(&time(k)));
     let selected = obs.select_samples(inside)?;
-    if selected.rows() <= obs.cols() {
+    if selected.rows() < crate::estimate::equations_needed(obs.cols()) {
         return Err(config.key_error(
             "processing.pieces",
             format!(

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use crate::Model;
 use crate::data::{Config, Decimation};
 use crate::error::{Error, Result, num};
-use crate::estimate::{Observation, check_names};
+use crate::estimate::{Observation, check_names, equations_needed};
 use crate::pipeline::Prepared;
 use crate::signal::passes::Forward;
 use crate::signal::{Decimator, Signals, moving_samples};
@@ -94,26 +94,30 @@ pub fn decimator(config: &Config) -> Result<Decimator> {
     }
 }
 
-/// The decimation configured in `[processing]` for a record of `n` samples (after
-/// `processing.range` and the trims) of `dof` joints that must give more equations than
-/// the `needed` parameters: an error at `processing.decimation` when its filters need more
-/// samples or it leaves no more equations, with the largest factor that fits. Without it the
+/// The decimation configured in `[processing]` for a record `of` (its name) of `n`
+/// samples (after `processing.range` and the trims) and `dof` joints that must give at
+/// least `needed` equations, for `purpose` (e.g. "the 49 equations the 48 parameters need"):
+/// an error at `processing.decimation` naming the record when its filters need more
+/// samples or it leaves fewer equations, with the largest factor that fits. Without it the
 /// anti-alias filter of the last stage said "3 samples, at least 28 are needed", or the
 /// least squares "3 samples, at least 4", with no key. A record too short for `needed`
 /// equations even without decimation is left to the error of what it is too short for.
 pub(crate) fn decimator_for(
     config: &Config,
-    n: usize,
-    dof: usize,
+    of: &str,
+    (n, dof): (usize, usize),
     needed: usize,
+    purpose: &str,
 ) -> Result<Decimator> {
     let dec = decimator(config)?;
     // the settled decimated samples ([`Decimator::settled`]), counted when the factor
     // leaves enough at all
-    let enough =
-        |d: &Decimator| d.output_len(n) * dof > needed && d.settled(n).len() * dof > needed;
+    let enough = |d: &Decimator| {
+        let equations = |samples: usize| samples * dof >= needed;
+        equations(d.output_len(n)) && equations(d.settled(n).len())
+    };
     let filtered = dec.min_len() <= n;
-    if filtered && (enough(&dec) || n * dof <= needed) {
+    if filtered && (enough(&dec) || n * dof < needed) {
         return Ok(dec);
     }
     // the largest total factor that fits (1, no filter, always filters)
@@ -124,16 +128,15 @@ pub(crate) fn decimator_for(
     let problem = if filtered {
         let (all, m, ends) = (dec.output_len(n), dec.settled(n).len(), dec.unsettled());
         format!(
-            "keeps {all} of the {n} samples used (after processing.range and the trims), {m} \
-             without the {ends} at each end that its filter does not settle (they carry an end \
-             sample's noise whole): {} equations, {} the {needed} parameters",
+            "keeps {all} of the {n} samples of {of} used (after processing.range and the \
+             trims), {m} without the {ends} at each end that its filter does not settle (they \
+             carry an end sample's noise whole): {} equations, fewer than {purpose}",
             m * dof,
-            crate::estimate::error::short_of(m * dof, needed)
         )
     } else {
         format!(
-            "needs at least {} samples for its anti-alias filters, but {n} are used (after \
-             processing.range and the trims)",
+            "needs at least {} samples for its anti-alias filters, but {n} of {of} are used \
+             (after processing.range and the trims)",
             dec.min_len()
         )
     };
@@ -163,7 +166,7 @@ pub(crate) fn long_enough(
     needed: usize,
 ) -> Result<()> {
     let n = kept.len();
-    if dof == 0 || n.saturating_mul(dof) > needed {
+    if dof == 0 || n.saturating_mul(dof) >= equations_needed(needed) {
         return Ok(());
     }
     let trimmed = if n < data.samples() {
@@ -183,7 +186,7 @@ pub(crate) fn long_enough(
             crate::data::joined_with(data),
         ),
         found: n,
-        required: (needed + 1).div_ceil(dof),
+        required: equations_needed(needed).div_ceil(dof),
         hint: "record a longer trajectory",
     })
 }
@@ -1214,14 +1217,16 @@ pub fn observe(
     signals: &Prepared,
     config: &Config,
 ) -> Result<Observation> {
-    observe_counted(model, signals, config).map(|(obs, _)| obs)
+    observe_counted(model, signals, config, "the data").map(|(obs, _)| obs)
 }
 
-/// [`observe`], with what the removal of the equations near rest left of each joint's.
+/// [`observe`], with what the removal of the equations near rest left of each joint's;
+/// `of` names the signals' record in the errors about it.
 pub(crate) fn observe_counted(
     model: &(dyn Model + Sync),
     signals: &Prepared,
     config: &Config,
+    of: &str,
 ) -> Result<(Observation, RestCount)> {
     let observer = Observer::new(model, signals, config)?;
     let (lay, names) = (&observer.lay, &observer.names);
@@ -1316,7 +1321,17 @@ pub(crate) fn observe_counted(
 
     // decimated channels: row-major groups (`width` channels per row, one row per
     // decimated sample); without decimation the regressor rows are used as they are
-    let dec = decimator_for(config, n, dof, lay.p + lay.e)?;
+    let cols = lay.p + lay.e;
+    let dec = decimator_for(
+        config,
+        of,
+        (n, dof),
+        equations_needed(cols),
+        &format!(
+            "the {} equations the {cols} parameters need",
+            equations_needed(cols)
+        ),
+    )?;
     let (groups, width) = if dec.factor() == 1 {
         (vec![rows], a)
     } else {
@@ -1368,7 +1383,6 @@ pub(crate) fn observe_counted(
         None => vec![(0..m).collect(); dof],
     };
     let total: usize = keep.iter().map(Vec::len).sum();
-    let cols = lay.p + lay.e;
     let fastest = |v: &[f64]| v.iter().fold(0.0, |a: f64, x| a.max(x.abs()));
     let count = RestCount {
         before: m * dof,
@@ -1387,8 +1401,11 @@ pub(crate) fn observe_counted(
     count.check(
         config,
         rest.as_deref(),
-        cols + 1,
-        &format!("the {} equations the {cols} parameters need", cols + 1),
+        equations_needed(cols),
+        &format!(
+            "the {} equations the {cols} parameters need",
+            equations_needed(cols)
+        ),
     )?;
     let mut w = DMatrix::zeros(total, cols);
     let mut y = DVector::zeros(total);

@@ -291,7 +291,7 @@ pub(crate) fn samples_needed(data: &Dataset, config: &Config, parameters: usize)
     // equations, one per joint and sample left by the decimation (which keeps one in
     // `factor`, rounded up, less those its filter leaves unsettled at each end:
     // [`Decimator::settled`]): one more than the parameters, so that a residual is left
-    let per_joint = parameters.saturating_add(1).div_ceil(dof);
+    let per_joint = crate::estimate::equations_needed(parameters).div_ceil(dof);
     let for_parameters = per_joint
         .saturating_add(2 * dec.unsettled())
         .saturating_sub(1)

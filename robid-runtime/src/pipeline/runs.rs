@@ -142,11 +142,18 @@ fn check_lengths(model: &(dyn Model + Sync), runs: &[Dataset], config: &Config) 
     // a config that cannot say (a known-parameter file that cannot be read) is named by
     // the identification itself
     let parameters = estimated_parameters(model, config).unwrap_or(0);
+    let short = |d: &Dataset| {
+        samples_needed(d, config, parameters).filter(|need| d.samples() < need.samples)
+    };
+    // when no run is long enough, the processing asks too much, not one run too little
+    let hint = if runs.iter().all(|d| short(d).is_some()) {
+        "every run is this short: ask less of [processing] (a lower decimation or trim, a \
+         higher low-pass cutoff) or record longer runs"
+    } else {
+        "remove the run from runs.files or record it in full (all runs are processed alike)"
+    };
     for (i, d) in runs.iter().enumerate() {
-        let Some(need) = samples_needed(d, config, parameters) else {
-            continue;
-        };
-        if d.samples() < need.samples {
+        if let Some(need) = short(d) {
             let e = Error::TooFewSamples {
                 context: format!(
                     "{}{}: too short for the processing of every run, which takes {}",
@@ -156,8 +163,7 @@ fn check_lengths(model: &(dyn Model + Sync), runs: &[Dataset], config: &Config) 
                 ),
                 found: d.samples(),
                 required: need.samples,
-                hint: "remove the run from runs.files or record it in full (all runs are \
-                       processed alike)",
+                hint,
             };
             return Err(config.run_error(i, &d.name, e));
         }

@@ -13,7 +13,7 @@ use std::path::Path;
 use nalgebra::{DMatrix, DVector};
 
 use crate::data::{read_columns, read_header};
-use crate::estimate::{Estimate, Observation, ols};
+use crate::estimate::{Estimate, Observation, equations_needed, ols};
 use crate::feasible::GravityCoefficients;
 use crate::{Count, Error, Model, Result};
 
@@ -145,7 +145,7 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
     // squares said "1 samples, at least 2 are needed; use more data, less decimation",
     // which named no file and a setting static samples do not have); as many equations as
     // combinations fit any poses exactly, leaving no residual for the deviations
-    if rows * per <= nc {
+    if rows * per < equations_needed(nc) {
         return Err(Error::TooFewSamples {
             context: format!(
                 "{}: static samples, {} per pose, for the {} of base parameters that {} \
@@ -159,7 +159,7 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
                 }
             ),
             found: rows,
-            required: (nc + 1).div_ceil(per),
+            required: equations_needed(nc).div_ceil(per),
             hint: "add rows to the file, each at a pose unlike the others",
         });
     }

@@ -34,7 +34,9 @@ use rayon::prelude::*;
 use crate::Model;
 use crate::data::{Config, Dataset, Method, Record};
 use crate::error::{Error, Result};
-use crate::estimate::{Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares};
+use crate::estimate::{
+    Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares, equations_needed,
+};
 use crate::pipeline::Identification;
 use crate::pipeline::identify::{checked_plan, rest_cause};
 use crate::pipeline::observe::{Carry, Equations, Observer, RestCount, decimator_for, long_enough};
@@ -90,8 +92,24 @@ impl<'a> Stream<'a> {
         // the config, on the first sample
         let (first, _) = plan.block(data, config, 0..1)?;
         let observer = Observer::new(model, &first, config)?;
-        let needed = if estimating { observer.names.len() } else { 1 };
-        let dec = decimator_for(config, plan.kept.len(), model.dof(), needed)?;
+        // an estimate needs one equation more than its parameters, a prediction one
+        let cols = observer.names.len();
+        let (needed, purpose) = if estimating {
+            let needed = equations_needed(cols);
+            (
+                needed,
+                format!("the {needed} equations the {cols} parameters need"),
+            )
+        } else {
+            (1, "the one a prediction needs".to_owned())
+        };
+        let dec = decimator_for(
+            config,
+            data.name(),
+            (plan.kept.len(), model.dof()),
+            needed,
+            &purpose,
+        )?;
         let f = dec.factor();
         let overlap = if f == 1 {
             0
@@ -454,11 +472,14 @@ pub(crate) fn identify_streaming(
     rest.check(
         config,
         stream.rest(),
-        cols + 1,
-        &format!("the {} equations the {cols} parameters need", cols + 1),
+        equations_needed(cols),
+        &format!(
+            "the {} equations the {cols} parameters need",
+            equations_needed(cols)
+        ),
     )
     .map_err(at)?;
-    if config.processing.pieces.is_some() && ls.rows() <= cols {
+    if config.processing.pieces.is_some() && ls.rows() < equations_needed(cols) {
         return Err(config.key_error(
             "processing.pieces",
             format!(

@@ -439,16 +439,16 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
             "5000",
             3000,
             "a total factor of 5000 needs at least 27001 samples for its anti-alias filters, \
-             but 2600 are used (after processing.range and the trims); lower the factor (at \
-             most 216 for this record)",
+             but 2600 of {name} are used (after processing.range and the trims); lower the \
+             factor (at most 216 for this record)",
         ),
         (
             "100",
             1000,
-            "a total factor of 100 keeps 6 of the 600 samples used (after processing.range \
-             and the trims), 2 without the 2 at each end that its filter does not settle (they \
-             carry an end sample's noise whole): 12 equations, fewer than the 48 parameters; \
-             lower the factor (at most 49 for this record)",
+            "a total factor of 100 keeps 6 of the 600 samples of {name} used (after \
+             processing.range and the trims), 2 without the 2 at each end that its filter does \
+             not settle (they carry an end sample's noise whole): 12 equations, fewer than the \
+             49 equations the 48 parameters need; lower the factor (at most 49 for this record)",
         ),
     ] {
         let data = data.slice(0, samples).unwrap();
@@ -467,7 +467,8 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
                     if key == "processing.decimation" && *l == line),
                 "{e}"
             );
-            assert!(e.to_string().contains(expected), "{method:?}: {e}");
+            let expected = expected.replace("{name}", &data.name);
+            assert!(e.to_string().contains(&expected), "{method:?}: {e}");
         }
     }
 }
@@ -1290,5 +1291,33 @@ fn rest_removal_after_a_heavy_decimation_names_both() {
         ] {
             assert!(text.contains(part), "`{part}` in {text}");
         }
+    }
+}
+
+/// A validation record that the decimation leaves no settled sample of is refused at
+/// `processing.decimation` naming the record and that a prediction needs one equation (it
+/// said "fewer than the 1 parameters", without the file).
+#[test]
+fn a_validation_record_too_short_for_the_decimation_is_named() {
+    let model = Synthetic::default();
+    let text = CONFIG.replace("decimation = 10", "decimation = 100");
+    let config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+    let values = identify(&model, &dataset(6000, 1000.0, 0.0), &config)
+        .unwrap()
+        .estimate
+        .values;
+    let short = dataset(800, 1000.0, 0.0);
+    let e = validate(&model, &short, &config, &values).unwrap_err();
+    let text = e.to_string();
+    assert!(
+        matches!(&e, Error::Data(DataError::ConfigKey { key, .. }) if key == "processing.decimation"),
+        "{text}"
+    );
+    for part in [
+        format!("keeps 4 of the 400 samples of {} used", short.name),
+        "0 without the 2 at each end that its filter does not settle".into(),
+        "0 equations, fewer than the one a prediction needs".into(),
+    ] {
+        assert!(text.contains(&part), "`{part}` in {text}");
     }
 }

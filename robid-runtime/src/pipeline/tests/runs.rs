@@ -382,3 +382,32 @@ fn stacked_runs_name_the_rest_velocity_that_removed_a_joints_equations() {
         }
     }
 }
+
+/// When every run is too short for the processing, the error says to ask less of the
+/// processing, not to remove the run (which named the first run only, as if the others
+/// were fine, and never the decimation that took the samples).
+#[test]
+fn runs_all_too_short_for_the_processing_point_at_it() {
+    for mode in ["stacked", "averaged"] {
+        let (config, _dir) = runs_config(&[450, 480], mode);
+        let data = load_runs(&config, DOF).unwrap();
+        let e = identify_runs(&Synthetic::default(), &data, &config).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains(
+                "at least 501 are needed; every run is this short: ask less of \
+                 [processing] (a lower decimation or trim, a higher low-pass cutoff) or record \
+                 longer runs"
+            ),
+            "{mode}: {text}"
+        );
+    }
+    // one run long enough: the short one is the problem
+    let (config, _dir) = runs_config(&[450, 20_000], "stacked");
+    let data = load_runs(&config, DOF).unwrap();
+    let e = identify_runs(&Synthetic::default(), &data, &config).unwrap_err();
+    assert!(
+        e.to_string().contains("remove the run from runs.files"),
+        "{e}"
+    );
+}
