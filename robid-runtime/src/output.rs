@@ -327,6 +327,12 @@ fn target(path: &Path) -> Result<Target> {
             }));
         }
         (target, true)
+    } else if names_folder(path) {
+        // `out.csv/`: no file can have that name (the writer's rename would fail at the
+        // end of the run with "not a directory")
+        return Err(Error::Output(OutputError::FolderName {
+            path: path.to_path_buf(),
+        }));
     } else {
         (path.to_path_buf(), false)
     };
@@ -617,6 +623,15 @@ pub enum OutputError {
     /// The output is an existing folder (`-o /tmp`): a file in it was meant.
     #[error("{path}: is a folder; give a file name, e.g. {}", path.join("out").display())]
     Folder {
+        /// The output, as given.
+        path: PathBuf,
+    },
+    /// The output names a folder, not a file: it ends in a path separator, `.` or `..`
+    /// (`-o out.csv/`), and does not exist.
+    #[error(
+        "{path}: names a folder (it ends in `/`, `.` or `..`), not a file; give a file name, without the `/` at the end"
+    )]
+    FolderName {
         /// The output, as given.
         path: PathBuf,
     },
@@ -1030,6 +1045,25 @@ mod tests {
         assert!(is_link(&d.join("out")));
         assert_eq!(std::fs::read_dir(d.join("sub")).unwrap().count(), 0);
         assert_eq!(std::fs::read_dir(d).unwrap().count(), 4);
+    }
+
+    /// An output that names a folder (`-o out.csv/`) and does not exist is refused before
+    /// any work, with the fix; the writer used to fail after it ("Not a directory").
+    #[test]
+    fn an_output_ending_in_a_separator_is_refused_up_front() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["out.csv/", "new/."] {
+            let path = dir.path().join(name);
+            let e = check_file(&path).unwrap_err();
+            assert!(
+                matches!(&e, Error::Output(OutputError::FolderName { .. })),
+                "{name}: {e:?}"
+            );
+            assert!(e.to_string().contains("give a file name"), "{e}");
+            assert!(write_bytes(&path, b"x").is_err());
+        }
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        assert!(check_file(&dir.path().join("out.csv")).is_ok());
     }
 
     /// A folder output (`--plot DIR`) that is a link to a folder not created yet: the

@@ -832,6 +832,26 @@ impl Config {
                 .is_some_and(|r| r.residual.is_some())
     }
 
+    /// Every file the config names, resolved against its folder: the sources' and runs'
+    /// data, the known parameters (`estimation.known`) and the rotor friction
+    /// (`[drive.rotor] friction`). A command refuses to write over any of them
+    /// (docs/robustness.md#outputs-that-are-inputs), read for this run or not.
+    pub fn referenced_files(&self) -> Vec<PathBuf> {
+        let sources = self.sources.iter().filter_map(|s| s.file.clone());
+        let runs = self
+            .runs
+            .iter()
+            .flat_map(|r| r.files.iter().flat_map(RunFiles::paths));
+        let known = self.estimation.known.clone();
+        let friction = self.drive.rotor.as_ref().and_then(|r| r.friction.clone());
+        sources
+            .chain(runs)
+            .chain(known)
+            .chain(friction)
+            .map(|f| self.resolve(&f))
+            .collect()
+    }
+
     /// Resolves a path from the config against its folder.
     pub fn resolve(&self, file: &Path) -> PathBuf {
         match &self.base_dir {

@@ -50,8 +50,10 @@ pub(crate) struct Args {
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut config = Config::from_file(&args.config)?;
     let data = super::identify::data_files(&args.data, Some(&args.config), &config)?;
+    let referenced = config.referenced_files();
     let mut inputs: Vec<&Path> = vec![&args.robot, &args.config];
     inputs.extend(data.iter().map(PathBuf::as_path));
+    inputs.extend(referenced.iter().map(PathBuf::as_path));
     inputs.extend(args.parameters.as_deref());
     files::refuse(&inputs, &[&args.output])?;
     if config.drive.rotor.is_none() {

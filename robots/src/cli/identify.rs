@@ -340,9 +340,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Some(files) => files.clone(),
         None => data_files(&args.data, args.config.as_deref(), &config)?,
     };
+    let referenced = config.referenced_files();
     let mut inputs: Vec<&Path> = vec![robot];
     inputs.extend(args.config.as_deref());
     inputs.extend(data.iter().map(PathBuf::as_path));
+    inputs.extend(referenced.iter().map(PathBuf::as_path));
     inputs.extend(args.validate.iter().map(PathBuf::as_path));
     inputs.extend(args.reference.as_deref());
     let mut outputs: Vec<&Path> = Vec::new();
@@ -378,9 +380,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .collect();
     if let Some(dir) = &args.plot {
         let plots = files::plot_files(dir, &prefixes, model.dof());
-        let plots: Vec<&Path> = plots.iter().map(PathBuf::as_path).collect();
-        // only against the inputs: the folder may not exist yet (it is created)
-        robid_runtime::output::refuse_inputs(&inputs, &plots)?;
+        // against the inputs and the other outputs (`--json DIR/fit_joint1.svg` would be
+        // replaced by the plot), not checked as files: the folder may not exist yet
+        let mut written: Vec<&Path> = outputs.clone();
+        written.extend(plots.iter().map(PathBuf::as_path));
+        robid_runtime::output::refuse_inputs(&inputs, &written)?;
     }
     // the progress of reading a long log and of the streaming passes over it, as excite
     // shows its design's

@@ -67,9 +67,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         },
     };
     if let Some(output) = &args.output {
+        let referenced = config
+            .iter()
+            .flat_map(Config::referenced_files)
+            .collect::<Vec<_>>();
         let mut inputs: Vec<&Path> = vec![&args.robot, &args.parameters];
         inputs.extend(args.config.as_deref());
         inputs.extend(data.iter().map(PathBuf::as_path));
+        inputs.extend(referenced.iter().map(PathBuf::as_path));
         files::refuse(&inputs, &[output])?;
     }
     let chosen = super::identify::robot_model(&args.robot, &args.description)?;

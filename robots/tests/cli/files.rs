@@ -361,6 +361,63 @@ fn two_outputs_on_one_file_are_refused() {
         ],
     );
     fails_with(&o, &["are the same file"]);
+    // a report on a plot that `--plot` writes in the same run, either way round
+    std::fs::create_dir(dir.join("plots")).unwrap();
+    for (file, flag) in [("fit_joint1.svg", "--json"), ("fit_joint2.svg", "--report")] {
+        let o = robid_in(
+            dir,
+            &[
+                "identify",
+                "robot.toml",
+                "--config",
+                "config.toml",
+                "--data",
+                "data.csv",
+                "--plot",
+                "plots",
+                flag,
+                &format!("plots/{file}"),
+            ],
+        );
+        fails_with(&o, &["are the same file"]);
+        assert_eq!(std::fs::read_dir(dir.join("plots")).unwrap().count(), 0);
+    }
+}
+
+/// The files a config names besides the data (`estimation.known`, `[drive.rotor]
+/// friction`) are inputs too: a report written over one is refused, the file intact.
+#[test]
+fn the_files_a_config_names_are_inputs() {
+    let inputs = Inputs::new();
+    let dir = inputs.dir.path();
+    write(dir, "known.toml", "[known]\nM1 = 1.0\n");
+    write(dir, "friction.toml", "# a friction model\n");
+    let configs = [
+        ("known.toml", "[estimation]\nknown = \"known.toml\"\n"),
+        (
+            "friction.toml",
+            "[drive.rotor]\ninertia = [0, 0, 0, 0, 0, 0]\nfriction = \"friction.toml\"\n",
+        ),
+    ];
+    for (victim, table) in configs {
+        write(dir, "named.toml", &format!("time_column = \"t\"\n{table}"));
+        for flag in ["--json", "--report"] {
+            let args = inputs.args(
+                &[
+                    "identify",
+                    "{robot.toml}",
+                    "--config",
+                    "{named.toml}",
+                    "--data",
+                    "{data.csv}",
+                    flag,
+                    "{out}",
+                ],
+                &format!("./{victim}"),
+            );
+            refused(dir, &args, &inputs.path(victim));
+        }
+    }
 }
 
 /// An output that is a pipe is written into, not replaced by a file, and checking it
