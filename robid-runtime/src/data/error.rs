@@ -244,6 +244,29 @@ pub enum DataError {
         /// What to do.
         fix: &'static str,
     },
+    /// A file joined by time whose median step is more than [`crate::data::GAP_RATIO`]
+    /// times that of the first file (its measurements other than temperatures): each of
+    /// its steps would be interpolated across that many samples of the first file,
+    /// inventing the motion between them, as across a gap (a time column in ms beside
+    /// one in s is 1000 times too coarse).
+    #[error(
+        "{path}: time stamps {} s apart (median), {} times the {} s of {first}, which it is joined to by time: its values would be interpolated across {} samples of {first} per step, inventing what happened between them (more than {} is a gap, not a slower logger); join files recorded at comparable rates, with time stamps of one clock in one unit (seconds: `time_scale` applies to every file)",
+        Num::rounded(*step, 6),
+        Num::rounded_keeping(*step / *first_step, 3, |r| r > crate::data::GAP_RATIO),
+        Num::rounded(*first_step, 6),
+        Num::rounded(*step / *first_step, 3),
+        crate::data::GAP_RATIO
+    )]
+    CoarseJoin {
+        /// The file joined by time.
+        path: PathBuf,
+        /// Its median step (s).
+        step: f64,
+        /// The first file with time stamps, which the others are joined to.
+        first: PathBuf,
+        /// Its median step (s).
+        first_step: f64,
+    },
     /// The number of joints in the data does not match the model.
     #[error(
         "{context}: {}, the model has {expected}; list exactly one column per joint",

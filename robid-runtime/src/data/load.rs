@@ -6,6 +6,7 @@
 //! name its keys at their file:line ([`Config::locate`]).
 
 use crate::DataError;
+use crate::data::GAP_RATIO;
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
@@ -123,6 +124,8 @@ pub(crate) fn read_sources<'a>(
     let mut samplings = Vec::new();
     // the samples of the reference that every file joined to it by time covers
     let mut overlap = 0..usize::MAX;
+    // the median step of the reference's time stamps
+    let mut reference_step: Option<f64> = None;
 
     for (index, (src, path)) in config.sources.iter().zip(&paths).enumerate() {
         let SourceColumns {
@@ -192,11 +195,28 @@ pub(crate) fn read_sources<'a>(
             .first()
             .and_then(|&k| table.lines.get(k));
         warnings.extend(stale_warning(&sampling, first_stale.copied()));
+        let step = sampling.step;
         samplings.push(sampling);
         match time {
             Some(t) => match &reference {
-                None => reference = Some((t, path.clone(), table.lines.clone())),
+                None => {
+                    reference_step = step;
+                    reference = Some((t, path.clone(), table.lines.clone()))
+                }
                 Some((tref, first, _)) => {
+                    // a temperature may be logged slowly; a measurement of the motion not
+                    let measured = spans.iter().any(|(r, _)| ROLES[*r] != "temperature");
+                    if let (Some(step), Some(first_step)) = (step, reference_step)
+                        && measured
+                        && step > GAP_RATIO * first_step
+                    {
+                        return Err(Error::Data(DataError::CoarseJoin {
+                            path: path.clone(),
+                            step,
+                            first: first.clone(),
+                            first_step,
+                        }));
+                    }
                     columns = columns.iter().map(|x| interpolate(&t, x, tref)).collect();
                     // the samples of the reference within this file's time stamps: outside
                     // them the interpolation holds its first or last value, which is no
@@ -213,6 +233,17 @@ pub(crate) fn read_sources<'a>(
                         warnings.push(Warning::PartialOverlap {
                             path: path.clone(),
                             dropped,
+                        });
+                    }
+                    let (s0, s1) = (tref[0], tref[tref.len() - 1]);
+                    let unused =
+                        t.partition_point(|&s| s < s0) + t.len() - t.partition_point(|&s| s <= s1);
+                    if unused > 0 {
+                        warnings.push(Warning::JoinedRowsUnused {
+                            path: path.clone(),
+                            unused,
+                            rows: t.len(),
+                            first: first.clone(),
                         });
                     }
                 }

@@ -611,6 +611,52 @@ fn a_gap_in_the_time_stamps_is_refused_with_its_line() {
     assert!(matches!(data.warnings[0], Warning::IrregularTime { .. }));
 }
 
+/// A file joined by time whose steps are more than `GAP_RATIO` times the first file's is
+/// refused (its time column in ms beside one in s: two of its 101 stamps fell in the
+/// first file's 1 s, and the torque was interpolated between them, with exit 0); a
+/// temperature may be logged that slowly.
+#[test]
+fn a_file_joined_by_time_much_coarser_than_the_first_is_refused() {
+    let d = Dir::new();
+    let mut q = String::from("t,q1\n");
+    let mut ms = String::from("t,tau1\n");
+    let mut temperature = String::from("t,T1\n");
+    for k in 0..=100 {
+        let t = 0.01 * k as f64;
+        q += &format!("{t},{}\n", 2.0 * t);
+        ms += &format!("{},{}\n", 1000.0 * t, 10.0 * t);
+        temperature += &format!("{},{}\n", 0.1 * k as f64, 30.0);
+    }
+    let a = d.file("q.csv", &q);
+    let b = d.file("tau_ms.csv", &ms);
+    let e = load(&cfg(TIMED), &[a.clone(), b], 1)
+        .unwrap_err()
+        .to_string();
+    for part in ["tau_ms.csv", "1000 times", "q.csv", "one unit"] {
+        assert!(e.contains(part), "{part}: {e}");
+    }
+    // ten times coarser is a slower logger, not a gap
+    let mut slow = String::from("t,tau1\n");
+    for k in 0..=10 {
+        let t = 0.1 * k as f64;
+        slow += &format!("{t},{}\n", 10.0 * t);
+    }
+    let b = d.file("tau_slow.csv", &slow);
+    assert!(load(&cfg(TIMED), &[a.clone(), b], 1).is_ok());
+    // a temperature logged at 10 Hz beside positions and torques at 100 Hz
+    let mut qt = String::from("t,q1,tau1\n");
+    for k in 0..=1000 {
+        let t = 0.01 * k as f64;
+        qt += &format!("{t},{},{}\n", 2.0 * t, 10.0 * t);
+    }
+    let a = d.file("qt.csv", &qt);
+    let c = d.file("temperature.csv", &temperature);
+    let with_temperature = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\n\
+                            torque = \"tau{}\"\n[[source]]\ntemperature = \"T{}\"\n";
+    let data = load(&cfg(with_temperature), &[a, c], 1).unwrap();
+    assert_eq!(data.samples(), 1001);
+}
+
 /// Files joined by time that overlap only partly give the overlap, as the warning says:
 /// the samples of the first file outside the second file's time stamps are dropped
 /// (they were kept, with the second file's first or last value held there: torques
@@ -655,7 +701,21 @@ fn files_joined_by_time_keep_only_their_overlap() {
                     [[source]]\nposition = \"q{}\"\n";
     let data = load(&cfg(reversed), &[b, a.clone()], 1).unwrap();
     assert_eq!(data.samples(), 51);
-    assert!(data.warnings.is_empty(), "{:?}", data.warnings);
+    // the rows of the positions outside the torques' time stamps are not used, and said
+    assert_eq!(data.warnings.len(), 1, "{:?}", data.warnings);
+    let w = data.warnings[0].to_string();
+    assert!(
+        matches!(
+            data.warnings[0],
+            Warning::JoinedRowsUnused {
+                unused: 50,
+                rows: 101,
+                ..
+            }
+        ) && w.contains("50 of its 101 rows")
+            && w.contains("tau.csv"),
+        "{w}"
+    );
     // no overlap: an error naming both files and their time ranges
     let mut late = String::from("t,tau1\n");
     for k in 0..=10 {

@@ -50,6 +50,18 @@ pub enum Warning {
         /// Samples of the first file outside this file's time stamps.
         dropped: usize,
     },
+    /// Rows of a file joined by time that lie outside the time stamps of the first file:
+    /// they are not used (the record is the time every file covers).
+    JoinedRowsUnused {
+        /// The file that was interpolated.
+        path: PathBuf,
+        /// Its rows outside the first file's time stamps.
+        unused: usize,
+        /// Its rows.
+        rows: usize,
+        /// The first file with time stamps.
+        first: PathBuf,
+    },
 }
 
 impl fmt::Display for Warning {
@@ -88,6 +100,18 @@ impl fmt::Display for Warning {
                 f,
                 "{}: covers only part of the time range of the first file joined by time: the {dropped} samples of that file outside the time stamps of this one were dropped, keeping the time both cover",
                 path.display()
+            ),
+            Warning::JoinedRowsUnused {
+                path,
+                unused,
+                rows,
+                first,
+            } => write!(
+                f,
+                "{}: {unused} of its {rows} rows ({:.1} %) lie outside the time stamps of {}, which it is joined to by time, and are not used; check that both time columns come from one clock in one unit",
+                path.display(),
+                100.0 * *unused as f64 / (*rows).max(1) as f64,
+                first.display()
             ),
         }
     }

@@ -151,6 +151,25 @@ pub(crate) fn recursion(
             ),
         });
     }
+    // P is positive definite in exact arithmetic; a diagonal entry at or below zero is
+    // rounding that swamped it (P divided by lambda at every equation grows without bound
+    // in directions the recent equations do not excite), and its standard deviation
+    // would read 0: an exact value, for an estimate that diverged
+    if let Some(i) = p.diagonal().iter().position(|v| *v <= 0.0) {
+        return Err(Error::Singular {
+            what: format!(
+                "the recursive least-squares covariance P with the forgetting factor {} (which \
+                 keeps about {} equations, against {n} parameters: its entry of {} came out {})",
+                crate::Num(lambda),
+                crate::Num::rounded(1.0 / (1.0 - lambda).max(f64::MIN_POSITIVE), 3),
+                obs.names[i],
+                crate::Num::rounded(p[(i, i)], 3)
+            ),
+            hint: "rounding swamped it in directions the recent equations do not excite, and the \
+                   estimate it gives diverged; set estimation.forgetting closer to 1, or use ols \
+                   or wls",
+        });
+    }
     Ok((beta, p))
 }
 
@@ -217,5 +236,37 @@ mod tests {
             );
         }
         assert!(Rls::new(2, 0.5, 1.0).is_ok());
+    }
+}
+
+#[cfg(test)]
+mod lost_covariance {
+    use super::*;
+
+    /// Six parameters, the forgetting factor 0.5 (about 2 equations kept): P, divided by
+    /// lambda at every equation, grows where the last equations do not look, and rounding
+    /// takes its diagonal to zero or below, where the standard deviation read 0 (an exact
+    /// value) for an estimate that had diverged. It is an error naming the factor.
+    #[test]
+    fn a_covariance_that_lost_its_diagonal_is_an_error() {
+        let (n, c) = (2000, 6);
+        let mut w = DMatrix::zeros(n, c);
+        let mut y = DVector::zeros(n);
+        for k in 0..n {
+            let t = k as f64 * 0.01;
+            for j in 0..c {
+                w[(k, j)] = (t * (1.0 + j as f64 * 0.7) + j as f64).sin();
+            }
+            y[k] = (0..c).map(|j| w[(k, j)] * (j as f64 + 1.0)).sum::<f64>()
+                + 1e-3 * (k as f64 * 1.3).cos();
+        }
+        let names = (0..c).map(|j| format!("p{j}")).collect();
+        let obs = Observation::single(w, y, names).unwrap();
+        let e = rls(&obs, 0.5, 1e-10).unwrap_err().to_string();
+        assert!(
+            e.contains("not positive definite") && e.contains("forgetting factor 0.5"),
+            "{e}"
+        );
+        assert!(rls(&obs, 1.0, 1e-10).is_ok());
     }
 }

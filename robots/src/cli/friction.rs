@@ -50,7 +50,13 @@ pub(crate) struct Args {
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut config = Config::from_file(&args.config)?;
     let data = super::identify::data_files(&args.data, Some(&args.config), &config)?;
-    let referenced = config.referenced_files();
+    // the rotor friction the config names is what this command identifies (the config's
+    // next `robid identify` reads it): it may be the output, the other files not
+    let written = (config.drive.rotor.as_ref())
+        .and_then(|r| r.friction.as_deref())
+        .map(|f| config.resolve(f));
+    let mut referenced = config.referenced_files();
+    referenced.retain(|f| Some(f) != written.as_ref());
     let mut inputs: Vec<&Path> = vec![&args.robot, &args.config];
     inputs.extend(data.iter().map(PathBuf::as_path));
     inputs.extend(referenced.iter().map(PathBuf::as_path));
