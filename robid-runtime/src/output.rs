@@ -585,6 +585,21 @@ enum FileId {
     New(PathBuf),
 }
 
+/// Whether `a` and `b` name one existing file (under two spellings, a hard or symbolic
+/// link), found without opening either; `false` when either does not exist.
+///
+/// ```
+/// # let dir = tempfile::tempdir().unwrap();
+/// let a = dir.path().join("run.csv");
+/// std::fs::write(&a, "t,q1\n").unwrap();
+/// let b = dir.path().join(".").join("run.csv");
+/// assert!(robid_runtime::output::same_file(&a, &b));
+/// assert!(!robid_runtime::output::same_file(&a, &dir.path().join("other.csv")));
+/// ```
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    a.exists() && b.exists() && file_id(a).is_some_and(|id| file_id(b) == Some(id))
+}
+
 /// The [`FileId`] of `path`, or `None` when neither it nor its folder can be resolved
 /// (writing there fails later with its own error).
 fn file_id(path: &Path) -> Option<FileId> {

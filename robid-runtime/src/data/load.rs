@@ -779,6 +779,38 @@ fn check_rows(rows: &mut Option<(usize, PathBuf, Vec<u64>)>, table: &Table) -> R
     Ok(())
 }
 
+/// Refuses a file that two runs of `[runs]` share: repeated acquisitions are separate
+/// recordings, and a run listed twice gave a run-to-run spread of exactly 0 (and an
+/// average claiming less noise) with no warning.
+fn refuse_shared_run_files(config: &Config, runs: &crate::data::Runs) -> Result<()> {
+    let files: Vec<Vec<PathBuf>> = runs
+        .files
+        .iter()
+        .map(|r| r.paths().iter().map(|f| config.resolve(f)).collect())
+        .collect();
+    for (i, run) in files.iter().enumerate() {
+        for (k, earlier) in files[..i].iter().enumerate() {
+            let shared = run
+                .iter()
+                .find(|f| earlier.iter().any(|e| crate::output::same_file(f, e)));
+            if let Some(f) = shared {
+                return Err(config.key_error(
+                    "runs.files",
+                    format!(
+                        "runs {} and {} both read {}: repeated acquisitions are separate \
+                         recordings (a run given twice shows no spread between runs); list \
+                         each recording once",
+                        k + 1,
+                        i + 1,
+                        f.display()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Loads every run of `[runs]` (files relative to the config file), in order; an error
 /// when the config has no `[runs]`. Each run is loaded like [`load`] with its files.
 pub fn load_runs(config: &Config, dof: usize) -> Result<Vec<Dataset>> {
@@ -789,6 +821,7 @@ pub fn load_runs(config: &Config, dof: usize) -> Result<Vec<Dataset>> {
         )
     })?;
     config.check(dof)?;
+    refuse_shared_run_files(config, runs)?;
     runs.files
         .iter()
         .enumerate()

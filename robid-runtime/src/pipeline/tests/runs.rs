@@ -411,3 +411,25 @@ fn runs_all_too_short_for_the_processing_point_at_it() {
         "{e}"
     );
 }
+
+/// A recording listed as two runs (by its name twice, or under another spelling) is
+/// refused at `runs.files`, naming both runs and the file: it gave a spread of exactly 0
+/// between runs, and an average that claimed less noise.
+#[test]
+fn a_file_two_runs_share_is_refused() {
+    let (config, dir) = runs_config(&[2_000, 2_000], "stacked");
+    assert!(load_runs(&config, DOF).is_ok());
+    let text = std::fs::read_to_string(dir.path().join("runs.toml")).unwrap();
+    for twice in ["\"run1.csv\"", "\"./run1.csv\""] {
+        let bad = text.replace("\"run2.csv\"", twice);
+        let config = Config::from_toml_str(&bad, &dir.path().join("runs.toml")).unwrap();
+        let e = load_runs(&config, DOF).unwrap_err();
+        let m = e.to_string();
+        assert!(
+            matches!(&e, Error::Data(crate::DataError::ConfigKey { key, line: Some(_), .. }) if key == "runs.files")
+                && m.contains("runs 1 and 2 both read")
+                && m.contains("run1.csv"),
+            "{m}"
+        );
+    }
+}
