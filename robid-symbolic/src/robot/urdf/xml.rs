@@ -7,7 +7,7 @@
 //! warning for the others.
 
 use super::super::DescriptionError;
-use super::super::bounds::MAX_DESCRIPTION_LEN;
+use super::super::bounds::{MAX_DESCRIPTION_LEN, MAX_TORQUE, MAX_VELOCITY};
 use super::super::check::and_more;
 use super::super::file::Place;
 use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, right_angle_multiple, scale};
@@ -77,6 +77,9 @@ pub(super) struct Limit {
     pub(super) unbounded: bool,
     pub(super) effort: Option<f64>,
     pub(super) velocity: Option<f64>,
+    /// Whether `effort` and `velocity` are written (a placeholder above the largest value
+    /// taken is written, and read as no limit).
+    pub(super) written: [bool; 2],
     pub(super) range: Range<usize>,
 }
 
@@ -140,7 +143,8 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
             "check that this is the right file (meshes belong in their own files)",
         ));
     }
-    let doc = Document::parse(place.text).map_err(|e| {
+    let (text, foreign) = undeclared_prefixes(place.text);
+    let doc = Document::parse(&text).map_err(|e| {
         if matches!(e, roxmltree::Error::DtdDetected) {
             // well-formed, but a DTD can define entities that expand without bound
             let at = place.text.find("<!DOCTYPE").unwrap_or(0);
@@ -189,13 +193,30 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
             EXPAND_XACRO,
         ));
     }
+    let mut warnings = Vec::new();
+    if let Some((prefix, at)) = foreign.first() {
+        let more = match foreign.len() - 1 {
+            0 => String::new(),
+            n => format!(" (and {n} more prefixes)"),
+        };
+        warnings.push(place.warning(
+            *at,
+            &format!(
+                "the URDF uses the namespace prefix `{prefix}:`{more} without declaring it \
+                 (`xmlns:{prefix}=\"...\"` on `<robot>`), as a simulator's extensions do: its \
+                 elements and attributes are not URDF and are ignored, as URDF parsers \
+                 ignore them"
+            ),
+        ));
+    }
     let mut reader = Reader {
         place,
         errors: Vec::new(),
-        warnings: Vec::new(),
+        warnings,
         printed: Vec::new(),
         near: Vec::new(),
         unbounded: Vec::new(),
+        placeholders: Vec::new(),
     };
     if root.tag_name().name() != "robot" {
         return Err(place.invalid(
@@ -269,6 +290,19 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         );
         reader.warnings.push(w);
     }
+    if let Some((written, at, joint, max)) = reader.placeholders.first() {
+        let more = and_more(reader.placeholders.len() - 1, " such value", " such values");
+        let w = place.warning(
+            *at,
+            &format!(
+                "`{written}` of joint `{joint}`{more} is above {max:e}, the largest robid takes \
+                 (rad/s or m/s for a velocity, N m or N for an effort): taken as no limit, for \
+                 which such files write it (`robid excite` then asks for --velocity-limits \
+                 where it needs one); write the joint's real limit if it has one"
+            ),
+        );
+        reader.warnings.push(w);
+    }
     if let Some(w) = without_limits(place, &joints) {
         reader.warnings.push(w);
     }
@@ -304,6 +338,77 @@ struct Reader<'a> {
     /// The `lower` and `upper` values beyond ±[`MAX_VALUE`] ([`Reader::position_bound`]):
     /// the attribute as written, where it is, and the joint.
     unbounded: Vec<(String, usize, String)>,
+    /// The `effort` and `velocity` values above the largest robid takes
+    /// ([`Reader::rate_limit`]): the attribute as written, where it is, the joint and the
+    /// largest value taken.
+    placeholders: Vec<(String, usize, String, f64)>,
+}
+
+/// The largest `rpy` angle read (rad): a turn, and a hundredth more for a printed 2 pi
+/// (`6.2832`); beyond it, an angle is degrees read as radians.
+const MAX_TURN: f64 = std::f64::consts::TAU + 0.01;
+
+/// The most namespace prefixes [`undeclared_prefixes`] takes as undeclared.
+const MAX_UNDECLARED: usize = 16;
+
+/// `text` with the undeclared namespace prefixes of element and attribute names (other
+/// than `xacro`, which [`looks_like_xacro`] tells) turned into plain names of the same
+/// length (`<drake:member>` -> `<drake_member>`, `drake:acceleration="2"` ->
+/// `drake_acceleration="2"`): no URDF element or attribute has such a name, so they are
+/// ignored, as URDF parsers ignore them (Drake's `drake:` extensions made the whole file
+/// unreadable: "an unknown namespace prefix"). Offsets are kept, so places in the
+/// text are those of the file. Also the prefixes and the first place of each.
+fn undeclared_prefixes(text: &str) -> (std::borrow::Cow<'_, str>, Vec<(String, usize)>) {
+    let mut text = std::borrow::Cow::Borrowed(text);
+    let mut found: Vec<(String, usize)> = Vec::new();
+    while found.len() < MAX_UNDECLARED {
+        let prefix = match Document::parse(&text) {
+            Err(roxmltree::Error::UnknownNamespace(prefix, _)) if prefix != "xacro" => prefix,
+            _ => break,
+        };
+        let (patched, first) = plain_names(&text, &prefix);
+        let Some(first) = first else { break };
+        found.push((prefix, first));
+        text = std::borrow::Cow::Owned(patched);
+    }
+    (text, found)
+}
+
+/// `text` with `prefix:` turned into `prefix_` where it begins a name inside a tag (after
+/// `<`, `</` or white space, outside quoted values), and where it first did.
+fn plain_names(text: &str, prefix: &str) -> (String, Option<usize>) {
+    let bytes = text.as_bytes();
+    let mut out = bytes.to_vec();
+    let (mut in_tag, mut quote, mut first) = (false, None, None);
+    for (i, &b) in bytes.iter().enumerate() {
+        match (in_tag, quote) {
+            (false, _) => in_tag = b == b'<',
+            (true, Some(q)) => {
+                if b == q {
+                    quote = None;
+                }
+            }
+            (true, None) => match b {
+                b'"' | b'\'' => quote = Some(b),
+                b'>' => in_tag = false,
+                _ => {
+                    let starts =
+                        i > 0 && matches!(bytes[i - 1], b'<' | b'/' | b' ' | b'\t' | b'\n' | b'\r');
+                    let named = bytes[i..].starts_with(prefix.as_bytes())
+                        && bytes.get(i + prefix.len()) == Some(&b':');
+                    if starts && named {
+                        out[i + prefix.len()] = b'_';
+                        first.get_or_insert(i);
+                    }
+                }
+            },
+        }
+    }
+    // only an ASCII `:` became an ASCII `_`: still UTF-8
+    (
+        String::from_utf8(out).unwrap_or_else(|_| text.to_owned()),
+        first,
+    )
 }
 
 /// The fix for an unexpanded xacro file.
@@ -477,6 +582,22 @@ impl Reader<'_> {
         (self.scalar(l, name), false)
     }
 
+    /// `effort` or `velocity` of a `<limit>`: a number above `max` (the largest robid
+    /// takes, [`MAX_TORQUE`], [`MAX_VELOCITY`]) is a placeholder for no limit, as iCub's
+    /// `velocity="50000"` (`None`), noted for one warning; the file was refused.
+    fn rate_limit(&mut self, l: Node<'_, '_>, name: &str, max: f64, joint: &str) -> Option<f64> {
+        let v = self.scalar(l, name)?;
+        if v <= max {
+            return Some(v);
+        }
+        if let Some(a) = l.attribute_node(name) {
+            let written = format!("{name}=\"{}\"", a.value());
+            self.placeholders
+                .push((written, a.range_value().start, joint.to_owned(), max));
+        }
+        None
+    }
+
     fn required_scalar(&mut self, node: Node<'_, '_>, name: &str) -> Option<f64> {
         if node.attribute(name).is_none() {
             self.required(node, name);
@@ -500,7 +621,20 @@ impl Reader<'_> {
             let words = attribute.value().split_whitespace();
             for (angle, word) in rpy.iter_mut().zip(words) {
                 let at = attribute.range_value().start;
-                if right_angle_multiple(*angle).is_some() {
+                if angle.abs() > MAX_TURN {
+                    // degrees read as radians (`rpy="90 0 0"`): a silently other robot
+                    self.error(
+                        attribute.range_value(),
+                        format!(
+                            "`rpy=\"{}\"` of {} has the angle `{word}`, more than a turn: \
+                             URDF angles are in radians",
+                            attribute.value(),
+                            describe(node.parent_element().unwrap_or(node))
+                        ),
+                        "write the angles in radians (1.5707963267948966 for 90 degrees); an \
+                         angle of more than a turn, if meant, is its remainder after whole turns",
+                    );
+                } else if right_angle_multiple(*angle).is_some() {
                     // the 1e-9 rule takes it as the right angle (`1.57079632679`,
                     // `3.14159265358979`): as written, nothing to warn about
                 } else if let Some(exact) = printed_right_angle(word) {
@@ -646,8 +780,9 @@ impl Reader<'_> {
                 lower,
                 upper,
                 unbounded: below || above,
-                effort: self.scalar(l, "effort"),
-                velocity: self.scalar(l, "velocity"),
+                effort: self.rate_limit(l, "effort", MAX_TORQUE, &joint_name),
+                velocity: self.rate_limit(l, "velocity", MAX_VELOCITY, &joint_name),
+                written: ["effort", "velocity"].map(|a| l.attribute(a).is_some()),
                 range: l.range(),
             }
         });
@@ -770,7 +905,7 @@ fn incomplete_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
         .filter(|j| j.kind.movable())
         .filter_map(|j| {
             let limit = j.limit.as_ref()?;
-            let what = match (limit.effort.is_none(), limit.velocity.is_none()) {
+            let what = match (!limit.written[0], !limit.written[1]) {
                 (true, true) => "`effort` or `velocity`",
                 (true, false) => "`effort`",
                 (false, true) => "`velocity`",

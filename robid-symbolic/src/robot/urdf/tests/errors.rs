@@ -65,7 +65,8 @@ fn each_mistake_is_named_at_its_place() {
         ),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<mimic joint=\"j1\"/></joint>"))), "t.urdf:6:", &["joint `j2` of the chain mimics joint `j1`"]),
         (arm(&format!("{J1}{}", J2.replace("revolute", "floating"))), "t.urdf:6:1:", &["joint `j2` is floating"]),
-        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit effort=\"1e9\" velocity=\"1\"/></joint>"))), "t.urdf:6:", &["`<limit>` of joint `j2`: effort 1e9 is not a positive number up to 1e7"]),
+        (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit effort=\"-1\" velocity=\"1\"/></joint>"))), "t.urdf:6:", &["`<limit>` of joint `j2`: effort -1 is not a positive number up to 1e7"]),
+        (arm(&format!("{J1}{}", J2.replace("<origin xyz=\"0.5 0 0\"/>", "<origin xyz=\"0.5 0 0\" rpy=\"90 0 0\"/>"))), "t.urdf:6:", &["`rpy=\"90 0 0\"` of `<joint name=\"j2\">` has the angle `90`, more than a turn", "1.5707963267948966 for 90 degrees"]),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"1\" upper=\"-1\"/></joint>"))), "t.urdf:6:", &["lower 1 is above upper -1", "PyBullet reads lower > upper as no limit", "leave `lower` and `upper` out"]),
         (arm(&format!("{J1}{}", J2.replace("</joint>", "<limit lower=\"-2000\" upper=\"2000\"/></joint>"))), "t.urdf:6:", &["go beyond ±1000", "`type=\"continuous\"`"]),
         (arm(&two.replace("revolute", "fixed")), "t.urdf:1:14:", &["the URDF has no revolute, continuous or prismatic joint (its joints are fixed, floating or planar)", "make the joints that move"]),
@@ -160,6 +161,52 @@ fn huge_limits_get_the_fix_of_their_kind() {
     assert!(message.contains("`1e16` is beyond"), "{message}");
     assert!(message.contains("effort limit in N m"), "{message}");
     assert!(!message.contains("continuous"), "{message}");
+}
+
+/// An effort or velocity above the largest robid takes is a placeholder for no limit
+/// (10 of the 13 iCub models write `velocity="50000"`): read as none, with one warning
+/// at the first naming the joint; the file was refused.
+#[test]
+fn placeholder_rate_limits_are_no_limits() {
+    let text = arm(&format!(
+        "{}{}",
+        J1.replace(
+            "</joint>",
+            "<limit lower=\"-1\" upper=\"1\" effort=\"20\" velocity=\"50000\"/></joint>"
+        ),
+        J2.replace(
+            "</joint>",
+            "<limit lower=\"-1\" upper=\"1\" effort=\"1e8\" velocity=\"2\"/></joint>"
+        )
+    ));
+    let chain = Robot::from_urdf(&text, "t.urdf", &ChainSelection::default()).unwrap();
+    let limits: Vec<_> = chain
+        .robot
+        .joints
+        .iter()
+        .map(|j| j.limits.clone())
+        .collect();
+    assert_eq!(
+        (limits[0].velocity, limits[0].torque),
+        (None, Some(20.0)),
+        "{limits:?}"
+    );
+    assert_eq!(
+        (limits[1].velocity, limits[1].torque),
+        (Some(2.0), None),
+        "{limits:?}"
+    );
+    assert_eq!(chain.warnings.len(), 1, "{:?}", chain.warnings);
+    let w = chain
+        .warnings
+        .iter()
+        .find(|w| w.contains("taken as no limit"));
+    assert!(
+        w.is_some_and(|w| w.starts_with("t.urdf:5:")
+            && w.contains("`velocity=\"50000\"` of joint `j1` (and 1 more such value)")),
+        "{:?}",
+        chain.warnings
+    );
 }
 
 #[test]
@@ -382,6 +429,40 @@ fn repeated_elements_are_warned_about_and_the_first_used() {
             chain.warnings
         );
     }
+}
+
+/// Undeclared namespace prefixes other than xacro's (Drake's `drake:` extensions in
+/// airo-models' UR files) made the whole file unreadable ("not well-formed XML: an
+/// unknown namespace prefix"); their elements and attributes are ignored, with a warning
+/// at the first, and the robot is the one without them. Places after them are kept.
+#[test]
+fn undeclared_extension_prefixes_are_ignored_with_a_warning() {
+    let two = format!("{J1}{J2}");
+    let plain = Robot::from_urdf(&arm(&two), "t.urdf", &ChainSelection::default()).unwrap();
+    let extended = arm(&two.replace(
+        "<axis xyz=\"0 0 1\"/></joint>\n<joint name=\"j2\"",
+        "<axis xyz=\"0 0 1\"/><limit drake:acceleration=\"2.5\" gz:x='1'/></joint>\n\
+         <drake:collision_filter_group name=\"g\"><drake:member link=\"a\"/>\
+         </drake:collision_filter_group>\n<joint name=\"j2\"",
+    ));
+    assert!(extended.contains("drake:member") && extended.contains("gz:x"));
+    let chain = Robot::from_urdf(&extended, "t.urdf", &ChainSelection::default()).unwrap();
+    assert_eq!(chain.robot, plain.robot);
+    let w = chain
+        .warnings
+        .iter()
+        .find(|w| w.contains("namespace prefix"));
+    assert!(
+        w.is_some_and(|w| w.starts_with("t.urdf:5:")
+            && w.contains("`drake:` (and 1 more prefixes)")
+            && w.contains("ignored")),
+        "{:?}",
+        chain.warnings
+    );
+    // a mistake after them is still named at its own line
+    let broken = extended.replace("<origin xyz=\"0.5 0 0\"/>", "<origin xyz=\"0.5 x 0\"/>");
+    let message = error_of(&broken, &ChainSelection::default());
+    assert!(message.starts_with("t.urdf:7:"), "{message}");
 }
 
 /// An impossible inertial (here TIAGo's antenna: products of inertia too large for its
