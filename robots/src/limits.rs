@@ -1,5 +1,6 @@
 //! A log beyond a description's limits: positions past the position limits, torques far
-//! past the torque limits. What `robid inspect` and `robid identify` warn of
+//! past the torque limits, and a torque that never changes. What `robid inspect` and
+//! `robid identify` warn of
 //! (docs/command-line.md#robid-inspect), from the per-joint extremes the loader keeps
 //! ([`robid_runtime::data::Record::extremes`]).
 
@@ -39,11 +40,32 @@ pub const TORQUE_LIMIT_FACTOR: f64 = 5.0;
 /// assert_eq!(warnings.len(), 2);
 /// assert!(warnings[0].starts_with("joint 2's torques reach -80000 N m"));
 /// assert!(warnings[1].starts_with("joint 3's positions span [-90, 90] rad"));
+/// // joint 1's torque logged as zeros while it moves
+/// let dead = Extremes {
+///     position: vec![[-1.0, 1.0]],
+///     torque: vec![[0.0, 0.0]],
+/// };
+/// let warnings = robots::limits::beyond_limits(&robot, &dead, file);
+/// assert!(warnings[0].starts_with("joint 1's torque is 0 over the whole record"));
 /// ```
+///
+/// And a joint whose torque is one value over the whole record while the joint moves: a
+/// dead channel, or the wrong column (a pendulum's second torque logged as zeros fitted
+/// to 3 % with exit 0, its first moment a hundredth of the truth).
 pub fn beyond_limits(robot: &Robot, extremes: &Extremes, file: &Path) -> Vec<String> {
     let mut warnings = Vec::new();
     for (j, joint) in robot.joints().iter().enumerate() {
         if let Some(&range) = extremes.torque.get(j) {
+            let moves = extremes.position.get(j).is_some_and(|p| p[1] > p[0]);
+            if moves && range[0] == range[1] {
+                warnings.push(format!(
+                    "joint {}'s torque is {} over the whole record while the joint moves: a \
+                     dead channel or the wrong column (identification fits the model to it); \
+                     check the config's torque columns and the logger",
+                    j + 1,
+                    Num(range[0])
+                ));
+            }
             warnings.extend(torque_beyond_limit(j + 1, joint, range, file));
         }
         if let Some(&range) = extremes.position.get(j) {
