@@ -118,6 +118,17 @@ pub const MAX_SAMPLED: f64 = 1e3;
 /// Largest magnitude of a position limit (rad or m).
 pub const MAX_POSITION: f64 = 1e3;
 
+/// Largest length of a description (m) taken without a warning: arms and their links are
+/// shorter; beyond it a length is likely millimetres read as metres (the UR5's `a = 425`),
+/// read, with the warning ([`MAX_LENGTH`] is the error).
+pub const MAX_ARM_LENGTH: f64 = 10.0;
+
+/// Largest revolute position limit (rad) taken without a warning: a turn and a quarter
+/// (multi-turn wrists reach ±450 degrees, 7.85 rad), and a hundredth more for rounding.
+/// Beyond it a limit is likely degrees read as radians (`[-170, 170]`), which `robid
+/// excite` would design within; a larger one is read, with the warning.
+pub const MAX_TURNING: f64 = 2.5 * std::f64::consts::PI + 0.01;
+
 /// Largest velocity limit (rad/s or m/s).
 pub const MAX_VELOCITY: f64 = 1e4;
 

@@ -42,8 +42,10 @@
 //! mistake (unknown keys, wrong types, missing keys, values out of range,
 //! unused symbols) is reported together with the others.
 
-use super::bounds::MAX_DESCRIPTION_LEN;
-use super::check::{Dh, Item, Locate, and_more, measured_twist_consequence, near_right_angle};
+use super::bounds::{MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_TURNING};
+use super::check::{
+    Dh, Item, Limit, Locate, and_more, measured_twist_consequence, near_right_angle,
+};
 use super::read::{Reader, Spans};
 use super::{DescriptionError, JointKind, Robot};
 use std::io::Read;
@@ -157,6 +159,33 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
             measured_twist_consequence(parallel),
         ));
     }
+    // (plain numbers: a length in millimetres is written as one)
+    let long = robot.joints().iter().enumerate().find_map(|(j, joint)| {
+        [(Dh::A, &joint.a), (Dh::D, &joint.d), (Dh::B, &joint.b)]
+            .into_iter()
+            .filter_map(|(dh, g)| Some((dh, g.as_str().trim().parse::<f64>().ok()?)))
+            .find(|(_, v)| v.abs() > MAX_ARM_LENGTH)
+            .map(|(dh, v)| (j, dh, v))
+    });
+    if let Some((j, dh, value)) = long {
+        let (line, column) = place.line_column(spans.of(Item::Value(j, dh)).start);
+        out.push(format!(
+            "{}:{line}:{column}: joint {} `{}` is {value} m, longer than an arm's \
+             {MAX_ARM_LENGTH} m: {LENGTH_FIX}",
+            place.file,
+            j + 1,
+            dh.key()
+        ));
+    }
+    if let Some((j, [lower, upper])) = turning_too_far(robot) {
+        let (line, column) = place.line_column(spans.of(Item::Limit(j, Limit::Position)).start);
+        out.push(format!(
+            "{}:{line}:{column}: joint {} `position` limits [{lower}, {upper}] reach beyond \
+             {MAX_TURNING:.2} rad (a turn and a quarter): {TURNING_FIX}",
+            place.file,
+            j + 1,
+        ));
+    }
     if let Some(span) = spans.stray_drive() {
         let (line, column) = place.line_column(span.start);
         let joint = spans.joint_count();
@@ -169,6 +198,25 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
         ));
     }
     out
+}
+
+/// What a length beyond [`MAX_ARM_LENGTH`] likely is, and the fix.
+pub(super) const LENGTH_FIX: &str = "lengths are in metres; in millimetres? write 0.425 for \
+     425 mm";
+
+/// What a revolute limit beyond [`MAX_TURNING`] likely is, and the fix.
+pub(super) const TURNING_FIX: &str = "revolute limits are in radians; in degrees? write \
+     them in radians (-2.967 for -170 degrees), or leave the limits out for a joint that \
+     turns freely";
+
+/// The first revolute joint (0-based) whose position limits reach beyond [`MAX_TURNING`],
+/// with its limits.
+pub(super) fn turning_too_far(robot: &Robot) -> Option<(usize, [f64; 2])> {
+    robot.joints().iter().enumerate().find_map(|(j, joint)| {
+        let limits = joint.limits.position?;
+        (joint.kind == JointKind::Revolute && limits.iter().any(|v| v.abs() > MAX_TURNING))
+            .then_some((j, limits))
+    })
 }
 
 /// The message of a TOML syntax error. toml says only "duplicate key" for a key or table

@@ -455,6 +455,42 @@ fn a_drive_key_given_to_the_last_joint_by_accident_is_warned_about() {
     }
 }
 
+/// Revolute limits beyond a turn and a quarter are likely degrees read as radians
+/// (`robid excite` designed within [-170, 170] rad): warned about at the limits, once;
+/// a multi-turn wrist's ±450 degrees (7.85 rad) and a prismatic joint's 10 m are not.
+/// Lengths beyond 10 m (millimetres read as metres) are warned about the same way.
+#[test]
+fn revolute_limits_in_degrees_are_warned_about() {
+    let head = "name = \"arm\"\nconvention = \"modified\"\n";
+    let joint =
+        |limits: &str| format!("[[joints]]\nalpha = 0\nlimits = {{ position = {limits} }}\n");
+    let warned = |text: &str| Robot::from_toml_with_warnings(text, "arm.toml").unwrap().1;
+    let degrees = format!("{head}{}{}", joint("[-1, 1]"), joint("[-170, 170]"));
+    let w = warned(&degrees);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].starts_with("arm.toml:8:23:")
+            && w[0].contains("joint 2 `position` limits [-170, 170] reach beyond 7.86 rad")
+            && w[0].contains("in degrees?"),
+        "{w:?}"
+    );
+    // a length in millimetres, likewise
+    let mm = format!("{head}[[joints]]\nalpha = 0\n[[joints]]\nalpha = 0\na = 425\n");
+    let w = warned(&mm);
+    assert!(
+        w.len() == 1
+            && w[0].starts_with("arm.toml:7:5:")
+            && w[0].contains("joint 2 `a` is 425 m")
+            && w[0].contains("in millimetres?"),
+        "{w:?}"
+    );
+    let wrist = format!("{head}{}", joint("[-7.854, 7.854]"));
+    assert!(warned(&wrist).is_empty());
+    let slide =
+        format!("{head}[[joints]]\ntype = \"prismatic\"\nlimits = {{ position = [0, 10] }}\n");
+    assert!(warned(&slide).is_empty());
+}
+
 /// Khalil-Kleinfinger `gamma` and `b` belong to a modified table; `[base]` and `[tool]` are
 /// tables of `xyz` and `rpy`, three finite values each within the bounds of lengths and
 /// angles. Every mistake is located at its key or value.

@@ -7,7 +7,9 @@
 //! warning for the others.
 
 use super::super::DescriptionError;
-use super::super::bounds::{MAX_DESCRIPTION_LEN, MAX_TORQUE, MAX_VELOCITY};
+use super::super::bounds::{
+    MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_TORQUE, MAX_TURNING, MAX_VELOCITY,
+};
 use super::super::check::and_more;
 use super::super::file::Place;
 use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, right_angle_multiple, scale};
@@ -299,6 +301,45 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
                  (rad/s or m/s for a velocity, N m or N for an effort): taken as no limit, for \
                  which such files write it (`robid excite` then asks for --velocity-limits \
                  where it needs one); write the joint's real limit if it has one"
+            ),
+        );
+        reader.warnings.push(w);
+    }
+    if let Some(joint) = joints
+        .iter()
+        .find(|j| j.origin.p.iter().any(|v| v.abs() > MAX_ARM_LENGTH))
+    {
+        let [x, y, z] = joint.origin.p;
+        let w = place.warning(
+            joint.range.start,
+            &format!(
+                "joint `{}`'s origin is at `{x} {y} {z}` m, farther than an arm's \
+                 {MAX_ARM_LENGTH} m: {}",
+                joint.name,
+                super::super::file::LENGTH_FIX
+            ),
+        );
+        reader.warnings.push(w);
+    }
+    let turning = joints.iter().find_map(|j| {
+        let limit = j.limit.as_ref().filter(|_| j.kind == JointType::Revolute)?;
+        let far = [limit.lower, limit.upper]
+            .iter()
+            .flatten()
+            .any(|v| v.abs() > MAX_TURNING);
+        far.then_some((j, limit))
+    });
+    if let Some((joint, limit)) = turning {
+        let show = |v: Option<f64>| v.map_or("none".to_owned(), |v| format!("{v}"));
+        let w = place.warning(
+            limit.range.start,
+            &format!(
+                "joint `{}`'s limits [{}, {}] reach beyond {MAX_TURNING:.2} rad (a turn and a \
+                 quarter): {}",
+                joint.name,
+                show(limit.lower),
+                show(limit.upper),
+                super::super::file::TURNING_FIX
             ),
         );
         reader.warnings.push(w);

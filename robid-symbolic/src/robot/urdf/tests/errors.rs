@@ -209,6 +209,37 @@ fn placeholder_rate_limits_are_no_limits() {
     );
 }
 
+/// A revolute joint's limits in degrees (`lower="-360"`) are warned about at its
+/// `<limit>`; `excite` designed within them. So is an origin in millimetres.
+#[test]
+fn revolute_limits_in_degrees_are_warned_about() {
+    let text = arm(&format!(
+        "{J1}{}",
+        J2.replace(
+            "</joint>",
+            "<limit lower=\"-360\" upper=\"360\" effort=\"1\" velocity=\"1\"/></joint>"
+        )
+    ));
+    let chain = Robot::from_urdf(&text, "t.urdf", &ChainSelection::default()).unwrap();
+    let mm = text.replace("<origin xyz=\"0.5 0 0\"/>", "<origin xyz=\"500 0 0\"/>");
+    let long = Robot::from_urdf(&mm, "t.urdf", &ChainSelection::default()).unwrap();
+    let w = long.warnings.iter().find(|w| w.contains("in millimetres?"));
+    assert!(
+        w.is_some_and(
+            |w| w.starts_with("t.urdf:6:") && w.contains("joint `j2`'s origin is at `500 0 0` m")
+        ),
+        "{:?}",
+        long.warnings
+    );
+    let w = chain.warnings.iter().find(|w| w.contains("in degrees?"));
+    assert!(
+        w.is_some_and(|w| w.starts_with("t.urdf:6:")
+            && w.contains("joint `j2`'s limits [-360, 360] reach beyond 7.86 rad")),
+        "{:?}",
+        chain.warnings
+    );
+}
+
 #[test]
 fn duplicate_links_and_mimics_of_chain_joints_off_the_chain() {
     let text = arm(&format!("{J1}{J2}")).replace(
