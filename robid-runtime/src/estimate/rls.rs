@@ -155,7 +155,8 @@ pub(crate) fn recursion(
     // rounding that swamped it (P divided by lambda at every equation grows without bound
     // in directions the recent equations do not excite), and its standard deviation
     // would read 0: an exact value, for an estimate that diverged
-    if let Some(i) = p.diagonal().iter().position(|v| *v <= 0.0) {
+    // (the scaled state's: unscaled, a column of 1e200 takes its entry to 0 by underflow)
+    if let Some(i) = state.p.diagonal().iter().position(|v| *v <= 0.0) {
         return Err(Error::Singular {
             what: format!(
                 "the recursive least-squares covariance P with the forgetting factor {} (which \

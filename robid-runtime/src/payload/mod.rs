@@ -101,6 +101,23 @@ fn estimate(
                 fix: fix()?,
             });
         }
+        // the estimators' advice (less decimation, fewer parameters) is not the payload's:
+        // it has neither
+        Err(Error::TooFewSamples {
+            context,
+            found,
+            required,
+            ..
+        }) => {
+            return Err(Error::TooFewSamples {
+                context,
+                found,
+                required,
+                hint: "give more samples (each gives one equation per joint, or six per \
+                       wrench): the payload's ten parameters need one equation more than \
+                       ten",
+            });
+        }
         other => other?,
     };
     if let Some(k) = estimate.values.iter().position(|v| !v.is_finite()) {

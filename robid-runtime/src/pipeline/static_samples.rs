@@ -178,7 +178,30 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
     let estimate = ols(
         &Observation::single(w, y, determined.names.clone())?,
         tolerance,
-    )?;
+    )
+    .map_err(|e| match e {
+        // the poses, not a trajectory: said by the file, with its fix (it was the
+        // estimators' "use a richer trajectory or remove these parameters")
+        Error::Estimate(crate::estimate::EstimateError::RankDeficient {
+            rank,
+            columns,
+            unexcited,
+        }) => Error::setting(
+            "static samples",
+            &path.display().to_string(),
+            format!(
+                "its {rows} poses determine {rank} of the {columns} combinations that static \
+                 {} determine (not: {}): the poses repeat or vary too little; add rows at \
+                 poses unlike the others, moving every joint",
+                match kind {
+                    StaticKind::Gravity => "gravity torques",
+                    StaticKind::MassMatrix => "mass matrices",
+                },
+                unexcited.join(", ")
+            ),
+        ),
+        e => e,
+    })?;
     let undetermined = (0..nb)
         .filter(|b| !determined.kept.contains(b))
         .filter_map(|b| model.base_parameter_name(b).map(str::to_owned))
