@@ -44,6 +44,18 @@ pub enum DataError {
         /// The operating-system error.
         source: std::io::Error,
     },
+    /// The system's temporary folder (`TMPDIR`, else `/tmp`) could not hold a file robid
+    /// keeps there while it works (a long record's samples, rows waiting for standard
+    /// output).
+    #[error(
+        "{dir}: cannot keep a temporary file in this folder ({source}); set TMPDIR to a folder you may write into, with room for the data"
+    )]
+    Temporary {
+        /// The temporary folder.
+        dir: PathBuf,
+        /// The operating-system error.
+        source: std::io::Error,
+    },
     /// A file was read but its content is damaged (e.g. a truncated gzip stream).
     #[error(
         "{path}: the file is truncated or corrupt ({reason}); copy or export it again from its source"

@@ -134,6 +134,30 @@ impl ParameterFile {
     /// error naming the nearest name. The values are not checked for physical consistency
     /// (see [`ParameterFile::base_parameters`] and [`ParameterFile::prior`]).
     pub fn values(&self, names: &[String]) -> Result<Vec<Option<f64>>> {
+        // a parameter of a link the robot does not have: another robot's file, which is
+        // what to say (a PUMA's file for a two-link arm was told to add `Ia1`'s drive term)
+        let link = |name: &str| name.parse::<ParameterId>().ok().map(|id| id.link);
+        let links = names
+            .iter()
+            .filter_map(|n| link(n))
+            .max()
+            .map_or(0, |l| l + 1);
+        let beyond = self
+            .entries
+            .iter()
+            .find(|(key, _)| !names.contains(key) && link(key).is_some_and(|l| l >= links));
+        if let Some((key, entry)) = beyond {
+            return Err(self.at(
+                entry,
+                format!(
+                    "[{}] has `{key}`, of link {}, but this robot has {}: is the file \
+                     another robot's? Give the parameter file of this robot",
+                    self.table,
+                    link(key).map_or(0, |l| l + 1),
+                    crate::Count(links, "link")
+                ),
+            ));
+        }
         for (key, entry) in &self.entries {
             if names.contains(key) {
                 continue;
@@ -211,15 +235,26 @@ impl ParameterFile {
                         v.ok_or_else(|| {
                             let keys: Vec<&str> =
                                 self.entries.iter().map(|(k, _)| k.as_str()).collect();
-                            self.whole(
-                                match crate::model::drive_terms_mismatch("the file", &keys, &names)
-                                {
-                                    Some(fix) => format!("[base] has no `{n}`: {fix}"),
-                                    None => {
-                                        format!("[base] has no `{n}`; list every base parameter")
-                                    }
-                                },
-                            )
+                            // a missing link parameter is not a matter of drive terms (a
+                            // `[base]` of ZZR1 alone was told to drop the robot's Fv, Fc)
+                            let drive = matches!(
+                                n.parse::<ParameterId>(),
+                                Ok(ParameterId {
+                                    kind: ParameterKind::Drive(_),
+                                    ..
+                                })
+                            );
+                            let mismatch = drive
+                                .then(|| {
+                                    crate::model::drive_terms_mismatch("the file", &keys, &names)
+                                })
+                                .flatten();
+                            self.whole(match mismatch {
+                                Some(fix) => format!("[base] has no `{n}`: {fix}"),
+                                None => {
+                                    format!("[base] has no `{n}`; list every base parameter")
+                                }
+                            })
                         })
                     })
                     .collect()
@@ -709,6 +744,25 @@ mod tests {
                  drive terms Fv, Fc (`Fv1`, `Fc1`, ...), the robot none (no --drive, no `drive` \
                  key): give `--drive Fv,Fc`"
             ),
+            "{e}"
+        );
+    }
+
+    /// A parameter of a link the robot does not have says the file is another robot's (a
+    /// six-link arm's file for a two-link one was told to model `Ia1`'s drive term).
+    #[test]
+    fn another_robots_file_is_named_as_such() {
+        let file = ParameterFile::parse(
+            "[standard]\nIa1 = 0.1\nM1 = 1\nM2 = 2\nXX3 = 0.1\n",
+            "p.toml".as_ref(),
+        )
+        .unwrap();
+        let names: Vec<String> = ["M1", "MX1", "M2", "MX2"].map(String::from).to_vec();
+        let e = file.values(&names).unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "p.toml:5:1: [standard] has `XX3`, of link 3, but this robot has 2 links"
+            ) && e.contains("is the file another robot's?"),
             "{e}"
         );
     }

@@ -88,8 +88,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             // nothing on standard output unless every row gives torques: they wait in a
             // temporary file (deleted when closed)
             let io = |source| {
-                RuntimeError::Data(DataError::Io {
-                    path: std::env::temp_dir(),
+                RuntimeError::Data(DataError::Temporary {
+                    dir: std::env::temp_dir(),
                     source,
                 })
             };

@@ -165,3 +165,31 @@ fn identify_writes_its_report_before_printing() {
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(report["parameters"].as_array().unwrap().len(), 61);
 }
+
+/// Rows for standard output wait in a temporary file; a temporary folder that takes none
+/// (`TMPDIR` missing) is named as such with the fix (it said "cannot read: No such file
+/// or directory; check the path and permissions").
+#[test]
+fn a_temporary_folder_that_takes_no_file_is_named_with_the_fix() {
+    let dir = common::folder();
+    let states = common::ur5e_states(dir.path(), 3);
+    let states = states.display().to_string();
+    let o = common::command(&[
+        "torques",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--states",
+        &states,
+    ])
+    .env("TMPDIR", dir.path().join("missing"))
+    .output()
+    .unwrap();
+    common::fails_with(
+        &o,
+        &[
+            "missing: cannot keep a temporary file",
+            "set TMPDIR to a folder",
+        ],
+    );
+}

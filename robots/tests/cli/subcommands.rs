@@ -180,7 +180,7 @@ fn parameter_file_mistakes_are_named() {
     for (text, expected) in [
         (
             "[standard]\nM9 = 1.0\n",
-            "`M9`, which is not a standard parameter",
+            "`M9`, of link 9, but this robot has 6 links",
         ),
         (
             "[standard]\nM2 = \"heavy\"\n",

@@ -232,8 +232,8 @@ impl SpilledRecord {
         let mut roles = [false; 7];
         spans.iter().for_each(|&(r, _)| roles[r] = true);
         let temporary = |source| {
-            Error::Data(DataError::Io {
-                path: std::env::temp_dir(),
+            Error::Data(DataError::Temporary {
+                dir: std::env::temp_dir(),
                 source,
             })
         };
@@ -397,8 +397,8 @@ impl SpilledRecord {
         file.seek(SeekFrom::Start(at))
             .and_then(|_| file.read_exact(bytemuck::cast_slice_mut(&mut out[old..])))
             .map_err(|source| {
-                Error::Data(DataError::Io {
-                    path: std::env::temp_dir(),
+                Error::Data(DataError::Temporary {
+                    dir: std::env::temp_dir(),
                     source,
                 })
             })
@@ -418,8 +418,8 @@ impl SpilledRecord {
         file.seek(SeekFrom::Start(at))
             .and_then(|_| file.read_exact(&mut scratch[..len]))
             .map_err(|source| {
-                Error::Data(DataError::Io {
-                    path: std::env::temp_dir(),
+                Error::Data(DataError::Temporary {
+                    dir: std::env::temp_dir(),
                     source,
                 })
             })?;
