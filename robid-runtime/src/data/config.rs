@@ -423,6 +423,34 @@ pub struct Lowpass {
     pub signals: Vec<Signal>,
 }
 
+/// `[start, end]`: exactly two values (an array of `[T; 2]` took the first two of
+/// `[1, 2, 3]` and said nothing of the third).
+fn pair<'de, D, T>(d: D) -> std::result::Result<Option<[T; 2]>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    let values: Option<Vec<T>> = Option::deserialize(d)?;
+    values.map(two).transpose()
+}
+
+/// A list of `[start, end]` pairs, each of exactly two values ([`pair`]).
+fn pairs<'de, D, T>(d: D) -> std::result::Result<Option<Vec<[T; 2]>>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    let lists: Option<Vec<Vec<T>>> = Option::deserialize(d)?;
+    lists.map(|l| l.into_iter().map(two).collect()).transpose()
+}
+
+/// The two values of `v`, or an error saying how many there are.
+fn two<E: serde::de::Error, T>(v: Vec<T>) -> std::result::Result<[T; 2], E> {
+    let n = v.len();
+    <[T; 2]>::try_from(v)
+        .map_err(|_| E::custom(format!("{n} values given; write two, [start, end]")))
+}
+
 /// Where velocities or accelerations come from.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -556,15 +584,17 @@ pub struct Processing {
     /// Sample range used for estimation, `[start, end)`, cut after filtering and
     /// differentiation (so a split of one record has no filter transients at its ends),
     /// before `trim`. It does not apply to validation files.
+    #[serde(default, deserialize_with = "pair")]
     pub range: Option<[usize; 2]>,
     /// Sample range of each validation file, `[start, end)`, cut like `range` (default:
     /// the whole file). Validation files are processed on their own: `range` does not
     /// apply to them.
+    #[serde(default, deserialize_with = "pair")]
     pub validation_range: Option<[usize; 2]>,
     /// Piece-wise estimation (Milella): only the samples within these `[start, end]` windows
     /// (seconds from the record's first sample; `robid excite --method points --pieces`
     /// designs them) enter the estimation; the fit is still reported on the whole range.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "pairs")]
     pub pieces: Option<Vec<[f64; 2]>>,
     /// What a gap in a file's time stamps does (a step of more than
     /// [`crate::data::GAP_RATIO`] median steps): refused (the default) or the record cut
@@ -1316,6 +1346,26 @@ method = "wls"
         assert!(err.to_string().starts_with("bad.toml"), "{err}");
         let err = Config::from_toml_str("colour = 1", Path::new("bad.toml")).unwrap_err();
         assert!(err.to_string().contains("colour"), "{err}");
+    }
+
+    /// A range, a validation range or a piece of three values was read as its first two.
+    #[test]
+    fn ranges_and_pieces_take_exactly_two_values() {
+        for bad in [
+            "[processing]\nrange = [1, 2, 3]\n",
+            "[processing]\nvalidation_range = [1]\n",
+            "[processing]\npieces = [[0.0, 1.0], [2.0, 3.0, 4.0]]\n",
+        ] {
+            let e = Config::from_toml_str(bad, Path::new("c.toml"))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("write two, [start, end]"), "{bad}: {e}");
+        }
+        let good = "[processing]\nrange = [1, 20]\npieces = [[0.0, 1.0]]\n";
+        let cfg = Config::from_toml_str(good, Path::new("c.toml")).unwrap();
+        assert_eq!(cfg.processing.range, Some([1, 20]));
+        assert_eq!(cfg.processing.pieces, Some(vec![[0.0, 1.0]]));
+        assert_eq!(Config::default().processing.range, None);
     }
 
     #[test]

@@ -91,6 +91,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let payload = from_torques(model, &base, &samples, &options)
         .map_err(|e| format!("{}: {e}", data[0].display()))?;
     out::print(&summary(&payload))?;
+    // the estimate's own (ill-conditioned, uncertain), as `identify` gives them: four
+    // samples gave cond 5e10 and a centre of mass 1.7 km away with a word only on the
+    // consistency
+    for w in &payload.estimate.warnings {
+        out::warn(format_args!("warning: {w}"));
+    }
     if let Some(p) = &args.output {
         files::write(p, &toml(&payload))?;
     }

@@ -130,6 +130,18 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     let toml = std::fs::read_to_string(&out).unwrap();
     assert!(toml.contains("[payload]") && toml.contains("[payload.physical]"));
     assert!(toml.contains("consistent = true"), "{toml}");
+    assert!(!stderr(&o).contains("ill-conditioned"), "{}", stderr(&o));
+    // four samples of the same data: the fit's uncertain parameters are warned about, as
+    // identify warns (it said only whether the payload is physically consistent)
+    let text = std::fs::read_to_string(&data).unwrap();
+    let few: Vec<&str> = text.lines().take(5).collect();
+    let few = write(dir.path(), "few.csv", &(few.join("\n") + "\n"));
+    let o = payload(&["--data", few.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("relative standard deviation above 100 %"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// A real log holds positions and torques (or currents) alone: with a config, `payload`
