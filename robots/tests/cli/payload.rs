@@ -142,6 +142,13 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
         "{}",
         stderr(&o)
     );
+    // one sample: six equations for ten parameters, told to give more samples (it was
+    // told to use less decimation or fewer parameters, which a payload has not)
+    let one: Vec<&str> = text.lines().take(2).collect();
+    let one = write(dir.path(), "one.csv", &(one.join("\n") + "\n"));
+    let o = payload(&["--data", one.to_str().unwrap()]);
+    fails_with(&o, &["at least 11 are needed", "give more samples"]);
+    assert!(!stderr(&o).contains("decimation"), "{}", stderr(&o));
 }
 
 /// A real log holds positions and torques (or currents) alone: with a config, `payload`
