@@ -195,6 +195,7 @@ pub(crate) fn read_sources<'a>(
             .first()
             .and_then(|&k| table.lines.get(k));
         warnings.extend(stale_warning(&sampling, first_stale.copied()));
+        warnings.extend(slow_warning(&sampling));
         let step = sampling.step;
         samplings.push(sampling);
         match time {
@@ -392,6 +393,22 @@ fn no_overlap(path: &Path, span: (f64, f64), first: &Path, tref: &[f64], found: 
         hint: "join files recorded at the same time, with time stamps of one clock (the same \
                origin and unit)",
     }
+}
+
+/// The sample rate (Hz) below which a log's time stamps are warned about: a robot's
+/// dynamics (its excitation reaches a few hertz, the low-pass tens) need more, and a time
+/// column in ms read as seconds gives a thousandth of the real rate (a 100 Hz log read at
+/// 0.1 Hz was refused by the rest removal, which named the velocities' units).
+pub const SLOW_SAMPLE_RATE: f64 = 10.0;
+
+/// The warning about time stamps whose median step gives a rate below
+/// [`SLOW_SAMPLE_RATE`].
+pub(crate) fn slow_warning(sampling: &Sampling) -> Option<Warning> {
+    let step = sampling.step?;
+    (step > 0.0 && 1.0 / step < SLOW_SAMPLE_RATE).then(|| Warning::SlowSampling {
+        path: sampling.path.clone(),
+        step,
+    })
 }
 
 /// The warning about stale rows when there are more than [`STALE_SHARE`] of them

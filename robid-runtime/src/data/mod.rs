@@ -27,7 +27,9 @@ pub use dataset::{DataOrigin, Dataset, Extremes};
 pub use error::{DataError, TomlFile};
 pub use keys::KeyMap;
 pub(crate) use load::check_joints;
-pub use load::{load, load_config_files, load_from_config_file, load_runs, surplus_joint};
+pub use load::{
+    SLOW_SAMPLE_RATE, load, load_config_files, load_from_config_file, load_runs, surplus_joint,
+};
 pub use parameters::{INERTIA_TOLERANCE, PARAMETER_LIMIT, ParameterFile, ParameterTable};
 pub use rate::{RATE_CHECK_ROWS, RATE_TOLERANCE, REGULAR_SHARE, REGULAR_SPREAD, time_name};
 pub(crate) use record::joined_with;

@@ -611,6 +611,42 @@ fn a_gap_in_the_time_stamps_is_refused_with_its_line() {
     assert!(matches!(data.warnings[0], Warning::IrregularTime { .. }));
 }
 
+/// Time stamps 10 s apart (a 100 Hz log's time column in ms) are warned about, naming
+/// `time_scale`, by both loaders; 100 Hz is not.
+#[test]
+fn a_time_column_in_ms_is_warned_about() {
+    let d = Dir::new();
+    let rows = |scale: f64| {
+        let mut text = String::from("t,q1,tau1\n");
+        for k in 0..=200 {
+            text += &format!("{},{},1\n", scale * k as f64, (0.05 * k as f64).sin());
+        }
+        text
+    };
+    let slow = d.file("ms.csv", &rows(10.0));
+    let config = cfg("time_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tau{}\"\n");
+    let data = load(&config, std::slice::from_ref(&slow), 1).unwrap();
+    let w: Vec<String> = data.warnings.iter().map(ToString::to_string).collect();
+    assert!(
+        w.iter()
+            .any(|w| w.contains("ms.csv: time stamps 10 s apart")
+                && w.contains("time_scale = 0.001")),
+        "{w:?}"
+    );
+    let record = crate::data::load_record(&config, std::slice::from_ref(&slow), 1).unwrap();
+    assert!(
+        record
+            .warnings()
+            .iter()
+            .any(|w| matches!(w, Warning::SlowSampling { .. })),
+        "{:?}",
+        record.warnings()
+    );
+    let fast = d.file("s.csv", &rows(0.01));
+    let data = load(&config, &[fast], 1).unwrap();
+    assert!(data.warnings.is_empty(), "{:?}", data.warnings);
+}
+
 /// A file joined by time whose steps are more than `GAP_RATIO` times the first file's is
 /// refused (its time column in ms beside one in s: two of its 101 stamps fell in the
 /// first file's 1 s, and the torque was interpolated between them, with exit 0); a

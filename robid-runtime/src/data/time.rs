@@ -50,6 +50,15 @@ pub enum Warning {
         /// Samples of the first file outside this file's time stamps.
         dropped: usize,
     },
+    /// Time stamps whose median step gives a sample rate below
+    /// [`super::SLOW_SAMPLE_RATE`]: too slow for a robot's dynamics, or a time column in
+    /// ms read as seconds.
+    SlowSampling {
+        /// The file.
+        path: PathBuf,
+        /// Its median step (s).
+        step: f64,
+    },
     /// Rows of a file joined by time that lie outside the time stamps of the first file:
     /// they are not used (the record is the time every file covers).
     JoinedRowsUnused {
@@ -100,6 +109,14 @@ impl fmt::Display for Warning {
                 f,
                 "{}: covers only part of the time range of the first file joined by time: the {dropped} samples of that file outside the time stamps of this one were dropped, keeping the time both cover",
                 path.display()
+            ),
+            Warning::SlowSampling { path, step } => write!(
+                f,
+                "{}: time stamps {} s apart (median), a sample rate of {} Hz, below the {} Hz a robot's dynamics need: is the time column in ms? Set `time_scale = 0.001` in the config (robid inspect shows the sampling)",
+                path.display(),
+                crate::Num::rounded(*step, 4),
+                crate::Num::rounded(1.0 / *step, 4),
+                super::SLOW_SAMPLE_RATE
             ),
             Warning::JoinedRowsUnused {
                 path,

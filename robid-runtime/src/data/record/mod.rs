@@ -13,7 +13,7 @@ use crate::DataError;
 use crate::data::dataset::{DataOrigin, Extremes, Values, empty_range};
 use crate::data::load::{
     SourceColumns, assemble, check_cutoff, check_joints, check_ranges, check_step, load,
-    plan_source, source_paths, stale_warning, take_time, unread_time_rows,
+    plan_source, slow_warning, source_paths, stale_warning, take_time, unread_time_rows,
 };
 use crate::data::rate::{Steps, check_rate};
 use crate::data::sampling::SamplingScan;
@@ -333,8 +333,10 @@ impl SpilledRecord {
         }
         let first_stale = scan.first_stale_line();
         let sampling = scan.finish(path.clone());
-        let mut warnings: Vec<Warning> =
-            stale_warning(&sampling, first_stale).into_iter().collect();
+        let mut warnings: Vec<Warning> = stale_warning(&sampling, first_stale)
+            .into_iter()
+            .chain(slow_warning(&sampling))
+            .collect();
         let mut grid = None;
         let sample_time = match (&config.time_column, config.sample_rate) {
             (Some(_), _) => {
