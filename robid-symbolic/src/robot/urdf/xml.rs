@@ -352,6 +352,16 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
     }
     reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
     reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
+    // with another mistake, told with it (a `<robot>` that xacro left empty was told only
+    // that it had no name); alone, the chain's check tells it
+    if links.is_empty() && !reader.errors.is_empty() {
+        reader.error(
+            root.range().start..root.range().start,
+            "the robot has no `<link>`".to_owned(),
+            "a URDF describes links connected by joints: is this the right file (xacro \
+             writes an empty `<robot>` when the macro it expands is not called)?",
+        );
+    }
     if reader.errors.is_empty() {
         Ok(Urdf {
             name,

@@ -462,6 +462,17 @@ fn repeated_elements_are_warned_about_and_the_first_used() {
     }
 }
 
+/// A `<robot>` that xacro left empty and nameless is told both mistakes (it was told only
+/// the missing name).
+#[test]
+fn an_empty_nameless_robot_is_told_it_has_no_links() {
+    let message = error_of("<robot>\n</robot>\n", &ChainSelection::default());
+    assert!(
+        message.contains("has no `name` attribute") && message.contains("has no `<link>`"),
+        "{message}"
+    );
+}
+
 /// Undeclared namespace prefixes other than xacro's (Drake's `drake:` extensions in
 /// airo-models' UR files) made the whole file unreadable ("not well-formed XML: an
 /// unknown namespace prefix"); their elements and attributes are ignored, with a warning
