@@ -69,10 +69,43 @@ pub fn beyond_limits(robot: &Robot, extremes: &Extremes, file: &Path) -> Vec<Str
             warnings.extend(torque_beyond_limit(j + 1, joint, range, file));
         }
         if let Some(&range) = extremes.position.get(j) {
-            warnings.extend(position_beyond_limits(j + 1, joint, range, file));
+            warnings.extend(position_beyond_limits(j + 1, joint, range, file, Of::Log));
         }
     }
     warnings
+}
+
+/// Whose positions are checked: a log's (read through a config, whose `[units]` fix a
+/// unit) or a reference trajectory's (`robid simulate`: radians and metres as written).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Of {
+    Log,
+    Trajectory,
+}
+
+/// A warning for each joint of `robot` whose positions in a reference trajectory
+/// (`position`: `[smallest, largest]` per joint) leave its position limits in the
+/// description `file` by more than a tenth of their span, as [`beyond_limits`] does for a
+/// log: `robid simulate` follows the trajectory wherever it goes (degrees written as
+/// radians, a trajectory of another robot), and the simulated data then identify a robot
+/// at positions it never reaches.
+///
+/// ```
+/// let robot: robid_symbolic::Robot = robots::Reference::named("ur5e").unwrap().robot();
+/// let file = std::path::Path::new("ur5e.toml");
+/// let w = robots::limits::trajectory_beyond_limits(&robot, &[[-1.0, 1.0], [-90.0, 90.0]], file);
+/// assert!(w[0].starts_with("joint 2's positions span [-90, 90] rad") && w[0].contains("write them in radians"));
+/// ```
+pub fn trajectory_beyond_limits(robot: &Robot, position: &[[f64; 2]], file: &Path) -> Vec<String> {
+    robot
+        .joints()
+        .iter()
+        .zip(position)
+        .enumerate()
+        .filter_map(|(j, (joint, &range))| {
+            position_beyond_limits(j + 1, joint, range, file, Of::Trajectory)
+        })
+        .collect()
 }
 
 /// [`beyond_limits`] for the positions of joint `number`, `joint`, which span `range`.
@@ -81,6 +114,7 @@ fn position_beyond_limits(
     joint: &Joint,
     range: [f64; 2],
     file: &Path,
+    of: Of,
 ) -> Option<String> {
     let [lower, upper] = joint.limits.position?;
     let margin = 0.1 * (upper - lower);
@@ -98,18 +132,25 @@ fn position_beyond_limits(
         |scale: f64| range[0] * scale >= lower - margin && range[1] * scale <= upper + margin;
     // a range no wider than the limits' fits them once shifted
     let shifted = range[1] - range[0] <= upper - lower + 2.0 * margin;
-    let hint = match (prismatic, fits(per_unit), shifted) {
-        (true, true, _) => "positions in mm? they are read in metres",
-        (false, true, _) => "positions in degrees? set `angle = \"deg\"` in the config's [units]",
-        (_, false, true) => {
+    let hint = match (of, prismatic, fits(per_unit), shifted) {
+        (_, true, true, _) => "positions in mm? they are read in metres",
+        (Of::Log, false, true, _) => {
+            "positions in degrees? set `angle = \"deg\"` in the config's [units]"
+        }
+        (Of::Trajectory, false, true, _) => "positions in degrees? write them in radians",
+        (Of::Log, _, false, true) => {
             "positions off by an offset (the encoders' zero elsewhere than the model's)? \
              set `position_offset` in the config's [units]"
         }
+        (Of::Trajectory, _, false, true) => {
+            "positions off by an offset (another zero than the model's)? shift them"
+        }
         // wider than the limits, and neither degrees nor mm: counts, a wrong gear ratio
-        (_, false, false) => {
+        (Of::Log, _, false, false) => {
             "positions in another unit (encoder counts, motor side: see [drive] \
              position_side and gear_ratios)?"
         }
+        (Of::Trajectory, _, false, false) => "positions in another unit?",
     };
     Some(format!(
         "joint {number}'s positions span [{}, {}] {unit}, beyond its limits [{}, {}] {unit} in {}: \

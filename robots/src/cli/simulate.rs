@@ -131,6 +131,19 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     );
     super::states::read_with(&args.trajectory, &Trajectory::header(n), n, &remedy)?;
     let reference = Trajectory::read_csv(&args.trajectory, n)?;
+    let span: Vec<[f64; 2]> = reference
+        .q
+        .joints()
+        .map(|x| {
+            x.iter()
+                .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &v| {
+                    [lo.min(v), hi.max(v)]
+                })
+        })
+        .collect();
+    for w in robots::limits::trajectory_beyond_limits(&description.robot, &span, &args.robot) {
+        out::warn(format_args!("warning: {}: {w}", args.trajectory.display()));
+    }
     check_bandwidth(args.bandwidth, &reference, &args.trajectory)?;
     let every = every_sample(args.rate, &reference, &args.trajectory)?;
     let sim = Simulation {

@@ -1304,3 +1304,44 @@ fn help_states_the_ranges_that_are_checked() {
         refused_flag(&o, flag, &format!("outside {checked}"));
     }
 }
+
+/// A reference trajectory beyond the description's position limits (degrees written as
+/// radians) is warned about by `simulate`, which follows it wherever it goes; one within
+/// them is not.
+#[test]
+fn simulate_warns_of_a_trajectory_beyond_the_limits() {
+    let dir = folder();
+    let trajectory = |scale: f64| {
+        let mut text = String::from("t");
+        for p in ["q", "qd", "qdd"] {
+            for j in 1..=6 {
+                text.push_str(&format!(",{p}{j}"));
+            }
+        }
+        text.push('\n');
+        for k in 0..=300 {
+            let t = 0.01 * k as f64;
+            let (q, qd, qdd) = (scale * t.sin(), scale * t.cos(), -scale * t.sin());
+            text += &format!("{t},{q},0,0,0,0,0,{qd},0,0,0,0,0,{qdd},0,0,0,0,0\n");
+        }
+        text
+    };
+    for (name, scale, warned) in [("deg.csv", 90.0, true), ("rad.csv", 1.5, false)] {
+        let path = write(dir.path(), name, &trajectory(scale));
+        let out = dir.path().join("data.csv");
+        let o = robid(&[
+            "simulate",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e.toml",
+            "--trajectory",
+            path.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let said = stderr(&o).contains("joint 1's positions span")
+            && stderr(&o).contains("positions in degrees? write them in radians");
+        assert_eq!(said, warned, "{name}: {}", stderr(&o));
+    }
+}
