@@ -593,6 +593,11 @@ fn options_of_the_other_method_are_refused() {
 
 /// A UR5e trajectory at 100 Hz (1 s): joint 1 swings, the others stand still.
 fn trajectory(dir: &Path) -> PathBuf {
+    swing(dir, "trajectory.csv", 0.3)
+}
+
+/// [`trajectory`] with joint 1 swinging by `amplitude` (rad), written to `name`.
+fn swing(dir: &Path, name: &str, amplitude: f64) -> PathBuf {
     let mut text = String::from("t");
     for p in ["q", "qd", "qdd"] {
         for j in 1..=6 {
@@ -602,12 +607,13 @@ fn trajectory(dir: &Path) -> PathBuf {
     text.push('\n');
     for k in 0..=100 {
         let t = 0.01 * k as f64;
-        let (q, qd, qdd) = (0.3 * t.sin(), 0.3 * t.cos(), -0.3 * t.sin());
+        let a = amplitude;
+        let (q, qd, qdd) = (a * t.sin(), a * t.cos(), -a * t.sin());
         text.push_str(&format!(
             "{t},{q},-1.2,1,0,0.5,0,{qd},0,0,0,0,0,{qdd},0,0,0,0,0\n"
         ));
     }
-    write(dir, "trajectory.csv", &text)
+    write(dir, name, &text)
 }
 
 #[test]
@@ -1311,23 +1317,8 @@ fn help_states_the_ranges_that_are_checked() {
 #[test]
 fn simulate_warns_of_a_trajectory_beyond_the_limits() {
     let dir = folder();
-    let trajectory = |scale: f64| {
-        let mut text = String::from("t");
-        for p in ["q", "qd", "qdd"] {
-            for j in 1..=6 {
-                text.push_str(&format!(",{p}{j}"));
-            }
-        }
-        text.push('\n');
-        for k in 0..=300 {
-            let t = 0.01 * k as f64;
-            let (q, qd, qdd) = (scale * t.sin(), scale * t.cos(), -scale * t.sin());
-            text += &format!("{t},{q},0,0,0,0,0,{qd},0,0,0,0,0,{qdd},0,0,0,0,0\n");
-        }
-        text
-    };
-    for (name, scale, warned) in [("deg.csv", 90.0, true), ("rad.csv", 1.5, false)] {
-        let path = write(dir.path(), name, &trajectory(scale));
+    for (name, amplitude, warned) in [("deg.csv", 90.0, true), ("rad.csv", 1.5, false)] {
+        let path = swing(dir.path(), name, amplitude);
         let out = dir.path().join("data.csv");
         let o = robid(&[
             "simulate",
