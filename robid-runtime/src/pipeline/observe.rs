@@ -794,19 +794,21 @@ impl Observer<'_> {
                 for i in 0..BLOCK.min(n - b * BLOCK) {
                     let k = lo + b * BLOCK + i;
                     self.full_row(k, &mut st, &mut full);
-                    // the channels of the groups checked finite as they are written (in
-                    // the cache); the others are checked zero below
+                    // the channels of the groups checked finite as they are copied, in
+                    // the row they come from (the group's row just written is not yet in
+                    // the cache: reading it back stalled the fill, a quarter of the hour's
+                    // estimation pass); the others are checked zero below
                     let mut odd = false;
                     for (((part, set), set_runs), &g) in
                         parts.iter_mut().zip(&sets).zip(&set_runs).zip(&widths)
                     {
                         let row = &mut part[i * g..(i + 1) * g];
                         for run in set_runs {
-                            row[run.at..run.at + run.len]
-                                .copy_from_slice(&full[run.from..run.from + run.len]);
+                            let src = &full[run.from..run.from + run.len];
+                            row[run.at..run.at + run.len].copy_from_slice(src);
+                            odd |= any_non_finite(src);
                         }
                         row[set.len()..].fill(0.0);
-                        odd |= any_non_finite(row);
                     }
                     // a non-finite inactive channel is not zero: the block is taken again
                     // with every channel, which finds it

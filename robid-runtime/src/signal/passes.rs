@@ -284,9 +284,25 @@ fn tiled_sections<const S: usize, const W: usize>(
     let (full, partial) = lanes.split_at(g / W);
     let taking = partial.is_empty() && take.is_some();
     let take = if taking { take } else { &mut None };
-    tiled_lanes::<S, W, false>(sections, zi, ext, g, full, kept, forward, take);
-    tiled_lanes::<S, W, true>(sections, zi, ext, g, partial, kept, forward, &mut None);
+    if unit_after_first(sections) {
+        tiled_lanes::<S, W, false, true>(sections, zi, ext, g, full, kept, forward, take);
+        tiled_lanes::<S, W, true, true>(sections, zi, ext, g, partial, kept, forward, &mut None);
+    } else {
+        tiled_lanes::<S, W, false, false>(sections, zi, ext, g, full, kept, forward, take);
+        tiled_lanes::<S, W, true, false>(sections, zi, ext, g, partial, kept, forward, &mut None);
+    }
     taking
+}
+
+/// Whether every section but the first has the numerator `[1, 2, 1]` (a low-pass's
+/// double zero at -1 with the gain in the first section: every Butterworth and Chebyshev
+/// cascade of even order [`design`](super::design) builds), which [`section_unit`]
+/// filters with fewer multiplications.
+fn unit_after_first(sections: &[[f64; 6]]) -> bool {
+    sections
+        .iter()
+        .skip(1)
+        .all(|s| s[0] == 1.0 && s[1] == 2.0 && s[2] == 1.0)
 }
 
 /// Channels `first..first + width` of a group, filtered together.
@@ -304,7 +320,7 @@ struct Lane {
 /// buffer of full lanes, padded with zeros, filtered there and copied back.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
+fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool, const UNIT: bool>(
     sections: &[[f64; 6]; S],
     zi: &[[f64; 2]; S],
     ext: &mut [f64],
@@ -368,7 +384,7 @@ fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
                             }
                         }
                         let buffer = &mut buffer[..(end - start) * W];
-                        lane_rows::<S, W>(
+                        lane_rows::<S, W, UNIT>(
                             sections,
                             state,
                             buffer,
@@ -386,7 +402,7 @@ fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
                     } else {
                         let ahead = (PREFETCH_ROWS * g) as isize;
                         let ahead = if backward { -ahead } else { ahead };
-                        lane_rows::<S, W>(
+                        lane_rows::<S, W, UNIT>(
                             sections,
                             state,
                             ext,
@@ -423,7 +439,7 @@ fn tiled_lanes<const S: usize, const W: usize, const PARTIAL: bool>(
 /// among `take`'s rows into `take` (with `kept` only).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn lane_rows<const S: usize, const W: usize>(
+fn lane_rows<const S: usize, const W: usize, const UNIT: bool>(
     sections: &[[f64; 6]; S],
     state: &mut [[[f64; W]; S]; 2],
     ext: &mut [f64],
@@ -456,7 +472,11 @@ fn lane_rows<const S: usize, const W: usize>(
         let mut v = *x;
         for s in 0..S {
             for l in 0..W {
-                v[l] = section::<true>(&sections[s], v[l], &mut p[s][l], &mut q[s][l]);
+                v[l] = if UNIT && s > 0 {
+                    section_unit(&sections[s], v[l], &mut p[s][l], &mut q[s][l])
+                } else {
+                    section::<true>(&sections[s], v[l], &mut p[s][l], &mut q[s][l])
+                };
             }
         }
         let to = if kept.is_none() {
@@ -619,6 +639,21 @@ fn section<const FUSED: bool>(section: &[f64; 6], x: f64, p: &mut f64, q: &mut f
         *q = b2 * x - a2 * out;
         out
     }
+}
+
+/// [`section`] fused for a section whose numerator is `[1, 2, 1]`, the same values to the
+/// bit: a multiplication by 1 and a fused operation with one of its factors 1 round as the
+/// addition alone, and `2 x` is exact (but where it overflows, beyond 8.9e307), so two
+/// of the five multiplications go and two fused operations become additions, which this
+/// processor's adders take beside its multipliers (the passes are bound by the
+/// multipliers' throughput: docs/performance.md#streaming-identification).
+#[inline(always)]
+fn section_unit(section: &[f64; 6], x: f64, p: &mut f64, q: &mut f64) -> f64 {
+    let [_, _, _, _, a1, a2] = *section;
+    let out = x + *p;
+    *p = (-a1).mul_add(out, *q) + (x + x);
+    *q = x + -a2 * out;
+    out
 }
 
 #[cfg(test)]
