@@ -35,6 +35,10 @@ use robid_runtime::pipeline::{estimate, identify, observation};
 use robid_runtime::rng::Rng;
 use robots::Panda;
 
+/// The `robid` binary's allocator (`src/main.rs`), so that the figures are the tool's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 const RATE: f64 = 1000.0;
 const DOF: usize = 7;
 
