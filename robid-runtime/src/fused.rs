@@ -142,6 +142,14 @@ pub fn as_array<const N: usize>(x: &[f64; N]) -> &[Fused; N] {
     unsafe { &*core::ptr::from_ref(x).cast::<[Fused; N]>() }
 }
 
+/// `x` seen as `Fused` values to write, without a copy (the AVX2 instances write their
+/// results straight into the caller's array).
+#[inline(always)]
+pub fn as_array_mut<const N: usize>(x: &mut [f64; N]) -> &mut [Fused; N] {
+    // SAFETY: as in `from_array`; the reference keeps the mutable borrow of `x`.
+    unsafe { &mut *core::ptr::from_mut(x).cast::<[Fused; N]>() }
+}
+
 /// Whether the AVX2 instances may be called: cleared by [`set_enabled`]`(false)`.
 static ENABLED: AtomicBool = AtomicBool::new(true);
 

@@ -192,7 +192,9 @@ impl Lwr4 {
         qd: &[T; 7],
         qdd: &[T; 7],
     ) -> [T; 490] {
-        self.standard_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 490];
+        self.standard_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -206,7 +208,8 @@ impl Lwr4 {
         q: &[T; 7],
         qd: &[T; 7],
         qdd: &[T; 7],
-    ) -> [T; 490] {
+        out: &mut [T; 490],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
@@ -215,7 +218,7 @@ impl Lwr4 {
         let c3 = T::from_f64(0.39);
         let c4 = T::from_f64(0.078);
         let c5 = T::from_f64(2.0);
-        let mut out = [T::ZERO; 490];
+        *out = [T::ZERO; 490];
         out[3] = qdd1;
         out[83] = qdd2;
         let ([t0, t12, t54, t80, t120, t146], [t1, t13, t55, t81, t121, t147]) = T::sin_cos_array([
@@ -1650,7 +1653,6 @@ impl Lwr4 {
         out[486] = t1689;
         let t1690 = -t174;
         out[487] = t1690;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1661,15 +1663,13 @@ impl Lwr4 {
         qdd: &[f64; 7],
         out: &mut [f64; 490],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .standard_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.standard_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
@@ -1687,7 +1687,9 @@ impl Lwr4 {
         qd: &[T; 7],
         qdd: &[T; 7],
     ) -> [T; 301] {
-        self.base_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 301];
+        self.base_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -1701,7 +1703,8 @@ impl Lwr4 {
         q: &[T; 7],
         qd: &[T; 7],
         qdd: &[T; 7],
-    ) -> [T; 301] {
+        out: &mut [T; 301],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
@@ -1709,7 +1712,7 @@ impl Lwr4 {
         let c2 = T::from_f64(0.39);
         let c3 = T::from_f64(0.078);
         let c4 = T::from_f64(-9.81);
-        let mut out = [T::ZERO; 301];
+        *out = [T::ZERO; 301];
         out[0] = qdd1;
         out[48] = qdd2;
         let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
@@ -2719,7 +2722,6 @@ impl Lwr4 {
         out[85] = t1205;
         let t1206 = -t205;
         out[300] = t1206;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -2730,15 +2732,13 @@ impl Lwr4 {
         qdd: &[f64; 7],
         out: &mut [f64; 301],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.base_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
@@ -2758,7 +2758,9 @@ impl Lwr4 {
         qdd: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
-        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+        let mut out = [T::ZERO; 7];
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2773,7 +2775,8 @@ impl Lwr4 {
         qd: &[T; 7],
         qdd: &[T; 7],
         base: &[T; 43],
-    ) -> [T; 7] {
+        out: &mut [T; 7],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.4);
@@ -3214,7 +3217,7 @@ impl Lwr4 {
         let t576 = t0 * t570;
         let t578 = T::mul_add(t1, t571, t576);
         let t579 = T::mul_add(qdd1, ZZR1, t578);
-        [t579, t574, t525, t468, t400, t336, t280]
+        *out = [t579, t574, t525, t468, t400, t336, t280];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -3226,16 +3229,14 @@ impl Lwr4 {
         base: &[f64; 43],
         out: &mut [f64; 7],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .inverse_dynamics_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.inverse_dynamics_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Joint-space inertia matrix M(q), rotor inertias included.
@@ -3251,7 +3252,9 @@ impl Lwr4 {
         q: &[T; 7],
         base: &[T; 43],
     ) -> [T; 49] {
-        self.mass_matrix_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 49];
+        self.mass_matrix_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3264,7 +3267,8 @@ impl Lwr4 {
         &self,
         q: &[T; 7],
         base: &[T; 43],
-    ) -> [T; 49] {
+        out: &mut [T; 49],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let [ZZR1, XXR2, XYR2, XZR2, YZR2, ZZR2, _, _, XXR3, XYR3, XZR3, YZR3, ZZR3, MX3,
         MYR3, XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5, MX5,
@@ -3276,7 +3280,7 @@ impl Lwr4 {
         let c3 = T::from_f64(2.0);
         let c4 = T::from_f64(0.78);
         let c5 = T::from_f64(0.8);
-        let mut out = [T::ZERO; 49];
+        *out = [T::ZERO; 49];
         out[48] = ZZ7;
         let ([t10, t8, t6, t4, t2, t0], [t11, t9, t7, t5, t3, t1]) = T::sin_cos_array([
             q7,
@@ -3571,19 +3575,16 @@ impl Lwr4 {
         let t342 = -t60;
         out[20] = t342;
         out[44] = t342;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn mass_matrix_avx2(&self, q: &[f64; 7], base: &[f64; 43], out: &mut [f64; 49]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .mass_matrix_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.mass_matrix_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Gravity torques g(q).
@@ -3599,7 +3600,9 @@ impl Lwr4 {
         q: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
-        self.gravity_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 7];
+        self.gravity_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3612,7 +3615,8 @@ impl Lwr4 {
         &self,
         q: &[T; 7],
         base: &[T; 43],
-    ) -> [T; 7] {
+        out: &mut [T; 7],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
@@ -3691,19 +3695,17 @@ impl Lwr4 {
         let t102 = t63 * c0;
         let t103 = t49 * c0;
         let t104 = t41 * c1;
-        [T::ZERO, t99, t100, t101, t102, t103, t104]
+        *out = [T::ZERO, t99, t100, t101, t102, t103, t104];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn gravity_avx2(&self, q: &[f64; 7], base: &[f64; 43], out: &mut [f64; 7]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .gravity_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.gravity_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
@@ -3721,7 +3723,9 @@ impl Lwr4 {
         qd: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
-        self.coriolis_inlined::<T>(q, qd, base)
+        let mut out = [T::ZERO; 7];
+        self.coriolis_inlined::<T>(q, qd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3735,7 +3739,8 @@ impl Lwr4 {
         q: &[T; 7],
         qd: &[T; 7],
         base: &[T; 43],
-    ) -> [T; 7] {
+        out: &mut [T; 7],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let c0 = T::from_f64(0.4);
         let c1 = T::from_f64(0.8);
@@ -4148,7 +4153,7 @@ impl Lwr4 {
         let t541 = T::mul_add(-t527, c0, t539);
         let t542 = t0 * t537;
         let t544 = T::mul_add(t1, t538, t542);
-        [t544, t541, t500, t441, t373, t306, t248]
+        *out = [t544, t541, t500, t441, t373, t306, t248];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -4159,15 +4164,13 @@ impl Lwr4 {
         base: &[f64; 43],
         out: &mut [f64; 7],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .coriolis_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.coriolis_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base parameters from standard parameters: base = K * standard.
@@ -4181,7 +4184,9 @@ impl Lwr4 {
         &self,
         standard: &[T; 70],
     ) -> [T; 43] {
-        self.base_from_standard_inlined::<T>(standard)
+        let mut out = [T::ZERO; 43];
+        self.base_from_standard_inlined::<T>(standard, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -4193,7 +4198,8 @@ impl Lwr4 {
     fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 70],
-    ) -> [T; 43] {
+        out: &mut [T; 43],
+    ) {
         let [_, _, _, YY1, _, _, _, _, _, _, XX2, XY2, XZ2, YY2, YZ2, ZZ2, MX2, _, MZ2,
         _, XX3, XY3, XZ3, YY3, YZ3, ZZ3, MX3, MY3, MZ3, M3, XX4, XY4, XZ4, YY4, YZ4, ZZ4,
         MX4, MY4, MZ4, M4, XX5, XY5, XZ5, YY5, YZ5, ZZ5, MX5, MY5, MZ5, M5, XX6, XY6,
@@ -4208,7 +4214,7 @@ impl Lwr4 {
         let c6 = T::from_f64(0.8);
         let c7 = T::from_f64(0.16);
         let c8 = T::from_f64(0.4);
-        let mut out = [T::ZERO; 43];
+        *out = [T::ZERO; 43];
         out[2] = XZ2;
         out[6] = MX2;
         out[9] = XZ3;
@@ -4301,16 +4307,15 @@ impl Lwr4 {
         out[31] = t53;
         let t54 = -YZ6;
         out[32] = t54;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn base_from_standard_avx2(&self, standard: &[f64; 70], out: &mut [f64; 43]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_from_standard_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(::robid_runtime::fused::as_array(standard)),
+        self.base_from_standard_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(standard),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
 }
@@ -4357,7 +4362,7 @@ impl ::robid_runtime::Model for Lwr4 {
                     unsafe { Lwr4::standard_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Lwr4::standard_regressor::<f64>(self, q, qd, qdd);
+                Lwr4::standard_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -4376,7 +4381,7 @@ impl ::robid_runtime::Model for Lwr4 {
                     unsafe { Lwr4::base_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Lwr4::base_regressor::<f64>(self, q, qd, qdd);
+                Lwr4::base_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -4396,7 +4401,7 @@ impl ::robid_runtime::Model for Lwr4 {
                     unsafe { Lwr4::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Lwr4::inverse_dynamics::<f64>(self, q, qd, qdd, base);
+                Lwr4::inverse_dynamics_inlined::<f64>(self, q, qd, qdd, base, out);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -4414,7 +4419,7 @@ impl ::robid_runtime::Model for Lwr4 {
                     unsafe { Lwr4::mass_matrix_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Lwr4::mass_matrix::<f64>(self, q, base);
+                Lwr4::mass_matrix_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -4432,7 +4437,7 @@ impl ::robid_runtime::Model for Lwr4 {
                     unsafe { Lwr4::gravity_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Lwr4::gravity::<f64>(self, q, base);
+                Lwr4::gravity_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -4451,7 +4456,7 @@ impl ::robid_runtime::Model for Lwr4 {
                     unsafe { Lwr4::coriolis_avx2(self, q, qd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Lwr4::coriolis::<f64>(self, q, qd, base);
+                Lwr4::coriolis_inlined::<f64>(self, q, qd, base, out);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -4468,7 +4473,7 @@ impl ::robid_runtime::Model for Lwr4 {
                     unsafe { Lwr4::base_from_standard_avx2(self, standard, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Lwr4::base_from_standard::<f64>(self, standard);
+                Lwr4::base_from_standard_inlined::<f64>(self, standard, out);
             }
         }
         ::core::result::Result::Ok(())

@@ -192,7 +192,9 @@ impl Panda {
         qd: &[T; 7],
         qdd: &[T; 7],
     ) -> [T; 490] {
-        self.standard_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 490];
+        self.standard_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -206,7 +208,8 @@ impl Panda {
         q: &[T; 7],
         qd: &[T; 7],
         qdd: &[T; 7],
-    ) -> [T; 490] {
+        out: &mut [T; 490],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
@@ -218,7 +221,7 @@ impl Panda {
         let c6 = T::from_f64(2.0);
         let c7 = T::from_f64(0.00680625);
         let c8 = T::from_f64(0.007744);
-        let mut out = [T::ZERO; 490];
+        *out = [T::ZERO; 490];
         out[5] = qdd1;
         out[85] = qdd2;
         let ([t0, t12, t54, t94, t147, t173], [t1, t13, t55, t95, t148, t174]) = T::sin_cos_array([
@@ -1765,7 +1768,6 @@ impl Panda {
         out[480] = t1880;
         let t1881 = -t201;
         out[487] = t1881;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1776,15 +1778,13 @@ impl Panda {
         qdd: &[f64; 7],
         out: &mut [f64; 490],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .standard_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.standard_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
@@ -1802,7 +1802,9 @@ impl Panda {
         qd: &[T; 7],
         qdd: &[T; 7],
     ) -> [T; 301] {
-        self.base_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 301];
+        self.base_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -1816,7 +1818,8 @@ impl Panda {
         q: &[T; 7],
         qd: &[T; 7],
         qdd: &[T; 7],
-    ) -> [T; 301] {
+        out: &mut [T; 301],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6, qdd7] = *qdd;
         let c0 = T::from_f64(9.81);
@@ -1825,7 +1828,7 @@ impl Panda {
         let c3 = T::from_f64(0.384);
         let c4 = T::from_f64(0.088);
         let c5 = T::from_f64(-9.81);
-        let mut out = [T::ZERO; 301];
+        *out = [T::ZERO; 301];
         out[0] = qdd1;
         out[48] = qdd2;
         let ([t0, t2, t4, t6, t8, t10], [t1, t3, t5, t7, t9, t11]) = T::sin_cos_array([
@@ -2854,7 +2857,6 @@ impl Panda {
         out[257] = t1232;
         let t1233 = -t217;
         out[300] = t1233;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -2865,15 +2867,13 @@ impl Panda {
         qdd: &[f64; 7],
         out: &mut [f64; 301],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.base_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
@@ -2893,7 +2893,9 @@ impl Panda {
         qdd: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
-        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+        let mut out = [T::ZERO; 7];
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2908,7 +2910,8 @@ impl Panda {
         qd: &[T; 7],
         qdd: &[T; 7],
         base: &[T; 43],
-    ) -> [T; 7] {
+        out: &mut [T; 7],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.316);
@@ -3371,7 +3374,7 @@ impl Panda {
         let t608 = T::mul_add(t1, t601, t606);
         let t609 = T::mul_add(qdd1, ZZR1, -t608);
         let t610 = -t299;
-        [t609, t604, t555, t491, t419, t355, t610]
+        *out = [t609, t604, t555, t491, t419, t355, t610];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -3383,16 +3386,14 @@ impl Panda {
         base: &[f64; 43],
         out: &mut [f64; 7],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .inverse_dynamics_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.inverse_dynamics_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Joint-space inertia matrix M(q), rotor inertias included.
@@ -3408,7 +3409,9 @@ impl Panda {
         q: &[T; 7],
         base: &[T; 43],
     ) -> [T; 49] {
-        self.mass_matrix_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 49];
+        self.mass_matrix_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3421,7 +3424,8 @@ impl Panda {
         &self,
         q: &[T; 7],
         base: &[T; 43],
-    ) -> [T; 49] {
+        out: &mut [T; 49],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let [ZZR1, XXR2, XY2, XZ2, YZ2, ZZR2, _, _, XXR3, XYR3, XZ3, YZ3, ZZR3, MXR3,
         MYR3, XXR4, XYR4, XZ4, YZ4, ZZR4, MXR4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5,
@@ -3436,7 +3440,7 @@ impl Panda {
         let c6 = T::from_f64(0.768);
         let c7 = T::from_f64(0.165);
         let c8 = T::from_f64(0.632);
-        let mut out = [T::ZERO; 49];
+        *out = [T::ZERO; 49];
         out[48] = ZZ7;
         let ([t10, t8, t6, t4, t2, t0], [t11, t9, t7, t5, t3, t1]) = T::sin_cos_array([
             q7,
@@ -3761,19 +3765,16 @@ impl Panda {
         let t382 = T::mul_add(t1, t68, -t85);
         out[6] = t382;
         out[42] = t382;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn mass_matrix_avx2(&self, q: &[f64; 7], base: &[f64; 43], out: &mut [f64; 49]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .mass_matrix_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.mass_matrix_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Gravity torques g(q).
@@ -3789,7 +3790,9 @@ impl Panda {
         q: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
-        self.gravity_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 7];
+        self.gravity_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3802,7 +3805,8 @@ impl Panda {
         &self,
         q: &[T; 7],
         base: &[T; 43],
-    ) -> [T; 7] {
+        out: &mut [T; 7],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
@@ -3881,19 +3885,17 @@ impl Panda {
         let t102 = t63 * c0;
         let t103 = t49 * c0;
         let t104 = t41 * c1;
-        [T::ZERO, t99, t100, t101, t102, t103, t104]
+        *out = [T::ZERO, t99, t100, t101, t102, t103, t104];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn gravity_avx2(&self, q: &[f64; 7], base: &[f64; 43], out: &mut [f64; 7]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .gravity_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.gravity_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
@@ -3911,7 +3913,9 @@ impl Panda {
         qd: &[T; 7],
         base: &[T; 43],
     ) -> [T; 7] {
-        self.coriolis_inlined::<T>(q, qd, base)
+        let mut out = [T::ZERO; 7];
+        self.coriolis_inlined::<T>(q, qd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3925,7 +3929,8 @@ impl Panda {
         q: &[T; 7],
         qd: &[T; 7],
         base: &[T; 43],
-    ) -> [T; 7] {
+        out: &mut [T; 7],
+    ) {
         let [_, q2, q3, q4, q5, q6, q7] = *q;
         let c0 = T::from_f64(0.316);
         let c1 = T::from_f64(0.632);
@@ -4360,7 +4365,7 @@ impl Panda {
         let t573 = T::mul_add(t1, t567, t571);
         let t574 = -t573;
         let t575 = -t264;
-        [t574, t570, t529, t465, t393, t329, t575]
+        *out = [t574, t570, t529, t465, t393, t329, t575];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -4371,15 +4376,13 @@ impl Panda {
         base: &[f64; 43],
         out: &mut [f64; 7],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .coriolis_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.coriolis_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base parameters from standard parameters: base = K * standard.
@@ -4393,7 +4396,9 @@ impl Panda {
         &self,
         standard: &[T; 70],
     ) -> [T; 43] {
-        self.base_from_standard_inlined::<T>(standard)
+        let mut out = [T::ZERO; 43];
+        self.base_from_standard_inlined::<T>(standard, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -4405,7 +4410,8 @@ impl Panda {
     fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 70],
-    ) -> [T; 43] {
+        out: &mut [T; 43],
+    ) {
         let [_, _, _, _, _, ZZ1, _, _, _, _, XX2, XY2, XZ2, YY2, YZ2, ZZ2, MX2, MY2, _,
         _, XX3, XY3, XZ3, YY3, YZ3, ZZ3, MX3, MY3, MZ3, M3, XX4, XY4, XZ4, YY4, YZ4, ZZ4,
         MX4, MY4, MZ4, M4, XX5, XY5, XZ5, YY5, YZ5, ZZ5, MX5, MY5, MZ5, M5, XX6, XY6,
@@ -4425,7 +4431,7 @@ impl Panda {
         let c11 = T::from_f64(0.099856);
         let c12 = T::from_f64(0.10666225);
         let c13 = T::from_f64(0.316);
-        let mut out = [T::ZERO; 43];
+        *out = [T::ZERO; 43];
         out[2] = XY2;
         out[3] = XZ2;
         out[4] = YZ2;
@@ -4518,16 +4524,15 @@ impl Panda {
         out[1] = t62;
         let t63 = ZZ1 + YY2;
         out[0] = t63;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn base_from_standard_avx2(&self, standard: &[f64; 70], out: &mut [f64; 43]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_from_standard_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(::robid_runtime::fused::as_array(standard)),
+        self.base_from_standard_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(standard),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
 }
@@ -4574,7 +4579,7 @@ impl ::robid_runtime::Model for Panda {
                     unsafe { Panda::standard_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Panda::standard_regressor::<f64>(self, q, qd, qdd);
+                Panda::standard_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -4593,7 +4598,7 @@ impl ::robid_runtime::Model for Panda {
                     unsafe { Panda::base_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Panda::base_regressor::<f64>(self, q, qd, qdd);
+                Panda::base_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -4613,7 +4618,7 @@ impl ::robid_runtime::Model for Panda {
                     unsafe { Panda::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Panda::inverse_dynamics::<f64>(self, q, qd, qdd, base);
+                Panda::inverse_dynamics_inlined::<f64>(self, q, qd, qdd, base, out);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -4631,7 +4636,7 @@ impl ::robid_runtime::Model for Panda {
                     unsafe { Panda::mass_matrix_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Panda::mass_matrix::<f64>(self, q, base);
+                Panda::mass_matrix_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -4649,7 +4654,7 @@ impl ::robid_runtime::Model for Panda {
                     unsafe { Panda::gravity_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Panda::gravity::<f64>(self, q, base);
+                Panda::gravity_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -4668,7 +4673,7 @@ impl ::robid_runtime::Model for Panda {
                     unsafe { Panda::coriolis_avx2(self, q, qd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Panda::coriolis::<f64>(self, q, qd, base);
+                Panda::coriolis_inlined::<f64>(self, q, qd, base, out);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -4685,7 +4690,7 @@ impl ::robid_runtime::Model for Panda {
                     unsafe { Panda::base_from_standard_avx2(self, standard, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Panda::base_from_standard::<f64>(self, standard);
+                Panda::base_from_standard_inlined::<f64>(self, standard, out);
             }
         }
         ::core::result::Result::Ok(())

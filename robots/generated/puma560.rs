@@ -168,7 +168,9 @@ impl Puma560 {
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 360] {
-        self.standard_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 360];
+        self.standard_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -182,7 +184,8 @@ impl Puma560 {
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
-    ) -> [T; 360] {
+        out: &mut [T; 360],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
@@ -200,7 +203,7 @@ impl Puma560 {
         let c12 = T::from_f64(0.003046015);
         let c13 = T::from_f64(0.00876554);
         let c14 = T::from_f64(0.06479159);
-        let mut out = [T::ZERO; 360];
+        *out = [T::ZERO; 360];
         out[3] = qdd1;
         out[75] = qdd2;
         let ([t0, t11, t59, t114, t140], [t1, t12, t60, t115, t141]) = T::sin_cos_array([
@@ -1404,7 +1407,6 @@ impl Puma560 {
         out[356] = t1451;
         let t1452 = -t154;
         out[357] = t1452;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1415,15 +1417,13 @@ impl Puma560 {
         qdd: &[f64; 6],
         out: &mut [f64; 360],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .standard_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.standard_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
@@ -1441,7 +1441,9 @@ impl Puma560 {
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 216] {
-        self.base_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 216];
+        self.base_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -1455,7 +1457,8 @@ impl Puma560 {
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
-    ) -> [T; 216] {
+        out: &mut [T; 216],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(0.4318);
@@ -1463,7 +1466,7 @@ impl Puma560 {
         let c2 = T::from_f64(9.81);
         let c3 = T::from_f64(0.0203);
         let c4 = T::from_f64(-9.81);
-        let mut out = [T::ZERO; 216];
+        *out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
         let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
@@ -2114,7 +2117,6 @@ impl Puma560 {
         out[179] = t710;
         let t711 = -t165;
         out[215] = t711;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -2125,15 +2127,13 @@ impl Puma560 {
         qdd: &[f64; 6],
         out: &mut [f64; 216],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.base_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
@@ -2153,7 +2153,9 @@ impl Puma560 {
         qdd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+        let mut out = [T::ZERO; 6];
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2168,7 +2170,8 @@ impl Puma560 {
         qd: &[T; 6],
         qdd: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(0.4318);
         let c1 = T::from_f64(0.15005);
@@ -2543,7 +2546,7 @@ impl Puma560 {
         let t483 = T::mul_add(qdd1, ZZR1, t482);
         let t484 = T::mul_add(t52, t429, t483);
         let t485 = T::mul_add(t51, t426, t484);
-        [t485, t478, t431, t362, t298, t242]
+        *out = [t485, t478, t431, t362, t298, t242];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -2555,16 +2558,14 @@ impl Puma560 {
         base: &[f64; 36],
         out: &mut [f64; 6],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .inverse_dynamics_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.inverse_dynamics_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Joint-space inertia matrix M(q), rotor inertias included.
@@ -2580,7 +2581,9 @@ impl Puma560 {
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 36] {
-        self.mass_matrix_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 36];
+        self.mass_matrix_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2593,7 +2596,8 @@ impl Puma560 {
         &self,
         q: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [ZZR1, XXR2, XYR2, XZR2, YZ2, ZZR2, _, _, XXR3, XYR3, XZR3, YZR3, ZZR3, MXR3,
         MYR3, XXR4, XYR4, XZR4, YZR4, ZZR4, MX4, MYR4, XXR5, XYR5, XZR5, YZR5, ZZR5, MX5,
@@ -2605,7 +2609,7 @@ impl Puma560 {
         let c4 = T::from_f64(0.8636);
         let c5 = T::from_f64(0.0406);
         let c6 = T::from_f64(0.3001);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[35] = ZZ6;
         let ([t8, t6, t4, t2, t0], [t9, t7, t5, t3, t1]) = T::sin_cos_array([
             q6,
@@ -2853,19 +2857,16 @@ impl Puma560 {
         let t289 = -t21;
         out[29] = t289;
         out[34] = t289;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn mass_matrix_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 36]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .mass_matrix_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.mass_matrix_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Gravity torques g(q).
@@ -2881,7 +2882,9 @@ impl Puma560 {
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.gravity_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 6];
+        self.gravity_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2894,7 +2897,8 @@ impl Puma560 {
         &self,
         q: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
@@ -2951,19 +2955,17 @@ impl Puma560 {
         let t69 = t55 * c0;
         let t70 = t41 * c0;
         let t71 = t33 * c1;
-        [T::ZERO, t67, t68, t69, t70, t71]
+        *out = [T::ZERO, t67, t68, t69, t70, t71];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn gravity_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 6]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .gravity_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.gravity_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
@@ -2981,7 +2983,9 @@ impl Puma560 {
         qd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.coriolis_inlined::<T>(q, qd, base)
+        let mut out = [T::ZERO; 6];
+        self.coriolis_inlined::<T>(q, qd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2995,7 +2999,8 @@ impl Puma560 {
         q: &[T; 6],
         qd: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(0.8636);
         let c1 = T::from_f64(0.15005);
@@ -3324,7 +3329,7 @@ impl Puma560 {
         let t430 = T::mul_add(t1, t424, t428);
         let t431 = T::mul_add(t34, t381, t430);
         let t432 = T::mul_add(t33, t378, t431);
-        [t432, t427, t388, t322, t255, t197]
+        *out = [t432, t427, t388, t322, t255, t197];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -3335,15 +3340,13 @@ impl Puma560 {
         base: &[f64; 36],
         out: &mut [f64; 6],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .coriolis_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.coriolis_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base parameters from standard parameters: base = K * standard.
@@ -3357,7 +3360,9 @@ impl Puma560 {
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
-        self.base_from_standard_inlined::<T>(standard)
+        let mut out = [T::ZERO; 36];
+        self.base_from_standard_inlined::<T>(standard, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3369,7 +3374,8 @@ impl Puma560 {
     fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, _, _, YY1, _, _, _, _, _, _, XX2, XY2, XZ2, YY2, YZ2, ZZ2, MX2, MY2, MZ2,
         M2, XX3, XY3, XZ3, YY3, YZ3, ZZ3, MX3, MY3, MZ3, M3, XX4, XY4, XZ4, YY4, YZ4,
         ZZ4, MX4, MY4, MZ4, M4, XX5, XY5, XZ5, YY5, YZ5, ZZ5, MX5, MY5, MZ5, M5, XX6,
@@ -3386,7 +3392,7 @@ impl Puma560 {
         let c9 = T::from_f64(0.3001);
         let c10 = T::from_f64(0.06479159);
         let c11 = T::from_f64(0.2093783325);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[4] = YZ2;
         out[7] = MY2;
         out[17] = XY4;
@@ -3476,16 +3482,15 @@ impl Puma560 {
         out[24] = t66;
         let t67 = -YZ5;
         out[25] = t67;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn base_from_standard_avx2(&self, standard: &[f64; 60], out: &mut [f64; 36]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_from_standard_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(::robid_runtime::fused::as_array(standard)),
+        self.base_from_standard_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(standard),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
 }
@@ -3532,7 +3537,7 @@ impl ::robid_runtime::Model for Puma560 {
                     unsafe { Puma560::standard_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Puma560::standard_regressor::<f64>(self, q, qd, qdd);
+                Puma560::standard_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -3551,7 +3556,7 @@ impl ::robid_runtime::Model for Puma560 {
                     unsafe { Puma560::base_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Puma560::base_regressor::<f64>(self, q, qd, qdd);
+                Puma560::base_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -3573,7 +3578,7 @@ impl ::robid_runtime::Model for Puma560 {
                     };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Puma560::inverse_dynamics::<f64>(self, q, qd, qdd, base);
+                Puma560::inverse_dynamics_inlined::<f64>(self, q, qd, qdd, base, out);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -3591,7 +3596,7 @@ impl ::robid_runtime::Model for Puma560 {
                     unsafe { Puma560::mass_matrix_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Puma560::mass_matrix::<f64>(self, q, base);
+                Puma560::mass_matrix_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -3609,7 +3614,7 @@ impl ::robid_runtime::Model for Puma560 {
                     unsafe { Puma560::gravity_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Puma560::gravity::<f64>(self, q, base);
+                Puma560::gravity_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -3628,7 +3633,7 @@ impl ::robid_runtime::Model for Puma560 {
                     unsafe { Puma560::coriolis_avx2(self, q, qd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Puma560::coriolis::<f64>(self, q, qd, base);
+                Puma560::coriolis_inlined::<f64>(self, q, qd, base, out);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -3645,7 +3650,7 @@ impl ::robid_runtime::Model for Puma560 {
                     unsafe { Puma560::base_from_standard_avx2(self, standard, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Puma560::base_from_standard::<f64>(self, standard);
+                Puma560::base_from_standard_inlined::<f64>(self, standard, out);
             }
         }
         ::core::result::Result::Ok(())

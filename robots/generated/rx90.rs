@@ -178,7 +178,9 @@ impl Rx90 {
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 360] {
-        self.standard_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 360];
+        self.standard_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -192,14 +194,15 @@ impl Rx90 {
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
-    ) -> [T; 360] {
+        out: &mut [T; 360],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(2.0);
-        let mut out = [T::ZERO; 360];
+        *out = [T::ZERO; 360];
         out[5] = qdd1;
         out[75] = qdd2;
         let ([t0, t11, t55, t95, t121], [t1, t12, t56, t96, t122]) = T::sin_cos_array([
@@ -1187,7 +1190,6 @@ impl Rx90 {
         out[356] = t1139;
         let t1140 = -t135;
         out[357] = t1140;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1198,15 +1200,13 @@ impl Rx90 {
         qdd: &[f64; 6],
         out: &mut [f64; 360],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .standard_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.standard_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
@@ -1224,7 +1224,9 @@ impl Rx90 {
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 216] {
-        self.base_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 216];
+        self.base_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -1238,14 +1240,15 @@ impl Rx90 {
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
-    ) -> [T; 216] {
+        out: &mut [T; 216],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
-        let mut out = [T::ZERO; 216];
+        *out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
         let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
@@ -1860,7 +1863,6 @@ impl Rx90 {
         out[179] = t654;
         let t655 = -t152;
         out[215] = t655;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1871,15 +1873,13 @@ impl Rx90 {
         qdd: &[f64; 6],
         out: &mut [f64; 216],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.base_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
@@ -1899,7 +1899,9 @@ impl Rx90 {
         qdd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+        let mut out = [T::ZERO; 6];
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -1914,7 +1916,8 @@ impl Rx90 {
         qd: &[T; 6],
         qdd: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
@@ -2268,7 +2271,7 @@ impl Rx90 {
         let t459 = T::mul_add(qdd1, ZZR1, t458);
         let t460 = T::mul_add(t45, t412, t459);
         let t461 = T::mul_add(t44, t411, t460);
-        [t461, t454, t414, t349, t285, t229]
+        *out = [t461, t454, t414, t349, t285, t229];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -2280,16 +2283,14 @@ impl Rx90 {
         base: &[f64; 36],
         out: &mut [f64; 6],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .inverse_dynamics_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.inverse_dynamics_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Joint-space inertia matrix M(q), rotor inertias included.
@@ -2305,7 +2306,9 @@ impl Rx90 {
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 36] {
-        self.mass_matrix_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 36];
+        self.mass_matrix_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2318,7 +2321,8 @@ impl Rx90 {
         &self,
         q: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, _, _, XXR3, XY3, XZ3, YZ3, ZZR3, MX3,
         MYR3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
@@ -2326,7 +2330,7 @@ impl Rx90 {
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(2.0);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[35] = ZZ6;
         let ([t8, t6, t4, t2, t0], [t9, t7, t5, t3, t1]) = T::sin_cos_array([
             q6,
@@ -2548,19 +2552,16 @@ impl Rx90 {
         let t251 = -t21;
         out[29] = t251;
         out[34] = t251;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn mass_matrix_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 36]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .mass_matrix_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.mass_matrix_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Gravity torques g(q).
@@ -2576,7 +2577,9 @@ impl Rx90 {
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.gravity_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 6];
+        self.gravity_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2589,7 +2592,8 @@ impl Rx90 {
         &self,
         q: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
@@ -2646,19 +2650,17 @@ impl Rx90 {
         let t69 = t55 * c0;
         let t70 = t41 * c0;
         let t71 = t33 * c1;
-        [T::ZERO, t67, t68, t69, t70, t71]
+        *out = [T::ZERO, t67, t68, t69, t70, t71];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn gravity_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 6]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .gravity_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.gravity_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
@@ -2676,7 +2678,9 @@ impl Rx90 {
         qd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.coriolis_inlined::<T>(q, qd, base)
+        let mut out = [T::ZERO; 6];
+        self.coriolis_inlined::<T>(q, qd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2690,7 +2694,8 @@ impl Rx90 {
         q: &[T; 6],
         qd: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
@@ -3006,7 +3011,7 @@ impl Rx90 {
         let t414 = T::mul_add(t1, t409, t412);
         let t415 = T::mul_add(t33, t377, t414);
         let t416 = T::mul_add(t32, t371, t415);
-        [t416, t411, t379, t317, t250, t192]
+        *out = [t416, t411, t379, t317, t250, t192];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -3017,15 +3022,13 @@ impl Rx90 {
         base: &[f64; 36],
         out: &mut [f64; 6],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .coriolis_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.coriolis_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base parameters from standard parameters: base = K * standard.
@@ -3039,7 +3042,9 @@ impl Rx90 {
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
-        self.base_from_standard_inlined::<T>(standard)
+        let mut out = [T::ZERO; 36];
+        self.base_from_standard_inlined::<T>(standard, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3051,7 +3056,8 @@ impl Rx90 {
     fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, _, _, _, _, ZZ1, _, _, _, _, XX2, XY2, XZ2, YY2, YZ2, ZZ2, MX2, MY2, _,
         _, XX3, XY3, XZ3, YY3, YZ3, ZZ3, MX3, MY3, MZ3, M3, XX4, XY4, XZ4, YY4, YZ4, ZZ4,
         MX4, MY4, MZ4, M4, XX5, XY5, XZ5, YY5, YZ5, ZZ5, MX5, MY5, MZ5, M5, XX6, XY6,
@@ -3059,7 +3065,7 @@ impl Rx90 {
         let D3 = T::from_f64(self.D3);
         let RL4 = T::from_f64(self.RL4);
         let c0 = T::from_f64(2.0);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[2] = XY2;
         out[4] = YZ2;
         out[7] = MY2;
@@ -3127,16 +3133,15 @@ impl Rx90 {
         let t33 = t31 + YY3;
         let t34 = ZZ1 + t33;
         out[0] = t34;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn base_from_standard_avx2(&self, standard: &[f64; 60], out: &mut [f64; 36]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_from_standard_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(::robid_runtime::fused::as_array(standard)),
+        self.base_from_standard_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(standard),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
 }
@@ -3183,7 +3188,7 @@ impl ::robid_runtime::Model for Rx90 {
                     unsafe { Rx90::standard_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Rx90::standard_regressor::<f64>(self, q, qd, qdd);
+                Rx90::standard_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -3202,7 +3207,7 @@ impl ::robid_runtime::Model for Rx90 {
                     unsafe { Rx90::base_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Rx90::base_regressor::<f64>(self, q, qd, qdd);
+                Rx90::base_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -3222,7 +3227,7 @@ impl ::robid_runtime::Model for Rx90 {
                     unsafe { Rx90::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Rx90::inverse_dynamics::<f64>(self, q, qd, qdd, base);
+                Rx90::inverse_dynamics_inlined::<f64>(self, q, qd, qdd, base, out);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -3240,7 +3245,7 @@ impl ::robid_runtime::Model for Rx90 {
                     unsafe { Rx90::mass_matrix_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Rx90::mass_matrix::<f64>(self, q, base);
+                Rx90::mass_matrix_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -3258,7 +3263,7 @@ impl ::robid_runtime::Model for Rx90 {
                     unsafe { Rx90::gravity_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Rx90::gravity::<f64>(self, q, base);
+                Rx90::gravity_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -3277,7 +3282,7 @@ impl ::robid_runtime::Model for Rx90 {
                     unsafe { Rx90::coriolis_avx2(self, q, qd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Rx90::coriolis::<f64>(self, q, qd, base);
+                Rx90::coriolis_inlined::<f64>(self, q, qd, base, out);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -3294,7 +3299,7 @@ impl ::robid_runtime::Model for Rx90 {
                     unsafe { Rx90::base_from_standard_avx2(self, standard, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Rx90::base_from_standard::<f64>(self, standard);
+                Rx90::base_from_standard_inlined::<f64>(self, standard, out);
             }
         }
         ::core::result::Result::Ok(())

@@ -90,7 +90,9 @@ impl Stanford {
         qd: &[T; 3],
         qdd: &[T; 3],
     ) -> [T; 90] {
-        self.standard_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 90];
+        self.standard_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -104,13 +106,14 @@ impl Stanford {
         q: &[T; 3],
         qd: &[T; 3],
         qdd: &[T; 3],
-    ) -> [T; 90] {
+        out: &mut [T; 90],
+    ) {
         let [_, q2, q3] = *q;
         let [qdd1, qdd2, qdd3] = *qdd;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
         let c2 = T::from_f64(2.0);
-        let mut out = [T::ZERO; 90];
+        *out = [T::ZERO; 90];
         out[5] = qdd1;
         out[45] = qdd2;
         out[53] = qdd2;
@@ -254,7 +257,6 @@ impl Stanford {
         out[86] = t128;
         let t129 = -t77;
         out[88] = t129;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -265,15 +267,13 @@ impl Stanford {
         qdd: &[f64; 3],
         out: &mut [f64; 90],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .standard_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.standard_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
@@ -291,7 +291,9 @@ impl Stanford {
         qd: &[T; 3],
         qdd: &[T; 3],
     ) -> [T; 36] {
-        self.base_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 36];
+        self.base_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -305,13 +307,14 @@ impl Stanford {
         q: &[T; 3],
         qd: &[T; 3],
         qdd: &[T; 3],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, q2, q3] = *q;
         let [qdd1, qdd2, qdd3] = *qdd;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
         let c2 = T::from_f64(2.0);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[0] = qdd1;
         out[17] = qdd2;
         let ([t0], [t1]) = T::sin_cos_array([q2]);
@@ -425,7 +428,6 @@ impl Stanford {
         out[11] = t110;
         let t111 = t37 * q3;
         out[23] = t111;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -436,15 +438,13 @@ impl Stanford {
         qdd: &[f64; 3],
         out: &mut [f64; 36],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.base_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
@@ -464,7 +464,9 @@ impl Stanford {
         qdd: &[T; 3],
         base: &[T; 12],
     ) -> [T; 3] {
-        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+        let mut out = [T::ZERO; 3];
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -479,7 +481,8 @@ impl Stanford {
         qd: &[T; 3],
         qdd: &[T; 3],
         base: &[T; 12],
-    ) -> [T; 3] {
+        out: &mut [T; 3],
+    ) {
         let [_, q2, q3] = *q;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(9.81);
@@ -583,7 +586,7 @@ impl Stanford {
         let t130 = T::mul_add(t1, t121, t128);
         let t131 = T::mul_add(qdd1, ZZR1, -t130);
         let t133 = T::mul_add(-t127, c0, t131);
-        [t133, t123, t65]
+        *out = [t133, t123, t65];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -595,16 +598,14 @@ impl Stanford {
         base: &[f64; 12],
         out: &mut [f64; 3],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .inverse_dynamics_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.inverse_dynamics_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Joint-space inertia matrix M(q), rotor inertias included.
@@ -620,7 +621,9 @@ impl Stanford {
         q: &[T; 3],
         base: &[T; 12],
     ) -> [T; 9] {
-        self.mass_matrix_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 9];
+        self.mass_matrix_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -633,7 +636,8 @@ impl Stanford {
         &self,
         q: &[T; 3],
         base: &[T; 12],
-    ) -> [T; 9] {
+        out: &mut [T; 9],
+    ) {
         let [_, q2, q3] = *q;
         let [ZZR1, XXR2, XYR2, XZR2, YZR2, ZZR2, MX2, MY2, MX3, MY3, MZ3, M3] = *base;
         let c0 = T::from_f64(0.154);
@@ -667,19 +671,17 @@ impl Stanford {
         let t37 = t36 + ZZR1;
         let t38 = -t5;
         let t39 = -MX3;
-        [t37, t25, t38, t25, t15, t39, t38, t39, M3]
+        *out = [t37, t25, t38, t25, t15, t39, t38, t39, M3];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn mass_matrix_avx2(&self, q: &[f64; 3], base: &[f64; 12], out: &mut [f64; 9]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .mass_matrix_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.mass_matrix_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Gravity torques g(q).
@@ -695,7 +697,9 @@ impl Stanford {
         q: &[T; 3],
         base: &[T; 12],
     ) -> [T; 3] {
-        self.gravity_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 3];
+        self.gravity_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -708,7 +712,8 @@ impl Stanford {
         &self,
         q: &[T; 3],
         base: &[T; 12],
-    ) -> [T; 3] {
+        out: &mut [T; 3],
+    ) {
         let [_, q2, q3] = *q;
         let c0 = T::from_f64(9.81);
         let ([t0], [t1]) = T::sin_cos_array([q2]);
@@ -722,19 +727,17 @@ impl Stanford {
         let t10 = T::mul_add(t0, t5, -t9);
         let t11 = t10 * c0;
         let t12 = t3 * c0;
-        [T::ZERO, t11, t12]
+        *out = [T::ZERO, t11, t12];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn gravity_avx2(&self, q: &[f64; 3], base: &[f64; 12], out: &mut [f64; 3]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .gravity_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.gravity_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
@@ -752,7 +755,9 @@ impl Stanford {
         qd: &[T; 3],
         base: &[T; 12],
     ) -> [T; 3] {
-        self.coriolis_inlined::<T>(q, qd, base)
+        let mut out = [T::ZERO; 3];
+        self.coriolis_inlined::<T>(q, qd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -766,7 +771,8 @@ impl Stanford {
         q: &[T; 3],
         qd: &[T; 3],
         base: &[T; 12],
-    ) -> [T; 3] {
+        out: &mut [T; 3],
+    ) {
         let [_, q2, q3] = *q;
         let c0 = T::from_f64(0.154);
         let c1 = T::from_f64(2.0);
@@ -845,7 +851,7 @@ impl Stanford {
         let t100 = T::mul_add(t95, c0, t98);
         let t101 = -t100;
         let t102 = -t42;
-        [t101, t92, t102]
+        *out = [t101, t92, t102];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -856,15 +862,13 @@ impl Stanford {
         base: &[f64; 12],
         out: &mut [f64; 3],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .coriolis_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.coriolis_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base parameters from standard parameters: base = K * standard.
@@ -878,7 +882,9 @@ impl Stanford {
         &self,
         standard: &[T; 30],
     ) -> [T; 12] {
-        self.base_from_standard_inlined::<T>(standard)
+        let mut out = [T::ZERO; 12];
+        self.base_from_standard_inlined::<T>(standard, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -890,7 +896,8 @@ impl Stanford {
     fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 30],
-    ) -> [T; 12] {
+        out: &mut [T; 12],
+    ) {
         let [_, _, _, _, _, ZZ1, _, _, _, _, XX2, XY2, XZ2, YY2, YZ2, ZZ2, MX2, MY2, MZ2,
         M2, XX3, XY3, XZ3, YY3, YZ3, ZZ3, MX3, MY3, MZ3, M3] = *standard;
         let c0 = T::from_f64(0.308);
@@ -906,16 +913,16 @@ impl Stanford {
         let t9 = ZZ1 + t4;
         let t10 = T::mul_add(M2, c1, t7);
         let t11 = t9 + t10;
-        [t11, t6, t0, t1, t2, t3, MX2, MY2, MX3, MY3, MZ3, M3]
+        *out = [t11, t6, t0, t1, t2, t3, MX2, MY2, MX3, MY3, MZ3, M3];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn base_from_standard_avx2(&self, standard: &[f64; 30], out: &mut [f64; 12]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_from_standard_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(::robid_runtime::fused::as_array(standard)),
+        self.base_from_standard_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(standard),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
 }
@@ -962,7 +969,7 @@ impl ::robid_runtime::Model for Stanford {
                     unsafe { Stanford::standard_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Stanford::standard_regressor::<f64>(self, q, qd, qdd);
+                Stanford::standard_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -981,7 +988,7 @@ impl ::robid_runtime::Model for Stanford {
                     unsafe { Stanford::base_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Stanford::base_regressor::<f64>(self, q, qd, qdd);
+                Stanford::base_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -1003,7 +1010,7 @@ impl ::robid_runtime::Model for Stanford {
                     };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Stanford::inverse_dynamics::<f64>(self, q, qd, qdd, base);
+                Stanford::inverse_dynamics_inlined::<f64>(self, q, qd, qdd, base, out);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -1021,7 +1028,7 @@ impl ::robid_runtime::Model for Stanford {
                     unsafe { Stanford::mass_matrix_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Stanford::mass_matrix::<f64>(self, q, base);
+                Stanford::mass_matrix_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -1039,7 +1046,7 @@ impl ::robid_runtime::Model for Stanford {
                     unsafe { Stanford::gravity_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Stanford::gravity::<f64>(self, q, base);
+                Stanford::gravity_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -1058,7 +1065,7 @@ impl ::robid_runtime::Model for Stanford {
                     unsafe { Stanford::coriolis_avx2(self, q, qd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Stanford::coriolis::<f64>(self, q, qd, base);
+                Stanford::coriolis_inlined::<f64>(self, q, qd, base, out);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -1075,7 +1082,7 @@ impl ::robid_runtime::Model for Stanford {
                     unsafe { Stanford::base_from_standard_avx2(self, standard, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Stanford::base_from_standard::<f64>(self, standard);
+                Stanford::base_from_standard_inlined::<f64>(self, standard, out);
             }
         }
         ::core::result::Result::Ok(())

@@ -168,7 +168,9 @@ impl Tx40 {
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 360] {
-        self.standard_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 360];
+        self.standard_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -182,7 +184,8 @@ impl Tx40 {
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
-    ) -> [T; 360] {
+        out: &mut [T; 360],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
@@ -191,7 +194,7 @@ impl Tx40 {
         let c3 = T::from_f64(2.0);
         let c4 = T::from_f64(0.007875);
         let c5 = T::from_f64(0.050625);
-        let mut out = [T::ZERO; 360];
+        *out = [T::ZERO; 360];
         out[5] = qdd1;
         out[75] = qdd2;
         let ([t1, t12, t63, t104, t130], [t0, t11, t64, t105, t131]) = T::sin_cos_array([
@@ -1284,7 +1287,6 @@ impl Tx40 {
         out[296] = t1281;
         let t1282 = -t656;
         out[353] = t1282;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1295,15 +1297,13 @@ impl Tx40 {
         qdd: &[f64; 6],
         out: &mut [f64; 360],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .standard_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.standard_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
@@ -1321,7 +1321,9 @@ impl Tx40 {
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 216] {
-        self.base_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 216];
+        self.base_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -1335,14 +1337,15 @@ impl Tx40 {
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
-    ) -> [T; 216] {
+        out: &mut [T; 216],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(0.225);
         let c1 = T::from_f64(0.035);
         let c2 = T::from_f64(9.81);
         let c3 = T::from_f64(-9.81);
-        let mut out = [T::ZERO; 216];
+        *out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
         let ([t1, t3, t4, t6, t8], [t0, t2, t5, t7, t9]) = T::sin_cos_array([
@@ -1985,7 +1988,6 @@ impl Tx40 {
         out[143] = t701;
         let t702 = t8 * t122;
         out[179] = t702;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1996,15 +1998,13 @@ impl Tx40 {
         qdd: &[f64; 6],
         out: &mut [f64; 216],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.base_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
@@ -2024,7 +2024,9 @@ impl Tx40 {
         qdd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+        let mut out = [T::ZERO; 6];
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2039,7 +2041,8 @@ impl Tx40 {
         qd: &[T; 6],
         qdd: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(0.225);
         let c1 = T::from_f64(0.035);
@@ -2405,7 +2408,7 @@ impl Tx40 {
         let t474 = T::mul_add(t52, t418, t473);
         let t475 = T::mul_add(-t51, t417, t474);
         let t476 = -t236;
-        [t475, t468, t421, t356, t292, t476]
+        *out = [t475, t468, t421, t356, t292, t476];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -2417,16 +2420,14 @@ impl Tx40 {
         base: &[f64; 36],
         out: &mut [f64; 6],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .inverse_dynamics_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.inverse_dynamics_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Joint-space inertia matrix M(q), rotor inertias included.
@@ -2442,7 +2443,9 @@ impl Tx40 {
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 36] {
-        self.mass_matrix_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 36];
+        self.mass_matrix_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2455,7 +2458,8 @@ impl Tx40 {
         &self,
         q: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, _, _, XXR3, XY3, XZ3, YZ3, ZZR3, MX3,
         MYR3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
@@ -2465,7 +2469,7 @@ impl Tx40 {
         let c2 = T::from_f64(2.0);
         let c3 = T::from_f64(0.45);
         let c4 = T::from_f64(0.07);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[35] = ZZ6;
         let ([t8, t6, t4, t3, t1], [t9, t7, t5, t2, t0]) = T::sin_cos_array([
             q6,
@@ -2706,19 +2710,16 @@ impl Tx40 {
         let t279 = -t21;
         out[29] = t279;
         out[34] = t279;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn mass_matrix_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 36]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .mass_matrix_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.mass_matrix_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Gravity torques g(q).
@@ -2734,7 +2735,9 @@ impl Tx40 {
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.gravity_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 6];
+        self.gravity_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2747,7 +2750,8 @@ impl Tx40 {
         &self,
         q: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(9.81);
         let ([t1, t3, t4, t6, t8], [t0, t2, t5, t7, t9]) = T::sin_cos_array([
@@ -2803,19 +2807,17 @@ impl Tx40 {
         let t69 = t55 * c0;
         let t70 = t41 * c0;
         let t71 = t33 * c0;
-        [T::ZERO, t67, t68, t69, t70, t71]
+        *out = [T::ZERO, t67, t68, t69, t70, t71];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn gravity_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 6]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .gravity_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.gravity_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
@@ -2833,7 +2835,9 @@ impl Tx40 {
         qd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.coriolis_inlined::<T>(q, qd, base)
+        let mut out = [T::ZERO; 6];
+        self.coriolis_inlined::<T>(q, qd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2847,7 +2851,8 @@ impl Tx40 {
         q: &[T; 6],
         qd: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(0.45);
         let c1 = T::from_f64(0.035);
@@ -3173,7 +3178,7 @@ impl Tx40 {
         let t425 = T::mul_add(t34, t376, -t424);
         let t426 = T::mul_add(-t33, t375, t425);
         let t427 = -t193;
-        [t426, t421, t382, t320, t251, t427]
+        *out = [t426, t421, t382, t320, t251, t427];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -3184,15 +3189,13 @@ impl Tx40 {
         base: &[f64; 36],
         out: &mut [f64; 6],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .coriolis_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.coriolis_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base parameters from standard parameters: base = K * standard.
@@ -3206,7 +3209,9 @@ impl Tx40 {
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
-        self.base_from_standard_inlined::<T>(standard)
+        let mut out = [T::ZERO; 36];
+        self.base_from_standard_inlined::<T>(standard, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3218,7 +3223,8 @@ impl Tx40 {
     fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, _, _, _, _, ZZ1, _, _, _, _, XX2, XY2, XZ2, YY2, YZ2, ZZ2, MX2, MY2, _,
         _, XX3, XY3, XZ3, YY3, YZ3, ZZ3, MX3, MY3, MZ3, M3, XX4, XY4, XZ4, YY4, YZ4, ZZ4,
         MX4, MY4, MZ4, M4, XX5, XY5, XZ5, YY5, YZ5, ZZ5, MX5, MY5, MZ5, M5, XX6, XY6,
@@ -3229,7 +3235,7 @@ impl Tx40 {
         let c3 = T::from_f64(0.07);
         let c4 = T::from_f64(0.007875);
         let c5 = T::from_f64(0.05185);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[2] = XY2;
         out[4] = YZ2;
         out[7] = MY2;
@@ -3298,16 +3304,15 @@ impl Tx40 {
         let t36 = T::mul_add(MZ3, c3, t35);
         let t37 = t34 + t36;
         out[0] = t37;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn base_from_standard_avx2(&self, standard: &[f64; 60], out: &mut [f64; 36]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_from_standard_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(::robid_runtime::fused::as_array(standard)),
+        self.base_from_standard_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(standard),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
 }
@@ -3354,7 +3359,7 @@ impl ::robid_runtime::Model for Tx40 {
                     unsafe { Tx40::standard_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Tx40::standard_regressor::<f64>(self, q, qd, qdd);
+                Tx40::standard_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -3373,7 +3378,7 @@ impl ::robid_runtime::Model for Tx40 {
                     unsafe { Tx40::base_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Tx40::base_regressor::<f64>(self, q, qd, qdd);
+                Tx40::base_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -3393,7 +3398,7 @@ impl ::robid_runtime::Model for Tx40 {
                     unsafe { Tx40::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Tx40::inverse_dynamics::<f64>(self, q, qd, qdd, base);
+                Tx40::inverse_dynamics_inlined::<f64>(self, q, qd, qdd, base, out);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -3411,7 +3416,7 @@ impl ::robid_runtime::Model for Tx40 {
                     unsafe { Tx40::mass_matrix_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Tx40::mass_matrix::<f64>(self, q, base);
+                Tx40::mass_matrix_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -3429,7 +3434,7 @@ impl ::robid_runtime::Model for Tx40 {
                     unsafe { Tx40::gravity_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Tx40::gravity::<f64>(self, q, base);
+                Tx40::gravity_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -3448,7 +3453,7 @@ impl ::robid_runtime::Model for Tx40 {
                     unsafe { Tx40::coriolis_avx2(self, q, qd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Tx40::coriolis::<f64>(self, q, qd, base);
+                Tx40::coriolis_inlined::<f64>(self, q, qd, base, out);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -3465,7 +3470,7 @@ impl ::robid_runtime::Model for Tx40 {
                     unsafe { Tx40::base_from_standard_avx2(self, standard, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Tx40::base_from_standard::<f64>(self, standard);
+                Tx40::base_from_standard_inlined::<f64>(self, standard, out);
             }
         }
         ::core::result::Result::Ok(())

@@ -168,7 +168,9 @@ impl Ur5e {
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 360] {
-        self.standard_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 360];
+        self.standard_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -182,7 +184,8 @@ impl Ur5e {
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
-    ) -> [T; 360] {
+        out: &mut [T; 360],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
@@ -198,7 +201,7 @@ impl Ur5e {
         let c10 = T::from_f64(0.166685);
         let c11 = T::from_f64(0.33337);
         let c12 = T::from_f64(0.15382084);
-        let mut out = [T::ZERO; 360];
+        *out = [T::ZERO; 360];
         out[5] = qdd1;
         out[75] = qdd2;
         let ([t0, t11, t54, t105, t145], [t1, t12, t55, t106, t146]) = T::sin_cos_array([
@@ -1291,7 +1294,6 @@ impl Ur5e {
         out[356] = t1307;
         let t1308 = -t173;
         out[357] = t1308;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1302,15 +1304,13 @@ impl Ur5e {
         qdd: &[f64; 6],
         out: &mut [f64; 360],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .standard_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.standard_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base regressor Y_b(q, qd, qdd): tau = Y_b * base.
@@ -1328,7 +1328,9 @@ impl Ur5e {
         qd: &[T; 6],
         qdd: &[T; 6],
     ) -> [T; 216] {
-        self.base_regressor_inlined::<T>(q, qd, qdd)
+        let mut out = [T::ZERO; 216];
+        self.base_regressor_inlined::<T>(q, qd, qdd, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -1342,7 +1344,8 @@ impl Ur5e {
         q: &[T; 6],
         qd: &[T; 6],
         qdd: &[T; 6],
-    ) -> [T; 216] {
+        out: &mut [T; 216],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [qdd1, qdd2, qdd3, qdd4, qdd5, qdd6] = *qdd;
         let c0 = T::from_f64(9.81);
@@ -1352,7 +1355,7 @@ impl Ur5e {
         let c4 = T::from_f64(0.0997);
         let c5 = T::from_f64(0.0996);
         let c6 = T::from_f64(-9.81);
-        let mut out = [T::ZERO; 216];
+        *out = [T::ZERO; 216];
         out[0] = qdd1;
         out[41] = qdd2;
         let ([t0, t2, t4, t6, t8], [t1, t3, t5, t7, t9]) = T::sin_cos_array([
@@ -1947,7 +1950,6 @@ impl Ur5e {
         out[179] = t628;
         let t629 = -t165;
         out[215] = t629;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -1958,15 +1960,13 @@ impl Ur5e {
         qdd: &[f64; 6],
         out: &mut [f64; 216],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_regressor_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                ),
+        self.base_regressor_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Inverse dynamics with base parameters (customised Newton-Euler): joint torques, drive terms included.
@@ -1986,7 +1986,9 @@ impl Ur5e {
         qdd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base)
+        let mut out = [T::ZERO; 6];
+        self.inverse_dynamics_inlined::<T>(q, qd, qdd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2001,7 +2003,8 @@ impl Ur5e {
         qd: &[T; 6],
         qdd: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(0.425);
@@ -2368,7 +2371,7 @@ impl Ur5e {
         let t471 = T::mul_add(t44, t421, t469);
         let t472 = T::mul_add(t43, t420, t471);
         let t473 = t470 + t472;
-        [t473, t464, t424, t361, t296, t240]
+        *out = [t473, t464, t424, t361, t296, t240];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -2380,16 +2383,14 @@ impl Ur5e {
         base: &[f64; 36],
         out: &mut [f64; 6],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .inverse_dynamics_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(qdd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.inverse_dynamics_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(qdd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Joint-space inertia matrix M(q), rotor inertias included.
@@ -2405,7 +2406,9 @@ impl Ur5e {
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 36] {
-        self.mass_matrix_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 36];
+        self.mass_matrix_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2418,7 +2421,8 @@ impl Ur5e {
         &self,
         q: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let [ZZR1, XXR2, XY2, XZR2, YZ2, ZZR2, _, _, XXR3, XY3, XZR3, YZ3, ZZR3, MXR3,
         MY3, XXR4, XY4, XZ4, YZ4, ZZR4, MX4, MYR4, XXR5, XY5, XZ5, YZ5, ZZR5, MX5, MYR5,
@@ -2433,7 +2437,7 @@ impl Ur5e {
         let c7 = T::from_f64(0.2666);
         let c8 = T::from_f64(0.7844);
         let c9 = T::from_f64(0.85);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[35] = ZZ6;
         let ([t8, t6, t4, t2, t0], [t9, t7, t5, t3, t1]) = T::sin_cos_array([
             q6,
@@ -2671,19 +2675,16 @@ impl Ur5e {
         let t280 = T::mul_add(t262, t273, ZZR1);
         let t281 = t279 + t280;
         out[0] = t281;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn mass_matrix_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 36]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .mass_matrix_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.mass_matrix_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Gravity torques g(q).
@@ -2699,7 +2700,9 @@ impl Ur5e {
         q: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.gravity_inlined::<T>(q, base)
+        let mut out = [T::ZERO; 6];
+        self.gravity_inlined::<T>(q, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2712,7 +2715,8 @@ impl Ur5e {
         &self,
         q: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(9.81);
         let c1 = T::from_f64(-9.81);
@@ -2763,19 +2767,17 @@ impl Ur5e {
         let t59 = t48 * c0;
         let t60 = t41 * c1;
         let t61 = t33 * c0;
-        [T::ZERO, t57, t58, t59, t60, t61]
+        *out = [T::ZERO, t57, t58, t59, t60, t61];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn gravity_avx2(&self, q: &[f64; 6], base: &[f64; 36], out: &mut [f64; 6]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .gravity_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.gravity_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Coriolis and centripetal torques c(q, qd) (no gravity, no friction).
@@ -2793,7 +2795,9 @@ impl Ur5e {
         qd: &[T; 6],
         base: &[T; 36],
     ) -> [T; 6] {
-        self.coriolis_inlined::<T>(q, qd, base)
+        let mut out = [T::ZERO; 6];
+        self.coriolis_inlined::<T>(q, qd, base, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -2807,7 +2811,8 @@ impl Ur5e {
         q: &[T; 6],
         qd: &[T; 6],
         base: &[T; 36],
-    ) -> [T; 6] {
+        out: &mut [T; 6],
+    ) {
         let [_, q2, q3, q4, q5, q6] = *q;
         let c0 = T::from_f64(0.7844);
         let c1 = T::from_f64(0.1333);
@@ -3120,7 +3125,7 @@ impl Ur5e {
         let t409 = T::mul_add(t30, t369, t407);
         let t410 = T::mul_add(t29, t368, t409);
         let t411 = t408 + t410;
-        [t411, t404, t372, t312, t247, t189]
+        *out = [t411, t404, t372, t312, t247, t189];
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
@@ -3131,15 +3136,13 @@ impl Ur5e {
         base: &[f64; 36],
         out: &mut [f64; 6],
     ) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .coriolis_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(
-                    ::robid_runtime::fused::as_array(q),
-                    ::robid_runtime::fused::as_array(qd),
-                    ::robid_runtime::fused::as_array(base),
-                ),
+        self.coriolis_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(q),
+            ::robid_runtime::fused::as_array(qd),
+            ::robid_runtime::fused::as_array(base),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
     /// Base parameters from standard parameters: base = K * standard.
@@ -3153,7 +3156,9 @@ impl Ur5e {
         &self,
         standard: &[T; 60],
     ) -> [T; 36] {
-        self.base_from_standard_inlined::<T>(standard)
+        let mut out = [T::ZERO; 36];
+        self.base_from_standard_inlined::<T>(standard, &mut out);
+        out
     }
     #[inline(always)]
     #[allow(
@@ -3165,7 +3170,8 @@ impl Ur5e {
     fn base_from_standard_inlined<T: ::robid_runtime::Real>(
         &self,
         standard: &[T; 60],
-    ) -> [T; 36] {
+        out: &mut [T; 36],
+    ) {
         let [_, _, _, _, _, ZZ1, _, _, _, _, XX2, XY2, XZ2, YY2, YZ2, ZZ2, MX2, MY2, _,
         _, XX3, XY3, XZ3, YY3, YZ3, ZZ3, MX3, MY3, MZ3, M3, XX4, XY4, XZ4, YY4, YZ4, ZZ4,
         MX4, MY4, MZ4, M4, XX5, XY5, XZ5, YY5, YZ5, ZZ5, MX5, MY5, MZ5, M5, XX6, XY6,
@@ -3184,7 +3190,7 @@ impl Ur5e {
         let c11 = T::from_f64(0.425);
         let c12 = T::from_f64(0.0566525);
         let c13 = T::from_f64(0.35221473);
-        let mut out = [T::ZERO; 36];
+        *out = [T::ZERO; 36];
         out[2] = XY2;
         out[4] = YZ2;
         out[7] = MY2;
@@ -3263,16 +3269,15 @@ impl Ur5e {
         let t52 = t50 + t51;
         let t53 = t49 + t52;
         out[0] = t53;
-        out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn base_from_standard_avx2(&self, standard: &[f64; 60], out: &mut [f64; 36]) {
-        *out = ::robid_runtime::fused::into_array(
-            self
-                .base_from_standard_inlined::<
-                    ::robid_runtime::fused::Fused,
-                >(::robid_runtime::fused::as_array(standard)),
+        self.base_from_standard_inlined::<
+                ::robid_runtime::fused::Fused,
+            >(
+            ::robid_runtime::fused::as_array(standard),
+            ::robid_runtime::fused::as_array_mut(out),
         );
     }
 }
@@ -3319,7 +3324,7 @@ impl ::robid_runtime::Model for Ur5e {
                     unsafe { Ur5e::standard_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Ur5e::standard_regressor::<f64>(self, q, qd, qdd);
+                Ur5e::standard_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::BaseRegressor => {
                 let [q, qd, qdd] = inputs else {
@@ -3338,7 +3343,7 @@ impl ::robid_runtime::Model for Ur5e {
                     unsafe { Ur5e::base_regressor_avx2(self, q, qd, qdd, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Ur5e::base_regressor::<f64>(self, q, qd, qdd);
+                Ur5e::base_regressor_inlined::<f64>(self, q, qd, qdd, out);
             }
             ::robid_runtime::model::ProgramKind::InverseDynamics => {
                 let [q, qd, qdd, base] = inputs else {
@@ -3358,7 +3363,7 @@ impl ::robid_runtime::Model for Ur5e {
                     unsafe { Ur5e::inverse_dynamics_avx2(self, q, qd, qdd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Ur5e::inverse_dynamics::<f64>(self, q, qd, qdd, base);
+                Ur5e::inverse_dynamics_inlined::<f64>(self, q, qd, qdd, base, out);
             }
             ::robid_runtime::model::ProgramKind::MassMatrix => {
                 let [q, base] = inputs else {
@@ -3376,7 +3381,7 @@ impl ::robid_runtime::Model for Ur5e {
                     unsafe { Ur5e::mass_matrix_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Ur5e::mass_matrix::<f64>(self, q, base);
+                Ur5e::mass_matrix_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Gravity => {
                 let [q, base] = inputs else {
@@ -3394,7 +3399,7 @@ impl ::robid_runtime::Model for Ur5e {
                     unsafe { Ur5e::gravity_avx2(self, q, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Ur5e::gravity::<f64>(self, q, base);
+                Ur5e::gravity_inlined::<f64>(self, q, base, out);
             }
             ::robid_runtime::model::ProgramKind::Coriolis => {
                 let [q, qd, base] = inputs else {
@@ -3413,7 +3418,7 @@ impl ::robid_runtime::Model for Ur5e {
                     unsafe { Ur5e::coriolis_avx2(self, q, qd, base, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Ur5e::coriolis::<f64>(self, q, qd, base);
+                Ur5e::coriolis_inlined::<f64>(self, q, qd, base, out);
             }
             ::robid_runtime::model::ProgramKind::BaseFromStandard => {
                 let [standard] = inputs else {
@@ -3430,7 +3435,7 @@ impl ::robid_runtime::Model for Ur5e {
                     unsafe { Ur5e::base_from_standard_avx2(self, standard, out) };
                     return ::core::result::Result::Ok(());
                 }
-                *out = Ur5e::base_from_standard::<f64>(self, standard);
+                Ur5e::base_from_standard_inlined::<f64>(self, standard, out);
             }
         }
         ::core::result::Result::Ok(())

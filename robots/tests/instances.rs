@@ -2,6 +2,7 @@
 //! `f64` code (`robid_runtime::fused`): the two agree to rounding, and on a processor with
 //! AVX2 and FMA they are two computations (some value differs in its last bits), so the
 //! instances are really called. Without AVX2 both are the plain code, equal to the bit.
+//! Either writes every entry of the output, the zeros too.
 //!
 //! A test binary of its own: `fused::set_enabled` is for the whole process, and no other
 //! test may see it switch.
@@ -35,9 +36,11 @@ fn avx2_instances_agree_with_the_plain_code() {
                     })
                     .collect();
                 let inputs: Vec<&[f64]> = inputs.iter().map(Vec::as_slice).collect();
+                // NaN before: every entry must be written, zeros included (the outputs'
+                // slices a caller passes hold what was there)
                 let mut out = [
-                    vec![0.0; program.output.size.len(sizes)],
-                    vec![0.0; program.output.size.len(sizes)],
+                    vec![f64::NAN; program.output.size.len(sizes)],
+                    vec![f64::NAN; program.output.size.len(sizes)],
                 ];
                 for (enabled, out) in [true, false].into_iter().zip(&mut out) {
                     fused::set_enabled(enabled);
@@ -48,6 +51,7 @@ fn avx2_instances_agree_with_the_plain_code() {
                 let scale = plain.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
                 for (i, (a, b)) in instance.iter().zip(plain).enumerate() {
                     let what = format!("{} {} [{i}]", reference.name, program.name);
+                    assert!(a.is_finite() && b.is_finite(), "{what}: {a} vs {b}");
                     if avx2 {
                         assert!((a - b).abs() <= 1e-12 * scale, "{what}: {a} vs {b}");
                     } else {

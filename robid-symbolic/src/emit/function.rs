@@ -14,10 +14,13 @@ pub(crate) const GEOMETRY: &str = "geometry";
 
 /// `pub fn name<T: Real>(&self, q: &[T; 6], ...) -> [T; N]` computing `program`
 /// (its first output group), with `doc` as the first lines of its doc comment, and its
-/// two private instances: `name_inlined`, the body, which the public function and the
-/// other instance inline, and for x86-64 `name_avx2`, the body for
+/// two private instances: `name_inlined`, the body, which writes the results into the
+/// array it is given and which the public function and the other instance inline, and
+/// for x86-64 `name_avx2`, the body for
 /// `robid_runtime::fused::Fused` compiled with AVX2 and FMA, which `Model::run` calls
-/// when `robid_runtime::fused::dispatch()` allows.
+/// when `robid_runtime::fused::dispatch()` allows, writing straight into the caller's
+/// array (returned by value and copied, a base regressor's 301 values were copied once
+/// more per call).
 ///
 /// Fails, instead of emitting code that does not compile, when a name is not
 /// an identifier, a constant is not finite or an operand reads a value that
@@ -237,16 +240,15 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
     lets.extend(in_role(Role::InOrder));
     let body = if eager {
         quote! {
-            let mut out = [T::ZERO; #out_len];
+            *out = [T::ZERO; #out_len];
             #(#early)*
             #(#lets)*
-            out
         }
     } else {
         let results = output.values.iter().map(|&v| result_tokens(program, v));
         quote! {
             #(#lets)*
-            [#(#results),*]
+            *out = [#(#results),*];
         }
     };
     // the constants are the description's values as literals (cos(pi/4) is written as
@@ -258,7 +260,9 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
             &self,
             #(#arg_names: &[T; #lens]),*
         ) -> [T; #out_len] {
-            self.#inlined::<T>(#(#arg_names),*)
+            let mut out = [T::ZERO; #out_len];
+            self.#inlined::<T>(#(#arg_names,)* &mut out);
+            out
         }
 
         #[inline(always)]
@@ -268,7 +272,7 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
             clippy::unreadable_literal,
             clippy::approx_constant
         )]
-        fn #inlined<T: ::robid_runtime::Real>(&self, #(#args),*) -> [T; #out_len] {
+        fn #inlined<T: ::robid_runtime::Real>(&self, #(#args,)* out: &mut [T; #out_len]) {
             #(#bindings)*
             #(#constants)*
             #body
@@ -277,10 +281,9 @@ pub fn function_tokens(name: &str, doc: &str, program: &Program) -> Result<Token
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx2,fma")]
         fn #avx2(&self, #(#arg_names: &[f64; #lens],)* out: &mut [f64; #out_len]) {
-            *out = ::robid_runtime::fused::into_array(
-                self.#inlined::<::robid_runtime::fused::Fused>(
-                    #(::robid_runtime::fused::as_array(#arg_names)),*
-                ),
+            self.#inlined::<::robid_runtime::fused::Fused>(
+                #(::robid_runtime::fused::as_array(#arg_names),)*
+                ::robid_runtime::fused::as_array_mut(out),
             );
         }
     })

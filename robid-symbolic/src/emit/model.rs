@@ -4,8 +4,8 @@
 //! ([`PROGRAMS`](robid_core::PROGRAMS)): it checks the number of inputs,
 //! turns each slice into the fixed-size array of the generic function (a wrong length
 //! is a `LengthError`, returned before the output is touched), calls it with `f64` (or,
-//! on a processor with AVX2 and FMA, its instance for them: `robid_runtime::fused`) and
-//! stores the result.
+//! on a processor with AVX2 and FMA, its instance for them: `robid_runtime::fused`),
+//! which writes the result straight into the output.
 
 use super::function::instance_names;
 use proc_macro2::{Ident, TokenStream};
@@ -17,7 +17,7 @@ use robid_core::{PROGRAMS, ProgramInfo};
 fn arm(ty: &Ident, p: &ProgramInfo) -> TokenStream {
     let kind = format_ident!("{}", format!("{:?}", p.kind));
     let function = format_ident!("{}", p.name);
-    let (_, avx2) = instance_names(&function);
+    let (inlined, avx2) = instance_names(&function);
     let count = p.inputs.len();
     let names: Vec<Ident> = p
         .inputs
@@ -43,7 +43,7 @@ fn arm(ty: &Ident, p: &ProgramInfo) -> TokenStream {
                 unsafe { #ty::#avx2(self, #(#names,)* out) };
                 return ::core::result::Result::Ok(());
             }
-            *out = #ty::#function::<f64>(self, #(#names),*);
+            #ty::#inlined::<f64>(self, #(#names,)* out);
         }
     }
 }
