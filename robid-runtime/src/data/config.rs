@@ -1086,6 +1086,29 @@ impl Config {
                     format!("{} is outside 1 to 20", lp.order),
                 );
             }
+            if lp.signals.is_empty() {
+                return bad(
+                    "processing.lowpass.signals",
+                    "lists no signal to filter; name them (\"q\", \"qd\", \"qdd\", \"tau\"), or \
+                     remove processing.lowpass for no low-pass"
+                        .into(),
+                );
+            }
+            if let Some((i, s)) = lp
+                .signals
+                .iter()
+                .enumerate()
+                .find(|(i, s)| lp.signals[..*i].contains(s))
+            {
+                let name = format!("{s:?}").to_lowercase();
+                return bad(
+                    "processing.lowpass.signals",
+                    format!(
+                        "\"{name}\" is listed twice (entry {}); list each signal once",
+                        i + 1
+                    ),
+                );
+            }
         }
         p.differentiation.savitzky_golay()?;
         if p.trim > MAX_ROWS {
@@ -1101,6 +1124,14 @@ impl Config {
             Decimation::Total(t) => vec![*t],
             Decimation::Stages(s) => s.clone(),
         };
+        if factors.is_empty() {
+            return bad(
+                "processing.decimation",
+                "an empty list of stages; write 1 for no decimation, or the factors \
+                 ([10, 10])"
+                    .into(),
+            );
+        }
         let mut total = 1f64;
         for f in &factors {
             if *f == 0 {
@@ -1414,6 +1445,38 @@ method = "wls"
                 .contains("a total factor of 20000 is more than the limit of 10000"),
             "{e}"
         );
+        // an empty or repeated list is a mistake, told with its fix
+        for (from, to, says) in [
+            (
+                "decimation = [2, 2]",
+                "decimation = []",
+                "write 1 for no decimation",
+            ),
+            (
+                "lowpass = { cutoff = 5.0 }",
+                "lowpass = { cutoff = 5.0, signals = [] }",
+                "lists no signal to filter",
+            ),
+            (
+                "lowpass = { cutoff = 5.0 }",
+                "lowpass = { cutoff = 5.0, signals = [\"q\", \"tau\", \"q\"] }",
+                "`processing.lowpass.signals`: \"q\" is listed twice (entry 3)",
+            ),
+        ] {
+            let bad = EXAMPLE.replace(from, to);
+            assert_ne!(bad, EXAMPLE, "{to}");
+            let e = Config::from_toml_str(&bad, Path::new("c.toml"))
+                .unwrap()
+                .check(2)
+                .unwrap_err();
+            assert!(e.to_string().contains(says), "{to}: {e}");
+        }
+        let fine = EXAMPLE.replace(
+            "lowpass = { cutoff = 5.0 }",
+            "lowpass = { cutoff = 5.0, signals = [\"q\", \"tau\"] }",
+        );
+        let cfg = Config::from_toml_str(&fine, Path::new("c.toml")).unwrap();
+        assert!(cfg.check(2).is_ok());
         // a config built in code is named by its fields, never as a file
         let mut code = Config::default();
         code.processing.lowpass = Some(Lowpass {
