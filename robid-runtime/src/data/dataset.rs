@@ -307,8 +307,8 @@ impl Extremes {
     pub(crate) fn widen(&mut self, q: &Signals, tau: &Signals) {
         for (ranges, x) in [(&mut self.position, q), (&mut self.torque, tau)] {
             ranges.resize(x.dof(), [f64::INFINITY, f64::NEG_INFINITY]);
-            for (r, v) in ranges.iter_mut().zip(x.joints()) {
-                *r = v.iter().fold(*r, |[lo, hi], &a| [lo.min(a), hi.max(a)]);
+            for (r, [lo, hi]) in ranges.iter_mut().zip(x.extremes()) {
+                *r = [r[0].min(lo), r[1].max(hi)];
             }
         }
     }

@@ -284,14 +284,33 @@ fn tiled_sections<const S: usize, const W: usize>(
     let (full, partial) = lanes.split_at(g / W);
     let taking = partial.is_empty() && take.is_some();
     let take = if taking { take } else { &mut None };
+    // called, not taken as a pointer: a function called through a pointer is not inlined
+    // into the caller's target features (AVX2, AVX-512)
+    let lanes = [full, partial];
     if unit_after_first(sections) {
-        tiled_lanes::<S, W, false, true>(sections, zi, ext, g, full, kept, forward, take);
-        tiled_lanes::<S, W, true, true>(sections, zi, ext, g, partial, kept, forward, &mut None);
+        full_and_partial::<S, W, true>(sections, zi, ext, g, lanes, kept, forward, take);
     } else {
-        tiled_lanes::<S, W, false, false>(sections, zi, ext, g, full, kept, forward, take);
-        tiled_lanes::<S, W, true, false>(sections, zi, ext, g, partial, kept, forward, &mut None);
+        full_and_partial::<S, W, false>(sections, zi, ext, g, lanes, kept, forward, take);
     }
     taking
+}
+
+/// [`tiled_lanes`] of the `full` lanes (the kept rows into `take`), then of the `partial`
+/// one.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn full_and_partial<const S: usize, const W: usize, const UNIT: bool>(
+    sections: &[[f64; 6]; S],
+    zi: &[[f64; 2]; S],
+    ext: &mut [f64],
+    g: usize,
+    [full, partial]: [&[Lane]; 2],
+    kept: Kept,
+    forward: &mut Forward<'_>,
+    take: &mut Option<Take>,
+) {
+    tiled_lanes::<S, W, false, UNIT>(sections, zi, ext, g, full, kept, forward, take);
+    tiled_lanes::<S, W, true, UNIT>(sections, zi, ext, g, partial, kept, forward, &mut None);
 }
 
 /// Whether every section but the first has the numerator `[1, 2, 1]` (a low-pass's

@@ -92,6 +92,26 @@ impl Signals {
         }
     }
 
+    /// `[smallest, largest]` value of each joint (`[inf, -inf]` for a joint without
+    /// samples; NaN is passed over).
+    ///
+    /// ```
+    /// let s = robid_runtime::signal::Signals::new(vec![vec![1.0, -2.0, 3.0], vec![0.5, f64::NAN, 0.0]])
+    ///     .unwrap();
+    /// assert_eq!(s.extremes(), vec![[-2.0, 3.0], [0.0, 0.5]]);
+    /// ```
+    pub fn extremes(&self) -> Vec<[f64; 2]> {
+        self.joints
+            .iter()
+            .map(|v| {
+                v.iter()
+                    .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &a| {
+                        [lo.min(a), hi.max(a)]
+                    })
+            })
+            .collect()
+    }
+
     /// The samples `range` of every joint (clamped to the samples there are).
     pub fn range(&self, range: Range<usize>) -> Self {
         let n = self.samples();

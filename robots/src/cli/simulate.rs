@@ -131,16 +131,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     );
     super::states::read_with(&args.trajectory, &Trajectory::header(n), n, &remedy)?;
     let reference = Trajectory::read_csv(&args.trajectory, n)?;
-    let span: Vec<[f64; 2]> = reference
-        .q
-        .joints()
-        .map(|x| {
-            x.iter()
-                .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &v| {
-                    [lo.min(v), hi.max(v)]
-                })
-        })
-        .collect();
+    let span = reference.q.extremes();
     for w in robots::limits::trajectory_beyond_limits(&description.robot, &span, &args.robot) {
         out::warn(format_args!("warning: {}: {w}", args.trajectory.display()));
     }
