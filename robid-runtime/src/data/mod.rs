@@ -9,6 +9,7 @@ mod error;
 mod keys;
 mod load;
 mod parameters;
+mod plain;
 mod rate;
 mod record;
 mod sampling;
