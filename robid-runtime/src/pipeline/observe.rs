@@ -768,10 +768,27 @@ impl Observer<'_> {
         let inactive = runs(&(0..stride).filter(|&c| !inside[c]).collect::<Vec<_>>());
         let (n, pad) = (hi - lo, dec.first_pad());
         let sets: Vec<&[usize]> = channels.chunks(GROUP).collect();
-        let set_runs: Vec<Vec<Run>> = sets.iter().map(|set| runs(set)).collect();
         // each group's row: its channels, then channels of zeros to whole lanes of the
         // filter's passes ([`Decimator::padded_width`]: no partial lane to copy row by row)
         let widths: Vec<usize> = sets.iter().map(|set| dec.padded_width(set.len())).collect();
+        // where each value of a group's row comes from in the sample's row, the zeros at
+        // `stride` (one past the row): a gather by index, not a copy per run of
+        // consecutive channels (a call to copy a few values, and one to zero the pad)
+        let gathers: Vec<Vec<usize>> = sets
+            .iter()
+            .zip(&widths)
+            .map(|(set, &g)| {
+                (0..g)
+                    .map(|i| set.get(i).copied().unwrap_or(stride))
+                    .collect()
+            })
+            .collect();
+        // a value above its channel's limit, or NaN, is either a non-finite value of a
+        // group or a non-zero value of a channel taken as zero (found in one pass)
+        let limit: Vec<f64> = inside
+            .iter()
+            .map(|&inside| if inside { f64::MAX } else { 0.0 })
+            .collect();
         groups.resize_with(sets.len(), Vec::new);
         groups.truncate(sets.len());
         // each group's samples cut into the chunks of rows the threads fill: chunk b holds
@@ -789,26 +806,19 @@ impl Observer<'_> {
             .enumerate()
             .map(|(b, mut parts)| {
                 let mut st = Scratch::new(dof);
-                let mut full = vec![0.0; stride];
+                let mut full = vec![0.0; stride + 1];
                 let (mut missed, mut bad) = (false, None);
                 for i in 0..BLOCK.min(n - b * BLOCK) {
                     let k = lo + b * BLOCK + i;
-                    self.full_row(k, &mut st, &mut full);
-                    // the channels of the groups checked finite as they are copied, in
-                    // the row they come from (the group's row just written is not yet in
-                    // the cache: reading it back stalled the fill, a quarter of the hour's
-                    // estimation pass); the others are checked zero below
-                    let mut odd = false;
-                    for (((part, set), set_runs), &g) in
-                        parts.iter_mut().zip(&sets).zip(&set_runs).zip(&widths)
-                    {
+                    self.full_row(k, &mut st, &mut full[..stride]);
+                    for ((part, gather), &g) in parts.iter_mut().zip(&gathers).zip(&widths) {
                         let row = &mut part[i * g..(i + 1) * g];
-                        for run in set_runs {
-                            let src = &full[run.from..run.from + run.len];
-                            row[run.at..run.at + run.len].copy_from_slice(src);
-                            odd |= any_non_finite(src);
+                        for (value, &from) in row.iter_mut().zip(gather) {
+                            *value = full[from];
                         }
-                        row[set.len()..].fill(0.0);
+                    }
+                    if !any_above(&full[..stride], &limit) {
+                        continue;
                     }
                     // a non-finite inactive channel is not zero: the block is taken again
                     // with every channel, which finds it
@@ -818,7 +828,7 @@ impl Observer<'_> {
                     // the row's first non-finite value (its other channels are zero when
                     // none was missed)
                     if bad.is_none()
-                        && odd
+                        && channels.iter().any(|&c| !full[c].is_finite())
                         && let Some((c, v)) = first_non_finite(&full)
                     {
                         bad = Some((k, c, v));
@@ -1174,6 +1184,14 @@ fn first_non_finite(x: &[f64]) -> Option<(usize, f64)> {
         return None;
     }
     x.iter().position(|v| !v.is_finite()).map(|c| (c, x[c]))
+}
+
+/// Whether a value of `x` is above its `limit` in magnitude or NaN, as one pass without
+/// an early exit, which the compiler vectorises.
+fn any_above(x: &[f64], limit: &[f64]) -> bool {
+    x.iter()
+        .zip(limit)
+        .fold(false, |any, (v, l)| any | !(v.abs() <= *l))
 }
 
 /// Whether a value of `x` is infinite or NaN: one pass without an early exit of a

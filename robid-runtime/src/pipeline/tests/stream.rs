@@ -296,12 +296,15 @@ fn a_record_on_disk_identifies_as_the_data_set_in_memory() {
     }
 }
 
-/// The synthetic model with an infinite regressor entry (column `column`, joint 1)
-/// wherever joint 1's position exceeds `above`: a model that overflows on some samples.
+/// The synthetic model with regressor entry `column` (joint 1's row first, then joint
+/// 2's, ...) set to `value` wherever joint 1's position exceeds `above` (an entry that is
+/// zero elsewhere: its inverse dynamics the regressor times the parameters still);
+/// infinite, a model that overflows on some samples.
 struct Overflowing {
     inner: Synthetic,
     column: usize,
     above: f64,
+    value: f64,
 }
 
 impl Model for Overflowing {
@@ -330,8 +333,17 @@ impl Model for Overflowing {
         output: &mut [f64],
     ) -> Result<(), crate::model::LengthError> {
         self.inner.run(program, inputs, output)?;
-        if program == crate::model::ProgramKind::BaseRegressor && inputs[0][0] > self.above {
-            output[self.column] = f64::INFINITY;
+        if inputs[0][0] > self.above {
+            // the inverse dynamics stay the regressor times the parameters
+            let p = self.base_parameter_count();
+            match program {
+                crate::model::ProgramKind::BaseRegressor => output[self.column] = self.value,
+                crate::model::ProgramKind::InverseDynamics => {
+                    let (j, c) = (self.column / p, self.column % p);
+                    output[j] += self.value * inputs[3][c];
+                }
+                _ => {}
+            }
         }
         Ok(())
     }
@@ -347,6 +359,7 @@ fn an_overflowing_regressor_is_named_by_both_paths() {
         inner: Synthetic::default(),
         column: 2,
         above: peak - 0.01,
+        value: f64::INFINITY,
     };
     let config = with("", Method::Ols);
     let named = |e: crate::Error| match e {
@@ -385,4 +398,47 @@ fn an_overflowing_regressor_is_named_by_both_paths() {
     assert_eq!(streamed, dense);
     let line: usize = streamed.0.rsplit(':').next().unwrap().parse().unwrap();
     assert!((49_000..50_100).contains(&line), "{streamed:?}");
+}
+
+/// A regressor channel zero at the samples the stream probes but not at a few others
+/// (late in the record, between two probes) is found by the check of every sample, and
+/// the block is taken again with every channel: the same estimate as the dense path,
+/// which never leaves a channel out.
+#[test]
+fn a_channel_zero_at_the_probes_is_still_taken() {
+    let mut data = data();
+    let model = Synthetic::default();
+    let p = model.base_parameter_count();
+    // an entry of joint 2's row that is zero at every state: a channel the probes leave out
+    let mut out = vec![0.0; DOF * p];
+    let zero = |k: usize, out: &mut Vec<f64>| {
+        let state = |s: &crate::signal::Signals| s.joints().map(|v| v[k]).collect::<Vec<_>>();
+        let (q, qd, qdd) = (state(&data.q), state(&data.q), state(&data.q));
+        model.base_regressor_into(&q, &qd, &qdd, out).unwrap();
+        out.clone()
+    };
+    let column = (p..DOF * p)
+        .find(|&c| (0..20).all(|i| zero(i * 2_999, &mut out)[c] == 0.0))
+        .expect("joint 2's row has a zero entry");
+    let peak = data.q[0].iter().fold(f64::MIN, |m, v| m.max(*v));
+    if let Some(q1) = data.q.joints_mut().next() {
+        q1[50_001..50_011].fill(peak + 5.0);
+    }
+    let model = Overflowing {
+        inner: model,
+        column,
+        above: peak + 0.5,
+        value: 3.0,
+    };
+    let config = with("", Method::Ols);
+    let streamed = identify(&model, &data, &config).unwrap();
+    let dense = identify_dense_of(&model, &data, &config).unwrap();
+    same_identification(&streamed, &dense);
+    // the entry moves the estimate (it is not filtered away before it counts)
+    let without = Overflowing {
+        value: 0.0,
+        ..model
+    };
+    let other = identify(&without, &data, &config).unwrap();
+    assert_ne!(other.estimate.values, streamed.estimate.values);
 }
