@@ -982,6 +982,15 @@ impl Observer<'_> {
             })
         };
         let cols = lay.p + lay.e;
+        // each joint's columns among the decimated channels: (column, group, place in the
+        // group's row); its other columns are zero
+        let placed: Vec<Vec<(usize, usize, usize)>> = (0..dof)
+            .map(|j| {
+                (0..cols)
+                    .filter_map(|c| place[lay.column(j, c)].map(|(g, k)| (c, g, k)))
+                    .collect()
+            })
+            .collect();
         // at most one equation per joint and decimated sample
         let most = (core.end.div_ceil(f) - core.start / f) * dof;
         let mut eq = Equations {
@@ -1004,11 +1013,14 @@ impl Observer<'_> {
                 }
                 let y = value(i, lay.tau(j));
                 let start = eq.w.len();
-                eq.w.extend((0..cols).map(|c| value(i, lay.column(j, c))));
-                let bad = eq.w[start..]
-                    .iter()
-                    .position(|v| !v.is_finite())
-                    .map(|c| (self.names[c].clone(), eq.w[start + c]))
+                eq.w.resize(start + cols, 0.0);
+                let row = &mut eq.w[start..];
+                for &(c, g, at) in &placed[j] {
+                    let (v, width) = decimated[g];
+                    row[c] = v[i * width + at];
+                }
+                let bad = first_non_finite(row)
+                    .map(|(c, v)| (self.names[c].clone(), v))
                     .or((!y.is_finite()).then(|| ("torque".to_string(), y)));
                 if let Some((parameter, value)) = bad {
                     return Err(Error::Estimate(EstimateError::NonFiniteObservation {
