@@ -60,6 +60,13 @@ const BLOCK_BYTES: usize = 64 << 20;
 /// Blocks per thread the prediction pass takes at once.
 const PREDICTION_BATCH: usize = 4;
 
+/// The prediction pass's blocks are this many estimation blocks long: it filters a few
+/// channels per joint, not the regressor's, so longer blocks cost little memory and
+/// spare overlap (evaluated twice: 14 % of the hour's prediction rows with the estimation's
+/// blocks, 7 % with these; four times as long took its peak memory from about 200 to 250
+/// MiB for 3 % less time, docs/performance.md#streaming-identification).
+const PREDICTION_SPAN: usize = 2;
+
 /// A record's kept samples cut into blocks of equations.
 pub(crate) struct Stream<'a> {
     model: &'a (dyn Model + Sync),
@@ -147,7 +154,7 @@ impl<'a> Stream<'a> {
         Progress::new(
             self.config.progress,
             format!("identify: {what} of {}", self.data.name()),
-            self.blocks().iter().map(|b| b.len() as u64).sum(),
+            self.blocks(self.block).iter().map(|b| b.len() as u64).sum(),
             "samples",
         )
     }
@@ -170,12 +177,12 @@ impl<'a> Stream<'a> {
     /// The blocks of processed samples, in record order: those of the decimated samples
     /// the decimation filter settled ([`Decimator::settled`]; its first is a multiple of the
     /// factor, and so is every block's start). A block's overlap reaches beyond them.
-    fn blocks(&self) -> Vec<Range<usize>> {
+    fn blocks(&self, size: usize) -> Vec<Range<usize>> {
         let (n, f) = (self.plan.kept.len(), self.dec.factor());
         let (start, end) = (self.settled.start * f, (self.settled.end * f).min(n));
         (start..end)
-            .step_by(self.block)
-            .map(|b| b..(b + self.block).min(end))
+            .step_by(size)
+            .map(|b| b..(b + size).min(end))
             .collect()
     }
 
@@ -218,7 +225,7 @@ impl<'a> Stream<'a> {
         // sample, the estimate of a 300 s record moved 2.2 times farther from the dense
         // path's, 2e-10 of a parameter's value or deviation)
         let mut carry = self.dec.carried_sections().map(Carry::new);
-        for b in self.blocks() {
+        for b in self.blocks(self.block) {
             let (next, folded) = rayon::join(
                 || {
                     self.in_block(&b, |observer, core, lo, _| {
@@ -322,7 +329,7 @@ impl<'a> Stream<'a> {
         // thread, so that a thread done with its blocks takes another of the batch instead
         // of waiting for the slowest (what a batch holds until it is appended is small: a
         // few values per equation)
-        let blocks = self.blocks();
+        let blocks = self.blocks(self.block * PREDICTION_SPAN);
         let mut rest = RestCount::default();
         let progress = self.progress(if self.estimating {
             "prediction"
