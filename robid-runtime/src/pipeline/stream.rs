@@ -63,8 +63,8 @@ const PREDICTION_BATCH: usize = 4;
 /// The prediction pass's blocks are this many estimation blocks long: it filters a few
 /// channels per joint, not the regressor's, so longer blocks cost little memory and
 /// spare overlap (evaluated twice: 14 % of the hour's prediction rows with the estimation's
-/// blocks, 7 % with these; four times as long took its peak memory from about 200 to 250
-/// MiB for 3 % less time, docs/performance.md#streaming-identification).
+/// blocks, 7 % with these, 3 % less time in all; four times as long was no faster and took
+/// the hour's peak memory from about 200 to 250 MiB, docs/performance.md#streaming-identification).
 const PREDICTION_SPAN: usize = 2;
 
 /// A record's kept samples cut into blocks of equations.
