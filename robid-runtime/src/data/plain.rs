@@ -9,17 +9,12 @@
 //! a `\r` other than a line's last byte, a blank line or a `#` comment, a row with a field
 //! count other than the header's or a required value that is not a finite number gives
 //! `None`, and the CSV reader reads the whole block again (with its errors, located as
-//! always). So every block gives the same rows and errors either way.
+//! always). So every block gives the same rows and errors either way; a block given up
+//! costs the plain reading up to its first such line besides (a file whose body has
+//! comments or blank lines throughout reads a little slower than with the CSV reader
+//! alone).
 
-use super::table::{decimal_prefix, number, trim};
-
-/// What the fast reader found in a block: each requested column's values (those at or
-/// after `read` left empty), the 0-based line of each row, the line ends.
-pub(super) struct PlainRows {
-    pub(super) columns: Vec<Vec<f64>>,
-    pub(super) lines: Vec<u64>,
-    pub(super) newlines: u64,
-}
+use super::table::{Part, decimal_prefix, number, trim};
 
 /// The rows of `text` (whole lines, the last one's end optional) with `fields` fields
 /// separated by `separator` (not a space: runs of spaces are the CSV reader's), the
@@ -33,7 +28,7 @@ pub(super) fn plain_rows(
     want: &[usize],
     required: usize,
     read: usize,
-) -> Option<PlainRows> {
+) -> Option<Part> {
     if separator == b' ' {
         return None;
     }
@@ -46,11 +41,7 @@ pub(super) fn plain_rows(
             None => {}
         }
     }
-    let estimate = text.len() / (fields.max(1) * 8) + 1;
-    let mut columns: Vec<Vec<f64>> = (0..want.len())
-        .map(|k| Vec::with_capacity(if k < read { estimate } else { 0 }))
-        .collect();
-    let mut lines = Vec::with_capacity(estimate);
+    let mut part = Part::empty(text.len(), fields, want.len(), read);
     let mut values = vec![f64::NAN; read];
     let mut at = 0;
     let mut line = 0;
@@ -90,18 +81,14 @@ pub(super) fn plain_rows(
         if field != fields {
             return None;
         }
-        for (column, &v) in columns.iter_mut().zip(&values) {
+        for (column, &v) in part.columns.iter_mut().zip(&values) {
             column.push(v);
         }
-        lines.push(line);
+        part.lines.push(line);
         line += 1;
     }
-    let newlines = line - u64::from(text.last().is_some_and(|&b| b != b'\n'));
-    Some(PlainRows {
-        columns,
-        lines,
-        newlines,
-    })
+    part.newlines = line - u64::from(text.last().is_some_and(|&b| b != b'\n'));
+    Some(part)
 }
 
 /// Where the field starting at `at` ends: the index of the separator, `\n` or `\r` after

@@ -994,12 +994,29 @@ fn cuts(body: &[u8]) -> Vec<usize> {
 
 /// What a block gave: its columns, the lines of its rows relative to the block (the
 /// block's first line is 0), and its first error (lines relative too).
-struct Part {
-    columns: Vec<Vec<f64>>,
-    lines: Vec<u64>,
+pub(super) struct Part {
+    pub(super) columns: Vec<Vec<f64>>,
+    pub(super) lines: Vec<u64>,
     /// Line ends in the block (when it was read to its end).
-    newlines: u64,
+    pub(super) newlines: u64,
     error: Option<BlockError>,
+}
+
+impl Part {
+    /// No rows yet of a block of `bytes` bytes with `fields` fields per row: `columns`
+    /// columns, the first `read` with room for the rows such a block likely holds (8 bytes
+    /// a field), the others (not read) left empty.
+    pub(super) fn empty(bytes: usize, fields: usize, columns: usize, read: usize) -> Part {
+        let estimate = bytes / (fields.max(1) * 8) + 1;
+        Part {
+            columns: (0..columns)
+                .map(|k| Vec::with_capacity(if k < read { estimate } else { 0 }))
+                .collect(),
+            lines: Vec::with_capacity(estimate),
+            newlines: 0,
+            error: None,
+        }
+    }
 }
 
 /// An error inside a block, located relative to the block.
@@ -1082,12 +1099,7 @@ fn block(
         return csv_block(text, header, optional, rows);
     };
     rows.fetch_add(plain.lines.len(), Ordering::Relaxed);
-    Part {
-        columns: plain.columns,
-        lines: plain.lines,
-        newlines: plain.newlines,
-        error: None,
-    }
+    plain
 }
 
 /// [`block`] by the CSV reader (`text`: the block's text).
@@ -1096,16 +1108,7 @@ fn csv_block(text: &[u8], header: &Header, optional: bool, rows: &AtomicUsize) -
     let (want, optional_want) = header.want.split_at(header.required);
     let optional_want = if optional { optional_want } else { &[] };
     let read = want.len() + optional_want.len();
-    let estimate = text.len() / (fields.max(1) * 8) + 1;
-    let mut part = Part {
-        // a column not read is left empty
-        columns: (0..header.want.len())
-            .map(|k| Vec::with_capacity(if k < read { estimate } else { 0 }))
-            .collect(),
-        lines: Vec::with_capacity(estimate),
-        newlines: 0,
-        error: None,
-    };
+    let mut part = Part::empty(text.len(), fields, header.want.len(), read);
     if rows.load(Ordering::Relaxed) > MAX_ROWS {
         part.error = Some(BlockError::Rows);
         return part;
