@@ -16,6 +16,7 @@ pub use robid_core::rng;
 pub mod trig;
 pub mod wrench;
 
+mod finite;
 mod number;
 
 pub use model::{LengthError, Model};

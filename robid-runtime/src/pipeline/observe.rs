@@ -10,6 +10,7 @@ use crate::Model;
 use crate::data::{Config, Decimation};
 use crate::error::{Error, Result, num};
 use crate::estimate::{Observation, check_names, equations_needed};
+use crate::finite::first_non_finite;
 use crate::pipeline::Prepared;
 use crate::signal::passes::Forward;
 use crate::signal::{Decimator, Signals, moving_samples};
@@ -1189,32 +1190,12 @@ fn any_nonzero(x: &[f64]) -> bool {
     x.iter().fold(0u64, |any, v| any | (v.to_bits() << 1)) != 0
 }
 
-/// The first non-finite value of `x` with its index. The common case, every value
-/// finite, is one vectorised pass ([`any_non_finite`]).
-fn first_non_finite(x: &[f64]) -> Option<(usize, f64)> {
-    if !any_non_finite(x) {
-        return None;
-    }
-    x.iter().position(|v| !v.is_finite()).map(|c| (c, x[c]))
-}
-
 /// Whether a value of `x` is above its `limit` in magnitude or NaN, as one pass without
 /// an early exit, which the compiler vectorises.
 fn any_above(x: &[f64], limit: &[f64]) -> bool {
     x.iter()
         .zip(limit)
         .fold(false, |any, (v, l)| any | !(v.abs() <= *l))
-}
-
-/// Whether a value of `x` is infinite or NaN: one pass without an early exit of a
-/// comparison per value (`!(|v| <= f64::MAX)`, true for NaN), which the compiler
-/// vectorises into one compare and one OR per vector of values even without AVX
-/// (`cmpnlepd`). The mask of the exponent's bits compared as 64-bit integers, its
-/// predecessor, took three more instructions per vector there (SSE2 compares 32-bit
-/// integers only): the check of every regressor row was 3.4 % of the hour's
-/// identification.
-fn any_non_finite(x: &[f64]) -> bool {
-    x.iter().fold(false, |any, v| any | !(v.abs() <= f64::MAX))
 }
 
 /// A group of decimated channels: values (row-major, one row per decimated sample) and

@@ -156,7 +156,7 @@ impl Signals {
         self.joints
             .iter()
             .enumerate()
-            .find_map(|(j, v)| Some((j, v.iter().position(|x| !x.is_finite())?)))
+            .find_map(|(j, v)| Some((j, crate::finite::first_non_finite(v)?.0)))
     }
 }
 
