@@ -42,6 +42,17 @@ mod tests {
                 }
             }
         }
+        // two and three of them: the first is found whatever the others are
+        for n in [2, 3, 9, 33] {
+            for count in [2, 3] {
+                let mut x = vec![1.5; n];
+                for i in 0..count.min(n) {
+                    x[n - 1 - i * (n - 1) / count] = f64::NAN;
+                }
+                let first = x.iter().position(|v| v.is_nan()).unwrap();
+                assert_eq!(first_non_finite(&x).map(|(i, _)| i), Some(first), "{x:?}");
+            }
+        }
         assert_eq!(first_non_finite(&[0.0, -f64::MAX, f64::MIN_POSITIVE]), None);
         assert!(!any_non_finite(&[]));
     }
