@@ -302,7 +302,8 @@ fn a_record_on_disk_identifies_as_the_data_set_in_memory() {
 /// infinite, a model that overflows on some samples.
 struct Overflowing {
     inner: Synthetic,
-    column: usize,
+    /// The regressor entries (row-major) set to `value`.
+    columns: Vec<usize>,
     above: f64,
     value: f64,
 }
@@ -337,10 +338,16 @@ impl Model for Overflowing {
             // the inverse dynamics stay the regressor times the parameters
             let p = self.base_parameter_count();
             match program {
-                crate::model::ProgramKind::BaseRegressor => output[self.column] = self.value,
+                crate::model::ProgramKind::BaseRegressor => {
+                    for &c in &self.columns {
+                        output[c] = self.value;
+                    }
+                }
                 crate::model::ProgramKind::InverseDynamics => {
-                    let (j, c) = (self.column / p, self.column % p);
-                    output[j] += self.value * inputs[3][c];
+                    for &column in &self.columns {
+                        let (j, c) = (column / p, column % p);
+                        output[j] += self.value * inputs[3][c];
+                    }
                 }
                 _ => {}
             }
@@ -357,7 +364,7 @@ fn an_overflowing_regressor_is_named_by_both_paths() {
     let peak = data.q[0].iter().fold(f64::MIN, |m, v| m.max(*v));
     let model = Overflowing {
         inner: Synthetic::default(),
-        column: 2,
+        columns: vec![2],
         above: peak - 0.01,
         value: f64::INFINITY,
     };
@@ -410,23 +417,29 @@ fn a_channel_zero_at_the_probes_is_still_taken() {
     let model = Synthetic::default();
     let p = model.base_parameter_count();
     // an entry of joint 2's row that is zero at every state: a channel the probes leave out
-    let mut out = vec![0.0; DOF * p];
-    let zero = |k: usize, out: &mut Vec<f64>| {
+    let row = |k: usize| {
         let state = |s: &crate::signal::Signals| s.joints().map(|v| v[k]).collect::<Vec<_>>();
         let (q, qd, qdd) = (state(&data.q), state(&data.q), state(&data.q));
-        model.base_regressor_into(&q, &qd, &qdd, out).unwrap();
-        out.clone()
+        let mut out = vec![0.0; DOF * p];
+        model.base_regressor_into(&q, &qd, &qdd, &mut out).unwrap();
+        out
     };
+    let zero_at = |c: usize| (0..20).all(|i| row(i * 2_999)[c] == 0.0);
     let column = (p..DOF * p)
-        .find(|&c| (0..20).all(|i| zero(i * 2_999, &mut out)[c] == 0.0))
+        .find(|&c| zero_at(c))
         .expect("joint 2's row has a zero entry");
+    // two neighbours, both zero at the probes, set to the same value: the check of the
+    // channels taken as zero must not let equal values cancel
+    let twins = (p..DOF * p - 1)
+        .find(|&c| (c + 1) % p != 0 && zero_at(c) && zero_at(c + 1))
+        .expect("joint 2's row has two neighbouring zero entries");
     let peak = data.q[0].iter().fold(f64::MIN, |m, v| m.max(*v));
     if let Some(q1) = data.q.joints_mut().next() {
         q1[50_001..50_011].fill(peak + 5.0);
     }
     let model = Overflowing {
         inner: model,
-        column,
+        columns: vec![column],
         above: peak + 0.5,
         value: 3.0,
     };
@@ -434,6 +447,16 @@ fn a_channel_zero_at_the_probes_is_still_taken() {
     let streamed = identify(&model, &data, &config).unwrap();
     let dense = identify_dense_of(&model, &data, &config).unwrap();
     same_identification(&streamed, &dense);
+    let paired = Overflowing {
+        inner: Synthetic::default(),
+        columns: vec![twins, twins + 1],
+        above: peak + 0.5,
+        value: 3.0,
+    };
+    same_identification(
+        &identify(&paired, &data, &config).unwrap(),
+        &identify_dense_of(&paired, &data, &config).unwrap(),
+    );
     // the entry moves the estimate (it is not filtered away before it counts)
     let without = Overflowing {
         value: 0.0,
