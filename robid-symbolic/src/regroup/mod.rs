@@ -120,6 +120,20 @@ fn quoted(names: &[String]) -> String {
     }
 }
 
+/// The unit of a parameter's regressor column, for the test of no effect
+/// ([`rank::analyse`]): the inertias (kg m^2), the first moments (kg m), the mass (kg),
+/// and each drive term apart (a rotor inertia's column is the joint's acceleration, a
+/// friction's its velocity or sign, an offset's 1).
+fn unit(kind: ParameterKind) -> usize {
+    use crate::robot::Inertial;
+    match kind {
+        ParameterKind::Inertial(Inertial::MX | Inertial::MY | Inertial::MZ) => 1,
+        ParameterKind::Inertial(Inertial::M) => 2,
+        ParameterKind::Inertial(_) => 0,
+        ParameterKind::Drive(d) => 3 + d as usize,
+    }
+}
+
 /// A parameter that survived the rules: where it lives and its expression.
 struct Candidate {
     id: ParameterId,
@@ -148,7 +162,8 @@ impl Derivation {
             .collect();
         let columns: Vec<&[Id]> = candidates.iter().map(|c| c.column.as_slice()).collect();
         let sampled = self.sample(&columns, &geometry, &first_geometry, &mut rng);
-        let status = rank::analyse(&sampled).ok_or_else(|| {
+        let units: Vec<usize> = candidates.iter().map(|c| unit(c.id.kind)).collect();
+        let status = rank::analyse(&sampled, &units).ok_or_else(|| {
             RegroupError::Numeric(
                 "a sampled regressor value is not finite, or the columns kept are not independent"
                     .to_owned(),
@@ -251,7 +266,8 @@ impl Derivation {
         let mut rng = Rng::from_state(0x70B);
         let top = vec![SYMBOL_SAMPLES[1]; geometry.len()];
         let sampled = self.sample(columns, geometry, &top, &mut rng);
-        let at_top = rank::analyse(&sampled).ok_or_else(|| {
+        let units: Vec<usize> = candidates.iter().map(|c| unit(c.id.kind)).collect();
+        let at_top = rank::analyse(&sampled, &units).ok_or_else(|| {
             RegroupError::Numeric("a sampled regressor value is not finite".to_owned())
         })?;
         let Some(i) = (0..status.len()).find(|&i| nothing(&status[i]) && !nothing(&at_top[i]))

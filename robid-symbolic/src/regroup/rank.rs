@@ -66,24 +66,37 @@ pub(crate) enum Status {
 /// Relative residual below which a column counts as dependent.
 pub(crate) const DEPENDENT: f64 = 1e-8;
 
+/// Norm, relative to the largest column of its unit (at least 1), below which a
+/// column has no effect.
+pub(crate) const NO_EFFECT: f64 = 1e-11;
+
 /// Classifies `columns` (each a sampled column of length m); `None` when a
-/// value is not finite.
-pub(crate) fn analyse(columns: &[Vec<f64>]) -> Option<Vec<Status>> {
-    if columns.iter().flatten().any(|x| !x.is_finite()) {
+/// value is not finite. `units[i]` names column i's unit (any number; columns
+/// of one unit share it): a column has no effect when its norm is below
+/// [`NO_EFFECT`] of the largest column of its unit, so that a first moment's
+/// column, which grows with the lengths, is not measured against a mass's,
+/// which grows with their square (a 1 um offset beside a 1 km slider: the
+/// offset's first moments are 1e-12 of the slider's mass column, 1e-9 of its
+/// first moments).
+pub(crate) fn analyse(columns: &[Vec<f64>], units: &[usize]) -> Option<Vec<Status>> {
+    if columns.iter().flatten().any(|x| !x.is_finite()) || units.len() != columns.len() {
         return None;
     }
     let m = columns.first().map_or(0, Vec::len);
-    let scale = columns
-        .iter()
-        .map(|c| norm(c))
-        .fold(0.0_f64, f64::max)
-        .max(1.0);
+    let sizes: Vec<f64> = columns.iter().map(|c| norm(c)).collect();
+    let scale = |unit: usize| {
+        sizes
+            .iter()
+            .zip(units)
+            .filter(|&(_, &u)| u == unit)
+            .fold(1.0_f64, |m, (&s, _)| m.max(s))
+    };
     let mut basis: Vec<Vec<f64>> = Vec::new();
     let mut kept: Vec<usize> = Vec::new();
     let mut status = Vec::with_capacity(columns.len());
     for (i, c) in columns.iter().enumerate() {
-        let size = norm(c);
-        if size <= 1e-11 * scale {
+        let size = sizes[i];
+        if size <= NO_EFFECT * scale(units[i]) {
             status.push(Status::Zero);
             continue;
         }
@@ -171,7 +184,7 @@ mod tests {
         let b = vec![0.0, 1.0, 0.0, 1.0];
         let zero = vec![0.0; 4];
         let dep: Vec<f64> = a.iter().zip(&b).map(|(x, y)| 2.0 * x - 0.5 * y).collect();
-        let s = analyse(&[a, zero, b, dep]).unwrap();
+        let s = analyse(&[a, zero, b, dep], &[0; 4]).unwrap();
         assert_eq!(s[0], Status::Kept(0));
         assert_eq!(s[1], Status::Zero);
         assert_eq!(s[2], Status::Kept(1));
@@ -193,17 +206,39 @@ mod tests {
         let noise = vec![0.0, 1e-9, 0.0, 0.0];
         let near = vec![2e3, 1e-7, 0.0, 0.0];
         let apart = vec![1e3, 0.0, 1e-3, 0.0];
-        let s = analyse(&[a, noise, near, apart]).unwrap();
+        let s = analyse(&[a, noise, near, apart], &[0; 4]).unwrap();
         assert_eq!(s[0], Status::Kept(0));
         assert_eq!(s[1], Status::Zero);
         assert!(matches!(s[2], Status::Dependent(_)), "{:?}", s[2]);
         assert_eq!(s[3], Status::Kept(1));
     }
 
+    /// The zero test is relative to the columns of the same unit: a column 1e-12 of the
+    /// largest is zero among columns of its unit, kept when the large one is of another
+    /// unit and its own unit's largest is near it.
+    #[test]
+    fn a_column_is_measured_against_its_own_unit() {
+        let large = vec![1e6, 0.0, 0.0];
+        let small = vec![0.0, 1e-6, 0.0];
+        let peer = vec![0.0, 0.0, 1e-3];
+        let same = analyse(&[large.clone(), small.clone(), peer.clone()], &[0, 0, 0]).unwrap();
+        assert_eq!(same[1], Status::Zero);
+        let apart = analyse(&[large, small, peer], &[1, 0, 0]).unwrap();
+        assert_eq!(apart[1], Status::Kept(1));
+        // below 1e-11 of its own unit's largest (at least 1): zero
+        let tiny = analyse(&[vec![1.0, 0.0], vec![0.0, 1e-12]], &[0, 1]).unwrap();
+        assert_eq!(tiny[1], Status::Zero);
+        // a list of units of another length is refused
+        assert_eq!(analyse(&[vec![1.0]], &[]), None);
+    }
+
     #[test]
     fn values_that_are_not_finite_are_refused() {
-        assert_eq!(analyse(&[vec![1.0, f64::NAN]]), None);
-        assert_eq!(analyse(&[vec![1.0, f64::INFINITY], vec![0.0, 1.0]]), None);
+        assert_eq!(analyse(&[vec![1.0, f64::NAN]], &[0]), None);
+        assert_eq!(
+            analyse(&[vec![1.0, f64::INFINITY], vec![0.0, 1.0]], &[0, 0]),
+            None
+        );
         assert_eq!(
             super::coefficients(&[&vec![1.0, 2.0]], &[f64::NAN, 1.0]),
             None

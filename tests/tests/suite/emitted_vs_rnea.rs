@@ -261,6 +261,47 @@ fn random_robots() {
     }
 }
 
+/// Lengths 1e9 apart in one robot (a 1 um offset beside a 1 km slider, both inside the
+/// accepted lengths): the offset's first moments keep their effect, measured against the
+/// other first moments' columns, not against the slider's mass column (1e12 times larger,
+/// which took them as having none: the torques lost 1.7e-6 of themselves). Only link 2
+/// has parameters, so that its small terms are not hidden in the slider's large torques.
+#[test]
+fn lengths_far_apart_keep_their_small_terms() {
+    let text = "name = \"far\"\nconvention = \"modified\"\ngravity = [0, 0, 0]\n\
+        [[joints]]\ntype = \"revolute\"\nalpha = 0\na = 0\nd = 0\n\
+        [[joints]]\ntype = \"revolute\"\nalpha = 0\na = 1e-6\nd = 0\n\
+        [[joints]]\ntype = \"prismatic\"\nalpha = 0\na = 1000\nd = 0\n";
+    let robot = Robot::from_toml(text, "far.toml").unwrap();
+    let model = Interpreted::new(&robot).unwrap();
+    let names = robid_runtime::model::standard_parameter_names(&model);
+    let mut standard = vec![0.0; names.len()];
+    for (name, value) in [
+        ("M2", 1.0),
+        ("MX2", 0.5),
+        ("MY2", -0.3),
+        ("XX2", 0.01),
+        ("YY2", 0.26),
+        ("ZZ2", 0.26),
+    ] {
+        standard[names.iter().position(|n| n == name).unwrap()] = value;
+    }
+    let mut base = vec![0.0; model.base_parameter_count()];
+    model.base_from_standard_into(&standard, &mut base).unwrap();
+    let links = links_from_standard(&robot, &standard);
+    let chain = Chain::from_robot(&robot);
+    let mut rng = Rng::from_state(0xfa2);
+    for s in 0..5 {
+        let state = random_state(&robot, &mut rng);
+        let mut tau = vec![0.0; 3];
+        model
+            .inverse_dynamics_into(&state.q, &state.qd, &state.qdd, &base, &mut tau)
+            .unwrap();
+        let want = chain.inverse_dynamics(&links, &state.q, &state.qd, &state.qdd);
+        assert_close(&format!("state {s}"), &tau, &want, RELATIVE);
+    }
+}
+
 /// The checks can fail: a model whose Coriolis vector is its gravity vector (the planted bug
 /// that the older sum-only checks let through) is caught, and so is one parameter changed.
 #[test]
