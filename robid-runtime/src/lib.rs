@@ -16,7 +16,6 @@ pub use robid_core::rng;
 pub mod trig;
 pub mod wrench;
 
-mod finite;
 mod number;
 
 pub use model::{LengthError, Model};
@@ -35,6 +34,8 @@ pub mod estimate;
 pub mod excite;
 #[cfg(feature = "std")]
 pub mod feasible;
+#[cfg(feature = "std")]
+mod finite;
 #[cfg(feature = "std")]
 pub mod inspect;
 #[cfg(feature = "std")]
