@@ -20,7 +20,7 @@ use robid_runtime::simulate::Trajectory;
 use robid_runtime::{Count, Model, Series, num};
 
 use super::description::{self, DescriptionFlags};
-use super::flags::{check_samples, closed, count, only_for, positive, real};
+use super::flags::{self, check_samples, closed, count, only_for, positive, real};
 use super::idle::Idle;
 use super::{Error, files, out};
 use robots::interpreted::Interpreted;
@@ -43,7 +43,7 @@ pub(crate) struct Args {
     #[arg(long, default_value_t = 500.0, value_parser = real(closed(1e-3, 1e6, "Hz")))]
     rate: f64,
     /// Seed of the random starts (0 to 2^64 - 1).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = flags::seed)]
     seed: u64,
     /// Start (and end) position `q1,..,qn`, at rest, inside the position limits (default:
     /// the middle of the position limits; a URDF's continuous joint, which has none, is

@@ -153,6 +153,17 @@ pub(crate) fn count(
     }
 }
 
+/// The clap value parser of a random generator's seed: any whole number from 0 to
+/// 2^64 - 1, with the same message as [`count`]'s (clap's own says only "invalid digit").
+pub(crate) fn seed(text: &str) -> Result<u64, String> {
+    text.trim().parse().map_err(|_| {
+        format!(
+            "`{text}` is not a whole number; give one in 0..={}",
+            u64::MAX
+        )
+    })
+}
+
 /// The fewest samples of a trajectory `robid excite` writes: both ends, at rest, and one
 /// between (`robid_runtime::excite`'s sampling asks for as many).
 pub(crate) const MIN_SAMPLES: f64 = 3.0;

@@ -55,7 +55,7 @@ pub(crate) struct Args {
     #[arg(long, default_value_t = 10.0, value_parser = real(positive(1e4, "Hz")))]
     bandwidth: f64,
     /// Seed of the noise (0 to 2^64 - 1).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = flags::seed)]
     seed: u64,
     /// What to write: `all` (`t,q,qd,qdd,tau`, velocities and accelerations exact, for
     /// checking) or `positions` (`t,q,tau`, as a real log: `identify` differentiates).

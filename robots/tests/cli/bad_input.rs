@@ -97,7 +97,11 @@ fn excite_values_out_of_range_are_refused_naming_the_flag() {
             "--start",
             "1e300 is outside [-1e6, 1e6] rad",
         ),
-        (&["--seed=-1"], "--seed", "invalid digit"),
+        (
+            &["--seed=-1"],
+            "--seed",
+            "`-1` is not a whole number; give one in 0..=18446744073709551615",
+        ),
         // below the smallest limit a design takes (`MIN_JOINT_LIMIT`): the flag is named,
         // not the library's `JointLimits` type
         (
@@ -669,6 +673,12 @@ fn simulate_values_out_of_range_are_refused_naming_the_flag() {
             &["--columns", "positions", "--rate", "1e-320"],
             "--rate",
             "1e-320 is outside [0.001, 1e6] Hz",
+        ),
+        // clap's own parser said only "invalid digit found in string"
+        (
+            &["--seed", "1,2"],
+            "--seed",
+            "`1,2` is not a whole number; give one in 0..=18446744073709551615",
         ),
     ] {
         refused_flag(&simulate(args), flag, why);
