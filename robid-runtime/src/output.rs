@@ -38,10 +38,11 @@ pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<()> {
-    let err = |e: &dyn std::fmt::Display| {
+    let err = |e: &std::io::Error| {
         Error::Output(OutputError::Write {
             path: path.to_path_buf(),
             reason: e.to_string(),
+            fix: write_fix(e),
         })
     };
     let (target, dir, existing, link) = match target(path)? {
@@ -232,6 +233,23 @@ const NO_NEW_FILES: &str = "the system refuses new files there, as in /proc and 
 
 /// The fix of an output whose folder takes no new file for `reason`: making the folder
 /// writable is a fix for a permission or a read-only mount, not for /proc.
+/// The fix [`OutputError::Write`] gives when nothing more is known: the folder.
+pub const CHECK_FOLDER: &str = "check that the folder exists and is writable";
+
+/// The fix for a write that failed with `e`: a full disk or quota has nothing to do with
+/// the folder (it told `/dev/full`'s "No space left on device" to check that the folder
+/// is writable).
+pub fn write_fix(e: &std::io::Error) -> &'static str {
+    use std::io::ErrorKind;
+    match e.kind() {
+        ErrorKind::StorageFull | ErrorKind::QuotaExceeded => {
+            "free space on that disk, or write to another one"
+        }
+        ErrorKind::FileTooLarge => "its file system takes no file this large: write to another",
+        _ => CHECK_FOLDER,
+    }
+}
+
 fn not_writable_fix(reason: &str) -> &'static str {
     if reason == NO_NEW_FILES {
         "give a path in a folder you may write into"
@@ -379,6 +397,7 @@ fn follow_links(path: &Path) -> Result<PathBuf> {
             Error::Output(OutputError::Write {
                 path: path.to_path_buf(),
                 reason: format!("cannot read the symbolic link {}: {e}", at.display()),
+                fix: CHECK_FOLDER,
             })
         })?;
         // an absolute target replaces the folder; a bare name's folder is left unsaid
@@ -542,6 +561,7 @@ pub fn create_folder(dir: &Path) -> Result<()> {
         Error::Output(OutputError::Write {
             path: dir.to_path_buf(),
             reason: format!("cannot create the folder: {e}"),
+            fix: write_fix(&e),
         })
     })
 }
@@ -628,12 +648,15 @@ fn file_id(path: &Path) -> Option<FileId> {
 #[non_exhaustive]
 pub enum OutputError {
     /// A file could not be written.
-    #[error("{path}: cannot write: {reason}; check that the folder exists and is writable")]
+    #[error("{path}: cannot write: {reason}; {fix}")]
     Write {
         /// The file.
         path: PathBuf,
         /// What the writer reported.
         reason: String,
+        /// What to do about it ([`CHECK_FOLDER`], or for a full disk or file system
+        /// what [`write_fix`] says).
+        fix: &'static str,
     },
     /// The output is an existing folder (`-o /tmp`): a file in it was meant.
     #[error("{path}: is a folder; give a file name, e.g. {}", path.join("out").display())]
@@ -836,9 +859,31 @@ mod tests {
             matches!(result, Err(Error::Output(OutputError::Write { .. }))),
             "{result:?}"
         );
+        assert!(
+            result.unwrap_err().to_string().ends_with(CHECK_FOLDER),
+            "an unknown cause points at the folder"
+        );
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "old contents\n");
         // no temporary file is left behind
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn a_full_disk_says_so_not_that_the_folder_is_wrong() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("data.csv");
+        for (kind, fix) in [
+            (std::io::ErrorKind::StorageFull, "free space on that disk"),
+            (std::io::ErrorKind::QuotaExceeded, "free space on that disk"),
+            (std::io::ErrorKind::FileTooLarge, "no file this large"),
+            (std::io::ErrorKind::PermissionDenied, CHECK_FOLDER),
+        ] {
+            let e = write_atomically(&path, |_| Err(kind.into())).unwrap_err();
+            let text = e.to_string();
+            assert!(text.contains(fix), "{kind:?}: {text}");
+            assert_eq!(text.contains(CHECK_FOLDER), fix == CHECK_FOLDER, "{text}");
+        }
+        assert!(!path.exists());
     }
 
     #[test]

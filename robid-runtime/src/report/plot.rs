@@ -16,10 +16,13 @@ pub fn plot_torques(prediction: &Prediction, dir: &Path, prefix: &str) -> Result
     for j in 0..prediction.measured.len() {
         let path = dir.join(format!("{prefix}_joint{}.svg", j + 1));
         let svg = torque_svg(prediction, j).map_err(|e| match e {
-            Error::Output(OutputError::Write { reason, .. }) => Error::Output(OutputError::Write {
-                path: path.clone(),
-                reason,
-            }),
+            Error::Output(OutputError::Write { reason, fix, .. }) => {
+                Error::Output(OutputError::Write {
+                    path: path.clone(),
+                    reason,
+                    fix,
+                })
+            }
             e => e,
         })?;
         crate::output::write_bytes(&path, svg.as_bytes())?;
@@ -41,6 +44,7 @@ pub fn torque_svg(prediction: &Prediction, joint: usize) -> Result<String> {
         Error::Output(OutputError::Write {
             path: PathBuf::from(format!("<joint {} plot>", joint + 1)),
             reason: e.to_string(),
+            fix: crate::output::CHECK_FOLDER,
         })
     })?;
     Ok(svg)

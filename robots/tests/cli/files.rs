@@ -453,6 +453,22 @@ fn a_pipe_is_written_into() {
     assert!(std::os::unix::fs::FileTypeExt::is_fifo(&kind));
 }
 
+/// An output on a full disk (`-o /dev/full`) says so and asks for space, not that the
+/// folder be checked (what it said before).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_disk_asks_for_space() {
+    let o = robid(&["emit", "descriptions/ur5e.toml", "-o", "/dev/full"]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.starts_with("error: /dev/full: cannot write: ")
+            && e.contains("free space on that disk, or write to another one")
+            && !e.contains("folder"),
+        "{e}"
+    );
+}
+
 /// One run of every writer that reaches its write, with the output `out`: emit, torques,
 /// excite (a short design), simulate, identify --json and feasible. The trajectory and
 /// the simulated data they need are written into `dir` first.
