@@ -467,9 +467,20 @@ const EXPAND_XACRO: &str = "expand it with xacro first (`xacro robot.urdf.xacro 
      robot.urdf`) and give robid the URDF it writes";
 
 /// Whether a text that is not well-formed XML looks like a xacro file: `xacro:` elements
-/// whose namespace is not declared, or `${...}` expressions.
+/// whose namespace is not declared, or `${...}` expressions, outside comments (xarm7's
+/// URDF keeps a commented-out `${prefix}` link: any typo in it was called a xacro file).
 fn looks_like_xacro(text: &str) -> bool {
-    text.contains("<xacro:") || text.contains("${")
+    let mut rest = text;
+    loop {
+        let (before, after) = rest.split_once("<!--").unwrap_or((rest, ""));
+        if before.contains("<xacro:") || before.contains("${") {
+            return true;
+        }
+        match after.split_once("-->") {
+            Some((_, next)) => rest = next,
+            None => return false,
+        }
+    }
 }
 
 /// The first trace of xacro in a parsed file, where and what: an element of the xacro

@@ -777,6 +777,20 @@ fn doctypes_and_xacro_files_are_told_what_to_do() {
     );
     let chain = Robot::from_urdf(&expanded, "t.urdf", &ChainSelection::default()).unwrap();
     assert_eq!(chain.robot.dof(), 2);
+    // xacro text in a comment (xarm7's URDF keeps a `${prefix}` link commented out) does
+    // not make an ordinary XML mistake a xacro file; outside the comment it still does
+    let commented = two.replace(
+        "</robot>",
+        "<!-- <link name=\"${prefix}eef\"/> <xacro:x/> -->\n</robot>",
+    );
+    let typo = commented.replacen("<link ", "<link name=\"x\" ", 1);
+    let message = error_of(&typo, &ChainSelection::default());
+    assert!(
+        message.contains("not well-formed XML") && !message.contains(expand),
+        "{message}"
+    );
+    let message = error_of(&format!("{typo}${{l}}"), &ChainSelection::default());
+    assert!(message.contains(expand), "{message}");
 }
 
 /// An inertial that is possible as a tensor but no body's, on a link of the chain's bodies,
