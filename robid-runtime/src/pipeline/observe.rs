@@ -1250,7 +1250,10 @@ pub(crate) fn observe_counted(
         || format!("regressor values before decimation ({n} samples x {stride} channels)"),
         n as f64 * stride as f64,
         crate::limits::MAX_OBSERVATION_ENTRIES,
-        "use a shorter record or identify it in parts (processing.range)",
+        // the methods that hold the matrix reach this; OLS and WLS stream
+        "use a shorter record or identify it in parts (processing.range), or by WLS or OLS \
+         (`--method wls`, `method = \"wls\"`) without `known` parameters, which stream a \
+         record of any length",
     )?;
     let row_at = |k: usize, st: &mut Scratch, row: &mut [f64]| observer.row_at(k, st, row);
     // channels that are not identically zero, probed at a few samples; verified below
