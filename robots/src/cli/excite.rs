@@ -48,7 +48,7 @@ pub(crate) struct Args {
     /// Start (and end) position `q1,..,qn`, at rest, inside the position limits (default:
     /// the middle of the position limits; a URDF's continuous joint, which has none, is
     /// kept within ±pi of its start, default 0).
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true,
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true,
           value_parser = real(closed(-1e6, 1e6, "rad")))]
     start: Vec<f64>,
     /// Expected torque noise per joint `s1,..,sn`, each in [1e-9, 1e6] N m: weights the

@@ -247,6 +247,14 @@ fn excite_designs_from_a_start_near_a_limit_and_warns_of_a_poor_design() {
         );
         std::fs::remove_file(&out).unwrap();
     }
+    // a list whose first value is negative is the flag's value (clap refused it as an
+    // unexpected argument `-0.5,..`): here it reaches the count check
+    let o = run(&["--start", "-0.5,0.5,0.1"]);
+    assert!(
+        stderr(&o).contains("--start has 3 values"),
+        "{}",
+        stderr(&o)
+    );
     let o = run(&["--velocity-limits", "1e-6"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let e = stderr(&o);
