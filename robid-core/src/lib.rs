@@ -4,6 +4,7 @@
 //! - what a parameter is ([`ParameterId`], [`BaseName`], [`DriveTerm`]), parsed and
 //!   written in one place;
 //! - the table of the programs every robot model has ([`PROGRAMS`]);
+//! - the nearest names to a misspelt one ([`names`], with the `std` feature);
 //! - the seeded random generator ([`rng::Rng`]; its normal distribution with the `std`
 //!   feature, which robid-runtime's `std` turns on).
 //!
@@ -14,6 +15,8 @@
 #[cfg(any(test, feature = "std"))]
 extern crate std;
 
+#[cfg(any(test, feature = "std"))]
+pub mod names;
 mod parameter;
 mod program;
 pub mod rng;

@@ -646,33 +646,10 @@ fn short_source(source: &str) -> String {
 
 /// The name of `names` closest to `key`: the same but for case, or one edit away.
 fn nearest<'a>(key: &str, names: &'a [String]) -> Option<&'a str> {
-    if let Some(n) = names.iter().find(|n| n.eq_ignore_ascii_case(key)) {
-        return Some(n);
-    }
-    names
-        .iter()
-        .map(|n| (edits(key, n), n))
-        .filter(|(d, _)| *d <= 1)
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, n)| n.as_str())
-}
-
-/// Levenshtein distance.
-fn edits(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (diagonal + usize::from(ca != *cb))
-                .min(row[j] + 1)
-                .min(above + 1);
-            diagonal = above;
-        }
-    }
-    row[b.len()]
+    robid_core::names::nearest(key, names.iter().map(String::as_str))
+        .into_iter()
+        .next()
+        .filter(|n| n.eq_ignore_ascii_case(key) || robid_core::names::distance(key, n) <= 1)
 }
 
 #[cfg(test)]

@@ -5,8 +5,8 @@
 
 use super::bounds::{
     ANGLE_RESOLUTION, LENGTH_SNAP, MAX_ACCELERATION, MAX_ANGLE, MAX_CALIBRATED_LENGTH, MAX_GRAVITY,
-    MAX_JOINTS, MAX_LENGTH, MAX_POSITION, MAX_SAMPLED, MAX_SYMBOLS, MAX_TORQUE, MAX_VELOCITY,
-    MIN_GRAVITY, MIN_LENGTH, RIGHT_ANGLE_SNAP, SYMBOL_SAMPLES, calibrated_pair,
+    MAX_JOINTS, MAX_LENGTH, MAX_NAME_LEN, MAX_POSITION, MAX_SAMPLED, MAX_SYMBOLS, MAX_TORQUE,
+    MAX_VELOCITY, MIN_GRAVITY, MIN_LENGTH, RIGHT_ANGLE_SNAP, SYMBOL_SAMPLES, calibrated_pair,
 };
 use super::interval::magnitude_bound;
 use super::{Convention, DescriptionError, Geometry, Joint, JointKind, Limits, Robot, Transform};
@@ -267,6 +267,14 @@ const KEYWORDS: [&str; 55] = [
 /// Why `name` cannot name a robot (message, help), if it cannot.
 pub(crate) fn name_problem(name: &str) -> Option<(String, String)> {
     let help = "use letters, digits and `_`, starting with a letter: it names the generated type (`ur5e` -> `Ur5e`)";
+    let length = name.chars().count();
+    if length > MAX_NAME_LEN {
+        let head: String = name.chars().take(32).collect();
+        return Some((
+            format!("robot name `{head}..` has {length} characters, more than {MAX_NAME_LEN}"),
+            "give a shorter name: it names the generated type".to_owned(),
+        ));
+    }
     if !name.starts_with(|c: char| c.is_ascii_alphabetic())
         || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
     {
@@ -549,34 +557,15 @@ pub(super) fn standard_gamma_b(j: usize, dh: Dh) -> (String, String) {
 
 /// The help for a value given to a symbol nothing uses: the nearest used one.
 fn unused_help(symbol: &str, used: &[String]) -> String {
-    let nearest = used.iter().min_by_key(|u| {
-        (
-            distance(&u.to_lowercase(), &symbol.to_lowercase()),
-            distance(u, symbol),
-        )
-    });
+    let nearest = robid_core::names::nearest(symbol, used.iter().map(String::as_str))
+        .into_iter()
+        .next();
     match nearest {
         Some(n) => format!(
             "did you mean `{n}`? (names are case-sensitive) A symbol without a value becomes a run-time input of the model; remove the entry or use it in a DH value"
         ),
         None => "no DH value or gravity uses a symbol; remove the entry, or write the symbol where it belongs (e.g. `a = \"L2\"`)".to_owned(),
     }
-}
-
-/// Levenshtein distance.
-pub(super) fn distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut previous = row[0];
-        row[0] = i + 1;
-        for (k, &cb) in b.iter().enumerate() {
-            let substitute = previous + usize::from(ca != cb);
-            previous = row[k + 1];
-            row[k + 1] = substitute.min(row[k] + 1).min(previous + 1);
-        }
-    }
-    row[b.len()]
 }
 
 /// What the item is, in messages.
@@ -871,7 +860,7 @@ fn limit_problems(limits: &Limits) -> Vec<(Limit, String, String)> {
 
 #[cfg(test)]
 mod tests {
-    use super::{and_more, distance, name_problem, quarter_text, show};
+    use super::{MAX_NAME_LEN, and_more, name_problem, quarter_text, show};
 
     /// The count of a warning's other places, singular and plural, nothing for none.
     #[test]
@@ -893,12 +882,16 @@ mod tests {
         for good in ["ur5e", "my_arm", "Arm2", "selfie", "crate_arm"] {
             assert!(name_problem(good).is_none(), "{good}");
         }
+        assert!(name_problem(&"a".repeat(MAX_NAME_LEN)).is_none());
+        let (message, _) = name_problem(&"a".repeat(MAX_NAME_LEN + 1)).unwrap();
+        assert!(
+            message.ends_with("has 257 characters, more than 256"),
+            "{message}"
+        );
     }
 
     #[test]
     fn helpers() {
-        assert_eq!(distance("l2", "L2"), 1);
-        assert_eq!(distance("kitten", "sitting"), 3);
         assert_eq!(quarter_text(1.0), "pi/2");
         assert_eq!(quarter_text(-2.0), "-pi");
         assert_eq!(quarter_text(3.0), "3*pi/2");

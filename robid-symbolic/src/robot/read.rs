@@ -3,11 +3,12 @@
 //! unreadable values are collected, each with its span, and reading goes on
 //! with a placeholder so that the checks can report the rest.
 
-use super::check::{Dh, Item, Limit, Mount, Part, Parts, distance, standard_gamma_b};
+use super::check::{Dh, Item, Limit, Mount, Part, Parts, standard_gamma_b};
 use super::file::Place;
 use super::{
     Convention, DescriptionError, Drive, DriveTerm, Geometry, Joint, JointKind, Limits, Transform,
 };
+use robid_core::names;
 use std::collections::HashMap;
 use std::ops::Range;
 use toml::Spanned;
@@ -206,10 +207,10 @@ impl<'a> Reader<'a> {
                         .map(|k| format!("`{k}`"))
                         .collect::<Vec<_>>()
                         .join(", ");
-                    let nearest = known
-                        .iter()
-                        .min_by_key(|k| distance(k, &key_name.to_lowercase()))
-                        .filter(|k| distance(k, &key_name.to_lowercase()) <= 2);
+                    let nearest = names::nearest(key_name, known.iter().copied())
+                        .into_iter()
+                        .next()
+                        .filter(|k| names::distance_ignoring_case(k, key_name) <= 2);
                     let help = match nearest {
                         Some(k) => format!("did you mean `{k}`? The keys {context} are {list}"),
                         None => format!("the keys {context} are {list}"),

@@ -3,7 +3,8 @@
 //! moves (docs/urdf.md#choosing-the-chain).
 
 use super::super::DescriptionError;
-use super::super::check::{and_more, distance, show};
+use super::super::bounds::MAX_JOINTS;
+use super::super::check::{and_more, show};
 use super::super::file::Place;
 use super::rigid::{Rigid, scale};
 use super::xml::{Joint, JointType, Mimic, Urdf};
@@ -55,14 +56,7 @@ pub(super) struct Chain {
 }
 
 fn nearest(names: &[&str], wanted: &str) -> String {
-    let mut sorted: Vec<&str> = names.to_vec();
-    sorted.sort_by_key(|n| {
-        (
-            distance(&n.to_lowercase(), &wanted.to_lowercase()),
-            n.to_string(),
-        )
-    });
-    sorted
+    robid_core::names::nearest(wanted, names.iter().copied())
         .iter()
         .take(3)
         .map(|n| format!("`{n}`"))
@@ -336,13 +330,18 @@ fn mimic_beyond_limits(place: &Place<'_>, urdf: &Urdf, tree: &Tree, j: usize) ->
     ))
 }
 
+/// How many candidate tips the help names: a tree of thousands of branches gets a few
+/// and a count, not a list nobody reads (nor the time to check every one).
+const LISTED_TIPS: usize = 8;
+
 /// The help of the error for a tree without a tip: the tips that give a chain robid
 /// models. Per leaf below a movable joint (not the antennas or sensors fixed to the base)
 /// the leaf itself, or when its chain fails (a `<mimic>` joint in it or moving with it, a
-/// floating joint) the deepest link moved by a joint of its path whose chain does not;
-/// then the link above the branches (moved by the last movable joint above the links
-/// where the movable joints' paths part), each once per set of joints. Leaves that fail
-/// are named with the first reason.
+/// floating joint, more than [`MAX_JOINTS`] movable joints) the deepest link moved by a
+/// joint of its path whose chain does not; then the link above the branches (moved by the
+/// last movable joint above the links where the movable joints' paths part), each once per
+/// set of joints. Leaves that fail are named with the first reason. At most
+/// [`LISTED_TIPS`] tips and as many failing leaves are named, the others counted.
 fn tips(
     place: &Place<'_>,
     urdf: &Urdf,
@@ -362,6 +361,12 @@ fn tips(
     };
     // why a chain from the base to `l` fails, if it does
     let fails = |l: usize| -> Option<String> {
+        let count = joints_to(l).len();
+        if count > MAX_JOINTS {
+            return Some(format!(
+                "the chain has {count} movable joints, and robid derives at most {MAX_JOINTS}"
+            ));
+        }
         let selection = ChainSelection {
             base: Some(names[base].to_owned()),
             tip: Some(names[l].to_owned()),
@@ -377,7 +382,15 @@ fn tips(
     let leaves: Vec<usize> = below
         .iter()
         .copied()
-        .filter(|&l| tree.children[l].is_empty() && !joints_to(l).is_empty())
+        .filter(|&l| {
+            tree.children[l].is_empty()
+                && l != base
+                && tree
+                    .path(base, l)
+                    .unwrap_or_default()
+                    .iter()
+                    .any(|&j| movable(j))
+        })
         .collect();
     let mut good: Vec<(usize, Vec<usize>)> = Vec::new();
     let add = |l: usize, good: &mut Vec<(usize, Vec<usize>)>| {
@@ -388,7 +401,12 @@ fn tips(
     };
     let mut failing: Vec<usize> = Vec::new();
     let mut reason: Option<(usize, String)> = None;
+    let mut unchecked = 0;
     for &leaf in &leaves {
+        if good.len() >= LISTED_TIPS || failing.len() >= LISTED_TIPS {
+            unchecked += 1;
+            continue;
+        }
         match fails(leaf) {
             None => add(leaf, &mut good),
             Some(why) => {
@@ -396,7 +414,7 @@ fn tips(
                 reason.get_or_insert((leaf, why));
                 // the deepest link moved by a joint of the path whose chain is modelled
                 let path = joints_to(leaf);
-                if let Some(l) = path
+                if let Some(l) = path[..path.len().min(MAX_JOINTS)]
                     .iter()
                     .rev()
                     .map(|&j| tree.ends[j].1)
@@ -409,10 +427,21 @@ fn tips(
     }
     // the link above the branches: moved by the last movable joint on the path that the
     // paths to the last moved links (no movable joint below them) share
-    let last_moved = ends
+    let mut end_below = vec![false; urdf.links.len()];
+    let mut is_end = vec![false; urdf.links.len()];
+    for &e in ends {
+        is_end[e] = true;
+    }
+    // `below` is depth first, so a link's children come after it
+    for &l in below.iter().rev() {
+        end_below[l] = tree.children[l].iter().any(|&j| {
+            let c = tree.ends[j].1;
+            is_end[c] || end_below[c]
+        });
+    }
+    let shared = ends
         .iter()
-        .filter(|&&e| !ends.iter().any(|&o| o != e && tree.path(e, o).is_some()));
-    let shared = last_moved
+        .filter(|&&e| !end_below[e])
         .map(|&l| tree.path(base, l).unwrap_or_default())
         .reduce(|a, b| {
             a.into_iter()
@@ -434,6 +463,7 @@ fn tips(
             .collect::<Vec<_>>()
             .join(", ")
     };
+    let more = and_more(unchecked, " leaf", " leaves");
     let mut help = if good.is_empty() {
         format!(
             "no leaf below link `{}` ends a chain robid models",
@@ -441,13 +471,13 @@ fn tips(
         )
     } else {
         let listed: Vec<usize> = good.iter().map(|(l, _)| *l).collect();
-        let mut text = if listed.len() == 1 {
+        let mut text = if listed.len() == 1 && unchecked == 0 {
             format!("choose the tip `{}`", names[listed[0]])
         } else {
-            format!("choose the tip among {}", quoted(&listed))
+            format!("choose the tip among {}{more}", quoted(&listed))
         };
         if let Some(b) = branch {
-            if listed == [b] {
+            if listed == [b] && unchecked == 0 {
                 text += ", where the chain branches (the joints below it are held)";
             } else if listed.contains(&b) {
                 text += &format!(" (`{}`: where the chain branches)", names[b]);

@@ -8,7 +8,7 @@
 
 use super::super::DescriptionError;
 use super::super::bounds::{
-    MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_TORQUE, MAX_TURNING, MAX_VELOCITY,
+    MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_NAME_LEN, MAX_TORQUE, MAX_TURNING, MAX_VELOCITY,
 };
 use super::super::check::and_more;
 use super::super::file::Place;
@@ -515,8 +515,23 @@ fn xacro_left(root: Node<'_, '_>) -> Option<(Range<usize>, String)> {
 /// `<tag name="...">` for messages.
 fn describe(node: Node<'_, '_>) -> String {
     match node.attribute("name") {
-        Some(name) => format!("`<{} name=\"{name}\">`", node.tag_name().name()),
+        Some(name) => format!(
+            "`<{} name=\"{}\">`",
+            node.tag_name().name(),
+            shortened(name)
+        ),
         None => format!("`<{}>`", node.tag_name().name()),
+    }
+}
+
+/// A value as written, for a message: at most 40 characters.
+fn shortened(value: &str) -> String {
+    match value.char_indices().nth(40) {
+        None => value.to_owned(),
+        Some(_) => {
+            let head: String = value.chars().take(32).collect();
+            format!("{head}.. ({} characters)", value.chars().count())
+        }
     }
 }
 
@@ -551,6 +566,19 @@ impl Reader<'_> {
     /// A required attribute and where its value is.
     fn required(&mut self, node: Node<'_, '_>, name: &str) -> Option<(String, Range<usize>)> {
         match node.attribute_node(name) {
+            Some(a) if a.value().chars().nth(MAX_NAME_LEN).is_some() => {
+                self.error(
+                    a.range_value(),
+                    format!(
+                        "`{name}=\"{}\"` of {} is longer than {MAX_NAME_LEN} characters, the \
+                         most robid reads",
+                        shortened(a.value()),
+                        describe(node)
+                    ),
+                    "give it a shorter name",
+                );
+                None
+            }
             Some(a) => Some((a.value().to_owned(), a.range_value())),
             None => {
                 self.error(
@@ -813,10 +841,11 @@ impl Reader<'_> {
                     let fixed = matches!(kind, Some(JointType::Fixed));
                     self.vector(a, "xyz").and_then(|v| {
                         // over its largest component first: the norm of `0 0 1e-200`
-                        // underflows to zero, that of `3e300 4e300 0` overflows
+                        // underflows to zero, that of `3e300 4e300 0` overflows; divided,
+                        // not times the reciprocal, which overflows for `1e-320 0 0`
                         let largest = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
                         if largest > 0.0 && largest.is_finite() {
-                            let u = scale(v, 1.0 / largest);
+                            let u = v.map(|x| x / largest);
                             Some(scale(u, 1.0 / norm(u)))
                         } else if fixed && largest == 0.0 {
                             // a fixed joint's axis is not used (Kinova's Gen3 URDF writes

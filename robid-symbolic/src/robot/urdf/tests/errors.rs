@@ -1388,12 +1388,15 @@ fn a_file_cut_short_is_told_at_its_end() {
 }
 
 /// An axis of tiny components is a direction like any other: its norm underflowed to zero
-/// (`0 0 1e-200`) and it was refused as having none.
+/// (`0 0 1e-200`) and it was refused as having none; a subnormal one (`1e-320 0 0`) made
+/// every DH row NaN.
 #[test]
 fn an_axis_of_tiny_components_has_a_direction() {
     let half = std::f64::consts::FRAC_1_SQRT_2;
     for (xyz, unit) in [
         ("0 0 1e-200", [0.0, 0.0, 1.0]),
+        ("1e-320 0 0", [1.0, 0.0, 0.0]),
+        ("0 5e-324 -5e-324", [0.0, half, -half]),
         ("1e-170 -1e-170 0", [half, -half, 0.0]),
         ("0 -3e8 4e8", [0.0, -0.6, 0.8]),
     ] {
@@ -1404,4 +1407,79 @@ fn an_axis_of_tiny_components_has_a_direction() {
             "{xyz}: {axis:?}"
         );
     }
+}
+
+/// A name of 400 000 characters was quoted whole in the message and compared with every
+/// link for the nearest (47 s for 200 000 characters); it is refused, quoted short.
+#[test]
+fn a_huge_name_is_refused_quoted_short() {
+    let huge = "x".repeat(400_000);
+    let text = arm(&format!(
+        "{J1}{}",
+        J2.replace("\"b\"/><child", &format!("\"{huge}\"/><child"))
+    ));
+    let message = error_of(&text, &ChainSelection::default());
+    assert!(
+        message.contains(
+            "`link=\"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx.. (400000 characters)\"` of `<parent>` is \
+             longer than 256 characters, the most robid reads; give it a shorter name"
+        ),
+        "{message}"
+    );
+    assert!(message.len() < 400, "{message}");
+}
+
+/// A joint `name` moving link `child` of link `parent` about x.
+fn turning(name: &str, parent: &str, child: &str) -> String {
+    format!(
+        "<link name=\"{child}\"/><joint name=\"{name}\" type=\"continuous\"><parent \
+         link=\"{parent}\"/><child link=\"{child}\"/></joint>"
+    )
+}
+
+/// A comb of a thousand teeth (a movable side joint at every link of a long chain): the
+/// analysis of the candidate tips checked every leaf's chain against every other (15 s
+/// for 2000 teeth, cubic); it names a few and counts the rest. Chains longer than robid
+/// derives are no candidates: the deepest link of such a path that is one is offered.
+#[test]
+fn a_tree_of_many_branches_names_a_few_tips() {
+    let comb: String = (1..=1000)
+        .map(|i| {
+            let spine = turning(&format!("j{i}"), &format!("l{}", i - 1), &format!("l{i}"));
+            spine + &turning(&format!("k{i}"), &format!("l{i}"), &format!("s{i}"))
+        })
+        .collect();
+    let text = format!("<robot name=\"comb\"><link name=\"l0\"/>{comb}</robot>");
+    let message = error_of(&text, &ChainSelection::default());
+    assert!(
+        message.ends_with(
+            "choose the tip among `s1`, `s2`, `s3`, `s4`, `s5`, `s6`, `s7`, `s8` (and 992 more \
+             leaves), or `l1`, where the chain branches (the joints below it are held)"
+        ),
+        "{message}"
+    );
+    let n = MAX_JOINTS + 8;
+    let fork: String = ["a", "b"]
+        .iter()
+        .flat_map(|side| {
+            (1..=n).map(move |i| {
+                let parent = if i == 1 {
+                    "root".to_owned()
+                } else {
+                    format!("{side}{}", i - 1)
+                };
+                turning(&format!("{side}j{i}"), &parent, &format!("{side}{i}"))
+            })
+        })
+        .collect();
+    let text = format!("<robot name=\"fork\"><link name=\"root\"/>{fork}</robot>");
+    let message = error_of(&text, &ChainSelection::default());
+    assert!(
+        message.ends_with(&format!(
+            "choose the tip among `a{MAX_JOINTS}`, `b{MAX_JOINTS}`; not the leaves `a{n}`, \
+             `b{n}`: with `a{n}` as the tip, the chain has {n} movable joints, and robid derives \
+             at most {MAX_JOINTS}"
+        )),
+        "{message}"
+    );
 }
