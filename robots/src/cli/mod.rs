@@ -21,7 +21,7 @@ mod simulate;
 mod states;
 mod torques;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// robid: closed-form robot dynamics, base parameters and identification.
@@ -77,7 +77,10 @@ enum Command {
 /// on success, 1 on an error (2 for a command line clap rejects), 141 when standard
 /// output was closed by its reader (see `out`).
 pub(crate) fn run() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let parsed = numbers_may_be_negative(Cli::command())
+        .try_get_matches()
+        .and_then(|matches| Cli::from_arg_matches(&matches));
+    let cli = match parsed {
         Ok(cli) => cli,
         Err(e) => {
             let code = u8::try_from(e.exit_code()).unwrap_or(2);
@@ -105,6 +108,21 @@ pub(crate) fn run() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => out::error(e.as_ref()),
     }
+}
+
+/// `command` with every flag that takes a value taking a negative number too
+/// (`--duration -10`): clap read `-10` as an unknown flag ("unexpected argument") where the
+/// flag's own check says what range it takes.
+fn numbers_may_be_negative(command: clap::Command) -> clap::Command {
+    command
+        .mut_args(|arg| {
+            if arg.get_action().takes_values() && !arg.is_positional() {
+                arg.allow_negative_numbers(true)
+            } else {
+                arg
+            }
+        })
+        .mut_subcommands(numbers_may_be_negative)
 }
 
 /// Any error a subcommand reports: a message that says what and how to fix it.

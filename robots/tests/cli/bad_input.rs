@@ -75,6 +75,23 @@ fn excite_values_out_of_range_are_refused_naming_the_flag() {
             "0 is outside (0, 1e6] s",
         ),
         (&["--sigma", "0"], "--sigma", "0 is outside [1e-9, 1e6] N m"),
+        // a negative number after a space was "unexpected argument '-10'" with clap's tip
+        // to write `-- -10`
+        (
+            &["--duration", "-10"],
+            "--duration",
+            "-10 is outside (0, 1e6] s",
+        ),
+        (
+            &["--sigma", "-1"],
+            "--sigma",
+            "-1 is outside [1e-9, 1e6] N m",
+        ),
+        (
+            &["--seed", "-1"],
+            "--seed",
+            "`-1` is not a whole number; give one in 0..=18446744073709551615",
+        ),
         (
             &["--sigma", "1,2,nan"],
             "--sigma",
