@@ -177,8 +177,9 @@ impl Problem {
                 values.len().min(std.len()),
             ));
         }
-        // drive terms that differ (identify run with other --drive): say which to give
-        let drive = || crate::model::drive_terms_mismatch("it", names, &self.standard_names);
+        // drive terms that differ (identify run with other --drive): say which to give. The
+        // result holds base parameters, so its names are compared with the base names
+        let drive = || crate::model::drive_terms_mismatch("it", names, &self.base_names);
         let mut v = Vec::with_capacity(self.base_names.len());
         let mut s = Vec::with_capacity(self.base_names.len());
         for b in &self.base_names {

@@ -244,6 +244,17 @@ fn about(path: &Path, e: robid_runtime::Error) -> Error {
     }
 }
 
+/// An error of the identified result `path` read into the problem: its message names the
+/// entries; the library's argument (`names`, `std`) is no place in the file.
+fn about_identified(path: &Path, e: robid_runtime::Error) -> Error {
+    match e {
+        robid_runtime::Error::Setting { problem, .. } => {
+            format!("{}: {problem}", path.display()).into()
+        }
+        other => other.into(),
+    }
+}
+
 /// Refuses a solution with a value that is not a finite number.
 fn check_solution(solution: &Solution) -> Result<(), Error> {
     let bad = solution
@@ -299,7 +310,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     let problem = problem
         .with_extra_columns(&extra)
-        .map_err(|e| about(&args.identified, e))?;
+        .map_err(|e| about_identified(&args.identified, e))?;
     let names: Vec<String> = identified
         .parameters
         .iter()
@@ -309,7 +320,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let std: Vec<f64> = identified.parameters.iter().map(|p| p.std).collect();
     let problem = problem
         .with_identified(&names, &values, &std)
-        .map_err(|e| about(&args.identified, e))?;
+        .map_err(|e| about_identified(&args.identified, e))?;
     let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {

@@ -1026,6 +1026,36 @@ fn data_of_a_robot_with_more_joints_is_refused() {
     fails_with(&o, &["has a column `q4`", "model with 3 joints"]);
 }
 
+/// A result identified with other drive terms than `feasible` is given names them and the
+/// `--drive` to give: the check compared the result's base names with the standard ones,
+/// found `ZZR1` among none of them and said only "identify with the same robot
+/// description", after the library's argument name `` `names`: ``.
+#[test]
+fn an_identified_result_of_other_drive_terms_names_them() {
+    let dir = folder();
+    let out = dir.path().join("links.toml");
+    let o = robid(&[
+        "feasible",
+        "configs/tx40_robot.toml",
+        "--identified",
+        "tests/fixtures/tx40_identified.json",
+        "--drive",
+        "Fv,Fc",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &[
+            "tx40_identified.json: the identified result has 61 parameters",
+            "it has the drive terms Ia, Fv, Fc, Fo (",
+            "the robot Fv, Fc: give `--drive Ia,Fv,Fc,Fo` to model them",
+        ],
+    );
+    assert!(!stderr(&o).contains("`names`"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
 /// The identified JSON of `feasible`: a value of 1e308 (it used to give "chi^2 = 0"), or a
 /// standard deviation of zero for an entry not marked `known`, or a negative one, or a name given twice, is named by entry; nothing is written.
 #[test]
