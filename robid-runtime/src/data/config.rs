@@ -232,7 +232,10 @@ pub struct Source {
 /// `{0}` for the joint's index (from 0, as UR's RTDE recorder numbers `actual_q_0` ..),
 /// or a list.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a column name template such as \"q{}\" or a list of one column name per joint"
+)]
 pub enum Columns {
     /// e.g. `"q{}"` -> q1, q2, ...; `"actual_q_{0}"` -> actual_q_0, actual_q_1, ...
     Template(String),
@@ -266,7 +269,10 @@ impl Columns {
 
 /// A number for all joints or one per joint.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a number for every joint or a list of one number per joint"
+)]
 pub enum PerJoint {
     /// The same value for every joint.
     All(f64),
@@ -447,8 +453,10 @@ where
 /// The two values of `v`, or an error saying how many there are.
 fn two<E: serde::de::Error, T>(v: Vec<T>) -> std::result::Result<[T; 2], E> {
     let n = v.len();
-    <[T; 2]>::try_from(v)
-        .map_err(|_| E::custom(format!("{n} values given; write two, [start, end]")))
+    <[T; 2]>::try_from(v).map_err(|_| {
+        let values = if n == 1 { "value" } else { "values" };
+        E::custom(format!("{n} {values} given; write two, [start, end]"))
+    })
 }
 
 /// Where velocities or accelerations come from.
@@ -537,7 +545,10 @@ impl Differentiation {
 
 /// A total decimation factor or explicit stages.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a whole number of at least 1 (the total factor) or a list of stage factors such as [10, 10]"
+)]
 pub enum Decimation {
     /// Total factor, split into stages of at most 10.
     Total(usize),
@@ -649,7 +660,10 @@ pub enum RunMode {
 
 /// The files of one run: one file, or one file per `[[source]]` table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a file path in quotes or a list of one path per [[source]]"
+)]
 pub enum RunFiles {
     /// The file of a config with one `[[source]]`.
     One(PathBuf),
@@ -1366,7 +1380,9 @@ method = "wls"
         );
         let err = Config::from_toml_str("progress = true", Path::new("a.toml")).unwrap_err();
         assert!(
-            err.to_string().contains("unknown field `progress`"),
+            err.to_string().starts_with(
+                "a.toml:1:1: `progress`: not a key of this table; the keys here are `dof`"
+            ),
             "{err}"
         );
     }

@@ -63,7 +63,10 @@ impl ResidualTerm {
 
 /// `residual = [..]`: the same terms for every joint, or one list per joint.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a list of residual terms for every joint or one list per joint"
+)]
 pub enum Residual {
     /// The same terms for every joint.
     All(Vec<ResidualTerm>),

@@ -92,8 +92,11 @@ pub struct Bounds {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLink {
+    #[serde(default, deserialize_with = "range")]
     mass: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "com_ranges")]
     com: Option<[[f64; 2]; 3]>,
+    #[serde(default, deserialize_with = "range")]
     inertia: Option<[f64; 2]>,
     inertia_tensor: Option<RawTensor>,
 }
@@ -101,11 +104,17 @@ struct RawLink {
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct RawTensor {
+    #[serde(default, deserialize_with = "range")]
     xx: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "range")]
     yy: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "range")]
     zz: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "range")]
     xy: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "range")]
     xz: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "range")]
     yz: Option<[f64; 2]>,
 }
 
@@ -119,11 +128,50 @@ impl RawTensor {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Raw {
+    #[serde(default, deserialize_with = "range")]
     total_mass: Option<[f64; 2]>,
     margin: Option<f64>,
     default: Option<RawLink>,
     #[serde(default)]
     links: BTreeMap<String, RawLink>,
+}
+
+/// A `[lo, hi]` range, refused unless it has two values: toml read `[1, 2, 3]` into a
+/// `[f64; 2]` without a word.
+fn range<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<[f64; 2]>, D::Error> {
+    Option::<Vec<f64>>::deserialize(d)?.map(two).transpose()
+}
+
+/// The `com` ranges of x, y and z, each `[lo, hi]` ([`range`]).
+fn com_ranges<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<[[f64; 2]; 3]>, D::Error> {
+    let Some(axes) = Option::<Vec<Vec<f64>>>::deserialize(d)? else {
+        return Ok(None);
+    };
+    let n = axes.len();
+    let pairs = axes
+        .into_iter()
+        .zip(["x", "y", "z"].iter().chain(std::iter::repeat(&"next")))
+        .map(|(v, axis)| {
+            let n = v.len();
+            <[f64; 2]>::try_from(v).map_err(|_| {
+                serde::de::Error::custom(format!(
+                    "the {axis} range has {n} values; give two, [lo, hi]"
+                ))
+            })
+        })
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    <[[f64; 2]; 3]>::try_from(pairs)
+        .map(Some)
+        .map_err(|_| serde::de::Error::invalid_length(n, &"three ranges [lo, hi], of x, y and z"))
+}
+
+fn two<E: serde::de::Error>(v: Vec<f64>) -> std::result::Result<[f64; 2], E> {
+    let n = v.len();
+    <[f64; 2]>::try_from(v).map_err(|_| E::invalid_length(n, &"two values [lo, hi]"))
 }
 
 /// Default pseudo-inertia margin (kg, kg m^2) of links of ordinary size.

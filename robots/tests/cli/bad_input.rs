@@ -1173,8 +1173,8 @@ fn inputs_are_named_by_their_kind_never_config() {
         (
             vec!["descriptions/ur5e.toml", "--method", "anneal"],
             &[
-                "tx40_identified.json: `",
-                "identify with the same robot description",
+                "tx40_identified.json: base parameter `",
+                "is missing from the identified result; identify with the same robot description",
             ][..],
         ),
         (
