@@ -781,6 +781,17 @@ pub(super) fn and_more(n: usize, one: &str, many: &str) -> String {
     }
 }
 
+/// How many items a list in a message names; the rest are counted.
+pub(super) const LISTED: usize = 8;
+
+/// `items` joined by commas: the first [`LISTED`], then a count of the others (a URDF of
+/// 3000 joints without `<limit>` named them all in one warning).
+pub(super) fn listed(items: impl IntoIterator<Item = String>) -> String {
+    let mut items = items.into_iter();
+    let shown: Vec<String> = items.by_ref().take(LISTED).collect();
+    shown.join(", ") + &and_more(items.count(), "", "")
+}
+
 /// `k pi/2` as text.
 fn quarter_text(k: f64) -> String {
     match k as i64 {

@@ -52,9 +52,6 @@ use std::io::Read;
 use std::ops::Range;
 use toml::de::DeTable;
 
-/// Most mistakes reported for one file; the rest are counted.
-const MAX_ERRORS: usize = 50;
-
 /// Where a problem is: file name, the text (for line/column).
 pub(super) struct Place<'a> {
     pub(super) file: &'a str,
@@ -412,15 +409,6 @@ impl Robot {
             Err(more) => errors.extend(more),
         }
         errors.sort_by_key(|e| e.span().map_or(0, |(start, _)| start));
-        if errors.len() > MAX_ERRORS {
-            let rest = errors.split_off(MAX_ERRORS);
-            let at = rest[0].span().map_or(0, |(start, _)| start);
-            errors.push(place.invalid(
-                at..at,
-                format!("{} more mistakes from here on are not shown", rest.len()),
-                "fix the ones above and read the file again",
-            ));
-        }
         Err(DescriptionError::from_errors(errors))
     }
 }

@@ -4,7 +4,7 @@
 
 use super::super::DescriptionError;
 use super::super::bounds::MAX_JOINTS;
-use super::super::check::{and_more, show};
+use super::super::check::{LISTED, and_more, listed, show};
 use super::super::file::Place;
 use super::rigid::{Rigid, scale};
 use super::xml::{Joint, JointType, Mimic, Urdf};
@@ -147,11 +147,7 @@ pub(super) fn tree(
     }
     let roots: Vec<usize> = (0..n).filter(|&l| parent[l].is_none()).collect();
     if roots.len() > 1 {
-        let list = roots
-            .iter()
-            .map(|&l| format!("`{}`", names[l]))
-            .collect::<Vec<_>>()
-            .join(", ");
+        let list = listed(roots.iter().map(|&l| format!("`{}`", names[l])));
         return Err(place.invalid(
             urdf.links[roots[1]].range.clone(),
             format!("the robot has several root links (links no joint moves): {list}"),
@@ -257,7 +253,7 @@ fn held(place: &Place<'_>, urdf: &Urdf) -> Result<Vec<f64>, DescriptionError> {
                     _ => (
                         format!(
                             "the joints {} follow each other through `<mimic>` in a cycle",
-                            names.join(", ")
+                            listed(names.iter().cloned())
                         ),
                         "a mimic joint follows a joint that moves on its own: remove one `<mimic>`",
                     ),
@@ -330,10 +326,6 @@ fn mimic_beyond_limits(place: &Place<'_>, urdf: &Urdf, tree: &Tree, j: usize) ->
     ))
 }
 
-/// How many candidate tips the help names: a tree of thousands of branches gets a few
-/// and a count, not a list nobody reads (nor the time to check every one).
-const LISTED_TIPS: usize = 8;
-
 /// The help of the error for a tree without a tip: the tips that give a chain robid
 /// models. Per leaf below a movable joint (not the antennas or sensors fixed to the base)
 /// the leaf itself, or when its chain fails (a `<mimic>` joint in it or moving with it, a
@@ -341,7 +333,7 @@ const LISTED_TIPS: usize = 8;
 /// joint of its path whose chain does not; then the link above the branches (moved by the
 /// last movable joint above the links where the movable joints' paths part), each once per
 /// set of joints. Leaves that fail are named with the first reason. At most
-/// [`LISTED_TIPS`] tips and as many failing leaves are named, the others counted.
+/// [`LISTED`] tips and as many failing leaves are named, the others counted.
 fn tips(
     place: &Place<'_>,
     urdf: &Urdf,
@@ -403,7 +395,7 @@ fn tips(
     let mut reason: Option<(usize, String)> = None;
     let mut unchecked = 0;
     for &leaf in &leaves {
-        if good.len() >= LISTED_TIPS || failing.len() >= LISTED_TIPS {
+        if good.len() >= LISTED || failing.len() >= LISTED {
             unchecked += 1;
             continue;
         }

@@ -4,7 +4,7 @@
 
 use super::super::DescriptionError;
 use super::super::bounds::MIN_LENGTH;
-use super::super::check::show;
+use super::super::check::{listed, show};
 use super::super::file::Place;
 use super::chain::Chain;
 use super::rigid::{Mat3, Rigid, dot, mul, transpose};
@@ -252,7 +252,7 @@ pub(super) fn check(
             rest => {
                 let names: Vec<String> =
                     rest.iter().map(|(name, ..)| format!("`{name}`")).collect();
-                format!(" (links {} have such inertials too)", names.join(", "))
+                format!(" (links {} have such inertials too)", listed(names))
             }
         };
         warnings.push(place.warning(
@@ -280,7 +280,7 @@ pub(super) fn check(
             format!(
                 " ({} {} {} an impossible inertial too, also unused)",
                 if names.len() == 1 { "link" } else { "links" },
-                names.join(", "),
+                listed(names.iter().cloned()),
                 if names.len() == 1 { "has" } else { "have" }
             )
         } else {

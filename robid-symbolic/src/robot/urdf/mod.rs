@@ -255,7 +255,7 @@ impl Robot {
                 .inverse()
                 .then(&chain.in_base[chain.tip])
                 .pose(),
-            warnings,
+            warnings: capped(warnings),
             unphysical,
         })
     }
@@ -300,3 +300,17 @@ fn read_text(path: &Path, file: &str) -> Result<String, DescriptionError> {
 }
 
 pub use write::write_inertials;
+
+/// At most [`MAX_ERRORS`](super::error::MAX_ERRORS) warnings and a count of the rest (a
+/// generated URDF of 5000 `<mimic>` elements naming no joint warned 5000 times).
+fn capped(mut warnings: Vec<String>) -> Vec<String> {
+    let most = super::error::MAX_ERRORS;
+    if warnings.len() > most {
+        let rest = warnings.len() - most;
+        warnings.truncate(most);
+        warnings.push(format!(
+            "{rest} more warnings are not shown: fix the ones above and read the file again"
+        ));
+    }
+    warnings
+}

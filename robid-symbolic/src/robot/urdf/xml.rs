@@ -10,7 +10,7 @@ use super::super::DescriptionError;
 use super::super::bounds::{
     MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_NAME_LEN, MAX_TORQUE, MAX_TURNING, MAX_VELOCITY,
 };
-use super::super::check::and_more;
+use super::super::check::{and_more, listed};
 use super::super::file::Place;
 use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, right_angle_multiple, scale};
 use roxmltree::{Document, Node};
@@ -968,7 +968,7 @@ fn without_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
         [one] => format!(" (joint `{}` has none either)", one.name),
         more => {
             let names: Vec<String> = more.iter().map(|j| format!("`{}`", j.name)).collect();
-            format!(" (joints {} have none either)", names.join(", "))
+            format!(" (joints {} have none either)", listed(names))
         }
     };
     Some(place.warning(
@@ -1013,7 +1013,7 @@ fn incomplete_limits(place: &Place<'_>, joints: &[Joint]) -> Option<String> {
             .iter()
             .map(|(j, _, what)| format!("joint `{}` has no {what}", j.name))
             .collect();
-        format!(" (also: {})", named.join(", "))
+        format!(" (also: {})", listed(named))
     };
     let missing = |key: &str| lacking.iter().any(|(_, _, what)| what.contains(key));
     let assumed = match (missing("effort"), missing("velocity")) {
@@ -1078,7 +1078,7 @@ pub(super) fn zero_limits<'a>(
             .iter()
             .map(|(j, _, what)| format!("joint `{}` has {what}", j.name))
             .collect();
-        format!(" (also: {})", named.join(", "))
+        format!(" (also: {})", listed(named))
     };
     let effort = zeros.iter().any(|(_, _, what)| what.contains("effort"));
     let velocity = zeros.iter().any(|(_, _, what)| what.contains("velocity"));

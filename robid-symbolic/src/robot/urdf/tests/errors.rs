@@ -1483,3 +1483,55 @@ fn a_tree_of_many_branches_names_a_few_tips() {
         "{message}"
     );
 }
+
+/// A generated URDF of thousands of mistakes is told the first fifty and a count; lists
+/// inside one message (root links, joints without `<limit>`) name eight and count the rest.
+/// A file of 3000 side joints without `<limit>` wrote their names in one warning; 5000
+/// broken joints wrote 5000 errors.
+#[test]
+fn thousands_of_mistakes_are_told_in_a_page() {
+    let broken: String = (0..3000)
+        .map(|i| {
+            format!("<joint name=\"j{i}\" type=\"fixed\"><parent link=\"x{i}\"/><child link=\"a\"/></joint>")
+        })
+        .collect();
+    let message = error_of(&arm(&broken), &ChainSelection::default());
+    assert_eq!(message.lines().count(), 51, "{message}");
+    assert!(
+        message.lines().last().unwrap().contains(
+            "2950 more mistakes from here on are not shown; fix the ones above and read the \
+             file again"
+        ),
+        "{message}"
+    );
+    let lone: String = (0..3000)
+        .map(|i| format!("<link name=\"l{i}\"/>"))
+        .collect();
+    let message = error_of(&arm(&format!("{J1}{J2}{lone}")), &ChainSelection::default());
+    assert!(
+        message.contains(
+            "several root links (links no joint moves): `a`, `l0`, `l1`, `l2`, `l3`, `l4`, \
+             `l5`, `l6` (and 2993 more); connect"
+        ),
+        "{message}"
+    );
+    let sides: String = (0..3000)
+        .map(|i| {
+            format!(
+                "<link name=\"s{i}\"/><joint name=\"k{i}\" type=\"revolute\"><parent link=\"b\"/><child link=\"s{i}\"/></joint>"
+            )
+        })
+        .collect();
+    let chain = Robot::from_urdf(
+        &arm(&format!("{J1}{J2}{sides}")),
+        "t.urdf",
+        &selection(None, Some("c")),
+    )
+    .unwrap();
+    let text = chain.warnings.join("\n");
+    assert!(text.len() < 10_000, "{} bytes", text.len());
+    assert!(
+        text.contains("`k5`, `k6` (and 2993 more) have none either"),
+        "{text}"
+    );
+}
