@@ -1263,6 +1263,21 @@ impl Config {
         }
         for (i, c) in self.extra_columns.iter().enumerate() {
             c.check_keyed(dof, &format!("extra_column[{}]", i + 1))?;
+            if let Some(k) = self.extra_columns[..i]
+                .iter()
+                .position(|earlier| c.same_column_as(earlier))
+            {
+                return bad(
+                    &format!("extra_column[{}].terms", i + 1),
+                    format!(
+                        "`{}` has the terms of `{}` (extra_column[{}]), up to a factor: the \
+                         two are one parameter, which no data can split; remove one",
+                        c.name,
+                        self.extra_columns[k].name,
+                        k + 1
+                    ),
+                );
+            }
         }
         Ok(())
     }

@@ -90,6 +90,29 @@ fn one() -> f64 {
     1.0
 }
 
+/// Longest extra-column name (characters).
+const MAX_NAME: usize = 64;
+
+/// What is wrong with an extra column's name, if anything: it names a parameter in the
+/// reports and the parameter files (a TOML key), so it is a word of ASCII letters, digits
+/// and `_` beginning with a letter (`""` was accepted and shown as a blank).
+fn name_problem(name: &str) -> Option<String> {
+    let fix = "name it with ASCII letters, digits and `_`, beginning with a letter (e.g. `Fv1`, \
+               `Iam6`)";
+    if name.is_empty() {
+        return Some(format!("the name is empty; {fix}"));
+    }
+    if name.chars().count() > MAX_NAME {
+        return Some(format!(
+            "the name has {} characters, more than {MAX_NAME}; {fix}",
+            name.chars().count()
+        ));
+    }
+    let word = name.starts_with(|c: char| c.is_ascii_alphabetic())
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    (!word).then(|| format!("`{name}` is not a parameter name; {fix}"))
+}
+
 /// A named regressor column appended to the model's base regressor.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -112,6 +135,9 @@ impl ExtraColumn {
         let bad = |sub: String, problem: String| {
             Err(Error::setting("Config", &format!("{key}{sub}"), problem))
         };
+        if let Some(problem) = name_problem(name) {
+            return bad(".name".to_owned(), problem);
+        }
         if self.terms.is_empty() {
             return bad(
                 String::new(),
@@ -148,6 +174,16 @@ impl ExtraColumn {
                     ),
                 );
             }
+            if t.coefficient == 0.0 {
+                return bad(
+                    format!("{at}.coefficient"),
+                    format!(
+                        "a coefficient of 0 removes this term of `{name}` (a column of zeros \
+                         is a parameter no data can identify); delete the term, or give its \
+                         factor"
+                    ),
+                );
+            }
             if !(t.coefficient.abs() <= MAX_FACTOR) {
                 return bad(
                     format!("{at}.coefficient"),
@@ -159,6 +195,34 @@ impl ExtraColumn {
             }
         }
         Ok(())
+    }
+
+    /// Whether this column is `other` times a constant factor: the same terms (rows,
+    /// signals and joints, in any order) with proportional coefficients. Two such columns
+    /// are one parameter identified twice, which no data can tell apart.
+    pub fn same_column_as(&self, other: &ExtraColumn) -> bool {
+        let sorted = |c: &ExtraColumn| {
+            let mut terms: Vec<(usize, u8, Vec<usize>, f64)> = c
+                .terms
+                .iter()
+                .map(|t| {
+                    let mut joints = t.joints.clone();
+                    joints.sort_unstable();
+                    (t.row, t.signal as u8, joints, t.coefficient)
+                })
+                .collect();
+            terms.sort_by(|a, b| (a.0, a.1, &a.2).cmp(&(b.0, b.1, &b.2)));
+            terms
+        };
+        let (a, b) = (sorted(self), sorted(other));
+        if a.len() != b.len() || a.is_empty() {
+            return false;
+        }
+        let ratio = a[0].3 / b[0].3;
+        a.iter().zip(&b).all(|(x, y)| {
+            (x.0, x.1, &x.2) == (y.0, y.1, &y.2)
+                && (x.3 - ratio * y.3).abs() <= 1e-12 * x.3.abs().max(1e-300)
+        })
     }
 
     /// The first term built from the motor encoders, as (term index from 0, signal).
@@ -278,6 +342,56 @@ mod tests {
         cols[2].fill(&q, &qd, &qdd, &mut out);
         assert_eq!(out, [0.0, 0.0, 0.0, 0.0, -1.0, -1.0]);
         assert_eq!(cols[2].name, "fsm6");
+    }
+
+    /// A blank or spaced name, a coefficient of 0, and two columns of the same terms are
+    /// refused at their key: they were accepted, and the zero or repeated column was blamed
+    /// on the trajectory as rank deficiency.
+    #[test]
+    fn names_zero_coefficients_and_repeated_columns_are_refused() {
+        use crate::data::Config;
+        let config = |columns: &str| {
+            let text = format!("dof = 2\n{columns}");
+            let config = Config::from_toml_str(&text, "c.toml".as_ref()).unwrap();
+            config.check(2).map_err(|e| e.to_string())
+        };
+        let column = |name: &str, terms: &str| {
+            format!("[[extra_column]]\nname = \"{name}\"\nterms = [{terms}]\n")
+        };
+        let qd = "{ row = 1, signal = \"qd\", joints = [1] }, { row = 2, signal = \"qd\", joints = [2] }";
+        assert_eq!(config(&column("Fv", qd)), Ok(()));
+        for (name, want) in [
+            (
+                "",
+                "c.toml:3:1: `extra_column[1].name`: the name is empty; name it with ASCII",
+            ),
+            ("F v", "`F v` is not a parameter name"),
+            ("1F", "`1F` is not a parameter name"),
+        ] {
+            let e = config(&column(name, qd)).unwrap_err();
+            assert!(e.contains(want), "{e}");
+        }
+        let e = config(&column(
+            "Fv",
+            &qd.replacen("joints = [1] }", "joints = [1], coefficient = 0 }", 1),
+        ))
+        .unwrap_err();
+        assert!(
+            e.contains("`extra_column[1].terms[1].coefficient`: a coefficient of 0 removes this term of `Fv`"),
+            "{e}"
+        );
+        // the same terms in another order, each twice as large: the same parameter
+        let twice = "{ row = 2, signal = \"qd\", joints = [2], coefficient = 2 }, { row = 1, signal = \"qd\", joints = [1], coefficient = 2 }";
+        let e = config(&(column("Fv", qd) + &column("Fw", twice))).unwrap_err();
+        assert!(
+            e.contains("`extra_column[2].terms`: `Fw` has the terms of `Fv` (extra_column[1]), up to a factor"),
+            "{e}"
+        );
+        // not proportional, or other joints: columns of their own
+        let other = twice.replacen("coefficient = 2 }", "coefficient = 3 }", 1);
+        assert_eq!(config(&(column("Fv", qd) + &column("Fw", &other))), Ok(()));
+        let joints = qd.replace("joints = [2]", "joints = [1, 2]");
+        assert_eq!(config(&(column("Fv", qd) + &column("Fw", &joints))), Ok(()));
     }
 
     #[test]
