@@ -896,6 +896,39 @@ impl Config {
             .collect()
     }
 
+    /// The key of the first path the config gives as `""`.
+    fn empty_path(&self) -> Option<String> {
+        let empty = |p: &Path| p.as_os_str().is_empty();
+        let sources = self.sources.iter().enumerate().filter_map(|(i, s)| {
+            s.file
+                .as_deref()
+                .is_some_and(empty)
+                .then(|| format!("source[{}].file", i + 1))
+        });
+        let runs = self.runs.iter().flat_map(|r| {
+            r.files.iter().enumerate().filter_map(|(i, f)| {
+                f.paths()
+                    .iter()
+                    .any(|p| empty(p))
+                    .then(|| format!("runs.files[{}]", i + 1))
+            })
+        });
+        let known = self
+            .estimation
+            .known
+            .as_deref()
+            .is_some_and(empty)
+            .then(|| "estimation.known".to_owned());
+        let friction = self
+            .drive
+            .rotor
+            .as_ref()
+            .and_then(|r| r.friction.as_deref())
+            .is_some_and(empty)
+            .then(|| "drive.rotor.friction".to_owned());
+        sources.chain(runs).chain(known).chain(friction).next()
+    }
+
     /// Resolves a path from the config against its folder.
     pub fn resolve(&self, file: &Path) -> PathBuf {
         match &self.base_dir {
@@ -994,6 +1027,14 @@ impl Config {
 
     fn check_fields(&self, dof: usize) -> Result<()> {
         let bad = |key: &str, problem: String| Err(Error::setting("Config", key, problem));
+        if let Some(key) = self.empty_path() {
+            return bad(
+                &key,
+                "the path is empty (it named the config's folder); give the file's path, \
+                 relative to the config's folder or absolute"
+                    .to_owned(),
+            );
+        }
         if let Some(n) = self.dof
             && n != dof
         {
@@ -1381,6 +1422,30 @@ method = "wls"
             serde_json::to_string(&empty).unwrap()
         );
         default.check(6).unwrap();
+    }
+
+    /// A path given as `""` is named at its key: it resolved to the config's folder and
+    /// was told as "cannot read: Is a directory", naming the folder.
+    #[test]
+    fn an_empty_path_is_named_at_its_key() {
+        for (text, want) in [
+            (
+                "[[source]]\nfile = \"\"\n",
+                "c.toml:2:1: `source[1].file`: the path is empty",
+            ),
+            (
+                "[estimation]\nknown = \"\"\n",
+                "c.toml:2:1: `estimation.known`: the path is empty",
+            ),
+            (
+                "[runs]\nfiles = [\"a.csv\", \"\"]\n",
+                "`runs.files[2]`: the path is empty",
+            ),
+        ] {
+            let config = Config::from_toml_str(text, Path::new("c.toml")).unwrap();
+            let e = config.check(6).unwrap_err().to_string();
+            assert!(e.starts_with(want) || e.contains(want), "{e}");
+        }
     }
 
     /// Showing progress is a setting of the caller, not a key of the file: silent by
