@@ -12,7 +12,7 @@ use flate2::read::MultiGzDecoder;
 use robid_runtime::data::{Config, Dataset, read_columns_from};
 use robid_runtime::drive::DriveChain;
 use robid_runtime::estimate::Estimate;
-use robid_runtime::output::{check_folder, create_folder};
+use robid_runtime::output::{OutputError, check_folder, create_folder};
 use robid_runtime::pipeline::{identify, validate};
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
 use robid_runtime::signal::Signals;
@@ -37,7 +37,14 @@ const HELD_OUT: (usize, usize) = (29250, 45000);
 pub(crate) fn run() -> Result<(), Error> {
     let start = Instant::now();
     // a file named like the report's folder is refused now, not after the work
-    check_folder(Path::new(OUTPUT))?;
+    check_folder(Path::new(OUTPUT)).map_err(|e| match e {
+        // the demo takes no path: the fix is to move the file or run elsewhere
+        robid_runtime::Error::Output(OutputError::FileNotFolder { .. }) => Error::from(format!(
+            "{OUTPUT}: is a file, and the demo writes its report into the folder \
+             ./{OUTPUT}; move the file away, or run the demo from another folder"
+        )),
+        e => e.into(),
+    })?;
     let robot = Robot::from_toml(ROBOT, "robots/configs/tx40_robot.toml")?;
     let chosen = model_for(&robot)?;
     let config = Config::from_toml_str(CONFIG, Path::new("robots/configs/tx40.toml"))?;

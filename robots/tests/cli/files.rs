@@ -1058,3 +1058,20 @@ fn a_link_to_a_file_not_created_yet_is_written_through() {
     );
     assert_eq!(listing(d), before);
 }
+
+/// `demo` takes no path, so a file named like its report's folder is told with what the
+/// demo can do: move the file, or run elsewhere (it said "give the path of a folder").
+#[test]
+fn demo_beside_a_file_named_like_its_folder_says_what_to_do() {
+    let dir = folder();
+    write(dir.path(), "robid-demo", "not a folder");
+    let o = robid_in(dir.path(), &["demo"]);
+    fails_with(
+        &o,
+        &[
+            "robid-demo: is a file, and the demo writes its report into the folder ./robid-demo; \
+           move the file away, or run the demo from another folder",
+        ],
+    );
+    assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+}
