@@ -99,6 +99,13 @@ fn range(r: [f64; 2]) -> String {
     format!("[{}, {}]", Num(r[0]), Num(r[1]))
 }
 
+/// A computed value outside a bound, for a message: eight significant digits, which tell
+/// it from the bound (it is outside by at least 1e-6 of the bound's size) without the
+/// arithmetic's every digit (`7.998630808139301`).
+fn outside(v: f64) -> Num {
+    Num::rounded(v, 8)
+}
+
 impl Solution {
     /// Whether `name` is a standard parameter of the chain (an inertial parameter or a drive
     /// term of one of its links), not an extra column of the identification config.
@@ -172,7 +179,7 @@ impl Solution {
                     violations.push(format!(
                         "link {}: mass {} outside {}",
                         j + 1,
-                        Num(l.mass),
+                        outside(l.mass),
                         range(b.mass)
                     ));
                 }
@@ -181,7 +188,7 @@ impl Solution {
                         violations.push(format!(
                             "link {}: com[{a}] {} outside {}",
                             j + 1,
-                            Num(l.com[a]),
+                            outside(l.com[a]),
                             range(b.com[a])
                         ));
                     }
@@ -194,7 +201,7 @@ impl Solution {
                         violations.push(format!(
                             "link {}: inertia {name} {} outside {}",
                             j + 1,
-                            Num(v),
+                            outside(v),
                             range(r)
                         ));
                     }
@@ -204,7 +211,7 @@ impl Solution {
                         violations.push(format!(
                             "link {}: principal moment {a} {} outside {}",
                             j + 1,
-                            Num(*m),
+                            outside(*m),
                             range(b.inertia)
                         ));
                     }
@@ -217,7 +224,11 @@ impl Solution {
                 .map(|j| standard[layout.links[j][9]])
                 .sum();
             if total < t[0] - tol || total > t[1] + tol {
-                violations.push(format!("total mass {} outside {}", Num(total), range(t)));
+                violations.push(format!(
+                    "total mass {} outside {}",
+                    outside(total),
+                    range(t)
+                ));
             }
         }
         let dont_care = problem
@@ -365,6 +376,14 @@ mod tests {
         ] {
             assert!(v.contains(want), "{want} not in\n{v}");
         }
+        // a computed value has eight digits, not the arithmetic's seventeen
+        let mut odd = heavy;
+        odd[9] = 7.998630808139301;
+        let mut above = Bounds::wide(1);
+        above.total_mass = Some([8.0, 20.0]);
+        let s = assemble(&odd, &above).unwrap();
+        let v = s.violations.join("\n");
+        assert!(v.contains("total mass 7.9986308 outside [8, 20]"), "{v}");
         // just inside the tolerance, at the bounds
         let edge = LinkBounds {
             mass: [0.0, 2.0 - 1e-6],
