@@ -10,10 +10,8 @@
 //! description (the extra columns of an identification config) are kept as free terms,
 //! at most [`MAX_FREE_TERMS`] of them.
 //!
-//! RESULT.json is checked before use: every value finite and within +-[`VALUE_LIMIT`],
-//! every standard deviation finite, positive and at most [`VALUE_LIMIT`] (0 for an entry
-//! marked `known`: fixed by `[known]` parameters, an exact value), each entry named in the
-//! error. The solution is checked before it is written (every value finite).
+//! RESULT.json is checked before use ([`Identified::read`]); the solution is checked
+//! before it is written (every value finite).
 
 use std::path::{Path, PathBuf};
 
@@ -26,10 +24,10 @@ use robid_runtime::feasible::{
 };
 use robid_symbolic::Robot;
 use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
-use serde::Deserialize;
 
 use super::description::{self, DescriptionFlags};
-use super::flags::{closed, count, only_for, positive, real, short};
+use super::flags::{closed, count, only_for, positive, real};
+use super::identified::{Identified, about_identified};
 use super::{Error, files, out};
 
 /// `robid feasible --help` on `--bounds`: the format with a complete example.
@@ -51,9 +49,6 @@ link gets the [default] shown (see docs/command-line.md, \"Bounds file\"):
 
 /// The weight of the default prior of solid links (see `--prior-weight`).
 const DEFAULT_PRIOR_WEIGHT: f64 = 1e-2;
-
-/// The largest magnitude of an identified value or standard deviation in RESULT.json.
-pub(crate) const VALUE_LIMIT: f64 = 1e6;
 
 /// The most entries of RESULT.json kept as free terms (not base parameters of the
 /// description, no expression): each is a variable of the solvers, whose time grows
@@ -125,23 +120,6 @@ pub(crate) struct Args {
     output: PathBuf,
 }
 
-#[derive(Deserialize)]
-struct Identified {
-    parameters: Vec<IdentifiedParameter>,
-}
-
-#[derive(Deserialize)]
-struct IdentifiedParameter {
-    name: String,
-    #[serde(default)]
-    expression: String,
-    value: f64,
-    std: f64,
-    /// Fixed by known standard parameters (`estimation.known`): std 0, an exact value.
-    #[serde(default)]
-    known: bool,
-}
-
 /// The text of `path`, a `what` (at most `robid_runtime::limits::MAX_TEXT_BYTES`: an
 /// endless device such as `--identified /dev/zero` filled the memory).
 fn read(path: &Path, what: &str) -> Result<String, Error> {
@@ -183,55 +161,6 @@ fn check(args: &Args) -> Result<(), Error> {
     Ok(())
 }
 
-/// Refuses an identified entry whose value or standard deviation is not finite or out of
-/// range, naming the entry.
-fn check_identified(identified: &Identified, path: &Path) -> Result<(), Error> {
-    if identified.parameters.is_empty() {
-        return Err(format!(
-            "{}: `parameters` is empty; give the JSON report of `robid identify --json`",
-            path.display()
-        )
-        .into());
-    }
-    for (i, p) in identified.parameters.iter().enumerate() {
-        let problem = if !p.value.is_finite() || p.value.abs() > VALUE_LIMIT {
-            Some(format!(
-                "value {} is outside +-{VALUE_LIMIT:e}",
-                short(p.value)
-            ))
-        } else if p.std == 0.0 && !p.known {
-            Some(
-                "std 0 claims an exact value, but the entry is not `\"known\": true` (a \
-                 parameter `robid identify` fixed by [known] values); give its deviation"
-                    .to_owned(),
-            )
-        } else if !(p.std >= 0.0 && p.std <= VALUE_LIMIT) {
-            Some(format!(
-                "std {} is outside [0, {VALUE_LIMIT:e}]; a standard deviation is positive (0 \
-                 for a known parameter)",
-                short(p.std)
-            ))
-        } else {
-            None
-        };
-        let problem = problem.or_else(|| {
-            identified.parameters[..i]
-                .iter()
-                .position(|q| q.name == p.name)
-                .map(|first| format!("the name is also entry {first}; keep one of them"))
-        });
-        if let Some(problem) = problem {
-            return Err(format!(
-                "{}: parameters[{i}] `{}`: {problem}; repair the entry or identify again",
-                path.display(),
-                p.name
-            )
-            .into());
-        }
-    }
-    Ok(())
-}
-
 /// A runtime error about the content of `path` (the identified result or the bounds),
 /// named as that file: the runtime reports such keys as settings given in code. (A bounds
 /// file that is not TOML is named by the runtime: "invalid bounds file".)
@@ -239,17 +168,6 @@ fn about(path: &Path, e: robid_runtime::Error) -> Error {
     match e {
         robid_runtime::Error::Setting { key, problem, .. } => {
             format!("{}: `{key}`: {problem}", path.display()).into()
-        }
-        other => other.into(),
-    }
-}
-
-/// An error of the identified result `path` read into the problem: its message names the
-/// entries; the library's argument (`names`, `std`) is no place in the file.
-fn about_identified(path: &Path, e: robid_runtime::Error) -> Error {
-    match e {
-        robid_runtime::Error::Setting { problem, .. } => {
-            format!("{}: {problem}", path.display()).into()
         }
         other => other.into(),
     }
@@ -282,10 +200,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check(args)?;
     let description = description::load(&args.robot, &args.description)?;
     let robot = &description.robot;
-    let json = read(&args.identified, "identification result")?;
-    let identified: Identified = serde_json::from_str(&json)
-        .map_err(|e| format!("{}: not an identification result: {e}; expected {{\"parameters\": [{{\"name\", \"value\", \"std\"}}]}}", args.identified.display()))?;
-    check_identified(&identified, &args.identified)?;
+    let identified = Identified::read(&args.identified)?;
     let problem = robots::extraction::problem(robot)?;
     // Extra columns of the identification config (no expression, not a base parameter,
     // e.g. a coupled wrist's `Iam6`) are kept as free terms.
@@ -321,6 +236,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let problem = problem
         .with_identified(&names, &values, &std)
         .map_err(|e| about_identified(&args.identified, e))?;
+    // the names agree (else the error names them, or the drive terms): now what they are
+    identified.check_expressions(&args.identified, &problem, &args.robot)?;
     let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {

@@ -10,6 +10,7 @@ mod feasible;
 mod files;
 mod flags;
 mod friction;
+mod identified;
 mod identify;
 mod idle;
 mod inspect;

@@ -1056,6 +1056,41 @@ fn an_identified_result_of_other_drive_terms_names_them() {
     assert!(!out.exists());
 }
 
+/// A result of another robot whose parameters have the same names (here the TX40 with
+/// one length changed) was used as this one's; each base parameter's expression is now
+/// compared with the description's.
+#[test]
+fn an_identified_result_of_another_geometry_is_refused() {
+    let dir = folder();
+    let out = dir.path().join("links.toml");
+    let text = std::fs::read_to_string(asset("configs/tx40_robot.toml")).unwrap();
+    assert!(text.contains("a = 0.225\n"));
+    let robot = write(
+        dir.path(),
+        "tx40b.toml",
+        &text.replacen("a = 0.225\n", "a = 0.25\n", 1),
+    );
+    let o = robid(&[
+        "feasible",
+        robot.to_str().unwrap(),
+        "--identified",
+        "tests/fixtures/tx40_identified.json",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &[
+            "tx40_identified.json: `",
+            "0.05185*M6 in the result, but ",
+            "0.063725*M6 for ",
+            "tx40b.toml: the result was identified with another robot, or another version of \
+             this description",
+        ],
+    );
+    assert!(!out.exists());
+}
+
 /// The identified JSON of `feasible`: a value of 1e308 (it used to give "chi^2 = 0"), or a
 /// standard deviation of zero for an entry not marked `known`, or a negative one, or a name given twice, is named by entry; nothing is written.
 #[test]
