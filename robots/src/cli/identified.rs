@@ -160,15 +160,10 @@ fn linear_terms(expression: &str) -> Option<Vec<(String, f64)>> {
     if text.is_empty() {
         return None;
     }
-    let signed = format!("+ {text}")
-        .replace(" - ", " + -")
-        .replace("+ -", "+-");
-    signed
+    text.replace(" - ", " + -")
         .split(" + ")
-        .map(str::trim)
-        .filter(|t| !t.is_empty() && *t != "+")
         .map(|term| {
-            let term = term.trim_start_matches('+').trim();
+            let term = term.trim();
             let (sign, term) = match term.strip_prefix('-') {
                 Some(rest) => (-1.0, rest.trim()),
                 None => (1.0, term),
