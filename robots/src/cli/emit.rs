@@ -63,7 +63,7 @@ fn rust(args: &Args) -> Result<(), Error> {
         return Err("`--scalar` is for `--lang c`; Rust code is generic over the scalar".into());
     }
     if let Some(path) = &args.output {
-        files::refuse(&[&args.robot], &[path])?;
+        files::refuse(&[&args.robot], &[("--output", path)])?;
     }
     let description = description::load(&args.robot, &args.description)?;
     warn_unloaded(args, &description, "URDF_STANDARD_PARAMETERS");
@@ -97,9 +97,12 @@ fn c(args: &Args) -> Result<(), Error> {
         .into());
     }
     let header = source.with_extension("h");
-    files::refuse(&[&args.robot], &[source])?;
-    files::refuse(&[&args.robot], &[source, &header])
-        .map_err(|e| header_error(source, &header, e))?;
+    files::refuse(&[&args.robot], &[("--output", source)])?;
+    files::refuse(
+        &[&args.robot],
+        &[("--output", source), ("its C header", &header)],
+    )
+    .map_err(|e| header_error(source, &header, e))?;
     let description = description::load(&args.robot, &args.description)?;
     let constant = format!(
         "{}_urdf_standard_parameters",

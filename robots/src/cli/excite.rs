@@ -128,8 +128,8 @@ enum CriterionArg {
 fn check(args: &Args) -> Result<(), Error> {
     let mut inputs = vec![args.robot.as_path()];
     inputs.extend(args.parameters.as_deref());
-    let mut outputs = vec![args.output.as_path()];
-    outputs.extend(args.pieces.as_deref());
+    let mut outputs = vec![("--output", args.output.as_path())];
+    outputs.extend(args.pieces.as_deref().map(|p| ("--pieces", p)));
     files::refuse(&inputs, &outputs)?;
     check_samples(args.duration, args.rate)?;
     match args.method {

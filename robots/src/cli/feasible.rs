@@ -132,7 +132,7 @@ fn check(args: &Args) -> Result<(), Error> {
     let mut inputs = vec![args.robot.as_path(), args.identified.as_path()];
     inputs.extend(args.bounds.as_deref());
     inputs.extend(args.prior.as_deref());
-    files::refuse(&inputs, &[&args.output])?;
+    files::refuse(&inputs, &[("--output", &args.output)])?;
     if !["interior-point", "cholesky", "sdp", "anneal"].contains(&args.method.as_str()) {
         return Err(format!(
             "--method {}: unknown; use interior-point, cholesky, sdp or anneal",

@@ -15,24 +15,38 @@ use robid_runtime::{Error as RuntimeError, OutputError};
 use super::Error;
 
 /// Refuses, before any work, every file output that is the same file as one of the
-/// inputs or as another output, or that cannot be written where it is given.
-pub(crate) fn refuse(inputs: &[&Path], outputs: &[&Path]) -> Result<(), Error> {
+/// inputs or as another output, or that cannot be written where it is given. Each output
+/// comes with the flag that names it (`("--json", path)`), for the message when two are
+/// one file.
+pub(crate) fn refuse(inputs: &[&Path], outputs: &[(&str, &Path)]) -> Result<(), Error> {
     refuse_with_folders(inputs, outputs, &[])
 }
 
 /// [`refuse`], with folder outputs too: `(flag, folder)`, a folder that files are
 /// written into (`identify --plot`), created if missing, refused when it is a file, lies
 /// under one, or takes no new file (or, when missing, the folder it would be created in).
+/// A file output directly in a missing folder output (`--report plots/report.html` with
+/// `--plot plots`) is written after that folder is created.
 pub(crate) fn refuse_with_folders(
     inputs: &[&Path],
-    outputs: &[&Path],
+    outputs: &[(&str, &Path)],
     folders: &[(&str, &Path)],
 ) -> Result<(), Error> {
-    let mut all = outputs.to_vec();
-    all.extend(folders.iter().map(|(_, dir)| *dir));
-    refuse_inputs(inputs, &all)?;
-    for path in outputs {
-        check_file(path)?;
+    let mut all: Vec<(&str, &Path)> = outputs.to_vec();
+    all.extend(folders);
+    distinct(inputs, &all)?;
+    let in_new_folder = |path: &Path| {
+        folders.iter().any(|(_, dir)| {
+            !dir.exists()
+                && path
+                    .parent()
+                    .is_some_and(|parent| parent.components().eq(dir.components()))
+        })
+    };
+    for (_, path) in outputs {
+        if !in_new_folder(path) {
+            check_file(path)?;
+        }
     }
     for (flag, dir) in folders {
         check_folder(dir).map_err(|e| match e {
@@ -47,6 +61,34 @@ pub(crate) fn refuse_with_folders(
             e => e,
         })?;
     }
+    Ok(())
+}
+
+/// Refuses an output that is one of the inputs, or the same file as another output
+/// (`(flag, path)`: the message names both flags), without checking that they can be
+/// written: `identify --plot`'s files, in a folder that may not exist yet.
+pub(crate) fn distinct(inputs: &[&Path], all: &[(&str, &Path)]) -> Result<(), Error> {
+    let paths: Vec<&Path> = all.iter().map(|(_, p)| *p).collect();
+    refuse_inputs(inputs, &paths).map_err(|e| match e {
+        RuntimeError::Output(OutputError::TwoOutputs { first, second }) => {
+            // which two: the first pair the same check refuses
+            let pair = (0..all.len())
+                .flat_map(|j| (0..j).map(move |i| (i, j)))
+                .find(|&(i, j)| refuse_inputs(&[], &[all[i].1, all[j].1]).is_err());
+            let (a, b) = pair.map_or(("an output", "another"), |(i, j)| (all[i].0, all[j].0));
+            let named = if first == second {
+                first.display().to_string()
+            } else {
+                format!("{} and {}", first.display(), second.display())
+            };
+            format!(
+                "{a} and {b} name the same file ({named}), so one output would replace the \
+                 other; give them different names"
+            )
+            .into()
+        }
+        e => Error::from(e),
+    })?;
     Ok(())
 }
 

@@ -61,7 +61,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     inputs.extend(data.iter().map(PathBuf::as_path));
     inputs.extend(referenced.iter().map(PathBuf::as_path));
     inputs.extend(args.parameters.as_deref());
-    files::refuse(&inputs, &[&args.output])?;
+    files::refuse(&inputs, &[("--output", &args.output)])?;
     if config.drive.rotor.is_none() {
         return Err(config
             .key_error(

@@ -93,7 +93,7 @@ pub(crate) struct Args {
 /// (docs/identification.md#static-samples), a table on stdout, the undetermined ones on
 /// stderr, and the JSON report on request.
 fn run_static(args: &Args, robot: &Path, samples: &Path) -> Result<(), Error> {
-    let outputs: Vec<&Path> = args.json.iter().map(PathBuf::as_path).collect();
+    let outputs: Vec<(&str, &Path)> = args.json.iter().map(|p| ("--json", p.as_path())).collect();
     files::refuse(&[robot, samples], &outputs)?;
     let chosen = robot_model(robot, &args.description)?;
     let model = chosen.model.as_ref();
@@ -347,9 +347,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     inputs.extend(referenced.iter().map(PathBuf::as_path));
     inputs.extend(args.validate.iter().map(PathBuf::as_path));
     inputs.extend(args.reference.as_deref());
-    let mut outputs: Vec<&Path> = Vec::new();
-    outputs.extend(args.json.as_deref());
-    outputs.extend(args.report.as_deref());
+    let mut outputs: Vec<(&str, &Path)> = Vec::new();
+    outputs.extend(args.json.as_deref().map(|p| ("--json", p)));
+    outputs.extend(args.report.as_deref().map(|p| ("--report", p)));
     let plot: Vec<(&str, &Path)> = args.plot.iter().map(|d| ("--plot", d.as_path())).collect();
     files::refuse_with_folders(&inputs, &outputs, &plot)?;
     let description = description::read(robot, &args.description)?;
@@ -382,9 +382,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         let plots = files::plot_files(dir, &prefixes, model.dof());
         // against the inputs and the other outputs (`--json DIR/fit_joint1.svg` would be
         // replaced by the plot), not checked as files: the folder may not exist yet
-        let mut written: Vec<&Path> = outputs.clone();
-        written.extend(plots.iter().map(PathBuf::as_path));
-        robid_runtime::output::refuse_inputs(&inputs, &written)?;
+        let mut written = outputs.clone();
+        written.extend(plots.iter().map(|p| ("--plot", p.as_path())));
+        files::distinct(&inputs, &written)?;
     }
     // the progress of reading a long log and of the streaming passes over it, as excite
     // shows its design's

@@ -133,10 +133,13 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
         (None, None) => None,
     };
-    let outputs: Vec<&Path> = [&args.standard_parameters, &args.write_description]
-        .into_iter()
-        .filter_map(Option::as_deref)
-        .collect();
+    let outputs: Vec<(&str, &Path)> = [
+        ("--standard-parameters", &args.standard_parameters),
+        ("--write-description", &args.write_description),
+    ]
+    .into_iter()
+    .filter_map(|(flag, path)| Some((flag, path.as_deref()?)))
+    .collect();
     files::refuse(&[&args.robot], &outputs)?;
     if args.standard_parameters.is_some() && !description::is_urdf(&args.robot) {
         return Err(format!(

@@ -75,7 +75,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         inputs.extend(args.config.as_deref());
         inputs.extend(data.iter().map(PathBuf::as_path));
         inputs.extend(referenced.iter().map(PathBuf::as_path));
-        files::refuse(&inputs, &[output])?;
+        files::refuse(&inputs, &[("--output", output)])?;
     }
     let chosen = super::identify::robot_model(&args.robot, &args.description)?;
     let model = chosen.model.as_ref();

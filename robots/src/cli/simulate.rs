@@ -107,7 +107,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut inputs = vec![args.robot.as_path(), &args.trajectory];
     inputs.extend(args.parameters.as_deref());
     inputs.extend(args.flexible.as_deref());
-    files::refuse(&inputs, &[&args.output])?;
+    files::refuse(&inputs, &[("--output", &args.output)])?;
     let description = description::load(&args.robot, &args.description)?;
     let model = Interpreted::new(&description.robot)?;
     let n = model.dof();

@@ -44,7 +44,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     if let Some(output) = &args.output {
         let mut inputs = vec![args.robot.as_path(), &args.states];
         inputs.extend(args.parameters.as_deref());
-        files::refuse(&inputs, &[output])?;
+        files::refuse(&inputs, &[("--output", output)])?;
     }
     let description = description::load(&args.robot, &args.description)?;
     let chosen = super::identify::model_of(&description.robot)?;

@@ -346,7 +346,18 @@ fn two_outputs_on_one_file_are_refused() {
     };
     for out in ["result.out", "./result.out"] {
         let o = both("--json", "--report", out);
-        fails_with(&o, &["are the same file", "give them different names"]);
+        fails_with(
+            &o,
+            &[&format!(
+                "--json and --report name the same file (result.out{}), so one output would \
+                 replace the other; give them different names",
+                if out == "result.out" {
+                    String::new()
+                } else {
+                    format!(" and {out}")
+                }
+            )],
+        );
         assert!(!dir.join("result.out").exists());
     }
     let o = robid_in(
@@ -360,7 +371,10 @@ fn two_outputs_on_one_file_are_refused() {
             "./trajectory.csv",
         ],
     );
-    fails_with(&o, &["are the same file"]);
+    fails_with(
+        &o,
+        &["--output and --pieces name the same file (trajectory.csv and ./trajectory.csv)"],
+    );
     // a report on a plot that `--plot` writes in the same run, either way round
     std::fs::create_dir(dir.join("plots")).unwrap();
     for (file, flag) in [("fit_joint1.svg", "--json"), ("fit_joint2.svg", "--report")] {
@@ -379,9 +393,36 @@ fn two_outputs_on_one_file_are_refused() {
                 &format!("plots/{file}"),
             ],
         );
-        fails_with(&o, &["are the same file"]);
+        fails_with(
+            &o,
+            &[&format!(
+                "{flag} and --plot name the same file (plots/{file})"
+            )],
+        );
         assert_eq!(std::fs::read_dir(dir.join("plots")).unwrap().count(), 0);
     }
+    // a report in the folder --plot creates is written there (it was "the folder plots2
+    // does not exist; create it first"); one folder deeper is still refused
+    let plots = dir.join("plots2");
+    let identify = |report: &Path| {
+        robid(&[
+            "identify",
+            "configs/tx40_robot.toml",
+            "--config",
+            "configs/tx40.toml",
+            "--plot",
+            plots.to_str().unwrap(),
+            "--report",
+            report.to_str().unwrap(),
+        ])
+    };
+    let o = identify(&plots.join("deeper/report.html"));
+    fails_with(&o, &["deeper does not exist; create it first"]);
+    assert!(!plots.exists());
+    let o = identify(&plots.join("report.html"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(plots.join("report.html").exists());
+    assert!(plots.join("fit_joint1.svg").exists());
 }
 
 /// The files a config names besides the data (`estimation.known`, `[drive.rotor]
