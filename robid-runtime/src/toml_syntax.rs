@@ -229,7 +229,7 @@ fn key_before(text: &str, offset: usize) -> String {
     };
     let name = before[..eq].trim_end();
     let start = name
-        .rfind(|c: char| matches!(c, '{' | ',' | '\n' | '['))
+        .rfind(['{', ',', '\n', '['])
         .map_or(0, |i| i + 1);
     match name[start..].trim().trim_matches('"') {
         "" => "(value)".to_owned(),

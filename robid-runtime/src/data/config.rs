@@ -899,19 +899,18 @@ impl Config {
     /// The key of the first path the config gives as `""`.
     fn empty_path(&self) -> Option<String> {
         let empty = |p: &Path| p.as_os_str().is_empty();
-        let sources = self.sources.iter().enumerate().filter_map(|(i, s)| {
-            s.file
-                .as_deref()
-                .is_some_and(empty)
-                .then(|| format!("source[{}].file", i + 1))
-        });
+        let sources = self
+            .sources
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.file.as_deref().is_some_and(empty))
+            .map(|(i, _)| format!("source[{}].file", i + 1));
         let runs = self.runs.iter().flat_map(|r| {
-            r.files.iter().enumerate().filter_map(|(i, f)| {
-                f.paths()
-                    .iter()
-                    .any(|p| empty(p))
-                    .then(|| format!("runs.files[{}]", i + 1))
-            })
+            r.files
+                .iter()
+                .enumerate()
+                .filter(|(_, f)| f.paths().iter().any(|p| empty(p)))
+                .map(|(i, _)| format!("runs.files[{}]", i + 1))
         });
         let known = self
             .estimation
