@@ -228,9 +228,7 @@ fn key_before(text: &str, offset: usize) -> String {
         return "(value)".to_owned();
     };
     let name = before[..eq].trim_end();
-    let start = name
-        .rfind(['{', ',', '\n', '['])
-        .map_or(0, |i| i + 1);
+    let start = name.rfind(['{', ',', '\n', '[']).map_or(0, |i| i + 1);
     match name[start..].trim().trim_matches('"') {
         "" => "(value)".to_owned(),
         key => key.to_owned(),
