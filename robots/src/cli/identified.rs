@@ -10,6 +10,7 @@ use std::path::Path;
 
 use robid_runtime::Num;
 use robid_runtime::feasible::Problem;
+use robots::figaroh::combination;
 use serde::Deserialize;
 
 use super::Error;
@@ -154,28 +155,20 @@ impl Identified {
 }
 
 /// `expression` as (standard parameter, coefficient) terms, when it is a sum of terms
-/// `c*NAME`, `NAME` or their negatives (as `robid identify` writes them).
+/// `c*NAME`, `NAME` or their negatives (as `robid identify` writes them), read by
+/// [`combination`].
 fn linear_terms(expression: &str) -> Option<Vec<(String, f64)>> {
-    let text = expression.trim();
-    if text.is_empty() {
+    if expression.trim().is_empty() {
         return None;
     }
-    text.replace(" - ", " + -")
-        .split(" + ")
-        .map(|term| {
-            let term = term.trim();
-            let (sign, term) = match term.strip_prefix('-') {
-                Some(rest) => (-1.0, rest.trim()),
-                None => (1.0, term),
-            };
-            let (c, name) = match term.split_once('*') {
-                Some((c, name)) => (c.trim().parse::<f64>().ok()?, name.trim()),
-                None => (1.0, term),
-            };
-            let word = name.starts_with(|ch: char| ch.is_ascii_alphabetic())
-                && name.chars().all(|ch| ch.is_ascii_alphanumeric());
-            word.then(|| (name.to_owned(), sign * c))
-        })
+    let terms = combination(expression, str::to_owned)?;
+    let word = |name: &str| {
+        name.starts_with(|ch: char| ch.is_ascii_alphabetic())
+            && name.chars().all(|ch| ch.is_ascii_alphanumeric())
+    };
+    terms
+        .into_iter()
+        .map(|(name, c)| word(&name).then_some((name, c)))
         .collect()
 }
 
@@ -222,13 +215,14 @@ mod tests {
         assert_eq!(
             terms,
             [
-                ("XX2".to_owned(), 1.0),
-                ("M4".to_owned(), -0.050625),
                 ("M3".to_owned(), 0.225),
+                ("M4".to_owned(), -0.050625),
+                ("XX2".to_owned(), 1.0),
                 ("YY2".to_owned(), -1.0)
             ]
         );
         assert_eq!(linear_terms("-MZ4").unwrap(), [("MZ4".to_owned(), -1.0)]);
+        assert_eq!(linear_terms("M2/L2"), None);
         assert_eq!(linear_terms("L2^2*M2"), None);
         assert_eq!(linear_terms("sin(q)*M2"), None);
         assert_eq!(linear_terms(""), None);
