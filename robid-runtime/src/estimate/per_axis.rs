@@ -23,7 +23,7 @@ use crate::EstimateError;
 use crate::error::{Error, Result};
 use crate::estimate::least_squares::check_tolerance;
 use crate::estimate::lstsq::{column_scales, condition_number};
-use crate::estimate::quality::{assess, relative_column_norms};
+use crate::estimate::quality::{assess, effects, relative_column_norms};
 use crate::estimate::{Estimate, Estimator, Observation, error_bound};
 use crate::limits::SVD_ITERATIONS;
 
@@ -164,11 +164,7 @@ pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
                     .into(),
         });
     }
-    let effect: Vec<f64> = std
-        .iter()
-        .zip(relative_column_norms(&obs.w, &obs.y))
-        .map(|(s, c)| s * c)
-        .collect();
+    let effect = effects(&std, &relative_column_norms(&obs.w, &obs.y));
     let warnings = assess(condition_number, &obs.names, &rel, &effect);
     // Milella's bound with the worst axis's condition number and the combined residual
     let bound = error_bound(condition_number, &r, &obs.y);

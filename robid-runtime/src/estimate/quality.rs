@@ -291,6 +291,18 @@ pub(crate) fn relative_column_norms(w: &DMatrix<f64>, y: &DVector<f64>) -> Vec<f
         .collect()
 }
 
+/// How far each parameter's standard deviation `std` moves the torques, as a fraction of
+/// their norm: `std * norm` with `norm` from [`relative_column_norms`]. A deviation of 0
+/// moves nothing, also when the torques are all zero (their norms infinite: the product
+/// was NaN, and a payload estimated from torques the model explains exactly, every value
+/// and deviation 0, was "uncertain by more than its own size" in all ten parameters).
+pub(crate) fn effects(std: &[f64], norms: &[f64]) -> Vec<f64> {
+    std.iter()
+        .zip(norms)
+        .map(|(s, c)| if *s == 0.0 { 0.0 } else { s * c })
+        .collect()
+}
+
 /// The warnings of an estimate with condition number `condition` and relative standard
 /// deviations `rel` (percent, infinite for a zero value) of the parameters `names`, whose
 /// standard deviations move the torques by `effect` of their norm ([`ROUNDING_EFFECT`];
@@ -418,6 +430,23 @@ mod tests {
     /// The uncertain parameters are counted in words: "1 parameter ... (uncertain by more
     /// than its own size)", "2 parameters ... (each uncertain ...)"; it was "1 parameter(s)"
     /// whatever the count.
+    /// Torques all zero and explained exactly (a payload of nothing): every value and
+    /// deviation is 0, and no parameter is "uncertain by more than its own size".
+    #[test]
+    fn exact_zeros_are_not_uncertain() {
+        let names = ["M".to_string(), "MX".to_string()];
+        let norms = relative_column_norms(
+            &nalgebra::DMatrix::from_element(3, 2, 1.0),
+            &DVector::zeros(3),
+        );
+        let effect = effects(&[0.0, 0.0], &norms);
+        assert_eq!(effect, [0.0, 0.0]);
+        assert!(assess(1.0, &names, &[f64::INFINITY; 2], &effect).is_empty());
+        // a deviation that is not zero, with zero torques, still warns
+        let effect = effects(&[1e-3, 0.0], &norms);
+        assert_eq!(assess(1.0, &names, &[f64::INFINITY; 2], &effect).len(), 1);
+    }
+
     #[test]
     fn uncertain_parameters_are_counted_in_words() {
         let warning = |names: &[&str]| QualityWarning::Uncertain {

@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::estimate::Observation;
-use crate::estimate::quality::{QualityWarning, assess, relative_column_norms};
+use crate::estimate::quality::{QualityWarning, assess, effects, relative_column_norms};
 
 /// Which estimator produced a result: the config's estimation method, one list for both
 /// (the names in reports are its [`Method::name`](crate::data::Method::name)).
@@ -190,11 +190,7 @@ pub(crate) fn assemble_parts(
             "the torques are negligible next to the residual: check the data's units",
         ));
     }
-    let effect: Vec<f64> = std
-        .iter()
-        .zip(&residual.relative_column_norms)
-        .map(|(s, c)| s * c)
-        .collect();
+    let effect = effects(&std, &residual.relative_column_norms);
     let warnings = assess(condition_number, &names, &rel, &effect);
     Ok(Estimate {
         method,
