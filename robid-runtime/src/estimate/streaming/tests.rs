@@ -369,7 +369,14 @@ fn bulk_pushes_equal_single_ones() {
     let mut w = vec![1.0; 10];
     w[7] = f64::NAN;
     let e = bulk.push_rows(&[0, 1], &w, &[1.0, 2.0]).unwrap_err();
-    assert!(e.to_string().contains("p3"), "{e}");
+    // the second equation's, told as pushing it alone tells it: the 501st of group 2
+    let alone = one.push(1, &w[5..], 2.0).unwrap_err();
+    assert_eq!(e.to_string(), alone.to_string());
+    assert!(
+        e.to_string().contains("equation 501 of group 2") && e.to_string().contains("p3"),
+        "{e}"
+    );
+    assert_eq!(bulk.names(), obs.names.as_slice());
     assert!(bulk.push_rows(&[0, 9], &[1.0; 10], &[1.0, 2.0]).is_err());
     assert!(bulk.push_rows(&[0], &[1.0; 10], &[1.0, 2.0]).is_err());
     assert_eq!(bulk.rows(), before, "nothing added");
