@@ -377,6 +377,15 @@ fn bulk_pushes_equal_single_ones() {
         "{e}"
     );
     assert_eq!(bulk.names(), obs.names.as_slice());
+    match alone {
+        Error::Estimate(EstimateError::NonFiniteObservation { joint, .. }) => assert_eq!(joint, 2),
+        other => panic!("{other:?}"),
+    }
+    let e = bulk.push_rows(&[0, 1], &[1.0; 7], &[1.0, 2.0]).unwrap_err();
+    assert!(
+        e.to_string().ends_with("expected 10 entries, found 7"),
+        "{e}"
+    );
     assert!(bulk.push_rows(&[0, 9], &[1.0; 10], &[1.0, 2.0]).is_err());
     assert!(bulk.push_rows(&[0], &[1.0; 10], &[1.0, 2.0]).is_err());
     assert_eq!(bulk.rows(), before, "nothing added");
