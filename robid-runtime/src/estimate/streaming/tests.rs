@@ -460,7 +460,14 @@ fn faint_rows_after_strong_ones_keep_their_precision() {
     }
     let names = vec!["p1".to_string(), "p2".to_string()];
     let n = rows.len();
-    let obs = Observation::new(w, y, vec![0..n], (0..n).collect(), names).unwrap();
+    let obs = Observation::new(
+        w,
+        y,
+        std::iter::once(0..n).collect(),
+        (0..n).collect(),
+        names,
+    )
+    .unwrap();
     let mut s = streamed(&obs, &rows);
     assert_same(&s.ols(1e-12).unwrap(), &ols(&obs, 1e-12).unwrap(), 1e-10);
 }
