@@ -235,8 +235,9 @@ fn key_before(text: &str, offset: usize) -> String {
     }
 }
 
-/// A value as written, for a message: at most 40 characters, its numbers short.
-fn shown(value: &str) -> String {
+/// A value as written, for a message: at most 40 characters (a 1 MB string or array was
+/// quoted whole), a long number written short.
+pub(crate) fn shown(value: &str) -> String {
     let value = value.trim();
     if value.chars().count() <= 40 {
         return match value.parse::<f64>() {

@@ -518,7 +518,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         for (k, v) in items {
             let key: &str = k.get_ref();
             let (line, column) = line_column(text, k.span().start);
-            let source = short_source(text.get(v.span()).unwrap_or("?").trim());
+            let source = crate::toml_syntax::shown(text.get(v.span()).unwrap_or("?"));
             let value = number(v.get_ref())
                 .filter(|x| x.is_finite())
                 .ok_or_else(|| {
@@ -632,16 +632,6 @@ fn integer_beyond_i64(text: &str, radix: u32) -> Option<f64> {
             Some(acc * f64::from(radix) + f64::from(c.to_digit(radix)?))
         })
         .map(|v| sign * v)
-}
-
-/// A value as written, for a message: at most 40 characters (a 1 MB string or array was
-/// quoted whole).
-fn short_source(source: &str) -> String {
-    if source.chars().count() <= 40 {
-        return source.to_owned();
-    }
-    let head: String = source.chars().take(32).collect();
-    format!("{head}.. ({} characters)", source.chars().count())
 }
 
 /// The name of `names` closest to `key`: the same but for case, or one edit away.
