@@ -24,6 +24,23 @@ pub enum Method {
 }
 
 impl Method {
+    /// Whether the method imposes bounds of this kind, so that a result outside one is a
+    /// failure of the fit (or of bounds that contradict each other or the physics) rather
+    /// than a limit of the method: every method imposes the masses and the centres of mass
+    /// (the global search draws them inside their boxes); all but the global search, whose
+    /// penalty weighs the rest against the data as Gaz et al.'s does, the total mass; the
+    /// smooth methods also the single elements of the inertia tensor. No method imposes the
+    /// upper bound on the principal moments, which is not convex (the smooth methods bound
+    /// the diagonal instead).
+    pub fn imposes(self, kind: BoundKind) -> bool {
+        match kind {
+            BoundKind::Mass | BoundKind::Com => true,
+            BoundKind::TotalMass => self != Method::Anneal,
+            BoundKind::Element => matches!(self, Method::Interior | Method::Cholesky),
+            BoundKind::PrincipalMoment => false,
+        }
+    }
+
     /// Lower-case name.
     pub fn name(self) -> &'static str {
         match self {
@@ -53,6 +70,21 @@ impl Method {
     }
 }
 
+/// What a bound limits, for [`Method::imposes`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BoundKind {
+    /// A link's mass.
+    Mass,
+    /// A coordinate of a link's centre of mass.
+    Com,
+    /// One element of a link's inertia tensor about its centre of mass.
+    Element,
+    /// A principal moment of a link's inertia about its centre of mass.
+    PrincipalMoment,
+    /// The sum of the link masses.
+    TotalMass,
+}
+
 /// A complete, physically consistent set of link parameters.
 #[derive(Debug, Clone, Serialize)]
 pub struct Solution {
@@ -79,6 +111,10 @@ pub struct Solution {
     /// Bounds that the result does not meet (the SDP cannot impose the upper bound on the
     /// principal moments about the centre of mass, which is not convex).
     pub violations: Vec<String>,
+    /// Those of [`Solution::violations`] that the method imposes ([`Method::imposes`]):
+    /// the fit did not reach the bounds it was asked to meet, so the result is no answer
+    /// (the command line writes nothing then).
+    pub unmet: Vec<String>,
     /// Values that sit at one of their bounds (within 0.1 % of the range, 1e-6 of it from a
     /// bound of zero): the data or a bound pushed them there, worth a look before the
     /// values go into a simulator.
@@ -93,6 +129,9 @@ pub struct Solution {
     /// the others.
     pub iterations: usize,
 }
+
+/// The axes of a centre of mass, for messages.
+const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// A bound's range in a message, each end written short.
 fn range(r: [f64; 2]) -> String {
@@ -139,17 +178,28 @@ impl Solution {
         let mut links = Vec::new();
         let mut min_eigenvalues = Vec::new();
         let mut violations = Vec::new();
+        let mut unmet = Vec::new();
+        let mut violated = |kind: BoundKind, text: String| {
+            if method.imposes(kind) {
+                unmet.push(text.clone());
+            }
+            violations.push(text);
+        };
         let mut at_bounds = Vec::new();
         let tol = 1e-6;
+        let out = |v: f64, r: [f64; 2]| {
+            v < r[0] - tol * (1.0 + r[0].abs()) || v > r[1] + tol * (1.0 + r[1].abs())
+        };
         for (j, b) in bounds.links.iter().enumerate() {
             let p = layout.link_values(j, &standard);
             min_eigenvalues.push(pseudo_inertia_min_eigenvalue(&p));
             let link = LinkInertial::from_standard(&p);
             if let Some(l) = &link {
-                let out = |v: f64, r: [f64; 2]| {
-                    v < r[0] - tol * (1.0 + r[0].abs()) || v > r[1] + tol * (1.0 + r[1].abs())
-                };
+                // a value outside its range is a violation, not one at its bound
                 let mut at = |what: String, v: f64, r: [f64; 2]| {
+                    if out(v, r) {
+                        return;
+                    }
                     let range = (r[1] - r[0]).max(1e-12);
                     for (side, bound) in [("lower", r[0]), ("upper", r[1])] {
                         // a small value above a zero bound is a small link (a 12 g jaw under
@@ -166,31 +216,38 @@ impl Solution {
                 };
                 at("mass".into(), l.mass, b.mass);
                 for a in 0..3 {
-                    at(format!("centre of mass [{a}]"), l.com[a], b.com[a]);
+                    at(format!("centre of mass {}", AXES[a]), l.com[a], b.com[a]);
                 }
                 // a moment near a lower bound of zero is a small link, not a pinned one
                 let moments = [b.inertia[0].max(f64::MIN_POSITIVE), b.inertia[1]];
                 for (a, m) in l.principal_moments().iter().enumerate() {
                     if b.inertia[0] > 0.0 || (*m - b.inertia[1]).abs() < (*m - moments[0]).abs() {
-                        at(format!("principal moment {a}"), *m, b.inertia);
+                        at(format!("principal moment {}", a + 1), *m, b.inertia);
                     }
                 }
                 if out(l.mass, b.mass) {
-                    violations.push(format!(
-                        "link {}: mass {} outside {}",
-                        j + 1,
-                        outside(l.mass),
-                        range(b.mass)
-                    ));
+                    violated(
+                        BoundKind::Mass,
+                        format!(
+                            "link {}: mass {} outside {}",
+                            j + 1,
+                            outside(l.mass),
+                            range(b.mass)
+                        ),
+                    );
                 }
                 for a in 0..3 {
                     if out(l.com[a], b.com[a]) {
-                        violations.push(format!(
-                            "link {}: com[{a}] {} outside {}",
-                            j + 1,
-                            outside(l.com[a]),
-                            range(b.com[a])
-                        ));
+                        violated(
+                            BoundKind::Com,
+                            format!(
+                                "link {}: centre of mass {} {} outside {}",
+                                j + 1,
+                                AXES[a],
+                                outside(l.com[a]),
+                                range(b.com[a])
+                            ),
+                        );
                     }
                 }
                 for (given, (name, row, column)) in b.tensor.iter().zip(TENSOR_ELEMENTS) {
@@ -198,22 +255,29 @@ impl Solution {
                     let v = l.inertia[row][column];
                     at(format!("inertia {name}"), v, r);
                     if out(v, r) {
-                        violations.push(format!(
-                            "link {}: inertia {name} {} outside {}",
-                            j + 1,
-                            outside(v),
-                            range(r)
-                        ));
+                        violated(
+                            BoundKind::Element,
+                            format!(
+                                "link {}: inertia {name} {} outside {}",
+                                j + 1,
+                                outside(v),
+                                range(r)
+                            ),
+                        );
                     }
                 }
                 for (a, m) in l.principal_moments().iter().enumerate() {
                     if out(*m, b.inertia) {
-                        violations.push(format!(
-                            "link {}: principal moment {a} {} outside {}",
-                            j + 1,
-                            outside(*m),
-                            range(b.inertia)
-                        ));
+                        violated(
+                            BoundKind::PrincipalMoment,
+                            format!(
+                                "link {}: principal moment {} {} outside {}",
+                                j + 1,
+                                a + 1,
+                                outside(*m),
+                                range(b.inertia)
+                            ),
+                        );
                     }
                 }
             }
@@ -223,12 +287,11 @@ impl Solution {
             let total: f64 = (0..layout.links.len())
                 .map(|j| standard[layout.links[j][9]])
                 .sum();
-            if total < t[0] - tol || total > t[1] + tol {
-                violations.push(format!(
-                    "total mass {} outside {}",
-                    outside(total),
-                    range(t)
-                ));
+            if out(total, t) {
+                violated(
+                    BoundKind::TotalMass,
+                    format!("total mass {} outside {}", outside(total), range(t)),
+                );
             }
         }
         let dont_care = problem
@@ -247,6 +310,7 @@ impl Solution {
             min_eigenvalues,
             dont_care,
             violations,
+            unmet,
             at_bounds,
             determined: Vec::new(),
             seconds: elapsed.as_secs_f64(),
@@ -354,7 +418,7 @@ mod tests {
         let v = s.violations.join("\n");
         for want in [
             "link 1: mass 2 outside [0, 1.9]",
-            "link 1: com[0] 0 outside [0.01, 0.5]",
+            "link 1: centre of mass x 0 outside [0.01, 0.5]",
             "link 1: inertia xy 0 outside [0.001, 0.01]",
             "link 1: principal moment",
             "total mass 2 outside [0, 1.95]",
@@ -363,6 +427,21 @@ mod tests {
         }
         // the moments are 0.03, 0.02, 0.015: only 0.03 is above 0.025
         assert_eq!(s.violations.len(), 5, "{v}");
+        // all but the principal moment are imposed by the interior-point method, so unmet
+        assert_eq!(s.unmet.len(), 4, "{:?}", s.unmet);
+        assert!(s.unmet.iter().all(|u| !u.contains("principal")));
+        // the SDP does not impose single elements either
+        let sdp = Solution::assemble(
+            &problem(&t),
+            &bounds,
+            Method::Sdp,
+            t.to_vec(),
+            Duration::ZERO,
+        )
+        .unwrap();
+        assert_eq!(sdp.violations.len(), 5);
+        assert_eq!(sdp.unmet.len(), 3, "{:?}", sdp.unmet);
+        assert!(sdp.unmet.iter().all(|u| !u.contains("inertia")));
         // values are written short (a mass of 1e20 had its 21 digits)
         let mut heavy = t;
         heavy[9] = 1e20;
@@ -401,9 +480,9 @@ mod tests {
         let at = s.at_bounds.join("\n");
         for want in [
             "link 1: mass 2.000000e0 at its upper bound",
-            "link 1: centre of mass [0] 0.000000e0 at its lower bound",
-            "link 1: centre of mass [1] 0.000000e0 at its upper bound",
-            "link 1: principal moment 2 3.000000e-2 at its upper bound",
+            "link 1: centre of mass x 0.000000e0 at its lower bound",
+            "link 1: centre of mass y 0.000000e0 at its upper bound",
+            "link 1: principal moment 3 3.000000e-2 at its upper bound",
         ] {
             assert!(at.contains(want), "{want} not in\n{at}");
         }
@@ -430,7 +509,7 @@ mod tests {
         let at = with([0.015, 5.0]);
         assert_eq!(at.len(), 1, "{at:?}");
         assert!(
-            at[0].contains("principal moment 0 1.500000e-2 at its lower bound"),
+            at[0].contains("principal moment 1 1.500000e-2 at its lower bound"),
             "{at:?}"
         );
         // a range of 0.03 with the upper end at 0.03: 0.03 is at it, nothing else is
@@ -479,8 +558,9 @@ mod edges {
         .unwrap()
     }
 
-    /// The tolerances are inclusive: a value exactly `tol (1 + |bound|)` outside a link's
-    /// bound, or exactly `tol` outside the total-mass range, is not a violation.
+    /// The tolerances are inclusive: a value exactly `tol (1 + |bound|)` outside a bound
+    /// (a link's or the total mass's) is not a violation.
+
     #[test]
     fn a_value_exactly_at_the_tolerance_is_not_a_violation() {
         let mut t = target(link(), 0.1);
@@ -517,8 +597,9 @@ mod edges {
             ..Bounds::wide(1)
         };
         assert!(assemble(&t, &b).violations.is_empty());
-        // one step further is one
-        t[9] = 1.0 + 2e-6;
+        // the tolerance is relative, 1e-6 (1 + |bound|) as for every bound: 1 + 3e-6 is
+        // outside (an absolute 1e-6 took 200 + 1e-4 for a violation of [0, 200])
+        t[9] = 1.0 + 3e-6;
         assert_eq!(assemble(&t, &b).violations.len(), 1);
     }
 
@@ -565,7 +646,7 @@ mod edges {
         let at = with([1e-4, 1.0]);
         assert_eq!(at.len(), 1, "{at:?}");
         assert!(
-            at[0].contains("principal moment 0 1.000000e-4 at its lower bound"),
+            at[0].contains("principal moment 1 1.000000e-4 at its lower bound"),
             "{at:?}"
         );
     }

@@ -18,9 +18,9 @@ use std::path::{Path, PathBuf};
 use robid_runtime::Num;
 use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Equality, GravityCoefficients, LinkBounds, Prior, Problem, SdpOptions,
-    SmoothOptions, Solution, Unsized, UrdfJoint, solve_anneal, solve_interior, solve_sdp,
-    solve_smooth, solve_two_step, to_toml, to_urdf,
+    AnnealOptions, Bounds, Equality, GravityCoefficients, LinkBounds, Method, Prior, Problem,
+    SdpOptions, SmoothOptions, Solution, Unsized, UrdfJoint, solve_anneal, solve_interior,
+    solve_sdp, solve_smooth, solve_two_step, to_toml, to_urdf,
 };
 use robid_symbolic::Robot;
 use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
@@ -184,15 +184,34 @@ fn check_solution(solution: &Solution) -> Result<(), Error> {
         .or_else(|| {
             (!solution.chi2.is_finite()).then(|| format!("chi^2 = {}", Num(solution.chi2)))
         });
-    match bad {
-        Some(what) => Err(format!(
+    if let Some(what) = bad {
+        return Err(format!(
             "the {} solution has {what}, not a finite number; nothing was written: check the \
              bounds and the identified values",
             solution.method.name()
         )
-        .into()),
-        None => Ok(()),
+        .into());
     }
+    if solution.unmet.is_empty() {
+        return Ok(());
+    }
+    let other = match solution.method {
+        Method::Interior => {
+            "; `--method cholesky` seeks the same optimum by another path and may meet them"
+        }
+        _ => "",
+    };
+    Err(format!(
+        "the {} fit ended outside bounds it imposes: {}; nothing was written. The data push \
+         hard against these bounds (chi^2 {:.3e}, max |z| {:.3}), or the bounds contradict \
+         each other or the physical consistency: check the bounds file and the identified \
+         values{other}",
+        solution.method.name(),
+        solution.unmet.join("; "),
+        solution.chi2,
+        solution.max_normalized_residual(),
+    )
+    .into())
 }
 
 /// Runs the subcommand.
@@ -595,6 +614,7 @@ mod tests {
             min_eigenvalues: Vec::new(),
             dont_care: Vec::new(),
             violations: Vec::new(),
+            unmet: Vec::new(),
             at_bounds: Vec::new(),
             determined: Vec::new(),
             seconds: 0.0,

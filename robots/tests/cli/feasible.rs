@@ -230,6 +230,45 @@ fn feasible_rejects_an_unknown_method_and_a_foreign_result() {
     );
 }
 
+/// Bounds that no consistent link meets (link 1's inertia about its centre of mass with
+/// xx and yy at most 0.001 but zz at least 0.01, against zz <= xx + yy): each method ends
+/// outside a bound it imposes, and that is an error with nothing written, naming the bounds
+/// (the default method wrote its result and exited 0 before, its violations a note).
+#[test]
+fn feasible_fails_when_the_fit_ends_outside_the_bounds_it_imposes() {
+    let dir = folder();
+    let bounds = write(
+        dir.path(),
+        "b.toml",
+        "[links.1]\ninertia_tensor = { xx = [0.0, 0.001], yy = [0.0, 0.001], zz = [0.01, 1.0] }\n",
+    );
+    for method in ["interior-point", "cholesky"] {
+        let path = out(&dir, "f.toml");
+        let o = robid(&[
+            "feasible",
+            "configs/tx40_robot.toml",
+            "--identified",
+            "tests/fixtures/tx40_identified.json",
+            "--bounds",
+            bounds.to_str().unwrap(),
+            "--method",
+            method,
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        fails_with(
+            &o,
+            &[
+                &format!("the {method} fit ended outside bounds it imposes: link 1: inertia"),
+                "outside [0, 0.001]",
+                "nothing was written",
+                "check the bounds file",
+            ],
+        );
+        assert!(!path.exists(), "{method}");
+    }
+}
+
 /// A result with more entries foreign to the description than extra columns are kept for
 /// as free terms is refused at once, naming the count and the first names (1000 of them
 /// used to run for minutes, each a variable of the solvers); a few are kept.
