@@ -215,8 +215,8 @@ impl Solution {
                     }
                 };
                 at("mass".into(), l.mass, b.mass);
-                for a in 0..3 {
-                    at(format!("centre of mass {}", AXES[a]), l.com[a], b.com[a]);
+                for (a, axis) in AXES.iter().enumerate() {
+                    at(format!("centre of mass {axis}"), l.com[a], b.com[a]);
                 }
                 // a moment near a lower bound of zero is a small link, not a pinned one
                 let moments = [b.inertia[0].max(f64::MIN_POSITIVE), b.inertia[1]];
@@ -236,14 +236,13 @@ impl Solution {
                         ),
                     );
                 }
-                for a in 0..3 {
+                for (a, axis) in AXES.iter().enumerate() {
                     if out(l.com[a], b.com[a]) {
                         violated(
                             BoundKind::Com,
                             format!(
-                                "link {}: centre of mass {} {} outside {}",
+                                "link {}: centre of mass {axis} {} outside {}",
                                 j + 1,
-                                AXES[a],
                                 outside(l.com[a]),
                                 range(b.com[a])
                             ),
