@@ -50,7 +50,9 @@ use toml::de::{DeTable, DeValue};
 
 use crate::Model;
 use crate::error::{Error, Result};
-use crate::feasible::{LinkInertial, inertia_at_origin};
+use crate::Num;
+use crate::feasible::inertia_at_origin;
+use nalgebra::Vector3;
 use crate::model::{Inertial, ParameterId, ParameterKind};
 
 /// The largest magnitude of a value in a parameter file (SI units: kg, kg m, kg m^2,
@@ -417,18 +419,26 @@ impl ParameterFile {
                 ),
             ));
         }
-        if let Some(l) = LinkInertial::from_standard(&p) {
-            let lowest = l.principal_moments()[0];
+        if mass > 0.0 {
+            // m I_c = m I_o - S(h)' S(h) (h the first moments): no division by the mass, so
+            // a speck of mass with a first moment (its centre of mass 1e200 m away) is
+            // judged rather than lost to overflow
+            let origin = inertia_at_origin(&p);
+            let h = Vector3::new(p[6], p[7], p[8]);
+            let spread = h.cross_matrix().transpose() * h.cross_matrix();
+            let scaled = origin * mass - spread;
+            let scale = (origin.abs().max() * mass).max(h.norm_squared());
+            let lowest = scaled.symmetric_eigenvalues().min();
             if lowest < -INERTIA_TOLERANCE * scale {
-                let [x, y, z] = l.com;
+                let [x, y, z] = [p[6], p[7], p[8]].map(|h| Num::rounded(h / mass, 5));
                 return Err(self.at(
                     &first,
                     format!(
-                        "the inertia of link {link} about its centre of mass ({x:.4}, {y:.4}, \
-                         {z:.4}) m is not positive semidefinite (smallest principal moment \
-                         {lowest:.4e} kg m^2): the first moments place the centre of mass too \
-                         far from the origin for the inertias {tensor}; check {moments} and \
-                         M{link}"
+                        "the inertia of link {link} about its centre of mass ({x}, {y}, {z}) m \
+                         is not positive semidefinite (smallest principal moment {} kg m^2): \
+                         the first moments place the centre of mass too far from the origin \
+                         for the inertias {tensor}; check {moments} and M{link}",
+                        Num::rounded(lowest / mass, 5)
                     ),
                 ));
             }

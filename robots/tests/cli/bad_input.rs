@@ -849,8 +849,24 @@ fn parameter_file_mistakes_are_located_by_line_and_column() {
             "[standard]\nXX3 = 0.01\nYY3 = 0.01\nZZ3 = 0.01\nMX3 = 1.0\nM3 = 1.0\n",
             &[
                 "params.toml:2:1:",
-                "link 3 about its centre of mass (1.0000, 0.0000, 0.0000) m",
+                "link 3 about its centre of mass (1, 0, 0) m",
+                "smallest principal moment -0.99 kg m^2",
             ],
+        ),
+        // a speck of mass with a first moment: its centre of mass 8e199 m away (the check
+        // divided by the mass and lost it to overflow below 1e-160 kg: M2 = 1e-200 passed;
+        // at 1e-100 the message wrote the centre of mass with its 100 digits)
+        (
+            "[standard]\nZZ2 = 0.25\nMX2 = 0.8\nM2 = 1e-200\n",
+            &[
+                "params.toml:2:1:",
+                "link 2 about its centre of mass (8e199, 0, 0) m",
+                "smallest principal moment -6.4e199 kg m^2",
+            ],
+        ),
+        (
+            "[standard]\nZZ2 = 0.25\nMX2 = 0.8\nM2 = 1e-320\n",
+            &["params.toml:2:1:", "link 2 about its centre of mass (inf, 0, 0) m"],
         ),
         (
             "[standard]\nMY5 = 0.2\n",
