@@ -101,6 +101,15 @@ pub enum DataError {
         /// The bytes read without a line end.
         limit: usize,
     },
+    /// The file's lines end in a carriage return alone (classic Mac OS): read as one line,
+    /// the header with every row appended.
+    #[error(
+        "{path}: its lines end in a carriage return alone (CR, as classic Mac OS wrote text); robid reads lines ended by a line feed (LF, or CR LF): convert the file, e.g. with `tr '\\r' '\\n' < old.csv > new.csv`"
+    )]
+    CarriageReturnLines {
+        /// The file.
+        path: PathBuf,
+    },
     /// The file separates its fields with something robid does not read (`|`).
     #[error(
         "{path}: the header `{header}` is separated by {separator}; robid reads fields separated by `,`, or by the one of `;`, a tab or spaces that the header uses (optionally quoted with `\"`, `#` starts a comment line): convert the file to commas (with `.` as the decimal point)"

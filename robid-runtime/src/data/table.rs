@@ -4,7 +4,8 @@
 //! memory): fields separated by `,` (or by the one separator the header line uses
 //! instead: `;`, a tab or spaces, single as UR's RTDE recorder writes them or in runs that
 //! align columns, [`separator`]), optionally quoted with `"`, surrounding spaces trimmed,
-//! lines that start with `#` are comments, empty lines are skipped, `\n` or `\r\n` line ends, and a UTF-8 byte-order mark is ignored.
+//! lines that start with `#` are comments, empty lines are skipped, `\n` or `\r\n` line ends
+//! (`\r` alone is refused, naming the conversion), and a UTF-8 byte-order mark is ignored.
 //!
 //! The text is read in windows of [`WINDOW`] bytes cut at a line end, so that a long record
 //! is never held as text beside its values ([`for_each_window`] hands each window's rows on
@@ -667,6 +668,17 @@ impl Header {
         };
         // the body starts on the line after the header's
         let after = records.consumed;
+        // csv_core ends a record at a lone CR too, but the body is cut at LFs: a file of
+        // CR line ends was its header and nothing else ("no data rows")
+        if after > 0
+            && text[after - 1] == b'\r'
+            && text.get(after).is_some_and(|&b| b != b'\n')
+            && !text[after..].contains(&b'\n')
+        {
+            return Err(Error::Data(DataError::CarriageReturnLines {
+                path: path.to_path_buf(),
+            }));
+        }
         let body_start = if after > 0 && text.get(after - 1) == Some(&b'\n') {
             Some(after)
         } else {
@@ -1743,6 +1755,24 @@ mod tests {
             assert_eq!(t.columns, plain.columns, "{text:?}");
             assert_eq!(t.lines, plain.lines, "{text:?}");
         }
+    }
+
+    /// A file of CR line ends (classic Mac OS) is refused with the conversion: it was read
+    /// as its header alone, told as a file without rows. A header alone, ending in CR, is
+    /// a header, and a CR inside a quoted field of a CR LF file is no line end.
+    #[test]
+    fn carriage_return_line_ends_are_named() {
+        for text in ["a,b\r1,2\r3,4\r", "\u{feff}a,b\r1,2"] {
+            let e = read(text, &["a", "b"]).unwrap_err();
+            assert!(
+                matches!(e, Error::Data(DataError::CarriageReturnLines { .. })),
+                "{text:?}: {e}"
+            );
+            assert!(e.to_string().contains("tr '\\r' '\\n'"), "{e}");
+        }
+        assert_eq!(read("a,b\r", &["a", "b"]).unwrap().rows(), 0);
+        let t = read("a,b\r\n\"1\r\",2\r\n", &["b"]).unwrap();
+        assert_eq!(t.columns, [[2.0]]);
     }
 
     #[test]
