@@ -134,6 +134,8 @@ pub enum Quantity {
     Time,
     /// Temperature (deg C).
     Temperature,
+    /// An entry of a mass matrix (kg m^2, or kg for a prismatic joint).
+    Inertia,
 }
 
 impl Quantity {
@@ -146,6 +148,7 @@ impl Quantity {
             Quantity::Torque => MAX_TORQUE,
             Quantity::Time => MAX_TIME,
             Quantity::Temperature => MAX_TEMPERATURE,
+            Quantity::Inertia => MAX_PARAMETER,
         }
     }
 
@@ -158,6 +161,7 @@ impl Quantity {
             Quantity::Torque => "torque",
             Quantity::Time => "time",
             Quantity::Temperature => "temperature",
+            Quantity::Inertia => "mass-matrix entry",
         }
     }
 

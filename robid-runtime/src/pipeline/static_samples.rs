@@ -15,6 +15,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::data::{read_columns, read_header};
 use crate::estimate::{Estimate, Observation, equations_needed, ols};
 use crate::feasible::GravityCoefficients;
+use crate::limits::Quantity;
 use crate::{Count, Error, Model, Result};
 
 /// What the samples hold.
@@ -110,6 +111,13 @@ pub struct StaticFit {
 pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result<StaticFit> {
     let n = model.dof();
     let header = read_header(path)?;
+    let positions: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
+    if positions.iter().any(|q| !header.contains(q)) {
+        // the reader's own error about the header: an empty file, one that is not text, a
+        // separator it does not read, a missing column (an empty file was "holds neither
+        // gravity columns nor mass-matrix columns")
+        read_columns(path, &positions)?;
+    }
     let has = |kind: StaticKind| kind.columns(n).iter().any(|c| header.contains(c));
     let kind = match (has(StaticKind::Gravity), has(StaticKind::MassMatrix)) {
         (true, false) => StaticKind::Gravity,
@@ -131,9 +139,16 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
         }
     };
     let values = kind.columns(n);
-    let mut names: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
+    let mut names = positions;
     names.extend(values.iter().cloned());
     let table = read_columns(path, &names)?;
+    let value = match kind {
+        StaticKind::Gravity => Quantity::Torque,
+        StaticKind::MassMatrix => Quantity::Inertia,
+    };
+    for (c, name) in names.iter().enumerate() {
+        table.check_range(c, name, if c < n { Quantity::Position } else { value })?;
+    }
     let determined = match kind {
         StaticKind::Gravity => GravityCoefficients::of_model(model)?,
         StaticKind::MassMatrix => GravityCoefficients::of_mass_matrix(model)?,

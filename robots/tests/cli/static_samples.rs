@@ -6,7 +6,7 @@ use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{folder, robid, stderr, stdout};
+use common::{fails_with, folder, robid, stderr, stdout};
 use robid_runtime::Model;
 use robid_runtime::feasible::GravityCoefficients;
 use robid_runtime::rng::Rng;
@@ -123,6 +123,25 @@ fn gaz_identify_static_refuses_bad_columns_and_other_data() {
     let o = robid(&["identify", LWR, "--static", bad.to_str().unwrap()]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("no column `g3`"), "{}", stderr(&o));
+    // the values are range-checked (1e150 went into the estimate and the JSON), and an
+    // empty or binary file is told as such (was "holds neither gravity columns ...")
+    let q = "q1,q2,q3,q4,q5,q6,q7";
+    for (text, expected) in [
+        (
+            format!("{q},g1,g2,g3,g4,g5,g6,g7\n0,0,0,0,0,0,0,1,2,3,4,5,6,1e150\n"),
+            "bad.csv:2: column `g7` is 1e150, outside the accepted range |torque| <= 1e7",
+        ),
+        (
+            format!("{q},g1,g2,g3,g4,g5,g6,g7\n0,0,0,0,0,0,2e6,1,2,3,4,5,6,7\n"),
+            "bad.csv:2: column `q7` is 2000000, outside the accepted range |position|",
+        ),
+        (String::new(), "the file is empty"),
+        ("\u{1}\u{2}\0PK\n\0\0\n".into(), "is this a CSV file?"),
+    ] {
+        std::fs::write(&bad, text).unwrap();
+        let o = robid(&["identify", LWR, "--static", bad.to_str().unwrap()]);
+        fails_with(&o, &[expected]);
+    }
     let o = robid(&[
         "identify",
         LWR,
