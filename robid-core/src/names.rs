@@ -1,6 +1,42 @@
-//! The nearest names to one that names nothing, for "did you mean" help.
+//! Names in messages: the nearest names to one that names nothing, for "did you mean"
+//! help, and any text a user wrote, quoted short.
 
+use std::borrow::Cow;
+use std::format;
+use std::string::String;
 use std::vec::Vec;
+
+/// Longest text quoted whole by [`short`].
+const QUOTED: usize = 40;
+
+/// Text a user wrote (a name, a key, a setting's value), for a message: as written up to
+/// 40 characters, else its first 32 and its length. A file can hold a megabyte-long key,
+/// and a message that quotes it whole buries what it says.
+///
+/// ```
+/// use robid_core::names::short;
+/// assert_eq!(short("modified"), "modified");
+/// let long = "x".repeat(5000);
+/// assert_eq!(short(&long), format!("{}.. (5000 characters)", "x".repeat(32)));
+/// ```
+pub fn short(text: &str) -> Cow<'_, str> {
+    shortened(text, QUOTED)
+}
+
+/// [`short`] for text that may be longer (an expression of many terms): as written up to
+/// `limit` characters, else its first `limit * 4 / 5` and its length.
+///
+/// ```
+/// use robid_core::names::shortened;
+/// assert_eq!(shortened("ZZ1 + 0.16*M2", 10), "ZZ1 + 0.. (13 characters)");
+/// ```
+pub fn shortened(text: &str, limit: usize) -> Cow<'_, str> {
+    if text.char_indices().nth(limit).is_none() {
+        return Cow::Borrowed(text);
+    }
+    let head: String = text.chars().take(limit * 4 / 5).collect();
+    Cow::Owned(format!("{head}.. ({} characters)", text.chars().count()))
+}
 
 /// How many leading characters of each name are compared. A name read from a file can
 /// be megabytes long and the edit distance costs the product of the two lengths; 64

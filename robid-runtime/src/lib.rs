@@ -13,6 +13,8 @@ pub mod model;
 pub mod online;
 mod real;
 pub use robid_core::rng;
+#[cfg(feature = "std")]
+pub use robid_core::names;
 pub mod trig;
 pub mod wrench;
 

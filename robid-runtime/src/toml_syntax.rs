@@ -239,14 +239,10 @@ fn key_before(text: &str, offset: usize) -> String {
 /// quoted whole), a long number written short.
 pub(crate) fn shown(value: &str) -> String {
     let value = value.trim();
-    if value.chars().count() <= 40 {
-        return match value.parse::<f64>() {
-            Ok(x) if value.len() > 24 => num(x),
-            _ => value.to_owned(),
-        };
+    match value.parse::<f64>() {
+        Ok(x) if value.len() > 24 => num(x),
+        _ => robid_core::names::short(value).into_owned(),
     }
-    let head: String = value.chars().take(32).collect();
-    format!("{head}.. ({} characters)", value.chars().count())
 }
 
 /// serde's message `message` on the value written `value`, in words for people.
@@ -297,11 +293,15 @@ fn shape_problem(message: &str, value: &str) -> String {
     if let Some(rest) = message.strip_prefix("missing field ") {
         return format!("missing key {rest}: add it");
     }
-    if let Some(rest) = message.strip_prefix("unknown variant ") {
-        return format!(
-            "unknown value {}",
-            rest.replace("expected one of", "give one of")
-        );
+    if let Some(rest) = message.strip_prefix("unknown variant `") {
+        // serde quotes the value whole (a 2 MB value was echoed)
+        if let Some((given, choices)) = rest.split_once("`, expected ") {
+            return format!(
+                "unknown value `{}`, give {}",
+                robid_core::names::short(given),
+                choices
+            );
+        }
     }
     if message == "wanted string or table" {
         return not("text in quotes or a table");

@@ -37,7 +37,7 @@ impl std::fmt::Display for TomlFile {
 #[non_exhaustive]
 pub enum DataError {
     /// A file could not be opened or read.
-    #[error("{path}: cannot read: {source}; check the path and permissions")]
+    #[error("{}: cannot read: {source}; check the path and permissions", robid_core::names::shortened(&path.display().to_string(), 256))]
     Io {
         /// The file.
         path: PathBuf,
@@ -196,7 +196,7 @@ pub enum DataError {
         line: u64,
     },
     /// A column named by the column mapping is not in the file's header.
-    #[error("{path}: no column `{column}` in the header (found: {}); {}{}", listed(available), mapping.fix(), numbered_from_zero(column, available))]
+    #[error("{path}: no column `{}` in the header (found: {}); {}{}", robid_core::names::short(column), listed(available), mapping.fix(), numbered_from_zero(column, available))]
     MissingColumn {
         /// The file.
         path: PathBuf,
@@ -365,10 +365,7 @@ fn listed(names: &[String]) -> String {
     let mut shown: Vec<String> = names
         .iter()
         .take(LISTED)
-        .map(|n| match n.char_indices().nth(40) {
-            Some((cut, _)) => format!("{}...", &n[..cut]),
-            None => n.clone(),
-        })
+        .map(|n| robid_core::names::short(n).into_owned())
         .collect();
     if names.len() > LISTED {
         shown.push(format!("and {} more", names.len() - LISTED));

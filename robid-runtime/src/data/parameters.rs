@@ -505,8 +505,9 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
                 return Err(located(
                     at,
                     format!(
-                        "unknown table or key `{other}`; a parameter file holds one table, \
-                         [standard], [base] or [known]"
+                        "unknown table or key `{}`; a parameter file holds one table, \
+                         [standard], [base] or [known]",
+                        robid_core::names::short(other)
                     ),
                 ));
             }

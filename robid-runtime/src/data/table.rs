@@ -1910,7 +1910,10 @@ mod tests {
         let e = read(&format!("{long},a\n1,2\n"), &["q1"])
             .unwrap_err()
             .to_string();
-        assert!(e.contains(&format!("found: {}..., a)", &long[..40])), "{e}");
+        assert!(
+            e.contains(&format!("found: {}.. (50 characters), a)", &long[..32])),
+            "{e}"
+        );
     }
 
     /// A binary file's first line is not echoed (its bytes reached the terminal, escape

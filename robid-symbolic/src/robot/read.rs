@@ -8,7 +8,7 @@ use super::file::Place;
 use super::{
     Convention, DescriptionError, Drive, DriveTerm, Geometry, Joint, JointKind, Limits, Transform,
 };
-use robid_core::names;
+use robid_core::names::{self, short};
 use std::collections::HashMap;
 use std::ops::Range;
 use toml::Spanned;
@@ -215,7 +215,7 @@ impl<'a> Reader<'a> {
                         Some(k) => format!("did you mean `{k}`? The keys {context} are {list}"),
                         None => format!("the keys {context} are {list}"),
                     };
-                    self.error(key.span(), format!("unknown key `{key_name}`"), help);
+                    self.error(key.span(), format!("unknown key `{}`", short(key_name)), help);
                 }
             }
         }
@@ -296,7 +296,7 @@ impl<'a> Reader<'a> {
             Some(other) => {
                 self.error(
                     v.span(),
-                    format!("unknown DH convention `{other}`"),
+                    format!("unknown DH convention `{}`", short(other)),
                     "write `convention = \"modified\"` (Craig/Khalil) or `convention = \"standard\"` (classic)",
                 );
                 Convention::Modified
@@ -342,13 +342,13 @@ impl<'a> Reader<'a> {
             match name.parse::<DriveTerm>() {
                 Ok(t) if d.has(t) => self.error(
                     term.span(),
-                    format!("the drive term `{name}` is named twice"),
+                    format!("the drive term `{}` is named twice", short(&name)),
                     "name each drive term once",
                 ),
                 Ok(t) => d.add(t),
                 Err(e) => self.error(
                     term.span(),
-                    format!("unknown drive term `{name}`"),
+                    format!("unknown drive term `{}`", short(&name)),
                     e.expected,
                 ),
             }
@@ -369,7 +369,7 @@ impl<'a> Reader<'a> {
         for (key, value) in table.iter() {
             let name = key.get_ref().to_string();
             self.spans.symbols.insert(name.clone(), key.span());
-            if let Some(x) = self.number(value, &format!("symbol `{name}`")) {
+            if let Some(x) = self.number(value, &format!("symbol `{}`", short(&name))) {
                 out.push((name, x));
             }
         }
@@ -403,7 +403,7 @@ impl<'a> Reader<'a> {
                 Some(other) => {
                     self.error(
                         v.span(),
-                        format!("unknown joint type `{other}`"),
+                        format!("unknown joint type `{}`", short(other)),
                         "write `type = \"revolute\"` or `type = \"prismatic\"`",
                     );
                     JointKind::Revolute

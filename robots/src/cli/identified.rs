@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use robid_runtime::Num;
+use robid_runtime::{Num, names};
 use robid_runtime::feasible::Problem;
 use robots::figaroh::combination;
 use serde::Deserialize;
@@ -142,8 +142,8 @@ impl Identified {
                      with another robot, or another version of this description; give the \
                      description (and --drive) it was identified with, or identify again",
                     path.display(),
-                    p.name,
-                    p.expression,
+                    names::short(&p.name),
+                    names::shortened(&p.expression, 400),
                     expression(row.iter().copied(), &problem.standard_names),
                     robot.display()
                 )

@@ -1452,3 +1452,77 @@ fn simulate_warns_of_a_trajectory_beyond_the_limits() {
         assert_eq!(said, warned, "{name}: {}", stderr(&o));
     }
 }
+
+/// Text a user wrote is quoted short in every message (its first 32 characters and its
+/// length): a 5000-character DH convention, joint type, drive term, limits key, config
+/// value or column template, parameter-file table or file name was echoed whole.
+#[test]
+fn long_user_text_is_quoted_short() {
+    let dir = folder();
+    let long = "Z".repeat(5000);
+    let arm = std::fs::read_to_string(asset("tests/fixtures/pendulum2.toml")).unwrap();
+    let describe = |from: &str, to: &str| {
+        assert!(arm.contains(from), "{from}");
+        write(dir.path(), "arm.toml", &arm.replacen(from, to, 1))
+    };
+    let states = ur5e_states(dir.path(), 3);
+    let mut cases: Vec<Vec<String>> = Vec::new();
+    for (from, to) in [
+        ("convention = \"modified\"", format!("convention = \"{long}\"")),
+        ("a = 0.5", format!("a = 0.5\ntype = \"{long}\"")),
+        ("\"Fc\"]", format!("\"{long}\"]")),
+        ("velocity = 1.5,", format!("{long} = 1.5,")),
+    ] {
+        let robot = describe(from, &to);
+        cases.push(vec!["model".into(), robot.display().to_string()]);
+    }
+    let robot = asset("tests/fixtures/pendulum2.toml");
+    let config = |text: &str| {
+        let path = write(dir.path(), "c.toml", text);
+        vec![
+            "identify".into(),
+            robot.clone(),
+            "--config".into(),
+            path.display().to_string(),
+            "--data".into(),
+            states.display().to_string(),
+        ]
+    };
+    let source = "dof = 2\n[[source]]\nfile = \"x.csv\"\nposition = \"q{}\"\ntorque = \"tau{}\"\n";
+    cases.push(config(&format!("{source}[estimation]\nmethod = \"{long}\"\n")));
+    cases.push(config(&format!("{source}[processing]\ngaps = \"{long}\"\n")));
+    cases.push(config(&source.replace("q{}", &format!("{long}{{}}"))));
+    let params = write(
+        dir.path(),
+        "p.toml",
+        &format!("[standard]\nM1 = 1\n[{long}]\nM2 = 1\n"),
+    );
+    cases.push(vec![
+        "torques".into(),
+        robot.clone(),
+        "--parameters".into(),
+        params.display().to_string(),
+        "--states".into(),
+        states.display().to_string(),
+    ]);
+    cases.push(vec![
+        "torques".into(),
+        robot.clone(),
+        "--parameters".into(),
+        long.clone(),
+        "--states".into(),
+        states.display().to_string(),
+    ]);
+    for args in cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = robid(&args);
+        let e = stderr(&o);
+        assert!(!o.status.success(), "{args:?}");
+        // 5000, or 5001 with a template's `{}`
+        assert!(
+            e.contains(&format!("{}.. (500", &long[..32])) && e.contains(" characters)"),
+            "{e}"
+        );
+        assert!(e.len() < 1000, "{} bytes: {}", e.len(), &e[..300]);
+    }
+}

@@ -13,6 +13,7 @@ use super::super::bounds::{
 use super::super::check::{and_more, listed};
 use super::super::file::Place;
 use super::rigid::{NEAR_RIGHT_ANGLE, Rigid, near_right_angle, norm, right_angle_multiple, scale};
+use robid_core::names::short;
 use roxmltree::{Document, Node};
 use std::ops::Range;
 
@@ -518,22 +519,12 @@ fn describe(node: Node<'_, '_>) -> String {
         Some(name) => format!(
             "`<{} name=\"{}\">`",
             node.tag_name().name(),
-            shortened(name)
+            short(name)
         ),
         None => format!("`<{}>`", node.tag_name().name()),
     }
 }
 
-/// A value as written, for a message: at most 40 characters.
-fn shortened(value: &str) -> String {
-    match value.char_indices().nth(40) {
-        None => value.to_owned(),
-        Some(_) => {
-            let head: String = value.chars().take(32).collect();
-            format!("{head}.. ({} characters)", value.chars().count())
-        }
-    }
-}
 
 impl Reader<'_> {
     fn error(&mut self, span: Range<usize>, message: String, help: impl Into<String>) {
@@ -572,7 +563,7 @@ impl Reader<'_> {
                     format!(
                         "`{name}=\"{}\"` of {} is longer than {MAX_NAME_LEN} characters, the \
                          most robid reads",
-                        shortened(a.value()),
+                        short(a.value()),
                         describe(node)
                     ),
                     "give it a shorter name",
