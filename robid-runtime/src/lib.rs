@@ -12,9 +12,9 @@ pub mod lanes;
 pub mod model;
 pub mod online;
 mod real;
-pub use robid_core::rng;
 #[cfg(feature = "std")]
 pub use robid_core::names;
+pub use robid_core::rng;
 pub mod trig;
 pub mod wrench;
 

@@ -49,11 +49,11 @@ use std::path::{Path, PathBuf};
 use toml::de::{DeTable, DeValue};
 
 use crate::Model;
-use crate::error::{Error, Result};
 use crate::Num;
+use crate::error::{Error, Result};
 use crate::feasible::inertia_at_origin;
-use nalgebra::Vector3;
 use crate::model::{Inertial, ParameterId, ParameterKind};
+use nalgebra::Vector3;
 
 /// The largest magnitude of a value in a parameter file (SI units: kg, kg m, kg m^2,
 /// N m s/rad, N m).

@@ -215,7 +215,11 @@ impl<'a> Reader<'a> {
                         Some(k) => format!("did you mean `{k}`? The keys {context} are {list}"),
                         None => format!("the keys {context} are {list}"),
                     };
-                    self.error(key.span(), format!("unknown key `{}`", short(key_name)), help);
+                    self.error(
+                        key.span(),
+                        format!("unknown key `{}`", short(key_name)),
+                        help,
+                    );
                 }
             }
         }

@@ -8,8 +8,8 @@
 
 use std::path::Path;
 
-use robid_runtime::{Num, names};
 use robid_runtime::feasible::Problem;
+use robid_runtime::{Num, names};
 use robots::figaroh::combination;
 use serde::Deserialize;
 

@@ -866,7 +866,10 @@ fn parameter_file_mistakes_are_located_by_line_and_column() {
         ),
         (
             "[standard]\nZZ2 = 0.25\nMX2 = 0.8\nM2 = 1e-320\n",
-            &["params.toml:2:1:", "link 2 about its centre of mass (inf, 0, 0) m"],
+            &[
+                "params.toml:2:1:",
+                "link 2 about its centre of mass (inf, 0, 0) m",
+            ],
         ),
         (
             "[standard]\nMY5 = 0.2\n",
@@ -1468,7 +1471,10 @@ fn long_user_text_is_quoted_short() {
     let states = ur5e_states(dir.path(), 3);
     let mut cases: Vec<Vec<String>> = Vec::new();
     for (from, to) in [
-        ("convention = \"modified\"", format!("convention = \"{long}\"")),
+        (
+            "convention = \"modified\"",
+            format!("convention = \"{long}\""),
+        ),
         ("a = 0.5", format!("a = 0.5\ntype = \"{long}\"")),
         ("\"Fc\"]", format!("\"{long}\"]")),
         ("velocity = 1.5,", format!("{long} = 1.5,")),
@@ -1489,8 +1495,12 @@ fn long_user_text_is_quoted_short() {
         ]
     };
     let source = "dof = 2\n[[source]]\nfile = \"x.csv\"\nposition = \"q{}\"\ntorque = \"tau{}\"\n";
-    cases.push(config(&format!("{source}[estimation]\nmethod = \"{long}\"\n")));
-    cases.push(config(&format!("{source}[processing]\ngaps = \"{long}\"\n")));
+    cases.push(config(&format!(
+        "{source}[estimation]\nmethod = \"{long}\"\n"
+    )));
+    cases.push(config(&format!(
+        "{source}[processing]\ngaps = \"{long}\"\n"
+    )));
     cases.push(config(&source.replace("q{}", &format!("{long}{{}}"))));
     let params = write(
         dir.path(),

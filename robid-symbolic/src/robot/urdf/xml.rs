@@ -516,15 +516,10 @@ fn xacro_left(root: Node<'_, '_>) -> Option<(Range<usize>, String)> {
 /// `<tag name="...">` for messages.
 fn describe(node: Node<'_, '_>) -> String {
     match node.attribute("name") {
-        Some(name) => format!(
-            "`<{} name=\"{}\">`",
-            node.tag_name().name(),
-            short(name)
-        ),
+        Some(name) => format!("`<{} name=\"{}\">`", node.tag_name().name(), short(name)),
         None => format!("`<{}>`", node.tag_name().name()),
     }
 }
-
 
 impl Reader<'_> {
     fn error(&mut self, span: Range<usize>, message: String, help: impl Into<String>) {
