@@ -8,7 +8,8 @@
 
 use super::super::DescriptionError;
 use super::super::bounds::{
-    MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_NAME_LEN, MAX_TORQUE, MAX_TURNING, MAX_VELOCITY,
+    MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_NAME_LEN, MAX_TORQUE, MAX_TURNING, MAX_URDF_DEPTH,
+    MAX_VELOCITY,
 };
 use super::super::check::{and_more, listed};
 use super::super::file::Place;
@@ -189,6 +190,17 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         }
     })?;
     let root = doc.root_element();
+    if let Some(deep) = too_deep(root) {
+        return Err(place.invalid(
+            deep.range(),
+            format!(
+                "`<{}>` is nested more than {MAX_URDF_DEPTH} elements deep",
+                deep.tag_name().name()
+            ),
+            "a URDF nests its elements a few deep (`<robot><link><visual><geometry><mesh>`): \
+             check that this is a URDF, and close the elements where they end",
+        ));
+    }
     if let Some((at, what)) = xacro_left(root) {
         return Err(place.invalid(
             at,
@@ -484,6 +496,23 @@ fn looks_like_xacro(text: &str) -> bool {
     }
 }
 
+/// The first element nested deeper than [`MAX_URDF_DEPTH`] (`root` at depth 1), found by
+/// one walk of the tree.
+fn too_deep<'a, 'input>(root: Node<'a, 'input>) -> Option<Node<'a, 'input>> {
+    let mut stack = vec![(root, 1)];
+    while let Some((node, depth)) = stack.pop() {
+        if depth > MAX_URDF_DEPTH {
+            return Some(node);
+        }
+        stack.extend(
+            node.children()
+                .filter(Node::is_element)
+                .map(|c| (c, depth + 1)),
+        );
+    }
+    None
+}
+
 /// The first trace of xacro in a parsed file, where and what: an element of the xacro
 /// namespace (`<xacro:property>`, `<xacro:macro>`) anywhere, or a `${...}` expression in an
 /// attribute of a `<link>` or `<joint>`. A declaration `xmlns:xacro` alone is not one:
@@ -500,12 +529,15 @@ fn xacro_left(root: Node<'_, '_>) -> Option<(Range<usize>, String)> {
                 format!("`<xacro:{}>`", node.tag_name().name()),
             ));
         }
-        let inside = node
-            .ancestors()
-            .any(|a| a.has_tag_name("link") || a.has_tag_name("joint"));
+        // the ancestors only for an attribute with an expression: every element's cost
+        // the depth, the whole walk its square
+        let inside = || {
+            node.ancestors()
+                .any(|a| a.has_tag_name("link") || a.has_tag_name("joint"))
+        };
         if let Some(a) = node
             .attributes()
-            .find(|a| inside && a.value().contains("${"))
+            .find(|a| a.value().contains("${") && inside())
         {
             return Some((a.range_value(), format!("`{}=\"{}\"`", a.name(), a.value())));
         }

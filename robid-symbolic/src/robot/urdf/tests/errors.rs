@@ -416,6 +416,31 @@ fn truncated_and_garbled_files_are_errors_not_panics() {
     assert!(errors > 176, "{errors}");
 }
 
+/// Elements nested deeper than MAX_URDF_DEPTH are refused at the first too deep (149 000
+/// nested took 22 s, every element's ancestors walked); the deepest allowed is read.
+#[test]
+fn elements_nested_too_deep_are_refused_at_the_first() {
+    use crate::robot::bounds::MAX_URDF_DEPTH;
+    let chosen = selection(None, None);
+    let nested = |depth: usize| {
+        // <robot> is depth 1, the nest depth 2 to depth
+        let inner = depth - 1;
+        let mut text = arm(&format!("{J1}{J2}"));
+        let nest = format!("{}{}\n", "<g>".repeat(inner), "</g>".repeat(inner));
+        text = text.replace("</robot>", &format!("{nest}</robot>"));
+        text
+    };
+    assert!(Robot::from_urdf(&nested(MAX_URDF_DEPTH), "t.urdf", &chosen).is_ok());
+    let e = error_of(&nested(MAX_URDF_DEPTH + 1), &chosen);
+    let column = 3 * (MAX_URDF_DEPTH - 1) + 1;
+    assert!(
+        e.starts_with(&format!("t.urdf:7:{column}: `<g>` is nested more than 64")),
+        "{e}"
+    );
+    let e = error_of(&nested(149_000), &chosen);
+    assert!(e.contains("nested more than"), "{e}");
+}
+
 /// A repeated element of a link, an inertial or a joint is warned about at the second
 /// one, and the first is used, as URDF parsers do (a second `<inertial>` or `<axis>`
 /// used to be dropped without a word).
