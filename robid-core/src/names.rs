@@ -6,6 +6,20 @@ use std::format;
 use std::string::String;
 use std::vec::Vec;
 
+/// Whether `name` can name a parameter: a word of ASCII letters, digits and `_` that
+/// begins with a letter. Such a name is a bare TOML key and an identifier in generated
+/// code; a name with a space or `=` written as a key changes the file's meaning.
+///
+/// ```
+/// use robid_core::names::is_word;
+/// assert!(is_word("Iam6") && is_word("fv_m6"));
+/// assert!(!is_word("Iam 6") && !is_word("6Iam") && !is_word(""));
+/// ```
+pub fn is_word(name: &str) -> bool {
+    name.starts_with(|c: char| c.is_ascii_alphabetic())
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
 /// Longest text quoted whole by [`short`].
 const QUOTED: usize = 40;
 

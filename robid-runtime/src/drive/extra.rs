@@ -108,9 +108,7 @@ fn name_problem(name: &str) -> Option<String> {
             name.chars().count()
         ));
     }
-    let word = name.starts_with(|c: char| c.is_ascii_alphabetic())
-        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    (!word).then(|| format!("`{name}` is not a parameter name; {fix}"))
+    (!robid_core::names::is_word(name)).then(|| format!("`{name}` is not a parameter name; {fix}"))
 }
 
 /// A named regressor column appended to the model's base regressor.

@@ -241,8 +241,11 @@ impl<'a> Observer<'a> {
         {
             r.check_against(dof, &names)?;
         }
+        // a standard parameter's name too: regrouped into a base parameter (ZZ1 into ZZR1),
+        // it is not a column, but `robid feasible` reads the name as the link's parameter
+        let standard = crate::model::standard_parameter_names(model);
         for (i, c) in extra.iter().enumerate() {
-            if names.contains(&c.name) {
+            if names.contains(&c.name) || standard.contains(&c.name) {
                 let key = if i < config.extra_columns.len() {
                     format!("extra_column[{}].name", i + 1)
                 } else {
@@ -252,7 +255,7 @@ impl<'a> Observer<'a> {
                     "Config",
                     &key,
                     format!(
-                        "`{}` is already a parameter (of the model or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
+                        "`{}` is already a parameter (a standard or base parameter of the model, or an earlier extra column); rename the extra column or remove it (drop the drive term from the description if the model has it)",
                         c.name
                     ),
                 ));

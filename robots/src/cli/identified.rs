@@ -66,7 +66,15 @@ impl Identified {
             .into());
         }
         for (i, p) in self.parameters.iter().enumerate() {
-            let problem = if !p.value.is_finite() || p.value.abs() > VALUE_LIMIT {
+            let problem = if !names::is_word(&p.name) {
+                // written back as a TOML key by `robid feasible` (`Iam 6 = ..` was written,
+                // and a name with `=` or a line end could add keys of its own)
+                Some(
+                    "the name is not a parameter name (ASCII letters, digits and `_`, \
+                     beginning with a letter, as `robid identify` writes them)"
+                        .to_owned(),
+                )
+            } else if !p.value.is_finite() || p.value.abs() > VALUE_LIMIT {
                 Some(format!(
                     "value {} is outside +-{VALUE_LIMIT:e}",
                     short(p.value)
@@ -96,7 +104,7 @@ impl Identified {
                 return Err(format!(
                     "{}: parameters[{i}] `{}`: {problem}; repair the entry or identify again",
                     path.display(),
-                    p.name
+                    names::short(&p.name)
                 )
                 .into());
             }

@@ -860,3 +860,50 @@ fn simulate_keeps_a_light_link_with_coulomb_friction_on_its_reference() {
         );
     }
 }
+
+/// An extra column named like a standard parameter of the model (the pendulum's `XX1`,
+/// which no base parameter is named after: it has no effect on one joint about z) is
+/// refused at its key: identify accepted it, and `robid feasible` then read the result's
+/// `XX1` as the link's inertia and refused it. A base parameter's name (`Fv1`) was refused
+/// already; a name the model does not have is an extra column.
+#[test]
+fn an_extra_column_named_like_a_standard_parameter_is_refused() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let data = write(d, "run.csv", &log());
+    let extra = |name: &str| {
+        format!(
+            "{CONFIG}[[extra_column]]\nname = \"{name}\"\n\
+             terms = [{{ row = 1, signal = \"constant\" }}]\n"
+        )
+    };
+    for name in ["XX1", "Fv1"] {
+        let config = write(d, "extra.toml", &extra(name));
+        let o = robid(&[
+            "identify",
+            robot.to_str().unwrap(),
+            "--config",
+            config.to_str().unwrap(),
+            "--data",
+            data.to_str().unwrap(),
+        ]);
+        fails_with(
+            &o,
+            &[&format!(
+                "`extra_column[1].name`: `{name}` is already a parameter (a standard or base \
+                 parameter of the model"
+            )],
+        );
+    }
+    let config = write(d, "extra.toml", &extra("offset1"));
+    let o = robid(&[
+        "identify",
+        robot.to_str().unwrap(),
+        "--config",
+        config.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}

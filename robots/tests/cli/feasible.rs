@@ -295,6 +295,14 @@ fn feasible_refuses_a_result_with_too_many_foreign_entries() {
     parameters.extend((0..2).map(entry));
     let o = run(&json, "two.json");
     assert!(o.status.success(), "{}", stderr(&o));
+    // a name that is no word is refused: written back as a TOML key, `Iam 6` broke the
+    // file, and `a = 1\n[links]` would have added a table of its own
+    for name in ["Iam 6", "a = 1\n[links]", ""] {
+        let mut odd = json.clone();
+        odd["parameters"].as_array_mut().unwrap()[0]["name"] = name.into();
+        let o = run(&odd, "odd.json");
+        fails_with(&o, &["parameters[0] `", "the name is not a parameter name"]);
+    }
     let parameters = json["parameters"].as_array_mut().unwrap();
     // the fixture's own three extra columns (a coupled wrist's) and 98 foreign names
     parameters.extend((2..98).map(entry));
