@@ -29,6 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::{DataError, KeyMap, TomlFile};
 use crate::error::{Error, Result, num};
+use crate::limits::{MAX_PARAMETER, MAX_TEMPERATURE, MAX_TORQUE, MAX_VELOCITY};
 use crate::{Count, Num};
 
 pub use fit::{
@@ -44,6 +45,9 @@ pub const DEFAULT_SMOOTHING: f64 = 1e-3;
 /// the friction by a factor e is no lubricant (real ones are near 0.01/K), and the bound
 /// keeps `exp(-k (T - T0))` finite over any plausible temperature.
 pub const TEMPERATURE_COEFFICIENT_LIMIT: f64 = 1.0;
+
+/// The lowest temperature, deg C.
+const ABSOLUTE_ZERO: f64 = -273.15;
 
 fn default_smoothing() -> f64 {
     DEFAULT_SMOOTHING
@@ -155,10 +159,10 @@ impl JointFriction {
         if let Some((name, v)) = fields.iter().find(|(_, v)| !v.is_finite()) {
             return Some((name, format!("{v} is not a finite number")));
         }
-        for (name, v, unit) in [
-            ("coulomb", self.coulomb, "N m"),
-            ("stribeck", self.stribeck, "N m"),
-            ("viscous", self.viscous, "N m s/rad"),
+        for (name, v, unit, limit) in [
+            ("coulomb", self.coulomb, "N m", MAX_TORQUE),
+            ("stribeck", self.stribeck, "N m", MAX_TORQUE),
+            ("viscous", self.viscous, "N m s/rad", MAX_PARAMETER),
         ] {
             if v < 0.0 {
                 return Some((
@@ -166,6 +170,17 @@ impl JointFriction {
                     format!(
                         "{} {unit} is negative; friction opposes the motion, give 0 or more",
                         show(v, &|r| r < 0.0)
+                    ),
+                ));
+            }
+            // a torque range's worth of friction is a unit or typing mistake (1e300 made
+            // every joint torque infinite, blamed on the simulation)
+            if v > limit {
+                return Some((
+                    name,
+                    format!(
+                        "{} {unit} is above {limit:e} {unit}; give the friction in SI units",
+                        show(v, &|r| r > limit)
                     ),
                 ));
             }
@@ -185,12 +200,27 @@ impl JointFriction {
             ("stribeck_velocity", self.stribeck_velocity),
             ("smoothing", self.smoothing),
         ] {
-            if v <= 0.0 {
+            let outside = |r: f64| !(r > 0.0 && r <= MAX_VELOCITY);
+            if outside(v) {
                 return Some((
                     name,
-                    format!("{} rad/s must be positive", show(v, &|r| r <= 0.0)),
+                    format!(
+                        "{} rad/s must lie in (0, {MAX_VELOCITY:e}] rad/s",
+                        show(v, &outside)
+                    ),
                 ));
             }
+        }
+        let unreal = |r: f64| !(ABSOLUTE_ZERO..=MAX_TEMPERATURE).contains(&r);
+        if unreal(self.reference_temperature) {
+            return Some((
+                "reference_temperature",
+                format!(
+                    "{} deg C is outside [{ABSOLUTE_ZERO}, {MAX_TEMPERATURE:e}] deg C; give the \
+                     temperature in degrees Celsius at which the values hold",
+                    show(self.reference_temperature, &unreal)
+                ),
+            ));
         }
         let beyond = |r: f64| r.abs() > TEMPERATURE_COEFFICIENT_LIMIT;
         for (name, v) in [
@@ -308,9 +338,11 @@ impl FrictionModel {
     }
 
     /// Refuses a model without joints, and any value that is not finite or out of range,
-    /// naming the joint and the field: negative `coulomb`, `stribeck` or `viscous`, `load`
-    /// outside [0, 1), non-positive `stribeck_velocity` or `smoothing`, a temperature
-    /// coefficient beyond +-[`TEMPERATURE_COEFFICIENT_LIMIT`].
+    /// naming the joint and the field: `coulomb` or `stribeck` outside [0, 1e7] N m,
+    /// `viscous` outside [0, 1e6] N m s/rad, `load` outside [0, 1), `stribeck_velocity` or
+    /// `smoothing` outside (0, 1e6] rad/s, a temperature coefficient beyond
+    /// +-[`TEMPERATURE_COEFFICIENT_LIMIT`], `reference_temperature` outside [-273.15, 1e3]
+    /// deg C.
     pub fn check(&self) -> Result<()> {
         if self.joints.is_empty() {
             return Err(Error::setting(
@@ -663,6 +695,27 @@ pub(super) mod tests {
                 },
                 "friction[2].viscous_temperature",
             ),
+            (
+                JointFriction {
+                    viscous: 2e6,
+                    ..good
+                },
+                "friction[2].viscous",
+            ),
+            (
+                JointFriction {
+                    stribeck: 2e7,
+                    ..good
+                },
+                "friction[2].stribeck",
+            ),
+            (
+                JointFriction {
+                    reference_temperature: -300.0,
+                    ..good
+                },
+                "friction[2].reference_temperature",
+            ),
         ];
         for (bad, key) in cases {
             let e = FrictionModel::new(vec![good, bad]).unwrap_err().to_string();
@@ -714,6 +767,21 @@ pub(super) mod tests {
             e.starts_with("f.toml:13:1: `friction[2].coulomb`: joint 2"),
             "{e}"
         );
+        // beyond the ranges of real friction, at the key (1e300 made the torques infinite,
+        // blamed on the simulation; a reference of 1e4 deg C overflowed exp(-k (T - T0)))
+        let e = error(format!("{}{}", row(1, "1.0"), row(2, "1e300")));
+        assert!(
+            e.starts_with("f.toml:13:1: `friction[2].coulomb`: joint 2: 1e300 N m is above 1e7"),
+            "{e}"
+        );
+        let hot = row(1, "1.0").replace("25.0", "1e4");
+        let e = error(hot);
+        assert!(
+            e.starts_with("f.toml:10:1: `friction[1].reference_temperature`: joint 1: 10000 deg C is outside [-273.15, 1e3]"),
+            "{e}"
+        );
+        let e = error(row(1, "1.0").replace("stribeck_velocity = 1.0", "stribeck_velocity = 1e7"));
+        assert!(e.contains("`friction[1].stribeck_velocity`"), "{e}");
         let e = error(format!("{}{}", row(1, "1.0"), row(1, "1.0")));
         assert!(e.contains("second table"), "{e}");
         let e = error(format!("{}{}", row(1, "1.0"), row(3, "1.0")));
