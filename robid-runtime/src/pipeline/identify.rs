@@ -10,8 +10,9 @@ use crate::estimate::error::{own_parameters, solves_alone};
 use crate::pipeline::observe::{RestCount, long_enough, observe_counted, speed_unit};
 use std::ops::Range;
 
-use crate::Model;
-use crate::data::{Config, Dataset, Method, ParameterFile, Record, Warning, check_joints};
+use crate::data::{
+    Config, Dataset, Estimation, Method, ParameterFile, Record, Warning, check_joints,
+};
 use crate::error::{Error, Result, num};
 use crate::estimate::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, KnownParameters, Observation,
@@ -23,6 +24,7 @@ use crate::pipeline::prepare::{Plan, PreparedRows, Rows, prepare_rows};
 use crate::pipeline::stream::{identify_streaming, streams, validate_streaming};
 use crate::pipeline::{Prepared, decimator};
 use crate::validate::{Fit, Prediction, UsedRows};
+use crate::{Model, Num};
 
 /// The result of [`identify`].
 #[derive(Debug, Clone)]
@@ -147,6 +149,33 @@ pub fn energy_observation_of(
                  one step (the default is 0.05 s)",
                 crate::num(seconds),
                 crate::num(prepared.sample_time)
+            ),
+        ));
+    }
+    // one equation per window: too few windows for the parameters is the window's doing
+    // (a 5 s window on 10 s was told "2 samples ... use less decimation")
+    let samples = prepared.samples();
+    let windows = samples.saturating_sub(1) / window;
+    let needed = crate::estimate::equations_needed(model.base_parameter_count());
+    if windows < needed {
+        let longest = samples.saturating_sub(1) / needed;
+        return Err(config.key_error(
+            "estimation.energy_window",
+            format!(
+                "{} s windows give {} of the record's {} s (one equation each), and the {} \
+                 need at least {needed}; {}",
+                crate::num(seconds),
+                crate::Count(windows, "window"),
+                crate::num(samples.saturating_sub(1) as f64 * prepared.sample_time),
+                crate::Count(model.base_parameter_count(), "parameter"),
+                if longest == 0 {
+                    "record a longer trajectory".to_owned()
+                } else {
+                    format!(
+                        "use windows of at most {} s, or a longer record",
+                        crate::num(longest as f64 * prepared.sample_time)
+                    )
+                }
             ),
         ));
     }
@@ -292,6 +321,31 @@ fn rest_removed(e: Error, config: &Config, dof: usize) -> Error {
 /// all of a joint's ([`RestCount::rank_cause`]); other errors as they are. One record's
 /// equations, or the stacked runs' (`rest` summed over the runs).
 pub(crate) fn rest_cause(rest: &RestCount, config: &Config, dof: usize, e: Error) -> Error {
+    // a tolerance raised far above the default cuts singular values that data of any
+    // richness have (0.5 was told as "use a richer trajectory"): said at its key
+    let tolerance = config.estimation.rank_tolerance;
+    let default = Estimation::default().rank_tolerance;
+    if let Error::Estimate(EstimateError::RankDeficient {
+        rank,
+        columns,
+        unexcited,
+    }) = &e
+        && tolerance > 1e3 * default
+    {
+        return Error::setting(
+            "Config",
+            "estimation.rank_tolerance",
+            format!(
+                "{} counts singular values below {} times the largest as zero (default {:e}): \
+                 rank {rank} of {columns} parameters, {} not determined; lower it (the data \
+                 may be rich enough), or use a richer trajectory",
+                Num(tolerance),
+                Num(tolerance),
+                default,
+                unexcited.join(", "),
+            ),
+        );
+    }
     let thresholds = config.processing.rest_velocities(dof).ok();
     let in_file = !matches!(
         config.mapping("processing.rest_velocity"),

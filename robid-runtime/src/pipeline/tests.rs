@@ -1263,6 +1263,63 @@ fn an_energy_window_shorter_than_a_sample_names_its_key() {
         !matches!(&e, Err(Error::Data(DataError::ConfigKey { key, .. })) if key == "estimation.energy_window"),
         "{e:?}"
     );
+    // windows too long for one equation per parameter and one more: the key and the
+    // longest window that gives enough (told as "2 samples ... less decimation" before)
+    let p = model.base_parameter_count();
+    let e = identify(&model, &data, &with("1.5")).unwrap_err();
+    assert!(
+        matches!(&e, Error::Data(DataError::ConfigKey { key, line: Some(_), .. })
+            if key == "estimation.energy_window"),
+        "{e}"
+    );
+    let text = e.to_string();
+    assert!(
+        text.contains(&format!(
+            "1.5 s windows give 1 window of the record's 2.599 s (one equation each), and the \
+             {p} parameters need at least {}",
+            p + 1
+        )),
+        "{text}"
+    );
+    // the longest window it offers is enough
+    let longest: f64 = text
+        .split("use windows of at most ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("{text}"));
+    let e = identify(&model, &data, &with(&longest.to_string())).map(|_| ());
+    assert!(
+        !matches!(&e, Err(Error::Data(DataError::ConfigKey { key, .. })) if key == "estimation.energy_window"),
+        "{e:?}"
+    );
+}
+
+/// A rank tolerance raised far above the default is named at its key when the fit is
+/// rank deficient (0.5 was told as "use a richer trajectory"); at the default the same
+/// data are of full rank.
+#[test]
+fn a_raised_rank_tolerance_is_named_when_it_cuts_the_rank() {
+    let model = Synthetic::default();
+    let data = dataset(3000, 1000.0, 0.0);
+    for method in ["ols", "wls", "energy"] {
+        let text = format!(
+            "{CONFIG}[estimation]\nmethod = \"{method}\"\nrank_tolerance = 0.999\n"
+        );
+        let config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+        let e = identify(&model, &data, &config).unwrap_err();
+        assert!(
+            matches!(&e, Error::Data(DataError::ConfigKey { key, line: Some(_), .. })
+                if key == "estimation.rank_tolerance"),
+            "{method}: {e}"
+        );
+        assert!(
+            e.to_string()
+                .contains("0.999 counts singular values below 0.999 times the largest as zero"),
+            "{e}"
+        );
+    }
+    assert!(identify(&model, &data, &config("")).is_ok());
 }
 
 /// The rest removal's error says when its threshold is the default (the config has no
