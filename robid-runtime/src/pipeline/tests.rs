@@ -1303,9 +1303,7 @@ fn a_raised_rank_tolerance_is_named_when_it_cuts_the_rank() {
     let model = Synthetic::default();
     let data = dataset(3000, 1000.0, 0.0);
     for method in ["ols", "wls", "energy"] {
-        let text = format!(
-            "{CONFIG}[estimation]\nmethod = \"{method}\"\nrank_tolerance = 0.999\n"
-        );
+        let text = format!("{CONFIG}[estimation]\nmethod = \"{method}\"\nrank_tolerance = 0.999\n");
         let config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
         let e = identify(&model, &data, &config).unwrap_err();
         assert!(

@@ -44,11 +44,16 @@ impl Identified {
     /// RESULT.json read and its entries checked.
     pub(super) fn read(path: &Path) -> Result<Identified, Error> {
         let json = robid_runtime::data::read_text(path, "identification result")?;
-        let identified: Identified = serde_json::from_str(&json).map_err(|e| {
+        // a byte-order mark, as some editors write, is no JSON but no mistake either
+        let json = json.strip_prefix('\u{feff}').unwrap_or(&json);
+        let identified: Identified = serde_json::from_str(json).map_err(|e| {
             format!(
-                "{}: not an identification result: {e}; expected {{\"parameters\": \
-                 [{{\"name\", \"value\", \"std\"}}]}}",
-                path.display()
+                "{}:{}:{}: not an identification result: {}; expected {{\"parameters\": \
+                 [{{\"name\", \"value\", \"std\"}}, ..]}} as `robid identify --json` writes it",
+                path.display(),
+                e.line(),
+                e.column(),
+                json_problem(&e)
             )
         })?;
         identified.check(path)?;
@@ -162,6 +167,60 @@ impl Identified {
     }
 }
 
+/// serde_json's message in words for people: its type names (`f64`, `struct Identified`,
+/// `a sequence`) are Rust's, and a string of the wrong type was quoted whole.
+fn json_problem(e: &serde_json::Error) -> String {
+    let text = e.to_string();
+    let message = text
+        .rsplit_once(" at line ")
+        .map_or(text.as_str(), |(m, _)| m);
+    let form = |expected: &str| -> String {
+        let expected = expected.trim();
+        if expected.starts_with("struct IdentifiedParameter") {
+            "an entry {\"name\": .., \"value\": .., \"std\": ..}".to_owned()
+        } else if expected.starts_with("struct Identified") {
+            "an object {\"parameters\": [..]}".to_owned()
+        } else {
+            match expected {
+                "f64" => "a number",
+                "a string" => "text in quotes",
+                "a boolean" => "true or false",
+                "a sequence" => "a list [..]",
+                other => other,
+            }
+            .to_owned()
+        }
+    };
+    let found = |given: &str| -> String {
+        let given = given.trim();
+        match given.strip_prefix("string ") {
+            Some(quoted) => format!("the text `{}`", names::short(quoted.trim_matches('"'))),
+            None => match given {
+                "map" => "an object {..}".to_owned(),
+                "sequence" => "a list [..]".to_owned(),
+                g if g.starts_with("floating point") || g.starts_with("integer") => {
+                    format!("the number {}", g.split('`').nth(1).unwrap_or(g))
+                }
+                g => g.to_owned(),
+            },
+        }
+    };
+    if let Some(rest) = message.strip_prefix("invalid type: ")
+        && let Some((given, expected)) = rest.split_once(", expected ")
+    {
+        return format!("{} where {} belongs", found(given), form(expected));
+    }
+    if let Some(rest) = message.strip_prefix("invalid length ")
+        && let Some((_, expected)) = rest.split_once(", expected ")
+    {
+        return format!("a list [..] where {} belongs", form(expected));
+    }
+    if let Some(field) = message.strip_prefix("missing field ") {
+        return format!("no key {}", field.replace('`', "\""));
+    }
+    names::shortened(message, 200).into_owned()
+}
+
 /// `expression` as (standard parameter, coefficient) terms, when it is a sum of terms
 /// `c*NAME`, `NAME` or their negatives (as `robid identify` writes them), read by
 /// [`combination`].
@@ -240,5 +299,56 @@ mod tests {
             "XX2 + 0.225*M3 - YY2"
         );
         assert_eq!(expression([-2.0, 0.0, 0.0].into_iter(), &names), "-2*XX2");
+    }
+
+    /// A result of the wrong shape is told at file:line:column in JSON's words, not
+    /// serde's Rust types (`expected f64`, `struct Identified with 1 element`); a value of
+    /// the wrong type is quoted short; a byte-order mark is read past.
+    #[test]
+    fn a_result_of_the_wrong_shape_is_told_in_words() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("r.json");
+        let long = "Z".repeat(5000);
+        let entry = |name: &str, value: &str| {
+            format!("{{\"parameters\":[{{\"name\":{name},\"value\":{value},\"std\":0.1}}]}}")
+        };
+        for (text, want) in [
+            (
+                entry("\"M1\"", "\"x\""),
+                "r.json:1:39: not an identification result: the text `x` where a number belongs",
+            ),
+            (
+                entry("1", "1"),
+                "r.json:1:24: not an identification result: the number 1 where text in quotes belongs",
+            ),
+            (
+                "{\"parameters\":{}}".into(),
+                "r.json:1:14: not an identification result: an object {..} where a list [..] belongs",
+            ),
+            (
+                "[]".into(),
+                "r.json:1:2: not an identification result: a list [..] where an object {\"parameters\": [..]} belongs",
+            ),
+            (
+                "{\"parameters\":[3]}".into(),
+                "r.json:1:16: not an identification result: the number 3 where an entry {\"name\": .., \"value\": .., \"std\": ..} belongs",
+            ),
+            (
+                "{}".into(),
+                "r.json:1:2: not an identification result: no key \"parameters\"",
+            ),
+            (
+                entry("\"M1\"", &format!("\"{long}\"")),
+                "the text `ZZZZZZZZZZZZZZZZZZZZZZZZZZZZZZZZ.. (5000 characters)` where",
+            ),
+        ] {
+            std::fs::write(&path, &text).unwrap();
+            let e = Identified::read(&path).err().expect("an error").to_string();
+            assert!(e.contains(want), "{want}\nnot in\n{e}");
+            assert!(e.len() < 400, "{e}");
+        }
+        std::fs::write(&path, format!("\u{feff}{}", entry("\"M1\"", "1.5"))).unwrap();
+        let read = Identified::read(&path).unwrap();
+        assert_eq!(read.parameters[0].value, 1.5);
     }
 }
