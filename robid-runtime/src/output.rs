@@ -33,7 +33,9 @@ use crate::error::{Error, Result};
 /// write, the temporary files that killed runs left in the folder are removed once they
 /// are [`STALE_TEMPORARY`] old (on Unix; nothing else is touched). A
 /// target that exists and is neither a file nor a folder (a pipe, `/dev/stdout`, a
-/// device) is opened and written into, as a shell's `>` would.
+/// device) is opened and written into, as a shell's `>` would, once `write` has
+/// succeeded (the text waits in a temporary file until then, so that a reader sees all
+/// of it or nothing).
 pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
@@ -55,12 +57,27 @@ pub fn write_atomically(
                 }),
                 _ => err(&e),
             };
+            // the text waits in a temporary file until `write` has succeeded: a reader of
+            // the pipe got the rows before a refused one, then the error
+            let temporary = |source| {
+                Error::Data(crate::DataError::Temporary {
+                    dir: std::env::temp_dir(),
+                    source,
+                })
+            };
+            let mut held = std::io::BufWriter::new(tempfile::tempfile().map_err(temporary)?);
+            if let Err(e) = write(&mut held) {
+                close_unwritten(&target);
+                return Err(err(&e));
+            }
+            let mut held = held.into_inner().map_err(|e| temporary(e.into_error()))?;
+            std::io::Seek::rewind(&mut held).map_err(temporary)?;
             let file = std::fs::OpenOptions::new()
                 .write(true)
                 .open(&target)
                 .map_err(failed)?;
             let mut w = std::io::BufWriter::new(file);
-            write(&mut w).map_err(failed)?;
+            std::io::copy(&mut held, &mut w).map_err(failed)?;
             return w.flush().map_err(failed);
         }
         Target::File {
@@ -97,6 +114,22 @@ pub fn write_atomically(
         sweep(&dir, owner);
     }
     Ok(())
+}
+
+/// Opens the special file `target` and closes it at once, without waiting for a reader
+/// (on Unix): a reader of a named pipe that robid was to write gets the end of the text
+/// instead of waiting for ever when the write failed before anything was sent.
+fn close_unwritten(target: &Path) {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        let _ = std::fs::OpenOptions::new()
+            .write(true)
+            .custom_flags(libc::O_NONBLOCK)
+            .open(target);
+    }
+    #[cfg(not(unix))]
+    let _ = target;
 }
 
 /// How old a temporary file of robid's (`.robid-XXXXXX.tmp`) must be for
@@ -1677,5 +1710,43 @@ mod tests {
         assert_eq!(text.as_deref(), Ok("through the pipe"));
         let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
         assert!(std::os::unix::fs::FileTypeExt::is_fifo(&kind));
+    }
+
+    /// A write that fails after some rows sends nothing into a pipe (its reader got the
+    /// rows before the refused one, then the error), and its reader gets the end of the
+    /// text instead of waiting for a writer; without a reader the failure does not wait.
+    #[test]
+    #[cfg(unix)]
+    fn a_failed_write_sends_nothing_into_a_pipe() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("out.fifo");
+        let status = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !status.is_ok_and(|s| s.success()) {
+            return; // no mkfifo on this system
+        }
+        let failing = |w: &mut dyn Write| {
+            // more than the writer's buffer and a pipe's, then the refusal
+            for _ in 0..10_000 {
+                w.write_all(b"1.0,2.0,3.0\n")?;
+            }
+            Err(std::io::Error::other("row 10001 refused"))
+        };
+        let (sent, read) = std::sync::mpsc::channel();
+        let reader = fifo.clone();
+        std::thread::spawn(move || sent.send(std::fs::read_to_string(reader).unwrap()));
+        let e = write_atomically(&fifo, failing).unwrap_err();
+        assert!(e.to_string().contains("row 10001 refused"), "{e}");
+        // a reader that came to the pipe after the failure is let go the same way
+        let mut text = read.recv_timeout(std::time::Duration::from_millis(500));
+        for _ in 0..40 {
+            if text.is_ok() {
+                break;
+            }
+            close_unwritten(&fifo);
+            text = read.recv_timeout(std::time::Duration::from_millis(500));
+        }
+        assert_eq!(text.as_deref(), Ok(""));
+        // no reader: the failure returns at once
+        assert!(write_atomically(&fifo, failing).is_err());
     }
 }
