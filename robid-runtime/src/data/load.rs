@@ -754,9 +754,14 @@ pub(crate) fn source_paths(config: &Config, files: &[PathBuf]) -> Result<Vec<Pat
             return Err(config.key_error(
                 "source",
                 format!(
-                    "{} files given but there are {} [[source]] tables; give one file per table",
-                    files.len(),
-                    config.sources.len()
+                    "{} given but there {} {}; give one file per table",
+                    crate::Count(files.len(), "file"),
+                    if config.sources.len() == 1 {
+                        "is"
+                    } else {
+                        "are"
+                    },
+                    crate::Count(config.sources.len(), "[[source]] table")
                 ),
             ));
         }

@@ -159,7 +159,8 @@ fn com_ranges<'de, D: serde::Deserializer<'de>>(
             let n = v.len();
             <[f64; 2]>::try_from(v).map_err(|_| {
                 serde::de::Error::custom(format!(
-                    "the {axis} range has {n} values; give two, [lo, hi]"
+                    "the {axis} range has {}; give two, [lo, hi]",
+                    crate::Count(n, "value")
                 ))
             })
         })

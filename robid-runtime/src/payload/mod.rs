@@ -85,6 +85,14 @@ fn estimate(
     options: &PayloadOptions,
     fix: impl FnOnce() -> Result<String>,
 ) -> Result<Payload> {
+    // the least squares count equations; the user counts samples (rows of the file)
+    let equations = w.nrows();
+    let samples = {
+        let mut distinct = sample_of_row.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        distinct.len()
+    };
     let obs = Observation::new(w, y, groups, sample_of_row, names())?;
     let solved = if options.weighted {
         wls(&obs, options.rank_tolerance)
@@ -103,16 +111,12 @@ fn estimate(
         }
         // the estimators' advice (less decimation, fewer parameters) is not the payload's:
         // it has neither
-        Err(Error::TooFewSamples {
-            context,
-            found,
-            required,
-            ..
-        }) => {
+        Err(Error::TooFewSamples { context, .. }) => {
+            let per = equations.div_ceil(samples.max(1)).max(1);
             return Err(Error::TooFewSamples {
                 context,
-                found,
-                required,
+                found: samples,
+                required: crate::estimate::equations_needed(10).div_ceil(per),
                 hint: "give more samples (each gives one equation per joint, or six per \
                        wrench): the payload's ten parameters need one equation more than \
                        ten",

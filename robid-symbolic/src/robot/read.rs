@@ -321,7 +321,7 @@ impl<'a> Reader<'a> {
         if items.len() != 3 {
             self.error(
                 v.span(),
-                format!("gravity has {} values", items.len()),
+                format!("gravity has {}", count_values(items.len())),
                 "give three values in the base frame, e.g. `gravity = [0, 0, -9.81]`",
             );
             return g;
@@ -483,7 +483,7 @@ impl<'a> Reader<'a> {
             if items.len() != 3 {
                 self.error(
                     value.span(),
-                    format!("{what} has {} values", items.len()),
+                    format!("{what} has {}", count_values(items.len())),
                     format!("give three values, e.g. {example}"),
                 );
                 continue;
@@ -537,7 +537,7 @@ impl<'a> Reader<'a> {
         if items.len() != 2 {
             self.error(
                 v.span(),
-                format!("{what} has {} values", items.len()),
+                format!("{what} has {}", count_values(items.len())),
                 format!("write {expected}, two numbers"),
             );
             return None;
@@ -635,4 +635,9 @@ fn article(word: &str) -> &'static str {
     } else {
         "a"
     }
+}
+
+/// `n values`, or `1 value`.
+fn count_values(n: usize) -> String {
+    format!("{n} value{}", if n == 1 { "" } else { "s" })
 }

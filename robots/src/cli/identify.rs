@@ -12,6 +12,7 @@
 
 use std::path::{Path, PathBuf};
 
+use robid_runtime::Count;
 use robid_runtime::data::{
     Config, EXAMPLE_CONFIG, Loaded, Method, Record, load_or_split, load_runs, read_header,
 };
@@ -286,8 +287,9 @@ pub(crate) fn data_files(
     if data.len() != per_set {
         let fix = match config_path {
             Some(path) => format!(
-                "{} has {per_set} [[source]] tables; give one file per table",
-                path.display()
+                "{} has {}; give one file per table",
+                path.display(),
+                Count(per_set, "[[source]] table")
             ),
             None => "without --config, give one file with the columns \
                      t,q1..,qd1..,qdd1..,tau1.. (or a --config with one [[source]] per file)"

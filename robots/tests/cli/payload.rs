@@ -143,11 +143,12 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
         stderr(&o)
     );
     // one sample: six equations for ten parameters, told to give more samples (it was
-    // told to use less decimation or fewer parameters, which a payload has not)
+    // told to use less decimation or fewer parameters, which a payload has not), counted
+    // in samples, the file's rows (it said "6 samples, at least 11", equations)
     let one: Vec<&str> = text.lines().take(2).collect();
     let one = write(dir.path(), "one.csv", &(one.join("\n") + "\n"));
     let o = payload(&["--data", one.to_str().unwrap()]);
-    fails_with(&o, &["at least 11 are needed", "give more samples"]);
+    fails_with(&o, &["1 sample, at least 2 are needed", "give more samples"]);
     assert!(!stderr(&o).contains("decimation"), "{}", stderr(&o));
 }
 
