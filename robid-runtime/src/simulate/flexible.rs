@@ -40,6 +40,7 @@ use crate::drive::{FrictionModel, JointFriction};
 use crate::error::{Error, Result, num};
 use crate::excite::check_parameters;
 use crate::limits::{MAX_POSITION, MAX_TORQUE, MAX_VELOCITY, MIN_FACTOR};
+use crate::progress::Progress;
 use crate::rng::Rng;
 use crate::signal::Signals;
 
@@ -565,7 +566,10 @@ impl Simulation {
         let mut r = r0.clone();
         let mut stage = new_reference();
         let mut budget = StepBudget::new();
+        let progress = Progress::new(self.progress, "simulate", samples as u64, "samples");
+        let counter = progress.counter();
         for k in 0..samples {
+            counter.tick();
             {
                 let [a, b, c] = &mut r0;
                 reference.state(k, a, b, c);

@@ -118,6 +118,7 @@ const STIFF_RIGID: &str = "a link with little inertia and a large viscous fricti
 /// A tracking error above this many times (the joint's reference range + 1 rad or m) is a
 /// diverged simulation.
 pub const DIVERGENCE_FACTOR: f64 = 10.0;
+use crate::progress::Progress;
 use crate::rng::Rng;
 use crate::signal::Signals;
 use crate::simulate::forward;
@@ -167,6 +168,8 @@ pub struct Simulation {
     pub noise: Noise,
     /// Seed of the noise.
     pub seed: u64,
+    /// Show the progress of a long run on standard error ([`crate::progress`]).
+    pub progress: bool,
 }
 
 impl Default for Simulation {
@@ -178,6 +181,7 @@ impl Default for Simulation {
             substeps: 10,
             noise: Noise::default(),
             seed: 1,
+            progress: false,
         }
     }
 }
@@ -470,7 +474,10 @@ impl Simulation {
             e => e,
         };
         let mut budget = StepBudget::new();
+        let progress = Progress::new(self.progress, "simulate", samples as u64, "samples");
+        let counter = progress.counter();
         for k in 0..samples {
+            counter.tick();
             let [a, b, c] = &mut r0;
             reference.state(k, a, b, c);
             draw(&mut rng, &mut noise);

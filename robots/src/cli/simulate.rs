@@ -140,6 +140,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let sim = Simulation {
         bandwidth: args.bandwidth,
         seed: args.seed,
+        progress: true,
         noise: Noise {
             torque: args.torque_noise.clone(),
             position: args.position_noise,
