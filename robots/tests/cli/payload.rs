@@ -148,7 +148,10 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     let one: Vec<&str> = text.lines().take(2).collect();
     let one = write(dir.path(), "one.csv", &(one.join("\n") + "\n"));
     let o = payload(&["--data", one.to_str().unwrap()]);
-    fails_with(&o, &["1 sample, at least 2 are needed", "give more samples"]);
+    fails_with(
+        &o,
+        &["1 sample, at least 2 are needed", "give more samples"],
+    );
     assert!(!stderr(&o).contains("decimation"), "{}", stderr(&o));
 }
 
