@@ -42,7 +42,7 @@ pub fn short(text: &str) -> Cow<'_, str> {
 ///
 /// ```
 /// use robid_core::names::shortened;
-/// assert_eq!(shortened("ZZ1 + 0.16*M2", 10), "ZZ1 + 0.. (13 characters)");
+/// assert_eq!(shortened("XX2 - YY2 + ZZ3", 10), "XX2 - YY.. (15 characters)");
 /// ```
 pub fn shortened(text: &str, limit: usize) -> Cow<'_, str> {
     if text.char_indices().nth(limit).is_none() {

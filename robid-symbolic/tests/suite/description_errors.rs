@@ -102,7 +102,7 @@ fn array_lengths_and_limits_are_checked() {
         "4:23",
         &["position limit has 3 values", "[lower, upper]"],
     );
-    single(&joint("{ position = [1] }"), "4:23", &["has 1 values"]);
+    single(&joint("{ position = [1] }"), "4:23", &["has 1 value;"]);
     single(
         &joint("{ position = [2, 1] }"),
         "4:23",
