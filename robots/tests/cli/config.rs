@@ -878,32 +878,26 @@ fn an_extra_column_named_like_a_standard_parameter_is_refused() {
              terms = [{{ row = 1, signal = \"constant\" }}]\n"
         )
     };
-    for name in ["XX1", "Fv1"] {
+    let identify = |name: &str| {
         let config = write(d, "extra.toml", &extra(name));
-        let o = robid(&[
+        robid(&[
             "identify",
             robot.to_str().unwrap(),
             "--config",
             config.to_str().unwrap(),
             "--data",
             data.to_str().unwrap(),
-        ]);
+        ])
+    };
+    for name in ["XX1", "Fv1"] {
         fails_with(
-            &o,
+            &identify(name),
             &[&format!(
                 "`extra_column[1].name`: `{name}` is already a parameter (a standard or base \
                  parameter of the model"
             )],
         );
     }
-    let config = write(d, "extra.toml", &extra("offset1"));
-    let o = robid(&[
-        "identify",
-        robot.to_str().unwrap(),
-        "--config",
-        config.to_str().unwrap(),
-        "--data",
-        data.to_str().unwrap(),
-    ]);
+    let o = identify("offset1");
     assert!(o.status.success(), "{}", stderr(&o));
 }
