@@ -675,6 +675,39 @@ mod tests {
         );
     }
 
+    /// The inertia about the centre of mass, m I_c = m I_o - S(h)' S(h): a link of 2 kg
+    /// whose centre of mass is 0.25 m out along x has I_c = I_o - diag(0, 0.125, 0.125);
+    /// with I_o = diag(0.01, 0.13, 0.2) the smallest principal moment is 0.005 (accepted),
+    /// with YY = 0.12 it is -0.005 (refused, the moment and the centre of mass given),
+    /// within the tolerance of 1e-6 of the largest entry it is accepted. A speck of mass
+    /// with a first moment is refused (it was lost to overflow below 1e-160 kg).
+    #[test]
+    fn the_inertia_about_the_centre_of_mass_is_checked_without_dividing() {
+        let check = |text: &str| {
+            ParameterFile::parse(text, "p.toml".as_ref())
+                .unwrap()
+                .check_physical(true)
+        };
+        let link = |yy: &str, mass: &str, mx: &str| {
+            format!("[standard]\nXX1 = 0.01\nYY1 = {yy}\nZZ1 = 0.2\nMX1 = {mx}\nM1 = {mass}\n")
+        };
+        check(&link("0.13", "2", "0.5")).unwrap();
+        let e = check(&link("0.12", "2", "0.5")).unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "p.toml:2:1: the inertia of link 1 about its centre of mass (0.25, 0, 0) m"
+            ) && e.contains("smallest principal moment -0.005 kg m^2"),
+            "{e}"
+        );
+        // -1.5e-7 below zero, within 1e-6 of the largest entry (0.2): rounding of a CAD file
+        check(&link("0.12499985", "2", "0.5")).unwrap();
+        check(&link("0.1249997", "2", "0.5")).unwrap_err();
+        let e = check(&link("0.13", "1e-200", "0.8"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("(8e199, 0, 0) m"), "{e}");
+    }
+
     /// JSON given as a parameter file is said to be JSON, and `robid identify`'s report
     /// with what to give instead; toml said "invalid key-value pair, expected key".
     #[test]

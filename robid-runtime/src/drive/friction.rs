@@ -721,6 +721,14 @@ pub(super) mod tests {
             let e = FrictionModel::new(vec![good, bad]).unwrap_err().to_string();
             assert!(e.contains(key) && e.contains("joint 2"), "{e}");
         }
+        // the limits themselves are accepted
+        let edge = JointFriction {
+            coulomb: 1e7,
+            viscous: 1e6,
+            reference_temperature: -273.15,
+            ..good
+        };
+        assert!(FrictionModel::new(vec![edge]).is_ok());
         assert!(FrictionModel::new(vec![]).is_err());
         assert!(FrictionModel::new(vec![good]).is_ok());
     }
