@@ -90,8 +90,12 @@ pub enum BoundKind {
 pub struct Solution {
     /// The method.
     pub method: Method,
-    /// Standard parameter names.
+    /// Standard parameter names, then the extra columns' ([`Solution::extra_columns`]).
     pub names: Vec<String>,
+    /// The free terms among `names`: extra columns of the identification config, not
+    /// parameters of the chain, whatever their names (an extra column `Fv1` of a robot
+    /// without drive terms was written as its friction, where it was negative).
+    pub extra_columns: Vec<String>,
     /// Standard parameter values (about each frame origin).
     pub standard: Vec<f64>,
     /// Per link: mass, centre of mass, inertia about the centre of mass (`None` for a link
@@ -149,8 +153,10 @@ impl Solution {
     /// Whether `name` is a standard parameter of the chain (an inertial parameter or a drive
     /// term of one of its links), not an extra column of the identification config.
     pub fn is_chain_parameter(&self, name: &str) -> bool {
-        name.parse::<robid_core::ParameterId>()
-            .is_ok_and(|id| id.link < self.links.len())
+        !self.extra_columns.iter().any(|e| e == name)
+            && name
+                .parse::<robid_core::ParameterId>()
+                .is_ok_and(|id| id.link < self.links.len())
     }
 
     /// Assembles the result and its checks; a non-finite number in it is an error.
@@ -301,6 +307,12 @@ impl Solution {
         let solution = Solution {
             method,
             names: problem.standard_names.clone(),
+            extra_columns: problem
+                .layout
+                .extra
+                .iter()
+                .map(|&i| problem.standard_names[i].clone())
+                .collect(),
             base: problem.base_of(&standard).iter().copied().collect(),
             chi2: z.norm_squared(),
             normalized_residual: z.iter().copied().collect(),

@@ -643,6 +643,7 @@ mod tests {
             dont_care: Vec::new(),
             violations: Vec::new(),
             unmet: Vec::new(),
+            extra_columns: Vec::new(),
             at_bounds: Vec::new(),
             determined: Vec::new(),
             seconds: 0.0,

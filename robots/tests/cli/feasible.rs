@@ -299,6 +299,38 @@ fn feasible_default_meets_bounds_the_data_push_far_against() {
     assert!(!err.contains("bounds not met"), "{err}");
 }
 
+/// An extra column named like a drive term the description does not have (`Fv1` of an
+/// arm without drive terms, as the LWR4 config's friction columns are) stays an extra
+/// column: written under `[extra]`, not as the arm's friction in `[standard]`, where a
+/// negative value made the file unreadable to every other subcommand.
+#[test]
+fn feasible_keeps_an_extra_column_named_like_a_drive_term_extra() {
+    let dir = folder();
+    let fixture = asset("tests/fixtures/two_link_identified.json");
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fixture).unwrap()).unwrap();
+    json["parameters"]
+        .as_array_mut()
+        .unwrap()
+        .push(serde_json::json!({"name": "Fv1", "expression": "", "value": -1e-3, "std": 1e-4}));
+    let identified = write(dir.path(), "id.json", &json.to_string());
+    let path = out(&dir, "f.toml");
+    let o = robid(&[
+        "feasible",
+        "tests/fixtures/two_link.toml",
+        "--identified",
+        identified.to_str().unwrap(),
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: toml::Value = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    assert!(v["standard"].get("Fv1").is_none(), "{v}");
+    // the free term takes its identified value (to the solver's tolerance)
+    let fv1 = v["extra"]["Fv1"].as_float().unwrap();
+    assert!((fv1 + 1e-3).abs() < 1e-9, "{fv1}");
+}
+
 /// A result with more entries foreign to the description than extra columns are kept for
 /// as free terms is refused at once, naming the count and the first names (1000 of them
 /// used to run for minutes, each a variable of the solvers); a few are kept.
