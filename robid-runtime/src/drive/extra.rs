@@ -26,7 +26,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::Real;
 use crate::error::{Error, Result};
-use crate::limits::MAX_FACTOR;
+use crate::limits::{MAX_FACTOR, MIN_FACTOR};
 
 /// The signal a term is built from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -182,11 +182,13 @@ impl ExtraColumn {
                     ),
                 );
             }
-            if !(t.coefficient.abs() <= MAX_FACTOR) {
+            // a factor below 1e-12 scales the column's parameter by 1e12 and more (1e-20 gave
+            // an `Iam` of -1e17, 1e-300 a least squares that was not finite)
+            if !(MIN_FACTOR..=MAX_FACTOR).contains(&t.coefficient.abs()) {
                 return bad(
                     format!("{at}.coefficient"),
                     format!(
-                        "{} is not a finite number of magnitude at most {MAX_FACTOR:e}",
+                        "{} must be of magnitude {MIN_FACTOR:e} to {MAX_FACTOR:e}",
                         crate::error::num(t.coefficient)
                     ),
                 );
@@ -378,6 +380,22 @@ mod tests {
             e.contains("`extra_column[1].terms[1].coefficient`: a coefficient of 0 removes this term of `Fv`"),
             "{e}"
         );
+        for tiny in ["1e-13", "-1e-300", "5e-324"] {
+            let e = config(&column(
+                "Fv",
+                &qd.replacen(
+                    "joints = [1] }",
+                    &format!("joints = [1], coefficient = {tiny} }}"),
+                    1,
+                ),
+            ))
+            .unwrap_err();
+            assert!(
+                e.contains("`extra_column[1].terms[1].coefficient`: ")
+                    && e.contains("must be of magnitude 1e-12 to 1e6"),
+                "{e}"
+            );
+        }
         // the same terms in another order, each twice as large: the same parameter
         let twice = "{ row = 2, signal = \"qd\", joints = [2], coefficient = 2 }, { row = 1, signal = \"qd\", joints = [1], coefficient = 2 }";
         let e = config(&(column("Fv", qd) + &column("Fw", twice))).unwrap_err();
