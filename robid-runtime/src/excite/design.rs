@@ -565,7 +565,13 @@ pub(crate) fn check_design_cost(cost: f64, criterion: Criterion) -> Result<()> {
         Ok(())
     } else {
         Err(Error::NonFiniteResult {
-            what: format!("the design criterion ({criterion:?}) of the best trajectory"),
+            what: format!(
+                "the design criterion ({}) of the best trajectory",
+                match criterion {
+                    Criterion::Condition => "the condition number",
+                    Criterion::DOptimal => "D-optimality",
+                }
+            ),
             cause: "every trajectory tried leaves some base parameter unexcited (or exceeds the torque limits without bound): check the joint limits (a joint with almost no range cannot excite its parameters) and the start position (one at the edge of a joint's range leaves it no room to move), or give the search more restarts and evaluations".into(),
         })
     }

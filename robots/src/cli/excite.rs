@@ -606,8 +606,20 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     };
     let elapsed = start.elapsed();
     check_trajectory(&trajectory)?;
-    trajectory.write_csv(&args.output)?;
     let a = assess(&model, &trajectory, &limits, reference.as_deref(), 1)?;
+    // D-optimality can settle on a finite criterion where some parameter is not excited
+    // at all: such a trajectory is no design (it was written, and its data then refused)
+    if !a.condition_number.is_finite() {
+        return Err(format!(
+            "the designed trajectory leaves some base parameter unexcited (condition number \
+             {}); nothing was written: give the joints more room to move (their position \
+             range, --velocity-limits, --acceleration-limits, a --start away from the \
+             limits) or the search more work (--restarts, --evaluations)",
+            a.condition_number
+        )
+        .into());
+    }
+    trajectory.write_csv(&args.output)?;
     let mut stdout = out::Stdout::new();
     writeln!(
         stdout,

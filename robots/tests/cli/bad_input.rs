@@ -1536,3 +1536,31 @@ fn long_user_text_is_quoted_short() {
         assert!(e.len() < 1000, "{} bytes: {}", e.len(), &e[..300]);
     }
 }
+
+/// A D-optimal design that excites nothing (joints held to 1e-6 rad/s) is refused with
+/// nothing written, as the condition-number design is: its criterion stayed finite and the
+/// trajectory was written, with "condition number inf", for its data to be refused later.
+#[test]
+fn a_design_that_excites_nothing_is_not_written_whatever_its_criterion() {
+    let dir = folder();
+    for criterion in ["cond", "d"] {
+        let path = dir.path().join(format!("{criterion}.csv"));
+        let o = robid(&[
+            "excite",
+            "tests/fixtures/two_link.toml",
+            "--criterion",
+            criterion,
+            "--velocity-limits",
+            "1e-6",
+            "--duration",
+            "10",
+            "--rate",
+            "50",
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        fails_with(&o, &["unexcited"]);
+        assert!(!stderr(&o).contains("Condition"), "{}", stderr(&o));
+        assert!(!path.exists(), "{criterion}");
+    }
+}
