@@ -22,6 +22,12 @@ use std::ops::Range;
 /// inertias (kg m^2) or limits, and products of such values stay finite.
 const MAX_VALUE: f64 = 1e9;
 
+/// Largest mass (kg) or inertia element (kg m^2) of a URDF link: the largest parameter
+/// value robid's parameter files take (`robid_runtime::limits::MAX_PARAMETER`), so that
+/// what `robid model` writes of a URDF is read back (1e9 kg links were read, their files
+/// refused, and their simulation stopped with the runtime's own check).
+const MAX_INERTIAL: f64 = 1e6;
+
 /// A URDF joint type.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum JointType {
@@ -615,16 +621,22 @@ impl Reader<'_> {
         let text = attribute.value();
         let span = attribute.range_value();
         let mut values = Vec::new();
+        let max = match node.tag_name().name() {
+            "mass" | "inertia" => MAX_INERTIAL,
+            _ => MAX_VALUE,
+        };
         for word in text.split_whitespace() {
             match word.parse::<f64>() {
-                Ok(v) if v.abs() <= MAX_VALUE => values.push(v),
+                Ok(v) if v.abs() <= max => values.push(v),
                 Ok(v) if v.is_finite() => {
                     let help = unit_help(node.tag_name().name(), name);
                     self.error(
                         span,
                         format!(
-                            "`{name}=\"{text}\"` of {}: `{word}` is beyond ±{MAX_VALUE:e}, not a value of a robot",
-                            describe(node)
+                            "`{name}=\"{}\"` of {}: `{}` is beyond ±{max:e}, not a value of a robot",
+                            short(text),
+                            describe(node),
+                            short(word)
                         ),
                         help,
                     );
