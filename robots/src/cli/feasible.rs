@@ -400,7 +400,41 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for at in &solution.at_bounds {
         out::warn(format_args!("warning: {at}"));
     }
+    warn_far_from_the_data(&solution, &problem, args.two_step);
     Ok(())
+}
+
+/// A base parameter reproduced this many standard deviations from its identified value
+/// is one the result does not fit: the bounds, the prior or the method overrule the data.
+const FAR: f64 = 10.0;
+
+/// Warns when the result reproduces a base parameter more than [`FAR`] standard
+/// deviations from its identified value, naming the worst (a two-step extraction that
+/// held a mass the gravity coefficients leave free gave max |z| 435, silently).
+fn warn_far_from_the_data(solution: &Solution, problem: &Problem, two_step: bool) {
+    let Some((k, z)) = solution
+        .normalized_residual
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+    else {
+        return;
+    };
+    if z.abs() <= FAR {
+        return;
+    }
+    let name = problem.base_names.get(k).map_or("?", String::as_str);
+    out::warn(format_args!(
+        "warning: the result is {:.0} standard deviations from the identified `{name}` (max \
+         |z|; |z| <= 3 fits the data): the bounds, the prior{} overrule the data there; check \
+         them before using these values",
+        z.abs(),
+        if two_step {
+            " or the gravity step's held masses and centres of mass (--two-step)"
+        } else {
+            " or the method"
+        }
+    ));
 }
 
 /// Where the default prior cannot size the links ([`Unsized`]), the links it would settle

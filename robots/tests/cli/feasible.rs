@@ -331,6 +331,37 @@ fn feasible_keeps_an_extra_column_named_like_a_drive_term_extra() {
     assert!((fv1 + 1e-3).abs() < 1e-9, "{fv1}");
 }
 
+/// A result far from the data is said: the two-step extraction on the two-link arm holds
+/// the mass of link 2 at what the gravity step chose (the gravity coefficients MX2 and MY2
+/// leave it free) and reproduces ZZ2 hundreds of standard deviations away; it was written
+/// without a word. The default method fits the same data within them, and says nothing.
+#[test]
+fn feasible_warns_of_a_result_far_from_the_data() {
+    let dir = folder();
+    let run = |extra: &[&str]| {
+        let path = out(&dir, "f.toml");
+        let mut args = vec![
+            "feasible",
+            "tests/fixtures/two_link.toml",
+            "--identified",
+            "tests/fixtures/two_link_identified.json",
+            "-o",
+            path.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = robid(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let far = run(&["--method", "anneal", "--two-step"]);
+    assert!(
+        far.contains("standard deviations from the identified") && far.contains("--two-step"),
+        "{far}"
+    );
+    let near = run(&[]);
+    assert!(!near.contains("standard deviations from"), "{near}");
+}
+
 /// A result with more entries foreign to the description than extra columns are kept for
 /// as free terms is refused at once, naming the count and the first names (1000 of them
 /// used to run for minutes, each a variable of the solvers); a few are kept.
