@@ -171,6 +171,19 @@ impl DriveChain {
             eye.clone()
         };
         let torque_map = match (cfg.torque_side, rt) {
+            // a singular map confines the joint torques to a subspace: no drive is made so
+            // ([[1, 1], [1, 1]] was taken, the fit 67 % off without a word)
+            (Side::Motor, Some(m)) if m.clone().try_inverse().is_none() => {
+                return Err(Error::setting(
+                    "Config",
+                    if cfg.torque_coupling.is_some() {
+                        "drive.torque_coupling"
+                    } else {
+                        "drive.gear_ratios"
+                    },
+                    "the torque coupling R_tau is singular; every joint needs a non-zero gear ratio and the coupling must be invertible",
+                ));
+            }
             (Side::Motor, Some(m)) => m,
             _ => eye,
         };
@@ -380,6 +393,15 @@ mod tests {
         assert!(matches!(
             DriveChain::new(&c, 6),
             Err(Error::Setting { ref key, .. }) if key == "drive.position_coupling"
+        ));
+        // a singular torque coupling with motor-side torques, as the position coupling
+        let mut c = tx40();
+        c.torque_side = Side::Motor;
+        c.torque_coupling = Some(vec![vec![1.0; 6]; 6]);
+        assert!(matches!(
+            DriveChain::new(&c, 6),
+            Err(Error::Setting { ref key, ref problem, .. })
+                if key == "drive.torque_coupling" && problem.contains("R_tau is singular")
         ));
         let mut c = tx40();
         c.torque_coupling.as_mut().unwrap()[2][1] = f64::NAN;
