@@ -187,7 +187,9 @@ pub(crate) fn too_deep(text: &str, path: &Path, e: &toml::de::Error) -> Option<E
 /// integer `-1`, expected usize" and "data did not match any variant of untagged enum
 /// Decimation" (robid's enums of two forms name them with `#[serde(expecting)]`).
 fn shape_error(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
-    if text.parse::<toml::Table>().is_err() {
+    // a syntax error is not a shape error; the spanned reader takes any integer, so a
+    // value of 20 digits (no i64, no u64) is a shape error at its key
+    if toml::de::DeTable::parse(text).is_err() {
         return None;
     }
     let span = e.span()?;
@@ -262,6 +264,13 @@ fn shape_problem(message: &str, value: &str) -> String {
         }
     };
     let not = |expected: &str| format!("`{value}` is not {}", words(expected));
+    // toml reads an integer beyond 64 bits as i128, which no setting takes
+    if message.starts_with("invalid type: integer") && message.contains("as i128") {
+        return format!(
+            "`{value}` is a whole number beyond 64 bits, larger than any setting takes; check \
+             the value (a size meant this large is written with an exponent, 1e20)"
+        );
+    }
     if let Some(rest) = message
         .strip_prefix("invalid type: ")
         .or_else(|| message.strip_prefix("invalid value: "))
@@ -463,6 +472,19 @@ mod tests {
             (
                 config("[processing]\ntrim = -1\n"),
                 "c.toml:2:8: `trim`: `-1` is not a whole number of at least 0",
+            ),
+            // an integer beyond 64 bits is a shape error at its key, not toml's raw report
+            (
+                config("dof = 99999999999999999999\n"),
+                "c.toml:1:7: `dof`: `99999999999999999999` is a whole number beyond 64 bits, larger \
+                 than any setting takes; check the value (a size meant this large is written \
+                 with an exponent, 1e20)",
+            ),
+            (
+                bounds("total_mass = [0, 99999999999999999999]\n"),
+                "b.toml:1:18: `total_mass`: `99999999999999999999` is a whole number beyond 64 \
+                 bits, larger than any setting takes; check the value (a size meant this large \
+                 is written with an exponent, 1e20)",
             ),
             (
                 config("dof = 2\n[[source]]\nfile = \"a.csv\"\nposition = 3\n"),
