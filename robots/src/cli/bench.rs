@@ -208,7 +208,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         && !names.contains(&r.as_str())
     {
         return Err(format!(
-            "no compiled robot `{r}`; choose one of: {}",
+            "no compiled robot `{}`; choose one of: {}",
+            robid_runtime::names::short(r),
             names.join(", ")
         )
         .into());

@@ -345,7 +345,8 @@ pub(crate) fn parse_drive(names: &[String]) -> Result<Option<Drive>, Error> {
         }
         let term = n.parse::<DriveTerm>().map_err(|e| {
             format!(
-                "--drive: unknown term `{n}`; {}, or `none` alone for no drive term",
+                "--drive: unknown term `{}`; {}, or `none` alone for no drive term",
+                robid_runtime::names::short(n),
                 e.expected
             )
         })?;

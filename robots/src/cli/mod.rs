@@ -22,7 +22,9 @@ mod simulate;
 mod states;
 mod torques;
 
+use clap::error::{ContextKind, ContextValue};
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+use robid_runtime::names;
 use std::process::ExitCode;
 
 /// robid: closed-form robot dynamics, base parameters and identification.
@@ -85,6 +87,15 @@ pub(crate) fn run() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => {
             let code = u8::try_from(e.exit_code()).unwrap_or(2);
+            // clap quotes a refused value whole, and the value parser's message again: a
+            // 5000-character value made a 10 kB message
+            if let Some(ContextValue::String(value)) = e.get(ContextKind::InvalidValue)
+                && value.chars().count() > 40
+            {
+                let text = e.render().to_string();
+                eprint!("{}", text.replace(value.as_str(), &names::short(value)));
+                return ExitCode::from(code);
+            }
             return match e.print() {
                 Err(io) if !e.use_stderr() => out::stdout_failure(&io),
                 _ => ExitCode::from(code),

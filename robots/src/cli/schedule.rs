@@ -58,7 +58,8 @@ pub(crate) fn program_kind(name: &str) -> Result<ProgramKind, Error> {
     ProgramKind::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = ProgramKind::ALL.iter().map(|k| k.info().name).collect();
         format!(
-            "--schedule-program {name}: no such program; use one of {}",
+            "--schedule-program {}: no such program; use one of {}",
+            robid_runtime::names::short(name),
             names.join(", ")
         )
         .into()

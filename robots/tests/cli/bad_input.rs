@@ -1564,3 +1564,44 @@ fn a_design_that_excites_nothing_is_not_written_whatever_its_criterion() {
         assert!(!path.exists(), "{criterion}");
     }
 }
+
+/// A long flag value is quoted short too: clap's "invalid value '...'" and the value
+/// parser's own message each quoted 5000 characters; `--drive`, `bench --robot` and
+/// `--schedule-program` their own once.
+#[test]
+fn long_flag_values_are_quoted_short() {
+    let long = "x".repeat(5000);
+    let robot = asset("tests/fixtures/pendulum2.toml");
+    for args in [
+        vec!["model", &robot, "--drive", &long],
+        vec!["excite", &robot, "-o", "never.csv", "--start", &long],
+        vec![
+            "simulate",
+            &robot,
+            "--trajectory",
+            "t.csv",
+            "-o",
+            "x.csv",
+            "--seed",
+            &long,
+        ],
+        vec!["bench", "--robot", &long],
+        vec![
+            "model",
+            &robot,
+            "--schedule",
+            "2",
+            "--schedule-program",
+            &long,
+        ],
+    ] {
+        let o = robid(&args);
+        let e = stderr(&o);
+        assert!(!o.status.success(), "{args:?}");
+        assert!(
+            e.contains(&format!("{}.. (5000 characters)", &long[..32])),
+            "{e}"
+        );
+        assert!(e.len() < 800, "{} bytes: {}", e.len(), &e[..300]);
+    }
+}
