@@ -76,14 +76,16 @@ fn names() -> Vec<String> {
 }
 
 /// Solves the stacked system and checks the result; rank-deficient data are an
-/// [`Error::PayloadNotExcited`] whose advice `fix` gives.
+/// [`Error::PayloadNotExcited`] whose advice `fix` gives, with the most combinations the
+/// measurement can determine whatever the motion (the rank reported is at most that: noise
+/// gave "rank 9" where the joint torques determine 8).
 fn estimate(
     w: DMatrix<f64>,
     y: DVector<f64>,
     groups: Vec<Range<usize>>,
     sample_of_row: Vec<usize>,
     options: &PayloadOptions,
-    fix: impl FnOnce() -> Result<String>,
+    fix: impl FnOnce() -> Result<(usize, String)>,
 ) -> Result<Payload> {
     // the least squares count equations; the user counts samples (rows of the file)
     let equations = w.nrows();
@@ -103,10 +105,11 @@ fn estimate(
         Err(Error::Estimate(EstimateError::RankDeficient {
             rank, unexcited, ..
         })) => {
+            let (most, fix) = fix()?;
             return Err(Error::PayloadNotExcited {
-                rank,
+                rank: rank.min(most),
                 unexcited,
-                fix: fix()?,
+                fix,
             });
         }
         // the estimators' advice (less decimation, fewer parameters) is not the payload's:

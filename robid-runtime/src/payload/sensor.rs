@@ -78,11 +78,12 @@ pub fn from_wrenches(samples: &[WrenchSample], options: &PayloadOptions) -> Resu
         sample_of_row,
         options,
         || {
-            Ok(
+            Ok((
+                10,
                 "use a richer motion of the sensor: turn it about every axis and accelerate \
-                it in every direction"
+                 it in every direction"
                     .to_owned(),
-            )
+            ))
         },
     )
 }

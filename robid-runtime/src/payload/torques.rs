@@ -110,22 +110,24 @@ pub fn from_torques(
     let sample_of_row = (0..dof * n).map(|i| i % n.max(1)).collect();
     estimate(w, y, groups, sample_of_row, options, || {
         let rank = rank_of_torques(model, &columns)?;
-        Ok(if rank == 10 {
+        let fix = if rank == 10 {
             "use a richer trajectory: move the last joints through their range with varied \
              velocities and accelerations (robid excite designs one)"
                 .to_owned()
         } else {
             format!(
-                "the joint torques of `{}` ({}) determine at most {rank} combinations of \
-                 the ten whatever the motion, so no trajectory gives them all (and a payload \
-                 has no parameter to leave out): measure the payload with a force-torque \
-                 sensor at the wrist (robid_runtime::payload::from_wrenches), or identify \
-                 the robot with the payload on (robid identify), whose base parameters hold \
-                 the {rank} combinations",
+                "the joint torques of `{}` ({}) determine at most {} of the ten whatever \
+                 the motion, so no trajectory gives them all (and a payload has no parameter \
+                 to leave out): measure the payload with a force-torque sensor at the wrist \
+                 (the library's robid_runtime::payload::from_wrenches), or identify the robot \
+                 with the payload on (robid identify), whose base parameters hold {}",
                 model.name(),
-                Count(dof, "joint")
+                Count(dof, "joint"),
+                Count(rank, "combination"),
+                if rank == 1 { "it" } else { "them" }
             )
-        })
+        };
+        Ok((rank, fix))
     })
 }
 

@@ -332,3 +332,61 @@ fn payload_messages_write_computed_values_short() {
     let (count, number) = most_digits(&text);
     assert!(count <= 7, "{number} has {count} digits: {text}");
 }
+
+/// A robot whose joint torques determine fewer than ten combinations of a payload (the
+/// two-link arm: 8) is told so, and the rank said is at most that many: with noisy
+/// torques the least squares counted 9 and the message said "rank 9 ... at most 8".
+#[test]
+fn the_rank_said_is_at_most_what_the_joint_torques_determine() {
+    let dir = folder();
+    let d = dir.path();
+    let path = |name: &str| d.join(name).display().to_string();
+    let robot = "tests/fixtures/two_link.toml";
+    let parameters = write(
+        d,
+        "p.toml",
+        "[standard]\nZZ1 = 0.5\nM2 = 3.0\nMX2 = 0.6\nXX2 = 0.2\nYY2 = 0.3\nZZ2 = 0.25\n",
+    );
+    for args in [
+        vec![
+            "excite",
+            robot,
+            "--duration",
+            "10",
+            "--rate",
+            "100",
+            "-o",
+            &path("t.csv"),
+        ],
+        vec![
+            "simulate",
+            robot,
+            "--parameters",
+            parameters.to_str().unwrap(),
+            "--trajectory",
+            &path("t.csv"),
+            "--torque-noise",
+            "0.05",
+            "-o",
+            &path("s.csv"),
+        ],
+    ] {
+        let o = robid(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let o = robid(&[
+        "payload",
+        robot,
+        "--parameters",
+        parameters.to_str().unwrap(),
+        "--data",
+        &path("s.csv"),
+    ]);
+    fails_with(
+        &o,
+        &[
+            "rank 8 of the payload's 10 parameters",
+            "determine at most 8 combinations of the ten",
+        ],
+    );
+}
