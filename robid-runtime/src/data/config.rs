@@ -1343,7 +1343,9 @@ impl Config {
                     "Config",
                     &format!("runs.files[{}]", i + 1),
                     format!(
-                        "{n} file(s) for a config with {per_run} [[source]] table(s); give one file per table, in their order"
+                        "{} for a config with {}; give one file per table, in their order",
+                        crate::Count(n, "file"),
+                        crate::Count(per_run, "[[source]] table")
                     ),
                 ));
             }

@@ -86,7 +86,8 @@ pub fn text_table(report: &Report) -> String {
         if let Some(r) = &v.reference {
             let improvement = r.relative_improvement_percent.map_or_else(
                 || "none (the reference predicts these data exactly)".to_string(),
-                |p| format!("{p:.1} %"),
+                // `-0.0 %` for a change that rounds to nothing
+                |p| format!("{:.1} %", if p.abs() < 0.05 { 0.0 } else { p }),
             );
             let _ = writeln!(
                 s,

@@ -382,10 +382,20 @@ impl Parts {
                     "give a finite number",
                 );
             }
-            if !symbols.contains(s) && !self.unread_words.contains(s) {
+            if s == "pi" {
                 error(
                     Item::Symbol(s),
-                    format!("symbol `{s}` has a value but no DH value or gravity uses it"),
+                    "`pi` is the constant of the expressions, not a symbol".to_owned(),
+                    "remove the entry (\"pi/2\" is read as the constant), or name the symbol \
+                     otherwise",
+                );
+            } else if !symbols.contains(s) && !self.unread_words.contains(s) {
+                error(
+                    Item::Symbol(s),
+                    format!(
+                        "symbol `{s}` has a value, but no DH value or gravity depends on it (an \
+                         expression in which it cancels, such as `L/L`, does not)"
+                    ),
                     &unused_help(s, &symbols),
                 );
             }
@@ -564,7 +574,9 @@ fn unused_help(symbol: &str, used: &[String]) -> String {
         Some(n) => format!(
             "did you mean `{n}`? (names are case-sensitive) A symbol without a value becomes a run-time input of the model; remove the entry or use it in a DH value"
         ),
-        None => "no DH value or gravity uses a symbol; remove the entry, or write the symbol where it belongs (e.g. `a = \"L2\"`)".to_owned(),
+        None => {
+            "remove the entry, or write the symbol where it belongs (e.g. `a = \"L2\"`)".to_owned()
+        }
     }
 }
 

@@ -63,7 +63,8 @@ tpye = \"revolute\"
         ("4:1", "unknown key `colour`"),
         (
             "7:1",
-            "symbol `l2` has a value but no DH value or gravity uses it; did you mean `L2`?",
+            "symbol `l2` has a value, but no DH value or gravity depends on it (an expression \
+             in which it cancels, such as `L/L`, does not); did you mean `L2`?",
         ),
         ("10:9", "joint 1 `alpha` = 90 is more than a turn"),
         ("12:5", "joint 1 `d` = 1e200 is beyond ±1000 m"),
@@ -254,7 +255,7 @@ fn unused_symbols_are_errors_and_run_time_inputs_are_documented() {
         &text,
         "4:1",
         &[
-            "symbol `l2` has a value but no DH value or gravity uses it",
+            "symbol `l2` has a value, but no DH value or gravity depends on it",
             "did you mean `L2`?",
         ],
     );
@@ -275,7 +276,21 @@ fn unused_symbols_are_errors_and_run_time_inputs_are_documented() {
     single(
         &format!("{HEAD}[symbols]\nL = 1\n[[joints]]\n"),
         "4:1",
-        &["no DH value or gravity uses a symbol"],
+        &[
+            "symbol `L` has a value, but no DH value or gravity depends on it",
+            "; remove the entry, or write the symbol where it belongs",
+        ],
+    );
+    // one that cancels is no use of it; `pi` is the constant, not a symbol
+    single(
+        &format!("{HEAD}[symbols]\nL = 0.4\n[[joints]]\na = \"L/L\"\n"),
+        "4:1",
+        &["symbol `L` has a value, but no DH value or gravity depends on it"],
+    );
+    single(
+        &format!("{HEAD}[symbols]\npi = 3\n[[joints]]\n"),
+        "4:1",
+        &["`pi` is the constant of the expressions, not a symbol"],
     );
 }
 

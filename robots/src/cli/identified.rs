@@ -46,6 +46,13 @@ impl Identified {
         let json = robid_runtime::data::read_text(path, "identification result")?;
         // a byte-order mark, as some editors write, is no JSON but no mistake either
         let json = json.strip_prefix('\u{feff}').unwrap_or(&json);
+        if json.trim().is_empty() {
+            return Err(format!(
+                "{}: the file is empty; give the JSON report of `robid identify --json`",
+                path.display()
+            )
+            .into());
+        }
         let identified: Identified = serde_json::from_str(json).map_err(|e| {
             format!(
                 "{}:{}:{}: not an identification result: {}; expected {{\"parameters\": \
@@ -336,6 +343,10 @@ mod tests {
             (
                 "{}".into(),
                 "r.json:1:2: not an identification result: no key \"parameters\"",
+            ),
+            (
+                " \n".into(),
+                "r.json: the file is empty; give the JSON report",
             ),
             (
                 entry("\"M1\"", &format!("\"{long}\"")),
