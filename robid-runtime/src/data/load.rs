@@ -844,14 +844,36 @@ pub fn load_runs(config: &Config, dof: usize) -> Result<Vec<Dataset>> {
     })?;
     config.check(dof)?;
     refuse_shared_run_files(config, runs)?;
-    runs.files
+    let loaded: Vec<Dataset> = runs
+        .files
         .iter()
         .enumerate()
         .map(|(i, r)| {
             let files: Vec<PathBuf> = r.paths().iter().map(|f| config.resolve(f)).collect();
             load(config, &files, dof).map_err(|e| config.run_error(i, "", e))
         })
-        .collect()
+        .collect::<Result<_>>()?;
+    // a copy of a recording under another name is no repeated acquisition either (its
+    // spread was exactly 0)
+    for (i, run) in loaded.iter().enumerate() {
+        if let Some(k) = loaded[..i]
+            .iter()
+            .position(|e| e.q == run.q && e.tau == run.tau)
+        {
+            return Err(config.key_error(
+                "runs.files",
+                format!(
+                    "runs {} and {} hold the same samples ({} and {}): copies of one \
+                     recording show no spread between runs; list each recording once",
+                    k + 1,
+                    i + 1,
+                    loaded[k].name,
+                    run.name
+                ),
+            ));
+        }
+    }
+    Ok(loaded)
 }
 
 /// Loads with the sources' own `file` entries (relative to the config file).

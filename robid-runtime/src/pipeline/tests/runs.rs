@@ -432,4 +432,11 @@ fn a_file_two_runs_share_is_refused() {
             "{m}"
         );
     }
+    // a byte-for-byte copy under another name holds the same samples: refused too
+    std::fs::copy(dir.path().join("run1.csv"), dir.path().join("run2.csv")).unwrap();
+    let e = load_runs(&config, DOF).unwrap_err().to_string();
+    assert!(
+        e.contains("runs 1 and 2 hold the same samples (run1.csv and run2.csv)"),
+        "{e}"
+    );
 }
