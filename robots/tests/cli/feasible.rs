@@ -269,6 +269,25 @@ fn feasible_fails_when_the_fit_ends_outside_the_bounds_it_imposes() {
     }
 }
 
+/// `robid feasible` on the two-link arm (`tests/fixtures/two_link.toml`) with the
+/// identification `identified` (default: its fixture), written to `output`, with `extra`
+/// arguments; succeeds, and returns standard error.
+fn two_link(identified: Option<&Path>, output: &Path, extra: &[&str]) -> String {
+    let fixture = Path::new("tests/fixtures/two_link_identified.json");
+    let mut args = vec![
+        "feasible",
+        "tests/fixtures/two_link.toml",
+        "--identified",
+        identified.unwrap_or(fixture).to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let o = robid(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    stderr(&o)
+}
+
 /// Bounds the data push far against (a two-link arm identified near 3 kg, bounded to a
 /// total of at least 80 kg with links of at most 50 kg): the interior-point path stalls
 /// outside them (it wrote link 1 at 59 kg and exited 0), and the default method then takes
@@ -279,18 +298,7 @@ fn feasible_default_meets_bounds_the_data_push_far_against() {
     let dir = folder();
     let bounds = write(dir.path(), "b.toml", "total_mass = [80.0, 200.0]\n");
     let path = out(&dir, "f.toml");
-    let o = robid(&[
-        "feasible",
-        "tests/fixtures/two_link.toml",
-        "--identified",
-        "tests/fixtures/two_link_identified.json",
-        "--bounds",
-        bounds.to_str().unwrap(),
-        "-o",
-        path.to_str().unwrap(),
-    ]);
-    let err = stderr(&o);
-    assert!(o.status.success(), "{err}");
+    let err = two_link(None, &path, &["--bounds", bounds.to_str().unwrap()]);
     let m = masses(&path);
     let tolerance = |bound: f64| 1e-6 * (1.0 + bound);
     assert!(m.iter().all(|&m| m <= 50.0 + tolerance(50.0)), "{m:?}");
@@ -315,15 +323,7 @@ fn feasible_keeps_an_extra_column_named_like_a_drive_term_extra() {
         .push(serde_json::json!({"name": "Fv1", "expression": "", "value": -1e-3, "std": 1e-4}));
     let identified = write(dir.path(), "id.json", &json.to_string());
     let path = out(&dir, "f.toml");
-    let o = robid(&[
-        "feasible",
-        "tests/fixtures/two_link.toml",
-        "--identified",
-        identified.to_str().unwrap(),
-        "-o",
-        path.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    two_link(Some(&identified), &path, &[]);
     let v: toml::Value = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
     assert!(v["standard"].get("Fv1").is_none(), "{v}");
     // the free term takes its identified value (to the solver's tolerance)
@@ -338,21 +338,7 @@ fn feasible_keeps_an_extra_column_named_like_a_drive_term_extra() {
 #[test]
 fn feasible_warns_of_a_result_far_from_the_data() {
     let dir = folder();
-    let run = |extra: &[&str]| {
-        let path = out(&dir, "f.toml");
-        let mut args = vec![
-            "feasible",
-            "tests/fixtures/two_link.toml",
-            "--identified",
-            "tests/fixtures/two_link_identified.json",
-            "-o",
-            path.to_str().unwrap(),
-        ];
-        args.extend_from_slice(extra);
-        let o = robid(&args);
-        assert!(o.status.success(), "{}", stderr(&o));
-        stderr(&o)
-    };
+    let run = |extra: &[&str]| two_link(None, &out(&dir, "f.toml"), extra);
     let far = run(&["--method", "anneal", "--two-step"]);
     assert!(
         far.contains("standard deviations from the identified") && far.contains("--two-step"),
