@@ -81,6 +81,9 @@ const DRIVE_WEIGHT_SHARE: f64 = 1e-4;
 /// link's: a token mass of 1 g in a URDF (a sensor frame's placeholder) is not held to a
 /// tenth of a gram by the prior's weight.
 const MIN_MASS_SCALE_SHARE: f64 = 1e-2;
+/// The smallest mass scale of a link with a prior mass, kg: a prior of specks (every mass
+/// 1e-300 kg) gave weights of 1e600, and the fit "left the consistent set".
+const MIN_MASS_SCALE: f64 = 1e-6;
 /// Radius of the solid, relative to its length.
 const RADIUS_SHARE: f64 = 0.25;
 
@@ -207,7 +210,7 @@ impl Pull {
 /// Each link whose mass `prior` gives (above zero) is weighed on that mass: its scales
 /// (mass, mass times size, mass times size squared, the sizes those of the default prior)
 /// are rescaled to the prior's mass, at least [`MIN_MASS_SCALE_SHARE`] of the heaviest prior
-/// link's. So a weight `w` trusts every link's prior to `1 / sqrt(w)` of its own mass (its
+/// link's and [`MIN_MASS_SCALE`]. So a weight `w` trusts every link's prior to `1 / sqrt(w)` of its own mass (its
 /// mass times its size, ...), not of the mass of the default prior's solid: the UR5's
 /// wrist flange of 0.188 kg, whose solid weighs 1 kg, was trusted to 500 % of its mass at
 /// weight 1. A link the prior gives no mass (or a mass of 0: no size to scale to) keeps the
@@ -217,7 +220,7 @@ fn prior_scales(layout: &Layout, prior: &Prior, scale: &mut [f64]) {
     let heaviest = layout.links.iter().filter_map(mass).fold(0.0f64, f64::max);
     for idx in &layout.links {
         if let Some(m) = mass(idx) {
-            let ratio = m.max(MIN_MASS_SCALE_SHARE * heaviest) / scale[idx[9]];
+            let ratio = m.max(MIN_MASS_SCALE_SHARE * heaviest).max(MIN_MASS_SCALE) / scale[idx[9]];
             for &s in idx {
                 scale[s] *= ratio;
             }
@@ -762,6 +765,20 @@ mod tests {
         // (the 1e-12 regularisation of the other parameters' far firmer data)
         let share = determined(&problem, &pull)[9];
         assert!((share - 0.5).abs() < 1e-6, "{share}");
+        // a prior of specks (1e-300 kg) is weighed on 1 mg, not on 1e-300 kg (weights of
+        // 1e600 made the fit fail)
+        let mut specks = vec![None; 30];
+        specks[9] = Some(1e-300);
+        specks[19] = Some(1e-300);
+        let specks = Prior {
+            standard: specks,
+            weight: Prior::DEFAULT_WEIGHT,
+        };
+        let pull = Pull::new(&problem, &bounds, Some(&specks), 1.0).unwrap();
+        for j in 0..2 {
+            let scale = pull.scale[10 * j + 9];
+            assert!((scale - MIN_MASS_SCALE).abs() < 1e-18, "{j}: {scale}");
+        }
     }
 
     /// Without shapes the prior is the centre of the bounds with the bounds' scales; drive
