@@ -87,14 +87,6 @@ fn estimate(
     options: &PayloadOptions,
     fix: impl FnOnce() -> Result<(usize, String)>,
 ) -> Result<Payload> {
-    // the least squares count equations; the user counts samples (rows of the file)
-    let equations = w.nrows();
-    let samples = {
-        let mut distinct = sample_of_row.clone();
-        distinct.sort_unstable();
-        distinct.dedup();
-        distinct.len()
-    };
     let obs = Observation::new(w, y, groups, sample_of_row, names())?;
     let solved = if options.weighted {
         wls(&obs, options.rank_tolerance)
@@ -115,7 +107,12 @@ fn estimate(
         // the estimators' advice (less decimation, fewer parameters) is not the payload's:
         // it has neither
         Err(Error::TooFewSamples { context, .. }) => {
-            let per = equations.div_ceil(samples.max(1)).max(1);
+            // the least squares count equations; the user counts samples (rows of the file)
+            let mut distinct = obs.sample_of_row.clone();
+            distinct.sort_unstable();
+            distinct.dedup();
+            let samples = distinct.len();
+            let per = obs.w.nrows().div_ceil(samples.max(1)).max(1);
             return Err(Error::TooFewSamples {
                 context,
                 found: samples,

@@ -269,6 +269,12 @@ fn feasible_fails_when_the_fit_ends_outside_the_bounds_it_imposes() {
     }
 }
 
+/// The identification result of fixture `name` (`tests/fixtures/NAME`), to be edited.
+fn fixture_json(name: &str) -> serde_json::Value {
+    let text = std::fs::read_to_string(asset(&format!("tests/fixtures/{name}"))).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
 /// `robid feasible` on the two-link arm (`tests/fixtures/two_link.toml`) with the
 /// identification `identified` (default: its fixture), written to `output`, with `extra`
 /// arguments; succeeds, and returns standard error.
@@ -314,9 +320,7 @@ fn feasible_default_meets_bounds_the_data_push_far_against() {
 #[test]
 fn feasible_keeps_an_extra_column_named_like_a_drive_term_extra() {
     let dir = folder();
-    let fixture = asset("tests/fixtures/two_link_identified.json");
-    let mut json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(fixture).unwrap()).unwrap();
+    let mut json = fixture_json("two_link_identified.json");
     json["parameters"]
         .as_array_mut()
         .unwrap()
@@ -354,9 +358,7 @@ fn feasible_warns_of_a_result_far_from_the_data() {
 #[test]
 fn feasible_refuses_a_result_with_too_many_foreign_entries() {
     let dir = folder();
-    let fixture = asset("tests/fixtures/tx40_identified.json");
-    let mut json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(fixture).unwrap()).unwrap();
+    let mut json = fixture_json("tx40_identified.json");
     let run = |json: &serde_json::Value, name: &str| {
         let identified = dir.path().join(name);
         std::fs::write(&identified, json.to_string()).unwrap();
