@@ -633,17 +633,20 @@ pub(crate) fn check_cutoff(config: &Config, sample_time: f64) -> Result<()> {
     {
         let nyquist = 0.5 / sample_time;
         let min = crate::signal::MIN_CUTOFF * nyquist;
-        if !(cutoff < nyquist && cutoff >= min) {
+        let max = crate::signal::MAX_CUTOFF * nyquist;
+        if !(cutoff <= max && cutoff >= min) {
             return Err(config.key_error(
                 "processing.lowpass.cutoff",
                 // the cutoff as typed; the bounds, computed from a sample time that may
                 // be measured from time stamps, rounded, but never onto the cutoff
                 format!(
-                    "{} Hz is outside [{}, {}) Hz for data sampled at {} Hz (below the Nyquist frequency, above {:e} of it so that the filter can be represented); choose a cutoff in that range",
+                    "{} Hz is outside [{}, {}] Hz for data sampled at {} Hz: the filter can be represented from {:e} of the Nyquist frequency ({} Hz) to {:e} of it below it; choose a cutoff in that range",
                     crate::error::num(cutoff),
                     Num::rounded_keeping(min, 6, |m| (cutoff < m) == (cutoff < min)),
-                    Num::rounded_keeping(nyquist, 6, |n| (cutoff < n) == (cutoff < nyquist)),
+                    Num::rounded_keeping(max, 6, |m| (cutoff > m) == (cutoff > max)),
                     Num::rounded(1.0 / sample_time, 6),
+                    crate::signal::MIN_CUTOFF,
+                    Num::rounded(nyquist, 6),
                     crate::signal::MIN_CUTOFF
                 ),
             ));

@@ -512,7 +512,22 @@ fn the_settling_message_writes_the_nyquist_frequency_rounded() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("600 Hz is outside [0.005, 500) Hz for data sampled at 1000 Hz"),
+        e.contains("600 Hz is outside [0.005, 499.995] Hz for data sampled at 1000 Hz"),
+        "{e}"
+    );
+    // closer to the Nyquist frequency than 1e-5 of it the filter cannot be represented
+    // (order 20 within 5e-9 of it had gain 0, and the record was refused by a filter of
+    // "4 samples, at least 64" at no key)
+    let text = CONFIG.replace(
+        "cutoff = 20.0, order = 4",
+        "cutoff = 499.999999, order = 20",
+    );
+    let config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+    let e = load(&config, std::slice::from_ref(&file), DOF)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`processing.lowpass.cutoff`: 499.999999 Hz is outside [0.005, 499.995] Hz"),
         "{e}"
     );
 }

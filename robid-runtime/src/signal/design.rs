@@ -64,6 +64,12 @@ pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
 /// Smallest cutoff, as a fraction of the Nyquist frequency, that a design accepts.
 pub const MIN_CUTOFF: f64 = 1e-5;
 
+/// Largest cutoff, as a fraction of the Nyquist frequency, that a design accepts: closer
+/// to it the poles come within about `1 - MAX_CUTOFF` of -1, where they and the gain lose
+/// their digits (order 20 within 5e-9 of it gave a filter of gain 0), and the filter
+/// passes nearly everything anyway.
+pub const MAX_CUTOFF: f64 = 1.0 - MIN_CUTOFF;
+
 fn check(order: usize, cutoff: f64) -> Result<()> {
     if order == 0 || order > 20 {
         return Err(Error::setting(
@@ -78,6 +84,16 @@ fn check(order: usize, cutoff: f64) -> Result<()> {
             "cutoff",
             format!(
                 "normalised cutoff {} must lie strictly between 0 and 1 (the Nyquist frequency); lower the cutoff or raise the sample rate",
+                crate::error::num(cutoff)
+            ),
+        ));
+    }
+    if cutoff > MAX_CUTOFF {
+        return Err(Error::setting(
+            "butterworth",
+            "cutoff",
+            format!(
+                "normalised cutoff {} is within {MIN_CUTOFF:e} of the Nyquist frequency, where the filter's poles are too close to -1 to be represented; lower the cutoff, or leave the low-pass out (so close to the Nyquist frequency it filters almost nothing)",
                 crate::error::num(cutoff)
             ),
         ));
@@ -151,6 +167,19 @@ fn digital_lowpass(proto: &[C], proto_gain: f64, cutoff: f64) -> Sos {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Within 1e-5 of the Nyquist frequency the design is refused: order 20 within 5e-9
+    /// of it gave gain 0. At the limit the gain is still 1.
+    #[test]
+    fn a_cutoff_at_the_nyquist_frequency_is_refused() {
+        let e = butterworth(20, 1.0 - 5e-9).unwrap_err().to_string();
+        assert!(e.contains("within 1e-5 of the Nyquist frequency"), "{e}");
+        for order in [1, 2, 7, 20] {
+            let sos = butterworth(order, MAX_CUTOFF).unwrap();
+            assert!((sos.dc_gain() - 1.0).abs() < 1e-9, "{}", sos.dc_gain());
+            assert!(sos.pole_radius() < 1.0);
+        }
+    }
 
     fn assert_sos(sos: &Sos, expected: &[[f64; 6]]) {
         assert_eq!(sos.sections().len(), expected.len());

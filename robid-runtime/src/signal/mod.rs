@@ -12,7 +12,7 @@ mod sos;
 mod spectrum;
 
 pub use decimate::{Decimator, split_factor};
-pub use design::{MIN_CUTOFF, butterworth, butterworth_hz, chebyshev1};
+pub use design::{MAX_CUTOFF, MIN_CUTOFF, butterworth, butterworth_hz, chebyshev1};
 pub use diff::central_difference;
 pub use rest::moving_samples;
 pub use savgol::SavitzkyGolay;
