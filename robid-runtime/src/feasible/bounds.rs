@@ -175,6 +175,11 @@ fn two<E: serde::de::Error>(v: Vec<f64>) -> std::result::Result<[f64; 2], E> {
     <[f64; 2]>::try_from(v).map_err(|_| E::invalid_length(n, &"two values [lo, hi]"))
 }
 
+/// The least upper bound of a link's mass, kg: one milligram. Below it a link carries
+/// nothing a robot's torques could tell from nothing, and the fits' scales lose their
+/// digits (`mass = [0, 1e-100]` made the interior-point fit leave the consistent set).
+pub const MIN_LINK_MASS: f64 = 1e-6;
+
 /// Default pseudo-inertia margin (kg, kg m^2) of links of ordinary size.
 pub const DEFAULT_MARGIN: f64 = 1e-6;
 
@@ -247,25 +252,46 @@ impl Bounds {
     /// Reads bounds for a robot with `links` links; `path` names the file in errors, which
     /// give a wrong value's key at its file:line:column ([`crate::DataError::ConfigKey`]).
     pub fn from_toml(text: &str, path: &str, links: usize) -> Result<Bounds> {
-        let keys = KeyMap::parse(text);
-        let locate = |e: Error| match e {
-            Error::Setting {
+        Self::parse(text, path, links).map_err(|e| Self::locate(text, path, e))
+    }
+
+    /// An error about bounds (owner `Bounds`, such as those of [`Bounds::margin_for`])
+    /// placed in the bounds file `text` read from `path`: at its key's file:line:column,
+    /// a link's key at `[default]` when the link's own table does not give it; other
+    /// errors unchanged.
+    pub fn locate(text: &str, path: &str, e: Error) -> Error {
+        let Error::Setting {
+            owner,
+            mut key,
+            problem,
+        } = e
+        else {
+            return e;
+        };
+        if owner != "Bounds" {
+            return Error::Setting {
                 owner,
                 key,
                 problem,
-            } if owner == "Bounds" => {
-                let at = keys.find(&key);
-                Error::Data(DataError::ConfigKey {
-                    path: path.into(),
-                    line: at.map(|a| a.0),
-                    column: at.map(|a| a.1),
-                    key,
-                    problem,
-                })
+            };
+        }
+        let keys = KeyMap::parse(text);
+        let mut at = keys.find(&key);
+        if at.is_none()
+            && let Some((_, rest)) = key.strip_prefix("links.").and_then(|k| k.split_once('.'))
+        {
+            let inherited = format!("default.{rest}");
+            if let Some(found) = keys.find(&inherited) {
+                (key, at) = (inherited, Some(found));
             }
-            e => e,
-        };
-        Self::parse(text, path, links).map_err(locate)
+        }
+        Error::Data(DataError::ConfigKey {
+            path: path.into(),
+            line: at.map(|a| a.0),
+            column: at.map(|a| a.1),
+            key,
+            problem,
+        })
     }
 
     fn parse(text: &str, path: &str, links: usize) -> Result<Bounds> {
@@ -320,21 +346,68 @@ impl Bounds {
     /// // a 12 g link, centre of mass at the origin, inertia 1e-6 I: its pseudo-inertia's
     /// // second moments are tr(I) / 2 - 1e-6 = 0.5e-6, its smallest eigenvalue
     /// let jaw = [1e-6, 0.0, 0.0, 1e-6, 0.0, 1e-6, 0.0, 0.0, 0.0, 0.012];
-    /// let margin = Bounds::wide(1).margin_for(&problem.layout, Some(&jaw));
+    /// let margin = Bounds::wide(1).margin_for(&problem.layout, Some(&jaw)).unwrap();
     /// assert!((margin - 0.5e-8).abs() < 1e-20);
-    /// assert_eq!(Bounds::wide(1).margin_for(&problem.layout, None), DEFAULT_MARGIN);
+    /// assert_eq!(Bounds::wide(1).margin_for(&problem.layout, None).unwrap(), DEFAULT_MARGIN);
     /// ```
-    pub fn margin_for(&self, layout: &super::Layout, prior: Option<&[f64]>) -> f64 {
-        if let Some(m) = self.margin {
-            return m;
-        }
-        let smallest = prior.map_or(f64::INFINITY, |p| {
-            (0..layout.links.len())
-                .map(|j| super::pseudo_inertia_min_eigenvalue(&layout.link_values(j, p)))
-                .filter(|&e| e > 0.0)
-                .fold(f64::INFINITY, f64::min)
+    ///
+    /// An error when a link's bounds lie below what the margin allows: a pseudo-inertia at
+    /// least `margin` times the identity has a mass of at least the margin and moments
+    /// about its centre of mass of at least twice it (`mass = [0, 1e-300]` failed as "the
+    /// interior-point fit left the consistent set", naming nothing).
+    pub fn margin_for(&self, layout: &super::Layout, prior: Option<&[f64]>) -> Result<f64> {
+        let margin = self.margin.unwrap_or_else(|| {
+            let smallest = prior.map_or(f64::INFINITY, |p| {
+                (0..layout.links.len())
+                    .map(|j| super::pseudo_inertia_min_eigenvalue(&layout.link_values(j, p)))
+                    .filter(|&e| e > 0.0)
+                    .fold(f64::INFINITY, f64::min)
+            });
+            DEFAULT_MARGIN.min(MARGIN_SHARE * smallest)
         });
-        DEFAULT_MARGIN.min(MARGIN_SHARE * smallest)
+        self.check_margin(margin)?;
+        Ok(margin)
+    }
+
+    /// Refuses a link whose mass, principal moments or inertia tensor's diagonal cannot
+    /// reach what a pseudo-inertia at least `margin` times the identity needs.
+    fn check_margin(&self, margin: f64) -> Result<()> {
+        for (j, l) in self.links.iter().enumerate() {
+            let n = j + 1;
+            let diagonal = l
+                .tensor
+                .iter()
+                .zip(TENSOR_ELEMENTS)
+                .filter(|(_, (_, row, column))| row == column)
+                .filter_map(|(r, (name, _, _))| {
+                    r.map(|r| (format!("inertia_tensor.{name}"), r[1], 2.0 * margin))
+                });
+            let ranges = [
+                ("mass".to_owned(), l.mass[1], margin),
+                ("inertia".to_owned(), l.inertia[1], 2.0 * margin),
+            ];
+            if let Some((key, high, least)) = ranges
+                .into_iter()
+                .chain(diagonal)
+                .find(|(_, high, least)| high < least)
+            {
+                let unit = if key == "mass" { "kg" } else { "kg m^2" };
+                return Err(Error::setting(
+                    "Bounds",
+                    &format!("links.{n}.{key}"),
+                    format!(
+                        "link {n}'s upper bound {} {unit} is below {} {unit}, the least that the consistency margin {} allows (a \
+                         pseudo-inertia at least margin x I has a mass of at least the margin \
+                         and moments about its centre of mass of at least twice it); raise \
+                         the bound, or set a smaller `margin`",
+                        num(high),
+                        num(least),
+                        num(margin)
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// [`Bounds::validate`], and that there are bounds for each of `links` links.
@@ -407,11 +480,15 @@ impl RawLink {
         if let Some(m) = self.mass {
             let key = format!("{table}.mass");
             check_range(key.clone(), m, true)?;
-            if m[1] <= 0.0 {
+            if m[1] < MIN_LINK_MASS {
                 return Err(Error::setting(
                     "Bounds",
                     &key,
-                    "the upper bound must be positive (a link has mass)",
+                    format!(
+                        "the upper bound {} kg is below {MIN_LINK_MASS:e} kg (1 mg); a link \
+                         has mass: raise it",
+                        num(m[1])
+                    ),
                 ));
             }
         }
@@ -508,6 +585,10 @@ mod tests {
                 "b.toml:2:1: `default.mass`: the upper bound",
             ),
             (
+                "[default]\nmass = [0, 1e-300]\n",
+                "b.toml:2:1: `default.mass`: the upper bound 1e-300 kg is below 1e-6 kg (1 mg)",
+            ),
+            (
                 "[default]\ninertia_tensor = { zz = [-1, 1] }\n",
                 "b.toml:2:20: `default.inertia_tensor.zz`: must not",
             ),
@@ -588,8 +669,11 @@ mod tests {
         let layout = problem(&target(link(), 0.0)).layout;
         let wide = Bounds::wide(1);
         let ordinary = target(link(), 0.0);
-        assert_eq!(wide.margin_for(&layout, None), DEFAULT_MARGIN);
-        assert_eq!(wide.margin_for(&layout, Some(&ordinary)), DEFAULT_MARGIN);
+        assert_eq!(wide.margin_for(&layout, None).unwrap(), DEFAULT_MARGIN);
+        assert_eq!(
+            wide.margin_for(&layout, Some(&ordinary)).unwrap(),
+            DEFAULT_MARGIN
+        );
         let jaw = LinkInertial {
             mass: 0.012,
             com: [0.0; 3],
@@ -598,12 +682,13 @@ mod tests {
         .to_standard();
         let small = pseudo_inertia_min_eigenvalue(&jaw);
         assert!(small < 1e-6);
-        let m = wide.margin_for(&layout, Some(&target(jaw, 0.0)));
+        let m = wide.margin_for(&layout, Some(&target(jaw, 0.0))).unwrap();
         assert!((m - 1e-2 * small).abs() < 1e-20, "{m} {small}");
         let mut broken = jaw;
         broken[0] = -1.0;
         assert_eq!(
-            wide.margin_for(&layout, Some(&target(broken, 0.0))),
+            wide.margin_for(&layout, Some(&target(broken, 0.0)))
+                .unwrap(),
             DEFAULT_MARGIN
         );
         // a point mass: its pseudo-inertia's smallest eigenvalue is exactly 0, no scale
@@ -611,14 +696,17 @@ mod tests {
         point[9] = 1.0;
         assert_eq!(pseudo_inertia_min_eigenvalue(&point), 0.0);
         assert_eq!(
-            wide.margin_for(&layout, Some(&target(point, 0.0))),
+            wide.margin_for(&layout, Some(&target(point, 0.0))).unwrap(),
             DEFAULT_MARGIN
         );
         let given = Bounds {
             margin: Some(0.5),
             ..Bounds::wide(1)
         };
-        assert_eq!(given.margin_for(&layout, Some(&target(jaw, 0.0))), 0.5);
+        assert_eq!(
+            given.margin_for(&layout, Some(&target(jaw, 0.0))).unwrap(),
+            0.5
+        );
     }
 
     /// Each default range reaches twice the prior's largest value where that is beyond it,
@@ -644,6 +732,56 @@ mod tests {
         assert!((b.inertia[1] - 12.0).abs() < 1e-12, "{:?}", b.inertia);
         let ordinary = Bounds::wide_for(&p, Some(&prior(link())));
         assert_eq!(ordinary, Bounds::wide(1));
+    }
+
+    /// Bounds below what the margin allows (a mass under the margin, principal moments or
+    /// a diagonal element of the inertia tensor under twice it) are refused at their key,
+    /// at `[default]` when the link inherits them; the margin's least values are allowed.
+    #[test]
+    fn bounds_below_the_margin_are_refused_at_their_key() {
+        let names: Vec<String> = [
+            "XX1", "XY1", "XZ1", "YY1", "YZ1", "ZZ1", "MX1", "MY1", "MZ1",
+        ]
+        .into_iter()
+        .chain(["M1"])
+        .map(String::from)
+        .collect();
+        let problem =
+            super::super::Problem::new(names.clone(), names, nalgebra::DMatrix::identity(10, 10))
+                .unwrap();
+        for (text, error) in [
+            (
+                "margin = 1e-3\n[default]\nmass = [0, 1e-4]\n",
+                Some(
+                    "b.toml:3:1: `default.mass`: link 1's upper bound 0.0001 kg is below 0.001 kg",
+                ),
+            ),
+            ("margin = 1e-3\n[default]\nmass = [0, 1e-3]\n", None),
+            (
+                "margin = 1e-3\n[links.1]\ninertia = [0, 1e-3]\n",
+                Some(
+                    "b.toml:3:1: `links.1.inertia`: link 1's upper bound 0.001 kg m^2 is below 0.002 kg m^2",
+                ),
+            ),
+            ("margin = 1e-3\n[links.1]\ninertia = [0, 2e-3]\n", None),
+            (
+                "margin = 1e-3\n[default]\ninertia_tensor = { yy = [0, 1e-3], xy = [0, 1e-9] }\n",
+                Some("b.toml:3:20: `default.inertia_tensor.yy`: link 1's upper bound"),
+            ),
+            (
+                "margin = 1e-3\n[default]\ninertia_tensor = { xy = [0, 1e-9] }\n",
+                None,
+            ),
+        ] {
+            let bounds = Bounds::from_toml(text, "b.toml", 1).unwrap();
+            let got = bounds
+                .margin_for(&problem.layout, None)
+                .map_err(|e| Bounds::locate(text, "b.toml", e).to_string());
+            match error {
+                Some(e) => assert!(got.as_ref().unwrap_err().starts_with(e), "{got:?}"),
+                None => assert_eq!(got, Ok(1e-3)),
+            }
+        }
     }
 
     #[test]

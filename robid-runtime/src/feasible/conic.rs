@@ -76,7 +76,7 @@ fn solve_stage(
     pull: &Pull,
     settle: Option<(&[f64], &[usize])>,
 ) -> Result<Vec<f64>> {
-    let margin = bounds.margin_for(&problem.layout, Some(&pull.target));
+    let margin = bounds.margin_for(&problem.layout, Some(&pull.target))?;
     let layout = &problem.layout;
     let ns = problem.standard_names.len();
     bounds.check_for(layout.links.len())?;

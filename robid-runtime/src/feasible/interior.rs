@@ -118,7 +118,7 @@ pub fn solve_interior(
     let start = Instant::now();
     let layout = &problem.layout;
     let mut objective = Objective::from_options(problem, bounds, options)?;
-    let margin = bounds.margin_for(layout, Some(&objective.pull.target));
+    let margin = bounds.margin_for(layout, Some(&objective.pull.target))?;
     let mut p = objective.start(margin)?;
     let barrier = Barrier {
         links: &layout.links,

@@ -58,7 +58,7 @@ mod search;
 mod smooth;
 mod solution;
 
-pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds, TENSOR_ELEMENTS};
+pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds, MIN_LINK_MASS, TENSOR_ELEMENTS};
 pub use centre::centre;
 pub use error::FeasibleError;
 pub use gravity::GravityCoefficients;

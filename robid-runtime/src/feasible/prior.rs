@@ -81,9 +81,10 @@ const DRIVE_WEIGHT_SHARE: f64 = 1e-4;
 /// link's: a token mass of 1 g in a URDF (a sensor frame's placeholder) is not held to a
 /// tenth of a gram by the prior's weight.
 const MIN_MASS_SCALE_SHARE: f64 = 1e-2;
-/// The smallest mass scale of a link with a prior mass, kg: a prior of specks (every mass
-/// 1e-300 kg) gave weights of 1e600, and the fit "left the consistent set".
-const MIN_MASS_SCALE: f64 = 1e-6;
+/// The smallest mass scale of a link with a prior mass, kg, the least mass bound a link may
+/// have: a prior of specks (every mass 1e-300 kg) gave weights of 1e600, and the fit "left
+/// the consistent set".
+const MIN_MASS_SCALE: f64 = super::bounds::MIN_LINK_MASS;
 /// Radius of the solid, relative to its length.
 const RADIUS_SHARE: f64 = 0.25;
 

@@ -289,7 +289,7 @@ pub fn solve_smooth(
         }
     }));
     maps.extend(layout.extra.iter().map(|&i| Map::Free(i)));
-    let margin = bounds.margin_for(layout, Some(&objective.pull.target));
+    let margin = bounds.margin_for(layout, Some(&objective.pull.target))?;
     let p0 = objective.start(margin)?;
     let mut fit = Fit {
         objective,

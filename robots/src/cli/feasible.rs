@@ -310,15 +310,22 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         (None, None) => None,
     };
     let links = problem.layout.links.len();
-    let bounds = match &args.bounds {
-        Some(path) => Bounds::from_toml(
-            &read(path, "bounds file")?,
-            &path.display().to_string(),
-            links,
-        )
-        .map_err(|e| about(path, e))?,
+    let bounds_file = match &args.bounds {
+        Some(path) => Some((path.display().to_string(), read(path, "bounds file")?)),
+        None => None,
+    };
+    let bounds = match (&bounds_file, &args.bounds) {
+        (Some((name, text)), Some(path)) => {
+            Bounds::from_toml(text, name, links).map_err(|e| about(path, e))?
+        }
         // wide, and wider for a robot whose prior links are heavier or larger
-        None => Bounds::wide_for(&problem, prior.as_ref()),
+        _ => Bounds::wide_for(&problem, prior.as_ref()),
+    };
+    // the solvers' errors about the bounds (below the margin) named in the bounds file
+    let in_bounds_file = |e: Error| match (e.downcast::<robid_runtime::Error>(), &bounds_file) {
+        (Ok(e), Some((name, text))) => Bounds::locate(text, name, *e).into(),
+        (Ok(e), None) => (*e).into(),
+        (Err(e), _) => e,
     };
     // the default prior's weight: --prior-weight without a prior, else the default
     let default_weight = match (&prior, args.prior_weight) {
@@ -337,7 +344,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         unsized_links(args, &problem, &bounds, prior.as_ref(), reason)?;
     }
     let solution = match args.method.as_str() {
-        "anneal" => anneal(args, robot, &problem, &bounds, prior, extra.is_empty())?,
+        "anneal" => anneal(args, robot, &problem, &bounds, prior, extra.is_empty()),
         "sdp" => solve_sdp(
             &problem,
             &bounds,
@@ -345,10 +352,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 prior,
                 regularization: default_weight,
             },
-        )?,
-        "cholesky" => solve_smooth(&problem, &bounds, &smooth)?,
-        _ => interior_or_cholesky(&problem, &bounds, &smooth)?,
-    };
+        )
+        .map_err(Error::from),
+        "cholesky" => solve_smooth(&problem, &bounds, &smooth).map_err(Error::from),
+        _ => interior_or_cholesky(&problem, &bounds, &smooth),
+    }
+    .map_err(in_bounds_file)?;
     check_solution(&solution)?;
     let urdf = matches!(
         args.output.extension().and_then(|e| e.to_str()),

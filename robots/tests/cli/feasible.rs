@@ -1216,3 +1216,42 @@ fn feasible_urdf_prior_holds_what_the_data_leave_and_yields_to_what_they_weigh()
         }
     }
 }
+
+/// Bounds the consistency margin rules out (principal moments of at most the margin, which
+/// a pseudo-inertia at least margin x I keeps at twice it) are refused by every method at
+/// their key in the bounds file, `[default]` when the links inherit them, nothing written:
+/// `mass = [0, 1e-300]` failed as "the interior-point fit left the consistent set".
+#[test]
+fn feasible_names_bounds_below_the_margin_in_the_bounds_file() {
+    let dir = folder();
+    let bounds = write(
+        dir.path(),
+        "b.toml",
+        "margin = 1e-2\n[default]\nmass = [0.0, 5.0]\ninertia = [0.0, 0.01]\n",
+    );
+    let path = out(&dir, "f.toml");
+    let at = format!(
+        "{}:4:1: `default.inertia`: link 1's upper bound 0.01 kg m^2 is below 0.02 kg m^2",
+        bounds.display()
+    );
+    for method in ["interior-point", "cholesky", "anneal"] {
+        let o = robid(&[
+            "feasible",
+            "tests/fixtures/two_link.toml",
+            "--identified",
+            "tests/fixtures/two_link_identified.json",
+            "--bounds",
+            bounds.to_str().unwrap(),
+            "--method",
+            method,
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        assert!(
+            !o.status.success() && stderr(&o).contains(&at),
+            "{method}: {}",
+            stderr(&o)
+        );
+        assert!(!path.exists());
+    }
+}

@@ -383,7 +383,7 @@ fn search(
         Some(prior) => Some(Pull::new(problem, bounds, Some(prior), 0.0)?),
         None => None,
     };
-    let margin = bounds.margin_for(layout, pull.as_ref().map(|p| p.target.as_slice()));
+    let margin = bounds.margin_for(layout, pull.as_ref().map(|p| p.target.as_slice()))?;
     let mut lo = Vec::with_capacity(nl * PER_LINK);
     let mut hi = Vec::with_capacity(nl * PER_LINK);
     let mut fixed = Vec::with_capacity(nl * PER_LINK);
