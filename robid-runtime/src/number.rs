@@ -3,8 +3,9 @@
 use core::fmt;
 
 /// A number for a message (`{}` of `Num(x)`): the shortest text that reads back as `x`,
-/// plain while that is short (1e-4 <= |x| < 1e15: `0.5`, `100`, `0.001`), else in
-/// scientific notation (`1e308`, `-2.5e-320`); at most 24 characters. Every message that
+/// plain while that is short (1e-4 <= |x| < 1e6: `0.5`, `100`, `0.001`; below 1e15 while
+/// scientific notation would not save 3 characters: `1234567`, `1200000`), else in
+/// scientific notation (`2e14`, `1e308`, `-2.5e-320`); at most 24 characters. Every message that
 /// shows a value from the input writes it so: `{}` of an f64 writes every digit, 309 of
 /// them for 1e308 and 320 for 1e-320, which buries the message. It allocates nothing, so
 /// the `no_std` parts use it too; [`num`](crate::num) gives it as a `String`.
@@ -21,11 +22,20 @@ pub struct Num(pub f64);
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let x = self.0;
-        if x == 0.0 || (x.abs() >= 1e-4 && x.abs() < 1e15) || !x.is_finite() {
-            write!(f, "{x}")
-        } else {
-            write!(f, "{x:e}")
+        if x == 0.0 || (x.abs() >= 1e-4 && x.abs() < 1e6) || !x.is_finite() {
+            return write!(f, "{x}");
         }
+        if (1e6..1e15).contains(&x.abs()) {
+            // a large round number is shorter in scientific notation (a sample rate of
+            // 200000000000000 Hz reads as 2e14 Hz); one with many digits is not
+            let (mut plain, mut exp) = (Text::default(), Text::default());
+            let written = fmt::Write::write_fmt(&mut plain, format_args!("{x}"))
+                .and_then(|()| fmt::Write::write_fmt(&mut exp, format_args!("{x:e}")));
+            if written.is_err() || plain.len < exp.len + 3 {
+                return write!(f, "{x}");
+            }
+        }
+        write!(f, "{x:e}")
     }
 }
 
@@ -180,6 +190,12 @@ mod tests {
         is(-0.00014373054988615016, 7, "-0.0001437305");
         is(0.1002665123456789, 7, "0.1002665");
         is(1234567.0, 2, "1200000");
+        // large round numbers in scientific notation (a sample rate of 200000000000000 Hz)
+        is(2e14, 3, "2e14");
+        is(1e6, 3, "1e6");
+        is(1.5e7, 3, "1.5e7");
+        is(123456789.0, 17, "123456789");
+        is(-1234567.5, 17, "-1234567.5");
         is(9.9996, 3, "10");
         is(5e-324, 3, "5e-324");
         is(2.5, 17, "2.5");

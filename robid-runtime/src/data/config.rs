@@ -97,8 +97,8 @@ use crate::data::keys::KeyMap;
 use crate::drive::{DriveConfig, ExtraColumn};
 use crate::error::{Error, Result, num, place};
 use crate::limits::{
-    MAX_DECIMATION, MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY,
-    MIN_FACTOR, MIN_SAMPLE_RATE,
+    MAX_EXTRA_COLUMNS, MAX_FACTOR, MAX_ROWS, MAX_SAMPLE_RATE, MAX_VELOCITY, MIN_FACTOR,
+    MIN_SAMPLE_RATE,
 };
 use crate::signal::SavitzkyGolay;
 
@@ -986,7 +986,7 @@ impl Config {
                     problem: problem.into(),
                 })
             }
-            ConfigOrigin::DefaultMapping => Error::setting("default column mapping", key, problem),
+            ConfigOrigin::DefaultMapping => Error::setting("the default config", key, problem),
             ConfigOrigin::Code => Error::setting("Config", key, problem),
         }
     }
@@ -1186,24 +1186,14 @@ impl Config {
                     .into(),
             );
         }
-        let mut total = 1f64;
-        for f in &factors {
-            if *f == 0 {
-                return bad(
-                    "processing.decimation",
-                    "a decimation factor of 0 is meaningless; use 1 for none".into(),
-                );
-            }
-            total *= *f as f64;
-        }
-        if total > MAX_DECIMATION as f64 {
+        if factors.contains(&0) {
             return bad(
                 "processing.decimation",
-                format!(
-                    "a total factor of {} is more than the limit of {MAX_DECIMATION}",
-                    num(total)
-                ),
+                "a decimation factor of 0 is meaningless; use 1 for none".into(),
             );
+        }
+        if let Some(problem) = crate::signal::decimation_too_large(&factors) {
+            return bad("processing.decimation", problem);
         }
         if let Some(r) = &p.rest_velocity {
             let v = r.values(dof, "processing.rest_velocity")?;
@@ -1531,17 +1521,28 @@ method = "wls"
             ),
             "{e}"
         );
-        // the factor as written, not 2e4
-        let bad = EXAMPLE.replace("decimation = [2, 2]", "decimation = [100, 200]");
-        let e = Config::from_toml_str(&bad, Path::new("c.toml"))
-            .unwrap()
-            .check(2)
-            .unwrap_err();
-        assert!(
-            e.to_string()
-                .contains("a total factor of 20000 is more than the limit of 10000"),
-            "{e}"
-        );
+        // the factor as written, not 2e4 (nor 9.223372036854776e18 for the largest
+        // 64-bit factor); a product beyond every integer is said so
+        for (stages, total) in [
+            ("[100, 200]", "20000"),
+            ("9223372036854775807", "9223372036854775807"),
+            (
+                "[4294967296, 4294967296, 4294967296, 4294967296, 4294967296]",
+                "beyond 3.4e38",
+            ),
+        ] {
+            let bad = EXAMPLE.replace("decimation = [2, 2]", &format!("decimation = {stages}"));
+            let e = Config::from_toml_str(&bad, Path::new("c.toml"))
+                .unwrap()
+                .check(2)
+                .unwrap_err();
+            assert!(
+                e.to_string().contains(&format!(
+                    "a total factor of {total} is more than the limit of 10000"
+                )),
+                "{e}"
+            );
+        }
         // an empty or repeated list is a mistake, told with its fix
         for (from, to, says) in [
             (

@@ -154,7 +154,7 @@ fn a_position_offset_moves_the_joint_positions_only() {
     );
     let e = bad("1e7");
     assert!(
-        e.contains("test.toml:6:1") && e.contains("10000000 is not a finite number"),
+        e.contains("test.toml:6:1") && e.contains("1e7 is not a finite number"),
         "{e}"
     );
 }

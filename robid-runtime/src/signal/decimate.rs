@@ -11,6 +11,24 @@ use crate::error::{Error, Result};
 use crate::signal::passes::{Forward, Kept, Take};
 use crate::signal::{Signals, Sos, chebyshev1};
 
+/// What is wrong with decimation `factors` whose product exceeds
+/// [`MAX_DECIMATION`](crate::limits::MAX_DECIMATION), written exactly (a factor of
+/// 9223372036854775807 was written 9.223372036854776e18); `None` when it does not.
+pub(crate) fn decimation_too_large(factors: &[usize]) -> Option<String> {
+    let limit = crate::limits::MAX_DECIMATION as u128;
+    let total = factors
+        .iter()
+        .try_fold(1u128, |t, &q| t.checked_mul(q as u128));
+    let shown = match total {
+        Some(t) if t <= limit => return None,
+        Some(t) => t.to_string(),
+        None => format!("beyond {}", crate::Num::rounded(u128::MAX as f64, 2)),
+    };
+    Some(format!(
+        "a total factor of {shown} is more than the limit of {limit}"
+    ))
+}
+
 /// A chain of decimation stages.
 #[derive(Debug, Clone)]
 pub struct Decimator {
@@ -20,17 +38,8 @@ pub struct Decimator {
 impl Decimator {
     /// Stages with the given factors, applied in order (factor 1 = no-op).
     pub fn new(factors: &[usize]) -> Result<Self> {
-        let total = factors.iter().map(|&q| q as f64).product::<f64>();
-        if total > crate::limits::MAX_DECIMATION as f64 {
-            return Err(Error::setting(
-                "Config",
-                "processing.decimation",
-                format!(
-                    "a total factor of {} is more than the limit of {}",
-                    crate::num(total),
-                    crate::limits::MAX_DECIMATION
-                ),
-            ));
+        if let Some(problem) = decimation_too_large(factors) {
+            return Err(Error::setting("Config", "processing.decimation", problem));
         }
         let stages = factors
             .iter()

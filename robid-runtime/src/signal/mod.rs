@@ -11,6 +11,7 @@ mod signals;
 mod sos;
 mod spectrum;
 
+pub(crate) use decimate::decimation_too_large;
 pub use decimate::{Decimator, split_factor};
 pub use design::{MAX_CUTOFF, MIN_CUTOFF, butterworth, butterworth_hz, chebyshev1};
 pub use diff::central_difference;

@@ -608,7 +608,7 @@ mod tests {
         let slow = Trajectory::zeros(1, vec![0.0, 1e6, 2e6]);
         let e = check_bandwidth(10.0, &slow, path).unwrap_err().to_string();
         assert!(
-            e.contains("(1e-6 Hz at its largest time step 1000000 s)")
+            e.contains("(1e-6 Hz at its largest time step 1e6 s)")
                 && e.contains("at most 2.5e-7 Hz"),
             "{e}"
         );

@@ -133,7 +133,7 @@ fn gaz_identify_static_refuses_bad_columns_and_other_data() {
         ),
         (
             format!("{q},g1,g2,g3,g4,g5,g6,g7\n0,0,0,0,0,0,2e6,1,2,3,4,5,6,7\n"),
-            "bad.csv:2: column `q7` is 2000000, outside the accepted range |position|",
+            "bad.csv:2: column `q7` is 2e6, outside the accepted range |position|",
         ),
         (String::new(), "the file is empty"),
         ("\u{1}\u{2}\0PK\n\0\0\n".into(), "is this a CSV file?"),

@@ -180,7 +180,7 @@ fn trajectory_sizes_are_checked_before_allocating() {
     );
     assert!(
         e.to_string()
-            .starts_with("trajectory samples (1000000000 s at 500 Hz): 500000000001")
+            .starts_with("trajectory samples (1e9 s at 500 Hz): 500000000001")
             && e.to_string()
                 .contains("shorten the duration or lower the rate"),
         "{e}"
