@@ -45,6 +45,9 @@ pub struct Identification {
     /// The cutoff chosen for `cutoff = "auto"` (validation data get their own unless the
     /// config is resolved first with [`crate::inspect::resolve_cutoff`]).
     pub cutoff: Option<CutoffSuggestion>,
+    /// The unit of the joint torques, by the joints' kinds
+    /// ([`torque_unit`](crate::report::torque_unit)): "N m", "N", or both.
+    pub torque_unit: &'static str,
 }
 
 /// Builds the observation of a data set: prepare (with `processing.range`), regressor,
@@ -476,6 +479,7 @@ pub(crate) fn identify_dense(
         warnings: data.warnings.clone(),
         used,
         cutoff: rows.auto_cutoff.clone(),
+        torque_unit: crate::report::torque_unit(&config.prismatic, model.dof()),
     })
 }
 

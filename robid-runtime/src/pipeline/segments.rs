@@ -257,6 +257,7 @@ pub fn identify_segments(
             warnings,
             used: rows,
             cutoff,
+            torque_unit: crate::report::torque_unit(&config.prismatic, model.dof()),
         },
         segments: used,
     })

@@ -4,6 +4,7 @@
 //! torque with its residual, on the log's own time axis, as inline SVG. No script, no
 //! style sheet or font from the network: the file opens anywhere.
 
+use super::table::fixed;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -23,20 +24,23 @@ pub(crate) fn escape(text: &str) -> String {
 fn figures_row(html: &mut String, what: &str, f: &FitEntry) {
     let against = match (f.torque.as_deref(), f.unfiltered_relative_error) {
         (Some("filtered"), Some(u)) => {
-            format!("filtered torque; {:.2} % against the measured", 100.0 * u)
+            format!(
+                "filtered torque; {} % against the measured",
+                fixed(100.0 * u, 2)
+            )
         }
         (Some(t), _) => format!("{t} torque"),
         (None, _) => String::new(),
     };
-    let rms: Vec<String> = f.rms_per_joint.iter().map(|v| format!("{v:.3}")).collect();
+    let rms: Vec<String> = f.rms_per_joint.iter().map(|v| fixed(*v, 3)).collect();
     let _ = writeln!(
         html,
-        "<tr><td>{}</td><td>{:.2} %</td><td>{}</td><td>{:.4}</td><td>{:.1}</td><td>{}</td></tr>",
+        "<tr><td>{}</td><td>{} %</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
         escape(what),
-        100.0 * f.relative_error,
+        fixed(100.0 * f.relative_error, 2),
         escape(&against),
-        f.nmse,
-        f.nmse_eq22,
+        fixed(f.nmse, 4),
+        fixed(f.nmse_eq22, 1),
         rms.join(" ")
     );
 }
@@ -56,9 +60,10 @@ fn reference_table(h: &mut String, report: &Report) {
         h,
         "<h2>Against the reference {}</h2>\n<table>\n<tr><th>data</th>\
          <th>relative error reference</th><th>relative error identified</th>\
-         <th>NMSE eq. 22 reference [N m]</th><th>NMSE eq. 22 identified [N m]</th>\
+         <th>NMSE eq. 22 reference [{unit}]</th><th>NMSE eq. 22 identified [{unit}]</th>\
          <th>relative improvement</th></tr>",
-        escape(&first.file)
+        escape(&first.file),
+        unit = report.torque_unit
     );
     for (v, r) in rows {
         let name = v
@@ -70,12 +75,12 @@ fn reference_table(h: &mut String, report: &Report) {
             .map_or_else(|| "-".to_string(), |p| format!("{p:.1} %"));
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td>{:.2} %</td><td>{:.2} %</td><td>{:.1}</td><td>{:.1}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td>{} %</td><td>{} %</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             escape(&name),
-            100.0 * r.relative_error,
-            100.0 * v.relative_error,
-            r.nmse_eq22,
-            v.nmse_eq22,
+            fixed(100.0 * r.relative_error, 2),
+            fixed(100.0 * v.relative_error, 2),
+            fixed(r.nmse_eq22, 1),
+            fixed(v.nmse_eq22, 1),
             improvement
         );
     }
@@ -121,9 +126,11 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
             escape(&c.reason)
         );
     }
-    h.push_str(
+    let _ = writeln!(
+        h,
         "<h2>Fit and validation</h2>\n<table>\n<tr><th>data</th><th>relative error</th>\
-         <th>against</th><th>NMSE</th><th>NMSE eq. 22 [N m]</th><th>RMS per joint [N m]</th></tr>\n",
+         <th>against</th><th>NMSE</th><th>NMSE eq. 22 [{unit}]</th><th>RMS per joint [{unit}]</th></tr>",
+        unit = report.torque_unit
     );
     figures_row(&mut h, "fit", &report.fit);
     for v in &report.validation {
@@ -176,7 +183,7 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
     }
     h.push_str("</table>\n");
     if let Some(r) = &report.runs {
-        h.push_str(&r.html());
+        h.push_str(&r.html(&report.torque_unit));
     }
     for (name, prediction) in predictions {
         let _ = writeln!(h, "<h2>{}: torque per joint</h2>", escape(name));
@@ -231,6 +238,7 @@ mod tests {
             }],
             runs: None,
             segments: None,
+            torque_unit: "N m".into(),
         }
     }
 

@@ -109,6 +109,31 @@ pub struct ValidationEntry {
     pub segments: Option<SegmentsEntry>,
 }
 
+/// The unit of the torques of a robot of `dof` joints of which `prismatic` flags the
+/// prismatic ones (a joint not listed is revolute): "N m", "N" (forces only) or
+/// "N m and N" (eq. 22's NMSE of a prismatic-only robot was labelled N m).
+///
+/// ```
+/// use robid_runtime::report::torque_unit;
+/// assert_eq!(torque_unit(&[], 6), "N m");
+/// assert_eq!(torque_unit(&[true, true], 2), "N");
+/// assert_eq!(torque_unit(&[true], 2), "N m and N");
+/// ```
+pub fn torque_unit(prismatic: &[bool], dof: usize) -> &'static str {
+    let forces = (0..dof)
+        .filter(|&j| prismatic.get(j) == Some(&true))
+        .count();
+    match forces {
+        0 => "N m",
+        f if f == dof => "N",
+        _ => "N m and N",
+    }
+}
+
+fn revolute_unit() -> String {
+    "N m".to_string()
+}
+
 /// A validation file predicted by a reference model (parameters from CAD, a data sheet or
 /// an earlier identification) next to the identified one (Madsen et al. 2020, Table 5).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -183,6 +208,11 @@ pub struct Report {
     /// it there (`gaps = "split"`); absent otherwise.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub segments: Option<SegmentsEntry>,
+    /// The unit of the joint torques, of the RMS errors and of eq. 22's NMSE
+    /// ([`torque_unit`]): "N m" for revolute joints (the default of a report without it),
+    /// "N" for prismatic ones, "N m and N" for both.
+    #[serde(default = "revolute_unit")]
+    pub torque_unit: String,
 }
 
 impl From<&Fit> for FitEntry {
@@ -231,6 +261,7 @@ impl Report {
             warnings: estimate.warnings.iter().map(ReportWarning::from).collect(),
             runs: None,
             segments: None,
+            torque_unit: revolute_unit(),
         }
     }
 
@@ -243,6 +274,7 @@ impl Report {
         report.estimation = Some(id.used.clone());
         report.fit = labelled_fit(&id.prediction);
         report.cutoff = id.cutoff.clone();
+        report.torque_unit = id.torque_unit.to_string();
         report
     }
 

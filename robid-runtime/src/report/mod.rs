@@ -10,7 +10,9 @@ mod segments;
 mod table;
 
 pub use html::{html_report, write_html};
-pub use json::{FitEntry, ParameterEntry, ReferenceFit, Report, ReportWarning, ValidationEntry};
+pub use json::{
+    FitEntry, ParameterEntry, ReferenceFit, Report, ReportWarning, ValidationEntry, torque_unit,
+};
 pub use plot::{plot_torques, torque_svg};
 pub use runs::{RunEntry, RunParameterEntry, RunsEntry};
 pub use segments::SegmentsEntry;

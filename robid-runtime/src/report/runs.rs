@@ -149,8 +149,8 @@ impl RunsEntry {
         s
     }
 
-    /// The HTML section.
-    pub fn html(&self) -> String {
+    /// The HTML section, torques in `unit` ([`Report::torque_unit`]).
+    pub fn html(&self, unit: &str) -> String {
         let mut h = String::new();
         let _ = writeln!(
             h,
@@ -192,7 +192,7 @@ impl RunsEntry {
             let joints: Vec<String> = t.iter().map(|v| format!("{v:.3}")).collect();
             let _ = writeln!(
                 h,
-                "<p>Torque spread across the runs per joint (RMS of the sample-wise standard deviation): [{}] N m.</p>",
+                "<p>Torque spread across the runs per joint (RMS of the sample-wise standard deviation): [{}] {unit}.</p>",
                 joints.join(" ")
             );
         }
@@ -212,6 +212,7 @@ impl Report {
         report.fit = super::json::labelled_fit(&r.prediction);
         report.cutoff = r.cutoff.clone();
         report.runs = Some(RunsEntry::new(r));
+        report.torque_unit = r.torque_unit.to_string();
         report
     }
 }

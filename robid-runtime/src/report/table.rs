@@ -47,23 +47,19 @@ pub fn text_table(report: &Report) -> String {
             p.name, p.value, p.std, rel, p.expression
         );
     }
-    let joints = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x:.3}"))
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
+    let joints = |v: &[f64]| v.iter().map(|x| fixed(*x, 3)).collect::<Vec<_>>().join(" ");
     if let Some(c) = &report.cutoff {
         let _ = writeln!(s, "low-pass cutoff (auto): {} Hz: {}", c.cutoff, c.reason);
     }
     let f = &report.fit;
+    let unit = &report.torque_unit;
     let _ = writeln!(
         s,
-        "fit: relative error {:.2} %{}, NMSE {:.4} (eq. 22: {:.1} N m), RMS per joint [{}]",
-        100.0 * f.relative_error,
+        "fit: relative error {} %{}, NMSE {} (eq. 22: {} {unit}), RMS per joint [{}]",
+        fixed(100.0 * f.relative_error, 2),
         against(f.torque.as_deref(), f.unfiltered_relative_error),
-        f.nmse,
-        f.nmse_eq22,
+        fixed(f.nmse, 4),
+        fixed(f.nmse_eq22, 1),
         joints(&f.rms_per_joint)
     );
     for v in &report.validation {
@@ -73,11 +69,11 @@ pub fn text_table(report: &Report) -> String {
             .map_or_else(|| v.file.clone(), |r| r.to_string());
         let _ = writeln!(
             s,
-            "validation {file}: relative error {:.2} %{}, NMSE {:.4} (eq. 22: {:.1} N m), RMS per joint [{}]",
-            100.0 * v.relative_error,
+            "validation {file}: relative error {} %{}, NMSE {} (eq. 22: {} {unit}), RMS per joint [{}]",
+            fixed(100.0 * v.relative_error, 2),
             against(v.torque.as_deref(), v.unfiltered_relative_error),
-            v.nmse,
-            v.nmse_eq22,
+            fixed(v.nmse, 4),
+            fixed(v.nmse_eq22, 1),
             joints(&v.rms_per_joint)
         );
         if let Some(g) = &v.segments {
@@ -91,12 +87,12 @@ pub fn text_table(report: &Report) -> String {
             );
             let _ = writeln!(
                 s,
-                "  against the reference {}: relative error {:.2} % (identified {:.2} %); NMSE (eq. 22) {:.1} N m, identified {:.1} N m, relative improvement {improvement}",
+                "  against the reference {}: relative error {} % (identified {} %); NMSE (eq. 22) {} {unit}, identified {} {unit}, relative improvement {improvement}",
                 r.file,
-                100.0 * r.relative_error,
-                100.0 * v.relative_error,
-                r.nmse_eq22,
-                v.nmse_eq22
+                fixed(100.0 * r.relative_error, 2),
+                fixed(100.0 * v.relative_error, 2),
+                fixed(r.nmse_eq22, 1),
+                fixed(v.nmse_eq22, 1)
             );
         }
     }
@@ -114,11 +110,22 @@ pub fn text_table(report: &Report) -> String {
 fn against(torque: Option<&str>, unfiltered: Option<f64>) -> String {
     match (torque, unfiltered) {
         (Some("filtered"), Some(u)) => format!(
-            " (filtered torque; {:.2} % against the measured torque)",
-            100.0 * u
+            " (filtered torque; {} % against the measured torque)",
+            fixed(100.0 * u, 2)
         ),
         (Some(t), _) => format!(" ({t} torque)"),
         (None, _) => String::new(),
+    }
+}
+
+/// `x` with `decimals` decimals while that is short (|x| < 1e6), else to 4 significant
+/// digits ([`Num::rounded`](crate::Num::rounded)): an NMSE of 218822021577.1579 is
+/// 2.188e11.
+pub(crate) fn fixed(x: f64, decimals: usize) -> String {
+    if x.abs() < 1e6 {
+        format!("{x:.decimals$}")
+    } else {
+        crate::Num::rounded(x, 4).to_string()
     }
 }
 
@@ -167,6 +174,42 @@ mod tests {
                 nmse_eq22: 30.0,
             },
         )
+    }
+
+    /// The torque unit follows the joints (eq. 22's NMSE of a prismatic-only robot was
+    /// labelled N m), in the text, the HTML and the JSON read back; figures too large for
+    /// fixed decimals are rounded (an NMSE of 218822021577.1579 was written whole).
+    #[test]
+    fn the_figures_are_in_the_joints_unit_and_rounded_when_huge() {
+        let mut r = report().with_validation(
+            "wild.csv",
+            &Fit {
+                relative_error: 4.2e7,
+                rms_per_joint: vec![3.5e9],
+                nmse: 218822021577.1579,
+                nmse_eq22: 1.5e13,
+            },
+        );
+        r.torque_unit = crate::report::torque_unit(&[true], 1).to_string();
+        let t = text_table(&r);
+        assert!(t.contains("(eq. 22: 250.0 N), RMS"), "{t}");
+        assert!(
+            t.contains("validation wild.csv: relative error 4.2e9 %, NMSE 2.188e11 (eq. 22: 1.5e13 N), RMS per joint [3.5e9]"),
+            "{t}"
+        );
+        let h = crate::report::html_report(&r, &[]).unwrap();
+        assert!(
+            h.contains("NMSE eq. 22 [N]</th><th>RMS per joint [N]"),
+            "{h}"
+        );
+        assert!(h.contains("<td>2.188e11</td>"), "{h}");
+        let back: Report = serde_json::from_str(&r.to_json()).unwrap();
+        assert_eq!(back.torque_unit, "N");
+        // a report written before the unit was recorded is of a revolute arm
+        let mut old: serde_json::Value = serde_json::from_str(&report().to_json()).unwrap();
+        old.as_object_mut().unwrap().remove("torque_unit");
+        let old: Report = serde_json::from_value(old).unwrap();
+        assert_eq!(old.torque_unit, "N m");
     }
 
     /// A reference model's prediction of a validation file: its eq. 22 NMSE and the
