@@ -634,6 +634,26 @@ impl RestCount {
             .enumerate()
             .max_by(|a, b| a.1.fastest.total_cmp(&b.1.fastest))
             .map_or(0, |(j, _)| j);
+        let kinds = match (units.contains(&"rad/s"), units.contains(&"m/s")) {
+            (true, true) => "rad/s or m/s",
+            (false, true) => "m/s",
+            _ => "rad/s",
+        };
+        if self.fastest == 0.0 {
+            // nothing moves: the data are the cause, whatever the threshold
+            return Err(Error::setting(
+                "Config",
+                "processing.rest_velocity",
+                format!(
+                    "no joint moves in these data (every joint velocity is 0 {kinds}), so \
+                     {value}{default} removes all {} equations, leaving 0, fewer than {purpose}, \
+                     and no threshold would leave motion to identify the dynamics from: use a \
+                     record in which the joints move, or check the velocity columns and their \
+                     units (joint side: units.angle, the drive chain)",
+                    self.before
+                ),
+            ));
+        }
         Err(Error::setting(
             "Config",
             "processing.rest_velocity",
@@ -648,11 +668,7 @@ impl RestCount {
                 self.kept,
                 num(three_digits(self.fastest)),
                 speed_unit(prismatic, fastest),
-                match (units.contains(&"rad/s"), units.contains(&"m/s")) {
-                    (true, true) => "rad/s or m/s",
-                    (false, true) => "m/s",
-                    _ => "rad/s",
-                },
+                kinds,
             ),
         ))
     }

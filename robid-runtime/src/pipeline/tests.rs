@@ -271,9 +271,10 @@ fn rest_removal_of_every_equation_names_rest_velocity() {
     let e = validate(&model, &at_rest(3000), &cfg, &values).unwrap_err();
     let text = e.to_string();
     assert!(
-        text.contains("`processing.rest_velocity`: 0.02 rad/s removes")
-            && text.contains("a prediction of still needs")
-            && text.contains("leaving 0"),
+        text.contains("`processing.rest_velocity`: no joint moves in these data")
+            && text.contains("0.02 rad/s removes all")
+            && text.contains("leaving 0, fewer than")
+            && text.contains("a prediction of still needs"),
         "{text}"
     );
 }
@@ -470,6 +471,29 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
             let expected = expected.replace("{name}", &data.name);
             assert!(e.to_string().contains(&expected), "{method:?}: {e}");
         }
+    }
+}
+
+/// Data in which no joint moves are told as such, by the streamed and the dense paths: the
+/// removal of samples at rest takes every equation, but no threshold is the cause (it
+/// read "lower rest_velocity below the joints' speeds ... the fastest joint velocity is 0").
+#[test]
+fn data_in_which_nothing_moves_are_told_so() {
+    let model = Synthetic::default();
+    let mut data = dataset(3000, 1000.0, 0.0);
+    data.q = Signals::from_fn(DOF, 3000, |j, _| 0.1 * j as f64);
+    let cfg = Config::from_toml_str(CONFIG, Path::new("synthetic.toml")).unwrap();
+    let mut rls = cfg.clone();
+    rls.estimation.method = crate::data::Method::Rls;
+    for config in [&cfg, &rls] {
+        let e = identify(&model, &data, config).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "`processing.rest_velocity`: no joint moves in these data (every joint \
+                        velocity is 0 rad/s), so 0.02 rad/s removes all"
+            ) && e.contains("use a record in which the joints move"),
+            "{e}"
+        );
     }
 }
 

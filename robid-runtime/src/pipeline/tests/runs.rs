@@ -259,7 +259,7 @@ fn an_error_of_one_run_names_the_run() {
     assert!(named(&e, &dir), "{e}");
     assert!(
         e.to_string()
-            .contains("`processing.rest_velocity`: 0.02 rad/s removes"),
+            .contains("`processing.rest_velocity`: no joint moves in these data"),
         "{e}"
     );
     // loading: a run whose file is not there
