@@ -23,3 +23,9 @@ pub mod rng;
 
 pub use parameter::{BaseName, DriveTerm, Inertial, ParameterId, ParameterKind, ParseNameError};
 pub use program::{Argument, PROGRAMS, ProgramInfo, ProgramKind, Size, Sizes};
+
+/// The comment robid writes in a URDF just before a `<limit>` whose `effort="0"` or
+/// `velocity="0"` stands for a limit the description does not give (the format requires
+/// both attributes of a revolute or prismatic joint): the URDF reader takes these zeros as
+/// no limit without warning that an exporter may have lost the robot's limits.
+pub const URDF_NO_LIMIT_NOTE: &str = "0: the description gives no torque or no velocity limit";

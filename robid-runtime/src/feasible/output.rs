@@ -246,10 +246,7 @@ pub fn to_urdf(
         let effort = joint.effort.unwrap_or(0.0);
         let velocity = joint.velocity.unwrap_or(0.0);
         if joint.effort.is_none() || joint.velocity.is_none() {
-            let _ = writeln!(
-                s,
-                "    <!-- 0: the description gives no torque or no velocity limit -->"
-            );
+            let _ = writeln!(s, "    <!-- {} -->", robid_core::URDF_NO_LIMIT_NOTE);
         }
         match (kind, joint.position) {
             (_, Some([lower, upper])) => {

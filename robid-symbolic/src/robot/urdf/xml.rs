@@ -90,6 +90,9 @@ pub(super) struct Limit {
     /// Whether `effort` and `velocity` are written (a placeholder above the largest value
     /// taken is written, and read as no limit).
     pub(super) written: [bool; 2],
+    /// Whether the `<limit>` follows robid's note that its zeros stand for no limit
+    /// ([`robid_core::URDF_NO_LIMIT_NOTE`]): no warning about them.
+    pub(super) zeros_noted: bool,
     pub(super) range: Range<usize>,
 }
 
@@ -904,6 +907,14 @@ impl Reader<'_> {
                 effort: self.rate_limit(l, "effort", MAX_TORQUE, &joint_name),
                 velocity: self.rate_limit(l, "velocity", MAX_VELOCITY, &joint_name),
                 written: ["effort", "velocity"].map(|a| l.attribute(a).is_some()),
+                zeros_noted: l
+                    .prev_siblings()
+                    .skip(1)
+                    .find(|n| !(n.is_text() && n.text().is_some_and(|t| t.trim().is_empty())))
+                    .is_some_and(|n| {
+                        n.is_comment()
+                            && n.text().map(str::trim) == Some(robid_core::URDF_NO_LIMIT_NOTE)
+                    }),
                 range: l.range(),
             }
         });
@@ -1090,7 +1101,7 @@ pub(super) fn zero_limits<'a>(
         .into_iter()
         .filter(|j| j.kind.movable())
         .filter_map(|j| {
-            let limit = j.limit.as_ref()?;
+            let limit = j.limit.as_ref().filter(|l| !l.zeros_noted)?;
             let what = match (zero(limit.effort), zero(limit.velocity)) {
                 (true, true) => "`effort=\"0\"` and `velocity=\"0\"`",
                 (true, false) => "`effort=\"0\"`",

@@ -1114,6 +1114,31 @@ fn zero_effort_or_velocity_limits_are_warned_about() {
         &format!("<limit {whole}/></joint>\n</robot>"),
     ));
     assert!(about(&chain).is_empty(), "{:?}", chain.warnings);
+    // robid's own URDF notes that its zeros stand for limits the description lacks
+    // (`robid feasible -o x.urdf` warned about its own file): no warning there, the zeros
+    // still no limit; another comment does not count
+    let zeros = "lower=\"-1\" upper=\"1\" effort=\"0\" velocity=\"0\"";
+    for (comment, warns) in [
+        (
+            format!("<!-- {} -->", robid_core::URDF_NO_LIMIT_NOTE),
+            false,
+        ),
+        ("<!-- limits unknown -->".to_string(), true),
+    ] {
+        let text = with(whole, zeros).replace(
+            &format!("<limit {zeros}/>"),
+            &format!("{comment}\n    <limit {zeros}/>"),
+        );
+        let chain = read(&text);
+        assert_eq!(
+            !about(&chain).is_empty(),
+            warns,
+            "{comment}: {:?}",
+            chain.warnings
+        );
+        let joint = &chain.robot.joints()[1];
+        assert_eq!((joint.limits.torque, joint.limits.velocity), (None, None));
+    }
 }
 
 /// `effort="0"` and `velocity="0"` on a joint off the chain robid moves (a gripper's finger
