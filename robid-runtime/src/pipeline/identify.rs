@@ -7,7 +7,9 @@
 use crate::DataError;
 use crate::EstimateError;
 use crate::estimate::error::{own_parameters, solves_alone};
-use crate::pipeline::observe::{RestCount, long_enough, observe_counted, speed_unit};
+use crate::pipeline::observe::{
+    RestCount, check_observation_size, long_enough, observe_counted, speed_unit,
+};
 use std::ops::Range;
 
 use crate::data::{
@@ -374,6 +376,15 @@ pub fn identify(
         identify_streaming(model, data, config, &plan)?
     } else {
         check_data(model, data, config)?;
+        // the observation's size before the record is read: at least the samples of
+        // processing.range less the trims, each with a torque, a velocity and the base
+        // parameters' columns per joint
+        let p = &config.processing;
+        let span = p.range.map_or(data.samples(), |[a, b]| b.saturating_sub(a));
+        check_observation_size(
+            span.saturating_sub(2 * p.trim),
+            model.dof() * (model.base_parameter_count() + 2),
+        )?;
         let whole = data.read(0, data.samples())?;
         let rows = checked_prepare(model, &whole, config, Rows::Estimation)?;
         identify_dense(model, &whole, config, rows)?

@@ -1252,6 +1252,21 @@ pub fn observe(
     observe_counted(model, signals, config, "the data").map(|(obs, _)| obs)
 }
 
+/// Refuses an observation of `n` samples of `stride` regressor channels beyond
+/// [`MAX_OBSERVATION_ENTRIES`](crate::limits::MAX_OBSERVATION_ENTRIES): the methods that
+/// hold the matrix reach this (OLS and WLS stream). Checked before the record is read
+/// with the fewest samples and channels it can have, and again with the exact ones.
+pub(crate) fn check_observation_size(n: usize, stride: usize) -> Result<()> {
+    crate::limits::check_size(
+        || format!("regressor values before decimation ({n} samples x {stride} channels)"),
+        n as f64 * stride as f64,
+        crate::limits::MAX_OBSERVATION_ENTRIES,
+        "use a shorter record or identify it in parts (processing.range), or by WLS or OLS \
+         (`--method wls`, `method = \"wls\"`) without `known` parameters, which stream a \
+         record of any length",
+    )
+}
+
 /// [`observe`], with what the removal of the equations near rest left of each joint's;
 /// `of` names the signals' record in the errors about it.
 pub(crate) fn observe_counted(
@@ -1265,15 +1280,7 @@ pub(crate) fn observe_counted(
     let dof = lay.dof;
     let n = signals.samples();
     let stride = lay.stride();
-    crate::limits::check_size(
-        || format!("regressor values before decimation ({n} samples x {stride} channels)"),
-        n as f64 * stride as f64,
-        crate::limits::MAX_OBSERVATION_ENTRIES,
-        // the methods that hold the matrix reach this; OLS and WLS stream
-        "use a shorter record or identify it in parts (processing.range), or by WLS or OLS \
-         (`--method wls`, `method = \"wls\"`) without `known` parameters, which stream a \
-         record of any length",
-    )?;
+    check_observation_size(n, stride)?;
     let row_at = |k: usize, st: &mut Scratch, row: &mut [f64]| observer.row_at(k, st, row);
     // channels that are not identically zero, probed at a few samples; verified below
     let mut st = Scratch::new(dof);

@@ -474,6 +474,54 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
     }
 }
 
+/// A record too long for the methods that hold the observation matrix is refused before
+/// it is read (it was read whole, then refused by the observation's size): a record of
+/// 2^28 samples whose reading would fail the test.
+#[test]
+fn a_record_too_long_for_a_dense_method_is_refused_before_it_is_read() {
+    struct Endless(Dataset);
+    impl crate::data::Record for Endless {
+        fn name(&self) -> &str {
+            &self.0.name
+        }
+        fn sample_time(&self) -> f64 {
+            self.0.sample_time
+        }
+        fn samples(&self) -> usize {
+            1 << 28
+        }
+        fn dof(&self) -> usize {
+            self.0.dof()
+        }
+        fn warnings(&self) -> &[crate::data::Warning] {
+            &[]
+        }
+        fn file(&self) -> Option<&Path> {
+            None
+        }
+        fn extremes(&self) -> &crate::data::Extremes {
+            &self.0.extremes
+        }
+        fn line(&self, _: usize) -> Option<u64> {
+            None
+        }
+        fn read(&self, _: usize, _: usize) -> crate::Result<std::borrow::Cow<'_, Dataset>> {
+            panic!("read before the size check")
+        }
+    }
+    let model = Synthetic::default();
+    let mut config = Config::from_toml_str(CONFIG, Path::new("synthetic.toml")).unwrap();
+    config.estimation.method = crate::data::Method::Rls;
+    let e = identify(&model, &Endless(dataset(3000, 1000.0, 0.0)), &config)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("regressor values before decimation (268435056 samples x")
+            && e.contains("by WLS or OLS"),
+        "{e}"
+    );
+}
+
 /// Data in which no joint moves are told as such, by the streamed and the dense paths: the
 /// removal of samples at rest takes every equation, but no threshold is the cause (it
 /// read "lower rest_velocity below the joints' speeds ... the fastest joint velocity is 0").
