@@ -31,6 +31,8 @@ enum Bound {
         entries: [(usize, f64); 2],
         rhs: f64,
         scale: f64,
+        /// Whether its range is open (low < high): points strictly inside exist.
+        open: bool,
     },
     /// `sign * (I_c[row][column] - limit)` for the link with standard indices `link`
     /// (`I_c` the inertia about the centre of mass).
@@ -43,7 +45,27 @@ enum Bound {
         scale: f64,
     },
     /// The total mass: `sign * (sum of masses - limit)`.
-    TotalMass { limit: f64, sign: f64, scale: f64 },
+    TotalMass {
+        limit: f64,
+        sign: f64,
+        scale: f64,
+        open: bool,
+    },
+}
+
+/// A linear bound `sum of coefficient * p[index] - rhs >= 0` with its scale, for a barrier.
+#[derive(Debug, Clone)]
+pub(super) struct Linear {
+    pub(super) entries: Vec<(usize, f64)>,
+    pub(super) rhs: f64,
+    pub(super) scale: f64,
+}
+
+impl Linear {
+    /// The bound's value at p (positive strictly inside).
+    pub(super) fn value(&self, p: &[f64]) -> f64 {
+        self.entries.iter().map(|&(i, c)| c * p[i]).sum::<f64>() - self.rhs
+    }
 }
 
 /// The stiffest penalty [`Objective::stiffen`] reaches.
@@ -128,6 +150,56 @@ impl<'a> Objective<'a> {
         Ok(Objective::new(problem, bounds, pull, options.penalty))
     }
 
+    /// The linear bounds with an open range (masses, centre-of-mass boxes, the total
+    /// mass), which a barrier can keep: [`Objective::drop_open_linear`] then removes them.
+    pub(super) fn open_linear(&self) -> Vec<Linear> {
+        let masses = || self.problem.layout.links.iter().map(|idx| idx[9]);
+        self.bounds
+            .iter()
+            .filter_map(|b| match *b {
+                Bound::Linear {
+                    entries,
+                    rhs,
+                    scale,
+                    open: true,
+                } => Some(Linear {
+                    entries: entries.iter().copied().filter(|e| e.1 != 0.0).collect(),
+                    rhs,
+                    scale,
+                }),
+                Bound::TotalMass {
+                    limit,
+                    sign,
+                    scale,
+                    open: true,
+                } => Some(Linear {
+                    entries: masses().map(|i| (i, sign)).collect(),
+                    rhs: sign * limit,
+                    scale,
+                }),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Removes the bounds [`Objective::open_linear`] gives from the penalties.
+    pub(super) fn drop_open_linear(&mut self) {
+        let keep: Vec<bool> = self
+            .bounds
+            .iter()
+            .map(|b| {
+                !matches!(
+                    b,
+                    Bound::Linear { open: true, .. } | Bound::TotalMass { open: true, .. }
+                )
+            })
+            .collect();
+        let mut k = keep.iter();
+        self.bounds.retain(|_| *k.next().unwrap_or(&true));
+        let mut k = keep.iter();
+        self.shifts.retain(|_| *k.next().unwrap_or(&true));
+    }
+
     /// The number of residual rows.
     pub(super) fn rows(&self) -> usize {
         self.a.nrows() + self.pull.target.len() + self.bounds.len()
@@ -142,6 +214,7 @@ impl<'a> Objective<'a> {
                 entries,
                 rhs,
                 scale,
+                ..
             } => {
                 grad.extend(entries.iter().filter(|e| e.1 != 0.0));
                 let g = entries.iter().map(|&(i, c)| c * p[i]).sum::<f64>() - rhs;
@@ -179,7 +252,9 @@ impl<'a> Objective<'a> {
                 grad.push((link[9], sign * shift / (m * m)));
                 (sign * (value - limit), scale)
             }
-            Bound::TotalMass { limit, sign, scale } => {
+            Bound::TotalMass {
+                limit, sign, scale, ..
+            } => {
                 let layout = &self.problem.layout;
                 let total: f64 = layout.links.iter().map(|idx| p[idx[9]]).sum();
                 grad.extend(layout.links.iter().map(|idx| (idx[9], sign)));
@@ -306,19 +381,21 @@ fn inequalities(problem: &Problem, bounds: &Bounds, scale: &[f64]) -> Vec<Bound>
     for (j, idx) in problem.layout.links.iter().enumerate() {
         let b = &bounds.links[j];
         let m = idx[9];
-        let linear = |entries: [(usize, f64); 2], rhs: f64, scale: f64| Bound::Linear {
-            entries,
-            rhs,
-            scale,
-        };
+        let linear =
+            |entries: [(usize, f64); 2], rhs: f64, scale: f64, [lo, hi]: [f64; 2]| Bound::Linear {
+                entries,
+                rhs,
+                scale,
+                open: lo < hi,
+            };
         masses += scale[m];
-        out.push(linear([(m, 1.0), (m, 0.0)], b.mass[0], scale[m]));
-        out.push(linear([(m, -1.0), (m, 0.0)], -b.mass[1], scale[m]));
+        out.push(linear([(m, 1.0), (m, 0.0)], b.mass[0], scale[m], b.mass));
+        out.push(linear([(m, -1.0), (m, 0.0)], -b.mass[1], scale[m], b.mass));
         for axis in 0..3 {
             let h = idx[6 + axis];
             let [lo, hi] = b.com[axis];
-            out.push(linear([(h, 1.0), (m, -lo)], 0.0, scale[h]));
-            out.push(linear([(h, -1.0), (m, hi)], 0.0, scale[h]));
+            out.push(linear([(h, 1.0), (m, -lo)], 0.0, scale[h], [lo, hi]));
+            out.push(linear([(h, -1.0), (m, hi)], 0.0, scale[h], [lo, hi]));
             for (limit, sign) in [(b.inertia[0], 1.0), (b.inertia[1], -1.0)] {
                 out.push(Bound::InertiaElement {
                     link: *idx,
@@ -350,6 +427,7 @@ fn inequalities(problem: &Problem, bounds: &Bounds, scale: &[f64]) -> Vec<Bound>
                 limit,
                 sign,
                 scale: masses,
+                open: lo < hi,
             });
         }
     }
@@ -500,6 +578,7 @@ mod tests {
                     entries: [(idx[6 + axis], sign), (idx[9], coefficient)],
                     rhs: 0.0,
                     scale: 1.0,
+                    open: true,
                 };
                 let (g, _) = objective.bound(&bound, &p, &mut grad);
                 assert!(g.abs() < 1e-15, "axis {axis}: {g}");

@@ -214,10 +214,10 @@ fn unmet(solution: &Solution, note: &str) -> Error {
 }
 
 /// The default method: the interior-point fit, or where it ends outside a bound it
-/// imposes (its barrier path stalls where the data push hard against a bound: a 2-link arm
-/// with a total mass of at least 80 kg and links of at most 50 kg ended with 59 kg), the
-/// same convex optimum by the Cholesky method's path, said on standard error, when that
-/// one meets them.
+/// imposes (the bounds on the inertia about the centre of mass are penalties of its
+/// objective, which can stall where the data push hard against them; the masses, boxes
+/// and total mass are in its barrier), the same convex optimum by the Cholesky method's
+/// path, said on standard error, when that one meets them.
 fn interior_or_cholesky(
     problem: &Problem,
     bounds: &Bounds,
