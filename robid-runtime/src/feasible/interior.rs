@@ -420,6 +420,30 @@ mod tests {
         ];
         let known = -4.0 * 2.0f64.ln() - 0.5f64.ln();
         assert!((barrier.value(&p).unwrap() - known).abs() < 1e-12);
+        // with two linear bounds, a mass of at least 0.5 (scale 2) and a centre of mass
+        // x of at most 0.2 (0.2 m - MX >= 0, scale 0.5): -ln((s - 0.5) / 2) - ln(0.2 s / 0.5)
+        let barrier = Barrier {
+            linear: vec![
+                Linear {
+                    entries: vec![(9, 1.0)],
+                    rhs: 0.5,
+                    scale: 2.0,
+                },
+                Linear {
+                    entries: vec![(6, -1.0), (9, 0.2)],
+                    rhs: 0.0,
+                    scale: 0.5,
+                },
+            ],
+            ..barrier
+        };
+        assert_eq!(barrier.degree(), 7.0);
+        let known = known - ((s - 0.5) / 2.0).ln() - (0.2 * s / 0.5).ln();
+        assert!((barrier.value(&p).unwrap() - known).abs() < 1e-12);
+        // outside a linear bound: no value
+        let mut outside = p.clone();
+        outside[6] = 0.2 * s;
+        assert_eq!(barrier.value(&outside), None);
         // an interior point with products of inertia and an offset centre of mass
         p = target(
             LinkInertial {
