@@ -44,6 +44,14 @@ pub enum DataError {
         /// The operating-system error.
         source: std::io::Error,
     },
+    /// A data file that is a pipe or a socket (`--data /dev/stdin` fed by `cat`, a FIFO):
+    /// robid opens a data file more than once (its header, then its rows), which a stream
+    /// cannot give twice (the second opening of a FIFO waited forever).
+    #[error("{}: a pipe, not a file: robid reads a data file more than once (its header, then its rows), which a pipe cannot give; save the data to a file first (`cat > data.csv`) and give that file", robid_core::names::shortened(&path.display().to_string(), 256))]
+    Stream {
+        /// The pipe.
+        path: PathBuf,
+    },
     /// The system's temporary folder (`TMPDIR`, else `/tmp`) could not hold a file robid
     /// keeps there while it works (a long record's samples, rows waiting for standard
     /// output).

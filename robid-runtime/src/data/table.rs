@@ -182,8 +182,10 @@ pub(crate) fn for_each_window_of(
     windows_of(open(path)?, path, names, optional, window, each)
 }
 
-/// Opens a CSV file, refusing one larger than [`MAX_FILE_BYTES`].
+/// Opens a CSV file, refusing a pipe ([`not_a_stream`]) and one larger than
+/// [`MAX_FILE_BYTES`].
 fn open(path: &Path) -> Result<std::fs::File> {
+    not_a_stream(path)?;
     let file = std::fs::File::open(path).map_err(|source| io(path, source))?;
     let size = file.metadata().map_or(0, |m| m.len());
     check_size(
@@ -193,6 +195,24 @@ fn open(path: &Path) -> Result<std::fs::File> {
         "split the file",
     )?;
     Ok(file)
+}
+
+/// Refuses a data file that is a pipe or a socket before it is opened: robid opens a data
+/// file more than once, and a pipe gives its data to the first opening only (the next
+/// one waited forever for a writer).
+pub(crate) fn not_a_stream(path: &Path) -> Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt as _;
+        if let Ok(kind) = std::fs::metadata(path).map(|m| m.file_type())
+            && (kind.is_fifo() || kind.is_socket())
+        {
+            return Err(Error::Data(DataError::Stream {
+                path: path.to_path_buf(),
+            }));
+        }
+    }
+    Ok(())
 }
 
 fn io(path: &Path, source: std::io::Error) -> Error {
@@ -214,6 +234,7 @@ pub fn read_header(path: &Path) -> Result<Vec<String>> {
             source,
         })
     };
+    not_a_stream(path)?;
     let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
     let gzip = file.fill_buf().map_err(io)?.starts_with(&[0x1f, 0x8b]);
     let reader: Box<dyn Read> = if gzip {
@@ -1179,6 +1200,32 @@ mod tests {
     /// The fast path of `number` gives the standard library's value to the bit, on a log's
     /// fields (3 to 8 decimals, signs, zeros) and on the edges of the fast path (15 and
     /// 16 digits, 22 and 23 decimals, a lone point, exponents, words), which fall back.
+    /// A data file that is a pipe is refused before it is opened, by every reader of data
+    /// files: robid opens a data file more than once, and the second opening of a FIFO
+    /// waited forever for a writer (`identify --data fifo` hung; `--data /dev/stdin` fed
+    /// by `cat` was "empty"). Nothing writes to this FIFO: an opening would block.
+    #[test]
+    #[cfg(unix)]
+    fn a_pipe_is_refused_before_it_is_opened() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("data.csv");
+        let status = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !status.is_ok_and(|s| s.success()) {
+            return; // no mkfifo on this system
+        }
+        let said = |e: Error| {
+            let e = e.to_string();
+            assert!(
+                e.contains("data.csv: a pipe, not a file") && e.contains("save the data to a file"),
+                "{e}"
+            );
+        };
+        said(read_header(&fifo).unwrap_err());
+        said(open(&fifo).unwrap_err());
+        let all = Optional { from: 0, rows: 0 };
+        said(for_each_window_of(&fifo, &[], all, 1, |_, _| Ok(())).unwrap_err());
+    }
+
     #[test]
     fn plain_decimals_parse_as_the_standard_library() {
         let mut fields: Vec<String> = [

@@ -643,6 +643,9 @@ impl Spill<'_> {
 /// compressed, else 0 (not known before it is read: [`Progress`] then counts without a
 /// total).
 fn text_megabytes(path: &Path) -> u64 {
+    if crate::data::table::not_a_stream(path).is_err() {
+        return 0;
+    }
     let mut magic = [0u8; 2];
     let gzip = File::open(path)
         .and_then(|mut f| f.read_exact(&mut magic))
