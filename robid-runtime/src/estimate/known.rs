@@ -42,6 +42,10 @@ pub struct KnownParameters {
     kept: Vec<usize>,
     /// The base parameters with no unknown term: fixed by the known values.
     known: Vec<usize>,
+    /// The known standard parameters that fix nothing: each enters the base parameters
+    /// only as the unknown ones can (its column of K in the span of theirs), so its value
+    /// moves no estimate.
+    idle: Vec<usize>,
 }
 
 impl KnownParameters {
@@ -105,13 +109,50 @@ impl KnownParameters {
         }
         let (kept, known_rows) = independent_rows(&k_u);
         let map = combination(&k_u, &kept)?;
+        // a known parameter fixes something only where its column of K leaves the span of
+        // the unknown ones' (the orthonormal basis of that span: K_u's left singular
+        // vectors of the nonzero singular values)
+        let svd = k_u.clone().svd(true, false);
+        let top = svd.singular_values.iter().fold(0.0f64, |a, s| a.max(*s));
+        let span: Vec<DVector<f64>> = svd.u.as_ref().map_or_else(Vec::new, |u| {
+            svd.singular_values
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| **s > DEPENDENT * top)
+                .map(|(c, _)| u.column(c).into_owned())
+                .collect()
+        });
+        let mut idle = Vec::new();
+        for &(i, _) in known {
+            unit[i] = 1.0;
+            model.base_from_standard_into(&unit, &mut column)?;
+            unit[i] = 0.0;
+            let mut rest = DVector::from_column_slice(&column);
+            let size = rest.norm();
+            for u in &span {
+                let along = u.dot(&rest);
+                rest.axpy(-along, u, 1.0);
+            }
+            if rest.norm() <= DEPENDENT * size.max(f64::MIN_POSITIVE) {
+                idle.push(i);
+            }
+        }
         Ok(Self {
             names,
             offset,
             map,
             kept,
             known: known_rows,
+            idle,
         })
+    }
+
+    /// The known standard parameters (indices into the model's) that fix nothing: each
+    /// enters the base parameters only alongside unknown ones that can stand for it
+    /// (`M2` of a two-link arm, in `ZZR1 = ZZ1 + YY2 + 0.16 M2` with `ZZ1` unknown), or
+    /// not at all, so its value changes no estimate.
+    pub fn without_effect(&self) -> &[usize] {
+        &self.idle
     }
 
     /// The base parameters that are estimated, in the model's order.

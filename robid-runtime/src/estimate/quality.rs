@@ -100,6 +100,13 @@ pub enum QualityWarning {
         /// What was differentiated: "velocities", "accelerations", or both.
         derived: String,
     },
+    /// Known standard parameters (`estimation.known`) that fix nothing: each enters the
+    /// base parameters only alongside unknown ones that can stand for it, so its value
+    /// changes no estimate ([`KnownParameters::without_effect`](crate::estimate::KnownParameters::without_effect)).
+    KnownWithoutEffect {
+        /// Their names.
+        parameters: Vec<String>,
+    },
 }
 
 /// How much worse than the torque model's the energy model's condition number may be
@@ -126,6 +133,7 @@ impl QualityWarning {
             QualityWarning::PoorFit { .. } => "poor_fit",
             QualityWarning::JointWithoutEquations { .. } => "joint_without_equations",
             QualityWarning::UnfilteredDerivatives { .. } => "unfiltered_derivatives",
+            QualityWarning::KnownWithoutEffect { .. } => "known_without_effect",
         }
     }
 
@@ -134,6 +142,7 @@ impl QualityWarning {
         match self {
             QualityWarning::Uncertain { parameters, .. } => parameters.clone(),
             QualityWarning::Outlier { parameter, .. } => vec![parameter.clone()],
+            QualityWarning::KnownWithoutEffect { parameters } => parameters.clone(),
             _ => Vec::new(),
         }
     }
@@ -226,6 +235,29 @@ impl fmt::Display for QualityWarning {
                  [processing] (robid inspect shows the cutoff it chooses), or differentiate \
                  with method = \"savitzky-golay\""
             ),
+            QualityWarning::KnownWithoutEffect { parameters } => {
+                let one = parameters.len() == 1;
+                write!(
+                    f,
+                    "the known {} {} nothing: {} the base parameters only together with \
+                     unknown standard parameters that stand for {} (or not at all), so {} \
+                     no estimate (only the error bound, relative to the \
+                     torques the known values leave); leave {} out, or give as known too \
+                     the standard parameters grouped with {} (`robid model` shows the \
+                     groups)",
+                    parameters.join(", "),
+                    if one { "fixes" } else { "fix" },
+                    if one { "it enters" } else { "each enters" },
+                    if one { "it" } else { "them" },
+                    if one {
+                        "its value changes"
+                    } else {
+                        "their values change"
+                    },
+                    if one { "it" } else { "them" },
+                    if one { "it" } else { "them" },
+                )
+            }
             QualityWarning::ValidationRepeatsEstimation { file } => write!(
                 f,
                 "validation on {file} uses rows that were used for estimation: it repeats the fit \

@@ -29,7 +29,7 @@ use nalgebra::{DMatrix, DVector, Matrix4};
 
 use super::bounds::Bounds;
 use super::cholesky::PER_LINK;
-use super::inertial::{LinkInertial, pseudo_inertia};
+use super::inertial::{LinkInertial, pseudo_inertia, pseudo_inertia_min_eigenvalue};
 use super::layout::Layout;
 use super::objective::{Linear, Objective};
 use super::problem::Problem;
@@ -164,18 +164,13 @@ pub fn solve_interior(
     // the linear bounds in the barrier, from a start strictly inside them: the iterates
     // never leave them (as penalties, a bound the data push far against was left behind
     // where the penalty's stiffening stalled: a 59 kg link against [0, 50])
-    let linear = objective.open_linear();
-    if let Some(inside) = inside_linear(&p, layout, bounds) {
-        let trial = Barrier { linear, ..barrier };
-        if trial.value(&inside).is_some() {
+    if let Some(inside) = inside_linear(&p, layout, bounds, margin) {
+        barrier.linear = objective.open_linear();
+        if barrier.value(&inside).is_some() {
             objective.drop_open_linear();
             p = inside;
-            barrier = trial;
         } else {
-            barrier = Barrier {
-                linear: Vec::new(),
-                ..trial
-            };
+            barrier.linear.clear();
         }
     }
     let nu = barrier.degree();
@@ -223,7 +218,7 @@ const INSIDE: f64 = 0.05;
 /// closed range, which stays a penalty) and the total mass inside its range (the inertia
 /// about the centre of mass kept in shape, scaled with the mass), or `None` when the
 /// masses cannot reach the total or a link is not consistent.
-fn inside_linear(p: &[f64], layout: &Layout, bounds: &Bounds) -> Option<Vec<f64>> {
+fn inside_linear(p: &[f64], layout: &Layout, bounds: &Bounds, margin: f64) -> Option<Vec<f64>> {
     let inner = |[lo, hi]: [f64; 2]| {
         let w = INSIDE * (hi - lo);
         [lo + w, hi - w]
@@ -266,11 +261,24 @@ fn inside_linear(p: &[f64], layout: &Layout, bounds: &Bounds) -> Option<Vec<f64>
     }
     let mut out = p.to_vec();
     for ((idx, (link, com)), (_, mass)) in layout.links.iter().zip(links).zip(masses) {
-        let moved = LinkInertial {
+        if mass <= margin {
+            return None;
+        }
+        // the second moments about the centre of mass raised by `a I` (the inertia by 2a)
+        // so that the pseudo-inertia stays above the margin: its Schur complement needs
+        // Sigma_c > margin (I + m / (m - margin) c c'), which moving c out can break
+        let c2: f64 = com.iter().map(|c| c * c).sum();
+        let a = 2.0 * margin * (1.0 + mass / (mass - margin) * c2);
+        let mut moved = LinkInertial {
             mass,
             com,
             inertia: link.inertia.map(|row| row.map(|v| v * mass / link.mass)),
         };
+        if pseudo_inertia_min_eigenvalue(&moved.to_standard()) <= 2.0 * margin {
+            for (k, row) in moved.inertia.iter_mut().enumerate() {
+                row[k] += 2.0 * a;
+            }
+        }
         for (&i, v) in idx.iter().zip(moved.to_standard()) {
             out[i] = v;
         }
@@ -604,7 +612,7 @@ mod tests {
         let mut bounds = Bounds::wide(1);
         bounds.links[0].mass = [0.0, 1.0];
         bounds.links[0].com[2] = [0.1, 0.3];
-        let p = inside_linear(&t, layout, &bounds).unwrap();
+        let p = inside_linear(&t, layout, &bounds, 1e-6).unwrap();
         let moved = LinkInertial::from_standard(&std::array::from_fn(|i| p[i])).unwrap();
         assert!((moved.mass - 0.95).abs() < 1e-12, "{moved:?}");
         assert!((moved.com[2] - 0.11).abs() < 1e-12, "{moved:?}");
@@ -615,17 +623,63 @@ mod tests {
         // a total mass above the link's mass: the mass moves up to it (within its range)
         bounds.links[0].mass = [0.0, 10.0];
         bounds.total_mass = Some([5.0, 7.0]);
-        let p = inside_linear(&t, layout, &bounds).unwrap();
+        let p = inside_linear(&t, layout, &bounds, 1e-6).unwrap();
         assert!((p[9] - 5.1).abs() < 1e-12, "{}", p[9]);
+        // a total below the link's mass: the mass moves down to it
+        let mut below = bounds.clone();
+        below.total_mass = Some([0.5, 1.0]);
+        let p = inside_linear(&t, layout, &below, 1e-6).unwrap();
+        assert!((p[9] - 0.975).abs() < 1e-12, "{}", p[9]);
         // a closed range: onto it (a penalty keeps it); a total out of the masses' reach:
         // no start
         let mut b = bounds.clone();
         b.links[0].mass = [5.5, 5.5];
         b.links[0].com[1] = [0.3, 0.3];
-        let p = inside_linear(&t, layout, &b).unwrap();
+        let p = inside_linear(&t, layout, &b, 1e-6).unwrap();
         assert_eq!((p[9], p[7]), (5.5, 0.3 * 5.5));
         b.total_mass = Some([20.0, 30.0]);
-        assert!(inside_linear(&t, layout, &b).is_none());
+        assert!(inside_linear(&t, layout, &b, 1e-6).is_none());
+    }
+
+    /// A centre of mass moved 5 m out with the inertia about it kept leaves the consistent
+    /// set with a margin (the margin's share of m c c' exceeds the second moments): the
+    /// start raises the inertia about the centre of mass to stay consistent, and the fit
+    /// meets the box in the barrier (as a penalty the box was missed: x 0.06 against
+    /// [5, 6]).
+    #[test]
+    fn a_start_moved_far_is_kept_consistent() {
+        let t = target(link(), 0.1);
+        let problem = problem(&t);
+        let mut bounds = Bounds::wide(1);
+        bounds.links[0].com[0] = [5.0, 6.0];
+        bounds.margin = Some(0.01);
+        // a prior at the link itself, centre of mass at the origin
+        let options = SmoothOptions {
+            prior: Some(crate::feasible::Prior {
+                standard: t.iter().map(|&v| Some(v)).collect(),
+                weight: 1e-6,
+            }),
+            ..options()
+        };
+        let objective = Objective::from_options(&problem, &bounds, &options).unwrap();
+        let start = objective.start(0.01).unwrap();
+        let inside = inside_linear(&start, &problem.layout, &bounds, 0.01).unwrap();
+        let barrier = Barrier {
+            links: &problem.layout.links,
+            positive: vec![10],
+            margin: 0.01,
+            basis: std::array::from_fn(|k| {
+                let mut e = [0.0; PER_LINK];
+                e[k] = 1.0;
+                pseudo_inertia(&e)
+            }),
+            linear: objective.open_linear(),
+        };
+        assert!(barrier.value(&inside).is_some());
+        let s = solve_interior(&problem, &bounds, &options).unwrap();
+        assert!(s.unmet.is_empty(), "{:?}", s.unmet);
+        let x = s.standard[6] / s.standard[9];
+        assert!((5.0 - 1e-6..=6.0).contains(&x), "{x}");
     }
 
     /// A consistent target inside the bounds is its own optimum: the barrier and the

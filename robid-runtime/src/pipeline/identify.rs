@@ -460,6 +460,18 @@ pub(crate) fn identify_dense(
         }
         e => e,
     })?;
+    if let Some(k) = &known
+        && !k.without_effect().is_empty()
+    {
+        let names = crate::model::standard_parameter_names(model);
+        estimate.warnings.push(QualityWarning::KnownWithoutEffect {
+            parameters: k
+                .without_effect()
+                .iter()
+                .filter_map(|&i| names.get(i).cloned())
+                .collect(),
+        });
+    }
     if config.estimation.method == Method::Energy {
         let reduced = match &known {
             Some(k) => Some(k.reduce(&obs).map_err(|e| config.locate(e))?),

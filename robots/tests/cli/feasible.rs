@@ -924,6 +924,36 @@ fn feasible_takes_an_identification_with_known_parameters() {
         .expect("M3 is a base parameter");
     assert_eq!(m3["std"], 0.0, "{m3}");
     assert_eq!(m3["known"], true, "{m3}");
+    // known values that fix nothing are named in a warning (they were taken silently, and
+    // moved only the reported error bound): M2, grouped with free parameters of the
+    // Stanford arm, and XX1 of a first joint about z, which enters no torque
+    assert!(
+        stderr(&o).contains("warning: the known M2 fixes nothing"),
+        "{}",
+        stderr(&o)
+    );
+    write(d, "more.toml", "[known]\nM2 = 5.01\nM3 = 4.25\nXX1 = 0.1\n");
+    let more = write(
+        d,
+        "more_config.toml",
+        &std::fs::read_to_string(&config)
+            .unwrap()
+            .replace("known.toml", "more.toml"),
+    );
+    let o = robid(&[
+        "identify",
+        "descriptions/stanford.toml",
+        "--config",
+        more.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+    ]);
+    assert!(
+        o.status.success()
+            && stderr(&o).contains("warning: the known XX1, M2 fix nothing: each enters"),
+        "{}",
+        stderr(&o)
+    );
     let links = d.join("links.toml");
     for method in ["interior-point", "cholesky"] {
         let o = robid(&[

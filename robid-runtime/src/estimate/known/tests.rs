@@ -111,6 +111,14 @@ fn zomaya_known_parameters_fix_and_fold_base_rows() {
     assert!(k.known_names().is_empty());
     assert_eq!(k.kept_names(), ["b1", "b2", "b3"]);
     assert!((k.map[(3, 0)] - 2.0).abs() < 1e-15, "{}", k.map);
+    // s3 enters only as s1, s2 and s4 can (its column is -2.5 K_s1 + 2.5 K_s2 + 1.6 K_s4):
+    // its value moves no estimate; s5 fixes b4's share
+    assert_eq!(k.without_effect(), [2]);
+    // s2 alone: s1, s3, s4 and s5 span every base row; with s1 known too, both fix b1
+    let k = KnownParameters::new(&model, &[(1, 2.0)]).unwrap();
+    assert_eq!(k.without_effect(), [1]);
+    let k = KnownParameters::new(&model, &[(0, 3.0), (1, 2.0)]).unwrap();
+    assert!(k.without_effect().is_empty());
     // nothing known: the model's own base parameters, unchanged
     let k = KnownParameters::new(&model, &[]).unwrap();
     assert_eq!(k.kept_names(), ["b1", "b2", "b3", "b4"]);
