@@ -639,6 +639,17 @@ mod tests {
         assert_eq!((p[9], p[7]), (5.5, 0.3 * 5.5));
         b.total_mass = Some([20.0, 30.0]);
         assert!(inside_linear(&t, layout, &b, 1e-6).is_none());
+        // the barrier's linear bounds: the open ranges, two per mass, axis and total
+        let open = |b: &Bounds| {
+            Objective::from_options(&problem, b, &options())
+                .unwrap()
+                .open_linear()
+                .len()
+        };
+        assert_eq!(open(&bounds), 2 + 6 + 2);
+        // a closed mass and y axis, a closed total: in the penalties
+        b.total_mass = Some([5.5, 5.5]);
+        assert_eq!(open(&b), 4);
     }
 
     /// A centre of mass moved 5 m out with the inertia about it kept leaves the consistent
