@@ -625,6 +625,15 @@ mod tests {
         bounds.total_mass = Some([5.0, 7.0]);
         let p = inside_linear(&t, layout, &bounds, 1e-6).unwrap();
         assert!((p[9] - 5.1).abs() < 1e-12, "{}", p[9]);
+        // the total's two bounds in the barrier, last: 5.1 - 5 and 7 - 5.1
+        let linear = Objective::from_options(&problem, &bounds, &options())
+            .unwrap()
+            .open_linear();
+        let total: Vec<f64> = linear[8..].iter().map(|l| l.value(&p)).collect();
+        assert!(
+            (total[0] - 0.1).abs() < 1e-12 && (total[1] - 1.9).abs() < 1e-12,
+            "{total:?}"
+        );
         // a total below the link's mass: the mass moves down to it
         let mut below = bounds.clone();
         below.total_mass = Some([0.5, 1.0]);
