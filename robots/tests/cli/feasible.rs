@@ -244,18 +244,7 @@ fn feasible_fails_when_the_fit_ends_outside_the_bounds_it_imposes() {
     );
     for method in ["interior-point", "cholesky"] {
         let path = out(&dir, "f.toml");
-        let o = robid(&[
-            "feasible",
-            "configs/tx40_robot.toml",
-            "--identified",
-            "tests/fixtures/tx40_identified.json",
-            "--bounds",
-            bounds.to_str().unwrap(),
-            "--method",
-            method,
-            "-o",
-            path.to_str().unwrap(),
-        ]);
+        let o = bounded("tx40", &bounds, method, &path);
         fails_with(
             &o,
             &[
@@ -267,6 +256,33 @@ fn feasible_fails_when_the_fit_ends_outside_the_bounds_it_imposes() {
         );
         assert!(!path.exists(), "{method}");
     }
+}
+
+/// `robid feasible` on the fixture robot `robot` (`tx40`: the TX40's description and
+/// identification; `two_link`: the two-link arm's) with `bounds`, `method`, to `output`.
+fn bounded(robot: &str, bounds: &Path, method: &str, output: &Path) -> std::process::Output {
+    let (description, identified) = match robot {
+        "tx40" => (
+            "configs/tx40_robot.toml",
+            "tests/fixtures/tx40_identified.json",
+        ),
+        _ => (
+            "tests/fixtures/two_link.toml",
+            "tests/fixtures/two_link_identified.json",
+        ),
+    };
+    robid(&[
+        "feasible",
+        description,
+        "--identified",
+        identified,
+        "--bounds",
+        bounds.to_str().unwrap(),
+        "--method",
+        method,
+        "-o",
+        output.to_str().unwrap(),
+    ])
 }
 
 /// The identification result of fixture `name` (`tests/fixtures/NAME`), to be edited.
@@ -1273,18 +1289,7 @@ fn feasible_names_bounds_below_the_margin_in_the_bounds_file() {
         bounds.display()
     );
     for method in ["interior-point", "cholesky", "anneal"] {
-        let o = robid(&[
-            "feasible",
-            "tests/fixtures/two_link.toml",
-            "--identified",
-            "tests/fixtures/two_link_identified.json",
-            "--bounds",
-            bounds.to_str().unwrap(),
-            "--method",
-            method,
-            "-o",
-            path.to_str().unwrap(),
-        ]);
+        let o = bounded("two_link", &bounds, method, &path);
         assert!(
             !o.status.success() && stderr(&o).contains(&at),
             "{method}: {}",
