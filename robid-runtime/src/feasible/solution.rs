@@ -207,14 +207,22 @@ impl Solution {
                         return;
                     }
                     let range = (r[1] - r[0]).max(1e-12);
-                    for (side, bound) in [("lower", r[0]), ("upper", r[1])] {
+                    // a closed range is one bound, said once (it was at its lower and at its
+                    // upper bound)
+                    let sides: &[(&str, f64)] = if r[0] == r[1] {
+                        &[("", r[0])]
+                    } else {
+                        &[(" lower", r[0]), (" upper", r[1])]
+                    };
+                    for &(side, bound) in sides {
                         // a small value above a zero bound is a small link (a 12 g jaw under
                         // the default 50 kg range), not one pushed against the bound
                         let near = if bound == 0.0 { 1e-6 } else { 1e-3 } * range;
                         if (v - bound).abs() <= near {
                             at_bounds.push(format!(
-                                "link {}: {what} {v:.6e} at its {side} bound {}",
+                                "link {}: {what} {} at its{side} bound {}",
                                 j + 1,
+                                Num::rounded(v, 7),
                                 Num(bound)
                             ));
                         }
@@ -490,14 +498,30 @@ mod tests {
         assert!(s.violations.is_empty(), "{:?}", s.violations);
         let at = s.at_bounds.join("\n");
         for want in [
-            "link 1: mass 2.000000e0 at its upper bound",
-            "link 1: centre of mass x 0.000000e0 at its lower bound",
-            "link 1: centre of mass y 0.000000e0 at its upper bound",
-            "link 1: principal moment 3 3.000000e-2 at its upper bound",
+            "link 1: mass 2 at its upper bound",
+            "link 1: centre of mass x 0 at its lower bound",
+            "link 1: centre of mass y 0 at its upper bound",
+            "link 1: principal moment 3 0.03 at its upper bound",
         ] {
             assert!(at.contains(want), "{want} not in\n{at}");
         }
         assert_eq!(s.at_bounds.len(), 4, "{at}");
+    }
+
+    /// A closed range (`mass = [2, 2]`) is one bound: a value on it is said once, short
+    /// (it was "mass 2.000000e0 at its lower bound 2" and again "at its upper bound 2").
+    #[test]
+    fn a_value_on_a_closed_range_is_said_once() {
+        let t = target(link(), 0.1);
+        let b = Bounds {
+            links: vec![LinkBounds {
+                mass: [2.0, 2.0],
+                ..LinkBounds::default()
+            }],
+            ..Bounds::wide(1)
+        };
+        let at = assemble(&t, &b).unwrap().at_bounds;
+        assert_eq!(at, ["link 1: mass 2 at its bound 2"]);
     }
 
     /// A moment near a lower bound of zero is a small link, not a pinned one; a positive
@@ -520,7 +544,7 @@ mod tests {
         let at = with([0.015, 5.0]);
         assert_eq!(at.len(), 1, "{at:?}");
         assert!(
-            at[0].contains("principal moment 1 1.500000e-2 at its lower bound"),
+            at[0].contains("principal moment 1 0.015 at its lower bound"),
             "{at:?}"
         );
         // a range of 0.03 with the upper end at 0.03: 0.03 is at it, nothing else is
@@ -629,7 +653,7 @@ mod edges {
         assert!(at(0.012).is_empty(), "{:?}", at(0.012));
         let massless = at(1e-7);
         assert_eq!(massless.len(), 1, "{massless:?}");
-        assert!(massless[0].contains("mass 1.000000e-7 at its lower bound 0"));
+        assert!(massless[0].contains("mass 1e-7 at its lower bound 0"));
     }
 
     /// A thin link (a principal moment of 1e-4 kg m^2) with a lower bound of zero is not
@@ -657,7 +681,7 @@ mod edges {
         let at = with([1e-4, 1.0]);
         assert_eq!(at.len(), 1, "{at:?}");
         assert!(
-            at[0].contains("principal moment 1 1.000000e-4 at its lower bound"),
+            at[0].contains("principal moment 1 0.0001 at its lower bound"),
             "{at:?}"
         );
     }

@@ -133,6 +133,18 @@ fn check(args: &Args) -> Result<(), Error> {
     inputs.extend(args.bounds.as_deref());
     inputs.extend(args.prior.as_deref());
     files::refuse(&inputs, &[("--output", &args.output)])?;
+    // the extension chooses the format: another one got TOML silently (`-o x.json`)
+    if let Some(ext) = args.output.extension().and_then(|e| e.to_str())
+        && !["toml", "urdf", "xml"].contains(&ext.to_ascii_lowercase().as_str())
+    {
+        return Err(format!(
+            "--output {}: robid feasible writes TOML (`.toml`) or URDF (`.urdf`, `.xml`), not \
+             `.{}`; name the file for the format you want",
+            robid_runtime::names::short(&args.output.display().to_string()),
+            robid_runtime::names::short(ext)
+        )
+        .into());
+    }
     if !["interior-point", "cholesky", "sdp", "anneal"].contains(&args.method.as_str()) {
         return Err(format!(
             "--method {}: unknown; use interior-point, cholesky, sdp or anneal",
@@ -359,10 +371,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     .map_err(in_bounds_file)?;
     check_solution(&solution)?;
-    let urdf = matches!(
-        args.output.extension().and_then(|e| e.to_str()),
-        Some("urdf" | "xml")
-    );
+    let urdf = args
+        .output
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| ["urdf", "xml"].contains(&e.to_ascii_lowercase().as_str()));
     let text = if let (true, Some(chain)) = (urdf, &description.urdf) {
         urdf_written_back(&args.robot, chain, &solution)?
     } else if urdf {

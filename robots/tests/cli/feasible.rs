@@ -1298,3 +1298,27 @@ fn feasible_names_bounds_below_the_margin_in_the_bounds_file() {
         assert!(!path.exists());
     }
 }
+
+/// The output's extension chooses its format, and one that is neither TOML nor URDF is
+/// refused before any fit, nothing written (`-o x.json` got TOML silently).
+#[test]
+fn feasible_refuses_an_output_of_another_format() {
+    let dir = folder();
+    let path = out(&dir, "links.json");
+    let o = robid(&[
+        "feasible",
+        "tests/fixtures/two_link.toml",
+        "--identified",
+        "tests/fixtures/two_link_identified.json",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &[
+            "--output",
+            "writes TOML (`.toml`) or URDF (`.urdf`, `.xml`), not `.json`",
+        ],
+    );
+    assert!(!path.exists());
+}
