@@ -1131,7 +1131,7 @@ impl Config {
             {
                 return bad(
                     "processing.lowpass.cutoff",
-                    format!("{} Hz must be positive", num(c)),
+                    format!("{} Hz must be a positive number", num(c)),
                 );
             }
             if !(1..=20).contains(&lp.order) {
@@ -1585,7 +1585,7 @@ method = "wls"
         let e = code.check(2).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "Config `processing.lowpass.cutoff`: -1 Hz must be positive"
+            "Config `processing.lowpass.cutoff`: -1 Hz must be a positive number"
         );
     }
 

@@ -144,10 +144,10 @@ pub struct UrdfJoint {
 fn xyz_rpy(pose: &[[f64; 4]; 4]) -> String {
     let r = Matrix3::from_fn(|i, k| pose[i][k]);
     let (roll, pitch, yaw) = Rotation3::from_matrix_unchecked(r).euler_angles();
-    format!(
-        "xyz=\"{:e} {:e} {:e}\" rpy=\"{roll:e} {pitch:e} {yaw:e}\"",
-        pose[0][3], pose[1][3], pose[2][3]
-    )
+    // + 0.0 turns a negative zero into zero (it was written `-0e0`)
+    let [x, y, z, roll, pitch, yaw] =
+        [pose[0][3], pose[1][3], pose[2][3], roll, pitch, yaw].map(|v| v + 0.0);
+    format!("xyz=\"{x:e} {y:e} {z:e}\" rpy=\"{roll:e} {pitch:e} {yaw:e}\"")
 }
 
 /// The solution as a complete URDF robot: a base link, one link per joint carrying its
@@ -453,11 +453,11 @@ mod tests {
         for want in [
             "<robot name=\"arm\">\n  <link name=\"base_link\"/>\n  <link name=\"link1\">\n",
             // the centre of mass (0.1, 0, 0) of the link frame turned by 90 degrees: y
-            "<origin xyz=\"6.123233995736766e-18 1e-1 5e-2\" rpy=\"0e0 -0e0 1.5707963267948966e0\"/>\n      <mass value=\"1.5e0\"/>\n",
+            "<origin xyz=\"6.123233995736766e-18 1e-1 5e-2\" rpy=\"0e0 0e0 1.5707963267948966e0\"/>\n      <mass value=\"1.5e0\"/>\n",
             "<inertia ixx=\"1e-2\" ixy=\"1e-3\" ixz=\"0e0\" iyy=\"2e-2\" iyz=\"2e-3\" izz=\"3e-2\"/>",
             "<link name=\"link2\">\n    <inertial>\n      <origin xyz=\"0e0 0e0 5e-2\"",
             "<mass value=\"0e0\"/>",
-            "<joint name=\"joint1\" type=\"revolute\">\n    <parent link=\"base_link\"/>\n    <child link=\"link1\"/>\n    <origin xyz=\"0e0 0e0 3e-1\" rpy=\"0e0 -0e0 0e0\"/>\n    <axis xyz=\"0 0 1\"/>\n    <limit lower=\"-1e0\" upper=\"2e0\" effort=\"4e1\" velocity=\"3e0\"/>\n  </joint>",
+            "<joint name=\"joint1\" type=\"revolute\">\n    <parent link=\"base_link\"/>\n    <child link=\"link1\"/>\n    <origin xyz=\"0e0 0e0 3e-1\" rpy=\"0e0 0e0 0e0\"/>\n    <axis xyz=\"0 0 1\"/>\n    <limit lower=\"-1e0\" upper=\"2e0\" effort=\"4e1\" velocity=\"3e0\"/>\n  </joint>",
             "<joint name=\"joint2\" type=\"continuous\">\n    <parent link=\"link1\"/>",
             "<!-- 0: the description gives no torque or no velocity limit -->\n    <limit effort=\"0e0\" velocity=\"3e0\"/>",
             "<joint name=\"joint3\" type=\"prismatic\">\n    <parent link=\"link2\"/>",
@@ -481,7 +481,7 @@ mod tests {
         // no joints: the inertials stay in their own frames
         let urdf = to_urdf(&s, "arm", &[], Some(&tool), G);
         assert!(
-            urdf.contains("<origin xyz=\"1e-1 0e0 0e0\" rpy=\"0e0 -0e0 0e0\"/>"),
+            urdf.contains("<origin xyz=\"1e-1 0e0 0e0\" rpy=\"0e0 0e0 0e0\"/>"),
             "{urdf}"
         );
         assert!(!urdf.contains("<joint") && !urdf.contains("tool"), "{urdf}");

@@ -400,10 +400,12 @@ fn every_sample(rate: Option<f64>, reference: &Trajectory, path: &Path) -> Resul
     let own = (t.len() - 1) as f64 / (t[t.len() - 1] - t[0]);
     let every = (own / rate).round();
     if every < 1.0 || (own / rate - every).abs() > 1e-6 * every {
+        // the trajectory's rate as people read it (200 Hz, not 200.000000 Hz)
+        let own = robid_runtime::Num::rounded(own, 6);
         return Err(format!(
-            "--rate {} Hz is not a whole fraction of the rate of {} ({own:.6} Hz); \
-             choose {own:.6} Hz divided by a whole number, or design the trajectory at a \
-             multiple of {} Hz",
+            "--rate {} Hz is not a whole fraction of the rate of {} ({own} Hz); choose \
+             {own} Hz divided by a whole number, or design the trajectory at a multiple of {} \
+             Hz",
             num(rate),
             path.display(),
             num(rate)

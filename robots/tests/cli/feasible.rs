@@ -730,7 +730,7 @@ fn feasible_urdf_places_the_base_and_the_tool() {
     let text = std::fs::read_to_string(&urdf).unwrap();
     let joint1 = text.split("<joint name=\"joint1\"").nth(1).unwrap();
     assert!(
-        joint1.contains("<origin xyz=\"0e0 0e0 1.2e0\" rpy=\"0e0 -0e0 1.5707963267948966e0\"/>"),
+        joint1.contains("<origin xyz=\"0e0 0e0 1.2e0\" rpy=\"0e0 0e0 1.5707963267948966e0\"/>"),
         "{joint1}"
     );
     let tool = text

@@ -192,7 +192,7 @@ fn config_keys_are_named_by_file_line_and_settings_by_their_field() {
     let e = code.check(6).unwrap_err();
     assert_eq!(
         e.to_string(),
-        "Config `processing.lowpass.cutoff`: 0 Hz must be positive"
+        "Config `processing.lowpass.cutoff`: 0 Hz must be a positive number"
     );
 }
 
