@@ -875,6 +875,15 @@ pub enum OutputError {
     },
 }
 
+/// A named pipe `name` made in `dir` by `mkfifo`, for the tests of pipes; `None` where the
+/// system has no `mkfifo`.
+#[cfg(all(test, unix))]
+pub(crate) fn fifo(dir: &std::path::Path, name: &str) -> Option<std::path::PathBuf> {
+    let path = dir.join(name);
+    let status = std::process::Command::new("mkfifo").arg(&path).status();
+    status.is_ok_and(|s| s.success()).then_some(path)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1651,11 +1660,9 @@ mod tests {
     #[cfg(unix)]
     fn a_pipe_closed_by_its_reader_is_an_output_closed_early() {
         let dir = tempfile::tempdir().unwrap();
-        let fifo = dir.path().join("out.fifo");
-        let status = std::process::Command::new("mkfifo").arg(&fifo).status();
-        if !status.is_ok_and(|s| s.success()) {
+        let Some(fifo) = fifo(dir.path(), "out.fifo") else {
             return; // no mkfifo on this system
-        }
+        };
         // a reader that takes one byte and closes the pipe; the Rust runtime ignores
         // SIGPIPE, so the writer sees EPIPE
         let reader = fifo.clone();
@@ -1693,11 +1700,9 @@ mod tests {
     #[cfg(unix)]
     fn a_pipe_is_written_into() {
         let dir = tempfile::tempdir().unwrap();
-        let fifo = dir.path().join("out.fifo");
-        let status = std::process::Command::new("mkfifo").arg(&fifo).status();
-        if !status.is_ok_and(|s| s.success()) {
+        let Some(fifo) = fifo(dir.path(), "out.fifo") else {
             return; // no mkfifo on this system
-        }
+        };
         let input = dir.path().join("in.toml");
         std::fs::write(&input, "x").unwrap();
         refuse_inputs(&[&input], &[&fifo]).unwrap();
@@ -1719,11 +1724,9 @@ mod tests {
     #[cfg(unix)]
     fn a_failed_write_sends_nothing_into_a_pipe() {
         let dir = tempfile::tempdir().unwrap();
-        let fifo = dir.path().join("out.fifo");
-        let status = std::process::Command::new("mkfifo").arg(&fifo).status();
-        if !status.is_ok_and(|s| s.success()) {
+        let Some(fifo) = fifo(dir.path(), "out.fifo") else {
             return; // no mkfifo on this system
-        }
+        };
         let failing = |w: &mut dyn Write| {
             // more than the writer's buffer and a pipe's, then the refusal
             for _ in 0..10_000 {
