@@ -26,18 +26,17 @@ pub enum Method {
 impl Method {
     /// Whether the method imposes bounds of this kind, so that a result outside one is a
     /// failure of the fit (or of bounds that contradict each other or the physics) rather
-    /// than a limit of the method: every method imposes the masses and the centres of mass
-    /// (the global search draws them inside their boxes); all but the global search, whose
-    /// penalty weighs the rest against the data as Gaz et al.'s does, the total mass; the
-    /// smooth methods also the single elements of the inertia tensor. No method imposes the
-    /// upper bound on the principal moments, which is not convex (the smooth methods bound
-    /// the diagonal instead).
+    /// than a limit of the method: every method imposes the masses, the centres of mass and
+    /// the total mass; all but the SDP the single elements of the inertia tensor, which are
+    /// not convex in its variables; the global search also the upper bound on the principal
+    /// moments, which its parametrisation holds as variables (it raises its penalty until
+    /// every bound is met). The convex methods cannot impose that upper bound (not convex;
+    /// the smooth methods bound the diagonal instead).
     pub fn imposes(self, kind: BoundKind) -> bool {
         match kind {
-            BoundKind::Mass | BoundKind::Com => true,
-            BoundKind::TotalMass => self != Method::Anneal,
-            BoundKind::Element => matches!(self, Method::Interior | Method::Cholesky),
-            BoundKind::PrincipalMoment => false,
+            BoundKind::Mass | BoundKind::Com | BoundKind::TotalMass => true,
+            BoundKind::Element => self != Method::Sdp,
+            BoundKind::PrincipalMoment => self == Method::Anneal,
         }
     }
 

@@ -6,6 +6,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use crate::Num;
 use crate::feasible::bounds::{LinkBounds, TENSOR_ELEMENTS};
 use crate::limits::MAX_PARAMETER;
 use crate::{Error, Result};
@@ -115,15 +116,21 @@ impl Variable {
         }
     }
 
+    /// Its range under `b`: the mass's, the coordinate's, the element's (a moment on the
+    /// diagonal without its own lies in the link's `inertia` range); `None` for a product
+    /// of inertia without a bound.
+    pub(crate) fn range(&self, b: &LinkBounds) -> Option<[f64; 2]> {
+        match self.quantity {
+            Quantity::Mass => Some(b.mass),
+            Quantity::Com(a) => Some(b.com[a]),
+            Quantity::Inertia(e) => b.tensor[e].or((e < 3).then_some(b.inertia)),
+        }
+    }
+
     /// Its typical magnitude under `b`: the largest magnitude its bounds allow.
     pub(crate) fn scale(&self, b: &LinkBounds) -> f64 {
         let wide = |r: [f64; 2]| r[0].abs().max(r[1].abs());
-        let s = match self.quantity {
-            Quantity::Mass => wide(b.mass),
-            Quantity::Com(a) => wide(b.com[a]),
-            Quantity::Inertia(e) => b.tensor[e].map_or(b.inertia[1], wide),
-        };
-        s.max(1e-9)
+        self.range(b).map_or(b.inertia[1], wide).max(1e-9)
     }
 }
 
@@ -206,6 +213,22 @@ impl Equality {
         let right: f64 =
             self.coefficient * self.factors.iter().map(|v| v.value(x)).product::<f64>();
         (self.left.value(x) - right) / self.left.scale(&bounds[self.left.link])
+    }
+
+    /// What a result that misses it says (`None` when it holds): its sides at a full vector
+    /// of search variables, within the tolerance of the bounds' check (1e-6 (1 + |right|),
+    /// [`Solution`](crate::feasible::Solution)`::violations`).
+    pub(crate) fn unmet(&self, x: &[f64]) -> Option<String> {
+        let left = self.left.value(x);
+        let right = self.coefficient * self.factors.iter().map(|v| v.value(x)).product::<f64>();
+        ((left - right).abs() > 1e-6 * (1.0 + right.abs())).then(|| {
+            format!(
+                "equality `{self}` not met: {} = {}, the right side {}",
+                self.left,
+                Num::rounded(left, 8),
+                Num::rounded(right, 8)
+            )
+        })
     }
 }
 

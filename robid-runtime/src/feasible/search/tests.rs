@@ -476,7 +476,8 @@ fn gaz_the_searched_variables_are_those_the_fit_or_an_equality_sees() {
 }
 
 /// A mass the fit does not see is loose: set last, within its own box, to bring the
-/// total mass as near its range as the box allows (here the top of the box, 9 kg).
+/// total mass into its range (here near the top of its box, 9 kg; the seen mass makes up
+/// the rest, the bounds imposed over the data).
 #[test]
 fn gaz_a_loose_mass_stays_in_its_own_box() {
     let truth: Vec<f64> = [one_link(), one_link()].concat();
@@ -492,9 +493,12 @@ fn gaz_a_loose_mass_stays_in_its_own_box() {
     };
     let s = solve_anneal(&problem, &bounds, &options).unwrap();
     let (a, b) = (s.links[0].unwrap(), s.links[1].unwrap());
-    assert_eq!(b.mass, 9.0, "{a:?} {b:?}");
-    // the seen mass is pulled up towards the range by the penalty (measured 2.023 kg)
-    assert!(a.mass > 2.0 && a.mass < 2.05, "{a:?}");
+    assert!(b.mass <= 9.0 && b.mass > 9.0 - 1e-5, "{a:?} {b:?}");
+    // the seen mass is raised to the range from the 2 kg of the data (measured
+    // 3.000004 kg; the search's penalty alone left it at 2.023, the total 11.02 kg)
+    assert!(a.mass >= 3.0 - 1e-6 && a.mass < 3.0 + 1e-5, "{a:?}");
+    assert!((a.mass + b.mass - 12.0).abs() < 1e-9, "{a:?} {b:?}");
+    assert!(s.unmet.is_empty(), "{:?}", s.unmet);
     // above the range: the bottom of its box
     bounds.total_mass = Some([0.0, 2.5]);
     let s = solve_anneal(&problem, &bounds, &options).unwrap();
