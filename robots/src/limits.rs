@@ -21,8 +21,9 @@ pub const TORQUE_LIMIT_FACTOR: f64 = 5.0;
 /// limits by more than a tenth of their span (a revolute joint's degrees read as radians, a
 /// prismatic one's mm read as m), torques above [`TORQUE_LIMIT_FACTOR`] times the torque
 /// limit (mN m read as N m, a missing or wrong `torque_scale`, torque constant or gear
-/// ratio), or data of another robot: identification takes them as they are and fits them
-/// without a word. Joints without limits, and joints `extremes` does not cover, are not
+/// ratio), median speeds above [`SPEED_LIMIT_FACTOR`] times the velocity limit (time
+/// stamps in ms read as s), or data of another robot: identification takes them as they
+/// are and fits them without a word. Joints without limits, and joints `extremes` does not cover, are not
 /// checked.
 ///
 /// ```
@@ -35,6 +36,7 @@ pub const TORQUE_LIMIT_FACTOR: f64 = 5.0;
 /// let extremes = Extremes {
 ///     position: vec![[-1.0, 1.0], [-1.0, 1.0], [-90.0, 90.0]],
 ///     torque: vec![[-10.0, 10.0], [-80000.0, 2000.0], [-5.0, 5.0]],
+///     ..Extremes::default()
 /// };
 /// let warnings = robots::limits::beyond_limits(&robot, &extremes, file);
 /// assert_eq!(warnings.len(), 2);
@@ -44,6 +46,7 @@ pub const TORQUE_LIMIT_FACTOR: f64 = 5.0;
 /// let dead = Extremes {
 ///     position: vec![[-1.0, 1.0]],
 ///     torque: vec![[0.0, 0.0]],
+///     ..Extremes::default()
 /// };
 /// let warnings = robots::limits::beyond_limits(&robot, &dead, file);
 /// assert!(warnings[0].starts_with("joint 1's torque is 0 over the whole record"));
@@ -68,11 +71,50 @@ pub fn beyond_limits(robot: &Robot, extremes: &Extremes, file: &Path) -> Vec<Str
             }
             warnings.extend(torque_beyond_limit(j + 1, joint, range, file));
         }
-        if let Some(&range) = extremes.position.get(j) {
-            warnings.extend(position_beyond_limits(j + 1, joint, range, file, Of::Log));
+        let positions = extremes
+            .position
+            .get(j)
+            .and_then(|&range| position_beyond_limits(j + 1, joint, range, file, Of::Log));
+        // positions in another unit move too fast as well: their warning says why
+        let speeds = extremes.speed.get(j).and_then(|h| h.median());
+        match (positions, speeds) {
+            (Some(w), _) => warnings.push(w),
+            (None, Some(median)) => warnings.extend(speed_beyond_limit(j + 1, joint, median, file)),
+            (None, None) => {}
         }
     }
     warnings
+}
+
+/// How many times its velocity limit a joint's median speed may reach before the time
+/// stamps are taken for another unit: no joint moves faster than its limit half the time,
+/// and the median is known to a factor of sqrt(2) ([`SpeedHistogram::median`]); a unit
+/// slip in the time is a factor of 1000.
+///
+/// [`SpeedHistogram::median`]: robid_runtime::data::SpeedHistogram::median
+pub const SPEED_LIMIT_FACTOR: f64 = 2.0;
+
+/// [`beyond_limits`] for the speeds of joint `number`, `joint`, whose median is `median`.
+fn speed_beyond_limit(number: usize, joint: &Joint, median: f64, file: &Path) -> Option<String> {
+    let limit = joint.limits.velocity.filter(|&v| v > 0.0)?;
+    if median <= SPEED_LIMIT_FACTOR * limit {
+        return None;
+    }
+    let unit = if joint.kind == JointKind::Prismatic {
+        "m/s"
+    } else {
+        "rad/s"
+    };
+    Some(format!(
+        "joint {number}'s positions move at a median speed of about {} {unit}, {} times its \
+         velocity limit {} {unit} in {}: time stamps in another unit than the config says? \
+         `time_scale` turns them into seconds (1 for seconds, 1e-3 for milliseconds), or \
+         check `sample_rate`; or positions in another unit, or the data are another robot's",
+        Num::rounded(median, 2),
+        Num::rounded(median / limit, 2),
+        Num(limit),
+        file.display()
+    ))
 }
 
 /// Whose positions are checked: a log's (read through a config, whose `[units]` fix a
@@ -213,7 +255,7 @@ mod tests {
         let warn = |position: Vec<[f64; 2]>| {
             let extremes = Extremes {
                 position,
-                torque: Vec::new(),
+                ..Extremes::default()
             };
             beyond_limits(&robot, &extremes, file)
         };
@@ -233,5 +275,47 @@ mod tests {
             shifted[0].contains("off by an offset") && shifted[0].contains("position_offset"),
             "{shifted:?}"
         );
+    }
+
+    /// A joint whose positions move at a median speed above twice its velocity limit is
+    /// named with the time stamps' unit slip; one at its limit or at rest is not, nor one
+    /// whose positions leave their limits (their own warning names the unit).
+    #[test]
+    fn a_median_speed_past_the_velocity_limit_is_named() {
+        use robid_runtime::data::SpeedHistogram;
+        let robot = crate::Reference::named("ur5e").unwrap().robot();
+        let file = Path::new("ur5e.toml");
+        let limit = robot.joints()[0].limits.velocity.unwrap();
+        let warn = |speed: f64| {
+            let mut h = SpeedHistogram::default();
+            for _ in 0..10 {
+                h.add(speed);
+            }
+            let extremes = Extremes {
+                speed: vec![h],
+                ..Extremes::default()
+            };
+            beyond_limits(&robot, &extremes, file)
+        };
+        let fast = warn(1000.0 * limit);
+        assert_eq!(fast.len(), 1, "{fast:?}");
+        assert!(
+            fast[0].starts_with("joint 1's positions move at a median speed of about")
+                && fast[0].contains("times its velocity limit")
+                && fast[0].contains("`time_scale`"),
+            "{fast:?}"
+        );
+        assert!(warn(limit).is_empty());
+        assert!(warn(0.0).is_empty());
+        // positions in degrees move too fast as well: the positions' warning alone
+        let mut h = SpeedHistogram::default();
+        h.add(1000.0 * limit);
+        let degrees = Extremes {
+            position: vec![[-170.0, 170.0]],
+            speed: vec![h],
+            ..Extremes::default()
+        };
+        let w = beyond_limits(&robot, &degrees, file);
+        assert!(w.len() == 1 && w[0].contains("positions in degrees?"), "{w:?}");
     }
 }

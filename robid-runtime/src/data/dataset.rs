@@ -4,6 +4,7 @@ use crate::DataError;
 use std::path::PathBuf;
 
 use crate::data::Warning;
+use crate::data::speed::{SpeedHistogram, count_speeds};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, Quantity, check_size};
 use crate::signal::Signals;
@@ -300,17 +301,22 @@ pub struct Extremes {
     pub position: Vec<[f64; 2]>,
     /// `[smallest, largest]` torque per joint.
     pub torque: Vec<[f64; 2]>,
+    /// How fast each joint's positions move ([`SpeedHistogram`]), checked against the
+    /// velocity limits (a wrong `time_scale`).
+    pub speed: Vec<SpeedHistogram>,
 }
 
 impl Extremes {
-    /// Widened to the positions `q` and torques `tau` of a block of the same joints.
-    pub(crate) fn widen(&mut self, q: &Signals, tau: &Signals) {
+    /// Widened to the positions `q` and torques `tau` of a block of the same joints,
+    /// sample k at `time(k)` seconds (for the speeds).
+    pub(crate) fn widen(&mut self, q: &Signals, tau: &Signals, time: &dyn Fn(usize) -> f64) {
         for (ranges, x) in [(&mut self.position, q), (&mut self.torque, tau)] {
             ranges.resize(x.dof(), [f64::INFINITY, f64::NEG_INFINITY]);
             for (r, [lo, hi]) in ranges.iter_mut().zip(x.extremes()) {
                 *r = [r[0].min(lo), r[1].max(hi)];
             }
         }
+        count_speeds(&mut self.speed, q, time);
     }
 
     /// Widened to `other`'s extremes (those of another part of the same record).
@@ -324,6 +330,13 @@ impl Extremes {
             for (a, b) in mine.iter_mut().zip(theirs) {
                 *a = [a[0].min(b[0]), a[1].max(b[1])];
             }
+        }
+        self.speed.resize(
+            self.speed.len().max(other.speed.len()),
+            SpeedHistogram::default(),
+        );
+        for (a, b) in self.speed.iter_mut().zip(&other.speed) {
+            a.join(b);
         }
     }
 }

@@ -368,7 +368,8 @@ pub(crate) fn finish(config: &Config, dof: usize, read: ReadSources) -> Result<D
     data.sampling = samplings;
     // the joint-side extremes, while they are at hand (`Record::extremes`)
     let mut extremes = Extremes::default();
-    extremes.widen(&data.q, &data.tau);
+    let dt = data.sample_time;
+    extremes.widen(&data.q, &data.tau, &|k| k as f64 * dt);
     data.extremes = extremes;
     Ok(data)
 }

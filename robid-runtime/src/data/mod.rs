@@ -14,6 +14,7 @@ mod rate;
 mod record;
 mod sampling;
 mod segments;
+mod speed;
 mod table;
 mod time;
 
@@ -37,6 +38,7 @@ pub(crate) use record::joined_with;
 pub use record::{Record, SpilledRecord, load_record};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};
 pub use segments::{Loaded, SegmentSpan, Segments, load_or_split, load_segments};
+pub use speed::{SPEED_STRIDE, SpeedHistogram};
 pub use table::{
     ColumnMapping, Table, WINDOW, for_each_window, read_columns, read_columns_from, read_header,
 };

@@ -651,6 +651,48 @@ fn inspect_warns_of_positions_beyond_the_limits() {
     );
 }
 
+/// `identify` and `inspect` warn of a joint whose positions move at a median speed far
+/// beyond its velocity limit: time stamps in seconds under `time_scale = 1e-3` (taken
+/// for milliseconds) made the pendulum's 500 Hz log one of 500 kHz, its speeds a
+/// thousand times its own, and the parameters came out 1e-6 of the truth without a word.
+/// At the right scale nothing is said.
+#[test]
+fn a_median_speed_past_the_velocity_limit_is_told() {
+    let dir = folder();
+    let d = dir.path();
+    let limited = PENDULUM.replace("alpha = 0\n", "alpha = 0\nlimits = { velocity = 3 }\n");
+    let robot = write(d, "pendulum.toml", &limited);
+    let right = write(d, "right.toml", CONFIG);
+    let wrong = write(
+        d,
+        "wrong.toml",
+        &CONFIG.replace("time_column", "time_scale = 1e-3\ntime_column"),
+    );
+    let data = write(d, "log.csv", &log());
+    for command in ["identify", "inspect"] {
+        let run = |config: &std::path::Path| {
+            robid(&[
+                command,
+                robot.to_str().unwrap(),
+                "--config",
+                config.to_str().unwrap(),
+                "--data",
+                data.to_str().unwrap(),
+            ])
+        };
+        let o = run(&right);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(!stderr(&o).contains("median speed"), "{}", stderr(&o));
+        let e = stderr(&run(&wrong));
+        assert!(
+            e.contains("warning: joint 1's positions move at a median speed of about ")
+                && e.contains("times its velocity limit 3 rad/s in ")
+                && e.contains("`time_scale`"),
+            "{command}: {e}"
+        );
+    }
+}
+
 /// `identify` warns of positions far beyond the description's limits as `inspect` does
 /// (the same words), from the extremes the loader keeps: the record kept on disk (one
 /// file), a record cut at its gaps (`gaps = "split"`, over its segments), each run of

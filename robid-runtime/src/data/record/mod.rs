@@ -323,7 +323,9 @@ impl SpilledRecord {
                 origin,
                 Values::Check,
             )?;
-            extremes.widen(&window.q, &window.tau);
+            // the time stamps as read (scaled), else the config's rate
+            let at = |k: usize| stamps.get(k).copied().unwrap_or(k as f64 * checked_at);
+            extremes.widen(&window.q, &window.tau, &at);
             Ok(())
         })?;
         progress.finish();
