@@ -316,6 +316,9 @@ mod tests {
             ..Extremes::default()
         };
         let w = beyond_limits(&robot, &degrees, file);
-        assert!(w.len() == 1 && w[0].contains("positions in degrees?"), "{w:?}");
+        assert!(
+            w.len() == 1 && w[0].contains("positions in degrees?"),
+            "{w:?}"
+        );
     }
 }

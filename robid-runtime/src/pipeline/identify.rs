@@ -47,9 +47,9 @@ pub struct Identification {
     /// The cutoff chosen for `cutoff = "auto"` (validation data get their own unless the
     /// config is resolved first with [`crate::inspect::resolve_cutoff`]).
     pub cutoff: Option<CutoffSuggestion>,
-    /// The unit of the joint torques, by the joints' kinds
-    /// ([`torque_unit`](crate::report::torque_unit)): "N m", "N", or both.
-    pub torque_unit: &'static str,
+    /// The unit of each joint's torque, by its kind
+    /// ([`joint_units`](crate::report::joint_units)): "N m" or "N".
+    pub joint_units: Vec<&'static str>,
 }
 
 /// Builds the observation of a data set: prepare (with `processing.range`), regressor,
@@ -502,7 +502,7 @@ pub(crate) fn identify_dense(
         warnings: data.warnings.clone(),
         used,
         cutoff: rows.auto_cutoff.clone(),
-        torque_unit: crate::report::torque_unit(&config.prismatic, model.dof()),
+        joint_units: crate::report::joint_units(&config.prismatic, model.dof()),
     })
 }
 

@@ -46,8 +46,8 @@ pub struct RunSpread {
 pub struct RepeatedIdentification {
     /// Robot name.
     pub robot: String,
-    /// The unit of the joint torques ([`Identification::torque_unit`]).
-    pub torque_unit: &'static str,
+    /// The unit of each joint's torque ([`Identification::joint_units`]).
+    pub joint_units: Vec<&'static str>,
     /// How the runs were combined.
     pub mode: RunMode,
     /// The estimate from all runs together.
@@ -101,7 +101,7 @@ pub fn identify_runs(
             let id = identify(model, &mean, config)?;
             RepeatedIdentification {
                 robot,
-                torque_unit: crate::report::torque_unit(&config.prismatic, model.dof()),
+                joint_units: crate::report::joint_units(&config.prismatic, model.dof()),
                 mode,
                 estimate: id.estimate,
                 fit: id.fit,
@@ -120,7 +120,7 @@ pub fn identify_runs(
             };
             RepeatedIdentification {
                 robot,
-                torque_unit: crate::report::torque_unit(&config.prismatic, model.dof()),
+                joint_units: crate::report::joint_units(&config.prismatic, model.dof()),
                 mode,
                 fit: prediction.fit(),
                 estimate,

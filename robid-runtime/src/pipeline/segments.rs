@@ -257,7 +257,7 @@ pub fn identify_segments(
             warnings,
             used: rows,
             cutoff,
-            torque_unit: crate::report::torque_unit(&config.prismatic, model.dof()),
+            joint_units: crate::report::joint_units(&config.prismatic, model.dof()),
         },
         segments: used,
     })

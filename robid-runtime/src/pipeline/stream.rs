@@ -546,7 +546,7 @@ pub(crate) fn identify_streaming(
         warnings: data.warnings().to_vec(),
         used,
         cutoff: plan.auto_cutoff.clone(),
-        torque_unit: crate::report::torque_unit(&config.prismatic, model.dof()),
+        joint_units: crate::report::joint_units(&config.prismatic, model.dof()),
     })
 }
 

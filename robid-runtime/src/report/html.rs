@@ -188,7 +188,8 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
     for (name, prediction) in predictions {
         let _ = writeln!(h, "<h2>{}: torque per joint</h2>", escape(name));
         for j in 0..prediction.measured.len() {
-            let _ = writeln!(h, "<figure>\n{}\n</figure>", torque_svg(prediction, j)?);
+            let svg = torque_svg(prediction, j, report.joint_unit(j))?;
+            let _ = writeln!(h, "<figure>\n{svg}\n</figure>");
         }
     }
     h.push_str("</body>\n</html>\n");
@@ -239,6 +240,7 @@ mod tests {
             runs: None,
             segments: None,
             torque_unit: "N m".into(),
+            joint_units: Vec::new(),
         }
     }
 
@@ -271,5 +273,21 @@ mod tests {
         for external in ["src=\"http", "href=\"http", "<script", "@import", "url("] {
             assert!(!html.contains(external), "{external}");
         }
+        // every figure in N m for a revolute arm; a prismatic joint's in N (every figure
+        // was labelled N m)
+        assert_eq!(html.matches("torque [N m]").count(), 4);
+        let mut r = report();
+        r.set_units(&crate::report::joint_units(&[false, true], 2));
+        let html = html_report(&r, &[("fit", &p)]).unwrap();
+        let figures: Vec<&str> = html.split("<figure>").skip(1).collect();
+        assert_eq!(figures.len(), 2);
+        assert!(figures[0].contains("torque [N m]") && figures[0].contains("residual [N m]"));
+        assert!(
+            figures[1].contains("torque [N]")
+                && figures[1].contains("residual [N]")
+                && !figures[1].contains("N m"),
+            "{}",
+            figures[1]
+        );
     }
 }

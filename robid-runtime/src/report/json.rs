@@ -109,29 +109,8 @@ pub struct ValidationEntry {
     pub segments: Option<SegmentsEntry>,
 }
 
-/// The unit of the torques of a robot of `dof` joints of which `prismatic` flags the
-/// prismatic ones (a joint not listed is revolute): "N m", "N" (forces only) or
-/// "N m and N" (eq. 22's NMSE of a prismatic-only robot was labelled N m).
-///
-/// ```
-/// use robid_runtime::report::torque_unit;
-/// assert_eq!(torque_unit(&[], 6), "N m");
-/// assert_eq!(torque_unit(&[true, true], 2), "N");
-/// assert_eq!(torque_unit(&[true], 2), "N m and N");
-/// ```
-pub fn torque_unit(prismatic: &[bool], dof: usize) -> &'static str {
-    let forces = (0..dof)
-        .filter(|&j| prismatic.get(j) == Some(&true))
-        .count();
-    match forces {
-        0 => "N m",
-        f if f == dof => "N",
-        _ => "N m and N",
-    }
-}
-
 fn revolute_unit() -> String {
-    "N m".to_string()
+    super::unit::REVOLUTE.to_string()
 }
 
 /// A validation file predicted by a reference model (parameters from CAD, a data sheet or
@@ -213,6 +192,10 @@ pub struct Report {
     /// "N" for prismatic ones, "N m and N" for both.
     #[serde(default = "revolute_unit")]
     pub torque_unit: String,
+    /// The unit of each joint's torque ([`joint_units`](super::joint_units)): "N m" or
+    /// "N"; empty in a report written before it was recorded (revolute joints).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joint_units: Vec<String>,
 }
 
 impl From<&Fit> for FitEntry {
@@ -262,7 +245,21 @@ impl Report {
             runs: None,
             segments: None,
             torque_unit: revolute_unit(),
+            joint_units: Vec::new(),
         }
+    }
+
+    /// The unit of joint `j`'s (0-based) torque: "N m" where the report does not say.
+    pub fn joint_unit(&self, j: usize) -> &str {
+        self.joint_units
+            .get(j)
+            .map_or(super::unit::REVOLUTE, String::as_str)
+    }
+
+    /// Records the unit of each joint's torque, and of them together.
+    pub(crate) fn set_units(&mut self, units: &[&str]) {
+        self.torque_unit = super::torque_unit(units).to_string();
+        self.joint_units = units.iter().map(|u| u.to_string()).collect();
     }
 
     /// A report of a pipeline result.
@@ -274,7 +271,7 @@ impl Report {
         report.estimation = Some(id.used.clone());
         report.fit = labelled_fit(&id.prediction);
         report.cutoff = id.cutoff.clone();
-        report.torque_unit = id.torque_unit.to_string();
+        report.set_units(&id.joint_units);
         report
     }
 

@@ -8,12 +8,12 @@ mod plot;
 mod runs;
 mod segments;
 mod table;
+mod unit;
 
 pub use html::{html_report, write_html};
-pub use json::{
-    FitEntry, ParameterEntry, ReferenceFit, Report, ReportWarning, ValidationEntry, torque_unit,
-};
+pub use json::{FitEntry, ParameterEntry, ReferenceFit, Report, ReportWarning, ValidationEntry};
 pub use plot::{plot_torques, torque_svg};
 pub use runs::{RunEntry, RunParameterEntry, RunsEntry};
 pub use segments::SegmentsEntry;
 pub use table::text_table;
+pub use unit::{PRISMATIC, REVOLUTE, joint_units, torque_unit};

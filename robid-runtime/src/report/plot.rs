@@ -9,13 +9,21 @@ use plotters::prelude::*;
 use crate::error::{Error, Result};
 use crate::validate::Prediction;
 
-/// Writes one SVG per joint, `{prefix}_joint{j}.svg` in `dir`, and returns the paths.
-pub fn plot_torques(prediction: &Prediction, dir: &Path, prefix: &str) -> Result<Vec<PathBuf>> {
+/// Writes one SVG per joint, `{prefix}_joint{j}.svg` in `dir`, and returns the paths;
+/// `units` gives each joint's torque unit ([`Report::joint_units`](crate::report::Report),
+/// "N m" where it gives none).
+pub fn plot_torques<S: AsRef<str>>(
+    prediction: &Prediction,
+    units: &[S],
+    dir: &Path,
+    prefix: &str,
+) -> Result<Vec<PathBuf>> {
     crate::output::create_folder(dir)?;
     let mut paths = Vec::new();
     for j in 0..prediction.measured.len() {
         let path = dir.join(format!("{prefix}_joint{}.svg", j + 1));
-        let svg = torque_svg(prediction, j).map_err(|e| match e {
+        let unit = units.get(j).map_or(super::REVOLUTE, AsRef::as_ref);
+        let svg = torque_svg(prediction, j, unit).map_err(|e| match e {
             Error::Output(OutputError::Write { reason, fix, .. }) => {
                 Error::Output(OutputError::Write {
                     path: path.clone(),
@@ -34,13 +42,14 @@ pub fn plot_torques(prediction: &Prediction, dir: &Path, prefix: &str) -> Result
 /// The SVG of joint `joint` (0-based) of a prediction: measured and predicted torque over
 /// the log's own time, and below it the residual (measured - predicted), with the RMS of
 /// the residual in the title. Samples left out (near rest) leave gaps: the lines are not
-/// drawn across them.
-pub fn torque_svg(prediction: &Prediction, joint: usize) -> Result<String> {
+/// drawn across them. `unit` is the joint's torque unit ("N m", or "N" for a prismatic
+/// joint).
+pub fn torque_svg(prediction: &Prediction, joint: usize, unit: &str) -> Result<String> {
     let mut svg = String::new();
     let t = &prediction.time[joint];
     let m = &prediction.measured[joint];
     let p = &prediction.predicted[joint];
-    plot_one(&mut svg, joint + 1, t, m, p).map_err(|e| {
+    plot_one(&mut svg, (joint + 1, unit), t, m, p).map_err(|e| {
         Error::Output(OutputError::Write {
             path: PathBuf::from(format!("<joint {} plot>", joint + 1)),
             reason: e.to_string(),
@@ -84,9 +93,10 @@ fn span<'a>(values: impl Iterator<Item = &'a f64>) -> std::ops::Range<f64> {
     (lo - margin)..(hi + margin)
 }
 
+/// Draws joint `joint.0` (1-based), whose torque is in `joint.1`.
 fn plot_one(
     svg: &mut String,
-    joint: usize,
+    (joint, unit): (usize, &str),
     t: &[f64],
     m: &[f64],
     p: &[f64],
@@ -101,14 +111,17 @@ fn plot_one(
     let pieces = segments(t);
     let mut chart = ChartBuilder::on(&upper)
         .caption(
-            format!("joint {joint}: measured vs predicted torque (residual RMS {rms:.3e} N m)"),
+            format!("joint {joint}: measured vs predicted torque (residual RMS {rms:.3e} {unit})"),
             ("sans-serif", 18),
         )
         .margin(10)
         .x_label_area_size(30)
         .y_label_area_size(60)
         .build_cartesian_2d(t0..t1, span(m.iter().chain(p)))?;
-    chart.configure_mesh().y_desc("torque [N m]").draw()?;
+    chart
+        .configure_mesh()
+        .y_desc(format!("torque [{unit}]"))
+        .draw()?;
     for (values, colour, name) in [(m, BLUE, "measured"), (p, RED, "predicted")] {
         for (i, r) in pieces.iter().enumerate() {
             let series = chart.draw_series(LineSeries::new(
@@ -135,7 +148,7 @@ fn plot_one(
     below
         .configure_mesh()
         .x_desc("time [s]")
-        .y_desc("residual [N m]")
+        .y_desc(format!("residual [{unit}]"))
         .draw()?;
     for r in &pieces {
         below.draw_series(LineSeries::new(
@@ -165,7 +178,7 @@ mod tests {
         };
         let folder = tempfile::tempdir().unwrap();
         let dir = folder.path().join("plots");
-        let paths = plot_torques(&pred, &dir, "fit").unwrap();
+        let paths = plot_torques(&pred, &["N m", "N"], &dir, "fit").unwrap();
         assert_eq!(paths.len(), 2);
         let svg = std::fs::read_to_string(&paths[1]).unwrap();
         assert!(
@@ -195,7 +208,7 @@ mod tests {
             unfiltered: None,
             used: None,
         };
-        let svg = torque_svg(&pred, 0).unwrap();
+        let svg = torque_svg(&pred, 0, "N m").unwrap();
         for colour in ["#0000FF", "#FF0000"] {
             let lines = svg
                 .lines()

@@ -212,7 +212,7 @@ impl Report {
         report.fit = super::json::labelled_fit(&r.prediction);
         report.cutoff = r.cutoff.clone();
         report.runs = Some(RunsEntry::new(r));
-        report.torque_unit = r.torque_unit.to_string();
+        report.set_units(&r.joint_units);
         report
     }
 }

@@ -190,7 +190,7 @@ mod tests {
                 nmse_eq22: 1.5e13,
             },
         );
-        r.torque_unit = crate::report::torque_unit(&[true], 1).to_string();
+        r.set_units(&crate::report::joint_units(&[true], 1));
         let t = text_table(&r);
         assert!(t.contains("(eq. 22: 250.0 N), RMS"), "{t}");
         assert!(
@@ -205,6 +205,7 @@ mod tests {
         assert!(h.contains("<td>2.188e11</td>"), "{h}");
         let back: Report = serde_json::from_str(&r.to_json()).unwrap();
         assert_eq!(back.torque_unit, "N");
+        assert_eq!(back.joint_units, ["N"]);
         // a report written before the unit was recorded is of a revolute arm
         let mut old: serde_json::Value = serde_json::from_str(&report().to_json()).unwrap();
         old.as_object_mut().unwrap().remove("torque_unit");

@@ -97,8 +97,8 @@ pub(crate) fn run() -> Result<(), Error> {
     let whole_report = Report::from_identification(&whole, |n| chosen.expression(n));
     whole_report.write_json(&dir.join("whole_run.json"))?;
     files::write(&dir.join("figaroh_comparison.txt"), &comparison)?;
-    plot_torques(&fit, dir, "train")?;
-    plot_torques(&valid, dir, "heldout")?;
+    plot_torques(&fit, &report.joint_units, dir, "train")?;
+    plot_torques(&valid, &report.joint_units, dir, "heldout")?;
     write_html(
         &dir.join("report.html"),
         &report,

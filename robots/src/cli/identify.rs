@@ -486,7 +486,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     if let Some(dir) = &args.plot {
         for (prefix, p) in prefixes.iter().zip(&predictions) {
-            plot_torques(p, dir, prefix)?;
+            plot_torques(p, &report.joint_units, dir, prefix)?;
         }
     }
     if let Some(path) = &args.report {
