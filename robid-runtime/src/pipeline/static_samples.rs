@@ -206,13 +206,22 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
             &path.display().to_string(),
             format!(
                 "its {rows} poses determine {rank} of the {columns} combinations that static \
-                 {} determine (not: {}): the poses repeat or vary too little; add rows at \
-                 poses unlike the others, moving every joint",
+                 {} determine (undetermined: {}): the poses repeat or vary too little; add \
+                 rows at poses unlike the others, moving every joint",
                 match kind {
                     StaticKind::Gravity => "gravity torques",
                     StaticKind::MassMatrix => "mass matrices",
                 },
-                unexcited.join(", ")
+                // the columns the missing directions mix: one of two is determined alone
+                // ("not: MX2, MY2" named both where one combination was missing)
+                match unexcited.as_slice() {
+                    [one] => one.clone(),
+                    all => format!(
+                        "{} of {}",
+                        Count(columns - rank, "combination"),
+                        all.join(", ")
+                    ),
+                }
             ),
         ),
         e => e,

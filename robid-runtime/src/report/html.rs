@@ -174,9 +174,9 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
         };
         let _ = writeln!(
             h,
-            "<tr><td class=\"name\">{}</td><td>{:.6}</td><td>{:.3e}</td><td>{rel}</td><td class=\"expr\">{}</td></tr>",
+            "<tr><td class=\"name\">{}</td><td>{}</td><td>{:.3e}</td><td>{rel}</td><td class=\"expr\">{}</td></tr>",
             escape(&p.name),
-            p.value,
+            super::table::value(p.value),
             p.std,
             escape(&p.expression)
         );

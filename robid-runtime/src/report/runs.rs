@@ -134,8 +134,11 @@ impl RunsEntry {
         for p in &self.parameters {
             let _ = writeln!(
                 s,
-                "{:<width$}  {:>14.6}  {:>12.3e}  {:>12.3e}",
-                p.name, p.mean, p.std, p.reported_std
+                "{:<width$}  {:>14}  {:>12.3e}  {:>12.3e}",
+                p.name,
+                super::table::value(p.mean),
+                p.std,
+                p.reported_std
             );
         }
         if let Some(t) = &self.torque_std_per_joint {
@@ -180,9 +183,9 @@ impl RunsEntry {
         for p in &self.parameters {
             let _ = writeln!(
                 h,
-                "<tr><td class=\"name\">{}</td><td>{:.6}</td><td>{:.3e}</td><td>{:.3e}</td></tr>",
+                "<tr><td class=\"name\">{}</td><td>{}</td><td>{:.3e}</td><td>{:.3e}</td></tr>",
                 escape(&p.name),
-                p.mean,
+                super::table::value(p.mean),
                 p.std,
                 p.reported_std
             );

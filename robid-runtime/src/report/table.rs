@@ -43,8 +43,12 @@ pub fn text_table(report: &Report) -> String {
         };
         let _ = writeln!(
             s,
-            "{:<width$}  {:>14.6}  {:>12.3e}  {:>9}  {}",
-            p.name, p.value, p.std, rel, p.expression
+            "{:<width$}  {:>14}  {:>12.3e}  {:>9}  {}",
+            p.name,
+            value(p.value),
+            p.std,
+            rel,
+            p.expression
         );
     }
     let joints = |v: &[f64]| v.iter().map(|x| fixed(*x, 3)).collect::<Vec<_>>().join(" ");
@@ -121,6 +125,19 @@ fn against(torque: Option<&str>, unfiltered: Option<f64>) -> String {
 /// `x` with `decimals` decimals while that is short (|x| < 1e6), else to 4 significant
 /// digits ([`Num::rounded`](crate::Num::rounded)): an NMSE of 218822021577.1579 is
 /// 2.188e11.
+/// A parameter value for the table: six decimals from 1e-3 up, five significant digits
+/// in exponent form below (a rotor inertia of 2.3e-5 kg m^2 read 0.000023, a value of
+/// -1e-9 read -0.000000), and a zero as 0.
+pub(crate) fn value(x: f64) -> String {
+    if x == 0.0 {
+        "0".to_owned()
+    } else if x.abs() < 1e-3 {
+        format!("{x:.4e}")
+    } else {
+        fixed(x, 6)
+    }
+}
+
 pub(crate) fn fixed(x: f64, decimals: usize) -> String {
     if x.abs() < 1e6 {
         format!("{x:.decimals$}")
@@ -404,5 +421,18 @@ mod tests {
         );
         assert!(t.contains("relative error 5.20 %"), "{t}");
         assert!(t.contains("validation run2.csv"), "{t}");
+    }
+
+    /// Small values keep their digits and sign (2.3e-5 read 0.000023, -1e-9 -0.000000); a
+    /// zero reads 0.
+    #[test]
+    fn small_values_keep_their_digits() {
+        assert_eq!(value(2.2345678e-5), "2.2346e-5");
+        assert_eq!(value(-1e-9), "-1.0000e-9");
+        assert_eq!(value(0.0), "0");
+        assert_eq!(value(-0.0), "0");
+        assert_eq!(value(1e-3), "0.001000");
+        assert_eq!(value(-12.5), "-12.500000");
+        assert_eq!(value(2.5e7), "2.5e7");
     }
 }

@@ -17,7 +17,7 @@ use robid_runtime::excite::{
 };
 use robid_runtime::limits::MIN_JOINT_LIMIT;
 use robid_runtime::simulate::Trajectory;
-use robid_runtime::{Count, Model, Series, num};
+use robid_runtime::{Count, Model, Num, Series, num};
 
 use super::description::{self, DescriptionFlags};
 use super::flags::{self, check_samples, closed, count, only_for, positive, real};
@@ -731,11 +731,12 @@ fn warn_barely_exciting(condition: f64) {
         return;
     }
     out::warn(format_args!(
-        "warning: condition number {condition:.3e}: the trajectory barely excites some base parameter \
+        "warning: condition number {}: the trajectory barely excites some base parameter \
          (good designs have tens to hundreds), so its identification would be poor; give \
          the joints more room to move (their position range, velocity and acceleration \
          limits: --velocity-limits, --acceleration-limits, a --start away from the limits) \
-         or the search more work (--restarts, --evaluations)"
+         or the search more work (--restarts, --evaluations)",
+        Num::rounded(condition, 4)
     ));
 }
 

@@ -12,7 +12,6 @@
 
 use std::path::{Path, PathBuf};
 
-use robid_runtime::Count;
 use robid_runtime::data::{
     Config, EXAMPLE_CONFIG, Loaded, Method, Record, load_or_split, load_runs, read_header,
 };
@@ -22,6 +21,7 @@ use robid_runtime::pipeline::{
     identify, identify_runs, identify_segments, identify_static, validate_loaded,
 };
 use robid_runtime::report::{Report, plot_torques, text_table, write_html};
+use robid_runtime::{Count, Num};
 use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
 use robots::Reference;
@@ -78,7 +78,8 @@ pub(crate) struct Args {
     /// controller): `q1..qn` with `g1..gn` (gravity torques) or with `M11 M12 .. M1n M22 ..
     /// Mnn` (the upper triangle of the mass matrix, `Mij` for i <= j). Identifies, by least
     /// squares, the combinations of base parameters such samples determine and names the
-    /// others. Only with --json.
+    /// others: a table on standard output, and with --json the same as JSON (no config,
+    /// data, validation, plots or HTML report: the samples are the whole input).
     #[arg(
         long = "static",
         value_name = "SAMPLES.csv",
@@ -110,10 +111,10 @@ fn run_static(args: &Args, robot: &Path, samples: &Path) -> Result<(), Error> {
         .map(|i| fit.determined.expression(i, name))
         .collect();
     let mut table = format!(
-        "{} samples: {} equations, condition number {:.3e}\n{:<10} {:>14} {:>12} {:>8}  {}\n",
+        "{} samples: {} equations, condition number {}\n{:<10} {:>14} {:>12} {:>8}  {}\n",
         fit.kind.name(),
         e.rows,
-        e.condition_number,
+        Num::rounded(e.condition_number, 4),
         "parameter",
         "value",
         "std",
