@@ -201,12 +201,21 @@ fn shape_error(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
         Some(_) => value.clone(),
         None => key_before(text, span.start),
     };
+    // a key missing from the file's top level has no key before it: the missing one is
+    // the place (an empty file was told "`(value)`: missing key `temperature`")
+    let (key, problem) = match message.strip_prefix("missing field ") {
+        Some(field) if key == "(value)" => (
+            field.trim_matches('`').to_owned(),
+            "missing from the file: add it".to_owned(),
+        ),
+        _ => (key, shape_problem(message, &value)),
+    };
     Some(Error::Data(DataError::ConfigKey {
         path: path.to_path_buf(),
         line: Some(line),
         column: Some(column),
         key,
-        problem: shape_problem(message, &value),
+        problem,
     }))
 }
 
@@ -444,6 +453,15 @@ mod tests {
             e,
             "f.toml:2:9: `joint`: `\"one\"` is not a whole number of at least 0"
         );
+        // a key missing at the top of the file (here an empty one): the key is the place (it
+        // was "`(value)`: missing key `temperature`")
+        let e = crate::simulate::Flexibility::from_toml_str("", "x.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "x.toml:1:1: `temperature`: missing from the file: add it"
+        );
     }
 
     /// A value of the wrong shape is named at its place with its key, in words: serde said
@@ -499,6 +517,8 @@ mod tests {
                 config("[processing]\nlowpass = { cutoff = \"x\" }\n"),
                 "c.toml:2:22: `cutoff`: `\"x\"` is not a cutoff in Hz (a number) or \"auto\"",
             ),
+            // a key missing at the top of the file: the key is the place (it was
+            // "`(value)`: missing key `dof`")
             (
                 config("[[extra_column]]\nname = \"a\"\n"),
                 "c.toml:1:1: `[[extra_column]]`: missing key `terms`: add it",

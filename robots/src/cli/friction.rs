@@ -92,8 +92,22 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut fits = Vec::with_capacity(found.samples.len());
     let progress = Progress::new(true, "friction: fit", fits.capacity() as u64, "joints");
     for (j, samples) in found.samples.iter().enumerate() {
-        let fit = identify_friction(samples, &FrictionFitOptions::default())
-            .map_err(|e| format!("joint {}: {e}", j + 1))?;
+        let fit = identify_friction(samples, &FrictionFitOptions::default()).map_err(|e| {
+            // the library's names (`identify_friction `samples``) are not the user's: the
+            // samples are the joint's, taken from the data
+            match e {
+                robid_runtime::Error::Setting { owner, problem, .. }
+                    if owner == "identify_friction" =>
+                {
+                    format!(
+                        "joint {}: its friction samples from {}: {problem}",
+                        j + 1,
+                        data.name
+                    )
+                }
+                e => format!("joint {}: {e}", j + 1),
+            }
+        })?;
         fits.push(fit);
         progress.tick();
     }

@@ -225,6 +225,28 @@ fn json_problem(e: &serde_json::Error) -> String {
     if let Some(field) = message.strip_prefix("missing field ") {
         return format!("no key {}", field.replace('`', "\""));
     }
+    // the parser's own words for text that is no JSON ("expected ident", "EOF while
+    // parsing a string"), said in the file's terms
+    if let Some(inside) = message.strip_prefix("EOF while parsing ") {
+        let what = match inside {
+            "a string" => "text in quotes",
+            "an object" => "an object {..}",
+            "a list" => "a list [..]",
+            _ => "a value",
+        };
+        return format!("the file ends inside {what}: it is cut short, or not JSON");
+    }
+    let syntax = match message {
+        "expected ident" | "expected value" => {
+            Some("this is not JSON (text goes in quotes; the words are true, false and null)")
+        }
+        "trailing characters" => Some("more text after the JSON's end"),
+        "key must be a string" => Some("a key not in quotes"),
+        _ => None,
+    };
+    if let Some(syntax) = syntax {
+        return syntax.to_owned();
+    }
     names::shortened(message, 200).into_owned()
 }
 
@@ -347,6 +369,24 @@ mod tests {
             (
                 " \n".into(),
                 "r.json: the file is empty; give the JSON report",
+            ),
+            // no JSON at all, and JSON cut short: the parser's "expected ident" and "EOF
+            // while parsing a string" were told as they are
+            (
+                "nonsense here".into(),
+                "r.json:1:2: not an identification result: this is not JSON (text goes in quotes",
+            ),
+            (
+                "{\"parameters\": [{\"name\": \"ab".into(),
+                "r.json:1:28: not an identification result: the file ends inside text in quotes: it is cut short",
+            ),
+            (
+                "{\"parameters\": [".into(),
+                "the file ends inside a list [..]: it is cut short",
+            ),
+            (
+                "{\"parameters\": []} x".into(),
+                "not an identification result: more text after the JSON's end",
             ),
             (
                 entry("\"M1\"", &format!("\"{long}\"")),

@@ -309,5 +309,33 @@ fn incomplete_input_is_a_clear_error() {
     let o = robid(&["identify", &robot, "--config", negative]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains(&at), "{}", stderr(&o));
+    // joints that only move forward: said as the joint's samples from the data, not by the
+    // library's names (it was "identify_friction `samples`: no velocity reversal")
+    let mut forward = String::from("t,q1,q2,m1,m2,i1,i2,tj1,tj2\n");
+    for k in 0..2000 {
+        let t = k as f64 / 500.0;
+        let q = 0.5 * t + 0.2 * t * t;
+        let _ = writeln!(
+            forward,
+            "{t},{q},{q},{},{},{},{},{},{}",
+            RATIOS[0] * q,
+            RATIOS[1] * q,
+            1.0 + (3.0 * t).sin(),
+            0.5 + (2.0 * t).cos(),
+            (1.7 * t).sin(),
+            (1.1 * t).cos()
+        );
+    }
+    let forward = write(dir.path(), "forward.csv", &forward);
+    let e = run(
+        dir.path().join("rotor.toml").to_str().unwrap(),
+        &["--data", forward.to_str().unwrap()],
+    );
+    assert!(
+        e.contains("joint 1: its friction samples from ")
+            && e.contains("no velocity reversal")
+            && !e.contains("identify_friction"),
+        "{e}"
+    );
     assert!(!out.exists(), "nothing is written on an error");
 }
