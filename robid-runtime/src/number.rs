@@ -22,7 +22,11 @@ pub struct Num(pub f64);
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let x = self.0;
-        if x == 0.0 || (x.abs() >= 1e-4 && x.abs() < 1e6) || !x.is_finite() {
+        // a negative zero reads as zero ("previous -0" for a time stamp of -0.0)
+        if x == 0.0 {
+            return f.write_str("0");
+        }
+        if (x.abs() >= 1e-4 && x.abs() < 1e6) || !x.is_finite() {
             return write!(f, "{x}");
         }
         if (1e6..1e15).contains(&x.abs()) {
@@ -203,6 +207,9 @@ mod tests {
         is(0.1 + 0.2, 40, "0.30000000000000004");
         is(0.123, 0, "0.1");
         is(0.0, 3, "0");
+        // a negative zero reads as zero (a time stamp "previous -0")
+        is(-0.0, 3, "0");
+        assert_eq!(Num(-0.0).to_string(), "0");
         is(f64::NAN, 3, "NaN");
         is(f64::NEG_INFINITY, 3, "-inf");
         // rounding up beyond the largest double keeps the value

@@ -177,7 +177,7 @@ pub enum DataError {
     /// A finite value outside the documented range of its quantity (see [`crate::limits`]).
     #[error(
         "{location}: {what} is {}, outside the accepted range |{quantity}| <= {limit:e}; repair or remove this row (a value this large is a logging, unit or export error, not a measurement)",
-        Num(*value)
+        Num::rounded(*value, 8)
     )]
     OutOfRange {
         /// Where: `file:line` of a data file, or the data set and sample.

@@ -79,6 +79,17 @@ fn segments(t: &[f64]) -> Vec<std::ops::Range<usize>> {
     out
 }
 
+/// An axis label: `v` to 4 significant digits, a tick within 1e-9 of the axis's `width`
+/// of zero written 0 (the tick arithmetic left -2.8e-17 where 0 was meant, drawn -0.0).
+fn tick(v: f64, width: f64) -> String {
+    let v = if v.abs() <= 1e-9 * width.abs() {
+        0.0
+    } else {
+        v
+    };
+    crate::Num::rounded(v, 4).to_string()
+}
+
 /// The range of `values` with a 5 % margin ((-1, 1) when empty or flat).
 fn span<'a>(values: impl Iterator<Item = &'a f64>) -> std::ops::Range<f64> {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
@@ -109,17 +120,24 @@ fn plot_one(
     let residual: Vec<f64> = m.iter().zip(p).map(|(m, p)| m - p).collect();
     let rms = (residual.iter().map(|r| r * r).sum::<f64>() / residual.len().max(1) as f64).sqrt();
     let pieces = segments(t);
+    let torque_span = span(m.iter().chain(p));
+    let residual_span = span(residual.iter());
     let mut chart = ChartBuilder::on(&upper)
         .caption(
-            format!("joint {joint}: measured vs predicted torque (residual RMS {rms:.3e} {unit})"),
+            format!(
+                "joint {joint}: measured vs predicted torque (residual RMS {} {unit})",
+                crate::Num::rounded(rms, 4)
+            ),
             ("sans-serif", 18),
         )
         .margin(10)
         .x_label_area_size(30)
         .y_label_area_size(60)
-        .build_cartesian_2d(t0..t1, span(m.iter().chain(p)))?;
+        .build_cartesian_2d(t0..t1, torque_span.clone())?;
     chart
         .configure_mesh()
+        .x_label_formatter(&|v| tick(*v, t1 - t0))
+        .y_label_formatter(&|v| tick(*v, torque_span.end - torque_span.start))
         .y_desc(format!("torque [{unit}]"))
         .draw()?;
     for (values, colour, name) in [(m, BLUE, "measured"), (p, RED, "predicted")] {
@@ -144,9 +162,11 @@ fn plot_one(
         .margin(10)
         .x_label_area_size(35)
         .y_label_area_size(60)
-        .build_cartesian_2d(t0..t1, span(residual.iter()))?;
+        .build_cartesian_2d(t0..t1, residual_span.clone())?;
     below
         .configure_mesh()
+        .x_label_formatter(&|v| tick(*v, t1 - t0))
+        .y_label_formatter(&|v| tick(*v, residual_span.end - residual_span.start))
         .x_desc("time [s]")
         .y_desc(format!("residual [{unit}]"))
         .draw()?;
@@ -188,6 +208,48 @@ mod tests {
         );
     }
 
+    /// Axis labels read as numbers: a tick at zero is 0 (the tick arithmetic drew -0.0),
+    /// the others to four digits.
+    #[test]
+    fn ticks_are_written_short() {
+        assert_eq!(tick(-2.7755575615628914e-17, 2.0), "0");
+        assert_eq!(tick(-0.0, 2.0), "0");
+        assert_eq!(tick(0.30000000000000004, 2.0), "0.3");
+        assert_eq!(tick(-1.25e-5, 1e-4), "-1.25e-5");
+        // a residual symmetric about zero: no label is a negative zero
+        let t: Vec<f64> = (0..200).map(|k| k as f64 * 0.01).collect();
+        let m: Vec<f64> = t.iter().map(|x| (3.0 * x).sin()).collect();
+        let p: Vec<f64> = t
+            .iter()
+            .map(|x| (3.0 * x).sin() + 0.1 * (7.0 * x).sin())
+            .collect();
+        let pred = Prediction {
+            measured: vec![m],
+            predicted: vec![p],
+            time: vec![t],
+            unfiltered: None,
+            used: None,
+        };
+        let svg = torque_svg(&pred, 0, "N m").unwrap();
+        let labels: Vec<&str> = svg
+            .split("</text>")
+            .filter_map(|part| part.rsplit('>').next())
+            .map(str::trim)
+            .collect();
+        assert!(labels.contains(&"0"), "{labels:?}");
+        // the default labels drew a tick of -2.8e-17 as -0.0
+        assert!(
+            !labels
+                .iter()
+                .any(|l| l.starts_with('-') && l.parse::<f64>() == Ok(0.0)),
+            "{labels:?}"
+        );
+        assert!(
+            labels.iter().any(|l| l.contains("residual RMS 0.07")),
+            "{labels:?}"
+        );
+    }
+
     /// A gap (samples dropped at rest) splits the lines; regular steps do not.
     #[test]
     fn lines_stop_at_gaps() {
@@ -216,6 +278,6 @@ mod tests {
                 .count();
             assert_eq!(lines, 3, "{colour}");
         }
-        assert!(svg.contains("residual RMS 1.000e-2 N m"), "{svg}");
+        assert!(svg.contains("residual RMS 0.01 N m"), "{svg}");
     }
 }
