@@ -29,7 +29,7 @@ impl Fit {
         if !self.relative_error.is_finite() {
             return Err(crate::Error::NonFiniteResult {
                 what: format!("the relative error on {what}"),
-                cause: "the measured torques are all zero (it divides by their norm): the data hold no torque to identify from or predict; check the torque columns".into(),
+                cause: "the measured torques are all zero, or too small for their squares (below about 1e-154, which underflow to zero; it divides by their norm): the data hold no torque to identify from or predict; check the torque columns and their unit (`torque_scale`)".into(),
             });
         }
         if !(self.nmse.is_finite() && self.nmse_eq22.is_finite())
@@ -99,6 +99,20 @@ pub fn relative_improvement(reference: f64, new: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Torques too small to square are said to be so, with their unit's setting, not as
+    /// all zero (torques of 1e-300 N m were "all zero").
+    #[test]
+    fn torques_too_small_to_square_are_named() {
+        let e = fit(&[vec![1e-300, -2e-300, 3e-300]], &[vec![0.0; 3]])
+            .check("data")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("too small for their squares") && e.contains("torque_scale"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn known_values() {

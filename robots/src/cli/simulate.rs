@@ -11,6 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
+use robid_runtime::data::SLOW_SAMPLE_RATE;
 use robid_runtime::limits::{MIN_RESOLUTION, MIN_SAMPLE_RATE};
 use robid_runtime::simulate::{Flexibility, Noise, Record, SimulateError, Simulation, Trajectory};
 use robid_runtime::{Count, Model, Series, num};
@@ -436,6 +437,22 @@ fn check_bandwidth(bandwidth: f64, reference: &Trajectory, path: &Path) -> Resul
     let limit = bandwidth_limit(reference);
     let step = 0.25 / limit;
     // (a relative margin for time stamps such as 0.01 k, whose steps differ by rounding)
+    // a trajectory far slower than any robot's dynamics: the time column's unit, not the
+    // bandwidth (a time column in ms was told to lower --bandwidth to 0.05 Hz)
+    if 1.0 / step < SLOW_SAMPLE_RATE && bandwidth > limit * (1.0 + 1e-9) {
+        return Err(format!(
+            "{}: time steps of up to {} s, a sample rate of {} Hz, below the {} Hz a robot's \
+             dynamics need: is its time column in milliseconds? write it in seconds (the \
+             reference's loop at --bandwidth {} Hz needs steps of at most {} s)",
+            path.display(),
+            rounded(step),
+            rounded(1.0 / step),
+            num(SLOW_SAMPLE_RATE),
+            num(bandwidth),
+            rounded(0.25 / bandwidth)
+        )
+        .into());
+    }
     if bandwidth > limit * (1.0 + 1e-9) {
         return Err(format!(
             "--bandwidth {} Hz is above a quarter of the sample rate of {} ({} Hz at its \

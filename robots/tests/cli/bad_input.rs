@@ -770,6 +770,37 @@ fn simulate_refuses_time_stamps_identify_would_refuse() {
         );
         assert!(!out.exists());
     }
+    // a time column in milliseconds: a rate robid takes (0.1 Hz), but too slow for any
+    // robot; said as the time column's unit, not as the bandwidth (it was "lower
+    // --bandwidth to at most 0.025 Hz")
+    let mut ms = text.lines().next().unwrap().to_string() + "\n";
+    for line in text.lines().skip(1) {
+        let (t, rest) = line.split_once(',').unwrap();
+        ms += &format!("{},{rest}\n", t.parse::<f64>().unwrap() * 1e3);
+    }
+    let traj = write(dir.path(), "ms.csv", &ms);
+    let o = robid(&[
+        "simulate",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--trajectory",
+        traj.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &[
+            &format!(
+                "{}: time steps of up to 10 s, a sample rate of 0.1 Hz",
+                traj.display()
+            ),
+            "is its time column in milliseconds? write it in seconds",
+        ],
+    );
+    assert!(!stderr(&o).contains("lower --bandwidth"));
+    assert!(!out.exists());
 }
 
 /// `robid torques` of the UR5e with a parameter file of `text` (written as `params.toml`).
