@@ -10,6 +10,7 @@
 //! penalty. Random restarts from a seed run in parallel, each a Nelder-Mead minimisation;
 //! the best is polished by one more run.
 
+use crate::Num;
 use std::f64::consts::FRAC_PI_2;
 
 use rayon::prelude::*;
@@ -268,7 +269,13 @@ impl FourierDesign {
             &best.x
         };
         let cost = polished.value.min(best.value);
-        check_design_cost(cost, self.criterion)?;
+        check_design_cost(
+            cost,
+            self.criterion,
+            limits,
+            1.0 / self.base_frequency,
+            self.safety,
+        )?;
         Ok(FourierResult {
             fourier: decoder.decode(x),
             cost,
@@ -559,22 +566,88 @@ pub fn weights_from_sigma(sigma: &[f64], owner: &str, key: &str) -> Result<Vec<f
 }
 
 /// A finished design's cost must be finite: infinite means that no trajectory tried
-/// excites every base parameter.
-pub(crate) fn check_design_cost(cost: f64, criterion: Criterion) -> Result<()> {
+/// excites every base parameter. The joints move within `limits`, scaled by `safety`,
+/// over a trajectory of `period` seconds: a joint that cannot move a milliradian (or a
+/// millimetre) in it is named with the limit that holds it.
+pub(crate) fn check_design_cost(
+    cost: f64,
+    criterion: Criterion,
+    limits: &[JointLimits],
+    period: f64,
+    safety: f64,
+) -> Result<()> {
     if cost.is_finite() {
-        Ok(())
-    } else {
-        Err(Error::NonFiniteResult {
-            what: format!(
-                "the design criterion ({}) of the best trajectory",
-                match criterion {
-                    Criterion::Condition => "the condition number",
-                    Criterion::DOptimal => "D-optimality",
-                }
-            ),
-            cause: "every trajectory tried leaves some base parameter unexcited (or exceeds the torque limits without bound): check the joint limits (a joint with almost no range cannot excite its parameters) and the start position (one at the edge of a joint's range leaves it no room to move), or give the search more restarts and evaluations".into(),
-        })
+        return Ok(());
     }
+    let confined = most_confined(limits, period, safety)
+        .filter(|(_, reach, _)| *reach < CONFINED)
+        .map(|(j, reach, by)| {
+            format!(
+                "joint {} can move at most about {} in the {} s trajectory, held by {by}: \
+                 raise it (velocity limits from a description or --velocity-limits, \
+                 acceleration limits likewise), or ",
+                j + 1,
+                Num::rounded(reach, 3),
+                Num::rounded(period, 4)
+            )
+        })
+        .unwrap_or_default();
+    Err(Error::NonFiniteResult {
+        what: format!(
+            "the design criterion ({}) of the best trajectory",
+            match criterion {
+                Criterion::Condition => "the condition number",
+                Criterion::DOptimal => "D-optimality",
+            }
+        ),
+        cause: format!(
+            "every trajectory tried leaves some base parameter unexcited (or exceeds the \
+             torque limits without bound): {confined}check the joint limits (a joint with \
+             almost no range, speed or acceleration cannot excite its parameters) and the \
+             start position (one at the edge of a joint's range leaves it no room to move), \
+             or give the search more restarts and evaluations"
+        ),
+    })
+}
+
+/// A joint's reach below which it is named as the cause of an unexcited design: 1e-3 (rad
+/// or m).
+const CONFINED: f64 = 1e-3;
+
+/// The joint with the smallest reach (the amplitude of a sine at the trajectory's lowest
+/// frequency, 1 / `period`, within its position range, velocity and acceleration limits,
+/// scaled by `safety`), with that reach and the limit that sets it.
+fn most_confined(limits: &[JointLimits], period: f64, safety: f64) -> Option<(usize, f64, String)> {
+    let w = std::f64::consts::TAU / period;
+    limits
+        .iter()
+        .enumerate()
+        .map(|(j, l)| {
+            let by = [
+                (
+                    0.5 * (l.position[1] - l.position[0]),
+                    format!(
+                        "its position range [{}, {}]",
+                        Num(l.position[0]),
+                        Num(l.position[1])
+                    ),
+                ),
+                (
+                    l.velocity / w,
+                    format!("its velocity limit {}", Num(l.velocity)),
+                ),
+                (
+                    l.acceleration / (w * w),
+                    format!("its acceleration limit {}", Num(l.acceleration)),
+                ),
+            ];
+            let (reach, limit) = by
+                .into_iter()
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .unwrap_or_default();
+            (j, safety * reach, limit)
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 #[cfg(test)]
@@ -613,6 +686,51 @@ mod tests {
     /// designs a trajectory that moves and keeps every limit, from the start at rest (a
     /// start a hair from its limit still cannot move that way: that error now names the
     /// start).
+    /// An unexcited design names the joint that cannot move and the limit that holds it
+    /// (a velocity limit of 1e-6 was told as "a joint with almost no range"); the reach
+    /// is the amplitude of a sine at the lowest frequency within every limit.
+    #[test]
+    fn an_unexcited_design_names_the_confining_limit() {
+        let mut limits = crate::simulate::tests::pendulum_limits();
+        limits[1].velocity = 1e-6;
+        let (j, reach, by) = most_confined(&limits, 10.0, 0.5).unwrap();
+        let w = std::f64::consts::TAU / 10.0;
+        assert_eq!((j, by.as_str()), (1, "its velocity limit 1e-6"));
+        assert!((reach - 0.5 * 1e-6 / w).abs() < 1e-18, "{reach}");
+        // the acceleration limit holds when it binds first; the position range of joint 1
+        limits[1].velocity = 1.5;
+        limits[0].acceleration = 1e-6;
+        let (j, _, by) = most_confined(&limits, 10.0, 1.0).unwrap();
+        assert_eq!((j, by.as_str()), (0, "its acceleration limit 1e-6"));
+        limits[0].acceleration = 4.0;
+        limits[0].position = [0.0, 1e-5];
+        let (j, reach, by) = most_confined(&limits, 10.0, 1.0).unwrap();
+        assert_eq!((j, by.as_str()), (0, "its position range [0, 1e-5]"));
+        assert!((reach - 5e-6).abs() < 1e-18);
+        let e = check_design_cost(f64::INFINITY, Criterion::Condition, &limits, 10.0, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("joint 1 can move at most about 5e-6 in the 10 s trajectory, held by its position range"),
+            "{e}"
+        );
+        // joints that can move: the general advice alone
+        let e = check_design_cost(
+            f64::INFINITY,
+            Criterion::Condition,
+            &crate::simulate::tests::pendulum_limits(),
+            10.0,
+            1.0,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            !e.contains("can move at most") && e.contains("check the joint limits"),
+            "{e}"
+        );
+        assert!(check_design_cost(3.0, Criterion::Condition, &limits, 10.0, 1.0).is_ok());
+    }
+
     #[test]
     fn a_start_near_a_limit_still_gets_a_design() {
         use crate::excite::{PointDesign, margins};

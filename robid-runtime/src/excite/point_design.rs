@@ -235,7 +235,7 @@ impl PointDesign {
             .into_iter()
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .ok_or_else(|| Error::setting("PointDesign", "restarts", "no start was run"))?;
-        check_design_cost(cost, self.criterion)?;
+        check_design_cost(cost, self.criterion, limits, self.duration, self.safety)?;
         Ok(PointResult {
             points: decoder.decode(&x)?,
             cost,
