@@ -191,6 +191,12 @@ pub(crate) mod run_tests {
         // value, plus the parse's rounding (measured 4.8e-11 of 0.0202)
         assert!((back.q[1][7] - r.q[1][7]).abs() < 6e-10 * r.q[1][7].abs());
         assert!(Trajectory::read_csv(&f, 3).is_err());
+        // a negative zero is written as zero (-0.000000000e0 was written)
+        let mut z = reference(0.2, 100.0);
+        z.qd[0][0] = -0.0;
+        z.write_csv(&f).unwrap();
+        let text = std::fs::read_to_string(&f).unwrap();
+        assert!(!text.contains("-0.000000000e0"), "{}", &text[..200]);
     }
 
     /// A trajectory's time stamps follow the rule of identification data: a mean step

@@ -306,6 +306,7 @@ pub(super) fn write_rows(
     rows: usize,
     mut fill: impl FnMut(usize, &mut Vec<f64>),
 ) -> Result<()> {
+    use std::fmt::Write as _;
     crate::output::write_atomically(path, |w| {
         writeln!(w, "{}", header.join(","))?;
         let mut row = Vec::with_capacity(header.len());
@@ -318,7 +319,8 @@ pub(super) fn write_rows(
                 if i > 0 {
                     line.push(',');
                 }
-                line.push_str(&format!("{x:.9e}"));
+                // adding zero turns -0 into 0 (a velocity of -0 was written -0.000000000e0)
+                let _ = write!(line, "{:.9e}", x + 0.0);
             }
             writeln!(w, "{line}")?;
         }

@@ -279,7 +279,8 @@ fn torques(model: &dyn Model, base: &[f64], table: &Table, text: &mut String) ->
             )
             .into());
         }
-        let row: Vec<String> = tau.iter().map(|t| format!("{t:e}")).collect();
+        // adding zero turns -0 into 0
+        let row: Vec<String> = tau.iter().map(|t| format!("{:e}", t + 0.0)).collect();
         let _ = writeln!(text, "{}", row.join(","));
     }
     Ok(())
