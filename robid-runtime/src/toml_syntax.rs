@@ -201,6 +201,15 @@ fn shape_error(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
         Some(_) => value.clone(),
         None => key_before(text, span.start),
     };
+    // the key's whole path, as the checks after parsing name it (`order` was told where
+    // `processing.lowpass.order` is meant, and 0 and -1 read as two different keys)
+    let key = if key.starts_with('[') || key == "(value)" {
+        key
+    } else {
+        crate::data::KeyMap::parse(text)
+            .path_at(text, span.start, &key)
+            .unwrap_or(key)
+    };
     // a key missing from the file's top level has no key before it: the missing one is
     // the place (an empty file was told "`(value)`: missing key `temperature`")
     let (key, problem) = match message.strip_prefix("missing field ") {
@@ -406,7 +415,7 @@ mod tests {
         let e = syntax_error(text, "c.toml".as_ref(), TomlFile::Config, &e).to_string();
         assert_eq!(
             e,
-            "c.toml:1:10: `range`: `1e-320` is not a whole number of at least 0"
+            "c.toml:1:10: `range[1]`: `1e-320` is not a whole number of at least 0"
         );
         assert_eq!(short_numbers("`12` and `x` and `"), "`12` and `x` and `");
         let text = "a = 1\nµb = 2\n";
@@ -451,7 +460,7 @@ mod tests {
             .to_string();
         assert_eq!(
             e,
-            "f.toml:2:9: `joint`: `\"one\"` is not a whole number of at least 0"
+            "f.toml:2:9: `friction[1].joint`: `\"one\"` is not a whole number of at least 0"
         );
         // a key missing at the top of the file (here an empty one): the key is the place (it
         // was "`(value)`: missing key `temperature`")
@@ -484,12 +493,12 @@ mod tests {
         for (got, want) in [
             (
                 config("[processing]\ndecimation = \"x\"\n"),
-                "c.toml:2:14: `decimation`: `\"x\"` is not a whole number of at least 1 (the total \
+                "c.toml:2:14: `processing.decimation`: `\"x\"` is not a whole number of at least 1 (the total \
                  factor) or a list of stage factors such as [10, 10]",
             ),
             (
                 config("[processing]\ntrim = -1\n"),
-                "c.toml:2:8: `trim`: `-1` is not a whole number of at least 0",
+                "c.toml:2:8: `processing.trim`: `-1` is not a whole number of at least 0",
             ),
             // an integer beyond 64 bits is a shape error at its key, not toml's raw report
             (
@@ -500,22 +509,22 @@ mod tests {
             ),
             (
                 bounds("total_mass = [0, 99999999999999999999]\n"),
-                "b.toml:1:18: `total_mass`: `99999999999999999999` is a whole number beyond 64 \
+                "b.toml:1:18: `total_mass[2]`: `99999999999999999999` is a whole number beyond 64 \
                  bits, larger than any setting takes; check the value (a size meant this large \
                  is written with an exponent, 1e20)",
             ),
             (
                 config("dof = 2\n[[source]]\nfile = \"a.csv\"\nposition = 3\n"),
-                "c.toml:4:12: `position`: `3` is not a column name template such as \"q{}\" or a \
+                "c.toml:4:12: `source[1].position`: `3` is not a column name template such as \"q{}\" or a \
                  list of one column name per joint",
             ),
             (
                 config("[drive]\ngear_ratios = [\n  1,\n  \"a\",\n]\n"),
-                "c.toml:4:3: `gear_ratios`: `\"a\"` is not a number",
+                "c.toml:4:3: `drive.gear_ratios[2]`: `\"a\"` is not a number",
             ),
             (
                 config("[processing]\nlowpass = { cutoff = \"x\" }\n"),
-                "c.toml:2:22: `cutoff`: `\"x\"` is not a cutoff in Hz (a number) or \"auto\"",
+                "c.toml:2:22: `processing.lowpass.cutoff`: `\"x\"` is not a cutoff in Hz (a number) or \"auto\"",
             ),
             // a key missing at the top of the file: the key is the place (it was
             // "`(value)`: missing key `dof`")
@@ -525,7 +534,7 @@ mod tests {
             ),
             (
                 config("[estimation]\nmethod = \"olz\"\n"),
-                "c.toml:2:10: `method`: unknown value `olz`, give one of `ols`, `wls`, `rls`, \
+                "c.toml:2:10: `estimation.method`: unknown value `olz`, give one of `ols`, `wls`, `rls`, \
                  `link-by-link`, `energy`, `per-axis`",
             ),
             // toml read `[1, 2, 3]` into a pair without a word, and `[[0, 1]]` was "invalid
@@ -536,12 +545,12 @@ mod tests {
             ),
             (
                 bounds("[default]\ncom = [[0, 1]]\n"),
-                "b.toml:2:7: `com`: `[[0, 1]]` has 1 value: give three ranges [lo, hi], of x, y \
+                "b.toml:2:7: `default.com`: `[[0, 1]]` has 1 value: give three ranges [lo, hi], of x, y \
                  and z",
             ),
             (
                 bounds("[default]\ncom = [[0, 1], [0, 1], [0, 1, 2]]\n"),
-                "b.toml:2:7: `com`: the z range has 3 values; give two, [lo, hi]",
+                "b.toml:2:7: `default.com`: the z range has 3 values; give two, [lo, hi]",
             ),
         ] {
             assert_eq!(got, want);

@@ -44,6 +44,23 @@ impl KeyMap {
         self.keys.keys().map(String::as_str)
     }
 
+    /// The dotted path of the key written `name` that a value at byte `offset` of `text`
+    /// (the text this map was parsed from) belongs to: the key or element at that place,
+    /// else the last key named `name` before it (`processing.lowpass.order` for the `-1`
+    /// of `lowpass = { cutoff = 5, order = -1 }` under `[processing]`).
+    pub(crate) fn path_at(&self, text: &str, offset: usize, name: &str) -> Option<String> {
+        let at = position(&line_starts(text), offset);
+        if let Some((key, _)) = self.keys.iter().find(|(_, p)| **p == at) {
+            return Some(key.clone());
+        }
+        let suffix = format!(".{name}");
+        self.keys
+            .iter()
+            .filter(|(k, p)| **p <= at && (*k == name || k.ends_with(&suffix)))
+            .max_by_key(|(_, p)| **p)
+            .map(|(k, _)| k.clone())
+    }
+
     fn walk(&mut self, table: &DeTable<'_>, prefix: &str, starts: &[usize], depth: usize) {
         // TOML nesting in a config is shallow; the cap keeps a hostile file from recursing
         if depth > 32 {
@@ -115,5 +132,20 @@ mod tests {
         assert_eq!(k.find("processing.trim"), Some((6, 2)));
         assert_eq!(k.find("sample_rate"), None);
         assert_eq!(KeyMap::parse("dof = [").find("dof"), None);
+        // the path of a value's key: by its own place, or the last key of its name before
+        let at = |needle: &str| text.find(needle).unwrap();
+        assert_eq!(
+            k.path_at(text, at("5.0"), "cutoff").as_deref(),
+            Some("processing.lowpass.cutoff")
+        );
+        assert_eq!(
+            k.path_at(text, at("\"b\""), "torque").as_deref(),
+            Some("source[2].torque[2]")
+        );
+        assert_eq!(
+            k.path_at(text, at("\"q{}\""), "position").as_deref(),
+            Some("source[1].position")
+        );
+        assert_eq!(k.path_at(text, at("= 2"), "gaps"), None);
     }
 }
