@@ -172,7 +172,8 @@ mod tests {
         let m = reached(1e-3, 0.5);
         assert!(m <= median && m > median / 2.0, "{m}");
         let top = reached(1e-3, 0.01);
-        assert!(top <= 6.28 && top > 3.14, "{top}");
+        let tau = std::f64::consts::TAU;
+        assert!(top <= tau && top > tau / 2.0, "{top}");
         assert_eq!(reached(1e-6, 0.01), 1024.0 * top);
         let mut joined = SpeedHistogram::default();
         joined.join(&SpeedHistogram::default());
