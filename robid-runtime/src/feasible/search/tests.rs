@@ -639,8 +639,24 @@ fn mass_prior(n: usize, mass: f64, weight: f64) -> AnnealOptions {
     }
 }
 
-/// Gaz et al.'s first step holds what its fit sees, without the equalities (they are the
-/// second step's): here the fit sees m1 and c1x (M1, MX1) and, through ZZ2, link 2's mass,
+/// An equality over masses and centres of mass holds in the first step already, so that
+/// the values it holds meet it (`m2 = 3` was held at 1.09 kg, and the second step then
+/// refused the equality); one naming an inertia stays the second step's.
+#[test]
+fn gaz_the_gravity_step_meets_the_equalities_over_its_variables() {
+    let truth = [one_link(), one_link()].concat();
+    let fit = problem(2, &["M1", "MX1", "ZZ2"], &truth);
+    let options = AnnealOptions {
+        equalities: vec!["c1x = 0.05".parse().unwrap()],
+        ..quick()
+    };
+    let (_, held) = solve_gravity_step(&fit, &Bounds::wide(2), &options).unwrap();
+    let c1x = held.iter().find(|(v, _)| v.to_string() == "c1x").unwrap().1;
+    assert!((c1x - 0.05).abs() < 1e-6, "{held:?}");
+}
+
+/// Gaz et al.'s first step holds what its fit sees, without the equalities that name an
+/// inertia (they are the second step's): here the fit sees m1 and c1x (M1, MX1) and, through ZZ2, link 2's mass,
 /// c2x, c2y and inertia variables; the step holds the masses and centre coordinates among
 /// them, each at its value in the step's solution, and no inertia variable. The equality
 /// on link 1 would otherwise make all of link 1's variables searched (c1y and c1z held).

@@ -30,8 +30,10 @@ pub struct TwoStep {
 /// gravity coefficients (e.g. [`GravityCoefficients::problem`](crate::feasible::GravityCoefficients::problem)
 /// with its target set), `problem` the whole one, over the same standard parameters.
 ///
-/// The first step searches without the equalities (Gaz et al. impose them in the second
-/// step only) but, unlike their problem 16, with the total-mass range: the masses the
+/// The first step searches with the equalities that name only masses and centre-of-mass
+/// coordinates (the values it holds must meet them; Gaz et al.'s eq. 15 names inertias, and
+/// such equalities are imposed in the second step only, as theirs) and, unlike their
+/// problem 16, with the total-mass range: the masses the
 /// gravity coefficients do not see (the first link's) count as anything in their boxes, so
 /// the range only excludes held masses that no second step could complete; without it the
 /// first step often holds masses whose sum leaves the range out of reach. The second step
@@ -84,8 +86,19 @@ pub fn solve_gravity_step(
     bounds: &Bounds,
     options: &AnnealOptions,
 ) -> Result<(Solution, Vec<(Variable, f64)>)> {
+    // the equalities over masses and centres of mass only: the values held after this
+    // step must meet them (`m2 = 3` was held at 1.09 kg, then refused in the second step)
     let first = AnnealOptions {
-        equalities: Vec::new(),
+        equalities: options
+            .equalities
+            .iter()
+            .filter(|e| {
+                std::iter::once(&e.left)
+                    .chain(&e.factors)
+                    .all(|v| v.index().is_some())
+            })
+            .cloned()
+            .collect(),
         ..options.clone()
     };
     let (solution, searched) = search(gravity, bounds, &first, "feasible: anneal, gravity step")?;
