@@ -660,16 +660,18 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         stdout,
         "joint  pos_low  pos_high  velocity  acceleration  torque"
     )?;
+    // four significant digits: a margin to a tiny limit (1e-6) read 0.000 or -0.00
+    let short = |x: f64| Num::rounded(x, 4).to_string();
     for (j, m) in a.margins.iter().enumerate() {
-        let torque = m.torque.map_or("-".to_string(), |t| format!("{t:.2}"));
+        let torque = m.torque.map_or("-".to_string(), short);
         writeln!(
             stdout,
-            "{:5}  {:7.3}  {:8.3}  {:8.3}  {:12.3}  {torque}",
+            "{:5}  {:>7}  {:>8}  {:>8}  {:>12}  {torque}",
             j + 1,
-            m.position_low,
-            m.position_high,
-            m.velocity,
-            m.acceleration
+            short(m.position_low),
+            short(m.position_high),
+            short(m.velocity),
+            short(m.acceleration)
         )?;
     }
     stdout.flush()?;
@@ -688,7 +690,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 ]
                 .into_iter()
                 .filter(|(_, margin)| *margin < 0.0)
-                .map(move |(what, margin)| format!("joint {} {what} by {:.3}", j + 1, -margin))
+                .map(move |(what, margin)| {
+                    format!("joint {} {what} by {}", j + 1, Num::rounded(-margin, 3))
+                })
             })
             .collect();
         let fix = if exceeded.iter().any(|e| e.contains("torque")) {
