@@ -2,8 +2,9 @@
 //! help, and any text a user wrote, quoted short.
 
 use std::borrow::Cow;
+use std::borrow::ToOwned;
 use std::format;
-use std::string::String;
+use std::string::{String, ToString};
 use std::vec::Vec;
 
 /// Whether `name` can name a parameter: a word of ASCII letters, digits and `_` that
@@ -113,6 +114,36 @@ fn levenshtein(a: impl Iterator<Item = char>, b: impl Iterator<Item = char>) -> 
         }
     }
     row[b.len()]
+}
+
+/// An operating-system error on a file in the user's terms, with the fix: a folder given
+/// for a file was told "Is a directory (os error 21)".
+///
+/// ```
+/// use robid_core::names::io_problem;
+/// let e = std::fs::read(std::env::temp_dir()).unwrap_err();
+/// assert_eq!(io_problem(&e), "it is a folder, not a file; give the path of a file");
+/// let e = std::fs::read("/no/such/file").unwrap_err();
+/// assert_eq!(io_problem(&e), "no such file; check the path");
+/// ```
+pub fn io_problem(e: &std::io::Error) -> String {
+    use std::io::ErrorKind;
+    match e.kind() {
+        ErrorKind::IsADirectory => "it is a folder, not a file; give the path of a file".into(),
+        ErrorKind::NotFound => "no such file; check the path".into(),
+        ErrorKind::PermissionDenied => {
+            "permission denied; check the file's permissions or run as its owner".into()
+        }
+        _ => {
+            let text = e.to_string();
+            // the error number is the system's, not the user's
+            let text = match text.rfind(" (os error ") {
+                Some(at) if text.ends_with(')') => text[..at].to_owned(),
+                _ => text,
+            };
+            format!("{text}; check the path and permissions")
+        }
+    }
 }
 
 #[cfg(test)]

@@ -37,7 +37,7 @@ impl std::fmt::Display for TomlFile {
 #[non_exhaustive]
 pub enum DataError {
     /// A file could not be opened or read.
-    #[error("{}: cannot read: {source}; check the path and permissions", robid_core::names::shortened(&path.display().to_string(), 256))]
+    #[error("{}: cannot read: {}", robid_core::names::shortened(&path.display().to_string(), 256), robid_core::names::io_problem(source))]
     Io {
         /// The file.
         path: PathBuf,

@@ -319,12 +319,13 @@ impl Robot {
             file: file.clone(),
             reason,
         };
-        let handle = std::fs::File::open(path).map_err(|e| read_error(e.to_string()))?;
+        let handle =
+            std::fs::File::open(path).map_err(|e| read_error(robid_core::names::io_problem(&e)))?;
         let mut bytes = Vec::new();
         handle
             .take(MAX_DESCRIPTION_LEN as u64 + 1)
             .read_to_end(&mut bytes)
-            .map_err(|e| read_error(e.to_string()))?;
+            .map_err(|e| read_error(robid_core::names::io_problem(&e)))?;
         if bytes.len() > MAX_DESCRIPTION_LEN {
             return Err(read_error(format!(
                 "it is longer than {MAX_DESCRIPTION_LEN} bytes, the most a description may have; is it a description?"

@@ -1116,3 +1116,32 @@ fn demo_beside_a_file_named_like_its_folder_says_what_to_do() {
     );
     assert!(stdout(&o).is_empty(), "{}", stdout(&o));
 }
+
+/// A folder given where a file belongs is told so with the fix, by every reader (it was
+/// "cannot read: Is a directory (os error 21); check the path and permissions").
+#[test]
+fn a_folder_given_for_a_file_is_told_so() {
+    let dir = folder();
+    let d = dir.path().to_str().unwrap();
+    for args in [
+        vec!["model", d],
+        vec!["identify", "descriptions/ur5e.toml", "--data", d],
+        vec![
+            "feasible",
+            "tests/fixtures/two_link.toml",
+            "--identified",
+            d,
+            "-o",
+            "unused.toml",
+        ],
+    ] {
+        let o = robid(&args);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(
+            e.contains("it is a folder, not a file; give the path of a file")
+                && !e.contains("os error"),
+            "{args:?}: {e}"
+        );
+    }
+}

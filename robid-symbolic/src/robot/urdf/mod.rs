@@ -280,7 +280,8 @@ fn read_text(path: &Path, file: &str) -> Result<String, DescriptionError> {
         file: file.to_owned(),
         reason,
     };
-    let handle = std::fs::File::open(path).map_err(|e| read_error(e.to_string()))?;
+    let handle =
+        std::fs::File::open(path).map_err(|e| read_error(robid_core::names::io_problem(&e)))?;
     let mut bytes = Vec::new();
     handle
         .take(MAX_DESCRIPTION_LEN as u64 + 1)
