@@ -283,7 +283,7 @@ mod tests {
         assert_eq!(figures.len(), 2);
         assert!(figures[0].contains("torque [N m]") && figures[0].contains("residual [N m]"));
         assert!(
-            figures[1].contains("torque [N]")
+            figures[1].contains("force [N]")
                 && figures[1].contains("residual [N]")
                 && !figures[1].contains("N m"),
             "{}",

@@ -120,12 +120,18 @@ fn plot_one(
     let residual: Vec<f64> = m.iter().zip(p).map(|(m, p)| m - p).collect();
     let rms = (residual.iter().map(|r| r * r).sum::<f64>() / residual.len().max(1) as f64).sqrt();
     let pieces = segments(t);
+    // a prismatic joint's generalised force is a force
+    let what = if unit == super::PRISMATIC {
+        "force"
+    } else {
+        "torque"
+    };
     let torque_span = span(m.iter().chain(p));
     let residual_span = span(residual.iter());
     let mut chart = ChartBuilder::on(&upper)
         .caption(
             format!(
-                "joint {joint}: measured vs predicted torque (residual RMS {} {unit})",
+                "joint {joint}: measured vs predicted {what} (residual RMS {} {unit})",
                 crate::Num::rounded(rms, 4)
             ),
             ("sans-serif", 18),
@@ -138,7 +144,7 @@ fn plot_one(
         .configure_mesh()
         .x_label_formatter(&|v| tick(*v, t1 - t0))
         .y_label_formatter(&|v| tick(*v, torque_span.end - torque_span.start))
-        .y_desc(format!("torque [{unit}]"))
+        .y_desc(format!("{what} [{unit}]"))
         .draw()?;
     for (values, colour, name) in [(m, BLUE, "measured"), (p, RED, "predicted")] {
         for (i, r) in pieces.iter().enumerate() {

@@ -565,7 +565,7 @@ fn degrees_convert_the_revolute_joints_only() {
         let svg = |j: usize| std::fs::read_to_string(d.join(format!("plots/fit_joint{j}.svg")));
         let (one, two) = (svg(1).unwrap(), svg(2).unwrap());
         assert!(one.contains("torque [N m]") && one.contains("residual [N m]"));
-        assert!(two.contains("torque [N]") && two.contains("residual [N]") && !two.contains("N m"));
+        assert!(two.contains("force [N]") && two.contains("residual [N]") && !two.contains("N m"));
         let report: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
         assert_eq!(report["joint_units"], serde_json::json!(["N m", "N"]));

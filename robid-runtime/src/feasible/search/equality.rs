@@ -179,7 +179,14 @@ impl FromStr for Equality {
             match part.parse::<f64>() {
                 Ok(c) if c.is_finite() && c.abs() <= MAX_PARAMETER => coefficient *= c,
                 Ok(_) => return Err(bad("a constant that is not finite or beyond 1e6")),
-                Err(_) => factors.push(part.parse::<Variable>()?),
+                // a negated variable, `c6y = -c6x`, as `-1 * c6x`
+                Err(_) => match part.strip_prefix('-') {
+                    Some(variable) => {
+                        coefficient = -coefficient;
+                        factors.push(variable.trim().parse::<Variable>()?);
+                    }
+                    None => factors.push(part.parse::<Variable>()?),
+                },
             }
         }
         Ok(Equality {
@@ -263,6 +270,14 @@ mod tests {
         }
         let e: Equality = "m1 = 2 * c1x * 0.5".parse().unwrap();
         assert_eq!(e.to_string(), "m1 = c1x");
+        // a negated variable (it was "`-c2x` is not a link variable")
+        let e: Equality = "c2z = -c2x".parse().unwrap();
+        assert_eq!(
+            (e.coefficient, e.to_string().as_str()),
+            (-1.0, "c2z = -1 * c2x")
+        );
+        let e: Equality = "c2z = -0.5 * -c2x".parse().unwrap();
+        assert_eq!(e.coefficient, 0.5);
     }
 
     #[test]
