@@ -280,6 +280,32 @@ mod tests {
         assert_eq!(e.coefficient, 0.5);
     }
 
+    /// A result that misses an equality by more than 1e-6 (1 + |right|) is named with both
+    /// sides; one within it is not.
+    #[test]
+    fn an_unmet_equality_is_named_with_both_sides() {
+        let mut x = vec![0.0; PER_LINK];
+        x[0] = 2.0;
+        x[1] = 0.1;
+        let e: Equality = "c1x = 0.05 * m1".parse().unwrap();
+        assert_eq!(e.unmet(&x), None);
+        x[1] = 0.1 + 2e-6;
+        assert_eq!(
+            e.unmet(&x).as_deref(),
+            Some("equality `c1x = 0.05 * m1` not met: c1x = 0.100002, the right side 0.1")
+        );
+        x[1] = 0.1 + 1e-6;
+        assert_eq!(e.unmet(&x), None);
+        x[1] = 0.1 - 2e-6;
+        assert!(e.unmet(&x).is_some());
+        // a moment without its own bound lies in the link's inertia range; a product has none
+        let b = LinkBounds::default();
+        let v: Variable = "I1xx".parse().unwrap();
+        assert_eq!(v.range(&b), Some(b.inertia));
+        let v: Variable = "I1xy".parse().unwrap();
+        assert_eq!(v.range(&b), None);
+    }
+
     #[test]
     fn the_violation_is_the_scaled_difference() {
         // link 1 at m = 2, c = (0.1, 0, 0.3), no inertia: I1xz = 0 against c1x c1z m1 = 0.06
