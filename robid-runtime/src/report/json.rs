@@ -188,7 +188,7 @@ pub struct Report {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub segments: Option<SegmentsEntry>,
     /// The unit of the joint torques, of the RMS errors and of eq. 22's NMSE
-    /// ([`torque_unit`]): "N m" for revolute joints (the default of a report without it),
+    /// ([`torque_unit`](super::torque_unit)): "N m" for revolute joints (the default of a report without it),
     /// "N" for prismatic ones, "N m and N" for both.
     #[serde(default = "revolute_unit")]
     pub torque_unit: String,
