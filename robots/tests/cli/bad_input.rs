@@ -741,25 +741,29 @@ fn simulate_refuses_time_stamps_identify_would_refuse() {
     let dir = folder();
     let text = std::fs::read_to_string(trajectory(dir.path())).unwrap();
     let out = dir.path().join("data.csv");
-    for (scale, step, rate) in [(1e8, "1e6 s", "1e-6 Hz"), (1e-7, "1e-9 s", "1e9 Hz")] {
+    // the trajectory with its time stamps times `scale`, simulated with `extra` flags
+    let simulate_scaled = |scale: f64, extra: &[&str]| {
         let mut scaled = text.lines().next().unwrap().to_string() + "\n";
         for line in text.lines().skip(1) {
             let (t, rest) = line.split_once(',').unwrap();
             scaled += &format!("{},{rest}\n", t.parse::<f64>().unwrap() * scale);
         }
         let traj = write(dir.path(), "scaled.csv", &scaled);
-        let o = robid(&[
+        let mut args = vec![
             "simulate",
             "descriptions/ur5e.toml",
             "--parameters",
             "parameters/ur5e.toml",
             "--trajectory",
             traj.to_str().unwrap(),
-            "--bandwidth",
-            "1e-7",
             "-o",
             out.to_str().unwrap(),
-        ]);
+        ];
+        args.extend_from_slice(extra);
+        (traj.clone(), robid(&args))
+    };
+    for (scale, step, rate) in [(1e8, "1e6 s", "1e-6 Hz"), (1e-7, "1e-9 s", "1e9 Hz")] {
+        let (traj, o) = simulate_scaled(scale, &["--bandwidth", "1e-7"]);
         fails_with(
             &o,
             &[
@@ -773,22 +777,7 @@ fn simulate_refuses_time_stamps_identify_would_refuse() {
     // a time column in milliseconds: a rate robid takes (0.1 Hz), but too slow for any
     // robot; said as the time column's unit, not as the bandwidth (it was "lower
     // --bandwidth to at most 0.025 Hz")
-    let mut ms = text.lines().next().unwrap().to_string() + "\n";
-    for line in text.lines().skip(1) {
-        let (t, rest) = line.split_once(',').unwrap();
-        ms += &format!("{},{rest}\n", t.parse::<f64>().unwrap() * 1e3);
-    }
-    let traj = write(dir.path(), "ms.csv", &ms);
-    let o = robid(&[
-        "simulate",
-        "descriptions/ur5e.toml",
-        "--parameters",
-        "parameters/ur5e.toml",
-        "--trajectory",
-        traj.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let (traj, o) = simulate_scaled(1e3, &[]);
     fails_with(
         &o,
         &[
