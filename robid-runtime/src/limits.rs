@@ -20,6 +20,7 @@
 //! | temperature (deg C) | magnitude at most [`MAX_TEMPERATURE`] = 1e3 deg C |
 //! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
 //! | parameter values and standard deviations given as input | magnitude at most [`MAX_PARAMETER`] = 1e6 |
+//! | base parameters of a simulation or a design's torque check (also derived from standard ones) | magnitude at most [`MAX_BASE_PARAMETER`] = 1e14 |
 //! | encoder resolution of a simulation (`Noise::quantization`) | 0, or [`MIN_RESOLUTION`] = 1e-12 to [`MAX_POSITION`] |
 //! | a joint's limits for an excitation design | velocity, acceleration and torque limits, and the span of the position limits, at least [`MIN_JOINT_LIMIT`] = 1e-6 |
 //! | unit and drive factors (`time_scale`, `torque_scale`, gear ratios, couplings, torque constants, rotor terms, extra-column coefficients) | magnitude at most [`MAX_FACTOR`] = 1e6; the factors that scale a signal (`time_scale`, `torque_scale`, gear ratios, torque constants, also those of a joint-flexibility file) also magnitude at least [`MIN_FACTOR`] = 1e-12 |
@@ -79,6 +80,13 @@ pub const MIN_RESOLUTION: f64 = 1e-12;
 /// (identified values for the feasible search, reference parameters of a simulation or a
 /// design): kg, kg m, kg m^2, N m s/rad, N m.
 pub const MAX_PARAMETER: f64 = 1e6;
+/// Largest |value| of a base parameter that a simulation or an excitation design's torque
+/// check takes. Base parameters are sums of standard ones, each at most
+/// [`MAX_PARAMETER`], weighted by up to two lengths of a description (up to 1 km each),
+/// so valid standard values can give base values far above [`MAX_PARAMETER`]
+/// (`ZZR1 = ZZ1 + YY2 + 0.35 M4 + ...` of 2.4e6 from three values of 1e6); the
+/// arithmetic stays finite far beyond this cap, and the torques are checked on their own.
+pub const MAX_BASE_PARAMETER: f64 = 1e14;
 
 /// Largest file read (bytes, after decompression).
 pub const MAX_FILE_BYTES: u64 = 4 << 30;

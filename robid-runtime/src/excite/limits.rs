@@ -3,7 +3,7 @@
 use crate::Count;
 use crate::error::{Error, Result, num};
 use crate::limits::{
-    MAX_ACCELERATION, MAX_PARAMETER, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY, MIN_JOINT_LIMIT,
+    MAX_ACCELERATION, MAX_BASE_PARAMETER, MAX_POSITION, MAX_TORQUE, MAX_VELOCITY, MIN_JOINT_LIMIT,
 };
 use crate::simulate::Trajectory;
 use crate::{LengthError, Model};
@@ -193,19 +193,19 @@ pub(crate) fn check_reference<M: Model + ?Sized>(model: &M, base: Option<&[f64]>
 }
 
 /// Checks base-parameter values given as input: finite, magnitude at most
-/// [`MAX_PARAMETER`]; the error names the parameter.
+/// [`MAX_BASE_PARAMETER`]; the error names the parameter.
 pub(crate) fn check_parameters<M: Model + ?Sized>(
     owner: &str,
     key: &str,
     model: &M,
     base: &[f64],
 ) -> Result<()> {
-    match base.iter().position(|v| !(v.abs() <= MAX_PARAMETER)) {
+    match base.iter().position(|v| !(v.abs() <= MAX_BASE_PARAMETER)) {
         Some(i) => Err(Error::setting(
             owner,
             key,
             format!(
-                "base parameter `{}` is {}; parameter values must be finite with magnitude at most {MAX_PARAMETER:e}",
+                "base parameter `{}` is {}; parameter values must be finite with magnitude at most {MAX_BASE_PARAMETER:e}",
                 model.base_parameter_name(i).unwrap_or("?"),
                 num(base[i])
             ),
@@ -323,6 +323,32 @@ mod tests {
             let mut l = joint();
             edit(&mut l, 2.0 * MIN_JOINT_LIMIT);
             assert!(l.check(3).is_ok(), "{what} at the floor");
+        }
+    }
+
+    /// Base parameters above the standard values' cap pass, as sums of valid standard
+    /// values can give them (`ZZR1` of 2.4e6 from three values of 1e6 was refused by the
+    /// simulation while `robid torques` took it); beyond MAX_BASE_PARAMETER, or not
+    /// finite, one is refused by name.
+    #[test]
+    fn base_parameters_are_capped_beyond_sums_of_standard_ones() {
+        let model = crate::simulate::tests::Pendulum::default();
+        let mut base = model.base();
+        base[1] = 2.4e6;
+        assert!(check_parameters("design", "torque", &model, &base).is_ok());
+        base[1] = MAX_BASE_PARAMETER;
+        assert!(check_parameters("design", "torque", &model, &base).is_ok());
+        for bad in [
+            2.0 * MAX_BASE_PARAMETER,
+            -2.0 * MAX_BASE_PARAMETER,
+            f64::NAN,
+        ] {
+            base[1] = bad;
+            let e = check_parameters("design", "torque", &model, &base)
+                .unwrap_err()
+                .to_string();
+            let name = model.base_parameter_name(1).unwrap();
+            assert!(e.contains(&format!("`{name}`")), "{bad}: {e}");
         }
     }
 }

@@ -29,7 +29,7 @@
 //! Checks: the settings ([`Simulation::check`]: bandwidth up to [`MAX_BANDWIDTH`] Hz,
 //! 1 to [`MAX_SUBSTEPS`] substeps, at most [`MAX_SIMULATION_STEPS`] integration steps in
 //! all), the base parameters (finite, magnitude at most
-//! [`MAX_PARAMETER`](crate::limits::MAX_PARAMETER); M(q) positive definite at the
+//! [`MAX_BASE_PARAMETER`](crate::limits::MAX_BASE_PARAMETER); M(q) positive definite at the
 //! reference's first state, else a joint that moves no mass or inertia is named
 //! ([`crate::SimulateError::NoInertia`]) or the parameters are blamed), the reference (finite and
 //! within the ranges of [`crate::limits`], a bad sample named by its index and time). At
