@@ -481,14 +481,16 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         predictions.push(p);
     }
     report.check()?;
-    // files first: a reader that closes standard output early does not cost them
-    if let Some(path) = &args.json {
-        report.write_json(path)?;
-    }
+    // files first: a reader that closes standard output early does not cost them; the
+    // plots first of all, as they create their folder, which `--json` and `--report` may
+    // name (`--plot out --json out/fit.json`)
     if let Some(dir) = &args.plot {
         for (prefix, p) in prefixes.iter().zip(&predictions) {
             plot_torques(p, &report.joint_units, dir, prefix)?;
         }
+    }
+    if let Some(path) = &args.json {
+        report.write_json(path)?;
     }
     if let Some(path) = &args.report {
         let named: Vec<(&str, &_)> = prefixes

@@ -401,8 +401,9 @@ fn two_outputs_on_one_file_are_refused() {
         );
         assert_eq!(std::fs::read_dir(dir.join("plots")).unwrap().count(), 0);
     }
-    // a report in the folder --plot creates is written there (it was "the folder plots2
-    // does not exist; create it first"); one folder deeper is still refused
+    // a report and a JSON in the folder --plot creates are written there (each was "the
+    // folder plots2 does not exist; create it first": the JSON was written before the
+    // plots created the folder); one folder deeper is still refused
     let plots = dir.join("plots2");
     let identify = |report: &Path| {
         robid(&[
@@ -414,6 +415,8 @@ fn two_outputs_on_one_file_are_refused() {
             plots.to_str().unwrap(),
             "--report",
             report.to_str().unwrap(),
+            "--json",
+            plots.join("fit.json").to_str().unwrap(),
         ])
     };
     let o = identify(&plots.join("deeper/report.html"));
@@ -422,6 +425,7 @@ fn two_outputs_on_one_file_are_refused() {
     let o = identify(&plots.join("report.html"));
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(plots.join("report.html").exists());
+    assert!(plots.join("fit.json").exists());
     assert!(plots.join("fit_joint1.svg").exists());
 }
 
