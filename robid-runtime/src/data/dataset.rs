@@ -404,6 +404,7 @@ impl Dataset {
                         line,
                         column: what,
                         value: v[k],
+                        text: None,
                     })
                 });
             }

@@ -162,7 +162,8 @@ pub enum DataError {
     },
     /// A value is NaN or infinite.
     #[error(
-        "{path}:{line}: column `{column}` is {value}; remove or repair this row (NaN and infinite values cannot be identified from)"
+        "{path}:{line}: column `{column}` is {}; remove or repair this row (NaN and infinite values cannot be identified from)",
+        not_finite(*value, text.as_deref())
     )]
     NotFinite {
         /// The file (or data set).
@@ -173,6 +174,8 @@ pub enum DataError {
         column: String,
         /// The value.
         value: f64,
+        /// The field as written in the file (`1e400`), when read from one.
+        text: Option<String>,
     },
     /// A finite value outside the documented range of its quantity (see [`crate::limits`]).
     #[error(
@@ -408,6 +411,22 @@ fn decimal_comma(text: &str) -> &'static str {
         " (the decimal point is `.`, not `,`: export the file with `.` as the decimal separator)"
     } else {
         ""
+    }
+}
+
+/// A value that is not finite as the message gives it: a field that reads as infinite
+/// without saying so (`1e400`) is quoted, not called `inf`.
+fn not_finite(value: f64, text: Option<&str>) -> String {
+    let written = text.map(str::trim).filter(|t| {
+        let t = t.trim_start_matches(['+', '-']).to_ascii_lowercase();
+        !(t.is_empty() || t.starts_with("inf") || t.starts_with("nan"))
+    });
+    match written {
+        Some(t) if value.is_infinite() => format!(
+            "`{}`, beyond the largest number a double holds (1.8e308), so it reads as infinite",
+            visible(t)
+        ),
+        _ => format!("{value}"),
     }
 }
 

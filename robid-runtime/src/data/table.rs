@@ -1067,6 +1067,7 @@ enum BlockError {
         line: u64,
         want: usize,
         value: f64,
+        text: String,
     },
     Rows,
 }
@@ -1087,11 +1088,17 @@ impl BlockError {
                 column: name(want),
                 text,
             }),
-            BlockError::NotFinite { line, want, value } => Error::Data(DataError::NotFinite {
+            BlockError::NotFinite {
+                line,
+                want,
+                value,
+                text,
+            } => Error::Data(DataError::NotFinite {
                 path,
                 line: line + base,
                 column: name(want),
                 value,
+                text: Some(text),
             }),
             BlockError::Rows => Error::TooLarge {
                 what: format!("{}: data rows", path.display()),
@@ -1170,6 +1177,10 @@ fn csv_block(text: &[u8], header: &Header, optional: bool, rows: &AtomicUsize) -
                         line,
                         want: k,
                         value,
+                        text: String::from_utf8_lossy(records.field(i))
+                            .chars()
+                            .take(40)
+                            .collect(),
                     });
                     return part;
                 }
@@ -1509,7 +1520,9 @@ mod tests {
             .map(|e| match e {
                 BlockError::Csv { line, reason } => format!("csv {line} {reason}"),
                 BlockError::Value { line, want, text } => format!("value {line} {want} {text}"),
-                BlockError::NotFinite { line, want, value } => {
+                BlockError::NotFinite {
+                    line, want, value, ..
+                } => {
                     format!("not finite {line} {want} {value}")
                 }
                 BlockError::Rows => "rows".into(),
@@ -1994,6 +2007,17 @@ mod tests {
             e,
             Error::Data(DataError::NotFinite { line: 2, .. })
         ));
+        assert!(e.to_string().contains("column `a` is inf;"), "{e}");
+        // a number too large for a double is quoted as written, not called `inf`
+        for (field, shown) in [("1e400", "`1e400`"), ("-2E+999", "`-2E+999`")] {
+            let e = read(&format!("a\n{field}\n"), &["a"])
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains(&format!("column `a` is {shown}, beyond the largest number")),
+                "{e}"
+            );
+        }
     }
 
     #[test]
