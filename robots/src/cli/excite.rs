@@ -23,6 +23,7 @@ use super::description::{self, DescriptionFlags};
 use super::flags::{self, check_samples, closed, count, only_for, positive, real};
 use super::idle::Idle;
 use super::{Error, files, out};
+use robid_symbolic::robot::bounds;
 use robots::interpreted::Interpreted;
 
 /// Arguments of `robid excite`.
@@ -335,6 +336,30 @@ fn check_limits(
         let problem = problem
             .strip_prefix(&format!("joint {}: ", j + 1))
             .unwrap_or(&problem);
+        // a description's limit is read within the description's range, narrower than the
+        // design's (velocity up to 1e4, not 1e6): the range stated is the description's
+        let read = match key.as_str() {
+            "velocity" => Some((l.velocity, bounds::MAX_VELOCITY)),
+            "acceleration" => Some((l.acceleration, bounds::MAX_ACCELERATION)),
+            "torque" => l.torque.map(|t| (t, bounds::MAX_TORQUE)),
+            _ => None,
+        };
+        let [lo, hi] = l.position;
+        let problem = match read {
+            Some((x, high)) => format!(
+                "{} must lie in [{MIN_JOINT_LIMIT:e}, {high:e}] (a smaller limit leaves the \
+                 joint nothing to excite)",
+                num(x)
+            ),
+            None if key == "position" => format!(
+                "[{}, {}] must be finite within +-{:e}, with high - low at least \
+                 {MIN_JOINT_LIMIT:e}",
+                num(lo),
+                num(hi),
+                bounds::MAX_POSITION
+            ),
+            None => problem.to_owned(),
+        };
         let joint = match description.urdf.as_ref().and_then(|c| c.links.get(j)) {
             Some(link) => format!("joint {} (`{}`)", j + 1, link.joint),
             None => format!("joint {}", j + 1),

@@ -488,11 +488,12 @@ fn excite_names_a_description_limit_a_design_cannot_take() {
     for (limits, told) in [
         (
             "position = [-1, 1], velocity = 1e-320, acceleration = 5",
-            "the velocity limit 1e-320 must lie in [1e-6, 1e6]",
+            // the description's range (the design's own reaches 1e6)
+            "the velocity limit 1e-320 must lie in [1e-6, 1e4]",
         ),
         (
             "position = [1e-320, 2e-320], velocity = 1, acceleration = 5",
-            "the position limits [1e-320, 2e-320] must be finite within +-1e6, with high - \
+            "the position limits [1e-320, 2e-320] must be finite within +-1e3, with high - \
              low at least 1e-6",
         ),
     ] {
