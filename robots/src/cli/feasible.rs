@@ -210,20 +210,36 @@ fn check_solution(solution: &Solution) -> Result<(), Error> {
     Err(unmet(solution, ""))
 }
 
-/// The error of a result outside bounds its method imposes; `note` ends it.
+/// The error of a result outside bounds its method imposes; `note` ends it. The likely
+/// cause depends on the fit: far from the identified values (some |z| beyond
+/// [`PUSHED`]) the data may push against the bounds; within their uncertainty they do
+/// not, and the bounds contradict each other or the physical consistency.
 fn unmet(solution: &Solution, note: &str) -> Error {
+    let (chi2, z) = (solution.chi2, solution.max_normalized_residual());
+    let cause = if z > PUSHED {
+        format!(
+            "The data push hard against these bounds (chi^2 {chi2:.3e}, max |z| {z:.3}), or \
+             the bounds contradict each other or the physical consistency"
+        )
+    } else {
+        format!(
+            "The fit is within the identified values' uncertainty (chi^2 {chi2:.3e}, max |z| \
+             {z:.3}), so the data do not push against these bounds: they contradict each \
+             other or the physical consistency"
+        )
+    };
     format!(
-        "the {} fit ended outside bounds it imposes: {}; nothing was written. The data push \
-         hard against these bounds (chi^2 {:.3e}, max |z| {:.3}), or the bounds contradict \
-         each other or the physical consistency: check the bounds file and the identified \
-         values{note}",
+        "the {} fit ended outside bounds it imposes: {}; nothing was written. {cause}; check \
+         the bounds file and the identified values{note}",
         solution.method.name(),
         solution.unmet.join("; "),
-        solution.chi2,
-        solution.max_normalized_residual(),
     )
     .into()
 }
+
+/// The largest normalised residual |z| of a fit that the data can be said to push: beyond
+/// three standard deviations of an identified value.
+const PUSHED: f64 = 3.0;
 
 /// The default method: the interior-point fit, or where it ends outside a bound it
 /// imposes (the bounds on the inertia about the centre of mass are penalties of its
