@@ -1378,7 +1378,8 @@ fn feasible_anneal_meets_the_bounds_the_data_push_against() {
 }
 
 /// `anneal` imposes its equalities and says when it cannot: contradictory ones
-/// (`c2x = 0.5`, `c2x = 0.2`: 0.35 was written) fail naming them, nothing written; a
+/// (`c2x = 0.5`, `c2x = 0.2`: 0.35 was written; `m1 = 2 m2`, `m2 = 2 m1`, which only
+/// massless links meet) fail naming them, nothing written; a
 /// constant outside its variable's bounds (`m2 = -3`: accepted) is refused before the
 /// search; a ratio the data do not follow (`c2y = -0.5 * c2x`, missed by 25 %) holds.
 #[test]
@@ -1391,6 +1392,17 @@ fn feasible_anneal_meets_its_equalities_or_names_them() {
         &[
             "equality `c2x = 0.5` not met: c2x = ",
             "equality `c2x = 0.2` not met",
+            "nothing was written",
+        ],
+    );
+    assert!(!path.exists());
+    // only zero meets both, which a mass cannot be: they ended at the floor of 1e-6 kg,
+    // 1e-6 apart, counted as met, and the result was written
+    let o = two_link_anneal(&path, &["--equal", "m1 = 2 * m2", "--equal", "m2 = 2 * m1"]);
+    fails_with(
+        &o,
+        &[
+            "equality `m1 = 2 * m2` not met: m1 = 1e-6",
             "nothing was written",
         ],
     );

@@ -224,11 +224,19 @@ impl Equality {
 
     /// What a result that misses it says (`None` when it holds): its sides at a full vector
     /// of search variables, within the tolerance of the bounds' check (1e-6 (1 + |right|),
-    /// [`Solution`](crate::feasible::Solution)`::violations`).
-    pub(crate) fn unmet(&self, x: &[f64]) -> Option<String> {
+    /// [`Solution`](crate::feasible::Solution)`::violations`), and, where both sides are
+    /// that small, within 0.1 % of the larger side unless the difference is below 1e-8 of
+    /// the left variable's scale under `bounds` (the search's own accuracy): equalities
+    /// that only zero meets (`m1 = 2 * m2` with `m2 = 2 * m1`) ended with both masses at
+    /// their floor of 1e-6 kg, 1e-6 apart, and counted as met.
+    pub(crate) fn unmet(&self, x: &[f64], bounds: &[LinkBounds]) -> Option<String> {
         let left = self.left.value(x);
         let right = self.coefficient * self.factors.iter().map(|v| v.value(x)).product::<f64>();
-        ((left - right).abs() > 1e-6 * (1.0 + right.abs())).then(|| {
+        let off = (left - right).abs();
+        let scale = self.left.scale(&bounds[self.left.link]);
+        let missed = off > 1e-6 * (1.0 + right.abs())
+            || (off > 1e-3 * left.abs().max(right.abs()) && off > 1e-8 * scale);
+        missed.then(|| {
             format!(
                 "equality `{self}` not met: {} = {}, the right side {}",
                 self.left,
@@ -288,18 +296,33 @@ mod tests {
         x[0] = 2.0;
         x[1] = 0.1;
         let e: Equality = "c1x = 0.05 * m1".parse().unwrap();
-        assert_eq!(e.unmet(&x), None);
+        let b = LinkBounds::default();
+        let bounds = [b];
+        assert_eq!(e.unmet(&x, &bounds), None);
         x[1] = 0.1 + 2e-6;
         assert_eq!(
-            e.unmet(&x).as_deref(),
+            e.unmet(&x, &bounds).as_deref(),
             Some("equality `c1x = 0.05 * m1` not met: c1x = 0.100002, the right side 0.1")
         );
         x[1] = 0.1 + 1e-6;
-        assert_eq!(e.unmet(&x), None);
+        assert_eq!(e.unmet(&x, &bounds), None);
         x[1] = 0.1 - 2e-6;
-        assert!(e.unmet(&x).is_some());
+        assert!(e.unmet(&x, &bounds).is_some());
+        // sides near zero: 0.1 % of the larger side, unless within 1e-8 of the scale
+        let m: Equality = "m1 = 2 * c1x".parse().unwrap();
+        let scale = m.left.scale(&b);
+        (x[0], x[1]) = (1e-6, 1e-6);
+        assert!(m.unmet(&x, &bounds).unwrap().contains("not met: m1 = 1e-6"));
+        // 8e-7 apart: beyond 1e-8 of the scale (50 kg), within 1e-6 (1 + |right|)
+        (x[0], x[1]) = (5e-4, (5e-4 - 8e-7) / 2.0);
+        assert!(m.unmet(&x, &bounds).is_some(), "0.16 % of the larger side");
+        (x[0], x[1]) = (1e-3, (1e-3 - 8e-7) / 2.0);
+        assert_eq!(m.unmet(&x, &bounds), None, "0.08 %");
+        (x[0], x[1]) = (1e-9 * scale, 0.0);
+        assert_eq!(m.unmet(&x, &bounds), None);
+        (x[0], x[1]) = (2e-8 * scale, 0.0);
+        assert!(m.unmet(&x, &bounds).is_some());
         // a moment without its own bound lies in the link's inertia range; a product has none
-        let b = LinkBounds::default();
         let v: Variable = "I1xx".parse().unwrap();
         assert_eq!(v.range(&b), Some(b.inertia));
         let v: Variable = "I1xy".parse().unwrap();

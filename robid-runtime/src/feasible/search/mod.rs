@@ -591,7 +591,11 @@ fn search(
     let p = objective.standard(&x);
     let mut solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
     solution.iterations = restarts_run;
-    for text in options.equalities.iter().filter_map(|e| e.unmet(&x)) {
+    for text in options
+        .equalities
+        .iter()
+        .filter_map(|e| e.unmet(&x, &bounds.links))
+    {
         solution.violations.push(text.clone());
         solution.unmet.push(text);
     }
