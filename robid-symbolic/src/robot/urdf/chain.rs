@@ -697,7 +697,8 @@ pub(super) fn choose(
             format!(
                 "if the base is bolted down, make the joint `type=\"fixed\"`; to model the \
                  chain as if link `{0}` stood still during the experiments, choose `{0}` as \
-                 the chain's base (`--base {0}`, `base = \"{0}\"` in robot_model!)",
+                 the chain's base (`--base {0}` on the command line, `base = \"{0}\"` in \
+                 `robot_model!`)",
                 joint.child
             ),
         ));
