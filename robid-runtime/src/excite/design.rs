@@ -700,8 +700,9 @@ mod tests {
         // the acceleration limit holds when it binds first; the position range of joint 1
         limits[1].velocity = 1.5;
         limits[0].acceleration = 1e-6;
-        let (j, _, by) = most_confined(&limits, 10.0, 1.0).unwrap();
+        let (j, reach, by) = most_confined(&limits, 10.0, 1.0).unwrap();
         assert_eq!((j, by.as_str()), (0, "its acceleration limit 1e-6"));
+        assert!((reach - 1e-6 / (w * w)).abs() < 1e-18, "{reach}");
         limits[0].acceleration = 4.0;
         limits[0].position = [0.0, 1e-5];
         let (j, reach, by) = most_confined(&limits, 10.0, 1.0).unwrap();
@@ -729,6 +730,12 @@ mod tests {
             "{e}"
         );
         assert!(check_design_cost(3.0, Criterion::Condition, &limits, 10.0, 1.0).is_ok());
+        // a reach of CONFINED itself is not named: the joint can move a milliradian
+        limits[0].position = [0.0, 2.0 * CONFINED];
+        let e = check_design_cost(f64::INFINITY, Criterion::Condition, &limits, 10.0, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(!e.contains("can move at most"), "{e}");
     }
 
     #[test]

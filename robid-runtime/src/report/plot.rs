@@ -222,6 +222,9 @@ mod tests {
         assert_eq!(tick(-0.0, 2.0), "0");
         assert_eq!(tick(0.30000000000000004, 2.0), "0.3");
         assert_eq!(tick(-1.25e-5, 1e-4), "-1.25e-5");
+        // zero within 1e-9 of the width, not beyond: 5e-12 on a width of 1e-4 is a value
+        assert_eq!(tick(5e-12, 1e-4), "5e-12");
+        assert_eq!(tick(5e-14, 1e-4), "0");
         // a residual symmetric about zero: no label is a negative zero
         let t: Vec<f64> = (0..200).map(|k| k as f64 * 0.01).collect();
         let m: Vec<f64> = t.iter().map(|x| (3.0 * x).sin()).collect();
