@@ -18,7 +18,7 @@
 
 use nalgebra::DMatrix;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, num};
 use crate::limits::{MAX_SAVGOL_ORDER, MAX_SAVGOL_WINDOW};
 
 /// A Savitzky-Golay differentiator: window length (odd) and polynomial order.
@@ -100,7 +100,7 @@ impl SavitzkyGolay {
             return Err(Error::setting(
                 "SavitzkyGolay",
                 "dt",
-                format!("the sample time {dt} s must be positive and finite"),
+                format!("the sample time {} s must be positive and finite", num(dt)),
             ));
         }
         let (l, n) = (self.window, self.order + 1);
@@ -120,7 +120,8 @@ impl SavitzkyGolay {
             return Err(Error::NonFiniteResult {
                 what: "the Savitzky-Golay coefficients".into(),
                 cause: format!(
-                    "the sample time {dt} s is too small for a derivative of order {derivative}; resample the data"
+                    "the sample time {} s is too small for a derivative of order {derivative}; resample the data",
+                    num(dt)
                 ),
             });
         }
