@@ -437,6 +437,7 @@ impl Simulation {
             }));
         }
         reference.check("reference trajectory")?;
+        reference.check_derivatives(|k| format!("reference trajectory, sample {k}"))?;
         let samples = reference.samples();
         crate::limits::check_size(
             || {

@@ -294,6 +294,7 @@ impl Simulation {
             "use fewer substeps or a shorter trajectory",
         )?;
         reference.check("reference trajectory")?;
+        reference.check_derivatives(|k| format!("reference trajectory, sample {k}"))?;
         let mut fd = ForwardDynamics::new(model, base)?;
         check_parameters("Simulation::run", "base", model, base)?;
         let mut rng = Rng::new(self.seed);

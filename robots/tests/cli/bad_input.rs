@@ -743,11 +743,23 @@ fn simulate_refuses_time_stamps_identify_would_refuse() {
     let text = std::fs::read_to_string(trajectory(dir.path())).unwrap();
     let out = dir.path().join("data.csv");
     // the trajectory with its time stamps times `scale`, simulated with `extra` flags
-    let simulate_scaled = |scale: f64, extra: &[&str]| {
+    // (with `derivatives`, the velocities and accelerations too, as in that time unit)
+    let simulate_rescaled = |scale: f64, derivatives: bool, extra: &[&str]| {
         let mut scaled = text.lines().next().unwrap().to_string() + "\n";
         for line in text.lines().skip(1) {
-            let (t, rest) = line.split_once(',').unwrap();
-            scaled += &format!("{},{rest}\n", t.parse::<f64>().unwrap() * scale);
+            let fields: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+            let row: Vec<String> = fields
+                .iter()
+                .enumerate()
+                .map(|(i, v)| match i {
+                    0 => v * scale,
+                    7..=12 if derivatives => v / scale,
+                    13.. if derivatives => v / (scale * scale),
+                    _ => *v,
+                })
+                .map(|v| v.to_string())
+                .collect();
+            scaled += &(row.join(",") + "\n");
         }
         let traj = write(dir.path(), "scaled.csv", &scaled);
         let mut args = vec![
@@ -763,6 +775,7 @@ fn simulate_refuses_time_stamps_identify_would_refuse() {
         args.extend_from_slice(extra);
         (traj.clone(), robid(&args))
     };
+    let simulate_scaled = |scale: f64, extra: &[&str]| simulate_rescaled(scale, false, extra);
     for (scale, step, rate) in [(1e8, "1e6 s", "1e-6 Hz"), (1e-7, "1e-9 s", "1e9 Hz")] {
         let (traj, o) = simulate_scaled(scale, &["--bandwidth", "1e-7"]);
         fails_with(
@@ -775,10 +788,20 @@ fn simulate_refuses_time_stamps_identify_would_refuse() {
         );
         assert!(!out.exists());
     }
-    // a time column in milliseconds: a rate robid takes (0.1 Hz), but too slow for any
-    // robot; said as the time column's unit, not as the bandwidth (it was "lower
-    // --bandwidth to at most 0.025 Hz")
+    // a time column in milliseconds beside velocities per second: they disagree with the
+    // positions by the factor 1000, which is named
     let (traj, o) = simulate_scaled(1e3, &[]);
+    fails_with(
+        &o,
+        &[
+            &format!("{}:3: q1 changes by", traj.display()),
+            "1000 times apart: is the time column in milliseconds? write it in seconds",
+        ],
+    );
+    // a time column in milliseconds, the derivatives per millisecond: a rate robid takes
+    // (0.1 Hz), but too slow for any robot; said as the time column's unit, not as the
+    // bandwidth (it was "lower --bandwidth to at most 0.025 Hz")
+    let (traj, o) = simulate_rescaled(1e3, true, &[]);
     fails_with(
         &o,
         &[
@@ -959,8 +982,13 @@ fn the_bundled_parameter_files_are_accepted() {
                 text.push_str(&format!(",{p}{j}"));
             }
         }
-        for t in ["0", "0.01", "0.02"] {
-            text.push_str(&format!("\n{t},{}", vec!["0.1"; 3 * dof].join(",")));
+        // a constant acceleration of 0.1, its velocities and positions
+        for t in [0.0, 0.01, 0.02] {
+            let state = [0.1 + 0.1 * t + 0.05 * t * t, 0.1 + 0.1 * t, 0.1];
+            text.push_str(&format!("\n{t}"));
+            for value in state {
+                text.push_str(&format!(",{value}").repeat(dof));
+            }
         }
         text.push('\n');
         let trajectory = write(dir.path(), "trajectory.csv", &text);
