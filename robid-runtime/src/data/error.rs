@@ -468,8 +468,9 @@ fn not_finite(value: f64, text: Option<&str>) -> String {
         let t = t.trim_start_matches(['+', '-']).to_ascii_lowercase();
         !(t.is_empty() || t.starts_with("inf") || t.starts_with("nan"))
     });
+    // a field that is not a word (`inf`, `NaN`) is not finite only by overflow
     match written {
-        Some(t) if value.is_infinite() => format!(
+        Some(t) => format!(
             "`{}`, beyond the largest number a double holds (1.8e308), so it reads as infinite",
             visible(t)
         ),

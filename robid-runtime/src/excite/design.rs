@@ -704,10 +704,10 @@ mod tests {
         assert_eq!((j, by.as_str()), (0, "its acceleration limit 1e-6"));
         assert!((reach - 1e-6 / (w * w)).abs() < 1e-18, "{reach}");
         limits[0].acceleration = 4.0;
-        limits[0].position = [0.0, 1e-5];
+        limits[0].position = [0.5, 0.5 + 1e-5];
         let (j, reach, by) = most_confined(&limits, 10.0, 1.0).unwrap();
-        assert_eq!((j, by.as_str()), (0, "its position range [0, 1e-5]"));
-        assert!((reach - 5e-6).abs() < 1e-18);
+        assert_eq!((j, by.as_str()), (0, "its position range [0.5, 0.50001]"));
+        assert!((reach - 5e-6).abs() < 1e-15, "{reach}");
         let e = check_design_cost(f64::INFINITY, Criterion::Condition, &limits, 10.0, 1.0)
             .unwrap_err()
             .to_string();

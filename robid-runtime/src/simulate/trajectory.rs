@@ -404,7 +404,9 @@ mod tests {
     }
 
     fn problem(trajectory: &Trajectory) -> Option<String> {
-        let e = trajectory.check_derivatives(|k| format!("sample {k}")).err()?;
+        let e = trajectory
+            .check_derivatives(|k| format!("sample {k}"))
+            .err()?;
         Some(e.to_string())
     }
 
