@@ -120,22 +120,23 @@ impl DriveConfig {
             }
             return Ok(Some(m));
         }
-        match &self.gear_ratios {
-            Some(n) => {
-                let n = PerJoint::Each(n.clone()).values(dof, "drive.gear_ratios")?;
-                let n = crate::data::nonzero(n, "drive.gear_ratios")?;
-                Ok(Some(DMatrix::from_diagonal(
-                    &nalgebra::DVector::from_column_slice(&n),
-                )))
-            }
-            None => Ok(None),
-        }
+        // (the ratios are checked by DriveChain::new)
+        Ok(self
+            .gear_ratios
+            .as_ref()
+            .map(|n| DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(n))))
     }
 }
 
 impl DriveChain {
     /// Builds the maps for `dof` joints.
     pub fn new(cfg: &DriveConfig, dof: usize) -> Result<Self> {
+        // checked even where both couplings replace them: a wrong count or a zero ratio
+        // beside two coupling matrices was read without a word
+        if let Some(n) = &cfg.gear_ratios {
+            let n = PerJoint::Each(n.clone()).values(dof, "drive.gear_ratios")?;
+            crate::data::nonzero(n, "drive.gear_ratios")?;
+        }
         let rq = cfg.ratio_matrix(&cfg.position_coupling, "position_coupling", dof)?;
         let rt = cfg.ratio_matrix(&cfg.torque_coupling, "torque_coupling", dof)?;
         let needs = |side: Side, m: &Option<DMatrix<f64>>, key: &str| -> Result<()> {
@@ -388,6 +389,16 @@ mod tests {
             Err(Error::Setting { ref key, .. }) if key == "drive.gear_ratios"
         ));
         assert!(c.check(6).is_err());
+        // also where both couplings replace them (read without a word)
+        for ratios in [vec![1.0; 5], vec![0.0, 32.0, 45.0, -48.0, 45.0, 32.0]] {
+            let mut c = tx40();
+            assert!(c.position_coupling.is_some() && c.torque_coupling.is_some());
+            c.gear_ratios = Some(ratios);
+            assert!(matches!(
+                DriveChain::new(&c, 6),
+                Err(Error::Setting { ref key, .. }) if key == "drive.gear_ratios"
+            ));
+        }
         let mut c = tx40();
         c.position_coupling = Some(vec![vec![0.0; 6]; 6]);
         assert!(matches!(
