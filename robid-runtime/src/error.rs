@@ -37,7 +37,7 @@ pub enum Error {
     /// ten of its parameters. A payload has exactly ten, none of which can be left out, so
     /// the fix is in the data or in what is measured (the estimator's own
     /// [`EstimateError::RankDeficient`] advised to "remove these parameters").
-    #[error("rank-deficient data: rank {rank} of the payload's 10 parameters; not excited: {}; {fix}", unexcited.join(", "))]
+    #[error("rank-deficient data: rank {rank} of the payload's 10 parameters; {}; {fix}", crate::estimate::not_excited(*rank, 10, unexcited))]
     PayloadNotExcited {
         /// Numerical rank found.
         rank: usize,

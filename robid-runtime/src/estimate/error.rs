@@ -5,7 +5,7 @@
 #[non_exhaustive]
 pub enum EstimateError {
     /// The data do not excite every parameter: the observation matrix is rank deficient.
-    #[error("rank-deficient data: rank {rank} of {columns} parameters; not excited: {}; use a richer trajectory or remove these parameters", unexcited.join(", "))]
+    #[error("rank-deficient data: rank {rank} of {columns} parameters; {}; use a richer trajectory or remove these parameters", not_excited(*rank, *columns, unexcited))]
     RankDeficient {
         /// Numerical rank found.
         rank: usize,
@@ -133,4 +133,54 @@ fn lacks_equations(
          processing.rest_velocity for it",
         solves_alone(method)
     )
+}
+
+/// The unexcited directions of a rank-`rank` matrix of `columns` parameters, said by the
+/// parameters that make them up (`unexcited`, most affected first): "not excited: a, b"
+/// when each direction is one parameter, else "3 combinations of 40 parameters not
+/// excited (a, b, ..., and 30 more)": the whole list was given as "not excited" (61 names
+/// for a rank of 23), though any 23 of them could be determined.
+pub(crate) fn not_excited(rank: usize, columns: usize, unexcited: &[String]) -> String {
+    const SHOWN: usize = 10;
+    let directions = columns.saturating_sub(rank);
+    if unexcited.len() <= directions.max(1) {
+        return format!("not excited: {}", unexcited.join(", "));
+    }
+    let mut names = unexcited[..unexcited.len().min(SHOWN)].join(", ");
+    if unexcited.len() > SHOWN {
+        names += &format!(", and {} more", unexcited.len() - SHOWN);
+    }
+    format!(
+        "{} of {} parameters not excited ({names})",
+        crate::Count(directions, "combination"),
+        unexcited.len()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::not_excited;
+
+    /// One parameter per unexcited direction is listed as not excited; more, as the count
+    /// of combinations among them (all 61 names were "not excited" for a rank of 23).
+    #[test]
+    fn unexcited_directions_are_counted_when_they_mix_parameters() {
+        let names = |n: usize| (1..=n).map(|i| format!("p{i}")).collect::<Vec<_>>();
+        assert_eq!(not_excited(4, 6, &names(2)), "not excited: p1, p2");
+        assert_eq!(not_excited(5, 6, &names(1)), "not excited: p1");
+        assert_eq!(
+            not_excited(4, 6, &names(3)),
+            "2 combinations of 3 parameters not excited (p1, p2, p3)"
+        );
+        let e = not_excited(23, 61, &names(61));
+        assert!(
+            e.starts_with("38 combinations of 61 parameters not excited (p1, p2,")
+                && e.ends_with("p10, and 51 more)"),
+            "{e}"
+        );
+        assert_eq!(
+            not_excited(9, 10, &names(10)),
+            "1 combination of 10 parameters not excited (p1, p2, p3, p4, p5, p6, p7, p8, p9, p10)"
+        );
+    }
 }

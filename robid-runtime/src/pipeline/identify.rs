@@ -342,12 +342,12 @@ pub(crate) fn rest_cause(rest: &RestCount, config: &Config, dof: usize, e: Error
             "estimation.rank_tolerance",
             format!(
                 "{} counts singular values below {} times the largest as zero (default {:e}): \
-                 rank {rank} of {columns} parameters, {} not determined; lower it (the data \
+                 rank {rank} of {columns} parameters, {}; lower it (the data \
                  may be rich enough), or use a richer trajectory",
                 Num(tolerance),
                 Num(tolerance),
                 default,
-                unexcited.join(", "),
+                crate::estimate::not_excited(*rank, *columns, unexcited),
             ),
         );
     }

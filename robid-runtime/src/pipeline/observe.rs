@@ -551,12 +551,12 @@ impl RestCount {
             "Config",
             "processing.rest_velocity",
             format!(
-                "rank-deficient data (rank {rank} of {columns} parameters; not excited: {}) \
+                "rank-deficient data (rank {rank} of {columns} parameters; {}) \
                  because rest_velocity removed all or nearly all of {} equations: {}; lower \
                  `rest_velocity` (default 0.05) in the config's [processing] for {}, e.g. \
                  `rest_velocity = [{}]`, or 0 to keep every equation (a joint that does not \
                  move in the record needs a trajectory that moves it instead){}",
-                unexcited.join(", "),
+                crate::estimate::not_excited(*rank, *columns, unexcited),
                 if starved.len() == 1 {
                     "a joint's"
                 } else {
