@@ -368,11 +368,114 @@ impl ParameterFile {
         }
         for (link, slots) in &links {
             if !missing_is_zero && slots.iter().any(Option::is_none) {
+                self.check_diagonal(*link, slots)?;
                 continue;
             }
             self.check_link(*link, slots)?;
         }
         Ok(())
+    }
+
+    /// A link of a prior with missing values: whatever they are, its moments about the
+    /// centre of mass (the diagonal of that tensor, which the products of inertia do not
+    /// enter; a missing first moment at its most favourable, 0) must not be negative. A
+    /// prior with `M2 = 3`, `MX2 = 0.6`, `YY2 = 0.001` (a moment of -0.119 kg m^2 about the
+    /// centre of mass) was taken, where every other reader refused it. Needs the mass and
+    /// the three moments.
+    fn check_diagonal(&self, link: usize, slots: &[Option<(f64, Entry)>; 10]) -> Result<()> {
+        let value = |i: usize| slots[i].map(|(v, _)| v);
+        let (Some(xx), Some(yy), Some(zz), Some(mass)) = (value(0), value(3), value(5), value(9))
+        else {
+            return Ok(());
+        };
+        if mass <= 0.0 {
+            return Ok(());
+        }
+        let h = [6, 7, 8].map(|i| value(i).unwrap_or(0.0));
+        // mass times the moments about the centre of mass: no division by the mass
+        let moments = [
+            xx * mass - (h[1] * h[1] + h[2] * h[2]),
+            yy * mass - (h[0] * h[0] + h[2] * h[2]),
+            zz * mass - (h[0] * h[0] + h[1] * h[1]),
+        ];
+        let scale =
+            (xx.abs().max(yy.abs()).max(zz.abs()) * mass).max(h.iter().map(|x| x * x).sum());
+        let Some(axis) = (0..3).find(|&a| moments[a] < -INERTIA_TOLERANCE * scale) else {
+            return Ok(());
+        };
+        let stem = ["XX", "YY", "ZZ"][axis];
+        let missing: Vec<String> = Inertial::ALL
+            .iter()
+            .zip(slots)
+            .filter(|(_, slot)| slot.is_none())
+            .map(|(s, _)| format!("{}{link}", s.stem()))
+            .collect();
+        let first = slots
+            .iter()
+            .flatten()
+            .map(|(_, e)| *e)
+            .min_by_key(|e| e.line)
+            .expect("the mass is given");
+        Err(self.at(
+            &first,
+            format!(
+                "link {link}'s moment {stem}{link} about its centre of mass would be {} kg m^2 \
+                 whatever the missing {} are: the first moments place the centre of mass too \
+                 far from the origin for {stem}{link} = {}, so no body has these values; check \
+                 them and M{link}",
+                Num::rounded(moments[axis] / mass, 5),
+                missing.join(" "),
+                Num(slots[[0, 3, 5][axis]].map_or(0.0, |(v, _)| v))
+            ),
+        ))
+    }
+
+    /// The links whose values are possible (the checks of the module documentation pass)
+    /// but no body's: principal moments about the centre of mass that break the triangle
+    /// inequality (the largest exceeds the sum of the other two by more than
+    /// [`INERTIA_TOLERANCE`] of it), missing values counted as 0 (for a link without
+    /// products of inertia in the file, no missing values could mend it: the moments on
+    /// the diagonal keep the inequality in every frame, and a first moment only narrows it). A warning each,
+    /// at the link's first value, as a URDF's such `<inertial>` is warned about: the
+    /// torques of such values are computed, but no robot has them.
+    pub fn unphysical(&self) -> Vec<String> {
+        let mut links: BTreeMap<usize, ([f64; 10], Option<Entry>)> = BTreeMap::new();
+        for (name, entry) in &self.entries {
+            let Ok(ParameterId {
+                link,
+                kind: ParameterKind::Inertial(slot),
+            }) = name.parse::<ParameterId>()
+            else {
+                continue;
+            };
+            let (p, first) = links.entry(link + 1).or_insert(([0.0; 10], None));
+            p[slot.index()] = entry.value;
+            if first.is_none_or(|f| entry.line < f.line) {
+                *first = Some(*entry);
+            }
+        }
+        links
+            .into_iter()
+            .filter_map(|(link, (p, first))| {
+                let moments = crate::feasible::LinkInertial::from_standard(&p)?.principal_moments();
+                let excess = moments[2] - moments[0] - moments[1];
+                let tolerance = INERTIA_TOLERANCE * moments[2].abs();
+                // a negative moment is impossible, the readers' error (a prior's missing
+                // values may yet make it possible)
+                (moments[0] >= -tolerance && excess > tolerance).then(|| {
+                    let at = first.map_or(0, |e| e.line);
+                    let [a, b, c] = moments.map(|m| Num::rounded(m, 4));
+                    format!(
+                        "{}:{at}: link {link}: the principal moments {a}, {b}, {c} kg m^2 of \
+                             its inertia about the centre of mass break the triangle inequality \
+                             (the largest exceeds the sum of the other two by {} kg m^2), so no \
+                             body has these values; check the moments of link {link}",
+                        self.path.display(),
+                        Num::rounded(excess, 4)
+                    )
+                })
+            })
+            .collect()
     }
 
     /// The inertia tensor of link `link` (1-based), about its origin and its centre of
@@ -706,6 +809,57 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("(8e199, 0, 0) m"), "{e}");
+    }
+
+    /// A prior's link with missing values is refused when no missing values can make its
+    /// moments about the centre of mass non-negative (`YY1 = 0.12` with the centre of mass
+    /// 0.25 m out along x: -0.005 whatever the products and `MY1`, `MZ1`); one that they
+    /// can is taken. Links whose values are possible but break the triangle inequality
+    /// are warned about, missing values counted as 0.
+    #[test]
+    fn a_prior_s_incomplete_link_and_the_triangle_inequality() {
+        let names: Vec<String> = Inertial::ALL
+            .iter()
+            .map(|s| format!("{}1", s.stem()))
+            .collect();
+        let file = |text: &str| ParameterFile::parse(text, "p.toml".as_ref()).unwrap();
+        let link = |yy: &str| {
+            format!("[standard]\nXX1 = 0.01\nYY1 = {yy}\nZZ1 = 0.2\nMX1 = 0.5\nM1 = 2\n")
+        };
+        let e = file(&link("0.12")).prior(&names).unwrap_err().to_string();
+        assert!(
+            e.starts_with("p.toml:2:1: link 1's moment YY1 about its centre of mass would be -0.005 kg m^2 whatever the missing XY1 XZ1 YZ1 MY1 MZ1 are"),
+            "{e}"
+        );
+        file(&link("0.13")).prior(&names).unwrap();
+        // the mass or a moment missing: nothing to judge by
+        file("[standard]\nYY1 = 0.001\nMX1 = 0.5\nM1 = 2\n")
+            .prior(&names)
+            .unwrap();
+        // possible values of no body: 0.001 + 0.001 < 0.5 (a warning at the link's first
+        // value); none for a body's, or for impossible ones (the readers' error)
+        let thin = file("[standard]\nM2 = 3\nXX2 = 0.001\nYY2 = 0.001\nZZ2 = 0.5\n");
+        let w = thin.unphysical();
+        assert_eq!(w.len(), 1);
+        assert!(
+            w[0].starts_with("p.toml:2: link 2: the principal moments 0.001, 0.001, 0.5 kg m^2")
+                && w[0].contains("exceeds the sum of the other two by 0.498 kg m^2"),
+            "{w:?}"
+        );
+        // 0.01 kg m^2 about every axis through the centre of mass
+        let ball = "[standard]\nXX1 = 0.01\nYY1 = 0.135\nZZ1 = 0.135\nMX1 = 0.5\nM1 = 2\n";
+        assert!(file(ball).unphysical().is_empty());
+        assert_eq!(
+            file(&link("0.13")).unphysical().len(),
+            1,
+            "0.075 > 0.01 + 0.005"
+        );
+        assert!(file(&link("0.12")).unphysical().is_empty());
+        assert!(
+            file("[standard]\nXX1 = 1\nYY1 = 1\nZZ1 = 2\nM1 = 1\n")
+                .unphysical()
+                .is_empty()
+        );
     }
 
     /// JSON given as a parameter file is said to be JSON, and `robid identify`'s report

@@ -68,7 +68,7 @@ impl Description {
         model: &dyn Model,
     ) -> Result<Vec<f64>, Error> {
         match parameters {
-            Some(path) => Ok(ParameterFile::read(path)?.base_parameters(model)?),
+            Some(path) => Ok(read_parameters(path)?.base_parameters(model)?),
             None => self.urdf_base_parameters(model)?.ok_or_else(|| {
                 "--parameters: give a parameter file with a [standard] or a [base] table (see \
                  docs/command-line.md); only a URDF description carries its own inertials"
@@ -402,4 +402,15 @@ pub(crate) fn load(path: &Path, flags: &DescriptionFlags) -> Result<Description,
         }
     }
     Ok(Description { robot, urdf })
+}
+
+/// Reads the parameter file at `path`, warning about each link whose values no body has
+/// (`ParameterFile::unphysical`: moments that break the triangle inequality), as a URDF's
+/// such inertials are warned about; the readers' errors are the impossible values.
+pub(crate) fn read_parameters(path: &Path) -> Result<ParameterFile, Error> {
+    let file = ParameterFile::read(path)?;
+    for w in file.unphysical() {
+        out::warn(format_args!("warning: {w}"));
+    }
+    Ok(file)
 }

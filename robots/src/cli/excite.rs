@@ -11,7 +11,6 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use robid_runtime::data::ParameterFile;
 use robid_runtime::excite::{
     Criterion, FourierDesign, Information, JointLimits, PointDesign, assess, weights_from_sigma,
 };
@@ -498,7 +497,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check_limits(args, &description, &limits)?;
     let reference = match &args.parameters {
         Some(p) => {
-            let base = ParameterFile::read(p)?.base_parameters(&model)?;
+            let base = description::read_parameters(p)?.base_parameters(&model)?;
             warn_idle(args, &description, p, &model, &base, &limits)?;
             Some(base)
         }

@@ -16,7 +16,6 @@
 use std::path::{Path, PathBuf};
 
 use robid_runtime::Num;
-use robid_runtime::data::ParameterFile;
 use robid_runtime::feasible::{
     AnnealOptions, Bounds, Equality, GravityCoefficients, LinkBounds, Prior, Problem, SdpOptions,
     SmoothOptions, Solution, Unsized, UrdfJoint, solve_anneal, solve_interior, solve_sdp,
@@ -316,7 +315,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {
-            standard: ParameterFile::read(path)?.prior(&problem.standard_names)?,
+            standard: description::read_parameters(path)?.prior(&problem.standard_names)?,
             weight,
         }),
         // a URDF's own inertials are its CAD values

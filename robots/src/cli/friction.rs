@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use robid_runtime::Num;
-use robid_runtime::data::{Config, ParameterFile, load};
+use robid_runtime::data::{Config, load};
 use robid_runtime::drive::{
     FrictionFit, FrictionFitOptions, FrictionModel, FrictionParameter, identify_friction,
 };
@@ -76,7 +76,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let chosen = super::identify::model_of(&description)?;
     let model = chosen.model.as_ref();
     let base = match &args.parameters {
-        Some(p) => Some(ParameterFile::read(p)?.base_parameters(model)?),
+        Some(p) => Some(description::read_parameters(p)?.base_parameters(model)?),
         None => None,
     };
     let data = load(&config, &data, model.dof())?;

@@ -530,7 +530,7 @@ fn reference_values(
     model: &dyn robid_runtime::model::Model,
     config: &Config,
 ) -> Result<Vec<f64>, Error> {
-    let file = robid_runtime::data::ParameterFile::read(path)?;
+    let file = description::read_parameters(path)?;
     let mut values = file.base_parameters(model)?;
     let extra = config
         .extra_columns_for(model.dof())
