@@ -906,7 +906,7 @@ mod tests {
         assert!(
             e.contains(
                 "`Fv1` is a drive term, which this robot does not model: the file has the \
-                 drive terms Fv, Fc (`Fv1`, `Fc1`, ...), the robot none (no --drive, no `drive` \
+                 drive terms Fv, Fc (`Fv1`, `Fc1`, ...), while the robot models none (no --drive, no `drive` \
                  key): give `--drive Fv,Fc`"
             ),
             "{e}"

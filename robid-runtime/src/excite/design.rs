@@ -583,9 +583,9 @@ pub(crate) fn check_design_cost(
         .filter(|(_, reach, _)| *reach < CONFINED)
         .map(|(j, reach, by)| {
             format!(
-                "joint {} can move at most about {} in the {} s trajectory, held by {by}: \
-                 raise it (velocity limits from a description or --velocity-limits, \
-                 acceleration limits likewise), or ",
+                "joint {} can move at most about {} over the trajectory's period of {} s, \
+                 held by {by}: raise it (velocity limits from a description or \
+                 --velocity-limits, acceleration limits likewise), or ",
                 j + 1,
                 Num::rounded(reach, 3),
                 Num::rounded(period, 4)
@@ -712,7 +712,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("joint 1 can move at most about 5e-6 in the 10 s trajectory, held by its position range"),
+            e.contains("joint 1 can move at most about 5e-6 over the trajectory's period of 10 s, held by its position range"),
             "{e}"
         );
         // joints that can move: the general advice alone

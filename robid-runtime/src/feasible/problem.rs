@@ -636,7 +636,7 @@ mod tests {
         assert!(
             e.contains(
                 "the model 11 base parameters: it has the drive terms Ia, Fv, Fc (`Ia1`, \
-                 `Fv1`, `Fc1`, ...), the robot Ia: give `--drive Ia,Fv,Fc`"
+                 `Fv1`, `Fc1`, ...), while the robot models Ia: give `--drive Ia,Fv,Fc`"
             ),
             "{e}"
         );
@@ -649,7 +649,7 @@ mod tests {
         assert!(
             e.contains(
                 "base parameter `Ia1` is missing from the identified result: it has no drive \
-                 terms, the robot Ia: give no --drive, and no `drive` key in the description"
+                 terms, while the robot models Ia: give no --drive, and no `drive` key in the description"
             ),
             "{e}"
         );

@@ -327,7 +327,7 @@ pub fn standard_parameter_names<M: Model + ?Sized>(model: &M) -> Vec<String> {
 /// When the parameter names of a file (`file`: a parameter file's keys, the names of an
 /// identified result) and of a model (`model`: its standard or base parameter names)
 /// differ in drive terms, what differs and the fix: e.g. "it has the drive terms Fv, Fc
-/// (`Fv1`, ...), the robot none: give `--drive Fv,Fc` ...". `what` names the file
+/// (`Fv1`, ...), while the robot models none: give `--drive Fv,Fc` ...". `what` names the file
 /// ("the identified result"). `None` when both have the same kinds of drive terms, or
 /// when `file` has a name that is neither a drive term nor one of `model`'s (a file of
 /// another robot or description: other drive terms are not what is wrong).
@@ -408,7 +408,7 @@ pub fn drive_terms_mismatch<S: AsRef<str>, T: AsRef<str>>(
         )
     };
     Some(format!(
-        "{had}, the robot {}: {fix}",
+        "{had}, while the robot models {}: {fix}",
         if in_model.is_empty() {
             "none (no --drive, no `drive` key)".to_owned()
         } else {
@@ -441,14 +441,14 @@ mod tests {
         assert_eq!(
             drive_terms_mismatch("it", &file, &model).as_deref(),
             Some(
-                "it has the drive terms Fv, Fc (`Fv1`, `Fc1`, ...), the robot Fv: give \
+                "it has the drive terms Fv, Fc (`Fv1`, `Fc1`, ...), while the robot models Fv: give \
                  `--drive Fv,Fc` to model them (or a `drive` key with them in the description)"
             )
         );
         assert_eq!(
             drive_terms_mismatch("it", &["ZZR1", "MX2"], &model).as_deref(),
             Some(
-                "it has no drive terms, the robot Fv: give no --drive, and no `drive` key in \
+                "it has no drive terms, while the robot models Fv: give no --drive, and no `drive` key in \
                  the description"
             )
         );

@@ -119,7 +119,8 @@ pub fn from_torques(
                 "the joint torques of `{}` ({}) determine at most {} of the ten whatever \
                  the motion, so no trajectory gives them all (and a payload has no parameter \
                  to leave out): measure the payload with a force-torque sensor at the wrist \
-                 (the library's robid_runtime::payload::from_wrenches), or identify the robot \
+                 (`payload::from_wrenches` of the robid-runtime library takes its \
+                 wrenches), or identify the robot \
                  with the payload on (robid identify), whose base parameters hold {}",
                 model.name(),
                 Count(dof, "joint"),

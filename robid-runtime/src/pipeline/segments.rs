@@ -138,9 +138,9 @@ fn none_left(segments: &Segments, dropped: &[DroppedSegment], what: &'static str
     let list: Vec<String> = dropped.iter().map(|d| d.to_string()).collect();
     Error::TooFewSamples {
         context: format!(
-            "{}: every segment between its {} gaps is too short for {what} ({})",
+            "{}: every segment around its {} is too short for {what} ({})",
             segments.file.display(),
-            segments.gaps.len(),
+            crate::Count(segments.gaps.len(), "gap"),
             list.join("; ")
         ),
         found: dropped
@@ -491,7 +491,7 @@ mod tests {
         assert!(matches!(e, Error::TooFewSamples { .. }), "{e:?}");
         let e = e.to_string();
         assert!(
-            e.contains("every segment between its 1 gaps is too short for the identification")
+            e.contains("every segment around its 1 gap is too short for the identification")
                 && e.contains("lines 2 to 301")
                 && e.contains("lines 302 to 601"),
             "{e}"

@@ -12,7 +12,8 @@ use std::path::Path;
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::data::{read_columns, read_header};
+use crate::DataError;
+use crate::data::{ColumnMapping, read_columns, read_header};
 use crate::estimate::{Estimate, Observation, equations_needed, ols};
 use crate::feasible::GravityCoefficients;
 use crate::limits::Quantity;
@@ -112,11 +113,28 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
     let n = model.dof();
     let header = read_header(path)?;
     let positions: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
+    // a missing column: the header the file needs (the columns are not mapped)
+    let header_needed = |e: Error| match e {
+        Error::Data(DataError::MissingColumn {
+            path,
+            column,
+            available,
+            ..
+        }) => Error::Data(DataError::MissingColumn {
+            path,
+            column,
+            available,
+            mapping: Box::new(ColumnMapping::Header {
+                expected: format!("q1..q{n} with g1..g{n}, or with M11 M12 .. M{n}{n}"),
+            }),
+        }),
+        e => e,
+    };
     if positions.iter().any(|q| !header.contains(q)) {
         // the reader's own error about the header: an empty file, one that is not text, a
         // separator it does not read, a missing column (an empty file was "holds neither
         // gravity columns nor mass-matrix columns")
-        read_columns(path, &positions)?;
+        read_columns(path, &positions).map_err(header_needed)?;
     }
     let has = |kind: StaticKind| kind.columns(n).iter().any(|c| header.contains(c));
     let kind = match (has(StaticKind::Gravity), has(StaticKind::MassMatrix)) {
@@ -141,7 +159,7 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
     let values = kind.columns(n);
     let mut names = positions;
     names.extend(values.iter().cloned());
-    let table = read_columns(path, &names)?;
+    let table = read_columns(path, &names).map_err(header_needed)?;
     let value = match kind {
         StaticKind::Gravity => Quantity::Torque,
         StaticKind::MassMatrix => Quantity::Inertia,

@@ -49,9 +49,9 @@ impl SegmentsEntry {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "{what} segments of {} ({} gaps): {} used, {} left out",
+            "{what} segments of {} ({}): {} used, {} left out",
             self.file,
-            self.gaps.len(),
+            crate::Count(self.gaps.len(), "gap"),
             self.used.len(),
             self.dropped.len()
         );

@@ -167,9 +167,9 @@ pub fn emit_c_model(
     let _ = writeln!(h, "#ifndef {guard}\n#define {guard}\n");
     let _ = writeln!(
         h,
-        "/* Dynamic model of `{}`: {} joints, {} DH, {} standard and {} base parameters.\n   Matrices are row-major. */\n",
+        "/* Dynamic model of `{}`: {}, {} DH, {} standard and {} base parameters.\n   Matrices are row-major. */\n",
         robot.name(),
-        sizes.joints,
+        super::count(sizes.joints, "joint"),
         robot.convention().as_str(),
         sizes.standard,
         sizes.base
@@ -266,11 +266,11 @@ pub fn emit_c_model(
         let ops = program.operations();
         let _ = writeln!(
             h,
-            "/* {}\n   Output `{}`: {} ({} values). Operations: {ops}. */\n{signature};\n",
+            "/* {}\n   Output `{}`: {} ({}). Operations: {ops}. */\n{signature};\n",
             info.summary,
             info.output.name,
             info.output.size.describe(),
-            info.output.size.len(sizes)
+            super::count(info.output.size.len(sizes), "value")
         );
         let _ = writeln!(c, "\n{signature}\n{{");
         body(&mut c, info, program, scalar)?;

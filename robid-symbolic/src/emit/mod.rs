@@ -111,3 +111,8 @@ pub fn emit_model(
 pub fn emit_robot(robot: &Robot) -> Result<String, EmitError> {
     emit_programs(&RobotPrograms::derive(robot)?)
 }
+
+/// `n` with its noun, plural but for one: "1 joint", "6 joints", "1 value".
+pub(crate) fn count(n: usize, noun: &str) -> String {
+    format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
+}

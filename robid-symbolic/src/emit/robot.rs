@@ -44,7 +44,8 @@ pub fn robot_tokens(p: &RobotPrograms) -> Result<TokenStream, EmitError> {
     let base_names = p.base.iter().map(|b| b.name.to_string());
     let base_expressions = p.base.iter().map(|b| &b.expression);
     let mut type_doc = vec![format!(
-        " Dynamic model of `{name}`: {n} joints, {} DH, {} standard and {} base parameters.",
+        " Dynamic model of `{name}`: {}, {} DH, {} standard and {} base parameters.",
+        super::count(n, "joint"),
         robot.convention().as_str(),
         p.standard.len(),
         p.base.len()
@@ -193,11 +194,11 @@ pub fn urdf_parameters_tokens(
 pub(crate) fn function_doc(info: &ProgramInfo, sizes: Sizes) -> String {
     let output = info.output;
     format!(
-        "{}\n\nReturns `{}`: {} ({} values).",
+        "{}\n\nReturns `{}`: {} ({}).",
         info.summary,
         output.name,
         output.size.describe(),
-        output.size.len(sizes)
+        super::count(output.size.len(sizes), "value")
     )
 }
 

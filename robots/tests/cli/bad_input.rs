@@ -1022,7 +1022,7 @@ fn a_drive_term_without_the_drive_is_named() {
         &[
             "params.toml:3:1:",
             "`Fc2` is a drive term, which this robot does not model: the file has the drive \
-             terms Fc (`Fc2`, ...), the robot none (no --drive, no `drive` key): give `--drive Fc`",
+             terms Fc (`Fc2`, ...), while the robot models none (no --drive, no `drive` key): give `--drive Fc`",
         ],
     );
 }
@@ -1114,7 +1114,7 @@ fn an_identified_result_of_other_drive_terms_names_them() {
         &[
             "tx40_identified.json: the identified result has 61 parameters",
             "it has the drive terms Ia, Fv, Fc, Fo (",
-            "the robot Fv, Fc: give `--drive Ia,Fv,Fc,Fo` to model them",
+            "while the robot models Fv, Fc: give `--drive Ia,Fv,Fc,Fo` to model them",
         ],
     );
     assert!(!stderr(&o).contains("`names`"), "{}", stderr(&o));

@@ -116,7 +116,7 @@ fn a_log_with_gaps_is_identified_from_its_segments() {
     assert!(o.status.success(), "{err}");
     for part in [
         "estimation segments of",
-        "(1 gaps): 2 used, 0 left out",
+        "(1 gap): 2 used, 0 left out",
         "used lines 2 to 3001 (0 to 14.995 s, 3000 samples)",
         "used lines 3002 to 5602 (17 to 30 s, 2601 samples)",
         "validation segments of",

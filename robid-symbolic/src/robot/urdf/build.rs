@@ -29,7 +29,7 @@ pub(super) fn robot_name(place: &Place<'_>, urdf: &Urdf, warnings: &mut Vec<Stri
     let mut changed = None;
     if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
         name = format!("robot_{name}");
-        changed = Some("does not start with a letter");
+        changed = Some("does not start with a letter a-z or A-Z");
     } else if name_problem(&name).is_some() {
         name = format!("{name}_robot");
         changed = Some("is a Rust keyword or makes one");
@@ -38,8 +38,8 @@ pub(super) fn robot_name(place: &Place<'_>, urdf: &Urdf, warnings: &mut Vec<Stri
         warnings.push(place.warning(
             urdf.name_at.start,
             &format!(
-                "the robot name `{written}` {why}, so the robot is named `{name}`; rename it in \
-                 the URDF, or pass another name where the robot is used"
+                "the robot name `{written}` {why}, so the robot is named `{name}` (in \
+                 generated code and reports); rename it in the URDF for another name"
             ),
         ));
     }
