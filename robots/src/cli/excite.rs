@@ -160,10 +160,30 @@ fn check(args: &Args) -> Result<(), Error> {
                 owner,
                 method,
             )?;
+            // an interval the samples cannot follow: the search ran for a minute on 200
+            // intervals of 5 ms at 100 Hz, then blamed the joints' room to move
+            let intervals = args.intervals.unwrap_or(POINT_INTERVALS);
+            let per_interval = args.duration * args.rate / intervals as f64;
+            if per_interval < 2.0 {
+                return Err(format!(
+                    "--intervals {intervals} over --duration {} s gives intervals of {} s, \
+                     {} samples each at --rate {} Hz, too few to follow one: give at least two \
+                     samples per interval (fewer --intervals, a longer --duration or a higher \
+                     --rate)",
+                    num(args.duration),
+                    Num::rounded(args.duration / intervals as f64, 4),
+                    Num::rounded(per_interval, 3),
+                    num(args.rate)
+                )
+                .into());
+            }
         }
     }
     Ok(())
 }
+
+/// Default intervals of `--method points`.
+const POINT_INTERVALS: usize = 12;
 
 /// Default harmonics per joint of `--method fourier`.
 const HARMONICS: usize = 5;
@@ -604,7 +624,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         Method::Points => {
             let design = PointDesign {
                 duration: args.duration,
-                intervals: args.intervals.unwrap_or(12),
+                intervals: args.intervals.unwrap_or(POINT_INTERVALS),
                 criterion,
                 weights: weights.clone(),
                 restarts: args.restarts.unwrap_or(4),

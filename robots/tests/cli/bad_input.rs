@@ -556,6 +556,24 @@ fn excite_refuses_too_few_samples_before_the_design() {
             "fewer than the 3 a trajectory needs",
         ],
     );
+    // intervals shorter than two samples (the search ran a minute, then blamed the limits)
+    let o = excite(
+        dir.path(),
+        &[
+            "--method",
+            "points",
+            "--intervals",
+            "200",
+            "--duration",
+            "1",
+            "--rate",
+            "100",
+        ],
+    );
+    fails_with(
+        &o,
+        &["--intervals 200 over --duration 1 s gives intervals of 0.005 s, 0.5 samples each"],
+    );
     assert!(started.elapsed().as_secs() < 5, "{:?}", started.elapsed());
     refused_flag(
         &excite(dir.path(), &["--rate", "1e-300"]),
