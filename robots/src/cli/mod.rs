@@ -44,8 +44,10 @@ enum Command {
     /// Base parameters with their uncertainty from measured data, fit and validation.
     ///
     /// Warns on stderr, naming them, when the condition number of the observation matrix
-    /// exceeds 1e4, a parameter's relative standard deviation exceeds 100 %, a few rows
-    /// dominate a parameter's column (an outlier), or a validation reuses estimation rows.
+    /// exceeds 1e4, a parameter's relative standard deviation exceeds 100 % (unless that
+    /// deviation moves the torques by less than 1e-9 of their norm, as a parameter of about
+    /// 0 in noise-free data does), a few rows dominate a parameter's column (an outlier),
+    /// or a validation reuses estimation rows.
     Identify(identify::Args),
     /// What a log holds before identifying from it: sampling, bandwidth and noise per
     /// joint, saturation, time at rest, and a suggested low-pass cutoff with its reason.
