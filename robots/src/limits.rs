@@ -189,12 +189,14 @@ fn position_beyond_limits(
     let hint = match (of, prismatic, fits(per_unit), shifted) {
         (_, true, true, _) => "positions in mm? they are read in metres",
         (Of::Log, false, true, _) => {
-            "positions in degrees? set `angle = \"deg\"` in the config's [units]"
+            "positions in degrees, or motor angles? set `angle = \"deg\"` in [units], or \
+             `position_side = \"motor\"` and `gear_ratios` in [drive], of the config given \
+             with --config (`robid identify --example-config` prints one)"
         }
         (Of::Trajectory, false, true, _) => "positions in degrees? write them in radians",
         (Of::Log, _, false, true) => {
             "positions off by an offset (the encoders' zero elsewhere than the model's)? \
-             set `position_offset` in the config's [units]"
+             set `position_offset` in [units] of the config given with --config"
         }
         (Of::Trajectory, _, false, true) => {
             "positions off by an offset (another zero than the model's)? shift them"

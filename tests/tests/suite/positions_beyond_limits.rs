@@ -50,7 +50,7 @@ fn a_log_in_degrees_read_as_radians_is_named_beyond_the_limits() {
             assert!(
                 w.starts_with(&format!("joint {}'s positions span [", j + 1))
                     && w.contains("rad, beyond its limits [")
-                    && w.contains("in ur5e.toml: positions in degrees? set `angle = \"deg\"`"),
+                    && w.contains("in ur5e.toml: positions in degrees, or motor angles? set `angle = \"deg\"` in [units]"),
                 "{how}: {w}"
             );
         }
