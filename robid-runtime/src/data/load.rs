@@ -601,8 +601,8 @@ const GAP_FIX: &str = "set `gaps = \"split\"` in [processing] to cut the record 
 /// The end of the message about a gap in a data file's time stamps read where
 /// `gaps = "split"` does not apply.
 const GAP_FIX_WHOLE: &str = "`gaps = \"split\"` applies to the data of `robid identify` (the \
-     estimation record and each --validate record), not to the runs of [runs] nor to the \
-     commands that read one continuous record: split the file at this line into files \
+     estimation record and each --validate record) and `robid inspect`, not to the runs of \
+     [runs] nor to the commands that read one continuous record: split the file at this line into files \
      recorded without a pause, or delete the rows on one side of the gap";
 
 /// The end of the message about a gap in the time stamps of a file joined by time to

@@ -8,8 +8,9 @@
 
 use std::path::PathBuf;
 
-use robid_runtime::data::{Record, Sampling, SpilledRecord, load};
+use robid_runtime::data::{Config, Gaps, Record, Sampling, SpilledRecord, load, load_segments};
 use robid_runtime::inspect::inspect_record;
+use robid_symbolic::Robot;
 use robots::limits::beyond_limits;
 
 use super::description::{self, DescriptionFlags};
@@ -41,6 +42,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut config = config_for(args.config.as_deref(), &args.data)?;
     config.prismatic = description::prismatic(&robot);
     let files = data_files(&args.data, args.config.as_deref(), &config)?;
+    if config.processing.gaps == Gaps::Split {
+        return run_segments(args, &robot, &config, &files);
+    }
     // on disk when it can be (as `data::load_record` keeps it), with its sampling; else
     // loaded in memory, whose errors are the ones reported
     let (data, sampling): (Box<dyn Record>, Vec<Sampling>) =
@@ -70,4 +74,45 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         inspection.text()
     };
     Ok(out::print(&text)?)
+}
+
+/// `gaps = "split"`: the record cut at its gaps, each segment inspected on its own as
+/// `robid identify` processes it (inspect refused such a config, which identify took).
+/// The text gives the inspection of each segment (which names its lines) in turn; the
+/// JSON is an array of `{ "segment": place, "inspection": ... }`.
+fn run_segments(
+    args: &Args,
+    robot: &Robot,
+    config: &Config,
+    files: &[PathBuf],
+) -> Result<(), Error> {
+    let segments = load_segments(config, files, robot.dof())?;
+    for w in segments.all_warnings() {
+        out::warn(format_args!("warning: {w}"));
+    }
+    let limits: Vec<Option<f64>> = robot.joints().iter().map(|j| j.limits.torque).collect();
+    let mut text = format!(
+        "{}: {} cut at its {} (gaps = \"split\")\n",
+        segments.file.display(),
+        robid_runtime::Count(segments.segments.len(), "segment"),
+        robid_runtime::Count(segments.gaps.len(), "gap")
+    );
+    let mut json = Vec::new();
+    for (k, (data, span)) in segments.segments.iter().zip(&segments.spans).enumerate() {
+        let inspection = inspect_record(data, data.sampling.clone(), config, &limits)
+            .map_err(|e| config.locate(e))?;
+        for w in beyond_limits(robot, data.extremes(), &args.robot) {
+            out::warn(format_args!("warning: segment {}: {w}", k + 1));
+        }
+        // (the inspection names its segment and lines)
+        text += "\n";
+        text += &inspection.text();
+        json.push(serde_json::json!({ "segment": span, "inspection": inspection }));
+    }
+    let shown = if args.json {
+        serde_json::to_string_pretty(&json)? + "\n"
+    } else {
+        text
+    };
+    Ok(out::print(&shown)?)
 }

@@ -2,7 +2,7 @@
 //! (docs/identification.md#gaps-in-the-time-stamps): refused by default, naming the
 //! setting; with `[processing] gaps = "split"` identified from its segments, the text
 //! report and the JSON saying which segments were used and which left out, for the
-//! estimation and a validation log alike. `robid inspect` names where the setting applies.
+//! estimation and a validation log alike; `robid inspect` inspects each segment.
 
 use crate::common;
 
@@ -150,7 +150,37 @@ fn a_log_with_gaps_is_identified_from_its_segments() {
     let fit = v["fit"]["relative_error"].as_f64().unwrap();
     assert!(fit < 0.05, "{fit}");
 
-    // inspect reads one continuous record, and says so
+    // inspect cuts the record as identify does and inspects each segment (it refused the
+    // config); the JSON is one inspection per segment
     let o = robid(&["inspect", robot, "--data", &gapped, "--config", &split]);
-    fails_with(&o, &["applies to the data of `robid identify`"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let segments = text.lines().next().unwrap();
+    assert!(segments.ends_with("(gaps = \"split\")"), "{text}");
+    let count: usize = segments
+        .split(": ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        text.contains("segment 1 (lines 2 to ")
+            && text.contains(&format!("segment {count} (lines ")),
+        "{text}"
+    );
+    assert_eq!(
+        text.matches("suggested low-pass cutoff").count(),
+        count,
+        "{text}"
+    );
+    let o = robid(&[
+        "inspect", robot, "--data", &gapped, "--config", &split, "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v.as_array().unwrap().len(), count);
+    assert_eq!(v[0]["segment"]["lines"][0], 2, "{v}");
+    assert!(v[0]["inspection"]["joints"].is_array(), "{v}");
 }
