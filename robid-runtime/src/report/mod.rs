@@ -15,5 +15,5 @@ pub use json::{FitEntry, ParameterEntry, ReferenceFit, Report, ReportWarning, Va
 pub use plot::{plot_torques, torque_svg};
 pub use runs::{RunEntry, RunParameterEntry, RunsEntry};
 pub use segments::SegmentsEntry;
-pub use table::text_table;
+pub use table::{fixed, text_table};
 pub use unit::{PRISMATIC, REVOLUTE, joint_units, torque_unit};

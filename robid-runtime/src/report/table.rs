@@ -38,7 +38,7 @@ pub fn text_table(report: &Report) -> String {
     for p in &report.parameters {
         let rel = match p.rel_std_percent {
             _ if p.known => "known".to_string(),
-            Some(r) => format!("{r:.2}"),
+            Some(r) => fixed(r, 2),
             None => "-".to_string(),
         };
         let _ = writeln!(
@@ -138,7 +138,15 @@ pub(crate) fn value(x: f64) -> String {
     }
 }
 
-pub(crate) fn fixed(x: f64, decimals: usize) -> String {
+/// `x` with `decimals` decimals below 1e6 in magnitude, else to four significant digits
+/// in exponent form (a relative deviation of 3332612825004613.00 % was written whole).
+///
+/// ```
+/// use robid_runtime::report::fixed;
+/// assert_eq!(fixed(12.345, 2), "12.35");
+/// assert_eq!(fixed(3332612825004613.0, 2), "3.333e15");
+/// ```
+pub fn fixed(x: f64, decimals: usize) -> String {
     if x.abs() < 1e6 {
         format!("{x:.decimals$}")
     } else {

@@ -123,8 +123,11 @@ fn run_static(args: &Args, robot: &Path, samples: &Path) -> Result<(), Error> {
     );
     for (i, expression) in expressions.iter().enumerate() {
         table += &format!(
-            "{:<10} {:>14.6e} {:>12.3e} {:>8.2}  {expression}\n",
-            e.names[i], e.values[i], e.std[i], e.rel_std_percent[i]
+            "{:<10} {:>14.6e} {:>12.3e} {:>8}  {expression}\n",
+            e.names[i],
+            e.values[i],
+            e.std[i],
+            robid_runtime::report::fixed(e.rel_std_percent[i], 2)
         );
     }
     out::print(&table)?;
