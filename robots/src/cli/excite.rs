@@ -834,7 +834,8 @@ fn write_pieces(
     let mut stdout = out::Stdout::new();
     writeln!(
         stdout,
-        "pieces: {} windows, condition number {:.2} (minimum widths {:.2}), written to {}",
+        "pieces: {} windows, condition number {:.2} ({:.2} with every width at its \
+         minimum), written to {}",
         pieces.windows.len(),
         pieces.condition_number,
         pieces.initial_condition_number,
