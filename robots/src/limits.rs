@@ -275,7 +275,10 @@ mod tests {
         };
         // joint 3's limits: [-3.1416, 3.1416] rad; 170 degrees fit them
         let degrees = warn(vec![[0.0, 1.0], [0.0, 1.0], [-170.0, 170.0]]);
-        assert!(degrees[0].contains("positions in degrees, or motor angles?"), "{degrees:?}");
+        assert!(
+            degrees[0].contains("positions in degrees, or motor angles?"),
+            "{degrees:?}"
+        );
         // 40000 counts do not fit as degrees
         let counts = warn(vec![[0.0, 1.0], [0.0, 1.0], [-40000.0, 40000.0]]);
         assert!(

@@ -276,35 +276,32 @@ pub enum DataError {
         /// What to do.
         fix: &'static str,
     },
-    /// A trajectory's positions and velocities (or velocities and accelerations) disagree:
-    /// over one step the signal changes by far more, or far less, than its derivative
-    /// integrates to. A closed loop fed such a reference "tracks" it between the samples
-    /// and records a state whose positions and velocities say different things.
+    /// A trajectory's positions and velocities disagree: over one step a position changes
+    /// by far more, or far less, than its velocity integrates to. A closed loop fed such a
+    /// reference "tracks" it between the samples and records a state whose positions and
+    /// velocities say different things.
     #[error(
-        "{location}: {signal}{joint} changes by {} over the step from t = {} s, while {derivative}{joint} integrates to {} over it: the {what} disagree ({}); give each column the time derivative of the one before it (`robid excite` designs such trajectories)",
+        "{location}: q{joint} changes by {} over the step from t = {} s, while qd{joint} integrates to {} over it: the positions and velocities disagree ({}); give the velocities as the time derivatives of the positions (`robid excite` designs such trajectories)",
         Num::rounded(*change, 6),
         Num::rounded(*from, 15),
         Num::rounded(*integral, 6),
-        derivative_cause(*change, *integral)
+        derivative_cause(*ratio)
     )]
     InconsistentDerivative {
         /// Where: `file:line` of the sample at the end of the step, or the sample of what
         /// holds the trajectory.
         location: String,
-        /// The signal (`q`, `qd`).
-        signal: &'static str,
-        /// Its derivative (`qd`, `qdd`).
-        derivative: &'static str,
-        /// What the two are (`positions and velocities`).
-        what: &'static str,
         /// The joint, numbered from 1.
         joint: usize,
         /// The time at the start of the step (s).
         from: f64,
-        /// The signal's change over the step.
+        /// The position's change over the step.
         change: f64,
-        /// Its derivative integrated over the step.
+        /// The velocity integrated over the step.
         integral: f64,
+        /// Over the whole record, the positions' total change over the velocities'
+        /// integrated one (the factor of a unit slip).
+        ratio: f64,
     },
     /// A file joined by time whose median step is more than [`crate::data::GAP_RATIO`]
     /// times that of the first file (its measurements other than temperatures): each of
@@ -444,20 +441,26 @@ fn decimal_comma(text: &str) -> &'static str {
     }
 }
 
-/// The likely cause of a signal's `change` over a step against its derivative's
-/// `integral`: a ratio of a unit conversion names it, else the causes in general.
-fn derivative_cause(change: f64, integral: f64) -> &'static str {
-    let ratio = change / integral;
-    let near = |r: f64| (ratio / r - 1.0).abs() < 0.05;
+/// The likely cause of positions that disagree with their velocities, from `ratio`, the
+/// positions' total change over the velocities' integrated one: the factor of a unit slip
+/// names it (within 2 %: a time column in minutes, 60 times apart, is not degrees, 57.3),
+/// else the causes in general.
+fn derivative_cause(ratio: f64) -> &'static str {
+    let near = |r: f64| (ratio / r - 1.0).abs() < 0.02;
     if near(1e-3) {
-        "1000 times apart: is the time column in milliseconds? write it in seconds"
+        "1000 times apart: is the time column in milliseconds (or are the velocities in \
+         mrad/s)? write seconds and radians"
     } else if near(std::f64::consts::PI / 180.0) {
-        "about 57 times apart: is the derivative in degrees and the signal in radians?"
+        "57.3 times apart: are the velocities in degrees per second and the positions in \
+         radians?"
     } else if near(180.0 / std::f64::consts::PI) {
-        "about 57 times apart: is the signal in degrees and the derivative in radians?"
+        "57.3 times apart: are the positions in degrees and the velocities in radians per \
+         second?"
+    } else if near(60.0) {
+        "60 times apart: is the time column in minutes? write it in seconds"
     } else {
-        "a column in other units, shifted by some samples, or not the derivative of the one \
-         before it"
+        "a column in other units, shifted by some samples, or not the derivative of the \
+         positions"
     }
 }
 

@@ -813,7 +813,7 @@ fn simulate_refuses_time_stamps_identify_would_refuse() {
         &o,
         &[
             &format!("{}:3: q1 changes by", traj.display()),
-            "1000 times apart: is the time column in milliseconds? write it in seconds",
+            "1000 times apart: is the time column in milliseconds",
         ],
     );
     // a time column in milliseconds, the derivatives per millisecond: a rate robid takes
