@@ -384,48 +384,77 @@ impl ParameterFile {
     /// the three moments.
     fn check_diagonal(&self, link: usize, slots: &[Option<(f64, Entry)>; 10]) -> Result<()> {
         let value = |i: usize| slots[i].map(|(v, _)| v);
-        let (Some(xx), Some(yy), Some(zz), Some(mass)) = (value(0), value(3), value(5), value(9))
+        let Some(first) = slots
+            .iter()
+            .flatten()
+            .map(|(_, e)| *e)
+            .min_by_key(|e| e.line)
         else {
             return Ok(());
         };
-        if mass <= 0.0 {
-            return Ok(());
-        }
-        let h = [6, 7, 8].map(|i| value(i).unwrap_or(0.0));
-        // mass times the moments about the centre of mass: no division by the mass
-        let moments = [
-            xx * mass - (h[1] * h[1] + h[2] * h[2]),
-            yy * mass - (h[0] * h[0] + h[2] * h[2]),
-            zz * mass - (h[0] * h[0] + h[1] * h[1]),
-        ];
-        let scale =
-            (xx.abs().max(yy.abs()).max(zz.abs()) * mass).max(h.iter().map(|x| x * x).sum());
-        let Some(axis) = (0..3).find(|&a| moments[a] < -INERTIA_TOLERANCE * scale) else {
-            return Ok(());
-        };
-        let stem = ["XX", "YY", "ZZ"][axis];
         let missing: Vec<String> = Inertial::ALL
             .iter()
             .zip(slots)
             .filter(|(_, slot)| slot.is_none())
             .map(|(s, _)| format!("{}{link}", s.stem()))
             .collect();
-        let first = slots
-            .iter()
-            .flatten()
-            .map(|(_, e)| *e)
-            .min_by_key(|e| e.line)
-            .expect("the mass is given");
+        let missing = missing.join(" ");
+        let h = [6, 7, 8].map(|i| value(i).unwrap_or(0.0));
+        let diagonal = [0, 3, 5].map(value);
+        // about the origin, whatever the mass: XX + YY - ZZ is twice the spread along z
+        if let [Some(xx), Some(yy), Some(zz)] = diagonal {
+            let spread = [yy + zz - xx, xx + zz - yy, xx + yy - zz];
+            let scale = xx.abs().max(yy.abs()).max(zz.abs());
+            if let Some(axis) = (0..3).find(|&a| spread[a] < -INERTIA_TOLERANCE * scale) {
+                return Err(self.at(
+                    &first,
+                    format!(
+                        "link {link}'s moments XX{link} YY{link} ZZ{link} = {}, {}, {} break the \
+                         triangle inequality about the frame origin ({} exceeds the sum of the \
+                         other two), whatever the missing {missing} are: no body has them",
+                        Num(xx),
+                        Num(yy),
+                        Num(zz),
+                        ["XX", "YY", "ZZ"][axis]
+                    ),
+                ));
+            }
+        }
+        let Some(mass) = value(9) else {
+            return Ok(());
+        };
+        if mass == 0.0 && h.iter().any(|x| *x != 0.0) {
+            return Err(self.at(
+                &first,
+                format!("link {link} has a first moment but no mass M{link}; give its mass"),
+            ));
+        }
+        if mass <= 0.0 {
+            return Ok(());
+        }
+        // mass times each given moment about the centre of mass (no division by the
+        // mass), a missing first moment at its most favourable, 0
+        let scale = h.iter().map(|x| x * x).sum::<f64>();
+        let bad = (0..3).find_map(|axis| {
+            let moment = diagonal[axis]?;
+            let (b, c) = ((axis + 1) % 3, (axis + 2) % 3);
+            let about = moment * mass - (h[b] * h[b] + h[c] * h[c]);
+            (about < -INERTIA_TOLERANCE * (moment.abs() * mass).max(scale))
+                .then_some((axis, moment, about))
+        });
+        let Some((axis, moment, about)) = bad else {
+            return Ok(());
+        };
+        let stem = ["XX", "YY", "ZZ"][axis];
         Err(self.at(
             &first,
             format!(
                 "link {link}'s moment {stem}{link} about its centre of mass would be {} kg m^2 \
-                 whatever the missing {} are: the first moments place the centre of mass too \
-                 far from the origin for {stem}{link} = {}, so no body has these values; check \
-                 them and M{link}",
-                Num::rounded(moments[axis] / mass, 5),
-                missing.join(" "),
-                Num(slots[[0, 3, 5][axis]].map_or(0.0, |(v, _)| v))
+                 whatever the missing {missing} are: the first moments place the centre of \
+                 mass too far from the origin for {stem}{link} = {}, so no body has these \
+                 values; check them and M{link}",
+                Num::rounded(about / mass, 5),
+                Num(moment)
             ),
         ))
     }
@@ -438,8 +467,11 @@ impl ParameterFile {
     /// the diagonal keep the inequality in every frame, and a first moment only narrows it). A warning each,
     /// at the link's first value, as a URDF's such `<inertial>` is warned about: the
     /// torques of such values are computed, but no robot has them.
-    pub fn unphysical(&self) -> Vec<String> {
+    /// With `missing_is_zero` false (a prior, whose missing values are free), links with
+    /// missing values are left out.
+    pub fn unphysical(&self, missing_is_zero: bool) -> Vec<String> {
         let mut links: BTreeMap<usize, ([f64; 10], Option<Entry>)> = BTreeMap::new();
+        let mut given: BTreeMap<usize, usize> = BTreeMap::new();
         for (name, entry) in &self.entries {
             let Ok(ParameterId {
                 link,
@@ -448,6 +480,7 @@ impl ParameterFile {
             else {
                 continue;
             };
+            *given.entry(link + 1).or_default() += 1;
             let (p, first) = links.entry(link + 1).or_insert(([0.0; 10], None));
             p[slot.index()] = entry.value;
             if first.is_none_or(|f| entry.line < f.line) {
@@ -456,6 +489,7 @@ impl ParameterFile {
         }
         links
             .into_iter()
+            .filter(|(link, _)| missing_is_zero || given.get(link) == Some(&10))
             .filter_map(|(link, (p, first))| {
                 let moments = crate::feasible::LinkInertial::from_standard(&p)?.principal_moments();
                 let excess = moments[2] - moments[0] - moments[1];
@@ -811,11 +845,14 @@ mod tests {
         assert!(e.contains("(8e199, 0, 0) m"), "{e}");
     }
 
-    /// A prior's link with missing values is refused when no missing values can make its
-    /// moments about the centre of mass non-negative (`YY1 = 0.12` with the centre of mass
-    /// 0.25 m out along x: -0.005 whatever the products and `MY1`, `MZ1`); one that they
-    /// can is taken. Links whose values are possible but break the triangle inequality
-    /// are warned about, missing values counted as 0.
+    /// A prior's link with missing values is refused when no missing values can make it
+    /// a body's: a moment about the centre of mass below zero (`YY1 = 0.12` with the
+    /// centre of mass 0.25 m out along x: -0.005 whatever the products and `MY1`, `MZ1`;
+    /// also without `ZZ1`), moments that break the triangle inequality about the origin
+    /// (whatever the mass), a first moment without mass; one that they can is taken.
+    /// Links whose values are possible but break the triangle inequality about the
+    /// centre of mass are warned about, missing values counted as 0 (for a prior, links
+    /// with missing values are not judged).
     #[test]
     fn a_prior_s_incomplete_link_and_the_triangle_inequality() {
         let names: Vec<String> = Inertial::ALL
@@ -823,43 +860,55 @@ mod tests {
             .map(|s| format!("{}1", s.stem()))
             .collect();
         let file = |text: &str| ParameterFile::parse(text, "p.toml".as_ref()).unwrap();
-        let link = |yy: &str| {
-            format!("[standard]\nXX1 = 0.01\nYY1 = {yy}\nZZ1 = 0.2\nMX1 = 0.5\nM1 = 2\n")
-        };
-        let e = file(&link("0.12")).prior(&names).unwrap_err().to_string();
+        let link =
+            |yy: &str| format!("[standard]\nXX1 = 0.2\nYY1 = {yy}\nZZ1 = 0.2\nMX1 = 0.5\nM1 = 2\n");
+        let refused = |text: &str| file(text).prior(&names).unwrap_err().to_string();
+        let e = refused(&link("0.12"));
         assert!(
             e.starts_with("p.toml:2:1: link 1's moment YY1 about its centre of mass would be -0.005 kg m^2 whatever the missing XY1 XZ1 YZ1 MY1 MZ1 are"),
             "{e}"
         );
+        let e = refused("[standard]\nXX1 = 0.2\nYY1 = 0.12\nMX1 = 0.5\nM1 = 2\n");
+        assert!(
+            e.contains("moment YY1 about its centre of mass would be -0.005"),
+            "{e}"
+        );
+        let e = refused("[standard]\nXX1 = 0.01\nYY1 = 0.01\nZZ1 = 0.05\n");
+        assert!(
+            e.contains("XX1 YY1 ZZ1 = 0.01, 0.01, 0.05 break the triangle inequality about the frame origin (ZZ exceeds"),
+            "{e}"
+        );
+        let e = refused("[standard]\nM1 = 0\nMX1 = 0.3\n");
+        assert!(
+            e.contains("link 1 has a first moment but no mass M1"),
+            "{e}"
+        );
         file(&link("0.13")).prior(&names).unwrap();
         // the mass or a moment missing: nothing to judge by
-        file("[standard]\nYY1 = 0.001\nMX1 = 0.5\nM1 = 2\n")
+        file("[standard]\nYY1 = 0.001\nMX1 = 0.5\n")
             .prior(&names)
             .unwrap();
         // possible values of no body: 0.001 + 0.001 < 0.5 (a warning at the link's first
         // value); none for a body's, or for impossible ones (the readers' error)
         let thin = file("[standard]\nM2 = 3\nXX2 = 0.001\nYY2 = 0.001\nZZ2 = 0.5\n");
-        let w = thin.unphysical();
+        let w = thin.unphysical(true);
         assert_eq!(w.len(), 1);
         assert!(
             w[0].starts_with("p.toml:2: link 2: the principal moments 0.001, 0.001, 0.5 kg m^2")
                 && w[0].contains("exceeds the sum of the other two by 0.498 kg m^2"),
             "{w:?}"
         );
+        // a prior's missing values are free: not judged
+        assert!(thin.unphysical(false).is_empty());
         // 0.01 kg m^2 about every axis through the centre of mass
         let ball = "[standard]\nXX1 = 0.01\nYY1 = 0.135\nZZ1 = 0.135\nMX1 = 0.5\nM1 = 2\n";
-        assert!(file(ball).unphysical().is_empty());
+        assert!(file(ball).unphysical(true).is_empty());
         assert_eq!(
-            file(&link("0.13")).unphysical().len(),
+            file(&link("0.13")).unphysical(true).len(),
             1,
-            "0.075 > 0.01 + 0.005"
+            "0.2 > 0.005 + 0.075"
         );
-        assert!(file(&link("0.12")).unphysical().is_empty());
-        assert!(
-            file("[standard]\nXX1 = 1\nYY1 = 1\nZZ1 = 2\nM1 = 1\n")
-                .unphysical()
-                .is_empty()
-        );
+        assert!(file(&link("0.12")).unphysical(true).is_empty());
     }
 
     /// JSON given as a parameter file is said to be JSON, and `robid identify`'s report

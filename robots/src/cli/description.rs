@@ -68,7 +68,7 @@ impl Description {
         model: &dyn Model,
     ) -> Result<Vec<f64>, Error> {
         match parameters {
-            Some(path) => Ok(read_parameters(path)?.base_parameters(model)?),
+            Some(path) => Ok(read_parameters(path, true)?.base_parameters(model)?),
             None => self.urdf_base_parameters(model)?.ok_or_else(|| {
                 "--parameters: give a parameter file with a [standard] or a [base] table (see \
                  docs/command-line.md); only a URDF description carries its own inertials"
@@ -407,9 +407,11 @@ pub(crate) fn load(path: &Path, flags: &DescriptionFlags) -> Result<Description,
 /// Reads the parameter file at `path`, warning about each link whose values no body has
 /// (`ParameterFile::unphysical`: moments that break the triangle inequality), as a URDF's
 /// such inertials are warned about; the readers' errors are the impossible values.
-pub(crate) fn read_parameters(path: &Path) -> Result<ParameterFile, Error> {
+/// `missing_is_zero`: a missing value counts as 0 (false for a prior, whose missing values
+/// are free: its links with missing values are not judged).
+pub(crate) fn read_parameters(path: &Path, missing_is_zero: bool) -> Result<ParameterFile, Error> {
     let file = ParameterFile::read(path)?;
-    for w in file.unphysical() {
+    for w in file.unphysical(missing_is_zero) {
         out::warn(format_args!("warning: {w}"));
     }
     Ok(file)

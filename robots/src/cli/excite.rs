@@ -517,7 +517,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     check_limits(args, &description, &limits)?;
     let reference = match &args.parameters {
         Some(p) => {
-            let base = description::read_parameters(p)?.base_parameters(&model)?;
+            let base = description::read_parameters(p, true)?.base_parameters(&model)?;
             warn_idle(args, &description, p, &model, &base, &limits)?;
             Some(base)
         }

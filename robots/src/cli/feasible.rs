@@ -227,9 +227,17 @@ fn unmet(solution: &Solution, note: &str) -> Error {
              other or the physical consistency"
         )
     };
+    // an unmet --equal is checked there first (one that only a zero mass meets, such as
+    // `m2 = 2 * m2`, cannot hold: masses are positive); else the bounds
+    let check = if solution.unmet.iter().any(|u| u.starts_with("equality")) {
+        "the --equal equalities (one that only a zero mass or a massless link meets, such as \
+         `m2 = 2 * m2`, cannot hold), the bounds and the identified values"
+    } else {
+        "the bounds file and the identified values"
+    };
     format!(
         "the {} fit ended outside bounds it imposes: {}; nothing was written. {cause}; check \
-         the bounds file and the identified values{note}",
+         {check}{note}",
         solution.method.name(),
         solution.unmet.join("; "),
     )
@@ -315,7 +323,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {
-            standard: description::read_parameters(path)?.prior(&problem.standard_names)?,
+            standard: description::read_parameters(path, false)?.prior(&problem.standard_names)?,
             weight,
         }),
         // a URDF's own inertials are its CAD values

@@ -76,7 +76,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let chosen = super::identify::model_of(&description)?;
     let model = chosen.model.as_ref();
     let base = match &args.parameters {
-        Some(p) => Some(description::read_parameters(p)?.base_parameters(model)?),
+        Some(p) => Some(description::read_parameters(p, true)?.base_parameters(model)?),
         None => None,
     };
     let data = load(&config, &data, model.dof())?;

@@ -533,7 +533,7 @@ fn reference_values(
     model: &dyn robid_runtime::model::Model,
     config: &Config,
 ) -> Result<Vec<f64>, Error> {
-    let file = description::read_parameters(path)?;
+    let file = description::read_parameters(path, true)?;
     let mut values = file.base_parameters(model)?;
     let extra = config
         .extra_columns_for(model.dof())

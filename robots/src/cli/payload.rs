@@ -79,7 +79,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     let chosen = super::identify::robot_model(&args.robot, &args.description)?;
     let model = chosen.model.as_ref();
-    let base = description::read_parameters(&args.parameters)?.base_parameters(model)?;
+    let base = description::read_parameters(&args.parameters, true)?.base_parameters(model)?;
     let samples = match &config {
         Some(config) => processed_samples(config, &data, model.dof())?,
         None => state_samples(&data[0], model.dof())?,
