@@ -98,9 +98,17 @@ fn run_segments(
         robid_runtime::Count(segments.gaps.len(), "gap")
     );
     let mut json = Vec::new();
+    let mut short = Vec::new();
     for (k, (data, span)) in segments.segments.iter().zip(&segments.spans).enumerate() {
-        let inspection = inspect_record(data, data.sampling.clone(), config, &limits)
-            .map_err(|e| config.locate(e))?;
+        // a segment too short for the spectra is left out, as identify leaves it out
+        let inspection = match inspect_record(data, data.sampling.clone(), config, &limits) {
+            Ok(inspection) => inspection,
+            Err(robid_runtime::Error::TooFewSamples { required, .. }) => {
+                short.push(format!("{span}: at least {required} samples are needed"));
+                continue;
+            }
+            Err(e) => return Err(config.locate(e).into()),
+        };
         for w in beyond_limits(robot, data.extremes(), &args.robot) {
             out::warn(format_args!("warning: segment {}: {w}", k + 1));
         }
@@ -108,6 +116,23 @@ fn run_segments(
         text += "\n";
         text += &inspection.text();
         json.push(serde_json::json!({ "segment": span, "inspection": inspection }));
+    }
+    let spans = segments.single.iter().map(|s| format!("{s}: one sample"));
+    short.extend(spans);
+    if !short.is_empty() {
+        out::warn(format_args!(
+            "warning: {}: segments too short to inspect: {}",
+            segments.file.display(),
+            short.join("; ")
+        ));
+    }
+    if json.is_empty() {
+        return Err(format!(
+            "{}: no segment between its gaps is long enough to inspect ({})",
+            segments.file.display(),
+            short.join("; ")
+        )
+        .into());
     }
     let shown = if args.json {
         serde_json::to_string_pretty(&json)? + "\n"

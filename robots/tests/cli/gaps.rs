@@ -183,4 +183,14 @@ fn a_log_with_gaps_is_identified_from_its_segments() {
     assert_eq!(v.as_array().unwrap().len(), count);
     assert_eq!(v[0]["segment"]["lines"][0], 2, "{v}");
     assert!(v[0]["inspection"]["joints"].is_array(), "{v}");
+    // the validation log's short piece at the end is left out, as identify leaves it out
+    // (the whole inspection failed on its spectrum)
+    let o = robid(&["inspect", robot, "--data", &validation, "--config", &split]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("segments too short to inspect: lines ")
+            && stderr(&o).contains("samples are needed"),
+        "{}",
+        stderr(&o)
+    );
 }
