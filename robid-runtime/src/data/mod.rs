@@ -39,6 +39,7 @@ pub use record::{Record, SpilledRecord, load_record};
 pub use sampling::{SKIP_RATIO, STALE_SHARE, Sampling};
 pub use segments::{Loaded, SegmentSpan, Segments, load_or_split, load_segments};
 pub use speed::{SPEED_STRIDE, SpeedHistogram};
+pub(crate) use table::header_needed;
 pub use table::{
     ColumnMapping, Table, WINDOW, for_each_window, read_columns, read_columns_from, read_header,
 };

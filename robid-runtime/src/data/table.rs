@@ -108,6 +108,25 @@ pub enum ColumnMapping {
     },
 }
 
+/// A missing column of a file whose columns are fixed (no config maps them) said with the
+/// header the file needs, `expected`; other errors as they are.
+pub(crate) fn header_needed(e: Error, expected: String) -> Error {
+    match e {
+        Error::Data(DataError::MissingColumn {
+            path,
+            column,
+            available,
+            ..
+        }) => Error::Data(DataError::MissingColumn {
+            path,
+            column,
+            available,
+            mapping: Box::new(ColumnMapping::Header { expected }),
+        }),
+        e => e,
+    }
+}
+
 impl ColumnMapping {
     /// What to do about a column that is not in the header.
     pub fn fix(&self) -> String {

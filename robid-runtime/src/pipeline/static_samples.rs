@@ -12,8 +12,7 @@ use std::path::Path;
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::DataError;
-use crate::data::{ColumnMapping, read_columns, read_header};
+use crate::data::{read_columns, read_header};
 use crate::estimate::{Estimate, Observation, equations_needed, ols};
 use crate::feasible::GravityCoefficients;
 use crate::limits::Quantity;
@@ -114,21 +113,11 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
     let header = read_header(path)?;
     let positions: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
     // a missing column: the header the file needs (the columns are not mapped)
-    let header_needed = |e: Error| match e {
-        Error::Data(DataError::MissingColumn {
-            path,
-            column,
-            available,
-            ..
-        }) => Error::Data(DataError::MissingColumn {
-            path,
-            column,
-            available,
-            mapping: Box::new(ColumnMapping::Header {
-                expected: format!("q1..q{n} with g1..g{n}, or with M11 M12 .. M{n}{n}"),
-            }),
-        }),
-        e => e,
+    let header_needed = |e: Error| {
+        crate::data::header_needed(
+            e,
+            format!("q1..q{n} with g1..g{n}, or with M11 M12 .. M{n}{n}"),
+        )
     };
     if positions.iter().any(|q| !header.contains(q)) {
         // the reader's own error about the header: an empty file, one that is not text, a

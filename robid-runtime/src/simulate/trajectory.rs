@@ -6,7 +6,7 @@
 use crate::DataError;
 use std::path::Path;
 
-use crate::data::{ColumnMapping, read_columns};
+use crate::data::read_columns;
 use crate::error::{Error, Result};
 use crate::limits::Quantity;
 use crate::signal::Signals;
@@ -97,22 +97,8 @@ impl Trajectory {
     pub fn read_csv(path: &Path, dof: usize) -> Result<Self> {
         crate::data::check_joints(dof)?;
         let header = Self::header(dof);
-        let mut table = read_columns(path, &header).map_err(|e| match e {
-            Error::Data(DataError::MissingColumn {
-                path,
-                column,
-                available,
-                ..
-            }) => Error::Data(DataError::MissingColumn {
-                path,
-                column,
-                available,
-                mapping: Box::new(ColumnMapping::Header {
-                    expected: "t,q1..qn,qd1..qdn,qdd1..qddn".into(),
-                }),
-            }),
-            e => e,
-        })?;
+        let mut table = read_columns(path, &header)
+            .map_err(|e| crate::data::header_needed(e, "t,q1..qn,qd1..qdn,qdd1..qddn".into()))?;
         for (i, name) in header.iter().enumerate() {
             let quantity = match i {
                 0 => Quantity::Time,
