@@ -165,11 +165,16 @@ fn check(args: &Args) -> Result<(), Error> {
             let intervals = args.intervals.unwrap_or(POINT_INTERVALS);
             let per_interval = args.duration * args.rate / intervals as f64;
             if per_interval < 2.0 {
+                // (2 intervals is the least a design has)
+                let fewer = if intervals > 2 {
+                    "fewer --intervals, "
+                } else {
+                    ""
+                };
                 return Err(format!(
                     "--intervals {intervals} over --duration {} s gives intervals of {} s, \
                      {} samples each at --rate {} Hz, too few to follow one: give at least two \
-                     samples per interval (fewer --intervals, a longer --duration or a higher \
-                     --rate)",
+                     samples per interval ({fewer}a longer --duration or a higher --rate)",
                     num(args.duration),
                     Num::rounded(args.duration / intervals as f64, 4),
                     Num::rounded(per_interval, 3),

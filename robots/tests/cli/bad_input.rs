@@ -572,7 +572,31 @@ fn excite_refuses_too_few_samples_before_the_design() {
     );
     fails_with(
         &o,
-        &["--intervals 200 over --duration 1 s gives intervals of 0.005 s, 0.5 samples each"],
+        &[
+            "--intervals 200 over --duration 1 s gives intervals of 0.005 s, 0.5 samples each",
+            "(fewer --intervals, a longer --duration or a higher --rate)",
+        ],
+    );
+    // at the least number of intervals, 2, fewer is no way out
+    let o = excite(
+        dir.path(),
+        &[
+            "--method",
+            "points",
+            "--intervals",
+            "2",
+            "--duration",
+            "1",
+            "--rate",
+            "3",
+        ],
+    );
+    fails_with(
+        &o,
+        &[
+            "0.5 s, 1.5 samples each",
+            "interval (a longer --duration or a higher --rate)",
+        ],
     );
     assert!(started.elapsed().as_secs() < 5, "{:?}", started.elapsed());
     refused_flag(
