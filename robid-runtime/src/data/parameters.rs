@@ -878,6 +878,11 @@ mod tests {
             e.contains("XX1 YY1 ZZ1 = 0.01, 0.01, 0.05 break the triangle inequality about the frame origin (ZZ exceeds"),
             "{e}"
         );
+        for (moments, axis) in [("0.05, 0.01, 0.01", "XX"), ("0.01, 0.05, 0.01", "YY")] {
+            let [xx, yy, zz] = [0, 1, 2].map(|i| moments.split(", ").nth(i).unwrap());
+            let e = refused(&format!("[standard]\nXX1 = {xx}\nYY1 = {yy}\nZZ1 = {zz}\n"));
+            assert!(e.contains(&format!("({axis} exceeds the sum")), "{e}");
+        }
         let e = refused("[standard]\nM1 = 0\nMX1 = 0.3\n");
         assert!(
             e.contains("link 1 has a first moment but no mass M1"),
