@@ -889,6 +889,17 @@ mod tests {
             "{e}"
         );
         file(&link("0.13")).prior(&names).unwrap();
+        // a flat body (ZZ = XX + YY), and rounding within 1e-6 of the largest moment
+        file("[standard]\nXX1 = 100\nYY1 = 100\nZZ1 = 200\n")
+            .prior(&names)
+            .unwrap();
+        file("[standard]\nXX1 = 100\nYY1 = 100\nZZ1 = 200.00001\n")
+            .prior(&names)
+            .unwrap();
+        // no mass and no first moment: nothing to refuse
+        file("[standard]\nM1 = 0\nXX1 = 0.1\n")
+            .prior(&names)
+            .unwrap();
         // the mass or a moment missing: nothing to judge by
         file("[standard]\nYY1 = 0.001\nMX1 = 0.5\n")
             .prior(&names)
