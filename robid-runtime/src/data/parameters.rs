@@ -384,12 +384,7 @@ impl ParameterFile {
     /// the three moments.
     fn check_diagonal(&self, link: usize, slots: &[Option<(f64, Entry)>; 10]) -> Result<()> {
         let value = |i: usize| slots[i].map(|(v, _)| v);
-        let Some(first) = slots
-            .iter()
-            .flatten()
-            .map(|(_, e)| *e)
-            .min_by_key(|e| e.line)
-        else {
+        let Some(first) = first_entry(slots) else {
             return Ok(());
         };
         let missing: Vec<String> = Inertial::ALL
@@ -517,12 +512,7 @@ impl ParameterFile {
     fn check_link(&self, link: usize, slots: &[Option<(f64, Entry)>; 10]) -> Result<()> {
         let p: [f64; 10] = std::array::from_fn(|i| slots[i].map_or(0.0, |(v, _)| v));
         // the place of the link: its first entry in the file
-        let Some(first) = slots
-            .iter()
-            .flatten()
-            .map(|(_, e)| *e)
-            .min_by_key(|e| e.line)
-        else {
+        let Some(first) = first_entry(slots) else {
             return Ok(());
         };
         let names = |stems: &[Inertial]| -> String {
@@ -582,6 +572,15 @@ impl ParameterFile {
         }
         Ok(())
     }
+}
+
+/// The place of a link in the file: the first of its entries (`None` without one).
+fn first_entry(slots: &[Option<(f64, Entry)>; 10]) -> Option<Entry> {
+    slots
+        .iter()
+        .flatten()
+        .map(|(_, e)| *e)
+        .min_by_key(|e| e.line)
 }
 
 /// 1-based line and column (in characters) of byte `offset` of `text`.
