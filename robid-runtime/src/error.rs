@@ -37,10 +37,14 @@ pub enum Error {
     /// ten of its parameters. A payload has exactly ten, none of which can be left out, so
     /// the fix is in the data or in what is measured (the estimator's own
     /// [`EstimateError::RankDeficient`] advised to "remove these parameters").
-    #[error("rank-deficient data: rank {rank} of the payload's 10 parameters; {}; {fix}", crate::estimate::not_excited(*rank, 10, unexcited))]
+    /// Where the measurement itself determines fewer than ten (`most`), the directions are
+    /// "not determined", not "not excited": no motion excites them.
+    #[error("rank-deficient data: rank {rank} of the payload's 10 parameters; {}; {fix}", crate::estimate::undetermined(*rank, 10, unexcited, if *most < 10 { "not determined" } else { "not excited" }))]
     PayloadNotExcited {
         /// Numerical rank found.
         rank: usize,
+        /// The most combinations of the ten the measurement determines whatever the motion.
+        most: usize,
         /// The parameters that make up the unexcited directions, most affected first.
         unexcited: Vec<String>,
         /// What to do: a richer motion, or, when the robot's joint torques cannot

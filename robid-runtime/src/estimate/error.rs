@@ -141,17 +141,28 @@ fn lacks_equations(
 /// excited (a, b, ..., and 30 more)": the whole list was given as "not excited" (61 names
 /// for a rank of 23), though any 23 of them could be determined.
 pub(crate) fn not_excited(rank: usize, columns: usize, unexcited: &[String]) -> String {
+    undetermined(rank, columns, unexcited, "not excited")
+}
+
+/// [`not_excited`] with the state of the directions said by `state` ("not excited" by
+/// the data, or "not determined" where no motion could excite them).
+pub(crate) fn undetermined(
+    rank: usize,
+    columns: usize,
+    unexcited: &[String],
+    state: &str,
+) -> String {
     const SHOWN: usize = 10;
     let directions = columns.saturating_sub(rank);
     if unexcited.len() <= directions.max(1) {
-        return format!("not excited: {}", unexcited.join(", "));
+        return format!("{state}: {}", unexcited.join(", "));
     }
     let mut names = unexcited[..unexcited.len().min(SHOWN)].join(", ");
     if unexcited.len() > SHOWN {
         names += &format!(", and {} more", unexcited.len() - SHOWN);
     }
     format!(
-        "{} of {} parameters not excited ({names})",
+        "{} of {} parameters {state} ({names})",
         crate::Count(directions, "combination"),
         unexcited.len()
     )
@@ -159,7 +170,7 @@ pub(crate) fn not_excited(rank: usize, columns: usize, unexcited: &[String]) -> 
 
 #[cfg(test)]
 mod tests {
-    use super::not_excited;
+    use super::{not_excited, undetermined};
 
     /// One parameter per unexcited direction is listed as not excited; more, as the count
     /// of combinations among them (all 61 names were "not excited" for a rank of 23).
@@ -181,6 +192,10 @@ mod tests {
         assert_eq!(
             not_excited(9, 10, &names(10)),
             "1 combination of 10 parameters not excited (p1, p2, p3, p4, p5, p6, p7, p8, p9, p10)"
+        );
+        assert_eq!(
+            undetermined(3, 10, &names(7), "not determined"),
+            "not determined: p1, p2, p3, p4, p5, p6, p7"
         );
     }
 }

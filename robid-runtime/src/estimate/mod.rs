@@ -22,7 +22,7 @@ pub use energy::{
     EnergyRegressor, energy, energy_observation, friction_power, model_energy_observation,
 };
 pub use error::EstimateError;
-pub(crate) use error::not_excited;
+pub(crate) use error::{not_excited, undetermined};
 pub use known::KnownParameters;
 pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
 pub use link_by_link::{link_by_link, link_by_link_steps};

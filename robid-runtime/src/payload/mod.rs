@@ -100,6 +100,7 @@ fn estimate(
             let (most, fix) = fix()?;
             return Err(Error::PayloadNotExcited {
                 rank: rank.min(most),
+                most,
                 unexcited,
                 fix,
             });
