@@ -41,6 +41,20 @@ impl Sos {
             .product()
     }
 
+    /// The same filter scaled to a gain of exactly 1 at zero frequency (the first section's
+    /// numerator divided by [`Sos::dc_gain`]); unchanged when that gain is 0 or not finite.
+    pub fn with_unit_dc_gain(mut self) -> Self {
+        let gain = self.dc_gain();
+        if gain != 0.0 && gain.is_finite() {
+            if let Some(first) = self.sections.first_mut() {
+                for b in &mut first[..3] {
+                    *b /= gain;
+                }
+            }
+        }
+        self
+    }
+
     /// Number of samples added at each end by [`Sos::filtfilt`] (scipy's `padlen`).
     pub fn pad_length(&self) -> usize {
         let zb = self.sections.iter().filter(|s| s[2] == 0.0).count();
