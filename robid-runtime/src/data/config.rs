@@ -136,9 +136,13 @@ pub struct Config {
     /// Name of the time column (in seconds unless `time_scale` or a unit in its name,
     /// such as `t_ms`, says otherwise).
     pub time_column: Option<String>,
-    /// Factor from the time column's unit to seconds.
-    #[serde(default = "one")]
-    pub time_scale: f64,
+    /// Factor from the time column's unit to seconds, when the config gives it; `None`
+    /// reads seconds, or the unit the column's name gives (`t_ms`). A factor the config
+    /// gives wins over the name's unit, 1 included (an explicit `time_scale = 1` was taken
+    /// as not given, and a column named `t_ms` holding seconds was read at 1000 times its
+    /// rate): [`Config::seconds_per_time_unit`] is the factor applied.
+    #[serde(default)]
+    pub time_scale: Option<f64>,
     /// Files and their columns.
     #[serde(default, rename = "source")]
     pub sources: Vec<Source>,
@@ -182,13 +186,13 @@ pub struct Config {
 }
 
 impl Default for Config {
-    /// The same values as an empty config file (serde's defaults): `time_scale = 1`.
+    /// The same values as an empty config file (serde's defaults): no `time_scale`.
     fn default() -> Self {
         Self {
             dof: None,
             sample_rate: None,
             time_column: None,
-            time_scale: one(),
+            time_scale: None,
             sources: Vec::new(),
             units: Units::default(),
             drive: DriveConfig::default(),
@@ -790,6 +794,13 @@ fn default_signals() -> Vec<Signal> {
 }
 
 impl Config {
+    /// The factor from the time column's unit to seconds that is applied: `time_scale`,
+    /// or 1 when the config leaves it out (the column's name may give the unit when the
+    /// data are read: `t_ms`).
+    pub fn seconds_per_time_unit(&self) -> f64 {
+        self.time_scale.unwrap_or(1.0)
+    }
+
     /// Parses a config from TOML text; `path` names it in errors and its folder resolves
     /// relative file paths.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Self> {
@@ -1064,12 +1075,14 @@ impl Config {
                 ),
             );
         }
-        if !(MIN_FACTOR..=MAX_FACTOR).contains(&self.time_scale) {
+        if let Some(scale) = self.time_scale
+            && !(MIN_FACTOR..=MAX_FACTOR).contains(&scale)
+        {
             return bad(
                 "time_scale",
                 format!(
                     "{} is outside [{MIN_FACTOR:e}, {MAX_FACTOR:e}]; write the factor from the time column's unit to seconds (1e-3 for ms)",
-                    num(self.time_scale)
+                    num(scale)
                 ),
             );
         }
@@ -1407,7 +1420,8 @@ method = "wls"
     fn default_equals_an_empty_file() {
         let empty = Config::from_toml_str("", Path::new("empty.toml")).unwrap();
         let default = Config::default();
-        assert_eq!(default.time_scale, 1.0);
+        assert_eq!(default.time_scale, None);
+        assert_eq!(default.seconds_per_time_unit(), 1.0);
         assert_eq!(
             serde_json::to_string(&default).unwrap(),
             serde_json::to_string(&empty).unwrap()

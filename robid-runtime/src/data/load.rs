@@ -582,7 +582,8 @@ pub(crate) fn take_time(config: &Config, table: &mut Table) -> Result<Option<Vec
         return Ok(None);
     };
     let mut t = table.columns.pop().unwrap_or_default();
-    t.iter_mut().for_each(|v| *v *= config.time_scale);
+    let scale = config.seconds_per_time_unit();
+    t.iter_mut().for_each(|v| *v *= scale);
     // checked as a table of its own, whose lines locate an error
     let mut columns = std::mem::replace(&mut table.columns, vec![t]);
     let checked = table.check_range(0, name, Quantity::Time);

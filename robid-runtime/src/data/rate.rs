@@ -182,9 +182,9 @@ pub(crate) fn with_found_time_column<'a>(
     use std::borrow::Cow;
     if let Some(name) = &config.time_column {
         return Ok(match time_name(name) {
-            Some(Some(scale)) if scale != 1.0 && config.time_scale == 1.0 => {
+            Some(Some(scale)) if config.time_scale.is_none() => {
                 let mut config = config.clone();
-                config.time_scale = scale;
+                config.time_scale = Some(scale);
                 Cow::Owned(config)
             }
             _ => Cow::Borrowed(config),
@@ -203,8 +203,8 @@ pub(crate) fn with_found_time_column<'a>(
     let (name, unit) = first.clone();
     let mut config = config.clone();
     config.time_column = Some(name);
-    if let (Some(scale), true) = (unit, config.time_scale == 1.0) {
-        config.time_scale = scale;
+    if config.time_scale.is_none() {
+        config.time_scale = unit;
     }
     Ok(Cow::Owned(config))
 }
@@ -229,7 +229,7 @@ pub(crate) fn unread_time_column(
         return None;
     }
     // the config's own unit for its time column, when it gives one
-    let scale = unit.or((config.time_scale != 1.0).then_some(config.time_scale));
+    let scale = unit.or(config.time_scale);
     Some(UnreadTime {
         name: name.clone(),
         scale,

@@ -242,8 +242,10 @@ fn the_time_column_found_by_name_is_each_files_and_never_the_configs() {
 }
 
 /// A time column the config names takes the unit its name gives when `time_scale` is
-/// left at 1 (`time_column = "t_ms"` read milliseconds as seconds: a 500 Hz log as
-/// 0.5 Hz), in memory and on disk; a `time_scale` the config gives is kept.
+/// left out (`time_column = "t_ms"` read milliseconds as seconds: a 500 Hz log as
+/// 0.5 Hz), in memory and on disk; a `time_scale` the config gives is kept, 1 included
+/// (`time_scale = 1` was taken as not given: a `t_ms` column holding seconds was read at
+/// 1000 times its rate, and the fit was meaningless with exit 0).
 #[test]
 fn a_named_time_column_takes_the_unit_of_its_name() {
     let d = Dir::new();
@@ -278,6 +280,30 @@ fn a_named_time_column_takes_the_unit_of_its_name() {
         "{}",
         data.sample_time
     );
+    let mut seconds = String::from("t_ms,q1,tau1\n");
+    for k in 0..50 {
+        seconds.push_str(&format!(
+            "{},{},1\n",
+            0.002 * f64::from(k),
+            f64::from(k).sin()
+        ));
+    }
+    let file = d.file("seconds.csv", &seconds);
+    for scale in ["1", "1.0"] {
+        let config = cfg(&format!(
+            "time_column = \"t_ms\"\ntime_scale = {scale}\n{source}"
+        ));
+        let data = load(&config, std::slice::from_ref(&file), 1).unwrap();
+        assert!(
+            (data.sample_time - 2e-3).abs() < 1e-15,
+            "{scale}: {}",
+            data.sample_time
+        );
+        let record = SpilledRecord::open(&config, std::slice::from_ref(&file), 1)
+            .unwrap()
+            .unwrap();
+        assert!((record.sample_time() - 2e-3).abs() < 1e-15, "{scale}");
+    }
 }
 
 #[test]
