@@ -22,6 +22,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::Model;
 use crate::error::{Error, Result};
 use crate::estimate::lstsq::solve;
+use crate::estimate::quality::{effects, reassess_uncertain, relative_column_norms};
 use crate::estimate::{Estimate, Observation};
 
 /// Relative size below which a row of `K_u` counts as dependent on the kept rows (or as
@@ -213,10 +214,15 @@ impl KnownParameters {
     /// `reduced` (unweighted; the estimate's WLS weights are applied here): values `b0 + L
     /// beta`; the estimated ones keep their standard deviations, the others get
     /// `sqrt(diag(L C L'))` with `C = sigma^2 (W'W)^-1` of the solved system, and the known
-    /// ones 0 (listed in [`Estimate::known`]).
+    /// ones 0 (listed in [`Estimate::known`]). The parameters uncertain by more than their
+    /// size are judged again on these values, against the columns of `system`, the system
+    /// before [`KnownParameters::reduce`] (the reduced estimate's warning named a base
+    /// parameter with the relative deviation of what is left of it once the known values are
+    /// taken out: `MXR1 (118 %)` beside a table giving it 0.00 %).
     pub fn expand(
         &self,
         estimate: &Estimate,
+        system: &Observation,
         reduced: &Observation,
         tolerance: f64,
     ) -> Result<Estimate> {
@@ -259,7 +265,7 @@ impl KnownParameters {
         for &i in &self.known {
             std[i] = 0.0;
         }
-        let rel_std_percent = std
+        let rel_std_percent: Vec<f64> = std
             .iter()
             .zip(values.iter())
             .map(|(s, v)| {
@@ -282,11 +288,14 @@ impl KnownParameters {
                 cause: "the known values or the estimate overflowed: check their units".into(),
             });
         }
+        let effect = effects(&std, &relative_column_norms(&system.w, &system.y));
+        let warnings = reassess_uncertain(&estimate.warnings, &names, &rel_std_percent, &effect);
         Ok(Estimate {
             names,
             values: values.iter().copied().collect(),
             std,
             rel_std_percent,
+            warnings,
             known: self.known.iter().map(|&i| self.names[i].clone()).collect(),
             ..estimate.clone()
         })

@@ -335,6 +335,31 @@ pub(crate) fn effects(std: &[f64], norms: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// `warnings` with their parameters uncertain by more than their size judged again for the
+/// parameters `names` (relative deviations `rel`, effects `effect`, as [`assess`] takes
+/// them), in the place the old judgement had (after the condition warning when there was
+/// none): the other warnings are kept as they are.
+pub(crate) fn reassess_uncertain(
+    warnings: &[QualityWarning],
+    names: &[String],
+    rel: &[f64],
+    effect: &[f64],
+) -> Vec<QualityWarning> {
+    let uncertain = |w: &QualityWarning| matches!(w, QualityWarning::Uncertain { .. });
+    let at = warnings.iter().position(uncertain).unwrap_or_else(|| {
+        warnings
+            .iter()
+            .take_while(|w| matches!(w, QualityWarning::IllConditioned { .. }))
+            .count()
+    });
+    let mut out: Vec<QualityWarning> = warnings.iter().filter(|w| !uncertain(w)).cloned().collect();
+    // a condition number of 0 is below any threshold: the parameters alone are judged
+    for (k, w) in assess(0.0, names, rel, effect).into_iter().enumerate() {
+        out.insert(at + k, w);
+    }
+    out
+}
+
 /// The warnings of an estimate with condition number `condition` and relative standard
 /// deviations `rel` (percent, infinite for a zero value) of the parameters `names`, whose
 /// standard deviations move the torques by `effect` of their norm ([`ROUNDING_EFFECT`];

@@ -425,7 +425,7 @@ pub(crate) fn identify_dense(
         match &known {
             Some(k) => {
                 let reduced = k.reduce(system).map_err(|e| config.locate(e))?;
-                k.expand(&solve(&reduced)?, &reduced, tolerance)
+                k.expand(&solve(&reduced)?, system, &reduced, tolerance)
                     .map_err(|e| config.locate(e))
             }
             None => solve(system),

@@ -45,11 +45,12 @@ impl Sos {
     /// numerator divided by [`Sos::dc_gain`]); unchanged when that gain is 0 or not finite.
     pub fn with_unit_dc_gain(mut self) -> Self {
         let gain = self.dc_gain();
-        if gain != 0.0 && gain.is_finite() {
-            if let Some(first) = self.sections.first_mut() {
-                for b in &mut first[..3] {
-                    *b /= gain;
-                }
+        if gain != 0.0
+            && gain.is_finite()
+            && let Some(first) = self.sections.first_mut()
+        {
+            for b in &mut first[..3] {
+                *b /= gain;
             }
         }
         self

@@ -170,7 +170,7 @@ fn zomaya_known_parameters_keep_the_rank_of_the_unknowns_and_recover_the_truth()
         let reduced = regrouped.reduce(&obs).unwrap();
         assert_eq!(reduced.cols(), rank + 1);
         let e = regrouped
-            .expand(&ols(&reduced, 1e-10).unwrap(), &reduced, 1e-10)
+            .expand(&ols(&reduced, 1e-10).unwrap(), &obs, &reduced, 1e-10)
             .unwrap();
         for (i, (v, t)) in e.values.iter().zip(&truth).enumerate() {
             assert!(
@@ -204,7 +204,7 @@ fn zomaya_known_parameters_carry_their_deviations() {
     let none = KnownParameters::new(&model, &[]).unwrap();
     let reduced = none.reduce(&obs).unwrap();
     let same = none
-        .expand(&ols(&reduced, 1e-10).unwrap(), &reduced, 1e-10)
+        .expand(&ols(&reduced, 1e-10).unwrap(), &obs, &reduced, 1e-10)
         .unwrap();
     for i in 0..4 {
         assert!((same.values[i] - full.values[i]).abs() < 1e-12);
@@ -214,7 +214,7 @@ fn zomaya_known_parameters_carry_their_deviations() {
     let k = KnownParameters::new(&model, &[(2, theta[2]), (4, theta[4])]).unwrap();
     let reduced = k.reduce(&obs).unwrap();
     for estimate in [ols(&reduced, 1e-10).unwrap(), wls(&reduced, 1e-10).unwrap()] {
-        let e = k.expand(&estimate, &reduced, 1e-10).unwrap();
+        let e = k.expand(&estimate, &obs, &reduced, 1e-10).unwrap();
         assert!(
             (e.std[3] - 2.0 * e.std[0]).abs() < 1e-12 * e.std[0],
             "{:?}",
@@ -235,4 +235,52 @@ fn zomaya_known_parameters_check_the_columns_they_reduce() {
     let obs = observation(w, DVector::zeros(5), 0);
     let e = k.reduce(&obs).unwrap_err();
     assert!(e.to_string().contains("4 base parameters"), "{e}");
+}
+
+/// The warning about parameters uncertain by more than their size judges the base
+/// parameters the table gives, not what is left of them once the known values are taken
+/// out: `b1 = s1 + s2` with `s2 = 1` known and `s1 = 1e-4` is known to about 0.4 % of its
+/// value, though its unknown part `s1` is uncertain by thousands of percent (the warning
+/// named `b1` with its remainder's deviation beside a table giving it 0.4 %).
+#[test]
+fn the_uncertainty_warning_judges_the_expanded_values() {
+    use crate::estimate::QualityWarning;
+    let mut rng = Rng::new(5);
+    let model = arm();
+    let theta = [1e-4, 1.0, 0.3, 0.2, 0.9];
+    let base = arm().k * DVector::from_column_slice(&theta);
+    let w = random(&mut rng, 200, 4);
+    let noise = DVector::from_fn(200, |_, _| 0.05 * rng.normal());
+    let obs = observation(w.clone(), &w * &base + noise, 0);
+    let k = KnownParameters::new(&model, &[(1, theta[1])]).unwrap();
+    let reduced = k.reduce(&obs).unwrap();
+    let estimate = ols(&reduced, 1e-10).unwrap();
+    let uncertain = |warnings: &[QualityWarning]| {
+        warnings
+            .iter()
+            .filter_map(|w| match w {
+                QualityWarning::Uncertain { parameters, .. } => Some(parameters.clone()),
+                _ => None,
+            })
+            .flatten()
+            .collect::<Vec<_>>()
+    };
+    // the reduced system's own estimate: b1's remainder s1 is uncertain
+    assert!(uncertain(&estimate.warnings).contains(&"b1".to_string()));
+    let e = k.expand(&estimate, &obs, &reduced, 1e-10).unwrap();
+    assert!(e.rel_std_percent[0] < 5.0, "{:?}", e.rel_std_percent);
+    assert!(uncertain(&e.warnings).is_empty(), "{:?}", e.warnings);
+    // a base parameter the expansion leaves uncertain is still named, with its own figure
+    let mut far = estimate.clone();
+    far.std = far.std.iter().map(|s| s * 1e4).collect();
+    let e = k.expand(&far, &obs, &reduced, 1e-10).unwrap();
+    let named = uncertain(&e.warnings);
+    for (i, n) in e.names.iter().enumerate() {
+        assert_eq!(
+            named.contains(n),
+            e.rel_std_percent[i] > 100.0,
+            "{n}: {} %, {named:?}",
+            e.rel_std_percent[i]
+        );
+    }
 }
