@@ -59,18 +59,38 @@ pub fn observation(
     data: &Dataset,
     config: &Config,
 ) -> Result<(Observation, f64)> {
-    observation_counted(model, data, config).map(|(o, dt, _)| (o, dt))
+    observation_counted(model, data, config).map(|c| (c.obs, c.dt))
+}
+
+/// An observation with what its preparation left to say of it ([`observation_counted`]).
+pub(crate) struct CountedObservation {
+    pub(crate) obs: Observation,
+    /// The decimated sample time.
+    pub(crate) dt: f64,
+    /// What the removal of the equations near rest left.
+    pub(crate) rest: RestCount,
+    /// The torques before filtering at the equations, per joint, when they are filtered.
+    pub(crate) unfiltered: Option<Vec<Vec<f64>>>,
 }
 
 /// [`observation`] with what the removal of the equations near rest left of them
-/// ([`RestCount`], for [`rest_cause`]).
+/// ([`RestCount`], for [`rest_cause`]) and, when its torques are filtered, the torques
+/// before the filter at its equations ([`unfiltered_torque`]).
 pub(crate) fn observation_counted(
     model: &(dyn Model + Sync),
     data: &Dataset,
     config: &Config,
-) -> Result<(Observation, f64, RestCount)> {
+) -> Result<CountedObservation> {
     let rows = checked_prepare(model, data, config, Rows::Estimation)?;
-    torque_observation(model, &rows.prepared, config, data, &rows.kept)
+    let (obs, dt, rest) = torque_observation(model, &rows.prepared, config, data, &rows.kept)?;
+    let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
+    let unfiltered = unfiltered_torque(&obs, &rows, factor);
+    Ok(CountedObservation {
+        obs,
+        dt,
+        rest,
+        unfiltered,
+    })
 }
 
 pub(crate) fn checked_prepare(
@@ -211,20 +231,33 @@ fn energy_conditioning(estimate: &mut Estimate, torque: &Observation) -> Result<
 }
 
 /// Gives `prediction` the torque before any low-pass at its samples, when its measured
-/// torque is filtered: by `[processing] lowpass` on `tau`, or by the anti-alias filter of
-/// a decimation (`factor` > 1; decimated sample k is processed sample k * factor).
+/// torque is filtered ([`unfiltered_torque`]).
 fn with_unfiltered(
     prediction: &mut Prediction,
     obs: &Observation,
     rows: &PreparedRows,
     factor: usize,
 ) {
+    if let Some(raw) = unfiltered_torque(obs, rows, factor) {
+        prediction.unfiltered = Some(raw);
+    }
+}
+
+/// The torque before any low-pass at each equation of `obs`, per joint, when its measured
+/// torque is filtered: by `[processing] lowpass` on `tau`, or by the anti-alias filter of
+/// a decimation (`factor` > 1; decimated sample k is processed sample k * factor); `None`
+/// when the torque is not filtered.
+pub(crate) fn unfiltered_torque(
+    obs: &Observation,
+    rows: &PreparedRows,
+    factor: usize,
+) -> Option<Vec<Vec<f64>>> {
     let raw = match &rows.unfiltered_tau {
         Some(raw) => raw,
         None if factor > 1 => &rows.prepared.tau,
-        None => return,
+        None => return None,
     };
-    prediction.unfiltered = Some(
+    Some(
         obs.joint_rows
             .iter()
             .enumerate()
@@ -235,7 +268,7 @@ fn with_unfiltered(
                     .collect()
             })
             .collect(),
-    );
+    )
 }
 
 /// Estimates with the configured method.

@@ -187,17 +187,24 @@ pub(crate) fn stacked_dense(
     // what the removal of the equations near rest left, over the runs: a rank deficiency
     // it explains is said as `processing.rest_velocity`'s, as for one record
     let mut rest = RestCount::default();
+    // the torques before filtering, joint by joint, run after run as `stack` puts them
+    let mut unfiltered = Some(vec![Vec::new(); model.dof()]);
     for (i, d) in runs.iter().enumerate() {
-        let (obs, dt, counted) =
+        let counted =
             observation_counted(model, d, config).map_err(|e| config.run_error(i, &d.name, e))?;
-        rest.add(&counted);
-        parts.push((obs, dt));
+        rest.add(&counted.rest);
+        unfiltered = unfiltered.zip(counted.unfiltered).map(|(mut all, raw)| {
+            all.iter_mut().zip(raw).for_each(|(a, r)| a.extend(r));
+            all
+        });
+        parts.push((counted.obs, counted.dt));
     }
     let dt = parts.first().map_or(1.0, |p| p.1);
     let obs = stack(parts.into_iter().map(|p| p.0).collect())?;
     let estimate = estimate(&obs, config)
         .map_err(|e| config.locate(rest_cause(&rest, config, model.dof(), e)))?;
-    let prediction = Prediction::new(&obs, &estimate.values, dt);
+    let mut prediction = Prediction::new(&obs, &estimate.values, dt);
+    prediction.unfiltered = unfiltered;
     prediction.check("the stacked runs")?;
     Ok((estimate, prediction))
 }

@@ -658,10 +658,13 @@ pub(crate) fn stacked_streaming(
         used: None,
     };
     let mut offset = 0;
+    // the torques before filtering, when every run's are filtered
+    let mut unfiltered = Some(vec![Vec::new(); dof]);
     for (i, ((s, plan), d)) in streams.iter().zip(&plans).zip(runs).enumerate() {
         let PredictionParts {
             prediction: p,
             samples,
+            raw,
             ..
         } = s
             .prediction(&estimate.values, dt, None, None)
@@ -671,8 +674,13 @@ pub(crate) fn stacked_streaming(
             stacked.predicted[j].extend(&p.predicted[j]);
             stacked.time[j].extend(s.iter().map(|&k| (k + offset) as f64 * dt));
         }
+        unfiltered = unfiltered.zip(raw).map(|(mut all, raw)| {
+            all.iter_mut().zip(raw).for_each(|(a, r)| a.extend(r));
+            all
+        });
         offset += samples.iter().flatten().max().map_or(0, |m| m + 1);
     }
+    stacked.unfiltered = unfiltered;
     stacked.check("the stacked runs")?;
     Ok((estimate, stacked))
 }

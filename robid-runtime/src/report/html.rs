@@ -239,6 +239,7 @@ mod tests {
             }],
             runs: None,
             segments: None,
+            pieces: None,
             torque_unit: "N m".into(),
             joint_units: Vec::new(),
         }

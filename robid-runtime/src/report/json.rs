@@ -187,6 +187,11 @@ pub struct Report {
     /// it there (`gaps = "split"`); absent otherwise.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub segments: Option<SegmentsEntry>,
+    /// The windows, in s from the record's first sample, that the estimate used
+    /// (`processing.pieces`, Milella's piece-wise estimation), within the estimation rows,
+    /// all of which the fit covers; absent without pieces.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pieces: Option<Vec<[f64; 2]>>,
     /// The unit of the joint torques, of the RMS errors and of eq. 22's NMSE
     /// ([`torque_unit`](super::torque_unit)): "N m" for revolute joints (the default of a report without it),
     /// "N" for prismatic ones, "N m and N" for both.
@@ -244,6 +249,7 @@ impl Report {
             warnings: estimate.warnings.iter().map(ReportWarning::from).collect(),
             runs: None,
             segments: None,
+            pieces: None,
             torque_unit: revolute_unit(),
             joint_units: Vec::new(),
         }

@@ -458,6 +458,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         (report, id.prediction, id.estimate.values)
     };
     report.cutoff = auto;
+    report.pieces = config.processing.pieces.clone();
     let mut predictions = vec![prediction];
     for group in args.validate.chunks(per_set) {
         let d = load_or_split(&config, group, model.dof())?;

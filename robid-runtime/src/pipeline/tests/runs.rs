@@ -440,3 +440,40 @@ fn a_file_two_runs_share_is_refused() {
         "{e}"
     );
 }
+
+/// Stacked runs whose torques the decimation filters keep the torques before the filter,
+/// as one record does: run by run, those of each run's own identification (the fit said
+/// "measured torque" of the decimated torques, with no figure against the measured ones),
+/// streaming (ols) and through the whole matrix (rls).
+#[test]
+fn stacked_runs_keep_the_torques_before_the_filter() {
+    let (config, dir) = runs_config(&[3000, 3500], "stacked");
+    let data = load_runs(&config, DOF).unwrap();
+    drop(dir);
+    let model = Synthetic::default();
+    for method in [crate::data::Method::Ols, crate::data::Method::Rls] {
+        let mut config = config.clone();
+        config.estimation.method = method;
+        let id = identify_runs(&model, &data, &config).unwrap();
+        let stacked = id
+            .prediction
+            .unfiltered
+            .as_ref()
+            .expect("unfiltered torques");
+        let mut at = [0; DOF];
+        for run in &data {
+            let alone = crate::pipeline::identify(&model, run, &config).unwrap();
+            let own = alone.prediction.unfiltered.as_ref().unwrap();
+            for j in 0..DOF {
+                let n = own[j].len();
+                assert!(n > 100, "{method:?}: joint {j}: {n}");
+                assert_eq!(stacked[j][at[j]..at[j] + n], own[j][..], "{method:?}: {j}");
+                at[j] += n;
+            }
+        }
+        for j in 0..DOF {
+            assert_eq!(at[j], stacked[j].len());
+            assert_eq!(at[j], id.prediction.measured[j].len());
+        }
+    }
+}
