@@ -1397,12 +1397,14 @@ fn feasible_anneal_meets_its_equalities_or_names_them() {
     );
     assert!(!path.exists());
     // only zero meets both, which a mass cannot be: they ended at the floor of 1e-6 kg,
-    // 1e-6 apart, counted as met, and the result was written
+    // 1e-6 apart, counted as met, and the result was written (the floor is now twice the
+    // margin of 1e-6, where a pseudo-inertia of at least the margin stays reachable)
     let o = two_link_anneal(&path, &["--equal", "m1 = 2 * m2", "--equal", "m2 = 2 * m1"]);
     fails_with(
         &o,
         &[
-            "equality `m1 = 2 * m2` not met: m1 = 1e-6",
+            "equality `m1 = 2 * m2` not met: m1 = 2e-6, the right side 4e-6",
+            "equality `m2 = 2 * m1` not met",
             "nothing was written",
         ],
     );
@@ -1423,4 +1425,29 @@ fn feasible_anneal_meets_its_equalities_or_names_them() {
         (my + 0.5 * mx).abs() <= 1e-6 * (1.0 + mx.abs()),
         "MX2 {mx}, MY2 {my}"
     );
+}
+
+/// `anneal` keeps the pseudo-inertia margin: its box held every second moment about the
+/// centre of mass above the margin, which the first moment's coupling to the mass does not
+/// carry over to the pseudo-inertia (a margin of 1e-3 gave 6.7e-4 with exit status 0).
+#[test]
+fn feasible_anneal_keeps_the_margin() {
+    let dir = folder();
+    let path = out(&dir, "f.toml");
+    for margin in ["1e-3", "1e-2"] {
+        let bounds = write(dir.path(), "m.toml", &format!("margin = {margin}\n"));
+        let o = two_link_anneal(&path, &["--bounds", bounds.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let text = std::fs::read_to_string(&path).unwrap();
+        let least: Vec<f64> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("pseudo_inertia_min_eigenvalue = "))
+            .map(|v| v.parse().unwrap())
+            .collect();
+        assert_eq!(least.len(), 2, "{text}");
+        let margin: f64 = margin.parse().unwrap();
+        for l in least {
+            assert!(l >= margin * (1.0 - 1e-9), "{margin}: {l} in {text}");
+        }
+    }
 }

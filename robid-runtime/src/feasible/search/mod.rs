@@ -203,15 +203,30 @@ struct Objective<'a> {
     /// The links whose mass is neither searched nor held (it has no effect on the fit),
     /// with the box of that mass.
     loose: Vec<(usize, [f64; 2])>,
+    /// Every pseudo-inertia is at least this times the identity ([`Objective::lift`]).
+    margin: f64,
 }
 
 impl Objective<'_> {
+    /// The full variable vector of the searched values `y`, lifted to the margin.
     fn full(&self, y: &[f64]) -> Vec<f64> {
+        let mut x = self.unlifted(y);
+        self.lift(&mut x);
+        x
+    }
+
+    /// The full variable vector of the searched values `y` as the box holds them.
+    fn unlifted(&self, y: &[f64]) -> Vec<f64> {
         let mut x = self.fixed.clone();
         for (&i, &v) in self.free.iter().zip(y) {
             x[i] = v;
         }
         x
+    }
+
+    /// `x` lifted to the margin ([`lift`]).
+    fn lift(&self, x: &mut [f64]) {
+        lift(x, self.margin);
     }
 
     /// Standard parameters of a full variable vector, drive terms solved for.
@@ -408,6 +423,7 @@ fn search(
         equalities: &options.equalities,
         mass_step: options.mass_step,
         loose: Vec::new(),
+        margin,
     };
     // a link beyond the robot, named by its own setting (`robid feasible` tells an
     // equality's as its --equal flag)
@@ -586,8 +602,10 @@ fn search(
             })
         })?;
     let best = impose(&mut objective, &lo, &hi, best, options.polish_iterations);
-    let mut x = objective.full(&best);
+    // the masses settle before the lift, which depends on them
+    let mut x = objective.unlifted(&best);
     objective.settle_masses(&mut x);
+    objective.lift(&mut x);
     let p = objective.standard(&x);
     let mut solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
     solution.iterations = restarts_run;
@@ -600,6 +618,27 @@ fn search(
         solution.unmet.push(text);
     }
     Ok((solution, objective.free))
+}
+
+/// Raises each link's second moments about its centre of mass in the variables `x` so
+/// that its pseudo-inertia `J` is at least `mu` times the identity wherever the box puts
+/// the link. Second moments of at least `mu` (the box) are not enough: the first moment
+/// couples them to the mass, and by the Schur complement of the mass in `J - mu I`, that
+/// is at least zero when the mass exceeds `mu` and `Sigma_c - mu I - mu m / (m - mu) c
+/// c^T` is, which second moments of at least `mu + mu m |c|^2 / (m - mu)` ensure (the
+/// search kept the box alone: a margin of 1e-3 left smallest eigenvalues of 6.7e-4).
+fn lift(x: &mut [f64], mu: f64) {
+    if mu <= 0.0 {
+        return;
+    }
+    for link in x.chunks_exact_mut(PER_LINK) {
+        let (m, c) = (link[0], [link[1], link[2], link[3]]);
+        let c2 = c.iter().map(|v| v * v).sum::<f64>();
+        let lift = mu * m * c2 / (m - mu).max(1e-9 * mu);
+        for d in &mut link[4..7] {
+            *d += lift;
+        }
+    }
 }
 
 /// The largest penalty [`impose`] raises to: the cap of [`AnnealOptions::penalty`].

@@ -15,14 +15,19 @@ use crate::feasible::inertial::LinkInertial;
 pub(crate) const PER_LINK: usize = 10;
 
 /// The box of one link's variables: mass range, centre-of-mass box, second moments in
-/// [margin, upper moment] and rotation vectors in [-pi, pi]^3.
+/// [margin, upper moment] and rotation vectors in [-pi, pi]^3. The mass stays at least
+/// twice the margin (where the upper mass bound leaves room): the second moments a
+/// pseudo-inertia of at least the margin needs grow as `m / (m - margin)` near a mass of
+/// the margin (see `search::lift`), which held at most 2 stays smooth; at the margin
+/// itself no centre of mass off the origin has such a pseudo-inertia.
 pub(crate) fn link_box(b: &LinkBounds, margin: f64) -> ([f64; PER_LINK], [f64; PER_LINK]) {
     let pi = std::f64::consts::PI;
     let dlo = margin.max(0.0);
     let dhi = b.inertia[1].max(2.0 * dlo + 1e-12);
+    let least_mass = (2.0 * dlo).min(0.5 * (dlo + b.mass[1])).max(dlo);
     (
         [
-            b.mass[0].max(margin),
+            b.mass[0].max(least_mass),
             b.com[0][0],
             b.com[1][0],
             b.com[2][0],

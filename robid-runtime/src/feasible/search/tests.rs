@@ -211,6 +211,7 @@ fn with_bounds<T>(
         equalities: &[],
         mass_step,
         loose,
+        margin: 0.0,
     };
     f(&objective)
 }
@@ -622,8 +623,9 @@ fn gaz_a_firm_prior_and_the_data_share_the_mass() {
     // the data's weight 1 / std^2 with the solvers' floor on std, the prior's 9e6 / 3^2
     let (data, pull) = (problem.std[9].powi(-2), 9e6 / 9.0);
     let want = 2.0 + pull / (data + pull);
-    // the search's own precision: measured 1.0e-12
-    assert!((m - want).abs() < 2e-12, "{m} vs {want}");
+    // the search's own precision (measured 1.0e-12), and the margin's lift of the second
+    // moments, which the data see (1e-6 m |c|^2 / (m - 1e-6): measured 1.1e-11 with it)
+    assert!((m - want).abs() < 3e-11, "{m} vs {want}");
 }
 
 /// [`quick`] settings with a user prior on the first link's mass alone (of `n` standard
@@ -739,4 +741,37 @@ fn gaz_nelder_mead_alone_finds_a_links_first_moments() {
     };
     let s = solve_anneal(&problem, &arm_links(1), &options).unwrap();
     assert!(s.chi2 < 2.9, "chi^2 {}", s.chi2);
+}
+
+/// Every corner of a link's box, lifted, has a pseudo-inertia at least the margin times
+/// the identity, however far its centre of mass (the box alone left 6.7e-4 for a margin
+/// of 1e-3); the lift is no more than needed (the least eigenvalue is within a factor 3 of
+/// the margin at the box's smallest second moments), and nothing with a margin of 0.
+#[test]
+fn lifted_links_keep_the_margin() {
+    use crate::feasible::inertial::pseudo_inertia_min_eigenvalue;
+    for mu in [1e-6, 1e-3, 0.1] {
+        for (m, c) in [
+            (1.5, [0.5, 0.0, 0.0]),
+            (2.0, [0.3, -0.4, 0.2]),
+            (mu * 1.01, [0.1, 0.1, 0.1]),
+            (50.0, [2.0, 0.0, -1.0]),
+            (0.2, [0.0; 3]),
+        ] {
+            let mut x = [m, c[0], c[1], c[2], mu, mu, mu, 0.3, -1.1, 2.0];
+            let before = pseudo_inertia_min_eigenvalue(&link_of(&x).to_standard());
+            super::lift(&mut x, mu);
+            let after = pseudo_inertia_min_eigenvalue(&link_of(&x).to_standard());
+            // to the rounding of the eigenvalues of a matrix of norm about m (1 + |c|^2)
+            let rounding = 1e-14 * m * (1.0 + c.iter().map(|v| v * v).sum::<f64>());
+            assert!(after >= mu - rounding, "{mu} {m} {c:?}: {after}");
+            if c != [0.0; 3] && m > 0.1 {
+                assert!(before < mu * (1.0 - 1e-6), "{mu} {m} {c:?}: {before}");
+                assert!(after < 3.0 * mu, "{mu} {m} {c:?}: {after}");
+            }
+        }
+    }
+    let mut x = [1.0, 0.5, 0.0, 0.0, 1e-3, 1e-3, 1e-3, 0.0, 0.0, 0.0];
+    super::lift(&mut x, 0.0);
+    assert_eq!(x[4..7], [1e-3; 3]);
 }
