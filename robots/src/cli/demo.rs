@@ -5,7 +5,7 @@
 //! plots of measured vs predicted torque per joint) into `./robid-demo/`.
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use flate2::read::MultiGzDecoder;
@@ -45,6 +45,23 @@ pub(crate) fn run() -> Result<(), Error> {
         )),
         e => e.into(),
     })?;
+    // and so is a folder named like one of its files
+    // (the files written at the end)
+    let mut written: Vec<PathBuf> = [
+        "report.json",
+        "whole_run.json",
+        "figaroh_comparison.txt",
+        "report.html",
+    ]
+    .iter()
+    .map(|f| Path::new(OUTPUT).join(f))
+    .collect();
+    written.extend(files::plot_files(
+        Path::new(OUTPUT),
+        &["train".to_string(), "heldout".to_string()],
+        6,
+    ));
+    files::check_named_files(&written, "robid demo")?;
     let robot = Robot::from_toml(ROBOT, "robots/configs/tx40_robot.toml")?;
     let chosen = model_for(&robot)?;
     let config = Config::from_toml_str(CONFIG, Path::new("robots/configs/tx40.toml"))?;

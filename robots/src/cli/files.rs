@@ -97,6 +97,54 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), Error> {
     Ok(write_bytes(path, text.as_bytes())?)
 }
 
+/// Refuses, before any work, a file of fixed name (`files`, which `owner` writes into its
+/// folder) that cannot be written where it would go: an existing folder of that name, a
+/// folder that takes no new file. The names cannot be chosen, so the fix is to move the
+/// folder away (it said "give a file name" after writing the files before it). Nothing
+/// is checked in a folder that does not exist yet: it is created empty.
+pub(crate) fn check_named_files(files: &[PathBuf], owner: &str) -> Result<(), Error> {
+    for path in files {
+        if !path.parent().is_some_and(Path::is_dir) {
+            continue;
+        }
+        check_file(path).map_err(|e| match e {
+            RuntimeError::Output(OutputError::Folder { path }) => Error::from(format!(
+                "{}: is a folder, where {owner} writes a file of that name; move or rename \
+                 the folder, or write into another folder",
+                path.display()
+            )),
+            e => e.into(),
+        })?;
+    }
+    Ok(())
+}
+
+/// The files of a `--plot` folder named as this run names its plots (`fit_joint1.svg`,
+/// `validation2_joint3.svg`) that it does not write (`plots`): an earlier run's, which
+/// would be read as this one's beside its own (a validation plot left by a run with
+/// `--validate`). Empty when the folder does not exist or cannot be read.
+pub(crate) fn stale_plots(dir: &Path, plots: &[PathBuf]) -> Vec<PathBuf> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let ours = |name: &str| {
+        let Some((prefix, rest)) = name.split_once("_joint") else {
+            return false;
+        };
+        let numbered = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+        let prefix_ok = prefix == "fit" || prefix.strip_prefix("validation").is_some_and(numbered);
+        prefix_ok && rest.strip_suffix(".svg").is_some_and(numbered)
+    };
+    let mut stale: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.file_name().and_then(|n| n.to_str()).is_some_and(ours))
+        .filter(|p| p.is_file() && !plots.iter().any(|q| q.file_name() == p.file_name()))
+        .collect();
+    stale.sort();
+    stale
+}
+
 /// The files `robid_runtime::report::plot_torques` writes into `dir` for each prefix:
 /// `{prefix}_joint{j}.svg`, j = 1..=dof.
 pub(crate) fn plot_files(dir: &Path, prefixes: &[String], dof: usize) -> Vec<PathBuf> {

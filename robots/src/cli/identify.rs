@@ -391,6 +391,21 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         let mut written = outputs.clone();
         written.extend(plots.iter().map(|p| ("--plot", p.as_path())));
         files::distinct(&inputs, &written)?;
+        files::check_named_files(&plots, "--plot")?;
+        let stale = files::stale_plots(dir, &plots);
+        if !stale.is_empty() {
+            let names: Vec<String> = stale
+                .iter()
+                .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+                .collect();
+            out::warn(format_args!(
+                "warning: --plot {}: {} named as robid's plots that this run does not \
+                 write, left by an earlier run: {}; remove them, or plot into an empty folder",
+                dir.display(),
+                robid_runtime::Count(names.len(), "file"),
+                names.join(", ")
+            ));
+        }
     }
     // the progress of reading a long log and of the streaming passes over it, as excite
     // shows its design's

@@ -1149,3 +1149,71 @@ fn a_folder_given_for_a_file_is_told_so() {
         );
     }
 }
+
+/// Files of fixed names in `--plot`'s folder and in the demo's: a folder of such a name
+/// is refused before any work (the plots before it, or the demo's JSON files and figures,
+/// were written first, and the fix "give a file name" could not be followed); plots an
+/// earlier run left that this run does not write are named in a warning, others not.
+#[test]
+fn fixed_names_taken_by_folders_are_refused_before_any_work() {
+    let dir = folder();
+    let plots = dir.path().join("plots");
+    std::fs::create_dir_all(plots.join("fit_joint2.svg")).unwrap();
+    let json = dir.path().join("fit.json");
+    let identify = || {
+        robid(&[
+            "identify",
+            "configs/tx40_robot.toml",
+            "--config",
+            "configs/tx40.toml",
+            "--plot",
+            plots.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ])
+    };
+    let o = identify();
+    fails_with(
+        &o,
+        &[
+            "fit_joint2.svg: is a folder, where --plot writes a file of that name; move or \
+           rename the folder, or write into another folder",
+        ],
+    );
+    assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+    assert!(!json.exists() && !plots.join("fit_joint1.svg").exists());
+    std::fs::remove_dir(plots.join("fit_joint2.svg")).unwrap();
+    for name in [
+        "validation1_joint3.svg",
+        "fit_joint9.svg",
+        "fit_joint1.svg",
+        "mine.svg",
+    ] {
+        write(&plots, name, "<svg/>");
+    }
+    let o = identify();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "2 files named as robid's plots that this run does not write, left by an earlier \
+             run: fit_joint9.svg, validation1_joint3.svg; remove them, or plot into an empty \
+             folder"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    let demo = folder();
+    std::fs::create_dir_all(demo.path().join("robid-demo/report.html")).unwrap();
+    let o = robid_in(demo.path(), &["demo"]);
+    fails_with(
+        &o,
+        &["robid-demo/report.html: is a folder, where robid demo writes a file of that name"],
+    );
+    assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+    assert_eq!(
+        std::fs::read_dir(demo.path().join("robid-demo"))
+            .unwrap()
+            .count(),
+        1
+    );
+}
