@@ -211,9 +211,13 @@ fn shape_error(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
             .unwrap_or(key)
     };
     // a key missing from the file's top level has no key before it: the missing one is
-    // the place (an empty file was told "`(value)`: missing key `temperature`")
+    // the place (an empty file was told "`(value)`: missing key `temperature`"). toml
+    // places it at an empty span at the start, a key missing from a table at the table's
+    // header: a file that starts with a header (`[[joint]]` on line 1) had the top-level
+    // `[temperature]` blamed on it
+    let top_level = span.is_empty() && span.start == 0;
     let (key, problem) = match message.strip_prefix("missing field ") {
-        Some(field) if key == "(value)" => (
+        Some(field) if key == "(value)" || top_level => (
             field.trim_matches('`').to_owned(),
             "missing from the file: add it".to_owned(),
         ),
@@ -470,6 +474,31 @@ mod tests {
         assert_eq!(
             e,
             "x.toml:1:1: `temperature`: missing from the file: add it"
+        );
+        // so in a file that starts with a table: the table is not blamed (it was
+        // "`[[joint]]`: missing key `temperature`", and `temperature` in it "not a key")
+        let joint = "[[joint]]\njoint = 1\ngear_ratio = 100.0\nrotor_inertia = 1e-4\n\
+                     torque_constant = 0.1\nstiffness = 1e4\nfriction = { coulomb = 1.0, load = 0.0, \
+                     stribeck = 0.0, stribeck_velocity = 0.05, viscous = 2.0, \
+                     coulomb_temperature = 0.0, viscous_temperature = 0.0, \
+                     reference_temperature = 25.0 }\n";
+        let e = crate::simulate::Flexibility::from_toml_str(joint, "x.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "x.toml:1:1: `temperature`: missing from the file: add it"
+        );
+        // a key missing from that table is still the table's
+        let e = crate::simulate::Flexibility::from_toml_str(
+            &joint.replace("stiffness = 1e4\n", ""),
+            "x.toml".as_ref(),
+        )
+        .unwrap_err()
+        .to_string();
+        assert_eq!(
+            e,
+            "x.toml:1:1: `[[joint]]`: missing key `stiffness`: add it"
         );
     }
 

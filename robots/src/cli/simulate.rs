@@ -318,11 +318,18 @@ fn run_flexible(
         .iter()
         .map(|d| format!("{d:.2e}"))
         .collect();
+    // a prismatic joint's deflection is a length (it was said in rad)
+    let prismatic = super::description::prismatic(&description.robot);
+    let unit = match (prismatic.iter().any(|p| *p), prismatic.iter().all(|p| *p)) {
+        (_, true) => "m",
+        (true, false) => "rad or m",
+        (false, _) => "rad",
+    };
     let mut stdout = out::Stdout::new();
     writeln!(
         stdout,
-        "{}: {} samples simulated with flexible joints (largest deflection per joint [{}] rad), \
-         {}written to {}",
+        "{}: {} samples simulated with flexible joints (largest deflection per joint [{}] \
+         {unit}), {}written to {}",
         model.name(),
         reference.samples(),
         deflection.join(" "),
