@@ -23,6 +23,10 @@ pub(crate) const VALUE_LIMIT: f64 = 1e6;
 #[derive(Deserialize)]
 pub(super) struct Identified {
     pub(super) parameters: Vec<IdentifiedParameter>,
+    /// `gravity` or `mass matrix` for a result of static samples (`identify --static`);
+    /// absent for one of a moving log.
+    #[serde(default)]
+    kind: Option<String>,
 }
 
 /// One entry of RESULT.json's `parameters`.
@@ -63,6 +67,20 @@ impl Identified {
                 json_problem(&e)
             )
         })?;
+        // static samples determine only the combinations their torques see (a gravity
+        // result was refused as a result of another description, "ZZR1 is missing")
+        if let Some(kind) = &identified.kind {
+            return Err(format!(
+                "{}: a result of static samples (`robid identify --static`, {}), which \
+                 holds only the {} base parameters its torques determine; feasible needs \
+                 every base parameter: give the JSON report of an identification from a \
+                 moving log (`robid identify --data` or `--config`)",
+                path.display(),
+                names::short(kind),
+                identified.parameters.len()
+            )
+            .into());
+        }
         identified.check(path)?;
         Ok(identified)
     }

@@ -1451,3 +1451,51 @@ fn feasible_anneal_keeps_the_margin() {
         }
     }
 }
+
+/// A result of static samples holds only the base parameters gravity determines: it is
+/// told as such (it was refused as a result of another description, "base parameter
+/// `ZZR1` is missing from the identified result; identify with the same robot
+/// description"), and nothing is written.
+#[test]
+fn feasible_refuses_a_result_of_static_samples_as_such() {
+    let dir = folder();
+    let mut text = String::from("q1,q2,g1,g2\n");
+    for k in 0..8 {
+        let (a, b) = (0.4 * k as f64 - 1.3, 1.1 - 0.3 * k as f64);
+        let g = |x: f64| 9.81 * x.cos();
+        text.push_str(&format!("{a},{b},{},{}\n", 3.0 * g(a) + g(a + b), g(a + b)));
+    }
+    let samples = write(dir.path(), "static.csv", &text);
+    let json = dir.path().join("static.json");
+    let o = robid(&[
+        "identify",
+        "tests/fixtures/two_link.toml",
+        "--static",
+        samples.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let path = out(&dir, "f.toml");
+    let o = robid(&[
+        "feasible",
+        "tests/fixtures/two_link.toml",
+        "--identified",
+        json.to_str().unwrap(),
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &[
+            "static.json: a result of static samples (`robid identify --static`, gravity)",
+            "feasible needs every base parameter",
+        ],
+    );
+    assert!(
+        !stderr(&o).contains("same robot description"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!path.exists());
+}
