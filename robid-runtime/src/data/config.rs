@@ -1002,6 +1002,21 @@ impl Config {
         }
     }
 
+    /// Those of `keys` (dotted paths, each with everything under it) that the config's
+    /// file gives, with their place: for a command that applies only part of a config
+    /// to say what it leaves out. Empty for a config not read from a file.
+    pub fn given(&self, keys: &[&str]) -> Vec<(String, usize, usize)> {
+        let ConfigOrigin::File { keys: map, .. } = &self.origin else {
+            return Vec::new();
+        };
+        keys.iter()
+            .filter_map(|k| {
+                map.given(k)
+                    .map(|(line, column)| (k.to_string(), line, column))
+            })
+            .collect()
+    }
+
     /// Places an error about a `Config` field (an [`Error::Setting`] of owner
     /// `Config`) at its key in the config file; other errors pass unchanged.
     pub fn locate(&self, e: Error) -> Error {

@@ -39,6 +39,20 @@ impl KeyMap {
         }
     }
 
+    /// The place of `key` when the file gives it, itself or a key under it
+    /// (`processing.decimation`, `runs` for `[runs]` or `runs.files`); `None` otherwise.
+    pub fn given(&self, key: &str) -> Option<(usize, usize)> {
+        let under = |k: &str| {
+            k.strip_prefix(key)
+                .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
+        };
+        self.keys
+            .iter()
+            .filter(|(k, _)| under(k))
+            .map(|(_, at)| *at)
+            .min()
+    }
+
     /// Every key, in order.
     pub fn keys(&self) -> impl Iterator<Item = &str> {
         self.keys.keys().map(String::as_str)

@@ -49,6 +49,21 @@ pub(crate) struct Args {
 /// Identifies, prints and writes the friction model.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut config = Config::from_file(&args.config)?;
+    super::identify::warn_unapplied(
+        &config,
+        &args.config,
+        "friction",
+        &[
+            "runs",
+            "processing.decimation",
+            "processing.pieces",
+            "processing.validation_range",
+            "processing.rest_velocity",
+            "estimation",
+        ],
+        "it fits every sample of the one record given: a decimation's filter would smear the \
+         friction's reversals at zero speed",
+    );
     let data = super::identify::data_files(&args.data, Some(&args.config), &config)?;
     // the rotor friction the config names is what this command identifies (the config's
     // next `robid identify` reads it): it may be the output, the other files not

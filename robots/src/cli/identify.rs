@@ -254,6 +254,26 @@ pub(crate) fn config_for(path: Option<&Path>, data: &[PathBuf]) -> Result<Config
     })
 }
 
+/// Warns of each of `keys` that the config read from `path` gives and that `command`
+/// does not apply (`why`): a key left without a word read as applied (payload's
+/// standard deviations came from equations a `decimation` would have thinned; friction
+/// took one record under `[runs]`).
+pub(crate) fn warn_unapplied(
+    config: &Config,
+    path: &Path,
+    command: &str,
+    keys: &[&str],
+    why: &str,
+) {
+    for (key, line, column) in config.given(keys) {
+        out::warn(format_args!(
+            "warning: {}:{line}:{column}: `{key}` is not applied by `robid {command}` ({why}); \
+             it reads the rest of the config",
+            path.display()
+        ));
+    }
+}
+
 /// The data files: `data` (`--data`), else the `file` of each `[[source]]` of the config
 /// read from `config_path` (resolved against the config's folder).
 pub(crate) fn data_files(

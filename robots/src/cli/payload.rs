@@ -46,10 +46,33 @@ pub(crate) struct Args {
     output: Option<PathBuf>,
 }
 
+/// The keys of an identification config that the payload's processing does not apply:
+/// those of the robot's own identification (decimation, equations near rest, pieces,
+/// the estimator, repeated runs, extra columns) and of validation.
+const UNAPPLIED: [&str; 7] = [
+    "processing.decimation",
+    "processing.rest_velocity",
+    "processing.pieces",
+    "processing.validation_range",
+    "estimation",
+    "runs",
+    "extra_column",
+];
+
 /// Identifies the payload, prints it and writes it when asked.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let config = match &args.config {
-        Some(path) => Some(super::identify::config_for(Some(path), &args.data)?),
+        Some(path) => {
+            let config = super::identify::config_for(Some(path), &args.data)?;
+            super::identify::warn_unapplied(
+                &config,
+                path,
+                "payload",
+                &UNAPPLIED,
+                "its least squares take every processed sample; --ols chooses the method",
+            );
+            Some(config)
+        }
         None => None,
     };
     let data = match &config {

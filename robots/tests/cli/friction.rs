@@ -339,3 +339,38 @@ fn incomplete_input_is_a_clear_error() {
     );
     assert!(!out.exists(), "nothing is written on an error");
 }
+
+/// Keys the friction's fit does not apply are said at their place (`[runs]` was dropped
+/// without a word: the result was that of the first record alone); a config without them
+/// gets no such warning.
+#[test]
+fn keys_friction_does_not_apply_are_said() {
+    let dir = folder();
+    let (robot, cfg) = setup(dir.path(), true, true);
+    let text = std::fs::read_to_string(&cfg).unwrap();
+    let shared = write(
+        dir.path(),
+        "shared.toml",
+        &format!("{text}\n[runs]\nfiles = [\"log.csv\", \"log.csv\"]\n"),
+    );
+    let line = text.lines().count() + 2;
+    for (config, warned) in [(cfg.as_str(), false), (shared.to_str().unwrap(), true)] {
+        let out = dir.path().join("friction.toml");
+        let o = robid(&[
+            "friction",
+            &robot,
+            "--config",
+            config,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let said = format!("shared.toml:{line}:2: `runs` is not applied by `robid friction`");
+        assert_eq!(
+            stderr(&o).contains(&said),
+            warned,
+            "{said} in {}",
+            stderr(&o)
+        );
+    }
+}

@@ -201,6 +201,26 @@ fn payload_from_a_log_of_positions_and_currents_with_a_config() {
     assert!((mass - 1.5).abs() <= 3.0 * std, "{line}");
     assert!(std < 2e-3, "{line}");
     assert!(out.exists());
+    assert!(!stderr(&o).contains("is not applied"), "{}", stderr(&o));
+    // keys of the robot's own identification are not applied, and said so at their place
+    // (a decimation was dropped without a word: the same values for 1, 2 and 10)
+    let shared = write(
+        d,
+        "shared.toml",
+        &format!(
+            "{}decimation = 10\n[estimation]\nmethod = \"rls\"\n",
+            std::fs::read_to_string(config).unwrap()
+        ),
+    );
+    let o = payload(&["--data", data, "--config", shared.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (place, key) in [("9:1", "processing.decimation"), ("10:2", "estimation")] {
+        let said = format!(
+            "shared.toml:{place}: `{key}` is not applied by `robid payload` (its least \
+             squares take every processed sample; --ols chooses the method)"
+        );
+        assert!(stderr(&o).contains(&said), "{said} in {}", stderr(&o));
+    }
     // the config is an input: not overwritten by -o
     let o = payload(&["--config", config, "--data", data, "-o", config]);
     assert!(!o.status.success());
