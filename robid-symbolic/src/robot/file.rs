@@ -44,7 +44,7 @@
 
 use super::bounds::{MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_TURNING};
 use super::check::{
-    Dh, Item, Limit, Locate, and_more, measured_twist_consequence, near_right_angle,
+    Dh, Item, Limit, Locate, and_more, listed, measured_twist_consequence, near_right_angle,
 };
 use super::read::{Reader, Spans};
 use super::{DescriptionError, JointKind, Robot};
@@ -156,19 +156,37 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
             measured_twist_consequence(parallel),
         ));
     }
-    // (plain numbers: a length in millimetres is written as one)
-    let long = robot.joints().iter().enumerate().find_map(|(j, joint)| {
-        [(Dh::A, &joint.a), (Dh::D, &joint.d), (Dh::B, &joint.b)]
-            .into_iter()
-            .filter_map(|(dh, g)| Some((dh, g.as_str().trim().parse::<f64>().ok()?)))
-            .find(|(_, v)| v.abs() > MAX_ARM_LENGTH)
-            .map(|(dh, v)| (j, dh, v))
-    });
-    if let Some((j, dh, value)) = long {
+    // (plain numbers: a length in millimetres is written as one); every such length is
+    // named, the first at its place (only the first was, and the next one showed only
+    // once it was repaired)
+    let long: Vec<(usize, Dh, f64)> = robot
+        .joints()
+        .iter()
+        .enumerate()
+        .flat_map(|(j, joint)| {
+            [(Dh::A, &joint.a), (Dh::D, &joint.d), (Dh::B, &joint.b)]
+                .into_iter()
+                .filter_map(|(dh, g)| Some((dh, g.as_str().trim().parse::<f64>().ok()?)))
+                .filter(|(_, v)| v.abs() > MAX_ARM_LENGTH)
+                .map(move |(dh, v)| (j, dh, v))
+        })
+        .collect();
+    if let Some(&(j, dh, value)) = long.first() {
         let (line, column) = place.line_column(spans.of(Item::Value(j, dh)).start);
+        let others = match &long[1..] {
+            [] => String::new(),
+            rest => format!(
+                " (so are {})",
+                listed(rest.iter().map(|(j, dh, v)| format!(
+                    "joint {} `{}` {v} m",
+                    j + 1,
+                    dh.key()
+                )))
+            ),
+        };
         out.push(format!(
             "{}:{line}:{column}: joint {} `{}` is {value} m, longer than an arm's \
-             {MAX_ARM_LENGTH} m: {LENGTH_FIX}",
+             {MAX_ARM_LENGTH} m{others}: {LENGTH_FIX}",
             place.file,
             j + 1,
             dh.key()

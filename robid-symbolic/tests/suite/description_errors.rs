@@ -499,6 +499,18 @@ fn revolute_limits_in_degrees_are_warned_about() {
             && w[0].contains("in millimetres?"),
         "{w:?}"
     );
+    // every such length is named, the first at its place (the second showed only once
+    // the first was repaired)
+    let two = format!("{head}[[joints]]\nalpha = 0\na = 1000\n[[joints]]\nalpha = 0\nd = 999\n");
+    let w = warned(&two);
+    assert!(
+        w.len() == 1
+            && w[0].starts_with("arm.toml:5:5:")
+            && w[0].contains(
+                "joint 1 `a` is 1000 m, longer than an arm's 10 m (so are joint 2 `d` 999 m)"
+            ),
+        "{w:?}"
+    );
     let wrist = format!("{head}{}", joint("[-7.854, 7.854]"));
     assert!(warned(&wrist).is_empty());
     let slide =
