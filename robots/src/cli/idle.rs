@@ -162,11 +162,18 @@ impl Idle {
                 k - SHOWN
             ),
         };
+        // "that its torque feels": mass on a revolute joint's axis moves with it unfelt
+        // (with `M2` given and the link's length 0 it said "moves no mass")
+        let feels = if self.joints.len() == 1 {
+            "that its torque feels"
+        } else {
+            "that their torques feel"
+        };
         let (mass, zero) = if self.exact {
-            ("no mass or inertia", String::from("0"))
+            (format!("no mass or inertia {feels}"), String::from("0"))
         } else {
             (
-                "no mass or inertia to speak of",
+                format!("no mass or inertia to speak of {feels}"),
                 format!(
                     "0 or negligible: {its} {} below {} of the largest joint's, or below {} N m",
                     if self.joints.len() == 1 {
@@ -193,8 +200,9 @@ impl Idle {
         let lowest = self.joints.first().copied().unwrap_or(1);
         let file = file.display();
         format!(
-            "give the links from link {lowest} on their masses and inertias in {file} (a \
-             standard parameter it does not name counts as 0)"
+            "give the links from link {lowest} on their masses and inertias in {file}, mass \
+             off a revolute joint's axis or inertia about it (a standard parameter it does not \
+             name counts as 0)"
         )
     }
 }

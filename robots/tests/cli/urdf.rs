@@ -852,13 +852,13 @@ fn torques_warn_about_a_joint_that_moves_only_massless_links() {
     assert!(
         e.starts_with(&format!(
             "warning: with the parameters of {}, joint 2 (`j2`) of {} moves no mass or \
-             inertia: every base parameter its torque depends on (",
+             inertia that its torque feels: every base parameter its torque depends on (",
             link1.display(),
             urdf.display()
         )) && e.ends_with(&format!(
             ") is 0, so its torque tau2 is 0 in every row; give the links from link 2 on \
-             their masses and inertias in {} (a standard parameter it does not name counts \
-             as 0)\n",
+             their masses and inertias in {}, mass off a revolute joint's axis or inertia \
+             about it (a standard parameter it does not name counts as 0)\n",
             link1.display()
         )),
         "{e}"
@@ -878,8 +878,8 @@ fn torques_warn_about_a_joint_that_moves_only_massless_links() {
     let e = stderr(&o);
     assert!(
         e.contains(&format!(
-            "joint 2 (`j2`) of {} moves no mass or inertia to speak of: every base parameter \
-             its torque depends on (",
+            "joint 2 (`j2`) of {} moves no mass or inertia to speak of that its torque feels: \
+             every base parameter its torque depends on (",
             urdf.display()
         )) && e.contains(
             ") is 0 or negligible: its torque stays below 1e-12 of the largest joint's, or \
@@ -988,14 +988,14 @@ fn excite_warns_when_a_massless_joint_has_a_torque_limit() {
     assert!(
         e.contains(&format!(
             "warning: with the parameters of {}, joint 2 (`j2`) of {} moves no mass or \
-             inertia: every base parameter its torque depends on (",
+             inertia that its torque feels: every base parameter its torque depends on (",
             link1.display(),
             urdf.display()
         )) && e.contains(&format!(
             ") is 0, so the reference gives it no torque: its torque limit constrains nothing \
              in the design, and its torque margin below is the whole limit; give the links \
-             from link 2 on their masses and inertias in {} (a standard parameter it does \
-             not name counts as 0)\n",
+             from link 2 on their masses and inertias in {}, mass off a revolute joint's axis \
+             or inertia about it (a standard parameter it does not name counts as 0)\n",
             link1.display()
         )),
         "{e}"
