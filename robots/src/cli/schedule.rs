@@ -86,6 +86,17 @@ pub(crate) fn analyse(
 ) -> Result<Report, Error> {
     let program = &programs[kind];
     let graph = TaskGraph::from_program(program, &Weights::default())?;
+    // no task: no makespan to divide by (a speed-up of 1 and an efficiency of 1 / p were
+    // printed for 0 / 0)
+    if graph.is_empty() {
+        return Err(format!(
+            "--schedule-program {}: the program has no operations for this robot (its outputs \
+             are inputs or constants as they are): nothing to schedule; choose another \
+             program",
+            kind.info().name
+        )
+        .into());
+    }
     let one = |rule: Rule| -> Result<RuleReport, Error> {
         let s = schedule(&graph, p, rule)?;
         Ok(RuleReport {

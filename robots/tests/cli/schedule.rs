@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::{fails_with, robid, stderr, stdout};
+use common::{fails_with, folder, robid, stderr, stdout, write};
 
 #[test]
 fn zomaya_model_schedule_reports_consistent_figures() {
@@ -87,4 +87,25 @@ fn zomaya_model_schedule_refuses_bad_values() {
     );
     let o = robid(&["model", robot, "--schedule-program", "gravity"]);
     fails_with(&o, &["--schedule-program needs --schedule P"]);
+    // a program without operations has no schedule (a speed-up of 1 and an efficiency
+    // of 33.3 % were printed for 0 / 0 on 3 processors)
+    let dir = folder();
+    let slide = write(
+        dir.path(),
+        "slide.toml",
+        "name = \"slide\"\nconvention = \"modified\"\n[[joints]]\ntype = \"prismatic\"\n\
+         alpha = 0\na = 0\nd = 0\n",
+    );
+    let o = robid(&[
+        "model",
+        slide.to_str().unwrap(),
+        "--schedule",
+        "3",
+        "--schedule-program",
+        "base_from_standard",
+    ]);
+    fails_with(
+        &o,
+        &["--schedule-program base_from_standard: the program has no operations for this robot"],
+    );
 }
