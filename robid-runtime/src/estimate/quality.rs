@@ -233,7 +233,7 @@ impl fmt::Display for QualityWarning {
                  amplifies the positions' noise, which biases the estimates and inflates the \
                  fit error; add lowpass = {{ cutoff = \"auto\", signals = [\"q\"] }} to \
                  [processing] (robid inspect shows the cutoff it chooses), or differentiate \
-                 with method = \"savitzky-golay\""
+                 with method = \"savitzky-golay\" over a window wider than its order + 1"
             ),
             QualityWarning::KnownWithoutEffect { parameters } => {
                 let one = parameters.len() == 1;

@@ -32,7 +32,12 @@ pub(crate) fn processing_warnings(
         .lowpass
         .as_ref()
         .is_some_and(|lp| lp.signals.contains(&Signal::Q));
-    let central = matches!(p.differentiation.savitzky_golay(), Ok(None));
+    // a Savitzky-Golay window no wider than its polynomial interpolates: differences too
+    let central = match p.differentiation.savitzky_golay() {
+        Ok(None) => true,
+        Ok(Some(sg)) => !sg.smooths(),
+        Err(_) => false,
+    };
     let mut warnings = Vec::new();
     if !differentiated.is_empty() && !filtered && central {
         warnings.push(QualityWarning::UnfilteredDerivatives {
@@ -83,6 +88,15 @@ mod tests {
             "[processing]\ndifferentiation = { method = \"savitzky-golay\", window = 31, order = 3 }\n",
         );
         assert_eq!(warned(&smoothed), None);
+        // a window of order + 1 samples interpolates them: central differences again
+        let interpolated = unfiltered.replace(
+            "[processing]\n",
+            "[processing]\ndifferentiation = { method = \"savitzky-golay\", window = 3, order = 2 }\n",
+        );
+        assert_eq!(
+            warned(&interpolated).as_deref(),
+            Some("velocities and accelerations")
+        );
         let message = QualityWarning::UnfilteredDerivatives {
             derived: "velocities".into(),
         }

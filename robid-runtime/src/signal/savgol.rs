@@ -39,6 +39,13 @@ pub struct SavitzkyGolay {
 }
 
 impl SavitzkyGolay {
+    /// Whether it smooths: a window of `order + 1` samples holds no more than the
+    /// polynomial's coefficients, which then interpolate the samples, and its derivatives
+    /// are those of differences (window 3, order 2: central differences, noise and all).
+    pub fn smooths(&self) -> bool {
+        self.window > self.order + 1
+    }
+
     /// A differentiator with an odd `window` of 3 to [`MAX_SAVGOL_WINDOW`] samples and a
     /// polynomial `order` of 2 to [`MAX_SAVGOL_ORDER`] (2 at least, so that it also gives
     /// accelerations), below the window. Errors name `window` or `order` (owner
@@ -164,6 +171,32 @@ mod tests {
     use super::*;
     use crate::rng::Rng;
     use crate::signal::{butterworth_hz, central_difference};
+
+    /// A window of order + 1 samples interpolates them: window 3 and order 2 give the
+    /// central differences inside the record, first and second (so it does not smooth);
+    /// a wider window does.
+    #[test]
+    fn a_window_of_order_plus_one_gives_central_differences() {
+        let x: Vec<f64> = (0..40)
+            .map(|k| (0.37 * k as f64).sin() + 0.01 * ((k * 7919) % 13) as f64)
+            .collect();
+        let dt = 0.01;
+        let sg = SavitzkyGolay::new(3, 2).unwrap();
+        assert!(!sg.smooths() && SavitzkyGolay::new(5, 2).unwrap().smooths());
+        let (d1, d2) = (
+            sg.derivative(&x, dt, 1).unwrap(),
+            sg.derivative(&x, dt, 2).unwrap(),
+        );
+        for k in 1..x.len() - 1 {
+            let central = (x[k + 1] - x[k - 1]) / (2.0 * dt);
+            let second = (x[k + 1] - 2.0 * x[k] + x[k - 1]) / (dt * dt);
+            assert!(
+                (d1[k] - central).abs() < 1e-9 * central.abs().max(1.0),
+                "{k}"
+            );
+            assert!((d2[k] - second).abs() < 1e-9 * second.abs().max(1.0), "{k}");
+        }
+    }
 
     /// A polynomial of order up to the fit's is differentiated exactly, ends included, at a
     /// sample time that is not 1.
