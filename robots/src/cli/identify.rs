@@ -344,6 +344,18 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         return run_static(args, robot, samples);
     }
     let mut config = config_for(args.config.as_deref(), &args.data)?;
+    // a validation range with no validation file applies to nothing (said nothing)
+    if args.validate.is_empty()
+        && let Some(path) = &args.config
+    {
+        warn_unapplied(
+            &config,
+            path,
+            "identify",
+            &["processing.validation_range"],
+            "it cuts the --validate files, and none is given",
+        );
+    }
     // repeated acquisitions: the config's [runs] lists every run's files
     let runs: Option<Vec<PathBuf>> = match &config.runs {
         Some(_) if !args.data.is_empty() => {

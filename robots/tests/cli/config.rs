@@ -969,3 +969,33 @@ fn an_extra_column_named_like_a_standard_parameter_is_refused() {
     let o = identify("offset1");
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// `processing.validation_range` with no `--validate` file applies to nothing: said at its
+/// place (it was silent), and not said when validation files are given.
+#[test]
+fn a_validation_range_without_validation_files_is_said() {
+    let dir = folder();
+    let config = write(
+        dir.path(),
+        "c.toml",
+        "time_column = \"t\"\n[processing]\nvalidation_range = [0, 100]\n",
+    );
+    let data = write(dir.path(), "d.csv", "t,q1\n0,0\n");
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "identify",
+            "descriptions/ur5e.toml",
+            "--config",
+            config.to_str().unwrap(),
+            "--data",
+            data.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        stderr(&robid(&args))
+    };
+    let said = "c.toml:3:1: `processing.validation_range` is not applied by `robid identify` \
+                (it cuts the --validate files, and none is given)";
+    assert!(run(&[]).contains(said), "{}", run(&[]));
+    let e = run(&["--validate", data.to_str().unwrap()]);
+    assert!(!e.contains("is not applied"), "{e}");
+}
