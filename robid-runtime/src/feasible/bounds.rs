@@ -188,6 +188,10 @@ pub const DEFAULT_MARGIN: f64 = 1e-6;
 /// away from a consistent prior.
 const MARGIN_SHARE: f64 = 1e-2;
 
+/// The least default margin: a prior link flat to rounding (its smallest eigenvalue about
+/// 1e-20) lowered the margin to about 1e-22, and results had eigenvalues of -1e-17.
+const MIN_DEFAULT_MARGIN: f64 = 1e-12;
+
 impl Bounds {
     /// The default bounds ([`LinkBounds::default`]) for `links` links, no total-mass range.
     pub fn wide(links: usize) -> Bounds {
@@ -333,8 +337,9 @@ impl Bounds {
 
     /// The margin the solvers impose: the one given, else [`DEFAULT_MARGIN`], lowered to
     /// 1 % of the smallest eigenvalue of the links' pseudo-inertias in `prior` (standard
-    /// parameters laid out by `layout`) when that is smaller and positive: links of a few
-    /// grams, whose pseudo-inertias are near 1e-6, are not held away from their prior.
+    /// parameters laid out by `layout`) when that is smaller and positive, but not below
+    /// 1e-12: links of a few grams, whose pseudo-inertias are near 1e-6, are not held away
+    /// from their prior.
     ///
     /// ```
     /// use robid_runtime::feasible::{Bounds, DEFAULT_MARGIN, Problem};
@@ -363,7 +368,9 @@ impl Bounds {
                     .filter(|&e| e > 0.0)
                     .fold(f64::INFINITY, f64::min)
             });
-            DEFAULT_MARGIN.min(MARGIN_SHARE * smallest)
+            DEFAULT_MARGIN
+                .min(MARGIN_SHARE * smallest)
+                .max(MIN_DEFAULT_MARGIN)
         });
         self.check_margin(margin)?;
         Ok(margin)

@@ -1434,8 +1434,11 @@ fn feasible_anneal_meets_its_equalities_or_names_them() {
 fn feasible_anneal_keeps_the_margin() {
     let dir = folder();
     let path = out(&dir, "f.toml");
-    for margin in ["1e-3", "1e-2"] {
-        let bounds = write(dir.path(), "m.toml", &format!("margin = {margin}\n"));
+    // a mass the data do not see (link 1's) kept inside its box: it stayed at the middle
+    // of its bounds, half the margin under a bound of [0, 1.1e-3]
+    let light = "[links.1]\nmass = [0.0, 0.0011]\n";
+    for (margin, extra) in [("1e-3", ""), ("1e-2", ""), ("1e-3", light)] {
+        let bounds = write(dir.path(), "m.toml", &format!("margin = {margin}\n{extra}"));
         let o = two_link_anneal(&path, &["--bounds", bounds.to_str().unwrap()]);
         assert!(o.status.success(), "{}", stderr(&o));
         let text = std::fs::read_to_string(&path).unwrap();

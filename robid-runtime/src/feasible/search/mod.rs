@@ -405,9 +405,12 @@ fn search(
     let mut fixed = Vec::with_capacity(nl * PER_LINK);
     for lb in &bounds.links {
         let (l, h) = link_box(lb, margin);
+        // the don't-care values inside the box too: a mass the fit does not see stayed at
+        // the middle of its bounds, half a margin for a bound of [0, 1.1 margin]
+        let centre = link_centre(lb);
+        fixed.extend((0..PER_LINK).map(|i| centre[i].clamp(l[i], h[i].max(l[i]))));
         lo.extend(l);
         hi.extend(h);
-        fixed.extend(link_centre(lb));
     }
     let mut objective = Objective {
         problem,
@@ -634,7 +637,10 @@ fn lift(x: &mut [f64], mu: f64) {
     for link in x.chunks_exact_mut(PER_LINK) {
         let (m, c) = (link[0], [link[1], link[2], link[3]]);
         let c2 = c.iter().map(|v| v * v).sum::<f64>();
-        let lift = mu * m * c2 / (m - mu).max(1e-9 * mu);
+        // and the rounding of the pseudo-inertia's entries, so that its smallest
+        // eigenvalue, computed, is not a rounding below the margin (4.99999999999999e-2
+        // for 0.05)
+        let lift = mu * m * c2 / (m - mu).max(1e-9 * mu) + 8.0 * f64::EPSILON * m * (1.0 + c2);
         for d in &mut link[4..7] {
             *d += lift;
         }
