@@ -184,7 +184,16 @@ impl fmt::Display for QualityWarning {
                     .iter()
                     .zip(rel_std_percent)
                     .map(|(n, r)| match r {
-                        Some(r) => format!("{n} ({r:.0} %)"),
+                        // never rounded onto the threshold (100.13 read "100 %")
+                        Some(r) => format!(
+                            "{n} ({} %)",
+                            if *r >= 10.0 * threshold_percent {
+                                format!("{r:.0}")
+                            } else {
+                                crate::Num::rounded_keeping(*r, 3, |s| s > *threshold_percent)
+                                    .to_string()
+                            }
+                        ),
                         None => format!("{n} (value 0)"),
                     })
                     .collect();
@@ -502,6 +511,32 @@ mod tests {
         // a deviation that is not zero, with zero torques, still warns
         let effect = effects(&[1e-3, 0.0], &norms);
         assert_eq!(assess(1.0, &names, &[f64::INFINITY; 2], &effect).len(), 1);
+    }
+
+    /// A relative deviation just above the threshold is not rounded onto it (100.13 read
+    /// "100 %"); a large one is written whole.
+    #[test]
+    fn uncertain_figures_stay_above_the_threshold() {
+        let said = |r: f64| {
+            QualityWarning::Uncertain {
+                parameters: vec!["XY2".into()],
+                rel_std_percent: vec![Some(r)],
+                threshold_percent: REL_STD_WARNING,
+            }
+            .to_string()
+        };
+        assert!(said(100.13).ends_with("XY2 (100.1 %)"), "{}", said(100.13));
+        assert!(
+            said(100.004).ends_with("XY2 (100.004 %)"),
+            "{}",
+            said(100.004)
+        );
+        assert!(said(145.8).ends_with("XY2 (146 %)"), "{}", said(145.8));
+        assert!(
+            said(124255.3).ends_with("XY2 (124255 %)"),
+            "{}",
+            said(124255.3)
+        );
     }
 
     #[test]

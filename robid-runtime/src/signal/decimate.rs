@@ -381,6 +381,17 @@ impl Decimator {
     }
 }
 
+/// Whether `n` splits into stages of at most 10 (no prime factor above 7).
+fn splits(n: usize) -> bool {
+    let mut rest = n;
+    for p in [2, 3, 5, 7] {
+        while rest.is_multiple_of(p) {
+            rest /= p;
+        }
+    }
+    rest == 1
+}
+
 /// Splits a total decimation factor into factors of at most 10.
 pub fn split_factor(total: usize) -> Result<Vec<usize>> {
     if total == 0 {
@@ -394,11 +405,25 @@ pub fn split_factor(total: usize) -> Result<Vec<usize>> {
     let mut out = Vec::new();
     while rest > 1 {
         let Some(f) = (2..=10).rev().find(|f| rest.is_multiple_of(*f)) else {
+            // the stages found and the rest as one stage, or the nearest factors that split
+            // (it said "e.g. decimation = [10, 5]" of 13, a factor of 50)
+            let stages: Vec<String> = out.iter().chain([&rest]).map(usize::to_string).collect();
+            let below = (1..total).rev().find(|&n| splits(n));
+            let above = (total + 1..=total.saturating_mul(2)).find(|&n| splits(n));
+            let near: Vec<String> = below
+                .into_iter()
+                .chain(above)
+                .map(|n| n.to_string())
+                .collect();
             return Err(Error::setting(
                 "Config",
                 "processing.decimation",
                 format!(
-                    "factor {total} has a prime factor above 10; give the stages explicitly, e.g. decimation = [10, 5]"
+                    "factor {total} has a prime factor above 10, so it does not split into \
+                     stages of at most 10 (larger single stages lose accuracy); give the stages \
+                     explicitly, decimation = [{}], or a factor that splits, such as {}",
+                    stages.join(", "),
+                    near.join(" or ")
                 ),
             ));
         };
@@ -659,6 +684,25 @@ mod tests {
         assert_eq!(split_factor(20).unwrap(), vec![10, 2]);
         assert_eq!(split_factor(1).unwrap(), vec![1]);
         assert!(split_factor(13).is_err());
+        // the advice is a factor of the total, or a nearby one that splits (it was [10, 5]
+        // for 13)
+        for (total, advice) in [
+            (
+                13,
+                "decimation = [13], or a factor that splits, such as 12 or 14",
+            ),
+            (
+                26,
+                "decimation = [2, 13], or a factor that splits, such as 25 or 27",
+            ),
+            (
+                143,
+                "decimation = [143], or a factor that splits, such as 140 or 144",
+            ),
+        ] {
+            let e = split_factor(total).unwrap_err().to_string();
+            assert!(e.contains(advice), "{e}");
+        }
         assert!(split_factor(0).is_err());
         assert_eq!(Decimator::with_total(100).unwrap().output_len(44960), 450);
     }
