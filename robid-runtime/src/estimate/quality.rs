@@ -513,6 +513,38 @@ mod tests {
         assert_eq!(assess(1.0, &names, &[f64::INFINITY; 2], &effect).len(), 1);
     }
 
+    /// The uncertain parameters judged again take the place of the old judgement, or,
+    /// without one, follow the condition warning; the other warnings keep their order.
+    #[test]
+    fn reassessed_uncertainty_keeps_its_place() {
+        let ill = QualityWarning::IllConditioned {
+            condition_number: 1e9,
+            threshold: CONDITION_WARNING,
+        };
+        let poor = QualityWarning::PoorFit {
+            relative_error: 2.0,
+        };
+        let names = vec!["a".to_string(), "b".to_string()];
+        let kinds = |w: &[QualityWarning]| w.iter().map(|w| w.kind()).collect::<Vec<_>>();
+        let old = assess(1e9, &names, &[500.0, 1.0], &[1.0; 2]);
+        assert_eq!(kinds(&old), ["ill_conditioned", "uncertain"]);
+        let mut before = old.clone();
+        before.push(poor.clone());
+        let again = reassess_uncertain(&before, &names, &[1.0, 300.0], &[1.0; 2]);
+        assert_eq!(kinds(&again), ["ill_conditioned", "uncertain", "poor_fit"]);
+        assert!(
+            again[1].to_string().ends_with(": b (300 %)"),
+            "{}",
+            again[1]
+        );
+        // none before: after the condition warning
+        let again = reassess_uncertain(&[ill, poor], &names, &[1.0, 300.0], &[1.0; 2]);
+        assert_eq!(kinds(&again), ["ill_conditioned", "uncertain", "poor_fit"]);
+        // none after: removed
+        let again = reassess_uncertain(&before, &names, &[1.0, 1.0], &[1.0; 2]);
+        assert_eq!(kinds(&again), ["ill_conditioned", "poor_fit"]);
+    }
+
     /// A relative deviation just above the threshold is not rounded onto it (100.13 read
     /// "100 %"); a large one is written whole.
     #[test]
