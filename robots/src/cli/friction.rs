@@ -64,6 +64,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         "it fits every sample of the one record given: a decimation's filter would smear the \
          friction's reversals at zero speed",
     );
+    // not applied, so not checked either (a `[runs]` of one file was refused after the
+    // warning that it is not applied)
+    config.runs = None;
     let data = super::identify::data_files(&args.data, Some(&args.config), &config)?;
     // the rotor friction the config names is what this command identifies (the config's
     // next `robid identify` reads it): it may be the output, the other files not
