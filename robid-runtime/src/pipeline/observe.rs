@@ -339,12 +339,14 @@ impl<'a> Observer<'a> {
     }
 
     /// Processed sample `k`'s positions, velocities and accelerations (and the reflected
-    /// motor signals, when the data have them) into `st`.
+    /// motor signals, when the data have them) into `st`, velocities and accelerations at
+    /// the rounding of their positions as 0 ([`at_rest_to_rounding`]).
     fn load_sample(&self, k: usize, st: &mut Scratch) {
         let signals = self.signals;
         signals.q.sample_into(k, &mut st.q);
         signals.qd.sample_into(k, &mut st.qd);
         signals.qdd.sample_into(k, &mut st.qdd);
+        at_rest_to_rounding(&st.q, &mut st.qd, &mut st.qdd, signals.sample_time);
         if let Some(r) = &signals.rotor {
             r.thetad.sample_into(k, &mut st.thetad);
             r.thetadd.sample_into(k, &mut st.thetadd);
@@ -362,6 +364,30 @@ impl<'a> Observer<'a> {
             });
             x.fill_with_rotor(&st.q, &st.qd, &st.qdd, r, &mut st.col);
             each(c, &st.col);
+        }
+    }
+}
+
+/// Units in the last place of a position that its differences may leave in a velocity
+/// or an acceleration ([`at_rest_to_rounding`]).
+const POSITION_ROUNDING_ULPS: f64 = 8.0;
+
+/// Sets to 0 the velocities (and accelerations) smaller than the rounding of their
+/// positions `q` differentiated at sample time `dt`: `8 eps (|q| + 1) / dt` (over `dt^2`),
+/// `|q| + 1` in rad or m. A joint at rest whose positions differ in their last bits
+/// moves at about 1e-13 rad/s at 1 kHz; scaled to unit norm for the least squares, such
+/// a column is a column of noise, the sign of the noise a Coulomb column of +-1, and they
+/// counted as excitation: with `rest_velocity = 0`, six samples at rest were identified
+/// at a condition number of 1.8e17 with values of 1e15. As 0 they are what they are, no
+/// motion, and the joint's drive parameters are named as not excited.
+fn at_rest_to_rounding(q: &[f64], qd: &mut [f64], qdd: &mut [f64], dt: f64) {
+    for ((q, v), a) in q.iter().zip(qd).zip(qdd) {
+        let floor = POSITION_ROUNDING_ULPS * f64::EPSILON * (q.abs() + 1.0) / dt;
+        if v.abs() < floor {
+            *v = 0.0;
+        }
+        if a.abs() < floor / dt {
+            *a = 0.0;
         }
     }
 }

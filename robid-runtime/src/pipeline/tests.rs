@@ -1463,3 +1463,63 @@ fn a_validation_record_too_short_for_the_decimation_is_named() {
         assert!(text.contains(&part), "`{part}` in {text}");
     }
 }
+
+/// A joint at rest whose positions differ only in their last bits moves at the rounding of
+/// its positions (velocities of about 1e-13 rad/s): that is no excitation. Its velocity
+/// columns scaled to unit norm were columns of noise and the sign of the noise a Coulomb
+/// column of +-1, which counted as excited: with `rest_velocity = 0` the record was
+/// identified (six samples at rest: condition number 1.8e17, values of 1e15, exit 0). Its
+/// drive parameters are not excited, as for positions exactly constant.
+#[test]
+fn velocities_at_the_rounding_of_the_positions_are_no_excitation() {
+    let model = Synthetic::default();
+    let config = Config::from_toml_str(
+        &CONFIG.replace("rest_velocity = 0.02", "rest_velocity = 0"),
+        Path::new("synthetic.toml"),
+    )
+    .unwrap();
+    let mut data = dataset(3000, 1000.0, 0.0);
+    // given velocities and accelerations (as `robid simulate` writes them), the last
+    // joint's at the rounding of its position, 0.7
+    let mut seed = 11u64;
+    let mut noise = |scale: f64| {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * scale
+    };
+    let (mut q, mut qd, mut qdd) = ([0.0; DOF], [0.0; DOF], [0.0; DOF]);
+    let mut given = [
+        Signals::zeros(DOF, 3000),
+        Signals::zeros(DOF, 3000),
+        Signals::zeros(DOF, 3000),
+    ];
+    for k in 0..3000 {
+        trajectory(k as f64 * 1e-3, &mut q, &mut qd, &mut qdd);
+        (q[DOF - 1], qd[DOF - 1], qdd[DOF - 1]) = (0.7, noise(1e-13), noise(1e-10));
+        for (s, v) in given.iter_mut().zip([&q, &qd, &qdd]) {
+            for (joint, x) in s.joints_mut().zip(v) {
+                joint[k] = *x;
+            }
+        }
+    }
+    let [q, qd, qdd] = given;
+    (data.q, data.qd, data.qdd) = (q, Some(qd), Some(qdd));
+    for method in [crate::data::Method::Ols, crate::data::Method::Rls] {
+        let mut config = config.clone();
+        config.estimation.method = method;
+        match identify(&model, &data, &config) {
+            Err(Error::Estimate(EstimateError::RankDeficient { unexcited, .. })) => {
+                for name in ["Ia6", "Fv6", "Fc6"] {
+                    assert!(unexcited.iter().any(|n| n == name), "{unexcited:?}");
+                }
+            }
+            Err(other) => panic!("{method:?}: {other}"),
+            Ok(id) => panic!(
+                "{method:?}: identified, condition number {:e}, {:?}",
+                id.estimate.condition_number,
+                &id.estimate.values[40..]
+            ),
+        }
+    }
+}
