@@ -58,8 +58,9 @@ impl Method {
     pub fn dont_care_source(self) -> &'static str {
         match self {
             Method::Anneal => {
-                "from the prior if one is given (or the nearest to them that the physical \
-                 constraints and bounds allow), else from the search within the bounds"
+                "from the prior if one is given (or as near to them as the physical \
+                 constraints and bounds allow; values held fixed or tied by an equality stay \
+                 the search's), else from the search within the bounds"
             }
             Method::Sdp | Method::Cholesky | Method::Interior => {
                 "from the prior, or the nearest to them that the physical constraints and \

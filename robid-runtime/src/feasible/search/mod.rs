@@ -24,6 +24,7 @@ mod anneal;
 mod equality;
 mod levenberg;
 mod parametrise;
+mod towards_prior;
 mod two_step;
 
 use crate::FeasibleError;
@@ -609,7 +610,15 @@ fn search(
     let mut x = objective.unlifted(&best);
     objective.settle_masses(&mut x);
     objective.lift(&mut x);
-    let p = objective.standard(&x);
+    let mut p = objective.standard(&x);
+    // what the data do not see, to the prior (values held or tied by equalities stay the
+    // search's)
+    if let Some(pull) = &objective.pull
+        && options.equalities.is_empty()
+        && options.fixed.is_empty()
+    {
+        p = towards_prior::towards_prior(problem, bounds, &objective.a, pull, margin, p);
+    }
     let mut solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
     solution.iterations = restarts_run;
     for text in options

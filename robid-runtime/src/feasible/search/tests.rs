@@ -775,3 +775,29 @@ fn lifted_links_keep_the_margin() {
     super::lift(&mut x, 0.0);
     assert_eq!(x[4..7], [1e-3; 3]);
 }
+
+/// A weak user prior settles what the data leave free as a firm one does: the search
+/// stopped at its target wherever the pull was too weak to matter against the data
+/// (1.30 kg, 2.59 kg and 2.48 kg for a prior of 2.5 kg under weights 1e-4, 0.01 and 1),
+/// where the convex methods return the prior. The misfit stays the search's.
+#[test]
+fn gaz_a_weak_user_prior_settles_what_the_data_leave_free() {
+    let truth = one_link();
+    let problem = problem(1, &["MX1", "MY1", "MZ1"], &truth);
+    for weight in [1.0, 0.01, 1e-4] {
+        let options = AnnealOptions {
+            target_chi2: None,
+            ..mass_prior(10, 2.5, weight)
+        };
+        let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
+        let l = s.links[0].unwrap();
+        // measured exactly 2.5
+        assert!((l.mass - 2.5).abs() < 1e-12, "{weight}: {l:?}");
+        assert!(s.chi2 < 1e-3 * 3.0, "{weight}: chi^2 {}", s.chi2);
+        assert!(
+            s.min_eigenvalues[0] >= 1e-6 * (1.0 - 1e-9),
+            "{:?}",
+            s.min_eigenvalues
+        );
+    }
+}
