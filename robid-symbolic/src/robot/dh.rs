@@ -265,7 +265,7 @@ impl Robot {
     }
 
     /// Per joint `[alpha, a, d, theta, gamma, b]` at the description's symbol values.
-    fn numeric_rows(&self) -> Result<Vec<[f64; 6]>, Unbound> {
+    pub(super) fn numeric_rows(&self) -> Result<Vec<[f64; 6]>, Unbound> {
         let mut arena = Arena::new();
         let mut ids = Vec::new();
         for joint in self.joints() {

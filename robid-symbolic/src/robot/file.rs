@@ -156,40 +156,57 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
             measured_twist_consequence(parallel),
         ));
     }
-    // (plain numbers: a length in millimetres is written as one); every such length is
-    // named, the first at its place (only the first was, and the next one showed only
-    // once it was repaired)
-    let long: Vec<(usize, Dh, f64)> = robot
+    // (a length in millimetres is written as one, or as a `[symbols]` value); every such
+    // length is named, the first at its place (only the first was, and the next one
+    // showed only once it was repaired; one through a symbol was not named at all)
+    let rows = robot.numeric_rows().ok();
+    let long: Vec<(usize, Dh, f64, &str)> = robot
         .joints()
         .iter()
         .enumerate()
         .flat_map(|(j, joint)| {
-            [(Dh::A, &joint.a), (Dh::D, &joint.d), (Dh::B, &joint.b)]
-                .into_iter()
-                .filter_map(|(dh, g)| Some((dh, g.as_str().trim().parse::<f64>().ok()?)))
-                .filter(|(_, v)| v.abs() > MAX_ARM_LENGTH)
-                .map(move |(dh, v)| (j, dh, v))
+            let rows = rows.as_ref();
+            [
+                (Dh::A, &joint.a, 1),
+                (Dh::D, &joint.d, 2),
+                (Dh::B, &joint.b, 5),
+            ]
+            .into_iter()
+            .filter_map(move |(dh, g, at)| {
+                let value = match g.symbols() {
+                    [] => g.as_str().trim().parse::<f64>().ok()?,
+                    _ => rows?.get(j)?[at],
+                };
+                Some((dh, value, g.symbols().first().map(|_| g.as_str())))
+            })
+            .filter(|(_, v, _)| v.abs() > MAX_ARM_LENGTH)
+            .map(move |(dh, v, text)| (j, dh, v, text.unwrap_or("")))
         })
         .collect();
-    if let Some(&(j, dh, value)) = long.first() {
+    // `a` or, through symbols, `a = "L3"`
+    let named = |dh: Dh, text: &str| match text {
+        "" => format!("`{}`", dh.key()),
+        text => format!("`{} = \"{text}\"`", dh.key()),
+    };
+    if let Some(&(j, dh, value, text)) = long.first() {
         let (line, column) = place.line_column(spans.of(Item::Value(j, dh)).start);
         let others = match &long[1..] {
             [] => String::new(),
             rest => format!(
                 " (so are {})",
-                listed(rest.iter().map(|(j, dh, v)| format!(
-                    "joint {} `{}` {v} m",
+                listed(rest.iter().map(|(j, dh, v, text)| format!(
+                    "joint {} {} {v} m",
                     j + 1,
-                    dh.key()
+                    named(*dh, text)
                 )))
             ),
         };
         out.push(format!(
-            "{}:{line}:{column}: joint {} `{}` is {value} m, longer than an arm's \
+            "{}:{line}:{column}: joint {} {} is {value} m, longer than an arm's \
              {MAX_ARM_LENGTH} m{others}: {LENGTH_FIX}",
             place.file,
             j + 1,
-            dh.key()
+            named(dh, text)
         ));
     }
     if let Some((j, [lower, upper])) = turning_too_far(robot) {

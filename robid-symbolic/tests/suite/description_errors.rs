@@ -511,6 +511,18 @@ fn revolute_limits_in_degrees_are_warned_about() {
             ),
         "{w:?}"
     );
+    // and through `[symbols]`: `L3 = 425` was not named; a short one is not either
+    let symbols = format!(
+        "{head}[[joints]]\nalpha = 0\na = \"-L3\"\n[[joints]]\nalpha = 0\nd = \"L4 + 0.1\"\n\
+         [symbols]\nL3 = 425\nL4 = 0.2\n"
+    );
+    let w = warned(&symbols);
+    assert!(
+        w.len() == 1
+            && w[0].starts_with("arm.toml:5:5:")
+            && w[0].contains("joint 1 `a = \"-L3\"` is -425 m, longer than an arm's 10 m:"),
+        "{w:?}"
+    );
     let wrist = format!("{head}{}", joint("[-7.854, 7.854]"));
     assert!(warned(&wrist).is_empty());
     let slide =
