@@ -121,11 +121,32 @@ pub(crate) fn decimator_for(
     if filtered && (enough(&dec) || n * dof < needed) {
         return Ok(dec);
     }
-    // the largest total factor that fits (1, no filter, always filters)
-    let fits = |t: usize| {
-        Decimator::with_total(t).is_ok_and(|d| d.min_len() <= n && (enough(&d) || t == 1))
+    // the largest total factor that fits in some stages (1, no filter, always fits): the
+    // stages matter, [5, 2] fits where [10] does not, and it said "at most 42" where
+    // [7, 7] ran
+    let fits = |stages: &[usize]| {
+        Decimator::new(stages).is_ok_and(|d| d.min_len() <= n && (enough(&d) || d.factor() == 1))
     };
-    let best = (1..dec.factor()).rev().find(|&t| fits(t)).unwrap_or(1);
+    // no more than leaves the equations with the first and last decimated samples left
+    // out (each carries an end sample's noise, [`Decimator::unsettled`]): ceil(n / t)
+    // samples of at least `samples`, which spares the costly count of the unsettled ones
+    let samples = needed.div_ceil(dof.max(1)) + 2;
+    let most = (n.max(1) - 1) / (samples - 1);
+    let best = (2..dec.factor().min(most + 1))
+        .rev()
+        .find_map(|t| stagings(t).into_iter().find(|s| fits(s)))
+        .filter(|s| !s.is_empty())
+        .map_or_else(
+            || "1 for this record, no decimation".to_owned(),
+            |s| {
+                let list: Vec<String> = s.iter().map(usize::to_string).collect();
+                format!(
+                    "{} for this record, as `decimation = [{}]`",
+                    s.iter().product::<usize>(),
+                    list.join(", ")
+                )
+            },
+        );
     let problem = if filtered {
         let (all, m, ends) = (dec.output_len(n), dec.settled(n).len(), dec.unsettled());
         format!(
@@ -145,12 +166,51 @@ pub(crate) fn decimator_for(
         "Config",
         "processing.decimation",
         format!(
-            "a total factor of {} {problem}; lower the factor (at most {best} for this record) \
+            "a total factor of {} {problem}; lower the factor (at most {best}) \
              or use a longer record",
             dec.factor()
         ),
     ))
 }
+
+/// The stages of at most 10 whose product is `total`: each way to write it as such
+/// factors (at most [`STAGINGS`] of them), largest stages first and last (a stage's
+/// filter needs more samples the later it runs).
+fn stagings(total: usize) -> Vec<Vec<usize>> {
+    fn factorisations(
+        rest: usize,
+        largest: usize,
+        now: &mut Vec<usize>,
+        out: &mut Vec<Vec<usize>>,
+    ) {
+        if out.len() >= STAGINGS {
+            return;
+        }
+        if rest == 1 {
+            out.push(now.clone());
+            return;
+        }
+        for f in (2..=largest.min(rest)).rev() {
+            if rest.is_multiple_of(f) {
+                now.push(f);
+                factorisations(rest / f, f, now, out);
+                now.pop();
+            }
+        }
+    }
+    let mut out = Vec::new();
+    factorisations(total, 10, &mut Vec::new(), &mut out);
+    out.into_iter()
+        .flat_map(|s| {
+            let mut rising = s.clone();
+            rising.reverse();
+            [s, rising]
+        })
+        .collect()
+}
+
+/// The most ways to stage one total factor that [`stagings`] lists.
+const STAGINGS: usize = 32;
 
 /// An error naming the record `data` (its file and the rows used, and the files joined to
 /// it, which used to be left out) when its samples `kept`

@@ -435,13 +435,14 @@ fn joint_by_joint_methods_name_a_joint_whose_equations_rest_velocity_removes() {
 fn a_decimation_too_large_for_the_record_names_its_key() {
     let model = Synthetic::default();
     let data = dataset(3000, 1000.0, 0.0);
-    for (factor, samples, expected) in [
+    for (factor, samples, expected, fits) in [
         (
             "5000",
             3000,
             "a total factor of 5000 needs at least 27001 samples for its anti-alias filters, \
              but 2600 of {name} are used (after processing.range and the trims); lower the \
-             factor (at most 216 for this record)",
+             factor (at most 216 for this record, as `decimation = [9, 8, 3]`)",
+            "[9, 8, 3]",
         ),
         (
             "100",
@@ -449,7 +450,17 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
             "a total factor of 100 keeps 6 of the 600 samples of {name} used (after \
              processing.range and the trims), 2 without the 2 at each end that its filter does \
              not settle (they carry an end sample's noise whole): 12 equations, fewer than the \
-             49 equations the 48 parameters need; lower the factor (at most 49 for this record)",
+             49 equations the 48 parameters need; lower the factor (at most 49 for this \
+             record, as `decimation = [7, 7]`)",
+            "[7, 7]",
+        ),
+        // the stages matter: in stages of 10 first it said at most 90, where 98 in
+        // [2, 7, 7] fits
+        (
+            "100",
+            1588,
+            "lower the factor (at most 98 for this record, as `decimation = [2, 7, 7]`)",
+            "[2, 7, 7]",
         ),
     ] {
         let data = data.slice(0, samples).unwrap();
@@ -470,6 +481,16 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
             );
             let expected = expected.replace("{name}", &data.name);
             assert!(e.to_string().contains(&expected), "{method:?}: {e}");
+        }
+        // and the stages said fit (a record this short may still not excite every
+        // parameter: that is the data's, not the decimation's)
+        let text = CONFIG.replace("decimation = 10", &format!("decimation = {fits}"));
+        let config = Config::from_toml_str(&text, Path::new("synthetic.toml")).unwrap();
+        if let Err(e) = identify(&model, &data, &config) {
+            assert!(
+                matches!(e, Error::Estimate(EstimateError::RankDeficient { .. })),
+                "{fits}: {e}"
+            );
         }
     }
 }
