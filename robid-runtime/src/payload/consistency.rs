@@ -28,21 +28,72 @@ pub struct Consistency {
     pub pseudo_inertia_min_eigenvalue: f64,
     /// Why the values are not physical (empty when they are).
     pub problems: Vec<String>,
+    /// Checks met only within [`UNCERTAINTY`] standard deviations of the values (a point
+    /// mass estimated with a smallest principal moment of -3e-11 kg m^2).
+    pub within_uncertainty: Vec<String>,
 }
+
+/// Standard deviations of the principal moments within which a check is met
+/// ([`Consistency::of_estimate`]).
+pub(crate) const UNCERTAINTY: f64 = 3.0;
 
 impl Consistency {
     /// Checks ten standard values `XX XY XZ YY YZ ZZ MX MY MZ M`.
     pub fn of(p: &[f64; 10]) -> Consistency {
+        Self::of_estimate(p, &[0.0; 10])
+    }
+
+    /// [`Consistency::of`] of estimated values with standard deviations `std`: a
+    /// principal moment below zero, or beyond the sum of the other two, by less than
+    /// [`UNCERTAINTY`] times its standard deviation is consistent within the uncertainty
+    /// (and said so in [`Consistency::within_uncertainty`]): an exact point mass estimated
+    /// from noise-free torques was called inconsistent for a moment of -3e-11 kg m^2.
+    pub fn of_estimate(p: &[f64; 10], std: &[f64; 10]) -> Consistency {
         let mut problems = Vec::new();
+        let mut within_uncertainty = Vec::new();
         let physical = LinkInertial::from_standard(p);
         let principal_moments = physical.as_ref().map(LinkInertial::principal_moments);
+        // a mass within its uncertainty of zero: perhaps no payload at all
+        let massless = (p[9].abs() < UNCERTAINTY * std[9]).then(|| {
+            format!(
+                "within {UNCERTAINTY} standard deviations ({} kg) of zero: the data may hold no \
+                 payload",
+                Num::rounded(std[9], 2)
+            )
+        });
+        if let (Some(_), Some(why)) = (&physical, &massless) {
+            within_uncertainty.push(format!(
+                "the mass {} kg is {why}",
+                Num::rounded(p[9], DIGITS)
+            ));
+        }
         match principal_moments {
             None => problems.push(format!(
-                "the mass {} kg is not positive",
-                Num::rounded(p[9], DIGITS)
+                "the mass {} kg is not positive{}",
+                Num::rounded(p[9], DIGITS),
+                massless.map_or_else(String::new, |why| format!(" ({why})"))
             )),
             Some(d) => {
-                let slack = SLACK * d[2].abs();
+                let rounding = SLACK * d[2].abs();
+                let sigma = moment_std(p, std);
+                let slack = rounding.max(UNCERTAINTY * sigma);
+                let mut uncertain = |what: &str, by: f64| {
+                    within_uncertainty.push(format!(
+                        "{what} by {} kg m^2, within {UNCERTAINTY} standard deviations of the \
+                         principal moments ({} kg m^2)",
+                        Num::rounded(by, 2),
+                        Num::rounded(sigma, 2)
+                    ))
+                };
+                if d[0] < -rounding && d[0] >= -slack {
+                    uncertain("the smallest principal moment is below zero", -d[0]);
+                }
+                if d[2] > d[0] + d[1] + rounding && d[2] <= d[0] + d[1] + slack {
+                    uncertain(
+                        "the largest principal moment exceeds the sum of the other two",
+                        d[2] - d[0] - d[1],
+                    );
+                }
                 if !(d[0] >= -slack) {
                     problems.push(format!(
                         "the inertia about the centre of mass has a negative principal moment \
@@ -68,6 +119,7 @@ impl Consistency {
             principal_moments,
             pseudo_inertia_min_eigenvalue: pseudo_inertia_min_eigenvalue(p),
             problems,
+            within_uncertainty,
         }
     }
 
@@ -75,6 +127,39 @@ impl Consistency {
     pub fn is_consistent(&self) -> bool {
         self.problems.is_empty()
     }
+}
+
+/// A bound on one standard deviation of the principal moments about the centre of mass
+/// of `p` (mass positive) whose values have standard deviations `std`, taken independent:
+/// each value moves the inertia about the centre of mass `I_o - (|h|^2 I - h h') / m`
+/// (`h` the first moments) by its derivative times its deviation, and no eigenvalue moves
+/// by more than the Frobenius norm of the move (Weyl).
+fn moment_std(p: &[f64; 10], std: &[f64; 10]) -> f64 {
+    let (h, m) = ([p[6], p[7], p[8]], p[9]);
+    let h2: f64 = h.iter().map(|v| v * v).sum();
+    // the six entries of I_o: XX XY XZ YY YZ ZZ, the off-diagonal ones twice
+    let entries = [1.0, 2.0, 2.0, 1.0, 2.0, 1.0];
+    let mut variance: f64 = entries
+        .iter()
+        .zip(std)
+        .map(|(times, s)| times * s * s)
+        .sum();
+    // first moment k: (2 h_k I - e_k h' - h e_k') / m, entry by entry
+    for k in 0..3 {
+        let mut f2 = 0.0;
+        for i in 0..3 {
+            for j in 0..3 {
+                let diagonal = if i == j { 2.0 * h[k] } else { 0.0 };
+                let outer = if i == k { h[j] } else { 0.0 } + if j == k { h[i] } else { 0.0 };
+                f2 += ((diagonal - outer) / m).powi(2);
+            }
+        }
+        variance += f2 * std[6 + k] * std[6 + k];
+    }
+    // the mass: (|h|^2 I - h h') / m^2, squared Frobenius norm (2 |h|^4) / m^4 (its
+    // eigenvalues |h|^2 twice and 0)
+    variance += 2.0 * h2 * h2 / m.powi(4) * std[9] * std[9];
+    variance.sqrt()
 }
 
 #[cfg(test)]
@@ -102,6 +187,50 @@ mod tests {
         let c = Consistency::of(&thin.to_standard());
         assert!(c.problems[0].contains("triangle"), "{:?}", c.problems);
         assert!(c.pseudo_inertia_min_eigenvalue < 0.0);
+    }
+
+    /// A point mass estimated with a smallest principal moment a little below zero is
+    /// consistent within its standard deviations, and said so; without them, or farther
+    /// than three of them, it is not. The bound on the moments' deviation is checked
+    /// against the spread of the moments over perturbations of the values.
+    #[test]
+    fn a_point_mass_is_consistent_within_its_uncertainty() {
+        let point = LinkInertial {
+            mass: 2.0,
+            com: [0.1, -0.05, 0.2],
+            inertia: [[-3e-11, 0.0, 0.0], [0.0, 1e-11, 0.0], [0.0, 0.0, 2e-11]],
+        };
+        let p = point.to_standard();
+        assert!(!Consistency::of(&p).is_consistent());
+        let c = Consistency::of_estimate(&p, &[2e-11; 10]);
+        assert!(c.is_consistent(), "{:?}", c.problems);
+        assert!(
+            c.within_uncertainty.len() == 2
+                && c.within_uncertainty[0].starts_with(
+                    "the smallest principal moment is below zero by 3e-11 kg m^2, within 3 \
+                     standard deviations"
+                ),
+            "{:?}",
+            c.within_uncertainty
+        );
+        assert!(!Consistency::of_estimate(&p, &[2e-13; 10]).is_consistent());
+        // the bound holds: each value moved by its deviation moves no moment farther
+        let std = [1e-3, 2e-4, 3e-4, 1e-3, 5e-4, 2e-3, 1e-3, 3e-3, 2e-3, 1e-2];
+        let sigma = moment_std(&p, &std);
+        let moments = |p: &[f64; 10]| LinkInertial::from_standard(p).unwrap().principal_moments();
+        let at = moments(&p);
+        let mut sum = [0.0; 3];
+        for k in 0..10 {
+            let mut q = p;
+            q[k] += std[k];
+            for (s, (a, b)) in sum.iter_mut().zip(moments(&q).iter().zip(&at)) {
+                *s += (a - b) * (a - b);
+            }
+        }
+        for s in sum {
+            assert!(s.sqrt() <= sigma * 1.01, "{} > {sigma}", s.sqrt());
+        }
+        assert!(sigma < 10.0 * sum.iter().fold(0.0_f64, |m, s| m.max(s.sqrt())));
     }
 
     /// The values in the problems are written to four digits: they used to carry every

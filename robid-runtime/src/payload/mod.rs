@@ -131,7 +131,10 @@ fn estimate(
             cause: "the data are too large for f64 arithmetic; check their units".into(),
         });
     }
-    let consistency = Consistency::of(&std::array::from_fn(|k| estimate.values[k]));
+    let consistency = Consistency::of_estimate(
+        &std::array::from_fn(|k| estimate.values[k]),
+        &std::array::from_fn(|k| estimate.std[k]),
+    );
     Ok(Payload {
         estimate,
         consistency,

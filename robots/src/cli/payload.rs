@@ -208,8 +208,14 @@ fn summary(p: &Payload) -> String {
             );
         }
     }
-    if c.is_consistent() {
+    if c.is_consistent() && c.within_uncertainty.is_empty() {
         s.push_str("physically consistent: yes\n");
+    } else if c.is_consistent() {
+        let _ = writeln!(
+            s,
+            "physically consistent: yes, within its uncertainty: {}",
+            c.within_uncertainty.join("; ")
+        );
     } else {
         let _ = writeln!(s, "physically consistent: no: {}", c.problems.join("; "));
     }

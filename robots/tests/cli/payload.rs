@@ -323,10 +323,15 @@ fn payload_messages_write_computed_values_short() {
         stdout(&o)
     };
     let text = printed(&data);
+    // no payload is a body within its uncertainty, said so (it was "not a body")
     let verdict = text
         .lines()
-        .find(|l| l.starts_with("physically consistent: no: "))
-        .unwrap_or_else(|| panic!("no payload is not a body: {text}"));
+        .find(|l| l.starts_with("physically consistent: yes, within its uncertainty: "))
+        .unwrap_or_else(|| panic!("no payload is not said as such: {text}"));
+    assert!(
+        verdict.contains("standard deviations (0.00044 kg) of zero: the data may hold no payload"),
+        "{verdict}"
+    );
     let (count, number) = most_digits(&text);
     assert!(count <= 7, "{number} has {count} digits: {text}");
     // the verdict gives four digits
