@@ -28,7 +28,7 @@ pub struct Consistency {
     pub pseudo_inertia_min_eigenvalue: f64,
     /// Why the values are not physical (empty when they are).
     pub problems: Vec<String>,
-    /// Checks met only within [`UNCERTAINTY`] standard deviations of the values (a point
+    /// Checks met only within 3 standard deviations of the values (a point
     /// mass estimated with a smallest principal moment of -3e-11 kg m^2).
     pub within_uncertainty: Vec<String>,
 }
@@ -45,7 +45,7 @@ impl Consistency {
 
     /// [`Consistency::of`] of estimated values with standard deviations `std`: a
     /// principal moment below zero, or beyond the sum of the other two, by less than
-    /// [`UNCERTAINTY`] times its standard deviation is consistent within the uncertainty
+    /// 3 times its standard deviation is consistent within the uncertainty
     /// (and said so in [`Consistency::within_uncertainty`]): an exact point mass estimated
     /// from noise-free torques was called inconsistent for a moment of -3e-11 kg m^2.
     pub fn of_estimate(p: &[f64; 10], std: &[f64; 10]) -> Consistency {

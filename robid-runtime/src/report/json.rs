@@ -113,6 +113,10 @@ fn revolute_unit() -> String {
     super::unit::REVOLUTE.to_string()
 }
 
+/// A relative error below which a model predicts its data to rounding (noise-free torques
+/// predicted by the parameters that made them differ by 1e-15 to 1e-13 of their norm).
+pub(crate) const PREDICTS_TO_ROUNDING: f64 = 1e-9;
+
 /// A validation file predicted by a reference model (parameters from CAD, a data sheet or
 /// an earlier identification) next to the identified one (Madsen et al. 2020, Table 5).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -125,8 +129,9 @@ pub struct ReferenceFit {
     /// The reference model's NMSE of eq. 22 on the same samples.
     pub nmse_eq22: f64,
     /// 100 (reference - identified) / reference of the eq. 22 NMSE: positive when the
-    /// identified model predicts better; null when the reference predicts the data exactly
-    /// (a zero NMSE leaves no relative improvement).
+    /// identified model predicts better; null when the reference predicts the data to
+    /// rounding (a relative error below 1e-9: the ratio of two rounding errors, -13 %, said
+    /// nothing).
     pub relative_improvement_percent: Option<f64>,
 }
 
@@ -338,7 +343,8 @@ impl Report {
                 file: file.to_string(),
                 relative_error: fit.relative_error,
                 nmse_eq22,
-                relative_improvement_percent: (nmse_eq22 > 0.0)
+                relative_improvement_percent: (nmse_eq22 > 0.0
+                    && fit.relative_error > PREDICTS_TO_ROUNDING)
                     .then(|| relative_improvement(nmse_eq22, v.nmse_eq22)),
             });
         }

@@ -99,7 +99,7 @@ pub fn text_table(report: &Report) -> String {
         }
         if let Some(r) = &v.reference {
             let improvement = r.relative_improvement_percent.map_or_else(
-                || "none (the reference predicts these data exactly)".to_string(),
+                || "none (the reference predicts these data to rounding)".to_string(),
                 // `-0.0 %` for a change that rounds to nothing
                 |p| format!("{:.1} %", if p.abs() < 0.05 { 0.0 } else { p }),
             );
@@ -290,7 +290,32 @@ mod tests {
                 .relative_improvement_percent
                 .is_none()
         );
-        assert!(text_table(&exact).contains("none (the reference predicts these data exactly)"));
+        assert!(
+            text_table(&exact).contains("none (the reference predicts these data to rounding)")
+        );
+        // two rounding errors have no relative improvement (it said -13 %)
+        let rounding = Fit {
+            relative_error: 1e-14,
+            nmse_eq22: 1e-20,
+            ..fit(0.0)
+        };
+        let both = report()
+            .with_validation(
+                "run3.csv",
+                &Fit {
+                    nmse_eq22: 1.13e-20,
+                    ..rounding.clone()
+                },
+            )
+            .with_reference(1, "truth.toml", &rounding);
+        assert!(
+            both.validation[1]
+                .reference
+                .as_ref()
+                .unwrap()
+                .relative_improvement_percent
+                .is_none()
+        );
         let bad = report().with_reference(0, "cad.toml", &fit(f64::NAN));
         assert!(bad.check().is_err());
     }
