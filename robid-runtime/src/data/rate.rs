@@ -68,20 +68,8 @@ pub(crate) struct UnreadTime {
 /// ```
 pub fn time_name(name: &str) -> Option<Option<f64>> {
     let name = name.trim();
-    let lower = name.to_lowercase();
-    let bracketed = |open: char, close: char| {
-        let inner = lower.strip_suffix(close)?;
-        let (stem, unit) = inner.rsplit_once(open)?;
-        Some((stem.trim_end(), Some(unit.trim())))
-    };
-    let (stem, unit) = bracketed('[', ']')
-        .or_else(|| bracketed('(', ')'))
-        .or_else(|| {
-            let (stem, unit) = lower.rsplit_once('_')?;
-            unit_scale(unit).map(|_| (stem, Some(unit)))
-        })
-        .unwrap_or((lower.as_str(), None));
-    let is_time = match stem {
+    let (stem, unit) = stem_and_unit(name);
+    let is_time = match stem.as_str() {
         "t" => name.starts_with('t'),
         "time" | "times" | "timestamp" | "timestamps" | "time_stamp" | "stamp" => true,
         _ => false,
@@ -89,8 +77,33 @@ pub fn time_name(name: &str) -> Option<Option<f64>> {
     match (is_time, unit) {
         (false, _) => None,
         (true, None) => Some(None),
-        (true, Some(unit)) => unit_scale(unit).map(Some),
+        (true, Some(unit)) => unit_scale(&unit).map(Some),
     }
+}
+
+/// A column name, in lower case, split into its stem and the unit it ends with (` [ms]`,
+/// ` (ms)`, or `_ms` when the part after the last `_` is a time unit).
+fn stem_and_unit(name: &str) -> (String, Option<String>) {
+    let lower = name.trim().to_lowercase();
+    let bracketed = |open: char, close: char| {
+        let inner = lower.strip_suffix(close)?;
+        let (stem, unit) = inner.rsplit_once(open)?;
+        Some((stem.trim_end().to_owned(), Some(unit.trim().to_owned())))
+    };
+    bracketed('[', ']')
+        .or_else(|| bracketed('(', ')'))
+        .or_else(|| {
+            let (stem, unit) = lower.rsplit_once('_')?;
+            unit_scale(unit).map(|_| (stem.to_owned(), Some(unit.to_owned())))
+        })
+        .unwrap_or_else(|| (lower.clone(), None))
+}
+
+/// The seconds per unit that the name of a column the config names as its time column
+/// gives, whatever its stem (`T_MS`, `zeit_ms`: the config says it is the time, where
+/// [`time_name`] must tell a time from a temperature `T`); `None` without a time unit.
+fn time_column_unit(name: &str) -> Option<f64> {
+    stem_and_unit(name).1.as_deref().and_then(unit_scale)
 }
 
 /// Seconds per `unit` (lower case), for the units of [`time_name`].
@@ -181,8 +194,8 @@ pub(crate) fn with_found_time_column<'a>(
 ) -> crate::error::Result<std::borrow::Cow<'a, Config>> {
     use std::borrow::Cow;
     if let Some(name) = &config.time_column {
-        return Ok(match time_name(name) {
-            Some(Some(scale)) if config.time_scale.is_none() => {
+        return Ok(match time_column_unit(name) {
+            Some(scale) if config.time_scale.is_none() => {
                 let mut config = config.clone();
                 config.time_scale = Some(scale);
                 Cow::Owned(config)
@@ -575,6 +588,23 @@ mod tests {
             ("stamps_ms_x", None),
         ] {
             assert_eq!(time_name(name), unit, "{name}");
+        }
+    }
+
+    /// A time column the config names gives its unit whatever its stem's case or word
+    /// (`T_MS` was read as seconds: a 1 kHz log as 1 Hz).
+    #[test]
+    fn a_named_time_column_gives_its_unit() {
+        for (name, unit) in [
+            ("T_MS", Some(1e-3)),
+            ("t_ms", Some(1e-3)),
+            ("Zeit [us]", Some(1e-6)),
+            ("stamp_S", Some(1.0)),
+            ("T", None),
+            ("time_min", None),
+            ("clock", None),
+        ] {
+            assert_eq!(time_column_unit(name), unit, "{name}");
         }
     }
 
