@@ -57,8 +57,8 @@ pub struct RepeatedIdentification {
     pub fit: Fit,
     /// Measured against predicted on the combined data.
     pub prediction: Prediction,
-    /// The rows of the mean record (averaged mode, the lines of the first run); `None`
-    /// for stacked runs.
+    /// The rows of the mean record (averaged mode: the same lines of every run's file,
+    /// `file` naming them all); `None` for stacked runs.
     pub used: Option<UsedRows>,
     /// The cutoff chosen for `cutoff = "auto"` on the combined data (averaged mode).
     pub cutoff: Option<CutoffSuggestion>,
@@ -99,6 +99,12 @@ pub fn identify_runs(
         RunMode::Averaged => {
             let mean = average(runs).map_err(|e| config.locate(e))?;
             let id = identify(model, &mean, config)?;
+            // the same rows of every run's file (the first alone was named)
+            let files: Vec<&str> = each.iter().map(|r| r.used.file.as_str()).collect();
+            let used = UsedRows {
+                file: format!("the mean of {}", files.join(", ")),
+                ..id.used
+            };
             RepeatedIdentification {
                 robot,
                 joint_units: crate::report::joint_units(&config.prismatic, model.dof()),
@@ -106,7 +112,7 @@ pub fn identify_runs(
                 estimate: id.estimate,
                 fit: id.fit,
                 prediction: id.prediction,
-                used: Some(id.used),
+                used: Some(used),
                 cutoff: id.cutoff,
                 runs: each,
                 spread,

@@ -18,6 +18,13 @@ pub struct RunEntry {
     pub rows: UsedRows,
     /// Its fit's relative error.
     pub relative_error: f64,
+    /// The torque that error compares with, as [`FitEntry::torque`](super::FitEntry::torque)
+    /// (absent from reports written before it).
+    #[serde(default)]
+    pub torque: Option<String>,
+    /// As [`FitEntry::unfiltered_relative_error`](super::FitEntry::unfiltered_relative_error).
+    #[serde(default)]
+    pub unfiltered_relative_error: Option<f64>,
     /// Its condition number.
     pub condition_number: f64,
     /// Its bound on the relative estimation error (percent).
@@ -67,11 +74,16 @@ impl RunsEntry {
             runs: r
                 .runs
                 .iter()
-                .map(|id| RunEntry {
-                    rows: id.used.clone(),
-                    relative_error: id.fit.relative_error,
-                    condition_number: id.estimate.condition_number,
-                    error_bound_percent: 100.0 * id.estimate.error_bound,
+                .map(|id| {
+                    let fit = super::json::labelled_fit(&id.prediction);
+                    RunEntry {
+                        rows: id.used.clone(),
+                        relative_error: fit.relative_error,
+                        torque: fit.torque,
+                        unfiltered_relative_error: fit.unfiltered_relative_error,
+                        condition_number: id.estimate.condition_number,
+                        error_bound_percent: 100.0 * id.estimate.error_bound,
+                    }
                 })
                 .collect(),
             parameters: (0..s.names.len())
@@ -91,6 +103,7 @@ impl RunsEntry {
     pub fn is_finite(&self) -> bool {
         self.runs.iter().all(|r| {
             r.relative_error.is_finite()
+                && r.unfiltered_relative_error.is_none_or(f64::is_finite)
                 && r.condition_number.is_finite()
                 && r.error_bound_percent.is_finite()
         }) && self.parameters.iter().all(|p| {
@@ -115,9 +128,15 @@ impl RunsEntry {
             self.mode
         );
         for (k, r) in self.runs.iter().enumerate() {
+            let against = r.unfiltered_relative_error.map_or_else(String::new, |e| {
+                format!(
+                    " (filtered torque; {:.2} % against the measured torque)",
+                    100.0 * e
+                )
+            });
             let _ = writeln!(
                 s,
-                "  run {} {}: relative error {:.2} %, cond(W) {:.1}, error bound {:.1} %",
+                "  run {} {}: relative error {:.2} %{against}, cond(W) {:.1}, error bound {:.1} %",
                 k + 1,
                 r.rows,
                 100.0 * r.relative_error,

@@ -449,6 +449,19 @@ fn milella_identify_repeated_runs_end_to_end() {
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(v["runs"]["runs"].as_array().unwrap().len(), 3);
     assert_eq!(v["runs"]["mode"], "averaged");
+    // each run's fit says which torque it compares with, as the report's does (it did
+    // not), and the mean record names every run's file (the first alone was named)
+    for run in v["runs"]["runs"].as_array().unwrap() {
+        assert!(
+            run["torque"].is_string() && run["torque"] == v["fit"]["torque"],
+            "{run}"
+        );
+    }
+    let mean = v["estimation"]["file"].as_str().unwrap();
+    assert!(
+        mean.starts_with("the mean of ") && (1..=3).all(|r| mean.contains(&format!("run{r}.csv"))),
+        "{mean}"
+    );
     let bound = v["error_bound_percent"].as_f64().unwrap();
     assert!(bound > 0.0 && bound.is_finite(), "{bound}");
     let p = &v["runs"]["parameters"][0];
