@@ -14,6 +14,27 @@ pub enum EstimateError {
         /// The parameters that make up the unexcited directions, most affected first.
         unexcited: Vec<String>,
     },
+    /// Rank-deficient data in which some joints do not move at all (velocity 0 at every
+    /// equation, to the rounding of their positions): the cause named, where "use a
+    /// richer trajectory" did not say which joint stood still.
+    #[error(
+        "rank-deficient data: rank {rank} of {columns} parameters; {}; {} not move in the equations used (velocity 0 at every sample, to the rounding of the positions): use a record in which {} move{}, or remove the parameters that only {} motion determines",
+        not_excited(*rank, *columns, unexcited),
+        still_joints(joints),
+        if joints.len() == 1 { "it" } else { "they" },
+        if joints.len() == 1 { "s" } else { "" },
+        if joints.len() == 1 { "its" } else { "their" },
+    )]
+    StillJoints {
+        /// Numerical rank found.
+        rank: usize,
+        /// Number of parameters (columns).
+        columns: usize,
+        /// The parameters that make up the unexcited directions, most affected first.
+        unexcited: Vec<String>,
+        /// The joints (1-based) that do not move.
+        joints: Vec<usize>,
+    },
     /// Per-axis identification: some parameters are determined by no single joint's equation.
     #[error(
         "per-axis identification: no joint's equation alone determines {} (they are separable only across joints, or not excited); use ols or wls, or a trajectory that separates them within one axis",
@@ -166,6 +187,21 @@ pub(crate) fn undetermined(
         crate::Count(directions, "combination"),
         unexcited.len()
     )
+}
+
+/// "joint 2 does" or "joints 1 and 3 do".
+fn still_joints(joints: &[usize]) -> String {
+    match joints {
+        [one] => format!("joint {one} does"),
+        [rest @ .., last] => format!(
+            "joints {} and {last} do",
+            rest.iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        [] => "no joint does".to_owned(),
+    }
 }
 
 #[cfg(test)]

@@ -176,7 +176,7 @@ fn rest_velocity_defaults_to_the_documented_threshold() {
     );
 }
 
-/// A joint that never moves leaves its drive and link terms unexcited.
+/// A joint that never moves leaves its drive and link terms unexcited, and is named.
 #[test]
 fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
     let model = Synthetic::default();
@@ -185,12 +185,14 @@ fn a_joint_at_rest_gives_rank_deficiency_naming_its_parameters() {
     // every equation kept (the default threshold would remove all of joint 6's)
     cfg.processing.rest_velocity = Some(crate::data::PerJoint::All(0.0));
     match identify(&model, &data, &cfg) {
-        Err(Error::Estimate(EstimateError::RankDeficient {
+        Err(Error::Estimate(EstimateError::StillJoints {
             unexcited,
             rank,
             columns,
+            joints,
         })) => {
             assert!(rank < columns);
+            assert_eq!(joints, [6]);
             assert!(unexcited.iter().any(|n| n == "Ia6"), "{unexcited:?}");
             assert!(unexcited.iter().any(|n| n == "Fv6"), "{unexcited:?}");
         }
@@ -333,10 +335,15 @@ fn a_rank_deficiency_from_rest_velocity_names_it() {
             assert!(!message.contains(other), "{message}");
         }
     }
-    // joint 3 at rest in the whole record: the least squares' own message
+    // joint 3 at rest in the whole record: not the threshold's doing, the joint named
     let e = identify(&model, &with_joint_at_rest(3000, 2), &config("")).unwrap_err();
     assert!(
-        matches!(e, Error::Estimate(EstimateError::RankDeficient { .. })),
+        matches!(&e, Error::Estimate(EstimateError::StillJoints { joints, .. }) if joints == &[3]),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .contains("joint 3 does not move in the equations used (velocity 0 at every sample"),
         "{e}"
     );
 }
@@ -1490,7 +1497,8 @@ fn a_validation_record_too_short_for_the_decimation_is_named() {
 /// columns scaled to unit norm were columns of noise and the sign of the noise a Coulomb
 /// column of +-1, which counted as excited: with `rest_velocity = 0` the record was
 /// identified (six samples at rest: condition number 1.8e17, values of 1e15, exit 0). Its
-/// drive parameters are not excited, as for positions exactly constant.
+/// drive parameters are not excited, as for positions exactly constant, and the joint is
+/// named as not moving.
 #[test]
 fn velocities_at_the_rounding_of_the_positions_are_no_excitation() {
     let model = Synthetic::default();
@@ -1530,10 +1538,14 @@ fn velocities_at_the_rounding_of_the_positions_are_no_excitation() {
         let mut config = config.clone();
         config.estimation.method = method;
         match identify(&model, &data, &config) {
-            Err(Error::Estimate(EstimateError::RankDeficient { unexcited, .. })) => {
+            Err(Error::Estimate(EstimateError::StillJoints {
+                unexcited, joints, ..
+            })) => {
                 for name in ["Ia6", "Fv6", "Fc6"] {
                     assert!(unexcited.iter().any(|n| n == name), "{unexcited:?}");
                 }
+                // the joint that does not move is named (it was "use a richer trajectory")
+                assert_eq!(joints, [6]);
             }
             Err(other) => panic!("{method:?}: {other}"),
             Ok(id) => panic!(
