@@ -132,21 +132,38 @@ pub(crate) fn decimator_for(
     // samples of at least `samples`, which spares the costly count of the unsettled ones
     let samples = needed.div_ceil(dof.max(1)) + 2;
     let most = (n.max(1) - 1) / (samples - 1);
-    let best = (2..dec.factor().min(most + 1))
+    let as_stages = |s: &[usize]| {
+        let list: Vec<String> = s.iter().map(usize::to_string).collect();
+        format!("`decimation = [{}]`", list.join(", "))
+    };
+    let factor = dec.factor();
+    // the largest that fits, up to twice the factor asked for (its stages as given may be
+    // what does not fit: [10, 10, 2] needs 2701 samples where [2, 10, 10] fits in 2001)
+    let best = (2..=(2 * factor).min(most))
         .rev()
-        .find_map(|t| stagings(t).into_iter().find(|s| fits(s)))
-        .filter(|s| !s.is_empty())
-        .map_or_else(
-            || "1 for this record, no decimation".to_owned(),
-            |s| {
-                let list: Vec<String> = s.iter().map(usize::to_string).collect();
-                format!(
-                    "{} for this record, as `decimation = [{}]`",
-                    s.iter().product::<usize>(),
-                    list.join(", ")
-                )
-            },
-        );
+        .find_map(|t| stagings(t).into_iter().find(|s| fits(s)));
+    let advice = match best {
+        None => "lower the factor (at most 1 for this record: no decimation)".to_owned(),
+        Some(s) if s.iter().product::<usize>() < factor => format!(
+            "lower the factor (at most {} for this record, as {})",
+            s.iter().product::<usize>(),
+            as_stages(&s)
+        ),
+        Some(s) => {
+            let larger = format!(
+                "at most {} for this record, as {}",
+                s.iter().product::<usize>(),
+                as_stages(&s)
+            );
+            match stagings(factor).into_iter().find(|s| fits(s)) {
+                Some(same) => format!(
+                    "give the same factor in other stages, {}, which fit ({larger})",
+                    as_stages(&same)
+                ),
+                None => format!("use another factor ({larger})"),
+            }
+        }
+    };
     let problem = if filtered {
         let (all, m, ends) = (dec.output_len(n), dec.settled(n).len(), dec.unsettled());
         format!(
@@ -165,11 +182,7 @@ pub(crate) fn decimator_for(
     Err(Error::setting(
         "Config",
         "processing.decimation",
-        format!(
-            "a total factor of {} {problem}; lower the factor (at most {best}) \
-             or use a longer record",
-            dec.factor()
-        ),
+        format!("a total factor of {factor} {problem}; {advice} or use a longer record"),
     ))
 }
 

@@ -461,6 +461,16 @@ fn a_decimation_too_large_for_the_record_names_its_key() {
              record, as `decimation = [7, 7]`)",
             "[7, 7]",
         ),
+        // the factor asked for fits in other stages: [10, 10, 2] needs 2701 samples,
+        // [2, 10, 10] fewer (it said "lower the factor")
+        (
+            "200",
+            3000,
+            "a total factor of 200 needs at least 2701 samples for its anti-alias filters, \
+             but 2600 of {name} are used (after processing.range and the trims); give the same \
+             factor in other stages, `decimation = [2, 10, 10]`, which fit (at most ",
+            "[2, 10, 10]",
+        ),
         // the stages matter: in stages of 10 first it said at most 90, where 98 in
         // [2, 7, 7] fits
         (
