@@ -329,7 +329,9 @@ fn payload_messages_write_computed_values_short() {
         .find(|l| l.starts_with("physically consistent: yes, within its uncertainty: "))
         .unwrap_or_else(|| panic!("no payload is not said as such: {text}"));
     assert!(
-        verdict.contains("standard deviations (0.00044 kg) of zero: the data may hold no payload"),
+        verdict.contains(
+            "3 standard deviations of zero (one is 0.00044 kg): the data may hold no payload"
+        ),
         "{verdict}"
     );
     let (count, number) = most_digits(&text);
