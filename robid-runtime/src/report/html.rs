@@ -72,15 +72,15 @@ fn reference_table(h: &mut String, report: &Report) {
             .map_or_else(|| v.file.clone(), |r| r.to_string());
         let improvement = r
             .relative_improvement_percent
-            .map_or_else(|| "-".to_string(), |p| format!("{p:.1} %"));
+            .map_or_else(|| "-".to_string(), super::table::improvement);
         let _ = writeln!(
             h,
             "<tr><td>{}</td><td>{} %</td><td>{} %</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             escape(&name),
-            fixed(100.0 * r.relative_error, 2),
+            super::table::small_too(100.0 * r.relative_error, 2),
             fixed(100.0 * v.relative_error, 2),
-            fixed(r.nmse_eq22, 1),
-            fixed(v.nmse_eq22, 1),
+            super::table::small_too(r.nmse_eq22, 1),
+            super::table::small_too(v.nmse_eq22, 1),
             improvement
         );
     }

@@ -100,17 +100,16 @@ pub fn text_table(report: &Report) -> String {
         if let Some(r) = &v.reference {
             let improvement = r.relative_improvement_percent.map_or_else(
                 || "none (the reference predicts these data to rounding)".to_string(),
-                // `-0.0 %` for a change that rounds to nothing
-                |p| format!("{:.1} %", if p.abs() < 0.05 { 0.0 } else { p }),
+                improvement,
             );
             let _ = writeln!(
                 s,
                 "  against the reference {}: relative error {} % (identified {} %); NMSE (eq. 22) {} {unit}, identified {} {unit}, relative improvement {improvement}",
                 r.file,
-                fixed(100.0 * r.relative_error, 2),
+                small_too(100.0 * r.relative_error, 2),
                 fixed(100.0 * v.relative_error, 2),
-                fixed(r.nmse_eq22, 1),
-                fixed(v.nmse_eq22, 1)
+                small_too(r.nmse_eq22, 1),
+                small_too(v.nmse_eq22, 1)
             );
         }
     }
@@ -165,6 +164,32 @@ pub fn fixed(x: f64, decimals: usize) -> String {
         format!("{x:.decimals$}")
     } else {
         crate::Num::rounded(x, 4).to_string()
+    }
+}
+
+/// [`fixed`], but a value too small for its decimals in three significant digits: the
+/// NMSE of a model that predicts its data to 1e-8 was written "0.0" beside a relative
+/// improvement of -7.4e10 %.
+pub(crate) fn small_too(x: f64, decimals: usize) -> String {
+    if x != 0.0 && x.abs() < 0.5 * 10f64.powi(-(decimals as i32)) {
+        crate::Num::rounded(x, 3).to_string()
+    } else {
+        fixed(x, decimals)
+    }
+}
+
+/// A relative improvement `p` (percent) in words: to one decimal, or, where the
+/// identified model's NMSE is more than ten times the reference's, as that ratio
+/// ("-74009615578.6 %" of a reference that predicts the data to 5e-8 said little).
+pub(crate) fn improvement(p: f64) -> String {
+    if p < -900.0 {
+        format!(
+            "none: the identified model's NMSE is {} times the reference's",
+            crate::Num::rounded(1.0 - p / 100.0, 3)
+        )
+    } else {
+        // `-0.0 %` for a change that rounds to nothing
+        format!("{:.1} %", if p.abs() < 0.05 { 0.0 } else { p })
     }
 }
 
@@ -292,6 +317,18 @@ mod tests {
         );
         assert!(
             text_table(&exact).contains("none (the reference predicts these data to rounding)")
+        );
+        // a reference far better than the identified model: the ratio, and NMSEs that
+        // do not round to 0.0
+        let near = Fit {
+            relative_error: 5e-8,
+            nmse_eq22: 5e-11,
+            ..fit(0.0)
+        };
+        let t = text_table(&report().with_reference(0, "near.toml", &near));
+        assert!(
+            t.contains("against the reference near.toml: relative error 5e-6 % (identified 2.00 %); NMSE (eq. 22) 5e-11 N m, identified 30.0 N m, relative improvement none: the identified model's NMSE is 6e11 times the reference's"),
+            "{t}"
         );
         // two rounding errors have no relative improvement (it said -13 %)
         let rounding = Fit {
