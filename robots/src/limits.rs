@@ -195,8 +195,9 @@ fn position_beyond_limits(
         }
         (Of::Trajectory, false, true, _) => "positions in degrees? write them in radians",
         (Of::Log, _, false, true) => {
-            "positions off by an offset (the encoders' zero elsewhere than the model's)? \
-             set `position_offset` in [units] of the config given with --config"
+            "positions off by an offset (the encoders' zero elsewhere than the model's, or \
+             a `position_offset` the config sets)? set or correct `position_offset` in [units] \
+             of the config given with --config"
         }
         (Of::Trajectory, _, false, true) => {
             "positions off by an offset (another zero than the model's)? shift them"

@@ -201,9 +201,15 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
                 )))
             ),
         };
+        // a value of `[symbols]` is mended there, not in the joint's expression
+        let there = if long.iter().any(|(_, _, _, text)| !text.is_empty()) {
+            " (in `[symbols]` for a length given through a symbol)"
+        } else {
+            ""
+        };
         out.push(format!(
             "{}:{line}:{column}: joint {} {} is {value} m, longer than an arm's \
-             {MAX_ARM_LENGTH} m{others}: {LENGTH_FIX}",
+             {MAX_ARM_LENGTH} m{others}: {LENGTH_FIX}{there}",
             place.file,
             j + 1,
             named(dh, text)

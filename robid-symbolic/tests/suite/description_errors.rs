@@ -520,7 +520,8 @@ fn revolute_limits_in_degrees_are_warned_about() {
     assert!(
         w.len() == 1
             && w[0].starts_with("arm.toml:5:5:")
-            && w[0].contains("joint 1 `a = \"-L3\"` is -425 m, longer than an arm's 10 m:"),
+            && w[0].contains("joint 1 `a = \"-L3\"` is -425 m, longer than an arm's 10 m:")
+            && w[0].ends_with("(in `[symbols]` for a length given through a symbol)"),
         "{w:?}"
     );
     let wrist = format!("{head}{}", joint("[-7.854, 7.854]"));
