@@ -259,6 +259,25 @@ mod tests {
             "{:?}",
             c.within_uncertainty
         );
+        // each value's term is the Frobenius norm of the move of the inertia about the
+        // centre of mass that it makes, measured by a difference
+        let inertia = |p: &[f64; 10]| LinkInertial::from_standard(p).unwrap().inertia;
+        for k in 0..10 {
+            let mut e = [0.0; 10];
+            e[k] = 1e-7;
+            let mut q = p;
+            q[k] += e[k];
+            let (a, b) = (inertia(&q), inertia(&p));
+            let moved = (0..9)
+                .map(|i| (a[i / 3][i % 3] - b[i / 3][i % 3]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let term = moment_std(&p, &e);
+            assert!(
+                (term - moved).abs() <= 1e-5 * moved,
+                "{k}: {term} against {moved}"
+            );
+        }
         // the bound holds: each value moved by its deviation moves no moment farther
         let std = [1e-3, 2e-4, 3e-4, 1e-3, 5e-4, 2e-3, 1e-3, 3e-3, 2e-3, 1e-2];
         let sigma = moment_std(&p, &std);
