@@ -801,3 +801,27 @@ fn gaz_a_weak_user_prior_settles_what_the_data_leave_free() {
         );
     }
 }
+
+/// A prior the bounds do not allow is followed only as far as they let: a mass of 0.1 kg
+/// under first moments the data fix at (0.2, 0.1, 0.4) kg m would put the centre of mass
+/// at 4 m, beyond the box of 1 m, so the mass stops where the box's face holds it,
+/// 0.4 kg, exactly (the checks' tolerance let it pass to 0.3999992 kg and 1.000002 m),
+/// with every bound met and the pseudo-inertia at least the margin.
+#[test]
+fn gaz_a_prior_beyond_the_bounds_is_followed_to_them() {
+    let truth = one_link();
+    let problem = problem(1, &["MX1", "MY1", "MZ1"], &truth);
+    let options = AnnealOptions {
+        target_chi2: None,
+        ..mass_prior(10, 0.1, 1.0)
+    };
+    let s = solve_anneal(&problem, &Bounds::wide(1), &options).unwrap();
+    let l = s.links[0].unwrap();
+    assert!(s.violations.is_empty(), "{:?}", s.violations);
+    assert!((l.mass - 0.4).abs() < 1e-9, "{l:?}");
+    assert!(
+        s.min_eigenvalues[0] >= 1e-6 * (1.0 - 1e-9),
+        "{:?}",
+        s.min_eigenvalues
+    );
+}

@@ -44,9 +44,12 @@ pub(super) fn towards_prior(
             Default::default(),
         )
         .ok()
-        .map(|s| (s.min_eigenvalues, s.violations.len()))
+        .map(|s| {
+            let out = outside(&s, bounds);
+            (s.min_eigenvalues, s.violations.len(), out)
+        })
     };
-    let Some((eigenvalues, violations)) = judge(&standard) else {
+    let Some((eigenvalues, violations, out)) = judge(&standard) else {
         return standard;
     };
     let at = |t: f64| -> Vec<f64> {
@@ -57,8 +60,9 @@ pub(super) fn towards_prior(
             .collect()
     };
     let keeps = |t: f64| {
-        judge(&at(t)).is_some_and(|(e, v)| {
+        judge(&at(t)).is_some_and(|(e, v, o)| {
             v <= violations
+                && o.iter().zip(&out).all(|(now, before)| *now <= *before)
                 && e.iter()
                     .zip(&eigenvalues)
                     .all(|(now, before)| *now >= margin.min(*before))
@@ -77,6 +81,27 @@ pub(super) fn towards_prior(
         }
     }
     if good > 0.0 { at(good) } else { standard }
+}
+
+/// How far each link's mass and centre-of-mass coordinates lie outside their bounds (0
+/// inside), without the checks' tolerance: the step stops at a face of the box, where
+/// the checks let it pass by their tolerance (a centre of mass at 1.000002 m for a bound
+/// of 1 m).
+fn outside(s: &Solution, bounds: &Bounds) -> Vec<f64> {
+    let beyond = |v: f64, r: [f64; 2]| (r[0] - v).max(v - r[1]).max(0.0);
+    s.links
+        .iter()
+        .zip(&bounds.links)
+        .flat_map(|(l, b)| match l {
+            Some(l) => [
+                beyond(l.mass, b.mass),
+                beyond(l.com[0], b.com[0]),
+                beyond(l.com[1], b.com[1]),
+                beyond(l.com[2], b.com[2]),
+            ],
+            None => [f64::INFINITY; 4],
+        })
+        .collect()
 }
 
 /// The step `P y` of least pull `||D (p + P y - target)||` with `P` the projector on the
