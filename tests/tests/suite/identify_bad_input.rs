@@ -195,11 +195,14 @@ fn rank_deficient_data_names_the_parameters_not_excited() {
     let every = format!("{CONFIG}[processing]\nrest_velocity = 0\n");
     let e = run(&tmp, csv(&tmp, "still.csv", 600, 6, true, |s| s), &every).unwrap_err();
     match &e {
-        Error::Estimate(EstimateError::RankDeficient {
+        // joints 2 to 6 do not move: named (robid-runtime's `StillJoints`)
+        Error::Estimate(EstimateError::StillJoints {
             rank,
             columns,
             unexcited,
+            joints,
         }) => {
+            assert_eq!(joints, &[2, 3, 4, 5, 6], "{e}");
             // the same motion through the model, computed here: W's rank, and the named
             // parameters are exactly those in its dependencies
             let names = robid_runtime::model::base_parameter_names(&Ur5e);
