@@ -121,12 +121,10 @@ pub(crate) fn decimator_for(
     if filtered && (enough(&dec) || n * dof < needed) {
         return Ok(dec);
     }
-    // the largest total factor that fits in some stages (1, no filter, always fits): the
-    // stages matter, [5, 2] fits where [10] does not, and it said "at most 42" where
-    // [7, 7] ran
-    let fits = |stages: &[usize]| {
-        Decimator::new(stages).is_ok_and(|d| d.min_len() <= n && (enough(&d) || d.factor() == 1))
-    };
+    // the largest total factor that fits in some stages: the stages matter, [5, 2] fits
+    // where [10] does not, and it said "at most 42" where [7, 7] ran
+    let fits =
+        |stages: &[usize]| Decimator::new(stages).is_ok_and(|d| d.min_len() <= n && enough(&d));
     // no more than leaves the equations with the first and last decimated samples left
     // out (each carries an end sample's noise, [`Decimator::unsettled`]): ceil(n / t)
     // samples of at least `samples`, which spares the costly count of the unsettled ones
@@ -217,7 +215,9 @@ fn stagings(total: usize) -> Vec<Vec<usize>> {
         .flat_map(|s| {
             let mut rising = s.clone();
             rising.reverse();
-            [s, rising]
+            // a palindrome once: each staging costs a filter's count of unsettled samples
+            let twice = rising != s;
+            std::iter::once(s).chain(twice.then_some(rising))
         })
         .collect()
 }
