@@ -89,7 +89,9 @@ pub struct JointReport {
     /// Share of samples whose torque magnitude is at least 98 % of the description's
     /// torque limit, when it has one.
     pub torque_at_limit: Option<f64>,
-    /// Share of samples at rest (|velocity| below the rest velocity).
+    /// Share of samples at rest: |velocity| below the rest velocity, or every sample of
+    /// a joint that does not move (`moves` false), whatever its velocity's noise (under
+    /// `rest_velocity = 0` such a joint was "at rest 0.0 %" beside "moves no").
     pub at_rest: f64,
 }
 
@@ -418,9 +420,10 @@ fn inspect_in(
         .map(|(j, (sq, st))| {
             let st = st.ok_or_else(|| no_spectrum(data, "torque", j + 1))?;
             let ((lo, hi), _) = ranges[j];
+            let moves = moves(&sq);
             Ok(JointReport {
                 joint: j + 1,
-                moves: moves(&sq),
+                moves,
                 position_range: [lo, hi],
                 position_bandwidth: position_bandwidth(&sq),
                 position_signal_top: sq.above_floor(NOISE_RATIO),
@@ -429,7 +432,11 @@ fn inspect_in(
                 torque_noise: st.noise_rms(),
                 torque_at_extremes: at_extremes[j] as f64 / count,
                 torque_at_limit: limit(j).map(|_| counts[j].0 as f64 / count),
-                at_rest: at_rest[j] as f64 / count,
+                at_rest: if moves {
+                    at_rest[j] as f64 / count
+                } else {
+                    1.0
+                },
             })
         })
         .collect::<Result<_>>()?;
@@ -600,6 +607,13 @@ mod tests {
             assert!(!row.contains("250.00"), "{what}: {row}");
             let json = serde_json::to_value(&i).unwrap();
             assert!(json["joints"][1]["position_bandwidth"].is_null(), "{what}");
+            // a joint that does not move is at rest throughout, even where no velocity
+            // is below the rest velocity (it was "at rest 0.0 %" under 0)
+            let mut config = Config::default();
+            config.processing.rest_velocity = Some(crate::data::PerJoint::All(0.0));
+            let i = inspect(&d, &config, &[None, None]).unwrap();
+            assert_eq!(i.joints[1].at_rest, 1.0, "{what}");
+            assert!(i.joints[0].at_rest < 0.01, "{what}: {:?}", i.joints[0]);
         }
     }
 

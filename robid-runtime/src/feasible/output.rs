@@ -357,7 +357,7 @@ mod tests {
         for want in [
             "# Physically consistent link parameters of arm (method interior-point).\n".to_string(),
             format!("# chi^2 = {:.6e} over 11 base parameters, max |z| = {z:.4} (|z| <= 1: within one std); 0.250 s.\n", s.chi2),
-            "# Not from the data (no effect on the dynamics), values from the prior, or the nearest to them that the physical constraints and bounds allow: XY1 YZ1.\n".into(),
+            "# Not from the data (no effect on the dynamics), values from the prior (the default prior where none is given), or the nearest to them that the physical constraints and bounds allow: XY1 YZ1.\n".into(),
             "# bound not met: link 1: mass 2 outside [0.0, 1.9]\n".into(),
             "# at a bound: link 1: mass 2 at its upper bound 2\n".into(),
             "# Share determined by the data (1) rather than the prior (0), per link:\n".into(),

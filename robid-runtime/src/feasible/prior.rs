@@ -54,6 +54,11 @@ impl Prior {
     pub const DEFAULT_WEIGHT: f64 = 100.0;
 }
 
+/// The default prior's weight unless told (see [`Prior::weight`]): weak, so that it
+/// settles what the data leave free and barely moves what they determine. Every method
+/// pulls the values a user's prior does not give towards the default prior with it.
+pub const DEFAULT_PRIOR_WEIGHT: f64 = 1e-2;
+
 /// A link's extent in its own frame: the segment from the joint it turns about to the
 /// next joint (both ends in the link frame, m).
 #[derive(Debug, Clone, Copy, PartialEq)]

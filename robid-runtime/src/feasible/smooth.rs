@@ -52,7 +52,7 @@ impl Default for SmoothOptions {
     fn default() -> SmoothOptions {
         SmoothOptions {
             prior: None,
-            default_weight: 1e-2,
+            default_weight: super::prior::DEFAULT_PRIOR_WEIGHT,
             penalty: 1e6,
             patience: 100,
         }

@@ -52,19 +52,20 @@ impl Method {
 
     /// Where the values of the parameters the data do not see ([`Solution::dont_care`])
     /// come from, for messages: the prior (the user's, else the default one) where the
-    /// physical constraints and bounds let them be, or for `anneal`, which has no default
+    /// physical constraints and bounds let them be, or for `anneal` without a user's
     /// prior, the search within the bounds. (The constraints can move them: a mass the
     /// data do not see is pushed to its bound by first moments the data do see.)
     pub fn dont_care_source(self) -> &'static str {
         match self {
             Method::Anneal => {
-                "from the prior if one is given (or as near to them as the physical \
-                 constraints and bounds allow; values held fixed or tied by an equality stay \
-                 the search's), else from the search within the bounds"
+                "from the prior if one is given (the default prior where it gives none, or \
+                 as near to them as the physical constraints and bounds allow; values held \
+                 fixed or tied by an equality stay the search's), else from the search \
+                 within the bounds"
             }
             Method::Sdp | Method::Cholesky | Method::Interior => {
-                "from the prior, or the nearest to them that the physical constraints and \
-                 bounds allow"
+                "from the prior (the default prior where none is given), or the nearest to \
+                 them that the physical constraints and bounds allow"
             }
         }
     }

@@ -17,9 +17,9 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::Num;
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, Equality, GravityCoefficients, LinkBounds, Prior, Problem, SdpOptions,
-    SmoothOptions, Solution, Unsized, UrdfJoint, solve_anneal, solve_interior, solve_sdp,
-    solve_smooth, solve_two_step, to_toml, to_urdf,
+    AnnealOptions, Bounds, DEFAULT_PRIOR_WEIGHT, Equality, GravityCoefficients, LinkBounds, Prior,
+    Problem, SdpOptions, SmoothOptions, Solution, Unsized, UrdfJoint, solve_anneal, solve_interior,
+    solve_sdp, solve_smooth, solve_two_step, to_toml, to_urdf,
 };
 use robid_symbolic::Robot;
 use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
@@ -45,9 +45,6 @@ link gets the [default] shown (see docs/command-line.md, \"Bounds file\"):
   [links.6]
   mass = [0.1, 0.5]
   inertia_tensor = { xx = [0.0, 0.004], xy = [-0.001, 0.001] }   # about the com";
-
-/// The weight of the default prior of solid links (see `--prior-weight`).
-const DEFAULT_PRIOR_WEIGHT: f64 = 1e-2;
 
 /// The most entries of RESULT.json kept as free terms (not base parameters of the
 /// description, no expression): each is a variable of the solvers, whose time grows
@@ -372,7 +369,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         default_weight,
         ..SmoothOptions::default()
     };
-    // anneal has no default prior: its stated values are the centre of the bounds anyway
+    // anneal takes the default prior only for what a user's prior omits, and falls back
+    // to the centre of the bounds for links without a size as the default prior does
     if args.method != "anneal"
         && let Some(reason) = problem.unsized_links()
     {

@@ -818,15 +818,15 @@ fn feasible_asks_for_bounds_where_the_links_have_no_length() {
             && err.contains("bounds.toml"),
         "{err}"
     );
-    let unseen = "not from the data (no effect on the torques), values from the prior, or the \
-                  nearest to them that the physical constraints and bounds allow: XX1 XY1 XZ1 \
+    let unseen = "not from the data (no effect on the torques), values from the prior (the \
+                  default prior where none is given), or the nearest to them that the physical constraints and bounds allow: XX1 XY1 XZ1 \
                   YY1 YZ1 MX1 MY1 MZ1 M1";
     assert!(err.contains(unseen), "{err}");
     let text = std::fs::read_to_string(&output).unwrap();
     assert!(
         text.contains(
-            "# Not from the data (no effect on the dynamics), values from the prior, or the \
-             nearest to them that the physical constraints and bounds allow: XX1 XY1 XZ1 YY1 \
+            "# Not from the data (no effect on the dynamics), values from the prior (the \
+             default prior where none is given), or the nearest to them that the physical constraints and bounds allow: XX1 XY1 XZ1 YY1 \
              YZ1 MX1 MY1 MZ1 M1."
         ),
         "{text}"

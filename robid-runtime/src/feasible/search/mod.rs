@@ -68,9 +68,12 @@ pub struct AnnealOptions {
     pub polish_iterations: usize,
     /// Hops per restart: one link (in turn) drawn afresh and polished, kept when better.
     pub hops: usize,
-    /// The user's prior (e.g. CAD values), pulled towards as in the other methods; the
-    /// search keeps its don't-care values (centre of the bounds) for the parameters the
-    /// prior does not give.
+    /// The user's prior (e.g. CAD values), pulled towards as in the other methods, and
+    /// as in them the default prior (at [`DEFAULT_PRIOR_WEIGHT`]) for the parameters it
+    /// does not give; without a prior, what the data leave free stays where the search
+    /// leaves it (within the bounds).
+    ///
+    /// [`DEFAULT_PRIOR_WEIGHT`]: crate::feasible::DEFAULT_PRIOR_WEIGHT
     pub prior: Option<Prior>,
     /// Masses and centre-of-mass coordinates held at given values (the second step of
     /// [`solve_two_step`] holds those the gravity step found).
@@ -397,7 +400,12 @@ fn search(
             .unwrap_or_else(|| DMatrix::zeros(cols.len(), a.nrows()))
     });
     let pull = match &options.prior {
-        Some(prior) => Some(Pull::new(problem, bounds, Some(prior), 0.0)?),
+        Some(prior) => Some(Pull::new(
+            problem,
+            bounds,
+            Some(prior),
+            super::prior::DEFAULT_PRIOR_WEIGHT,
+        )?),
         None => None,
     };
     let margin = bounds.margin_for(layout, pull.as_ref().map(|p| p.target.as_slice()))?;
