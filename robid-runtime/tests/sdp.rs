@@ -124,8 +124,7 @@ fn consistent_least_squares_recovers_a_consistent_truth() {
     let mut rng = robid_runtime::rng::Rng::new(7);
     let w = DMatrix::from_fn(40, 11, |_, _| rng.uniform(-1.0, 1.0));
     let y = &w * DVector::from_column_slice(&truth);
-    let s = consistent_least_squares(&p, &w, &y, &Bounds::wide(1), &SdpOptions::default())
-        .unwrap();
+    let s = consistent_least_squares(&p, &w, &y, &Bounds::wide(1), &SdpOptions::default()).unwrap();
     let worst = s
         .standard
         .iter()
@@ -162,7 +161,9 @@ fn what_no_base_parameter_holds_is_settled_at_the_prior() {
             prior: Some(prior(&values, 1e-12)),
             ..SdpOptions::default()
         };
-        let p = solve_sdp(&problem, &Bounds::wide(1), &options).unwrap().standard;
+        let p = solve_sdp(&problem, &Bounds::wide(1), &options)
+            .unwrap()
+            .standard;
         // measured 1.5e-11 and 7.3e-11 (XY1, whose scale is 2.2: see the next test), at
         // most 9.5e-14 (the others)
         assert!((p[1] - xy).abs() < 1.5e-10, "XY1 {} against {xy}", p[1]);
@@ -219,5 +220,8 @@ fn a_loosely_identified_parameter_blends_data_and_prior_as_interior_point_does()
     let want = (0.001 * data + 0.004 * pull) / (data + pull);
     // measured 5.5e-9 (the conic solver's tolerance) and 8.4e-11
     assert!((sdp - want).abs() < 1.1e-8, "sdp {sdp} against {want}");
-    assert!((interior - want).abs() < 1.7e-10, "interior {interior} against {want}");
+    assert!(
+        (interior - want).abs() < 1.7e-10,
+        "interior {interior} against {want}"
+    );
 }
