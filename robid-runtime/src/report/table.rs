@@ -540,4 +540,25 @@ mod tests {
         assert_eq!(value(-12.5), "-12.500000");
         assert_eq!(value(2.5e7), "2.5e7");
     }
+
+    /// A figure keeps its fixed decimals down to the smallest that still shows (half the
+    /// last decimal rounds up to it) and takes three significant digits below; an
+    /// improvement is a percentage down to exactly ten times the reference's NMSE (-900 %),
+    /// the ratio beyond.
+    #[test]
+    fn small_figures_and_large_losses_are_written_so_they_say_something() {
+        assert_eq!(small_too(0.3, 2), "0.30");
+        assert_eq!(small_too(0.005, 2), "0.01");
+        assert_eq!(small_too(0.05, 1), "0.1");
+        assert_eq!(small_too(0.0049, 2), "0.0049");
+        assert_eq!(small_too(-1.23456e-8, 1), "-1.23e-8");
+        assert_eq!(small_too(0.0, 1), "0.0");
+        assert_eq!(improvement(-900.0), "-900.0 %");
+        assert_eq!(
+            improvement(-900.5),
+            "none: the identified model's NMSE is 10 times the reference's"
+        );
+        assert_eq!(improvement(0.04), "0.0 %");
+        assert_eq!(improvement(28.51), "28.5 %");
+    }
 }
