@@ -25,7 +25,10 @@ pub const TORQUE_LIMIT_FACTOR: f64 = 5.0;
 /// [`SPEED_LIMIT_FACTOR`] times the velocity limit (time stamps in s read as ms), or data
 /// of another robot: identification takes them as they
 /// are and fits them without a word. Joints without limits, and joints `extremes` does not cover, are not
-/// checked.
+/// checked against limits. Whatever the limits, a velocity column in other units than
+/// the positions ([`VelocityAgreement::warning`]) is told too.
+///
+/// [`VelocityAgreement::warning`]: robid_runtime::data::VelocityAgreement::warning
 ///
 /// ```
 /// use robid_runtime::data::Extremes;
@@ -86,6 +89,7 @@ pub fn beyond_limits(robot: &Robot, extremes: &Extremes, file: &Path) -> Vec<Str
             (None, Some(speed)) => warnings.extend(speed_beyond_limit(j + 1, joint, speed, file)),
             (None, None) => {}
         }
+        warnings.extend(extremes.velocity.get(j).and_then(|a| a.warning(j + 1)));
     }
     warnings
 }

@@ -4,6 +4,7 @@ use crate::DataError;
 use std::path::PathBuf;
 
 use crate::data::Warning;
+use crate::data::agreement::{VelocityAgreement, add_agreements};
 use crate::data::speed::{SpeedHistogram, count_speeds};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, Quantity, check_size};
@@ -304,12 +305,22 @@ pub struct Extremes {
     /// How fast each joint's positions move ([`SpeedHistogram`]), checked against the
     /// velocity limits (a wrong `time_scale`).
     pub speed: Vec<SpeedHistogram>,
+    /// Whether each joint's velocity column is its positions' derivative
+    /// ([`VelocityAgreement`]); empty when the record has no velocity columns.
+    pub velocity: Vec<VelocityAgreement>,
 }
 
 impl Extremes {
     /// Widened to the positions `q` and torques `tau` of a block of the same joints,
     /// sample k at `time(k)` seconds (for the speeds).
-    pub(crate) fn widen(&mut self, q: &Signals, tau: &Signals, time: &dyn Fn(usize) -> f64) {
+    /// With the velocities `qd`, when the record has them, their agreement with `q`.
+    pub(crate) fn widen(
+        &mut self,
+        q: &Signals,
+        qd: Option<&Signals>,
+        tau: &Signals,
+        time: &dyn Fn(usize) -> f64,
+    ) {
         for (ranges, x) in [(&mut self.position, q), (&mut self.torque, tau)] {
             ranges.resize(x.dof(), [f64::INFINITY, f64::NEG_INFINITY]);
             for (r, [lo, hi]) in ranges.iter_mut().zip(x.extremes()) {
@@ -317,6 +328,9 @@ impl Extremes {
             }
         }
         count_speeds(&mut self.speed, q, time);
+        if let Some(qd) = qd {
+            add_agreements(&mut self.velocity, q, qd, time);
+        }
     }
 
     /// Widened to `other`'s extremes (those of another part of the same record).
@@ -336,6 +350,13 @@ impl Extremes {
             SpeedHistogram::default(),
         );
         for (a, b) in self.speed.iter_mut().zip(&other.speed) {
+            a.join(b);
+        }
+        self.velocity.resize(
+            self.velocity.len().max(other.velocity.len()),
+            VelocityAgreement::default(),
+        );
+        for (a, b) in self.velocity.iter_mut().zip(&other.velocity) {
             a.join(b);
         }
     }

@@ -445,7 +445,7 @@ fn decimal_comma(text: &str) -> &'static str {
 /// positions' total change over the velocities' integrated one: the factor of a unit slip
 /// names it (within 2 %: a time column in minutes, 60 times apart, is not degrees, 57.3),
 /// else the causes in general.
-fn derivative_cause(ratio: f64) -> &'static str {
+pub(crate) fn derivative_cause(ratio: f64) -> &'static str {
     let near = |r: f64| (ratio / r - 1.0).abs() < 0.02;
     if near(1e-3) {
         "1000 times apart: is the time column in milliseconds (or are the velocities in \

@@ -3,6 +3,7 @@
 //! a TOML config mapping columns and units, time stamps checked and resampled,
 //! several files joined, the drive chain applied.
 
+mod agreement;
 mod config;
 mod dataset;
 mod error;
@@ -19,6 +20,7 @@ mod table;
 mod time;
 
 pub use crate::toml_syntax::read_text;
+pub use agreement::{AGREEMENT_CORRELATION, AGREEMENT_SCALES, VelocityAgreement};
 pub(crate) use config::nonzero;
 pub use config::{
     AngleUnit, Columns, Config, ConfigOrigin, Cutoff, DEFAULT_REST_VELOCITY, Decimation,

@@ -732,6 +732,63 @@ fn speeds_past_the_velocity_limit_are_told() {
     }
 }
 
+/// `identify` and `inspect` warn of a velocity column in other units than the positions:
+/// the pendulum's velocities in degrees per second beside positions in radians (the
+/// viscous friction came out 57 times too small without a word), and negated. The
+/// derivative itself passes.
+#[test]
+fn a_velocity_column_in_other_units_is_told() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let config = write(
+        d,
+        "config.toml",
+        &CONFIG.replace("torque = ", "velocity = [\"rate\"]\ntorque = "),
+    );
+    let with_velocity = |scale: f64| {
+        let mut csv = String::from("time,angle,rate,torque\n");
+        for line in log().lines().skip(1) {
+            let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+            let qd = 1.2 * 1.3 * (1.3 * f[0]).cos() - 0.3 * 4.1 * (4.1 * f[0]).sin();
+            let _ = writeln!(csv, "{},{},{},{}", f[0], f[1], scale * qd, f[2]);
+        }
+        csv
+    };
+    for command in ["identify", "inspect"] {
+        let run = |name: &str, scale: f64| {
+            let data = write(d, name, &with_velocity(scale));
+            robid(&[
+                command,
+                robot.to_str().unwrap(),
+                "--config",
+                config.to_str().unwrap(),
+                "--data",
+                data.to_str().unwrap(),
+            ])
+        };
+        let o = run("radians.csv", 1.0);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(!stderr(&o).contains("velocity column"), "{}", stderr(&o));
+        let o = run("degrees.csv", 1f64.to_degrees());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains(
+                "warning: joint 1's velocity column is 57.3 times the derivative of its positions"
+            ) && e.contains("are the velocities in degrees per second")
+                && e.contains("`velocity = \"differentiate\"`"),
+            "{command}: {e}"
+        );
+        let e = stderr(&run("negated.csv", -1.0));
+        assert!(
+            e.contains("joint 1's velocity column is -1 times the derivative")
+                && e.contains("of the opposite sign"),
+            "{command}: {e}"
+        );
+    }
+}
+
 /// `identify` warns of positions far beyond the description's limits as `inspect` does
 /// (the same words), from the extremes the loader keeps: the record kept on disk (one
 /// file), a record cut at its gaps (`gaps = "split"`, over its segments), each run of

@@ -325,7 +325,7 @@ impl SpilledRecord {
             )?;
             // the time stamps as read (scaled), else the config's rate
             let at = |k: usize| stamps.get(k).copied().unwrap_or(k as f64 * checked_at);
-            extremes.widen(&window.q, &window.tau, &at);
+            extremes.widen(&window.q, window.qd.as_ref(), &window.tau, &at);
             Ok(())
         })?;
         progress.finish();
