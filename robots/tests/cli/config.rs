@@ -734,8 +734,8 @@ fn speeds_past_the_velocity_limit_are_told() {
 
 /// `identify` and `inspect` warn of a velocity column in other units than the positions:
 /// the pendulum's velocities in degrees per second beside positions in radians (the
-/// viscous friction came out 57 times too small without a word), and negated. The
-/// derivative itself passes.
+/// viscous friction came out 57 times too small without a word), and negated, also over
+/// the segments of a record cut at a gap. The derivative itself passes.
 #[test]
 fn a_velocity_column_in_other_units_is_told() {
     let dir = folder();
@@ -787,6 +787,37 @@ fn a_velocity_column_in_other_units_is_told() {
             "{command}: {e}"
         );
     }
+    // a record cut at a gap (`gaps = "split"`): the segments' sums joined
+    let gapped: String = with_velocity(1f64.to_degrees())
+        .lines()
+        .enumerate()
+        .filter(|(k, _)| !(1001..1401).contains(k))
+        .map(|(_, l)| format!("{l}\n"))
+        .collect();
+    let gapped = write(d, "gapped.csv", &gapped);
+    let split = write(
+        d,
+        "split.toml",
+        &std::fs::read_to_string(&config)
+            .unwrap()
+            .replace("[processing]\n", "[processing]\ngaps = \"split\"\n"),
+    );
+    let o = robid(&[
+        "identify",
+        robot.to_str().unwrap(),
+        "--config",
+        split.to_str().unwrap(),
+        "--data",
+        gapped.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("segment"), "{}", stdout(&o));
+    let e = stderr(&o);
+    assert_eq!(
+        e.matches("joint 1's velocity column is 57.3 times").count(),
+        1,
+        "{e}"
+    );
 }
 
 /// `identify` warns of positions far beyond the description's limits as `inspect` does
