@@ -158,6 +158,22 @@ fn the_loader_keeps_the_extremes() {
         assert_eq!(bits(&kept.position), q);
         assert_eq!(bits(&kept.torque), tau);
     }
+    // the velocities' agreement with the positions, window by window on disk (the strides
+    // across a window's edge left out): joint 1's velocity column, 20 cos(0.7 t) beside
+    // positions 30 sin(0.7 t), is 20 / 21 of their derivative through the drive chain
+    let scales =
+        |e: &Extremes| -> Vec<f64> { e.velocity.iter().map(|a| a.scale().unwrap()).collect() };
+    let (memory, disk) = (scales(Record::extremes(&data)), scales(record.extremes()));
+    assert_eq!((memory.len(), disk.len()), (3, 3));
+    assert!((memory[0] - 20.0 / 21.0).abs() < 1e-3, "{memory:?}");
+    for (a, b) in memory.iter().zip(&disk) {
+        // measured 1e-4 to 4.4e-4 apart (each window starts its strides afresh, and the
+        // log repeats a row every 97)
+        assert!(
+            (a - b).abs() < 1e-3 * a.abs(),
+            "{memory:?} against {disk:?}"
+        );
+    }
     // joint side: 30 degrees of the motors through gear ratios of 50 and more (and the
     // coupling), in radians
     let position = &data.extremes.position;
