@@ -176,5 +176,24 @@ mod tests {
         let noisy = sums(&q, &noise);
         assert!(noisy.correlation().unwrap().abs() < 0.1);
         assert_eq!(noisy.disagreement(), None);
+        // what is told: the scale, the likely unit or the sign, the fix
+        assert_eq!(agree.warning(2), None);
+        let w = sums(&q, &qd(degrees, 0.0)).warning(2).unwrap();
+        assert!(
+            w.starts_with("joint 2's velocity column is 57.3 times the derivative")
+                && w.contains("are the velocities in degrees per second")
+                && w.contains("`velocity = \"differentiate\"`"),
+            "{w}"
+        );
+        let w = sums(&q, &qd(-1.0, 0.0)).warning(2).unwrap();
+        assert!(
+            w.contains("is -1 times") && w.contains("of the opposite sign"),
+            "{w}"
+        );
+        let w = sums(&q, &qd(0.5, 0.0)).warning(2).unwrap();
+        assert!(
+            w.contains("is 0.5 times") && w.contains("not the derivative"),
+            "{w}"
+        );
     }
 }
