@@ -39,12 +39,11 @@ impl VelocityAgreement {
             let integral: f64 = (k..k + SPEED_STRIDE)
                 .map(|i| 0.5 * (qd[i] + qd[i + 1]) * (time(i + 1) - time(i)))
                 .sum();
+            // finite: the loader refuses values that are not, or beyond their range, first
             let change = q[k + SPEED_STRIDE] - q[k];
-            if integral.is_finite() && change.is_finite() {
-                self.moved += change * change;
-                self.cross += change * integral;
-                self.integrated += integral * integral;
-            }
+            self.moved += change * change;
+            self.cross += change * integral;
+            self.integrated += integral * integral;
             k += SPEED_STRIDE;
         }
     }
