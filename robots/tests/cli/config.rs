@@ -788,23 +788,39 @@ fn a_velocity_column_in_other_units_is_told() {
         );
     }
     // a record cut at a gap (`gaps = "split"`): the segments' sums joined
-    let gapped: String = with_velocity(1f64.to_degrees())
+    let config = std::fs::read_to_string(&config).unwrap();
+    let e = identify_split_at_a_gap(
+        d,
+        robot.to_str().unwrap(),
+        &config,
+        &with_velocity(1f64.to_degrees()),
+    );
+    assert_eq!(
+        e.matches("joint 1's velocity column is 57.3 times").count(),
+        1,
+        "{e}"
+    );
+}
+
+/// `identify` of the pendulum `robot` (a path) with `config` (its text) and `gaps =
+/// "split"`, on `log` (a CSV's text) less rows 1001 to 1400: the record cut at that gap
+/// into segments. Its standard error, the run checked to succeed over segments.
+fn identify_split_at_a_gap(dir: &std::path::Path, robot: &str, config: &str, log: &str) -> String {
+    let gapped: String = log
         .lines()
         .enumerate()
         .filter(|(k, _)| !(1001..1401).contains(k))
         .map(|(_, l)| format!("{l}\n"))
         .collect();
-    let gapped = write(d, "gapped.csv", &gapped);
+    let gapped = write(dir, "gapped.csv", &gapped);
     let split = write(
-        d,
+        dir,
         "split.toml",
-        &std::fs::read_to_string(&config)
-            .unwrap()
-            .replace("[processing]\n", "[processing]\ngaps = \"split\"\n"),
+        &config.replace("[processing]\n", "[processing]\ngaps = \"split\"\n"),
     );
     let o = robid(&[
         "identify",
-        robot.to_str().unwrap(),
+        robot,
         "--config",
         split.to_str().unwrap(),
         "--data",
@@ -812,12 +828,7 @@ fn a_velocity_column_in_other_units_is_told() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).contains("segment"), "{}", stdout(&o));
-    let e = stderr(&o);
-    assert_eq!(
-        e.matches("joint 1's velocity column is 57.3 times").count(),
-        1,
-        "{e}"
-    );
+    stderr(&o)
 }
 
 /// `identify` warns of positions far beyond the description's limits as `inspect` does
@@ -902,35 +913,12 @@ fn identify_warns_of_positions_beyond_the_limits() {
     );
     assert_eq!(e.matches("beyond its limits").count(), 1, "{e}");
     // a record cut at its gaps (`gaps = "split"`): over its segments
-    let gapped: String = std::fs::read_to_string(degrees)
-        .unwrap()
-        .lines()
-        .enumerate()
-        .filter(|(k, _)| !(1001..1401).contains(k))
-        .map(|(_, l)| format!("{l}\n"))
-        .collect();
-    let gapped = write(d, "gapped.csv", &gapped);
-    let split = write(
-        d,
-        "split.toml",
-        &CONFIG.replace("[processing]\n", "[processing]\ngaps = \"split\"\n"),
-    );
-    let o = robid(&[
-        "identify",
-        robot,
-        "--config",
-        split.to_str().unwrap(),
-        "--data",
-        gapped.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let e = stderr(&o);
+    let e = identify_split_at_a_gap(d, robot, CONFIG, &std::fs::read_to_string(degrees).unwrap());
     assert!(
         warned(&e) && e.contains("warning: joint 1's positions"),
         "{e}"
     );
     assert_eq!(e.matches("beyond its limits").count(), 1, "{e}");
-    assert!(stdout(&o).contains("segment"), "{}", stdout(&o));
     // the second of two runs
     let o = robid(&["identify", robot, "--config", runs]);
     assert!(o.status.success(), "{}", stderr(&o));

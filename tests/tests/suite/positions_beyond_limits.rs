@@ -4,8 +4,9 @@
 //! them (`Record::extremes`, no pass of its own), and `robots::limits::
 //! beyond_limits` (what `robid identify` and `robid inspect` warn with) names each joint
 //! beyond its limits: for the record kept on disk (`load_record`, one file), the data set
-//! in memory (`load`) and each run of `[runs]` (`load_runs`). The same log in radians
-//! gives no warning.
+//! in memory (`load`) and each run of `[runs]` (`load_runs`); its velocity column, left
+//! in radians per second, is named as disagreeing with those positions. The same log in
+//! radians gives no warning.
 
 use std::path::Path;
 
@@ -43,15 +44,26 @@ fn a_log_in_degrees_read_as_radians_is_named_beyond_the_limits() {
     let config = Config::from_toml_str(CONFIG, &tmp.path("c.toml")).unwrap();
     let warnings = |record: &dyn Record| beyond_limits(&robot, record.extremes(), description);
     // every joint beyond its limits ([-6.2832, 6.2832] rad, joint 3 [-3.1416, 3.1416]):
-    // its excursion of 30 to 70 degrees read as radians
+    // its excursion of 30 to 70 degrees read as radians; and its velocity column, left in
+    // radians per second, 1 / 57.3 of the derivative of those positions
     let check = |w: Vec<String>, how: &str| {
-        assert_eq!(w.len(), 6, "{how}: {w:?}");
-        for (j, w) in w.iter().enumerate() {
+        assert_eq!(w.len(), 12, "{how}: {w:?}");
+        for (j, w) in w.chunks(2).enumerate() {
             assert!(
-                w.starts_with(&format!("joint {}'s positions span [", j + 1))
-                    && w.contains("rad, beyond its limits [")
-                    && w.contains("in ur5e.toml: positions in degrees, or motor angles? set `angle = \"deg\"` in [units]"),
-                "{how}: {w}"
+                w[0].starts_with(&format!("joint {}'s positions span [", j + 1))
+                    && w[0].contains("rad, beyond its limits [")
+                    && w[0].contains("in ur5e.toml: positions in degrees, or motor angles? set `angle = \"deg\"` in [units]"),
+                "{how}: {}", w[0]
+            );
+            assert!(
+                w[1].starts_with(&format!(
+                    "joint {}'s velocity column is 0.0175 times the derivative of its positions",
+                    j + 1
+                )) && w[1].contains(
+                    "are the positions in degrees and the velocities in radians per second?"
+                ),
+                "{how}: {}",
+                w[1]
             );
         }
         // the span is the log's: joint 1's largest position in degrees, to 4 digits
