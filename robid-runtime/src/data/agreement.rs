@@ -170,7 +170,10 @@ mod tests {
         let mut rng = crate::rng::Rng::new(3);
         let noise: Vec<f64> = (0..n).map(|_| rng.uniform(-1e-3, 1e-3)).collect();
         let still = sums(&vec![0.5; n], &noise);
-        assert_eq!((still.scale(), still.disagreement()), (None, None));
+        assert_eq!(
+            (still.scale(), still.correlation(), still.disagreement()),
+            (None, None, None)
+        );
         // moving positions, velocities of noise: no clear correlation, nothing told
         let noisy = sums(&q, &noise);
         assert!(noisy.correlation().unwrap().abs() < 0.1);
