@@ -93,6 +93,21 @@ pub struct JointReport {
     /// a joint that does not move (`moves` false), whatever its velocity's noise (under
     /// `rest_velocity = 0` such a joint was "at rest 0.0 %" beside "moves no").
     pub at_rest: f64,
+    /// The velocity column's scale against the positions' derivative, 1 when they agree
+    /// ([`VelocityAgreement::scale`]: 57.3 for degrees per second beside radians);
+    /// `None` when the record has no velocity columns (or is a data set built in memory,
+    /// without the loader's sums) or the joint does not move.
+    ///
+    /// [`VelocityAgreement::scale`]: crate::data::VelocityAgreement::scale
+    pub velocity_scale: Option<f64>,
+    /// How closely the velocity column follows the positions' derivative: the correlation
+    /// of its integral with the positions' change over strides of 8 samples, near 1 when
+    /// it is their derivative in any unit ([`VelocityAgreement::correlation`]); `None` as
+    /// for the scale. Far below 1 for a moving joint, the column is not this joint's
+    /// velocity, or is mostly noise.
+    ///
+    /// [`VelocityAgreement::correlation`]: crate::data::VelocityAgreement::correlation
+    pub velocity_correlation: Option<f64>,
 }
 
 /// The diagnostics of a data set.
@@ -421,6 +436,7 @@ fn inspect_in(
             let st = st.ok_or_else(|| no_spectrum(data, "torque", j + 1))?;
             let ((lo, hi), _) = ranges[j];
             let moves = moves(&sq);
+            let agreement = data.extremes().velocity.get(j).filter(|_| moves);
             Ok(JointReport {
                 joint: j + 1,
                 moves,
@@ -437,6 +453,8 @@ fn inspect_in(
                 } else {
                     1.0
                 },
+                velocity_scale: agreement.and_then(|a| a.scale()),
+                velocity_correlation: agreement.and_then(|a| a.correlation()),
             })
         })
         .collect::<Result<_>>()?;
@@ -464,7 +482,7 @@ impl Inspection {
         }
         let _ = writeln!(
             s,
-            "\n  j  moves  position range        bandwidth  signal to  noise       torque bw  torque noise  at extremes  at limit  at rest\n                                   (99.9 %)   (100x floor)  (position)  (99 %)     (RMS)"
+            "\n  j  moves  position range        bandwidth  signal to  noise       torque bw  torque noise  at extremes  at limit  at rest  velocity\n                                   (99.9 %)   (100x floor)  (position)  (99 %)     (RMS)                                     (x dq/dt)"
         );
         for r in &self.joints {
             let limit = r
@@ -478,9 +496,10 @@ impl Inspection {
             let torque_bandwidth = r
                 .torque_bandwidth
                 .map_or_else(|| "constant".to_string(), |b| format!("{b:.1} Hz"));
+            let velocity = velocity_column(r);
             let _ = writeln!(
                 s,
-                "{:>3}  {:<5}  [{:>8.3}, {:>8.3}]  {:>10}  {:>7.1} Hz  {:>9.2e}  {:>10}  {:>11.2e}  {:>9.1} %  {:>8}  {:>5.1} %",
+                "{:>3}  {:<5}  [{:>8.3}, {:>8.3}]  {:>10}  {:>7.1} Hz  {:>9.2e}  {:>10}  {:>11.2e}  {:>9.1} %  {:>8}  {:>5.1} %  {:>9}",
                 r.joint,
                 if r.moves { "yes" } else { "no" },
                 r.position_range[0],
@@ -492,7 +511,8 @@ impl Inspection {
                 r.torque_noise,
                 100.0 * r.torque_at_extremes,
                 limit,
-                100.0 * r.at_rest
+                100.0 * r.at_rest,
+                velocity
             );
         }
         let _ = match &self.cutoff {
@@ -509,6 +529,20 @@ impl Inspection {
             ),
         };
         s
+    }
+}
+
+/// The table's velocity column of joint report `r`: the scale when the velocities follow
+/// the positions (`1` or `0.9991` when they agree, `57.3` for degrees per second), their correlation when they do not clearly
+/// (`r 0.42`), `-` without velocity columns or motion.
+fn velocity_column(r: &JointReport) -> String {
+    use crate::data::AGREEMENT_CORRELATION;
+    match (r.velocity_scale, r.velocity_correlation) {
+        (Some(s), Some(c)) if c.abs() >= AGREEMENT_CORRELATION => {
+            crate::Num::rounded(s, 4).to_string()
+        }
+        (_, Some(c)) => format!("r {c:.2}"),
+        _ => "-".to_string(),
     }
 }
 

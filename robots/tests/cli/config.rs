@@ -746,15 +746,17 @@ fn a_velocity_column_in_other_units_is_told() {
         "config.toml",
         &CONFIG.replace("torque = ", "velocity = [\"rate\"]\ntorque = "),
     );
-    let with_velocity = |scale: f64| {
+    // the log with a velocity column `rate(t, qd)`, qd the positions' derivative
+    let with_column = |rate: &dyn Fn(f64, f64) -> f64| {
         let mut csv = String::from("time,angle,rate,torque\n");
         for line in log().lines().skip(1) {
             let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
             let qd = 1.2 * 1.3 * (1.3 * f[0]).cos() - 0.3 * 4.1 * (4.1 * f[0]).sin();
-            let _ = writeln!(csv, "{},{},{},{}", f[0], f[1], scale * qd, f[2]);
+            let _ = writeln!(csv, "{},{},{},{}", f[0], f[1], rate(f[0], qd), f[2]);
         }
         csv
     };
+    let with_velocity = |scale: f64| with_column(&|_, qd| scale * qd);
     for command in ["identify", "inspect"] {
         let run = |name: &str, scale: f64| {
             let data = write(d, name, &with_velocity(scale));
@@ -787,6 +789,46 @@ fn a_velocity_column_in_other_units_is_told() {
             "{command}: {e}"
         );
     }
+    // inspect's table and JSON show each column's scale and correlation
+    let inspect = |name: &str, column: &str, json: bool| {
+        let data = write(d, name, column);
+        let (robot, config, data) = (robot.to_str(), config.to_str(), data.to_str());
+        let mut args = vec!["inspect", robot.unwrap(), "--config", config.unwrap()];
+        args.extend(["--data", data.unwrap()]);
+        if json {
+            args.push("--json");
+        }
+        let o = robid(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stdout(&o)
+    };
+    let joint_line = |table: &str| {
+        let line = table.lines().find(|l| l.trim_start().starts_with("1  yes"));
+        line.unwrap_or_else(|| panic!("{table}")).to_string()
+    };
+    assert!(joint_line(&inspect("radians.csv", &with_velocity(1.0), false)).ends_with("  1"));
+    let degrees = inspect("degrees.csv", &with_velocity(1f64.to_degrees()), false);
+    assert!(joint_line(&degrees).ends_with("  57.3"), "{degrees}");
+    let unrelated = with_column(&|t, _| (7.3 * t).sin());
+    let table = inspect("unrelated.csv", &unrelated, false);
+    assert!(joint_line(&table).contains("  r "), "{table}");
+    let json: serde_json::Value = serde_json::from_str(&inspect(
+        "degrees.csv",
+        &with_velocity(1f64.to_degrees()),
+        true,
+    ))
+    .unwrap();
+    let joint = &json["joints"][0];
+    let scale = joint["velocity_scale"].as_f64().unwrap();
+    assert!((scale / 1f64.to_degrees() - 1.0).abs() < 1e-3, "{joint}");
+    assert!(
+        joint["velocity_correlation"].as_f64().unwrap() > 0.999,
+        "{joint}"
+    );
+    let json = inspect("unrelated.csv", &unrelated, true);
+    let json: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let correlation = json["joints"][0]["velocity_correlation"].as_f64().unwrap();
+    assert!(correlation.abs() < 0.5, "{json}");
     // a record cut at a gap (`gaps = "split"`): the segments' sums joined
     let config = std::fs::read_to_string(&config).unwrap();
     let e = identify_split_at_a_gap(
