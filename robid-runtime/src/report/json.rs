@@ -25,6 +25,26 @@ pub struct ReportWarning {
     pub message: String,
 }
 
+impl ReportWarning {
+    /// A warning about the data themselves, of kind `data`, concerning no parameter: what
+    /// the loader says of a record (a clock resampled, a gap) and what a command finds
+    /// beyond the description's limits or between its columns (a unit slip, a dead
+    /// channel, a velocity column in other units).
+    ///
+    /// ```
+    /// use robid_runtime::report::ReportWarning;
+    /// let w = ReportWarning::data("joint 1's torque is 0 over the whole record".into());
+    /// assert_eq!((w.kind.as_str(), w.parameters.len()), ("data", 0));
+    /// ```
+    pub fn data(message: String) -> Self {
+        Self {
+            kind: "data".to_string(),
+            parameters: Vec::new(),
+            message,
+        }
+    }
+}
+
 impl From<&QualityWarning> for ReportWarning {
     fn from(w: &QualityWarning) -> Self {
         Self {

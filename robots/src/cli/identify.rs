@@ -20,7 +20,7 @@ use robid_runtime::inspect::resolve_cutoff;
 use robid_runtime::pipeline::{
     identify, identify_runs, identify_segments, identify_static, validate_loaded,
 };
-use robid_runtime::report::{Report, plot_torques, text_table, write_html};
+use robid_runtime::report::{Report, ReportWarning, plot_torques, text_table, write_html};
 use robid_runtime::{Count, Num};
 use robid_symbolic::Robot;
 use robid_symbolic::program::BaseParameter;
@@ -456,29 +456,30 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         (None, Some(d)) => d,
         (None, None) => return Err("[runs] lists no files; list the runs' files".into()),
     };
+    // what the data say before any fit, printed as soon as read (a long log takes a
+    // while) and kept for the JSON and HTML reports
+    let mut data_warnings = Vec::new();
+    let mut warn = |w: String| {
+        out::warn(format_args!("warning: {w}"));
+        data_warnings.push(w);
+    };
     let warnings = sets.iter().flat_map(|d| d.warnings.clone());
     for w in warnings.chain(record.iter().flat_map(Loaded::warnings)) {
-        out::warn(format_args!("warning: {w}"));
+        warn(w.to_string());
     }
     // data beyond the description's limits (degrees read as radians, mm as m, mN m as N m,
     // another robot's log), from the extremes the loader kept, as `robid inspect` warns
     // of them
     match &record {
-        Some(r) => {
-            for w in beyond_limits(&description, &r.extremes(), robot) {
-                out::warn(format_args!("warning: {w}"));
-            }
-        }
+        Some(r) => beyond_limits(&description, &r.extremes(), robot)
+            .into_iter()
+            .for_each(&mut warn),
         None => {
             for (i, d) in sets.iter().enumerate() {
                 let files = d.files();
                 let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
                 for w in beyond_limits(&description, &d.extremes, robot) {
-                    out::warn(format_args!(
-                        "warning: run {} ({}): {w}",
-                        i + 1,
-                        files.join(", ")
-                    ));
+                    warn(format!("run {} ({}): {w}", i + 1, files.join(", ")));
                 }
             }
         }
@@ -510,14 +511,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for group in args.validate.chunks(per_set) {
         let d = load_or_split(&config, group, model.dof())?;
         for w in d.warnings() {
-            out::warn(format_args!("warning: {w}"));
+            warn(w.to_string());
         }
         let files: Vec<String> = group.iter().map(|f| f.display().to_string()).collect();
         for w in beyond_limits(&description, &d.extremes(), robot) {
-            out::warn(format_args!(
-                "warning: --validate {}: {w}",
-                files.join(", ")
-            ));
+            warn(format!("--validate {}: {w}", files.join(", ")));
         }
         let (p, segments) = validate_loaded(model, &d, &config, &values)?;
         report = report.with_prediction(&p);
@@ -531,6 +529,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
         predictions.push(p);
     }
+    // the data's warnings first in the reports, where the quality warnings of the fit
+    // follow them (printed as read, above)
+    let printed = report.warnings.len();
+    let data = data_warnings.into_iter().map(ReportWarning::data);
+    report.warnings.splice(0..0, data);
     report.check()?;
     // files first: a reader that closes standard output early does not cost them; the
     // plots first of all, as they create their folder, which `--json` and `--report` may
@@ -551,7 +554,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             .collect();
         write_html(path, &report, &named)?;
     }
-    for w in &report.warnings {
+    let quality = report.warnings.len() - printed..;
+    for w in &report.warnings[quality] {
         out::warn(format_args!("warning: {}", w.message));
     }
     let mut stdout = out::Stdout::new();

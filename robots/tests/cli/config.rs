@@ -789,6 +789,36 @@ fn a_velocity_column_in_other_units_is_told() {
             "{command}: {e}"
         );
     }
+    // identify's JSON and HTML reports hold the data's warnings too, told once on stderr
+    let (json, html) = (d.join("degrees.json"), d.join("degrees.html"));
+    let data = write(d, "degrees.csv", &with_velocity(1f64.to_degrees()));
+    let o = robid(&[
+        "identify",
+        robot.to_str().unwrap(),
+        "--config",
+        config.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        html.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let told = "joint 1's velocity column is 57.3 times";
+    assert_eq!(stderr(&o).matches(told).count(), 1, "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let warnings = report["warnings"].as_array().unwrap();
+    let data = warnings
+        .iter()
+        .find(|w| w["message"].as_str().unwrap().contains(told));
+    assert_eq!(
+        data.map(|w| &w["kind"]),
+        Some(&"data".into()),
+        "{warnings:?}"
+    );
+    assert!(std::fs::read_to_string(&html).unwrap().contains(told));
     // inspect's table and JSON show each column's scale and correlation
     let inspect = |name: &str, column: &str, json: bool| {
         let data = write(d, name, column);
