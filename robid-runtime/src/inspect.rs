@@ -94,19 +94,19 @@ pub struct JointReport {
     /// `rest_velocity = 0` such a joint was "at rest 0.0 %" beside "moves no").
     pub at_rest: f64,
     /// The velocity column's scale against the positions' derivative, 1 when they agree
-    /// ([`VelocityAgreement::scale`]: 57.3 for degrees per second beside radians);
+    /// ([`DerivativeAgreement::scale`]: 57.3 for degrees per second beside radians);
     /// `None` when the record has no velocity columns (or is a data set built in memory,
     /// without the loader's sums) or the joint does not move.
     ///
-    /// [`VelocityAgreement::scale`]: crate::data::VelocityAgreement::scale
+    /// [`DerivativeAgreement::scale`]: crate::data::DerivativeAgreement::scale
     pub velocity_scale: Option<f64>,
     /// How closely the velocity column follows the positions' derivative: the correlation
     /// of its integral with the positions' change over strides of 8 samples, near 1 when
-    /// it is their derivative in any unit ([`VelocityAgreement::correlation`]); `None` as
+    /// it is their derivative in any unit ([`DerivativeAgreement::correlation`]); `None` as
     /// for the scale. Far below 1 for a moving joint, the column is not this joint's
     /// velocity, or is mostly noise.
     ///
-    /// [`VelocityAgreement::correlation`]: crate::data::VelocityAgreement::correlation
+    /// [`DerivativeAgreement::correlation`]: crate::data::DerivativeAgreement::correlation
     pub velocity_correlation: Option<f64>,
 }
 

@@ -7,7 +7,7 @@
 use std::path::Path;
 
 use robid_runtime::Num;
-use robid_runtime::data::Extremes;
+use robid_runtime::data::{DEFAULT_REST_VELOCITY, DerivativeAgreement, DerivativeColumn, Extremes};
 use robid_symbolic::{Joint, JointKind, Robot};
 
 /// How many times its limit a joint's torque may reach before the data are taken for
@@ -26,9 +26,12 @@ pub const TORQUE_LIMIT_FACTOR: f64 = 5.0;
 /// of another robot: identification takes them as they
 /// are and fits them without a word. Joints without limits, and joints `extremes` does not cover, are not
 /// checked against limits. Whatever the limits, a velocity column in other units than
-/// the positions ([`VelocityAgreement::warning`]) is told too.
+/// the positions, or an acceleration column in other units than the velocity column, or
+/// either column one value throughout while what it derives clearly changes (by more
+/// than the default rest velocity: a dead channel), is told too
+/// ([`DerivativeAgreement::warning`]).
 ///
-/// [`VelocityAgreement::warning`]: robid_runtime::data::VelocityAgreement::warning
+/// [`DerivativeAgreement::warning`]: robid_runtime::data::DerivativeAgreement::warning
 ///
 /// ```
 /// use robid_runtime::data::Extremes;
@@ -89,9 +92,42 @@ pub fn beyond_limits(robot: &Robot, extremes: &Extremes, file: &Path) -> Vec<Str
             (None, Some(speed)) => warnings.extend(speed_beyond_limit(j + 1, joint, speed, file)),
             (None, None) => {}
         }
-        warnings.extend(extremes.velocity.get(j).and_then(|a| a.warning(j + 1)));
+        warnings.extend(derivative_warnings(j, extremes));
     }
     warnings
+}
+
+/// [`beyond_limits`]' warnings of joint `j`'s (from 0) velocity and acceleration columns:
+/// a column is dead only beside clear motion, the positions' fastest [`SPEED_SHARE`] (for
+/// the velocities) or the velocity column's span (for the accelerations) above the
+/// default rest velocity: a joint held still may log a velocity of exactly 0 beside an
+/// encoder that flickers by a count.
+fn derivative_warnings(j: usize, extremes: &Extremes) -> Vec<String> {
+    let clearly = |v: f64| v > DEFAULT_REST_VELOCITY;
+    let speed = extremes
+        .speed
+        .get(j)
+        .and_then(|h| h.reached_by(SPEED_SHARE));
+    let velocity = extremes.velocity.get(j);
+    let span = velocity
+        .and_then(DerivativeAgreement::range)
+        .map(|[lo, hi]| hi - lo);
+    let acceleration = extremes.acceleration.get(j);
+    [
+        (
+            velocity,
+            DerivativeColumn::Velocity,
+            speed.is_some_and(clearly),
+        ),
+        (
+            acceleration,
+            DerivativeColumn::Acceleration,
+            span.is_some_and(clearly),
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(a, column, moves)| a?.warning(j + 1, column, moves))
+    .collect()
 }
 
 /// The share of a record whose speed is checked against the velocity limit: the fastest
@@ -345,5 +381,47 @@ mod tests {
             w.len() == 1 && w[0].contains("positions in degrees, or motor angles?"),
             "{w:?}"
         );
+    }
+
+    /// A velocity column of zeros is a dead channel beside positions that clearly move
+    /// (their fastest 1 % above the default rest velocity), not beside an encoder that
+    /// flickers by a count; an acceleration column of zeros likewise beside a velocity
+    /// column whose span passes the rest velocity.
+    #[test]
+    fn a_dead_derivative_column_is_told_beside_clear_motion() {
+        use robid_runtime::data::{DerivativeAgreement, SpeedHistogram};
+        let robot = crate::Reference::named("ur5e").unwrap().robot();
+        let file = Path::new("ur5e.toml");
+        let time = |k: usize| k as f64 * 1e-3;
+        let zeros = [0.0; 200];
+        let warn = |speed: f64, velocities: &[f64]| {
+            let q: Vec<f64> = (0..200).map(|k| speed * time(k)).collect();
+            let mut h = SpeedHistogram::default();
+            h.add(speed);
+            let (mut velocity, mut acceleration) = Default::default();
+            DerivativeAgreement::add(&mut velocity, &q, velocities, &time);
+            DerivativeAgreement::add(&mut acceleration, velocities, &zeros, &time);
+            let extremes = Extremes {
+                speed: vec![h],
+                velocity: vec![velocity],
+                acceleration: vec![acceleration],
+                ..Extremes::default()
+            };
+            beyond_limits(&robot, &extremes, file)
+        };
+        let w = warn(0.5, &zeros);
+        assert!(
+            w.len() == 1
+                && w[0].starts_with("joint 1's velocity column is 0 over the whole record while its positions change"),
+            "{w:?}"
+        );
+        assert!(warn(0.01, &zeros).is_empty());
+        // a velocity column that spans 0.5 rad/s beside accelerations of 0
+        let ramp: Vec<f64> = (0..200).map(|k| 0.5 * k as f64 / 199.0).collect();
+        let w = warn(0.5, &ramp);
+        let dead = "joint 1's acceleration column is 0 over the whole record while its velocity column changes";
+        assert!(w.iter().any(|w| w.starts_with(dead)), "{w:?}");
+        let slow: Vec<f64> = ramp.iter().map(|v| v * 0.05).collect();
+        assert!(!warn(0.5, &slow).iter().any(|w| w.contains("acceleration")));
     }
 }

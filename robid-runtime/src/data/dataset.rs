@@ -4,7 +4,7 @@ use crate::DataError;
 use std::path::PathBuf;
 
 use crate::data::Warning;
-use crate::data::agreement::{VelocityAgreement, add_agreements};
+use crate::data::agreement::{DerivativeAgreement, add_agreements};
 use crate::data::speed::{SpeedHistogram, count_speeds};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_JOINTS, Quantity, check_size};
@@ -306,18 +306,22 @@ pub struct Extremes {
     /// velocity limits (a wrong `time_scale`).
     pub speed: Vec<SpeedHistogram>,
     /// Whether each joint's velocity column is its positions' derivative
-    /// ([`VelocityAgreement`]); empty when the record has no velocity columns.
-    pub velocity: Vec<VelocityAgreement>,
+    /// ([`DerivativeAgreement`]); empty when the record has no velocity columns.
+    pub velocity: Vec<DerivativeAgreement>,
+    /// Whether each joint's acceleration column is its velocity column's derivative;
+    /// empty when the record has no velocity or no acceleration columns.
+    pub acceleration: Vec<DerivativeAgreement>,
 }
 
 impl Extremes {
     /// Widened to the positions `q` and torques `tau` of a block of the same joints,
     /// sample k at `time(k)` seconds (for the speeds).
-    /// With the velocities `qd`, when the record has them, their agreement with `q`.
+    /// With the velocities `qd`, when the record has them, their agreement with `q`, and
+    /// with the accelerations `qdd` too, theirs with `qd`.
     pub(crate) fn widen(
         &mut self,
         q: &Signals,
-        qd: Option<&Signals>,
+        [qd, qdd]: [Option<&Signals>; 2],
         tau: &Signals,
         time: &dyn Fn(usize) -> f64,
     ) {
@@ -330,6 +334,9 @@ impl Extremes {
         count_speeds(&mut self.speed, q, time);
         if let Some(qd) = qd {
             add_agreements(&mut self.velocity, q, qd, time);
+            if let Some(qdd) = qdd {
+                add_agreements(&mut self.acceleration, qd, qdd, time);
+            }
         }
     }
 
@@ -352,12 +359,14 @@ impl Extremes {
         for (a, b) in self.speed.iter_mut().zip(&other.speed) {
             a.join(b);
         }
-        self.velocity.resize(
-            self.velocity.len().max(other.velocity.len()),
-            VelocityAgreement::default(),
-        );
-        for (a, b) in self.velocity.iter_mut().zip(&other.velocity) {
-            a.join(b);
+        for (mine, theirs) in [
+            (&mut self.velocity, &other.velocity),
+            (&mut self.acceleration, &other.acceleration),
+        ] {
+            mine.resize(mine.len().max(theirs.len()), DerivativeAgreement::default());
+            for (a, b) in mine.iter_mut().zip(theirs) {
+                a.join(b);
+            }
         }
     }
 }

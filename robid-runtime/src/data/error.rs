@@ -285,7 +285,7 @@ pub enum DataError {
         Num::rounded(*change, 6),
         Num::rounded(*from, 15),
         Num::rounded(*integral, 6),
-        derivative_cause(*ratio)
+        derivative_cause(*ratio, super::DerivativeColumn::Velocity)
     )]
     InconsistentDerivative {
         /// Where: `file:line` of the sample at the end of the step, or the sample of what
@@ -441,26 +441,50 @@ fn decimal_comma(text: &str) -> &'static str {
     }
 }
 
-/// The likely cause of positions that disagree with their velocities, from `ratio`, the
-/// positions' total change over the velocities' integrated one: the factor of a unit slip
-/// names it (within 2 %: a time column in minutes, 60 times apart, is not degrees, 57.3),
-/// else the causes in general.
-pub(crate) fn derivative_cause(ratio: f64) -> &'static str {
+/// The likely cause of a derivative `column` that disagrees with what it derives (the
+/// velocities with the positions, the accelerations with the velocities), from `ratio`,
+/// the derived signal's total change over the column's integrated one: the factor of a unit
+/// slip names it (within 2 %: a time column in minutes, 60 times apart, is not degrees,
+/// 57.3), else the causes in general.
+pub(crate) fn derivative_cause(ratio: f64, column: super::DerivativeColumn) -> &'static str {
+    use super::DerivativeColumn::{Acceleration, Velocity};
     let near = |r: f64| (ratio / r - 1.0).abs() < 0.02;
-    if near(1e-3) {
-        "1000 times apart: is the time column in milliseconds (or are the velocities in \
-         mrad/s)? write seconds and radians"
-    } else if near(std::f64::consts::PI / 180.0) {
-        "57.3 times apart: are the velocities in degrees per second and the positions in \
-         radians?"
-    } else if near(180.0 / std::f64::consts::PI) {
-        "57.3 times apart: are the positions in degrees and the velocities in radians per \
-         second?"
-    } else if near(60.0) {
-        "60 times apart: is the time column in minutes? write it in seconds"
-    } else {
-        "a column in other units, shifted by some samples, or not the derivative of the \
-         positions"
+    match column {
+        _ if near(1e-3) => match column {
+            Velocity => {
+                "1000 times apart: is the time column in milliseconds (or are the velocities \
+                 in mrad/s)? write seconds and radians"
+            }
+            Acceleration => {
+                "1000 times apart: is the time column in milliseconds (or are the \
+                 accelerations in mrad/s^2)? write seconds and radians"
+            }
+        },
+        Velocity if near(std::f64::consts::PI / 180.0) => {
+            "57.3 times apart: are the velocities in degrees per second and the positions in \
+             radians?"
+        }
+        Velocity if near(180.0 / std::f64::consts::PI) => {
+            "57.3 times apart: are the positions in degrees and the velocities in radians per \
+             second?"
+        }
+        Acceleration if near(std::f64::consts::PI / 180.0) => {
+            "57.3 times apart: are the accelerations in degrees per second squared and the \
+             velocities in radians per second?"
+        }
+        Acceleration if near(180.0 / std::f64::consts::PI) => {
+            "57.3 times apart: are the velocities in degrees per second and the accelerations \
+             in radians per second squared?"
+        }
+        _ if near(60.0) => "60 times apart: is the time column in minutes? write it in seconds",
+        Velocity => {
+            "a column in other units, shifted by some samples, or not the derivative of the \
+             positions"
+        }
+        Acceleration => {
+            "a column in other units, shifted by some samples, or not the derivative of the \
+             velocities"
+        }
     }
 }
 

@@ -369,7 +369,8 @@ pub(crate) fn finish(config: &Config, dof: usize, read: ReadSources) -> Result<D
     // the joint-side extremes, while they are at hand (`Record::extremes`)
     let mut extremes = Extremes::default();
     let dt = data.sample_time;
-    extremes.widen(&data.q, data.qd.as_ref(), &data.tau, &|k| k as f64 * dt);
+    let derivatives = [data.qd.as_ref(), data.qdd.as_ref()];
+    extremes.widen(&data.q, derivatives, &data.tau, &|k| k as f64 * dt);
     data.extremes = extremes;
     Ok(data)
 }

@@ -20,7 +20,9 @@ mod table;
 mod time;
 
 pub use crate::toml_syntax::read_text;
-pub use agreement::{AGREEMENT_CORRELATION, AGREEMENT_SCALES, VelocityAgreement};
+pub use agreement::{
+    AGREEMENT_CORRELATION, AGREEMENT_SCALES, DerivativeAgreement, DerivativeColumn,
+};
 pub(crate) use config::nonzero;
 pub use config::{
     AngleUnit, Columns, Config, ConfigOrigin, Cutoff, DEFAULT_REST_VELOCITY, Decimation,

@@ -148,7 +148,7 @@ fn write(path: &Path, header: &str, rows: &[Vec<f64>], jitter: bool) {
 /// The two inspections as text, every number to the bit (the Debug form of a double is
 /// the shortest that reads back as it), but the velocity columns' scale and correlation:
 /// a record kept on disk gathers them window by window, each window's strides started
-/// afresh, so they agree to 1e-3 (`data::VelocityAgreement`).
+/// afresh, so they agree to 1e-3 (`data::DerivativeAgreement`).
 fn same(streamed: &Inspection, whole: &Inspection, what: &str) {
     let mut streamed = streamed.clone();
     for (s, w) in streamed.joints.iter_mut().zip(&whole.joints) {

@@ -874,6 +874,60 @@ fn a_velocity_column_in_other_units_is_told() {
     );
 }
 
+/// An acceleration column in degrees per second squared beside velocities in radians per
+/// second, or of zeros beside a velocity that changes (a dead channel: an inertia of 1e13
+/// was fitted to such a column with exit 0), is told by identify and inspect; the log's
+/// own derivatives are not.
+#[test]
+fn an_acceleration_column_in_other_units_or_dead_is_told() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let columns = "velocity = [\"rate\"]\nacceleration = [\"rate2\"]\ntorque = ";
+    let config = write(d, "config.toml", &CONFIG.replace("torque = ", columns));
+    let with_acceleration = |scale: f64| {
+        let mut csv = String::from("time,angle,rate,rate2,torque\n");
+        for line in log().lines().skip(1) {
+            let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+            let t = f[0];
+            let qd = 1.2 * 1.3 * (1.3 * t).cos() - 0.3 * 4.1 * (4.1 * t).sin();
+            let qdd = -1.2 * 1.3 * 1.3 * (1.3 * t).sin() - 0.3 * 4.1 * 4.1 * (4.1 * t).cos();
+            let _ = writeln!(csv, "{t},{},{qd},{},{}", f[1], scale * qdd, f[2]);
+        }
+        csv
+    };
+    for command in ["identify", "inspect"] {
+        let run = |name: &str, scale: f64| {
+            let data = write(d, name, &with_acceleration(scale));
+            let (robot, config, data) = (robot.to_str(), config.to_str(), data.to_str());
+            let o = robid(
+                &[command, robot.unwrap(), "--config", config.unwrap()]
+                    .into_iter()
+                    .chain(["--data", data.unwrap()])
+                    .collect::<Vec<_>>(),
+            );
+            // identify refuses the dead column's data (rank deficient: ZZ1 unexcited)
+            assert!(o.status.success() || scale == 0.0, "{}", stderr(&o));
+            stderr(&o)
+        };
+        let e = run("radians.csv", 1.0);
+        assert!(!e.contains("column"), "{command}: {e}");
+        let e = run("degrees.csv", 1f64.to_degrees());
+        assert!(
+            e.contains(
+                "joint 1's acceleration column is 57.3 times the derivative of its velocity column"
+            ) && e.contains("are the accelerations in degrees per second squared")
+                && e.contains("`acceleration = \"differentiate\"`"),
+            "{command}: {e}"
+        );
+        let e = run("dead.csv", 0.0);
+        assert!(
+            e.contains("joint 1's acceleration column is 0 over the whole record while its velocity column changes: a dead channel"),
+            "{command}: {e}"
+        );
+    }
+}
+
 /// `identify` of the pendulum `robot` (a path) with `config` (its text) and `gaps =
 /// "split"`, on `log` (a CSV's text) less rows 1001 to 1400: the record cut at that gap
 /// into segments. Its standard error, the run checked to succeed over segments.

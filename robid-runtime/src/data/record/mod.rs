@@ -325,7 +325,8 @@ impl SpilledRecord {
             )?;
             // the time stamps as read (scaled), else the config's rate
             let at = |k: usize| stamps.get(k).copied().unwrap_or(k as f64 * checked_at);
-            extremes.widen(&window.q, window.qd.as_ref(), &window.tau, &at);
+            let derivatives = [window.qd.as_ref(), window.qdd.as_ref()];
+            extremes.widen(&window.q, derivatives, &window.tau, &at);
             Ok(())
         })?;
         progress.finish();
