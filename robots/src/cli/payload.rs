@@ -10,10 +10,12 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use robid_runtime::Num;
-use robid_runtime::data::Config;
+use robid_runtime::data::{Config, Extremes};
 use robid_runtime::model::Inertial;
 use robid_runtime::payload::{JointSample, Payload, PayloadOptions, from_torques};
+use robid_runtime::{Count, Num};
+
+use robots::limits::beyond_limits;
 
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
@@ -103,10 +105,17 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let chosen = super::identify::robot_model(&args.robot, &args.description)?;
     let model = chosen.model.as_ref();
     let base = description::read_parameters(&args.parameters, true)?.base_parameters(model)?;
-    let samples = match &config {
+    let (samples, extremes) = match &config {
         Some(config) => processed_samples(config, &data, model.dof())?,
         None => state_samples(&data[0], model.dof())?,
     };
+    // what `identify` warns of in a log, before the fit: a dead torque channel, data
+    // beyond the description's limits, derivative columns in other units (a payload fitted
+    // to a sixth torque of zeros was "physically consistent: yes")
+    let robot = description::read(&args.robot, &args.description)?;
+    for w in beyond_limits(&robot, &extremes, &args.robot) {
+        out::warn(format_args!("warning: {}: {w}", data[0].display()));
+    }
     let options = PayloadOptions {
         weighted: !args.ols,
         ..PayloadOptions::default()
@@ -126,8 +135,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     Ok(())
 }
 
-/// The samples of a file of states and torques, `q1..,qd1..,qdd1..,tau1..` (`n` joints).
-fn state_samples(file: &Path, n: usize) -> Result<Vec<JointSample>, Error> {
+/// The samples of a file of states and torques, `q1..,qd1..,qdd1..,tau1..` (`n` joints),
+/// with their positions' and torques' extremes. Rows that repeat an earlier row exactly
+/// are warned of: a sample counted twice (a file appended to itself) shrinks the standard
+/// deviations by the square root of the count and says nothing new.
+fn state_samples(file: &Path, n: usize) -> Result<(Vec<JointSample>, Extremes), Error> {
     let names: Vec<String> = ["q", "qd", "qdd", "tau"]
         .iter()
         .flat_map(|p| (1..=n).map(move |j| format!("{p}{j}")))
@@ -137,7 +149,36 @@ fn state_samples(file: &Path, n: usize) -> Result<Vec<JointSample>, Error> {
                   log of `t,q1..,tau1..` as `robid identify` does, with its units and drive \
                   chain (docs/command-line.md#robid-payload)";
     let table = super::states::read_with(file, &names, n, remedy)?;
-    Ok((0..table.lines.len())
+    let mut seen = std::collections::HashSet::new();
+    let mut repeated = Vec::new();
+    for k in 0..table.rows() {
+        let row: Vec<u64> = table.columns.iter().map(|c| c[k].to_bits()).collect();
+        if !seen.insert(row) {
+            repeated.push(table.lines[k]);
+        }
+    }
+    if let Some(first) = repeated.first() {
+        out::warn(format_args!(
+            "warning: {}: {} of {} repeat an earlier row exactly (the first at line {first}): \
+             a sample counted twice makes the standard deviations smaller than the data \
+             allow; remove the repeated rows (was the file appended to itself?)",
+            file.display(),
+            Count(repeated.len(), "row"),
+            table.rows()
+        ));
+    }
+    let range = |c: &[f64]| {
+        c.iter()
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |[a, b], &v| {
+                [a.min(v), b.max(v)]
+            })
+    };
+    let extremes = Extremes {
+        position: table.columns[..n].iter().map(|c| range(c)).collect(),
+        torque: table.columns[3 * n..].iter().map(|c| range(c)).collect(),
+        ..Extremes::default()
+    };
+    let samples = (0..table.lines.len())
         .map(|k| {
             let block = |b: usize| (0..n).map(|j| table.columns[b * n + j][k]).collect();
             JointSample {
@@ -147,30 +188,32 @@ fn state_samples(file: &Path, n: usize) -> Result<Vec<JointSample>, Error> {
                 tau: block(3),
             }
         })
-        .collect())
+        .collect();
+    Ok((samples, extremes))
 }
 
 /// The samples of the data `files` read and processed with `config` as `robid identify`
 /// reads and processes them (`data::load`, `pipeline::prepare`), warning of what loading
-/// repaired.
+/// repaired, with the extremes the loader kept.
 fn processed_samples(
     config: &Config,
     files: &[PathBuf],
     n: usize,
-) -> Result<Vec<JointSample>, Error> {
+) -> Result<(Vec<JointSample>, Extremes), Error> {
     let data = robid_runtime::data::load(config, files, n)?;
     for w in &data.warnings {
         out::warn(format_args!("warning: {w}"));
     }
     let p = robid_runtime::pipeline::prepare(&data, config)?;
-    Ok((0..p.samples())
+    let samples = (0..p.samples())
         .map(|k| JointSample {
             q: p.q.sample(k),
             qd: p.qd.sample(k),
             qdd: p.qdd.sample(k),
             tau: p.tau.sample(k),
         })
-        .collect())
+        .collect();
+    Ok((samples, data.extremes))
 }
 
 /// What is printed: the ten values with their deviations, then the physical reading.

@@ -131,6 +131,33 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     assert!(toml.contains("[payload]") && toml.contains("[payload.physical]"));
     assert!(toml.contains("consistent = true"), "{toml}");
     assert!(!stderr(&o).contains("ill-conditioned"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("dead channel") && !stderr(&o).contains("repeat"));
+    // the data checks `identify` makes: a sixth torque of zeros (it was "physically
+    // consistent: yes" without a word), the file appended to itself (the standard
+    // deviations shrank by the square root of 2)
+    let text = std::fs::read_to_string(&data).unwrap();
+    let tau6 = text.lines().next().unwrap().split(',').position(|c| c == "tau6").unwrap();
+    let zeroed: String = text
+        .lines()
+        .enumerate()
+        .map(|(k, l)| {
+            let mut f: Vec<&str> = l.split(',').collect();
+            if k > 0 {
+                f[tau6] = "0";
+            }
+            f.join(",") + "\n"
+        })
+        .collect();
+    let zeroed = write(dir.path(), "zeroed.csv", &zeroed);
+    let o = payload(&["--data", zeroed.to_str().unwrap()]);
+    let told = "joint 6's torque is 0 over the whole record while the joint moves";
+    assert!(stderr(&o).contains(told), "{}", stderr(&o));
+    let body: Vec<&str> = text.lines().skip(1).collect();
+    let twice = write(dir.path(), "twice.csv", &(text.clone() + &body.join("\n") + "\n"));
+    let o = payload(&["--data", twice.to_str().unwrap()]);
+    let rows = body.len();
+    let told = format!("{rows} rows of {} repeat an earlier row exactly", 2 * rows);
+    assert!(stderr(&o).contains(&told), "{}", stderr(&o));
     // four samples of the same data: the fit's uncertain parameters are warned about, as
     // identify warns (it said only whether the payload is physically consistent)
     let text = std::fs::read_to_string(&data).unwrap();
