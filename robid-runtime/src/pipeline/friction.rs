@@ -10,10 +10,11 @@
 //! the `temperature` columns, else [`REFERENCE_TEMPERATURE`] throughout.
 
 use crate::Model;
-use crate::data::{Config, Dataset};
+use crate::data::{AGREEMENT_CORRELATION, AGREEMENT_SCALES, Config, Dataset};
 use crate::drive::{FrictionSample, RotorConfig};
 use crate::error::{Error, Result};
 use crate::pipeline::prepare::{Rows, prepare_rows};
+use crate::signal::Signals;
 
 /// The temperature (deg C) of every sample of a log without `temperature` columns: the
 /// fit then holds the temperature coefficients at 0 (a spread of 0 K), and the model
@@ -38,6 +39,11 @@ pub struct FrictionData {
     pub joint_torque: JointTorqueSource,
     /// Whether the data have `temperature` columns (else [`REFERENCE_TEMPERATURE`]).
     pub temperature_measured: bool,
+    /// What the data say against themselves, which the fit would take as friction: a
+    /// motor encoder that does not move with its link encoder through the gear ratio (a
+    /// ratio of the wrong sign, motor positions in degrees), a joint-torque column of one
+    /// value while the joint moves (a dead sensor).
+    pub warnings: Vec<String>,
 }
 
 /// The friction samples of `data` (estimation range and trim of `config`): tau_J from the
@@ -120,6 +126,10 @@ pub fn friction_samples(
             ));
         }
     };
+    let mut warnings = encoder_warnings(&p.qd, &states.thetad);
+    if let (Some(t), JointTorqueSource::Measured) = (&states.joint_torque, source) {
+        warnings.extend(dead_joint_torques(&p.qd, t));
+    }
     let mut samples = vec![Vec::with_capacity(n); dof];
     for (j, out) in samples.iter_mut().enumerate() {
         for k in 0..n {
@@ -151,5 +161,64 @@ pub fn friction_samples(
         samples,
         joint_torque: source,
         temperature_measured: states.temperature.is_some(),
+        warnings,
     })
+}
+
+/// A warning per joint whose motor velocities `thetad` (link side, through the gear
+/// ratio) follow its link velocities `qd` closely (|correlation| at least
+/// [`AGREEMENT_CORRELATION`]) at a scale outside [`AGREEMENT_SCALES`]: the joint's
+/// deflection is a small part of its motion, so the two agree within a few per cent when
+/// the drive chain is right.
+fn encoder_warnings(qd: &Signals, thetad: &Signals) -> Vec<String> {
+    let mut warnings = Vec::new();
+    for (j, (v, w)) in qd.joints().zip(thetad.joints()).enumerate() {
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let (vv, vw, ww) = (dot(v, v), dot(v, w), dot(w, w));
+        let d = (vv * ww).sqrt();
+        if !(d > 0.0 && d.is_finite()) {
+            continue;
+        }
+        let (s, r) = (vw / vv, vw / d);
+        let [lo, hi] = AGREEMENT_SCALES;
+        if r.abs() < AGREEMENT_CORRELATION || (lo..=hi).contains(&s) {
+            continue;
+        }
+        let near = |x: f64| (s / x - 1.0).abs() < 0.02;
+        let cause = if s < 0.0 {
+            "of the opposite sign: is the gear ratio's sign that of the motor's direction?"
+        } else if near(180.0 / std::f64::consts::PI) {
+            "57.3 times: are the motor positions in degrees? they are read in motor radians"
+        } else {
+            "is the gear ratio the joint's? are the motor positions in motor radians?"
+        };
+        warnings.push(format!(
+            "joint {}'s motor encoder, through its gear ratio, moves {} times its link encoder \
+             ({cause}); the friction is read at the motor's speed and its torque through the \
+             same ratio: check `drive.gear_ratios` and the motor_position columns",
+            j + 1,
+            crate::Num::rounded(s, 3)
+        ));
+    }
+    warnings
+}
+
+/// A warning per joint whose joint-torque column `tau_j` is one value over the record
+/// while its link velocities `qd` are not all 0: a dead sensor, whose zeros the fit
+/// would take as the joint carrying no load.
+fn dead_joint_torques(qd: &Signals, tau_j: &Signals) -> Vec<String> {
+    let mut warnings = Vec::new();
+    for (j, (v, t)) in qd.joints().zip(tau_j.joints()).enumerate() {
+        let constant = t.iter().all(|x| *x == t[0]);
+        if constant && v.iter().any(|x| *x != 0.0) {
+            warnings.push(format!(
+                "joint {}'s joint torque is {} over the whole record while the joint moves: a \
+                 dead sensor or the wrong column (the friction would be all of the motor's \
+                 torque); check the config's joint_torque columns",
+                j + 1,
+                crate::Num(t[0])
+            ));
+        }
+    }
+    warnings
 }

@@ -20,6 +20,8 @@ use robid_runtime::drive::{
 use robid_runtime::pipeline::{JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 use robid_runtime::progress::Progress;
 
+use robots::limits::beyond_limits;
+
 use super::description::{self, DescriptionFlags};
 use super::{Error, files, out};
 
@@ -101,12 +103,19 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for w in &data.warnings {
         out::warn(format_args!("warning: {w}"));
     }
+    // a dead current channel, torques or positions beyond the limits, as identify warns
+    for w in beyond_limits(&description, &data.extremes, &args.robot) {
+        out::warn(format_args!("warning: {w}"));
+    }
     let found = friction_samples(
         &data,
         &config,
         base.as_deref()
             .map(|b| (model as &dyn robid_runtime::Model, b)),
     )?;
+    for w in &found.warnings {
+        out::warn(format_args!("warning: {w}"));
+    }
     let mut fits = Vec::with_capacity(found.samples.len());
     let progress = Progress::new(true, "friction: fit", fits.capacity() as u64, "joints");
     for (j, samples) in found.samples.iter().enumerate() {
@@ -130,6 +139,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         progress.tick();
     }
     progress.finish();
+    for (j, fit) in fits.iter().enumerate() {
+        if let Some(w) = no_friction(j + 1, fit) {
+            out::warn(format_args!("warning: {w}"));
+        }
+    }
     let text = table(&fits, found.joint_torque, found.temperature_measured);
     let friction = FrictionModel::new(fits.iter().map(|f| f.friction).collect())?;
     friction.write(&args.output)?;
@@ -138,6 +152,24 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     writeln!(stdout, "written: {}", args.output.display())?;
     stdout.flush()?;
     Ok(())
+}
+
+/// What the fit of joint `number` says when the data pulled both its Coulomb and its
+/// viscous friction below 0 (each held at 0): what they call friction, the motor's torque
+/// less the rotor's and the joint's, is not one (a torque constant 1000 times too large,
+/// a gear ratio or a joint torque of the wrong sign gave a friction file of zeros and exit
+/// 0, its residual thousands of times a friction).
+fn no_friction(number: usize, fit: &FrictionFit) -> Option<String> {
+    let held = [FrictionParameter::Coulomb, FrictionParameter::Viscous];
+    held.iter().all(|p| fit.is_fixed(*p)).then(|| {
+        format!(
+            "joint {number}: the data pull both its Coulomb and its viscous friction below 0 \
+             (held at 0; RMS residual {} N m): the motor's torque less the rotor's and the \
+             joint's is not a friction; check the torque constants, the gear ratios' signs \
+             and the joint torques' sign and unit",
+            Num::rounded(fit.rms, 3)
+        )
+    })
 }
 
 /// The printed table: the source of tau_J and T, then per joint the parameters, the

@@ -171,6 +171,85 @@ fn recovers_the_friction_of_a_two_encoder_log() {
     // measured 4.0e-4 of the largest friction (the residual's RMS is 5e-3 N m, from the
     // central differences of the motor encoder through velocity reversals)
     assert!(e < 0.01, "friction curve off by {e}\n{text}");
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+}
+
+/// A drive chain that contradicts the data, or a dead channel, gave a friction file of
+/// zeros (or nonsense) with exit 0 and no word; each is now told: a gear ratio of the
+/// wrong sign (the motor encoder moves -0.998 times its link encoder, and both frictions are
+/// pulled below 0), a torque constant 1000 times too large, motor positions in degrees,
+/// joint torques and currents of zeros.
+#[test]
+fn a_drive_chain_that_contradicts_the_data_is_told() {
+    let dir = folder();
+    let (robot, _) = setup(dir.path(), false, true);
+    let d = dir.path();
+    let run = |config: &str, log: &str| {
+        let cfg = write(d, "bad.toml", config);
+        let log = write(d, "bad.csv", log);
+        let out = d.join("friction.toml");
+        let cfg = cfg.to_str().unwrap();
+        let o = robid(
+            &[
+                "friction",
+                &robot,
+                "--config",
+                cfg,
+                "--data",
+                log.to_str().unwrap(),
+            ]
+            .into_iter()
+            .chain(["-o", out.to_str().unwrap()])
+            .collect::<Vec<_>>(),
+        );
+        // the fit may also fail on what it is given (motor positions in degrees: a
+        // Stribeck velocity of 3.7e8 rad/s), after the warning
+        stderr(&o)
+    };
+    let (good, text) = (config(false, true), log(3000, None));
+    let sign = good.replace("gear_ratios = [10.0, -20.0]", "gear_ratios = [10.0, 20.0]");
+    let e = run(&sign, &text);
+    assert!(
+        e.contains("joint 2's motor encoder, through its gear ratio, moves -0.99")
+            && e.contains("(of the opposite sign: is the gear ratio's sign")
+            && e.contains(
+                "joint 2: the data pull both its Coulomb and its viscous friction below 0"
+            ),
+        "{e}"
+    );
+    let constant = good.replace(
+        "torque_constants = [0.1, 0.05]",
+        "torque_constants = [100.0, 0.05]",
+    );
+    let e = run(&constant, &text);
+    assert!(e.contains("joint 1: the data pull both"), "{e}");
+    // a column of the log replaced: `column` from 1 after the time, by `f(value)`
+    let with = |column: usize, f: &dyn Fn(f64) -> f64| -> String {
+        let mut lines = text.lines();
+        let mut out = lines.next().unwrap().to_string() + "\n";
+        for l in lines {
+            let mut v: Vec<String> = l.split(',').map(str::to_string).collect();
+            v[column] = f(v[column].parse().unwrap()).to_string();
+            out += &(v.join(",") + "\n");
+        }
+        out
+    };
+    let e = run(&good, &with(3, &f64::to_degrees));
+    assert!(
+        e.contains("joint 1's motor encoder, through its gear ratio, moves 57.")
+            && e.contains("are the motor positions in degrees?"),
+        "{e}"
+    );
+    let e = run(&good, &with(7, &|_| 0.0));
+    assert!(
+        e.contains("joint 1's joint torque is 0 over the whole record while the joint moves"),
+        "{e}"
+    );
+    let e = run(&good, &with(5, &|_| 0.0));
+    assert!(
+        e.contains("joint 1's torque is 0 over the whole record while the joint moves"),
+        "{e}"
+    );
 }
 
 #[test]

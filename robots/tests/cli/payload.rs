@@ -136,7 +136,13 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     // consistent: yes" without a word), the file appended to itself (the standard
     // deviations shrank by the square root of 2)
     let text = std::fs::read_to_string(&data).unwrap();
-    let tau6 = text.lines().next().unwrap().split(',').position(|c| c == "tau6").unwrap();
+    let tau6 = text
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .position(|c| c == "tau6")
+        .unwrap();
     let zeroed: String = text
         .lines()
         .enumerate()
@@ -153,7 +159,11 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     let told = "joint 6's torque is 0 over the whole record while the joint moves";
     assert!(stderr(&o).contains(told), "{}", stderr(&o));
     let body: Vec<&str> = text.lines().skip(1).collect();
-    let twice = write(dir.path(), "twice.csv", &(text.clone() + &body.join("\n") + "\n"));
+    let twice = write(
+        dir.path(),
+        "twice.csv",
+        &(text.clone() + &body.join("\n") + "\n"),
+    );
     let o = payload(&["--data", twice.to_str().unwrap()]);
     let rows = body.len();
     let told = format!("{rows} rows of {} repeat an earlier row exactly", 2 * rows);
