@@ -20,6 +20,7 @@ use crate::data::table::{Optional, read_columns_in};
 use crate::data::time::{
     check_gaps, check_monotonic, check_sample_time, interpolate, nearest_lines, regularity,
 };
+use crate::data::unwrap::Unwrap;
 use crate::data::{
     AngleUnit, Config, Dataset, Gaps, STALE_SHARE, Sampling, Source, Table, Warning, read_header,
 };
@@ -189,6 +190,10 @@ pub(crate) fn read_sources<'a>(
             check_rate(config, path, column, steps)?;
         }
         let mut columns = std::mem::take(&mut table.columns);
+        // angles logged modulo a turn, unwrapped before any interpolation
+        let mut unwrap = Unwrap::new(config, dof);
+        unwrap.apply(&spans, &mut columns, &table.lines);
+        warnings.extend(unwrap.warnings(path));
         let sampling = Sampling::of(path.clone(), time.as_deref(), &columns);
         let first_stale = sampling
             .stale_rows

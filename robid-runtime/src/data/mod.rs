@@ -18,6 +18,7 @@ mod segments;
 mod speed;
 mod table;
 mod time;
+mod unwrap;
 
 pub use crate::toml_syntax::read_text;
 pub use agreement::{
@@ -52,6 +53,7 @@ pub use time::{
     regularity,
 };
 pub(crate) use time::{check_gaps, check_time_stamps, sample_time_accepted};
+pub use unwrap::WRAP_TOLERANCE;
 
 #[cfg(test)]
 mod tests;

@@ -59,6 +59,22 @@ pub enum Warning {
         /// Its median step (s).
         step: f64,
     },
+    /// An angle column logged modulo a turn, unwrapped as it was read (see
+    /// [`WRAP_TOLERANCE`](super::WRAP_TOLERANCE)).
+    Unwrapped {
+        /// The file.
+        path: PathBuf,
+        /// The column's role: `position` or `motor_position`.
+        role: &'static str,
+        /// The joint, from 1.
+        joint: usize,
+        /// How many jumps of a whole turn were taken out.
+        wraps: usize,
+        /// The file line of the first.
+        first_line: u64,
+        /// One turn in the file's unit (2 pi, or 360 for degrees).
+        turn: f64,
+    },
     /// Rows of a file joined by time that lie outside the time stamps of the first file:
     /// they are not used (the record is the time every file covers).
     JoinedRowsUnused {
@@ -105,6 +121,21 @@ impl fmt::Display for Warning {
                 path.display(),
                 100.0 * *stale as f64 / (*rows).max(1) as f64
             ),
+            Warning::Unwrapped {
+                path,
+                role,
+                joint,
+                wraps,
+                first_line,
+                turn,
+            } => f.write_str(&super::unwrap::unwrapped_text(
+                path,
+                role,
+                *joint,
+                *wraps,
+                *first_line,
+                *turn,
+            )),
             Warning::PartialOverlap { path, dropped } => write!(
                 f,
                 "{}: covers only part of the time range of the first file joined by time: the {dropped} samples of that file outside the time stamps of this one were dropped, keeping the time both cover",

@@ -19,6 +19,7 @@ use crate::data::rate::{Steps, check_rate};
 use crate::data::sampling::SamplingScan;
 use crate::data::table::for_each_window_of;
 use crate::data::time::{Clock, Grid, interpolate, nearest_lines};
+use crate::data::unwrap::Unwrap;
 use crate::data::{Config, Dataset, Sampling, WINDOW, Warning};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
@@ -244,6 +245,7 @@ impl SpilledRecord {
         let mut clock = Clock::default();
         let mut scan = SamplingScan::new(spans.len() * dof);
         let mut extremes = Extremes::default();
+        let mut unwrap = Unwrap::new(config, dof);
         // the sample time only matters at the end: windows are checked at the config's rate
         // or at 1 kHz, which the limits always allow
         let checked_at = config.sample_rate.map_or(1e-3, |fs| 1.0 / fs);
@@ -267,6 +269,8 @@ impl SpilledRecord {
                 steps.push(&table.columns.pop().unwrap_or_default(), &table.lines);
             }
             let mut columns = std::mem::take(&mut table.columns);
+            // angles logged modulo a turn, unwrapped as `load` unwraps them
+            unwrap.apply(&spans, &mut columns, &table.lines);
             // a step back between windows is an irregular step: such a file is then
             // loaded in memory, where `load` names the line
             if let Some(t) = &time {
@@ -336,10 +340,9 @@ impl SpilledRecord {
         }
         let first_stale = scan.first_stale_line();
         let sampling = scan.finish(path.clone());
-        let mut warnings: Vec<Warning> = stale_warning(&sampling, first_stale)
-            .into_iter()
-            .chain(slow_warning(&sampling))
-            .collect();
+        let mut warnings: Vec<Warning> = unwrap.warnings(path);
+        warnings.extend(stale_warning(&sampling, first_stale));
+        warnings.extend(slow_warning(&sampling));
         let mut grid = None;
         let sample_time = match (&config.time_column, config.sample_rate) {
             (Some(_), _) => {

@@ -127,6 +127,74 @@ fn blocks_are_the_loaded_samples_bit_for_bit() {
     assert_eq!(record.line(n), None);
 }
 
+/// A motor angle logged modulo a turn (here degrees in [-180, 180): a single-turn encoder
+/// of a motion of +-400 degrees) is unwrapped on disk as in memory, to the bit, with the
+/// same warning, and gives the samples of the log written unwrapped (to the rounding of
+/// a turn added).
+#[test]
+fn wrapped_angles_are_unwrapped_on_disk_as_in_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let wrap = |text: &str| -> String {
+        let mut lines = text.lines();
+        let mut out = String::new();
+        for l in lines.by_ref() {
+            out += &format!("{l}\n");
+            if l.starts_with("t,") {
+                break;
+            }
+        }
+        for l in lines {
+            let mut f: Vec<String> = l.split(',').map(str::to_string).collect();
+            if f.len() > 1 {
+                let p: f64 = f[1].parse().unwrap();
+                f[1] = ((13.0 * p + 180.0).rem_euclid(360.0) - 180.0).to_string();
+            }
+            out += &(f.join(",") + "\n");
+        }
+        out
+    };
+    let scaled = |text: &str| -> String {
+        let mut out = String::new();
+        for l in text.lines() {
+            let mut f: Vec<String> = l.split(',').map(str::to_string).collect();
+            if let Some(p) = f.get(1).and_then(|x| x.parse::<f64>().ok()) {
+                f[1] = (13.0 * p).to_string();
+            }
+            out += &(f.join(",") + "\n");
+        }
+        out
+    };
+    let config = config(CONFIG);
+    let path = file(&dir, &wrap(&log(3000)));
+    let data = load(&config, std::slice::from_ref(&path), 3).unwrap();
+    let record = SpilledRecord::open_in(&config, std::slice::from_ref(&path), 3, SMALL)
+        .unwrap()
+        .expect("one regular file is kept on disk");
+    let n = data.samples();
+    assert_eq!(
+        bits(&record.read(0, n).unwrap()),
+        bits(&data.read(0, n).unwrap())
+    );
+    let warnings = format!("{:?}", record.warnings());
+    assert_eq!(warnings, format!("{:?}", data.warnings));
+    let told = data.warnings.iter().map(ToString::to_string);
+    let told: Vec<String> = told
+        .filter(|w| w.contains("jump by a whole turn"))
+        .collect();
+    // +-390 degrees about 0: two turns out and back, more than once
+    assert!(
+        told.len() == 1 && told[0].contains("joint 1's positions jump by a whole turn (360)"),
+        "{told:?}"
+    );
+    let plain_path = dir.path().join("plain.csv");
+    std::fs::write(&plain_path, scaled(&log(3000))).unwrap();
+    let plain = load(&config, &[plain_path], 3).unwrap();
+    let worst = (0..n)
+        .map(|k| (data.q[0][k] - plain.q[0][k]).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-12, "{worst}");
+}
+
 /// The loader keeps per joint the extremes of the joint-side positions and torques (after
 /// the units and the drive chain) as it reads them: on disk window by window and in
 /// memory, both the data set's own, to the bit. A slice (a block read) does not claim the
