@@ -162,7 +162,7 @@ pub enum DataError {
     },
     /// A value is NaN or infinite.
     #[error(
-        "{path}:{line}: column `{column}` is {}; remove or repair this row (NaN and infinite values cannot be identified from)",
+        "{path}:{line}: column `{column}` is {}; remove or repair this row (robid computes with finite numbers only)",
         not_finite(*value, text.as_deref())
     )]
     NotFinite {

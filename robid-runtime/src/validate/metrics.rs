@@ -11,13 +11,16 @@ pub struct Fit {
     pub rms_per_joint: Vec<f64>,
     /// Sum over joints of mean((tau_j - tauhat_j)^2) / mean(|tau_j|) (Madsen's NMSE,
     /// normalised per joint by the mean torque magnitude rather than per sample, which
-    /// would divide by torques that cross zero).
+    /// would divide by torques that cross zero). A joint whose mean |tau_j| is at most
+    /// [`EQ22_ZERO`] of the largest joint's is left out, as one of zero torque is (a dead
+    /// channel of 5e-324 N m made the sum infinite).
     pub nmse: f64,
     /// Madsen et al.'s NMSE exactly as their eq. 22 writes it, on their scale (N m):
     /// sum over joints and samples of (tau - tauhat)^2 / |tau|. Samples whose measured
     /// torque is zero are left out (they would divide by zero), and so are those within
-    /// [`EQ22_ZERO`] of the joint's largest (no sensor resolves them: 2e-308 N m in a log
-    /// made the sum infinite); samples near zero otherwise weigh heavily, as in the paper.
+    /// [`EQ22_ZERO`] of the joint's largest or of the record's (no sensor resolves them:
+    /// 2e-308 N m in a log made the sum infinite, and so did a joint whose every torque
+    /// was 5e-324); samples near zero otherwise weigh heavily, as in the paper.
     /// Default 0 in reports written before it existed.
     #[serde(default)]
     pub nmse_eq22: f64,
@@ -55,6 +58,16 @@ pub const EQ22_ZERO: f64 = 1e-12;
 pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
     let (mut err2, mut norm2, mut nmse, mut nmse_eq22) = (0.0, 0.0, 0.0, 0.0);
     let mut rms = Vec::with_capacity(measured.len());
+    let mean_abs = |m: &[f64], n: usize| m[..n].iter().map(|a| a.abs()).sum::<f64>() / n as f64;
+    let lengths = measured
+        .iter()
+        .zip(predicted)
+        .map(|(m, p)| m.len().min(p.len()));
+    let largest = (measured.iter().zip(lengths))
+        .filter(|(_, n)| *n > 0)
+        .fold(0.0_f64, |x, (m, n)| x.max(mean_abs(m, n)));
+    let peak = |m: &[f64]| m.iter().fold(0.0_f64, |x, a| x.max(a.abs()));
+    let record_peak = measured.iter().fold(0.0_f64, |x, m| x.max(peak(m)));
     for (m, p) in measured.iter().zip(predicted) {
         let n = m.len().min(p.len());
         if n == 0 {
@@ -62,8 +75,8 @@ pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
             continue;
         }
         let e2: f64 = m.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum();
-        let mean_abs = m.iter().map(|a| a.abs()).sum::<f64>() / n as f64;
-        let zero = EQ22_ZERO * m.iter().fold(0.0_f64, |x, a| x.max(a.abs()));
+        let mean_abs = mean_abs(m, n);
+        let zero = EQ22_ZERO * record_peak;
         nmse_eq22 += m
             .iter()
             .zip(p)
@@ -73,7 +86,7 @@ pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
         err2 += e2;
         norm2 += m.iter().map(|a| a * a).sum::<f64>();
         rms.push((e2 / n as f64).sqrt());
-        if mean_abs > 0.0 {
+        if mean_abs > EQ22_ZERO * largest {
             nmse += e2 / n as f64 / mean_abs;
         }
     }
@@ -112,6 +125,22 @@ mod tests {
             e.contains("too small for their squares") && e.contains("torque_scale"),
             "{e}"
         );
+    }
+
+    /// A joint whose torque is a subnormal number throughout (a dead channel written as
+    /// 5e-324) is left out of the NMSE, as a joint of zeros is: it was infinite, and the
+    /// identification failed with "the prediction error overflowed".
+    #[test]
+    fn a_joint_of_negligible_torque_is_left_out_of_the_nmse() {
+        let p = vec![vec![0.2, -0.1, 0.3], vec![1.0, -1.0, 2.0]];
+        let with = |t: f64| fit(&[vec![t; 3], vec![1.0, -1.0, 2.5]], &p);
+        let (zero, tiny) = (with(0.0), with(5e-324));
+        assert!(tiny.check("data").is_ok(), "{tiny:?}");
+        assert_eq!(zero.nmse, tiny.nmse);
+        // joint 2 alone: 0.5^2 / 3 over its mean |tau|, 4.5 / 3
+        assert!((zero.nmse - 0.25 / 3.0 / 1.5).abs() < 1e-15, "{zero:?}");
+        // a small torque that is no rounding counts
+        assert!(with(1e-3).nmse > 10.0, "{:?}", with(1e-3));
     }
 
     #[test]

@@ -149,6 +149,15 @@ fn state_samples(file: &Path, n: usize) -> Result<(Vec<JointSample>, Extremes), 
                   log of `t,q1..,tau1..` as `robid identify` does, with its units and drive \
                   chain (docs/command-line.md#robid-payload)";
     let table = super::states::read_with(file, &names, n, remedy)?;
+    // told as `torques` tells it (it said "0 samples, at least 11 are needed", counting
+    // equations, beside one row's "1 sample, at least 2")
+    if table.rows() == 0 {
+        return Err(super::states::no_rows(
+            file,
+            &names,
+            "the file has its header alone",
+        ));
+    }
     let mut seen = std::collections::HashSet::new();
     let mut repeated = Vec::new();
     for k in 0..table.rows() {

@@ -190,6 +190,19 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
         &["1 sample, at least 2 are needed", "give more samples"],
     );
     assert!(!stderr(&o).contains("decimation"), "{}", stderr(&o));
+    // the header alone: no rows, as `torques` says it (it said "0 samples, at least 11",
+    // counting equations, after six warnings of torques reaching -inf)
+    let header = write(
+        dir.path(),
+        "header.csv",
+        &(text.lines().next().unwrap().to_string() + "\n"),
+    );
+    let o = payload(&["--data", header.to_str().unwrap()]);
+    fails_with(
+        &o,
+        &["no rows of joint states (the file has its header alone)"],
+    );
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
 }
 
 /// A real log holds positions and torques (or currents) alone: with a config, `payload`
