@@ -237,16 +237,21 @@ impl ParameterFile {
                         v.ok_or_else(|| {
                             let keys: Vec<&str> =
                                 self.entries.iter().map(|(k, _)| k.as_str()).collect();
+                            let is_drive = |m: &str| {
+                                matches!(
+                                    m.parse::<ParameterId>(),
+                                    Ok(ParameterId {
+                                        kind: ParameterKind::Drive(_),
+                                        ..
+                                    })
+                                )
+                            };
                             // a missing link parameter is not a matter of drive terms (a
-                            // `[base]` of ZZR1 alone was told to drop the robot's Fv, Fc)
-                            let drive = matches!(
-                                n.parse::<ParameterId>(),
-                                Ok(ParameterId {
-                                    kind: ParameterKind::Drive(_),
-                                    ..
-                                })
-                            );
-                            let mismatch = drive
+                            // `[base]` of ZZR1 alone was told to drop the robot's Fv, Fc),
+                            // nor is a drive term missing beside link parameters
+                            let links_complete =
+                                (names.iter()).all(|m| is_drive(m) || keys.contains(&m.as_str()));
+                            let mismatch = (is_drive(n) && links_complete)
                                 .then(|| {
                                     crate::model::drive_terms_mismatch("the file", &keys, &names)
                                 })
@@ -254,7 +259,20 @@ impl ParameterFile {
                             self.whole(match mismatch {
                                 Some(fix) => format!("[base] has no `{n}`: {fix}"),
                                 None => {
-                                    format!("[base] has no `{n}`; list every base parameter")
+                                    let missing: Vec<&String> = names
+                                        .iter()
+                                        .filter(|m| !keys.contains(&m.as_str()))
+                                        .collect();
+                                    let shown: Vec<String> =
+                                        missing.iter().take(8).map(|m| format!("`{m}`")).collect();
+                                    let more = if missing.len() > 8 { ", ..." } else { "" };
+                                    format!(
+                                        "[base] has no {}{more} ({} of the model's {}); list every \
+                                         base parameter (`robid model` lists them)",
+                                        shown.join(", "),
+                                        missing.len(),
+                                        names.len()
+                                    )
                                 }
                             })
                         })

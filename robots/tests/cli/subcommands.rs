@@ -190,7 +190,9 @@ fn parameter_file_mistakes_are_named() {
             "[standard]\nM2 = 1.0\n[base]\nZZR1 = 1.0\n",
             "exactly one of the tables",
         ),
-        ("[base]\nZZR1 = 1.0\n", "[base] has no `"),
+        // every missing name counted (it was told to drop the drive terms, the first
+        // missing being `Fv1`, then, that fixed, "[base] has no `XXR2`")
+        ("[base]\nZZR1 = 1.0\n", "of the model's"),
         ("[standard\n", "params.toml"),
     ] {
         let o = torques(text);
