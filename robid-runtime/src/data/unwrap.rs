@@ -83,9 +83,12 @@ impl Unwrap {
                 let Some(x) = columns.get_mut(start + j) else {
                     continue;
                 };
+                let half = 0.5 * self.turn;
                 for (k, v) in x.iter_mut().enumerate() {
                     let read = *v;
-                    if let Some(last) = self.last[cell] {
+                    // (a step below half a turn, every step of a log that does not
+                    // wrap, is no wrap: one comparison per sample)
+                    if let Some(last) = self.last[cell].filter(|l| (read - l).abs() > half) {
                         let turns = ((read - last) / self.turn).round();
                         let off = (read - last - turns * self.turn).abs();
                         if turns != 0.0
