@@ -222,6 +222,18 @@ mod tests {
         unwrap.apply(&[(0, 0)], &mut half, &[2, 3, 4]);
         assert_eq!(half[0], [0.0, pi, 0.0]);
         assert!(unwrap.warnings(Path::new("log.csv")).is_empty());
+        // the range a wrapped angle lies in, to rounding: -pi (written a little beyond it)
+        // is in, a value beyond half a turn that is not in [0, a turn] is out
+        let edge = -pi * (1.0 + 1e-10);
+        let mut unwrap = Unwrap::new(&Config::default(), 1);
+        let mut at_pi = vec![vec![-3.0, edge, edge + 2.0 * pi - 0.01]];
+        unwrap.apply(&[(0, 0)], &mut at_pi, &[2, 3, 4]);
+        assert!((at_pi[0][2] - (edge - 0.01)).abs() < 1e-12, "{at_pi:?}");
+        let mut unwrap = Unwrap::new(&Config::default(), 1);
+        let mut beyond = vec![vec![2.8, 2.8 - 2.0 * pi]];
+        let read = beyond.clone();
+        unwrap.apply(&[(0, 0)], &mut beyond, &[2, 3]);
+        assert_eq!(beyond, read);
         // a multi-turn motor encoder sampled slowly: whole turns between samples are motion
         let mut unwrap = Unwrap::new(&Config::default(), 1);
         let mut turning = vec![vec![40.0, 40.0 + 2.0 * pi, 40.0 + 4.0 * pi + 0.1]];
