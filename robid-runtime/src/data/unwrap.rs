@@ -234,6 +234,16 @@ mod tests {
         let read = beyond.clone();
         unwrap.apply(&[(0, 0)], &mut beyond, &[2, 3]);
         assert_eq!(beyond, read);
+        // a single-turn motor encoder is unwrapped, and named as such
+        let mut unwrap = Unwrap::new(&Config::default(), 1);
+        let mut motor = vec![vec![3.0, 3.1, 3.2 - 2.0 * pi]];
+        unwrap.apply(&[(4, 0)], &mut motor, &[7, 8, 9]);
+        assert!((motor[0][2] - 3.2).abs() < 1e-12, "{motor:?}");
+        let w = unwrap.warnings(Path::new("log.csv"))[0].to_string();
+        assert!(
+            w.contains("joint 1's motor positions jump") && w.contains("line 9"),
+            "{w}"
+        );
         // a multi-turn motor encoder sampled slowly: whole turns between samples are motion
         let mut unwrap = Unwrap::new(&Config::default(), 1);
         let mut turning = vec![vec![40.0, 40.0 + 2.0 * pi, 40.0 + 4.0 * pi + 0.1]];
