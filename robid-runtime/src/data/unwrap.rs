@@ -234,14 +234,26 @@ mod tests {
         let read = beyond.clone();
         unwrap.apply(&[(0, 0)], &mut beyond, &[2, 3]);
         assert_eq!(beyond, read);
-        // a single-turn motor encoder is unwrapped, and named as such
-        let mut unwrap = Unwrap::new(&Config::default(), 1);
-        let mut motor = vec![vec![3.0, 3.1, 3.2 - 2.0 * pi]];
+        // a single-turn motor encoder (joint 2's) is unwrapped, and named as such
+        let mut unwrap = Unwrap::new(&Config::default(), 2);
+        let mut motor = vec![vec![0.0; 3], vec![3.0, 3.1, 3.2 - 2.0 * pi]];
         unwrap.apply(&[(4, 0)], &mut motor, &[7, 8, 9]);
-        assert!((motor[0][2] - 3.2).abs() < 1e-12, "{motor:?}");
-        let w = unwrap.warnings(Path::new("log.csv"))[0].to_string();
+        assert!((motor[1][2] - 3.2).abs() < 1e-12, "{motor:?}");
+        let warnings = unwrap.warnings(Path::new("log.csv"));
         assert!(
-            w.contains("joint 1's motor positions jump") && w.contains("line 9"),
+            matches!(
+                warnings[..],
+                [Warning::Unwrapped {
+                    role: "motor_position",
+                    joint: 2,
+                    ..
+                }]
+            ),
+            "{warnings:?}"
+        );
+        let w = warnings[0].to_string();
+        assert!(
+            w.contains("joint 2's motor positions jump") && w.contains("line 9"),
             "{w}"
         );
         // a multi-turn motor encoder sampled slowly: whole turns between samples are motion
