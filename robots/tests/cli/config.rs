@@ -747,15 +747,8 @@ fn a_velocity_column_in_other_units_is_told() {
         &CONFIG.replace("torque = ", "velocity = [\"rate\"]\ntorque = "),
     );
     // the log with a velocity column `rate(t, qd)`, qd the positions' derivative
-    let with_column = |rate: &dyn Fn(f64, f64) -> f64| {
-        let mut csv = String::from("time,angle,rate,torque\n");
-        for line in log().lines().skip(1) {
-            let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
-            let qd = 1.2 * 1.3 * (1.3 * f[0]).cos() - 0.3 * 4.1 * (4.1 * f[0]).sin();
-            let _ = writeln!(csv, "{},{},{},{}", f[0], f[1], rate(f[0], qd), f[2]);
-        }
-        csv
-    };
+    let with_column =
+        |rate: &dyn Fn(f64, f64) -> f64| log_with("rate", &|t, [qd, _]| vec![rate(t, qd)]);
     let with_velocity = |scale: f64| with_column(&|_, qd| scale * qd);
     for command in ["identify", "inspect"] {
         let run = |name: &str, scale: f64| {
@@ -885,17 +878,8 @@ fn an_acceleration_column_in_other_units_or_dead_is_told() {
     let robot = write(d, "pendulum.toml", PENDULUM);
     let columns = "velocity = [\"rate\"]\nacceleration = [\"rate2\"]\ntorque = ";
     let config = write(d, "config.toml", &CONFIG.replace("torque = ", columns));
-    let with_acceleration = |scale: f64| {
-        let mut csv = String::from("time,angle,rate,rate2,torque\n");
-        for line in log().lines().skip(1) {
-            let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
-            let t = f[0];
-            let qd = 1.2 * 1.3 * (1.3 * t).cos() - 0.3 * 4.1 * (4.1 * t).sin();
-            let qdd = -1.2 * 1.3 * 1.3 * (1.3 * t).sin() - 0.3 * 4.1 * 4.1 * (4.1 * t).cos();
-            let _ = writeln!(csv, "{t},{},{qd},{},{}", f[1], scale * qdd, f[2]);
-        }
-        csv
-    };
+    let with_acceleration =
+        |scale: f64| log_with("rate,rate2", &|_, [qd, qdd]| vec![qd, scale * qdd]);
     for command in ["identify", "inspect"] {
         let run = |name: &str, scale: f64| {
             let data = write(d, name, &with_acceleration(scale));
@@ -926,6 +910,21 @@ fn an_acceleration_column_in_other_units_or_dead_is_told() {
             "{command}: {e}"
         );
     }
+}
+
+/// [`log`] with the columns `names` (comma-separated) between the angle and the torque,
+/// `columns(t, [qd, qdd])` at each time t, qd and qdd the angle's exact derivatives.
+fn log_with(names: &str, columns: &dyn Fn(f64, [f64; 2]) -> Vec<f64>) -> String {
+    let mut csv = format!("time,angle,{names},torque\n");
+    for line in log().lines().skip(1) {
+        let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let t = f[0];
+        let qd = 1.2 * 1.3 * (1.3 * t).cos() - 0.3 * 4.1 * (4.1 * t).sin();
+        let qdd = -1.2 * 1.3 * 1.3 * (1.3 * t).sin() - 0.3 * 4.1 * 4.1 * (4.1 * t).cos();
+        let values: Vec<String> = columns(t, [qd, qdd]).iter().map(f64::to_string).collect();
+        let _ = writeln!(csv, "{t},{},{},{}", f[1], values.join(","), f[2]);
+    }
+    csv
 }
 
 /// `identify` of the pendulum `robot` (a path) with `config` (its text) and `gaps =
