@@ -10,7 +10,7 @@
 //! the `temperature` columns, else [`REFERENCE_TEMPERATURE`] throughout.
 
 use crate::Model;
-use crate::data::{AGREEMENT_CORRELATION, AGREEMENT_SCALES, Config, Dataset};
+use crate::data::{Config, Dataset, DerivativeAgreement};
 use crate::drive::{FrictionSample, RotorConfig};
 use crate::error::{Error, Result};
 use crate::pipeline::prepare::{Rows, prepare_rows};
@@ -126,7 +126,7 @@ pub fn friction_samples(
             ));
         }
     };
-    let mut warnings = encoder_warnings(&p.qd, &states.thetad);
+    let mut warnings = encoder_warnings(&p.q, &states.thetad, p.sample_time);
     if let (Some(t), JointTorqueSource::Measured) = (&states.joint_torque, source) {
         warnings.extend(dead_joint_torques(&p.qd, t));
     }
@@ -166,24 +166,18 @@ pub fn friction_samples(
 }
 
 /// A warning per joint whose motor velocities `thetad` (link side, through the gear
-/// ratio) follow its link velocities `qd` closely (|correlation| at least
-/// [`AGREEMENT_CORRELATION`]) at a scale outside [`AGREEMENT_SCALES`]: the joint's
-/// deflection is a small part of its motion, so the two agree within a few per cent when
-/// the drive chain is right.
-fn encoder_warnings(qd: &Signals, thetad: &Signals) -> Vec<String> {
+/// ratio) disagree with its link positions `q` sampled every `dt` seconds as a velocity
+/// column disagrees with its positions ([`DerivativeAgreement::disagreement`]): the
+/// joint's deflection is a small part of its motion, so the two agree within a few per
+/// cent when the drive chain is right.
+fn encoder_warnings(q: &Signals, thetad: &Signals, dt: f64) -> Vec<String> {
     let mut warnings = Vec::new();
-    for (j, (v, w)) in qd.joints().zip(thetad.joints()).enumerate() {
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-        let (vv, vw, ww) = (dot(v, v), dot(v, w), dot(w, w));
-        let d = (vv * ww).sqrt();
-        if !(d > 0.0 && d.is_finite()) {
+    for (j, (x, w)) in q.joints().zip(thetad.joints()).enumerate() {
+        let mut agreement = DerivativeAgreement::default();
+        agreement.add(x, w, &|k| k as f64 * dt);
+        let Some(s) = agreement.disagreement() else {
             continue;
-        }
-        let (s, r) = (vw / vv, vw / d);
-        let [lo, hi] = AGREEMENT_SCALES;
-        if r.abs() < AGREEMENT_CORRELATION || (lo..=hi).contains(&s) {
-            continue;
-        }
+        };
         let near = |x: f64| (s / x - 1.0).abs() < 0.02;
         let cause = if s < 0.0 {
             "of the opposite sign: is the gear ratio's sign that of the motor's direction?"
