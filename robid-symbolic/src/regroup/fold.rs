@@ -475,21 +475,21 @@ mod tests {
         ]) {
             assert!((t - expected).abs() < 1e-12 * expected, "{terms:?}");
         }
-        // a remainder of 1e-7 of the column's size, at sizes 1e-3 and 1e3: not a dependency
+        // a remainder of 1e-10 of the column's size, at sizes 1e-3 and 1e3: not a dependency
         let wiggle = column(|x| (3.0 * x).sin());
         for scale in [1e-3, 1e3] {
             let off: Vec<f64> = a
                 .iter()
                 .zip(&wiggle)
-                .map(|(x, w)| x + 1e-7 * 5.0 * w)
+                .map(|(x, w)| x + 1e-10 * 5.0 * w)
                 .collect();
             let scaled: Vec<f64> = off.iter().map(|v| v * scale).collect();
             assert_eq!(holds(&[&a], &scaled), Some(None), "scale {scale}");
-            // and 1e-10 of it holds
+            // and 1e-13 of it (rounding) holds
             let near: Vec<f64> = a
                 .iter()
                 .zip(&wiggle)
-                .map(|(x, w)| scale * (x + 1e-10 * w))
+                .map(|(x, w)| scale * (x + 1e-13 * w))
                 .collect();
             assert!(holds(&[&a], &near).unwrap().is_some(), "scale {scale}");
         }

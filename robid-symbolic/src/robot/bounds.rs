@@ -4,7 +4,7 @@
 //!
 //! Magnitudes have physical ranges wide enough for any arm and narrow enough
 //! that the regrouping's numeric rank analysis (regressor columns sampled at
-//! random states, independence decided at a relative 1e-8) decides every
+//! random states, independence decided at a relative 1e-11) decides every
 //! dependency as it would for nominal values: the tests derive the reference
 //! robots with every length, and every gravity component, at each end of its
 //! range and find the base-parameter count of the nominal robot.
