@@ -68,6 +68,7 @@ fn fraction(x: f64, tolerance: f64) -> Option<Num> {
         return None;
     }
     let target = x.abs();
+    let ulp = f64::from_bits(target.to_bits() + 1) - target;
     // Convergents h/k: h(n) = a h(n-1) + h(n-2), likewise k.
     let (mut h0, mut h1, mut k0, mut k1) = (0_i128, 1_i128, 1_i128, 0_i128);
     let mut rest = target;
@@ -78,7 +79,13 @@ fn fraction(x: f64, tolerance: f64) -> Option<Num> {
         if k > MAX_DENOMINATOR {
             return None;
         }
-        if (h as f64 / k as f64 - target).abs() <= tolerance {
+        // Also far closer than a convergent is by its nature (within 1/k^2), and that
+        // closeness itself far above the float's own step, as a decimal must be far
+        // closer than its step: a large number is within its relative tolerance of some
+        // convergent by chance (a coefficient 9.09e8 was written 60909089260/67; of
+        // random numbers near 1e4, 32 % were fractions, now 0.02 %).
+        let close = 1e-4 / ((k as f64) * (k as f64));
+        if close >= 64.0 * ulp && (h as f64 / k as f64 - target).abs() <= tolerance.min(close) {
             return Num::ratio(if x < 0.0 { -h } else { h }, k);
         }
         (h0, h1, k0, k1) = (h1, h, k1, k);
@@ -206,7 +213,7 @@ pub(crate) fn fit_polynomial(
 
 #[cfg(test)]
 mod tests {
-    use super::{Samples, constant, fit_polynomial, monomials, rationalize};
+    use super::{Samples, constant, fit_polynomial, fraction, monomials, rationalize};
     use crate::expr::{Arena, Num, Values};
     use crate::regroup::atoms::Atom;
 
@@ -228,6 +235,17 @@ mod tests {
     fn the_tolerance_is_relative_and_decimals_equal_fractions() {
         assert_eq!(rationalize(1.0 / 3000.0 + 1e-12), None);
         assert_eq!(rationalize(1.0 / 3000.0), Num::ratio(1, 3000));
+        // 5e-5 from 60909089260/67 is within 1e-13 of it, relatively, but a float near
+        // 9e8 cannot tell a fraction of denominator 67 from its neighbours: no fraction
+        // (nor any other: it was 2177272668324/2395), the float's own decimal, where
+        // 123456789/7 is one
+        let near = 60_909_089_260.0 / 67.0 + 5e-5;
+        assert_eq!(rationalize(near).map(Num::to_f64), Some(near));
+        assert_eq!(rationalize(123_456_789.0 / 7.0), Num::ratio(123_456_789, 7));
+        // within a loose tolerance of 1/3, yet only as close as a convergent of
+        // denominator 3 is by chance (2e-5 against 1/9): no fraction
+        assert_eq!(fraction(1.0 / 3.0 + 2e-5, 1e-4), None);
+        assert_eq!(fraction(1.0 / 3.0 + 2e-6, 1e-4), Num::ratio(1, 3));
         assert_eq!(
             Num::parse_decimal("1000000000000.0"),
             Num::ratio(1_000_000_000_000, 1)
