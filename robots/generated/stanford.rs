@@ -332,7 +332,7 @@ impl Stanford {
     /// - `qd`: qd1, qd2, qd3
     /// - `qdd`: qdd1, qdd2, qdd3
     ///
-    /// Operations: 58 mul, 43 add, 9 neg, 1 sin, 1 cos.
+    /// Operations: 57 mul, 42 add, 9 neg, 1 sin, 1 cos.
     pub fn base_regressor<T: ::robid_runtime::Real>(
         &self,
         q: &[T; 3],
@@ -363,6 +363,7 @@ impl Stanford {
         let c1 = T::from_f64(9.81);
         let c2 = T::from_f64(2.0);
         out[0] = qdd1;
+        out[5] = T::ZERO;
         out[12] = T::ZERO;
         out[17] = qdd2;
         out[24] = T::ZERO;
@@ -420,8 +421,8 @@ impl Stanford {
         let t47 = t19 - t17;
         let t48 = t17 - t18;
         out[14] = t48;
-        let t50 = t1 * t14;
-        let t51 = T::mul_add(t0, t15, t50);
+        let t49 = t0 * t15;
+        let t51 = T::mul_add(t1, t14, t49);
         out[1] = t51;
         let t52 = -t21;
         out[13] = t52;
@@ -439,51 +440,49 @@ impl Stanford {
         out[4] = t63;
         let t64 = -t3;
         out[16] = t64;
-        let t66 = T::mul_add(t0, t13, -t50);
-        out[5] = t66;
-        let t69 = T::mul_add(t1, t20, t56);
-        let t70 = T::mul_add(-t1, t2, t69);
-        let t71 = t70 * c0;
-        out[6] = t71;
-        let t73 = t0 * t24;
-        let t74 = t62 + t73;
-        let t75 = T::mul_add(t0, t2, -t74);
-        let t76 = t75 * c0;
-        out[7] = t76;
-        let t77 = t27 * t45;
-        let t80 = T::mul_add(t69, c0, -t77);
-        let t81 = T::mul_add(t1, t40, t80);
-        out[8] = t81;
-        let t83 = T::mul_add(t20, q3, t42);
-        let t84 = -t83;
-        out[20] = t84;
-        let t85 = -t23;
-        out[32] = t85;
-        let t86 = t0 * t42;
-        let t87 = t1 * t28;
-        let t88 = t26 * t45;
-        let t91 = T::mul_add(t0, t43, t87);
-        let t93 = T::mul_add(t1, t37, t86);
-        let t94 = T::mul_add(t91, c0, t88);
-        let t95 = t93 + t94;
-        let t96 = t28 * q3;
-        out[21] = t96;
-        let t97 = -t95;
-        out[9] = t97;
-        let t100 = t25 * t45;
-        let t101 = T::mul_add(-t1, t44, t73);
-        let t103 = T::mul_add(t101, c0, t100);
-        let t104 = T::mul_add(t0, t40, t103);
-        out[10] = t104;
-        let t106 = T::mul_add(t44, q3, t37);
-        out[22] = t106;
-        let t107 = -t24;
-        out[34] = t107;
-        let t108 = t40 * t45;
-        let t110 = T::mul_add(-t93, c0, t108);
-        out[11] = t110;
-        let t111 = t37 * q3;
-        out[23] = t111;
+        let t67 = T::mul_add(t1, t20, t56);
+        let t68 = T::mul_add(-t1, t2, t67);
+        let t69 = t68 * c0;
+        out[6] = t69;
+        let t71 = t0 * t24;
+        let t72 = t62 + t71;
+        let t73 = T::mul_add(t0, t2, -t72);
+        let t74 = t73 * c0;
+        out[7] = t74;
+        let t75 = t27 * t45;
+        let t78 = T::mul_add(t67, c0, -t75);
+        let t79 = T::mul_add(t1, t40, t78);
+        out[8] = t79;
+        let t81 = T::mul_add(t20, q3, t42);
+        let t82 = -t81;
+        out[20] = t82;
+        let t83 = -t23;
+        out[32] = t83;
+        let t84 = t0 * t42;
+        let t85 = t1 * t28;
+        let t86 = t26 * t45;
+        let t89 = T::mul_add(t0, t43, t85);
+        let t91 = T::mul_add(t1, t37, t84);
+        let t92 = T::mul_add(t89, c0, t86);
+        let t93 = t91 + t92;
+        let t94 = t28 * q3;
+        out[21] = t94;
+        let t95 = -t93;
+        out[9] = t95;
+        let t98 = t25 * t45;
+        let t99 = T::mul_add(-t1, t44, t71);
+        let t101 = T::mul_add(t99, c0, t98);
+        let t102 = T::mul_add(t0, t40, t101);
+        out[10] = t102;
+        let t104 = T::mul_add(t44, q3, t37);
+        out[22] = t104;
+        let t105 = -t24;
+        out[34] = t105;
+        let t106 = t40 * t45;
+        let t108 = T::mul_add(-t91, c0, t106);
+        out[11] = t108;
+        let t109 = t37 * q3;
+        out[23] = t109;
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]

@@ -139,14 +139,14 @@ fn composite_rigid_body_is_no_dearer_for_reference_robots() {
 /// matrix and Coriolis programs of every reference robot (robots/descriptions), in that
 /// order: the figures of today (docs/performance.md#operation-counts).
 const REFERENCE_FLOPS: [(&str, [usize; 5]); 8] = [
-    ("kr6r900", [517, 717, 62, 280, 437]),
-    ("lwr4", [568, 1195, 93, 331, 533]),
-    ("panda", [599, 1222, 93, 371, 564]),
-    ("puma560", [476, 702, 62, 280, 423]),
-    ("rx90", [452, 646, 62, 242, 407]),
-    ("stanford", [132, 110, 11, 38, 101]),
-    ("tx40", [467, 693, 62, 270, 418]),
-    ("ur5e", [464, 620, 52, 272, 402]),
+    ("kr6r900", [517, 713, 62, 280, 437]),
+    ("lwr4", [568, 1193, 93, 331, 533]),
+    ("panda", [599, 1220, 93, 371, 564]),
+    ("puma560", [476, 698, 62, 280, 423]),
+    ("rx90", [452, 642, 62, 242, 407]),
+    ("stanford", [132, 108, 11, 38, 101]),
+    ("tx40", [467, 689, 62, 270, 418]),
+    ("ur5e", [464, 614, 52, 272, 402]),
 ];
 
 /// No reference robot's program costs more flops than [`REFERENCE_FLOPS`] says, and none
