@@ -11,7 +11,7 @@
 //! the arena keeps as different nodes (e.g. the products inside two sums).
 
 use super::{Group, Instr, Output, Program, ProgramError, Value};
-use super::{dce, factor, share, zeros};
+use super::{dce, factor, identities, share};
 use crate::expr::{Arena, Id, Node};
 use rustc_hash::FxHashMap;
 
@@ -166,12 +166,12 @@ impl<'a> Lowering<'a> {
         out
     }
 
-    /// The program with these outputs, dead code and instructions zero for every input
-    /// removed (`zeros.rs`), common factors taken out of its sums (`factor.rs`), a sum that
+    /// The program with these outputs, dead code removed, instructions zero for every
+    /// input or equal to an earlier one folded (`identities.rs`), common factors taken out of its sums (`factor.rs`), a sum that
     /// this writes twice computed once.
     pub(super) fn finish(self, inputs: Vec<Group>, outputs: Vec<(Group, Vec<Value>)>) -> Program {
-        let zeroless = zeros::fold_zeros(self.finish_unfactored(inputs, outputs));
-        let factored = factor::factor_all(zeroless);
+        let folded = identities::fold_identities(self.finish_unfactored(inputs, outputs));
+        let factored = factor::factor_all(folded);
         share::share_pairs(dce::merge_identical(factored))
     }
 

@@ -5,8 +5,9 @@
 //! (`lower.rs`): each needed DAG node is computed once (common-subexpression
 //! elimination comes from the hash-consing plus a memo of instructions),
 //! negations are folded into subtractions, multiplications by 1 disappear,
-//! instructions that are zero for every input are folded to 0 (`zeros.rs`), and
-//! unused instructions are removed (`dce.rs`). Temporaries are numbered in
+//! instructions zero for every input or equal to an earlier one are folded
+//! (`identities.rs`), and unused instructions are removed (`dce.rs`).
+//! Temporaries are numbered in
 //! the order they are computed, which follows the arena's topological order,
 //! so the same derivation always gives the same program.
 //!
@@ -20,13 +21,13 @@ mod count;
 mod customised;
 mod dce;
 mod factor;
+mod identities;
 mod interpret;
 mod lower;
 pub mod robot;
 pub mod schedule;
 mod share;
 mod text;
-mod zeros;
 
 #[cfg(test)]
 mod tests;

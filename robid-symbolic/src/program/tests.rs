@@ -85,7 +85,7 @@ fn ur5e_programs_counts() {
     for (kind, expected, flops) in [
         (ProgramKind::InverseDynamics, ops(240, 224, 0, 5), 464),
         (ProgramKind::BaseRegressor, ops(342, 252, 20, 5), 614),
-        (ProgramKind::StandardRegressor, ops(776, 484, 23, 5), 1283),
+        (ProgramKind::StandardRegressor, ops(726, 463, 23, 5), 1212),
         (ProgramKind::MassMatrix, ops(148, 124, 0, 5), 272),
         (ProgramKind::Gravity, ops(34, 18, 0, 5), 52),
         (ProgramKind::Coriolis, ops(221, 181, 0, 5), 402),

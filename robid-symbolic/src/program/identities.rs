@@ -1,21 +1,25 @@
-//! Instructions that are zero for every input, folded to an exact 0.
+//! Identities found by running the program: instructions that are zero for every input,
+//! folded to an exact 0, and instructions equal to an earlier one for every input,
+//! replaced by it.
 //!
 //! The customised recursions build some entries as a difference of two products that
 //! are equal for every input but whose factors were multiplied in another order, e.g. a
 //! `ZZ2` entry of the base regressor `s (c qd1 qd2) - c (s qd1 qd2)` (a second axis
-//! perpendicular to the first). Hash-consing sees two different products; computed, the
-//! difference is rounding (1e-17), not 0, so the program spends operations on noise and
-//! a regressor column that should be exactly zero in that row is not (a least-squares
-//! fit scales such a column to unit norm).
+//! perpendicular to the first), and compute some values twice by different routes (a
+//! regressor entry of one parameter equal to another's). Hash-consing sees different
+//! operations; computed, the difference is rounding (1e-17), not 0, so the program
+//! spends operations on noise and a regressor column that should be exactly zero in that
+//! row is not (a least-squares fit scales such a column to unit norm).
 //!
 //! The program is run at a few random inputs with a running bound on each value's
 //! rounding error (each operation's own rounding plus what its operands carry, to first
-//! order). An instruction whose value is within a few times that bound of 0 at every
-//! sample is zero as a polynomial identity would be (a nonzero function of random
-//! inputs is not that small at all of them), and replacing it by 0 moves the outputs by
-//! no more than the rounding the program already carried there. The instructions that
-//! read it are simplified exactly (`x * 0 = 0`, `x + 0 = x`, `cos 0 = 1`), and what is
-//! no longer read is removed.
+//! order). An instruction within a few times that bound of 0 at every sample is zero, as
+//! a polynomial identity would be (a nonzero function of random inputs is not that small
+//! at all of them); one within the two bounds of an earlier instruction at every sample
+//! is that instruction. Either replacement moves the outputs by no more than the rounding
+//! the program already carried there. The instructions that read a zero are simplified
+//! exactly (`x * 0 = 0`, `x + 0 = x`, `cos 0 = 1`), and what is no longer read is
+//! removed.
 
 use super::factor::{mapped, mapped_outputs};
 use super::{Instr, Program, Value, dce};
@@ -123,13 +127,13 @@ fn step(instr: &Instr, get: impl Fn(Value) -> Bounded) -> Bounded {
     }
 }
 
-/// Which instructions are zero at every one of [`SAMPLES`] random inputs (each input
-/// element of magnitude 0.5 to 2 with a random sign, so no velocity is 0).
-fn zero_instructions(program: &Program) -> Vec<bool> {
+/// Each instruction's bounded value at [`SAMPLES`] random inputs (each input element of
+/// magnitude 0.5 to 2 with a random sign, so no velocity is 0).
+fn run_at_random_inputs(program: &Program) -> Vec<[Bounded; SAMPLES]> {
     let mut rng = Rng::from_state(0x2E80);
-    let mut zero = vec![true; program.instrs.len()];
+    let mut runs = vec![[Bounded::exact(0.0); SAMPLES]; program.instrs.len()];
     let mut values: Vec<Bounded> = Vec::with_capacity(program.instrs.len());
-    for _ in 0..SAMPLES {
+    for k in 0..SAMPLES {
         let inputs: Vec<f64> = (0..program.input_len())
             .map(|_| {
                 let size = rng.uniform(0.5, 2.0);
@@ -146,18 +150,76 @@ fn zero_instructions(program: &Program) -> Vec<bool> {
             let b = step(instr, get);
             values.push(b);
         }
-        for (z, b) in zero.iter_mut().zip(&values) {
-            *z &= b.is_zero();
+        for (run, b) in runs.iter_mut().zip(&values) {
+            run[k] = *b;
         }
     }
-    zero
+    runs
 }
 
-/// The program with every instruction that is zero for every input replaced by 0, what
-/// reads it simplified, dead code removed; the program itself when there is none.
-pub(super) fn fold_zeros(program: Program) -> Program {
-    let zero = zero_instructions(&program);
-    if !zero.contains(&true) {
+/// The same value within both rounding bounds.
+fn same(a: Bounded, b: Bounded) -> bool {
+    a.value.is_finite()
+        && b.value.is_finite()
+        && (a.value - b.value).abs() <= MARGIN * (a.error + b.error)
+}
+
+/// Neighbours in the order of the first sample's values compared with each instruction
+/// (equal values sit next to each other there, but for ties with other values).
+const NEIGHBOURS: usize = 8;
+
+/// Which instructions read, at some depth, a sign or a square root: functions that are
+/// not polynomials in the inputs and their sines and cosines, so that agreeing at a few
+/// random inputs proves nothing (`sign(qd1)` and `sign(qd2)` agree at four samples one
+/// time in 16, `sqrt(x^2)` and `x` wherever `x` was drawn positive).
+fn piecewise(program: &Program) -> Vec<bool> {
+    let mut out: Vec<bool> = Vec::with_capacity(program.instrs.len());
+    for instr in &program.instrs {
+        let reads = instr
+            .operands()
+            .into_iter()
+            .any(|v| matches!(v, Value::Temp(t) if out[t as usize]));
+        out.push(reads || matches!(instr, Instr::Sign(_) | Instr::Sqrt(_)));
+    }
+    out
+}
+
+/// For each instruction, the earliest earlier instruction equal to it at every sample
+/// (instructions zero at every sample left out: they fold to 0; piecewise ones too).
+fn earlier_equals(
+    runs: &[[Bounded; SAMPLES]],
+    zero: &[bool],
+    piecewise: &[bool],
+) -> Vec<Option<usize>> {
+    let mut order: Vec<usize> = (0..runs.len())
+        .filter(|&t| !zero[t] && !piecewise[t] && runs[t][0].value.is_finite())
+        .collect();
+    order.sort_by(|&a, &b| runs[a][0].value.total_cmp(&runs[b][0].value));
+    let mut equal: Vec<Option<usize>> = vec![None; runs.len()];
+    for (w, &t) in order.iter().enumerate() {
+        let near = order[w.saturating_sub(NEIGHBOURS)..(w + NEIGHBOURS + 1).min(order.len())]
+            .iter()
+            .copied();
+        equal[t] = near
+            .filter(|&s| s < t && (0..SAMPLES).all(|k| same(runs[s][k], runs[t][k])))
+            .min();
+    }
+    equal
+}
+
+/// The program with every instruction that is zero for every input replaced by 0 and
+/// every one equal to an earlier one by that one, what reads a zero simplified, dead code
+/// removed; the program itself when there is neither.
+pub(super) fn fold_identities(program: Program) -> Program {
+    let runs = run_at_random_inputs(&program);
+    let piecewise = piecewise(&program);
+    let zero: Vec<bool> = runs
+        .iter()
+        .zip(&piecewise)
+        .map(|(r, &p)| !p && r.iter().all(|b| b.is_zero()))
+        .collect();
+    let equal = earlier_equals(&runs, &zero, &piecewise);
+    if !zero.contains(&true) && equal.iter().all(Option::is_none) {
         return program;
     }
     let mut constants = program.constants.clone();
@@ -181,6 +243,8 @@ pub(super) fn fold_zeros(program: Program) -> Program {
         let instr = instr.map(|v| mapped(&map, v));
         let folded = if zero[t] {
             Some(nought)
+        } else if let Some(s) = equal[t] {
+            Some(map[s])
         } else {
             match instr {
                 Instr::Add(a, b) if is_nought(a) => Some(b),
@@ -218,7 +282,7 @@ pub(super) fn fold_zeros(program: Program) -> Program {
 #[cfg(test)]
 mod tests {
     use super::super::{Group, Instr, Output, Program, Value};
-    use super::fold_zeros;
+    use super::fold_identities;
     use robid_core::rng::Rng;
 
     const S: Value = Value::Input(0);
@@ -245,8 +309,8 @@ mod tests {
     /// `s (c v) - c (s v)` is zero for every input, though computed it is rounding: it
     /// becomes the constant 0, and what reads it is simplified exactly (a product by it
     /// 0, a sum with it the other term, `0 - w` a negation, its cosine 1, its sign and
-    /// square root 0). Values a little off it (1e-9 of the terms) and the sum of the two
-    /// products stay as they were.
+    /// square root 0). `c (s v)` is `s (c v)`, computed once. Values a little off it
+    /// (1e-9 of the terms) and the sum of the two products stay as they were.
     #[test]
     fn a_difference_of_equal_products_is_zero() {
         let one_more = Value::Const(0);
@@ -281,7 +345,7 @@ mod tests {
                 T(14),
             ],
         );
-        let after = fold_zeros(before.clone());
+        let after = fold_identities(before.clone());
         let nought = after.constants.iter().position(|&c| c == 0.0).unwrap() as u32;
         let one = after.constants.iter().position(|&c| c == 1.0).unwrap() as u32;
         let outputs = &after.outputs[0].values;
@@ -295,8 +359,13 @@ mod tests {
             panic!("{:?}", outputs[3]);
         };
         assert_eq!(after.instrs[negated as usize], Instr::Neg(W));
-        // s c v twice (4 products), their sum, the scaled one and its difference, -w
-        assert_eq!(after.instrs.len(), 8, "{:?}", after.instrs);
+        // s c v once (2 products), its double, the scaled one and its difference, -w
+        assert_eq!(after.instrs.len(), 6, "{:?}", after.instrs);
+        assert!(
+            after.instrs.contains(&Instr::Add(T(1), T(1))),
+            "{:?}",
+            after.instrs
+        );
         let mut rng = Rng::from_state(3);
         for _ in 0..20 {
             let x: Vec<f64> = (0..4).map(|_| rng.uniform(-2.0, 2.0)).collect();
@@ -316,6 +385,31 @@ mod tests {
         }
     }
 
+    /// Signs agree at a few random inputs by chance, and a square root of a square is
+    /// its argument wherever that was drawn positive: neither is taken for another
+    /// value or for zero. (`sign(v) - sign(w)` is 0 at each sample one time in two.)
+    #[test]
+    fn piecewise_functions_are_never_taken_for_others() {
+        let before = program(
+            vec![
+                Instr::Sign(V),         // t0
+                Instr::Sign(W),         // t1
+                Instr::Sub(T(0), T(1)), // t2
+                Instr::Mul(C, C),       // t3
+                Instr::Sqrt(T(3)),      // t4 = |c|
+                Instr::Mul(S, T(0)),    // t5
+                Instr::Mul(S, T(1)),    // t6
+            ],
+            vec![T(0), T(1), T(2), T(4), C, T(5), T(6)],
+        );
+        // whatever the samples drew, by these seeds and others
+        assert_eq!(fold_identities(before.clone()), before);
+        assert_eq!(
+            super::piecewise(&before),
+            [true, true, true, false, true, true, true]
+        );
+    }
+
     /// A program without such an instruction is returned as it is; a square root of a
     /// negative sample (not finite) is never taken for zero.
     #[test]
@@ -329,6 +423,6 @@ mod tests {
             ],
             vec![T(1), T(2), T(3)],
         );
-        assert_eq!(fold_zeros(before.clone()), before);
+        assert_eq!(fold_identities(before.clone()), before);
     }
 }
