@@ -366,6 +366,13 @@ impl<'a> Lowering<'a> {
     fn sum_reusing(&mut self, terms: Vec<Signed>) -> Signed {
         let mut remaining: FxHashMap<Value, bool> =
             terms.iter().map(|t| (t.value, t.negative)).collect();
+        // A value twice among the terms (`q3 (qdd1 + qdd2) - q3 (-qdd1 - qdd2)`, which the
+        // arena keeps as two terms) is one key of the map: taking a subset out would drop
+        // both copies, and the sum recorded would stand for a sum without the repeat. Such
+        // a sum is added as it is, neither reusing nor reused.
+        if remaining.len() < terms.len() {
+            return self.sum(&terms);
+        }
         let mut parts: Vec<Signed> = Vec::new();
         while remaining.len() >= 2 {
             let Some((k, flip)) = self.sums.largest_subset(&remaining) else {

@@ -559,3 +559,52 @@ fn a_regressor_entry_zero_for_every_state_is_exactly_zero() {
         assert_eq!(y[0][column], 0.0);
     }
 }
+
+/// A sum in which the arena keeps one value twice (`q3 (qdd1 + qdd2) - q3 (-qdd1 - qdd2)`
+/// in the standard regressor of this robot, a prismatic joint after two parallel revolute
+/// ones) is computed with both copies: the lowering's reuse of earlier sums keyed its terms
+/// by value, dropped both copies when it took a subset out, and the `MZ3` entry of `tau1`
+/// was off by 2.9 (found by the random robots of `tests/tests/suite/emitted_vs_rnea.rs`
+/// run past the suite's eight seeds: seed 77).
+#[test]
+fn a_sum_with_a_repeated_term_keeps_both() {
+    let text = "name = \"random77\"\nconvention = \"modified\"\n\
+        gravity = [0.47084624141297177, -0.6060886274044435, -9.798693985269022]\n\
+        [[joints]]\nalpha = \"-pi/2\"\nd = -0.10918609384108396\ntheta = \"pi/2\"\n\
+        [[joints]]\nalpha = 0\nd = -0.1432951830775141\ntheta = -0.6983026545267688\n\
+        [[joints]]\ntype = \"prismatic\"\nalpha = \"-pi/2\"\na = -0.4021968383241944\n\
+        theta = 0\n";
+    let robot = Robot::from_toml(text, "random77.toml").unwrap();
+    let mut d = Derivation::new(&robot);
+    let entries = d.regressor().entries();
+    let groups: Vec<Group> = ["q", "qd", "qdd"]
+        .iter()
+        .map(|g| Group::new(g, (1..=3).map(|j| format!("{g}{j}")).collect()))
+        .collect();
+    let out = Group::new("y", (0..entries.len()).map(|i| format!("y{i}")).collect());
+    let program = Program::build(&d.arena, groups, vec![(out, entries.clone())]).unwrap();
+    let names: Vec<String> = ["q", "qd", "qdd"]
+        .iter()
+        .flat_map(|g| (1..=3).map(move |j| format!("{g}{j}")))
+        .collect();
+    let mut rng = Rng::from_state(7);
+    for _ in 0..20 {
+        let x: Vec<Vec<f64>> = (0..3)
+            .map(|_| (0..3).map(|_| rng.uniform(-3.0, 3.0)).collect())
+            .collect();
+        let pairs: Vec<(&str, f64)> = names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| (name.as_str(), x[k / 3][k % 3]))
+            .collect();
+        let values = d.arena.values(&pairs);
+        let expected = d.arena.eval(&entries, &values).unwrap();
+        let got = program.eval(&[&x[0], &x[1], &x[2]]).unwrap();
+        for (i, (e, g)) in expected.iter().zip(&got[0]).enumerate() {
+            assert!(
+                (e - g).abs() <= 1e-12 * (1.0 + e.abs()),
+                "entry {i}: {e} vs {g}"
+            );
+        }
+    }
+}
