@@ -203,7 +203,9 @@ tests::per_robot!(check);
 
 /// A random description: 2 to 5 joints, either convention, revolute or prismatic joints,
 /// twists that are quarter turns or arbitrary, lengths that are zero or not, every drive
-/// term, gravity tilted.
+/// term (but the offset `Fo` of a prismatic joint, which a constant part of its weight
+/// can hide from the gravity vector: docs/dynamics.md#customised-newton-euler), gravity
+/// tilted.
 fn random_robot(seed: u64) -> Robot {
     let mut rng = Rng::from_state(seed);
     let n = 2 + rng.below(4);
@@ -214,7 +216,7 @@ fn random_robot(seed: u64) -> Robot {
     };
     let tilt = rng.uniform(-0.5, 0.5);
     let mut text = format!(
-        "name = \"random{seed}\"\nconvention = \"{convention}\"\ndrive = [\"Ia\", \"Fv\", \"Fc\", \"Fo\"]\n\
+        "name = \"random{seed}\"\nconvention = \"{convention}\"\n\
          gravity = [{}, {}, {}]\n",
         9.81 * tilt.sin(),
         rng.uniform(-1.0, 1.0),
@@ -245,8 +247,14 @@ fn random_robot(seed: u64) -> Robot {
             length(&mut rng),
             angle(&mut rng),
         );
+        let drive = if kind == "prismatic" {
+            "[\"Ia\", \"Fv\", \"Fc\"]"
+        } else {
+            "[\"Ia\", \"Fv\", \"Fc\", \"Fo\"]"
+        };
         text += &format!(
-            "[[joints]]\ntype = \"{kind}\"\nalpha = \"{alpha}\"\na = {a}\nd = {d}\ntheta = \"{theta}\"\n"
+            "[[joints]]\ntype = \"{kind}\"\nalpha = \"{alpha}\"\na = {a}\nd = {d}\ntheta = \"{theta}\"\n\
+             drive = {drive}\n"
         );
     }
     Robot::from_toml(&text, "random.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
@@ -254,7 +262,8 @@ fn random_robot(seed: u64) -> Robot {
 
 #[test]
 fn random_robots() {
-    for seed in 1..=8 {
+    // 96 seeds (1.6 s): seed 77 found the lowering's repeated-term bug
+    for seed in 1..=96 {
         let robot = random_robot(seed);
         let model = Interpreted::new(&robot).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
         check_model(&format!("random robot {seed}"), &robot, &model, seed, 3);
