@@ -164,10 +164,6 @@ fn same(a: Bounded, b: Bounded) -> bool {
         && (a.value - b.value).abs() <= MARGIN * (a.error + b.error)
 }
 
-/// Neighbours in the order of the first sample's values compared with each instruction
-/// (equal values sit next to each other there, but for ties with other values).
-const NEIGHBOURS: usize = 8;
-
 /// Which instructions read, at some depth, a sign or a square root: functions that are
 /// not polynomials in the inputs and their sines and cosines, so that agreeing at a few
 /// random inputs proves nothing (`sign(qd1)` and `sign(qd2)` agree at four samples one
@@ -195,14 +191,25 @@ fn earlier_equals(
         .filter(|&t| !zero[t] && !piecewise[t] && runs[t][0].value.is_finite())
         .collect();
     order.sort_by(|&a, &b| runs[a][0].value.total_cmp(&runs[b][0].value));
+    // Values equal at every sample are equal at the first, so they sit in one stretch of
+    // that order whose neighbours are the same at the first sample; each such stretch is
+    // compared pair by pair.
     let mut equal: Vec<Option<usize>> = vec![None; runs.len()];
-    for (w, &t) in order.iter().enumerate() {
-        let near = order[w.saturating_sub(NEIGHBOURS)..(w + NEIGHBOURS + 1).min(order.len())]
-            .iter()
-            .copied();
-        equal[t] = near
-            .filter(|&s| s < t && (0..SAMPLES).all(|k| same(runs[s][k], runs[t][k])))
-            .min();
+    let mut start = 0;
+    while start < order.len() {
+        let mut end = start + 1;
+        while end < order.len() && same(runs[order[end - 1]][0], runs[order[end]][0]) {
+            end += 1;
+        }
+        let stretch = &order[start..end];
+        for &t in stretch {
+            equal[t] = stretch
+                .iter()
+                .copied()
+                .filter(|&s| s < t && (0..SAMPLES).all(|k| same(runs[s][k], runs[t][k])))
+                .min();
+        }
+        start = end;
     }
     equal
 }
@@ -383,6 +390,40 @@ mod tests {
                 v[0][8]
             );
         }
+    }
+
+    /// One value computed by three routes, beside others of the same value at some
+    /// inputs only (`s c v` and `s c w` agree where `v = w`, never at all samples): the
+    /// later two routes read the first, the others stay.
+    #[test]
+    fn three_routes_to_one_value_read_the_first() {
+        let before = program(
+            vec![
+                Instr::Mul(C, V),       // t0
+                Instr::Mul(S, T(0)),    // t1 = s c v
+                Instr::Mul(S, V),       // t2
+                Instr::Mul(C, T(2)),    // t3 = c s v
+                Instr::Mul(S, C),       // t4
+                Instr::Mul(V, T(4)),    // t5 = v s c
+                Instr::Mul(W, T(4)),    // t6 = w s c
+                Instr::Add(T(3), T(5)), // t7 = 2 s c v
+            ],
+            vec![T(1), T(3), T(5), T(6), T(7)],
+        );
+        let after = fold_identities(before);
+        let outputs = &after.outputs[0].values;
+        assert_eq!(outputs[0], outputs[1]);
+        assert_eq!(outputs[0], outputs[2]);
+        assert_ne!(outputs[3], outputs[0]);
+        // c v, s c v; s c, w s c; their sum read as s c v + s c v
+        assert_eq!(after.instrs.len(), 5, "{:?}", after.instrs);
+        let Value::Temp(sum) = outputs[4] else {
+            panic!("{:?}", outputs[4]);
+        };
+        assert_eq!(
+            after.instrs[sum as usize],
+            Instr::Add(outputs[0], outputs[0])
+        );
     }
 
     /// Signs agree at a few random inputs by chance, and a square root of a square is
