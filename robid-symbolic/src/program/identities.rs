@@ -392,6 +392,34 @@ mod tests {
         }
     }
 
+    /// What reads a zero is simplified exactly, also where it is piecewise (a product by
+    /// a sign is never taken for zero by the runs, only by the simplification) and where
+    /// no earlier instruction has its value (`w - 0` is the input `w`).
+    #[test]
+    fn what_reads_a_zero_is_simplified_exactly() {
+        let before = program(
+            vec![
+                Instr::Mul(C, V),       // t0
+                Instr::Mul(S, V),       // t1
+                Instr::Mul(S, T(0)),    // t2
+                Instr::Mul(C, T(1)),    // t3
+                Instr::Sub(T(2), T(3)), // t4 = 0
+                Instr::Sign(V),         // t5
+                Instr::Mul(T(4), T(5)), // t6 = 0
+                Instr::Sub(W, T(4)),    // t7 = w
+                Instr::Mul(T(5), T(4)), // t8 = 0
+            ],
+            vec![T(6), T(7), T(8)],
+        );
+        let after = fold_identities(before);
+        let nought = after.constants.iter().position(|&c| c == 0.0).unwrap() as u32;
+        assert_eq!(
+            after.outputs[0].values,
+            [Value::Const(nought), W, Value::Const(nought)]
+        );
+        assert!(after.instrs.is_empty(), "{:?}", after.instrs);
+    }
+
     /// One value computed by three routes, beside others of the same value at some
     /// inputs only (`s c v` and `s c w` agree where `v = w`, never at all samples): the
     /// later two routes read the first, the others stay.
