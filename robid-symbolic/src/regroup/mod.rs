@@ -66,6 +66,57 @@ impl BaseParameters {
     }
 }
 
+/// A drive offset that the regrouping folded into other base parameters: its joint's weight
+/// has a constant part along the joint's axis, a constant force as the offset is, so only
+/// their sum is identifiable and the gravity vector holds the offset
+/// (docs/dynamics.md#drive-offsets-inside-the-weight).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FoldedOffset {
+    /// The offset (`Fo` of some joint).
+    pub offset: ParameterId,
+    /// The base parameters it was folded into.
+    pub into: Vec<BaseName>,
+}
+
+/// The drive offsets of `standard` that no base parameter is built on but some hold (with
+/// a nonzero coefficient): those the regrouping found dependent on other columns, which
+/// only a constant part of the weight along a prismatic axis makes so.
+///
+/// ```
+/// use robid_symbolic::{Derivation, Drive, Robot, regroup::folded_offsets};
+/// // a prismatic first joint with a part of gravity along it, and a drive offset
+/// let toml = "name = \"slide\"\nconvention = \"modified\"\ngravity = [0, 3, -9.3]\n\
+///             [[joints]]\ntype = \"prismatic\"\nalpha = 0\na = 0\nd = 0\ntheta = 0\n";
+/// let robot = Robot::from_toml(toml, "slide.toml").unwrap().with_drive(Drive::ALL);
+/// let base = Derivation::new(&robot).base_parameters().unwrap();
+/// let folded = folded_offsets(&base.standard, &base.base);
+/// assert_eq!(folded.len(), 1);
+/// assert_eq!(folded[0].offset.to_string(), "Fo1");
+/// // level, the offset is a parameter of its own
+/// let level = Robot::from_toml(&toml.replace("[0, 3, -9.3]", "[0, 9.8, 0]"), "slide.toml")
+///     .unwrap()
+///     .with_drive(Drive::ALL);
+/// let base = Derivation::new(&level).base_parameters().unwrap();
+/// assert!(folded_offsets(&base.standard, &base.base).is_empty());
+/// ```
+pub fn folded_offsets(standard: &[ParameterId], base: &[BaseParameter]) -> Vec<FoldedOffset> {
+    use crate::robot::DriveTerm;
+    standard
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.kind == ParameterKind::Drive(DriveTerm::Fo))
+        .filter(|&(_, &p)| base.iter().all(|b| b.name.on != p))
+        .filter_map(|(s, &offset)| {
+            let into: Vec<BaseName> = base
+                .iter()
+                .filter(|b| b.terms.iter().any(|&(t, _)| t == s))
+                .map(|b| b.name)
+                .collect();
+            (!into.is_empty()).then_some(FoldedOffset { offset, into })
+        })
+        .collect()
+}
+
 /// Why the regrouping failed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]

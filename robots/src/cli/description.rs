@@ -7,7 +7,8 @@ use std::path::Path;
 
 use robid_runtime::Model;
 use robid_runtime::data::ParameterFile;
-use robid_symbolic::robot::{ChainSelection, DriveTerm, UrdfChain};
+use robid_symbolic::regroup::{BaseParameter, folded_offsets};
+use robid_symbolic::robot::{ChainSelection, DriveTerm, ParameterId, UrdfChain};
 use robid_symbolic::{DescriptionError, Drive, JointKind, Robot};
 
 use super::{Error, out};
@@ -402,6 +403,27 @@ pub(crate) fn load(path: &Path, flags: &DescriptionFlags) -> Result<Description,
         }
     }
     Ok(Description { robot, urdf })
+}
+
+/// Warns about each drive offset the regrouping folded into other base parameters
+/// ([`folded_offsets`]): only its sum with the weight along the joint's axis is
+/// identifiable, and the gravity vector holds it, which `robid model` shows and `robid emit`
+/// writes into `gravity`.
+pub(crate) fn warn_folded_offsets(standard: &[ParameterId], base: &[BaseParameter]) {
+    for folded in folded_offsets(standard, base) {
+        let joint = folded.offset.link + 1;
+        let into: Vec<String> = folded.into.iter().map(|b| format!("`{b}`")).collect();
+        out::warn(format_args!(
+            "warning: the drive offset `{}` of joint {joint} and the weight along its axis are \
+             one constant force (the axis keeps a component of gravity whatever the joints \
+             do): only their sum is identifiable, folded into {}, and the gravity vector g(q) \
+             holds the offset; where g(q) is used on its own, describe joint {joint} without \
+             `Fo` (a `drive` key in its [[joints]] entry) \
+             (docs/dynamics.md#drive-offsets-inside-the-weight)",
+            folded.offset,
+            into.join(", ")
+        ));
+    }
 }
 
 /// Reads the parameter file at `path`, warning about each link whose values no body has

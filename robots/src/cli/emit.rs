@@ -72,7 +72,7 @@ fn rust(args: &Args) -> Result<(), Error> {
         .urdf
         .as_ref()
         .map(|chain| chain.standard_values(&description.robot));
-    let programs = RobotPrograms::derive(&description.robot)?;
+    let programs = derive(&description)?;
     let code = emit_model(&programs, urdf_standard.as_deref())?;
     match &args.output {
         Some(path) => files::write(path, &code)?,
@@ -119,11 +119,21 @@ fn c(args: &Args) -> Result<(), Error> {
         Some(Scalar::Double) | None => CScalar::Double,
     };
     let header_name = file_name(&header);
-    let programs = RobotPrograms::derive(&description.robot)?;
+    let programs = derive(&description)?;
     let code = emit_c_model(&programs, scalar, &header_name, urdf_standard.as_deref())?;
     files::write(&header, &code.header)?;
     files::write(source, &code.source)?;
     Ok(())
+}
+
+/// The programs of the description, warning about the drive offsets its gravity vector
+/// holds ([`description::warn_folded_offsets`]).
+fn derive(description: &Description) -> Result<RobotPrograms, Error> {
+    Ok(RobotPrograms::derive_showing(
+        &description.robot,
+        &mut |_| {},
+        &mut |_, base| description::warn_folded_offsets(&base.standard, &base.base),
+    )?)
 }
 
 /// With a URDF: warns about the joints whose torque the file's own inertials, which the

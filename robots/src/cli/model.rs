@@ -313,6 +313,7 @@ fn derive(robot: &Robot, scheduled: Option<(usize, ProgramKind)>) -> Result<Repo
     let mut shown = None;
     let programs =
         RobotPrograms::derive_showing(robot, &mut |_| progress.tick(), &mut |arena, b| {
+            description::warn_folded_offsets(&b.standard, &b.base);
             shown = Some(base_parameters(arena, b))
         })?;
     progress.finish();

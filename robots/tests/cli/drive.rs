@@ -98,3 +98,38 @@ fn torques_uses_the_drive_terms_of_the_flag() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("`Fv1`"), "{}", stderr(&o));
 }
+
+/// A drive offset on a prismatic joint with gravity along its axis cannot be told from the
+/// weight: `model` and `emit` say which base parameters hold it and how to avoid it; the
+/// same joint level, or without `Fo`, gets no warning.
+#[test]
+fn an_offset_inside_the_weight_is_warned_about() {
+    let dir = folder();
+    let tilted = "name = \"slide\"\nconvention = \"modified\"\ngravity = [0, 3, -9.3]\n\
+                  drive = [\"Ia\", \"Fv\", \"Fo\"]\n\
+                  [[joints]]\ntype = \"prismatic\"\nalpha = 0\na = 0\nd = 0\ntheta = 0\n\
+                  [[joints]]\nalpha = \"pi/2\"\na = 0.3\nd = 0\n";
+    let robot = write(dir.path(), "slide.toml", tilted);
+    let robot = robot.to_str().unwrap();
+    for command in ["model", "emit"] {
+        let o = robid(&[command, robot]);
+        assert!(o.status.success(), "{command}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert!(
+            err.contains("the drive offset `Fo1` of joint 1 and the weight along its axis")
+                && err.contains("folded into `MR1`")
+                && err.contains("describe joint 1 without `Fo`")
+                && !err.contains("Fo2"),
+            "{command}: {err}"
+        );
+    }
+    for quiet in [
+        tilted.replace("[0, 3, -9.3]", "[0, 9.8, 0]"),
+        tilted.replace("\"Fv\", \"Fo\"", "\"Fv\""),
+    ] {
+        let robot = write(dir.path(), "quiet.toml", &quiet);
+        let o = robid(&["model", robot.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(!stderr(&o).contains("warning"), "{quiet}: {}", stderr(&o));
+    }
+}
