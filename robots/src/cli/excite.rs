@@ -751,6 +751,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             "the design holds these limits on its own grid: sample at a higher --rate or design \
              with more margin"
         };
+        // the trajectory stands beside the error, for inspection
+        robid_runtime::output::place_held()?;
         return Err(format!(
             "the sampled trajectory (written to {} for inspection) exceeds {}; {fix}",
             args.output.display(),

@@ -104,20 +104,32 @@ pub(crate) fn run() -> ExitCode {
             };
         }
     };
-    let result = match cli.command {
-        Command::Model(args) => model::run(&args),
-        Command::Demo => demo::run(),
-        Command::Identify(args) => identify::run(&args),
-        Command::Inspect(args) => inspect::run(&args),
-        Command::Torques(args) => torques::run(&args),
-        Command::Emit(args) => emit::run(&args),
-        Command::Bench(args) => bench::run(&args),
-        Command::Excite(args) => excite::run(&args),
-        Command::Feasible(args) => feasible::run(&args),
-        Command::Friction(args) => friction::run(&args),
-        Command::Simulate(args) => simulate::run(&args),
-        Command::Payload(args) => payload::run(&args),
-    };
+    // a run's files change together or not at all: a header beside no source, a JSON result
+    // beside the report of an earlier run (docs/robustness.md#outputs-of-one-run-together)
+    let result = robid_runtime::output::together(|| {
+        match cli.command {
+            Command::Model(args) => model::run(&args),
+            Command::Demo => demo::run(),
+            Command::Identify(args) => identify::run(&args),
+            Command::Inspect(args) => inspect::run(&args),
+            Command::Torques(args) => torques::run(&args),
+            Command::Emit(args) => emit::run(&args),
+            Command::Bench(args) => bench::run(&args),
+            Command::Excite(args) => excite::run(&args),
+            Command::Feasible(args) => feasible::run(&args),
+            Command::Friction(args) => friction::run(&args),
+            Command::Simulate(args) => simulate::run(&args),
+            Command::Payload(args) => payload::run(&args),
+        }
+        .or_else(|e| {
+            // files written before standard output failed (a reader that closed the pipe)
+            // are whole and this run's: they stand
+            if out::stdout_or_reader_failed(e.as_ref()) {
+                robid_runtime::output::place_held()?;
+            }
+            Err(e)
+        })
+    });
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => out::error(e.as_ref()),

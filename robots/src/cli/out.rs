@@ -85,6 +85,12 @@ pub(crate) fn error(e: &(dyn std::error::Error + 'static)) -> ExitCode {
     ExitCode::FAILURE
 }
 
+/// Whether `e` is a failure of standard output, or of an output pipe its reader closed:
+/// not of the run's files, which stand (`robid_runtime::output::place_held`).
+pub(crate) fn stdout_or_reader_failed(e: &(dyn std::error::Error + 'static)) -> bool {
+    e.is::<StdoutError>() || closed_early(e)
+}
+
 /// Whether `e` (or an error it wraps, e.g. of one run) is an output pipe closed by its
 /// reader.
 fn closed_early(e: &(dyn std::error::Error + 'static)) -> bool {

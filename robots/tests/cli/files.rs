@@ -514,6 +514,75 @@ fn a_full_disk_asks_for_space() {
     );
 }
 
+/// The outputs of one run change together: when the last of them fails (a full disk),
+/// the earlier ones keep their old contents (a C header beside no new source, a
+/// description beside no parameter file); when every one succeeds, all are new.
+#[cfg(target_os = "linux")]
+#[test]
+fn the_outputs_of_a_failed_run_are_all_left_as_they_were() {
+    let dir = folder();
+    let old = |name: &str| write(dir.path(), name, "old\n");
+    let header = old("ur.h");
+    let source = dir.path().join("ur.c");
+    std::os::unix::fs::symlink("/dev/full", &source).unwrap();
+    let description = old("d.toml");
+    let runs: [(&[&str], &PathBuf); 2] = [
+        (
+            &[
+                "emit",
+                "descriptions/ur5e.toml",
+                "--lang",
+                "c",
+                "-o",
+                source.to_str().unwrap(),
+            ],
+            &header,
+        ),
+        (
+            &[
+                "model",
+                "../data/example_robot_data/ur5/ur5_robot.urdf",
+                "--write-description",
+                description.to_str().unwrap(),
+                "--standard-parameters",
+                "/dev/full",
+            ],
+            &description,
+        ),
+    ];
+    for (args, earlier) in runs {
+        let o = robid(args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains("No space left"), "{}", stderr(&o));
+        assert_eq!(
+            std::fs::read_to_string(earlier).unwrap(),
+            "old\n",
+            "{args:?}"
+        );
+    }
+    // no temporary file is left behind
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["d.toml", "ur.c", "ur.h"]);
+    // both outputs of a run that succeeds are new
+    let parameters = old("p.toml");
+    let o = robid(&[
+        "model",
+        "../data/example_robot_data/ur5/ur5_robot.urdf",
+        "--write-description",
+        description.to_str().unwrap(),
+        "--standard-parameters",
+        parameters.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for written in [&description, &parameters] {
+        assert_ne!(std::fs::read_to_string(written).unwrap(), "old\n");
+    }
+}
+
 /// One run of every writer that reaches its write, with the output `out`: emit, torques,
 /// excite (a short design), simulate, identify --json and feasible. The trajectory and
 /// the simulated data they need are written into `dir` first.

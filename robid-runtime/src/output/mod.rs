@@ -11,7 +11,9 @@
 //! folder, a folder that takes no new file) is refused before a long run rather than
 //! after it. A target that is not a
 //! regular file (a pipe, `/dev/stdout`, a terminal, a device) is written into directly:
-//! it cannot be replaced, and replacing it would destroy it.
+//! it cannot be replaced, and replacing it would destroy it. Inside [`together`] the
+//! renames wait until the whole run has succeeded, so that a run's several outputs change
+//! together or not at all.
 //!
 //! ```
 //! # let dir = tempfile::tempdir().unwrap();
@@ -19,6 +21,10 @@
 //! robid_runtime::output::write_bytes(&path, b"t,q1\n0,0\n").unwrap();
 //! assert_eq!(std::fs::read_to_string(&path).unwrap(), "t,q1\n0,0\n");
 //! ```
+
+mod together;
+
+pub use together::{place_held, together};
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -108,12 +114,13 @@ pub fn write_atomically(
         use std::os::unix::fs::MetadataExt;
         temp.as_file().metadata().map(|m| m.uid()).ok()
     };
-    temp.persist(&target).map_err(|e| err(&e.error))?;
-    #[cfg(unix)]
-    if let Some(owner) = owner {
-        sweep(&dir, owner);
-    }
-    Ok(())
+    together::place(together::Complete {
+        temp,
+        target,
+        path: path.to_path_buf(),
+        #[cfg(unix)]
+        owner,
+    })
 }
 
 /// Opens the special file `target` and closes it at once, without waiting for a reader
