@@ -10,6 +10,7 @@ use std::path::PathBuf;
 
 use robid_runtime::data::{Config, Gaps, Record, Sampling, SpilledRecord, load, load_segments};
 use robid_runtime::inspect::inspect_record;
+use robid_runtime::signal::MIN_SPECTRUM_SAMPLES;
 use robid_symbolic::Robot;
 use robots::limits::beyond_limits;
 
@@ -54,7 +55,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
                 (Box::new(record), sampling)
             }
             _ => {
-                let data = load(&config, &files, robot.dof())?;
+                let data = load(&config, &files, robot.dof()).map_err(needs_a_spectrum)?;
                 let sampling = data.sampling.clone();
                 (Box::new(data), sampling)
             }
@@ -80,6 +81,27 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
 /// `robid identify` processes it (inspect refused such a config, which identify took).
 /// The text gives the inspection of each segment (which names its lines) in turn; the
 /// JSON is an array of `{ "segment": place, "inspection": ... }`.
+/// The loader asks for the 2 samples a time step needs, the spectra inspect estimates for
+/// many more: a file of one row said "at least 2 are needed", then of two rows "at least
+/// 64". The loader's count is raised to the spectra's, so the first message is the last.
+fn needs_a_spectrum(e: robid_runtime::Error) -> robid_runtime::Error {
+    match e {
+        robid_runtime::Error::TooFewSamples {
+            context,
+            found,
+            required,
+            ..
+        } if required < MIN_SPECTRUM_SAMPLES => robid_runtime::Error::TooFewSamples {
+            context,
+            found,
+            required: MIN_SPECTRUM_SAMPLES,
+            hint: "inspect estimates each joint's spectrum, which needs a longer record: record \
+                   a longer trajectory",
+        },
+        e => e,
+    }
+}
+
 fn run_segments(
     args: &Args,
     robot: &Robot,

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::{Config, Extremes};
 use robid_runtime::model::Inertial;
-use robid_runtime::payload::{JointSample, Payload, PayloadOptions, from_torques};
+use robid_runtime::payload::{Consistency, JointSample, Payload, PayloadOptions, from_torques};
 use robid_runtime::{Count, Num};
 
 use robots::limits::beyond_limits;
@@ -260,18 +260,28 @@ fn summary(p: &Payload) -> String {
             );
         }
     }
-    if c.is_consistent() && c.within_uncertainty.is_empty() {
-        s.push_str("physically consistent: yes\n");
-    } else if c.is_consistent() {
-        let _ = writeln!(
-            s,
-            "physically consistent: yes, within its uncertainty: {}",
-            c.within_uncertainty.join("; ")
-        );
-    } else {
-        let _ = writeln!(s, "physically consistent: no: {}", c.problems.join("; "));
-    }
+    s.push_str(&verdict(c));
     s
+}
+
+/// The physical reading's line: consistent or not, with what holds only within the
+/// uncertainty.
+fn verdict(c: &Consistency) -> String {
+    if c.is_consistent() && c.within_uncertainty.is_empty() {
+        "physically consistent: yes\n".to_owned()
+    } else if c.is_consistent() {
+        format!(
+            "physically consistent: yes, within its uncertainty: {}\n",
+            c.within_uncertainty.join("; ")
+        )
+    } else {
+        // what is within the uncertainty tells too: a mass within it of zero says the data
+        // may hold no payload, which explains the rest (it was left out here)
+        let notes: Vec<&str> = (c.within_uncertainty.iter().chain(&c.problems))
+            .map(String::as_str)
+            .collect();
+        format!("physically consistent: no: {}\n", notes.join("; "))
+    }
 }
 
 /// The payload as TOML: `[payload]` (the ten values), `[payload.std]`, `[payload.physical]`.
@@ -302,4 +312,30 @@ fn toml(p: &Payload) -> String {
     }
     let _ = writeln!(s, "consistent = {}", c.is_consistent());
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::verdict;
+    use robid_runtime::payload::Consistency;
+
+    /// Data without a payload: a mass of 1e-11 kg (2 standard deviations) and moments that
+    /// break the triangle inequality well beyond theirs. The "no" says the data may hold no
+    /// payload, as a "yes" does (it was left out).
+    #[test]
+    fn a_verdict_of_no_keeps_the_hint_of_no_payload() {
+        let p = [1e-2, 0.0, 0.0, 1e-3, 0.0, 1e-3, 0.0, 0.0, 0.0, 1e-11];
+        let std = [
+            1e-9, 1e-9, 1e-9, 1e-9, 1e-9, 1e-9, 1e-12, 1e-12, 1e-12, 5e-12,
+        ];
+        let c = Consistency::of_estimate(&p, &std);
+        assert!(!c.is_consistent());
+        let line = verdict(&c);
+        assert!(
+            line.starts_with("physically consistent: no: ")
+                && line.contains("the data may hold no payload")
+                && line.contains("triangle inequality"),
+            "{line}"
+        );
+    }
 }

@@ -1213,3 +1213,32 @@ fn a_validation_range_without_validation_files_is_said() {
     let e = run(&["--validate", data.to_str().unwrap()]);
     assert!(!e.contains("is not applied"), "{e}");
 }
+
+/// `inspect` on a record too short for its spectra says what it needs at the first try: a
+/// file of one row said "at least 2 are needed", and of two rows then "at least 64".
+#[test]
+fn inspect_asks_for_the_samples_its_spectra_need_at_once() {
+    let dir = folder();
+    let header = "t,q1,qd1,qdd1,tau1\n";
+    for rows in [1, 2, 3] {
+        let text: String = (0..rows)
+            .map(|k| format!("{},0.1,0,0,1\n", 0.01 * k as f64))
+            .collect();
+        let data = write(dir.path(), "short.csv", &(header.to_owned() + &text));
+        let robot = write(dir.path(), "pendulum.toml", PENDULUM);
+        let o = robid(&[
+            "inspect",
+            robot.to_str().unwrap(),
+            "--data",
+            data.to_str().unwrap(),
+        ]);
+        fails_with(
+            &o,
+            &[
+                "short.csv",
+                &format!("{rows} sample"),
+                "at least 64 are needed",
+            ],
+        );
+    }
+}

@@ -406,6 +406,7 @@ fn payload_messages_write_computed_values_short() {
     let text = printed(&exact);
     let (value, _, mass) = printed_mass(&text);
     assert!(value != 0.0 && value.abs() < 1e-6, "{mass}");
+
     let (count, number) = most_digits(&text);
     assert!(count <= 7, "{number} has {count} digits: {text}");
 }
