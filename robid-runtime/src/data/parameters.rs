@@ -609,6 +609,12 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
     (line, before[start..].chars().count() + 1)
 }
 
+/// The tables of a parameter file, each with what it is for: the file's errors name the
+/// one a command needs (they offered [known] where only the robot's parameters do).
+const TABLES: &str = "one table: [standard] (standard parameters) or [base] (base \
+                      parameters) for the robot's parameters, or [known] for the parameters \
+                      known beforehand of an identification's `estimation.known`";
+
 /// Syntax, table and values (not the physical checks).
 fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
     let located = |offset: usize, problem: String| -> Error {
@@ -659,8 +665,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
                 return Err(located(
                     at,
                     format!(
-                        "unknown table or key `{}`; a parameter file holds one table, \
-                         [standard], [base] or [known]",
+                        "unknown table or key `{}`; a parameter file holds {TABLES}",
                         robid_core::names::short(other)
                     ),
                 ));
@@ -674,7 +679,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
                 at,
                 format!(
                     "a second table [{name}], after [{before}] on line {line}; a parameter file \
-                     needs exactly one of the tables [standard], [base] or [known]: keep one"
+                     holds {TABLES}: keep one"
                 ),
             ));
         }
@@ -719,7 +724,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
             path: path.to_owned(),
             line: None,
             column: None,
-            problem: "needs exactly one of the tables [standard], [base] or [known]".to_owned(),
+            problem: format!("has no table; a parameter file holds {TABLES}"),
         })
     })?;
     Ok(ParameterFile {

@@ -188,7 +188,18 @@ fn parameter_file_mistakes_are_named() {
         ),
         (
             "[standard]\nM2 = 1.0\n[base]\nZZR1 = 1.0\n",
-            "exactly one of the tables",
+            "a second table [base], after [standard] on line 1",
+        ),
+        // the tables each with its use: [known] is not the robot's parameters (it was
+        // offered beside them, then refused)
+        (
+            "M2 = 1.0\n",
+            "holds one table: [standard] (standard parameters) or [base] (base parameters) for \
+             the robot's parameters, or [known] for the parameters known beforehand",
+        ),
+        (
+            "",
+            "has no table; a parameter file holds one table: [standard]",
         ),
         // every missing name counted (it was told to drop the drive terms, the first
         // missing being `Fv1`, then, that fixed, "[base] has no `XXR2`")
