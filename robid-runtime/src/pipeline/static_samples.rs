@@ -101,6 +101,9 @@ pub struct StaticFit {
     pub undetermined: Vec<String>,
     /// The least-squares estimate of the determined combinations, with its statistics.
     pub estimate: Estimate,
+    /// What the file holds that is fitted but probably not meant: a value column of one
+    /// value at every pose where the model's changes with the pose (a dead channel).
+    pub warnings: Vec<String>,
 }
 
 /// Reads static samples from `path` (see the module docs) and identifies, by ordinary least
@@ -197,6 +200,7 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
             y[r * per + e] = table.columns[n + e][r];
         }
     }
+    let warnings = dead_columns(&w, &y, &values, path, kind);
     let estimate = ols(
         &Observation::single(w, y, determined.names.clone())?,
         tolerance,
@@ -242,5 +246,77 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
         determined,
         undetermined,
         estimate,
+        warnings,
     })
+}
+
+/// Warnings for value columns of one value at every pose where the model's rows for them
+/// change with the pose (a gravity torque of 0 at every pose fitted every combination to
+/// 0 +- 0 without a word): a column of one nonzero value, which no parameters give, and a
+/// file whose every such column is 0. A single column of zeros is not told: a link whose
+/// centre of mass is on its axis has no gravity torque there at any pose (the UR5e's
+/// wrist, simulated without noise). `w` and `y` are stacked pose by pose, one row per
+/// column of `values`.
+fn dead_columns(
+    w: &DMatrix<f64>,
+    y: &DVector<f64>,
+    values: &[String],
+    path: &Path,
+    kind: StaticKind,
+) -> Vec<String> {
+    let per = values.len();
+    let poses = y.len() / per.max(1);
+    if poses < 2 {
+        return Vec::new();
+    }
+    let spread = |v: &mut dyn Iterator<Item = f64>| {
+        v.fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], x| {
+            [lo.min(x), hi.max(x)]
+        })
+    };
+    let scale = w.amax();
+    // the columns the model changes with the pose (beyond the rounding of its rows) that
+    // hold one value at every pose
+    let moving: Vec<usize> = (0..per)
+        .filter(|&e| {
+            (0..w.ncols()).any(|c| {
+                let [a, b] = spread(&mut (0..poses).map(|r| w[(r * per + e, c)]));
+                b - a > 1e-9 * scale
+            })
+        })
+        .collect();
+    let constant: Vec<usize> = (moving.iter().copied())
+        .filter(|&e| {
+            let [lo, hi] = spread(&mut (0..poses).map(|r| y[r * per + e]));
+            lo == hi
+        })
+        .collect();
+    let (one, all) = match kind {
+        StaticKind::Gravity => ("gravity torque", "gravity torques"),
+        StaticKind::MassMatrix => ("mass-matrix entry", "mass-matrix entries"),
+    };
+    let mut warnings: Vec<String> = (constant.iter())
+        .filter(|&&e| y[e] != 0.0)
+        .map(|&e| {
+            format!(
+                "{}: column `{}` is {} at every pose while the model's {one} there changes \
+                 with the pose: a dead channel or the wrong column; check the logger and the \
+                 file's columns",
+                path.display(),
+                values[e],
+                crate::Num(y[e]),
+            )
+        })
+        .collect();
+    if !moving.is_empty() && constant.len() == moving.len() && constant.iter().all(|&e| y[e] == 0.0)
+    {
+        let names: Vec<&str> = constant.iter().map(|&e| values[e].as_str()).collect();
+        warnings.push(format!(
+            "{}: every column whose {one} the model changes with the pose ({}) is 0 at every \
+             pose: the file holds no {all}; check the logger and the file's columns",
+            path.display(),
+            names.join(", ")
+        ));
+    }
+    warnings
 }

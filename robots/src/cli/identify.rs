@@ -127,10 +127,16 @@ fn run_static(args: &Args, robot: &Path, samples: &Path) -> Result<(), Error> {
             e.names[i],
             e.values[i],
             e.std[i],
-            robid_runtime::report::fixed(e.rel_std_percent[i], 2)
+            // a value of 0 has no relative deviation ("inf" for 0/0), as in the report
+            Some(e.rel_std_percent[i])
+                .filter(|r| r.is_finite())
+                .map_or_else(|| "-".to_owned(), |r| robid_runtime::report::fixed(r, 2))
         );
     }
     out::print(&table)?;
+    for w in &fit.warnings {
+        out::warn(format_args!("warning: {w}"));
+    }
     if !fit.undetermined.is_empty() {
         out::warn(format_args!(
             "{} samples determine {} of the {} base parameters (each named after the one \

@@ -177,3 +177,52 @@ fn a_static_combination_is_written_with_the_parameters_it_absorbs() {
     assert_eq!(terms[1]["parameter"], "MZ3");
     assert!((terms[1]["coefficient"].as_f64().unwrap() + 1.0).abs() < 1e-9);
 }
+
+/// Gravity samples whose torques are 0 at every pose (a logger that wrote nothing) fitted
+/// every combination to 0 +- 0 with "inf" for its relative deviation and no word; a column
+/// of one nonzero value is a dead channel too. Samples of real parameters are not told.
+#[test]
+fn a_static_file_of_dead_columns_is_warned_about() {
+    let dir = folder();
+    let description = robid_symbolic::Robot::from_file(Path::new(LWR)).unwrap();
+    let model = robots::interpreted::Interpreted::new(&description).unwrap();
+    let zeros = vec![0.0; model.base_parameter_count()];
+    let csv = samples(dir.path(), &model, &zeros, 30);
+    let run = |csv: &Path| {
+        let o = robid(&["identify", LWR, "--static", csv.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (stdout(&o), stderr(&o))
+    };
+    let (out, err) = run(&csv);
+    assert!(
+        err.contains("is 0 at every pose: the file holds no gravity torques"),
+        "{err}"
+    );
+    assert!(!out.contains("inf"), "{out}");
+    // g3 at 1.5 in samples of real parameters
+    let mut rng = Rng::new(3);
+    let beta: Vec<f64> = zeros.iter().map(|_| rng.uniform(-1.0, 1.0)).collect();
+    let csv = samples(dir.path(), &model, &beta, 30);
+    let (_, err) = run(&csv);
+    assert!(
+        !err.contains("dead channel") && !err.contains("holds no"),
+        "{err}"
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    let g3 = header.split(',').position(|c| c == "g3").unwrap();
+    let constant: String = lines
+        .map(|l| {
+            let mut cells: Vec<&str> = l.split(',').collect();
+            cells[g3] = "1.5";
+            cells.join(",") + "\n"
+        })
+        .collect();
+    std::fs::write(&csv, format!("{header}\n{constant}")).unwrap();
+    let (_, err) = run(&csv);
+    assert!(
+        err.contains("column `g3` is 1.5 at every pose while the model's gravity torque there changes with the pose: a dead channel"),
+        "{err}"
+    );
+}
