@@ -170,7 +170,9 @@ fn state_samples(file: &Path, n: usize) -> Result<(Vec<JointSample>, Extremes), 
         out::warn(format_args!(
             "warning: {}: {} of {} repeat an earlier row exactly (the first at line {first}): \
              a sample counted twice makes the standard deviations smaller than the data \
-             allow; remove the repeated rows (was the file appended to itself?)",
+             allow; remove the repeated rows (a file appended to itself; or noise-free \
+             samples of a periodic trajectory, whose periods repeat to the bit: keep one \
+             period)",
             file.display(),
             Count(repeated.len(), "row"),
             table.rows()
