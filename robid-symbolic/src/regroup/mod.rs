@@ -214,31 +214,22 @@ impl Derivation {
         let columns: Vec<&[Id]> = candidates.iter().map(|c| c.column.as_slice()).collect();
         let sampled = self.sample(&columns, &geometry, &first_geometry, &mut rng);
         let units: Vec<usize> = candidates.iter().map(|c| unit(c.id.kind)).collect();
-        let status = rank::analyse(&sampled, &units).ok_or_else(|| {
-            RegroupError::Numeric(
-                "a sampled regressor value is not finite, or the columns kept are not independent"
-                    .to_owned(),
-            )
-        })?;
-        self.check_zero_columns(&columns, &candidates, &geometry, &status)?;
-        let kept: Vec<usize> = (0..candidates.len())
-            .filter(|&i| matches!(status[i], Status::Kept(_)))
-            .collect();
-
-        // Fold each dependency into the kept parameters, with exact coefficients.
-        let dependencies: Vec<fold::Dependency> = status
-            .iter()
-            .enumerate()
-            .filter_map(|(i, s)| match s {
-                Status::Dependent(numeric) => Some(fold::Dependency {
-                    candidate: i,
-                    numeric: numeric.clone(),
-                }),
-                _ => None,
-            })
-            .collect();
-        let coefficients =
-            self.dependency_coefficients(&dependencies, &kept, &candidates, &geometry, &mut rng)?;
+        // of two columns of one unit the larger is kept; where that makes a coefficient
+        // robid cannot write for every value of the geometric symbols (the reciprocal of
+        // one it can), the earlier is kept, as without the preference
+        let (kept, dependencies, coefficients) = match self.fold_dependencies(
+            &candidates,
+            &sampled,
+            &units,
+            &geometry,
+            &mut rng,
+            true,
+        ) {
+            Err(RegroupError::NotExpressible { .. }) => {
+                self.fold_dependencies(&candidates, &sampled, &units, &geometry, &mut rng, false)?
+            }
+            folded => folded?,
+        };
         let mut expressions: Vec<Id> = kept.iter().map(|&i| candidates[i].expression).collect();
         for (dependency, exact) in dependencies.iter().zip(coefficients) {
             for (k, c) in exact {
@@ -291,6 +282,52 @@ impl Derivation {
             columns,
             unidentifiable,
         })
+    }
+
+    /// The kept candidates (in candidate order), the dependent ones, and the exact
+    /// coefficients of each dependent one on the kept, from the columns `sampled` at the
+    /// first geometry; `prefer_larger` chooses [`rank::analyse_preferring_larger`] over
+    /// [`rank::analyse`].
+    #[allow(clippy::type_complexity)]
+    fn fold_dependencies(
+        &mut self,
+        candidates: &[Candidate],
+        sampled: &[Vec<f64>],
+        units: &[usize],
+        geometry: &[Id],
+        rng: &mut Rng,
+        prefer_larger: bool,
+    ) -> Result<(Vec<usize>, Vec<fold::Dependency>, Vec<Vec<(usize, Id)>>), RegroupError> {
+        let status = if prefer_larger {
+            rank::analyse_preferring_larger(sampled, units)
+        } else {
+            rank::analyse(sampled, units)
+        };
+        let status = status.ok_or_else(|| {
+            RegroupError::Numeric(
+                "a sampled regressor value is not finite, or the columns kept are not independent"
+                    .to_owned(),
+            )
+        })?;
+        let columns: Vec<&[Id]> = candidates.iter().map(|c| c.column.as_slice()).collect();
+        self.check_zero_columns(&columns, candidates, geometry, &status)?;
+        let kept: Vec<usize> = (0..candidates.len())
+            .filter(|&i| matches!(status[i], Status::Kept(_)))
+            .collect();
+        let dependencies: Vec<fold::Dependency> = status
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| match s {
+                Status::Dependent(numeric) => Some(fold::Dependency {
+                    candidate: i,
+                    numeric: numeric.clone(),
+                }),
+                _ => None,
+            })
+            .collect();
+        let coefficients =
+            self.dependency_coefficients(&dependencies, &kept, candidates, geometry, rng)?;
+        Ok((kept, dependencies, coefficients))
     }
 
     /// A column below rounding at the sampled geometry (a high power of a symbol that was

@@ -87,6 +87,85 @@ pub(crate) fn analyse(columns: &[Vec<f64>], units: &[usize]) -> Option<Vec<Statu
     if columns.iter().flatten().any(|x| !x.is_finite()) || units.len() != columns.len() {
         return None;
     }
+    let order: Vec<usize> = (0..columns.len()).collect();
+    analyse_in_order(columns, units, &order).map(|(status, _)| status)
+}
+
+/// A kept column that a later column of its unit depends on with a coefficient above this
+/// (in magnitude) is that column shrunk by the coefficient: see [`analyse_preferring_larger`].
+pub(crate) const SHRUNK: f64 = 10.0;
+
+/// [`analyse`], but where a column depends on a kept column of the same unit with a
+/// coefficient above [`SHRUNK`], the larger one is kept and the smaller folded into it.
+/// Dimensionless coefficients that large come from a kept column that nearly vanishes: a
+/// prismatic link measured 1e-3 rad off a right angle has its `MY` column 1e-3 of its `MZ`
+/// one, and keeping the earlier gave `MYR2 = MY2 + 1000 MZ2 + 1000 MZ3`, where the nominal
+/// table gives `MZR2 = MZ2 + MZ3` (now `MZR2 = MZ2 + MZ3 + 0.001 MY2`). Taken one exchange at
+/// a time, the larger column visited just before the smaller, until none is left (at most
+/// one pass per column). Kept positions and coefficients are in candidate order, as
+/// [`analyse`] gives them. With geometric symbols an exchanged coefficient may be the
+/// reciprocal of a polynomial in them, which robid cannot write for every value of them:
+/// the caller then keeps the earlier column ([`analyse`]).
+pub(crate) fn analyse_preferring_larger(
+    columns: &[Vec<f64>],
+    units: &[usize],
+) -> Option<Vec<Status>> {
+    if columns.iter().flatten().any(|x| !x.is_finite()) || units.len() != columns.len() {
+        return None;
+    }
+    let mut order: Vec<usize> = (0..columns.len()).collect();
+    for _ in 0..=columns.len() {
+        let (status, kept) = analyse_in_order(columns, units, &order)?;
+        // the first column, in visiting order, that a shrunk kept column of its unit leads
+        let exchange = order.iter().find_map(|&d| match &status[d] {
+            Status::Dependent(coefficients) => coefficients
+                .iter()
+                .find(|&&(k, c)| units[kept[k]] == units[d] && c.abs() > SHRUNK)
+                .map(|&(k, _)| (d, kept[k])),
+            _ => None,
+        });
+        let Some((larger, smaller)) = exchange else {
+            return Some(in_candidate_order(status, &kept));
+        };
+        order.retain(|&i| i != larger);
+        let at = order.iter().position(|&i| i == smaller)?;
+        order.insert(at, larger);
+    }
+    // each exchange puts a column before one it is more than ten times: no cycle, so the
+    // passes above suffice; were they not, the analysis in the given order stands
+    analyse(columns, units)
+}
+
+/// Statuses whose kept positions follow `kept` (the visiting order) renumbered in
+/// candidate order.
+fn in_candidate_order(mut status: Vec<Status>, kept: &[usize]) -> Vec<Status> {
+    let mut sorted = kept.to_vec();
+    sorted.sort_unstable();
+    let position = |visited: usize| sorted.binary_search(&kept[visited]).unwrap_or(visited);
+    for s in &mut status {
+        match s {
+            Status::Kept(k) => *k = position(*k),
+            Status::Dependent(coefficients) => {
+                for (k, _) in coefficients.iter_mut() {
+                    *k = position(*k);
+                }
+                coefficients.sort_by_key(|&(k, _)| k);
+            }
+            Status::Zero => {}
+        }
+    }
+    status
+}
+
+/// The analysis visiting the columns in `order`: each column's status (indexed as
+/// `columns`, kept positions and coefficients in visiting order) and the kept columns in
+/// visiting order. The values are finite and `units` as long as `columns` (checked by the
+/// callers).
+fn analyse_in_order(
+    columns: &[Vec<f64>],
+    units: &[usize],
+    order: &[usize],
+) -> Option<(Vec<Status>, Vec<usize>)> {
     let m = columns.first().map_or(0, Vec::len);
     let sizes: Vec<f64> = columns.iter().map(|c| norm(c)).collect();
     let scale = |unit: usize| {
@@ -98,11 +177,11 @@ pub(crate) fn analyse(columns: &[Vec<f64>], units: &[usize]) -> Option<Vec<Statu
     };
     let mut basis: Vec<Vec<f64>> = Vec::new();
     let mut kept: Vec<usize> = Vec::new();
-    let mut status = Vec::with_capacity(columns.len());
-    for (i, c) in columns.iter().enumerate() {
+    let mut status = vec![Status::Zero; columns.len()];
+    for &i in order {
+        let c = &columns[i];
         let size = sizes[i];
         if size <= NO_EFFECT * scale(units[i]) {
-            status.push(Status::Zero);
             continue;
         }
         let mut r = c.clone();
@@ -116,10 +195,10 @@ pub(crate) fn analyse(columns: &[Vec<f64>], units: &[usize]) -> Option<Vec<Statu
         if residual > DEPENDENT * size {
             r.iter_mut().for_each(|x| *x /= residual);
             basis.push(r);
-            status.push(Status::Kept(kept.len()));
+            status[i] = Status::Kept(kept.len());
             kept.push(i);
         } else {
-            status.push(Status::Dependent(Vec::new()));
+            status[i] = Status::Dependent(Vec::new());
         }
     }
     // Coefficients of each dependent column on the kept ones.
@@ -136,7 +215,7 @@ pub(crate) fn analyse(columns: &[Vec<f64>], units: &[usize]) -> Option<Vec<Statu
             }
         }
     }
-    Some(status)
+    Some((status, kept))
 }
 
 /// Coefficients of `column` on the given kept columns (least squares);
@@ -238,6 +317,42 @@ mod tests {
         assert_eq!(tiny[1], Status::Zero);
         // a list of units of another length is refused
         assert_eq!(analyse(&[vec![1.0]], &[]), None);
+    }
+
+    /// Of two columns of one unit, one more than ten times the other, the larger is kept
+    /// and the smaller folded into it, positions in candidate order; columns of other units,
+    /// or within a factor ten, keep the earlier.
+    #[test]
+    fn the_larger_of_two_columns_of_one_unit_is_kept() {
+        use super::analyse_preferring_larger;
+        let other = vec![0.0, 0.0, 1.0, 0.0];
+        let large = vec![1.0, 2.0, 0.0, 3.0];
+        let small: Vec<f64> = large.iter().map(|x| 1e-3 * x).collect();
+        let columns = [other.clone(), small.clone(), large.clone()];
+        let earlier = analyse(&columns, &[0; 3]).unwrap();
+        assert!(matches!(&earlier[2], Status::Dependent(c) if (c[0].1 - 1e3).abs() < 1e-9));
+        let s = analyse_preferring_larger(&columns, &[0; 3]).unwrap();
+        assert_eq!(s[0], Status::Kept(0));
+        assert_eq!(s[2], Status::Kept(1));
+        match &s[1] {
+            Status::Dependent(c) => {
+                assert_eq!(c.len(), 1);
+                assert_eq!(c[0].0, 1);
+                assert!((c[0].1 - 1e-3).abs() < 1e-15, "{c:?}");
+            }
+            other => panic!("expected a dependency, got {other:?}"),
+        }
+        // another unit, or a factor of five: the earlier stays
+        assert_eq!(
+            analyse_preferring_larger(&columns, &[0, 1, 0]).unwrap(),
+            analyse(&columns, &[0, 1, 0]).unwrap()
+        );
+        let fivefold: Vec<f64> = large.iter().map(|x| 0.2 * x).collect();
+        let near = [other, fivefold, large];
+        assert_eq!(
+            analyse_preferring_larger(&near, &[0; 3]).unwrap(),
+            analyse(&near, &[0; 3]).unwrap()
+        );
     }
 
     #[test]

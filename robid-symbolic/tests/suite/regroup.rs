@@ -254,3 +254,48 @@ fn standard_dh_lwr4_has_the_count_of_its_modified_equivalent() {
     // frames (same torques with the link parameters mapped by code independent of
     // robid-symbolic) is tests/tests/suite/standard_vs_modified.rs.
 }
+
+/// A prismatic link measured 1e-3 rad off a right angle keeps the parameter its nominal
+/// table keeps, the larger column: `MZR2 = MZ2 + MZ3 + 0.001 MY2` (it was `MYR2 = MY2 +
+/// 1000 MZ2 + 1000 MZ3`, the earlier column kept, 1e-3 of the other); the base model
+/// reproduces the full one and its columns have full rank.
+#[test]
+fn a_calibrated_twist_keeps_the_nominal_parameter() {
+    let table = |alpha: &str| {
+        format!(
+            "name = \"rp\"\nconvention = \"modified\"\ncalibrated = true\n\
+             gravity = [0, 0, -9.81]\n[[joints]]\nalpha = 0\na = 0\nd = 0.4\ntheta = 0\n\
+             [[joints]]\ntype = \"prismatic\"\nalpha = {alpha}\na = 0.1\nd = 0\ntheta = 0\n\
+             [[joints]]\nalpha = 0\na = 0.2\nd = 0\n"
+        )
+    };
+    let names = |robot: &Robot| -> Vec<String> {
+        let b = Derivation::new(robot).base_parameters().unwrap();
+        b.base.iter().map(|p| p.name.to_string()).collect()
+    };
+    let nominal = Robot::from_toml(&table("\"pi/2\""), "rp.toml").unwrap();
+    let measured = Robot::from_toml(
+        &table(&format!("{:?}", std::f64::consts::FRAC_PI_2 + 1e-3)),
+        "rp.toml",
+    )
+    .unwrap();
+    assert_eq!(names(&measured), names(&nominal));
+    assert!(names(&measured).contains(&"MZR2".to_owned()));
+    let mut d = Derivation::new(&measured);
+    let b = d.base_parameters().unwrap();
+    let mz = b
+        .base
+        .iter()
+        .find(|p| p.name.to_string() == "MZR2")
+        .unwrap();
+    let my = b
+        .standard
+        .iter()
+        .position(|p| p.to_string() == "MY2")
+        .unwrap();
+    let (_, c) = mz.terms.iter().find(|&&(s, _)| s == my).unwrap();
+    let none = d.arena.values(&[]);
+    let c = d.arena.eval(&[*c], &none).unwrap()[0];
+    assert!((c - 1e-3).abs() < 1e-9, "{c}");
+    check_identity_and_rank(&measured, 3);
+}
