@@ -886,7 +886,7 @@ fn parameter_file_mistakes_are_located_by_line_and_column() {
             &[
                 "params.toml:1:2:",
                 "unknown table or key `standrd`",
-                "[standard], [base] or [known]",
+                "a parameter file holds one table: [standard] (standard parameters) or [base]",
             ][..],
         ),
         (
