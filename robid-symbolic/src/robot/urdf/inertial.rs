@@ -19,8 +19,57 @@ const INERTIA_TOLERANCE: f64 = 1e-6;
 /// inertia of the body's mass at [`MIN_LENGTH`] (1 µm) from its centre, below what any
 /// description resolves. iCub's `head` writes `ixz="2.40741e-35"` and every other entry 0,
 /// an indefinite tensor only by that noise.
-fn noise(i: &Inertial) -> f64 {
-    i.mass * MIN_LENGTH * MIN_LENGTH
+fn noise(mass: f64) -> f64 {
+    mass * MIN_LENGTH * MIN_LENGTH
+}
+
+/// The smallest eigenvalue of the inertia about the centre of mass `inertia` of a link of
+/// `mass` when it is too far below zero for a positive semidefinite tensor: beyond
+/// [`INERTIA_TOLERANCE`] of the largest entry and beyond the [`noise`]. The one test of
+/// the reader (an error) and of the writer, which writes nothing the reader refuses
+/// (docs/urdf.md#writing-inertials-back).
+pub(super) fn indefinite(mass: f64, inertia: &[f64; 6]) -> Option<f64> {
+    let lowest = lowest_eigenvalue(inertia);
+    let scale = inertia.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    (lowest.is_nan() || lowest < -(INERTIA_TOLERANCE * scale).max(noise(mass))).then_some(lowest)
+}
+
+/// The principal moments of `inertia` (ascending) and by how much the largest exceeds the
+/// sum of the other two, when that breaks the triangle inequality: beyond
+/// [`TRIANGLE_TOLERANCE`] of the trace and beyond the [`noise`]. Shared by the reader's
+/// warning and the writer.
+pub(super) fn triangle_broken(mass: f64, inertia: &[f64; 6]) -> Option<([f64; 3], f64)> {
+    let [ixx, ixy, ixz, iyy, iyz, izz] = *inertia;
+    let m = nalgebra::Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz);
+    let mut d: Vec<f64> = m.symmetric_eigenvalues().iter().copied().collect();
+    d.sort_by(f64::total_cmp);
+    let excess = d[2] - d[0] - d[1];
+    let trace = d[0] + d[1] + d[2];
+    (excess > (TRIANGLE_TOLERANCE * trace).max(noise(mass))).then_some(([d[0], d[1], d[2]], excess))
+}
+
+/// The nearest inertia (about the centre of mass) of a mass distribution: the second
+/// moments `tr(I)/2 E - I` with their negative eigenvalues set to 0, taken back to an
+/// inertia. Positive semidefinite and within the triangle inequality (the principal
+/// moments are sums of two principal second moments); an inertia that is both is returned
+/// as it was, to rounding.
+pub(super) fn nearest_physical(inertia: &[f64; 6]) -> [f64; 6] {
+    let i = nalgebra::Matrix3::from(tensor(inertia));
+    let second = nalgebra::Matrix3::identity() * (i.trace() / 2.0) - i;
+    let eigen = second.symmetric_eigen();
+    let clipped = eigen.eigenvalues.map(|x| x.max(0.0));
+    let second = eigen.eigenvectors
+        * nalgebra::Matrix3::from_diagonal(&clipped)
+        * eigen.eigenvectors.transpose();
+    let i = nalgebra::Matrix3::identity() * second.trace() - second;
+    [
+        i[(0, 0)],
+        i[(0, 1)],
+        i[(0, 2)],
+        i[(1, 1)],
+        i[(1, 2)],
+        i[(2, 2)],
+    ]
 }
 
 /// What makes an `<inertial>` impossible, if anything: a negative mass, or an inertia about
@@ -33,9 +82,7 @@ fn impossible(i: &Inertial) -> Option<(Range<usize>, String, &'static str)> {
             "a mass is positive or zero (kg)",
         ));
     }
-    let lowest = lowest_eigenvalue(&i.inertia);
-    let scale = i.inertia.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    (lowest < -(INERTIA_TOLERANCE * scale).max(noise(i))).then(|| {
+    indefinite(i.mass, &i.inertia).map(|lowest| {
         (
             i.inertia_at.clone(),
             format!(
@@ -141,12 +188,7 @@ fn unphysical(i: &Inertial, largest: Largest) -> Option<(Unphysical, Range<usize
             ),
         ));
     }
-    let m = nalgebra::Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz);
-    let mut d: Vec<f64> = m.symmetric_eigenvalues().iter().copied().collect();
-    d.sort_by(f64::total_cmp);
-    let excess = d[2] - d[0] - d[1];
-    let trace = d[0] + d[1] + d[2];
-    (excess > (TRIANGLE_TOLERANCE * trace).max(noise(i))).then(|| {
+    triangle_broken(i.mass, &i.inertia).map(|(d, excess)| {
         let diagonal = [ixy, ixz, iyz].iter().all(|&x| x == 0.0);
         (
             Unphysical::Triangle,

@@ -177,3 +177,57 @@ fn parameters_that_are_not_physical_are_refused() {
         "{e}"
     );
 }
+
+/// A chain link that is a point mass (50 kg, inertia 0) with a tool fixed to it, as
+/// `/tmp/hunt_urdf/min/pm2.urdf` of the 7 December 2026 bug hunt.
+const POINT_MASS_WITH_TOOL: &str = r#"<robot name="pm2">
+  <link name="base"/>
+  <link name="l1">
+    <inertial><origin xyz="0.1 0 0"/><mass value="50"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>
+  </link>
+  <link name="tool1">
+    <inertial><origin xyz="0 0.05 0.1"/><mass value="3"/><inertia ixx="0.05" ixy="0" ixz="0" iyy="0.04" iyz="0" izz="0.03"/></inertial>
+  </link>
+  <link name="l2">
+    <inertial><origin xyz="0.2 0 0"/><mass value="2"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
+  </link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="100" velocity="3"/></joint>
+  <joint name="f1" type="fixed"><parent link="l1"/><child link="tool1"/><origin xyz="0 0 0.2"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0.3 0 0"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="100" velocity="3"/></joint>
+</robot>
+"#;
+
+#[test]
+fn what_is_written_reads_back_when_the_remainder_is_indefinite_by_rounding() {
+    let chosen = ChainSelection::default();
+    let chain = Robot::from_urdf(POINT_MASS_WITH_TOOL, "pm2.urdf", &chosen).unwrap();
+    let mut target: Vec<[f64; 10]> = chain.links.iter().map(|l| l.inertial).collect();
+    // body 1 as `robid feasible` wrote it: the point mass's remainder after the tool has a
+    // principal moment of -2e-8 kg m^2 (2e-10 of the body's 53 kg), far beyond the
+    // reader's floor for 50 kg (its inertia at 1 um, 5e-11)
+    target[0][0] -= 2e-8;
+    target[0][1] += 5e-9;
+    let (written, warnings) = write_inertials(POINT_MASS_WITH_TOOL, "pm2.urdf", &chain, &target)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let again = Robot::from_urdf(&written, "pm2f.urdf", &chosen).unwrap_or_else(|e| panic!("{e}"));
+    assert!(again.warnings.is_empty(), "{:?}", again.warnings);
+    // the tool keeps its inertial; the remainder moved to the nearest physical inertia,
+    // well within 1e-9 of the body's largest parameter
+    assert!(
+        written.contains(r#"<origin xyz="0 0.05 0.1"/><mass value="3"/>"#),
+        "{written}"
+    );
+    let got: Vec<[f64; 10]> = again.links.iter().map(|l| l.inertial).collect();
+    let worst = largest_difference(&got, &target);
+    assert!(worst > 0.0 && worst < 1e-9 * 53.0, "{worst:e}");
+    // beyond that the whole body goes on `l1`, and still reads back
+    target[0][0] -= 1e-6;
+    let (written, warnings) =
+        write_inertials(POINT_MASS_WITH_TOOL, "pm2.urdf", &chain, &target).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].contains("`tool1`"), "{}", warnings[0]);
+    let again = Robot::from_urdf(&written, "pm2f.urdf", &chosen).unwrap_or_else(|e| panic!("{e}"));
+    let got: Vec<[f64; 10]> = again.links.iter().map(|l| l.inertial).collect();
+    assert!(largest_difference(&got, &target) < 1e-12);
+}
