@@ -312,7 +312,13 @@ impl Bounds {
         }
         let base = merge(LinkBounds::default(), raw.default.as_ref());
         let mut out = vec![base; links];
-        for (key, link) in &raw.links {
+        // in file order, so that of one link given twice (`[links.1]`, `[links.01]`: two
+        // keys for toml, one link here) the second table is named
+        let keys = KeyMap::parse(text);
+        let mut given: Vec<(&String, &RawLink)> = raw.links.iter().collect();
+        given.sort_by_key(|(key, _)| keys.find(&format!("links.{key}")));
+        let mut seen: Vec<Option<&str>> = vec![None; links];
+        for (key, link) in given {
             let j: usize = key
                 .parse()
                 .ok()
@@ -324,6 +330,21 @@ impl Bounds {
                         format!("not a link number; write 1 to {links}"),
                     )
                 })?;
+            if let Some(first) = seen[j - 1] {
+                let line = keys
+                    .find(&format!("links.{first}"))
+                    .map_or(String::new(), |(line, _)| format!(" on line {line}"));
+                return Err(Error::setting(
+                    "Bounds",
+                    &format!("links.{key}"),
+                    format!(
+                        "link {j} is given twice, as [links.{}]{line} and here; give one \
+                         table per link",
+                        crate::names::short(first)
+                    ),
+                ));
+            }
+            seen[j - 1] = Some(key);
             out[j - 1] = merge(base, Some(link));
         }
         let bounds = Bounds {
@@ -552,6 +573,36 @@ mod tests {
         assert_eq!(b.links[0].mass, [0.0, 5.0]);
         assert_eq!(b.links[1].mass, [1.0, 2.0]);
         assert_eq!(b.total_mass, Some([1.0, 20.0]));
+    }
+
+    /// One link given twice under two spellings of its number (`1` and `01`, `"+1"`): the
+    /// second table in the file is named, with the first (one table was silently dropped:
+    /// `[links.1] mass = [0, 50]` then `[links.01] mass = [10, 11]` fitted 2.5 kg). A
+    /// spelling alone still names its link.
+    #[test]
+    fn a_link_given_twice_under_two_spellings_is_named_at_the_second() {
+        for (text, at) in [
+            (
+                "[links.1]\nmass = [0.0, 50.0]\n[links.01]\nmass = [10.0, 11.0]\n",
+                "b.toml:3:8: `links.01`: link 1 is given twice, as [links.1] on line 1 and \
+                 here; give one table per link",
+            ),
+            (
+                "[links.001]\ncom = [[0, 1], [0, 1], [0, 1]]\n\n[links.1]\nmass = [1, 2]\n",
+                "b.toml:4:8: `links.1`: link 1 is given twice, as [links.001] on line 1",
+            ),
+            (
+                "[links.3]\nmass = [1, 2]\n[links.\"+3\"]\nmass = [1, 2]\n",
+                "b.toml:3:8: `links.+3`: link 3 is given twice, as [links.3] on line 1",
+            ),
+        ] {
+            let e = Bounds::from_toml(text, "b.toml", 3)
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with(at), "{text}: {e}");
+        }
+        let b = Bounds::from_toml("[links.01]\nmass = [10, 11]\n", "b.toml", 3).unwrap();
+        assert_eq!(b.links[0].mass, [10.0, 11.0]);
     }
 
     #[test]

@@ -1302,6 +1302,30 @@ fn feasible_names_bounds_below_the_margin_in_the_bounds_file() {
     }
 }
 
+/// A link given twice in a bounds file under two spellings of its number is named at the
+/// second table, nothing written: `[links.1] mass = [0, 50]` then `[links.01] mass = [10,
+/// 11]` fitted 2.5 kg to link 1 with exit status 0, one table silently dropped.
+#[test]
+fn feasible_names_a_link_given_twice_in_the_bounds_file() {
+    let dir = folder();
+    let bounds = write(
+        dir.path(),
+        "b.toml",
+        "[links.1]\nmass = [0.0, 50.0]\n[links.01]\nmass = [10.0, 11.0]\n",
+    );
+    let path = out(&dir, "f.toml");
+    let o = bounded("two_link", &bounds, "interior-point", &path);
+    fails_with(
+        &o,
+        &[&format!(
+            "{}:3:8: `links.01`: link 1 is given twice, as [links.1] on line 1 and here; \
+             give one table per link",
+            bounds.display()
+        )],
+    );
+    assert!(!path.exists());
+}
+
 /// The output's extension chooses its format, and one that is neither TOML nor URDF is
 /// refused before any fit, nothing written (`-o x.json` got TOML silently).
 #[test]
