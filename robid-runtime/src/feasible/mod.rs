@@ -72,8 +72,8 @@ pub use prior::{DEFAULT_PRIOR_WEIGHT, LinkShape, MAX_DENSITY, Prior, Unsized};
 pub use problem::Problem;
 pub use sdp::{SdpOptions, consistent_least_squares, solve_sdp};
 pub use search::{
-    AnnealOptions, Equality, Quantity, TwoStep, Variable, solve_anneal, solve_gravity_step,
-    solve_two_step,
+    AnnealOptions, Equality, MAX_EQUALITY_FACTORS, Quantity, TwoStep, Variable, solve_anneal,
+    solve_gravity_step, solve_two_step,
 };
 pub use smooth::{SmoothOptions, solve_smooth};
 pub use solution::{Method, Solution};

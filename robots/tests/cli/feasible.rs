@@ -1326,6 +1326,34 @@ fn feasible_names_a_link_given_twice_in_the_bounds_file() {
     assert!(!path.exists());
 }
 
+/// `--equal` quotes its text short (a 5,000-character name gave a 5,138-byte error, 5,000
+/// nested parentheses one of 10,139 bytes), and parentheses nested 60,000 deep are refused
+/// as any other name, with no recursion to overflow the stack; nothing written. (100,000
+/// levels, 200 kB, exceed the 128 KiB the kernel passes as one argument: the library's
+/// test takes them.)
+#[test]
+fn feasible_equal_quotes_long_text_short() {
+    let dir = folder();
+    let path = out(&dir, "f.toml");
+    let nested = |depth: usize| format!("m1 = {}m2{}", "(".repeat(depth), ")".repeat(depth));
+    for (equal, quoted) in [
+        (format!("m1 = {}", "x".repeat(5000)), 5000),
+        (nested(5000), 10_002),
+        (nested(60_000), 120_002),
+    ] {
+        let o = two_link_anneal(&path, &["--equal", &equal]);
+        fails_with(
+            &o,
+            &[
+                "--equal: `",
+                &format!("({quoted} characters)` is not a link variable"),
+            ],
+        );
+        assert!(stderr(&o).len() < 400, "{} bytes", stderr(&o).len());
+        assert!(!path.exists());
+    }
+}
+
 /// The output's extension chooses its format, and one that is neither TOML nor URDF is
 /// refused before any fit, nothing written (`-o x.json` got TOML silently).
 #[test]

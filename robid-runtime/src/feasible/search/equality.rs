@@ -9,6 +9,7 @@ use std::str::FromStr;
 use crate::Num;
 use crate::feasible::bounds::{LinkBounds, TENSOR_ELEMENTS};
 use crate::limits::MAX_PARAMETER;
+use crate::names::short;
 use crate::{Error, Result};
 
 use super::parametrise::{PER_LINK, link_of};
@@ -53,8 +54,9 @@ impl FromStr for Variable {
                 "Variable",
                 "name",
                 format!(
-                    "`{s}` is not a link variable; write m<link>, c<link>x|y|z or \
-                     I<link>xx|yy|zz|xy|xz|yz with links from 1 (e.g. m7, c7z, I7xz)"
+                    "`{}` is not a link variable; write m<link>, c<link>x|y|z or \
+                     I<link>xx|yy|zz|xy|xz|yz with links from 1 (e.g. m7, c7z, I7xz)",
+                    short(s.trim())
                 ),
             )
         };
@@ -134,6 +136,10 @@ impl Variable {
     }
 }
 
+/// The most factors (constants and variables) on the right of an [`Equality`]: Gaz et al.'s
+/// have three, and a message names the equality whole, so its length stays bounded.
+pub const MAX_EQUALITY_FACTORS: usize = 16;
+
 /// `left = coefficient * factors[0] * factors[1] * ...` (Gaz et al.'s eq. 15 form).
 ///
 /// ```
@@ -164,14 +170,23 @@ impl FromStr for Equality {
             Error::setting(
                 "Equality",
                 "text",
-                format!("`{s}`: {why}; write e.g. `I7xz = c7x * c7z * m7` or `c6y = -0.5 * c6x`"),
+                format!(
+                    "`{}`: {why}; write e.g. `I7xz = c7x * c7z * m7` or `c6y = -0.5 * c6x`",
+                    short(s.trim())
+                ),
             )
         };
         let (left, right) = s.split_once('=').ok_or_else(|| bad("no `=`"))?;
         let left: Variable = left.parse()?;
         let mut coefficient = 1.0;
         let mut factors = Vec::new();
-        for part in right.split('*') {
+        for (k, part) in right.split('*').enumerate() {
+            if k == MAX_EQUALITY_FACTORS {
+                let count = right.split('*').count();
+                return Err(bad(&format!(
+                    "{count} factors, more than {MAX_EQUALITY_FACTORS} (a constant and variables)"
+                )));
+            }
             let part = part.trim();
             if part.is_empty() {
                 return Err(bad("an empty factor"));
@@ -210,6 +225,13 @@ impl fmt::Display for Equality {
 }
 
 impl Equality {
+    /// Its text for a message, shortened past 80 characters as a user's text is
+    /// ([`crate::names::shortened`]): links numbered in the billions make even a few
+    /// factors long.
+    pub(crate) fn quoted(&self) -> String {
+        crate::names::shortened(&self.to_string(), 80).into_owned()
+    }
+
     /// The links it names, 0-based.
     pub(crate) fn links(&self) -> impl Iterator<Item = usize> + '_ {
         std::iter::once(self.left.link).chain(self.factors.iter().map(|v| v.link))
@@ -238,7 +260,8 @@ impl Equality {
             || (off > 1e-3 * left.abs().max(right.abs()) && off > 1e-8 * scale);
         missed.then(|| {
             format!(
-                "equality `{self}` not met: {} = {}, the right side {}",
+                "equality `{}` not met: {} = {}, the right side {}",
+                self.quoted(),
                 self.left,
                 Num::rounded(left, 8),
                 Num::rounded(right, 8)
@@ -266,6 +289,54 @@ mod tests {
         assert!("I7xz = 1e400 * c7x".parse::<Equality>().is_err());
         // finite but beyond the documented magnitude of an input (limits.rs)
         assert!("I7xz = 2e6 * c7x".parse::<Equality>().is_err());
+    }
+
+    /// Text of `--equal` is quoted short in every message (a 5,000-character name was
+    /// echoed whole), and parentheses, which an equality does not take, are refused as a
+    /// name without any recursion however deep they nest (5,000 and 100,000 levels).
+    #[test]
+    fn long_or_deeply_nested_text_is_quoted_short() {
+        let nested = |depth: usize| format!("m6 = {}m1{}", "(".repeat(depth), ")".repeat(depth));
+        for (text, quoted) in [
+            (format!("m6 = {}", "x".repeat(5000)), 5000),
+            (format!("{} = m1", "x".repeat(5000)), 5000),
+            ("y".repeat(5000), 5000),
+            (nested(5000), 10_002),
+            (nested(100_000), 200_002),
+            (format!("m6 = {}", "m1 * ".repeat(1000)), 0),
+        ] {
+            let e = text.parse::<Equality>().unwrap_err().to_string();
+            assert!(e.len() < 300, "{} bytes: {}", e.len(), &e[..300]);
+            if quoted > 0 {
+                assert!(e.contains(&format!("({quoted} characters)")), "{e}");
+            }
+        }
+    }
+
+    /// An equality of more than [`MAX_EQUALITY_FACTORS`] factors is refused with the count:
+    /// its messages name it whole.
+    #[test]
+    fn an_equality_of_too_many_factors_is_refused() {
+        let e = format!("m6 = {}m1", "m1 * ".repeat(MAX_EQUALITY_FACTORS))
+            .parse::<Equality>()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("17 factors, more than 16"), "{e}");
+        let most = format!("m6 = {}m1", "m1 * ".repeat(MAX_EQUALITY_FACTORS - 1));
+        assert_eq!(
+            most.parse::<Equality>().unwrap().factors.len(),
+            MAX_EQUALITY_FACTORS
+        );
+        // links numbered in the billions: the equality is shortened in messages
+        let far = format!(
+            "m6 = {}m1",
+            "m1234567890 * ".repeat(MAX_EQUALITY_FACTORS - 1)
+        );
+        let quoted = far.parse::<Equality>().unwrap().quoted();
+        assert!(
+            quoted.ends_with(" characters)") && quoted.len() < 100,
+            "{quoted}"
+        );
     }
 
     /// An equality prints as it is written: the coefficient only when it is not 1 or stands

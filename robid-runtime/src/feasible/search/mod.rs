@@ -45,7 +45,7 @@ use crate::{Error, Num, Result};
 use anneal::{AnnealSettings, reflect};
 use parametrise::{PER_LINK, link_box, link_centre, link_of};
 
-pub use equality::{Equality, Quantity, Variable};
+pub use equality::{Equality, MAX_EQUALITY_FACTORS, Quantity, Variable};
 pub use two_step::{TwoStep, solve_gravity_step, solve_two_step};
 
 /// Settings of the global search.
@@ -455,8 +455,9 @@ fn search(
                 "AnnealOptions",
                 "equalities",
                 format!(
-                    "`{equality}` names link {}, but the robot has {nl} links; number the \
-                     links from 1 to {nl}",
+                    "`{}` names link {}, but the robot has {nl} links; number the links from \
+                     1 to {nl}",
+                    equality.quoted(),
                     link + 1
                 ),
             ));
@@ -471,8 +472,9 @@ fn search(
                 "AnnealOptions",
                 "equalities",
                 format!(
-                    "`{equality}` sets {} outside its bounds [{}, {}]; write a value inside \
-                     them or widen the bounds",
+                    "`{}` sets {} outside its bounds [{}, {}]; write a value inside them or \
+                     widen the bounds",
+                    equality.quoted(),
                     equality.left,
                     Num(r[0]),
                     Num(r[1])
