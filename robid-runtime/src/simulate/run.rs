@@ -304,10 +304,7 @@ impl Simulation {
         reference.state(0, q0, qd0, qdd0);
         let mut m = vec![0.0; n * n];
         model.mass_matrix_into(&r0[0], base, &mut m)?;
-        if nalgebra::DMatrix::from_row_slice(n, n, &m)
-            .cholesky()
-            .is_none()
-        {
+        if forward::factor(&m, n).is_none() {
             return Err(forward::singular(
                 format!(
                     "the mass matrix M(q) of {} at the reference's first state q = {:?}",
@@ -748,15 +745,13 @@ fn damping_rate<M: Model + ?Sized>(model: &M, base: &[f64], q: &[f64], qd: &[f64
             d[(i, k)] = (h1[i] - h0[i]) / eps;
         }
     }
-    let chol = nalgebra::DMatrix::from_row_slice(n, n, &m)
-        .cholesky()
-        .ok_or_else(|| {
-            forward::singular(
-                format!("the mass matrix M(q) of {} at q = {q:?}", model.name()),
-                &m,
-                n,
-            )
-        })?;
+    let chol = forward::factor(&m, n).ok_or_else(|| {
+        forward::singular(
+            format!("the mass matrix M(q) of {} at q = {q:?}", model.name()),
+            &m,
+            n,
+        )
+    })?;
     let b = chol.solve(&d);
     Ok((0..n)
         .map(|i| (0..n).map(|j| b[(i, j)].abs()).sum::<f64>())
