@@ -33,6 +33,22 @@ pub enum SimulateError {
         /// The model's number of joints.
         dof: usize,
     },
+    /// The mass matrix is singular although positive semidefinite to its rounding, as
+    /// physically consistent parameters make it (only inconsistent ones make it
+    /// indefinite): joints whose motions coincide (two joints on one axis with nothing
+    /// massive between them) move the same bodies the same way, and no torque decides how
+    /// that motion is shared between them. A question of the joints' arrangement, not of
+    /// the parameters' consistency.
+    #[error("{}", coinciding(what, joints, motion))]
+    Coinciding {
+        /// The mass matrix: of which model, at which state.
+        what: String,
+        /// The joints that share the motion, numbered from 1, at least two.
+        joints: Vec<usize>,
+        /// Joint velocities, one per joint (rad/s or m/s), that move no mass: the null
+        /// vector of M(q), its largest component 1.
+        motion: Vec<f64>,
+    },
 }
 
 /// `joint 2` or `joints 1, 2 and 3`.
@@ -45,6 +61,38 @@ pub(crate) fn joint_list(joints: &[usize]) -> String {
         }
         [] => "no joint".to_owned(),
     }
+}
+
+/// The message of [`SimulateError::Coinciding`].
+fn coinciding(what: &str, joints: &[usize], motion: &[f64]) -> String {
+    let lowest = joints.first().copied().unwrap_or(1);
+    let highest = joints.last().copied().unwrap_or(lowest);
+    // the links from the lowest joint's to the one before the highest's lie between them
+    let between = if highest <= lowest + 1 {
+        format!("link {lowest}")
+    } else {
+        format!("links {lowest} to {}", highest - 1)
+    };
+    let velocities: Vec<String> = motion
+        .iter()
+        .map(|v| crate::Num::rounded(*v, 3).to_string())
+        .collect();
+    format!(
+        "{what} is singular: {} move the same bodies the same way (the joint velocities [{}] \
+         move no mass), so no torque decides how that motion is shared between them and the \
+         robot cannot be simulated; the parameters are physically possible, the joints' \
+         arrangement is the cause: nothing with mass or inertia lies between them ({between}), \
+         or what they move has none about the line they share; give {between} a mass and \
+         inertia (in a URDF, an `<inertial>` element), or describe {} as {}",
+        joint_list(joints),
+        velocities.join(", "),
+        if joints.len() == 2 {
+            "the two joints"
+        } else {
+            "these joints"
+        },
+        if joints.len() == 2 { "one" } else { "fewer" },
+    )
 }
 
 /// The message of [`SimulateError::NoInertia`].

@@ -6,7 +6,7 @@
 //! identified from. M(q) includes the rotor inertias Ia. The system is solved by Cholesky,
 //! whose pivots must exceed the rounding of M(q) ([`pivot_tolerance`]).
 
-use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
+use nalgebra::{Cholesky, DMatrix, DVector, Dyn, SymmetricEigen};
 
 use crate::Model;
 use crate::error::{Error, Result};
@@ -63,23 +63,92 @@ fn without_inertia(m: &[f64], n: usize) -> Vec<usize> {
         .collect()
 }
 
+/// A joint takes part in a motion that moves no mass when its squared component in the
+/// null space of the diagonally scaled M(q) (summed over the null directions, out of 1)
+/// is at least this: a share of a thousandth in velocity, far above the eigenvectors'
+/// rounding (eps over the gap to the next eigenvalue).
+const NULL_SHARE: f64 = 1e-6;
+
+/// Iteration cap of the eigenvalue decomposition that explains a singular M(q).
+const EIGEN_ITERATIONS: usize = 1_000;
+
+/// When the mass matrix `m` (n x n, row-major, with a positive diagonal) is positive
+/// semidefinite to its rounding, as physically consistent parameters make it, and
+/// singular: the joints (numbered from 1) whose motions coincide, and the joint velocities
+/// that move no mass (its null vector, the largest component 1). `None` when `m` is
+/// indefinite beyond rounding: inconsistent parameters. Judged on `D^-1/2 M D^-1/2` (D its
+/// diagonal, a unit diagonal), so that joints of other units and light links weigh alike,
+/// against the pivots' tolerance (the smallest eigenvalue is at most the smallest
+/// relative pivot).
+fn coinciding(m: &[f64], n: usize) -> Option<(Vec<usize>, Vec<f64>)> {
+    let root: Vec<f64> = (0..n).map(|j| m[j * n + j].sqrt()).collect();
+    if !root.iter().all(|r| *r > 0.0 && r.is_finite()) {
+        return None;
+    }
+    let scaled = DMatrix::from_fn(n, n, |i, k| m[i * n + k] / (root[i] * root[k]));
+    let eigen = SymmetricEigen::try_new(scaled, f64::EPSILON, EIGEN_ITERATIONS)?;
+    let tolerance = pivot_tolerance(n);
+    let lowest = eigen.eigenvalues.imin();
+    if eigen.eigenvalues[lowest] < -tolerance {
+        return None;
+    }
+    let null: Vec<usize> = (0..n)
+        .filter(|&c| c == lowest || eigen.eigenvalues[c] <= tolerance)
+        .collect();
+    let joints: Vec<usize> = (0..n)
+        .filter(|&j| {
+            null.iter()
+                .map(|&c| eigen.eigenvectors[(j, c)].powi(2))
+                .sum::<f64>()
+                >= NULL_SHARE
+        })
+        .collect();
+    if joints.len() < 2 {
+        return None;
+    }
+    // the velocities: the scaled null vector back in joint units, the largest +1
+    let mut motion: Vec<f64> = (0..n)
+        .map(|j| {
+            if joints.contains(&j) {
+                eigen.eigenvectors[(j, lowest)] / root[j]
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let largest = motion
+        .iter()
+        .copied()
+        .fold(0.0, |a: f64, v| if v.abs() > a.abs() { v } else { a });
+    motion.iter_mut().for_each(|v| *v /= largest);
+    Some((joints.iter().map(|j| j + 1).collect(), motion))
+}
+
 /// The error of a mass matrix `m` (n x n, row-major; `what`: of which model at which
-/// state) that Cholesky refused: joints that move nothing when its diagonal says so
+/// state) that [`factor`] refused: joints that move nothing when its diagonal says so
 /// ([`SimulateError::NoInertia`]: the parameters leave bodies empty, as a URDF's links
-/// without `<inertial>` do), else parameters that are not physically consistent.
+/// without `<inertial>` do), joints whose motions coincide when it is positive
+/// semidefinite, as physically consistent parameters make it
+/// ([`SimulateError::Coinciding`]), else parameters that are not physically consistent.
 pub(super) fn singular(what: String, m: &[f64], n: usize) -> Error {
     let joints = without_inertia(m, n);
-    if joints.is_empty() {
-        Error::Singular {
-            what,
-            hint: "the parameters are not physically consistent; use a feasible parameter set (robid feasible)",
-        }
-    } else {
-        Error::Simulate(SimulateError::NoInertia {
+    if !joints.is_empty() {
+        return Error::Simulate(SimulateError::NoInertia {
             what,
             joints,
             dof: n,
-        })
+        });
+    }
+    match coinciding(m, n) {
+        Some((joints, motion)) => Error::Simulate(SimulateError::Coinciding {
+            what,
+            joints,
+            motion,
+        }),
+        None => Error::Singular {
+            what,
+            hint: "the parameters are not physically consistent; use a feasible parameter set (robid feasible)",
+        },
     }
 }
 
@@ -195,8 +264,10 @@ mod tests {
     /// A mass matrix singular in exact arithmetic is refused although rounding leaves
     /// plain Cholesky a tiny positive pivot (here at least one of these cases; the
     /// simulation then split the motion between the joints at random), by the forward
-    /// dynamics and by `Simulation::run` before it starts; one that is regular by a
-    /// relative 1e-7 (condition number about 1e8) is not, and simulates.
+    /// dynamics and by `Simulation::run` before it starts, naming the joints whose motions
+    /// coincide and the motion that moves no mass (joint 2 turning back by (l1 + x) / x
+    /// times joint 1), not the parameters, which are consistent; one that is regular by a
+    /// relative 1e-7 (condition number about 1e8) is not refused, and simulates.
     #[test]
     fn a_mass_matrix_singular_to_rounding_is_refused() {
         let p = Pendulum::default();
@@ -215,7 +286,21 @@ mod tests {
                     .unwrap()
                     .accelerations(&q, &qd, &tau, &mut qdd)
                     .unwrap_err();
-                assert!(e.to_string().contains("is singular"), "{m} {x}: {e}");
+                let velocity = format!("[{}, 1]", crate::Num::rounded(-x / (0.5 + x), 3));
+                assert!(
+                    matches!(&e, Error::Simulate(SimulateError::Coinciding { joints, .. }) if joints == &[1, 2]),
+                    "{m} {x}: {e:?}"
+                );
+                let e = e.to_string();
+                assert!(
+                    e.contains(&format!(
+                        "is singular: joints 1 and 2 move the same bodies the same way (the \
+                         joint velocities {velocity} move no mass)"
+                    )) && e.contains("give link 1 a mass and inertia")
+                        && e.contains("describe the two joints as one")
+                        && !e.contains("not physically consistent"),
+                    "{m} {x}: {e}"
+                );
                 let reference = crate::simulate::run_tests::reference(0.2, 500.0);
                 let e = crate::simulate::Simulation::default()
                     .run(&p, &base, &reference)

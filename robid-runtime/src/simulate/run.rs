@@ -30,8 +30,9 @@
 //! 1 to [`MAX_SUBSTEPS`] substeps, at most [`MAX_SIMULATION_STEPS`] integration steps in
 //! all), the base parameters (finite, magnitude at most
 //! [`MAX_BASE_PARAMETER`](crate::limits::MAX_BASE_PARAMETER); M(q) positive definite at the
-//! reference's first state, else a joint that moves no mass or inertia is named
-//! ([`crate::SimulateError::NoInertia`]) or the parameters are blamed), the reference (finite and
+//! reference's first state by more than its rounding, else a joint that moves no mass or
+//! inertia is named ([`crate::SimulateError::NoInertia`]), or joints whose motions coincide
+//! ([`crate::SimulateError::Coinciding`]), or the parameters are blamed), the reference (finite and
 //! within the ranges of [`crate::limits`], a bad sample named by its index and time). At
 //! every reference sample the run is checked for divergence: a non-finite state, a
 //! tracking error above [`DIVERGENCE_FACTOR`] times (the joint's reference range + 1 rad),
@@ -459,6 +460,18 @@ impl Simulation {
                 ),
                 hint: "the parameters are not physically consistent at this state (M(q) was positive definite at the start); use a feasible parameter set (robid feasible)",
             },
+            Error::Simulate(SimulateError::Coinciding {
+                what,
+                joints,
+                motion,
+            }) => Error::Simulate(SimulateError::Coinciding {
+                what: format!(
+                    "{what} (reached at reference sample {k}, t = {} s)",
+                    reference.t[k]
+                ),
+                joints,
+                motion,
+            }),
             Error::Simulate(SimulateError::NoInertia { what, joints, dof }) => {
                 Error::Simulate(SimulateError::NoInertia {
                     what: format!(

@@ -196,7 +196,27 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
 /// inertials as the parameters names those joints and their links as the URDF does, and
 /// the ways out (the links' `<inertial>` elements, or `--parameters`). ROS-Industrial
 /// support packages leave every `<inertial>` out.
+///
+/// Joints whose motions coincide ([`SimulateError::Coinciding`]) of a URDF are also named
+/// as the URDF names them, with the links between them.
 fn refused(args: &Args, description: &Description, e: robid_runtime::Error) -> Error {
+    if let (Some(chain), robid_runtime::Error::Simulate(SimulateError::Coinciding { joints, .. })) =
+        (&description.urdf, &e)
+    {
+        let name = |j: usize| chain.links.get(j - 1).map(|l| (&l.joint, &l.link));
+        let (Some(&lowest), Some(&highest)) = (joints.first(), joints.last()) else {
+            return e.into();
+        };
+        let mut named: Vec<String> = joints
+            .iter()
+            .filter_map(|&j| name(j).map(|(joint, _)| format!("joint {j} is `{joint}`")))
+            .collect();
+        named.extend(
+            (lowest..highest)
+                .filter_map(|k| name(k).map(|(_, link)| format!("link {k} is `{link}`"))),
+        );
+        return format!("{e} (in {}: {})", args.robot.display(), named.join(", ")).into();
+    }
     let (
         Some(chain),
         None,

@@ -1603,8 +1603,9 @@ fn simulate_coaxial(dir: &Path, urdf: &Path) -> (std::process::Output, PathBuf) 
 /// every q, and only the sum of the two accelerations is determined. Rounding left plain
 /// Cholesky a pivot of 0.8 eps of M22, and `simulate` wrote accelerations split between
 /// the joints at random with exit 0; a pivot within the rounding of M(q) now counts as 0.
-/// The same robot with a light link between the joints (1 mg, 8e-9 kg m^2: M(q) of
-/// condition number 1e7) is regular and simulates.
+/// The joints are named ([`coinciding_joints_are_named`]). The same robot with a light
+/// link between the joints (1 mg, 8e-9 kg m^2: M(q) of condition number 1e7) is regular
+/// and simulates.
 #[test]
 fn simulate_refuses_a_mass_matrix_singular_to_rounding() {
     let dir = folder();
@@ -1615,9 +1616,65 @@ fn simulate_refuses_a_mass_matrix_singular_to_rounding() {
         &["the mass matrix M(q) of coax at the reference's first state"],
     );
     assert!(!output.exists());
+    coinciding_joints_are_named(&o);
     let light = r#"<inertial><mass value="1e-6"/><inertia ixx="8e-9" ixy="0" ixz="0" iyy="8e-9" iyz="0" izz="8e-9"/></inertial>"#;
     let urdf = write(dir.path(), "light.urdf", &coaxial("revolute", light));
     let (o, output) = simulate_coaxial(dir.path(), &urdf);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(output.exists());
+}
+
+/// The error of two joints on one axis with nothing massive between them names the joints,
+/// by number and by their URDF names, the motion that moves no mass, and the fix.
+#[track_caller]
+fn coinciding_joints_are_named(o: &std::process::Output) {
+    fails_with(
+        o,
+        &[
+            "is singular: joints 1 and 2 move the same bodies the same way (the joint \
+             velocities [1, -1] move no mass)",
+            "nothing with mass or inertia lies between them (link 1)",
+            "give link 1 a mass and inertia (in a URDF, an `<inertial>` element), or describe \
+             the two joints as one",
+            "coax.urdf: joint 1 is `j1`, joint 2 is `j2`, link 1 is `a`)",
+        ],
+    );
+    let e = stderr(o);
+    assert!(
+        !e.contains("physically consistent") && !e.contains("robid feasible"),
+        "{e}"
+    );
+}
+
+/// Two prismatic joints along one axis with a massless link between them: the URDF's
+/// inertials are valid, so the singular mass matrix is told as the joints' arrangement
+/// (it said "the parameters are not physically consistent; use a feasible parameter set"),
+/// naming the joints; a `[base]` file that makes M(q) indefinite is still told as
+/// inconsistent parameters.
+#[test]
+fn simulate_names_prismatic_joints_that_move_one_body_alike() {
+    let dir = folder();
+    let urdf = write(dir.path(), "coax.urdf", &coaxial("prismatic", ""));
+    let (o, output) = simulate_coaxial(dir.path(), &urdf);
+    coinciding_joints_are_named(&o);
+    assert!(!output.exists());
+    let light = r#"<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"#;
+    let urdf = write(dir.path(), "two.urdf", &coaxial("prismatic", light));
+    let negative = write(dir.path(), "negative.toml", "[base]\nM1 = -0.5\nM2 = 1\n");
+    let trajectory = dir.path().join("traj.csv");
+    let o = robid(&[
+        "simulate",
+        urdf.to_str().unwrap(),
+        "--parameters",
+        negative.to_str().unwrap(),
+        "--trajectory",
+        trajectory.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    fails_with(
+        &o,
+        &["is singular or not positive definite; the parameters are not physically consistent"],
+    );
+    assert!(!output.exists());
 }
