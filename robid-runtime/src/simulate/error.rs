@@ -49,6 +49,36 @@ pub enum SimulateError {
         /// vector of M(q), its largest component 1.
         motion: Vec<f64>,
     },
+    /// A value a simulated record would write lies beyond what robid's readers accept
+    /// ([`crate::limits::Quantity::limit`], the one limit the readers apply): `identify`
+    /// would refuse the file, so nothing is written (a current of 1e12 A, a torque noise
+    /// over a tiny torque per ampere, was written with exit 0).
+    #[error(
+        "{}:{line}: column `{column}` would be {} (t = {} s), outside the range |{quantity}| \
+         <= {limit:e} that robid's readers accept, so the file would be refused as data; \
+         nothing was written; {fix}",
+        path.display(),
+        crate::Num::rounded(*value, 4),
+        crate::Num(*time)
+    )]
+    Unreadable {
+        /// The output file.
+        path: std::path::PathBuf,
+        /// Its line that would hold the value (the header is line 1).
+        line: usize,
+        /// The time stamp of that line, s.
+        time: f64,
+        /// The column's name (`i1`, `theta2`, ...).
+        column: String,
+        /// The value.
+        value: f64,
+        /// The quantity the readers take the column as (`torque` for a current).
+        quantity: &'static str,
+        /// The largest magnitude they accept.
+        limit: f64,
+        /// What makes the value this large, and what to change.
+        fix: String,
+    },
 }
 
 /// `joint 2` or `joints 1, 2 and 3`.

@@ -377,28 +377,52 @@ impl FlexibleRecord {
     }
 
     /// Writes `t,q1..,theta1..,i1..,T1..` and with `joint_torque` also `tauJ1..`, every
-    /// `every`-th sample.
+    /// `every`-th sample. A value beyond what robid's readers accept is refused first
+    /// ([`crate::SimulateError::Unreadable`]), with nothing written.
     pub fn write_csv(&self, path: &Path, every: usize, joint_torque: bool) -> Result<()> {
+        use crate::limits::Quantity;
         let n = self.q.dof();
         let mut header = vec!["t".to_string()];
         let mut signals = vec![&self.q, &self.motor, &self.current, &self.temperature];
         let mut prefixes = vec!["q", "theta", "i", "T"];
+        let mut groups = vec![
+            Quantity::Position,
+            Quantity::Position,
+            Quantity::Torque,
+            Quantity::Temperature,
+        ];
         if joint_torque {
             signals.push(&self.joint_torque);
             prefixes.push("tauJ");
+            groups.push(Quantity::Torque);
         }
         for p in &prefixes {
             header.extend((1..=n).map(|j| format!("{p}{j}")));
         }
         let every = every.max(1);
         let rows = self.t.len().div_ceil(every);
-        super::trajectory::write_rows(path, header, rows, |r, row| {
+        let fill = |r: usize, row: &mut Vec<f64>| {
             let k = r * every;
             row.push(self.t[k]);
             for s in &signals {
                 row.extend(s.joints().map(|v| v[k]));
             }
-        })
+        };
+        let quantities = super::trajectory::column_quantities(n, &groups);
+        super::trajectory::check_rows(path, &header, &quantities, rows, fill, |column| {
+            match prefixes.get(column.saturating_sub(1) / n.max(1)) {
+                Some(&"theta") => "a motor position is the link's times the gear ratio: give \
+                     a smaller gear ratio, or a reference nearer 0"
+                    .to_string(),
+                Some(&"i") => "a current is the torque over the gear ratio times the torque \
+                     constant: give a larger torque constant or gear ratio, or less torque noise"
+                    .to_string(),
+                _ => "the simulation produced it: check the parameters, the flexibility file, \
+                     the reference and the noise settings"
+                    .to_string(),
+            }
+        })?;
+        super::trajectory::write_rows(path, header, rows, fill)
     }
 }
 

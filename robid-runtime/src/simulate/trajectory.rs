@@ -289,18 +289,33 @@ impl Record {
         h
     }
 
-    /// Writes the record as CSV.
+    /// Writes the record as CSV; a value beyond what robid's readers accept is refused
+    /// first ([`crate::SimulateError::Unreadable`]), with nothing written.
     pub fn write_csv(&self, path: &Path) -> Result<()> {
         let n = self.trajectory.dof();
-        write_rows(
+        let header = Self::header(n);
+        let fill = |k: usize, row: &mut Vec<f64>| {
+            self.trajectory.push_row(k, row);
+            row.extend(self.tau.joints().map(|v| v[k]));
+        };
+        let quantities = column_quantities(
+            n,
+            &[
+                Quantity::Position,
+                Quantity::Velocity,
+                Quantity::Acceleration,
+                Quantity::Torque,
+            ],
+        );
+        check_rows(
             path,
-            Self::header(n),
+            &header,
+            &quantities,
             self.trajectory.samples(),
-            |k, row| {
-                self.trajectory.push_row(k, row);
-                row.extend(self.tau.joints().map(|v| v[k]));
-            },
-        )
+            fill,
+            |_| SIMULATED_FIX.to_string(),
+        )?;
+        write_rows(path, header, self.trajectory.samples(), fill)
     }
 
     /// Writes what a real log holds: every `every`-th sample of the time, the measured
@@ -308,6 +323,11 @@ impl Record {
     /// `tau_j / currents[j]` (`t,q1..,i1..`; `currents` are the torque constants times
     /// the gear ratios, N m per A at the joint). No velocities or accelerations: who reads
     /// it must differentiate, as on real data.
+    ///
+    /// A value beyond what robid's readers accept is refused first
+    /// ([`crate::SimulateError::Unreadable`]), with nothing written: a current is the
+    /// torque over its torque per ampere, and a tiny one turns a torque the readers take
+    /// into a current they refuse.
     pub fn write_log_csv(&self, path: &Path, every: usize, currents: Option<&[f64]>) -> Result<()> {
         let n = self.trajectory.dof();
         let every = every.max(1);
@@ -315,7 +335,7 @@ impl Record {
         header.extend(names("q", n));
         header.extend(names(if currents.is_some() { "i" } else { "tau" }, n));
         let rows = self.trajectory.samples().div_ceil(every);
-        write_rows(path, header, rows, |r, row| {
+        let fill = |r: usize, row: &mut Vec<f64>| {
             let k = r * every;
             row.push(self.trajectory.t[k]);
             row.extend(self.trajectory.q.joints().map(|v| v[k]));
@@ -323,7 +343,36 @@ impl Record {
                 Some(c) => row.extend(self.tau.joints().zip(c).map(|(v, c)| v[k] / c)),
                 None => row.extend(self.tau.joints().map(|v| v[k])),
             }
-        })
+        };
+        let quantities = column_quantities(n, &[Quantity::Position, Quantity::Torque]);
+        check_rows(path, &header, &quantities, rows, fill, |column| {
+            let j = column.checked_sub(1 + n).filter(|j| *j < n);
+            match (currents, j) {
+                (Some(c), Some(j)) => {
+                    let largest = self.largest_torque(j, every);
+                    format!(
+                        "the torque of joint {} reaches {} N m (its noise included), over a \
+                         torque per ampere of {} N m/A: give joint {} a torque per ampere of \
+                         magnitude at least {} N m/A, or less torque noise",
+                        j + 1,
+                        crate::Num::rounded(largest, 4),
+                        crate::Num(c[j]),
+                        j + 1,
+                        crate::Num::rounded(largest / Quantity::Torque.limit(), 3)
+                    )
+                }
+                _ => SIMULATED_FIX.to_string(),
+            }
+        })?;
+        write_rows(path, header, rows, fill)
+    }
+
+    /// The largest |torque| of joint `j` (0-based) over every `every`-th sample.
+    pub fn largest_torque(&self, j: usize, every: usize) -> f64 {
+        self.tau[j]
+            .iter()
+            .step_by(every.max(1))
+            .fold(0.0, |m: f64, t| m.max(t.abs()))
     }
 
     /// The record as a data set for the identification pipeline (uniform sample time
@@ -335,6 +384,56 @@ impl Record {
             .with_velocities(tr.qd.clone())?
             .with_accelerations(tr.qdd.clone())
     }
+}
+
+/// The fix of a simulated value beyond the readers' range that no setting of the writer
+/// explains (a run checks its states and torques against the same limits).
+const SIMULATED_FIX: &str = "the simulation produced it: check the parameters, the \
+     reference and the noise settings";
+
+/// The quantity of every column of a file `t` then, for each of `groups`, `n` joints.
+pub(super) fn column_quantities(n: usize, groups: &[Quantity]) -> Vec<Quantity> {
+    std::iter::once(Quantity::Time)
+        .chain(groups.iter().flat_map(|q| std::iter::repeat_n(*q, n)))
+        .collect()
+}
+
+/// Refuses the rows `fill` gives (as [`write_rows`] writes them to `path` under `header`)
+/// at the first value beyond the range robid's readers accept for its column's quantity
+/// (`quantities`, one per column): [`crate::SimulateError::Unreadable`] at the line the
+/// file would hold it, with `fix(column)`. A file the readers refuse is no output: `identify`
+/// read a current of -6.6e11 A that `simulate` had written with exit 0.
+pub(super) fn check_rows(
+    path: &Path,
+    header: &[String],
+    quantities: &[Quantity],
+    rows: usize,
+    mut fill: impl FnMut(usize, &mut Vec<f64>),
+    fix: impl Fn(usize) -> String,
+) -> Result<()> {
+    let mut row = Vec::with_capacity(header.len());
+    for r in 0..rows {
+        row.clear();
+        fill(r, &mut row);
+        let outside = row
+            .iter()
+            .zip(quantities)
+            .position(|(x, q)| !(x.abs() <= q.limit()));
+        if let Some(c) = outside {
+            let quantity = quantities[c];
+            return Err(Error::Simulate(crate::SimulateError::Unreadable {
+                path: path.to_path_buf(),
+                line: r + 2,
+                time: row[0],
+                column: header[c].clone(),
+                value: row[c],
+                quantity: quantity.name(),
+                limit: quantity.limit(),
+                fix: fix(c),
+            }));
+        }
+    }
+    Ok(())
 }
 
 pub(super) fn write_rows(
@@ -440,5 +539,47 @@ mod tests {
         let mut flat = sine();
         flat.qdd = Signals::new(vec![vec![0.0; 200]]).unwrap();
         assert_eq!(problem(&flat), None);
+    }
+
+    /// A record whose currents (torque over torque per ampere) or torques lie beyond what
+    /// robid's readers accept is refused at the first such row, naming its line, column and
+    /// the readers' limit, and nothing is written; within the range it is written.
+    #[test]
+    fn values_the_readers_refuse_are_not_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("log.csv");
+        let torque: Vec<f64> = (0..200).map(|k| 5.0 + k as f64).collect();
+        let record = Record {
+            trajectory: sine(),
+            tau: Signals::new(vec![torque]).unwrap(),
+        };
+        // 5 + k N m over 1e-6 N m/A: beyond 1e7 A from k = 6 (line 8)
+        let e = record
+            .write_log_csv(&path, 1, Some(&[1e-6]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with(&format!(
+                "{}:8: column `i1` would be 1.1e7 (t = 0.06 s), outside the range |torque| <= \
+                 1e7 that robid's readers accept",
+                path.display()
+            )) && e
+                .contains("give joint 1 a torque per ampere of magnitude at least 2.04e-5 N m/A"),
+            "{e}"
+        );
+        assert!(!path.exists());
+        // every other row: line 5 holds sample 6
+        let e = record
+            .write_log_csv(&path, 2, Some(&[1e-6]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("log.csv:5: column `i1`"), "{e}");
+        record.write_log_csv(&path, 1, Some(&[1e-4])).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let mut heavy = record.clone();
+        heavy.tau[0][3] = -2e7;
+        let e = heavy.write_csv(&path).unwrap_err().to_string();
+        assert!(e.contains("log.csv:5: column `tau1` would be -2e7"), "{e}");
+        assert!(!path.exists());
     }
 }

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use robid_runtime::data::SLOW_SAMPLE_RATE;
 use robid_runtime::limits::{MIN_RESOLUTION, MIN_SAMPLE_RATE};
 use robid_runtime::simulate::{Flexibility, Noise, Record, SimulateError, Simulation, Trajectory};
-use robid_runtime::{Count, Model, Series, num};
+use robid_runtime::{Count, Model, Num, Series, num};
 use robots::interpreted::Interpreted;
 
 use super::description::{self, Description, DescriptionFlags};
@@ -175,7 +175,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             let currents = (!args.currents.is_empty()).then_some(args.currents.as_slice());
             result
                 .measured
-                .write_log_csv(&args.output, every, currents)?;
+                .write_log_csv(&args.output, every, currents)
+                .map_err(|e| on_current_flags(args, &result.measured, every, e))?;
         }
     }
     let mut stdout = out::Stdout::new();
@@ -232,6 +233,60 @@ fn refused(args: &Args, description: &Description, e: robid_runtime::Error) -> E
         return e.into();
     }
     no_inertia(args, description, joints)
+}
+
+/// The error of a log whose current `iJ` would be beyond what robid's readers accept
+/// ([`SimulateError::Unreadable`]: the torque over a tiny `--currents` value, a large
+/// `--torque-noise` included) with the fix in flags; any other error as it is.
+fn on_current_flags(
+    args: &Args,
+    record: &Record,
+    every: usize,
+    e: robid_runtime::Error,
+) -> robid_runtime::Error {
+    let robid_runtime::Error::Simulate(SimulateError::Unreadable {
+        path,
+        line,
+        time,
+        column,
+        value,
+        quantity,
+        limit,
+        fix,
+    }) = e
+    else {
+        return e;
+    };
+    let joint = column
+        .strip_prefix('i')
+        .and_then(|j| j.parse::<usize>().ok())
+        .filter(|j| (1..=args.currents.len()).contains(j));
+    let fix = match joint {
+        Some(j) => {
+            let largest = record.largest_torque(j - 1, every);
+            let noise = args.torque_noise[(j - 1).min(args.torque_noise.len() - 1)];
+            format!(
+                "the torque of joint {j} reaches {} N m (--torque-noise {} N m included), and \
+                 --currents gives it {} N m/A: give --currents a value of magnitude at least \
+                 {} N m/A for joint {j}, or a smaller --torque-noise",
+                Num::rounded(largest, 4),
+                num(noise),
+                num(args.currents[j - 1]),
+                Num::rounded(largest / limit, 3)
+            )
+        }
+        None => fix,
+    };
+    robid_runtime::Error::Simulate(SimulateError::Unreadable {
+        path,
+        line,
+        time,
+        column,
+        value,
+        quantity,
+        limit,
+        fix,
+    })
 }
 
 /// The joints (numbered from 1) that a URDF's own inertials leave without mass or inertia,

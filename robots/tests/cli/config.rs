@@ -228,6 +228,85 @@ fn inspect_suggests_the_cutoff_that_auto_uses() {
     assert_eq!(report["cutoff"]["cutoff"].as_f64(), Some(cutoff));
 }
 
+/// `simulate --currents` of a tiny torque per ampere beside a large torque noise, each
+/// within its flag's range: the currents, up to 1e12 A, are beyond what robid's readers
+/// accept (|current| <= 1e7, the limit `identify` applies), so the run is refused before
+/// anything is written, naming the column, the flags and the value that fits; it wrote
+/// the log with exit 0, which `identify` then refused. An earlier file of that name is
+/// left as it was; the same flags with a fitting torque per ampere write a log that
+/// `identify` reads.
+#[test]
+fn simulate_refuses_currents_beyond_what_the_readers_accept() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let params = write(
+        d,
+        "p.toml",
+        "[standard]\nXX1 = 0.2\nYY1 = 0.2\nZZ1 = 0.2\nMY1 = 0.5\nM1 = 2.0\n",
+    );
+    let mut traj = String::from("t,q1,qd1,qdd1\n");
+    for k in 0..=500 {
+        let t = k as f64 * 4e-3;
+        traj.push_str(&format!("{t},{},{},{}\n", t.sin(), t.cos(), -t.sin()));
+    }
+    let traj = write(d, "traj.csv", &traj);
+    let output = write(d, "log.csv", "an earlier file\n");
+    let run = |currents: &str| {
+        robid(&[
+            "simulate",
+            robot.to_str().unwrap(),
+            "--parameters",
+            params.to_str().unwrap(),
+            "--trajectory",
+            traj.to_str().unwrap(),
+            "--columns",
+            "positions",
+            &format!("--currents={currents}"),
+            "--torque-noise",
+            "1e6",
+            "-o",
+            output.to_str().unwrap(),
+        ])
+    };
+    for currents in ["1e-6", "-1e-6"] {
+        let o = run(currents);
+        fails_with(
+            &o,
+            &[
+                "log.csv:2: column `i1` would be ",
+                "outside the range |torque| <= 1e7 that robid's readers accept, so the file \
+                 would be refused as data; nothing was written; the torque of joint 1 reaches ",
+                &format!(
+                    "(--torque-noise 1e6 N m included), and --currents gives it {currents} N m/A"
+                ),
+                "give --currents a value of magnitude at least ",
+                "or a smaller --torque-noise",
+            ],
+        );
+        assert_eq!(
+            std::fs::read_to_string(&output).unwrap(),
+            "an earlier file\n"
+        );
+    }
+    // 1 N m/A: currents within the range, read back by identify
+    let o = run("1");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let config = write(
+        d,
+        "cfg.toml",
+        "dof = 1\ntime_column = \"t\"\n[[source]]\nfile = \"log.csv\"\nposition = \"q{}\"\n\
+         torque = \"i{}\"\n",
+    );
+    let o = robid(&[
+        "identify",
+        robot.to_str().unwrap(),
+        "--config",
+        config.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
 /// `simulate --columns positions` writes t, q and torques (or currents) at a fraction of
 /// the trajectory's rate, the same samples as the full record; a rate that is not a whole
 /// fraction, and log flags with `--columns all`, are refused by name.
