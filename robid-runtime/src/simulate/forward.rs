@@ -193,9 +193,11 @@ impl<'a, M: Model + ?Sized> ForwardDynamics<'a, M> {
     }
 
     /// Joint accelerations for torques `tau` at state (q, qd), written to `qdd`.
-    /// Fails when M(q) is not positive definite by more than its rounding
-    /// ([`pivot_tolerance`]): physically inconsistent parameters, or a joint that moves no
-    /// mass or inertia ([`SimulateError::NoInertia`]).
+    /// Fails when M(q) is not positive definite by more than its rounding (a Cholesky
+    /// pivot at most `(n + 1)^2 eps` of its diagonal entry counts as zero): physically
+    /// inconsistent parameters, joints whose motions coincide
+    /// ([`SimulateError::Coinciding`]), or a joint that moves no mass or inertia
+    /// ([`SimulateError::NoInertia`]).
     pub fn accelerations(
         &mut self,
         q: &[f64],
