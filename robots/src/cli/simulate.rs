@@ -242,51 +242,30 @@ fn on_current_flags(
     args: &Args,
     record: &Record,
     every: usize,
-    e: robid_runtime::Error,
+    mut e: robid_runtime::Error,
 ) -> robid_runtime::Error {
-    let robid_runtime::Error::Simulate(SimulateError::Unreadable {
-        path,
-        line,
-        time,
-        column,
-        value,
-        quantity,
-        limit,
-        fix,
-    }) = e
-    else {
-        return e;
-    };
-    let joint = column
-        .strip_prefix('i')
-        .and_then(|j| j.parse::<usize>().ok())
-        .filter(|j| (1..=args.currents.len()).contains(j));
-    let fix = match joint {
-        Some(j) => {
-            let largest = record.largest_torque(j - 1, every);
-            let noise = args.torque_noise[(j - 1).min(args.torque_noise.len() - 1)];
-            format!(
-                "the torque of joint {j} reaches {} N m (--torque-noise {} N m included), and \
-                 --currents gives it {} N m/A: give --currents a value of magnitude at least \
-                 {} N m/A for joint {j}, or a smaller --torque-noise",
-                Num::rounded(largest, 4),
-                num(noise),
-                num(args.currents[j - 1]),
-                Num::rounded(largest / limit, 3)
-            )
-        }
-        None => fix,
-    };
-    robid_runtime::Error::Simulate(SimulateError::Unreadable {
-        path,
-        line,
-        time,
-        column,
-        value,
-        quantity,
-        limit,
-        fix,
-    })
+    if let robid_runtime::Error::Simulate(SimulateError::Unreadable {
+        column, limit, fix, ..
+    }) = &mut e
+        && let Some(j) = column
+            .strip_prefix('i')
+            .and_then(|j| j.parse::<usize>().ok())
+            .filter(|j| (1..=args.currents.len()).contains(j))
+    {
+        let largest = record.largest_torque(j - 1, every);
+        // one value for every joint, or one per joint (checked before the run)
+        let noise = args.torque_noise[(j - 1).min(args.torque_noise.len() - 1)];
+        *fix = format!(
+            "the torque of joint {j} reaches {} N m (--torque-noise {} N m included), and \
+             --currents gives it {} N m/A: give --currents a value of magnitude at least \
+             {} N m/A for joint {j}, or a smaller --torque-noise",
+            Num::rounded(largest, 4),
+            num(noise),
+            num(args.currents[j - 1]),
+            Num::rounded(largest / *limit, 3)
+        );
+    }
+    e
 }
 
 /// The joints (numbered from 1) that a URDF's own inertials leave without mass or inertia,
