@@ -53,6 +53,28 @@ pub fn shortened(text: &str, limit: usize) -> Cow<'_, str> {
     Cow::Owned(format!("{head}.. ({} characters)", text.chars().count()))
 }
 
+/// [`short`] for a dotted key (`links.<name>.mass`): each part quoted as [`short`] quotes
+/// it, so that a long part keeps the ones after it (the key that is wrong), and at most
+/// 160 characters in all.
+///
+/// ```
+/// use robid_core::names::short_key;
+/// assert_eq!(short_key("source[2].torque"), "source[2].torque");
+/// let long = format!("links.{}.mass", "x".repeat(5000));
+/// assert_eq!(short_key(&long), format!("links.{}.. (5000 characters).mass", "x".repeat(32)));
+/// ```
+pub fn short_key(key: &str) -> Cow<'_, str> {
+    let whole = 4 * QUOTED;
+    if key
+        .split('.')
+        .all(|part| matches!(short(part), Cow::Borrowed(_)))
+    {
+        return shortened(key, whole);
+    }
+    let parts: Vec<Cow<'_, str>> = key.split('.').map(short).collect();
+    Cow::Owned(shortened(&parts.join("."), whole).into_owned())
+}
+
 /// How many leading characters of each name are compared. A name read from a file can
 /// be megabytes long and the edit distance costs the product of the two lengths; 64
 /// characters tell any two real names apart.

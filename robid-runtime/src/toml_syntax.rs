@@ -678,6 +678,45 @@ mod tests {
         );
     }
 
+    /// A key 5,000 characters long is quoted short, and the parts of a dotted key after it
+    /// are kept, in each of robid's TOML files (a bounds file's `[links.<key>]` was echoed
+    /// whole).
+    #[test]
+    fn robids_files_quote_a_long_key_short() {
+        use crate::data::{Config, ParameterFile};
+        use crate::drive::FrictionModel;
+        use crate::feasible::Bounds;
+        use crate::simulate::Flexibility;
+        let long = "y".repeat(5000);
+        let errors: [Error; 6] = [
+            Config::from_toml_str(
+                &format!("dof = 2\n[estimation]\n{long} = 1\n"),
+                "c.toml".as_ref(),
+            )
+            .unwrap_err(),
+            Config::from_toml_str(&format!("dof = 2\n[{long}]\nx = 1\n"), "c.toml".as_ref())
+                .unwrap_err(),
+            ParameterFile::parse(&format!("[standard]\n{long} = 1\n"), "p.toml".as_ref())
+                .unwrap()
+                .values(&["M1".to_owned()])
+                .unwrap_err(),
+            FrictionModel::from_toml_str(&format!("[[friction]]\n{long} = 1\n"), "f.toml".as_ref())
+                .unwrap_err(),
+            Flexibility::from_toml_str(&format!("[{long}]\nx = 1\n"), "flex.toml".as_ref())
+                .unwrap_err(),
+            Bounds::from_toml(&format!("[links.{long}]\nmass = [1, 2]\n"), "b.toml", 1)
+                .unwrap_err(),
+        ];
+        for e in errors {
+            let e = e.to_string();
+            assert!(
+                e.contains("(5000 characters)") && e.chars().count() < 600,
+                "{}",
+                robid_core::names::shortened(&e, 600)
+            );
+        }
+    }
+
     /// A value nested 5,000 deep is told at its file:line:column with its key and what to
     /// do, in each file read through [`syntax_error`] or [`too_deep`] (it was toml's "cannot
     /// recurse further; max recursion depth met" after the whole line of brackets; the

@@ -367,7 +367,7 @@ pub enum DataError {
     },
     /// A key of a config file has a value that is out of range or inconsistent (or a
     /// required key is missing: then `line` is `None`).
-    #[error("{}: `{key}`: {problem}", place(path, *line, *column))]
+    #[error("{}: `{}`: {problem}", place(path, *line, *column), robid_core::names::short_key(key))]
     ConfigKey {
         /// The config file.
         path: PathBuf,
@@ -375,7 +375,8 @@ pub enum DataError {
         line: Option<usize>,
         /// 1-based column of the key, when it is in the file.
         column: Option<usize>,
-        /// The key as a dotted path, arrays of tables numbered from 1 (`source[2].torque`).
+        /// The key as a dotted path, arrays of tables numbered from 1 (`source[2].torque`);
+        /// the message quotes a long part of it short ([`robid_core::names::short_key`]).
         key: String,
         /// What is wrong and what to write instead.
         problem: String,

@@ -196,7 +196,8 @@ impl ParameterFile {
             return Err(self.at(
                 entry,
                 format!(
-                    "[{what}] has `{key}`, which is not a {what} parameter of this robot; {hint}",
+                    "[{what}] has `{}`, which is not a {what} parameter of this robot; {hint}",
+                    robid_core::names::short(key),
                     what = self.table
                 ),
             ));
