@@ -192,6 +192,15 @@ struct Candidate {
     column: Vec<Id>,
 }
 
+/// What `Derivation::fold_dependencies` finds: the candidates kept (in candidate order),
+/// the dependent ones, and each dependent one's exact coefficients on the kept (index into
+/// `kept`, coefficient).
+struct Folding {
+    kept: Vec<usize>,
+    dependencies: Vec<fold::Dependency>,
+    coefficients: Vec<Vec<(usize, Id)>>,
+}
+
 impl Derivation {
     /// Derives the base parameters (docs/regrouping.md#overview-of-the-method).
     pub fn base_parameters(&mut self) -> Result<BaseParameters, RegroupError> {
@@ -217,14 +226,11 @@ impl Derivation {
         // of two columns of one unit the larger is kept; where that makes a coefficient
         // robid cannot write for every value of the geometric symbols (the reciprocal of
         // one it can), the earlier is kept, as without the preference
-        let (kept, dependencies, coefficients) = match self.fold_dependencies(
-            &candidates,
-            &sampled,
-            &units,
-            &geometry,
-            &mut rng,
-            true,
-        ) {
+        let Folding {
+            kept,
+            dependencies,
+            coefficients,
+        } = match self.fold_dependencies(&candidates, &sampled, &units, &geometry, &mut rng, true) {
             Err(RegroupError::NotExpressible { .. }) => {
                 self.fold_dependencies(&candidates, &sampled, &units, &geometry, &mut rng, false)?
             }
@@ -284,11 +290,9 @@ impl Derivation {
         })
     }
 
-    /// The kept candidates (in candidate order), the dependent ones, and the exact
-    /// coefficients of each dependent one on the kept, from the columns `sampled` at the
-    /// first geometry; `prefer_larger` chooses [`rank::analyse_preferring_larger`] over
+    /// The kept candidates, the dependent ones and their exact coefficients ([`Folding`]),
+    /// from the columns `sampled` at the first geometry; `prefer_larger` chooses [`rank::analyse_preferring_larger`] over
     /// [`rank::analyse`].
-    #[allow(clippy::type_complexity)]
     fn fold_dependencies(
         &mut self,
         candidates: &[Candidate],
@@ -297,7 +301,7 @@ impl Derivation {
         geometry: &[Id],
         rng: &mut Rng,
         prefer_larger: bool,
-    ) -> Result<(Vec<usize>, Vec<fold::Dependency>, Vec<Vec<(usize, Id)>>), RegroupError> {
+    ) -> Result<Folding, RegroupError> {
         let status = if prefer_larger {
             rank::analyse_preferring_larger(sampled, units)
         } else {
@@ -327,7 +331,11 @@ impl Derivation {
             .collect();
         let coefficients =
             self.dependency_coefficients(&dependencies, &kept, candidates, geometry, rng)?;
-        Ok((kept, dependencies, coefficients))
+        Ok(Folding {
+            kept,
+            dependencies,
+            coefficients,
+        })
     }
 
     /// A column below rounding at the sampled geometry (a high power of a symbol that was
