@@ -737,10 +737,20 @@ fn value_problem(
             let off = (v - k * FRAC_PI_2).abs();
             (off < ANGLE_RESOLUTION).then(|| {
                 let exact = quarter_text(k);
+                // `calibrated` takes the joints' angles as written, not a pose's: a base
+                // turned that little off a right angle can leave gravity a component below
+                // MIN_GRAVITY, which the regrouping does not tell from zero
+                let calibrated = if matches!(item, Item::Transform(..)) {
+                    "`calibrated = true` takes the joint table's angles as written, not the \
+                     [base] and [tool] poses'"
+                } else {
+                    "a table measured by a calibration is taken as written with `calibrated = \
+                     true` at the top of its description"
+                };
                 (
                     format!("{is} only {off:.1e} rad from {exact}"),
                     format!(
-                        "write \"{exact}\" for the exact angle, or an angle at least {} rad from every multiple of pi/2; a table measured by a calibration is taken as written with `calibrated = true` at the top of its description",
+                        "write \"{exact}\" for the exact angle, or an angle at least {} rad from every multiple of pi/2; {calibrated}",
                         show(ANGLE_RESOLUTION)
                     ),
                 )

@@ -614,6 +614,22 @@ fn general_frames_base_and_tool_are_checked() {
         let text = format!("{HEAD}{table}[[joints]]\n");
         single(&text, at, &[says]);
     }
+    // a pose's angle near a right one is refused in a calibrated table too, which is not
+    // told to say it is calibrated
+    let near = "[base]\nrpy = [0, 0, 1.5707968]\n[[joints]]\n";
+    single(
+        &format!("{HEAD}{near}"),
+        "4:14",
+        &[
+            "[base] rpy yaw = 1.5707968 is only 4.7e-7 rad from pi/2",
+            "not the [base] and [tool] poses'",
+        ],
+    );
+    let all = errors(&format!("{HEAD}calibrated = true\n{near}")).join("\n");
+    assert!(
+        all.contains("not the [base] and [tool] poses'") && !all.contains("at the top of its"),
+        "{all}"
+    );
     // in code: the argument is named
     let joint = Joint::revolute("0", 0.1, 0.0, "0")
         .unwrap()
