@@ -226,6 +226,36 @@ fn position_beyond_limits(
         |scale: f64| range[0] * scale >= lower - margin && range[1] * scale <= upper + margin;
     // a range no wider than the limits' fits them once shifted
     let shifted = range[1] - range[0] <= upper - lower + 2.0 * margin;
+    // an angle logged modulo a turn is unwrapped from its first sample's turn (within
+    // [-pi, 2 pi]), which may be a turn away from the one the limits hold
+    let turn = std::f64::consts::TAU;
+    let turned = (of == Of::Log && !prismatic && range[0] <= turn && range[1] >= -0.5 * turn)
+        .then(|| {
+            [-turn, turn]
+                .into_iter()
+                .find(|&t| range[0] + t >= lower - margin && range[1] + t <= upper + margin)
+        })
+        .flatten();
+    if let Some(t) = turned {
+        return Some(format!(
+            "joint {number}'s positions span [{}, {}] rad, beyond its limits [{}, {}] rad in {}: \
+             an angle logged modulo a turn (a single-turn encoder) and unwrapped from its \
+             first sample's turn? {} they span [{}, {}] rad, within the limits, where the \
+             dynamics are the same: nothing to change; or the data are another robot's",
+            Num::rounded(range[0], 4),
+            Num::rounded(range[1], 4),
+            Num(lower),
+            Num(upper),
+            file.display(),
+            if t > 0.0 {
+                "a turn higher"
+            } else {
+                "a turn lower"
+            },
+            Num::rounded(range[0] + t, 4),
+            Num::rounded(range[1] + t, 4),
+        ));
+    }
     let hint = match (of, prismatic, fits(per_unit), shifted) {
         (_, true, true, _) => "positions in mm? they are read in metres",
         (Of::Log, false, true, _) => {
@@ -332,6 +362,15 @@ mod tests {
         assert!(
             shifted[0].contains("off by an offset") && shifted[0].contains("position_offset"),
             "{shifted:?}"
+        );
+        // a single-turn [0, 2 pi) log unwrapped from a first sample just below 2 pi: a turn
+        // lower it lies within the limits (it was told to be in degrees)
+        let turned = warn(vec![[0.0, 1.0], [0.0, 1.0], [5.83, 8.5]]);
+        assert!(
+            turned[0].contains("modulo a turn")
+                && turned[0].contains("a turn lower they span [-0.4532, 2.217] rad")
+                && !turned[0].contains("degrees"),
+            "{turned:?}"
         );
     }
 
