@@ -200,7 +200,7 @@ pub(crate) fn read_sources<'a>(
             .first()
             .and_then(|&k| table.lines.get(k));
         warnings.extend(stale_warning(&sampling, first_stale.copied()));
-        warnings.extend(slow_warning(&sampling));
+        warnings.extend(slow_warning(&sampling, &spans));
         let step = sampling.step;
         samplings.push(sampling);
         match time {
@@ -211,7 +211,7 @@ pub(crate) fn read_sources<'a>(
                 }
                 Some((tref, first, _)) => {
                     // a temperature may be logged slowly; a measurement of the motion not
-                    let measured = spans.iter().any(|(r, _)| ROLES[*r] != "temperature");
+                    let measured = measures_motion(&spans);
                     if let (Some(step), Some(first_step)) = (step, reference_step)
                         && measured
                         && step > GAP_RATIO * first_step
@@ -408,11 +408,20 @@ fn no_overlap(path: &Path, span: (f64, f64), first: &Path, tref: &[f64], found: 
 /// 0.1 Hz was refused by the rest removal, which named the velocities' units).
 pub const SLOW_SAMPLE_RATE: f64 = 10.0;
 
+/// Whether a source's columns (`spans`, as [`SourceColumns::spans`]) hold any role
+/// but temperatures: positions, velocities, torques or currents, which follow the
+/// motion. Temperatures alone vary slowly and may be logged slowly.
+pub(crate) fn measures_motion(spans: &[(usize, usize)]) -> bool {
+    spans.iter().any(|(r, _)| ROLES[*r] != "temperature")
+}
+
 /// The warning about time stamps whose median step gives a rate below
-/// [`SLOW_SAMPLE_RATE`].
-pub(crate) fn slow_warning(sampling: &Sampling) -> Option<Warning> {
+/// [`SLOW_SAMPLE_RATE`], for a file that measures the motion (`spans`, see
+/// [`measures_motion`]): a file of temperatures alone may be that slow.
+pub(crate) fn slow_warning(sampling: &Sampling, spans: &[(usize, usize)]) -> Option<Warning> {
     let step = sampling.step?;
-    (step > 0.0 && 1.0 / step < SLOW_SAMPLE_RATE).then(|| Warning::SlowSampling {
+    let slow = step > 0.0 && 1.0 / step < SLOW_SAMPLE_RATE;
+    (slow && measures_motion(spans)).then(|| Warning::SlowSampling {
         path: sampling.path.clone(),
         step,
     })

@@ -724,6 +724,48 @@ fn a_file_joined_by_time_much_coarser_than_the_first_is_refused() {
     assert_eq!(data.samples(), 1001);
 }
 
+/// A file of temperatures alone at 1 Hz beside positions and torques at 100 Hz is not
+/// warned about as a time column in ms (temperatures vary slowly); a torque file as slow
+/// still is.
+#[test]
+fn a_slow_file_of_temperatures_alone_is_not_warned_about() {
+    let d = Dir::new();
+    let mut qt = String::from("t,q1,tau1\n");
+    for k in 0..=1000 {
+        let t = 0.01 * k as f64;
+        qt += &format!("{t},{},{}\n", (0.5 * t).sin(), 10.0 * t);
+    }
+    let (mut temperature, mut torque) = (String::from("t,T1\n"), String::from("t,q1,tau1\n"));
+    for k in 0..=10 {
+        temperature += &format!("{k},{}\n", 30.0 + 0.1 * k as f64);
+        torque += &format!("{k},{},{}\n", 0.1 * k as f64, 10.0 * k as f64);
+    }
+    let a = d.file("qt.csv", &qt);
+    let c = d.file("temperature.csv", &temperature);
+    let config = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\n\
+                  torque = \"tau{}\"\n[[source]]\ntemperature = \"T{}\"\n";
+    let data = load(&cfg(config), &[a, c], 1).unwrap();
+    assert!(
+        !data
+            .warnings
+            .iter()
+            .any(|w| matches!(w, Warning::SlowSampling { .. })),
+        "{:?}",
+        data.warnings
+    );
+    // a file with positions and torques as slow is warned about
+    let b = d.file("tau.csv", &torque);
+    let config = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\n\
+                  torque = \"tau{}\"\n";
+    let data = load(&cfg(config), &[b], 1).unwrap();
+    let w: Vec<String> = data.warnings.iter().map(ToString::to_string).collect();
+    assert!(
+        w.iter()
+            .any(|w| w.contains("tau.csv: time stamps 1 s apart") && w.contains("time_scale")),
+        "{w:?}"
+    );
+}
+
 /// Files joined by time that overlap only partly give the overlap, as the warning says:
 /// the samples of the first file outside the second file's time stamps are dropped
 /// (they were kept, with the second file's first or last value held there: torques

@@ -342,7 +342,7 @@ impl SpilledRecord {
         let sampling = scan.finish(path.clone());
         let mut warnings: Vec<Warning> = unwrap.warnings(path);
         warnings.extend(stale_warning(&sampling, first_stale));
-        warnings.extend(slow_warning(&sampling));
+        warnings.extend(slow_warning(&sampling, &spans));
         let mut grid = None;
         let sample_time = match (&config.time_column, config.sample_rate) {
             (Some(_), _) => {
