@@ -15,14 +15,17 @@ use std::path::{Path, PathBuf};
 use robid_runtime::Num;
 use robid_runtime::data::{Config, load};
 use robid_runtime::drive::{
-    FrictionFit, FrictionFitOptions, FrictionModel, FrictionParameter, identify_friction,
+    DEFAULT_SMOOTHING, FrictionFit, FrictionFitOptions, FrictionModel, FrictionParameter,
+    identify_friction,
 };
+use robid_runtime::limits::MAX_VELOCITY;
 use robid_runtime::pipeline::{JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
 use robid_runtime::progress::Progress;
 
 use robots::limits::beyond_limits;
 
 use super::description::{self, DescriptionFlags};
+use super::flags::{positive, real};
 use super::{Error, files, out};
 
 /// Arguments of `robid friction`.
@@ -46,6 +49,13 @@ pub(crate) struct Args {
     /// The friction model to write (`[[friction]]` tables, one per joint).
     #[arg(short, long)]
     output: PathBuf,
+    /// `eps` of the smooth sign `tanh(w / eps)`, rad/s, in (0, 1e6]: the fit uses it and
+    /// writes it as each joint's `smoothing`. Give the `smoothing` of the friction model
+    /// that made the data (a simulation's): fitted with another, the Stribeck terms take
+    /// up the difference.
+    #[arg(long, default_value_t = DEFAULT_SMOOTHING,
+          value_parser = real(positive(MAX_VELOCITY, "rad/s")))]
+    smoothing: f64,
 }
 
 /// Identifies, prints and writes the friction model.
@@ -116,10 +126,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for w in &found.warnings {
         out::warn(format_args!("warning: {w}"));
     }
+    let options = FrictionFitOptions {
+        smoothing: args.smoothing,
+        ..FrictionFitOptions::default()
+    };
     let mut fits = Vec::with_capacity(found.samples.len());
     let progress = Progress::new(true, "friction: fit", fits.capacity() as u64, "joints");
     for (j, samples) in found.samples.iter().enumerate() {
-        let fit = identify_friction(samples, &FrictionFitOptions::default()).map_err(|e| {
+        let fit = identify_friction(samples, &options).map_err(|e| {
             // the library's names (`identify_friction `samples``) are not the user's: the
             // samples are the joint's, taken from the data
             match e {

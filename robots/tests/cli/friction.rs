@@ -19,6 +19,11 @@ const CONSTANTS: [f64; 2] = [0.1, 0.05];
 const INERTIA: [f64; 2] = [0.4, 0.2];
 
 fn truth() -> FrictionModel {
+    truth_smoothed(1e-3)
+}
+
+/// [`truth`] with the smooth sign's `eps` `smoothing`.
+fn truth_smoothed(smoothing: f64) -> FrictionModel {
     let joint = |coulomb: f64, viscous: f64| JointFriction {
         coulomb,
         load: 0.03,
@@ -28,7 +33,7 @@ fn truth() -> FrictionModel {
         coulomb_temperature: 0.01,
         viscous_temperature: 0.02,
         reference_temperature: 40.0,
-        smoothing: 1e-3,
+        smoothing,
     };
     FrictionModel::new(vec![joint(2.0, 3.0), joint(1.0, 1.5)]).unwrap()
 }
@@ -58,7 +63,11 @@ fn motion(j: usize, t: f64) -> ([f64; 3], [f64; 3]) {
 /// `temperature` K when it is given. The currents
 /// are Madsen's eq. 14 solved for them: `N K i = tau_J + B thetaddot + f(thetadot, tau_J, T)`.
 fn log(n: usize, temperature: Option<f64>) -> String {
-    let model = truth();
+    log_of(&truth(), n, temperature)
+}
+
+/// [`log`] of the friction `model`.
+fn log_of(model: &FrictionModel, n: usize, temperature: Option<f64>) -> String {
     let mut text = String::from("t,q1,q2,m1,m2,i1,i2,tj1,tj2");
     if temperature.is_some() {
         text.push_str(",T1,T2");
@@ -172,6 +181,50 @@ fn recovers_the_friction_of_a_two_encoder_log() {
     // central differences of the motor encoder through velocity reversals)
     assert!(e < 0.01, "friction curve off by {e}\n{text}");
     assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+}
+
+/// A log whose friction has `smoothing = 0.02` is fitted with that `eps` by
+/// `--smoothing 0.02`, which the output file keeps. The fit used 1e-3 whatever the data's
+/// model (the Stribeck velocity came out 53 times too large and the Coulomb friction 15 %
+/// low with exit 0, and the file said `smoothing = 0.001`); the default still does.
+#[test]
+fn the_fit_uses_the_smoothing_given() {
+    let dir = folder();
+    let robot = write(dir.path(), "arm.toml", ROBOT);
+    let truth = truth_smoothed(0.02);
+    write(dir.path(), "log.csv", &log_of(&truth, 5000, Some(20.0)));
+    let cfg = write(dir.path(), "cfg.toml", &config(true, true));
+    let fit = |extra: &[&str]| {
+        let out = dir.path().join("friction.toml");
+        let (robot, cfg, path) = (robot.to_str().unwrap(), cfg.to_str().unwrap(), out.to_str());
+        let mut args = vec!["friction", robot, "--config", cfg, "-o", path.unwrap()];
+        args.extend(extra);
+        let o = robid(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (FrictionModel::read(&out).unwrap(), stdout(&o))
+    };
+    let (fitted, text) = fit(&["--smoothing", "0.02"]);
+    let e = curve_error(&fitted, &truth, [30.0, 50.0]);
+    assert!(e < 0.01, "friction curve off by {e}\n{text}");
+    for j in &fitted.joints()[..] {
+        assert_eq!(j.smoothing, 0.02);
+    }
+    let (fitted, _) = fit(&[]);
+    assert_eq!(fitted.joints()[0].smoothing, 1e-3);
+    assert!(curve_error(&fitted, &truth, [30.0, 50.0]) > 0.01);
+    // out of the friction file's range: refused, naming the range
+    let o = robid(&[
+        "friction",
+        "x.toml",
+        "--config",
+        "c.toml",
+        "-o",
+        "f.toml",
+        "--smoothing",
+        "0",
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--smoothing"), "{}", stderr(&o));
 }
 
 /// A drive chain that contradicts the data, or a dead channel, gave a friction file of
