@@ -514,6 +514,12 @@ impl Simulation {
             tau: vec![0.0; n],
             theta: vec![0.0; n],
         };
+        // the motor encoder's reading of rotor position `theta` (link side) with the noise
+        // sample `noise` (motor side): what the log writes and the PD loop reads, divided
+        // by N (it read quantize(N theta) / N + noise as link radians, N times the noise
+        // the log carried)
+        let encoder =
+            |g: &FlexibleJoint, theta: f64, noise: f64| quantize(g.gear_ratio * theta) + noise;
         // the motor torque u: feed-forward of the joint torque, the rotor's inertia and
         // friction, and the PD loop on the measured motor position (noise held over a step)
         let command = |r: &Reference,
@@ -524,7 +530,7 @@ impl Simulation {
                        u: &mut [f64]| {
             for j in 0..n {
                 let g = &joints[j];
-                let measured = quantize(g.gear_ratio * theta[j]) / g.gear_ratio + noise[j];
+                let measured = encoder(g, theta[j], noise[j]) / g.gear_ratio;
                 u[j] = r.tau[j]
                     + g.rotor_inertia * r.q[2][j]
                     + g.friction.evaluate(r.q[1][j], r.tau[j], temp)
@@ -624,7 +630,8 @@ impl Simulation {
                     ));
                 }
                 let link = quantize(x[j]) + self.noise.position * rng.normal();
-                let motor = quantize(g.gear_ratio * x[n + j]) + self.noise.position * rng.normal();
+                // the reading the controller took at this sample
+                let motor = encoder(g, x[n + j], noise[j]);
                 let per_amp = g.gear_ratio * g.torque_constant;
                 out.q[j][k] = link;
                 out.motor[j][k] = motor;
