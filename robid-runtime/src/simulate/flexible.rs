@@ -632,6 +632,10 @@ impl Simulation {
                 let link = quantize(x[j]) + self.noise.position * rng.normal();
                 // the reading the controller took at this sample
                 let motor = encoder(g, x[n + j], noise[j]);
+                // the draw the motor encoder's own noise took: a seed gives the log it
+                // gave before whenever the position noise is 0 (the torque noise's draws
+                // unmoved; robots/tests/cli/flexible.rs's validation depends on them)
+                let _ = rng.normal();
                 let per_amp = g.gear_ratio * g.torque_constant;
                 out.q[j][k] = link;
                 out.motor[j][k] = motor;

@@ -205,7 +205,7 @@ fn flexible_noise_reaches_both_encoders_and_the_current() {
 
 /// The PD loop reads the motor encoder the log writes: against the same run without
 /// position noise, the motor torque differs by the loop's gain on that noise in link
-/// radians, `kp sigma / N` (variance ratio measured 1.039, seeded; within 0.8 to 1.25).
+/// radians, `kp sigma / N` (variance ratio measured 1.088, seeded; within 0.8 to 1.25).
 /// The loop read `quantize(N theta) / N + noise`, the noise a link angle: N = 100 times
 /// the logged motor encoder's (variance ratio measured 1.09e4).
 #[test]
