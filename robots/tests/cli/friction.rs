@@ -206,7 +206,7 @@ fn the_fit_uses_the_smoothing_given() {
     let (fitted, text) = fit(&["--smoothing", "0.02"]);
     let e = curve_error(&fitted, &truth, [30.0, 50.0]);
     assert!(e < 0.01, "friction curve off by {e}\n{text}");
-    for j in &fitted.joints()[..] {
+    for j in fitted.joints() {
         assert_eq!(j.smoothing, 0.02);
     }
     let (fitted, _) = fit(&[]);
