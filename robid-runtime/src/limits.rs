@@ -209,7 +209,24 @@ pub(crate) fn trajectory_samples(
             ),
         ));
     }
-    let samples = (duration * rate).round() + 1.0;
+    // t = 0, 1 / rate, .., duration inclusive: a duration of no whole number of sample
+    // periods ended a period past it or short of it, off the rest at its end
+    let periods = duration * rate;
+    if periods.is_finite() && (periods - periods.round()).abs() > 1e-9 * periods.max(1.0) {
+        return Err(crate::Error::setting(
+            owner,
+            "duration",
+            format!(
+                "{} s at a rate of {} Hz is {} sample periods, not a whole number, so the \
+                 last sample would miss its end; choose a multiple of 1 / rate ({} s)",
+                crate::error::num(duration),
+                crate::error::num(rate),
+                crate::error::num(periods),
+                crate::error::num(1.0 / rate)
+            ),
+        ));
+    }
+    let samples = periods.round() + 1.0;
     check_size(
         || {
             format!(

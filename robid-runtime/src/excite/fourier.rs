@@ -97,7 +97,8 @@ impl Fourier {
         }
     }
 
-    /// Samples `duration` seconds at `rate` Hz (t = 0, 1/rate, ..., duration inclusive).
+    /// Samples `duration` seconds at `rate` Hz (t = 0, 1/rate, ..., duration inclusive);
+    /// a duration that is no whole number of sample periods 1 / rate is an error.
     /// The size is checked before allocating ([`crate::limits::MAX_SAMPLES`]).
     pub fn sample(&self, duration: f64, rate: f64) -> Result<Trajectory> {
         let count = sample_count("Fourier::sample", duration, rate, self.joints.len())?;
@@ -149,6 +150,14 @@ mod tests {
         assert!(((p[1] - m[1]) / (2.0 * h) - mid[2]).abs() < 2.2e-9);
         assert!(sample_count("f", 1.0, 0.0, 1).is_err());
         assert_eq!(sample_count("f", 1.0, 10.0, 1).unwrap(), 11);
+        assert_eq!(sample_count("f", 0.3, 10.0, 1).unwrap(), 4);
+        // 72.5 sample periods: the last sample fell 0.069 s past the end, off rest
+        let e = sample_count("Fourier::sample", 10.0, 7.25, 6).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("10 s at a rate of 7.25 Hz is 72.5 sample periods, not a whole number"),
+            "{e}"
+        );
         // the sizes of `excite --rate 1e9` and `--duration 1e9` are named, not allocated
         for (d, r) in [(30.0, 1e9), (1e9, 500.0), (1e300, 1e6)] {
             let e = sample_count("Fourier::sample", d, r, 6).unwrap_err();

@@ -96,7 +96,8 @@ impl Points {
         }
     }
 
-    /// Samples the whole trajectory at `rate` Hz (t = 0, 1/rate, ..., duration inclusive).
+    /// Samples the whole trajectory at `rate` Hz (t = 0, 1/rate, ..., duration inclusive);
+    /// a duration that is no whole number of sample periods 1 / rate is an error.
     pub fn sample(&self, rate: f64) -> Result<Trajectory> {
         let count = sample_count("Points::sample", self.duration(), rate, self.dof())?;
         let t: Vec<f64> = (0..count)

@@ -35,7 +35,7 @@ pub(crate) struct Args {
     #[arg(long, value_enum, default_value_t = Method::Fourier)]
     method: Method,
     /// Duration in (0, 1e6] s (`fourier`: a whole number of periods 1 / base frequency).
-    /// Duration x rate is at most 1e6 samples.
+    /// Duration x rate is a whole number of sample periods, at most 1e6.
     #[arg(long, default_value_t = 30.0, value_parser = real(positive(1e6, "s")))]
     duration: f64,
     /// Sample rate of the output in [0.001, 1e6] Hz. Duration x rate is at least 2 (three

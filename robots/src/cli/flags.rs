@@ -194,7 +194,35 @@ pub(crate) fn check_samples(duration: f64, rate: f64) -> Result<(), Error> {
         )
         .into());
     }
+    // t = 0, 1 / rate, .., duration: a duration that is no whole number of sample periods
+    // ended a sample period past it (Fourier: off rest) or short of it (still moving)
+    if !whole(samples) {
+        let (lo, hi) = (samples.floor(), samples.ceil());
+        let rates = if lo >= MIN_SAMPLES - 1.0 {
+            format!("{} or {}", num(lo / duration), num(hi / duration))
+        } else {
+            num(hi / duration)
+        };
+        let durations = if lo >= MIN_SAMPLES - 1.0 {
+            format!("{} or {}", num(lo / rate), num(hi / rate))
+        } else {
+            num(hi / rate)
+        };
+        return Err(format!(
+            "--duration {d} s at --rate {r} Hz gives {} sample periods, not a whole number: \
+             the samples (t = 0, 1 / rate, ..) would miss the end of the trajectory, where it \
+             is at rest; choose --rate {rates} Hz, or --duration {durations} s",
+            num(samples)
+        )
+        .into());
+    }
     Ok(())
+}
+
+/// Whether `periods` (duration x rate) is a whole number, up to the rounding of the
+/// product (0.3 s x 10 Hz is 3.0000000000000004).
+pub(crate) fn whole(periods: f64) -> bool {
+    (periods - periods.round()).abs() <= 1e-9 * periods.max(1.0)
 }
 
 /// Refuses `flag` when it was given but belongs to another method than `method`.
@@ -256,6 +284,31 @@ mod tests {
         let e = check_samples(1e-300, 500.0).unwrap_err().to_string();
         assert!(
             e.contains("--duration 1e-300 s at --rate 500 Hz gives 1 sample ("),
+            "{e}"
+        );
+    }
+
+    /// A duration that is no whole number of sample periods is refused, with the nearest
+    /// rates and durations that are: `--duration 10 --rate 7.25` wrote 74 samples, the last
+    /// at 10.069 s and off rest, and `--rate 7.24` 73, the last at 9.945 s, still moving.
+    #[test]
+    fn a_duration_of_no_whole_number_of_sample_periods_is_refused() {
+        assert!(check_samples(0.3, 10.0).is_ok());
+        assert!(check_samples(10.0, 7.2).is_ok());
+        for (rate, told) in [
+            (7.25, "gives 72.5 sample periods"),
+            (7.24, "gives 72.4 sample periods"),
+        ] {
+            let e = check_samples(10.0, rate).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("--duration 10 s at --rate {rate} Hz {told}"))
+                    && e.contains("choose --rate 7.2 or 7.3 Hz, or --duration "),
+                "{e}"
+            );
+        }
+        let e = check_samples(10.0, 7.25).unwrap_err().to_string();
+        assert!(
+            e.contains("--duration 9.931034482758621 or 10.068965517241379 s"),
             "{e}"
         );
     }

@@ -536,6 +536,31 @@ fn excite_refuses_too_many_samples_before_allocating() {
     fails_with(&o, &["--duration 1999 s is not a whole number of periods"]);
 }
 
+/// A duration that is no whole number of sample periods is refused before the design, by
+/// both methods, with the nearest rates and durations: `--duration 10 --rate 7.25` wrote
+/// 74 Fourier samples, the last at 10.069 s off rest, and `--rate 7.24` stopped at 9.945 s
+/// still moving (the point method clamped its last sample to 10 s, a shorter last step).
+#[test]
+fn excite_refuses_a_duration_of_no_whole_number_of_sample_periods() {
+    let dir = folder();
+    for method in ["fourier", "points"] {
+        for (rate, periods) in [("7.25", "72.5"), ("7.24", "72.4")] {
+            let o = excite(
+                dir.path(),
+                &["--method", method, "--duration", "10", "--rate", rate],
+            );
+            fails_with(
+                &o,
+                &[
+                    &format!("--duration 10 s at --rate {rate} Hz gives {periods} sample periods"),
+                    "choose --rate 7.2 or 7.3 Hz, or --duration ",
+                ],
+            );
+            assert!(!dir.path().join("traj.csv").exists());
+        }
+    }
+}
+
 /// Fewer than three samples (duration x rate below 1.5) are refused before the design is
 /// optimised: `--method points --duration 1 --rate 1` ran its whole optimisation (seconds,
 /// minutes with many intervals) before the sampling refused "trajectory: 2 samples". A
