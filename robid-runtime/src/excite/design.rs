@@ -308,8 +308,14 @@ impl FourierDesign {
         Ok(decoder.decode(&x))
     }
 
+    /// Points per period of the grid on which the design holds the position, velocity and
+    /// acceleration limits (64 per harmonic).
+    pub fn fine_points(&self) -> usize {
+        64 * self.harmonics
+    }
+
     fn decoder<'a>(&'a self, limits: &'a [JointLimits]) -> Decoder<'a> {
-        let fine = 64 * self.harmonics;
+        let fine = self.fine_points();
         let table = (1..=self.harmonics)
             .flat_map(|l| {
                 (0..fine)
