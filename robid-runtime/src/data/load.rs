@@ -101,6 +101,9 @@ pub(crate) struct ReadSources {
     pub(crate) samplings: Vec<Sampling>,
     /// The name of the data set: the first file's.
     pub(crate) name: String,
+    /// When the files were joined row by row because their time columns have different
+    /// names (`data::rate::differing_time_columns`): what to do, naming each file's column.
+    pub(crate) time_names: Option<String>,
 }
 
 /// Reads the files of `config`'s sources (see [`load`]) for a `dof`-joint model, with the
@@ -304,6 +307,12 @@ pub(crate) fn read_sources<'a>(
         .first()
         .and_then(|p| p.file_name())
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    // joined row by row, the same length: a time column in every file, under different
+    // names, was told "the data has no time column"
+    let time_names = match reference {
+        None => differing_time_columns(config, &paths, dof),
+        Some(_) => None,
+    };
     let read = ReadSources {
         blocks,
         reference,
@@ -311,6 +320,7 @@ pub(crate) fn read_sources<'a>(
         warnings,
         samplings,
         name,
+        time_names,
     };
     Ok((found, read))
 }
@@ -325,6 +335,7 @@ pub(crate) fn finish(config: &Config, dof: usize, read: ReadSources) -> Result<D
         mut warnings,
         samplings,
         name,
+        time_names,
     } = read;
     let (sample_time, origin) = match (&reference, config.sample_rate) {
         (Some((t, path, lines)), _) => {
@@ -352,6 +363,12 @@ pub(crate) fn finish(config: &Config, dof: usize, read: ReadSources) -> Result<D
             (1.0 / fs, DataOrigin { path, lines })
         }
         (None, None) => {
+            if let Some(names) = time_names {
+                return Err(config.key_error(
+                    "sample_rate",
+                    format!("{names}, or set `sample_rate = ...` (Hz)"),
+                ));
+            }
             return Err(config.key_error(
                 "sample_rate",
                 "the data has no time column; set `sample_rate = ...` (Hz) or `time_column = \"...\"`",

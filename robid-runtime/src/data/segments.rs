@@ -120,6 +120,7 @@ fn load_segments_checked(config: &Config, files: &[PathBuf], dof: usize) -> Resu
         warnings,
         samplings,
         name,
+        ..
     } = read;
     let Some((t, path, lines)) = reference else {
         unreachable!("cuts come from the time stamps")
@@ -162,6 +163,7 @@ fn load_segments_checked(config: &Config, files: &[PathBuf], dof: usize) -> Resu
                 lines[r.clone()].to_vec(),
             )),
             rows: rows.clone(),
+            time_names: None,
             warnings: Vec::new(),
             samplings: samplings.clone(),
             name: format!(

@@ -194,7 +194,7 @@ fn without_time_keys_the_time_column_is_found_by_name() {
 /// The time column found by name must be the same in every source's file: positions and
 /// torques in two files, each with `time_ms`, are read at 2 ms; files whose time columns
 /// differ (`t` in one, `time_ms` in the other) leave it to the config, which then has
-/// none. A config that names its time column keeps it, even beside another column called
+/// none: the error names both columns. A config that names its time column keeps it, even beside another column called
 /// `t` (a controller's tick count here, at another step).
 #[test]
 fn the_time_column_found_by_name_is_each_files_and_never_the_configs() {
@@ -219,7 +219,12 @@ fn the_time_column_found_by_name_is_each_files_and_never_the_configs() {
     let e = load(&cfg(two_sources), &[q, other], 1)
         .unwrap_err()
         .to_string();
-    assert!(e.contains("no time column"), "{e}");
+    // named (it said "the data has no time column", which each file had)
+    assert!(
+        e.contains("the files' time columns have different names (`time_ms` in")
+            && e.contains("or set `sample_rate = ...` (Hz)"),
+        "{e}"
+    );
 
     let mut text = String::from("clock,t,q1,tau1\n");
     for k in 0..50 {
@@ -345,6 +350,13 @@ fn a_row_count_mismatch_names_time_columns_of_different_names() {
         b.display()
     );
     assert!(e.contains(&names), "{e}");
+    // as many rows in each: the same message, where it said "the data has no time column"
+    let c = d.file("tau3.csv", "time,q1,q2\n0,1,2\n0.1,3,4\n0.2,5,6\n");
+    let e = load(&config, &[a.clone(), c.clone()], 2)
+        .unwrap_err()
+        .to_string();
+    let names = names.replace(&b.display().to_string(), &c.display().to_string());
+    assert!(e.contains(&names) && !e.contains("no time column"), "{e}");
     // the same names: joined by time, no mismatch
     let b = d.file("tau.csv", "t,q1,q2\n0,1,2\n0.2,3,4\n");
     assert!(load(&config, &[a, b], 2).is_ok());
