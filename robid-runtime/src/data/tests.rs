@@ -1037,3 +1037,41 @@ fn one_run_is_counted_in_words() {
         "{e}"
     );
 }
+
+/// The warnings of joined and repeated rows agree with their counts: "the 1 samples of
+/// that file outside .. were dropped" and "1 of its 2000 rows .. lie" were written.
+#[test]
+fn warnings_of_one_row_are_in_the_singular() {
+    let path = PathBuf::from("c.csv");
+    let w = Warning::PartialOverlap {
+        path: path.clone(),
+        dropped: 1,
+    }
+    .to_string();
+    assert!(
+        w.contains("the 1 sample of that file outside the time stamps of this one was dropped"),
+        "{w}"
+    );
+    let w = Warning::JoinedRowsUnused {
+        path: path.clone(),
+        unused: 1,
+        rows: 2000,
+        first: PathBuf::from("p.csv"),
+    }
+    .to_string();
+    assert!(
+        w.contains("1 of its 2000 rows (0.1 %) lies outside") && w.contains("and is not used"),
+        "{w}"
+    );
+    let w = Warning::StaleRows {
+        path,
+        stale: 1,
+        rows: 10,
+        first_line: 3,
+    }
+    .to_string();
+    assert!(
+        w.contains("1 row (10.0 %, the first at line 3) repeats the previous row and is followed"),
+        "{w}"
+    );
+}

@@ -102,12 +102,13 @@ impl fmt::Display for Warning {
                 skipped_ticks,
             } => write!(
                 f,
-                "{}: irregular time steps ({:.6} s to {:.6} s, median {:.6} s, jitter {:.2e} s, {skipped_ticks} skipped ticks); resampled onto a uniform grid of {:.6} s by linear interpolation (robid inspect shows the sampling)",
+                "{}: irregular time steps ({:.6} s to {:.6} s, median {:.6} s, jitter {:.2e} s, {}); resampled onto a uniform grid of {:.6} s by linear interpolation (robid inspect shows the sampling)",
                 path.display(),
                 min_step,
                 max_step,
                 median_step,
                 jitter,
+                crate::Count(*skipped_ticks, "skipped tick"),
                 step
             ),
             Warning::StaleRows {
@@ -117,9 +118,12 @@ impl fmt::Display for Warning {
                 first_line,
             } => write!(
                 f,
-                "{}: {stale} rows ({:.1} %, the first at line {first_line}) repeat the previous row and are followed by a step that catches up: an old sample written again by the logger. Velocities and accelerations see a stop and a jump there; the low-pass smooths a few of them, but many bias the fit: fix the logger (robid inspect lists the sampling)",
+                "{}: {} ({:.1} %, the first at line {first_line}) {} the previous row and {} followed by a step that catches up: an old sample written again by the logger. Velocities and accelerations see a stop and a jump there; the low-pass smooths a few of them, but many bias the fit: fix the logger (robid inspect lists the sampling)",
                 path.display(),
-                100.0 * *stale as f64 / (*rows).max(1) as f64
+                crate::Count(*stale, "row"),
+                100.0 * *stale as f64 / (*rows).max(1) as f64,
+                if *stale == 1 { "repeats" } else { "repeat" },
+                if *stale == 1 { "is" } else { "are" }
             ),
             Warning::Unwrapped {
                 path,
@@ -138,8 +142,10 @@ impl fmt::Display for Warning {
             )),
             Warning::PartialOverlap { path, dropped } => write!(
                 f,
-                "{}: covers only part of the time range of the first file joined by time: the {dropped} samples of that file outside the time stamps of this one were dropped, keeping the time both cover",
-                path.display()
+                "{}: covers only part of the time range of the first file joined by time: the {} of that file outside the time stamps of this one {} dropped, keeping the time both cover",
+                path.display(),
+                crate::Count(*dropped, "sample"),
+                if *dropped == 1 { "was" } else { "were" }
             ),
             Warning::SlowSampling { path, step } => write!(
                 f,
@@ -156,10 +162,13 @@ impl fmt::Display for Warning {
                 first,
             } => write!(
                 f,
-                "{}: {unused} of its {rows} rows ({:.1} %) lie outside the time stamps of {}, which it is joined to by time, and are not used; check that both time columns come from one clock in one unit",
+                "{}: {unused} of its {} ({:.1} %) {} outside the time stamps of {}, which it is joined to by time, and {} not used; check that both time columns come from one clock in one unit",
                 path.display(),
+                crate::Count(*rows, "row"),
                 100.0 * *unused as f64 / (*rows).max(1) as f64,
-                first.display()
+                if *unused == 1 { "lies" } else { "lie" },
+                first.display(),
+                if *unused == 1 { "is" } else { "are" }
             ),
         }
     }
