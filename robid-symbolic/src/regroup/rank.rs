@@ -372,6 +372,17 @@ mod tests {
         assert_eq!(s[3], Status::Kept(2));
     }
 
+    /// The combination is solved from the triangular factor: `c = 3 a1 + 4 a2` with
+    /// `a1 = (1, 0, 0)` and `a2 = (2, 2, 0)` (factor rows `[1]`, `[2, 2]` on `e1`, `e2`),
+    /// projections `(11, 8)`, is `3 |a1| + 4 |a2|`.
+    #[test]
+    fn the_combined_size_is_the_coefficients_times_the_norms() {
+        let factor = vec![vec![1.0], vec![2.0, 2.0]];
+        let size = super::combined_size(&factor, &[11.0, 8.0], [1.0, 8f64.sqrt()].into_iter());
+        assert!((size - (3.0 + 4.0 * 8f64.sqrt())).abs() < 1e-14, "{size}");
+        assert_eq!(super::combined_size(&[], &[], std::iter::empty()), 0.0);
+    }
+
     /// Of two columns of one unit, one more than ten times the other, the larger is kept
     /// and the smaller folded into it, positions in candidate order; columns of other units,
     /// or within a factor ten, keep the earlier.
