@@ -683,12 +683,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut a = assess(&model, &trajectory, &limits, reference.as_deref(), 1)?;
     let between = margins(&fine, &limits, reference.as_deref().map(|b| (&model, b)))?;
     for (m, f) in a.margins.iter_mut().zip(&between) {
-        m.position_low = m.position_low.min(f.position_low);
-        m.position_high = m.position_high.min(f.position_high);
-        m.velocity = m.velocity.min(f.velocity);
-        m.acceleration = m.acceleration.min(f.acceleration);
-        m.torque = m.torque.zip(f.torque).map(|(x, y)| x.min(y));
-        m.peak_torque = m.peak_torque.zip(f.peak_torque).map(|(x, y)| x.max(y));
+        *m = m.tighter(f);
     }
     // D-optimality can settle on a finite criterion where some parameter is not excited
     // at all: such a trajectory is no design (it was written, and its data then refused)
