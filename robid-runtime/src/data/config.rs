@@ -272,16 +272,47 @@ impl Columns {
 }
 
 /// A number for all joints or one per joint.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(
-    untagged,
-    expecting = "a number for every joint or a list of one number per joint"
-)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
 pub enum PerJoint {
     /// The same value for every joint.
     All(f64),
     /// One value per joint.
     Each(Vec<f64>),
+}
+
+/// By hand, not `untagged`: an element of a list that is no number is told at its place
+/// (`drive.gear_ratios[2]`), where an untagged enum could only say the whole value is wrong.
+impl<'de> Deserialize<'de> for PerJoint {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = PerJoint;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a number for every joint or a list of one number per joint")
+            }
+            fn visit_f64<E>(self, v: f64) -> std::result::Result<PerJoint, E> {
+                Ok(PerJoint::All(v))
+            }
+            fn visit_i64<E>(self, v: i64) -> std::result::Result<PerJoint, E> {
+                Ok(PerJoint::All(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> std::result::Result<PerJoint, E> {
+                Ok(PerJoint::All(v as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> std::result::Result<PerJoint, A::Error> {
+                let mut values = Vec::new();
+                while let Some(v) = seq.next_element::<f64>()? {
+                    values.push(v);
+                }
+                Ok(PerJoint::Each(values))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 impl PerJoint {
@@ -885,6 +916,54 @@ impl Config {
                 .rotor
                 .as_ref()
                 .is_some_and(|r| r.residual.is_some())
+    }
+
+    /// The `[[source]]` columns an identification reads and then leaves out of the fit,
+    /// each with its key (`source[1].motor_position`) and what would use it: motor
+    /// encoders without `[drive.rotor]` or an extra column of their signals, temperatures
+    /// without the nonlinear rotor friction, joint torques without `[drive.rotor]` (which
+    /// `robid friction`, their one user, needs). A two-encoder log identified without the
+    /// rotor's terms fits badly, and nothing else says why.
+    pub fn unused_columns(&self) -> Vec<(String, &'static str)> {
+        let rotor = self.drive.rotor.as_ref();
+        let unused = [
+            (
+                "motor_position",
+                rotor.is_none() && !self.uses_rotor_signals(),
+                "the motor encoders enter the fit through `[drive.rotor]` (the rotors' \
+                 inertia and friction between motor and joint torque, \
+                 docs/identification.md#rotor-dynamics-compensation) or an \
+                 [[extra_column]] of theta_d, theta_dd or sign_theta_d",
+            ),
+            (
+                "temperature",
+                rotor.is_none_or(|r| r.friction.is_none()),
+                "temperatures enter the fit through the nonlinear rotor friction only \
+                 (`[drive.rotor] friction`, the file `robid friction` writes)",
+            ),
+            (
+                "joint_torque",
+                rotor.is_none(),
+                "joint torques are read by `robid friction`, with `[drive.rotor]`; \
+                 `robid identify` fits the torque columns",
+            ),
+        ];
+        self.sources
+            .iter()
+            .enumerate()
+            .flat_map(|(i, s)| {
+                let given = [
+                    s.motor_position.is_some(),
+                    s.temperature.is_some(),
+                    s.joint_torque.is_some(),
+                ];
+                unused
+                    .iter()
+                    .zip(given)
+                    .filter(|((_, unused, _), given)| *unused && *given)
+                    .map(move |((role, _, why), _)| (format!("source[{}].{role}", i + 1), *why))
+            })
+            .collect()
     }
 
     /// Every file the config names, resolved against its folder: the sources' and runs'

@@ -469,6 +469,18 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         out::warn(format_args!("warning: {w}"));
         data_warnings.push(w);
     };
+    if let Some(path) = &args.config {
+        for (key, why) in config.unused_columns() {
+            let place = match config.given(&[&key]).first() {
+                Some((_, line, column)) => format!("{}:{line}:{column}: ", path.display()),
+                None => format!("{}: ", path.display()),
+            };
+            warn(format!(
+                "{place}`{key}` is read but not used by this fit: {why}; add what uses it, \
+                 or remove the key"
+            ));
+        }
+    }
     let warnings = sets.iter().flat_map(|d| d.warnings.clone());
     for w in warnings.chain(record.iter().flat_map(Loaded::warnings)) {
         warn(w.to_string());

@@ -507,3 +507,32 @@ fn keys_friction_does_not_apply_are_said() {
         );
     }
 }
+
+/// Columns identify reads and leaves out of the fit are said at their key: a two-encoder
+/// log identified without `[drive.rotor]` fitted the currents as link torques, without a
+/// word on the motor encoders, temperatures and joint torques it had read; with the rotor
+/// only the temperatures are left (no friction file uses them), and the joint torques,
+/// which `robid friction` reads from the same config, are not named.
+#[test]
+fn identify_names_the_columns_it_reads_and_does_not_use() {
+    let dir = folder();
+    for (rotor, unused) in [
+        (
+            false,
+            &["motor_position", "temperature", "joint_torque"][..],
+        ),
+        (true, &["temperature"][..]),
+    ] {
+        let (robot, cfg) = setup(dir.path(), true, rotor);
+        let o = robid(&["identify", &robot, "--config", &cfg]);
+        let e = stderr(&o);
+        for (role, line) in [
+            ("motor_position", 6),
+            ("temperature", 9),
+            ("joint_torque", 8),
+        ] {
+            let said = format!("cfg.toml:{line}:1: `source[1].{role}` is read but not used");
+            assert_eq!(e.contains(&said), unused.contains(&role), "{said} in {e}");
+        }
+    }
+}
