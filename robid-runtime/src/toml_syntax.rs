@@ -551,6 +551,17 @@ mod tests {
                 config("[drive]\ngear_ratios = [\n  1,\n  \"a\",\n]\n"),
                 "c.toml:4:3: `drive.gear_ratios[2]`: `\"a\"` is not a number",
             ),
+            // one number for all joints or a list (gear ratios were lists only), an
+            // element that is no number told at its place (the whole list was)
+            (
+                config("[drive]\ntorque_constants = [0.1, true]\n"),
+                "c.toml:2:26: `drive.torque_constants[2]`: `true` is not a number",
+            ),
+            (
+                config("[drive]\ngear_ratios = \"101\"\n"),
+                "c.toml:2:15: `drive.gear_ratios`: `\"101\"` is not a number for every joint or a \
+                 list of one number per joint",
+            ),
             (
                 config("[processing]\nlowpass = { cutoff = \"x\" }\n"),
                 "c.toml:2:22: `processing.lowpass.cutoff`: `\"x\"` is not a cutoff in Hz (a number) or \"auto\"",

@@ -47,8 +47,9 @@ pub struct DriveConfig {
     /// Side of the torque columns.
     #[serde(default)]
     pub torque_side: Side,
-    /// Gear ratios with sign (motor angle / joint angle).
-    pub gear_ratios: Option<Vec<f64>>,
+    /// Gear ratios with sign (motor angle / joint angle): one for all joints or one per
+    /// joint.
+    pub gear_ratios: Option<PerJoint>,
     /// R_q with theta_m = R_q q (default diag(gear_ratios)).
     pub position_coupling: Option<Vec<Vec<f64>>>,
     /// R_tau with tau_joint = R_tau tau_motor (default diag(gear_ratios)).
@@ -121,10 +122,11 @@ impl DriveConfig {
             return Ok(Some(m));
         }
         // (the ratios are checked by DriveChain::new)
-        Ok(self
-            .gear_ratios
-            .as_ref()
-            .map(|n| DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(n))))
+        let ratios = self.gear_ratios.as_ref();
+        Ok(ratios
+            .map(|n| n.values(dof, "drive.gear_ratios"))
+            .transpose()?
+            .map(|n| DMatrix::from_diagonal(&nalgebra::DVector::from_vec(n))))
     }
 }
 
@@ -134,7 +136,7 @@ impl DriveChain {
         // checked even where both couplings replace them: a wrong count or a zero ratio
         // beside two coupling matrices was read without a word
         if let Some(n) = &cfg.gear_ratios {
-            let n = PerJoint::Each(n.clone()).values(dof, "drive.gear_ratios")?;
+            let n = n.values(dof, "drive.gear_ratios")?;
             crate::data::nonzero(n, "drive.gear_ratios")?;
         }
         let rq = cfg.ratio_matrix(&cfg.position_coupling, "position_coupling", dof)?;
@@ -281,7 +283,7 @@ mod tests {
         DriveConfig {
             position_side: Side::Motor,
             torque_side: Side::Motor,
-            gear_ratios: Some(n.to_vec()),
+            gear_ratios: Some(PerJoint::Each(n.to_vec())),
             position_coupling: Some(rq),
             torque_coupling: Some(rt),
             ..Default::default()
@@ -363,7 +365,7 @@ mod tests {
             assert_eq!(bits(&y), bits(&x));
         }
         let diagonal = DriveConfig {
-            gear_ratios: Some(vec![1.0, 2.0, 1.0]),
+            gear_ratios: Some(PerJoint::Each(vec![1.0, 2.0, 1.0])),
             torque_side: Side::Motor,
             ..Default::default()
         };
@@ -379,10 +381,34 @@ mod tests {
         }
     }
 
+    /// `gear_ratios = 101` is every joint's ratio, as `torque_constants = 0.125` is every
+    /// joint's constant (it was refused as "not a list").
+    #[test]
+    fn one_gear_ratio_is_every_joints() {
+        let read = |text: &str| -> DriveConfig { toml::from_str(text).unwrap() };
+        let one = read("torque_side = \"motor\"\nposition_side = \"motor\"\ngear_ratios = 101\n");
+        let each = read(
+            "torque_side = \"motor\"\nposition_side = \"motor\"\ngear_ratios = [101, 101, 101]\n",
+        );
+        let x = per_joint(&[1.0, -2.0, 3.0], 4);
+        let (one, each) = (
+            DriveChain::new(&one, 3).unwrap(),
+            DriveChain::new(&each, 3).unwrap(),
+        );
+        let values = |s: Signals| -> Vec<f64> { s.joints().flatten().copied().collect() };
+        let tau = values(one.joint_torques(x.clone()));
+        assert_eq!(tau, values(each.joint_torques(x.clone())));
+        assert_eq!(tau[..2], [101.0, 202.0]);
+        assert_eq!(
+            values(one.joint_positions(x.clone())),
+            values(each.joint_positions(x))
+        );
+    }
+
     #[test]
     fn bad_drive_configs_are_errors() {
         let mut c = tx40();
-        c.gear_ratios = Some(vec![1.0; 5]);
+        c.gear_ratios = Some(PerJoint::Each(vec![1.0; 5]));
         c.position_coupling = None;
         assert!(matches!(
             DriveChain::new(&c, 6),
@@ -393,7 +419,7 @@ mod tests {
         for ratios in [vec![1.0; 5], vec![0.0, 32.0, 45.0, -48.0, 45.0, 32.0]] {
             let mut c = tx40();
             assert!(c.position_coupling.is_some() && c.torque_coupling.is_some());
-            c.gear_ratios = Some(ratios);
+            c.gear_ratios = Some(PerJoint::Each(ratios));
             assert!(matches!(
                 DriveChain::new(&c, 6),
                 Err(Error::Setting { ref key, .. }) if key == "drive.gear_ratios"
@@ -422,7 +448,7 @@ mod tests {
         ));
         let mut c = tx40();
         c.position_coupling = None;
-        c.gear_ratios = Some(vec![32.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
+        c.gear_ratios = Some(PerJoint::Each(vec![32.0, 0.0, 1.0, 1.0, 1.0, 1.0]));
         assert!(DriveChain::new(&c, 6).is_err());
         let c = DriveConfig {
             position_side: Side::Motor,
