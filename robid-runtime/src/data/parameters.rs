@@ -11,7 +11,8 @@
 //!   error, but for the `[[links]]` summary that `robid feasible` writes after its
 //!   `[standard]` table (mass, centre of mass and inertia per link, for people) and its
 //!   `[extra]` table (the values of an identification config's extra columns, which are
-//!   not the robot's parameters), which are read over;
+//!   not the robot's parameters: [`ParameterFile::extra`], read by `identify --reference`),
+//!   which the robot's readers pass over;
 //! - every value is a number, finite and within +-[`PARAMETER_LIMIT`];
 //! - no key or table is given twice (a TOML error, which names the key at its second place).
 //!
@@ -100,6 +101,9 @@ pub struct ParameterFile {
     table: ParameterTable,
     /// In file order.
     entries: Vec<(String, Entry)>,
+    /// The `[extra]` table `robid feasible` writes, in file order: the values of an
+    /// identification config's extra columns.
+    extra: Vec<(String, Entry)>,
 }
 
 impl ParameterFile {
@@ -130,6 +134,22 @@ impl ParameterFile {
     /// Every `(name, value)`, in file order.
     pub fn entries(&self) -> impl Iterator<Item = (&str, f64)> {
         self.entries.iter().map(|(n, e)| (n.as_str(), e.value))
+    }
+
+    /// Every `(name, value)` of the `[extra]` table (the values of an identification
+    /// config's extra columns that `robid feasible` writes beside the robot's parameters),
+    /// in file order; none without one.
+    ///
+    /// ```
+    /// use robid_runtime::data::ParameterFile;
+    ///
+    /// let text = "[standard]\nM1 = 2.5\n[extra]\nIam6 = 0.01\n";
+    /// let file = ParameterFile::parse(text, "arm.toml".as_ref()).unwrap();
+    /// assert_eq!(file.extra().collect::<Vec<_>>(), [("Iam6", 0.01)]);
+    /// assert_eq!(file.get("Iam6"), None);
+    /// ```
+    pub fn extra(&self) -> impl Iterator<Item = (&str, f64)> {
+        self.extra.iter().map(|(n, e)| (n.as_str(), e.value))
     }
 
     /// The values of `names` (`None` where missing); a key that is not one of `names` is an
@@ -650,6 +670,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
     let mut tables: Vec<_> = doc.get_ref().iter().collect();
     tables.sort_by_key(|(key, _)| key.span().start);
     let mut first: Option<(&str, usize)> = None;
+    let mut extra = Vec::new();
     for (key, value) in tables {
         let name: &str = key.get_ref();
         let at = key.span().start;
@@ -660,8 +681,14 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
             // robid feasible's per-link summary: the [standard] table holds the same values
             "links" if matches!(value.get_ref(), DeValue::Array(_)) => continue,
             // robid feasible's values of an identification config's extra columns: not the
-            // robot's parameters
-            "extra" if matches!(value.get_ref(), DeValue::Table(_)) => continue,
+            // robot's parameters, kept apart
+            "extra" => {
+                let DeValue::Table(items) = value.get_ref() else {
+                    return Err(located(at, "`extra` must be a table [extra]".to_string()));
+                };
+                extra = entries_of(text, "extra", items, &located)?;
+                continue;
+            }
             other => {
                 return Err(located(
                     at,
@@ -685,39 +712,7 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
             ));
         }
         first = Some((name, line_column(text, at).0));
-        let mut entries = Vec::with_capacity(items.len());
-        for (k, v) in items {
-            let key: &str = k.get_ref();
-            let (line, column) = line_column(text, k.span().start);
-            let source = crate::toml_syntax::shown(text.get(v.span()).unwrap_or("?"));
-            let value = number(v.get_ref())
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| {
-                    located(
-                        k.span().start,
-                        format!("[{name}] `{key}` = {source} is not a finite number"),
-                    )
-                })?;
-            if value.abs() > PARAMETER_LIMIT {
-                return Err(located(
-                    k.span().start,
-                    format!(
-                        "[{name}] `{key}` = {source} is outside +-{PARAMETER_LIMIT:e}; give it \
-                         in SI units (kg, m, kg m^2, N m)"
-                    ),
-                ));
-            }
-            entries.push((
-                key.to_owned(),
-                Entry {
-                    value,
-                    line,
-                    column,
-                },
-            ));
-        }
-        // the parser's table is sorted by name; keep the file's order
-        entries.sort_by_key(|(_, e)| (e.line, e.column));
+        let entries = entries_of(text, name, items, &located)?;
         found = Some((table, entries));
     }
     let (table, entries) = found.ok_or_else(|| {
@@ -732,7 +727,52 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
         path: path.to_owned(),
         table,
         entries,
+        extra,
     })
+}
+
+/// The entries of the table `name`, each a finite number within +-[`PARAMETER_LIMIT`], in
+/// file order; `located` makes an error at a byte offset of `text`.
+fn entries_of(
+    text: &str,
+    name: &str,
+    items: &DeTable<'_>,
+    located: &dyn Fn(usize, String) -> Error,
+) -> Result<Vec<(String, Entry)>> {
+    let mut entries = Vec::with_capacity(items.len());
+    for (k, v) in items {
+        let key: &str = k.get_ref();
+        let (line, column) = line_column(text, k.span().start);
+        let source = crate::toml_syntax::shown(text.get(v.span()).unwrap_or("?"));
+        let value = number(v.get_ref())
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| {
+                located(
+                    k.span().start,
+                    format!("[{name}] `{key}` = {source} is not a finite number"),
+                )
+            })?;
+        if value.abs() > PARAMETER_LIMIT {
+            return Err(located(
+                k.span().start,
+                format!(
+                    "[{name}] `{key}` = {source} is outside +-{PARAMETER_LIMIT:e}; give it \
+                     in SI units (kg, m, kg m^2, N m)"
+                ),
+            ));
+        }
+        entries.push((
+            key.to_owned(),
+            Entry {
+                value,
+                line,
+                column,
+            },
+        ));
+    }
+    // the parser's table is sorted by name; keep the file's order
+    entries.sort_by_key(|(_, e)| (e.line, e.column));
+    Ok(entries)
 }
 
 /// The message of a TOML syntax error: a key or table given twice is named with what to

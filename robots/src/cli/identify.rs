@@ -506,7 +506,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     // other runs and the validation data too
     let auto = resolve_cutoff(&mut config, first).map_err(|e| config.locate(e))?;
     let reference = match &args.reference {
-        Some(path) => Some((path, reference_values(path, model, &config)?)),
+        Some(path) => {
+            let (values, warnings) = reference_values(path, model, &config)?;
+            warnings.into_iter().for_each(&mut warn);
+            Some((path, values))
+        }
         None => None,
     };
     let (mut report, prediction, values) = if config.runs.is_some() {
@@ -596,20 +600,63 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
 }
 
 /// The values of the reference model of `--reference`: its base parameters (from a `[base]`
-/// table, or mapped from a `[standard]` one), then zero for every extra column of the
-/// config (and of `[drive.rotor] residual`), which a reference model does not have.
+/// table, or mapped from a `[standard]` one), then the value of every extra column of the
+/// config (and of `[drive.rotor] residual`) from the file's `[extra]` table, 0 where it
+/// has none; and the warnings of those it has not, and of `[extra]` values of no column.
 fn reference_values(
     path: &Path,
     model: &dyn robid_runtime::model::Model,
     config: &Config,
-) -> Result<Vec<f64>, Error> {
+) -> Result<(Vec<f64>, Vec<String>), Error> {
     let file = description::read_parameters(path, true)?;
     let mut values = file.base_parameters(model)?;
     let extra = config
         .extra_columns_for(model.dof())
         .map_err(|e| config.locate(e))?;
-    values.resize(values.len() + extra.len(), 0.0);
-    Ok(values)
+    // the extra columns' values from the file's [extra] table (robid feasible writes it),
+    // 0 where it has none: said, as they were left out without a word
+    let given: Vec<(&str, f64)> = file.extra().collect();
+    let mut missing = Vec::new();
+    for column in &extra {
+        match given.iter().find(|(n, _)| *n == column.name) {
+            Some((_, v)) => values.push(*v),
+            None => {
+                values.push(0.0);
+                missing.push(column.name.as_str());
+            }
+        }
+    }
+    let mut warnings = Vec::new();
+    if !missing.is_empty() {
+        warnings.push(format!(
+            "--reference {}: no value for the config's extra {} {}, taken as 0 in the \
+             reference's prediction; give {} in an [extra] table of the file (robid feasible \
+             writes one) if the reference has them",
+            path.display(),
+            if missing.len() == 1 {
+                "column"
+            } else {
+                "columns"
+            },
+            missing.join(", "),
+            if missing.len() == 1 { "it" } else { "them" },
+        ));
+    }
+    let unused: Vec<&str> = given
+        .iter()
+        .map(|(n, _)| *n)
+        .filter(|n| !extra.iter().any(|c| c.name == *n))
+        .collect();
+    if !unused.is_empty() {
+        warnings.push(format!(
+            "--reference {}: [extra] {} {} no extra column of the config, left out of the \
+             reference's prediction",
+            path.display(),
+            unused.join(", "),
+            if unused.len() == 1 { "is" } else { "are" },
+        ));
+    }
+    Ok((values, warnings))
 }
 
 #[cfg(test)]

@@ -138,14 +138,20 @@ pub(crate) fn run() -> ExitCode {
 
 /// `command` with every flag that takes a value taking a negative number too
 /// (`--duration -10`): clap read `-10` as an unknown flag ("unexpected argument") where the
-/// flag's own check says what range it takes.
+/// flag's own check says what range it takes. A flag of real numbers takes any value
+/// after a hyphen, as clap's own test of a negative number knows neither `-inf`, `-nan`
+/// nor `-1e-320`; the others (paths, names) only numbers, so that `--plot --json r.json`
+/// is not a folder named `--json`.
 fn numbers_may_be_negative(command: clap::Command) -> clap::Command {
     command
         .mut_args(|arg| {
-            if arg.get_action().takes_values() && !arg.is_positional() {
-                arg.allow_negative_numbers(true)
+            if !arg.get_action().takes_values() || arg.is_positional() {
+                return arg;
+            }
+            if arg.get_value_parser().type_id() == std::any::TypeId::of::<f64>() {
+                arg.allow_hyphen_values(true)
             } else {
-                arg
+                arg.allow_negative_numbers(true)
             }
         })
         .mut_subcommands(numbers_may_be_negative)

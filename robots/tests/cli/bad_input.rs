@@ -87,6 +87,23 @@ fn excite_values_out_of_range_are_refused_naming_the_flag() {
             "--sigma",
             "-1 is outside [1e-9, 1e6] N m",
         ),
+        // what clap's test of a negative number does not know (`-inf`, `-nan`, a negative
+        // exponent) was "unexpected argument '-i' found" with clap's tip
+        (
+            &["--duration", "-inf"],
+            "--duration",
+            "-inf is not a finite number",
+        ),
+        (
+            &["--duration", "-1e-320"],
+            "--duration",
+            "-1e-320 is outside (0, 1e6] s",
+        ),
+        (
+            &["--base-frequency", "-nan"],
+            "--base-frequency",
+            "nan is not a finite number",
+        ),
         (
             &["--seed", "-1"],
             "--seed",

@@ -111,7 +111,7 @@ fn identify_reference_gives_madsen_nmse_and_the_relative_improvement() {
     .unwrap();
     let report = |reference: &str| {
         let json = path("report.json");
-        let table = run(&[
+        let o = robid(&[
             "identify",
             robot,
             "--config",
@@ -125,15 +125,18 @@ fn identify_reference_gives_madsen_nmse_and_the_relative_improvement() {
             "--json",
             &json,
         ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let table = stdout(&o);
         assert!(table.contains("against the reference"), "{table}");
         let v: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-        v["validation"][0].clone()
+        (v["validation"][0].clone(), stderr(&o))
     };
 
     // The reference's eq. 22 NMSE, from `robid torques` on the validation states.
     let measured = columns(&std::fs::read_to_string(&check).unwrap());
-    let eq22 = |parameters: &str| {
+    // `offset` is the extra column's value (joint 1's torque offset)
+    let eq22 = |parameters: &str, offset: f64| {
         let predicted = columns(&run(&[
             "torques",
             robot,
@@ -145,7 +148,9 @@ fn identify_reference_gives_madsen_nmse_and_the_relative_improvement() {
         let mut sum = 0.0;
         for j in 1..=6 {
             let key = format!("tau{j}");
+            let shift = if j == 1 { offset } else { 0.0 };
             for (m, p) in measured[&key].iter().zip(&predicted[&key]) {
+                let p = p + shift;
                 sum += (m - p) * (m - p) / m.abs();
             }
         }
@@ -153,13 +158,17 @@ fn identify_reference_gives_madsen_nmse_and_the_relative_improvement() {
     };
 
     for (reference, lowest, highest) in [(madsen, 90.0, 100.0), (truth, -1.0, 0.5)] {
-        let v = report(reference);
+        let (v, warnings) = report(reference);
+        assert!(
+            warnings.contains("no value for the config's extra column offset1, taken as 0"),
+            "{warnings}"
+        );
         let r = &v["reference"];
         let (nmse_ref, nmse_id) = (
             r["nmse_eq22"].as_f64().unwrap(),
             v["nmse_eq22"].as_f64().unwrap(),
         );
-        let expected = eq22(reference);
+        let expected = eq22(reference, 0.0);
         // the same sums in another order: rounding only
         assert!(
             (nmse_ref - expected).abs() <= 1e-9 * expected,
@@ -176,6 +185,29 @@ fn identify_reference_gives_madsen_nmse_and_the_relative_improvement() {
             "{reference}: {improvement} % not in [{lowest}, {highest}]"
         );
     }
+
+    // the extra column's value from the reference's [extra] table, as robid feasible
+    // writes it (it was 0 whatever the file said, without a word); a value of no column
+    // is said
+    let shifted = path("shifted.toml");
+    let text = std::fs::read_to_string(common::manifest().join(truth)).unwrap();
+    std::fs::write(
+        &shifted,
+        format!("{text}\n[extra]\noffset1 = 0.5\nother = 1.0\n"),
+    )
+    .unwrap();
+    let (v, warnings) = report(&shifted);
+    let nmse = v["reference"]["nmse_eq22"].as_f64().unwrap();
+    let expected = eq22(truth, 0.5);
+    assert!(
+        (nmse - expected).abs() <= 1e-9 * expected && expected > 1.01 * eq22(truth, 0.0),
+        "{nmse} against {expected}"
+    );
+    assert!(!warnings.contains("no value for"), "{warnings}");
+    assert!(
+        warnings.contains("[extra] other is no extra column of the config"),
+        "{warnings}"
+    );
 
     // a reference needs validation data, and its names must be the robot's
     let o = robid(&["identify", robot, "--data", &data, "--reference", madsen]);
