@@ -134,20 +134,50 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let progress = Progress::new(true, "friction: fit", fits.capacity() as u64, "joints");
     for (j, samples) in found.samples.iter().enumerate() {
         let fit = identify_friction(samples, &options).map_err(|e| {
-            // the library's names (`identify_friction `samples``) are not the user's: the
-            // samples are the joint's, taken from the data
-            match e {
+            // the samples are the joint's, made by the drive chain from the data: a fit
+            // that no friction has is told at the chain's key in the config, with what
+            // makes the samples (it was the library's names, or "singular or not positive
+            // definite"); what the samples lack (a reversal) is the data's
+            let problem = match e {
+                robid_runtime::Error::Setting {
+                    owner,
+                    key,
+                    problem,
+                    ..
+                } if owner == "identify_friction" && key == "fit" => problem,
                 robid_runtime::Error::Setting { owner, problem, .. }
                     if owner == "identify_friction" =>
                 {
-                    format!(
+                    return format!(
                         "joint {}: its friction samples from {}: {problem}",
                         j + 1,
                         data.name
-                    )
+                    );
                 }
-                e => format!("joint {}: {e}", j + 1),
-            }
+                robid_runtime::Error::Singular { .. } => "they do not oppose the motion: no \
+                     friction with non-negative Coulomb, Stribeck and viscous terms fits them; \
+                     check that the samples are rotor friction (signs, units, link-side \
+                     velocities)"
+                    .to_string(),
+                e => return format!("joint {}: {e}", j + 1),
+            };
+            let key = if config.drive.torque_constants.is_some() {
+                "drive.torque_constants"
+            } else {
+                "drive.gear_ratios"
+            };
+            let joint = j + 1;
+            config
+                .key_error(
+                    key,
+                    format!(
+                        "joint {joint}: its friction samples K_r i - B thetaddot - tau_J from \
+                         {}: {problem}: the signs and units of joint {joint}'s torque constant \
+                         and gear ratio, and of its motor_position and joint_torque columns",
+                        data.name
+                    ),
+                )
+                .to_string()
         })?;
         fits.push(fit);
         progress.tick();

@@ -276,6 +276,18 @@ fn a_drive_chain_that_contradicts_the_data_is_told() {
     );
     let e = run(&constant, &text);
     assert!(e.contains("joint 1: the data pull both"), "{e}");
+    // a torque constant of the wrong sign: no friction fits, and the error names the
+    // chain's key at its place and what makes the samples (it named neither)
+    let negative = good.replace(
+        "torque_constants = [0.1, 0.05]",
+        "torque_constants = [0.1, -0.05]",
+    );
+    let e = run(&negative, &text);
+    assert!(
+        e.contains("bad.toml:12:1: `drive.torque_constants`: joint 2: its friction samples")
+            && e.contains("the signs and units of joint 2's torque constant and gear ratio"),
+        "{e}"
+    );
     // a column of the log replaced: `column` from 1 after the time, by `f(value)`
     let with = |column: usize, f: &dyn Fn(f64) -> f64| -> String {
         let mut lines = text.lines();

@@ -394,9 +394,11 @@ pub fn identify_friction(
     }
     let friction = friction_of(&x, t0, eps);
     if let Some((field, problem)) = friction.fitted_problem() {
+        // key `fit`: the samples made a fit no friction has (a caller that made them can
+        // name what did), where the checks of the samples themselves are `samples`'
         return Err(Error::setting(
             "identify_friction",
-            "samples",
+            "fit",
             format!(
                 "the fitted `{field}` is out of range: {problem}; check that the samples are \
                  rotor friction (signs, units, link-side velocities)"
