@@ -242,15 +242,18 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         unbounded: Vec::new(),
         placeholders: Vec::new(),
     };
-    if root.tag_name().name() != "robot" {
+    if urdf_name(root) != Some("robot") {
         return Err(place.invalid(
             root.range(),
             format!(
                 "the top element is `<{}>`, not `<robot>`",
-                root.tag_name().name()
+                written_name(root)
             ),
             "give a URDF file, whose elements are inside `<robot name=\"...\">`",
         ));
+    }
+    if let Some(w) = declared_extensions(place, root) {
+        reader.warnings.push(w);
     }
     let (name, name_at) = reader
         .required(root, "name")
@@ -258,7 +261,7 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
     let mut links = Vec::new();
     let mut joints = Vec::new();
     for node in root.children().filter(Node::is_element) {
-        match node.tag_name().name() {
+        match urdf_name(node).unwrap_or_default() {
             "link" => links.extend(reader.link(node)),
             "joint" => joints.extend(reader.joint(node)),
             _ => {}
@@ -484,6 +487,35 @@ fn plain_names(text: &str, prefix: &str) -> (String, Option<usize>) {
     )
 }
 
+/// One warning for the elements of declared namespaces (`<drake:joint>` under
+/// `xmlns:drake="..."`), at the first, naming its prefix and counting the other prefixes:
+/// they are ignored ([`urdf_name`]), as those of undeclared ones are.
+fn declared_extensions(place: &Place<'_>, root: Node<'_, '_>) -> Option<String> {
+    let mut prefixes: Vec<(&str, Node<'_, '_>)> = Vec::new();
+    for node in root.descendants().filter(Node::is_element) {
+        if let Some((prefix, _)) = written_name(node).split_once(':')
+            && !prefixes.iter().any(|(p, _)| *p == prefix)
+        {
+            prefixes.push((prefix, node));
+        }
+    }
+    let ((prefix, first), rest) = prefixes.split_first()?;
+    let more = match rest.len() {
+        0 => String::new(),
+        n => format!(" (and {n} more prefixes)"),
+    };
+    Some(place.warning(
+        first.range().start,
+        &format!(
+            "`<{0}>` and the other elements of the namespace prefix `{prefix}:`{more} are a \
+             simulator's or another tool's extensions, not URDF: they are ignored, as URDF \
+             parsers ignore them (`<{0}>` is no `<{1}>`)",
+            written_name(*first),
+            first.tag_name().name()
+        ),
+    ))
+}
+
 /// The fix for an unexpanded xacro file.
 const EXPAND_XACRO: &str = "expand it with xacro first (`xacro robot.urdf.xacro > \
      robot.urdf`) and give robid the URDF it writes";
@@ -554,9 +586,36 @@ fn xacro_left(root: Node<'_, '_>) -> Option<(Range<usize>, String)> {
     None
 }
 
+/// The element's name when it is a URDF name: written without a namespace prefix. An
+/// element of a declared namespace (`<drake:joint type="ball">` of Drake's extension, under
+/// `xmlns:drake="..."`) is another tool's, as for URDF parsers, which ignore namespaces and
+/// so see `drake:joint`, no URDF element: it was read as a `<joint>`. The prefix is read
+/// from the text, since a default namespace (`xmlns="..."`) puts unprefixed elements in one
+/// too, and URDF parsers read those.
+fn urdf_name<'a>(node: Node<'a, '_>) -> Option<&'a str> {
+    (!written_name(node).contains(':')).then_some(node.tag_name().name())
+}
+
+/// The element's name as written, with its namespace prefix if any (`drake:joint`).
+fn written_name<'a>(node: Node<'a, '_>) -> &'a str {
+    let text = &node.document().input_text()[node.range()];
+    let name = text.strip_prefix('<').unwrap_or(text);
+    let end = name
+        .find(|c: char| c.is_whitespace() || c == '/' || c == '>')
+        .unwrap_or(name.len());
+    &name[..end]
+}
+
+/// The attribute `name` of `node` without a namespace prefix (`drake:type` is not `type`;
+/// roxmltree's own lookup by a plain name matches a prefixed attribute too).
+fn attribute<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Option<roxmltree::Attribute<'a, 'i>> {
+    node.attributes()
+        .find(|a| a.namespace().is_none() && a.name() == name)
+}
+
 /// `<tag name="...">` for messages.
 fn describe(node: Node<'_, '_>) -> String {
-    match node.attribute("name") {
+    match attribute(node, "name").map(|a| a.value()) {
         Some(name) => format!("`<{} name=\"{}\">`", node.tag_name().name(), short(name)),
         None => format!("`<{}>`", node.tag_name().name()),
     }
@@ -573,7 +632,7 @@ impl Reader<'_> {
     fn child<'a, 'i>(&mut self, node: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
         let mut all = node
             .children()
-            .filter(|c| c.is_element() && c.tag_name().name() == tag);
+            .filter(|c| c.is_element() && urdf_name(*c) == Some(tag));
         let first = all.next();
         if let Some(second) = all.next() {
             let w = self.place.warning(
@@ -592,7 +651,7 @@ impl Reader<'_> {
 
     /// A required attribute and where its value is.
     fn required(&mut self, node: Node<'_, '_>, name: &str) -> Option<(String, Range<usize>)> {
-        match node.attribute_node(name) {
+        match attribute(node, name) {
             Some(a) if a.value().chars().nth(MAX_NAME_LEN).is_some() => {
                 self.error(
                     a.range_value(),
@@ -620,7 +679,7 @@ impl Reader<'_> {
 
     /// An optional attribute of `count` finite numbers (`count` = 1: a scalar).
     fn numbers(&mut self, node: Node<'_, '_>, name: &str, count: usize) -> Option<Vec<f64>> {
-        let attribute = node.attribute_node(name)?;
+        let attribute = attribute(node, name)?;
         let text = attribute.value();
         let span = attribute.range_value();
         let mut values = Vec::new();
@@ -693,7 +752,7 @@ impl Reader<'_> {
     /// `lower` or `upper` of a `<limit>`: a number beyond ±[`MAX_VALUE`], infinities
     /// included, is no bound (`(None, true)`), noted for one warning.
     fn position_bound(&mut self, l: Node<'_, '_>, name: &str, joint: &str) -> (Option<f64>, bool) {
-        if let Some(a) = l.attribute_node(name)
+        if let Some(a) = attribute(l, name)
             && let Ok(v) = a.value().trim().parse::<f64>()
             && v.abs() > MAX_VALUE
         {
@@ -713,7 +772,7 @@ impl Reader<'_> {
         if v <= max {
             return Some(v);
         }
-        if let Some(a) = l.attribute_node(name) {
+        if let Some(a) = attribute(l, name) {
             let written = format!("{name}=\"{}\"", a.value());
             self.placeholders
                 .push((written, a.range_value().start, joint.to_owned(), max));
@@ -722,7 +781,7 @@ impl Reader<'_> {
     }
 
     fn required_scalar(&mut self, node: Node<'_, '_>, name: &str) -> Option<f64> {
-        if node.attribute(name).is_none() {
+        if attribute(node, name).is_none() {
             self.required(node, name);
             return None;
         }
@@ -740,7 +799,7 @@ impl Reader<'_> {
         };
         let xyz = self.vector(node, "xyz").unwrap_or([0.0; 3]);
         let mut rpy = self.vector(node, "rpy").unwrap_or([0.0; 3]);
-        if let Some(attribute) = node.attribute_node("rpy") {
+        if let Some(attribute) = attribute(node, "rpy") {
             let words = attribute.value().split_whitespace();
             for (angle, word) in rpy.iter_mut().zip(words) {
                 let at = attribute.range_value().start;
@@ -802,8 +861,7 @@ impl Reader<'_> {
         // a negative mass and an inertia that is not positive semidefinite are checked
         // only for the links of the chain's bodies (`inertial::check`)
         let mass_at = mass_node.map_or(node.range(), |m| {
-            m.attribute_node("value")
-                .map_or(m.range(), |a| a.range_value())
+            attribute(m, "value").map_or(m.range(), |a| a.range_value())
         });
         let mut inertia_at = node.range();
         let inertia = match self.child(node, "inertia") {
@@ -867,7 +925,7 @@ impl Reader<'_> {
         let origin = self.origin(origin);
         let axis = match self.child(node, "axis") {
             None => Some([1.0, 0.0, 0.0]),
-            Some(a) => match a.attribute_node("xyz") {
+            Some(a) => match attribute(a, "xyz") {
                 None => Some([1.0, 0.0, 0.0]),
                 Some(attribute) => {
                     let span = attribute.range_value();
@@ -906,7 +964,7 @@ impl Reader<'_> {
                 unbounded: below || above,
                 effort: self.rate_limit(l, "effort", MAX_TORQUE, &joint_name),
                 velocity: self.rate_limit(l, "velocity", MAX_VELOCITY, &joint_name),
-                written: ["effort", "velocity"].map(|a| l.attribute(a).is_some()),
+                written: ["effort", "velocity"].map(|a| attribute(l, a).is_some()),
                 zeros_noted: l
                     .prev_siblings()
                     .skip(1)

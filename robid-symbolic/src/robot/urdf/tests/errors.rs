@@ -1589,3 +1589,65 @@ fn thousands_of_mistakes_are_told_in_a_page() {
         "{text}"
     );
 }
+
+/// Elements and attributes of a declared namespace (Drake's `<drake:joint type="ball">`
+/// under `xmlns:drake`) are another tool's, as for URDF parsers: ignored with a warning at
+/// the first, the robot the one without them. They were read by their local name: the
+/// ball joint was refused as an unknown type, a planar one gave its child a second parent,
+/// and `<u:robot>` was a robot. A default namespace leaves the elements URDF's.
+#[test]
+fn elements_of_a_declared_namespace_are_not_urdf() {
+    let two = format!("{J1}{J2}");
+    let plain = Robot::from_urdf(&arm(&two), "t.urdf", &ChainSelection::default()).unwrap();
+    let declared =
+        |text: &str| text.replace("<robot ", "<robot xmlns:drake=\"http://drake.mit.edu\" ");
+    for extra in [
+        "<drake:joint name=\"ball\" type=\"ball\"><parent link=\"a\"/><child link=\"c\"/></drake:joint>\n",
+        "<drake:joint name=\"p\" type=\"planar\"><parent link=\"a\"/><child link=\"c\"/></drake:joint>\n",
+        "<drake:link name=\"c\"/>\n",
+    ] {
+        let text = declared(&arm(&format!("{two}{extra}")));
+        let chain = Robot::from_urdf(&text, "t.urdf", &ChainSelection::default())
+            .unwrap_or_else(|e| panic!("{e}\n{text}"));
+        assert_eq!(chain.robot, plain.robot, "{text}");
+        let w = chain
+            .warnings
+            .iter()
+            .find(|w| w.contains("namespace prefix `drake:`"));
+        assert!(
+            w.is_some_and(|w| w.starts_with("t.urdf:7:") && w.contains("ignored")),
+            "{:?}",
+            chain.warnings
+        );
+    }
+    // a prefixed attribute is not the URDF's, even before it
+    let text = declared(&arm(&two.replace(
+        "<joint name=\"j2\" type=",
+        "<joint name=\"j2\" drake:type=\"ball\" type=",
+    )));
+    let chain = Robot::from_urdf(&text, "t.urdf", &ChainSelection::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(chain.robot, plain.robot);
+    // a prefixed root is no `<robot>`
+    let text = arm(&two)
+        .replace(
+            "<robot name=\"arm\">",
+            "<u:robot xmlns:u=\"http://u\" name=\"arm\">",
+        )
+        .replace("</robot>", "</u:robot>");
+    let message = error_of(&text, &ChainSelection::default());
+    assert!(
+        message.contains("the top element is `<u:robot>`, not `<robot>`"),
+        "{message}"
+    );
+    // a default namespace puts unprefixed elements in it: they are URDF's all the same
+    let text = arm(&two).replace("<robot ", "<robot xmlns=\"http://www.ros.org\" ");
+    let chain = Robot::from_urdf(&text, "t.urdf", &ChainSelection::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(chain.robot, plain.robot);
+    assert!(
+        !chain.warnings.iter().any(|w| w.contains("namespace")),
+        "{:?}",
+        chain.warnings
+    );
+}
