@@ -3,7 +3,7 @@
 //! moves (docs/urdf.md#choosing-the-chain).
 
 use super::super::DescriptionError;
-use super::super::bounds::MAX_JOINTS;
+use super::super::bounds::{MAX_ARM_LENGTH, MAX_JOINTS};
 use super::super::check::{LISTED, and_more, listed, show};
 use super::super::file::Place;
 use super::rigid::{Rigid, scale};
@@ -322,6 +322,34 @@ fn mimic_beyond_limits(place: &Place<'_>, urdf: &Urdf, tree: &Tree, j: usize) ->
             short(tree.held[followed]),
             show(lower),
             show(upper)
+        ),
+    ))
+}
+
+/// A warning when joint `j`, a prismatic joint with `<mimic>` held off the chain, is held
+/// farther than [`MAX_ARM_LENGTH`] from its origin: an `offset` in millimetres (20 for
+/// 20 mm) places the links it moves metres away, as a joint's `<origin>` would, which is
+/// warned of alike (`xml::read`). The links are placed there all the same, as the URDF says.
+fn mimic_far(place: &Place<'_>, urdf: &Urdf, tree: &Tree, j: usize) -> Option<String> {
+    let joint = &urdf.joints[j];
+    let mimic = joint.mimic.as_ref()?;
+    let value = tree.held[j];
+    if joint.kind != JointType::Prismatic || value.abs() <= MAX_ARM_LENGTH {
+        return None;
+    }
+    let short = |v: f64| show(format!("{v:.5e}").parse().unwrap_or(v));
+    Some(place.warning(
+        mimic.at.start,
+        &format!(
+            "joint `{}`, off the chain, is held at {} m by its `<mimic>` (joint `{}`, \
+             multiplier {}, offset {}), which places the links it moves farther than an arm's \
+             {MAX_ARM_LENGTH} m from its origin: {}",
+            joint.name,
+            short(value),
+            mimic.joint,
+            show(mimic.multiplier),
+            show(mimic.offset),
+            super::super::file::LENGTH_FIX
         ),
     ))
 }
@@ -794,11 +822,14 @@ pub(super) fn choose(
         .filter_map(|&l| tree.parent[l])
         .filter(|j| !path_names.contains_key(urdf.joints[*j].name.as_str()))
         .chain(tree.path(tree.root, base).unwrap_or_default());
+    let mut far = None;
     for j in held_joints {
         if let Some(w) = mimic_beyond_limits(place, urdf, tree, j) {
             warnings.push(w);
         }
+        far = far.or_else(|| mimic_far(place, urdf, tree, j));
     }
+    warnings.extend(far);
     if let Some(at) = dynamics {
         warnings.push(place.warning(
             at.start,

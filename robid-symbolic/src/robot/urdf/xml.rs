@@ -346,6 +346,26 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         );
         reader.warnings.push(w);
     }
+    // a centre of mass in millimetres is as far off as a joint origin, and gave torques
+    // of thousands of N m without a word
+    let far_mass = links.iter().find_map(|l| {
+        let inertial = l.inertial.as_ref()?;
+        let far = inertial.origin.p.iter().any(|v| v.abs() > MAX_ARM_LENGTH);
+        far.then_some((l, inertial))
+    });
+    if let Some((link, inertial)) = far_mass {
+        let [x, y, z] = inertial.origin.p;
+        let w = place.warning(
+            inertial.range.start,
+            &format!(
+                "link `{}`'s centre of mass (its `<inertial>`'s `<origin>`) is at `{x} {y} {z}` \
+                 m, farther than an arm's {MAX_ARM_LENGTH} m: {}",
+                link.name,
+                super::super::file::LENGTH_FIX
+            ),
+        );
+        reader.warnings.push(w);
+    }
     let turning = joints.iter().find_map(|j| {
         let limit = j.limit.as_ref().filter(|_| j.kind == JointType::Revolute)?;
         let far = [limit.lower, limit.upper]

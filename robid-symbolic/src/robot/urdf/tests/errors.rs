@@ -1651,3 +1651,67 @@ fn elements_of_a_declared_namespace_are_not_urdf() {
         chain.warnings
     );
 }
+
+/// A centre of mass in millimetres read as metres (`<inertial><origin xyz="250 0 0">`)
+/// is warned of at its `<inertial>`, as a joint origin that far is; so is a prismatic
+/// mimic joint off the chain held 20 m out by its `offset`. Both were silent (a torque of
+/// 3907 N m from a 1 kg link).
+#[test]
+fn a_centre_of_mass_or_a_mimic_offset_in_millimetres_is_warned_of() {
+    let two = format!("{J1}{J2}");
+    let mass = |x: &str| {
+        format!(
+            "<link name=\"c\"><inertial><origin xyz=\"{x} 0 0\"/><mass value=\"1\"/>\
+             <inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/>\
+             </inertial></link>"
+        )
+    };
+    let far = |text: &str| -> Vec<String> {
+        let chain = Robot::from_urdf(text, "t.urdf", &selection(None, Some("c")))
+            .unwrap_or_else(|e| panic!("{e}"));
+        chain
+            .warnings
+            .into_iter()
+            .filter(|w| w.contains("in millimetres?"))
+            .collect()
+    };
+    let near = arm(&two).replace("<link name=\"c\"/>", &mass("0.25"));
+    assert!(far(&near).is_empty());
+    for (x, shown) in [("250", "250"), ("5e8", "500000000")] {
+        let text = arm(&two).replace("<link name=\"c\"/>", &mass(x));
+        let told = far(&text);
+        assert!(
+            told.len() == 1
+                && told[0].starts_with("t.urdf:4:")
+                && told[0].contains(&format!(
+                    "link `c`'s centre of mass (its `<inertial>`'s `<origin>`) is at `{shown} 0 0` m"
+                )),
+            "{told:?}"
+        );
+    }
+    // a prismatic joint off the chain, on link b, mimicking another one held at 0
+    let side = |offset: &str| {
+        arm(&format!(
+            "{two}<joint name=\"t\" type=\"revolute\"><parent link=\"b\"/><child link=\"e\"/>\
+             <axis xyz=\"1 0 0\"/><limit effort=\"1\" velocity=\"1\"/></joint>\
+             <joint name=\"s\" type=\"prismatic\"><parent link=\"b\"/><child link=\"d\"/>\
+             <axis xyz=\"1 0 0\"/><limit effort=\"1\" velocity=\"1\"/>\
+             <mimic joint=\"t\" offset=\"{offset}\"/></joint>\n"
+        ))
+        .replace(
+            "<link name=\"c\"/>",
+            "<link name=\"c\"/><link name=\"d\"/><link name=\"e\"/>",
+        )
+    };
+    assert!(far(&side("0.02")).is_empty());
+    for (offset, shown) in [("20", "20"), ("1e8", "1e8")] {
+        let told = far(&side(offset));
+        assert!(
+            told.len() == 1
+                && told[0].starts_with("t.urdf:7:")
+                && told[0].contains(&format!("joint `s`, off the chain, is held at {shown} m"))
+                && told[0].contains(&format!("offset {shown})")),
+            "{told:?}"
+        );
+    }
+}
