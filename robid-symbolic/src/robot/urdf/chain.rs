@@ -361,7 +361,8 @@ fn mimic_far(place: &Place<'_>, urdf: &Urdf, tree: &Tree, j: usize) -> Option<St
 /// joint of its path whose chain does not; then the link above the branches (moved by the
 /// last movable joint above the links where the movable joints' paths part), each once per
 /// set of joints. Leaves that fail are named with the first reason. At most
-/// [`LISTED`] tips and as many failing leaves are named, the others counted.
+/// [`LISTED`] tips and as many failing leaves are named; the leaves left untried then are
+/// counted as not checked.
 fn tips(
     place: &Place<'_>,
     urdf: &Urdf,
@@ -483,7 +484,6 @@ fn tips(
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let more = and_more(unchecked, " leaf", " leaves");
     let mut help = if good.is_empty() {
         format!(
             "no leaf below link `{}` ends a chain robid models",
@@ -491,13 +491,13 @@ fn tips(
         )
     } else {
         let listed: Vec<usize> = good.iter().map(|(l, _)| *l).collect();
-        let mut text = if listed.len() == 1 && unchecked == 0 {
+        let mut text = if listed.len() == 1 {
             format!("choose the tip `{}`", names[listed[0]])
         } else {
-            format!("choose the tip among {}{more}", quoted(&listed))
+            format!("choose the tip among {}", quoted(&listed))
         };
         if let Some(b) = branch {
-            if listed == [b] && unchecked == 0 {
+            if listed == [b] {
                 text += ", where the chain branches (the joints below it are held)";
             } else if listed.contains(&b) {
                 text += &format!(" (`{}`: where the chain branches)", names[b]);
@@ -526,6 +526,13 @@ fn tips(
             quoted(&failing),
             names[leaf]
         );
+    }
+    // counted apart from the tips: they were not tried, so they are neither good nor bad
+    // (they were counted as more tips, which a comb of 3500 failing leaves was told)
+    match unchecked {
+        0 => {}
+        1 => help += "; 1 more leaf was not checked",
+        n => help += &format!("; {n} more leaves were not checked"),
     }
     help
 }
