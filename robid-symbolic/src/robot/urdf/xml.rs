@@ -955,17 +955,30 @@ impl Reader<'_> {
                         // underflows to zero, that of `3e300 4e300 0` overflows; divided,
                         // not times the reciprocal, which overflows for `1e-320 0 0`
                         let largest = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                        if largest > 0.0 && largest.is_finite() {
+                        // subnormal components carry no digits, so their direction is
+                        // rounding (`0 4e-320 4e-320` was read as `0 1 1`): 0, as a
+                        // subnormal mass is (`robot::negligible`)
+                        if largest >= f64::MIN_POSITIVE && largest.is_finite() {
                             let u = v.map(|x| x / largest);
                             Some(scale(u, 1.0 / norm(u)))
-                        } else if fixed && largest == 0.0 {
+                        } else if fixed && largest < f64::MIN_POSITIVE {
                             // a fixed joint's axis is not used (Kinova's Gen3 URDF writes
                             // `0 0 0` there)
                             Some([1.0, 0.0, 0.0])
                         } else {
+                            let subnormal = if largest > 0.0 {
+                                " (its components are below 2.2e-308, subnormal numbers \
+                                 without the digits of a direction: 0)"
+                                    .to_owned()
+                            } else {
+                                String::new()
+                            };
                             self.error(
                                 span,
-                                format!("the axis of {} has no direction", describe(node)),
+                                format!(
+                                    "the axis of {} has no direction{subnormal}",
+                                    describe(node)
+                                ),
                                 "give the axis as a non-zero vector, e.g. `0 0 1`",
                             );
                             None

@@ -1442,16 +1442,15 @@ fn a_file_cut_short_is_told_at_its_end() {
 }
 
 /// An axis of tiny components is a direction like any other: its norm underflowed to zero
-/// (`0 0 1e-200`) and it was refused as having none; a subnormal one (`1e-320 0 0`) made
-/// every DH row NaN.
+/// (`0 0 1e-200`) and it was refused as having none. Subnormal ones carry no digits and
+/// are refused ([`a_subnormal_axis_has_no_direction`]).
 #[test]
 fn an_axis_of_tiny_components_has_a_direction() {
     let half = std::f64::consts::FRAC_1_SQRT_2;
     for (xyz, unit) in [
         ("0 0 1e-200", [0.0, 0.0, 1.0]),
-        ("1e-320 0 0", [1.0, 0.0, 0.0]),
-        ("0 5e-324 -5e-324", [0.0, half, -half]),
         ("1e-170 -1e-170 0", [half, -half, 0.0]),
+        ("0 3e-308 -3e-308", [0.0, half, -half]),
         ("0 -3e8 4e8", [0.0, -0.6, 0.8]),
     ] {
         let text = arm(&format!("{J1}{J2}").replacen("0 0 1", xyz, 1));
@@ -1717,4 +1716,42 @@ fn a_centre_of_mass_or_a_mimic_offset_in_millimetres_is_warned_of() {
             "{told:?}"
         );
     }
+}
+
+/// An axis of subnormal components (`0 4e-320 4e-320`, no digits) has no direction, as a
+/// zero axis: it was read as `0 1 1` normalised (and `1e-320 0 0` as `1 0 0`, which
+/// [`an_axis_of_tiny_components_has_a_direction`] took). A fixed joint's, unused, is fine.
+#[test]
+fn a_subnormal_axis_has_no_direction() {
+    for xyz in ["1e-320 0 0", "0 5e-324 -5e-324"] {
+        let message = error_of(
+            &arm(&format!("{J1}{J2}").replacen("0 0 1", xyz, 1)),
+            &ChainSelection::default(),
+        );
+        assert!(message.contains("subnormal"), "{message}");
+    }
+    let message = error_of(
+        &arm(&format!("{J1}{J2}").replace(
+            "<origin xyz=\"0.5 0 0\"/><axis xyz=\"0 0 1\"/>",
+            "<origin xyz=\"0.5 0 0\"/><axis xyz=\"0 4e-320 4e-320\"/>",
+        )),
+        &ChainSelection::default(),
+    );
+    assert!(
+        message.starts_with("t.urdf:6:")
+            && message.contains("the axis of `<joint name=\"j2\">` has no direction")
+            && message.contains("below 2.2e-308, subnormal"),
+        "{message}"
+    );
+    let fixed = arm(&format!("{J1}{J2}").replace(
+        "<joint name=\"j2\" type=\"revolute\"",
+        "<joint name=\"j2\" type=\"fixed\"",
+    ))
+    .replace(
+        "0.5 0 0\"/><axis xyz=\"0 0 1\"",
+        "0.5 0 0\"/><axis xyz=\"0 4e-320 0\"",
+    );
+    assert!(fixed.contains("4e-320"));
+    Robot::from_urdf(&fixed, "t.urdf", &ChainSelection::default())
+        .unwrap_or_else(|e| panic!("{e}"));
 }
