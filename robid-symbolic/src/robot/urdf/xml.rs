@@ -241,6 +241,7 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
         near: Vec::new(),
         unbounded: Vec::new(),
         placeholders: Vec::new(),
+        non_finite: Vec::new(),
     };
     if urdf_name(root) != Some("robot") {
         return Err(place.invalid(
@@ -395,6 +396,14 @@ pub(super) fn read(place: &Place<'_>) -> Result<Urdf, DescriptionError> {
     if let Some(w) = incomplete_limits(place, &joints) {
         reader.warnings.push(w);
     }
+    for (span, message) in non_finite(root, &reader.non_finite) {
+        reader.error(
+            span,
+            message,
+            "write finite numbers (robid copies the file's other elements into the URDFs it \
+             writes, `robid feasible -o`), or remove the value",
+        );
+    }
     reader.duplicates(links.iter().map(|l| (&l.name, &l.range)), "link");
     reader.duplicates(joints.iter().map(|j| (&j.name, &j.range)), "joint");
     // with another mistake, told with it (a `<robot>` that xacro left empty was told only
@@ -438,6 +447,9 @@ struct Reader<'a> {
     /// ([`Reader::rate_limit`]): the attribute as written, where it is, the joint and the
     /// largest value taken.
     placeholders: Vec<(String, usize, String, f64)>,
+    /// Where the values [`Reader::numbers`] refused as not finite begin: [`non_finite`]
+    /// does not tell them twice.
+    non_finite: Vec<usize>,
 }
 
 /// The largest `rpy` angle read (rad): a turn, and a hundredth more for a printed 2 pi
@@ -534,6 +546,67 @@ fn declared_extensions(place: &Place<'_>, root: Node<'_, '_>) -> Option<String> 
             first.tag_name().name()
         ),
     ))
+}
+
+/// Every value of the URDF's own elements (no namespace prefix, [`urdf_name`]) that is
+/// numbers, one of them not finite (`nan`, `inf`), which the reader has not refused yet
+/// (`told`: where those begin): an attribute but a name, or the text of an element without
+/// elements, with its place and message. robid does not use most of them
+/// (`<dynamics damping="nan">`), but the URDFs it writes copy them, and a `nan` in an
+/// output is refused by whatever reads it next. `lower` and `upper` of `<limit>` may be
+/// infinite: no position limit ([`Reader::position_bound`]).
+fn non_finite(root: Node<'_, '_>, told: &[usize]) -> Vec<(Range<usize>, String)> {
+    // numbers, one of them not finite; names are not numbers, even a link named `inf`
+    let bad = |text: &str| {
+        let words: Vec<Option<f64>> = text.split_whitespace().map(|w| w.parse().ok()).collect();
+        !words.is_empty()
+            && words.iter().all(Option::is_some)
+            && words.iter().flatten().any(|v| !v.is_finite())
+    };
+    let mut found = Vec::new();
+    let elements = root.descendants().filter(|n| n.is_element());
+    for node in elements.filter(|n| {
+        n.ancestors()
+            .all(|a| !a.is_element() || urdf_name(a).is_some())
+    }) {
+        let owner = node
+            .ancestors()
+            .find(|a| attribute(*a, "name").is_some())
+            .filter(|a| *a != node)
+            .map_or(String::new(), |a| format!(" of {}", describe(a)));
+        for a in node.attributes().filter(|a| a.namespace().is_none()) {
+            let named = matches!(a.name(), "name" | "link" | "joint" | "filename" | "type");
+            let unbounded = node.has_tag_name("limit")
+                && matches!(a.name(), "lower" | "upper")
+                && a.value().trim().parse::<f64>().is_ok_and(f64::is_infinite);
+            if named || unbounded || told.contains(&a.range_value().start) || !bad(a.value()) {
+                continue;
+            }
+            found.push((
+                a.range_value(),
+                format!(
+                    "`{}=\"{}\"` of {}{owner} is not finite",
+                    a.name(),
+                    short(a.value()),
+                    describe(node)
+                ),
+            ));
+        }
+        if node.children().all(|c| c.is_text())
+            && let Some(text) = node.text().filter(|t| bad(t))
+            && let Some(first) = node.first_child()
+        {
+            found.push((
+                first.range(),
+                format!(
+                    "the text `{}` of {}{owner} is not finite",
+                    short(text.trim()),
+                    describe(node)
+                ),
+            ));
+        }
+    }
+    found
 }
 
 /// The fix for an unexpanded xacro file.
@@ -725,6 +798,7 @@ impl Reader<'_> {
                     return None;
                 }
                 Ok(_) => {
+                    self.non_finite.push(span.start);
                     self.error(
                         span,
                         format!("`{name}=\"{text}\"` of {} is not finite", describe(node)),

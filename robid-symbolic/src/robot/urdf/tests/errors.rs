@@ -1755,3 +1755,64 @@ fn a_subnormal_axis_has_no_direction() {
     Robot::from_urdf(&fixed, "t.urdf", &ChainSelection::default())
         .unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// A value that is not finite in an element robid does not read (`<dynamics
+/// damping="nan">`, a visual's origin, an element's text) is an error at its place:
+/// `robid feasible -o` copied it into the URDF it wrote. Names are no numbers, and an
+/// infinite position bound is no limit, as before.
+#[test]
+fn values_that_are_not_finite_are_refused_wherever_they_are() {
+    for (inside, place, what) in [
+        (
+            "<dynamics damping=\"nan\" friction=\"0\"/>",
+            "t.urdf:6:",
+            "`damping=\"nan\"` of `<dynamics>` of `<joint name=\"j2\">` is not finite",
+        ),
+        (
+            "<dynamics damping=\"0\" friction=\"-inf\"/>",
+            "t.urdf:6:",
+            "`friction=\"-inf\"` of `<dynamics>`",
+        ),
+        (
+            "<calibration rising=\"1 NaN\"/>",
+            "t.urdf:6:",
+            "`rising=\"1 NaN\"`",
+        ),
+        (
+            "<x>infinity</x>",
+            "t.urdf:6:",
+            "the text `infinity` of `<x>` of `<joint name=\"j2\">` is not finite",
+        ),
+    ] {
+        let text = arm(&format!("{J1}{J2}")).replace(
+            "<origin xyz=\"0.5 0 0\"/><axis xyz=\"0 0 1\"/></joint>",
+            &format!("<origin xyz=\"0.5 0 0\"/><axis xyz=\"0 0 1\"/>{inside}</joint>"),
+        );
+        let message = error_of(&text, &ChainSelection::default());
+        assert!(
+            message.starts_with(place)
+                && message.contains(what)
+                && message.contains("write finite numbers"),
+            "{message}"
+        );
+    }
+    // a link's visual, and a value robid reads, told once
+    let text = arm(&format!("{J1}{J2}")).replace(
+        "<link name=\"c\"/>",
+        "<link name=\"c\"><visual><origin xyz=\"nan 0 0\"/></visual></link>",
+    );
+    let message = error_of(&text, &ChainSelection::default());
+    assert!(
+        message.starts_with("t.urdf:4:")
+            && message.contains("of `<link name=\"c\">` is not finite"),
+        "{message}"
+    );
+    let text = arm(&format!("{J1}{J2}").replace("0.5 0 0", "0.5 inf 0"));
+    let message = error_of(&text, &ChainSelection::default());
+    assert_eq!(message.matches("not finite").count(), 1, "{message}");
+    // names are no numbers; an infinite bound is no limit
+    let text = arm(&format!("{J1}{J2}").replace("<axis xyz=\"0 0 1\"/></joint>\n<joint name=\"j2\"", "<axis xyz=\"0 0 1\"/><limit lower=\"-inf\" upper=\"inf\" effort=\"1\" velocity=\"1\"/></joint>\n<joint name=\"j2\""))
+        .replace("\"c\"", "\"inf\"");
+    assert!(text.contains("lower=\"-inf\"") && text.contains("name=\"inf\""));
+    Robot::from_urdf(&text, "t.urdf", &ChainSelection::default()).unwrap_or_else(|e| panic!("{e}"));
+}
