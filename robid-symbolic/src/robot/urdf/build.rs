@@ -166,9 +166,11 @@ pub(super) fn gravity(base_in_root: &super::rigid::Rigid, fit: &Fit) -> [f64; 3]
 /// 1's axis (frame 0's z) a few µrad off the root's vertical or horizontal is a right angle
 /// printed short (the SO-100's `1.57079` for pi/2: 6.3e-6 rad, a component of 6.2e-5 m/s^2),
 /// which would give link 1's first moments a gravity torque through that tilt alone, one
-/// no data determine; a real mounting tilt that small changes the gravity torques by less
-/// than 1e-4 of their size. The warning names the element that tilts the axis when one
-/// does ([`tilted`]), else joint 1.
+/// no data determine. Dropping the components changes each gravity torque by at most their
+/// share of g times the torque the links' weight has about a horizontal axis (m g l), not
+/// of the torques themselves: on an arm whose axes are all vertical (a SCARA) the tilt is
+/// all its gravity torque, and robid's are then 0. The warning says so, and names the
+/// element that tilts the axis when one does ([`tilted`]), else joint 1.
 pub(super) fn level(
     place: &Place<'_>,
     urdf: &Urdf,
@@ -191,6 +193,15 @@ pub(super) fn level(
     let j = &urdf.joints[first];
     let norm = gravity.iter().map(|x| x * x).sum::<f64>().sqrt();
     let tilt = (smallest / norm).asin();
+    // what is dropped, as a share of g: a bound on the change of a gravity torque relative
+    // to m g l, the torque of the weight about a horizontal axis
+    let dropped = gravity
+        .iter()
+        .filter(|&&x| small(x))
+        .map(|x| x * x)
+        .sum::<f64>()
+        .sqrt()
+        / norm;
     let tilted = tilted(urdf, chain);
     let (at, cause) = match tilted.first() {
         Some((at, _, _)) => {
@@ -232,9 +243,11 @@ pub(super) fn level(
         &format!(
             "gravity in robid frame 0, whose z is joint `{}`'s axis, has {} below {} m/s^2: \
              taken as 0, the axis as exactly parallel or perpendicular to the root link's z \
-             (it is {tilt:.1e} rad from that, too little for any data to tell from none, and \
-             a measured mounting tilt this small changes the gravity torques by less than \
-             1e-4 of their size); {cause} (docs/urdf.md#gravity)",
+             (it is {tilt:.1e} rad from that, too little for any data to tell from none; a \
+             measured mounting tilt this small changes each gravity torque by at most \
+             {dropped:.1e} of m g l, the torque of the links' weight about a horizontal axis, \
+             which is all the gravity torque of an arm whose axes are vertical, a SCARA's, \
+             whose gravity torques are then 0); {cause} (docs/urdf.md#gravity)",
             j.name,
             components.join(" and "),
             show(MIN_GRAVITY)
