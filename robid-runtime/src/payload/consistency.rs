@@ -5,6 +5,7 @@
 
 use crate::Num;
 use crate::feasible::{LinkInertial, pseudo_inertia_min_eigenvalue};
+use crate::model::Inertial;
 
 /// Relative slack of the checks, against the largest principal moment: rounding of an
 /// exactly flat or point-like body must not make it inconsistent.
@@ -31,6 +32,33 @@ pub struct Consistency {
     /// Checks met only within 3 standard deviations of the values (a point
     /// mass estimated with a smallest principal moment of -3e-11 kg m^2).
     pub within_uncertainty: Vec<String>,
+    /// Why the data cannot tell whether the values are a body (empty when they can): an
+    /// uncertainty so large that bodies and no bodies both lie within it (five samples
+    /// gave XX = -6.9e9 +- 3.4e9 kg m^2, a centre of mass 1.7 km away, and passed the
+    /// checks within 3 standard deviations).
+    pub undetermined: Vec<String>,
+}
+
+/// What the data say of estimated values ([`Consistency::verdict`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verdict {
+    /// A body, or within the uncertainty of one, the uncertainty small enough to tell.
+    Consistent,
+    /// No body, even within the uncertainty ([`Consistency::problems`]).
+    Inconsistent,
+    /// The uncertainty too large to tell ([`Consistency::undetermined`]).
+    Undetermined,
+}
+
+impl Verdict {
+    /// The word written for it: `consistent`, `inconsistent`, `undetermined`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Consistent => "consistent",
+            Verdict::Inconsistent => "inconsistent",
+            Verdict::Undetermined => "undetermined",
+        }
+    }
 }
 
 /// The precision of estimated values relative to the inertia about the frame origin
@@ -69,8 +97,9 @@ impl Consistency {
                 Num::rounded(std[9], 2)
             )
         });
+        let mut undetermined = Vec::new();
         if let (Some(_), Some(why)) = (&physical, &massless) {
-            within_uncertainty.push(format!(
+            undetermined.push(format!(
                 "the mass {} kg is {why}",
                 Num::rounded(p[9], DIGITS)
             ));
@@ -118,6 +147,40 @@ impl Consistency {
                         d[2] - d[0] - d[1],
                     );
                 }
+                // The slack grows with the deviation: beyond the body's own scale every
+                // estimate passes, so the checks say nothing. The scale is the larger of the
+                // largest moment and the mass's inertia at its offset, `M |c|^2 = |MS|^2 / M`:
+                // a point mass far from the origin is a body whatever its tiny moments.
+                // An undetermined centre of mass or mass shows here too: each moves the
+                // moments by more than `M |c|^2` (the terms of `moment_std`).
+                let offset = p[6..9].iter().map(|h| h * h).sum::<f64>() / p[9];
+                if UNCERTAINTY * sigma > d[2].max(offset).max(precision) {
+                    let loose: Vec<&str> = Inertial::ALL
+                        .iter()
+                        .zip(p.iter().zip(std))
+                        .filter(|(_, (v, s))| UNCERTAINTY * **s >= v.abs())
+                        .map(|(i, _)| i.stem())
+                        .collect();
+                    undetermined.push(format!(
+                        "{UNCERTAINTY} standard deviations of the principal moments of the \
+                         inertia about the centre of mass ({} kg m^2) exceed both the largest \
+                         ({} kg m^2) and the mass's inertia at its centre's distance from the \
+                         frame origin, M |c|^2 ({} kg m^2): bodies and no bodies lie within \
+                         them{}",
+                        Num::rounded(UNCERTAINTY * sigma, 2),
+                        Num::rounded(d[2], 2),
+                        Num::rounded(offset, 2),
+                        if loose.is_empty() {
+                            String::new()
+                        } else {
+                            format!(
+                                " (the data do not determine {}: {UNCERTAINTY} standard \
+                                 deviations exceed their values)",
+                                loose.join(", ")
+                            )
+                        }
+                    ));
+                }
                 if !(d[0] >= -slack) {
                     problems.push(format!(
                         "the inertia about the centre of mass has a negative principal moment \
@@ -144,12 +207,26 @@ impl Consistency {
             pseudo_inertia_min_eigenvalue: pseudo_inertia_min_eigenvalue(p),
             problems,
             within_uncertainty,
+            undetermined,
         }
     }
 
-    /// Whether the values are those of a real body.
+    /// What the checks say: no body when a check fails even within the uncertainty,
+    /// else undetermined when the uncertainty is too large to tell, else a body.
+    pub fn verdict(&self) -> Verdict {
+        if !self.problems.is_empty() {
+            Verdict::Inconsistent
+        } else if !self.undetermined.is_empty() {
+            Verdict::Undetermined
+        } else {
+            Verdict::Consistent
+        }
+    }
+
+    /// Whether the values are those of a real body, determined by the data
+    /// ([`Verdict::Consistent`]).
     pub fn is_consistent(&self) -> bool {
-        self.problems.is_empty()
+        self.verdict() == Verdict::Consistent
     }
 }
 
@@ -295,6 +372,132 @@ mod tests {
             assert!(s.sqrt() <= sigma * 1.01, "{} > {sigma}", s.sqrt());
         }
         assert!(sigma < 10.0 * sum.iter().fold(0.0_f64, |m, s| m.max(s.sqrt())));
+    }
+
+    /// Estimates the data do not determine are undetermined, not consistent: the slack of
+    /// 3 standard deviations grew with them, and every one passed. The values are those
+    /// `robid payload` gave for the UR5e carrying 2 kg (centre of mass (0.01, -0.02, 0.08)
+    /// m, moments 0.003 to 0.005 kg m^2) from the first 5 samples of a 20 s record (XX =
+    /// -6.9e9 kg m^2, a centre of mass 1.7 km away), from its first 0.5 s (moments down to
+    /// -1.6 kg m^2), and from the whole record, which stays consistent.
+    #[test]
+    fn an_estimate_the_data_do_not_determine_is_undetermined() {
+        let five = (
+            [
+                -6918631900.498602,
+                -4659.945202463077,
+                -110860.42990972004,
+                -499.87412577900716,
+                -835.5864781350375,
+                -1119.8997542346149,
+                0.02415737104280388,
+                -3265.750481133193,
+                3492.263639000513,
+                1.9653728570383442,
+            ],
+            [
+                3374442665.092828,
+                159840.4409144038,
+                97092.58455451413,
+                876.0069670779793,
+                1019.6373726327497,
+                1362.033080922104,
+                0.008584443753821905,
+                5347.959492771807,
+                5761.5640654543695,
+                0.012423706577370953,
+            ],
+        );
+        let half_second = (
+            [
+                -0.3802264198026001,
+                -0.03825780415088987,
+                -0.11355355091202557,
+                -0.8221167787728092,
+                -0.7655345136789584,
+                -0.7044058638755428,
+                0.016218193186862875,
+                -0.13312841947813953,
+                0.2000209834025466,
+                1.9954119443692908,
+            ],
+            [
+                0.2794595771442975,
+                0.081237124097009,
+                0.05733803812382966,
+                1.2253050936710639,
+                1.0603257575701168,
+                0.9045792693807573,
+                0.0035785912789361423,
+                0.0785414626168304,
+                0.0349656676483656,
+                0.0038316570437414875,
+            ],
+        );
+        for (p, std) in [five, half_second] {
+            let c = Consistency::of_estimate(&p, &std);
+            assert!(
+                c.problems.is_empty() && c.verdict() == Verdict::Undetermined,
+                "{:?} {:?}",
+                c.problems,
+                c.undetermined
+            );
+            assert!(!c.is_consistent());
+            assert!(
+                c.undetermined.len() == 1
+                    && c.undetermined[0].contains("bodies and no bodies lie within them")
+                    && c.undetermined[0].contains("the data do not determine XX, "),
+                "{:?}",
+                c.undetermined
+            );
+        }
+        let whole = (
+            [
+                0.018344847681945806,
+                0.0010368351475607753,
+                -0.0016751284042026,
+                0.01807669306733287,
+                0.003452475040868751,
+                0.004141907551908377,
+                0.019983002775186803,
+                -0.03967144036822792,
+                0.1603487633631521,
+                1.9993840158007772,
+            ],
+            [
+                0.00043641270478750105,
+                0.0002141441378821455,
+                0.0002558330492489671,
+                0.0004331945885874615,
+                0.0002780373176149194,
+                0.0003741325473096816,
+                0.00022697650728895546,
+                0.0002723581438812028,
+                0.0003160479150505132,
+                0.0005939847335304932,
+            ],
+        );
+        let c = Consistency::of_estimate(&whole.0, &whole.1);
+        assert!(
+            c.verdict() == Verdict::Consistent && c.within_uncertainty.is_empty(),
+            "{:?} {:?}",
+            c.undetermined,
+            c.within_uncertainty
+        );
+        // the same body with deviations a hundred times larger: 3 of them, 0.28 kg m^2 on
+        // the moments, exceed its scale, M |c|^2 = 0.014 kg m^2
+        let c = Consistency::of_estimate(&whole.0, &whole.1.map(|s| 100.0 * s));
+        assert_eq!(c.verdict(), Verdict::Undetermined, "{:?}", c.problems);
+        // a mass within 3 of its deviations of zero: the data may hold no payload
+        let mut std = whole.1;
+        std[9] = 1.0;
+        let c = Consistency::of_estimate(&whole.0, &std);
+        assert!(
+            c.verdict() == Verdict::Undetermined
+                && c.undetermined[0].ends_with("the data may hold no payload"),
+            "{:?}",
+            c.undetermined
+        );
     }
 
     /// The values in the problems are written to four digits: they used to carry every

@@ -16,7 +16,7 @@ mod consistency;
 mod sensor;
 mod torques;
 
-pub use consistency::Consistency;
+pub use consistency::{Consistency, Verdict};
 pub use sensor::{WrenchSample, from_wrenches};
 pub use torques::{JointSample, from_torques, last_link_columns};
 

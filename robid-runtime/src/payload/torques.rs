@@ -57,7 +57,7 @@ pub fn last_link_columns(model: &dyn Model) -> Result<[usize; 10]> {
 ///
 /// ```
 /// use robid_runtime::Model;
-/// use robid_runtime::payload::{JointSample, PayloadOptions, from_torques};
+/// use robid_runtime::payload::{JointSample, PayloadOptions, Verdict, from_torques};
 ///
 /// /// The payload's mass and its standard deviation, or why the data cannot give it.
 /// fn payload_mass(
@@ -66,8 +66,11 @@ pub fn last_link_columns(model: &dyn Model) -> Result<[usize; 10]> {
 ///     samples: &[JointSample],
 /// ) -> robid_runtime::Result<(f64, f64)> {
 ///     let payload = from_torques(model, base, samples, &PayloadOptions::default())?;
-///     if !payload.consistency.is_consistent() {
-///         eprintln!("not a real body: {}", payload.consistency.problems.join("; "));
+///     let c = &payload.consistency;
+///     match c.verdict() {
+///         Verdict::Consistent => {}
+///         Verdict::Inconsistent => eprintln!("no body: {}", c.problems.join("; ")),
+///         Verdict::Undetermined => eprintln!("cannot tell: {}", c.undetermined.join("; ")),
 ///     }
 ///     Ok((payload.parameters()[9], payload.std()[9]))
 /// }

@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 
 use robid_runtime::data::{Config, Extremes};
 use robid_runtime::model::Inertial;
-use robid_runtime::payload::{Consistency, JointSample, Payload, PayloadOptions, from_torques};
+use robid_runtime::payload::{
+    Consistency, JointSample, Payload, PayloadOptions, Verdict, from_torques,
+};
 use robid_runtime::{Count, Num};
 
 use robots::limits::beyond_limits;
@@ -267,22 +269,34 @@ fn summary(p: &Payload) -> String {
 }
 
 /// The physical reading's line: consistent or not, with what holds only within the
-/// uncertainty.
+/// uncertainty, or undetermined, with why and what to do.
 fn verdict(c: &Consistency) -> String {
-    if c.is_consistent() && c.within_uncertainty.is_empty() {
-        "physically consistent: yes\n".to_owned()
-    } else if c.is_consistent() {
-        format!(
+    match c.verdict() {
+        Verdict::Consistent if c.within_uncertainty.is_empty() => {
+            "physically consistent: yes\n".to_owned()
+        }
+        Verdict::Consistent => format!(
             "physically consistent: yes, within its uncertainty: {}\n",
             c.within_uncertainty.join("; ")
-        )
-    } else {
-        // what is within the uncertainty tells too: a mass within it of zero says the data
-        // may hold no payload, which explains the rest (it was left out here)
-        let notes: Vec<&str> = (c.within_uncertainty.iter().chain(&c.problems))
-            .map(String::as_str)
-            .collect();
-        format!("physically consistent: no: {}\n", notes.join("; "))
+        ),
+        // the checks pass within an uncertainty that any values pass within: five samples
+        // said "yes" of a centre of mass 1.7 km away
+        Verdict::Undetermined => format!(
+            "physically consistent: undetermined, the data cannot tell: {}; record a longer \
+             or more exciting trajectory (robid excite designs one), whose wrist motion \
+             determines the payload\n",
+            c.undetermined.join("; ")
+        ),
+        Verdict::Inconsistent => {
+            // what is within the uncertainty tells too: a mass within it of zero says the
+            // data may hold no payload, which explains the rest (it was left out here)
+            let notes: Vec<&str> = (c.undetermined.iter())
+                .chain(&c.within_uncertainty)
+                .chain(&c.problems)
+                .map(String::as_str)
+                .collect();
+            format!("physically consistent: no: {}\n", notes.join("; "))
+        }
     }
 }
 
@@ -312,7 +326,10 @@ fn toml(p: &Payload) -> String {
             .collect();
         let _ = writeln!(s, "inertia = [{}]", rows.join(", "));
     }
+    // `consistent` is true for a determined body alone (a script reads a bool); `verdict`
+    // tells an undetermined estimate from one that is no body
     let _ = writeln!(s, "consistent = {}", c.is_consistent());
+    let _ = writeln!(s, "verdict = \"{}\"", c.verdict().name());
     s
 }
 

@@ -129,7 +129,10 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     assert!(text.contains("physically consistent: yes"), "{text}");
     let toml = std::fs::read_to_string(&out).unwrap();
     assert!(toml.contains("[payload]") && toml.contains("[payload.physical]"));
-    assert!(toml.contains("consistent = true"), "{toml}");
+    assert!(
+        toml.contains("consistent = true\nverdict = \"consistent\""),
+        "{toml}"
+    );
     assert!(!stderr(&o).contains("ill-conditioned"), "{}", stderr(&o));
     assert!(!stderr(&o).contains("dead channel") && !stderr(&o).contains("repeat"));
     // the data checks `identify` makes: a sixth torque of zeros (it was "physically
@@ -173,12 +176,49 @@ fn payload_of_a_simulated_ur5e_prints_its_mass_and_writes_toml() {
     let text = std::fs::read_to_string(&data).unwrap();
     let few: Vec<&str> = text.lines().take(5).collect();
     let few = write(dir.path(), "few.csv", &(few.join("\n") + "\n"));
-    let o = payload(&["--data", few.to_str().unwrap()]);
+    let few_out = dir.path().join("few.toml");
+    let o = payload(&[
+        "--data",
+        few.to_str().unwrap(),
+        "-o",
+        few_out.to_str().unwrap(),
+    ]);
     assert!(
         stderr(&o).contains("relative standard deviation above 100 %"),
         "{}",
         stderr(&o)
     );
+    // nor is it consistent: within 3 standard deviations as large as these, every
+    // estimate passed the checks ("yes" and `consistent = true` of XX = -6.9e9 kg m^2 and
+    // a centre of mass 1.7 km away); so too the first 0.5 s, whose moments were -1.6 kg m^2
+    let half: Vec<&str> = text.lines().take(51).collect();
+    let half = write(dir.path(), "half.csv", &(half.join("\n") + "\n"));
+    let half_out = dir.path().join("half.toml");
+    let o_half = payload(&[
+        "--data",
+        half.to_str().unwrap(),
+        "-o",
+        half_out.to_str().unwrap(),
+    ]);
+    for (o, out) in [(&o, &few_out), (&o_half, &half_out)] {
+        assert!(o.status.success(), "{}", stderr(o));
+        let line = stdout(o)
+            .lines()
+            .find(|l| l.starts_with("physically consistent: "))
+            .unwrap()
+            .to_string();
+        assert!(
+            line.starts_with("physically consistent: undetermined, the data cannot tell: ")
+                && line.contains("the data do not determine XX")
+                && line.contains("record a longer or more exciting trajectory"),
+            "{line}"
+        );
+        let toml = std::fs::read_to_string(out).unwrap();
+        assert!(
+            toml.contains("consistent = false\nverdict = \"undetermined\""),
+            "{toml}"
+        );
+    }
     // one sample: six equations for ten parameters, told to give more samples (it was
     // told to use less decimation or fewer parameters, which a payload has not), counted
     // in samples, the file's rows (it said "6 samples, at least 11", equations)
@@ -373,10 +413,11 @@ fn payload_messages_write_computed_values_short() {
         stdout(&o)
     };
     let text = printed(&data);
-    // no payload is a body within its uncertainty, said so (it was "not a body")
+    // no payload: a mass within its uncertainty of zero, whose centre and inertia the data
+    // cannot tell, said so (it was "not a body", then "yes, within its uncertainty")
     let verdict = text
         .lines()
-        .find(|l| l.starts_with("physically consistent: yes, within its uncertainty: "))
+        .find(|l| l.starts_with("physically consistent: undetermined, the data cannot tell: "))
         .unwrap_or_else(|| panic!("no payload is not said as such: {text}"));
     assert!(
         verdict.contains(
