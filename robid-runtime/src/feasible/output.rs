@@ -40,6 +40,9 @@ pub fn to_toml(solution: &Solution, robot: &str) -> String {
     for v in &solution.at_bounds {
         let _ = writeln!(s, "# at a bound: {v}");
     }
+    for v in &solution.implausible {
+        let _ = writeln!(s, "# warning: {v}");
+    }
     if !solution.determined.is_empty() {
         let _ = writeln!(
             s,
@@ -345,6 +348,7 @@ mod tests {
         s.dont_care = vec!["XY1".into(), "YZ1".into()];
         s.violations = vec!["link 1: mass 2 outside [0.0, 1.9]".into()];
         s.at_bounds = vec!["link 1: mass 2 at its upper bound 2".into()];
+        s.implausible = vec!["link 1: no body of its size".into()];
         s.determined = vec![0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.2, 0.9, 0.4, 1.0, 1.0];
         s
     }
@@ -360,6 +364,7 @@ mod tests {
             "# Not from the data (no effect on the dynamics), values from the prior (the default prior where none is given), or the nearest to them that the physical constraints and bounds allow: XY1 YZ1.\n".into(),
             "# bound not met: link 1: mass 2 outside [0.0, 1.9]\n".into(),
             "# at a bound: link 1: mass 2 at its upper bound 2\n".into(),
+            "# warning: link 1: no body of its size\n".into(),
             "# Share determined by the data (1) rather than the prior (0), per link:\n".into(),
             "#   link 1: mass 1.00, first moments 0.20-0.90, inertia 0.50\n".into(),
             "\n[standard]\nXX1 = 3e-2\nXY1 = 0e0\n".into(),
@@ -379,6 +384,7 @@ mod tests {
         bare.dont_care.clear();
         bare.violations.clear();
         bare.at_bounds.clear();
+        bare.implausible.clear();
         bare.determined.clear();
         bare.links[0] = None;
         let text = to_toml(&bare, "arm");
@@ -386,6 +392,7 @@ mod tests {
             "Not from the data",
             "bound not met",
             "at a bound",
+            "warning",
             "Share",
             "com =",
         ] {

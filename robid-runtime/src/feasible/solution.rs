@@ -124,6 +124,11 @@ pub struct Solution {
     /// bound of zero): the data or a bound pushed them there, worth a look before the
     /// values go into a simulator.
     pub at_bounds: Vec<String>,
+    /// Links that no body of their size can be: a centre of mass far outside the link, or
+    /// a speck of mass with a beam's inertia (`prior::implausible`). The fit is
+    /// consistent, but the data left these links free and nothing held them: worth a bound
+    /// or a prior before the values go into a simulator. Empty without link shapes.
+    pub implausible: Vec<String>,
     /// Per standard parameter, the share the data determine (1) rather than the prior (0);
     /// empty when not computed.
     pub determined: Vec<f64>,
@@ -313,6 +318,7 @@ impl Solution {
             .into_iter()
             .map(|s| problem.standard_names[s].clone())
             .collect();
+        let implausible = super::prior::implausible(problem, bounds, &links);
         let solution = Solution {
             method,
             names: problem.standard_names.clone(),
@@ -332,6 +338,7 @@ impl Solution {
             violations,
             unmet,
             at_bounds,
+            implausible,
             determined: Vec::new(),
             seconds: elapsed.as_secs_f64(),
             iterations: 0,

@@ -341,6 +341,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         }
         (None, None) => None,
     };
+    let prior_given = prior.is_some();
     let links = problem.layout.links.len();
     let bounds_file = match &args.bounds {
         Some(path) => Some((path.display().to_string(), read(path, "bounds file")?)),
@@ -443,8 +444,25 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for at in &solution.at_bounds {
         out::warn(format_args!("warning: {at}"));
     }
+    warn_implausible(args, &solution, prior_given);
     warn_far_from_the_data(&solution, &problem, args.two_step);
     Ok(())
+}
+
+/// Warns of each link no body of its size can be ([`Solution::implausible`]), with the
+/// flags that settle it: `--bounds` on its centre of mass or mass, or a prior (`--prior`; a
+/// larger `--prior-weight` where a prior pulls, which `anneal` without one has not).
+fn warn_implausible(args: &Args, solution: &Solution, prior_given: bool) {
+    for link in &solution.implausible {
+        let weight = if args.method == "anneal" && !prior_given {
+            ""
+        } else {
+            ", or a larger --prior-weight"
+        };
+        out::warn(format_args!(
+            "warning: {link}: --bounds with that table, --prior with the link's values{weight}"
+        ));
+    }
 }
 
 /// A base parameter reproduced this many standard deviations from its identified value
@@ -722,6 +740,7 @@ mod tests {
             unmet: Vec::new(),
             extra_columns: Vec::new(),
             at_bounds: Vec::new(),
+            implausible: Vec::new(),
             determined: Vec::new(),
             seconds: 0.0,
             iterations: 0,
