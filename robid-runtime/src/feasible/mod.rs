@@ -67,7 +67,7 @@ pub use inertial::{
 };
 pub use interior::solve_interior;
 pub use layout::{Drive, Layout};
-pub use output::{UrdfJoint, to_toml, to_urdf};
+pub use output::{STANDARD_GRAVITY, UrdfJoint, to_toml, to_urdf};
 pub use prior::{DEFAULT_PRIOR_WEIGHT, LinkShape, MAX_DENSITY, Prior, Unsized};
 pub use problem::Problem;
 pub use sdp::{SdpOptions, consistent_least_squares, solve_sdp};

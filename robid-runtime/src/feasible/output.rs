@@ -289,8 +289,8 @@ pub fn to_urdf(
     s
 }
 
-/// The gravity robid's URDF reader (and most others) applies, m/s^2.
-const STANDARD_GRAVITY: f64 = 9.81;
+/// The gravity robid's URDF reader (and most others) applies, m/s^2: a URDF carries none.
+pub const STANDARD_GRAVITY: f64 = 9.81;
 
 /// The pose of `base_link` in a root frame whose -z is along `gravity` (given in
 /// `base_link`): the smallest turn taking its direction to -z, a half turn about x when it

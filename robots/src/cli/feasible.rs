@@ -18,8 +18,8 @@ use std::path::{Path, PathBuf};
 use robid_runtime::Num;
 use robid_runtime::feasible::{
     AnnealOptions, Bounds, DEFAULT_PRIOR_WEIGHT, Equality, GravityCoefficients, LinkBounds, Prior,
-    Problem, SdpOptions, SmoothOptions, Solution, Unsized, UrdfJoint, solve_anneal, solve_interior,
-    solve_sdp, solve_smooth, solve_two_step, to_toml, to_urdf,
+    Problem, STANDARD_GRAVITY, SdpOptions, SmoothOptions, Solution, Unsized, UrdfJoint,
+    solve_anneal, solve_interior, solve_sdp, solve_smooth, solve_two_step, to_toml, to_urdf,
 };
 use robid_symbolic::Robot;
 use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
@@ -417,6 +417,12 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     if urdf {
         warn_not_in_urdf(&args.output, &solution);
     }
+    if urdf && description.urdf.is_none() {
+        let gravity = robot.gravity_values().map_err(|e| e.to_string())?;
+        if let Some(w) = urdf_gravity_warning(&args.output, gravity) {
+            out::warn(format_args!("{w}"));
+        }
+    }
     out::warn(format_args!(
         "{}: chi^2 {:.3e}, max |z| {:.3}, smallest pseudo-inertia eigenvalue {:.3e}, {:.3} s{}",
         solution.method.name(),
@@ -678,6 +684,33 @@ fn warn_not_in_urdf(output: &Path, solution: &Solution) {
     }
 }
 
+/// The warning for a URDF `output` of a description whose gravity's magnitude is not the
+/// [`STANDARD_GRAVITY`] URDF readers apply: a URDF carries no gravity (the file says so
+/// only in a comment), so its gravity torques differ from the description's by the ratio
+/// (`gravity = [3, -4, -8]`, 9.434 m/s^2: 4 %, read back without a word).
+fn urdf_gravity_warning(output: &Path, gravity: [f64; 3]) -> Option<String> {
+    let magnitude = gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
+    if (magnitude - STANDARD_GRAVITY).abs() <= 1e-9 * STANDARD_GRAVITY {
+        return None;
+    }
+    let off = if magnitude > 0.0 {
+        format!(
+            "{:.2} % off the description's",
+            100.0 * (STANDARD_GRAVITY / magnitude - 1.0).abs()
+        )
+    } else {
+        "not the description's zero".to_owned()
+    };
+    Some(format!(
+        "warning: {}: the description's gravity is {} m/s^2, but a URDF carries no gravity and \
+         its readers (robid's too) apply {STANDARD_GRAVITY}: its gravity torques are {off}; \
+         for this gravity use the TOML output (-o {}) with the description",
+        output.display(),
+        Num::rounded(magnitude, 4),
+        output.with_extension("toml").display()
+    ))
+}
+
 /// The user's URDF with each chain link's `<inertial>` replaced by the solution's, in the
 /// URDF's own link frames, every other byte as it was (docs/urdf.md#inertials-both-ways).
 fn urdf_written_back(path: &Path, chain: &UrdfChain, solution: &Solution) -> Result<String, Error> {
@@ -758,6 +791,24 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("chi^2 = inf"), "{e}");
+    }
+
+    /// A URDF of a description whose gravity is not 9.81 m/s^2 is warned of with the
+    /// magnitude and the error (it was said in an XML comment only), no gravity too;
+    /// gravity of that magnitude along another axis is not.
+    #[test]
+    fn a_urdf_warns_of_a_gravity_it_cannot_carry() {
+        let out = Path::new("links.urdf");
+        let w = urdf_gravity_warning(out, [3.0, -4.0, -8.0]).unwrap();
+        assert!(
+            w.contains("links.urdf: the description's gravity is 9.434 m/s^2")
+                && w.contains("apply 9.81: its gravity torques are 3.99 % off")
+                && w.contains("-o links.toml"),
+            "{w}"
+        );
+        assert_eq!(urdf_gravity_warning(out, [0.0, 9.81, 0.0]), None);
+        let w = urdf_gravity_warning(out, [0.0; 3]).unwrap();
+        assert!(w.contains("are not the description's zero"), "{w}");
     }
 
     /// The URDF written for a DH description reads back with robid's own reader, each
