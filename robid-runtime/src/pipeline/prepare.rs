@@ -153,7 +153,9 @@ fn differentiate_twice(
 }
 
 fn savitzky_golay(x: &Signals, dt: f64, sg: &SavitzkyGolay, order: usize) -> Result<Signals> {
-    x.try_map(|v| sg.derivative(v, dt, order))
+    // the weights once for every joint (a long window's took seconds per channel)
+    let kernel = sg.kernel(order, dt)?;
+    x.try_map(|v| kernel.apply(v))
         .map_err(|e| match e {
             Error::TooFewSamples { found, required, .. } => Error::setting(
                 "Config",

@@ -16,7 +16,7 @@ pub use decimate::{Decimator, split_factor};
 pub use design::{MAX_CUTOFF, MIN_CUTOFF, butterworth, butterworth_hz, chebyshev1};
 pub use diff::central_difference;
 pub use rest::moving_samples;
-pub use savgol::SavitzkyGolay;
+pub use savgol::{SavitzkyGolay, SavitzkyGolayKernel};
 pub use signals::Signals;
 pub use sos::Sos;
 pub use spectrum::{MIN_SPECTRUM_SAMPLES, Spectrum, Welch};
