@@ -232,6 +232,77 @@ fn shape_error(text: &str, path: &Path, e: &toml::de::Error) -> Option<Error> {
     }))
 }
 
+/// Deserialises a key that takes one word of a unit-only enum `T` (`gaps = "split"`) from
+/// text in quotes alone: `#[serde(default, deserialize_with = "crate::toml_syntax::word")]`.
+/// serde's enums also read a table, `{ split = {} }` as `split` without a word, and told
+/// `{}` as "wanted exactly 1 element, found 0 elements"; any value that is not text is now
+/// "`{}` is not one word in quotes: give `refuse` or `split`", the words of `T` itself.
+pub(crate) fn word<'de, D, T>(deserializer: D) -> Result<T, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: serde::Deserialize<'de>,
+{
+    deserializer.deserialize_any(Word(std::marker::PhantomData))
+}
+
+struct Word<T>(std::marker::PhantomData<T>);
+
+impl<'de, T: serde::Deserialize<'de>> serde::de::Visitor<'de> for Word<T> {
+    type Value = T;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let words = variants::<T>();
+        let last = words.len().saturating_sub(1);
+        let listed: Vec<String> = words
+            .iter()
+            .enumerate()
+            .map(|(i, w)| match i {
+                0 => format!("`{w}`"),
+                i if i == last => format!(" or `{w}`"),
+                _ => format!(", `{w}`"),
+            })
+            .collect();
+        write!(f, "one word in quotes: give {}", listed.concat())
+    }
+
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<T, E> {
+        use serde::de::IntoDeserializer as _;
+        T::deserialize(v.into_deserializer())
+    }
+}
+
+/// The words a unit-only enum `T` reads: the list its derived `Deserialize` hands to
+/// `deserialize_enum`, caught by a deserialiser that reads nothing else.
+fn variants<'de, T: serde::Deserialize<'de>>() -> &'static [&'static str] {
+    struct Catch<'a>(&'a mut &'static [&'static str]);
+    impl<'de> serde::Deserializer<'de> for Catch<'_> {
+        type Error = serde::de::value::Error;
+        fn deserialize_any<V: serde::de::Visitor<'de>>(
+            self,
+            _: V,
+        ) -> Result<V::Value, Self::Error> {
+            Err(serde::de::Error::custom("not an enum"))
+        }
+        fn deserialize_enum<V: serde::de::Visitor<'de>>(
+            self,
+            _: &'static str,
+            variants: &'static [&'static str],
+            _: V,
+        ) -> Result<V::Value, Self::Error> {
+            *self.0 = variants;
+            Err(serde::de::Error::custom("variants caught"))
+        }
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes
+            byte_buf option unit unit_struct newtype_struct seq tuple tuple_struct map
+            struct identifier ignored_any
+        }
+    }
+    let mut words: &'static [&'static str] = &[];
+    let _ = T::deserialize(Catch(&mut words));
+    words
+}
+
 /// The key a value at byte `offset` of `text` is given to: the name before the last `=`
 /// ahead of it (`cutoff` in `lowpass = { cutoff = "x" }`, `rest_velocity` for an element
 /// of its list, across lines); the table header when the error is on a whole table.
@@ -505,6 +576,78 @@ mod tests {
     /// A value of the wrong shape is named at its place with its key, in words: serde said
     /// "data did not match any variant of untagged enum Decimation" and "invalid value:
     /// integer `-1`, expected usize", after toml's copy of the line.
+    /// A key that takes one word, given a table, a number or a list, is told with its
+    /// words as `gaps = "x"` is: serde said "wanted exactly 1 element, found 0 elements",
+    /// "expected table, found integer", and read `{ split = {} }` as `split`.
+    #[test]
+    fn a_key_of_one_word_given_anything_else_is_told_its_words() {
+        use crate::data::Config;
+        let config = |text: &str| {
+            Config::from_toml_str(text, "c.toml".as_ref())
+                .unwrap_err()
+                .to_string()
+        };
+        let gaps = "is not one word in quotes: give `refuse` or `split`";
+        for (text, want) in [
+            ("[processing]\ngaps = {}\n", format!("c.toml:2:8: `processing.gaps`: `{{}}` {gaps}")),
+            (
+                "[processing]\ngaps = { a = 1, b = 2 }\n",
+                format!("c.toml:2:8: `processing.gaps`: `{{ a = 1, b = 2 }}` {gaps}"),
+            ),
+            (
+                "[processing]\ngaps = { refuse = 1 }\n",
+                format!("c.toml:2:8: `processing.gaps`: `{{ refuse = 1 }}` {gaps}"),
+            ),
+            (
+                "[processing]\ngaps = { split = {} }\n",
+                format!("c.toml:2:8: `processing.gaps`: `{{ split = {{}} }}` {gaps}"),
+            ),
+            ("[processing]\ngaps = 1\n", format!("c.toml:2:8: `processing.gaps`: `1` {gaps}")),
+            (
+                "[processing]\ngaps = \"x\"\n",
+                "c.toml:2:8: `processing.gaps`: unknown value `x`, give `refuse` or `split`".to_owned(),
+            ),
+            (
+                "[units]\nangle = { deg = true }\n",
+                "c.toml:2:9: `units.angle`: `{ deg = true }` is not one word in quotes: give `rad` or `deg`"
+                    .to_owned(),
+            ),
+            (
+                "[estimation]\nmethod = {}\n",
+                "c.toml:2:10: `estimation.method`: `{}` is not one word in quotes: give".to_owned(),
+            ),
+            (
+                "[drive]\ntorque_side = [\"motor\"]\n",
+                "c.toml:2:15: `drive.torque_side`: `[\"motor\"]` is not one word in quotes: give `joint` or `motor`"
+                    .to_owned(),
+            ),
+            (
+                "[processing]\nvelocity = { column = 1 }\n",
+                "c.toml:2:12: `processing.velocity`: `{ column = 1 }` is not one word in quotes: give"
+                    .to_owned(),
+            ),
+            (
+                "[processing]\ndifferentiation = { method = {} }\n",
+                "`processing.differentiation.method`: `{}` is not one word in quotes: give `central` or `savitzky-golay`"
+                    .to_owned(),
+            ),
+            (
+                "[runs]\nmode = 2\nfiles = [\"a.csv\", \"b.csv\"]\n",
+                "c.toml:2:8: `runs.mode`: `2` is not one word in quotes: give".to_owned(),
+            ),
+        ] {
+            let e = config(text);
+            assert!(e.contains(&want), "{text}: {e}\nexpected {want:?}");
+        }
+        // the words themselves still read
+        let c = Config::from_toml_str(
+            "[processing]\ngaps = \"split\"\n[units]\nangle = \"deg\"\n",
+            "c.toml".as_ref(),
+        )
+        .unwrap();
+        assert_eq!(c.processing.gaps, crate::data::Gaps::Split);
+    }
+
     #[test]
     fn values_of_the_wrong_shape_are_told_in_words() {
         use crate::data::Config;

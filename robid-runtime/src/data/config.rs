@@ -368,7 +368,7 @@ pub struct Units {
     /// Angle unit of the revolute joints' positions, velocities and accelerations and of
     /// motor positions; a prismatic joint's are metres whatever it says
     /// ([`Config::prismatic`]).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub angle: AngleUnit,
     /// Factor applied to the torque columns (e.g. to N m from mN m).
     pub torque_scale: Option<PerJoint>,
@@ -526,7 +526,7 @@ pub enum DifferentiationMethod {
 #[serde(deny_unknown_fields)]
 pub struct Differentiation {
     /// The method.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub method: DifferentiationMethod,
     /// Window length in samples (Savitzky-Golay only).
     pub window: Option<usize>,
@@ -604,10 +604,10 @@ pub struct Processing {
     /// Low-pass filter (none when absent).
     pub lowpass: Option<Lowpass>,
     /// Velocity source.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub velocity: Derivative,
     /// Acceleration source.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub acceleration: Derivative,
     /// How velocities and accelerations are differentiated: central differences (default)
     /// or Savitzky-Golay.
@@ -645,7 +645,7 @@ pub struct Processing {
     /// What a gap in a file's time stamps does (a step of more than
     /// [`crate::data::GAP_RATIO`] median steps): refused (the default) or the record cut
     /// there into continuous segments ([`Gaps::Split`], [`crate::data::load_segments`]).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub gaps: Gaps,
 }
 
@@ -729,7 +729,7 @@ impl RunFiles {
 #[serde(deny_unknown_fields)]
 pub struct Runs {
     /// Stacked or averaged.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub mode: RunMode,
     /// The runs: at least two, each with one file per `[[source]]` (relative to the config).
     pub files: Vec<RunFiles>,
@@ -778,7 +778,7 @@ impl Method {
 #[serde(deny_unknown_fields)]
 pub struct Estimation {
     /// Method.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub method: Method,
     /// Relative singular-value threshold for the rank decision.
     #[serde(default = "default_tolerance")]

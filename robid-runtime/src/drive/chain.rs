@@ -42,10 +42,10 @@ pub enum Side {
 #[serde(deny_unknown_fields)]
 pub struct DriveConfig {
     /// Side of the position (and velocity, acceleration) columns.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub position_side: Side,
     /// Side of the torque columns.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::toml_syntax::word")]
     pub torque_side: Side,
     /// Gear ratios with sign (motor angle / joint angle): one for all joints or one per
     /// joint.
