@@ -115,6 +115,25 @@ pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
 /// keeps toml's message, which has its line and column, after the kind of file
 /// (`friction.toml: invalid friction file: TOML parse error at line 3, ..`).
 pub(crate) fn syntax_error(text: &str, path: &Path, kind: TomlFile, e: &toml::de::Error) -> Error {
+    match not_toml(text, e) {
+        Some(NotToml::CarriageReturns) => {
+            return Error::Data(DataError::CarriageReturnLines {
+                path: path.to_path_buf(),
+            });
+        }
+        Some(NotToml::Json { offset }) => {
+            let (line, column) = line_column(text, offset);
+            return Error::Data(DataError::ConfigSyntax {
+                path: path.to_path_buf(),
+                kind,
+                reason: format!(
+                    "the file is JSON (its `{{` at line {line}, column {column}), not TOML: a \
+                     {kind} is TOML, `key = value` lines under `[table]` headers; write it in TOML"
+                ),
+            });
+        }
+        None => {}
+    }
     if let Some(e) = too_deep(text, path, e) {
         return e;
     }
@@ -142,6 +161,37 @@ pub(crate) fn syntax_error(text: &str, path: &Path, kind: TomlFile, e: &toml::de
             reason: short_numbers(&e.to_string()),
         }),
     }
+}
+
+/// What a text toml could not read is instead, when it can be told: toml's own messages
+/// were "carriage return must be followed by newline" and "invalid key-value pair,
+/// expected key" (every TOML file robid reads is checked by this one function).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum NotToml {
+    /// Lines ended by a carriage return alone (classic Mac OS).
+    CarriageReturns,
+    /// JSON: the first character is `{`, at byte `offset`.
+    Json {
+        /// Byte offset of the `{`.
+        offset: usize,
+    },
+}
+
+/// What `text`, which toml refused with `e`, is instead of TOML, if robid can tell.
+pub(crate) fn not_toml(text: &str, e: &toml::de::Error) -> Option<NotToml> {
+    let lone_cr = text
+        .as_bytes()
+        .windows(2)
+        .any(|w| w[0] == b'\r' && w[1] != b'\n')
+        || text.ends_with('\r') && !text.ends_with("\r\n");
+    if lone_cr && e.message().contains("carriage return") {
+        return Some(NotToml::CarriageReturns);
+    }
+    // a TOML file never starts with `{` (a key or a `[table]` does)
+    let first = text.find(|c: char| !c.is_whitespace() && c != '\u{feff}')?;
+    text[first..]
+        .starts_with('{')
+        .then_some(NotToml::Json { offset: first })
 }
 
 /// What a value nested deeper than toml's reader follows is told: toml's own message
@@ -646,6 +696,64 @@ mod tests {
         )
         .unwrap();
         assert_eq!(c.processing.gaps, crate::data::Gaps::Split);
+    }
+
+    /// A TOML file of CR line ends or of JSON is told so, the same for every kind of file:
+    /// toml said "carriage return must be followed by newline" and "invalid key-value
+    /// pair, expected key".
+    #[test]
+    fn a_file_of_cr_lines_or_json_is_told_so_in_every_toml_file() {
+        use crate::data::{Config, ParameterFile};
+        use crate::drive::FrictionModel;
+        use crate::feasible::Bounds;
+        use crate::simulate::Flexibility;
+        let all = |text: &str| -> Vec<String> {
+            vec![
+                FrictionModel::from_toml_str(text, "f.toml".as_ref())
+                    .unwrap_err()
+                    .to_string(),
+                Flexibility::from_toml_str(text, "f.toml".as_ref())
+                    .unwrap_err()
+                    .to_string(),
+                Bounds::from_toml(text, "f.toml", 1)
+                    .unwrap_err()
+                    .to_string(),
+                Config::from_toml_str(text, "f.toml".as_ref())
+                    .unwrap_err()
+                    .to_string(),
+                ParameterFile::parse(text, "f.toml".as_ref())
+                    .unwrap_err()
+                    .to_string(),
+            ]
+        };
+        for e in all("dof = 6\r[estimation]\rmethod = \"ols\"\r") {
+            assert!(
+                e.starts_with("f.toml: its lines end in a carriage return alone")
+                    && e.contains("`tr '\\r' '\\n' < old.toml > new.toml`"),
+                "{e}"
+            );
+        }
+        let json = all("\n {\"dof\": 6}\n");
+        for e in &json[..4] {
+            assert!(
+                e.contains(": the file is JSON (its `{` at line 2, column 2), not TOML: a ")
+                    && e.contains(" is TOML, `key = value` lines under `[table]` headers"),
+                "{e}"
+            );
+        }
+        assert!(
+            json[4].starts_with("f.toml:2:2: the file is JSON"),
+            "{}",
+            json[4]
+        );
+        // CR LF is TOML's own line end: read as usual
+        assert!(
+            Config::from_toml_str(
+                "dof = 6\r\n[estimation]\r\nmethod = \"ols\"\r\n",
+                "c.toml".as_ref()
+            )
+            .is_ok()
+        );
     }
 
     #[test]

@@ -109,10 +109,13 @@ pub enum DataError {
         /// The bytes read without a line end.
         limit: usize,
     },
-    /// The file's lines end in a carriage return alone (classic Mac OS): read as one line,
-    /// the header with every row appended.
+    /// The file's lines end in a carriage return alone (classic Mac OS): a CSV file was
+    /// read as one line, the header with every row appended; a TOML file (a config, a
+    /// parameter, bounds, friction or joint-flexibility file) was toml's "carriage return
+    /// must be followed by newline".
     #[error(
-        "{path}: its lines end in a carriage return alone (CR, as classic Mac OS wrote text); robid reads lines ended by a line feed (LF, or CR LF): convert the file, e.g. with `tr '\\r' '\\n' < old.csv > new.csv`"
+        "{path}: its lines end in a carriage return alone (CR, as classic Mac OS wrote text); robid reads lines ended by a line feed (LF, or CR LF): convert the file, e.g. with `tr '\\r' '\\n' < old{ext} > new{ext}`",
+        ext = path.extension().map(|e| format!(".{}", e.to_string_lossy())).unwrap_or_default()
     )]
     CarriageReturnLines {
         /// The file.

@@ -654,12 +654,18 @@ fn parse(text: &str, path: &Path) -> Result<ParameterFile> {
             return deep;
         }
         // JSON (robid identify's report, most likely) given where TOML goes: said so, with
-        // what to give instead, not as toml's "invalid key-value pair"
-        if let Some(brace) = text
-            .find(|c: char| !c.is_whitespace())
-            .filter(|&i| text[i..].starts_with('{'))
-        {
-            return located(brace, json_message(text, path));
+        // what to give instead, not as toml's "invalid key-value pair"; lines ended by a
+        // carriage return alone as in every TOML file robid reads
+        match crate::toml_syntax::not_toml(text, &e) {
+            Some(crate::toml_syntax::NotToml::Json { offset }) => {
+                return located(offset, json_message(text, path));
+            }
+            Some(crate::toml_syntax::NotToml::CarriageReturns) => {
+                return Error::Data(DataError::CarriageReturnLines {
+                    path: path.to_owned(),
+                });
+            }
+            None => {}
         }
         let offset = e.span().map_or(0, |s| s.start);
         located(offset, syntax_message(text, &e))
