@@ -17,7 +17,7 @@
 //! | acceleration | magnitude at most [`MAX_ACCELERATION`] = 1e8 |
 //! | torque, force or current | magnitude at most [`MAX_TORQUE`] = 1e7 |
 //! | time (s, after `time_scale`) | magnitude at most [`MAX_TIME`] = 1e10 s |
-//! | temperature (deg C) | magnitude at most [`MAX_TEMPERATURE`] = 1e3 deg C |
+//! | temperature (deg C) | [`MIN_TEMPERATURE`] = -273.15 deg C (absolute zero) to [`MAX_TEMPERATURE`] = 1e3 deg C |
 //! | sample rate | [`MIN_SAMPLE_RATE`] = 1e-3 Hz <= rate <= [`MAX_SAMPLE_RATE`] = 1e7 Hz (also for a rate derived from time stamps) |
 //! | parameter values and standard deviations given as input | magnitude at most [`MAX_PARAMETER`] = 1e6 |
 //! | base parameters of a simulation or a design's torque check (also derived from standard ones) | magnitude at most [`MAX_BASE_PARAMETER`] = 1e14 |
@@ -56,6 +56,9 @@ pub const MAX_TIME: f64 = 1e10;
 /// Largest |temperature| (deg C): beyond any drive, while a temperature in Kelvin or
 /// Fahrenheit still passes (its coefficients are then per K or per deg F).
 pub const MAX_TEMPERATURE: f64 = 1e3;
+/// Smallest temperature (deg C): absolute zero. A colder value is no measurement (a sensor
+/// fault, an offset), and a friction model's temperature term would extrapolate to it.
+pub const MIN_TEMPERATURE: f64 = -273.15;
 /// Largest sample rate (Hz), given or derived from time stamps.
 pub const MAX_SAMPLE_RATE: f64 = 1e7;
 /// Smallest sample rate (Hz), given or derived from time stamps (one sample per 1000 s).
@@ -160,6 +163,14 @@ impl Quantity {
         }
     }
 
+    /// The smallest accepted value: `-limit`, but absolute zero for a temperature.
+    pub fn lower(self) -> f64 {
+        match self {
+            Quantity::Temperature => MIN_TEMPERATURE,
+            q => -q.limit(),
+        }
+    }
+
     /// The word used in messages.
     pub fn name(self) -> &'static str {
         match self {
@@ -173,10 +184,11 @@ impl Quantity {
         }
     }
 
-    /// Index of the first value outside the range (NaN included), if any.
+    /// Index of the first value outside the range [`Quantity::lower`] to
+    /// [`Quantity::limit`] (NaN included), if any.
     pub fn first_outside(self, values: &[f64]) -> Option<usize> {
-        let limit = self.limit();
-        values.iter().position(|v| !(v.abs() <= limit))
+        let (lower, limit) = (self.lower(), self.limit());
+        values.iter().position(|&v| !(lower <= v && v <= limit))
     }
 }
 

@@ -422,6 +422,7 @@ impl Dataset {
                         quantity: quantity.name(),
                         value: v[k],
                         limit: quantity.limit(),
+                        lower: quantity.lower(),
                     })
                 } else {
                     let at = self
@@ -447,10 +448,10 @@ impl Dataset {
 /// column of every window loaded and of every block read back is checked) found first by
 /// one pass without an early exit, which the compiler vectorises.
 pub(crate) fn first_outside(quantity: Quantity, values: &[f64]) -> Option<usize> {
-    let limit = quantity.limit();
+    let (lower, limit) = (quantity.lower(), quantity.limit());
     let outside = values
         .iter()
-        .fold(false, |any, v| any | !(v.abs() <= limit));
+        .fold(false, |any, &v| any | !(lower <= v && v <= limit));
     if outside {
         quantity.first_outside(values)
     } else {

@@ -182,8 +182,10 @@ pub enum DataError {
     },
     /// A finite value outside the documented range of its quantity (see [`crate::limits`]).
     #[error(
-        "{location}: {what} is {}, outside the accepted range |{quantity}| <= {limit:e}; repair or remove this row (a value this large is a logging, unit or export error, not a measurement)",
-        Num::rounded(*value, 8)
+        "{location}: {what} is {}, outside the accepted range {}; repair or remove this row (a value {} is a logging, unit or export error, not a measurement)",
+        Num::rounded(*value, 8),
+        accepted_range(quantity, *lower, *limit),
+        if *value < *lower && *lower != -*limit { "below absolute zero" } else { "this large" }
     )]
     OutOfRange {
         /// Where: `file:line` of a data file, or the data set and sample.
@@ -196,6 +198,9 @@ pub enum DataError {
         value: f64,
         /// The largest accepted magnitude.
         limit: f64,
+        /// The smallest accepted value (`-limit`, or absolute zero for a temperature,
+        /// [`crate::limits::Quantity::lower`]).
+        lower: f64,
     },
     /// A header line that is not text (control characters, bytes that are not UTF-8): a
     /// binary file, or one compressed otherwise than by gzip. Its bytes are not echoed
@@ -521,4 +526,14 @@ fn visible(text: &str) -> String {
             }
         })
         .collect()
+}
+
+/// The range of [`DataError::OutOfRange`] in words: `|torque| <= 1e7`, or both ends when
+/// they differ (`-273.15 <= temperature <= 1e3`).
+fn accepted_range(quantity: &str, lower: f64, limit: f64) -> String {
+    if lower == -limit {
+        format!("|{quantity}| <= {limit:e}")
+    } else {
+        format!("{} <= {quantity} <= {limit:e}", Num(lower))
+    }
 }

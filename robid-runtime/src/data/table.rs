@@ -76,6 +76,7 @@ impl Table {
                 quantity: quantity.name(),
                 value: column[k],
                 limit: quantity.limit(),
+                lower: quantity.lower(),
             })),
         }
     }

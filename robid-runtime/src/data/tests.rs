@@ -1075,3 +1075,24 @@ fn warnings_of_one_row_are_in_the_singular() {
         "{w}"
     );
 }
+
+/// A temperature below absolute zero is refused at its file:line and column, as other
+/// values out of range are (-300 deg C was fitted without a word).
+#[test]
+fn a_temperature_below_absolute_zero_is_refused_at_load() {
+    let d = Dir::new();
+    let mut qt = String::from("t,q1,tau1,T1\n");
+    for k in 0..=100 {
+        let t = 0.01 * k as f64;
+        let temperature = if k == 40 { -300.0 } else { 30.0 };
+        qt += &format!("{t},{},{},{temperature}\n", (3.0 * t).sin(), 10.0 * t);
+    }
+    let a = d.file("qt.csv", &qt);
+    let config = "time_column = \"t\"\n[[source]]\nposition = \"q{}\"\n\
+                  torque = \"tau{}\"\ntemperature = \"T{}\"\n";
+    let e = load(&cfg(config), &[a], 1).unwrap_err().to_string();
+    assert!(
+        e.contains("qt.csv:42: column `T1` is -300, outside the accepted range -273.15 <= temperature <= 1e3; repair or remove this row (a value below absolute zero"),
+        "{e}"
+    );
+}

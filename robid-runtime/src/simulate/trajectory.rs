@@ -231,6 +231,7 @@ impl Trajectory {
                 quantity: "time",
                 value: self.t[k],
                 limit: Quantity::Time.limit(),
+                lower: Quantity::Time.lower(),
             }));
         }
         if let Some(k) = (1..n).find(|&k| self.t[k] <= self.t[k - 1]) {
@@ -259,6 +260,7 @@ impl Trajectory {
                         quantity: quantity.name(),
                         value: v[k],
                         limit: quantity.limit(),
+                        lower: quantity.lower(),
                     }));
                 }
             }

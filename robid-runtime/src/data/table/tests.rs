@@ -831,7 +831,17 @@ fn out_of_range_values_name_line_and_column() {
     let e = t.check_range(0, "T1", Quantity::Temperature).unwrap_err();
     assert!(
         e.to_string().starts_with(
-            "mem.csv:3: column `T1` is 2500, outside the accepted range |temperature| <= 1e3;"
+            "mem.csv:3: column `T1` is 2500, outside the accepted range -273.15 <= temperature <= 1e3;"
+        ),
+        "{e}"
+    );
+    // below absolute zero; absolute zero itself is a temperature
+    let t = read("T1\n-273.15\n-273.2\n", &["T1"]).unwrap();
+    let e = t.check_range(0, "T1", Quantity::Temperature).unwrap_err();
+    assert!(
+        e.to_string().starts_with(
+            "mem.csv:3: column `T1` is -273.2, outside the accepted range -273.15 <= temperature <= 1e3; \
+             repair or remove this row (a value below absolute zero"
         ),
         "{e}"
     );
