@@ -18,6 +18,17 @@ pub(super) fn problem_with(target: &[f64], drives: &[&str]) -> Problem {
         .unwrap()
 }
 
+/// The inertial parameters' names of links 1 to `links`: `XX1 .. M1, XX2 ..`.
+pub(super) fn link_names(links: usize) -> Vec<String> {
+    (1..=links)
+        .flat_map(|j| {
+            crate::model::Inertial::ALL
+                .iter()
+                .map(move |s| format!("{}{j}", s.stem()))
+        })
+        .collect()
+}
+
 /// The standard names of the link and its rotor inertia: `XX1 .. M1, Ia1`.
 pub(super) fn names() -> Vec<String> {
     let mut names: Vec<String> = crate::model::Inertial::ALL

@@ -140,13 +140,7 @@ mod tests {
     /// Links, drive terms and extra columns all count; no names, no parameters.
     #[test]
     fn the_length_counts_every_kind_of_parameter() {
-        let mut names: Vec<String> = (1..=2)
-            .flat_map(|j| {
-                Inertial::ALL
-                    .iter()
-                    .map(move |s| format!("{}{j}", s.stem()))
-            })
-            .collect();
+        let mut names = crate::feasible::fixture::link_names(2);
         names.extend(["Ia2", "Fc1"].map(String::from));
         let mut layout = Layout::from_names(&names).unwrap();
         assert_eq!((layout.len(), layout.is_empty()), (22, false));

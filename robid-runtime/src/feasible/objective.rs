@@ -442,13 +442,7 @@ mod tests {
 
     /// Two links, every standard parameter its own base parameter.
     fn problem() -> Problem {
-        let names: Vec<String> = (1..=2)
-            .flat_map(|j| {
-                crate::model::Inertial::ALL
-                    .iter()
-                    .map(move |s| format!("{}{j}", s.stem()))
-            })
-            .collect();
+        let names = crate::feasible::fixture::link_names(2);
         let n = names.len();
         Problem::new(names.clone(), names, nalgebra::DMatrix::identity(n, n))
             .unwrap()

@@ -815,13 +815,7 @@ mod tests {
                 to: [l, 0.0, 0.0],
             })
             .collect();
-        let names: Vec<String> = (1..=3)
-            .flat_map(|j| {
-                crate::model::Inertial::ALL
-                    .iter()
-                    .map(move |s| format!("{}{j}", s.stem()))
-            })
-            .collect();
+        let names = crate::feasible::fixture::link_names(3);
         // every standard parameter its own base parameter, with the values of solids of
         // 1000 kg/m^3; the mass of link 1 measured to 0.6 kg, everything else to 1e-3
         let units: Vec<LinkInertial> = shapes
@@ -1058,13 +1052,7 @@ mod tests {
     /// with the bound that settles it, a link of its size is not.
     #[test]
     fn a_link_no_body_of_its_size_can_be_is_named() {
-        let names: Vec<String> = (1..=2)
-            .flat_map(|j| {
-                crate::model::Inertial::ALL
-                    .iter()
-                    .map(move |s| format!("{}{j}", s.stem()))
-            })
-            .collect();
+        let names = crate::feasible::fixture::link_names(2);
         let mut k = nalgebra::DMatrix::zeros(2, 20);
         k[(0, 5)] = 1.0;
         k[(1, 15)] = 1.0;

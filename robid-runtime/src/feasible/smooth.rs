@@ -474,13 +474,7 @@ mod tests {
             inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0], [0.0, 0.0, 0.008]],
         }
         .to_standard();
-        let names: Vec<String> = (1..=2)
-            .flat_map(|j| {
-                crate::model::Inertial::ALL
-                    .iter()
-                    .map(move |s| format!("{}{j}", s.stem()))
-            })
-            .collect();
+        let names = crate::feasible::fixture::link_names(2);
         let t: Vec<f64> = link().into_iter().chain(second).collect();
         let problem = Problem::new(names.clone(), names, DMatrix::identity(20, 20))
             .unwrap()

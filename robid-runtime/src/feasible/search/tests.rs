@@ -7,23 +7,11 @@ use nalgebra::{DMatrix, DVector};
 use super::*;
 use crate::feasible::bounds::LinkBounds;
 use crate::feasible::inertial::LinkInertial;
-use crate::model::Inertial;
-
-/// Standard names of `links` links (`XX1 .. M1 XX2 ..`).
-fn names(links: usize) -> Vec<String> {
-    (1..=links)
-        .flat_map(|j| {
-            Inertial::ALL
-                .iter()
-                .map(move |s| format!("{}{j}", s.stem()))
-        })
-        .collect()
-}
 
 /// A problem whose base parameters are the standard parameters `rows` (by name), with
 /// targets from `truth` (a standard vector) and deviations 1e-6.
 fn problem(links: usize, rows: &[&str], truth: &[f64]) -> Problem {
-    let standard = names(links);
+    let standard = crate::feasible::fixture::link_names(links);
     let k = DMatrix::from_fn(rows.len(), standard.len(), |b, s| {
         f64::from(u8::from(standard[s] == rows[b]))
     });
