@@ -316,7 +316,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .with_identified(&names, &values, &std)
         .map_err(|e| about_identified(&args.identified, e))?;
     // the names agree (else the error names them, or the drive terms): now what they are
-    identified.check_expressions(&args.identified, &problem, &args.robot)?;
+    identified.check_expressions(&args.identified, &problem, robot, &args.robot)?;
     let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {

@@ -10,7 +10,7 @@ use std::path::Path;
 
 use robid_runtime::feasible::Problem;
 use robid_runtime::{Num, names};
-use robots::figaroh::combination;
+use robid_symbolic::{Arena, Id, Node, Robot, Values};
 use serde::Deserialize;
 
 use super::Error;
@@ -143,37 +143,46 @@ impl Identified {
     }
 
     /// Refuses a result whose base parameters are other combinations of the standard ones
-    /// than `problem`'s (the description `robot`'s): a result of another robot, or of
-    /// another version of this one's description, whose parameters have the same names.
-    /// Expressions that are not sums of numbers times standard parameters (a description
-    /// with symbols) are not compared.
+    /// than `problem`'s (the description `robot`'s, read from `robot_path`): a result of
+    /// another robot, or of another version of this one's description, whose parameters
+    /// have the same names. Each expression is read by robid's expression reader and taken
+    /// as a linear combination of the standard parameters ([`linear_form`]), its
+    /// coefficients evaluated at the description's geometric values; one that is no
+    /// expression, not linear in the standard parameters, or names none of them or another
+    /// name is refused as not written by `robid identify` for this description. An entry
+    /// without an expression (a result written by hand with name, value and std) is not
+    /// compared.
     pub(super) fn check_expressions(
         &self,
         path: &Path,
         problem: &Problem,
-        robot: &Path,
+        robot: &Robot,
+        robot_path: &Path,
     ) -> Result<(), Error> {
-        for p in &self.parameters {
+        for (i, p) in self.parameters.iter().enumerate() {
             let Some(b) = problem.base_names.iter().position(|n| *n == p.name) else {
                 continue;
             };
-            let Some(terms) = linear_terms(&p.expression) else {
+            if p.expression.trim().is_empty() {
                 continue;
-            };
-            let mut written = vec![0.0; problem.standard_names.len()];
-            let mut known = true;
-            for (name, c) in terms {
-                match problem.standard_names.iter().position(|n| *n == name) {
-                    Some(s) => written[s] += c,
-                    None => known = false,
-                }
             }
+            let written = linear_form(&p.expression, &problem.standard_names, robot.symbols())
+                .map_err(|problem| {
+                    format!(
+                        "{}: parameters[{i}] `{}`: the expression `{}` {problem}: the file was \
+                         not written by robid identify for this description ({}); give the \
+                         result identify wrote with it (and --drive), or identify again",
+                        path.display(),
+                        names::short(&p.name),
+                        names::shortened(&p.expression, 400),
+                        robot_path.display()
+                    )
+                })?;
             let row = problem.k.row(b);
-            let same = known
-                && row
-                    .iter()
-                    .zip(&written)
-                    .all(|(k, w)| (k - w).abs() <= 1e-6 * k.abs().max(1e-6));
+            let same = row
+                .iter()
+                .zip(&written)
+                .all(|(k, w)| (k - w).abs() <= 1e-6 * k.abs().max(1e-6));
             if !same {
                 return Err(format!(
                     "{}: `{}` is {} in the result, but {} for {}: the result was identified \
@@ -183,13 +192,107 @@ impl Identified {
                     names::short(&p.name),
                     names::shortened(&p.expression, 400),
                     expression(row.iter().copied(), &problem.standard_names),
-                    robot.display()
+                    robot_path.display()
                 )
                 .into());
             }
         }
         Ok(())
     }
+}
+
+/// The coefficients, one per name of `standard`, of `text` read as a linear combination
+/// of the standard parameters (`ZZ1 + Ia1 + 0.07*MZ3`, `XX2 - 81/1600*M4`,
+/// `L3^2*M4 + ZZ3`), its coefficients evaluated at the values of the description's
+/// geometric `symbols`; else what is wrong with it, to follow "the expression `text`": it
+/// is no expression robid reads, names something that is neither a standard parameter
+/// nor a symbol, names no standard parameter, or is not linear in them (a coefficient or a
+/// term that holds one, a constant term, a coefficient that is no finite number there).
+pub(super) fn linear_form(
+    text: &str,
+    standard: &[String],
+    symbols: &[(String, Option<f64>)],
+) -> Result<Vec<f64>, String> {
+    let mut arena = Arena::new();
+    let root = arena
+        .parse(text)
+        .map_err(|e| format!("is not an expression robid reads ({e})"))?;
+    let mut unknown = Vec::new();
+    // (index in `standard`, symbol) of the standard parameters it names
+    let mut named = Vec::new();
+    let mut values = Values::new();
+    for symbol in arena.free_symbols(&[root]) {
+        let name = arena.symbol_name(symbol);
+        if let Some(s) = standard.iter().position(|n| n == name) {
+            named.push((s, symbol));
+        } else if let Some((_, value)) = symbols.iter().find(|(n, _)| n == name) {
+            match value {
+                Some(v) => values.set(symbol, *v),
+                None => return Err(format!("holds the symbol `{name}`, which has no value")),
+            }
+        } else {
+            unknown.push(format!("`{}`", names::short(name)));
+        }
+    }
+    if !unknown.is_empty() {
+        return Err(format!(
+            "names {}, neither a standard parameter nor a geometric symbol of the description",
+            unknown.join(", ")
+        ));
+    }
+    if named.is_empty() {
+        return Err("names no standard parameter".to_owned());
+    }
+    let is_standard = |arena: &Arena, id: Id| {
+        arena
+            .free_symbols(&[id])
+            .iter()
+            .any(|s| named.iter().any(|(_, n)| n == s))
+    };
+    // sign() is differentiated as 0: a standard parameter inside it is no linear term
+    let mask = arena.reachable(&[root]);
+    for (index, _) in mask.iter().enumerate().filter(|(_, reached)| **reached) {
+        if let Node::Sign(x) = arena.node_at(index)
+            && is_standard(&arena, *x)
+        {
+            return Err("is not linear in the standard parameters (one is inside sign())".into());
+        }
+    }
+    let mut row = vec![0.0; standard.len()];
+    for &(s, symbol) in &named {
+        let coefficient = arena.diff(root, symbol);
+        if is_standard(&arena, coefficient) {
+            return Err(format!(
+                "is not linear in the standard parameters: its coefficient of `{}` is `{}`",
+                standard[s],
+                names::shortened(&arena.display(coefficient), 100)
+            ));
+        }
+        row[s] = arena
+            .eval(&[coefficient], &values)
+            .map_err(|e| format!("cannot be evaluated: {e}"))?[0];
+        if !row[s].is_finite() {
+            return Err(format!(
+                "has a coefficient of `{}` that is not a finite number at the description's \
+                 values",
+                standard[s]
+            ));
+        }
+    }
+    // linear, not affine: nothing is left with every standard parameter at zero
+    for &(_, symbol) in &named {
+        values.set(symbol, 0.0);
+    }
+    let constant = arena
+        .eval(&[root], &values)
+        .map_err(|e| format!("cannot be evaluated: {e}"))?[0];
+    if !(constant.abs() <= 1e-9) {
+        return Err(format!(
+            "is not linear in the standard parameters: it has the constant term {}",
+            short(constant)
+        ));
+    }
+    Ok(row)
 }
 
 /// serde_json's message in words for people: its type names (`f64`, `struct Identified`,
@@ -268,24 +371,6 @@ fn json_problem(e: &serde_json::Error) -> String {
     names::shortened(message, 200).into_owned()
 }
 
-/// `expression` as (standard parameter, coefficient) terms, when it is a sum of terms
-/// `c*NAME`, `NAME` or their negatives (as `robid identify` writes them), read by
-/// [`combination`].
-fn linear_terms(expression: &str) -> Option<Vec<(String, f64)>> {
-    if expression.trim().is_empty() {
-        return None;
-    }
-    let terms = combination(expression, str::to_owned)?;
-    let word = |name: &str| {
-        name.starts_with(|ch: char| ch.is_ascii_alphabetic())
-            && name.chars().all(|ch| ch.is_ascii_alphanumeric())
-    };
-    terms
-        .into_iter()
-        .map(|(name, c)| word(&name).then_some((name, c)))
-        .collect()
-}
-
 /// A row of K as `robid identify` writes an expression.
 fn expression(row: impl Iterator<Item = f64>, names: &[String]) -> String {
     let mut text = String::new();
@@ -323,23 +408,63 @@ pub(super) fn about_identified(path: &Path, e: robid_runtime::Error) -> Error {
 mod tests {
     use super::*;
 
+    /// Expressions are read by robid's expression reader as linear combinations of the
+    /// standard parameters, exact coefficients `n/d` and the description's symbols
+    /// included; anything else is refused with what is wrong.
     #[test]
-    fn expressions_are_read_as_sums_of_terms() {
-        let terms = linear_terms("XX2 - 0.050625*M4 + 0.225*M3 - YY2").unwrap();
+    fn expressions_are_read_as_linear_combinations() {
+        let standard = ["M3", "M4", "XX2", "YY2", "MZ4"].map(String::from);
+        let symbols = [("L3".to_owned(), Some(0.5)), ("L9".to_owned(), None)];
+        let form = |text: &str| linear_form(text, &standard, &symbols);
         assert_eq!(
-            terms,
-            [
-                ("M3".to_owned(), 0.225),
-                ("M4".to_owned(), -0.050625),
-                ("XX2".to_owned(), 1.0),
-                ("YY2".to_owned(), -1.0)
-            ]
+            form("XX2 - 0.050625*M4 + 0.225*M3 - YY2").unwrap(),
+            [0.225, -0.050625, 1.0, -1.0, 0.0]
         );
-        assert_eq!(linear_terms("-MZ4").unwrap(), [("MZ4".to_owned(), -1.0)]);
-        assert_eq!(linear_terms("M2/L2"), None);
-        assert_eq!(linear_terms("L2^2*M2"), None);
-        assert_eq!(linear_terms("sin(q)*M2"), None);
-        assert_eq!(linear_terms(""), None);
+        assert_eq!(form("-MZ4").unwrap(), [0.0, 0.0, 0.0, 0.0, -1.0]);
+        assert_eq!(
+            form("XX2 - 81/1600*M4").unwrap(),
+            [0.0, -0.050625, 1.0, 0.0, 0.0]
+        );
+        assert_eq!(
+            form("L3^2*M4 + 2*L3*(M3 - MZ4)").unwrap(),
+            [1.0, 0.25, 0.0, 0.0, -1.0]
+        );
+        for (text, want) in [
+            (
+                "#### garbage ###",
+                "is not an expression robid reads (at character 0",
+            ),
+            (
+                "XX1 + 0.5*M4 + )",
+                "is not an expression robid reads (at character",
+            ),
+            (
+                "null*M4",
+                "names `null`, neither a standard parameter nor a geometric symbol",
+            ),
+            ("XX1 + M4", "names `XX1`, neither"),
+            ("L3^2", "names no standard parameter"),
+            ("", "is not an expression robid reads"),
+            (
+                "M3*M4",
+                "not linear in the standard parameters: its coefficient of `M3` is `M4`",
+            ),
+            (
+                "M4^2",
+                "not linear in the standard parameters: its coefficient of `M4` is `2*M4`",
+            ),
+            (
+                "sin(M4)",
+                "not linear in the standard parameters: its coefficient of `M4`",
+            ),
+            ("XX2/M4", "not linear in the standard parameters"),
+            ("sign(M4) + M3", "one is inside sign()"),
+            ("M4 + 1", "it has the constant term 1"),
+            ("L9*M4", "holds the symbol `L9`, which has no value"),
+        ] {
+            let e = form(text).unwrap_err();
+            assert!(e.contains(want), "{text}: {want}\nnot in\n{e}");
+        }
         let names = ["XX2", "M3", "YY2"].map(String::from);
         assert_eq!(
             expression([1.0, 0.225, -1.0].into_iter(), &names),

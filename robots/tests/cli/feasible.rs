@@ -362,6 +362,89 @@ fn feasible_keeps_an_extra_column_named_like_a_drive_term_extra() {
     assert!((fv1 + 1e-3).abs() < 1e-9, "{fv1}");
 }
 
+/// `robid feasible` on the two-link arm with the fixture's first base parameter (`ZZR1`,
+/// `ZZ1 + YY2 + 0.16*M2`) written as `expression`, to `output`.
+fn two_link_with_expression(
+    dir: &tempfile::TempDir,
+    expression: &str,
+    output: &Path,
+) -> std::process::Output {
+    let mut json = fixture_json("two_link_identified.json");
+    assert_eq!(json["parameters"][0]["name"], "ZZR1");
+    json["parameters"][0]["expression"] = expression.into();
+    let identified = write(dir.path(), "id.json", &json.to_string());
+    robid(&[
+        "feasible",
+        "tests/fixtures/two_link.toml",
+        "--identified",
+        identified.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ])
+}
+
+/// A base parameter's expression that is no expression, names something that is no
+/// standard parameter, or is not linear in them, is refused naming the file, the entry,
+/// the expression and what is wrong (it passed unread: the check compared only what its
+/// own reader of sums could read); nothing is written.
+#[test]
+fn feasible_refuses_an_identified_expression_it_cannot_read() {
+    let dir = folder();
+    let path = out(&dir, "f.toml");
+    for (expression, problem) in [
+        (
+            "#### garbage ###",
+            "is not an expression robid reads (at character 0: expected a number, a name or `(`)",
+        ),
+        (
+            "XX1 + 0.5*M6 + )",
+            "is not an expression robid reads (at character 15: expected a number, a name",
+        ),
+        (
+            "null*M2",
+            "names `null`, neither a standard parameter nor a geometric symbol",
+        ),
+        (
+            "ZZ1 + YY2*M2",
+            "is not linear in the standard parameters: its coefficient of `YY2` is `M2`",
+        ),
+    ] {
+        let o = two_link_with_expression(&dir, expression, &path);
+        fails_with(
+            &o,
+            &[
+                &format!("id.json: parameters[0] `ZZR1`: the expression `{expression}` {problem}"),
+                "the file was not written by robid identify for this description",
+                "two_link.toml",
+                "or identify again",
+            ],
+        );
+        assert!(!path.exists(), "{expression}");
+    }
+}
+
+/// An exact coefficient `n/d`, as robid writes one that is no short decimal, is read: the
+/// description's own (`4/25` for 0.16) is taken, another (`1/5`) refused as a result of
+/// another geometry (neither was compared before: the reader of sums took no `/`).
+#[test]
+fn feasible_reads_an_exact_coefficient_of_an_identified_expression() {
+    let dir = folder();
+    let path = out(&dir, "f.toml");
+    let o = two_link_with_expression(&dir, "ZZ1 + YY2 + 4/25*M2", &path);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(path.exists());
+    std::fs::remove_file(&path).unwrap();
+    let o = two_link_with_expression(&dir, "ZZ1 + YY2 + 1/5*M2", &path);
+    fails_with(
+        &o,
+        &[
+            "id.json: `ZZR1` is ZZ1 + YY2 + 1/5*M2 in the result, but ZZ1 + YY2 + 0.16*M2 for",
+            "the result was identified with another robot, or another version of this description",
+        ],
+    );
+    assert!(!path.exists());
+}
+
 /// A result far from the data is said: the two-step extraction on the two-link arm holds
 /// the mass of link 2 at what the gravity step chose (the gravity coefficients MX2 and MY2
 /// leave it free) and reproduces ZZ2 hundreds of standard deviations away; it was written
