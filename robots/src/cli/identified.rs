@@ -473,6 +473,80 @@ mod tests {
         assert_eq!(expression([-2.0, 0.0, 0.0].into_iter(), &names), "-2*XX2");
     }
 
+    /// The expressions `robid identify` writes (a reference robot's compiled ones, the
+    /// derivation's for other descriptions: symbols, every drive term, a URDF's chain with
+    /// and without --base/--tip) are read back as the rows of K the check compares with.
+    #[test]
+    fn the_expressions_identify_writes_are_the_rows_of_k() {
+        use super::super::description::{DescriptionFlags, read};
+        use super::super::identify::model_of;
+        let every_term = || ["Ia", "Fv", "Fc", "Fo"].map(String::from).to_vec();
+        let urdf = "../data/example_robot_data/ur5/ur5_robot.urdf";
+        let mut descriptions: Vec<(String, DescriptionFlags)> = robots::models::REFERENCES
+            .iter()
+            .map(|r| {
+                (
+                    format!("descriptions/{}.toml", r.name),
+                    DescriptionFlags::default(),
+                )
+            })
+            .collect();
+        descriptions.extend([
+            (
+                "tests/fixtures/symbolic_drive_arm.toml".to_owned(),
+                DescriptionFlags::default(),
+            ),
+            (
+                "tests/fixtures/calibrated_arm.toml".to_owned(),
+                DescriptionFlags::default(),
+            ),
+            (
+                "tests/fixtures/general_frames_arm.toml".to_owned(),
+                DescriptionFlags::default(),
+            ),
+            (
+                "descriptions/kr6r900.toml".to_owned(),
+                DescriptionFlags::default(),
+            ),
+            (
+                "configs/tx40_robot.toml".to_owned(),
+                DescriptionFlags::default(),
+            ),
+            (
+                urdf.to_owned(),
+                DescriptionFlags {
+                    drive: every_term(),
+                    ..DescriptionFlags::default()
+                },
+            ),
+            (
+                urdf.to_owned(),
+                DescriptionFlags {
+                    drive: every_term(),
+                    base_link: Some("shoulder_link".into()),
+                    tip_link: Some("wrist_2_link".into()),
+                },
+            ),
+        ]);
+        for (path, flags) in &descriptions {
+            let robot = read(Path::new(path), flags).unwrap();
+            let chosen = model_of(&robot).unwrap();
+            let problem = robots::extraction::problem(&robot).unwrap();
+            assert_eq!(chosen.base.len(), problem.base_names.len(), "{path}");
+            for (b, base) in chosen.base.iter().enumerate() {
+                let row = linear_form(&base.expression, &problem.standard_names, robot.symbols())
+                    .unwrap_or_else(|e| panic!("{path}: {} {e}", base.expression));
+                for (k, w) in problem.k.row(b).iter().zip(&row) {
+                    assert!(
+                        (k - w).abs() <= 1e-9 * k.abs().max(1.0),
+                        "{path}: {}: {k} {w}",
+                        base.expression
+                    );
+                }
+            }
+        }
+    }
+
     /// A result of the wrong shape is told at file:line:column in JSON's words, not
     /// serde's Rust types (`expected f64`, `struct Identified with 1 element`); a value of
     /// the wrong type is quoted short; a byte-order mark is read past.
