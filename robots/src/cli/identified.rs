@@ -286,7 +286,7 @@ pub(super) fn linear_form(
     let constant = arena
         .eval(&[root], &values)
         .map_err(|e| format!("cannot be evaluated: {e}"))?[0];
-    if !(constant.abs() <= 1e-9) {
+    if constant.is_nan() || constant.abs() > 1e-9 {
         return Err(format!(
             "is not linear in the standard parameters: it has the constant term {}",
             short(constant)
