@@ -208,7 +208,7 @@ impl Identified {
 /// is no expression robid reads, names something that is neither a standard parameter
 /// nor a symbol, names no standard parameter, or is not linear in them (a coefficient or a
 /// term that holds one, a constant term, a coefficient that is no finite number there).
-pub(super) fn linear_form(
+fn linear_form(
     text: &str,
     standard: &[String],
     symbols: &[(String, Option<f64>)],
