@@ -779,6 +779,8 @@ pub(crate) fn assemble(
     Ok(data)
 }
 
+/// The files the data are read from: `files` when given (one per `[[source]]` table),
+/// else the config's own ([`Config::source_files`]).
 pub(crate) fn source_paths(config: &Config, files: &[PathBuf]) -> Result<Vec<PathBuf>> {
     if config.sources.is_empty() {
         return Err(config.key_error(
@@ -804,19 +806,67 @@ pub(crate) fn source_paths(config: &Config, files: &[PathBuf]) -> Result<Vec<Pat
         }
         return Ok(files.to_vec());
     }
-    config
-        .sources
-        .iter()
-        .enumerate()
-        .map(|(i, s)| {
-            s.file.as_deref().map(|f| config.resolve(f)).ok_or_else(|| {
-                config.key_error(
-                    &format!("source[{}].file", i + 1),
-                    "no file given; set `file = \"...\"` or pass the files explicitly",
-                )
+    config.source_files()
+}
+
+impl Config {
+    /// The data files that the `[[source]]` tables name, in their order, each resolved
+    /// against the config's folder ([`Config::resolve`]). A table without `file`, and a
+    /// file that does not exist, are refused naming the key `source[i].file` (at its
+    /// file:line:column for a config file) with the path as resolved and the fix: the
+    /// reader's own error named the resolved path alone, not the key nor the folder it
+    /// was read from.
+    pub fn source_files(&self) -> Result<Vec<PathBuf>> {
+        if self.sources.is_empty() {
+            return Err(self.key_error(
+                "source",
+                "no [[source]] table; add one per file with its position and torque columns",
+            ));
+        }
+        self.sources
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let key = format!("source[{}].file", i + 1);
+                let Some(file) = s.file.as_deref() else {
+                    return Err(self.key_error(
+                        &key,
+                        "no file given; set `file = \"...\"` (relative to the config's \
+                         folder) or pass the data files explicitly (robid: --data)",
+                    ));
+                };
+                let path = self.resolve(file);
+                match std::fs::metadata(&path) {
+                    Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                        let read = match &self.base_dir {
+                            Some(dir) if file.is_relative() => format!(
+                                " (`{}` is read from the config's folder {})",
+                                file.display(),
+                                if dir.as_os_str().is_empty() {
+                                    Path::new(".")
+                                } else {
+                                    dir
+                                }
+                                .display()
+                            ),
+                            _ => String::new(),
+                        };
+                        Err(self.key_error(
+                            &key,
+                            format!(
+                                "the file {} does not exist{read}; fix the path (relative to \
+                                 the config's folder, or absolute) or pass the data files \
+                                 explicitly (robid: --data)",
+                                path.display()
+                            ),
+                        ))
+                    }
+                    // a file that cannot be read otherwise is named by its reader
+                    _ => Ok(path),
+                }
             })
-        })
-        .collect()
+            .collect()
+    }
 }
 
 fn check_rows(rows: &mut Option<(usize, PathBuf, Vec<u64>)>, table: &Table) -> Result<()> {

@@ -289,30 +289,17 @@ pub(crate) fn data_files(
 ) -> Result<Vec<PathBuf>, Error> {
     let per_set = config.sources.len().max(1);
     if data.is_empty() {
-        let Some(path) = config_path else {
+        if config_path.is_none() {
             return Err(
                 "--data: give the data file (columns t,q1..,qd1..,qdd1..,tau1.., as \
                         `robid simulate` writes), or a --config whose [[source]] tables name \
                         their files"
                     .into(),
             );
-        };
-        return config
-            .sources
-            .iter()
-            .enumerate()
-            .map(|(i, s)| {
-                s.file.as_deref().map(|f| config.resolve(f)).ok_or_else(|| {
-                    format!(
-                        "{}: [[source]] {} has no `file`; add `file = \"...\"` (relative to \
-                         the config) or give the files with --data",
-                        path.display(),
-                        i + 1
-                    )
-                    .into()
-                })
-            })
-            .collect();
+        }
+        // the loader's own check: a table without `file` or a file that is not there is
+        // named at its key, with the path as resolved against the config's folder
+        return Ok(config.source_files()?);
     }
     if data.len() != per_set {
         let fix = match config_path {

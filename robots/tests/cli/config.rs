@@ -69,7 +69,7 @@ fn the_sources_files_are_read_relative_to_the_config() {
     assert!(!o.status.success());
     let e = stderr(&o);
     assert!(
-        e.contains("plain.toml: [[source]] 1 has no `file`") && e.contains("--data"),
+        e.contains("plain.toml:3:1: `source[1].file`: no file given") && e.contains("--data"),
         "{e}"
     );
     let o = robid(&["identify", robot]);
@@ -79,6 +79,72 @@ fn the_sources_files_are_read_relative_to_the_config() {
         "{}",
         stderr(&o)
     );
+}
+
+/// A `[[source]]` whose `file` does not exist is named at its key in the config
+/// (file:line:column), with the path as resolved against the config's folder and the fix,
+/// by every command that reads the config's files (the loader's one check): it was a bare
+/// "jobs/../logs/missing.csv: cannot read: no such file" naming neither the config nor the key.
+#[test]
+fn a_missing_source_file_is_named_at_its_key_with_the_resolved_path() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    std::fs::create_dir(d.join("jobs")).unwrap();
+    let missing = CONFIG.replace(
+        "[[source]]\n",
+        "[[source]]\nfile = \"../logs/missing.csv\"\n",
+    );
+    let job = write(&d.join("jobs"), "job.toml", &missing);
+    let with_rotor = format!("{missing}[drive.rotor]\ninertia = [0]\n");
+    let rotor_job = write(&d.join("jobs"), "rotor.toml", &with_rotor);
+    let params = write(d, "p.toml", "[standard]\nZZ1 = 1\nFv1 = 0.1\n");
+    let (robot, job, rotor_job) = (
+        robot.to_str().unwrap(),
+        job.to_str().unwrap(),
+        rotor_job.to_str().unwrap(),
+    );
+    let out = d.join("friction.toml");
+    let resolved = d.join("jobs").join("../logs/missing.csv");
+    let resolved = resolved.display().to_string();
+    let folder = d.join("jobs").display().to_string();
+    for (args, config) in [
+        (vec!["identify", robot, "--config", job], "job.toml"),
+        (vec!["inspect", robot, "--config", job], "job.toml"),
+        (
+            vec![
+                "payload",
+                robot,
+                "--parameters",
+                params.to_str().unwrap(),
+                "--config",
+                job,
+            ],
+            "job.toml",
+        ),
+        (
+            vec![
+                "friction",
+                robot,
+                "--config",
+                rotor_job,
+                "--output",
+                out.to_str().unwrap(),
+            ],
+            "rotor.toml",
+        ),
+    ] {
+        let o = robid(&args);
+        fails_with(
+            &o,
+            &[
+                &format!("{config}:4:1: `source[1].file`: the file {resolved} does not exist"),
+                &format!("read from the config's folder {folder}"),
+                "fix the path",
+                "--data",
+            ],
+        );
+    }
 }
 
 /// A config's `sample_rate` is checked against a time column of the log that it does not
