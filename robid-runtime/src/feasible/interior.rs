@@ -208,6 +208,7 @@ pub fn solve_interior(
     let mut solution = Solution::assemble(problem, bounds, Method::Interior, p, start.elapsed())?;
     solution.iterations = budget - steps_left;
     solution.determined = super::prior::determined(problem, &objective.pull);
+    solution.unpulled = super::prior::unpulled(problem, &objective.pull);
     Ok(solution)
 }
 

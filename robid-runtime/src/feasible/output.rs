@@ -29,9 +29,8 @@ pub fn to_toml(solution: &Solution, robot: &str) -> String {
     if !solution.dont_care.is_empty() {
         let _ = writeln!(
             s,
-            "# Not from the data (no effect on the dynamics), values {}: {}.",
-            solution.method.dont_care_source(),
-            solution.dont_care.join(" ")
+            "# Not from the data (no effect on the dynamics), {}.",
+            solution.dont_care_note()
         );
     }
     for v in &solution.violations {
@@ -399,6 +398,31 @@ mod tests {
             assert!(!text.contains(absent), "{absent} in\n{text}");
         }
         assert!(text.ends_with("mass = 0.0\n"), "{text}");
+    }
+
+    /// Parameters that no prior pulls (`--prior-weight 0`) are not said to be the prior's:
+    /// the note names them apart, after those a prior does pull.
+    #[test]
+    fn unpulled_values_are_not_called_the_priors() {
+        let mut s = solution();
+        s.unpulled = vec!["YZ1".into()];
+        let text = to_toml(&s, "arm");
+        let want = "# Not from the data (no effect on the dynamics), values from the prior (the \
+                    default prior where none is given), or the nearest to them that the physical \
+                    constraints and bounds allow: XY1; values that no prior pulls (its weight is \
+                    0), so wherever the solver stopped within the physical constraints and \
+                    bounds, not the prior's (a prior weight above 0 or --bounds settle them): \
+                    YZ1.\n";
+        assert!(text.contains(want), "{want:?} not in\n{text}");
+        s.unpulled = s.dont_care.clone();
+        let text = to_toml(&s, "arm");
+        assert!(!text.contains("from the prior"), "{text}");
+        assert!(
+            text.contains(
+                "not the prior's (a prior weight above 0 or --bounds settle them): XY1 YZ1.\n"
+            ),
+            "{text}"
+        );
     }
 
     /// Shares that differ by less than 0.005 show as one value, by 0.005 or more as a

@@ -507,6 +507,18 @@ pub(super) fn prior_links(problem: &Problem, prior: Option<&Prior>) -> Vec<Optio
         .collect()
 }
 
+/// The names of the standard parameters that have no effect on the base parameters
+/// ([`Problem::no_effect`]) and that `pull` does not pull (a weight of 0): see
+/// [`super::solution::Solution::unpulled`].
+pub(super) fn unpulled(problem: &Problem, pull: &Pull) -> Vec<String> {
+    problem
+        .no_effect()
+        .into_iter()
+        .filter(|&s| pull.weight.get(s).is_some_and(|w| *w == 0.0))
+        .map(|s| problem.standard_names[s].clone())
+        .collect()
+}
+
 /// The share of each standard parameter that the data determine, in [0, 1]: the diagonal
 /// of the resolution matrix (F_data + F_prior)^-1 F_data, with F_data = (L^-1 K)' (L^-1 K)
 /// the information of the identified base parameters and F_prior that of the pull. 1: the

@@ -174,6 +174,7 @@ fn solve(
         start.elapsed(),
     )?;
     solution.determined = super::prior::determined(problem, &pull);
+    solution.unpulled = super::prior::unpulled(problem, &pull);
     Ok(solution)
 }
 

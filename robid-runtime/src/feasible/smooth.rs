@@ -326,6 +326,7 @@ pub fn solve_smooth(
     let mut solution = Solution::assemble(problem, bounds, Method::Cholesky, p, start.elapsed())?;
     solution.iterations = iterations;
     solution.determined = super::prior::determined(problem, &fit.objective.pull);
+    solution.unpulled = super::prior::unpulled(problem, &fit.objective.pull);
     Ok(solution)
 }
 

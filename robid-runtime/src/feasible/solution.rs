@@ -113,6 +113,12 @@ pub struct Solution {
     /// Standard parameters with no effect on the base parameters: their values are the
     /// stated don't-care values (centre of the bounds, or the prior).
     pub dont_care: Vec<String>,
+    /// Those of [`Solution::dont_care`] that no prior pulls (a weight of 0: `--prior-weight
+    /// 0`): nothing sets them but the start of the solver and the physical constraints and
+    /// bounds, so they are not the prior's values ([`Solution::dont_care_note`]). Empty
+    /// when every one is pulled, or when the method was given no pull (`anneal` without a
+    /// prior: [`Method::dont_care_source`] says so).
+    pub unpulled: Vec<String>,
     /// Bounds that the result does not meet (the SDP cannot impose the upper bound on the
     /// principal moments about the centre of mass, which is not convex).
     pub violations: Vec<String>,
@@ -156,6 +162,37 @@ fn outside(v: f64) -> Num {
 }
 
 impl Solution {
+    /// Where the values of [`Solution::dont_care`] come from, for messages: `values
+    /// {source}: NAMES` ([`Method::dont_care_source`]) for those a prior pulls, and for those
+    /// none pulls ([`Solution::unpulled`]) that they are wherever the solver stopped, not the
+    /// prior's: with `--prior-weight 0` the message said "values from the prior" of values
+    /// the prior had only started the solver from (a mass at its lower bound of 0.05 kg).
+    /// Empty when the data see every parameter.
+    pub fn dont_care_note(&self) -> String {
+        let (free, pulled): (Vec<&str>, Vec<&str>) = self
+            .dont_care
+            .iter()
+            .map(String::as_str)
+            .partition(|n| self.unpulled.iter().any(|u| u == n));
+        let mut parts = Vec::new();
+        if !pulled.is_empty() {
+            parts.push(format!(
+                "values {}: {}",
+                self.method.dont_care_source(),
+                pulled.join(" ")
+            ));
+        }
+        if !free.is_empty() {
+            parts.push(format!(
+                "values that no prior pulls (its weight is 0), so wherever the solver stopped \
+                 within the physical constraints and bounds, not the prior's (a prior weight \
+                 above 0 or --bounds settle them): {}",
+                free.join(" ")
+            ));
+        }
+        parts.join("; ")
+    }
+
     /// Whether `name` is a standard parameter of the chain (an inertial parameter or a drive
     /// term of one of its links), not an extra column of the identification config.
     pub fn is_chain_parameter(&self, name: &str) -> bool {
@@ -335,6 +372,7 @@ impl Solution {
             links,
             min_eigenvalues,
             dont_care,
+            unpulled: Vec::new(),
             violations,
             unmet,
             at_bounds,

@@ -442,9 +442,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     ));
     if !solution.dont_care.is_empty() {
         out::warn(format_args!(
-            "not from the data (no effect on the torques), values {}: {}",
-            solution.method.dont_care_source(),
-            solution.dont_care.join(" ")
+            "not from the data (no effect on the torques), {}",
+            solution.dont_care_note()
         ));
     }
     for at in &solution.at_bounds {

@@ -194,6 +194,56 @@ fn feasible_methods_write_consistent_links_and_the_convex_fits_beat_anneal() {
     }
 }
 
+/// With `--prior-weight 0` no prior pulls what the data leave free, so neither the summary
+/// nor the written file says those values are the prior's: they said "values from the
+/// prior ... or the nearest to them" of a link-1 mass left at its lower bound of 0.05 kg.
+/// At the default weight the values are the prior's, and the message says so.
+#[test]
+fn feasible_at_prior_weight_zero_does_not_call_the_free_values_the_priors() {
+    let dir = folder();
+    let run = |extra: &[&str], name: &str| {
+        let path = out(&dir, name);
+        let mut args = vec![
+            "feasible",
+            "configs/tx40_robot.toml",
+            "--identified",
+            "tests/fixtures/tx40_identified.json",
+            "--bounds",
+            "tests/fixtures/tx40_bounds.toml",
+            "-o",
+            path.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = robid(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (stderr(&o), std::fs::read_to_string(&path).unwrap())
+    };
+    let unseen = "XX1 XY1 XZ1 YY1 YZ1 MX1 MY1 MZ1 M1 MZ2 M2";
+    let (err, text) = run(&["--prior-weight", "0"], "data_alone.toml");
+    for message in [&err, &text] {
+        assert!(!message.contains("from the prior"), "{message}");
+        assert!(
+            message.contains(&format!(
+                "values that no prior pulls (its weight is 0), so wherever the solver stopped \
+                 within the physical constraints and bounds, not the prior's (a prior weight \
+                 above 0 or --bounds settle them): {unseen}"
+            )),
+            "{message}"
+        );
+    }
+    let (err, text) = run(&[], "default.toml");
+    for message in [&err, &text] {
+        assert!(
+            message.contains(&format!(
+                "values from the prior (the default prior where none is given), or the \
+                 nearest to them that the physical constraints and bounds allow: {unseen}"
+            )),
+            "{message}"
+        );
+        assert!(!message.contains("no prior pulls"), "{message}");
+    }
+}
+
 #[test]
 fn feasible_rejects_an_unknown_method_and_a_foreign_result() {
     let dir = folder();

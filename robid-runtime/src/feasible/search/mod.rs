@@ -631,6 +631,9 @@ fn search(
     }
     let mut solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
     solution.iterations = restarts_run;
+    if let Some(pull) = &objective.pull {
+        solution.unpulled = super::prior::unpulled(problem, pull);
+    }
     for text in options
         .equalities
         .iter()
