@@ -119,7 +119,8 @@ impl std::fmt::Display for Unsized {
                 f,
                 "solid links along the description's segments would need a density of {rho:.1e} \
                  kg/m^3 (more than {MAX_DENSITY:e}) to have the identified inertias: the links \
-                 are too short for them (check the description's lengths, in m), so the default \
+                 are too short for them (check the description's lengths, in m, and give a prismatic \
+                 joint its position limits: its travel sizes its link), so the default \
                  prior's solids have no sensible size"
             ),
         }

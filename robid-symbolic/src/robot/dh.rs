@@ -90,8 +90,14 @@ impl Robot {
     /// origin to frame j+1's, at Rz(gamma_(j+1)) (a_(j+1), -d_(j+1) sin alpha_(j+1),
     /// d_(j+1) cos alpha_(j+1)) + (0, 0, b_(j+1)); the last link of a modified table has
     /// no next joint and runs to the tool frame's origin when the description gives a
-    /// `[tool]`, else its segment has length zero. The default prior of `robid feasible`
-    /// models each link as a solid along this segment.
+    /// `[tool]`, else its segment has length zero. The link of a prismatic joint with
+    /// position limits slides along the joint's axis through its bearing on the previous
+    /// link, so it reaches back along that axis to where the bearing is at the travel's end
+    /// farthest from it (`d_j + q` of the largest size over the limits): standard DH, from
+    /// frame j-1's origin at that travel, (-a_j, -(d_j + q) sin alpha_j, -(d_j + q) cos
+    /// alpha_j); modified DH, from (0, 0, -(d_j + q)) (the Stanford arm's boom, a joint
+    /// travel of 0.2 to 0.9 m, had a segment of length zero, too short for any inertia).
+    /// The default prior of `robid feasible` models each link as a solid along this segment.
     ///
     /// # Errors
     /// A symbol the geometry uses has no value in the description.
@@ -107,33 +113,62 @@ impl Robot {
     /// )?;
     /// let segments = robot.link_segments()?;
     /// assert_eq!(segments[0], [[-0.5, 0.0, 0.0], [0.0, 0.0, 0.0]]);
+    ///
+    /// // a boom sliding 0.2 to 0.9 m along its axis reaches back 0.9 m to its bearing
+    /// let mut boom = Joint::prismatic("0", 0.0, 0.0, "0")?;
+    /// boom.limits.position = Some([0.2, 0.9]);
+    /// let joints = vec![Joint::revolute("0", 0.0, 0.4, "0")?, boom];
+    /// let robot = Robot::new("arm", Convention::Modified, None, joints)?;
+    /// assert_eq!(robot.link_segments()?[1], [[0.0, 0.0, -0.9], [0.0; 3]]);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn link_segments(&self) -> Result<Vec<[[f64; 3]; 2]>, Unbound> {
         let rows = self.numeric_rows()?;
         let tool = self.tool_pose()?;
         let n = rows.len();
+        // how far along its axis a prismatic link reaches back to its bearing: d_j + q at
+        // the end of the travel farthest from it (None: revolute, or no limits to say)
+        let travel = |j: usize| -> Option<f64> {
+            let joint = &self.joints()[j];
+            let [lo, hi] = joint.limits.position?;
+            let d = rows[j][2];
+            (joint.kind == JointKind::Prismatic).then(|| {
+                if (d + lo).abs() > (d + hi).abs() {
+                    d + lo
+                } else {
+                    d + hi
+                }
+            })
+        };
         Ok((0..n)
-            .map(|j| match self.convention {
-                Convention::Standard => {
-                    let [alpha, a, d, ..] = rows[j];
-                    [[-a, -d * alpha.sin(), -d * alpha.cos()], [0.0; 3]]
+            .map(|j| {
+                let from = match (self.convention, travel(j)) {
+                    (Convention::Standard, reach) => {
+                        let [alpha, a, d, ..] = rows[j];
+                        let reach = reach.unwrap_or(d);
+                        [-a, -reach * alpha.sin(), -reach * alpha.cos()]
+                    }
+                    (Convention::Modified, Some(reach)) => [0.0, 0.0, -reach],
+                    (Convention::Modified, None) => [0.0; 3],
+                };
+                match self.convention {
+                    Convention::Standard => [from, [0.0; 3]],
+                    Convention::Modified if j + 1 < n => {
+                        let [alpha, a, d, _, gamma, b] = rows[j + 1];
+                        let p = product(&[
+                            rot_z(gamma),
+                            trans_z(b),
+                            rot_x(alpha),
+                            trans_x(a),
+                            trans_z(d),
+                        ]);
+                        [from, [p[0][3], p[1][3], p[2][3]]]
+                    }
+                    Convention::Modified => match tool {
+                        Some(t) => [from, [t[0][3], t[1][3], t[2][3]]],
+                        None => [from, [0.0; 3]],
+                    },
                 }
-                Convention::Modified if j + 1 < n => {
-                    let [alpha, a, d, _, gamma, b] = rows[j + 1];
-                    let p = product(&[
-                        rot_z(gamma),
-                        trans_z(b),
-                        rot_x(alpha),
-                        trans_x(a),
-                        trans_z(d),
-                    ]);
-                    [[0.0; 3], [p[0][3], p[1][3], p[2][3]]]
-                }
-                Convention::Modified => match tool {
-                    Some(t) => [[0.0; 3], [t[0][3], t[1][3], t[2][3]]],
-                    None => [[0.0; 3]; 2],
-                },
             })
             .collect())
     }
