@@ -768,6 +768,7 @@ mod tests {
             chi2,
             min_eigenvalues: Vec::new(),
             dont_care: Vec::new(),
+            unpulled: Vec::new(),
             violations: Vec::new(),
             unmet: Vec::new(),
             extra_columns: Vec::new(),
