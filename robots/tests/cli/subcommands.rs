@@ -454,9 +454,13 @@ fn bench_json_has_each_program_with_its_ratio() {
         assert!(ns > 0.0 && ratio > 0.0, "{name}: {v}");
         // the flat form scripts read: `inverse_dynamics_ns`, ...
         assert_eq!(v[format!("{name}_ns")].as_f64(), Some(ns), "{name}: {v}");
-        // medians of different batches: equal to a factor of a few under any load
+        // medians of different batches, so not equal: under a loaded machine they were 4
+        // times apart; this catches a ratio or a time in other units (a factor of 1e3)
         let implied = ns / ratio;
-        assert!(implied / base < 4.0 && base / implied < 4.0, "{name}: {v}");
+        assert!(
+            implied / base < 50.0 && base / implied < 50.0,
+            "{name}: {v}"
+        );
     }
     assert!(v["batched_trig_ratio"].as_f64().unwrap() > 0.0, "{v}");
     let o = robid(&["bench", "--robot", "nope"]);
