@@ -13,6 +13,7 @@ mod lstsq;
 pub(crate) use lstsq::condition_number;
 mod observation;
 mod per_axis;
+mod physical;
 mod quality;
 mod result;
 mod rls;
@@ -28,6 +29,9 @@ pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
 pub use link_by_link::{link_by_link, link_by_link_steps};
 pub use observation::Observation;
 pub use per_axis::{AxisFit, PerAxis, per_axis};
+pub use physical::{
+    NOT_PHYSICAL_Z, Sign, SignDefinite, base_signs, extra_column_sign, not_physical, signs_of,
+};
 #[cfg(test)]
 pub(crate) use quality::assess;
 pub(crate) use quality::dominated_columns;

@@ -7,6 +7,8 @@ use std::fmt;
 
 use nalgebra::{DMatrix, DVector};
 
+use crate::Num;
+
 use serde::{Deserialize, Serialize};
 
 /// Condition number of the observation matrix W above which an identification is reported
@@ -107,6 +109,26 @@ pub enum QualityWarning {
         /// Their names.
         parameters: Vec<String>,
     },
+    /// A parameter whose sign every physical robot fixes (a sum of masses, moments of
+    /// inertia, rotor inertias or frictions, derived from its expression:
+    /// [`base_signs`](crate::estimate::base_signs), [`extra_column_sign`](crate::estimate::extra_column_sign)),
+    /// estimated on the other side of zero by more than
+    /// [`NOT_PHYSICAL_Z`](crate::estimate::NOT_PHYSICAL_Z) standard deviations: no physical
+    /// robot has the identified values, so the model or the data are wrong.
+    NotPhysical {
+        /// The parameter.
+        parameter: String,
+        /// Its identified value.
+        value: f64,
+        /// Its standard deviation.
+        std: f64,
+        /// The side of zero every physical robot keeps it on.
+        sign: crate::estimate::Sign,
+        /// What it is: the standard parameters it sums, or an extra column's terms.
+        expression: String,
+        /// Whether it is an extra column of the config.
+        extra_column: bool,
+    },
 }
 
 /// How much worse than the torque model's the energy model's condition number may be
@@ -122,7 +144,8 @@ pub const OUTLIER_SHARE: f64 = 0.9;
 impl QualityWarning {
     /// A short machine-readable name (`ill_conditioned`, `energy_ill_conditioned`,
     /// `uncertain`, `outlier`, `validation_repeats_estimation`, `poor_fit`,
-    /// `joint_without_equations`).
+    /// `joint_without_equations`, `unfiltered_derivatives`, `known_without_effect`,
+    /// `not_physical`).
     pub fn kind(&self) -> &'static str {
         match self {
             QualityWarning::IllConditioned { .. } => "ill_conditioned",
@@ -134,6 +157,7 @@ impl QualityWarning {
             QualityWarning::JointWithoutEquations { .. } => "joint_without_equations",
             QualityWarning::UnfilteredDerivatives { .. } => "unfiltered_derivatives",
             QualityWarning::KnownWithoutEffect { .. } => "known_without_effect",
+            QualityWarning::NotPhysical { .. } => "not_physical",
         }
     }
 
@@ -143,6 +167,7 @@ impl QualityWarning {
             QualityWarning::Uncertain { parameters, .. } => parameters.clone(),
             QualityWarning::Outlier { parameter, .. } => vec![parameter.clone()],
             QualityWarning::KnownWithoutEffect { parameters } => parameters.clone(),
+            QualityWarning::NotPhysical { parameter, .. } => vec![parameter.clone()],
             _ => Vec::new(),
         }
     }
@@ -265,6 +290,41 @@ impl fmt::Display for QualityWarning {
                     },
                     if one { "it" } else { "them" },
                     if one { "it" } else { "them" },
+                )
+            }
+            QualityWarning::NotPhysical {
+                parameter,
+                value,
+                std,
+                sign,
+                expression,
+                extra_column,
+            } => {
+                let what = if *extra_column {
+                    format!(
+                        "its extra column ({expression}) is a friction or an inertia of the \
+                         drives"
+                    )
+                } else {
+                    format!("it is {expression}")
+                };
+                write!(
+                    f,
+                    "`{parameter}` = {} +- {} is {} by {:.1} standard deviations, but {what}, \
+                     which is {} 0 for every physical robot (masses, moments of inertia about \
+                     an axis, rotor inertias and frictions are >= 0): no physical robot has \
+                     these values, and the model or the data are wrong; check the model \
+                     (friction or drive terms it lacks, such as Fv, Fc or Ia per joint, or a \
+                     coupling of the drives) and the data (the torques' units and gear \
+                     ratios, the column order, the sign of each joint's position and torque)",
+                    Num::rounded(*value, 3),
+                    Num::rounded(*std, 3),
+                    sign.forbidden(),
+                    sign.beyond(*value, *std),
+                    match sign {
+                        crate::estimate::Sign::NonNegative => ">=",
+                        crate::estimate::Sign::NonPositive => "<=",
+                    }
                 )
             }
             QualityWarning::ValidationRepeatsEstimation { file } => write!(

@@ -425,7 +425,30 @@ pub fn identify(
     id.estimate
         .warnings
         .extend(super::advice::processing_warnings(config, data)?);
+    let unphysical = not_physical_warnings(model, config, &id.estimate)?;
+    id.estimate.warnings.extend(unphysical);
     Ok(id)
+}
+
+/// The `not_physical` warnings of `estimate`, an identification of `model` with `config`:
+/// each base parameter or extra column whose sign every physical robot fixes, estimated on
+/// the other side of zero by more than [`NOT_PHYSICAL_Z`](crate::estimate::NOT_PHYSICAL_Z)
+/// standard deviations ([`not_physical`](crate::estimate::not_physical)).
+pub(crate) fn not_physical_warnings(
+    model: &dyn Model,
+    config: &Config,
+    estimate: &Estimate,
+) -> Result<Vec<QualityWarning>> {
+    let extra = config
+        .extra_columns_for(model.dof())
+        .map_err(|e| config.locate(e))?;
+    let signs = crate::estimate::signs_of(model, &extra)?;
+    Ok(crate::estimate::not_physical(
+        &estimate.names,
+        &estimate.values,
+        &estimate.std,
+        &signs,
+    ))
 }
 
 /// [`identify`] through the whole observation matrix (every method; the reference of the

@@ -12,7 +12,9 @@ use crate::data::{Config, Dataset, RunMode, joined_with};
 use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation};
 use crate::inspect::CutoffSuggestion;
-use crate::pipeline::identify::{estimated_parameters, observation_counted, rest_cause};
+use crate::pipeline::identify::{
+    estimated_parameters, not_physical_warnings, observation_counted, rest_cause,
+};
 use crate::pipeline::observe::RestCount;
 use crate::pipeline::prepare::samples_needed;
 use crate::pipeline::stream::{stacked_streaming, streams};
@@ -119,11 +121,13 @@ pub fn identify_runs(
             }
         }
         RunMode::Stacked => {
-            let (estimate, prediction) = if streams(config) {
+            let (mut estimate, prediction) = if streams(config) {
                 stacked_streaming(model, runs, config)?
             } else {
                 stacked_dense(model, runs, config)?
             };
+            let unphysical = not_physical_warnings(model, config, &estimate)?;
+            estimate.warnings.extend(unphysical);
             RepeatedIdentification {
                 robot,
                 joint_units: crate::report::joint_units(&config.prismatic, model.dof()),

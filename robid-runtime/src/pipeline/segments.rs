@@ -18,7 +18,7 @@ use crate::Model;
 use crate::data::{Config, Dataset, Loaded, Method, SegmentSpan, Segments};
 use crate::error::{Error, Result};
 use crate::inspect::resolve_cutoff;
-use crate::pipeline::identify::estimated_parameters;
+use crate::pipeline::identify::{estimated_parameters, not_physical_warnings};
 use crate::pipeline::prepare::samples_needed;
 use crate::pipeline::runs::stacked_dense;
 use crate::pipeline::stream::{stacked_streaming, streams};
@@ -237,12 +237,14 @@ pub fn identify_segments(
     } else {
         Cow::Owned(kept.iter().map(|(d, _)| (*d).clone()).collect())
     };
-    let (estimate, mut prediction) = if streams(&config) {
+    let (mut estimate, mut prediction) = if streams(&config) {
         stacked_streaming(model, &sets, &config)
     } else {
         stacked_dense(model, &sets, &config)
     }
     .map_err(|e| in_segment(e, &kept, segments))?;
+    let unphysical = not_physical_warnings(model, &config, &estimate)?;
+    estimate.warnings.extend(unphysical);
     for d in sets.iter() {
         warnings.extend(d.warnings.iter().cloned());
     }

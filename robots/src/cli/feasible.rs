@@ -16,6 +16,7 @@
 use std::path::{Path, PathBuf};
 
 use robid_runtime::Num;
+use robid_runtime::estimate::{QualityWarning, Sign, SignDefinite, base_signs};
 use robid_runtime::feasible::{
     AnnealOptions, Bounds, DEFAULT_PRIOR_WEIGHT, Equality, GravityCoefficients, LinkBounds, Prior,
     Problem, STANDARD_GRAVITY, SdpOptions, SmoothOptions, Solution, Unsized, UrdfJoint,
@@ -317,6 +318,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .map_err(|e| about_identified(&args.identified, e))?;
     // the names agree (else the error names them, or the drive terms): now what they are
     identified.check_expressions(&args.identified, &problem, robot, &args.robot)?;
+    // identified values no physical robot has (a sum of masses, inertias or frictions
+    // below zero beyond its uncertainty): what a result far from the data comes from
+    let unphysical = not_physical(&problem, &names, &values, &std);
     let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {
@@ -450,7 +454,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         out::warn(format_args!("warning: {at}"));
     }
     warn_implausible(args, &solution, prior_given);
-    warn_far_from_the_data(&solution, &problem, args.two_step);
+    warn_far_from_the_data(&solution, &problem, args.two_step, &unphysical);
     Ok(())
 }
 
@@ -471,13 +475,54 @@ fn warn_implausible(args: &Args, solution: &Solution, prior_given: bool) {
 }
 
 /// A base parameter reproduced this many standard deviations from its identified value
-/// is one the result does not fit: the bounds, the prior or the method overrule the data.
+/// is one the result does not fit: the bounds, the prior or the method overrule the data,
+/// unless the identified values themselves are not physical ([`not_physical`]).
 const FAR: f64 = 10.0;
+
+/// The identified base parameters (`names`, `values`, `std`) whose sign every physical
+/// robot fixes, by `problem`'s K, and that lie on the other side of zero by more than
+/// three standard deviations (`robid identify`'s `not_physical` warnings). The free terms
+/// (extra columns, of any sign in the problem) are not judged.
+fn not_physical(
+    problem: &Problem,
+    names: &[String],
+    values: &[f64],
+    std: &[f64],
+) -> Vec<QualityWarning> {
+    // a free term's name may read as a drive term (`Fv1`): it is not one here
+    let standard: Vec<String> = problem
+        .standard_names
+        .iter()
+        .enumerate()
+        .map(|(s, n)| {
+            if problem.layout.extra.contains(&s) {
+                String::new()
+            } else {
+                n.clone()
+            }
+        })
+        .collect();
+    let signs: Vec<(String, SignDefinite)> = problem
+        .base_names
+        .iter()
+        .zip(base_signs(&problem.k, &standard))
+        .filter_map(|(n, s)| Some((n.clone(), s?)))
+        .collect();
+    robid_runtime::estimate::not_physical(names, values, std, &signs)
+}
 
 /// Warns when the result reproduces a base parameter more than [`FAR`] standard
 /// deviations from its identified value, naming the worst (a two-step extraction that
-/// held a mass the gravity coefficients leave free gave max |z| 435, silently).
-fn warn_far_from_the_data(solution: &Solution, problem: &Problem, two_step: bool) {
+/// held a mass the gravity coefficients leave free gave max |z| 435, silently). When
+/// identified values are not physical (`unphysical`, [`not_physical`]), no consistent
+/// parameters are near them whatever the bounds, prior or method: the warning names them
+/// and points at the identification's model and data instead.
+fn warn_far_from_the_data(
+    solution: &Solution,
+    problem: &Problem,
+    two_step: bool,
+    unphysical: &[QualityWarning],
+) {
     let Some((k, z)) = solution
         .normalized_residual
         .iter()
@@ -490,6 +535,20 @@ fn warn_far_from_the_data(solution: &Solution, problem: &Problem, two_step: bool
         return;
     }
     let name = problem.base_names.get(k).map_or("?", String::as_str);
+    if let Some(text) = not_physical_text(unphysical) {
+        out::warn(format_args!(
+            "warning: the result is {:.0} standard deviations from the identified `{name}` (max \
+             |z|; |z| <= 3 fits the data), because the identified values themselves are not \
+             physical: {text}. No physically consistent parameters come near them, whatever \
+             the bounds, the prior or the method: fix the identification first (robid \
+             identify warns of the same, `not_physical`): check its model (friction or drive \
+             terms it lacks, such as Fv, Fc or Ia per joint, or a coupling of the drives) and \
+             its data (the torques' units and gear ratios, the column order, the sign of each \
+             joint's position and torque)",
+            z.abs()
+        ));
+        return;
+    }
     out::warn(format_args!(
         "warning: the result is {:.0} standard deviations from the identified `{name}` (max \
          |z|; |z| <= 3 fits the data): the bounds, the prior{} overrule the data there; check \
@@ -501,6 +560,41 @@ fn warn_far_from_the_data(solution: &Solution, problem: &Problem, two_step: bool
             " or the method"
         }
     ));
+}
+
+/// The identified values of `unphysical` in words: "`ZZ7` = -0.212 +- 0.00513 (41.4
+/// standard deviations below 0, though ZZ7 is >= 0 for every physical robot); ..."; `None`
+/// when there are none.
+fn not_physical_text(unphysical: &[QualityWarning]) -> Option<String> {
+    let parts: Vec<String> = unphysical
+        .iter()
+        .filter_map(|w| match w {
+            QualityWarning::NotPhysical {
+                parameter,
+                value,
+                std,
+                sign,
+                expression,
+                ..
+            } => Some(format!(
+                "`{parameter}` = {} +- {} ({:.1} standard deviations {} 0, though {expression} \
+                 is {} 0 for every physical robot)",
+                Num::rounded(*value, 3),
+                Num::rounded(*std, 3),
+                sign.beyond(*value, *std),
+                match sign {
+                    Sign::NonNegative => "below",
+                    Sign::NonPositive => "above",
+                },
+                match sign {
+                    Sign::NonNegative => ">=",
+                    Sign::NonPositive => "<=",
+                },
+            )),
+            _ => None,
+        })
+        .collect();
+    (!parts.is_empty()).then(|| parts.join("; "))
 }
 
 /// Where the default prior cannot size the links ([`Unsized`]), the links it would settle
