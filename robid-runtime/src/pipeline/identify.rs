@@ -651,7 +651,11 @@ pub(crate) fn identify_dense_of(
     config: &Config,
 ) -> Result<Identification> {
     let rows = checked_prepare(model, data, config, Rows::Estimation)?;
-    identify_dense(model, data, config, rows)
+    let mut id = identify_dense(model, data, config, rows)?;
+    // as `identify` judges every estimate
+    let unphysical = not_physical_warnings(model, config, &id.estimate)?;
+    id.estimate.warnings.extend(unphysical);
+    Ok(id)
 }
 
 /// [`validate`] through the whole observation matrix: the reference of the streaming
