@@ -10,10 +10,9 @@ use std::path::Path;
 
 use common::{folder, robid, robid_in, stderr, stdout};
 
-/// A smooth six-joint trajectory `t,q1..,qd1..,qdd1..` of 20 s at 100 Hz (sines of
+/// A smooth trajectory of `n` joints `t,q1..,qd1..,qdd1..` of 20 s at 100 Hz (sines of
 /// amplitudes 0.6 to 1.1 rad).
-fn trajectory(dir: &Path) -> String {
-    let n = 6;
+fn trajectory(dir: &Path, n: usize) -> String {
     let mut text = String::from("t");
     for prefix in ["q", "qd", "qdd"] {
         for j in 1..=n {
@@ -25,7 +24,11 @@ fn trajectory(dir: &Path) -> String {
         let t = k as f64 / 100.0;
         let (mut q, mut qd, mut qdd) = (Vec::new(), Vec::new(), Vec::new());
         for j in 0..n {
-            let (a, w, p) = (0.6 + 0.1 * j as f64, 0.9 + 0.37 * j as f64, 0.7 * j as f64);
+            let (a, w, p) = (
+                0.6 + 0.1 * (j % 6) as f64,
+                0.9 + 0.37 * j as f64,
+                0.7 * j as f64,
+            );
             q.push(a * (w * t + p).sin());
             qd.push(a * w * (w * t + p).cos());
             qdd.push(-a * w * w * (w * t + p).sin());
@@ -39,7 +42,7 @@ fn trajectory(dir: &Path) -> String {
         text.push_str(&row.join(","));
         text.push('\n');
     }
-    let path = dir.join("trajectory.csv");
+    let path = dir.join(format!("trajectory{n}.csv"));
     std::fs::write(&path, text).unwrap();
     path.display().to_string()
 }
@@ -92,7 +95,7 @@ fn not_physical(json: &Path) -> Vec<String> {
 fn a_torque_of_the_opposite_sign_gives_rotor_inertia_and_friction_below_zero() {
     let dir = folder();
     let d = dir.path();
-    let trajectory = trajectory(d);
+    let trajectory = trajectory(d, 6);
     let data = d.join("data.csv").display().to_string();
     let robot = "descriptions/kr6r900.toml";
     let o = robid(&[
@@ -140,6 +143,55 @@ fn a_torque_of_the_opposite_sign_gives_rotor_inertia_and_friction_below_zero() {
         "the sign of each joint's position and torque",
     ] {
         assert!(e.contains(part), "{part}: {e}");
+    }
+}
+
+/// The reference robots simulated from their parameter files with every drive term (the
+/// UR5e without: its file has none), torque noise 0.2 N m: their fits warn of nothing
+/// unphysical.
+#[test]
+fn the_reference_robots_fits_warn_of_nothing_unphysical() {
+    let dir = folder();
+    let d = dir.path();
+    for (robot, joints, drive) in [
+        ("ur5e", 6, "none"),
+        ("rx90", 6, "Ia,Fv,Fc,Fo"),
+        ("puma560", 6, "Ia,Fv,Fc,Fo"),
+        ("tx40", 6, "Ia,Fv,Fc,Fo"),
+        ("lwr4", 7, "Ia,Fv,Fc,Fo"),
+        ("panda", 7, "Ia,Fv,Fc,Fo"),
+    ] {
+        let trajectory = trajectory(d, joints);
+        let description = format!("descriptions/{robot}.toml");
+        let data = d.join(format!("{robot}.csv")).display().to_string();
+        let o = robid(&[
+            "simulate",
+            &description,
+            "--drive",
+            drive,
+            "--parameters",
+            &format!("parameters/{robot}.toml"),
+            "--trajectory",
+            &trajectory,
+            "--torque-noise",
+            "0.2",
+            "-o",
+            &data,
+        ]);
+        assert!(o.status.success(), "{robot}: {}", stderr(&o));
+        let json = d.join(format!("{robot}.json"));
+        let o = robid(&[
+            "identify",
+            &description,
+            "--drive",
+            drive,
+            "--data",
+            &data,
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{robot}: {}", stderr(&o));
+        assert!(not_physical(&json).is_empty(), "{robot}: {}", stderr(&o));
     }
 }
 
