@@ -47,6 +47,9 @@ pub const NOT_PHYSICAL_Z: f64 = 3.0;
 /// with a deviation ten times smaller) and never reported.
 const ROUNDING_VALUE: f64 = 1e-9;
 
+/// The most joints an extra column is judged for ([`extra_column_sign`]).
+const MAX_JOINTS: usize = 1000;
+
 /// The side of zero every physical robot keeps a parameter on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -313,6 +316,11 @@ pub fn extra_column_sign(column: &ExtraColumn) -> Option<SignDefinite> {
         .iter()
         .flat_map(|t| t.joints.iter().copied().chain([t.row]))
         .max()?;
+    // a column checked against its model has rows and joints up to the model's joints; one
+    // numbered beyond any arm is judged of no sign rather than given matrices of its size
+    if n > MAX_JOINTS {
+        return None;
+    }
     // velocity and acceleration matrices (link side, rotor side): row r, joint j
     let mut velocity: [DMatrix<f64>; 2] = [DMatrix::zeros(n, n), DMatrix::zeros(n, n)];
     let mut acceleration: [DMatrix<f64>; 2] = [DMatrix::zeros(n, n), DMatrix::zeros(n, n)];
