@@ -92,15 +92,8 @@ impl KnownParameters {
         model.base_from_standard_into(&theta, offset.as_mut_slice())?;
         // the columns of K for the unknown standard parameters
         let unknown: Vec<usize> = (0..ns).filter(|&i| !is_known[i]).collect();
-        let mut k_u = DMatrix::zeros(nb, unknown.len());
-        let mut unit = vec![0.0; ns];
-        let mut column = vec![0.0; nb];
-        for (c, &i) in unknown.iter().enumerate() {
-            unit[i] = 1.0;
-            model.base_from_standard_into(&unit, &mut column)?;
-            unit[i] = 0.0;
-            k_u.column_mut(c).copy_from_slice(&column);
-        }
+        let k = crate::model::base_map(model)?;
+        let k_u = k.select_columns(&unknown);
         if let Some(i) = offset.iter().chain(k_u.iter()).position(|v| !v.is_finite()) {
             return Err(Error::NonFiniteResult {
                 what: format!("the base parameters of the known values (entry {i})"),
@@ -125,10 +118,7 @@ impl KnownParameters {
         });
         let mut idle = Vec::new();
         for &(i, _) in known {
-            unit[i] = 1.0;
-            model.base_from_standard_into(&unit, &mut column)?;
-            unit[i] = 0.0;
-            let mut rest = DVector::from_column_slice(&column);
+            let mut rest = k.column(i).into_owned();
             let size = rest.norm();
             for u in &span {
                 let along = u.dot(&rest);

@@ -443,21 +443,7 @@ pub fn extra_column_sign(column: &ExtraColumn) -> Option<SignDefinite> {
 /// # Ok(()) }
 /// ```
 pub fn signs_of(model: &dyn Model, extra: &[ExtraColumn]) -> Result<Vec<(String, SignDefinite)>> {
-    let (ns, nb) = (
-        model.standard_parameter_count(),
-        model.base_parameter_count(),
-    );
-    let mut k = DMatrix::zeros(nb, ns);
-    let mut unit = vec![0.0; ns];
-    let mut column = vec![0.0; nb];
-    for s in 0..ns {
-        unit[s] = 1.0;
-        model.base_from_standard_into(&unit, &mut column)?;
-        unit[s] = 0.0;
-        for (b, v) in column.iter().enumerate() {
-            k[(b, s)] = *v;
-        }
-    }
+    let k = crate::model::base_map(model)?;
     let standard = crate::model::standard_parameter_names(model);
     let base = crate::model::base_parameter_names(model);
     let mut out: Vec<(String, SignDefinite)> = base

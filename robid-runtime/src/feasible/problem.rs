@@ -115,17 +115,7 @@ impl Problem {
 
     /// The problem of a model: K is read column by column from `base_from_standard`.
     pub fn from_model(model: &dyn Model) -> Result<Problem> {
-        let ns = model.standard_parameter_count();
-        let nb = model.base_parameter_count();
-        let mut k = DMatrix::zeros(nb, ns);
-        let mut unit = vec![0.0; ns];
-        let mut column = vec![0.0; nb];
-        for s in 0..ns {
-            unit[s] = 1.0;
-            model.base_from_standard_into(&unit, &mut column)?;
-            unit[s] = 0.0;
-            k.set_column(s, &DVector::from_column_slice(&column));
-        }
+        let k = crate::model::base_map(model)?;
         let standard = crate::model::standard_parameter_names(model);
         let base = crate::model::base_parameter_names(model);
         Problem::new(standard, base, k)

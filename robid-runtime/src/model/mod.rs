@@ -316,6 +316,28 @@ pub fn base_parameter_names<M: Model + ?Sized>(model: &M) -> Vec<String> {
         .collect()
 }
 
+/// `model`'s map from standard to base parameters as a matrix K (`base = K standard`,
+/// base x standard), read column by column from
+/// [`base_from_standard_into`](Model::base_from_standard_into).
+///
+/// # Errors
+/// The model's map refuses the lengths it states itself (a model in error).
+#[cfg(feature = "std")]
+pub fn base_map<M: Model + ?Sized>(model: &M) -> Result<nalgebra::DMatrix<f64>, LengthError> {
+    let (ns, nb) = (
+        model.standard_parameter_count(),
+        model.base_parameter_count(),
+    );
+    let mut k = nalgebra::DMatrix::zeros(nb, ns);
+    let mut unit = vec![0.0; ns];
+    for s in 0..ns {
+        unit[s] = 1.0;
+        model.base_from_standard_into(&unit, k.column_mut(s).as_mut_slice())?;
+        unit[s] = 0.0;
+    }
+    Ok(k)
+}
+
 /// The standard parameter names of `model`, in order.
 #[cfg(feature = "std")]
 pub fn standard_parameter_names<M: Model + ?Sized>(model: &M) -> Vec<String> {
