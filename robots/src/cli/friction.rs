@@ -218,6 +218,15 @@ fn no_friction(number: usize, fit: &FrictionFit) -> Option<String> {
 
 /// The printed table: the source of tau_J and T, then per joint the parameters, the
 /// residuals and what was held fixed.
+/// A standard deviation relative to its value, ` (1.2 %)`; nothing for a value of 0.
+fn relative(std: f64, value: f64) -> String {
+    if value == 0.0 {
+        String::new()
+    } else {
+        format!(" ({} %)", Num::rounded(100.0 * std / value.abs(), 2))
+    }
+}
+
 fn table(fits: &[FrictionFit], source: JointTorqueSource, temperature: bool) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -236,6 +245,11 @@ fn table(fits: &[FrictionFit], source: JointTorqueSource, temperature: bool) -> 
              to identify them)"
         );
     }
+    let _ = writeln!(
+        s,
+        "+- one standard deviation, for independent residuals (samples of a filtered log are \
+         correlated: read them as lower bounds)"
+    );
     for (j, fit) in fits.iter().enumerate() {
         let f = &fit.friction;
         let _ = writeln!(
@@ -256,8 +270,12 @@ fn table(fits: &[FrictionFit], source: JointTorqueSource, temperature: bool) -> 
             f.viscous_temperature,
         ];
         for (p, v) in FrictionParameter::ALL.into_iter().zip(values) {
-            let held = if fit.is_fixed(p) { "  (held)" } else { "" };
-            let _ = writeln!(s, "  {:<22}{v:>14.6e}{held}", p.name());
+            let spread = match fit.std_dev_of(p) {
+                _ if fit.is_fixed(p) => "  (held)".to_owned(),
+                Some(std) => format!("  +- {std:.2e}{}", relative(std, v)),
+                None => "  +- (not determined)".to_owned(),
+            };
+            let _ = writeln!(s, "  {:<22}{v:>14.6e}{spread}", p.name());
         }
         let _ = writeln!(
             s,

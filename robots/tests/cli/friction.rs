@@ -175,6 +175,17 @@ fn recovers_the_friction_of_a_two_encoder_log() {
         "{text}"
     );
     assert!(text.contains("joint_torque columns"), "{text}");
+    // each estimated parameter with its standard deviation, a positive number
+    let coulomb: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("  coulomb "))
+        .collect();
+    assert_eq!(coulomb.len(), 2, "{text}");
+    for line in coulomb {
+        let std = line.split("+- ").nth(1).and_then(|r| r.split(' ').next());
+        let std: f64 = std.and_then(|v| v.parse().ok()).expect(line);
+        assert!(std > 0.0 && std.is_finite(), "{line}");
+    }
     let fitted = FrictionModel::read(&out).unwrap();
     let e = curve_error(&fitted, &truth(), [30.0, 50.0]);
     // measured 4.0e-4 of the largest friction (the residual's RMS is 5e-3 N m, from the

@@ -152,6 +152,14 @@ pub struct FrictionFit {
     pub samples: usize,
     /// The parameters held fixed, each with its reason (empty: all seven estimated).
     pub fixed: Vec<FixedParameter>,
+    /// The standard deviation of each parameter, in the order of [`FrictionParameter::ALL`]
+    /// and in its unit: `sqrt(diag(s^2 (J'J)^-1))` at the fit, `J` the model's Jacobian in
+    /// the estimated parameters, `s^2` the residuals' sum of squares over the samples less
+    /// the parameters estimated (`ws` by the delta method from `ln ws`). `None` for a
+    /// parameter held fixed, or for all when the samples are no more than the parameters or
+    /// `J'J` is singular. They assume independent residuals: samples from a filtered log
+    /// are correlated, so read them as lower bounds.
+    pub std_dev: [Option<f64>; PARAMETERS],
     /// Trust-region iterations used.
     pub iterations: usize,
 }
@@ -160,6 +168,11 @@ impl FrictionFit {
     /// Whether `parameter` was held fixed.
     pub fn is_fixed(&self, parameter: FrictionParameter) -> bool {
         self.fixed.iter().any(|f| f.parameter == parameter)
+    }
+
+    /// The standard deviation of `parameter` (see [`FrictionFit::std_dev`]).
+    pub fn std_dev_of(&self, parameter: FrictionParameter) -> Option<f64> {
+        self.std_dev[parameter.index()]
     }
 }
 
@@ -417,6 +430,7 @@ pub fn identify_friction(
             cause: "the samples are too large for the model; check their units".into(),
         });
     }
+    let std_dev = standard_deviations(samples, &friction, &x, &fixed, &residuals);
     // the ln ws of a fixed Stribeck velocity is reported as the velocity
     for f in &mut fixed {
         if f.parameter == FrictionParameter::StribeckVelocity {
@@ -430,7 +444,55 @@ pub fn identify_friction(
         samples: samples.len(),
         fixed,
         iterations,
+        std_dev,
     })
+}
+
+/// The standard deviations of the parameters not in `fixed` at the fit `x` (see
+/// [`FrictionFit::std_dev`]).
+fn standard_deviations(
+    samples: &[FrictionSample],
+    friction: &JointFriction,
+    x: &[f64; PARAMETERS],
+    fixed: &[FixedParameter],
+    residuals: &[f64],
+) -> [Option<f64>; PARAMETERS] {
+    let mut out = [None; PARAMETERS];
+    let free: Vec<usize> = (0..PARAMETERS)
+        .filter(|&i| !fixed.iter().any(|f| f.parameter.index() == i))
+        .collect();
+    let Some(dof) = samples.len().checked_sub(free.len()).filter(|&d| d > 0) else {
+        return out;
+    };
+    let mut gram = DMatrix::<f64>::zeros(free.len(), free.len());
+    for s in samples {
+        let (_, gradient) = model_row(friction, s);
+        for (a, &i) in free.iter().enumerate() {
+            for (b, &k) in free.iter().enumerate() {
+                gram[(a, b)] += gradient[i] * gradient[k];
+            }
+        }
+    }
+    // the unit-diagonal scaling keeps the Cholesky test about the columns' directions, not
+    // their units (Fc in N m against kc in 1/K)
+    let scale: Vec<f64> = (0..free.len()).map(|a| gram[(a, a)].sqrt()).collect();
+    if scale.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+        return out;
+    }
+    let scaled = DMatrix::from_fn(free.len(), free.len(), |a, b| {
+        gram[(a, b)] / (scale[a] * scale[b])
+    });
+    let Some(inverse) = scaled.cholesky().map(|c| c.inverse()) else {
+        return out;
+    };
+    let s2 = residuals.iter().map(|r| r * r).sum::<f64>() / dof as f64;
+    for (a, &i) in free.iter().enumerate() {
+        let std = (s2 * inverse[(a, a)]).sqrt() / scale[a];
+        // ws = exp(ln ws): d ws = ws d ln ws
+        let std = if i == 3 { std * x[3].exp() } else { std };
+        out[i] = std.is_finite().then_some(std);
+    }
+    out
 }
 
 /// The smallest and largest of `values`.
@@ -793,6 +855,70 @@ mod tests {
         );
         // one curve, two parametrisations: measured 5.6e-11 N m apart (the fits' convergence)
         assert!((a - b).abs() < 1.1e-10, "{a} vs {b}");
+    }
+
+    /// The standard deviations the fit reports are those of its estimates: over 60 noise
+    /// draws of one design, each parameter's spread across the draws matches the mean
+    /// reported standard deviation, and the truth lies within 4.5 of them in every draw.
+    #[test]
+    fn standard_deviations_are_the_spread_of_the_estimates() {
+        let truth = truth();
+        let want = variables(&truth);
+        let options = FrictionFitOptions {
+            reference_temperature: Some(35.0),
+            ..Default::default()
+        };
+        const DRAWS: usize = 60;
+        let mut estimates = vec![[0.0; PARAMETERS]; DRAWS];
+        let mut reported = [0.0; PARAMETERS];
+        for (draw, estimate) in estimates.iter_mut().enumerate() {
+            // one design (seed 3), a fresh noise of 0.05 N m per draw
+            let mut samples = synthetic(&truth, 600, 0.0, 3);
+            let mut noise = Rng::new(1000 + draw as u64);
+            for s in &mut samples {
+                s.friction += 0.05 * noise.normal();
+            }
+            let fit = identify_friction(&samples, &options).unwrap();
+            assert!(fit.fixed.is_empty(), "draw {draw}: {:?}", fit.fixed);
+            let got = [
+                fit.friction.coulomb,
+                fit.friction.load,
+                fit.friction.stribeck,
+                fit.friction.stribeck_velocity,
+                fit.friction.viscous,
+                fit.friction.coulomb_temperature,
+                fit.friction.viscous_temperature,
+            ];
+            for p in FrictionParameter::ALL {
+                let i = p.index();
+                let std = fit.std_dev_of(p).unwrap();
+                let exact = if i == 3 { want[3].exp() } else { want[i] };
+                assert!(
+                    (got[i] - exact).abs() < 4.5 * std,
+                    "draw {draw}: {} = {} against {exact}, std {std}",
+                    p.name(),
+                    got[i]
+                );
+                reported[i] += std / DRAWS as f64;
+            }
+            *estimate = got;
+        }
+        for p in FrictionParameter::ALL {
+            let i = p.index();
+            let mean = estimates.iter().map(|e| e[i]).sum::<f64>() / DRAWS as f64;
+            let spread = (estimates.iter().map(|e| (e[i] - mean).powi(2)).sum::<f64>()
+                / (DRAWS - 1) as f64)
+                .sqrt();
+            // 60 draws know a spread to about 9 %: 0.7..1.4 is beyond 3.5 of that (measured
+            // 0.90 for Fv to 1.12 for Fl)
+            let ratio = spread / reported[i];
+            assert!(
+                (0.7..1.4).contains(&ratio),
+                "{}: spread {spread} against a reported {} (ratio {ratio})",
+                p.name(),
+                reported[i]
+            );
+        }
     }
 
     #[test]
