@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # System packages the build needs: OpenBLAS (shared, with LAPACK) for clarabel's
-# semidefinite cones (robid-runtime's `feasible` module with the `sdp` feature,
-# docs/experiments.md#semidefinite-program).
+# semidefinite cones (the robid-sdp crate with its `clarabel` feature, which robots' and
+# tests' `sdp` features turn on; docs/experiments.md#semidefinite-program).
 # Idempotent: installs only what is missing; does nothing when all is present.
 set -euo pipefail
 

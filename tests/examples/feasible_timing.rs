@@ -52,9 +52,11 @@ fn report(label: &str, method: &str, s: &Solution) {
 #[cfg(feature = "sdp")]
 fn convex(label: &str, problem: &Problem, bounds: &Bounds, w: &DMatrix<f64>, y: &DVector<f64>) {
     use robid_runtime::feasible::{SdpOptions, consistent_least_squares, solve_sdp};
-    let s = solve_sdp(problem, bounds, &SdpOptions::default()).unwrap();
+    use robid_sdp::Clarabel;
+    let s = solve_sdp(problem, bounds, &SdpOptions::default(), &Clarabel).unwrap();
     report(label, "sdp projection", &s);
-    let s = consistent_least_squares(problem, w, y, bounds, &SdpOptions::default()).unwrap();
+    let s =
+        consistent_least_squares(problem, w, y, bounds, &SdpOptions::default(), &Clarabel).unwrap();
     report(label, "consistent least squares", &s);
 }
 

@@ -1,18 +1,64 @@
-//! The semidefinite program of `sdp.rs` written for Clarabel: rows of
-//! `A x + s = b` with `s` in a product of cones (zero, nonnegative, second-order
-//! and PSD cones), solved by Clarabel's interior-point method.
+//! The semidefinite program of `sdp.rs` as rows of `A x + s = b` with `s` in a product of
+//! cones (zero, nonnegative, second-order and PSD cones), for any [`ConicSolver`]: the
+//! program is built here, the solver (Clarabel, which needs OpenBLAS) lives in the
+//! `robid-sdp` crate, so that choosing it rebuilds that small crate, not this one.
 
-use crate::FeasibleError;
-use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
-};
 use nalgebra::{DMatrix, DVector};
 
 use super::bounds::Bounds;
 use super::prior::Pull;
 use super::problem::Problem;
-use crate::{Error, Result};
+use crate::{Error, FeasibleError, Result};
+
+/// A cone of a [`ConicProgram`]'s rows, in order, with its number of rows (its dimension
+/// for a PSD cone).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cone {
+    /// `s = 0`: equalities.
+    Zero(usize),
+    /// `s >= 0`.
+    Nonnegative(usize),
+    /// `s_0 >= ||s_1..||`, of this many rows.
+    SecondOrder(usize),
+    /// The upper triangle of a symmetric `n x n` positive semidefinite matrix, column by
+    /// column, the off-diagonal entries times `sqrt 2` (`n (n + 1) / 2` rows).
+    PsdTriangle(usize),
+}
+
+/// `min q'x` subject to `A x + s = b`, `s` in the product of `cones` (rows in order); `A`
+/// by its nonzero entries.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConicProgram {
+    /// The number of variables (the columns of `A`, the length of `q`).
+    pub variables: usize,
+    /// The row of each nonzero entry of `A`.
+    pub rows: Vec<usize>,
+    /// The column of each nonzero entry of `A`.
+    pub columns: Vec<usize>,
+    /// The nonzero entries of `A`.
+    pub values: Vec<f64>,
+    /// `b`, one entry per row.
+    pub b: Vec<f64>,
+    /// The linear objective.
+    pub q: Vec<f64>,
+    /// The cones of the rows, in order.
+    pub cones: Vec<Cone>,
+}
+
+/// Why a [`ConicSolver`] gives no solution.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConicFailure {
+    /// The constraints exclude every point.
+    Infeasible,
+    /// The solver stopped without a solution, for this reason.
+    Stopped(String),
+}
+
+/// A solver of [`ConicProgram`]s: the `robid-sdp` crate's Clarabel.
+pub trait ConicSolver: std::fmt::Debug {
+    /// The optimal `x` of `program`.
+    fn solve(&self, program: &ConicProgram) -> std::result::Result<Vec<f64>, ConicFailure>;
+}
 
 /// Rows of `A x + s = b, s in K`, with the cones in order.
 struct Conic {
@@ -20,7 +66,7 @@ struct Conic {
     j: Vec<usize>,
     v: Vec<f64>,
     b: Vec<f64>,
-    cones: Vec<SupportedConeT<f64>>,
+    cones: Vec<Cone>,
 }
 
 impl Conic {
@@ -56,14 +102,15 @@ pub(super) fn solve(
     a: &DMatrix<f64>,
     b: &DVector<f64>,
     pull: &Pull,
+    solver: &dyn ConicSolver,
 ) -> Result<Vec<f64>> {
-    let p = solve_stage(problem, bounds, a, b, pull, None)?;
+    let p = solve_stage(problem, bounds, a, b, pull, None, solver)?;
     let no_effect = problem.no_effect();
     if no_effect.is_empty() {
         return Ok(p);
     }
     // A failure here (numerical) keeps the first solution, which is feasible.
-    Ok(solve_stage(problem, bounds, a, b, pull, Some((&p, &no_effect))).unwrap_or(p))
+    Ok(solve_stage(problem, bounds, a, b, pull, Some((&p, &no_effect)), solver).unwrap_or(p))
 }
 
 /// One conic program. With `settle = Some((p, free))`, every parameter outside `free` is
@@ -75,6 +122,7 @@ fn solve_stage(
     b: &DVector<f64>,
     pull: &Pull,
     settle: Option<(&[f64], &[usize])>,
+    solver: &dyn ConicSolver,
 ) -> Result<Vec<f64>> {
     let margin = bounds.margin_for(&problem.layout, Some(&pull.target))?;
     let layout = &problem.layout;
@@ -107,7 +155,7 @@ fn solve_stage(
             c.row(&[(s, -sw / scale[s])], -sw * p0[s] / scale[s]);
         }
         let soc = c.b.len();
-        c.cones.push(SupportedConeT::SecondOrderConeT(soc));
+        c.cones.push(Cone::SecondOrder(soc));
         let before = c.b.len();
         for (s, v) in fixed.iter().enumerate() {
             if !free.contains(&s) {
@@ -116,7 +164,7 @@ fn solve_stage(
         }
         let zero = c.b.len() - before;
         if zero > 0 {
-            c.cones.push(SupportedConeT::ZeroConeT(zero));
+            c.cones.push(Cone::Zero(zero));
         }
     } else {
         for r in 0..a.nrows() {
@@ -128,7 +176,7 @@ fn solve_stage(
             c.row(&[(s, -sw / scale[s])], -sw * p0[s] / scale[s]);
         }
         let soc = c.b.len();
-        c.cones.push(SupportedConeT::SecondOrderConeT(soc));
+        c.cones.push(Cone::SecondOrder(soc));
     }
 
     // Linear bounds.
@@ -158,7 +206,7 @@ fn solve_stage(
     }
     let linear = c.b.len() - before;
     if linear > 0 {
-        c.cones.push(SupportedConeT::NonnegativeConeT(linear));
+        c.cones.push(Cone::Nonnegative(linear));
     }
 
     // Pseudo-inertia LMIs, upper triangle column by column, off-diagonals times sqrt(2).
@@ -181,37 +229,34 @@ fn solve_stage(
             let neg: Vec<(usize, f64)> = coef.iter().map(|&(j, v)| (j, -v)).collect();
             c.row(&neg, if diagonal { -margin } else { 0.0 });
         }
-        c.cones.push(SupportedConeT::PSDTriangleConeT(4));
+        c.cones.push(Cone::PsdTriangle(4));
     }
 
-    let n = ns + 1;
-    let a_mat = CscMatrix::new_from_triplets(c.b.len(), n, c.i, c.j, c.v);
-    let p_mat = CscMatrix::<f64>::zeros((n, n));
-    let mut q = vec![0.0; n];
+    let mut q = vec![0.0; ns + 1];
     q[t] = 1.0;
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .max_iter(400)
-        .build()
-        .map_err(|e| {
-            Error::Feasible(FeasibleError::NoFeasibleParameters {
-                reason: format!("solver settings: {e}"),
-            })
-        })?;
-    let mut solver =
-        DefaultSolver::new(&p_mat, &q, &a_mat, &c.b, &c.cones, settings).map_err(|e| {
-            Error::Feasible(FeasibleError::NoFeasibleParameters {
-                reason: format!("solver setup: {e:?}"),
-            })
-        })?;
-    solver.solve();
-    match solver.solution.status {
-        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(solver.solution.x[..ns].to_vec()),
-        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
+    let program = ConicProgram {
+        variables: ns + 1,
+        rows: c.i,
+        columns: c.j,
+        values: c.v,
+        b: c.b,
+        q,
+        cones: c.cones,
+    };
+    match solver.solve(&program) {
+        Ok(x) if x.len() == ns + 1 => Ok(x[..ns].to_vec()),
+        Ok(x) => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
+            reason: format!(
+                "the conic solver gave {} values for {} variables",
+                x.len(),
+                ns + 1
+            ),
+        })),
+        Err(ConicFailure::Infeasible) => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
             reason: "the bounds and the physical-consistency constraints exclude every solution; widen the mass or centre-of-mass bounds, the total-mass range, or lower the margin".to_owned(),
         })),
-        other => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
-            reason: format!("the conic solver stopped with status {other:?}; check the bounds' scale (kg, m, kg m^2)"),
+        Err(ConicFailure::Stopped(why)) => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
+            reason: format!("the conic solver stopped: {why}; check the bounds' scale (kg, m, kg m^2)"),
         })),
     }
 }

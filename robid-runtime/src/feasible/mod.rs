@@ -18,8 +18,9 @@
 //!   pseudo-inertia (Rucker and Wensing's parametrisation without its logarithms), every
 //!   point consistent, by argmin's trust-region Newton method; the same optimum, slower
 //!   where it lies on the boundary of the consistent set.
-//! - [`solve_sdp`]: the same fit as a semidefinite program solved with Clarabel (feature
-//!   `sdp`, needs OpenBLAS); [`consistent_least_squares`] applies the same constraints
+//! - [`solve_sdp`]: the same fit as a semidefinite program ([`ConicProgram`]) for a
+//!   [`ConicSolver`] (the `robid-sdp` crate's Clarabel, which needs OpenBLAS);
+//!   [`consistent_least_squares`] applies the same constraints
 //!   directly to the least-squares fit on data.
 //! - [`solve_anneal`]: the method of Gaz, Flacco, De Luca ("Extracting feasible robot
 //!   parameters from dynamic coefficients using nonlinear optimization methods", ICRA 2016):
@@ -32,15 +33,9 @@
 //! Bounds come from TOML ([`Bounds`]); the result ([`Solution`]) is written as TOML or as
 //! a complete URDF robot ([`to_toml`], [`to_urdf`]).
 
-// Clarabel's BLAS and LAPACK symbols: the system OpenBLAS (it holds LAPACK too).
-#[cfg(feature = "sdp")]
-#[link(name = "openblas")]
-unsafe extern "C" {}
-
 mod bounds;
 mod centre;
 mod cholesky;
-#[cfg(feature = "sdp")]
 mod conic;
 mod error;
 #[cfg(test)]
@@ -60,6 +55,7 @@ mod solution;
 
 pub use bounds::{Bounds, DEFAULT_MARGIN, LinkBounds, MIN_LINK_MASS, TENSOR_ELEMENTS};
 pub use centre::centre;
+pub use conic::{Cone, ConicFailure, ConicProgram, ConicSolver};
 pub use error::FeasibleError;
 pub use gravity::GravityCoefficients;
 pub use inertial::{

@@ -15,18 +15,16 @@
 //! base observation matrix, which is physically consistent least squares.
 
 //!
-//! Clarabel's semidefinite cones need BLAS/LAPACK (OpenBLAS), which a machine
-//! with only the Rust toolchain does not have, so the solver is behind the
-//! `sdp` feature (`.ci/install-deps.sh` installs the system libraries); without
-//! it these functions return [`crate::FeasibleError::Unavailable`] saying how to enable it.
+//! The program goes to a [`ConicSolver`]: the `robid-sdp` crate's Clarabel, whose
+//! semidefinite cones need BLAS/LAPACK (OpenBLAS), which a machine with only the Rust
+//! toolchain does not have; `robid_sdp::solver()` says how to get it where it is missing.
 
-#[cfg(not(feature = "sdp"))]
-use crate::FeasibleError;
 use std::time::Instant;
 
 use nalgebra::{DMatrix, DVector};
 
 use super::bounds::Bounds;
+use super::conic::ConicSolver;
 use super::prior::Prior;
 use super::problem::Problem;
 use super::solution::Solution;
@@ -52,13 +50,18 @@ impl Default for SdpOptions {
 }
 
 /// Physically consistent standard parameters closest (in the covariance metric) to the
-/// identified base parameters of `problem`.
-pub fn solve_sdp(problem: &Problem, bounds: &Bounds, options: &SdpOptions) -> Result<Solution> {
+/// identified base parameters of `problem`, the conic program solved by `solver`.
+pub fn solve_sdp(
+    problem: &Problem,
+    bounds: &Bounds,
+    options: &SdpOptions,
+    solver: &dyn ConicSolver,
+) -> Result<Solution> {
     let start = Instant::now();
     options.check()?;
     let a = &problem.whitening * &problem.k;
     let b = &problem.whitening * &problem.target;
-    solve(problem, bounds, &a, &b, options, start)
+    solve(problem, bounds, &a, &b, options, solver, start)
 }
 
 impl SdpOptions {
@@ -109,6 +112,7 @@ pub fn consistent_least_squares(
     y: &DVector<f64>,
     bounds: &Bounds,
     options: &SdpOptions,
+    solver: &dyn ConicSolver,
 ) -> Result<Solution> {
     let start = Instant::now();
     options.check()?;
@@ -145,17 +149,17 @@ pub fn consistent_least_squares(
     let qr = w.clone().qr();
     let a = qr.r() * &problem.k;
     let b = qr.q().transpose() * y;
-    solve(problem, bounds, &a, &b, options, start)
+    solve(problem, bounds, &a, &b, options, solver, start)
 }
 
 /// The conic program with the pull of `options` (the prior, else the centre of the bounds).
-#[cfg(feature = "sdp")]
 fn solve(
     problem: &Problem,
     bounds: &Bounds,
     a: &DMatrix<f64>,
     b: &DVector<f64>,
     options: &SdpOptions,
+    solver: &dyn ConicSolver,
     start: Instant,
 ) -> Result<Solution> {
     bounds.check_for(problem.layout.links.len())?;
@@ -165,7 +169,7 @@ fn solve(
         options.prior.as_ref(),
         options.regularization,
     )?;
-    let p = super::conic::solve(problem, bounds, a, b, &pull)?;
+    let p = super::conic::solve(problem, bounds, a, b, &pull, solver)?;
     let mut solution = Solution::assemble(
         problem,
         bounds,
@@ -178,26 +182,10 @@ fn solve(
     Ok(solution)
 }
 
-/// Without the `sdp` feature there is no conic solver to call.
-#[cfg(not(feature = "sdp"))]
-fn solve(
-    _problem: &Problem,
-    bounds: &Bounds,
-    _a: &DMatrix<f64>,
-    _b: &DVector<f64>,
-    _options: &SdpOptions,
-    _start: Instant,
-) -> Result<Solution> {
-    bounds.validate()?;
-    Err(Error::Feasible(FeasibleError::Unavailable {
-        what: "the semidefinite (sdp) method".to_owned(),
-        fix: "install OpenBLAS (`bash .ci/install-deps.sh`) and build with `--features sdp`, or use `--method interior-point` (the default, the same optimum), `cholesky` or `anneal`".to_owned(),
-    }))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::feasible::conic::{Cone, ConicFailure, ConicProgram};
     use crate::feasible::fixture::{link, problem, target};
 
     /// The shapes of the data are checked before any solver runs (with or without the
@@ -209,7 +197,8 @@ mod tests {
         let o = SdpOptions::default();
         let w = DMatrix::identity(11, 11);
         let y = DVector::zeros(11);
-        let e = consistent_least_squares(&p, &DMatrix::zeros(11, 10), &y, &b, &o).unwrap_err();
+        let e = consistent_least_squares(&p, &DMatrix::zeros(11, 10), &y, &b, &o, &Stopping)
+            .unwrap_err();
         assert!(
             matches!(
                 e,
@@ -221,7 +210,8 @@ mod tests {
             ),
             "{e}"
         );
-        let e = consistent_least_squares(&p, &w, &DVector::zeros(12), &b, &o).unwrap_err();
+        let e =
+            consistent_least_squares(&p, &w, &DVector::zeros(12), &b, &o, &Stopping).unwrap_err();
         assert!(
             matches!(
                 e,
@@ -233,8 +223,15 @@ mod tests {
             ),
             "{e}"
         );
-        let e = consistent_least_squares(&p, &DMatrix::zeros(10, 11), &DVector::zeros(10), &b, &o)
-            .unwrap_err();
+        let e = consistent_least_squares(
+            &p,
+            &DMatrix::zeros(10, 11),
+            &DVector::zeros(10),
+            &b,
+            &o,
+            &Stopping,
+        )
+        .unwrap_err();
         assert!(
             matches!(
                 e,
@@ -248,11 +245,11 @@ mod tests {
         );
         let mut bad = w.clone();
         bad[(3, 4)] = f64::NAN;
-        let e = consistent_least_squares(&p, &bad, &y, &b, &o).unwrap_err();
+        let e = consistent_least_squares(&p, &bad, &y, &b, &o, &Stopping).unwrap_err();
         assert!(e.to_string().contains("NaN"), "{e}");
         let mut y_bad = y.clone();
         y_bad[2] = f64::INFINITY;
-        assert!(consistent_least_squares(&p, &w, &y_bad, &b, &o).is_err());
+        assert!(consistent_least_squares(&p, &w, &y_bad, &b, &o, &Stopping).is_err());
         // a prior without values, of weight w
         let weighted = |weight: f64| SdpOptions {
             prior: Some(Prior {
@@ -290,9 +287,11 @@ mod tests {
                 "standard parameter 2",
             ),
         ] {
-            let e = solve_sdp(&p, &b, &options).unwrap_err().to_string();
+            let e = solve_sdp(&p, &b, &options, &Stopping)
+                .unwrap_err()
+                .to_string();
             assert!(e.contains(key), "{key}: {e}");
-            let e = consistent_least_squares(&p, &w, &y, &b, &options)
+            let e = consistent_least_squares(&p, &w, &y, &b, &options, &Stopping)
                 .unwrap_err()
                 .to_string();
             assert!(e.contains(key), "{key}: {e}");
@@ -307,16 +306,79 @@ mod tests {
         );
     }
 
-    /// Without the feature the method says how to get it (after checking the bounds).
-    #[cfg(not(feature = "sdp"))]
+    /// A solver's failures are told as such, after the bounds are checked; the program it
+    /// is given is well formed: every entry in its rows and columns, the cones' rows those
+    /// of `b`, one PSD cone of dimension 4 per link, the objective the epigraph variable.
     #[test]
-    fn without_the_feature_the_method_is_unavailable() {
+    fn the_solver_gets_a_well_formed_program_and_its_failures_are_told() {
         let p = problem(&target(link(), 0.1));
-        let e = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()).unwrap_err();
-        assert!(e.to_string().contains("--features sdp"), "{e}");
         let mut bad = Bounds::wide(1);
         bad.margin = Some(2.0);
-        let e = solve_sdp(&p, &bad, &SdpOptions::default()).unwrap_err();
+        let e = solve_sdp(&p, &bad, &SdpOptions::default(), &Stopping).unwrap_err();
         assert!(e.to_string().contains("margin"), "{e}");
+        let told = |failure: ConicFailure| {
+            let solver = Recording {
+                program: Default::default(),
+                answer: Err(failure),
+            };
+            let e = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default(), &solver);
+            (e.unwrap_err().to_string(), solver.program.take().unwrap())
+        };
+        let (e, program) = told(ConicFailure::Infeasible);
+        assert!(e.contains("exclude every solution"), "{e}");
+        let (e, _) = told(ConicFailure::Stopped("out of iterations".into()));
+        assert!(e.contains("stopped: out of iterations"), "{e}");
+        let n = program.variables;
+        assert_eq!(n, p.standard_names.len() + 1);
+        assert_eq!(program.q.len(), n);
+        assert_eq!(program.q.iter().sum::<f64>(), 1.0);
+        assert_eq!(program.q[n - 1], 1.0);
+        let rows = program.b.len();
+        let (r, c, v) = (&program.rows, &program.columns, &program.values);
+        assert!(r.len() == c.len() && c.len() == v.len());
+        assert!(r.iter().all(|&i| i < rows) && c.iter().all(|&j| j < n));
+        assert!(v.iter().all(|x| x.is_finite() && *x != 0.0));
+        let covered: usize = program
+            .cones
+            .iter()
+            .map(|cone| match *cone {
+                Cone::Zero(k) | Cone::Nonnegative(k) | Cone::SecondOrder(k) => k,
+                Cone::PsdTriangle(k) => k * (k + 1) / 2,
+            })
+            .sum();
+        assert_eq!(covered, rows);
+        let psd = program.cones.iter().filter(|c| **c == Cone::PsdTriangle(4));
+        assert_eq!(psd.count(), p.layout.links.len());
+        // a solver's answer of the wrong length is refused, not sliced
+        let short = Recording {
+            program: Default::default(),
+            answer: Ok(vec![0.0; 3]),
+        };
+        let e = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default(), &short).unwrap_err();
+        assert!(e.to_string().contains("3 values for"), "{e}");
+    }
+
+    /// A solver that never solves.
+    #[derive(Debug)]
+    struct Stopping;
+
+    impl ConicSolver for Stopping {
+        fn solve(&self, _: &ConicProgram) -> std::result::Result<Vec<f64>, ConicFailure> {
+            Err(ConicFailure::Stopped("the test's solver".into()))
+        }
+    }
+
+    /// A solver that keeps the program it is given and gives `answer`.
+    #[derive(Debug)]
+    struct Recording {
+        program: std::cell::RefCell<Option<ConicProgram>>,
+        answer: std::result::Result<Vec<f64>, ConicFailure>,
+    }
+
+    impl ConicSolver for Recording {
+        fn solve(&self, program: &ConicProgram) -> std::result::Result<Vec<f64>, ConicFailure> {
+            self.program.replace(Some(program.clone()));
+            self.answer.clone()
+        }
     }
 }

@@ -383,15 +383,15 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     }
     let solution = match args.method.as_str() {
         "anneal" => anneal(args, robot, &problem, &bounds, prior, extra.is_empty()),
-        "sdp" => solve_sdp(
-            &problem,
-            &bounds,
-            &SdpOptions {
-                prior,
-                regularization: default_weight,
-            },
-        )
-        .map_err(Error::from),
+        "sdp" => robid_sdp::solver()
+            .and_then(|solver| {
+                let options = SdpOptions {
+                    prior,
+                    regularization: default_weight,
+                };
+                solve_sdp(&problem, &bounds, &options, solver)
+            })
+            .map_err(Error::from),
         "cholesky" => solve_smooth(&problem, &bounds, &smooth).map_err(Error::from),
         _ => interior_or_cholesky(&problem, &bounds, &smooth),
     }

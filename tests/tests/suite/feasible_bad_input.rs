@@ -2,7 +2,9 @@
 
 use robid_runtime::Error;
 use robid_runtime::FeasibleError;
-use robid_runtime::feasible::{Bounds, LinkBounds, Problem, SdpOptions, solve_sdp};
+use robid_runtime::feasible::{
+    Bounds, ConicFailure, ConicProgram, ConicSolver, LinkBounds, Problem, SdpOptions, solve_sdp,
+};
 
 /// One link, base parameters ZZ1 and M1 (K picks two standard parameters).
 fn problem() -> Problem {
@@ -57,10 +59,21 @@ fn bounds_that_exclude_every_solution_are_reported() {
         b.validate(),
         Err(Error::Feasible(FeasibleError::NoFeasibleParameters { .. }))
     ));
+    // refused before any solver runs
     assert!(matches!(
-        solve_sdp(&p, &b, &SdpOptions::default()),
+        solve_sdp(&p, &b, &SdpOptions::default(), &Unreached),
         Err(Error::Feasible(FeasibleError::NoFeasibleParameters { .. }))
     ));
+}
+
+/// A conic solver a test never reaches.
+#[derive(Debug)]
+struct Unreached;
+
+impl ConicSolver for Unreached {
+    fn solve(&self, _: &ConicProgram) -> Result<Vec<f64>, ConicFailure> {
+        panic!("the solver was called")
+    }
 }
 
 #[cfg(feature = "sdp")]
@@ -68,7 +81,13 @@ fn bounds_that_exclude_every_solution_are_reported() {
 fn sdp_projects_inconsistent_identified_values_onto_consistent_ones() {
     // A negative identified mass: the SDP returns the nearest consistent set (mass >= margin).
     let p = problem().with_target(&[0.1, -1.0], &[0.01, 0.01]).unwrap();
-    let s = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()).unwrap();
+    let s = solve_sdp(
+        &p,
+        &Bounds::wide(1),
+        &SdpOptions::default(),
+        &robid_sdp::Clarabel,
+    )
+    .unwrap();
     assert!(s.min_eigenvalues[0] > 0.0);
     assert!(s.standard[9] > 0.0);
 }
@@ -77,8 +96,7 @@ fn sdp_projects_inconsistent_identified_values_onto_consistent_ones() {
 #[cfg(not(feature = "sdp"))]
 #[test]
 fn sdp_without_the_feature_says_how_to_enable_it() {
-    let p = problem().with_target(&[0.1, 1.0], &[0.01, 0.01]).unwrap();
-    match solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default()) {
+    match robid_sdp::solver() {
         Err(e @ Error::Feasible(FeasibleError::Unavailable { .. })) => {
             assert!(e.to_string().contains("--features sdp"))
         }

@@ -30,6 +30,7 @@ use robid_runtime::feasible::{
 };
 use robid_runtime::pipeline::{estimate, observation, observe, prepare};
 use robid_runtime::validate::Prediction;
+use robid_sdp::Clarabel;
 use robots::interpreted::{Chosen, model_for};
 
 fn repo(p: &str) -> PathBuf {
@@ -129,10 +130,17 @@ fn compare(
     let p = problem(model, train)
         .with_covariance(e.values.as_slice(), &cov)
         .unwrap();
-    let projection = solve_sdp(&p, bounds, &SdpOptions::default()).unwrap();
+    let projection = solve_sdp(&p, bounds, &SdpOptions::default(), &Clarabel).unwrap();
     check(&format!("{label} projection"), &projection, bounds);
-    let least_squares =
-        consistent_least_squares(&p, &train.w, &train.y, bounds, &SdpOptions::default()).unwrap();
+    let least_squares = consistent_least_squares(
+        &p,
+        &train.w,
+        &train.y,
+        bounds,
+        &SdpOptions::default(),
+        &Clarabel,
+    )
+    .unwrap();
     check(&format!("{label} least squares"), &least_squares, bounds);
     println!(
         "{label}: {} equations, {} parameters; unconstrained OLS: train {:.2} %",

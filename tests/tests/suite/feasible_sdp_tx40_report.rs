@@ -66,7 +66,7 @@ fn sdp(problem: &Problem, prior: Option<Prior>, weight: f64) -> Solution {
         prior,
         regularization: weight,
     };
-    solve_sdp(problem, &bounds(problem), &options).unwrap()
+    solve_sdp(problem, &bounds(problem), &options, &robid_sdp::Clarabel).unwrap()
 }
 
 /// On the real log the pure-Rust methods reach the SDP's optimum: chi^2 within 1e-3

@@ -324,6 +324,8 @@ fn interior_honours_inertia_tensor_bounds() {
 
 #[cfg(feature = "sdp")]
 use robid_runtime::feasible::{SdpOptions, solve_sdp};
+#[cfg(feature = "sdp")]
+use robid_sdp::Clarabel;
 
 /// The pure-Rust methods reach the SDP's optimum: chi^2 equal within 1e-3 relative (plus
 /// the SDP's own tolerance, 1e-8 absolute) on every robot.
@@ -333,7 +335,7 @@ fn pure_rust_methods_equal_sdp() {
     for (name, wide) in [("ur5e", false), ("panda", false), ("tx40", true)] {
         let c = case(name);
         let b = bounds_for(&c, wide);
-        let sdp = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+        let sdp = solve_sdp(&c.problem, &b, &SdpOptions::default(), &Clarabel).unwrap();
         for s in [interior(name, wide), smooth(name, wide)] {
             eprintln!(
                 "{name}: chi2 {} {:.6e} in {:.3} s, sdp {:.6e} in {:.3} s",
@@ -359,7 +361,7 @@ fn pure_rust_methods_equal_sdp() {
 fn sdp_ur5e() {
     let mut c = case("ur5e");
     let b = bounds(&c);
-    let s = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+    let s = solve_sdp(&c.problem, &b, &SdpOptions::default(), &Clarabel).unwrap();
     check(&mut c, &s, "sdp ur5e", false, true);
 }
 
@@ -368,7 +370,7 @@ fn sdp_ur5e() {
 fn sdp_panda() {
     let mut c = case("panda");
     let b = bounds(&c);
-    let s = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+    let s = solve_sdp(&c.problem, &b, &SdpOptions::default(), &Clarabel).unwrap();
     check(&mut c, &s, "sdp panda", false, true);
 }
 
@@ -377,7 +379,7 @@ fn sdp_panda() {
 fn sdp_tx40_wide_default_bounds() {
     let mut c = case("tx40");
     let b = Bounds::wide(c.problem.layout.links.len());
-    let s = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+    let s = solve_sdp(&c.problem, &b, &SdpOptions::default(), &Clarabel).unwrap();
     check(&mut c, &s, "sdp tx40 (wide bounds)", true, true);
 }
 
@@ -419,7 +421,7 @@ fn sdp_panda_prior_settles_the_unidentifiable_directions() {
         let d: f64 = p.iter().zip(&c.truth).map(|(x, t)| (x - t).powi(2)).sum();
         d.sqrt() / c.truth.iter().map(|t| t * t).sum::<f64>().sqrt()
     };
-    let plain = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+    let plain = solve_sdp(&c.problem, &b, &SdpOptions::default(), &Clarabel).unwrap();
     let options = SdpOptions {
         prior: Some(Prior {
             standard: c.truth.iter().map(|&v| Some(v)).collect(),
@@ -427,7 +429,7 @@ fn sdp_panda_prior_settles_the_unidentifiable_directions() {
         }),
         ..SdpOptions::default()
     };
-    let pulled = solve_sdp(&c.problem, &b, &options).unwrap();
+    let pulled = solve_sdp(&c.problem, &b, &options, &Clarabel).unwrap();
     println!(
         "panda: distance to the truth without prior {:.4}, with prior {:.4}; chi2 {:.3} / {:.3}",
         distance(&plain.standard),
@@ -455,7 +457,7 @@ fn sdp_noise_free_target_fits_to_solver_precision() {
         .unwrap();
     c.beta = exact.as_slice().to_vec();
     let b = bounds(&c);
-    let s = solve_sdp(&c.problem, &b, &SdpOptions::default()).unwrap();
+    let s = solve_sdp(&c.problem, &b, &SdpOptions::default(), &Clarabel).unwrap();
     println!(
         "noise-free ur5e: chi2 {:.3e}, max |z| {:.3e}",
         s.chi2,

@@ -1,14 +1,14 @@
 //! The semidefinite method (`--features sdp`, Clarabel with OpenBLAS) through the public
 //! API: the known optima of the interior-point method's unit tests, the consistent least
-//! squares on noise-free data, and how the pull settles what the data leave free. An
-//! integration test so that CI builds the feature into the library only, not into a
-//! second copy of the runtime's unit tests.
+//! squares on noise-free data, and how the pull settles what the data leave free. Built
+//! only with the `clarabel` feature (CI's sdp phase).
 
 use nalgebra::{DMatrix, DVector};
 use robid_runtime::feasible::{
     Bounds, DEFAULT_MARGIN, LinkInertial, Method, Prior, Problem, SdpOptions, SmoothOptions,
     Solution, consistent_least_squares, solve_interior, solve_sdp,
 };
+use robid_sdp::Clarabel;
 
 /// The standard names of one link and its rotor inertia.
 const NAMES: [&str; 11] = [
@@ -64,7 +64,7 @@ fn the_known_optima_of_each_kind() {
         let mut bounds = Bounds::wide(1);
         edit(&mut bounds);
         let p = identity_problem(t, &[1e-3; 11]);
-        let s = solve_sdp(&p, &bounds, &options).unwrap();
+        let s = solve_sdp(&p, &bounds, &options, &Clarabel).unwrap();
         assert_eq!(s.method, Method::Sdp);
         assert!(s.violations.is_empty(), "{:?}", s.violations);
         (s, p.std)
@@ -124,7 +124,15 @@ fn consistent_least_squares_recovers_a_consistent_truth() {
     let mut rng = robid_runtime::rng::Rng::new(7);
     let w = DMatrix::from_fn(40, 11, |_, _| rng.uniform(-1.0, 1.0));
     let y = &w * DVector::from_column_slice(&truth);
-    let s = consistent_least_squares(&p, &w, &y, &Bounds::wide(1), &SdpOptions::default()).unwrap();
+    let s = consistent_least_squares(
+        &p,
+        &w,
+        &y,
+        &Bounds::wide(1),
+        &SdpOptions::default(),
+        &Clarabel,
+    )
+    .unwrap();
     let worst = s
         .standard
         .iter()
@@ -161,7 +169,7 @@ fn what_no_base_parameter_holds_is_settled_at_the_prior() {
             prior: Some(prior(&values, 1e-12)),
             ..SdpOptions::default()
         };
-        let p = solve_sdp(&problem, &Bounds::wide(1), &options)
+        let p = solve_sdp(&problem, &Bounds::wide(1), &options, &Clarabel)
             .unwrap()
             .standard;
         // measured 1.5e-11 and 7.3e-11 (XY1, whose scale is 2.2: see the next test), at
@@ -203,6 +211,7 @@ fn a_loosely_identified_parameter_blends_data_and_prior_as_interior_point_does()
             prior: Some(prior.clone()),
             ..SdpOptions::default()
         },
+        &Clarabel,
     )
     .unwrap()
     .standard[1];
