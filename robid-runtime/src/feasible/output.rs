@@ -43,9 +43,15 @@ pub fn to_toml(solution: &Solution, robot: &str) -> String {
         let _ = writeln!(s, "# warning: {v}");
     }
     if !solution.determined.is_empty() {
+        // a parameter no prior pulls and no datum fixes is 0 too: not the prior's
+        let unpulled = if solution.unpulled.is_empty() {
+            ""
+        } else {
+            "; 0 for those no prior pulls (above): the solver's, within the constraints"
+        };
         let _ = writeln!(
             s,
-            "# Share determined by the data (1) rather than the prior (0), per link:"
+            "# Share determined by the data (1) rather than the prior (0), per link{unpulled}:"
         );
         for j in 0..solution.links.len() {
             let share = |stems: &[&str]| {
@@ -414,6 +420,15 @@ mod tests {
                     bounds, not the prior's (a prior weight above 0 or --bounds settle them): \
                     YZ1.\n";
         assert!(text.contains(want), "{want:?} not in\n{text}");
+        // the shares' 0 is not the prior's either
+        let shares = "rather than the prior (0), per link; 0 for those no prior pulls (above): \
+                      the solver's, within the constraints:\n";
+        assert!(!s.determined.is_empty() && text.contains(shares), "{text}");
+        let pulled = to_toml(&solution(), "arm");
+        assert!(
+            pulled.contains("rather than the prior (0), per link:\n"),
+            "{pulled}"
+        );
         s.unpulled = s.dont_care.clone();
         let text = to_toml(&s, "arm");
         assert!(!text.contains("from the prior"), "{text}");
