@@ -7,9 +7,24 @@ use nalgebra::{DMatrix, DVector};
 
 /// Minimises ||r(x)||^2 over [lo, hi] from `x0` for at most `iterations` steps; stops
 /// after a step that gains less than 1e-15 (1 + f), or when no damping finds a step that
-/// does not raise f.
+/// does not raise f. The Jacobian by [`forward_differences`]; the search gives its own
+/// ([`polish_with`]), which re-evaluates only what a step changes.
+#[cfg(test)]
 pub(crate) fn polish(
     r: &dyn Fn(&[f64]) -> DVector<f64>,
+    lo: &[f64],
+    hi: &[f64],
+    x0: &[f64],
+    iterations: usize,
+) -> Vec<f64> {
+    let jacobian = |x: &[f64], rx: &DVector<f64>| forward_differences(r, lo, hi, x, rx);
+    polish_with(r, &jacobian, lo, hi, x0, iterations)
+}
+
+/// [`polish`] with the Jacobian of `r` at x (whose residual is rx) from `jacobian`.
+pub(crate) fn polish_with(
+    r: &dyn Fn(&[f64]) -> DVector<f64>,
+    jacobian: &dyn Fn(&[f64], &DVector<f64>) -> DMatrix<f64>,
     lo: &[f64],
     hi: &[f64],
     x0: &[f64],
@@ -21,14 +36,7 @@ pub(crate) fn polish(
     let mut fx = rx.norm_squared();
     let mut mu = 1e-3;
     for _ in 0..iterations {
-        let mut j = DMatrix::zeros(rx.len(), n);
-        for i in 0..n {
-            let h = 1e-7 * (hi[i] - lo[i]).max(1e-12);
-            let mut y = x.clone();
-            let step = if y[i] + h <= hi[i] { h } else { -h };
-            y[i] += step;
-            j.set_column(i, &((r(&y) - &rx) / step));
-        }
+        let j = jacobian(&x, &rx);
         let jt = j.transpose();
         let g = &jt * &rx;
         let h = &jt * &j;
@@ -81,6 +89,33 @@ pub(crate) fn polish(
         }
     }
     x
+}
+
+/// The forward-difference Jacobian of `r` at x, whose residual is rx: variable i steps
+/// by [`step`].
+#[cfg(test)]
+pub(crate) fn forward_differences(
+    r: &dyn Fn(&[f64]) -> DVector<f64>,
+    lo: &[f64],
+    hi: &[f64],
+    x: &[f64],
+    rx: &DVector<f64>,
+) -> DMatrix<f64> {
+    let mut j = DMatrix::zeros(rx.len(), x.len());
+    for i in 0..x.len() {
+        let mut y = x.to_vec();
+        let step = step(y[i], lo[i], hi[i]);
+        y[i] += step;
+        j.set_column(i, &((r(&y) - rx) / step));
+    }
+    j
+}
+
+/// The forward difference's step of a variable at `x` in [lo, hi]: 1e-7 of the box's
+/// width, backwards where forwards leaves the box.
+pub(crate) fn step(x: f64, lo: f64, hi: f64) -> f64 {
+    let h = 1e-7 * (hi - lo).max(1e-12);
+    if x + h <= hi { h } else { -h }
 }
 
 #[cfg(test)]

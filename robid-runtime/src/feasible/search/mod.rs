@@ -21,6 +21,7 @@
 //! none of 16 did.
 
 mod anneal;
+mod data;
 mod equality;
 mod levenberg;
 mod parametrise;
@@ -28,10 +29,11 @@ mod towards_prior;
 mod two_step;
 
 use crate::FeasibleError;
+use std::cell::RefCell;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, DVectorView};
 use rayon::prelude::*;
 
 use super::bounds::{Bounds, TENSOR_ELEMENTS};
@@ -43,6 +45,7 @@ use crate::progress::Progress;
 use crate::rng::Rng;
 use crate::{Error, Num, Result};
 use anneal::{AnnealSettings, reflect};
+use data::{Data, Scratch};
 use parametrise::{PER_LINK, link_box, link_centre, link_of};
 
 pub use equality::{Equality, MAX_EQUALITY_FACTORS, Quantity, Variable};
@@ -185,14 +188,8 @@ impl AnnealOptions {
 struct Objective<'a> {
     problem: &'a Problem,
     bounds: &'a Bounds,
-    /// Whitened K restricted to the inertial columns' link layout.
-    a: DMatrix<f64>,
-    b: DVector<f64>,
-    /// The linearly solved columns (drive terms, then extra columns): index in the standard
-    /// vector and whether the value must be non-negative.
-    linear: Vec<(usize, bool)>,
-    /// Pseudo-inverse of the whitened linear columns (linear x base), if any.
-    drive_pinv: Option<DMatrix<f64>>,
+    /// Whitened K and target, the drive terms and extra columns solved for.
+    data: Data,
     /// Full variable vector with the fixed (don't-care) values.
     fixed: Vec<f64>,
     /// Which full variables are searched.
@@ -222,10 +219,15 @@ impl Objective<'_> {
     /// The full variable vector of the searched values `y` as the box holds them.
     fn unlifted(&self, y: &[f64]) -> Vec<f64> {
         let mut x = self.fixed.clone();
+        self.place(y, &mut x);
+        x
+    }
+
+    /// Writes the searched values `y` into the full variable vector `x`.
+    fn place(&self, y: &[f64], x: &mut [f64]) {
         for (&i, &v) in self.free.iter().zip(y) {
             x[i] = v;
         }
-        x
     }
 
     /// `x` lifted to the margin ([`lift`]).
@@ -233,41 +235,122 @@ impl Objective<'_> {
         lift(x, self.margin);
     }
 
+    /// Buffers for evaluations of this objective.
+    fn scratch(&self) -> Scratch {
+        self.data.scratch(&self.problem.layout)
+    }
+
+    /// Puts the full variables of the searched values `y` into `s.x`.
+    fn fill(&self, y: &[f64], s: &mut Scratch) {
+        s.x.copy_from_slice(&self.fixed);
+        self.place(y, &mut s.x);
+        self.lift(&mut s.x);
+    }
+
+    /// Evaluates the data term at the searched values `y` into `s` ([`Data::evaluate`]).
+    fn evaluate(&self, y: &[f64], s: &mut Scratch) {
+        self.fill(y, s);
+        self.data.evaluate(&self.problem.layout, s);
+    }
+
     /// Standard parameters of a full variable vector, drive terms solved for.
     fn standard(&self, x: &[f64]) -> Vec<f64> {
-        let layout = &self.problem.layout;
-        let mut p = vec![0.0; layout.len()];
-        for (j, idx) in layout.links.iter().enumerate() {
-            let s = link_of(&x[j * PER_LINK..(j + 1) * PER_LINK]).to_standard();
-            for (&i, v) in idx.iter().zip(s) {
-                p[i] = v;
-            }
-        }
-        if let Some(pinv) = &self.drive_pinv {
-            let r = &self.a * DVector::from_column_slice(&p) - &self.b;
-            let d = -(pinv * r);
-            for (k, &(index, non_negative)) in self.linear.iter().enumerate() {
-                p[index] = if non_negative { d[k].max(0.0) } else { d[k] };
-            }
-        }
-        p
+        let mut s = self.scratch();
+        s.x.copy_from_slice(x);
+        self.data.evaluate_exact(&self.problem.layout, &mut s);
+        s.p
     }
 
+    /// The objective's value at the searched values `y`.
     fn value(&self, y: &[f64]) -> f64 {
-        self.residual(y).norm_squared()
+        self.value_in(y, &mut self.scratch())
     }
 
-    /// The whitened misfit and the pull, followed by the weighted relative bound violations.
+    /// [`Objective::value`] in the buffers `s`, with the search's old roundings
+    /// ([`Data::evaluate_exact`], the rows summed by nalgebra's norm).
+    fn value_in(&self, y: &[f64], s: &mut Scratch) -> f64 {
+        self.fill(y, s);
+        self.data.evaluate_exact(&self.problem.layout, s);
+        let mut rows = std::mem::take(&mut s.rows);
+        rows.clear();
+        self.rows(s, |v| rows.push(v));
+        let value = DVectorView::from_slice(&rows, rows.len()).norm_squared();
+        s.rows = rows;
+        value
+    }
+
+    /// The whitened misfit and the pull, followed by the weighted relative bound
+    /// violations, with the search's old roundings ([`Data::evaluate_exact`]).
     fn residual(&self, y: &[f64]) -> DVector<f64> {
-        let x = self.full(y);
-        let r = misfit(self, &x);
-        let v = self.violations(&x);
+        let mut s = self.scratch();
+        self.fill(y, &mut s);
+        self.data.evaluate_exact(&self.problem.layout, &mut s);
+        let mut r = Vec::with_capacity(s.r.len() + s.p.len());
+        self.rows(&s, |v| r.push(v));
+        DVector::from_vec(r)
+    }
+
+    /// Gives `row` each residual row of the evaluation `s` in turn: the whitened misfit,
+    /// the pull, the weighted relative bound violations and the mass step.
+    fn rows(&self, s: &Scratch, mut row: impl FnMut(f64)) {
+        self.misfit_rows(s, &mut row);
         let w = self.penalty.sqrt();
-        let step = self.mass_step_row(&x);
-        DVector::from_iterator(
-            r.len() + v.len() + usize::from(step.is_some()),
-            r.iter().copied().chain(v.iter().map(|e| w * e)).chain(step),
-        )
+        self.for_each_violation(&s.x, |e| row(w * e));
+        if let Some(step) = self.mass_step_row(&s.x) {
+            row(step);
+        }
+    }
+
+    /// The whitened misfit and the pull towards the prior of the evaluation `s`.
+    fn misfit_rows(&self, s: &Scratch, row: &mut impl FnMut(f64)) {
+        for &v in &s.r {
+            row(v);
+        }
+        if let Some(pull) = &self.pull {
+            for (k, &v) in s.p.iter().enumerate() {
+                if pull.weight[k] > 0.0 {
+                    row(pull.weight[k].sqrt() * (v - pull.target[k]) / pull.scale[k]);
+                }
+            }
+        }
+    }
+
+    /// The Jacobian of [`Objective::residual`] at `y` by forward differences with the
+    /// steps of [`levenberg::forward_differences`]: a step changes one link's variables,
+    /// so only that link is re-evaluated, and the misfit's change is formed directly
+    /// ([`Data::step_link`]); the other rows are differences of their values.
+    fn jacobian(&self, y: &[f64], lo: &[f64], hi: &[f64]) -> DMatrix<f64> {
+        let mut at = self.scratch();
+        self.evaluate(y, &mut at);
+        let mut ry = Vec::with_capacity(at.r.len() + at.p.len());
+        self.rows(&at, |v| ry.push(v));
+        let mut moved = at.clone();
+        let mut unlifted = self.unlifted(y);
+        let data = at.r.len();
+        let mut jac = DMatrix::zeros(ry.len(), y.len());
+        for (i, &full) in self.free.iter().enumerate() {
+            let step = levenberg::step(y[i], lo[i], hi[i]);
+            let link = full / PER_LINK;
+            let range = link * PER_LINK..(link + 1) * PER_LINK;
+            moved.copy_from(&at);
+            unlifted[full] = y[i] + step;
+            moved.x[range.clone()].copy_from_slice(&unlifted[range.clone()]);
+            self.lift(&mut moved.x[range]);
+            unlifted[full] = y[i];
+            self.data.step_link(&self.problem.layout, link, &mut moved);
+            let mut column = jac.column_mut(i);
+            for (c, d) in column.iter_mut().zip(&moved.delta) {
+                *c = d / step;
+            }
+            let mut k = 0;
+            self.rows(&moved, |v| {
+                if k >= data {
+                    column[k] = (v - ry[k]) / step;
+                }
+                k += 1;
+            });
+        }
+        jac
     }
 
     /// Gaz et al.'s step: sqrt(delta) when the total mass is outside its range, else zero
@@ -326,35 +409,39 @@ impl Objective<'_> {
         }
     }
 
-    /// Relative violations of the total-mass range and the principal-moment ranges.
+    /// Relative violations of the total-mass range, the principal-moment and tensor-element
+    /// ranges and the equalities.
     fn violations(&self, x: &[f64]) -> Vec<f64> {
         let mut v = Vec::new();
+        self.for_each_violation(x, |e| v.push(e));
+        v
+    }
+
+    /// Gives `violation` each of [`Objective::violations`] in turn.
+    fn for_each_violation(&self, x: &[f64], mut violation: impl FnMut(f64)) {
         let out =
             |value: f64, r: [f64; 2], scale: f64| (r[0] - value).max(value - r[1]).max(0.0) / scale;
         if let (Some(t), None) = (self.bounds.total_mass, self.mass_step) {
-            v.push(self.mass_excess(x).unwrap_or(0.0) / t[1].max(1e-9));
+            violation(self.mass_excess(x).unwrap_or(0.0) / t[1].max(1e-9));
         }
         for (j, b) in self.bounds.links.iter().enumerate() {
             let d = &x[j * PER_LINK + 4..j * PER_LINK + 7];
             for m in [d[1] + d[2], d[0] + d[2], d[0] + d[1]] {
-                v.push(out(m, b.inertia, b.inertia[1].max(1e-9)));
+                violation(out(m, b.inertia, b.inertia[1].max(1e-9)));
             }
             if b.tensor.iter().any(Option::is_some) {
                 let inertia = link_of(&x[j * PER_LINK..(j + 1) * PER_LINK]).inertia;
                 for (range, (_, row, column)) in b.tensor.iter().zip(TENSOR_ELEMENTS) {
                     if let Some(r) = *range {
                         let scale = r[0].abs().max(r[1].abs()).max(1e-9);
-                        v.push(out(inertia[row][column], r, scale));
+                        violation(out(inertia[row][column], r, scale));
                     }
                 }
             }
         }
-        v.extend(
-            self.equalities
-                .iter()
-                .map(|e| e.violation(x, &self.bounds.links)),
-        );
-        v
+        for e in self.equalities {
+            violation(e.violation(x, &self.bounds.links));
+        }
     }
 }
 
@@ -388,17 +475,7 @@ fn search(
         .map(|d| (d.index, d.kind.non_negative()))
         .chain(layout.extra.iter().map(|&i| (i, false)))
         .collect();
-    let drive_pinv = (!linear.is_empty()).then(|| {
-        let cols: Vec<DVector<f64>> = linear
-            .iter()
-            .map(|&(i, _)| a.column(i).into_owned())
-            .collect();
-        let ad = DMatrix::from_columns(&cols);
-        // a capped SVD: the iteration cannot loop whatever the matrix holds
-        ad.try_svd(true, true, f64::EPSILON, crate::limits::SVD_ITERATIONS)
-            .and_then(|s| s.pseudo_inverse(1e-10).ok())
-            .unwrap_or_else(|| DMatrix::zeros(cols.len(), a.nrows()))
-    });
+    let data = Data::new(a, b, layout, linear);
     let pull = match &options.prior {
         Some(prior) => Some(Pull::new(
             problem,
@@ -424,10 +501,7 @@ fn search(
     let mut objective = Objective {
         problem,
         bounds,
-        a,
-        b,
-        linear,
-        drive_pinv,
+        data,
         fixed,
         free: (0..nl * PER_LINK).collect(),
         penalty: options.penalty,
@@ -547,20 +621,22 @@ fn search(
                 .zip(&hi)
                 .map(|(l, h)| rng.uniform(*l, *h))
                 .collect();
+            // one set of buffers for the restart's evaluations
+            let scratch = RefCell::new(objective.scratch());
             let f = |y: &[f64]| {
                 counter.beat();
-                objective.value(y)
+                objective.value_in(y, &mut scratch.borrow_mut())
             };
             let (xa, _) = anneal::anneal(&f, &lo, &hi, &x0, settings, &mut rng);
             // Nelder-Mead on the box: evaluate at the reflected point.
+            let reflected = RefCell::new(vec![0.0; lo.len()]);
             let g = |y: &[f64]| {
-                let z: Vec<f64> = y
-                    .iter()
-                    .enumerate()
-                    .map(|(i, v)| reflect(*v, lo[i], hi[i]))
-                    .collect();
+                let mut z = reflected.borrow_mut();
+                for (i, (z, v)) in z.iter_mut().zip(y).enumerate() {
+                    *z = reflect(*v, lo[i], hi[i]);
+                }
                 counter.beat();
-                objective.value(&z)
+                objective.value_in(&z, &mut scratch.borrow_mut())
             };
             let found = match local.minimize(&xa, g) {
                 Ok(m) => m,
@@ -576,7 +652,14 @@ fn search(
                 counter.beat();
                 objective.residual(y)
             };
-            let mut xn = levenberg::polish(&r, &lo, &hi, &xn, options.polish_iterations);
+            let jacobian = |y: &[f64], _: &DVector<f64>| {
+                counter.beat();
+                objective.jacobian(y, &lo, &hi)
+            };
+            let polish = |y: &[f64]| {
+                levenberg::polish_with(&r, &jacobian, &lo, &hi, y, options.polish_iterations)
+            };
+            let mut xn = polish(&xn);
             let mut fx = objective.value(&xn);
             for &link in searched_links.iter().cycle().take(options.hops) {
                 if fx <= target {
@@ -591,7 +674,7 @@ fn search(
                         *yi = rng.uniform(*l, *h);
                     }
                 }
-                let y = levenberg::polish(&r, &lo, &hi, &y, options.polish_iterations);
+                let y = polish(&y);
                 let fy = objective.value(&y);
                 if fy < fx {
                     (xn, fx) = (y, fy);
@@ -627,7 +710,7 @@ fn search(
         && options.equalities.is_empty()
         && options.fixed.is_empty()
     {
-        p = towards_prior::towards_prior(problem, bounds, &objective.a, pull, margin, p);
+        p = towards_prior::towards_prior(problem, bounds, &objective.data.a, pull, margin, p);
     }
     let mut solution = Solution::assemble(problem, bounds, Method::Anneal, p, start.elapsed())?;
     solution.iterations = restarts_run;
@@ -706,7 +789,8 @@ fn impose(
         }
         raise = true;
         let r = |z: &[f64]| objective.residual(z);
-        y = levenberg::polish(&r, lo, hi, &y, iterations.max(50));
+        let jacobian = |z: &[f64], _: &DVector<f64>| objective.jacobian(z, lo, hi);
+        y = levenberg::polish_with(&r, &jacobian, lo, hi, &y, iterations.max(50));
     }
     y
 }
@@ -743,15 +827,13 @@ fn effective_variables(objective: &Objective<'_>, lo: &[f64], hi: &[f64], seed: 
 
 /// The misfit of a full variable vector and its pull towards the prior, bounds ignored.
 fn misfit(objective: &Objective<'_>, x: &[f64]) -> DVector<f64> {
-    let p = objective.standard(x);
-    let r = &objective.a * DVector::from_column_slice(&p) - &objective.b;
-    let Some(pull) = &objective.pull else {
-        return r;
-    };
-    let rows = (0..p.len())
-        .filter(|&s| pull.weight[s] > 0.0)
-        .map(|s| pull.weight[s].sqrt() * (p[s] - pull.target[s]) / pull.scale[s]);
-    let r: Vec<f64> = r.iter().copied().chain(rows).collect();
+    let mut s = objective.scratch();
+    s.x.copy_from_slice(x);
+    objective
+        .data
+        .evaluate_exact(&objective.problem.layout, &mut s);
+    let mut r = Vec::with_capacity(s.r.len() + s.p.len());
+    objective.misfit_rows(&s, &mut |v| r.push(v));
     DVector::from_vec(r)
 }
 
