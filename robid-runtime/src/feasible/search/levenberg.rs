@@ -1,14 +1,15 @@
 //! A bounded Levenberg-Marquardt polish (Marquardt 1963) of a least-squares residual:
-//! forward-difference Jacobian, damped Gauss-Newton steps in the variables that no bound
-//! holds (a variable at a bound the gradient pushes against stays there), clipped to the
-//! box. Used after Nelder-Mead, whose progress in tens of dimensions is slow near the optimum.
+//! forward-difference Jacobian (the search's re-evaluates only the stepped link), damped
+//! Gauss-Newton steps in the variables that no bound holds (a variable at a bound the
+//! gradient pushes against stays there), clipped to the box. Used after Nelder-Mead, whose progress in tens of dimensions is slow near the optimum.
 
 use nalgebra::{DMatrix, DVector};
 
-/// Minimises ||r(x)||^2 over [lo, hi] from `x0` for at most `iterations` steps; stops
-/// after a step that gains less than 1e-15 (1 + f), or when no damping finds a step that
-/// does not raise f. The Jacobian by [`forward_differences`]; the search gives its own
-/// ([`polish_with`]), which re-evaluates only what a step changes.
+/// The Jacobian of a residual at x, given the residual there.
+pub(crate) type Jacobian<'a> = dyn Fn(&[f64], &DVector<f64>) -> DMatrix<f64> + 'a;
+
+/// [`polish_with`] with the Jacobian by [`forward_differences`] (the search gives its own,
+/// which re-evaluates only what a step changes).
 #[cfg(test)]
 pub(crate) fn polish(
     r: &dyn Fn(&[f64]) -> DVector<f64>,
@@ -21,10 +22,12 @@ pub(crate) fn polish(
     polish_with(r, &jacobian, lo, hi, x0, iterations)
 }
 
-/// [`polish`] with the Jacobian of `r` at x (whose residual is rx) from `jacobian`.
+/// Minimises ||r(x)||^2 over [lo, hi] from `x0` for at most `iterations` steps, with the
+/// Jacobian of `r` at x (whose residual is rx) from `jacobian`; stops after a step that
+/// gains less than 1e-15 (1 + f), or when no damping finds a step that does not raise f.
 pub(crate) fn polish_with(
     r: &dyn Fn(&[f64]) -> DVector<f64>,
-    jacobian: &dyn Fn(&[f64], &DVector<f64>) -> DMatrix<f64>,
+    jacobian: &Jacobian<'_>,
     lo: &[f64],
     hi: &[f64],
     x0: &[f64],
