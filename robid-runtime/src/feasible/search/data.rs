@@ -229,13 +229,8 @@ fn mat_vec_add_nonzero(a: &DMatrix<f64>, x: &[f64], y: &mut [f64]) {
     if a.nrows() == 0 {
         return;
     }
-    for (column, &xj) in a.as_slice().chunks_exact(a.nrows()).zip(x) {
-        if xj != 0.0 {
-            for (y, c) in y.iter_mut().zip(column) {
-                *y += c * xj;
-            }
-        }
-    }
+    let columns = a.as_slice().chunks_exact(a.nrows());
+    accumulate(y, columns.zip(x.iter().copied()).filter(|t| t.1 != 0.0));
 }
 
 /// `y += a[:, at..at + 10] change`: a link's ten contiguous columns.
@@ -245,11 +240,7 @@ fn add_block(a: &DMatrix<f64>, at: usize, change: &[f64; PER_LINK], y: &mut [f64
         return;
     }
     let block = &a.as_slice()[at * rows..(at + PER_LINK) * rows];
-    for (column, &c) in block.chunks_exact(rows).zip(change) {
-        for (y, a) in y.iter_mut().zip(column) {
-            *y += a * c;
-        }
-    }
+    accumulate(y, block.chunks_exact(rows).zip(change.iter().copied()));
 }
 
 /// `y += a x`, column by column.
@@ -257,9 +248,44 @@ fn mat_vec_add(a: &DMatrix<f64>, x: &[f64], y: &mut [f64]) {
     if a.nrows() == 0 {
         return;
     }
-    for (column, &xj) in a.as_slice().chunks_exact(a.nrows()).zip(x) {
-        for (y, c) in y.iter_mut().zip(column) {
-            *y += c * xj;
+    accumulate(
+        y,
+        a.as_slice().chunks_exact(a.nrows()).zip(x.iter().copied()),
+    );
+}
+
+/// `y += column * value` for each of `terms` in turn, four columns a pass: each entry of
+/// `y` takes the same additions in the same order as one column a pass would give it (the
+/// same roundings), but is loaded and stored once per four columns.
+fn accumulate<'a>(y: &mut [f64], terms: impl Iterator<Item = (&'a [f64], f64)>) {
+    let mut group: [(&[f64], f64); 4] = [(&[], 0.0); 4];
+    let mut len = 0;
+    for term in terms {
+        group[len] = term;
+        len += 1;
+        if len == group.len() {
+            add_four(y, &group);
+            len = 0;
         }
+    }
+    for &(column, v) in &group[..len] {
+        for (y, c) in y.iter_mut().zip(column) {
+            *y += c * v;
+        }
+    }
+}
+
+/// `y += column * value` for the four terms, in order, entry by entry.
+fn add_four(y: &mut [f64], group: &[(&[f64], f64); 4]) {
+    let n = y.len();
+    let [(c0, x0), (c1, x1), (c2, x2), (c3, x3)] = *group;
+    let (c0, c1, c2, c3) = (&c0[..n], &c1[..n], &c2[..n], &c3[..n]);
+    for ((((y, a), b), c), d) in y.iter_mut().zip(c0).zip(c1).zip(c2).zip(c3) {
+        let mut v = *y;
+        v += a * x0;
+        v += b * x1;
+        v += c * x2;
+        v += d * x3;
+        *y = v;
     }
 }
