@@ -29,6 +29,9 @@ pub(super) struct Data {
     pinv: DMatrix<f64>,
     /// `pinv` times `links`: how the linear terms follow a link's values.
     pinv_links: DMatrix<f64>,
+    /// `links - columns pinv_links`: how the misfit follows a link's values while no
+    /// linear term meets its clamp.
+    net_links: DMatrix<f64>,
 }
 
 /// The buffers of one evaluation: the state at a point of the search.
@@ -50,6 +53,8 @@ pub(super) struct Scratch {
     pub(super) r: Vec<f64>,
     /// The change of the whitened misfit in [`Data::step_link`].
     pub(super) delta: Vec<f64>,
+    /// The change of `raw` in [`Data::step_link`].
+    raw_change: Vec<f64>,
     /// The residual rows, for their norm as nalgebra sums it.
     pub(super) rows: Vec<f64>,
 }
@@ -78,6 +83,7 @@ impl Data {
                 .unwrap_or_else(|| DMatrix::zeros(linear.len(), a.nrows()))
         };
         let pinv_links = &pinv * &links;
+        let net_links = &links - &columns * &pinv_links;
         Data {
             a,
             b,
@@ -86,6 +92,7 @@ impl Data {
             columns,
             pinv,
             pinv_links,
+            net_links,
         }
     }
 
@@ -100,6 +107,7 @@ impl Data {
             d: vec![0.0; self.linear.len()],
             r: vec![0.0; self.a.nrows()],
             delta: vec![0.0; self.a.nrows()],
+            raw_change: vec![0.0; self.linear.len()],
             rows: Vec::new(),
         }
     }
@@ -144,29 +152,34 @@ impl Data {
     }
 
     /// Re-evaluates `s`, evaluated before, after the variables of link `j` in `s.x`
-    /// changed, but for its misfit: `s.delta` is the misfit's change, formed from the link's
-    /// change itself (only its columns enter), not as the difference of two misfits, whose
-    /// rounding (1e-16 of the misfit) a forward difference divides by its step.
+    /// changed, but for its misfit (`fit` and `r` stay): `s.delta` is the misfit's change,
+    /// formed from the link's change itself (only its columns enter), not as the difference
+    /// of two misfits, whose rounding (1e-16 of the misfit) a forward difference divides by
+    /// its step. The linear terms follow through `net_links`, corrected where one meets
+    /// its clamp at zero.
     pub(super) fn step_link(&self, layout: &Layout, j: usize, s: &mut Scratch) {
         let at = j * PER_LINK;
         let before: [f64; PER_LINK] = std::array::from_fn(|k| s.links[at + k]);
         set_link(layout, j, s);
         let change: [f64; PER_LINK] = std::array::from_fn(|k| s.links[at + k] - before[k]);
         s.delta.fill(0.0);
-        add_block(&self.links, at, &change, &mut s.delta);
-        for (f, d) in s.fit.iter_mut().zip(&s.delta) {
-            *f += d;
-        }
-        add_block(&self.pinv_links, at, &change, &mut s.raw);
+        add_block(&self.net_links, at, &change, &mut s.delta);
+        s.raw_change.fill(0.0);
+        add_block(&self.pinv_links, at, &change, &mut s.raw_change);
         let rows = self.columns.nrows();
         for (k, &(index, non_negative)) in self.linear.iter().enumerate() {
-            let v = -s.raw[k];
-            let d = if non_negative { v.max(0.0) } else { v };
-            let change = d - s.d[k];
+            let (old, raw) = (-s.raw[k], -(s.raw[k] + s.raw_change[k]));
+            s.raw[k] = -raw;
+            let d = if non_negative { raw.max(0.0) } else { raw };
             (s.d[k], s.p[index]) = (d, d);
+            if !(non_negative && (old < 0.0 || raw < 0.0)) {
+                continue;
+            }
+            // net_links took the term as following unclamped (by -raw_change)
+            let correction = (d - old.max(0.0)) + s.raw_change[k];
             let column = &self.columns.as_slice()[k * rows..(k + 1) * rows];
             for (delta, c) in s.delta.iter_mut().zip(column) {
-                *delta += c * change;
+                *delta += c * correction;
             }
         }
     }

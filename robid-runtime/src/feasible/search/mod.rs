@@ -294,9 +294,14 @@ impl Objective<'_> {
     /// the pull, the weighted relative bound violations and the mass step.
     fn rows(&self, s: &Scratch, mut row: impl FnMut(f64)) {
         self.misfit_rows(s, &mut row);
+        self.bound_rows(&s.x, &mut row);
+    }
+
+    /// The weighted relative bound violations and the mass step at the full variables `x`.
+    fn bound_rows(&self, x: &[f64], row: &mut impl FnMut(f64)) {
         let w = self.penalty.sqrt();
-        self.for_each_violation(&s.x, |e| row(w * e));
-        if let Some(step) = self.mass_step_row(&s.x) {
+        self.for_each_violation(x, |e| row(w * e));
+        if let Some(step) = self.mass_step_row(x) {
             row(step);
         }
     }
@@ -317,17 +322,19 @@ impl Objective<'_> {
 
     /// The Jacobian of [`Objective::residual`] at `y` by forward differences with the
     /// steps of [`levenberg::forward_differences`]: a step changes one link's variables,
-    /// so only that link is re-evaluated, and the misfit's change is formed directly
-    /// ([`Data::step_link`]); the other rows are differences of their values.
+    /// so only that link is re-evaluated, and the changes of the misfit and the pull are
+    /// formed directly ([`Data::step_link`]); the bound rows are differences of values.
     fn jacobian(&self, y: &[f64], lo: &[f64], hi: &[f64]) -> DMatrix<f64> {
         let mut at = self.scratch();
         self.evaluate(y, &mut at);
-        let mut ry = Vec::with_capacity(at.r.len() + at.p.len());
-        self.rows(&at, |v| ry.push(v));
+        let pulled = self.pulled_rows(&at);
+        let start = at.r.len() + pulled.iter().flatten().count();
+        let mut bounds = Vec::new();
+        self.bound_rows(&at.x, &mut |v| bounds.push(v));
         let mut moved = at.clone();
         let mut unlifted = self.unlifted(y);
-        let data = at.r.len();
-        let mut jac = DMatrix::zeros(ry.len(), y.len());
+        let layout = &self.problem.layout;
+        let mut jac = DMatrix::zeros(start + bounds.len(), y.len());
         for (i, &full) in self.free.iter().enumerate() {
             let step = levenberg::step(y[i], lo[i], hi[i]);
             let link = full / PER_LINK;
@@ -337,20 +344,42 @@ impl Objective<'_> {
             moved.x[range.clone()].copy_from_slice(&unlifted[range.clone()]);
             self.lift(&mut moved.x[range]);
             unlifted[full] = y[i];
-            self.data.step_link(&self.problem.layout, link, &mut moved);
+            self.data.step_link(layout, link, &mut moved);
             let mut column = jac.column_mut(i);
             for (c, d) in column.iter_mut().zip(&moved.delta) {
                 *c = d / step;
             }
-            let mut k = 0;
-            self.rows(&moved, |v| {
-                if k >= data {
-                    column[k] = (v - ry[k]) / step;
+            // the pull changes where the standard vector does: the link and the linear terms
+            if let Some(pull) = &self.pull {
+                let linear = self.data.linear.iter().map(|&(index, _)| index);
+                for k in layout.links[link].iter().copied().chain(linear) {
+                    if let Some(row) = pulled[k] {
+                        let change = moved.p[k] - at.p[k];
+                        column[row] = pull.weight[k].sqrt() * change / pull.scale[k] / step;
+                    }
                 }
+            }
+            let mut k = 0;
+            self.bound_rows(&moved.x, &mut |v| {
+                column[start + k] = (v - bounds[k]) / step;
                 k += 1;
             });
         }
         jac
+    }
+
+    /// Per standard parameter, its row among the residual rows of `s` if the pull has one.
+    fn pulled_rows(&self, s: &Scratch) -> Vec<Option<usize>> {
+        let mut next = s.r.len();
+        let weight = |k: usize| self.pull.as_ref().map_or(0.0, |pull| pull.weight[k]);
+        (0..s.p.len())
+            .map(|k| {
+                (weight(k) > 0.0).then(|| {
+                    next += 1;
+                    next - 1
+                })
+            })
+            .collect()
     }
 
     /// Gaz et al.'s step: sqrt(delta) when the total mass is outside its range, else zero
