@@ -321,9 +321,9 @@ impl Objective<'_> {
     }
 
     /// The Jacobian of [`Objective::residual`] at `y` by forward differences with the
-    /// steps of [`levenberg::forward_differences`]: a step changes one link's variables,
-    /// so only that link is re-evaluated, and the changes of the misfit and the pull are
-    /// formed directly ([`Data::step_link`]); the bound rows are differences of values.
+    /// polish's steps ([`levenberg::step`]): a step changes one link's variables, so only
+    /// that link is re-evaluated, and the changes of the misfit and the pull are formed
+    /// directly ([`Data::step_link`]); the bound rows are differences of values.
     fn jacobian(&self, y: &[f64], lo: &[f64], hi: &[f64]) -> DMatrix<f64> {
         let mut at = self.scratch();
         self.evaluate(y, &mut at);
