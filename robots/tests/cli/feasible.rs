@@ -579,7 +579,7 @@ fn masses(path: &Path) -> Vec<f64> {
 /// 17.5). Measured (sum |m - m_CAD| without -> with the prior; chi^2; max |z|) in the note
 /// of each test; the sdp method's (feature `sdp`) is the suite's `feasible_sdp_tx40_report`,
 /// on the same files without the binary, with its own weight.
-fn prior_pulls_the_free_directions_towards_cad(method: &str, ratio: f64) {
+fn prior_pulls_the_free_directions_towards_cad(method: &str, ratio: Option<f64>) {
     let dir = folder();
     let cad = [10.5, 3.6, 4.07, 3.62, 1.02, 0.2];
     let distance = |m: &[f64]| -> f64 { m.iter().zip(&cad).map(|(a, b)| (a - b).abs()).sum() };
@@ -593,7 +593,14 @@ fn prior_pulls_the_free_directions_towards_cad(method: &str, ratio: f64) {
         "{method}: sum |m - m_CAD|: without prior {d0:.3} kg, with prior {d1:.3} kg; chi^2 \
          {chi2_plain:.3} -> {chi2:.3}; max |z| {z_plain:.3} -> {z:.3}"
     );
-    assert!(d1 < ratio * d0, "without prior {d0}, with prior {d1}");
+    // every method measured 0.36 kg with the prior (of 23 kg): bound 2x
+    assert!(d1 < 0.72, "with prior {d1} kg (without {d0})");
+    // a deterministic method's masses without the prior are where its pull to the centre
+    // of the bounds leaves them; the search's are where its random walk stopped, no
+    // reference (21.4 kg, 12.3 kg after a change of its Jacobian's rounding)
+    if let Some(ratio) = ratio {
+        assert!(d1 < ratio * d0, "without prior {d0}, with prior {d1}");
+    }
     // the data keep what they determine: no base parameter is moved past 3 std
     assert!(z <= 3.0, "max |z| {z} (chi^2 {chi2} against {chi2_plain})");
 }
@@ -602,20 +609,19 @@ fn prior_pulls_the_free_directions_towards_cad(method: &str, ratio: f64) {
 /// chi^2 15.38 -> 75.05, max |z| 2.34 -> 2.85; bound 2x.
 #[test]
 fn feasible_interior_point_prior_pulls_the_free_directions_towards_cad() {
-    prior_pulls_the_free_directions_towards_cad("interior-point", 0.026);
+    prior_pulls_the_free_directions_towards_cad("interior-point", Some(0.026));
 }
 
 /// The same optimum as the interior-point method, so the same measured figures and bounds.
 #[test]
 fn feasible_cholesky_prior_pulls_the_free_directions_towards_cad() {
-    prior_pulls_the_free_directions_towards_cad("cholesky", 0.026);
+    prior_pulls_the_free_directions_towards_cad("cholesky", Some(0.026));
 }
 
-/// Measured: sum |m - m_CAD| 21.38 -> 0.36 kg (ratio 0.017), chi^2 13.90 -> 73.71, max |z|
-/// 2.00 -> 2.85; bound 2x.
+/// Measured: sum |m - m_CAD| 12.27 -> 0.36 kg, chi^2 13.93 -> 73.76, max |z| 2.04 -> 2.85.
 #[test]
 fn feasible_anneal_prior_pulls_the_free_directions_towards_cad() {
-    prior_pulls_the_free_directions_towards_cad("anneal", 0.034);
+    prior_pulls_the_free_directions_towards_cad("anneal", None);
 }
 
 #[test]
