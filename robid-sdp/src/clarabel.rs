@@ -49,7 +49,7 @@ impl ConicSolver for Clarabel {
             SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
                 Err(ConicFailure::Infeasible)
             }
-            other => Err(ConicFailure::Stopped(format!("with status {other:?}"))),
+            other => Err(ConicFailure::Stopped(format!("status {other:?}"))),
         }
     }
 }

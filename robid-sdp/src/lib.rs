@@ -49,3 +49,21 @@ pub fn solver() -> robid_runtime::Result<&'static dyn ConicSolver> {
         },
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    /// Without its feature the method says how to get it instead of failing silently (the
+    /// test follows this crate's feature, whichever crate turned it on).
+    #[cfg(not(feature = "clarabel"))]
+    #[test]
+    fn without_the_feature_it_says_how_to_enable_it() {
+        match super::solver() {
+            Err(
+                e @ robid_runtime::Error::Feasible(robid_runtime::FeasibleError::Unavailable {
+                    ..
+                }),
+            ) => assert!(e.to_string().contains("--features sdp"), "{e}"),
+            other => panic!("expected Error::Unavailable, got {other:?}"),
+        }
+    }
+}

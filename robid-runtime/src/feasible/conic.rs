@@ -256,7 +256,7 @@ fn solve_stage(
             reason: "the bounds and the physical-consistency constraints exclude every solution; widen the mass or centre-of-mass bounds, the total-mass range, or lower the margin".to_owned(),
         })),
         Err(ConicFailure::Stopped(why)) => Err(Error::Feasible(FeasibleError::NoFeasibleParameters {
-            reason: format!("the conic solver stopped: {why}; check the bounds' scale (kg, m, kg m^2)"),
+            reason: format!("the conic solver stopped ({why}); check the bounds' scale (kg, m, kg m^2)"),
         })),
     }
 }

@@ -188,8 +188,8 @@ mod tests {
     use crate::feasible::conic::{Cone, ConicFailure, ConicProgram};
     use crate::feasible::fixture::{link, problem, target};
 
-    /// The shapes of the data are checked before any solver runs (with or without the
-    /// `sdp` feature); settings out of range are refused by name.
+    /// The shapes of the data are checked before any solver runs (a solver that never
+    /// solves stands in); settings out of range are refused by name.
     #[test]
     fn data_and_settings_are_checked_first() {
         let p = problem(&target(link(), 0.1));
@@ -327,7 +327,7 @@ mod tests {
         let (e, program) = told(ConicFailure::Infeasible);
         assert!(e.contains("exclude every solution"), "{e}");
         let (e, _) = told(ConicFailure::Stopped("out of iterations".into()));
-        assert!(e.contains("stopped: out of iterations"), "{e}");
+        assert!(e.contains("stopped (out of iterations)"), "{e}");
         let n = program.variables;
         assert_eq!(n, p.standard_names.len() + 1);
         assert_eq!(program.q.len(), n);

@@ -6,7 +6,8 @@
 //! eq. 14): the torque through the drive chain, the rotor inertias of `[drive.rotor]` and
 //! the joint torque, from `joint_torque` columns or, with `--parameters`, from the rigid
 //! model's inverse dynamics. Each joint is fitted on its own; the table on stdout gives the
-//! parameters, the residuals and what was held fixed and why, and the file is written
+//! parameters with their standard deviations, the residuals and what was held fixed and
+//! why, and the file is written
 //! atomically only when every joint's fit succeeded.
 
 use std::fmt::Write as _;
@@ -216,8 +217,6 @@ fn no_friction(number: usize, fit: &FrictionFit) -> Option<String> {
     })
 }
 
-/// The printed table: the source of tau_J and T, then per joint the parameters, the
-/// residuals and what was held fixed.
 /// A standard deviation relative to its value, ` (1.2 %)`; nothing for a value of 0.
 fn relative(std: f64, value: f64) -> String {
     if value == 0.0 {
@@ -227,6 +226,8 @@ fn relative(std: f64, value: f64) -> String {
     }
 }
 
+/// The printed table: the source of tau_J and T, then per joint the parameters with their
+/// standard deviations, the residuals and what was held fixed.
 fn table(fits: &[FrictionFit], source: JointTorqueSource, temperature: bool) -> String {
     let mut s = String::new();
     let _ = writeln!(

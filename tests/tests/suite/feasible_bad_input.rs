@@ -91,15 +91,3 @@ fn sdp_projects_inconsistent_identified_values_onto_consistent_ones() {
     assert!(s.min_eigenvalues[0] > 0.0);
     assert!(s.standard[9] > 0.0);
 }
-
-/// Without the `sdp` feature the method says how to get it instead of failing silently.
-#[cfg(not(feature = "sdp"))]
-#[test]
-fn sdp_without_the_feature_says_how_to_enable_it() {
-    match robid_sdp::solver() {
-        Err(e @ Error::Feasible(FeasibleError::Unavailable { .. })) => {
-            assert!(e.to_string().contains("--features sdp"))
-        }
-        other => panic!("expected Error::Unavailable, got {other:?}"),
-    }
-}

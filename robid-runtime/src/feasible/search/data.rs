@@ -14,8 +14,9 @@ use crate::feasible::layout::Layout;
 
 /// Whitened K split into the links' columns and the linearly solved ones.
 pub(super) struct Data {
-    /// Whitened K (base x standard) and the whitened target.
+    /// Whitened K (base x standard).
     pub(super) a: DMatrix<f64>,
+    /// The whitened target.
     pub(super) b: DVector<f64>,
     /// The links' columns of `a`, link by link in the order of [`Layout::links`], so that
     /// a link's ten columns are contiguous.
@@ -128,7 +129,8 @@ impl Data {
 
     /// [`Data::evaluate`] with the search's old roundings, bit for bit: the products with
     /// the whole of K column by column in the standard order, the linear terms zero in the
-    /// first (a zero column adds nothing, so it is skipped), solved in the second.
+    /// first (a zero entry of p adds nothing, so its column is skipped), solved in the
+    /// second.
     pub(super) fn evaluate_exact(&self, layout: &Layout, s: &mut Scratch) {
         for j in 0..layout.links.len() {
             set_link(layout, j, s);

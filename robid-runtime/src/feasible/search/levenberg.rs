@@ -1,7 +1,8 @@
 //! A bounded Levenberg-Marquardt polish (Marquardt 1963) of a least-squares residual:
 //! forward-difference Jacobian (the search's re-evaluates only the stepped link), damped
 //! Gauss-Newton steps in the variables that no bound holds (a variable at a bound the
-//! gradient pushes against stays there), clipped to the box. Used after Nelder-Mead, whose progress in tens of dimensions is slow near the optimum.
+//! gradient pushes against stays there), clipped to the box. Used after Nelder-Mead, whose
+//! progress in tens of dimensions is slow near the optimum.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -40,6 +41,7 @@ pub(crate) fn polish_with(
     let mut mu = 1e-3;
     for _ in 0..iterations {
         let j = jacobian(&x, &rx);
+        debug_assert_eq!(j.nrows(), rx.len(), "a Jacobian row per residual");
         let jt = j.transpose();
         let g = &jt * &rx;
         let h = &jt * &j;

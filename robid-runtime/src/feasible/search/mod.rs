@@ -313,11 +313,19 @@ impl Objective<'_> {
         }
         if let Some(pull) = &self.pull {
             for (k, &v) in s.p.iter().enumerate() {
-                if pull.weight[k] > 0.0 {
-                    row(pull.weight[k].sqrt() * (v - pull.target[k]) / pull.scale[k]);
+                if let Some(weight) = self.pull_weight(k) {
+                    row(weight.sqrt() * (v - pull.target[k]) / pull.scale[k]);
                 }
             }
         }
+    }
+
+    /// The weight of standard parameter `k`'s pull row, if it has one: the one test of
+    /// both the rows ([`Objective::misfit_rows`]) and the Jacobian's
+    /// ([`Objective::pulled_rows`]), so that their counts agree.
+    fn pull_weight(&self, k: usize) -> Option<f64> {
+        let weight = self.pull.as_ref()?.weight[k];
+        (weight > 0.0).then_some(weight)
     }
 
     /// The Jacobian of [`Objective::residual`] at `y` by forward differences with the
@@ -371,10 +379,9 @@ impl Objective<'_> {
     /// Per standard parameter, its row among the residual rows of `s` if the pull has one.
     fn pulled_rows(&self, s: &Scratch) -> Vec<Option<usize>> {
         let mut next = s.r.len();
-        let weight = |k: usize| self.pull.as_ref().map_or(0.0, |pull| pull.weight[k]);
         (0..s.p.len())
             .map(|k| {
-                (weight(k) > 0.0).then(|| {
+                self.pull_weight(k).map(|_| {
                     next += 1;
                     next - 1
                 })

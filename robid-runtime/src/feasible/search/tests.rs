@@ -862,9 +862,9 @@ fn gaz_a_partial_prior_leaves_the_rest_to_the_default_prior() {
 }
 
 /// The search's Jacobian, which re-evaluates only the stepped link, equals the forward
-/// differences of the whole residual (the same steps) to their rounding, on two links with drive terms (one
-/// clamped at zero where the data would make it negative), the pull, violated tensor and
-/// total-mass bounds and an equality, at random points of the box.
+/// differences of the whole residual (the same steps) to their rounding, on two links with
+/// drive terms (one clamped at zero where the data would make it negative), the pull,
+/// violated tensor and total-mass bounds and an equality, at random points of the box.
 #[test]
 fn the_jacobian_by_links_equals_the_forward_differences_of_the_residual() {
     let mut standard = crate::feasible::fixture::link_names(2);
