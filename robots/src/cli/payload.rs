@@ -104,7 +104,8 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         inputs.extend(referenced.iter().map(PathBuf::as_path));
         files::refuse(&inputs, &[("--output", output)])?;
     }
-    let chosen = super::identify::robot_model(&args.robot, &args.description)?;
+    let robot = description::read(&args.robot, &args.description)?;
+    let chosen = super::identify::model_of(&robot)?;
     let model = chosen.model.as_ref();
     let base = description::read_parameters(&args.parameters, true)?.base_parameters(model)?;
     let (samples, extremes) = match &config {
@@ -114,7 +115,6 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     // what `identify` warns of in a log, before the fit: a dead torque channel, data
     // beyond the description's limits, derivative columns in other units (a payload fitted
     // to a sixth torque of zeros was "physically consistent: yes")
-    let robot = description::read(&args.robot, &args.description)?;
     for w in beyond_limits(&robot, &extremes, &args.robot) {
         out::warn(format_args!("warning: {}: {w}", data[0].display()));
     }

@@ -509,3 +509,48 @@ fn the_rank_said_is_at_most_what_the_joint_torques_determine() {
         ],
     );
 }
+
+/// The description's warnings are printed once: payload read the description twice (for
+/// the model and for the limits' check) and printed each of its warnings twice.
+#[test]
+fn payload_prints_the_descriptions_warnings_once() {
+    let dir = folder();
+    let text = std::fs::read_to_string("descriptions/ur5e.toml").unwrap();
+    // a length in millimetres read as metres, which robid warns of
+    let robot = write(
+        dir.path(),
+        "ur5e_mm.toml",
+        &text.replacen("d = 0.1625", "d = 162.5", 1),
+    );
+    let robot = robot.to_str().unwrap();
+    let traj = write(dir.path(), "trajectory.csv", &trajectory());
+    let data = dir.path().join("data.csv");
+    let o = robid(&[
+        "simulate",
+        robot,
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--trajectory",
+        traj.to_str().unwrap(),
+        "--torque-noise",
+        "0.1",
+        "-o",
+        data.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = robid(&[
+        "payload",
+        robot,
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--data",
+        data.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let said = stderr(&o);
+    assert_eq!(
+        said.matches("longer than an arm's 10 m").count(),
+        1,
+        "{said}"
+    );
+}
