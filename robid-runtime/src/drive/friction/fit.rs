@@ -943,6 +943,11 @@ mod tests {
         assert_eq!(fit.friction.coulomb_temperature, 0.0);
         assert_eq!(fit.friction.viscous_temperature, 0.0);
         assert_eq!(fit.friction.load, 0.0);
+        // a held parameter has no standard deviation, each estimated one has
+        for p in FrictionParameter::ALL {
+            let std = fit.std_dev_of(p);
+            assert_eq!(std.is_none(), fit.is_fixed(p), "{p:?}: {:?}", fit.std_dev);
+        }
         // Fc takes Fl |tl| at this load and temperature: the curve is kept
         let at = |f: &JointFriction| f.evaluate(0.5, 12.0, 30.0);
         // noise-free: equal to rounding (measured 0)
