@@ -8,44 +8,7 @@ use crate::common;
 
 use std::path::Path;
 
-use common::{folder, robid, robid_in, stderr, stdout};
-
-/// A smooth trajectory of `n` joints `t,q1..,qd1..,qdd1..` of 20 s at 100 Hz (sines of
-/// amplitudes 0.6 to 1.1 rad).
-fn trajectory(dir: &Path, n: usize) -> String {
-    let mut text = String::from("t");
-    for prefix in ["q", "qd", "qdd"] {
-        for j in 1..=n {
-            text.push_str(&format!(",{prefix}{j}"));
-        }
-    }
-    text.push('\n');
-    for k in 0..=2000 {
-        let t = k as f64 / 100.0;
-        let (mut q, mut qd, mut qdd) = (Vec::new(), Vec::new(), Vec::new());
-        for j in 0..n {
-            let (a, w, p) = (
-                0.6 + 0.1 * (j % 6) as f64,
-                0.9 + 0.37 * j as f64,
-                0.7 * j as f64,
-            );
-            q.push(a * (w * t + p).sin());
-            qd.push(a * w * (w * t + p).cos());
-            qdd.push(-a * w * w * (w * t + p).sin());
-        }
-        let row: Vec<String> = std::iter::once(t)
-            .chain(q)
-            .chain(qd)
-            .chain(qdd)
-            .map(|v| format!("{v}"))
-            .collect();
-        text.push_str(&row.join(","));
-        text.push('\n');
-    }
-    let path = dir.join(format!("trajectory{n}.csv"));
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
-}
+use common::{folder, robid, robid_in, sine_trajectory, stderr, stdout};
 
 /// `data` with the sign of column `column` flipped (a joint's torque read with the
 /// opposite convention).
@@ -95,7 +58,7 @@ fn not_physical(json: &Path) -> Vec<String> {
 fn a_torque_of_the_opposite_sign_gives_rotor_inertia_and_friction_below_zero() {
     let dir = folder();
     let d = dir.path();
-    let trajectory = trajectory(d, 6);
+    let trajectory = sine_trajectory(d, "trajectory6.csv", 6, 20.0, 1.0);
     let data = d.join("data.csv").display().to_string();
     let robot = "descriptions/kr6r900.toml";
     let o = robid(&[
@@ -161,7 +124,7 @@ fn the_reference_robots_fits_warn_of_nothing_unphysical() {
         ("lwr4", 7, "Ia,Fv,Fc,Fo"),
         ("panda", 7, "Ia,Fv,Fc,Fo"),
     ] {
-        let trajectory = trajectory(d, joints);
+        let trajectory = sine_trajectory(d, &format!("trajectory{joints}.csv"), joints, 20.0, 1.0);
         let description = format!("descriptions/{robot}.toml");
         let data = d.join(format!("{robot}.csv")).display().to_string();
         let o = robid(&[

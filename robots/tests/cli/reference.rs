@@ -5,47 +5,7 @@
 
 use crate::common;
 
-use std::path::Path;
-
-use common::{fails_with, folder, robid, stderr, stdout};
-
-/// A smooth UR5e trajectory `t,q1..,qd1..,qdd1..` of `seconds` at 100 Hz: on joint j,
-/// a_j sin(w_j t + p_j) with frequencies scaled by `speed`.
-fn trajectory(dir: &Path, name: &str, seconds: f64, speed: f64) -> String {
-    let n = 6;
-    let mut text = String::from("t");
-    for prefix in ["q", "qd", "qdd"] {
-        for j in 1..=n {
-            text.push_str(&format!(",{prefix}{j}"));
-        }
-    }
-    text.push('\n');
-    for k in 0..=(seconds * 100.0) as usize {
-        let t = k as f64 / 100.0;
-        let (mut q, mut qd, mut qdd) = (Vec::new(), Vec::new(), Vec::new());
-        for j in 0..n {
-            let (a, w, p) = (
-                0.6 + 0.1 * j as f64,
-                speed * (0.9 + 0.37 * j as f64),
-                0.7 * j as f64,
-            );
-            q.push(a * (w * t + p).sin());
-            qd.push(a * w * (w * t + p).cos());
-            qdd.push(-a * w * w * (w * t + p).sin());
-        }
-        let row: Vec<String> = std::iter::once(t)
-            .chain(q)
-            .chain(qd)
-            .chain(qdd)
-            .map(|v| format!("{v}"))
-            .collect();
-        text.push_str(&row.join(","));
-        text.push('\n');
-    }
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
-}
+use common::{fails_with, folder, robid, sine_trajectory, stderr, stdout};
 
 /// Reads a CSV of numbers into its columns by name.
 fn columns(text: &str) -> std::collections::HashMap<String, Vec<f64>> {
@@ -81,7 +41,7 @@ fn identify_reference_gives_madsen_nmse_and_the_relative_improvement() {
     let truth = "parameters/ur5e.toml";
     let madsen = "parameters/ur5e_madsen2020.toml";
     for (name, speed, seed) in [("fit", 1.0, "1"), ("check", 0.8, "2")] {
-        let traj = trajectory(dir.path(), &format!("{name}_traj.csv"), 20.0, speed);
+        let traj = sine_trajectory(dir.path(), &format!("{name}_traj.csv"), 6, 20.0, speed);
         run(&[
             "simulate",
             robot,

@@ -69,6 +69,48 @@ pub(crate) fn ur5e_states(dir: &Path, rows: usize) -> PathBuf {
     write(dir, "states.csv", &text)
 }
 
+/// A smooth trajectory `t,q1..,qd1..,qdd1..` of `joints` joints, `seconds` long at
+/// 100 Hz, written to `dir/name`: on joint j (from 0), a_j sin(w_j t + p_j) with
+/// a_j = 0.6 + 0.1 (j mod 6) rad, w_j = `speed` (0.9 + 0.37 j) rad/s, p_j = 0.7 j.
+pub(crate) fn sine_trajectory(
+    dir: &Path,
+    name: &str,
+    joints: usize,
+    seconds: f64,
+    speed: f64,
+) -> String {
+    let mut text = String::from("t");
+    for prefix in ["q", "qd", "qdd"] {
+        for j in 1..=joints {
+            text.push_str(&format!(",{prefix}{j}"));
+        }
+    }
+    text.push('\n');
+    for k in 0..=(seconds * 100.0) as usize {
+        let t = k as f64 / 100.0;
+        let (mut q, mut qd, mut qdd) = (Vec::new(), Vec::new(), Vec::new());
+        for j in 0..joints {
+            let (a, w, p) = (
+                0.6 + 0.1 * (j % 6) as f64,
+                speed * (0.9 + 0.37 * j as f64),
+                0.7 * j as f64,
+            );
+            q.push(a * (w * t + p).sin());
+            qd.push(a * w * (w * t + p).cos());
+            qdd.push(-a * w * w * (w * t + p).sin());
+        }
+        let row: Vec<String> = std::iter::once(t)
+            .chain(q)
+            .chain(qd)
+            .chain(qdd)
+            .map(|v| format!("{v}"))
+            .collect();
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    write(dir, name, &text).display().to_string()
+}
+
 /// Asserts that `o` ended with an error (status 1) and a message containing every one
 /// of `expected`, without a panic.
 #[track_caller]
