@@ -185,6 +185,7 @@ fn solve(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::feasible::LinkInertial;
     use crate::feasible::conic::{Cone, ConicFailure, ConicProgram};
     use crate::feasible::fixture::{link, problem, target};
 
@@ -356,6 +357,174 @@ mod tests {
         };
         let e = solve_sdp(&p, &Bounds::wide(1), &SdpOptions::default(), &short).unwrap_err();
         assert!(e.to_string().contains("3 values for"), "{e}");
+    }
+
+    /// The program's constraints are the bounds', the drive terms' signs and the
+    /// pseudo-inertia's, one by one, whatever solver reads them: a consistent link within
+    /// its bounds meets every cone, each bound crossed alone breaks one row of the
+    /// nonnegative cone (two where the link's and the total mass's ranges both exclude
+    /// it), an inertia outside the triangle inequality breaks its PSD cone, and the
+    /// second-order cone's rows hold the whitened misfit with the epigraph variable bounding
+    /// their norm.
+    #[test]
+    fn the_program_holds_exactly_the_constraints() {
+        let p = problem(&target(link(), 0.1));
+        let mut bounds = Bounds::wide(1);
+        bounds.links[0].mass = [1.0, 3.0];
+        bounds.links[0].com = [[-0.1, 0.1]; 3];
+        bounds.total_mass = Some([1.5, 2.5]);
+        bounds.margin = Some(1e-6);
+        let solver = Recording {
+            program: Default::default(),
+            answer: Err(ConicFailure::Infeasible),
+        };
+        solve_sdp(&p, &bounds, &SdpOptions::default(), &solver).unwrap_err();
+        let program = solver.program.take().unwrap();
+        // the standard values of a link of mass `m` with its centre of mass at `com` and
+        // principal moments `moments`, the rotor inertia `ia`, and the epigraph variable
+        let at = |m: f64, com: [f64; 3], moments: [f64; 3], ia: f64, t: f64| {
+            let inertia = std::array::from_fn(|i| {
+                std::array::from_fn(|j| if i == j { moments[i] } else { 0.0 })
+            });
+            let link = LinkInertial {
+                mass: m,
+                com,
+                inertia,
+            }
+            .to_standard();
+            let mut x = target(link, ia).to_vec();
+            x.push(t);
+            x
+        };
+        let moments = [0.03, 0.02, 0.015];
+        let broken = |x: &[f64]| broken_rows(&program, x);
+        assert_eq!(broken(&at(2.0, [0.0; 3], moments, 0.1, 1e6)), vec![]);
+        assert_eq!(
+            broken(&at(2.0, [0.09, -0.09, 0.09], moments, 0.0, 1e6)),
+            vec![]
+        );
+        // each linear bound alone: the nonnegative cone's rows, not another cone
+        let linear = program
+            .cones
+            .iter()
+            .position(|c| matches!(c, Cone::Nonnegative(_)))
+            .unwrap();
+        for (m, com, ia, rows) in [
+            (1.2, [0.0; 3], 0.1, 1), // below the total mass
+            (2.7, [0.0; 3], 0.1, 1), // above it
+            (0.8, [0.0; 3], 0.1, 2), // below both
+            (3.2, [0.0; 3], 0.1, 2), // above both
+            (2.0, [0.12, 0.0, 0.0], 0.1, 1),
+            (2.0, [-0.12, 0.0, 0.0], 0.1, 1),
+            (2.0, [0.0, 0.12, 0.0], 0.1, 1),
+            (2.0, [0.0, -0.12, 0.0], 0.1, 1),
+            (2.0, [0.0, 0.0, 0.12], 0.1, 1),
+            (2.0, [0.0, 0.0, -0.12], 0.1, 1),
+            (2.0, [0.0; 3], -0.01, 1), // a negative rotor inertia
+        ] {
+            let x = at(m, com, moments, ia, 1e6);
+            assert_eq!(
+                broken(&x),
+                vec![(linear, rows)],
+                "mass {m}, com {com:?}, Ia {ia}"
+            );
+        }
+        // an inertia no body has (0.06 > 0.03 + 0.02): its PSD cone alone
+        let psd = program
+            .cones
+            .iter()
+            .position(|c| matches!(c, Cone::PsdTriangle(_)))
+            .unwrap();
+        let x = at(2.0, [0.0; 3], [0.03, 0.02, 0.06], 0.1, 1e6);
+        assert_eq!(broken(&x), vec![(psd, 1)]);
+        // the second-order cone: its first rows are the whitened misfit K p - beta, and the
+        // epigraph variable (the objective) bounds the norm of all its other rows
+        let Cone::SecondOrder(n) = program.cones[0] else {
+            panic!("the second-order cone comes first: {:?}", program.cones)
+        };
+        let x = at(2.4, [0.05, 0.0, -0.02], moments, 0.2, 0.0);
+        let s = slacks(&program, &x);
+        let misfit = p.normalized_residual(&x[..x.len() - 1]);
+        assert!(misfit.norm() > 1.0, "{misfit}");
+        for (k, z) in misfit.iter().enumerate() {
+            assert!(
+                (s[1 + k] - z).abs() < 1e-9 * misfit.norm(),
+                "{k}: {} vs {z}",
+                s[1 + k]
+            );
+        }
+        let tail = s[1..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+        let mut x = x;
+        *x.last_mut().unwrap() = tail * (1.0 + 1e-9);
+        assert_eq!(broken(&x), vec![]);
+        *x.last_mut().unwrap() = tail * (1.0 - 1e-6);
+        assert_eq!(broken(&x), vec![(0, 1)]);
+    }
+
+    /// `s = b - A x` of `program` at `x`: in the cones where `x` meets the constraints.
+    fn slacks(program: &ConicProgram, x: &[f64]) -> Vec<f64> {
+        let mut s = program.b.clone();
+        for ((&i, &j), &v) in program
+            .rows
+            .iter()
+            .zip(&program.columns)
+            .zip(&program.values)
+        {
+            s[i] -= v * x[j];
+        }
+        s
+    }
+
+    /// The cones of `program` that `x` breaks, each with its number of broken rows (1 for
+    /// a second-order or PSD cone), to a tolerance of 1e-12.
+    fn broken_rows(program: &ConicProgram, x: &[f64]) -> Vec<(usize, usize)> {
+        let s = slacks(program, x);
+        let mut start = 0;
+        let mut broken = Vec::new();
+        for (k, cone) in program.cones.iter().enumerate() {
+            let (rows, count) = match *cone {
+                Cone::Zero(n) => (
+                    n,
+                    s[start..start + n]
+                        .iter()
+                        .filter(|v| v.abs() > 1e-12)
+                        .count(),
+                ),
+                Cone::Nonnegative(n) => (
+                    n,
+                    s[start..start + n].iter().filter(|&&v| v < -1e-12).count(),
+                ),
+                Cone::SecondOrder(n) => {
+                    let tail = s[start + 1..start + n].iter().map(|v| v * v).sum::<f64>();
+                    (n, usize::from(s[start] < tail.sqrt()))
+                }
+                Cone::PsdTriangle(d) => {
+                    // the upper triangle column by column, off-diagonals times sqrt(2)
+                    let mut m = DMatrix::zeros(d, d);
+                    let mut r = start;
+                    for j in 0..d {
+                        for i in 0..=j {
+                            let v = if i == j {
+                                s[r]
+                            } else {
+                                s[r] / std::f64::consts::SQRT_2
+                            };
+                            m[(i, j)] = v;
+                            m[(j, i)] = v;
+                            r += 1;
+                        }
+                    }
+                    let lowest = m.symmetric_eigenvalues().min();
+                    (d * (d + 1) / 2, usize::from(lowest < -1e-12))
+                }
+            };
+            if count > 0 {
+                broken.push((k, count));
+            }
+            start += rows;
+        }
+        assert_eq!(start, s.len());
+        broken
     }
 
     /// A solver that never solves.
