@@ -18,9 +18,10 @@ use std::path::{Path, PathBuf};
 use robid_runtime::Num;
 use robid_runtime::estimate::{QualityWarning, Sign, SignDefinite, base_signs};
 use robid_runtime::feasible::{
-    AnnealOptions, Bounds, DEFAULT_PRIOR_WEIGHT, Equality, GravityCoefficients, LinkBounds, Prior,
-    Problem, STANDARD_GRAVITY, SdpOptions, SmoothOptions, Solution, Unsized, UrdfJoint,
-    solve_anneal, solve_interior, solve_sdp, solve_smooth, solve_two_step, to_toml, to_urdf,
+    AnnealOptions, Bounds, DEFAULT_PRIOR_WEIGHT, Equality, GravityCoefficients, LinkBounds,
+    LinkShape, Prior, Problem, STANDARD_GRAVITY, SdpOptions, SmoothOptions, Solution, Unsized,
+    UrdfJoint, solve_anneal, solve_interior, solve_sdp, solve_smooth, solve_two_step, to_toml,
+    to_urdf,
 };
 use robid_symbolic::Robot;
 use robid_symbolic::robot::{Inertial, ParameterId, ParameterKind, UrdfChain, write_inertials};
@@ -281,7 +282,18 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let description = description::load(&args.robot, &args.description)?;
     let robot = &description.robot;
     let identified = Identified::read(&args.identified)?;
-    let problem = robots::extraction::problem(robot)?;
+    let mut problem = robots::extraction::problem(robot)?;
+    if let Some(chain) = &description.urdf {
+        // the links' segments between the URDF's joints, not between the fitted frames'
+        // origins, which can lie metres away at the feet of common normals
+        let segments = chain.link_segments().map_err(|e| e.to_string())?;
+        problem = problem.with_shapes(
+            segments
+                .into_iter()
+                .map(|[from, to]| LinkShape { from, to })
+                .collect(),
+        )?;
+    }
     // Extra columns of the identification config (no expression, not a base parameter,
     // e.g. a coupled wrist's `Iam6`) are kept as free terms.
     let extra: Vec<String> = identified

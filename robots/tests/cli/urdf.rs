@@ -1678,3 +1678,79 @@ fn simulate_names_prismatic_joints_that_move_one_body_alike() {
     );
     assert!(!output.exists());
 }
+
+/// Two skew axes 0.1 rad apart whose common normal, 4 cm long, lies 1.5 m below the
+/// joints: robid's frames 1 and 2 sit at its feet, far from both links.
+const SKEW: &str = r#"<robot name="skew">
+  <link name="base"/>
+  <joint name="j1" type="revolute"><axis xyz="0 0 1"/><parent link="base"/><child link="l1"/>
+    <limit lower="-3" upper="3" effort="100" velocity="3"/></joint>
+  <link name="l1"><inertial><origin xyz="0.02 0.05 0.15"/><mass value="3"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.005"/></inertial></link>
+  <joint name="j2" type="revolute"><origin xyz="0.04 0.179700 0.291007" rpy="-0.1 0 0"/>
+    <axis xyz="0 0 1"/><parent link="l1"/><child link="l2"/>
+    <limit lower="-3" upper="3" effort="100" velocity="3"/></joint>
+  <link name="l2"><inertial><origin xyz="0.1 0 0"/><mass value="2"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.005"/></inertial></link>
+</robot>
+"#;
+
+/// `robid feasible` on a URDF sizes and places the links by the URDF's joints, not by the
+/// fitted frames' origins: with SKEW's frames 1.5 m below the links, each link's own
+/// centre of mass was told as 1.65 m and 1.8 m from "the link's segment" (the 4 cm
+/// between the frames' origins) with a bound to put it 4 cm from them, though the fit
+/// reproduced the URDF's inertials, which the identified values came from.
+#[test]
+fn feasible_sizes_a_urdfs_links_by_its_joints() {
+    let dir = folder();
+    let urdf = write(dir.path(), "skew.urdf", SKEW);
+    let chain = Robot::from_urdf(SKEW, "skew.urdf", &ChainSelection::default()).unwrap();
+    // frame 1 is far from joint 2's point, which the segments of the links run between
+    let segments = chain.link_segments().unwrap();
+    assert!(chain.robot.link_segments().unwrap()[0][1][2].abs() < 1e-9);
+    let [from, to] = segments[0];
+    assert!(
+        from.iter().map(|v| v * v).sum::<f64>().sqrt() > 1.0,
+        "{from:?}"
+    );
+    let length: f64 = (0..3)
+        .map(|i| (to[i] - from[i]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    assert!((length - 0.3444).abs() < 1e-3, "{length}");
+    let model = Interpreted::new(&chain.robot).unwrap();
+    let entries: Vec<String> = urdf_base(&chain, &model)
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let name = model.base_parameter_name(i).unwrap();
+            format!("{{\"name\": \"{name}\", \"value\": {v:e}, \"std\": 1e-6}}")
+        })
+        .collect();
+    let identified = write(
+        dir.path(),
+        "identified.json",
+        &format!("{{\"parameters\": [{}]}}", entries.join(", ")),
+    );
+    let out = dir.path().join("out.urdf");
+    let o = robid(&[
+        "feasible",
+        urdf.to_str().unwrap(),
+        "--identified",
+        identified.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        !stderr(&o).contains("no body of its size"),
+        "{}",
+        stderr(&o)
+    );
+    let back = Robot::from_urdf_file(&out, &ChainSelection::default()).unwrap();
+    for (a, b) in back.links.iter().zip(&chain.links) {
+        for (x, y) in a.inertial.iter().zip(&b.inertial) {
+            assert!((x - y).abs() < 1e-4 * (1.0 + y.abs()), "{x} vs {y}");
+        }
+    }
+}

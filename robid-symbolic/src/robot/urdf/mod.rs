@@ -22,7 +22,7 @@ pub use inertial::{NEGLIGIBLE_SHARE, UnphysicalInertial, negligible};
 
 use super::bounds::MAX_DESCRIPTION_LEN;
 use super::file::Place;
-use super::{DescriptionError, Inertial, ParameterId, ParameterKind, Pose, Robot};
+use super::{DescriptionError, Inertial, JointKind, ParameterId, ParameterKind, Pose, Robot};
 use frames::Axis;
 use std::io::Read;
 use std::path::Path;
@@ -117,6 +117,44 @@ impl UrdfChain {
             .into_iter()
             .map(|p| self.inertial_value(p).unwrap_or(0.0))
             .collect()
+    }
+
+    /// Per robid link j, the segment its URDF body spans, both ends in robid frame j:
+    /// from joint j's point (the URDF link's origin, on joint j's axis; for a prismatic
+    /// joint with limits, moved back along the axis to where its bearing is at the end of
+    /// the travel farthest from it) to joint j+1's point at q = 0 (the tip link's origin
+    /// for the last link). What [`Robot::link_segments`] is for a description, from the
+    /// URDF's joints rather than the fitted DH frames: a frame's origin lies at the foot
+    /// of a common normal, which two skew axes can put metres from the links (axes 0.1 rad
+    /// apart whose normal is 4 cm long and 1.5 m below the joints), so the segments
+    /// between the frames' origins size and place no body of the robot.
+    ///
+    /// # Errors
+    /// Never for a chain read from a URDF (its geometry is numeric); a symbol without a
+    /// value otherwise.
+    pub fn link_segments(&self) -> Result<Vec<[[f64; 3]; 2]>, crate::expr::Unbound> {
+        let placements = self.robot.joint_placements()?;
+        let point = |p: &Pose| [p[0][3], p[1][3], p[2][3]];
+        let apply = |t: &Pose, v: [f64; 3]| -> [f64; 3] {
+            std::array::from_fn(|i| t[i][0] * v[0] + t[i][1] * v[1] + t[i][2] * v[2] + t[i][3])
+        };
+        let n = self.links.len();
+        Ok((0..n)
+            .map(|j| {
+                let mut from = point(&self.links[j].frame);
+                let joint = &self.robot.joints()[j];
+                if let (JointKind::Prismatic, Some([lo, hi])) = (joint.kind, joint.limits.position)
+                {
+                    // the bearing, fixed to the previous body, lies -q along z_j
+                    from[2] -= if lo.abs() > hi.abs() { lo } else { hi };
+                }
+                let to = match self.links.get(j + 1) {
+                    Some(next) => apply(&placements[j + 1].origin, point(&next.frame)),
+                    None => point(&self.tool),
+                };
+                [from, to]
+            })
+            .collect())
     }
 }
 
