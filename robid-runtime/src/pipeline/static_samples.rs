@@ -163,6 +163,33 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
         StaticKind::Gravity => GravityCoefficients::of_model(model)?,
         StaticKind::MassMatrix => GravityCoefficients::of_mass_matrix(model)?,
     };
+    // a robot whose static values no base parameter enters (no gravity, or gravity along
+    // every joint axis that moves a mass: a horizontal planar arm, a turntable on a vertical
+    // axis, a slider across gravity): the samples determine nothing, whatever their number or poses (the
+    // least squares said "least squares with 0 parameters: 60 samples, at least 1 is
+    // needed; use more data, less decimation, or fewer parameters")
+    if determined.kept.is_empty() {
+        return Err(Error::setting(
+            "static samples",
+            &path.display().to_string(),
+            match kind {
+                StaticKind::Gravity => format!(
+                    "the gravity torques of `{}` are 0 at every pose whatever its parameters \
+                     (no gravity, or gravity along every joint axis that moves a mass and \
+                     across every slider), so gravity samples determine none of its base parameters; \
+                     identify it from mass-matrix samples (columns M11 M12 .. M{n}{n}) or from \
+                     motion data (--data)",
+                    model.name()
+                ),
+                StaticKind::MassMatrix => format!(
+                    "the mass matrix of `{}` is 0 at every pose whatever its parameters, so \
+                     mass-matrix samples determine none of its base parameters; identify it \
+                     from motion data (--data)",
+                    model.name()
+                ),
+            },
+        ));
+    }
     let (rows, nb) = (table.rows(), model.base_parameter_count());
     let per = values.len();
     let nc = determined.kept.len();
@@ -319,4 +346,88 @@ fn dead_columns(
         ));
     }
     warnings
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{StaticKind, identify_static};
+    use crate::model::{LengthError, Model, ProgramKind, check_arguments};
+
+    /// A turntable: one revolute joint on a vertical axis, its one base parameter `ZZR1`
+    /// (torque `ZZR1 qdd`): no gravity torque at any pose.
+    struct Turntable;
+
+    impl Model for Turntable {
+        fn name(&self) -> &str {
+            "turntable"
+        }
+        fn dof(&self) -> usize {
+            1
+        }
+        fn standard_parameter_count(&self) -> usize {
+            1
+        }
+        fn standard_parameter_name(&self, index: usize) -> Option<&str> {
+            (index == 0).then_some("ZZ1")
+        }
+        fn base_parameter_count(&self) -> usize {
+            1
+        }
+        fn base_parameter_name(&self, index: usize) -> Option<&str> {
+            (index == 0).then_some("ZZR1")
+        }
+        fn run(
+            &self,
+            program: ProgramKind,
+            inputs: &[&[f64]],
+            output: &mut [f64],
+        ) -> Result<(), LengthError> {
+            check_arguments(program, self.sizes(), inputs, output)?;
+            match (program, inputs) {
+                (ProgramKind::BaseRegressor | ProgramKind::StandardRegressor, [_, _, qdd]) => {
+                    output[0] = qdd[0];
+                }
+                (ProgramKind::InverseDynamics, [_, _, qdd, base]) => output[0] = base[0] * qdd[0],
+                (ProgramKind::MassMatrix, [_, base]) => output[0] = base[0],
+                (ProgramKind::BaseFromStandard, [standard]) => output[0] = standard[0],
+                _ => output.fill(0.0),
+            }
+            Ok(())
+        }
+    }
+
+    /// Gravity samples of a robot whose gravity torques are 0 at every pose determine no
+    /// base parameter, whatever their number: said so, with the samples that do determine
+    /// some. It was the least squares' "least squares with 0 parameters: 60 samples, at
+    /// least 1 is needed; use more data, less decimation, or fewer parameters" (found with
+    /// a one-joint slider across gravity, `robid identify --static`, 7 December 2026).
+    /// Its mass-matrix samples determine `ZZR1`.
+    #[test]
+    fn gravity_samples_of_a_robot_without_gravity_torques_are_told_they_determine_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let gravity = dir.path().join("gravity.csv");
+        let rows: String = (0..60)
+            .map(|i| format!("{},0\n", 0.1 * f64::from(i)))
+            .collect();
+        std::fs::write(&gravity, format!("q1,g1\n{rows}")).unwrap();
+        let e = identify_static(&Turntable, &gravity, 1e-10)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("gravity.csv`: the gravity torques of `turntable` are 0 at every pose")
+                && e.contains("determine none of its base parameters")
+                && e.contains("mass-matrix samples (columns M11 M12 .. M11)"),
+            "{e}"
+        );
+        assert!(!e.contains("more data"), "{e}");
+        let mass = dir.path().join("mass.csv");
+        let rows: String = (0..10)
+            .map(|i| format!("{},0.7\n", 0.3 * f64::from(i)))
+            .collect();
+        std::fs::write(&mass, format!("q1,M11\n{rows}")).unwrap();
+        let fit = identify_static(&Turntable, &mass, 1e-10).unwrap();
+        assert_eq!(fit.kind, StaticKind::MassMatrix);
+        assert_eq!(fit.determined.names, ["ZZR1"]);
+        assert!((fit.estimate.values[0] - 0.7).abs() < 1e-12);
+    }
 }
