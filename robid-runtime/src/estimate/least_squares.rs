@@ -1,7 +1,10 @@
 //! Ordinary and weighted least squares (IDIM-OLS and IDIM-WLS).
 //!
 //! WLS weights each joint's equations by 1/sigma_j, with sigma_j^2 = ||rho_j||^2 /
-//! (r_j - c) the variance of the OLS residual of joint j's r_j equations (c parameters).
+//! (r_j - h_j) the variance of the OLS residual of joint j's r_j equations, `h_j` the sum
+//! of their leverages (`tr(W_j (W'W)^-1 W_j')`, the parameters' share of its equations:
+//! the `h_j` of all joints add up to the c parameters, as the `r_j - h_j` add up to the
+//! `rows - c` of the whole residual).
 //! A joint whose residual is (nearly) zero would get an infinite weight: sigma_j has a
 //! floor of [`SIGMA_FLOOR`] times the largest sigma of the joints (and all weights are 1
 //! when every residual is zero, as for exact data).
@@ -53,11 +56,14 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     check_tolerance(tolerance)?;
     let first = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
     let r = &obs.y - &obs.w * &first.beta;
-    let c = obs.cols();
     let sigma: Vec<f64> = obs
         .joint_rows
         .iter()
-        .map(|b| joint_sigma(r.rows(b.start, b.len()).norm_squared(), b.len(), c))
+        .map(|b| {
+            let rows = obs.w.rows(b.start, b.len());
+            let leverage = (rows * &first.inverse_gram).component_mul(&rows).sum();
+            joint_sigma(r.rows(b.start, b.len()).norm_squared(), b.len(), leverage)
+        })
         .collect();
     let weights = checked_weights(&sigma)?;
     let mut weighted = obs.clone();
@@ -83,11 +89,18 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
 }
 
 /// The residual sigma of a joint from its OLS residual sum of squares `rss` over `rows`
-/// equations with `c` parameters: over `rows - c` degrees of freedom, or over its rows
-/// when it has no more equations than parameters.
-pub(crate) fn joint_sigma(rss: f64, rows: usize, c: usize) -> f64 {
-    let dof = if rows > c { rows - c } else { rows.max(1) };
-    (rss / dof as f64).sqrt()
+/// equations whose leverages (the diagonal of the hat matrix `W (W'W)^-1 W'` on its rows)
+/// sum to `leverage`: over `rows - leverage` degrees of freedom, at least 1.
+///
+/// The joint OLS fit spends its `c` degrees of freedom across all joints' equations, each
+/// joint's share being its leverage, so that the joints' `rows - leverage` add up to the
+/// `rows - c` of the whole residual. Taking `c` from every joint (`rows - c`, as until
+/// 7 December 2026) removed the parameters once per joint: on a UR5e record decimated to
+/// 84 to 94 equations per joint (58 parameters) the sigmas came out 1.5 to 2.0 times the
+/// noise, unevenly across the joints, where these are within 3.5 % (but for one joint, 24 %).
+pub(crate) fn joint_sigma(rss: f64, rows: usize, leverage: f64) -> f64 {
+    let dof = (rows as f64 - leverage).max(1.0);
+    (rss / dof).sqrt()
 }
 
 /// [`joint_weights`], refusing sigmas that overflowed.
@@ -208,18 +221,21 @@ mod tests {
         // measured ratio 8.8
         assert!(weights[0] > 5.0 * weights[1], "{weights:?}");
         // each weight is 1 / sigma_j, sigma_j^2 = joint j's OLS residual sum of squares over
-        // its rows minus the parameters (400 - 3)
+        // its rows minus their leverages (which add up to the 3 parameters over the joints)
+        let gram = (obs.w.transpose() * &obs.w).try_inverse().unwrap();
+        let mut leverages = 0.0;
         for (j, rows) in obs.joint_rows.iter().enumerate() {
-            let rss: f64 = rows
-                .clone()
-                .map(|k| {
-                    let x = obs.w.row(k);
-                    (obs.y[k] - (0..3).map(|c| x[c] * o.values[c]).sum::<f64>()).powi(2)
-                })
-                .sum();
-            let expected = 1.0 / (rss / (rows.len() - 3) as f64).sqrt();
+            let (mut rss, mut leverage) = (0.0, 0.0);
+            for k in rows.clone() {
+                let x = obs.w.row(k).transpose();
+                rss += (obs.y[k] - (0..3).map(|c| x[c] * o.values[c]).sum::<f64>()).powi(2);
+                leverage += (x.transpose() * &gram * &x)[(0, 0)];
+            }
+            leverages += leverage;
+            let expected = 1.0 / (rss / (rows.len() as f64 - leverage)).sqrt();
             assert!((weights[j] / expected - 1.0).abs() < 1e-9, "joint {j}");
         }
+        assert!((leverages - 3.0).abs() < 1e-9, "{leverages}");
         for i in 0..3 {
             assert!((w.values[i] - beta[i]).abs() < 4.0 * w.std[i]);
         }
@@ -286,8 +302,9 @@ mod tests {
         assert!(ols(&obs, 0.5).is_ok() && wls(&obs, f64::MIN_POSITIVE).is_ok());
     }
 
-    /// A joint with no more equations than parameters has no residual degrees of freedom:
-    /// its sigma is taken over its rows (not divided by zero), so WLS stays finite.
+    /// A joint with no more equations than parameters still has residual degrees of
+    /// freedom when the fit is shared: its sigma is taken over its rows less their
+    /// leverages (not divided by zero), so WLS stays finite.
     #[test]
     fn a_joint_with_as_many_rows_as_parameters_gets_a_finite_weight() {
         let n = 100;
@@ -317,17 +334,18 @@ mod tests {
             "{weights:?}"
         );
         // the three rows of joint 2 still leave a residual (the fit is shared), so its
-        // sigma is theirs: sum of squares over 3 rows
-        let r: Vec<f64> = (n..rows)
-            .map(|k| {
-                let x = obs.w.row(k);
-                obs.y[k]
-                    - (0..3)
-                        .map(|c| x[c] * ols(&obs, 1e-10).unwrap().values[c])
-                        .sum::<f64>()
-            })
-            .collect();
-        let sigma2 = (r.iter().map(|v| v * v).sum::<f64>() / 3.0).sqrt();
+        // sigma is theirs: sum of squares over 3 rows less their leverages
+        let first = ols(&obs, 1e-10).unwrap();
+        let gram = (obs.w.transpose() * &obs.w).try_inverse().unwrap();
+        let (mut rss, mut leverage) = (0.0, 0.0);
+        for k in n..rows {
+            let x = obs.w.row(k).transpose();
+            let r = obs.y[k] - (0..3).map(|c| x[c] * first.values[c]).sum::<f64>();
+            rss += r * r;
+            leverage += (x.transpose() * &gram * &x)[(0, 0)];
+        }
+        assert!(leverage > 0.0 && leverage < 1.0, "{leverage}");
+        let sigma2 = (rss / (3.0 - leverage)).sqrt();
         let largest = weights.iter().map(|w| 1.0 / w).fold(0.0, f64::max);
         let expected = 1.0 / sigma2.max(SIGMA_FLOOR * largest);
         assert!(
@@ -335,6 +353,54 @@ mod tests {
             "{} vs {expected}",
             weights[1]
         );
+    }
+
+    /// Each joint's sigma takes the degrees of freedom its own equations lose to the fit
+    /// (their leverages), not all the parameters once per joint: with every joint's
+    /// equations in parameters of their own, the joint OLS is each joint's own fit, and
+    /// joint j's residual has `r_j - 2` degrees of freedom. Taking `r_j - c` (c = 6),
+    /// as before, made every sigma sqrt(38 / 34) = 1.057 times too large, and more for
+    /// a joint with fewer equations (sqrt(18 / 14) = 1.13): weights uneven by 7 %.
+    #[test]
+    fn each_joint_loses_the_degrees_of_freedom_of_its_own_leverage() {
+        let counts = [40, 40, 20];
+        let rows: usize = counts.iter().sum();
+        let mut w = DMatrix::zeros(rows, 6);
+        let mut y = DVector::zeros(rows);
+        let mut blocks = Vec::new();
+        let mut row = 0;
+        for (j, &count) in counts.iter().enumerate() {
+            for k in 0..count {
+                let t = k as f64 * 0.13 + j as f64;
+                w[(row + k, 2 * j)] = t.sin();
+                w[(row + k, 2 * j + 1)] = 1.0 + 0.3 * t.cos();
+                y[row + k] = 1.5 * t.sin() - 0.5 + (j + 1) as f64 * 0.01 * (t * 17.1).sin();
+            }
+            blocks.push(row..row + count);
+            row += count;
+        }
+        let names = (0..6).map(|i| format!("p{i}")).collect();
+        let sample_of_row = blocks.iter().flat_map(|b| 0..b.len()).collect();
+        let obs = Observation::new(w, y, blocks.clone(), sample_of_row, names).unwrap();
+        let first = ols(&obs, 1e-10).unwrap();
+        let weights = wls(&obs, 1e-10).unwrap().weights.unwrap();
+        for (j, b) in blocks.iter().enumerate() {
+            let rss: f64 = b
+                .clone()
+                .map(|k| {
+                    let r = obs.y[k] - (0..6).map(|c| obs.w[(k, c)] * first.values[c]).sum::<f64>();
+                    r * r
+                })
+                .sum();
+            let sigma = (rss / (b.len() - 2) as f64).sqrt();
+            assert!(
+                (weights[j] * sigma - 1.0).abs() < 1e-9,
+                "joint {}: weight {} against 1 / sigma {}",
+                j + 1,
+                weights[j],
+                1.0 / sigma
+            );
+        }
     }
 
     #[test]

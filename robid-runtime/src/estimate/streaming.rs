@@ -209,6 +209,18 @@ impl Factor {
         r
     }
 
+    /// The leverages of this group's rows summed, `tr(W_j (W'W)^-1 W_j')` with
+    /// `inverse_gram` the `(W'W)^-1` of the whole system (the pending rows folded in
+    /// first): from the factor, `W_j'W_j = R_j'R_j`, in the columns' scales.
+    fn leverage(&self, inverse_gram: &DMatrix<f64>) -> f64 {
+        let n = inverse_gram.nrows();
+        let scaled = DMatrix::from_fn(n, n, |a, b| {
+            inverse_gram[(a, b)] * divisor(self.scale[a]) * divisor(self.scale[b])
+        });
+        let rw = self.r.columns(0, n);
+        (rw * &scaled).component_mul(&rw).sum()
+    }
+
     /// ||y - W beta|| of this group's rows (the pending rows folded in first).
     fn residual_norm(&self, beta: &DVector<f64>) -> f64 {
         let n = beta.len();
@@ -402,8 +414,14 @@ impl StreamingLeastSquares {
     }
 
     /// Solves the groups stacked with weights (all 1 for OLS); returns the estimate's
-    /// statistics for the solved (weighted) system.
-    fn solve(&self, method: Estimator, weights: &[f64], tolerance: f64) -> Result<Estimate> {
+    /// statistics for the solved (weighted) system, and its `(W'W)^-1` (of the weighted
+    /// columns).
+    fn solve(
+        &self,
+        method: Estimator,
+        weights: &[f64],
+        tolerance: f64,
+    ) -> Result<(Estimate, DMatrix<f64>)> {
         let n = self.names.len();
         let m = self.rows();
         // as many equations as parameters fit any data exactly: no residual is left for
@@ -493,7 +511,7 @@ impl StreamingLeastSquares {
         let relative_column_norms = (0..n)
             .map(|j| (col_norm(j) / y_norm) * (divisor(common[j]) / sy))
             .collect();
-        assemble_parts(
+        let e = assemble_parts(
             method,
             self.names.clone(),
             s.beta,
@@ -506,7 +524,8 @@ impl StreamingLeastSquares {
                 error_bound,
                 relative_column_norms,
             },
-        )
+        )?;
+        Ok((e, s.inverse_gram))
     }
 
     /// Ordinary least squares on every equation given; `tolerance` is the relative
@@ -515,25 +534,27 @@ impl StreamingLeastSquares {
         check_tolerance(tolerance)?;
         self.flush();
         let ones = vec![1.0; self.groups.len()];
-        self.solve(Estimator::Ols, &ones, tolerance)
+        Ok(self.solve(Estimator::Ols, &ones, tolerance)?.0)
     }
 
     /// Weighted least squares with each group's weight 1 / sigma_j from its OLS residual
     /// (as [`wls`](crate::estimate::wls)).
     pub fn wls(&mut self, tolerance: f64) -> Result<Estimate> {
-        let first = self.ols(tolerance)?;
+        check_tolerance(tolerance)?;
+        self.flush();
+        let ones = vec![1.0; self.groups.len()];
+        let (first, inverse_gram) = self.solve(Estimator::Ols, &ones, tolerance)?;
         let beta = first.beta();
-        let c = self.names.len();
         let sigma: Vec<f64> = self
             .groups
             .iter()
             .map(|g| {
                 let rss = g.residual_norm(&beta);
-                joint_sigma(rss * rss, g.rows, c)
+                joint_sigma(rss * rss, g.rows, g.leverage(&inverse_gram))
             })
             .collect();
         let weights = checked_weights(&sigma)?;
-        let mut e = self.solve(Estimator::Wls, &weights, tolerance)?;
+        let (mut e, _) = self.solve(Estimator::Wls, &weights, tolerance)?;
         e.weights = Some(weights);
         Ok(e)
     }

@@ -471,3 +471,50 @@ fn faint_rows_after_strong_ones_keep_their_precision() {
     let mut s = streamed(&obs, &rows);
     assert_same(&s.ols(1e-12).unwrap(), &ols(&obs, 1e-12).unwrap(), 1e-10);
 }
+
+/// Streamed WLS gives each group the degrees of freedom its own equations lose to the fit
+/// (their leverages, from the group's factor), as the dense WLS does: with every group's
+/// equations in parameters of their own, group j's residual has `r_j - 2` of them (it had
+/// `r_j - 6`, the parameters taken once per group).
+#[test]
+fn wls_weights_take_each_groups_leverage() {
+    let counts = [40usize, 40, 20];
+    let names: Vec<String> = (0..6).map(|i| format!("p{i}")).collect();
+    let mut s = StreamingLeastSquares::new(names, 3).unwrap();
+    let mut equations = Vec::new();
+    for (j, &count) in counts.iter().enumerate() {
+        for k in 0..count {
+            let t = k as f64 * 0.13 + j as f64;
+            let mut row = [0.0; 6];
+            row[2 * j] = t.sin();
+            row[2 * j + 1] = 1.0 + 0.3 * t.cos();
+            let y = 1.5 * t.sin() - 0.5 + (j + 1) as f64 * 0.01 * (t * 17.1).sin();
+            s.push(j, &row, y).unwrap();
+            equations.push((j, row, y));
+        }
+    }
+    let first = s.ols(1e-10).unwrap();
+    let weights = s.wls(1e-10).unwrap().weights.unwrap();
+    for (j, &count) in counts.iter().enumerate() {
+        let rss: f64 = equations
+            .iter()
+            .filter(|e| e.0 == j)
+            .map(|(_, row, y)| {
+                let r = y - row
+                    .iter()
+                    .zip(&first.values)
+                    .map(|(a, b)| a * b)
+                    .sum::<f64>();
+                r * r
+            })
+            .sum();
+        let sigma = (rss / (count - 2) as f64).sqrt();
+        assert!(
+            (weights[j] * sigma - 1.0).abs() < 1e-9,
+            "group {}: weight {} against 1 / sigma {}",
+            j + 1,
+            weights[j],
+            1.0 / sigma
+        );
+    }
+}
