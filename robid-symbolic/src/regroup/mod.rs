@@ -258,7 +258,7 @@ impl Derivation {
             // The expression is linear in the standard parameters: each
             // coefficient is a derivative, taken only for the symbols it holds.
             let present = self.arena.free_symbols(&[expression]);
-            let terms = user
+            let terms: Vec<(usize, Id)> = user
                 .iter()
                 .enumerate()
                 .filter_map(|(s, &parameter)| {
@@ -272,6 +272,7 @@ impl Derivation {
                     (!self.arena.is_zero(coefficient)).then_some((s, coefficient))
                 })
                 .collect();
+            let expression = self.shortest_form(expression, &terms, &user);
             base.push(BaseParameter {
                 name,
                 expression,
@@ -288,6 +289,34 @@ impl Derivation {
             columns,
             unidentifiable,
         })
+    }
+
+    /// `expression` or, when it prints shorter, the same value rebuilt from its `terms`
+    /// (standard-parameter index, coefficient), the parameters of one coefficient summed
+    /// under it: the rules add each grouping as it comes, so a parameter moved twice
+    /// keeps both moves, `(M3 + M4)*(L2^2 + D3^2) - (M3 + M4)*D3^2`, where its coefficient,
+    /// a derivative, is simplified, `(M3 + M4)*L2^2`.
+    fn shortest_form(&mut self, expression: Id, terms: &[(usize, Id)], user: &[Id]) -> Id {
+        let mut groups: Vec<(Id, Vec<Id>)> = Vec::new();
+        for &(s, coefficient) in terms {
+            match groups.iter_mut().find(|(c, _)| *c == coefficient) {
+                Some((_, parameters)) => parameters.push(user[s]),
+                None => groups.push((coefficient, vec![user[s]])),
+            }
+        }
+        let parts: Vec<Id> = groups
+            .into_iter()
+            .map(|(coefficient, parameters)| {
+                let sum = self.arena.add(&parameters);
+                self.arena.mul2(coefficient, sum)
+            })
+            .collect();
+        let rebuilt = self.arena.add(&parts);
+        if self.arena.display(rebuilt).len() < self.arena.display(expression).len() {
+            rebuilt
+        } else {
+            expression
+        }
     }
 
     /// The kept candidates, the dependent ones and their exact coefficients ([`Folding`]),
@@ -473,7 +502,75 @@ impl Derivation {
 mod tests {
     use super::rules;
     use crate::dynamics::Derivation;
+    use crate::expr::Id;
     use crate::robot::{ParameterId, ParameterKind, Robot};
+
+    /// A parameter moved twice keeps one coefficient: M3 and M4 move into link 2 with
+    /// `L2^2 + D3^2` and out of it again with `-D3^2`, written `(M3 + M4)*L2^2`; where the
+    /// rules' own form is already the shortest (every reference robot), it stays, and
+    /// either way the expression is the sum of its terms.
+    #[test]
+    fn a_parameter_moved_twice_is_written_with_its_one_coefficient() {
+        let robot = Robot::from_toml(
+            r#"
+name = "sym3"
+convention = "modified"
+[symbols]
+L2 = 0.45
+D3 = 0.12
+[[joints]]
+d = 0.3
+[[joints]]
+alpha = "-pi/2"
+[[joints]]
+a = "L2"
+d = "D3"
+[[joints]]
+alpha = "-pi/2"
+d = 0.4
+"#,
+            "sym3.toml",
+        )
+        .unwrap();
+        let mut d = Derivation::new(&robot);
+        let base = d.base_parameters().unwrap();
+        let text = |name: &str, d: &Derivation| {
+            let b = base
+                .base
+                .iter()
+                .find(|b| b.name.to_string() == name)
+                .unwrap();
+            d.arena.display(b.expression)
+        };
+        assert_eq!(text("ZZR2", &d), "ZZ2 + (M3 + M4)*L2^2");
+        assert_eq!(text("MXR2", &d), "MX2 + L2*(M3 + M4)");
+        assert_eq!(text("ZZR3", &d), "ZZ3 + YY4 + 0.8*MZ4 + 0.16*M4");
+        let user = d.parameter_symbols();
+        for b in &base.base {
+            let terms: Vec<Id> = b
+                .terms
+                .iter()
+                .map(|&(s, c)| d.arena.mul2(c, user[s]))
+                .collect();
+            let sum = d.arena.add(&terms);
+            // at values of every symbol: the factored form is not expanded symbolically
+            let mut values = crate::expr::Values::new();
+            for (k, symbol) in d
+                .arena
+                .free_symbols(&[b.expression, sum])
+                .into_iter()
+                .enumerate()
+            {
+                values.set(symbol, 0.3 + 0.17 * k as f64);
+            }
+            let at = d.arena.eval(&[b.expression, sum], &values).unwrap();
+            assert!(
+                (at[0] - at[1]).abs() <= 1e-14 * at[1].abs().max(1.0),
+                "{}: {at:?}",
+                b.name
+            );
+        }
+    }
 
     /// The rules zero exactly what they move into the parent link (for a revolute joint
     /// after the first YY, MZ and M, for a prismatic one the six inertia terms), a drive
