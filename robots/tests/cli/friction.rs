@@ -496,9 +496,10 @@ fn incomplete_input_is_a_clear_error() {
 }
 
 /// Keys the friction's fit does not apply are said at their place (`[runs]` was dropped
-/// without a word: the result was that of the first record alone), and not checked (a
-/// `[runs]` of one file, which identify refuses, was refused after the warning); a config
-/// without them gets no such warning.
+/// without a word: the result was that of the first record alone), each with its own
+/// reason (an `[estimation]` was told that a decimation's filter would smear the
+/// friction's reversals), and not checked (a `[runs]` of one file, which identify refuses,
+/// was refused after the warning); a config without them gets no such warning.
 #[test]
 fn keys_friction_does_not_apply_are_said() {
     let dir = folder();
@@ -507,7 +508,7 @@ fn keys_friction_does_not_apply_are_said() {
     let shared = write(
         dir.path(),
         "shared.toml",
-        &format!("{text}\n[runs]\nfiles = [\"log.csv\"]\n"),
+        &format!("{text}\n[runs]\nfiles = [\"log.csv\"]\n[estimation]\nmethod = \"wls\"\n"),
     );
     let line = text.lines().count() + 2;
     for (config, warned) in [(cfg.as_str(), false), (shared.to_str().unwrap(), true)] {
@@ -528,6 +529,19 @@ fn keys_friction_does_not_apply_are_said() {
             "{said} in {}",
             stderr(&o)
         );
+        let said = format!(
+            "shared.toml:{}:2: `estimation` is not applied by `robid friction` (it fits each \
+             joint's friction by its own nonlinear least squares)",
+            line + 2
+        );
+        assert_eq!(
+            stderr(&o).contains(&said),
+            warned,
+            "{said} in {}",
+            stderr(&o)
+        );
+        // no decimation given, none spoken of
+        assert!(!stderr(&o).contains("decimation"), "{}", stderr(&o));
     }
 }
 
