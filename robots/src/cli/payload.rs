@@ -50,17 +50,36 @@ pub(crate) struct Args {
     output: Option<PathBuf>,
 }
 
-/// The keys of an identification config that the payload's processing does not apply:
-/// those of the robot's own identification (decimation, equations near rest, pieces,
-/// the estimator, repeated runs, extra columns) and of validation.
-const UNAPPLIED: [&str; 7] = [
-    "processing.decimation",
-    "processing.rest_velocity",
-    "processing.pieces",
-    "processing.validation_range",
-    "estimation",
-    "runs",
-    "extra_column",
+/// The keys of an identification config that the payload's processing does not apply,
+/// each with its reason: those of the robot's own identification (decimation, equations
+/// near rest, pieces, the estimator, repeated runs, extra columns) and of validation.
+const UNAPPLIED: [(&[&str], &str); 6] = [
+    (
+        &["processing.decimation"],
+        "its least squares take every processed sample",
+    ),
+    (
+        &["processing.rest_velocity", "processing.pieces"],
+        "its least squares take every processed sample of the estimation range, those near \
+         rest too",
+    ),
+    (
+        &["processing.validation_range"],
+        "it predicts no run: it fits the estimation range",
+    ),
+    (
+        &["estimation"],
+        "--ols chooses the method, weighted least squares by default",
+    ),
+    (
+        &["runs"],
+        "it identifies the payload from the one data set given",
+    ),
+    (
+        &["extra_column"],
+        "the robot's torques come from its parameter file; the least squares estimate the \
+         payload's ten parameters alone",
+    ),
 ];
 
 /// Identifies the payload, prints it and writes it when asked.
@@ -68,13 +87,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let config = match &args.config {
         Some(path) => {
             let config = super::identify::config_for(Some(path), &args.data)?;
-            super::identify::warn_unapplied(
-                &config,
-                path,
-                "payload",
-                &UNAPPLIED,
-                "its least squares take every processed sample; --ols chooses the method",
-            );
+            for (keys, why) in UNAPPLIED {
+                super::identify::warn_unapplied(&config, path, "payload", keys, why);
+            }
             Some(config)
         }
         None => None,

@@ -304,11 +304,20 @@ fn payload_from_a_log_of_positions_and_currents_with_a_config() {
     );
     let o = payload(&["--data", data, "--config", shared.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
-    for (place, key) in [("9:1", "processing.decimation"), ("10:2", "estimation")] {
-        let said = format!(
-            "shared.toml:{place}: `{key}` is not applied by `robid payload` (its least \
-             squares take every processed sample; --ols chooses the method)"
-        );
+    for (place, key, why) in [
+        (
+            "9:1",
+            "processing.decimation",
+            "its least squares take every processed sample",
+        ),
+        (
+            "10:2",
+            "estimation",
+            "--ols chooses the method, weighted least squares by default",
+        ),
+    ] {
+        let said =
+            format!("shared.toml:{place}: `{key}` is not applied by `robid payload` ({why})");
         assert!(stderr(&o).contains(&said), "{said} in {}", stderr(&o));
     }
     // the config is an input: not overwritten by -o
