@@ -19,7 +19,7 @@ use nalgebra::DVector;
 use crate::error::{Error, Result};
 use crate::estimate::lstsq::solve;
 use crate::estimate::result::assemble;
-use crate::estimate::{Estimate, Estimator, Observation};
+use crate::estimate::{Estimate, Estimator, Observation, QualityWarning};
 
 /// Floor of the per-joint residual sigma of WLS, relative to the largest joint sigma.
 pub const SIGMA_FLOOR: f64 = 1e-6;
@@ -56,13 +56,23 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     check_tolerance(tolerance)?;
     let first = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
     let r = &obs.y - &obs.w * &first.beta;
-    let sigma: Vec<f64> = obs
+    let leverages: Vec<(usize, f64)> = obs
         .joint_rows
         .iter()
         .map(|b| {
             let rows = obs.w.rows(b.start, b.len());
-            let leverage = (rows * &first.inverse_gram).component_mul(&rows).sum();
-            joint_sigma(r.rows(b.start, b.len()).norm_squared(), b.len(), leverage)
+            (
+                b.len(),
+                (rows * &first.inverse_gram).component_mul(&rows).sum(),
+            )
+        })
+        .collect();
+    let sigma: Vec<f64> = obs
+        .joint_rows
+        .iter()
+        .zip(&leverages)
+        .map(|(b, &(rows, leverage))| {
+            joint_sigma(r.rows(b.start, b.len()).norm_squared(), rows, leverage)
         })
         .collect();
     let weights = checked_weights(&sigma)?;
@@ -85,7 +95,27 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
         s.condition_number,
     )?;
     e.weights = Some(weights);
+    e.warnings.extend(weights_without_noise(&leverages));
     Ok(e)
+}
+
+/// [`QualityWarning::WeightWithoutNoise`] for each joint whose equations, given as their
+/// count and the sum of their leverages, leave less than one degree of freedom: its sigma
+/// is then its residual over 1 ([`joint_sigma`]), not an estimate of its noise. A joint
+/// without equations has its own warning (`JointWithoutEquations`).
+pub(crate) fn weights_without_noise(leverages: &[(usize, f64)]) -> Vec<QualityWarning> {
+    leverages
+        .iter()
+        .enumerate()
+        .filter(|&(_, &(rows, leverage))| rows > 0 && (rows as f64 - leverage) < 1.0)
+        .map(
+            |(j, &(rows, leverage))| QualityWarning::WeightWithoutNoise {
+                joint: j + 1,
+                rows,
+                freedom: (rows as f64 - leverage).max(0.0),
+            },
+        )
+        .collect()
 }
 
 /// The residual sigma of a joint from its OLS residual sum of squares `rss` over `rows`

@@ -82,6 +82,18 @@ pub enum QualityWarning {
         /// The joint, from 1.
         joint: usize,
     },
+    /// A WLS weight that estimates no noise: the joint's equations leave less than one
+    /// degree of freedom once the parameters' share of them (the sum of their leverages)
+    /// is taken, so its sigma is its residual sum of squares over 1
+    /// (docs/identification.md#weighted-least-squares).
+    WeightWithoutNoise {
+        /// The joint, from 1.
+        joint: usize,
+        /// Its equations.
+        rows: usize,
+        /// Its equations less the sum of their leverages (below 1).
+        freedom: f64,
+    },
     /// A parameter's column is dominated by a few equations (the largest
     /// [`OUTLIER_ROWS`] hold more than [`OUTLIER_SHARE`] of its squared norm): an outlier
     /// in the data, which the fit follows instead of the rest of the record.
@@ -144,7 +156,8 @@ pub const OUTLIER_SHARE: f64 = 0.9;
 impl QualityWarning {
     /// A short machine-readable name (`ill_conditioned`, `energy_ill_conditioned`,
     /// `uncertain`, `outlier`, `validation_repeats_estimation`, `poor_fit`,
-    /// `joint_without_equations`, `unfiltered_derivatives`, `known_without_effect`,
+    /// `joint_without_equations`, `weight_without_noise`, `unfiltered_derivatives`,
+    /// `known_without_effect`,
     /// `not_physical`).
     pub fn kind(&self) -> &'static str {
         match self {
@@ -155,6 +168,7 @@ impl QualityWarning {
             QualityWarning::Outlier { .. } => "outlier",
             QualityWarning::PoorFit { .. } => "poor_fit",
             QualityWarning::JointWithoutEquations { .. } => "joint_without_equations",
+            QualityWarning::WeightWithoutNoise { .. } => "weight_without_noise",
             QualityWarning::UnfilteredDerivatives { .. } => "unfiltered_derivatives",
             QualityWarning::KnownWithoutEffect { .. } => "known_without_effect",
             QualityWarning::NotPhysical { .. } => "not_physical",
@@ -259,6 +273,18 @@ impl fmt::Display for QualityWarning {
                 "joint {joint} has no equations (every sample of it was excluded, for instance \
                  by processing.rest_velocity): its fit figures (RMS 0) say nothing; check the \
                  exclusions"
+            ),
+            QualityWarning::WeightWithoutNoise {
+                joint,
+                rows,
+                freedom,
+            } => write!(
+                f,
+                "joint {joint}'s WLS weight estimates no noise: its {rows} equations leave \
+                 {freedom:.2} degrees of freedom once the parameters' share of them (their \
+                 leverages) is taken, so its sigma is its residual over 1; give the joint \
+                 more equations (a longer record, a lower processing.rest_velocity, less \
+                 decimation) or use estimation.method = \"ols\""
             ),
             QualityWarning::UnfilteredDerivatives { derived } => write!(
                 f,

@@ -25,7 +25,9 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::EstimateError;
 use crate::error::{Error, Result};
-use crate::estimate::least_squares::{check_tolerance, checked_weights, joint_sigma};
+use crate::estimate::least_squares::{
+    check_tolerance, checked_weights, joint_sigma, weights_without_noise,
+};
 use crate::estimate::lstsq::{norm, solve_factor};
 use crate::estimate::quality::{OUTLIER_ROWS, OUTLIER_SHARE};
 use crate::estimate::result::{Residual, assemble_parts};
@@ -545,17 +547,24 @@ impl StreamingLeastSquares {
         let ones = vec![1.0; self.groups.len()];
         let (first, inverse_gram) = self.solve(Estimator::Ols, &ones, tolerance)?;
         let beta = first.beta();
+        let leverages: Vec<(usize, f64)> = self
+            .groups
+            .iter()
+            .map(|g| (g.rows, g.leverage(&inverse_gram)))
+            .collect();
         let sigma: Vec<f64> = self
             .groups
             .iter()
-            .map(|g| {
+            .zip(&leverages)
+            .map(|(g, &(rows, leverage))| {
                 let rss = g.residual_norm(&beta);
-                joint_sigma(rss * rss, g.rows, g.leverage(&inverse_gram))
+                joint_sigma(rss * rss, rows, leverage)
             })
             .collect();
         let weights = checked_weights(&sigma)?;
         let (mut e, _) = self.solve(Estimator::Wls, &weights, tolerance)?;
         e.weights = Some(weights);
+        e.warnings.extend(weights_without_noise(&leverages));
         Ok(e)
     }
 }

@@ -518,3 +518,68 @@ fn wls_weights_take_each_groups_leverage() {
         );
     }
 }
+
+/// A joint whose equations its own parameters fit whole (two rows, two parameters of its
+/// own: leverages 2, no degree of freedom left) gets a weight that estimates no noise,
+/// and both WLS paths say so for that joint alone; four such rows leave two degrees of
+/// freedom and no warning.
+#[test]
+fn a_weight_that_estimates_no_noise_is_warned_of() {
+    let warned = |last: usize| {
+        let counts = [40usize, 40, last];
+        let names: Vec<String> = (0..6).map(|i| format!("p{i}")).collect();
+        let mut s = StreamingLeastSquares::new(names.clone(), 3).unwrap();
+        let (mut rows, mut ys, mut blocks) = (Vec::new(), Vec::new(), Vec::new());
+        for (j, &count) in counts.iter().enumerate() {
+            let start = rows.len();
+            for k in 0..count {
+                let t = k as f64 * 0.13 + j as f64;
+                let mut row = [0.0; 6];
+                row[2 * j] = t.sin();
+                row[2 * j + 1] = 1.0 + 0.3 * t.cos();
+                let y = 1.5 * t.sin() - 0.5 + 0.01 * (t * 17.1).sin();
+                s.push(j, &row, y).unwrap();
+                rows.push(row);
+                ys.push(y);
+            }
+            blocks.push(start..rows.len());
+        }
+        let w = nalgebra::DMatrix::from_fn(rows.len(), 6, |r, c| rows[r][c]);
+        let obs = crate::estimate::Observation::new(
+            w,
+            nalgebra::DVector::from_vec(ys),
+            blocks,
+            (0..rows.len()).collect(),
+            names,
+        )
+        .unwrap();
+        let joints = |e: crate::estimate::Estimate| -> Vec<(usize, usize, f64)> {
+            e.warnings
+                .iter()
+                .filter_map(|w| match *w {
+                    crate::estimate::QualityWarning::WeightWithoutNoise {
+                        joint,
+                        rows,
+                        freedom,
+                    } => Some((joint, rows, freedom)),
+                    _ => None,
+                })
+                .collect()
+        };
+        let streamed = joints(s.wls(1e-10).unwrap());
+        let in_memory = joints(crate::estimate::wls(&obs, 1e-10).unwrap());
+        assert_eq!(streamed.len(), in_memory.len());
+        for (a, b) in streamed.iter().zip(&in_memory) {
+            assert!(
+                a.0 == b.0 && a.1 == b.1 && (a.2 - b.2).abs() < 1e-9,
+                "{a:?} {b:?}"
+            );
+        }
+        streamed
+    };
+    let told = warned(2);
+    assert_eq!(told.len(), 1, "{told:?}");
+    assert_eq!((told[0].0, told[0].1), (3, 2));
+    assert!(told[0].2 < 1e-9, "{told:?}");
+    assert!(warned(4).is_empty());
+}
