@@ -210,12 +210,21 @@ fn description_file(description: &description::Description, path: &Path) -> Stri
         else {
             continue;
         };
-        let note = format!(
+        let mut note = format!(
             "# joint {}: URDF joint `{}` moves `{}`\n",
             j + 1,
             link.joint,
             link.link
         );
+        if link.continuous {
+            // excite keeps a URDF's continuous joint within a turn; a description has no
+            // such joint type, so its limit is told here, where it would go
+            note.push_str(
+                "# continuous in the URDF: no position limit here; `robid excite` needs one, \
+                 `position = [-3.1416, 3.1416]` in `limits` keeps it within a turn, as \
+                 excite on the URDF does\n",
+            );
+        }
         tables.insert_str(at, &note);
     }
     text.push_str(&tables);

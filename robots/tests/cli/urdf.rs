@@ -1378,6 +1378,32 @@ fn urdf_chain_is_written_as_a_description() {
     assert!(!same.exists(), "{}", stderr(&o));
 }
 
+/// A URDF's continuous joint has no position limit, and a description no continuous
+/// joint type: the written description says so at the joint, with the limit `robid
+/// excite` needs (which refused the description with "no position limit" and nothing
+/// more); a revolute joint with limits gets no such line.
+#[test]
+fn a_continuous_joint_is_told_in_the_written_description() {
+    let dir = folder();
+    let description = dir.path().join("kinova.toml");
+    let o = robid(&[
+        "model",
+        KINOVA,
+        "--write-description",
+        description.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&description).unwrap();
+    let told = "# continuous in the URDF: no position limit here; `robid excite` needs one, \
+                `position = [-3.1416, 3.1416]` in `limits` keeps it within a turn";
+    for joint in ["j2s6s200_joint_1", "j2s6s200_joint_4", "j2s6s200_joint_6"] {
+        let at = text.find(&format!("URDF joint `{joint}`")).unwrap();
+        let line_end = at + text[at..].find('\n').unwrap() + 1;
+        assert!(text[line_end..].starts_with(told), "{joint}: {text}");
+    }
+    assert_eq!(text.matches(told).count(), 3, "{text}");
+}
+
 /// `robid emit` of a URDF whose links after a joint have no mass or inertia warns that the
 /// URDF's own inertials held in the code leave that joint's torque 0, in Rust and in C (it
 /// wrote the all-zero values without a word); the code is written all the same, and a URDF
