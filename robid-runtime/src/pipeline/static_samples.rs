@@ -113,15 +113,12 @@ pub struct StaticFit {
 /// error that says so.
 pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result<StaticFit> {
     let n = model.dof();
+    let (q, g, m) = (series("q", n), series("g", n), mass_columns(n));
     let header = read_header(path)?;
     let positions: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
     // a missing column: the header the file needs (the columns are not mapped)
-    let header_needed = |e: Error| {
-        crate::data::header_needed(
-            e,
-            format!("q1..q{n} with g1..g{n}, or with M11 M12 .. M{n}{n}"),
-        )
-    };
+    let header_needed =
+        |e: Error| crate::data::header_needed(e, format!("{q} with {g}, or with {m}"));
     if positions.iter().any(|q| !header.contains(q)) {
         // the reader's own error about the header: an empty file, one that is not text, a
         // separator it does not read, a missing column (an empty file was "holds neither
@@ -137,8 +134,8 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
                 "static samples",
                 &path.display().to_string(),
                 format!(
-                    "{}; give q1..q{n} and either g1..g{n} (gravity torques) or M11 M12 .. \
-                     M{n}{n} (the upper triangle of the mass matrix), in separate files",
+                    "{}; give {q} and either {g} (gravity torques) or {m} (the upper \
+                     triangle of the mass matrix), in separate files",
                     if g {
                         "holds both gravity (g) and mass-matrix (M) columns"
                     } else {
@@ -177,7 +174,7 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
                     "the gravity torques of `{}` are 0 at every pose whatever its parameters \
                      (no gravity, or gravity along every joint axis that moves a mass and \
                      across every slider), so gravity samples determine none of its base parameters; \
-                     identify it from mass-matrix samples (columns M11 M12 .. M{n}{n}) or from \
+                     identify it from mass-matrix samples (columns {m}) or from \
                      motion data (--data)",
                     model.name()
                 ),
@@ -348,6 +345,24 @@ fn dead_columns(
     warnings
 }
 
+/// `prefix1..prefixn`, or `prefix1` alone for one joint.
+fn series(prefix: &str, n: usize) -> String {
+    if n == 1 {
+        format!("{prefix}1")
+    } else {
+        format!("{prefix}1..{prefix}{n}")
+    }
+}
+
+/// The mass-matrix columns in words: `M11 M12 .. Mnn`, or `M11` alone for one joint.
+fn mass_columns(n: usize) -> String {
+    if n == 1 {
+        "M11".to_owned()
+    } else {
+        format!("M11 M12 .. M{n}{n}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::{StaticKind, identify_static};
@@ -416,7 +431,7 @@ mod tests {
         assert!(
             e.contains("gravity.csv`: the gravity torques of `turntable` are 0 at every pose")
                 && e.contains("determine none of its base parameters")
-                && e.contains("mass-matrix samples (columns M11 M12 .. M11)"),
+                && e.contains("mass-matrix samples (columns M11)"),
             "{e}"
         );
         assert!(!e.contains("more data"), "{e}");
