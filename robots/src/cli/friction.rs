@@ -59,34 +59,34 @@ pub(crate) struct Args {
     smoothing: f64,
 }
 
+/// The keys of an identification config that friction's fit does not apply, each with
+/// its reason.
+const UNAPPLIED: [(&[&str], &str); 5] = [
+    (&["runs"], "it fits the one record given"),
+    (
+        &["processing.decimation"],
+        "it fits every sample: a decimation's filter would smear the friction's reversals \
+         at zero speed",
+    ),
+    (
+        &["processing.pieces", "processing.rest_velocity"],
+        "it fits every sample of the estimation range, those near rest too: the friction \
+         turns there",
+    ),
+    (
+        &["processing.validation_range"],
+        "it predicts no run: it fits the estimation range",
+    ),
+    (
+        &["estimation"],
+        "it fits each joint's friction by its own nonlinear least squares",
+    ),
+];
+
 /// Identifies, prints and writes the friction model.
 pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut config = Config::from_file(&args.config)?;
-    // each key with its own reason: one reason for all told an `[estimation]` that a
-    // decimation's filter would smear the friction's reversals
-    for (keys, why) in [
-        (&["runs"][..], "it fits the one record given"),
-        (
-            &["processing.decimation"][..],
-            "it fits every sample: a decimation's filter would smear the friction's reversals \
-             at zero speed",
-        ),
-        (
-            &["processing.pieces", "processing.rest_velocity"][..],
-            "it fits every sample of the estimation range, those near rest too: the friction \
-             turns there",
-        ),
-        (
-            &["processing.validation_range"][..],
-            "it predicts no run: it fits the estimation range",
-        ),
-        (
-            &["estimation"][..],
-            "it fits each joint's friction by its own nonlinear least squares",
-        ),
-    ] {
-        super::identify::warn_unapplied(&config, &args.config, "friction", keys, why);
-    }
+    super::identify::warn_unapplied(&config, &args.config, "friction", &UNAPPLIED);
     // not applied, so not checked either (a `[runs]` of one file was refused after the
     // warning that it is not applied)
     config.runs = None;

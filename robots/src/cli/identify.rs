@@ -260,23 +260,25 @@ pub(crate) fn config_for(path: Option<&Path>, data: &[PathBuf]) -> Result<Config
     })
 }
 
-/// Warns of each of `keys` that the config read from `path` gives and that `command`
-/// does not apply (`why`): a key left without a word read as applied (payload's
-/// standard deviations came from equations a `decimation` would have thinned; friction
-/// took one record under `[runs]`).
+/// Warns of each key of `unapplied` that the config read from `path` gives and that
+/// `command` does not apply, each table entry's keys with their own reason: a key left
+/// without a word read as applied (payload's standard deviations came from equations a
+/// `decimation` would have thinned; friction took one record under `[runs]`), and one
+/// reason for all keys told an `[estimation]` of a decimation's filter.
 pub(crate) fn warn_unapplied(
     config: &Config,
     path: &Path,
     command: &str,
-    keys: &[&str],
-    why: &str,
+    unapplied: &[(&[&str], &str)],
 ) {
-    for (key, line, column) in config.given(keys) {
-        out::warn(format_args!(
-            "warning: {}:{line}:{column}: `{key}` is not applied by `robid {command}` ({why}); \
-             it reads the rest of the config",
-            path.display()
-        ));
+    for &(keys, why) in unapplied {
+        for (key, line, column) in config.given(keys) {
+            out::warn(format_args!(
+                "warning: {}:{line}:{column}: `{key}` is not applied by `robid {command}` \
+                 ({why}); it reads the rest of the config",
+                path.display()
+            ));
+        }
     }
 }
 
@@ -345,8 +347,10 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             &config,
             path,
             "identify",
-            &["processing.validation_range"],
-            "it cuts the --validate files, and none is given",
+            &[(
+                &["processing.validation_range"],
+                "it cuts the --validate files, and none is given",
+            )],
         );
     }
     // repeated acquisitions: the config's [runs] lists every run's files

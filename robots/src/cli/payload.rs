@@ -87,9 +87,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let config = match &args.config {
         Some(path) => {
             let config = super::identify::config_for(Some(path), &args.data)?;
-            for (keys, why) in UNAPPLIED {
-                super::identify::warn_unapplied(&config, path, "payload", keys, why);
-            }
+            super::identify::warn_unapplied(&config, path, "payload", &UNAPPLIED);
             Some(config)
         }
         None => None,
