@@ -4,7 +4,8 @@
 //! (r_j - h_j) the variance of the OLS residual of joint j's r_j equations, `h_j` the sum
 //! of their leverages (`tr(W_j (W'W)^-1 W_j')`, the parameters' share of its equations:
 //! the `h_j` of all joints add up to the c parameters, as the `r_j - h_j` add up to the
-//! `rows - c` of the whole residual).
+//! `rows - c` of the whole residual), taken in the column-scaled space the solver factors
+//! ([`joint_leverages`]).
 //! A joint whose residual is (nearly) zero would get an infinite weight: sigma_j has a
 //! floor of [`SIGMA_FLOOR`] times the largest sigma of the joints (and all weights are 1
 //! when every residual is zero, as for exact data).
@@ -17,7 +18,7 @@
 use nalgebra::DVector;
 
 use crate::error::{Error, Result};
-use crate::estimate::lstsq::solve;
+use crate::estimate::lstsq::{Solution, solve};
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation, QualityWarning};
 
@@ -56,17 +57,7 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     check_tolerance(tolerance)?;
     let first = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
     let r = &obs.y - &obs.w * &first.beta;
-    let leverages: Vec<(usize, f64)> = obs
-        .joint_rows
-        .iter()
-        .map(|b| {
-            let rows = obs.w.rows(b.start, b.len());
-            (
-                b.len(),
-                (rows * &first.inverse_gram).component_mul(&rows).sum(),
-            )
-        })
-        .collect();
+    let leverages = joint_leverages(obs, &first);
     let sigma: Vec<f64> = obs
         .joint_rows
         .iter()
@@ -97,6 +88,18 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     e.weights = Some(weights);
     e.warnings.extend(weights_without_noise(&leverages));
     Ok(e)
+}
+
+/// Each joint's equations: their count and the sum of their leverages
+/// `tr(W_j (W'W)^-1 W_j')` under the fit `s` of the whole observation, taken in the
+/// column-scaled space the solver factors ([`Solution::leverage`]):
+/// they add up to the parameters whatever the columns' magnitudes.
+pub(crate) fn joint_leverages(obs: &Observation, s: &Solution) -> Vec<(usize, f64)> {
+    let units = vec![1.0; obs.w.ncols()];
+    obs.joint_rows
+        .iter()
+        .map(|b| (b.len(), s.leverage(obs.w.rows(b.start, b.len()), &units)))
+        .collect()
 }
 
 /// [`QualityWarning::WeightWithoutNoise`] for each joint whose equations, given as their

@@ -101,6 +101,26 @@ pub(crate) struct Solution {
     /// (W'W)^-1.
     pub(crate) inverse_gram: DMatrix<f64>,
     pub(crate) condition_number: f64,
+    /// The column scales D (the column norms of W, 1 for a zero column).
+    pub(crate) scales: Vec<f64>,
+    /// `S^-1 V'` of the scaled R = U S V': `T'T = (W_s'W_s)^-1` with `W_s = W D^-1`, which
+    /// the leverages are taken with ([`Solution::leverage`]).
+    scaled_root: DMatrix<f64>,
+}
+
+impl Solution {
+    /// The leverages of the rows of `x` summed, `tr(X (W'W)^-1 X')`, with column j of `x`
+    /// in units of `units[j]` (the rows are `x diag(units)`): taken in the scaled space
+    /// the solver factors, `sum_i ||S^-1 V' D^-1 x_i||^2`, never through `(W'W)^-1`, whose
+    /// entries of a column near 1e200 underflow to 0 (a joint's leverage then came out
+    /// about 1 too small, and its WLS sigma biased low).
+    pub(crate) fn leverage(&self, x: nalgebra::DMatrixView<'_, f64>, units: &[f64]) -> f64 {
+        let mut scaled = x.into_owned();
+        for (j, mut c) in scaled.column_iter_mut().enumerate() {
+            c.scale_mut(units[j] / self.scales[j]);
+        }
+        (scaled * self.scaled_root.transpose()).norm_squared()
+    }
 }
 
 /// The column norms of `w` (the scaling D), 1 for an all-zero column: such a column stays
@@ -223,6 +243,10 @@ pub(crate) fn solve_factor(
         vs.column_mut(k).scale_mut(1.0 / (s[k] * s[k]));
     }
     let mut inverse_gram = vs * vt;
+    let mut scaled_root = vt.clone();
+    for k in 0..n {
+        scaled_root.row_mut(k).scale_mut(1.0 / s[k]);
+    }
     for i in 0..n {
         for j in 0..n {
             inverse_gram[(i, j)] = inverse_gram[(i, j)] / d[i] / d[j];
@@ -245,6 +269,8 @@ pub(crate) fn solve_factor(
         beta,
         inverse_gram,
         condition_number,
+        scales: d.to_vec(),
+        scaled_root,
     })
 }
 

@@ -28,7 +28,7 @@ use crate::error::{Error, Result};
 use crate::estimate::least_squares::{
     check_tolerance, checked_weights, joint_sigma, weights_without_noise,
 };
-use crate::estimate::lstsq::{norm, solve_factor};
+use crate::estimate::lstsq::{Solution, norm, solve_factor};
 use crate::estimate::quality::{OUTLIER_ROWS, OUTLIER_SHARE};
 use crate::estimate::result::{Residual, assemble_parts};
 use crate::estimate::{Estimate, Estimator};
@@ -211,16 +211,14 @@ impl Factor {
         r
     }
 
-    /// The leverages of this group's rows summed, `tr(W_j (W'W)^-1 W_j')` with
-    /// `inverse_gram` the `(W'W)^-1` of the whole system (the pending rows folded in
-    /// first): from the factor, `W_j'W_j = R_j'R_j`, in the columns' scales.
-    fn leverage(&self, inverse_gram: &DMatrix<f64>) -> f64 {
-        let n = inverse_gram.nrows();
-        let scaled = DMatrix::from_fn(n, n, |a, b| {
-            inverse_gram[(a, b)] * divisor(self.scale[a]) * divisor(self.scale[b])
-        });
-        let rw = self.r.columns(0, n);
-        (rw * &scaled).component_mul(&rw).sum()
+    /// The leverages of this group's rows summed, `tr(W_j (W'W)^-1 W_j')` under the fit
+    /// `s` of the whole system (the pending rows folded in first): from the factor,
+    /// `W_j'W_j = R_j'R_j` in the columns' scales, taken as the dense path takes them
+    /// ([`Solution::leverage`]).
+    fn leverage(&self, s: &Solution) -> f64 {
+        let n = s.scales.len();
+        let units: Vec<f64> = self.scale[..n].iter().map(|v| divisor(*v)).collect();
+        s.leverage(self.r.columns(0, n), &units)
     }
 
     /// ||y - W beta|| of this group's rows (the pending rows folded in first).
@@ -416,14 +414,14 @@ impl StreamingLeastSquares {
     }
 
     /// Solves the groups stacked with weights (all 1 for OLS); returns the estimate's
-    /// statistics for the solved (weighted) system, and its `(W'W)^-1` (of the weighted
+    /// statistics for the solved (weighted) system, and its solution (of the weighted
     /// columns).
     fn solve(
         &self,
         method: Estimator,
         weights: &[f64],
         tolerance: f64,
-    ) -> Result<(Estimate, DMatrix<f64>)> {
+    ) -> Result<(Estimate, Solution)> {
         let n = self.names.len();
         let m = self.rows();
         // as many equations as parameters fit any data exactly: no residual is left for
@@ -516,7 +514,7 @@ impl StreamingLeastSquares {
         let e = assemble_parts(
             method,
             self.names.clone(),
-            s.beta,
+            s.beta.clone(),
             &s.inverse_gram,
             s.condition_number,
             Residual {
@@ -527,7 +525,7 @@ impl StreamingLeastSquares {
                 relative_column_norms,
             },
         )?;
-        Ok((e, s.inverse_gram))
+        Ok((e, s))
     }
 
     /// Ordinary least squares on every equation given; `tolerance` is the relative
@@ -545,12 +543,12 @@ impl StreamingLeastSquares {
         check_tolerance(tolerance)?;
         self.flush();
         let ones = vec![1.0; self.groups.len()];
-        let (first, inverse_gram) = self.solve(Estimator::Ols, &ones, tolerance)?;
+        let (first, solution) = self.solve(Estimator::Ols, &ones, tolerance)?;
         let beta = first.beta();
         let leverages: Vec<(usize, f64)> = self
             .groups
             .iter()
-            .map(|g| (g.rows, g.leverage(&inverse_gram)))
+            .map(|g| (g.rows, g.leverage(&solution)))
             .collect();
         let sigma: Vec<f64> = self
             .groups

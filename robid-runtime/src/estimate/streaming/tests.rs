@@ -583,3 +583,71 @@ fn a_weight_that_estimates_no_noise_is_warned_of() {
     assert!(told[0].2 < 1e-9, "{told:?}");
     assert!(warned(4).is_empty());
 }
+
+/// A column near 1e200 (which the solvers accept): its entry of the unscaled `(W'W)^-1`
+/// (1e-400) underflows to 0, and the leverages taken through it lost about 1 of that
+/// column's share (they summed to 2.0 for 3 parameters, and each joint's WLS sigma was
+/// biased low). Taken in the scaled space, both paths give each joint the leverages of the
+/// same problem with the column divided by 1e200 (leverages do not depend on a column's
+/// unit), computed apart from the solver through the normal equations, and they sum to
+/// the 3 parameters; the WLS weights are those of the rescaled problem.
+#[test]
+fn a_huge_column_keeps_its_leverage() {
+    let (mut obs, mut rows) = problem(2, 400, 3, 0.0, 11);
+    let tame = obs.clone();
+    for r in rows.iter_mut() {
+        r.1[1] *= 1e200;
+    }
+    obs.w.column_mut(1).scale_mut(1e200);
+    // independent: (W'W)^-1 of the rescaled columns, x' G x row by row
+    let gram = (tame.w.transpose() * &tame.w).try_inverse().unwrap();
+    let want: Vec<f64> = tame
+        .joint_rows
+        .iter()
+        .map(|b| {
+            b.clone()
+                .map(|i| {
+                    let x = tame.w.row(i);
+                    (x * &gram * x.transpose())[(0, 0)]
+                })
+                .sum()
+        })
+        .collect();
+    assert!((want.iter().sum::<f64>() - 3.0).abs() < 1e-12, "{want:?}");
+    let dense = crate::estimate::lstsq::solve(&obs.w, &obs.y, &obs.names, 1e-12).unwrap();
+    let in_memory: Vec<f64> = crate::estimate::least_squares::joint_leverages(&obs, &dense)
+        .into_iter()
+        .map(|(_, h)| h)
+        .collect();
+    let mut s = streamed(&obs, &rows);
+    s.flush();
+    let (_, solution) = s.solve(Estimator::Ols, &[1.0, 1.0], 1e-12).unwrap();
+    let streaming: Vec<f64> = s.groups.iter().map(|g| g.leverage(&solution)).collect();
+    for (name, got) in [("in memory", &in_memory), ("streaming", &streaming)] {
+        assert!(
+            (got.iter().sum::<f64>() - 3.0).abs() < 1e-10,
+            "{name}: {got:?} sum to 3"
+        );
+        for (a, b) in got.iter().zip(&want) {
+            assert!((a - b).abs() < 1e-10, "{name}: {got:?} against {want:?}");
+        }
+    }
+    // on the rescaled (ordinary) problem, what (W'W)^-1 gave before
+    let tame_fit = crate::estimate::lstsq::solve(&tame.w, &tame.y, &tame.names, 1e-12).unwrap();
+    for ((_, a), b) in crate::estimate::least_squares::joint_leverages(&tame, &tame_fit)
+        .iter()
+        .zip(&want)
+    {
+        assert!((a - b).abs() < 1e-10, "{a} against {b}");
+    }
+    let weights = |e: Estimate| e.weights.unwrap();
+    let rescaled = weights(wls(&tame, 1e-12).unwrap());
+    for got in [
+        weights(wls(&obs, 1e-12).unwrap()),
+        weights(s.wls(1e-12).unwrap()),
+    ] {
+        for (a, b) in got.iter().zip(&rescaled) {
+            assert!(close(*a, *b, 1e-10, 0.0), "{got:?} against {rescaled:?}");
+        }
+    }
+}
