@@ -42,14 +42,8 @@ pub(crate) fn check_tolerance(tolerance: f64) -> Result<()> {
 pub fn ols(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     check_tolerance(tolerance)?;
     let s = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
-    assemble(
-        Estimator::Ols,
-        obs,
-        obs,
-        s.beta,
-        &s.inverse_gram,
-        s.condition_number,
-    )
+    let condition = s.condition();
+    assemble(Estimator::Ols, obs, obs, s.beta, &s.inverse_gram, condition)
 }
 
 /// Weighted least squares with per-joint weights from the OLS residuals.
@@ -77,13 +71,14 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     }
     weighted.y.component_mul_assign(&row_weight);
     let s = solve(&weighted.w, &weighted.y, &weighted.names, tolerance)?;
+    let condition = s.condition();
     let mut e = assemble(
         Estimator::Wls,
         &weighted,
         obs,
         s.beta,
         &s.inverse_gram,
-        s.condition_number,
+        condition,
     )?;
     e.weights = Some(weights);
     e.warnings.extend(weights_without_noise(&leverages));

@@ -11,7 +11,8 @@
 //! singular values of the scaled W with a relative threshold (a parameter's unit does not
 //! make it unidentifiable), gamma = V S^-1 U' z, and exactly unscaled: beta = |y| D^-1
 //! gamma, (W'W)^-1 = D^-1 V S^-2 V' D^-1. The condition number reported is that of W
-//! itself (the singular values of R D).
+//! itself (the singular values of R D), and beside it that of W with unit-norm columns
+//! (the singular values of R), which does not depend on the parameters' units.
 //!
 //! The QR runs on blocks of rows in parallel (tall-skinny QR): each block's R, then the
 //! R factors stacked and factorised again. It is the same R (up to row signs) as one QR
@@ -101,6 +102,9 @@ pub(crate) struct Solution {
     /// (W'W)^-1.
     pub(crate) inverse_gram: DMatrix<f64>,
     pub(crate) condition_number: f64,
+    /// The condition number of W with its columns scaled to unit norm
+    /// ([`scaled_condition`]): the figure that does not depend on the parameters' units.
+    pub(crate) scaled_condition_number: f64,
     /// The column scales D (the column norms of W, 1 for a zero column).
     pub(crate) scales: Vec<f64>,
     /// `S^-1 V'` of the scaled R = U S V': `T'T = (W_s'W_s)^-1` with `W_s = W D^-1`, which
@@ -109,6 +113,14 @@ pub(crate) struct Solution {
 }
 
 impl Solution {
+    /// Both condition numbers.
+    pub(crate) fn condition(&self) -> Condition {
+        Condition {
+            raw: self.condition_number,
+            scaled: self.scaled_condition_number,
+        }
+    }
+
     /// The leverages of the rows of `x` summed, `tr(X (W'W)^-1 X')`, with column j of `x`
     /// in units of `units[j]` (the rows are `x diag(units)`): taken in the scaled space
     /// the solver factors, `sum_i ||S^-1 V' D^-1 x_i||^2`, never through `(W'W)^-1`, whose
@@ -269,6 +281,7 @@ pub(crate) fn solve_factor(
         beta,
         inverse_gram,
         condition_number,
+        scaled_condition_number: scaled_condition(s)?,
         scales: d.to_vec(),
         scaled_root,
     })
@@ -314,9 +327,36 @@ fn condition(
     }
 }
 
-/// The condition number of W (column scaling, QR, the capped SVD of the scaled R, see
-/// [`solve`]).
-pub(crate) fn condition_number(w: &DMatrix<f64>, names: &[String]) -> Result<f64> {
+/// The condition numbers of an observation matrix W.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Condition {
+    /// Of W itself, `s_max / s_min` (what reports call `cond(W)`, and Milella's error bound
+    /// takes): it depends on the parameters' units.
+    pub(crate) raw: f64,
+    /// Of W with its columns scaled to unit norm ([`scaled_condition`]): the same in any
+    /// units of the parameters.
+    pub(crate) scaled: f64,
+}
+
+/// `s_max / s_min` of the singular values `s` of R of the column-scaled W (the singular
+/// values of W with its columns scaled to unit norm, which the solver factors), at least
+/// 1; an error when it overflows (a smallest singular value below the floating-point
+/// range).
+fn scaled_condition(s: &DVector<f64>) -> Result<f64> {
+    let cond = s.max() / s.min();
+    if cond.is_finite() {
+        Ok(cond.max(1.0))
+    } else {
+        Err(Error::NonFiniteResult {
+            what: "the condition number of the column-scaled observation matrix".into(),
+            cause: "its smallest singular value is below the floating-point range: the columns are dependent; use a richer trajectory".into(),
+        })
+    }
+}
+
+/// The condition numbers of W, raw and with unit-norm columns (column scaling, QR, the
+/// capped SVD of the scaled R, see [`solve`]).
+pub(crate) fn condition_number(w: &DMatrix<f64>, names: &[String]) -> Result<Condition> {
     let n = w.ncols();
     let d = column_scales(w, names)?;
     let ra = augmented_r(w, &DVector::zeros(w.nrows()), &d, 1.0);
@@ -336,7 +376,10 @@ pub(crate) fn condition_number(w: &DMatrix<f64>, names: &[String]) -> Result<f64
             unexcited: unexcited(vt, &null, names),
         }));
     }
-    condition(&r, u, &f.singular_values, vt, &d)
+    Ok(Condition {
+        raw: condition(&r, u, &f.singular_values, vt, &d)?,
+        scaled: scaled_condition(&f.singular_values)?,
+    })
 }
 
 /// Parameters sorted by their weight in the null-space directions (weight > 1e-3).
@@ -533,7 +576,25 @@ mod tests {
         let reference = w.singular_values();
         let want = reference.max() / reference.min();
         assert!((s.condition_number - want).abs() < 1e-9 * want);
-        assert!((condition_number(&w, &names(4)).unwrap() - want).abs() < 1e-9 * want);
+        assert!((condition_number(&w, &names(4)).unwrap().raw - want).abs() < 1e-9 * want);
+        // with unit-norm columns: the singular values of W D^-1, by SVD of W itself, the same
+        // from `solve` and `condition_number`, and unchanged by a column in other units
+        let unit = |w: &DMatrix<f64>| {
+            let mut u = w.clone();
+            for mut c in u.column_iter_mut() {
+                let n = c.norm();
+                c /= n;
+            }
+            let s = u.singular_values();
+            s.max() / s.min()
+        };
+        let scaled = unit(&w);
+        assert!((s.scaled_condition_number - scaled).abs() < 1e-10 * scaled);
+        let mut other = w.clone();
+        other.column_mut(1).scale_mut(1e-6);
+        let c = condition_number(&other, &names(4)).unwrap();
+        assert!((c.scaled - scaled).abs() < 1e-10 * scaled, "{c:?}");
+        assert!(c.raw > 1e3 * want, "{c:?} against {want}");
     }
 
     /// One entry of 1e200 among values of order 1 (the sample that once hung the SVD):

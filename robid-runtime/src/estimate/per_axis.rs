@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 use crate::EstimateError;
 use crate::error::{Error, Result};
 use crate::estimate::least_squares::check_tolerance;
-use crate::estimate::lstsq::{column_scales, condition_number};
+use crate::estimate::lstsq::{Condition, column_scales, condition_number};
 use crate::estimate::quality::{assess, effects, relative_column_norms};
 use crate::estimate::{Estimate, Estimator, Observation, error_bound};
 use crate::limits::SVD_ITERATIONS;
@@ -48,6 +48,10 @@ pub struct AxisFit {
     pub rank: usize,
     /// Condition number of the axis's regressor over the parameters it determines.
     pub condition_number: f64,
+    /// The same with the regressor's columns scaled to unit norm (independent of the
+    /// parameters' units); 0 in a fit recorded without it.
+    #[serde(default)]
+    pub scaled_condition_number: f64,
     /// RMS of the axis's residual.
     pub residual_rms: f64,
     /// The parameters the axis determines (names), in column order.
@@ -156,6 +160,10 @@ pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
         .iter()
         .map(|a| a.condition_number)
         .fold(1.0f64, f64::max);
+    let scaled_condition_number = axes
+        .iter()
+        .map(|a| a.scaled_condition_number)
+        .fold(1.0f64, f64::max);
     if !sigma2.is_finite() || beta.iter().chain(&std).any(|v| !v.is_finite()) {
         return Err(Error::NonFiniteResult {
             what: "the per-axis estimate".into(),
@@ -183,6 +191,7 @@ pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
         rel_std_percent: rel,
         sigma2,
         condition_number,
+        scaled_condition_number: Some(scaled_condition_number),
         rows: obs.rows(),
         weights: None,
         warnings,
@@ -303,8 +312,11 @@ fn solve_axis(
     // the condition number of the axis's own regressor over the columns it determines (as
     // the other estimators report cond(W): of W itself, not of its column-scaled form)
     let columns: Vec<usize> = values.iter().map(|v| v.0).collect();
-    let condition_number = if columns.is_empty() {
-        1.0
+    let condition = if columns.is_empty() {
+        Condition {
+            raw: 1.0,
+            scaled: 1.0,
+        }
     } else {
         let names: Vec<String> = columns.iter().map(|&c| obs.names[c].clone()).collect();
         condition_number(&w.select_columns(columns.iter()), &names)?
@@ -315,7 +327,8 @@ fn solve_axis(
             rows: rows.len(),
             parameters: k,
             rank,
-            condition_number,
+            condition_number: condition.raw,
+            scaled_condition_number: condition.scaled,
             residual_rms: (residual.norm_squared() / rows.len().max(1) as f64).sqrt(),
             determined,
         },

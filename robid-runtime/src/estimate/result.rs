@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::estimate::Observation;
+use crate::estimate::lstsq::Condition;
 use crate::estimate::quality::{QualityWarning, assess, effects, relative_column_norms};
 
 /// Which estimator produced a result: the config's estimation method, one list for both
@@ -27,8 +28,14 @@ pub struct Estimate {
     pub rel_std_percent: Vec<f64>,
     /// sigma^2 = ||y - W beta||^2 / (rows - cols) of the solved system.
     pub sigma2: f64,
-    /// Condition number of the solved W.
+    /// Condition number of the solved W, `s_max / s_min` (it depends on the parameters'
+    /// units; the [`error_bound`](Self::error_bound) is taken with it).
     pub condition_number: f64,
+    /// Condition number of the solved W with its columns scaled to unit norm: the same in
+    /// any units of the parameters (docs/identification.md#condition-numbers); `None` in an
+    /// estimate recorded without it.
+    #[serde(default)]
+    pub scaled_condition_number: Option<f64>,
     /// Upper bound on the relative estimation error `||d beta|| / ||beta||` of Milella
     /// (after Gautier and Khalil 1992): `cond(W) ||y - W beta|| / ||y||` of the solved
     /// system, as a fraction (1.89 is Milella's 189 %); 0 when the fit is exact
@@ -75,19 +82,19 @@ pub(crate) fn assemble(
     original: &Observation,
     beta: DVector<f64>,
     inverse_gram: &DMatrix<f64>,
-    condition_number: f64,
+    condition: Condition,
 ) -> Result<Estimate> {
     let m = solved.rows();
     let r = &solved.y - &solved.w * &beta;
     let residual_rms = original.residual_rms(&beta);
-    let bound = error_bound(condition_number, &r, &solved.y);
+    let bound = error_bound(condition.raw, &r, &solved.y);
     let relative_column_norms = relative_column_norms(&solved.w, &solved.y);
     assemble_parts(
         method,
         original.names.clone(),
         beta,
         inverse_gram,
-        condition_number,
+        condition,
         Residual {
             squared_norm: r.norm_squared(),
             rows: m,
@@ -120,9 +127,10 @@ pub(crate) fn assemble_parts(
     names: Vec<String>,
     beta: DVector<f64>,
     inverse_gram: &DMatrix<f64>,
-    condition_number: f64,
+    condition: Condition,
     residual: Residual,
 ) -> Result<Estimate> {
+    let condition_number = condition.raw;
     let (m, n) = (residual.rows, beta.len());
     // as many equations as parameters fit any data exactly: sigma^2 would be the rounding
     // error's, and every standard deviation a thousandth of a percent of nonsense
@@ -201,6 +209,7 @@ pub(crate) fn assemble_parts(
         rel_std_percent: rel,
         sigma2,
         condition_number,
+        scaled_condition_number: Some(condition.scaled),
         error_bound,
         rows: m,
         weights: None,
@@ -242,6 +251,12 @@ mod tests {
     use nalgebra::{DMatrix, DVector};
 
     use super::{Estimator, assemble};
+    use crate::estimate::lstsq::Condition;
+
+    const ONE: Condition = Condition {
+        raw: 1.0,
+        scaled: 1.0,
+    };
     use crate::estimate::Observation;
 
     fn observation(y: &[f64]) -> Observation {
@@ -264,9 +279,9 @@ mod tests {
         let original = observation(&[1e200, -1e200, 3e200]);
         let beta = DVector::from_vec(vec![2.0]);
         let gram = DMatrix::from_element(1, 1, 1.0 / 3.0);
-        let fine = assemble(Estimator::Wls, &solved, &solved, beta.clone(), &gram, 1.0);
+        let fine = assemble(Estimator::Wls, &solved, &solved, beta.clone(), &gram, ONE);
         assert!(fine.is_ok());
-        let e = assemble(Estimator::Wls, &solved, &original, beta, &gram, 1.0).unwrap_err();
+        let e = assemble(Estimator::Wls, &solved, &original, beta, &gram, ONE).unwrap_err();
         assert!(e.to_string().contains("residual of the fit"), "{e}");
     }
 
@@ -279,7 +294,7 @@ mod tests {
         let one = observation(&[2.0]);
         let gram = DMatrix::from_element(1, 1, 1.0);
         let beta = DVector::from_vec(vec![2.0]);
-        let e = assemble(Estimator::Ols, &one, &one, beta, &gram, 1.0).unwrap_err();
+        let e = assemble(Estimator::Ols, &one, &one, beta, &gram, ONE).unwrap_err();
         assert!(
             matches!(
                 e,

@@ -516,7 +516,7 @@ impl StreamingLeastSquares {
             self.names.clone(),
             s.beta.clone(),
             &s.inverse_gram,
-            s.condition_number,
+            s.condition(),
             Residual {
                 squared_norm: solved_norm * solved_norm,
                 rows: m,

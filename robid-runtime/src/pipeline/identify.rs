@@ -211,7 +211,7 @@ pub fn energy_observation_of(
 /// it with the torque model on the same samples, and raises it also when the energy
 /// model is more than [`ENERGY_CONDITION_RATIO`] times worse conditioned.
 fn energy_conditioning(estimate: &mut Estimate, torque: &Observation) -> Result<()> {
-    let cond = crate::estimate::condition_number(&torque.w, &torque.names)?;
+    let cond = crate::estimate::condition_number(&torque.w, &torque.names)?.raw;
     let energy = estimate.condition_number;
     if energy > CONDITION_WARNING || energy > ENERGY_CONDITION_RATIO * cond {
         estimate
@@ -725,6 +725,7 @@ mod tests {
             rel_std_percent: vec![10.0, 5.0],
             sigma2: 1.0,
             condition_number: cond,
+            scaled_condition_number: Some(cond),
             error_bound: 0.5,
             residual_rms: vec![0.1],
             rows: 3,

@@ -112,6 +112,13 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
         report.condition_number,
         report.error_bound_percent
     );
+    if let Some(scaled) = report.scaled_condition_number {
+        let _ = writeln!(
+            h,
+            "<p>Condition number with unit-norm columns {scaled:.1} (the same in any units of \
+             the parameters; the one above, and the bound with it, are of W in its units).</p>"
+        );
+    }
     if let Some(rows) = &report.estimation {
         let _ = writeln!(h, "<p>Estimation rows: {}.</p>", escape(&rows.to_string()));
     }
@@ -212,6 +219,7 @@ mod tests {
             method: "wls".into(),
             samples: 100,
             condition_number: 12.5,
+            scaled_condition_number: Some(3.2),
             error_bound_percent: 3.5,
             estimation: None,
             parameters: vec![ParameterEntry {
@@ -269,6 +277,10 @@ mod tests {
         assert!(html.contains("ZZ1 + 0.5*M2") && html.contains("<td>0.80</td>"));
         assert!(html.contains("a &amp; b"));
         assert!(html.contains("condition number 12.5"));
+        assert!(
+            html.contains("Condition number with unit-norm columns 3.2 "),
+            "{html}"
+        );
         assert!(html.contains("relative estimation error 3.5 %"), "{html}");
         assert_eq!(html.matches("<svg").count(), 4);
         for external in ["src=\"http", "href=\"http", "<script", "@import", "url("] {

@@ -181,8 +181,14 @@ pub struct Report {
     pub method: String,
     /// Equations used (rows of W).
     pub samples: usize,
-    /// Condition number of W.
+    /// Condition number of W, `s_max / s_min` of the observation matrix as solved (it
+    /// depends on the parameters' units; `error_bound_percent` is taken with it).
     pub condition_number: f64,
+    /// Condition number of W with its columns scaled to unit norm: the same in any units
+    /// of the parameters (docs/identification.md#condition-numbers); null in a report
+    /// written before it was recorded.
+    #[serde(default)]
+    pub scaled_condition_number: Option<f64>,
     /// Milella's upper bound on the relative estimation error, `100 cond(W) ||rho|| /
     /// ||y||` percent ([`Estimate::error_bound`], docs/identification.md#error-bound).
     #[serde(default)]
@@ -265,6 +271,7 @@ impl Report {
             method: estimate.method.name().to_string(),
             samples: estimate.rows,
             condition_number: estimate.condition_number,
+            scaled_condition_number: estimate.scaled_condition_number,
             error_bound_percent: 100.0 * estimate.error_bound,
             estimation: None,
             parameters,
@@ -382,6 +389,9 @@ impl Report {
         };
         if !self.condition_number.is_finite() {
             return bad("the report's condition number".into());
+        }
+        if self.scaled_condition_number.is_some_and(|c| !c.is_finite()) {
+            return bad("the report's condition number with unit-norm columns".into());
         }
         if !self.error_bound_percent.is_finite() {
             return bad("the report's bound on the relative estimation error".into());

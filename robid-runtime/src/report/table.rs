@@ -23,6 +23,13 @@ pub fn text_table(report: &Report) -> String {
         report.condition_number,
         report.error_bound_percent
     );
+    if let Some(scaled) = report.scaled_condition_number {
+        let _ = writeln!(
+            s,
+            "cond(W) with unit-norm columns {scaled:.1} (the same in any units of the \
+             parameters; cond(W) above, and the error bound with it, are of W in its units)"
+        );
+    }
     if let Some(rows) = &report.estimation {
         let _ = writeln!(s, "estimation rows: {rows}");
     }
@@ -208,6 +215,7 @@ mod tests {
             rel_std_percent: vec![100.0 * 0.04 / 2.24, f64::INFINITY],
             sigma2: 1.0,
             condition_number: 1019.0,
+            scaled_condition_number: Some(41.3),
             error_bound: 0.25,
             residual_rms: vec![1.5],
             rows: 2079,
@@ -391,6 +399,22 @@ mod tests {
         assert!(text_table(&report()).contains(
             "cond(W) 1019.0  error bound 25.0 % (worst case: cond(W) x relative residual)\n"
         ));
+        // beside it, the units-free figure (a new line: the raw one's is unchanged)
+        assert_eq!(v["scaled_condition_number"], 41.3);
+        assert!(text_table(&report()).contains(
+            "residual)\ncond(W) with unit-norm columns 41.3 (the same in any units of the parameters"
+        ));
+        let mut bad = report();
+        bad.scaled_condition_number = Some(f64::NAN);
+        assert!(bad.check().is_err());
+        // a report written before it was recorded reads back without it
+        let mut old = v.clone();
+        old.as_object_mut()
+            .unwrap()
+            .remove("scaled_condition_number");
+        let old: Report = serde_json::from_value(old).unwrap();
+        assert_eq!(old.scaled_condition_number, None);
+        assert!(!text_table(&old).contains("unit-norm"));
         let mut bad = report();
         bad.error_bound_percent = f64::INFINITY;
         assert!(bad.check().is_err());
@@ -422,6 +446,7 @@ mod tests {
             rel_std_percent: vec![0.83, 45.45],
             sigma2: 1.0,
             condition_number: 6.9e9,
+            scaled_condition_number: Some(3.5e3),
             error_bound: 12.0,
             residual_rms: vec![1.0],
             rows: 100,

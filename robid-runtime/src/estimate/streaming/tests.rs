@@ -41,6 +41,10 @@ fn assert_same(s: &Estimate, d: &Estimate, tol: f64) {
         s.condition_number,
         d.condition_number
     );
+    match (s.scaled_condition_number, d.scaled_condition_number) {
+        (Some(a), Some(b)) => assert!(close(a, b, tol, 0.0), "scaled cond {a} vs {b}"),
+        other => panic!("{other:?}"),
+    }
     assert!(close(s.error_bound, d.error_bound, tol, 0.0));
     for (a, b) in s.residual_rms.iter().zip(&d.residual_rms) {
         assert!(close(*a, *b, tol, 0.0), "rms {a} vs {b}");
@@ -649,5 +653,57 @@ fn a_huge_column_keeps_its_leverage() {
         for (a, b) in got.iter().zip(&rescaled) {
             assert!(close(*a, *b, 1e-10, 0.0), "{got:?} against {rescaled:?}");
         }
+    }
+}
+
+/// The condition number of W with unit-norm columns, from both paths (the streaming one
+/// from R, whose column norms are W's), is `s_max / s_min` of W with each column divided
+/// by its norm, by an SVD of W itself; a column taken in other units (x 1e-3) leaves it as
+/// it was (to 1e-10) where the raw condition number moves by a factor of about 1e3.
+#[test]
+fn the_scaled_condition_number_is_that_of_unit_norm_columns() {
+    let (obs, rows) = problem(3, 500, 6, 4.0, 21);
+    let independent = |w: &DMatrix<f64>| {
+        let mut unit = w.clone();
+        for mut c in unit.column_iter_mut() {
+            let n = c.norm();
+            c /= n;
+        }
+        let s = unit.singular_values();
+        s.max() / s.min()
+    };
+    let want = independent(&obs.w);
+    let fits = |obs: &Observation, rows: &[(usize, Vec<f64>, f64)]| {
+        let mut s = streamed(obs, rows);
+        [
+            ols(obs, 1e-12).unwrap(),
+            wls(obs, 1e-12).unwrap(),
+            s.ols(1e-12).unwrap(),
+            s.wls(1e-12).unwrap(),
+        ]
+    };
+    let before = fits(&obs, &rows);
+    // OLS (dense, streaming) against the SVD; WLS is of the weighted W
+    for e in [&before[0], &before[2]] {
+        let got = e.scaled_condition_number.unwrap();
+        assert!(close(got, want, 1e-10, 0.0), "{got} against {want}");
+        // the columns' units spread over 4 decades: the raw figure is far above
+        assert!(e.condition_number > 10.0 * got, "{}", e.condition_number);
+    }
+    let (mut other, mut other_rows) = (obs.clone(), rows.clone());
+    // the smallest column (1e-2) in a unit a thousand times larger
+    other.w.column_mut(0).scale_mut(1e-3);
+    for r in other_rows.iter_mut() {
+        r.1[0] *= 1e-3;
+    }
+    assert!(close(independent(&other.w), want, 1e-10, 0.0));
+    for (a, b) in before.iter().zip(&fits(&other, &other_rows)) {
+        let (x, y) = (
+            a.scaled_condition_number.unwrap(),
+            b.scaled_condition_number.unwrap(),
+        );
+        assert!(close(x, y, 1e-10, 0.0), "{x} against {y}");
+        let ratio = b.condition_number / a.condition_number;
+        assert!(ratio > 100.0, "raw moved by {ratio}");
     }
 }

@@ -39,6 +39,13 @@ fn same_estimate(s: &Estimate, d: &Estimate) {
         1e-10,
         0.0,
     );
+    same_list(
+        "scaled cond",
+        &[s.scaled_condition_number.unwrap()],
+        &[d.scaled_condition_number.unwrap()],
+        1e-10,
+        0.0,
+    );
     same_list("bound", &[s.error_bound], &[d.error_bound], 1e-10, 0.0);
     same_list("rms", &s.residual_rms, &d.residual_rms, 1e-10, 0.0);
     match (&s.weights, &d.weights) {
