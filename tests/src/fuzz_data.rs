@@ -585,6 +585,10 @@ pub fn identify_case(
     all_finite("std", &e.std)?;
     all_finite("residual RMS", &e.residual_rms)?;
     all_finite("sigma2 and condition", [&e.sigma2, &e.condition_number])?;
+    match e.scaled_condition_number {
+        Some(c) if c.is_finite() && c >= 1.0 => {}
+        other => return Err(format!("condition number with unit-norm columns {other:?}")),
+    }
     for (r, v) in e.rel_std_percent.iter().zip(&e.values) {
         if !r.is_finite() && *v != 0.0 {
             return Err(format!("relative std {r} for the value {v}"));
