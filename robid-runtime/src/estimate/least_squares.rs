@@ -15,12 +15,13 @@
 //! M. Gautier, W. Khalil, "Exciting trajectories for the identification of base
 //! inertial parameters of robots", IJRR 1992.
 
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 
 use crate::error::{Error, Result};
+use crate::estimate::hac::{Scores, robust_lag};
 use crate::estimate::lstsq::{Solution, solve};
 use crate::estimate::result::assemble;
-use crate::estimate::{Estimate, Estimator, Observation, QualityWarning};
+use crate::estimate::{Estimate, Estimator, Observation, QualityWarning, RobustStd};
 
 /// Floor of the per-joint residual sigma of WLS, relative to the largest joint sigma.
 pub const SIGMA_FLOOR: f64 = 1e-6;
@@ -43,7 +44,42 @@ pub fn ols(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     check_tolerance(tolerance)?;
     let s = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
     let condition = s.condition();
-    assemble(Estimator::Ols, obs, obs, s.beta, &s.inverse_gram, condition)
+    let robust = robust_std(obs, &s.beta, &s.inverse_gram);
+    let mut e = assemble(Estimator::Ols, obs, obs, s.beta, &s.inverse_gram, condition)?;
+    e.robust = Some(robust);
+    Ok(e)
+}
+
+/// The Newey-West standard deviations ([`RobustStd`]) of the solution `beta` of `solved`
+/// (the weighted system for WLS) whose `(W'W)^-1` is `inverse_gram`: each sample's score
+/// `W_t' e_t` over its joints' equations, the lags within a segment
+/// ([`Observation::breaks`]), the lag [`robust_lag`] of the samples and
+/// [`Observation::correlated`].
+pub(crate) fn robust_std(
+    solved: &Observation,
+    beta: &DVector<f64>,
+    inverse_gram: &DMatrix<f64>,
+) -> RobustStd {
+    let residual = &solved.y - &solved.w * beta;
+    let mut order: Vec<(usize, usize, usize)> = (0..solved.rows())
+        .map(|r| {
+            let k = solved.sample_of_row[r];
+            (solved.segment(k), k, r)
+        })
+        .collect();
+    order.sort_unstable();
+    let mut samples = order.iter().map(|&(s, k, _)| (s, k)).collect::<Vec<_>>();
+    samples.dedup();
+    let lag = robust_lag(samples.len(), solved.correlated);
+    let mut scores = Scores::new(solved.cols(), lag);
+    let mut row = vec![0.0; solved.cols()];
+    for (segment, k, r) in order {
+        row.iter_mut()
+            .zip(solved.w.row(r).iter())
+            .for_each(|(a, b)| *a = *b);
+        scores.add(segment, k, &row, residual[r]);
+    }
+    scores.finish(inverse_gram, solved.rows())
 }
 
 /// Weighted least squares with per-joint weights from the OLS residuals.
@@ -72,6 +108,7 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     weighted.y.component_mul_assign(&row_weight);
     let s = solve(&weighted.w, &weighted.y, &weighted.names, tolerance)?;
     let condition = s.condition();
+    let robust = robust_std(&weighted, &s.beta, &s.inverse_gram);
     let mut e = assemble(
         Estimator::Wls,
         &weighted,
@@ -81,6 +118,7 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
         condition,
     )?;
     e.weights = Some(weights);
+    e.robust = Some(robust);
     e.warnings.extend(weights_without_noise(&leverages));
     Ok(e)
 }
@@ -428,6 +466,99 @@ mod tests {
                 weights[j],
                 1.0 / sigma
             );
+        }
+    }
+
+    /// A standard normal draw from a seeded generator (Box-Muller on a 64-bit LCG).
+    fn normal(seed: &mut u64) -> f64 {
+        let mut uniform = || {
+            *seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((*seed >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+        };
+        let (a, b) = (uniform(), uniform());
+        (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
+    }
+
+    /// The robust deviations are the spread of the estimates over repeated records of
+    /// AR(1) noise (coefficient 0.8, each joint's own), where the classical ones are
+    /// about three times too small (sqrt((1 + 0.8) / (1 - 0.8)) = 3 for regressors that
+    /// vary slowly against the noise's correlation): 300 seeded records of two joints of
+    /// 1,500 samples, OLS and WLS, the lag from the noise's correlation time (20 samples:
+    /// 0.8^20 = 0.012). Measured: classical over the spread 0.32 to 0.36, robust 0.84 to
+    /// 0.93 (the Bartlett weights at lag 20 take 7.2 of the long-run variance's 9 times
+    /// the noise's: 0.89 of its square root).
+    #[test]
+    fn robust_deviations_are_the_spread_over_records_of_correlated_noise() {
+        let (n, records, phi) = (1500, 300, 0.8);
+        let x = |j: usize, k: usize, c: usize| {
+            let t = k as f64 * 0.01;
+            match c {
+                0 => (t * (1.0 + j as f64)).sin(),
+                1 => (0.7 * t + j as f64).cos(),
+                _ => 1.0,
+            }
+        };
+        let beta = [1.0, -2.0, 0.5];
+        let w = DMatrix::from_fn(2 * n, 3, |r, c| x(r / n, r % n, c));
+        let mut seed = 2026u64;
+        // the estimates, the classical and the robust deviations of one record
+        type Fit = (Vec<f64>, Vec<f64>, Vec<f64>);
+        let mut fits: [Vec<Fit>; 2] = [Vec::new(), Vec::new()];
+        for _ in 0..records {
+            let mut y = DVector::zeros(2 * n);
+            for j in 0..2 {
+                // the stationary start, then e_k = phi e_(k-1) + innovation
+                let scale = if j == 0 { 0.1 } else { 0.3 };
+                let mut e = normal(&mut seed) / (1.0f64 - phi * phi).sqrt();
+                for k in 0..n {
+                    if k > 0 {
+                        e = phi * e + normal(&mut seed);
+                    }
+                    let r = j * n + k;
+                    y[r] = (0..3).map(|c| w[(r, c)] * beta[c]).sum::<f64>() + scale * e;
+                }
+            }
+            let mut obs = Observation::new(
+                w.clone(),
+                y,
+                vec![0..n, n..2 * n],
+                (0..n).chain(0..n).collect(),
+                vec!["a".into(), "b".into(), "c".into()],
+            )
+            .unwrap();
+            obs.correlated = 20;
+            for (m, e) in [ols(&obs, 1e-10), wls(&obs, 1e-10)].into_iter().enumerate() {
+                let e = e.unwrap();
+                let robust = e.robust.clone().unwrap();
+                assert_eq!((robust.lag, robust.samples), (20, n));
+                fits[m].push((e.values, e.std, robust.std));
+            }
+        }
+        for (m, fits) in fits.iter().enumerate() {
+            for i in 0..3 {
+                let mean = fits.iter().map(|f| f.0[i]).sum::<f64>() / records as f64;
+                let spread = (fits.iter().map(|f| (f.0[i] - mean).powi(2)).sum::<f64>()
+                    / (records - 1) as f64)
+                    .sqrt();
+                let rms = |s: &dyn Fn(&Fit) -> f64| {
+                    (fits.iter().map(|f| s(f).powi(2)).sum::<f64>() / records as f64).sqrt()
+                };
+                let classical = rms(&|f| f.1[i]) / spread;
+                let robust = rms(&|f| f.2[i]) / spread;
+                eprintln!(
+                    "method {m}, parameter {i}: classical {classical:.3}, robust {robust:.3}"
+                );
+                assert!(
+                    classical < 0.5,
+                    "method {m}, parameter {i}: classical {classical}"
+                );
+                assert!(
+                    (0.75..1.15).contains(&robust),
+                    "method {m}, parameter {i}: robust {robust}"
+                );
+            }
         }
     }
 

@@ -6,6 +6,7 @@
 
 mod energy;
 pub(crate) mod error;
+pub(crate) mod hac;
 mod known;
 mod least_squares;
 mod link_by_link;
@@ -24,6 +25,7 @@ pub use energy::{
 };
 pub use error::EstimateError;
 pub(crate) use error::{not_excited, undetermined};
+pub use hac::{RobustStd, robust_lag};
 pub use known::KnownParameters;
 pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
 pub use link_by_link::{link_by_link, link_by_link_steps};

@@ -24,6 +24,14 @@ pub struct Observation {
     pub sample_of_row: Vec<usize>,
     /// Parameter (column) names.
     pub names: Vec<String>,
+    /// The sample indices that start a new segment (a run of stacked runs, a piece of
+    /// `processing.pieces`), in increasing order: the residuals' correlation is not taken
+    /// across them ([`RobustStd`](crate::estimate::RobustStd)). Empty: one segment.
+    pub breaks: Vec<usize>,
+    /// Samples over which the processing correlates the residuals (the low-pass's
+    /// `sample rate / (decimation x cutoff)`; 0 when no filter says): the least lag of
+    /// the robust standard deviations ([`robust_lag`](crate::estimate::robust_lag)).
+    pub correlated: usize,
 }
 
 impl Observation {
@@ -81,7 +89,14 @@ impl Observation {
             joint_rows,
             sample_of_row,
             names,
+            breaks: Vec::new(),
+            correlated: 0,
         })
+    }
+
+    /// The segment of sample `k`: the number of [`breaks`](Self::breaks) at or before it.
+    pub fn segment(&self, k: usize) -> usize {
+        self.breaks.partition_point(|&b| b <= k)
     }
 
     /// The rows whose sample index satisfies `keep`, joint blocks and order kept.
@@ -99,7 +114,10 @@ impl Observation {
             start += count;
         }
         let sample_of_row = rows.iter().map(|&r| self.sample_of_row[r]).collect();
-        Self::new(w, y, joint_rows, sample_of_row, self.names.clone())
+        let mut selected = Self::new(w, y, joint_rows, sample_of_row, self.names.clone())?;
+        selected.breaks = self.breaks.clone();
+        selected.correlated = self.correlated;
+        Ok(selected)
     }
 
     /// A single-block observation (e.g. one equation per row with no joint structure).

@@ -196,6 +196,7 @@ pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
         weights: None,
         warnings,
         known: Vec::new(),
+        robust: None,
         error_bound: bound,
     };
     Ok(PerAxis {

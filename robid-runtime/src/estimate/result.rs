@@ -4,9 +4,9 @@ use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::estimate::Observation;
 use crate::estimate::lstsq::Condition;
 use crate::estimate::quality::{QualityWarning, assess, effects, relative_column_norms};
+use crate::estimate::{Observation, RobustStd};
 
 /// Which estimator produced a result: the config's estimation method, one list for both
 /// (the names in reports are its [`Method::name`](crate::data::Method::name)).
@@ -23,6 +23,11 @@ pub struct Estimate {
     pub values: Vec<f64>,
     /// Standard deviations sqrt(diag(sigma^2 (W'W)^-1)) of the solved (possibly weighted) system.
     pub std: Vec<f64>,
+    /// Standard deviations robust to autocorrelated residuals (Newey-West; OLS and WLS
+    /// without known parameters, `None` for the other estimators):
+    /// docs/identification.md#statistics.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robust: Option<RobustStd>,
     /// 100 * std / |value| (infinite only for a value that is exactly zero; reports write
     /// null or `-` for it).
     pub rel_std_percent: Vec<f64>,
@@ -206,6 +211,7 @@ pub(crate) fn assemble_parts(
         residual_rms,
         values: beta.iter().copied().collect(),
         std,
+        robust: None,
         rel_std_percent: rel,
         sigma2,
         condition_number,

@@ -264,6 +264,9 @@ impl Factor {
 pub struct StreamingLeastSquares {
     names: Vec<String>,
     groups: Vec<Factor>,
+    /// The `(W'W)^-1` (of the weighted columns) and the groups' weights of the last
+    /// system [`ols`](Self::ols) or [`wls`](Self::wls) solved.
+    solved: Option<(DMatrix<f64>, Vec<f64>)>,
 }
 
 impl StreamingLeastSquares {
@@ -282,6 +285,7 @@ impl StreamingLeastSquares {
         Ok(Self {
             groups: vec![Factor::new(width); groups],
             names,
+            solved: None,
         })
     }
 
@@ -357,6 +361,7 @@ impl StreamingLeastSquares {
                 let mut probe = StreamingLeastSquares {
                     names: self.names.clone(),
                     groups: vec![Factor::new(0); self.groups.len()],
+                    solved: None,
                 };
                 if let Some(f) = probe.groups.get_mut(g) {
                     f.rows = self.groups[g].rows;
@@ -534,7 +539,16 @@ impl StreamingLeastSquares {
         check_tolerance(tolerance)?;
         self.flush();
         let ones = vec![1.0; self.groups.len()];
-        Ok(self.solve(Estimator::Ols, &ones, tolerance)?.0)
+        let (e, solution) = self.solve(Estimator::Ols, &ones, tolerance)?;
+        self.solved = Some((solution.inverse_gram, ones));
+        Ok(e)
+    }
+
+    /// The `(W'W)^-1` of the last system [`ols`](Self::ols) or [`wls`](Self::wls) solved
+    /// (of the weighted columns for WLS) and each group's weight (1 for OLS): what the
+    /// robust standard deviations need with a pass over the equations again.
+    pub(crate) fn solved(&self) -> Option<(&DMatrix<f64>, &[f64])> {
+        self.solved.as_ref().map(|(g, w)| (g, w.as_slice()))
     }
 
     /// Weighted least squares with each group's weight 1 / sigma_j from its OLS residual
@@ -560,7 +574,8 @@ impl StreamingLeastSquares {
             })
             .collect();
         let weights = checked_weights(&sigma)?;
-        let (mut e, _) = self.solve(Estimator::Wls, &weights, tolerance)?;
+        let (mut e, solution) = self.solve(Estimator::Wls, &weights, tolerance)?;
+        self.solved = Some((solution.inverse_gram, weights.clone()));
         e.weights = Some(weights);
         e.warnings.extend(weights_without_noise(&leverages));
         Ok(e)

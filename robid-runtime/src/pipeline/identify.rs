@@ -62,6 +62,27 @@ pub fn observation(
     observation_counted(model, data, config).map(|c| (c.obs, c.dt))
 }
 
+/// The samples (decimated) over which the processing correlates the residuals: the
+/// low-pass's `sample rate / (decimation x cutoff)` (its `cutoff = "auto"` as `auto`
+/// chose it), the time a Butterworth filter of that cutoff takes to forget, 0 without a
+/// low-pass (the decimation filter's own correlation, a sample or two, Newey and West's
+/// rule covers: [`robust_lag`](crate::estimate::robust_lag)).
+pub(crate) fn correlated_samples(
+    config: &Config,
+    auto: Option<&CutoffSuggestion>,
+    sample_time: f64,
+) -> Result<usize> {
+    let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
+    let cutoff = config.processing.lowpass.as_ref().and_then(|lp| {
+        auto.map(|a| a.cutoff)
+            .or_else(|| lp.cutoff.hz())
+            .filter(|c| *c > 0.0 && c.is_finite())
+    });
+    Ok(cutoff.map_or(0, |c| {
+        (1.0 / (sample_time * factor as f64 * c)).ceil().min(1e9) as usize
+    }))
+}
+
 /// An observation with what its preparation left to say of it ([`observation_counted`]).
 pub(crate) struct CountedObservation {
     pub(crate) obs: Observation,
@@ -82,7 +103,8 @@ pub(crate) fn observation_counted(
     config: &Config,
 ) -> Result<CountedObservation> {
     let rows = checked_prepare(model, data, config, Rows::Estimation)?;
-    let (obs, dt, rest) = torque_observation(model, &rows.prepared, config, data, &rows.kept)?;
+    let (mut obs, dt, rest) = torque_observation(model, &rows.prepared, config, data, &rows.kept)?;
+    obs.correlated = correlated_samples(config, rows.auto_cutoff.as_ref(), data.sample_time)?;
     let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
     let unfiltered = unfiltered_torque(&obs, &rows, factor);
     Ok(CountedObservation {
@@ -487,7 +509,8 @@ pub(crate) fn identify_dense(
             None => solve(system),
         }
     };
-    let (obs, dt, rest) = torque_observation(model, prepared, config, data, kept)?;
+    let (mut obs, dt, rest) = torque_observation(model, prepared, config, data, kept)?;
+    obs.correlated = correlated_samples(config, rows.auto_cutoff.as_ref(), data.sample_time)?;
     if config.estimation.method != Method::Energy {
         let known = known.as_ref().map_or(0, |k| k.known_names().len());
         long_enough(data, kept, model.dof(), obs.cols().saturating_sub(known))?;
@@ -576,7 +599,9 @@ fn pieces_of(
     };
     let time = |k: usize| (start + k * factor) as f64 * data.sample_time;
     let inside = |k: usize| pieces.iter().any(|[a, b]| (*a..=*b).contains(&time(k)));
-    let selected = obs.select_samples(inside)?;
+    let mut selected = obs.select_samples(inside)?;
+    // each piece is a segment of its own: no lag of the robust deviations reaches across
+    selected.breaks = piece_breaks(obs.sample_of_row.iter().max().map_or(0, |m| m + 1), inside);
     if selected.rows() < crate::estimate::equations_needed(obs.cols()) {
         return Err(config.key_error(
             "processing.pieces",
@@ -590,6 +615,14 @@ fn pieces_of(
         ));
     }
     Ok(Some(selected))
+}
+
+/// The decimated samples, of `samples`, that start a piece: inside one and after a sample
+/// that is not (or first).
+pub(crate) fn piece_breaks(samples: usize, inside: impl Fn(usize) -> bool) -> Vec<usize> {
+    (0..samples)
+        .filter(|&k| inside(k) && (k == 0 || !inside(k - 1)))
+        .collect()
 }
 
 /// The regrouping with the standard parameters of `estimation.known` fixed, if the config
@@ -735,6 +768,7 @@ mod tests {
                 threshold: CONDITION_WARNING,
             }],
             known: Vec::new(),
+            robust: None,
         };
         for (cond, raised) in [(3.9, false), (4.1, true), (2e4, true)] {
             let mut e = estimate(cond);

@@ -265,7 +265,20 @@ pub fn stack(parts: Vec<Observation>) -> Result<Observation> {
         }
         joint_rows.push(start..at);
     }
-    Observation::new(w, y, joint_rows, sample_of_row, names)
+    let mut stacked = Observation::new(w, y, joint_rows, sample_of_row, names)?;
+    // each run is a segment of its own (and each of its pieces)
+    for (p, offset) in parts.iter().zip(&offsets) {
+        if *offset > 0 {
+            stacked.breaks.push(*offset);
+        }
+        stacked
+            .breaks
+            .extend(p.breaks.iter().filter(|&&b| b > 0).map(|b| b + offset));
+    }
+    stacked.breaks.sort_unstable();
+    stacked.breaks.dedup();
+    stacked.correlated = parts.iter().map(|p| p.correlated).max().unwrap_or(0);
+    Ok(stacked)
 }
 
 /// The sample-wise mean of records of one trajectory on the same time grid (the same joint

@@ -34,11 +34,13 @@ use rayon::prelude::*;
 use crate::Model;
 use crate::data::{Config, Dataset, Method, Record};
 use crate::error::{Error, Result};
+use crate::estimate::hac::Scores;
 use crate::estimate::{
-    Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares, equations_needed,
+    Dominance, Estimate, EstimateError, QualityWarning, RobustStd, StreamingLeastSquares,
+    equations_needed, robust_lag,
 };
 use crate::pipeline::Identification;
-use crate::pipeline::identify::{checked_plan, rest_cause};
+use crate::pipeline::identify::{checked_plan, correlated_samples, piece_breaks, rest_cause};
 use crate::pipeline::observe::{Carry, Equations, Observer, RestCount, decimator_for, long_enough};
 use crate::pipeline::prepare::{Plan, Rows};
 use crate::progress::Progress;
@@ -398,6 +400,52 @@ fn shifted(e: Error, lo: usize) -> Error {
         .unwrap_or_else(|e| e)
 }
 
+/// The segment of a stream's decimated sample (`None`: not in the estimate).
+type SegmentOf<'a> = &'a (dyn Fn(usize) -> Option<usize> + Sync);
+
+/// The Newey-West standard deviations of `estimate`, which `ls` solved from the
+/// equations of `passes` (each a stream and the segment of each of its decimated samples,
+/// `None` for a sample the estimate left out): a pass over every stream's equations again
+/// with the estimated values, each equation's score `w_j^2 (y - W_row beta) W_row` (`w_j`
+/// its joint's weight, 1 for OLS) added to its sample's, the last `lag` samples' scores
+/// kept ([`Scores`]); `samples` scored samples in all and `correlated` samples of the
+/// processing's correlation choose the lag, as the dense path's
+/// `estimate::least_squares::robust_std`.
+fn robust_pass(
+    passes: &[(&Stream<'_>, SegmentOf<'_>)],
+    ls: &StreamingLeastSquares,
+    estimate: &Estimate,
+    samples: usize,
+    correlated: usize,
+) -> Result<RobustStd> {
+    let Some((inverse_gram, weights)) = ls.solved() else {
+        return Err(Error::setting(
+            "robust_pass",
+            "ls",
+            "solve the least squares before their robust deviations",
+        ));
+    };
+    let values = &estimate.values;
+    let mut scores = Scores::new(values.len(), robust_lag(samples, correlated));
+    for (stream, segment) in passes {
+        stream.run(|eq| {
+            // the block's equations sample by sample (joints in order within a sample)
+            let mut order: Vec<(usize, usize, usize)> = (0..eq.y.len())
+                .filter_map(|i| segment(eq.sample[i]).map(|s| (s, eq.sample[i], i)))
+                .collect();
+            order.sort_unstable();
+            for (s, k, i) in order {
+                let row = eq.row(i);
+                let w = weights[eq.joint[i]];
+                let fitted: f64 = row.iter().zip(values).map(|(a, b)| a * b).sum();
+                scores.add(s, k, row, w * w * (eq.y[i] - fitted));
+            }
+            Ok(())
+        })?;
+    }
+    Ok(scores.finish(inverse_gram, estimate.rows))
+}
+
 /// Whether [`identify`](crate::pipeline::identify) streams: OLS or WLS without known
 /// parameters (the other methods and the known-parameter reduction take the dense
 /// observation).
@@ -453,6 +501,9 @@ pub(crate) fn identify_streaming(
         measured: (0..dof).map(|_| Vec::with_capacity(decimated)).collect(),
     };
     let mut rest = RestCount::default();
+    // the decimated samples with an equation in the estimate (for the robust deviations'
+    // lag)
+    let mut scored = vec![false; decimated];
     stream
         .run(|eq| {
             rest.add(&eq.rest);
@@ -464,9 +515,11 @@ pub(crate) fn identify_streaming(
                 estimated.measured[j].push(eq.y[i]);
             }
             if config.processing.pieces.is_none() {
+                eq.sample.iter().for_each(|&k| scored[k] = true);
                 return ls.push_rows(&eq.joint, &eq.w, &eq.y);
             }
             let keep: Vec<usize> = (0..eq.y.len()).filter(|&i| inside(eq.sample[i])).collect();
+            keep.iter().for_each(|&i| scored[eq.sample[i]] = true);
             let joint: Vec<usize> = keep.iter().map(|&i| eq.joint[i]).collect();
             let w: Vec<f64> = keep
                 .iter()
@@ -528,6 +581,16 @@ pub(crate) fn identify_streaming(
             share,
         });
     }
+    // each piece a segment of its own, as the dense path's `pieces_of` gives them
+    let breaks = match &config.processing.pieces {
+        Some(_) => piece_breaks(decimated, inside),
+        None => Vec::new(),
+    };
+    let segment = |k: usize| inside(k).then(|| breaks.partition_point(|&b| b <= k));
+    let correlated = correlated_samples(config, plan.auto_cutoff.as_ref(), data.sample_time())?;
+    let samples = scored.iter().filter(|s| **s).count();
+    estimate.robust =
+        Some(robust_pass(&[(&stream, &segment)], &ls, &estimate, samples, correlated).map_err(at)?);
     let dt = data.sample_time() * factor as f64;
     let mut parts = stream
         .prediction(&estimate.values, dt, Some(&per_joint), Some(estimated))
@@ -636,19 +699,39 @@ pub(crate) fn stacked_streaming(
     // what the removal of the equations near rest left, over the runs (as the dense
     // stacked path counts it)
     let mut rest = RestCount::default();
+    // the samples with an equation, over the runs (the robust deviations' lag)
+    let mut samples = 0;
+    let mut correlated = 0;
     for (i, ((s, p), d)) in streams.iter().zip(&plans).zip(runs).enumerate() {
+        let mut scored = vec![false; p.kept.len().div_ceil(s.factor())];
         s.run(|eq| {
             rest.add(&eq.rest);
+            eq.sample.iter().for_each(|&k| scored[k] = true);
             ls.push_rows(&eq.joint, &eq.w, &eq.y)
         })
         .map_err(|e| in_run(i, d, located(e, config, d, &p.kept)))?;
+        samples += scored.iter().filter(|s| **s).count();
+        correlated = correlated.max(
+            correlated_samples(config, p.auto_cutoff.as_ref(), d.sample_time)
+                .map_err(|e| in_run(i, d, e))?,
+        );
     }
     let tolerance = config.estimation.rank_tolerance;
-    let estimate = match config.estimation.method {
+    let mut estimate = match config.estimation.method {
         Method::Wls => ls.wls(tolerance),
         _ => ls.ols(tolerance),
     }
     .map_err(|e| config.locate(rest_cause(&rest, config, dof, e)))?;
+    // each run a segment of its own
+    let segments: Vec<_> = (0..streams.len())
+        .map(|i| move |_: usize| Some(i))
+        .collect();
+    let passes: Vec<(&Stream<'_>, SegmentOf<'_>)> = streams
+        .iter()
+        .zip(&segments)
+        .map(|(s, f)| (s, f as SegmentOf<'_>))
+        .collect();
+    estimate.robust = Some(robust_pass(&passes, &ls, &estimate, samples, correlated)?);
     let dt = runs[0].sample_time * first.factor() as f64;
     let mut stacked = Prediction {
         measured: vec![Vec::new(); dof],

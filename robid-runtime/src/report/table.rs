@@ -227,6 +227,7 @@ mod tests {
                 &[f64::INFINITY; 2],
             ),
             known: Vec::new(),
+            robust: None,
         };
         let fit = Fit {
             relative_error: 0.052,
@@ -453,6 +454,7 @@ mod tests {
             weights: None,
             warnings: crate::estimate::assess(6.9e9, &names, &[0.83, 45.45], &[f64::INFINITY; 2]),
             known: Vec::new(),
+            robust: None,
         };
         let fit = Fit {
             relative_error: 0.1,

@@ -52,6 +52,11 @@ fn same_estimate(s: &Estimate, d: &Estimate) {
         (Some(a), Some(b)) => same_list("weights", a, b, 1e-10, 0.0),
         (a, b) => assert_eq!(a, b),
     }
+    // the Newey-West deviations: the streaming pass over the equations again gives the
+    // dense path's (the same lag over the same samples)
+    let (rs, rd) = (s.robust.as_ref().unwrap(), d.robust.as_ref().unwrap());
+    assert_eq!((rs.lag, rs.samples), (rd.lag, rd.samples));
+    same_list("robust std", &rs.std, &rd.std, 1e-10, 0.0);
     let kinds = |e: &Estimate| e.warnings.iter().map(|w| w.kind()).collect::<Vec<_>>();
     assert_eq!(kinds(s), kinds(d));
 }
