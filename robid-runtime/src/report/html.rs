@@ -171,7 +171,7 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
     }
     h.push_str(
         "<h2>Parameters</h2>\n<table>\n<tr><th>parameter</th><th>value</th><th>std</th>\
-         <th>rel. std [%]</th><th>expression</th></tr>\n",
+         <th>rel. std [%]</th><th>robust std</th><th>expression</th></tr>\n",
     );
     for p in &report.parameters {
         let rel = match p.rel_std_percent {
@@ -181,10 +181,12 @@ pub fn html_report(report: &Report, predictions: &[(&str, &Prediction)]) -> Resu
         };
         let _ = writeln!(
             h,
-            "<tr><td class=\"name\">{}</td><td>{}</td><td>{:.3e}</td><td>{rel}</td><td class=\"expr\">{}</td></tr>",
+            "<tr><td class=\"name\">{}</td><td>{}</td><td>{:.3e}</td><td>{rel}</td><td>{}</td><td class=\"expr\">{}</td></tr>",
             escape(&p.name),
             super::table::value(p.value),
             p.std,
+            p.robust_std
+                .map_or_else(|| "-".to_string(), |r| format!("{r:.3e}")),
             escape(&p.expression)
         );
     }
@@ -222,12 +224,14 @@ mod tests {
             scaled_condition_number: Some(3.2),
             error_bound_percent: 3.5,
             estimation: None,
+            robust_lag: None,
             parameters: vec![ParameterEntry {
                 name: "ZZR1".into(),
                 expression: "ZZ1 + 0.5*M2".into(),
                 value: 1.25,
                 std: 0.01,
                 rel_std_percent: Some(0.8),
+                robust_std: None,
                 known: false,
             }],
             fit: FitEntry {

@@ -68,6 +68,11 @@ pub struct ParameterEntry {
     pub std: f64,
     /// Relative standard deviation in percent (null when the value is zero).
     pub rel_std_percent: Option<f64>,
+    /// Standard deviation robust to autocorrelated residuals (Newey-West, over
+    /// [`Report::robust_lag`] samples; docs/identification.md#statistics); absent where the
+    /// estimator gives none (rls, per-axis, link-by-link, energy, known parameters).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robust_std: Option<f64>,
     /// Fixed by known standard parameters (`estimation.known`), not estimated.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub known: bool,
@@ -196,6 +201,10 @@ pub struct Report {
     /// The rows of the file used for estimation (null when not known).
     #[serde(default)]
     pub estimation: Option<UsedRows>,
+    /// The lag, in (decimated) samples, of the Newey-West kernel of the parameters'
+    /// `robust_std`; absent with them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robust_lag: Option<usize>,
     /// The parameters.
     pub parameters: Vec<ParameterEntry>,
     /// Fit on the estimation data.
@@ -263,6 +272,7 @@ impl Report {
                 value: estimate.values[i],
                 std: estimate.std[i],
                 rel_std_percent: Some(estimate.rel_std_percent[i]).filter(|v| v.is_finite()),
+                robust_std: estimate.robust.as_ref().and_then(|r| r.std.get(i).copied()),
                 known: estimate.known.contains(&estimate.names[i]),
             })
             .collect();
@@ -274,6 +284,7 @@ impl Report {
             scaled_condition_number: estimate.scaled_condition_number,
             error_bound_percent: 100.0 * estimate.error_bound,
             estimation: None,
+            robust_lag: estimate.robust.as_ref().map(|r| r.lag),
             parameters,
             fit: fit.into(),
             validation: Vec::new(),

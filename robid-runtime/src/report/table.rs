@@ -51,10 +51,20 @@ pub fn text_table(report: &Report) -> String {
         s.push_str(&g.text("estimation"));
     }
     let width = name_width(report.parameters.iter().map(|p| p.name.as_str()));
+    // the robust deviations after the classical columns, which keep their places
+    let robust = report.parameters.iter().any(|p| p.robust_std.is_some());
     let _ = writeln!(
         s,
-        "{:<width$}  {:>14}  {:>12}  {:>9}  expression",
-        "parameter", "value", "std", "rel.std%"
+        "{:<width$}  {:>14}  {:>12}  {:>9}  {}expression",
+        "parameter",
+        "value",
+        "std",
+        "rel.std%",
+        if robust {
+            format!("{:>12}  ", "robust std")
+        } else {
+            String::new()
+        }
     );
     for p in &report.parameters {
         let rel = match p.rel_std_percent {
@@ -62,14 +72,27 @@ pub fn text_table(report: &Report) -> String {
             Some(r) => fixed(r, 2),
             None => "-".to_string(),
         };
+        let robust_std = match p.robust_std {
+            Some(r) if robust => format!("{r:>12.3e}  "),
+            _ if robust => format!("{:>12}  ", "-"),
+            _ => String::new(),
+        };
         let _ = writeln!(
             s,
-            "{:<width$}  {:>14}  {:>12.3e}  {:>9}  {}",
+            "{:<width$}  {:>14}  {:>12.3e}  {:>9}  {robust_std}{}",
             p.name,
             value(p.value),
             p.std,
             rel,
             p.expression
+        );
+    }
+    if let Some(lag) = report.robust_lag.filter(|_| robust) {
+        let _ = writeln!(
+            s,
+            "std: sigma^2 (W'W)^-1, for independent residuals; robust std: Newey-West over \
+             {lag} lags (docs/identification.md#statistics), for the residuals' correlation \
+             by the filters: believe the larger"
         );
     }
     let joints = |v: &[f64]| v.iter().map(|x| fixed(*x, 3)).collect::<Vec<_>>().join(" ");
@@ -542,6 +565,49 @@ mod tests {
         );
         let v: serde_json::Value = serde_json::from_str(&r.to_json()).unwrap();
         assert_eq!(v["pieces"][1][0], 4.0);
+    }
+
+    /// The robust deviations are a column after the classical ones, which keep their
+    /// places and digits (tools read them), with a line saying what each is; the JSON has
+    /// `robust_std` per parameter and `robust_lag`, neither when the estimate has none.
+    #[test]
+    fn robust_deviations_are_a_column_beside_the_classical_ones() {
+        let plain = text_table(&report());
+        assert!(!plain.contains("robust"), "{plain}");
+        let v: serde_json::Value = serde_json::from_str(&report().to_json()).unwrap();
+        assert!(v.get("robust_lag").is_none() && v["parameters"][0].get("robust_std").is_none());
+        let mut r = report();
+        r.robust_lag = Some(24);
+        r.parameters[0].robust_std = Some(0.12);
+        let t = text_table(&r);
+        let header = t.lines().find(|l| l.starts_with("parameter")).unwrap();
+        let row = t.lines().find(|l| l.starts_with("MXR2")).unwrap();
+        let fields: Vec<&str> = row.split_whitespace().collect();
+        // the classical columns where they were: name, value, std, rel.std%
+        assert_eq!(
+            &fields[..5],
+            ["MXR2", "2.240000", "4.000e-2", "1.79", "1.200e-1"]
+        );
+        assert!(
+            header.contains("rel.std%    robust std  expression"),
+            "{header}"
+        );
+        let fv1 = t.lines().find(|l| l.starts_with("Fv1")).unwrap();
+        assert_eq!(fv1.split_whitespace().nth(4), Some("-"), "{fv1}");
+        assert!(t.contains("robust std: Newey-West over 24 lags"), "{t}");
+        // the classical std's line is the old one with the column added after it
+        let old = plain.lines().find(|l| l.starts_with("MXR2")).unwrap();
+        assert_eq!(row.replacen("    1.200e-1  ", "", 1), old);
+        let v: serde_json::Value = serde_json::from_str(&r.to_json()).unwrap();
+        assert_eq!(
+            (
+                v["robust_lag"].clone(),
+                v["parameters"][0]["robust_std"].clone()
+            ),
+            (24.into(), 0.12.into())
+        );
+        assert_eq!(v["parameters"][0]["std"], 0.04);
+        assert_eq!(serde_json::from_value::<Report>(v).unwrap(), r);
     }
 
     #[test]
