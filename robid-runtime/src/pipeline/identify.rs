@@ -566,7 +566,18 @@ pub(crate) fn identify_dense(
             share,
         });
     }
-    let used = UsedRows::of(data, kept.clone());
+    // the samples of the equations: every factor-th, less those the decimation filter's
+    // settling left out at the ends and the ends' samples near rest
+    let (first, last) = obs
+        .sample_of_row
+        .iter()
+        .fold((usize::MAX, 0), |(a, b), &k| (a.min(k), b.max(k)));
+    let used = UsedRows::of(data, kept.clone()).with_equations(
+        data,
+        kept.start + first.min(last) * factor,
+        kept.start + last * factor,
+        factor,
+    );
     let mut prediction = Prediction::new(&obs, &estimate.values, dt)
         .starting_at(kept.start as f64 * data.sample_time);
     with_unfiltered(&mut prediction, &obs, &rows, factor);

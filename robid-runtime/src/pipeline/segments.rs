@@ -175,6 +175,7 @@ fn spanning(file: &str, spans: &[&SegmentSpan]) -> UsedRows {
         file: file.to_string(),
         samples: [first.samples[0], last.samples[1]],
         lines: Some([first.lines[0], last.lines[1]]),
+        equations: None,
     }
 }
 

@@ -591,6 +591,17 @@ pub(crate) fn identify_streaming(
     let samples = scored.iter().filter(|s| **s).count();
     estimate.robust =
         Some(robust_pass(&[(&stream, &segment)], &ls, &estimate, samples, correlated).map_err(at)?);
+    // the samples of the equations (every factor-th, less the decimation filter's settling
+    // and the ends' samples near rest), as the dense path says them
+    let with_equation = |k: &usize| estimated.kept[k * dof..(k + 1) * dof].contains(&true);
+    let first = (0..decimated).find(with_equation).unwrap_or(0);
+    let last = (0..decimated).rev().find(with_equation).unwrap_or(0);
+    let used = UsedRows::of(data, kept.clone()).with_equations(
+        data,
+        kept.start + first * factor,
+        kept.start + last * factor,
+        factor,
+    );
     let dt = data.sample_time() * factor as f64;
     let mut parts = stream
         .prediction(&estimate.values, dt, Some(&per_joint), Some(estimated))
@@ -598,7 +609,6 @@ pub(crate) fn identify_streaming(
     parts.prediction = parts
         .prediction
         .starting_at(kept.start as f64 * data.sample_time());
-    let used = UsedRows::of(data, kept.clone());
     let prediction = finish_prediction(parts, &used, "the estimation data")?;
     estimate.warnings.extend(prediction.warnings());
     Ok(Identification {

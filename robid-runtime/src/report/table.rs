@@ -516,6 +516,7 @@ mod tests {
             file: "run.csv".into(),
             samples: [a, b],
             lines: Some([a as u64 + 2, b as u64 + 1]),
+            equations: None,
         };
         let mut r = report();
         r.estimation = Some(used(0, 500));

@@ -23,6 +23,25 @@ pub struct UsedRows {
     pub samples: [usize; 2],
     /// The 1-based file lines of the first and the last sample used, when read from a file.
     pub lines: Option<[u64; 2]>,
+    /// The samples the equations were taken at, when they are not every sample of
+    /// `samples` (a decimation takes every factor-th, and its filter's settling leaves a
+    /// few out at each end); absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub equations: Option<EquationSamples>,
+}
+
+/// The samples of a fit's equations: from `first` to `last` (0-based in the data set, as
+/// [`UsedRows::samples`]), every `step`-th.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct EquationSamples {
+    /// The first sample of an equation.
+    pub first: usize,
+    /// The last sample of an equation.
+    pub last: usize,
+    /// Samples from one equation's sample to the next (the decimation factor).
+    pub step: usize,
+    /// The 1-based file lines of `first` and `last`, when read from a file.
+    pub lines: Option<[u64; 2]>,
 }
 
 impl UsedRows {
@@ -39,7 +58,32 @@ impl UsedRows {
                 .map_or_else(|| data.name().to_string(), |p| p.display().to_string()),
             samples: [range.start, range.end],
             lines,
+            equations: None,
         }
+    }
+
+    /// The rows with the equations at samples `first` to `last` of `data`, every `step`-th
+    /// (not said when they are every sample of the rows).
+    pub(crate) fn with_equations(
+        mut self,
+        data: &dyn Record,
+        first: usize,
+        last: usize,
+        step: usize,
+    ) -> Self {
+        let every = step == 1 && first == self.samples[0] && last + 1 == self.samples[1];
+        if !every {
+            let lines = data
+                .file()
+                .and_then(|_| Some([data.line(first)?, data.line(last)?]));
+            self.equations = Some(EquationSamples {
+                first,
+                last,
+                step,
+                lines,
+            });
+        }
+        self
     }
 
     /// Whether two uses share rows of the same file.
@@ -61,13 +105,23 @@ impl std::fmt::Display for UsedRows {
                 f,
                 "{} lines {a}-{b} (samples {}..{})",
                 self.file, self.samples[0], self.samples[1]
-            ),
+            )?,
             None => write!(
                 f,
                 "{} samples {}..{}",
                 self.file, self.samples[0], self.samples[1]
-            ),
+            )?,
         }
+        if let Some(e) = &self.equations {
+            write!(f, "; equations at samples {} to {}", e.first, e.last)?;
+            if e.step > 1 {
+                write!(f, ", every {}th", e.step)?;
+            }
+            if let Some([a, b]) = e.lines {
+                write!(f, " (lines {a}-{b})")?;
+            }
+        }
+        Ok(())
     }
 }
 
@@ -226,6 +280,7 @@ mod tests {
             file: file.into(),
             samples,
             lines,
+            equations: None,
         }
     }
 

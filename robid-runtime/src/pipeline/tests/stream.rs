@@ -210,6 +210,51 @@ fn streaming_identification_equals_the_dense_path() {
     }
 }
 
+/// The estimation rows say the samples of the equations, not only the processed range:
+/// with a decimation of 10 the first and the last equation's samples (those of the
+/// prediction's first and last time) and the step, in both paths and in the report's
+/// line; the range alone was said before ("samples 0..45000" of equations from sample 70
+/// on, every 10th).
+#[test]
+fn the_estimation_rows_say_the_samples_of_the_equations() {
+    let data = data().slice(0, 45_000).unwrap();
+    let model = Synthetic::default();
+    for (extra, step) in [("decimation = 10", 10), ("decimation = 1", 1)] {
+        let config = with(extra, Method::Wls);
+        let s = identify(&model, &data, &config).unwrap();
+        let d = identify_dense_of(&model, &data, &config).unwrap();
+        assert_eq!(s.used, d.used, "{extra}");
+        let times = s.prediction.time.iter().flatten();
+        let sample = |t: f64| (t / data.sample_time).round() as usize;
+        let first = sample(times.clone().fold(f64::INFINITY, |a, &t| a.min(t)));
+        let last = sample(times.fold(0.0, |a: f64, &t| a.max(t)));
+        let text = format!("{}", s.used);
+        match s.used.equations {
+            Some(e) => {
+                assert_eq!((e.first, e.last, e.step), (first, last, step), "{extra}");
+                assert!(
+                    s.used.samples[0] < first && last < s.used.samples[1],
+                    "{extra}"
+                );
+                assert!(
+                    text.contains(&format!(
+                        "; equations at samples {first} to {last}, every 10th"
+                    )),
+                    "{extra}: {text}"
+                );
+            }
+            // every sample of the range: the range says it
+            None => {
+                assert_eq!(
+                    (first, last + 1, step),
+                    (s.used.samples[0], s.used.samples[1], 1)
+                );
+                assert!(!text.contains("equations"), "{text}");
+            }
+        }
+    }
+}
+
 /// Milella's pieces select the equations of the estimate; the prediction keeps them all.
 #[test]
 fn pieces_stream_like_the_dense_path() {
