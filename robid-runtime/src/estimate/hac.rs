@@ -96,17 +96,18 @@ impl Scores {
 
     /// Adds the score `g` of sample `sample` of segment `segment` (after every earlier one).
     fn push(&mut self, segment: usize, sample: usize, g: DVector<f64>) {
-        // the scores within reach: same segment, at most `lag` samples before
+        // the scores within reach: same segment, 1 to `lag` samples before (a sample that
+        // does not come after the ring's starts a segment of its own)
+        let reach = |s: usize, k: usize| s == segment && k < sample && sample - k <= self.lag;
         while let Some((s, k, _)) = self.ring.front() {
-            if *s != segment || sample - k > self.lag {
-                self.ring.pop_front();
-            } else {
+            if reach(*s, *k) {
                 break;
             }
+            self.ring.pop_front();
         }
         // S += g h' + h g' with h = g / 2 + sum_l (1 - l / (L + 1)) g_{t-l}
         let mut h = &g * 0.5;
-        for (_, k, old) in &self.ring {
+        for (_, k, old) in self.ring.iter().filter(|(s, k, _)| reach(*s, *k)) {
             let weight = 1.0 - (sample - k) as f64 / (self.lag + 1) as f64;
             h.axpy(weight, old, 1.0);
         }
@@ -201,6 +202,22 @@ mod tests {
                 robust.std[i]
             );
         }
+    }
+
+    /// Samples that restart within one segment (a caller's slip: two records given one
+    /// segment) pair nothing across the restart, nor panic: the same as two segments.
+    #[test]
+    fn a_restart_of_the_samples_pairs_nothing_across_it() {
+        let inverse = DMatrix::from_element(1, 1, 0.1);
+        let score = |k: usize| [((k * 3) as f64 * 0.7).sin() + 0.2];
+        let run = |second: usize| {
+            let mut scores = Scores::new(1, 3);
+            for (segment, k) in (0..6).map(|k| (0, k)).chain((0..6).map(|k| (second, k))) {
+                scores.add(segment, k, &score(k), 1.0);
+            }
+            scores.finish(&inverse, 12).std[0]
+        };
+        assert_eq!(run(0), run(1));
     }
 
     /// With lag 0 and one equation per sample the covariance is White's: G (sum e_t^2
