@@ -52,6 +52,15 @@ pub struct RobustStd {
     pub samples: usize,
 }
 
+impl RobustStd {
+    /// `Some(self)` when every deviation is finite (the scores' squares can overflow where
+    /// the classical deviations do not: columns of 1e100 with residuals of 1e100), else
+    /// `None`, so that no report writes an infinite or NaN deviation.
+    pub(crate) fn finite(self) -> Option<Self> {
+        self.std.iter().all(|v| v.is_finite()).then_some(self)
+    }
+}
+
 /// The sum `S` of the scores' lagged outer products, from scores given sample by sample.
 #[derive(Debug, Clone)]
 pub(crate) struct Scores {
@@ -138,8 +147,13 @@ impl Scores {
         let cov = inverse_gram * s * inverse_gram;
         let dof = rows as f64 / rows.saturating_sub(n).max(1) as f64;
         RobustStd {
+            // a rounding below 0 is 0; an overflow stays NaN or infinite (`f64::max` would
+            // have made a NaN 0), for [`RobustStd::finite`]
             std: (0..n)
-                .map(|i| (dof * cov[(i, i)].max(0.0)).sqrt())
+                .map(|i| {
+                    let v = dof * cov[(i, i)];
+                    if v < 0.0 { 0.0 } else { v.sqrt() }
+                })
                 .collect(),
             lag: self.lag,
             samples: self.samples,

@@ -46,7 +46,7 @@ pub fn ols(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     let condition = s.condition();
     let robust = robust_std(obs, &s.beta, &s.inverse_gram);
     let mut e = assemble(Estimator::Ols, obs, obs, s.beta, &s.inverse_gram, condition)?;
-    e.robust = Some(robust);
+    e.robust = robust.finite();
     Ok(e)
 }
 
@@ -54,7 +54,7 @@ pub fn ols(obs: &Observation, tolerance: f64) -> Result<Estimate> {
 /// (the weighted system for WLS) whose `(W'W)^-1` is `inverse_gram`: each sample's score
 /// `W_t' e_t` over its joints' equations, the lags within a segment
 /// ([`Observation::breaks`]), the lag [`robust_lag`] of the samples and
-/// [`Observation::correlated`].
+/// [`Observation::correlated`]. [`RobustStd::finite`] says whether to keep it.
 pub(crate) fn robust_std(
     solved: &Observation,
     beta: &DVector<f64>,
@@ -118,7 +118,7 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
         condition,
     )?;
     e.weights = Some(weights);
-    e.robust = Some(robust);
+    e.robust = robust.finite();
     e.warnings.extend(weights_without_noise(&leverages));
     Ok(e)
 }
@@ -560,6 +560,31 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Columns of 1e100 with residuals of 1e100: the classical deviations are finite
+    /// (sigma^2 1e200 times (W'W)^-1 1e-200), the scores' squares (1e400) overflow, and
+    /// the OLS estimate has no robust deviations rather than infinite ones (nor 0, which
+    /// `f64::max` made of their NaN).
+    #[test]
+    fn overflowing_scores_give_no_robust_deviations() {
+        let n = 50;
+        let w = DMatrix::from_fn(n, 1, |k, _| 1e100 * (1.0 + 0.1 * (k as f64).sin()));
+        let y = DVector::from_fn(n, |k, _| 1e100 * (0.5 + (k as f64 * 1.7).cos()));
+        let obs = Observation::single(w, y, vec!["a".into()]).unwrap();
+        let e = ols(&obs, 1e-10).unwrap();
+        assert!(e.std[0].is_finite() && e.std[0] > 0.0, "{:?}", e.std);
+        assert!(e.robust.is_none(), "{:?}", e.robust);
+        // WLS divides the rows by their sigma (1e100): its scores are in units
+        let e = wls(&obs, 1e-10).unwrap();
+        let robust = e.robust.unwrap();
+        assert!(
+            robust.std[0].is_finite() && robust.std[0] > 0.0,
+            "{robust:?}"
+        );
+        // the same problem scaled to units: robust deviations
+        let small = Observation::single(&obs.w / 1e100, &obs.y / 1e100, vec!["a".into()]).unwrap();
+        assert!(ols(&small, 1e-10).unwrap().robust.is_some());
     }
 
     #[test]
