@@ -34,7 +34,7 @@ use crate::{Count, Num};
 
 pub use fit::{
     FixedParameter, FrictionFit, FrictionFitOptions, FrictionParameter, FrictionSample,
-    LOAD_SPREAD, TEMPERATURE_SPREAD, identify_friction,
+    LOAD_SPREAD, TEMPERATURE_SPREAD, identify_friction, widest_smoothing,
 };
 
 /// The default `eps` of the smooth sign `tanh(w / eps)`, rad/s: at 0.01 rad/s (a slow

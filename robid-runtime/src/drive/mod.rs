@@ -14,7 +14,7 @@ pub use extra::{ExtraColumn, ExtraTerm, RotorSample, TermSignal, signal_name};
 pub use friction::{
     DEFAULT_SMOOTHING, FixedParameter, FrictionFit, FrictionFitOptions, FrictionModel,
     FrictionParameter, FrictionSample, JointFriction, LOAD_SPREAD, TEMPERATURE_COEFFICIENT_LIMIT,
-    TEMPERATURE_SPREAD, identify_friction,
+    TEMPERATURE_SPREAD, identify_friction, widest_smoothing,
 };
 pub use residual::{Residual, ResidualTerm};
 pub use rotor::RotorConfig;

@@ -17,7 +17,7 @@ use robid_runtime::Num;
 use robid_runtime::data::{Config, load};
 use robid_runtime::drive::{
     DEFAULT_SMOOTHING, FrictionFit, FrictionFitOptions, FrictionModel, FrictionParameter,
-    identify_friction,
+    FrictionSample, identify_friction, widest_smoothing,
 };
 use robid_runtime::limits::MAX_VELOCITY;
 use robid_runtime::pipeline::{JointTorqueSource, REFERENCE_TEMPERATURE, friction_samples};
@@ -137,6 +137,7 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     for w in &found.warnings {
         out::warn(format_args!("warning: {w}"));
     }
+    smoothing_fits(&found.samples, args.smoothing, &data.name)?;
     let options = FrictionFitOptions {
         smoothing: args.smoothing,
         ..FrictionFitOptions::default()
@@ -207,6 +208,53 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     writeln!(stdout, "written: {}", args.output.display())?;
     stdout.flush()?;
     Ok(())
+}
+
+/// `--smoothing` `eps` too wide for the joints' friction `samples` (from `data`): the fit
+/// counts a sample as moving beyond `10 eps`, so a joint whose samples reverse beyond the
+/// default smoothing's threshold but not beyond that one is refused naming the flag, the
+/// joints, their speeds and the widest smoothing every such joint takes (`--smoothing 1`
+/// was told of joint 1 alone that its samples have "no velocity reversal" and to "record
+/// motion in both directions", which they held).
+fn smoothing_fits(samples: &[Vec<FrictionSample>], eps: f64, data: &str) -> Result<(), Error> {
+    let widest: Vec<f64> = samples.iter().map(|s| widest_smoothing(s)).collect();
+    let hidden: Vec<usize> = (0..samples.len())
+        .filter(|&j| widest[j] > DEFAULT_SMOOTHING && eps >= widest[j])
+        .collect();
+    if hidden.is_empty() {
+        return Ok(());
+    }
+    let bound = widest
+        .iter()
+        .copied()
+        .filter(|&w| w > DEFAULT_SMOOTHING)
+        .fold(f64::INFINITY, f64::min);
+    let speeds: Vec<String> = hidden
+        .iter()
+        .map(|&j| {
+            let (forward, backward) = samples[j].iter().fold((0.0, 0.0), |(f, b), s| {
+                (f64::max(f, s.velocity), f64::max(b, -s.velocity))
+            });
+            format!(
+                "joint {} ({} rad/s forward, {} backward)",
+                j + 1,
+                Num::rounded(forward, 3),
+                Num::rounded(backward, 3)
+            )
+        })
+        .collect();
+    Err(format!(
+        "--smoothing {} rad/s: the fit counts a sample as moving from ten times the smoothing, \
+         {} rad/s (where the smooth sign tanh(w / eps) is within 4e-9 of +-1), which the \
+         friction samples from {data} do not reach both ways at {}; give a smoothing below {} \
+         rad/s (the default is {})",
+        Num(eps),
+        Num::rounded(10.0 * eps, 6),
+        speeds.join(", "),
+        Num::rounded_keeping(bound, 2, |v| v < bound),
+        Num(DEFAULT_SMOOTHING)
+    )
+    .into())
 }
 
 /// What the fit of joint `number` says when the data pulled both its Coulomb and its

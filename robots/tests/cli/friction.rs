@@ -238,6 +238,47 @@ fn the_fit_uses_the_smoothing_given() {
     assert!(stderr(&o).contains("--smoothing"), "{}", stderr(&o));
 }
 
+/// A `--smoothing` wider than the samples' speeds is told as the flag's, with every joint
+/// it hides and a smoothing that fits: `--smoothing 1` counts motion from 10 rad/s, and the
+/// error was joint 1's alone, "no velocity reversal: 0 samples move forward and 0 backward",
+/// "record motion in both directions" (which the log held); the smoothing it gives fits.
+#[test]
+fn a_smoothing_wider_than_the_motion_is_the_flags() {
+    let dir = folder();
+    let (robot, cfg) = setup(dir.path(), true, true);
+    let out = dir.path().join("friction.toml");
+    let run = |smoothing: &str| {
+        robid(&[
+            "friction",
+            &robot,
+            "--config",
+            &cfg,
+            "-o",
+            out.to_str().unwrap(),
+            "--smoothing",
+            smoothing,
+        ])
+    };
+    let o = run("1");
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("--smoothing 1 rad/s: the fit counts a sample as moving from ten times")
+            && e.contains("joint 1 (")
+            && e.contains("joint 2 (")
+            && !e.contains("record motion in both directions"),
+        "{e}"
+    );
+    assert!(!out.exists(), "nothing is written on an error");
+    let advised = e
+        .split("give a smoothing below ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .unwrap_or_else(|| panic!("no smoothing advised: {e}"));
+    let o = run(advised);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
 /// A drive chain that contradicts the data, or a dead channel, gave a friction file of
 /// zeros (or nonsense) with exit 0 and no word; each is now told: a gear ratio of the
 /// wrong sign (the motor encoder moves -0.998 times its link encoder, and both frictions are

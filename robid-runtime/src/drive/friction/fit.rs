@@ -502,6 +502,23 @@ fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
     })
 }
 
+/// The fastest speed of `samples` forward and backward, rad/s (0 for a direction none
+/// moves in).
+fn fastest(samples: &[FrictionSample]) -> (f64, f64) {
+    samples.iter().fold((0.0, 0.0), |(f, b), s| {
+        (f64::max(f, s.velocity), f64::max(b, -s.velocity))
+    })
+}
+
+/// The smoothing `eps` below which `samples` move both ways in the fit's sense (faster than
+/// `10 eps` forward and backward, where the smooth sign is within 4e-9 of +-1): a tenth of
+/// the smaller of their fastest speeds each way, rad/s; 0 when they move one way only. A
+/// wider smoothing is refused by [`identify_friction`] as the smoothing's, not the data's.
+pub fn widest_smoothing(samples: &[FrictionSample]) -> f64 {
+    let (forward, backward) = fastest(samples);
+    forward.min(backward) / 10.0
+}
+
 /// Enough finite samples, moving both ways at several speeds.
 fn check_samples(samples: &[FrictionSample], eps: f64) -> Result<()> {
     if samples.len() < PARAMETERS {
@@ -533,6 +550,29 @@ fn check_samples(samples: &[FrictionSample], eps: f64) -> Result<()> {
     let moving = 10.0 * eps;
     let forward = samples.iter().filter(|s| s.velocity > moving).count();
     let backward = samples.iter().filter(|s| s.velocity < -moving).count();
+    // when the samples do reverse beyond the default smoothing's threshold, the smoothing
+    // is what hides it (`--smoothing 1` counts motion from 10 rad/s, which no robot's joint
+    // reaches: the message said to record motion in both directions, which the data held)
+    let widest = widest_smoothing(samples);
+    if (forward == 0 || backward == 0) && widest > DEFAULT_SMOOTHING {
+        let (fastest_forward, fastest_backward) = fastest(samples);
+        return Err(Error::setting(
+            "identify_friction",
+            "smoothing",
+            format!(
+                "{} rad/s is too wide for these samples: motion counts from ten times it, {} \
+                 rad/s (where the smooth sign tanh(w / eps) is within 4e-9 of +-1), but they \
+                 reach {} rad/s forward and {} rad/s backward; give a smoothing below {} \
+                 rad/s (the default is {})",
+                Num(eps),
+                Num::rounded(moving, 6),
+                Num::rounded(fastest_forward, 3),
+                Num::rounded(fastest_backward, 3),
+                Num::rounded_keeping(widest, 2, |v| v < widest),
+                Num(DEFAULT_SMOOTHING)
+            ),
+        ));
+    }
     if forward == 0 || backward == 0 {
         return Err(Error::setting(
             "identify_friction",
@@ -1072,6 +1112,34 @@ mod tests {
         };
         let e = identify_friction(&forward, &fine).unwrap_err().to_string();
         assert!(e.contains("(faster than 0.011 rad/s)"), "{e}");
+        // samples that reverse, under a smoothing wider than their speeds: the smoothing's
+        // error, with the widest that fits (it was "no velocity reversal")
+        let widest = widest_smoothing(&good);
+        let (f, b) = fastest(&good);
+        assert!(
+            widest > DEFAULT_SMOOTHING && widest == f.min(b) / 10.0,
+            "{widest}"
+        );
+        assert_eq!(widest_smoothing(&forward), 0.0);
+        let wide = FrictionFitOptions {
+            smoothing: 10.0 * widest,
+            ..options
+        };
+        let e = identify_friction(&good, &wide).unwrap_err();
+        assert!(
+            matches!(&e, Error::Setting { key, .. } if key == "smoothing"),
+            "{e}"
+        );
+        let e = e.to_string();
+        assert!(
+            e.contains("is too wide for these samples") && !e.contains("no velocity reversal"),
+            "{e}"
+        );
+        let fitting = FrictionFitOptions {
+            smoothing: 0.9 * widest,
+            ..options
+        };
+        assert!(identify_friction(&good, &fitting).is_ok());
         let one_speed: Vec<FrictionSample> = good
             .iter()
             .map(|s| FrictionSample {
