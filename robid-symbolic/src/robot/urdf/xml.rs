@@ -825,13 +825,14 @@ impl Reader<'_> {
             } else {
                 format!("{count} numbers separated by spaces")
             };
+            // `1 number`: it said "has 1 numbers" of `xyz="0"`
+            let found = match values.len() {
+                1 => "1 number".to_owned(),
+                n => format!("{n} numbers"),
+            };
             self.error(
                 span,
-                format!(
-                    "`{name}=\"{text}\"` of {} has {} numbers",
-                    describe(node),
-                    values.len()
-                ),
+                format!("`{name}=\"{text}\"` of {} has {found}", describe(node)),
                 format!("write {expected}"),
             );
             return None;

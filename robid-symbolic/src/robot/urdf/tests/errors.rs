@@ -39,6 +39,7 @@ fn each_mistake_is_named_at_its_place() {
         (arm(J1).replace("<link name=\"b\"/>", "<link name=\"b\"><inertial><mass value=\"2e6\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"), "t.urdf:3:", &["`2e6` is beyond ±1e6", "mass in kg"]),
         (arm(J1).replace("<link name=\"b\"/>", "<link name=\"b\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1e7\"/></inertial></link>"), "t.urdf:3:", &["`1e7` is beyond ±1e6", "inertia about the centre of mass"]),
         (arm(&J1.replace("0 0 1", "0 1")), "t.urdf:5:", &["has 2 numbers", "write 3 numbers"]),
+        (arm(&J1.replace("0 0 1", "1")), "t.urdf:5:", &["`xyz=\"1\"` of `<axis>` has 1 number; write 3 numbers"]),
         (arm(&J1.replace("0 0 1", "0 0 0")), "t.urdf:5:", &["the axis of `<joint name=\"j1\">` has no direction"]),
         (arm(&J1.replace("revolute", "hinge")), "t.urdf:5:", &["unknown joint type `hinge`", "revolute, continuous, prismatic"]),
         (arm(&format!("{J1}{}", J2.replace("\"b\"/><child", "\"bb\"/><child"))), "t.urdf:6:", &["the parent link `bb` of joint `j2` is no `<link>`", "`b`"]),
