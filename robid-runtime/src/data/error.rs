@@ -363,14 +363,18 @@ pub enum DataError {
     },
     /// A TOML file of robid's (the identification config, a friction, joint-flexibility or
     /// bounds file) is not valid TOML or does not match its format; the message names the
-    /// kind of file (`f.toml: invalid friction file: ..`).
-    #[error("{path}: invalid {kind}: {reason}")]
+    /// place and the kind of file (`f.toml:3:11: invalid friction file: ..`).
+    #[error("{}: invalid {kind}: {reason}", place(path, *line, *column))]
     ConfigSyntax {
         /// The file.
         path: PathBuf,
+        /// 1-based line of the mistake, when the parser gives its place.
+        line: Option<usize>,
+        /// 1-based column (in characters) of the mistake.
+        column: Option<usize>,
         /// Which kind of file it is.
         kind: TomlFile,
-        /// The parser's message (with line and column).
+        /// The parser's message.
         reason: String,
     },
     /// A key of a config file has a value that is out of range or inconsistent (or a

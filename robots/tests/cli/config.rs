@@ -1387,3 +1387,30 @@ fn inspect_asks_for_the_samples_its_spectra_need_at_once() {
         );
     }
 }
+
+/// A TOML syntax error in a config (and in every TOML file of robid's but descriptions,
+/// which were already told so) is told at its file:line:column, as descriptions are,
+/// without toml's copy of the line: a `trim = 5 xxx..` line of 100,000 characters made
+/// 200 kB of stderr (the line, then as many carets), "TOML parse error at line 7, column 8"
+/// its only place.
+#[test]
+fn a_syntax_error_is_told_at_its_place_without_the_line() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    write(d, "log.csv", &log());
+    let long = format!("{CONFIG}trim = 5 {}\n", "x".repeat(100_000));
+    let cfg = write(d, "cfg.toml", &long);
+    let o = robid(&[
+        "identify",
+        robot.to_str().unwrap(),
+        "--config",
+        cfg.to_str().unwrap(),
+        "--data",
+        d.join("log.csv").to_str().unwrap(),
+    ]);
+    let place = format!("{}:8:8: invalid config: ", cfg.display());
+    fails_with(&o, &[&place]);
+    let e = stderr(&o);
+    assert!(e.len() < 1000, "{} bytes: {}", e.len(), &e[..300]);
+}
