@@ -430,6 +430,13 @@ fn shape_problem(message: &str, value: &str) -> String {
              the value (a size meant this large is written with an exponent, 1e20)"
         );
     }
+    // toml's own words for `3e400` said nothing of the fix
+    if message == "floating-point number overflowed" {
+        return format!(
+            "`{value}` is beyond the largest floating-point number (1.8e308), larger than any \
+             setting takes; check the value and its exponent"
+        );
+    }
     if let Some(rest) = message
         .strip_prefix("invalid type: ")
         .or_else(|| message.strip_prefix("invalid value: "))
@@ -554,6 +561,17 @@ mod tests {
         assert_eq!(
             e,
             "c.toml:1:10: `range[1]`: `1e-320` is not a whole number of at least 0"
+        );
+        // a number beyond a float's range, at its key with the fix (it was toml's
+        // "floating-point number overflowed" alone)
+        let text = "[processing]\ntrim = 3e400\n";
+        let e = crate::data::Config::from_toml_str(text, "c.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "c.toml:2:8: `processing.trim`: `3e400` is beyond the largest floating-point \
+             number (1.8e308), larger than any setting takes; check the value and its exponent"
         );
         assert_eq!(short_numbers("`12` and `x` and `"), "`12` and `x` and `");
         let text = "a = 1\nµb = 2\n";
