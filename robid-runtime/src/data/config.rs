@@ -43,6 +43,9 @@
 //! rank_tolerance = 1e-10         # singular values below this times the largest are zero
 //! forgetting = 1.0               # RLS forgetting factor, 0.5 <= lambda <= 1
 //! energy_window = 0.05           # s, one energy-model equation per window
+//! robust_std = true              # OLS and WLS: Newey-West deviations beside the classical
+//!                                # ones (false skips them: on a record that streams, they
+//!                                # take one more pass over it)
 //! known = "masses.toml"          # optional: a [known] table of standard parameters known
 //!                                # beforehand (not estimated; their torques move to the
 //!                                # right-hand side)
@@ -794,6 +797,11 @@ pub struct Estimation {
     /// right-hand side; docs/identification.md#known-parameters).
     #[serde(default)]
     pub known: Option<PathBuf>,
+    /// Whether OLS and WLS give the autocorrelation-robust (Newey-West) standard deviations
+    /// beside the classical ones (docs/identification.md#robust-standard-deviations); on a
+    /// record that streams they take one more pass over its equations.
+    #[serde(default = "yes")]
+    pub robust_std: bool,
 }
 
 impl Default for Estimation {
@@ -804,12 +812,16 @@ impl Default for Estimation {
             forgetting: 1.0,
             energy_window: default_energy_window(),
             known: None,
+            robust_std: true,
         }
     }
 }
 
 fn one() -> f64 {
     1.0
+}
+fn yes() -> bool {
+    true
 }
 fn four() -> usize {
     4

@@ -311,7 +311,14 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
             "the energy model is built from the signals, not from a torque observation: use pipeline::identify",
         )),
     };
-    result.map_err(|e| config.locate(e))
+    result
+        .map(|mut estimate| {
+            if !e.robust_std {
+                estimate.robust = None;
+            }
+            estimate
+        })
+        .map_err(|e| config.locate(e))
 }
 
 /// [`EstimateError::AxisLacksEquations`] of per-axis or link-by-link identification said as

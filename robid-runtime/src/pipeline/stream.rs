@@ -589,9 +589,11 @@ pub(crate) fn identify_streaming(
     let segment = |k: usize| inside(k).then(|| breaks.partition_point(|&b| b <= k));
     let correlated = correlated_samples(config, plan.auto_cutoff.as_ref(), data.sample_time())?;
     let samples = scored.iter().filter(|s| **s).count();
-    estimate.robust = robust_pass(&[(&stream, &segment)], &ls, &estimate, samples, correlated)
-        .map_err(at)?
-        .finite();
+    if config.estimation.robust_std {
+        estimate.robust = robust_pass(&[(&stream, &segment)], &ls, &estimate, samples, correlated)
+            .map_err(at)?
+            .finite();
+    }
     // the samples of the equations (every factor-th, less the decimation filter's settling
     // and the ends' samples near rest), as the dense path says them
     let with_equation = |k: &usize| estimated.kept[k * dof..(k + 1) * dof].contains(&true);
@@ -742,7 +744,9 @@ pub(crate) fn stacked_streaming(
         .zip(&segments)
         .map(|(s, f)| (s, f as SegmentOf<'_>))
         .collect();
-    estimate.robust = robust_pass(&passes, &ls, &estimate, samples, correlated)?.finite();
+    if config.estimation.robust_std {
+        estimate.robust = robust_pass(&passes, &ls, &estimate, samples, correlated)?.finite();
+    }
     let dt = runs[0].sample_time * first.factor() as f64;
     let mut stacked = Prediction {
         measured: vec![Vec::new(); dof],

@@ -210,6 +210,34 @@ fn streaming_identification_equals_the_dense_path() {
     }
 }
 
+/// `estimation.robust_std = false` (read from the config) leaves the robust deviations out
+/// of both paths, where the default gives them, and changes nothing else of the estimate.
+#[test]
+fn robust_std_false_leaves_them_out_of_both_paths() {
+    let data = data().slice(0, 45_000).unwrap();
+    let model = Synthetic::default();
+    for method in [Method::Ols, Method::Wls] {
+        let mut on = config("");
+        on.estimation.method = method;
+        let mut off = config("[estimation]\nrobust_std = false\n");
+        off.estimation.method = method;
+        assert!(on.estimation.robust_std && !off.estimation.robust_std);
+        let (s_on, d_on) = (
+            identify(&model, &data, &on).unwrap(),
+            identify_dense_of(&model, &data, &on).unwrap(),
+        );
+        let (s, d) = (
+            identify(&model, &data, &off).unwrap(),
+            identify_dense_of(&model, &data, &off).unwrap(),
+        );
+        assert!(s_on.estimate.robust.is_some() && d_on.estimate.robust.is_some());
+        assert!(s.estimate.robust.is_none() && d.estimate.robust.is_none());
+        assert_eq!(s.estimate.values, s_on.estimate.values);
+        assert_eq!(s.estimate.std, s_on.estimate.std);
+        assert_eq!(d.estimate.values, d_on.estimate.values);
+    }
+}
+
 /// The estimation rows say the samples of the equations, not only the processed range:
 /// with a decimation of 10 the first and the last equation's samples (those of the
 /// prediction's first and last time) and the step, in both paths and in the report's
