@@ -136,7 +136,9 @@ fn peak_mib() -> f64 {
 
 /// One stage in this process: prints `stage seconds samples peak_mib detail`.
 fn stage(name: &str, path: &Path) {
-    let config = Config::from_toml_str(CONFIG, Path::new("hour.toml")).expect("config");
+    let mut config = Config::from_toml_str(CONFIG, Path::new("hour.toml")).expect("config");
+    // the identification without the robust deviations' pass (the classical statistics)
+    config.estimation.robust_std = name != "identify-classical";
     let model = Panda;
     let start = Instant::now();
     let files = [path.to_path_buf()];
@@ -145,7 +147,7 @@ fn stage(name: &str, path: &Path) {
             let data = load(&config, &files, DOF).expect("load");
             (data.samples(), format!("{} samples", data.samples()))
         }
-        "identify" => {
+        "identify" | "identify-classical" => {
             let record = load_record(&config, &files, DOF).expect("load");
             let id = identify(&model, record.as_ref(), &config).expect("identify");
             if let Some(out) = std::env::var_os("HOUR_ESTIMATE") {
@@ -304,6 +306,7 @@ fn main() {
     );
     let (parse_s, n, parse_mib, _) = child("parse", &path);
     let (id_s, _, id_mib, detail) = child("identify", &path);
+    let (classical_s, _, classical_mib, _) = child("identify-classical", &path);
     let (dense_s, dense_n, dense_mib, dense_detail) = child("dense", &short);
     let (short_s, short_n, short_mib, short_detail) = child("identify", &short);
     let (short_parse_s, _, short_parse_mib, _) = child("parse", &short);
@@ -326,6 +329,12 @@ fn main() {
         n,
         id_s,
         id_mib,
+    );
+    row(
+        "the same without the robust deviations (robust_std = false)",
+        n,
+        classical_s,
+        classical_mib,
     );
     row(
         &format!("parse CSV, first {dense_limit} s"),

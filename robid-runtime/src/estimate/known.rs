@@ -287,6 +287,9 @@ impl KnownParameters {
             rel_std_percent,
             warnings,
             known: self.known.iter().map(|&i| self.names[i].clone()).collect(),
+            // the reduced system's, in its own order and count: none for the expanded
+            // estimate (as documented)
+            robust: None,
             ..estimate.clone()
         })
     }

@@ -260,7 +260,9 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
             ),
         ),
         e => e,
-    })?;
+    })
+    // poses, not a time series: no lag to take the robust deviations over
+    .map(|e| Estimate { robust: None, ..e })?;
     let undetermined = (0..nb)
         .filter(|b| !determined.kept.contains(b))
         .filter_map(|b| model.base_parameter_name(b).map(str::to_owned))
@@ -444,5 +446,7 @@ mod tests {
         assert_eq!(fit.kind, StaticKind::MassMatrix);
         assert_eq!(fit.determined.names, ["ZZR1"]);
         assert!((fit.estimate.values[0] - 0.7).abs() < 1e-12);
+        // poses, not a time series: no robust deviations
+        assert!(fit.estimate.robust.is_none());
     }
 }

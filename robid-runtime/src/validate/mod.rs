@@ -115,7 +115,7 @@ impl std::fmt::Display for UsedRows {
         if let Some(e) = &self.equations {
             write!(f, "; equations at samples {} to {}", e.first, e.last)?;
             if e.step > 1 {
-                write!(f, ", every {}th", e.step)?;
+                write!(f, ", every {}", ordinal(e.step))?;
             }
             if let Some([a, b]) = e.lines {
                 write!(f, " (lines {a}-{b})")?;
@@ -228,6 +228,18 @@ impl Prediction {
     }
 }
 
+/// `n` as an English ordinal: 1st, 2nd, 3rd, 4th, 11th, 12th, 13th, 21st, ...
+fn ordinal(n: usize) -> String {
+    let suffix = match (n % 10, n % 100) {
+        (_, 11..=13) => "th",
+        (1, _) => "st",
+        (2, _) => "nd",
+        (3, _) => "rd",
+        _ => "th",
+    };
+    format!("{n}{suffix}")
+}
+
 #[cfg(test)]
 mod tests {
     use super::{Prediction, UsedRows};
@@ -313,5 +325,20 @@ mod tests {
             assert_eq!(l.overlaps(&m), expected, "lines {other:?}");
             assert_eq!(m.overlaps(&l), expected, "lines {other:?} (reversed)");
         }
+    }
+
+    #[test]
+    fn ordinals_are_english() {
+        let said: Vec<String> = [1, 2, 3, 4, 10, 11, 12, 13, 21, 22, 23, 101, 111, 112]
+            .into_iter()
+            .map(super::ordinal)
+            .collect();
+        assert_eq!(
+            said,
+            [
+                "1st", "2nd", "3rd", "4th", "10th", "11th", "12th", "13th", "21st", "22nd", "23rd",
+                "101st", "111th", "112th"
+            ]
+        );
     }
 }

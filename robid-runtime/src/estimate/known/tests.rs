@@ -215,6 +215,10 @@ fn zomaya_known_parameters_carry_their_deviations() {
     let reduced = k.reduce(&obs).unwrap();
     for estimate in [ols(&reduced, 1e-10).unwrap(), wls(&reduced, 1e-10).unwrap()] {
         let e = k.expand(&estimate, &obs, &reduced, 1e-10).unwrap();
+        // the reduced system's robust deviations are of its own parameters, fewer and in
+        // another order: the expanded estimate carries none (they were paired with the
+        // wrong names)
+        assert!(estimate.robust.is_some() && e.robust.is_none());
         assert!(
             (e.std[3] - 2.0 * e.std[0]).abs() < 1e-12 * e.std[0],
             "{:?}",
