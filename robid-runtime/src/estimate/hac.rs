@@ -19,8 +19,10 @@
 //! is the degrees-of-freedom correction of the classical `sigma^2`: with independent,
 //! equal noise the two covariances agree on average.
 //!
-//! The scores arrive in order, one sample at a time ([`Scores::push`]); only the last `L`
-//! are kept (a ring), so that the streaming path needs no more than it holds already.
+//! The scores arrive in order, one sample at a time ([`Scores::push`]); only the last
+//! `L + 1` are kept (a ring), so that the streaming path needs no more than it holds
+//! already, and `S` is summed window by window ([`Scores`]), one rank-1 update a sample
+//! whatever the lag.
 //!
 //! ## Reference
 //! W. K. Newey, K. D. West, "A simple, positive semi-definite, heteroskedasticity and
@@ -62,12 +64,28 @@ impl RobustStd {
 }
 
 /// The sum `S` of the scores' lagged outer products, from scores given sample by sample.
+///
+/// The Bartlett weights are a box of `L + 1` samples correlated with itself: with
+/// `G_e = sum_{t = e - L..e} g_t` the sum of the window ending at sample `e` (scores outside
+/// the segment, and of samples without equations, zero), every pair `g_t g_s'` with
+/// `|t - s| = l <= L` lies in `L + 1 - l` windows, so
+/// `S = 1 / (L + 1) sum_e G_e G_e'` over the windows that hold a score. One rank-1 update a
+/// window, whatever the lag: the pairs one by one cost `L c` more a sample, which a long
+/// lag (a low cutoff without decimation: thousands of samples) made the whole cost.
 #[derive(Debug, Clone)]
 pub(crate) struct Scores {
     lag: usize,
-    /// The last scores (segment, sample, score), oldest first, within `lag` of the newest.
-    ring: VecDeque<(usize, usize, DVector<f64>)>,
-    /// The upper triangle of `S` (symmetric).
+    /// The scores (sample, score) of the window ending at `end`, oldest first.
+    ring: VecDeque<(usize, DVector<f64>)>,
+    /// Their sum `G_end`.
+    window: DVector<f64>,
+    /// The segment and the last sample of the window (`None` before a segment's first
+    /// score).
+    end: Option<(usize, usize)>,
+    /// Scores taken out of `window` since it was last summed afresh from the ring (so that
+    /// the roundings of its subtractions do not pile up over a long record).
+    removed: usize,
+    /// The upper triangle of `(L + 1) S` (symmetric).
     s: DMatrix<f64>,
     /// The score being summed (segment, sample, partial score).
     current: Option<(usize, usize, DVector<f64>)>,
@@ -80,6 +98,9 @@ impl Scores {
         Self {
             lag,
             ring: VecDeque::with_capacity(lag + 1),
+            window: DVector::zeros(cols),
+            end: None,
+            removed: 0,
             s: DMatrix::zeros(cols, cols),
             current: None,
             samples: 0,
@@ -103,35 +124,77 @@ impl Scores {
         }
     }
 
-    /// Adds the score `g` of sample `sample` of segment `segment` (after every earlier one).
+    /// Adds the score `g` of sample `sample` of segment `segment` (after every earlier one;
+    /// a sample that does not come after the window's starts a segment of its own).
     fn push(&mut self, segment: usize, sample: usize, g: DVector<f64>) {
-        // the scores within reach: same segment, 1 to `lag` samples before (a sample that
-        // does not come after the ring's starts a segment of its own)
-        let reach = |s: usize, k: usize| s == segment && k < sample && sample - k <= self.lag;
-        while let Some((s, k, _)) = self.ring.front() {
-            if reach(*s, *k) {
+        match self.end {
+            // the windows ending between the last score and this one
+            Some((s, e)) if s == segment && sample > e => {
+                let mut e = e;
+                while e + 1 < sample && !self.ring.is_empty() {
+                    e += 1;
+                    self.slide(e);
+                    self.take_window();
+                }
+            }
+            Some(_) => self.drain(),
+            None => {}
+        }
+        self.slide(sample);
+        self.window += &g;
+        self.ring.push_back((sample, g));
+        self.end = Some((segment, sample));
+        self.take_window();
+        self.samples += 1;
+    }
+
+    /// Moves the window's end to sample `e`: the scores before `e - L` leave it.
+    fn slide(&mut self, e: usize) {
+        self.end = self.end.map(|(s, _)| (s, e));
+        while let Some((k, _)) = self.ring.front() {
+            if k + self.lag >= e {
                 break;
             }
-            self.ring.pop_front();
-        }
-        // S += g h' + h g' with h = g / 2 + sum_l (1 - l / (L + 1)) g_{t-l}
-        let mut h = &g * 0.5;
-        for (_, k, old) in self.ring.iter().filter(|(s, k, _)| reach(*s, *k)) {
-            let weight = 1.0 - (sample - k) as f64 / (self.lag + 1) as f64;
-            h.axpy(weight, old, 1.0);
-        }
-        let n = g.len();
-        for b in 0..n {
-            for a in 0..=b {
-                self.s[(a, b)] += g[a] * h[b] + h[a] * g[b];
+            if let Some((_, old)) = self.ring.pop_front() {
+                self.window -= old;
+                self.removed += 1;
             }
         }
-        self.samples += 1;
-        if self.lag > 0 {
-            if self.ring.len() == self.lag {
-                self.ring.pop_front();
+        if self.removed > self.lag {
+            self.window.fill(0.0);
+            for (_, g) in &self.ring {
+                self.window += g;
             }
-            self.ring.push_back((segment, sample, g));
+            self.removed = 0;
+        }
+    }
+
+    /// The segment's last windows (those ending after its last score), then none.
+    fn drain(&mut self) {
+        if let Some((_, mut e)) = self.end {
+            while !self.ring.is_empty() {
+                e += 1;
+                self.slide(e);
+                if !self.ring.is_empty() {
+                    self.take_window();
+                }
+            }
+        }
+        self.end = None;
+        self.window.fill(0.0);
+        self.removed = 0;
+    }
+
+    /// `(L + 1) S += G G'` for the window as it stands (the upper triangle).
+    fn take_window(&mut self) {
+        let g = &self.window;
+        for b in 0..g.len() {
+            if g[b] != 0.0 {
+                self.s
+                    .column_mut(b)
+                    .rows_mut(0, b + 1)
+                    .axpy(g[b], &g.rows(0, b + 1), 1.0);
+            }
         }
     }
 
@@ -142,8 +205,10 @@ impl Scores {
         if let Some((s, k, g)) = self.current.take() {
             self.push(s, k, g);
         }
+        self.drain();
         let n = self.s.nrows();
-        let s = DMatrix::from_fn(n, n, |a, b| self.s[(a.min(b), a.max(b))]);
+        let width = (self.lag + 1) as f64;
+        let s = DMatrix::from_fn(n, n, |a, b| self.s[(a.min(b), a.max(b))] / width);
         let cov = inverse_gram * s * inverse_gram;
         let dof = rows as f64 / rows.saturating_sub(n).max(1) as f64;
         RobustStd {
@@ -172,10 +237,11 @@ mod tests {
     /// with no equation.
     #[test]
     fn the_scores_give_the_dense_newey_west_covariance() {
-        let (cols, lag) = (3, 2);
-        // (segment, sample) of each scored sample: a hole at sample 4, a new segment at 7
-        let samples: Vec<(usize, usize)> = (0..12)
-            .filter(|&k| k != 4)
+        let (cols, lag) = (3, 3);
+        // (segment, sample) of each scored sample: a hole at sample 4, a new segment at 7,
+        // a hole longer than the lag from 10 to 13
+        let samples: Vec<(usize, usize)> = (0..18)
+            .filter(|&k| k != 4 && !(10..=13).contains(&k))
             .map(|k| (usize::from(k >= 7), k))
             .collect();
         let value = |k: usize, j: usize, c: usize| ((k * 7 + j * 3 + c) as f64 * 0.731).sin();
