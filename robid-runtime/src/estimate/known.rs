@@ -279,7 +279,8 @@ impl KnownParameters {
             });
         }
         let effect = effects(&std, &relative_column_norms(&system.w, &system.y));
-        let warnings = reassess_uncertain(&estimate.warnings, &names, &rel_std_percent, &effect);
+        let warnings =
+            reassess_uncertain(&estimate.warnings, &names, &rel_std_percent, &effect, false);
         Ok(Estimate {
             names,
             values: values.iter().copied().collect(),

@@ -20,6 +20,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::error::{Error, Result};
 use crate::estimate::hac::{Scores, robust_lag};
 use crate::estimate::lstsq::{Solution, solve};
+use crate::estimate::quality::relative_column_norms;
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation, QualityWarning, RobustStd};
 
@@ -46,7 +47,7 @@ pub fn ols(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     let condition = s.condition();
     let robust = robust_std(obs, &s.beta, &s.inverse_gram);
     let mut e = assemble(Estimator::Ols, obs, obs, s.beta, &s.inverse_gram, condition)?;
-    e.robust = robust.finite();
+    e.set_robust(robust.finite(), &relative_column_norms(&obs.w, &obs.y));
     Ok(e)
 }
 
@@ -118,7 +119,10 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
         condition,
     )?;
     e.weights = Some(weights);
-    e.robust = robust.finite();
+    e.set_robust(
+        robust.finite(),
+        &relative_column_norms(&weighted.w, &weighted.y),
+    );
     e.warnings.extend(weights_without_noise(&leverages));
     Ok(e)
 }
@@ -559,6 +563,64 @@ mod tests {
                     "method {m}, parameter {i}: robust {robust}"
                 );
             }
+        }
+    }
+
+    /// A parameter known to 60 % by the classical deviation and to 170 % by the robust
+    /// one (AR(1) noise, coefficient 0.8: the robust deviations three times the
+    /// classical) is uncertain, in OLS and WLS alike, and the warning says it judged by
+    /// the larger; the value is placed at the geometric mean of the two deviations (the
+    /// deviations and the noise's error do not depend on it).
+    #[test]
+    fn uncertainty_is_judged_by_the_larger_deviation() {
+        let n = 1500;
+        let w = DMatrix::from_fn(2 * n, 2, |r, c| match c {
+            0 => (r as f64 * 0.01 * (1.0 + (r / n) as f64)).sin(),
+            _ => 1.0,
+        });
+        let mut seed = 7u64;
+        let noise = DVector::from_iterator(
+            2 * n,
+            (0..2 * n).scan(0.0, |e, k| {
+                *e = if k % n == 0 { 0.0 } else { 0.8 * *e } + normal(&mut seed);
+                Some(0.3 * *e)
+            }),
+        );
+        let record = |c: f64| {
+            let mut obs = Observation::new(
+                w.clone(),
+                &w * DVector::from_vec(vec![1.0, c]) + &noise,
+                vec![0..n, n..2 * n],
+                (0..n).chain(0..n).collect(),
+                vec!["a".into(), "c".into()],
+            )
+            .unwrap();
+            obs.correlated = 20;
+            obs
+        };
+        for fit in [ols, wls] {
+            let pilot = fit(&record(0.5), 1e-10).unwrap();
+            let (std, robust) = (pilot.std[1], pilot.robust.as_ref().unwrap().std[1]);
+            assert!(robust > 2.0 * std, "{std} {robust}");
+            let target = (std * robust).sqrt();
+            let e = fit(&record(target - (pilot.values[1] - 0.5)), 1e-10).unwrap();
+            assert!((e.values[1] - target).abs() < 1e-9 * target);
+            assert!(e.rel_std_percent[1] < 100.0, "{:?}", e.rel_std_percent);
+            let uncertain: Vec<_> = e
+                .warnings
+                .iter()
+                .filter(|w| w.kind() == "uncertain")
+                .collect();
+            assert_eq!(uncertain.len(), 1, "{:?}", e.warnings);
+            assert_eq!(uncertain[0].parameters(), ["c"]);
+            let said = uncertain[0].to_string();
+            let rel = 100.0 * robust / target;
+            assert!(
+                said.contains("uncertain by more than its own size; the larger of the classical and the robust deviation): c ("),
+                "{said}"
+            );
+            assert!(said.ends_with(&format!("c ({rel:.0} %)")), "{said} {rel}");
+            assert_eq!(e.judged_std()[1], e.robust.as_ref().unwrap().std[1]);
         }
     }
 

@@ -460,9 +460,11 @@ pub fn signs_of(model: &dyn Model, extra: &[ExtraColumn]) -> Result<Vec<(String,
 }
 
 /// The `not_physical` warnings of the identified `values` (with standard deviations
-/// `std`) of the parameters `names`: one per parameter of `signs` estimated on its
-/// forbidden side of zero by more than [`NOT_PHYSICAL_Z`] standard deviations. A
-/// parameter known exactly (deviation 0) or of a value at the data's rounding (below
+/// `std`, and the robust ones `robust` when the estimate has them) of the parameters
+/// `names`: one per parameter of `signs` estimated on its forbidden side of zero by more
+/// than [`NOT_PHYSICAL_Z`] of the larger of its two deviations (the classical one alone
+/// understates a filtered record's noise, docs/identification.md#robust-standard-deviations).
+/// A parameter known exactly (deviation 0) or of a value at the data's rounding (below
 /// 1e-9 of the largest value) is not judged.
 ///
 /// ```
@@ -473,16 +475,21 @@ pub fn signs_of(model: &dyn Model, extra: &[ExtraColumn]) -> Result<Vec<(String,
 ///     expression: "YY1 + ZZ2".into(),
 ///     extra_column: false,
 /// };
-/// let w = not_physical(&names, &[-1.02, 0.3], &[0.033, 0.01], &[("ZZR1".into(), zz.clone())]);
+/// let signs = [("ZZR1".to_string(), zz)];
+/// let w = not_physical(&names, &[-1.02, 0.3], &[0.033, 0.01], None, &signs);
 /// assert_eq!(w.len(), 1);
 /// assert!(w[0].to_string().contains("ZZR1"), "{}", w[0]);
 /// // two standard deviations below zero: noise
-/// assert!(not_physical(&names, &[-0.066, 0.3], &[0.033, 0.01], &[("ZZR1".into(), zz)]).is_empty());
+/// assert!(not_physical(&names, &[-0.066, 0.3], &[0.033, 0.01], None, &signs).is_empty());
+/// // 31 classical deviations, but 2.8 robust ones: noise of a filtered record
+/// let robust = [0.36, 0.01];
+/// assert!(not_physical(&names, &[-1.02, 0.3], &[0.033, 0.01], Some(&robust), &signs).is_empty());
 /// ```
 pub fn not_physical(
     names: &[String],
     values: &[f64],
     std: &[f64],
+    robust: Option<&[f64]>,
     signs: &[(String, SignDefinite)],
 ) -> Vec<QualityWarning> {
     let largest = values
@@ -491,9 +498,11 @@ pub fn not_physical(
         .fold(0.0f64, |m, v| m.max(v.abs()));
     let mut out = Vec::new();
     for (i, name) in names.iter().enumerate() {
-        let (Some(&value), Some(&s)) = (values.get(i), std.get(i)) else {
+        let (Some(&value), Some(&classical)) = (values.get(i), std.get(i)) else {
             continue;
         };
+        let larger = robust.and_then(|r| r.get(i)).filter(|r| **r > classical);
+        let s = larger.copied().unwrap_or(classical);
         let Some((_, definite)) = signs.iter().find(|(n, _)| n == name) else {
             continue;
         };
@@ -505,6 +514,7 @@ pub fn not_physical(
                 parameter: name.clone(),
                 value,
                 std: s,
+                robust: larger.is_some(),
                 sign: definite.sign,
                 expression: definite.expression.clone(),
                 extra_column: definite.extra_column,
@@ -684,7 +694,7 @@ mod tests {
             },
         )];
         let names = ["Fv5".to_string(), "M1".to_string()];
-        let warn = |v: f64, s: f64| not_physical(&names, &[v, 10.0], &[s, 1.0], &signs);
+        let warn = |v: f64, s: f64| not_physical(&names, &[v, 10.0], &[s, 1.0], None, &signs);
         assert_eq!(warn(-0.66, 0.0315).len(), 1);
         assert!(warn(-0.09, 0.0315).is_empty()); // 2.9 deviations
         assert!(warn(0.66, 0.0315).is_empty());
@@ -695,11 +705,31 @@ mod tests {
         assert_eq!(w.parameters(), ["Fv5"]);
         let text = w.to_string();
         for part in [
-            "`Fv5` = -0.661 +- 0.0315",
+            "`Fv5` = -0.661 +- 0.0315 is negative",
             "21.0 standard deviations",
             "qd5 in row 5",
         ] {
             assert!(text.contains(part), "{part}: {text}");
         }
+        // judged by the larger of the classical and the robust deviation
+        let robust = |v: f64, s: f64, r: f64| {
+            not_physical(&names, &[v, 10.0], &[s, 1.0], Some(&[r, 1.0]), &signs)
+        };
+        assert!(robust(-0.66, 0.0315, 0.3).is_empty()); // 2.2 robust deviations
+        let w = &robust(-0.661026, 0.03153, 0.1)[0];
+        let text = w.to_string();
+        assert!(
+            text.contains("`Fv5` = -0.661 +- 0.1 is negative by 6.6 robust standard deviations"),
+            "{text}"
+        );
+        let w = &robust(-0.661026, 0.03153, 0.01)[0]; // a robust deviation below the classical
+        assert!(
+            text_has(w, "`Fv5` = -0.661 +- 0.0315 is negative by 21.0"),
+            "{w}"
+        );
+    }
+
+    fn text_has(w: &QualityWarning, part: &str) -> bool {
+        w.to_string().contains(part)
     }
 }

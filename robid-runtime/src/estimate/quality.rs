@@ -51,6 +51,11 @@ pub enum QualityWarning {
         rel_std_percent: Vec<Option<f64>>,
         /// The threshold in percent.
         threshold_percent: f64,
+        /// Whether each relative deviation is the larger of the classical and the robust
+        /// (Newey-West) one, as when the estimate has robust deviations; else the
+        /// classical one (docs/identification.md#robust-standard-deviations).
+        #[serde(default)]
+        robust: bool,
     },
     /// The energy model's observation is ill-conditioned, or much worse conditioned than
     /// the torque model's on the same data (by more than [`ENERGY_CONDITION_RATIO`]).
@@ -132,8 +137,12 @@ pub enum QualityWarning {
         parameter: String,
         /// Its identified value.
         value: f64,
-        /// Its standard deviation.
+        /// Its standard deviation: the larger of the classical and the robust one.
         std: f64,
+        /// Whether [`std`](QualityWarning::NotPhysical::std) is the robust (Newey-West)
+        /// deviation, larger than the classical one.
+        #[serde(default)]
+        robust: bool,
         /// The side of zero every physical robot keeps it on.
         sign: crate::estimate::Sign,
         /// What it is: the standard parameters it sums, or an extra column's terms.
@@ -218,6 +227,7 @@ impl fmt::Display for QualityWarning {
                 parameters,
                 rel_std_percent,
                 threshold_percent,
+                robust,
             } => {
                 let list: Vec<String> = parameters
                     .iter()
@@ -239,12 +249,17 @@ impl fmt::Display for QualityWarning {
                 write!(
                     f,
                     "{} with a relative standard deviation above {threshold_percent} % \
-                     ({} by more than its own size): {}",
+                     ({} by more than its own size{}): {}",
                     crate::Count(parameters.len(), "parameter"),
                     if parameters.len() == 1 {
                         "uncertain"
                     } else {
                         "each uncertain"
+                    },
+                    if *robust {
+                        "; the larger of the classical and the robust deviation"
+                    } else {
+                        ""
                     },
                     list.join(", ")
                 )
@@ -322,6 +337,7 @@ impl fmt::Display for QualityWarning {
                 parameter,
                 value,
                 std,
+                robust,
                 sign,
                 expression,
                 extra_column,
@@ -336,7 +352,7 @@ impl fmt::Display for QualityWarning {
                 };
                 write!(
                     f,
-                    "`{parameter}` = {} +- {} is {} by {:.1} standard deviations, but {what}, \
+                    "`{parameter}` = {} +- {} is {} by {:.1} {}standard deviations, but {what}, \
                      which is {} 0 for every physical robot (masses, moments of inertia about \
                      an axis, rotor inertias and frictions are >= 0): no physical robot has \
                      these values, and the model or the data are wrong; check the model \
@@ -347,6 +363,7 @@ impl fmt::Display for QualityWarning {
                     Num::rounded(*std, 3),
                     sign.forbidden(),
                     sign.beyond(*value, *std),
+                    if *robust { "robust " } else { "" },
                     match sign {
                         crate::estimate::Sign::NonNegative => ">=",
                         crate::estimate::Sign::NonPositive => "<=",
@@ -432,13 +449,15 @@ pub(crate) fn effects(std: &[f64], norms: &[f64]) -> Vec<f64> {
 
 /// `warnings` with their parameters uncertain by more than their size judged again for the
 /// parameters `names` (relative deviations `rel`, effects `effect`, as [`assess`] takes
-/// them), in the place the old judgement had (after the condition warning when there was
-/// none): the other warnings are kept as they are.
+/// them; `robust` when each deviation is the larger of the classical and the robust one),
+/// in the place the old judgement had (after the condition warning when there was none):
+/// the other warnings are kept as they are.
 pub(crate) fn reassess_uncertain(
     warnings: &[QualityWarning],
     names: &[String],
     rel: &[f64],
     effect: &[f64],
+    robust: bool,
 ) -> Vec<QualityWarning> {
     let uncertain = |w: &QualityWarning| matches!(w, QualityWarning::Uncertain { .. });
     let at = warnings.iter().position(uncertain).unwrap_or_else(|| {
@@ -448,8 +467,10 @@ pub(crate) fn reassess_uncertain(
             .count()
     });
     let mut out: Vec<QualityWarning> = warnings.iter().filter(|w| !uncertain(w)).cloned().collect();
-    // a condition number of 0 is below any threshold: the parameters alone are judged
-    for (k, w) in assess(0.0, names, rel, effect).into_iter().enumerate() {
+    for (k, w) in uncertain_parameters(names, rel, effect, robust)
+        .into_iter()
+        .enumerate()
+    {
         out.insert(at + k, w);
     }
     out
@@ -472,6 +493,19 @@ pub(crate) fn assess(
             threshold: CONDITION_WARNING,
         });
     }
+    out.extend(uncertain_parameters(names, rel, effect, false));
+    out
+}
+
+/// The [`QualityWarning::Uncertain`] of the parameters `names` whose relative deviation
+/// `rel` is above [`REL_STD_WARNING`] and whose `effect` is not at the data's rounding
+/// ([`assess`]), `robust` saying which deviations they are; `None` when there is none.
+fn uncertain_parameters(
+    names: &[String],
+    rel: &[f64],
+    effect: &[f64],
+    robust: bool,
+) -> Option<QualityWarning> {
     let poor: Vec<(String, Option<f64>)> = names
         .iter()
         .zip(rel)
@@ -479,15 +513,15 @@ pub(crate) fn assess(
         .filter(|((_, r), e)| **r > REL_STD_WARNING && !(**e < ROUNDING_EFFECT))
         .map(|((n, r), _)| (n.clone(), Some(*r).filter(|r| r.is_finite())))
         .collect();
-    if !poor.is_empty() {
+    (!poor.is_empty()).then(|| {
         let (parameters, rel_std_percent) = poor.into_iter().unzip();
-        out.push(QualityWarning::Uncertain {
+        QualityWarning::Uncertain {
             parameters,
             rel_std_percent,
             threshold_percent: REL_STD_WARNING,
-        });
-    }
-    out
+            robust,
+        }
+    })
 }
 
 #[cfg(test)]
@@ -616,7 +650,7 @@ mod tests {
         assert_eq!(kinds(&old), ["ill_conditioned", "uncertain"]);
         let mut before = old.clone();
         before.push(poor.clone());
-        let again = reassess_uncertain(&before, &names, &[1.0, 300.0], &[1.0; 2]);
+        let again = reassess_uncertain(&before, &names, &[1.0, 300.0], &[1.0; 2], false);
         assert_eq!(kinds(&again), ["ill_conditioned", "uncertain", "poor_fit"]);
         assert!(
             again[1].to_string().ends_with(": b (300 %)"),
@@ -624,10 +658,10 @@ mod tests {
             again[1]
         );
         // none before: after the condition warning
-        let again = reassess_uncertain(&[ill, poor], &names, &[1.0, 300.0], &[1.0; 2]);
+        let again = reassess_uncertain(&[ill, poor], &names, &[1.0, 300.0], &[1.0; 2], false);
         assert_eq!(kinds(&again), ["ill_conditioned", "uncertain", "poor_fit"]);
         // none after: removed
-        let again = reassess_uncertain(&before, &names, &[1.0, 1.0], &[1.0; 2]);
+        let again = reassess_uncertain(&before, &names, &[1.0, 1.0], &[1.0; 2], false);
         assert_eq!(kinds(&again), ["ill_conditioned", "poor_fit"]);
     }
 
@@ -640,6 +674,7 @@ mod tests {
                 parameters: vec!["XY2".into()],
                 rel_std_percent: vec![Some(r)],
                 threshold_percent: REL_STD_WARNING,
+                robust: false,
             }
             .to_string()
         };
@@ -663,6 +698,7 @@ mod tests {
             parameters: names.iter().map(|n| n.to_string()).collect(),
             rel_std_percent: names.iter().map(|_| Some(250.0)).collect(),
             threshold_percent: REL_STD_WARNING,
+            robust: false,
         };
         let one = warning(&["ZZR1"]).to_string();
         assert!(

@@ -5,7 +5,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::estimate::lstsq::Condition;
-use crate::estimate::quality::{QualityWarning, assess, effects, relative_column_norms};
+use crate::estimate::quality::{
+    QualityWarning, assess, effects, reassess_uncertain, relative_column_norms,
+};
 use crate::estimate::{Observation, RobustStd};
 
 /// Which estimator produced a result: the config's estimation method, one list for both
@@ -76,6 +78,63 @@ impl Estimate {
     pub fn beta(&self) -> DVector<f64> {
         DVector::from_column_slice(&self.values)
     }
+
+    /// The standard deviation the warnings judge each parameter by: the larger of the
+    /// classical and the robust one, the classical one where there is no robust one
+    /// (docs/identification.md#robust-standard-deviations: a robust deviation below the
+    /// classical one is the estimator's own noise, one above it the residuals'
+    /// correlation).
+    ///
+    /// ```
+    /// # use robid_runtime::estimate::{Estimate, RobustStd};
+    /// # fn judged(mut e: Estimate) {
+    /// e.std = vec![0.1, 0.2];
+    /// e.robust = Some(RobustStd { std: vec![0.3, 0.1], lag: 5, samples: 900 });
+    /// assert_eq!(e.judged_std(), [0.3, 0.2]);
+    /// e.robust = None;
+    /// assert_eq!(e.judged_std(), [0.1, 0.2]);
+    /// # }
+    /// ```
+    pub fn judged_std(&self) -> Vec<f64> {
+        match &self.robust {
+            Some(r) => self
+                .std
+                .iter()
+                .zip(&r.std)
+                .map(|(c, r)| c.max(*r))
+                .collect(),
+            None => self.std.clone(),
+        }
+    }
+
+    /// Sets the robust deviations and, when there are some, judges the parameters
+    /// uncertain by more than their size again by [`judged_std`](Self::judged_std);
+    /// `relative_column_norms` are `||W_i|| / ||y||` of the solved system (what a
+    /// deviation moves the torques by, [`ROUNDING_EFFECT`](crate::estimate::ROUNDING_EFFECT)).
+    pub(crate) fn set_robust(&mut self, robust: Option<RobustStd>, relative_column_norms: &[f64]) {
+        self.robust = robust;
+        if self.robust.is_none() {
+            return;
+        }
+        let judged = self.judged_std();
+        let rel = relative_deviations(&judged, &self.values);
+        let effect = effects(&judged, relative_column_norms);
+        self.warnings = reassess_uncertain(&self.warnings, &self.names, &rel, &effect, true);
+    }
+}
+
+/// `100 std / |value|` of each parameter, infinite for a value of exactly zero.
+fn relative_deviations(std: &[f64], values: &[f64]) -> Vec<f64> {
+    std.iter()
+        .zip(values)
+        .map(|(s, v)| {
+            if *v == 0.0 {
+                f64::INFINITY
+            } else {
+                100.0 * s / v.abs()
+            }
+        })
+        .collect()
 }
 
 /// Assembles statistics: `solved` is the system actually solved (weighted for WLS),
@@ -155,17 +214,7 @@ pub(crate) fn assemble_parts(
     let std: Vec<f64> = (0..n)
         .map(|i| (sigma2 * inverse_gram[(i, i)].max(0.0)).sqrt())
         .collect();
-    let rel: Vec<f64> = std
-        .iter()
-        .zip(beta.iter())
-        .map(|(s, v)| {
-            if *v == 0.0 {
-                f64::INFINITY
-            } else {
-                100.0 * s / v.abs()
-            }
-        })
-        .collect();
+    let rel = relative_deviations(&std, beta.as_slice());
     let residual_rms = residual.per_joint_rms;
     let not_finite = |what: String, cause: &str| Error::NonFiniteResult {
         what,

@@ -264,9 +264,20 @@ impl Factor {
 pub struct StreamingLeastSquares {
     names: Vec<String>,
     groups: Vec<Factor>,
-    /// The `(W'W)^-1` (of the weighted columns) and the groups' weights of the last
-    /// system [`ols`](Self::ols) or [`wls`](Self::wls) solved.
-    solved: Option<(DMatrix<f64>, Vec<f64>)>,
+    /// The last system [`ols`](Self::ols) or [`wls`](Self::wls) solved.
+    solved: Option<Solved>,
+}
+
+/// What the robust standard deviations need of the last system a
+/// [`StreamingLeastSquares`] solved, with a pass over its equations again.
+#[derive(Debug, Clone)]
+pub(crate) struct Solved {
+    /// `(W'W)^-1` of the solved (for WLS weighted) columns.
+    pub(crate) inverse_gram: DMatrix<f64>,
+    /// Each group's weight (1 for OLS).
+    pub(crate) weights: Vec<f64>,
+    /// `||W_i|| / ||y||` of each column of the solved system.
+    pub(crate) relative_column_norms: Vec<f64>,
 }
 
 impl StreamingLeastSquares {
@@ -420,9 +431,9 @@ impl StreamingLeastSquares {
 
     /// Solves the groups stacked with weights (all 1 for OLS); returns the estimate's
     /// statistics for the solved (weighted) system, and its solution (of the weighted
-    /// columns).
+    /// columns), kept as the last system solved ([`solved`](Self::solved)).
     fn solve(
-        &self,
+        &mut self,
         method: Estimator,
         weights: &[f64],
         tolerance: f64,
@@ -513,9 +524,14 @@ impl StreamingLeastSquares {
             .collect();
         let solved_norm = sy * top * rho;
         // ||W_j|| / ||y|| (the scales' common `top` cancels)
-        let relative_column_norms = (0..n)
+        let relative_column_norms: Vec<f64> = (0..n)
             .map(|j| (col_norm(j) / y_norm) * (divisor(common[j]) / sy))
             .collect();
+        self.solved = Some(Solved {
+            inverse_gram: s.inverse_gram.clone(),
+            weights: weights.to_vec(),
+            relative_column_norms: relative_column_norms.clone(),
+        });
         let e = assemble_parts(
             method,
             self.names.clone(),
@@ -539,16 +555,12 @@ impl StreamingLeastSquares {
         check_tolerance(tolerance)?;
         self.flush();
         let ones = vec![1.0; self.groups.len()];
-        let (e, solution) = self.solve(Estimator::Ols, &ones, tolerance)?;
-        self.solved = Some((solution.inverse_gram, ones));
-        Ok(e)
+        Ok(self.solve(Estimator::Ols, &ones, tolerance)?.0)
     }
 
-    /// The `(W'W)^-1` of the last system [`ols`](Self::ols) or [`wls`](Self::wls) solved
-    /// (of the weighted columns for WLS) and each group's weight (1 for OLS): what the
-    /// robust standard deviations need with a pass over the equations again.
-    pub(crate) fn solved(&self) -> Option<(&DMatrix<f64>, &[f64])> {
-        self.solved.as_ref().map(|(g, w)| (g, w.as_slice()))
+    /// The last system [`ols`](Self::ols) or [`wls`](Self::wls) solved.
+    pub(crate) fn solved(&self) -> Option<&Solved> {
+        self.solved.as_ref()
     }
 
     /// Weighted least squares with each group's weight 1 / sigma_j from its OLS residual
@@ -574,8 +586,7 @@ impl StreamingLeastSquares {
             })
             .collect();
         let weights = checked_weights(&sigma)?;
-        let (mut e, solution) = self.solve(Estimator::Wls, &weights, tolerance)?;
-        self.solved = Some((solution.inverse_gram, weights.clone()));
+        let (mut e, _) = self.solve(Estimator::Wls, &weights, tolerance)?;
         e.weights = Some(weights);
         e.warnings.extend(weights_without_noise(&leverages));
         Ok(e)

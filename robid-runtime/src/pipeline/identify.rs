@@ -462,7 +462,8 @@ pub fn identify(
 /// The `not_physical` warnings of `estimate`, an identification of `model` with `config`:
 /// each base parameter or extra column whose sign every physical robot fixes, estimated on
 /// the other side of zero by more than [`NOT_PHYSICAL_Z`](crate::estimate::NOT_PHYSICAL_Z)
-/// standard deviations ([`not_physical`](crate::estimate::not_physical)).
+/// of the larger of its classical and robust standard deviations
+/// ([`not_physical`](crate::estimate::not_physical)).
 pub(crate) fn not_physical_warnings(
     model: &dyn Model,
     config: &Config,
@@ -476,6 +477,7 @@ pub(crate) fn not_physical_warnings(
         &estimate.names,
         &estimate.values,
         &estimate.std,
+        estimate.robust.as_ref().map(|r| r.std.as_slice()),
         &signs,
     ))
 }

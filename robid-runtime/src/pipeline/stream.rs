@@ -36,8 +36,8 @@ use crate::data::{Config, Dataset, Method, Record};
 use crate::error::{Error, Result};
 use crate::estimate::hac::Scores;
 use crate::estimate::{
-    Dominance, Estimate, EstimateError, QualityWarning, RobustStd, StreamingLeastSquares,
-    equations_needed, robust_lag,
+    Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares, equations_needed,
+    robust_lag,
 };
 use crate::pipeline::Identification;
 use crate::pipeline::identify::{checked_plan, correlated_samples, piece_breaks, rest_cause};
@@ -403,7 +403,8 @@ fn shifted(e: Error, lo: usize) -> Error {
 /// The segment of a stream's decimated sample (`None`: not in the estimate).
 type SegmentOf<'a> = &'a (dyn Fn(usize) -> Option<usize> + Sync);
 
-/// The Newey-West standard deviations of `estimate`, which `ls` solved from the
+/// Sets the Newey-West standard deviations of `estimate` ([`Estimate::set_robust`], which
+/// judges its uncertain parameters again by them), which `ls` solved from the
 /// equations of `passes` (each a stream and the segment of each of its decimated samples,
 /// `None` for a sample the estimate left out): a pass over every stream's equations again
 /// with the estimated values, each equation's score `w_j^2 (y - W_row beta) W_row` (`w_j`
@@ -414,11 +415,11 @@ type SegmentOf<'a> = &'a (dyn Fn(usize) -> Option<usize> + Sync);
 fn robust_pass(
     passes: &[(&Stream<'_>, SegmentOf<'_>)],
     ls: &StreamingLeastSquares,
-    estimate: &Estimate,
+    estimate: &mut Estimate,
     samples: usize,
     correlated: usize,
-) -> Result<RobustStd> {
-    let Some((inverse_gram, weights)) = ls.solved() else {
+) -> Result<()> {
+    let Some(solved) = ls.solved() else {
         return Err(Error::setting(
             "robust_pass",
             "ls",
@@ -436,14 +437,16 @@ fn robust_pass(
             order.sort_unstable();
             for (s, k, i) in order {
                 let row = eq.row(i);
-                let w = weights[eq.joint[i]];
+                let w = solved.weights[eq.joint[i]];
                 let fitted: f64 = row.iter().zip(values).map(|(a, b)| a * b).sum();
                 scores.add(s, k, row, w * w * (eq.y[i] - fitted));
             }
             Ok(())
         })?;
     }
-    Ok(scores.finish(inverse_gram, estimate.rows))
+    let robust = scores.finish(&solved.inverse_gram, estimate.rows);
+    estimate.set_robust(robust.finite(), &solved.relative_column_norms);
+    Ok(())
 }
 
 /// Whether [`identify`](crate::pipeline::identify) streams: OLS or WLS without known
@@ -590,9 +593,14 @@ pub(crate) fn identify_streaming(
     let correlated = correlated_samples(config, plan.auto_cutoff.as_ref(), data.sample_time())?;
     let samples = scored.iter().filter(|s| **s).count();
     if config.estimation.robust_std {
-        estimate.robust = robust_pass(&[(&stream, &segment)], &ls, &estimate, samples, correlated)
-            .map_err(at)?
-            .finite();
+        robust_pass(
+            &[(&stream, &segment)],
+            &ls,
+            &mut estimate,
+            samples,
+            correlated,
+        )
+        .map_err(at)?;
     }
     // the samples of the equations (every factor-th, less the decimation filter's settling
     // and the ends' samples near rest), as the dense path says them
@@ -745,7 +753,7 @@ pub(crate) fn stacked_streaming(
         .map(|(s, f)| (s, f as SegmentOf<'_>))
         .collect();
     if config.estimation.robust_std {
-        estimate.robust = robust_pass(&passes, &ls, &estimate, samples, correlated)?.finite();
+        robust_pass(&passes, &ls, &mut estimate, samples, correlated)?;
     }
     let dt = runs[0].sample_time * first.factor() as f64;
     let mut stacked = Prediction {

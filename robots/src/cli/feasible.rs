@@ -332,7 +332,14 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     identified.check_expressions(&args.identified, &problem, robot, &args.robot)?;
     // identified values no physical robot has (a sum of masses, inertias or frictions
     // below zero beyond its uncertainty): what a result far from the data comes from
-    let unphysical = not_physical(&problem, &names, &values, &std);
+    // each judged by the larger of its classical and robust deviations, as identify does
+    // (a parameter without a robust deviation by its classical one)
+    let robust: Vec<f64> = identified
+        .parameters
+        .iter()
+        .map(|p| p.robust_std.unwrap_or(p.std))
+        .collect();
+    let unphysical = not_physical(&problem, &names, &values, &std, &robust);
     let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {
         (Some(path), _) => Some(Prior {
@@ -491,15 +498,17 @@ fn warn_implausible(args: &Args, solution: &Solution, prior_given: bool) {
 /// unless the identified values themselves are not physical ([`not_physical`]).
 const FAR: f64 = 10.0;
 
-/// The identified base parameters (`names`, `values`, `std`) whose sign every physical
-/// robot fixes, by `problem`'s K, and that lie on the other side of zero by more than
-/// three standard deviations (`robid identify`'s `not_physical` warnings). The free terms
-/// (extra columns, of any sign in the problem) are not judged.
+/// The identified base parameters (`names`, `values`, `std`, the `robust` deviations)
+/// whose sign every physical robot fixes, by `problem`'s K, and that lie on the other side
+/// of zero by more than three of the larger of their deviations (`robid identify`'s
+/// `not_physical` warnings). The free terms (extra columns, of any sign in the problem)
+/// are not judged.
 fn not_physical(
     problem: &Problem,
     names: &[String],
     values: &[f64],
     std: &[f64],
+    robust: &[f64],
 ) -> Vec<QualityWarning> {
     // a free term's name may read as a drive term (`Fv1`): it is not one here
     let standard: Vec<String> = problem
@@ -520,7 +529,7 @@ fn not_physical(
         .zip(base_signs(&problem.k, &standard))
         .filter_map(|(n, s)| Some((n.clone(), s?)))
         .collect();
-    robid_runtime::estimate::not_physical(names, values, std, &signs)
+    robid_runtime::estimate::not_physical(names, values, std, Some(robust), &signs)
 }
 
 /// Warns when the result reproduces a base parameter more than [`FAR`] standard
@@ -585,15 +594,17 @@ fn not_physical_text(unphysical: &[QualityWarning]) -> Option<String> {
                 parameter,
                 value,
                 std,
+                robust,
                 sign,
                 expression,
                 ..
             } => Some(format!(
-                "`{parameter}` = {} +- {} ({:.1} standard deviations {} 0, though {expression} \
-                 is {} 0 for every physical robot)",
+                "`{parameter}` = {} +- {} ({:.1} {}standard deviations {} 0, though \
+                 {expression} is {} 0 for every physical robot)",
                 Num::rounded(*value, 3),
                 Num::rounded(*std, 3),
                 sign.beyond(*value, *std),
+                if *robust { "robust " } else { "" },
                 match sign {
                     Sign::NonNegative => "below",
                     Sign::NonPositive => "above",

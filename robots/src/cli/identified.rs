@@ -39,6 +39,9 @@ pub(super) struct IdentifiedParameter {
     pub(super) expression: String,
     pub(super) value: f64,
     pub(super) std: f64,
+    /// The robust (Newey-West) standard deviation, when the identification had them.
+    #[serde(default)]
+    pub(super) robust_std: Option<f64>,
     /// Fixed by known standard parameters (`estimation.known`): std 0, an exact value.
     #[serde(default)]
     pub(super) known: bool,
@@ -122,7 +125,15 @@ impl Identified {
                     short(p.std)
                 ))
             } else {
-                None
+                p.robust_std
+                    .filter(|r| !(*r >= 0.0 && *r <= VALUE_LIMIT))
+                    .map(|r| {
+                        format!(
+                            "robust_std {} is outside [0, {VALUE_LIMIT:e}]; a standard \
+                             deviation is positive (or leave robust_std out)",
+                            short(r)
+                        )
+                    })
             };
             let problem = problem.or_else(|| {
                 self.parameters[..i]
@@ -618,5 +629,32 @@ mod tests {
         std::fs::write(&path, format!("\u{feff}{}", entry("\"M1\"", "1.5"))).unwrap();
         let read = Identified::read(&path).unwrap();
         assert_eq!(read.parameters[0].value, 1.5);
+        assert_eq!(read.parameters[0].robust_std, None);
+    }
+
+    /// A robust deviation, when the entry has one, is read and checked as the classical
+    /// one is.
+    #[test]
+    fn robust_deviations_are_read_and_checked() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("r.json");
+        let entry = |robust: &str| {
+            format!(
+                "{{\"parameters\":[{{\"name\":\"M1\",\"value\":1.5,\"std\":0.1,\"robust_std\":{robust}}}]}}"
+            )
+        };
+        std::fs::write(&path, entry("0.4")).unwrap();
+        assert_eq!(
+            Identified::read(&path).unwrap().parameters[0].robust_std,
+            Some(0.4)
+        );
+        for bad in ["-0.4", "1e300"] {
+            std::fs::write(&path, entry(bad)).unwrap();
+            let e = Identified::read(&path).err().expect("an error").to_string();
+            assert!(
+                e.contains("parameters[0] `M1`: robust_std") && e.contains("is outside [0,"),
+                "{bad}: {e}"
+            );
+        }
     }
 }

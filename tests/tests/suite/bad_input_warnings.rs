@@ -55,11 +55,12 @@ fn a_poorly_excited_run_is_reported_with_the_parameters_named() {
         .find(|w| matches!(w, QualityWarning::IllConditioned { .. }))
         .unwrap_or_else(|| panic!("{:?}", e.warnings));
     assert!(ill.to_string().contains("ill-conditioned"));
+    // judged by the larger of each parameter's classical and robust deviations
     let uncertain: Vec<String> = e
         .names
         .iter()
-        .zip(&e.rel_std_percent)
-        .filter(|(_, r)| **r > REL_STD_WARNING)
+        .zip(e.judged_std().iter().zip(&e.values))
+        .filter(|(_, (s, v))| 100.0 * **s / v.abs() > REL_STD_WARNING)
         .map(|(n, _)| n.clone())
         .collect();
     assert!(!uncertain.is_empty());
