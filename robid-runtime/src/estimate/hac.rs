@@ -35,6 +35,8 @@ use std::collections::VecDeque;
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
+use crate::estimate::lstsq::InverseGram;
+
 /// The lag of the Bartlett kernel for `samples` samples whose residual correlation lasts
 /// about `correlated` samples: the larger of Newey and West's rule
 /// `floor(4 (T / 100)^(2/9))` (1994) and `correlated`, at most `samples - 1`.
@@ -74,6 +76,12 @@ impl RobustStd {
 /// lag (a low cutoff without decimation: thousands of samples) made the whole cost.
 #[derive(Debug, Clone)]
 pub(crate) struct Scores {
+    /// The solved system's `(W'W)^-1`, whose column scales `D` divide each score: the
+    /// scores of a column near 1e200 would square to infinity, and its unscaled
+    /// `(W'W)^-1` underflows to 0.
+    inverse: InverseGram,
+    /// `1 / D`.
+    unscale: Vec<f64>,
     lag: usize,
     /// The scores (sample, score) of the window ending at `end`, oldest first.
     ring: VecDeque<(usize, DVector<f64>)>,
@@ -93,9 +101,13 @@ pub(crate) struct Scores {
 }
 
 impl Scores {
-    /// No scores yet, for `cols` parameters and the kernel's `lag`.
-    pub(crate) fn new(cols: usize, lag: usize) -> Self {
+    /// No scores yet, for the parameters of the solved system whose `(W'W)^-1` is
+    /// `inverse`, and the kernel's `lag`.
+    pub(crate) fn new(inverse: InverseGram, lag: usize) -> Self {
+        let cols = inverse.scales.len();
         Self {
+            unscale: inverse.scales.iter().map(|d| 1.0 / d).collect(),
+            inverse,
             lag,
             ring: VecDeque::with_capacity(lag + 1),
             window: DVector::zeros(cols),
@@ -111,12 +123,17 @@ impl Scores {
     /// equation's `W_t' e_t`: its row times its residual). Equations come in order of
     /// (segment, sample), those of one sample together, whatever their joints.
     pub(crate) fn add(&mut self, segment: usize, sample: usize, row: &[f64], factor: f64) {
+        let unscale = &self.unscale;
         match &mut self.current {
-            Some((s, k, g)) if *s == segment && *k == sample => {
-                g.iter_mut().zip(row).for_each(|(g, w)| *g += factor * w)
-            }
+            Some((s, k, g)) if *s == segment && *k == sample => g
+                .iter_mut()
+                .zip(row.iter().zip(unscale))
+                .for_each(|(g, (w, u))| *g += factor * (w * u)),
             _ => {
-                let g = DVector::from_iterator(row.len(), row.iter().map(|w| factor * w));
+                let g = DVector::from_iterator(
+                    row.len(),
+                    row.iter().zip(unscale).map(|(w, u)| factor * (w * u)),
+                );
                 if let Some((s, k, g)) = self.current.replace((segment, sample, g)) {
                     self.push(s, k, g);
                 }
@@ -198,10 +215,10 @@ impl Scores {
         }
     }
 
-    /// The standard deviations `sqrt(diag(m / (m - c) G S G))` with `inverse_gram` = G the
-    /// `(W'W)^-1` of the solved system of `rows` equations (m) and `G`'s order of
-    /// parameters (c).
-    pub(crate) fn finish(mut self, inverse_gram: &DMatrix<f64>, rows: usize) -> RobustStd {
+    /// The standard deviations `sqrt(diag(m / (m - c) G S G))` with G the `(W'W)^-1` of the
+    /// solved system of `rows` equations (m) and c parameters, taken scaled:
+    /// `D^-1 sqrt(diag(A S_s A))` with the scores `D^-1 W_t' e_t` ([`InverseGram`]).
+    pub(crate) fn finish(mut self, rows: usize) -> RobustStd {
         if let Some((s, k, g)) = self.current.take() {
             self.push(s, k, g);
         }
@@ -209,7 +226,8 @@ impl Scores {
         let n = self.s.nrows();
         let width = (self.lag + 1) as f64;
         let s = DMatrix::from_fn(n, n, |a, b| self.s[(a.min(b), a.max(b))] / width);
-        let cov = inverse_gram * s * inverse_gram;
+        let a = &self.inverse.scaled;
+        let cov = a * s * a;
         let dof = rows as f64 / rows.saturating_sub(n).max(1) as f64;
         RobustStd {
             // a rounding below 0 is 0; an overflow stays NaN or infinite (`f64::max` would
@@ -217,7 +235,7 @@ impl Scores {
             std: (0..n)
                 .map(|i| {
                     let v = dof * cov[(i, i)];
-                    if v < 0.0 { 0.0 } else { v.sqrt() }
+                    (if v < 0.0 { 0.0 } else { v.sqrt() }) / self.inverse.scales[i]
                 })
                 .collect(),
             lag: self.lag,
@@ -246,7 +264,10 @@ mod tests {
             .collect();
         let value = |k: usize, j: usize, c: usize| ((k * 7 + j * 3 + c) as f64 * 0.731).sin();
         let residual = |k: usize, j: usize| ((k * 5 + j) as f64 * 1.37).cos();
-        let mut scores = Scores::new(cols, lag);
+        let gram: DMatrix<f64> =
+            DMatrix::from_fn(cols, cols, |a, b| if a == b { 2.0 + a as f64 } else { 0.3 });
+        let inverse = gram.try_inverse().unwrap();
+        let mut scores = Scores::new(InverseGram::unscaled(inverse.clone()), lag);
         let mut g: DMatrix<f64> = DMatrix::zeros(cols, samples.len());
         for (t, &(segment, k)) in samples.iter().enumerate() {
             for j in [1, 0] {
@@ -266,13 +287,10 @@ mod tests {
                 1.0 - l as f64 / (lag + 1) as f64
             }
         });
-        let gram: DMatrix<f64> =
-            DMatrix::from_fn(cols, cols, |a, b| if a == b { 2.0 + a as f64 } else { 0.3 });
-        let inverse = gram.try_inverse().unwrap();
         let rows = 2 * samples.len();
         let s: DMatrix<f64> = &g * kernel * g.transpose();
         let dense: DMatrix<f64> = (&inverse * s * &inverse) * (rows as f64 / (rows - cols) as f64);
-        let robust = scores.finish(&inverse, rows);
+        let robust = scores.finish(rows);
         assert_eq!((robust.lag, robust.samples), (lag, samples.len()));
         for i in 0..cols {
             let expected = dense[(i, i)].sqrt();
@@ -288,14 +306,14 @@ mod tests {
     /// segment) pair nothing across the restart, nor panic: the same as two segments.
     #[test]
     fn a_restart_of_the_samples_pairs_nothing_across_it() {
-        let inverse = DMatrix::from_element(1, 1, 0.1);
+        let inverse = InverseGram::unscaled(DMatrix::from_element(1, 1, 0.1));
         let score = |k: usize| [((k * 3) as f64 * 0.7).sin() + 0.2];
         let run = |second: usize| {
-            let mut scores = Scores::new(1, 3);
+            let mut scores = Scores::new(inverse.clone(), 3);
             for (segment, k) in (0..6).map(|k| (0, k)).chain((0..6).map(|k| (second, k))) {
                 scores.add(segment, k, &score(k), 1.0);
             }
-            scores.finish(&inverse, 12).std[0]
+            scores.finish(12).std[0]
         };
         assert_eq!(run(0), run(1));
     }
@@ -305,12 +323,11 @@ mod tests {
     #[test]
     fn lag_zero_is_whites_covariance() {
         let e = [1.0, -2.0, 0.5, 3.0];
-        let mut scores = Scores::new(1, 0);
+        let mut scores = Scores::new(InverseGram::unscaled(DMatrix::from_element(1, 1, 0.25)), 0);
         for (k, e) in e.iter().enumerate() {
             scores.add(0, k, &[1.0], *e);
         }
-        let inverse = DMatrix::from_element(1, 1, 0.25);
-        let robust = scores.finish(&inverse, 4);
+        let robust = scores.finish(4);
         let expected = (14.25f64 / 16.0 * 4.0 / 3.0).sqrt();
         assert!((robust.std[0] - expected).abs() < 1e-15, "{robust:?}");
     }

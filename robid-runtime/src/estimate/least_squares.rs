@@ -15,11 +15,11 @@
 //! M. Gautier, W. Khalil, "Exciting trajectories for the identification of base
 //! inertial parameters of robots", IJRR 1992.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 
 use crate::error::{Error, Result};
 use crate::estimate::hac::{Scores, robust_lag};
-use crate::estimate::lstsq::{Solution, solve};
+use crate::estimate::lstsq::{InverseGram, Solution, solve};
 use crate::estimate::quality::relative_column_norms;
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation, QualityWarning, RobustStd};
@@ -45,21 +45,21 @@ pub fn ols(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     check_tolerance(tolerance)?;
     let s = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
     let condition = s.condition();
-    let robust = robust_std(obs, &s.beta, &s.inverse_gram);
-    let mut e = assemble(Estimator::Ols, obs, obs, s.beta, &s.inverse_gram, condition)?;
+    let robust = robust_std(obs, &s.beta, &s.inverse);
+    let mut e = assemble(Estimator::Ols, obs, obs, s.beta, &s.inverse, condition)?;
     e.set_robust(robust.finite(), &relative_column_norms(&obs.w, &obs.y));
     Ok(e)
 }
 
 /// The Newey-West standard deviations ([`RobustStd`]) of the solution `beta` of `solved`
-/// (the weighted system for WLS) whose `(W'W)^-1` is `inverse_gram`: each sample's score
+/// (the weighted system for WLS) whose `(W'W)^-1` is `inverse`: each sample's score
 /// `W_t' e_t` over its joints' equations, the lags within a segment
 /// ([`Observation::breaks`]), the lag [`robust_lag`] of the samples and
 /// [`Observation::correlated`]. [`RobustStd::finite`] says whether to keep it.
 pub(crate) fn robust_std(
     solved: &Observation,
     beta: &DVector<f64>,
-    inverse_gram: &DMatrix<f64>,
+    inverse: &InverseGram,
 ) -> RobustStd {
     let residual = &solved.y - &solved.w * beta;
     let mut order: Vec<(usize, usize, usize)> = (0..solved.rows())
@@ -72,7 +72,7 @@ pub(crate) fn robust_std(
     let mut samples = order.iter().map(|&(s, k, _)| (s, k)).collect::<Vec<_>>();
     samples.dedup();
     let lag = robust_lag(samples.len(), solved.correlated);
-    let mut scores = Scores::new(solved.cols(), lag);
+    let mut scores = Scores::new(inverse.clone(), lag);
     let mut row = vec![0.0; solved.cols()];
     for (segment, k, r) in order {
         row.iter_mut()
@@ -80,7 +80,7 @@ pub(crate) fn robust_std(
             .for_each(|(a, b)| *a = *b);
         scores.add(segment, k, &row, residual[r]);
     }
-    scores.finish(inverse_gram, solved.rows())
+    scores.finish(solved.rows())
 }
 
 /// Weighted least squares with per-joint weights from the OLS residuals.
@@ -109,13 +109,13 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     weighted.y.component_mul_assign(&row_weight);
     let s = solve(&weighted.w, &weighted.y, &weighted.names, tolerance)?;
     let condition = s.condition();
-    let robust = robust_std(&weighted, &s.beta, &s.inverse_gram);
+    let robust = robust_std(&weighted, &s.beta, &s.inverse);
     let mut e = assemble(
         Estimator::Wls,
         &weighted,
         obs,
         s.beta,
-        &s.inverse_gram,
+        &s.inverse,
         condition,
     )?;
     e.weights = Some(weights);
@@ -624,29 +624,47 @@ mod tests {
         }
     }
 
-    /// Columns of 1e100 with residuals of 1e100: the classical deviations are finite
-    /// (sigma^2 1e200 times (W'W)^-1 1e-200), the scores' squares (1e400) overflow, and
-    /// the OLS estimate has no robust deviations rather than infinite ones (nor 0, which
-    /// `f64::max` made of their NaN).
+    /// The deviations of a column near 1e200 (a parameter of about 1e-200 units) or of a
+    /// problem in 1e100 units are those of the same problem in units, scaled: the
+    /// classical ones came out 0 (sigma^2 (W'W)^-1_jj underflowed: 0 % of the value) and
+    /// the robust ones none (their scores squared to infinity), where each is now taken
+    /// with the column scales apart. OLS and WLS, to 1e-10.
     #[test]
-    fn overflowing_scores_give_no_robust_deviations() {
-        let n = 50;
-        let w = DMatrix::from_fn(n, 1, |k, _| 1e100 * (1.0 + 0.1 * (k as f64).sin()));
-        let y = DVector::from_fn(n, |k, _| 1e100 * (0.5 + (k as f64 * 1.7).cos()));
-        let obs = Observation::single(w, y, vec!["a".into()]).unwrap();
-        let e = ols(&obs, 1e-10).unwrap();
-        assert!(e.std[0].is_finite() && e.std[0] > 0.0, "{:?}", e.std);
-        assert!(e.robust.is_none(), "{:?}", e.robust);
-        // WLS divides the rows by their sigma (1e100): its scores are in units
-        let e = wls(&obs, 1e-10).unwrap();
-        let robust = e.robust.unwrap();
-        assert!(
-            robust.std[0].is_finite() && robust.std[0] > 0.0,
-            "{robust:?}"
-        );
-        // the same problem scaled to units: robust deviations
-        let small = Observation::single(&obs.w / 1e100, &obs.y / 1e100, vec!["a".into()]).unwrap();
-        assert!(ols(&small, 1e-10).unwrap().robust.is_some());
+    fn huge_columns_keep_their_deviations() {
+        let n = 200;
+        let w = DMatrix::from_fn(n, 2, |k, c| match c {
+            0 => 1.0 + 0.1 * (k as f64).sin(),
+            _ => (k as f64 * 0.37).cos(),
+        });
+        let y = DVector::from_fn(n, |k, _| {
+            0.5 + (k as f64 * 1.7).cos() + 0.3 * (k as f64 * 0.9).sin()
+        });
+        let names = vec!["a".to_string(), "b".to_string()];
+        let units = Observation::single(w.clone(), y.clone(), names.clone()).unwrap();
+        // column b in 1e200 times its units (its parameter 1e-200 times); the whole problem
+        // in 1e100 times them
+        let mut huge_b = w.clone();
+        huge_b.column_mut(1).scale_mut(1e200);
+        let huge_b = Observation::single(huge_b, y.clone(), names.clone()).unwrap();
+        let all = Observation::single(&w * 1e100, &y * 1e100, names).unwrap();
+        for fit in [ols, wls] {
+            let e = fit(&units, 1e-10).unwrap();
+            let robust = e.robust.clone().unwrap().std;
+            for (other, scale) in [(&huge_b, [1.0, 1e-200]), (&all, [1.0, 1.0])] {
+                let h = fit(other, 1e-10).unwrap();
+                let h_robust = h.robust.clone().expect("robust deviations").std;
+                for j in 0..2 {
+                    for (got, want) in [(h.std[j], e.std[j]), (h_robust[j], robust[j])] {
+                        assert!(
+                            (got / scale[j] / want - 1.0).abs() < 1e-10,
+                            "{j}: {got:e} against {want:e} x {:e}",
+                            scale[j]
+                        );
+                    }
+                    assert!((h.rel_std_percent[j] / e.rel_std_percent[j] - 1.0).abs() < 1e-10);
+                }
+            }
+        }
     }
 
     #[test]

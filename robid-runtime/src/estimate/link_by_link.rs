@@ -21,7 +21,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::EstimateError;
 use crate::error::{Error, Result};
 use crate::estimate::least_squares::check_tolerance;
-use crate::estimate::lstsq::condition_number;
+use crate::estimate::lstsq::{InverseGram, condition_number};
 use crate::estimate::result::assemble;
 use crate::estimate::rls::recursion;
 use crate::estimate::{Estimate, Estimator, Observation};
@@ -146,7 +146,14 @@ pub fn link_by_link(obs: &Observation, lambda: f64, tolerance: f64) -> Result<Es
         known.extend(unknown);
     }
     let cond = condition_number(&obs.w, &obs.names)?;
-    assemble(Estimator::LinkByLink, obs, obs, beta, &p, cond)
+    assemble(
+        Estimator::LinkByLink,
+        obs,
+        obs,
+        beta,
+        &InverseGram::unscaled(p),
+        cond,
+    )
 }
 
 #[cfg(test)]

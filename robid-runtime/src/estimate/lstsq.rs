@@ -95,12 +95,44 @@ pub(crate) fn norm(x: impl Iterator<Item = f64> + Clone) -> f64 {
     big * x.map(|v| (v / big) * (v / big)).sum::<f64>().sqrt()
 }
 
+/// `(W'W)^-1` kept as `D^-1 A D^-1`: `A` that of W with its columns scaled to unit norm,
+/// `D` the column scales. Unscaled, the entries of a column near 1e200 underflow to 0
+/// (its standard deviation came out 0, 0 % of its value); the statistics take `A` and `D`
+/// apart ([`root_diagonal`](Self::root_diagonal), the robust deviations' scores).
+#[derive(Debug, Clone)]
+pub(crate) struct InverseGram {
+    /// `A = (W_s'W_s)^-1` with `W_s = W D^-1`.
+    pub(crate) scaled: DMatrix<f64>,
+    /// `D` (1 for an unscaled matrix).
+    pub(crate) scales: Vec<f64>,
+}
+
+impl InverseGram {
+    /// An inverse Gram matrix given unscaled (`D = I`; RLS's and link-by-link's `P`).
+    pub(crate) fn unscaled(p: DMatrix<f64>) -> Self {
+        let scales = vec![1.0; p.nrows()];
+        Self { scaled: p, scales }
+    }
+
+    /// `sqrt((W'W)^-1_jj) = sqrt(A_jj) / d_j` of each parameter (a rounding below 0 is 0).
+    pub(crate) fn root_diagonal(&self) -> Vec<f64> {
+        self.scales
+            .iter()
+            .enumerate()
+            .map(|(j, d)| self.scaled[(j, j)].max(0.0).sqrt() / d)
+            .collect()
+    }
+}
+
 /// A full-rank least-squares solution with what the statistics need.
 #[derive(Debug, Clone)]
 pub(crate) struct Solution {
     pub(crate) beta: DVector<f64>,
-    /// (W'W)^-1.
+    /// (W'W)^-1 (its entries of a column near 1e200 underflow: the statistics take
+    /// [`inverse`](Self::inverse)).
     pub(crate) inverse_gram: DMatrix<f64>,
+    /// (W'W)^-1 with the column scales apart.
+    pub(crate) inverse: InverseGram,
     pub(crate) condition_number: f64,
     /// The condition number of W with its columns scaled to unit norm
     /// ([`scaled_condition`]): the figure that does not depend on the parameters' units.
@@ -280,6 +312,10 @@ pub(crate) fn solve_factor(
     Ok(Solution {
         beta,
         inverse_gram,
+        inverse: InverseGram {
+            scaled: scaled_root.transpose() * &scaled_root,
+            scales: d.to_vec(),
+        },
         condition_number,
         scaled_condition_number: scaled_condition(s)?,
         scales: d.to_vec(),

@@ -1,10 +1,10 @@
 //! The result every estimator returns.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::estimate::lstsq::Condition;
+use crate::estimate::lstsq::{Condition, InverseGram};
 use crate::estimate::quality::{
     QualityWarning, assess, effects, reassess_uncertain, relative_column_norms,
 };
@@ -145,7 +145,7 @@ pub(crate) fn assemble(
     solved: &Observation,
     original: &Observation,
     beta: DVector<f64>,
-    inverse_gram: &DMatrix<f64>,
+    inverse: &InverseGram,
     condition: Condition,
 ) -> Result<Estimate> {
     let m = solved.rows();
@@ -157,7 +157,7 @@ pub(crate) fn assemble(
         method,
         original.names.clone(),
         beta,
-        inverse_gram,
+        inverse,
         condition,
         Residual {
             squared_norm: r.norm_squared(),
@@ -190,7 +190,7 @@ pub(crate) fn assemble_parts(
     method: Estimator,
     names: Vec<String>,
     beta: DVector<f64>,
-    inverse_gram: &DMatrix<f64>,
+    inverse: &InverseGram,
     condition: Condition,
     residual: Residual,
 ) -> Result<Estimate> {
@@ -211,8 +211,12 @@ pub(crate) fn assemble_parts(
         });
     }
     let sigma2 = residual.squared_norm / (m - n) as f64;
-    let std: Vec<f64> = (0..n)
-        .map(|i| (sigma2 * inverse_gram[(i, i)].max(0.0)).sqrt())
+    // sqrt(sigma^2) sqrt((W'W)^-1_ii), the second from the scaled factors: the product
+    // sigma^2 (W'W)^-1_ii underflowed to 0 for a column near 1e200
+    let std: Vec<f64> = inverse
+        .root_diagonal()
+        .iter()
+        .map(|r| sigma2.sqrt() * r)
         .collect();
     let rel = relative_deviations(&std, beta.as_slice());
     let residual_rms = residual.per_joint_rms;
@@ -306,7 +310,7 @@ mod tests {
     use nalgebra::{DMatrix, DVector};
 
     use super::{Estimator, assemble};
-    use crate::estimate::lstsq::Condition;
+    use crate::estimate::lstsq::{Condition, InverseGram};
 
     const ONE: Condition = Condition {
         raw: 1.0,
@@ -333,7 +337,7 @@ mod tests {
         let solved = observation(&[1.0, 2.0, 3.0]);
         let original = observation(&[1e200, -1e200, 3e200]);
         let beta = DVector::from_vec(vec![2.0]);
-        let gram = DMatrix::from_element(1, 1, 1.0 / 3.0);
+        let gram = InverseGram::unscaled(DMatrix::from_element(1, 1, 1.0 / 3.0));
         let fine = assemble(Estimator::Wls, &solved, &solved, beta.clone(), &gram, ONE);
         assert!(fine.is_ok());
         let e = assemble(Estimator::Wls, &solved, &original, beta, &gram, ONE).unwrap_err();
@@ -347,7 +351,7 @@ mod tests {
     #[test]
     fn no_more_equations_than_parameters_leave_no_statistics() {
         let one = observation(&[2.0]);
-        let gram = DMatrix::from_element(1, 1, 1.0);
+        let gram = InverseGram::unscaled(DMatrix::from_element(1, 1, 1.0));
         let beta = DVector::from_vec(vec![2.0]);
         let e = assemble(Estimator::Ols, &one, &one, beta, &gram, ONE).unwrap_err();
         assert!(

@@ -14,7 +14,7 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::error::{Error, Result};
 use crate::estimate::least_squares::check_tolerance;
-use crate::estimate::lstsq::{column_scales, condition_number, solve};
+use crate::estimate::lstsq::{InverseGram, column_scales, condition_number, solve};
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation};
 
@@ -106,7 +106,14 @@ impl Rls {
 pub fn rls(obs: &Observation, lambda: f64, tolerance: f64) -> Result<Estimate> {
     let (beta, p) = recursion(obs, lambda, tolerance)?;
     let cond = condition_number(&obs.w, &obs.names)?;
-    assemble(Estimator::Rls, obs, obs, beta, &p, cond)
+    assemble(
+        Estimator::Rls,
+        obs,
+        obs,
+        beta,
+        &InverseGram::unscaled(p),
+        cond,
+    )
 }
 
 /// The recursion of [`rls`] without the statistics: the final estimate and `P`, checked

@@ -28,7 +28,7 @@ use crate::error::{Error, Result};
 use crate::estimate::least_squares::{
     check_tolerance, checked_weights, joint_sigma, weights_without_noise,
 };
-use crate::estimate::lstsq::{Solution, norm, solve_factor};
+use crate::estimate::lstsq::{InverseGram, Solution, norm, solve_factor};
 use crate::estimate::quality::{OUTLIER_ROWS, OUTLIER_SHARE};
 use crate::estimate::result::{Residual, assemble_parts};
 use crate::estimate::{Estimate, Estimator};
@@ -273,7 +273,7 @@ pub struct StreamingLeastSquares {
 #[derive(Debug, Clone)]
 pub(crate) struct Solved {
     /// `(W'W)^-1` of the solved (for WLS weighted) columns.
-    pub(crate) inverse_gram: DMatrix<f64>,
+    pub(crate) inverse: InverseGram,
     /// Each group's weight (1 for OLS).
     pub(crate) weights: Vec<f64>,
     /// `||W_i|| / ||y||` of each column of the solved system.
@@ -528,7 +528,7 @@ impl StreamingLeastSquares {
             .map(|j| (col_norm(j) / y_norm) * (divisor(common[j]) / sy))
             .collect();
         self.solved = Some(Solved {
-            inverse_gram: s.inverse_gram.clone(),
+            inverse: s.inverse.clone(),
             weights: weights.to_vec(),
             relative_column_norms: relative_column_norms.clone(),
         });
@@ -536,7 +536,7 @@ impl StreamingLeastSquares {
             method,
             self.names.clone(),
             s.beta.clone(),
-            &s.inverse_gram,
+            &s.inverse,
             s.condition(),
             Residual {
                 squared_norm: solved_norm * solved_norm,

@@ -427,7 +427,7 @@ fn robust_pass(
         ));
     };
     let values = &estimate.values;
-    let mut scores = Scores::new(values.len(), robust_lag(samples, correlated));
+    let mut scores = Scores::new(solved.inverse.clone(), robust_lag(samples, correlated));
     for (stream, segment) in passes {
         stream.run(|eq| {
             // the block's equations sample by sample (joints in order within a sample)
@@ -444,7 +444,7 @@ fn robust_pass(
             Ok(())
         })?;
     }
-    let robust = scores.finish(&solved.inverse_gram, estimate.rows);
+    let robust = scores.finish(estimate.rows);
     estimate.set_robust(robust.finite(), &solved.relative_column_norms);
     Ok(())
 }
