@@ -57,9 +57,10 @@ pub struct RobustStd {
 }
 
 impl RobustStd {
-    /// `Some(self)` when every deviation is finite (the scores' squares can overflow where
-    /// the classical deviations do not: columns of 1e100 with residuals of 1e100), else
-    /// `None`, so that no report writes an infinite or NaN deviation.
+    /// `Some(self)` when every deviation is finite (a window's scores, up to `L + 1`
+    /// residuals summed, can square past the largest float where the residual's norm does
+    /// not: residuals beyond about 1e150), else `None`, so that no report writes an
+    /// infinite or NaN deviation.
     pub(crate) fn finite(self) -> Option<Self> {
         self.std.iter().all(|v| v.is_finite()).then_some(self)
     }
