@@ -325,20 +325,21 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         .collect();
     let values: Vec<f64> = identified.parameters.iter().map(|p| p.value).collect();
     let std: Vec<f64> = identified.parameters.iter().map(|p| p.std).collect();
-    let problem = problem
-        .with_identified(&names, &values, &std)
-        .map_err(|e| about_identified(&args.identified, e))?;
-    // the names agree (else the error names them, or the drive terms): now what they are
-    identified.check_expressions(&args.identified, &problem, robot, &args.robot)?;
-    // identified values no physical robot has (a sum of masses, inertias or frictions
-    // below zero beyond its uncertainty): what a result far from the data comes from
-    // each judged by the larger of its classical and robust deviations, as identify does
-    // (a parameter without a robust deviation by its classical one)
+    // each value weighed by the larger of its classical and robust deviations, as identify
+    // judges it (a parameter without a robust deviation by its classical one)
     let robust: Vec<f64> = identified
         .parameters
         .iter()
         .map(|p| p.robust_std.unwrap_or(p.std))
         .collect();
+    let judged: Vec<f64> = std.iter().zip(&robust).map(|(s, r)| s.max(*r)).collect();
+    let problem = problem
+        .with_identified(&names, &values, &judged)
+        .map_err(|e| about_identified(&args.identified, e))?;
+    // the names agree (else the error names them, or the drive terms): now what they are
+    identified.check_expressions(&args.identified, &problem, robot, &args.robot)?;
+    // identified values no physical robot has (a sum of masses, inertias or frictions
+    // below zero beyond its uncertainty): what a result far from the data comes from
     let unphysical = not_physical(&problem, &names, &values, &std, &robust);
     let weight = args.prior_weight.unwrap_or(Prior::DEFAULT_WEIGHT);
     let prior = match (&args.prior, &description.urdf) {

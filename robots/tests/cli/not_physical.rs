@@ -165,7 +165,7 @@ fn the_reference_robots_fits_warn_of_nothing_unphysical() {
 /// torques at 8 Hz of a 200 Hz log, and the robust deviations are 4 to 10 times the
 /// classical ones (0.145, 0.156, 0.0187, 0.299, 0.0641): judged by them, `ZZR1`, `ZZ7` and
 /// `Fv7` stay beyond 3 (7.0, 11.4 and 5.9) and are named, `ZZR3` and `Fv5` (2.6 and 2.2)
-/// are not. Feasible, 45 classical standard deviations from `ZZ7`, says that the identified
+/// are not. Feasible, 11 robust standard deviations from `ZZ7`, says that the identified
 /// values are not physical rather than blaming the bounds, the prior or the method (with
 /// the data alone too, `--prior-weight 0`).
 #[test]
@@ -212,7 +212,7 @@ fn the_lwr4_log_gives_moments_of_inertia_and_frictions_below_zero() {
         let e = stderr(&o);
         assert!(o.status.success(), "{e}");
         for part in [
-            "standard deviations from the identified `ZZ7` (max |z|; |z| <= 3 fits the data), \
+            "the result is 11 standard deviations from the identified `ZZ7` (max |z|; |z| <= 3 fits the data), \
              because the identified values themselves are not physical: `ZZR1` = -1.02 +- 0.145 \
              (7.0 robust standard deviations below 0, though YY1 + ZZ2 is >= 0 for every \
              physical robot)",
