@@ -150,6 +150,11 @@ fn check(args: &Args) -> Result<(), Error> {
         )
         .into());
     }
+    // a method this build lacks is said before any file is read: fixing the inputs first
+    // would be work for nothing
+    if args.method == "sdp" {
+        robid_sdp::solver()?;
+    }
     if args.method != "anneal" {
         let (owner, method) = ("--method anneal", format!("--method {}", args.method));
         only_for(args.restarts.is_some(), "--restarts", owner, &method)?;

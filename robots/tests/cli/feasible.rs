@@ -644,9 +644,19 @@ fn feasible_rejects_a_base_table_prior() {
     };
     let base = out(&dir, "base_prior.toml");
     std::fs::write(&base, "[base]\nZZR1 = 1.0\n").unwrap();
-    let o = run("sdp", base.to_str().unwrap());
-    assert!(!o.status.success());
-    assert!(stderr(&o).contains("[standard] table"), "{}", stderr(&o));
+    for method in ["interior-point", "anneal"] {
+        let o = run(method, base.to_str().unwrap());
+        assert!(!o.status.success());
+        assert!(stderr(&o).contains("[standard] table"), "{}", stderr(&o));
+    }
+    // sdp in a build without it says so first, whatever else is wrong
+    #[cfg(not(feature = "sdp"))]
+    {
+        let o = run("sdp", "no_such_prior.toml");
+        assert!(!o.status.success());
+        assert!(stderr(&o).contains("--features sdp"), "{}", stderr(&o));
+        assert!(!stderr(&o).contains("no_such_prior"), "{}", stderr(&o));
+    }
 }
 
 /// The LWR IV+ in the frames of Gaz et al. 2016 with their bounds (Tables I and III, eq. 18;
