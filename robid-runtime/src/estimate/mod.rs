@@ -32,7 +32,8 @@ pub use link_by_link::{link_by_link, link_by_link_steps};
 pub use observation::Observation;
 pub use per_axis::{AxisFit, PerAxis, per_axis};
 pub use physical::{
-    NOT_PHYSICAL_Z, Sign, SignDefinite, base_signs, extra_column_sign, not_physical, signs_of,
+    NOT_PHYSICAL_Z, Sign, SignDefinite, base_signs, extra_column_sign, not_physical,
+    opposite_signs, signs_of,
 };
 #[cfg(test)]
 pub(crate) use quality::assess;

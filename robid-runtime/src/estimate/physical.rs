@@ -524,6 +524,60 @@ pub fn not_physical(
     out
 }
 
+/// [`QualityWarning::OppositeSign`] for each joint every friction term of which (`Fv` and
+/// `Fc` of the joint among `names`, a drive term or an extra column) is among the
+/// [`NotPhysical`](QualityWarning::NotPhysical) warnings `unphysical`: friction below zero
+/// on every term of a joint is what a torque (or a position) of the opposite sign gives,
+/// where one negative term alone has other causes (the LWR4 log's `Fv7` below zero beside
+/// `Fc7` above it: a viscous friction the Coulomb term over-explains).
+///
+/// ```
+/// use robid_runtime::estimate::{QualityWarning, Sign, SignDefinite, not_physical, opposite_signs};
+/// let names: Vec<String> = ["Fv6", "Fc6", "Fv5", "Fc5"].map(String::from).to_vec();
+/// let friction = SignDefinite { sign: Sign::NonNegative, expression: String::new(), extra_column: false };
+/// let signs: Vec<_> = names.iter().map(|n| (n.clone(), friction.clone())).collect();
+/// let w = not_physical(&names, &[-0.6, -0.99, -0.4, 0.2], &[0.005, 0.01, 0.02, 0.01], None, &signs);
+/// assert_eq!(w.len(), 3);
+/// let flipped = opposite_signs(&w, &names);
+/// assert_eq!(flipped.len(), 1);
+/// assert_eq!(flipped[0].parameters(), ["Fv6", "Fc6"]);
+/// assert!(flipped[0].to_string().contains("torque_scale"));
+/// ```
+pub fn opposite_signs(unphysical: &[QualityWarning], names: &[String]) -> Vec<QualityWarning> {
+    let negative: Vec<String> = unphysical
+        .iter()
+        .filter(|w| matches!(w, QualityWarning::NotPhysical { .. }))
+        .flat_map(|w| w.parameters())
+        .collect();
+    let joint_of = |n: &str| {
+        ["Fv", "Fc"]
+            .iter()
+            .find_map(|p| n.strip_prefix(p))
+            .and_then(|j| j.parse::<usize>().ok())
+            .filter(|j| *j >= 1)
+    };
+    let mut joints: Vec<usize> = names.iter().filter_map(|n| joint_of(n)).collect();
+    joints.sort_unstable();
+    joints.dedup();
+    joints
+        .into_iter()
+        .filter_map(|joint| {
+            let friction: Vec<String> = names
+                .iter()
+                .filter(|n| joint_of(n) == Some(joint))
+                .cloned()
+                .collect();
+            friction
+                .iter()
+                .all(|n| negative.contains(n))
+                .then_some(QualityWarning::OppositeSign {
+                    joint,
+                    parameters: friction,
+                })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -150,6 +150,16 @@ pub enum QualityWarning {
         /// Whether it is an extra column of the config.
         extra_column: bool,
     },
+    /// Every friction term of a joint (`Fv`, `Fc` of the model or the config's extra
+    /// columns of those names) is [`NotPhysical`](QualityWarning::NotPhysical): what a
+    /// torque or a position read with the opposite sign of the description's convention
+    /// gives.
+    OppositeSign {
+        /// The joint, from 1.
+        joint: usize,
+        /// Its friction terms, each below zero.
+        parameters: Vec<String>,
+    },
 }
 
 /// How much worse than the torque model's the energy model's condition number may be
@@ -167,7 +177,7 @@ impl QualityWarning {
     /// `uncertain`, `outlier`, `validation_repeats_estimation`, `poor_fit`,
     /// `joint_without_equations`, `weight_without_noise`, `unfiltered_derivatives`,
     /// `known_without_effect`,
-    /// `not_physical`).
+    /// `not_physical`, `opposite_sign`).
     pub fn kind(&self) -> &'static str {
         match self {
             QualityWarning::IllConditioned { .. } => "ill_conditioned",
@@ -181,6 +191,7 @@ impl QualityWarning {
             QualityWarning::UnfilteredDerivatives { .. } => "unfiltered_derivatives",
             QualityWarning::KnownWithoutEffect { .. } => "known_without_effect",
             QualityWarning::NotPhysical { .. } => "not_physical",
+            QualityWarning::OppositeSign { .. } => "opposite_sign",
         }
     }
 
@@ -191,6 +202,7 @@ impl QualityWarning {
             QualityWarning::Outlier { parameter, .. } => vec![parameter.clone()],
             QualityWarning::KnownWithoutEffect { parameters } => parameters.clone(),
             QualityWarning::NotPhysical { parameter, .. } => vec![parameter.clone()],
+            QualityWarning::OppositeSign { parameters, .. } => parameters.clone(),
             _ => Vec::new(),
         }
     }
@@ -370,6 +382,16 @@ impl fmt::Display for QualityWarning {
                     }
                 )
             }
+            QualityWarning::OppositeSign { joint, parameters } => write!(
+                f,
+                "joint {joint}'s friction is negative ({}, each beyond {} standard deviations): \
+                 the sign a torque read against the description's convention gives (or a \
+                 position of the opposite sign); check joint {joint}'s torque and position \
+                 columns, and if its torque is reversed give it a negative factor in \
+                 `[units] torque_scale` (one per joint)",
+                parameters.join(", "),
+                crate::estimate::NOT_PHYSICAL_Z
+            ),
             QualityWarning::ValidationRepeatsEstimation { file } => write!(
                 f,
                 "validation on {file} uses rows that were used for estimation: it repeats the fit \

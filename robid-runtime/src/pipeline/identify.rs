@@ -463,7 +463,8 @@ pub fn identify(
 /// each base parameter or extra column whose sign every physical robot fixes, estimated on
 /// the other side of zero by more than [`NOT_PHYSICAL_Z`](crate::estimate::NOT_PHYSICAL_Z)
 /// of the larger of its classical and robust standard deviations
-/// ([`not_physical`](crate::estimate::not_physical)).
+/// ([`not_physical`](crate::estimate::not_physical)), then a joint's friction all below zero
+/// ([`opposite_signs`](crate::estimate::opposite_signs)).
 pub(crate) fn not_physical_warnings(
     model: &dyn Model,
     config: &Config,
@@ -473,13 +474,15 @@ pub(crate) fn not_physical_warnings(
         .extra_columns_for(model.dof())
         .map_err(|e| config.locate(e))?;
     let signs = crate::estimate::signs_of(model, &extra)?;
-    Ok(crate::estimate::not_physical(
+    let mut warnings = crate::estimate::not_physical(
         &estimate.names,
         &estimate.values,
         &estimate.std,
         estimate.robust.as_ref().map(|r| r.std.as_slice()),
         &signs,
-    ))
+    );
+    warnings.extend(crate::estimate::opposite_signs(&warnings, &estimate.names));
+    Ok(warnings)
 }
 
 /// [`identify`] through the whole observation matrix (every method; the reference of the

@@ -104,9 +104,23 @@ fn a_torque_of_the_opposite_sign_gives_rotor_inertia_and_friction_below_zero() {
         "standard deviations, but it is Fv6, which is >= 0 for every physical robot",
         "check the model (friction or drive terms it lacks",
         "the sign of each joint's position and torque",
+        // the joint whose friction is all below zero is named, with the fix
+        "warning: joint 6's friction is negative (Fv6, Fc6, each beyond 3 standard \
+         deviations)",
+        "give it a negative factor in `[units] torque_scale`",
     ] {
         assert!(e.contains(part), "{part}: {e}");
     }
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let flipped: Vec<_> = v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|w| w["kind"] == "opposite_sign")
+        .map(|w| w["parameters"].clone())
+        .collect();
+    assert_eq!(flipped, [serde_json::json!(["Fv6", "Fc6"])], "{e}");
 }
 
 /// The reference robots simulated from their parameter files with every drive term (the
@@ -197,6 +211,8 @@ fn the_lwr4_log_gives_moments_of_inertia_and_frictions_below_zero() {
     }
     // the regrouped sums that may be negative are not named (XXR7 = XX7 - YY7 is -0.175)
     assert!(!e.contains("`XXR7`") && !e.contains("`XXR3`"), "{e}");
+    // Fv7 below zero beside Fc7 above it: no joint's friction is all negative
+    assert!(!e.contains("friction is negative"), "{e}");
     for extra in [&[][..], &["--prior-weight", "0"][..]] {
         let out = dir.path().join("links.toml");
         let mut args = vec![
