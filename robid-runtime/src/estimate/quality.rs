@@ -384,11 +384,11 @@ impl fmt::Display for QualityWarning {
             }
             QualityWarning::OppositeSign { joint, parameters } => write!(
                 f,
-                "joint {joint}'s friction is negative ({}, each beyond {} standard deviations): \
-                 the sign a torque read against the description's convention gives (or a \
-                 position of the opposite sign); check joint {joint}'s torque and position \
-                 columns, and if its torque is reversed give it a negative factor in \
-                 `[units] torque_scale` (one per joint)",
+                "joint {joint}'s friction is negative ({}, each beyond {} standard deviations), \
+                 as when its torque (or its position) is read with the opposite sign of the \
+                 description's convention; check joint {joint}'s torque and position columns, \
+                 and if its torque is reversed give it a negative factor in `[units] \
+                 torque_scale` (one per joint)",
                 parameters.join(", "),
                 crate::estimate::NOT_PHYSICAL_Z
             ),

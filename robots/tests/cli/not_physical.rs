@@ -121,6 +121,32 @@ fn a_torque_of_the_opposite_sign_gives_rotor_inertia_and_friction_below_zero() {
         .map(|w| w["parameters"].clone())
         .collect();
     assert_eq!(flipped, [serde_json::json!(["Fv6", "Fc6"])], "{e}");
+    // the fix the warning gives: a negative factor for joint 6's torque
+    let fix = d.join("fix.toml");
+    std::fs::write(
+        &fix,
+        "dof = 6\ntime_column = \"t\"\n[[source]]\nposition = \"q{}\"\nvelocity = \"qd{}\"\n\
+         acceleration = \"qdd{}\"\ntorque = \"tau{}\"\n[units]\n\
+         torque_scale = [1, 1, 1, 1, 1, -1]\n",
+    )
+    .unwrap();
+    let o = robid(&[
+        "identify",
+        robot,
+        "--data",
+        &bad,
+        "--config",
+        fix.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(not_physical(&json).is_empty(), "{}", stderr(&o));
+    assert!(
+        !stderr(&o).contains("friction is negative"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// The reference robots simulated from their parameter files with every drive term (the
