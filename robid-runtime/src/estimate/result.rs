@@ -86,14 +86,17 @@ impl Estimate {
     /// correlation).
     ///
     /// ```
-    /// # use robid_runtime::estimate::{Estimate, RobustStd};
-    /// # fn judged(mut e: Estimate) {
-    /// e.std = vec![0.1, 0.2];
-    /// e.robust = Some(RobustStd { std: vec![0.3, 0.1], lag: 5, samples: 900 });
-    /// assert_eq!(e.judged_std(), [0.3, 0.2]);
-    /// e.robust = None;
-    /// assert_eq!(e.judged_std(), [0.1, 0.2]);
-    /// # }
+    /// use nalgebra::{DMatrix, DVector};
+    /// use robid_runtime::estimate::{Observation, ols};
+    /// # fn main() -> Result<(), robid_runtime::Error> {
+    /// let w = DMatrix::from_fn(300, 2, |k, c| if c == 0 { 1.0 } else { (k as f64 * 0.05).sin() });
+    /// let y = DVector::from_fn(300, |k, _| 2.0 + (k as f64 * 0.05).sin() + 0.1 * (k as f64 * 0.4).cos());
+    /// let e = ols(&Observation::single(w, y, vec!["a".into(), "b".into()])?, 1e-10)?;
+    /// let robust = e.robust.as_ref().expect("OLS gives them");
+    /// for (j, judged) in e.judged_std().iter().enumerate() {
+    ///     assert_eq!(*judged, e.std[j].max(robust.std[j]));
+    /// }
+    /// # Ok(()) }
     /// ```
     pub fn judged_std(&self) -> Vec<f64> {
         match &self.robust {
