@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use crate::LengthError;
 use crate::Model;
 use crate::error::{Error, Result};
-use crate::estimate::{Estimate, Observation, ols};
+use crate::estimate::{Estimate, Observation, ols_with};
 use crate::model::{DriveTerm, ParameterId, ParameterKind};
 use crate::pipeline::Prepared;
 use crate::signal::Signals;
@@ -188,11 +188,10 @@ pub fn model_energy_observation(
 
 /// The energy model solved by least squares.
 pub fn energy(obs: &Observation, tolerance: f64) -> Result<Estimate> {
-    let mut e = ols(obs, tolerance)?;
-    e.method = crate::estimate::Estimator::Energy;
     // the windows' integrals overlap no lag rule's samples: no robust deviations (as
     // documented)
-    e.robust = None;
+    let mut e = ols_with(obs, tolerance, false)?;
+    e.method = crate::estimate::Estimator::Energy;
     Ok(e)
 }
 

@@ -231,8 +231,7 @@ impl KnownParameters {
                 solved.w.rows_mut(rows.start, rows.len()).scale_mut(*wj);
             }
         }
-        let covariance =
-            solve(&solved.w, &solved.y, &solved.names, tolerance)?.inverse_gram * estimate.sigma2;
+        let solution = solve(&solved.w, &solved.y, &solved.names, tolerance)?;
         // L extended by the identity on the extra columns
         let mut l = DMatrix::zeros(nb + extra, r + extra);
         l.view_mut((0, 0), (nb, r)).copy_from(&self.map);
@@ -244,9 +243,14 @@ impl KnownParameters {
         for i in 0..nb {
             values[i] += self.offset[i];
         }
-        let spread = &l * covariance * l.transpose();
+        // sqrt(diag(L C L')) with C = sigma^2 (W'W)^-1, each from the scaled factors (the
+        // product of the matrices underflowed to 0 for a column near 1e200)
+        let sigma = estimate.sigma2.sqrt();
         let mut std: Vec<f64> = (0..nb + extra)
-            .map(|i| spread[(i, i)].max(0.0).sqrt())
+            .map(|i| {
+                let row: Vec<f64> = l.row(i).iter().copied().collect();
+                sigma * solution.root_quadratic(&row)
+            })
             .collect();
         for (k, &i) in self.kept.iter().enumerate() {
             std[i] = estimate.std[k];

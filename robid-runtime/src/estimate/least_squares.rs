@@ -40,14 +40,25 @@ pub(crate) fn check_tolerance(tolerance: f64) -> Result<()> {
     }
 }
 
-/// Ordinary least squares; `tolerance` is the relative singular-value threshold.
+/// Ordinary least squares; `tolerance` is the relative singular-value threshold. The
+/// estimate has robust deviations ([`Estimate::robust`]) beside the classical ones, and
+/// its warnings judge each parameter by the larger ([`Estimate::judged_std`]).
 pub fn ols(obs: &Observation, tolerance: f64) -> Result<Estimate> {
+    ols_with(obs, tolerance, true)
+}
+
+/// [`ols`], with the robust deviations only when `robust` (the energy model's windows and
+/// static poses are no time series, and `estimation.robust_std = false` leaves them out):
+/// an estimate without them is judged by its classical deviations alone.
+pub(crate) fn ols_with(obs: &Observation, tolerance: f64, robust: bool) -> Result<Estimate> {
     check_tolerance(tolerance)?;
     let s = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
     let condition = s.condition();
-    let robust = robust_std(obs, &s.beta, &s.inverse);
+    let deviations = robust.then(|| robust_std(obs, &s.beta, &s.inverse));
     let mut e = assemble(Estimator::Ols, obs, obs, s.beta, &s.inverse, condition)?;
-    e.set_robust(robust.finite(), &relative_column_norms(&obs.w, &obs.y));
+    if let Some(deviations) = deviations {
+        e.set_robust(deviations.finite(), &relative_column_norms(&obs.w, &obs.y));
+    }
     Ok(e)
 }
 
@@ -83,8 +94,14 @@ pub(crate) fn robust_std(
     scores.finish(solved.rows())
 }
 
-/// Weighted least squares with per-joint weights from the OLS residuals.
+/// Weighted least squares with per-joint weights from the OLS residuals; robust
+/// deviations and warnings as [`ols`]'s.
 pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
+    wls_with(obs, tolerance, true)
+}
+
+/// [`wls`], with the robust deviations only when `robust` (as [`ols_with`]).
+pub(crate) fn wls_with(obs: &Observation, tolerance: f64, robust: bool) -> Result<Estimate> {
     check_tolerance(tolerance)?;
     let first = solve(&obs.w, &obs.y, &obs.names, tolerance)?;
     let r = &obs.y - &obs.w * &first.beta;
@@ -109,7 +126,7 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
     weighted.y.component_mul_assign(&row_weight);
     let s = solve(&weighted.w, &weighted.y, &weighted.names, tolerance)?;
     let condition = s.condition();
-    let robust = robust_std(&weighted, &s.beta, &s.inverse);
+    let deviations = robust.then(|| robust_std(&weighted, &s.beta, &s.inverse));
     let mut e = assemble(
         Estimator::Wls,
         &weighted,
@@ -119,10 +136,12 @@ pub fn wls(obs: &Observation, tolerance: f64) -> Result<Estimate> {
         condition,
     )?;
     e.weights = Some(weights);
-    e.set_robust(
-        robust.finite(),
-        &relative_column_norms(&weighted.w, &weighted.y),
-    );
+    if let Some(deviations) = deviations {
+        e.set_robust(
+            deviations.finite(),
+            &relative_column_norms(&weighted.w, &weighted.y),
+        );
+    }
     e.warnings.extend(weights_without_noise(&leverages));
     Ok(e)
 }
@@ -621,6 +640,24 @@ mod tests {
             );
             assert!(said.ends_with(&format!("c ({rel:.0} %)")), "{said} {rel}");
             assert_eq!(e.judged_std()[1], e.robust.as_ref().unwrap().std[1]);
+        }
+        // without the robust deviations (the energy model, static poses, robust_std =
+        // false) the classical ones judge: nothing uncertain
+        let c = {
+            let pilot = ols(&record(0.5), 1e-10).unwrap();
+            let (std, robust) = (pilot.std[1], pilot.robust.as_ref().unwrap().std[1]);
+            (std * robust).sqrt() - (pilot.values[1] - 0.5)
+        };
+        for e in [
+            ols_with(&record(c), 1e-10, false).unwrap(),
+            wls_with(&record(c), 1e-10, false).unwrap(),
+        ] {
+            assert!(e.robust.is_none());
+            assert!(
+                e.warnings.iter().all(|w| w.kind() != "uncertain"),
+                "{:?}",
+                e.warnings
+            );
         }
     }
 

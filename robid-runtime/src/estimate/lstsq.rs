@@ -114,6 +114,15 @@ impl InverseGram {
         Self { scaled: p, scales }
     }
 
+    /// `(W'W)^-1` formed whole (tests compare it with a direct inverse).
+    #[cfg(test)]
+    pub(crate) fn whole(&self) -> DMatrix<f64> {
+        let n = self.scales.len();
+        DMatrix::from_fn(n, n, |i, j| {
+            self.scaled[(i, j)] / self.scales[i] / self.scales[j]
+        })
+    }
+
     /// `sqrt((W'W)^-1_jj) = sqrt(A_jj) / d_j` of each parameter (a rounding below 0 is 0).
     pub(crate) fn root_diagonal(&self) -> Vec<f64> {
         self.scales
@@ -128,10 +137,8 @@ impl InverseGram {
 #[derive(Debug, Clone)]
 pub(crate) struct Solution {
     pub(crate) beta: DVector<f64>,
-    /// (W'W)^-1 (its entries of a column near 1e200 underflow: the statistics take
-    /// [`inverse`](Self::inverse)).
-    pub(crate) inverse_gram: DMatrix<f64>,
-    /// (W'W)^-1 with the column scales apart.
+    /// (W'W)^-1 with the column scales apart (formed whole, its entries of a column near
+    /// 1e200 underflow to 0).
     pub(crate) inverse: InverseGram,
     pub(crate) condition_number: f64,
     /// The condition number of W with its columns scaled to unit norm
@@ -164,6 +171,15 @@ impl Solution {
             c.scale_mut(units[j] / self.scales[j]);
         }
         (scaled * self.scaled_root.transpose()).norm_squared()
+    }
+
+    /// `sqrt(x (W'W)^-1 x')` of a combination `x` of the parameters (what a deviation of 1
+    /// in the residual gives it), taken as `||S^-1 V' D^-1 x'||` with the overflow-safe
+    /// [`norm`]: through `(W'W)^-1`, or a sum of squares, a column near 1e200 gave 0.
+    pub(crate) fn root_quadratic(&self, x: &[f64]) -> f64 {
+        let scaled =
+            DVector::from_iterator(x.len(), x.iter().zip(&self.scales).map(|(v, d)| v / d));
+        norm((&self.scaled_root * scaled).iter().copied())
     }
 }
 
@@ -282,24 +298,18 @@ pub(crate) fn solve_factor(
     let v = vt.transpose();
     let gamma = &v * scaled;
     let beta = DVector::from_iterator(n, (0..n).map(|j| gamma[j] * y_scale / d[j]));
-    let mut vs = v.clone();
-    for k in 0..n {
-        vs.column_mut(k).scale_mut(1.0 / (s[k] * s[k]));
-    }
-    let mut inverse_gram = vs * vt;
     let mut scaled_root = vt.clone();
     for k in 0..n {
         scaled_root.row_mut(k).scale_mut(1.0 / s[k]);
     }
-    for i in 0..n {
-        for j in 0..n {
-            inverse_gram[(i, j)] = inverse_gram[(i, j)] / d[i] / d[j];
-        }
-    }
+    let inverse = InverseGram {
+        scaled: scaled_root.transpose() * &scaled_root,
+        scales: d.to_vec(),
+    };
     let condition_number = condition(&r, u, &svd_s.singular_values, vt, d)?;
     if beta
         .iter()
-        .chain(inverse_gram.diagonal().iter())
+        .chain(inverse.root_diagonal().iter())
         .any(|v| !v.is_finite())
     {
         return Err(Error::NonFiniteResult {
@@ -311,11 +321,7 @@ pub(crate) fn solve_factor(
     }
     Ok(Solution {
         beta,
-        inverse_gram,
-        inverse: InverseGram {
-            scaled: scaled_root.transpose() * &scaled_root,
-            scales: d.to_vec(),
-        },
+        inverse,
         condition_number,
         scaled_condition_number: scaled_condition(s)?,
         scales: d.to_vec(),
@@ -500,7 +506,7 @@ mod tests {
         let s = solve(&w, &y, &names(2), 1e-12).unwrap();
         assert!((s.beta[0] - 1.0).abs() < 1e-12 && (s.beta[1] - 2.0).abs() < 1e-12);
         let g = (w.transpose() * &w).try_inverse().unwrap();
-        assert!((g - &s.inverse_gram).norm() < 1e-12);
+        assert!((g - s.inverse.whole()).norm() < 1e-12);
         // W'W = [[4, 6], [6, 14]] has the eigenvalues 9 +- sqrt(61): cond(W) = 3.759
         let want = ((9.0 + 61f64.sqrt()) / (9.0 - 61f64.sqrt())).sqrt();
         assert!(
@@ -608,7 +614,7 @@ mod tests {
             s.beta
         );
         let g = (w.transpose() * &w).try_inverse().unwrap();
-        assert!((g - &s.inverse_gram).norm() < 1e-10);
+        assert!((g - s.inverse.whole()).norm() < 1e-10);
         let reference = w.singular_values();
         let want = reference.max() / reference.min();
         assert!((s.condition_number - want).abs() < 1e-9 * want);
@@ -653,9 +659,10 @@ mod tests {
         assert!((s.beta[1] / 3e-200 - 1.0).abs() < 1e-9, "{}", s.beta);
         // measured 1.0e199
         assert!(s.condition_number.is_finite() && s.condition_number > 5.1e198);
-        // unscaled statistics: (W'W)^-1 of the middle parameter is of order 1e-400 -> 0,
-        // never NaN
-        assert!(s.inverse_gram.iter().all(|v| v.is_finite()));
+        // the statistics: sqrt((W'W)^-1) of the middle parameter is of order 1e-200, never
+        // 0 nor NaN
+        let root = s.inverse.root_diagonal();
+        assert!(root.iter().all(|v| v.is_finite() && *v > 0.0), "{root:?}");
         // a non-finite entry names its row and column
         w[(5, 2)] = f64::INFINITY;
         match solve(&w, &y, &names(3), 1e-12) {
@@ -671,6 +678,38 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
+    }
+
+    /// `sqrt(x (W'W)^-1 x')` of a combination with a column near 1e200 (what the known
+    /// parameters' expansion takes for a folded parameter) is that of the problem in units,
+    /// scaled: formed through `(W'W)^-1` whole it was 0. Against a direct inverse on the
+    /// problem in units, to 1e-10.
+    #[test]
+    fn a_combination_of_a_huge_column_keeps_its_spread() {
+        let m = 50;
+        let w = DMatrix::from_fn(m, 2, |i, j| ((i * (j + 3)) as f64 * 0.37).sin() + j as f64);
+        let y = DVector::from_fn(m, |i, _| (i as f64 * 0.11).cos());
+        let units = solve(&w, &y, &names(2), 1e-12).unwrap();
+        let g = (w.transpose() * &w).try_inverse().unwrap();
+        let x = [0.5, 3.0];
+        let direct = (0.25 * g[(0, 0)] + 3.0 * g[(0, 1)] + 9.0 * g[(1, 1)]).sqrt();
+        assert!((units.root_quadratic(&x) / direct - 1.0).abs() < 1e-10);
+        let mut huge = w.clone();
+        huge.column_mut(1).scale_mut(1e200);
+        let s = solve(&huge, &y, &names(2), 1e-12).unwrap();
+        // the second parameter in units 1e200 times smaller: x's second entry 1e200 times
+        // larger reads the same combination
+        let got = s.root_quadratic(&[0.5, 3e200]);
+        assert!(
+            (got / direct - 1.0).abs() < 1e-10,
+            "{got:e} against {direct:e}"
+        );
+        let tiny = s.root_quadratic(&[0.0, 3.0]);
+        let want = 3.0 * g[(1, 1)].sqrt() / 1e200;
+        assert!(
+            (tiny / want - 1.0).abs() < 1e-10,
+            "{tiny:e} against {want:e}"
+        );
     }
 
     /// Columns of very different units are not rank deficient: the rank decision is made

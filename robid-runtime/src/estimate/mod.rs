@@ -28,6 +28,7 @@ pub(crate) use error::{not_excited, undetermined};
 pub use hac::{RobustStd, robust_lag};
 pub use known::KnownParameters;
 pub use least_squares::{SIGMA_FLOOR, check_names, ols, wls};
+pub(crate) use least_squares::{ols_with, wls_with};
 pub use link_by_link::{link_by_link, link_by_link_steps};
 pub use observation::Observation;
 pub use per_axis::{AxisFit, PerAxis, per_axis};

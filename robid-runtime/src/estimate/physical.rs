@@ -524,12 +524,13 @@ pub fn not_physical(
     out
 }
 
-/// [`QualityWarning::OppositeSign`] for each joint every friction term of which (`Fv` and
-/// `Fc` of the joint among `names`, a drive term or an extra column) is among the
-/// [`NotPhysical`](QualityWarning::NotPhysical) warnings `unphysical`: friction below zero
-/// on every term of a joint is what a torque (or a position) of the opposite sign gives,
-/// where one negative term alone has other causes (the LWR4 log's `Fv7` below zero beside
-/// `Fc7` above it: a viscous friction the Coulomb term over-explains).
+/// [`QualityWarning::OppositeSign`] for each of the `dof` joints whose viscous and Coulomb
+/// friction (`Fv` and `Fc` of the joint among `names`, drive terms or extra columns; both
+/// needed) are both among the [`NotPhysical`](QualityWarning::NotPhysical) warnings
+/// `unphysical`: friction below zero on every term of a joint is what a torque (or a
+/// position) of the opposite sign gives, where one negative term alone has other causes
+/// (the LWR4 log's `Fv7` below zero beside `Fc7` above it: a viscous friction the Coulomb
+/// term over-explains), and so does a joint with one friction term only.
 ///
 /// ```
 /// use robid_runtime::estimate::{QualityWarning, Sign, SignDefinite, not_physical, opposite_signs};
@@ -538,12 +539,19 @@ pub fn not_physical(
 /// let signs: Vec<_> = names.iter().map(|n| (n.clone(), friction.clone())).collect();
 /// let w = not_physical(&names, &[-0.6, -0.99, -0.4, 0.2], &[0.005, 0.01, 0.02, 0.01], None, &signs);
 /// assert_eq!(w.len(), 3);
-/// let flipped = opposite_signs(&w, &names);
+/// let flipped = opposite_signs(&w, &names, 6);
 /// assert_eq!(flipped.len(), 1);
 /// assert_eq!(flipped[0].parameters(), ["Fv6", "Fc6"]);
 /// assert!(flipped[0].to_string().contains("torque_scale"));
+/// // no joint 6 on a five-joint robot, and Fv6 alone says too little
+/// assert!(opposite_signs(&w, &names, 5).is_empty());
+/// assert!(opposite_signs(&w[..1], &names[..1], 6).is_empty());
 /// ```
-pub fn opposite_signs(unphysical: &[QualityWarning], names: &[String]) -> Vec<QualityWarning> {
+pub fn opposite_signs(
+    unphysical: &[QualityWarning],
+    names: &[String],
+    dof: usize,
+) -> Vec<QualityWarning> {
     let negative: Vec<String> = unphysical
         .iter()
         .filter(|w| matches!(w, QualityWarning::NotPhysical { .. }))
@@ -554,7 +562,7 @@ pub fn opposite_signs(unphysical: &[QualityWarning], names: &[String]) -> Vec<Qu
             .iter()
             .find_map(|p| n.strip_prefix(p))
             .and_then(|j| j.parse::<usize>().ok())
-            .filter(|j| *j >= 1)
+            .filter(|j| (1..=dof).contains(j))
     };
     let mut joints: Vec<usize> = names.iter().filter_map(|n| joint_of(n)).collect();
     joints.sort_unstable();
@@ -567,13 +575,12 @@ pub fn opposite_signs(unphysical: &[QualityWarning], names: &[String]) -> Vec<Qu
                 .filter(|n| joint_of(n) == Some(joint))
                 .cloned()
                 .collect();
-            friction
-                .iter()
-                .all(|n| negative.contains(n))
-                .then_some(QualityWarning::OppositeSign {
+            (friction.len() >= 2 && friction.iter().all(|n| negative.contains(n))).then_some(
+                QualityWarning::OppositeSign {
                     joint,
                     parameters: friction,
-                })
+                },
+            )
         })
         .collect()
 }

@@ -64,9 +64,12 @@ impl Payload {
         std::array::from_fn(|k| self.estimate.values[k])
     }
 
-    /// The ten standard deviations in the standard order.
+    /// The ten standard deviations in the standard order: each the larger of the classical
+    /// and the robust one ([`Estimate::judged_std`]), what the warnings and the
+    /// [`Consistency`] judge by.
     pub fn std(&self) -> [f64; 10] {
-        std::array::from_fn(|k| self.estimate.std[k])
+        let judged = self.estimate.judged_std();
+        std::array::from_fn(|k| judged[k])
     }
 }
 
@@ -131,9 +134,10 @@ fn estimate(
             cause: "the data are too large for f64 arithmetic; check their units".into(),
         });
     }
+    let judged = estimate.judged_std();
     let consistency = Consistency::of_estimate(
         &std::array::from_fn(|k| estimate.values[k]),
-        &std::array::from_fn(|k| estimate.std[k]),
+        &std::array::from_fn(|k| judged[k]),
     );
     Ok(Payload {
         estimate,

@@ -18,8 +18,8 @@ use crate::data::{
 use crate::error::{Error, Result, num};
 use crate::estimate::{
     CONDITION_WARNING, ENERGY_CONDITION_RATIO, Estimate, KnownParameters, Observation,
-    QualityWarning, dominated_columns, energy, link_by_link, model_energy_observation, ols,
-    per_axis, rls, wls,
+    QualityWarning, dominated_columns, energy, link_by_link, model_energy_observation, ols_with,
+    per_axis, rls, wls_with,
 };
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::prepare::{Plan, PreparedRows, Rows, prepare_rows};
@@ -297,8 +297,8 @@ pub(crate) fn unfiltered_torque(
 pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
     let e = &config.estimation;
     let result = match e.method {
-        Method::Ols => ols(obs, e.rank_tolerance),
-        Method::Wls => wls(obs, e.rank_tolerance),
+        Method::Ols => ols_with(obs, e.rank_tolerance, e.robust_std),
+        Method::Wls => wls_with(obs, e.rank_tolerance, e.robust_std),
         Method::Rls => rls(obs, e.forgetting, e.rank_tolerance),
         Method::PerAxis => per_axis(obs, e.rank_tolerance)
             .map(|p| p.estimate)
@@ -311,14 +311,7 @@ pub fn estimate(obs: &Observation, config: &Config) -> Result<Estimate> {
             "the energy model is built from the signals, not from a torque observation: use pipeline::identify",
         )),
     };
-    result
-        .map(|mut estimate| {
-            if !e.robust_std {
-                estimate.robust = None;
-            }
-            estimate
-        })
-        .map_err(|e| config.locate(e))
+    result.map_err(|e| config.locate(e))
 }
 
 /// [`EstimateError::AxisLacksEquations`] of per-axis or link-by-link identification said as
@@ -481,7 +474,11 @@ pub(crate) fn not_physical_warnings(
         estimate.robust.as_ref().map(|r| r.std.as_slice()),
         &signs,
     );
-    warnings.extend(crate::estimate::opposite_signs(&warnings, &estimate.names));
+    warnings.extend(crate::estimate::opposite_signs(
+        &warnings,
+        &estimate.names,
+        model.dof(),
+    ));
     Ok(warnings)
 }
 

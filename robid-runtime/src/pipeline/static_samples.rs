@@ -13,7 +13,7 @@ use std::path::Path;
 use nalgebra::{DMatrix, DVector};
 
 use crate::data::{read_columns, read_header};
-use crate::estimate::{Estimate, Observation, equations_needed, ols};
+use crate::estimate::{Estimate, Observation, equations_needed, ols_with};
 use crate::feasible::GravityCoefficients;
 use crate::limits::Quantity;
 use crate::{Count, Error, Model, Result};
@@ -225,9 +225,11 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
         }
     }
     let warnings = dead_columns(&w, &y, &values, path, kind);
-    let estimate = ols(
+    // poses, not a time series: no lag to take the robust deviations over
+    let estimate = ols_with(
         &Observation::single(w, y, determined.names.clone())?,
         tolerance,
+        false,
     )
     .map_err(|e| match e {
         // the poses, not a trajectory: said by the file, with its fix (it was the
@@ -260,9 +262,7 @@ pub fn identify_static(model: &dyn Model, path: &Path, tolerance: f64) -> Result
             ),
         ),
         e => e,
-    })
-    // poses, not a time series: no lag to take the robust deviations over
-    .map(|e| Estimate { robust: None, ..e })?;
+    })?;
     let undetermined = (0..nb)
         .filter(|b| !determined.kept.contains(b))
         .filter_map(|b| model.base_parameter_name(b).map(str::to_owned))

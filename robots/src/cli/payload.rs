@@ -251,8 +251,10 @@ fn summary(p: &Payload) -> String {
         e.rows,
         e.condition_number
     );
+    // the deviations the verdict judges by: the larger of the classical and the robust
+    let std = p.std();
     for (k, name) in e.names.iter().enumerate() {
-        let _ = writeln!(s, "  {name:<3} {:>14.6e} +- {:.2e}", e.values[k], e.std[k]);
+        let _ = writeln!(s, "  {name:<3} {:>14.6e} +- {:.2e}", e.values[k], std[k]);
     }
     let c = &p.consistency;
     // the digits of the table's M: six decimals wrote -0.000000 for a mass of -8.1e-11
@@ -324,8 +326,9 @@ fn toml(p: &Payload) -> String {
         let _ = writeln!(s, "{stem} = {:?}", e.values[k]);
     }
     s.push_str("\n[payload.std]\n");
+    let std = p.std();
     for (k, stem) in Inertial::ALL.iter().map(|i| i.stem()).enumerate() {
-        let _ = writeln!(s, "{stem} = {:?}", e.std[k]);
+        let _ = writeln!(s, "{stem} = {:?}", std[k]);
     }
     let c = &p.consistency;
     s.push_str("\n[payload.physical]\n");

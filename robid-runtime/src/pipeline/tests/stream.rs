@@ -607,6 +607,21 @@ fn both_paths_judge_uncertainty_by_the_larger_deviation() {
             let more = judged_by_the_larger(&s);
             assert_eq!(more, judged_by_the_larger(&d));
             assert!(more > 0, "noise {noise}, {method:?}, stacked");
+            // without the robust deviations both paths judge by the classical ones alone
+            c.estimation.robust_std = false;
+            for e in [
+                identify(&model, &data, &c).unwrap().estimate,
+                identify_dense_of(&model, &data, &c).unwrap().estimate,
+                crate::pipeline::stream::stacked_streaming(&model, &runs, &c)
+                    .unwrap()
+                    .0,
+                crate::pipeline::runs::stacked_dense(&model, &runs, &c)
+                    .unwrap()
+                    .0,
+            ] {
+                assert!(e.robust.is_none());
+                assert_eq!(judged_by_the_larger(&e), 0);
+            }
         }
     }
 }
