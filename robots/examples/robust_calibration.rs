@@ -26,6 +26,9 @@
 //!
 //! A ratio of 1 is a calibrated deviation; above 1 the deviation is too small. With `N`
 //! records the spread itself is uncertain by about `1 / sqrt(2 (N - 1))` (11 % for 40).
+//! The candidate rules were measured with it and not adopted; the tables and the reasons
+//! are in docs/identification.md#robust-standard-deviations (`N` = 40: 250 s on one
+//! thread, the trajectory's design, some 8 s, included).
 //! Nothing is asserted. `THREADS` (default 1) simulates and identifies that many records at
 //! once; `POSITION_NOISE` (rad, default 0) adds `--position-noise` to the simulation, noise
 //! that the differentiation carries into the regressor.

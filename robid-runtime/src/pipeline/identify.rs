@@ -66,7 +66,10 @@ pub fn observation(
 /// low-pass's `sample rate / (decimation x cutoff)` (its `cutoff = "auto"` as `auto`
 /// chose it), the time a Butterworth filter of that cutoff takes to forget, 0 without a
 /// low-pass (the decimation filter's own correlation, a sample or two, Newey and West's
-/// rule covers: [`robust_lag`](crate::estimate::robust_lag)).
+/// rule covers: [`robust_lag`](crate::estimate::robust_lag)). Two cutoff periods, and a
+/// Savitzky-Golay window counted besides, moved the robust deviations no closer to the
+/// spread over records (`robots/examples/robust_calibration.rs`,
+/// docs/identification.md#robust-standard-deviations).
 pub(crate) fn correlated_samples(
     config: &Config,
     auto: Option<&CutoffSuggestion>,
