@@ -551,17 +551,8 @@ pub(crate) fn identify_dense(
         }
         e => e,
     })?;
-    if let Some(k) = &known
-        && !k.without_effect().is_empty()
-    {
-        let names = crate::model::standard_parameter_names(model);
-        estimate.warnings.push(QualityWarning::KnownWithoutEffect {
-            parameters: k
-                .without_effect()
-                .iter()
-                .filter_map(|&i| names.get(i).cloned())
-                .collect(),
-        });
+    if let Some(k) = &known {
+        estimate.warnings.extend(known_without_effect(model, k));
     }
     if config.estimation.method == Method::Energy {
         let reduced = match &known {
@@ -646,6 +637,44 @@ pub(crate) fn piece_breaks(samples: usize, inside: impl Fn(usize) -> bool) -> Ve
     (0..samples)
         .filter(|&k| inside(k) && (k == 0 || !inside(k - 1)))
         .collect()
+}
+
+/// [`QualityWarning::KnownWithoutEffect`] of the known parameters `k` of `model` that fix
+/// nothing, if any.
+fn known_without_effect(model: &dyn Model, k: &KnownParameters) -> Option<QualityWarning> {
+    let names = crate::model::standard_parameter_names(model);
+    (!k.without_effect().is_empty()).then(|| QualityWarning::KnownWithoutEffect {
+        parameters: k
+            .without_effect()
+            .iter()
+            .filter_map(|&i| names.get(i).cloned())
+            .collect(),
+    })
+}
+
+/// [`estimate`] of the torque observation `obs` of `model` with the standard parameters of
+/// `estimation.known` fixed: reduced, solved and expanded to every base parameter, with
+/// the warning of those that fix nothing (the stacked runs and segments; a single record
+/// takes [`identify_dense`], which also serves the energy model).
+pub(crate) fn estimate_with_known(
+    model: &dyn Model,
+    obs: &Observation,
+    config: &Config,
+) -> Result<Estimate> {
+    let Some(k) = known_parameters(model, config)? else {
+        return estimate(obs, config);
+    };
+    let reduced = k.reduce(obs).map_err(|e| config.locate(e))?;
+    let mut e = k
+        .expand(
+            &estimate(&reduced, config)?,
+            obs,
+            &reduced,
+            config.estimation.rank_tolerance,
+        )
+        .map_err(|e| config.locate(e))?;
+    e.warnings.extend(known_without_effect(model, &k));
+    Ok(e)
 }
 
 /// The regrouping with the standard parameters of `estimation.known` fixed, if the config

@@ -13,12 +13,13 @@ use crate::error::{Error, Result};
 use crate::estimate::{Estimate, Observation};
 use crate::inspect::CutoffSuggestion;
 use crate::pipeline::identify::{
-    estimated_parameters, not_physical_warnings, observation_counted, rest_cause,
+    estimate_with_known, estimated_parameters, not_physical_warnings, observation_counted,
+    rest_cause,
 };
 use crate::pipeline::observe::RestCount;
 use crate::pipeline::prepare::samples_needed;
 use crate::pipeline::stream::{stacked_streaming, streams};
-use crate::pipeline::{Identification, estimate, identify};
+use crate::pipeline::{Identification, identify};
 use crate::signal::Signals;
 use crate::validate::{Fit, Prediction, UsedRows};
 
@@ -211,7 +212,7 @@ pub(crate) fn stacked_dense(
     }
     let dt = parts.first().map_or(1.0, |p| p.1);
     let obs = stack(parts.into_iter().map(|p| p.0).collect())?;
-    let estimate = estimate(&obs, config)
+    let estimate = estimate_with_known(model, &obs, config)
         .map_err(|e| config.locate(rest_cause(&rest, config, model.dof(), e)))?;
     let mut prediction = Prediction::new(&obs, &estimate.values, dt);
     prediction.unfiltered = unfiltered;

@@ -166,6 +166,23 @@ fn zomaya_known_masses_identify_the_rest_of_a_ur5e() {
                 );
             }
         }
+        // the record's halves as stacked runs fix the same parameters (stacked runs took
+        // every base parameter as unknown: `Fv1 = 1.268 +- 0.016` for a known 0.5)
+        let n = train.samples();
+        let halves = [
+            train.slice(0, n / 2).unwrap(),
+            train.slice(n / 2, n).unwrap(),
+        ];
+        let stacked = robid_runtime::pipeline::identify_runs(&model, &halves, &c).unwrap();
+        assert_eq!(stacked.estimate.known, e.known);
+        for name in &e.known {
+            let i = e.names.iter().position(|n| n == name).unwrap();
+            assert_eq!(stacked.estimate.std[i], 0.0, "{name}");
+            assert!(
+                (stacked.estimate.values[i] - e.values[i]).abs()
+                    <= 1e-12 * e.values[i].abs().max(1.0)
+            );
+        }
         // wrong known values (each 20 % larger) fit worse than the true ones
         let wrong: Vec<(usize, f64)> = known.iter().map(|&(i, v)| (i, 1.2 * v)).collect();
         let (_dir2, path) = known_file(&model, &wrong);
