@@ -311,6 +311,41 @@ pub enum DataError {
         /// integrated one (the factor of a unit slip).
         ratio: f64,
     },
+    /// A trajectory's accelerations disagree with its velocities: integrated from the first
+    /// sample, they drift from the velocities' change by more than
+    /// [`crate::simulate::ACCELERATION_DRIFT`] times the velocity's largest magnitude. The
+    /// feed-forward of such a reference drives the joint with torques its motion does not
+    /// need (a constant `qdd` of -1e6 was simulated for minutes into currents of 1e4 A).
+    #[error(
+        "{location}: qdd{joint} integrates to {} from t = {} s to t = {} s, while qd{joint} changes by {} over it: the accelerations disagree with the velocities, drifting from them by more than {} times qd{joint}'s largest magnitude {} ({}); give the accelerations as the time derivatives of the velocities (`robid excite` designs such trajectories)",
+        Num::rounded(*integral, 6),
+        Num::rounded(*from, 15),
+        Num::rounded(*to, 15),
+        Num::rounded(*change, 6),
+        crate::simulate::ACCELERATION_DRIFT,
+        Num::rounded(*largest, 6),
+        derivative_cause(*ratio, super::DerivativeColumn::Acceleration)
+    )]
+    InconsistentAcceleration {
+        /// Where: `file:line` of the sample where the drift is first too large, or the
+        /// sample of what holds the trajectory.
+        location: String,
+        /// The joint, numbered from 1.
+        joint: usize,
+        /// The time of the first sample (s).
+        from: f64,
+        /// The time of the sample named (s).
+        to: f64,
+        /// The accelerations integrated from `from` to `to` (the trapezoid).
+        integral: f64,
+        /// The velocity's change from `from` to `to`.
+        change: f64,
+        /// The velocity's largest magnitude over the record.
+        largest: f64,
+        /// Over the whole record, the velocities' total change over the accelerations'
+        /// integrated one (the factor of a unit slip).
+        ratio: f64,
+    },
     /// A file joined by time whose median step is more than [`crate::data::GAP_RATIO`]
     /// times that of the first file (its measurements other than temperatures): each of
     /// its steps would be interpolated across that many samples of the first file,

@@ -22,7 +22,7 @@ pub use run::{
     DIVERGENCE_FACTOR, MAX_BANDWIDTH, MAX_SIMULATION_STEPS, MAX_SUBSTEPS, Noise, Simulated,
     Simulation,
 };
-pub use trajectory::{Record, Trajectory};
+pub use trajectory::{ACCELERATION_DRIFT, Record, Trajectory};
 
 #[cfg(test)]
 pub(crate) mod tests;

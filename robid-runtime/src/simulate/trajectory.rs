@@ -45,6 +45,15 @@ const GAP_FIX: &str = "the data simulated from it would be refused: sample the t
      without the gap (robid excite writes one on a uniform grid), or split it at the gap into \
      two trajectories";
 
+/// How far, in multiples of a joint's largest velocity magnitude, its accelerations
+/// integrated from a trajectory's first sample may drift from its velocities' change
+/// ([`Trajectory::check_derivatives`]). Loose: a true velocity never changes by more than
+/// 2 of them, and the trapezoid's error on the coarsest designs `robid excite` writes
+/// (`--method points` at two samples per piece: 3.97 on the Panda at 0.8 Hz, 2.7 on the
+/// UR5e at 1 Hz; Fourier at 1.2 Hz 0.35) stays below 4; accelerations in degrees beside
+/// velocities in radians drift by about 57 times the velocities' change.
+pub const ACCELERATION_DRIFT: f64 = 10.0;
+
 /// Header names `prefix1..prefixn`.
 fn names(prefix: &str, n: usize) -> impl Iterator<Item = String> + '_ {
     (1..=n).map(move |j| format!("{prefix}{j}"))
@@ -135,10 +144,19 @@ impl Trajectory {
     /// written (1e-6 of the position's magnitude, 1e-3 of its range: positions written to
     /// a few decimals). A reference that breaks this (a constant position beside a velocity
     /// of 1 rad/s; a 2 rad spike in one sample) was simulated without a word, the record's
-    /// positions and velocities disagreeing. The accelerations are not checked against the
-    /// velocities the same way: a design's seventh-order pieces sampled at two or three
-    /// points each vary too much between samples for a rule without the jerk (`robid
-    /// excite --method points` wrote such files). `at` names sample k in the error.
+    /// positions and velocities disagreeing.
+    ///
+    /// The accelerations are checked against the velocities over the whole record, not
+    /// step by step: a design's seventh-order pieces sampled at two or three points each
+    /// vary too much between samples for a rule without the jerk (`robid excite --method
+    /// points` writes such files). From the first sample on, the accelerations integrated
+    /// by the trapezoid must not drift from the velocities' change by more than
+    /// [`ACCELERATION_DRIFT`] times the velocity's largest magnitude (plus 1e-6 of it and
+    /// 1e-6, the values' precision): a velocity cannot change by more than twice that, and
+    /// the trapezoid's error on the coarsest points design robid writes stays below 4 of
+    /// them. A reference whose `qdd4` was a constant -1e6 beside moderate positions and
+    /// velocities was simulated for minutes into a log of 1e4 A currents with exit 0.
+    /// `at` names sample k in the error.
     pub fn check_derivatives(&self, at: impl Fn(usize) -> String) -> Result<()> {
         let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         for j in 0..self.dof() {
@@ -171,6 +189,41 @@ impl Trajectory {
                     change: q[k] - q[k - 1],
                     integral: integral(k),
                     ratio: moved / integrated,
+                }));
+            }
+        }
+        for j in 0..self.dof() {
+            self.check_accelerations(j, &at)?;
+        }
+        Ok(())
+    }
+
+    /// The accelerations of joint `j` against its velocities over the record
+    /// ([`Trajectory::check_derivatives`]).
+    fn check_accelerations(&self, j: usize, at: impl Fn(usize) -> String) -> Result<()> {
+        let (qd, qdd) = (&self.qd[j], &self.qdd[j]);
+        let largest = qd.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let allowed = ACCELERATION_DRIFT * largest + 1e-6 * (1.0 + largest);
+        let trapezoid = |k: usize| 0.5 * (qdd[k - 1] + qdd[k]) * (self.t[k] - self.t[k - 1]);
+        let mut integral = 0.0;
+        for k in 1..self.samples() {
+            integral += trapezoid(k);
+            let change = qd[k] - qd[0];
+            // `!(<=)`: a sum that overflowed to infinity or NaN is refused too
+            if !((integral - change).abs() <= allowed) {
+                // the ratio over the whole record names a unit slip
+                let (changed, integrated) = (1..self.samples()).fold((0.0, 0.0), |(c, i), k| {
+                    (c + (qd[k] - qd[k - 1]).abs(), i + trapezoid(k).abs())
+                });
+                return Err(Error::Data(DataError::InconsistentAcceleration {
+                    location: at(k),
+                    joint: j + 1,
+                    from: self.t[0],
+                    to: self.t[k],
+                    integral,
+                    change,
+                    largest,
+                    ratio: changed / integrated,
                 }));
             }
         }
@@ -541,6 +594,59 @@ mod tests {
         let mut flat = sine();
         flat.qdd = Signals::new(vec![vec![0.0; 200]]).unwrap();
         assert_eq!(problem(&flat), None);
+    }
+
+    /// Accelerations whose integral from the first sample drifts from the velocities'
+    /// change by more than ACCELERATION_DRIFT times the largest velocity are refused at
+    /// the sample where it does, with the unit the record's ratio suggests: a constant
+    /// -1e6 beside moderate positions and velocities at the first step, accelerations in
+    /// degrees, a constant offset once its integral leaves the bound. Loose: an offset
+    /// within the bound, a design's pieces sampled at two or three points each, and
+    /// accelerations left at 0 (within the swing of the velocities) pass.
+    #[test]
+    fn accelerations_that_drift_from_their_velocities_are_refused() {
+        let mut wild = sine();
+        wild.qdd = Signals::new(vec![vec![-1e6; 200]]).unwrap();
+        let e = problem(&wild).unwrap();
+        assert!(
+            e.starts_with(
+                "sample 1: qdd1 integrates to -10000 from t = 0 s to t = 0.01 s, while qd1 \
+                 changes by -4.99996e-5"
+            ) && e.contains("disagree with the velocities, drifting from them by more than 10 times qd1's largest magnitude 1 (a column")
+                && e.ends_with(
+                    "give the accelerations as the time derivatives of the velocities \
+                     (`robid excite` designs such trajectories)"
+                ),
+            "{e}"
+        );
+        let mut degrees = sine();
+        degrees.qdd[0]
+            .iter_mut()
+            .for_each(|a| *a *= 180.0 / std::f64::consts::PI);
+        let e = problem(&degrees).unwrap();
+        assert!(
+            e.contains("accelerations in degrees per second squared"),
+            "{e}"
+        );
+        // an offset of 6 drifts by 6 t: beyond 10 (the largest velocity is 1) at t = 1.67 s
+        for (offset, refused) in [(4.0, None), (6.0, Some("sample 167: qdd1"))] {
+            let mut off = sine();
+            off.qdd[0].iter_mut().for_each(|a| *a += offset);
+            let e = problem(&off);
+            match refused {
+                None => assert_eq!(e, None),
+                Some(start) => assert!(e.as_deref().unwrap().starts_with(start), "{e:?}"),
+            }
+        }
+        // seventh-order pieces of 1 s and 1.5 s at 2 Hz: two and three samples each
+        let knots = vec![vec![
+            [0.1, 0.0, 0.0, 0.0],
+            [0.8, 0.4, -1.0, 0.7],
+            [-0.3, -0.2, 0.5, -0.4],
+            [0.1, 0.0, 0.0, 0.0],
+        ]];
+        let points = crate::excite::Points::new(vec![0.0, 1.0, 2.5, 4.0], knots).unwrap();
+        assert_eq!(problem(&points.sample(2.0).unwrap()), None);
     }
 
     /// A record whose currents (torque over torque per ampere) or torques lie beyond what

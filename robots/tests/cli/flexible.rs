@@ -300,3 +300,116 @@ fn flexible_flags_are_checked() {
     assert!(!o.status.success());
     assert!(!std::path::Path::new(&out).exists());
 }
+
+/// A reference whose accelerations are not the derivative of its velocities (`qdd4` a
+/// constant -1e6 beside the moderate positions and velocities of a sine) is refused as it
+/// is read, at the line where the integrated accelerations leave the velocities, naming
+/// the file, the joint, the times and the fix; nothing is written. The flexible run
+/// simulated it for minutes into a log of 1e4 A currents with exit 0 (the rigid one
+/// wrote 8e4 N m torques).
+#[test]
+fn simulate_refuses_accelerations_that_are_not_the_velocities_derivative() {
+    let dir = folder();
+    let traj = trajectory(dir.path());
+    let text = std::fs::read_to_string(&traj).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = header.iter().position(|h| *h == "qdd4").unwrap();
+    let mut bad = header.join(",") + "\n";
+    for line in lines {
+        let mut fields: Vec<&str> = line.split(',').collect();
+        fields[column] = "-1e6";
+        bad.push_str(&(fields.join(",") + "\n"));
+    }
+    std::fs::write(&traj, bad).unwrap();
+    let out = dir.path().join("log.csv");
+    for flexible in [false, true] {
+        let mut args = vec![
+            "simulate",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e_as_built.toml",
+            "--trajectory",
+            &traj,
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        if flexible {
+            args.extend(["--flexible", "drives/ur5e_flexible.toml"]);
+        }
+        let o = robid(&args);
+        let e = stderr(&o);
+        assert!(
+            e.starts_with(&format!(
+                "error: {traj}:3: qdd4 integrates to -5000 from t = 0 s to t = 0.005 s, while \
+                 qd4 changes by "
+            )) && e.contains("the accelerations disagree with the velocities")
+                && e.contains(
+                    "give the accelerations as the time derivatives of the velocities \
+                     (`robid excite` designs such trajectories)"
+                ),
+            "{flexible}: {e}"
+        );
+        assert_eq!(o.status.code(), Some(1), "{flexible}");
+        assert!(stdout(&o).is_empty(), "{flexible}: {}", stdout(&o));
+        assert!(!out.exists(), "{flexible}");
+    }
+}
+
+/// The check of the accelerations is loose enough for what `robid excite --method points`
+/// writes at its coarsest, seventh-order pieces of two samples each (40 pieces of 0.15 s
+/// at 13.5 Hz; their accelerations, integrated by the trapezoid, drift from the velocities
+/// by 0.93 of the largest velocity, against the 10 allowed): rigid and flexible runs
+/// simulate it.
+#[test]
+fn simulate_takes_a_points_design_of_two_samples_a_piece() {
+    let dir = folder();
+    let traj = dir.path().join("points.csv").display().to_string();
+    let o = robid(&[
+        "excite",
+        "descriptions/ur5e.toml",
+        "--method",
+        "points",
+        "--intervals",
+        "40",
+        "--duration",
+        "6",
+        "--rate",
+        "13.5",
+        "--restarts",
+        "1",
+        "--sweeps",
+        "1",
+        "--evaluations",
+        "5",
+        "-o",
+        &traj,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = dir.path().join("log.csv").display().to_string();
+    for flexible in [false, true] {
+        let mut args = vec![
+            "simulate",
+            "descriptions/ur5e.toml",
+            "--parameters",
+            "parameters/ur5e_as_built.toml",
+            "--trajectory",
+            &traj,
+            "--bandwidth",
+            "3",
+            "-o",
+            &out,
+        ];
+        if flexible {
+            args.extend(["--flexible", "drives/ur5e_flexible.toml"]);
+        }
+        let o = robid(&args);
+        assert!(o.status.success(), "{flexible}: {}", stderr(&o));
+        assert!(
+            stdout(&o).contains("82 samples simulated"),
+            "{}",
+            stdout(&o)
+        );
+        std::fs::remove_file(&out).unwrap();
+    }
+}
