@@ -22,6 +22,7 @@ mod streaming;
 
 pub use energy::{
     EnergyRegressor, energy, energy_observation, friction_power, model_energy_observation,
+    quadrature,
 };
 pub use error::EstimateError;
 pub(crate) use error::{not_excited, undetermined};

@@ -7,14 +7,14 @@
 //!
 //! The records are exact inverse dynamics of the compiled UR5e (reference parameters)
 //! along a random Fourier trajectory at 1 kHz, so that the energy identity holds up to the
-//! trapezoidal rule. (The closed-loop simulator integrates with a first-order implicit
+//! integrals' rule (`estimate::quadrature`, exact for cubics). (The closed-loop simulator integrates with a first-order implicit
 //! scheme whose energy error, 0.13 % of the window's work at 10 substeps per millisecond
 //! and proportional to the step, biases the energy model beyond its noise; it is fine for
 //! the torque model, which holds pointwise.)
 //!
 //! - noise-free: every one of the 36 base parameters is identified (the energy model sees
-//!   all of them: full rank), each within 1e-4 of the largest (the trapezoidal rule's
-//!   error times the condition number);
+//!   all of them: full rank), each within 1e-7 of the largest (the integrals' error times
+//!   the condition number; 1e-4 with the trapezoidal rule);
 //! - with torque noise that differs between joints, position noise and quantization: the
 //!   reported standard deviations are honest (the truth within 3 std for >= 90 % of the
 //!   parameters); the parameters that this experiment leaves undetermined (std above
@@ -96,17 +96,18 @@ fn energy_model_sees_every_base_parameter_of_the_ur5e() {
         "energy model, noise-free: {} windows, cond {:.0}, worst error {worst:.2e} (scale {scale:.2}), torque fit {:.2e}",
         e.rows, e.condition_number, id.fit.relative_error
     );
-    // the trapezoidal rule leaves < 1e-6 of the work in each equation (checked below);
-    // times a condition number of a few 1e4 that bounds the parameter error by ~1e-4
-    // (measured: 1.13e-4 against a bound of 4.2e-4; torque fit 2.5e-6, bound 2x)
-    assert!(worst < 1e-4 * scale, "worst error {worst}");
-    assert!(id.fit.relative_error < 5e-6, "{:?}", id.fit);
-    // the equations: the truth satisfies them up to the trapezoidal rule
+    // the integrals' rule leaves < 1e-9 of the work in each equation (checked below);
+    // times a condition number of a few 1e4 that bounds the parameter error by ~1e-5
+    // (measured: 6.0e-9 of 4.21, torque fit 8.3e-8; with the trapezoidal rule 1.13e-4
+    // and 2.5e-6)
+    assert!(worst < 1e-7 * scale, "worst error {worst}");
+    assert!(id.fit.relative_error < 5e-7, "{:?}", id.fit);
+    // the equations: the truth satisfies them up to the integrals' rule
     let prepared = prepare(&data, &config()).unwrap();
     let obs = energy_observation_of(&model, &prepared, &config()).unwrap();
     let r = &obs.y - &obs.w * nalgebra::DVector::from_column_slice(&truth);
     assert!(
-        r.norm() < 1e-6 * obs.y.norm(),
+        r.norm() < 1e-9 * obs.y.norm(),
         "{} of {}",
         r.norm(),
         obs.y.norm()
