@@ -429,6 +429,10 @@ impl Parts {
                 error(*item, message, &help);
             }
         }
+        if let Some((i, message, help)) = tilted_gravity(self.base.as_ref(), &self.gravity, &given)
+        {
+            error(Item::Transform(Mount::Base, Part::Rpy, i), message, &help);
+        }
         if self.convention == Convention::Standard {
             for (j, joint) in self.joints.iter().enumerate() {
                 for dh in [Dh::Gamma, Dh::B] {
@@ -760,6 +764,72 @@ fn value_problem(
     }
 }
 
+/// The problem of a `[base]` rotation that turns gravity into a component below
+/// [`MIN_GRAVITY`] in frame 0 (where the dynamics use it, `R_base' g`), as (the `rpy`
+/// index to blame, message, help): the rule of a gravity component written that small,
+/// which the regrouping cannot tell from zero (a tilt of 2e-5 rad gave two more base
+/// parameters, MXR1 and MYR1, which 2e-4 m/s^2 of gravity barely excites: `excite`'s
+/// condition number 52 000 against 3.15). A written component already that small is told
+/// by its own rule; values without symbol values are not judged.
+fn tilted_gravity(
+    base: Option<&Transform>,
+    gravity: &[Geometry; 3],
+    given: &dyn Fn(&str) -> Option<f64>,
+) -> Option<(usize, String, String)> {
+    let base = base.filter(|b| !b.rotation_is_identity())?;
+    let mut arena = Arena::new();
+    let world = [0, 1, 2].map(|i| gravity[i].to_expr(&mut arena));
+    let rpy = [0, 1, 2].map(|i| base.rpy[i].to_expr(&mut arena));
+    let r = base.rotation(&mut arena);
+    let frame0 = crate::dynamics::vector::mat_t_vec(&mut arena, &r, world);
+    let mut pairs = Vec::new();
+    for g in gravity.iter().chain(&base.rpy) {
+        for s in g.symbols() {
+            pairs.push((s.as_str(), given(s)?));
+        }
+    }
+    let values = arena.values(&pairs);
+    let small = |v: &f64| *v != 0.0 && v.abs() < MIN_GRAVITY;
+    let written = arena.eval(&world, &values).ok()?;
+    if written.iter().any(small) {
+        return None;
+    }
+    let turned = arena.eval(&frame0, &values).ok()?;
+    let axis = turned.iter().position(small)?;
+    // the angle nearest a right angle without being one is the tilt
+    let angles = arena.eval(&rpy, &values).ok()?;
+    let off = |v: f64| (v - (v / FRAC_PI_2).round() * FRAC_PI_2).abs();
+    let (i, tilt) = angles
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| off(**v) > 0.0)
+        .min_by(|a, b| off(*a.1).total_cmp(&off(*b.1)))?;
+    let exact = quarter_text((tilt / FRAC_PI_2).round());
+    let item = describe(Item::Transform(Mount::Base, Part::Rpy, i));
+    Some((
+        i,
+        format!(
+            "{item} = {} turns gravity [{}] in frame 0 (where the dynamics use it) into one \
+             whose {} component is {:.3e} m/s^2, smaller than {} m/s^2 but not zero",
+            show(*tilt),
+            written
+                .iter()
+                .map(|v| show(*v))
+                .collect::<Vec<_>>()
+                .join(", "),
+            ["x", "y", "z"][axis],
+            turned[axis],
+            show(MIN_GRAVITY)
+        ),
+        format!(
+            "the regrouping cannot tell a component this small from zero, as for one written \
+             in `gravity`: write \"{exact}\" for this angle ({:.1e} rad from it), or a tilt \
+             of at least 1e-4 rad",
+            off(*tilt)
+        ),
+    ))
+}
+
 /// How far (rad) a numeric angle without symbols lies from the multiple k of pi/2 it
 /// nearly is (k, and that multiple as text), when that is less than [`ANGLE_RESOLUTION`]
 /// but not 0: `1.5707963` typed for `"pi/2"`; k = 0 only `with_zero`.
@@ -815,7 +885,7 @@ pub(super) fn listed(items: impl IntoIterator<Item = String>) -> String {
 }
 
 /// `k pi/2` as text.
-fn quarter_text(k: f64) -> String {
+pub(super) fn quarter_text(k: f64) -> String {
     match k as i64 {
         0 => "0".to_owned(),
         k if k % 2 == 0 => match k / 2 {

@@ -42,12 +42,14 @@
 //! mistake (unknown keys, wrong types, missing keys, values out of range,
 //! unused symbols) is reported together with the others.
 
-use super::bounds::{MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_TURNING};
+use super::bounds::{ANGLE_RESOLUTION, MAX_ARM_LENGTH, MAX_DESCRIPTION_LEN, MAX_TURNING};
 use super::check::{
     Dh, Item, Limit, Locate, and_more, listed, measured_twist_consequence, near_right_angle,
+    quarter_text,
 };
 use super::read::{Reader, Spans};
 use super::{DescriptionError, JointKind, Robot};
+use std::f64::consts::FRAC_PI_2;
 use std::io::Read;
 use std::ops::Range;
 use toml::de::DeTable;
@@ -215,6 +217,9 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
             named(dh, text)
         ));
     }
+    if let Some(w) = special_symbol_values(place, spans, robot) {
+        out.push(w);
+    }
     if let Some((j, [lower, upper])) = turning_too_far(robot) {
         let (line, column) = place.line_column(spans.of(Item::Limit(j, Limit::Position)).start);
         out.push(format!(
@@ -236,6 +241,68 @@ fn warnings(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Vec<String> {
         ));
     }
     out
+}
+
+/// The warning for values written with symbols that the `[symbols]` values put where the
+/// structure changes: a length or a gravity component of 0, a twist at a multiple of pi/2.
+/// The regrouping samples every symbol away from such values, so the base parameters hold
+/// there but may not be minimal: some have no effect on this robot's torques, which
+/// identification then calls not excited and `excite` cannot excite, whatever the
+/// trajectory (`a = "L2"` with `L2 = 0` kept MX2 and MY2 of a planar arm). A revolute
+/// joint's `theta` and a prismatic joint's `d` only shift its variable and are not judged.
+fn special_symbol_values(place: &Place<'_>, spans: &Spans, robot: &Robot) -> Option<String> {
+    let rows = robot.numeric_rows().ok()?;
+    let quarter = |v: f64| {
+        let k = (v / FRAC_PI_2).round();
+        ((v - k * FRAC_PI_2).abs() < ANGLE_RESOLUTION).then(|| match quarter_text(k) {
+            zero if k == 0.0 => zero,
+            text => format!("\"{text}\""),
+        })
+    };
+    let mut found: Vec<(Item<'static>, String, String)> = Vec::new();
+    for (j, joint) in robot.joints().iter().enumerate() {
+        let prismatic = joint.kind == JointKind::Prismatic;
+        for (dh, at) in [
+            (Dh::Alpha, 0),
+            (Dh::A, 1),
+            (Dh::D, 2),
+            (Dh::Theta, 3),
+            (Dh::Gamma, 4),
+            (Dh::B, 5),
+        ] {
+            let g = dh.of(joint);
+            let v = rows[j][at];
+            let special = match dh {
+                _ if g.symbols().is_empty() => None,
+                Dh::Theta if !prismatic => None,
+                Dh::D if prismatic => None,
+                Dh::Alpha | Dh::Gamma | Dh::Theta => quarter(v),
+                Dh::A | Dh::D | Dh::B => (v == 0.0).then(|| "0".to_owned()),
+            };
+            if let Some(exact) = special {
+                let what = format!("joint {} `{} = \"{}\"`", j + 1, dh.key(), g.as_str());
+                found.push((Item::Value(j, dh), what, exact));
+            }
+        }
+    }
+    let gravity = robot.gravity_values().ok()?;
+    for (i, g) in robot.gravity().iter().enumerate() {
+        if !g.symbols().is_empty() && gravity[i] == 0.0 {
+            let what = format!("gravity {} `\"{}\"`", ["x", "y", "z"][i], g.as_str());
+            found.push((Item::Gravity(i), what, "0".to_owned()));
+        }
+    }
+    let (item, what, exact) = found.first()?;
+    let (line, column) = place.line_column(spans.of(*item).start);
+    let more = and_more(found.len() - 1, " value", " values");
+    Some(format!(
+        "{}:{line}:{column}: {what} is {exact} at the [symbols] values{more}: the base \
+         parameters are derived for any value of the symbols and hold at this one, but some \
+         may have no effect on this robot's torques (identification then calls them not \
+         excited and `excite` cannot excite them, whatever the trajectory); write {exact} \
+         in the table for this robot's own base parameters",
+        place.file
+    ))
 }
 
 /// What a length beyond [`MAX_ARM_LENGTH`] likely is, and the fix.

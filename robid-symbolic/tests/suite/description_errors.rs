@@ -168,7 +168,37 @@ fn magnitudes_that_broke_the_derivation_are_errors() {
         "3:12",
         &["gravity x = 1e-6 is smaller than 0.001 m/s^2 but not zero"],
     );
-    // Accepted: the ends of every range.
+    // ... and one that a small tilt of the base makes in frame 0, where the dynamics use
+    // it: 9.81 sin(2e-5) = 1.962e-4 m/s^2 (it gave two base parameters that only it
+    // excites); a tilt through a symbol too, and the angle blamed is the tilt, not pi/2
+    single(
+        &format!("{HEAD}[base]\nrpy = [2e-5, 0, 0]\n[[joints]]\n"),
+        "4:8",
+        &[
+            "[base] rpy roll = 2e-5 turns gravity [0, 0, -9.81] in frame 0 (where the dynamics use it) into one whose y component is -1.962e-4 m/s^2, smaller than 0.001 m/s^2",
+            "write \"0\" for this angle (2.0e-5 rad from it)",
+        ],
+    );
+    single(
+        &format!("{HEAD}[symbols]\nT = 2e-5\n[base]\nrpy = [\"pi/2\", \"T\", 0]\n[[joints]]\n"),
+        "6:16",
+        &[
+            "[base] rpy pitch = 2e-5 turns gravity",
+            "smaller than 0.001 m/s^2",
+        ],
+    );
+    // a written component that small is told once, by its own rule
+    single(
+        &format!("{HEAD}gravity = [1e-6, 0, -9.81]\n[base]\nrpy = [2e-5, 0, 0]\n[[joints]]\n"),
+        "3:12",
+        &["gravity x = 1e-6 is smaller"],
+    );
+    // Accepted: the ends of every range, and tilts that leave gravity a component of at
+    // least 1e-3 m/s^2 (or none)
+    for rpy in ["[1.1e-4, 0, 0]", "[\"pi/2\", \"-pi\", 0.3]", "[0, 0, 1e-5]"] {
+        let text = format!("{HEAD}[base]\nrpy = {rpy}\n[[joints]]\n");
+        assert_eq!(errors(&text), Vec::<String>::new(), "{rpy}");
+    }
     let ok = format!(
         "{HEAD}gravity = [1e-3, -1e3, 0]\n[symbols]\nL = 1e3\n[[joints]]\nalpha = \"2*pi\"\na = 1e-6\nd = \"L\"\ntheta = 1e-5\n\
          limits = {{ position = [-1e3, 1e3], velocity = 1e4, acceleration = 1e6, torque = 1e7 }}\n"
@@ -529,6 +559,91 @@ fn revolute_limits_in_degrees_are_warned_about() {
     let slide =
         format!("{head}[[joints]]\ntype = \"prismatic\"\nlimits = {{ position = [0, 10] }}\n");
     assert!(warned(&slide).is_empty());
+}
+
+/// A value written with symbols that the `[symbols]` values make 0 (a length, a gravity
+/// component) or a right angle (a twist) is warned about at its place: the base parameters
+/// are derived for any value of the symbols and are not minimal there. The warning is
+/// true: written as a number, the same robot has fewer base parameters (a planar arm's
+/// `a = "L2"` with `L2 = 0`: 4 against 2, whose MX2 and MY2 no trajectory excites); at
+/// other values, and for an offset that only shifts a joint's variable, nothing is said.
+#[test]
+fn symbol_values_where_the_structure_changes_are_warned_about() {
+    let warned = |text: &str| Robot::from_toml_with_warnings(text, "arm.toml").unwrap().1;
+    let count = |text: &str| {
+        let robot = Robot::from_toml(text, "arm.toml").unwrap();
+        robid_symbolic::Derivation::new(&robot)
+            .base_parameters()
+            .unwrap()
+            .base
+            .len()
+    };
+    let arm = |a2: &str, alpha2: &str, symbols: &str| {
+        format!(
+            "{HEAD}[symbols]\n{symbols}\n[[joints]]\nalpha = 0\n[[joints]]\nalpha = {alpha2}\na = {a2}\n"
+        )
+    };
+    let cases = [
+        (
+            arm("\"L2\"", "0", "L2 = 0"),
+            arm("0", "0", ""),
+            "arm.toml:9:5:",
+            "joint 2 `a = \"L2\"` is 0 at the [symbols] values: ",
+            "write 0 in the table",
+        ),
+        (
+            arm("0.3", "\"A\"", "A = 0"),
+            arm("0.3", "0", ""),
+            "arm.toml:8:9:",
+            "joint 2 `alpha = \"A\"` is 0 at the [symbols] values",
+            "write 0 in the table",
+        ),
+        (
+            arm("0.3", "\"pi - A\"", "A = 0"),
+            arm("0.3", "\"pi\"", ""),
+            "arm.toml:8:9:",
+            "is \"pi\" at the [symbols] values",
+            "write \"pi\" in the table",
+        ),
+    ];
+    for (text, written, at, says, fix) in &cases {
+        let w = warned(text);
+        assert!(
+            w.len() == 1 && w[0].starts_with(at) && w[0].contains(says) && w[0].contains(fix),
+            "{text}\n{w:?}"
+        );
+        println!(
+            "{says}: {} base parameters, {} written as a number",
+            count(text),
+            count(written)
+        );
+        assert!(
+            count(written) < count(text),
+            "{text}: {} vs {}",
+            count(written),
+            count(text)
+        );
+    }
+    // gravity through a symbol at 0, with a second value counted
+    let g = format!(
+        "{HEAD}gravity = [\"gx\", 0, \"gz\"]\n[symbols]\ngx = 0\ngz = 0\n[[joints]]\nalpha = 0\n"
+    );
+    let w = warned(&g);
+    assert!(
+        w.len() == 1
+            && w[0].starts_with(
+                "arm.toml:3:12: gravity x `\"gx\"` is 0 at the [symbols] values (and 1 more value)"
+            ),
+        "{w:?}"
+    );
+    // ordinary values, a revolute joint's offset and a prismatic joint's `d` at 0: nothing
+    for quiet in [
+        arm("\"L2\"", "\"A\"", "L2 = 0.3\nA = 0.2"),
+        format!("{HEAD}[symbols]\nT = 0\n[[joints]]\ntheta = \"T\"\n"),
+        format!("{HEAD}[symbols]\nD = 0\n[[joints]]\ntype = \"prismatic\"\nd = \"D\"\n"),
+    ] {
+        assert_eq!(warned(&quiet), Vec::<String>::new(), "{quiet}");
+    }
 }
 
 /// Khalil-Kleinfinger `gamma` and `b` belong to a modified table; `[base]` and `[tool]` are
