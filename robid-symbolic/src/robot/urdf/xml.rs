@@ -1383,6 +1383,8 @@ fn unit_help(tag: &str, name: &str) -> &'static str {
         ("inertia", _) => "write the inertia about the centre of mass in kg m^2",
         ("origin", "xyz") => "write the position in m",
         ("origin", "rpy") => "write the angles in rad",
+        // a direction has no unit: only its ratios count
+        ("axis", _) => "write the axis as a direction of moderate components, e.g. `0 0 1`",
         _ => "write lengths in m, masses in kg, inertias in kg m^2, angles in rad",
     }
 }

@@ -29,7 +29,7 @@ fn each_mistake_is_named_at_its_place() {
         (arm(&J1.replace(" type=\"revolute\"", "")), "t.urdf:5:1:", &["`<joint name=\"j1\">` has no `type` attribute", "add `type=\"...\"`"]),
         (arm(&J1.replace("0 0 1", "0 x 1")), "t.urdf:5:", &["`x` is not a number"]),
         (arm(&J1.replace("0 0 1", "0 inf 1")), "t.urdf:5:", &["is not finite", "write finite numbers"]),
-        (arm(&J1.replace("0 0 1", "0 1e300 1")), "t.urdf:5:", &["`1e300` is beyond ±1e9, not a value of a robot"]),
+        (arm(&J1.replace("0 0 1", "0 1e300 1")), "t.urdf:5:", &["`1e300` is beyond ±1e9, not a value of a robot", "write the axis as a direction of moderate components, e.g. `0 0 1`"]),
         // the fix gives the unit of the attribute at fault
         (arm(&J1.replace("<axis", "<limit effort=\"10\" velocity=\"1e30\"/><axis")), "t.urdf:5:", &["`1e30` is beyond ±1e9", "velocity limit in rad/s"]),
         (arm(&J1.replace("<axis", "<limit effort=\"1e30\" velocity=\"1\"/><axis")), "t.urdf:5:", &["`1e30` is beyond ±1e9", "effort limit in N m"]),
