@@ -6,7 +6,9 @@
 //! - the table of the programs every robot model has ([`PROGRAMS`]);
 //! - the nearest names to a misspelt one ([`names`], with the `std` feature);
 //! - the seeded random generator ([`rng::Rng`]; its normal distribution with the `std`
-//!   feature, which robid-runtime's `std` turns on).
+//!   feature, which robid-runtime's `std` turns on);
+//! - the line and column of a place in a text ([`text::line_column`]), for every
+//!   message that points into a file.
 //!
 //! `robid_runtime::model` and `robid_runtime::rng` re-export all of it, so user code
 //! and generated code name these items through the runtime.
@@ -20,6 +22,7 @@ pub mod names;
 mod parameter;
 mod program;
 pub mod rng;
+pub mod text;
 
 pub use parameter::{BaseName, DriveTerm, Inertial, ParameterId, ParameterKind, ParseNameError};
 pub use program::{Argument, PROGRAMS, ProgramInfo, ProgramKind, Size, Sizes};

@@ -101,13 +101,7 @@ pub(crate) fn duplicate<'a>(text: &'a str, e: &toml::de::Error) -> Option<Duplic
     })
 }
 
-/// 1-based line and column (in characters) of byte `offset` of `text`.
-pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = text.get(..offset).unwrap_or(text);
-    let line = before.matches('\n').count() + 1;
-    let start = before.rfind('\n').map_or(0, |i| i + 1);
-    (line, before[start..].chars().count() + 1)
-}
+pub(crate) use robid_core::text::line_column;
 
 /// The error of the TOML file `path` (its text `text`, a file of kind `kind`) that toml
 /// could not read: a key or table given twice is named at its second place with the fix

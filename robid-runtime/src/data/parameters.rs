@@ -43,6 +43,7 @@
 //! ```
 
 use crate::DataError;
+use crate::toml_syntax::line_column;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -622,14 +623,6 @@ fn first_entry(slots: &[Option<(f64, Entry)>; 10]) -> Option<Entry> {
         .min_by_key(|e| e.line)
 }
 
-/// 1-based line and column (in characters) of byte `offset` of `text`.
-fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = text.get(..offset).unwrap_or(text);
-    let line = before.matches('\n').count() + 1;
-    let start = before.rfind('\n').map_or(0, |i| i + 1);
-    (line, before[start..].chars().count() + 1)
-}
-
 /// The tables of a parameter file, each with what it is for: the file's errors name the
 /// one a command needs (they offered [known] where only the robot's parameters do).
 const TABLES: &str = "one table: [standard] (standard parameters) or [base] (base \
@@ -1158,6 +1151,15 @@ mod tests {
         assert_eq!(line_column(text, 6), (2, 1));
         let at = text.find("M1").unwrap();
         assert_eq!(line_column(text, at), (3, 2));
+        // a file saved with a byte-order mark: its first line's places are where an
+        // editor shows them (`p.toml:1:2` before)
+        let e = ParameterFile::parse("\u{feff}ZZR1 = \"x\"\n", "p.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("p.toml:1:1: unknown table or key `ZZR1`"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -63,14 +63,7 @@ pub(super) struct Place<'a> {
 impl Place<'_> {
     /// The 1-based line and column of byte `offset`.
     pub(super) fn line_column(&self, offset: usize) -> (usize, usize) {
-        let mut offset = offset.min(self.text.len());
-        while !self.text.is_char_boundary(offset) {
-            offset -= 1;
-        }
-        let before = &self.text[..offset];
-        let line = before.matches('\n').count() + 1;
-        let column = before.chars().rev().take_while(|&c| c != '\n').count() + 1;
-        (line, column)
+        robid_core::text::line_column(self.text, offset)
     }
 
     /// A warning about the text at `offset`: `file:line:column: what`.

@@ -206,6 +206,17 @@ fn magnitudes_that_broke_the_derivation_are_errors() {
     assert_eq!(errors(&ok), Vec::<String>::new());
 }
 
+/// A file saved with a byte-order mark (Windows editors) is read, and its first line's
+/// places are where an editor shows them (`arm.toml:1:9` before).
+#[test]
+fn a_byte_order_mark_is_no_column() {
+    single(
+        "\u{feff}name = \"a-b\"\nconvention = \"modified\"\n[[joints]]\n",
+        "1:8",
+        &["robot name `a-b` is not an identifier"],
+    );
+}
+
 #[test]
 fn names_must_name_a_rust_type() {
     for name in ["self", "Self", "fn", "crate", "super", "self_", "type"] {
