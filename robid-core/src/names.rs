@@ -139,7 +139,11 @@ fn levenshtein(a: impl Iterator<Item = char>, b: impl Iterator<Item = char>) -> 
 }
 
 /// An operating-system error on a file in the user's terms, with the fix: a folder given
-/// for a file was told "Is a directory (os error 21)".
+/// for a file was told "Is a directory (os error 21)". A file whose content cannot be read
+/// (`InvalidData`: not UTF-8 text, a damaged compressed stream) is at fault itself, not its
+/// path or permissions: its error is given with its own fix alone (a parameter file that
+/// is not UTF-8 said "save it as UTF-8; check the path and permissions"); one without a
+/// fix (std's "stream did not contain valid UTF-8") is told to check the file.
 ///
 /// ```
 /// use robid_core::names::io_problem;
@@ -156,6 +160,14 @@ pub fn io_problem(e: &std::io::Error) -> String {
         ErrorKind::PermissionDenied => {
             "permission denied; check the file's permissions or run as its owner".into()
         }
+        ErrorKind::InvalidData => {
+            let text = e.to_string();
+            if text.contains("; ") {
+                text
+            } else {
+                format!("{text}; check that it is the file meant, and not damaged")
+            }
+        }
         _ => {
             let text = e.to_string();
             // the error number is the system's, not the user's
@@ -171,6 +183,25 @@ pub fn io_problem(e: &std::io::Error) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Content that cannot be read keeps its own fix, without "check the path and
+    /// permissions"; other errors keep that advice.
+    #[test]
+    fn unreadable_content_is_not_blamed_on_the_path() {
+        let e = std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            "it is not UTF-8 text (invalid byte at offset 20); save it as UTF-8",
+        );
+        assert_eq!(
+            io_problem(&e),
+            "it is not UTF-8 text (invalid byte at offset 20); save it as UTF-8"
+        );
+        let e = std::io::Error::other("the disk went away");
+        assert_eq!(
+            io_problem(&e),
+            "the disk went away; check the path and permissions"
+        );
+    }
 
     #[test]
     fn edits_count_insertions_deletions_and_substitutions() {

@@ -135,7 +135,9 @@ pub enum DataError {
     },
     /// Two columns of the header have a name that is read.
     #[error(
-        "{path}: the header names column `{column}` twice (fields {first} and {second}); rename one of them so that `{column}` means one column"
+        "{path}: the header names column `{}` twice (fields {first} and {second}); rename one of them so that `{}` means one column",
+        quoted(column),
+        quoted(column)
     )]
     DuplicateColumn {
         /// The file.
@@ -149,7 +151,8 @@ pub enum DataError {
     },
     /// A field is not a number.
     #[error(
-        "{path}:{line}: column `{column}` holds `{}`, which is not a number; write a decimal number such as 1.5e-3{}",
+        "{path}:{line}: column `{}` holds `{}`, which is not a number; write a decimal number such as 1.5e-3{}",
+        quoted(column),
         visible(text),
         decimal_comma(text)
     )]
@@ -165,7 +168,8 @@ pub enum DataError {
     },
     /// A value is NaN or infinite.
     #[error(
-        "{path}:{line}: column `{column}` is {}; remove or repair this row (robid computes with finite numbers only)",
+        "{path}:{line}: column `{}` is {}; remove or repair this row (robid computes with finite numbers only)",
+        quoted(column),
         not_finite(*value, text.as_deref())
     )]
     NotFinite {
@@ -215,7 +219,7 @@ pub enum DataError {
         line: u64,
     },
     /// A column named by the column mapping is not in the file's header.
-    #[error("{path}: no column `{}` in the header (found: {}); {}{}", robid_core::names::short(column), listed(available), mapping.fix(), numbered_from_zero(column, available))]
+    #[error("{path}: no column `{}` in the header (found: {}); {}{}", quoted(column), listed(available), mapping.fix(), numbered_from_zero(column, available))]
     MissingColumn {
         /// The file.
         path: PathBuf,
@@ -448,11 +452,7 @@ pub enum DataError {
 /// then how many more; a header of thousands of columns was written out in full.
 fn listed(names: &[String]) -> String {
     const LISTED: usize = 30;
-    let mut shown: Vec<String> = names
-        .iter()
-        .take(LISTED)
-        .map(|n| robid_core::names::short(n).into_owned())
-        .collect();
+    let mut shown: Vec<String> = names.iter().take(LISTED).map(|n| quoted(n)).collect();
     if names.len() > LISTED {
         shown.push(format!("and {} more", names.len() - LISTED));
     }
@@ -553,18 +553,53 @@ fn not_finite(value: f64, text: Option<&str>) -> String {
     }
 }
 
-/// `text` with its control characters escaped (`\0`, `\u{1b}`, ..): a field holding a NUL
+/// `text` with the characters a message would not show escaped: control characters
+/// (`\0`, `\t`, `\u{1b}`), invisible ones ([`invisible`]: `\u{200b}`, a byte-order mark
+/// `\u{feff}`) and spaces other than the ASCII space (`\u{a0}`). A field holding a NUL
 /// byte was quoted as "`2.848129118e-3`, which is not a number", the NUL invisible.
 fn visible(text: &str) -> String {
     text.chars()
         .map(|c| {
-            if c.is_control() {
+            if c.is_control() || invisible(c) || (c.is_whitespace() && c != ' ') {
                 c.escape_default().collect()
             } else {
                 c.to_string()
             }
         })
         .collect()
+}
+
+/// Whether `c` prints as nothing: a zero-width or formatting character (zero-width space,
+/// joiners, direction marks, the byte-order mark, word joiner, soft hyphen, variation
+/// selectors, tags, Hangul fillers).
+fn invisible(c: char) -> bool {
+    matches!(
+        c,
+        '\u{ad}'
+            | '\u{34f}'
+            | '\u{61c}'
+            | '\u{115f}'..='\u{1160}'
+            | '\u{17b4}'..='\u{17b5}'
+            | '\u{180b}'..='\u{180f}'
+            | '\u{200b}'..='\u{200f}'
+            | '\u{202a}'..='\u{202e}'
+            | '\u{2060}'..='\u{206f}'
+            | '\u{3164}'
+            | '\u{fe00}'..='\u{fe0f}'
+            | '\u{feff}'
+            | '\u{ffa0}'
+            | '\u{fff0}'..='\u{fffb}'
+            | '\u{1d173}'..='\u{1d17a}'
+            | '\u{e0000}'..='\u{e0fff}'
+    )
+}
+
+/// A name from a header (or any name a user wrote) for a message, between backquotes:
+/// short ([`robid_core::names::short`]) and with the characters it would not show escaped
+/// ([`visible`]). A header's `q1` followed by a zero-width space was listed as `q1`, beside
+/// "no column `q1` in the header"; it is now `q1\u{200b}`.
+pub(crate) fn quoted(name: &str) -> String {
+    visible(&robid_core::names::short(name))
 }
 
 /// The range of [`DataError::OutOfRange`] in words: `|torque| <= 1e7`, or both ends when

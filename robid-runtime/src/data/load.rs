@@ -552,10 +552,11 @@ fn check_surplus_joint(
             return Err(config.key_error(
                 &key,
                 format!(
-                    "{}: has a column `{column}`, for joint {} of a model with {}; \
+                    "{}: has a column `{}`, for joint {} of a model with {}; \
                      give the description of the robot that recorded the data, or list the \
                      {} to read ({} = [\"{}\", ...])",
                     path.display(),
+                    crate::data::error::quoted(&column),
                     dof + 1,
                     crate::Count(dof, "joint"),
                     crate::Count(dof, "column"),

@@ -165,7 +165,7 @@ pub(crate) fn differing_time_columns(
     let each: Vec<String> = columns
         .iter()
         .zip(paths)
-        .map(|(c, p)| format!("`{}` in {}", c.0, p.display()))
+        .map(|(c, p)| format!("`{}` in {}", crate::data::error::quoted(&c.0), p.display()))
         .collect();
     Some(format!(
         "the files' time columns have different names ({}), so none was read and the files \
@@ -470,7 +470,7 @@ pub(crate) fn check_rate(
                     "{}:{}, column `{}` (not read: the config gives `sample_rate`)",
                     path.display(),
                     step.line,
-                    column.name
+                    crate::data::error::quoted(&column.name)
                 ),
                 from: step.from * scale,
                 to: step.to * scale,

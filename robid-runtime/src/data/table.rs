@@ -72,7 +72,7 @@ impl Table {
             None => Ok(()),
             Some(k) => Err(Error::Data(DataError::OutOfRange {
                 location: self.location(k),
-                what: format!("column `{name}`"),
+                what: format!("column `{}`", crate::data::error::quoted(name)),
                 quantity: quantity.name(),
                 value: column[k],
                 limit: quantity.limit(),

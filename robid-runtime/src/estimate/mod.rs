@@ -55,3 +55,15 @@ pub use streaming::StreamingLeastSquares;
 pub(crate) const fn equations_needed(parameters: usize) -> usize {
     parameters.saturating_add(1)
 }
+
+/// What the equations of [`equations_needed`] are for, in a message: "the 49 equations the
+/// 48 parameters need", "the 2 equations the 1 parameter needs" (it said "the 1 parameters
+/// need").
+pub(crate) fn equations_purpose(parameters: usize) -> String {
+    let verb = if parameters == 1 { "needs" } else { "need" };
+    format!(
+        "the {} the {} {verb}",
+        crate::Count(equations_needed(parameters), "equation"),
+        crate::Count(parameters, "parameter")
+    )
+}

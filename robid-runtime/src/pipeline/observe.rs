@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use crate::Model;
 use crate::data::{Config, Decimation};
 use crate::error::{Error, Result, num};
-use crate::estimate::{Observation, check_names, equations_needed};
+use crate::estimate::{Observation, check_names, equations_needed, equations_purpose};
 use crate::finite::first_non_finite;
 use crate::pipeline::Prepared;
 use crate::signal::passes::Forward;
@@ -1490,10 +1490,7 @@ pub(crate) fn observe_counted(
         of,
         (n, dof),
         equations_needed(cols),
-        &format!(
-            "the {} equations the {cols} parameters need",
-            equations_needed(cols)
-        ),
+        &equations_purpose(cols),
     )?;
     let (groups, width) = if dec.factor() == 1 {
         (vec![rows], a)
@@ -1565,10 +1562,7 @@ pub(crate) fn observe_counted(
         config,
         rest.as_deref(),
         equations_needed(cols),
-        &format!(
-            "the {} equations the {cols} parameters need",
-            equations_needed(cols)
-        ),
+        &equations_purpose(cols),
     )?;
     let mut w = DMatrix::zeros(total, cols);
     let mut y = DVector::zeros(total);

@@ -37,7 +37,7 @@ use crate::error::{Error, Result};
 use crate::estimate::hac::Scores;
 use crate::estimate::{
     Dominance, Estimate, EstimateError, QualityWarning, StreamingLeastSquares, equations_needed,
-    robust_lag,
+    equations_purpose, robust_lag,
 };
 use crate::pipeline::Identification;
 use crate::pipeline::identify::{checked_plan, correlated_samples, piece_breaks, rest_cause};
@@ -105,10 +105,7 @@ impl<'a> Stream<'a> {
         let cols = observer.names.len();
         let (needed, purpose) = if estimating {
             let needed = equations_needed(cols);
-            (
-                needed,
-                format!("the {needed} equations the {cols} parameters need"),
-            )
+            (needed, equations_purpose(cols))
         } else {
             (1, "the one a prediction needs".to_owned())
         };
@@ -536,10 +533,7 @@ pub(crate) fn identify_streaming(
         config,
         stream.rest(),
         equations_needed(cols),
-        &format!(
-            "the {} equations the {cols} parameters need",
-            equations_needed(cols)
-        ),
+        &equations_purpose(cols),
     )
     .map_err(at)?;
     if config.processing.pieces.is_some() && ls.rows() < equations_needed(cols) {

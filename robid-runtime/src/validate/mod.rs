@@ -86,9 +86,16 @@ impl UsedRows {
         self
     }
 
-    /// Whether two uses share rows of the same file.
+    /// Whether two uses share rows of the same file: the same name, or two names of one
+    /// file (`data.csv` and `./data.csv`, an absolute path, a symbolic or hard link, found
+    /// by [`crate::output::same_file`]).
     pub fn overlaps(&self, other: &UsedRows) -> bool {
-        if self.file != other.file {
+        if self.file != other.file
+            && !crate::output::same_file(
+                std::path::Path::new(&self.file),
+                std::path::Path::new(&other.file),
+            )
+        {
             return false;
         }
         match (self.lines, other.lines) {
@@ -297,6 +304,48 @@ mod tests {
     }
 
     /// Sample ranges are half-open, line ranges closed; another file never overlaps.
+    /// Two names of one file are one file: `./a.csv`, its absolute path, a symbolic and a
+    /// hard link overlap `a.csv` (they were compared as strings and never did); a copy
+    /// does not.
+    #[test]
+    fn overlaps_knows_a_file_under_another_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.csv");
+        std::fs::write(&a, "t,q1\n0,0\n").unwrap();
+        let copy = dir.path().join("copy.csv");
+        std::fs::write(&copy, "t,q1\n0,0\n").unwrap();
+        let dotted = dir.path().join(".").join("a.csv");
+        let hard = dir.path().join("hard.csv");
+        std::fs::hard_link(&a, &hard).unwrap();
+        let mut names = vec![dotted, hard];
+        #[cfg(unix)]
+        {
+            let soft = dir.path().join("soft.csv");
+            std::os::unix::fs::symlink(&a, &soft).unwrap();
+            names.push(soft);
+        }
+        let used = |p: &std::path::Path, samples| rows(&p.display().to_string(), samples, None);
+        let estimation = used(&a, [0, 20]);
+        for name in &names {
+            assert!(
+                used(name, [5, 10]).overlaps(&estimation),
+                "{}",
+                name.display()
+            );
+            assert!(
+                estimation.overlaps(&used(name, [5, 10])),
+                "{}",
+                name.display()
+            );
+            assert!(
+                !used(name, [20, 30]).overlaps(&estimation),
+                "{}",
+                name.display()
+            );
+        }
+        assert!(!used(&copy, [5, 10]).overlaps(&estimation));
+    }
+
     #[test]
     fn overlaps_is_sharing_a_row_of_the_same_file() {
         let a = rows("a.csv", [10, 20], None);

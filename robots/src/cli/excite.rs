@@ -15,7 +15,7 @@ use robid_runtime::excite::{
     Criterion, FourierDesign, Information, JointLimits, PointDesign, assess, margins,
     weights_from_sigma,
 };
-use robid_runtime::limits::MIN_JOINT_LIMIT;
+use robid_runtime::limits::{MAX_SAMPLE_RATE, MIN_JOINT_LIMIT};
 use robid_runtime::simulate::Trajectory;
 use robid_runtime::{Count, Model, Num, Series, num};
 
@@ -48,9 +48,10 @@ pub(crate) struct Args {
     seed: u64,
     /// Start (and end) position `q1,..,qn`, at rest, inside the position limits (default:
     /// the middle of the position limits; a URDF's continuous joint, which has none, is
-    /// kept within ±pi of its start, default 0).
+    /// kept within ±pi of its start, default 0). Each value in [-1e3, 1e3] rad or m, the
+    /// bound of a description's position limits.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true,
-          value_parser = real(closed(-1e6, 1e6, "rad")))]
+          value_parser = real(closed(-bounds::MAX_POSITION, bounds::MAX_POSITION, "rad or m")))]
     start: Vec<f64>,
     /// Expected torque noise per joint `s1,..,sn`, each in [1e-9, 1e6] N m: weights the
     /// regressor rows by 1 / s (what weighted least squares sees). Default: unweighted.
@@ -174,11 +175,11 @@ fn check(args: &Args) -> Result<(), Error> {
                 };
                 return Err(format!(
                     "--intervals {intervals} over --duration {} s gives intervals of {} s, \
-                     {} samples each at --rate {} Hz, too few to follow one: give at least two \
+                     {} each at --rate {} Hz, too few to follow one: give at least two \
                      samples per interval ({fewer}a longer --duration or a higher --rate)",
                     num(args.duration),
                     Num::rounded(args.duration / intervals as f64, 4),
-                    Num::rounded(per_interval, 3),
+                    samples(Num::rounded(per_interval, 3)),
                     num(args.rate)
                 )
                 .into());
@@ -194,6 +195,24 @@ fn check(args: &Args) -> Result<(), Error> {
 const FINER: usize = 64;
 /// The most points of that evaluation (`--method points` with many intervals).
 const MAX_FINE: usize = 200_000;
+
+/// The rate of the grid on which the margins between the design's points are evaluated:
+/// `rate`, capped at the readers' largest, [`MAX_SAMPLE_RATE`] (a grid the sampler refuses
+/// failed the run after its optimisation, as a `--rate` never given; capped, the grid is
+/// still ten times finer than any written trajectory, whose `--rate` is at most 1e6 Hz).
+fn fine_rate(rate: f64) -> f64 {
+    rate.min(MAX_SAMPLE_RATE)
+}
+
+/// `n` samples, in a message: "1 sample" (it said "1 samples"), "1.5 samples", "3 samples"
+/// (a whole count through [`Count`]).
+fn samples(n: Num) -> String {
+    let shown = n.to_string();
+    match shown.parse::<usize>() {
+        Ok(k) => Count(k, "sample").to_string(),
+        Err(_) => format!("{shown} samples"),
+    }
+}
 
 /// Default intervals of `--method points`.
 const POINT_INTERVALS: usize = 12;
@@ -386,8 +405,12 @@ fn check_limits(
             None if key == "position" => format!(
                 "[{}, {}] must be finite within +-{:e}, with high - low at least \
                  {MIN_JOINT_LIMIT:e}",
-                num(lo),
-                num(hi),
+                // a continuous joint's are computed (its --start +- pi): rounded, but
+                // never across the bound they are compared with
+                Num::rounded_keeping(lo, 6, |r| (r.abs() > bounds::MAX_POSITION)
+                    == (lo.abs() > bounds::MAX_POSITION)),
+                Num::rounded_keeping(hi, 6, |r| (r.abs() > bounds::MAX_POSITION)
+                    == (hi.abs() > bounds::MAX_POSITION)),
                 bounds::MAX_POSITION
             ),
             None => problem.to_owned(),
@@ -564,11 +587,13 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
         for (j, (q, l)) in args.start.iter().zip(&limits).enumerate() {
             if !(l.position[0] < *q && *q < l.position[1]) {
                 return Err(format!(
-                    "--start: q{} = {q} is outside the limits ({}, {}) of joint {} in {}; \
+                    "--start: q{} = {} is outside the limits ({}, {}) of joint {} in {}; \
                      choose a start strictly inside them",
                     j + 1,
-                    l.position[0],
-                    l.position[1],
+                    num(*q),
+                    // rounded, but never across the start they are compared with
+                    Num::rounded_keeping(l.position[0], 6, |r| *q > l.position[0] || r >= *q),
+                    Num::rounded_keeping(l.position[1], 6, |r| *q < l.position[1] || r <= *q),
                     j + 1,
                     args.robot.display()
                 )
@@ -629,12 +654,15 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             let result = design
                 .optimize(&model, &limits, reference.as_deref())
                 .map_err(|e| e.on_flags(DESIGN_FLAGS))?;
-            // one period holds every state of the periodic series
+            // one period holds every state of the periodic series; the readers' largest
+            // rate caps the grid (a short period of many harmonics, 25 at 100 Hz, asked
+            // for 1.02e7 Hz, refused as a `--rate` the user never gave), still finer than
+            // any --rate
             let fine = result
                 .fourier
                 .sample(
                     1.0 / base_frequency,
-                    (FINER * design.fine_points()) as f64 * base_frequency,
+                    fine_rate((FINER * design.fine_points()) as f64 * base_frequency),
                 )
                 .map_err(|e| e.on_flags(DESIGN_FLAGS))?;
             (
@@ -670,7 +698,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             let finer = (MAX_FINE / (design.fine * design.intervals)).clamp(1, FINER);
             let fine = result
                 .points
-                .sample((finer * design.fine * design.intervals) as f64 / args.duration)
+                .sample(fine_rate(
+                    (finer * design.fine * design.intervals) as f64 / args.duration,
+                ))
                 .map_err(|e| e.on_flags(DESIGN_FLAGS))?;
             if let Some(path) = &args.pieces {
                 write_pieces(&model, &result.points, path)?;
@@ -701,9 +731,9 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
     let mut stdout = out::Stdout::new();
     writeln!(
         stdout,
-        "{}: {} base parameters, {} s at {} Hz written to {}",
+        "{}: {}, {} s at {} Hz written to {}",
         model.name(),
-        model.base_parameter_count(),
+        Count(model.base_parameter_count(), "base parameter"),
         args.duration,
         args.rate,
         args.output.display()

@@ -171,9 +171,9 @@ pub(crate) fn text(r: &Report) -> String {
     );
     let _ = writeln!(
         out,
-        "\n  per processor, on {} processors (tasks, multiplications, additions, other \
-         operations, busy time):",
-        r.processors
+        "\n  per processor, on {} (tasks, multiplications, additions, other operations, \
+         busy time):",
+        robid_runtime::Count(r.processors, "processor")
     );
     let mut head = String::from("      ");
     let mut cols = String::from("  proc");

@@ -129,7 +129,7 @@ fn excite_values_out_of_range_are_refused_naming_the_flag() {
         (
             &["--start=0,0,0,0,0,1e300"],
             "--start",
-            "1e300 is outside [-1e6, 1e6] rad",
+            "1e300 is outside [-1000, 1000] rad or m",
         ),
         (
             &["--seed=-1"],

@@ -12,6 +12,7 @@ mod files;
 mod flexible;
 mod friction;
 mod gaps;
+mod message_defects;
 mod not_physical;
 mod one_joint;
 mod payload;

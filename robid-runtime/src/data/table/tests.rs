@@ -764,6 +764,26 @@ fn missing_column_lists_the_header() {
     );
 }
 
+/// A header name with a character that prints as nothing is quoted with it escaped: a
+/// zero-width space after `q1` was listed as `q1` beside "no column `q1`"; so are a
+/// non-breaking space and a byte-order mark inside a name (one at the start of the file is
+/// the file's and removed).
+#[test]
+fn missing_column_shows_invisible_characters_in_the_header() {
+    let e = read("t,q1\u{200b},q\u{a0}2,x\u{feff}y\n1,2,3,4\n", &["q1"])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("found: t, q1\\u{200b}, q\\u{a0}2, x\\u{feff}y)"),
+        "{e}"
+    );
+    // the name asked for, too
+    let e = read("t,q1\n1,2\n", &["q1\u{200d}"])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no column `q1\\u{200d}`"), "{e}");
+}
+
 /// A binary file's first line is not echoed (its bytes reached the terminal, escape
 /// sequences included): the error says the file is not text.
 #[test]
