@@ -8,8 +8,9 @@
 //! so that `robid excite robot.toml -o robot.toml` fails instead of replacing the
 //! description, or two outputs of one run on the same file; and so are [`check_file`]
 //! and [`check_folder`], so that an output the writer would refuse (a folder, a missing
-//! folder, a folder that takes no new file) is refused before a long run rather than
-//! after it. A target that is not a
+//! folder, a folder that takes no new file, a name too long for it, a file the user may
+//! not write, `-`) is refused before a long run rather than after it. A target that is
+//! not a
 //! regular file (a pipe, `/dev/stdout`, a terminal, a device) is written into directly:
 //! it cannot be replaced, and replacing it would destroy it. Inside [`together`] the
 //! renames wait until the whole run has succeeded, so that a run's several outputs change
@@ -35,7 +36,9 @@ use crate::error::{Error, Result};
 /// replaces `path` (keeping its permissions) only when `write` and the flush succeed.
 ///
 /// A symbolic link is followed, so the file it points to is replaced and the link
-/// kept. On any error the temporary file is removed and `path` is left untouched. After a
+/// kept. What [`check_file`] refuses, the writer refuses before calling `write` (an
+/// existing file it may not write is not replaced, as a shell's `>` would not). On any
+/// error the temporary file is removed and `path` is left untouched. After a
 /// write, the temporary files that killed runs left in the folder are removed once they
 /// are [`STALE_TEMPORARY`] old (on Unix; nothing else is touched). A
 /// target that exists and is neither a file nor a folder (a pipe, `/dev/stdout`, a
@@ -53,7 +56,7 @@ pub fn write_atomically(
             fix: write_fix(e),
         })
     };
-    let (target, dir, existing, link) = match target(path)? {
+    let (target, dir, metadata, link) = match target(path)? {
         Target::Special(target) => {
             // a reader that stops early (`-o /dev/stdout | head`) closes a pipe: not a
             // problem of the path, so not `Write`'s "check that the folder exists"
@@ -89,10 +92,20 @@ pub fn write_atomically(
         Target::File {
             target,
             dir,
-            permissions,
+            metadata,
             link,
-        } => (target, dir, permissions, link),
+        } => (target, dir, metadata, link),
     };
+    // what would make the rename at the end fail (a name too long for the folder, a file
+    // the user may not replace) is refused before anything is written
+    probe_file(
+        path,
+        link.then_some(target.as_path()),
+        &target,
+        &dir,
+        metadata.as_deref(),
+    )?;
+    let existing = metadata.map(|m| m.permissions());
     // the error names the temporary file ("at path \"dir/.robid-Z2mU1l.tmp\""), which
     // the user never asked for: name the folder instead
     let mut temp = temp_builder()
@@ -205,11 +218,17 @@ fn sweep(dir: &Path, owner: u32) {
 /// ([`OutputError::NotAFolder`]) or takes no new file ([`OutputError::NotWritable`]: no
 /// permission, a read-only file system, /proc; [`OutputError::LinkNotWritable`] for an
 /// output that is a link), or is reached through a link that loops or points to nothing
-/// ([`OutputError::FolderLinkLoop`], [`OutputError::FolderLinkMissing`]). A pipe,
-/// `/dev/stdout` or another special file
-/// passes. The target is never created or opened; whether the folder takes a file is
-/// tried by creating a temporary file in it, removed at once. The writer checks again
-/// (the folder may change meanwhile).
+/// ([`OutputError::FolderLinkLoop`], [`OutputError::FolderLinkMissing`]); and what would
+/// make the writer's rename at the end fail: a file name too long for the folder's file
+/// system ([`OutputError::NameTooLong`]), an existing file this user may not write
+/// ([`OutputError::FileNotWritable`]) or, in a shared folder with the sticky bit
+/// (`/tmp`), another user's file ([`OutputError::SharedFolder`]). `-` is refused
+/// ([`OutputError::Dash`]): it is not standard output here. A pipe, `/dev/stdout` or
+/// another special file passes. The target is never created, and an existing one is
+/// opened for writing only to see whether it can be (neither truncated nor written);
+/// whether the folder takes the file is tried by creating a temporary file in it with a
+/// name as long as the target's, removed at once. The writer checks again (the folder
+/// may change meanwhile).
 ///
 /// ```
 /// use robid_runtime::{Error, OutputError, output::check_file};
@@ -222,15 +241,119 @@ pub fn check_file(path: &Path) -> Result<()> {
     match target(path)? {
         Target::Special(_) => Ok(()),
         Target::File {
-            dir, target, link, ..
-        } => probe(path, link.then_some(target.as_path()), &dir),
+            dir,
+            target,
+            link,
+            metadata,
+        } => probe_file(
+            path,
+            link.then_some(target.as_path()),
+            &target,
+            &dir,
+            metadata.as_deref(),
+        ),
     }
+}
+
+/// The length in bytes of the name of a temporary file of robid's (`.robid-XXXXXX.tmp`).
+const TEMPORARY_NAME_LEN: usize = 17;
+
+/// Refuses file output `path`, written as `target` in `dir`, when the writer's rename at
+/// the end would fail: no file can be created in `dir` ([`not_writable`]); the target's
+/// name is too long for the folder's file system ([`OutputError::NameTooLong`]: the
+/// temporary file tried has a name of the same length in bytes, so the system's own
+/// limit answers); or the existing target (`existing`, its metadata) may not be replaced
+/// by this user ([`replaceable`]). `link` is the file that `path`, a symbolic link,
+/// points to. The temporary file is removed at once.
+fn probe_file(
+    path: &Path,
+    link: Option<&Path>,
+    target: &Path,
+    dir: &Path,
+    existing: Option<&std::fs::Metadata>,
+) -> Result<()> {
+    let length = target.file_name().map_or(0, |n| n.len());
+    let suffix = format!(
+        "{}.tmp",
+        "x".repeat(length.saturating_sub(TEMPORARY_NAME_LEN))
+    );
+    let temp = tempfile::Builder::new()
+        .prefix(".robid-")
+        .suffix(&suffix)
+        .tempfile_in(dir)
+        .map_err(|e| {
+            if e.kind() == std::io::ErrorKind::InvalidFilename {
+                Error::Output(OutputError::NameTooLong {
+                    path: path.to_path_buf(),
+                    bytes: length,
+                    folder: dir.to_path_buf(),
+                })
+            } else {
+                not_writable(path, link, dir, &e)
+            }
+        })?;
+    #[cfg(unix)]
+    let owner = {
+        use std::os::unix::fs::MetadataExt;
+        temp.as_file().metadata().ok().map(|m| m.uid())
+    };
+    #[cfg(not(unix))]
+    let owner = None;
+    // removed now, not at the end of the run; a failure to remove it is not the output's
+    temp.close().ok();
+    match existing {
+        Some(existing) => replaceable(path, target, dir, existing, owner),
+        None => Ok(()),
+    }
+}
+
+/// Refuses the existing regular file `target` (output `path`, in `dir`) that this user
+/// may not replace, as a shell's `>` would refuse it: one that cannot be opened for
+/// writing (read-only, or another user's without write permission:
+/// [`OutputError::FileNotWritable`]; it is opened without being created or truncated,
+/// and closed at once), or another user's file in a shared folder with the sticky bit
+/// (`/tmp`), which only its owner may rename over ([`OutputError::SharedFolder`]).
+/// `owner` is the user id of a file this run created in `dir` (root, 0, may replace
+/// anything).
+fn replaceable(
+    path: &Path,
+    target: &Path,
+    dir: &Path,
+    existing: &std::fs::Metadata,
+    owner: Option<u32>,
+) -> Result<()> {
+    if !existing.is_file() {
+        return Ok(());
+    }
+    let opened = std::fs::OpenOptions::new().write(true).open(target);
+    if opened.is_err_and(|e| e.kind() == std::io::ErrorKind::PermissionDenied) {
+        return Err(Error::Output(OutputError::FileNotWritable {
+            path: path.to_path_buf(),
+        }));
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let shared = std::fs::metadata(dir).is_ok_and(|folder| {
+            folder.mode() & 0o1000 != 0
+                && owner.is_some_and(|o| o != 0 && o != existing.uid() && o != folder.uid())
+        });
+        if shared {
+            return Err(Error::Output(OutputError::SharedFolder {
+                path: path.to_path_buf(),
+                folder: dir.to_path_buf(),
+            }));
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = (dir, owner);
+    Ok(())
 }
 
 /// Refuses output `path` when no file can be created in `dir`, as the writer would find:
 /// a temporary file is created there and removed. `link` is the file that `path`, a
 /// symbolic link, points to.
-fn probe(path: &Path, link: Option<&Path>, dir: &Path) -> Result<()> {
+fn probe_folder(path: &Path, link: Option<&Path>, dir: &Path) -> Result<()> {
     let temp = tempfile::Builder::new()
         .prefix(".robid-")
         .suffix(".tmp")
@@ -276,9 +399,14 @@ const NO_NEW_FILES: &str = "the system refuses new files there, as in /proc and 
 /// The fix [`OutputError::Write`] gives when nothing more is known: the folder.
 pub const CHECK_FOLDER: &str = "check that the folder exists and is writable";
 
+/// The fix for a name too long for its file system (`ENAMETOOLONG`).
+pub const SHORTER_NAME: &str =
+    "give a shorter name (most file systems take at most 255 bytes in a file name)";
+
 /// The fix for a write that failed with `e`: a full disk or quota has nothing to do with
 /// the folder (it told `/dev/full`'s "No space left on device" to check that the folder
-/// is writable).
+/// is writable), nor has a name too long for the file system ([`SHORTER_NAME`]; it said
+/// to check that the folder exists and is writable).
 pub fn write_fix(e: &std::io::Error) -> &'static str {
     use std::io::ErrorKind;
     match e.kind() {
@@ -286,6 +414,8 @@ pub fn write_fix(e: &std::io::Error) -> &'static str {
             "free space on that disk, or write to another one"
         }
         ErrorKind::FileTooLarge => "its file system takes no file this large: write to another",
+        // ENAMETOOLONG on Unix: the folder is not the problem
+        ErrorKind::InvalidFilename => SHORTER_NAME,
         _ => CHECK_FOLDER,
     }
 }
@@ -310,9 +440,13 @@ fn not_writable_fix(reason: &str) -> &'static str {
 pub fn check_folder(dir: &Path) -> Result<()> {
     let target = folder_target(dir)?;
     let problem = match std::fs::metadata(&target) {
-        Ok(m) if m.is_dir() => return probe(dir, None, &target),
-        Ok(_) => OutputError::FileNotFolder {
+        Ok(m) if m.is_dir() => return probe_folder(dir, None, &target),
+        Ok(m) if m.is_file() => OutputError::FileNotFolder {
             path: dir.to_path_buf(),
+        },
+        Ok(m) => OutputError::SpecialNotFolder {
+            path: dir.to_path_buf(),
+            what: special_kind(&m),
         },
         // a link on the way that loops or points to nothing: no folder can be made there
         Err(e)
@@ -327,9 +461,9 @@ pub fn check_folder(dir: &Path) -> Result<()> {
         // in the nearest existing one
         Err(e) if e.kind() != std::io::ErrorKind::NotADirectory => {
             return match target.ancestors().skip(1).find(|a| a.is_dir()) {
-                Some(existing) => probe(dir, None, existing),
+                Some(existing) => probe_folder(dir, None, existing),
                 // a relative path, which is created in the working folder
-                None => probe(dir, None, Path::new(".")),
+                None => probe_folder(dir, None, Path::new(".")),
             };
         }
         Err(_) => OutputError::NotAFolder {
@@ -338,6 +472,27 @@ pub fn check_folder(dir: &Path) -> Result<()> {
         },
     };
     Err(Error::Output(problem))
+}
+
+/// What a file that is neither a regular file nor a folder is, for a message: "a device"
+/// (`/dev/null`), "a named pipe", "a socket".
+pub fn special_kind(m: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = m.file_type();
+        if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        }
+        if t.is_fifo() {
+            return "a named pipe";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    let _ = m;
+    "neither a regular file nor a folder"
 }
 
 /// The folder that folder output `dir` names: for a symbolic link to nothing yet, the
@@ -360,7 +515,8 @@ enum Target {
     File {
         target: PathBuf,
         dir: PathBuf,
-        permissions: Option<std::fs::Permissions>,
+        /// The existing file's metadata (its permissions are kept), `None` for a new one.
+        metadata: Option<Box<std::fs::Metadata>>,
         /// Whether the output is a symbolic link (to `target`).
         link: bool,
     },
@@ -369,6 +525,13 @@ enum Target {
 /// Where `path` is written, or why it cannot be: it is a folder, or its folder does not
 /// exist or is a file. Looks, never creates or opens.
 fn target(path: &Path) -> Result<Target> {
+    // `-` is standard output for many tools, but robid would write a file named `-` (which
+    // a later `--states -` then read)
+    if path.as_os_str() == "-" {
+        return Err(Error::Output(OutputError::Dash {
+            path: path.to_path_buf(),
+        }));
+    }
     let metadata = std::fs::metadata(path).ok();
     // Write beside the file a link points to, so the rename replaces that file, or
     // creates it when the link points to no file yet: replacing the link itself would
@@ -407,7 +570,7 @@ fn target(path: &Path) -> Result<Target> {
     Ok(Target::File {
         target,
         dir,
-        permissions: metadata.map(|m| m.permissions()),
+        metadata: metadata.map(Box::new),
         // an existing file through a link too: the folder named is the target's
         link: is_link(path),
     })
@@ -720,6 +883,61 @@ pub enum OutputError {
     FileNotFolder {
         /// The output, as given.
         path: PathBuf,
+    },
+    /// A folder output is an existing file that is not a regular file (`--plot
+    /// /dev/null`): a device, a named pipe, a socket.
+    #[error(
+        "{path}: is {what}, not a folder; give the path of a folder (a missing one is created)"
+    )]
+    SpecialNotFolder {
+        /// The output, as given.
+        path: PathBuf,
+        /// What it is ([`special_kind`]).
+        what: &'static str,
+    },
+    /// The output is `-` (`-o -`), which many tools take for standard output; robid takes
+    /// it for a file named `-` nowhere, so that a file of that name is not written (and
+    /// then read by a later `--states -`) without a word.
+    #[error(
+        "{path}: robid does not take `-` for standard output, and would write a file named `-`; write ./- for a file of that name, or /dev/stdout for standard output"
+    )]
+    Dash {
+        /// The output, as given (`-`).
+        path: PathBuf,
+    },
+    /// The output's file name is longer than the file system of its folder takes (255
+    /// bytes on most): the rename at the end of the run would fail.
+    #[error(
+        "{path}: the file name ({bytes} bytes) is too long for the file system of the folder {folder}; {}",
+        SHORTER_NAME
+    )]
+    NameTooLong {
+        /// The output, as given.
+        path: PathBuf,
+        /// The length of its file name (of the file a link points to), in bytes.
+        bytes: usize,
+        /// Its folder.
+        folder: PathBuf,
+    },
+    /// The output is an existing file that this user may not write (read-only, or
+    /// another user's): replacing it would do what a shell's `>` refuses.
+    #[error(
+        "{path}: the file is not writable (read-only or another user's); make it writable or give another path"
+    )]
+    FileNotWritable {
+        /// The output, as given.
+        path: PathBuf,
+    },
+    /// The output is another user's file in a folder with the sticky bit (`/tmp`), where
+    /// only the file's owner (or the folder's) may replace it.
+    #[error(
+        "{path}: is another user's file in {folder}, a shared folder (sticky, as /tmp) where only its owner may replace it; give another path"
+    )]
+    SharedFolder {
+        /// The output, as given.
+        path: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
     },
     /// The folder of the output does not exist (`-o /nonexistent/dir/f.toml`); robid
     /// creates no folders for a file.

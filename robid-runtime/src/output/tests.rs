@@ -864,3 +864,114 @@ fn a_failed_write_sends_nothing_into_a_pipe() {
     // no reader: the failure returns at once
     assert!(write_atomically(&fifo, failing).is_err());
 }
+
+/// A file name too long for the folder's file system (256 bytes; ext4 and tmpfs take
+/// 255) is refused by the check before the work and by the writer, naming the cause and
+/// the fix, and a run that writes it beside another output leaves that output as it was.
+/// The check created a temporary file of a short name, which passed, and the run failed
+/// at the rename with "check that the folder exists and is writable" after the other
+/// output was replaced.
+#[test]
+#[cfg(target_os = "linux")]
+fn a_name_too_long_for_the_folder_is_refused_before_the_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let long = dir.path().join(format!("{}.html", "a".repeat(256)));
+    let expected = format!(
+        "{}: the file name (261 bytes) is too long for the file system of the folder {}; give \
+         a shorter name (most file systems take at most 255 bytes in a file name)",
+        long.display(),
+        dir.path().display()
+    );
+    assert_eq!(check_file(&long).unwrap_err().to_string(), expected);
+    let fit = dir.path().join("fit.json");
+    std::fs::write(&fit, "old").unwrap();
+    let failed = together(|| {
+        write_bytes(&fit, b"new")?;
+        write_bytes(&long, b"<html>")
+    });
+    assert_eq!(failed.unwrap_err().to_string(), expected);
+    assert_eq!(std::fs::read_to_string(&fit).unwrap(), "old");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    // a name of 255 bytes is taken
+    let longest = dir.path().join("b".repeat(255));
+    check_file(&longest).unwrap();
+    write_bytes(&longest, b"x").unwrap();
+    assert_eq!(std::fs::read_to_string(&longest).unwrap(), "x");
+    // a write that fails for the name says to shorten it, not to check the folder
+    let e = std::io::Error::from_raw_os_error(36); // ENAMETOOLONG
+    assert_eq!(write_fix(&e), SHORTER_NAME);
+}
+
+/// An existing file the user may not write (their own, made read-only) is refused by the
+/// check and by the writer, and left as it was; it was replaced with exit 0 where the
+/// shell's `>` refuses. A writable file is replaced as before (skipped as root, who may
+/// write any file).
+#[test]
+#[cfg(unix)]
+fn a_file_the_user_may_not_write_is_not_replaced() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("keep.csv");
+    std::fs::write(&path, "precious\n").unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o444)).unwrap();
+    if std::fs::OpenOptions::new().write(true).open(&path).is_ok() {
+        return; // run as root: every file is writable
+    }
+    let expected = format!(
+        "{}: the file is not writable (read-only or another user's); make it writable or \
+         give another path",
+        path.display()
+    );
+    assert_eq!(check_file(&path).unwrap_err().to_string(), expected);
+    let e = write_bytes(&path, b"t,q1\n").unwrap_err();
+    assert!(
+        matches!(&e, Error::Output(OutputError::FileNotWritable { path: p }) if *p == path),
+        "{e:?}"
+    );
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "precious\n");
+    let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+    assert_eq!(mode & 0o777, 0o444);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    // through a symbolic link too
+    let link = dir.path().join("link.csv");
+    std::os::unix::fs::symlink(&path, &link).unwrap();
+    assert!(matches!(
+        check_file(&link),
+        Err(Error::Output(OutputError::FileNotWritable { .. }))
+    ));
+}
+
+/// `-o -` is refused by the check and by the writer, with the two things it may have
+/// meant; `./-` writes a file of that name. It wrote a file named `-` with exit 0.
+#[test]
+fn a_dash_is_refused_as_an_output() {
+    let expected = "-: robid does not take `-` for standard output, and would write a file \
+                    named `-`; write ./- for a file of that name, or /dev/stdout for standard \
+                    output";
+    assert_eq!(
+        check_file(Path::new("-")).unwrap_err().to_string(),
+        expected
+    );
+    assert_eq!(
+        write_bytes(Path::new("-"), b"x").unwrap_err().to_string(),
+        expected
+    );
+    assert!(!Path::new("-").exists());
+    let dir = tempfile::tempdir().unwrap();
+    let dash = dir.path().join("-");
+    write_bytes(&dash, b"x").unwrap();
+    assert_eq!(std::fs::read_to_string(&dash).unwrap(), "x");
+}
+
+/// A device given for a folder output is named as a device, without "move the file
+/// away" (it said `/dev/null` "is a file").
+#[test]
+#[cfg(unix)]
+fn a_device_for_a_folder_is_named_as_one() {
+    let e = check_folder(Path::new("/dev/null")).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "/dev/null: is a device, not a folder; give the path of a folder (a missing one is \
+         created)"
+    );
+}

@@ -27,6 +27,13 @@ impl Complete {
     /// Renames the temporary file over the target, then sweeps the folder of the
     /// temporary files killed runs left there.
     fn place(self) -> Result<()> {
+        self.rename().map(Placed::sweep)
+    }
+
+    /// Renames the temporary file over the target; the folder is swept later
+    /// ([`Placed::sweep`]), once every file of the run is in place, so that no sweep
+    /// touches the old files [`Old::keep`] holds meanwhile.
+    fn rename(self) -> Result<Placed> {
         let dir = self.temp.path().parent().map(Path::to_path_buf);
         self.temp.persist(&self.target).map_err(|e| {
             Error::Output(OutputError::Write {
@@ -35,14 +42,109 @@ impl Complete {
                 fix: super::write_fix(&e.error),
             })
         })?;
+        Ok(Placed {
+            dir,
+            #[cfg(unix)]
+            owner: self.owner,
+        })
+    }
+}
+
+/// A file put in place: the folder to sweep of stale temporary files, and their owner.
+struct Placed {
+    dir: Option<PathBuf>,
+    #[cfg(unix)]
+    owner: Option<u32>,
+}
+
+impl Placed {
+    /// Removes the temporary files killed runs left in the folder ([`super::sweep`]).
+    fn sweep(self) {
         #[cfg(unix)]
-        if let (Some(owner), Some(dir)) = (self.owner, dir) {
+        if let (Some(owner), Some(dir)) = (self.owner, self.dir) {
             super::sweep(&dir, owner);
         }
         #[cfg(not(unix))]
-        let _ = dir;
-        Ok(())
+        let _ = self.dir;
     }
+}
+
+/// What a target held before the run's file replaced it, for putting it back when a later
+/// rename of the same run fails.
+enum Old {
+    /// The old file, under a second name (a hard link, `.robid-XXXXXX.tmp`) in its
+    /// folder; the name is removed when dropped.
+    Kept(NamedTempFile<()>),
+    /// There was no file: the run's file is removed to restore that.
+    Missing,
+    /// Not kept: the last file of the run (nothing follows it that could fail), or a
+    /// file system that takes no hard link. Such a target cannot be restored.
+    Unkept,
+}
+
+impl Old {
+    /// Gives the existing `target` a second name in its folder, so that its old file
+    /// survives the rename over it.
+    fn keep(target: &Path) -> Old {
+        if std::fs::symlink_metadata(target).is_err() {
+            return Old::Missing;
+        }
+        tempfile::Builder::new()
+            .prefix(".robid-")
+            .suffix(".tmp")
+            .make_in(super::folder_of(target), |name| {
+                std::fs::hard_link(target, name)
+            })
+            .map_or(Old::Unkept, Old::Kept)
+    }
+
+    /// Puts the old file back at `target` (or removes the file created there); a failure
+    /// here is not reported over the rename's own error.
+    fn restore(self, target: &Path) {
+        match self {
+            Old::Kept(old) => {
+                old.persist(target).ok();
+            }
+            Old::Missing => {
+                std::fs::remove_file(target).ok();
+            }
+            Old::Unkept => {}
+        }
+    }
+}
+
+/// Puts `files` in place in order. When a rename fails (another user's file in a shared
+/// folder, a name the file system refuses, a folder changed meanwhile), the files put in
+/// place before it are taken back: each replaced target gets its old file again (kept
+/// under a second name until every rename has succeeded), each created one is removed;
+/// the failing one and those after it were never renamed.
+fn place_all(files: Vec<Complete>) -> Result<()> {
+    let count = files.len();
+    let mut placed: Vec<(PathBuf, Old, Placed)> = Vec::with_capacity(count);
+    for (k, file) in files.into_iter().enumerate() {
+        let target = file.target.clone();
+        let old = if k + 1 < count {
+            Old::keep(&target)
+        } else {
+            Old::Unkept
+        };
+        match file.rename() {
+            Ok(done) => placed.push((target, old, done)),
+            Err(e) => {
+                // the old file of this target was never replaced: its second name goes
+                drop(old);
+                for (target, old, _) in placed.into_iter().rev() {
+                    old.restore(&target);
+                }
+                return Err(e);
+            }
+        }
+    }
+    for (_, old, done) in placed {
+        drop(old);
+        done.sweep();
+    }
+    Ok(())
 }
 
 thread_local! {
@@ -70,10 +172,7 @@ pub(super) fn place(file: Complete) -> Result<()> {
 /// a reader closed standard output.
 pub fn place_held() -> Result<()> {
     let files = HELD.with_borrow_mut(|held| held.as_mut().map(std::mem::take));
-    files
-        .unwrap_or_default()
-        .into_iter()
-        .try_for_each(Complete::place)
+    place_all(files.unwrap_or_default())
 }
 
 /// Drops whatever is still held when [`together`] ends, however it ends (a panic
@@ -93,9 +192,13 @@ impl Drop for Release {
 /// and every target is left as it was. So the outputs of a run change together or not at
 /// all. A special file (a pipe, `/dev/stdout`) cannot wait: it is written as before, at its
 /// write, and a failure there (`/dev/full`) fails `work` before any file is put in place.
-/// A rename that fails leaves the files renamed before it in place (renames within a
-/// folder do not fail short of the disk's own failure). Nested calls hold until the
-/// outermost ends.
+/// What would make a rename fail is refused when each file is written (a name too long
+/// for its folder, a file the user may not replace: see
+/// [`check_file`](super::check_file)); a rename that fails all the same (the folder
+/// changed meanwhile) takes back the renames before it: every target is left as it was,
+/// but for the rare one whose old file could not be kept under a second name (a file
+/// system without hard links), or a second failure while putting one back. Nested calls
+/// hold until the outermost ends.
 ///
 /// ```
 /// use robid_runtime::output::{together, write_bytes};
@@ -127,9 +230,7 @@ pub fn together<T, E: From<Error>>(
     let value = work()?;
     let files = HELD.with_borrow_mut(Option::take).unwrap_or_default();
     drop(release);
-    for file in files {
-        file.place()?;
-    }
+    place_all(files)?;
     Ok(value)
 }
 
@@ -189,5 +290,40 @@ mod tests {
         // outside a run, a write is in place at once
         write_bytes(&b, b"now").unwrap();
         assert_eq!(std::fs::read_to_string(&b).unwrap(), "now");
+    }
+
+    /// A rename that fails after others of the run succeeded (its target became a folder
+    /// after the write) takes them back: the replaced file has its old text again, the
+    /// created one is gone, and neither a temporary file nor a kept old file is left. It
+    /// left them new.
+    #[test]
+    fn a_failed_rename_takes_back_the_renames_before_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b, c) = (
+            dir.path().join("a"),
+            dir.path().join("b"),
+            dir.path().join("c"),
+        );
+        std::fs::write(&a, "old").unwrap();
+        let failed: Result<(), Error> = together(|| {
+            write_bytes(&a, b"new")?;
+            write_bytes(&b, b"new")?;
+            write_bytes(&c, b"new")?;
+            std::fs::create_dir(&c).unwrap();
+            Ok(())
+        });
+        assert!(failed.is_err());
+        assert_eq!(std::fs::read_to_string(&a).unwrap(), "old");
+        assert!(!b.exists());
+        assert_eq!(names(dir.path()), ["a", "c"]);
+        // a run that succeeds keeps no old file either
+        std::fs::remove_dir(&c).unwrap();
+        together(|| {
+            write_bytes(&a, b"new")?;
+            write_bytes(&b, b"new")
+        })
+        .unwrap();
+        assert_eq!(std::fs::read_to_string(&a).unwrap(), "new");
+        assert_eq!(names(dir.path()), ["a", "b"]);
     }
 }
