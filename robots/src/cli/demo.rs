@@ -43,6 +43,18 @@ pub(crate) fn run() -> Result<(), Error> {
             "{OUTPUT}: is a file, and the demo writes its report into the folder \
              ./{OUTPUT}; move the file away, or run the demo from another folder"
         )),
+        // a folder that takes no file (`robid-demo` read-only, or the working folder when
+        // it is missing): the demo takes no path to give instead
+        robid_runtime::Error::Output(OutputError::NotWritable {
+            path,
+            folder,
+            reason,
+        }) => Error::from(format!(
+            "{}: cannot create a file in the folder {} ({reason}), where the demo writes its \
+             report; run the demo from a folder you may write into",
+            path.display(),
+            folder.display()
+        )),
         e => e.into(),
     })?;
     // and so is a folder named like one of its files

@@ -58,6 +58,17 @@ pub(crate) fn refuse_with_folders(
                     path.display()
                 ),
             },
+            // `--plot /dev/null`: not a file that could be moved away
+            RuntimeError::Output(OutputError::SpecialNotFolder { path, what }) => {
+                RuntimeError::Argument {
+                    flag: flag.to_string(),
+                    problem: format!(
+                        "{} is {what}, not a folder, but {flag} takes a folder to write its \
+                         files into (a missing one is created); give the path of a folder",
+                        path.display()
+                    ),
+                }
+            }
             e => e,
         })?;
     }
@@ -100,7 +111,8 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), Error> {
 /// Refuses, before any work, a file of fixed name (`files`, which `owner` writes into its
 /// folder) that cannot be written where it would go: an existing folder of that name, a
 /// folder that takes no new file. The names cannot be chosen, so the fix is to move the
-/// folder away (it said "give a file name" after writing the files before it). Nothing
+/// folder away (it said "give a file name" after writing the files before it), or to
+/// make a file there that the user may not write writable, or move it away. Nothing
 /// is checked in a folder that does not exist yet: it is created empty.
 pub(crate) fn check_named_files(files: &[PathBuf], owner: &str) -> Result<(), Error> {
     for path in files {
@@ -111,6 +123,12 @@ pub(crate) fn check_named_files(files: &[PathBuf], owner: &str) -> Result<(), Er
             RuntimeError::Output(OutputError::Folder { path }) => Error::from(format!(
                 "{}: is a folder, where {owner} writes a file of that name; move or rename \
                  the folder, or write into another folder",
+                path.display()
+            )),
+            // no other path can be given either
+            RuntimeError::Output(OutputError::FileNotWritable { path }) => Error::from(format!(
+                "{}: the file is not writable (read-only or another user's), and {owner} \
+                 writes a file of that name; make it writable, or move it away",
                 path.display()
             )),
             e => e.into(),

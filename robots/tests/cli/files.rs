@@ -9,7 +9,9 @@ use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{asset, fails_with, folder, robid, robid_in, stderr, stdout, ur5e_states, write};
+use common::{
+    asset, fails_with, folder, robid, robid_in, sine_trajectory, stderr, stdout, ur5e_states, write,
+};
 
 /// The inputs of the cases, copied into a fresh folder.
 struct Inputs {
@@ -949,6 +951,17 @@ fn a_plot_folder_that_cannot_be_one_is_refused_before_any_work() {
     );
     assert_eq!(listing(dir), before);
     assert_eq!(std::fs::read_to_string(&notes).unwrap(), "mine\n");
+    // a device is named as one, without "move the file away" (it said "/dev/null is a
+    // file")
+    #[cfg(unix)]
+    {
+        let o = run(Path::new("/dev/null"));
+        assert_eq!(
+            stderr(&o),
+            "error: --plot: /dev/null is a device, not a folder, but --plot takes a folder to \
+             write its files into (a missing one is created); give the path of a folder\n"
+        );
+    }
     // a missing folder passes the check: the run fails on the data it reads next
     let o = run(&dir.join("new").join("plots"));
     fails_with(&o, &["robot.toml"]);
@@ -1188,6 +1201,131 @@ fn demo_beside_a_file_named_like_its_folder_says_what_to_do() {
         ],
     );
     assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+}
+
+/// `demo` takes no path, so a report folder it may not write into is told with what the
+/// demo can do: run it from a folder the user may write into (it said "give a path in a
+/// folder you may write into"; skipped as root, whom permissions do not stop).
+#[test]
+#[cfg(unix)]
+fn demo_in_a_folder_it_may_not_write_says_what_to_do() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = folder();
+    let report = dir.path().join("robid-demo");
+    std::fs::create_dir(&report).unwrap();
+    std::fs::set_permissions(&report, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let writable = std::fs::File::create(report.join("probe")).is_ok();
+    if !writable {
+        let o = robid_in(dir.path(), &["demo"]);
+        fails_with(
+            &o,
+            &[
+                "robid-demo: cannot create a file in the folder robid-demo (permission denied), \
+                 where the demo writes its report; run the demo from a folder you may write into",
+            ],
+        );
+        assert!(!stderr(&o).contains("give a path"), "{}", stderr(&o));
+    }
+    std::fs::set_permissions(&report, std::fs::Permissions::from_mode(0o755)).unwrap();
+}
+
+/// `-o -` is refused before any work with the two things it may have meant, and no file
+/// named `-` is written (it was, with exit 0, and a later `--states -` read it).
+#[test]
+fn a_dash_as_output_is_refused() {
+    let dir = folder();
+    let states = ur5e_states(dir.path(), 5).display().to_string();
+    let torques = |out: &str| {
+        robid_in(
+            dir.path(),
+            &[
+                "torques",
+                &asset("descriptions/ur5e.toml"),
+                "--parameters",
+                &asset("parameters/ur5e.toml"),
+                "--states",
+                &states,
+                "-o",
+                out,
+            ],
+        )
+    };
+    let o = torques("-");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        "error: -: robid does not take `-` for standard output, and would write a file named \
+         `-`; write ./- for a file of that name, or /dev/stdout for standard output\n"
+    );
+    assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+    assert!(!dir.path().join("-").exists());
+    // `./-` is a file of that name
+    let o = torques("./-");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        std::fs::read_to_string(dir.path().join("-"))
+            .unwrap()
+            .starts_with("tau1")
+    );
+}
+
+/// A report name too long for its folder's file system (256 letters and `.html`) is
+/// refused before any work, naming the cause and the fix, and the JSON of the same run
+/// keeps the earlier run's text: the check passed it (its temporary file had a short
+/// name), and the run ended at the report's rename with "File name too long; check that
+/// the folder exists and is writable" after `fit.json` was replaced.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_report_name_too_long_leaves_the_json_as_it_was() {
+    let dir = folder();
+    let d = dir.path();
+    let trajectory = sine_trajectory(d, "trajectory.csv", 6, 20.0, 1.0);
+    let data = d.join("data.csv").display().to_string();
+    let o = robid(&[
+        "simulate",
+        "descriptions/ur5e.toml",
+        "--parameters",
+        "parameters/ur5e.toml",
+        "--trajectory",
+        &trajectory,
+        "-o",
+        &data,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let fit = write(d, "fit.json", "OLD JSON\n");
+    let report = format!("{}.html", "a".repeat(256));
+    let identify = |report: &str| {
+        robid_in(
+            d,
+            &[
+                "identify",
+                &asset("descriptions/ur5e.toml"),
+                "--data",
+                &data,
+                "--json",
+                "fit.json",
+                "--report",
+                report,
+            ],
+        )
+    };
+    let o = identify(&report);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "error: {report}: the file name (261 bytes) is too long for the file system of the \
+             folder .; give a shorter name (most file systems take at most 255 bytes in a file \
+             name)\n"
+        )
+    );
+    assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+    assert_eq!(std::fs::read_to_string(&fit).unwrap(), "OLD JSON\n");
+    // the same run with a name the file system takes writes both
+    let o = identify("report.html");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_ne!(std::fs::read_to_string(&fit).unwrap(), "OLD JSON\n");
+    assert!(d.join("report.html").exists());
 }
 
 /// A folder given where a file belongs is told so with the fix, by every reader (it was
