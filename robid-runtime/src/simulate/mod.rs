@@ -247,6 +247,69 @@ pub(crate) mod run_tests {
         }
     }
 
+    /// The time column of the CSV file `f`, as written.
+    pub(crate) fn written_times(f: &std::path::Path) -> Vec<f64> {
+        std::fs::read_to_string(f)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').next().unwrap().parse().unwrap())
+            .collect()
+    }
+
+    /// A reference on Unix time stamps (from 1.7336e9 s at 500 Hz) or from 1e6 s at 2 kHz
+    /// is simulated, and its record, its log and the reference itself are written with the
+    /// very time stamps of the reference, which the data loader and the trajectory reader
+    /// take back without a repair: the time was written to ten significant digits, which
+    /// repeated every stamp within a second (1.733600000e9) or a millisecond
+    /// (1.000000000e6), and `robid identify` refused the file `simulate` had written.
+    #[test]
+    fn large_time_stamps_are_written_as_they_were_given() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = Pendulum::default();
+        for (start, rate) in [(1.7336e9, 500.0), (1e6, 2000.0)] {
+            let mut r = reference(0.2, rate);
+            r.t.iter_mut().for_each(|t| *t += start);
+            let sim = Simulation::default().run(&p, &p.base(), &r).unwrap();
+            let (record, log, traj) = (
+                dir.path().join("record.csv"),
+                dir.path().join("log.csv"),
+                dir.path().join("traj.csv"),
+            );
+            sim.measured.write_csv(&record).unwrap();
+            sim.measured.write_log_csv(&log, 1, None).unwrap();
+            r.write_csv(&traj).unwrap();
+            for f in [&record, &log, &traj] {
+                assert_eq!(written_times(f), r.t, "{start}: {}", f.display());
+            }
+            let back = Trajectory::read_csv(&traj, 2).unwrap();
+            assert_eq!(back.t, r.t);
+            for f in [&record, &log] {
+                let header: Vec<String> = std::fs::read_to_string(f)
+                    .unwrap()
+                    .lines()
+                    .next()
+                    .unwrap()
+                    .split(',')
+                    .map(str::to_string)
+                    .collect();
+                let data = crate::data::load(
+                    &crate::data::Config::default_mapping_for(&header),
+                    std::slice::from_ref(f),
+                    2,
+                )
+                .unwrap();
+                assert_eq!(data.q.samples(), r.samples(), "{start}: {}", f.display());
+                assert!(
+                    (data.sample_time * rate - 1.0).abs() < 1e-3 && data.warnings.is_empty(),
+                    "{start}: {} {:?}",
+                    data.sample_time,
+                    data.warnings
+                );
+            }
+        }
+    }
+
     /// A still two-joint trajectory at the times `t` written to `traj.csv` in `dir`, read
     /// as a trajectory and loaded as data: (its path, the trajectory, the data set).
     fn read_both_ways(

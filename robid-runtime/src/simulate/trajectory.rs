@@ -491,6 +491,13 @@ pub(super) fn check_rows(
     Ok(())
 }
 
+/// Writes `rows` rows that `fill` gives under `header` to `path` (atomically): the first
+/// column, the time, in the shortest form that reads back as the same number (Rust's `{}`),
+/// every other value to ten significant digits (`{:.9e}`). Ten digits of the time repeated
+/// stamps that robid's readers refuse: Unix time stamps (1.7336e9 s) at 500 Hz, or 1e6 s
+/// at 2 kHz, were written as runs of one value, and `robid identify` refused the log
+/// ("time 1733600000 does not increase") that `simulate` had written with exit 0. Written
+/// exactly, a time column is as increasing as the reference the run was given.
 pub(super) fn write_rows(
     path: &Path,
     header: Vec<String>,
@@ -511,7 +518,11 @@ pub(super) fn write_rows(
                     line.push(',');
                 }
                 // adding zero turns -0 into 0 (a velocity of -0 was written -0.000000000e0)
-                let _ = write!(line, "{:.9e}", x + 0.0);
+                if i == 0 {
+                    let _ = write!(line, "{}", x + 0.0);
+                } else {
+                    let _ = write!(line, "{:.9e}", x + 0.0);
+                }
             }
             writeln!(w, "{line}")?;
         }

@@ -147,6 +147,33 @@ fn flexible_log_satisfies_the_link_and_rotor_equations() {
     );
 }
 
+/// The flexible log of a reference on Unix time stamps (1.7336e9 s, 500 Hz) is written with
+/// the reference's very time stamps, and loaded as data without a repair: written to ten
+/// significant digits, every stamp within a second was one value (1.733600000e9), which
+/// the loader refused.
+#[test]
+fn flexible_log_keeps_large_time_stamps() {
+    let p = Pendulum::default();
+    let mut r = reference(0.2, 500.0);
+    r.t.iter_mut().for_each(|t| *t += 1.7336e9);
+    let log = Simulation::default()
+        .run_flexible(&p, &p.base(), &flexibility(), &r)
+        .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("flex.csv");
+    log.write_csv(&f, 1, true).unwrap();
+    assert_eq!(crate::simulate::run_tests::written_times(&f), r.t);
+    let config = crate::data::Config::from_toml_str(
+        "dof = 2\ntime_column = \"t\"\n[[source]]\nposition = \"q{}\"\ntorque = \"tauJ{}\"\n",
+        std::path::Path::new("flex.toml"),
+    )
+    .unwrap();
+    let data = crate::data::load(&config, std::slice::from_ref(&f), 2);
+    let data = data.unwrap();
+    assert_eq!(data.q.samples(), r.samples());
+    assert!(data.warnings.is_empty(), "{:?}", data.warnings);
+}
+
 /// The motor encoder and the current carry the noise and quantization; the same seed
 /// gives the same log; the torque noise reaches the current divided by N k.
 #[test]
