@@ -20,6 +20,39 @@ pub enum SimulateError {
         /// The likely cause and what to change.
         fix: String,
     },
+    /// The plant is stiffer than the explicit integration can follow: at a state of the
+    /// run its fastest rate needs each substep split into more Runge-Kutta steps than the
+    /// most a substep takes (1,000), beyond which the classical Runge-Kutta method is
+    /// unstable and the run diverged after minutes, with advice about the bandwidth. The
+    /// run stops at once, naming what makes the plant this fast (a large viscous friction
+    /// on a light link, the transmission damping of a flexible joint, ...) and its fix;
+    /// nothing is written.
+    #[error(
+        "the simulation cannot follow the plant at t = {} s (trajectory sample {sample}): \
+         its fastest rate, {} 1/s, needs each substep of {} s split into {} Runge-Kutta \
+         steps, more than the limit of {limit} beyond which the explicit integration is \
+         unstable; nothing was written; {cause}",
+        crate::Num(*time),
+        crate::Num::rounded(*rate, 3),
+        crate::Num::rounded(*step, 3),
+        crate::Num(*needed)
+    )]
+    TooStiff {
+        /// Time stamp of the reference sample whose interval it was reached in, s.
+        time: f64,
+        /// 0-based reference sample.
+        sample: usize,
+        /// The bound on the plant's fastest rate at that state, 1/s.
+        rate: f64,
+        /// The substep, s.
+        step: f64,
+        /// The Runge-Kutta steps the substep needs (`step * rate / 2.5`, rounded up).
+        needed: f64,
+        /// The most Runge-Kutta steps a substep is split into.
+        limit: usize,
+        /// What makes the plant this fast, with its value, and what to change.
+        cause: String,
+    },
     /// The mass matrix is singular because joints move no mass or inertia (a zero diagonal
     /// entry of M(q)): the parameters leave the bodies they move empty, as a URDF's links
     /// without `<inertial>` are, and no torque accelerates them. Not a question of

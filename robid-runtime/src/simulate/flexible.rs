@@ -31,7 +31,9 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use super::run::{MAX_SPLIT, RK4_REACH, StepBudget, quintic, rk4_step};
+use super::run::{
+    MAX_SPLIT, StepBudget, bandwidth_cause, quintic, reach, rk4_step, split_for, too_stiff,
+};
 use super::{ForwardDynamics, Simulation, Trajectory};
 use crate::Model;
 use crate::SimulateError;
@@ -675,9 +677,28 @@ impl Simulation {
                         (v[n + j].abs() - 2.0 * h * acc.abs()).max(0.0)
                     })
                     .collect();
-                let rate =
+                let fastest =
                     self.fastest_rate(model, base, joints, &x, &slowest, &tau, &kd, &inertia)?;
-                let split = (h * rate / RK4_REACH).ceil().clamp(1.0, MAX_SPLIT) as usize;
+                let rate = fastest.rate;
+                // beyond the cap the explicit integration is unstable: refused, unless the
+                // rate beyond it is the friction's smooth sign or Stribeck term near a
+                // reversal, which saturate (the split is capped there, as it always was)
+                let split = match split_for(h, rate) {
+                    Ok(split) => split,
+                    Err(_) => match split_for(h, fastest.stiff) {
+                        Ok(_) => MAX_SPLIT as usize,
+                        Err(needed) => {
+                            return Err(too_stiff(
+                                k,
+                                reference.t[k],
+                                fastest.stiff,
+                                h,
+                                needed,
+                                fastest.cause(joints, self.bandwidth, h),
+                            ));
+                        }
+                    },
+                };
                 budget.take(split, rate, k, samples, reference.t[k], STIFF_FLEXIBLE)?;
                 for part in 0..split {
                     let mut f = |c: f64, x: &[f64], v: &[f64], acc: &mut [f64]| -> Result<()> {
@@ -729,11 +750,20 @@ impl Simulation {
         tau: &[f64],
         kd: &[f64],
         inertia: &[f64],
-    ) -> Result<f64> {
+    ) -> Result<Fastest> {
         let n = joints.len();
         let mut mass = vec![0.0; n * n];
         model.mass_matrix_into(&x[..n], base, &mut mass)?;
-        let mut rate: f64 = 0.0;
+        let wn = std::f64::consts::TAU * self.bandwidth;
+        let mut fastest = Fastest {
+            rate: 0.0,
+            stiff: 0.0,
+            joint: 0,
+            term: Term::Bandwidth,
+            part: 0.0,
+            link: 0.0,
+            loop_rate: wn,
+        };
         for (j, g) in joints.iter().enumerate() {
             // the link's own inertia at this joint; a joint whose link is nearly massless
             // moves with the link's smallest principal inertia, bounded below by 1e-9
@@ -744,17 +774,114 @@ impl Simulation {
             let f = &g.friction;
             let level = f.coulomb + f.load * tau[j].abs() + f.stribeck;
             let sech = 1.0 / (slowest[j] / f.smoothing).cosh();
-            let slope = level * sech * sech / f.smoothing
-                + f.viscous
+            // the smooth sign's and the Stribeck term's slopes saturate (apart for the
+            // error of a plant too stiff to integrate); the viscous one does not
+            let saturating = level * sech * sech / f.smoothing
                 + f.stribeck * stribeck_slope(f.stribeck_velocity, slowest[j]);
-            rate = rate.max(
-                (stiffness * compliance).sqrt()
-                    + g.damping * compliance
-                    + slope / g.rotor_inertia
-                    + kd[j] / inertia[j],
-            );
+            let terms = [
+                (Term::Resonance, (stiffness * compliance).sqrt()),
+                (Term::Damping, g.damping * compliance),
+                (Term::Friction, f.viscous / g.rotor_inertia),
+                (Term::Bandwidth, kd[j] / inertia[j] + wn),
+            ];
+            let stiff = terms.iter().map(|(_, r)| r).sum::<f64>();
+            fastest.rate = fastest.rate.max(stiff + saturating / g.rotor_inertia);
+            if stiff > fastest.stiff {
+                let (term, part) = terms
+                    .into_iter()
+                    .max_by(|a, b| a.1.total_cmp(&b.1))
+                    .unwrap_or((Term::Bandwidth, 0.0));
+                (fastest.stiff, fastest.joint, fastest.term, fastest.part) = (stiff, j, term, part);
+                fastest.link = m;
+                fastest.loop_rate = kd[j] / inertia[j] + wn;
+            }
         }
-        Ok(rate + std::f64::consts::TAU * self.bandwidth)
+        Ok(fastest)
+    }
+}
+
+/// The term of a flexible plant's fastest rate ([`Fastest`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Term {
+    /// The transmission's resonance on the rotor and link inertias.
+    Resonance,
+    /// The transmission's damping over the rotor and link inertias.
+    Damping,
+    /// The rotor friction's slope over the rotor inertia.
+    Friction,
+    /// The controller's own rate.
+    Bandwidth,
+}
+
+/// The bound on a flexible plant's fastest rate and what makes most of it: the joint
+/// whose rate is the largest and the largest of its terms, for the error of a plant too
+/// stiff to integrate ([`crate::SimulateError::TooStiff`]).
+struct Fastest {
+    /// The bound, 1/s (the loop's rate included), for the split of a substep.
+    rate: f64,
+    /// The bound without the friction's saturating terms (its smooth sign and Stribeck
+    /// term), 1/s, for the error: what is stiff at every step.
+    stiff: f64,
+    /// The joint of the largest rate, from 0.
+    joint: usize,
+    /// Its largest term.
+    term: Term,
+    /// That term's rate, 1/s.
+    part: f64,
+    /// The link's inertia at the joint (the mass matrix's diagonal entry, at least 1e-9).
+    link: f64,
+    /// The controller's rate at the joint, 1/s.
+    loop_rate: f64,
+}
+
+impl Fastest {
+    /// What makes the rate, with the values of `joints` (the flexibility file's) and the
+    /// fix, for a substep of `h` seconds of a loop of `bandwidth` Hz.
+    fn cause(&self, joints: &[FlexibleJoint], bandwidth: f64, h: f64) -> String {
+        let j = self.joint + 1;
+        let g = &joints[self.joint];
+        let num = crate::Num;
+        let rounded = crate::Num::rounded;
+        // the value of the term's quantity the integration follows, scaling it with its
+        // rate (its rate is proportional to it but for the resonance, to its square root)
+        let room = (reach(h) - (self.stiff - self.part)).max(0.0) / self.part;
+        let inertias = format!(
+            "rotor_inertia {} kg m^2, the link's inertia {} kg m^2 at this state",
+            num(g.rotor_inertia),
+            rounded(self.link, 3)
+        );
+        match self.term {
+            Term::Damping => format!(
+                "the transmission damping of joint {j}, damping = {} N m s/rad in the \
+                 joint-flexibility file, over its inertias ({inertias}: a rate of {} 1/s) \
+                 makes it: check joint {j}'s `damping`; the integration follows a damping below \
+                 about {} N m s/rad",
+                num(g.damping),
+                rounded(self.part, 3),
+                rounded(g.damping * room, 2)
+            ),
+            Term::Resonance => format!(
+                "the transmission of joint {j}, stiffness = {} N m/rad (hardening {} N m/rad^3) \
+                 in the joint-flexibility file, resonating on its inertias ({inertias}: {} \
+                 1/s) makes it: check joint {j}'s `stiffness`, `hardening` and \
+                 `rotor_inertia`; the integration follows a stiffness below about {} N m/rad",
+                num(g.stiffness),
+                num(g.hardening),
+                rounded(self.part, 3),
+                rounded(g.stiffness * room * room, 2)
+            ),
+            Term::Friction => format!(
+                "the rotor's viscous friction of joint {j}, viscous = {} N m s/rad in the \
+                 joint-flexibility file, over rotor_inertia {} kg m^2 ({} 1/s) makes it: check \
+                 joint {j}'s `viscous` and `rotor_inertia`; the integration follows a viscous \
+                 friction below about {} N m s/rad",
+                num(g.friction.viscous),
+                num(g.rotor_inertia),
+                rounded(self.part, 3),
+                rounded(g.friction.viscous * room, 2)
+            ),
+            Term::Bandwidth => bandwidth_cause(bandwidth, self.loop_rate, h, self.stiff),
+        }
     }
 }
 

@@ -153,6 +153,37 @@ pub(crate) mod run_tests {
         );
     }
 
+    /// A viscous friction whose rate over its link's inertia needs each substep split
+    /// beyond the cap (Fv2 = 1e6 N m s/rad on the second link at 100 Hz and 10 substeps:
+    /// 2690 Runge-Kutta steps) stops at its first sample, naming the rate, the split, Fv2 with
+    /// its value and the inertia; the split clamped to 1,000 let the run diverge, and the
+    /// message said to raise the bandwidth. The same plant at 500 Hz (538 steps) runs.
+    #[test]
+    fn a_viscous_friction_beyond_the_split_cap_is_named() {
+        let p = Pendulum::default();
+        let mut stiff = p.base();
+        assert_eq!(p.base_parameter_name(8), Some("Fv2"));
+        stiff[8] = 1e6;
+        let e = Simulation::default()
+            .run(&p, &stiff, &reference(0.1, 100.0))
+            .unwrap_err();
+        let text = e.to_string();
+        assert!(
+            matches!(
+                e,
+                Error::Simulate(SimulateError::TooStiff { sample: 0, .. })
+            ) && text.starts_with("the simulation cannot follow the plant at t = 0 s")
+                && text.contains("more than the limit of 1000")
+                && text.contains("nothing was written")
+                && text.contains("the viscous friction of joint 2, Fv2 = 1e6 N m s/rad")
+                && text.contains("kg m^2 at this state, 1 / (M^-1)22"),
+            "{text}"
+        );
+        Simulation::default()
+            .run(&p, &stiff, &reference(0.1, 500.0))
+            .unwrap();
+    }
+
     /// An encoder resolution below `MIN_RESOLUTION` (1e-320, meant as 0) is refused naming
     /// the setting; it used to overflow `q / resolution` and end the run as "diverged" at
     /// its first sample. 0 and the smallest accepted resolution run.

@@ -519,11 +519,30 @@ impl Simulation {
                 let h = interval / self.substeps as f64;
                 // Runge-Kutta steps per substep: enough for the fastest damping of this state
                 // (viscous friction on a light link, the loop's own)
-                let rate = damping_rate(model, base, &q, &qd)
-                    .map_err(|e| inconsistent(k, &q, e))?
-                    + kd
-                    + wn;
-                let split = (h * rate / RK4_REACH).ceil().clamp(1.0, MAX_SPLIT) as usize;
+                let (damping, _) =
+                    damping_rate(model, base, &q, &qd).map_err(|e| inconsistent(k, &q, e))?;
+                let rate = damping + kd + wn;
+                // beyond the cap the explicit integration is unstable: refused, unless the
+                // rate came from a Coulomb level's sign, which differenced across zero
+                // velocity is level / 1e-6, no rate of the plant (it chatters there at any
+                // step; the split is capped as it always was)
+                let split = match split_for(h, rate) {
+                    Ok(split) => split,
+                    Err(_) => {
+                        let (damping, joint) = damping_rate(model, &coulomb.smooth, &q, &qd)
+                            .map_err(|e| inconsistent(k, &q, e))?;
+                        let rate = damping + kd + wn;
+                        if let Err(needed) = split_for(h, rate) {
+                            let cause = if kd + wn >= damping {
+                                bandwidth_cause(self.bandwidth, kd + wn, h, rate)
+                            } else {
+                                rigid_cause(model, base, &q, joint, damping, h, rate)
+                            };
+                            return Err(too_stiff(k, reference.t[k], rate, h, needed, cause));
+                        }
+                        MAX_SPLIT as usize
+                    }
+                };
                 for i in 0..self.substeps {
                     budget.take(split, rate, k, samples, reference.t[k], STIFF_RIGID)?;
                     if i > 0 {
@@ -592,6 +611,115 @@ impl Simulation {
 pub(super) const RK4_REACH: f64 = 2.5;
 /// The most Runge-Kutta steps one substep is split into.
 pub(super) const MAX_SPLIT: f64 = 1000.0;
+
+/// The Runge-Kutta steps a substep of `h` seconds is split into where the plant's
+/// fastest rate is `rate` (`h rate / RK4_REACH`, at least 1), or, beyond [`MAX_SPLIT`], the
+/// steps it would need as the error: past the cap the explicit integration is unstable,
+/// and a split clamped to it let the run diverge after minutes, blamed on the bandwidth.
+pub(super) fn split_for(h: f64, rate: f64) -> std::result::Result<usize, f64> {
+    let needed = (h * rate / RK4_REACH).ceil();
+    if needed > MAX_SPLIT {
+        Err(needed)
+    } else {
+        Ok(needed.max(1.0) as usize)
+    }
+}
+
+/// [`SimulateError::TooStiff`] in the interval after reference sample `k` (at `t`), for a
+/// substep `h` that needs `needed` steps at `rate`, with `cause`.
+pub(super) fn too_stiff(k: usize, t: f64, rate: f64, h: f64, needed: f64, cause: String) -> Error {
+    Error::Simulate(SimulateError::TooStiff {
+        time: t,
+        sample: k,
+        rate,
+        step: h,
+        needed,
+        limit: MAX_SPLIT as usize,
+        cause,
+    })
+}
+
+/// The fastest rate the integration follows with a substep of `h` seconds, 1/s.
+pub(super) fn reach(h: f64) -> f64 {
+    MAX_SPLIT * RK4_REACH / h
+}
+
+/// The cause of [`SimulateError::TooStiff`] when the controller's rate `loop_rate`
+/// (`2 zeta wn + wn`) of a loop of `bandwidth` Hz is most of the plant's `rate`: the
+/// bandwidth that fits the substep `h`.
+pub(super) fn bandwidth_cause(bandwidth: f64, loop_rate: f64, h: f64, rate: f64) -> String {
+    let fits = bandwidth * (reach(h) - (rate - loop_rate)).max(0.0) / loop_rate;
+    format!(
+        "the controller bandwidth, {} Hz, makes most of it ({} 1/s): lower the bandwidth \
+         (--bandwidth) below about {} Hz, or sample the trajectory faster",
+        crate::Num(bandwidth),
+        crate::Num::rounded(loop_rate, 3),
+        crate::Num::rounded(fits, 2)
+    )
+}
+
+/// The cause of [`SimulateError::TooStiff`] of a rigid plant whose velocity-dependent
+/// torques make its fastest rate, `damping` of the whole `rate` (1/s) at positions `q`,
+/// mostly through the velocity of `joint` (from 0): its viscous friction `Fv` over the
+/// inertia it moves when the model has that parameter and it makes most of that column of
+/// dh/dqd, else both candidates (the friction and the Coriolis and centrifugal torques of
+/// a light link).
+fn rigid_cause<M: Model + ?Sized>(
+    model: &M,
+    base: &[f64],
+    q: &[f64],
+    joint: usize,
+    damping: f64,
+    h: f64,
+    rate: f64,
+) -> String {
+    let n = q.len();
+    let mut m = vec![0.0; n * n];
+    // the inertia the joint moves with the others free, 1 / (M^-1)_jj: its friction's
+    // rate is Fv over it
+    let inertia = match model.mass_matrix_into(q, base, &mut m) {
+        Ok(()) => nalgebra::DMatrix::from_row_slice(n, n, &m)
+            .try_inverse()
+            .map_or(f64::NAN, |inverse| 1.0 / inverse[(joint, joint)]),
+        Err(_) => f64::NAN,
+    };
+    let j = joint + 1;
+    let name = format!("Fv{j}");
+    let fv = (0..base.len())
+        .find(|&i| model.base_parameter_name(i) == Some(name.as_str()))
+        .map(|i| base[i]);
+    // the rate of the friction alone: Fv over the joint's inertia
+    let of_friction = fv.map(|fv| fv.abs() / inertia).filter(|r| r.is_finite());
+    let fits = |value: f64| {
+        crate::Num::rounded(
+            value.abs() * (reach(h) - (rate - damping)).max(0.0) / damping,
+            2,
+        )
+    };
+    match (fv, of_friction) {
+        (Some(fv), Some(r)) if r >= 0.5 * damping => format!(
+            "the viscous friction of joint {j}, {name} = {} N m s/rad, on the little inertia \
+             it moves ({} kg m^2 at this state, 1 / (M^-1){j}{j}: a rate of {} 1/s) makes \
+             it: check {name} and the inertia of the links joint {j} moves in the parameters; \
+             the integration follows {name} below about {} N m s/rad at this inertia",
+            crate::Num(fv),
+            crate::Num::rounded(inertia, 3),
+            crate::Num::rounded(r, 3),
+            fits(fv)
+        ),
+        _ => format!(
+            "the torques that change with the velocity of joint {j} make it, on the little \
+             inertia they move ({} kg m^2 at this state, 1 / (M^-1){j}{j}): its viscous friction \
+             ({}) or the Coriolis and centrifugal torques of a light link; check the \
+             friction and the inertias of the links joint {j} moves in the parameters",
+            crate::Num::rounded(inertia, 3),
+            match fv {
+                Some(fv) => format!("{name} = {}", crate::Num(fv)),
+                None => format!("the model has no {name}"),
+            }
+        ),
+    }
+}
 
 /// The Runge-Kutta steps a run has taken, counted against [`MAX_SIMULATION_STEPS`] with
 /// the splits of every substep: the check before a run counts samples x substeps, and a
@@ -741,8 +869,14 @@ impl Coulomb {
 
 /// A bound on the damping rates of the plant at (q, qd): the infinity norm of
 /// M^-1 dh/dqd, with dh/dqd by one-sided differences away from zero velocity (so that a
-/// Coulomb term's sign does not flip).
-fn damping_rate<M: Model + ?Sized>(model: &M, base: &[f64], q: &[f64], qd: &[f64]) -> Result<f64> {
+/// Coulomb term's sign does not flip); with the joint (from 0) whose velocity makes the
+/// largest term of the largest row, for the error of a plant too stiff to integrate.
+fn damping_rate<M: Model + ?Sized>(
+    model: &M,
+    base: &[f64],
+    q: &[f64],
+    qd: &[f64],
+) -> Result<(f64, usize)> {
     let n = q.len();
     let zero = vec![0.0; n];
     let mut m = vec![0.0; n * n];
@@ -768,9 +902,17 @@ fn damping_rate<M: Model + ?Sized>(model: &M, base: &[f64], q: &[f64], qd: &[f64
         )
     })?;
     let b = chol.solve(&d);
-    Ok((0..n)
-        .map(|i| (0..n).map(|j| b[(i, j)].abs()).sum::<f64>())
-        .fold(0.0, f64::max))
+    let (mut rate, mut joint) = (0.0, 0);
+    for i in 0..n {
+        let row = (0..n).map(|j| b[(i, j)].abs()).sum::<f64>();
+        if row > rate {
+            rate = row;
+            joint = (0..n)
+                .max_by(|&a, &c| b[(i, a)].abs().total_cmp(&b[(i, c)].abs()))
+                .unwrap_or(0);
+        }
+    }
+    Ok((rate, joint))
 }
 
 /// One classical Runge-Kutta step of q'' = f(t, q, q') over `h`: `f(c, q, qd, acc)` gives

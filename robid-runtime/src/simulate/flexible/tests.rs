@@ -174,6 +174,33 @@ fn flexible_log_keeps_large_time_stamps() {
     assert!(data.warnings.is_empty(), "{:?}", data.warnings);
 }
 
+/// A transmission damping whose rate over its inertias needs each substep split beyond the
+/// cap (1e7 N m s/rad on joint 2, over a rotor of 0.1 and a link of 0.3 kg m^2, at 1 kHz:
+/// thousands of steps) stops at its first sample naming the damping of joint 2 and its
+/// value; the split clamped to 1,000 let the run diverge, blamed on "a stiffness or rotor
+/// inertia".
+#[test]
+fn a_damping_beyond_the_split_cap_is_named() {
+    let p = Pendulum::default();
+    let mut flex = flexibility();
+    flex.joints[1].damping = 1e7;
+    let e = Simulation::default()
+        .run_flexible(&p, &p.base(), &flex, &reference(0.1, 1000.0))
+        .unwrap_err();
+    let text = e.to_string();
+    assert!(
+        matches!(
+            e,
+            Error::Simulate(crate::SimulateError::TooStiff { sample: 0, .. })
+        ) && text.starts_with("the simulation cannot follow the plant at t = 0 s")
+            && text.contains("more than the limit of 1000")
+            && text.contains("nothing was written")
+            && text.contains("the transmission damping of joint 2, damping = 1e7 N m s/rad")
+            && text.contains("check joint 2's `damping`"),
+        "{text}"
+    );
+}
+
 /// The motor encoder and the current carry the noise and quantization; the same seed
 /// gives the same log; the torque noise reaches the current divided by N k.
 #[test]
