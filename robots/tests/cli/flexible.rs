@@ -1,5 +1,6 @@
 //! `robid simulate --flexible`: the two-encoder log of a flexible-joint UR5e, and its
-//! flags' errors.
+//! flags' errors; with the rigid runs, the simulations too stiff to integrate and the
+//! time stamps of a record on Unix time.
 
 use crate::common;
 
@@ -412,4 +413,150 @@ fn simulate_takes_a_points_design_of_two_samples_a_piece() {
         );
         std::fs::remove_file(&out).unwrap();
     }
+}
+
+/// A plant stiffer than the integration can follow is refused at its first sample with
+/// the cause and its value, nothing written, rigid and flexible: a viscous friction of
+/// 1e6 N m s/rad on a link of ZZ2 = 0.001 (`--drive Fv`), and a transmission damping of
+/// 1e7 N m s/rad in the joint-flexibility file. Both diverged once the Runge-Kutta split
+/// was clamped to its cap, with "raise the bandwidth" and "a stiffness or rotor inertia"
+/// as the advice.
+#[test]
+fn simulate_names_what_makes_a_plant_too_stiff_to_integrate() {
+    let dir = folder();
+    let path = |name: &str| dir.path().join(name).display().to_string();
+    let joint = |alpha: &str, a: f64| {
+        format!(
+            "[[joints]]\nalpha = {alpha}\na = {a}\nd = 0\ntheta = 0\nlimits = {{ position = \
+             [-3, 3], velocity = 3, acceleration = 20, torque = 100 }}\n"
+        )
+    };
+    let robot = format!(
+        "name = \"arm2\"\nconvention = \"modified\"\ngravity = [0, 0, -9.81]\n\n{}\n{}",
+        joint("0", 0.0),
+        joint("\"pi/2\"", 0.3)
+    );
+    std::fs::write(path("arm2.toml"), robot).unwrap();
+    let inertias =
+        "[base]\nZZR1 = 1.2\nXXR2 = 0.1\nXY2 = 0.01\nXZ2 = 0.02\nYZ2 = 0.0\nMX2 = 0.5\nMY2 = 0.1\n";
+    std::fs::write(
+        path("fv.toml"),
+        format!("{inertias}ZZ2 = 0.001\nFv1 = 1e6\nFv2 = 1e6\n"),
+    )
+    .unwrap();
+    std::fs::write(path("p.toml"), format!("{inertias}ZZ2 = 0.3\n")).unwrap();
+    let flexible_joint = |j: usize| {
+        format!(
+            "[[joint]]\njoint = {j}\ngear_ratio = 101.0\nrotor_inertia = 0.13\n\
+             torque_constant = 0.125\nstiffness = 3.5e4\nhardening = 5e9\ndamping = {}\n\
+             friction = {{ coulomb = 6.0, load = 0.02, stribeck = 1.5, stribeck_velocity = \
+             0.05, viscous = 8.0, coulomb_temperature = 0.006, viscous_temperature = 0.012, \
+             reference_temperature = 25.0 }}\n",
+            if j == 2 { "1e7" } else { "5" }
+        )
+    };
+    std::fs::write(
+        path("flex.toml"),
+        format!(
+            "[temperature]\nstart = 25.0\nend = 45.0\ntime_constant = 600.0\n\n{}\n{}",
+            flexible_joint(1),
+            flexible_joint(2)
+        ),
+    )
+    .unwrap();
+    // 0.2 s at 500 Hz from rest
+    let mut traj = String::from("t,q1,q2,qd1,qd2,qdd1,qdd2\n");
+    for k in 0..100 {
+        let t = k as f64 / 500.0;
+        let (q, qd, qdd) = (
+            0.3 * (1.0 - (2.0 * t).cos()),
+            0.6 * (2.0 * t).sin(),
+            1.2 * (2.0 * t).cos(),
+        );
+        traj.push_str(&format!("{t},{q},{q},{qd},{qd},{qdd},{qdd}\n"));
+    }
+    std::fs::write(path("traj.csv"), traj).unwrap();
+    let out = path("out.csv");
+    for (args, cause) in [
+        (
+            vec!["--drive", "Fv", "--parameters", "fv.toml"],
+            "the viscous friction of joint 2, Fv2 = 1e6 N m s/rad, on the little inertia it moves",
+        ),
+        (
+            vec!["--parameters", "p.toml", "--flexible", "flex.toml"],
+            "the transmission damping of joint 2, damping = 1e7 N m s/rad in the \
+             joint-flexibility file",
+        ),
+    ] {
+        let mut all = vec![
+            "simulate",
+            "arm2.toml",
+            "--trajectory",
+            "traj.csv",
+            "-o",
+            &out,
+        ];
+        all.extend(args);
+        let o = common::robid_in(dir.path(), &all);
+        let e = stderr(&o);
+        assert!(
+            e.starts_with(
+                "error: the simulation cannot follow the plant at t = 0 s (trajectory sample 0)"
+            ) && e.contains("more than the limit of 1000")
+                && e.contains("nothing was written")
+                && e.contains(cause),
+            "{e}"
+        );
+        assert_eq!(o.status.code(), Some(1), "{e}");
+        assert!(!dir.path().join("out.csv").exists(), "{e}");
+    }
+}
+
+/// A trajectory on Unix time stamps (`robid excite`'s, t + 1733600000 s, as a logger
+/// writes them) is simulated into a record that `robid identify` reads, its time stamps
+/// the trajectory's own: written to ten significant digits they repeated within every
+/// second (1.733600000e9), and `identify` refused the file `simulate` wrote with exit 0
+/// ("time 1733600000 does not increase").
+#[test]
+fn simulate_keeps_unix_time_stamps_that_identify_reads() {
+    let dir = folder();
+    let d = dir.path();
+    let arm = common::asset("descriptions/ur5e.toml");
+    let o = common::robid_in(d, &["excite", &arm, "--duration", "10", "-o", "t.csv"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = std::fs::read_to_string(d.join("t.csv")).unwrap();
+    let mut lines = text.lines();
+    let mut shifted = lines.next().unwrap().to_string() + "\n";
+    let mut stamps = Vec::new();
+    for line in lines {
+        let (t, rest) = line.split_once(',').unwrap();
+        let t = format!("{:.6}", t.parse::<f64>().unwrap() + 1733600000.0);
+        stamps.push(t.parse::<f64>().unwrap());
+        shifted.push_str(&format!("{t},{rest}\n"));
+    }
+    std::fs::write(d.join("tunix.csv"), shifted).unwrap();
+    let params = common::asset("parameters/ur5e_as_built.toml");
+    let o = common::robid_in(
+        d,
+        &[
+            "simulate",
+            &arm,
+            "--parameters",
+            &params,
+            "--trajectory",
+            "tunix.csv",
+            "-o",
+            "sim.csv",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let written: Vec<f64> = std::fs::read_to_string(d.join("sim.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(written, stamps);
+    let o = common::robid_in(d, &["identify", &arm, "--data", "sim.csv"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
