@@ -2,7 +2,8 @@
 //! non-finite or runaway result is a named error pointing at its cause.
 //!
 //! - `simulate` with a bandwidth of 1000 Hz on a 100 Hz trajectory diverged to 1.5e31 N m
-//!   and reported success: now the divergence is detected and blamed on the bandwidth;
+//!   and reported success: now the divergence is detected and blamed on the bandwidth, and
+//!   a loop too fast for the finest integration step is refused before the first step;
 //! - `feasible` given an identified value of 1e308 wrote "chi^2 = 0": the inputs are checked
 //!   (values and deviations finite and in range, deviations positive) and so is the result;
 //! - `--sigma 0` reported "weights: [inf, ...]": a zero noise is refused by name;
@@ -38,14 +39,15 @@ fn a_diverging_simulation_is_an_error_that_blames_the_bandwidth() {
     };
     let e = fast.run(&Ur5e, &base, &r).unwrap_err();
     let text = e.to_string();
+    // refused before the first step (it diverged first, then was blamed on the bandwidth)
     assert!(
-        matches!(e, Error::Simulate(SimulateError::Diverged { .. })),
+        matches!(e, Error::Simulate(SimulateError::TooStiff { .. })),
         "{text}"
     );
     assert!(
-        text.contains(
-            "the controller bandwidth 1000000 Hz is too high for the finest integration step"
-        ) && text.contains("lower the bandwidth below"),
+        text.contains("at t = 0 s")
+            && text.contains("the controller bandwidth, 1e6 Hz, makes most of it")
+            && text.contains("lower the bandwidth (--bandwidth) below about"),
         "{text}"
     );
     // the default bandwidth tracks, and the record is finite
