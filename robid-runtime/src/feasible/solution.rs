@@ -244,31 +244,10 @@ impl Solution {
             min_eigenvalues.push(pseudo_inertia_min_eigenvalue(&p));
             let link = LinkInertial::from_standard(&p);
             if let Some(l) = &link {
-                // a value outside its range is a violation, not one at its bound
                 let mut at = |what: String, v: f64, r: [f64; 2]| {
-                    if out(v, r) {
-                        return;
-                    }
-                    let range = (r[1] - r[0]).max(1e-12);
-                    // a closed range is one bound, said once (it was at its lower and at its
-                    // upper bound)
-                    let sides: &[(&str, f64)] = if r[0] == r[1] {
-                        &[("", r[0])]
-                    } else {
-                        &[(" lower", r[0]), (" upper", r[1])]
-                    };
-                    for &(side, bound) in sides {
-                        // a small value above a zero bound is a small link (a 12 g jaw under
-                        // the default 50 kg range), not one pushed against the bound
-                        let near = if bound == 0.0 { 1e-6 } else { 1e-3 } * range;
-                        if (v - bound).abs() <= near {
-                            at_bounds.push(format!(
-                                "link {}: {what} {} at its{side} bound {}",
-                                j + 1,
-                                Num::rounded(v, 7),
-                                Num(bound)
-                            ));
-                        }
+                    if !out(v, r) {
+                        let link = at_bound(&what, v, r).map(|t| format!("link {}: {t}", j + 1));
+                        at_bounds.extend(link);
                     }
                 };
                 at("mass".into(), l.mass, b.mass);
@@ -348,6 +327,9 @@ impl Solution {
                     BoundKind::TotalMass,
                     format!("total mass {} outside {}", outside(total), range(t)),
                 );
+            } else {
+                // it was never named, though every method can end on it
+                at_bounds.extend(at_bound("total mass", total, t));
             }
         }
         let dont_care = problem
@@ -402,6 +384,31 @@ impl Solution {
             .iter()
             .fold(0.0, |a, z| a.max(z.abs()))
     }
+}
+
+/// The bound of `r` that `v` (inside it) sits at, as "WHAT V at its lower bound B": within
+/// 1e-3 of the range, or 1e-6 of it for a bound of zero (a small value above a zero bound is
+/// a small link, a 12 g jaw under the default 50 kg range, not one pushed against the
+/// bound); a closed range is one bound, said once (it was at its lower and at its upper
+/// bound).
+fn at_bound(what: &str, v: f64, r: [f64; 2]) -> impl Iterator<Item = String> {
+    let range = (r[1] - r[0]).max(1e-12);
+    let sides: Vec<(&str, f64)> = if r[0] == r[1] {
+        vec![("", r[0])]
+    } else {
+        vec![(" lower", r[0]), (" upper", r[1])]
+    };
+    let what = what.to_owned();
+    sides.into_iter().filter_map(move |(side, bound)| {
+        let near = if bound == 0.0 { 1e-6 } else { 1e-3 } * range;
+        ((v - bound).abs() <= near).then(|| {
+            format!(
+                "{what} {} at its{side} bound {}",
+                Num::rounded(v, 7),
+                Num(bound)
+            )
+        })
+    })
 }
 
 #[cfg(test)]
@@ -548,10 +555,12 @@ mod tests {
             "link 1: centre of mass x 0 at its lower bound",
             "link 1: centre of mass y 0 at its upper bound",
             "link 1: principal moment 3 0.03 at its upper bound",
+            // the total mass was never named at its bound
+            "total mass 2 at its lower bound 2.0000005",
         ] {
             assert!(at.contains(want), "{want} not in\n{at}");
         }
-        assert_eq!(s.at_bounds.len(), 4, "{at}");
+        assert_eq!(s.at_bounds.len(), 5, "{at}");
     }
 
     /// A closed range (`mass = [2, 2]`) is one bound: a value on it is said once, short
