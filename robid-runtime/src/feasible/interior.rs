@@ -205,8 +205,10 @@ pub fn solve_interior(
             mu /= MU_FACTOR;
         }
     }
+    let value = objective.fit_value(&p);
     let mut solution = Solution::assemble(problem, bounds, Method::Interior, p, start.elapsed())?;
     solution.iterations = budget - steps_left;
+    solution.objective = Some(value);
     solution.determined = super::prior::determined(problem, &objective.pull);
     solution.unpulled = super::prior::unpulled(problem, &objective.pull);
     Ok(solution)

@@ -72,4 +72,4 @@ pub use search::{
     solve_gravity_step, solve_two_step,
 };
 pub use smooth::{SmoothOptions, solve_smooth};
-pub use solution::{Method, Solution};
+pub use solution::{Method, SHORT_SHARE, Solution};

@@ -311,6 +311,14 @@ impl<'a> Objective<'a> {
         self.residuals(p).norm_squared()
     }
 
+    /// The data's and the prior's part of the value at p (chi^2 units), without the
+    /// bounds' penalty, whose shifts differ between methods: what two methods that meet
+    /// the bounds compare by.
+    pub(super) fn fit_value(&self, p: &[f64]) -> f64 {
+        let rows = self.a.nrows() + self.pull.target.len();
+        self.residuals(p).rows(0, rows).norm_squared()
+    }
+
     /// The starting point of both methods: the prior, each link just inside the consistent
     /// set (pseudo-inertia at least `margin` plus a small share of its scale), and the
     /// drive and free terms that fit best with those links (non-negative ones at least a

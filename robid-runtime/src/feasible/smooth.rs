@@ -323,8 +323,10 @@ pub fn solve_smooth(
         last = violation;
     }
     let p = fit.standard(&fit.x);
+    let value = fit.objective.fit_value(&p);
     let mut solution = Solution::assemble(problem, bounds, Method::Cholesky, p, start.elapsed())?;
     solution.iterations = iterations;
+    solution.objective = Some(value);
     solution.determined = super::prior::determined(problem, &fit.objective.pull);
     solution.unpulled = super::prior::unpulled(problem, &fit.objective.pull);
     Ok(solution)
