@@ -645,7 +645,8 @@ pub(super) fn reach(h: f64) -> f64 {
 }
 
 /// The cause of [`SimulateError::TooStiff`] when the controller's rate `loop_rate`
-/// (`2 zeta wn + wn`) of a loop of `bandwidth` Hz is most of the plant's `rate`: the
+/// (`2 zeta wn + wn` on a rigid plant, `kd / B + sqrt(kp / B)` on a flexible joint's rotor;
+/// either proportional to the bandwidth) of a loop of `bandwidth` Hz is most of the plant's `rate`: the
 /// bandwidth that fits the substep `h`.
 pub(super) fn bandwidth_cause(bandwidth: f64, loop_rate: f64, h: f64, rate: f64) -> String {
     let fits = bandwidth * (reach(h) - (rate - loop_rate)).max(0.0) / loop_rate;
