@@ -186,6 +186,12 @@ pub struct Config {
     /// the robot's, set in code, as every `robid` subcommand does from its description.
     #[serde(skip)]
     pub prismatic: Vec<bool>,
+    /// The keys a front end set from its command line, each with the flag as given
+    /// (`estimation.method`, `--method energy`; see [`Config::set_by_flag`]). Not keys of
+    /// the file: an error about one names the flag (it named the file's line of the value
+    /// the flag replaced, or a key the file never gave).
+    #[serde(skip)]
+    pub flags: Vec<(String, String)>,
 }
 
 impl Default for Config {
@@ -207,6 +213,7 @@ impl Default for Config {
             origin: ConfigOrigin::Code,
             progress: false,
             prismatic: Vec::new(),
+            flags: Vec::new(),
         }
     }
 }
@@ -1074,9 +1081,31 @@ impl Config {
         }
     }
 
-    /// The error for the key `key` (a dotted path, arrays numbered from 1): located in the
-    /// file when the config was read from one, else named as a field of `Config`.
+    /// Records that the front end set `key` (a dotted path, with everything under it)
+    /// from its command line as `flag` (e.g. `--method energy`): errors about it name the
+    /// flag ([`Config::key_error`]).
+    pub fn set_by_flag(&mut self, key: &str, flag: impl Into<String>) {
+        self.flags.retain(|(k, _)| k != key);
+        self.flags.push((key.to_string(), flag.into()));
+    }
+
+    /// The error for the key `key` (a dotted path, arrays numbered from 1): an
+    /// [`Error::Argument`] naming the flag when a command line set it
+    /// ([`Config::set_by_flag`]), else located in the file when the config was read from
+    /// one, else named as a field of `Config`.
     pub fn key_error(&self, key: &str, problem: impl Into<String>) -> Error {
+        let under = |k: &str| {
+            key == k
+                || key
+                    .strip_prefix(k)
+                    .is_some_and(|rest| rest.starts_with('.'))
+        };
+        if let Some((_, flag)) = self.flags.iter().find(|(k, _)| under(k)) {
+            return Error::Argument {
+                flag: flag.clone(),
+                problem: problem.into(),
+            };
+        }
         match &self.origin {
             ConfigOrigin::File { path, keys } => {
                 let at = keys.find(key);

@@ -400,6 +400,11 @@ pub(crate) fn run(args: &Args) -> Result<(), Error> {
             MethodArg::Energy => Method::Energy,
             MethodArg::PerAxis => Method::PerAxis,
         };
+        // an error about the method names the flag, not the config's line it replaced
+        let name = clap::ValueEnum::to_possible_value(&m)
+            .map(|v| v.get_name().to_owned())
+            .unwrap_or_default();
+        config.set_by_flag("estimation.method", format!("--method {name}"));
     }
     let per_set = config.sources.len().max(1);
     if !args.validate.len().is_multiple_of(per_set) {

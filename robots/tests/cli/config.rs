@@ -1329,6 +1329,40 @@ fn an_extra_column_named_like_a_standard_parameter_is_refused() {
     assert!(o.status.success(), "{}", stderr(&o));
 }
 
+/// An error about the method set by `--method` names the flag: the energy model with an
+/// extra column blamed `estimation.method` at the config's line of `method = "wls"`, the
+/// value the flag replaced (and at no line when the file gave no method).
+#[test]
+fn an_error_about_the_method_of_the_flag_names_the_flag() {
+    let dir = folder();
+    let d = dir.path();
+    let robot = write(d, "pendulum.toml", PENDULUM);
+    let data = write(d, "run.csv", &log());
+    let extra = "[[extra_column]]\nname = \"offset1\"\n\
+                 terms = [{ row = 1, signal = \"constant\" }]\n";
+    for method in ["", "[estimation]\nmethod = \"wls\"\n"] {
+        let config = write(d, "extra.toml", &format!("{CONFIG}{extra}{method}"));
+        let o = robid(&[
+            "identify",
+            robot.to_str().unwrap(),
+            "--config",
+            config.to_str().unwrap(),
+            "--data",
+            data.to_str().unwrap(),
+            "--method",
+            "energy",
+        ]);
+        fails_with(
+            &o,
+            &[
+                "error: --method energy: the energy model has no power term for the extra \
+               column `offset1`",
+            ],
+        );
+        assert!(!stderr(&o).contains("estimation.method"), "{}", stderr(&o));
+    }
+}
+
 /// `processing.validation_range` with no `--validate` file applies to nothing: said at its
 /// place (it was silent), and not said when validation files are given.
 #[test]
