@@ -205,7 +205,10 @@ fn cutoff_of(data: &dyn Record, spectra: &[Spectrum]) -> Option<CutoffSuggestion
         if !moves(s) {
             continue;
         }
-        let b = s.bandwidth(MOTION_SHARE);
+        // MOTION_SHARE lies in [0, 1]: always a bandwidth
+        let Some(b) = s.bandwidth(MOTION_SHARE) else {
+            continue;
+        };
         if widest.is_none_or(|(w, _)| b > w) {
             widest = Some((b, j + 1));
         }
@@ -271,7 +274,7 @@ fn moves(s: &Spectrum) -> bool {
 
 /// The bandwidth of a position's motion, `None` when the joint does not move ([`moves`]).
 fn position_bandwidth(s: &Spectrum) -> Option<f64> {
-    moves(s).then(|| s.bandwidth(MOTION_SHARE))
+    moves(s).then(|| s.bandwidth(MOTION_SHARE)).flatten()
 }
 
 /// Spread (RMS of the detrended torque, N m or N) below which a torque is constant:
@@ -280,7 +283,9 @@ pub const MIN_TORQUE_SPREAD: f64 = 1e-9;
 
 /// The bandwidth of a torque, `None` when it is constant.
 fn torque_bandwidth(s: &Spectrum) -> Option<f64> {
-    (s.power().sqrt() > MIN_TORQUE_SPREAD).then(|| s.bandwidth(TORQUE_SHARE))
+    (s.power().sqrt() > MIN_TORQUE_SPREAD)
+        .then(|| s.bandwidth(TORQUE_SHARE))
+        .flatten()
 }
 
 /// `x` rounded to two significant digits (the double nearest the decimal, so that it

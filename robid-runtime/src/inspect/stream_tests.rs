@@ -24,7 +24,7 @@ fn whole(data: &Dataset, config: &Config, torque_limits: &[Option<f64>]) -> Insp
         None => {
             let sos = butterworth_hz(4, cutoff.cutoff, rate).unwrap();
             data.q
-                .try_map(|q| Ok(central_difference(&sos.filtfilt(q)?, data.sample_time)))
+                .try_map(|q| central_difference(&sos.filtfilt(q)?, data.sample_time))
                 .unwrap()
         }
     };
@@ -292,7 +292,7 @@ fn streamed_velocities_equal_the_whole_record_s() {
         let want: Vec<Vec<f64>> = data
             .q
             .joints()
-            .map(|q| central_difference(&sos.filtfilt(q).unwrap(), STEP))
+            .map(|q| central_difference(&sos.filtfilt(q).unwrap(), STEP).unwrap())
             .collect();
         for block in [1, 2, sos.pad_length(), 1000, 4096, SAMPLES - 1, SAMPLES] {
             let mut got = vec![vec![f64::NAN; SAMPLES]; 3];

@@ -1539,7 +1539,7 @@ pub(crate) fn observe_counted(
     let rest = Some(config.processing.rest_velocities(dof)?);
     // decimated samples counted from `first`
     let keep: Vec<Vec<usize>> = match &rest {
-        Some(t) => moving_samples(&qd_dec, t),
+        Some(t) => moving_samples(&qd_dec, t)?,
         None => vec![(0..m).collect(); dof],
     };
     let total: usize = keep.iter().map(Vec::len).sum();

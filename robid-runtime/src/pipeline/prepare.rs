@@ -134,7 +134,7 @@ pub fn automatic_trim(config: &Config, sample_time: f64) -> Result<usize> {
 fn differentiate(x: &Signals, dt: f64, sg: Option<&SavitzkyGolay>) -> Result<Signals> {
     match sg {
         Some(sg) => savitzky_golay(x, dt, sg, 1),
-        None => x.map(|v| central_difference(v, dt)),
+        None => x.try_map(|v| central_difference(v, dt)),
     }
 }
 

@@ -950,8 +950,8 @@ fn two_encoder_log(n: usize) -> (Dataset, crate::drive::FrictionModel, [f64; 2])
         }
     }
     let [qs, qds, qdds, theta, temp] = s;
-    let thetad = theta.map(|v| central_difference(v, dt)).unwrap();
-    let thetadd = thetad.map(|v| central_difference(v, dt)).unwrap();
+    let thetad = theta.try_map(|v| central_difference(v, dt)).unwrap();
+    let thetadd = thetad.try_map(|v| central_difference(v, dt)).unwrap();
     let mut motor = Signals::zeros(DOF, n);
     let mut tau = [0.0; DOF];
     for k in 0..n {

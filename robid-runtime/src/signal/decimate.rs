@@ -102,7 +102,16 @@ impl Decimator {
     /// this far beyond the samples kept gives them as decimating the whole record does,
     /// to about `tolerance` of the signal (the zero-phase filter runs both ways, and
     /// each way forgets where it started within the settling time).
+    ///
+    /// # Panics
+    ///
+    /// For a `tolerance` outside (0, 1), a programmer's constant (NaN gave 1 sample, 0
+    /// and -1 the limit of 4 194 305), also without a filtering stage.
     pub fn settling(&self, tolerance: f64) -> usize {
+        assert!(
+            tolerance > 0.0 && tolerance < 1.0,
+            "Decimator::settling: the tolerance {tolerance} must lie strictly between 0 and 1"
+        );
         let mut rate = 1;
         let mut total = 0;
         for (q, sos) in &self.stages {
@@ -397,6 +406,11 @@ fn splits(n: usize) -> bool {
 }
 
 /// Splits a total decimation factor into factors of at most 10.
+///
+/// # Errors
+///
+/// A total of 0, one above [`MAX_DECIMATION`](crate::limits::MAX_DECIMATION), or one with
+/// a prime factor above 7 (the message suggests the nearest factors that split).
 pub fn split_factor(total: usize) -> Result<Vec<usize>> {
     if total == 0 {
         return Err(Error::setting(
@@ -404,6 +418,11 @@ pub fn split_factor(total: usize) -> Result<Vec<usize>> {
             "processing.decimation",
             "a decimation factor of 0 is meaningless; use 1 for none",
         ));
+    }
+    // before the search for the nearest factors that split, which walks one integer at a
+    // time (usize::MAX never returned)
+    if let Some(problem) = decimation_too_large(&[total]) {
+        return Err(Error::setting("Config", "processing.decimation", problem));
     }
     let mut rest = total;
     let mut out = Vec::new();
@@ -413,7 +432,9 @@ pub fn split_factor(total: usize) -> Result<Vec<usize>> {
             // (it said "e.g. decimation = [10, 5]" of 13, a factor of 50)
             let stages: Vec<String> = out.iter().chain([&rest]).map(usize::to_string).collect();
             let below = (1..total).rev().find(|&n| splits(n));
-            let above = (total + 1..=total.saturating_mul(2)).find(|&n| splits(n));
+            // suggestions within the limit only, which also bounds the search
+            let above =
+                (total + 1..=(2 * total).min(crate::limits::MAX_DECIMATION)).find(|&n| splits(n));
             let near: Vec<String> = below
                 .into_iter()
                 .chain(above)
@@ -682,6 +703,19 @@ mod tests {
         assert!(worst(false) > 1e-3, "{:e}", worst(false));
     }
 
+    /// A tolerance outside (0, 1) is a programmer's error, told as such.
+    #[test]
+    fn a_settling_tolerance_outside_zero_to_one_is_refused() {
+        for factors in [&[10][..], &[1]] {
+            let dec = Decimator::new(factors).unwrap();
+            for tolerance in [f64::NAN, 0.0, -1.0, 2.0] {
+                let e = std::panic::catch_unwind(|| dec.settling(tolerance)).unwrap_err();
+                let e = e.downcast_ref::<String>().unwrap();
+                assert!(e.contains("strictly between 0 and 1"), "{tolerance}: {e}");
+            }
+        }
+    }
+
     #[test]
     fn factor_splitting() {
         assert_eq!(split_factor(100).unwrap(), vec![10, 10]);
@@ -708,6 +742,17 @@ mod tests {
             assert!(e.contains(advice), "{e}");
         }
         assert!(split_factor(0).is_err());
+        // a total above the limit is refused before the search for the nearest factors
+        // that split, which walked one integer at a time (usize::MAX never returned);
+        // a prime just below the limit is advised factors within it
+        for total in [usize::MAX, 17_000_000_000_000, 10_007] {
+            let e = split_factor(total).unwrap_err().to_string();
+            assert!(e.contains("more than the limit of 10000"), "{total}: {e}");
+            let e = Decimator::with_total(total).unwrap_err().to_string();
+            assert!(e.contains("more than the limit of 10000"), "{total}: {e}");
+        }
+        let e = split_factor(9_967).unwrap_err().to_string();
+        assert!(e.contains("such as 9800 or 10000"), "{e}");
         assert_eq!(Decimator::with_total(100).unwrap().output_len(44960), 450);
     }
 

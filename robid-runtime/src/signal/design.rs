@@ -25,23 +25,74 @@ pub fn butterworth(order: usize, cutoff: f64) -> Result<Sos> {
             -C::from_polar(1.0, core::f64::consts::PI * m / (2.0 * n))
         })
         .collect();
-    Ok(digital_lowpass(&poles, 1.0, cutoff))
+    digital_lowpass(&poles, 1.0, cutoff)
 }
 
 /// Butterworth low-pass with the cutoff in Hz for data sampled at `sample_rate` Hz.
+///
+/// # Errors
+///
+/// A `sample_rate` or `cutoff_hz` that is not positive and finite (each checked on its
+/// own: their ratio alone took -10 Hz at -100 Hz for 0.2 of the Nyquist frequency), and
+/// what [`butterworth`] refuses of the order and the normalised cutoff.
 pub fn butterworth_hz(order: usize, cutoff_hz: f64, sample_rate: f64) -> Result<Sos> {
+    if !(sample_rate > 0.0 && sample_rate.is_finite()) {
+        return Err(Error::setting(
+            "butterworth",
+            "sample_rate",
+            format!(
+                "the sample rate {} Hz must be positive and finite",
+                crate::error::num(sample_rate)
+            ),
+        ));
+    }
+    if !(cutoff_hz > 0.0 && cutoff_hz.is_finite()) {
+        return Err(Error::setting(
+            "butterworth",
+            "cutoff",
+            format!(
+                "the cutoff {} Hz must be positive and finite",
+                crate::error::num(cutoff_hz)
+            ),
+        ));
+    }
     butterworth(order, cutoff_hz / (0.5 * sample_rate))
 }
 
+/// Smallest pass-band ripple (dB) that [`chebyshev1`] accepts. scipy's `10^(r/10) - 1`,
+/// kept to match its coefficients, cancels all but about `log10(0.23 r / 2.2e-16)` digits:
+/// 9 at 1e-6 dB, none near 5e-16 dB, where the design's coefficients were NaN. The
+/// smaller the ripple, the farther above the cutoff the half-power point lies
+/// (`cosh(acosh(1 / eps) / order)` times it: 2083 times for order 1 at 1e-6 dB), so a
+/// smaller ripple is a wider filter, not a flatter one; robid's decimation uses 0.05 dB.
+pub const MIN_RIPPLE: f64 = 1e-6;
+
+/// Largest pass-band ripple (dB) that [`chebyshev1`] accepts: an even order passes zero
+/// frequency at the bottom of its ripple, a gain of `10^(-r/20)`, 1e-5 at 100 dB, and a
+/// pass band that varies by that much is no pass band (3100 dB overflowed `10^(r/10)` and
+/// gave a filter of gain 0).
+pub const MAX_RIPPLE: f64 = 100.0;
+
 /// Chebyshev type I low-pass with `ripple_db` pass-band ripple,
 /// as `scipy.signal.cheby1(order, ripple_db, cutoff, output="sos")`.
+///
+/// # Errors
+///
+/// What [`butterworth`] refuses of the order and the cutoff, a ripple outside
+/// [[`MIN_RIPPLE`], [`MAX_RIPPLE`]] dB, and a design whose coefficients are not finite or
+/// whose gain at zero frequency is 0 or not finite (none within these ranges, as a test
+/// checks; kept as the last guard).
 pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
     check(order, cutoff)?;
-    if !(ripple_db > 0.0 && ripple_db.is_finite()) {
+    if !(MIN_RIPPLE..=MAX_RIPPLE).contains(&ripple_db) {
         return Err(Error::setting(
             "chebyshev1",
             "ripple_db",
-            format!("pass-band ripple {ripple_db} dB must be positive"),
+            format!(
+                "pass-band ripple {} dB must lie in [{MIN_RIPPLE:e}, {MAX_RIPPLE}] dB (a \
+                 smaller one loses the design's digits, a larger one leaves no pass band)",
+                crate::error::num(ripple_db)
+            ),
         ));
     }
     let n = order as f64;
@@ -58,7 +109,7 @@ pub fn chebyshev1(order: usize, ripple_db: f64, cutoff: f64) -> Result<Sos> {
     if order.is_multiple_of(2) {
         gain /= (1.0 + eps * eps).sqrt();
     }
-    Ok(digital_lowpass(&poles, gain, cutoff))
+    digital_lowpass(&poles, gain, cutoff)
 }
 
 /// Smallest cutoff, as a fraction of the Nyquist frequency, that a design accepts.
@@ -111,8 +162,9 @@ fn check(order: usize, cutoff: f64) -> Result<()> {
     Ok(())
 }
 
-/// Analog prototype poles (cutoff 1 rad/s, no zeros) -> digital low-pass sections.
-fn digital_lowpass(proto: &[C], proto_gain: f64, cutoff: f64) -> Sos {
+/// Analog prototype poles (cutoff 1 rad/s, no zeros) -> digital low-pass sections;
+/// an error for coefficients that are not finite or a gain at zero frequency of 0.
+fn digital_lowpass(proto: &[C], proto_gain: f64, cutoff: f64) -> Result<Sos> {
     let fs2 = 4.0; // 2 * fs with scipy's normalised fs = 2
     let warped = fs2 * (core::f64::consts::PI * cutoff / 2.0).tan();
     let n = proto.len();
@@ -161,7 +213,21 @@ fn digital_lowpass(proto: &[C], proto_gain: f64, cutoff: f64) -> Sos {
     for c in &mut sections[0][..3] {
         *c *= gain;
     }
-    Sos::new(sections)
+    let sos = Sos::new(sections)?;
+    let dc = sos.dc_gain();
+    if !(dc.is_finite() && dc != 0.0) {
+        return Err(Error::setting(
+            "butterworth",
+            "cutoff",
+            format!(
+                "the design at normalised cutoff {} has a gain of {} at zero frequency; \
+                 choose a cutoff and order nearer the usual ones",
+                crate::error::num(cutoff),
+                crate::error::num(dc)
+            ),
+        ));
+    }
+    Ok(sos)
 }
 
 #[cfg(test)]
@@ -319,6 +385,47 @@ mod tests {
         );
     }
 
+    /// The ripple is refused outside [1e-6, 100] dB (1e-20 dB gave NaN coefficients,
+    /// 3100 dB a filter of gain 0); within it every order and cutoff designs finite
+    /// sections with the gain at zero frequency of the ripple's bottom (even orders) or 1.
+    #[test]
+    fn the_ripple_is_bounded_and_the_designs_within_it_are_finite() {
+        for ripple in [
+            1e-20,
+            5e-16,
+            9e-7,
+            100.5,
+            400.0,
+            3100.0,
+            f64::NAN,
+            f64::INFINITY,
+        ] {
+            let e = chebyshev1(4, ripple, 0.3).unwrap_err().to_string();
+            assert!(e.contains("must lie in [1e-6, 100] dB"), "{ripple}: {e}");
+        }
+        for ripple in [MIN_RIPPLE, 0.05, 3.0, MAX_RIPPLE] {
+            for order in [1, 2, 3, 8, 19, 20] {
+                for cutoff in [MIN_CUTOFF, 0.3, MAX_CUTOFF] {
+                    let sos = chebyshev1(order, ripple, cutoff).unwrap();
+                    assert!(sos.sections().iter().flatten().all(|c| c.is_finite()));
+                    let want = if order % 2 == 0 {
+                        10f64.powf(-ripple / 20.0)
+                    } else {
+                        1.0
+                    };
+                    // the poles near 1 at the smallest cutoff: 1e-6 relative at order 8
+                    // in `bad_design_inputs_are_errors`, more at order 20 (measured below
+                    // 1e-3 here)
+                    let gain = sos.dc_gain();
+                    assert!(
+                        (gain / want - 1.0).abs() < 1e-2,
+                        "order {order}, {ripple} dB, cutoff {cutoff}: {gain} against {want}"
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn unit_dc_gain() {
         for order in 1..=9 {
@@ -340,6 +447,19 @@ mod tests {
         assert!(butterworth(21, 0.3).is_err());
         assert!(butterworth(4, MIN_CUTOFF).is_ok());
         assert!(chebyshev1(8, 0.0, 0.1).is_err());
+        // each of the sample rate and the cutoff in Hz on its own (their ratio, 0.2, was
+        // taken for -10 Hz at -100 Hz)
+        for (cutoff, rate, key) in [
+            (-10.0, -100.0, "sample rate -10"),
+            (10.0, -100.0, "sample rate -100"),
+            (-10.0, 100.0, "cutoff -10 Hz"),
+            (f64::NAN, 100.0, "cutoff NaN Hz"),
+            (10.0, f64::INFINITY, "sample rate inf"),
+            (f64::INFINITY, f64::INFINITY, "sample rate inf"),
+        ] {
+            let e = butterworth_hz(2, cutoff, rate).unwrap_err().to_string();
+            assert!(e.contains(key), "{cutoff} Hz at {rate} Hz: {e}");
+        }
         let zero = butterworth(4, 0.0).unwrap_err().to_string();
         assert!(zero.contains("strictly between 0 and 1"), "{zero}");
         // a cutoff too small to represent is an error, not an empty filter (the fuzzer's

@@ -13,7 +13,9 @@ mod spectrum;
 
 pub(crate) use decimate::decimation_too_large;
 pub use decimate::{Decimator, split_factor};
-pub use design::{MAX_CUTOFF, MIN_CUTOFF, butterworth, butterworth_hz, chebyshev1};
+pub use design::{
+    MAX_CUTOFF, MAX_RIPPLE, MIN_CUTOFF, MIN_RIPPLE, butterworth, butterworth_hz, chebyshev1,
+};
 pub use diff::central_difference;
 pub use rest::moving_samples;
 pub use savgol::{SavitzkyGolay, SavitzkyGolayKernel};

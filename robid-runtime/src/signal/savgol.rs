@@ -391,11 +391,11 @@ mod tests {
         let a = |t: f64| -w * w * (w * t).sin();
         let sg_v = rms(&sg.derivative(&x, dt, 1).unwrap(), &v);
         let sg_a = rms(&sg.derivative(&x, dt, 2).unwrap(), &a);
-        let raw_v = central_difference(&x, dt);
-        let raw_a = rms(&central_difference(&raw_v, dt), &a);
+        let raw_v = central_difference(&x, dt).unwrap();
+        let raw_a = rms(&central_difference(&raw_v, dt).unwrap(), &a);
         let raw_v = rms(&raw_v, &v);
-        let bw_v = central_difference(&filtered, dt);
-        let bw_a = rms(&central_difference(&bw_v, dt), &a);
+        let bw_v = central_difference(&filtered, dt).unwrap();
+        let bw_a = rms(&central_difference(&bw_v, dt).unwrap(), &a);
         let bw_v = rms(&bw_v, &v);
         eprintln!(
             "bandwidth {cutoff:.1} Hz; velocity RMS error: SG {sg_v:.3e}, central {raw_v:.3e}, \

@@ -16,16 +16,39 @@ pub struct Sos {
 
 impl Sos {
     /// Wraps sections (normalised so that `a0 = 1`).
-    pub fn new(mut sections: Vec<[f64; 6]>) -> Self {
-        for s in &mut sections {
+    ///
+    /// # Errors
+    ///
+    /// A section whose `a0` is 0 (no recursion can be written for it: it was kept, and
+    /// filtered as if it were 1) or whose coefficients, normalised, are not finite.
+    pub fn new(mut sections: Vec<[f64; 6]>) -> Result<Self> {
+        for (i, s) in sections.iter_mut().enumerate() {
             let a0 = s[3];
-            if a0 != 0.0 && a0 != 1.0 {
+            if a0 == 0.0 {
+                return Err(Error::setting(
+                    "Sos",
+                    "sections",
+                    format!("section {i} has a0 = 0; a section's a0 must be nonzero"),
+                ));
+            }
+            if a0 != 1.0 {
                 for c in s.iter_mut() {
                     *c /= a0;
                 }
             }
+            if let Some(c) = s.iter().find(|c| !c.is_finite()) {
+                return Err(Error::setting(
+                    "Sos",
+                    "sections",
+                    format!(
+                        "section {i} has a coefficient {} (after dividing by a0); every \
+                         coefficient must be finite",
+                        crate::error::num(*c)
+                    ),
+                ));
+            }
         }
-        Self { sections }
+        Ok(Self { sections })
     }
 
     /// The sections.
@@ -84,7 +107,16 @@ impl Sos {
     /// Settling time in samples: the length after which the impulse response of the
     /// cascade (one pass) keeps less than `tolerance` of its absolute sum (at most
     /// `limit` samples are examined).
+    ///
+    /// # Panics
+    ///
+    /// For a `tolerance` outside (0, 1), a programmer's constant: 0 or less gave the
+    /// limit, NaN 0 samples, 1 or more 0 samples.
     pub fn settling_samples(&self, tolerance: f64, limit: usize) -> usize {
+        assert!(
+            tolerance > 0.0 && tolerance < 1.0,
+            "Sos::settling_samples: the tolerance {tolerance} must lie strictly between 0 and 1"
+        );
         // the impulse response, in blocks until a block adds nothing measurable and the
         // blocks after it, decaying at most as fast as the slowest pole, could not either
         // (a block of a filter whose poles lie near the unit circle adds little, yet
@@ -271,9 +303,21 @@ impl Sos {
 /// channels, so they vectorise; the result equals [`Sos::filtfilt`] on each channel.
 impl Sos {
     /// See the impl's doc: [`Sos::filtfilt`] of every column of a row-major block.
+    ///
+    /// # Errors
+    ///
+    /// `DimensionMismatch` for a block whose length is not a multiple of `g`, and
+    /// `TooFewSamples` for too few rows ([`Sos::filtfilt`]).
     pub fn filtfilt_channels(&self, block: &mut [f64], g: usize) -> Result<()> {
         if g == 0 {
             return Ok(());
+        }
+        if !block.len().is_multiple_of(g) {
+            return Err(Error::DimensionMismatch {
+                what: format!("values of a block of {g} channels (whole rows)"),
+                expected: block.len().next_multiple_of(g),
+                found: block.len(),
+            });
         }
         let n = block.len() / g;
         let pad = self.check_length(n)?;
@@ -401,20 +445,31 @@ mod tests {
     fn dc_gain_and_padding_of_given_sections() {
         let first_order = [1.0, 1.0, 0.0, 1.0, -0.5, 0.0];
         let second_order = [1.0, 2.0, 1.0, 1.0, -0.4, 0.2];
-        let sos = Sos::new(vec![first_order, second_order]);
+        let sos = Sos::new(vec![first_order, second_order]).unwrap();
         assert!((sos.dc_gain() - 2.0 / 0.5 * 4.0 / 0.8).abs() < 1e-12);
         assert_eq!(sos.pad_length(), 3 * (2 * 2 + 1 - 1));
         assert_eq!(
-            Sos::new(vec![first_order; 3]).pad_length(),
+            Sos::new(vec![first_order; 3]).unwrap().pad_length(),
             3 * (2 * 3 + 1 - 3)
         );
         assert_eq!(
-            Sos::new(vec![second_order; 2]).pad_length(),
+            Sos::new(vec![second_order; 2]).unwrap().pad_length(),
             3 * (2 * 2 + 1)
         );
         // a section with a trailing zero in a only does not shorten the padding
         let a_only = [1.0, 2.0, 1.0, 1.0, -0.5, 0.0];
-        assert_eq!(Sos::new(vec![a_only; 2]).pad_length(), 3 * 5);
+        assert_eq!(Sos::new(vec![a_only; 2]).unwrap().pad_length(), 3 * 5);
+        // a0 is divided out; an a0 of 0, or a coefficient that is not finite, is refused
+        let halved = Sos::new(vec![[2.0, 4.0, 2.0, 2.0, -0.8, 0.4]]).unwrap();
+        assert_eq!(halved.sections(), &[second_order]);
+        for bad in [
+            [1.0, 2.0, 1.0, 0.0, -0.4, 0.2],
+            [1.0, f64::NAN, 1.0, 1.0, -0.4, 0.2],
+            [1.0, 2.0, 1.0, 1e-320, -0.4, 0.2],
+        ] {
+            let e = Sos::new(vec![second_order, bad]).unwrap_err().to_string();
+            assert!(e.contains("section 1 has"), "{e}");
+        }
         // scipy: butter(4, 0.2) pads 15, butter(5, 0.2) 18
         assert_eq!(butterworth(4, 0.2).unwrap().pad_length(), 15);
         assert_eq!(butterworth(5, 0.2).unwrap().pad_length(), 18);
@@ -466,6 +521,12 @@ mod tests {
             sos.filtfilt_channels(&mut vec![0.0; 3 * sos.pad_length()], 3)
                 .is_err()
         );
+        // a block that is no whole number of rows: an error, not a panic in the copy
+        let e = sos
+            .filtfilt_channels(&mut vec![1.0; 100], 3)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("block of 3 channels"), "{e}");
     }
 
     #[test]
@@ -567,6 +628,19 @@ mod tests {
                     "{tolerance}: {k}"
                 );
             }
+        }
+    }
+
+    /// A tolerance outside (0, 1) is a programmer's error, told as such (NaN gave 0
+    /// samples, 0 and -1 the limit).
+    #[test]
+    fn a_tolerance_outside_zero_to_one_is_refused() {
+        let sos = butterworth(4, 0.05).unwrap();
+        for tolerance in [f64::NAN, 0.0, -1.0, 1.0] {
+            let e =
+                std::panic::catch_unwind(|| sos.settling_samples(tolerance, 1 << 22)).unwrap_err();
+            let e = e.downcast_ref::<String>().unwrap();
+            assert!(e.contains("strictly between 0 and 1"), "{tolerance}: {e}");
         }
     }
 

@@ -27,7 +27,9 @@ pub struct Spectrum {
 impl Spectrum {
     /// Welch's estimate of `x` sampled at `rate` Hz, with segments of the largest power of
     /// two at most a quarter of the record (so that about seven segments are averaged);
-    /// `None` for fewer than [`MIN_SPECTRUM_SAMPLES`] samples or a non-finite value.
+    /// `None` for fewer than [`MIN_SPECTRUM_SAMPLES`] samples, a non-finite value, a rate
+    /// that is not positive and finite, or a density that is not finite (values whose
+    /// squares overflow: `1e160 * sin` gave infinite and NaN densities).
     ///
     /// ```
     /// use robid_runtime::signal::Spectrum;
@@ -56,18 +58,24 @@ impl Spectrum {
     }
 
     /// The frequency below which `share` (0 to 1) of the power lies, interpolated
-    /// within the bin where the cumulative power crosses it.
-    pub fn bandwidth(&self, share: f64) -> f64 {
+    /// within the bin where the cumulative power crosses it (the last bin's frequency
+    /// when there is no power); `None` for a share outside [0, 1] (it was clamped: 2 gave
+    /// the upper edge of the last bin, -1 the lower edge of bin 0, a negative frequency,
+    /// and NaN the Nyquist frequency, each as if asked for).
+    pub fn bandwidth(&self, share: f64) -> Option<f64> {
+        if !(0.0..=1.0).contains(&share) {
+            return None;
+        }
         let total: f64 = self.density.iter().sum();
-        let goal = share.clamp(0.0, 1.0) * total;
+        let goal = share * total;
         let mut below = 0.0;
         for (k, d) in self.density.iter().enumerate() {
             if below + d >= goal && *d > 0.0 {
-                return self.frequency(k) + self.resolution * ((goal - below) / d - 0.5);
+                return Some(self.frequency(k) + self.resolution * ((goal - below) / d - 0.5));
             }
             below += d;
         }
-        self.frequency(self.density.len() - 1)
+        Some(self.frequency(self.density.len() - 1))
     }
 
     /// The noise floor: the median density of the upper half of the band, divided by the
@@ -159,9 +167,9 @@ impl std::fmt::Debug for Welch {
 impl Welch {
     /// The estimates of `count` signals of `samples` samples each at `rate` Hz, with
     /// segments of the largest power of two at most a quarter of them; `None` for fewer
-    /// than [`MIN_SPECTRUM_SAMPLES`] samples or a rate that is not positive.
+    /// than [`MIN_SPECTRUM_SAMPLES`] samples or a rate that is not positive and finite.
     pub fn new(count: usize, samples: usize, rate: f64) -> Option<Welch> {
-        if samples < MIN_SPECTRUM_SAMPLES || !(rate > 0.0) {
+        if samples < MIN_SPECTRUM_SAMPLES || !(rate > 0.0 && rate.is_finite()) {
             return None;
         }
         let len = 1usize << (samples / 4).max(16).ilog2();
@@ -196,7 +204,16 @@ impl Welch {
     }
 
     /// The next samples of signal `i` (below the `count` of [`Welch::new`]).
+    ///
+    /// # Panics
+    ///
+    /// For `i` at or above that `count`, which the caller chose.
     pub fn push(&mut self, i: usize, mut part: &[f64]) {
+        let count = self.signals.len();
+        assert!(
+            i < count,
+            "Welch::push: signal {i} of a Welch of {count} signals (they are numbered from 0)"
+        );
         let (len, hop) = (self.len, self.hop);
         let (work, s) = (&mut self.work, &mut self.signals[i]);
         s.finite &= part.iter().all(|v| v.is_finite());
@@ -225,7 +242,8 @@ impl Welch {
     }
 
     /// Each signal's spectrum; `None` for one with a value that was not finite (or no
-    /// complete segment).
+    /// complete segment), or whose density is not (values whose squares overflow, or a
+    /// rate so small that the scale does).
     pub fn finish(self) -> Vec<Option<Spectrum>> {
         let (rate, len, window_power) = (self.rate, self.len, self.window_power);
         self.signals
@@ -245,8 +263,11 @@ impl Welch {
                         2.0 * scale
                     };
                 }
-                Some(Spectrum {
-                    resolution: rate / len as f64,
+                let resolution = rate / len as f64;
+                // a NaN or an infinity would pass for a spectrum in every reading of it
+                let finite = resolution.is_finite() && density.iter().all(|d| d.is_finite());
+                finite.then_some(Spectrum {
+                    resolution,
                     density,
                     segments: s.segments,
                 })
@@ -336,7 +357,7 @@ mod tests {
         // 0.28 %, so 0.55 % of rate / 4 per standard error: 4 of them allowed (measured
         // 0.23 %); likewise 3.6 standard errors sqrt(2 / n) for the power (measured 0.6 %)
         // and the RMS's half of the floor's (measured 0.42 %)
-        assert!((sp.bandwidth(0.5) / (rate / 4.0) - 1.0).abs() < 0.022);
+        assert!((sp.bandwidth(0.5).unwrap() / (rate / 4.0) - 1.0).abs() < 0.022);
     }
 
     /// Two tones and a noise floor: the bandwidths and the last frequency above the floor
@@ -354,13 +375,13 @@ mod tests {
         // 99 % of the power is in the 2 Hz tone (the 40 Hz one holds 0.25 %): measured
         // 2.157 Hz, 1.3 bins past it
         assert!(
-            (sp.bandwidth(0.99) - 2.0).abs() < 2.0 * sp.resolution,
+            (sp.bandwidth(0.99).unwrap() - 2.0).abs() < 2.0 * sp.resolution,
             "{}",
-            sp.bandwidth(0.99)
+            sp.bandwidth(0.99).unwrap()
         );
         // the 40 Hz tone's Hann leakage spreads its last 4 % over a few bins: measured
         // 40.128 Hz (1.05 bins), and the last bin above the floor 40.41 Hz (3.3 bins)
-        let b = sp.bandwidth(0.9999);
+        let b = sp.bandwidth(0.9999).unwrap();
         assert!((b - 40.0).abs() < 2.0 * sp.resolution, "{b}");
         let top = sp.above_floor(100.0);
         assert!((top - 40.0).abs() < 5.0 * sp.resolution, "{top}");
@@ -512,21 +533,20 @@ mod tests {
             segments: 1,
         };
         let flat = sp(vec![1.0; 4]);
-        for (share, want) in [
-            (0.25, 1.0),
-            (0.5, 3.0),
-            (0.625, 4.0),
-            (1.0, 7.0),
-            (2.0, 7.0),
-        ] {
-            assert_eq!(flat.bandwidth(share), want, "share {share}");
+        for (share, want) in [(0.25, 1.0), (0.5, 3.0), (0.625, 4.0), (1.0, 7.0)] {
+            assert_eq!(flat.bandwidth(share), Some(want), "share {share}");
+        }
+        // a share outside [0, 1] (clamped: 2 gave 7 as 1 does, -1 the lower edge of the
+        // first bin with power, NaN the Nyquist frequency)
+        for share in [2.0, 1.0 + 1e-12, -1.0, -1e-300, f64::NAN, f64::INFINITY] {
+            assert_eq!(flat.bandwidth(share), None, "share {share}");
         }
         let gaps = sp(vec![0.0, 2.0, 0.0, 2.0]);
         // 3/4 of the power: all of bin 1 and half of bin 3
-        assert_eq!(gaps.bandwidth(0.75), 6.0);
+        assert_eq!(gaps.bandwidth(0.75), Some(6.0));
         // no power asked for: the first non-empty bin's lower edge
-        assert_eq!(gaps.bandwidth(0.0), 1.0);
-        assert_eq!(sp(vec![0.0; 3]).bandwidth(0.5), 4.0);
+        assert_eq!(gaps.bandwidth(0.0), Some(1.0));
+        assert_eq!(sp(vec![0.0; 3]).bandwidth(0.5), Some(4.0));
     }
 
     /// The floor is the median of the upper half of the band over the median-to-mean ratio
@@ -562,5 +582,22 @@ mod tests {
         x[3] = f64::NAN;
         assert!(Spectrum::welch(&x, 100.0).is_none());
         assert!(Spectrum::welch(&[0.5; 64], 100.0).is_some());
+        // finite values whose squares overflow, and a rate that is not finite or so small
+        // that the density's scale overflows: no spectrum (they gave inf and NaN densities)
+        let loud = sine(3.0, 100.0, 1000, 1e160);
+        assert!(Spectrum::welch(&loud, 100.0).is_none());
+        assert!(Spectrum::welch(&sine(3.0, 100.0, 1000, 1e140), 100.0).is_some());
+        let x = sine(3.0, 100.0, 1000, 1.0);
+        for rate in [f64::INFINITY, f64::NAN, 1e-320] {
+            assert!(Spectrum::welch(&x, rate).is_none(), "{rate}");
+        }
+    }
+
+    /// A signal number at or above the count is the caller's error, told with both (it
+    /// was an index out of bounds).
+    #[test]
+    #[should_panic(expected = "signal 5 of a Welch of 1 signals")]
+    fn pushing_a_signal_beyond_the_count_is_told() {
+        Welch::new(1, 100, 100.0).unwrap().push(5, &[1.0; 10]);
     }
 }
