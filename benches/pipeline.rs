@@ -77,7 +77,7 @@ fn bench(c: &mut Criterion) {
             one.install(|| {
                 let (obs, dt) = observation(&model, &data, &config).expect("observation");
                 let e = estimate(&obs, &config).expect("estimate");
-                black_box(Prediction::new(&obs, &e.values, dt).fit().nmse)
+                black_box(Prediction::new(&obs, &e.values, dt).unwrap().fit().nmse)
             })
         })
     };

@@ -76,6 +76,9 @@ pub enum OnlineRlsError {
     WindUp(f64),
     /// A slice has the wrong length.
     Length(LengthError),
+    /// The prediction error `y - phi' beta` overflowed (the inputs are finite, their
+    /// product is not): the state is unchanged.
+    PredictionError(f64),
 }
 
 impl fmt::Display for OnlineRlsError {
@@ -110,6 +113,12 @@ impl fmt::Display for OnlineRlsError {
                  excite every parameter; use a forgetting factor closer to 1"
             ),
             Self::Length(e) => e.fmt(f),
+            Self::PredictionError(e) => write!(
+                f,
+                "the prediction error y - phi' beta is {}: phi' beta overflowed; the update was \
+                 skipped and the state is unchanged (check the units of phi and y)",
+                crate::Num(*e)
+            ),
         }
     }
 }
@@ -202,45 +211,15 @@ impl<const N: usize> OnlineRls<N> {
     /// One equation `y = phi' beta`; returns the prediction error `y - phi' beta` before
     /// the update. A refused update changes nothing.
     pub fn update(&mut self, phi: &[f64; N], y: f64) -> Result<f64, OnlineRlsError> {
-        if let Some(index) = phi.iter().position(|v| !v.is_finite()) {
-            return Err(OnlineRlsError::NonFinite { what: "phi", index });
-        }
-        if !y.is_finite() {
-            return Err(OnlineRlsError::NonFinite {
-                what: "y",
-                index: 0,
-            });
-        }
-        // ph = P phi
         let mut ph = [0.0; N];
-        for (out, row) in ph.iter_mut().zip(&self.p) {
-            *out = dot(row, phi);
-        }
-        let denom = self.lambda + dot(phi, &ph);
-        if !(denom > 0.0 && denom.is_finite()) {
-            return Err(OnlineRlsError::Denominator(denom));
-        }
-        let largest = self
-            .p
-            .iter()
-            .enumerate()
-            .map(|(i, r)| r[i])
-            .fold(0.0, f64::max);
-        if !(largest / self.lambda <= P_LIMIT) {
-            return Err(OnlineRlsError::WindUp(largest / self.lambda));
-        }
-        let err = y - dot(phi, &self.beta);
-        for (b, h) in self.beta.iter_mut().zip(&ph) {
-            *b += h / denom * err;
-        }
-        // P = (P - ph ph' / denom) / lambda, computed on the upper triangle and mirrored
-        for i in 0..N {
-            for k in i..N {
-                let v = (0.5 * (self.p[i][k] + self.p[k][i]) - ph[i] * ph[k] / denom) / self.lambda;
-                self.p[i][k] = v;
-                self.p[k][i] = v;
-            }
-        }
+        let err = update_state(
+            &mut self.beta,
+            self.p.as_flattened_mut(),
+            &mut ph,
+            self.lambda,
+            phi,
+            y,
+        )?;
         self.updates += 1;
         Ok(err)
     }
@@ -279,7 +258,64 @@ impl<const N: usize> OnlineRls<N> {
     }
 }
 
-fn dot<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
+/// One equation `y = phi' beta` on a state of `n = beta.len()` parameters, `p` holding
+/// `P` (`n x n`, symmetric: row- and column-major alike) and `ph` scratch of `n` entries;
+/// returns the prediction error before the update. The one update of [`OnlineRls`] and of
+/// the batch `estimate::Rls`, with the same refusals: a wrong length, a non-finite input, a
+/// denominator that is not positive and finite, wind-up beyond [`P_LIMIT`], an overflowed
+/// prediction. A refused update changes nothing.
+pub(crate) fn update_state(
+    beta: &mut [f64],
+    p: &mut [f64],
+    ph: &mut [f64],
+    lambda: f64,
+    phi: &[f64],
+    y: f64,
+) -> Result<f64, OnlineRlsError> {
+    let n = beta.len();
+    crate::model::check_length("phi", phi, n)?;
+    if let Some(index) = phi.iter().position(|v| !v.is_finite()) {
+        return Err(OnlineRlsError::NonFinite { what: "phi", index });
+    }
+    if !y.is_finite() {
+        return Err(OnlineRlsError::NonFinite {
+            what: "y",
+            index: 0,
+        });
+    }
+    // ph = P phi
+    for (out, row) in ph.iter_mut().zip(p.chunks_exact(n.max(1))) {
+        *out = dot(row, phi);
+    }
+    let denom = lambda + dot(phi, ph);
+    if !(denom > 0.0 && denom.is_finite()) {
+        return Err(OnlineRlsError::Denominator(denom));
+    }
+    let largest = (0..n).map(|i| p[i * n + i]).fold(0.0, f64::max);
+    if !(largest / lambda <= P_LIMIT) {
+        return Err(OnlineRlsError::WindUp(largest / lambda));
+    }
+    let err = y - dot(phi, beta);
+    if !err.is_finite() {
+        return Err(OnlineRlsError::PredictionError(err));
+    }
+    for (b, h) in beta.iter_mut().zip(ph.iter()) {
+        *b += h / denom * err;
+    }
+    // P = (P - ph ph' / denom) / lambda, computed on the upper triangle and mirrored;
+    // ph_k / denom first: ph_i ph_k alone can overflow where the quotient is at most
+    // sqrt(P_ii P_kk)
+    for i in 0..n {
+        for k in i..n {
+            let v = (0.5 * (p[i * n + k] + p[k * n + i]) - ph[i] * (ph[k] / denom)) / lambda;
+            p[i * n + k] = v;
+            p[k * n + i] = v;
+        }
+    }
+    Ok(err)
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 

@@ -53,6 +53,12 @@ impl KnownParameters {
     /// The regrouping of `model`'s parameters with `known` standard parameters (index into
     /// the model's standard parameters, value) fixed.
     ///
+    /// # Errors
+    ///
+    /// [`Error::Setting`] for an index outside the model, a value that is not finite, or
+    /// an index given twice; [`Error::NonFiniteResult`] when the known values overflow the
+    /// model's map.
+    ///
     /// ```
     /// use robid_runtime::Model;
     /// use robid_runtime::estimate::KnownParameters;
@@ -82,6 +88,18 @@ impl KnownParameters {
                     "known",
                     format!(
                         "({i}, {v}) is not a finite value of one of the {ns} standard parameters"
+                    ),
+                ));
+            }
+            // a repeated index took its last value without a word: which one was meant?
+            if is_known[i] {
+                let name = model.standard_parameter_name(i).unwrap_or_default();
+                return Err(Error::setting(
+                    "KnownParameters",
+                    "known",
+                    format!(
+                        "standard parameter {i} (`{name}`) is given twice ({} and {v}); give each known parameter once",
+                        theta[i]
                     ),
                 ));
             }

@@ -19,7 +19,7 @@ use nalgebra::DVector;
 
 use crate::error::{Error, Result};
 use crate::estimate::hac::{Scores, robust_lag};
-use crate::estimate::lstsq::{InverseGram, Solution, solve};
+use crate::estimate::lstsq::{InverseGram, Solution, norm, solve};
 use crate::estimate::quality::relative_column_norms;
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation, QualityWarning, RobustStd};
@@ -111,7 +111,11 @@ pub(crate) fn wls_with(obs: &Observation, tolerance: f64, robust: bool) -> Resul
         .iter()
         .zip(&leverages)
         .map(|(b, &(rows, leverage))| {
-            joint_sigma(r.rows(b.start, b.len()).norm_squared(), rows, leverage)
+            joint_sigma(
+                norm(r.rows(b.start, b.len()).iter().copied()),
+                rows,
+                leverage,
+            )
         })
         .collect();
     let weights = checked_weights(&sigma)?;
@@ -177,7 +181,8 @@ pub(crate) fn weights_without_noise(leverages: &[(usize, f64)]) -> Vec<QualityWa
         .collect()
 }
 
-/// The residual sigma of a joint from its OLS residual sum of squares `rss` over `rows`
+/// The residual sigma of a joint from the norm `rss` of its OLS residual (the square root
+/// of its sum of squares, taken scaled: [`norm`]) over `rows`
 /// equations whose leverages (the diagonal of the hat matrix `W (W'W)^-1 W'` on its rows)
 /// sum to `leverage`: over `rows - leverage` degrees of freedom, at least 1.
 ///
@@ -189,7 +194,7 @@ pub(crate) fn weights_without_noise(leverages: &[(usize, f64)]) -> Vec<QualityWa
 /// noise, unevenly across the joints, where these are within 3.5 % (but for one joint, 24 %).
 pub(crate) fn joint_sigma(rss: f64, rows: usize, leverage: f64) -> f64 {
     let dof = (rows as f64 - leverage).max(1.0);
-    (rss / dof).sqrt()
+    rss / dof.sqrt()
 }
 
 /// [`joint_weights`], refusing sigmas that overflowed.
@@ -700,6 +705,36 @@ mod tests {
                     }
                     assert!((h.rel_std_percent[j] / e.rel_std_percent[j] - 1.0).abs() < 1e-10);
                 }
+            }
+        }
+    }
+
+    /// Torques of 1e-170 (and W and y both scaled by 1e-200) have the deviations of the
+    /// same problem in units, scaled: the squared residuals underflowed and OLS and WLS
+    /// reported deviations of exactly 0, no warning. To 1e-12.
+    #[test]
+    fn tiny_torques_keep_their_deviations() {
+        let w = DMatrix::from_fn(10, 2, |r, c| ((r + 1) as f64).powi(c as i32 + 1));
+        let y = DVector::from_fn(10, |r, _| r as f64 - 3.0);
+        let names = vec!["A".to_string(), "B".to_string()];
+        let units = Observation::single(w.clone(), y.clone(), names.clone()).unwrap();
+        let tiny_y = Observation::single(w.clone(), &y * 1e-170, names.clone()).unwrap();
+        let tiny_all = Observation::single(&w * 1e-200, &y * 1e-200, names).unwrap();
+        for fit in [ols, wls] {
+            let e = fit(&units, 1e-10).unwrap();
+            // (the deviations' scale, the torques')
+            for (other, scale, torque) in [(&tiny_y, 1e-170, 1e-170), (&tiny_all, 1.0, 1e-200)] {
+                let t = fit(other, 1e-10).unwrap();
+                for j in 0..2 {
+                    assert!(
+                        (t.std[j] / scale / e.std[j] - 1.0).abs() < 1e-12,
+                        "{j}: {:e} against {:e} x {scale:e}",
+                        t.std[j],
+                        e.std[j]
+                    );
+                }
+                let rms = t.residual_rms[0] / (torque * e.residual_rms[0]);
+                assert!((rms - 1.0).abs() < 1e-12, "{rms}");
             }
         }
     }

@@ -185,7 +185,7 @@ pub fn per_axis(obs: &Observation, tolerance: f64) -> Result<PerAxis> {
     let estimate = Estimate {
         method: Estimator::PerAxis,
         names: obs.names.clone(),
-        residual_rms: obs.residual_rms(&beta),
+        residual_rms: obs.residual_rms(&beta)?,
         values: beta.iter().copied().collect(),
         std,
         rel_std_percent: rel,

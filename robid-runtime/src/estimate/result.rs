@@ -4,7 +4,7 @@ use nalgebra::DVector;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::estimate::lstsq::{Condition, InverseGram};
+use crate::estimate::lstsq::{Condition, InverseGram, norm};
 use crate::estimate::quality::{
     QualityWarning, assess, effects, reassess_uncertain, relative_column_norms,
 };
@@ -153,7 +153,7 @@ pub(crate) fn assemble(
 ) -> Result<Estimate> {
     let m = solved.rows();
     let r = &solved.y - &solved.w * &beta;
-    let residual_rms = original.residual_rms(&beta);
+    let residual_rms = original.residual_rms(&beta)?;
     let bound = error_bound(condition.raw, &r, &solved.y);
     let relative_column_norms = relative_column_norms(&solved.w, &solved.y);
     assemble_parts(
@@ -163,7 +163,7 @@ pub(crate) fn assemble(
         inverse,
         condition,
         Residual {
-            squared_norm: r.norm_squared(),
+            norm: norm(r.iter().copied()),
             rows: m,
             per_joint_rms: residual_rms,
             error_bound: bound,
@@ -175,8 +175,9 @@ pub(crate) fn assemble(
 /// What the statistics need of the residual of a solution, however it was computed
 /// (from the rows, [`assemble`], or from R factors, the streaming accumulator).
 pub(crate) struct Residual {
-    /// ||y - W beta||^2 of the solved system (infinite when it overflowed).
-    pub(crate) squared_norm: f64,
+    /// ||y - W beta|| of the solved system (infinite when it overflowed), taken without
+    /// squaring the entries ([`norm`]): the standard deviations come from it.
+    pub(crate) norm: f64,
     /// Equations of the solved system.
     pub(crate) rows: usize,
     /// RMS of the unweighted residual per joint block.
@@ -213,14 +214,14 @@ pub(crate) fn assemble_parts(
             hint: "as many equations as parameters fit any data exactly and leave no residual to estimate the noise from; use a longer record",
         });
     }
-    let sigma2 = residual.squared_norm / (m - n) as f64;
-    // sqrt(sigma^2) sqrt((W'W)^-1_ii), the second from the scaled factors: the product
+    // sigma from the norm, not from sigma^2: the squares of residuals below about 1e-154
+    // underflow, and every deviation read 0 (exact) for torques of 1e-170 (sigma2 itself
+    // may then underflow; the deviations stay right)
+    let sigma = residual.norm / ((m - n) as f64).sqrt();
+    let sigma2 = sigma * sigma;
+    // sigma sqrt((W'W)^-1_ii), the second from the scaled factors: the product
     // sigma^2 (W'W)^-1_ii underflowed to 0 for a column near 1e200
-    let std: Vec<f64> = inverse
-        .root_diagonal()
-        .iter()
-        .map(|r| sigma2.sqrt() * r)
-        .collect();
+    let std: Vec<f64> = inverse.root_diagonal().iter().map(|r| sigma * r).collect();
     let rel = relative_deviations(&std, beta.as_slice());
     let residual_rms = residual.per_joint_rms;
     let not_finite = |what: String, cause: &str| Error::NonFiniteResult {
@@ -334,11 +335,12 @@ mod tests {
     }
 
     /// The weighted system can be tame while the unweighted residual overflows (weights of
-    /// 1e-200 on torques of 1e200): the residual RMS is checked on its own.
+    /// 1e-308 on torques of 1.5e308, whose RMS is beyond f64): the residual RMS is checked
+    /// on its own.
     #[test]
     fn an_overflowing_residual_is_refused_even_when_the_weighted_fit_is_finite() {
         let solved = observation(&[1.0, 2.0, 3.0]);
-        let original = observation(&[1e200, -1e200, 3e200]);
+        let original = observation(&[1.5e308, -1.5e308, 1.5e308]);
         let beta = DVector::from_vec(vec![2.0]);
         let gram = InverseGram::unscaled(DMatrix::from_element(1, 1, 1.0 / 3.0));
         let fine = assemble(Estimator::Wls, &solved, &solved, beta.clone(), &gram, ONE);

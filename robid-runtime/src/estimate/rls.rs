@@ -17,6 +17,7 @@ use crate::estimate::least_squares::check_tolerance;
 use crate::estimate::lstsq::{InverseGram, column_scales, condition_number, solve};
 use crate::estimate::result::assemble;
 use crate::estimate::{Estimate, Estimator, Observation};
+use crate::online::{OnlineRlsError, P_LIMIT, update_state};
 
 /// The smallest forgetting factor accepted (`estimation.forgetting`): defined with the
 /// on-line estimator ([`crate::online::MIN_FORGETTING`]), so that every recursive least
@@ -53,13 +54,19 @@ pub struct Rls {
 impl Rls {
     /// `n` parameters starting at zero with P = p0 I; `lambda` within
     /// [`MIN_FORGETTING`, 1] ([`check_forgetting`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Setting`] for a forgetting factor outside `[MIN_FORGETTING, 1]` or a `p0`
+    /// outside `(0, P_LIMIT]` (as [`OnlineRls::new`](crate::online::OnlineRls::new): a
+    /// larger one would refuse every update as wind-up, [`P_LIMIT`]).
     pub fn new(n: usize, lambda: f64, p0: f64) -> Result<Self> {
         check_forgetting(lambda)?;
-        if !(p0 > 0.0 && p0.is_finite()) {
+        if !(p0 > 0.0 && p0 <= P_LIMIT) {
             return Err(Error::setting(
                 "Rls::new",
                 "p0",
-                format!("{p0} must be positive and finite"),
+                format!("{p0} must be positive and at most {P_LIMIT:e}"),
             ));
         }
         Ok(Self {
@@ -70,18 +77,27 @@ impl Rls {
         })
     }
 
-    /// One equation y = phi' beta.
-    pub fn update(&mut self, phi: &[f64], y: f64) {
-        let phi = DVector::from_column_slice(phi);
-        self.p.mul_to(&phi, &mut self.ph);
-        let denom = self.lambda + phi.dot(&self.ph);
-        let gain = &self.ph / denom;
-        let err = y - phi.dot(&self.beta);
-        self.beta.axpy(err, &gain, 1.0);
-        // P = (P - L (P phi)') / lambda, kept symmetric
-        self.p.ger(-1.0, &gain, &self.ph, 1.0);
-        self.p /= self.lambda;
-        self.p = (&self.p + self.p.transpose()) * 0.5;
+    /// One equation y = phi' beta; returns the prediction error `y - phi' beta` before
+    /// the update. The update of [`OnlineRls::update`](crate::online::OnlineRls::update),
+    /// with its refusals; a refused update changes nothing.
+    ///
+    /// # Errors
+    ///
+    /// [`OnlineRlsError::Length`] when `phi` does not have one entry per parameter,
+    /// [`OnlineRlsError::NonFinite`] for a NaN or infinite input,
+    /// [`OnlineRlsError::Denominator`] when `lambda + phi' P phi` is not positive and finite
+    /// (it overflowed, or rounding took P's positive definiteness),
+    /// [`OnlineRlsError::WindUp`] when P would grow beyond [`P_LIMIT`],
+    /// [`OnlineRlsError::PredictionError`] when `phi' beta` overflowed.
+    pub fn update(&mut self, phi: &[f64], y: f64) -> std::result::Result<f64, OnlineRlsError> {
+        update_state(
+            self.beta.as_mut_slice(),
+            self.p.as_mut_slice(),
+            self.ph.as_mut_slice(),
+            self.lambda,
+            phi,
+            y,
+        )
     }
 
     /// Current estimate.
@@ -140,7 +156,9 @@ pub(crate) fn recursion(
         for (c, v) in phi.iter_mut().enumerate() {
             *v = obs.w[(r, c)] / d[c];
         }
-        state.update(&phi, obs.y[r]);
+        state
+            .update(&phi, obs.y[r])
+            .map_err(|e| lost_state(e, lambda, obs.cols()))?;
     }
     let n = obs.cols();
     let beta = DVector::from_iterator(n, (0..n).map(|j| state.beta[j] / d[j]));
@@ -179,6 +197,33 @@ pub(crate) fn recursion(
         });
     }
     Ok((beta, p))
+}
+
+/// The error of [`recursion`] for an update [`Rls::update`] refused (the equations are
+/// finite and of the right length, checked by [`Observation::new`]): `P` lost its positive
+/// definiteness to rounding, or the state would have overflowed.
+fn lost_state(e: OnlineRlsError, lambda: f64, n: usize) -> Error {
+    match e {
+        OnlineRlsError::Denominator(d) => Error::Singular {
+            what: format!(
+                "the recursive least-squares covariance P with the forgetting factor {} (which \
+                 keeps about {} equations, against {n} parameters: lambda + phi' P phi came out {})",
+                crate::Num(lambda),
+                crate::Num::rounded(1.0 / (1.0 - lambda).max(f64::MIN_POSITIVE), 3),
+                crate::Num::rounded(d, 3)
+            ),
+            hint: "rounding swamped it in directions the recent equations do not excite, and the \
+                   estimate it gives diverged; set estimation.forgetting closer to 1, or use ols \
+                   or wls",
+        },
+        e => Error::NonFiniteResult {
+            what: "the recursive least-squares state".into(),
+            cause: format!(
+                "it overflowed with the forgetting factor {} ({e}): the data do not excite every parameter all the time; set estimation.forgetting closer to 1 or use ols or wls",
+                crate::Num(lambda)
+            ),
+        },
+    }
 }
 
 #[cfg(test)]
@@ -244,6 +289,42 @@ mod tests {
             );
         }
         assert!(Rls::new(2, 0.5, 1.0).is_ok());
+        // beyond the wind-up limit every update would be refused: refused here
+        assert!(Rls::new(2, 1.0, 1e300).is_err());
+    }
+
+    /// The refusals of `OnlineRls::update`: a row of the wrong length (a panic in the
+    /// product), a NaN (the state became NaN), an overflow of `phi' P phi` (NaN too); each
+    /// leaves the state as it was.
+    #[test]
+    fn update_refuses_what_online_rls_refuses() {
+        let mut rls = Rls::new(2, 1.0, 1e8).unwrap();
+        rls.update(&[1.0, 0.5], 2.0).unwrap();
+        let before = rls.clone();
+        let same = |r: &Rls| r.beta() == before.beta() && r.covariance() == before.covariance();
+        let e = rls.update(&[1.0, 2.0, 3.0], 1.0).unwrap_err();
+        assert!(matches!(e, OnlineRlsError::Length(_)), "{e}");
+        assert!(e.to_string().contains("`phi` has 3 entries"), "{e}");
+        let e = rls.update(&[f64::NAN, 1.0], 1.0).unwrap_err();
+        assert_eq!(
+            e,
+            OnlineRlsError::NonFinite {
+                what: "phi",
+                index: 0
+            }
+        );
+        let e = rls.update(&[1.0, 1.0], f64::INFINITY).unwrap_err();
+        assert_eq!(
+            e,
+            OnlineRlsError::NonFinite {
+                what: "y",
+                index: 0
+            }
+        );
+        let e = rls.update(&[1e300, 1e300], 1.0).unwrap_err();
+        assert!(matches!(e, OnlineRlsError::Denominator(_)), "{e}");
+        assert!(same(&rls));
+        assert!(rls.update(&[0.5, 1.0], 1.0).is_ok());
     }
 }
 

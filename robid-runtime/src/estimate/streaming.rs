@@ -539,7 +539,7 @@ impl StreamingLeastSquares {
             &s.inverse,
             s.condition(),
             Residual {
-                squared_norm: solved_norm * solved_norm,
+                norm: solved_norm,
                 rows: m,
                 per_joint_rms,
                 error_bound,
@@ -582,7 +582,7 @@ impl StreamingLeastSquares {
             .zip(&leverages)
             .map(|(g, &(rows, leverage))| {
                 let rss = g.residual_norm(&beta);
-                joint_sigma(rss * rss, rows, leverage)
+                joint_sigma(rss, rows, leverage)
             })
             .collect();
         let weights = checked_weights(&sigma)?;

@@ -40,6 +40,7 @@ impl fmt::Display for LengthError {
                 "q" | "qd" | "qdd" | "tau" => "joint",
                 "base" => "base parameter",
                 "standard" => "standard parameter",
+                "phi" => "parameter of the estimate",
                 "inputs" => "input of the program (see robid_runtime::model::PROGRAMS)",
                 _ => "output value",
             }

@@ -581,7 +581,7 @@ pub(crate) fn identify_dense(
         kept.start + last * factor,
         factor,
     );
-    let mut prediction = Prediction::new(&obs, &estimate.values, dt)
+    let mut prediction = Prediction::new(&obs, &estimate.values, dt)?
         .starting_at(kept.start as f64 * data.sample_time);
     with_unfiltered(&mut prediction, &obs, &rows, factor);
     prediction.check(&format!("the estimation data ({used})"))?;
@@ -773,7 +773,7 @@ pub(crate) fn validate_dense(
     }
     let used = UsedRows::of(data, rows.kept.clone());
     let mut prediction =
-        Prediction::new(&obs, values, dt).starting_at(rows.kept.start as f64 * data.sample_time);
+        Prediction::new(&obs, values, dt)?.starting_at(rows.kept.start as f64 * data.sample_time);
     let factor = decimator(config).map_err(|e| config.locate(e))?.factor();
     with_unfiltered(&mut prediction, &obs, &rows, factor);
     prediction.check(&format!("the validation data ({used})"))?;

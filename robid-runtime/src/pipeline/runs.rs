@@ -214,7 +214,7 @@ pub(crate) fn stacked_dense(
     let obs = stack(parts.into_iter().map(|p| p.0).collect())?;
     let estimate = estimate_with_known(model, &obs, config)
         .map_err(|e| config.locate(rest_cause(&rest, config, model.dof(), e)))?;
-    let mut prediction = Prediction::new(&obs, &estimate.values, dt);
+    let mut prediction = Prediction::new(&obs, &estimate.values, dt)?;
     prediction.unfiltered = unfiltered;
     prediction.check("the stacked runs")?;
     Ok((estimate, prediction))

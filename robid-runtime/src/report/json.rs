@@ -381,9 +381,9 @@ impl Report {
                 file: file.to_string(),
                 relative_error: fit.relative_error,
                 nmse_eq22,
-                relative_improvement_percent: (nmse_eq22 > 0.0
-                    && fit.relative_error > PREDICTS_TO_ROUNDING)
-                    .then(|| relative_improvement(nmse_eq22, v.nmse_eq22)),
+                relative_improvement_percent: (fit.relative_error > PREDICTS_TO_ROUNDING)
+                    .then(|| relative_improvement(nmse_eq22, v.nmse_eq22))
+                    .flatten(),
             });
         }
         self

@@ -55,21 +55,41 @@ pub const EQ22_ZERO: f64 = 1e-12;
 /// Computes the metrics from per-joint measured and predicted torques (same lengths).
 /// Joints with no samples contribute nothing; the relative error is infinite when every
 /// measured torque is zero ([`Fit::check`] reports it).
-pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
+///
+/// # Errors
+///
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) when the two have not the
+/// same number of joints, or a joint not the same number of samples in both (a joint left
+/// out gave a relative error of 0, and samples beyond the shorter were dropped unsaid).
+pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> crate::Result<Fit> {
+    if measured.len() != predicted.len() {
+        return Err(crate::Error::DimensionMismatch {
+            what: "the joints of the predicted torques (one per measured joint)".into(),
+            expected: measured.len(),
+            found: predicted.len(),
+        });
+    }
+    if let Some(j) = (0..measured.len()).find(|&j| measured[j].len() != predicted[j].len()) {
+        return Err(crate::Error::DimensionMismatch {
+            what: format!(
+                "the predicted torques of joint {} (one per measured sample)",
+                j + 1
+            ),
+            expected: measured[j].len(),
+            found: predicted[j].len(),
+        });
+    }
     let (mut err2, mut norm2, mut nmse, mut nmse_eq22) = (0.0, 0.0, 0.0, 0.0);
     let mut rms = Vec::with_capacity(measured.len());
     let mean_abs = |m: &[f64], n: usize| m[..n].iter().map(|a| a.abs()).sum::<f64>() / n as f64;
-    let lengths = measured
+    let largest = measured
         .iter()
-        .zip(predicted)
-        .map(|(m, p)| m.len().min(p.len()));
-    let largest = (measured.iter().zip(lengths))
-        .filter(|(_, n)| *n > 0)
-        .fold(0.0_f64, |x, (m, n)| x.max(mean_abs(m, n)));
+        .filter(|m| !m.is_empty())
+        .fold(0.0_f64, |x, m| x.max(mean_abs(m, m.len())));
     let peak = |m: &[f64]| m.iter().fold(0.0_f64, |x, a| x.max(a.abs()));
     let record_peak = measured.iter().fold(0.0_f64, |x, m| x.max(peak(m)));
     for (m, p) in measured.iter().zip(predicted) {
-        let n = m.len().min(p.len());
+        let n = m.len();
         if n == 0 {
             rms.push(0.0);
             continue;
@@ -95,18 +115,21 @@ pub fn fit(measured: &[Vec<f64>], predicted: &[Vec<f64>]) -> Fit {
     } else {
         f64::INFINITY
     };
-    Fit {
+    Ok(Fit {
         relative_error,
         rms_per_joint: rms,
         nmse,
         nmse_eq22,
-    }
+    })
 }
 
 /// Relative improvement of a metric in percent: 100 (reference - new) / reference
-/// (positive when `new` is better, as in Madsen et al. 2020, Table 5).
-pub fn relative_improvement(reference: f64, new: f64) -> f64 {
-    100.0 * (reference - new) / reference
+/// (positive when `new` is better, as in Madsen et al. 2020, Table 5); `None` when it is
+/// not a finite number: a reference of 0 (a perfect reference leaves nothing to improve
+/// on; it gave -inf, and 0 against 0 NaN) or a metric that is not finite.
+pub fn relative_improvement(reference: f64, new: f64) -> Option<f64> {
+    let percent = 100.0 * (reference - new) / reference;
+    percent.is_finite().then_some(percent)
 }
 
 #[cfg(test)]
@@ -118,6 +141,7 @@ mod tests {
     #[test]
     fn torques_too_small_to_square_are_named() {
         let e = fit(&[vec![1e-300, -2e-300, 3e-300]], &[vec![0.0; 3]])
+            .unwrap()
             .check("data")
             .unwrap_err()
             .to_string();
@@ -133,7 +157,7 @@ mod tests {
     #[test]
     fn a_joint_of_negligible_torque_is_left_out_of_the_nmse() {
         let p = vec![vec![0.2, -0.1, 0.3], vec![1.0, -1.0, 2.0]];
-        let with = |t: f64| fit(&[vec![t; 3], vec![1.0, -1.0, 2.5]], &p);
+        let with = |t: f64| fit(&[vec![t; 3], vec![1.0, -1.0, 2.5]], &p).unwrap();
         let (zero, tiny) = (with(0.0), with(5e-324));
         assert!(tiny.check("data").is_ok(), "{tiny:?}");
         assert_eq!(zero.nmse, tiny.nmse);
@@ -147,7 +171,7 @@ mod tests {
     fn known_values() {
         let m = vec![vec![1.0, -1.0, 2.0, -2.0], vec![0.5, 0.5]];
         let p = vec![vec![1.0, -1.0, 2.0, -1.0], vec![0.5, 0.0]];
-        let f = fit(&m, &p);
+        let f = fit(&m, &p).unwrap();
         // errors: joint 1 one error of 1, joint 2 one error of 0.5
         assert!((f.relative_error - (1.25f64 / 10.5).sqrt()).abs() < 1e-12);
         assert!((f.rms_per_joint[0] - 0.5).abs() < 1e-12);
@@ -157,26 +181,27 @@ mod tests {
         // eq. 22: 1^2 / |-2| + 0.5^2 / |0.5|, per sample
         assert!((f.nmse_eq22 - (0.5 + 0.5)).abs() < 1e-12);
         // a torque no sensor resolves counts as zero there, not as a divisor of 1e300
-        let tiny = fit(&[vec![2.0, 2.2e-308, 1e-11]], &[vec![1.0, 1.0, 0.0]]);
+        let tiny = fit(&[vec![2.0, 2.2e-308, 1e-11]], &[vec![1.0, 1.0, 0.0]]).unwrap();
         assert!((tiny.nmse_eq22 - (0.5 + 1e-11)).abs() < 1e-15, "{tiny:?}");
-        assert_eq!(fit(&m, &m).relative_error, 0.0);
+        assert_eq!(fit(&m, &m).unwrap().relative_error, 0.0);
     }
 
     /// Every metric must be finite: all-zero measured torques (an infinite relative error)
     /// and an overflowed NMSE or RMS are errors naming the data.
     #[test]
     fn check_refuses_each_non_finite_metric() {
-        let good = fit(&[vec![1.0, 2.0]], &[vec![1.5, 2.0]]);
+        let good = fit(&[vec![1.0, 2.0]], &[vec![1.5, 2.0]]).unwrap();
         assert!(good.check("run.csv").is_ok());
         // a joint whose measured torque is zero adds nothing to the NMSE
         let with_still = fit(
             &[vec![1.0, 2.0], vec![0.0, 0.0]],
             &[vec![1.5, 2.0], vec![0.1, 0.0]],
-        );
+        )
+        .unwrap();
         assert_eq!(with_still.nmse, good.nmse);
         assert_eq!(with_still.nmse_eq22, good.nmse_eq22);
         assert!(with_still.check("run.csv").is_ok());
-        let zero = fit(&[vec![0.0, 0.0]], &[vec![1.0, 0.0]]);
+        let zero = fit(&[vec![0.0, 0.0]], &[vec![1.0, 0.0]]).unwrap();
         assert!(!zero.relative_error.is_finite());
         assert!(
             zero.check("run.csv")
@@ -206,7 +231,32 @@ mod tests {
     #[test]
     fn improvement() {
         // 81.3536 to two decimals: half a unit is 0.005
-        assert!((relative_improvement(506.8, 94.5) - 81.35).abs() < 0.005);
-        assert!(relative_improvement(1.0, 2.0) < 0.0);
+        assert!((relative_improvement(506.8, 94.5).unwrap() - 81.35).abs() < 0.005);
+        assert!(relative_improvement(1.0, 2.0).unwrap() < 0.0);
+        // a perfect reference leaves no improvement to give: none, not -inf or NaN
+        assert_eq!(relative_improvement(0.0, 1.0), None);
+        assert_eq!(relative_improvement(0.0, 0.0), None);
+        assert_eq!(relative_improvement(1.0, f64::INFINITY), None);
+    }
+
+    /// Joints or samples that differ in number are an error naming them: a missing joint
+    /// gave a relative error of 0 (and `check` passed), a short one mixed 5 and 10 samples.
+    #[test]
+    fn differing_joints_or_samples_are_an_error() {
+        let e = fit(&[vec![1.0; 10], vec![5.0; 10]], &[vec![1.0; 10]])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("joints of the predicted") && e.contains("expected 2 entries, found 1"),
+            "{e}"
+        );
+        let e = fit(&[vec![1.0; 10]], &[vec![0.0; 5]])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("joint 1") && e.contains("expected 10 entries, found 5"),
+            "{e}"
+        );
+        assert!(fit(&[vec![1.0; 10]], &[vec![0.0; 10]]).is_ok());
     }
 }

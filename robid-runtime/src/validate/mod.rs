@@ -151,7 +151,31 @@ pub struct Prediction {
 
 impl Prediction {
     /// Prediction W beta of an observation; `sample_time` is the decimated sample time.
-    pub fn new(obs: &Observation, beta: &[f64], sample_time: f64) -> Self {
+    ///
+    /// # Errors
+    ///
+    /// [`Error::DimensionMismatch`] when `beta` has not one entry per column of the
+    /// observation; [`Error::Setting`] when `sample_time` is not positive and finite (a
+    /// NaN made every time stamp NaN).
+    pub fn new(obs: &Observation, beta: &[f64], sample_time: f64) -> Result<Self> {
+        if beta.len() != obs.cols() {
+            return Err(Error::DimensionMismatch {
+                what: "the parameters of Prediction::new (one per column of the observation)"
+                    .into(),
+                expected: obs.cols(),
+                found: beta.len(),
+            });
+        }
+        if !(sample_time > 0.0 && sample_time.is_finite()) {
+            return Err(Error::setting(
+                "Prediction::new",
+                "sample_time",
+                format!(
+                    "{} must be positive and finite: the time between two equations' samples, in s",
+                    crate::Num(sample_time)
+                ),
+            ));
+        }
         let b = nalgebra::DVector::from_column_slice(beta);
         let pred = &obs.w * b;
         let block = |v: &nalgebra::DVector<f64>| -> Vec<Vec<f64>> {
@@ -170,18 +194,26 @@ impl Prediction {
                     .collect()
             })
             .collect();
-        Self {
+        Ok(Self {
             measured: block(&obs.y),
             predicted: block(&pred),
             time,
             unfiltered: None,
             used: None,
-        }
+        })
     }
 
-    /// Checks that every predicted torque and every metric is finite; `what` names the
-    /// data in the error.
+    /// Checks that every predicted torque and every metric is finite, and that the
+    /// measured and predicted torques agree in joints and samples (as
+    /// [`Prediction::new`] makes them); `what` names the data in the error.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::DimensionMismatch`] for torques that differ in joints or samples
+    /// ([`fit`]); [`Error::NonFiniteResult`] for a predicted torque or a metric that is
+    /// not finite.
     pub fn check(&self, what: &str) -> Result<()> {
+        let fit = fit(&self.measured, &self.predicted)?;
         if let Some((j, _)) = self
             .predicted
             .iter()
@@ -193,12 +225,16 @@ impl Prediction {
                 cause: "the identified values times the regressor overflowed; check the data's units and outliers".into(),
             });
         }
-        self.fit().check(what)
+        fit.check(what)
     }
 
     /// What the fit says about the estimate it comes from: a fit worse than no model, and
     /// joints without equations ([`QualityWarning::PoorFit`],
     /// [`QualityWarning::JointWithoutEquations`]).
+    ///
+    /// # Panics
+    ///
+    /// As [`fit`](Self::fit).
     pub fn warnings(&self) -> Vec<QualityWarning> {
         let mut out: Vec<QualityWarning> = self
             .measured
@@ -225,13 +261,26 @@ impl Prediction {
 
     /// The metrics of this prediction against `measured` (filtered when the processing
     /// filters the torque).
+    ///
+    /// # Panics
+    ///
+    /// When `measured` and `predicted` differ in joints or samples, which
+    /// [`Prediction::new`] never gives: only fields edited by hand can (the pipeline and
+    /// the reports, which take the fit of its predictions without a `Result`, rely on it;
+    /// [`check`](Self::check) returns the error, and [`fit`] takes any torques).
     pub fn fit(&self) -> Fit {
-        fit(&self.measured, &self.predicted)
+        fit(&self.measured, &self.predicted).unwrap_or_else(|e| panic!("Prediction::fit: {e}"))
     }
 
     /// The metrics against the torque before any low-pass, when `measured` is filtered.
+    ///
+    /// # Panics
+    ///
+    /// When `unfiltered` and `predicted` differ in joints or samples (as [`fit`](Self::fit)).
     pub fn unfiltered_fit(&self) -> Option<Fit> {
-        self.unfiltered.as_ref().map(|u| fit(u, &self.predicted))
+        self.unfiltered.as_ref().map(|u| {
+            fit(u, &self.predicted).unwrap_or_else(|e| panic!("Prediction::unfiltered_fit: {e}"))
+        })
     }
 }
 
@@ -265,6 +314,34 @@ mod tests {
         p.predicted[1][0] = f64::INFINITY;
         let e = p.check("run.csv").unwrap_err().to_string();
         assert!(e.contains("joint 2") && e.contains("run.csv"), "{e}");
+        // torques edited to differ in samples: an error, not a panic
+        p.predicted[1].pop();
+        let e = p.check("run.csv").unwrap_err().to_string();
+        assert!(e.contains("joint 2") && e.contains("found 1"), "{e}");
+    }
+
+    /// A parameter vector of the wrong length, or a sample time that is not positive and
+    /// finite, is an error (a panic in the product; NaN time stamps `check` passed).
+    #[test]
+    fn new_checks_the_parameters_and_the_sample_time() {
+        use nalgebra::{DMatrix, DVector};
+        let obs = crate::estimate::Observation::single(
+            DMatrix::from_element(3, 2, 1.0),
+            DVector::from_element(3, 2.0),
+            vec!["a".into(), "b".into()],
+        )
+        .unwrap();
+        let e = Prediction::new(&obs, &[1.0], 0.01).unwrap_err().to_string();
+        assert!(e.contains("expected 2 entries, found 1"), "{e}");
+        for dt in [f64::NAN, 0.0, -0.01, f64::INFINITY] {
+            let e = Prediction::new(&obs, &[1.0, 1.0], dt)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("sample_time"), "{dt}: {e}");
+        }
+        let p = Prediction::new(&obs, &[1.0, 1.0], 0.01).unwrap();
+        assert_eq!(p.time, [vec![0.0, 0.01, 0.02]]);
+        assert!(p.check("run.csv").is_ok());
     }
 
     /// A fit worse than predicting zero, and a joint with no equation, are warned about;

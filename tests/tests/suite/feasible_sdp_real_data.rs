@@ -87,7 +87,7 @@ struct Figures {
 }
 
 fn relative_error(obs: &Observation, base: &[f64], dt: f64) -> f64 {
-    Prediction::new(obs, base, dt).fit().relative_error
+    Prediction::new(obs, base, dt).unwrap().fit().relative_error
 }
 
 fn check(label: &str, s: &Solution, bounds: &Bounds) {

@@ -304,7 +304,7 @@ fn flexible_two_encoder_identification_recovers_the_truth_and_beats_cad() {
             .unwrap()
             .fit();
         let reference = validate(&Ur5e, &data, &cfg, &cad).unwrap().fit();
-        let improvement = relative_improvement(reference.nmse_eq22, identified.nmse_eq22);
+        let improvement = relative_improvement(reference.nmse_eq22, identified.nmse_eq22).unwrap();
         eprintln!(
             "trajectory {}: NMSE (eq. 22) CAD {:.1}, calibrated {:.1}: {improvement:.1} %",
             k + 1,

@@ -140,8 +140,8 @@ fn tx40_temporal_split_predicts_held_out_rows() {
     let held_out = rows(&t, 29250, 45000);
     let e = estimate(&train, &t.config).unwrap();
     let dt = 100.0 / 5000.0;
-    let fit = Prediction::new(&train, &e.values, dt).fit();
-    let v = Prediction::new(&held_out, &e.values, dt).fit();
+    let fit = Prediction::new(&train, &e.values, dt).unwrap().fit();
+    let v = Prediction::new(&held_out, &e.values, dt).unwrap().fit();
     println!(
         "TX40 split: train {:.2} %, held out {:.2} % (RMS {:?})",
         100.0 * fit.relative_error,

@@ -126,6 +126,14 @@ fn zomaya_known_parameters_fix_and_fold_base_rows() {
     // a known index outside the model is refused
     let e = KnownParameters::new(&model, &[(5, 1.0)]).unwrap_err();
     assert!(e.to_string().contains("5 standard parameters"), "{e}");
+    // an index given twice is refused (the last value won)
+    let e = KnownParameters::new(&model, &[(1, 1.0), (1, 2.0)])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("standard parameter 1") && e.contains("given twice"),
+        "{e}"
+    );
 }
 
 /// Random maps with random known subsets: the kept count equals the numeric rank of the
