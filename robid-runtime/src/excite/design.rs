@@ -299,9 +299,14 @@ impl FourierDesign {
     /// A random, non-optimised trajectory of the same family and within the same limits
     /// (the first start of [`FourierDesign::optimize`] with this seed): the baseline a
     /// design is compared with.
+    ///
+    /// # Errors
+    /// [`Error::Setting`] for the settings [`FourierDesign::optimize`] refuses, a start
+    /// outside the limits included (the trajectory would sit there, unmoving).
     pub fn random(&self, limits: &[JointLimits]) -> Result<Fourier> {
         self.check(limits.len())?;
         check_limits(limits, limits.len())?;
+        check_start(self.start.as_deref(), limits)?;
         let decoder = self.decoder(limits);
         let m = decoder.per_joint();
         let x = self.start_point(&mut Rng::new(self.seed).fork(0), limits.len() * m, m);
@@ -836,5 +841,24 @@ mod tests {
         assert_eq!(w, vec![1.0, 1e6, 2.0]);
         let w = weights_from_sigma(&[1e-6, 1.0], "excite", "sigma").unwrap();
         assert_eq!(w, vec![1e6, 1.0]);
+    }
+
+    /// `random` with a start outside the limits gave a trajectory that sat there, unmoving
+    /// (review 147); it now refuses the start as `optimize` does.
+    #[test]
+    fn random_refuses_a_start_outside_the_limits() {
+        let lim = JointLimits {
+            position: [-2.0, 2.0],
+            velocity: 3.0,
+            acceleration: 10.0,
+            torque: None,
+        };
+        let design = |q| FourierDesign {
+            start: Some(vec![q]),
+            ..FourierDesign::default()
+        };
+        let e = design(2.5).random(&[lim.clone()]).unwrap_err().to_string();
+        assert!(e.contains("joint 1: 2.5 is outside the limits"), "{e}");
+        assert!(design(1.0).random(&[lim]).is_ok());
     }
 }

@@ -246,9 +246,14 @@ impl PointDesign {
 
     /// A random, non-optimised point trajectory within the same limits (the first start of
     /// [`PointDesign::optimize`] with this seed).
+    ///
+    /// # Errors
+    /// [`crate::error::Error::Setting`] for the settings [`PointDesign::optimize`]
+    /// refuses, a start outside the limits included.
     pub fn random(&self, limits: &[JointLimits]) -> Result<Points> {
         self.check(limits.len())?;
         check_limits(limits, limits.len())?;
+        crate::excite::design::check_start(self.start.as_deref(), limits)?;
         let decoder = Decoder::new(self, limits);
         let len = limits.len() * decoder.per_joint();
         decoder.decode(&decoder.start_point(&mut Rng::new(self.seed).fork(0), len))
@@ -384,21 +389,21 @@ impl<'a> Decoder<'a> {
                 for i in 1..=interior {
                     k[i][3] = (k[i + 1][2] - k[i - 1][2]) / (self.times[i + 1] - self.times[i - 1]);
                 }
-                let scale = self.scale(&k, l, q0);
-                k.iter()
+                let scale = self.scale(&k, l, q0)?;
+                Ok(k.iter()
                     .map(|k| [q0 + scale * k[0], scale * k[1], scale * k[2], scale * k[3]])
-                    .collect()
+                    .collect())
             })
-            .collect();
+            .collect::<Result<_>>()?;
         Points::new(self.times.clone(), knots)
     }
 
     /// The largest factor <= 1 that keeps the interpolated excursions `k` within the limits.
-    fn scale(&self, k: &[Knot], l: &JointLimits, q0: f64) -> f64 {
+    fn scale(&self, k: &[Knot], l: &JointLimits, q0: f64) -> Result<f64> {
         let d = self.design;
         let (mut gmax, mut gmin, mut vmax, mut amax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         for (w, t) in k.windows(2).zip(self.times.windows(2)) {
-            let seg = Septic::new(w[0], w[1], t[1] - t[0]);
+            let seg = Septic::new(w[0], w[1], t[1] - t[0])?;
             for s in 0..=d.fine {
                 let [g, gd, gdd, _] = seg.eval(seg.width * s as f64 / d.fine as f64);
                 gmax = gmax.max(g);
@@ -419,7 +424,7 @@ impl<'a> Decoder<'a> {
                 scale = scale.min(room / peak);
             }
         }
-        scale
+        Ok(scale)
     }
 }
 
@@ -526,5 +531,25 @@ mod tests {
             ..design.clone()
         };
         assert!(bad.optimize(&p, &limits(), None).is_err());
+    }
+
+    /// As `FourierDesign::random`: a start outside the limits is refused, not sampled.
+    #[test]
+    fn random_refuses_a_start_outside_the_limits() {
+        let mut start: Vec<f64> = limits()
+            .iter()
+            .map(|l| 0.5 * (l.position[0] + l.position[1]))
+            .collect();
+        let design = |start: Vec<f64>| PointDesign {
+            start: Some(start),
+            ..PointDesign::default()
+        };
+        assert!(design(start.clone()).random(&limits()).is_ok());
+        start[1] = limits()[1].position[1] + 0.5;
+        let e = design(start).random(&limits()).unwrap_err().to_string();
+        assert!(
+            e.contains("joint 2:") && e.contains("is outside the limits"),
+            "{e}"
+        );
     }
 }

@@ -24,15 +24,21 @@ pub struct Points {
 
 impl Points {
     /// The trajectory through `knots` (per joint, one state per time) at `times`.
+    ///
+    /// # Errors
+    /// [`Error::Setting`] for times that do not start at 0 and increase (finite), for an
+    /// interval [`Septic::new`] refuses (narrower than about 1e-102 s) or a knot state
+    /// that is not finite; [`DataError::JointCountMismatch`] for a joint whose knots do
+    /// not match the times in number.
     pub fn new(times: Vec<f64>, knots: Vec<Vec<Knot>>) -> Result<Self> {
         if times.len() < 2
             || times[0] != 0.0
-            || times.windows(2).any(|w| w[1] <= w[0] || w[1].is_nan())
+            || times.windows(2).any(|w| w[1] <= w[0] || !w[1].is_finite())
         {
             return Err(Error::setting(
                 "Points::new",
                 "times",
-                "they must start at 0 and increase, with at least two points",
+                "they must start at 0 and increase, finite, with at least two points",
             ));
         }
         if let Some(bad) = knots.iter().position(|k| k.len() != times.len()) {
@@ -57,7 +63,7 @@ impl Points {
                     .map(|(k, t)| Septic::new(k[0], k[1], t[1] - t[0]))
                     .collect()
             })
-            .collect();
+            .collect::<Result<_>>()?;
         Ok(Self {
             times,
             knots,
@@ -148,5 +154,19 @@ mod tests {
         assert!((tr.q[0][400] - 0.1).abs() < 1e-12 && tr.qd[0][0] == 0.0);
         assert!(Points::new(vec![0.0, 0.0], vec![vec![[0.0; 4]; 2]]).is_err());
         assert!(Points::new(vec![0.0, 1.0], vec![vec![[0.0; 4]; 3]]).is_err());
+    }
+
+    /// An infinite time or an interval too narrow for its cube gave segments of NaN
+    /// (review 147); both are refused.
+    #[test]
+    fn refuses_times_whose_segments_would_not_be_finite() {
+        let knots = vec![vec![[0.0; 4], [1.0, 0.0, 0.0, 0.0], [0.0; 4]]];
+        for times in [vec![0.0, 1.0, f64::INFINITY], vec![0.0, 1e-110, 1.0]] {
+            let e = Points::new(times.clone(), knots.clone()).unwrap_err();
+            assert!(
+                e.to_string().contains("width") || e.to_string().contains("times"),
+                "{times:?}: {e}"
+            );
+        }
     }
 }

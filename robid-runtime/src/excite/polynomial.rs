@@ -14,6 +14,8 @@
 //! interpolation with 7th-order polynomials (eqs. 10-11), jerk imposed at the points
 //! (eq. 12); see also docs/experiments.md#interpolation-with-seventh-order-polynomials.
 
+use crate::error::{Error, Result, num};
+
 /// A state at a knot: position, velocity, acceleration and jerk.
 pub type Knot = [f64; 4];
 
@@ -36,9 +38,24 @@ pub struct Septic {
 
 impl Septic {
     /// The segment from state `a` at u = 0 to state `b` at u = `width`.
-    pub fn new(a: Knot, b: Knot, width: f64) -> Self {
+    ///
+    /// # Errors
+    /// [`Error::Setting`] when `width` is not positive or its cube is not a normal
+    /// number (a width outside about 1e-102..1e102 s, NaN or infinite): the coefficients
+    /// and [`Septic::eval`] divide by powers of it and would be NaN or infinite.
+    pub fn new(a: Knot, b: Knot, width: f64) -> Result<Self> {
         let t = width;
         let (t2, t3) = (t * t, t * t * t);
+        if !(t > 0.0 && t3.is_normal()) {
+            return Err(Error::setting(
+                "Septic::new",
+                "width",
+                format!(
+                    "{} s must be positive and finite, its cube a normal number (about 1e-102 to 1e102 s)",
+                    num(width)
+                ),
+            ));
+        }
         let c0 = a[0];
         let c1 = t * a[1];
         let c2 = t2 * a[2] / 2.0;
@@ -53,7 +70,7 @@ impl Septic {
         for (k, row) in INVERSE.iter().enumerate() {
             c[4 + k] = row.iter().zip(&r).map(|(m, r)| m * r).sum();
         }
-        Self { c, width }
+        Ok(Self { c, width })
     }
 
     /// (q, qd, qdd, jerk) at u in [0, width] (seconds from the segment's start).
@@ -86,7 +103,7 @@ mod tests {
     #[test]
     fn meets_both_end_states_and_its_derivatives_are_consistent() {
         let (a, b) = ([0.3, -1.2, 4.0, 10.0], [-0.7, 0.5, -2.0, -3.0]);
-        let seg = Septic::new(a, b, 1.7);
+        let seg = Septic::new(a, b, 1.7).unwrap();
         for (got, want) in seg.eval(0.0).iter().zip(&a) {
             assert!((got - want).abs() < 1e-12, "{got} vs {want}");
         }
@@ -112,11 +129,24 @@ mod tests {
             [0.5, 0.3, -1.0, 2.0],
             [-0.2, -0.8, 0.4, -1.5],
         ];
-        let first = Septic::new(knots[0], knots[1], 1.0);
-        let second = Septic::new(knots[1], knots[2], 2.5);
+        let first = Septic::new(knots[0], knots[1], 1.0).unwrap();
+        let second = Septic::new(knots[1], knots[2], 2.5).unwrap();
         let (end, start) = (first.eval(1.0), second.eval(0.0));
         for k in 0..4 {
             assert!((end[k] - start[k]).abs() < 1e-9, "derivative {k}");
         }
+    }
+
+    /// A zero width gave a segment whose every value was NaN (review 147); widths that
+    /// are not positive and finite, or whose cube leaves the normal range, are refused.
+    #[test]
+    fn refuses_a_width_that_is_not_positive_and_finite() {
+        let b = [1.0, 0.0, 0.0, 0.0];
+        for w in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-200, 1e200] {
+            let e = Septic::new([0.0; 4], b, w).unwrap_err().to_string();
+            assert!(e.contains("width"), "{w}: {e}");
+        }
+        let seg = Septic::new([0.0; 4], b, 1e-100).unwrap();
+        assert!(seg.eval(0.5e-100).iter().all(|x| x.is_finite()));
     }
 }
