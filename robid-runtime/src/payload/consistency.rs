@@ -84,7 +84,53 @@ impl Consistency {
     /// 3 times its standard deviation is consistent within the uncertainty
     /// (and said so in [`Consistency::within_uncertainty`]): an exact point mass estimated
     /// from noise-free torques was called inconsistent for a moment of -3e-11 kg m^2.
+    ///
+    /// A deviation that is NaN or negative is no deviation: the values cannot be judged
+    /// against it, nor against an infinite one (the data do not bound that value): the
+    /// verdict is [`Verdict::Undetermined`], saying which (or [`Verdict::Inconsistent`]
+    /// for a mass not positive, which no deviation excuses).
     pub fn of_estimate(p: &[f64; 10], std: &[f64; 10]) -> Consistency {
+        let listed = |bad: fn(f64) -> bool| -> Vec<String> {
+            Inertial::ALL
+                .iter()
+                .zip(std)
+                .filter(|(_, s)| bad(**s))
+                .map(|(i, s)| format!("{} {}", i.stem(), crate::error::num(*s)))
+                .collect()
+        };
+        let (invalid, infinite) = (listed(|s| !(s >= 0.0)), listed(|s| s == f64::INFINITY));
+        if !invalid.is_empty() || !infinite.is_empty() {
+            // NaN passed every comparison of the checks as if the values were exact (a
+            // verdict of consistent), and an infinite deviation of a first moment of zero
+            // added nothing to the moments' (0 times infinity): judge nothing the
+            // deviations decide
+            let mut why = Vec::new();
+            if !invalid.is_empty() {
+                why.push(format!(
+                    "the standard deviations {} are not deviations (NaN or negative): give \
+                     deviations of 0 or more (0 for exact values)",
+                    invalid.join(", ")
+                ));
+            }
+            if !infinite.is_empty() {
+                why.push(format!(
+                    "the standard deviations {} are infinite: the data do not bound these \
+                     values",
+                    infinite.join(", ")
+                ));
+            }
+            let exact = Self::of(p);
+            return Consistency {
+                problems: if exact.physical.is_none() {
+                    exact.problems.clone()
+                } else {
+                    Vec::new()
+                },
+                within_uncertainty: Vec::new(),
+                undetermined: why,
+                ..exact
+            };
+        }
         let mut problems = Vec::new();
         let mut within_uncertainty = Vec::new();
         let physical = LinkInertial::from_standard(p);
@@ -548,5 +594,40 @@ mod tests {
                  (the largest exceeds the sum of the other two by 1.2e-7 kg m^2)"
             ]
         );
+    }
+
+    /// NaN deviations made every check pass as for exact values (consistent) and negative
+    /// ones were taken (review 147): both now leave the verdict undetermined and say
+    /// which; a mass not positive stays inconsistent.
+    #[test]
+    fn deviations_that_are_not_deviations_leave_the_verdict_undetermined() {
+        let solid = LinkInertial {
+            mass: 1.0,
+            com: [0.0, 0.0, 0.1],
+            inertia: [[0.02, 0.0, 0.0], [0.0, 0.03, 0.0], [0.0, 0.0, 0.04]],
+        }
+        .to_standard();
+        let c = Consistency::of_estimate(&solid, &[f64::NAN; 10]);
+        assert_eq!(c.verdict(), Verdict::Undetermined);
+        assert!(c.undetermined[0].contains("XX NaN"), "{:?}", c.undetermined);
+        let mut std = [1e-6; 10];
+        std[3] = -1e-6;
+        let c = Consistency::of_estimate(&solid, &std);
+        assert_eq!(c.verdict(), Verdict::Undetermined);
+        assert!(c.undetermined[0].contains("-1e-6"), "{:?}", c.undetermined);
+        // infinite: unbounded by the data, even on a first moment of zero (whose share
+        // of the moments' deviation was 0 times infinity, and the verdict consistent)
+        let mut at_origin = solid;
+        at_origin[6..9].fill(0.0);
+        let mut std = [0.0; 10];
+        std[6] = f64::INFINITY;
+        let c = Consistency::of_estimate(&at_origin, &std);
+        assert_eq!(c.verdict(), Verdict::Undetermined);
+        assert!(c.undetermined[0].contains("MX inf"), "{:?}", c.undetermined);
+        let mut negative = solid;
+        negative[9] = -1.0;
+        let c = Consistency::of_estimate(&negative, &[f64::NAN; 10]);
+        assert_eq!(c.verdict(), Verdict::Inconsistent);
+        assert!(c.problems[0].contains("not positive"), "{:?}", c.problems);
     }
 }
