@@ -57,10 +57,24 @@ pub struct Minimum {
 impl NelderMead {
     /// Minimises `f` from `x0`. Non-finite values count as +infinity.
     ///
-    /// `step` must hold one value or one per coordinate of `x0`, all finite, and `x0` must
-    /// be finite; otherwise an [`Error::Setting`] names the setting.
+    /// `step` must hold one value or one per coordinate of `x0`, all finite, `x0` must
+    /// be finite and both tolerances finite and not negative; otherwise an
+    /// [`Error::Setting`] names the setting.
     pub fn minimize(&self, x0: &[f64], mut f: impl FnMut(&[f64]) -> f64) -> Result<Minimum> {
         let n = x0.len();
+        // NaN or a negative tolerance never stops the search: it ran to max_evaluations
+        for (key, t) in [
+            ("tolerance", self.tolerance),
+            ("absolute_tolerance", self.absolute_tolerance),
+        ] {
+            if !(t >= 0.0 && t.is_finite()) {
+                return Err(Error::setting(
+                    "NelderMead",
+                    key,
+                    format!("{} must be finite and 0 or more", crate::error::num(t)),
+                ));
+            }
+        }
         if !(self.step.len() == 1 || self.step.len() == n) {
             return Err(Error::setting(
                 "NelderMead",
@@ -263,6 +277,27 @@ mod tests {
         assert!(e.to_string().contains("3 steps for 2 coordinates"), "{e}");
         let nm = NelderMead::default();
         assert!(nm.minimize(&[f64::NAN, 0.0], rosenbrock).is_err());
+    }
+
+    /// A NaN or negative tolerance never stopped the search, which ran to
+    /// `max_evaluations` (review 147): refused, naming the setting.
+    #[test]
+    fn refuses_a_tolerance_that_is_nan_negative_or_infinite() {
+        for t in [f64::NAN, -1e-9, f64::INFINITY] {
+            for (relative, key) in [(true, "tolerance"), (false, "absolute_tolerance")] {
+                let nm = NelderMead {
+                    max_evaluations: 1000,
+                    tolerance: if relative { t } else { 1e-9 },
+                    absolute_tolerance: if relative { 1e-9 } else { t },
+                    ..NelderMead::default()
+                };
+                let e = nm
+                    .minimize(&[0.0, 0.0], rosenbrock)
+                    .unwrap_err()
+                    .to_string();
+                assert!(e.contains(key) && e.contains("finite and 0 or more"), "{e}");
+            }
+        }
     }
 
     /// The evaluation cap holds whatever the function does (here: never converges).
