@@ -210,16 +210,34 @@ impl DriveChain {
     }
 
     /// Joint positions (or velocities, accelerations) from the measured ones, per joint.
+    ///
+    /// # Panics
+    /// When `measured` does not hold one joint per joint of the chain ([`DriveChain::dof`]):
+    /// a size the caller controls (the chain and the record come from one configuration,
+    /// whose joint count the readers check first); an infallible map keeps the readers'
+    /// chains of calls simple.
     pub fn joint_positions(&self, measured: Signals) -> Signals {
         apply(&self.position_inverse, measured, None)
     }
 
     /// Motor encoder positions reflected to the link side: R_q^-1 theta_m.
+    ///
+    /// # Panics
+    /// When `motor` does not hold one joint per joint of the chain ([`DriveChain::dof`]):
+    /// a size the caller controls (the chain and the record come from one configuration,
+    /// whose joint count the readers check first); an infallible map keeps the readers'
+    /// chains of calls simple.
     pub fn reflected_motor_positions(&self, motor: Signals) -> Signals {
         apply(&self.motor_inverse, motor, None)
     }
 
     /// Joint torques from the measured torques or currents: R_tau K_r i.
+    ///
+    /// # Panics
+    /// When `measured` does not hold one joint per joint of the chain ([`DriveChain::dof`]):
+    /// a size the caller controls (the chain and the record come from one configuration,
+    /// whose joint count the readers check first); an infallible map keeps the readers'
+    /// chains of calls simple.
     pub fn joint_torques(&self, measured: Signals) -> Signals {
         apply(&self.torque_map, measured, Some(&self.constants))
     }
@@ -237,6 +255,14 @@ impl DriveChain {
 /// that differs from the sum is a `-0` read from a file, which `0 + 1 * -0` made `+0`: it
 /// stays `-0`, equal to `0` in every comparison.
 fn apply(m: &DMatrix<f64>, x: Signals, scale: Option<&[f64]>) -> Signals {
+    // a record of another joint count was read out of bounds with nalgebra's message
+    assert_eq!(
+        x.dof(),
+        m.ncols(),
+        "DriveChain: the signals have {} joints, the chain {}; build the chain for the record's joints",
+        x.dof(),
+        m.ncols()
+    );
     let c = |i: usize, j: usize| m[(i, j)] * scale.map_or(1.0, |s| s[j]);
     let n = m.nrows();
     let diagonal =
@@ -455,5 +481,14 @@ mod tests {
             ..Default::default()
         };
         assert!(matches!(DriveChain::new(&c, 6), Err(Error::Setting { .. })));
+    }
+
+    /// A record of 5 joints through a chain of 2 panicked inside nalgebra ("Matrix index
+    /// out of bounds"); the documented panic names both counts and the fix.
+    #[test]
+    #[should_panic(expected = "the signals have 5 joints, the chain 2; build the chain")]
+    fn a_record_of_another_joint_count_is_named() {
+        let chain = DriveChain::new(&DriveConfig::default(), 2).unwrap();
+        chain.joint_torques(Signals::zeros(5, 3));
     }
 }

@@ -368,11 +368,25 @@ impl Problem {
     }
 
     /// Base parameters K p of a standard vector.
+    ///
+    /// # Panics
+    /// When `standard` does not hold one value per standard parameter (`K`'s columns): a
+    /// size the caller controls (the problem's own model), checked with a message naming
+    /// both rather than nalgebra's; returning a `Result` would burden every caller, whose
+    /// vectors come from the same model, for a programmer error.
     pub fn base_of(&self, standard: &[f64]) -> DVector<f64> {
+        assert_eq!(
+            standard.len(),
+            self.k.ncols(),
+            "Problem::base_of: give one value per standard parameter of the problem's model"
+        );
         &self.k * DVector::from_column_slice(standard)
     }
 
     /// The whitened misfit z = L^-1 (K p - beta).
+    ///
+    /// # Panics
+    /// As [`Problem::base_of`].
     pub fn normalized_residual(&self, standard: &[f64]) -> DVector<f64> {
         &self.whitening * (self.base_of(standard) - &self.target)
     }
@@ -810,5 +824,14 @@ mod tests {
         assert_eq!(p.no_effect(), vec![1, 2, 4, 5, 6, 7, 8, 10]);
         let all = problem_with(&[0.0; 11], &["Fv"]);
         assert!(all.no_effect().is_empty());
+    }
+
+    /// A standard vector of the wrong length panicked inside nalgebra's Gemv; the
+    /// documented panic names the fix.
+    #[test]
+    #[should_panic(expected = "give one value per standard parameter")]
+    fn base_of_names_a_standard_vector_of_the_wrong_length() {
+        let p = Problem::new(names(), vec!["A".into()], DMatrix::zeros(1, 11)).unwrap();
+        p.base_of(&[1.0]);
     }
 }

@@ -157,7 +157,13 @@ impl Trajectory {
     /// them. A reference whose `qdd4` was a constant -1e6 beside moderate positions and
     /// velocities was simulated for minutes into a log of 1e4 A currents with exit 0.
     /// `at` names sample k in the error.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] when `q`, `qd` or `qdd` do not hold one sample per
+    /// time stamp for every joint; [`DataError::InconsistentDerivative`] as above.
     pub fn check_derivatives(&self, at: impl Fn(usize) -> String) -> Result<()> {
+        // the fields are public: a block shorter than `t` was indexed out of bounds
+        self.check_shapes("Trajectory::check_derivatives")?;
         let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         for j in 0..self.dof() {
             let (q, qd, qdd) = (&self.q[j], &self.qd[j], &self.qdd[j]);
@@ -246,11 +252,9 @@ impl Trajectory {
         Ok(())
     }
 
-    /// Checks a trajectory given as input: shapes consistent, time increasing at a sample
-    /// rate that identification takes (as [`Trajectory::read_csv`]), every value
-    /// finite and within the range of its quantity ([`crate::limits`]). `what` names it in
-    /// errors, which give the sample and its time.
-    pub fn check(&self, what: &str) -> Result<()> {
+    /// Checks that `q`, `qd` and `qdd` (public fields) have one joint each per joint and
+    /// one sample each per time stamp; `what` names the trajectory in the error.
+    fn check_shapes(&self, what: &str) -> Result<()> {
         let n = self.samples();
         for (name, block) in [("q", &self.q), ("qd", &self.qd), ("qdd", &self.qdd)] {
             if block.dof() != self.dof() {
@@ -268,6 +272,16 @@ impl Trajectory {
                 });
             }
         }
+        Ok(())
+    }
+
+    /// Checks a trajectory given as input: shapes consistent, time increasing at a sample
+    /// rate that identification takes (as [`Trajectory::read_csv`]), every value
+    /// finite and within the range of its quantity ([`crate::limits`]). `what` names it in
+    /// errors, which give the sample and its time.
+    pub fn check(&self, what: &str) -> Result<()> {
+        self.check_shapes(what)?;
+        let n = self.samples();
         if n < 2 {
             return Err(Error::TooFewSamples {
                 context: what.to_string(),
@@ -544,6 +558,20 @@ mod tests {
             qdd: signal(|t| -t.sin()).unwrap(),
             t,
         }
+    }
+
+    /// `qd` of 10 samples against `t` of 100 (public fields) panicked out of bounds,
+    /// though the check returns Result (review 147).
+    #[test]
+    fn blocks_not_matching_the_time_stamps_are_refused_not_indexed() {
+        let mut short = sine();
+        short.qd = Signals::new(vec![vec![0.0; 10]]).unwrap();
+        let e = problem(&short).unwrap();
+        assert!(e.contains("samples of the `qd` signals"), "{e}");
+        let mut wide = sine();
+        wide.qdd = Signals::new(vec![vec![0.0; 200]; 2]).unwrap();
+        let e = problem(&wide).unwrap();
+        assert!(e.contains("joints of the `qdd` signals"), "{e}");
     }
 
     fn problem(trajectory: &Trajectory) -> Option<String> {
