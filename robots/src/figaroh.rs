@@ -53,7 +53,8 @@ pub fn tx40() -> Vec<Published> {
 }
 
 /// Reads `a + 0.5*b - c` (robid's and FIGAROH's expression text), with every name passed
-/// through `rename`; `None` when a coefficient is not a number.
+/// through `rename`; `None` when a coefficient is not a finite number or a name is not
+/// one (empty, or with characters other than letters, digits, `_` and `.`).
 pub fn combination(text: &str, rename: impl Fn(&str) -> String) -> Option<Combination> {
     let mut out = Combination::new();
     for term in text.replace(" - ", " + -").split(" + ") {
@@ -66,6 +67,14 @@ pub fn combination(text: &str, rename: impl Fn(&str) -> String) -> Option<Combin
             Some((c, n)) => (c.trim().parse::<f64>().ok()?, n.trim()),
             None => (1.0, term),
         };
+        // any text was taken for a name: "((((" read as 1 times a parameter "(((("
+        let named = name.starts_with(|c: char| c.is_alphabetic() || c == '_')
+            && name
+                .chars()
+                .all(|c| c.is_alphanumeric() || c == '_' || c == '.');
+        if !(named && coef.is_finite()) {
+            return None;
+        }
         *out.entry(rename(name)).or_insert(0.0) += sign * coef;
     }
     Some(out)
@@ -126,5 +135,26 @@ mod tests {
         ] {
             assert_eq!(super::our_name(figaroh), ours);
         }
+    }
+
+    /// Text that is no expression gave a combination of a parameter named after it
+    /// (`((((` read as 1 times "((((", review 147); it is refused, as are empty terms and
+    /// coefficients that are not finite.
+    #[test]
+    fn text_that_is_no_expression_is_refused() {
+        let read = |t: &str| super::combination(t, str::to_string);
+        for bad in [
+            "((((", "", "a + + b", "inf*a", "2*", "a + 3b", "-", "0.5*(a)",
+        ] {
+            assert_eq!(read(bad), None, "{bad:?}");
+        }
+        let c = read("Izz1 + 0.5*m2 - fs1 - 1e-3*X_y.z").unwrap();
+        assert_eq!(c.len(), 4);
+        assert_eq!(
+            (c["Izz1"], c["m2"], c["fs1"], c["X_y.z"]),
+            (1.0, 0.5, -1.0, -1e-3)
+        );
+        // every published expression still reads
+        assert_eq!(super::tx40().len(), 60);
     }
 }
