@@ -857,7 +857,10 @@ mod tests {
             start: Some(vec![q]),
             ..FourierDesign::default()
         };
-        let e = design(2.5).random(&[lim.clone()]).unwrap_err().to_string();
+        let e = design(2.5)
+            .random(std::slice::from_ref(&lim))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("joint 1: 2.5 is outside the limits"), "{e}");
         assert!(design(1.0).random(&[lim]).is_ok());
     }
