@@ -88,13 +88,16 @@ impl Arena {
         self.mul(&[a, b])
     }
 
-    /// `a / b`.
+    /// `a / b`. A literal zero `b` is not refused here (as [`Arena::parse`] refuses
+    /// `1/0`): it stays the node `0^(-1)`, which evaluates to infinity; check a divisor
+    /// that can be zero before dividing.
     pub fn div(&mut self, a: Id, b: Id) -> Id {
         let inv = self.pow(b, -1);
         self.mul(&[a, inv])
     }
 
-    /// `a ^ n` for an integer `n`.
+    /// `a ^ n` for an integer `n` (a literal zero to a negative power is kept as it is,
+    /// see [`Arena::div`]).
     pub fn pow(&mut self, a: Id, n: i32) -> Id {
         if n == 0 {
             return self.one();
