@@ -263,7 +263,17 @@ impl KnownParameters {
         }
         // sqrt(diag(L C L')) with C = sigma^2 (W'W)^-1, each from the scaled factors (the
         // product of the matrices underflowed to 0 for a column near 1e200)
-        let sigma = estimate.sigma2.sqrt();
+        // sigma as the estimate's own deviations have it (std_k = sigma sqrt((W'W)^-1_kk)),
+        // not sqrt(sigma2): that underflows to 0 for torques near 1e-170, where the
+        // deviations stay right (the derived ones read 0, exact)
+        let sigma = solution
+            .inverse
+            .root_diagonal()
+            .iter()
+            .zip(&estimate.std)
+            .filter(|(root, _)| **root > 0.0)
+            .max_by(|a, b| a.0.total_cmp(b.0))
+            .map_or(estimate.sigma2.sqrt(), |(root, std)| std / root);
         let mut std: Vec<f64> = (0..nb + extra)
             .map(|i| {
                 let row: Vec<f64> = l.row(i).iter().copied().collect();

@@ -289,7 +289,10 @@ fn solve_axis(
     let fitted = &a * &gamma;
     let residual = &y - fitted;
     let dof = rows.len().saturating_sub(rank).max(1);
-    let sigma2 = residual.norm_squared() / dof as f64;
+    // from the overflow-safe norm: the residual's squares underflow below about 1e-154,
+    // and every deviation of torques near 1e-170 read 0 (exact)
+    let residual_norm = super::lstsq::norm(residual.iter().copied());
+    let sigma = residual_norm / (dof as f64).sqrt();
     let null_share = |c: usize| -> f64 {
         (0..s.len())
             .filter(|i| !kept.contains(i))
@@ -305,7 +308,7 @@ fn solve_axis(
             values.push((
                 col,
                 gamma[c] / d,
-                (sigma2 * pinv_gram[(c, c)]).max(0.0).sqrt() / d,
+                sigma * pinv_gram[(c, c)].max(0.0).sqrt() / d,
             ));
             determined.push(obs.names[col].clone());
         }
@@ -330,7 +333,7 @@ fn solve_axis(
             rank,
             condition_number: condition.raw,
             scaled_condition_number: condition.scaled,
-            residual_rms: (residual.norm_squared() / rows.len().max(1) as f64).sqrt(),
+            residual_rms: residual_norm / (rows.len().max(1) as f64).sqrt(),
             determined,
         },
         values,

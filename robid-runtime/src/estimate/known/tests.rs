@@ -239,6 +239,32 @@ fn zomaya_known_parameters_carry_their_deviations() {
     }
 }
 
+/// The derived deviations of torques near 1e-170 (the test above scaled): sigma^2 underflows
+/// to 0 there, and b4's deviation, derived from the solved ones, read 0 (exact) beside
+/// b1's right one.
+#[test]
+fn zomaya_known_parameters_carry_the_deviations_of_tiny_torques() {
+    let mut rng = Rng::new(3);
+    let model = arm();
+    let scale = 1e-170;
+    let theta = [1.0, 0.5, 0.3, 0.2, 0.9].map(|v| v * scale);
+    let base = arm().k * DVector::from_column_slice(&theta);
+    let w = random(&mut rng, 200, 4);
+    let noise = DVector::from_fn(200, |_, _| 0.05 * scale * rng.normal());
+    let obs = observation(w.clone(), &w * &base + noise, 0);
+    let k = KnownParameters::new(&model, &[(2, theta[2]), (4, theta[4])]).unwrap();
+    let reduced = k.reduce(&obs).unwrap();
+    let e = k
+        .expand(&ols(&reduced, 1e-10).unwrap(), &obs, &reduced, 1e-10)
+        .unwrap();
+    assert!(e.std[0] > 0.0, "{:?}", e.std);
+    assert!(
+        (e.std[3] - 2.0 * e.std[0]).abs() < 1e-12 * e.std[0],
+        "{:?}",
+        e.std
+    );
+}
+
 #[test]
 fn zomaya_known_parameters_check_the_columns_they_reduce() {
     let model = arm();

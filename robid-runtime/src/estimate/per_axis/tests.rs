@@ -232,3 +232,34 @@ fn an_axis_whose_equations_were_removed_is_named() {
         p.estimate
     );
 }
+
+/// Torques near 1e-170 (W the same, y and the truth scaled): every value and deviation is
+/// the unscaled one times the scale, and so is each axis's residual RMS. The residual's
+/// squares underflowed, and every deviation read 0 (exact).
+#[test]
+fn tiny_torques_keep_their_deviations() {
+    let scale = 1e-170;
+    let plain = serial(&mut Rng::new(4), 100, [1.5, -0.7, 0.4], [0.5, 0.05, 0.01]);
+    let mut tiny = plain.clone();
+    tiny.y *= scale;
+    let (p, t) = (
+        per_axis(&plain, 1e-10).unwrap(),
+        per_axis(&tiny, 1e-10).unwrap(),
+    );
+    let near = |a: f64, b: f64| (a * scale - b).abs() <= 1e-12 * b.abs();
+    for k in 0..3 {
+        assert!(
+            near(p.estimate.values[k], t.estimate.values[k]),
+            "value {k}"
+        );
+        assert!(
+            near(p.estimate.std[k], t.estimate.std[k]),
+            "std {k}: {} against {}",
+            t.estimate.std[k],
+            p.estimate.std[k] * scale
+        );
+    }
+    for (a, b) in p.axes.iter().zip(&t.axes) {
+        assert!(near(a.residual_rms, b.residual_rms), "axis {}", a.joint);
+    }
+}
