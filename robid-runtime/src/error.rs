@@ -195,6 +195,26 @@ impl Error {
         }
     }
 
+    /// Refuses a `value` of setting `key` that is not positive and finite: "{what} {value}
+    /// {unit} must be positive and finite" (a sample time, a rate, a cutoff: 0 or NaN
+    /// there gave infinite or NaN outputs).
+    pub(crate) fn positive_and_finite(
+        owner: &str,
+        key: &str,
+        what: &str,
+        value: f64,
+        unit: &str,
+    ) -> Result<()> {
+        if value > 0.0 && value.is_finite() {
+            return Ok(());
+        }
+        Err(Error::setting(
+            owner,
+            key,
+            format!("{what} {} {unit} must be positive and finite", num(value)),
+        ))
+    }
+
     /// The error as a front end shows it: a setting that the front end fills from a flag
     /// (`flags` maps a setting's key, e.g. `bandwidth`, to its flag, e.g. `--bandwidth`)
     /// becomes an [`Error::Argument`] naming the flag; any other error is unchanged.

@@ -36,26 +36,14 @@ pub fn butterworth(order: usize, cutoff: f64) -> Result<Sos> {
 /// own: their ratio alone took -10 Hz at -100 Hz for 0.2 of the Nyquist frequency), and
 /// what [`butterworth`] refuses of the order and the normalised cutoff.
 pub fn butterworth_hz(order: usize, cutoff_hz: f64, sample_rate: f64) -> Result<Sos> {
-    if !(sample_rate > 0.0 && sample_rate.is_finite()) {
-        return Err(Error::setting(
-            "butterworth",
-            "sample_rate",
-            format!(
-                "the sample rate {} Hz must be positive and finite",
-                crate::error::num(sample_rate)
-            ),
-        ));
-    }
-    if !(cutoff_hz > 0.0 && cutoff_hz.is_finite()) {
-        return Err(Error::setting(
-            "butterworth",
-            "cutoff",
-            format!(
-                "the cutoff {} Hz must be positive and finite",
-                crate::error::num(cutoff_hz)
-            ),
-        ));
-    }
+    Error::positive_and_finite(
+        "butterworth",
+        "sample_rate",
+        "the sample rate",
+        sample_rate,
+        "Hz",
+    )?;
+    Error::positive_and_finite("butterworth", "cutoff", "the cutoff", cutoff_hz, "Hz")?;
     butterworth(order, cutoff_hz / (0.5 * sample_rate))
 }
 

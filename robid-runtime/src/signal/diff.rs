@@ -1,7 +1,7 @@
 //! Central differences for velocities and accelerations (the Savitzky-Golay alternative is
 //! `savgol.rs`).
 
-use crate::error::{Error, Result, num};
+use crate::error::{Error, Result};
 
 /// Derivative of a uniformly sampled signal by central differences
 /// (`(x[k+1] - x[k-1]) / 2 dt` inside, one-sided at both ends, as `numpy.gradient`).
@@ -14,13 +14,7 @@ use crate::error::{Error, Result, num};
 /// [`SavitzkyGolay::derivative`](crate::signal::SavitzkyGolay::derivative) refuses it
 /// (0 gave infinite derivatives, NaN NaN ones).
 pub fn central_difference(x: &[f64], dt: f64) -> Result<Vec<f64>> {
-    if !(dt > 0.0 && dt.is_finite()) {
-        return Err(Error::setting(
-            "central_difference",
-            "dt",
-            format!("the sample time {} s must be positive and finite", num(dt)),
-        ));
-    }
+    Error::positive_and_finite("central_difference", "dt", "the sample time", dt, "s")?;
     let n = x.len();
     if n < 2 {
         return Ok(vec![0.0; n]);

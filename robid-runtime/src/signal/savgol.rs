@@ -111,13 +111,7 @@ impl SavitzkyGolay {
                 ),
             ));
         }
-        if !(dt > 0.0 && dt.is_finite()) {
-            return Err(Error::setting(
-                "SavitzkyGolay",
-                "dt",
-                format!("the sample time {} s must be positive and finite", num(dt)),
-            ));
-        }
+        Error::positive_and_finite("SavitzkyGolay", "dt", "the sample time", dt, "s")?;
         let (l, n) = (self.window, self.order + 1);
         let h = ((l - 1) / 2) as f64;
         // One fit serves every position: the polynomial fitted to a window does not depend

@@ -166,16 +166,13 @@ impl Prediction {
                 found: beta.len(),
             });
         }
-        if !(sample_time > 0.0 && sample_time.is_finite()) {
-            return Err(Error::setting(
-                "Prediction::new",
-                "sample_time",
-                format!(
-                    "{} must be positive and finite: the time between two equations' samples, in s",
-                    crate::Num(sample_time)
-                ),
-            ));
-        }
+        Error::positive_and_finite(
+            "Prediction::new",
+            "sample_time",
+            "the time between two equations' samples",
+            sample_time,
+            "s",
+        )?;
         let b = nalgebra::DVector::from_column_slice(beta);
         let pred = &obs.w * b;
         let block = |v: &nalgebra::DVector<f64>| -> Vec<Vec<f64>> {
